@@ -1,0 +1,98 @@
+"""Gateway settings, read from the environment (prefix GATEWAY_) or a .env file."""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+from pydantic import Field, field_validator
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+ALL_TOOLSETS = ("flight", "navigation", "mission", "telemetry", "params", "fleet")
+
+
+class Settings(BaseSettings):
+    """Everything an operator can configure. Each field's description is the documentation."""
+
+    model_config = SettingsConfigDict(env_prefix="GATEWAY_", env_file=".env", extra="ignore")
+
+    # --- server -------------------------------------------------------------------------------
+    host: str = Field("127.0.0.1", description="Address the HTTP server (REST + /mcp) binds to.")
+    port: int = Field(8765, ge=1, le=65535, description="HTTP port of the REST API and /mcp.")
+    database_url: str = Field(
+        "sqlite+aiosqlite:///./fleet-gateway.db",
+        description="SQLAlchemy async URL; SQLite (aiosqlite) by default, PostgreSQL (asyncpg) works too.",
+    )
+    log_level: str = Field("INFO", description="Python log level of the gateway.")
+
+    # --- MAVLink / sidecars --------------------------------------------------------------------
+    gcs_sysid: int = Field(
+        245,
+        ge=2,
+        le=254,
+        description="MAVLink system id the gateway uses as a ground station (mavsdk_server --sysid). "
+        "Set the autopilot's MAV_GCS_SYSID (SYSID_MYGCS) to it for GCS-loss failsafes to watch it.",
+    )
+    mavsdk_server_path: str | None = Field(
+        None, description="Path of the mavsdk_server binary; default: the one bundled with mavsdk-grpc."
+    )
+    sidecar_max_restarts: int = Field(
+        5, ge=0, description="Consecutive sidecar crashes before a vehicle is marked failed."
+    )
+    sidecar_backoff_initial_s: float = Field(0.5, gt=0, description="First restart delay of a sidecar.")
+    sidecar_backoff_max_s: float = Field(10.0, gt=0, description="Longest restart delay of a sidecar.")
+    sidecar_heartbeat_watchdog_s: int = Field(
+        0,
+        ge=0,
+        description="mavsdk_server --heartbeat-watchdog-timeout; 0 disables. When set, a hung gateway stops "
+        "the GCS heartbeat so the autopilot's own GCS failsafe takes over.",
+    )
+    link_lost_after_s: float = Field(
+        3.0, gt=0, description="Seconds without a heartbeat/telemetry before a vehicle is link_lost."
+    )
+
+    # --- MCP ------------------------------------------------------------------------------------
+    mcp_toolsets: str = Field(
+        ",".join(ALL_TOOLSETS),
+        description="Comma-separated MCP toolsets to expose: " + ", ".join(ALL_TOOLSETS) + ".",
+    )
+    mcp_wait_cap_s: float = Field(
+        45.0, gt=0, le=600, description="Longest a tool waits for its operation before answering 'running'."
+    )
+    arrival_tolerance_m: float = Field(2.0, gt=0, description="Horizontal distance counted as arrived.")
+
+    # --- safety -----------------------------------------------------------------------------------
+    max_altitude_m: float = Field(120.0, gt=0, description="Highest altitude above home an agent may command.")
+    max_distance_m: float = Field(1000.0, gt=0, description="Farthest distance from home an agent may command.")
+    min_battery_takeoff_pct: float = Field(30.0, ge=0, le=100, description="Battery needed to take off.")
+    min_battery_leg_pct: float = Field(25.0, ge=0, le=100, description="Battery needed to start a new leg.")
+    max_speed_mps: float = Field(15.0, gt=0, description="Highest horizontal speed an agent may set.")
+    min_separation_m: float = Field(5.0, gt=0, description="Minimum distance kept between fleet drones.")
+    agents_may_kill: bool = Field(False, description="Whether MCP agents may kill motors in the air.")
+    simulators_only: bool = Field(False, description="Refuse every actuating MCP tool on real vehicles.")
+
+    # --- auth -------------------------------------------------------------------------------------
+    operator_tokens: str = Field("", description="Comma-separated bearer tokens with the operator role.")
+    viewer_tokens: str = Field("", description="Comma-separated bearer tokens with the viewer role.")
+    agent_tokens: str = Field("", description="Comma-separated bearer tokens for MCP agents.")
+
+    # --- flight log -------------------------------------------------------------------------------
+    track_sample_hz: float = Field(1.0, gt=0, le=10, description="Track samples recorded per second in flight.")
+    track_flush_s: float = Field(2.0, gt=0, description="Seconds between batched track writes.")
+
+    @field_validator("mcp_toolsets")
+    @classmethod
+    def _known_toolsets(cls, value: str) -> str:
+        names = [n.strip() for n in value.split(",") if n.strip()]
+        unknown = [n for n in names if n not in ALL_TOOLSETS]
+        if unknown:
+            raise ValueError(f"unknown toolset(s) {unknown}; known: {list(ALL_TOOLSETS)}")
+        return ",".join(names)
+
+    @property
+    def toolsets(self) -> list[str]:
+        return [n for n in self.mcp_toolsets.split(",") if n]
+
+
+@lru_cache
+def get_settings() -> Settings:
+    return Settings()

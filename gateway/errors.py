@@ -1,0 +1,72 @@
+"""Errors shared by the fleet logic, REST and MCP layers.
+
+Each error has a stable machine-readable ``code`` and a message written for the person (or model)
+who has to act on it. REST maps them to JSON error bodies, MCP to tool errors.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class GatewayError(Exception):
+    code = "gateway_error"
+    http_status = 500
+
+    def __init__(self, message: str, **details: Any) -> None:
+        super().__init__(message)
+        self.message = message
+        self.details = details
+
+    def to_dict(self) -> dict[str, Any]:
+        body: dict[str, Any] = {"code": self.code, "message": self.message}
+        if self.details:
+            body["details"] = self.details
+        return body
+
+
+class InvalidArgument(GatewayError):
+    code = "invalid_argument"
+    http_status = 422
+
+
+class UnknownVehicle(GatewayError):
+    code = "unknown_vehicle"
+    http_status = 404
+
+    def __init__(self, vehicle_id: str, known: list[str]) -> None:
+        known_text = ", ".join(sorted(known)) if known else "none registered"
+        super().__init__(f"unknown drone id '{vehicle_id}'; known ids: {known_text}", known=sorted(known))
+
+
+class DuplicateVehicle(GatewayError):
+    code = "duplicate_vehicle"
+    http_status = 409
+
+
+class NotFound(GatewayError):
+    code = "not_found"
+    http_status = 404
+
+
+class VehicleNotReady(GatewayError):
+    code = "vehicle_not_ready"
+    http_status = 409
+
+
+class CommandFailed(GatewayError):
+    """The autopilot (or mavsdk_server) rejected or failed a command."""
+
+    code = "command_failed"
+    http_status = 502
+
+
+class SafetyRefusal(GatewayError):
+    """A safety rule refused the request; ``rule`` names it."""
+
+    code = "safety_refusal"
+    http_status = 403
+
+    def __init__(self, rule: str, message: str, **details: Any) -> None:
+        super().__init__(message, rule=rule, **details)
+        self.rule = rule

@@ -1,0 +1,69 @@
+"""What it takes to register a vehicle: validated id, MAVLink connection URL and metadata."""
+
+from __future__ import annotations
+
+import re
+from urllib.parse import urlsplit
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator
+
+VEHICLE_ID_PATTERN = r"^[a-z0-9-]{1,32}$"
+CONNECTION_SCHEMES = ("udpin", "udpout", "tcpin", "tcpout", "serial")
+_HOSTNAME = re.compile(r"^[A-Za-z0-9.\-]{1,253}$")
+
+
+def validate_connection_url(url: str) -> str:
+    """Check a URL in mavsdk_server syntax and return it unchanged; raise ValueError naming the problem."""
+    if len(url) > 256:
+        raise ValueError("connection URL longer than 256 characters")
+    parts = urlsplit(url)
+    if parts.scheme not in CONNECTION_SCHEMES:
+        raise ValueError(f"connection URL scheme must be one of {', '.join(CONNECTION_SCHEMES)}; got '{url}'")
+    if parts.scheme == "serial":
+        # serial:///dev/ttyUSB0[:baud]
+        path = parts.path
+        if not path.startswith("/"):
+            raise ValueError(f"serial URL needs a device path, e.g. serial:///dev/ttyUSB0:57600; got '{url}'")
+        device, _, baud = path.partition(":")
+        if baud and not baud.isdigit():
+            raise ValueError(f"serial baud rate must be a number; got '{baud}'")
+        return url
+    if parts.path or parts.query or parts.fragment:
+        raise ValueError(f"network URL must be scheme://host:port with nothing after the port; got '{url}'")
+    try:
+        port = parts.port
+    except ValueError as exc:
+        raise ValueError(f"invalid port in '{url}'") from exc
+    if port is None or not 1 <= port <= 65535:
+        raise ValueError(f"network URL needs a port 1-65535, e.g. udpin://0.0.0.0:14540; got '{url}'")
+    host = parts.hostname or ""
+    if not _HOSTNAME.match(host):
+        raise ValueError(f"network URL needs a host name or address; got '{url}'")
+    return url
+
+
+class VehicleSpec(BaseModel):
+    """A vehicle registration as an operator submits it."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    id: str = Field(pattern=VEHICLE_ID_PATTERN, description="Vehicle id: 1-32 of a-z, 0-9 and '-'.")
+    url: str = Field(description="MAVLink connection URL in mavsdk_server syntax, e.g. tcpout://127.0.0.1:5760")
+    name: str | None = Field(None, max_length=100, description="Human-readable name.")
+    tags: list[str] = Field(default_factory=list, max_length=20, description="Free tags, e.g. ['survey'].")
+    expected_sysid: int | None = Field(
+        None, ge=1, le=255, description="MAVLink system id the vehicle must report."
+    )
+
+    @field_validator("url")
+    @classmethod
+    def _url(cls, value: str) -> str:
+        return validate_connection_url(value)
+
+    @field_validator("tags")
+    @classmethod
+    def _tags(cls, value: list[str]) -> list[str]:
+        for tag in value:
+            if not 1 <= len(tag) <= 32 or not re.match(r"^[A-Za-z0-9_.\-]+$", tag):
+                raise ValueError(f"tag '{tag[:40]}' must be 1-32 of letters, digits, '_', '.', '-'")
+        return value

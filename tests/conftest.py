@@ -1,0 +1,39 @@
+"""Shared fixtures. Integration tests start real processes: every one is cleaned up, even on failure."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+from collections.abc import Iterator
+
+import pytest
+
+
+@pytest.fixture
+def process_reaper() -> Iterator[list[subprocess.Popen]]:
+    """Append every Popen a test starts; they are terminated (then killed) when the test ends."""
+    procs: list[subprocess.Popen] = []
+    yield procs
+    for proc in procs:
+        if proc.poll() is None:
+            try:
+                os.killpg(proc.pid, signal.SIGTERM) if _own_group(proc) else proc.terminate()
+            except ProcessLookupError:
+                pass
+    for proc in procs:
+        try:
+            proc.wait(timeout=5)
+        except subprocess.TimeoutExpired:
+            try:
+                os.killpg(proc.pid, signal.SIGKILL) if _own_group(proc) else proc.kill()
+            except ProcessLookupError:
+                pass
+            proc.wait(timeout=5)
+
+
+def _own_group(proc: subprocess.Popen) -> bool:
+    try:
+        return os.getpgid(proc.pid) == proc.pid
+    except ProcessLookupError:
+        return False
