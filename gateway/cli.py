@@ -20,7 +20,9 @@ def build_parser() -> argparse.ArgumentParser:
         prog="fleet-gateway",
         description="MCP gateway that lets LLMs fly a fleet of MAVLink drones under operator control.",
     )
-    parser.add_argument("--log-level", default=None, help="Python log level (default: GATEWAY_LOG_LEVEL or INFO)")
+    parser.add_argument(
+        "--log-level", default=None, help="Python log level (default: GATEWAY_LOG_LEVEL or INFO)"
+    )
     subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for module_name in COMMAND_MODULES:
         importlib.import_module(module_name).register(subparsers)

@@ -61,8 +61,12 @@ class Settings(BaseSettings):
     arrival_tolerance_m: float = Field(2.0, gt=0, description="Horizontal distance counted as arrived.")
 
     # --- safety -----------------------------------------------------------------------------------
-    max_altitude_m: float = Field(120.0, gt=0, description="Highest altitude above home an agent may command.")
-    max_distance_m: float = Field(1000.0, gt=0, description="Farthest distance from home an agent may command.")
+    max_altitude_m: float = Field(
+        120.0, gt=0, description="Highest altitude above home an agent may command."
+    )
+    max_distance_m: float = Field(
+        1000.0, gt=0, description="Farthest distance from home an agent may command."
+    )
     min_battery_takeoff_pct: float = Field(30.0, ge=0, le=100, description="Battery needed to take off.")
     min_battery_leg_pct: float = Field(25.0, ge=0, le=100, description="Battery needed to start a new leg.")
     max_speed_mps: float = Field(15.0, gt=0, description="Highest horizontal speed an agent may set.")
@@ -76,7 +80,9 @@ class Settings(BaseSettings):
     agent_tokens: str = Field("", description="Comma-separated bearer tokens for MCP agents.")
 
     # --- flight log -------------------------------------------------------------------------------
-    track_sample_hz: float = Field(1.0, gt=0, le=10, description="Track samples recorded per second in flight.")
+    track_sample_hz: float = Field(
+        1.0, gt=0, le=10, description="Track samples recorded per second in flight."
+    )
     track_flush_s: float = Field(2.0, gt=0, description="Seconds between batched track writes.")
 
     @field_validator("mcp_toolsets")

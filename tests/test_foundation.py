@@ -79,7 +79,9 @@ def test_geo_round_trip_and_distance() -> None:
     assert math.isclose(geo.horizontal_distance_m(lat0, lon0, lat, lon), 100.0, abs_tol=0.01)
     north, east = geo.ned_offset(lat0, lon0, *geo.offset_position(lat0, lon0, -30.0, 40.0))
     assert math.isclose(north, -30.0, abs_tol=0.01) and math.isclose(east, 40.0, abs_tol=0.01)
-    assert math.isclose(geo.bearing_deg(lat0, lon0, *geo.offset_position(lat0, lon0, 0, 50)), 90.0, abs_tol=0.01)
+    assert math.isclose(
+        geo.bearing_deg(lat0, lon0, *geo.offset_position(lat0, lon0, 0, 50)), 90.0, abs_tol=0.01
+    )
     # one degree of latitude is about 111 km
     assert 110_000 < geo.horizontal_distance_m(0.0, 0.0, 1.0, 0.0) < 112_000
 
@@ -89,7 +91,9 @@ def test_altitude_frames_are_inverse() -> None:
     assert geo.amsl_to_relative(594.0, 584.0) == 10.0
 
 
-@pytest.mark.parametrize(("lat", "lon"), [(91, 0), (0, 181), (math.nan, 0), (0, math.inf), ("1", 0), (True, 0)])
+@pytest.mark.parametrize(
+    ("lat", "lon"), [(91, 0), (0, 181), (math.nan, 0), (0, math.inf), ("1", 0), (True, 0)]
+)
 def test_check_lat_lon_rejects(lat: object, lon: object) -> None:
     with pytest.raises(InvalidArgument):
         geo.check_lat_lon(lat, lon)  # type: ignore[arg-type]

@@ -51,9 +51,7 @@ def bearing_deg(lat1: float, lon1: float, lat2: float, lon2: float) -> float:
     return math.degrees(math.atan2(east, north)) % 360.0
 
 
-def distance_3d_m(
-    lat1: float, lon1: float, alt1_m: float, lat2: float, lon2: float, alt2_m: float
-) -> float:
+def distance_3d_m(lat1: float, lon1: float, alt1_m: float, lat2: float, lon2: float, alt2_m: float) -> float:
     return math.hypot(horizontal_distance_m(lat1, lon1, lat2, lon2), alt2_m - alt1_m)
 
 

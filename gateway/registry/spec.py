@@ -24,7 +24,7 @@ def validate_connection_url(url: str) -> str:
         path = parts.path
         if not path.startswith("/"):
             raise ValueError(f"serial URL needs a device path, e.g. serial:///dev/ttyUSB0:57600; got '{url}'")
-        device, _, baud = path.partition(":")
+        _device, _, baud = path.partition(":")
         if baud and not baud.isdigit():
             raise ValueError(f"serial baud rate must be a number; got '{baud}'")
         return url
@@ -48,7 +48,9 @@ class VehicleSpec(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     id: str = Field(pattern=VEHICLE_ID_PATTERN, description="Vehicle id: 1-32 of a-z, 0-9 and '-'.")
-    url: str = Field(description="MAVLink connection URL in mavsdk_server syntax, e.g. tcpout://127.0.0.1:5760")
+    url: str = Field(
+        description="MAVLink connection URL in mavsdk_server syntax, e.g. tcpout://127.0.0.1:5760"
+    )
     name: str | None = Field(None, max_length=100, description="Human-readable name.")
     tags: list[str] = Field(default_factory=list, max_length=20, description="Free tags, e.g. ['survey'].")
     expected_sysid: int | None = Field(
