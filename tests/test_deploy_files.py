@@ -20,9 +20,8 @@ def test_systemd_unit_restarts_and_runs_unprivileged() -> None:
     assert service["Restart"] == "on-failure"
     assert service["User"] not in ("", "root")
     assert service["StateDirectory"] == "fleet-gateway"
-    assert "/var/lib/fleet-gateway/" in service["Environment"] or any(
-        "/var/lib/fleet-gateway" in line for line in service["Environment"].splitlines()
-    )
+    raw = (ROOT / "deploy" / "fleet-gateway.service").read_text().splitlines()
+    assert "Environment=GATEWAY_DATABASE_URL=sqlite+aiosqlite:////var/lib/fleet-gateway/fleet-gateway.db" in raw
     assert service["ExecStart"].endswith("fleet-gateway serve")
     assert service["KillMode"] == "control-group"
     assert service["NoNewPrivileges"] == "yes"
