@@ -21,7 +21,8 @@ def test_systemd_unit_restarts_and_runs_unprivileged() -> None:
     assert service["User"] not in ("", "root")
     assert service["StateDirectory"] == "fleet-gateway"
     raw = (ROOT / "deploy" / "fleet-gateway.service").read_text().splitlines()
-    assert "Environment=GATEWAY_DATABASE_URL=sqlite+aiosqlite:////var/lib/fleet-gateway/fleet-gateway.db" in raw
+    database = "sqlite+aiosqlite:////var/lib/fleet-gateway/fleet-gateway.db"
+    assert f"Environment=GATEWAY_DATABASE_URL={database}" in raw
     assert service["ExecStart"].endswith("fleet-gateway serve")
     assert service["KillMode"] == "control-group"
     assert service["NoNewPrivileges"] == "yes"
