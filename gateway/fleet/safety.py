@@ -692,6 +692,9 @@ def _geofence_refusal(ctx: VehicleContext, v: Violation, what: str) -> SafetyRef
     elif v.breach == "target":
         text = f"{what} is inside keep-out zone '{v.zone}' ({fmt(v.metres)} m from its edge)"
         rule = Rule.KEEP_OUT
+    elif v.metres < 0.05:
+        text = f"the straight path to the target touches keep-out zone '{v.zone}'"
+        rule = Rule.KEEP_OUT
     else:
         text = f"the straight path to the target crosses keep-out zone '{v.zone}' for {fmt(v.metres)} m"
         rule = Rule.KEEP_OUT
