@@ -46,8 +46,17 @@ def test_keep_in_allows_inside_and_refuses_outside_with_distance() -> None:
 
 def test_keep_in_path_must_stay_inside_a_concave_zone() -> None:
     # A U shape: two 100 m wide arms joined at the south; the gap between the arms is outside.
-    ring = [at(-100, -150), at(-100, 150), at(200, 150), at(200, 50), at(0, 50), at(0, -50),
-            at(200, -50), at(200, -150), at(-100, -150)]  # fmt: skip
+    ring = [
+        at(-100, -150),
+        at(-100, 150),
+        at(200, 150),
+        at(200, 50),
+        at(0, 50),
+        at(0, -50),
+        at(200, -50),
+        at(200, -150),
+        at(-100, -150),
+    ]
     u_shape = {"type": "Polygon", "coordinates": [[[lon, lat] for lat, lon in ring]]}
     p = fenced(("u", "keep_in", u_shape, "*"))
     west_arm = ctx(north_m=150, east_m=-100)
@@ -112,8 +121,10 @@ def test_keep_out_may_be_left_but_not_reentered() -> None:
 
 
 def test_multipolygon_keep_out_and_vehicle_scope() -> None:
-    parts = {"type": "MultiPolygon", "coordinates": [square(300, 0, 20)["coordinates"],
-                                                     square(-300, 0, 20)["coordinates"]]}  # fmt: skip
+    parts = {
+        "type": "MultiPolygon",
+        "coordinates": [square(300, 0, 20)["coordinates"], square(-300, 0, 20)["coordinates"]],
+    }
     p = fenced(("tanks", "keep_out", parts, "bravo"))
     assert refusal(p.check_motion, ctx("bravo"), target(-300, 0)).rule == "geofence_keep_out"
     assert p.check_motion(ctx("alpha"), target(-300, 0)).allowed
@@ -203,12 +214,18 @@ def test_feature_collection_file_and_records_round_trip(tmp_path) -> None:
     document = {
         "type": "FeatureCollection",
         "features": [
-            {"type": "Feature", "properties": {"kind": "keep_in", "name": "field"},
-             "geometry": square(0, 0, 500)},
-            {"type": "Feature", "properties": {"kind": "keep_out", "vehicle_id": "alpha"},
-             "geometry": square(300, 0, 50)},
+            {
+                "type": "Feature",
+                "properties": {"kind": "keep_in", "name": "field"},
+                "geometry": square(0, 0, 500),
+            },
+            {
+                "type": "Feature",
+                "properties": {"kind": "keep_out", "vehicle_id": "alpha"},
+                "geometry": square(300, 0, 50),
+            },
         ],
-    }  # fmt: skip
+    }
     path = tmp_path / "fences.geojson"
     path.write_text(json.dumps(document))
     fences = load_geofence_file(path)

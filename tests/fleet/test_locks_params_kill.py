@@ -160,13 +160,36 @@ def test_bad_lock_records() -> None:
 @pytest.mark.parametrize(
     "name",
     [
-        "ARMING_CHECK", "arming_check", "FENCE_ENABLE", "FENCE_ALT_MAX", "FS_GCS_ENABLE", "FS_THR_ENABLE",
-        "FS_EKF_ACTION", "BATT_FS_LOW_ACT", "BATT2_FS_CRT_ACT", "BATT_LOW_VOLT", "BATT_CRT_MAH",
-        "SYSID_THISMAV", "SYSID_MYGCS", "MAV_SYSID", "MAV_GCS_SYSID", "BRD_SAFETY_DEFLT",
-        "COM_ARM_WO_GPS", "COM_DL_LOSS_T", "GF_ACTION", "GF_MAX_HOR_DIST", "NAV_DLL_ACT", "NAV_RCL_ACT",
-        "CBRK_SUPPLY_CHK", "CBRK_IO_SAFETY", "MAV_SYS_ID", "BAT_CRIT_THR", "BAT1_EMERGEN_THR", "FD_FAIL_P",
+        "ARMING_CHECK",
+        "arming_check",
+        "FENCE_ENABLE",
+        "FENCE_ALT_MAX",
+        "FS_GCS_ENABLE",
+        "FS_THR_ENABLE",
+        "FS_EKF_ACTION",
+        "BATT_FS_LOW_ACT",
+        "BATT2_FS_CRT_ACT",
+        "BATT_LOW_VOLT",
+        "BATT_CRT_MAH",
+        "SYSID_THISMAV",
+        "SYSID_MYGCS",
+        "MAV_SYSID",
+        "MAV_GCS_SYSID",
+        "BRD_SAFETY_DEFLT",
+        "COM_ARM_WO_GPS",
+        "COM_DL_LOSS_T",
+        "GF_ACTION",
+        "GF_MAX_HOR_DIST",
+        "NAV_DLL_ACT",
+        "NAV_RCL_ACT",
+        "CBRK_SUPPLY_CHK",
+        "CBRK_IO_SAFETY",
+        "MAV_SYS_ID",
+        "BAT_CRIT_THR",
+        "BAT1_EMERGEN_THR",
+        "FD_FAIL_P",
     ],
-)  # fmt: skip
+)
 def test_protected_parameters_are_refused_for_agents(name: str) -> None:
     err = refusal(policy().check_param_write, name, vehicle_id="alpha")
     assert err.rule == "param_deny"
