@@ -164,6 +164,14 @@ class CommandHandler:
             v.flight.start_mission()
         return ACCEPTED
 
+    def _cmd_246(self, link, msg, is_int):  # MAV_CMD_PREFLIGHT_REBOOT_SHUTDOWN
+        v = self.v
+        if round(msg.param1) not in (1, 3):
+            return UNSUPPORTED  # shutdown / bootloader: not simulated
+        if v.armed:
+            return FAILED  # ArduPilot refuses to reboot while armed
+        return ACCEPTED, v.reboot
+
     # -- messages and streams -------------------------------------------------------------------------
     def _cmd_511(self, link, msg, is_int):  # MAV_CMD_SET_MESSAGE_INTERVAL
         msg_id = int(msg.param1)
