@@ -157,9 +157,8 @@ class CommandHandler:
         v = self.v
         if v.mode not in (Mode.AUTO, Mode.GUIDED) or not v.flying:
             return FAILED
-        b = v.body
         if msg.param1 == 0:
-            v.flight.target = (b.north, b.east, b.up)
+            v.flight.target = v.flight.stopping_point()
             if v.mode == Mode.AUTO:
                 v.auto.running = False
             return ACCEPTED
