@@ -15,9 +15,10 @@ from dataclasses import dataclass
 from pymavlink.dialects.v20 import ardupilotmega as mav
 
 from gateway.sim import telemetry
+from gateway.sim.auto import AutoState
 from gateway.sim.battery import Battery
 from gateway.sim.commands import CommandHandler
-from gateway.sim.flight import AutoState, FlightController
+from gateway.sim.flight import FlightController
 from gateway.sim.link import Link, LinkFaults, TcpServerLink, UdpOutLink
 from gateway.sim.mission import MissionStore
 from gateway.sim.modes import GUIDED_FLAG_MODES, REQUIRES_POSITION, Mode, mode_name
