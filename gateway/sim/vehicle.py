@@ -424,6 +424,8 @@ class SimVehicle:
         self.flight.step(dt)
         if self.flying:
             self.flight_time_s += dt
+        if not self.battery.follow_charge and self.params.get("SIM_BATT_CAP_AH") > 0:
+            self.battery.follow_charge = True
         self.battery.drain(dt, self.armed, self.flying)
         self._failsafes()
 
