@@ -1,0 +1,502 @@
+"""Flight logic of the simulated copter, following ArduCopter 4.x: arming, modes, takeoff, GUIDED targets,
+RTL, landing, auto-disarm (AUTO missions in auto.py, failsafes and fence in failsafe.py)."""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+from pymavlink.dialects.v20 import ardupilotmega as mav
+
+from gateway.sim.auto import DO_CMDS, AutoMixin
+from gateway.sim.failsafe import FailsafeMixin
+from gateway.sim.mission import FRAME_ABS
+from gateway.sim.modes import PILOT_THROTTLE, REQUIRES_POSITION, SUPPORTED, Mode
+from gateway.sim.physics import Limits
+
+if TYPE_CHECKING:
+    from gateway.sim.vehicle import SimVehicle
+
+SPOOL_UP_S = 3.5  # motors spool up before lift-off (measured: 0.2 m reached 4.1 s after NAV_TAKEOFF)
+LAND_DETECT_S = 2.0  # touchdown -> "Disarming motors" in LAND / RTL / AUTO land (measured 2.1 s)
+YAW_RATE_DPS = 60.0  # ATC_SLEW_YAW default 6000 cdeg/s
+PILOT_DESCENT_FALLBACK = 2.5
+GUIDED_VEL_TIMEOUT_S = 3.0
+
+
+class FlightController(AutoMixin, FailsafeMixin):
+    """Modes, navigation and the per-step flight logic of one simulated copter."""
+
+    def __init__(self, v: SimVehicle) -> None:
+        self.v = v
+        self.target: tuple[float, float, float] | None = None  # north, east, up (m)
+        self.vel_target: tuple[float, float, float, float] | None = None  # vn, ve, vu, expiry t
+        self.yaw_target: float | None = None
+        self.yaw_rate = YAW_RATE_DPS
+        self.speed_override: dict[str, float] = {}
+        self.takeoff_alt: float | None = None  # up (m) the current takeoff climbs to
+        self.spool_until: float | None = None
+        self.descending = False  # LAND-like descent active (LAND, RTL final, AUTO land)
+        self.rtl_phase: str | None = None
+        self.rtl_alt = 0.0
+        self.rtl_loiter_until = 0.0
+        self.touchdown_t: float | None = None
+        self.landed_since = 0.0
+        self.land_pause_until = 0.0
+        self.ekf_failsafe = False
+        self.fence_breaches = 0  # bitmask: 1 max altitude, 2 circle
+
+    # ------------------------------------------------------------------------------------------------
+    # parameters
+    def _p(self, name: str) -> float:
+        return self.v.params.get(name)
+
+    def limits(self) -> Limits:
+        speed_h = self.speed_override.get("h", self._p("WPNAV_SPEED") / 100.0)
+        if self.v.mode == Mode.RTL and self._p("RTL_SPEED") > 0 and "h" not in self.speed_override:
+            speed_h = self._p("RTL_SPEED") / 100.0
+        return Limits(
+            speed_h=max(0.2, speed_h),
+            speed_up=max(0.1, self.speed_override.get("up", self._p("WPNAV_SPEED_UP") / 100.0)),
+            speed_dn=max(0.1, self.speed_override.get("dn", self._p("WPNAV_SPEED_DN") / 100.0)),
+            accel_h=max(0.5, self._p("WPNAV_ACCEL") / 100.0),
+            accel_v=max(0.5, self._p("WPNAV_ACCEL_Z") / 100.0),
+        )
+
+    def _home_up(self) -> float:
+        v = self.v
+        return (v.home[2] - v.frame.alt0) if v.home else 0.0
+
+    def _home_ne(self) -> tuple[float, float]:
+        v = self.v
+        return v.frame.to_ne(v.home[0], v.home[1]) if v.home else (0.0, 0.0)
+
+    # ------------------------------------------------------------------------------------------------
+    # status queries
+    def takeoff_pending(self) -> bool:
+        return self.spool_until is not None
+
+    def is_taking_off(self) -> bool:
+        return self.takeoff_alt is not None and self.spool_until is None
+
+    def is_landing(self) -> bool:
+        return self.descending
+
+    def on_ground(self) -> bool:
+        return self.v.landed
+
+    def nav_output(self) -> tuple[float, float, float]:
+        b = self.v.body
+        if self.target is None:
+            return b.yaw, 0.0, 0.0
+        n, e, up = self.target
+        bearing = math.degrees(math.atan2(e - b.east, n - b.north)) % 360
+        return bearing, math.hypot(n - b.north, e - b.east), up - b.up
+
+    # ------------------------------------------------------------------------------------------------
+    # arming
+    def arm(self, force: bool) -> tuple[bool, str | None]:
+        v = self.v
+        if v.armed:
+            return True, None
+        if not force:
+            if v.mode not in _armable_modes(v):
+                return False, "Mode not armable"
+            failure = v.prearm_failure()
+            if failure:
+                return False, failure
+        v.armed = True
+        v.landed = True
+        self.landed_since = v.t
+        self.touchdown_t = None
+        v.auto_armed = False
+        v.set_home_here()
+        v.text(mav.MAV_SEVERITY_INFO, "Arming motors")
+        return True, None
+
+    def disarm(self, reason: str | None = None) -> None:
+        v = self.v
+        if not v.armed:
+            return
+        v.armed = False
+        v.auto_armed = False
+        self.takeoff_alt = None
+        self.spool_until = None
+        self.descending = False
+        self.touchdown_t = None
+        if v.landed:
+            v.body.stop()
+        v.text(mav.MAV_SEVERITY_INFO, "Disarming motors")
+        if v.flight_time_s > 0:
+            v._stat_params()
+            v.notify_param("MOT_THST_HOVER", v.params.get("MOT_THST_HOVER"))
+        if v.auto.running and v.landed:
+            v.auto.running = False
+
+    # ------------------------------------------------------------------------------------------------
+    # modes
+    def set_mode(self, number: int, announce_failure: bool = True) -> tuple[bool, str | None]:
+        v = self.v
+        try:
+            mode = Mode(number)
+        except ValueError:
+            mode = None
+        if mode is None or mode not in SUPPORTED:
+            v.text(mav.MAV_SEVERITY_WARNING, f"No such mode {number}")
+            return False, "no such mode"
+        if mode == v.mode:
+            return True, None
+        if v.armed:
+            if mode in REQUIRES_POSITION and not v.position_ok:
+                return self._mode_failed(mode, "requires position", announce_failure)
+            if mode == Mode.AUTO:
+                if v.mission.count() <= 1:
+                    return self._mode_failed(mode, "init failed", announce_failure)
+                if v.landed and not self._mission_starts_with_takeoff():
+                    v.text(mav.MAV_SEVERITY_CRITICAL, "Auto: Missing Takeoff Cmd")
+                    return self._mode_failed(mode, "init failed", announce_failure)
+        self._enter(mode)
+        return True, None
+
+    def _mode_failed(self, mode: Mode, why: str, announce: bool) -> tuple[bool, str]:
+        if announce:
+            self.v.text(mav.MAV_SEVERITY_WARNING, f"Mode change to {mode.name} failed: {why}")
+        return False, why
+
+    def _enter(self, mode: Mode) -> None:
+        v = self.v
+        previous = v.mode
+        v.mode = mode
+        self.speed_override.clear()
+        self.vel_target = None
+        self.yaw_target = None
+        self.descending = False
+        self.rtl_phase = None
+        if previous == Mode.AUTO:
+            v.auto.running = False
+            v.auto.phase = "idle"
+        if mode != Mode.GUIDED:
+            self.takeoff_alt = None
+            if mode != Mode.AUTO:
+                self.spool_until = None
+        b = v.body
+        self.target = self.stopping_point() if v.flying else None
+        if mode == Mode.LAND:
+            self.land_pause_until = v.t
+            self.descending = True
+        elif mode == Mode.RTL:
+            self.rtl_phase = "climb"
+            rtl_alt = self._p("RTL_ALT") / 100.0
+            self.rtl_alt = max(b.up, self._home_up() + rtl_alt) if rtl_alt > 0 else b.up
+        elif mode == Mode.SMART_RTL:
+            self.rtl_phase = "return"
+            self.rtl_alt = b.up
+        elif mode == Mode.AUTO and (v.flying or v.auto_armed):
+            self.start_mission()
+
+    def stopping_point(self) -> tuple[float, float, float]:
+        """Where the vehicle comes to rest braking at the acceleration limits (ArduPilot's stopping point):
+        mode changes in flight hold there instead of turning back to where the switch happened."""
+        b = self.v.body
+        lim = self.limits()
+        speed = b.ground_speed
+        ahead = speed / (2.0 * lim.accel_h) if speed > 0 else 0.0
+        up = b.up + b.vu * abs(b.vu) / (2.0 * lim.accel_v)
+        return b.north + b.vn * ahead, b.east + b.ve * ahead, up
+
+    def _mission_starts_with_takeoff(self) -> bool:
+        items = self.v.mission.items
+        for item in items[1:]:
+            if item.command in DO_CMDS:
+                continue
+            return item.command == mav.MAV_CMD_NAV_TAKEOFF
+        return False
+
+    # ------------------------------------------------------------------------------------------------
+    # guided
+    def takeoff(self, alt_rel: float) -> bool:
+        v = self.v
+        if not v.armed or not v.landed or v.mode != Mode.GUIDED or not alt_rel > 0:
+            return False
+        self._begin_takeoff(self._home_up() + alt_rel)
+        return True
+
+    def _begin_takeoff(self, up: float) -> None:
+        v = self.v
+        v.auto_armed = True
+        self.takeoff_alt = max(up, v.body.up + 0.5)
+        self.spool_until = v.t + SPOOL_UP_S
+        self.target = (v.body.north, v.body.east, self.takeoff_alt)
+
+    def guided_goto(self, north: float, east: float, up: float, yaw: float | None = None) -> bool:
+        if not self.destination_allowed(north, east, up):
+            return False
+        self.target = (north, east, up)
+        self.vel_target = None
+        self.takeoff_alt = None
+        self.yaw_target = yaw
+        return True
+
+    def position_target(self, msg) -> None:
+        """SET_POSITION_TARGET_GLOBAL_INT / _LOCAL_NED in GUIDED (ignored in other modes, like ArduPilot)."""
+        v = self.v
+        if v.mode != Mode.GUIDED or not v.flying:
+            return
+        mask = msg.type_mask
+        use_pos = not mask & 0x7
+        use_vel = not mask & 0x38
+        b = v.body
+        yaw = None if mask & 0x400 else math.degrees(msg.yaw) % 360
+        if msg.get_type() == "SET_POSITION_TARGET_GLOBAL_INT":
+            if use_pos:
+                north, east = v.frame.to_ne(msg.lat_int / 1e7, msg.lon_int / 1e7)
+                up = self._alt_to_up(msg.alt, msg.coordinate_frame)
+                self.guided_goto(north, east, up, yaw)
+            elif use_vel:
+                self._velocity(msg.vx, msg.vy, msg.vz, yaw)
+            return
+        frame = msg.coordinate_frame
+        x, y, z = msg.x, msg.y, msg.z
+        vx, vy = msg.vx, msg.vy
+        if frame in (mav.MAV_FRAME_BODY_NED, mav.MAV_FRAME_BODY_OFFSET_NED, mav.MAV_FRAME_BODY_FRD):
+            c, s = math.cos(math.radians(b.yaw)), math.sin(math.radians(b.yaw))
+            x, y = x * c - y * s, x * s + y * c
+            vx, vy = vx * c - vy * s, vx * s + vy * c
+        if use_pos:
+            if frame == mav.MAV_FRAME_LOCAL_NED:
+                self.guided_goto(x, y, -z, yaw)
+            else:  # offsets from the vehicle
+                self.guided_goto(b.north + x, b.east + y, b.up - z, yaw)
+        elif use_vel:
+            self._velocity(vx, vy, msg.vz, yaw)
+
+    def _velocity(self, vn: float, ve: float, vd: float, yaw: float | None) -> None:
+        self.vel_target = (vn, ve, -vd, self.v.t + GUIDED_VEL_TIMEOUT_S)
+        self.target = None
+        self.takeoff_alt = None
+        self.yaw_target = yaw
+
+    def _alt_to_up(self, alt: float, frame: int) -> float:
+        if frame in FRAME_ABS:
+            return alt - self.v.frame.alt0
+        return self._home_up() + alt
+
+    def condition_yaw(self, angle: float, rate: float, direction: float, relative: bool) -> bool:
+        if not 0 <= angle <= 360 or not self.v.flying:
+            return False
+        yaw = self.v.body.yaw + (angle if direction >= 0 else -angle) if relative else angle
+        self.yaw_target = yaw % 360
+        self.yaw_rate = rate if rate > 0 else YAW_RATE_DPS
+        return True
+
+    def change_speed(self, kind: int, speed: float) -> bool:
+        if not speed > 0:
+            return False
+        key = {0: "h", 1: "h", 2: "up", 3: "dn"}.get(kind)
+        if key is None:
+            return False
+        self.speed_override[key] = speed
+        return True
+
+    # ------------------------------------------------------------------------------------------------
+    # simulation step
+    def step(self, dt: float) -> None:
+        v = self.v
+        b = v.body
+        if not v.armed:
+            if not v.landed:  # disarmed in the air: motors stopped, it falls
+                b.vn *= 0.99
+                b.ve *= 0.99
+                b.vu = max(-30.0, b.vu - 9.80665 * dt)
+                b.north += b.vn * dt
+                b.east += b.ve * dt
+                b.up += b.vu * dt
+                self._ground_contact()
+            return
+        if v.landed:
+            self._step_on_ground(dt)
+            return
+        mode = v.mode
+        if mode == Mode.GUIDED:
+            self._run_guided(dt)
+        elif mode == Mode.AUTO:
+            self._run_auto(dt)
+        elif mode in (Mode.RTL, Mode.SMART_RTL):
+            self._run_rtl(dt)
+        elif mode == Mode.LAND:
+            self._descend(dt)
+        elif mode == Mode.BRAKE:
+            self._hold(dt)
+        elif mode in PILOT_THROTTLE:
+            self._pilot_throttle_low(dt)
+        else:
+            self._hold(dt)
+        self._yaw(dt)
+        self._ground_contact()
+        self.fence_check()
+
+    def _step_on_ground(self, dt: float) -> None:
+        v = self.v
+        if self.spool_until is not None:
+            if v.t >= self.spool_until:
+                self.spool_until = None
+                v.landed = False
+                self.touchdown_t = None
+            return
+        if self.touchdown_t is not None and (self.descending or v.mode == Mode.LAND):
+            if v.t - self.touchdown_t >= LAND_DETECT_S:
+                self.disarm()
+                if v.mode == Mode.AUTO:
+                    v.auto.running = False
+                    v.auto.complete = True
+            return
+        delay = self._p("DISARM_DELAY")
+        if delay > 0 and v.t - self.landed_since >= delay:
+            self.disarm()
+
+    def _ground_contact(self) -> None:
+        v = self.v
+        b = v.body
+        ground = 0.0
+        if b.up <= ground and b.vu <= 0 and not v.landed:
+            speed = -b.vu
+            b.up = ground
+            b.stop()
+            v.landed = True
+            self.touchdown_t = v.t
+            self.landed_since = v.t
+            self.target = None
+            self.vel_target = None
+            v.text(mav.MAV_SEVERITY_INFO, f"SIM Hit ground at {speed:.6f} m/s")
+
+    def _fly_to_target(self, dt: float) -> float:
+        if self.target is None:
+            self._hold(dt)
+            return 0.0
+        lim = self.limits()
+        b = self.v.body
+        n, e, up = self.target
+        remaining_h = b.move_h_to(n, e, lim, dt)
+        remaining_v = b.move_v_to(up, lim, dt)
+        if self.yaw_target is None and remaining_h > 2.0 and self.v.mode != Mode.RTL:
+            self._face(n, e, dt)
+        return math.hypot(remaining_h, remaining_v)
+
+    def _face(self, n: float, e: float, dt: float) -> None:
+        b = self.v.body
+        b.turn_to(math.degrees(math.atan2(e - b.east, n - b.north)), YAW_RATE_DPS, dt)
+
+    def _yaw(self, dt: float) -> None:
+        b = self.v.body
+        if self.yaw_target is not None:
+            b.turn_to(self.yaw_target, self.yaw_rate, dt)
+        elif b.yaw_rate and self.target is None:
+            b.yaw_rate = 0.0
+
+    def _hold(self, dt: float) -> None:
+        b = self.v.body
+        if self.target is None:
+            self.target = (b.north, b.east, b.up)
+        lim = self.limits()
+        b.move_h_to(self.target[0], self.target[1], lim, dt)
+        b.move_v_to(self.target[2], lim, dt)
+
+    def _run_takeoff(self, dt: float) -> bool:
+        """Climb to the takeoff altitude; True once reached."""
+        b = self.v.body
+        lim = self.limits()
+        assert self.takeoff_alt is not None
+        b.move_h_to(b.north, b.east, lim, dt)
+        remaining = b.move_v_to(self.takeoff_alt, lim, dt)
+        if abs(remaining) < 0.05:
+            self.target = (b.north, b.east, self.takeoff_alt)
+            self.takeoff_alt = None
+            return True
+        return False
+
+    def _run_guided(self, dt: float) -> None:
+        v = self.v
+        b = v.body
+        if self.takeoff_alt is not None:
+            self._run_takeoff(dt)
+            return
+        if self.vel_target is not None:
+            vn, ve, vu, expiry = self.vel_target
+            if v.t > expiry:
+                vn = ve = vu = 0.0
+            lim = self.limits()
+            b.move_h_velocity(vn, ve, lim, dt)
+            b.move_v_velocity(vu, lim, dt)
+            return
+        self._fly_to_target(dt)
+
+    def _descend(self, dt: float) -> None:
+        v = self.v
+        b = v.body
+        lim = self.limits()
+        if self.target is None:
+            self.target = (b.north, b.east, b.up)
+        if v.position_ok:
+            b.move_h_to(self.target[0], self.target[1], lim, dt)
+        else:
+            b.move_h_velocity(0.0, 0.0, lim, dt)
+        if v.t < self.land_pause_until:
+            b.move_v_velocity(0.0, lim, dt)
+            return
+        rel = v.rel_alt()
+        land_alt_low = self._p("LAND_ALT_LOW") / 100.0
+        high = self._p("LAND_SPEED_HIGH") / 100.0 or lim.speed_dn
+        speed = high if rel > land_alt_low else self._p("LAND_SPEED") / 100.0
+        # slow down smoothly to the final descent rate over the last metres above LAND_ALT_LOW
+        b.move_v_velocity(-max(0.1, speed), lim, dt)
+
+    def _pilot_throttle_low(self, dt: float) -> None:
+        """Pilot-throttle modes with the SITL RC throttle at minimum: hold position (LOITER/POSHOLD) and
+        descend at the pilot's maximum descent rate (MAVSDK hold on ArduPilot descends, MAVSDK#2039)."""
+        v = self.v
+        b = v.body
+        lim = self.limits()
+        rate = (
+            self._p("PILOT_SPEED_DN") / 100.0 or self._p("PILOT_SPEED_UP") / 100.0 or PILOT_DESCENT_FALLBACK
+        )
+        if v.mode in (Mode.LOITER, Mode.POSHOLD) and v.position_ok:
+            if self.target is None:
+                self.target = (b.north, b.east, b.up)
+            b.move_h_to(self.target[0], self.target[1], lim, dt)
+        else:
+            b.move_h_velocity(0.0, 0.0, Limits(accel_h=1.0), dt)
+        b.move_v_velocity(-rate, lim, dt)
+
+    def _run_rtl(self, dt: float) -> None:
+        v = self.v
+        b = v.body
+        lim = self.limits()
+        hn, he = self._home_ne()
+        phase = self.rtl_phase
+        if phase == "climb":
+            b.move_h_velocity(0.0, 0.0, lim, dt)
+            if abs(b.move_v_to(self.rtl_alt, lim, dt)) < 0.1 and b.ground_speed < 0.2:
+                self.rtl_phase = "return"
+        elif phase == "return":
+            self.target = (hn, he, self.rtl_alt)
+            if math.hypot(hn - b.north, he - b.east) > 2.0:
+                self._face(hn, he, dt)
+            if self._fly_to_target(dt) < 0.3:
+                self.rtl_phase = "loiter"
+                self.rtl_loiter_until = v.t + self._p("RTL_LOIT_TIME") / 1000.0
+        elif phase == "loiter":
+            self._hold(dt)
+            if v.t >= self.rtl_loiter_until:
+                self.rtl_phase = "final"
+                self.descending = True
+                self.target = (hn, he, b.up)
+        else:
+            self._descend(dt)
+
+
+def _armable_modes(v: SimVehicle) -> frozenset[Mode]:
+    from gateway.sim.modes import ARMABLE_FROM_GCS
+
+    if int(v.params.get("AUTO_OPTIONS")) & 1:
+        return ARMABLE_FROM_GCS | {Mode.AUTO}
+    return ARMABLE_FROM_GCS
