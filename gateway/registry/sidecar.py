@@ -350,6 +350,8 @@ class Sidecar:
         level = {"Error": logging.ERROR, "Warn": logging.WARNING, "Debug": logging.DEBUG}.get(
             level_name, logging.INFO
         )
+        if "Received ack for not-existing command" in message:
+            level = logging.DEBUG  # the ACK of a COMMAND_LONG the gateway sent raw (mavlink_direct)
         self.info.recent_output.append(message)
         self._log.log(level, "[%s] %s", self.vehicle_id, message)
         return message
