@@ -284,7 +284,7 @@ class Vehicle:
             "state": self.state.value,
             "last_heartbeat_age_s": None if age is None else round(age, 3),
             "last_heartbeat_at": _iso(self._link.last_heartbeat_wall),
-            "last_error": self._last_error,
+            "last_error": self._describe_error(),
             "sysid": self._link.sysid,
             "expected_sysid": self.spec.expected_sysid,
             "sysid_mismatch": self.sysid_mismatch,
@@ -302,6 +302,13 @@ class Vehicle:
                 "restarts": car.info.restarts if car else 0,
             },
         }
+
+    def _describe_error(self) -> str | None:
+        """The last failure; while connecting, what the sidecar complains about (refused, no device...)."""
+        car = self._sidecar
+        if car is not None and car.state == SidecarState.STARTING and car.info.complaint:
+            return f"waiting for the vehicle on {self.spec.url}: {car.info.complaint}"
+        return self._last_error
 
     def require_ready(self) -> None:
         """Raise VehicleNotReady naming the state (and why) unless the vehicle is ready to fly."""
@@ -321,8 +328,9 @@ class Vehicle:
                 "(wrong vehicle on this link?)"
             )
         msg = f"drone '{self.id}' is {state.value}: {reason}"
-        if self._last_error and state in (ConnectionState.FAILED, ConnectionState.LINK_LOST):
-            msg += f"; last error: {self._last_error}"
+        error = self._describe_error()
+        if error and state in (ConnectionState.FAILED, ConnectionState.LINK_LOST, ConnectionState.CONNECTING):
+            msg += f"; last error: {error}"
         raise VehicleNotReady(msg, state=state.value)
 
     def _require_session(self) -> System:
@@ -335,7 +343,9 @@ class Vehicle:
     async def connect(self) -> None:
         """Start the sidecar and everything that follows (idempotent, returns at once)."""
         if self._sidecar is not None:
-            return
+            if self._sidecar.state != SidecarState.FAILED:
+                return
+            await self.disconnect()  # connecting a failed vehicle again starts afresh
         self._last_error = None
         self._sidecar = Sidecar(
             self.id,

@@ -198,3 +198,24 @@ async def test_heartbeat_watchdog_stops_gcs_heartbeats_when_not_fed(store, regis
         quiet_from = gcs_heartbeats()
         await asyncio.sleep(2.5)
         assert gcs_heartbeats() == quiet_from
+
+
+async def test_unreachable_vehicle_says_why_and_failed_vehicle_reconnects(store, registries) -> None:
+    from gateway.util.ports import free_tcp_port
+
+    reg = Registry(fast_settings(), store)
+    registries.append(reg)
+    await reg.start()
+    # nothing listens there: mavsdk_server retries every second, the vehicle stays 'connecting'
+    v = await reg.add(VehicleSpec(id="oscar", url=f"tcpout://127.0.0.1:{free_tcp_port()}"))
+    await wait_until(lambda: "Connection refused" in (v.status()["last_error"] or ""), what="complaint")
+    assert v.state == ConnectionState.CONNECTING
+    with pytest.raises(VehicleNotReady, match=r"still being established.*Connection refused"):
+        v.require_ready()
+    # a link that cannot be opened at all ends in 'failed'; connecting again starts afresh
+    dead = await reg.add(VehicleSpec(id="papa", url="serial:///dev/fleet-gateway-no-such-device:57600"))
+    await dead.wait_for_state(ConnectionState.FAILED)
+    assert "No such file or directory" in dead.status()["last_error"]
+    await reg.connect("papa")
+    assert dead.state == ConnectionState.CONNECTING
+    assert dead.status()["sidecar"]["restarts"] == 0
