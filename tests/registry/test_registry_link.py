@@ -219,3 +219,23 @@ async def test_unreachable_vehicle_says_why_and_failed_vehicle_reconnects(store,
     await reg.connect("papa")
     assert dead.state == ConnectionState.CONNECTING
     assert dead.status()["sidecar"]["restarts"] == 0
+
+
+async def test_update_renames_and_moves_a_connected_vehicle(store, registries) -> None:
+    ports = [free_udp_port() for _ in range(2)]
+    reg = Registry(fast_settings(), store)
+    registries.append(reg)
+    await reg.start()
+    async with HeartbeatVehicle(ports[0], sysid=61), HeartbeatVehicle(ports[1], sysid=62):
+        v = await reg.add(_spec("quebec", ports[0]))
+        await wait_until(lambda: v.sysid == 61, what="first link")
+        old_pid = v.status()["sidecar"]["pid"]
+        await reg.update("quebec", name="Q", tags=["moved"])
+        assert v.spec.name == "Q" and v.status()["sidecar"]["pid"] == old_pid  # no reconnect needed
+        await reg.update("quebec", url=f"udpin://127.0.0.1:{ports[1]}")
+        await wait_until(lambda: v.sysid == 62, what="second link")
+        assert not alive(old_pid)
+        assert (await store.get_vehicle("quebec")).url.endswith(str(ports[1]))
+        with pytest.raises(InvalidArgument):
+            await reg.update("quebec", url="ftp://nowhere")
+        assert v.spec.url.endswith(str(ports[1]))  # bad input changed nothing
