@@ -6,6 +6,7 @@ Figures (time to ready, restart time, sidecar RSS) are printed for the report, n
 from __future__ import annotations
 
 import asyncio
+import json
 import os
 import signal
 import time
@@ -99,6 +100,7 @@ async def test_link_loss_staleness_and_wrong_sysid(store, registries) -> None:
             assert snap[part] is not None, part
             assert snap[part]["stale"] is False and 0 <= snap[part]["age_s"] < 2.0, (part, snap[part])
         assert 0 <= snap["battery"]["remaining_pct"] <= 100  # MAVSDK gives percent already, never x100
+        json.dumps(snap, allow_nan=False)  # strict JSON: MAVSDK's NaN "unknown" values became None
 
         await sim.control.link_down(0)
         await good.wait_for_state(ConnectionState.LINK_LOST, within_s=WAIT_S)
