@@ -22,8 +22,6 @@ import contextlib
 import enum
 import json
 import logging
-import math
-import re
 import time
 from collections.abc import Awaitable, Callable, Iterable, Sequence
 from datetime import UTC, datetime
@@ -47,6 +45,7 @@ from gateway.fleet.modes import (
     PX4_MODES,
     autopilot_name,
 )
+from gateway.fleet.params import Parameters
 from gateway.fleet.telemetry import (
     ARDUPILOT_SKIP,
     PX4_SKIP,
@@ -67,9 +66,7 @@ __all__ = ["ConnectionState", "MissionItem", "Vehicle"]
 
 # gRPC call timeouts (s): MAVSDK retries MAVLink commands itself; these bound a dead sidecar.
 CALL_TIMEOUT_S = 10.0
-PARAM_TIMEOUT_S = 6.0  # MAVSDK gives up on a param after ~3 s
 MISSION_TIMEOUT_S = 30.0
-PARAM_LIST_TIMEOUT_S = 60.0
 CONNECT_TIMEOUT_S = 10.0
 ARMABLE_WAIT_S = 60.0
 MODE_CONFIRM_S = 4.0
@@ -95,25 +92,6 @@ MAV_RESULT = {
     5: "IN_PROGRESS",
     6: "CANCELLED",
 }
-
-PARAM_NAME = re.compile(r"^[A-Za-z0-9_]{1,16}$")
-# ArduPilot 4.7 renamed these; a gateway meeting 4.5/4.6 and 4.7 tries both.
-_PARAM_RENAMES = {"SYSID_THISMAV": "MAV_SYSID", "SYSID_MYGCS": "MAV_GCS_SYSID"}
-_PARAM_RENAMES.update({new: old for old, new in _PARAM_RENAMES.items()})
-
-
-def param_aliases(name: str) -> list[str]:
-    """Other names the same parameter has in other ArduPilot versions (SRn_* <-> MAV(n+1)_*)."""
-    out = []
-    if name in _PARAM_RENAMES:
-        out.append(_PARAM_RENAMES[name])
-    m = re.match(r"^SR(\d)_(\w+)$", name)
-    if m:
-        out.append(f"MAV{int(m.group(1)) + 1}_{m.group(2)}")
-    m = re.match(r"^MAV(\d)_(\w+)$", name)
-    if m and int(m.group(1)) >= 1:
-        out.append(f"SR{int(m.group(1)) - 1}_{m.group(2)}")
-    return out
 
 
 class ConnectionState(enum.StrEnum):
@@ -180,10 +158,7 @@ class Vehicle:
         self.autopilot_version: str | None = None
         self._mission_plan: WirePlan | None = None
         self._mission_state: int | None = None  # MISSION_CURRENT.mission_state (5 = COMPLETE)
-        self._params: dict[str, float | int] | None = None
-        self._params_at: float | None = None
-        self._param_types: dict[str, str] = {}
-        self._param_names: dict[str, str] = {}  # requested name -> name the vehicle knows
+        self.params = Parameters(spec.id, self._call, self._require_session)
         self.sessions = 0  # gRPC sessions opened (1 + sidecar restarts that reached serving)
 
     # --- identity and state ---------------------------------------------------------------------------
@@ -964,100 +939,22 @@ class Vehicle:
             await self._call("mission finished", self._require_session().mission_raw.is_mission_finished())
         )
 
-    # --- parameters -------------------------------------------------------------------------------------
-    @staticmethod
-    def _check_param_name(name: str) -> str:
-        if not isinstance(name, str) or not PARAM_NAME.match(name):
-            raise InvalidArgument(f"parameter name must be 1-16 of A-Z, 0-9, '_'; got {str(name)[:40]!r}")
-        return name.upper()
-
-    async def _read_param(self, system: System, name: str) -> tuple[float | int, str] | None:
-        """(value, type) or None when the vehicle does not answer (unknown name)."""
-        kind = self._param_types.get(name, "int")
-        order = [kind, "float" if kind == "int" else "int"]
-        for k in order:
-            getter = system.param.get_param_int if k == "int" else system.param.get_param_float
-            try:
-                value = await self._call(f"read parameter {name}", getter(name), PARAM_TIMEOUT_S)
-            except CommandFailed as exc:
-                result = exc.details.get("result")
-                if result == "WRONG_TYPE":
-                    continue
-                if result == "TIMEOUT":
-                    return None
-                raise
-            self._param_types[name] = k
-            return (int(value) if k == "int" else float(value)), k
-        return None
-
+    # --- parameters (gateway.fleet.params) ---------------------------------------------------------------
     async def get_param(self, name: str) -> tuple[float | int, str]:
-        """Value and type ('int' | 'float') of a parameter; tries the other ArduPilot name if renamed."""
-        name = self._check_param_name(name)
-        system = self._require_session()
-        for candidate in [self._param_names.get(name, name), *param_aliases(name)]:
-            if self._params is not None and candidate not in self._params and candidate != name:
-                continue
-            got = await self._read_param(system, candidate)
-            if got is not None:
-                self._param_names[name] = candidate
-                return got
-        alias = param_aliases(name)
-        raise CommandFailed(
-            f"unknown parameter '{name}' on drone '{self.id}': the vehicle did not answer (ArduPilot ignores "
-            "unknown names)" + (f"; also tried {', '.join(alias)}" if alias else ""),
-            vehicle_id=self.id,
-            result="UNKNOWN_PARAMETER",
-        )
+        """Value and type ('int' | 'float'); tries the other ArduPilot name if the parameter was renamed."""
+        return await self.params.get(name)
 
     async def set_param(self, name: str, value: float | int) -> tuple[float | int, str]:
         """Write a parameter with the vehicle's own type for it; returns (stored value, type)."""
-        name = self._check_param_name(name)
-        if not isinstance(value, int | float) or isinstance(value, bool) or not math.isfinite(value):
-            raise InvalidArgument(f"parameter value must be a finite number; got {value!r}")
-        _current, kind = await self.get_param(name)
-        real = self._param_names.get(name, name)
-        system = self.system
-        if kind == "int":
-            if float(value) != int(value):
-                raise InvalidArgument(f"parameter {real} is an integer; got {value!r}")
-            await self._call(
-                f"write parameter {real}", system.param.set_param_int(real, int(value)), PARAM_TIMEOUT_S
-            )
-            stored: float | int = int(value)
-        else:
-            await self._call(
-                f"write parameter {real}", system.param.set_param_float(real, float(value)), PARAM_TIMEOUT_S
-            )
-            stored = float(value)
-        if self._params is not None:
-            self._params[real] = stored
-        return stored, kind
+        return await self.params.set(name, value)
 
     async def list_params(self, max_age_s: float | None = None) -> dict[str, float | int]:
         """All parameters, fetched once and cached; ``max_age_s`` forces a refetch of an older copy."""
-        fresh = self._params is not None and (
-            max_age_s is None
-            or (self._params_at is not None and time.monotonic() - self._params_at <= max_age_s)
-        )
-        if fresh:
-            assert self._params is not None
-            return dict(self._params)
-        system = self._require_session()
-        allp = await self._call("list parameters", system.param.get_all_params(), PARAM_LIST_TIMEOUT_S)
-        params: dict[str, float | int] = {}
-        for p in allp.int_params:
-            params[p.name] = int(p.value)
-            self._param_types[p.name] = "int"
-        for p in allp.float_params:
-            params[p.name] = float(p.value)
-            self._param_types[p.name] = "float"
-        self._params = params
-        self._params_at = time.monotonic()
-        return dict(params)
+        return await self.params.all(max_age_s)
 
     @property
     def params_fetched_age_s(self) -> float | None:
-        return None if self._params_at is None else time.monotonic() - self._params_at
+        return self.params.list_age_s
 
 
 def _iso(epoch_s: float | None) -> str | None:
