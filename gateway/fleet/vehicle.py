@@ -30,7 +30,6 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import grpc
 from mavsdk_grpc import System
 from mavsdk_grpc import mission_raw as mavsdk_mission_raw
-from mavsdk_grpc.mavlink_direct import MavlinkMessage
 
 from gateway.config import Settings
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
@@ -46,6 +45,7 @@ from gateway.fleet.modes import (
     autopilot_name,
 )
 from gateway.fleet.params import Parameters
+from gateway.fleet.rawlink import MAV_RESULT, MAV_RESULT_ACCEPTED, CommandChannel, LinkFacts, NoAck
 from gateway.fleet.telemetry import (
     ARDUPILOT_SKIP,
     PX4_SKIP,
@@ -80,18 +80,6 @@ MAV_CMD_REQUEST_MESSAGE = 512
 MAVLINK_MSG_MISSION_CURRENT = 42
 MAVLINK_MSG_SIMSTATE = 164
 MISSION_STATE_COMPLETE = 5
-MAV_TYPE_GCS = 6
-MAV_AUTOPILOT_INVALID = 8
-MAV_MODE_FLAG_SAFETY_ARMED = 128
-MAV_RESULT = {
-    0: "ACCEPTED",
-    1: "TEMPORARILY_REJECTED",
-    2: "DENIED",
-    3: "UNSUPPORTED",
-    4: "FAILED",
-    5: "IN_PROGRESS",
-    6: "CANCELLED",
-}
 
 
 class ConnectionState(enum.StrEnum):
@@ -101,21 +89,6 @@ class ConnectionState(enum.StrEnum):
     READY = "ready"
     LINK_LOST = "link_lost"
     FAILED = "failed"
-
-
-class _Link:
-    """What the raw MAVLink messages told us about the vehicle in the current session."""
-
-    def __init__(self) -> None:
-        self.last_heartbeat: float | None = None  # monotonic
-        self.last_heartbeat_wall: float | None = None  # epoch seconds, for display
-        self.sysid: int | None = None
-        self.sysids_seen: set[int] = set()
-        self.autopilot: int | None = None
-        self.mav_type: int | None = None
-        self.custom_mode: int | None = None
-        self.armed: bool | None = None
-        self.mode_changed_at: float = 0.0
 
 
 class Vehicle:
@@ -146,8 +119,8 @@ class Vehicle:
         self._feed: TelemetryFeed | None = None
         self._monitor_task: asyncio.Task[None] | None = None
         self._recorder: FlightRecorder | None = None
-        self._link = _Link()
-        self._acks: dict[int, list[asyncio.Future[int]]] = {}
+        self._link = LinkFacts()
+        self._commands = CommandChannel(settings.gcs_sysid)
         self._last_error: str | None = None
         self._state = ConnectionState.REGISTERED
         self._state_since = time.monotonic()
@@ -407,8 +380,8 @@ class Vehicle:
             await _close_system(system)
             return
         self.telemetry.clear()
-        self._link = _Link()
-        self._acks.clear()
+        self._link = LinkFacts()
+        self._commands = CommandChannel(self.settings.gcs_sysid)
         self._rates_requested_at = 0.0
         self._connected_flag = None
         feed = TelemetryFeed(
@@ -425,7 +398,7 @@ class Vehicle:
         feed.start()
         self._session_tasks = [
             asyncio.create_task(self._heartbeats(system), name=f"hb-{self.id}"),
-            asyncio.create_task(self._command_acks(system), name=f"ack-{self.id}"),
+            asyncio.create_task(self._commands.pump(system), name=f"ack-{self.id}"),
             asyncio.create_task(self._simstate(system), name=f"simstate-{self.id}"),
             asyncio.create_task(self._connection_state(system), name=f"conn-{self.id}"),
             asyncio.create_task(self._identify(system), name=f"ident-{self.id}"),
@@ -451,10 +424,7 @@ class Vehicle:
                 self._system = None
                 self._feed = None
                 self._session_started = None
-            for fut in (f for futs in self._acks.values() for f in futs):
-                if not fut.done():
-                    fut.cancel()
-            self._acks.clear()
+            self._commands.cancel_all()
             await _close_system(system)
 
     def _mavsdk_names_modes(self) -> bool:
@@ -466,42 +436,17 @@ class Vehicle:
 
     async def _heartbeats(self, system: System) -> None:
         async for msg in system.mavlink_direct.message("HEARTBEAT"):
-            fields = json.loads(msg.fields_json)
-            if fields.get("type") == MAV_TYPE_GCS or fields.get("autopilot") == MAV_AUTOPILOT_INVALID:
-                continue  # another ground station on the link
             link = self._link
-            link.last_heartbeat = time.monotonic()
-            link.last_heartbeat_wall = time.time()
-            link.sysids_seen.add(int(msg.system_id))
-            if link.sysid != msg.system_id:
-                link.sysid = int(msg.system_id)
-                if self.sysid_mismatch:
-                    self._last_error = (
-                        f"system id mismatch: vehicle reports {link.sysid}, "
-                        f"expected {self.spec.expected_sysid}"
-                    )
-                    log.error("%s: %s", self.id, self._last_error)
-            link.autopilot = int(fields.get("autopilot", 0))
-            link.mav_type = int(fields.get("type", 0))
-            custom_mode = int(fields.get("custom_mode", 0))
-            if custom_mode != link.custom_mode:
-                link.custom_mode = custom_mode
-                link.mode_changed_at = time.monotonic()
-            link.armed = bool(int(fields.get("base_mode", 0)) & MAV_MODE_FLAG_SAFETY_ARMED)
-            if self._is_arducopter():
-                self.telemetry.put(
-                    "flight_mode", ARDUCOPTER_MODE_NAMES.get(custom_mode, f"MODE_{custom_mode}")
+            if not link.heartbeat(int(msg.system_id), json.loads(msg.fields_json)):
+                continue  # another ground station on the link
+            if link.sysid_changed and self.sysid_mismatch:
+                self._last_error = (
+                    f"system id mismatch: vehicle reports {link.sysid}, expected {self.spec.expected_sysid}"
                 )
-
-    async def _command_acks(self, system: System) -> None:
-        async for msg in system.mavlink_direct.message("COMMAND_ACK"):
-            fields = json.loads(msg.fields_json)
-            waiters = self._acks.get(int(fields.get("command", -1)))
-            while waiters:
-                fut = waiters.pop(0)
-                if not fut.done():
-                    fut.set_result(int(fields.get("result", 4)))
-                    break
+                log.error("%s: %s", self.id, self._last_error)
+            if self._is_arducopter():
+                mode = link.custom_mode or 0
+                self.telemetry.put("flight_mode", ARDUCOPTER_MODE_NAMES.get(mode, f"MODE_{mode}"))
 
     async def _simstate(self, system: System) -> None:
         async for _msg in system.mavlink_direct.message("SIMSTATE"):
@@ -632,47 +577,25 @@ class Vehicle:
         """Send COMMAND_LONG through mavlink_direct and wait for its COMMAND_ACK (MAVSDK has no call)."""
         system = self._require_session()
         target = self._link.sysid or self.spec.expected_sysid or 1
-        p = [float(x) for x in params] + [0.0] * (7 - len(params))
-        fields: dict[str, Any] = {
-            "target_system": target,
-            "target_component": 1,
-            "command": command,
-            "confirmation": 0,
-            **{f"param{i + 1}": p[i] for i in range(7)},
-        }
-        loop = asyncio.get_running_loop()
-        for attempt in range(attempts):
-            fields["confirmation"] = attempt
-            fut: asyncio.Future[int] = loop.create_future()
-            self._acks.setdefault(command, []).append(fut)
-            msg = MavlinkMessage("COMMAND_LONG", self.settings.gcs_sysid, 190, target, 1, json.dumps(fields))
-            try:
-                await self._call(what, system.mavlink_direct.send_message(msg), 5.0)
-                deadline = loop.time() + wait_s
-                while True:
-                    result = await asyncio.wait_for(asyncio.shield(fut), max(0.05, deadline - loop.time()))
-                    if result != 5:  # IN_PROGRESS: a final ACK follows
-                        break
-                    fut = loop.create_future()
-                    self._acks.setdefault(command, []).append(fut)
-                    deadline = loop.time() + 10.0
-            except TimeoutError:
-                continue
-            finally:
-                waiting = self._acks.get(command, [])
-                if fut in waiting:
-                    waiting.remove(fut)
-            if result == 0:
-                return
-            raise CommandFailed(
-                f"{what} on drone '{self.id}' refused by the vehicle: {MAV_RESULT.get(result, result)}"
-                + self._recent_complaint(),
-                vehicle_id=self.id,
-                result=MAV_RESULT.get(result, str(result)),
+        try:
+            result = await self._commands.send(
+                system,
+                lambda aw: self._call(what, aw, 5.0),
+                target,
+                command,
+                params,
+                attempts=attempts,
+                wait_s=wait_s,
             )
-        raise CommandFailed(
-            f"{what} on drone '{self.id}': no COMMAND_ACK after {attempts} attempts", vehicle_id=self.id
-        )
+        except NoAck as exc:
+            raise CommandFailed(f"{what} on drone '{self.id}': {exc}", vehicle_id=self.id) from None
+        if result != MAV_RESULT_ACCEPTED:
+            name = MAV_RESULT.get(result, str(result))
+            raise CommandFailed(
+                f"{what} on drone '{self.id}' refused by the vehicle: {name}" + self._recent_complaint(),
+                vehicle_id=self.id,
+                result=name,
+            )
 
     def _recent_complaint(self, within_s: float = 5.0) -> str:
         """The latest warning-or-worse status text of the last few seconds, to explain a refusal."""
