@@ -239,3 +239,28 @@ async def test_update_renames_and_moves_a_connected_vehicle(store, registries) -
         with pytest.raises(InvalidArgument):
             await reg.update("quebec", url="ftp://nowhere")
         assert v.spec.url.endswith(str(ports[1]))  # bad input changed nothing
+
+
+async def test_flight_left_open_by_a_dead_gateway_is_closed_from_its_track(store, registries) -> None:
+    from datetime import UTC, datetime, timedelta
+
+    from gateway.registry.store import TrackSample
+
+    await store.add_vehicle(VehicleSpec(id="romeo", url=f"udpin://127.0.0.1:{free_udp_port()}"))
+    t0 = datetime.now(UTC) - timedelta(minutes=5)
+    flight_id = await store.open_flight("romeo", t0, 47.0, 8.0, 500.0)
+    await store.add_track_samples(
+        [
+            TrackSample(flight_id=flight_id, t=t0 + timedelta(seconds=i), lat=47.0 + i * 1e-4, lon=8.0,
+                        alt_rel_m=5.0 * i, heading_deg=0.0, ground_speed_mps=11.0, battery_pct=90.0 - i)
+            for i in range(4)
+        ]
+    )  # fmt: skip
+    reg = Registry(fast_settings(), store)
+    registries.append(reg)
+    await reg.start()  # restores romeo; its recorder closes the flight the previous run left open
+    assert await store.list_open_flights("romeo") == []
+    flight = await store.get_flight(flight_id)
+    assert flight.duration_s == pytest.approx(3.0)
+    assert flight.distance_m == pytest.approx(33.4, abs=0.5)  # 3 x 1e-4 deg of latitude
+    assert flight.max_alt_rel_m == 15.0 and flight.battery_used_pct == pytest.approx(3.0)
