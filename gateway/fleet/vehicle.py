@@ -519,11 +519,15 @@ class Vehicle:
             self._note_state()
             if self._system is not None:
                 hb = self.last_heartbeat_age_s
-                pos = self.telemetry.position
                 heartbeats_fresh = hb is not None and hb < self.settings.link_lost_after_s
-                stream_stale = pos is None or pos.age_s > max(2.0, self.settings.link_lost_after_s * 0.66)
-                if heartbeats_fresh and stream_stale:
-                    self._schedule_rates("position stream silent while heartbeats continue (reboot?)")
+                limit = max(2.0, self.settings.link_lost_after_s * 0.66)
+                # both requested streams silent (a vehicle without GPS may never send a position)
+                streams_silent = all(
+                    sample is None or sample.age_s > limit
+                    for sample in (self.telemetry.position, self.telemetry.attitude)
+                )
+                if heartbeats_fresh and streams_silent:
+                    self._schedule_rates("telemetry streams silent while heartbeats continue (reboot?)")
             await asyncio.sleep(0.25)
 
     def _note_state(self) -> None:

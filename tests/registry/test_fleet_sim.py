@@ -119,6 +119,7 @@ async def test_link_loss_staleness_and_wrong_sysid(store, registries) -> None:
         # notices the silent position stream and requests the rates again by itself
         # SET_MESSAGE_INTERVAL(GLOBAL_POSITION_INT, -1): the vehicle stops sending it, as after a reboot
         await good._command_long(511, 33, -1, what="disable GLOBAL_POSITION_INT")
+        await good._command_long(511, 30, -1, what="disable ATTITUDE")
         await wait_until(lambda: good.telemetry.fresh("position", max_age_s=1.0) is None, what="silence")
         await wait_until(
             lambda: good.telemetry.fresh("position", max_age_s=0.5) is not None, what="rates back"
