@@ -35,6 +35,15 @@ class Settings(BaseSettings):
     mavsdk_server_path: str | None = Field(
         None, description="Path of the mavsdk_server binary; default: the one bundled with mavsdk-grpc."
     )
+    sidecar_confinement: str = Field(
+        "loopback",
+        pattern="^(loopback|none)$",
+        description="'loopback': sidecars run from a copy of mavsdk_server whose gRPC port listens on "
+        "127.0.0.1 only (mavsdk_server binds 0.0.0.0 otherwise); 'none': the binary as shipped.",
+    )
+    sidecar_cache_dir: str | None = Field(
+        None, description="Where the loopback-only sidecar binary is kept; default ~/.cache/fleet-gateway."
+    )
     sidecar_max_restarts: int = Field(
         5, ge=0, description="Consecutive sidecar crashes before a vehicle is marked failed."
     )
