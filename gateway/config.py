@@ -84,6 +84,11 @@ class Settings(BaseSettings):
     mcp_wait_cap_s: float = Field(
         45.0, gt=0, le=600, description="Longest a tool waits for its operation before answering 'running'."
     )
+    mcp_allowed_hosts: str = Field(
+        "",
+        description="Comma-separated extra Host names /mcp accepts (DNS-rebinding protection); "
+        "loopback names are always allowed.",
+    )
     arrival_tolerance_m: float = Field(2.0, gt=0, description="Horizontal distance counted as arrived.")
 
     # --- safety -----------------------------------------------------------------------------------
