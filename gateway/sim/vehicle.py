@@ -377,8 +377,8 @@ class SimVehicle:
             dt = min(MAX_STEP_S, elapsed)
             elapsed -= dt
             self._step(dt)
+            self._emit()  # per step, so streams keep their spacing in simulated time
         self.mission.tick(now)
-        self._emit()
 
     def _step(self, dt: float) -> None:
         self.t += dt
