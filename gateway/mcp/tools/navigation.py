@@ -72,11 +72,11 @@ async def _fly_to(
     action: str,
     yaw_deg: float | None = None,
 ) -> OperationOut:
+    geo.check_lat_lon(lat, lon)
+    check_positive_altitude(alt_rel)
     v = fa.ready(drone_id)
     fa.guard_takeoff(v, action)
     fa.require_airborne(v, action)
-    geo.check_lat_lon(lat, lon)
-    check_positive_altitude(alt_rel)
     fa.check_motion(v, lat, lon, alt_rel)
     params = {"lat": lat, "lon": lon, "alt_m": round(alt_rel, 2)}
     tracker = GotoTracker(lat, lon, alt_rel, fa.settings.arrival_tolerance_m, kind=kind)
