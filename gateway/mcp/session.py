@@ -63,7 +63,7 @@ def session_info(ctx: Any) -> SessionInfo:
     name = getattr(client, "name", None)
     ver = getattr(client, "version", None)
     sid = headers.get("mcp-session-id") if headers is not None else None
-    key = sid or f"stdio-{os.getpid()}-{id(ctx.session):x}"
+    key = sid or f"stdio-{os.getpid()}"  # stdio: one client per server process
     return SessionInfo(key, "mcp-2025", principal, name, ver)
 
 
