@@ -112,6 +112,8 @@ class SessionAudit:
         last = self._touched.get(info.key)
         if not force and last is not None and now - last[0] < TOUCH_EVERY_S and last[1] == info.client_name:
             return
+        if len(self._touched) > 10_000:
+            self._touched.clear()
         self._touched[info.key] = (now, info.client_name)
         try:
             await store.touch_session(

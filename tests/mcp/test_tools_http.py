@@ -13,7 +13,7 @@ from typing import Any
 
 import pytest
 from mcp.server.subscriptions import ResourceUpdated
-from mcp.shared.exceptions import MCPDeprecationWarning
+from mcp.shared.exceptions import MCPDeprecationWarning, MCPError
 from mcp.types import ElicitResult
 
 from gateway.fleet import geo
@@ -285,6 +285,11 @@ async def test_flight_tour_telemetry_resources_and_kill(stack: Stack) -> None:
         assert {x["drone_id"] for x in json.loads(drones.contents[0].text)} == {"d1", "d2", "d3"}
         state = json.loads((await c.read_resource("drone://d1/state")).contents[0].text)
         assert state["status"]["state"] == "ready" and state["operation"]["kind"] == "goto"
+        with pytest.raises(MCPError) as unknown:
+            await c.read_resource("drone://nope/state")
+        assert unknown.value.code == -32602 and "known ids: d1, d2, d3" in unknown.value.message
+        mission = json.loads((await c.read_resource("drone://d1/mission")).contents[0].text)
+        assert mission["drone_id"] == "d1" and mission["items"] == []
         prompts = {p.name for p in (await c.list_prompts()).prompts}
         assert prompts == {"preflight_check", "survey_area"}
         prompt = await c.get_prompt("preflight_check", {"drone_id": "d1"})
