@@ -11,6 +11,7 @@ import asyncio
 import json
 from typing import Any
 
+import httpx
 import pytest
 from mcp.server.subscriptions import ResourceUpdated
 from mcp.shared.exceptions import MCPDeprecationWarning, MCPError
@@ -364,6 +365,18 @@ async def test_mission_flight_pause_resume(stack: Stack) -> None:
     state = await wait_until_true(stack, "d3", lambda s: not s["armed"], "landed after RTL")
     assert distance_m(state, home["lat"], home["lon"]) < 5.0
     await wait_audited(stack, "d3")
+
+
+async def test_mcp_route_rejects_foreign_hosts_and_rest_keeps_its_errors(stack: Stack) -> None:
+    body = {"jsonrpc": "2.0", "id": 1, "method": "tools/list", "params": {}}
+    headers = {"accept": "application/json, text/event-stream", "mcp-protocol-version": "2026-07-28"}
+    async with httpx.AsyncClient(base_url=stack.base_url, timeout=30) as http:
+        r = await http.post("/mcp", json=body, headers={**headers, "host": "evil.example"})
+        assert r.status_code == 421
+        r = await http.post("/mcp", json=body, headers={**headers, "origin": "http://evil.example"})
+        assert r.status_code == 403
+        r = await http.get("/api/v1/nothing-here")
+        assert r.status_code == 404 and r.json()["error"]["code"] == "not_found"
 
 
 async def test_every_tool_of_the_server_was_called(stack: Stack) -> None:
