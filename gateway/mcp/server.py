@@ -23,6 +23,7 @@ from mcp.server.transport_security import TransportSecuritySettings
 from starlette.applications import Starlette
 
 from gateway.mcp.access import FleetAccess
+from gateway.mcp.auth import auth_options
 from gateway.mcp.resources import ResourceNotifier, register_prompts, register_resources
 from gateway.mcp.session import SessionAudit
 from gateway.mcp.toolkit import Toolset, register_toolset, strip_schema_titles
@@ -71,6 +72,7 @@ def build_mcp(gateway: Any) -> MCPServer:
         lifespan=lifespan,
         subscriptions=bus,
         middleware=[SessionAudit(lambda: fa.store)],
+        **auth_options(settings),
     )
     server.fleet_access = fa  # type: ignore[attr-defined]  # resolvers reach the gateway through it
     for name in settings.toolsets:
