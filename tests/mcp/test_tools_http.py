@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import time
 from typing import Any
 
 import httpx
@@ -204,6 +205,12 @@ async def test_flight_tour_telemetry_resources_and_kill(stack: Stack) -> None:
         await wait_until_true(stack, "d1", lambda s: s["rel_alt_m"] > 11, "climbed")
         assert "drone://d1/state" in updates_legacy
 
+        latencies = []
+        for _ in range(20):  # a figure for the report, not an assertion
+            started = time.perf_counter()
+            await ok(stack, c, "get_position", d)
+            latencies.append(time.perf_counter() - started)
+        stack.figures["get_position_p50_ms"] = round(sorted(latencies)[10] * 1000, 1)
         true = await stack.true_state("d1")
         p = await ok(stack, c, "get_position", d)
         assert abs(p["alt_m"] - true["rel_alt_m"]) < 1.5 and distance_m(true, p["lat_deg"], p["lon_deg"]) < 3
