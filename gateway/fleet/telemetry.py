@@ -167,6 +167,8 @@ class TelemetryCache:
     odometry: Sample[OdometryValue] | None = None
     mission_progress: Sample[MissionProgressValue] | None = None
     status_texts: deque[StatusTextValue] = field(default_factory=lambda: deque(maxlen=50))
+    #: updates received per stream since the vehicle was created (monotonic counters, for /metrics)
+    message_counts: dict[str, int] = field(default_factory=dict)
     _status_listeners: list[Callable[[StatusTextValue], None]] = field(default_factory=list, repr=False)
 
     FIELDS = (
@@ -192,10 +194,12 @@ class TelemetryCache:
         if name not in self.FIELDS:
             raise KeyError(name)
         setattr(self, name, Sample(value, time.monotonic()))
+        self.message_counts[name] = self.message_counts.get(name, 0) + 1
 
     def add_status_text(self, severity: str, text: str, t: float | None = None) -> StatusTextValue:
         item = StatusTextValue(t if t is not None else time.time(), severity, text)
         self.status_texts.append(item)
+        self.message_counts["status_text"] = self.message_counts.get("status_text", 0) + 1
         for listener in list(self._status_listeners):
             try:
                 listener(item)

@@ -441,7 +441,9 @@ class Vehicle:
             asyncio.create_task(self._identify(system), name=f"ident-{self.id}"),
         ]
         if self.settings.sidecar_heartbeat_watchdog_s:
-            self._session_tasks.append(asyncio.create_task(self._feed_watchdog(system)))
+            self._session_tasks.append(
+                asyncio.create_task(self._feed_watchdog(system), name=f"watchdog-{self.id}")
+            )
         log.info("%s: MAVSDK session open on gRPC port %d", self.id, port)
         self._schedule_rates("session start")
         try:

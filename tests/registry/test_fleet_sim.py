@@ -102,13 +102,25 @@ async def test_link_loss_staleness_and_wrong_sysid(store, registries) -> None:
 
         await sim.control.link_down(0)
         await good.wait_for_state(ConnectionState.LINK_LOST, within_s=WAIT_S)
-        assert good.telemetry.snapshot()["position"]["stale"] is True
+        # the last position arrived a moment after the last heartbeat: it turns stale a moment later
+        await wait_until(
+            lambda: good.telemetry.snapshot()["position"]["stale"] is True, what="stale position"
+        )
         assert good.telemetry.fresh("position") is None  # stale values are not presented as current
         with pytest.raises(VehicleNotReady, match="link_lost"):
             await good.goto(0.0, 0.0, 10)
         await sim.control.link_up(0)
         await good.wait_for_state(READY, within_s=WAIT_S)
         assert good.telemetry.fresh("position") is not None
+
+        # streams lost while heartbeats go on (what an autopilot reboot does to the rates): the gateway
+        # notices the silent position stream and requests the rates again by itself
+        # SET_MESSAGE_INTERVAL(GLOBAL_POSITION_INT, -1): the vehicle stops sending it, as after a reboot
+        await good._command_long(511, 33, -1, what="disable GLOBAL_POSITION_INT")
+        await wait_until(lambda: good.telemetry.fresh("position", max_age_s=1.0) is None, what="silence")
+        await wait_until(
+            lambda: good.telemetry.fresh("position", max_age_s=0.5) is not None, what="rates back"
+        )
 
 
 async def _wait_alt(v: Vehicle, alt: float) -> None:
