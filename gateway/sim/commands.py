@@ -101,10 +101,12 @@ class CommandHandler:
             return DENIED
         if frame not in FRAME_ABS | FRAME_REL:
             return DENIED
-        if v.mode != Mode.GUIDED and not v.flight.set_mode(Mode.GUIDED)[0]:
-            return FAILED
         north, east = v.frame.to_ne(lat, lon)
         up = v.flight._alt_to_up(alt, frame)
+        if not v.flight.destination_allowed(north, east, up):
+            return FAILED  # outside the geofence
+        if v.mode != Mode.GUIDED and not v.flight.set_mode(Mode.GUIDED)[0]:
+            return FAILED
         yaw = msg.param4 % 360 if math.isfinite(msg.param4) else None
         v.flight.guided_goto(north, east, up, yaw)
         return ACCEPTED
@@ -161,6 +163,14 @@ class CommandHandler:
         if v.mode == Mode.AUTO and not v.auto.running and not v.auto.complete:
             v.flight.start_mission()
         return ACCEPTED
+
+    def _cmd_246(self, link, msg, is_int):  # MAV_CMD_PREFLIGHT_REBOOT_SHUTDOWN
+        v = self.v
+        if round(msg.param1) not in (1, 3):
+            return UNSUPPORTED  # shutdown / bootloader: not simulated
+        if v.armed:
+            return FAILED  # ArduPilot refuses to reboot while armed
+        return ACCEPTED, v.reboot
 
     # -- messages and streams -------------------------------------------------------------------------
     def _cmd_511(self, link, msg, is_int):  # MAV_CMD_SET_MESSAGE_INTERVAL

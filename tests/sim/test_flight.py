@@ -4,14 +4,15 @@ from __future__ import annotations
 
 import asyncio
 
+import pytest
 from mavsdk_grpc.telemetry import LandedState
 
 from tests.helpers import mavsdk_system, sim_process
-from tests.sim.flying import distance_m, offset, ready_to_fly, set_rates, take_off, wait_for
+from tests.sim.flying import SPEEDUP, distance_m, offset, ready_to_fly, set_rates, take_off, wait_for
 
 
 async def test_health_becomes_ok_only_when_rates_are_requested() -> None:
-    async with sim_process(1, speedup=10) as sim, mavsdk_system(sim.urls[0]) as drone:
+    async with sim_process(1, speedup=SPEEDUP) as sim, mavsdk_system(sim.urls[0]) as drone:
         await set_rates(drone)
         health = await wait_for(
             drone.telemetry.health(), lambda h: h.is_global_position_ok and h.is_home_position_ok
@@ -25,7 +26,7 @@ async def test_health_becomes_ok_only_when_rates_are_requested() -> None:
 
 
 async def test_arm_takeoff_goto_land_autodisarm() -> None:
-    async with sim_process(1, speedup=10) as sim, mavsdk_system(sim.urls[0]) as drone:
+    async with sim_process(1, speedup=SPEEDUP) as sim, mavsdk_system(sim.urls[0]) as drone:
         await ready_to_fly(drone)
         await take_off(drone, 10.0)
         position = await wait_for(drone.telemetry.position(), lambda _p: True)
@@ -55,7 +56,7 @@ async def test_arm_takeoff_goto_land_autodisarm() -> None:
 
 
 async def test_armed_on_ground_without_takeoff_auto_disarms() -> None:
-    async with sim_process(1, speedup=10) as sim, mavsdk_system(sim.urls[0]) as drone:
+    async with sim_process(1, speedup=SPEEDUP) as sim, mavsdk_system(sim.urls[0]) as drone:
         await ready_to_fly(drone)
         await drone.action.arm()
         assert await wait_for(drone.telemetry.armed(), lambda armed: armed)
@@ -66,9 +67,28 @@ async def test_armed_on_ground_without_takeoff_auto_disarms() -> None:
 
 
 async def test_tcp_port_accepts_a_new_client_after_the_previous_one_left() -> None:
-    async with sim_process(1, speedup=10) as sim:
+    async with sim_process(1, speedup=SPEEDUP) as sim:
         for _ in range(2):
             async with mavsdk_system(sim.urls[0]) as drone:
                 await set_rates(drone)
                 await wait_for(drone.telemetry.position(), lambda _p: True)
             await asyncio.sleep(0.2)
+
+
+async def test_reboot_loses_stream_rates_until_requested_again() -> None:
+    async with sim_process(1, speedup=SPEEDUP) as sim, mavsdk_system(sim.urls[0]) as drone:
+        await set_rates(drone)
+        await wait_for(drone.telemetry.position(), lambda _p: True)
+        await (
+            drone.action.reboot()
+        )  # MAV_CMD_PREFLIGHT_REBOOT_SHUTDOWN: TCP dropped, mavsdk_server reconnects
+        for _ in range(100):
+            truth = await sim.control.state(0)
+            if truth["client_connected"] and truth["boots"] == 2:
+                break
+            await asyncio.sleep(0.1)
+        assert truth["client_connected"] and truth["mode"] == "STABILIZE"
+        with pytest.raises(TimeoutError):  # rates are gone and mavsdk_server does not re-request them
+            await wait_for(drone.telemetry.position(), lambda _p: True, timeout_s=1.5)
+        await set_rates(drone)
+        await wait_for(drone.telemetry.position(), lambda _p: True)

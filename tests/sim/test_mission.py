@@ -6,7 +6,7 @@ from mavsdk_grpc.mission_raw import MissionItem
 from mavsdk_grpc.telemetry import FlightMode
 
 from tests.helpers import mavsdk_system, sim_process
-from tests.sim.flying import distance_m, offset, ready_to_fly, take_off, wait_for
+from tests.sim.flying import SPEEDUP, distance_m, offset, ready_to_fly, take_off, wait_for
 
 NAV_WAYPOINT, NAV_RTL, NAV_TAKEOFF, DO_CHANGE_SPEED = 16, 20, 22, 178
 FRAME_REL_INT = 6
@@ -32,7 +32,7 @@ def _plan(lat0: float, lon0: float) -> list[MissionItem]:
 
 
 async def test_mission_upload_download_run_and_rtl() -> None:
-    async with sim_process(1, speedup=10) as sim, mavsdk_system(sim.urls[0]) as drone:
+    async with sim_process(1, speedup=SPEEDUP) as sim, mavsdk_system(sim.urls[0]) as drone:
         await ready_to_fly(drone)
         home = await wait_for(drone.telemetry.home(), lambda _h: True)
         plan = _plan(home.latitude_deg, home.longitude_deg)
@@ -72,7 +72,7 @@ async def test_mission_upload_download_run_and_rtl() -> None:
 
 
 async def test_mission_start_on_the_ground_takes_off_and_clear() -> None:
-    async with sim_process(1, speedup=10) as sim, mavsdk_system(sim.urls[0]) as drone:
+    async with sim_process(1, speedup=SPEEDUP) as sim, mavsdk_system(sim.urls[0]) as drone:
         await ready_to_fly(drone)
         home = await wait_for(drone.telemetry.home(), lambda _h: True)
         await drone.mission_raw.upload_mission(_plan(home.latitude_deg, home.longitude_deg))
