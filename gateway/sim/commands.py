@@ -43,7 +43,10 @@ class CommandHandler:
         if handler is None:
             result = UNSUPPORTED
         else:
-            out = handler(link, msg, is_int)
+            try:
+                out = handler(link, msg, is_int)
+            except (ValueError, OverflowError):  # NaN / absurd parameters where a number is required
+                out = FAILED
             result, after = out if isinstance(out, tuple) else (out, None)
         link.send(
             mav.MAVLink_command_ack_message(cmd, result, 0, 0, msg.get_srcSystem(), msg.get_srcComponent())
