@@ -476,7 +476,17 @@ class Vehicle:
             return
 
     async def _feed_watchdog(self, system: System) -> None:
-        period = max(0.5, self.settings.sidecar_heartbeat_watchdog_s / 3)
+        """Enable mavsdk_server's heartbeat watchdog for this session and keep feeding it: if the gateway
+        hangs, the GCS heartbeat stops and the autopilot's own GCS failsafe can act."""
+        timeout = float(self.settings.sidecar_heartbeat_watchdog_s)
+        period = max(0.5, timeout / 3)
+        while True:
+            try:
+                await asyncio.wait_for(system.core.set_heartbeat_watchdog_timeout(timeout), 5.0)
+                break
+            except Exception as exc:  # retried: a session without its watchdog is not what was configured
+                log.warning("%s: cannot enable the heartbeat watchdog: %r", self.id, exc)
+                await asyncio.sleep(1.0)
         while True:
             with contextlib.suppress(Exception):
                 await asyncio.wait_for(system.core.feed_heartbeat_watchdog(), period)
