@@ -230,6 +230,7 @@ class Vehicle:
             "url": self.spec.url,
             "tags": list(self.spec.tags),
             "state": self.state.value,
+            "state_age_s": round(time.monotonic() - self._state_since, 3),
             "last_heartbeat_age_s": None if age is None else round(age, 3),
             "last_heartbeat_at": _iso(self._link.last_heartbeat_wall),
             "last_error": self._describe_error(),
@@ -237,6 +238,8 @@ class Vehicle:
             "expected_sysid": self.spec.expected_sysid,
             "sysid_mismatch": self.sysid_mismatch,
             "duplicate_sysid": self.duplicate_sysid,
+            # other autopilots heard on this vehicle's link (mavsdk_server follows only the first)
+            "other_sysids_on_link": sorted(self._link.sysids_seen - {self._link.sysid}),
             "is_simulator": self.is_simulator,
             "autopilot": self.autopilot,
             "autopilot_version": self.autopilot_version,
