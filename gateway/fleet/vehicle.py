@@ -436,8 +436,9 @@ class Vehicle:
             await _close_system(system)
 
     def _mavsdk_names_modes(self) -> bool:
-        """MAVSDK's flight mode names are used unless the HEARTBEAT's ArduCopter mode is known."""
-        return not self._is_arducopter()
+        """MAVSDK's flight mode names are used for non-ArduCopter autopilots only (ArduCopter's real mode
+        comes from HEARTBEAT.custom_mode; MAVSDK would say OFFBOARD for GUIDED, HOLD for LOITER)."""
+        return self._link.autopilot is not None and not self._is_arducopter()
 
     def _is_arducopter(self) -> bool:
         return self._link.autopilot == MAV_AUTOPILOT_ARDUPILOTMEGA and self._link.mav_type in COPTER_TYPES
