@@ -102,6 +102,14 @@ async def test_link_loss_staleness_and_wrong_sysid(store, registries) -> None:
         assert 0 <= snap["battery"]["remaining_pct"] <= 100  # MAVSDK gives percent already, never x100
         json.dumps(snap, allow_nan=False)  # strict JSON: MAVSDK's NaN "unknown" values became None
 
+        # GPS loss: the vehicle is still connected, but no longer ready to fly
+        await sim.control.gps_loss(0, True)
+        await good.wait_for_state(ConnectionState.CONNECTED, within_s=WAIT_S)
+        with pytest.raises(VehicleNotReady, match="connected but not ready"):
+            await good.takeoff(5)
+        await sim.control.gps_loss(0, False)
+        await good.wait_for_state(READY, within_s=WAIT_S)
+
         await sim.control.link_down(0)
         await good.wait_for_state(ConnectionState.LINK_LOST, within_s=WAIT_S)
         # the last position arrived a moment after the last heartbeat: it turns stale a moment later
