@@ -43,7 +43,10 @@ class CommandHandler:
         if handler is None:
             result = UNSUPPORTED
         else:
-            out = handler(link, msg, is_int)
+            try:
+                out = handler(link, msg, is_int)
+            except (ValueError, OverflowError):  # NaN / absurd parameters where a number is required
+                out = FAILED
             result, after = out if isinstance(out, tuple) else (out, None)
         link.send(
             mav.MAVLink_command_ack_message(cmd, result, 0, 0, msg.get_srcSystem(), msg.get_srcComponent())
@@ -154,9 +157,8 @@ class CommandHandler:
         v = self.v
         if v.mode not in (Mode.AUTO, Mode.GUIDED) or not v.flying:
             return FAILED
-        b = v.body
         if msg.param1 == 0:
-            v.flight.target = (b.north, b.east, b.up)
+            v.flight.target = v.flight.stopping_point()
             if v.mode == Mode.AUTO:
                 v.auto.running = False
             return ACCEPTED

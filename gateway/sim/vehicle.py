@@ -261,11 +261,28 @@ class SimVehicle:
             return "Accels inconsistent"
         if mode in REQUIRES_POSITION and not self.position_ok:
             return "Need Position Estimate"
-        if checks and self.battery.failsafe:
-            return f"Battery 1 {self.battery.failsafe} voltage failsafe"
+        if checks:
+            battery = self._battery_arming_failure()
+            if battery:
+                return f"Battery 1 {battery}"
         if checks and self.failsafe_gcs:
             return "GCS failsafe on"
         return None
+
+    def _battery_arming_failure(self) -> str | None:
+        """AP_BattMonitor_Backend::arming_checks: thresholds compared with the present state, no timer."""
+        p = self.params.get
+        b = self.battery
+        remaining = b.capacity_mah - b.consumed_mah
+        checks = [
+            (p("BATT_LOW_VOLT") > 0 and b.voltage < p("BATT_LOW_VOLT"), "low voltage failsafe"),
+            (p("BATT_LOW_MAH") > 0 and remaining < p("BATT_LOW_MAH"), "low capacity failsafe"),
+            (p("BATT_CRT_VOLT") > 0 and b.voltage < p("BATT_CRT_VOLT"), "critical voltage failsafe"),
+            (p("BATT_CRT_MAH") > 0 and remaining < p("BATT_CRT_MAH"), "critical capacity failsafe"),
+            (p("BATT_ARM_VOLT") > 0 and b.voltage < p("BATT_ARM_VOLT"), "below minimum arming voltage"),
+            (p("BATT_ARM_MAH") > 0 and remaining < p("BATT_ARM_MAH"), "below minimum arming capacity"),
+        ]
+        return next((text for failed, text in checks if failed), None)
 
     # ------------------------------------------------------------------------------------------------
     # output
@@ -476,8 +493,11 @@ class SimVehicle:
         elif not self.gps_lost:
             self._gps_lost_at = None
         self.flight.ekf_check()
-        # Battery
+        # Battery: AP_BattMonitor only checks its failsafes while armed
         p = self.params.get
+        if not self.armed:
+            self.battery.check(self.t, 0, 0, 0, 0, 0)  # resets the low-voltage timer
+            return
         level = self.battery.check(
             self.t,
             p("BATT_LOW_VOLT"),
