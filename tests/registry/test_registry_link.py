@@ -181,7 +181,6 @@ async def test_heartbeat_watchdog_stops_gcs_heartbeats_when_not_fed(store, regis
     async with HeartbeatVehicle(port, sysid=51) as fake:
         v = await reg.add(_spec("november", port))
         await v.wait_for_state(ConnectionState.CONNECTED)
-        assert "--heartbeat-watchdog-timeout" in v.sidecar.plan(1).argv
 
         def gcs_heartbeats() -> int:
             return sum(1 for m in fake.received if m.get_type() == "HEARTBEAT" and m.get_srcSystem() == 245)
@@ -239,3 +238,44 @@ async def test_update_renames_and_moves_a_connected_vehicle(store, registries) -
         with pytest.raises(InvalidArgument):
             await reg.update("quebec", url="ftp://nowhere")
         assert v.spec.url.endswith(str(ports[1]))  # bad input changed nothing
+
+
+async def test_flight_left_open_by_a_dead_gateway_is_closed_from_its_track(store, registries) -> None:
+    from datetime import UTC, datetime, timedelta
+
+    from gateway.registry.store import TrackSample
+
+    await store.add_vehicle(VehicleSpec(id="romeo", url=f"udpin://127.0.0.1:{free_udp_port()}"))
+    t0 = datetime.now(UTC) - timedelta(minutes=5)
+    flight_id = await store.open_flight("romeo", t0, 47.0, 8.0, 500.0)
+    await store.add_track_samples(
+        [
+            TrackSample(flight_id=flight_id, t=t0 + timedelta(seconds=i), lat=47.0 + i * 1e-4, lon=8.0,
+                        alt_rel_m=5.0 * i, heading_deg=0.0, ground_speed_mps=11.0, battery_pct=90.0 - i)
+            for i in range(4)
+        ]
+    )  # fmt: skip
+    reg = Registry(fast_settings(), store)
+    registries.append(reg)
+    await reg.start()  # restores romeo; its recorder closes the flight the previous run left open
+    assert await store.list_open_flights("romeo") == []
+    flight = await store.get_flight(flight_id)
+    assert flight.duration_s == pytest.approx(3.0)
+    assert flight.distance_m == pytest.approx(33.4, abs=0.5)  # 3 x 1e-4 deg of latitude
+    assert flight.max_alt_rel_m == 15.0 and flight.battery_used_pct == pytest.approx(3.0)
+
+
+async def test_watchdog_does_not_block_discovery_of_a_vehicle_that_waits_for_the_gcs(
+    store, registries
+) -> None:
+    # mavsdk_server started with --heartbeat-watchdog-timeout sends nothing until fed, and can only be fed
+    # once discovered: a udpout:// vehicle that speaks only after hearing its GCS would never be found.
+    reg = Registry(fast_settings(sidecar_heartbeat_watchdog_s=2), store)
+    registries.append(reg)
+    await reg.start()
+    async with HeartbeatVehicle(None, sysid=71) as shy:
+        v = await reg.add(
+            _spec("sierra", shy.port).model_copy(update={"url": f"udpout://127.0.0.1:{shy.port}"})
+        )
+        await v.wait_for_state(ConnectionState.CONNECTED)
+        await wait_until(lambda: v.sysid == 71, what="heartbeat from the vehicle")

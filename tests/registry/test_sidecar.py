@@ -160,8 +160,9 @@ def test_confinement_wrapper_is_applied_to_the_command() -> None:
     assert ["-p", "50123"] == plan.argv[5:7]
     assert "--sysid" in plan.argv and "200" in plan.argv
     assert "--heartbeat-watchdog-timeout" not in plan.argv
+    # the watchdog is enabled over gRPC once the vehicle session exists, never on the command line
     with_watchdog = Sidecar("golf", "udpin://127.0.0.1:14550", _settings(sidecar_heartbeat_watchdog_s=4))
-    assert "--heartbeat-watchdog-timeout" in with_watchdog.plan(50124).argv
+    assert "--heartbeat-watchdog-timeout" not in with_watchdog.plan(50124).argv
 
 
 _GATEWAY_STANDIN = """
