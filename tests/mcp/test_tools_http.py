@@ -378,6 +378,33 @@ async def test_mission_flight_pause_resume(stack: Stack) -> None:
     await wait_audited(stack, "d3")
 
 
+async def wait_state(stack: Stack, drone_id: str, state: str) -> None:
+    loop = asyncio.get_running_loop()
+    deadline = loop.time() + 60
+    while (current := (await stack.rest(f"/vehicles/{drone_id}"))["state"]) != state:
+        assert loop.time() < deadline, f"{drone_id} stayed {current}, never {state}"
+        await asyncio.sleep(0.2)
+
+
+async def test_link_loss_reads_say_stale_and_commands_name_the_state(stack: Stack) -> None:
+    index = stack.index("d2")
+    async with stack.client("auto", name="link-loss") as c:
+        await stack.sim.control.link_down(index)
+        try:
+            await wait_state(stack, "d2", "link_lost")
+            r = await call(stack, c, "get_position", {"drone_id": "d2"})
+            assert r.structured_content["stale"] is True and "STALE" in r.content[0].text
+            text = error_text(await call(stack, c, "arm_drone", {"drone_id": "d2"}))
+            assert "link_lost" in text, text
+            assert (await stack.true_state("d2"))["armed"] is False
+        finally:
+            await stack.sim.control.link_up(index)
+        await wait_state(stack, "d2", "ready")
+        r = await ok(stack, c, "get_position", {"drone_id": "d2"})
+        assert r["stale"] is False
+    await wait_audited(stack, "d2")
+
+
 async def test_mcp_route_rejects_foreign_hosts_and_rest_keeps_its_errors(stack: Stack) -> None:
     body = {"jsonrpc": "2.0", "id": 1, "method": "tools/list", "params": {}}
     headers = {"accept": "application/json, text/event-stream", "mcp-protocol-version": "2026-07-28"}
