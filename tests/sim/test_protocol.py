@@ -182,7 +182,7 @@ async def test_link_faults_drop_traffic_both_ways() -> None:
     async with sim_process(1, speedup=SPEEDUP) as sim, raw_mavlink(sim.urls[0]) as gcs:
         await gcs.wait("HEARTBEAT")
         await sim.control.link_down(0)
-        await asyncio.sleep(0.2)
+        await asyncio.sleep(0.5)  # let frames already on their way arrive
         mark = gcs.mark()
         ack = asyncio.create_task(gcs.command(mav.MAV_CMD_REQUEST_MESSAGE, 148, timeout_s=1.0))
         await asyncio.sleep(1.2)  # the ACK wait (1 s) spans 24 simulated heartbeat periods
