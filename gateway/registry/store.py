@@ -597,3 +597,30 @@ class Store:
                 LockRecord(scope=r.scope, reason=r.reason, by=r.locked_by, locked_at=r.locked_at)
                 for r in rows
             ]
+
+    # --- retention -------------------------------------------------------------------------------
+
+    async def prune(self, before: datetime) -> dict[str, int]:
+        """Delete history older than ``before``: flights that ended before it (with their tracks),
+        status texts, audit entries, sessions last seen and operations finished before it.
+        Registrations, locks, open flights and running operations are kept. Returns rows deleted."""
+        old_flights = select(FlightRow.id).where(FlightRow.ended_at.is_not(None), FlightRow.ended_at < before)
+        counts: dict[str, int] = {}
+        async with self._sessions.begin() as session:
+            steps = [
+                ("track_samples", delete(TrackSampleRow).where(TrackSampleRow.flight_id.in_(old_flights))),
+                ("status_texts", delete(StatusTextRow).where(StatusTextRow.t < before)),
+                ("flights", delete(FlightRow).where(FlightRow.id.in_(old_flights))),
+                ("audit", delete(AuditRow).where(AuditRow.t < before)),
+                ("sessions", delete(SessionRow).where(SessionRow.last_seen < before)),
+                (
+                    "operations",
+                    delete(OperationRow).where(
+                        OperationRow.finished_at.is_not(None), OperationRow.finished_at < before
+                    ),
+                ),
+            ]
+            for name, statement in steps:
+                result = await session.execute(statement.execution_options(synchronize_session=False))
+                counts[name] = int(result.rowcount or 0)
+        return counts
