@@ -87,6 +87,16 @@ async def test_kill_9_is_restarted(stopper: list[Sidecar]) -> None:
         assert not alive(first)
 
 
+async def test_stop_right_after_start_leaves_nothing() -> None:
+    for i in range(6):  # stop at different points of the spawn
+        car = Sidecar("lima", f"udpin://127.0.0.1:{free_udp_port()}", _settings())
+        car.start()
+        await asyncio.sleep(0.002 * i)
+        await car.stop()
+        assert car.pid is None
+    assert mavsdk_servers_of() == []
+
+
 async def test_recycle_restarts_the_process(stopper: list[Sidecar]) -> None:
     udp = free_udp_port()
     serving: list[int] = []
