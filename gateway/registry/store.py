@@ -1,0 +1,626 @@
+"""Persistence of the gateway: vehicles, flights and tracks, status texts, sessions, audit, operations.
+
+``await Store.open(url)`` upgrades the schema to Alembic head and returns a ready store. Every method
+returns plain pydantic records, never live ORM objects. Only portable SQL is used, so a PostgreSQL
+(asyncpg) URL works as well as the SQLite (aiosqlite) default; SQLite gets WAL mode and a busy timeout.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import weakref
+from collections.abc import Sequence
+from datetime import datetime
+from pathlib import Path
+from typing import Any
+
+from sqlalchemy import delete, event, func, or_, select, text
+from sqlalchemy.exc import IntegrityError
+from sqlalchemy.ext.asyncio import AsyncEngine, async_sessionmaker, create_async_engine
+
+from gateway.errors import DuplicateVehicle, InvalidArgument, NotFound
+from gateway.registry.models import (
+    AuditRow,
+    FlightRow,
+    LockRow,
+    OperationRow,
+    SessionRow,
+    StatusTextRow,
+    TrackSampleRow,
+    VehicleRow,
+)
+from gateway.registry.records import (
+    AUDIT_MAX_ERROR,
+    AUDIT_MAX_JSON,
+    AUDIT_MAX_STRING,
+    SEVERITY_NAMES,
+    AuditEntry,
+    AuditOutcome,
+    AuditRecord,
+    AuditSource,
+    FlightRecord,
+    LockRecord,
+    OperationRecord,
+    OperationStatus,
+    SessionKind,
+    SessionRecord,
+    StatusTextIn,
+    StatusTextRecord,
+    TrackSample,
+    VehicleRecord,
+    bound_arguments,
+    utcnow,
+)
+from gateway.registry.spec import VehicleSpec
+
+# The records are part of the store's API: import them from here or from gateway.registry.records.
+__all__ = [
+    "AUDIT_MAX_ERROR",
+    "AUDIT_MAX_JSON",
+    "AUDIT_MAX_STRING",
+    "SEVERITY_NAMES",
+    "AuditEntry",
+    "AuditOutcome",
+    "AuditRecord",
+    "AuditSource",
+    "FlightRecord",
+    "LockRecord",
+    "OperationRecord",
+    "OperationStatus",
+    "SessionKind",
+    "SessionRecord",
+    "StatusTextIn",
+    "StatusTextRecord",
+    "Store",
+    "TrackSample",
+    "VehicleRecord",
+    "bound_arguments",
+    "create_engine_for",
+    "current_revision",
+    "head_revision",
+    "upgrade_schema",
+    "utcnow",
+]
+
+log = logging.getLogger(__name__)
+
+MIGRATIONS_DIR = Path(__file__).resolve().parents[2] / "migrations"
+SQLITE_BUSY_TIMEOUT_MS = 10_000
+
+
+def _is_sqlite(url: str) -> bool:
+    return url.startswith("sqlite")
+
+
+def _install_sqlite_pragmas(engine: AsyncEngine) -> None:
+    @event.listens_for(engine.sync_engine, "connect")
+    def _on_connect(dbapi_connection: Any, _record: Any) -> None:
+        cursor = dbapi_connection.cursor()
+        cursor.execute(f"PRAGMA busy_timeout={SQLITE_BUSY_TIMEOUT_MS}")
+        cursor.execute("PRAGMA journal_mode=WAL")
+        cursor.execute("PRAGMA synchronous=NORMAL")
+        cursor.execute("PRAGMA foreign_keys=ON")
+        cursor.close()
+
+
+def create_engine_for(url: str) -> AsyncEngine:
+    """An async engine for ``url``, with SQLite's pragmas installed when it is SQLite."""
+    kwargs: dict[str, Any] = {"pool_pre_ping": not _is_sqlite(url)}
+    if _is_sqlite(url):
+        kwargs["connect_args"] = {"timeout": SQLITE_BUSY_TIMEOUT_MS / 1000}
+    engine = create_async_engine(url, **kwargs)
+    if _is_sqlite(url):
+        _install_sqlite_pragmas(engine)
+    return engine
+
+
+def alembic_config(url: str) -> Any:
+    """An Alembic Config pointing at the project's migrations and ``url``."""
+    from alembic.config import Config
+
+    cfg = Config()
+    cfg.set_main_option("script_location", str(MIGRATIONS_DIR))
+    cfg.set_main_option("sqlalchemy.url", url.replace("%", "%%"))
+    return cfg
+
+
+# Alembic keeps its migration context in module globals: two upgrades interleaving in one event loop
+# would clobber each other, so they take turns (one lock per loop; tests run many loops).
+MIGRATION_LOCK_KEY = 0x666C6565  # PostgreSQL advisory lock id of schema upgrades ("flee")
+_MIGRATION_LOCKS: weakref.WeakKeyDictionary[asyncio.AbstractEventLoop, asyncio.Lock] = (
+    weakref.WeakKeyDictionary()
+)
+
+
+async def upgrade_schema(engine: AsyncEngine, url: str, revision: str = "head") -> None:
+    """Run Alembic migrations up to ``revision`` on ``engine`` (sharing its connection).
+
+    Across processes, the whole upgrade is one transaction holding the database's write lock (SQLite:
+    ``BEGIN IMMEDIATE``; PostgreSQL: an advisory lock): a second gateway or ``db upgrade`` starting at
+    the same time waits, then finds the schema current.
+    """
+    from alembic import command
+
+    cfg = alembic_config(url)
+
+    def _run(connection: Any) -> None:
+        cfg.attributes["connection"] = connection
+        command.upgrade(cfg, revision)
+
+    lock = _MIGRATION_LOCKS.setdefault(asyncio.get_running_loop(), asyncio.Lock())
+    async with lock, engine.begin() as conn:
+        if conn.dialect.name == "sqlite":
+            await conn.exec_driver_sql("BEGIN IMMEDIATE")
+        elif conn.dialect.name == "postgresql":  # held until this transaction ends
+            await conn.execute(text("SELECT pg_advisory_xact_lock(:key)"), {"key": MIGRATION_LOCK_KEY})
+        await conn.run_sync(_run)
+
+
+def head_revision() -> str:
+    """The newest schema revision among the project's migrations."""
+    from alembic.script import ScriptDirectory
+
+    head = ScriptDirectory.from_config(alembic_config("sqlite://")).get_current_head()
+    assert head is not None, "no migrations found"
+    return head
+
+
+async def current_revision(engine: AsyncEngine) -> str | None:
+    from alembic.runtime.migration import MigrationContext
+
+    def _get(connection: Any) -> str | None:
+        return MigrationContext.configure(connection).get_current_revision()
+
+    async with engine.connect() as conn:
+        return await conn.run_sync(_get)
+
+
+class Store:
+    """Async persistence API over SQLAlchemy. Create with ``await Store.open(url)``."""
+
+    def __init__(self, engine: AsyncEngine, url: str) -> None:
+        self.engine = engine
+        self.url = url
+        self._sessions = async_sessionmaker(engine, expire_on_commit=False)
+        self._closed = False
+
+    @classmethod
+    async def open(cls, url: str, upgrade: bool = True) -> Store:
+        engine = create_engine_for(url)
+        try:
+            if upgrade:
+                await upgrade_schema(engine, url)
+        except BaseException:
+            await engine.dispose()
+            raise
+        return cls(engine, url)
+
+    @property
+    def is_open(self) -> bool:
+        return not self._closed
+
+    async def close(self) -> None:
+        if not self._closed:
+            self._closed = True
+            await self.engine.dispose()
+
+    async def ping(self) -> bool:
+        """True when the database answers a trivial query."""
+        try:
+            async with self._sessions() as session:
+                await session.execute(select(1))
+            return True
+        except Exception:
+            log.exception("database ping failed")
+            return False
+
+    # --- vehicles --------------------------------------------------------------------------------
+
+    async def add_vehicle(self, spec: VehicleSpec, auto_connect: bool = True) -> VehicleRecord:
+        spec = VehicleSpec.model_validate(spec.model_dump())
+        now = utcnow()
+        row = VehicleRow(
+            id=spec.id,
+            url=spec.url,
+            name=spec.name,
+            tags=list(spec.tags),
+            expected_sysid=spec.expected_sysid,
+            auto_connect=auto_connect,
+            created_at=now,
+            updated_at=now,
+        )
+        try:
+            async with self._sessions.begin() as session:
+                if await session.get(VehicleRow, spec.id) is not None:
+                    raise DuplicateVehicle(f"a drone with id '{spec.id}' is already registered", id=spec.id)
+                session.add(row)
+        except IntegrityError as exc:
+            raise DuplicateVehicle(f"a drone with id '{spec.id}' is already registered", id=spec.id) from exc
+        return VehicleRecord.model_validate(row)
+
+    _UPDATABLE = frozenset({"name", "tags", "expected_sysid", "url", "auto_connect"})
+
+    async def update_vehicle(self, vehicle_id: str, **changes: Any) -> VehicleRecord:
+        unknown = sorted(set(changes) - self._UPDATABLE)
+        if unknown:
+            raise InvalidArgument(
+                f"cannot update field(s) {unknown}; updatable: {sorted(self._UPDATABLE)}", fields=unknown
+            )
+        async with self._sessions.begin() as session:
+            row = await session.get(VehicleRow, vehicle_id)
+            if row is None:
+                raise NotFound(f"no drone with id '{vehicle_id}' is registered", id=vehicle_id)
+            merged = VehicleRecord.model_validate(row).model_dump()
+            merged.update(changes)
+            if not isinstance(merged["auto_connect"], bool):
+                raise InvalidArgument("auto_connect must be true or false", field="auto_connect")
+            auto_connect = merged.pop("auto_connect")
+            for key in ("created_at", "updated_at"):
+                merged.pop(key)
+            try:
+                spec = VehicleSpec.model_validate(merged)
+            except ValueError as exc:
+                raise InvalidArgument(f"invalid vehicle update: {exc}", fields=sorted(changes)) from exc
+            row.url = spec.url
+            row.name = spec.name
+            row.tags = list(spec.tags)
+            row.expected_sysid = spec.expected_sysid
+            row.auto_connect = auto_connect
+            row.updated_at = utcnow()
+        return VehicleRecord.model_validate(row)
+
+    async def remove_vehicle(self, vehicle_id: str) -> None:
+        async with self._sessions.begin() as session:
+            result = await session.execute(delete(VehicleRow).where(VehicleRow.id == vehicle_id))
+            if result.rowcount == 0:
+                raise NotFound(f"no drone with id '{vehicle_id}' is registered", id=vehicle_id)
+
+    async def get_vehicle(self, vehicle_id: str) -> VehicleRecord | None:
+        async with self._sessions() as session:
+            row = await session.get(VehicleRow, vehicle_id)
+            return None if row is None else VehicleRecord.model_validate(row)
+
+    async def list_vehicles(self) -> list[VehicleRecord]:
+        async with self._sessions() as session:
+            rows = (await session.scalars(select(VehicleRow).order_by(VehicleRow.id))).all()
+            return [VehicleRecord.model_validate(r) for r in rows]
+
+    # --- flights ---------------------------------------------------------------------------------
+
+    async def open_flight(
+        self,
+        vehicle_id: str,
+        started_at: datetime,
+        home_lat: float | None = None,
+        home_lon: float | None = None,
+        home_alt_amsl: float | None = None,
+    ) -> int:
+        row = FlightRow(
+            vehicle_id=vehicle_id,
+            started_at=started_at,
+            home_lat=home_lat,
+            home_lon=home_lon,
+            home_alt_amsl=home_alt_amsl,
+        )
+        async with self._sessions.begin() as session:
+            session.add(row)
+            await session.flush()
+            return int(row.id)
+
+    async def close_flight(
+        self,
+        flight_id: int,
+        ended_at: datetime,
+        duration_s: float | None = None,
+        distance_m: float | None = None,
+        max_alt_rel_m: float | None = None,
+        battery_used_pct: float | None = None,
+    ) -> FlightRecord:
+        async with self._sessions.begin() as session:
+            row = await session.get(FlightRow, flight_id)
+            if row is None:
+                raise NotFound(f"no flight with id {flight_id}", id=flight_id)
+            row.ended_at = ended_at
+            row.duration_s = duration_s
+            row.distance_m = distance_m
+            row.max_alt_rel_m = max_alt_rel_m
+            row.battery_used_pct = battery_used_pct
+        return FlightRecord.model_validate(row)
+
+    async def list_open_flights(self, vehicle_id: str | None = None) -> list[FlightRecord]:
+        query = select(FlightRow).where(FlightRow.ended_at.is_(None))
+        if vehicle_id is not None:
+            query = query.where(FlightRow.vehicle_id == vehicle_id)
+        async with self._sessions() as session:
+            rows = (await session.scalars(query.order_by(FlightRow.started_at))).all()
+            return [FlightRecord.model_validate(r) for r in rows]
+
+    async def add_track_samples(self, samples: Sequence[TrackSample]) -> int:
+        """Insert a batch of track samples in one transaction; returns how many were written."""
+        if not samples:
+            return 0
+        rows = [s.model_dump() for s in samples]
+        async with self._sessions.begin() as session:
+            await session.execute(TrackSampleRow.__table__.insert(), rows)
+        return len(rows)
+
+    async def add_status_texts(self, items: Sequence[StatusTextIn]) -> int:
+        if not items:
+            return 0
+        rows = [i.model_dump() for i in items]
+        async with self._sessions.begin() as session:
+            await session.execute(StatusTextRow.__table__.insert(), rows)
+        return len(rows)
+
+    async def list_flights(
+        self,
+        vehicle_id: str | None = None,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        limit: int = 50,
+        offset: int = 0,
+    ) -> tuple[list[FlightRecord], int]:
+        """Flights overlapping [since, until], newest first, with the total count for paging."""
+        conditions = []
+        if vehicle_id is not None:
+            conditions.append(FlightRow.vehicle_id == vehicle_id)
+        if since is not None:
+            conditions.append(or_(FlightRow.ended_at.is_(None), FlightRow.ended_at >= since))
+        if until is not None:
+            conditions.append(FlightRow.started_at <= until)
+        query = select(FlightRow).where(*conditions)
+        count = select(func.count()).select_from(FlightRow).where(*conditions)
+        async with self._sessions() as session:
+            total = int((await session.execute(count)).scalar_one())
+            rows = (
+                await session.scalars(
+                    query.order_by(FlightRow.started_at.desc(), FlightRow.id.desc())
+                    .limit(limit)
+                    .offset(offset)
+                )
+            ).all()
+            return [FlightRecord.model_validate(r) for r in rows], total
+
+    async def get_flight(self, flight_id: int) -> FlightRecord | None:
+        async with self._sessions() as session:
+            row = await session.get(FlightRow, flight_id)
+            return None if row is None else FlightRecord.model_validate(row)
+
+    async def get_track(self, flight_id: int) -> list[TrackSample]:
+        columns = [getattr(TrackSampleRow, name) for name in TrackSample.model_fields]
+        query = (
+            select(*columns)
+            .where(TrackSampleRow.flight_id == flight_id)
+            .order_by(TrackSampleRow.t, TrackSampleRow.id)
+        )
+        async with self._sessions() as session:
+            rows = (await session.execute(query)).all()
+        # Plain rows, no ORM objects; validated when written, so built without re-validation (long tracks).
+        return [TrackSample.model_construct(**row._asdict()) for row in rows]
+
+    async def list_status_texts(
+        self, vehicle_id: str, limit: int = 100, since: datetime | None = None
+    ) -> list[StatusTextRecord]:
+        """The newest ``limit`` status texts of a vehicle, oldest first."""
+        query = select(StatusTextRow).where(StatusTextRow.vehicle_id == vehicle_id)
+        if since is not None:
+            query = query.where(StatusTextRow.t >= since)
+        query = query.order_by(StatusTextRow.t.desc(), StatusTextRow.id.desc()).limit(limit)
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [StatusTextRecord.model_validate(r) for r in reversed(rows)]
+
+    # --- sessions --------------------------------------------------------------------------------
+
+    async def touch_session(
+        self,
+        key: str,
+        kind: SessionKind,
+        principal: str | None = None,
+        client_name: str | None = None,
+        client_version: str | None = None,
+    ) -> SessionRecord:
+        """Record that a session was seen now (insert or update; portable, no dialect upsert)."""
+        if kind not in ("mcp-2025", "mcp-2026", "rest"):
+            raise InvalidArgument(f"unknown session kind '{kind}'", field="kind")
+        key = key[:200]
+        for attempt in range(2):
+            now = utcnow()
+            try:
+                async with self._sessions.begin() as session:
+                    row = await session.get(SessionRow, key)
+                    if row is None:
+                        row = SessionRow(
+                            key=key,
+                            kind=kind,
+                            principal=principal,
+                            client_name=(client_name or None) and client_name[:200],
+                            client_version=(client_version or None) and client_version[:100],
+                            first_seen=now,
+                            last_seen=now,
+                            request_count=1,
+                        )
+                        session.add(row)
+                    else:
+                        row.last_seen = now
+                        row.request_count = (row.request_count or 0) + 1
+                        row.kind = kind
+                        if principal is not None:
+                            row.principal = principal
+                        if client_name:
+                            row.client_name = client_name[:200]
+                        if client_version:
+                            row.client_version = client_version[:100]
+                return SessionRecord.model_validate(row)
+            except IntegrityError:
+                if attempt:  # a concurrent insert won twice: give up loudly
+                    raise
+        raise AssertionError("unreachable")
+
+    async def get_session(self, key: str) -> SessionRecord | None:
+        async with self._sessions() as session:
+            row = await session.get(SessionRow, key)
+            return None if row is None else SessionRecord.model_validate(row)
+
+    async def list_sessions(
+        self,
+        kind: str | None = None,
+        principal: str | None = None,
+        since: datetime | None = None,
+        limit: int = 100,
+        offset: int = 0,
+    ) -> list[SessionRecord]:
+        """Sessions, most recently seen first."""
+        query = select(SessionRow)
+        if kind is not None:
+            query = query.where(SessionRow.kind == kind)
+        if principal is not None:
+            query = query.where(SessionRow.principal == principal)
+        if since is not None:
+            query = query.where(SessionRow.last_seen >= since)
+        query = query.order_by(SessionRow.last_seen.desc(), SessionRow.key).limit(limit).offset(offset)
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [SessionRecord.model_validate(r) for r in rows]
+
+    # --- audit -----------------------------------------------------------------------------------
+
+    async def add_audit(self, entry: AuditEntry) -> int:
+        row = AuditRow(
+            t=entry.t or utcnow(),
+            session_key=entry.session_key and entry.session_key[:200],
+            principal=entry.principal and entry.principal[:200],
+            source=entry.source,
+            vehicle_id=entry.vehicle_id and entry.vehicle_id[:32],
+            action=entry.action[:100],
+            arguments=bound_arguments(entry.arguments),
+            outcome=entry.outcome,
+            error=entry.error and entry.error[:AUDIT_MAX_ERROR],
+            duration_ms=entry.duration_ms,
+        )
+        async with self._sessions.begin() as session:
+            session.add(row)
+            await session.flush()
+            return int(row.id)
+
+    def _audit_conditions(self, vehicle_id: str | None, session_key: str | None) -> list[Any]:
+        conditions = []
+        if vehicle_id is not None:
+            conditions.append(AuditRow.vehicle_id == vehicle_id)
+        if session_key is not None:
+            conditions.append(AuditRow.session_key == session_key)
+        return conditions
+
+    async def list_audit(
+        self,
+        vehicle_id: str | None = None,
+        session_key: str | None = None,
+        limit: int = 100,
+        offset: int = 0,
+    ) -> list[AuditRecord]:
+        """Audit entries, newest first."""
+        query = (
+            select(AuditRow)
+            .where(*self._audit_conditions(vehicle_id, session_key))
+            .order_by(AuditRow.t.desc(), AuditRow.id.desc())
+            .limit(limit)
+            .offset(offset)
+        )
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [AuditRecord.model_validate(r) for r in rows]
+
+    async def count_audit(self, vehicle_id: str | None = None, session_key: str | None = None) -> int:
+        query = select(func.count()).select_from(AuditRow)
+        query = query.where(*self._audit_conditions(vehicle_id, session_key))
+        async with self._sessions() as session:
+            return int((await session.execute(query)).scalar_one())
+
+    # --- operations ------------------------------------------------------------------------------
+
+    async def save_operation(self, op: OperationRecord) -> OperationRecord:
+        values = op.model_dump()
+        async with self._sessions.begin() as session:
+            row = await session.get(OperationRow, op.id)
+            if row is None:
+                session.add(OperationRow(**values))
+            else:
+                for key, value in values.items():
+                    if key != "id":
+                        setattr(row, key, value)
+        return op
+
+    async def get_operation(self, operation_id: str) -> OperationRecord | None:
+        async with self._sessions() as session:
+            row = await session.get(OperationRow, operation_id)
+            return None if row is None else OperationRecord.model_validate(row)
+
+    async def list_operations(
+        self, vehicle_id: str | None = None, status: str | Sequence[str] | None = None, limit: int = 50
+    ) -> list[OperationRecord]:
+        """Operations, newest first; ``status`` may be one status or several."""
+        query = select(OperationRow)
+        if vehicle_id is not None:
+            query = query.where(OperationRow.vehicle_id == vehicle_id)
+        if isinstance(status, str):
+            query = query.where(OperationRow.status == status)
+        elif status is not None:
+            query = query.where(OperationRow.status.in_(list(status)))
+        query = query.order_by(OperationRow.created_at.desc(), OperationRow.id).limit(limit)
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [OperationRecord.model_validate(r) for r in rows]
+
+    # --- operator locks --------------------------------------------------------------------------
+
+    async def save_lock(self, scope: str, reason: str, by: str, locked_at: datetime) -> LockRecord:
+        """Store (or replace) the lock of ``scope``."""
+        async with self._sessions.begin() as session:
+            row = await session.get(LockRow, scope)
+            if row is None:
+                session.add(LockRow(scope=scope, reason=reason, locked_by=by[:200], locked_at=locked_at))
+            else:
+                row.reason, row.locked_by, row.locked_at = reason, by[:200], locked_at
+        return LockRecord(scope=scope, reason=reason, by=by[:200], locked_at=locked_at)
+
+    async def delete_lock(self, scope: str) -> bool:
+        """Remove the lock of ``scope``; False when there was none."""
+        async with self._sessions.begin() as session:
+            result = await session.execute(delete(LockRow).where(LockRow.scope == scope))
+            return bool(result.rowcount)
+
+    async def list_locks(self) -> list[LockRecord]:
+        async with self._sessions() as session:
+            rows = (await session.scalars(select(LockRow).order_by(LockRow.scope))).all()
+            return [
+                LockRecord(scope=r.scope, reason=r.reason, by=r.locked_by, locked_at=r.locked_at)
+                for r in rows
+            ]
+
+    # --- retention -------------------------------------------------------------------------------
+
+    async def prune(self, before: datetime) -> dict[str, int]:
+        """Delete history older than ``before``: flights that ended before it (with their tracks),
+        status texts, audit entries, sessions last seen and operations finished before it.
+        Registrations, locks, open flights and running operations are kept. Returns rows deleted."""
+        old_flights = select(FlightRow.id).where(FlightRow.ended_at.is_not(None), FlightRow.ended_at < before)
+        counts: dict[str, int] = {}
+        async with self._sessions.begin() as session:
+            steps = [
+                ("track_samples", delete(TrackSampleRow).where(TrackSampleRow.flight_id.in_(old_flights))),
+                ("status_texts", delete(StatusTextRow).where(StatusTextRow.t < before)),
+                ("flights", delete(FlightRow).where(FlightRow.id.in_(old_flights))),
+                ("audit", delete(AuditRow).where(AuditRow.t < before)),
+                ("sessions", delete(SessionRow).where(SessionRow.last_seen < before)),
+                (
+                    "operations",
+                    delete(OperationRow).where(
+                        OperationRow.finished_at.is_not(None), OperationRow.finished_at < before
+                    ),
+                ),
+            ]
+            for name, statement in steps:
+                result = await session.execute(statement.execution_options(synchronize_session=False))
+                counts[name] = int(result.rowcount or 0)
+        return counts
