@@ -101,10 +101,19 @@ async def test_flown_flight_is_listed_with_its_track(tmp_path: Path) -> None:
 
             vehicle = app.state.gateway.registry.get("alpha")
             home = vehicle.telemetry.home.value
-            await vehicle.takeoff(5.0)
+            # the operator flies it over REST; the safety limits apply to operators too
+            too_high = await client.post("/api/v1/vehicles/alpha/takeoff", json={"alt_rel_m": 500})
+            assert too_high.status_code == 403, too_high.text
+            assert too_high.json()["error"]["code"] == "safety_refusal" and "120" in too_high.text
+            took_off = await client.post("/api/v1/vehicles/alpha/takeoff", json={"alt_rel_m": 5})
+            assert took_off.status_code == 200 and took_off.json()["outcome"] == "sent", took_off.text
             await wait_until(lambda: _at(vehicle, lambda p: p.rel_alt_m > 4.0), "takeoff to 5 m", every_s=0.1)
             target_lat = home.lat_deg + 30.0 / 111_320.0  # ~30 m north
-            await vehicle.goto(target_lat, home.lon_deg, 5.0)
+            far = {"lat": home.lat_deg + 0.1, "lon": home.lon_deg, "alt_rel_m": 5}  # ~11 km
+            refused = await client.post("/api/v1/vehicles/alpha/goto", json=far)
+            assert refused.status_code == 403 and refused.json()["error"]["details"]["rule"] == "max_distance"
+            goto = {"lat": target_lat, "lon": home.lon_deg, "alt_rel_m": 5.0}
+            assert (await client.post("/api/v1/vehicles/alpha/goto", json=goto)).status_code == 200
             await wait_until(
                 lambda: _at(vehicle, lambda p: abs(p.lat_deg - target_lat) < 3e-5), "arrival", every_s=0.1
             )
@@ -146,6 +155,15 @@ async def test_flown_flight_is_listed_with_its_track(tmp_path: Path) -> None:
             assert max(c[1] for c in coords) == pytest.approx(target_lat, abs=5e-5)
             assert max(c[2] for c in coords) > 4.0
             assert len(feature["properties"]["times"]) == len(coords)
+
+            audit = (await client.get("/api/v1/audit", params={"vehicle_id": "alpha"})).json()["items"]
+            outcomes = [(e["action"], e["outcome"]) for e in audit]
+            assert ("rest.takeoff_vehicle", "refused") in outcomes and (
+                "rest.goto_vehicle",
+                "refused",
+            ) in outcomes
+            assert ("rest.takeoff_vehicle", "ok") in outcomes
+            assert ("go_to_location", "refused") in outcomes  # the agent's refused call, same table
 
             texts = (await client.get("/api/v1/vehicles/alpha/statustexts")).json()["items"]
             assert texts and all(t["severity"] for t in texts)
