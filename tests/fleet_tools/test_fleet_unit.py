@@ -59,8 +59,8 @@ async def test_fleet_takeoff_dispatch_is_concurrent(gateway: SpreadGateway) -> N
     assert r["status"] == "succeeded", r
     drones = {d["drone_id"]: d for d in r["drones"]}
     assert set(drones) == set(IDS)
-    # staggered altitudes in the order given, at the default stagger (the minimum separation, 5 m)
-    assert [gateway.registry.get(d).sent[-1] for d in IDS] == [("takeoff", 10.0 + 5 * k) for k in range(5)]
+    # staggered altitudes in the order given, at the default stagger (the minimum separation + 2 m)
+    assert [gateway.registry.get(d).sent[-1] for d in IDS] == [("takeoff", 10.0 + 7 * k) for k in range(5)]
     # every command went out before the first one was accepted
     assert max(d["sent_after_s"] for d in drones.values()) <= min(
         d["accepted_after_s"] for d in drones.values()
@@ -189,7 +189,7 @@ async def test_recovery_actions_go_to_every_drone_that_can(gateway: SpreadGatewa
 
 async def test_return_to_launch_staggers_and_orders_altitudes(gateway: SpreadGateway) -> None:
     async with Client(build_mcp(gateway)) as c:
-        await take_off(c)  # 10..30 m
+        await take_off(c)  # 10..38 m
         lat, lon = ahead(120.0, 20.0)
         ok(
             await c.call_tool(
@@ -205,8 +205,8 @@ async def test_return_to_launch_staggers_and_orders_altitudes(gateway: SpreadGat
         r = ok(await c.call_tool("fleet_return_to_launch", {}))
     assert r["status"] == "succeeded", r
     alts = {d["drone_id"]: d["rtl_alt_m"] for d in r["drones"]}
-    # above every drone's altitude (25 m) so each climbs to its own layer, 5 m apart
-    assert sorted(alts.values()) == [26.0 + 5 * k for k in range(5)], alts
+    # above every drone's altitude (25 m) so each climbs to its own layer, 7 m apart
+    assert sorted(alts.values()) == [26.0 + 7 * k for k in range(5)], alts
     climbed = 0
     for d, alt in alts.items():
         v = gateway.registry.get(d)

@@ -26,6 +26,7 @@ from pydantic import Field
 from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.fleet_ops import (
+    FORMATION_TOLERANCE_M,
     FleetOperation,
     FleetOperations,
     FleetRefused,
@@ -185,7 +186,8 @@ async def _run(ctx: Context, fa: FleetAccess, fop: FleetOperation, wait: bool) -
 
 
 def _stagger(fa: FleetAccess, stagger_m: float | None) -> float:
-    return fa.settings.min_separation_m if stagger_m is None else stagger_m
+    """Default: the minimum separation plus 1 m of altitude-holding error for each of two drones."""
+    return fa.settings.min_separation_m + 2 * FORMATION_TOLERANCE_M if stagger_m is None else stagger_m
 
 
 # --- read tools ----------------------------------------------------------------------------------------
@@ -409,7 +411,7 @@ async def fleet_takeoff(
     wait: Wait = True,
 ) -> FleetOut:
     """Arm and take off several drones at once to alt_m, alt_m+stagger, ... (in the order given; default
-    stagger: the minimum separation). All must be able to take off, else nothing is sent."""
+    stagger: min separation + 2 m). All must be able to take off, else nothing is sent."""
     ids = check_drone_ids(drone_ids)
     policy = fa.safety
     _low, high = policy.altitude_band(ids)
@@ -480,7 +482,8 @@ async def fleet_return_to_launch(
     ] = None,
     wait: Wait = True,
 ) -> FleetOut:
-    """Fly drones home and land, each at its own return altitude (stagger >= min separation; a drone
+    """Fly drones home and land, each at its own return altitude (stagger >= min separation, default
+    +2 m; a drone
     whose way home passes over another's home flies above it). Drones first climb in place to their
     altitude, then all return. Drones that cannot are listed in not_sent; the others return."""
     stagger = _stagger(fa, stagger_m)
