@@ -35,6 +35,7 @@ from tests.helpers.procs import tail
 from tests.swarm.separation import Sample, closest_approach
 from tests.swarm.topology import (
     DRONES,
+    GATEWAY_ENV,
     SwarmNetwork,
     can_create_namespaces,
     drone_address,
@@ -146,6 +147,7 @@ async def swarm(tmp: Path) -> AsyncIterator[str]:
             "GATEWAY_SIDECAR_BACKOFF_INITIAL_S": "0.2",
             "GATEWAY_SIDECAR_BACKOFF_MAX_S": "1.0",
             "GATEWAY_LOG_LEVEL": "WARNING",
+            **GATEWAY_ENV,
         }
         procs.start("gateway", _program(gateway_command("127.0.0.1", port)), env=env, cwd=tmp)
         base = f"http://127.0.0.1:{port}"

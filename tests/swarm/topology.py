@@ -66,6 +66,10 @@ def drone_command(index: int, speedup: float = 1.0) -> list[str]:
     ]  # fmt: skip
 
 
+GATEWAY_ENV = {"GATEWAY_SIMULATORS_ONLY": "true"}
+"""Gateway settings the compose file and the swarm test share (agents may fly simulators only)."""
+
+
 def gateway_command(host: str = "0.0.0.0", port: int = GATEWAY_PORT) -> list[str]:
     return ["fleet-gateway", "serve", "--host", host, "--port", str(port)]
 
