@@ -66,7 +66,7 @@ def create_app(settings: Settings | None = None, registry_factory: RegistryFacto
     app.include_router(health.router)
     app.include_router(metrics.router)
     app.include_router(build_api_router())
-    mount_mcp(app, gateway, hooks)  # last: the MCP app is mounted at "/" and must come after the routes
+    mount_mcp(app, gateway, hooks)  # the route /mcp (unknown REST URLs keep the JSON 404/405 shape)
     return app
 
 
@@ -84,7 +84,7 @@ def mount_mcp(app: FastAPI, gateway: Gateway, hooks: list[LifespanHook]) -> bool
 
     mcp = mcp_server.build_mcp(gateway)
     mcp_app = mcp_server.streamable_http_app(mcp, gateway.settings)
-    hooks.append(lambda: mcp.session_manager.run())
+    hooks.append(lambda: mcp_server.mcp_lifespan(mcp))  # the session manager, in a task of its own
     app.state.mcp = mcp
-    app.mount("/", mcp_app)
+    app.add_route("/mcp", mcp_app, include_in_schema=False)
     return True

@@ -14,21 +14,22 @@ What mavsdk_server 4.0.5 does that shapes this module (measured):
 * It binds gRPC on 0.0.0.0. ``SpawnPlan`` / ``Sidecar.confine`` is the one place where a confinement
   wrapper (network namespace, LD_PRELOAD bind shim) is inserted around the command.
 
-Every sidecar runs in its own process group with PR_SET_PDEATHSIG=SIGKILL, so it dies with the
-gateway even when the gateway is SIGKILLed; ``stop()`` terminates the group, then kills it.
+Every sidecar runs in its own process group with PR_SET_PDEATHSIG=SIGKILL (set by an exec wrapper,
+see ``die_with_parent``), so it dies with the gateway even when the gateway is SIGKILLed; ``stop()``
+terminates the group, then kills it; an atexit hook kills what is left at interpreter exit.
 """
 
 from __future__ import annotations
 
 import asyncio
 import atexit
-import ctypes
-import ctypes.util
 import enum
 import logging
 import os
 import re
+import shutil
 import signal
+import sys
 import time
 from collections import deque
 from collections.abc import Callable
@@ -53,17 +54,26 @@ PORT_ATTEMPTS = 5
 #: grace between SIGTERM and SIGKILL when stopping
 TERM_GRACE_S = 3.0
 
-_PR_SET_PDEATHSIG = 1
-_libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6", use_errno=True)
-_prctl = _libc.prctl
-
 # Every live sidecar process group, so the interpreter's exit path can still kill them.
 _LIVE_PGIDS: set[int] = set()
 
+# PR_SET_PDEATHSIG is set by an exec wrapper, not a preexec_fn: forking a process that runs gRPC
+# threads and then running Python code in the child (preexec_fn also runs gRPC's at-fork hooks)
+# segfaults now and then. setpriv (util-linux) does it in C; else a tiny Python exec shim.
+_PDEATHSIG_SHIM = (
+    "import ctypes,ctypes.util,os,signal,sys;"
+    "ctypes.CDLL(ctypes.util.find_library('c') or 'libc.so.6').prctl(1,signal.SIGKILL,0,0,0);"
+    "os.getppid()==int(sys.argv[1]) or sys.exit(1);"
+    "os.execv(sys.argv[2],sys.argv[2:])"
+)
 
-def _child_setup() -> None:
-    """Runs in the child between fork and exec: die with the parent. (prctl is pre-resolved.)"""
-    _prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+
+def die_with_parent(argv: list[str]) -> list[str]:
+    """``argv`` wrapped so the process gets SIGKILL when the gateway dies, even by SIGKILL."""
+    setpriv = shutil.which("setpriv")
+    if setpriv:
+        return [setpriv, "--pdeathsig", "KILL", "--", *argv]
+    return [sys.executable, "-c", _PDEATHSIG_SHIM, str(os.getpid()), *argv]
 
 
 @atexit.register
@@ -271,13 +281,12 @@ class Sidecar:
         self.info.serving_since = None
         try:
             proc = await asyncio.create_subprocess_exec(
-                *plan.argv,
+                *die_with_parent(plan.argv),
                 stdin=asyncio.subprocess.DEVNULL,
                 stdout=asyncio.subprocess.PIPE,
                 stderr=asyncio.subprocess.STDOUT,
                 env=plan.env,
                 start_new_session=True,  # own process group: stop() kills the whole group
-                preexec_fn=_child_setup,
             )
         except OSError as exc:
             return f"cannot start mavsdk_server ({plan.argv[0]}): {exc}"

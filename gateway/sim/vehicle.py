@@ -377,8 +377,8 @@ class SimVehicle:
             dt = min(MAX_STEP_S, elapsed)
             elapsed -= dt
             self._step(dt)
+            self._emit()  # per step, so streams keep their spacing in simulated time
         self.mission.tick(now)
-        self._emit()
 
     def _step(self, dt: float) -> None:
         self.t += dt
@@ -513,6 +513,9 @@ class SimVehicle:
             "link_up": self.faults.up,
             "packet_loss_pct": self.faults.loss_pct,
             "failsafe_gcs": self.failsafe_gcs,
+            "gcs_heartbeat_age_s": None
+            if self._gcs_last_seen is None
+            else round(self.t - self._gcs_last_seen, 3),
             "failsafe_battery": self.battery.failsafe,
             "position_ok": self.position_ok,
             "mission_current": self.auto.current,
