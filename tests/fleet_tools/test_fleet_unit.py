@@ -314,3 +314,18 @@ async def test_list_drones_filters_and_fleet_status_is_compact(gateway: SpreadGa
         assert "d5:" in text and "link_lost" in text, text
         text = err(await c.call_tool("fleet_takeoff", {"drone_ids": ["d1", "d1"], "alt_m": 10}))
         assert "more than once" in text
+
+
+async def test_fleet_tools_follow_the_surface_rules(gateway: SpreadGateway) -> None:
+    """Like the other toolsets: one short description line, annotations set, structured output."""
+    async with Client(build_mcp(gateway)) as c:
+        tools = {t.name: t for t in (await c.list_tools()).tools}
+    fleet = ["list_drones", "fleet_status", "monitor_fleet", "formation_goto", "fleet_takeoff", "fleet_land",
+             "fleet_return_to_launch", "fleet_hold"]  # fmt: skip
+    for name in fleet:
+        tool = tools[name]
+        assert tool.description and "\n" not in tool.description and len(tool.description) <= 110, name
+        assert '"title"' not in json.dumps(tool.input_schema), name
+        assert tool.output_schema is not None and tool.annotations is not None, name
+    assert all(tools[n].annotations.read_only_hint for n in ("list_drones", "fleet_status", "monitor_fleet"))
+    assert not tools["formation_goto"].annotations.read_only_hint
