@@ -60,6 +60,7 @@ class Step:
     send: Callable[[], Awaitable[Any]]
     params: dict[str, Any]
     timeout_s: float | None = None  # the step fails if not finished by then (the vehicle keeps going)
+    precheck: Callable[[], None] | None = None  # run inside the vehicle's command lock, just before send
 
 
 @dataclass
@@ -433,8 +434,9 @@ class FleetOperations:
             member.sent_after_s = round(time.monotonic() - fop.started_mono, 3)
             member.status, member.message = "running", "command sent"
             try:
+                extra = {"precheck": step.precheck} if step.precheck is not None else {}
                 op = await self.operations.start(
-                    step.vehicle, step.tracker, step.send, step.params, fop.session_key
+                    step.vehicle, step.tracker, step.send, step.params, fop.session_key, **extra
                 )
             except GatewayError as exc:
                 member.status, member.message, member.operation_id = "failed", exc.message, None
@@ -609,7 +611,15 @@ def collect_members(
     return vehicles, unable
 
 
-def formation_phases(plan: Any, vehicles: Mapping[str, Any]) -> list[Phase]:
+Precheck = Callable[[Any], None]
+"""Checks a vehicle inside its command lock (e.g. "no takeoff in progress", against parallel tool calls)."""
+
+
+def _bind(precheck: Precheck | None, vehicle: Any) -> Callable[[], None] | None:
+    return None if precheck is None else (lambda: precheck(vehicle))
+
+
+def formation_phases(plan: Any, vehicles: Mapping[str, Any], precheck: Precheck | None = None) -> list[Phase]:
     """The three phases of a `FormationPlan` as fleet-operation phases (each leg a tracked goto)."""
     from gateway.fleet.operations import GotoTracker
 
@@ -625,6 +635,7 @@ def formation_phases(plan: Any, vehicles: Mapping[str, Any]) -> list[Phase]:
                 send=_goto(vehicle, wp.lat, wp.lon, wp.alt_rel_m),
                 params={"lat": wp.lat, "lon": wp.lon, "alt_m": wp.alt_rel_m, "phase": index + 1},
                 timeout_s=step_timeout_s(slot.distance_m),
+                precheck=_bind(precheck, vehicle),
             )
         phases.append(Phase(name, steps, abort_on_failure=True))
     return phases
@@ -644,7 +655,9 @@ def slot_summaries(plan: Any) -> dict[str, dict[str, Any]]:
     }
 
 
-def takeoff_phase(vehicles: Mapping[str, Any], altitudes: Mapping[str, float]) -> Phase:
+def takeoff_phase(
+    vehicles: Mapping[str, Any], altitudes: Mapping[str, float], precheck: Precheck | None = None
+) -> Phase:
     from gateway.fleet.operations import TakeoffTracker
 
     steps = {
@@ -654,6 +667,7 @@ def takeoff_phase(vehicles: Mapping[str, Any], altitudes: Mapping[str, float]) -
             send=_takeoff(v, altitudes[d]),
             params={"altitude_m": altitudes[d]},
             timeout_s=step_timeout_s(altitudes[d], slowest_mps=0.5),
+            precheck=_bind(precheck, v),
         )
         for d, v in vehicles.items()
     }

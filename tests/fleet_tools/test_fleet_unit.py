@@ -100,7 +100,7 @@ async def test_formation_phases_are_barriers(gateway: SpreadGateway) -> None:
     drones transit at other altitudes, and no drone starts a phase before every drone finished the
     previous one."""
     slow = gateway.registry.get("d3")
-    slow.speed = 15.0  # one slow drone: the others must wait for it at each barrier
+    slow.speed = 40.0  # one slow drone: the others must wait for it at each barrier
     async with Client(build_mcp(gateway)) as c:
         ok(await c.call_tool("fleet_takeoff", {"drone_ids": IDS, "alt_m": 20, "stagger_m": 0}))
         for v in gateway.vehicles():
@@ -252,8 +252,8 @@ def test_rtl_order_puts_the_drone_passing_over_a_home_above_its_owner() -> None:
 
 async def test_formation_resource_and_monitor(gateway: SpreadGateway) -> None:
     for v in gateway.vehicles():
-        v.speed = 8.0
-    gateway.settings.mcp_wait_cap_s = 0.5
+        v.speed = 25.0
+    gateway.settings.mcp_wait_cap_s = 0.3
     async with Client(build_mcp(gateway)) as c:
         res = await c.read_resource("fleet://formation")
         assert json.loads(res.contents[0].text)["formation"] is None

@@ -375,7 +375,7 @@ async def formation_goto(
     fop = await fleet_ops(fa).start(
         "formation_goto",
         ids,
-        formation_phases(plan, vehicles),
+        formation_phases(plan, vehicles, lambda v: fa.guard_takeoff(v, "formation_goto")),
         params,
         fa.session_key(),
         plan=plan.to_dict(),
@@ -428,7 +428,7 @@ async def fleet_takeoff(
     fop = await fleet_ops(fa).start(
         "fleet_takeoff",
         ids,
-        [takeoff_phase(vehicles, altitudes)],
+        [takeoff_phase(vehicles, altitudes, lambda v: fa.guard_takeoff(v, "fleet_takeoff"))],
         params,
         fa.session_key(),
         slots={d: {"target_alt_m": a} for d, a in altitudes.items()},
