@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from typing import Any
 
-from gateway.errors import GatewayError, InvalidArgument, NotFound
+from gateway.errors import GatewayError, InvalidArgument, NotFound, SafetyRefusal
 from gateway.fleet import geo
 from gateway.fleet.operations import Operation, OperationManager, OpStatus, Tracker
 
@@ -174,39 +174,71 @@ class FleetOperation:
 
 @dataclass(frozen=True)
 class Unable:
-    """Why one drone cannot take part: the gateway error's code (or safety rule) and message."""
+    """Why one drone cannot take part: the safety rule (or the gateway error's code) and the message."""
 
     drone_id: str
     code: str
     message: str
     details: dict[str, Any] = field(default_factory=dict)
+    safety: bool = False  # refused by a safety rule (not an input or state error)
 
     @classmethod
     def from_error(cls, drone_id: str, exc: GatewayError) -> Unable:
         details = {k: v for k, v in exc.details.items() if k != "rule"}
-        code = str(exc.details.get("rule") or exc.code)
-        return cls(drone_id, code, exc.message, details)
+        rule = exc.details.get("rule") if isinstance(exc, SafetyRefusal) else None
+        return cls(drone_id, str(rule or exc.code), exc.message, details, safety=rule is not None)
 
     def to_dict(self) -> dict[str, Any]:
         return {"drone_id": self.drone_id, "code": self.code, "message": self.message, **self.details}
 
 
-class FleetRefused(GatewayError):
-    """A fleet command of which nothing was sent because some drones cannot take part."""
+def _refusal_text(action: str, unable: Sequence[Unable], total: int) -> str:
+    lines = "; ".join(f"{u.drone_id}: {u.message}" for u in unable)
+    return (
+        f"{action} refused, nothing was sent: {len(unable)} of {total} drone(s) cannot take part "
+        f"(all must, for {action}) - {lines}"
+    )
+
+
+class FleetRefused(SafetyRefusal):
+    """A fleet command of which nothing was sent because safety rules refused some of its drones.
+    ``rule`` is the drones' rule when they share one, else ``fleet_members``; each drone's rule and
+    numbers are in ``drones``."""
 
     code = "fleet_refused"
+    http_status = 403
+
+    def __init__(self, action: str, unable: Sequence[Unable], total: int) -> None:
+        rules = sorted({u.code for u in unable})
+        rule = rules[0] if len(rules) == 1 else "fleet_members"
+        super().__init__(
+            rule, _refusal_text(action, unable, total), rules=rules, drones=[u.to_dict() for u in unable]
+        )
+        self.unable = list(unable)
+
+
+class FleetUnavailable(GatewayError):
+    """A fleet command of which nothing was sent because some drones are unknown or not in a state to
+    take part (no safety rule involved)."""
+
+    code = "fleet_unavailable"
     http_status = 409
 
     def __init__(self, action: str, unable: Sequence[Unable], total: int) -> None:
-        lines = "; ".join(f"{u.drone_id}: {u.message}" for u in unable)
-        rules = sorted({u.code for u in unable})
         super().__init__(
-            f"{action} refused, nothing was sent: {len(unable)} of {total} drone(s) cannot take part "
-            f"(all must, for {action}) - {lines}",
-            rules=rules,
+            _refusal_text(action, unable, total),
+            codes=sorted({u.code for u in unable}),
             drones=[u.to_dict() for u in unable],
         )
         self.unable = list(unable)
+
+
+def refuse_fleet(action: str, unable: Sequence[Unable], total: int) -> GatewayError:
+    """The error for a fleet command some drones cannot take part in: a safety refusal when any drone was
+    refused by a rule, else an availability error. Either way every drone's reason is in it."""
+    if any(u.safety for u in unable):
+        return FleetRefused(action, unable, total)
+    return FleetUnavailable(action, unable, total)
 
 
 def check_drone_ids(drone_ids: Sequence[str], max_count: int = 64) -> list[str]:
@@ -405,7 +437,6 @@ class FleetOperations:
                 fop.ops = {}
                 if not phase.steps:
                     fop.dispatch_s.append(0.0)
-                    fop.dispatched.set()
                     self._changed(fop, f"phase {index} ({phase.name}): nothing to do", notify=True)
                     continue
                 self._changed(fop, f"phase {index} of {len(phases)}: {phase.name}", notify=True)

@@ -78,7 +78,7 @@ async def test_formation_refused_before_anything_moves_names_every_drone(gateway
         args = {"formation": "wedge", "center_lat": lat, "center_lon": lon, "alt_m": 20, "spacing_m": 12}
         # a lock and an unknown id are found before planning
         text = err(await c.call_tool("formation_goto", {"drone_ids": [*IDS, "d9"], **args}))
-        assert "nothing was sent" in text and "2 of 6" in text, text
+        assert text.startswith("Refused: formation_goto refused, nothing was sent") and "2 of 6" in text, text
         assert "d2: operator_lock: drone d2 is locked by alice: battery swap" in text, text
         assert "d9: unknown" in text.lower() or "d9:" in text, text
         gateway.lockbook.unlock("d2")
@@ -312,6 +312,7 @@ async def test_list_drones_filters_and_fleet_status_is_compact(gateway: SpreadGa
         # d5 is not ready: a fleet takeoff including it is refused as a whole
         text = err(await c.call_tool("fleet_takeoff", {"drone_ids": IDS, "alt_m": 10}))
         assert "d5:" in text and "link_lost" in text, text
+        assert not text.startswith("Refused"), "no safety rule refused it: the drone is unavailable"
         text = err(await c.call_tool("fleet_takeoff", {"drone_ids": ["d1", "d1"], "alt_m": 10}))
         assert "more than once" in text
 

@@ -29,13 +29,13 @@ from gateway.fleet.fleet_ops import (
     FORMATION_TOLERANCE_M,
     FleetOperation,
     FleetOperations,
-    FleetRefused,
     Unable,
     check_drone_ids,
     collect_members,
     default_rtl_base_m,
     formation_phases,
     land_phase,
+    refuse_fleet,
     rtl_order,
     rtl_phases,
     set_rtl_altitude_param,
@@ -336,7 +336,7 @@ async def formation_goto(
 
     vehicles, unable = collect_members(ids, fa.vehicle, check)
     if unable:
-        raise FleetRefused("formation_goto", unable, len(ids))
+        raise refuse_fleet("formation_goto", unable, len(ids))
     starts = [DroneStart(d, *position(vehicles[d])) for d in ids]  # type: ignore[misc]
     if heading_deg is None:
         heading_deg = _travel_heading(starts, center_lat, center_lon)
@@ -362,7 +362,7 @@ async def formation_goto(
         except SafetyRefusal as exc:
             unable.append(Unable.from_error(slot.drone_id, exc))
     if unable:
-        raise FleetRefused("formation_goto", unable, len(ids))
+        raise refuse_fleet("formation_goto", unable, len(ids))
     policy.check_formation(contexts, plan)
     params = {
         "formation": formation,
@@ -423,7 +423,7 @@ async def fleet_takeoff(
 
     vehicles, unable = collect_members(ids, fa.vehicle, check)
     if unable:
-        raise FleetRefused("fleet_takeoff", unable, len(ids))
+        raise refuse_fleet("fleet_takeoff", unable, len(ids))
     params = {"alt_m": alt_m, "altitudes_m": altitudes}
     fop = await fleet_ops(fa).start(
         "fleet_takeoff",
@@ -442,7 +442,7 @@ def _recovery_members(
     ids = _all_ids(fa, drone_ids)
     vehicles, unable = collect_members(ids, fa.vehicle, check)
     if not vehicles:
-        raise FleetRefused(action, unable, len(ids))
+        raise refuse_fleet(action, unable, len(ids))
     return ids, vehicles, unable
 
 
@@ -572,9 +572,13 @@ def register_resources(server: MCPServer, fa: FleetAccess) -> None:
     def fleet_formation() -> str:
         return json.dumps(formation_json(fa), default=str)
 
+    pending: set[asyncio.Task[None]] = set()  # keeps the notification tasks alive until they ran
+
     def on_change(fop: FleetOperation) -> None:
         if fop.kind == "formation_goto":
-            asyncio.get_running_loop().create_task(_publish(server, FORMATION_URI))
+            task = asyncio.get_running_loop().create_task(_publish(server, FORMATION_URI))
+            pending.add(task)
+            task.add_done_callback(pending.discard)
 
     fleet_ops(fa).listeners.append(on_change)
 
