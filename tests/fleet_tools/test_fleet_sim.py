@@ -5,6 +5,7 @@ flown to its slots, and recovery actions that skip the drones that cannot take t
 from __future__ import annotations
 
 import asyncio
+import json
 import time
 from typing import Any
 
@@ -113,3 +114,48 @@ async def test_fleet_flight_partial_failures_and_concurrent_dispatch(
     assert not state["armed"] and distance_m(state, homes["d3"]["lat"], homes["d3"]["lon"]) < 3.0, state
     ops = (await stack.rest("/operations", vehicle_id="d1"))["items"]
     assert {o["kind"] for o in ops} >= {"takeoff", "formation", "land"}, ops
+
+
+async def test_formation_stops_and_holds_when_one_drone_is_taken_over(
+    fleet_stack: tuple[Stack, LockBook],
+) -> None:
+    """A drone of a running formation gets another command: the formation is aborted, the drones still
+    flying their legs are held where they are (short of their slots), and no later phase starts."""
+    stack, _locks = fleet_stack
+    async with stack.client("auto", name="fleet-abort") as c:
+        r = await _finish(c, structured(await c.call_tool("fleet_takeoff", {"drone_ids": IDS, "alt_m": 10})))
+        assert r["status"] == "succeeded", (r["message"], r["drones"])
+        start = await _states(stack)
+        lat, lon = geo.offset_position(start["d1"]["lat"], start["d1"]["lon"], 0.0, 150.0)
+        args = {"drone_ids": IDS, "formation": "column", "center_lat": lat, "center_lon": lon, "alt_m": 12,
+                "spacing_m": 10, "wait": False}  # fmt: skip
+        r = structured(await c.call_tool("formation_goto", args))
+        assert r["status"] == "running"
+        fleet_id = r["operation_id"]
+        await _until(
+            "the formation's flying phase",
+            lambda: _phase_is(c, fleet_id, 2),
+        )
+        await asyncio.sleep(1.0)
+        structured(await c.call_tool("hold_position", {"drone_id": "d2"}))
+        r = await _finish(c, structured(await c.call_tool("monitor_fleet", {"operation_id": fleet_id})))
+        assert r["status"] == "aborted", (r["message"], r["drones"])
+        drones = {d["drone_id"]: d for d in r["drones"]}
+        assert drones["d2"]["status"] == "superseded" and "d2" in r["message"], r["message"]
+        held = [d for d in IDS if drones[d]["status"] == "held"]
+        assert held, r["drones"]
+        await asyncio.sleep(2.0)  # let them brake, then they stay put
+        s1 = await _states(stack)
+        await asyncio.sleep(1.5)
+        s2 = await _states(stack)
+        for d in held:
+            assert distance_m(s2[d], s1[d]["lat"], s1[d]["lon"]) < 1.0, (d, s1[d], s2[d])
+            assert distance_m(s2[d], drones[d]["target_lat"], drones[d]["target_lon"]) > 20.0, (d, s2[d])
+        r = await _finish(c, structured(await c.call_tool("fleet_return_to_launch", {})))
+        assert r["status"] == "succeeded", (r["message"], r["drones"])
+
+
+async def _phase_is(c: Any, operation_id: str, phase: int) -> bool:
+    res = await c.read_resource("fleet://formation")
+    body = json.loads(res.contents[0].text)
+    return body.get("operation_id") == operation_id and body["phase"] >= phase
