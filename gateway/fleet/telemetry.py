@@ -127,8 +127,9 @@ class OdometryValue:
 
 @dataclass(frozen=True)
 class MissionProgressValue:
-    current: int  # user item 1..N (0: not started)
+    current: int  # user item 1..N being flown (0: not started); N once finished
     total: int
+    finished: bool = False  # the last item was reached (MAVSDK reports current == total)
 
 
 @dataclass(frozen=True)
@@ -167,6 +168,8 @@ class TelemetryCache:
     odometry: Sample[OdometryValue] | None = None
     mission_progress: Sample[MissionProgressValue] | None = None
     status_texts: deque[StatusTextValue] = field(default_factory=lambda: deque(maxlen=50))
+    #: updates received per stream since the vehicle was created (monotonic counters, for /metrics)
+    message_counts: dict[str, int] = field(default_factory=dict)
     _status_listeners: list[Callable[[StatusTextValue], None]] = field(default_factory=list, repr=False)
 
     FIELDS = (
@@ -192,10 +195,12 @@ class TelemetryCache:
         if name not in self.FIELDS:
             raise KeyError(name)
         setattr(self, name, Sample(value, time.monotonic()))
+        self.message_counts[name] = self.message_counts.get(name, 0) + 1
 
     def add_status_text(self, severity: str, text: str, t: float | None = None) -> StatusTextValue:
         item = StatusTextValue(t if t is not None else time.time(), severity, text)
         self.status_texts.append(item)
+        self.message_counts["status_text"] = self.message_counts.get("status_text", 0) + 1
         for listener in list(self._status_listeners):
             try:
                 listener(item)
@@ -389,7 +394,7 @@ class TelemetryFeed:
         value = (
             self._map_progress(current, total)
             if self._map_progress is not None
-            else MissionProgressValue(current, total)
+            else MissionProgressValue(current, total, total > 0 and current >= total)
         )
         self.cache.put("mission_progress", value)
 

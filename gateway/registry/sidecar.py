@@ -51,6 +51,8 @@ _DISCOVERED = "System discovered"
 STABLE_AFTER_S = 20.0
 #: attempts at finding a gRPC port nobody else holds, per start
 PORT_ATTEMPTS = 5
+#: identical output lines within this window are logged once, with a repeat count
+REPEAT_WINDOW_S = 30.0
 #: grace between SIGTERM and SIGKILL when stopping
 TERM_GRACE_S = 3.0
 
@@ -159,6 +161,7 @@ class Sidecar:
         self._serving = asyncio.Event()
         self._stopping = False
         self._log = logging.getLogger(f"gateway.sidecar.{vehicle_id}")
+        self._repeat: tuple[str, int, float] = ("", 0, 0.0)  # last line, times repeated, first seen
 
     # --- public -----------------------------------------------------------------------------------
     @property
@@ -350,6 +353,16 @@ class Sidecar:
         level = {"Error": logging.ERROR, "Warn": logging.WARNING, "Debug": logging.DEBUG}.get(
             level_name, logging.INFO
         )
+        if "Received ack for not-existing command" in message:
+            level = logging.DEBUG  # the ACK of a COMMAND_LONG the gateway sent raw (mavlink_direct)
+        now = time.monotonic()
+        last, repeats, since = self._repeat
+        if message == last and now - since < REPEAT_WINDOW_S:
+            self._repeat = (last, repeats + 1, since)  # e.g. "Sending message failed" while a link is down
+            return message
+        if repeats:
+            self._log.log(level, "[%s] (previous line repeated %d more times)", self.vehicle_id, repeats)
+        self._repeat = (message, 0, now)
         self.info.recent_output.append(message)
         self._log.log(level, "[%s] %s", self.vehicle_id, message)
         return message

@@ -6,6 +6,7 @@ need a flying simulator: registration, restore, identity checks, link loss, side
 
 from __future__ import annotations
 
+import asyncio
 import os
 import signal
 
@@ -41,6 +42,7 @@ async def test_register_persist_restore_and_stop(store, registries) -> None:
         status = a.status()
         assert status["sidecar"]["pid"] and status["sidecar"]["grpc_port"]
         assert status["last_heartbeat_age_s"] is not None and status["sysid_mismatch"] is False
+        assert status["last_heartbeat_at"].endswith("+00:00")
         # not ready: no position/home from a heartbeat-only vehicle; actions say so instead of hanging
         with pytest.raises(VehicleNotReady, match="connected but not ready"):
             await a.takeoff(10)
@@ -169,3 +171,30 @@ async def test_raw_commands_modes_and_unknown_parameter(store, registries) -> No
             await v.get_param("NO_SUCH_PARAM")
         with pytest.raises(InvalidArgument, match="parameter name"):
             await v.get_param("BAD NAME!")
+
+
+async def test_heartbeat_watchdog_stops_gcs_heartbeats_when_not_fed(store, registries) -> None:
+    port = free_udp_port()
+    reg = Registry(fast_settings(sidecar_heartbeat_watchdog_s=2), store)
+    registries.append(reg)
+    await reg.start()
+    async with HeartbeatVehicle(port, sysid=51) as fake:
+        v = await reg.add(_spec("november", port))
+        await v.wait_for_state(ConnectionState.CONNECTED)
+        assert "--heartbeat-watchdog-timeout" in v.sidecar.plan(1).argv
+
+        def gcs_heartbeats() -> int:
+            return sum(1 for m in fake.received if m.get_type() == "HEARTBEAT" and m.get_srcSystem() == 245)
+
+        start = gcs_heartbeats()
+        await wait_until(
+            lambda: gcs_heartbeats() >= start + 3, what="GCS heartbeats while the watchdog is fed"
+        )
+        # a hung gateway stops feeding: mavsdk_server stops the GCS heartbeat, so the autopilot's own
+        # GCS failsafe can act
+        feeder = next(t for t in asyncio.all_tasks() if t.get_name() == "watchdog-november")
+        feeder.cancel()
+        await asyncio.sleep(3.5)
+        quiet_from = gcs_heartbeats()
+        await asyncio.sleep(2.5)
+        assert gcs_heartbeats() == quiet_from

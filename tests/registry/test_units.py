@@ -82,3 +82,4 @@ def test_cache_snapshot_reports_ages_and_staleness() -> None:
     assert cache.snapshot()["status_texts"][-1]["severity"] == "warning"
     with pytest.raises(KeyError):
         cache.put("warp_drive", 1)
+    assert cache.message_counts == {"position": 1, "status_text": 1}
