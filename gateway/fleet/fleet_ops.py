@@ -721,15 +721,16 @@ def rtl_phases(
     positions: Mapping[str, tuple[float, float, float]],
     set_rtl_altitude: Callable[[Any, float], Awaitable[Any]],
 ) -> list[Phase]:
-    """Return to launch in two phases: (1) drones below their return altitude climb to it in place,
-    (2) each drone's RTL altitude is set, then RTL (the autopilot flies home at that altitude and lands).
-    The barrier keeps a drone from heading home while a neighbour is still climbing through its layer."""
+    """Return to launch in two phases: (1) every drone climbs or descends in place to its return altitude,
+    (2) each drone's RTL altitude is set, then RTL (the autopilot flies home at that altitude and lands;
+    it would return at its current altitude if that were higher, which is why phase 1 also descends).
+    The barrier keeps a drone from heading home while a neighbour is still moving through its layer."""
     from gateway.fleet.operations import GotoTracker, LandingTracker
 
     climbs: dict[str, Step] = {}
     for d, v in vehicles.items():
         pos = positions.get(d)
-        if pos is None or pos[2] >= altitudes[d] - FORMATION_TOLERANCE_M:
+        if pos is None or abs(pos[2] - altitudes[d]) <= FORMATION_TOLERANCE_M:
             continue
         lat, lon, alt = pos
         climbs[d] = Step(
@@ -737,7 +738,7 @@ def rtl_phases(
             tracker=GotoTracker(lat, lon, altitudes[d], FORMATION_TOLERANCE_M, kind="fleet_climb"),
             send=_goto(v, lat, lon, altitudes[d]),
             params={"lat": lat, "lon": lon, "alt_m": altitudes[d]},
-            timeout_s=step_timeout_s(altitudes[d] - alt, slowest_mps=0.5),
+            timeout_s=step_timeout_s(abs(altitudes[d] - alt), slowest_mps=0.5),
         )
     returns = {
         d: Step(
@@ -748,7 +749,10 @@ def rtl_phases(
         )
         for d, v in vehicles.items()
     }
-    return [Phase("climb in place to return altitudes", climbs), Phase("return home and land", returns)]
+    return [
+        Phase("climb or descend in place to return altitudes", climbs),
+        Phase("return home and land", returns),
+    ]
 
 
 def _goto(vehicle: Any, lat: float, lon: float, alt: float) -> Callable[[], Awaitable[Any]]:

@@ -330,3 +330,23 @@ async def test_fleet_tools_follow_the_surface_rules(gateway: SpreadGateway) -> N
         assert tool.output_schema is not None and tool.annotations is not None, name
     assert all(tools[n].annotations.read_only_hint for n in ("list_drones", "fleet_status", "monitor_fleet"))
     assert not tools["formation_goto"].annotations.read_only_hint
+
+
+async def test_return_altitudes_fall_back_to_the_separation_when_the_margin_does_not_fit() -> None:
+    gateway = SpreadGateway(Settings(_env_file=None, mcp_wait_cap_s=20.0, max_altitude_m=45.0), n=5)
+    async with Client(build_mcp(gateway)) as c:
+        ok(await c.call_tool("fleet_takeoff", {"drone_ids": IDS, "alt_m": 10, "stagger_m": 5}))  # 10..30 m
+        # from 31 m, 7 m apart reaches 59 m, above 45; 5 m apart reaches 51: still above, refused with numbers
+        text = err(await c.call_tool("fleet_return_to_launch", {}))
+        assert "max_altitude" in text and "45" in text, text
+        r = ok(await c.call_tool("fleet_return_to_launch", {"rtl_alt_m": 20}))  # 20..40 at 5 m apart
+    alts = {d["drone_id"]: d["rtl_alt_m"] for d in r["drones"]}
+    assert sorted(alts.values()) == [20.0, 25.0, 30.0, 35.0, 40.0]
+    assert any("did not fit" in n for n in r["notes"]), r["notes"]
+    # each drone first moved in place to its own layer, up or down (else a drone above its RTL
+    # altitude would return at its current one, breaking the layers)
+    for v in gateway.vehicles():
+        gotos = [a for _t, n, a in v.log if n == "goto"]
+        start = 10.0 + 5 * IDS.index(v.id)
+        if abs(start - alts[v.id]) > 1.0:
+            assert gotos and gotos[-1][2] == alts[v.id], (v.id, gotos)

@@ -504,7 +504,14 @@ async def fleet_return_to_launch(
     order, notes = rtl_order(positions, homes, sep)  # type: ignore[arg-type]
     base = rtl_alt_m if rtl_alt_m is not None else default_rtl_base_m(positions.values())  # type: ignore[arg-type]
     _low, high = fa.safety.altitude_band(order)
-    altitudes = rtl_altitudes(order, base, stagger, high)
+    try:
+        altitudes = rtl_altitudes(order, base, stagger, high)
+    except SafetyRefusal:
+        if stagger_m is not None or stagger <= sep:
+            raise
+        # many drones: the default margin does not fit under the limit; the separation itself may
+        altitudes = rtl_altitudes(order, base, sep, high)
+        notes.append(f"return altitudes {sep:g} m apart (the minimum separation): {stagger:g} m did not fit")
     params = {"drone_ids": ids, "rtl_altitudes_m": altitudes}
     fop = await fleet_ops(fa).start(
         "fleet_return_to_launch",
