@@ -46,6 +46,9 @@ _LEVEL = re.compile(r"^\[\d\d:\d\d:\d\d\|(\w+)\s*\]\s*")
 _LISTEN = re.compile(r"Server set to listen on [^\s]*:(\d+)")
 _BIND_FAILED = "Failed to bind server to port"
 _DISCOVERED = "System discovered"
+# mavsdk_server prints this when it cannot open its link (e.g. a missing serial device) and then waits
+# forever without retrying: the supervisor restarts it instead (and, if it keeps failing, gives up).
+_LINK_FAILED = "Connection failed"
 
 #: how long a sidecar must stay up before its crash counter is reset
 STABLE_AFTER_S = 20.0
@@ -129,6 +132,8 @@ class SidecarInfo:
     started_at: float | None = None  # monotonic, of the current process
     serving_since: float | None = None
     discovered: bool = False
+    #: the latest error/warning mavsdk_server printed while waiting for its vehicle (cleared when serving)
+    complaint: str | None = None
     recent_output: deque[str] = field(default_factory=lambda: deque(maxlen=20))
 
 
@@ -202,6 +207,16 @@ class Sidecar:
             return False
         return True
 
+    def recycle(self) -> None:
+        """Terminate the current process; the supervisor starts a new one (counted as a failure)."""
+        proc = self._proc
+        if proc is not None and proc.returncode is None:
+            self._log.warning("recycling mavsdk_server pid %d of %s", proc.pid, self.vehicle_id)
+            try:
+                os.killpg(proc.pid, signal.SIGTERM)
+            except ProcessLookupError:
+                pass
+
     async def stop(self) -> None:
         """Stop supervising and leave no process behind."""
         self._stopping = True
@@ -270,8 +285,10 @@ class Sidecar:
             "--compid",
             "190",
         ]
-        if self.settings.sidecar_heartbeat_watchdog_s:
-            argv += ["--heartbeat-watchdog-timeout", str(self.settings.sidecar_heartbeat_watchdog_s)]
+        # No --heartbeat-watchdog-timeout here: with it, mavsdk_server sends no GCS heartbeat until the
+        # watchdog is fed over gRPC, and gRPC opens only after discovery, so a vehicle that waits to
+        # hear from its ground station first (udpout://) is never discovered. The vehicle session
+        # enables the watchdog through the Core RPC once connected (see Vehicle._feed_watchdog).
         argv.append(self.url)
         plan = SpawnPlan(argv=argv, env=dict(os.environ), grpc_port=port)
         return self._confine(plan) if self._confine is not None else plan
@@ -306,6 +323,7 @@ class Sidecar:
         )
         bind_failed = False
         foreign_listener = False
+        link_failed: str | None = None
         assert proc.stdout is not None
         try:
             async for raw in proc.stdout:
@@ -314,6 +332,10 @@ class Sidecar:
                     continue
                 if _DISCOVERED in line:
                     self.info.discovered = True
+                elif _LINK_FAILED in line and not self.info.discovered:
+                    earlier = [m for m in list(self.info.recent_output)[:-1] if m != line]
+                    link_failed = f"{earlier[-1]}; {line}" if earlier else line
+                    break
                 elif _BIND_FAILED in line:
                     bind_failed = True
                 else:
@@ -321,6 +343,7 @@ class Sidecar:
                     if match and int(match.group(1)) == plan.grpc_port:
                         if await self._port_is_ours(proc.pid, plan.grpc_port):
                             self.info.state = SidecarState.SERVING
+                            self.info.complaint = None
                             self.info.serving_since = time.monotonic()
                             self._serving.set()
                             if self._on_serving is not None:
@@ -331,7 +354,7 @@ class Sidecar:
         finally:
             was_serving = self.info.state == SidecarState.SERVING
             self._serving.clear()
-            if foreign_listener or bind_failed or self._stopping:
+            if foreign_listener or bind_failed or link_failed or self._stopping:
                 await self._terminate()
             code = await proc.wait()
             _LIVE_PGIDS.discard(proc.pid)
@@ -339,6 +362,8 @@ class Sidecar:
             self.info.pid = None
         if foreign_listener or bind_failed:
             return "port-taken"
+        if link_failed:
+            return f"mavsdk_server could not open {self.url}: {link_failed}"
         last = self.info.recent_output[-1] if self.info.recent_output else "no output"
         where = "while serving" if was_serving else "before serving"
         return f"mavsdk_server exited {where} with code {code} (last output: {last})"
@@ -363,6 +388,8 @@ class Sidecar:
         if repeats:
             self._log.log(level, "[%s] (previous line repeated %d more times)", self.vehicle_id, repeats)
         self._repeat = (message, 0, now)
+        if level >= logging.WARNING and self.info.state == SidecarState.STARTING:
+            self.info.complaint = message
         self.info.recent_output.append(message)
         self._log.log(level, "[%s] %s", self.vehicle_id, message)
         return message
