@@ -85,8 +85,8 @@ def test_dockerfile_runs_unprivileged_and_ships_the_migrations() -> None:
     user = re.search(r"^USER\s+(\S+)", text, re.M)
     assert user is not None and user.group(1) not in ("root", "0")
     assert re.search(r"^COPY migrations \./migrations$", text, re.M)
-    # installed in place, so gateway/registry/store.py finds <source root>/migrations; checked at build
-    assert "pip install -e ." in text and "MIGRATIONS_DIR" in text
+    # the wheel's data-files carry the migrations; the build checks the store finds them
+    assert "pip install ." in text and "migrations_dir" in text
     cmd = re.search(r"^CMD (\[.*\])$", text, re.M)
     assert cmd is not None and json.loads(cmd.group(1)) == t.gateway_command()
     # every file the Dockerfile copies exists
@@ -95,8 +95,11 @@ def test_dockerfile_runs_unprivileged_and_ships_the_migrations() -> None:
             assert (ROOT / name).exists(), name
 
 
-def test_store_still_finds_migrations_where_the_image_puts_them() -> None:
-    """The image relies on MIGRATIONS_DIR = <source root>/migrations; if that changes, so must the image."""
-    from gateway.registry.store import MIGRATIONS_DIR
+def test_image_build_checks_the_migrations_the_store_uses() -> None:
+    """The image installs the wheel, whose data-files carry the migrations the store looks up."""
+    from gateway.registry.store import MIGRATION_DIRS, migrations_dir
 
-    assert MIGRATIONS_DIR == ROOT / "migrations" and (MIGRATIONS_DIR / "env.py").is_file()
+    text = (ROOT / "deploy" / "Dockerfile").read_text()
+    assert "pip install ." in text and "migrations_dir" in text
+    assert any(str(d).endswith("share/fleet-gateway/migrations") for d in MIGRATION_DIRS)
+    assert (migrations_dir() / "env.py").is_file()
