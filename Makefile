@@ -19,7 +19,7 @@ demo: $(STAMP)
 	$(BIN)/fleet-gateway demo
 
 test: $(STAMP)
-	$(BIN)/ruff check gateway tests bench
+	$(BIN)/ruff check .
 	$(BIN)/python -m pytest -q $(PYTEST_ARGS)
 
 lint: $(STAMP)

@@ -9,6 +9,23 @@ from pydantic_settings import BaseSettings, SettingsConfigDict
 
 ALL_TOOLSETS = ("flight", "navigation", "mission", "telemetry", "params", "fleet")
 
+# ArduPilot (4.x and 4.7 names) then PX4: arming checks, fences, failsafes, battery failsafe thresholds,
+# system ids, circuit breakers, failure detector.
+DEFAULT_PARAM_DENY_PATTERNS = ",".join(
+    (
+        "ARMING_*", "FENCE_*", "FS_*", "BATT*_FS_*", "BATT*_LOW_*", "BATT*_CRT_*", "SYSID_*",
+        "MAV_SYSID", "MAV_GCS_SYSID", "BRD_SAFETY*", "FLTMODE_GCSBLOCK", "RC_FS_*", "THR_FS*",
+        "COM_*", "GF_*", "NAV_DLL_*", "NAV_RCL_*", "CBRK_*", "MAV_SYS_ID", "MAV_COMP_ID",
+        "BAT*_LOW_THR", "BAT*_CRIT_THR", "BAT*_EMERGEN_THR", "FD_*",
+    )
+)  # fmt: skip
+DEFAULT_MODE_DENY_IN_AIR = ",".join(
+    (
+        "STABILIZE", "ACRO", "ALT_HOLD", "LOITER", "POSHOLD", "SPORT", "DRIFT", "FLIP", "THROW",
+        "TURTLE", "AUTOTUNE", "FLOWHOLD", "MANUAL", "ALTCTL", "POSCTL", "STABILIZED", "RATTITUDE",
+    )
+)  # fmt: skip
+
 
 class Settings(BaseSettings):
     """Everything an operator can configure. Each field's description is the documentation."""
@@ -35,6 +52,15 @@ class Settings(BaseSettings):
     mavsdk_server_path: str | None = Field(
         None, description="Path of the mavsdk_server binary; default: the one bundled with mavsdk-grpc."
     )
+    sidecar_confinement: str = Field(
+        "loopback",
+        pattern="^(loopback|none)$",
+        description="'loopback': sidecars run from a copy of mavsdk_server whose gRPC port listens on "
+        "127.0.0.1 only (mavsdk_server binds 0.0.0.0 otherwise); 'none': the binary as shipped.",
+    )
+    sidecar_cache_dir: str | None = Field(
+        None, description="Where the loopback-only sidecar binary is kept; default ~/.cache/fleet-gateway."
+    )
     sidecar_max_restarts: int = Field(
         5, ge=0, description="Consecutive sidecar crashes before a vehicle is marked failed."
     )
@@ -58,6 +84,11 @@ class Settings(BaseSettings):
     mcp_wait_cap_s: float = Field(
         45.0, gt=0, le=600, description="Longest a tool waits for its operation before answering 'running'."
     )
+    mcp_allowed_hosts: str = Field(
+        "",
+        description="Comma-separated extra Host names /mcp accepts (DNS-rebinding protection); "
+        "loopback names are always allowed.",
+    )
     arrival_tolerance_m: float = Field(2.0, gt=0, description="Horizontal distance counted as arrived.")
 
     # --- safety -----------------------------------------------------------------------------------
@@ -73,6 +104,32 @@ class Settings(BaseSettings):
     min_separation_m: float = Field(5.0, gt=0, description="Minimum distance kept between fleet drones.")
     agents_may_kill: bool = Field(False, description="Whether MCP agents may kill motors in the air.")
     simulators_only: bool = Field(False, description="Refuse every actuating MCP tool on real vehicles.")
+    min_altitude_m: float = Field(
+        2.0,
+        ge=0,
+        description="Lowest altitude above home a takeoff, goto or mission waypoint may target "
+        "(land and RTL go lower).",
+    )
+    param_deny_patterns: str = Field(
+        DEFAULT_PARAM_DENY_PATTERNS,
+        description="Comma-separated glob patterns (case-insensitive) of autopilot parameters MCP agents "
+        "may not write: arming checks, fences, failsafes, system ids (ArduPilot and PX4 names).",
+    )
+    mode_deny_in_air: str = Field(
+        DEFAULT_MODE_DENY_IN_AIR,
+        description="Comma-separated flight modes MCP agents may not select while airborne: modes that "
+        "need a pilot's sticks, in which a copter without RC input descends or drifts.",
+    )
+    geofence_file: str | None = Field(
+        None,
+        description="GeoJSON FeatureCollection of geofence zones: Polygon/MultiPolygon features with "
+        "properties.kind keep_in|keep_out, optional properties.name and properties.vehicle_id.",
+    )
+    vehicle_limits: dict[str, dict[str, float]] = Field(
+        {},
+        description="Per-vehicle overrides as JSON: {vehicle_id: {max_altitude_m, max_distance_m, "
+        "min_battery_takeoff_pct, min_battery_leg_pct, max_speed_mps, min_altitude_m}}.",
+    )
 
     # --- auth -------------------------------------------------------------------------------------
     operator_tokens: str = Field("", description="Comma-separated bearer tokens with the operator role.")

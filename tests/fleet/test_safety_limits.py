@@ -1,0 +1,304 @@
+"""Numeric limits: each rule refuses with its name and numbers, and allows just inside its limit."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from gateway.errors import InvalidArgument, SafetyRefusal
+from gateway.fleet.safety import SafetyDecision, SafetyPolicy, Target, decide
+from tests.fleet._util import at, ctx, ground, policy, settings
+
+
+def target(north_m: float = 0.0, east_m: float = 0.0, alt: float = 20.0) -> Target:
+    return Target(*at(north_m, east_m), alt)
+
+
+def refusal(fn, *args, **kwargs) -> SafetyRefusal:
+    with pytest.raises(SafetyRefusal) as info:
+        fn(*args, **kwargs)
+    return info.value
+
+
+# --- altitude ---------------------------------------------------------------------------------------
+
+
+def test_max_altitude_refuses_with_rule_and_numbers_and_allows_the_limit() -> None:
+    p = policy()
+    assert p.check_motion(ctx(), target(alt=120.0)).allowed
+    err = refusal(p.check_motion, ctx(), target(alt=150.0))
+    assert err.rule == "max_altitude"
+    assert err.message == "max_altitude: target altitude 150 m exceeds the limit of 120 m above home"
+    assert err.details["alt_rel_m"] == 150.0 and err.details["limit_m"] == 120.0
+    assert refusal(p.check_motion, ctx(), target(alt=120.01)).rule == "max_altitude"
+
+
+def test_takeoff_altitude_band() -> None:
+    p = policy()
+    on_pad = ground()
+    assert p.check_takeoff(on_pad, 120.0).allowed
+    assert p.check_takeoff(on_pad, 2.0).allowed
+    err = refusal(p.check_takeoff, on_pad, 121.0)
+    assert err.rule == "max_altitude" and "takeoff altitude 121 m exceeds the limit of 120 m" in err.message
+    err = refusal(p.check_takeoff, on_pad, 1.5)
+    assert err.rule == "min_altitude" and "1.5 m is below the minimum of 2 m" in err.message
+
+
+def test_negative_altitude_is_refused_as_below_home() -> None:
+    err = refusal(policy().check_motion, ctx(), target(alt=-5.0))
+    assert err.rule == "min_altitude"
+    assert "target altitude -5 m is below home" in err.message
+    assert err.details["alt_rel_m"] == -5.0
+
+
+@given(alt=st.floats(min_value=2.0, max_value=120.0))
+def test_any_altitude_inside_the_band_is_allowed(alt: float) -> None:
+    assert policy().check_motion(ctx(), target(alt=alt)).allowed
+
+
+@given(alt=st.floats(min_value=120.0, max_value=1e6, exclude_min=True))
+def test_any_altitude_above_the_limit_is_refused(alt: float) -> None:
+    assert refusal(policy().check_motion, ctx(), target(alt=alt)).rule == "max_altitude"
+
+
+# --- distance and home --------------------------------------------------------------------------------
+
+
+def test_max_distance_from_home() -> None:
+    p = policy()
+    assert p.check_motion(ctx(), target(north_m=999.0)).allowed
+    err = refusal(p.check_motion, ctx(), target(north_m=1001.0))
+    assert err.rule == "max_distance"
+    assert "target is 1001 m from home, beyond the limit of 1000 m" in err.message
+    assert err.details["distance_m"] == pytest.approx(1001.0, abs=0.01)
+    assert err.details["limit_m"] == 1000.0
+
+
+def test_missing_home_refuses_because_distance_cannot_be_checked() -> None:
+    err = refusal(policy().check_motion, ctx(home=None), target(north_m=10.0))
+    assert err.rule == "home_unknown"
+    assert "no home position" in err.message and "1000 m" in err.message
+
+
+# --- non-numbers ------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "tgt",
+    [
+        Target(math.nan, 8.5, 20.0),
+        Target(47.3, math.inf, 20.0),
+        Target(47.3, 8.5, math.nan),
+        Target(47.3, 8.5, -math.inf),
+        Target(91.0, 8.5, 20.0),
+        Target(47.3, 181.0, 20.0),
+    ],
+)
+def test_non_finite_or_out_of_range_targets_are_refused(tgt: Target) -> None:
+    err = refusal(policy().check_motion, ctx(), tgt)
+    assert err.rule == "invalid_input"
+    assert err.message.startswith("invalid_input: ")
+
+
+def test_nan_takeoff_and_speed_are_refused() -> None:
+    p = policy()
+    assert refusal(p.check_takeoff, ground(), math.nan).rule == "invalid_input"
+    assert refusal(p.check_speed, ctx(), math.inf).rule == "invalid_input"
+    assert refusal(p.check_speed, ctx(), 0.0).rule == "invalid_input"
+    assert refusal(p.check_speed, ctx(), -3.0).rule == "invalid_input"
+
+
+# --- battery -----------------------------------------------------------------------------------------
+
+
+def test_battery_minimum_for_takeoff() -> None:
+    p = policy()
+    assert p.check_takeoff(ground(battery_pct=30.0), 10.0).allowed
+    err = refusal(p.check_takeoff, ground(battery_pct=29.5), 10.0)
+    assert err.rule == "min_battery_takeoff"
+    assert "battery 29.5 % is below the 30 % needed to take off" in err.message
+    assert err.details == {"rule": "min_battery_takeoff", "vehicle_id": "alpha", "battery_pct": 29.5,
+                           "minimum_pct": 30.0}  # fmt: skip
+    assert p.check_arm(ground(battery_pct=30.0)).allowed
+    assert refusal(p.check_arm, ground(battery_pct=10.0)).rule == "min_battery_takeoff"
+
+
+def test_battery_minimum_for_a_new_leg() -> None:
+    p = policy()
+    assert p.check_motion(ctx(battery_pct=25.0), target(north_m=50.0)).allowed
+    err = refusal(p.check_motion, ctx(battery_pct=24.9), target(north_m=50.0))
+    assert err.rule == "min_battery_leg"
+    assert "battery 24.9 % is below the 25 % needed to start a new leg" in err.message
+
+
+def test_unknown_battery_is_refused() -> None:
+    err = refusal(policy().check_motion, ctx(battery_pct=None), target(north_m=5.0))
+    assert err.rule == "battery_unknown" and "25 %" in err.message
+    err = refusal(policy().check_takeoff, ground(battery_pct=None), 10.0)
+    assert err.rule == "battery_unknown" and "30 %" in err.message
+
+
+# --- speed ---------------------------------------------------------------------------------------------
+
+
+def test_max_speed() -> None:
+    p = policy()
+    assert p.check_speed(ctx(), 15.0).allowed
+    err = refusal(p.check_speed, ctx(), 15.5)
+    assert err.rule == "max_speed"
+    assert err.message == "max_speed: speed 15.5 m/s exceeds the limit of 15 m/s"
+
+
+# --- per-vehicle overrides -------------------------------------------------------------------------------
+
+
+def test_vehicle_overrides_apply_to_that_vehicle_only() -> None:
+    p = SafetyPolicy(settings(), vehicle_limits={"alpha": {"max_altitude_m": 50.0, "max_speed_mps": 5.0}})
+    err = refusal(p.check_motion, ctx("alpha"), target(alt=60.0))
+    assert err.rule == "max_altitude" and "limit of 50 m" in err.message
+    assert p.check_motion(ctx("bravo"), target(alt=60.0)).allowed
+    assert refusal(p.check_speed, ctx("alpha"), 6.0).rule == "max_speed"
+    assert p.limits_for("bravo").max_altitude_m == 120.0
+
+
+def test_vehicle_overrides_from_settings_and_runtime() -> None:
+    p = SafetyPolicy(settings(vehicle_limits={"alpha": {"max_distance_m": 100.0}}))
+    assert refusal(p.check_motion, ctx("alpha"), target(north_m=150.0)).rule == "max_distance"
+    p.set_vehicle_limits("alpha", {})
+    assert p.check_motion(ctx("alpha"), target(north_m=150.0)).allowed
+    p.set_vehicle_limits("bravo", {"min_battery_leg_pct": 60})
+    assert refusal(p.check_motion, ctx("bravo", battery_pct=59.0), target()).rule == "min_battery_leg"
+
+
+@pytest.mark.parametrize(
+    "bad",
+    [
+        {"max_altitude": 50.0},
+        {"max_altitude_m": math.nan},
+        {"max_altitude_m": -1.0},
+        {"max_speed_mps": 0},
+        {"min_battery_leg_pct": 150},
+        {"min_altitude_m": 200.0},
+        {"max_altitude_m": "high"},
+    ],
+)
+def test_bad_vehicle_overrides_are_rejected_and_change_nothing(bad: dict) -> None:
+    p = policy()
+    with pytest.raises(InvalidArgument):
+        p.set_vehicle_limits("alpha", bad)
+    assert p.limits_for("alpha") == p.fleet_limits
+
+
+# --- simulators only, modes -------------------------------------------------------------------------------
+
+
+def test_simulators_only_refuses_real_vehicles_for_agents() -> None:
+    p = policy(simulators_only=True)
+    real = ctx(is_simulator=False)
+    for check, args in [
+        (p.check_motion, (target(),)),
+        (p.check_takeoff, (10.0,)),
+        (p.check_speed, (5.0,)),
+        (p.check_mode, ("RTL",)),
+        (p.check_actuation, ()),
+        (p.check_kill, ()),
+        (p.check_arm, ()),
+    ]:
+        err = refusal(check, real, *args)
+        assert err.rule == "simulators_only" and "real vehicle" in err.message
+    assert p.check_motion(ctx(is_simulator=True), target()).allowed
+    assert p.check_motion(real, target(), via="rest").allowed
+
+
+def test_pilot_modes_are_refused_in_the_air_only() -> None:
+    p = policy()
+    err = refusal(p.check_mode, ctx(), "alt_hold")
+    assert err.rule == "mode_deny_in_air" and "ALT_HOLD" in err.message
+    assert p.check_mode(ctx(), "GUIDED").allowed
+    assert p.check_mode(ctx(), "RTL").allowed
+    assert p.check_mode(ground(), "STABILIZE").allowed
+    assert p.check_mode(ctx(), "STABILIZE", via="rest").allowed
+    assert refusal(p.check_mode, ctx(), "").rule == "invalid_input"
+
+
+def test_armed_drone_above_one_metre_counts_as_airborne_even_if_landed_state_lags() -> None:
+    p = policy()
+    lagging = ctx(in_air=False, armed=True, alt_rel_m=8.0)
+    assert refusal(p.check_mode, lagging, "LOITER").rule == "mode_deny_in_air"
+
+
+# --- missions ----------------------------------------------------------------------------------------------
+
+
+@dataclass
+class Item:
+    lat: float
+    lon: float
+    alt_rel_m: float
+    kind: str = "waypoint"
+    speed_mps: float | None = None
+
+
+def item(north_m: float, east_m: float, alt: float = 20.0, **kw) -> Item:
+    return Item(*at(north_m, east_m), alt, **kw)
+
+
+def test_mission_items_are_checked_one_by_one_naming_the_item() -> None:
+    p = policy()
+    items = [Item(0.0, 0.0, 15.0, "takeoff"), item(100, 0), item(100, 100, alt=150.0), Item(0, 0, 0, "rtl")]
+    err = refusal(p.check_mission, ground(), items)
+    assert err.rule == "max_altitude"
+    assert err.message == (
+        "max_altitude: mission item 3: waypoint altitude 150 m exceeds the limit of 120 m above home"
+    )
+    assert err.details["item"] == 3
+    items[2] = item(100, 100, alt=120.0)
+    decision = p.check_mission(ground(), items)
+    assert decision.allowed and decision.numbers["items"] == 4
+
+
+def test_mission_item_speed_distance_and_empty() -> None:
+    p = policy()
+    err = refusal(p.check_mission, ctx(), [item(10, 0), item(20, 0, speed_mps=20.0)])
+    assert err.rule == "max_speed" and "mission item 2: speed 20 m/s" in err.message
+    err = refusal(p.check_mission, ctx(), [item(10, 0), item(2000, 0)])
+    assert err.rule == "max_distance" and err.details["item"] == 2
+    assert refusal(p.check_mission, ctx(), []).rule == "invalid_input"
+    err = refusal(p.check_mission, ctx(), [item(10, 0), Item(math.nan, 8.5, 20.0)])
+    assert err.rule == "invalid_input" and "mission item 2" in err.message
+
+
+def test_mission_battery_uses_takeoff_minimum_on_the_ground() -> None:
+    p = policy()
+    err = refusal(p.check_mission, ground(battery_pct=28.0), [item(10, 0)])
+    assert err.rule == "min_battery_takeoff"
+    assert p.check_mission(ctx(battery_pct=28.0), [item(10, 0)]).allowed
+
+
+def test_mission_land_item_checks_place_not_altitude() -> None:
+    p = policy()
+    assert p.check_mission(ctx(), [item(10, 0), item(20, 0, alt=0.0, kind="land")]).allowed
+    err = refusal(p.check_mission, ctx(), [item(10, 0), item(1500, 0, alt=0.0, kind="land")])
+    assert err.rule == "max_distance" and "mission item 2: landing point" in err.message
+
+
+# --- decisions for the audit table --------------------------------------------------------------------------
+
+
+def test_decide_returns_audit_friendly_decisions() -> None:
+    p = policy()
+    refused = decide(p.check_motion, ctx("alpha"), target(alt=200.0))
+    assert isinstance(refused, SafetyDecision)
+    assert not refused.allowed and refused.rule == "max_altitude" and refused.vehicle_id == "alpha"
+    assert refused.numbers == {"vehicle_id": "alpha", "alt_rel_m": 200.0, "limit_m": 120.0}
+    row = refused.to_dict()
+    assert set(row) == {"rule", "allowed", "message", "numbers", "vehicle_id", "needs_confirmation"}
+    with pytest.raises(SafetyRefusal) as info:
+        refused.raise_if_refused()
+    assert info.value.rule == "max_altitude"
+    allowed = decide(p.check_motion, ctx("alpha"), target(alt=20.0))
+    assert allowed.allowed and allowed.rule == "motion" and allowed.raise_if_refused() is allowed

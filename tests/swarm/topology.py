@@ -1,0 +1,114 @@
+"""A compose-like network built from Linux network namespaces (Docker has no engine here).
+
+Layout, mirroring deploy/docker-compose.yml:
+
+    root namespace (the gateway) --veth-- [hub namespace: bridge] --veth-- drone-0 namespace
+                                                                  --veth-- drone-1 namespace ...
+
+Every address lives inside namespaces this module creates; the root namespace only gains one
+veth end with the gateway's address. ``close()`` removes all of it, also after a failure.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+from dataclasses import dataclass, field
+
+SUBNET_PREFIX = "10.201.0"
+GATEWAY_ADDRESS = f"{SUBNET_PREFIX}.2"
+PREFIX_LEN = 24
+
+
+def drone_address(index: int) -> str:
+    """Address of drone ``index`` (0-based) on the swarm network, as in docker-compose.yml."""
+    return f"{SUBNET_PREFIX}.{10 + index}"
+
+
+def can_create_namespaces() -> tuple[bool, str]:
+    if os.geteuid() != 0:
+        return False, "creating network namespaces needs root"
+    probe = f"fgwprobe{os.getpid()}"
+    result = subprocess.run(["ip", "netns", "add", probe], capture_output=True, text=True, check=False)
+    if result.returncode != 0:
+        return False, f"'ip netns add' failed: {result.stderr.strip()}"
+    subprocess.run(["ip", "netns", "del", probe], check=False)
+    return True, ""
+
+
+def _ip(*args: str, netns: str | None = None) -> None:
+    cmd = ["ip", *(("-n", netns) if netns else ()), *args]
+    result = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    if result.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed: {result.stderr.strip()}")
+
+
+@dataclass
+class SwarmNetwork:
+    """``drones`` namespaces on one bridge, reachable from the root namespace at GATEWAY_ADDRESS."""
+
+    drones: int
+    tag: str = field(default_factory=lambda: f"{os.getpid() % 100000:05d}")
+    namespaces: list[str] = field(default_factory=list)
+    _root_veth: str | None = None
+
+    @property
+    def hub(self) -> str:
+        return f"fgw{self.tag}hub"
+
+    def drone_namespace(self, index: int) -> str:
+        return f"fgw{self.tag}d{index}"
+
+    def exec_prefix(self, index: int) -> list[str]:
+        """Command prefix that runs a program inside drone ``index``'s namespace."""
+        return ["ip", "netns", "exec", self.drone_namespace(index)]
+
+    def open(self) -> SwarmNetwork:
+        try:
+            self._build()
+        except BaseException:
+            self.close()
+            raise
+        return self
+
+    def _build(self) -> None:
+        _ip("netns", "add", self.hub)
+        self.namespaces.append(self.hub)
+        _ip("link", "add", "br0", "type", "bridge", netns=self.hub)
+        _ip("link", "set", "br0", "up", netns=self.hub)
+        _ip("link", "set", "lo", "up", netns=self.hub)
+        # gateway side: one veth end stays in the root namespace
+        self._root_veth = f"fgw{self.tag}gw"
+        self._attach(self._root_veth, None, GATEWAY_ADDRESS)
+        for index in range(self.drones):
+            namespace = self.drone_namespace(index)
+            _ip("netns", "add", namespace)
+            self.namespaces.append(namespace)
+            _ip("link", "set", "lo", "up", netns=namespace)
+            self._attach(f"fgw{self.tag}v{index}", namespace, drone_address(index))
+
+    def _attach(self, name: str, namespace: str | None, address: str) -> None:
+        """A veth pair: ``name`` (in ``namespace``, or root) <-> ``name``p enslaved to the hub bridge."""
+        peer = f"{name}p"
+        _ip("link", "add", name, "type", "veth", "peer", "name", peer)
+        _ip("link", "set", peer, "netns", self.hub)
+        _ip("link", "set", peer, "master", "br0", netns=self.hub)
+        _ip("link", "set", peer, "up", netns=self.hub)
+        if namespace:
+            _ip("link", "set", name, "netns", namespace)
+        _ip("addr", "add", f"{address}/{PREFIX_LEN}", "dev", name, netns=namespace)
+        _ip("link", "set", name, "up", netns=namespace)
+
+    def close(self) -> None:
+        if self._root_veth:
+            subprocess.run(["ip", "link", "del", self._root_veth], capture_output=True, check=False)
+            self._root_veth = None
+        for namespace in reversed(self.namespaces):
+            subprocess.run(["ip", "netns", "del", namespace], capture_output=True, check=False)
+        self.namespaces.clear()
+
+    def __enter__(self) -> SwarmNetwork:
+        return self.open()
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
