@@ -81,6 +81,11 @@ def add_agent_arguments(parser: argparse.ArgumentParser) -> None:
         help="sampling temperature (default 0; negative: leave it to the endpoint)",
     )
     parser.add_argument("--system", default=None, help="replace the default system prompt")
+    parser.add_argument(
+        "--structured",
+        action="store_true",
+        help="also hand the model each result's structured content as JSON (more tokens)",
+    )
     parser.add_argument("--json", action="store_true", help="print a JSON-lines transcript instead")
     parser.add_argument("--list-tools", action="store_true", help="list the selected tools and exit")
 
@@ -118,7 +123,7 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
         err.print("[red]error:[/] no model given: use --model NAME or set GATEWAY_AGENT_MODEL")
         return EXIT_USAGE
     try:
-        async with McpLink(mcp_url, args.token or env.token) as link:
+        async with McpLink(mcp_url, args.token or env.token, include_structured=args.structured) as link:
             try:
                 tools = select_tools(
                     await link.list_tools(),

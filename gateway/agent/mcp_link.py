@@ -26,12 +26,19 @@ class McpLink:
     """An open MCP client session: list tools, call them with progress. Use as an async context manager."""
 
     def __init__(
-        self, url: str, token: str | None = None, *, call_timeout_s: float = 300.0, mode: str = "auto"
+        self,
+        url: str,
+        token: str | None = None,
+        *,
+        call_timeout_s: float = 300.0,
+        mode: str = "auto",
+        include_structured: bool = False,
     ) -> None:
         self.url = url
         self.token = token
         self.call_timeout_s = call_timeout_s
         self.mode = mode
+        self.include_structured = include_structured
         self._stack: AsyncExitStack | None = None
         self._client: Client | None = None
 
@@ -88,7 +95,7 @@ class McpLink:
             result = await self.client.call_tool(name, arguments, progress_callback=progress)
         except Exception as exc:  # MCPError, transport errors: reported to the model, not fatal
             return ToolOutcome(text=f"MCP error calling {name}: {_describe(exc)}", is_error=True)
-        return outcome_from_result(result)
+        return outcome_from_result(result, include_structured=self.include_structured)
 
 
 def _describe(exc: BaseException) -> str:

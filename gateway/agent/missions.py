@@ -42,6 +42,7 @@ class MissionContext:
     homes: dict[str, tuple[float, float, float]]  # drone id -> (lat, lon, alt_amsl)
     max_alt_m: float = 120.0
     max_distance_m: float = 1000.0
+    tools: frozenset[str] = frozenset()  # the tools offered (the self-check plans adapt to them)
 
     def point(self, drone: str, north_m: float, east_m: float) -> tuple[float, float]:
         lat, lon, _ = self.homes[drone]
@@ -342,6 +343,37 @@ def _m_formation() -> Mission:
             Check(off <= HORIZONTAL_TOL_M, f"formation centre {off:.1f} m from target"),
         )
 
+    def formation_plan(c: MissionContext) -> list[PlannedCall]:
+        lat, lon = centre(c)
+        if {"fleet_takeoff", "formation_goto"} <= c.tools:
+            ids = ["alpha", "bravo"]
+            return [
+                ("fleet_takeoff", {"drone_ids": ids, "altitude_m": 25}),
+                (
+                    "formation_goto",
+                    {
+                        "drone_ids": ids,
+                        "formation": "line",
+                        "center_latitude_deg": lat,
+                        "center_longitude_deg": lon,
+                        "altitude_m": 25,
+                        "spacing_m": 10,
+                    },
+                ),
+            ]
+        # Without the fleet toolset: two slots 10 m apart on an east-west line through the centre.
+        calls: list[PlannedCall] = []
+        for drone, east in (("alpha", -5.0), ("bravo", 5.0)):
+            slat, slon = offset_position(lat, lon, 0.0, east)
+            calls.append(("takeoff", {"drone_id": drone, "altitude_m": 25}))
+            calls.append(
+                (
+                    "go_to_location",
+                    {"drone_id": drone, "latitude_deg": slat, "longitude_deg": slon, "altitude_m": 25},
+                )
+            )
+        return calls
+
     return Mission(
         id="formation-line",
         drones=("alpha", "bravo"),
@@ -350,20 +382,7 @@ def _m_formation() -> Mission:
             "at 25 m, and keep them there."
         ),
         check=check,
-        plan=lambda c: [
-            ("fleet_takeoff", {"drone_ids": ["alpha", "bravo"], "altitude_m": 25}),
-            (
-                "formation_goto",
-                {
-                    "drone_ids": ["alpha", "bravo"],
-                    "formation": "line",
-                    "center_latitude_deg": centre(c)[0],
-                    "center_longitude_deg": centre(c)[1],
-                    "altitude_m": 25,
-                    "spacing_m": 10,
-                },
-            ),
-        ],
+        plan=formation_plan,
         answer="Alpha and bravo hold a 10 m line at 25 m.",
         tags=("multi", "formation"),
     )

@@ -23,8 +23,8 @@ SELF_CHECK_MODEL = "harness-self-check (scripted, not a model)"
 class ScriptedPilot:
     """Callable reply source for ``ScriptedModelServer``; set ``plan`` before each mission."""
 
-    wait_tool: str | None = None
-    wait_arg: str = "operation_id"
+    wait_tool: str | None = "monitor_flight"
+    wait_arg: str = "drone_id"
     max_waits_per_call: int = 40
     plan: list[PlannedCall] = field(default_factory=list)
     answer: str = "Done."
@@ -56,15 +56,22 @@ class ScriptedPilot:
         return ScriptedReply(content=answer)
 
 
+_WAIT_HINT_RE = re.compile(r"still running.*?monitor_flight\(drone_id=['\"]([^'\"]+)['\"]\)", re.DOTALL)
+
+
 def running_operation(tool_text: str) -> str | None:
-    """The operation id of a result that says it is still running, else None."""
+    """What to pass to the wait tool when a result says its operation is still running, else None.
+
+    The gateway's text says "... still running (40%, ETA 12 s): ... Call monitor_flight(drone_id='alpha')
+    to keep waiting." (the drone id is returned); a JSON result with status "running" gives its
+    operation id."""
+    m = _WAIT_HINT_RE.search(tool_text or "")
+    if m:
+        return m.group(1)
     try:
         data = json.loads(tool_text)
     except (json.JSONDecodeError, TypeError):
-        m = re.search(
-            r'"status"\s*:\s*"running".*?"operation_id"\s*:\s*"([^"]+)"', tool_text or "", re.DOTALL
-        )
-        return m.group(1) if m else None
+        return None
     if not isinstance(data, dict) or data.get("status") != "running":
         return None
     op = data.get("operation_id")

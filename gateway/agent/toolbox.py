@@ -66,6 +66,37 @@ def toolset_of(meta: Mapping[str, Any]) -> str | None:
     return None
 
 
+def gateway_toolset_map() -> dict[str, str]:
+    """Tool name -> toolset, as declared by this project's own MCP toolset modules (``gateway.mcp.tools``).
+
+    The fallback for servers whose tools name no toolset in ``_meta``: the gateway is this project, so
+    the host can read the same declarations the server registers from. Empty when they are not built."""
+    try:
+        from gateway.config import ALL_TOOLSETS
+        from gateway.mcp.server import load_toolset
+    except ImportError:
+        return {}
+    mapping: dict[str, str] = {}
+    for name in ALL_TOOLSETS:
+        try:
+            toolset = load_toolset(name)
+        except ImportError:
+            continue
+        for spec in getattr(toolset, "tools", []) if toolset is not None else []:
+            mapping[spec.name] = name
+    return mapping
+
+
+def with_toolsets(tools: Sequence[ToolInfo], mapping: Mapping[str, str]) -> list[ToolInfo]:
+    """Fill in the toolset of tools whose ``_meta`` names none, from a name map."""
+    return [
+        t
+        if t.toolset or t.name not in mapping
+        else ToolInfo(t.name, t.description, t.input_schema, mapping[t.name], t.read_only)
+        for t in tools
+    ]
+
+
 def select_tools(
     tools: Sequence[ToolInfo], toolsets: Iterable[str] | None = None, names: Iterable[str] | None = None
 ) -> list[ToolInfo]:
@@ -82,10 +113,13 @@ def select_tools(
     if unknown:
         raise ToolSelectionError(f"unknown tool(s) {unknown}; the server offers: {sorted(known_names)}")
     if wanted_sets:
+        if not any(t.toolset for t in tools):
+            tools = with_toolsets(tools, gateway_toolset_map())
         offered = sorted({t.toolset for t in tools if t.toolset})
         if not offered:
             raise ToolSelectionError(
-                "the server's tools name no toolset in their _meta; select tools by name with --tools"
+                "the server's tools name no toolset in their _meta (and none is known from this build); "
+                "select tools by name with --tools"
             )
         bad = [s for s in wanted_sets if s not in offered]
         if bad:
@@ -143,8 +177,12 @@ class ToolOutcome:
         return one_line_summary(self.text, self.structured, limit)
 
 
-def outcome_from_result(result: Any, max_chars: int = 6000) -> ToolOutcome:
-    """Convert an ``mcp.types.CallToolResult`` into the text handed back to the model (verbatim, bounded)."""
+def outcome_from_result(result: Any, max_chars: int = 6000, include_structured: bool = False) -> ToolOutcome:
+    """Convert an ``mcp.types.CallToolResult`` into the text handed back to the model (verbatim, bounded).
+
+    The text is the result's content blocks, as MCP hosts show them to models. With
+    ``include_structured`` the structured content is appended as compact JSON (exact fields for the
+    model, at a token cost); when there is no text at all the structured content is used anyway."""
     texts: list[str] = []
     for block in getattr(result, "content", None) or []:
         kind = getattr(block, "type", None)
@@ -157,8 +195,10 @@ def outcome_from_result(result: Any, max_chars: int = 6000) -> ToolOutcome:
             texts.append(f"[{kind} content omitted]")
     structured = getattr(result, "structured_content", None)
     text = "\n".join(t for t in texts if t)
-    if not text and structured is not None:
-        text = json.dumps(structured, separators=(",", ":"), default=str)
+    if structured is not None and (not text or include_structured):
+        dumped = json.dumps(structured, separators=(",", ":"), default=str)
+        if dumped != text.strip():
+            text = f"{text}\n{dumped}" if text else dumped
     if len(text) > max_chars:
         text = text[:max_chars] + f"... [truncated, {len(text) - max_chars} more characters]"
     return ToolOutcome(

@@ -117,7 +117,7 @@ def _assistant(name: str) -> dict:
 
 
 def test_pilot_follows_the_plan_waits_on_running_and_answers() -> None:
-    pilot = ScriptedPilot(wait_tool="monitor_flight")
+    pilot = ScriptedPilot(wait_tool="monitor_flight", wait_arg="operation_id")
     pilot.load([("takeoff", {"drone_id": "a"}), ("land", {"drone_id": "a"})], "done")
     assert pilot(_request()).tool_calls == [("takeoff", {"drone_id": "a"})]
     running = json.dumps({"status": "running", "operation_id": "op-7"})
@@ -148,3 +148,9 @@ def test_running_operation_detection() -> None:
     assert running_operation('{"status": "running", "operation": {"id": "y"}}') == "y"
     assert running_operation('{"status": "succeeded", "operation_id": "x"}') is None
     assert running_operation("Error: refused") is None
+    gateway_text = (
+        "takeoff on alpha still running (40%, ETA 12 s): climbing. "
+        "Call monitor_flight(drone_id='alpha') to keep waiting."
+    )
+    assert running_operation(gateway_text) == "alpha"
+    assert running_operation("takeoff on alpha succeeded: reached 10.0 m") is None

@@ -9,6 +9,7 @@ import pytest
 from gateway.agent.toolbox import (
     ToolInfo,
     ToolSelectionError,
+    gateway_toolset_map,
     one_line_summary,
     outcome_from_result,
     select_tools,
@@ -89,7 +90,7 @@ def test_toolset_meta_keys() -> None:
 
 
 def test_selection_errors_are_clear() -> None:
-    plain = [ToolInfo("land", "", {}), ToolInfo("takeoff", "", {})]
+    plain = [ToolInfo("hop", "", {}), ToolInfo("skip", "", {})]
     with pytest.raises(ToolSelectionError, match="name no toolset"):
         select_tools(plain, toolsets=["flight"])
     with pytest.raises(ToolSelectionError, match=r"unknown tool\(s\) \['fly'\]"):
@@ -97,7 +98,22 @@ def test_selection_errors_are_clear() -> None:
     with pytest.raises(ToolSelectionError, match=r"unknown toolset\(s\) \['nav'\]"):
         select_tools([GOTO], toolsets=["nav"])
     assert select_tools(plain) == plain
-    assert [t.name for t in select_tools(plain, names=["land"])] == ["land"]
+    assert [t.name for t in select_tools(plain, names=["hop"])] == ["hop"]
+
+
+def test_toolsets_fall_back_to_the_gateways_own_declarations() -> None:
+    """The gateway's tools carry no toolset in _meta: the host reads the same toolset modules."""
+    mapping = gateway_toolset_map()
+    assert mapping["takeoff"] == "flight" and mapping["go_to_location"] == "navigation"
+    assert mapping["get_battery"] == "telemetry"
+    plain = [ToolInfo("takeoff", "", {}), ToolInfo("go_to_location", "", {}), ToolInfo("get_battery", "", {})]
+    assert [t.name for t in select_tools(plain, toolsets=["flight", "telemetry"])] == [
+        "takeoff",
+        "get_battery",
+    ]
+    # _meta wins over the map.
+    tagged = [ToolInfo("takeoff", "", {}, toolset="navigation")]
+    assert [t.name for t in select_tools(tagged, toolsets=["navigation"])] == ["takeoff"]
 
 
 def test_openai_spec_shape() -> None:
@@ -133,6 +149,10 @@ def test_result_conversion_and_summary() -> None:
     out = outcome_from_result(result)
     assert out.text == '{"status": "running"}' and not out.is_error
     assert out.summary() == "status=running"
+    with_json = outcome_from_result(result, include_structured=True)
+    assert (
+        with_json.text == '{"status": "running"}\n{"status":"running","operation_id":"op-1","progress":0.4}'
+    )
     only_structured = SimpleNamespace(content=[], structured_content={"alt_m": 10.0}, is_error=False)
     assert outcome_from_result(only_structured).text == '{"alt_m":10.0}'
     long = SimpleNamespace(
