@@ -12,6 +12,7 @@ from collections.abc import Sequence
 COMMAND_MODULES: tuple[str, ...] = (
     "gateway.sim.cli",
     "gateway.demo",
+    "gateway.server_cli",
     "gateway.agent.cli",
 )
 

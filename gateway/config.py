@@ -40,6 +40,11 @@ class Settings(BaseSettings):
         description="SQLAlchemy async URL; SQLite (aiosqlite) by default, PostgreSQL (asyncpg) works too.",
     )
     log_level: str = Field("INFO", description="Python log level of the gateway.")
+    max_request_body_bytes: int = Field(
+        1_048_576,
+        ge=1024,
+        description="Largest HTTP request body accepted (REST and /mcp); larger ones are refused with 413.",
+    )
 
     # --- MAVLink / sidecars --------------------------------------------------------------------
     gcs_sysid: int = Field(
