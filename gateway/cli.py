@@ -13,6 +13,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "gateway.sim.cli",
     "gateway.demo",
     "gateway.server_cli",
+    "gateway.mcp.cli",
     "gateway.agent.cli",
 )
 

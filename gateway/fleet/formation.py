@@ -213,9 +213,14 @@ def plan_formation(
     (rule ``min_separation``) when the formation or the paths to it cannot keep the separation."""
     starts = _normalise_drones(drones)
     geo.check_lat_lon(center_lat, center_lon)
-    for name, value in (("alt_m", alt_m), ("spacing_m", spacing_m), ("heading_deg", heading_deg),
-                        ("min_separation_m", min_separation_m), ("max_altitude_m", max_altitude_m),
-                        ("min_transit_alt_m", min_transit_alt_m)):  # fmt: skip
+    for name, value in (
+        ("alt_m", alt_m),
+        ("spacing_m", spacing_m),
+        ("heading_deg", heading_deg),
+        ("min_separation_m", min_separation_m),
+        ("max_altitude_m", max_altitude_m),
+        ("min_transit_alt_m", min_transit_alt_m),
+    ):
         geo.check_finite(name, value)
     if spacing_m <= 0 or min_separation_m <= 0:
         raise InvalidArgument("spacing_m and min_separation_m must be above 0 m")
@@ -229,8 +234,9 @@ def plan_formation(
             Rule.MIN_SEPARATION,
             f"formation spacing {fmt(spacing_m)} m is below the minimum separation of "
             f"{fmt(min_separation_m)} m",
-            spacing_m=spacing_m, limit_m=min_separation_m,
-        )  # fmt: skip
+            spacing_m=spacing_m,
+            limit_m=min_separation_m,
+        )
     heading = heading_deg % 360.0
     n = len(starts)
 
@@ -241,8 +247,9 @@ def plan_formation(
             Rule.MIN_SEPARATION,
             f"two {formation} slots would be {fmt(slot_min, 2)} m apart, below the minimum separation of "
             f"{fmt(min_separation_m)} m",
-            closest_m=slot_min, limit_m=min_separation_m,
-        )  # fmt: skip
+            closest_m=slot_min,
+            limit_m=min_separation_m,
+        )
 
     # Local frame around the centre: x = north, y = east, z = up (metres above home).
     start_xyz = np.array(
@@ -261,17 +268,31 @@ def plan_formation(
             d0 = float(np.linalg.norm(start_xyz[i] - start_xyz[j]))
             required[i, j] = required[j, i] = min(min_separation_m, d0)
 
-    layering = _Layering(start_xyz, target_xyz, required, alt_m, min_separation_m, max_altitude_m,
-                         min_transit_alt_m, [d.id for d in starts])  # fmt: skip
+    layering = _Layering(
+        start_xyz,
+        target_xyz,
+        required,
+        alt_m,
+        min_separation_m,
+        max_altitude_m,
+        min_transit_alt_m,
+        [d.id for d in starts],
+    )
     transit, direct_conflicts = layering.solve()
 
     phases_xyz = layering.phase_segments(transit)
     notes = []
-    close_pairs = [(starts[i].id, starts[j].id, required[i, j]) for i in range(n) for j in range(i + 1, n)
-                   if required[i, j] < min_separation_m]  # fmt: skip
+    close_pairs = [
+        (starts[i].id, starts[j].id, required[i, j])
+        for i in range(n)
+        for j in range(i + 1, n)
+        if required[i, j] < min_separation_m
+    ]
     for a, b, d0 in close_pairs:
-        notes.append(f"drones {a} and {b} start {fmt(d0, 2)} m apart, below the minimum separation; "
-                     "their paths never bring them closer than that")  # fmt: skip
+        notes.append(
+            f"drones {a} and {b} start {fmt(d0, 2)} m apart, below the minimum separation; "
+            "their paths never bring them closer than that"
+        )
 
     conflicts: list[Conflict] = []
     per_drone: dict[int, list[str]] = {i: [] for i in range(n)}
@@ -299,20 +320,37 @@ def plan_formation(
                 length += float(np.linalg.norm(b - a))
         t = target_xyz[i]
         lat, lon = geo.offset_position(center_lat, center_lon, float(t[0]), float(t[1]))
-        slots.append(SlotAssignment(
-            drone_id=d.id, slot_index=slot_of[i], lat=lat, lon=lon, alt_rel_m=float(alt_m),
-            north_m=round(float(t[0]), 3), east_m=round(float(t[1]), 3),
-            transit_alt_m=transit[i], distance_m=round(length, 2), legs=legs,
-            conflicts_resolved=per_drone[i],
-        ))  # fmt: skip
+        slots.append(
+            SlotAssignment(
+                drone_id=d.id,
+                slot_index=slot_of[i],
+                lat=lat,
+                lon=lon,
+                alt_rel_m=float(alt_m),
+                north_m=round(float(t[0]), 3),
+                east_m=round(float(t[1]), 3),
+                transit_alt_m=transit[i],
+                distance_m=round(length, 2),
+                legs=legs,
+                conflicts_resolved=per_drone[i],
+            )
+        )
 
     return FormationPlan(
-        formation=formation, center_lat=center_lat, center_lon=center_lon, alt_m=float(alt_m),
-        spacing_m=float(spacing_m), heading_deg=heading, min_separation_m=float(min_separation_m),
-        slots=slots, conflicts=conflicts, phases=phases,
+        formation=formation,
+        center_lat=center_lat,
+        center_lon=center_lon,
+        alt_m=float(alt_m),
+        spacing_m=float(spacing_m),
+        heading_deg=heading,
+        min_separation_m=float(min_separation_m),
+        slots=slots,
+        conflicts=conflicts,
+        phases=phases,
         total_distance_m=round(sum(s.distance_m for s in slots), 2),
-        min_clearance_m=round(layering.min_clearance(transit), 3), notes=notes,
-    )  # fmt: skip
+        min_clearance_m=round(layering.min_clearance(transit), 3),
+        notes=notes,
+    )
 
 
 def _describe(drone_id: str, transit: float | None) -> str:
@@ -356,8 +394,17 @@ def _min_pairwise(points: np.ndarray) -> float:
 class _Layering:
     """Greedy altitude layering: keep direct paths where they are clear, lift the rest onto layers."""
 
-    def __init__(self, start: np.ndarray, target: np.ndarray, required: np.ndarray, alt_m: float,
-                 sep: float, max_alt: float, min_alt: float, ids: list[str]) -> None:  # fmt: skip
+    def __init__(
+        self,
+        start: np.ndarray,
+        target: np.ndarray,
+        required: np.ndarray,
+        alt_m: float,
+        sep: float,
+        max_alt: float,
+        min_alt: float,
+        ids: list[str],
+    ) -> None:
         self.start, self.target, self.required = start, target, required
         self.n = len(start)
         self.ids = ids
@@ -429,8 +476,10 @@ class _Layering:
                     f"drone {self.ids[i]} {fmt(self.sep)} m from the other drones' paths (best found: "
                     f"{fmt(closest, 2)} m from drone {self.ids[other]}); spread the drones out, move them in "
                     "smaller steps or raise the altitude limit",
-                    vehicle_id=self.ids[i], closest_m=round(closest, 2), limit_m=self.sep,
-                )  # fmt: skip
+                    vehicle_id=self.ids[i],
+                    closest_m=round(closest, 2),
+                    limit_m=self.sep,
+                )
             fixed.append(i)
         return transit, conflicts
 
@@ -471,8 +520,9 @@ def staggered_altitudes(
             Rule.MAX_ALTITUDE,
             f"staggering {len(ids)} drones {fmt(stagger_m)} m apart from {fmt(base_alt_m)} m reaches "
             f"{fmt(top)} m, above the limit of {fmt(max_altitude_m)} m above home",
-            top_m=top, limit_m=max_altitude_m,
-        )  # fmt: skip
+            top_m=top,
+            limit_m=max_altitude_m,
+        )
     return out
 
 

@@ -146,12 +146,12 @@ def ground_speed(vehicle: Any) -> float | None:
     v = value(vehicle, "velocity_ned")
     if v is None:
         return None
-    return math.hypot(float(v.north_m_s), float(v.east_m_s))
+    return math.hypot(float(v.north_mps), float(v.east_mps))
 
 
 def climb_rate(vehicle: Any) -> float | None:
     v = value(vehicle, "velocity_ned")
-    return None if v is None else -float(v.down_m_s)
+    return None if v is None else -float(v.down_mps)
 
 
 def is_landed_and_disarmed(vehicle: Any) -> bool:
@@ -276,13 +276,19 @@ class LandingTracker:
 
 @dataclass
 class MissionTracker:
+    """Done when the autopilot says the mission is finished (asked at most once a second)."""
+
     kind: str = "mission"
+    _asked_at: float = 0.0
 
     async def poll(self, vehicle: Any) -> Poll:
         prog = value(vehicle, "mission_progress")
         current, total = (int(prog.current), int(prog.total)) if prog is not None else (0, 0)
-        if await vehicle.is_mission_finished():
-            return Poll(1.0, f"mission finished ({total} items)", done=True, eta_s=0.0)
+        now = time.monotonic()
+        if now - self._asked_at >= 1.0:
+            self._asked_at = now
+            if await vehicle.is_mission_finished():
+                return Poll(1.0, f"mission finished ({total} items)", done=True, eta_s=0.0)
         progress = max(0.0, min(0.99, (current - 1) / total)) if total else 0.0
         return Poll(progress, f"item {current} of {total}")
 
@@ -295,9 +301,11 @@ class MissionTracker:
 class OperationManager:
     """One current operation per vehicle; monitors run independently of whoever waits on them."""
 
-    def __init__(self, settings: Any, store: Any | None = None) -> None:
+    def __init__(self, settings: Any, store: Any | None = None, store_getter: Any | None = None) -> None:
+        """``store_getter`` (a callable) serves gateways whose store opens after this is built."""
         self.settings = settings
-        self.store = store
+        self._store = store
+        self._store_getter = store_getter
         self._ops: dict[str, Operation] = {}
         self._current: dict[str, Operation] = {}  # latest operation per vehicle (may be finished)
         self._monitors: dict[str, asyncio.Task[None]] = {}
@@ -461,8 +469,13 @@ class OperationManager:
             task.cancel()
         await self._save(op, force=True)
 
+    @property
+    def store(self) -> Any | None:
+        return self._store if self._store is not None or self._store_getter is None else self._store_getter()
+
     async def _save(self, op: Operation, force: bool = False) -> None:
-        if self.store is None:
+        store = self.store
+        if store is None:
             return
         now = time.monotonic()
         if not force and now - self._last_saved.get(op.id, 0.0) < SAVE_EVERY_S:
@@ -471,7 +484,7 @@ class OperationManager:
         try:
             from gateway.registry.store import OperationRecord
 
-            await self.store.save_operation(
+            await store.save_operation(
                 OperationRecord(
                     id=op.id,
                     vehicle_id=op.vehicle_id,

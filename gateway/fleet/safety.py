@@ -171,8 +171,12 @@ class Lock:
     locked_at: datetime
 
     def to_record(self) -> dict[str, Any]:
-        return {"scope": self.scope, "reason": self.reason, "by": self.by,
-                "locked_at": self.locked_at.isoformat()}  # fmt: skip
+        return {
+            "scope": self.scope,
+            "reason": self.reason,
+            "by": self.by,
+            "locked_at": self.locked_at.isoformat(),
+        }
 
 
 class LockView(Protocol):
@@ -437,19 +441,29 @@ class SafetyPolicy:
         self._check_point(ctx, limits, target, "target")
         self._check_leg(ctx, self._start_of(ctx), target)
         self._check_battery(ctx, limits.min_battery_leg_pct, Rule.BATTERY_LEG)
-        return SafetyDecision.ok("motion", ctx.vehicle_id, lat=target.lat, lon=target.lon,
-                                 alt_rel_m=target.alt_rel_m)  # fmt: skip
+        return SafetyDecision.ok(
+            "motion", ctx.vehicle_id, lat=target.lat, lon=target.lon, alt_rel_m=target.alt_rel_m
+        )
 
     def check_speed(self, ctx: VehicleContext, mps: float, via: Via = "mcp") -> SafetyDecision:
         self.check_actuation(ctx, via)
         _finite(ctx, "speed", mps)
         limit = self.limits_for(ctx.vehicle_id).max_speed_mps
         if mps <= 0:
-            raise refuse(Rule.INVALID_INPUT, f"speed must be above 0 m/s; got {fmt(mps)} m/s",
-                         vehicle_id=ctx.vehicle_id, speed_mps=mps)  # fmt: skip
+            raise refuse(
+                Rule.INVALID_INPUT,
+                f"speed must be above 0 m/s; got {fmt(mps)} m/s",
+                vehicle_id=ctx.vehicle_id,
+                speed_mps=mps,
+            )
         if mps > limit:
-            raise refuse(Rule.MAX_SPEED, f"speed {fmt(mps)} m/s exceeds the limit of {fmt(limit)} m/s",
-                         vehicle_id=ctx.vehicle_id, speed_mps=mps, limit_mps=limit)  # fmt: skip
+            raise refuse(
+                Rule.MAX_SPEED,
+                f"speed {fmt(mps)} m/s exceeds the limit of {fmt(limit)} m/s",
+                vehicle_id=ctx.vehicle_id,
+                speed_mps=mps,
+                limit_mps=limit,
+            )
         return SafetyDecision.ok("speed", ctx.vehicle_id, speed_mps=mps)
 
     def check_mission(
@@ -500,13 +514,17 @@ class SafetyPolicy:
                 Rule.MIN_SEPARATION,
                 f"the plan keeps {fmt(plan.min_separation_m)} m between drones, below the minimum "
                 f"separation of {fmt(sep)} m",
-                planned_m=plan.min_separation_m, limit_m=sep,
-            )  # fmt: skip
+                planned_m=plan.min_separation_m,
+                limit_m=sep,
+            )
         for slot in plan.slots:
             ctx = contexts.get(slot.drone_id)
             if ctx is None:
-                raise refuse(Rule.INVALID_INPUT, f"no state for drone {slot.drone_id} in the formation",
-                             vehicle_id=slot.drone_id)  # fmt: skip
+                raise refuse(
+                    Rule.INVALID_INPUT,
+                    f"no state for drone {slot.drone_id} in the formation",
+                    vehicle_id=slot.drone_id,
+                )
             self.check_actuation(ctx, via)
             limits = self.limits_for(ctx.vehicle_id)
             self._check_battery(ctx, limits.min_battery_leg_pct, Rule.BATTERY_LEG)
@@ -539,10 +557,13 @@ class SafetyPolicy:
                 vehicle_id=ctx.vehicle_id,
             )
         return SafetyDecision(
-            "kill", True,
+            "kill",
+            True,
             f"drone {ctx.vehicle_id} is in the air: a human must confirm the kill before it is sent",
-            {}, ctx.vehicle_id, needs_confirmation=True,
-        )  # fmt: skip
+            {},
+            ctx.vehicle_id,
+            needs_confirmation=True,
+        )
 
     def check_param_write(self, name: str, via: Via = "mcp", vehicle_id: str | None = None) -> SafetyDecision:
         """Refuse agent writes to parameters matching the deny list (glob patterns, case-insensitive)."""
@@ -561,8 +582,10 @@ class SafetyPolicy:
                         Rule.PARAM_DENY,
                         f"parameter {upper} matches the protected pattern {pattern}: agents may not change "
                         "arming checks, fences, failsafes or system ids; ask an operator",
-                        vehicle_id=vehicle_id, param=upper, pattern=pattern,
-                    )  # fmt: skip
+                        vehicle_id=vehicle_id,
+                        param=upper,
+                        pattern=pattern,
+                    )
         return SafetyDecision.ok("param_write", vehicle_id, param=upper)
 
     # --- pieces ----------------------------------------------------------------------------------
@@ -590,15 +613,18 @@ class SafetyPolicy:
                 Rule.HOME_UNKNOWN,
                 f"drone {ctx.vehicle_id} has no home position yet, so the distance limit of "
                 f"{fmt(limits.max_distance_m)} m from home cannot be checked; wait for a GPS fix and home",
-                vehicle_id=ctx.vehicle_id, limit_m=limits.max_distance_m,
-            )  # fmt: skip
+                vehicle_id=ctx.vehicle_id,
+                limit_m=limits.max_distance_m,
+            )
         distance = geo.horizontal_distance_m(ctx.home[0], ctx.home[1], target.lat, target.lon)
         if distance > limits.max_distance_m:
             raise refuse(
                 Rule.MAX_DISTANCE,
                 f"{what} is {fmt(distance)} m from home, beyond the limit of {fmt(limits.max_distance_m)} m",
-                vehicle_id=ctx.vehicle_id, distance_m=round(distance, 2), limit_m=limits.max_distance_m,
-            )  # fmt: skip
+                vehicle_id=ctx.vehicle_id,
+                distance_m=round(distance, 2),
+                limit_m=limits.max_distance_m,
+            )
         for v in self.geofences.check_target(ctx.vehicle_id, target.lat, target.lon):
             raise _geofence_refusal(ctx, v, what)
 
@@ -623,21 +649,27 @@ class SafetyPolicy:
                 Rule.MIN_ALTITUDE,
                 f"{what} {fmt(alt)} m is below home; altitudes are metres above home and must be at least "
                 f"{fmt(limits.min_altitude_m)} m (use land to descend)",
-                vehicle_id=ctx.vehicle_id, alt_rel_m=alt, limit_m=limits.min_altitude_m,
-            )  # fmt: skip
+                vehicle_id=ctx.vehicle_id,
+                alt_rel_m=alt,
+                limit_m=limits.min_altitude_m,
+            )
         if alt < limits.min_altitude_m:
             raise refuse(
                 Rule.MIN_ALTITUDE,
                 f"{what} {fmt(alt)} m is below the minimum of {fmt(limits.min_altitude_m)} m above home "
                 "(use land to descend)",
-                vehicle_id=ctx.vehicle_id, alt_rel_m=alt, limit_m=limits.min_altitude_m,
-            )  # fmt: skip
+                vehicle_id=ctx.vehicle_id,
+                alt_rel_m=alt,
+                limit_m=limits.min_altitude_m,
+            )
         if alt > limits.max_altitude_m:
             raise refuse(
                 Rule.MAX_ALTITUDE,
                 f"{what} {fmt(alt)} m exceeds the limit of {fmt(limits.max_altitude_m)} m above home",
-                vehicle_id=ctx.vehicle_id, alt_rel_m=alt, limit_m=limits.max_altitude_m,
-            )  # fmt: skip
+                vehicle_id=ctx.vehicle_id,
+                alt_rel_m=alt,
+                limit_m=limits.max_altitude_m,
+            )
 
     @staticmethod
     def _check_battery(ctx: VehicleContext, minimum: float, rule: Rule) -> None:
@@ -650,14 +682,17 @@ class SafetyPolicy:
                 Rule.BATTERY_UNKNOWN,
                 f"battery level of drone {ctx.vehicle_id} is unknown; "
                 f"{fmt(minimum)} % is needed to {purpose}",
-                vehicle_id=ctx.vehicle_id, minimum_pct=minimum,
-            )  # fmt: skip
+                vehicle_id=ctx.vehicle_id,
+                minimum_pct=minimum,
+            )
         if pct < minimum:
             raise refuse(
                 rule,
                 f"battery {fmt(pct)} % is below the {fmt(minimum)} % needed to {purpose}",
-                vehicle_id=ctx.vehicle_id, battery_pct=pct, minimum_pct=minimum,
-            )  # fmt: skip
+                vehicle_id=ctx.vehicle_id,
+                battery_pct=pct,
+                minimum_pct=minimum,
+            )
 
 
 # ------------------------------------------------------------------------------------------------
@@ -671,8 +706,9 @@ def _check_via(via: str) -> None:
 
 def _finite(ctx: VehicleContext, name: str, value: Any) -> None:
     if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-        raise refuse(Rule.INVALID_INPUT, f"{name} must be a finite number; got {value!r}",
-                     vehicle_id=ctx.vehicle_id)  # fmt: skip
+        raise refuse(
+            Rule.INVALID_INPUT, f"{name} must be a finite number; got {value!r}", vehicle_id=ctx.vehicle_id
+        )
 
 
 def _lat_lon(ctx: VehicleContext, lat: float, lon: float) -> None:
@@ -691,6 +727,9 @@ def _geofence_refusal(ctx: VehicleContext, v: Violation, what: str) -> SafetyRef
         rule = Rule.KEEP_IN
     elif v.breach == "target":
         text = f"{what} is inside keep-out zone '{v.zone}' ({fmt(v.metres)} m from its edge)"
+        rule = Rule.KEEP_OUT
+    elif v.metres < 0.05:
+        text = f"the straight path to the target touches keep-out zone '{v.zone}'"
         rule = Rule.KEEP_OUT
     else:
         text = f"the straight path to the target crosses keep-out zone '{v.zone}' for {fmt(v.metres)} m"

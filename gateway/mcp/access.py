@@ -22,7 +22,7 @@ class FleetAccess:
         self.settings = gateway.settings
         operations = getattr(gateway, "operations", None)
         if operations is None:
-            operations = OperationManager(self.settings, getattr(gateway, "store", None))
+            operations = OperationManager(self.settings, store_getter=lambda: getattr(gateway, "store", None))
             gateway.operations = operations
         self.operations: OperationManager = operations
 
@@ -41,7 +41,10 @@ class FleetAccess:
         if policy is None:
             from gateway.fleet.safety import SafetyPolicy
 
-            policy = SafetyPolicy.from_settings(self.settings, getattr(self.gateway, "locks", None))
+            locks = getattr(self.gateway, "locks", None)
+            if locks is not None and hasattr(locks, "view"):
+                locks = locks.view()
+            policy = SafetyPolicy.from_settings(self.settings, locks)
             self.gateway.safety = policy
         return policy
 

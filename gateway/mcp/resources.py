@@ -106,6 +106,8 @@ class ResourceNotifier:
 
     def fingerprints(self) -> dict[str, Any]:
         prints: dict[str, Any] = {}
+        if self.fa.registry is None:
+            return prints
         vehicles = list(self.fa.registry.all())
         prints["fleet://drones"] = json.dumps(drones_json(self.fa), sort_keys=True, default=str)
         for v in vehicles:

@@ -104,6 +104,10 @@ def mcp_http_app(server: MCPServer, settings: Any) -> Starlette:
     )
 
 
+streamable_http_app = mcp_http_app
+"""The name gateway/app.py imports."""
+
+
 def mcp_lifespan(server: MCPServer) -> contextlib.AbstractAsyncContextManager[None]:
     """Run this inside the ASGI app's lifespan: mounted sub-app lifespans never run by themselves."""
     return server.session_manager.run()

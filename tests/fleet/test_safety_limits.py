@@ -121,8 +121,12 @@ def test_battery_minimum_for_takeoff() -> None:
     err = refusal(p.check_takeoff, ground(battery_pct=29.5), 10.0)
     assert err.rule == "min_battery_takeoff"
     assert "battery 29.5 % is below the 30 % needed to take off" in err.message
-    assert err.details == {"rule": "min_battery_takeoff", "vehicle_id": "alpha", "battery_pct": 29.5,
-                           "minimum_pct": 30.0}  # fmt: skip
+    assert err.details == {
+        "rule": "min_battery_takeoff",
+        "vehicle_id": "alpha",
+        "battery_pct": 29.5,
+        "minimum_pct": 30.0,
+    }
     assert p.check_arm(ground(battery_pct=30.0)).allowed
     assert refusal(p.check_arm, ground(battery_pct=10.0)).rule == "min_battery_takeoff"
 

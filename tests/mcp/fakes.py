@@ -57,7 +57,7 @@ class FakeVehicle:
             armed=Sample(False),
             in_air=Sample(False),
             heading_deg=Sample(0.0),
-            velocity_ned=Sample(SimpleNamespace(north_m_s=0.0, east_m_s=0.0, down_m_s=0.0)),
+            velocity_ned=Sample(SimpleNamespace(north_mps=0.0, east_mps=0.0, down_mps=0.0)),
             battery=Sample(SimpleNamespace(remaining_pct=87.0, voltage_v=12.3)),
             attitude=Sample(SimpleNamespace(roll_deg=0.1, pitch_deg=-0.2, yaw_deg=0.0)),
             gps_info=Sample(SimpleNamespace(num_satellites=12, fix_type="FIX_3D")),
@@ -194,9 +194,10 @@ class FakeVehicle:
     async def get_param(self, name: str) -> tuple[float, str]:
         return self.params[name], "float"
 
-    async def set_param(self, name: str, value: float) -> None:
+    async def set_param(self, name: str, value: float) -> tuple[float, str]:
         self.sent.append(("param", name, value))
         self.params[name] = value
+        return value, "float"
 
     async def list_params(self) -> dict[str, float]:
         return dict(self.params)

@@ -44,7 +44,7 @@ class FakeVehicle:
             home=Sample(_pos(*HOME[:2], 0.0)),
             armed=Sample(False),
             in_air=Sample(False),
-            velocity_ned=Sample(SimpleNamespace(north_m_s=0.0, east_m_s=0.0, down_m_s=0.0)),
+            velocity_ned=Sample(SimpleNamespace(north_mps=0.0, east_mps=0.0, down_mps=0.0)),
             heading_deg=Sample(0.0),
             mission_progress=None,
         )

@@ -33,7 +33,7 @@ class Waypoint(BaseModel):
     alt_m: Annotated[float, Field(ge=0, le=10_000, allow_inf_nan=False, description="m above home")]
     kind: Literal["waypoint", "takeoff", "land", "rtl", "loiter_time"] = "waypoint"
     hold_s: Annotated[float, Field(ge=0, le=3600, allow_inf_nan=False)] = 0.0
-    speed_mps: Annotated[float | None, Field(gt=0, le=100, allow_inf_nan=False)] = None
+    speed_mps: Annotated[float | None, Field(gt=0, le=50, allow_inf_nan=False)] = None
 
 
 Waypoints = Annotated[list[Waypoint], Field(min_length=1, max_length=MAX_ITEMS, description="Items 1..N")]
@@ -90,12 +90,7 @@ async def _start(fa: FleetAccess, ctx: Context, v, wait: bool, action: str) -> O
             )
         fa.safety.check_takeoff(vctx, items[0].alt_rel_m)
 
-    async def send() -> None:
-        if not value(v, "armed"):
-            await v.arm()
-        await v.start_mission()
-
-    return await fa.run(ctx, v, MissionTracker(), send, {}, wait, action)
+    return await fa.run(ctx, v, MissionTracker(), v.start_mission, {}, wait, action)
 
 
 @toolset.tool()

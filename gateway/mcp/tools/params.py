@@ -38,8 +38,7 @@ async def set_parameter(
     name = name.upper()
     fa.safety.check_param_write(name)
     fa.safety.check_actuation(fa.context(v))
-    await v.set_param(name, value)
-    val, kind = await v.get_param(name)
+    val, kind = await v.set_param(name, value)
     return ParamOut(drone_id=drone_id, name=name, value=val, type=kind).say(
         f"{drone_id} {name} set to {val:g}"
     )

@@ -114,7 +114,7 @@ async def get_health_all_ok(fa: FleetAccess, ctx: Context, drone_id: DroneId) ->
 async def get_speed(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> SpeedOut:
     """Velocity m/s north/east/down and ground speed."""
     vel, age, stale, note = read(fa, drone_id, "velocity_ned")
-    n, e, d = float(vel.north_m_s), float(vel.east_m_s), float(vel.down_m_s)
+    n, e, d = float(vel.north_mps), float(vel.east_mps), float(vel.down_mps)
     gs = math.hypot(n, e)
     return SpeedOut(
         drone_id=drone_id,

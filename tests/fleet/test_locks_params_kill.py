@@ -1,0 +1,259 @@
+"""Operator locks, the parameter deny list and the kill decision table."""
+
+from __future__ import annotations
+
+from datetime import UTC, datetime
+
+import pytest
+
+from gateway.config import DEFAULT_PARAM_DENY_PATTERNS
+from gateway.errors import InvalidArgument, SafetyRefusal
+from gateway.fleet.safety import LockBook, LockView, ReadOnlyLocks, SafetyPolicy, Target, decide
+from tests.fleet._util import at, ctx, ground, policy, settings
+
+
+def refusal(fn, *args, **kwargs) -> SafetyRefusal:
+    with pytest.raises(SafetyRefusal) as info:
+        fn(*args, **kwargs)
+    return info.value
+
+
+def locked_policy(book: LockBook, **overrides) -> SafetyPolicy:
+    return SafetyPolicy(settings(**overrides), locks=book.view())
+
+
+TARGET = Target(*at(50, 0), 20.0)
+
+
+def actuating_checks(p: SafetyPolicy):
+    return [
+        ("motion", p.check_motion, (TARGET,)),
+        ("takeoff", p.check_takeoff, (10.0,)),
+        ("speed", p.check_speed, (5.0,)),
+        ("mode", p.check_mode, ("RTL",)),
+        ("actuation", p.check_actuation, ()),
+        ("arm", p.check_arm, ()),
+        ("kill", p.check_kill, ()),
+        ("mission", p.check_mission, ([],)),
+    ]
+
+
+# --- locks ---------------------------------------------------------------------------------------------
+
+
+def test_vehicle_lock_refuses_every_actuating_check_with_the_operators_reason() -> None:
+    book = LockBook()
+    book.lock("alpha", "battery swap in progress", "alice")
+    p = locked_policy(book)
+    for name, check, args in actuating_checks(p):
+        err = refusal(check, ctx("alpha"), *args)
+        assert err.rule == "operator_lock", name
+        assert "drone alpha is locked by alice: battery swap in progress" in err.message
+        assert "Only an operator can unlock it" in err.message
+    assert p.check_motion(ctx("bravo"), TARGET).allowed
+
+
+def test_fleet_lock_refuses_all_vehicles_and_both_reasons_show() -> None:
+    book = LockBook()
+    book.lock("*", "airspace closed", "tower")
+    p = locked_policy(book)
+    for vid in ("alpha", "bravo"):
+        err = refusal(p.check_motion, ctx(vid), TARGET)
+        assert err.rule == "operator_lock" and "the fleet is locked by tower: airspace closed" in err.message
+    book.lock("alpha", "maintenance", "bob")
+    err = refusal(p.check_takeoff, ground("alpha"), 10.0)
+    assert (
+        "the fleet is locked by tower: airspace closed; drone alpha is locked by bob: maintenance"
+        in err.message
+    )
+    assert err.details["reason"] == book.reason_for("alpha")
+
+
+def test_unlock_restores_and_operators_are_not_held() -> None:
+    book = LockBook()
+    book.lock("alpha", "inspection", "alice")
+    p = locked_policy(book)
+    assert p.check_motion(ctx("alpha"), TARGET, via="rest").allowed
+    assert p.check_kill(ctx("alpha"), via="rest").allowed
+    assert book.unlock("alpha").reason == "inspection"
+    assert book.unlock("alpha") is None
+    assert book.reason_for("alpha") is None
+    assert p.check_motion(ctx("alpha"), TARGET).allowed
+
+
+def test_read_tools_need_no_check_and_decide_reports_the_lock() -> None:
+    book = LockBook()
+    book.lock("*", "stop", "ops")
+    decision = decide(locked_policy(book).check_motion, ctx("alpha"), TARGET)
+    assert not decision.allowed and decision.rule == "operator_lock" and decision.vehicle_id == "alpha"
+
+
+def test_the_mcp_view_cannot_unlock_or_lock() -> None:
+    book = LockBook()
+    book.lock("alpha", "hands off", "alice")
+    view = book.view()
+    assert isinstance(view, ReadOnlyLocks)
+    assert not hasattr(view, "unlock") and not hasattr(view, "lock")
+    assert not hasattr(view, "_locks") and not hasattr(view, "__dict__")
+    with pytest.raises(AttributeError):
+        view.extra = 1  # type: ignore[attr-defined]
+    assert view.reason_for("alpha") == "drone alpha is locked by alice: hands off"
+    assert [lk.scope for lk in view.all()] == ["alpha"]
+    assert view.locks_for("bravo") == []
+    p = locked_policy(book)
+    assert not hasattr(p.locks, "unlock")
+    # The view follows the book live.
+    book.unlock("alpha")
+    assert view.reason_for("alpha") is None
+
+
+def test_lockview_protocol_is_satisfied_by_both() -> None:
+    book = LockBook()
+    views: list[LockView] = [book, book.view()]
+    for v in views:
+        assert v.reason_for("x") is None and v.all() == []
+
+
+def test_lock_records_round_trip_and_relocking_replaces() -> None:
+    book = LockBook()
+    when = datetime(2026, 11, 21, 7, 0, tzinfo=UTC)
+    book.lock("*", "storm", "ops", at=when)
+    book.lock("bravo", "first", "alice")
+    book.lock("bravo", "second", "bob")
+    records = book.to_records()
+    assert [r["scope"] for r in records] == ["*", "bravo"]
+    assert records[0]["locked_at"] == "2026-11-21T07:00:00+00:00"
+    again = LockBook.from_records(records)
+    assert again.to_records() == records
+    assert again.get("bravo").reason == "second" and again.get("bravo").by == "bob"
+
+
+@pytest.mark.parametrize(
+    ("scope", "reason", "by", "fragment"),
+    [
+        ("Alpha", "r", "op", "scope"),
+        ("a" * 33, "r", "op", "scope"),
+        ("", "r", "op", "scope"),
+        ("alpha", "  ", "op", "reason"),
+        ("alpha", "x" * 501, "op", "limit is 500"),
+        ("alpha", "r", "", "who set it"),
+    ],
+)
+def test_bad_locks_are_rejected_and_change_nothing(scope, reason, by, fragment) -> None:
+    book = LockBook()
+    with pytest.raises(InvalidArgument) as info:
+        book.lock(scope, reason, by)
+    assert fragment in info.value.message
+    assert book.all() == []
+
+
+def test_bad_lock_records() -> None:
+    with pytest.raises(InvalidArgument, match="lacks 'by'"):
+        LockBook.from_records([{"scope": "*", "reason": "r", "locked_at": "2026-11-21T07:00:00+00:00"}])
+    with pytest.raises(InvalidArgument, match="locked_at"):
+        LockBook.from_records([{"scope": "*", "reason": "r", "by": "x", "locked_at": "yesterday"}])
+
+
+# --- parameter deny list -----------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        "ARMING_CHECK",
+        "arming_check",
+        "FENCE_ENABLE",
+        "FENCE_ALT_MAX",
+        "FS_GCS_ENABLE",
+        "FS_THR_ENABLE",
+        "FS_EKF_ACTION",
+        "BATT_FS_LOW_ACT",
+        "BATT2_FS_CRT_ACT",
+        "BATT_LOW_VOLT",
+        "BATT_CRT_MAH",
+        "SYSID_THISMAV",
+        "SYSID_MYGCS",
+        "MAV_SYSID",
+        "MAV_GCS_SYSID",
+        "BRD_SAFETY_DEFLT",
+        "COM_ARM_WO_GPS",
+        "COM_DL_LOSS_T",
+        "GF_ACTION",
+        "GF_MAX_HOR_DIST",
+        "NAV_DLL_ACT",
+        "NAV_RCL_ACT",
+        "CBRK_SUPPLY_CHK",
+        "CBRK_IO_SAFETY",
+        "MAV_SYS_ID",
+        "BAT_CRIT_THR",
+        "BAT1_EMERGEN_THR",
+        "FD_FAIL_P",
+    ],
+)
+def test_protected_parameters_are_refused_for_agents(name: str) -> None:
+    err = refusal(policy().check_param_write, name, vehicle_id="alpha")
+    assert err.rule == "param_deny"
+    assert f"parameter {name.upper()} matches the protected pattern" in err.message
+    assert err.details["param"] == name.upper() and err.details["pattern"] in DEFAULT_PARAM_DENY_PATTERNS
+
+
+@pytest.mark.parametrize(
+    "name", ["WPNAV_SPEED", "RTL_ALT", "LAND_SPEED", "BATT_CAPACITY", "MAV1_POSITION", "MPC_XY_VEL_MAX"]
+)
+def test_ordinary_parameters_are_allowed(name: str) -> None:
+    decision = policy().check_param_write(name)
+    assert decision.allowed and decision.numbers["param"] == name
+
+
+def test_deny_patterns_are_configurable_and_operators_may_write() -> None:
+    p = policy(param_deny_patterns="WPNAV_*, rtl_alt")
+    assert refusal(p.check_param_write, "WPNAV_SPEED").details["pattern"] == "WPNAV_*"
+    assert refusal(p.check_param_write, "RTL_ALT").rule == "param_deny"
+    assert p.check_param_write("ARMING_CHECK").allowed
+    assert policy().check_param_write("ARMING_CHECK", via="rest").allowed
+
+
+@pytest.mark.parametrize("name", ["", "WAY_TOO_LONG_PARAMETER_NAME", "ARMING CHECK", "FENCE-ENABLE", 5])
+def test_malformed_parameter_names_are_refused(name) -> None:
+    assert refusal(policy().check_param_write, name).rule == "invalid_input"
+
+
+# --- kill ---------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("via", "airborne", "agents_may_kill", "allowed", "needs_confirmation"),
+    [
+        ("rest", True, False, True, False),
+        ("rest", False, False, True, False),
+        ("rest", True, True, True, False),
+        ("mcp", False, False, True, False),  # on the ground kill = disarm
+        ("mcp", False, True, True, False),
+        ("mcp", True, False, False, None),  # refused: operator decision
+        ("mcp", True, True, True, True),  # allowed only with a human's confirmation
+    ],
+)
+def test_kill_decision_table(via, airborne, agents_may_kill, allowed, needs_confirmation) -> None:
+    p = policy(agents_may_kill=agents_may_kill)
+    drone = ctx() if airborne else ground()
+    decision = decide(p.check_kill, drone, via=via)
+    assert decision.allowed is allowed
+    if allowed:
+        assert decision.needs_confirmation is needs_confirmation
+    else:
+        assert decision.rule == "kill_in_air"
+        assert "Only an operator may do this" in decision.message
+
+
+def test_kill_has_no_confirm_flag_to_widen_it() -> None:
+    p = policy(agents_may_kill=False)
+    with pytest.raises(TypeError):
+        p.check_kill(ctx(), confirm=True)  # type: ignore[call-arg]
+    with pytest.raises(InvalidArgument):
+        p.check_kill(ctx(), via="operator")  # type: ignore[arg-type]
+
+
+def test_kill_on_the_ground_still_respects_locks() -> None:
+    book = LockBook()
+    book.lock("alpha", "leave it", "alice")
+    assert refusal(locked_policy(book).check_kill, ground("alpha")).rule == "operator_lock"
