@@ -118,7 +118,9 @@ class SafetyDecision:
     needs_confirmation: bool = False
 
     @classmethod
-    def ok(cls, check: str, vehicle_id: str | None = None, message: str = "allowed", **numbers: Any):
+    def ok(
+        cls, check: str, vehicle_id: str | None = None, message: str = "allowed", **numbers: Any
+    ) -> SafetyDecision:
         return cls(check, True, message, numbers, vehicle_id)
 
     @classmethod
@@ -371,6 +373,31 @@ class SafetyPolicy:
 
     def limits_for(self, vehicle_id: str) -> Limits:
         return self._overrides.get(vehicle_id, self.fleet_limits)
+
+    def altitude_band(self, vehicle_ids: Iterable[str]) -> tuple[float, float]:
+        """(lowest, highest) altitude above home allowed for all these vehicles together: pass it to
+        `plan_formation(min_transit_alt_m=..., max_altitude_m=...)` so transit layers fit every drone."""
+        limits = [self.limits_for(v) for v in vehicle_ids] or [self.fleet_limits]
+        return max(lim.min_altitude_m for lim in limits), min(lim.max_altitude_m for lim in limits)
+
+    def summary(self, vehicle_id: str | None = None) -> dict[str, Any]:
+        """The rules in force (for a status tool or endpoint): limits, zones, deny lists, switches, locks."""
+        zones = self.geofences.for_vehicle(vehicle_id) if vehicle_id else list(self.geofences)
+        out: dict[str, Any] = {
+            "limits": asdict(self.limits_for(vehicle_id) if vehicle_id else self.fleet_limits),
+            "min_separation_m": self.settings.min_separation_m,
+            "agents_may_kill": self.settings.agents_may_kill,
+            "simulators_only": self.settings.simulators_only,
+            "param_deny_patterns": list(self.param_deny_patterns),
+            "mode_deny_in_air": sorted(self.mode_deny_in_air),
+            "geofences": [{"name": z.name, "kind": z.kind, "scope": z.scope} for z in zones],
+        }
+        if vehicle_id:
+            out["locked"] = self.locks.reason_for(vehicle_id)
+        else:
+            out["locks"] = [lk.to_record() for lk in self.locks.all()]
+            out["vehicle_overrides"] = {v: asdict(lim) for v, lim in sorted(self._overrides.items())}
+        return out
 
     # --- gates shared by every actuating check ---------------------------------------------------
 

@@ -306,3 +306,16 @@ def test_decide_returns_audit_friendly_decisions() -> None:
     assert info.value.rule == "max_altitude"
     allowed = decide(p.check_motion, ctx("alpha"), target(alt=20.0))
     assert allowed.allowed and allowed.rule == "motion" and allowed.raise_if_refused() is allowed
+
+
+def test_altitude_band_and_summary() -> None:
+    p = SafetyPolicy(settings(), vehicle_limits={"alpha": {"max_altitude_m": 60.0, "min_altitude_m": 4.0}})
+    assert p.altitude_band(["alpha", "bravo"]) == (4.0, 60.0)
+    assert p.altitude_band(["bravo"]) == (2.0, 120.0)
+    assert p.altitude_band([]) == (2.0, 120.0)
+    fleet = p.summary()
+    assert fleet["limits"]["max_altitude_m"] == 120.0
+    assert fleet["vehicle_overrides"]["alpha"]["max_altitude_m"] == 60.0
+    assert "ARMING_*" in fleet["param_deny_patterns"] and fleet["locks"] == []
+    one = p.summary("alpha")
+    assert one["limits"]["max_altitude_m"] == 60.0 and one["locked"] is None
