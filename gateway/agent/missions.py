@@ -79,6 +79,7 @@ class Mission:
     plan: Callable[[MissionContext], list[PlannedCall]]
     answer: str = "Done."
     tags: tuple[str, ...] = field(default_factory=tuple)
+    battery_pct: dict[str, float] = field(default_factory=dict)  # set in the sim before the mission
 
 
 # --- check helpers ------------------------------------------------------------------------------
@@ -447,6 +448,7 @@ def _m_battery_question() -> Mission:
         plan=lambda c: [("get_battery", {"drone_id": "alpha"})],
         answer="",  # the self-check pilot quotes the tool result
         tags=("read",),
+        battery_pct={"alpha": 73.0},  # not 100: a guessed answer must not pass
     )
 
 

@@ -167,7 +167,8 @@ class ScriptedModelServer:
             ],
         }
         if reply.usage is None:
-            prompt = len(json.dumps(body.get("messages", []))) // 4
+            # An estimate (4 characters a token) of what the request would cost, tools included.
+            prompt = (len(json.dumps(body.get("messages", []))) + len(json.dumps(body.get("tools", [])))) // 4
             completion = len(json.dumps(message)) // 4
             out["usage"] = {
                 "prompt_tokens": prompt,
