@@ -22,6 +22,7 @@ import contextlib
 import datetime as dt
 import json
 import os
+import signal
 import sys
 import time
 from dataclasses import dataclass, field
@@ -38,7 +39,7 @@ from gateway.agent.pilot import SELF_CHECK_MODEL, ScriptedPilot
 from gateway.agent.scripted import ScriptedModelServer
 from gateway.agent.settings import AgentSettings, split_list
 from gateway.agent.stack import GatewayTruth, LocalStack, Sampler, SimTruth, reset_drones
-from gateway.agent.toolbox import select_tools
+from gateway.agent.toolbox import select_tools, tool_list_tokens
 
 DOCS = Path(__file__).resolve().parent.parent / "docs" / "benchmarks.md"
 
@@ -124,7 +125,9 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
             stack.push_async_callback(truth.aclose)
         else:
             truth = GatewayTruth(link)
-        console.print(f"[dim]{len(tools)} of {len(all_tools)} tools offered; truth from {truth.source}[/]")
+        list_tokens, method = tool_list_tokens(tools)
+        args.tool_list = f"{len(tools)} of {len(all_tools)} tools, {list_tokens} tokens ({method})"
+        console.print(f"[dim]tool list: {args.tool_list}; truth from {truth.source}[/]")
 
         pilot: ScriptedPilot | None = None
         if args.self_check:
@@ -257,7 +260,7 @@ def markdown_section(runs: list[MissionRun], args: argparse.Namespace) -> str:
         f"## NL missions: {args.model}",
         "",
         f"{dt.datetime.now(dt.UTC):%Y-%m-%d %H:%M} UTC, endpoint `{args.endpoint}`, toolsets: {selection}, "
-        f"max steps {args.max_steps}, sim speed-up {args.speedup:g}. "
+        f"tool list {args.tool_list}, max steps {args.max_steps}, sim speed-up {args.speedup:g}. "
         f"Passed **{t['passed']}/{t['missions']}**.",
         "",
         "| mission | ok | tool calls | errors | parsed from text | tokens in | tokens out | wall s "
@@ -288,6 +291,15 @@ def _n(v: int | None) -> str:
     return "n/a" if v is None else str(v)
 
 
+async def _cancellable(coro: Any) -> Any:
+    """Run ``coro`` so that SIGTERM cancels it like Ctrl-C does: the sim, gateway and sidecars it
+    started are then stopped by their context managers instead of being orphaned."""
+    task = asyncio.ensure_future(coro)
+    with contextlib.suppress(NotImplementedError):
+        asyncio.get_running_loop().add_signal_handler(signal.SIGTERM, task.cancel)
+    return await task
+
+
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
     console = Console() if sys.stdout.isatty() else Console(width=150)
@@ -296,7 +308,11 @@ def main(argv: list[str] | None = None) -> int:
             "[bold yellow]HARNESS SELF-CHECK[/] scripted endpoint replaying each mission's ideal calls; "
             "these figures are NOT a model result."
         )
-    runs = asyncio.run(run_missions(args, console))
+    try:
+        runs = asyncio.run(_cancellable(run_missions(args, console)))
+    except (asyncio.CancelledError, KeyboardInterrupt):
+        console.print("[red]interrupted[/]: the sim and gateway it started were stopped")
+        return 130
     title = (
         "HARNESS SELF-CHECK (scripted pilot, not a model; tokens = request size / 4)"
         if args.self_check

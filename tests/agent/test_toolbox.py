@@ -14,6 +14,7 @@ from gateway.agent.toolbox import (
     outcome_from_result,
     select_tools,
     tool_info_from_mcp,
+    tool_list_tokens,
     toolset_of,
     validate_arguments,
 )
@@ -149,6 +150,12 @@ def test_result_conversion_and_summary() -> None:
     out = outcome_from_result(result)
     assert out.text == '{"status": "running"}' and not out.is_error
     assert out.summary() == "status=running"
+    prose = SimpleNamespace(
+        content=[SimpleNamespace(type="text", text="takeoff on a succeeded: reached 10 m")],
+        structured_content={"status": "succeeded"},
+        is_error=False,
+    )
+    assert outcome_from_result(prose).summary() == "takeoff on a succeeded: reached 10 m"
     with_json = outcome_from_result(result, include_structured=True)
     assert (
         with_json.text == '{"status": "running"}\n{"status":"running","operation_id":"op-1","progress":0.4}'
@@ -166,3 +173,10 @@ def test_one_line_summary() -> None:
     assert one_line_summary("first line\nsecond") == "first line …"
     assert one_line_summary("", {"lat": 47.123456789, "lon": 8.5}) == "lat=47.1235, lon=8.5"
     assert len(one_line_summary("y" * 500)) == 140
+
+
+def test_tool_list_tokens_grow_with_the_list() -> None:
+    one, method = tool_list_tokens([GOTO])
+    two, _ = tool_list_tokens([GOTO, ToolInfo("land", "Land where the drone is.", {"type": "object"})])
+    assert 0 < one < two
+    assert method in ("cl100k_base", "estimate: characters / 4")
