@@ -136,7 +136,11 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
             if args.list_tools:
                 _print_tools(tools, console, as_json=args.json)
                 return EXIT_OK
-            display = JsonLinesDisplay(console.file) if args.json else RichDisplay(console)
+            display = (
+                JsonLinesDisplay(console.file)
+                if args.json
+                else RichDisplay(console, echo_user=bool(prompt) or not _is_tty(stdin or sys.stdin))
+            )
             host = AgentHost(
                 ModelConfig(
                     endpoint=args.endpoint or env.endpoint,
@@ -197,6 +201,11 @@ async def _interactive(host: AgentHost, console: Console, stdin: Any, *, as_json
             console.print("[dim]" + ", ".join(sorted(host.tools)) + "[/]")
             continue
         await host.run_turn(text)
+
+
+def _is_tty(stream: Any) -> bool:
+    isatty = getattr(stream, "isatty", None)
+    return bool(isatty and isatty())
 
 
 def _print_tools(tools: list[Any], console: Console, *, as_json: bool) -> None:

@@ -35,9 +35,12 @@ class RichDisplay:
     On a terminal the progress of a running tool is a spinner line updated in place; elsewhere (a log,
     a test) each distinct progress message is printed as its own line."""
 
-    def __init__(self, console: Console | None = None, *, show_usage: bool = True) -> None:
+    def __init__(
+        self, console: Console | None = None, *, show_usage: bool = True, echo_user: bool = True
+    ) -> None:
         self.console = console or Console()
         self.show_usage = show_usage
+        self.echo_user = echo_user  # off at an interactive prompt, where the user's line is already shown
         self._status: Status | None = None
         self._last_progress: tuple[str, str] | None = None
 
@@ -52,7 +55,8 @@ class RichDisplay:
     # --- handlers --------------------------------------------------------------------------------
 
     def _on_turn_start(self, d: dict[str, Any]) -> None:
-        self.console.print(f"[bold cyan]you[/] {escape(d['user'])}")
+        if self.echo_user:
+            self.console.print(f"[bold cyan]you[/] {escape(d['user'])}")
 
     def _on_model_reply(self, d: dict[str, Any]) -> None:
         if d.get("tool_calls") and d.get("content") and not d.get("parsed_from_text"):
