@@ -82,6 +82,12 @@ def add_agent_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--system", default=None, help="replace the default system prompt")
     parser.add_argument(
+        "--model-timeout",
+        type=float,
+        default=300.0,
+        help="seconds to wait for one model reply (default 300; CPU-only local models can be slow)",
+    )
+    parser.add_argument(
         "--structured",
         action="store_true",
         help="also hand the model each result's structured content as JSON (more tokens)",
@@ -149,6 +155,7 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
                     temperature=None
                     if args.temperature is not None and args.temperature < 0
                     else args.temperature,
+                    timeout_s=args.model_timeout,
                 ),
                 link,
                 tools,

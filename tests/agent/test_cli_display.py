@@ -205,3 +205,20 @@ async def test_missing_model_is_a_usage_error(monkeypatch) -> None:
 def test_max_steps_must_be_positive() -> None:
     with pytest.raises(SystemExit):
         _parse(["--max-steps", "0", "x"])
+
+
+def test_console_entry_point_runs_the_agent(toy, scripted) -> None:
+    """`fleet-gateway agent` as a separate process (the dispatcher lists the command module)."""
+    import subprocess
+    import sys
+
+    model = scripted([call("land", drone_id="alpha"), say("alpha landed")])
+    proc = subprocess.run(
+        [sys.executable, "-m", "gateway.cli", "agent", "--mcp-url", toy.url, "--token", TOKEN,
+         "--endpoint", model.base_url, "--model", "m", "--json", "land alpha"],
+        capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stderr
+    events = [json.loads(line) for line in proc.stdout.splitlines() if line.startswith("{")]
+    assert events[-1]["event"] == "turn_end" and events[-1]["outcome"] == "answered"
+    assert toy.world.calls == [("land", {"drone_id": "alpha"})]
