@@ -83,6 +83,7 @@ class FlightController:
         self.touchdown_t: float | None = None
         self.landed_since = 0.0
         self.land_pause_until = 0.0
+        self.ekf_failsafe = False
 
     # ------------------------------------------------------------------------------------------------
     # parameters
@@ -165,6 +166,9 @@ class FlightController:
         if v.landed:
             v.body.stop()
         v.text(mav.MAV_SEVERITY_INFO, "Disarming motors")
+        if v.flight_time_s > 0:
+            v._stat_params()
+            v.notify_param("MOT_THST_HOVER", v.params.get("MOT_THST_HOVER"))
         if v.auto.running and v.landed:
             v.auto.running = False
 
@@ -553,10 +557,23 @@ class FlightController:
     def ekf_check(self) -> None:
         """Position lost while flying a mode that needs it: EKF failsafe -> LAND (FS_EKF_ACTION)."""
         v = self.v
-        if v.flying and not v.position_ok and v.mode in REQUIRES_POSITION and v.t >= v.timeline.ekf_gps:
-            v.text(mav.MAV_SEVERITY_CRITICAL, "EKF Failsafe")
-            action = int(self._p("FS_EKF_ACTION"))
-            self._enter(Mode.ALT_HOLD if action == 2 else Mode.LAND)
+        bad = not v.position_ok and v.t >= v.timeline.ekf_gps
+        if not bad:
+            if self.ekf_failsafe:
+                self.ekf_failsafe = False
+                v.text(mav.MAV_SEVERITY_CRITICAL, "EKF Failsafe Cleared")
+            return
+        if self.ekf_failsafe or not v.flying:
+            return
+        self.ekf_failsafe = True
+        v.text(mav.MAV_SEVERITY_CRITICAL, "EKF Failsafe")
+        if v.mode not in REQUIRES_POSITION:
+            return
+        if int(self._p("FS_EKF_ACTION")) == 2:
+            self._enter(Mode.ALT_HOLD)
+        else:
+            self._enter(Mode.LAND)
+            self.land_pause_until = v.t + 4.0
 
     # ------------------------------------------------------------------------------------------------
     # simulation step
