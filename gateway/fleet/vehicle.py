@@ -46,7 +46,13 @@ from gateway.fleet.modes import (
     PX4_MODES,
     autopilot_name,
 )
-from gateway.fleet.telemetry import MissionProgressValue, TelemetryCache, TelemetryFeed
+from gateway.fleet.telemetry import (
+    ARDUPILOT_SKIP,
+    PX4_SKIP,
+    MissionProgressValue,
+    TelemetryCache,
+    TelemetryFeed,
+)
 from gateway.registry.sidecar import Confine, Sidecar, SidecarState
 from gateway.registry.spec import VehicleSpec
 
@@ -435,7 +441,9 @@ class Vehicle:
             asyncio.create_task(self._identify(system), name=f"ident-{self.id}"),
         ]
         if self.settings.sidecar_heartbeat_watchdog_s:
-            self._session_tasks.append(asyncio.create_task(self._feed_watchdog(system)))
+            self._session_tasks.append(
+                asyncio.create_task(self._feed_watchdog(system), name=f"watchdog-{self.id}")
+            )
         log.info("%s: MAVSDK session open on gRPC port %d", self.id, port)
         self._schedule_rates("session start")
         try:
@@ -551,7 +559,14 @@ class Vehicle:
         feed = self._feed
         if feed is None:
             return
-        await feed.request_rates(lambda what, aw: self._call(what, aw, 5.0))
+        for _ in range(30):  # which streams to ask for depends on the autopilot: wait for a HEARTBEAT
+            if self._link.autopilot is not None:
+                break
+            await asyncio.sleep(0.1)
+        skip = {MAV_AUTOPILOT_ARDUPILOTMEGA: ARDUPILOT_SKIP, MAV_AUTOPILOT_PX4: PX4_SKIP}.get(
+            self._link.autopilot or 0, frozenset()
+        )
+        await feed.request_rates(lambda what, aw: self._call(what, aw, 5.0), skip)
         # MISSION_CURRENT is only in ArduPilot's EXT_STAT stream: ask for it by id (mission progress)
         with contextlib.suppress(CommandFailed):
             await self._command_long(
