@@ -94,7 +94,7 @@ class FormationPlan:
     conflicts: list[Conflict]
     phases: list[dict[str, Waypoint]]  # per phase: drone id -> waypoint; absent = stays put
     total_distance_m: float
-    min_clearance_m: float  # smallest distance between two drones' segments within any phase
+    min_clearance_m: float | None  # smallest distance between two drones' segments in a phase; None: 1 drone
     notes: list[str] = field(default_factory=list)
 
     def slot_for(self, drone_id: str) -> SlotAssignment:
@@ -281,6 +281,7 @@ def plan_formation(
     transit, direct_conflicts = layering.solve()
 
     phases_xyz = layering.phase_segments(transit)
+    clearance = layering.min_clearance(transit)
     notes = []
     close_pairs = [
         (starts[i].id, starts[j].id, required[i, j])
@@ -348,7 +349,7 @@ def plan_formation(
         conflicts=conflicts,
         phases=phases,
         total_distance_m=round(sum(s.distance_m for s in slots), 2),
-        min_clearance_m=round(layering.min_clearance(transit), 3),
+        min_clearance_m=round(clearance, 3) if math.isfinite(clearance) else None,
         notes=notes,
     )
 

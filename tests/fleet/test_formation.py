@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import json
 import math
 import random
 
@@ -267,6 +268,8 @@ def test_in_trail_drones_are_layered_apart() -> None:
     assert len(plan.phases[1]) == 2
     assert assert_separated(plan, starts, 5.0) == pytest.approx(5.0, abs=1e-3)
     assert plan.min_clearance_m == pytest.approx(5.0, abs=1e-3)
+    body_json = json.loads(json.dumps(plan.to_dict(), allow_nan=False))
+    assert body_json["conflicts"][0]["resolution"] and len(body_json["phases"]) == 3
 
 
 def test_stacked_and_scattered_fleets_are_separated() -> None:
@@ -410,6 +413,8 @@ def test_plan_accepts_tuples_and_reports_per_drone_details() -> None:
     assert slot.distance_m == pytest.approx(math.hypot(30.0, 10.0), abs=0.05)
     assert slot.transit_alt_m is None and len(slot.legs) == 1
     assert plan.to_dict()["slots"][0]["drone_id"] == "a"
+    assert plan.min_clearance_m is None  # one drone: nothing to keep apart
+    json.dumps(plan.to_dict(), allow_nan=False)
     with pytest.raises(KeyError):
         plan.slot_for("zz")
 
