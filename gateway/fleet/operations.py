@@ -397,7 +397,10 @@ class OperationManager:
                 await asyncio.wait_for(op.changed.wait(), timeout=min(remaining, 1.0))
             if on_progress is not None and (op.progress, op.message) != last_reported:
                 last_reported = (op.progress, op.message)
-                await on_progress(op)
+                try:
+                    await on_progress(op)
+                except Exception:  # a client that cannot take progress still gets its answer
+                    log.debug("progress report for %s failed", op.id, exc_info=True)
         return op
 
     async def stop(self) -> None:

@@ -57,8 +57,11 @@ def build_mcp(gateway: Any) -> MCPServer:
 
     @contextlib.asynccontextmanager
     async def lifespan(server: MCPServer) -> AsyncIterator[dict[str, Any]]:
-        async with notifier_box["notifier"].running():
-            yield {"fleet": fa}
+        try:
+            async with notifier_box["notifier"].running():
+                yield {"fleet": fa}
+        finally:  # the gateway is going down: running operations are recorded as interrupted
+            await fa.operations.stop()
 
     server = MCPServer(
         SERVER_NAME,
