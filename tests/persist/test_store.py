@@ -179,6 +179,10 @@ async def test_track_sample_accepts_unix_time_and_rejects_bad_coordinates() -> N
     assert sample.t == T0
     with pytest.raises(ValueError, match="lat"):
         TrackSample(flight_id=1, t=T0, lat=91, lon=2)
+    with pytest.raises(ValueError, match="lon"):
+        TrackSample(flight_id=1, t=T0, lat=1, lon=math.nan)
+    odd = TrackSample(flight_id=1, t=T0, lat=1, lon=2, alt_rel_m=math.nan, battery_pct=math.inf)
+    assert odd.alt_rel_m is None and odd.battery_pct is None
 
 
 async def test_track_batch_is_one_transaction(store: Store) -> None:
