@@ -273,28 +273,42 @@ class LocalStack:
         except TimeoutError:
             raise StackError(f"the simulator did not start:\n{self.log_tail('sim')}") from None
 
-    async def _start_gateway(self) -> None:
-        port = free_tcp_port()
-        self.api_url = f"http://127.0.0.1:{port}"
-        self.mcp_url = f"{self.api_url}/mcp"
-        env = {
-            "GATEWAY_HOST": "127.0.0.1",
-            "GATEWAY_PORT": str(port),
-            "GATEWAY_DATABASE_URL": f"sqlite+aiosqlite:///{self.workdir / 'gateway.db'}",
-            "GATEWAY_LOG_LEVEL": "WARNING",
-            **self.extra_env,
-        }
-        proc = await self._spawn("gateway", ["serve"], env)
+    async def _start_gateway(self, attempts: int = 4) -> None:
+        """Start ``fleet-gateway serve`` on a free port. A free port can be taken by another process
+        before the gateway binds it: then the gateway exits with "address already in use" and this
+        tries another port. Ready = this process's own uvicorn says it listens there, and /healthz."""
+        for attempt in range(attempts):
+            port = free_tcp_port()
+            self.api_url = f"http://127.0.0.1:{port}"
+            self.mcp_url = f"{self.api_url}/mcp"
+            env = {
+                "GATEWAY_HOST": "127.0.0.1",
+                "GATEWAY_PORT": str(port),
+                "GATEWAY_DATABASE_URL": f"sqlite+aiosqlite:///{self.workdir / 'gateway.db'}",
+                "GATEWAY_LOG_LEVEL": "INFO",  # uvicorn's "running on" line is the proof of our bind
+                **self.extra_env,
+            }
+            proc = await self._spawn("gateway", ["serve"], env)
+            if await self._gateway_ready(proc, port):
+                return
+            self._procs.remove(proc)
+            if "address already in use" not in self.log_tail("gateway").lower() or attempt == attempts - 1:
+                raise StackError(f"the gateway exited at start:\n{self.log_tail('gateway')}")
+
+    async def _gateway_ready(self, proc: asyncio.subprocess.Process, port: int) -> bool:
+        """True once ready; False if the process exited (the caller reads its log)."""
+        banner = f"running on http://127.0.0.1:{port}"
         deadline = time.monotonic() + 60
         async with httpx.AsyncClient(timeout=5) as http:
             while True:
                 if proc.returncode is not None:
-                    raise StackError(f"the gateway exited at start:\n{self.log_tail('gateway')}")
-                with contextlib.suppress(httpx.HTTPError):
-                    if (await http.get(f"{self.api_url}/healthz")).status_code == 200:
-                        return
+                    return False
+                if banner in self.log_tail("gateway", 200).lower():
+                    with contextlib.suppress(httpx.HTTPError):
+                        if (await http.get(f"{self.api_url}/healthz")).status_code == 200:
+                            return True
                 if time.monotonic() > deadline:
-                    raise StackError(f"the gateway did not answer /healthz:\n{self.log_tail('gateway')}")
+                    raise StackError(f"the gateway did not become ready:\n{self.log_tail('gateway')}")
                 await asyncio.sleep(0.2)
 
     async def _register_and_wait(self) -> None:

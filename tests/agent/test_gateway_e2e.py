@@ -97,3 +97,26 @@ async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStac
     # Bravo never left the ground.
     bravo = (await truth.snapshot(["bravo"]))["bravo"]
     assert bravo.landed and not bravo.armed
+
+
+async def test_stack_moves_on_when_its_port_is_taken(monkeypatch) -> None:
+    """A port picked free can be taken before the gateway binds it: the stack must not talk to the
+    squatter, it must notice its own gateway failed to bind and use another port."""
+    import socket
+
+    from gateway.agent import stack as stack_module
+
+    squatter = socket.socket()
+    squatter.bind(("127.0.0.1", 0))
+    squatter.listen()
+    taken = squatter.getsockname()[1]
+    real = stack_module.free_tcp_port
+    ports = iter([taken])
+    monkeypatch.setattr(stack_module, "free_tcp_port", lambda: next(ports, None) or real())
+    try:
+        async with LocalStack(["alpha"], speedup=10) as s:
+            assert s.api_url != f"http://127.0.0.1:{taken}"
+            async with McpLink(s.mcp_url) as link:
+                assert "takeoff" in {t.name for t in await link.list_tools()}
+    finally:
+        squatter.close()
