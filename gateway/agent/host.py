@@ -100,10 +100,10 @@ class Usage:
         self.completion_tokens = (self.completion_tokens or 0) + (completion or 0)
 
     def merge(self, other: Usage) -> None:
-        for p, c in ((other.prompt_tokens, other.completion_tokens),):
-            if p is not None or c is not None:
-                self.prompt_tokens = (self.prompt_tokens or 0) + (p or 0)
-                self.completion_tokens = (self.completion_tokens or 0) + (c or 0)
+        """Add another turn's counts (a side nobody reported stays None)."""
+        if other.prompt_tokens is not None or other.completion_tokens is not None:
+            self.prompt_tokens = (self.prompt_tokens or 0) + (other.prompt_tokens or 0)
+            self.completion_tokens = (self.completion_tokens or 0) + (other.completion_tokens or 0)
         self.model_calls += other.model_calls
         self.calls_without_usage += other.calls_without_usage
 
