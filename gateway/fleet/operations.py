@@ -340,14 +340,19 @@ class OperationManager:
         send: Callable[[], Awaitable[Any]],
         params: dict[str, Any],
         session_key: str | None = None,
+        precheck: Callable[[], None] | None = None,
     ) -> Operation:
         """Send the command (``send``); if the vehicle accepts it, track it as the vehicle's operation.
 
-        A command that fails raises and leaves the current operation as it was: the vehicle is still
-        doing it. On success the previous operation is marked superseded.
+        Commands on one vehicle are serialised; ``precheck`` runs inside that critical section, so a
+        check such as "no takeoff in progress" also sees a takeoff whose command is still being sent
+        (LLM hosts issue parallel tool calls). A command that fails raises and leaves the current
+        operation as it was: the vehicle is still doing it. On success the previous one is superseded.
         """
         lock = self._locks.setdefault(vehicle.id, asyncio.Lock())
         async with lock:
+            if precheck is not None:
+                precheck()
             await send()
             op = Operation(
                 id=uuid.uuid4().hex[:12],

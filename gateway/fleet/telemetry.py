@@ -127,8 +127,9 @@ class OdometryValue:
 
 @dataclass(frozen=True)
 class MissionProgressValue:
-    current: int  # user item 1..N (0: not started)
+    current: int  # user item 1..N being flown (0: not started); N once finished
     total: int
+    finished: bool = False  # the last item was reached (MAVSDK reports current == total)
 
 
 @dataclass(frozen=True)
@@ -393,7 +394,7 @@ class TelemetryFeed:
         value = (
             self._map_progress(current, total)
             if self._map_progress is not None
-            else MissionProgressValue(current, total)
+            else MissionProgressValue(current, total, total > 0 and current >= total)
         )
         self.cache.put("mission_progress", value)
 

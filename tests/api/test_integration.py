@@ -49,6 +49,7 @@ async def test_register_three_drones_restart_and_restore(tmp_path: Path) -> None
             assert 'fleet_gateway_vehicles{state="ready"} 3.0' in metrics
             assert 'fleet_gateway_telemetry_age_seconds{stream="position",vehicle="alpha"}' in metrics
             assert 'fleet_gateway_heartbeat_age_seconds{vehicle="charlie"}' in metrics
+            assert 'fleet_gateway_telemetry_messages_total{stream="position",vehicle="bravo"}' in metrics
 
             before = await vehicles_in_db(db)
             bad = [

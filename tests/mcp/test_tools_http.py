@@ -9,8 +9,10 @@ from __future__ import annotations
 
 import asyncio
 import json
+import time
 from typing import Any
 
+import httpx
 import pytest
 from mcp.server.subscriptions import ResourceUpdated
 from mcp.shared.exceptions import MCPDeprecationWarning, MCPError
@@ -203,6 +205,12 @@ async def test_flight_tour_telemetry_resources_and_kill(stack: Stack) -> None:
         await wait_until_true(stack, "d1", lambda s: s["rel_alt_m"] > 11, "climbed")
         assert "drone://d1/state" in updates_legacy
 
+        latencies = []
+        for _ in range(20):  # a figure for the report, not an assertion
+            started = time.perf_counter()
+            await ok(stack, c, "get_position", d)
+            latencies.append(time.perf_counter() - started)
+        stack.figures["get_position_p50_ms"] = round(sorted(latencies)[10] * 1000, 1)
         true = await stack.true_state("d1")
         p = await ok(stack, c, "get_position", d)
         assert abs(p["alt_m"] - true["rel_alt_m"]) < 1.5 and distance_m(true, p["lat_deg"], p["lon_deg"]) < 3
@@ -364,6 +372,18 @@ async def test_mission_flight_pause_resume(stack: Stack) -> None:
     state = await wait_until_true(stack, "d3", lambda s: not s["armed"], "landed after RTL")
     assert distance_m(state, home["lat"], home["lon"]) < 5.0
     await wait_audited(stack, "d3")
+
+
+async def test_mcp_route_rejects_foreign_hosts_and_rest_keeps_its_errors(stack: Stack) -> None:
+    body = {"jsonrpc": "2.0", "id": 1, "method": "tools/list", "params": {}}
+    headers = {"accept": "application/json, text/event-stream", "mcp-protocol-version": "2026-07-28"}
+    async with httpx.AsyncClient(base_url=stack.base_url, timeout=30) as http:
+        r = await http.post("/mcp", json=body, headers={**headers, "host": "evil.example"})
+        assert r.status_code == 421
+        r = await http.post("/mcp", json=body, headers={**headers, "origin": "http://evil.example"})
+        assert r.status_code == 403
+        r = await http.get("/api/v1/nothing-here")
+        assert r.status_code == 404 and r.json()["error"]["code"] == "not_found"
 
 
 async def test_every_tool_of_the_server_was_called(stack: Stack) -> None:

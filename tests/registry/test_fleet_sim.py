@@ -156,8 +156,17 @@ async def test_flight_through_vehicle_api_is_logged(store, registries) -> None:
         assert pos.abs_alt_m == pytest.approx(home.abs_alt_m + 10, abs=1.0)  # relative -> AMSL done right
         await v.hold()
         assert (await sim.control.state(0))["mode"] == "GUIDED"  # hold is never LOITER
-        await v.land()
-        await wait_until(lambda: v.telemetry.fresh("armed") is False, what="disarmed after landing")
+        await v.set_yaw(90)
+        await wait_until(
+            lambda: (h := v.telemetry.fresh("heading_deg")) is not None and abs(h - 90) < 5, what="heading 90"
+        )
+        with pytest.raises(CommandFailed, match="disarm"):
+            await v.disarm()  # ArduCopter refuses to disarm in flight
+        await v.set_max_speed(8)
+        await v.return_to_launch()
+        await wait_until(lambda: v.telemetry.fresh("flight_mode") == "RTL", what="RTL mode")
+        await wait_until(lambda: v.telemetry.fresh("armed") is False, what="disarmed after RTL")
+        await v.kill()  # accepted on the ground, changes nothing
 
         async def flight_closed() -> bool:
             flights, _ = await store.list_flights(vehicle_id="flyer")
@@ -170,8 +179,8 @@ async def test_flight_through_vehicle_api_is_logged(store, registries) -> None:
         flights, total = await store.list_flights(vehicle_id="flyer")
         assert total == 1
         flight = flights[0]
-        assert 70 <= flight.distance_m <= 130, flight
-        assert 9 <= flight.max_alt_rel_m <= 11.5, flight
+        assert 150 <= flight.distance_m <= 260, flight  # out 100 m and back
+        assert 9 <= flight.max_alt_rel_m <= 16, flight  # RTL climbs to RTL_ALT (15 m)
         assert flight.home_alt_amsl == pytest.approx(home.abs_alt_m)
         assert flight.duration_s > 0 and flight.battery_used_pct is not None
         track = await store.get_track(flight.id)
@@ -219,6 +228,9 @@ async def test_mission_round_trip_run_and_parameters(store, registries) -> None:
         )
         assert v.telemetry.fresh("mission_progress").total == 4
         await wait_until(lambda: v.telemetry.fresh("armed") is False, what="landed at the end of the mission")
+        # the land item is "reached" once landed, a moment after the disarm
+        await wait_until(lambda: v.telemetry.mission_progress.value.finished, what="mission finished")
+        assert v.telemetry.mission_progress.value.current == 4
         assert await v.is_mission_finished()
 
         # parameters: typed reads and writes, the 4.7 rename, a clear error for unknown names

@@ -42,6 +42,7 @@ async def test_register_persist_restore_and_stop(store, registries) -> None:
         status = a.status()
         assert status["sidecar"]["pid"] and status["sidecar"]["grpc_port"]
         assert status["last_heartbeat_age_s"] is not None and status["sysid_mismatch"] is False
+        assert status["last_heartbeat_at"].endswith("+00:00")
         # not ready: no position/home from a heartbeat-only vehicle; actions say so instead of hanging
         with pytest.raises(VehicleNotReady, match="connected but not ready"):
             await a.takeoff(10)

@@ -24,7 +24,7 @@ async def test_gcs_heartbeat_loss_triggers_rtl_only_for_the_configured_gcs() -> 
 
         # MAV_GCS_SYSID is still 255: mavsdk_server (245) is not "our GCS", so losing it changes nothing
         await sim.control.link_down(0)
-        await asyncio.sleep(80.0 / SPEEDUP)  # 80 simulated seconds, well past FS_GCS_TIMEOUT
+        await asyncio.sleep(65.0 / SPEEDUP)  # 65 simulated seconds, past FS_GCS_TIMEOUT
         truth = await sim.control.state(0)
         assert truth["mode"] == "GUIDED" and not truth["failsafe_gcs"]
         assert truth["gcs_heartbeat_age_s"] is None
@@ -44,10 +44,13 @@ async def test_gcs_heartbeat_loss_triggers_rtl_only_for_the_configured_gcs() -> 
         assert truth["failsafe_gcs"] and truth["mode"] == "RTL"
         await sim.control.link_up(0)
         await wait_for(drone.telemetry.flight_mode(), lambda m: m == FlightMode.RETURN_TO_LAUNCH)
-        texts = await _texts(sim)
-        assert "GCS Failsafe" in texts
-        await wait_for(drone.telemetry.armed(), lambda armed: not armed, timeout_s=120)  # RTL lands at home
-        assert "GCS Failsafe Cleared" in await _texts(sim)
+        assert "GCS Failsafe" in await _texts(sim)
+        for _ in range(200):  # heartbeats from 245 again: the failsafe clears (the vehicle stays in RTL)
+            if "GCS Failsafe Cleared" in await _texts(sim):
+                break
+            await asyncio.sleep(0.05)
+        truth = await sim.control.state(0)
+        assert not truth["failsafe_gcs"] and truth["mode"] == "RTL"
 
 
 async def test_low_battery_failsafe_returns_home() -> None:

@@ -116,3 +116,26 @@ async def test_mission_start_on_the_ground_takes_off_and_lands() -> None:
         assert state["landed"] and state["mode"] == "AUTO"
         texts = [t for _t, _s, t in await sim.control.status_texts(0)]
         assert "Mission: 1 Takeoff" in texts and "Mission: 3 Land" in texts
+
+
+async def test_geofence_refuses_outside_targets_and_breach_returns_home() -> None:
+    async with sim_process(1, speedup=SPEEDUP) as sim, raw_mavlink(sim.urls[0]) as gcs:
+        await sim.control.set_param(0, "FENCE_ENABLE", 1)
+        await sim.control.set_param(0, "FENCE_RADIUS", 80)
+        await _armed_in_guided(sim, gcs)
+        assert (await gcs.command(mav.MAV_CMD_NAV_TAKEOFF, 0, 0, 0, 0, 0, 0, 10)).result == ACCEPTED
+        start = await _until(sim, lambda s: s["rel_alt_m"] > 9.9)
+        far = offset(start["lat"], start["lon"], 120.0, 0.0)
+        assert (await gcs.command(mav.MAV_CMD_DO_REPOSITION, -1, 1, 0, math.nan, *far, 10.0)).result == FAILED
+        near = offset(start["lat"], start["lon"], 50.0, 0.0)
+        assert (
+            await gcs.command(mav.MAV_CMD_DO_REPOSITION, -1, 1, 0, math.nan, *near, 10.0)
+        ).result == ACCEPTED
+        await _until(sim, lambda s: distance_m(s["lat"], s["lon"], *near) < 1.0)
+
+        await sim.control.set_param(0, "FENCE_RADIUS", 30)  # now 50 m out: outside the circle
+        state = await _until(sim, lambda s: s["mode"] == "RTL")
+        texts = [t for _t, _s, t in await sim.control.status_texts(0)]
+        assert "Circle fence breached" in texts
+        state = await _until(sim, lambda s: not s["armed"], timeout_s=90)
+        assert distance_m(state["lat"], state["lon"], start["lat"], start["lon"]) < 2.0
