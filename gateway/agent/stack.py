@@ -12,6 +12,7 @@ import asyncio
 import contextlib
 import os
 import re
+import secrets
 import signal
 import sys
 import tempfile
@@ -194,7 +195,8 @@ class LocalStack:
         self.speedup = speedup
         self.extra_env = dict(env or {})
         self.ready_timeout_s = ready_timeout_s
-        self.token: str | None = None
+        # An agent token, so the host's bearer auth against the gateway's /mcp is exercised too.
+        self.token: str = secrets.token_urlsafe(18)
         self.mcp_url = ""
         self.api_url = ""
         self.sim_control_url = ""
@@ -286,6 +288,7 @@ class LocalStack:
                 "GATEWAY_PORT": str(port),
                 "GATEWAY_DATABASE_URL": f"sqlite+aiosqlite:///{self.workdir / 'gateway.db'}",
                 "GATEWAY_LOG_LEVEL": "INFO",  # uvicorn's "running on" line is the proof of our bind
+                "GATEWAY_AGENT_TOKENS": self.token,
                 **self.extra_env,
             }
             proc = await self._spawn("gateway", ["serve"], env)

@@ -7,7 +7,7 @@ from collections.abc import AsyncIterator
 import pytest
 
 from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
-from gateway.agent.mcp_link import McpLink
+from gateway.agent.mcp_link import McpLink, McpLinkError
 from gateway.agent.scripted import ScriptedReply, call, say
 from gateway.agent.stack import LocalStack
 from gateway.fleet.geo import horizontal_distance_m, offset_position
@@ -39,7 +39,7 @@ async def test_model_flies_takeoff_goto_land_on_the_sim(stack: LocalStack, scrip
         ]
     )
     events: list[AgentEvent] = []
-    async with McpLink(stack.mcp_url) as link:
+    async with McpLink(stack.mcp_url, stack.token) as link:
         host = AgentHost(
             ModelConfig(model.base_url, "scripted", max_retries=0),
             link,
@@ -82,7 +82,7 @@ async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStac
         ],
         repeat_last=True,
     )
-    async with McpLink(stack.mcp_url) as link:
+    async with McpLink(stack.mcp_url, stack.token) as link:
         host = AgentHost(
             ModelConfig(model.base_url, "scripted", max_retries=0), link, await link.list_tools(), max_steps=5
         )
@@ -97,6 +97,10 @@ async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStac
     # Bravo never left the ground.
     bravo = (await truth.snapshot(["bravo"]))["bravo"]
     assert bravo.landed and not bravo.armed
+    # And the gateway's /mcp wants the agent token: without it the host gets a clear error.
+    with pytest.raises(McpLinkError, match="cannot open an MCP session"):
+        async with McpLink(stack.mcp_url, "not-the-token"):
+            pass
 
 
 async def test_stack_moves_on_when_its_port_is_taken(monkeypatch) -> None:
@@ -116,7 +120,7 @@ async def test_stack_moves_on_when_its_port_is_taken(monkeypatch) -> None:
     try:
         async with LocalStack(["alpha"], speedup=10) as s:
             assert s.api_url != f"http://127.0.0.1:{taken}"
-            async with McpLink(s.mcp_url) as link:
+            async with McpLink(s.mcp_url, s.token) as link:
                 assert "takeoff" in {t.name for t in await link.list_tools()}
     finally:
         squatter.close()
