@@ -177,7 +177,23 @@ async def reset_drones(
                 await link.call_tool("monitor_flight", {"drone_id": d})
             await asyncio.sleep(0.5)
         if isinstance(truth, SimTruth):
-            await truth.recharge(d, (battery_pct or {}).get(d, 100.0))
+            pct = (battery_pct or {}).get(d, 100.0)
+            await truth.recharge(d, pct)
+            await _until_gateway_sees_battery(link, d, pct, deadline)
+
+
+async def _until_gateway_sees_battery(link: McpLink, drone_id: str, pct: float, deadline: float) -> None:
+    """Wait until the gateway's telemetry reports the battery the harness just set (it streams at about
+    1 Hz), so that a mission asking about the battery does not race the harness."""
+    while True:
+        result = await link.client.call_tool("get_battery", {"drone_id": drone_id})
+        data = result.structured_content if isinstance(result.structured_content, dict) else {}
+        seen = data.get("remaining_pct")
+        if isinstance(seen, int | float) and abs(seen - pct) <= 1.0:
+            return
+        if time.monotonic() > deadline:
+            raise StackError(f"the gateway still reports {drone_id} battery {seen} %, set to {pct:g} %")
+        await asyncio.sleep(0.3)
 
 
 class LocalStack:
