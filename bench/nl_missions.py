@@ -131,7 +131,7 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
 
         pilot: ScriptedPilot | None = None
         if args.self_check:
-            pilot = ScriptedPilot(wait_tool=_wait_tool(all_tools))
+            pilot = ScriptedPilot(wait_tool=_wait_tool(all_tools), text_every=2)
             scripted = stack.enter_context(ScriptedModelServer([pilot], repeat_last=True))
             model = ModelConfig(scripted.base_url, SELF_CHECK_MODEL, max_retries=0)
         else:

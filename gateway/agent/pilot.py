@@ -26,6 +26,9 @@ class ScriptedPilot:
     wait_tool: str | None = "monitor_flight"
     wait_arg: str = "drone_id"
     max_waits_per_call: int = 40
+    # Every n-th planned call is written as text (<tool_call> tags), as small models do, so the
+    # self-check also runs the host's lenient parser end to end; 0 = always structured.
+    text_every: int = 0
     plan: list[PlannedCall] = field(default_factory=list)
     answer: str = "Done."
 
@@ -51,6 +54,10 @@ class ScriptedPilot:
                 return ScriptedReply(tool_calls=[(self.wait_tool, {self.wait_arg: op})])
         if planned_done < len(self.plan):
             name, args = self.plan[planned_done]
+            if self.text_every and planned_done % self.text_every == self.text_every - 1:
+                return ScriptedReply(
+                    content=f"<tool_call>{json.dumps({'name': name, 'arguments': args})}</tool_call>"
+                )
             return ScriptedReply(tool_calls=[(name, args)])
         answer = self.answer or f"Result: {results[-1] if results else ''}"
         return ScriptedReply(content=answer)

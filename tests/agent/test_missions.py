@@ -143,6 +143,15 @@ def test_pilot_follows_the_plan_waits_on_running_and_answers() -> None:
     assert r.content == "done" and not r.tool_calls
 
 
+def test_pilot_can_write_calls_as_text() -> None:
+    pilot = ScriptedPilot(text_every=2)
+    pilot.load([("takeoff", {"drone_id": "a"}), ("land", {"drone_id": "a"})], "done")
+    assert pilot(_request()).tool_calls == [("takeoff", {"drone_id": "a"})]
+    second = pilot(_request(_assistant("takeoff"), {"role": "tool", "content": "ok"}))
+    assert not second.tool_calls
+    assert second.content == '<tool_call>{"name": "land", "arguments": {"drone_id": "a"}}</tool_call>'
+
+
 def test_running_operation_detection() -> None:
     assert running_operation('{"status": "running", "operation_id": "x"}') == "x"
     assert running_operation('{"status": "running", "operation": {"id": "y"}}') == "y"
