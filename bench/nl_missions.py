@@ -163,7 +163,8 @@ async def run_one(
     console: Console,
 ) -> MissionRun:
     homes = await truth.homes(list(mission.drones))
-    ctx = MissionContext(homes=homes, tools=frozenset(t.name for t in tools))
+    offered = {t.name: frozenset((t.input_schema or {}).get("properties", {})) for t in tools}
+    ctx = MissionContext(homes=homes, tools=offered)
     prompt = mission.prompt(ctx)
     if pilot is not None:
         pilot.load(mission.plan(ctx), mission.answer)

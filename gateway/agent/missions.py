@@ -42,7 +42,11 @@ class MissionContext:
     homes: dict[str, tuple[float, float, float]]  # drone id -> (lat, lon, alt_amsl)
     max_alt_m: float = 120.0
     max_distance_m: float = 1000.0
-    tools: frozenset[str] = frozenset()  # the tools offered (the self-check plans adapt to them)
+    # The tools offered, each with its argument names (the self-check plans adapt to them).
+    tools: dict[str, frozenset[str]] = field(default_factory=dict)
+
+    def offers(self, tool: str, *arguments: str) -> bool:
+        return tool in self.tools and set(arguments) <= self.tools[tool]
 
     def point(self, drone: str, north_m: float, east_m: float) -> tuple[float, float]:
         lat, lon, _ = self.homes[drone]
@@ -346,7 +350,8 @@ def _m_formation() -> Mission:
 
     def formation_plan(c: MissionContext) -> list[PlannedCall]:
         lat, lon = centre(c)
-        if {"fleet_takeoff", "formation_goto"} <= c.tools:
+        fleet_args = ("drone_ids", "formation", "center_latitude_deg", "center_longitude_deg", "spacing_m")
+        if c.offers("fleet_takeoff", "drone_ids", "altitude_m") and c.offers("formation_goto", *fleet_args):
             ids = ["alpha", "bravo"]
             return [
                 ("fleet_takeoff", {"drone_ids": ids, "altitude_m": 25}),

@@ -37,6 +37,28 @@ def test_there_are_at_least_ten_distinct_missions() -> None:
         assert m.prompt(CTX) and m.plan(CTX)
 
 
+def test_formation_plan_uses_fleet_tools_only_with_matching_arguments() -> None:
+    m = _mission("formation-line")
+    assert [name for name, _ in m.plan(CTX)] == ["takeoff", "go_to_location", "takeoff", "go_to_location"]
+    fleet = {
+        "fleet_takeoff": frozenset({"drone_ids", "altitude_m"}),
+        "formation_goto": frozenset(
+            {
+                "drone_ids",
+                "formation",
+                "center_latitude_deg",
+                "center_longitude_deg",
+                "altitude_m",
+                "spacing_m",
+            }
+        ),
+    }
+    ctx = MissionContext(homes=CTX.homes, tools=fleet)
+    assert [name for name, _ in m.plan(ctx)] == ["fleet_takeoff", "formation_goto"]
+    renamed = {**fleet, "formation_goto": frozenset({"drones", "shape"})}
+    assert m.plan(MissionContext(homes=CTX.homes, tools=renamed))[0][0] == "takeoff"
+
+
 def test_north_and_land_passes_only_at_the_right_place_landed() -> None:
     m = _mission("north-and-land")
     good = Evidence(
