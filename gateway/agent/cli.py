@@ -54,6 +54,12 @@ def add_agent_arguments(parser: argparse.ArgumentParser) -> None:
         default=None,
         help="the gateway's MCP endpoint (default: GATEWAY_AGENT_MCP_URL or http://127.0.0.1:8765/mcp)",
     )
+    parser.add_argument(
+        "--mcp-mode",
+        default="auto",
+        choices=["auto", "legacy"],
+        help="MCP protocol negotiation: auto (2026-07-28, falls back to a handshake) or legacy (2025-era)",
+    )
     parser.add_argument("--token", default=None, help="bearer token for /mcp (default: GATEWAY_AGENT_TOKEN)")
     parser.add_argument(
         "--endpoint",
@@ -129,7 +135,10 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
         err.print("[red]error:[/] no model given: use --model NAME or set GATEWAY_AGENT_MODEL")
         return EXIT_USAGE
     try:
-        async with McpLink(mcp_url, args.token or env.token, include_structured=args.structured) as link:
+        link_cm = McpLink(
+            mcp_url, args.token or env.token, include_structured=args.structured, mode=args.mcp_mode
+        )
+        async with link_cm as link:
             try:
                 tools = select_tools(
                     await link.list_tools(),

@@ -222,3 +222,12 @@ def test_console_entry_point_runs_the_agent(toy, scripted) -> None:
     events = [json.loads(line) for line in proc.stdout.splitlines() if line.startswith("{")]
     assert events[-1]["event"] == "turn_end" and events[-1]["outcome"] == "answered"
     assert toy.world.calls == [("land", {"drone_id": "alpha"})]
+
+
+async def test_legacy_mcp_mode(toy, scripted) -> None:
+    model = scripted([call("get_position", drone_id="bravo"), say("bravo is home")])
+    console, _ = _console()
+    args = _parse(["--mcp-url", toy.url, "--token", TOKEN, "--mcp-mode", "legacy",
+                   "--endpoint", model.base_url, "--model", "m", "where is bravo"])  # fmt: skip
+    assert await cli.run_async(args, console=console) == cli.EXIT_OK
+    assert "bravo: 0 m north" in model.requests[1]["messages"][-1]["content"]
