@@ -24,6 +24,7 @@ from gateway.errors import DuplicateVehicle, InvalidArgument, NotFound
 from gateway.registry.models import (
     AuditRow,
     FlightRow,
+    LockRow,
     OperationRow,
     SessionRow,
     StatusTextRow,
@@ -189,6 +190,15 @@ class OperationRecord(_Record):
     finished_at: datetime | None = None
 
 
+class LockRecord(_Record):
+    """A stored operator lock (scope: a vehicle id, or "*" for the whole fleet)."""
+
+    scope: str
+    reason: str
+    by: str
+    locked_at: datetime
+
+
 # --- argument bounding -------------------------------------------------------------------------
 
 
@@ -274,6 +284,15 @@ async def upgrade_schema(engine: AsyncEngine, url: str, revision: str = "head") 
 
     async with engine.begin() as conn:
         await conn.run_sync(_run)
+
+
+def head_revision() -> str:
+    """The newest schema revision among the project's migrations."""
+    from alembic.script import ScriptDirectory
+
+    head = ScriptDirectory.from_config(alembic_config("sqlite://")).get_current_head()
+    assert head is not None, "no migrations found"
+    return head
 
 
 async def current_revision(engine: AsyncEngine) -> str | None:
@@ -679,3 +698,29 @@ class Store:
         async with self._sessions() as session:
             rows = (await session.scalars(query)).all()
             return [OperationRecord.model_validate(r) for r in rows]
+
+    # --- operator locks --------------------------------------------------------------------------
+
+    async def save_lock(self, scope: str, reason: str, by: str, locked_at: datetime) -> LockRecord:
+        """Store (or replace) the lock of ``scope``."""
+        async with self._sessions.begin() as session:
+            row = await session.get(LockRow, scope)
+            if row is None:
+                session.add(LockRow(scope=scope, reason=reason, locked_by=by[:200], locked_at=locked_at))
+            else:
+                row.reason, row.locked_by, row.locked_at = reason, by[:200], locked_at
+        return LockRecord(scope=scope, reason=reason, by=by[:200], locked_at=locked_at)
+
+    async def delete_lock(self, scope: str) -> bool:
+        """Remove the lock of ``scope``; False when there was none."""
+        async with self._sessions.begin() as session:
+            result = await session.execute(delete(LockRow).where(LockRow.scope == scope))
+            return bool(result.rowcount)
+
+    async def list_locks(self) -> list[LockRecord]:
+        async with self._sessions() as session:
+            rows = (await session.scalars(select(LockRow).order_by(LockRow.scope))).all()
+            return [
+                LockRecord(scope=r.scope, reason=r.reason, by=r.locked_by, locked_at=r.locked_at)
+                for r in rows
+            ]
