@@ -517,14 +517,16 @@ class Store:
             return None if row is None else FlightRecord.model_validate(row)
 
     async def get_track(self, flight_id: int) -> list[TrackSample]:
+        columns = [getattr(TrackSampleRow, name) for name in TrackSample.model_fields]
         query = (
-            select(TrackSampleRow)
+            select(*columns)
             .where(TrackSampleRow.flight_id == flight_id)
             .order_by(TrackSampleRow.t, TrackSampleRow.id)
         )
         async with self._sessions() as session:
-            rows = (await session.scalars(query)).all()
-            return [TrackSample.model_validate(r) for r in rows]
+            rows = (await session.execute(query)).all()
+        # Plain rows, no ORM objects; validated when written, so built without re-validation (long tracks).
+        return [TrackSample.model_construct(**row._asdict()) for row in rows]
 
     async def list_status_texts(
         self, vehicle_id: str, limit: int = 100, since: datetime | None = None
