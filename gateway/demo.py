@@ -1,39 +1,109 @@
-"""``fleet-gateway demo``: three simulated drones to fly with any MAVLink ground station or MAVSDK."""
+"""``fleet-gateway demo``: the gateway with three simulated drones, and how to connect an MCP client."""
 
 from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
+import signal
 import sys
+from pathlib import Path
 
-from gateway.sim.cli import add_sim_arguments, build_fleet, serve
+from gateway.localstack import LocalStack, StackError
 
-HOW_TO = """\
-Three simulated ArduCopters are running (Ctrl-C stops them). Fly one with MAVSDK, for example:
-  .venv/lib/python3.11/site-packages/mavsdk_grpc/bin/mavsdk_server -p 50051 {url}
-  then in Python:  from mavsdk_grpc import System; drone = System(mavsdk_server_address="127.0.0.1",
-  port=50051); await drone.connect(); call drone.telemetry.set_rate_position(5), switch to GUIDED,
-  wait for telemetry.health().is_armable, then action.arm() and action.takeoff().
-Or connect QGroundControl / MAVProxy to the TCP ports above (one client per port at a time).
+DRONE_NAMES = ("alpha", "bravo", "charlie", "delta", "echo", "foxtrot", "golf", "hotel", "india")
+
+CONNECT_HELP = """\
+fleet-gateway is running with {count} simulated drones: {drones}
+  MCP endpoint (Streamable HTTP): {mcp_url}
+  REST API for operators:         {api_url}/api/v1/vehicles   (OpenAPI docs: {api_url}/docs)
+  database and logs:              {workdir}
+
+Connect an MCP client:
+  Claude Code:    claude mcp add --transport http fleet-gateway {mcp_url}
+  MCP Inspector:  npx @modelcontextprotocol/inspector   (Transport "Streamable HTTP", URL {mcp_url})
+  any client:     point a Streamable HTTP MCP client at {mcp_url}
+  an LLM here:    .venv/bin/fleet-gateway agent --mcp-url {mcp_url} --endpoint http://127.0.0.1:11434/v1 \\
+                    --model qwen2.5:7b "take off alpha to 10 m, fly 100 m north, then land"
+
+Try it: call list_drones, then takeoff(drone_id="alpha", altitude_m=10). Operators can lock a drone:
+  curl -X POST {api_url}/api/v1/vehicles/alpha/lock -H 'content-type: application/json' \\
+       -d '{{"reason": "inspection"}}'
+Ctrl-C stops the gateway, its sidecars and the simulator.
 """
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
-    parser = subparsers.add_parser("demo", help="start three simulated drones and print how to fly them")
-    add_sim_arguments(parser, default_count=3)
+    parser = subparsers.add_parser(
+        "demo", help="run the gateway with simulated drones and print how to connect an MCP client"
+    )
+    parser.add_argument("--count", type=int, default=3, help="simulated drones (1-9, default 3)")
+    parser.add_argument("--port", type=int, default=8765, help="HTTP port of REST and /mcp (default 8765)")
+    parser.add_argument(
+        "--speedup", type=float, default=1.0, help="simulator time factor (default 1: real time)"
+    )
+    parser.add_argument(
+        "--workdir", type=Path, default=None, help="keep the database and logs here (default: a temp dir)"
+    )
     parser.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    try:
-        fleet = build_fleet(args)
-    except ValueError as exc:
-        print(f"fleet-gateway demo: error: {exc}", file=sys.stderr)
+    if not 1 <= args.count <= len(DRONE_NAMES):
+        print(f"fleet-gateway demo: error: --count must be 1-{len(DRONE_NAMES)}", file=sys.stderr)
         return 2
-    print(HOW_TO.format(url=fleet.vehicles[0].url), flush=True)
+    if not 1 <= args.port <= 65535:
+        print("fleet-gateway demo: error: --port must be 1-65535", file=sys.stderr)
+        return 2
+    if not 0.1 <= args.speedup <= 100:
+        print("fleet-gateway demo: error: --speedup must be 0.1-100", file=sys.stderr)
+        return 2
+    if args.workdir is not None:
+        args.workdir.mkdir(parents=True, exist_ok=True)
     try:
-        asyncio.run(serve(args))
-    except OSError as exc:
+        return asyncio.run(_demo(args))
+    except StackError as exc:
         print(f"fleet-gateway demo: error: {exc}", file=sys.stderr)
         return 1
+
+
+async def _demo(args: argparse.Namespace) -> int:
+    drones = list(DRONE_NAMES[: args.count])
+    stop = asyncio.Event()
+    loop = asyncio.get_running_loop()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(sig, stop.set)
+    boot_s = 20.0 / args.speedup
+    print(
+        f"Starting {len(drones)} simulated drones and the gateway; the drones need about {boot_s:.0f} s "
+        "to get a GPS fix and a home position, as ArduPilot does...",
+        flush=True,
+    )
+    stack = LocalStack(drones, speedup=args.speedup, port=args.port, auth=False, workdir=args.workdir)
+    starting = asyncio.ensure_future(stack.__aenter__())
+    stopping = asyncio.ensure_future(stop.wait())
+    await asyncio.wait({starting, stopping}, return_when=asyncio.FIRST_COMPLETED)
+    if not starting.done():
+        starting.cancel()
+        with contextlib.suppress(asyncio.CancelledError, StackError):
+            await starting
+        print("stopped before the drones were ready", flush=True)
+        return 130
+    starting.result()  # raises StackError if the stack did not come up
+    try:
+        print(
+            CONNECT_HELP.format(
+                count=len(drones),
+                drones=", ".join(drones),
+                mcp_url=stack.mcp_url,
+                api_url=stack.api_url,
+                workdir=stack.workdir,
+            ),
+            flush=True,
+        )
+        await stopping
+    finally:
+        print("stopping...", flush=True)
+        await stack.__aexit__(None, None, None)
+    print("stopped", flush=True)
     return 0

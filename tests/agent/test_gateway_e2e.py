@@ -108,7 +108,7 @@ async def test_stack_moves_on_when_its_port_is_taken(monkeypatch) -> None:
     squatter, it must notice its own gateway failed to bind and use another port."""
     import socket
 
-    from gateway.agent import stack as stack_module
+    from gateway import localstack as stack_module
 
     squatter = socket.socket()
     squatter.bind(("127.0.0.1", 0))
