@@ -19,7 +19,7 @@ import uvicorn
 from pydantic import ValidationError
 
 from gateway.config import Settings
-from gateway.errors import GatewayError
+from gateway.errors import DuplicateVehicle, GatewayError
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store, create_engine_for, current_revision, upgrade_schema
 
@@ -43,6 +43,11 @@ def register(subparsers: Any) -> None:
     add.add_argument("--sysid", type=int, default=None, help="MAVLink system id the drone must report")
     add.add_argument("--tag", action="append", default=[], help="a tag (repeatable)")
     add.add_argument("--no-connect", action="store_true", help="register without connecting")
+    add.add_argument(
+        "--if-missing",
+        action="store_true",
+        help="succeed without change when the id is already registered (for provisioning scripts)",
+    )
     _target_options(add)
     add.set_defaults(func=cmd_drones_add)
 
@@ -183,14 +188,25 @@ def cmd_drones_add(args: argparse.Namespace) -> int:
     except ValidationError as exc:
         return _fail(f"invalid drone: {_validation_text(exc)}", 2)
     connect = not args.no_connect
+    already = f"{spec.id} is already registered; left as it is"
     if args.api:
         body = {**spec.model_dump(), "connect": connect}
         return _api_call(
-            args, "POST", "/api/v1/vehicles", body, lambda d: f"registered {d['id']} ({d['url']})"
+            args,
+            "POST",
+            "/api/v1/vehicles",
+            body,
+            lambda d: f"registered {d['id']} ({d['url']})",
+            ok_codes={DuplicateVehicle.code: already} if args.if_missing else None,
         )
 
     async def run(store: Store) -> str:
-        record = await store.add_vehicle(spec, auto_connect=connect)
+        try:
+            record = await store.add_vehicle(spec, auto_connect=connect)
+        except DuplicateVehicle:
+            if args.if_missing:
+                return already
+            raise
         return f"registered {record.id} ({record.url}); a running gateway picks it up on its next start"
 
     return _with_store(args, run)
@@ -269,7 +285,15 @@ def _api_token(args: argparse.Namespace) -> str | None:
     return operators[0] if operators else None
 
 
-def _api_call(args: argparse.Namespace, method: str, path: str, body: Any, render: Any) -> int:
+def _api_call(
+    args: argparse.Namespace,
+    method: str,
+    path: str,
+    body: Any,
+    render: Any,
+    ok_codes: dict[str, str] | None = None,
+) -> int:
+    """Call the gateway's REST API; an error whose code is in ``ok_codes`` prints its text and succeeds."""
     base = args.api
     token = _api_token(args)
     headers = {"Authorization": f"Bearer {token}"} if token else {}
@@ -280,6 +304,9 @@ def _api_call(args: argparse.Namespace, method: str, path: str, body: Any, rende
     if response.status_code >= 400:
         try:
             error = response.json()["error"]
+            if ok_codes and error["code"] in ok_codes:
+                print(ok_codes[error["code"]])
+                return 0
             return _fail(f"{error['message']} ({error['code']})")
         except (ValueError, KeyError, TypeError):
             return _fail(f"HTTP {response.status_code}: {response.text[:200]}")

@@ -74,6 +74,9 @@ def test_drones_on_the_database(tmp_path: Path, capsys: pytest.CaptureFixture[st
 
     assert run_cli("drones", "add", "alpha", "tcpout://127.0.0.1:5770", *db) == 1
     assert "already registered" in capsys.readouterr().err
+    # provisioning scripts re-run: --if-missing succeeds and changes nothing
+    assert run_cli("drones", "add", "alpha", "tcpout://127.0.0.1:5770", "--if-missing", *db) == 0
+    assert "alpha is already registered; left as it is" in capsys.readouterr().out
     assert run_cli("drones", "add", "Bad!", "tcpout://127.0.0.1:5770", *db) == 2
     assert "id:" in capsys.readouterr().err
     assert run_cli("drones", "add", "charlie", "http://x", *db) == 2
@@ -92,6 +95,17 @@ def test_drones_on_the_database(tmp_path: Path, capsys: pytest.CaptureFixture[st
 
     assert asyncio.run(ids()) == ["alpha"]
 
+    async def url_of_alpha() -> str:
+        store = await Store.open(url)
+        try:
+            record = await store.get_vehicle("alpha")
+            assert record is not None
+            return record.url
+        finally:
+            await store.close()
+
+    assert asyncio.run(url_of_alpha()) == "tcpout://127.0.0.1:5760"
+
 
 def test_drones_through_a_running_gateway(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     settings = Settings(database_url=f"sqlite+aiosqlite:///{tmp_path / 'api.db'}")
@@ -101,6 +115,10 @@ def test_drones_through_a_running_gateway(tmp_path: Path, capsys: pytest.Capture
         assert "registered alpha" in capsys.readouterr().out
         assert run_cli("drones", "add", "alpha", "tcpout://127.0.0.1:5760", "--api", base) == 1
         assert "(duplicate_vehicle)" in capsys.readouterr().err
+        assert (
+            run_cli("drones", "add", "alpha", "tcpout://127.0.0.1:5999", "--if-missing", "--api", base) == 0
+        )
+        assert "already registered; left as it is" in capsys.readouterr().out
         assert run_cli("drones", "list", "--json", "--api", base) == 0
         [drone] = json.loads(capsys.readouterr().out)
         assert drone["id"] == "alpha" and drone["state"] == "connecting"

@@ -79,7 +79,7 @@ def register_command(index: int, api: str) -> list[str]:
     return [
         "fleet-gateway", "drones", "add", drone_id(index), drone_url(index),
         "--sysid", str(drone_sysid(index)), "--name", f"Drone {index + 1}", "--tag", "swarm",
-        "--api", api,
+        "--if-missing", "--api", api,
     ]  # fmt: skip
 
 
