@@ -66,37 +66,6 @@ def toolset_of(meta: Mapping[str, Any]) -> str | None:
     return None
 
 
-def gateway_toolset_map() -> dict[str, str]:
-    """Tool name -> toolset, as declared by this project's own MCP toolset modules (``gateway.mcp.tools``).
-
-    The fallback for servers whose tools name no toolset in ``_meta``: the gateway is this project, so
-    the host can read the same declarations the server registers from. Empty when they are not built."""
-    try:
-        from gateway.config import ALL_TOOLSETS
-        from gateway.mcp.server import load_toolset
-    except ImportError:
-        return {}
-    mapping: dict[str, str] = {}
-    for name in ALL_TOOLSETS:
-        try:
-            toolset = load_toolset(name)
-        except ImportError:
-            continue
-        for spec in getattr(toolset, "tools", []) if toolset is not None else []:
-            mapping[spec.name] = name
-    return mapping
-
-
-def with_toolsets(tools: Sequence[ToolInfo], mapping: Mapping[str, str]) -> list[ToolInfo]:
-    """Fill in the toolset of tools whose ``_meta`` names none, from a name map."""
-    return [
-        t
-        if t.toolset or t.name not in mapping
-        else ToolInfo(t.name, t.description, t.input_schema, mapping[t.name], t.read_only)
-        for t in tools
-    ]
-
-
 def select_tools(
     tools: Sequence[ToolInfo], toolsets: Iterable[str] | None = None, names: Iterable[str] | None = None
 ) -> list[ToolInfo]:
@@ -113,12 +82,10 @@ def select_tools(
     if unknown:
         raise ToolSelectionError(f"unknown tool(s) {unknown}; the server offers: {sorted(known_names)}")
     if wanted_sets:
-        if not any(t.toolset for t in tools):
-            tools = with_toolsets(tools, gateway_toolset_map())
         offered = sorted({t.toolset for t in tools if t.toolset})
         if not offered:
             raise ToolSelectionError(
-                "the server's tools name no toolset in their _meta (and none is known from this build); "
+                "the server's tools name no toolset in their _meta; "
                 "select tools by name with --tools"
             )
         bad = [s for s in wanted_sets if s not in offered]

@@ -161,6 +161,9 @@ def _wrap(spec: ToolSpec, access: Any) -> Callable[..., Any]:
     return handler
 
 
+TOOLSET_META_KEY = "fleet-gateway/toolset"
+
+
 def register_toolset(server: MCPServer, toolset: Toolset, access: Any) -> list[str]:
     names = []
     for spec in toolset.tools:
@@ -171,6 +174,8 @@ def register_toolset(server: MCPServer, toolset: Toolset, access: Any) -> list[s
             title=spec.title,
             description=description,
             annotations=spec.annotations,
+            # lets any client offer a model only some toolsets (small context windows)
+            meta={TOOLSET_META_KEY: toolset.name},
         )
         names.append(spec.name)
     return names

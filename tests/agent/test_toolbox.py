@@ -9,7 +9,6 @@ import pytest
 from gateway.agent.toolbox import (
     ToolInfo,
     ToolSelectionError,
-    gateway_toolset_map,
     one_line_summary,
     outcome_from_result,
     select_tools,
@@ -102,18 +101,8 @@ def test_selection_errors_are_clear() -> None:
     assert [t.name for t in select_tools(plain, names=["hop"])] == ["hop"]
 
 
-def test_toolsets_fall_back_to_the_gateways_own_declarations() -> None:
-    """The gateway's tools carry no toolset in _meta: the host reads the same toolset modules."""
-    mapping = gateway_toolset_map()
-    assert mapping["takeoff"] == "flight" and mapping["go_to_location"] == "navigation"
-    assert mapping["get_battery"] == "telemetry"
-    plain = [ToolInfo("takeoff", "", {}), ToolInfo("go_to_location", "", {}), ToolInfo("get_battery", "", {})]
-    assert [t.name for t in select_tools(plain, toolsets=["flight", "telemetry"])] == [
-        "takeoff",
-        "get_battery",
-    ]
-    # _meta wins over the map.
-    tagged = [ToolInfo("takeoff", "", {}, toolset="navigation")]
+def test_meta_names_the_toolset() -> None:
+    tagged = [ToolInfo("takeoff", "", {}, toolset="navigation"), ToolInfo("land", "", {}, toolset="flight")]
     assert [t.name for t in select_tools(tagged, toolsets=["navigation"])] == ["takeoff"]
 
 

@@ -25,8 +25,14 @@ def gateway() -> FakeGateway:
 async def test_takeoff_goto_land_and_refusals(gateway: FakeGateway, mode: str) -> None:
     server = build_mcp(gateway)
     async with Client(server, mode=mode) as c:
-        tools = {t.name for t in (await c.list_tools()).tools}
+        listed = (await c.list_tools()).tools
+        tools = {t.name for t in listed}
         assert len(tools) == 46 + 8  # table B2 + get_telemetry, and the fleet toolset (8 tools)
+        # every tool names its toolset in _meta, so clients can offer a model only some toolsets
+        toolset_of = {t.name: (t.meta or {}).get("fleet-gateway/toolset") for t in listed}
+        assert toolset_of["takeoff"] == "flight" and toolset_of["go_to_location"] == "navigation"
+        assert toolset_of["formation_goto"] == "fleet" and toolset_of["get_battery"] == "telemetry"
+        assert set(toolset_of.values()) == {"flight", "navigation", "mission", "telemetry", "params", "fleet"}
         r = await c.call_tool("takeoff", {"drone_id": "d1", "altitude_m": 10, "wait": False})
         assert not r.is_error, r.content
         assert r.structured_content["status"] == "running"
