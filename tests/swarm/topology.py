@@ -11,8 +11,10 @@ veth end with the gateway's address. ``close()`` removes all of it, also after a
 
 from __future__ import annotations
 
+import fcntl
 import os
 import subprocess
+import time
 from dataclasses import dataclass, field
 
 SUBNET_PREFIX = "10.201.0"
@@ -101,6 +103,25 @@ def _ip(*args: str, netns: str | None = None) -> None:
         raise RuntimeError(f"{' '.join(cmd)} failed: {result.stderr.strip()}")
 
 
+LOCK_PATH = (
+    "/run/lock/fleet-gateway-swarm.lock" if os.path.isdir("/run/lock") else "/tmp/fleet-gateway-swarm.lock"
+)
+
+
+def _acquire_lock(timeout_s: float) -> int:
+    fd = os.open(LOCK_PATH, os.O_RDWR | os.O_CREAT, 0o600)
+    deadline = time.monotonic() + timeout_s
+    while True:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            return fd
+        except BlockingIOError:
+            if time.monotonic() > deadline:
+                os.close(fd)
+                raise TimeoutError(f"another swarm network held {LOCK_PATH} for {timeout_s:.0f} s") from None
+            time.sleep(0.2)
+
+
 @dataclass
 class SwarmNetwork:
     """``drones`` namespaces on one bridge, reachable from the root namespace at GATEWAY_ADDRESS."""
@@ -109,6 +130,7 @@ class SwarmNetwork:
     tag: str = field(default_factory=lambda: f"{os.getpid() % 100000:05d}")
     namespaces: list[str] = field(default_factory=list)
     _root_veth: str | None = None
+    _lock_fd: int | None = None
 
     @property
     def hub(self) -> str:
@@ -121,7 +143,11 @@ class SwarmNetwork:
         """Command prefix that runs a program inside drone ``index``'s namespace."""
         return ["ip", "netns", "exec", self.drone_namespace(index)]
 
-    def open(self) -> SwarmNetwork:
+    def open(self, lock_timeout_s: float = 600.0) -> SwarmNetwork:
+        """Build the network. Its addresses are fixed (as in compose), so only one swarm network may
+        exist on this machine at a time: wait for an exclusive lock held until ``close()``, so that
+        parallel test workers or two test runs on one machine take turns instead of clashing."""
+        self._lock_fd = _acquire_lock(lock_timeout_s)
         try:
             self._build()
         except BaseException:
@@ -164,6 +190,9 @@ class SwarmNetwork:
         for namespace in reversed(self.namespaces):
             subprocess.run(["ip", "netns", "del", namespace], capture_output=True, check=False)
         self.namespaces.clear()
+        if self._lock_fd is not None:
+            os.close(self._lock_fd)  # releases the flock
+            self._lock_fd = None
 
     def __enter__(self) -> SwarmNetwork:
         return self.open()
