@@ -1,0 +1,140 @@
+"""Registry, persistence and link states against real sidecars and bare MAVLink heartbeat senders.
+
+A heartbeat-only vehicle never becomes 'ready' (no position, no home): these tests cover what does not
+need a flying simulator: registration, restore, identity checks, link loss, sidecar restarts, teardown.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+
+import pytest
+
+from gateway.errors import DuplicateVehicle, InvalidArgument, UnknownVehicle, VehicleNotReady
+from gateway.fleet.vehicle import ConnectionState
+from gateway.registry.registry import Registry
+from gateway.registry.spec import VehicleSpec
+from gateway.util.ports import free_udp_port
+from tests.registry.conftest import fast_settings, wait_until
+from tests.registry.heartbeat import HeartbeatVehicle
+from tests.registry.procs import alive, mavsdk_servers_of
+
+
+def _spec(vid: str, port: int, **kw: object) -> VehicleSpec:
+    return VehicleSpec(id=vid, url=f"udpin://127.0.0.1:{port}", **kw)  # type: ignore[arg-type]
+
+
+async def test_register_persist_restore_and_stop(store, registries) -> None:
+    ports = [free_udp_port() for _ in range(2)]
+    reg = Registry(fast_settings(), store)
+    registries.append(reg)
+    await reg.start()
+    async with HeartbeatVehicle(ports[0], sysid=11), HeartbeatVehicle(ports[1], sysid=12):
+        a = await reg.add(_spec("alpha", ports[0], name="Alpha", tags=["t1"]))
+        b = await reg.add(_spec("bravo", ports[1]), connect=False)
+        assert b.state == ConnectionState.REGISTERED
+        await a.wait_for_state(ConnectionState.CONNECTED)
+        await wait_until(lambda: a.sysid == 11, what="sysid from HEARTBEAT")
+        assert a.autopilot == "ardupilot"
+        assert a.telemetry.fresh("flight_mode") == "GUIDED"  # ArduCopter custom_mode 4 from HEARTBEAT
+        status = a.status()
+        assert status["sidecar"]["pid"] and status["sidecar"]["grpc_port"]
+        assert status["last_heartbeat_age_s"] is not None and status["sysid_mismatch"] is False
+        # not ready: no position/home from a heartbeat-only vehicle; actions say so instead of hanging
+        with pytest.raises(VehicleNotReady, match="connected but not ready"):
+            await a.takeoff(10)
+        with pytest.raises(DuplicateVehicle):
+            await reg.add(_spec("alpha", ports[1]))
+        with pytest.raises(UnknownVehicle, match="alpha, bravo"):
+            reg.get("zulu")
+        with pytest.raises(InvalidArgument, match="url"):
+            await reg.add({"id": "charlie", "url": "http://example.com"})
+        assert [v.id for v in reg.all()] == ["alpha", "bravo"]
+        pid = status["sidecar"]["pid"]
+        await reg.stop()
+        assert not alive(pid)
+        assert mavsdk_servers_of() == []
+
+        # a new registry on the same database restores both; only alpha auto-connects
+        reg2 = Registry(fast_settings(), store)
+        registries.append(reg2)
+        await reg2.start()
+        a2, b2 = reg2.get("alpha"), reg2.get("bravo")
+        assert a2.spec.name == "Alpha" and a2.spec.tags == ["t1"]
+        assert b2.state == ConnectionState.REGISTERED
+        await a2.wait_for_state(ConnectionState.CONNECTED)
+        await reg2.connect("bravo")
+        await b2.wait_for_state(ConnectionState.CONNECTED)
+        await reg2.disconnect("alpha")
+        assert a2.state == ConnectionState.REGISTERED
+        assert (await store.get_vehicle("alpha")).auto_connect is False
+        await reg2.remove("bravo")
+        assert await store.get_vehicle("bravo") is None
+        assert [v.id for v in reg2.all()] == ["alpha"]
+
+
+async def test_wrong_and_duplicate_sysid_are_flagged(store, registries) -> None:
+    ports = [free_udp_port() for _ in range(3)]
+    reg = Registry(fast_settings(), store)
+    registries.append(reg)
+    await reg.start()
+    async with (
+        HeartbeatVehicle(ports[0], sysid=5),
+        HeartbeatVehicle(ports[1], sysid=7),
+        HeartbeatVehicle(ports[2], sysid=7),
+    ):
+        wrong = await reg.add(_spec("wrong", ports[0], expected_sysid=4))
+        twin1 = await reg.add(_spec("twin-1", ports[1]))
+        twin2 = await reg.add(_spec("twin-2", ports[2]))
+        await wait_until(lambda: wrong.sysid == 5 and twin1.sysid == 7 and twin2.sysid == 7, what="sysids")
+        st = wrong.status()
+        assert st["sysid_mismatch"] is True and st["sysid"] == 5 and st["expected_sysid"] == 4
+        assert "system id mismatch" in (st["last_error"] or "")
+        with pytest.raises(VehicleNotReady, match="reports system id 5 but 4 is expected"):
+            wrong.require_ready()
+        assert twin1.status()["duplicate_sysid"] == ["twin-2"]
+        assert twin2.status()["duplicate_sysid"] == ["twin-1"]
+        assert wrong.status()["duplicate_sysid"] == []
+
+
+async def test_link_lost_and_back(store, registries) -> None:
+    port = free_udp_port()
+    reg = Registry(fast_settings(), store)
+    registries.append(reg)
+    await reg.start()
+    async with HeartbeatVehicle(port, sysid=21):
+        v = await reg.add(_spec("echo", port))
+        await v.wait_for_state(ConnectionState.CONNECTED)
+    # heartbeats stopped
+    await v.wait_for_state(ConnectionState.LINK_LOST)
+    assert "no heartbeat" in (v.status()["last_error"] or "")
+    with pytest.raises(VehicleNotReady, match="link_lost"):
+        v.require_ready()
+    async with HeartbeatVehicle(port, sysid=21):
+        await v.wait_for_state(ConnectionState.CONNECTED)
+
+
+async def test_killed_sidecar_restarts_others_untouched(store, registries) -> None:
+    ports = [free_udp_port() for _ in range(2)]
+    reg = Registry(fast_settings(), store)
+    registries.append(reg)
+    await reg.start()
+    async with HeartbeatVehicle(ports[0], sysid=31), HeartbeatVehicle(ports[1], sysid=32):
+        v1 = await reg.add(_spec("kilo", ports[0]))
+        v2 = await reg.add(_spec("lima", ports[1]))
+        await v1.wait_for_state(ConnectionState.CONNECTED)
+        await v2.wait_for_state(ConnectionState.CONNECTED)
+        seen: list[tuple[str, str, str]] = []
+        reg.on_state_change(lambda v, old, new: seen.append((v.id, old.value, new.value)))
+        pid1, pid2 = v1.status()["sidecar"]["pid"], v2.status()["sidecar"]["pid"]
+        os.kill(pid1, signal.SIGKILL)
+        await wait_until(lambda: v1.status()["sidecar"]["pid"] not in (None, pid1), what="new sidecar")
+        await v1.wait_for_state(ConnectionState.CONNECTED)
+        await wait_until(lambda: v1.sysid == 31, what="heartbeats in the new session")
+        assert v1.status()["sidecar"]["restarts"] == 1
+        assert v1.sessions == 2
+        assert "code -9" in (v1.last_error or "")
+        assert v2.status()["sidecar"]["pid"] == pid2
+        assert all(vid != "lima" for vid, _, _ in seen)
+        assert ("kilo", "connected", "connecting") in seen
