@@ -56,6 +56,49 @@ def tool_tokens(enc: Any, tool: dict[str, Any]) -> tuple[int, int]:
     return len(enc.encode(common.dumps(model_view))), len(enc.encode(common.dumps(out))) if out else 0
 
 
+BOUND_KEYS = ("minimum", "maximum", "exclusiveMinimum", "exclusiveMaximum", "minItems", "maxItems")
+
+
+def without_bounds(schema: Any) -> Any:
+    """The schema without numeric/array bounds (what-if figure: bounds are checked server-side anyway)."""
+    if isinstance(schema, dict):
+        return {k: without_bounds(v) for k, v in schema.items() if k not in BOUND_KEYS}
+    if isinstance(schema, list):
+        return [without_bounds(v) for v in schema]
+    return schema
+
+
+def without_null_unions(schema: Any) -> Any:
+    """The schema with ``anyOf: [X, {"type": "null"}]`` collapsed to X (what-if figure: optional params
+    with a null default need no null branch for the model)."""
+    if isinstance(schema, dict):
+        any_of = schema.get("anyOf")
+        if isinstance(any_of, list) and len(any_of) == 2 and {"type": "null"} in any_of:
+            other = next(x for x in any_of if x != {"type": "null"})
+            rest = {k: v for k, v in schema.items() if k != "anyOf"}
+            return without_null_unions({**other, **rest})
+        return {k: without_null_unions(v) for k, v in schema.items()}
+    if isinstance(schema, list):
+        return [without_null_unions(v) for v in schema]
+    return schema
+
+
+def parts(enc: Any, tool: dict[str, Any]) -> dict[str, int]:
+    """Tokens of the description alone, the inputSchema alone, and the what-if variants of the tool."""
+    schema = tool.get("inputSchema", {})
+
+    def n(obj: Any) -> int:
+        return len(enc.encode(common.dumps(obj)))
+
+    base = {k: tool[k] for k in ("name", "description", "inputSchema") if k in tool}
+    return {
+        "desc": len(enc.encode(tool.get("description", ""))),
+        "schema": n(schema),
+        "no_bounds": n({**base, "inputSchema": without_bounds(schema)}),
+        "no_null": n({**base, "inputSchema": without_null_unions(schema)}),
+    }
+
+
 def toolset_of(name: str, by_set: dict[str, list[str]]) -> str:
     return next((s for s, names in by_set.items() if name in names), "?")
 
@@ -73,7 +116,15 @@ async def measure() -> dict[str, Any]:
     rows = []
     for t in all_tools:
         tin, tout = tool_tokens(enc, t)
-        rows.append({"name": t["name"], "toolset": toolset_of(t["name"], by_set), "in": tin, "out": tout})
+        rows.append(
+            {
+                "name": t["name"],
+                "toolset": toolset_of(t["name"], by_set),
+                "in": tin,
+                "out": tout,
+                **parts(enc, t),
+            }
+        )
     per_set = {}
     for ts in ALL_TOOLSETS:
         mine = [r for r in rows if r["toolset"] == ts]
@@ -140,13 +191,32 @@ def render(m: dict[str, Any]) -> str:
     if m["missing_sets"]:
         lines.append(f"- Toolsets not present in this build (not counted): {', '.join(m['missing_sets'])}.")
     top = sorted(m["rows"], key=lambda r: -r["in"])
+    rows = m["rows"]
+    desc = sum(r["desc"] for r in rows)
+    schema = sum(r["schema"] for r in rows)
+    saved_bounds = sum(r["in"] - r["no_bounds"] for r in rows)
+    saved_null = sum(r["in"] - r["no_null"] for r in rows)
+    lines += [
+        "",
+        f"Where the {m['total_in']} tokens go: descriptions {desc}, inputSchemas {schema}, the rest is "
+        "names and JSON framing. What-if figures for the mcp area (not applied): dropping numeric/array "
+        f"bounds from the schemas would save {saved_bounds} tokens; collapsing `anyOf: [X, null]` of "
+        f"optional parameters to X would save {saved_null}.",
+    ]
     lines += [
         "",
         "Per tool, most expensive first:",
         "",
         common.table(
-            ["tool", "toolset", "tokens", "outputSchema tokens"],
-            [[f"`{r['name']}`", r["toolset"], r["in"], r["out"]] for r in top],
+            [
+                "tool",
+                "toolset",
+                "tokens",
+                "of which description",
+                "of which inputSchema",
+                "outputSchema tokens",
+            ],
+            [[f"`{r['name']}`", r["toolset"], r["in"], r["desc"], r["schema"], r["out"]] for r in top],
         ),
     ]
     return "\n".join(lines)
