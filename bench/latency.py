@@ -10,7 +10,8 @@ Operations:
 - cached telemetry read: MCP ``get_position`` / ``get_telemetry`` (answered from the gateway's cache)
   against the direct way a naive server reads a value (first item of ``telemetry.position()``, i.e. the
   next stream sample), and against a bare gRPC round trip to a sidecar (``info.get_version()``,
-  answered by mavsdk_server from its own cache), the floor of anything that goes through MAVSDK;
+  answered by mavsdk_server from its own cache), the floor of anything that goes through MAVSDK, and
+  against a plain HTTP GET of the gateway's ``/healthz`` (the floor of anything that goes through HTTP);
 - command dispatch, until the autopilot's COMMAND_ACK: MCP ``set_max_speed`` against
   ``action.set_current_speed``, and MCP ``go_to_location(wait=false)`` against ``action.goto_location``.
 """
@@ -124,6 +125,9 @@ async def run(n_reads: int, n_cmds: int, speedup: float) -> dict[str, Any]:
                 async def direct_version(_i: int) -> None:
                     await drone.info.get_version()
 
+                async def http_floor(_i: int) -> None:
+                    (await gw.http.get("/healthz")).raise_for_status()
+
                 async def direct_speed(i: int) -> None:
                     await drone.action.set_current_speed(5.0 + i % 2)
 
@@ -142,6 +146,7 @@ async def run(n_reads: int, n_cmds: int, speedup: float) -> dict[str, Any]:
                         "mcp get_telemetry": mcp_call("get_telemetry", lambda i: {}),
                         "direct telemetry.position() next sample": direct_position,
                         "direct info.get_version() (gRPC floor)": direct_version,
+                        "http GET /healthz (HTTP floor)": http_floor,
                     },
                 )
                 cmds = await series(
@@ -182,6 +187,8 @@ def render(r: dict[str, Any]) -> str:
         f"{ratio('mcp get_position', 'direct telemetry.position() next sample')}",
         f"- `get_position` via MCP vs a bare gRPC round trip to the sidecar: "
         f"{ratio('mcp get_position', 'direct info.get_version() (gRPC floor)')}",
+        f"- `get_position` via MCP vs a plain HTTP request to the same server (`/healthz`): "
+        f"{ratio('mcp get_position', 'http GET /healthz (HTTP floor)')}",
         f"- `set_max_speed` via MCP vs direct: "
         f"{ratio('mcp set_max_speed', 'direct action.set_current_speed')}",
         f"- goto via MCP (`wait=false`) vs direct: "
