@@ -25,6 +25,12 @@ WINDOW_S = 20.0
 FULL_WINDOW_S = 30.0
 READ_RATE_HZ = 10.0
 LIST_EVERY_S = 0.5
+# Thresholds of the "signs of overload" column: a 5 Hz position stream is at most ~0.2 s old when the
+# gateway keeps up; a read tool answering from the cache should take milliseconds.
+AGE_LIMIT_S = 1.0
+GW_CPU_LIMIT = 80.0
+MACHINE_CPU_LIMIT = 90.0
+READ_LIMIT_S = 0.25
 
 
 def machine_cpu() -> tuple[float, float]:
@@ -114,6 +120,25 @@ async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[
     return result
 
 
+def overload_signs(r: dict[str, Any]) -> list[str]:
+    """What in this measurement says the gateway (or the machine) no longer keeps up."""
+    signs = []
+    if r["ready"] < r["n"]:
+        signs.append(f"{r['n'] - r['ready']} drones never ready")
+    age99 = common.percentile(r["ages"], 99)
+    if age99 > AGE_LIMIT_S:
+        signs.append(f"position p99 age {age99:.1f} s (> {AGE_LIMIT_S:g} s)")
+    if r["stale"] or r["errors"]:
+        signs.append(f"{r['stale']} stale / {r['errors']} failed reads")
+    if r["gw_cpu"] > GW_CPU_LIMIT:
+        signs.append(f"gateway at {r['gw_cpu']:.0f}% of a core")
+    if r["machine_cpu"] > MACHINE_CPU_LIMIT:
+        signs.append(f"machine CPU {r['machine_cpu']:.0f}%")
+    if common.percentile(r["read_lat"], 99) > READ_LIMIT_S:
+        signs.append(f"get_position p99 {common.ms(common.percentile(r['read_lat'], 99))} ms")
+    return signs
+
+
 def render(results: list[dict[str, Any]], window_s: float) -> str:
     rows = []
     for r in results:
@@ -132,6 +157,7 @@ def render(results: list[dict[str, Any]], window_s: float) -> str:
                 f"{r['stale']}/{len(r['ages']) + r['errors']}",
                 f"{common.ms(rd['p50'])} / {common.ms(rd['p99'])}",
                 f"{common.ms(lat['p50'])} / {common.ms(lat['p99'])}",
+                "; ".join(overload_signs(r)) or "none",
             ]
         )
     kinds = {r["list_kind"] for r in results}
@@ -155,6 +181,7 @@ def render(results: list[dict[str, Any]], window_s: float) -> str:
                 "stale / reads",
                 "get_position p50 / p99 ms",
                 "list p50 / p99 ms",
+                "signs of overload",
             ],
             rows,
         ),
