@@ -11,7 +11,8 @@ Operations:
   against the direct way a naive server reads a value (first item of ``telemetry.position()``, i.e. the
   next stream sample), and against a bare gRPC round trip to a sidecar (``info.get_version()``,
   answered by mavsdk_server from its own cache), the floor of anything that goes through MAVSDK, and
-  against a plain HTTP GET of the gateway's ``/healthz`` (the floor of anything that goes through HTTP);
+  against a plain HTTP GET of the gateway's ``/healthz`` (the floor of anything that goes through HTTP)
+  and an MCP ``prompts/list`` (the floor of anything that goes through the MCP SDK, without tool or audit);
 - command dispatch, until the autopilot's COMMAND_ACK: MCP ``set_max_speed`` against
   ``action.set_current_speed``, and MCP ``go_to_location(wait=false)`` against ``action.goto_location``.
 """
@@ -125,6 +126,9 @@ async def run(n_reads: int, n_cmds: int, speedup: float) -> dict[str, Any]:
                 async def direct_version(_i: int) -> None:
                     await drone.info.get_version()
 
+                async def mcp_floor(_i: int) -> None:
+                    await mcp.list_prompts()
+
                 async def http_floor(_i: int) -> None:
                     (await gw.http.get("/healthz")).raise_for_status()
 
@@ -147,6 +151,7 @@ async def run(n_reads: int, n_cmds: int, speedup: float) -> dict[str, Any]:
                         "direct telemetry.position() next sample": direct_position,
                         "direct info.get_version() (gRPC floor)": direct_version,
                         "http GET /healthz (HTTP floor)": http_floor,
+                        "mcp prompts/list (MCP floor, no tool)": mcp_floor,
                     },
                 )
                 cmds = await series(
@@ -172,6 +177,8 @@ def render(r: dict[str, Any]) -> str:
     ]
 
     def ratio(a: str, b: str) -> str:
+        if a not in p or b not in p:
+            return "n/a"
         return " / ".join(f"{p[a][q] / p[b][q]:.1f}x" for q in ("p50", "p95", "p99"))
 
     lines = [
@@ -189,6 +196,8 @@ def render(r: dict[str, Any]) -> str:
         f"{ratio('mcp get_position', 'direct info.get_version() (gRPC floor)')}",
         f"- `get_position` via MCP vs a plain HTTP request to the same server (`/healthz`): "
         f"{ratio('mcp get_position', 'http GET /healthz (HTTP floor)')}",
+        f"- MCP `prompts/list` (transport + SDK, no tool, no audit row) vs `/healthz`: "
+        f"{ratio('mcp prompts/list (MCP floor, no tool)', 'http GET /healthz (HTTP floor)')}",
         f"- `set_max_speed` via MCP vs direct: "
         f"{ratio('mcp set_max_speed', 'direct action.set_current_speed')}",
         f"- goto via MCP (`wait=false`) vs direct: "
