@@ -154,6 +154,25 @@ def rss_kb(pid: int) -> int:
         return 0
 
 
+def smaps_kb(pid: int) -> dict[str, int]:
+    """Pss and private (unique) memory of one process, in KiB, from /proc/<pid>/smaps_rollup.
+
+    RSS counts the pages shared between the sidecars (the mavsdk_server binary) once per process; PSS
+    splits them fairly and private memory is what one more process really adds."""
+    out = {"pss": 0, "private": 0}
+    try:
+        with open(f"/proc/{pid}/smaps_rollup") as fh:
+            for line in fh:
+                key, _, rest = line.partition(":")
+                if key == "Pss":
+                    out["pss"] = int(rest.split()[0])
+                elif key in ("Private_Clean", "Private_Dirty"):
+                    out["private"] += int(rest.split()[0])
+    except OSError:
+        pass
+    return out
+
+
 @dataclass
 class CpuMeter:
     """CPU use of some processes over an interval, in percent of one core."""

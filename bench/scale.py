@@ -98,6 +98,7 @@ async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[
                 await asyncio.gather(reader(), lister())
                 busy1, total1 = machine_cpu()
                 sc_rss = [common.rss_kb(p) for p in sidecars]
+                sc_mem = [common.smaps_kb(p) for p in sidecars]
                 result = {
                     "n": n,
                     "ready": ready,
@@ -107,6 +108,12 @@ async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[
                     "gw_rss_mb": common.rss_kb(gw.pid) / 1024,
                     "sc_rss_mb": (sum(sc_rss) / len(sc_rss) / 1024) if sc_rss else float("nan"),
                     "sc_rss_total_mb": sum(sc_rss) / 1024,
+                    "sc_pss_mb": (sum(m["pss"] for m in sc_mem) / len(sc_mem) / 1024)
+                    if sc_mem
+                    else float("nan"),
+                    "sc_private_mb": (
+                        (sum(m["private"] for m in sc_mem) / len(sc_mem) / 1024) if sc_mem else float("nan")
+                    ),
                     "sc_cpu": sc_cpu.percent(),
                     "sim_cpu": sim_cpu.percent(),
                     "machine_cpu": 100.0 * (busy1 - busy0) / max(1, total1 - total0),
@@ -149,7 +156,7 @@ def render(results: list[dict[str, Any]], window_s: float) -> str:
                 f"{r['ready']}/{r['n']} in {r['t_ready']:.0f} s",
                 f"{r['gw_cpu']:.0f}",
                 f"{r['gw_rss_mb']:.0f}",
-                f"{r['sc_rss_mb']:.1f}",
+                f"{r['sc_rss_mb']:.1f} / {r['sc_pss_mb']:.1f} / {r['sc_private_mb']:.1f}",
                 f"{r['sc_cpu']:.0f}",
                 f"{r['sim_cpu']:.0f}",
                 f"{r['machine_cpu']:.0f}",
@@ -173,7 +180,7 @@ def render(results: list[dict[str, Any]], window_s: float) -> str:
                 "ready",
                 "gateway CPU %",
                 "gateway RSS MiB",
-                "RSS per sidecar MiB",
+                "per sidecar RSS / PSS / private MiB",
                 "all sidecars CPU %",
                 "sim CPU %",
                 "machine CPU %",
