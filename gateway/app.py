@@ -15,6 +15,7 @@ from contextlib import AbstractAsyncContextManager, AsyncExitStack, asynccontext
 from typing import Any
 
 from fastapi import FastAPI
+from starlette.routing import Route
 
 from gateway.api import build_api_router, health, metrics
 from gateway.api.errors import install_error_handlers
@@ -66,19 +67,22 @@ def create_app(settings: Settings | None = None, registry_factory: RegistryFacto
     app.include_router(health.router)
     app.include_router(metrics.router)
     app.include_router(build_api_router())
-    mount_mcp(app, gateway, hooks)  # last: the MCP app is mounted at "/" and must come after the routes
+    mount_mcp(app, gateway, hooks)  # last: after the REST routes
     return app
 
 
 def mount_mcp(app: FastAPI, gateway: Gateway, hooks: list[LifespanHook]) -> bool:
-    """Mount the MCP area's Streamable HTTP app at /mcp, when that area is installed.
+    """Serve the MCP area's Streamable HTTP app at /mcp, when that area is installed.
 
     ``gateway.mcp.server`` provides ``build_mcp(gateway)`` (an ``MCPServer``) and
-    ``streamable_http_app(mcp, settings)`` (its ASGI app, serving the path ``/mcp``). The session
+    ``streamable_http_app(mcp, settings)`` (its Starlette app, serving the path ``/mcp``). The session
     manager must run in this app's lifespan: mounted sub-app lifespans never run.
+
+    Rather than mounting the MCP app at "/" (which would answer every unknown path with its own
+    plain-text 404), each path it serves is routed to it, so other paths keep the API's JSON errors.
     """
     if importlib.util.find_spec("gateway.mcp.server") is None:
-        log.info("MCP server module not present: /mcp is not mounted")
+        log.info("MCP server module not present: /mcp is not served")
         return False
     from gateway.mcp import server as mcp_server
 
@@ -86,5 +90,8 @@ def mount_mcp(app: FastAPI, gateway: Gateway, hooks: list[LifespanHook]) -> bool
     mcp_app = mcp_server.streamable_http_app(mcp, gateway.settings)
     hooks.append(lambda: mcp.session_manager.run())
     app.state.mcp = mcp
-    app.mount("/", mcp_app)
+    for route in getattr(mcp_app, "routes", []):
+        path = getattr(route, "path", None)
+        if path:
+            app.router.routes.append(Route(path, endpoint=mcp_app, include_in_schema=False))
     return True

@@ -52,14 +52,42 @@ class FleetCollector(Collector):
             "Telemetry updates received per vehicle and stream (use rate() for messages per second)",
             labels=["vehicle", "stream"],
         )
+        heartbeat = GaugeMetricFamily(
+            "fleet_gateway_heartbeat_age_seconds",
+            "Seconds since the vehicle's last HEARTBEAT",
+            labels=["vehicle"],
+        )
+        ages = GaugeMetricFamily(
+            "fleet_gateway_telemetry_age_seconds",
+            "Age of the newest cached sample per vehicle and stream",
+            labels=["vehicle", "stream"],
+        )
         for vehicle in vehicles:
             status = vehicle.status()
             sidecar = status.get("sidecar") or {}
             restarts.add_metric([vehicle.id], float(sidecar.get("restarts") or 0))
+            if status.get("last_heartbeat_age_s") is not None:
+                heartbeat.add_metric([vehicle.id], float(status["last_heartbeat_age_s"]))
             for stream, count in _message_counts(vehicle).items():
                 messages.add_metric([vehicle.id, stream], float(count))
+            for stream, age in _sample_ages(vehicle).items():
+                ages.add_metric([vehicle.id, stream], age)
         yield restarts
         yield messages
+        yield heartbeat
+        yield ages
+
+
+def _sample_ages(vehicle: Any) -> dict[str, float]:
+    """Age of each telemetry part the cache holds (parts never received are left out)."""
+    cache = vehicle.telemetry
+    ages: dict[str, float] = {}
+    for name in getattr(cache, "FIELDS", ()):
+        sample = getattr(cache, name, None)
+        age = getattr(sample, "age_s", None)
+        if age is not None:
+            ages[name] = float(age)
+    return ages
 
 
 def _message_counts(vehicle: Any) -> dict[str, int]:

@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from typing import Any
 
-from gateway.errors import GatewayError, InvalidArgument, NotFound
+from gateway.errors import GatewayError, InvalidArgument, NotFound, SafetyRefusal
 from gateway.fleet import geo
 from gateway.fleet.operations import Operation, OperationManager, OpStatus, Tracker
 
@@ -60,6 +60,7 @@ class Step:
     send: Callable[[], Awaitable[Any]]
     params: dict[str, Any]
     timeout_s: float | None = None  # the step fails if not finished by then (the vehicle keeps going)
+    precheck: Callable[[], None] | None = None  # run inside the vehicle's command lock, just before send
 
 
 @dataclass
@@ -173,39 +174,71 @@ class FleetOperation:
 
 @dataclass(frozen=True)
 class Unable:
-    """Why one drone cannot take part: the gateway error's code (or safety rule) and message."""
+    """Why one drone cannot take part: the safety rule (or the gateway error's code) and the message."""
 
     drone_id: str
     code: str
     message: str
     details: dict[str, Any] = field(default_factory=dict)
+    safety: bool = False  # refused by a safety rule (not an input or state error)
 
     @classmethod
     def from_error(cls, drone_id: str, exc: GatewayError) -> Unable:
         details = {k: v for k, v in exc.details.items() if k != "rule"}
-        code = str(exc.details.get("rule") or exc.code)
-        return cls(drone_id, code, exc.message, details)
+        rule = exc.details.get("rule") if isinstance(exc, SafetyRefusal) else None
+        return cls(drone_id, str(rule or exc.code), exc.message, details, safety=rule is not None)
 
     def to_dict(self) -> dict[str, Any]:
         return {"drone_id": self.drone_id, "code": self.code, "message": self.message, **self.details}
 
 
-class FleetRefused(GatewayError):
-    """A fleet command of which nothing was sent because some drones cannot take part."""
+def _refusal_text(action: str, unable: Sequence[Unable], total: int) -> str:
+    lines = "; ".join(f"{u.drone_id}: {u.message}" for u in unable)
+    return (
+        f"{action} refused, nothing was sent: {len(unable)} of {total} drone(s) cannot take part "
+        f"(all must, for {action}) - {lines}"
+    )
+
+
+class FleetRefused(SafetyRefusal):
+    """A fleet command of which nothing was sent because safety rules refused some of its drones.
+    ``rule`` is the drones' rule when they share one, else ``fleet_members``; each drone's rule and
+    numbers are in ``drones``."""
 
     code = "fleet_refused"
+    http_status = 403
+
+    def __init__(self, action: str, unable: Sequence[Unable], total: int) -> None:
+        rules = sorted({u.code for u in unable})
+        rule = rules[0] if len(rules) == 1 else "fleet_members"
+        super().__init__(
+            rule, _refusal_text(action, unable, total), rules=rules, drones=[u.to_dict() for u in unable]
+        )
+        self.unable = list(unable)
+
+
+class FleetUnavailable(GatewayError):
+    """A fleet command of which nothing was sent because some drones are unknown or not in a state to
+    take part (no safety rule involved)."""
+
+    code = "fleet_unavailable"
     http_status = 409
 
     def __init__(self, action: str, unable: Sequence[Unable], total: int) -> None:
-        lines = "; ".join(f"{u.drone_id}: {u.message}" for u in unable)
-        rules = sorted({u.code for u in unable})
         super().__init__(
-            f"{action} refused, nothing was sent: {len(unable)} of {total} drone(s) cannot take part "
-            f"(all must, for {action}) - {lines}",
-            rules=rules,
+            _refusal_text(action, unable, total),
+            codes=sorted({u.code for u in unable}),
             drones=[u.to_dict() for u in unable],
         )
         self.unable = list(unable)
+
+
+def refuse_fleet(action: str, unable: Sequence[Unable], total: int) -> GatewayError:
+    """The error for a fleet command some drones cannot take part in: a safety refusal when any drone was
+    refused by a rule, else an availability error. Either way every drone's reason is in it."""
+    if any(u.safety for u in unable):
+        return FleetRefused(action, unable, total)
+    return FleetUnavailable(action, unable, total)
 
 
 def check_drone_ids(drone_ids: Sequence[str], max_count: int = 64) -> list[str]:
@@ -404,7 +437,6 @@ class FleetOperations:
                 fop.ops = {}
                 if not phase.steps:
                     fop.dispatch_s.append(0.0)
-                    fop.dispatched.set()
                     self._changed(fop, f"phase {index} ({phase.name}): nothing to do", notify=True)
                     continue
                 self._changed(fop, f"phase {index} of {len(phases)}: {phase.name}", notify=True)
@@ -433,8 +465,9 @@ class FleetOperations:
             member.sent_after_s = round(time.monotonic() - fop.started_mono, 3)
             member.status, member.message = "running", "command sent"
             try:
+                extra = {"precheck": step.precheck} if step.precheck is not None else {}
                 op = await self.operations.start(
-                    step.vehicle, step.tracker, step.send, step.params, fop.session_key
+                    step.vehicle, step.tracker, step.send, step.params, fop.session_key, **extra
                 )
             except GatewayError as exc:
                 member.status, member.message, member.operation_id = "failed", exc.message, None
@@ -609,7 +642,15 @@ def collect_members(
     return vehicles, unable
 
 
-def formation_phases(plan: Any, vehicles: Mapping[str, Any]) -> list[Phase]:
+Precheck = Callable[[Any], None]
+"""Checks a vehicle inside its command lock (e.g. "no takeoff in progress", against parallel tool calls)."""
+
+
+def _bind(precheck: Precheck | None, vehicle: Any) -> Callable[[], None] | None:
+    return None if precheck is None else (lambda: precheck(vehicle))
+
+
+def formation_phases(plan: Any, vehicles: Mapping[str, Any], precheck: Precheck | None = None) -> list[Phase]:
     """The three phases of a `FormationPlan` as fleet-operation phases (each leg a tracked goto)."""
     from gateway.fleet.operations import GotoTracker
 
@@ -625,6 +666,7 @@ def formation_phases(plan: Any, vehicles: Mapping[str, Any]) -> list[Phase]:
                 send=_goto(vehicle, wp.lat, wp.lon, wp.alt_rel_m),
                 params={"lat": wp.lat, "lon": wp.lon, "alt_m": wp.alt_rel_m, "phase": index + 1},
                 timeout_s=step_timeout_s(slot.distance_m),
+                precheck=_bind(precheck, vehicle),
             )
         phases.append(Phase(name, steps, abort_on_failure=True))
     return phases
@@ -644,7 +686,9 @@ def slot_summaries(plan: Any) -> dict[str, dict[str, Any]]:
     }
 
 
-def takeoff_phase(vehicles: Mapping[str, Any], altitudes: Mapping[str, float]) -> Phase:
+def takeoff_phase(
+    vehicles: Mapping[str, Any], altitudes: Mapping[str, float], precheck: Precheck | None = None
+) -> Phase:
     from gateway.fleet.operations import TakeoffTracker
 
     steps = {
@@ -654,6 +698,7 @@ def takeoff_phase(vehicles: Mapping[str, Any], altitudes: Mapping[str, float]) -
             send=_takeoff(v, altitudes[d]),
             params={"altitude_m": altitudes[d]},
             timeout_s=step_timeout_s(altitudes[d], slowest_mps=0.5),
+            precheck=_bind(precheck, v),
         )
         for d, v in vehicles.items()
     }
@@ -676,15 +721,16 @@ def rtl_phases(
     positions: Mapping[str, tuple[float, float, float]],
     set_rtl_altitude: Callable[[Any, float], Awaitable[Any]],
 ) -> list[Phase]:
-    """Return to launch in two phases: (1) drones below their return altitude climb to it in place,
-    (2) each drone's RTL altitude is set, then RTL (the autopilot flies home at that altitude and lands).
-    The barrier keeps a drone from heading home while a neighbour is still climbing through its layer."""
+    """Return to launch in two phases: (1) every drone climbs or descends in place to its return altitude,
+    (2) each drone's RTL altitude is set, then RTL (the autopilot flies home at that altitude and lands;
+    it would return at its current altitude if that were higher, which is why phase 1 also descends).
+    The barrier keeps a drone from heading home while a neighbour is still moving through its layer."""
     from gateway.fleet.operations import GotoTracker, LandingTracker
 
     climbs: dict[str, Step] = {}
     for d, v in vehicles.items():
         pos = positions.get(d)
-        if pos is None or pos[2] >= altitudes[d] - FORMATION_TOLERANCE_M:
+        if pos is None or abs(pos[2] - altitudes[d]) <= FORMATION_TOLERANCE_M:
             continue
         lat, lon, alt = pos
         climbs[d] = Step(
@@ -692,7 +738,7 @@ def rtl_phases(
             tracker=GotoTracker(lat, lon, altitudes[d], FORMATION_TOLERANCE_M, kind="fleet_climb"),
             send=_goto(v, lat, lon, altitudes[d]),
             params={"lat": lat, "lon": lon, "alt_m": altitudes[d]},
-            timeout_s=step_timeout_s(altitudes[d] - alt, slowest_mps=0.5),
+            timeout_s=step_timeout_s(abs(altitudes[d] - alt), slowest_mps=0.5),
         )
     returns = {
         d: Step(
@@ -703,7 +749,10 @@ def rtl_phases(
         )
         for d, v in vehicles.items()
     }
-    return [Phase("climb in place to return altitudes", climbs), Phase("return home and land", returns)]
+    return [
+        Phase("climb or descend in place to return altitudes", climbs),
+        Phase("return home and land", returns),
+    ]
 
 
 def _goto(vehicle: Any, lat: float, lon: float, alt: float) -> Callable[[], Awaitable[Any]]:

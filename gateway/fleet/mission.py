@@ -14,6 +14,7 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from gateway.errors import InvalidArgument
 from gateway.fleet.geo import check_lat_lon
 
 # MAVLink ids
@@ -61,12 +62,13 @@ class MissionItem(BaseModel):
         for name in ("lat", "lon", "alt_rel_m", "hold_s"):
             if not math.isfinite(getattr(self, name)):
                 raise ValueError(f"{name} must be a finite number")
-        if self.kind in ("waypoint", "loiter_time"):
-            check_lat_lon(self.lat, self.lon)
-            if self.lat == 0 and self.lon == 0:
-                raise ValueError(f"a {self.kind} item needs a position (lat/lon both 0 given)")
-        elif self.kind == "land" and (self.lat or self.lon):
-            check_lat_lon(self.lat, self.lon)
+        try:
+            if self.kind in ("waypoint", "loiter_time") or (self.kind == "land" and (self.lat or self.lon)):
+                check_lat_lon(self.lat, self.lon)
+        except InvalidArgument as exc:  # pydantic reports ValueErrors as ValidationError
+            raise ValueError(exc.message) from None
+        if self.kind in ("waypoint", "loiter_time") and self.lat == 0 and self.lon == 0:
+            raise ValueError(f"a {self.kind} item needs a position (lat/lon both 0 given)")
         if self.kind == "takeoff" and self.alt_rel_m <= 0:
             raise ValueError("a takeoff item needs alt_rel_m > 0")
         if self.kind == "other" and self.command is None:

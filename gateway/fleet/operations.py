@@ -340,14 +340,19 @@ class OperationManager:
         send: Callable[[], Awaitable[Any]],
         params: dict[str, Any],
         session_key: str | None = None,
+        precheck: Callable[[], None] | None = None,
     ) -> Operation:
         """Send the command (``send``); if the vehicle accepts it, track it as the vehicle's operation.
 
-        A command that fails raises and leaves the current operation as it was: the vehicle is still
-        doing it. On success the previous operation is marked superseded.
+        Commands on one vehicle are serialised; ``precheck`` runs inside that critical section, so a
+        check such as "no takeoff in progress" also sees a takeoff whose command is still being sent
+        (LLM hosts issue parallel tool calls). A command that fails raises and leaves the current
+        operation as it was: the vehicle is still doing it. On success the previous one is superseded.
         """
         lock = self._locks.setdefault(vehicle.id, asyncio.Lock())
         async with lock:
+            if precheck is not None:
+                precheck()
             await send()
             op = Operation(
                 id=uuid.uuid4().hex[:12],
@@ -397,8 +402,34 @@ class OperationManager:
                 await asyncio.wait_for(op.changed.wait(), timeout=min(remaining, 1.0))
             if on_progress is not None and (op.progress, op.message) != last_reported:
                 last_reported = (op.progress, op.message)
-                await on_progress(op)
+                try:
+                    await on_progress(op)
+                except Exception:  # a client that cannot take progress still gets its answer
+                    log.debug("progress report for %s failed", op.id, exc_info=True)
         return op
+
+    async def recover(self) -> int:
+        """At start: operations a previous gateway process left 'running' are recorded as interrupted
+        (their monitors died with it). Returns how many were found."""
+        store = self.store
+        if store is None:
+            return 0
+        stale = [
+            r for r in await store.list_operations(status="running", limit=1000) if r.id not in self._ops
+        ]
+        for record in stale:
+            now = _now()
+            await store.save_operation(
+                record.model_copy(
+                    update={
+                        "status": OpStatus.interrupted.value,
+                        "message": "the gateway restarted while this operation was running",
+                        "updated_at": now,
+                        "finished_at": now,
+                    }
+                )
+            )
+        return len(stale)
 
     async def stop(self) -> None:
         """Gateway shutdown: monitors end, running operations are recorded as interrupted."""

@@ -35,9 +35,13 @@ STREAM_RATES_HZ: dict[str, float] = {
     "battery": 1.0,
     "rc_status": 1.0,
     "health": 1.0,  # SYS_STATUS
-    "imu": 2.0,
-    "odometry": 2.0,
+    "imu": 2.0,  # HIGHRES_IMU (PX4)
+    "raw_imu": 2.0,  # RAW_IMU (ArduPilot has no HIGHRES_IMU)
+    "odometry": 2.0,  # ODOMETRY (PX4; ArduPilot answers "No ap_message for mavlink id (331)")
 }
+#: Streams not requested from ArduPilot (it refuses them, with a STATUSTEXT for each).
+ARDUPILOT_SKIP = frozenset({"imu", "odometry"})
+PX4_SKIP = frozenset({"raw_imu"})
 
 
 @dataclass(frozen=True)
@@ -123,8 +127,9 @@ class OdometryValue:
 
 @dataclass(frozen=True)
 class MissionProgressValue:
-    current: int  # user item 1..N (0: not started)
+    current: int  # user item 1..N being flown (0: not started); N once finished
     total: int
+    finished: bool = False  # the last item was reached (MAVSDK reports current == total)
 
 
 @dataclass(frozen=True)
@@ -163,6 +168,8 @@ class TelemetryCache:
     odometry: Sample[OdometryValue] | None = None
     mission_progress: Sample[MissionProgressValue] | None = None
     status_texts: deque[StatusTextValue] = field(default_factory=lambda: deque(maxlen=50))
+    #: updates received per stream since the vehicle was created (monotonic counters, for /metrics)
+    message_counts: dict[str, int] = field(default_factory=dict)
     _status_listeners: list[Callable[[StatusTextValue], None]] = field(default_factory=list, repr=False)
 
     FIELDS = (
@@ -188,10 +195,12 @@ class TelemetryCache:
         if name not in self.FIELDS:
             raise KeyError(name)
         setattr(self, name, Sample(value, time.monotonic()))
+        self.message_counts[name] = self.message_counts.get(name, 0) + 1
 
     def add_status_text(self, severity: str, text: str, t: float | None = None) -> StatusTextValue:
         item = StatusTextValue(t if t is not None else time.time(), severity, text)
         self.status_texts.append(item)
+        self.message_counts["status_text"] = self.message_counts.get("status_text", 0) + 1
         for listener in list(self._status_listeners):
             try:
                 listener(item)
@@ -335,6 +344,7 @@ class TelemetryFeed:
                 ),
             ),
             "imu": (t.imu, lambda i: put("imu", _imu(i))),
+            "raw_imu": (t.raw_imu, lambda i: put("imu", _imu(i))),
             "odometry": (t.odometry, lambda o: put("odometry", _odometry(o))),
             "status_text": (
                 t.status_text,
@@ -353,14 +363,18 @@ class TelemetryFeed:
             task.cancel()
         await asyncio.gather(*tasks, return_exceptions=True)
 
-    async def request_rates(self, call: Callable[[str, Awaitable[Any]], Awaitable[Any]]) -> dict[str, str]:
-        """Set every stream rate; ``call(what, coro)`` adds the timeout and error mapping.
+    async def request_rates(
+        self, call: Callable[[str, Awaitable[Any]], Awaitable[Any]], skip: frozenset[str] = frozenset()
+    ) -> dict[str, str]:
+        """Set every stream rate but ``skip``; ``call(what, coro)`` adds the timeout and error mapping.
 
-        Returns the streams the vehicle refused (ArduPilot has no ODOMETRY, for example), by name.
+        Returns the streams the vehicle refused, by name.
         """
         t = self.system.telemetry
         refused: dict[str, str] = {}
         for name, hz in STREAM_RATES_HZ.items():
+            if name in skip:
+                continue
             setter = getattr(t, f"set_rate_{name}")
             try:
                 await call(f"set_rate_{name}", setter(hz))
@@ -380,7 +394,7 @@ class TelemetryFeed:
         value = (
             self._map_progress(current, total)
             if self._map_progress is not None
-            else MissionProgressValue(current, total)
+            else MissionProgressValue(current, total, total > 0 and current >= total)
         )
         self.cache.put("mission_progress", value)
 

@@ -26,6 +26,7 @@ import math
 import re
 import time
 from collections.abc import Awaitable, Callable, Iterable, Sequence
+from datetime import UTC, datetime
 from typing import TYPE_CHECKING, Any, TypeVar
 
 import grpc
@@ -46,7 +47,13 @@ from gateway.fleet.modes import (
     PX4_MODES,
     autopilot_name,
 )
-from gateway.fleet.telemetry import MissionProgressValue, TelemetryCache, TelemetryFeed
+from gateway.fleet.telemetry import (
+    ARDUPILOT_SKIP,
+    PX4_SKIP,
+    MissionProgressValue,
+    TelemetryCache,
+    TelemetryFeed,
+)
 from gateway.registry.sidecar import Confine, Sidecar, SidecarState
 from gateway.registry.spec import VehicleSpec
 
@@ -75,6 +82,7 @@ MAV_CMD_SET_MESSAGE_INTERVAL = 511
 MAV_CMD_REQUEST_MESSAGE = 512
 MAVLINK_MSG_MISSION_CURRENT = 42
 MAVLINK_MSG_SIMSTATE = 164
+MISSION_STATE_COMPLETE = 5
 MAV_TYPE_GCS = 6
 MAV_AUTOPILOT_INVALID = 8
 MAV_MODE_FLAG_SAFETY_ARMED = 128
@@ -122,6 +130,7 @@ class _Link:
 
     def __init__(self) -> None:
         self.last_heartbeat: float | None = None  # monotonic
+        self.last_heartbeat_wall: float | None = None  # epoch seconds, for display
         self.sysid: int | None = None
         self.sysids_seen: set[int] = set()
         self.autopilot: int | None = None
@@ -170,6 +179,7 @@ class Vehicle:
         self.is_simulator = False
         self.autopilot_version: str | None = None
         self._mission_plan: WirePlan | None = None
+        self._mission_state: int | None = None  # MISSION_CURRENT.mission_state (5 = COMPLETE)
         self._params: dict[str, float | int] | None = None
         self._params_at: float | None = None
         self._param_types: dict[str, str] = {}
@@ -273,6 +283,7 @@ class Vehicle:
             "tags": list(self.spec.tags),
             "state": self.state.value,
             "last_heartbeat_age_s": None if age is None else round(age, 3),
+            "last_heartbeat_at": _iso(self._link.last_heartbeat_wall),
             "last_error": self._last_error,
             "sysid": self._link.sysid,
             "expected_sysid": self.spec.expected_sysid,
@@ -433,9 +444,12 @@ class Vehicle:
             asyncio.create_task(self._simstate(system), name=f"simstate-{self.id}"),
             asyncio.create_task(self._connection_state(system), name=f"conn-{self.id}"),
             asyncio.create_task(self._identify(system), name=f"ident-{self.id}"),
+            asyncio.create_task(self._mission_current(system), name=f"mission-{self.id}"),
         ]
         if self.settings.sidecar_heartbeat_watchdog_s:
-            self._session_tasks.append(asyncio.create_task(self._feed_watchdog(system)))
+            self._session_tasks.append(
+                asyncio.create_task(self._feed_watchdog(system), name=f"watchdog-{self.id}")
+            )
         log.info("%s: MAVSDK session open on gRPC port %d", self.id, port)
         self._schedule_rates("session start")
         try:
@@ -472,6 +486,7 @@ class Vehicle:
                 continue  # another ground station on the link
             link = self._link
             link.last_heartbeat = time.monotonic()
+            link.last_heartbeat_wall = time.time()
             link.sysids_seen.add(int(msg.system_id))
             if link.sysid != msg.system_id:
                 link.sysid = int(msg.system_id)
@@ -551,7 +566,14 @@ class Vehicle:
         feed = self._feed
         if feed is None:
             return
-        await feed.request_rates(lambda what, aw: self._call(what, aw, 5.0))
+        for _ in range(30):  # which streams to ask for depends on the autopilot: wait for a HEARTBEAT
+            if self._link.autopilot is not None:
+                break
+            await asyncio.sleep(0.1)
+        skip = {MAV_AUTOPILOT_ARDUPILOTMEGA: ARDUPILOT_SKIP, MAV_AUTOPILOT_PX4: PX4_SKIP}.get(
+            self._link.autopilot or 0, frozenset()
+        )
+        await feed.request_rates(lambda what, aw: self._call(what, aw, 5.0), skip)
         # MISSION_CURRENT is only in ArduPilot's EXT_STAT stream: ask for it by id (mission progress)
         with contextlib.suppress(CommandFailed):
             await self._command_long(
@@ -819,11 +841,31 @@ class Vehicle:
 
     # --- missions ---------------------------------------------------------------------------------------
     def _map_progress(self, current: int, total: int) -> MissionProgressValue:
+        """Wire progress (seq incl. home) in user numbers. "Finished" comes from MISSION_CURRENT's
+        mission_state COMPLETE (ArduPilot >= 4.5): MAVSDK's progress never reaches current == total
+        against ArduPilot, whose MISSION_CURRENT.total leaves out home."""
+        finished = self._mission_state == MISSION_STATE_COMPLETE
         plan = self._mission_plan
         if plan is None:
-            return MissionProgressValue(max(0, current), max(0, total - 1))
-        user = plan.user_index(current) if current > 0 else 0
-        return MissionProgressValue(user, len(plan.user_to_wire))
+            user_total = max(0, total - 1)
+            user = min(max(0, current), user_total)
+        else:
+            user_total = len(plan.user_to_wire)
+            user = plan.user_index(current) if current > 0 else 0
+        return MissionProgressValue(user_total if finished else user, user_total, finished)
+
+    async def _mission_current(self, system: System) -> None:
+        """MISSION_CURRENT (requested at 1 Hz): current seq and the mission state."""
+        async for msg in system.mavlink_direct.message("MISSION_CURRENT"):
+            fields = json.loads(msg.fields_json)
+            state = int(fields.get("mission_state", 0))
+            if state != self._mission_state:
+                self._mission_state = state
+                total = int(fields.get("total", 0))
+                # MISSION_CURRENT.total excludes home; wire counts include it
+                self.telemetry.put(
+                    "mission_progress", self._map_progress(int(fields.get("seq", 0)), total + 1)
+                )
 
     async def upload_mission(self, items: Sequence[MissionItem | dict[str, Any]]) -> int:
         """Upload user items 1..N (home at seq 0 is added and hidden). Returns N."""
@@ -851,6 +893,7 @@ class Vehicle:
         ]  # fmt: skip
         await self._call("upload mission", system.mission_raw.upload_mission(raw), MISSION_TIMEOUT_S)
         self._mission_plan = plan
+        self._mission_state = None
         return len(parsed)
 
     async def download_mission(self) -> list[MissionItem]:
@@ -866,6 +909,7 @@ class Vehicle:
             "clear mission", self._require_session().mission_raw.clear_mission(), MISSION_TIMEOUT_S
         )
         self._mission_plan = WirePlan(items=[], user_to_wire=[])
+        self._mission_state = None
 
     async def start_mission(self) -> None:
         """Run the uploaded mission. On the ground: arm in GUIDED, then MISSION_START (which takes off;
@@ -878,6 +922,7 @@ class Vehicle:
             raise CommandFailed(
                 f"drone '{self.id}' has no mission to start; upload one first", vehicle_id=self.id
             )
+        self._mission_state = None  # a COMPLETE from an earlier run is not this run's
         if self.telemetry.fresh("in_air"):
             await self._call("start mission", system.mission_raw.start_mission())
             return
@@ -903,6 +948,8 @@ class Vehicle:
         )
 
     async def is_mission_finished(self) -> bool:
+        if self._mission_state == MISSION_STATE_COMPLETE:
+            return True
         return bool(
             await self._call("mission finished", self._require_session().mission_raw.is_mission_finished())
         )
@@ -1001,6 +1048,10 @@ class Vehicle:
     @property
     def params_fetched_age_s(self) -> float | None:
         return None if self._params_at is None else time.monotonic() - self._params_at
+
+
+def _iso(epoch_s: float | None) -> str | None:
+    return None if epoch_s is None else datetime.fromtimestamp(epoch_s, UTC).isoformat()
 
 
 async def _close_system(system: System) -> None:

@@ -131,7 +131,11 @@ class FleetAccess:
         wait: bool,
         action: str,
     ) -> OperationOut:
-        op = await self.operations.start(vehicle, tracker, send, params, self.session_key())
+        def precheck() -> None:
+            if tracker.kind not in ("land", "return_to_launch"):
+                self.guard_takeoff(vehicle, action)
+
+        op = await self.operations.start(vehicle, tracker, send, params, self.session_key(), precheck)
         if wait:
             await self.wait(ctx, op)
         return self.out(op, vehicle, action)

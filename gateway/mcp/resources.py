@@ -17,11 +17,11 @@ from collections.abc import AsyncIterator
 from typing import Any
 
 from mcp.server.mcpserver import AssistantMessage, MCPServer, UserMessage
-from mcp.server.mcpserver.exceptions import ResourceError
+from mcp.server.mcpserver.exceptions import ResourceError, ResourceNotFoundError
 from mcp.server.subscriptions import ResourceUpdated
 from mcp.types import EmptyResult, SubscribeRequestParams, UnsubscribeRequestParams
 
-from gateway.errors import GatewayError
+from gateway.errors import GatewayError, NotFound, UnknownVehicle
 from gateway.fleet.operations import position, value
 from gateway.mcp.access import FleetAccess
 from gateway.mcp.results import plain
@@ -161,11 +161,18 @@ class ResourceNotifier:
                 await task
 
 
+def _resource_error(exc: GatewayError) -> ResourceError:
+    """Unknown drone -> not found (-32602 with the uri); anything else -> a resource error."""
+    if isinstance(exc, UnknownVehicle | NotFound):
+        return ResourceNotFoundError(exc.message)
+    return ResourceError(exc.message)
+
+
 def _guard(fn: Any) -> Any:
     try:
         return fn()
     except GatewayError as exc:
-        raise ResourceError(exc.message) from None
+        raise _resource_error(exc) from None
 
 
 def register_resources(server: MCPServer, fa: FleetAccess) -> None:
@@ -184,7 +191,7 @@ def register_resources(server: MCPServer, fa: FleetAccess) -> None:
         try:
             return json.dumps(await mission_json(fa, drone_id), default=str)
         except GatewayError as exc:
-            raise ResourceError(exc.message) from None
+            raise _resource_error(exc) from None
 
 
 def register_prompts(server: MCPServer) -> None:

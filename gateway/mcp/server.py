@@ -3,13 +3,14 @@
 Mounting in the one ASGI app (``gateway/app.py``)::
 
     mcp = build_mcp(gateway)
-    app.mount("/", mcp_http_app(mcp, settings))     # after the REST routes; endpoint is /mcp
+    app.add_route("/mcp", mcp_http_app(mcp, settings), include_in_schema=False)
     # and inside the FastAPI lifespan, after gateway.start():
     async with mcp_lifespan(mcp): ...
 """
 
 from __future__ import annotations
 
+import asyncio
 import contextlib
 import importlib
 import logging
@@ -22,6 +23,7 @@ from mcp.server.transport_security import TransportSecuritySettings
 from starlette.applications import Starlette
 
 from gateway.mcp.access import FleetAccess
+from gateway.mcp.auth import auth_options
 from gateway.mcp.resources import ResourceNotifier, register_prompts, register_resources
 from gateway.mcp.session import SessionAudit
 from gateway.mcp.toolkit import Toolset, register_toolset, strip_schema_titles
@@ -57,8 +59,12 @@ def build_mcp(gateway: Any) -> MCPServer:
 
     @contextlib.asynccontextmanager
     async def lifespan(server: MCPServer) -> AsyncIterator[dict[str, Any]]:
-        async with notifier_box["notifier"].running():
-            yield {"fleet": fa}
+        try:
+            await fa.operations.recover()
+            async with notifier_box["notifier"].running():
+                yield {"fleet": fa}
+        finally:  # the gateway is going down: running operations are recorded as interrupted
+            await fa.operations.stop()
 
     server = MCPServer(
         SERVER_NAME,
@@ -67,6 +73,7 @@ def build_mcp(gateway: Any) -> MCPServer:
         lifespan=lifespan,
         subscriptions=bus,
         middleware=[SessionAudit(lambda: fa.store)],
+        **auth_options(settings),
     )
     server.fleet_access = fa  # type: ignore[attr-defined]  # resolvers reach the gateway through it
     for name in settings.toolsets:
@@ -89,7 +96,11 @@ def build_mcp(gateway: Any) -> MCPServer:
 
 
 def mcp_http_app(server: MCPServer, settings: Any) -> Starlette:
-    """The Streamable HTTP ASGI app serving ``/mcp`` (mount it at "/" after the REST routes)."""
+    """The Streamable HTTP ASGI app serving the path ``/mcp``.
+
+    Add it as the route ``/mcp`` of the FastAPI app (``app.add_route("/mcp", it)``): mounted at "/" it
+    would also catch every unknown REST URL (plain-text 404s, and 404 instead of 405).
+    """
     hosts = ["127.0.0.1:*", "localhost:*", "[::1]:*"]
     origins = ["http://127.0.0.1:*", "http://localhost:*", "http://[::1]:*"]
     extra = [h.strip() for h in getattr(settings, "mcp_allowed_hosts", "").split(",") if h.strip()]
@@ -110,9 +121,33 @@ streamable_http_app = mcp_http_app
 """The name gateway/app.py imports."""
 
 
-def mcp_lifespan(server: MCPServer) -> contextlib.AbstractAsyncContextManager[None]:
-    """Run this inside the ASGI app's lifespan: mounted sub-app lifespans never run by themselves."""
-    return server.session_manager.run()
+@contextlib.asynccontextmanager
+async def mcp_lifespan(server: MCPServer) -> AsyncIterator[None]:
+    """Run the Streamable HTTP session manager for the duration of the ASGI app's lifespan.
+
+    Mounted sub-app lifespans never run by themselves, so the app enters this. The session manager holds
+    an anyio task group, which must be exited by the task that entered it; lifespans are not always
+    entered and exited by one task (pytest fixtures, some servers), so it runs in a task of its own.
+    """
+    started = asyncio.Event()
+    stopping = asyncio.Event()
+
+    async def run() -> None:
+        async with server.session_manager.run():
+            started.set()
+            await stopping.wait()
+
+    task = asyncio.create_task(run(), name="mcp-session-manager")
+    waiter = asyncio.create_task(started.wait())
+    await asyncio.wait({task, waiter}, return_when=asyncio.FIRST_COMPLETED)
+    waiter.cancel()
+    if task.done():
+        task.result()  # it failed to start: raise its error here
+    try:
+        yield
+    finally:
+        stopping.set()
+        await task
 
 
 def _version() -> str:

@@ -63,7 +63,7 @@ def session_info(ctx: Any) -> SessionInfo:
     name = getattr(client, "name", None)
     ver = getattr(client, "version", None)
     sid = headers.get("mcp-session-id") if headers is not None else None
-    key = sid or f"stdio-{os.getpid()}-{id(ctx.session):x}"
+    key = sid or f"stdio-{os.getpid()}"  # stdio: one client per server process
     return SessionInfo(key, "mcp-2025", principal, name, ver)
 
 
@@ -112,6 +112,8 @@ class SessionAudit:
         last = self._touched.get(info.key)
         if not force and last is not None and now - last[0] < TOUCH_EVERY_S and last[1] == info.client_name:
             return
+        if len(self._touched) > 10_000:
+            self._touched.clear()
         self._touched[info.key] = (now, info.client_name)
         try:
             await store.touch_session(

@@ -14,21 +14,22 @@ What mavsdk_server 4.0.5 does that shapes this module (measured):
 * It binds gRPC on 0.0.0.0. ``SpawnPlan`` / ``Sidecar.confine`` is the one place where a confinement
   wrapper (network namespace, LD_PRELOAD bind shim) is inserted around the command.
 
-Every sidecar runs in its own process group with PR_SET_PDEATHSIG=SIGKILL, so it dies with the
-gateway even when the gateway is SIGKILLed; ``stop()`` terminates the group, then kills it.
+Every sidecar runs in its own process group with PR_SET_PDEATHSIG=SIGKILL (set by an exec wrapper,
+see ``die_with_parent``), so it dies with the gateway even when the gateway is SIGKILLed; ``stop()``
+terminates the group, then kills it; an atexit hook kills what is left at interpreter exit.
 """
 
 from __future__ import annotations
 
 import asyncio
 import atexit
-import ctypes
-import ctypes.util
 import enum
 import logging
 import os
 import re
+import shutil
 import signal
+import sys
 import time
 from collections import deque
 from collections.abc import Callable
@@ -50,20 +51,31 @@ _DISCOVERED = "System discovered"
 STABLE_AFTER_S = 20.0
 #: attempts at finding a gRPC port nobody else holds, per start
 PORT_ATTEMPTS = 5
+#: identical output lines within this window are logged once, with a repeat count
+REPEAT_WINDOW_S = 30.0
 #: grace between SIGTERM and SIGKILL when stopping
 TERM_GRACE_S = 3.0
-
-_PR_SET_PDEATHSIG = 1
-_libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6", use_errno=True)
-_prctl = _libc.prctl
 
 # Every live sidecar process group, so the interpreter's exit path can still kill them.
 _LIVE_PGIDS: set[int] = set()
 
+# PR_SET_PDEATHSIG is set by an exec wrapper, not a preexec_fn: forking a process that runs gRPC
+# threads and then running Python code in the child (preexec_fn also runs gRPC's at-fork hooks)
+# segfaults now and then. setpriv (util-linux) does it in C; else a tiny Python exec shim.
+_PDEATHSIG_SHIM = (
+    "import ctypes,ctypes.util,os,signal,sys;"
+    "ctypes.CDLL(ctypes.util.find_library('c') or 'libc.so.6').prctl(1,signal.SIGKILL,0,0,0);"
+    "os.getppid()==int(sys.argv[1]) or sys.exit(1);"
+    "os.execv(sys.argv[2],sys.argv[2:])"
+)
 
-def _child_setup() -> None:
-    """Runs in the child between fork and exec: die with the parent. (prctl is pre-resolved.)"""
-    _prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+
+def die_with_parent(argv: list[str]) -> list[str]:
+    """``argv`` wrapped so the process gets SIGKILL when the gateway dies, even by SIGKILL."""
+    setpriv = shutil.which("setpriv")
+    if setpriv:
+        return [setpriv, "--pdeathsig", "KILL", "--", *argv]
+    return [sys.executable, "-c", _PDEATHSIG_SHIM, str(os.getpid()), *argv]
 
 
 @atexit.register
@@ -149,6 +161,7 @@ class Sidecar:
         self._serving = asyncio.Event()
         self._stopping = False
         self._log = logging.getLogger(f"gateway.sidecar.{vehicle_id}")
+        self._repeat: tuple[str, int, float] = ("", 0, 0.0)  # last line, times repeated, first seen
 
     # --- public -----------------------------------------------------------------------------------
     @property
@@ -271,13 +284,12 @@ class Sidecar:
         self.info.serving_since = None
         try:
             proc = await asyncio.create_subprocess_exec(
-                *plan.argv,
+                *die_with_parent(plan.argv),
                 stdin=asyncio.subprocess.DEVNULL,
                 stdout=asyncio.subprocess.PIPE,
                 stderr=asyncio.subprocess.STDOUT,
                 env=plan.env,
                 start_new_session=True,  # own process group: stop() kills the whole group
-                preexec_fn=_child_setup,
             )
         except OSError as exc:
             return f"cannot start mavsdk_server ({plan.argv[0]}): {exc}"
@@ -341,6 +353,16 @@ class Sidecar:
         level = {"Error": logging.ERROR, "Warn": logging.WARNING, "Debug": logging.DEBUG}.get(
             level_name, logging.INFO
         )
+        if "Received ack for not-existing command" in message:
+            level = logging.DEBUG  # the ACK of a COMMAND_LONG the gateway sent raw (mavlink_direct)
+        now = time.monotonic()
+        last, repeats, since = self._repeat
+        if message == last and now - since < REPEAT_WINDOW_S:
+            self._repeat = (last, repeats + 1, since)  # e.g. "Sending message failed" while a link is down
+            return message
+        if repeats:
+            self._log.log(level, "[%s] (previous line repeated %d more times)", self.vehicle_id, repeats)
+        self._repeat = (message, 0, now)
         self.info.recent_output.append(message)
         self._log.log(level, "[%s] %s", self.vehicle_id, message)
         return message

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import logging
+import math
 from collections.abc import Sequence
 from datetime import UTC, datetime
 from pathlib import Path
@@ -105,6 +106,12 @@ class TrackSample(_Record):
     heading_deg: float | None = None
     ground_speed_mps: float | None = None
     battery_pct: float | None = None
+
+    @field_validator("alt_rel_m", "heading_deg", "ground_speed_mps", "battery_pct")
+    @classmethod
+    def _finite_or_none(cls, value: float | None) -> float | None:
+        """A non-finite reading is no reading (and would make the GeoJSON invalid)."""
+        return value if value is None or math.isfinite(value) else None
 
 
 class StatusTextIn(_Record):

@@ -101,10 +101,12 @@ class CommandHandler:
             return DENIED
         if frame not in FRAME_ABS | FRAME_REL:
             return DENIED
-        if v.mode != Mode.GUIDED and not v.flight.set_mode(Mode.GUIDED)[0]:
-            return FAILED
         north, east = v.frame.to_ne(lat, lon)
         up = v.flight._alt_to_up(alt, frame)
+        if not v.flight.destination_allowed(north, east, up):
+            return FAILED  # outside the geofence
+        if v.mode != Mode.GUIDED and not v.flight.set_mode(Mode.GUIDED)[0]:
+            return FAILED
         yaw = msg.param4 % 360 if math.isfinite(msg.param4) else None
         v.flight.guided_goto(north, east, up, yaw)
         return ACCEPTED

@@ -83,6 +83,8 @@ class FlightController:
         self.touchdown_t: float | None = None
         self.landed_since = 0.0
         self.land_pause_until = 0.0
+        self.ekf_failsafe = False
+        self.fence_breaches = 0  # bitmask: 1 max altitude, 2 circle
 
     # ------------------------------------------------------------------------------------------------
     # parameters
@@ -165,6 +167,9 @@ class FlightController:
         if v.landed:
             v.body.stop()
         v.text(mav.MAV_SEVERITY_INFO, "Disarming motors")
+        if v.flight_time_s > 0:
+            v._stat_params()
+            v.notify_param("MOT_THST_HOVER", v.params.get("MOT_THST_HOVER"))
         if v.auto.running and v.landed:
             v.auto.running = False
 
@@ -255,11 +260,14 @@ class FlightController:
         self.spool_until = v.t + SPOOL_UP_S
         self.target = (v.body.north, v.body.east, self.takeoff_alt)
 
-    def guided_goto(self, north: float, east: float, up: float, yaw: float | None = None) -> None:
+    def guided_goto(self, north: float, east: float, up: float, yaw: float | None = None) -> bool:
+        if not self.destination_allowed(north, east, up):
+            return False
         self.target = (north, east, up)
         self.vel_target = None
         self.takeoff_alt = None
         self.yaw_target = yaw
+        return True
 
     def position_target(self, msg) -> None:
         """SET_POSITION_TARGET_GLOBAL_INT / _LOCAL_NED in GUIDED (ignored in other modes, like ArduPilot)."""
@@ -553,10 +561,71 @@ class FlightController:
     def ekf_check(self) -> None:
         """Position lost while flying a mode that needs it: EKF failsafe -> LAND (FS_EKF_ACTION)."""
         v = self.v
-        if v.flying and not v.position_ok and v.mode in REQUIRES_POSITION and v.t >= v.timeline.ekf_gps:
-            v.text(mav.MAV_SEVERITY_CRITICAL, "EKF Failsafe")
-            action = int(self._p("FS_EKF_ACTION"))
-            self._enter(Mode.ALT_HOLD if action == 2 else Mode.LAND)
+        bad = not v.position_ok and v.t >= v.timeline.ekf_gps
+        if not bad:
+            if self.ekf_failsafe:
+                self.ekf_failsafe = False
+                v.text(mav.MAV_SEVERITY_CRITICAL, "EKF Failsafe Cleared")
+            return
+        if self.ekf_failsafe or not v.flying:
+            return
+        self.ekf_failsafe = True
+        v.text(mav.MAV_SEVERITY_CRITICAL, "EKF Failsafe")
+        if v.mode not in REQUIRES_POSITION:
+            return
+        if int(self._p("FS_EKF_ACTION")) == 2:
+            self._enter(Mode.ALT_HOLD)
+        else:
+            self._enter(Mode.LAND)
+            self.land_pause_until = v.t + 4.0
+
+    # ------------------------------------------------------------------------------------------------
+    # geofence (FENCE_ENABLE, FENCE_TYPE bits 1 = max altitude, 2 = circle around home)
+    def _fence_types(self) -> int:
+        if self._p("FENCE_ENABLE") <= 0:
+            return 0
+        return int(self._p("FENCE_TYPE")) & 0b11
+
+    def _breaches_at(self, north: float, east: float, up: float, margin: float = 0.0) -> int:
+        types = self._fence_types()
+        breaches = 0
+        if types & 1 and up - self._home_up() > self._p("FENCE_ALT_MAX") - margin:
+            breaches |= 1
+        hn, he = self._home_ne()
+        if types & 2 and math.hypot(north - hn, east - he) > self._p("FENCE_RADIUS") - margin:
+            breaches |= 2
+        return breaches
+
+    def destination_allowed(self, north: float, east: float, up: float) -> bool:
+        """GUIDED refuses destinations outside the fence (ModeGuided::set_destination)."""
+        return not self._breaches_at(north, east, up)
+
+    def fence_check(self) -> None:
+        v = self.v
+        b = v.body
+        breaches = self._breaches_at(b.north, b.east, b.up) if v.armed else 0
+        new = breaches & ~self.fence_breaches
+        self.fence_breaches = breaches
+        if not new:
+            return
+        if not v.landed:
+            names = [name for bit, name in ((1, "Max Alt"), (2, "Circle")) if new & bit]
+            plural = "s" if len(names) > 1 else ""
+            v.text(mav.MAV_SEVERITY_NOTICE, f"{' and '.join(names)} fence{plural} breached")
+        action = int(self._p("FENCE_ACTION"))
+        if action == 0 or v.landed:
+            return
+        if v.mode in (Mode.LAND, Mode.RTL) or (v.mode == Mode.AUTO and self.descending):
+            return
+        if action == 2:
+            self.set_mode(Mode.LAND)
+        elif action == 4:
+            if not self.set_mode(Mode.BRAKE)[0]:
+                self.set_mode(Mode.LAND)
+        elif action in (3, 5) and self.set_mode(Mode.SMART_RTL)[0]:
+            return
+        elif not self.set_mode(Mode.RTL)[0]:
+            self.set_mode(Mode.LAND)
 
     # ------------------------------------------------------------------------------------------------
     # simulation step
@@ -593,6 +662,7 @@ class FlightController:
             self._hold(dt)
         self._yaw(dt)
         self._ground_contact()
+        self.fence_check()
 
     def _step_on_ground(self, dt: float) -> None:
         v = self.v

@@ -55,6 +55,8 @@ def sys_status(v: SimVehicle) -> mav.MAVLink_message:
             health |= _POS_CTRL
     if v.params.get("FENCE_ENABLE") > 0:
         enabled |= S.MAV_SYS_STATUS_GEOFENCE
+    if v.flight.fence_breaches:
+        health &= ~S.MAV_SYS_STATUS_GEOFENCE
     if v.armed:
         enabled |= S.MAV_SYS_STATUS_LOGGING
     if v.prearm_failure() is None:

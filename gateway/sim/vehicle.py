@@ -120,7 +120,8 @@ class SimVehicle:
         self._gcs_last_seen: float | None = None
         self._boot_text_i = 0
         self._prearm_next_display = 15.0 + 13.0
-        self._origin_sent = False
+        self._next_stat = 30.0
+        self.flight_time_s = 0.0
         self._last_hb = -1.0
         self._last_timesync = 0.0
         self.status_texts: list[tuple[float, int, str]] = []
@@ -218,10 +219,12 @@ class SimVehicle:
         return time.time() * 1e6
 
     def landed_state(self) -> int:
-        if not self.armed or self.landed:
-            if self.flight.takeoff_pending():
-                return mav.MAV_LANDED_STATE_TAKEOFF
+        if not self.armed:
             return mav.MAV_LANDED_STATE_ON_GROUND
+        if self.landed:  # spooling up counts as on the ground; touched down in LAND: still landing
+            return (
+                mav.MAV_LANDED_STATE_LANDING if self.flight.is_landing() else mav.MAV_LANDED_STATE_ON_GROUND
+            )
         if self.flight.is_taking_off():
             return mav.MAV_LANDED_STATE_TAKEOFF
         if self.flight.is_landing():
@@ -259,8 +262,8 @@ class SimVehicle:
             base |= mav.MAV_MODE_FLAG_SAFETY_ARMED
         if booting:
             status = mav.MAV_STATE_BOOT
-        elif self.failsafe_gcs or self.battery.failsafe:
-            status = mav.MAV_STATE_CRITICAL if self.flying else mav.MAV_STATE_STANDBY
+        elif self.failsafe_gcs or self.battery.failsafe or self.flight.ekf_failsafe:
+            status = mav.MAV_STATE_CRITICAL  # any failsafe, as ArduCopter's vehicle_system_status()
         else:
             status = (
                 mav.MAV_STATE_ACTIVE if self.flying and not self.flight.on_ground() else mav.MAV_STATE_STANDBY
@@ -289,6 +292,11 @@ class SimVehicle:
         del self.status_texts[:-200]
         log.debug("sysid %d: %s", self.sysid, text)
         self.broadcast(mav.MAVLink_statustext_message(severity, text.encode()[:50], 0, 0))
+
+    def notify_param(self, name_47: str, value: float) -> None:
+        """Change a parameter internally and announce it unsolicited (index 65535), as ArduPilot does."""
+        param = self.params.set(self.params.canonical(name_47), value, notify=False)
+        self.broadcast(self.param_value(param))
 
     def param_value(self, param: Param, index: int | None = None) -> mav.MAVLink_message:
         return mav.MAVLink_param_value_message(
@@ -359,8 +367,7 @@ class SimVehicle:
         return self.frame.lat0, self.frame.lon0, self.frame.alt0
 
     def _mission_uploaded(self, count: int) -> None:
-        param = self.params.set(self.params.canonical("MIS_TOTAL"), count - 1, notify=False)
-        self.broadcast(self.param_value(param))
+        self.notify_param("MIS_TOTAL", count)  # AP_Mission's total includes home
         self.flight.mission_changed()
 
     # ------------------------------------------------------------------------------------------------
@@ -377,13 +384,15 @@ class SimVehicle:
             dt = min(MAX_STEP_S, elapsed)
             elapsed -= dt
             self._step(dt)
+            self._emit()  # per step, so streams keep their spacing in simulated time
         self.mission.tick(now)
-        self._emit()
 
     def _step(self, dt: float) -> None:
         self.t += dt
         self._boot_timeline()
         self.flight.step(dt)
+        if self.flying:
+            self.flight_time_s += dt
         self.battery.drain(dt, self.armed, self.flying)
         self._failsafes()
 
@@ -397,6 +406,14 @@ class SimVehicle:
             self.text(mav.MAV_SEVERITY_INFO, text.format(field_elev=round(self.frame.alt0)))
             if attr == "origin" and "origin set" in text:
                 self._set_origin()
+            if attr == "baro" and text.startswith("Barometer 2"):
+                for name in ("BARO1_GND_PRESS", "BARO2_GND_PRESS", "INS_GYR_ID", "INS_ACC_ID"):
+                    self.notify_param(name, self.params.get(name))
+            if attr == "rc7":
+                self.notify_param("EK3_SRC1_POSXY", 3)
+        if self.t >= self._next_stat:
+            self._next_stat += 30.0
+            self._stat_params()
         if self.t >= self._prearm_next_display:
             self._prearm_next_display = self.t + PREARM_DISPLAY_PERIOD_S
             if not self.armed:
@@ -404,8 +421,15 @@ class SimVehicle:
                 if failure:
                     self.text(mav.MAV_SEVERITY_CRITICAL, f"PreArm: {failure}")
 
+    def _stat_params(self) -> None:
+        if self.flight_time_s > 0:
+            self.notify_param("STAT_FLTTIME", round(self.flight_time_s))
+        self.notify_param("STAT_RUNTIME", round(self.t))
+
     def _set_origin(self) -> None:
         self.home = self.position()
+        if self.params.get("MIS_TOTAL") < 1:
+            self.notify_param("MIS_TOTAL", 1)  # home becomes mission item 0
         for builder in (telemetry.gps_global_origin, telemetry.home_position):
             msg = builder(self)
             if msg is not None:
@@ -459,7 +483,7 @@ class SimVehicle:
             self.broadcast(self.heartbeat())
         if self.t - self._last_timesync >= 10.0:
             self._last_timesync = self.t
-            self.broadcast(mav.MAVLink_timesync_message(0, round(self.t * 1e9) + 1001))
+            self.broadcast(mav.MAVLink_timesync_message(0, round(self.t * 1e6) * 1000 + self.sysid))
         for link in self.links:
             if not link.connected:
                 continue
@@ -513,6 +537,9 @@ class SimVehicle:
             "link_up": self.faults.up,
             "packet_loss_pct": self.faults.loss_pct,
             "failsafe_gcs": self.failsafe_gcs,
+            "gcs_heartbeat_age_s": None
+            if self._gcs_last_seen is None
+            else round(self.t - self._gcs_last_seen, 3),
             "failsafe_battery": self.battery.failsafe,
             "position_ok": self.position_ok,
             "mission_current": self.auto.current,

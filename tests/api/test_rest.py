@@ -61,7 +61,7 @@ async def test_health_ready_and_docs(client: httpx.AsyncClient) -> None:
 async def test_not_running_gateway_answers_503(settings: Settings) -> None:
     app = create_app(settings, registry_factory=FakeRegistry)  # lifespan never started
     transport = httpx.ASGITransport(app=app)
-    async with httpx.AsyncClient(transport=transport, base_url="http://127.0.0.1") as client:
+    async with httpx.AsyncClient(transport=transport, base_url="http://127.0.0.1:8765") as client:
         ready = await client.get("/readyz")
         assert ready.status_code == 503 and ready.json()["status"] == "not_ready"
         assert_error(await client.get("/api/v1/vehicles"), 503, "not_ready")
@@ -223,7 +223,7 @@ async def test_unexpected_failure_is_a_json_500(client: httpx.AsyncClient, app: 
 
     app.state.gateway.registry.connect = broken
     transport = httpx.ASGITransport(app=app, raise_app_exceptions=False)
-    async with httpx.AsyncClient(transport=transport, base_url="http://127.0.0.1") as quiet:
+    async with httpx.AsyncClient(transport=transport, base_url="http://127.0.0.1:8765") as quiet:
         error = assert_error(await quiet.post("/api/v1/vehicles/alpha/connect"), 500, "internal_error")
     assert "RuntimeError" in error["message"]
     [entry] = await store_of(app).list_audit(limit=1)
@@ -393,3 +393,25 @@ async def test_metrics_per_app(client: httpx.AsyncClient, app: FastAPI, settings
 
     other = create_app(settings.model_copy(update={"database_url": f"sqlite+aiosqlite:///{tmp_path}/b.db"}))
     assert other.state.metrics_registry is not app.state.metrics_registry
+
+
+async def test_mcp_is_served_beside_the_api(client: httpx.AsyncClient) -> None:
+    """/mcp reaches the MCP app (one ASGI app); its neighbours keep the API's JSON errors."""
+    initialize = {
+        "jsonrpc": "2.0",
+        "id": 1,
+        "method": "initialize",
+        "params": {
+            "protocolVersion": "2025-11-25",
+            "capabilities": {},
+            "clientInfo": {"name": "rest-test", "version": "1"},
+        },
+    }
+    response = await client.post(
+        "/mcp", json=initialize, headers={"accept": "application/json, text/event-stream"}
+    )
+    assert response.status_code == 200, response.text
+    assert "fleet" in response.text.lower() or "serverInfo" in response.text
+    assert_error(await client.get("/mcp-nothing"), 404, "not_found")
+    big = {**initialize, "params": {**initialize["params"], "pad": "x" * 5000}}
+    assert_error(await client.post("/mcp", json=big), 413, "body_too_large")

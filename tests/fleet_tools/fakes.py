@@ -19,7 +19,7 @@ class SpreadVehicle(FakeVehicle):
     """A fake drone with its own home, ``east_m`` east of the shared one; optional command latency,
     a barrier every command waits at, and per-command failures."""
 
-    def __init__(self, vid: str, east_m: float, speed: float = 60.0) -> None:
+    def __init__(self, vid: str, east_m: float, speed: float = 150.0) -> None:
         super().__init__(vid, speed=speed)
         lat, lon = geo.offset_position(HOME[0], HOME[1], 0.0, east_m)
         self.home_ll = (lat, lon)

@@ -78,7 +78,7 @@ async def test_formation_refused_before_anything_moves_names_every_drone(gateway
         args = {"formation": "wedge", "center_lat": lat, "center_lon": lon, "alt_m": 20, "spacing_m": 12}
         # a lock and an unknown id are found before planning
         text = err(await c.call_tool("formation_goto", {"drone_ids": [*IDS, "d9"], **args}))
-        assert "nothing was sent" in text and "2 of 6" in text, text
+        assert text.startswith("Refused: formation_goto refused, nothing was sent") and "2 of 6" in text, text
         assert "d2: operator_lock: drone d2 is locked by alice: battery swap" in text, text
         assert "d9: unknown" in text.lower() or "d9:" in text, text
         gateway.lockbook.unlock("d2")
@@ -100,7 +100,7 @@ async def test_formation_phases_are_barriers(gateway: SpreadGateway) -> None:
     drones transit at other altitudes, and no drone starts a phase before every drone finished the
     previous one."""
     slow = gateway.registry.get("d3")
-    slow.speed = 15.0  # one slow drone: the others must wait for it at each barrier
+    slow.speed = 40.0  # one slow drone: the others must wait for it at each barrier
     async with Client(build_mcp(gateway)) as c:
         ok(await c.call_tool("fleet_takeoff", {"drone_ids": IDS, "alt_m": 20, "stagger_m": 0}))
         for v in gateway.vehicles():
@@ -252,8 +252,8 @@ def test_rtl_order_puts_the_drone_passing_over_a_home_above_its_owner() -> None:
 
 async def test_formation_resource_and_monitor(gateway: SpreadGateway) -> None:
     for v in gateway.vehicles():
-        v.speed = 8.0
-    gateway.settings.mcp_wait_cap_s = 0.5
+        v.speed = 25.0
+    gateway.settings.mcp_wait_cap_s = 0.3
     async with Client(build_mcp(gateway)) as c:
         res = await c.read_resource("fleet://formation")
         assert json.loads(res.contents[0].text)["formation"] is None
@@ -312,5 +312,41 @@ async def test_list_drones_filters_and_fleet_status_is_compact(gateway: SpreadGa
         # d5 is not ready: a fleet takeoff including it is refused as a whole
         text = err(await c.call_tool("fleet_takeoff", {"drone_ids": IDS, "alt_m": 10}))
         assert "d5:" in text and "link_lost" in text, text
+        assert not text.startswith("Refused"), "no safety rule refused it: the drone is unavailable"
         text = err(await c.call_tool("fleet_takeoff", {"drone_ids": ["d1", "d1"], "alt_m": 10}))
         assert "more than once" in text
+
+
+async def test_fleet_tools_follow_the_surface_rules(gateway: SpreadGateway) -> None:
+    """Like the other toolsets: one short description line, annotations set, structured output."""
+    async with Client(build_mcp(gateway)) as c:
+        tools = {t.name: t for t in (await c.list_tools()).tools}
+    fleet = ["list_drones", "fleet_status", "monitor_fleet", "formation_goto", "fleet_takeoff", "fleet_land",
+             "fleet_return_to_launch", "fleet_hold"]  # fmt: skip
+    for name in fleet:
+        tool = tools[name]
+        assert tool.description and "\n" not in tool.description and len(tool.description) <= 110, name
+        assert '"title"' not in json.dumps(tool.input_schema), name
+        assert tool.output_schema is not None and tool.annotations is not None, name
+    assert all(tools[n].annotations.read_only_hint for n in ("list_drones", "fleet_status", "monitor_fleet"))
+    assert not tools["formation_goto"].annotations.read_only_hint
+
+
+async def test_return_altitudes_fall_back_to_the_separation_when_the_margin_does_not_fit() -> None:
+    gateway = SpreadGateway(Settings(_env_file=None, mcp_wait_cap_s=20.0, max_altitude_m=45.0), n=5)
+    async with Client(build_mcp(gateway)) as c:
+        ok(await c.call_tool("fleet_takeoff", {"drone_ids": IDS, "alt_m": 10, "stagger_m": 5}))  # 10..30 m
+        # from 31 m, 7 m apart reaches 59 m, above 45; 5 m apart reaches 51: still above, refused with numbers
+        text = err(await c.call_tool("fleet_return_to_launch", {}))
+        assert "max_altitude" in text and "45" in text, text
+        r = ok(await c.call_tool("fleet_return_to_launch", {"rtl_alt_m": 20}))  # 20..40 at 5 m apart
+    alts = {d["drone_id"]: d["rtl_alt_m"] for d in r["drones"]}
+    assert sorted(alts.values()) == [20.0, 25.0, 30.0, 35.0, 40.0]
+    assert any("did not fit" in n for n in r["notes"]), r["notes"]
+    # each drone first moved in place to its own layer, up or down (else a drone above its RTL
+    # altitude would return at its current one, breaking the layers)
+    for v in gateway.vehicles():
+        gotos = [a for _t, n, a in v.log if n == "goto"]
+        start = 10.0 + 5 * IDS.index(v.id)
+        if abs(start - alts[v.id]) > 1.0:
+            assert gotos and gotos[-1][2] == alts[v.id], (v.id, gotos)

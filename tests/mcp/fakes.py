@@ -73,6 +73,7 @@ class FakeVehicle:
             ),
         )
         self._task: asyncio.Task | None = None
+        self.arm_delay_s = 0.0
 
     # --- state helpers
     def _set(self, **parts: Any) -> None:
@@ -126,6 +127,7 @@ class FakeVehicle:
         self._set(armed=False, in_air=False, position=_pos(*self.pos()[:2], 0.0))
 
     async def takeoff(self, alt: float) -> None:
+        await asyncio.sleep(self.arm_delay_s)  # arming takes a while on a real vehicle
         self.sent.append(("takeoff", alt))
         self._set(armed=True, in_air=True, flight_mode="GUIDED")
         self._fly(*self.pos()[:2], alt)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import asyncio
+
 import pytest
 from mcp import Client
 
@@ -48,3 +50,25 @@ async def test_takeoff_goto_land_and_refusals(gateway: FakeGateway, mode: str) -
         assert r.is_error and "d1, d2" in r.content[0].text
         r = await c.call_tool("list_parameters", {"drone_id": "d1", "prefix": "sr0", "limit": 100})
         assert r.structured_content["total"] == 300 and r.structured_content["next_offset"] == 100
+
+
+async def test_parallel_takeoff_and_goto_the_goto_is_refused(gateway: FakeGateway) -> None:
+    """LLM hosts may issue tool calls in parallel: a goto racing a takeoff (still arming) is refused."""
+    server = build_mcp(gateway)
+    vehicle = gateway.registry.get("d1")
+    vehicle.arm_delay_s = 0.5
+    goto = {"drone_id": "d1", "latitude_deg": 47.398, "longitude_deg": 8.5456, "altitude_m": 10}
+    async with Client(server) as c:
+
+        async def late_goto() -> object:
+            await asyncio.sleep(0.1)  # sent while the takeoff command is still being sent
+            # armed and lifting off: the takeoff guard, not the on-the-ground check, must refuse
+            vehicle.telemetry.in_air.value = vehicle.telemetry.armed.value = True
+            return await c.call_tool("go_to_location", goto)
+
+        takeoff, refused = await asyncio.gather(
+            c.call_tool("takeoff", {"drone_id": "d1", "altitude_m": 10, "wait": False}), late_goto()
+        )
+    assert takeoff.structured_content["status"] == "running"
+    assert refused.is_error and "takeoff_in_progress" in refused.content[0].text
+    assert [s[0] for s in vehicle.sent] == ["takeoff"]

@@ -6,12 +6,13 @@ need a flying simulator: registration, restore, identity checks, link loss, side
 
 from __future__ import annotations
 
+import asyncio
 import os
 import signal
 
 import pytest
 
-from gateway.errors import DuplicateVehicle, InvalidArgument, UnknownVehicle, VehicleNotReady
+from gateway.errors import CommandFailed, DuplicateVehicle, InvalidArgument, UnknownVehicle, VehicleNotReady
 from gateway.fleet.vehicle import ConnectionState
 from gateway.registry.registry import Registry
 from gateway.registry.spec import VehicleSpec
@@ -41,6 +42,7 @@ async def test_register_persist_restore_and_stop(store, registries) -> None:
         status = a.status()
         assert status["sidecar"]["pid"] and status["sidecar"]["grpc_port"]
         assert status["last_heartbeat_age_s"] is not None and status["sysid_mismatch"] is False
+        assert status["last_heartbeat_at"].endswith("+00:00")
         # not ready: no position/home from a heartbeat-only vehicle; actions say so instead of hanging
         with pytest.raises(VehicleNotReady, match="connected but not ready"):
             await a.takeoff(10)
@@ -138,3 +140,61 @@ async def test_killed_sidecar_restarts_others_untouched(store, registries) -> No
         assert v2.status()["sidecar"]["pid"] == pid2
         assert all(vid != "lima" for vid, _, _ in seen)
         assert ("kilo", "connected", "connecting") in seen
+
+
+async def test_raw_commands_modes_and_unknown_parameter(store, registries) -> None:
+    port = free_udp_port()
+    reg = Registry(fast_settings(), store)
+    registries.append(reg)
+    await reg.start()
+    async with HeartbeatVehicle(port, sysid=41) as fake:
+        v = await reg.add(_spec("mike", port))
+        await v.wait_for_state(ConnectionState.CONNECTED)
+        await wait_until(lambda: v.sysid == 41, what="heartbeat")
+        # DO_SET_MODE goes out through mavlink_direct, is ACKed, and the HEARTBEAT confirms it
+        await v.set_flight_mode("loiter")
+        assert fake.custom_mode == 5
+        await wait_until(lambda: v.telemetry.fresh("flight_mode") == "LOITER", what="mode in cache")
+        with pytest.raises(InvalidArgument, match="unknown ArduCopter flight mode 'WARP'"):
+            await v.set_flight_mode("WARP")
+        assert fake.custom_mode == 5
+        # the gateway asked for MISSION_CURRENT by id, and probed for SIMSTATE (FAILED: not a simulator)
+        await wait_until(
+            lambda: any(
+                m.get_type() == "COMMAND_LONG" and m.command == 511 and m.param1 == 42 for m in fake.received
+            ),
+            what="MISSION_CURRENT interval request",
+        )
+        assert v.is_simulator is False
+        # ArduPilot ignores unknown parameter names: MAVSDK times out, the gateway says what it means
+        with pytest.raises(CommandFailed, match="unknown parameter 'NO_SUCH_PARAM'"):
+            await v.get_param("NO_SUCH_PARAM")
+        with pytest.raises(InvalidArgument, match="parameter name"):
+            await v.get_param("BAD NAME!")
+
+
+async def test_heartbeat_watchdog_stops_gcs_heartbeats_when_not_fed(store, registries) -> None:
+    port = free_udp_port()
+    reg = Registry(fast_settings(sidecar_heartbeat_watchdog_s=2), store)
+    registries.append(reg)
+    await reg.start()
+    async with HeartbeatVehicle(port, sysid=51) as fake:
+        v = await reg.add(_spec("november", port))
+        await v.wait_for_state(ConnectionState.CONNECTED)
+        assert "--heartbeat-watchdog-timeout" in v.sidecar.plan(1).argv
+
+        def gcs_heartbeats() -> int:
+            return sum(1 for m in fake.received if m.get_type() == "HEARTBEAT" and m.get_srcSystem() == 245)
+
+        start = gcs_heartbeats()
+        await wait_until(
+            lambda: gcs_heartbeats() >= start + 3, what="GCS heartbeats while the watchdog is fed"
+        )
+        # a hung gateway stops feeding: mavsdk_server stops the GCS heartbeat, so the autopilot's own
+        # GCS failsafe can act
+        feeder = next(t for t in asyncio.all_tasks() if t.get_name() == "watchdog-november")
+        feeder.cancel()
+        await asyncio.sleep(3.5)
+        quiet_from = gcs_heartbeats()
+        await asyncio.sleep(2.5)
+        assert gcs_heartbeats() == quiet_from

@@ -6,6 +6,9 @@ import asyncio
 import os
 import signal
 import socket
+import subprocess
+import sys
+import time
 
 import pytest
 
@@ -159,3 +162,42 @@ def test_confinement_wrapper_is_applied_to_the_command() -> None:
     assert "--heartbeat-watchdog-timeout" not in plan.argv
     with_watchdog = Sidecar("golf", "udpin://127.0.0.1:14550", _settings(sidecar_heartbeat_watchdog_s=4))
     assert "--heartbeat-watchdog-timeout" in with_watchdog.plan(50124).argv
+
+
+_GATEWAY_STANDIN = """
+import asyncio, sys
+from gateway.config import Settings
+from gateway.registry import sidecar
+if sys.argv[1] == "shim":
+    sidecar.shutil.which = lambda name: None  # force the Python exec shim instead of setpriv
+async def main():
+    car = sidecar.Sidecar("hotel", "udpin://127.0.0.1:" + sys.argv[2], Settings())
+    car.start()
+    while car.pid is None:
+        await asyncio.sleep(0.05)
+    print(car.pid, flush=True)
+    await asyncio.sleep(3600)
+asyncio.run(main())
+"""
+
+
+def _poll(predicate, within_s: float = WAIT) -> None:
+    deadline = time.monotonic() + within_s
+    while not predicate():
+        assert time.monotonic() < deadline, "condition not reached in time"
+        time.sleep(0.05)
+
+
+@pytest.mark.parametrize("wrapper", ["setpriv", "shim"])
+def test_sidecar_dies_with_a_sigkilled_gateway(wrapper: str, process_reaper) -> None:
+    gateway = subprocess.Popen(
+        [sys.executable, "-c", _GATEWAY_STANDIN, wrapper, str(free_udp_port())],
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    process_reaper.append(gateway)
+    pid = int(gateway.stdout.readline())
+    _poll(lambda: mavsdk_servers_of(gateway.pid) == [pid])
+    gateway.kill()  # SIGKILL: no atexit, no stop(); only PR_SET_PDEATHSIG can clean up
+    gateway.wait()
+    _poll(lambda: not alive(pid))

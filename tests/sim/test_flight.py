@@ -7,11 +7,11 @@ import asyncio
 from mavsdk_grpc.telemetry import LandedState
 
 from tests.helpers import mavsdk_system, sim_process
-from tests.sim.flying import distance_m, offset, ready_to_fly, set_rates, take_off, wait_for
+from tests.sim.flying import SPEEDUP, distance_m, offset, ready_to_fly, set_rates, take_off, wait_for
 
 
 async def test_health_becomes_ok_only_when_rates_are_requested() -> None:
-    async with sim_process(1, speedup=10) as sim, mavsdk_system(sim.urls[0]) as drone:
+    async with sim_process(1, speedup=SPEEDUP) as sim, mavsdk_system(sim.urls[0]) as drone:
         await set_rates(drone)
         health = await wait_for(
             drone.telemetry.health(), lambda h: h.is_global_position_ok and h.is_home_position_ok
@@ -25,7 +25,7 @@ async def test_health_becomes_ok_only_when_rates_are_requested() -> None:
 
 
 async def test_arm_takeoff_goto_land_autodisarm() -> None:
-    async with sim_process(1, speedup=10) as sim, mavsdk_system(sim.urls[0]) as drone:
+    async with sim_process(1, speedup=SPEEDUP) as sim, mavsdk_system(sim.urls[0]) as drone:
         await ready_to_fly(drone)
         await take_off(drone, 10.0)
         position = await wait_for(drone.telemetry.position(), lambda _p: True)
@@ -55,7 +55,7 @@ async def test_arm_takeoff_goto_land_autodisarm() -> None:
 
 
 async def test_armed_on_ground_without_takeoff_auto_disarms() -> None:
-    async with sim_process(1, speedup=10) as sim, mavsdk_system(sim.urls[0]) as drone:
+    async with sim_process(1, speedup=SPEEDUP) as sim, mavsdk_system(sim.urls[0]) as drone:
         await ready_to_fly(drone)
         await drone.action.arm()
         assert await wait_for(drone.telemetry.armed(), lambda armed: armed)
@@ -66,7 +66,7 @@ async def test_armed_on_ground_without_takeoff_auto_disarms() -> None:
 
 
 async def test_tcp_port_accepts_a_new_client_after_the_previous_one_left() -> None:
-    async with sim_process(1, speedup=10) as sim:
+    async with sim_process(1, speedup=SPEEDUP) as sim:
         for _ in range(2):
             async with mavsdk_system(sim.urls[0]) as drone:
                 await set_rates(drone)

@@ -29,13 +29,13 @@ from gateway.fleet.fleet_ops import (
     FORMATION_TOLERANCE_M,
     FleetOperation,
     FleetOperations,
-    FleetRefused,
     Unable,
     check_drone_ids,
     collect_members,
     default_rtl_base_m,
     formation_phases,
     land_phase,
+    refuse_fleet,
     rtl_order,
     rtl_phases,
     set_rtl_altitude_param,
@@ -235,7 +235,7 @@ async def list_drones(
     tag: Annotated[str | None, Field(max_length=64, description="Only drones with this tag")] = None,
     state: Annotated[StateFilter | None, Field(description="Only drones in this state")] = None,
 ) -> DronesOut:
-    """All registered drones: id, name, tags, link state, armed, in air, battery %, position, mode, action."""
+    """All drones: id, name, tags, state, armed, in air, battery %, position (m above home), mode, action."""
     rows = [_row(fa, v) for v in fa.registry.all()]
     rows = [r for r in rows if (tag is None or tag in r.tags) and _matches(r, state)]
     text = "; ".join(
@@ -259,7 +259,7 @@ def _cell(x: Any, digits: int = 0) -> str:
 
 @toolset.tool(read_only=True)
 async def fleet_status(fa: FleetAccess, ctx: Context) -> FleetStatusOut:
-    """One compact table of every drone: state, armed, air, battery %, alt m, mode, action, lock."""
+    """One compact table of all drones: state, armed, in air, battery %, alt m, mode, action, lock."""
     rows = [_row(fa, v) for v in fa.registry.all()]
     lines = ["id state arm air bat% alt_m mode action lock"]
     for r in rows:
@@ -292,7 +292,7 @@ async def monitor_fleet(
     ctx: Context,
     operation_id: Annotated[str | None, Field(max_length=64, description="Default: latest")] = None,
 ) -> FleetOut:
-    """Wait (capped) for a fleet operation to finish and report each drone; call again if still running."""
+    """Wait (capped) for a fleet operation and report each drone; call again while 'running'."""
     ops = fleet_ops(fa)
     fop = ops.get(operation_id) if operation_id else ops.latest()
     if fop is None:
@@ -321,9 +321,7 @@ async def formation_goto(
     ] = None,
     wait: Wait = True,
 ) -> FleetOut:
-    """Fly flying drones into a formation centred on a point (alt m above home). Slots minimise travel;
-    crossing paths get transit altitudes; runs climb, fly, descend phases, all drones finishing each
-    before the next. All drones must be able to join, else nothing is sent (each reason listed)."""
+    """Fly airborne drones into a formation around a point, kept apart. All must join or nothing is sent."""
     ids = check_drone_ids(drone_ids)
     policy = fa.safety
 
@@ -338,7 +336,7 @@ async def formation_goto(
 
     vehicles, unable = collect_members(ids, fa.vehicle, check)
     if unable:
-        raise FleetRefused("formation_goto", unable, len(ids))
+        raise refuse_fleet("formation_goto", unable, len(ids))
     starts = [DroneStart(d, *position(vehicles[d])) for d in ids]  # type: ignore[misc]
     if heading_deg is None:
         heading_deg = _travel_heading(starts, center_lat, center_lon)
@@ -364,7 +362,7 @@ async def formation_goto(
         except SafetyRefusal as exc:
             unable.append(Unable.from_error(slot.drone_id, exc))
     if unable:
-        raise FleetRefused("formation_goto", unable, len(ids))
+        raise refuse_fleet("formation_goto", unable, len(ids))
     policy.check_formation(contexts, plan)
     params = {
         "formation": formation,
@@ -377,7 +375,7 @@ async def formation_goto(
     fop = await fleet_ops(fa).start(
         "formation_goto",
         ids,
-        formation_phases(plan, vehicles),
+        formation_phases(plan, vehicles, lambda v: fa.guard_takeoff(v, "formation_goto")),
         params,
         fa.session_key(),
         plan=plan.to_dict(),
@@ -410,8 +408,7 @@ async def fleet_takeoff(
     ] = None,
     wait: Wait = True,
 ) -> FleetOut:
-    """Arm and take off several drones at once to alt_m, alt_m+stagger, ... (in the order given; default
-    stagger: min separation + 2 m). All must be able to take off, else nothing is sent."""
+    """Take off drones at once to alt_m, alt_m+stagger, ... (given order). All must be able, or none go."""
     ids = check_drone_ids(drone_ids)
     policy = fa.safety
     _low, high = policy.altitude_band(ids)
@@ -426,12 +423,12 @@ async def fleet_takeoff(
 
     vehicles, unable = collect_members(ids, fa.vehicle, check)
     if unable:
-        raise FleetRefused("fleet_takeoff", unable, len(ids))
+        raise refuse_fleet("fleet_takeoff", unable, len(ids))
     params = {"alt_m": alt_m, "altitudes_m": altitudes}
     fop = await fleet_ops(fa).start(
         "fleet_takeoff",
         ids,
-        [takeoff_phase(vehicles, altitudes)],
+        [takeoff_phase(vehicles, altitudes, lambda v: fa.guard_takeoff(v, "fleet_takeoff"))],
         params,
         fa.session_key(),
         slots={d: {"target_alt_m": a} for d, a in altitudes.items()},
@@ -445,7 +442,7 @@ def _recovery_members(
     ids = _all_ids(fa, drone_ids)
     vehicles, unable = collect_members(ids, fa.vehicle, check)
     if not vehicles:
-        raise FleetRefused(action, unable, len(ids))
+        raise refuse_fleet(action, unable, len(ids))
     return ids, vehicles, unable
 
 
@@ -453,8 +450,7 @@ def _recovery_members(
 async def fleet_land(
     fa: FleetAccess, ctx: Context, drone_ids: SomeDrones = None, wait: Wait = True
 ) -> FleetOut:
-    """Land drones where they are, all at once; done when each is landed and disarmed. Drones that cannot
-    (not ready, locked, already landed) are listed in not_sent; the others land."""
+    """Land drones in place, all at once; done when disarmed. Those that cannot are listed in not_sent."""
 
     def check(v: Any) -> None:
         v.require_ready()
@@ -482,10 +478,7 @@ async def fleet_return_to_launch(
     ] = None,
     wait: Wait = True,
 ) -> FleetOut:
-    """Fly drones home and land, each at its own return altitude (stagger >= min separation, default
-    +2 m; a drone
-    whose way home passes over another's home flies above it). Drones first climb in place to their
-    altitude, then all return. Drones that cannot are listed in not_sent; the others return."""
+    """Fly drones home at separate altitudes and land. Those that cannot are listed in not_sent."""
     stagger = _stagger(fa, stagger_m)
     sep = fa.settings.min_separation_m
     if stagger < sep:
@@ -511,7 +504,14 @@ async def fleet_return_to_launch(
     order, notes = rtl_order(positions, homes, sep)  # type: ignore[arg-type]
     base = rtl_alt_m if rtl_alt_m is not None else default_rtl_base_m(positions.values())  # type: ignore[arg-type]
     _low, high = fa.safety.altitude_band(order)
-    altitudes = rtl_altitudes(order, base, stagger, high)
+    try:
+        altitudes = rtl_altitudes(order, base, stagger, high)
+    except SafetyRefusal:
+        if stagger_m is not None or stagger <= sep:
+            raise
+        # many drones: the default margin does not fit under the limit; the separation itself may
+        altitudes = rtl_altitudes(order, base, sep, high)
+        notes.append(f"return altitudes {sep:g} m apart (the minimum separation): {stagger:g} m did not fit")
     params = {"drone_ids": ids, "rtl_altitudes_m": altitudes}
     fop = await fleet_ops(fa).start(
         "fleet_return_to_launch",
@@ -527,8 +527,7 @@ async def fleet_return_to_launch(
 
 @toolset.tool(idempotent=True)
 async def fleet_hold(fa: FleetAccess, ctx: Context, drone_ids: SomeDrones = None) -> FleetHoldOut:
-    """Stop drones where they are (GUIDED hover), all at once; ends their actions and fleet operations.
-    Drones that cannot (not ready, locked, on the ground) are listed in not_sent."""
+    """Stop drones where they are (GUIDED hover), ending their actions. Those that cannot: not_sent."""
 
     def check(v: Any) -> None:
         v.require_ready()
@@ -580,9 +579,13 @@ def register_resources(server: MCPServer, fa: FleetAccess) -> None:
     def fleet_formation() -> str:
         return json.dumps(formation_json(fa), default=str)
 
+    pending: set[asyncio.Task[None]] = set()  # keeps the notification tasks alive until they ran
+
     def on_change(fop: FleetOperation) -> None:
         if fop.kind == "formation_goto":
-            asyncio.get_running_loop().create_task(_publish(server, FORMATION_URI))
+            task = asyncio.get_running_loop().create_task(_publish(server, FORMATION_URI))
+            pending.add(task)
+            task.add_done_callback(pending.discard)
 
     fleet_ops(fa).listeners.append(on_change)
 

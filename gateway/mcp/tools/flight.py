@@ -52,6 +52,7 @@ async def takeoff(
 ) -> OperationOut:
     """Arm if needed and climb to altitude_m above home; done when reached."""
     v = fa.ready(drone_id)
+    fa.guard_takeoff(v, "takeoff")
     if value(v, "in_air"):
         pos = position(v)
         alt = f" at {pos[2]:.1f} m" if pos else ""

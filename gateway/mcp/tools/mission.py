@@ -208,7 +208,7 @@ async def set_current_waypoint(
     prog = value(v, "mission_progress")
     total = int(prog.total) if prog is not None else None
     if total is not None and total > 0 and index > total:
-        raise InvalidArgument(f"index {index} is beyond the mission's {total} items")
+        raise InvalidArgument(f"index {index} is beyond the mission's {total} items (valid: 1..{total})")
     fa.guard_takeoff(v, "set_current_waypoint")
     fa.safety.check_actuation(fa.context(v))
     await v.set_current_mission_item(index)

@@ -72,11 +72,11 @@ async def _fly_to(
     action: str,
     yaw_deg: float | None = None,
 ) -> OperationOut:
+    geo.check_lat_lon(lat, lon)
+    check_positive_altitude(alt_rel)
     v = fa.ready(drone_id)
     fa.guard_takeoff(v, action)
     fa.require_airborne(v, action)
-    geo.check_lat_lon(lat, lon)
-    check_positive_altitude(alt_rel)
     fa.check_motion(v, lat, lon, alt_rel)
     params = {"lat": lat, "lon": lon, "alt_m": round(alt_rel, 2)}
     tracker = GotoTracker(lat, lon, alt_rel, fa.settings.arrival_tolerance_m, kind=kind)
@@ -96,7 +96,7 @@ async def go_to_location(
     alt_frame: AltFrame = "home",
     wait: Wait = True,
 ) -> OperationOut:
-    """Fly to a point; done when within arrival tolerance."""
+    """Fly to lat/lon (deg) at altitude_m (m above home, or AMSL); done on arrival."""
     v = fa.ready(drone_id)
     alt_rel = fa.relative_alt(v, altitude_m, alt_frame)
     return await _fly_to(
@@ -115,7 +115,7 @@ async def reposition(
     alt_frame: AltFrame = "home",
     wait: Wait = True,
 ) -> OperationOut:
-    """Move to a point and hover there; keeps the current altitude unless given."""
+    """Fly to lat/lon (deg) and hover; altitude_m above home, default: current."""
     v = fa.ready(drone_id)
     if altitude_m is None:
         pos = position(v)
@@ -139,7 +139,7 @@ async def move_to_relative(
     down_m: Annotated[float, Field(allow_inf_nan=False, ge=-1000, le=1000, description="+ = descend")] = 0.0,
     wait: Wait = True,
 ) -> OperationOut:
-    """Move by metres north/east/down from the current position."""
+    """Move north/east/down metres (NED, + down = descend) from here; done on arrival."""
     v = fa.ready(drone_id)
     fa.guard_takeoff(v, "move_to_relative")
     pos = position(v)
@@ -159,7 +159,7 @@ async def set_yaw(
     heading_deg: Annotated[float, Field(ge=0, lt=360, allow_inf_nan=False, description="deg from north, cw")],
     wait: Wait = True,
 ) -> OperationOut:
-    """Turn to a heading in place."""
+    """Turn in place to heading_deg (true north, clockwise); done when facing it."""
     v = fa.ready(drone_id)
     fa.guard_takeoff(v, "set_yaw")
     fa.require_airborne(v, "set_yaw")
@@ -182,7 +182,7 @@ async def set_max_speed(
     drone_id: DroneId,
     speed_mps: Annotated[float, Field(gt=0, le=100, allow_inf_nan=False, description="m/s")],
 ) -> ActionOut:
-    """Set the horizontal speed for gotos."""
+    """Set the horizontal speed of gotos, m/s."""
     v = fa.ready(drone_id)
     vctx = fa.context(v)
     fa.safety.check_actuation(vctx)

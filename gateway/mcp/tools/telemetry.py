@@ -184,13 +184,13 @@ async def get_heading(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> Value
 
 @toolset.tool(read_only=True)
 async def get_imu(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> DataOut:
-    """IMU: acceleration m/s², angular rate rad/s, magnetic field, temperature."""
+    """IMU: acceleration m/s², angular rate rad/s, temperature °C."""
     return _data_tool(fa, drone_id, "imu")
 
 
 @toolset.tool(read_only=True)
 async def get_odometry(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> DataOut:
-    """Odometry: local position, velocity, orientation."""
+    """Odometry: body-frame position m, velocity m/s, orientation."""
     return _data_tool(fa, drone_id, "odometry")
 
 
