@@ -1,7 +1,8 @@
 """The running gateway: settings, store and registry with one start/stop.
 
-The HTTP app (:mod:`gateway.app`) creates one :class:`Gateway` and starts it in its lifespan; the
-other areas hang their long-lived parts on it (``operations``, ``safety``, ``locks``).
+The HTTP app (:mod:`gateway.app`) creates one :class:`Gateway` and starts it in its lifespan. It holds
+the operator locks (restored from the database) and the safety policy that reads them; the MCP area
+adds its ``operations``.
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ from typing import Any
 
 from gateway.config import Settings
 from gateway.errors import GatewayError
+from gateway.fleet.safety import LockBook, SafetyPolicy
 from gateway.registry.store import Store
 
 log = logging.getLogger(__name__)
@@ -39,10 +41,12 @@ class Gateway:
         self.settings = settings
         self.store: Store | None = None
         self.registry: Any = None
-        # Filled in by the areas that own them (MCP operations, safety policy, operator locks).
+        # Operator locks: set through REST, persisted, restored on start. Agents get only a read-only
+        # view (through ``safety``). One book for the life of the gateway, so views stay valid.
+        self.locks = LockBook()
+        self.safety: SafetyPolicy | None = None
+        # The MCP area's OperationManager (it creates one when the gateway has none).
         self.operations: Any = None
-        self.safety: Any = None
-        self.locks: Any = None
         self._registry_factory = registry_factory or _default_registry
         self._registry_started = False
 
@@ -66,6 +70,9 @@ class Gateway:
         log.info("opening database %s", _redact(self.settings.database_url))
         self.store = await Store.open(self.settings.database_url)
         try:
+            for lock in await self.store.list_locks():
+                self.locks.lock(lock.scope, lock.reason, lock.by, at=lock.locked_at)
+            self.safety = SafetyPolicy.from_settings(self.settings, self.locks.view())
             self.registry = self._registry_factory(self.settings, self.store)
             await self.registry.start()
             self._registry_started = True

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Depends
 
-from gateway.api import flights, records, vehicles
+from gateway.api import control, flights, records, vehicles
 from gateway.api.deps import authorize
 
 API_PREFIX = "/api/v1"
@@ -16,4 +16,5 @@ def build_api_router() -> APIRouter:
     api.include_router(vehicles.router)
     api.include_router(flights.router)
     api.include_router(records.router)
+    api.include_router(control.router)
     return api

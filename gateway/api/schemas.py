@@ -65,6 +65,7 @@ class VehicleOut(VehicleRecord):
 
     state: str | None = Field(None, description="registered, connecting, connected, ready, link_lost, failed")
     status: dict[str, Any] | None = Field(None, description="Connection details: heartbeat age, sidecar...")
+    locked: str | None = Field(None, description="Why agents may not command this drone (operator locks).")
     telemetry: dict[str, Any] | None = Field(
         None, description="Latest telemetry snapshot, each part with its age (only on GET of one vehicle)."
     )

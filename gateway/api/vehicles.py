@@ -9,7 +9,7 @@ from fastapi import APIRouter, Query, Response
 from fastapi.encoders import jsonable_encoder
 
 from gateway.api.audit import AuditedRoute
-from gateway.api.deps import RegistryDep, StoreDep
+from gateway.api.deps import GatewayDep, RegistryDep, StoreDep
 from gateway.api.schemas import StatusTextList, VehicleCreate, VehicleList, VehicleOut, VehicleUpdate, as_utc
 from gateway.errors import InvalidArgument, UnknownVehicle
 from gateway.registry.store import Store, VehicleRecord
@@ -25,8 +25,12 @@ def _live(registry: Any, vehicle_id: str) -> Any | None:
         return None
 
 
-def vehicle_view(record: VehicleRecord, vehicle: Any | None, with_telemetry: bool = False) -> VehicleOut:
+def vehicle_view(
+    record: VehicleRecord, vehicle: Any | None, with_telemetry: bool = False, locks: Any = None
+) -> VehicleOut:
     data: dict[str, Any] = record.model_dump()
+    if locks is not None:
+        data["locked"] = locks.reason_for(record.id)
     if vehicle is not None:
         status = jsonable_encoder(vehicle.status())
         data["status"] = status
@@ -45,28 +49,32 @@ async def _record(store: Store, registry: Any, vehicle_id: str) -> VehicleRecord
 
 
 @router.get("", response_model=VehicleList, summary="List registered vehicles with their state")
-async def list_vehicles(store: StoreDep, registry: RegistryDep) -> VehicleList:
+async def list_vehicles(store: StoreDep, registry: RegistryDep, gateway: GatewayDep) -> VehicleList:
     records = await store.list_vehicles()
-    items = [vehicle_view(r, _live(registry, r.id)) for r in records]
+    items = [vehicle_view(r, _live(registry, r.id), locks=gateway.locks) for r in records]
     return VehicleList(items=items, total=len(items))
 
 
 @router.post("", status_code=201, response_model=VehicleOut, summary="Register a vehicle")
-async def register_vehicle(body: VehicleCreate, store: StoreDep, registry: RegistryDep) -> VehicleOut:
+async def register_vehicle(
+    body: VehicleCreate, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+) -> VehicleOut:
     vehicle = await registry.add(body.to_spec(), connect=body.connect)
     record = await _record(store, registry, body.id)
-    return vehicle_view(record, vehicle)
+    return vehicle_view(record, vehicle, locks=gateway.locks)
 
 
 @router.get("/{vehicle_id}", response_model=VehicleOut, summary="A vehicle with state and latest telemetry")
-async def get_vehicle(vehicle_id: str, store: StoreDep, registry: RegistryDep) -> VehicleOut:
+async def get_vehicle(
+    vehicle_id: str, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+) -> VehicleOut:
     record = await _record(store, registry, vehicle_id)
-    return vehicle_view(record, _live(registry, vehicle_id), with_telemetry=True)
+    return vehicle_view(record, _live(registry, vehicle_id), with_telemetry=True, locks=gateway.locks)
 
 
 @router.patch("/{vehicle_id}", response_model=VehicleOut, summary="Change a vehicle's registration")
 async def update_vehicle(
-    vehicle_id: str, body: VehicleUpdate, store: StoreDep, registry: RegistryDep
+    vehicle_id: str, body: VehicleUpdate, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
 ) -> VehicleOut:
     changes = body.changes()
     if not changes:
@@ -76,28 +84,34 @@ async def update_vehicle(
     await _record(store, registry, vehicle_id)
     await registry.update(vehicle_id, **changes)
     record = await _record(store, registry, vehicle_id)
-    return vehicle_view(record, _live(registry, vehicle_id))
+    return vehicle_view(record, _live(registry, vehicle_id), locks=gateway.locks)
 
 
 @router.delete("/{vehicle_id}", status_code=204, summary="Remove a vehicle (stops its sidecar)")
-async def remove_vehicle(vehicle_id: str, store: StoreDep, registry: RegistryDep) -> Response:
+async def remove_vehicle(
+    vehicle_id: str, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+) -> Response:
     await _record(store, registry, vehicle_id)
     await registry.remove(vehicle_id)
     return Response(status_code=204)
 
 
 @router.post("/{vehicle_id}/connect", response_model=VehicleOut, summary="Start the vehicle's sidecar")
-async def connect_vehicle(vehicle_id: str, store: StoreDep, registry: RegistryDep) -> VehicleOut:
+async def connect_vehicle(
+    vehicle_id: str, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+) -> VehicleOut:
     record = await _record(store, registry, vehicle_id)
     await registry.connect(vehicle_id)
-    return vehicle_view(record, _live(registry, vehicle_id))
+    return vehicle_view(record, _live(registry, vehicle_id), locks=gateway.locks)
 
 
 @router.post("/{vehicle_id}/disconnect", response_model=VehicleOut, summary="Stop the vehicle's sidecar")
-async def disconnect_vehicle(vehicle_id: str, store: StoreDep, registry: RegistryDep) -> VehicleOut:
+async def disconnect_vehicle(
+    vehicle_id: str, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+) -> VehicleOut:
     record = await _record(store, registry, vehicle_id)
     await registry.disconnect(vehicle_id)
-    return vehicle_view(record, _live(registry, vehicle_id))
+    return vehicle_view(record, _live(registry, vehicle_id), locks=gateway.locks)
 
 
 @router.get("/{vehicle_id}/statustexts", response_model=StatusTextList, summary="Recent STATUSTEXT messages")

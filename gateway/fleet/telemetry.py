@@ -109,14 +109,14 @@ class HealthValue:
 class RcStatusValue:
     was_available_once: bool
     is_available: bool
-    signal_strength_pct: float
+    signal_strength_pct: float | None  # None: unknown (MAVSDK says NaN)
 
 
 @dataclass(frozen=True)
 class ImuValue:
     accel_frd_mps2: tuple[float, float, float]
     gyro_frd_rads: tuple[float, float, float]
-    temperature_degc: float
+    temperature_degc: float | None
 
 
 @dataclass(frozen=True)
@@ -233,13 +233,24 @@ class TelemetryCache:
                 out[name] = None
                 continue
             value = sample.value
-            body: dict[str, Any] = asdict(value) if is_dataclass(value) else {"value": value}
+            body: dict[str, Any] = _json_safe(asdict(value) if is_dataclass(value) else {"value": value})
             age = round(sample.age_s, 3)
             body["age_s"] = age
             body["stale"] = age > self.stale_after_s
             out[name] = body
         out["status_texts"] = [asdict(item) for item in list(self.status_texts)[-10:]]
         return out
+
+
+def _json_safe(value: Any) -> Any:
+    """NaN / inf (MAVSDK's "unknown") become None: results must be strict JSON."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: _json_safe(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_json_safe(v) for v in value]
+    return value
 
 
 # --- converting MAVSDK stream items ----------------------------------------------------------------
@@ -266,7 +277,7 @@ def _imu(i: Any) -> ImuValue:
     return ImuValue(
         (a.forward_m_s2, a.right_m_s2, a.down_m_s2),
         (g.forward_rad_s, g.right_rad_s, g.down_rad_s),
-        float(i.temperature_degc),
+        _finite(i.temperature_degc),
     )
 
 
@@ -340,7 +351,7 @@ class TelemetryFeed:
                 t.rc_status,
                 lambda r: put(
                     "rc_status",
-                    RcStatusValue(r.was_available_once, r.is_available, float(r.signal_strength_percent)),
+                    RcStatusValue(r.was_available_once, r.is_available, _finite(r.signal_strength_percent)),
                 ),
             ),
             "imu": (t.imu, lambda i: put("imu", _imu(i))),

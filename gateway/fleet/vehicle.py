@@ -22,8 +22,6 @@ import contextlib
 import enum
 import json
 import logging
-import math
-import re
 import time
 from collections.abc import Awaitable, Callable, Iterable, Sequence
 from datetime import UTC, datetime
@@ -32,7 +30,6 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import grpc
 from mavsdk_grpc import System
 from mavsdk_grpc import mission_raw as mavsdk_mission_raw
-from mavsdk_grpc.mavlink_direct import MavlinkMessage
 
 from gateway.config import Settings
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
@@ -47,6 +44,8 @@ from gateway.fleet.modes import (
     PX4_MODES,
     autopilot_name,
 )
+from gateway.fleet.params import Parameters
+from gateway.fleet.rawlink import MAV_RESULT, MAV_RESULT_ACCEPTED, CommandChannel, LinkFacts, NoAck
 from gateway.fleet.telemetry import (
     ARDUPILOT_SKIP,
     PX4_SKIP,
@@ -67,9 +66,7 @@ __all__ = ["ConnectionState", "MissionItem", "Vehicle"]
 
 # gRPC call timeouts (s): MAVSDK retries MAVLink commands itself; these bound a dead sidecar.
 CALL_TIMEOUT_S = 10.0
-PARAM_TIMEOUT_S = 6.0  # MAVSDK gives up on a param after ~3 s
 MISSION_TIMEOUT_S = 30.0
-PARAM_LIST_TIMEOUT_S = 60.0
 CONNECT_TIMEOUT_S = 10.0
 ARMABLE_WAIT_S = 60.0
 MODE_CONFIRM_S = 4.0
@@ -83,37 +80,6 @@ MAV_CMD_REQUEST_MESSAGE = 512
 MAVLINK_MSG_MISSION_CURRENT = 42
 MAVLINK_MSG_SIMSTATE = 164
 MISSION_STATE_COMPLETE = 5
-MAV_TYPE_GCS = 6
-MAV_AUTOPILOT_INVALID = 8
-MAV_MODE_FLAG_SAFETY_ARMED = 128
-MAV_RESULT = {
-    0: "ACCEPTED",
-    1: "TEMPORARILY_REJECTED",
-    2: "DENIED",
-    3: "UNSUPPORTED",
-    4: "FAILED",
-    5: "IN_PROGRESS",
-    6: "CANCELLED",
-}
-
-PARAM_NAME = re.compile(r"^[A-Za-z0-9_]{1,16}$")
-# ArduPilot 4.7 renamed these; a gateway meeting 4.5/4.6 and 4.7 tries both.
-_PARAM_RENAMES = {"SYSID_THISMAV": "MAV_SYSID", "SYSID_MYGCS": "MAV_GCS_SYSID"}
-_PARAM_RENAMES.update({new: old for old, new in _PARAM_RENAMES.items()})
-
-
-def param_aliases(name: str) -> list[str]:
-    """Other names the same parameter has in other ArduPilot versions (SRn_* <-> MAV(n+1)_*)."""
-    out = []
-    if name in _PARAM_RENAMES:
-        out.append(_PARAM_RENAMES[name])
-    m = re.match(r"^SR(\d)_(\w+)$", name)
-    if m:
-        out.append(f"MAV{int(m.group(1)) + 1}_{m.group(2)}")
-    m = re.match(r"^MAV(\d)_(\w+)$", name)
-    if m and int(m.group(1)) >= 1:
-        out.append(f"SR{int(m.group(1)) - 1}_{m.group(2)}")
-    return out
 
 
 class ConnectionState(enum.StrEnum):
@@ -123,21 +89,6 @@ class ConnectionState(enum.StrEnum):
     READY = "ready"
     LINK_LOST = "link_lost"
     FAILED = "failed"
-
-
-class _Link:
-    """What the raw MAVLink messages told us about the vehicle in the current session."""
-
-    def __init__(self) -> None:
-        self.last_heartbeat: float | None = None  # monotonic
-        self.last_heartbeat_wall: float | None = None  # epoch seconds, for display
-        self.sysid: int | None = None
-        self.sysids_seen: set[int] = set()
-        self.autopilot: int | None = None
-        self.mav_type: int | None = None
-        self.custom_mode: int | None = None
-        self.armed: bool | None = None
-        self.mode_changed_at: float = 0.0
 
 
 class Vehicle:
@@ -168,8 +119,8 @@ class Vehicle:
         self._feed: TelemetryFeed | None = None
         self._monitor_task: asyncio.Task[None] | None = None
         self._recorder: FlightRecorder | None = None
-        self._link = _Link()
-        self._acks: dict[int, list[asyncio.Future[int]]] = {}
+        self._link = LinkFacts()
+        self._commands = CommandChannel(settings.gcs_sysid)
         self._last_error: str | None = None
         self._state = ConnectionState.REGISTERED
         self._state_since = time.monotonic()
@@ -180,10 +131,7 @@ class Vehicle:
         self.autopilot_version: str | None = None
         self._mission_plan: WirePlan | None = None
         self._mission_state: int | None = None  # MISSION_CURRENT.mission_state (5 = COMPLETE)
-        self._params: dict[str, float | int] | None = None
-        self._params_at: float | None = None
-        self._param_types: dict[str, str] = {}
-        self._param_names: dict[str, str] = {}  # requested name -> name the vehicle knows
+        self.params = Parameters(spec.id, self._call, self._require_session)
         self.sessions = 0  # gRPC sessions opened (1 + sidecar restarts that reached serving)
 
     # --- identity and state ---------------------------------------------------------------------------
@@ -284,7 +232,7 @@ class Vehicle:
             "state": self.state.value,
             "last_heartbeat_age_s": None if age is None else round(age, 3),
             "last_heartbeat_at": _iso(self._link.last_heartbeat_wall),
-            "last_error": self._last_error,
+            "last_error": self._describe_error(),
             "sysid": self._link.sysid,
             "expected_sysid": self.spec.expected_sysid,
             "sysid_mismatch": self.sysid_mismatch,
@@ -302,6 +250,13 @@ class Vehicle:
                 "restarts": car.info.restarts if car else 0,
             },
         }
+
+    def _describe_error(self) -> str | None:
+        """The last failure; while connecting, what the sidecar complains about (refused, no device...)."""
+        car = self._sidecar
+        if car is not None and car.state == SidecarState.STARTING and car.info.complaint:
+            return f"waiting for the vehicle on {self.spec.url}: {car.info.complaint}"
+        return self._last_error
 
     def require_ready(self) -> None:
         """Raise VehicleNotReady naming the state (and why) unless the vehicle is ready to fly."""
@@ -321,8 +276,9 @@ class Vehicle:
                 "(wrong vehicle on this link?)"
             )
         msg = f"drone '{self.id}' is {state.value}: {reason}"
-        if self._last_error and state in (ConnectionState.FAILED, ConnectionState.LINK_LOST):
-            msg += f"; last error: {self._last_error}"
+        error = self._describe_error()
+        if error and state in (ConnectionState.FAILED, ConnectionState.LINK_LOST, ConnectionState.CONNECTING):
+            msg += f"; last error: {error}"
         raise VehicleNotReady(msg, state=state.value)
 
     def _require_session(self) -> System:
@@ -335,7 +291,9 @@ class Vehicle:
     async def connect(self) -> None:
         """Start the sidecar and everything that follows (idempotent, returns at once)."""
         if self._sidecar is not None:
-            return
+            if self._sidecar.state != SidecarState.FAILED:
+                return
+            await self.disconnect()  # connecting a failed vehicle again starts afresh
         self._last_error = None
         self._sidecar = Sidecar(
             self.id,
@@ -422,8 +380,8 @@ class Vehicle:
             await _close_system(system)
             return
         self.telemetry.clear()
-        self._link = _Link()
-        self._acks.clear()
+        self._link = LinkFacts()
+        self._commands = CommandChannel(self.settings.gcs_sysid)
         self._rates_requested_at = 0.0
         self._connected_flag = None
         feed = TelemetryFeed(
@@ -440,7 +398,7 @@ class Vehicle:
         feed.start()
         self._session_tasks = [
             asyncio.create_task(self._heartbeats(system), name=f"hb-{self.id}"),
-            asyncio.create_task(self._command_acks(system), name=f"ack-{self.id}"),
+            asyncio.create_task(self._commands.pump(system), name=f"ack-{self.id}"),
             asyncio.create_task(self._simstate(system), name=f"simstate-{self.id}"),
             asyncio.create_task(self._connection_state(system), name=f"conn-{self.id}"),
             asyncio.create_task(self._identify(system), name=f"ident-{self.id}"),
@@ -466,10 +424,7 @@ class Vehicle:
                 self._system = None
                 self._feed = None
                 self._session_started = None
-            for fut in (f for futs in self._acks.values() for f in futs):
-                if not fut.done():
-                    fut.cancel()
-            self._acks.clear()
+            self._commands.cancel_all()
             await _close_system(system)
 
     def _mavsdk_names_modes(self) -> bool:
@@ -481,42 +436,17 @@ class Vehicle:
 
     async def _heartbeats(self, system: System) -> None:
         async for msg in system.mavlink_direct.message("HEARTBEAT"):
-            fields = json.loads(msg.fields_json)
-            if fields.get("type") == MAV_TYPE_GCS or fields.get("autopilot") == MAV_AUTOPILOT_INVALID:
-                continue  # another ground station on the link
             link = self._link
-            link.last_heartbeat = time.monotonic()
-            link.last_heartbeat_wall = time.time()
-            link.sysids_seen.add(int(msg.system_id))
-            if link.sysid != msg.system_id:
-                link.sysid = int(msg.system_id)
-                if self.sysid_mismatch:
-                    self._last_error = (
-                        f"system id mismatch: vehicle reports {link.sysid}, "
-                        f"expected {self.spec.expected_sysid}"
-                    )
-                    log.error("%s: %s", self.id, self._last_error)
-            link.autopilot = int(fields.get("autopilot", 0))
-            link.mav_type = int(fields.get("type", 0))
-            custom_mode = int(fields.get("custom_mode", 0))
-            if custom_mode != link.custom_mode:
-                link.custom_mode = custom_mode
-                link.mode_changed_at = time.monotonic()
-            link.armed = bool(int(fields.get("base_mode", 0)) & MAV_MODE_FLAG_SAFETY_ARMED)
-            if self._is_arducopter():
-                self.telemetry.put(
-                    "flight_mode", ARDUCOPTER_MODE_NAMES.get(custom_mode, f"MODE_{custom_mode}")
+            if not link.heartbeat(int(msg.system_id), json.loads(msg.fields_json)):
+                continue  # another ground station on the link
+            if link.sysid_changed and self.sysid_mismatch:
+                self._last_error = (
+                    f"system id mismatch: vehicle reports {link.sysid}, expected {self.spec.expected_sysid}"
                 )
-
-    async def _command_acks(self, system: System) -> None:
-        async for msg in system.mavlink_direct.message("COMMAND_ACK"):
-            fields = json.loads(msg.fields_json)
-            waiters = self._acks.get(int(fields.get("command", -1)))
-            while waiters:
-                fut = waiters.pop(0)
-                if not fut.done():
-                    fut.set_result(int(fields.get("result", 4)))
-                    break
+                log.error("%s: %s", self.id, self._last_error)
+            if self._is_arducopter():
+                mode = link.custom_mode or 0
+                self.telemetry.put("flight_mode", ARDUCOPTER_MODE_NAMES.get(mode, f"MODE_{mode}"))
 
     async def _simstate(self, system: System) -> None:
         async for _msg in system.mavlink_direct.message("SIMSTATE"):
@@ -589,11 +519,15 @@ class Vehicle:
             self._note_state()
             if self._system is not None:
                 hb = self.last_heartbeat_age_s
-                pos = self.telemetry.position
                 heartbeats_fresh = hb is not None and hb < self.settings.link_lost_after_s
-                stream_stale = pos is None or pos.age_s > max(2.0, self.settings.link_lost_after_s * 0.66)
-                if heartbeats_fresh and stream_stale:
-                    self._schedule_rates("position stream silent while heartbeats continue (reboot?)")
+                limit = max(2.0, self.settings.link_lost_after_s * 0.66)
+                # both requested streams silent (a vehicle without GPS may never send a position)
+                streams_silent = all(
+                    sample is None or sample.age_s > limit
+                    for sample in (self.telemetry.position, self.telemetry.attitude)
+                )
+                if heartbeats_fresh and streams_silent:
+                    self._schedule_rates("telemetry streams silent while heartbeats continue (reboot?)")
             await asyncio.sleep(0.25)
 
     def _note_state(self) -> None:
@@ -647,47 +581,25 @@ class Vehicle:
         """Send COMMAND_LONG through mavlink_direct and wait for its COMMAND_ACK (MAVSDK has no call)."""
         system = self._require_session()
         target = self._link.sysid or self.spec.expected_sysid or 1
-        p = [float(x) for x in params] + [0.0] * (7 - len(params))
-        fields: dict[str, Any] = {
-            "target_system": target,
-            "target_component": 1,
-            "command": command,
-            "confirmation": 0,
-            **{f"param{i + 1}": p[i] for i in range(7)},
-        }
-        loop = asyncio.get_running_loop()
-        for attempt in range(attempts):
-            fields["confirmation"] = attempt
-            fut: asyncio.Future[int] = loop.create_future()
-            self._acks.setdefault(command, []).append(fut)
-            msg = MavlinkMessage("COMMAND_LONG", self.settings.gcs_sysid, 190, target, 1, json.dumps(fields))
-            try:
-                await self._call(what, system.mavlink_direct.send_message(msg), 5.0)
-                deadline = loop.time() + wait_s
-                while True:
-                    result = await asyncio.wait_for(asyncio.shield(fut), max(0.05, deadline - loop.time()))
-                    if result != 5:  # IN_PROGRESS: a final ACK follows
-                        break
-                    fut = loop.create_future()
-                    self._acks.setdefault(command, []).append(fut)
-                    deadline = loop.time() + 10.0
-            except TimeoutError:
-                continue
-            finally:
-                waiting = self._acks.get(command, [])
-                if fut in waiting:
-                    waiting.remove(fut)
-            if result == 0:
-                return
-            raise CommandFailed(
-                f"{what} on drone '{self.id}' refused by the vehicle: {MAV_RESULT.get(result, result)}"
-                + self._recent_complaint(),
-                vehicle_id=self.id,
-                result=MAV_RESULT.get(result, str(result)),
+        try:
+            result = await self._commands.send(
+                system,
+                lambda aw: self._call(what, aw, 5.0),
+                target,
+                command,
+                params,
+                attempts=attempts,
+                wait_s=wait_s,
             )
-        raise CommandFailed(
-            f"{what} on drone '{self.id}': no COMMAND_ACK after {attempts} attempts", vehicle_id=self.id
-        )
+        except NoAck as exc:
+            raise CommandFailed(f"{what} on drone '{self.id}': {exc}", vehicle_id=self.id) from None
+        if result != MAV_RESULT_ACCEPTED:
+            name = MAV_RESULT.get(result, str(result))
+            raise CommandFailed(
+                f"{what} on drone '{self.id}' refused by the vehicle: {name}" + self._recent_complaint(),
+                vehicle_id=self.id,
+                result=name,
+            )
 
     def _recent_complaint(self, within_s: float = 5.0) -> str:
         """The latest warning-or-worse status text of the last few seconds, to explain a refusal."""
@@ -954,100 +866,22 @@ class Vehicle:
             await self._call("mission finished", self._require_session().mission_raw.is_mission_finished())
         )
 
-    # --- parameters -------------------------------------------------------------------------------------
-    @staticmethod
-    def _check_param_name(name: str) -> str:
-        if not isinstance(name, str) or not PARAM_NAME.match(name):
-            raise InvalidArgument(f"parameter name must be 1-16 of A-Z, 0-9, '_'; got {str(name)[:40]!r}")
-        return name.upper()
-
-    async def _read_param(self, system: System, name: str) -> tuple[float | int, str] | None:
-        """(value, type) or None when the vehicle does not answer (unknown name)."""
-        kind = self._param_types.get(name, "int")
-        order = [kind, "float" if kind == "int" else "int"]
-        for k in order:
-            getter = system.param.get_param_int if k == "int" else system.param.get_param_float
-            try:
-                value = await self._call(f"read parameter {name}", getter(name), PARAM_TIMEOUT_S)
-            except CommandFailed as exc:
-                result = exc.details.get("result")
-                if result == "WRONG_TYPE":
-                    continue
-                if result == "TIMEOUT":
-                    return None
-                raise
-            self._param_types[name] = k
-            return (int(value) if k == "int" else float(value)), k
-        return None
-
+    # --- parameters (gateway.fleet.params) ---------------------------------------------------------------
     async def get_param(self, name: str) -> tuple[float | int, str]:
-        """Value and type ('int' | 'float') of a parameter; tries the other ArduPilot name if renamed."""
-        name = self._check_param_name(name)
-        system = self._require_session()
-        for candidate in [self._param_names.get(name, name), *param_aliases(name)]:
-            if self._params is not None and candidate not in self._params and candidate != name:
-                continue
-            got = await self._read_param(system, candidate)
-            if got is not None:
-                self._param_names[name] = candidate
-                return got
-        alias = param_aliases(name)
-        raise CommandFailed(
-            f"unknown parameter '{name}' on drone '{self.id}': the vehicle did not answer (ArduPilot ignores "
-            "unknown names)" + (f"; also tried {', '.join(alias)}" if alias else ""),
-            vehicle_id=self.id,
-            result="UNKNOWN_PARAMETER",
-        )
+        """Value and type ('int' | 'float'); tries the other ArduPilot name if the parameter was renamed."""
+        return await self.params.get(name)
 
     async def set_param(self, name: str, value: float | int) -> tuple[float | int, str]:
         """Write a parameter with the vehicle's own type for it; returns (stored value, type)."""
-        name = self._check_param_name(name)
-        if not isinstance(value, int | float) or isinstance(value, bool) or not math.isfinite(value):
-            raise InvalidArgument(f"parameter value must be a finite number; got {value!r}")
-        _current, kind = await self.get_param(name)
-        real = self._param_names.get(name, name)
-        system = self.system
-        if kind == "int":
-            if float(value) != int(value):
-                raise InvalidArgument(f"parameter {real} is an integer; got {value!r}")
-            await self._call(
-                f"write parameter {real}", system.param.set_param_int(real, int(value)), PARAM_TIMEOUT_S
-            )
-            stored: float | int = int(value)
-        else:
-            await self._call(
-                f"write parameter {real}", system.param.set_param_float(real, float(value)), PARAM_TIMEOUT_S
-            )
-            stored = float(value)
-        if self._params is not None:
-            self._params[real] = stored
-        return stored, kind
+        return await self.params.set(name, value)
 
     async def list_params(self, max_age_s: float | None = None) -> dict[str, float | int]:
         """All parameters, fetched once and cached; ``max_age_s`` forces a refetch of an older copy."""
-        fresh = self._params is not None and (
-            max_age_s is None
-            or (self._params_at is not None and time.monotonic() - self._params_at <= max_age_s)
-        )
-        if fresh:
-            assert self._params is not None
-            return dict(self._params)
-        system = self._require_session()
-        allp = await self._call("list parameters", system.param.get_all_params(), PARAM_LIST_TIMEOUT_S)
-        params: dict[str, float | int] = {}
-        for p in allp.int_params:
-            params[p.name] = int(p.value)
-            self._param_types[p.name] = "int"
-        for p in allp.float_params:
-            params[p.name] = float(p.value)
-            self._param_types[p.name] = "float"
-        self._params = params
-        self._params_at = time.monotonic()
-        return dict(params)
+        return await self.params.all(max_age_s)
 
     @property
     def params_fetched_age_s(self) -> float | None:
-        return None if self._params_at is None else time.monotonic() - self._params_at
+        return self.params.list_age_s
 
 
 def _iso(epoch_s: float | None) -> str | None:

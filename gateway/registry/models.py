@@ -175,3 +175,14 @@ class OperationRow(Base):
     created_at: Mapped[datetime] = mapped_column(UTCDateTime())
     updated_at: Mapped[datetime] = mapped_column(UTCDateTime())
     finished_at: Mapped[datetime | None] = mapped_column(UTCDateTime())
+
+
+class LockRow(Base):
+    """An operator lock on one vehicle, or on the whole fleet (scope "*"); survives restarts."""
+
+    __tablename__ = "locks"
+
+    scope: Mapped[str] = mapped_column(String(32), primary_key=True)
+    reason: Mapped[str] = mapped_column(Text)
+    locked_by: Mapped[str] = mapped_column(String(200))
+    locked_at: Mapped[datetime] = mapped_column(UTCDateTime())

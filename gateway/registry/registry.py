@@ -40,9 +40,13 @@ class Registry:
                 return
             self._started = True
             for record in await self.store.list_vehicles():
-                spec = VehicleSpec.model_validate(
-                    record.model_dump(include={"id", "url", "name", "tags", "expected_sysid"})
-                )
+                try:
+                    spec = VehicleSpec.model_validate(
+                        record.model_dump(include={"id", "url", "name", "tags", "expected_sysid"})
+                    )
+                except ValidationError as exc:  # a row edited by hand must not keep the others down
+                    log.error("not restoring vehicle %r: invalid registration: %s", record.id, exc)
+                    continue
                 vehicle = self._make(spec)
                 if record.auto_connect:
                     await vehicle.connect()

@@ -46,6 +46,9 @@ _LEVEL = re.compile(r"^\[\d\d:\d\d:\d\d\|(\w+)\s*\]\s*")
 _LISTEN = re.compile(r"Server set to listen on [^\s]*:(\d+)")
 _BIND_FAILED = "Failed to bind server to port"
 _DISCOVERED = "System discovered"
+# mavsdk_server prints this when it cannot open its link (e.g. a missing serial device) and then waits
+# forever without retrying: the supervisor restarts it instead (and, if it keeps failing, gives up).
+_LINK_FAILED = "Connection failed"
 
 #: how long a sidecar must stay up before its crash counter is reset
 STABLE_AFTER_S = 20.0
@@ -129,6 +132,8 @@ class SidecarInfo:
     started_at: float | None = None  # monotonic, of the current process
     serving_since: float | None = None
     discovered: bool = False
+    #: the latest error/warning mavsdk_server printed while waiting for its vehicle (cleared when serving)
+    complaint: str | None = None
     recent_output: deque[str] = field(default_factory=lambda: deque(maxlen=20))
 
 
@@ -306,6 +311,7 @@ class Sidecar:
         )
         bind_failed = False
         foreign_listener = False
+        link_failed: str | None = None
         assert proc.stdout is not None
         try:
             async for raw in proc.stdout:
@@ -314,6 +320,10 @@ class Sidecar:
                     continue
                 if _DISCOVERED in line:
                     self.info.discovered = True
+                elif _LINK_FAILED in line and not self.info.discovered:
+                    earlier = [m for m in list(self.info.recent_output)[:-1] if m != line]
+                    link_failed = f"{earlier[-1]}; {line}" if earlier else line
+                    break
                 elif _BIND_FAILED in line:
                     bind_failed = True
                 else:
@@ -321,6 +331,7 @@ class Sidecar:
                     if match and int(match.group(1)) == plan.grpc_port:
                         if await self._port_is_ours(proc.pid, plan.grpc_port):
                             self.info.state = SidecarState.SERVING
+                            self.info.complaint = None
                             self.info.serving_since = time.monotonic()
                             self._serving.set()
                             if self._on_serving is not None:
@@ -331,7 +342,7 @@ class Sidecar:
         finally:
             was_serving = self.info.state == SidecarState.SERVING
             self._serving.clear()
-            if foreign_listener or bind_failed or self._stopping:
+            if foreign_listener or bind_failed or link_failed or self._stopping:
                 await self._terminate()
             code = await proc.wait()
             _LIVE_PGIDS.discard(proc.pid)
@@ -339,6 +350,8 @@ class Sidecar:
             self.info.pid = None
         if foreign_listener or bind_failed:
             return "port-taken"
+        if link_failed:
+            return f"mavsdk_server could not open {self.url}: {link_failed}"
         last = self.info.recent_output[-1] if self.info.recent_output else "no output"
         where = "while serving" if was_serving else "before serving"
         return f"mavsdk_server exited {where} with code {code} (last output: {last})"
@@ -363,6 +376,8 @@ class Sidecar:
         if repeats:
             self._log.log(level, "[%s] (previous line repeated %d more times)", self.vehicle_id, repeats)
         self._repeat = (message, 0, now)
+        if level >= logging.WARNING and self.info.state == SidecarState.STARTING:
+            self.info.complaint = message
         self.info.recent_output.append(message)
         self._log.log(level, "[%s] %s", self.vehicle_id, message)
         return message

@@ -24,6 +24,7 @@ from gateway.errors import DuplicateVehicle, InvalidArgument, NotFound
 from gateway.registry.models import (
     AuditRow,
     FlightRow,
+    LockRow,
     OperationRow,
     SessionRow,
     StatusTextRow,
@@ -189,6 +190,15 @@ class OperationRecord(_Record):
     finished_at: datetime | None = None
 
 
+class LockRecord(_Record):
+    """A stored operator lock (scope: a vehicle id, or "*" for the whole fleet)."""
+
+    scope: str
+    reason: str
+    by: str
+    locked_at: datetime
+
+
 # --- argument bounding -------------------------------------------------------------------------
 
 
@@ -274,6 +284,15 @@ async def upgrade_schema(engine: AsyncEngine, url: str, revision: str = "head") 
 
     async with engine.begin() as conn:
         await conn.run_sync(_run)
+
+
+def head_revision() -> str:
+    """The newest schema revision among the project's migrations."""
+    from alembic.script import ScriptDirectory
+
+    head = ScriptDirectory.from_config(alembic_config("sqlite://")).get_current_head()
+    assert head is not None, "no migrations found"
+    return head
 
 
 async def current_revision(engine: AsyncEngine) -> str | None:
@@ -498,14 +517,16 @@ class Store:
             return None if row is None else FlightRecord.model_validate(row)
 
     async def get_track(self, flight_id: int) -> list[TrackSample]:
+        columns = [getattr(TrackSampleRow, name) for name in TrackSample.model_fields]
         query = (
-            select(TrackSampleRow)
+            select(*columns)
             .where(TrackSampleRow.flight_id == flight_id)
             .order_by(TrackSampleRow.t, TrackSampleRow.id)
         )
         async with self._sessions() as session:
-            rows = (await session.scalars(query)).all()
-            return [TrackSample.model_validate(r) for r in rows]
+            rows = (await session.execute(query)).all()
+        # Plain rows, no ORM objects; validated when written, so built without re-validation (long tracks).
+        return [TrackSample.model_construct(**row._asdict()) for row in rows]
 
     async def list_status_texts(
         self, vehicle_id: str, limit: int = 100, since: datetime | None = None
@@ -679,3 +700,29 @@ class Store:
         async with self._sessions() as session:
             rows = (await session.scalars(query)).all()
             return [OperationRecord.model_validate(r) for r in rows]
+
+    # --- operator locks --------------------------------------------------------------------------
+
+    async def save_lock(self, scope: str, reason: str, by: str, locked_at: datetime) -> LockRecord:
+        """Store (or replace) the lock of ``scope``."""
+        async with self._sessions.begin() as session:
+            row = await session.get(LockRow, scope)
+            if row is None:
+                session.add(LockRow(scope=scope, reason=reason, locked_by=by[:200], locked_at=locked_at))
+            else:
+                row.reason, row.locked_by, row.locked_at = reason, by[:200], locked_at
+        return LockRecord(scope=scope, reason=reason, by=by[:200], locked_at=locked_at)
+
+    async def delete_lock(self, scope: str) -> bool:
+        """Remove the lock of ``scope``; False when there was none."""
+        async with self._sessions.begin() as session:
+            result = await session.execute(delete(LockRow).where(LockRow.scope == scope))
+            return bool(result.rowcount)
+
+    async def list_locks(self) -> list[LockRecord]:
+        async with self._sessions() as session:
+            rows = (await session.scalars(select(LockRow).order_by(LockRow.scope))).all()
+            return [
+                LockRecord(scope=r.scope, reason=r.reason, by=r.locked_by, locked_at=r.locked_at)
+                for r in rows
+            ]

@@ -43,7 +43,10 @@ class CommandHandler:
         if handler is None:
             result = UNSUPPORTED
         else:
-            out = handler(link, msg, is_int)
+            try:
+                out = handler(link, msg, is_int)
+            except (ValueError, OverflowError):  # NaN / absurd parameters where a number is required
+                out = FAILED
             result, after = out if isinstance(out, tuple) else (out, None)
         link.send(
             mav.MAVLink_command_ack_message(cmd, result, 0, 0, msg.get_srcSystem(), msg.get_srcComponent())
@@ -154,15 +157,22 @@ class CommandHandler:
         v = self.v
         if v.mode not in (Mode.AUTO, Mode.GUIDED) or not v.flying:
             return FAILED
-        b = v.body
         if msg.param1 == 0:
-            v.flight.target = (b.north, b.east, b.up)
+            v.flight.target = v.flight.stopping_point()
             if v.mode == Mode.AUTO:
                 v.auto.running = False
             return ACCEPTED
         if v.mode == Mode.AUTO and not v.auto.running and not v.auto.complete:
             v.flight.start_mission()
         return ACCEPTED
+
+    def _cmd_246(self, link, msg, is_int):  # MAV_CMD_PREFLIGHT_REBOOT_SHUTDOWN
+        v = self.v
+        if round(msg.param1) not in (1, 3):
+            return UNSUPPORTED  # shutdown / bootloader: not simulated
+        if v.armed:
+            return FAILED  # ArduPilot refuses to reboot while armed
+        return ACCEPTED, v.reboot
 
     # -- messages and streams -------------------------------------------------------------------------
     def _cmd_511(self, link, msg, is_int):  # MAV_CMD_SET_MESSAGE_INTERVAL

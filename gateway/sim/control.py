@@ -10,6 +10,7 @@ Routes (vehicle = index 0..N-1):
   POST /vehicles/{i}/gps         {"ok": bool}
   POST /vehicles/{i}/battery     {"pct": 0..100}
   POST /vehicles/{i}/param       {"name": str, "value": number}   (as if set by a GCS, without MAVLink)
+  POST /vehicles/{i}/reboot      {}    (restart: boot timeline from zero, stream rates lost, clients dropped)
 Errors answer 400/404 with {"error": "..."}.
 """
 
@@ -130,6 +131,8 @@ class ControlServer:
             vehicle.set_gps(_bool(args, "ok"))
         elif action == "battery":
             _call(vehicle.set_battery, _number(args, "pct"))
+        elif action == "reboot":
+            vehicle.reboot()
         elif action == "param":
             name = args.get("name")
             if not isinstance(name, str):
@@ -219,6 +222,10 @@ class SimControl:
 
     async def set_battery(self, index: int, pct: float) -> dict:
         return await self._post(f"/vehicles/{index}/battery", {"pct": pct})
+
+    async def reboot(self, index: int) -> dict:
+        """Restart the vehicle like an autopilot reboot (stream rates are lost; TCP clients reconnect)."""
+        return await self._post(f"/vehicles/{index}/reboot", {})
 
     async def set_param(self, index: int, name: str, value: float) -> dict:
         return await self._post(f"/vehicles/{index}/param", {"name": name, "value": value})

@@ -215,14 +215,12 @@ class FlightController:
         if previous == Mode.AUTO:
             v.auto.running = False
             v.auto.phase = "idle"
-        if mode != Mode.GUIDED or not v.landed:
-            self.takeoff_alt = None if v.landed else self.takeoff_alt
         if mode != Mode.GUIDED:
             self.takeoff_alt = None
-            if self.spool_until is not None and mode != Mode.AUTO:
+            if mode != Mode.AUTO:
                 self.spool_until = None
         b = v.body
-        self.target = (b.north, b.east, b.up) if v.flying else None
+        self.target = self.stopping_point() if v.flying else None
         if mode == Mode.LAND:
             self.land_pause_until = v.t
             self.descending = True
@@ -235,6 +233,16 @@ class FlightController:
             self.rtl_alt = b.up
         elif mode == Mode.AUTO and (v.flying or v.auto_armed):
             self.start_mission()
+
+    def stopping_point(self) -> tuple[float, float, float]:
+        """Where the vehicle comes to rest braking at the acceleration limits (ArduPilot's stopping point):
+        mode changes in flight hold there instead of turning back to where the switch happened."""
+        b = self.v.body
+        lim = self.limits()
+        speed = b.ground_speed
+        ahead = speed / (2.0 * lim.accel_h) if speed > 0 else 0.0
+        up = b.up + b.vu * abs(b.vu) / (2.0 * lim.accel_v)
+        return b.north + b.vn * ahead, b.east + b.ve * ahead, up
 
     def _mission_starts_with_takeoff(self) -> bool:
         items = self.v.mission.items
@@ -424,7 +432,7 @@ class FlightController:
                 self.target = (north, east, b.up)
                 auto.phase = "goto_land"
             else:
-                self.target = (b.north, b.east, b.up)
+                self.target = self.stopping_point()
                 self.descending = True
                 auto.phase = "land"
         elif cmd == mav.MAV_CMD_NAV_RETURN_TO_LAUNCH:
@@ -447,9 +455,8 @@ class FlightController:
         auto.running = False
         auto.complete = True
         auto.phase = "idle"
-        b = v.body
         if v.flying:
-            self.target = (b.north, b.east, b.up)  # hover at the last waypoint, still in AUTO
+            self.target = self.stopping_point()  # hover at the last waypoint, still in AUTO
 
     def _run_auto(self, dt: float) -> None:
         v = self.v

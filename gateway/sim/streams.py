@@ -21,7 +21,9 @@ GROUP_PARAM = {
 # Messages of each group that the simulator produces (ArduPilot's copter stream tables, reduced).
 GROUP_MESSAGES: dict[int, tuple[int, ...]] = {
     1: (27, 116, 129, 29, 137),  # RAW_IMU, SCALED_IMU2/3, SCALED_PRESSURE/2
-    2: (1, 125, 152, 42, 24, 62),  # SYS_STATUS, POWER_STATUS, MEMINFO, MISSION_CURRENT, GPS_RAW_INT, NAV_CTRL
+    # SYS_STATUS, POWER_STATUS, MEMINFO, MISSION_CURRENT, GPS_RAW_INT, NAV_CONTROLLER_OUTPUT, FENCE_STATUS,
+    # POSITION_TARGET_GLOBAL_INT (the last two only when there is something to report)
+    2: (1, 125, 152, 42, 24, 62, 162, 87),
     3: (36, 65),  # SERVO_OUTPUT_RAW, RC_CHANNELS
     4: (),
     6: (33, 32),  # GLOBAL_POSITION_INT, LOCAL_POSITION_NED

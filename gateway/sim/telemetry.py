@@ -271,9 +271,68 @@ def autopilot_version(v: SimVehicle) -> mav.MAVLink_message:
     )  # fmt: skip
 
 
+def attitude_quaternion(v: SimVehicle) -> mav.MAVLink_message:
+    roll, pitch = v.body.attitude()
+    yaw = math.radians(v.body.yaw)
+    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
+    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
+    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
+    q = (cr * cp * cy + sr * sp * sy, sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy,
+         cr * cp * sy - sr * sp * cy)  # fmt: skip
+    return mav.MAVLink_attitude_quaternion_message(
+        v.time_boot_ms, *q, 0.0, 0.0, math.radians(v.body.yaw_rate), [0.0, 0.0, 0.0, 0.0]
+    )
+
+
+def scaled_imu1(v: SimVehicle) -> mav.MAVLink_message:
+    n = v.noise
+    return mav.MAVLink_scaled_imu_message(
+        v.time_boot_ms, round(n(3)), round(n(3)), round(-1000 + n(3)), round(n(2)), round(n(2)), round(n(2)),
+        230, 10, 400, 0,
+    )  # fmt: skip
+
+
+def highres_imu(v: SimVehicle) -> mav.MAVLink_message:
+    n = v.noise
+    _, _, alt = v.position()
+    press = 1013.25 * (1 - 2.25577e-5 * alt) ** 5.25588
+    return mav.MAVLink_highres_imu_message(
+        round(v.t * 1e6), n(0.03), n(0.03), -9.80665 + n(0.03), n(0.002), n(0.002), n(0.002),
+        0.23, 0.01, 0.4, press, 0.0, alt, 31.0, 0x1FFF, 0,
+    )  # fmt: skip
+
+
+def position_target_global_int(v: SimVehicle) -> mav.MAVLink_message | None:
+    target = v.flight.target
+    if v.mode != 4 or target is None or not v.flying:  # only while GUIDED has a position target
+        return None
+    lat, lon = v.frame.to_latlon(target[0], target[1])
+    alt = v.frame.alt0 + target[2]
+    return mav.MAVLink_position_target_global_int_message(
+        v.time_boot_ms, mav.MAV_FRAME_GLOBAL, 0xFF8, round(lat * 1e7), round(lon * 1e7), alt, *([0.0] * 8)
+    )
+
+
+def fence_status(v: SimVehicle) -> mav.MAVLink_message | None:
+    if v.params.get("FENCE_ENABLE") <= 0:
+        return None
+    breaches = v.flight.fence_breaches
+    kind = mav.FENCE_BREACH_MAXALT if breaches & 1 else (mav.FENCE_BREACH_BOUNDARY if breaches else 0)
+    return mav.MAVLink_fence_status_message(1 if breaches else 0, 0, kind, 0, 0)
+
+
+# Message ids ArduCopter knows (SET_MESSAGE_INTERVAL is ACCEPTED) but that a SITL copter without the
+# matching hardware or state never sends: third baro, GPS2/RTK, rangefinder, wind, terrain, ESC, RPM ...
+KNOWN_SILENT = frozenset({35, 83, 85, 124, 127, 128, 132, 133, 136, 143, 168, 194, 226, 246, 11030, 12964})
+
 # msg id -> builder(vehicle) (builders return None when the message is not available yet).
 BUILDERS = {
     1: sys_status,
+    26: scaled_imu1,
+    31: attitude_quaternion,
+    87: position_target_global_int,
+    105: highres_imu,
+    162: fence_status,
     2: system_time,
     24: gps_raw_int,
     27: raw_imu,

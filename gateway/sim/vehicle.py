@@ -104,19 +104,34 @@ class SimVehicle:
         self.params.on_change.append(self._param_changed)
         self.sysid = sysid
         self.uid2 = bytes(f"{(seed or 0) * 7919 + sysid:032x}"[-17:], "ascii") + b"\0"
-        # state
+        self._heading0 = heading % 360.0
+        self.faults = LinkFaults(self.rng)
+        self.gps_lost = False
+        self.battery = Battery()
+        self.status_texts: list[tuple[float, int, str]] = []
+        self.boots = 0
+        self.mission = MissionStore(self._mission_home, self.send_to, self._mission_uploaded, self.text)
+        self.commands = CommandHandler(self)
+        self._boot()
+        # links
+        self.links: list[Link] = [TcpServerLink(sysid, self._receive, self.faults, bind, tcp_port)]
+        if udp_port:
+            self.links.append(UdpOutLink(sysid, self._receive, self.faults, "127.0.0.1", udp_port))
+        self._wall_last: float | None = None
+
+    def _boot(self) -> None:
+        """(Re)initialise the flight state as at power-on; parameters, mission and battery are kept."""
+        self.boots += 1
         self.t = 0.0
-        self.body = Body(yaw=heading % 360.0)
+        self.body = Body(yaw=self._heading0)
         self.mode = Mode.STABILIZE
         self.armed = False
         self.landed = True
         self.auto_armed = False
         self.home: tuple[float, float, float] | None = None
-        self.battery = Battery()
-        self.faults = LinkFaults(self.rng)
-        self.gps_lost = False
         self._gps_lost_at: float | None = None
         self.failsafe_gcs = False
+        self.battery.failsafe = None
         self._gcs_last_seen: float | None = None
         self._boot_text_i = 0
         self._prearm_next_display = 15.0 + 13.0
@@ -124,17 +139,19 @@ class SimVehicle:
         self.flight_time_s = 0.0
         self._last_hb = -1.0
         self._last_timesync = 0.0
-        self.status_texts: list[tuple[float, int, str]] = []
-        # parts
-        self.mission = MissionStore(self._mission_home, self.send_to, self._mission_uploaded, self.text)
         self.auto = AutoState()
         self.flight = FlightController(self)
-        self.commands = CommandHandler(self)
-        # links
-        self.links: list[Link] = [TcpServerLink(sysid, self._receive, self.faults, bind, tcp_port)]
-        if udp_port:
-            self.links.append(UdpOutLink(sysid, self._receive, self.faults, "127.0.0.1", udp_port))
-        self._wall_last: float | None = None
+
+    def reboot(self) -> None:
+        """Restart like a rebooted autopilot: boot timeline from zero, stream rates gone, TCP clients
+        dropped (they reconnect), MAV_SYSID re-read; parameters and the stored mission survive."""
+        self.sysid = int(self.params.get("MAV_SYSID"))
+        for link in self.links:
+            link.codec.sysid = self.sysid
+            link.streams.clear()
+            if isinstance(link, TcpServerLink):
+                link.drop_client()
+        self._boot()
 
     # ------------------------------------------------------------------------------------------------
     # lifecycle
@@ -244,11 +261,28 @@ class SimVehicle:
             return "Accels inconsistent"
         if mode in REQUIRES_POSITION and not self.position_ok:
             return "Need Position Estimate"
-        if checks and self.battery.failsafe:
-            return f"Battery 1 {self.battery.failsafe} voltage failsafe"
+        if checks:
+            battery = self._battery_arming_failure()
+            if battery:
+                return f"Battery 1 {battery}"
         if checks and self.failsafe_gcs:
             return "GCS failsafe on"
         return None
+
+    def _battery_arming_failure(self) -> str | None:
+        """AP_BattMonitor_Backend::arming_checks: thresholds compared with the present state, no timer."""
+        p = self.params.get
+        b = self.battery
+        remaining = b.capacity_mah - b.consumed_mah
+        checks = [
+            (p("BATT_LOW_VOLT") > 0 and b.voltage < p("BATT_LOW_VOLT"), "low voltage failsafe"),
+            (p("BATT_LOW_MAH") > 0 and remaining < p("BATT_LOW_MAH"), "low capacity failsafe"),
+            (p("BATT_CRT_VOLT") > 0 and b.voltage < p("BATT_CRT_VOLT"), "critical voltage failsafe"),
+            (p("BATT_CRT_MAH") > 0 and remaining < p("BATT_CRT_MAH"), "critical capacity failsafe"),
+            (p("BATT_ARM_VOLT") > 0 and b.voltage < p("BATT_ARM_VOLT"), "below minimum arming voltage"),
+            (p("BATT_ARM_MAH") > 0 and remaining < p("BATT_ARM_MAH"), "below minimum arming capacity"),
+        ]
+        return next((text for failed, text in checks if failed), None)
 
     # ------------------------------------------------------------------------------------------------
     # output
@@ -278,7 +312,8 @@ class SimVehicle:
         return builder(self) if builder else None
 
     def can_build(self, msg_id: int) -> bool:
-        return msg_id == 0 or msg_id in telemetry.BUILDERS
+        """True for every message id ArduCopter maps to an ap_message (some are never actually sent)."""
+        return msg_id == 0 or msg_id in telemetry.BUILDERS or msg_id in telemetry.KNOWN_SILENT
 
     def send_to(self, link: Link, msg: mav.MAVLink_message) -> None:
         link.send(msg)
@@ -458,8 +493,11 @@ class SimVehicle:
         elif not self.gps_lost:
             self._gps_lost_at = None
         self.flight.ekf_check()
-        # Battery
+        # Battery: AP_BattMonitor only checks its failsafes while armed
         p = self.params.get
+        if not self.armed:
+            self.battery.check(self.t, 0, 0, 0, 0, 0)  # resets the low-voltage timer
+            return
         level = self.battery.check(
             self.t,
             p("BATT_LOW_VOLT"),
@@ -518,6 +556,7 @@ class SimVehicle:
             "url": self.url,
             "udp_url": self.udp_url,
             "t_boot_s": round(self.t, 3),
+            "boots": self.boots,
             "mode": mode_name(self.mode),
             "armed": self.armed,
             "landed": self.landed,

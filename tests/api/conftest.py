@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import asyncio
-import contextlib
 from collections.abc import AsyncIterator
 from pathlib import Path
 
@@ -15,6 +13,7 @@ from gateway.app import create_app
 from gateway.config import Settings
 
 from .fakes import FakeRegistry
+from .live import lifespan_running
 
 
 @pytest.fixture
@@ -22,29 +21,6 @@ def settings(tmp_path: Path) -> Settings:
     return Settings(
         database_url=f"sqlite+aiosqlite:///{tmp_path / 'gateway.db'}", max_request_body_bytes=4096
     )
-
-
-@contextlib.asynccontextmanager
-async def lifespan_running(app: FastAPI) -> AsyncIterator[FastAPI]:
-    """Run the app's lifespan in a task of its own (its task groups must enter and exit in one task)."""
-    started, stop = asyncio.Event(), asyncio.Event()
-
-    async def run() -> None:
-        async with app.router.lifespan_context(app):
-            started.set()
-            await stop.wait()
-
-    task = asyncio.create_task(run(), name="app-lifespan")
-    waiter = asyncio.create_task(started.wait())
-    try:
-        await asyncio.wait({task, waiter}, return_when=asyncio.FIRST_COMPLETED)
-        if task.done():
-            task.result()  # startup failed: raise its error
-        yield app
-    finally:
-        waiter.cancel()
-        stop.set()
-        await task
 
 
 @pytest.fixture

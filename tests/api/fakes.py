@@ -10,13 +10,18 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from gateway.config import Settings
-from gateway.errors import UnknownVehicle
+from gateway.errors import UnknownVehicle, VehicleNotReady
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 
 
 @dataclass
 class FakeTelemetry:
+    in_air: bool | None = None
+
+    def fresh(self, name: str) -> object:
+        return self.in_air if name == "in_air" else None
+
     def snapshot(self) -> dict[str, Any]:
         return {"position": None, "battery": {"remaining_pct": 87.0, "age_s": 0.4, "stale": False}}
 
@@ -34,6 +39,19 @@ class FakeVehicle:
     @property
     def id(self) -> str:
         return self.spec.id
+
+    actions: list[str] = field(default_factory=list)
+
+    async def hold(self) -> None:
+        self.actions.append("hold")
+
+    async def land(self) -> None:
+        self.actions.append("land")
+
+    async def return_to_launch(self) -> None:
+        if self.state != "ready":
+            raise VehicleNotReady(f"drone '{self.id}' is {self.state}, not ready", state=self.state)
+        self.actions.append("rtl")
 
     def status(self) -> dict[str, Any]:
         return {"state": self.state, "last_error": None, "sidecar": {"pid": None, "restarts": self.restarts}}

@@ -62,6 +62,29 @@ async def served(settings: Settings) -> AsyncIterator[tuple[FastAPI, httpx.Async
             await asyncio.wait_for(task, WAIT_S)
 
 
+@contextlib.asynccontextmanager
+async def lifespan_running(app: FastAPI) -> AsyncIterator[FastAPI]:
+    """Run the app's lifespan in a task of its own (its task groups must enter and exit in one task)."""
+    started, stop = asyncio.Event(), asyncio.Event()
+
+    async def run() -> None:
+        async with app.router.lifespan_context(app):
+            started.set()
+            await stop.wait()
+
+    task = asyncio.create_task(run(), name="app-lifespan")
+    waiter = asyncio.create_task(started.wait())
+    try:
+        await asyncio.wait({task, waiter}, return_when=asyncio.FIRST_COMPLETED)
+        if task.done():
+            task.result()  # startup failed: raise its error
+        yield app
+    finally:
+        waiter.cancel()
+        stop.set()
+        await task
+
+
 async def wait_until(
     check: Callable[[], Awaitable[bool]], what: str, within_s: float = WAIT_S, every_s: float = 0.25
 ) -> None:

@@ -106,7 +106,13 @@ async def test_flown_flight_is_listed_with_its_track(tmp_path: Path) -> None:
             await wait_until(
                 lambda: _at(vehicle, lambda p: abs(p.lat_deg - target_lat) < 3e-5), "arrival", every_s=0.1
             )
-            await vehicle.land()
+            # the operator's emergency stop lands it (and locks the fleet against agents)
+            stop = await client.post(
+                "/api/v1/fleet/stop", json={"action": "land", "lock_reason": "test over"}
+            )
+            assert stop.status_code == 200, stop.text
+            assert [(r["vehicle_id"], r["outcome"]) for r in stop.json()["results"]] == [("alpha", "sent")]
+            assert "test over" in (await client.get("/api/v1/vehicles/alpha")).json()["locked"]
 
             async def flight_closed() -> bool:
                 page = (await client.get("/api/v1/flights", params={"vehicle_id": "alpha"})).json()

@@ -16,6 +16,7 @@ from gateway.config import Settings
 from gateway.registry.store import AuditEntry, StatusTextIn, Store, TrackSample
 
 from .fakes import FakeRegistry
+from .live import lifespan_running
 
 T0 = datetime(2026, 5, 1, 12, 0, tzinfo=UTC)
 ALPHA = {"id": "alpha", "url": "tcpout://127.0.0.1:5760", "name": "Alpha", "tags": ["survey"]}
@@ -415,3 +416,76 @@ async def test_mcp_is_served_beside_the_api(client: httpx.AsyncClient) -> None:
     assert_error(await client.get("/mcp-nothing"), 404, "not_found")
     big = {**initialize, "params": {**initialize["params"], "pad": "x" * 5000}}
     assert_error(await client.post("/mcp", json=big), 413, "body_too_large")
+
+
+# --- operator control --------------------------------------------------------------------------
+
+
+async def test_locks_set_shown_persisted_and_restored(
+    client: httpx.AsyncClient, app: FastAPI, settings
+) -> None:
+    await client.post("/api/v1/vehicles", json=ALPHA)
+    locked = await client.post("/api/v1/vehicles/alpha/lock", json={"reason": "battery swap"})
+    assert locked.status_code == 200 and locked.json()["by"] == "anonymous"
+    assert (await client.post("/api/v1/fleet/lock", json={"reason": "storm"})).json()["scope"] == "*"
+    assert [lk["scope"] for lk in (await client.get("/api/v1/locks")).json()["items"]] == ["*", "alpha"]
+    view = (await client.get("/api/v1/vehicles/alpha")).json()
+    assert "battery swap" in view["locked"] and "storm" in view["locked"]
+    # the safety policy (what MCP checks) sees the locks through its read-only view
+    assert "battery swap" in app.state.gateway.safety.locks.reason_for("alpha")
+
+    assert_error(
+        await client.post("/api/v1/vehicles/ghost/lock", json={"reason": "x"}), 404, "unknown_vehicle"
+    )
+    error = assert_error(await client.post("/api/v1/fleet/lock", json={}), 422, "validation_error")
+    assert "reason" in error["message"]
+    too_long = await client.post("/api/v1/fleet/lock", json={"reason": "r" * 501})
+    assert_error(too_long, 422, "validation_error")
+    assert (await client.get("/api/v1/locks")).json()["items"][0]["reason"] == "storm"
+
+    unlocked = (await client.delete("/api/v1/fleet/lock")).json()
+    assert unlocked == {"scope": "*", "was_locked": True}
+    assert (await client.delete("/api/v1/fleet/lock")).json()["was_locked"] is False
+
+    # a new gateway on the same database still has the drone's lock
+    async with lifespan_running(create_app(settings, registry_factory=FakeRegistry)) as again:
+        assert (
+            again.state.gateway.locks.reason_for("alpha")
+            == "drone alpha is locked by anonymous: battery swap"
+        )
+        assert again.state.gateway.locks.get("*") is None
+
+
+async def test_operator_actions_and_fleet_stop(client: httpx.AsyncClient, app: FastAPI) -> None:
+    await client.post("/api/v1/vehicles", json=ALPHA)
+    await client.post("/api/v1/vehicles", json={"id": "bravo", "url": "udpin://0.0.0.0:14541"})
+    registry = app.state.gateway.registry
+    alpha, bravo = registry.get("alpha"), registry.get("bravo")
+
+    for action in ("hold", "land"):
+        sent = (await client.post(f"/api/v1/vehicles/alpha/{action}")).json()
+        assert (sent["vehicle_id"], sent["action"], sent["outcome"]) == ("alpha", action, "sent")
+    assert alpha.actions == ["hold", "land"]
+    error = assert_error(await client.post("/api/v1/vehicles/alpha/rtl"), 409, "vehicle_not_ready")
+    assert "connecting" in error["message"]
+    assert_error(await client.post("/api/v1/vehicles/ghost/hold"), 404, "unknown_vehicle")
+
+    alpha.telemetry.in_air, bravo.telemetry.in_air = True, False
+    stop = await client.post("/api/v1/fleet/stop", json={"action": "land", "lock_reason": "take-over"})
+    body = stop.json()
+    assert stop.status_code == 200 and body["fleet_lock"]["reason"] == "take-over"
+    assert {r["vehicle_id"]: r["outcome"] for r in body["results"]} == {"alpha": "sent", "bravo": "skipped"}
+    assert alpha.actions[-1] == "land" and bravo.actions == []
+    assert app.state.gateway.locks.get("*") is not None
+    await client.post("/api/v1/vehicles/bravo/disconnect")
+    after = (await client.post("/api/v1/fleet/stop", json={"action": "hold"})).json()["results"]
+    assert {r["vehicle_id"]: (r["outcome"], r["message"]) for r in after} == {
+        "alpha": ("sent", None),
+        "bravo": ("skipped", "not connected (registered)"),
+    }
+    assert_error(await client.post("/api/v1/fleet/stop", json={"action": "kill"}), 422, "validation_error")
+    default = (await client.post("/api/v1/fleet/stop")).json()
+    assert default["action"] == "hold" and default["fleet_lock"] is None
+
+    actions = [e["action"] for e in (await client.get("/api/v1/audit")).json()["items"]]
+    assert "rest.fleet_stop" in actions and "rest.land_vehicle" in actions

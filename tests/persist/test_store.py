@@ -21,6 +21,7 @@ from gateway.registry.store import (
     TrackSample,
     bound_arguments,
     current_revision,
+    head_revision,
 )
 
 T0 = datetime(2026, 5, 1, 12, 0, tzinfo=UTC)
@@ -34,7 +35,7 @@ def spec(vid: str = "alpha", port: int = 5760, **kw) -> VehicleSpec:
 
 
 async def test_open_upgrades_to_head(store: Store) -> None:
-    assert await current_revision(store.engine) == "0001"
+    assert await current_revision(store.engine) == head_revision() == "0002"
     assert await store.ping()
 
 
@@ -52,6 +53,7 @@ async def test_sqlite_runs_in_wal_mode_with_a_busy_timeout(sqlite_store: Store) 
         "track_samples",
         "status_texts",
         "operations",
+        "locks",
     } <= tables
 
 
@@ -63,9 +65,31 @@ async def test_reopen_keeps_data_and_schema(db_url: str) -> None:
     second = await Store.open(db_url)
     try:
         assert [v.id for v in await second.list_vehicles()] == ["alpha"]
-        assert await current_revision(second.engine) == "0001"
+        assert await current_revision(second.engine) == head_revision()
     finally:
         await second.close()
+
+
+async def test_upgrade_from_the_first_revision_keeps_data(db_url: str) -> None:
+    """A database made by an older gateway (revision 0001) is upgraded in place on open."""
+    from gateway.registry.store import create_engine_for, upgrade_schema
+
+    engine = create_engine_for(db_url)
+    try:
+        await upgrade_schema(engine, db_url, "0001")
+        assert await current_revision(engine) == "0001"
+    finally:
+        await engine.dispose()
+    old = Store(create_engine_for(db_url), db_url)  # the old schema, not upgraded
+    await old.add_vehicle(spec("alpha"))
+    await old.close()
+    store = await Store.open(db_url)
+    try:
+        assert await current_revision(store.engine) == head_revision()
+        assert [v.id for v in await store.list_vehicles()] == ["alpha"]
+        assert await store.list_locks() == []
+    finally:
+        await store.close()
 
 
 async def test_migrations_match_the_models(store: Store) -> None:
@@ -389,3 +413,21 @@ async def test_two_stores_on_one_file_write_concurrently(db_url: str) -> None:
     finally:
         await a.close()
         await b.close()
+
+
+# --- operator locks ----------------------------------------------------------------------------
+
+
+async def test_locks_are_stored_replaced_and_deleted(store: Store) -> None:
+    await store.save_lock("*", "battery swap", "alice", T0)
+    await store.save_lock("alpha", "maintenance", "bob", T0 + timedelta(minutes=1))
+    await store.save_lock("alpha", "props changed", "carol", T0 + timedelta(minutes=2))
+    locks = await store.list_locks()
+    assert [(lk.scope, lk.reason, lk.by) for lk in locks] == [
+        ("*", "battery swap", "alice"),
+        ("alpha", "props changed", "carol"),
+    ]
+    assert locks[1].locked_at == T0 + timedelta(minutes=2)
+    assert await store.delete_lock("alpha") is True
+    assert await store.delete_lock("alpha") is False
+    assert [lk.scope for lk in await store.list_locks()] == ["*"]

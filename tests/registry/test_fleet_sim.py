@@ -6,6 +6,7 @@ Figures (time to ready, restart time, sidecar RSS) are printed for the report, n
 from __future__ import annotations
 
 import asyncio
+import json
 import os
 import signal
 import time
@@ -99,6 +100,7 @@ async def test_link_loss_staleness_and_wrong_sysid(store, registries) -> None:
             assert snap[part] is not None, part
             assert snap[part]["stale"] is False and 0 <= snap[part]["age_s"] < 2.0, (part, snap[part])
         assert 0 <= snap["battery"]["remaining_pct"] <= 100  # MAVSDK gives percent already, never x100
+        json.dumps(snap, allow_nan=False)  # strict JSON: MAVSDK's NaN "unknown" values became None
 
         await sim.control.link_down(0)
         await good.wait_for_state(ConnectionState.LINK_LOST, within_s=WAIT_S)
@@ -117,6 +119,7 @@ async def test_link_loss_staleness_and_wrong_sysid(store, registries) -> None:
         # notices the silent position stream and requests the rates again by itself
         # SET_MESSAGE_INTERVAL(GLOBAL_POSITION_INT, -1): the vehicle stops sending it, as after a reboot
         await good._command_long(511, 33, -1, what="disable GLOBAL_POSITION_INT")
+        await good._command_long(511, 30, -1, what="disable ATTITUDE")
         await wait_until(lambda: good.telemetry.fresh("position", max_age_s=1.0) is None, what="silence")
         await wait_until(
             lambda: good.telemetry.fresh("position", max_age_s=0.5) is not None, what="rates back"

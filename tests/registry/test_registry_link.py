@@ -198,3 +198,69 @@ async def test_heartbeat_watchdog_stops_gcs_heartbeats_when_not_fed(store, regis
         quiet_from = gcs_heartbeats()
         await asyncio.sleep(2.5)
         assert gcs_heartbeats() == quiet_from
+
+
+async def test_unreachable_vehicle_says_why_and_failed_vehicle_reconnects(store, registries) -> None:
+    from gateway.util.ports import free_tcp_port
+
+    reg = Registry(fast_settings(), store)
+    registries.append(reg)
+    await reg.start()
+    # nothing listens there: mavsdk_server retries every second, the vehicle stays 'connecting'
+    v = await reg.add(VehicleSpec(id="oscar", url=f"tcpout://127.0.0.1:{free_tcp_port()}"))
+    await wait_until(lambda: "Connection refused" in (v.status()["last_error"] or ""), what="complaint")
+    assert v.state == ConnectionState.CONNECTING
+    with pytest.raises(VehicleNotReady, match=r"still being established.*Connection refused"):
+        v.require_ready()
+    # a link that cannot be opened at all ends in 'failed'; connecting again starts afresh
+    dead = await reg.add(VehicleSpec(id="papa", url="serial:///dev/fleet-gateway-no-such-device:57600"))
+    await dead.wait_for_state(ConnectionState.FAILED)
+    assert "No such file or directory" in dead.status()["last_error"]
+    await reg.connect("papa")
+    assert dead.state == ConnectionState.CONNECTING
+    assert dead.status()["sidecar"]["restarts"] == 0
+
+
+async def test_update_renames_and_moves_a_connected_vehicle(store, registries) -> None:
+    ports = [free_udp_port() for _ in range(2)]
+    reg = Registry(fast_settings(), store)
+    registries.append(reg)
+    await reg.start()
+    async with HeartbeatVehicle(ports[0], sysid=61), HeartbeatVehicle(ports[1], sysid=62):
+        v = await reg.add(_spec("quebec", ports[0]))
+        await wait_until(lambda: v.sysid == 61, what="first link")
+        old_pid = v.status()["sidecar"]["pid"]
+        await reg.update("quebec", name="Q", tags=["moved"])
+        assert v.spec.name == "Q" and v.status()["sidecar"]["pid"] == old_pid  # no reconnect needed
+        await reg.update("quebec", url=f"udpin://127.0.0.1:{ports[1]}")
+        await wait_until(lambda: v.sysid == 62, what="second link")
+        assert not alive(old_pid)
+        assert (await store.get_vehicle("quebec")).url.endswith(str(ports[1]))
+        with pytest.raises(InvalidArgument):
+            await reg.update("quebec", url="ftp://nowhere")
+        assert v.spec.url.endswith(str(ports[1]))  # bad input changed nothing
+
+
+async def test_flight_left_open_by_a_dead_gateway_is_closed_from_its_track(store, registries) -> None:
+    from datetime import UTC, datetime, timedelta
+
+    from gateway.registry.store import TrackSample
+
+    await store.add_vehicle(VehicleSpec(id="romeo", url=f"udpin://127.0.0.1:{free_udp_port()}"))
+    t0 = datetime.now(UTC) - timedelta(minutes=5)
+    flight_id = await store.open_flight("romeo", t0, 47.0, 8.0, 500.0)
+    await store.add_track_samples(
+        [
+            TrackSample(flight_id=flight_id, t=t0 + timedelta(seconds=i), lat=47.0 + i * 1e-4, lon=8.0,
+                        alt_rel_m=5.0 * i, heading_deg=0.0, ground_speed_mps=11.0, battery_pct=90.0 - i)
+            for i in range(4)
+        ]
+    )  # fmt: skip
+    reg = Registry(fast_settings(), store)
+    registries.append(reg)
+    await reg.start()  # restores romeo; its recorder closes the flight the previous run left open
+    assert await store.list_open_flights("romeo") == []
+    flight = await store.get_flight(flight_id)
+    assert flight.duration_s == pytest.approx(3.0)
+    assert flight.distance_m == pytest.approx(33.4, abs=0.5)  # 3 x 1e-4 deg of latitude
+    assert flight.max_alt_rel_m == 15.0 and flight.battery_used_pct == pytest.approx(3.0)

@@ -201,3 +201,14 @@ def test_sidecar_dies_with_a_sigkilled_gateway(wrapper: str, process_reaper) -> 
     gateway.kill()  # SIGKILL: no atexit, no stop(); only PR_SET_PDEATHSIG can clean up
     gateway.wait()
     _poll(lambda: not alive(pid))
+
+
+async def test_link_that_cannot_open_is_restarted_then_failed(stopper: list[Sidecar]) -> None:
+    # mavsdk_server prints "Connection failed" for a missing serial device and then waits forever
+    car = Sidecar("india", "serial:///dev/fleet-gateway-no-such-device:57600", _settings())
+    stopper.append(car)
+    car.start()
+    await _wait_for(lambda: car.state == SidecarState.FAILED)
+    assert car.info.restarts == 3
+    assert "could not open serial:///dev/fleet-gateway-no-such-device:57600" in (car.info.last_error or "")
+    assert "No such file or directory" in (car.info.last_error or "")

@@ -10,8 +10,8 @@ from pydantic import ValidationError
 
 from gateway.fleet import mission
 from gateway.fleet.mission import MissionItem
+from gateway.fleet.params import param_aliases
 from gateway.fleet.telemetry import BatteryValue, PositionValue, Sample, TelemetryCache
-from gateway.fleet.vehicle import param_aliases
 
 HOME = (47.397742, 8.545594, 488.0)
 

@@ -71,7 +71,8 @@ async def test_low_battery_failsafe_returns_home() -> None:
         texts = await _texts(sim)
         assert "Battery Failsafe" in texts
         assert any(t.startswith("Battery 1 is low") for t in texts)
-        await wait_for(drone.telemetry.armed(), lambda armed: not armed, timeout_s=120)
+        truth = await sim.control.state(0)
+        assert truth["failsafe_battery"] == "low" and truth["armed"]
 
 
 async def _fly(sim, index: int, url: str) -> None:

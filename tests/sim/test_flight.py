@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 
+import pytest
 from mavsdk_grpc.telemetry import LandedState
 
 from tests.helpers import mavsdk_system, sim_process
@@ -72,3 +73,22 @@ async def test_tcp_port_accepts_a_new_client_after_the_previous_one_left() -> No
                 await set_rates(drone)
                 await wait_for(drone.telemetry.position(), lambda _p: True)
             await asyncio.sleep(0.2)
+
+
+async def test_reboot_loses_stream_rates_until_requested_again() -> None:
+    async with sim_process(1, speedup=SPEEDUP) as sim, mavsdk_system(sim.urls[0]) as drone:
+        await set_rates(drone)
+        await wait_for(drone.telemetry.position(), lambda _p: True)
+        await (
+            drone.action.reboot()
+        )  # MAV_CMD_PREFLIGHT_REBOOT_SHUTDOWN: TCP dropped, mavsdk_server reconnects
+        for _ in range(100):
+            truth = await sim.control.state(0)
+            if truth["client_connected"] and truth["boots"] == 2:
+                break
+            await asyncio.sleep(0.1)
+        assert truth["client_connected"] and truth["mode"] == "STABILIZE"
+        with pytest.raises(TimeoutError):  # rates are gone and mavsdk_server does not re-request them
+            await wait_for(drone.telemetry.position(), lambda _p: True, timeout_s=1.5)
+        await set_rates(drone)
+        await wait_for(drone.telemetry.position(), lambda _p: True)

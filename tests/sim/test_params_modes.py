@@ -46,8 +46,12 @@ async def test_mode_changes_show_in_telemetry() -> None:
         await wait_for(drone.telemetry.flight_mode(), lambda m: m == FlightMode.MISSION)
         await drone.action.hold()
         await wait_for(drone.telemetry.health(), lambda h: h.is_armable)
-        await take_off(drone, 5.0)  # switches to GUIDED (MAVSDK: OFFBOARD)
+        await take_off(drone, 8.0)  # switches to GUIDED (MAVSDK: OFFBOARD)
         await wait_for(drone.telemetry.flight_mode(), lambda m: m == FlightMode.OFFBOARD)
+        # MAVSDK's hold() is LOITER on ArduPilot: with the RC throttle at minimum the copter sinks
+        await drone.action.hold()
+        await wait_for(drone.telemetry.flight_mode(), lambda m: m == FlightMode.HOLD)
+        await wait_for(drone.telemetry.position(), lambda p: p.relative_altitude_m < 5.0)
         await drone.action.land()
         await wait_for(drone.telemetry.flight_mode(), lambda m: m == FlightMode.LAND)
         assert (await sim.control.state(0))["mode"] == "LAND"

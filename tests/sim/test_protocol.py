@@ -176,3 +176,24 @@ async def test_firmware_46_names() -> None:
         await gcs.wait("PARAM_VALUE", lambda m: m.param_id == "SR0_POSITION")
         assert (await gcs.command(mav.MAV_CMD_REQUEST_MESSAGE, 148)).result == ACCEPTED
         assert (await gcs.wait("AUTOPILOT_VERSION", since=gcs.last_mark)).flight_sw_version == 0x04060000
+
+
+async def test_link_faults_drop_traffic_both_ways() -> None:
+    async with sim_process(1, speedup=SPEEDUP) as sim, raw_mavlink(sim.urls[0]) as gcs:
+        await gcs.wait("HEARTBEAT")
+        await sim.control.link_down(0)
+        await asyncio.sleep(0.2)
+        mark = gcs.mark()
+        ack = asyncio.create_task(gcs.command(mav.MAV_CMD_REQUEST_MESSAGE, 148, timeout_s=1.0))
+        await asyncio.sleep(1.2)  # the ACK wait (1 s) spans 24 simulated heartbeat periods
+        assert not [m for _t, m in gcs.received[mark:]]  # nothing out, the command was not heard either
+        assert ack.done() and isinstance(ack.exception(), TimeoutError)
+
+        await sim.control.link_up(0)
+        await sim.control.set_packet_loss(0, 100)
+        await asyncio.sleep(0.5)
+        mark = gcs.mark()
+        await asyncio.sleep(0.5)
+        assert not gcs.received[mark:]
+        await sim.control.set_packet_loss(0, 0)
+        assert (await gcs.command(mav.MAV_CMD_REQUEST_MESSAGE, 148)).result == ACCEPTED
