@@ -208,7 +208,8 @@ class Vehicle:
             return ConnectionState.LINK_LOST if since > limit else ConnectionState.CONNECTED
         if age > limit:
             return ConnectionState.LINK_LOST
-        health = self.telemetry.fresh("health")
+        sample = self.telemetry.health  # raw age: fresh() depends on the state computed here
+        health = sample.value if sample is not None and sample.age_s <= limit else None
         if (
             health is not None
             and health.global_position_ok
@@ -230,6 +231,7 @@ class Vehicle:
             "url": self.spec.url,
             "tags": list(self.spec.tags),
             "state": self.state.value,
+            "state_age_s": round(time.monotonic() - self._state_since, 3),
             "last_heartbeat_age_s": None if age is None else round(age, 3),
             "last_heartbeat_at": _iso(self._link.last_heartbeat_wall),
             "last_error": self._describe_error(),
@@ -237,6 +239,8 @@ class Vehicle:
             "expected_sysid": self.spec.expected_sysid,
             "sysid_mismatch": self.sysid_mismatch,
             "duplicate_sysid": self.duplicate_sysid,
+            # other autopilots heard on this vehicle's link (mavsdk_server follows only the first)
+            "other_sysids_on_link": sorted(self._link.sysids_seen - {self._link.sysid}),
             "is_simulator": self.is_simulator,
             "autopilot": self.autopilot,
             "autopilot_version": self.autopilot_version,
@@ -376,8 +380,10 @@ class Vehicle:
             await asyncio.wait_for(system.connect(), CONNECT_TIMEOUT_S)
         except (TimeoutError, grpc.aio.AioRpcError) as exc:
             self._last_error = f"gRPC session to mavsdk_server on port {port} failed: {exc!r}"
-            log.warning("%s: %s", self.id, self._last_error)
+            log.warning("%s: %s; restarting the sidecar", self.id, self._last_error)
             await _close_system(system)
+            if self._sidecar is not None:
+                self._sidecar.recycle()  # the supervisor starts a fresh process (with backoff)
             return
         self.telemetry.clear()
         self._link = LinkFacts()
@@ -397,13 +403,16 @@ class Vehicle:
         self.sessions += 1
         feed.start()
         self._session_tasks = [
-            asyncio.create_task(self._heartbeats(system), name=f"hb-{self.id}"),
-            asyncio.create_task(self._commands.pump(system), name=f"ack-{self.id}"),
-            asyncio.create_task(self._simstate(system), name=f"simstate-{self.id}"),
-            asyncio.create_task(self._connection_state(system), name=f"conn-{self.id}"),
-            asyncio.create_task(self._identify(system), name=f"ident-{self.id}"),
-            asyncio.create_task(self._mission_current(system), name=f"mission-{self.id}"),
+            asyncio.create_task(_keep(self.id, name, fn, system, once), name=f"{name}-{self.id}")
+            for name, fn, once in (
+                ("hb", self._heartbeats, False),
+                ("ack", self._commands.pump, False),
+                ("simstate", self._simstate, True),
+                ("conn", self._connection_state, False),
+                ("mission", self._mission_current, False),
+            )
         ]
+        self._session_tasks.append(asyncio.create_task(self._identify(system), name=f"ident-{self.id}"))
         if self.settings.sidecar_heartbeat_watchdog_s:
             self._session_tasks.append(
                 asyncio.create_task(self._feed_watchdog(system), name=f"watchdog-{self.id}")
@@ -428,8 +437,9 @@ class Vehicle:
             await _close_system(system)
 
     def _mavsdk_names_modes(self) -> bool:
-        """MAVSDK's flight mode names are used unless the HEARTBEAT's ArduCopter mode is known."""
-        return not self._is_arducopter()
+        """MAVSDK's flight mode names are used for non-ArduCopter autopilots only (ArduCopter's real mode
+        comes from HEARTBEAT.custom_mode; MAVSDK would say OFFBOARD for GUIDED, HOLD for LOITER)."""
+        return self._link.autopilot is not None and not self._is_arducopter()
 
     def _is_arducopter(self) -> bool:
         return self._link.autopilot == MAV_AUTOPILOT_ARDUPILOTMEGA and self._link.mav_type in COPTER_TYPES
@@ -476,7 +486,17 @@ class Vehicle:
             return
 
     async def _feed_watchdog(self, system: System) -> None:
-        period = max(0.5, self.settings.sidecar_heartbeat_watchdog_s / 3)
+        """Enable mavsdk_server's heartbeat watchdog for this session and keep feeding it: if the gateway
+        hangs, the GCS heartbeat stops and the autopilot's own GCS failsafe can act."""
+        timeout = float(self.settings.sidecar_heartbeat_watchdog_s)
+        period = max(0.5, timeout / 3)
+        while True:
+            try:
+                await asyncio.wait_for(system.core.set_heartbeat_watchdog_timeout(timeout), 5.0)
+                break
+            except Exception as exc:  # retried: a session without its watchdog is not what was configured
+                log.warning("%s: cannot enable the heartbeat watchdog: %r", self.id, exc)
+                await asyncio.sleep(1.0)
         while True:
             with contextlib.suppress(Exception):
                 await asyncio.wait_for(system.core.feed_heartbeat_watchdog(), period)
@@ -532,6 +552,7 @@ class Vehicle:
 
     def _note_state(self) -> None:
         state = self._compute_state()
+        self.telemetry.live = state in (ConnectionState.CONNECTED, ConnectionState.READY)
         if state != self._state:
             old, self._state = self._state, state
             self._state_since = time.monotonic()
@@ -882,6 +903,26 @@ class Vehicle:
     @property
     def params_fetched_age_s(self) -> float | None:
         return self.params.list_age_s
+
+
+async def _keep(
+    vehicle_id: str, name: str, subscribe: Callable[[Any], Awaitable[None]], system: Any, once: bool
+) -> None:
+    """Run one subscription loop for the session; resubscribe when its gRPC stream ends or breaks
+    (``once``: a loop that returns by itself is done, e.g. SIMSTATE seen)."""
+    delay = 0.5
+    while True:
+        try:
+            await subscribe(system)
+            if once:
+                return
+            log.debug("%s: %s subscription ended; resubscribing", vehicle_id, name)
+        except asyncio.CancelledError:
+            raise
+        except Exception as exc:
+            log.debug("%s: %s subscription failed (%r); resubscribing", vehicle_id, name, exc)
+        await asyncio.sleep(delay)
+        delay = min(delay * 2, 5.0)
 
 
 def _iso(epoch_s: float | None) -> str | None:

@@ -207,6 +207,16 @@ class Sidecar:
             return False
         return True
 
+    def recycle(self) -> None:
+        """Terminate the current process; the supervisor starts a new one (counted as a failure)."""
+        proc = self._proc
+        if proc is not None and proc.returncode is None:
+            self._log.warning("recycling mavsdk_server pid %d of %s", proc.pid, self.vehicle_id)
+            try:
+                os.killpg(proc.pid, signal.SIGTERM)
+            except ProcessLookupError:
+                pass
+
     async def stop(self) -> None:
         """Stop supervising and leave no process behind."""
         self._stopping = True
@@ -275,8 +285,10 @@ class Sidecar:
             "--compid",
             "190",
         ]
-        if self.settings.sidecar_heartbeat_watchdog_s:
-            argv += ["--heartbeat-watchdog-timeout", str(self.settings.sidecar_heartbeat_watchdog_s)]
+        # No --heartbeat-watchdog-timeout here: with it, mavsdk_server sends no GCS heartbeat until the
+        # watchdog is fed over gRPC, and gRPC opens only after discovery, so a vehicle that waits to
+        # hear from its ground station first (udpout://) is never discovered. The vehicle session
+        # enables the watchdog through the Core RPC once connected (see Vehicle._feed_watchdog).
         argv.append(self.url)
         plan = SpawnPlan(argv=argv, env=dict(os.environ), grpc_port=port)
         return self._confine(plan) if self._confine is not None else plan

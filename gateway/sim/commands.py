@@ -24,6 +24,7 @@ FAILED = mav.MAV_RESULT_FAILED
 UNSUPPORTED = mav.MAV_RESULT_UNSUPPORTED
 
 FORCE_ARM_MAGIC = 2989
+PARAM_READ_DELAY_S = 0.1
 FORCE_DISARM_MAGIC = 21196
 
 BANNER = ("ArduCopter V4.7.0-dev (82f560b8)", "8d1219c7c4c5404aaa1f6d2a48adfda4", "Frame: QUAD/PLUS")
@@ -150,7 +151,7 @@ class CommandHandler:
             lat, lon, alt = msg.param5, msg.param6, msg.param7
         if not (math.isfinite(lat) and math.isfinite(lon) and math.isfinite(alt)) or (lat == 0 and lon == 0):
             return FAILED
-        v.home = (lat, lon, alt)
+        v.set_home((lat, lon, alt))
         return ACCEPTED
 
     def _cmd_193(self, link, msg, is_int):  # MAV_CMD_DO_PAUSE_CONTINUE
@@ -231,7 +232,9 @@ class CommandHandler:
             return
         param = v.params.find(_name(msg.param_id))
         if param is not None:  # unknown names get no reply at all, like ArduPilot
-            link.send(v.param_value(param))
+            # ArduPilot serves reads by name from a slow queue: ~100 ms (simulated) latency
+            reply = v.param_value(param)
+            asyncio.get_running_loop().call_later(PARAM_READ_DELAY_S / v.speedup, link.send, reply)
 
     def param_set(self, link: Link, msg) -> None:
         v = self.v

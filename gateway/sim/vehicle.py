@@ -15,9 +15,10 @@ from dataclasses import dataclass
 from pymavlink.dialects.v20 import ardupilotmega as mav
 
 from gateway.sim import telemetry
+from gateway.sim.auto import AutoState
 from gateway.sim.battery import Battery
 from gateway.sim.commands import CommandHandler
-from gateway.sim.flight import AutoState, FlightController
+from gateway.sim.flight import FlightController
 from gateway.sim.link import Link, LinkFaults, TcpServerLink, UdpOutLink
 from gateway.sim.mission import MissionStore
 from gateway.sim.modes import GUIDED_FLAG_MODES, REQUIRES_POSITION, Mode, mode_name
@@ -101,7 +102,6 @@ class SimVehicle:
         lat, lon, alt, heading = home
         self.frame = LocalFrame(lat, lon, alt)
         self.params = ParamTable(firmware, {"MAV_SYSID": sysid, "SIM_SPEEDUP": speedup})
-        self.params.on_change.append(self._param_changed)
         self.sysid = sysid
         self.uid2 = bytes(f"{(seed or 0) * 7919 + sysid:032x}"[-17:], "ascii") + b"\0"
         self._heading0 = heading % 360.0
@@ -225,8 +225,8 @@ class SimVehicle:
         return lat, lon, self.frame.alt0 + self.body.up
 
     def gps_position(self) -> tuple[float, float, float]:
-        lat, lon, alt = self.position()
-        return lat, lon, alt
+        """What the GPS reports: the true position (SITL's GPS noise defaults to 0 as well)."""
+        return self.position()
 
     def rel_alt(self) -> float:
         home_alt = self.home[2] if self.home else self.frame.alt0
@@ -392,10 +392,6 @@ class SimVehicle:
             if param is not None:
                 self.params.set(param.name, hz, notify=False)
 
-    def _param_changed(self, param: Param) -> None:
-        # Like ArduPilot, MAV_SYSID / SYSID_THISMAV only takes effect at the next boot.
-        pass
-
     def _mission_home(self) -> tuple[float, float, float]:
         if self.home is not None:
             return self.home
@@ -428,6 +424,8 @@ class SimVehicle:
         self.flight.step(dt)
         if self.flying:
             self.flight_time_s += dt
+        if not self.battery.follow_charge and self.params.get("SIM_BATT_CAP_AH") > 0:
+            self.battery.follow_charge = True
         self.battery.drain(dt, self.armed, self.flying)
         self._failsafes()
 
@@ -471,7 +469,15 @@ class SimVehicle:
                 self.broadcast(msg)
 
     def set_home_here(self) -> None:
-        self.home = self.position()
+        self.set_home(self.position())
+
+    def set_home(self, home: tuple[float, float, float]) -> None:
+        """New home (at arming, DO_SET_HOME): announced at once, as Copter::set_home() does."""
+        self.home = home
+        for builder in (telemetry.home_position, telemetry.gps_global_origin):
+            msg = builder(self)
+            if msg is not None:
+                self.broadcast(msg)
 
     def _failsafes(self) -> None:
         # GCS heartbeat loss: only heartbeats from MAV_GCS_SYSID count (ArduPilot's sysid_mygcs_seen).

@@ -19,13 +19,17 @@ class HeartbeatVehicle:
     REQUEST_MESSAGE (FAILED: not a simulator); everything received is kept in ``received``.
     """
 
-    def __init__(self, target_port: int, sysid: int = 1, rate_hz: float = 4.0) -> None:
-        self.target = ("127.0.0.1", target_port)
+    def __init__(self, target_port: int | None, sysid: int = 1, rate_hz: float = 4.0) -> None:
+        """``target_port`` None: a vehicle that speaks only after a ground station spoke to it (what a
+        ``udpout://`` link needs); it listens on ``self.port`` and answers whoever sent last."""
+        self.target = ("127.0.0.1", target_port) if target_port is not None else None
+        self.listening = target_port is None
         self.sysid = sysid
         self.rate_hz = rate_hz
         self._sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
         self._sock.bind(("127.0.0.1", 0))
         self._sock.setblocking(False)
+        self.port = int(self._sock.getsockname()[1])
         self._mav = mavlink.MAVLink(None, srcSystem=sysid, srcComponent=1)
         self._task: asyncio.Task[None] | None = None
         self._rx: asyncio.Task[None] | None = None
@@ -54,6 +58,8 @@ class HeartbeatVehicle:
         while True:
             data, peer = await loop.sock_recvfrom(self._sock, 4096)
             self._peer = peer
+            if self.listening:
+                self.target = peer
             for msg in parser.parse_buffer(data) or []:
                 self.received.append(msg)
                 if msg.get_type() == "COMMAND_LONG":
@@ -69,6 +75,8 @@ class HeartbeatVehicle:
             result = mavlink.MAV_RESULT_ACCEPTED
         elif command == mavlink.MAV_CMD_REQUEST_MESSAGE:
             result = mavlink.MAV_RESULT_FAILED
+        if self.target is None:
+            return
         ack = self._mav.command_ack_encode(command, result, 0, 0, msg.get_srcSystem(), msg.get_srcComponent())  # type: ignore[attr-defined]
         self._sock.sendto(ack.pack(self._mav), self.target)
 
@@ -77,8 +85,9 @@ class HeartbeatVehicle:
             msg = self._mav.heartbeat_encode(
                 mavlink.MAV_TYPE_QUADROTOR, mavlink.MAV_AUTOPILOT_ARDUPILOTMEGA, 89, self.custom_mode, 3
             )
-            try:
-                self._sock.sendto(msg.pack(self._mav), self.target)
-            except OSError:
-                pass
+            if self.target is not None:
+                try:
+                    self._sock.sendto(msg.pack(self._mav), self.target)
+                except OSError:
+                    pass
             await asyncio.sleep(1.0 / self.rate_hz)

@@ -181,7 +181,6 @@ async def test_heartbeat_watchdog_stops_gcs_heartbeats_when_not_fed(store, regis
     async with HeartbeatVehicle(port, sysid=51) as fake:
         v = await reg.add(_spec("november", port))
         await v.wait_for_state(ConnectionState.CONNECTED)
-        assert "--heartbeat-watchdog-timeout" in v.sidecar.plan(1).argv
 
         def gcs_heartbeats() -> int:
             return sum(1 for m in fake.received if m.get_type() == "HEARTBEAT" and m.get_srcSystem() == 245)
@@ -264,3 +263,19 @@ async def test_flight_left_open_by_a_dead_gateway_is_closed_from_its_track(store
     assert flight.duration_s == pytest.approx(3.0)
     assert flight.distance_m == pytest.approx(33.4, abs=0.5)  # 3 x 1e-4 deg of latitude
     assert flight.max_alt_rel_m == 15.0 and flight.battery_used_pct == pytest.approx(3.0)
+
+
+async def test_watchdog_does_not_block_discovery_of_a_vehicle_that_waits_for_the_gcs(
+    store, registries
+) -> None:
+    # mavsdk_server started with --heartbeat-watchdog-timeout sends nothing until fed, and can only be fed
+    # once discovered: a udpout:// vehicle that speaks only after hearing its GCS would never be found.
+    reg = Registry(fast_settings(sidecar_heartbeat_watchdog_s=2), store)
+    registries.append(reg)
+    await reg.start()
+    async with HeartbeatVehicle(None, sysid=71) as shy:
+        v = await reg.add(
+            _spec("sierra", shy.port).model_copy(update={"url": f"udpout://127.0.0.1:{shy.port}"})
+        )
+        await v.wait_for_state(ConnectionState.CONNECTED)
+        await wait_until(lambda: v.sysid == 71, what="heartbeat from the vehicle")
