@@ -26,7 +26,7 @@ from gateway.mcp.access import FleetAccess
 from gateway.mcp.auth import auth_options
 from gateway.mcp.resources import ResourceNotifier, register_prompts, register_resources
 from gateway.mcp.session import SessionAudit
-from gateway.mcp.toolkit import Toolset, register_toolset, strip_schema_titles
+from gateway.mcp.toolkit import Toolset, collapse_optional_nulls, register_toolset, strip_schema_titles
 
 log = logging.getLogger(__name__)
 
@@ -87,6 +87,7 @@ def build_mcp(gateway: Any) -> MCPServer:
                 toolset.register_resources(server, fa)
     for tool in server._tool_manager.list_tools():
         strip_schema_titles(tool.parameters)
+        collapse_optional_nulls(tool.parameters)
         if tool.output_schema is not None:
             strip_schema_titles(tool.output_schema)
     notifier = ResourceNotifier(server, fa)

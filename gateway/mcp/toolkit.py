@@ -76,6 +76,8 @@ class ToolSpec:
     name: str
     title: str | None
     annotations: ToolAnnotations
+    # parameter -> the schema advertised for it, where a shorter one says enough (validation is unchanged)
+    advertise: dict[str, dict[str, Any]] = field(default_factory=dict)
 
 
 @dataclass
@@ -92,8 +94,12 @@ class Toolset:
         destructive: bool = False,
         idempotent: bool = False,
         title: str | None = None,
+        advertise: dict[str, dict[str, Any]] | None = None,
     ) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
-        """Declare a tool. Annotations must tell the truth: read-only tools change nothing."""
+        """Declare a tool. Annotations must tell the truth: read-only tools change nothing.
+
+        ``advertise`` replaces the schema shown to clients for some parameters, e.g. to point at
+        another tool's item schema instead of repeating it; arguments are still validated in full."""
         if read_only:
             annotations = ToolAnnotations(readOnlyHint=True, openWorldHint=False)
         else:
@@ -102,7 +108,11 @@ class Toolset:
             )
 
         def decorator(fn: Callable[..., Any]) -> Callable[..., Any]:
-            self.tools.append(ToolSpec(fn=fn, name=fn.__name__, title=title, annotations=annotations))
+            self.tools.append(
+                ToolSpec(
+                    fn=fn, name=fn.__name__, title=title, annotations=annotations, advertise=advertise or {}
+                )
+            )
             return fn
 
         return decorator
@@ -177,8 +187,28 @@ def register_toolset(server: MCPServer, toolset: Toolset, access: Any) -> list[s
             # lets any client offer a model only some toolsets (small context windows)
             meta={TOOLSET_META_KEY: toolset.name},
         )
+        if spec.advertise:
+            tool = server._tool_manager.get_tool(spec.name)
+            assert tool is not None
+            _advertise(tool.parameters, spec.advertise)
         names.append(spec.name)
     return names
+
+
+def _advertise(schema: dict[str, Any], overrides: dict[str, dict[str, Any]]) -> None:
+    props = schema.get("properties", {})
+    for name, advertised in overrides.items():
+        if name not in props:
+            raise ValueError(f"advertise names an unknown parameter '{name}'")
+        props[name] = advertised
+    defs = schema.get("$defs")
+    if isinstance(defs, dict):
+        text = json.dumps(props)
+        for key in list(defs):
+            if f"#/$defs/{key}" not in text:
+                del defs[key]
+        if not defs:
+            del schema["$defs"]
 
 
 def strip_schema_titles(schema: Any) -> None:
@@ -195,3 +225,35 @@ def strip_schema_titles(schema: Any) -> None:
     elif isinstance(schema, list):
         for item in schema:
             strip_schema_titles(item)
+
+
+def collapse_optional_nulls(schema: Any) -> None:
+    """Advertise an optional argument ``X | None = None`` as plain ``X`` (not ``anyOf [X, null]``).
+
+    A model leaves such an argument out to mean "none"; the long form only costs tokens. The server
+    still validates arguments against the tool's own signature, so an explicit null stays accepted."""
+    if isinstance(schema, dict):
+        props = schema.get("properties")
+        if isinstance(props, dict):
+            for name, prop in list(props.items()):
+                props[name] = _collapsed(prop)
+        for key, sub in schema.items():
+            if key != "properties":
+                collapse_optional_nulls(sub)
+        if isinstance(props, dict):
+            for prop in props.values():
+                collapse_optional_nulls(prop)
+    elif isinstance(schema, list):
+        for item in schema:
+            collapse_optional_nulls(item)
+
+
+def _collapsed(prop: Any) -> Any:
+    if not isinstance(prop, dict) or prop.get("default", ...) is not None:
+        return prop
+    variants = prop.get("anyOf")
+    if not isinstance(variants, list) or len(variants) != 2 or {"type": "null"} not in variants:
+        return prop
+    [kept] = [v for v in variants if v != {"type": "null"}]
+    merged = {k: v for k, v in prop.items() if k not in ("anyOf", "default")}
+    return {**kept, **merged}

@@ -93,7 +93,15 @@ async def _start(fa: FleetAccess, ctx: Context, v, wait: bool, action: str) -> O
     return await fa.run(ctx, v, MissionTracker(), v.start_mission, {}, wait, action)
 
 
-@toolset.tool()
+@toolset.tool(
+    advertise={
+        "waypoints": {
+            "type": "array",
+            "items": {"type": "object"},
+            "description": "Items as upload_mission's; omit to start the uploaded mission",
+        }
+    }
+)
 async def initiate_mission(
     fa: FleetAccess,
     ctx: Context,
