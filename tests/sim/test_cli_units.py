@@ -88,9 +88,10 @@ async def test_udp_output_link_flies_with_mavsdk() -> None:
             await wait_for(drone.telemetry.health(), lambda h: h.is_global_position_ok)
 
 
-async def test_demo_prints_three_vehicles_and_stops_on_sigint() -> None:
+async def test_sim_prints_three_vehicles_and_stops_on_sigint() -> None:
+    """`fleet-gateway sim --count 3` (what `make demo` used to start alone; it now runs the gateway too)."""
     proc = await asyncio.create_subprocess_exec(
-        sys.executable, "-m", "gateway.cli", "demo", "--tcp-base-port", "0", "--speedup", "5",
+        sys.executable, "-m", "gateway.cli", "sim", "--count", "3", "--tcp-base-port", "0", "--speedup", "5",
         stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.DEVNULL, start_new_session=True,
     )  # fmt: skip
     try:
