@@ -1,0 +1,6 @@
+"""Simulated ArduCopter vehicles speaking MAVLink 2 (see docs/simulator.md)."""
+
+from gateway.sim.fleet import SimFleet
+from gateway.sim.vehicle import SimVehicle, Timeline
+
+__all__ = ["SimFleet", "SimVehicle", "Timeline"]

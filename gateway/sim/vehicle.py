@@ -1,0 +1,587 @@
+"""One simulated ArduCopter: state, boot timeline, MAVLink I/O, failsafes.
+
+Flight behaviour (modes, navigation) lives in ``flight.py``, command handling in ``commands.py``;
+this module ties them to the links and the clock. All times are *simulated* seconds since boot.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import random
+import time
+from dataclasses import dataclass
+
+from pymavlink.dialects.v20 import ardupilotmega as mav
+
+from gateway.sim import telemetry
+from gateway.sim.battery import Battery
+from gateway.sim.commands import CommandHandler
+from gateway.sim.flight import AutoState, FlightController
+from gateway.sim.link import Link, LinkFaults, TcpServerLink, UdpOutLink
+from gateway.sim.mission import MissionStore
+from gateway.sim.modes import GUIDED_FLAG_MODES, REQUIRES_POSITION, Mode, mode_name
+from gateway.sim.params import Param, ParamTable
+from gateway.sim.physics import MAX_STEP_S, Body, LocalFrame
+from gateway.sim.streams import GROUP_PARAM
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class Timeline:
+    """Boot milestones of ArduCopter SITL (seconds after process start, measured at speedup 1)."""
+
+    boot_done: float = 1.8
+    baro: float = 1.93
+    ready: float = 2.45
+    mag_ok: float = 2.6
+    rc7: float = 2.75
+    ekf_init: float = 4.46
+    tilt: float = 5.8
+    yaw_align: float = 5.9
+    gps_detect: float = 9.8
+    origin: float = 20.0
+    origin2: float = 20.2
+    prearm_ok: float = 22.6
+    ekf_gps: float = 41.6
+
+
+BOOT_TEXTS = [
+    ("baro", "Barometer 1 calibration complete"),
+    ("baro", "Barometer 2 calibration complete"),
+    ("ready", "ArduPilot Ready"),
+    ("ready", "AHRS: DCM active"),
+    ("rc7", "RC7: SaveWaypoint LOW"),
+    ("ekf_init", "EKF3 IMU0 initialised"),
+    ("ekf_init", "EKF3 IMU1 initialised"),
+    ("ekf_init", "AHRS: EKF3 active"),
+    ("tilt", "EKF3 IMU0 tilt alignment complete"),
+    ("tilt", "EKF3 IMU1 tilt alignment complete"),
+    ("yaw_align", "EKF3 IMU0 MAG0 initial yaw alignment complete"),
+    ("yaw_align", "EKF3 IMU1 MAG0 initial yaw alignment complete"),
+    ("gps_detect", "GPS 1: probing for u-blox at 230400 baud"),
+    ("gps_detect", "GPS 1: detected u-blox"),
+    ("origin", "EKF3 IMU0 origin set"),
+    ("origin", "Field Elevation Set: {field_elev}m"),
+    ("origin2", "EKF3 IMU1 origin set"),
+    ("ekf_gps", "EKF3 IMU0 is using GPS"),
+    ("ekf_gps", "EKF3 IMU1 is using GPS"),
+]
+
+PREARM_DISPLAY_PERIOD_S = 30.0
+GPS_LOSS_TO_EKF_S = 1.0  # the EKF stops trusting its position this long after the GPS fix is gone
+
+
+class SimVehicle:
+    """A simulated ArduCopter 4.x speaking MAVLink 2 on a TCP port (and optionally UDP)."""
+
+    def __init__(
+        self,
+        index: int,
+        sysid: int,
+        home: tuple[float, float, float, float],
+        *,
+        speedup: float = 1.0,
+        seed: int | None = None,
+        firmware: str = "4.7",
+        bind: str = "127.0.0.1",
+        tcp_port: int = 5760,
+        udp_port: int | None = None,
+        timeline: Timeline | None = None,
+    ) -> None:
+        if not 1 <= sysid <= 255:
+            raise ValueError(f"system id must be 1..255, got {sysid}")
+        if not speedup > 0 or not math.isfinite(speedup):
+            raise ValueError(f"speedup must be a positive number, got {speedup}")
+        self.index = index
+        self.speedup = speedup
+        self.rng = random.Random(seed)
+        self.timeline = timeline or Timeline()
+        lat, lon, alt, heading = home
+        self.frame = LocalFrame(lat, lon, alt)
+        self.params = ParamTable(firmware, {"MAV_SYSID": sysid, "SIM_SPEEDUP": speedup})
+        self.params.on_change.append(self._param_changed)
+        self.sysid = sysid
+        self.uid2 = bytes(f"{(seed or 0) * 7919 + sysid:032x}"[-17:], "ascii") + b"\0"
+        self._heading0 = heading % 360.0
+        self.faults = LinkFaults(self.rng)
+        self.gps_lost = False
+        self.battery = Battery()
+        self.status_texts: list[tuple[float, int, str]] = []
+        self.boots = 0
+        self.mission = MissionStore(self._mission_home, self.send_to, self._mission_uploaded, self.text)
+        self.commands = CommandHandler(self)
+        self._boot()
+        # links
+        self.links: list[Link] = [TcpServerLink(sysid, self._receive, self.faults, bind, tcp_port)]
+        if udp_port:
+            self.links.append(UdpOutLink(sysid, self._receive, self.faults, "127.0.0.1", udp_port))
+        self._wall_last: float | None = None
+
+    def _boot(self) -> None:
+        """(Re)initialise the flight state as at power-on; parameters, mission and battery are kept."""
+        self.boots += 1
+        self.t = 0.0
+        self.body = Body(yaw=self._heading0)
+        self.mode = Mode.STABILIZE
+        self.armed = False
+        self.landed = True
+        self.auto_armed = False
+        self.home: tuple[float, float, float] | None = None
+        self._gps_lost_at: float | None = None
+        self.failsafe_gcs = False
+        self.battery.failsafe = None
+        self._gcs_last_seen: float | None = None
+        self._boot_text_i = 0
+        self._prearm_next_display = 15.0 + 13.0
+        self._next_stat = 30.0
+        self.flight_time_s = 0.0
+        self._last_hb = -1.0
+        self._last_timesync = 0.0
+        self.auto = AutoState()
+        self.flight = FlightController(self)
+
+    def reboot(self) -> None:
+        """Restart like a rebooted autopilot: boot timeline from zero, stream rates gone, TCP clients
+        dropped (they reconnect), MAV_SYSID re-read; parameters and the stored mission survive."""
+        self.sysid = int(self.params.get("MAV_SYSID"))
+        for link in self.links:
+            link.codec.sysid = self.sysid
+            link.streams.clear()
+            if isinstance(link, TcpServerLink):
+                link.drop_client()
+        self._boot()
+
+    # ------------------------------------------------------------------------------------------------
+    # lifecycle
+    async def start(self) -> None:
+        for link in self.links:
+            await link.start()
+        self._wall_last = time.monotonic()
+
+    async def stop(self) -> None:
+        for link in self.links:
+            await link.stop()
+
+    @property
+    def tcp_port(self) -> int:
+        return self.links[0].port  # type: ignore[attr-defined]
+
+    @property
+    def url(self) -> str:
+        link = self.links[0]
+        return f"tcpout://{link.bind}:{link.port}"  # type: ignore[attr-defined]
+
+    @property
+    def udp_url(self) -> str | None:
+        for link in self.links:
+            if isinstance(link, UdpOutLink):
+                return f"udpin://127.0.0.1:{link.port}"
+        return None
+
+    # ------------------------------------------------------------------------------------------------
+    # derived state
+    @property
+    def time_boot_ms(self) -> int:
+        return int(self.t * 1000) & 0xFFFFFFFF
+
+    @property
+    def gps_detected(self) -> bool:
+        return self.t >= self.timeline.gps_detect
+
+    @property
+    def gps_has_fix(self) -> bool:
+        return self.gps_detected and not self.gps_lost
+
+    @property
+    def origin_set(self) -> bool:
+        return self.t >= self.timeline.origin
+
+    @property
+    def position_ok(self) -> bool:
+        """The EKF has a horizontal position (it uses GPS and has not lost it)."""
+        if self.t < self.timeline.ekf_gps:
+            return False
+        return not (
+            self.gps_lost
+            and self._gps_lost_at is not None
+            and self.t - self._gps_lost_at >= GPS_LOSS_TO_EKF_S
+        )
+
+    @property
+    def mode_is_auto(self) -> bool:
+        return self.mode == Mode.AUTO
+
+    @property
+    def flying(self) -> bool:
+        return self.armed and not self.landed
+
+    def noise(self, sigma: float) -> float:
+        return self.rng.gauss(0.0, sigma)
+
+    def position(self) -> tuple[float, float, float]:
+        lat, lon = self.frame.to_latlon(self.body.north, self.body.east)
+        return lat, lon, self.frame.alt0 + self.body.up
+
+    def gps_position(self) -> tuple[float, float, float]:
+        lat, lon, alt = self.position()
+        return lat, lon, alt
+
+    def rel_alt(self) -> float:
+        home_alt = self.home[2] if self.home else self.frame.alt0
+        return self.frame.alt0 + self.body.up - home_alt
+
+    def wall_epoch_us(self) -> float:
+        return time.time() * 1e6
+
+    def landed_state(self) -> int:
+        if not self.armed:
+            return mav.MAV_LANDED_STATE_ON_GROUND
+        if self.landed:  # spooling up counts as on the ground; touched down in LAND: still landing
+            return (
+                mav.MAV_LANDED_STATE_LANDING if self.flight.is_landing() else mav.MAV_LANDED_STATE_ON_GROUND
+            )
+        if self.flight.is_taking_off():
+            return mav.MAV_LANDED_STATE_TAKEOFF
+        if self.flight.is_landing():
+            return mav.MAV_LANDED_STATE_LANDING
+        return mav.MAV_LANDED_STATE_IN_AIR
+
+    def nav_output(self) -> tuple[float, float, float]:
+        return self.flight.nav_output()
+
+    def prearm_failure(self, mode: Mode | None = None) -> str | None:
+        """First failing pre-arm check for ``mode`` (default: current), as ArduPilot words it."""
+        mode = self.mode if mode is None else mode
+        checks = self.params.get("ARMING_CHECK") != 0
+        if self.t < self.timeline.ekf_init:
+            return "AHRS: not using configured AHRS type"
+        if checks and self.t < self.timeline.prearm_ok:
+            return "Accels inconsistent"
+        if mode in REQUIRES_POSITION and not self.position_ok:
+            return "Need Position Estimate"
+        if checks:
+            battery = self._battery_arming_failure()
+            if battery:
+                return f"Battery 1 {battery}"
+        if checks and self.failsafe_gcs:
+            return "GCS failsafe on"
+        return None
+
+    def _battery_arming_failure(self) -> str | None:
+        """AP_BattMonitor_Backend::arming_checks: thresholds compared with the present state, no timer."""
+        p = self.params.get
+        b = self.battery
+        remaining = b.capacity_mah - b.consumed_mah
+        checks = [
+            (p("BATT_LOW_VOLT") > 0 and b.voltage < p("BATT_LOW_VOLT"), "low voltage failsafe"),
+            (p("BATT_LOW_MAH") > 0 and remaining < p("BATT_LOW_MAH"), "low capacity failsafe"),
+            (p("BATT_CRT_VOLT") > 0 and b.voltage < p("BATT_CRT_VOLT"), "critical voltage failsafe"),
+            (p("BATT_CRT_MAH") > 0 and remaining < p("BATT_CRT_MAH"), "critical capacity failsafe"),
+            (p("BATT_ARM_VOLT") > 0 and b.voltage < p("BATT_ARM_VOLT"), "below minimum arming voltage"),
+            (p("BATT_ARM_MAH") > 0 and remaining < p("BATT_ARM_MAH"), "below minimum arming capacity"),
+        ]
+        return next((text for failed, text in checks if failed), None)
+
+    # ------------------------------------------------------------------------------------------------
+    # output
+    def heartbeat(self) -> mav.MAVLink_message:
+        base = mav.MAV_MODE_FLAG_CUSTOM_MODE_ENABLED | mav.MAV_MODE_FLAG_STABILIZE_ENABLED
+        base |= mav.MAV_MODE_FLAG_MANUAL_INPUT_ENABLED
+        booting = self.t < self.timeline.boot_done
+        if booting or self.mode in GUIDED_FLAG_MODES:
+            base |= mav.MAV_MODE_FLAG_GUIDED_ENABLED
+        if self.armed:
+            base |= mav.MAV_MODE_FLAG_SAFETY_ARMED
+        if booting:
+            status = mav.MAV_STATE_BOOT
+        elif self.failsafe_gcs or self.battery.failsafe or self.flight.ekf_failsafe:
+            status = mav.MAV_STATE_CRITICAL  # any failsafe, as ArduCopter's vehicle_system_status()
+        else:
+            status = (
+                mav.MAV_STATE_ACTIVE if self.flying and not self.flight.on_ground() else mav.MAV_STATE_STANDBY
+            )
+        return mav.MAVLink_heartbeat_message(mav.MAV_TYPE_QUADROTOR, mav.MAV_AUTOPILOT_ARDUPILOTMEGA, base,
+                                             int(self.mode), status, 3)  # fmt: skip
+
+    def build(self, msg_id: int) -> mav.MAVLink_message | None:
+        if msg_id == 0:
+            return self.heartbeat()
+        builder = telemetry.BUILDERS.get(msg_id)
+        return builder(self) if builder else None
+
+    def can_build(self, msg_id: int) -> bool:
+        """True for every message id ArduCopter maps to an ap_message (some are never actually sent)."""
+        return msg_id == 0 or msg_id in telemetry.BUILDERS or msg_id in telemetry.KNOWN_SILENT
+
+    def send_to(self, link: Link, msg: mav.MAVLink_message) -> None:
+        link.send(msg)
+
+    def broadcast(self, msg: mav.MAVLink_message) -> None:
+        for link in self.links:
+            link.send(msg)
+
+    def text(self, severity: int, text: str) -> None:
+        self.status_texts.append((self.t, severity, text))
+        del self.status_texts[:-200]
+        log.debug("sysid %d: %s", self.sysid, text)
+        self.broadcast(mav.MAVLink_statustext_message(severity, text.encode()[:50], 0, 0))
+
+    def notify_param(self, name_47: str, value: float) -> None:
+        """Change a parameter internally and announce it unsolicited (index 65535), as ArduPilot does."""
+        param = self.params.set(self.params.canonical(name_47), value, notify=False)
+        self.broadcast(self.param_value(param))
+
+    def param_value(self, param: Param, index: int | None = None) -> mav.MAVLink_message:
+        return mav.MAVLink_param_value_message(
+            param.name.encode(), param.value, param.type, len(self.params), 65535 if index is None else index
+        )
+
+    # ------------------------------------------------------------------------------------------------
+    # input
+    def _receive(self, link: Link, msg: mav.MAVLink_message) -> None:
+        try:
+            self._dispatch(link, msg)
+        except Exception:  # one bad message must not kill the vehicle
+            log.exception("sysid %d: error handling %s", self.sysid, msg.get_type())
+
+    def _targets_us(self, msg: mav.MAVLink_message) -> bool:
+        target = getattr(msg, "target_system", None)
+        return target is None or target in (0, self.sysid)
+
+    def _dispatch(self, link: Link, msg: mav.MAVLink_message) -> None:
+        kind = msg.get_type()
+        if kind == "HEARTBEAT":
+            if msg.get_srcSystem() == int(self.params.get("MAV_GCS_SYSID")):
+                self._gcs_last_seen = self.t
+            return
+        if not self._targets_us(msg):
+            return
+        if kind in ("COMMAND_LONG", "COMMAND_INT"):
+            self.commands.handle(link, msg)
+        elif self.mission.handle(link, msg):
+            pass
+        elif kind == "PARAM_REQUEST_LIST":
+            self.commands.param_request_list(link)
+        elif kind == "PARAM_REQUEST_READ":
+            self.commands.param_request_read(link, msg)
+        elif kind == "PARAM_SET":
+            self.commands.param_set(link, msg)
+        elif kind == "REQUEST_DATA_STREAM":
+            self._request_data_stream(link, msg)
+        elif kind == "SET_MODE":
+            if msg.base_mode & mav.MAV_MODE_FLAG_CUSTOM_MODE_ENABLED:
+                self.flight.set_mode(msg.custom_mode)
+        elif kind == "MISSION_SET_CURRENT":
+            if self.flight.set_mission_current(msg.seq):
+                link.send(telemetry.mission_current(self))
+        elif kind == "TIMESYNC":
+            if msg.tc1 == 0:
+                link.send(mav.MAVLink_timesync_message(time.monotonic_ns(), msg.ts1))
+        elif kind in ("SET_POSITION_TARGET_GLOBAL_INT", "SET_POSITION_TARGET_LOCAL_NED"):
+            self.flight.position_target(msg)
+
+    def _request_data_stream(self, link: Link, msg: mav.MAVLink_message) -> None:
+        hz = msg.req_message_rate if msg.start_stop else 0
+        changed = link.streams.set_group(msg.req_stream_id, hz)
+        channel = self.links.index(link)
+        for group in changed:
+            name = f"MAV{channel + 1}_{GROUP_PARAM[group]}"
+            param = self.params.find(self.params.canonical(name))
+            if param is not None:
+                self.params.set(param.name, hz, notify=False)
+
+    def _param_changed(self, param: Param) -> None:
+        # Like ArduPilot, MAV_SYSID / SYSID_THISMAV only takes effect at the next boot.
+        pass
+
+    def _mission_home(self) -> tuple[float, float, float]:
+        if self.home is not None:
+            return self.home
+        return self.frame.lat0, self.frame.lon0, self.frame.alt0
+
+    def _mission_uploaded(self, count: int) -> None:
+        self.notify_param("MIS_TOTAL", count)  # AP_Mission's total includes home
+        self.flight.mission_changed()
+
+    # ------------------------------------------------------------------------------------------------
+    # clock
+    def tick(self) -> None:
+        """Advance by the wall time elapsed since the last tick times the speed-up, in small steps."""
+        now = time.monotonic()
+        if self._wall_last is None:
+            self._wall_last = now
+        elapsed = (now - self._wall_last) * self.speedup
+        self._wall_last = now
+        elapsed = min(elapsed, 60.0)  # a suspended process resumes without simulating hours
+        while elapsed > 1e-9:
+            dt = min(MAX_STEP_S, elapsed)
+            elapsed -= dt
+            self._step(dt)
+            self._emit()  # per step, so streams keep their spacing in simulated time
+        self.mission.tick(now)
+
+    def _step(self, dt: float) -> None:
+        self.t += dt
+        self._boot_timeline()
+        self.flight.step(dt)
+        if self.flying:
+            self.flight_time_s += dt
+        self.battery.drain(dt, self.armed, self.flying)
+        self._failsafes()
+
+    def _boot_timeline(self) -> None:
+        tl = self.timeline
+        while self._boot_text_i < len(BOOT_TEXTS):
+            attr, text = BOOT_TEXTS[self._boot_text_i]
+            if self.t < getattr(tl, attr):
+                break
+            self._boot_text_i += 1
+            self.text(mav.MAV_SEVERITY_INFO, text.format(field_elev=round(self.frame.alt0)))
+            if attr == "origin" and "origin set" in text:
+                self._set_origin()
+            if attr == "baro" and text.startswith("Barometer 2"):
+                for name in ("BARO1_GND_PRESS", "BARO2_GND_PRESS", "INS_GYR_ID", "INS_ACC_ID"):
+                    self.notify_param(name, self.params.get(name))
+            if attr == "rc7":
+                self.notify_param("EK3_SRC1_POSXY", 3)
+        if self.t >= self._next_stat:
+            self._next_stat += 30.0
+            self._stat_params()
+        if self.t >= self._prearm_next_display:
+            self._prearm_next_display = self.t + PREARM_DISPLAY_PERIOD_S
+            if not self.armed:
+                failure = self.prearm_failure()
+                if failure:
+                    self.text(mav.MAV_SEVERITY_CRITICAL, f"PreArm: {failure}")
+
+    def _stat_params(self) -> None:
+        if self.flight_time_s > 0:
+            self.notify_param("STAT_FLTTIME", round(self.flight_time_s))
+        self.notify_param("STAT_RUNTIME", round(self.t))
+
+    def _set_origin(self) -> None:
+        self.home = self.position()
+        if self.params.get("MIS_TOTAL") < 1:
+            self.notify_param("MIS_TOTAL", 1)  # home becomes mission item 0
+        for builder in (telemetry.gps_global_origin, telemetry.home_position):
+            msg = builder(self)
+            if msg is not None:
+                self.broadcast(msg)
+
+    def set_home_here(self) -> None:
+        self.home = self.position()
+
+    def _failsafes(self) -> None:
+        # GCS heartbeat loss: only heartbeats from MAV_GCS_SYSID count (ArduPilot's sysid_mygcs_seen).
+        fs_gcs = int(self.params.get("FS_GCS_ENABLE"))
+        if fs_gcs and self._gcs_last_seen is not None:
+            timeout = self.params.get("FS_GCS_TIMEOUT")
+            lost = self.t - self._gcs_last_seen > timeout
+            if lost and not self.failsafe_gcs:
+                self.failsafe_gcs = True
+                self.flight.gcs_failsafe(fs_gcs)
+            elif not lost and self.failsafe_gcs:
+                self.failsafe_gcs = False
+                self.text(mav.MAV_SEVERITY_WARNING, "GCS Failsafe Cleared")
+        elif self.failsafe_gcs and not fs_gcs:
+            self.failsafe_gcs = False
+        # GPS loss -> the EKF loses its position a moment later.
+        if self.gps_lost and self._gps_lost_at is None:
+            self._gps_lost_at = self.t
+        elif not self.gps_lost:
+            self._gps_lost_at = None
+        self.flight.ekf_check()
+        # Battery: AP_BattMonitor only checks its failsafes while armed
+        p = self.params.get
+        if not self.armed:
+            self.battery.check(self.t, 0, 0, 0, 0, 0)  # resets the low-voltage timer
+            return
+        level = self.battery.check(
+            self.t,
+            p("BATT_LOW_VOLT"),
+            p("BATT_LOW_MAH"),
+            p("BATT_CRT_VOLT"),
+            p("BATT_CRT_MAH"),
+            p("BATT_LOW_TIMER"),
+        )
+        if level:
+            b = self.battery
+            self.text(
+                mav.MAV_SEVERITY_WARNING,
+                f"Battery 1 is {level} {b.voltage:.2f}V used {b.consumed_mah:.0f} mAh",
+            )
+            action = int(p("BATT_FS_CRT_ACT") if level == "critical" else p("BATT_FS_LOW_ACT"))
+            self.flight.battery_failsafe(action)
+
+    def _emit(self) -> None:
+        if self.t - self._last_hb >= 1.0:
+            self._last_hb = self.t
+            self.broadcast(self.heartbeat())
+        if self.t - self._last_timesync >= 10.0:
+            self._last_timesync = self.t
+            self.broadcast(mav.MAVLink_timesync_message(0, round(self.t * 1e6) * 1000 + self.sysid))
+        for link in self.links:
+            if not link.connected:
+                continue
+            for msg_id in link.streams.due(self.t):
+                msg = self.build(msg_id)
+                if msg is not None:
+                    link.send(msg)
+
+    # ------------------------------------------------------------------------------------------------
+    # fault injection and inspection
+    def set_link(self, up: bool) -> None:
+        self.faults.up = up
+
+    def set_packet_loss(self, pct: float) -> None:
+        if not 0 <= pct <= 100:
+            raise ValueError(f"packet loss must be 0..100 %, got {pct}")
+        self.faults.loss_pct = pct
+
+    def set_gps(self, ok: bool) -> None:
+        self.gps_lost = not ok
+
+    def set_battery(self, pct: float) -> None:
+        if not 0 <= pct <= 100:
+            raise ValueError(f"battery level must be 0..100 %, got {pct}")
+        self.battery.set_remaining(pct)
+
+    def state(self) -> dict:
+        lat, lon, alt = self.position()
+        return {
+            "index": self.index,
+            "sysid": self.sysid,
+            "url": self.url,
+            "udp_url": self.udp_url,
+            "t_boot_s": round(self.t, 3),
+            "boots": self.boots,
+            "mode": mode_name(self.mode),
+            "armed": self.armed,
+            "landed": self.landed,
+            "lat": lat,
+            "lon": lon,
+            "alt_amsl_m": alt,
+            "rel_alt_m": self.rel_alt(),
+            "heading_deg": self.body.yaw,
+            "ground_speed_mps": self.body.ground_speed,
+            "climb_mps": self.body.vu,
+            "home": None
+            if self.home is None
+            else {"lat": self.home[0], "lon": self.home[1], "alt": self.home[2]},
+            "battery_pct": self.battery.remaining_pct,
+            "battery_v": self.battery.voltage,
+            "gps_ok": not self.gps_lost,
+            "link_up": self.faults.up,
+            "packet_loss_pct": self.faults.loss_pct,
+            "failsafe_gcs": self.failsafe_gcs,
+            "gcs_heartbeat_age_s": None
+            if self._gcs_last_seen is None
+            else round(self.t - self._gcs_last_seen, 3),
+            "failsafe_battery": self.battery.failsafe,
+            "position_ok": self.position_ok,
+            "mission_current": self.auto.current,
+            "mission_count": self.mission.count(),
+            "client_connected": self.links[0].connected,
+        }

@@ -1,0 +1,121 @@
+"""In-process units of the flight model, stepped in simulated time (no sockets, no wall clock).
+
+Durations here are *simulated* seconds compared with the ArduCopter SITL reference (README section 8),
+not wall-clock measurements.
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+
+from gateway.sim.modes import Mode
+from gateway.sim.vehicle import SimVehicle
+
+HOME = (-35.363261, 149.165230, 584.0, 353.0)
+
+
+def _vehicle(**kw) -> SimVehicle:
+    return SimVehicle(0, 1, HOME, tcp_port=0, seed=1, **kw)
+
+
+def _run(v: SimVehicle, predicate, limit_s: float = 300.0) -> float:
+    start = v.t
+    while not predicate():
+        assert v.t - start < limit_s, "condition not reached in simulated time"
+        v._step(0.05)
+    return v.t - start
+
+
+def _flying_guided(v: SimVehicle, alt: float = 10.0) -> None:
+    _run(v, lambda: v.position_ok)
+    assert v.flight.set_mode(Mode.GUIDED)[0]
+    assert v.flight.arm(force=False) == (True, None)
+    assert v.flight.takeoff(alt)
+    _run(v, lambda: abs(v.rel_alt() - alt) < 0.01 and not v.flight.is_taking_off())
+
+
+def test_boot_timeline_matches_reference() -> None:
+    v = _vehicle()
+    _run(v, lambda: v.prearm_failure(Mode.STABILIZE) is None)
+    assert 22.0 <= v.t <= 23.5  # reference: 22.6 s
+    assert v.prearm_failure(Mode.GUIDED) == "Need Position Estimate"
+    _run(v, lambda: v.prearm_failure(Mode.GUIDED) is None)
+    assert 41.0 <= v.t <= 44.5  # reference: 41.6-44 s
+    texts = [text for _t, _s, text in v.status_texts]
+    assert (
+        texts.index("ArduPilot Ready")
+        < texts.index("EKF3 IMU0 origin set")
+        < texts.index("EKF3 IMU0 is using GPS")
+    )
+
+
+def test_takeoff_reposition_and_land_timings_like_sitl() -> None:
+    v = _vehicle()
+    _run(v, lambda: v.position_ok)
+    v.flight.set_mode(Mode.GUIDED)
+    v.flight.arm(force=False)
+    v.flight.takeoff(10.0)
+    liftoff = _run(v, lambda: v.rel_alt() > 0.2)
+    assert 3.6 <= liftoff <= 4.6  # reference 4.1 s
+    assert 7.5 <= liftoff + _run(v, lambda: v.rel_alt() > 9.5) <= 11.0  # reference 9.5-9.7 s
+    _run(v, lambda: not v.flight.is_taking_off())
+    north0 = v.body.north
+    assert v.flight.guided_goto(north0 + 100.0, v.body.east, v.body.up)
+    leg = _run(v, lambda: abs(v.body.north - north0 - 100.0) < 0.5 and v.body.ground_speed < 0.3)
+    assert 12.0 <= leg <= 17.0  # reference 14.0-15.2 s at WPNAV_SPEED 10 m/s
+    assert max(abs(v.body.north - north0 - 100.0), 0) < 0.5
+    v.flight.set_mode(Mode.LAND)
+    landing = _run(v, lambda: not v.armed)
+    assert 20.0 <= landing <= 28.0  # reference 23.3-27.3 s
+    assert v.landed and v.rel_alt() == 0.0
+
+
+def test_brake_stops_ahead_without_turning_back() -> None:
+    v = _vehicle()
+    _flying_guided(v)
+    v.flight.guided_goto(v.body.north + 500.0, v.body.east, v.body.up)
+    _run(v, lambda: v.body.ground_speed > 9.9)
+    start = v.body.north
+    assert v.flight.set_mode(Mode.BRAKE)[0]
+    positions = []
+    _run(v, lambda: positions.append(v.body.north) or (v.body.ground_speed < 0.01 and len(positions) > 10))
+    assert all(b >= a - 0.01 for a, b in itertools.pairwise(positions))  # never turns back (1 cm snap)
+    assert 15.0 <= v.body.north - start <= 25.0  # v^2 / 2a = 20 m at 10 m/s and 2.5 m/s^2
+
+
+def test_wpnav_speed_and_change_speed_are_honoured() -> None:
+    v = _vehicle()
+    _flying_guided(v)
+    v.params.set("WPNAV_SPEED", 500)
+    v.flight.guided_goto(v.body.north + 200.0, v.body.east, v.body.up)
+    top = max(_speeds(v, 40.0))
+    assert 4.9 <= top <= 5.01
+    assert v.flight.change_speed(1, 8.0)
+    v.flight.guided_goto(v.body.north + 300.0, v.body.east, v.body.up)
+    assert 7.9 <= max(_speeds(v, 40.0)) <= 8.01
+
+
+def _speeds(v: SimVehicle, seconds: float) -> list[float]:
+    out = []
+    end = v.t + seconds
+    while v.t < end:
+        v._step(0.05)
+        out.append(v.body.ground_speed)
+    return out
+
+
+def test_auto_disarm_and_cpu_starvation_catch_up() -> None:
+    v = _vehicle()
+    _run(v, lambda: v.position_ok)
+    v.flight.set_mode(Mode.GUIDED)
+    v.flight.arm(force=False)
+    disarm = _run(v, lambda: not v.armed)
+    assert 9.9 <= disarm <= 10.2  # DISARM_DELAY 10 s
+
+    # a tick after a long stall (CPU starvation) integrates the whole measured time in small steps
+    late = _vehicle(speedup=20.0)
+    late._wall_last = time.monotonic() - 2.5  # 2.5 s wall at speed-up 20: 50 simulated seconds
+    late.tick()
+    assert 49.9 <= late.t <= 51.0
+    assert late.position_ok and late.home is not None  # every boot milestone on the way was run
