@@ -12,6 +12,8 @@ from collections.abc import Sequence
 COMMAND_MODULES: tuple[str, ...] = (
     "gateway.sim.cli",
     "gateway.demo",
+    "gateway.server_cli",
+    "gateway.mcp.cli",
 )
 
 

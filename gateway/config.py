@@ -40,6 +40,11 @@ class Settings(BaseSettings):
         description="SQLAlchemy async URL; SQLite (aiosqlite) by default, PostgreSQL (asyncpg) works too.",
     )
     log_level: str = Field("INFO", description="Python log level of the gateway.")
+    max_request_body_bytes: int = Field(
+        1_048_576,
+        ge=1024,
+        description="Largest HTTP request body accepted (REST and /mcp); larger ones are refused with 413.",
+    )
 
     # --- MAVLink / sidecars --------------------------------------------------------------------
     gcs_sysid: int = Field(
@@ -83,6 +88,11 @@ class Settings(BaseSettings):
     )
     mcp_wait_cap_s: float = Field(
         45.0, gt=0, le=600, description="Longest a tool waits for its operation before answering 'running'."
+    )
+    mcp_allowed_hosts: str = Field(
+        "",
+        description="Comma-separated extra Host names /mcp accepts (DNS-rebinding protection); "
+        "loopback names are always allowed.",
     )
     arrival_tolerance_m: float = Field(2.0, gt=0, description="Horizontal distance counted as arrived.")
 

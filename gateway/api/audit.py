@@ -1,0 +1,121 @@
+"""Audit of REST calls: every state-changing request (POST, PUT, PATCH, DELETE) is written to the
+audit table with source 'rest', the caller, the vehicle, the arguments, the outcome and the duration.
+
+Reads are not audited: dashboards poll them and they change nothing. Routers opt in by using
+:class:`AuditedRoute` as their ``route_class``.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import time
+from collections.abc import Callable, Coroutine
+from typing import Any
+
+from fastapi import Request, Response
+from fastapi.exceptions import RequestValidationError
+from fastapi.routing import APIRoute
+from starlette.exceptions import HTTPException as StarletteHTTPException
+
+from gateway.errors import GatewayError, SafetyRefusal
+from gateway.registry.store import AuditEntry
+
+log = logging.getLogger(__name__)
+
+AUDITED_METHODS = frozenset({"POST", "PUT", "PATCH", "DELETE"})
+
+Handler = Callable[[Request], Coroutine[Any, Any, Response]]
+
+
+async def _arguments(request: Request) -> dict[str, Any]:
+    args: dict[str, Any] = dict(request.path_params)
+    if request.query_params:
+        args["query"] = dict(request.query_params)
+    try:
+        raw = await request.body()
+    except Exception:  # the body could not be read (e.g. too large): audit without it
+        return args
+    if raw:
+        try:
+            body = json.loads(raw)
+        except ValueError:
+            body = raw[:500].decode("utf-8", errors="replace")
+        args["body"] = body
+    return args
+
+
+def _vehicle_id(request: Request, args: dict[str, Any]) -> str | None:
+    vid = request.path_params.get("vehicle_id")
+    if vid is None and isinstance(args.get("body"), dict):
+        body_id = args["body"].get("id")
+        vid = body_id if isinstance(body_id, str) else None
+    return vid[:32] if isinstance(vid, str) else None
+
+
+async def record_rest_call(
+    request: Request, action: str, outcome: str, error: str | None, started: float
+) -> None:
+    """Write one audit row (and touch the caller's REST session); never fails the request."""
+    gateway = request.app.state.gateway
+    store = gateway.store
+    if store is None or not store.is_open:
+        return
+    principal = getattr(request.state, "principal", None)
+    try:
+        args = await _arguments(request)
+        session_key = principal.session_key if principal else None
+        if principal is not None:
+            await store.touch_session(session_key, "rest", principal=principal.name)
+        await store.add_audit(
+            AuditEntry(
+                session_key=session_key,
+                principal=principal.name if principal else None,
+                source="rest",
+                vehicle_id=_vehicle_id(request, args),
+                action=action,
+                arguments=args,
+                outcome=outcome,
+                error=error,
+                duration_ms=(time.perf_counter() - started) * 1000.0,
+            )
+        )
+    except Exception:
+        log.exception("could not write the audit entry of %s %s", request.method, request.url.path)
+
+
+class AuditedRoute(APIRoute):
+    """An APIRoute that audits its state-changing calls; the action is the route's name."""
+
+    def get_route_handler(self) -> Handler:
+        handler = super().get_route_handler()
+        action = f"rest.{self.name}"
+
+        async def audited(request: Request) -> Response:
+            if request.method not in AUDITED_METHODS:
+                return await handler(request)
+            started = time.perf_counter()
+            try:
+                response = await handler(request)
+            except SafetyRefusal as exc:
+                await record_rest_call(request, action, "refused", f"{exc.code}: {exc.message}", started)
+                raise
+            except GatewayError as exc:
+                await record_rest_call(request, action, "error", f"{exc.code}: {exc.message}", started)
+                raise
+            except RequestValidationError as exc:
+                summary = "; ".join(str(e.get("msg")) for e in list(exc.errors())[:3])
+                await record_rest_call(request, action, "error", f"validation_error: {summary}", started)
+                raise
+            except StarletteHTTPException as exc:
+                await record_rest_call(request, action, "error", f"http_{exc.status_code}", started)
+                raise
+            except Exception as exc:
+                await record_rest_call(request, action, "error", f"internal_error: {exc!r}"[:500], started)
+                raise
+            outcome = "ok" if response.status_code < 400 else "error"
+            error = None if outcome == "ok" else f"http_{response.status_code}"
+            await record_rest_call(request, action, outcome, error, started)
+            return response
+
+        return audited

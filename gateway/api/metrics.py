@@ -1,0 +1,169 @@
+"""/metrics: Prometheus text exposition from a CollectorRegistry of this app (several apps can coexist)."""
+
+from __future__ import annotations
+
+import time
+from collections import Counter as Tally
+from collections.abc import Iterator
+from typing import Any
+
+from fastapi import APIRouter, FastAPI, Request, Response
+from prometheus_client import CONTENT_TYPE_LATEST, CollectorRegistry, Counter, Histogram, generate_latest
+from prometheus_client.core import CounterMetricFamily, GaugeMetricFamily, Metric
+from prometheus_client.registry import Collector
+from starlette.types import ASGIApp, Message, Receive, Scope, Send
+
+CONNECTION_STATES = ("registered", "connecting", "connected", "ready", "link_lost", "failed")
+
+router = APIRouter(tags=["health"])
+
+
+def _state_name(vehicle: Any) -> str:
+    state = vehicle.state
+    return str(getattr(state, "value", state))
+
+
+class FleetCollector(Collector):
+    """Reads the fleet at scrape time: vehicles by state, sidecar restarts, telemetry message counts."""
+
+    def __init__(self, gateway: Any) -> None:
+        self.gateway = gateway
+
+    def collect(self) -> Iterator[Metric]:
+        registry = self.gateway.registry if self.gateway.ready else None
+        vehicles = list(registry.all()) if registry is not None else []
+        up = GaugeMetricFamily("fleet_gateway_ready", "1 when the database is open and the registry runs")
+        up.add_metric([], 1.0 if self.gateway.ready else 0.0)
+        yield up
+
+        by_state = GaugeMetricFamily(
+            "fleet_gateway_vehicles", "Registered vehicles by connection state", labels=["state"]
+        )
+        tally = Tally(_state_name(v) for v in vehicles)
+        for state in sorted(set(CONNECTION_STATES) | set(tally)):
+            by_state.add_metric([state], tally.get(state, 0))
+        yield by_state
+
+        restarts = CounterMetricFamily(
+            "fleet_gateway_sidecar_restarts", "mavsdk_server sidecar restarts per vehicle", labels=["vehicle"]
+        )
+        messages = CounterMetricFamily(
+            "fleet_gateway_telemetry_messages",
+            "Telemetry updates received per vehicle and stream (use rate() for messages per second)",
+            labels=["vehicle", "stream"],
+        )
+        heartbeat = GaugeMetricFamily(
+            "fleet_gateway_heartbeat_age_seconds",
+            "Seconds since the vehicle's last HEARTBEAT",
+            labels=["vehicle"],
+        )
+        ages = GaugeMetricFamily(
+            "fleet_gateway_telemetry_age_seconds",
+            "Age of the newest cached sample per vehicle and stream",
+            labels=["vehicle", "stream"],
+        )
+        for vehicle in vehicles:
+            status = vehicle.status()
+            sidecar = status.get("sidecar") or {}
+            restarts.add_metric([vehicle.id], float(sidecar.get("restarts") or 0))
+            if status.get("last_heartbeat_age_s") is not None:
+                heartbeat.add_metric([vehicle.id], float(status["last_heartbeat_age_s"]))
+            for stream, count in _message_counts(vehicle).items():
+                messages.add_metric([vehicle.id, stream], float(count))
+            for stream, age in _sample_ages(vehicle).items():
+                ages.add_metric([vehicle.id, stream], age)
+        yield restarts
+        yield messages
+        yield heartbeat
+        yield ages
+
+
+def _sample_ages(vehicle: Any) -> dict[str, float]:
+    """Age of each telemetry part the cache holds (parts never received are left out)."""
+    cache = vehicle.telemetry
+    ages: dict[str, float] = {}
+    for name in getattr(cache, "FIELDS", ()):
+        sample = getattr(cache, name, None)
+        age = getattr(sample, "age_s", None)
+        if age is not None:
+            ages[name] = float(age)
+    return ages
+
+
+def _message_counts(vehicle: Any) -> dict[str, int]:
+    """Per-stream update counts of the vehicle's telemetry cache."""
+    counts = getattr(vehicle.telemetry, "message_counts", None)
+    if counts is None:
+        return {}
+    return dict(counts() if callable(counts) else counts)
+
+
+def route_template(scope: Scope) -> str:
+    """The matched route's full path template (``/api/v1/vehicles/{vehicle_id}``), for low-cardinality labels.
+
+    Included routers keep their routes' own (relative) templates, so the prefix is taken from the
+    request path: its leading segments that the relative template does not cover.
+    """
+    relative = getattr(scope.get("route"), "path", None)
+    if not relative:
+        return "<unmatched>"
+    segments = scope.get("path", "").rstrip("/").split("/")
+    covered = relative.rstrip("/").count("/")
+    prefix = "/".join(segments[: len(segments) - covered]) if covered else "/".join(segments)
+    return (prefix + relative) or "/"
+
+
+class RequestMetricsMiddleware:
+    """Pure ASGI middleware (no body buffering, safe for streamed /mcp responses, which it skips)."""
+
+    def __init__(self, app: ASGIApp, requests: Counter, latency: Histogram) -> None:
+        self.app = app
+        self.requests = requests
+        self.latency = latency
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] != "http" or scope.get("path", "").startswith("/mcp"):
+            await self.app(scope, receive, send)
+            return
+        started = time.perf_counter()
+        status = 500
+
+        async def send_wrapper(message: Message) -> None:
+            nonlocal status
+            if message["type"] == "http.response.start":
+                status = message["status"]
+            await send(message)
+
+        try:
+            await self.app(scope, receive, send_wrapper)
+        finally:
+            template = route_template(scope)
+            self.requests.labels(scope.get("method", ""), template, str(status)).inc()
+            self.latency.labels(template).observe(time.perf_counter() - started)
+
+
+def install_metrics(app: FastAPI, gateway: Any) -> CollectorRegistry:
+    """Create the app's registry, its HTTP request metrics and the fleet collector."""
+    registry = CollectorRegistry(auto_describe=True)
+    registry.register(FleetCollector(gateway))
+    requests = Counter(
+        "fleet_gateway_http_requests",
+        "HTTP requests by method, route template and status",
+        ["method", "route", "status"],
+        registry=registry,
+    )
+    latency = Histogram(
+        "fleet_gateway_http_request_duration_seconds",
+        "HTTP request handling time by route template",
+        ["route"],
+        registry=registry,
+    )
+
+    app.add_middleware(RequestMetricsMiddleware, requests=requests, latency=latency)
+    app.state.metrics_registry = registry
+    return registry
+
+
+@router.get("/metrics", summary="Prometheus metrics", response_class=Response)
+async def metrics(request: Request) -> Response:
+    return Response(generate_latest(request.app.state.metrics_registry), media_type=CONTENT_TYPE_LATEST)

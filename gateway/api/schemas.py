@@ -1,0 +1,124 @@
+"""Request and response bodies of the REST API (they make the OpenAPI document at /docs)."""
+
+from __future__ import annotations
+
+from datetime import UTC, datetime
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator
+
+from gateway.registry.spec import VehicleSpec, validate_connection_url
+from gateway.registry.store import (
+    AuditRecord,
+    FlightRecord,
+    OperationRecord,
+    SessionRecord,
+    StatusTextRecord,
+    VehicleRecord,
+)
+
+
+class VehicleCreate(VehicleSpec):
+    """A registration: the vehicle spec, and whether to connect now (and on every start)."""
+
+    connect: bool = Field(
+        True, description="Start the vehicle's sidecar now and whenever the gateway starts."
+    )
+
+    def to_spec(self) -> VehicleSpec:
+        return VehicleSpec.model_validate(self.model_dump(exclude={"connect"}))
+
+
+class VehicleUpdate(BaseModel):
+    """Fields to change; omitted fields stay as they are. ``null`` clears name / expected_sysid."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    url: str | None = Field(None, description="New MAVLink connection URL (mavsdk_server syntax).")
+    name: str | None = Field(None, max_length=100)
+    tags: list[str] | None = Field(None, max_length=20)
+    expected_sysid: int | None = Field(None, ge=1, le=255)
+    auto_connect: bool | None = Field(None, description="Connect this vehicle whenever the gateway starts.")
+
+    @field_validator("url")
+    @classmethod
+    def _url(cls, value: str | None) -> str | None:
+        if value is None:
+            raise ValueError("url cannot be null")
+        return validate_connection_url(value)
+
+    @field_validator("tags", "auto_connect")
+    @classmethod
+    def _not_null(cls, value: Any) -> Any:
+        if value is None:
+            raise ValueError("cannot be null")
+        return value
+
+    def changes(self) -> dict[str, Any]:
+        return {name: getattr(self, name) for name in self.model_fields_set}
+
+
+class VehicleOut(VehicleRecord):
+    """A registered vehicle with its live connection state."""
+
+    model_config = ConfigDict(extra="ignore")
+
+    state: str | None = Field(None, description="registered, connecting, connected, ready, link_lost, failed")
+    status: dict[str, Any] | None = Field(None, description="Connection details: heartbeat age, sidecar...")
+    locked: str | None = Field(None, description="Why agents may not command this drone (operator locks).")
+    telemetry: dict[str, Any] | None = Field(
+        None, description="Latest telemetry snapshot, each part with its age (only on GET of one vehicle)."
+    )
+
+
+class VehicleList(BaseModel):
+    items: list[VehicleOut]
+    total: int
+
+
+class Page(BaseModel):
+    total: int
+    limit: int
+    offset: int
+
+
+class FlightPage(Page):
+    items: list[FlightRecord]
+
+
+class AuditPage(Page):
+    items: list[AuditRecord]
+
+
+class SessionList(BaseModel):
+    items: list[SessionRecord]
+
+
+class StatusTextList(BaseModel):
+    vehicle_id: str
+    items: list[StatusTextRecord]
+
+
+class OperationList(BaseModel):
+    items: list[OperationRecord]
+
+
+def as_utc(value: datetime | None) -> datetime | None:
+    """Query datetimes without a zone are taken as UTC."""
+    if value is None:
+        return None
+    return value.replace(tzinfo=UTC) if value.tzinfo is None else value.astimezone(UTC)
+
+
+__all__ = [
+    "AuditPage",
+    "FlightPage",
+    "OperationList",
+    "SessionList",
+    "StatusTextList",
+    "VehicleCreate",
+    "VehicleList",
+    "VehicleOut",
+    "VehicleUpdate",
+    "as_utc",
+]

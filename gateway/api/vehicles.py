@@ -1,0 +1,131 @@
+"""/api/v1/vehicles: register, list, inspect, change, remove, connect and disconnect drones."""
+
+from __future__ import annotations
+
+from datetime import datetime
+from typing import Annotated, Any
+
+from fastapi import APIRouter, Query, Response
+from fastapi.encoders import jsonable_encoder
+
+from gateway.api.audit import AuditedRoute
+from gateway.api.deps import GatewayDep, RegistryDep, StoreDep
+from gateway.api.schemas import StatusTextList, VehicleCreate, VehicleList, VehicleOut, VehicleUpdate, as_utc
+from gateway.errors import InvalidArgument, UnknownVehicle
+from gateway.registry.store import Store, VehicleRecord
+
+router = APIRouter(prefix="/vehicles", tags=["vehicles"], route_class=AuditedRoute)
+
+
+def _live(registry: Any, vehicle_id: str) -> Any | None:
+    """The registry's Vehicle, or None when the registry does not hold it."""
+    try:
+        return registry.get(vehicle_id)
+    except UnknownVehicle:
+        return None
+
+
+def vehicle_view(
+    record: VehicleRecord, vehicle: Any | None, with_telemetry: bool = False, locks: Any = None
+) -> VehicleOut:
+    data: dict[str, Any] = record.model_dump()
+    if locks is not None:
+        data["locked"] = locks.reason_for(record.id)
+    if vehicle is not None:
+        status = jsonable_encoder(vehicle.status())
+        data["status"] = status
+        state = status.get("state", vehicle.state) if isinstance(status, dict) else vehicle.state
+        data["state"] = str(getattr(state, "value", state))
+        if with_telemetry:
+            data["telemetry"] = jsonable_encoder(vehicle.telemetry.snapshot())
+    return VehicleOut.model_validate(data)
+
+
+async def _record(store: Store, registry: Any, vehicle_id: str) -> VehicleRecord:
+    record = await store.get_vehicle(vehicle_id)
+    if record is None:
+        raise UnknownVehicle(vehicle_id, [v.id for v in await store.list_vehicles()])
+    return record
+
+
+@router.get("", response_model=VehicleList, summary="List registered vehicles with their state")
+async def list_vehicles(store: StoreDep, registry: RegistryDep, gateway: GatewayDep) -> VehicleList:
+    records = await store.list_vehicles()
+    items = [vehicle_view(r, _live(registry, r.id), locks=gateway.locks) for r in records]
+    return VehicleList(items=items, total=len(items))
+
+
+@router.post("", status_code=201, response_model=VehicleOut, summary="Register a vehicle")
+async def register_vehicle(
+    body: VehicleCreate, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+) -> VehicleOut:
+    vehicle = await registry.add(body.to_spec(), connect=body.connect)
+    record = await _record(store, registry, body.id)
+    return vehicle_view(record, vehicle, locks=gateway.locks)
+
+
+@router.get("/{vehicle_id}", response_model=VehicleOut, summary="A vehicle with state and latest telemetry")
+async def get_vehicle(
+    vehicle_id: str, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+) -> VehicleOut:
+    record = await _record(store, registry, vehicle_id)
+    return vehicle_view(record, _live(registry, vehicle_id), with_telemetry=True, locks=gateway.locks)
+
+
+@router.patch("/{vehicle_id}", response_model=VehicleOut, summary="Change a vehicle's registration")
+async def update_vehicle(
+    vehicle_id: str, body: VehicleUpdate, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+) -> VehicleOut:
+    changes = body.changes()
+    if not changes:
+        raise InvalidArgument(
+            "nothing to update: give at least one of url, name, tags, expected_sysid, auto_connect"
+        )
+    await _record(store, registry, vehicle_id)
+    await registry.update(vehicle_id, **changes)
+    record = await _record(store, registry, vehicle_id)
+    return vehicle_view(record, _live(registry, vehicle_id), locks=gateway.locks)
+
+
+@router.delete("/{vehicle_id}", status_code=204, summary="Remove a vehicle (stops its sidecar)")
+async def remove_vehicle(
+    vehicle_id: str, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+) -> Response:
+    await _record(store, registry, vehicle_id)
+    await registry.remove(vehicle_id)
+    return Response(status_code=204)
+
+
+@router.post("/{vehicle_id}/connect", response_model=VehicleOut, summary="Start the vehicle's sidecar")
+async def connect_vehicle(
+    vehicle_id: str, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+) -> VehicleOut:
+    record = await _record(store, registry, vehicle_id)
+    await registry.connect(vehicle_id)
+    return vehicle_view(record, _live(registry, vehicle_id), locks=gateway.locks)
+
+
+@router.post("/{vehicle_id}/disconnect", response_model=VehicleOut, summary="Stop the vehicle's sidecar")
+async def disconnect_vehicle(
+    vehicle_id: str, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+) -> VehicleOut:
+    record = await _record(store, registry, vehicle_id)
+    await registry.disconnect(vehicle_id)
+    return vehicle_view(record, _live(registry, vehicle_id), locks=gateway.locks)
+
+
+@router.get("/{vehicle_id}/statustexts", response_model=StatusTextList, summary="Recent STATUSTEXT messages")
+async def status_texts(
+    vehicle_id: str,
+    store: StoreDep,
+    registry: RegistryDep,
+    limit: Annotated[
+        int, Query(ge=1, le=1000, description="Newest messages to return (oldest first).")
+    ] = 100,
+    since: Annotated[
+        datetime | None, Query(description="Only messages at or after this time (ISO 8601).")
+    ] = None,
+) -> StatusTextList:
+    await _record(store, registry, vehicle_id)
+    items = await store.list_status_texts(vehicle_id, limit=limit, since=as_utc(since))
+    return StatusTextList(vehicle_id=vehicle_id, items=items)

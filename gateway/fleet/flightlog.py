@@ -1,0 +1,214 @@
+"""Flight log: an arm -> disarm period is a flight, with a 1 Hz track and the status texts received.
+
+Everything is read from the vehicle's telemetry cache (no extra subscriptions) and written through the
+Store in batches every ``track_flush_s``. A flight left open by a gateway that died is closed at the
+next start from its recorded track.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import itertools
+import logging
+from datetime import UTC, datetime
+from typing import TYPE_CHECKING, Any
+
+from gateway.config import Settings
+from gateway.fleet import geo
+from gateway.fleet.telemetry import StatusTextValue
+from gateway.registry.store import StatusTextIn, TrackSample
+
+if TYPE_CHECKING:
+    from gateway.fleet.vehicle import Vehicle
+
+log = logging.getLogger("gateway.flightlog")
+
+
+def _utc(epoch_s: float | None = None) -> datetime:
+    return datetime.now(UTC) if epoch_s is None else datetime.fromtimestamp(epoch_s, UTC)
+
+
+class _Flight:
+    def __init__(self, flight_id: int, started_at: datetime, battery_start: float | None) -> None:
+        self.id = flight_id
+        self.started_at = started_at
+        self.battery_start = battery_start
+        self.battery_last = battery_start
+        self.distance_m = 0.0
+        self.max_alt_rel_m: float | None = None
+        self.last_fix: tuple[float, float] | None = None
+
+    def add(self, lat: float, lon: float, alt_rel_m: float, battery: float | None) -> None:
+        if self.last_fix is not None:
+            self.distance_m += geo.horizontal_distance_m(self.last_fix[0], self.last_fix[1], lat, lon)
+        self.last_fix = (lat, lon)
+        self.max_alt_rel_m = alt_rel_m if self.max_alt_rel_m is None else max(self.max_alt_rel_m, alt_rel_m)
+        if battery is not None:
+            self.battery_last = battery
+            if self.battery_start is None:
+                self.battery_start = battery
+
+    @property
+    def battery_used(self) -> float | None:
+        if self.battery_start is None or self.battery_last is None:
+            return None
+        return max(0.0, self.battery_start - self.battery_last)
+
+
+class FlightRecorder:
+    """Records the flights of one vehicle while it is connected."""
+
+    def __init__(self, vehicle: Vehicle, store: Any, settings: Settings) -> None:
+        self.vehicle = vehicle
+        self.store = store
+        self.settings = settings
+        self.flight: _Flight | None = None
+        self._track: list[TrackSample] = []
+        self._texts: list[StatusTextIn] = []
+        self._task: asyncio.Task[None] | None = None
+        self._listening = False
+
+    async def start(self) -> None:
+        await self._close_leftovers()
+        if not self._listening:
+            self.vehicle.telemetry.on_status_text(self._on_status_text)
+            self._listening = True
+        self._task = asyncio.create_task(self._run(), name=f"flightlog-{self.vehicle.id}")
+
+    async def stop(self) -> None:
+        """Stop recording: close a flight in progress (the gateway no longer watches it) and flush."""
+        if self._task is not None:
+            self._task.cancel()
+            with contextlib.suppress(asyncio.CancelledError):
+                await self._task
+            self._task = None
+        if self.flight is not None:
+            await self._close(_utc(), "recording stopped")
+        await self.flush()
+
+    def _on_status_text(self, item: StatusTextValue) -> None:
+        if self._task is None:
+            return
+        self._texts.append(
+            StatusTextIn(
+                vehicle_id=self.vehicle.id,
+                flight_id=self.flight.id if self.flight else None,
+                t=_utc(item.t),
+                severity=item.severity,
+                text=item.text,
+            )
+        )
+
+    async def _close_leftovers(self) -> None:
+        """Flights a previous gateway left open: end them at their last track sample."""
+        for flight in await self.store.list_open_flights(self.vehicle.id):
+            track = await self.store.get_track(flight.id)
+            ended = track[-1].t if track else flight.started_at
+            distance = 0.0
+            for a, b in itertools.pairwise(track):
+                distance += geo.horizontal_distance_m(a.lat, a.lon, b.lat, b.lon)
+            alts = [s.alt_rel_m for s in track if s.alt_rel_m is not None]
+            batteries = [s.battery_pct for s in track if s.battery_pct is not None]
+            used = max(0.0, batteries[0] - batteries[-1]) if batteries else None
+            await self.store.close_flight(
+                flight.id,
+                ended_at=ended,
+                duration_s=max(0.0, (_aware(ended) - _aware(flight.started_at)).total_seconds()),
+                distance_m=distance,
+                max_alt_rel_m=max(alts) if alts else None,
+                battery_used_pct=used,
+            )
+            log.info("%s: closed flight %d left open by a previous run", self.vehicle.id, flight.id)
+
+    async def _run(self) -> None:
+        period = 1.0 / self.settings.track_sample_hz
+        loop = asyncio.get_running_loop()
+        next_flush = loop.time() + self.settings.track_flush_s
+        while True:
+            try:
+                await self._tick()
+                if loop.time() >= next_flush:
+                    next_flush = loop.time() + self.settings.track_flush_s
+                    await self.flush()
+            except asyncio.CancelledError:
+                raise
+            except Exception:  # a database hiccup must not end flight recording
+                log.exception("%s: flight log step failed", self.vehicle.id)
+            await asyncio.sleep(period)
+
+    async def _tick(self) -> None:
+        cache = self.vehicle.telemetry
+        armed = cache.fresh("armed")
+        battery = cache.fresh("battery")
+        battery_pct = battery.remaining_pct if battery is not None else None
+        if armed is True and self.flight is None:
+            home = cache.fresh("home", max_age_s=3600.0)
+            started = _utc()
+            flight_id = await self.store.open_flight(
+                self.vehicle.id,
+                started,
+                home.lat_deg if home else None,
+                home.lon_deg if home else None,
+                home.abs_alt_m if home else None,
+            )
+            self.flight = _Flight(flight_id, started, battery_pct)
+            log.info("%s: armed, flight %d started", self.vehicle.id, flight_id)
+        elif armed is False and self.flight is not None:
+            await self._close(_utc(), "disarmed")
+            return
+        if self.flight is None or armed is not True:
+            return
+        pos = cache.fresh("position")
+        if pos is None:
+            return
+        velocity = cache.fresh("velocity_ned")
+        heading = cache.fresh("heading_deg")
+        self.flight.add(pos.lat_deg, pos.lon_deg, pos.rel_alt_m, battery_pct)
+        self._track.append(
+            TrackSample(
+                flight_id=self.flight.id,
+                t=_utc(),
+                lat=pos.lat_deg,
+                lon=pos.lon_deg,
+                alt_rel_m=pos.rel_alt_m,
+                heading_deg=heading,
+                ground_speed_mps=velocity.ground_speed_mps if velocity is not None else None,
+                battery_pct=battery_pct,
+            )
+        )
+
+    async def _close(self, ended: datetime, why: str) -> None:
+        flight, self.flight = self.flight, None
+        if flight is None:
+            return
+        await self.flush()
+        await self.store.close_flight(
+            flight.id,
+            ended_at=ended,
+            duration_s=(ended - flight.started_at).total_seconds(),
+            distance_m=round(flight.distance_m, 2),
+            max_alt_rel_m=flight.max_alt_rel_m,
+            battery_used_pct=flight.battery_used,
+        )
+        log.info(
+            "%s: flight %d ended (%s): %.0f m flown, max %.1f m above home",
+            self.vehicle.id,
+            flight.id,
+            why,
+            flight.distance_m,
+            flight.max_alt_rel_m or 0.0,
+        )
+
+    async def flush(self) -> None:
+        """Write the pending track samples and status texts, one transaction each."""
+        track, self._track = self._track, []
+        texts, self._texts = self._texts, []
+        if track:
+            await self.store.add_track_samples(track)
+        if texts:
+            await self.store.add_status_texts(texts)
+
+
+def _aware(value: datetime) -> datetime:
+    return value if value.tzinfo is not None else value.replace(tzinfo=UTC)

@@ -1,0 +1,520 @@
+"""Long-running vehicle actions as tracked operations.
+
+A takeoff, goto, landing or mission is an *operation*: the command is sent once, then a monitor task
+follows the vehicle's telemetry until the action is done (altitude reached, arrived, landed and
+disarmed, mission finished), failed, or superseded by a newer command. Callers (the MCP tools, REST)
+*wait* on an operation with a cap; a waiter going away never touches the vehicle. One current
+operation per vehicle; each is saved through the Store so its fate outlives the request that made it.
+
+No MCP or HTTP in here.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+import math
+import time
+import uuid
+from collections.abc import Awaitable, Callable
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+from enum import StrEnum
+from typing import Any, Protocol
+
+from gateway.errors import InvalidArgument, NotFound
+from gateway.fleet import geo
+
+log = logging.getLogger(__name__)
+
+POLL_S = 0.2
+"""How often a monitor looks at the telemetry cache (the cache itself is updated by streams)."""
+SAVE_EVERY_S = 2.0
+"""Progress of a running operation is written to the store at most this often."""
+
+
+class OpStatus(StrEnum):
+    running = "running"
+    succeeded = "succeeded"
+    failed = "failed"
+    superseded = "superseded"
+    interrupted = "interrupted"
+    cancelled = "cancelled"
+
+
+FINAL = frozenset(s for s in OpStatus if s is not OpStatus.running)
+
+
+@dataclass
+class Poll:
+    """One look at the vehicle by a tracker."""
+
+    progress: float
+    message: str
+    done: bool = False
+    failed: str | None = None
+    eta_s: float | None = None
+
+
+class Tracker(Protocol):
+    """Judges an operation from the vehicle's telemetry. ``poll`` is called every POLL_S seconds."""
+
+    kind: str
+
+    async def poll(self, vehicle: Any) -> Poll: ...
+
+
+@dataclass
+class Operation:
+    id: str
+    vehicle_id: str
+    kind: str
+    params: dict[str, Any]
+    session_key: str | None
+    created_at: datetime
+    status: OpStatus = OpStatus.running
+    progress: float = 0.0
+    message: str = "command sent"
+    eta_s: float | None = None
+    updated_at: datetime | None = None
+    finished_at: datetime | None = None
+    started_mono: float = field(default_factory=time.monotonic)
+    changed: asyncio.Event = field(default_factory=asyncio.Event, repr=False)
+    done: asyncio.Event = field(default_factory=asyncio.Event, repr=False)
+
+    @property
+    def finished(self) -> bool:
+        return self.status in FINAL
+
+    def elapsed_s(self) -> float:
+        return time.monotonic() - self.started_mono
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "operation_id": self.id,
+            "drone_id": self.vehicle_id,
+            "kind": self.kind,
+            "status": self.status.value,
+            "progress": round(self.progress, 3),
+            "message": self.message,
+            "eta_s": None if self.eta_s is None else round(self.eta_s, 1),
+            "elapsed_s": round(self.elapsed_s(), 1),
+            "params": self.params,
+        }
+
+
+ProgressCallback = Callable[[Operation], Awaitable[None]]
+
+
+def _now() -> datetime:
+    return datetime.now(UTC)
+
+
+# ------------------------------------------------------------------------------------------------
+# Reading the telemetry cache (TelemetryCache fields are Sample(value, received_at) or None)
+# ------------------------------------------------------------------------------------------------
+
+
+def value(vehicle: Any, name: str) -> Any:
+    sample = getattr(vehicle.telemetry, name, None)
+    return None if sample is None else sample.value
+
+
+def age_s(vehicle: Any, name: str) -> float | None:
+    sample = getattr(vehicle.telemetry, name, None)
+    return None if sample is None else float(sample.age_s)
+
+
+def position(vehicle: Any) -> tuple[float, float, float] | None:
+    """(lat, lon, alt_rel_m) from the cache, or None."""
+    pos = value(vehicle, "position")
+    if pos is None:
+        return None
+    return float(pos.lat_deg), float(pos.lon_deg), float(pos.rel_alt_m)
+
+
+def home(vehicle: Any) -> tuple[float, float, float] | None:
+    """(lat, lon, alt_amsl_m) of home from the cache, or None."""
+    h = value(vehicle, "home")
+    if h is None:
+        return None
+    return float(h.lat_deg), float(h.lon_deg), float(h.abs_alt_m)
+
+
+def ground_speed(vehicle: Any) -> float | None:
+    v = value(vehicle, "velocity_ned")
+    if v is None:
+        return None
+    return math.hypot(float(v.north_mps), float(v.east_mps))
+
+
+def climb_rate(vehicle: Any) -> float | None:
+    v = value(vehicle, "velocity_ned")
+    return None if v is None else -float(v.down_mps)
+
+
+def is_landed_and_disarmed(vehicle: Any) -> bool:
+    return value(vehicle, "armed") is False and value(vehicle, "in_air") is False
+
+
+def takeoff_tolerance_m(target_alt_m: float) -> float:
+    """How close to the takeoff altitude counts as reached (ArduPilot stops a little short)."""
+    return min(1.0, max(0.3, 0.05 * target_alt_m))
+
+
+# ------------------------------------------------------------------------------------------------
+# Trackers: what "done" means for each kind of operation
+# ------------------------------------------------------------------------------------------------
+
+
+@dataclass
+class TakeoffTracker:
+    target_alt_m: float
+    kind: str = "takeoff"
+    _seen_armed: bool = False
+
+    async def poll(self, vehicle: Any) -> Poll:
+        pos = position(vehicle)
+        armed = value(vehicle, "armed")
+        if armed:
+            self._seen_armed = True
+        elif self._seen_armed and armed is False:
+            return Poll(0.0, "vehicle disarmed during takeoff", failed="vehicle disarmed during takeoff")
+        if pos is None:
+            return Poll(0.0, "waiting for position telemetry")
+        alt = pos[2]
+        remaining = self.target_alt_m - alt
+        progress = max(0.0, min(1.0, alt / self.target_alt_m))
+        if remaining <= takeoff_tolerance_m(self.target_alt_m):
+            return Poll(1.0, f"reached {alt:.1f} m above home", done=True, eta_s=0.0)
+        rate = climb_rate(vehicle)
+        eta = remaining / max(rate or 0.0, 0.5) if rate and rate > 0.2 else remaining / 1.0
+        return Poll(progress, f"climbing: {alt:.1f} of {self.target_alt_m:.1f} m", eta_s=eta)
+
+
+@dataclass
+class GotoTracker:
+    """Arrived = within the horizontal tolerance and about at the target altitude."""
+
+    lat: float
+    lon: float
+    alt_rel_m: float
+    tolerance_m: float
+    kind: str = "goto"
+    _start_dist: float | None = None
+
+    def distance(self, vehicle: Any) -> tuple[float, float] | None:
+        pos = position(vehicle)
+        if pos is None:
+            return None
+        return geo.horizontal_distance_m(pos[0], pos[1], self.lat, self.lon), self.alt_rel_m - pos[2]
+
+    async def poll(self, vehicle: Any) -> Poll:
+        if value(vehicle, "armed") is False or value(vehicle, "in_air") is False:
+            return Poll(0.0, "vehicle is not flying", failed="vehicle landed or disarmed before arriving")
+        d = self.distance(vehicle)
+        if d is None:
+            return Poll(0.0, "waiting for position telemetry")
+        horiz, dz = d
+        dist3 = math.hypot(horiz, dz)
+        if self._start_dist is None:
+            self._start_dist = max(dist3, 0.01)
+        progress = max(0.0, min(1.0, 1.0 - dist3 / self._start_dist))
+        if horiz <= self.tolerance_m and abs(dz) <= max(self.tolerance_m, 1.0):
+            return Poll(1.0, f"arrived ({horiz:.1f} m from target)", done=True, eta_s=0.0)
+        speed = ground_speed(vehicle)
+        eta = dist3 / max(speed or 0.0, 1.0)
+        return Poll(progress, f"{horiz:.0f} m to go, {dz:+.1f} m vertical", eta_s=eta)
+
+
+@dataclass
+class YawTracker:
+    heading_deg: float
+    kind: str = "set_yaw"
+    tolerance_deg: float = 5.0
+
+    async def poll(self, vehicle: Any) -> Poll:
+        heading = value(vehicle, "heading_deg")
+        if heading is None:
+            return Poll(0.0, "waiting for heading telemetry")
+        err = abs((float(heading) - self.heading_deg + 180.0) % 360.0 - 180.0)
+        if err <= self.tolerance_deg:
+            return Poll(1.0, f"heading {float(heading):.0f} deg", done=True, eta_s=0.0)
+        return Poll(max(0.0, 1.0 - err / 180.0), f"turning: {err:.0f} deg to go", eta_s=err / 30.0)
+
+
+@dataclass
+class LandingTracker:
+    """Land and RTL: done once landed and disarmed (ArduPilot disarms itself after touchdown)."""
+
+    kind: str = "land"
+    _start: tuple[float, float] | None = None  # (altitude, horizontal distance to home) at start
+
+    async def poll(self, vehicle: Any) -> Poll:
+        if is_landed_and_disarmed(vehicle):
+            return Poll(1.0, "landed and disarmed", done=True, eta_s=0.0)
+        pos = position(vehicle)
+        if pos is None:
+            return Poll(0.0, "waiting for position telemetry")
+        alt = max(pos[2], 0.0)
+        horiz = 0.0
+        h = home(vehicle)
+        if self.kind == "return_to_launch" and h is not None:
+            horiz = geo.horizontal_distance_m(pos[0], pos[1], h[0], h[1])
+        if self._start is None:
+            self._start = (max(alt, 0.1), horiz)
+        total = self._start[0] + self._start[1]
+        progress = max(0.0, min(0.99, 1.0 - (alt + horiz) / max(total, 0.1)))
+        speed = ground_speed(vehicle) or 0.0
+        eta = horiz / max(speed, 1.0) + alt / 1.0
+        if value(vehicle, "in_air") is False:
+            return Poll(0.99, "on the ground, waiting for disarm", eta_s=3.0)
+        where = f"{horiz:.0f} m from home, " if self.kind == "return_to_launch" else ""
+        return Poll(progress, f"{where}{alt:.1f} m above home", eta_s=eta)
+
+
+@dataclass
+class MissionTracker:
+    """Done when the autopilot says the mission is finished (asked at most once a second)."""
+
+    kind: str = "mission"
+    _asked_at: float = 0.0
+
+    async def poll(self, vehicle: Any) -> Poll:
+        prog = value(vehicle, "mission_progress")
+        current, total = (int(prog.current), int(prog.total)) if prog is not None else (0, 0)
+        now = time.monotonic()
+        if now - self._asked_at >= 1.0:
+            self._asked_at = now
+            if await vehicle.is_mission_finished():
+                return Poll(1.0, f"mission finished ({total} items)", done=True, eta_s=0.0)
+        progress = max(0.0, min(0.99, (current - 1) / total)) if total else 0.0
+        return Poll(progress, f"item {current} of {total}")
+
+
+# ------------------------------------------------------------------------------------------------
+# The manager
+# ------------------------------------------------------------------------------------------------
+
+
+class OperationManager:
+    """One current operation per vehicle; monitors run independently of whoever waits on them."""
+
+    def __init__(self, settings: Any, store: Any | None = None, store_getter: Any | None = None) -> None:
+        """``store_getter`` (a callable) serves gateways whose store opens after this is built."""
+        self.settings = settings
+        self._store = store
+        self._store_getter = store_getter
+        self._ops: dict[str, Operation] = {}
+        self._current: dict[str, Operation] = {}  # latest operation per vehicle (may be finished)
+        self._monitors: dict[str, asyncio.Task[None]] = {}
+        self._last_saved: dict[str, float] = {}
+        self._locks: dict[str, asyncio.Lock] = {}
+
+    # -- queries -------------------------------------------------------------------------------
+    def get(self, operation_id: str) -> Operation:
+        try:
+            return self._ops[operation_id]
+        except KeyError:
+            raise NotFound(f"no operation with id '{operation_id}'") from None
+
+    def latest(self, vehicle_id: str) -> Operation | None:
+        """The vehicle's most recent operation, running or finished."""
+        return self._current.get(vehicle_id)
+
+    def running(self, vehicle_id: str) -> Operation | None:
+        op = self._current.get(vehicle_id)
+        return op if op is not None and not op.finished else None
+
+    def takeoff_in_progress(self, vehicle_id: str) -> Operation | None:
+        """The running takeoff that has not yet reached its altitude, if any."""
+        op = self.running(vehicle_id)
+        return op if op is not None and op.kind == "takeoff" else None
+
+    # -- commands --------------------------------------------------------------------------------
+    async def start(
+        self,
+        vehicle: Any,
+        tracker: Tracker,
+        send: Callable[[], Awaitable[Any]],
+        params: dict[str, Any],
+        session_key: str | None = None,
+        precheck: Callable[[], None] | None = None,
+    ) -> Operation:
+        """Send the command (``send``); if the vehicle accepts it, track it as the vehicle's operation.
+
+        Commands on one vehicle are serialised; ``precheck`` runs inside that critical section, so a
+        check such as "no takeoff in progress" also sees a takeoff whose command is still being sent
+        (LLM hosts issue parallel tool calls). A command that fails raises and leaves the current
+        operation as it was: the vehicle is still doing it. On success the previous one is superseded.
+        """
+        lock = self._locks.setdefault(vehicle.id, asyncio.Lock())
+        async with lock:
+            if precheck is not None:
+                precheck()
+            await send()
+            op = Operation(
+                id=uuid.uuid4().hex[:12],
+                vehicle_id=vehicle.id,
+                kind=tracker.kind,
+                params=params,
+                session_key=session_key,
+                created_at=_now(),
+            )
+            previous = self.running(vehicle.id)
+            if previous is not None:
+                await self._finish(previous, OpStatus.superseded, f"superseded by {op.kind} {op.id}")
+            self._ops[op.id] = op
+            self._current[vehicle.id] = op
+            await self._save(op, force=True)
+            self._monitors[op.id] = asyncio.create_task(
+                self._monitor(vehicle, op, tracker), name=f"op-{op.kind}-{op.id}"
+            )
+            return op
+
+    async def supersede(self, vehicle_id: str, by: str) -> Operation | None:
+        """A non-tracked command (hold, mode change, kill, disarm) replaced the current operation."""
+        op = self.running(vehicle_id)
+        if op is not None:
+            await self._finish(op, OpStatus.superseded, f"superseded by {by}")
+        return op
+
+    async def wait(
+        self,
+        op: Operation,
+        cap_s: float | None = None,
+        on_progress: ProgressCallback | None = None,
+    ) -> Operation:
+        """Wait until ``op`` is finished or ``cap_s`` passed; report progress on each change.
+
+        Cancelling the waiter only ends the wait: the monitor (and the vehicle) carry on.
+        """
+        cap = self.settings.mcp_wait_cap_s if cap_s is None else cap_s
+        deadline = time.monotonic() + max(0.0, cap)
+        last_reported: tuple[float, str] | None = None
+        while not op.finished:
+            remaining = deadline - time.monotonic()
+            if remaining <= 0:
+                break
+            op.changed.clear()
+            with contextlib.suppress(TimeoutError):
+                await asyncio.wait_for(op.changed.wait(), timeout=min(remaining, 1.0))
+            if on_progress is not None and (op.progress, op.message) != last_reported:
+                last_reported = (op.progress, op.message)
+                try:
+                    await on_progress(op)
+                except Exception:  # a client that cannot take progress still gets its answer
+                    log.debug("progress report for %s failed", op.id, exc_info=True)
+        return op
+
+    async def stop(self) -> None:
+        """Gateway shutdown: monitors end, running operations are recorded as interrupted."""
+        for op in list(self._ops.values()):
+            if not op.finished:
+                await self._finish(
+                    op, OpStatus.interrupted, "gateway stopped while the operation was running"
+                )
+        tasks = list(self._monitors.values())
+        for task in tasks:
+            task.cancel()
+        for task in tasks:
+            with contextlib.suppress(asyncio.CancelledError, Exception):
+                await task
+        self._monitors.clear()
+
+    # -- internals -------------------------------------------------------------------------------
+    async def _monitor(self, vehicle: Any, op: Operation, tracker: Tracker) -> None:
+        stale_after = float(getattr(self.settings, "link_lost_after_s", 3.0))
+        try:
+            while not op.finished:
+                pos_age = age_s(vehicle, "position")
+                if pos_age is not None and pos_age > stale_after:
+                    self._update(op, op.progress, f"no telemetry for {pos_age:.0f} s (link lost?)", op.eta_s)
+                else:
+                    poll = await tracker.poll(vehicle)
+                    if op.finished:
+                        break
+                    if poll.failed:
+                        await self._finish(op, OpStatus.failed, poll.failed)
+                        break
+                    if poll.done:
+                        op.progress = 1.0
+                        op.eta_s = 0.0
+                        await self._finish(op, OpStatus.succeeded, poll.message)
+                        break
+                    self._update(op, poll.progress, poll.message, poll.eta_s)
+                    await self._save(op)
+                await asyncio.sleep(POLL_S)
+        except asyncio.CancelledError:
+            raise
+        except Exception as exc:  # a monitor must never die silently
+            log.exception("monitor of operation %s failed", op.id)
+            await self._finish(op, OpStatus.failed, f"monitoring failed: {exc}")
+        finally:
+            self._monitors.pop(op.id, None)
+
+    def _update(self, op: Operation, progress: float, message: str, eta_s: float | None) -> None:
+        if (progress, message) != (op.progress, op.message):
+            op.progress = max(op.progress, progress) if op.kind != "set_yaw" else progress
+            op.message = message
+            op.eta_s = eta_s
+            op.updated_at = _now()
+            op.changed.set()
+
+    async def _finish(self, op: Operation, status: OpStatus, message: str) -> None:
+        if op.finished:
+            return
+        op.status = status
+        op.message = message
+        op.finished_at = op.updated_at = _now()
+        if status is not OpStatus.succeeded:
+            op.eta_s = None
+        op.changed.set()
+        op.done.set()
+        task = self._monitors.get(op.id)
+        if task is not None and task is not asyncio.current_task():
+            task.cancel()
+        await self._save(op, force=True)
+
+    @property
+    def store(self) -> Any | None:
+        return self._store if self._store is not None or self._store_getter is None else self._store_getter()
+
+    async def _save(self, op: Operation, force: bool = False) -> None:
+        store = self.store
+        if store is None:
+            return
+        now = time.monotonic()
+        if not force and now - self._last_saved.get(op.id, 0.0) < SAVE_EVERY_S:
+            return
+        self._last_saved[op.id] = now
+        try:
+            from gateway.registry.store import OperationRecord
+
+            await store.save_operation(
+                OperationRecord(
+                    id=op.id,
+                    vehicle_id=op.vehicle_id,
+                    kind=op.kind,
+                    params=op.params,
+                    status=op.status.value,
+                    progress=max(0.0, min(1.0, op.progress)),
+                    message=op.message,
+                    session_key=op.session_key,
+                    created_at=op.created_at,
+                    updated_at=op.updated_at or op.created_at,
+                    finished_at=op.finished_at,
+                )
+            )
+        except Exception:
+            log.exception("could not save operation %s", op.id)
+
+
+def check_positive_altitude(alt_rel_m: float) -> None:
+    geo.check_finite("altitude_m", alt_rel_m)
+    if alt_rel_m <= 0:
+        raise InvalidArgument(
+            f"altitude_m {alt_rel_m:g} is not above home; give a flying altitude > 0 m above home "
+            "(use land to come down)"
+        )

@@ -1,0 +1,148 @@
+"""Autopilot parameters through MAVSDK's param plugin, with ArduPilot's quirks handled.
+
+* An unknown name gets no reply at all: MAVSDK times out after ~3 s; that is reported as "unknown
+  parameter", after trying the name's other spelling (ArduPilot 4.7 renamed SYSID_THISMAV -> MAV_SYSID,
+  SYSID_MYGCS -> MAV_GCS_SYSID, SRn_* -> MAV(n+1)_*).
+* Each parameter has its own type; reading with the wrong getter gives WRONG_TYPE, so the type is
+  detected once and remembered, and writes use it.
+* The full list (~1000+ names) is fetched once and cached with its time.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import time
+from collections.abc import Awaitable, Callable
+from typing import Any
+
+from gateway.errors import CommandFailed, InvalidArgument
+
+PARAM_TIMEOUT_S = 6.0  # MAVSDK gives up on a param after ~3 s
+PARAM_LIST_TIMEOUT_S = 60.0
+
+PARAM_NAME = re.compile(r"^[A-Za-z0-9_]{1,16}$")
+_RENAMES = {"SYSID_THISMAV": "MAV_SYSID", "SYSID_MYGCS": "MAV_GCS_SYSID"}
+_RENAMES.update({new: old for old, new in _RENAMES.items()})
+
+Value = float | int
+Call = Callable[[str, Awaitable[Any], float], Awaitable[Any]]
+
+
+def param_aliases(name: str) -> list[str]:
+    """Other names the same parameter has in other ArduPilot versions (SRn_* <-> MAV(n+1)_*)."""
+    out = []
+    if name in _RENAMES:
+        out.append(_RENAMES[name])
+    m = re.match(r"^SR(\d)_(\w+)$", name)
+    if m:
+        out.append(f"MAV{int(m.group(1)) + 1}_{m.group(2)}")
+    m = re.match(r"^MAV(\d)_(\w+)$", name)
+    if m and int(m.group(1)) >= 1:
+        out.append(f"SR{int(m.group(1)) - 1}_{m.group(2)}")
+    return out
+
+
+def check_param_name(name: object) -> str:
+    if not isinstance(name, str) or not PARAM_NAME.match(name):
+        raise InvalidArgument(f"parameter name must be 1-16 of A-Z, 0-9, '_'; got {str(name)[:40]!r}")
+    return name.upper()
+
+
+class Parameters:
+    """The parameters of one vehicle. ``call(what, awaitable, timeout_s)`` maps MAVSDK errors to
+    CommandFailed (with ``result`` in the details); ``system()`` returns the current MAVSDK System."""
+
+    def __init__(self, vehicle_id: str, call: Call, system: Callable[[], Any]) -> None:
+        self.vehicle_id = vehicle_id
+        self._call = call
+        self._system = system
+        self._cache: dict[str, Value] | None = None
+        self._cached_at: float | None = None
+        self._types: dict[str, str] = {}
+        self._names: dict[str, str] = {}  # requested name -> the name the vehicle knows
+
+    @property
+    def list_age_s(self) -> float | None:
+        return None if self._cached_at is None else time.monotonic() - self._cached_at
+
+    async def _read(self, system: Any, name: str) -> tuple[Value, str] | None:
+        """(value, type) or None when the vehicle does not answer (unknown name)."""
+        kind = self._types.get(name, "int")
+        for k in (kind, "float" if kind == "int" else "int"):
+            getter = system.param.get_param_int if k == "int" else system.param.get_param_float
+            try:
+                value = await self._call(f"read parameter {name}", getter(name), PARAM_TIMEOUT_S)
+            except CommandFailed as exc:
+                result = exc.details.get("result")
+                if result == "WRONG_TYPE":
+                    continue
+                if result == "TIMEOUT":
+                    return None
+                raise
+            self._types[name] = k
+            return (int(value) if k == "int" else float(value)), k
+        return None
+
+    async def get(self, name: str) -> tuple[Value, str]:
+        """Value and type ('int' | 'float'); the other ArduPilot spelling is tried when there is one."""
+        name = check_param_name(name)
+        system = self._system()
+        candidates = [self._names.get(name, name), *param_aliases(name)]
+        if self._cache is not None:  # names known to be on the vehicle first
+            candidates.sort(key=lambda c: c not in self._cache)  # type: ignore[operator]
+        for candidate in dict.fromkeys(candidates):
+            got = await self._read(system, candidate)
+            if got is not None:
+                self._names[name] = candidate
+                return got
+        alias = param_aliases(name)
+        raise CommandFailed(
+            f"unknown parameter '{name}' on drone '{self.vehicle_id}': the vehicle did not answer "
+            "(ArduPilot ignores unknown names)" + (f"; also tried {', '.join(alias)}" if alias else ""),
+            vehicle_id=self.vehicle_id,
+            result="UNKNOWN_PARAMETER",
+        )
+
+    async def set(self, name: str, value: Value) -> tuple[Value, str]:
+        """Write with the vehicle's own type for the parameter; returns (stored value, type)."""
+        name = check_param_name(name)
+        if not isinstance(value, int | float) or isinstance(value, bool) or not math.isfinite(value):
+            raise InvalidArgument(f"parameter value must be a finite number; got {value!r}")
+        _current, kind = await self.get(name)
+        real = self._names.get(name, name)
+        system = self._system()
+        stored: Value
+        if kind == "int":
+            if float(value) != int(value):
+                raise InvalidArgument(f"parameter {real} is an integer; got {value!r}")
+            stored = int(value)
+            await self._call(
+                f"write parameter {real}", system.param.set_param_int(real, stored), PARAM_TIMEOUT_S
+            )
+        else:
+            stored = float(value)
+            await self._call(
+                f"write parameter {real}", system.param.set_param_float(real, stored), PARAM_TIMEOUT_S
+            )
+        if self._cache is not None:
+            self._cache[real] = stored
+        return stored, kind
+
+    async def all(self, max_age_s: float | None = None) -> dict[str, Value]:
+        """Every parameter, fetched once and cached; ``max_age_s`` refetches an older copy."""
+        age = self.list_age_s
+        if self._cache is not None and (max_age_s is None or (age is not None and age <= max_age_s)):
+            return dict(self._cache)
+        system = self._system()
+        allp = await self._call("list parameters", system.param.get_all_params(), PARAM_LIST_TIMEOUT_S)
+        params: dict[str, Value] = {}
+        for p in allp.int_params:
+            params[p.name] = int(p.value)
+            self._types[p.name] = "int"
+        for p in allp.float_params:
+            params[p.name] = float(p.value)
+            self._types[p.name] = "float"
+        self._cache = params
+        self._cached_at = time.monotonic()
+        return dict(params)

@@ -1,0 +1,427 @@
+"""Per-vehicle telemetry: one subscription per stream, cached with the time each value arrived.
+
+Readers answer from the cache at once (never waiting for the next stream item) and see each value's
+age; a value older than ``link_lost_after_s`` is reported as stale, never as current.
+
+ArduCopter streams nothing until asked and mavsdk_server never asks: ``TelemetryFeed.request_rates``
+sets every stream rate through ``telemetry.set_rate_*``; the vehicle calls it again after every
+reconnect, sidecar restart or vehicle reboot.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import math
+import time
+from collections import deque
+from collections.abc import AsyncIterator, Awaitable, Callable
+from dataclasses import asdict, dataclass, field, is_dataclass
+from typing import Any, Generic, TypeVar
+
+log = logging.getLogger("gateway.telemetry")
+
+T = TypeVar("T")
+
+#: Streams and the rate (Hz) the gateway requests for each; MAVSDK's set_rate_<name>.
+STREAM_RATES_HZ: dict[str, float] = {
+    "position": 5.0,  # GLOBAL_POSITION_INT: position, heading, velocity
+    "velocity_ned": 5.0,
+    "home": 1.0,
+    "attitude_euler": 4.0,
+    "in_air": 2.0,  # EXTENDED_SYS_STATE
+    "landed_state": 2.0,
+    "gps_info": 1.0,
+    "battery": 1.0,
+    "rc_status": 1.0,
+    "health": 1.0,  # SYS_STATUS
+    "imu": 2.0,  # HIGHRES_IMU (PX4)
+    "raw_imu": 2.0,  # RAW_IMU (ArduPilot has no HIGHRES_IMU)
+    "odometry": 2.0,  # ODOMETRY (PX4; ArduPilot answers "No ap_message for mavlink id (331)")
+}
+#: Streams not requested from ArduPilot (it refuses them, with a STATUSTEXT for each).
+ARDUPILOT_SKIP = frozenset({"imu", "odometry"})
+PX4_SKIP = frozenset({"raw_imu"})
+
+
+@dataclass(frozen=True)
+class Sample(Generic[T]):
+    """A cached value and when it arrived (monotonic clock)."""
+
+    value: T
+    received_at: float
+
+    @property
+    def age_s(self) -> float:
+        return max(0.0, time.monotonic() - self.received_at)
+
+
+@dataclass(frozen=True)
+class PositionValue:
+    lat_deg: float
+    lon_deg: float
+    abs_alt_m: float
+    rel_alt_m: float
+
+
+@dataclass(frozen=True)
+class AttitudeValue:
+    roll_deg: float
+    pitch_deg: float
+    yaw_deg: float
+
+
+@dataclass(frozen=True)
+class VelocityNedValue:
+    north_mps: float
+    east_mps: float
+    down_mps: float
+
+    @property
+    def ground_speed_mps(self) -> float:
+        return math.hypot(self.north_mps, self.east_mps)
+
+
+@dataclass(frozen=True)
+class BatteryValue:
+    remaining_pct: float | None  # 0..100 (MAVSDK's remaining_percent is already a percentage)
+    voltage_v: float | None
+
+
+@dataclass(frozen=True)
+class GpsInfoValue:
+    num_satellites: int
+    fix_type: str
+
+
+@dataclass(frozen=True)
+class HealthValue:
+    gyro_ok: bool
+    accel_ok: bool
+    mag_ok: bool
+    local_position_ok: bool
+    global_position_ok: bool
+    home_position_ok: bool
+    is_armable: bool
+
+
+@dataclass(frozen=True)
+class RcStatusValue:
+    was_available_once: bool
+    is_available: bool
+    signal_strength_pct: float | None  # None: unknown (MAVSDK says NaN)
+
+
+@dataclass(frozen=True)
+class ImuValue:
+    accel_frd_mps2: tuple[float, float, float]
+    gyro_frd_rads: tuple[float, float, float]
+    temperature_degc: float | None
+
+
+@dataclass(frozen=True)
+class OdometryValue:
+    position_body_m: tuple[float, float, float]
+    velocity_body_mps: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class MissionProgressValue:
+    current: int  # user item 1..N being flown (0: not started); N once finished
+    total: int
+    finished: bool = False  # the last item was reached (MAVSDK reports current == total)
+
+
+@dataclass(frozen=True)
+class StatusTextValue:
+    t: float  # wall clock (epoch seconds)
+    severity: str  # "info", "warning", "critical", ...
+    text: str
+
+
+def _finite(value: float | None) -> float | None:
+    if value is None:
+        return None
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
+@dataclass
+class TelemetryCache:
+    """Latest value of every stream, each with its arrival time; None until first received."""
+
+    stale_after_s: float = 3.0
+    position: Sample[PositionValue] | None = None
+    home: Sample[PositionValue] | None = None
+    attitude: Sample[AttitudeValue] | None = None
+    velocity_ned: Sample[VelocityNedValue] | None = None
+    heading_deg: Sample[float] | None = None
+    battery: Sample[BatteryValue] | None = None
+    gps_info: Sample[GpsInfoValue] | None = None
+    flight_mode: Sample[str] | None = None
+    armed: Sample[bool] | None = None
+    in_air: Sample[bool] | None = None
+    landed_state: Sample[str] | None = None
+    health: Sample[HealthValue] | None = None
+    rc_status: Sample[RcStatusValue] | None = None
+    imu: Sample[ImuValue] | None = None
+    odometry: Sample[OdometryValue] | None = None
+    mission_progress: Sample[MissionProgressValue] | None = None
+    status_texts: deque[StatusTextValue] = field(default_factory=lambda: deque(maxlen=50))
+    #: updates received per stream since the vehicle was created (monotonic counters, for /metrics)
+    message_counts: dict[str, int] = field(default_factory=dict)
+    _status_listeners: list[Callable[[StatusTextValue], None]] = field(default_factory=list, repr=False)
+
+    FIELDS = (
+        "position",
+        "home",
+        "attitude",
+        "velocity_ned",
+        "heading_deg",
+        "battery",
+        "gps_info",
+        "flight_mode",
+        "armed",
+        "in_air",
+        "landed_state",
+        "health",
+        "rc_status",
+        "imu",
+        "odometry",
+        "mission_progress",
+    )
+
+    def put(self, name: str, value: Any) -> None:
+        if name not in self.FIELDS:
+            raise KeyError(name)
+        setattr(self, name, Sample(value, time.monotonic()))
+        self.message_counts[name] = self.message_counts.get(name, 0) + 1
+
+    def add_status_text(self, severity: str, text: str, t: float | None = None) -> StatusTextValue:
+        item = StatusTextValue(t if t is not None else time.time(), severity, text)
+        self.status_texts.append(item)
+        self.message_counts["status_text"] = self.message_counts.get("status_text", 0) + 1
+        for listener in list(self._status_listeners):
+            try:
+                listener(item)
+            except Exception:  # a broken listener must not stop telemetry
+                log.exception("status text listener failed")
+        return item
+
+    def on_status_text(self, listener: Callable[[StatusTextValue], None]) -> None:
+        self._status_listeners.append(listener)
+
+    def fresh(self, name: str, max_age_s: float | None = None) -> Any | None:
+        """The value of ``name`` if it is younger than ``max_age_s`` (default: stale limit), else None."""
+        sample: Sample[Any] | None = getattr(self, name)
+        limit = self.stale_after_s if max_age_s is None else max_age_s
+        if sample is None or sample.age_s > limit:
+            return None
+        return sample.value
+
+    def clear(self) -> None:
+        """Forget every value (a new vehicle session must not inherit the previous one's state)."""
+        for name in self.FIELDS:
+            setattr(self, name, None)
+
+    def snapshot(self) -> dict[str, Any]:
+        """Everything, each part with ``age_s`` and ``stale``; never-received parts are None."""
+        out: dict[str, Any] = {}
+        for name in self.FIELDS:
+            sample: Sample[Any] | None = getattr(self, name)
+            if sample is None:
+                out[name] = None
+                continue
+            value = sample.value
+            body: dict[str, Any] = _json_safe(asdict(value) if is_dataclass(value) else {"value": value})
+            age = round(sample.age_s, 3)
+            body["age_s"] = age
+            body["stale"] = age > self.stale_after_s
+            out[name] = body
+        out["status_texts"] = [asdict(item) for item in list(self.status_texts)[-10:]]
+        return out
+
+
+def _json_safe(value: Any) -> Any:
+    """NaN / inf (MAVSDK's "unknown") become None: results must be strict JSON."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: _json_safe(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_json_safe(v) for v in value]
+    return value
+
+
+# --- converting MAVSDK stream items ----------------------------------------------------------------
+
+
+def _position(p: Any) -> PositionValue:
+    return PositionValue(
+        float(p.latitude_deg),
+        float(p.longitude_deg),
+        float(p.absolute_altitude_m),
+        float(p.relative_altitude_m),
+    )
+
+
+def _battery(b: Any) -> BatteryValue:
+    remaining = _finite(b.remaining_percent)
+    if remaining is not None and remaining < 0:  # -1 / NaN: the autopilot does not know
+        remaining = None
+    return BatteryValue(remaining, _finite(b.voltage_v))
+
+
+def _imu(i: Any) -> ImuValue:
+    a, g = i.acceleration_frd, i.angular_velocity_frd
+    return ImuValue(
+        (a.forward_m_s2, a.right_m_s2, a.down_m_s2),
+        (g.forward_rad_s, g.right_rad_s, g.down_rad_s),
+        _finite(i.temperature_degc),
+    )
+
+
+def _odometry(o: Any) -> OdometryValue:
+    p, v = o.position_body, o.velocity_body
+    return OdometryValue((p.x_m, p.y_m, p.z_m), (v.x_m_s, v.y_m_s, v.z_m_s))
+
+
+def _health(h: Any) -> HealthValue:
+    return HealthValue(
+        bool(h.is_gyrometer_calibration_ok),
+        bool(h.is_accelerometer_calibration_ok),
+        bool(h.is_magnetometer_calibration_ok),
+        bool(h.is_local_position_ok),
+        bool(h.is_global_position_ok),
+        bool(h.is_home_position_ok),
+        bool(h.is_armable),
+    )
+
+
+class TelemetryFeed:
+    """Subscribes every stream of one mavsdk_grpc System once and writes into a TelemetryCache.
+
+    ``mission_progress_map`` turns MAVSDK's wire progress (current seq, total incl. home) into user
+    item numbers; the vehicle owns that mapping because it knows how its mission was uploaded.
+    """
+
+    def __init__(
+        self,
+        vehicle_id: str,
+        system: Any,
+        cache: TelemetryCache,
+        *,
+        mission_progress_map: Callable[[int, int], MissionProgressValue] | None = None,
+        use_mavsdk_flight_mode: Callable[[], bool] = lambda: True,
+    ) -> None:
+        self.vehicle_id = vehicle_id
+        self.system = system
+        self.cache = cache
+        self._map_progress = mission_progress_map
+        self._use_mavsdk_mode = use_mavsdk_flight_mode
+        self._tasks: list[asyncio.Task[None]] = []
+        self.unsupported_rates: dict[str, str] = {}
+
+    def start(self) -> None:
+        t = self.system.telemetry
+        put = self.cache.put
+        streams: dict[str, tuple[Callable[[], AsyncIterator[Any]], Callable[[Any], None]]] = {
+            "position": (t.position, lambda p: put("position", _position(p))),
+            "home": (t.home, lambda p: put("home", _position(p))),
+            "attitude": (
+                t.attitude_euler,
+                lambda a: put("attitude", AttitudeValue(a.roll_deg, a.pitch_deg, a.yaw_deg)),
+            ),
+            "velocity_ned": (
+                t.velocity_ned,
+                lambda v: put("velocity_ned", VelocityNedValue(v.north_m_s, v.east_m_s, v.down_m_s)),
+            ),
+            "heading": (t.heading, lambda h: put("heading_deg", float(h.heading_deg))),
+            "battery": (t.battery, lambda b: put("battery", _battery(b))),
+            "gps_info": (
+                t.gps_info,
+                lambda g: put("gps_info", GpsInfoValue(int(g.num_satellites), g.fix_type.name)),
+            ),
+            "flight_mode": (t.flight_mode, self._flight_mode),
+            "armed": (t.armed, lambda a: put("armed", bool(a))),
+            "in_air": (t.in_air, lambda a: put("in_air", bool(a))),
+            "landed_state": (t.landed_state, lambda s: put("landed_state", s.name)),
+            "health": (t.health, lambda h: put("health", _health(h))),
+            "rc_status": (
+                t.rc_status,
+                lambda r: put(
+                    "rc_status",
+                    RcStatusValue(r.was_available_once, r.is_available, _finite(r.signal_strength_percent)),
+                ),
+            ),
+            "imu": (t.imu, lambda i: put("imu", _imu(i))),
+            "raw_imu": (t.raw_imu, lambda i: put("imu", _imu(i))),
+            "odometry": (t.odometry, lambda o: put("odometry", _odometry(o))),
+            "status_text": (
+                t.status_text,
+                lambda s: self.cache.add_status_text(s.type.name.lower(), str(s.text)),
+            ),
+            "mission_progress": (self.system.mission_raw.mission_progress, self._mission_progress),
+        }
+        for name, (subscribe, handle) in streams.items():
+            self._tasks.append(
+                asyncio.create_task(self._pump(name, subscribe, handle), name=f"tm-{self.vehicle_id}-{name}")
+            )
+
+    async def stop(self) -> None:
+        tasks, self._tasks = self._tasks, []
+        for task in tasks:
+            task.cancel()
+        await asyncio.gather(*tasks, return_exceptions=True)
+
+    async def request_rates(
+        self, call: Callable[[str, Awaitable[Any]], Awaitable[Any]], skip: frozenset[str] = frozenset()
+    ) -> dict[str, str]:
+        """Set every stream rate but ``skip``; ``call(what, coro)`` adds the timeout and error mapping.
+
+        Returns the streams the vehicle refused, by name.
+        """
+        t = self.system.telemetry
+        refused: dict[str, str] = {}
+        for name, hz in STREAM_RATES_HZ.items():
+            if name in skip:
+                continue
+            setter = getattr(t, f"set_rate_{name}")
+            try:
+                await call(f"set_rate_{name}", setter(hz))
+            except Exception as exc:  # recorded per stream, the others still get set
+                refused[name] = str(exc)
+        self.unsupported_rates = refused
+        if refused:
+            log.info("%s: streams not granted: %s", self.vehicle_id, ", ".join(sorted(refused)))
+        return refused
+
+    def _flight_mode(self, mode: Any) -> None:
+        if self._use_mavsdk_mode():
+            self.cache.put("flight_mode", mode.name)
+
+    def _mission_progress(self, progress: Any) -> None:
+        current, total = int(progress.current), int(progress.total)
+        value = (
+            self._map_progress(current, total)
+            if self._map_progress is not None
+            else MissionProgressValue(current, total, total > 0 and current >= total)
+        )
+        self.cache.put("mission_progress", value)
+
+    async def _pump(
+        self, name: str, subscribe: Callable[[], AsyncIterator[Any]], handle: Callable[[Any], None]
+    ) -> None:
+        """Keep one stream flowing into the cache; resubscribe after errors (the channel may blip)."""
+        delay = 0.5
+        while True:
+            try:
+                async for item in subscribe():
+                    handle(item)
+                    delay = 0.5
+            except asyncio.CancelledError:
+                raise
+            except Exception as exc:  # logged; the stream is retried
+                log.debug("%s: telemetry stream %s ended: %s", self.vehicle_id, name, exc)
+            await asyncio.sleep(delay)
+            delay = min(delay * 2, 5.0)

@@ -1,0 +1,44 @@
+"""Bearer tokens for MCP agents (GATEWAY_AGENT_TOKENS): with tokens configured, /mcp requires one.
+
+The principal of an agent is ``agent-<first 8 hex of the token's SHA-256>``: stable, and never the token.
+Sessions of 2026-07-28 clients are keyed by it; the SDK binds 2025-era sessions to it.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import hmac
+from typing import Any
+
+from mcp.server.auth.provider import AccessToken, TokenVerifier
+from mcp.server.auth.settings import AuthSettings
+
+SCOPE = "fleet"
+
+
+def principal_of(token: str) -> str:
+    return "agent-" + hashlib.sha256(token.encode()).hexdigest()[:8]
+
+
+class AgentTokens(TokenVerifier):
+    def __init__(self, tokens: list[str]) -> None:
+        self._tokens = [t.encode() for t in tokens]
+
+    async def verify_token(self, token: str) -> AccessToken | None:
+        given = token.encode()
+        if any(hmac.compare_digest(given, known) for known in self._tokens):
+            return AccessToken(token=token, client_id=principal_of(token), scopes=[SCOPE])
+        return None
+
+
+def auth_options(settings: Any) -> dict[str, Any]:
+    """MCPServer keyword arguments enabling bearer auth, or none when no agent token is configured."""
+    tokens = [t.strip() for t in getattr(settings, "agent_tokens", "").split(",") if t.strip()]
+    if not tokens:
+        return {}
+    base = f"http://{settings.host}:{settings.port}"
+    return {
+        "token_verifier": AgentTokens(tokens),
+        "auth": AuthSettings(issuer_url=base, resource_server_url=f"{base}/mcp", required_scopes=[SCOPE],
+                             validate_token_resource=False),
+    }  # fmt: skip

@@ -1,0 +1,40 @@
+"""`fleet-gateway mcp-stdio`: the MCP server on stdin/stdout, for clients that launch servers as processes.
+
+It runs a whole gateway (registry, sidecars, store) in this process; stdout carries only the protocol,
+logs go to stderr.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+from typing import Any
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser(
+        "mcp-stdio",
+        help="serve MCP over stdio (for clients that launch the server as a process)",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    parser.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    asyncio.run(serve_stdio())
+    return 0
+
+
+async def serve_stdio() -> None:
+    from gateway.config import get_settings
+    from gateway.mcp.server import build_mcp
+    from gateway.runtime import Gateway
+
+    gateway = Gateway(get_settings())
+    await gateway.start()
+    try:
+        server = build_mcp(gateway)
+        await server.run_stdio_async()
+    finally:
+        await gateway.stop()

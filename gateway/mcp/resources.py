@@ -1,0 +1,222 @@
+"""MCP resources (fleet://drones, drone://{id}/state, drone://{id}/mission), their change notifications,
+and the prompts.
+
+Change notifications go out at most once a second per resource: a 1 Hz loop compares a fingerprint of
+each resource and, when it changed, publishes ``ResourceUpdated`` on the subscription bus (2026-07-28
+``subscriptions/listen``) and sends ``notifications/resources/updated`` to the 2025-era sessions that
+subscribed with ``resources/subscribe``.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import json
+import logging
+from collections.abc import AsyncIterator
+from typing import Any
+
+from mcp.server.mcpserver import AssistantMessage, MCPServer, UserMessage
+from mcp.server.mcpserver.exceptions import ResourceError, ResourceNotFoundError
+from mcp.server.subscriptions import ResourceUpdated
+from mcp.types import EmptyResult, SubscribeRequestParams, UnsubscribeRequestParams
+
+from gateway.errors import GatewayError, NotFound, UnknownVehicle
+from gateway.fleet.operations import position, value
+from gateway.mcp.access import FleetAccess
+from gateway.mcp.results import plain
+
+log = logging.getLogger(__name__)
+
+NOTIFY_PERIOD_S = 1.0
+
+
+def drones_json(fa: FleetAccess) -> list[dict[str, Any]]:
+    out = []
+    for v in fa.registry.all():
+        op = fa.operations.running(v.id)
+        out.append(
+            {
+                "drone_id": v.id,
+                "name": getattr(v.spec, "name", None),
+                "state": str(plain(v.state)),
+                "armed": value(v, "armed"),
+                "in_air": value(v, "in_air"),
+                "operation": None if op is None else op.kind,
+            }
+        )
+    return out
+
+
+def state_json(fa: FleetAccess, drone_id: str) -> dict[str, Any]:
+    v = fa.vehicle(drone_id)
+    op = fa.operations.latest(drone_id)
+    return {
+        "drone_id": drone_id,
+        "status": plain(v.status()),
+        "telemetry": plain(v.telemetry.snapshot()),
+        "operation": None if op is None else op.to_dict(),
+    }
+
+
+async def mission_json(fa: FleetAccess, drone_id: str) -> dict[str, Any]:
+    v = fa.ready(drone_id)
+    items = await v.download_mission()
+    prog = value(v, "mission_progress")
+    return {
+        "drone_id": drone_id,
+        "current": None if prog is None else int(prog.current),
+        "items": [
+            {
+                "index": n,
+                "kind": i.kind,
+                "lat_deg": i.lat,
+                "lon_deg": i.lon,
+                "alt_m": i.alt_rel_m,
+                "hold_s": i.hold_s,
+                "speed_mps": i.speed_mps,
+            }
+            for n, i in enumerate(items, 1)
+        ],
+    }
+
+
+class ResourceNotifier:
+    """Tracks resource fingerprints and notifies subscribers of changes (1 Hz at most)."""
+
+    def __init__(self, server: MCPServer, fa: FleetAccess) -> None:
+        self.server = server
+        self.fa = fa
+        self.legacy: dict[str, set[Any]] = {}
+        self._last: dict[str, Any] = {}
+
+    def install(self) -> None:
+        low = self.server._lowlevel_server
+
+        async def on_subscribe(ctx: Any, p: SubscribeRequestParams) -> EmptyResult:
+            self.legacy.setdefault(str(p.uri), set()).add(ctx.session)
+            return EmptyResult()
+
+        async def on_unsubscribe(ctx: Any, p: UnsubscribeRequestParams) -> EmptyResult:
+            self.legacy.get(str(p.uri), set()).discard(ctx.session)
+            return EmptyResult()
+
+        low.add_request_handler("resources/subscribe", SubscribeRequestParams, on_subscribe)
+        low.add_request_handler("resources/unsubscribe", UnsubscribeRequestParams, on_unsubscribe)
+
+    def fingerprints(self) -> dict[str, Any]:
+        prints: dict[str, Any] = {}
+        if self.fa.registry is None:
+            return prints
+        vehicles = list(self.fa.registry.all())
+        prints["fleet://drones"] = json.dumps(drones_json(self.fa), sort_keys=True, default=str)
+        for v in vehicles:
+            pos = position(v)
+            op = self.fa.operations.latest(v.id)
+            prints[f"drone://{v.id}/state"] = (
+                str(v.state),
+                value(v, "armed"),
+                value(v, "in_air"),
+                str(value(v, "flight_mode")),
+                None if pos is None else (round(pos[0], 6), round(pos[1], 6), round(pos[2], 1)),
+                None if op is None else (op.id, op.status.value, round(op.progress, 2)),
+            )
+            prog = value(v, "mission_progress")
+            mission_op = op if op is not None and op.kind == "mission" else None
+            prints[f"drone://{v.id}/mission"] = (
+                None if prog is None else (int(prog.current), int(prog.total)),
+                None if mission_op is None else mission_op.status.value,
+            )
+        return prints
+
+    async def tick(self) -> list[str]:
+        prints = self.fingerprints()
+        changed = [uri for uri, fp in prints.items() if uri in self._last and self._last[uri] != fp]
+        self._last = prints
+        for uri in changed:
+            await self.server._subscriptions.publish(ResourceUpdated(uri=uri))
+            for session in list(self.legacy.get(uri, ())):
+                try:
+                    await session.send_resource_updated(uri)
+                except Exception:
+                    self.legacy[uri].discard(session)
+        return changed
+
+    async def run(self) -> None:
+        while True:
+            try:
+                await self.tick()
+            except Exception:
+                log.exception("resource notifier tick failed")
+            await asyncio.sleep(NOTIFY_PERIOD_S)
+
+    @contextlib.asynccontextmanager
+    async def running(self) -> AsyncIterator[None]:
+        task = asyncio.create_task(self.run(), name="mcp-resource-notifier")
+        try:
+            yield
+        finally:
+            task.cancel()
+            with contextlib.suppress(asyncio.CancelledError):
+                await task
+
+
+def _resource_error(exc: GatewayError) -> ResourceError:
+    """Unknown drone -> not found (-32602 with the uri); anything else -> a resource error."""
+    if isinstance(exc, UnknownVehicle | NotFound):
+        return ResourceNotFoundError(exc.message)
+    return ResourceError(exc.message)
+
+
+def _guard(fn: Any) -> Any:
+    try:
+        return fn()
+    except GatewayError as exc:
+        raise _resource_error(exc) from None
+
+
+def register_resources(server: MCPServer, fa: FleetAccess) -> None:
+    @server.resource(
+        "fleet://drones", mime_type="application/json", description="All drones: id, state, action"
+    )
+    def fleet_drones() -> str:
+        return json.dumps(drones_json(fa), default=str)
+
+    @server.resource("drone://{drone_id}/state", mime_type="application/json", description="Status+telemetry")
+    def drone_state(drone_id: str) -> str:
+        return json.dumps(_guard(lambda: state_json(fa, drone_id)), default=str)
+
+    @server.resource("drone://{drone_id}/mission", mime_type="application/json", description="Mission items")
+    async def drone_mission(drone_id: str) -> str:
+        try:
+            return json.dumps(await mission_json(fa, drone_id), default=str)
+        except GatewayError as exc:
+            raise _resource_error(exc) from None
+
+
+def register_prompts(server: MCPServer) -> None:
+    @server.prompt(title="Preflight check")
+    def preflight_check(drone_id: str) -> list:
+        """Check a drone is fit to fly before takeoff."""
+        return [
+            UserMessage(
+                f"Run a preflight check of drone '{drone_id}' before we fly. Call get_telemetry, "
+                "get_health_all_ok, get_battery, get_gps_info and print_status_text. Report: link state "
+                "and data age, health failures, battery %, GPS fix and satellites, home position, and any "
+                "warning texts. Conclude GO or NO-GO with the reason. Do not arm or take off."
+            ),
+            AssistantMessage(f"I'll read drone://{drone_id}/state and run the checks, without arming."),
+        ]
+
+    @server.prompt(title="Area survey")
+    def survey_area(drone_id: str, area: str, altitude_m: str = "30", spacing_m: str = "20") -> list:
+        """Plan and fly a lawnmower survey of an area."""
+        return [
+            UserMessage(
+                f"Survey {area} with drone '{drone_id}' at {altitude_m} m above home, lanes {spacing_m} m "
+                "apart. Steps: preflight check (get_telemetry, get_battery); plan a lawnmower pattern of "
+                "waypoints (lat/lon degrees, alt_m above home) covering the area; show me the plan; then "
+                "initiate_mission with a takeoff item first and an rtl item last. While it runs, call "
+                "monitor_flight until the status is no longer 'running', then report."
+            )
+        ]

@@ -1,0 +1,171 @@
+"""Structured results of the MCP tools. Field names carry their units (``_m``, ``_deg``, ``_s``, ``_pct``)
+so the output schemas need no descriptions."""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import math
+from typing import Any
+
+from gateway.mcp.toolkit import Result
+
+
+class OperationOut(Result):
+    """A long-running action: 'running' means it continues on the vehicle; call monitor_flight."""
+
+    drone_id: str
+    operation_id: str
+    kind: str
+    status: str
+    progress: float
+    message: str
+    eta_s: float | None = None
+    elapsed_s: float
+    lat_deg: float | None = None
+    lon_deg: float | None = None
+    alt_m: float | None = None
+
+
+class ActionOut(Result):
+    drone_id: str
+    action: str
+    message: str
+    superseded_operation: str | None = None
+
+
+class Fresh(Result):
+    """Base of telemetry answers: how old the data is and whether it is stale (link lost)."""
+
+    drone_id: str
+    age_s: float | None
+    stale: bool
+
+
+class PositionOut(Fresh):
+    lat_deg: float
+    lon_deg: float
+    alt_m: float
+    alt_amsl_m: float
+
+
+class BatteryOut(Fresh):
+    remaining_pct: float | None
+    voltage_v: float | None
+
+
+class SpeedOut(Fresh):
+    north_mps: float
+    east_mps: float
+    down_mps: float
+    ground_speed_mps: float
+
+
+class AttitudeOut(Fresh):
+    roll_deg: float
+    pitch_deg: float
+    yaw_deg: float
+
+
+class GpsOut(Fresh):
+    num_satellites: int
+    fix_type: str
+
+
+class ValueOut(Fresh):
+    """A single telemetry value (flight mode, armed, in air, landed state, heading)."""
+
+    value: Any
+
+
+class DataOut(Fresh):
+    """A telemetry record with many fields (health, RC, IMU, odometry)."""
+
+    data: dict[str, Any]
+
+
+class SnapshotOut(Result):
+    drone_id: str
+    state: str
+    telemetry: dict[str, Any]
+    operation: dict[str, Any] | None
+
+
+class StatusTextOut(Result):
+    drone_id: str
+    messages: list[dict[str, Any]]
+
+
+class ArrivalOut(Result):
+    drone_id: str
+    arrived: bool
+    operation_id: str | None
+    status: str | None
+    distance_m: float | None
+    vertical_m: float | None
+    message: str
+
+
+class MissionItemOut(Result):
+    index: int
+    kind: str
+    lat_deg: float
+    lon_deg: float
+    alt_m: float
+    hold_s: float = 0.0
+    speed_mps: float | None = None
+
+
+class MissionOut(Result):
+    drone_id: str
+    count: int
+    items: list[MissionItemOut]
+
+
+class MissionProgressOut(Result):
+    drone_id: str
+    current: int
+    total: int
+    finished: bool
+    operation_status: str | None
+
+
+class ParamOut(Result):
+    drone_id: str
+    name: str
+    value: float
+    type: str
+
+
+class ParamListOut(Result):
+    drone_id: str
+    prefix: str
+    total: int
+    offset: int
+    params: dict[str, float]
+    next_offset: int | None
+
+
+def plain(value: Any, depth: int = 0) -> Any:
+    """MAVSDK objects, dataclasses, enums -> JSON-friendly values (NaN -> None)."""
+    if depth > 6:
+        return str(value)
+    if value is None or isinstance(value, bool | int | str):
+        return value
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, enum.Enum):
+        return value.name
+    if isinstance(value, dict):
+        return {str(k): plain(v, depth + 1) for k, v in value.items()}
+    if isinstance(value, list | tuple | set | frozenset):
+        return [plain(v, depth + 1) for v in value]
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return {f.name: plain(getattr(value, f.name), depth + 1) for f in dataclasses.fields(value)}
+    if hasattr(value, "model_dump"):
+        return plain(value.model_dump(), depth + 1)
+    if hasattr(value, "__dict__"):
+        return {k: plain(v, depth + 1) for k, v in vars(value).items() if not k.startswith("_")}
+    if hasattr(value, "__slots__"):
+        return {k: plain(getattr(value, k), depth + 1) for k in value.__slots__ if not k.startswith("_")}
+    return str(value)

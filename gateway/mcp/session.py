@@ -1,0 +1,185 @@
+"""Who is talking (MCP sessions, both protocol eras) and the audit record of every tool call.
+
+- 2025-era clients (initialize handshake): the session is the Mcp-Session-Id, with the client name and
+  version from initialize.
+- 2026-07-28 clients (stateless, no session id): the session is the caller's identity (token principal)
+  plus the clientInfo sent in each request's ``_meta``; first and last seen are kept by the store.
+
+Both are recorded through ``Store.touch_session``; every ``tools/call`` through ``Store.add_audit``, from
+this one middleware, including calls rejected before the tool ran (unknown tool, invalid arguments).
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import anyio
+from mcp.server.auth.middleware.auth_context import get_access_token
+
+from gateway.mcp.toolkit import CallInfo, current_call
+
+log = logging.getLogger(__name__)
+
+CLIENT_INFO_META = "io.modelcontextprotocol/clientInfo"
+TOUCH_EVERY_S = 5.0
+"""A session's last_seen is refreshed at most this often (and on every tool call)."""
+
+
+@dataclass(frozen=True)
+class SessionInfo:
+    key: str
+    kind: str
+    principal: str
+    client_name: str | None
+    client_version: str | None
+
+
+def _principal(is_http: bool) -> str:
+    token = get_access_token()
+    if token is not None:
+        return token.subject or token.client_id
+    return "anonymous" if is_http else "local"
+
+
+def session_info(ctx: Any) -> SessionInfo:
+    """The session of one inbound MCP message (``ServerRequestContext``)."""
+    request = getattr(ctx, "request", None)
+    headers = getattr(request, "headers", None)
+    principal = _principal(headers is not None)
+    version = str(ctx.protocol_version or "")
+    if version >= "2026-":
+        meta = ctx.meta or {}
+        info = meta.get(CLIENT_INFO_META) if hasattr(meta, "get") else None
+        info = info if isinstance(info, dict) else {}
+        name, ver = info.get("name"), info.get("version")
+        key = f"{principal}|{name or 'unknown'}/{ver or '?'}"
+        return SessionInfo(key[:200], "mcp-2026", principal, name, ver)
+    params = getattr(ctx.session, "client_params", None)
+    client = getattr(params, "client_info", None)
+    name = getattr(client, "name", None)
+    ver = getattr(client, "version", None)
+    sid = headers.get("mcp-session-id") if headers is not None else None
+    key = sid or f"stdio-{os.getpid()}"  # stdio: one client per server process
+    return SessionInfo(key, "mcp-2025", principal, name, ver)
+
+
+class SessionAudit:
+    """MCP server middleware: session bookkeeping for every message, audit rows for tool calls."""
+
+    def __init__(self, store_getter: Any) -> None:
+        self._store = store_getter
+        self._touched: dict[str, tuple[float, str | None]] = {}
+
+    async def __call__(self, ctx: Any, call_next: Any) -> Any:
+        if ctx.method == "initialize":
+            return await call_next(ctx)  # no session id yet; recorded from the next message on
+        info = session_info(ctx)
+        is_call = ctx.method == "tools/call" and ctx.request_id is not None
+        await self._touch(info, force=is_call)
+        if not is_call:
+            return await call_next(ctx)
+
+        params = ctx.params or {}
+        arguments = params.get("arguments") or {}
+        call = CallInfo(session_key=info.key, vehicle_id=_drone_id(arguments))
+        token = current_call.set(call)
+        started = time.perf_counter()
+        result: Any = None
+        failure: BaseException | None = None
+        try:
+            result = await call_next(ctx)
+            return result
+        except BaseException as exc:
+            failure = exc
+            raise
+        finally:
+            current_call.reset(token)
+            outcome, error = _outcome(call, result, failure)
+            with anyio.CancelScope(shield=True):
+                await self._audit(
+                    info, call, str(params.get("name", "?")), arguments, outcome, error, started
+                )
+
+    async def _touch(self, info: SessionInfo, force: bool) -> None:
+        store = self._store()
+        if store is None:
+            return
+        now = time.monotonic()
+        last = self._touched.get(info.key)
+        if not force and last is not None and now - last[0] < TOUCH_EVERY_S and last[1] == info.client_name:
+            return
+        if len(self._touched) > 10_000:
+            self._touched.clear()
+        self._touched[info.key] = (now, info.client_name)
+        try:
+            await store.touch_session(
+                info.key,
+                info.kind,
+                principal=info.principal,
+                client_name=info.client_name,
+                client_version=info.client_version,
+            )
+        except Exception:
+            log.exception("could not record MCP session %s", info.key)
+
+    async def _audit(
+        self,
+        info: SessionInfo,
+        call: CallInfo,
+        tool: str,
+        arguments: Any,
+        outcome: str,
+        error: str | None,
+        started: float,
+    ) -> None:
+        store = self._store()
+        if store is None:
+            return
+        try:
+            from gateway.registry.store import AuditEntry
+
+            await store.add_audit(
+                AuditEntry(
+                    session_key=info.key,
+                    principal=info.principal,
+                    source="mcp",
+                    vehicle_id=call.vehicle_id if isinstance(call.vehicle_id, str) else None,
+                    action=tool[:64],
+                    arguments=arguments if isinstance(arguments, dict) else {"arguments": str(arguments)},
+                    outcome=outcome,
+                    error=None if error is None else error[:1000],
+                    duration_ms=round((time.perf_counter() - started) * 1000.0, 1),
+                )
+            )
+        except Exception:
+            log.exception("could not write the audit row of %s", tool)
+
+
+def _drone_id(arguments: Any) -> str | None:
+    value = arguments.get("drone_id") if isinstance(arguments, dict) else None
+    return value[:64] if isinstance(value, str) else None
+
+
+def _outcome(call: CallInfo, result: Any, failure: BaseException | None) -> tuple[str, str | None]:
+    if failure is not None:
+        if isinstance(failure, anyio.get_cancelled_exc_class()):
+            return "error", "call cancelled by the client (the vehicle's action continues)"
+        return "error", f"{type(failure).__name__}: {failure}"
+    if call.outcome is not None:
+        return call.outcome, call.error
+    body = result.model_dump(by_alias=True) if hasattr(result, "model_dump") else result
+    if not isinstance(body, dict):
+        return "ok", None
+    if body.get("resultType") == "input_required" or "inputRequests" in body:
+        return "running", "waiting for the client's answer (elicitation)"
+    if body.get("isError"):
+        texts = [c.get("text", "") for c in body.get("content") or [] if isinstance(c, dict)]
+        return "error", " ".join(texts)[:1000] or "tool error"
+    structured = body.get("structuredContent")
+    if isinstance(structured, dict) and structured.get("status") == "running":
+        return "running", None
+    return "ok", None

@@ -1,0 +1,192 @@
+"""How toolsets are declared and turned into MCP tools.
+
+A tool is a plain async function ``fn(fa: FleetAccess, ctx: Context, drone_id, ...) -> SomeResult``
+registered on a :class:`Toolset`. :func:`register_toolset` wraps it so that
+
+- gateway errors become tool errors (``isError``) with the gateway's own message;
+- the result goes out as structured content (output schema from the result model) plus a one-line text;
+- the audit record of the call learns the outcome (refused / error / running / ok).
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+import json
+import logging
+import typing
+from collections.abc import Callable
+from contextvars import ContextVar
+from dataclasses import dataclass, field
+from typing import Annotated, Any, Literal, Self
+
+from mcp.server.mcpserver import MCPServer
+from mcp.types import CallToolResult, TextContent, ToolAnnotations
+from pydantic import BaseModel, Field, PrivateAttr
+
+from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal
+
+log = logging.getLogger(__name__)
+
+# --- shared parameter types (short descriptions: the tool list's size is paid on every LLM turn) -----
+
+DroneId = str
+"""Checked by the wrapper (length, then the registry names the known ids): keeps every schema small."""
+MAX_DRONE_ID = 64
+Wait = Annotated[bool, Field(description="Wait until done (capped)")]
+AltFrame = Literal["home", "amsl"]
+Lat = Annotated[float, Field(ge=-90, le=90, allow_inf_nan=False)]
+Lon = Annotated[float, Field(ge=-180, le=180, allow_inf_nan=False)]
+Metres = Annotated[float, Field(allow_inf_nan=False, ge=-10_000, le=10_000)]
+
+
+class Result(BaseModel):
+    """Base of every tool result: structured fields plus a one-line text summary."""
+
+    _text: str = PrivateAttr(default="")
+
+    def say(self, text: str) -> Self:
+        self._text = text
+        return self
+
+    def text(self) -> str:
+        return self._text or json.dumps(self.model_dump(mode="json"), separators=(",", ":"))
+
+
+# --- per-call audit information, set by the session middleware, filled in by the wrapper -----------
+
+
+@dataclass
+class CallInfo:
+    session_key: str | None = None
+    vehicle_id: str | None = None
+    outcome: Literal["ok", "error", "refused", "running"] | None = None
+    error: str | None = None
+
+
+current_call: ContextVar[CallInfo | None] = ContextVar("current_call", default=None)
+
+
+# --- toolsets ------------------------------------------------------------------------------------
+
+
+@dataclass
+class ToolSpec:
+    fn: Callable[..., Any]
+    name: str
+    title: str | None
+    annotations: ToolAnnotations
+
+
+@dataclass
+class Toolset:
+    """A named group of tools; GATEWAY_MCP_TOOLSETS selects which toolsets a server exposes."""
+
+    name: str
+    tools: list[ToolSpec] = field(default_factory=list)
+
+    def tool(
+        self,
+        *,
+        read_only: bool = False,
+        destructive: bool = False,
+        idempotent: bool = False,
+        title: str | None = None,
+    ) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+        """Declare a tool. Annotations must tell the truth: read-only tools change nothing."""
+        if read_only:
+            annotations = ToolAnnotations(readOnlyHint=True, openWorldHint=False)
+        else:
+            annotations = ToolAnnotations(
+                readOnlyHint=False, destructiveHint=destructive, idempotentHint=idempotent, openWorldHint=True
+            )
+
+        def decorator(fn: Callable[..., Any]) -> Callable[..., Any]:
+            self.tools.append(ToolSpec(fn=fn, name=fn.__name__, title=title, annotations=annotations))
+            return fn
+
+        return decorator
+
+
+def check_drone_id(drone_id: str) -> None:
+    if not 0 < len(drone_id) <= MAX_DRONE_ID:
+        raise InvalidArgument(
+            f"drone_id must be 1..{MAX_DRONE_ID} characters (got {len(drone_id)}); list ids in fleet://drones"
+        )
+
+
+def error_result(message: str) -> CallToolResult:
+    return CallToolResult(content=[TextContent(type="text", text=message)], is_error=True)
+
+
+def _wrap(spec: ToolSpec, access: Any) -> Callable[..., Any]:
+    fn = spec.fn
+    hints = typing.get_type_hints(fn, include_extras=True)
+    sig = inspect.signature(fn)
+    result_model = hints["return"]
+    params = [
+        p.replace(annotation=hints.get(p.name, p.annotation))
+        for p in list(sig.parameters.values())[1:]  # drop the FleetAccess parameter
+    ]
+    return_annotation = Annotated[CallToolResult, result_model]
+
+    @functools.wraps(fn)
+    async def handler(**kwargs: Any) -> CallToolResult:
+        call = current_call.get()
+        try:
+            drone_id = kwargs.get("drone_id")
+            if isinstance(drone_id, str):
+                check_drone_id(drone_id)
+                if call is not None:
+                    call.vehicle_id = drone_id
+            result: Result = await fn(access, **kwargs)
+        except SafetyRefusal as exc:
+            if call is not None:
+                call.outcome, call.error = "refused", exc.message
+            return error_result(f"Refused: {exc.message}")
+        except GatewayError as exc:
+            if call is not None:
+                call.outcome, call.error = "error", exc.message
+            return error_result(exc.message)
+        structured = result.model_dump(mode="json")
+        if call is not None and structured.get("status") == "running":
+            call.outcome = "running"
+        return CallToolResult(
+            content=[TextContent(type="text", text=result.text())], structured_content=structured
+        )
+
+    handler.__signature__ = sig.replace(parameters=params, return_annotation=return_annotation)  # type: ignore[attr-defined]
+    handler.__annotations__ = {p.name: p.annotation for p in params} | {"return": return_annotation}
+    del handler.__wrapped__  # the SDK must see the wrapper's own signature
+    return handler
+
+
+def register_toolset(server: MCPServer, toolset: Toolset, access: Any) -> list[str]:
+    names = []
+    for spec in toolset.tools:
+        description = inspect.cleandoc(spec.fn.__doc__ or "")
+        server.add_tool(
+            _wrap(spec, access),
+            name=spec.name,
+            title=spec.title,
+            description=description,
+            annotations=spec.annotations,
+        )
+        names.append(spec.name)
+    return names
+
+
+def strip_schema_titles(schema: Any) -> None:
+    """Remove pydantic's auto-generated 'title' keys: they repeat the property names and cost tokens."""
+    if isinstance(schema, dict):
+        props = schema.get("properties")
+        schema.pop("title", None)
+        for key, sub in schema.items():
+            if key == "properties" and isinstance(sub, dict):
+                for prop in props.values():
+                    strip_schema_titles(prop)
+            else:
+                strip_schema_titles(sub)
+    elif isinstance(schema, list):
+        for item in schema:
+            strip_schema_titles(item)

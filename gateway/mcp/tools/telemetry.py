@@ -1,0 +1,241 @@
+"""Telemetry toolset: answers at once from the telemetry cache, with each value's age.
+
+A value older than ``link_lost_after_s`` is flagged ``stale`` (and said so in the text), never passed off
+as current.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Annotated, Any
+
+from mcp.server.mcpserver import Context
+from pydantic import Field
+
+from gateway.errors import VehicleNotReady
+from gateway.mcp.access import FleetAccess
+from gateway.mcp.results import (
+    AttitudeOut,
+    BatteryOut,
+    DataOut,
+    GpsOut,
+    SnapshotOut,
+    SpeedOut,
+    StatusTextOut,
+    ValueOut,
+    plain,
+)
+from gateway.mcp.toolkit import DroneId, Toolset
+
+toolset = Toolset("telemetry")
+
+
+def read(fa: FleetAccess, drone_id: str, name: str) -> tuple[Any, float, bool, str]:
+    """(value, age_s, stale, note) of one cached telemetry part."""
+    v = fa.vehicle(drone_id)
+    s = getattr(v.telemetry, name, None)
+    if s is None:
+        raise VehicleNotReady(f"no {name.replace('_', ' ')} received from {drone_id} yet (state: {v.state})")
+    age = float(s.age_s)
+    stale = age > fa.settings.link_lost_after_s
+    note = f" [STALE: {age:.0f} s old, link lost?]" if stale else ""
+    return s.value, round(age, 2), stale, note
+
+
+def _value_tool(fa: FleetAccess, drone_id: str, name: str, label: str) -> ValueOut:
+    val, age, stale, note = read(fa, drone_id, name)
+    val = plain(val)
+    return ValueOut(drone_id=drone_id, age_s=age, stale=stale, value=val).say(
+        f"{drone_id} {label}: {val}{note}"
+    )
+
+
+def _data_tool(fa: FleetAccess, drone_id: str, name: str) -> DataOut:
+    val, age, stale, note = read(fa, drone_id, name)
+    data = plain(val)
+    if not isinstance(data, dict):
+        data = {"value": data}
+    text = ", ".join(f"{k}={_short(v)}" for k, v in data.items())
+    return DataOut(drone_id=drone_id, age_s=age, stale=stale, data=data).say(
+        f"{drone_id} {name}: {text}{note}"
+    )
+
+
+def _short(v: Any) -> str:
+    if isinstance(v, float):
+        return f"{v:.3g}"
+    if isinstance(v, dict):
+        return "{" + ", ".join(f"{k}={_short(x)}" for k, x in v.items()) + "}"
+    return str(v)
+
+
+@toolset.tool(read_only=True)
+async def get_battery(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> BatteryOut:
+    """Battery remaining_pct (0-100) and voltage_v."""
+    b, age, stale, note = read(fa, drone_id, "battery")
+    pct = plain(b.remaining_pct)
+    volts = plain(b.voltage_v)
+    pct_text = "unknown" if pct is None else f"{pct:.0f}%"
+    volt_text = "" if volts is None else f", {volts:.2f} V"
+    return BatteryOut(drone_id=drone_id, age_s=age, stale=stale, remaining_pct=pct, voltage_v=volts).say(
+        f"{drone_id} battery {pct_text}{volt_text}{note}"
+    )
+
+
+@toolset.tool(read_only=True)
+async def get_flight_mode(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> ValueOut:
+    """Current flight mode name (e.g. GUIDED, AUTO, RTL, LAND)."""
+    return _value_tool(fa, drone_id, "flight_mode", "flight mode")
+
+
+@toolset.tool(read_only=True)
+async def get_health(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> DataOut:
+    """Sensor/arming health flags."""
+    return _data_tool(fa, drone_id, "health")
+
+
+@toolset.tool(read_only=True)
+async def get_health_all_ok(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> ValueOut:
+    """true when every health check passes and the drone is armable."""
+    h, age, stale, note = read(fa, drone_id, "health")
+    flags = plain(h)
+    if isinstance(flags, dict):
+        failing = sorted(k for k, x in flags.items() if x is False)
+        ok = not failing
+    else:
+        failing, ok = [], bool(flags)
+    why = f" (failing: {', '.join(failing)})" if failing else ""
+    return ValueOut(drone_id=drone_id, age_s=age, stale=stale, value=ok).say(
+        f"{drone_id} health {'all ok' if ok else 'NOT ok'}{why}{note}"
+    )
+
+
+@toolset.tool(read_only=True)
+async def get_speed(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> SpeedOut:
+    """Velocity m/s north/east/down and ground speed."""
+    vel, age, stale, note = read(fa, drone_id, "velocity_ned")
+    n, e, d = float(vel.north_mps), float(vel.east_mps), float(vel.down_mps)
+    gs = math.hypot(n, e)
+    return SpeedOut(
+        drone_id=drone_id,
+        age_s=age,
+        stale=stale,
+        north_mps=round(n, 2),
+        east_mps=round(e, 2),
+        down_mps=round(d, 2),
+        ground_speed_mps=round(gs, 2),
+    ).say(f"{drone_id} ground speed {gs:.1f} m/s, climb {-d:.1f} m/s{note}")
+
+
+@toolset.tool(read_only=True)
+async def get_attitude(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> AttitudeOut:
+    """Roll, pitch, yaw in degrees."""
+    a, age, stale, note = read(fa, drone_id, "attitude")
+    r, p, y = float(a.roll_deg), float(a.pitch_deg), float(a.yaw_deg)
+    return AttitudeOut(
+        drone_id=drone_id,
+        age_s=age,
+        stale=stale,
+        roll_deg=round(r, 1),
+        pitch_deg=round(p, 1),
+        yaw_deg=round(y, 1),
+    ).say(f"{drone_id} roll {r:.1f}, pitch {p:.1f}, yaw {y:.1f} deg{note}")
+
+
+@toolset.tool(read_only=True)
+async def get_gps_info(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> GpsOut:
+    """GPS satellites and fix type."""
+    g, age, stale, note = read(fa, drone_id, "gps_info")
+    fix = plain(g.fix_type)
+    return GpsOut(
+        drone_id=drone_id, age_s=age, stale=stale, num_satellites=int(g.num_satellites), fix_type=str(fix)
+    ).say(f"{drone_id} GPS {fix}, {g.num_satellites} satellites{note}")
+
+
+@toolset.tool(read_only=True)
+async def get_in_air(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> ValueOut:
+    """true when flying."""
+    return _value_tool(fa, drone_id, "in_air", "in air")
+
+
+@toolset.tool(read_only=True)
+async def get_armed(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> ValueOut:
+    """true when the motors are armed."""
+    return _value_tool(fa, drone_id, "armed", "armed")
+
+
+@toolset.tool(read_only=True)
+async def get_landed_state(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> ValueOut:
+    """ON_GROUND, TAKING_OFF, IN_AIR, LANDING or UNKNOWN."""
+    return _value_tool(fa, drone_id, "landed_state", "landed state")
+
+
+@toolset.tool(read_only=True)
+async def get_rc_status(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> DataOut:
+    """RC link: available, signal strength %."""
+    return _data_tool(fa, drone_id, "rc_status")
+
+
+@toolset.tool(read_only=True)
+async def get_heading(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> ValueOut:
+    """Compass heading, degrees from north."""
+    return _value_tool(fa, drone_id, "heading_deg", "heading deg")
+
+
+@toolset.tool(read_only=True)
+async def get_imu(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> DataOut:
+    """IMU: acceleration m/s², angular rate rad/s, temperature °C."""
+    return _data_tool(fa, drone_id, "imu")
+
+
+@toolset.tool(read_only=True)
+async def get_odometry(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> DataOut:
+    """Odometry: body-frame position m, velocity m/s, orientation."""
+    return _data_tool(fa, drone_id, "odometry")
+
+
+@toolset.tool(read_only=True)
+async def print_status_text(
+    fa: FleetAccess,
+    ctx: Context,
+    drone_id: DroneId,
+    limit: Annotated[int, Field(ge=1, le=100, description="Newest N")] = 20,
+) -> StatusTextOut:
+    """Recent autopilot status messages, oldest first."""
+    v = fa.vehicle(drone_id)
+    texts = list(getattr(v.telemetry, "status_texts", None) or [])[-limit:]
+    messages = [_status_text(t) for t in texts]
+    lines = "; ".join(f"[{m['severity']}] {m['text']}" for m in messages) or "none"
+    return StatusTextOut(drone_id=drone_id, messages=messages).say(f"{drone_id} status texts: {lines}")
+
+
+def _status_text(item: Any) -> dict[str, Any]:
+    if isinstance(item, tuple | list) and len(item) == 3:
+        t, severity, text = item
+    else:
+        t = getattr(item, "t", None)
+        severity, text = getattr(item, "severity", ""), getattr(item, "text", str(item))
+    return {
+        "t": plain(t) if not hasattr(t, "isoformat") else t.isoformat(),
+        "severity": str(plain(severity)),
+        "text": str(text),
+    }
+
+
+@toolset.tool(read_only=True)
+async def get_telemetry(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> SnapshotOut:
+    """Everything at once: all telemetry with each part's age_s, plus the current action."""
+    v = fa.vehicle(drone_id)
+    snap = plain(v.telemetry.snapshot())
+    op = fa.operations.latest(drone_id)
+    state = str(plain(v.state))
+    pos = snap.get("position") if isinstance(snap, dict) else None
+    where = ""
+    if isinstance(pos, dict):
+        inner = pos.get("value", pos)
+        if isinstance(inner, dict) and inner.get("rel_alt_m") is not None:
+            where = f", {inner['rel_alt_m']:.1f} m above home"
+    doing = f", {op.kind} {op.status.value}" if op is not None else ""
+    return SnapshotOut(
+        drone_id=drone_id, state=state, telemetry=snap, operation=None if op is None else op.to_dict()
+    ).say(f"{drone_id} {state}{where}{doing}")

@@ -1,0 +1,726 @@
+"""Persistence of the gateway: vehicles, flights and tracks, status texts, sessions, audit, operations.
+
+``await Store.open(url)`` upgrades the schema to Alembic head and returns a ready store. Every method
+returns plain pydantic records, never live ORM objects. Only portable SQL is used, so a PostgreSQL
+(asyncpg) URL works as well as the SQLite (aiosqlite) default; SQLite gets WAL mode and a busy timeout.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import math
+from collections.abc import Sequence
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator
+from sqlalchemy import delete, event, func, or_, select
+from sqlalchemy.exc import IntegrityError
+from sqlalchemy.ext.asyncio import AsyncEngine, async_sessionmaker, create_async_engine
+
+from gateway.errors import DuplicateVehicle, InvalidArgument, NotFound
+from gateway.registry.models import (
+    AuditRow,
+    FlightRow,
+    LockRow,
+    OperationRow,
+    SessionRow,
+    StatusTextRow,
+    TrackSampleRow,
+    VehicleRow,
+)
+from gateway.registry.spec import VehicleSpec
+
+log = logging.getLogger(__name__)
+
+MIGRATIONS_DIR = Path(__file__).resolve().parents[2] / "migrations"
+SQLITE_BUSY_TIMEOUT_MS = 10_000
+AUDIT_MAX_STRING = 500
+AUDIT_MAX_JSON = 8_000
+AUDIT_MAX_ERROR = 2_000
+STATUS_TEXT_MAX = 255
+
+# MAVLink MAV_SEVERITY numbers to the names MAVSDK uses.
+SEVERITY_NAMES = ("EMERGENCY", "ALERT", "CRITICAL", "ERROR", "WARNING", "NOTICE", "INFO", "DEBUG")
+
+SessionKind = Literal["mcp-2025", "mcp-2026", "rest"]
+AuditSource = Literal["mcp", "rest"]
+AuditOutcome = Literal["ok", "error", "refused", "running"]
+OperationStatus = Literal["running", "succeeded", "failed", "superseded", "interrupted", "cancelled"]
+
+
+def utcnow() -> datetime:
+    return datetime.now(UTC)
+
+
+# --- records -----------------------------------------------------------------------------------
+
+
+class _Record(BaseModel):
+    model_config = ConfigDict(from_attributes=True)
+
+
+class VehicleRecord(VehicleSpec):
+    """A stored vehicle registration: the spec plus bookkeeping."""
+
+    model_config = ConfigDict(extra="forbid", from_attributes=True)
+
+    auto_connect: bool = True
+    created_at: datetime
+    updated_at: datetime
+
+    @property
+    def spec(self) -> VehicleSpec:
+        return VehicleSpec(
+            id=self.id, url=self.url, name=self.name, tags=list(self.tags), expected_sysid=self.expected_sysid
+        )
+
+
+class FlightRecord(_Record):
+    id: int
+    vehicle_id: str
+    started_at: datetime
+    ended_at: datetime | None = None
+    home_lat: float | None = None
+    home_lon: float | None = None
+    home_alt_amsl: float | None = None
+    duration_s: float | None = None
+    distance_m: float | None = None
+    max_alt_rel_m: float | None = None
+    battery_used_pct: float | None = None
+
+    @property
+    def is_open(self) -> bool:
+        return self.ended_at is None
+
+
+class TrackSample(_Record):
+    """One point of a flight's track. ``t`` accepts an aware datetime or a Unix timestamp."""
+
+    flight_id: int
+    t: datetime
+    lat: float = Field(ge=-90, le=90)
+    lon: float = Field(ge=-180, le=180)
+    alt_rel_m: float | None = None
+    heading_deg: float | None = None
+    ground_speed_mps: float | None = None
+    battery_pct: float | None = None
+
+    @field_validator("alt_rel_m", "heading_deg", "ground_speed_mps", "battery_pct")
+    @classmethod
+    def _finite_or_none(cls, value: float | None) -> float | None:
+        """A non-finite reading is no reading (and would make the GeoJSON invalid)."""
+        return value if value is None or math.isfinite(value) else None
+
+
+class StatusTextIn(_Record):
+    """A STATUSTEXT to store; ``severity`` is a MAV_SEVERITY number or name (stored as the name)."""
+
+    vehicle_id: str
+    flight_id: int | None = None
+    t: datetime
+    severity: str
+    text: str
+
+    @field_validator("severity", mode="before")
+    @classmethod
+    def _severity(cls, value: Any) -> str:
+        if isinstance(value, int) and 0 <= value < len(SEVERITY_NAMES):
+            return SEVERITY_NAMES[value]
+        name = getattr(value, "name", value)  # enums (e.g. MAVSDK's StatusTextType)
+        return str(name).upper()[:16]
+
+    @field_validator("text")
+    @classmethod
+    def _text(cls, value: str) -> str:
+        return value[:STATUS_TEXT_MAX]
+
+
+class StatusTextRecord(StatusTextIn):
+    id: int
+
+
+class SessionRecord(_Record):
+    key: str
+    kind: str
+    principal: str | None = None
+    client_name: str | None = None
+    client_version: str | None = None
+    first_seen: datetime
+    last_seen: datetime
+    request_count: int = 1
+
+
+class AuditEntry(_Record):
+    """One audited call. ``t`` defaults to now; arguments are bounded by the store."""
+
+    session_key: str | None = None
+    principal: str | None = None
+    source: AuditSource
+    vehicle_id: str | None = None
+    action: str
+    arguments: dict[str, Any] = Field(default_factory=dict)
+    outcome: AuditOutcome
+    error: str | None = None
+    duration_ms: float | None = None
+    t: datetime | None = None
+
+
+class AuditRecord(AuditEntry):
+    id: int
+    t: datetime
+
+
+class OperationRecord(_Record):
+    """A long-running vehicle action; saved (upserted by id) on every change of status or progress."""
+
+    id: str = Field(min_length=1, max_length=64)
+    vehicle_id: str
+    kind: str
+    params: dict[str, Any] = Field(default_factory=dict)
+    status: OperationStatus
+    progress: float = Field(0.0, ge=0.0, le=1.0)
+    message: str | None = None
+    result: dict[str, Any] | None = None
+    session_key: str | None = None
+    created_at: datetime = Field(default_factory=utcnow)
+    updated_at: datetime = Field(default_factory=utcnow)
+    finished_at: datetime | None = None
+
+
+class LockRecord(_Record):
+    """A stored operator lock (scope: a vehicle id, or "*" for the whole fleet)."""
+
+    scope: str
+    reason: str
+    by: str
+    locked_at: datetime
+
+
+# --- argument bounding -------------------------------------------------------------------------
+
+
+def bound_arguments(
+    arguments: dict[str, Any], max_string: int = AUDIT_MAX_STRING, max_json: int = AUDIT_MAX_JSON
+) -> dict[str, Any]:
+    """Make audit arguments JSON-safe and bounded: long strings cut, whole object capped in size."""
+
+    def walk(value: Any, depth: int) -> Any:
+        if depth > 8:
+            return "<nested too deep>"
+        if value is None or isinstance(value, bool | int):
+            return value
+        if isinstance(value, float):
+            return value if value == value and abs(value) != float("inf") else str(value)
+        if isinstance(value, str):
+            if len(value) > max_string:
+                return value[:max_string] + f"...<{len(value) - max_string} more chars>"
+            return value
+        if isinstance(value, dict):
+            return {str(k)[:max_string]: walk(v, depth + 1) for k, v in value.items()}
+        if isinstance(value, list | tuple | set):
+            return [walk(v, depth + 1) for v in value]
+        if isinstance(value, BaseModel):
+            return walk(value.model_dump(mode="json"), depth + 1)
+        return walk(str(value), depth + 1)
+
+    bounded = walk(dict(arguments), 0)
+    text = json.dumps(bounded, ensure_ascii=False)
+    if len(text) > max_json:
+        return {"_truncated": True, "_size": len(text), "_preview": text[: max_json // 2]}
+    return bounded
+
+
+# --- the store ---------------------------------------------------------------------------------
+
+
+def _is_sqlite(url: str) -> bool:
+    return url.startswith("sqlite")
+
+
+def _install_sqlite_pragmas(engine: AsyncEngine) -> None:
+    @event.listens_for(engine.sync_engine, "connect")
+    def _on_connect(dbapi_connection: Any, _record: Any) -> None:
+        cursor = dbapi_connection.cursor()
+        cursor.execute(f"PRAGMA busy_timeout={SQLITE_BUSY_TIMEOUT_MS}")
+        cursor.execute("PRAGMA journal_mode=WAL")
+        cursor.execute("PRAGMA synchronous=NORMAL")
+        cursor.execute("PRAGMA foreign_keys=ON")
+        cursor.close()
+
+
+def create_engine_for(url: str) -> AsyncEngine:
+    """An async engine for ``url``, with SQLite's pragmas installed when it is SQLite."""
+    kwargs: dict[str, Any] = {"pool_pre_ping": not _is_sqlite(url)}
+    if _is_sqlite(url):
+        kwargs["connect_args"] = {"timeout": SQLITE_BUSY_TIMEOUT_MS / 1000}
+    engine = create_async_engine(url, **kwargs)
+    if _is_sqlite(url):
+        _install_sqlite_pragmas(engine)
+    return engine
+
+
+def alembic_config(url: str) -> Any:
+    """An Alembic Config pointing at the project's migrations and ``url``."""
+    from alembic.config import Config
+
+    cfg = Config()
+    cfg.set_main_option("script_location", str(MIGRATIONS_DIR))
+    cfg.set_main_option("sqlalchemy.url", url.replace("%", "%%"))
+    return cfg
+
+
+async def upgrade_schema(engine: AsyncEngine, url: str, revision: str = "head") -> None:
+    """Run Alembic migrations up to ``revision`` on ``engine`` (sharing its connection)."""
+    from alembic import command
+
+    cfg = alembic_config(url)
+
+    def _run(connection: Any) -> None:
+        cfg.attributes["connection"] = connection
+        command.upgrade(cfg, revision)
+
+    async with engine.begin() as conn:
+        await conn.run_sync(_run)
+
+
+def head_revision() -> str:
+    """The newest schema revision among the project's migrations."""
+    from alembic.script import ScriptDirectory
+
+    head = ScriptDirectory.from_config(alembic_config("sqlite://")).get_current_head()
+    assert head is not None, "no migrations found"
+    return head
+
+
+async def current_revision(engine: AsyncEngine) -> str | None:
+    from alembic.runtime.migration import MigrationContext
+
+    def _get(connection: Any) -> str | None:
+        return MigrationContext.configure(connection).get_current_revision()
+
+    async with engine.connect() as conn:
+        return await conn.run_sync(_get)
+
+
+class Store:
+    """Async persistence API over SQLAlchemy. Create with ``await Store.open(url)``."""
+
+    def __init__(self, engine: AsyncEngine, url: str) -> None:
+        self.engine = engine
+        self.url = url
+        self._sessions = async_sessionmaker(engine, expire_on_commit=False)
+        self._closed = False
+
+    @classmethod
+    async def open(cls, url: str, upgrade: bool = True) -> Store:
+        engine = create_engine_for(url)
+        try:
+            if upgrade:
+                await upgrade_schema(engine, url)
+        except BaseException:
+            await engine.dispose()
+            raise
+        return cls(engine, url)
+
+    @property
+    def is_open(self) -> bool:
+        return not self._closed
+
+    async def close(self) -> None:
+        if not self._closed:
+            self._closed = True
+            await self.engine.dispose()
+
+    async def ping(self) -> bool:
+        """True when the database answers a trivial query."""
+        try:
+            async with self._sessions() as session:
+                await session.execute(select(1))
+            return True
+        except Exception:
+            log.exception("database ping failed")
+            return False
+
+    # --- vehicles --------------------------------------------------------------------------------
+
+    async def add_vehicle(self, spec: VehicleSpec, auto_connect: bool = True) -> VehicleRecord:
+        spec = VehicleSpec.model_validate(spec.model_dump())
+        now = utcnow()
+        row = VehicleRow(
+            id=spec.id,
+            url=spec.url,
+            name=spec.name,
+            tags=list(spec.tags),
+            expected_sysid=spec.expected_sysid,
+            auto_connect=auto_connect,
+            created_at=now,
+            updated_at=now,
+        )
+        try:
+            async with self._sessions.begin() as session:
+                if await session.get(VehicleRow, spec.id) is not None:
+                    raise DuplicateVehicle(f"a drone with id '{spec.id}' is already registered", id=spec.id)
+                session.add(row)
+        except IntegrityError as exc:
+            raise DuplicateVehicle(f"a drone with id '{spec.id}' is already registered", id=spec.id) from exc
+        return VehicleRecord.model_validate(row)
+
+    _UPDATABLE = frozenset({"name", "tags", "expected_sysid", "url", "auto_connect"})
+
+    async def update_vehicle(self, vehicle_id: str, **changes: Any) -> VehicleRecord:
+        unknown = sorted(set(changes) - self._UPDATABLE)
+        if unknown:
+            raise InvalidArgument(
+                f"cannot update field(s) {unknown}; updatable: {sorted(self._UPDATABLE)}", fields=unknown
+            )
+        async with self._sessions.begin() as session:
+            row = await session.get(VehicleRow, vehicle_id)
+            if row is None:
+                raise NotFound(f"no drone with id '{vehicle_id}' is registered", id=vehicle_id)
+            merged = VehicleRecord.model_validate(row).model_dump()
+            merged.update(changes)
+            if not isinstance(merged["auto_connect"], bool):
+                raise InvalidArgument("auto_connect must be true or false", field="auto_connect")
+            auto_connect = merged.pop("auto_connect")
+            for key in ("created_at", "updated_at"):
+                merged.pop(key)
+            try:
+                spec = VehicleSpec.model_validate(merged)
+            except ValueError as exc:
+                raise InvalidArgument(f"invalid vehicle update: {exc}", fields=sorted(changes)) from exc
+            row.url = spec.url
+            row.name = spec.name
+            row.tags = list(spec.tags)
+            row.expected_sysid = spec.expected_sysid
+            row.auto_connect = auto_connect
+            row.updated_at = utcnow()
+        return VehicleRecord.model_validate(row)
+
+    async def remove_vehicle(self, vehicle_id: str) -> None:
+        async with self._sessions.begin() as session:
+            result = await session.execute(delete(VehicleRow).where(VehicleRow.id == vehicle_id))
+            if result.rowcount == 0:
+                raise NotFound(f"no drone with id '{vehicle_id}' is registered", id=vehicle_id)
+
+    async def get_vehicle(self, vehicle_id: str) -> VehicleRecord | None:
+        async with self._sessions() as session:
+            row = await session.get(VehicleRow, vehicle_id)
+            return None if row is None else VehicleRecord.model_validate(row)
+
+    async def list_vehicles(self) -> list[VehicleRecord]:
+        async with self._sessions() as session:
+            rows = (await session.scalars(select(VehicleRow).order_by(VehicleRow.id))).all()
+            return [VehicleRecord.model_validate(r) for r in rows]
+
+    # --- flights ---------------------------------------------------------------------------------
+
+    async def open_flight(
+        self,
+        vehicle_id: str,
+        started_at: datetime,
+        home_lat: float | None = None,
+        home_lon: float | None = None,
+        home_alt_amsl: float | None = None,
+    ) -> int:
+        row = FlightRow(
+            vehicle_id=vehicle_id,
+            started_at=started_at,
+            home_lat=home_lat,
+            home_lon=home_lon,
+            home_alt_amsl=home_alt_amsl,
+        )
+        async with self._sessions.begin() as session:
+            session.add(row)
+            await session.flush()
+            return int(row.id)
+
+    async def close_flight(
+        self,
+        flight_id: int,
+        ended_at: datetime,
+        duration_s: float | None = None,
+        distance_m: float | None = None,
+        max_alt_rel_m: float | None = None,
+        battery_used_pct: float | None = None,
+    ) -> FlightRecord:
+        async with self._sessions.begin() as session:
+            row = await session.get(FlightRow, flight_id)
+            if row is None:
+                raise NotFound(f"no flight with id {flight_id}", id=flight_id)
+            row.ended_at = ended_at
+            row.duration_s = duration_s
+            row.distance_m = distance_m
+            row.max_alt_rel_m = max_alt_rel_m
+            row.battery_used_pct = battery_used_pct
+        return FlightRecord.model_validate(row)
+
+    async def list_open_flights(self, vehicle_id: str | None = None) -> list[FlightRecord]:
+        query = select(FlightRow).where(FlightRow.ended_at.is_(None))
+        if vehicle_id is not None:
+            query = query.where(FlightRow.vehicle_id == vehicle_id)
+        async with self._sessions() as session:
+            rows = (await session.scalars(query.order_by(FlightRow.started_at))).all()
+            return [FlightRecord.model_validate(r) for r in rows]
+
+    async def add_track_samples(self, samples: Sequence[TrackSample]) -> int:
+        """Insert a batch of track samples in one transaction; returns how many were written."""
+        if not samples:
+            return 0
+        rows = [s.model_dump() for s in samples]
+        async with self._sessions.begin() as session:
+            await session.execute(TrackSampleRow.__table__.insert(), rows)
+        return len(rows)
+
+    async def add_status_texts(self, items: Sequence[StatusTextIn]) -> int:
+        if not items:
+            return 0
+        rows = [i.model_dump() for i in items]
+        async with self._sessions.begin() as session:
+            await session.execute(StatusTextRow.__table__.insert(), rows)
+        return len(rows)
+
+    async def list_flights(
+        self,
+        vehicle_id: str | None = None,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        limit: int = 50,
+        offset: int = 0,
+    ) -> tuple[list[FlightRecord], int]:
+        """Flights overlapping [since, until], newest first, with the total count for paging."""
+        conditions = []
+        if vehicle_id is not None:
+            conditions.append(FlightRow.vehicle_id == vehicle_id)
+        if since is not None:
+            conditions.append(or_(FlightRow.ended_at.is_(None), FlightRow.ended_at >= since))
+        if until is not None:
+            conditions.append(FlightRow.started_at <= until)
+        query = select(FlightRow).where(*conditions)
+        count = select(func.count()).select_from(FlightRow).where(*conditions)
+        async with self._sessions() as session:
+            total = int((await session.execute(count)).scalar_one())
+            rows = (
+                await session.scalars(
+                    query.order_by(FlightRow.started_at.desc(), FlightRow.id.desc())
+                    .limit(limit)
+                    .offset(offset)
+                )
+            ).all()
+            return [FlightRecord.model_validate(r) for r in rows], total
+
+    async def get_flight(self, flight_id: int) -> FlightRecord | None:
+        async with self._sessions() as session:
+            row = await session.get(FlightRow, flight_id)
+            return None if row is None else FlightRecord.model_validate(row)
+
+    async def get_track(self, flight_id: int) -> list[TrackSample]:
+        query = (
+            select(TrackSampleRow)
+            .where(TrackSampleRow.flight_id == flight_id)
+            .order_by(TrackSampleRow.t, TrackSampleRow.id)
+        )
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [TrackSample.model_validate(r) for r in rows]
+
+    async def list_status_texts(
+        self, vehicle_id: str, limit: int = 100, since: datetime | None = None
+    ) -> list[StatusTextRecord]:
+        """The newest ``limit`` status texts of a vehicle, oldest first."""
+        query = select(StatusTextRow).where(StatusTextRow.vehicle_id == vehicle_id)
+        if since is not None:
+            query = query.where(StatusTextRow.t >= since)
+        query = query.order_by(StatusTextRow.t.desc(), StatusTextRow.id.desc()).limit(limit)
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [StatusTextRecord.model_validate(r) for r in reversed(rows)]
+
+    # --- sessions --------------------------------------------------------------------------------
+
+    async def touch_session(
+        self,
+        key: str,
+        kind: SessionKind,
+        principal: str | None = None,
+        client_name: str | None = None,
+        client_version: str | None = None,
+    ) -> SessionRecord:
+        """Record that a session was seen now (insert or update; portable, no dialect upsert)."""
+        if kind not in ("mcp-2025", "mcp-2026", "rest"):
+            raise InvalidArgument(f"unknown session kind '{kind}'", field="kind")
+        key = key[:200]
+        for attempt in range(2):
+            now = utcnow()
+            try:
+                async with self._sessions.begin() as session:
+                    row = await session.get(SessionRow, key)
+                    if row is None:
+                        row = SessionRow(
+                            key=key,
+                            kind=kind,
+                            principal=principal,
+                            client_name=(client_name or None) and client_name[:200],
+                            client_version=(client_version or None) and client_version[:100],
+                            first_seen=now,
+                            last_seen=now,
+                            request_count=1,
+                        )
+                        session.add(row)
+                    else:
+                        row.last_seen = now
+                        row.request_count = (row.request_count or 0) + 1
+                        row.kind = kind
+                        if principal is not None:
+                            row.principal = principal
+                        if client_name:
+                            row.client_name = client_name[:200]
+                        if client_version:
+                            row.client_version = client_version[:100]
+                return SessionRecord.model_validate(row)
+            except IntegrityError:
+                if attempt:  # a concurrent insert won twice: give up loudly
+                    raise
+        raise AssertionError("unreachable")
+
+    async def get_session(self, key: str) -> SessionRecord | None:
+        async with self._sessions() as session:
+            row = await session.get(SessionRow, key)
+            return None if row is None else SessionRecord.model_validate(row)
+
+    async def list_sessions(
+        self,
+        kind: str | None = None,
+        principal: str | None = None,
+        since: datetime | None = None,
+        limit: int = 100,
+        offset: int = 0,
+    ) -> list[SessionRecord]:
+        """Sessions, most recently seen first."""
+        query = select(SessionRow)
+        if kind is not None:
+            query = query.where(SessionRow.kind == kind)
+        if principal is not None:
+            query = query.where(SessionRow.principal == principal)
+        if since is not None:
+            query = query.where(SessionRow.last_seen >= since)
+        query = query.order_by(SessionRow.last_seen.desc(), SessionRow.key).limit(limit).offset(offset)
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [SessionRecord.model_validate(r) for r in rows]
+
+    # --- audit -----------------------------------------------------------------------------------
+
+    async def add_audit(self, entry: AuditEntry) -> int:
+        row = AuditRow(
+            t=entry.t or utcnow(),
+            session_key=entry.session_key and entry.session_key[:200],
+            principal=entry.principal and entry.principal[:200],
+            source=entry.source,
+            vehicle_id=entry.vehicle_id and entry.vehicle_id[:32],
+            action=entry.action[:100],
+            arguments=bound_arguments(entry.arguments),
+            outcome=entry.outcome,
+            error=entry.error and entry.error[:AUDIT_MAX_ERROR],
+            duration_ms=entry.duration_ms,
+        )
+        async with self._sessions.begin() as session:
+            session.add(row)
+            await session.flush()
+            return int(row.id)
+
+    def _audit_conditions(self, vehicle_id: str | None, session_key: str | None) -> list[Any]:
+        conditions = []
+        if vehicle_id is not None:
+            conditions.append(AuditRow.vehicle_id == vehicle_id)
+        if session_key is not None:
+            conditions.append(AuditRow.session_key == session_key)
+        return conditions
+
+    async def list_audit(
+        self,
+        vehicle_id: str | None = None,
+        session_key: str | None = None,
+        limit: int = 100,
+        offset: int = 0,
+    ) -> list[AuditRecord]:
+        """Audit entries, newest first."""
+        query = (
+            select(AuditRow)
+            .where(*self._audit_conditions(vehicle_id, session_key))
+            .order_by(AuditRow.t.desc(), AuditRow.id.desc())
+            .limit(limit)
+            .offset(offset)
+        )
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [AuditRecord.model_validate(r) for r in rows]
+
+    async def count_audit(self, vehicle_id: str | None = None, session_key: str | None = None) -> int:
+        query = select(func.count()).select_from(AuditRow)
+        query = query.where(*self._audit_conditions(vehicle_id, session_key))
+        async with self._sessions() as session:
+            return int((await session.execute(query)).scalar_one())
+
+    # --- operations ------------------------------------------------------------------------------
+
+    async def save_operation(self, op: OperationRecord) -> OperationRecord:
+        values = op.model_dump()
+        async with self._sessions.begin() as session:
+            row = await session.get(OperationRow, op.id)
+            if row is None:
+                session.add(OperationRow(**values))
+            else:
+                for key, value in values.items():
+                    if key != "id":
+                        setattr(row, key, value)
+        return op
+
+    async def get_operation(self, operation_id: str) -> OperationRecord | None:
+        async with self._sessions() as session:
+            row = await session.get(OperationRow, operation_id)
+            return None if row is None else OperationRecord.model_validate(row)
+
+    async def list_operations(
+        self, vehicle_id: str | None = None, status: str | Sequence[str] | None = None, limit: int = 50
+    ) -> list[OperationRecord]:
+        """Operations, newest first; ``status`` may be one status or several."""
+        query = select(OperationRow)
+        if vehicle_id is not None:
+            query = query.where(OperationRow.vehicle_id == vehicle_id)
+        if isinstance(status, str):
+            query = query.where(OperationRow.status == status)
+        elif status is not None:
+            query = query.where(OperationRow.status.in_(list(status)))
+        query = query.order_by(OperationRow.created_at.desc(), OperationRow.id).limit(limit)
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [OperationRecord.model_validate(r) for r in rows]
+
+    # --- operator locks --------------------------------------------------------------------------
+
+    async def save_lock(self, scope: str, reason: str, by: str, locked_at: datetime) -> LockRecord:
+        """Store (or replace) the lock of ``scope``."""
+        async with self._sessions.begin() as session:
+            row = await session.get(LockRow, scope)
+            if row is None:
+                session.add(LockRow(scope=scope, reason=reason, locked_by=by[:200], locked_at=locked_at))
+            else:
+                row.reason, row.locked_by, row.locked_at = reason, by[:200], locked_at
+        return LockRecord(scope=scope, reason=reason, by=by[:200], locked_at=locked_at)
+
+    async def delete_lock(self, scope: str) -> bool:
+        """Remove the lock of ``scope``; False when there was none."""
+        async with self._sessions.begin() as session:
+            result = await session.execute(delete(LockRow).where(LockRow.scope == scope))
+            return bool(result.rowcount)
+
+    async def list_locks(self) -> list[LockRecord]:
+        async with self._sessions() as session:
+            rows = (await session.scalars(select(LockRow).order_by(LockRow.scope))).all()
+            return [
+                LockRecord(scope=r.scope, reason=r.reason, by=r.locked_by, locked_at=r.locked_at)
+                for r in rows
+            ]

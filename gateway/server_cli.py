@@ -1,0 +1,279 @@
+"""`fleet-gateway serve`, `fleet-gateway drones add|list|remove`, `fleet-gateway db upgrade`."""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import ipaddress
+import json
+import sys
+from typing import Any
+
+import httpx
+from pydantic import ValidationError
+
+from gateway.config import Settings
+from gateway.errors import GatewayError
+from gateway.registry.spec import VehicleSpec
+from gateway.registry.store import Store, create_engine_for, current_revision, upgrade_schema
+
+LOOPBACK_NAMES = {"localhost"}
+
+
+def register(subparsers: Any) -> None:
+    serve = subparsers.add_parser("serve", help="run the gateway (REST API, /mcp, sidecars)")
+    serve.add_argument("--host", default=None, help="bind address (default GATEWAY_HOST or 127.0.0.1)")
+    serve.add_argument("--port", type=int, default=None, help="HTTP port (default GATEWAY_PORT or 8765)")
+    _database_option(serve)
+    serve.set_defaults(func=cmd_serve)
+
+    drones = subparsers.add_parser("drones", help="register, list and remove drones")
+    drone_cmds = drones.add_subparsers(dest="drones_command", required=True, metavar="ACTION")
+
+    add = drone_cmds.add_parser("add", help="register a drone")
+    add.add_argument("id", help="drone id: 1-32 of a-z, 0-9, '-'")
+    add.add_argument("url", help="MAVLink URL in mavsdk_server syntax, e.g. tcpout://127.0.0.1:5760")
+    add.add_argument("--name", default=None, help="human-readable name")
+    add.add_argument("--sysid", type=int, default=None, help="MAVLink system id the drone must report")
+    add.add_argument("--tag", action="append", default=[], help="a tag (repeatable)")
+    add.add_argument("--no-connect", action="store_true", help="register without connecting")
+    _target_options(add)
+    add.set_defaults(func=cmd_drones_add)
+
+    lst = drone_cmds.add_parser("list", help="list registered drones")
+    lst.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    _target_options(lst)
+    lst.set_defaults(func=cmd_drones_list)
+
+    remove = drone_cmds.add_parser("remove", help="remove a drone")
+    remove.add_argument("id", help="drone id")
+    _target_options(remove)
+    remove.set_defaults(func=cmd_drones_remove)
+
+    db = subparsers.add_parser("db", help="database maintenance")
+    db_cmds = db.add_subparsers(dest="db_command", required=True, metavar="ACTION")
+    upgrade = db_cmds.add_parser(
+        "upgrade", help="upgrade the database schema (the gateway also does on start)"
+    )
+    upgrade.add_argument("--revision", default="head", help="target Alembic revision (default head)")
+    _database_option(upgrade)
+    upgrade.set_defaults(func=cmd_db_upgrade)
+
+
+def _database_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--database-url", default=None, help="SQLAlchemy async URL (default GATEWAY_DATABASE_URL)"
+    )
+
+
+def _target_options(parser: argparse.ArgumentParser) -> None:
+    _database_option(parser)
+    parser.add_argument(
+        "--api",
+        default=None,
+        metavar="URL",
+        help="talk to a running gateway's REST API (e.g. http://127.0.0.1:8765) instead of the database",
+    )
+
+
+def _settings(args: argparse.Namespace, **overrides: Any) -> Settings:
+    values = {k: v for k, v in overrides.items() if v is not None}
+    if getattr(args, "database_url", None):
+        values["database_url"] = args.database_url
+    return Settings(**values)
+
+
+def _fail(message: str, code: int = 1) -> int:
+    print(f"error: {message}", file=sys.stderr)
+    return code
+
+
+def _is_loopback(host: str) -> bool:
+    if host in LOOPBACK_NAMES:
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
+
+
+# --- serve -----------------------------------------------------------------------------------------
+
+
+def cmd_serve(args: argparse.Namespace) -> int:
+    import uvicorn
+
+    from gateway.app import create_app
+
+    try:
+        settings = _settings(args, host=args.host, port=args.port)
+    except ValidationError as exc:
+        return _fail(_validation_text(exc), 2)
+    if not _is_loopback(settings.host) and not settings.operator_tokens.strip():
+        return _fail(
+            f"refusing to serve on {settings.host}: without operator tokens (GATEWAY_OPERATOR_TOKENS) "
+            "the gateway binds to loopback only",
+            2,
+        )
+    app = create_app(settings)
+    config = uvicorn.Config(
+        app,
+        host=settings.host,
+        port=settings.port,
+        log_level=settings.log_level.lower(),
+        lifespan="on",
+        timeout_graceful_shutdown=10,
+    )
+    server = uvicorn.Server(config)
+    # uvicorn handles SIGINT/SIGTERM: it stops accepting, then the lifespan stops every sidecar.
+    server.run()
+    return 0 if server.started else 1
+
+
+# --- drones ----------------------------------------------------------------------------------------
+
+
+def _spec_from_args(args: argparse.Namespace) -> VehicleSpec:
+    return VehicleSpec(id=args.id, url=args.url, name=args.name, tags=args.tag, expected_sysid=args.sysid)
+
+
+def _validation_text(exc: ValidationError) -> str:
+    parts = []
+    for err in exc.errors():
+        field = ".".join(str(p) for p in err.get("loc", ())) or "value"
+        parts.append(f"{field}: {str(err.get('msg', '')).removeprefix('Value error, ')}")
+    return "; ".join(parts)
+
+
+def cmd_drones_add(args: argparse.Namespace) -> int:
+    try:
+        spec = _spec_from_args(args)
+    except ValidationError as exc:
+        return _fail(f"invalid drone: {_validation_text(exc)}", 2)
+    connect = not args.no_connect
+    if args.api:
+        body = {**spec.model_dump(), "connect": connect}
+        return _api_call(
+            args.api, "POST", "/api/v1/vehicles", body, lambda d: f"registered {d['id']} ({d['url']})"
+        )
+
+    async def run(store: Store) -> str:
+        record = await store.add_vehicle(spec, auto_connect=connect)
+        return f"registered {record.id} ({record.url}); a running gateway picks it up on its next start"
+
+    return _with_store(args, run)
+
+
+def cmd_drones_list(args: argparse.Namespace) -> int:
+    if args.api:
+        return _api_call(args.api, "GET", "/api/v1/vehicles", None, lambda d: _table(d["items"], args.json))
+
+    async def run(store: Store) -> str:
+        records = [r.model_dump(mode="json") for r in await store.list_vehicles()]
+        return _table(records, args.json)
+
+    return _with_store(args, run)
+
+
+def cmd_drones_remove(args: argparse.Namespace) -> int:
+    if args.api:
+        return _api_call(
+            args.api, "DELETE", f"/api/v1/vehicles/{args.id}", None, lambda _d: f"removed {args.id}"
+        )
+
+    async def run(store: Store) -> str:
+        await store.remove_vehicle(args.id)
+        return f"removed {args.id}"
+
+    return _with_store(args, run)
+
+
+def _table(items: list[dict[str, Any]], as_json: bool) -> str:
+    if as_json:
+        return json.dumps(items, indent=2)
+    if not items:
+        return "no drones registered"
+    columns = ["id", "url", "name", "tags", "expected_sysid", "auto_connect", "state"]
+    rows = [
+        [
+            ",".join(item.get(c) or []) if c == "tags" else ("" if item.get(c) is None else str(item.get(c)))
+            for c in columns
+        ]
+        for item in items
+    ]
+    widths = [max(len(c), *(len(r[i]) for r in rows)) for i, c in enumerate(columns)]
+    lines = ["  ".join(c.upper().ljust(w) for c, w in zip(columns, widths, strict=True))]
+    lines += ["  ".join(v.ljust(w) for v, w in zip(row, widths, strict=True)) for row in rows]
+    return "\n".join(line.rstrip() for line in lines)
+
+
+def _with_store(args: argparse.Namespace, action: Any) -> int:
+    try:
+        settings = _settings(args)
+    except ValidationError as exc:
+        return _fail(_validation_text(exc), 2)
+
+    async def run() -> str:
+        store = await Store.open(settings.database_url)
+        try:
+            return await action(store)
+        finally:
+            await store.close()
+
+    try:
+        print(asyncio.run(run()))
+    except GatewayError as exc:
+        return _fail(exc.message)
+    return 0
+
+
+def _api_call(base: str, method: str, path: str, body: Any, render: Any) -> int:
+    try:
+        response = httpx.request(method, base.rstrip("/") + path, json=body, timeout=30.0)
+    except httpx.HTTPError as exc:
+        return _fail(f"cannot reach the gateway at {base}: {exc}")
+    if response.status_code >= 400:
+        try:
+            error = response.json()["error"]
+            return _fail(f"{error['message']} ({error['code']})")
+        except (ValueError, KeyError, TypeError):
+            return _fail(f"HTTP {response.status_code}: {response.text[:200]}")
+    print(render(response.json() if response.content else None))
+    return 0
+
+
+# --- db --------------------------------------------------------------------------------------------
+
+
+def cmd_db_upgrade(args: argparse.Namespace) -> int:
+    try:
+        settings = _settings(args)
+    except ValidationError as exc:
+        return _fail(_validation_text(exc), 2)
+
+    async def run() -> str | None:
+        engine = create_engine_for(settings.database_url)
+        try:
+            await upgrade_schema(engine, settings.database_url, args.revision)
+            return await current_revision(engine)
+        finally:
+            await engine.dispose()
+
+    revision = asyncio.run(run())
+    print(f"database at revision {revision}")
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run only these commands (``python -m gateway.server_cli ...``), without the other areas' ones."""
+    import logging
+
+    parser = argparse.ArgumentParser(prog="fleet-gateway")
+    register(parser.add_subparsers(dest="command", required=True, metavar="COMMAND"))
+    args = parser.parse_args(argv)
+    logging.basicConfig(level="INFO", format="%(asctime)s %(levelname)s %(name)s: %(message)s")
+    return int(args.func(args) or 0)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

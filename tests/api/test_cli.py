@@ -1,0 +1,117 @@
+"""`fleet-gateway db upgrade` and `drones add|list|remove`, on the database and through a running gateway."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from gateway.app import create_app
+from gateway.config import Settings
+from gateway.registry.store import Store, create_engine_for, current_revision, head_revision
+from gateway.server_cli import main
+
+from .fakes import FakeRegistry
+from .server import serve_in_thread
+
+
+def run_cli(*argv: str) -> int:
+    return main(list(argv))
+
+
+def revision_of(url: str) -> str | None:
+    async def get() -> str | None:
+        engine = create_engine_for(url)
+        try:
+            return await current_revision(engine)
+        finally:
+            await engine.dispose()
+
+    return asyncio.run(get())
+
+
+def test_db_upgrade_command_in_a_subprocess(tmp_path: Path) -> None:
+    url = f"sqlite+aiosqlite:///{tmp_path / 'fresh.db'}"
+    result = subprocess.run(
+        [sys.executable, "-m", "gateway.server_cli", "db", "upgrade", "--database-url", url],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert result.returncode == 0, result.stderr
+    assert f"database at revision {head_revision()}" in result.stdout
+    assert revision_of(url) == head_revision()
+    # idempotent
+    assert run_cli("db", "upgrade", "--database-url", url) == 0
+
+
+def test_drones_on_the_database(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    url = f"sqlite+aiosqlite:///{tmp_path / 'cli.db'}"
+    db = ["--database-url", url]
+    assert (
+        run_cli("drones", "add", "alpha", "tcpout://127.0.0.1:5760", "--name", "Alpha", "--tag", "a", *db)
+        == 0
+    )
+    assert (
+        run_cli("drones", "add", "bravo", "udpin://0.0.0.0:14541", "--sysid", "2", "--no-connect", *db) == 0
+    )
+    capsys.readouterr()
+
+    assert run_cli("drones", "list", "--json", *db) == 0
+    listed = json.loads(capsys.readouterr().out)
+    assert [(d["id"], d["name"], d["tags"], d["auto_connect"]) for d in listed] == [
+        ("alpha", "Alpha", ["a"], True),
+        ("bravo", None, [], False),
+    ]
+    assert run_cli("drones", "list", *db) == 0
+    table = capsys.readouterr().out.splitlines()
+    assert table[0].split()[:2] == ["ID", "URL"] and table[1].startswith("alpha")
+
+    assert run_cli("drones", "add", "alpha", "tcpout://127.0.0.1:5770", *db) == 1
+    assert "already registered" in capsys.readouterr().err
+    assert run_cli("drones", "add", "Bad!", "tcpout://127.0.0.1:5770", *db) == 2
+    assert "id:" in capsys.readouterr().err
+    assert run_cli("drones", "add", "charlie", "http://x", *db) == 2
+    assert "url:" in capsys.readouterr().err
+
+    assert run_cli("drones", "remove", "bravo", *db) == 0
+    assert run_cli("drones", "remove", "bravo", *db) == 1
+    assert "no drone with id 'bravo'" in capsys.readouterr().err
+
+    async def ids() -> list[str]:
+        store = await Store.open(url)
+        try:
+            return [v.id for v in await store.list_vehicles()]
+        finally:
+            await store.close()
+
+    assert asyncio.run(ids()) == ["alpha"]
+
+
+def test_drones_through_a_running_gateway(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    settings = Settings(database_url=f"sqlite+aiosqlite:///{tmp_path / 'api.db'}")
+    app = create_app(settings, registry_factory=FakeRegistry)
+    with serve_in_thread(app) as base:
+        assert run_cli("drones", "add", "alpha", "tcpout://127.0.0.1:5760", "--api", base) == 0
+        assert "registered alpha" in capsys.readouterr().out
+        assert run_cli("drones", "add", "alpha", "tcpout://127.0.0.1:5760", "--api", base) == 1
+        assert "(duplicate_vehicle)" in capsys.readouterr().err
+        assert run_cli("drones", "list", "--json", "--api", base) == 0
+        [drone] = json.loads(capsys.readouterr().out)
+        assert drone["id"] == "alpha" and drone["state"] == "connecting"
+        assert run_cli("drones", "remove", "ghost", "--api", base) == 1
+        assert "unknown drone id 'ghost'" in capsys.readouterr().err
+        assert run_cli("drones", "remove", "alpha", "--api", base) == 0
+    port_closed = run_cli("drones", "list", "--api", base)
+    assert port_closed == 1 and "cannot reach the gateway" in capsys.readouterr().err
+
+
+def test_serve_refuses_a_public_bind_without_tokens(capsys: pytest.CaptureFixture[str]) -> None:
+    assert run_cli("serve", "--host", "0.0.0.0", "--port", "1") == 2
+    assert "loopback only" in capsys.readouterr().err
+    assert run_cli("serve", "--port", "70000") == 2
+    assert "port" in capsys.readouterr().err

@@ -1,0 +1,218 @@
+"""Unit tests of OperationManager and its trackers against a fake vehicle (telemetry set by the test)."""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from dataclasses import dataclass, field
+from types import SimpleNamespace
+from typing import Any
+
+import pytest
+
+from gateway.config import Settings
+from gateway.errors import CommandFailed, NotFound
+from gateway.fleet import geo
+from gateway.fleet.operations import (
+    GotoTracker,
+    LandingTracker,
+    MissionTracker,
+    OperationManager,
+    OpStatus,
+    TakeoffTracker,
+    YawTracker,
+)
+
+HOME = (47.397742, 8.545594, 488.0)
+
+
+@dataclass
+class Sample:
+    value: Any
+    received_at: float = field(default_factory=time.monotonic)
+
+    @property
+    def age_s(self) -> float:
+        return time.monotonic() - self.received_at
+
+
+class FakeVehicle:
+    def __init__(self, vid: str = "d1") -> None:
+        self.id = vid
+        self.telemetry = SimpleNamespace(
+            position=None,
+            home=Sample(_pos(*HOME[:2], 0.0)),
+            armed=Sample(False),
+            in_air=Sample(False),
+            velocity_ned=Sample(SimpleNamespace(north_mps=0.0, east_mps=0.0, down_mps=0.0)),
+            heading_deg=Sample(0.0),
+            mission_progress=None,
+        )
+        self.set(HOME[0], HOME[1], 0.0)
+        self.mission_done = False
+
+    def set(self, lat: float, lon: float, alt: float, armed: bool | None = None, in_air: bool | None = None):
+        self.telemetry.position = Sample(_pos(lat, lon, alt))
+        if armed is not None:
+            self.telemetry.armed = Sample(armed)
+        if in_air is not None:
+            self.telemetry.in_air = Sample(in_air)
+
+    async def is_mission_finished(self) -> bool:
+        return self.mission_done
+
+
+def _pos(lat: float, lon: float, alt: float) -> SimpleNamespace:
+    return SimpleNamespace(lat_deg=lat, lon_deg=lon, rel_alt_m=alt, abs_alt_m=HOME[2] + alt)
+
+
+class FakeStore:
+    def __init__(self) -> None:
+        self.saved: list[Any] = []
+
+    async def save_operation(self, record: Any) -> None:
+        self.saved.append(record)
+
+
+@pytest.fixture
+def settings() -> Settings:
+    return Settings(_env_file=None, mcp_wait_cap_s=5.0, arrival_tolerance_m=2.0)
+
+
+async def _noop() -> None:
+    return None
+
+
+async def test_takeoff_succeeds_when_altitude_reached(settings: Settings) -> None:
+    v = FakeVehicle()
+    mgr = OperationManager(settings)
+    op = await mgr.start(v, TakeoffTracker(10.0), _noop, {"altitude_m": 10.0})
+    assert mgr.takeoff_in_progress("d1") is op
+    v.set(HOME[0], HOME[1], 4.0, armed=True, in_air=True)
+    await asyncio.sleep(0.5)
+    assert op.status is OpStatus.running and 0.3 < op.progress < 0.5
+    v.set(HOME[0], HOME[1], 9.8)
+    await mgr.wait(op, cap_s=5.0)
+    assert op.status is OpStatus.succeeded and op.progress == 1.0
+    assert mgr.takeoff_in_progress("d1") is None
+    await mgr.stop()
+
+
+async def test_wait_cap_returns_running_and_reports_progress(settings: Settings) -> None:
+    v = FakeVehicle()
+    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    mgr = OperationManager(settings)
+    lat, lon = geo.offset_position(HOME[0], HOME[1], 100.0, 0.0)
+    op = await mgr.start(v, GotoTracker(lat, lon, 10.0, 2.0, kind="goto"), _noop, {})
+    seen: list[str] = []
+
+    async def on_progress(o: Any) -> None:
+        seen.append(o.message)
+
+    async def fly() -> None:
+        for north in (20.0, 50.0, 80.0):
+            await asyncio.sleep(0.3)
+            v.set(*geo.offset_position(HOME[0], HOME[1], north, 0.0), 10.0)
+
+    flight = asyncio.create_task(fly())
+    await mgr.wait(op, cap_s=1.5, on_progress=on_progress)
+    await flight
+    assert op.status is OpStatus.running
+    assert op.eta_s is not None and op.progress > 0.5
+    assert any("m to go" in m for m in seen)
+    v.set(lat, lon, 10.5)
+    await mgr.wait(op, cap_s=5.0)
+    assert op.status is OpStatus.succeeded
+    await mgr.stop()
+
+
+async def test_new_command_supersedes_and_failed_send_keeps_current(settings: Settings) -> None:
+    v = FakeVehicle()
+    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    store = FakeStore()
+    mgr = OperationManager(settings, store)
+    first = await mgr.start(v, GotoTracker(HOME[0] + 0.001, HOME[1], 10.0, 2.0), _noop, {})
+
+    async def rejected() -> None:
+        raise CommandFailed("denied")
+
+    with pytest.raises(CommandFailed):
+        await mgr.start(v, GotoTracker(HOME[0], HOME[1] + 0.001, 10.0, 2.0), rejected, {})
+    assert mgr.running("d1") is first
+    second = await mgr.start(v, GotoTracker(HOME[0], HOME[1] + 0.001, 10.0, 2.0), _noop, {})
+    assert first.status is OpStatus.superseded and second.id in first.message
+    held = await mgr.supersede("d1", "hold_position")
+    assert held is second and second.status is OpStatus.superseded
+    await mgr.stop()
+
+
+async def test_cancelled_waiter_leaves_operation_running(settings: Settings) -> None:
+    v = FakeVehicle()
+    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    mgr = OperationManager(settings)
+    op = await mgr.start(v, GotoTracker(HOME[0] + 0.001, HOME[1], 10.0, 2.0), _noop, {})
+    waiter = asyncio.create_task(mgr.wait(op, cap_s=30))
+    await asyncio.sleep(0.3)
+    waiter.cancel()
+    with pytest.raises(asyncio.CancelledError):
+        await waiter
+    await asyncio.sleep(0.3)
+    assert op.status is OpStatus.running
+    v.set(HOME[0] + 0.001, HOME[1], 10.0)
+    await mgr.wait(op, cap_s=5)
+    assert op.status is OpStatus.succeeded
+    await mgr.stop()
+
+
+async def test_goto_fails_when_vehicle_lands(settings: Settings) -> None:
+    v = FakeVehicle()
+    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    mgr = OperationManager(settings)
+    op = await mgr.start(v, GotoTracker(HOME[0] + 0.01, HOME[1], 10.0, 2.0), _noop, {})
+    v.set(HOME[0], HOME[1], 0.0, armed=False, in_air=False)
+    await mgr.wait(op, cap_s=5)
+    assert op.status is OpStatus.failed and "landed" in op.message
+
+
+async def test_land_yaw_and_mission_trackers(settings: Settings) -> None:
+    v = FakeVehicle()
+    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    mgr = OperationManager(settings)
+    land = await mgr.start(v, LandingTracker(kind="land"), _noop, {})
+    await asyncio.sleep(0.3)
+    assert land.status is OpStatus.running
+    v.set(HOME[0], HOME[1], 0.0, armed=False, in_air=False)
+    await mgr.wait(land, cap_s=5)
+    assert land.status is OpStatus.succeeded
+
+    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    v.telemetry.heading_deg = Sample(350.0)
+    yaw = await mgr.start(v, YawTracker(90.0), _noop, {})
+    await asyncio.sleep(0.3)
+    assert yaw.status is OpStatus.running
+    v.telemetry.heading_deg = Sample(88.0)
+    await mgr.wait(yaw, cap_s=5)
+    assert yaw.status is OpStatus.succeeded
+
+    v.telemetry.mission_progress = Sample(SimpleNamespace(current=2, total=4))
+    mission = await mgr.start(v, MissionTracker(), _noop, {})
+    await asyncio.sleep(0.3)
+    assert mission.status is OpStatus.running and mission.message == "item 2 of 4"
+    v.mission_done = True
+    await mgr.wait(mission, cap_s=5)
+    assert mission.status is OpStatus.succeeded
+    await mgr.stop()
+
+
+async def test_stop_interrupts_and_store_records_every_state(settings: Settings) -> None:
+    v = FakeVehicle()
+    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    store = FakeStore()
+    mgr = OperationManager(settings, store)
+    op = await mgr.start(v, GotoTracker(HOME[0] + 0.01, HOME[1], 10.0, 2.0), _noop, {"x": 1})
+    await mgr.stop()
+    assert op.status is OpStatus.interrupted
+    assert next(r.status for r in store.saved if r.id == op.id) == "running"
+    assert store.saved[-1].status == "interrupted" and store.saved[-1].finished_at is not None
+    with pytest.raises(NotFound):
+        mgr.get("nope")

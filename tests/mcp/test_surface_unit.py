@@ -1,0 +1,74 @@
+"""Unit tests of the MCP surface over an in-process client and a fake gateway (both protocol eras)."""
+
+from __future__ import annotations
+
+import asyncio
+
+import pytest
+from mcp import Client
+
+from gateway.config import Settings
+from gateway.mcp.server import build_mcp
+from tests.mcp.fakes import FakeGateway
+
+
+@pytest.fixture(params=["auto", "legacy"])
+def mode(request: pytest.FixtureRequest) -> str:
+    return request.param
+
+
+@pytest.fixture
+def gateway() -> FakeGateway:
+    return FakeGateway(Settings(_env_file=None, mcp_wait_cap_s=5.0))
+
+
+async def test_takeoff_goto_land_and_refusals(gateway: FakeGateway, mode: str) -> None:
+    server = build_mcp(gateway)
+    async with Client(server, mode=mode) as c:
+        tools = {t.name for t in (await c.list_tools()).tools}
+        assert len(tools) == 46
+        r = await c.call_tool("takeoff", {"drone_id": "d1", "altitude_m": 10, "wait": False})
+        assert not r.is_error, r.content
+        assert r.structured_content["status"] == "running"
+        r = await c.call_tool(
+            "go_to_location",
+            {"drone_id": "d1", "latitude_deg": 47.398, "longitude_deg": 8.5456, "altitude_m": 10},
+        )
+        assert r.is_error and "monitor_flight" in r.content[0].text
+        r = await c.call_tool("monitor_flight", {"drone_id": "d1"})
+        assert r.structured_content["status"] == "succeeded", r.structured_content
+        r = await c.call_tool(
+            "go_to_location",
+            {"drone_id": "d1", "latitude_deg": 47.398, "longitude_deg": 8.5456, "altitude_m": 10},
+        )
+        assert r.structured_content["status"] == "succeeded", r.content
+        r = await c.call_tool("check_arrival", {"drone_id": "d1"})
+        assert r.structured_content["arrived"] is True
+        r = await c.call_tool("land", {"drone_id": "d1"})
+        assert r.structured_content["status"] == "succeeded", r.content
+        r = await c.call_tool("get_battery", {"drone_id": "d9"})
+        assert r.is_error and "d1, d2" in r.content[0].text
+        r = await c.call_tool("list_parameters", {"drone_id": "d1", "prefix": "sr0", "limit": 100})
+        assert r.structured_content["total"] == 300 and r.structured_content["next_offset"] == 100
+
+
+async def test_parallel_takeoff_and_goto_the_goto_is_refused(gateway: FakeGateway) -> None:
+    """LLM hosts may issue tool calls in parallel: a goto racing a takeoff (still arming) is refused."""
+    server = build_mcp(gateway)
+    vehicle = gateway.registry.get("d1")
+    vehicle.arm_delay_s = 0.5
+    goto = {"drone_id": "d1", "latitude_deg": 47.398, "longitude_deg": 8.5456, "altitude_m": 10}
+    async with Client(server) as c:
+
+        async def late_goto() -> object:
+            await asyncio.sleep(0.1)  # sent while the takeoff command is still being sent
+            # armed and lifting off: the takeoff guard, not the on-the-ground check, must refuse
+            vehicle.telemetry.in_air.value = vehicle.telemetry.armed.value = True
+            return await c.call_tool("go_to_location", goto)
+
+        takeoff, refused = await asyncio.gather(
+            c.call_tool("takeoff", {"drone_id": "d1", "altitude_m": 10, "wait": False}), late_goto()
+        )
+    assert takeoff.structured_content["status"] == "running"
+    assert refused.is_error and "takeoff_in_progress" in refused.content[0].text
+    assert [s[0] for s in vehicle.sent] == ["takeoff"]

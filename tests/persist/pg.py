@@ -1,0 +1,92 @@
+"""A throwaway PostgreSQL server on a free loopback port, for the store's portability tests."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import subprocess
+import tempfile
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+from gateway.util.ports import free_tcp_port
+
+PG_BIN_DIRS = [Path(p) for p in sorted(Path("/usr/lib/postgresql").glob("*/bin"), reverse=True)]
+
+
+# A test server: durability is not wanted, speed is.
+FAST_UNSAFE = ["-c", "fsync=off", "-c", "synchronous_commit=off", "-c", "full_page_writes=off"]
+
+
+def find_pg_bin(name: str) -> str | None:
+    found = shutil.which(name)
+    if found:
+        return found
+    for directory in PG_BIN_DIRS:
+        if (directory / name).exists():
+            return str(directory / name)
+    return None
+
+
+def _as_postgres_user(cmd: list[str]) -> list[str]:
+    """PostgreSQL refuses to run as root: drop to the 'postgres' system user when we are root."""
+    if os.geteuid() == 0:
+        return ["runuser", "-u", "postgres", "--", *cmd]
+    return cmd
+
+
+@contextmanager
+def postgres_server(timeout_s: float = 60.0) -> Iterator[str]:
+    """Start PostgreSQL on 127.0.0.1:<free port>; yield its base URL (no database path)."""
+    initdb, postgres = find_pg_bin("initdb"), find_pg_bin("postgres")
+    if not initdb or not postgres:
+        raise FileNotFoundError("PostgreSQL server binaries (initdb, postgres) are not installed")
+    root = Path(tempfile.mkdtemp(prefix="gw-pg-"))
+    data = root / "data"
+    port = free_tcp_port()
+    proc: subprocess.Popen | None = None
+    try:
+        if os.geteuid() == 0:
+            shutil.chown(root, "postgres", "postgres")
+        subprocess.run(
+            _as_postgres_user(
+                [initdb, "-D", str(data), "-A", "trust", "-U", "gw", "--no-sync", "-E", "UTF8"]
+            ),
+            check=True,
+            capture_output=True,
+            timeout=120,
+        )
+        proc = subprocess.Popen(
+            _as_postgres_user(
+                [postgres, "-D", str(data), "-h", "127.0.0.1", "-p", str(port), "-k", str(root), *FAST_UNSAFE]
+            ),
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            start_new_session=True,
+        )
+        deadline = time.monotonic() + timeout_s
+        while True:
+            ready = subprocess.run(
+                [find_pg_bin("pg_isready") or "pg_isready", "-h", "127.0.0.1", "-p", str(port)],
+                capture_output=True,
+            )
+            if ready.returncode == 0:
+                break
+            if proc.poll() is not None:
+                raise RuntimeError(f"postgres exited: {proc.stderr.read().decode(errors='replace')[-2000:]}")
+            if time.monotonic() > deadline:
+                raise TimeoutError("postgres did not accept connections in time")
+            time.sleep(0.2)
+        yield f"postgresql+asyncpg://gw@127.0.0.1:{port}"
+    finally:
+        if proc is not None and proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGINT)  # postmaster: fast shutdown
+            try:
+                proc.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait(timeout=10)
+        shutil.rmtree(root, ignore_errors=True)

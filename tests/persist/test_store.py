@@ -1,0 +1,433 @@
+"""Store on a real SQLite file: schema, every method, bad input, batching, concurrency."""
+
+from __future__ import annotations
+
+import asyncio
+import math
+from datetime import UTC, datetime, timedelta
+
+import pytest
+from sqlalchemy import event, text
+from sqlalchemy.exc import IntegrityError
+
+from gateway.errors import DuplicateVehicle, InvalidArgument, NotFound
+from gateway.registry.spec import VehicleSpec
+from gateway.registry.store import (
+    AUDIT_MAX_STRING,
+    AuditEntry,
+    OperationRecord,
+    StatusTextIn,
+    Store,
+    TrackSample,
+    bound_arguments,
+    current_revision,
+    head_revision,
+)
+
+T0 = datetime(2026, 5, 1, 12, 0, tzinfo=UTC)
+
+
+def spec(vid: str = "alpha", port: int = 5760, **kw) -> VehicleSpec:
+    return VehicleSpec(id=vid, url=f"tcpout://127.0.0.1:{port}", **kw)
+
+
+# --- schema ------------------------------------------------------------------------------------
+
+
+async def test_open_upgrades_to_head(store: Store) -> None:
+    assert await current_revision(store.engine) == head_revision() == "0002"
+    assert await store.ping()
+
+
+async def test_sqlite_runs_in_wal_mode_with_a_busy_timeout(sqlite_store: Store) -> None:
+    store = sqlite_store
+    async with store.engine.connect() as conn:
+        assert (await conn.execute(text("PRAGMA journal_mode"))).scalar_one() == "wal"
+        assert (await conn.execute(text("PRAGMA busy_timeout"))).scalar_one() > 0
+        tables = {r[0] for r in await conn.execute(text("SELECT name FROM sqlite_master WHERE type='table'"))}
+    assert {
+        "vehicles",
+        "sessions",
+        "audit",
+        "flights",
+        "track_samples",
+        "status_texts",
+        "operations",
+        "locks",
+    } <= tables
+
+
+async def test_reopen_keeps_data_and_schema(db_url: str) -> None:
+    first = await Store.open(db_url)
+    await first.add_vehicle(spec())
+    await first.close()
+    assert not first.is_open
+    second = await Store.open(db_url)
+    try:
+        assert [v.id for v in await second.list_vehicles()] == ["alpha"]
+        assert await current_revision(second.engine) == head_revision()
+    finally:
+        await second.close()
+
+
+async def test_upgrade_from_the_first_revision_keeps_data(db_url: str) -> None:
+    """A database made by an older gateway (revision 0001) is upgraded in place on open."""
+    from gateway.registry.store import create_engine_for, upgrade_schema
+
+    engine = create_engine_for(db_url)
+    try:
+        await upgrade_schema(engine, db_url, "0001")
+        assert await current_revision(engine) == "0001"
+    finally:
+        await engine.dispose()
+    old = Store(create_engine_for(db_url), db_url)  # the old schema, not upgraded
+    await old.add_vehicle(spec("alpha"))
+    await old.close()
+    store = await Store.open(db_url)
+    try:
+        assert await current_revision(store.engine) == head_revision()
+        assert [v.id for v in await store.list_vehicles()] == ["alpha"]
+        assert await store.list_locks() == []
+    finally:
+        await store.close()
+
+
+async def test_migrations_match_the_models(store: Store) -> None:
+    """Autogenerate against the migrated database finds nothing to change."""
+    from alembic.autogenerate import compare_metadata
+    from alembic.runtime.migration import MigrationContext
+
+    from gateway.registry.models import Base
+
+    def diff(connection):
+        ctx = MigrationContext.configure(connection, opts={"compare_type": True})
+        return compare_metadata(ctx, Base.metadata)
+
+    async with store.engine.connect() as conn:
+        assert await conn.run_sync(diff) == []
+
+
+# --- vehicles ----------------------------------------------------------------------------------
+
+
+async def test_vehicle_crud(store: Store) -> None:
+    rec = await store.add_vehicle(spec("alpha", name="Alpha", tags=["survey"], expected_sysid=1))
+    assert rec.auto_connect is True
+    assert rec.created_at.tzinfo is not None and rec.created_at == rec.updated_at
+    await store.add_vehicle(spec("bravo", 5770))
+    assert [v.id for v in await store.list_vehicles()] == ["alpha", "bravo"]
+
+    updated = await store.update_vehicle("alpha", name="A", tags=["x", "y"], auto_connect=False)
+    assert (updated.name, updated.tags, updated.auto_connect) == ("A", ["x", "y"], False)
+    assert updated.updated_at >= rec.updated_at
+    got = await store.get_vehicle("alpha")
+    assert got == updated
+    assert got.spec == VehicleSpec(id="alpha", url=rec.url, name="A", tags=["x", "y"], expected_sysid=1)
+
+    await store.remove_vehicle("bravo")
+    assert await store.get_vehicle("bravo") is None
+    with pytest.raises(NotFound):
+        await store.remove_vehicle("bravo")
+
+
+async def test_duplicate_vehicle_is_refused_and_changes_nothing(store: Store) -> None:
+    await store.add_vehicle(spec("alpha", name="first"))
+    with pytest.raises(DuplicateVehicle, match="alpha"):
+        await store.add_vehicle(spec("alpha", 5999, name="second"))
+    [only] = await store.list_vehicles()
+    assert only.name == "first" and only.url.endswith(":5760")
+
+
+@pytest.mark.parametrize(
+    ("changes", "match"),
+    [
+        ({"url": "http://example.com"}, "scheme"),
+        ({"expected_sysid": 0}, "expected_sysid"),
+        ({"tags": ["bad tag!"]}, "tag"),
+        ({"auto_connect": "yes"}, "auto_connect"),
+        ({"id": "other"}, "cannot update"),
+        ({"created_at": T0}, "cannot update"),
+    ],
+)
+async def test_bad_vehicle_update_changes_nothing(store: Store, changes: dict, match: str) -> None:
+    before = await store.add_vehicle(spec("alpha", name="Alpha"))
+    with pytest.raises(InvalidArgument, match=match):
+        await store.update_vehicle("alpha", **changes)
+    assert await store.get_vehicle("alpha") == before
+
+
+async def test_update_unknown_vehicle(store: Store) -> None:
+    with pytest.raises(NotFound, match="ghost"):
+        await store.update_vehicle("ghost", name="x")
+
+
+# --- flights, tracks, status texts ------------------------------------------------------------
+
+
+async def test_flight_lifecycle_and_track(store: Store) -> None:
+    fid = await store.open_flight("alpha", T0, 47.39, 8.54, 488.0)
+    assert [f.id for f in await store.list_open_flights()] == [fid]
+    assert await store.list_open_flights("bravo") == []
+
+    samples = [
+        TrackSample(
+            flight_id=fid,
+            t=T0 + timedelta(seconds=i),
+            lat=47.39 + i * 1e-5,
+            lon=8.54,
+            alt_rel_m=float(i),
+            heading_deg=90.0,
+            ground_speed_mps=5.0,
+            battery_pct=100 - i,
+        )
+        for i in range(10)
+    ]
+    assert await store.add_track_samples(samples[5:]) == 5
+    assert await store.add_track_samples(samples[:5]) == 5
+    assert await store.add_track_samples([]) == 0
+    track = await store.get_track(fid)
+    assert track == samples  # ordered by time, whatever the insert order
+
+    closed = await store.close_flight(fid, T0 + timedelta(seconds=10), 10.0, 11.1, 9.0, 9.0)
+    assert not closed.is_open and closed.duration_s == 10.0
+    assert await store.list_open_flights() == []
+    flight = await store.get_flight(fid)
+    assert flight == closed and flight.home_alt_amsl == 488.0
+    assert await store.get_flight(fid + 100) is None
+    with pytest.raises(NotFound):
+        await store.close_flight(fid + 100, T0)
+
+
+async def test_track_sample_accepts_unix_time_and_rejects_bad_coordinates() -> None:
+    sample = TrackSample(flight_id=1, t=T0.timestamp(), lat=1, lon=2)
+    assert sample.t == T0
+    with pytest.raises(ValueError, match="lat"):
+        TrackSample(flight_id=1, t=T0, lat=91, lon=2)
+    with pytest.raises(ValueError, match="lon"):
+        TrackSample(flight_id=1, t=T0, lat=1, lon=math.nan)
+    odd = TrackSample(flight_id=1, t=T0, lat=1, lon=2, alt_rel_m=math.nan, battery_pct=math.inf)
+    assert odd.alt_rel_m is None and odd.battery_pct is None
+
+
+async def test_track_batch_is_one_transaction(store: Store) -> None:
+    fid = await store.open_flight("alpha", T0)
+    commits: list[int] = []
+    event.listen(store.engine.sync_engine, "commit", lambda conn: commits.append(1))
+    batch = [TrackSample(flight_id=fid, t=T0 + timedelta(seconds=i), lat=1, lon=2) for i in range(200)]
+    await store.add_track_samples(batch)
+    assert len(commits) == 1
+    assert len(await store.get_track(fid)) == 200
+
+
+async def test_track_batch_for_unknown_flight_is_refused_whole(store: Store) -> None:
+    fid = await store.open_flight("alpha", T0)
+    batch = [
+        TrackSample(flight_id=fid, t=T0, lat=1, lon=2),
+        TrackSample(flight_id=fid + 1, t=T0, lat=1, lon=2),
+    ]
+    with pytest.raises(IntegrityError):
+        await store.add_track_samples(batch)
+    assert await store.get_track(fid) == []
+
+
+async def test_list_flights_filters_and_pages(store: Store) -> None:
+    ids = []
+    for i in range(5):
+        vid = "alpha" if i % 2 == 0 else "bravo"
+        start = T0 + timedelta(hours=i)
+        fid = await store.open_flight(vid, start)
+        if i < 4:
+            await store.close_flight(fid, start + timedelta(minutes=10))
+        ids.append(fid)
+
+    flights, total = await store.list_flights()
+    assert total == 5 and [f.id for f in flights] == ids[::-1]  # newest first
+    flights, total = await store.list_flights(vehicle_id="alpha")
+    assert total == 3 and {f.vehicle_id for f in flights} == {"alpha"}
+    flights, total = await store.list_flights(limit=2, offset=1)
+    assert total == 5 and [f.id for f in flights] == [ids[3], ids[2]]
+    # overlap with [T0+1h05, T0+2h05]: flight 1 (1:00-1:10) and flight 2 (2:00-2:10)
+    flights, total = await store.list_flights(
+        since=T0 + timedelta(hours=1, minutes=5), until=T0 + timedelta(hours=2, minutes=5)
+    )
+    assert total == 2 and {f.id for f in flights} == {ids[1], ids[2]}
+    # the open flight (started 4:00) overlaps any later window
+    flights, _ = await store.list_flights(since=T0 + timedelta(days=1))
+    assert [f.id for f in flights] == [ids[4]]
+
+
+async def test_status_texts(store: Store) -> None:
+    fid = await store.open_flight("alpha", T0)
+    items = [
+        StatusTextIn(vehicle_id="alpha", flight_id=fid, t=T0 + timedelta(seconds=i), severity=6, text=f"m{i}")
+        for i in range(5)
+    ]
+    items.append(
+        StatusTextIn(vehicle_id="alpha", t=T0 + timedelta(seconds=9), severity="warning", text="x" * 999)
+    )
+    items.append(StatusTextIn(vehicle_id="bravo", t=T0, severity=4, text="other"))
+    assert await store.add_status_texts(items) == 7
+
+    texts = await store.list_status_texts("alpha", limit=3)
+    assert [t.text[:2] for t in texts] == ["m3", "m4", "xx"]  # newest three, oldest first
+    assert texts[0].severity == "INFO" and texts[-1].severity == "WARNING"
+    assert len(texts[-1].text) == 255 and texts[-1].flight_id is None
+    since = await store.list_status_texts("alpha", since=T0 + timedelta(seconds=4))
+    assert [t.text[:2] for t in since] == ["m4", "xx"]
+    assert [t.text for t in await store.list_status_texts("bravo")] == ["other"]
+
+
+# --- sessions ----------------------------------------------------------------------------------
+
+
+async def test_touch_session_upserts(store: Store) -> None:
+    first = await store.touch_session("sess-1", "mcp-2025", principal="agent-a", client_name="claude")
+    assert first.request_count == 1 and first.first_seen == first.last_seen
+    await asyncio.sleep(0.01)
+    second = await store.touch_session("sess-1", "mcp-2025", client_version="1.2")
+    assert second.first_seen == first.first_seen and second.last_seen > first.last_seen
+    assert second.request_count == 2
+    assert (second.principal, second.client_name, second.client_version) == ("agent-a", "claude", "1.2")
+    await store.touch_session("op:alice", "rest", principal="alice")
+
+    sessions = await store.list_sessions()
+    assert [s.key for s in sessions] == ["op:alice", "sess-1"]  # most recently seen first
+    assert [s.key for s in await store.list_sessions(kind="mcp-2025")] == ["sess-1"]
+    assert [s.key for s in await store.list_sessions(principal="alice")] == ["op:alice"]
+    assert (await store.get_session("sess-1")) == second
+
+
+async def test_touch_session_rejects_unknown_kind(store: Store) -> None:
+    with pytest.raises(InvalidArgument, match="kind"):
+        await store.touch_session("k", "telnet")  # type: ignore[arg-type]
+    assert await store.list_sessions() == []
+
+
+async def test_concurrent_touches_of_one_session(store: Store) -> None:
+    await asyncio.gather(*(store.touch_session("same", "mcp-2026") for _ in range(20)))
+    [only] = await store.list_sessions()
+    assert only.request_count >= 1 and only.key == "same"
+
+
+# --- audit -------------------------------------------------------------------------------------
+
+
+def test_bound_arguments_truncates() -> None:
+    args = {
+        "long": "x" * 2000,
+        "nan": math.nan,
+        "nested": {"list": [1, "y" * 600], "obj": object()},
+        "ok": 1.5,
+    }
+    bounded = bound_arguments(args)
+    assert bounded["long"].startswith("x" * AUDIT_MAX_STRING) and "1500 more chars" in bounded["long"]
+    assert bounded["nan"] == "nan" and bounded["ok"] == 1.5
+    assert len(bounded["nested"]["list"][1]) < 600
+    assert bounded["nested"]["obj"].startswith("<object")
+    huge = bound_arguments({f"k{i}": "z" * 400 for i in range(100)})
+    assert huge["_truncated"] is True and huge["_size"] > 8000
+
+
+async def test_audit_add_and_list(store: Store) -> None:
+    for i in range(5):
+        await store.add_audit(
+            AuditEntry(
+                session_key="s1" if i < 3 else "s2",
+                principal="agent",
+                source="mcp",
+                vehicle_id="alpha" if i % 2 == 0 else "bravo",
+                action="takeoff",
+                arguments={"alt": i, "note": "n" * 5000},
+                outcome="ok" if i else "refused",
+                error=None if i else "altitude limit",
+                duration_ms=12.5,
+                t=T0 + timedelta(seconds=i),
+            )
+        )
+    entries = await store.list_audit()
+    assert [e.arguments["alt"] for e in entries] == [4, 3, 2, 1, 0]  # newest first
+    assert len(entries[0].arguments["note"]) < 600
+    assert entries[-1].outcome == "refused" and entries[-1].error == "altitude limit"
+    assert [e.arguments["alt"] for e in await store.list_audit(vehicle_id="alpha")] == [4, 2, 0]
+    assert [e.arguments["alt"] for e in await store.list_audit(session_key="s2")] == [4, 3]
+    assert [e.arguments["alt"] for e in await store.list_audit(limit=2, offset=1)] == [3, 2]
+    assert await store.count_audit() == 5 and await store.count_audit(vehicle_id="bravo") == 2
+
+
+def test_audit_entry_rejects_unknown_outcome() -> None:
+    with pytest.raises(ValueError, match="outcome"):
+        AuditEntry(source="mcp", action="x", outcome="maybe")
+
+
+# --- operations --------------------------------------------------------------------------------
+
+
+async def test_operations_upsert_and_list(store: Store) -> None:
+    op = OperationRecord(id="op-1", vehicle_id="alpha", kind="takeoff", params={"alt": 10}, status="running")
+    await store.save_operation(op)
+    await store.save_operation(
+        OperationRecord(id="op-2", vehicle_id="bravo", kind="goto", status="running", created_at=T0)
+    )
+    done = op.model_copy(
+        update={
+            "status": "succeeded",
+            "progress": 1.0,
+            "finished_at": datetime.now(UTC),
+            "result": {"alt": 10},
+        }
+    )
+    await store.save_operation(done)
+    got = await store.get_operation("op-1")
+    assert got.status == "succeeded" and got.progress == 1.0 and got.result == {"alt": 10}
+    assert got.params == {"alt": 10} and got.finished_at is not None
+    assert await store.get_operation("nope") is None
+    assert [o.id for o in await store.list_operations()] == ["op-1", "op-2"]
+    assert [o.id for o in await store.list_operations(status="running")] == ["op-2"]
+    assert [o.id for o in await store.list_operations("alpha", status=["succeeded", "failed"])] == ["op-1"]
+    with pytest.raises(ValueError, match="status"):
+        OperationRecord(id="x", vehicle_id="a", kind="k", status="weird")
+    with pytest.raises(ValueError, match="progress"):
+        OperationRecord(id="x", vehicle_id="a", kind="k", status="running", progress=1.5)
+
+
+# --- time and concurrency ----------------------------------------------------------------------
+
+
+async def test_naive_datetimes_are_refused(store: Store) -> None:
+    with pytest.raises(Exception, match="naive datetime"):
+        await store.open_flight("alpha", datetime(2026, 1, 1))
+    assert (await store.list_flights())[1] == 0
+
+
+async def test_two_stores_on_one_file_write_concurrently(db_url: str) -> None:
+    """Two engines (as gateway + CLI) writing at once: the busy timeout serialises them."""
+    a, b = await Store.open(db_url), await Store.open(db_url)
+    try:
+
+        async def writer(store: Store, name: str) -> None:
+            for i in range(30):
+                await store.add_audit(AuditEntry(source="rest", action=f"{name}{i}", outcome="ok"))
+
+        await asyncio.gather(writer(a, "a"), writer(b, "b"))
+        assert await a.count_audit() == 60
+    finally:
+        await a.close()
+        await b.close()
+
+
+# --- operator locks ----------------------------------------------------------------------------
+
+
+async def test_locks_are_stored_replaced_and_deleted(store: Store) -> None:
+    await store.save_lock("*", "battery swap", "alice", T0)
+    await store.save_lock("alpha", "maintenance", "bob", T0 + timedelta(minutes=1))
+    await store.save_lock("alpha", "props changed", "carol", T0 + timedelta(minutes=2))
+    locks = await store.list_locks()
+    assert [(lk.scope, lk.reason, lk.by) for lk in locks] == [
+        ("*", "battery swap", "alice"),
+        ("alpha", "props changed", "carol"),
+    ]
+    assert locks[1].locked_at == T0 + timedelta(minutes=2)
+    assert await store.delete_lock("alpha") is True
+    assert await store.delete_lock("alpha") is False
+    assert [lk.scope for lk in await store.list_locks()] == ["*"]

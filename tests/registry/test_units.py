@@ -1,0 +1,85 @@
+"""Pure logic of the vehicle layer: mission encoding, parameter aliases, the telemetry cache."""
+
+from __future__ import annotations
+
+import time
+from types import SimpleNamespace
+
+import pytest
+from pydantic import ValidationError
+
+from gateway.fleet import mission
+from gateway.fleet.mission import MissionItem
+from gateway.fleet.params import param_aliases
+from gateway.fleet.telemetry import BatteryValue, PositionValue, Sample, TelemetryCache
+
+HOME = (47.397742, 8.545594, 488.0)
+
+
+def test_mission_encoding_hides_home_and_keeps_user_numbers() -> None:
+    items = [
+        MissionItem(kind="takeoff", alt_rel_m=10),
+        MissionItem(lat=47.3980, lon=8.5460, alt_rel_m=20, hold_s=2),
+        MissionItem(lat=47.3990, lon=8.5470, alt_rel_m=25, speed_mps=5),
+        MissionItem(kind="rtl"),
+    ]
+    plan = mission.encode(items, HOME)
+    assert plan.items[0].seq == 0 and plan.items[0].frame == mission.MAV_FRAME_GLOBAL
+    assert plan.items[0].x == round(HOME[0] * 1e7)
+    # user item 1 is wire item 1; the speed change is a companion item before user item 3
+    assert plan.user_to_wire == [1, 2, 4, 5]
+    assert plan.items[3].command == mission.MAV_CMD_DO_CHANGE_SPEED and plan.items[3].param2 == 5
+    assert plan.items[2].param1 == 2 and plan.items[2].z == 20
+    assert [plan.user_index(s) for s in (0, 1, 2, 3, 4, 5)] == [1, 1, 2, 3, 3, 4]
+    assert plan.wire_seq(3) == 4
+    wire = [SimpleNamespace(**vars(w)) for w in plan.items]
+    back, plan2 = mission.decode(wire)
+    assert [i.kind for i in back] == ["takeoff", "waypoint", "waypoint", "rtl"]
+    assert back[2].speed_mps == 5 and back[1].speed_mps is None
+    assert back[1].lat == pytest.approx(47.3980) and back[1].hold_s == 2
+    assert plan2.user_to_wire == plan.user_to_wire
+
+
+@pytest.mark.parametrize(
+    "bad, message",
+    [
+        ({"kind": "waypoint", "lat": 91, "lon": 0, "alt_rel_m": 10}, "latitude"),
+        ({"kind": "waypoint", "lat": 0, "lon": 0, "alt_rel_m": 10}, "needs a position"),
+        ({"kind": "takeoff", "alt_rel_m": 0}, "alt_rel_m > 0"),
+        ({"kind": "waypoint", "lat": float("nan"), "lon": 1, "alt_rel_m": 1}, "finite"),
+        ({"kind": "teleport", "lat": 1, "lon": 1}, "kind"),
+        ({"lat": 1, "lon": 1, "speed_mps": -1}, "speed_mps"),
+    ],
+)
+def test_mission_item_validation(bad: dict, message: str) -> None:
+    with pytest.raises((ValidationError, ValueError), match=message):
+        MissionItem.model_validate(bad)
+
+
+def test_param_aliases_cover_47_renames() -> None:
+    assert param_aliases("SYSID_THISMAV") == ["MAV_SYSID"]
+    assert param_aliases("MAV_SYSID") == ["SYSID_THISMAV"]
+    assert param_aliases("SR0_POSITION") == ["MAV1_POSITION"]
+    assert param_aliases("MAV1_POSITION") == ["SR0_POSITION"]
+    assert param_aliases("WPNAV_SPEED") == []
+
+
+def test_cache_snapshot_reports_ages_and_staleness() -> None:
+    cache = TelemetryCache(stale_after_s=3.0)
+    assert cache.snapshot()["position"] is None
+    cache.put("position", PositionValue(47.0, 8.0, 500.0, 12.0))
+    cache.battery = Sample(BatteryValue(81.0, 15.9), time.monotonic() - 10.0)
+    snap = cache.snapshot()
+    assert snap["position"]["rel_alt_m"] == 12.0 and snap["position"]["stale"] is False
+    assert snap["battery"]["remaining_pct"] == 81.0
+    assert snap["battery"]["stale"] is True and snap["battery"]["age_s"] >= 10.0
+    assert cache.fresh("battery") is None  # stale values are never presented as current
+    assert cache.fresh("position").lat_deg == 47.0
+    got = []
+    cache.on_status_text(got.append)
+    cache.add_status_text("warning", "PreArm: Need Position Estimate")
+    assert got[0].text == "PreArm: Need Position Estimate"
+    assert cache.snapshot()["status_texts"][-1]["severity"] == "warning"
+    with pytest.raises(KeyError):
+        cache.put("warp_drive", 1)
+    assert cache.message_counts == {"position": 1, "status_text": 1}
