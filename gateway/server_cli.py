@@ -6,6 +6,7 @@ import argparse
 import asyncio
 import ipaddress
 import json
+import os
 import sys
 from typing import Any
 
@@ -73,6 +74,11 @@ def _target_options(parser: argparse.ArgumentParser) -> None:
         default=None,
         metavar="URL",
         help="talk to a running gateway's REST API (e.g. http://127.0.0.1:8765) instead of the database",
+    )
+    parser.add_argument(
+        "--token",
+        default=None,
+        help="bearer token for --api (default: GATEWAY_API_TOKEN, else the first of GATEWAY_OPERATOR_TOKENS)",
     )
 
 
@@ -154,7 +160,7 @@ def cmd_drones_add(args: argparse.Namespace) -> int:
     if args.api:
         body = {**spec.model_dump(), "connect": connect}
         return _api_call(
-            args.api, "POST", "/api/v1/vehicles", body, lambda d: f"registered {d['id']} ({d['url']})"
+            args, "POST", "/api/v1/vehicles", body, lambda d: f"registered {d['id']} ({d['url']})"
         )
 
     async def run(store: Store) -> str:
@@ -166,7 +172,7 @@ def cmd_drones_add(args: argparse.Namespace) -> int:
 
 def cmd_drones_list(args: argparse.Namespace) -> int:
     if args.api:
-        return _api_call(args.api, "GET", "/api/v1/vehicles", None, lambda d: _table(d["items"], args.json))
+        return _api_call(args, "GET", "/api/v1/vehicles", None, lambda d: _table(d["items"], args.json))
 
     async def run(store: Store) -> str:
         records = [r.model_dump(mode="json") for r in await store.list_vehicles()]
@@ -177,9 +183,7 @@ def cmd_drones_list(args: argparse.Namespace) -> int:
 
 def cmd_drones_remove(args: argparse.Namespace) -> int:
     if args.api:
-        return _api_call(
-            args.api, "DELETE", f"/api/v1/vehicles/{args.id}", None, lambda _d: f"removed {args.id}"
-        )
+        return _api_call(args, "DELETE", f"/api/v1/vehicles/{args.id}", None, lambda _d: f"removed {args.id}")
 
     async def run(store: Store) -> str:
         await store.remove_vehicle(args.id)
@@ -227,9 +231,24 @@ def _with_store(args: argparse.Namespace, action: Any) -> int:
     return 0
 
 
-def _api_call(base: str, method: str, path: str, body: Any, render: Any) -> int:
+def _api_token(args: argparse.Namespace) -> str | None:
+    if args.token:
+        return args.token
+    if os.environ.get("GATEWAY_API_TOKEN"):
+        return os.environ["GATEWAY_API_TOKEN"]
     try:
-        response = httpx.request(method, base.rstrip("/") + path, json=body, timeout=30.0)
+        operators = [t.strip() for t in Settings().operator_tokens.split(",") if t.strip()]
+    except ValidationError:
+        return None
+    return operators[0] if operators else None
+
+
+def _api_call(args: argparse.Namespace, method: str, path: str, body: Any, render: Any) -> int:
+    base = args.api
+    token = _api_token(args)
+    headers = {"Authorization": f"Bearer {token}"} if token else {}
+    try:
+        response = httpx.request(method, base.rstrip("/") + path, json=body, headers=headers, timeout=30.0)
     except httpx.HTTPError as exc:
         return _fail(f"cannot reach the gateway at {base}: {exc}")
     if response.status_code >= 400:

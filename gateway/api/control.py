@@ -180,6 +180,10 @@ async def fleet_stop(
     fleet_lock = await _lock(gateway, store, FLEET, body.lock_reason, who.name) if body.lock_reason else None
 
     async def one(vehicle: Any) -> ActionOut:
+        state = str(getattr(vehicle.state, "value", vehicle.state))
+        if state in ("registered", "failed"):
+            message = f"not connected ({state})"
+            return ActionOut(vehicle_id=vehicle.id, action=body.action, outcome="skipped", message=message)
         if _in_air(vehicle) is False:
             return ActionOut(
                 vehicle_id=vehicle.id, action=body.action, outcome="skipped", message="on the ground"

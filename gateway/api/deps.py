@@ -1,17 +1,23 @@
 """FastAPI dependencies shared by the routers: the running gateway, its parts, the caller.
 
 Authentication hooks in at one place: :func:`authorize` runs before every ``/api/v1`` route (it is
-the router-level dependency in :mod:`gateway.api`). Today the API is open and every caller is the
-anonymous operator; bearer roles replace the body of :func:`authorize` without touching the routers.
+the router-level dependency in :mod:`gateway.api`). With no operator or viewer token configured the
+API is open and every caller is the anonymous operator (``fleet-gateway serve`` then binds to loopback
+only). With tokens, a ``Authorization: Bearer <token>`` header is required: operator tokens may do
+everything, viewer tokens only read. A caller's name is ``operator-``/``viewer-`` plus the first 8 hex
+digits of the token's SHA-256 (stable, never the token), as agents are ``agent-...`` on /mcp.
 """
 
 from __future__ import annotations
 
+import hashlib
+import hmac
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
-from fastapi import Depends, Request
+from fastapi import Depends, HTTPException, Request
 
+from gateway.config import Settings
 from gateway.registry.store import Store
 from gateway.runtime import Gateway
 
@@ -33,10 +39,48 @@ class Principal:
 ANONYMOUS_OPERATOR = Principal(name="anonymous", role="operator")
 
 
+READ_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
+
+
+def _tokens(text: str) -> list[bytes]:
+    return [t.strip().encode() for t in text.split(",") if t.strip()]
+
+
+def principal_name(role: Role, token: str) -> str:
+    return f"{role}-" + hashlib.sha256(token.encode()).hexdigest()[:8]
+
+
+def _unauthorized(message: str) -> HTTPException:
+    return HTTPException(401, detail=message, headers={"WWW-Authenticate": 'Bearer realm="fleet-gateway"'})
+
+
+def identify(settings: Settings, authorization: str | None) -> Principal:
+    """The caller for an Authorization header value; raises 401 when tokens are configured and it fails."""
+    operators, viewers = _tokens(settings.operator_tokens), _tokens(settings.viewer_tokens)
+    if not operators and not viewers:
+        return ANONYMOUS_OPERATOR
+    scheme, _, token = (authorization or "").partition(" ")
+    if scheme.lower() != "bearer" or not token.strip():
+        raise _unauthorized(
+            "this API needs an operator or viewer token: send 'Authorization: Bearer <token>'"
+        )
+    given = token.strip().encode()
+    # compare against every token (no early exit) so timing says nothing about which matched
+    is_operator = any([hmac.compare_digest(given, t) for t in operators])
+    is_viewer = any([hmac.compare_digest(given, t) for t in viewers])
+    if is_operator:
+        return Principal(principal_name("operator", token.strip()), "operator")
+    if is_viewer:
+        return Principal(principal_name("viewer", token.strip()), "viewer")
+    raise _unauthorized("unknown token: use an operator or viewer token (agent tokens are for /mcp)")
+
+
 async def authorize(request: Request) -> Principal:
-    """Identify the caller and remember it on the request (read by the audit)."""
-    principal = ANONYMOUS_OPERATOR
+    """Identify the caller, check its role may use this method, and remember it (read by the audit)."""
+    principal = identify(request.app.state.gateway.settings, request.headers.get("authorization"))
     request.state.principal = principal
+    if principal.role == "viewer" and request.method not in READ_METHODS:
+        raise HTTPException(403, detail="a viewer token can only read; this needs an operator token")
     return principal
 
 

@@ -408,6 +408,29 @@ class OperationManager:
                     log.debug("progress report for %s failed", op.id, exc_info=True)
         return op
 
+    async def recover(self) -> int:
+        """At start: operations a previous gateway process left 'running' are recorded as interrupted
+        (their monitors died with it). Returns how many were found."""
+        store = self.store
+        if store is None:
+            return 0
+        stale = [
+            r for r in await store.list_operations(status="running", limit=1000) if r.id not in self._ops
+        ]
+        for record in stale:
+            now = _now()
+            await store.save_operation(
+                record.model_copy(
+                    update={
+                        "status": OpStatus.interrupted.value,
+                        "message": "the gateway restarted while this operation was running",
+                        "updated_at": now,
+                        "finished_at": now,
+                    }
+                )
+            )
+        return len(stale)
+
     async def stop(self) -> None:
         """Gateway shutdown: monitors end, running operations are recorded as interrupted."""
         for op in list(self._ops.values()):

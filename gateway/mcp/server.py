@@ -60,6 +60,7 @@ def build_mcp(gateway: Any) -> MCPServer:
     @contextlib.asynccontextmanager
     async def lifespan(server: MCPServer) -> AsyncIterator[dict[str, Any]]:
         try:
+            await fa.operations.recover()
             async with notifier_box["notifier"].running():
                 yield {"fleet": fa}
         finally:  # the gateway is going down: running operations are recorded as interrupted

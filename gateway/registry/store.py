@@ -7,16 +7,18 @@ returns plain pydantic records, never live ORM objects. Only portable SQL is use
 
 from __future__ import annotations
 
+import asyncio
 import json
 import logging
 import math
+import weakref
 from collections.abc import Sequence
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
-from sqlalchemy import delete, event, func, or_, select
+from sqlalchemy import delete, event, func, or_, select, text
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.ext.asyncio import AsyncEngine, async_sessionmaker, create_async_engine
 
@@ -272,8 +274,21 @@ def alembic_config(url: str) -> Any:
     return cfg
 
 
+# Alembic keeps its migration context in module globals: two upgrades interleaving in one event loop
+# would clobber each other, so they take turns (one lock per loop; tests run many loops).
+MIGRATION_LOCK_KEY = 0x666C6565  # PostgreSQL advisory lock id of schema upgrades ("flee")
+_MIGRATION_LOCKS: weakref.WeakKeyDictionary[asyncio.AbstractEventLoop, asyncio.Lock] = (
+    weakref.WeakKeyDictionary()
+)
+
+
 async def upgrade_schema(engine: AsyncEngine, url: str, revision: str = "head") -> None:
-    """Run Alembic migrations up to ``revision`` on ``engine`` (sharing its connection)."""
+    """Run Alembic migrations up to ``revision`` on ``engine`` (sharing its connection).
+
+    Across processes, the whole upgrade is one transaction holding the database's write lock (SQLite:
+    ``BEGIN IMMEDIATE``; PostgreSQL: an advisory lock): a second gateway or ``db upgrade`` starting at
+    the same time waits, then finds the schema current.
+    """
     from alembic import command
 
     cfg = alembic_config(url)
@@ -282,7 +297,12 @@ async def upgrade_schema(engine: AsyncEngine, url: str, revision: str = "head") 
         cfg.attributes["connection"] = connection
         command.upgrade(cfg, revision)
 
-    async with engine.begin() as conn:
+    lock = _MIGRATION_LOCKS.setdefault(asyncio.get_running_loop(), asyncio.Lock())
+    async with lock, engine.begin() as conn:
+        if conn.dialect.name == "sqlite":
+            await conn.exec_driver_sql("BEGIN IMMEDIATE")
+        elif conn.dialect.name == "postgresql":  # held until this transaction ends
+            await conn.execute(text("SELECT pg_advisory_xact_lock(:key)"), {"key": MIGRATION_LOCK_KEY})
         await conn.run_sync(_run)
 
 
@@ -517,14 +537,16 @@ class Store:
             return None if row is None else FlightRecord.model_validate(row)
 
     async def get_track(self, flight_id: int) -> list[TrackSample]:
+        columns = [getattr(TrackSampleRow, name) for name in TrackSample.model_fields]
         query = (
-            select(TrackSampleRow)
+            select(*columns)
             .where(TrackSampleRow.flight_id == flight_id)
             .order_by(TrackSampleRow.t, TrackSampleRow.id)
         )
         async with self._sessions() as session:
-            rows = (await session.scalars(query)).all()
-            return [TrackSample.model_validate(r) for r in rows]
+            rows = (await session.execute(query)).all()
+        # Plain rows, no ORM objects; validated when written, so built without re-validation (long tracks).
+        return [TrackSample.model_construct(**row._asdict()) for row in rows]
 
     async def list_status_texts(
         self, vehicle_id: str, limit: int = 100, since: datetime | None = None

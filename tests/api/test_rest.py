@@ -477,6 +477,12 @@ async def test_operator_actions_and_fleet_stop(client: httpx.AsyncClient, app: F
     assert {r["vehicle_id"]: r["outcome"] for r in body["results"]} == {"alpha": "sent", "bravo": "skipped"}
     assert alpha.actions[-1] == "land" and bravo.actions == []
     assert app.state.gateway.locks.get("*") is not None
+    await client.post("/api/v1/vehicles/bravo/disconnect")
+    after = (await client.post("/api/v1/fleet/stop", json={"action": "hold"})).json()["results"]
+    assert {r["vehicle_id"]: (r["outcome"], r["message"]) for r in after} == {
+        "alpha": ("sent", None),
+        "bravo": ("skipped", "not connected (registered)"),
+    }
     assert_error(await client.post("/api/v1/fleet/stop", json={"action": "kill"}), 422, "validation_error")
     default = (await client.post("/api/v1/fleet/stop")).json()
     assert default["action"] == "hold" and default["fleet_lock"] is None

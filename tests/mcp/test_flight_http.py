@@ -96,10 +96,10 @@ async def test_two_sessions_at_once_paper_prompt_and_premature_goto(stack: Stack
 
 
 async def test_goto_beyond_wait_cap_returns_running_and_monitor_flight_lands(stack: Stack) -> None:
-    stack.settings.mcp_wait_cap_s = 2.0
+    stack.settings.mcp_wait_cap_s = 1.0
     try:
         home = await stack.true_state("d3")
-        lat, lon = point_from(home, 150.0, 0.0)
+        lat, lon = point_from(home, 400.0, 0.0)  # several wait caps long even at the sim's speed-up
         async with stack.client("auto", name="cap") as c:
             r = structured(await stack.call(c, "takeoff", {"drone_id": "d3", "altitude_m": 10}))
             while r["status"] == "running":
@@ -137,13 +137,17 @@ async def test_goto_beyond_wait_cap_returns_running_and_monitor_flight_lands(sta
     await wait_audited(stack, "d3")
 
 
-async def test_cancelled_wait_leaves_flight_going_and_hold_stops_it(stack: Stack) -> None:
+@pytest.mark.parametrize("mode", ["legacy", "auto"])
+async def test_cancelled_wait_leaves_flight_going_and_hold_stops_it(stack: Stack, mode: str) -> None:
+    """The client gives up waiting (read timeout: the request is cancelled / its stream closed): the wait
+    ends, the drone keeps flying its goto; hold_position then stops it where it is. Both eras, on d4."""
+    await wait_until_true(stack, "d4", lambda s: not s["armed"], "d4 on the ground")
     home = await stack.true_state("d4")
     lat, lon = point_from(home, 0.0, 250.0)
-    async with stack.client("legacy", name="cancel") as c:
+    async with stack.client(mode, name=f"cancel-{mode}") as c:
         structured(await stack.call(c, "takeoff", {"drone_id": "d4", "altitude_m": 10}))
         goto = {"drone_id": "d4", "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 10}
-        with pytest.raises(MCPError):  # the client gives up waiting: the request is cancelled
+        with pytest.raises(MCPError):
             await stack.call(c, "go_to_location", goto, read_timeout_seconds=1.0)
         before = distance_m(await stack.true_state("d4"), lat, lon)
         await asyncio.sleep(1.5)
@@ -163,7 +167,7 @@ async def test_cancelled_wait_leaves_flight_going_and_hold_stops_it(stack: Stack
         assert arrival["status"] == "superseded" and arrival["arrived"] is False
         structured(await stack.call(c, "land", {"drone_id": "d4"}))
     await wait_until_true(stack, "d4", lambda s: not s["armed"], "disarmed after landing")
-    audit = (await stack.rest("/audit", vehicle_id="d4", limit=100))["items"]
-    cancelled = [a for a in audit if a["action"] == "go_to_location"]
-    assert cancelled and cancelled[0]["outcome"] == "error" and "cancelled" in cancelled[0]["error"]
     await wait_audited(stack, "d4")
+    audit = (await stack.rest("/audit", vehicle_id="d4", limit=100))["items"]
+    cancelled = next(a for a in audit if a["action"] == "go_to_location")  # newest first
+    assert cancelled["outcome"] == "error" and "cancelled" in cancelled["error"], cancelled

@@ -216,3 +216,29 @@ async def test_stop_interrupts_and_store_records_every_state(settings: Settings)
     assert store.saved[-1].status == "interrupted" and store.saved[-1].finished_at is not None
     with pytest.raises(NotFound):
         mgr.get("nope")
+
+
+async def test_recover_marks_operations_of_a_previous_process_interrupted(tmp_path: Any) -> None:
+    from datetime import UTC, datetime
+
+    from gateway.registry.store import OperationRecord, Store
+
+    store = await Store.open(f"sqlite+aiosqlite:///{tmp_path / 'ops.db'}")
+    try:
+        now = datetime.now(UTC)
+        await store.save_operation(
+            OperationRecord(
+                id="old1", vehicle_id="d1", kind="goto", status="running", created_at=now, updated_at=now
+            )
+        )
+        mgr = OperationManager(Settings(_env_file=None), store)
+        assert await mgr.recover() == 1
+        record = await store.get_operation("old1")
+        assert (
+            record.status == "interrupted"
+            and record.finished_at is not None
+            and "restarted" in record.message
+        )
+        assert await mgr.recover() == 0
+    finally:
+        await store.close()

@@ -198,10 +198,14 @@ async def test_flight_tour_telemetry_resources_and_kill(stack: Stack) -> None:
                         updates_modern.append(str(event.uri))
 
             collector = asyncio.create_task(collect())
+            listening_since = time.monotonic()
             r = await ok(stack, c, "takeoff", {"drone_id": "d1", "altitude_m": 12})
             assert r["status"] == "succeeded"
             collector.cancel()
+            listened_s = time.monotonic() - listening_since
         assert "drone://d1/state" in updates_modern
+        # the state changed continuously during the climb; updates came at most once a second
+        assert updates_modern.count("drone://d1/state") <= listened_s + 2, (updates_modern, listened_s)
         await wait_until_true(stack, "d1", lambda s: s["rel_alt_m"] > 11, "climbed")
         assert "drone://d1/state" in updates_legacy
 
@@ -372,6 +376,33 @@ async def test_mission_flight_pause_resume(stack: Stack) -> None:
     state = await wait_until_true(stack, "d3", lambda s: not s["armed"], "landed after RTL")
     assert distance_m(state, home["lat"], home["lon"]) < 5.0
     await wait_audited(stack, "d3")
+
+
+async def wait_state(stack: Stack, drone_id: str, state: str) -> None:
+    loop = asyncio.get_running_loop()
+    deadline = loop.time() + 60
+    while (current := (await stack.rest(f"/vehicles/{drone_id}"))["state"]) != state:
+        assert loop.time() < deadline, f"{drone_id} stayed {current}, never {state}"
+        await asyncio.sleep(0.2)
+
+
+async def test_link_loss_reads_say_stale_and_commands_name_the_state(stack: Stack) -> None:
+    index = stack.index("d2")
+    async with stack.client("auto", name="link-loss") as c:
+        await stack.sim.control.link_down(index)
+        try:
+            await wait_state(stack, "d2", "link_lost")
+            r = await call(stack, c, "get_position", {"drone_id": "d2"})
+            assert r.structured_content["stale"] is True and "STALE" in r.content[0].text
+            text = error_text(await call(stack, c, "arm_drone", {"drone_id": "d2"}))
+            assert "link_lost" in text, text
+            assert (await stack.true_state("d2"))["armed"] is False
+        finally:
+            await stack.sim.control.link_up(index)
+        await wait_state(stack, "d2", "ready")
+        r = await ok(stack, c, "get_position", {"drone_id": "d2"})
+        assert r["stale"] is False
+    await wait_audited(stack, "d2")
 
 
 async def test_mcp_route_rejects_foreign_hosts_and_rest_keeps_its_errors(stack: Stack) -> None:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 import math
+import sys
 from datetime import UTC, datetime, timedelta
 
 import pytest
@@ -90,6 +91,40 @@ async def test_upgrade_from_the_first_revision_keeps_data(db_url: str) -> None:
         assert await store.list_locks() == []
     finally:
         await store.close()
+
+
+async def test_concurrent_opens_of_a_fresh_database(db_url: str) -> None:
+    """Several stores opening (and migrating) one new database at once all succeed."""
+    stores = await asyncio.gather(*(Store.open(db_url) for _ in range(3)))
+    try:
+        for store in stores:
+            assert await current_revision(store.engine) == head_revision()
+        await stores[0].add_vehicle(spec("alpha"))
+        assert [v.id for v in await stores[2].list_vehicles()] == ["alpha"]
+    finally:
+        for store in stores:
+            await store.close()
+
+
+async def test_concurrent_upgrades_from_several_processes(db_url: str) -> None:
+    """`fleet-gateway db upgrade` in four processes at once on a new database: all succeed."""
+    command = [sys.executable, "-m", "gateway.server_cli", "db", "upgrade", "--database-url", db_url]
+    procs = [
+        await asyncio.create_subprocess_exec(
+            *command, stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.PIPE
+        )
+        for _ in range(4)
+    ]
+    try:
+        results = [await asyncio.wait_for(p.communicate(), 120) for p in procs]
+    finally:
+        for p in procs:
+            if p.returncode is None:
+                p.kill()
+                await p.wait()
+    for p, (out, err) in zip(procs, results, strict=True):
+        assert p.returncode == 0, err.decode()[-2000:]
+        assert f"database at revision {head_revision()}".encode() in out
 
 
 async def test_migrations_match_the_models(store: Store) -> None:
