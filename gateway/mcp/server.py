@@ -80,6 +80,8 @@ def build_mcp(gateway: Any) -> MCPServer:
         toolset = load_toolset(name)
         if toolset is not None:
             register_toolset(server, toolset, fa)
+            if hasattr(toolset, "register_resources"):  # a toolset may bring resources (fleet://formation)
+                toolset.register_resources(server, fa)
     for tool in server._tool_manager.list_tools():
         strip_schema_titles(tool.parameters)
         if tool.output_schema is not None:

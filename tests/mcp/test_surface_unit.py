@@ -26,7 +26,7 @@ async def test_takeoff_goto_land_and_refusals(gateway: FakeGateway, mode: str) -
     server = build_mcp(gateway)
     async with Client(server, mode=mode) as c:
         tools = {t.name for t in (await c.list_tools()).tools}
-        assert len(tools) == 46
+        assert len(tools) == 46 + 8  # table B2 + get_telemetry, and the fleet toolset (8 tools)
         r = await c.call_tool("takeoff", {"drone_id": "d1", "altitude_m": 10, "wait": False})
         assert not r.is_error, r.content
         assert r.structured_content["status"] == "running"

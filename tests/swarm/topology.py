@@ -18,11 +18,69 @@ from dataclasses import dataclass, field
 SUBNET_PREFIX = "10.201.0"
 GATEWAY_ADDRESS = f"{SUBNET_PREFIX}.2"
 PREFIX_LEN = 24
+SUBNET = f"{SUBNET_PREFIX}.0/{PREFIX_LEN}"
+
+# --- the swarm, as deploy/docker-compose.yml runs it (tests/test_compose.py checks the file against this) --
+DRONES = 5
+DRONE_TCP_PORT = 5760
+GATEWAY_PORT = 8765
+HOME_LAT, HOME_LON, HOME_ALT_AMSL, HOME_HEADING = -35.363262, 149.165237, 584.0, 0.0
+HOME_SPACING_M = 10.0
+"""Drone i's home is i * HOME_SPACING_M east of drone 0's: each drone runs its own simulator process,
+whose vehicle 0 sits at --home, so the homes are spread here, apart by more than the minimum separation."""
 
 
 def drone_address(index: int) -> str:
     """Address of drone ``index`` (0-based) on the swarm network, as in docker-compose.yml."""
     return f"{SUBNET_PREFIX}.{10 + index}"
+
+
+def drone_id(index: int) -> str:
+    return f"drone-{index + 1}"
+
+
+def drone_sysid(index: int) -> int:
+    return index + 1
+
+
+def drone_url(index: int) -> str:
+    """How the gateway reaches drone ``index``: TCP to its address, as ArduPilot SITL listens."""
+    return f"tcpout://{drone_address(index)}:{DRONE_TCP_PORT}"
+
+
+def drone_home(index: int) -> str:
+    """``--home`` of drone ``index``: LAT,LON,ALT_AMSL,HEADING (7 decimals: about a centimetre)."""
+    from gateway.fleet import geo
+
+    lat, lon = geo.offset_position(HOME_LAT, HOME_LON, 0.0, index * HOME_SPACING_M)
+    return f"{lat:.7f},{lon:.7f},{HOME_ALT_AMSL:g},{HOME_HEADING:g}"
+
+
+def drone_command(index: int, speedup: float = 1.0) -> list[str]:
+    """The simulator command of drone ``index``, run inside its own namespace / container."""
+    return [
+        "fleet-gateway", "sim", "--count", "1",
+        "--bind", drone_address(index), "--tcp-base-port", str(DRONE_TCP_PORT),
+        "--sysid-base", str(drone_sysid(index)), f"--home={drone_home(index)}",
+        "--seed", str(index + 1), "--speedup", f"{speedup:g}",
+    ]  # fmt: skip
+
+
+GATEWAY_ENV = {"GATEWAY_SIMULATORS_ONLY": "true"}
+"""Gateway settings the compose file and the swarm test share (agents may fly simulators only)."""
+
+
+def gateway_command(host: str = "0.0.0.0", port: int = GATEWAY_PORT) -> list[str]:
+    return ["fleet-gateway", "serve", "--host", host, "--port", str(port)]
+
+
+def register_command(index: int, api: str) -> list[str]:
+    """Registers drone ``index`` with a running gateway (the compose file's one-shot registrar)."""
+    return [
+        "fleet-gateway", "drones", "add", drone_id(index), drone_url(index),
+        "--sysid", str(drone_sysid(index)), "--name", f"Drone {index + 1}", "--tag", "swarm",
+        "--api", api,
+    ]  # fmt: skip
 
 
 def can_create_namespaces() -> tuple[bool, str]:

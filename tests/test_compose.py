@@ -1,0 +1,101 @@
+"""deploy/docker-compose.yml runs what the swarm test runs: the same services, commands and addresses
+(both come from tests/swarm/topology.py), and deploy/Dockerfile builds an image that can run them."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from tests.swarm import topology as t
+
+ROOT = Path(__file__).resolve().parent.parent
+COMPOSE = ROOT / "deploy" / "docker-compose.yml"
+DOCKERFILE = ROOT / "deploy" / "Dockerfile"
+COMPOSE_SPEEDUP = 1.0  # real time in compose; the swarm test runs the same command faster
+
+
+def _compose() -> dict[str, Any]:
+    return yaml.safe_load(COMPOSE.read_text())
+
+
+def _address(service: dict[str, Any]) -> str:
+    return service["networks"]["swarm"]["ipv4_address"]
+
+
+def test_services_are_the_gateway_five_drones_and_their_registrars() -> None:
+    services = _compose()["services"]
+    drones = [f"drone-{i + 1}" for i in range(t.DRONES)]
+    registrars = [f"register-drone-{i + 1}" for i in range(t.DRONES)]
+    assert sorted(services) == sorted(["gateway", *drones, *registrars])
+    for service in services.values():  # one image, built from the repository root with deploy/Dockerfile
+        assert service["image"] == "fleet-gateway:latest"
+        assert (
+            COMPOSE.parent / service["build"]["context"] / service["build"]["dockerfile"]
+        ).resolve() == DOCKERFILE
+
+
+def test_drones_run_the_swarm_tests_commands_at_the_same_addresses() -> None:
+    services = _compose()["services"]
+    for i in range(t.DRONES):
+        drone = services[f"drone-{i + 1}"]
+        assert drone["command"] == t.drone_command(i, COMPOSE_SPEEDUP)
+        assert _address(drone) == t.drone_address(i)
+        assert drone["command"][drone["command"].index("--bind") + 1] == t.drone_address(i)
+        registrar = services[f"register-drone-{i + 1}"]
+        api = f"http://{t.GATEWAY_ADDRESS}:{t.GATEWAY_PORT}"
+        assert registrar["command"] == t.register_command(i, api)
+        assert t.drone_url(i) in registrar["command"]
+        assert registrar["depends_on"]["gateway"]["condition"] == "service_healthy"
+        assert registrar["restart"] == "no"
+    addresses = [_address(services[f"drone-{i + 1}"]) for i in range(t.DRONES)] + [
+        _address(services["gateway"])
+    ]
+    assert len(set(addresses)) == len(addresses)
+
+
+def test_gateway_service_network_volume_and_healthcheck() -> None:
+    compose = _compose()
+    gateway = compose["services"]["gateway"]
+    assert gateway["command"] == t.gateway_command()
+    assert _address(gateway) == t.GATEWAY_ADDRESS
+    subnet = compose["networks"]["swarm"]["ipam"]["config"][0]["subnet"]
+    assert subnet == t.SUBNET
+    # the database lives on a named volume
+    volume, mount = gateway["volumes"][0].split(":")
+    assert volume in compose["volumes"]
+    database = gateway["environment"]["GATEWAY_DATABASE_URL"]
+    assert database.startswith("sqlite+aiosqlite:///") and database.removeprefix(
+        "sqlite+aiosqlite:///"
+    ).startswith(mount + "/")
+    for key, value in t.GATEWAY_ENV.items():
+        assert gateway["environment"][key] == value
+    # operator tokens are required to listen beyond loopback: compose refuses to start without one
+    assert ":?" in gateway["environment"]["GATEWAY_OPERATOR_TOKENS"]
+    assert any("/readyz" in part for part in gateway["healthcheck"]["test"])
+    assert gateway["ports"] == [f"127.0.0.1:{t.GATEWAY_PORT}:{t.GATEWAY_PORT}"]
+
+
+def test_dockerfile_runs_unprivileged_and_ships_the_migrations() -> None:
+    text = DOCKERFILE.read_text()
+    user = re.search(r"^USER\s+(\S+)", text, re.M)
+    assert user is not None and user.group(1) not in ("root", "0")
+    assert re.search(r"^COPY migrations \./migrations$", text, re.M)
+    # installed in place, so gateway/registry/store.py finds <source root>/migrations; checked at build
+    assert "pip install -e ." in text and "MIGRATIONS_DIR" in text
+    cmd = re.search(r"^CMD (\[.*\])$", text, re.M)
+    assert cmd is not None and json.loads(cmd.group(1)) == t.gateway_command()
+    # every file the Dockerfile copies exists
+    for line in re.findall(r"^COPY (.+) \S+$", text, re.M):
+        for name in line.split():
+            assert (ROOT / name).exists(), name
+
+
+def test_store_still_finds_migrations_where_the_image_puts_them() -> None:
+    """The image relies on MIGRATIONS_DIR = <source root>/migrations; if that changes, so must the image."""
+    from gateway.registry.store import MIGRATIONS_DIR
+
+    assert MIGRATIONS_DIR == ROOT / "migrations" and (MIGRATIONS_DIR / "env.py").is_file()
