@@ -14,6 +14,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "gateway.demo",
     "gateway.server_cli",
     "gateway.mcp.cli",
+    "gateway.agent.cli",
 )
 
 

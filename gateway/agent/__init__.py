@@ -1,0 +1,8 @@
+"""The agent host: an OpenAI-compatible chat model flies the fleet through the gateway's MCP tools.
+
+Modules: ``host`` (the tool loop), ``mcp_link`` (MCP client), ``toolbox`` (tool selection, validation,
+results), ``parsing`` (tool calls written as text), ``display`` (rich / JSON lines), ``cli``
+(``fleet-gateway agent``), ``settings`` (environment fallbacks); for the benchmark and tests:
+``missions``, ``stack`` (local sim + gateway, true state), ``scripted`` (scripted chat endpoint),
+``pilot`` (the self-check's scripted pilot).
+"""

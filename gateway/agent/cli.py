@@ -1,0 +1,245 @@
+"""``fleet-gateway agent``: a chat model flies the fleet through the gateway's MCP tools."""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import json
+import logging
+import sys
+from typing import Any
+
+from rich.console import Console
+from rich.table import Table
+
+from gateway.agent.display import JsonLinesDisplay, RichDisplay
+from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentHost, ModelConfig
+from gateway.agent.mcp_link import McpLink, McpLinkError
+from gateway.agent.settings import AgentSettings, split_list
+from gateway.agent.toolbox import ToolSelectionError, select_tools
+
+EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_STEP_LIMIT = 0, 1, 2, 3
+
+_EPILOG = """\
+examples:
+  fleet-gateway agent --model qwen2.5:7b "take off alpha and bravo to 15 m, fly them 100 m north, then land"
+  fleet-gateway agent --endpoint http://127.0.0.1:1234/v1 --model qwen2.5-7b-instruct     # interactive
+  fleet-gateway agent --list-tools --toolsets flight,navigation
+
+environment: GATEWAY_AGENT_MCP_URL, GATEWAY_AGENT_TOKEN, GATEWAY_AGENT_ENDPOINT, GATEWAY_AGENT_MODEL,
+GATEWAY_AGENT_API_KEY (else OPENAI_API_KEY), GATEWAY_AGENT_MAX_STEPS, GATEWAY_AGENT_TOOLSETS,
+GATEWAY_AGENT_TOOLS.
+interactive commands: /reset (forget the conversation), /usage, /tools, /quit.
+exit status (one-shot): 0 answered, 1 failed, 2 bad usage, 3 step limit reached.
+"""
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    parser = subparsers.add_parser(
+        "agent",
+        help="let an OpenAI-compatible chat model fly the fleet through the gateway's MCP tools",
+        description="A small MCP host: hands the gateway's tools to a chat model and runs the tool loop. "
+        "With a PROMPT it runs one turn and exits; without one it keeps a conversation at a prompt.",
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    add_agent_arguments(parser)
+    parser.set_defaults(func=run)
+
+
+def add_agent_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("prompt", nargs="*", help="one-shot request (omit for interactive mode)")
+    parser.add_argument(
+        "--mcp-url",
+        default=None,
+        help="the gateway's MCP endpoint (default: GATEWAY_AGENT_MCP_URL or http://127.0.0.1:8765/mcp)",
+    )
+    parser.add_argument(
+        "--mcp-mode",
+        default="auto",
+        choices=["auto", "legacy"],
+        help="MCP protocol negotiation: auto (2026-07-28, falls back to a handshake) or legacy (2025-era)",
+    )
+    parser.add_argument("--token", default=None, help="bearer token for /mcp (default: GATEWAY_AGENT_TOKEN)")
+    parser.add_argument(
+        "--endpoint",
+        default=None,
+        help="OpenAI-compatible base URL, e.g. "
+        "http://127.0.0.1:11434/v1 (Ollama), http://127.0.0.1:1234/v1 (LM Studio)",
+    )
+    parser.add_argument(
+        "--model", default=None, help="model name at the endpoint (default: GATEWAY_AGENT_MODEL)"
+    )
+    parser.add_argument(
+        "--max-steps",
+        type=_positive_int,
+        default=None,
+        help="model requests per turn before stopping (default 12)",
+    )
+    parser.add_argument(
+        "--toolsets", default=None, help="comma-separated toolsets to offer the model (flight,navigation,...)"
+    )
+    parser.add_argument("--tools", default=None, help="comma-separated tool names to offer the model")
+    parser.add_argument(
+        "--temperature",
+        type=float,
+        default=0.0,
+        help="sampling temperature (default 0; negative: leave it to the endpoint)",
+    )
+    parser.add_argument("--system", default=None, help="replace the default system prompt")
+    parser.add_argument(
+        "--model-timeout",
+        type=float,
+        default=300.0,
+        help="seconds to wait for one model reply (default 300; CPU-only local models can be slow)",
+    )
+    parser.add_argument(
+        "--structured",
+        action="store_true",
+        help="also hand the model each result's structured content as JSON (more tokens)",
+    )
+    parser.add_argument("--json", action="store_true", help="print a JSON-lines transcript instead")
+    parser.add_argument("--list-tools", action="store_true", help="list the selected tools and exit")
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
+    return value
+
+
+_CHATTY_LOGGERS = ("httpx", "httpx2", "mcp", "openai", "uvicorn")
+
+
+def run(args: argparse.Namespace) -> int:
+    # Request-by-request INFO logs would drown the transcript; the gateway logs its own side.
+    if logging.getLogger().getEffectiveLevel() > logging.DEBUG:
+        for name in _CHATTY_LOGGERS:
+            logging.getLogger(name).setLevel(logging.WARNING)
+    return asyncio.run(run_async(args))
+
+
+async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Console | None = None) -> int:
+    """The command's body (separate from ``run`` so tests can drive it inside their event loop)."""
+    env = AgentSettings()
+    console = console or Console()
+    err = Console(stderr=True) if console.file is sys.stdout else console
+    mcp_url = args.mcp_url or env.mcp_url
+    model_name = args.model or env.model
+    prompt = " ".join(args.prompt).strip()
+    if not args.list_tools and not model_name:
+        err.print("[red]error:[/] no model given: use --model NAME or set GATEWAY_AGENT_MODEL")
+        return EXIT_USAGE
+    try:
+        link_cm = McpLink(
+            mcp_url, args.token or env.token, include_structured=args.structured, mode=args.mcp_mode
+        )
+        async with link_cm as link:
+            try:
+                tools = select_tools(
+                    await link.list_tools(),
+                    toolsets=split_list(args.toolsets if args.toolsets is not None else env.toolsets),
+                    names=split_list(args.tools if args.tools is not None else env.tools),
+                )
+            except ToolSelectionError as exc:
+                err.print(f"[red]error:[/] {exc}")
+                return EXIT_USAGE
+            if args.list_tools:
+                _print_tools(tools, console, as_json=args.json)
+                return EXIT_OK
+            display = (
+                JsonLinesDisplay(console.file)
+                if args.json
+                else RichDisplay(console, echo_user=bool(prompt) or not _is_tty(stdin or sys.stdin))
+            )
+            host = AgentHost(
+                ModelConfig(
+                    endpoint=args.endpoint or env.endpoint,
+                    model=model_name,
+                    api_key=env.resolved_api_key(),
+                    temperature=None
+                    if args.temperature is not None and args.temperature < 0
+                    else args.temperature,
+                    timeout_s=args.model_timeout,
+                ),
+                link,
+                tools,
+                max_steps=args.max_steps or env.max_steps,
+                system_prompt=args.system if args.system is not None else DEFAULT_SYSTEM_PROMPT,
+                on_event=display,
+            )
+            try:
+                if prompt:
+                    result = await host.run_turn(prompt)
+                    return {"answered": EXIT_OK, "step_limit": EXIT_STEP_LIMIT}.get(
+                        result.outcome, EXIT_FAILED
+                    )
+                return await _interactive(host, console, stdin or sys.stdin, as_json=args.json)
+            finally:
+                display.close()
+    except McpLinkError as exc:
+        err.print(f"[red]error:[/] {exc}")
+        return EXIT_FAILED
+
+
+async def _interactive(host: AgentHost, console: Console, stdin: Any, *, as_json: bool) -> int:
+    if not as_json:
+        console.print(
+            f"[dim]{len(host.tools)} tools, model {host.model.model} at {host.model.endpoint}. "
+            "/reset, /usage, /tools, /quit[/]"
+        )
+    while True:
+        if not as_json and stdin.isatty():
+            console.print("[bold cyan]> [/]", end="")
+        line = await asyncio.to_thread(stdin.readline)
+        if not line:
+            return EXIT_OK
+        text = line.strip()
+        if not text:
+            continue
+        if text in ("/quit", "/exit"):
+            return EXIT_OK
+        if text == "/reset":
+            host.reset()
+            console.print("[dim]conversation cleared[/]")
+            continue
+        if text == "/usage":
+            u = host.total_usage
+            console.print(
+                f"[dim]{u.model_calls} model calls, {u.prompt_tokens} in / {u.completion_tokens} out[/]"
+            )
+            continue
+        if text == "/tools":
+            console.print("[dim]" + ", ".join(sorted(host.tools)) + "[/]")
+            continue
+        await host.run_turn(text)
+
+
+def _is_tty(stream: Any) -> bool:
+    isatty = getattr(stream, "isatty", None)
+    return bool(isatty and isatty())
+
+
+def _print_tools(tools: list[Any], console: Console, *, as_json: bool) -> None:
+    if as_json:
+        for t in tools:
+            console.file.write(
+                json.dumps(
+                    {
+                        "name": t.name,
+                        "toolset": t.toolset,
+                        "description": t.description,
+                        "input_schema": t.input_schema,
+                    }
+                )
+                + "\n"
+            )
+        return
+    table = Table("tool", "toolset", "description")
+    for t in tools:
+        table.add_row(t.name, t.toolset or "-", (t.description or "").split("\n")[0])
+    console.print(table)

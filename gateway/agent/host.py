@@ -1,0 +1,349 @@
+"""The agent loop: model -> tool calls -> MCP calls -> results back to the model, until it answers.
+
+The host adds no safety logic of its own and none that bypasses the gateway: it only refuses to *send*
+a call whose arguments do not validate against the tool's own input schema, and it hands every tool
+error (the gateway's refusals included) back to the model verbatim so the model can correct itself.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import time
+from collections.abc import Awaitable, Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+import openai
+
+from gateway.agent.parsing import ArgumentsError, extract_tool_calls, parse_arguments
+from gateway.agent.toolbox import ToolInfo, ToolOutcome, validate_arguments
+
+DEFAULT_SYSTEM_PROMPT = (
+    "You are the pilot assistant of a drone fleet. You act only through the tools you are given; never "
+    "claim an action that no tool result confirmed. Altitudes are metres above each drone's home unless a "
+    "tool says otherwise. When a tool reports an operation still running, keep checking with the tools "
+    "until it is done before the next step of a plan. If a tool refuses a request, do not try to work "
+    "around the safety rule: tell the user which rule refused it. When the task is done, answer briefly "
+    "with what was done and the final state."
+)
+
+
+class ModelReplyError(RuntimeError):
+    """The model endpoint answered with something that is not a usable chat completion."""
+
+
+@dataclass
+class AgentEvent:
+    """One thing that happened in a turn; displays render these, ``--json`` prints them as lines."""
+
+    kind: str
+    data: dict[str, Any]
+
+    def to_json(self) -> dict[str, Any]:
+        return {"event": self.kind, **self.data}
+
+
+EventSink = Callable[[AgentEvent], None]
+
+
+class ToolCaller(Protocol):
+    """What the host needs from an MCP connection (``McpLink`` implements it)."""
+
+    async def call_tool(
+        self,
+        name: str,
+        arguments: dict[str, Any],
+        progress: Callable[[float, float | None, str | None], Awaitable[None]] | None = None,
+    ) -> ToolOutcome: ...
+
+
+@dataclass
+class ModelConfig:
+    """Where and how to reach the chat model (any OpenAI-compatible Chat Completions endpoint)."""
+
+    endpoint: str
+    model: str
+    api_key: str = "not-needed"
+    temperature: float | None = 0.0
+    timeout_s: float = 300.0
+    max_retries: int = 1
+
+
+@dataclass
+class ToolCallRecord:
+    """One tool call of a turn, as executed (or not)."""
+
+    id: str
+    name: str
+    arguments: dict[str, Any] | None
+    status: str  # ok | error | invalid | unknown_tool
+    summary: str
+    parsed_from_text: bool = False
+
+
+@dataclass
+class Usage:
+    """Token counts as reported by the API (None where the endpoint gave no usage)."""
+
+    prompt_tokens: int | None = None
+    completion_tokens: int | None = None
+    model_calls: int = 0
+    calls_without_usage: int = 0
+
+    def add(self, prompt: int | None, completion: int | None) -> None:
+        self.model_calls += 1
+        if prompt is None and completion is None:
+            self.calls_without_usage += 1
+            return
+        self.prompt_tokens = (self.prompt_tokens or 0) + (prompt or 0)
+        self.completion_tokens = (self.completion_tokens or 0) + (completion or 0)
+
+    def merge(self, other: Usage) -> None:
+        """Add another turn's counts (a side nobody reported stays None)."""
+        if other.prompt_tokens is not None or other.completion_tokens is not None:
+            self.prompt_tokens = (self.prompt_tokens or 0) + (other.prompt_tokens or 0)
+            self.completion_tokens = (self.completion_tokens or 0) + (other.completion_tokens or 0)
+        self.model_calls += other.model_calls
+        self.calls_without_usage += other.calls_without_usage
+
+
+@dataclass
+class TurnResult:
+    """How one user turn ended."""
+
+    outcome: str  # answered | step_limit | model_error
+    final_text: str | None
+    steps: int
+    tool_calls: list[ToolCallRecord] = field(default_factory=list)
+    usage: Usage = field(default_factory=Usage)
+    wall_s: float = 0.0
+    error: str | None = None
+    parsed_from_text: int = 0
+
+
+class AgentHost:
+    """A conversation between one chat model and one MCP server's tools."""
+
+    def __init__(
+        self,
+        model: ModelConfig,
+        caller: ToolCaller,
+        tools: Sequence[ToolInfo],
+        *,
+        max_steps: int = 12,
+        system_prompt: str | None = DEFAULT_SYSTEM_PROMPT,
+        on_event: EventSink | None = None,
+        chat_client: openai.AsyncOpenAI | None = None,
+    ) -> None:
+        if max_steps < 1:
+            raise ValueError(f"max_steps must be at least 1, got {max_steps}")
+        self.model = model
+        self.caller = caller
+        self.tools = {t.name: t for t in tools}
+        self.tool_specs = [t.openai_spec() for t in tools]
+        self.max_steps = max_steps
+        self.system_prompt = system_prompt
+        self.on_event = on_event or (lambda _e: None)
+        self.chat = chat_client or openai.AsyncOpenAI(
+            base_url=model.endpoint,
+            api_key=model.api_key or "not-needed",
+            timeout=model.timeout_s,
+            max_retries=model.max_retries,
+        )
+        self.messages: list[dict[str, Any]] = []
+        self.total_usage = Usage()
+        self.turns = 0
+        self._ids = itertools.count(1)
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget the conversation (the tool list stays)."""
+        self.messages = [{"role": "system", "content": self.system_prompt}] if self.system_prompt else []
+
+    def _emit(self, kind: str, **data: Any) -> None:
+        self.on_event(AgentEvent(kind, data))
+
+    async def run_turn(self, user_text: str) -> TurnResult:
+        """Send one user message and run the tool loop until the model answers or the step limit hits."""
+        self.turns += 1
+        started = time.monotonic()
+        self.messages.append({"role": "user", "content": user_text})
+        self._emit("turn_start", turn=self.turns, user=user_text)
+        result = TurnResult(outcome="step_limit", final_text=None, steps=0)
+        while result.steps < self.max_steps:
+            result.steps += 1
+            try:
+                reply = await self._ask_model(result.steps, result.usage)
+            except (openai.OpenAIError, ModelReplyError) as exc:
+                result.outcome, result.error = "model_error", f"{type(exc).__name__}: {exc}"
+                self._emit("model_error", step=result.steps, error=result.error)
+                break
+            content, calls, parsed = reply
+            if not calls:
+                result.outcome, result.final_text = "answered", content or ""
+                self.messages.append({"role": "assistant", "content": content or ""})
+                self._emit("final", step=result.steps, text=content or "")
+                break
+            if parsed:
+                result.parsed_from_text += len(calls)
+            self.messages.append(_assistant_message(content, calls, parsed))
+            for call in calls:
+                record = await self._execute(result.steps, call, parsed)
+                result.tool_calls.append(record)
+        else:
+            self._emit(
+                "step_limit",
+                max_steps=self.max_steps,
+                message=f"stopped after {self.max_steps} model steps without a final answer",
+            )
+        result.wall_s = time.monotonic() - started
+        self.total_usage.merge(result.usage)
+        self._emit(
+            "turn_end",
+            turn=self.turns,
+            outcome=result.outcome,
+            steps=result.steps,
+            tool_calls=len(result.tool_calls),
+            prompt_tokens=result.usage.prompt_tokens,
+            completion_tokens=result.usage.completion_tokens,
+            wall_s=round(result.wall_s, 3),
+        )
+        return result
+
+    # --- model side ------------------------------------------------------------------------------
+
+    async def _ask_model(self, step: int, usage: Usage) -> tuple[str | None, list[dict[str, Any]], bool]:
+        kwargs: dict[str, Any] = {"model": self.model.model, "messages": self.messages}
+        if self.tool_specs:
+            kwargs["tools"] = self.tool_specs
+        if self.model.temperature is not None:
+            kwargs["temperature"] = self.model.temperature
+        response = await self.chat.chat.completions.create(**kwargs)
+        u = getattr(response, "usage", None)
+        prompt = getattr(u, "prompt_tokens", None) if u is not None else None
+        completion = getattr(u, "completion_tokens", None) if u is not None else None
+        usage.add(prompt, completion)
+        if not response.choices:
+            raise ModelReplyError("the model endpoint returned no choices")
+        message = response.choices[0].message
+        content = message.content
+        calls = [
+            {
+                "id": tc.id or self._new_id(),
+                "name": _clean_name(tc.function.name),
+                "raw_args": tc.function.arguments,
+            }
+            for tc in (message.tool_calls or [])
+            if getattr(tc, "function", None) is not None
+        ]
+        parsed = False
+        if not calls and content:
+            found = extract_tool_calls(content, self.tools.keys())
+            if found:
+                parsed = True
+                calls = [
+                    {
+                        "id": self._new_id(),
+                        "name": c.name,
+                        "raw_args": c.arguments,
+                        "parse_error": c.error,
+                        "notes": c.notes,
+                    }
+                    for c in found
+                ]
+        self._emit(
+            "model_reply",
+            step=step,
+            content=content,
+            tool_calls=len(calls),
+            parsed_from_text=parsed,
+            prompt_tokens=prompt,
+            completion_tokens=completion,
+            finish_reason=response.choices[0].finish_reason,
+        )
+        if parsed:
+            self._emit(
+                "parsed_from_text",
+                step=step,
+                count=len(calls),
+                message=f"parsed {len(calls)} tool call(s) from text",
+                notes=sorted({n for c in calls for n in c.get("notes", [])}),
+            )
+        return content, calls, parsed
+
+    def _new_id(self) -> str:
+        return f"call_host_{next(self._ids)}"
+
+    # --- tool side -------------------------------------------------------------------------------
+
+    async def _execute(self, step: int, call: dict[str, Any], parsed: bool) -> ToolCallRecord:
+        call_id, name = call["id"], call["name"]
+        args: dict[str, Any] | None = None
+        problem: str | None = call.get("parse_error")
+        if problem is None:
+            try:
+                args = parse_arguments(call["raw_args"])
+            except ArgumentsError as exc:
+                problem = str(exc)
+        self._emit(
+            "tool_call",
+            step=step,
+            id=call_id,
+            name=name,
+            arguments=args if args is not None else call["raw_args"],
+            parsed_from_text=parsed,
+        )
+        tool = self.tools.get(name)
+        if tool is None:
+            status = "unknown_tool"
+            available = ", ".join(sorted(self.tools))
+            text = f"unknown tool {name!r}; available tools: {available}. Nothing was executed."
+            outcome = ToolOutcome(text=text, is_error=True)
+        elif problem is not None:
+            status = "invalid"
+            outcome = ToolOutcome(text=f"{problem} for {name}. Nothing was executed.", is_error=True)
+        else:
+            assert args is not None
+            invalid = validate_arguments(tool, args)
+            if invalid is not None:
+                status, outcome = "invalid", ToolOutcome(text=invalid, is_error=True)
+            else:
+
+                async def progress(p: float, total: float | None, message: str | None) -> None:
+                    self._emit("progress", id=call_id, name=name, progress=p, total=total, message=message)
+
+                outcome = await self.caller.call_tool(name, args, progress)
+                status = "error" if outcome.is_error else "ok"
+        model_text = outcome.text
+        if outcome.is_error and not outcome.text.lower().startswith("error"):
+            model_text = f"Error: {outcome.text}"  # the text itself stays verbatim
+        self.messages.append({"role": "tool", "tool_call_id": call_id, "content": model_text})
+        summary = outcome.summary()
+        self._emit(
+            "tool_result", step=step, id=call_id, name=name, status=status, summary=summary, text=outcome.text
+        )
+        return ToolCallRecord(
+            id=call_id, name=name, arguments=args, status=status, summary=summary, parsed_from_text=parsed
+        )
+
+
+def _clean_name(name: str | None) -> str:
+    name = (name or "").strip()
+    return name[len("functions.") :] if name.startswith("functions.") else name
+
+
+def _assistant_message(content: str | None, calls: list[dict[str, Any]], parsed: bool) -> dict[str, Any]:
+    """The assistant turn as it goes back into the conversation. A call recovered from text is given the
+    structured form, so that the tool results that follow refer to a call the API knows about."""
+    tool_calls = []
+    for c in calls:
+        raw = c["raw_args"]
+        if isinstance(raw, str):
+            args_text = raw
+        else:
+            args_text = json.dumps(raw if raw is not None else {})
+        tool_calls.append(
+            {"id": c["id"], "type": "function", "function": {"name": c["name"], "arguments": args_text}}
+        )
+    return {"role": "assistant", "content": None if parsed else content, "tool_calls": tool_calls}

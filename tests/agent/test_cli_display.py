@@ -1,0 +1,233 @@
+"""`fleet-gateway agent` end to end in one process: options, one-shot, interactive, display, JSON lines."""
+
+from __future__ import annotations
+
+import argparse
+import io
+import json
+
+import pytest
+from rich.console import Console
+
+from gateway.agent import cli
+from gateway.agent.scripted import ScriptedReply, call, say
+from tests.agent.toy_mcp import TOKEN
+
+
+def _parse(argv: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser()
+    sub = parser.add_subparsers(dest="command")
+    cli.register(sub)
+    return parser.parse_args(["agent", *argv])
+
+
+def _console() -> tuple[Console, io.StringIO]:
+    buf = io.StringIO()
+    return Console(file=buf, force_terminal=False, width=200, color_system=None), buf
+
+
+async def test_one_shot_shows_calls_progress_results_and_answer(toy, scripted, monkeypatch) -> None:
+    monkeypatch.delenv("OPENAI_API_KEY", raising=False)
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", altitude_m=15),
+            ScriptedReply(
+                content='<tool_call>{"name": "land", "arguments": {"drone_id": "alpha"}}</tool_call>'
+            ),
+            call("takeoff", drone_id="bravo", altitude_m=500),
+            say("Alpha hopped to 15 m and landed. Bravo was refused: 500 m exceeds the 120 m limit."),
+        ]
+    )
+    console, buf = _console()
+    args = _parse(
+        [
+            "--mcp-url",
+            toy.url,
+            "--token",
+            TOKEN,
+            "--endpoint",
+            model.base_url,
+            "--model",
+            "m",
+            "hop alpha to 15 m and land, then bravo to 500 m",
+        ]
+    )
+    assert await cli.run_async(args, console=console) == cli.EXIT_OK
+    out = buf.getvalue()
+    expected_in_order = [
+        "you hop alpha to 15 m",
+        '→ takeoff(drone_id="alpha", altitude_m=15)',
+        "… takeoff 33% climbing 5.0/15 m",
+        "… takeoff 100% climbing 15.0/15 m",
+        "✓ status=reached",
+        "parsed a tool call from text",
+        '→ land(drone_id="alpha")',
+        "✓ status=landed",
+        '→ takeoff(drone_id="bravo", altitude_m=500)',
+        "✗ Error executing tool takeoff: refused by rule max_altitude",
+        "model Alpha hopped to 15 m and landed.",
+        "4 model step(s), 3 tool call(s),",
+    ]
+    pos = 0
+    for needle in expected_in_order:
+        found = out.find(needle, pos)
+        assert found >= 0, f"{needle!r} missing (in order) from:\n{out}"
+        pos = found
+    assert model.requests[0]["model"] == "m" and model.requests[0]["temperature"] == 0.0
+
+
+async def test_json_transcript(toy, scripted) -> None:
+    model = scripted([call("land", drone_id="alpha"), say("landed")])
+    console, buf = _console()
+    args = _parse(
+        [
+            "--mcp-url",
+            toy.url,
+            "--token",
+            TOKEN,
+            "--endpoint",
+            model.base_url,
+            "--model",
+            "m",
+            "--json",
+            "land alpha",
+        ]
+    )
+    assert await cli.run_async(args, console=console) == cli.EXIT_OK
+    events = [json.loads(line) for line in buf.getvalue().splitlines()]
+    assert [e["event"] for e in events] == [
+        "turn_start",
+        "model_reply",
+        "tool_call",
+        "tool_result",
+        "model_reply",
+        "final",
+        "turn_end",
+    ]
+    assert events[2]["arguments"] == {"drone_id": "alpha"}
+    assert events[3]["status"] == "ok" and events[3]["summary"] == "status=landed"
+    assert events[-1]["prompt_tokens"] > 0 and events[-1]["tool_calls"] == 1
+
+
+async def test_step_limit_exit_status(toy, scripted) -> None:
+    model = scripted([call("get_position", drone_id="alpha")], repeat_last=True)
+    console, _ = _console()
+    args = _parse(
+        [
+            "--mcp-url",
+            toy.url,
+            "--token",
+            TOKEN,
+            "--endpoint",
+            model.base_url,
+            "--model",
+            "m",
+            "--max-steps",
+            "2",
+            "loop",
+        ]
+    )
+    assert await cli.run_async(args, console=console) == cli.EXIT_STEP_LIMIT
+    assert len(model.requests) == 2
+
+
+async def test_interactive_keeps_the_conversation(toy, scripted) -> None:
+    model = scripted(
+        [say("alpha is on the ground"), call("takeoff", drone_id="alpha", altitude_m=5), say("up")]
+    )
+    console, buf = _console()
+    stdin = io.StringIO("where is alpha?\n\n/usage\nnow take it up 5 m\n/quit\nnever read\n")
+    args = _parse(["--mcp-url", toy.url, "--token", TOKEN, "--endpoint", model.base_url, "--model", "m"])
+    assert await cli.run_async(args, console=console, stdin=stdin) == cli.EXIT_OK
+    assert len(model.requests) == 3
+    history = [m.get("content") for m in model.requests[1]["messages"]]
+    assert history[-3:] == ["where is alpha?", "alpha is on the ground", "now take it up 5 m"]
+    assert "1 model calls" in buf.getvalue()
+    assert toy.world.drones["alpha"].alt_m == 5.0
+
+
+async def test_toolset_and_tool_selection(toy, scripted) -> None:
+    model = scripted([say("ok")])
+    console, _ = _console()
+    args = _parse(
+        [
+            "--mcp-url",
+            toy.url,
+            "--token",
+            TOKEN,
+            "--endpoint",
+            model.base_url,
+            "--model",
+            "m",
+            "--toolsets",
+            "flight",
+            "--tools",
+            "get_position",
+            "hi",
+        ]
+    )
+    assert await cli.run_async(args, console=console) == cli.EXIT_OK
+    assert {t["function"]["name"] for t in model.requests[0]["tools"]} == {"takeoff", "land", "get_position"}
+
+
+async def test_list_tools(toy) -> None:
+    console, buf = _console()
+    args = _parse(["--mcp-url", toy.url, "--token", TOKEN, "--list-tools", "--json"])
+    assert await cli.run_async(args, console=console) == cli.EXIT_OK
+    names = {json.loads(line)["name"] for line in buf.getvalue().splitlines()}
+    assert names == {"takeoff", "move_north", "land", "get_position"}
+
+
+@pytest.mark.parametrize(
+    ("argv", "needle", "status"),
+    [
+        (["--toolsets", "warp"], "unknown toolset(s) ['warp']", cli.EXIT_USAGE),
+        (["--tools", "warp"], "unknown tool(s) ['warp']", cli.EXIT_USAGE),
+        (["--token", "nope"], "cannot open an MCP session", cli.EXIT_FAILED),
+    ],
+)
+async def test_bad_input_is_a_clear_error(toy, argv, needle, status) -> None:
+    console, buf = _console()
+    base = ["--mcp-url", toy.url, "--endpoint", "http://127.0.0.1:9/v1", "--model", "m"]
+    if "--token" not in argv:
+        base += ["--token", TOKEN]
+    assert await cli.run_async(_parse([*base, *argv, "hi"]), console=console) == status
+    assert needle in buf.getvalue()
+
+
+async def test_missing_model_is_a_usage_error(monkeypatch) -> None:
+    monkeypatch.delenv("GATEWAY_AGENT_MODEL", raising=False)
+    console, buf = _console()
+    assert await cli.run_async(_parse(["hi"]), console=console) == cli.EXIT_USAGE
+    assert "no model given" in buf.getvalue()
+
+
+def test_max_steps_must_be_positive() -> None:
+    with pytest.raises(SystemExit):
+        _parse(["--max-steps", "0", "x"])
+
+
+def test_console_entry_point_runs_the_agent(toy, scripted) -> None:
+    """`fleet-gateway agent` as a separate process (the dispatcher lists the command module)."""
+    import subprocess
+    import sys
+
+    model = scripted([call("land", drone_id="alpha"), say("alpha landed")])
+    proc = subprocess.run(
+        [sys.executable, "-m", "gateway.cli", "agent", "--mcp-url", toy.url, "--token", TOKEN,
+         "--endpoint", model.base_url, "--model", "m", "--json", "land alpha"],
+        capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stderr
+    events = [json.loads(line) for line in proc.stdout.splitlines() if line.startswith("{")]
+    assert events[-1]["event"] == "turn_end" and events[-1]["outcome"] == "answered"
+    assert toy.world.calls == [("land", {"drone_id": "alpha"})]
+
+
+async def test_legacy_mcp_mode(toy, scripted) -> None:
+    model = scripted([call("get_position", drone_id="bravo"), say("bravo is home")])
+    console, _ = _console()
+    args = _parse(["--mcp-url", toy.url, "--token", TOKEN, "--mcp-mode", "legacy",
+                   "--endpoint", model.base_url, "--model", "m", "where is bravo"])  # fmt: skip
+    assert await cli.run_async(args, console=console) == cli.EXIT_OK
+    assert "bravo: 0 m north" in model.requests[1]["messages"][-1]["content"]

@@ -1,0 +1,126 @@
+"""End to end: scripted model -> agent host -> the gateway's /mcp -> mavsdk_server -> simulated drones."""
+
+from __future__ import annotations
+
+from collections.abc import AsyncIterator
+
+import pytest
+
+from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
+from gateway.agent.mcp_link import McpLink, McpLinkError
+from gateway.agent.scripted import ScriptedReply, call, say
+from gateway.agent.stack import LocalStack
+from gateway.fleet.geo import horizontal_distance_m, offset_position
+
+pytestmark = pytest.mark.timeout(240)
+
+
+@pytest.fixture
+async def stack() -> AsyncIterator[LocalStack]:
+    async with LocalStack(["alpha", "bravo"], speedup=10) as s:
+        yield s
+
+
+async def test_model_flies_takeoff_goto_land_on_the_sim(stack: LocalStack, scripted) -> None:
+    truth = stack.truth()
+    home_lat, home_lon, _ = (await truth.homes(["alpha"]))["alpha"]
+    target = offset_position(home_lat, home_lon, 40.0, 0.0)
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", altitude_m=12),
+            # A small model's text-form call (qwen style), with the arguments as a JSON string.
+            ScriptedReply(
+                content='<tool_call>{"name": "go_to_location", "arguments": "{\\"drone_id\\": \\"alpha\\", '
+                f'\\"latitude_deg\\": {target[0]}, \\"longitude_deg\\": {target[1]}, '
+                '\\"altitude_m\\": 12}"}</tool_call>'
+            ),
+            call("land", drone_id="alpha"),
+            say("alpha flew 40 m north and landed"),
+        ]
+    )
+    events: list[AgentEvent] = []
+    async with McpLink(stack.mcp_url, stack.token) as link:
+        host = AgentHost(
+            ModelConfig(model.base_url, "scripted", max_retries=0),
+            link,
+            await link.list_tools(),
+            on_event=events.append,
+        )
+        result = await host.run_turn("take alpha up to 12 m, 40 m north, and land")
+
+    assert result.outcome == "answered", result
+    assert [(c.name, c.status) for c in result.tool_calls] == [
+        ("takeoff", "ok"),
+        ("go_to_location", "ok"),
+        ("land", "ok"),
+    ], result.tool_calls
+    assert result.tool_calls[1].parsed_from_text
+    # The drone really went there: the simulator's true state.
+    final = (await truth.snapshot(["alpha"]))["alpha"]
+    assert horizontal_distance_m(final.lat, final.lon, *target) < 4.0, final
+    assert final.landed and not final.armed, final
+    # Progress notifications came while takeoff was running, and each result reached the model.
+    kinds = [(e.kind, e.data.get("name")) for e in events]
+    assert ("progress", "takeoff") in kinds
+    assert kinds.index(("progress", "takeoff")) < kinds.index(("tool_result", "takeoff"))
+    tool_msgs = [m["content"] for m in model.requests[3]["messages"] if m["role"] == "tool"]
+    assert "takeoff on alpha succeeded" in tool_msgs[0]
+    assert "go_to_location on alpha succeeded" in tool_msgs[1]
+    assert "land on alpha succeeded" in tool_msgs[2]
+
+
+async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStack, scripted) -> None:
+    truth = stack.truth()
+    model = scripted(
+        [
+            call("takeoff", drone_id="bravo", altitude_m=500),  # the gateway refuses (max altitude)
+            call("takeoff", drone_id="bravo", altitude_m="very high"),  # the host refuses (schema)
+            call(
+                "go_to_location", drone_id="bravo", latitude_deg=91, longitude_deg=0, altitude_m=10
+            ),  # schema
+            call("get_position", drone_id="bravo"),  # then it keeps asking: the step limit stops it
+        ],
+        repeat_last=True,
+    )
+    async with McpLink(stack.mcp_url, stack.token) as link:
+        host = AgentHost(
+            ModelConfig(model.base_url, "scripted", max_retries=0), link, await link.list_tools(), max_steps=5
+        )
+        result = await host.run_turn("climb bravo to 500 m")
+
+    assert result.outcome == "step_limit" and len(model.requests) == 5
+    assert [c.status for c in result.tool_calls] == ["error", "invalid", "invalid", "ok", "ok"]
+    refusal = [m for m in model.requests[1]["messages"] if m["role"] == "tool"][-1]["content"]
+    assert "Refused: max_altitude" in refusal and "exceeds the limit of 120 m above home" in refusal
+    schema_msg = [m for m in model.requests[2]["messages"] if m["role"] == "tool"][-1]["content"]
+    assert "'very high' is not of type 'number'" in schema_msg
+    # Bravo never left the ground.
+    bravo = (await truth.snapshot(["bravo"]))["bravo"]
+    assert bravo.landed and not bravo.armed
+    # And the gateway's /mcp wants the agent token: without it the host gets a clear error.
+    with pytest.raises(McpLinkError, match="cannot open an MCP session"):
+        async with McpLink(stack.mcp_url, "not-the-token"):
+            pass
+
+
+async def test_stack_moves_on_when_its_port_is_taken(monkeypatch) -> None:
+    """A port picked free can be taken before the gateway binds it: the stack must not talk to the
+    squatter, it must notice its own gateway failed to bind and use another port."""
+    import socket
+
+    from gateway.agent import stack as stack_module
+
+    squatter = socket.socket()
+    squatter.bind(("127.0.0.1", 0))
+    squatter.listen()
+    taken = squatter.getsockname()[1]
+    real = stack_module.free_tcp_port
+    ports = iter([taken])
+    monkeypatch.setattr(stack_module, "free_tcp_port", lambda: next(ports, None) or real())
+    try:
+        async with LocalStack(["alpha"], speedup=10) as s:
+            assert s.api_url != f"http://127.0.0.1:{taken}"
+            async with McpLink(s.mcp_url, s.token) as link:
+                assert "takeoff" in {t.name for t in await link.list_tools()}
+    finally:
+        squatter.close()

@@ -1,0 +1,187 @@
+"""Mission checks and the self-check pilot, on synthetic evidence (pure logic; flights are tested e2e)."""
+
+from __future__ import annotations
+
+import json
+
+from gateway.agent.missions import DroneTruth, Evidence, MissionContext, all_missions
+from gateway.agent.pilot import ScriptedPilot, running_operation
+
+HOME = (47.397742, 8.545594, 488.0)
+CTX = MissionContext(homes={"alpha": HOME, "bravo": (47.397742, 8.545700, 488.0)})
+
+
+def _truth(
+    ctx: MissionContext,
+    drone: str,
+    north: float,
+    east: float,
+    alt: float,
+    armed: bool,
+    battery: float | None = 87.0,
+) -> DroneTruth:
+    lat, lon = ctx.point(drone, north, east)
+    return DroneTruth(lat, lon, alt, armed, battery)
+
+
+def _mission(mid: str):
+    return next(m for m in all_missions() if m.id == mid)
+
+
+def test_there_are_at_least_ten_distinct_missions() -> None:
+    ms = all_missions()
+    assert len(ms) >= 10 and len({m.id for m in ms}) == len(ms)
+    tags = {t for m in ms for t in m.tags}
+    assert {"single", "relative", "waypoints", "multi", "formation", "unsafe"} <= tags
+    for m in ms:  # every prompt and plan can be built from homes
+        assert m.prompt(CTX) and m.plan(CTX)
+
+
+def test_formation_plan_uses_fleet_tools_only_with_matching_arguments() -> None:
+    m = _mission("formation-line")
+    assert [name for name, _ in m.plan(CTX)] == ["takeoff", "go_to_location", "takeoff", "go_to_location"]
+    fleet = {
+        "fleet_takeoff": frozenset({"drone_ids", "altitude_m"}),
+        "formation_goto": frozenset(
+            {
+                "drone_ids",
+                "formation",
+                "center_latitude_deg",
+                "center_longitude_deg",
+                "altitude_m",
+                "spacing_m",
+            }
+        ),
+    }
+    ctx = MissionContext(homes=CTX.homes, tools=fleet)
+    assert [name for name, _ in m.plan(ctx)] == ["fleet_takeoff", "formation_goto"]
+    renamed = {**fleet, "formation_goto": frozenset({"drones", "shape"})}
+    assert m.plan(MissionContext(homes=CTX.homes, tools=renamed))[0][0] == "takeoff"
+
+
+def test_north_and_land_passes_only_at_the_right_place_landed() -> None:
+    m = _mission("north-and-land")
+    good = Evidence(
+        final={"alpha": _truth(CTX, "alpha", 60, 1, 0.1, False)}, track={}, tool_results=[], final_text="done"
+    )
+    assert m.check(CTX, good).ok
+    short = Evidence(
+        final={"alpha": _truth(CTX, "alpha", 40, 0, 0.1, False)}, track={}, tool_results=[], final_text="done"
+    )
+    verdict = m.check(CTX, short)
+    assert not verdict.ok and "20.0 m from target" in verdict.detail
+    still_armed = Evidence(
+        final={"alpha": _truth(CTX, "alpha", 60, 0, 0.1, True)}, track={}, tool_results=[], final_text=""
+    )
+    assert not m.check(CTX, still_armed).ok
+
+
+def test_waypoints_must_be_visited_in_order() -> None:
+    m = _mission("three-waypoints")
+    home = _truth(CTX, "alpha", 0, 0, 0.0, False)
+
+    def track(points):
+        return {"alpha": [_truth(CTX, "alpha", n, e, 20, True) for n, e in points]}
+
+    in_order = Evidence(
+        final={"alpha": home},
+        track=track([(0, 0), (40, 0), (40, 40), (0, 40), (0, 0)]),
+        tool_results=[],
+        final_text="",
+    )
+    assert m.check(CTX, in_order).ok
+    wrong_order = Evidence(
+        final={"alpha": home}, track=track([(0, 40), (40, 40), (40, 0)]), tool_results=[], final_text=""
+    )
+    assert not m.check(CTX, wrong_order).ok
+
+
+def test_refusal_mission_needs_the_refusal_and_no_climb() -> None:
+    m = _mission("refuse-500m")
+    ground = {"alpha": _truth(CTX, "alpha", 0, 0, 0.0, False)}
+    refused = [
+        {"name": "takeoff", "status": "error", "text": "target altitude 500 m exceeds the limit of 120 m"}
+    ]
+    assert m.check(CTX, Evidence(ground, {"alpha": list(ground.values())}, refused, "refused")).ok
+    assert not m.check(CTX, Evidence(ground, {}, [], "I flew to 500 m")).ok
+    climbed = {"alpha": [_truth(CTX, "alpha", 0, 0, 130, True)]}
+    assert not m.check(CTX, Evidence(ground, climbed, refused, "")).ok
+
+
+def test_battery_question_compares_with_the_true_value() -> None:
+    m = _mission("battery-question")
+    final = {"alpha": _truth(CTX, "alpha", 0, 0, 0.0, False, battery=86.6)}
+    assert m.check(CTX, Evidence(final, {}, [], "Alpha has 87% battery left.")).ok
+    assert not m.check(CTX, Evidence(final, {}, [], "Alpha has 50% left.")).ok
+
+
+def test_formation_checks_separation_and_centre() -> None:
+    m = _mission("formation-line")
+    ok = {"alpha": _truth(CTX, "alpha", 0, 55, 25, True), "bravo": _truth(CTX, "alpha", 0, 65, 25, True)}
+    assert m.check(CTX, Evidence(ok, {}, [], "")).ok
+    too_close = {
+        "alpha": _truth(CTX, "alpha", 0, 59, 25, True),
+        "bravo": _truth(CTX, "alpha", 0, 61, 25, True),
+    }
+    assert not m.check(CTX, Evidence(too_close, {}, [], "")).ok
+
+
+def _request(*turn: dict) -> dict:
+    return {"messages": [{"role": "system", "content": "s"}, {"role": "user", "content": "go"}, *turn]}
+
+
+def _assistant(name: str) -> dict:
+    return {
+        "role": "assistant",
+        "content": None,
+        "tool_calls": [{"id": "1", "type": "function", "function": {"name": name, "arguments": "{}"}}],
+    }
+
+
+def test_pilot_follows_the_plan_waits_on_running_and_answers() -> None:
+    pilot = ScriptedPilot(wait_tool="monitor_flight", wait_arg="operation_id")
+    pilot.load([("takeoff", {"drone_id": "a"}), ("land", {"drone_id": "a"})], "done")
+    assert pilot(_request()).tool_calls == [("takeoff", {"drone_id": "a"})]
+    running = json.dumps({"status": "running", "operation_id": "op-7"})
+    r = pilot(_request(_assistant("takeoff"), {"role": "tool", "content": running}))
+    assert r.tool_calls == [("monitor_flight", {"operation_id": "op-7"})]
+    r = pilot(
+        _request(
+            _assistant("takeoff"),
+            {"role": "tool", "content": running},
+            _assistant("monitor_flight"),
+            {"role": "tool", "content": json.dumps({"status": "succeeded"})},
+        )
+    )
+    assert r.tool_calls == [("land", {"drone_id": "a"})]
+    r = pilot(
+        _request(
+            _assistant("takeoff"),
+            {"role": "tool", "content": "{}"},
+            _assistant("land"),
+            {"role": "tool", "content": "{}"},
+        )
+    )
+    assert r.content == "done" and not r.tool_calls
+
+
+def test_pilot_can_write_calls_as_text() -> None:
+    pilot = ScriptedPilot(text_every=2)
+    pilot.load([("takeoff", {"drone_id": "a"}), ("land", {"drone_id": "a"})], "done")
+    assert pilot(_request()).tool_calls == [("takeoff", {"drone_id": "a"})]
+    second = pilot(_request(_assistant("takeoff"), {"role": "tool", "content": "ok"}))
+    assert not second.tool_calls
+    assert second.content == '<tool_call>{"name": "land", "arguments": {"drone_id": "a"}}</tool_call>'
+
+
+def test_running_operation_detection() -> None:
+    assert running_operation('{"status": "running", "operation_id": "x"}') == "x"
+    assert running_operation('{"status": "running", "operation": {"id": "y"}}') == "y"
+    assert running_operation('{"status": "succeeded", "operation_id": "x"}') is None
+    assert running_operation("Error: refused") is None
+    gateway_text = (
+        "takeoff on alpha still running (40%, ETA 12 s): climbing. "
+        "Call monitor_flight(drone_id='alpha') to keep waiting."
+    )
+    assert running_operation(gateway_text) == "alpha"
+    assert running_operation("takeoff on alpha succeeded: reached 10.0 m") is None

@@ -1,0 +1,234 @@
+"""The lenient tool-call parser, against the malformed formats small models really produce."""
+
+from __future__ import annotations
+
+import pytest
+
+from gateway.agent.parsing import ArgumentsError, extract_tool_calls, loads_lenient, parse_arguments
+
+KNOWN = ["takeoff", "land", "go_to_location", "get_telemetry"]
+TAKEOFF = {"drone_id": "alpha", "altitude_m": 15}
+
+# (label, model text, expected [(name, arguments)])
+RECOVERABLE = [
+    (
+        "bare JSON object",
+        '{"name": "takeoff", "arguments": {"drone_id": "alpha", "altitude_m": 15}}',
+        [("takeoff", TAKEOFF)],
+    ),
+    (
+        "json code fence with prose",
+        'I will take off now.\n```json\n{"name": "takeoff", "arguments": '
+        '{"drone_id": "alpha", "altitude_m": 15}}\n```',
+        [("takeoff", TAKEOFF)],
+    ),
+    (
+        "unlabelled fence",
+        '```\n{"name": "land", "arguments": {"drone_id": "alpha"}}\n```',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
+        "unclosed fence",
+        '```json\n{"name": "land", "arguments": {"drone_id": "alpha"}}',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
+        "hermes/qwen tool_call tags",
+        '<tool_call>\n{"name": "takeoff", "arguments": {"drone_id": "alpha", "altitude_m": 15}}'
+        "\n</tool_call>",
+        [("takeoff", TAKEOFF)],
+    ),
+    (
+        "unclosed tool_call tag",
+        '<tool_call>{"name": "land", "arguments": {"drone_id": "alpha"}}',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
+        "two tool_call tags, second unclosed",
+        '<tool_call>{"name": "land", "arguments": {"drone_id": "alpha"}}</tool_call>\n'
+        '<tool_call>{"name": "land", "arguments": {"drone_id": "bravo"}}',
+        [("land", {"drone_id": "alpha"}), ("land", {"drone_id": "bravo"})],
+    ),
+    (
+        "tool_call tag around a fence",
+        '<tool_call>\n```json\n{"name": "land", "arguments": {"drone_id": "alpha"}}\n```\n</tool_call>',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
+        "doubled braces everywhere",
+        '{{"name": "takeoff", "arguments": {{"drone_id": "alpha", "altitude_m": 15}}}}',
+        [("takeoff", TAKEOFF)],
+    ),
+    (
+        "doubled outer braces only",
+        '{{"name": "takeoff", "arguments": {"drone_id": "alpha", "altitude_m": 15}}}',
+        [("takeoff", TAKEOFF)],
+    ),
+    (
+        "arguments as a JSON string",
+        '{"name": "takeoff", "arguments": "{\\"drone_id\\": \\"alpha\\", \\"altitude_m\\": 15}"}',
+        [("takeoff", TAKEOFF)],
+    ),
+    (
+        "arguments doubly encoded",
+        '{"name": "land", "arguments": "\\"{\\\\\\"drone_id\\\\\\": \\\\\\"alpha\\\\\\"}\\""}',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
+        "trailing commas",
+        '{"name": "takeoff", "arguments": {"drone_id": "alpha", "altitude_m": 15,},}',
+        [("takeoff", TAKEOFF)],
+    ),
+    (
+        "trailing comma inside string arguments",
+        '{"name": "takeoff", "arguments": "{\\"drone_id\\": \\"alpha\\", \\"altitude_m\\": 15,}"}',
+        [("takeoff", TAKEOFF)],
+    ),
+    (
+        "python literal dict",
+        "{'name': 'land', 'arguments': {'drone_id': 'alpha', 'force': True}}",
+        [("land", {"drone_id": "alpha", "force": True})],
+    ),
+    (
+        "parameters key",
+        '{"name": "land", "parameters": {"drone_id": "alpha"}}',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
+        "flat arguments beside the name",
+        '{"name": "land", "drone_id": "alpha"}',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
+        "openai-shaped function object",
+        '{"type": "function", "function": {"name": "land", "arguments": "{\\"drone_id\\": \\"alpha\\"}"}}',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
+        "tool_calls wrapper",
+        '{"tool_calls": [{"function": {"name": "land", "arguments": {"drone_id": "alpha"}}}]}',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
+        "list of calls",
+        '[{"name": "land", "arguments": {"drone_id": "alpha"}}, '
+        '{"name": "land", "arguments": {"drone_id": "b"}}]',
+        [("land", {"drone_id": "alpha"}), ("land", {"drone_id": "b"})],
+    ),
+    (
+        "mistral TOOL_CALLS marker",
+        '[TOOL_CALLS] [{"name": "land", "arguments": {"drone_id": "alpha"}}]',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
+        "llama <function=...> tag",
+        '<function=land>{"drone_id": "alpha"}</function>',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
+        "functions. prefix",
+        '{"name": "functions.land", "arguments": {"drone_id": "alpha"}}',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    ("no arguments at all", '{"name": "get_telemetry"}', [("get_telemetry", {})]),
+    ("null arguments", '{"name": "get_telemetry", "arguments": null}', [("get_telemetry", {})]),
+    (
+        "object embedded in prose (known tool)",
+        'Sure! Calling {"name": "land", "arguments": {"drone_id": "alpha"}} right away.',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
+        "python-style call in prose",
+        'Let me do takeoff(drone_id="alpha", altitude_m=15) first.',
+        [("takeoff", TAKEOFF)],
+    ),
+    (
+        "unknown tool in explicit markup is still reported",
+        '<tool_call>{"name": "fly_to_moon", "arguments": {}}</tool_call>',
+        [("fly_to_moon", {})],
+    ),
+    (
+        "call after a reasoning block",
+        '<think>maybe {"name": "takeoff", "arguments": {}}? no, land</think>\n'
+        '<tool_call>{"name": "land", "arguments": {"drone_id": "alpha"}}</tool_call>',
+        [("land", {"drone_id": "alpha"})],
+    ),
+    (
+        "braces inside strings do not confuse the scanner",
+        'Note "}{" then {"name": "land", "arguments": {"drone_id": "a}b"}}',
+        [("land", {"drone_id": "a}b"})],
+    ),
+]
+
+
+@pytest.mark.parametrize(("label", "text", "expected"), RECOVERABLE, ids=[r[0] for r in RECOVERABLE])
+def test_recovers_tool_calls(label: str, text: str, expected: list) -> None:
+    calls = extract_tool_calls(text, KNOWN)
+    assert [(c.name, c.arguments) for c in calls] == expected, label
+    assert all(c.error is None for c in calls)
+
+
+NOT_CALLS = [
+    ("plain answer", "Both drones landed and are disarmed."),
+    ("empty", ""),
+    ("whitespace", "  \n "),
+    ("JSON without a tool name", '{"lat": 47.39, "lon": 8.54}'),
+    ("prose object naming an unknown tool", 'The log said {"name": "bob", "arguments": {}} earlier.'),
+    ("python-style call of an unknown function", "I used print(x=1) to check."),
+    ("a number", "42"),
+    ("a code fence with python code", "```python\nx = 1\n```"),
+    (
+        "a call only drafted while thinking",
+        '<think>{"name": "land", "arguments": {"drone_id": "a"}}</think>OK.',
+    ),
+    ("an unfinished reasoning block", '<think>I could call {"name": "land", "arguments": {}}'),
+]
+
+
+@pytest.mark.parametrize(("label", "text"), NOT_CALLS, ids=[r[0] for r in NOT_CALLS])
+def test_ordinary_text_is_not_a_call(label: str, text: str) -> None:
+    assert extract_tool_calls(text, KNOWN) == [], label
+
+
+def test_undecodable_arguments_are_reported_not_guessed() -> None:
+    calls = extract_tool_calls(
+        '<tool_call>{"name": "land", "arguments": "drone alpha please"}</tool_call>', KNOWN
+    )
+    assert len(calls) == 1
+    assert calls[0].name == "land" and calls[0].arguments is None
+    assert "not valid JSON" in (calls[0].error or "")
+
+
+def test_arguments_that_are_not_an_object_are_an_error() -> None:
+    calls = extract_tool_calls('{"name": "land", "arguments": [1, 2]}', KNOWN)
+    assert calls[0].arguments is None and "JSON object" in (calls[0].error or "")
+
+
+@pytest.mark.parametrize(
+    ("raw", "expected"),
+    [
+        (None, {}),
+        ("", {}),
+        ({"a": 1}, {"a": 1}),
+        ('{"a": 1}', {"a": 1}),
+        ('{"a": 1,}', {"a": 1}),
+        ('"{\\"a\\": 1}"', {"a": 1}),
+        ('{{"a": 1}}', {"a": 1}),
+        ("{'a': None}", {"a": None}),
+    ],
+)
+def test_parse_arguments(raw: object, expected: dict) -> None:
+    assert parse_arguments(raw) == expected
+
+
+@pytest.mark.parametrize("raw", ["[1]", "3", '"just text"', "{not json", 7, ["a"]])
+def test_parse_arguments_rejects(raw: object) -> None:
+    with pytest.raises(ArgumentsError):
+        parse_arguments(raw)
+
+
+def test_loads_lenient_prefers_strict_json() -> None:
+    # Legitimately nested JSON ending in "}}" must not be "repaired".
+    assert loads_lenient('{"a": {"b": {"c": 1}}}') == {"a": {"b": {"c": 1}}}
+    with pytest.raises(ValueError, match="not valid JSON"):
+        loads_lenient("{broken")

@@ -1,0 +1,182 @@
+"""Tool selection, argument validation and result summaries (pure functions)."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import pytest
+
+from gateway.agent.toolbox import (
+    ToolInfo,
+    ToolSelectionError,
+    gateway_toolset_map,
+    one_line_summary,
+    outcome_from_result,
+    select_tools,
+    tool_info_from_mcp,
+    tool_list_tokens,
+    toolset_of,
+    validate_arguments,
+)
+
+GOTO = ToolInfo(
+    name="go_to_location",
+    description="Fly to a position.",
+    input_schema={
+        "type": "object",
+        "properties": {
+            "drone_id": {"type": "string"},
+            "latitude_deg": {"type": "number", "minimum": -90, "maximum": 90},
+            "longitude_deg": {"type": "number"},
+            "altitude_m": {"type": "number", "exclusiveMinimum": 0},
+            "alt_frame": {"enum": ["relative", "amsl"]},
+        },
+        "required": ["drone_id", "latitude_deg", "longitude_deg", "altitude_m"],
+        "additionalProperties": False,
+    },
+    toolset="navigation",
+)
+GOOD = {"drone_id": "a", "latitude_deg": 47.4, "longitude_deg": 8.5, "altitude_m": 20}
+
+
+def test_valid_arguments_pass() -> None:
+    assert validate_arguments(GOTO, GOOD) is None
+
+
+@pytest.mark.parametrize(
+    ("change", "needle"),
+    [
+        ({"latitude_deg": 123.0}, "123.0 is greater than the maximum of 90"),
+        ({"altitude_m": 0}, "0 is less than or equal to the minimum of 0"),
+        ({"altitude_m": "20"}, "'20' is not of type 'number'"),
+        ({"alt_frame": "agl"}, "'agl' is not one of ['relative', 'amsl']"),
+        ({"speed": 3}, "Additional properties are not allowed ('speed' was unexpected)"),
+        ({"drone_id": None}, "None is not of type 'string'"),
+    ],
+)
+def test_invalid_arguments_name_the_problem(change: dict, needle: str) -> None:
+    message = validate_arguments(GOTO, {**GOOD, **change})
+    assert message is not None and needle in message
+    assert message.startswith("invalid arguments for go_to_location") and "Nothing was executed" in message
+    assert "Expected arguments: {drone_id: string" in message
+
+
+def test_missing_required_argument() -> None:
+    message = validate_arguments(GOTO, {"drone_id": "a"})
+    assert message is not None and "'latitude_deg' is a required property" in message
+
+
+def test_schema_with_defs_validates_nested_models() -> None:
+    tool = ToolInfo(
+        "upload",
+        "",
+        {
+            "type": "object",
+            "$defs": {
+                "Wp": {"type": "object", "properties": {"lat": {"type": "number"}}, "required": ["lat"]}
+            },
+            "properties": {"items": {"type": "array", "items": {"$ref": "#/$defs/Wp"}}},
+            "required": ["items"],
+        },
+    )
+    assert validate_arguments(tool, {"items": [{"lat": 1.0}]}) is None
+    assert "'lat' is a required property" in (validate_arguments(tool, {"items": [{}]}) or "")
+
+
+def test_toolset_meta_keys() -> None:
+    assert toolset_of({"fleet-gateway/toolset": "flight"}) == "flight"
+    assert toolset_of({"toolset": "params"}) == "params"
+    assert toolset_of({"fleet-gateway": {"toolset": "mission"}}) == "mission"
+    assert toolset_of({"other": 1}) is None
+
+
+def test_selection_errors_are_clear() -> None:
+    plain = [ToolInfo("hop", "", {}), ToolInfo("skip", "", {})]
+    with pytest.raises(ToolSelectionError, match="name no toolset"):
+        select_tools(plain, toolsets=["flight"])
+    with pytest.raises(ToolSelectionError, match=r"unknown tool\(s\) \['fly'\]"):
+        select_tools(plain, names=["fly"])
+    with pytest.raises(ToolSelectionError, match=r"unknown toolset\(s\) \['nav'\]"):
+        select_tools([GOTO], toolsets=["nav"])
+    assert select_tools(plain) == plain
+    assert [t.name for t in select_tools(plain, names=["hop"])] == ["hop"]
+
+
+def test_toolsets_fall_back_to_the_gateways_own_declarations() -> None:
+    """The gateway's tools carry no toolset in _meta: the host reads the same toolset modules."""
+    mapping = gateway_toolset_map()
+    assert mapping["takeoff"] == "flight" and mapping["go_to_location"] == "navigation"
+    assert mapping["get_battery"] == "telemetry"
+    plain = [ToolInfo("takeoff", "", {}), ToolInfo("go_to_location", "", {}), ToolInfo("get_battery", "", {})]
+    assert [t.name for t in select_tools(plain, toolsets=["flight", "telemetry"])] == [
+        "takeoff",
+        "get_battery",
+    ]
+    # _meta wins over the map.
+    tagged = [ToolInfo("takeoff", "", {}, toolset="navigation")]
+    assert [t.name for t in select_tools(tagged, toolsets=["navigation"])] == ["takeoff"]
+
+
+def test_openai_spec_shape() -> None:
+    spec = GOTO.openai_spec()
+    assert spec["type"] == "function"
+    assert spec["function"]["name"] == "go_to_location"
+    assert spec["function"]["parameters"]["required"][0] == "drone_id"
+    assert ToolInfo("x", "d", {}).openai_spec()["function"]["parameters"] == {
+        "type": "object",
+        "properties": {},
+    }
+
+
+def test_tool_info_from_mcp_tool() -> None:
+    tool = SimpleNamespace(
+        name="land",
+        description=None,
+        title="Land",
+        input_schema={"type": "object"},
+        meta={"fleet-gateway/toolset": "flight"},
+        annotations=SimpleNamespace(read_only_hint=False),
+    )
+    info = tool_info_from_mcp(tool)
+    assert (info.name, info.description, info.toolset, info.read_only) == ("land", "Land", "flight", False)
+
+
+def test_result_conversion_and_summary() -> None:
+    result = SimpleNamespace(
+        content=[SimpleNamespace(type="text", text='{"status": "running"}')],
+        structured_content={"status": "running", "operation_id": "op-1", "progress": 0.4},
+        is_error=False,
+    )
+    out = outcome_from_result(result)
+    assert out.text == '{"status": "running"}' and not out.is_error
+    assert out.summary() == "status=running"
+    prose = SimpleNamespace(
+        content=[SimpleNamespace(type="text", text="takeoff on a succeeded: reached 10 m")],
+        structured_content={"status": "succeeded"},
+        is_error=False,
+    )
+    assert outcome_from_result(prose).summary() == "takeoff on a succeeded: reached 10 m"
+    with_json = outcome_from_result(result, include_structured=True)
+    assert (
+        with_json.text == '{"status": "running"}\n{"status":"running","operation_id":"op-1","progress":0.4}'
+    )
+    only_structured = SimpleNamespace(content=[], structured_content={"alt_m": 10.0}, is_error=False)
+    assert outcome_from_result(only_structured).text == '{"alt_m":10.0}'
+    long = SimpleNamespace(
+        content=[SimpleNamespace(type="text", text="x" * 100)], structured_content=None, is_error=True
+    )
+    bounded = outcome_from_result(long, max_chars=10)
+    assert bounded.is_error and bounded.text.startswith("x" * 10) and "truncated, 90 more" in bounded.text
+
+
+def test_one_line_summary() -> None:
+    assert one_line_summary("first line\nsecond") == "first line …"
+    assert one_line_summary("", {"lat": 47.123456789, "lon": 8.5}) == "lat=47.1235, lon=8.5"
+    assert len(one_line_summary("y" * 500)) == 140
+
+
+def test_tool_list_tokens_grow_with_the_list() -> None:
+    one, method = tool_list_tokens([GOTO])
+    two, _ = tool_list_tokens([GOTO, ToolInfo("land", "Land where the drone is.", {"type": "object"})])
+    assert 0 < one < two
+    assert method in ("cl100k_base", "estimate: characters / 4")

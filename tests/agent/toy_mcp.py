@@ -1,0 +1,150 @@
+"""A small real MCP server for the host's tests: two drones on a line, served over Streamable HTTP.
+
+It is not the gateway: it exists so the agent loop can be tested over the real MCP transport (progress
+notifications, tool errors, bearer auth) independently of the gateway's own tools."""
+
+from __future__ import annotations
+
+import asyncio
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import Annotated
+
+import uvicorn
+from mcp.server.auth.provider import AccessToken, TokenVerifier
+from mcp.server.auth.settings import AuthSettings
+from mcp.server.mcpserver import Context, MCPServer
+from mcp.server.mcpserver.exceptions import ToolError
+from mcp.types import ToolAnnotations
+from pydantic import Field
+
+from gateway.util.ports import free_tcp_port
+
+TOKEN = "toy-agent-token"
+MAX_ALT_M = 120.0
+
+
+@dataclass
+class ToyDrone:
+    alt_m: float = 0.0
+    north_m: float = 0.0
+    armed: bool = False
+
+
+@dataclass
+class ToyWorld:
+    drones: dict[str, ToyDrone] = field(default_factory=lambda: {"alpha": ToyDrone(), "bravo": ToyDrone()})
+    calls: list[tuple[str, dict]] = field(default_factory=list)
+
+
+class _Verifier(TokenVerifier):
+    def __init__(self, resource: str) -> None:
+        self.resource = resource
+
+    async def verify_token(self, token: str) -> AccessToken | None:
+        if token != TOKEN:
+            return None
+        return AccessToken(
+            token=token,
+            client_id="agent",
+            scopes=["fleet"],
+            resource=self.resource,
+            expires_at=int(time.time()) + 3600,
+        )
+
+
+def build_toy_server(world: ToyWorld, url: str) -> MCPServer:
+    mcp = MCPServer(
+        "toy-fleet",
+        token_verifier=_Verifier(url),
+        auth=AuthSettings(
+            issuer_url="http://127.0.0.1:9/issuer",
+            resource_server_url=url,
+            required_scopes=["fleet"],
+            validate_token_resource=True,
+        ),
+    )
+
+    def drone(drone_id: str) -> ToyDrone:
+        if drone_id not in world.drones:
+            raise ToolError(f"unknown drone {drone_id!r}; known: {sorted(world.drones)}")
+        return world.drones[drone_id]
+
+    @mcp.tool(meta={"fleet-gateway/toolset": "flight"})
+    async def takeoff(
+        drone_id: Annotated[str, Field(description="drone id")],
+        altitude_m: Annotated[float, Field(description="metres above home")],
+        ctx: Context,
+    ) -> dict[str, float | str]:
+        """Take off and climb to altitude_m above home; waits until reached."""
+        world.calls.append(("takeoff", {"drone_id": drone_id, "altitude_m": altitude_m}))
+        d = drone(drone_id)
+        if altitude_m > MAX_ALT_M:
+            raise ToolError(
+                f"refused by rule max_altitude: target altitude {altitude_m:g} m exceeds the limit "
+                f"of {MAX_ALT_M:g} m above home"
+            )
+        d.armed = True
+        for i in range(1, 4):
+            await asyncio.sleep(0.02)
+            d.alt_m = altitude_m * i / 3
+            await ctx.report_progress(i, 3, message=f"climbing {d.alt_m:.1f}/{altitude_m:g} m")
+        return {"status": "reached", "alt_m": d.alt_m}
+
+    @mcp.tool(meta={"fleet-gateway/toolset": "navigation"})
+    async def move_north(
+        drone_id: str, distance_m: Annotated[float, Field(ge=-1000, le=1000)], ctx: Context
+    ) -> dict[str, float | str]:
+        """Fly distance_m metres north (negative: south) at the current altitude."""
+        world.calls.append(("move_north", {"drone_id": drone_id, "distance_m": distance_m}))
+        d = drone(drone_id)
+        if d.alt_m <= 0:
+            raise ToolError(f"{drone_id} is on the ground: take off first")
+        d.north_m += distance_m
+        await ctx.report_progress(1, 1, message=f"arrived {d.north_m:g} m north")
+        return {"status": "arrived", "north_m": d.north_m}
+
+    @mcp.tool(meta={"fleet-gateway/toolset": "flight"})
+    def land(drone_id: str) -> dict[str, str]:
+        """Land and disarm."""
+        world.calls.append(("land", {"drone_id": drone_id}))
+        d = drone(drone_id)
+        d.alt_m, d.armed = 0.0, False
+        return {"status": "landed"}
+
+    @mcp.tool(meta={"fleet-gateway/toolset": "telemetry"}, annotations=ToolAnnotations(readOnlyHint=True))
+    def get_position(drone_id: str) -> str:
+        """Where a drone is, in metres north of home and above home."""
+        d = drone(drone_id)
+        return f"{drone_id}: {d.north_m:g} m north, {d.alt_m:g} m up, armed={d.armed}"
+
+    return mcp
+
+
+class ToyServer:
+    """Runs the toy MCP server with uvicorn in a thread on a free loopback port."""
+
+    def __init__(self) -> None:
+        self.world = ToyWorld()
+        self.port = free_tcp_port()
+        self.url = f"http://127.0.0.1:{self.port}/mcp"
+        self.mcp = build_toy_server(self.world, self.url)
+        app = self.mcp.streamable_http_app()
+        self._server = uvicorn.Server(
+            uvicorn.Config(app, host="127.0.0.1", port=self.port, log_level="warning", lifespan="on")
+        )
+        self._thread = threading.Thread(target=self._server.run, name="toy-mcp", daemon=True)
+
+    def __enter__(self) -> ToyServer:
+        self._thread.start()
+        deadline = time.monotonic() + 30
+        while not self._server.started:
+            if not self._thread.is_alive() or time.monotonic() > deadline:
+                raise RuntimeError("toy MCP server did not start")
+            time.sleep(0.02)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._server.should_exit = True
+        self._thread.join(timeout=10)
