@@ -1,0 +1,222 @@
+"""Scale: one gateway with N simulated drones, each with its own mavsdk_server sidecar.
+
+For each size: time until every drone is ``ready``; then, over a measuring window on the ground, the
+gateway's CPU (percent of one core) and RSS, the RSS of each sidecar and their CPU (from /proc), the
+simulator's CPU, the whole machine's CPU use, telemetry freshness (``age_s`` of the cached position
+that ``get_position`` returns, sampled round robin over the drones at a fixed call rate, p50/p99, and how
+many answers were flagged stale) and the latency of listing the fleet (``list_drones`` when the fleet
+toolset exists, else a read of the ``fleet://drones`` resource).
+
+The simulator runs at real time (speed-up 1), so stream rates are what a real vehicle sends. Default: 10
+drones; ``--full``: 10, 25 and 50; ``--sizes`` picks others. This is the heavy benchmark: on a shared
+machine run the large sizes rarely.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import time
+from typing import Any
+
+import common
+
+WINDOW_S = 20.0
+FULL_WINDOW_S = 30.0
+READ_RATE_HZ = 10.0
+LIST_EVERY_S = 0.5
+# Thresholds of the "signs of overload" column: a 5 Hz position stream is at most ~0.2 s old when the
+# gateway keeps up; a read tool answering from the cache should take milliseconds.
+AGE_LIMIT_S = 1.0
+GW_CPU_LIMIT = 80.0
+MACHINE_CPU_LIMIT = 90.0
+READ_LIMIT_S = 0.25
+
+
+def machine_cpu() -> tuple[float, float]:
+    """(busy, total) jiffies of the whole machine, from /proc/stat."""
+    with open("/proc/stat") as fh:
+        parts = [int(x) for x in fh.readline().split()[1:]]
+    idle = parts[3] + parts[4]
+    return sum(parts) - idle, sum(parts)
+
+
+async def list_fleet(mcp: Any, have_tool: bool) -> None:
+    if have_tool:
+        common.structured(await mcp.call_tool("list_drones", {}))
+    else:
+        await mcp.read_resource("fleet://drones")
+
+
+async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[str, Any]:
+    with common.workdir(f"scale{n}") as wd:
+        async with common.sim(n, speedup=1.0, workdir=wd) as sim_, common.gateway(sim_, workdir=wd) as gw:
+            t_ready, states = await common.wait_states(gw, "ready", ready_timeout_s)
+            ready = sum(1 for s in states.values() if s == "ready")
+            sidecars = await gw.sidecar_pids()
+            async with common.mcp_client(gw.mcp_url) as mcp:
+                tools = {t.name for t in (await mcp.list_tools()).tools}
+                have_list = "list_drones" in tools
+                await asyncio.sleep(3.0)  # let start-up work settle
+                gw_cpu, sc_cpu, sim_cpu = (
+                    common.CpuMeter([gw.pid]),
+                    common.CpuMeter(sidecars),
+                    common.CpuMeter([sim_.pid]),
+                )
+                for m in (gw_cpu, sc_cpu, sim_cpu):
+                    m.start()
+                busy0, total0 = machine_cpu()
+                ages: list[float] = []
+                stale = errors = 0
+                list_lat: list[float] = []
+                read_lat: list[float] = []
+                t_end = time.monotonic() + window_s
+
+                async def reader() -> None:
+                    nonlocal stale, errors
+                    i = 0
+                    while time.monotonic() < t_end:
+                        drone = gw.drone_ids[i % n]
+                        i += 1
+                        t0 = time.perf_counter()
+                        r = await mcp.call_tool("get_position", {"drone_id": drone})
+                        read_lat.append(time.perf_counter() - t0)
+                        if r.is_error or not r.structured_content:
+                            errors += 1
+                        else:
+                            ages.append(float(r.structured_content["age_s"]))
+                            stale += bool(r.structured_content.get("stale"))
+                        await asyncio.sleep(max(0.0, 1 / READ_RATE_HZ - (time.perf_counter() - t0)))
+
+                async def lister() -> None:
+                    while time.monotonic() < t_end:
+                        t0 = time.perf_counter()
+                        await list_fleet(mcp, have_list)
+                        list_lat.append(time.perf_counter() - t0)
+                        await asyncio.sleep(LIST_EVERY_S)
+
+                await asyncio.gather(reader(), lister())
+                busy1, total1 = machine_cpu()
+                sc_rss = [common.rss_kb(p) for p in sidecars]
+                sc_mem = [common.smaps_kb(p) for p in sidecars]
+                result = {
+                    "n": n,
+                    "ready": ready,
+                    "t_ready": t_ready,
+                    "states": states,
+                    "gw_cpu": gw_cpu.percent(),
+                    "gw_rss_mb": common.rss_kb(gw.pid) / 1024,
+                    "sc_rss_mb": (sum(sc_rss) / len(sc_rss) / 1024) if sc_rss else float("nan"),
+                    "sc_rss_total_mb": sum(sc_rss) / 1024,
+                    "sc_pss_mb": (sum(m["pss"] for m in sc_mem) / len(sc_mem) / 1024)
+                    if sc_mem
+                    else float("nan"),
+                    "sc_private_mb": (
+                        (sum(m["private"] for m in sc_mem) / len(sc_mem) / 1024) if sc_mem else float("nan")
+                    ),
+                    "sc_cpu": sc_cpu.percent(),
+                    "sim_cpu": sim_cpu.percent(),
+                    "machine_cpu": 100.0 * (busy1 - busy0) / max(1, total1 - total0),
+                    "ages": ages,
+                    "stale": stale,
+                    "errors": errors,
+                    "list_lat": list_lat,
+                    "read_lat": read_lat,
+                    "list_kind": "list_drones" if have_list else "fleet://drones resource",
+                }
+    return result
+
+
+def overload_signs(r: dict[str, Any]) -> list[str]:
+    """What in this measurement says the gateway (or the machine) no longer keeps up."""
+    signs = []
+    if r["ready"] < r["n"]:
+        signs.append(f"{r['n'] - r['ready']} drones never ready")
+    age99 = common.percentile(r["ages"], 99)
+    if age99 > AGE_LIMIT_S:
+        signs.append(f"position p99 age {age99:.1f} s (> {AGE_LIMIT_S:g} s)")
+    if r["stale"] or r["errors"]:
+        signs.append(f"{r['stale']} stale / {r['errors']} failed reads")
+    if r["gw_cpu"] > GW_CPU_LIMIT:
+        signs.append(f"gateway at {r['gw_cpu']:.0f}% of a core")
+    if r["machine_cpu"] > MACHINE_CPU_LIMIT:
+        signs.append(f"machine CPU {r['machine_cpu']:.0f}%")
+    if common.percentile(r["read_lat"], 99) > READ_LIMIT_S:
+        signs.append(f"get_position p99 {common.ms(common.percentile(r['read_lat'], 99))} ms")
+    return signs
+
+
+def render(results: list[dict[str, Any]], window_s: float) -> str:
+    rows = []
+    for r in results:
+        age, lat, rd = common.pcts(r["ages"]), common.pcts(r["list_lat"]), common.pcts(r["read_lat"])
+        rows.append(
+            [
+                r["n"],
+                f"{r['ready']}/{r['n']} in {r['t_ready']:.0f} s",
+                f"{r['gw_cpu']:.0f}",
+                f"{r['gw_rss_mb']:.0f}",
+                f"{r['sc_rss_mb']:.1f} / {r['sc_pss_mb']:.1f} / {r['sc_private_mb']:.1f}",
+                f"{r['sc_cpu']:.0f}",
+                f"{r['sim_cpu']:.0f}",
+                f"{r['machine_cpu']:.0f}",
+                f"{age['p50']:.2f} / {age['p99']:.2f}",
+                f"{r['stale']}/{len(r['ages']) + r['errors']}",
+                f"{common.ms(rd['p50'])} / {common.ms(rd['p99'])}",
+                f"{common.ms(lat['p50'])} / {common.ms(lat['p99'])}",
+                "; ".join(overload_signs(r)) or "none",
+            ]
+        )
+    kinds = {r["list_kind"] for r in results}
+    lines = [
+        f"Simulator at real time; measured on the ground over a {window_s:g} s window after all drones "
+        f"were ready; `get_position` called round robin at {READ_RATE_HZ:g} calls/s; fleet listing every "
+        f"{LIST_EVERY_S:g} s via {', '.join(sorted(kinds))}. CPU in percent of one core (the machine has "
+        f"{common.machine()['nproc']}); machine CPU in percent of all cores.",
+        "",
+        common.table(
+            [
+                "drones",
+                "ready",
+                "gateway CPU %",
+                "gateway RSS MiB",
+                "per sidecar RSS / PSS / private MiB",
+                "all sidecars CPU %",
+                "sim CPU %",
+                "machine CPU %",
+                "position age p50 / p99 s",
+                "stale / reads",
+                "get_position p50 / p99 ms",
+                "list p50 / p99 ms",
+                "signs of overload",
+            ],
+            rows,
+        ),
+    ]
+    return "\n".join(lines)
+
+
+def main() -> int:
+    p = common.parser(__doc__.splitlines()[0])
+    p.add_argument("--sizes", default=None, help="comma-separated fleet sizes (default 10; --full 10,25,50)")
+    p.add_argument("--window", type=float, default=None, help="measuring window per size, s")
+    args = p.parse_args()
+    sizes = [int(x) for x in (args.sizes or ("10,25,50" if args.full else "10")).split(",")]
+    window = args.window or (FULL_WINDOW_S if args.full else WINDOW_S)
+    info = common.machine()
+    results = []
+    for n in sizes:
+        print(f"-- {n} drones", flush=True)
+        r = asyncio.run(measure_size(n, window, ready_timeout_s=90.0 + 3.0 * n))
+        results.append(r)
+        with contextlib.suppress(Exception):
+            print(render([r], window).splitlines()[-1], flush=True)
+    text = render(results, window)
+    print(text)
+    if args.write:
+        common.write_section("scale", "Scale: drones per gateway", text, info)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
