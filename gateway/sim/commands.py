@@ -150,7 +150,7 @@ class CommandHandler:
             lat, lon, alt = msg.param5, msg.param6, msg.param7
         if not (math.isfinite(lat) and math.isfinite(lon) and math.isfinite(alt)) or (lat == 0 and lon == 0):
             return FAILED
-        v.home = (lat, lon, alt)
+        v.set_home((lat, lon, alt))
         return ACCEPTED
 
     def _cmd_193(self, link, msg, is_int):  # MAV_CMD_DO_PAUSE_CONTINUE

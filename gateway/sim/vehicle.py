@@ -15,9 +15,10 @@ from dataclasses import dataclass
 from pymavlink.dialects.v20 import ardupilotmega as mav
 
 from gateway.sim import telemetry
+from gateway.sim.auto import AutoState
 from gateway.sim.battery import Battery
 from gateway.sim.commands import CommandHandler
-from gateway.sim.flight import AutoState, FlightController
+from gateway.sim.flight import FlightController
 from gateway.sim.link import Link, LinkFaults, TcpServerLink, UdpOutLink
 from gateway.sim.mission import MissionStore
 from gateway.sim.modes import GUIDED_FLAG_MODES, REQUIRES_POSITION, Mode, mode_name
@@ -471,7 +472,15 @@ class SimVehicle:
                 self.broadcast(msg)
 
     def set_home_here(self) -> None:
-        self.home = self.position()
+        self.set_home(self.position())
+
+    def set_home(self, home: tuple[float, float, float]) -> None:
+        """New home (at arming, DO_SET_HOME): announced at once, as Copter::set_home() does."""
+        self.home = home
+        for builder in (telemetry.home_position, telemetry.gps_global_origin):
+            msg = builder(self)
+            if msg is not None:
+                self.broadcast(msg)
 
     def _failsafes(self) -> None:
         # GCS heartbeat loss: only heartbeats from MAV_GCS_SYSID count (ArduPilot's sysid_mygcs_seen).

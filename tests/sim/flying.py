@@ -12,7 +12,7 @@ from mavsdk_grpc import System
 T = TypeVar("T")
 
 # Simulated time runs this much faster than wall time in these tests (boot to flyable: ~2 s).
-SPEEDUP = 20.0
+SPEEDUP = 30.0
 
 # What the gateway caches; ArduPilot streams nothing until asked (reference section 7).
 RATES = {

@@ -119,3 +119,39 @@ def test_auto_disarm_and_cpu_starvation_catch_up() -> None:
     late.tick()
     assert 49.9 <= late.t <= 51.0
     assert late.position_ok and late.home is not None  # every boot milestone on the way was run
+
+
+def test_armed_in_stabilize_before_ekf_uses_gps_cannot_fly_guided() -> None:
+    """Reference section 7: armable in STABILIZE at 22.6 s, GUIDED refused until the EKF uses GPS."""
+    v = _vehicle()
+    _run(v, lambda: v.prearm_failure() is None)  # current mode: STABILIZE
+    assert v.t < v.timeline.ekf_gps
+    assert v.flight.arm(force=False) == (True, None)
+    assert v.flight.set_mode(Mode.GUIDED) == (False, "requires position")
+    assert v.status_texts[-1][2] == "Mode change to GUIDED failed: requires position"
+    assert not v.flight.takeoff(10.0)  # still STABILIZE
+    assert 9.9 <= _run(v, lambda: not v.armed) <= 10.2  # DISARM_DELAY
+
+
+def test_auto_mission_with_rtl_item_comes_home_and_lands() -> None:
+    from pymavlink.dialects.v20 import ardupilotmega as mav
+
+    from gateway.sim.mission import Item
+
+    v = _vehicle()
+    _flying_guided(v, 10.0)
+    lat, lon = v.frame.to_latlon(v.body.north + 60.0, v.body.east)
+    v.mission.replace(
+        [
+            Item(mav.MAV_CMD_NAV_WAYPOINT),
+            Item(mav.MAV_CMD_NAV_WAYPOINT, x=round(lat * 1e7), y=round(lon * 1e7), z=10.0),
+            Item(mav.MAV_CMD_NAV_RETURN_TO_LAUNCH),
+        ]
+    )
+    assert v.flight.set_mode(Mode.AUTO)[0]
+    _run(v, lambda: v.auto.current == 2)
+    _run(v, lambda: not v.armed)
+    assert v.mode == Mode.AUTO and v.landed and v.auto.complete
+    assert abs(v.body.north) < 0.5 and abs(v.body.east) < 0.5  # home
+    texts = [t for _t, _s, t in v.status_texts]
+    assert "Reached command #1" in texts and "Mission: 2 RTL" in texts

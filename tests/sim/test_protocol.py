@@ -182,7 +182,7 @@ async def test_link_faults_drop_traffic_both_ways() -> None:
     async with sim_process(1, speedup=SPEEDUP) as sim, raw_mavlink(sim.urls[0]) as gcs:
         await gcs.wait("HEARTBEAT")
         await sim.control.link_down(0)
-        await asyncio.sleep(0.2)
+        await asyncio.sleep(0.5)  # let frames already on their way arrive
         mark = gcs.mark()
         ack = asyncio.create_task(gcs.command(mav.MAV_CMD_REQUEST_MESSAGE, 148, timeout_s=1.0))
         await asyncio.sleep(1.2)  # the ACK wait (1 s) spans 24 simulated heartbeat periods
@@ -197,3 +197,17 @@ async def test_link_faults_drop_traffic_both_ways() -> None:
         assert not gcs.received[mark:]
         await sim.control.set_packet_loss(0, 0)
         assert (await gcs.command(mav.MAV_CMD_REQUEST_MESSAGE, 148)).result == ACCEPTED
+
+
+async def test_mav_sysid_takes_effect_at_reboot() -> None:
+    async with sim_process(1, speedup=SPEEDUP) as sim:
+        async with raw_mavlink(sim.urls[0]) as gcs:
+            await gcs.wait("HEARTBEAT")
+            gcs.send(mav.MAVLink_param_set_message(1, 1, b"MAV_SYSID", 42, mav.MAV_PARAM_TYPE_INT16))
+            echo = await gcs.wait("PARAM_VALUE", lambda m: m.param_id == "MAV_SYSID")
+            assert echo.param_value == 42 and echo.get_srcSystem() == 1  # still 1 until the next boot
+            assert (await gcs.command(mav.MAV_CMD_PREFLIGHT_REBOOT_SHUTDOWN, 1)).result == ACCEPTED
+        async with raw_mavlink(sim.urls[0]) as gcs:
+            heartbeat = await gcs.wait("HEARTBEAT")
+            assert heartbeat.get_srcSystem() == 42
+        assert (await sim.control.state(0))["boots"] == 2
