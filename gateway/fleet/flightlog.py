@@ -67,17 +67,15 @@ class FlightRecorder:
         self._track: list[TrackSample] = []
         self._texts: list[StatusTextIn] = []
         self._task: asyncio.Task[None] | None = None
-        self._listening = False
 
     async def start(self) -> None:
         await self._close_leftovers()
-        if not self._listening:
-            self.vehicle.telemetry.on_status_text(self._on_status_text)
-            self._listening = True
+        self.vehicle.telemetry.on_status_text(self._on_status_text)
         self._task = asyncio.create_task(self._run(), name=f"flightlog-{self.vehicle.id}")
 
     async def stop(self) -> None:
         """Stop recording: close a flight in progress (the gateway no longer watches it) and flush."""
+        self.vehicle.telemetry.remove_status_listener(self._on_status_text)
         if self._task is not None:
             self._task.cancel()
             with contextlib.suppress(asyncio.CancelledError):

@@ -11,6 +11,7 @@ reconnect, sidecar restart or vehicle reboot.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import logging
 import math
 import time
@@ -210,6 +211,10 @@ class TelemetryCache:
 
     def on_status_text(self, listener: Callable[[StatusTextValue], None]) -> None:
         self._status_listeners.append(listener)
+
+    def remove_status_listener(self, listener: Callable[[StatusTextValue], None]) -> None:
+        with contextlib.suppress(ValueError):
+            self._status_listeners.remove(listener)
 
     def fresh(self, name: str, max_age_s: float | None = None) -> Any | None:
         """The value of ``name`` if it is younger than ``max_age_s`` (default: stale limit), else None."""

@@ -379,8 +379,10 @@ class Vehicle:
             await asyncio.wait_for(system.connect(), CONNECT_TIMEOUT_S)
         except (TimeoutError, grpc.aio.AioRpcError) as exc:
             self._last_error = f"gRPC session to mavsdk_server on port {port} failed: {exc!r}"
-            log.warning("%s: %s", self.id, self._last_error)
+            log.warning("%s: %s; restarting the sidecar", self.id, self._last_error)
             await _close_system(system)
+            if self._sidecar is not None:
+                self._sidecar.recycle()  # the supervisor starts a fresh process (with backoff)
             return
         self.telemetry.clear()
         self._link = LinkFacts()
@@ -400,13 +402,16 @@ class Vehicle:
         self.sessions += 1
         feed.start()
         self._session_tasks = [
-            asyncio.create_task(self._heartbeats(system), name=f"hb-{self.id}"),
-            asyncio.create_task(self._commands.pump(system), name=f"ack-{self.id}"),
-            asyncio.create_task(self._simstate(system), name=f"simstate-{self.id}"),
-            asyncio.create_task(self._connection_state(system), name=f"conn-{self.id}"),
-            asyncio.create_task(self._identify(system), name=f"ident-{self.id}"),
-            asyncio.create_task(self._mission_current(system), name=f"mission-{self.id}"),
+            asyncio.create_task(_keep(self.id, name, fn, system, once), name=f"{name}-{self.id}")
+            for name, fn, once in (
+                ("hb", self._heartbeats, False),
+                ("ack", self._commands.pump, False),
+                ("simstate", self._simstate, True),
+                ("conn", self._connection_state, False),
+                ("mission", self._mission_current, False),
+            )
         ]
+        self._session_tasks.append(asyncio.create_task(self._identify(system), name=f"ident-{self.id}"))
         if self.settings.sidecar_heartbeat_watchdog_s:
             self._session_tasks.append(
                 asyncio.create_task(self._feed_watchdog(system), name=f"watchdog-{self.id}")
@@ -431,8 +436,9 @@ class Vehicle:
             await _close_system(system)
 
     def _mavsdk_names_modes(self) -> bool:
-        """MAVSDK's flight mode names are used unless the HEARTBEAT's ArduCopter mode is known."""
-        return not self._is_arducopter()
+        """MAVSDK's flight mode names are used for non-ArduCopter autopilots only (ArduCopter's real mode
+        comes from HEARTBEAT.custom_mode; MAVSDK would say OFFBOARD for GUIDED, HOLD for LOITER)."""
+        return self._link.autopilot is not None and not self._is_arducopter()
 
     def _is_arducopter(self) -> bool:
         return self._link.autopilot == MAV_AUTOPILOT_ARDUPILOTMEGA and self._link.mav_type in COPTER_TYPES
@@ -895,6 +901,26 @@ class Vehicle:
     @property
     def params_fetched_age_s(self) -> float | None:
         return self.params.list_age_s
+
+
+async def _keep(
+    vehicle_id: str, name: str, subscribe: Callable[[Any], Awaitable[None]], system: Any, once: bool
+) -> None:
+    """Run one subscription loop for the session; resubscribe when its gRPC stream ends or breaks
+    (``once``: a loop that returns by itself is done, e.g. SIMSTATE seen)."""
+    delay = 0.5
+    while True:
+        try:
+            await subscribe(system)
+            if once:
+                return
+            log.debug("%s: %s subscription ended; resubscribing", vehicle_id, name)
+        except asyncio.CancelledError:
+            raise
+        except Exception as exc:
+            log.debug("%s: %s subscription failed (%r); resubscribing", vehicle_id, name, exc)
+        await asyncio.sleep(delay)
+        delay = min(delay * 2, 5.0)
 
 
 def _iso(epoch_s: float | None) -> str | None:

@@ -1,4 +1,17 @@
-"""The Registry: which vehicles exist (persisted through the Store) and their live Vehicle objects."""
+"""The Registry: which vehicles exist (persisted through the Store) and their live Vehicle objects.
+
+    store = await Store.open(settings.database_url)
+    registry = Registry(settings, store)
+    await registry.start()                      # restore registrations, connect the auto_connect ones
+    v = await registry.add(VehicleSpec(id="alpha", url="tcpout://127.0.0.1:5760", expected_sysid=1))
+    await v.wait_for_state("ready", within_s=60)
+    await v.takeoff(10)                         # returns once accepted; poll v.telemetry for progress
+    ...
+    await registry.stop()                       # no mavsdk_server process remains
+
+Each Vehicle owns one mavsdk_server sidecar (gateway.registry.sidecar), its telemetry cache
+(gateway.fleet.telemetry) and its flight recorder (gateway.fleet.flightlog).
+"""
 
 from __future__ import annotations
 

@@ -207,6 +207,16 @@ class Sidecar:
             return False
         return True
 
+    def recycle(self) -> None:
+        """Terminate the current process; the supervisor starts a new one (counted as a failure)."""
+        proc = self._proc
+        if proc is not None and proc.returncode is None:
+            self._log.warning("recycling mavsdk_server pid %d of %s", proc.pid, self.vehicle_id)
+            try:
+                os.killpg(proc.pid, signal.SIGTERM)
+            except ProcessLookupError:
+                pass
+
     async def stop(self) -> None:
         """Stop supervising and leave no process behind."""
         self._stopping = True

@@ -102,6 +102,14 @@ async def test_link_loss_staleness_and_wrong_sysid(store, registries) -> None:
         assert 0 <= snap["battery"]["remaining_pct"] <= 100  # MAVSDK gives percent already, never x100
         json.dumps(snap, allow_nan=False)  # strict JSON: MAVSDK's NaN "unknown" values became None
 
+        # GPS loss: the vehicle is still connected, but no longer ready to fly
+        await sim.control.gps_loss(0, True)
+        await good.wait_for_state(ConnectionState.CONNECTED, within_s=WAIT_S)
+        with pytest.raises(VehicleNotReady, match="connected but not ready"):
+            await good.takeoff(5)
+        await sim.control.gps_loss(0, False)
+        await good.wait_for_state(READY, within_s=WAIT_S)
+
         await sim.control.link_down(0)
         await good.wait_for_state(ConnectionState.LINK_LOST, within_s=WAIT_S)
         # the last position arrived a moment after the last heartbeat: it turns stale a moment later
@@ -251,3 +259,26 @@ async def test_mission_round_trip_run_and_parameters(store, registries) -> None:
         assert len(params) > 100 and params["WPNAV_SPEED"] == pytest.approx(750)
         await v.clear_mission()
         assert await v.download_mission() == []
+
+
+async def test_vehicle_reboot_rates_are_requested_again(store, registries) -> None:
+    """A rebooted autopilot forgets every stream rate and mavsdk_server does not ask again: the
+    gateway notices (heartbeats back, streams silent) and requests them itself."""
+    from gateway.util.ports import free_tcp_port
+
+    port = free_tcp_port()
+    same_port = ["--tcp-base-port", str(port)]  # argparse keeps the last value given
+    reg = Registry(fast_settings(), store)
+    registries.append(reg)
+    await reg.start()
+    async with sim_process(1, speedup=SPEEDUP, extra_args=same_port) as sim:
+        v = await reg.add(VehicleSpec(id="phoenix", url=sim.urls[0]))
+        assert sim.urls[0].endswith(f":{port}")
+        await v.wait_for_state(READY, within_s=WAIT_S)
+        sidecar_pid = v.status()["sidecar"]["pid"]
+    # the simulator process is gone (the "vehicle" is off); a new one boots on the same port
+    await v.wait_for_state(ConnectionState.LINK_LOST, within_s=WAIT_S)
+    async with sim_process(1, speedup=SPEEDUP, extra_args=same_port):
+        await v.wait_for_state(READY, within_s=WAIT_S)
+        await wait_until(lambda: v.telemetry.fresh("position", max_age_s=0.5) is not None, what="position")
+        assert v.status()["sidecar"]["pid"] == sidecar_pid  # same sidecar: mavsdk_server reconnected

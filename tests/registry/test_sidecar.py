@@ -87,6 +87,31 @@ async def test_kill_9_is_restarted(stopper: list[Sidecar]) -> None:
         assert not alive(first)
 
 
+async def test_stop_right_after_start_leaves_nothing() -> None:
+    for i in range(6):  # stop at different points of the spawn
+        car = Sidecar("lima", f"udpin://127.0.0.1:{free_udp_port()}", _settings())
+        car.start()
+        await asyncio.sleep(0.002 * i)
+        await car.stop()
+        assert car.pid is None
+    assert mavsdk_servers_of() == []
+
+
+async def test_recycle_restarts_the_process(stopper: list[Sidecar]) -> None:
+    udp = free_udp_port()
+    serving: list[int] = []
+    car = Sidecar("kilo", f"udpin://127.0.0.1:{udp}", _settings(), on_serving=serving.append)
+    stopper.append(car)
+    async with HeartbeatVehicle(udp):
+        car.start()
+        assert await car.wait_serving(WAIT)
+        first = car.pid
+        car.recycle()  # what the vehicle does when it cannot open a gRPC session on a serving sidecar
+        await _wait_for(lambda: car.pid not in (None, first) and car.state == SidecarState.SERVING)
+        assert len(serving) == 2 and car.info.restarts == 1
+        assert first is not None and not alive(first)
+
+
 async def test_foreign_listener_on_port_moves_to_another_port(
     stopper: list[Sidecar], monkeypatch: pytest.MonkeyPatch
 ) -> None:
