@@ -60,7 +60,10 @@ def build_mcp(gateway: Any) -> MCPServer:
     @contextlib.asynccontextmanager
     async def lifespan(server: MCPServer) -> AsyncIterator[dict[str, Any]]:
         try:
-            await fa.operations.recover()
+            try:
+                await fa.operations.recover()
+            except Exception:  # a store problem must not keep the MCP surface down
+                log.exception("could not mark the previous process's operations interrupted")
             async with notifier_box["notifier"].running():
                 yield {"fleet": fa}
         finally:  # the gateway is going down: running operations are recorded as interrupted

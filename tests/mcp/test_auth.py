@@ -32,6 +32,9 @@ class RecordingStore:
     async def save_operation(self, record: Any) -> None:
         return None
 
+    async def list_operations(self, *args: Any, **kw: Any) -> list[Any]:
+        return []
+
 
 async def test_agent_token_required_and_recorded_as_principal() -> None:
     store = RecordingStore()
