@@ -51,6 +51,7 @@ def test_drones_run_the_swarm_tests_commands_at_the_same_addresses() -> None:
         assert t.drone_url(i) in registrar["command"]
         assert registrar["depends_on"]["gateway"]["condition"] == "service_healthy"
         assert registrar["restart"] == "no"
+        assert registrar["environment"]["GATEWAY_OPERATOR_TOKENS"].startswith("${GATEWAY_OPERATOR_TOKENS:?")
     addresses = [_address(services[f"drone-{i + 1}"]) for i in range(t.DRONES)] + [
         _address(services["gateway"])
     ]

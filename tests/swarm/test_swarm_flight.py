@@ -15,6 +15,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import os
+import secrets
 import signal
 import subprocess
 import sys
@@ -27,6 +28,8 @@ from typing import Any
 import httpx
 import pytest
 from mcp import Client
+from mcp.client.streamable_http import streamable_http_client
+from mcp.shared._httpx_utils import create_mcp_http_client
 from mcp.types import Implementation
 
 from gateway.fleet import geo
@@ -55,6 +58,9 @@ MIN_SEPARATION_M = 5.0
 SAMPLE_PERIOD_S = 0.2
 WAIT_S = 180.0  # generous: waiting is never an assertion
 BIN = Path(sys.executable).parent
+OPERATOR_TOKEN = secrets.token_hex(16)  # the compose file requires operator tokens; agents get their own
+AGENT_TOKEN = secrets.token_hex(16)
+OPERATOR = {"authorization": f"Bearer {OPERATOR_TOKEN}"}
 
 
 def _program(argv: list[str]) -> list[str]:
@@ -147,11 +153,13 @@ async def swarm(tmp: Path) -> AsyncIterator[str]:
             "GATEWAY_SIDECAR_BACKOFF_INITIAL_S": "0.2",
             "GATEWAY_SIDECAR_BACKOFF_MAX_S": "1.0",
             "GATEWAY_LOG_LEVEL": "WARNING",
+            "GATEWAY_OPERATOR_TOKENS": OPERATOR_TOKEN,
+            "GATEWAY_AGENT_TOKENS": AGENT_TOKEN,
             **GATEWAY_ENV,
         }
         procs.start("gateway", _program(gateway_command("127.0.0.1", port)), env=env, cwd=tmp)
         base = f"http://127.0.0.1:{port}"
-        async with httpx.AsyncClient(base_url=base, timeout=10) as http:
+        async with httpx.AsyncClient(base_url=base, timeout=10, headers=OPERATOR) as http:
 
             async def readyz() -> bool:
                 if procs.procs["gateway"].poll() is not None:
@@ -161,13 +169,17 @@ async def swarm(tmp: Path) -> AsyncIterator[str]:
                 return False
 
             await _wait_for("gateway /readyz", readyz, 60)
+            async with httpx.AsyncClient(base_url=base, timeout=10) as anonymous:  # tokens are enforced
+                assert (await anonymous.get("/api/v1/vehicles")).status_code == 401
+                assert (await anonymous.post("/mcp", json={})).status_code == 401
             for i in range(DRONES):
-                done = await asyncio.to_thread(
+                done = await asyncio.to_thread(  # the registrar finds its token as in compose
                     subprocess.run,
                     _program(register_command(i, base)),
                     capture_output=True,
                     text=True,
                     cwd=tmp,
+                    env={**os.environ, "GATEWAY_OPERATOR_TOKENS": OPERATOR_TOKEN},
                 )
                 assert done.returncode == 0, done.stderr
 
@@ -194,8 +206,13 @@ async def swarm(tmp: Path) -> AsyncIterator[str]:
                 os.kill(pid, signal.SIGKILL)
 
 
-def _client(base: str, name: str) -> Client:
-    return Client(f"{base}/mcp", client_info=Implementation(name=name, version="1.0"))
+@contextlib.asynccontextmanager
+async def _client(base: str, name: str) -> AsyncIterator[Client]:
+    """An MCP client over Streamable HTTP with the agent's bearer token (as an agent reaches compose)."""
+    http = create_mcp_http_client(headers={"authorization": f"Bearer {AGENT_TOKEN}"})
+    async with http, Client(streamable_http_client(f"{base}/mcp", http_client=http),
+                            client_info=Implementation(name=name, version="1.0")) as client:  # fmt: skip
+        yield client
 
 
 def _ok(r: Any) -> dict[str, Any]:
@@ -290,7 +307,7 @@ async def test_five_drone_formation_flight_keeps_separation(tmp_path: Path) -> N
 
         # the recorded 1 Hz tracks (flight log in the gateway's database, through REST)
         tracks: dict[str, list[Sample]] = {d: [] for d in ids}
-        async with httpx.AsyncClient(base_url=base, timeout=30) as http:
+        async with httpx.AsyncClient(base_url=base, timeout=30, headers=OPERATOR) as http:
             for d in ids:
                 flights = (await http.get("/api/v1/flights", params={"vehicle_id": d})).json()["items"]
                 assert flights, f"no flight recorded for {d}"
