@@ -213,6 +213,7 @@ class LocalStack:
         self.ready_timeout_s = ready_timeout_s
         # An agent token, so the host's bearer auth against the gateway's /mcp is exercised too.
         self.token: str = secrets.token_urlsafe(18)
+        self.operator_token: str = secrets.token_urlsafe(18)  # for the REST registration
         self.mcp_url = ""
         self.api_url = ""
         self.sim_control_url = ""
@@ -305,6 +306,8 @@ class LocalStack:
                 "GATEWAY_DATABASE_URL": f"sqlite+aiosqlite:///{self.workdir / 'gateway.db'}",
                 "GATEWAY_LOG_LEVEL": "INFO",  # uvicorn's "running on" line is the proof of our bind
                 "GATEWAY_AGENT_TOKENS": self.token,
+                "GATEWAY_OPERATOR_TOKENS": self.operator_token,
+                "GATEWAY_VIEWER_TOKENS": "",
                 **self.extra_env,
             }
             proc = await self._spawn("gateway", ["serve"], env)
@@ -331,7 +334,8 @@ class LocalStack:
                 await asyncio.sleep(0.2)
 
     async def _register_and_wait(self) -> None:
-        async with httpx.AsyncClient(base_url=f"{self.api_url}/api/v1", timeout=10) as http:
+        headers = {"Authorization": f"Bearer {self.operator_token}"}
+        async with httpx.AsyncClient(base_url=f"{self.api_url}/api/v1", timeout=10, headers=headers) as http:
             for drone_id, url in zip(self.drone_ids, self.vehicle_urls, strict=True):
                 r = await http.post("/vehicles", json={"id": drone_id, "url": url})
                 if r.status_code != 201:
