@@ -11,6 +11,7 @@ import os
 import signal
 from typing import Any
 
+import httpx
 import pytest
 from mcp.types import CallToolResult
 
@@ -165,3 +166,15 @@ async def test_link_loss_during_mission_failsafe_then_recovery(stack: Stack) -> 
         mon = await ok(c, "monitor_flight", d)
         assert mon["status"] == "failed" and "RTL" in mon["message"], mon
     await wait_until_true(stack, "d2", lambda s: not s["armed"], "home after the failsafe RTL")
+
+
+async def test_operator_kills_a_flying_drone_over_rest(stack: Stack) -> None:
+    """Kill in the air is an operator decision: REST does it at once, and the audit records who."""
+    async with stack.client("auto", name="before-kill") as c:
+        assert (await ok(c, "takeoff", {"drone_id": "d1", "altitude_m": 6}))["status"] == "succeeded"
+    async with httpx.AsyncClient(base_url=stack.base_url, timeout=30) as http:
+        r = await http.post("/api/v1/vehicles/d1/kill")
+        assert r.status_code == 200 and r.json()["outcome"] == "sent", r.text
+        await wait_until_true(stack, "d1", lambda s: not s["armed"], "motors stopped")
+        audit = (await http.get("/api/v1/audit", params={"vehicle_id": "d1", "limit": 5})).json()["items"]
+        assert any(a["action"] == "rest.kill_vehicle" and a["outcome"] == "ok" for a in audit), audit
