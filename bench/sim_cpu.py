@@ -20,7 +20,7 @@ from tests.helpers import sim_process
 from tests.helpers.raw import raw_mavlink
 
 STREAMS = [(33, 5), (30, 4), (1, 1), (24, 1), (147, 1), (245, 1), (242, 1)]
-MEASURE_S = 15.0
+MEASURE_S = 10.0
 
 
 def _cpu_s(pid: int) -> float:

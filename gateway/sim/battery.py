@@ -19,6 +19,9 @@ class Battery:
     consumed_wh: float = 0.0
     current: float = 0.0
     failsafe: str | None = None  # None, "low" or "critical"
+    # SITL's default battery (SIM_BATT_CAP_AH 0) keeps its full voltage whatever is consumed; the voltage
+    # follows the charge once SIM_BATT_CAP_AH is set or a battery level has been injected.
+    follow_charge: bool = False
     _low_since: float | None = None
 
     @property
@@ -28,11 +31,14 @@ class Battery:
     @property
     def voltage(self) -> float:
         """Resting voltage from state of charge: 4.2 V/cell full, 3.3 V/cell empty (linear)."""
+        if not self.follow_charge:
+            return self.full_voltage
         soc = self.remaining_pct / 100.0
         per_cell = 3.3 + 0.9 * soc
         return min(self.full_voltage, per_cell * self.cells)
 
     def set_remaining(self, pct: float) -> None:
+        self.follow_charge = True
         self.consumed_mah = self.capacity_mah * (1.0 - max(0.0, min(100.0, pct)) / 100.0)
 
     def drain(self, dt: float, armed: bool, flying: bool) -> None:

@@ -24,6 +24,7 @@ FAILED = mav.MAV_RESULT_FAILED
 UNSUPPORTED = mav.MAV_RESULT_UNSUPPORTED
 
 FORCE_ARM_MAGIC = 2989
+PARAM_READ_DELAY_S = 0.1
 FORCE_DISARM_MAGIC = 21196
 
 BANNER = ("ArduCopter V4.7.0-dev (82f560b8)", "8d1219c7c4c5404aaa1f6d2a48adfda4", "Frame: QUAD/PLUS")
@@ -231,7 +232,9 @@ class CommandHandler:
             return
         param = v.params.find(_name(msg.param_id))
         if param is not None:  # unknown names get no reply at all, like ArduPilot
-            link.send(v.param_value(param))
+            # ArduPilot serves reads by name from a slow queue: ~100 ms (simulated) latency
+            reply = v.param_value(param)
+            asyncio.get_running_loop().call_later(PARAM_READ_DELAY_S / v.speedup, link.send, reply)
 
     def param_set(self, link: Link, msg) -> None:
         v = self.v

@@ -102,7 +102,6 @@ class SimVehicle:
         lat, lon, alt, heading = home
         self.frame = LocalFrame(lat, lon, alt)
         self.params = ParamTable(firmware, {"MAV_SYSID": sysid, "SIM_SPEEDUP": speedup})
-        self.params.on_change.append(self._param_changed)
         self.sysid = sysid
         self.uid2 = bytes(f"{(seed or 0) * 7919 + sysid:032x}"[-17:], "ascii") + b"\0"
         self._heading0 = heading % 360.0
@@ -226,8 +225,8 @@ class SimVehicle:
         return lat, lon, self.frame.alt0 + self.body.up
 
     def gps_position(self) -> tuple[float, float, float]:
-        lat, lon, alt = self.position()
-        return lat, lon, alt
+        """What the GPS reports: the true position (SITL's GPS noise defaults to 0 as well)."""
+        return self.position()
 
     def rel_alt(self) -> float:
         home_alt = self.home[2] if self.home else self.frame.alt0
@@ -393,10 +392,6 @@ class SimVehicle:
             if param is not None:
                 self.params.set(param.name, hz, notify=False)
 
-    def _param_changed(self, param: Param) -> None:
-        # Like ArduPilot, MAV_SYSID / SYSID_THISMAV only takes effect at the next boot.
-        pass
-
     def _mission_home(self) -> tuple[float, float, float]:
         if self.home is not None:
             return self.home
@@ -429,6 +424,8 @@ class SimVehicle:
         self.flight.step(dt)
         if self.flying:
             self.flight_time_s += dt
+        if not self.battery.follow_charge and self.params.get("SIM_BATT_CAP_AH") > 0:
+            self.battery.follow_charge = True
         self.battery.drain(dt, self.armed, self.flying)
         self._failsafes()
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import asyncio
+
 from mavsdk_grpc.mission_raw import MissionItem
 from mavsdk_grpc.telemetry import FlightMode
 
@@ -71,17 +73,20 @@ async def test_mission_upload_download_run_and_rtl() -> None:
         assert truth["mode"] == "RTL" and truth["landed"]
 
 
-async def test_mission_start_on_the_ground_takes_off_and_clear() -> None:
+async def test_auto_armed_on_the_ground_waits_and_clear_leaves_only_home() -> None:
     async with sim_process(1, speedup=SPEEDUP) as sim, mavsdk_system(sim.urls[0]) as drone:
         await ready_to_fly(drone)
         home = await wait_for(drone.telemetry.home(), lambda _h: True)
         await drone.mission_raw.upload_mission(_plan(home.latitude_deg, home.longitude_deg))
+        await sim.control.set_param(0, "DISARM_DELAY", 0)  # no auto-disarm while we watch it wait
         await drone.action.arm()
-        # MAV_CMD_MISSION_START on the ground (what QGC's "start mission" sends) takes off in AUTO
-        await drone.mission_raw.start_mission()  # DO_SET_MODE AUTO only: waits on the ground
+        # mission_raw.start_mission() is DO_SET_MODE AUTO only: armed on the ground the mission does not
+        # start (not "auto-armed"); MAV_CMD_MISSION_START would take off (test_guided_raw)
+        await drone.mission_raw.start_mission()
+        await asyncio.sleep(1.0)  # 30 simulated seconds
         truth = await sim.control.state(0)
-        assert truth["mode"] == "AUTO" and truth["landed"]
+        assert truth["mode"] == "AUTO" and truth["armed"] and truth["landed"] and truth["rel_alt_m"] == 0
         await drone.action.disarm()
 
         await drone.mission_raw.clear_mission()
-        assert len(await drone.mission_raw.download_mission()) <= 1  # only home remains
+        assert len(await drone.mission_raw.download_mission()) == 1  # only home remains
