@@ -6,8 +6,10 @@ import argparse
 import asyncio
 import ipaddress
 import json
+import math
 import os
 import sys
+from datetime import UTC, datetime, timedelta
 from typing import Any
 
 import httpx
@@ -59,6 +61,14 @@ def register(subparsers: Any) -> None:
     upgrade.add_argument("--revision", default="head", help="target Alembic revision (default head)")
     _database_option(upgrade)
     upgrade.set_defaults(func=cmd_db_upgrade)
+    prune = db_cmds.add_parser(
+        "prune", help="delete flights, tracks, status texts, audit and sessions older than N days"
+    )
+    prune.add_argument(
+        "--older-than-days", type=float, required=True, metavar="DAYS", help="age limit in days"
+    )
+    _database_option(prune)
+    prune.set_defaults(func=cmd_db_prune)
 
 
 def _database_option(parser: argparse.ArgumentParser) -> None:
@@ -281,6 +291,19 @@ def cmd_db_upgrade(args: argparse.Namespace) -> int:
     revision = asyncio.run(run())
     print(f"database at revision {revision}")
     return 0
+
+
+def cmd_db_prune(args: argparse.Namespace) -> int:
+    if not math.isfinite(args.older_than_days) or args.older_than_days <= 0:
+        return _fail(f"--older-than-days must be a positive number of days; got {args.older_than_days}", 2)
+    cutoff = datetime.now(UTC) - timedelta(days=args.older_than_days)
+
+    async def run(store: Store) -> str:
+        counts = await store.prune(cutoff)
+        deleted = ", ".join(f"{n} {name}" for name, n in counts.items())
+        return f"deleted what was older than {cutoff.isoformat(timespec='seconds')}: {deleted}"
+
+    return _with_store(args, run)
 
 
 def main(argv: list[str] | None = None) -> int:

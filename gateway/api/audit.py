@@ -57,6 +57,7 @@ async def record_rest_call(
     request: Request, action: str, outcome: str, error: str | None, started: float
 ) -> None:
     """Write one audit row (and touch the caller's REST session); never fails the request."""
+    duration_ms = (time.perf_counter() - started) * 1000.0
     gateway = request.app.state.gateway
     store = gateway.store
     if store is None or not store.is_open:
@@ -77,7 +78,7 @@ async def record_rest_call(
                 arguments=args,
                 outcome=outcome,
                 error=error,
-                duration_ms=(time.perf_counter() - started) * 1000.0,
+                duration_ms=duration_ms,
             )
         )
     except Exception:

@@ -44,7 +44,7 @@ def vehicle_view(
 async def _record(store: Store, registry: Any, vehicle_id: str) -> VehicleRecord:
     record = await store.get_vehicle(vehicle_id)
     if record is None:
-        raise UnknownVehicle(vehicle_id, [v.id for v in await store.list_vehicles()])
+        raise UnknownVehicle(vehicle_id[:64], [v.id for v in await store.list_vehicles()])
     return record
 
 

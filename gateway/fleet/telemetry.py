@@ -152,6 +152,9 @@ class TelemetryCache:
     """Latest value of every stream, each with its arrival time; None until first received."""
 
     stale_after_s: float = 3.0
+    #: False while the vehicle's link is lost or its session is down: then every value counts as stale,
+    #: even one that arrived a moment after the last heartbeat (the owner keeps this up to date)
+    live: bool = True
     position: Sample[PositionValue] | None = None
     home: Sample[PositionValue] | None = None
     attitude: Sample[AttitudeValue] | None = None
@@ -220,7 +223,7 @@ class TelemetryCache:
         """The value of ``name`` if it is younger than ``max_age_s`` (default: stale limit), else None."""
         sample: Sample[Any] | None = getattr(self, name)
         limit = self.stale_after_s if max_age_s is None else max_age_s
-        if sample is None or sample.age_s > limit:
+        if sample is None or sample.age_s > limit or not self.live:
             return None
         return sample.value
 
@@ -230,7 +233,9 @@ class TelemetryCache:
             setattr(self, name, None)
 
     def snapshot(self) -> dict[str, Any]:
-        """Everything, each part with ``age_s`` and ``stale``; never-received parts are None."""
+        """Everything, each part with ``age_s`` and ``stale``; never-received parts are None.
+
+        ``stale`` is true for a part older than ``stale_after_s`` and for every part while not ``live``."""
         out: dict[str, Any] = {}
         for name in self.FIELDS:
             sample: Sample[Any] | None = getattr(self, name)
@@ -241,7 +246,7 @@ class TelemetryCache:
             body: dict[str, Any] = _json_safe(asdict(value) if is_dataclass(value) else {"value": value})
             age = round(sample.age_s, 3)
             body["age_s"] = age
-            body["stale"] = age > self.stale_after_s
+            body["stale"] = age > self.stale_after_s or not self.live
             out[name] = body
         out["status_texts"] = [asdict(item) for item in list(self.status_texts)[-10:]]
         return out

@@ -208,7 +208,8 @@ class Vehicle:
             return ConnectionState.LINK_LOST if since > limit else ConnectionState.CONNECTED
         if age > limit:
             return ConnectionState.LINK_LOST
-        health = self.telemetry.fresh("health")
+        sample = self.telemetry.health  # raw age: fresh() depends on the state computed here
+        health = sample.value if sample is not None and sample.age_s <= limit else None
         if (
             health is not None
             and health.global_position_ok
@@ -551,6 +552,7 @@ class Vehicle:
 
     def _note_state(self) -> None:
         state = self._compute_state()
+        self.telemetry.live = state in (ConnectionState.CONNECTED, ConnectionState.READY)
         if state != self._state:
             old, self._state = self._state, state
             self._state_since = time.monotonic()

@@ -8,16 +8,13 @@ returns plain pydantic records, never live ORM objects. Only portable SQL is use
 from __future__ import annotations
 
 import asyncio
-import json
 import logging
-import math
 import weakref
 from collections.abc import Sequence
-from datetime import UTC, datetime
+from datetime import datetime
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
 from sqlalchemy import delete, event, func, or_, select, text
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.ext.asyncio import AsyncEngine, async_sessionmaker, create_async_engine
@@ -33,209 +30,63 @@ from gateway.registry.models import (
     TrackSampleRow,
     VehicleRow,
 )
+from gateway.registry.records import (
+    AUDIT_MAX_ERROR,
+    AUDIT_MAX_JSON,
+    AUDIT_MAX_STRING,
+    SEVERITY_NAMES,
+    AuditEntry,
+    AuditOutcome,
+    AuditRecord,
+    AuditSource,
+    FlightRecord,
+    LockRecord,
+    OperationRecord,
+    OperationStatus,
+    SessionKind,
+    SessionRecord,
+    StatusTextIn,
+    StatusTextRecord,
+    TrackSample,
+    VehicleRecord,
+    bound_arguments,
+    utcnow,
+)
 from gateway.registry.spec import VehicleSpec
+
+# The records are part of the store's API: import them from here or from gateway.registry.records.
+__all__ = [
+    "AUDIT_MAX_ERROR",
+    "AUDIT_MAX_JSON",
+    "AUDIT_MAX_STRING",
+    "SEVERITY_NAMES",
+    "AuditEntry",
+    "AuditOutcome",
+    "AuditRecord",
+    "AuditSource",
+    "FlightRecord",
+    "LockRecord",
+    "OperationRecord",
+    "OperationStatus",
+    "SessionKind",
+    "SessionRecord",
+    "StatusTextIn",
+    "StatusTextRecord",
+    "Store",
+    "TrackSample",
+    "VehicleRecord",
+    "bound_arguments",
+    "create_engine_for",
+    "current_revision",
+    "head_revision",
+    "upgrade_schema",
+    "utcnow",
+]
 
 log = logging.getLogger(__name__)
 
 MIGRATIONS_DIR = Path(__file__).resolve().parents[2] / "migrations"
 SQLITE_BUSY_TIMEOUT_MS = 10_000
-AUDIT_MAX_STRING = 500
-AUDIT_MAX_JSON = 8_000
-AUDIT_MAX_ERROR = 2_000
-STATUS_TEXT_MAX = 255
-
-# MAVLink MAV_SEVERITY numbers to the names MAVSDK uses.
-SEVERITY_NAMES = ("EMERGENCY", "ALERT", "CRITICAL", "ERROR", "WARNING", "NOTICE", "INFO", "DEBUG")
-
-SessionKind = Literal["mcp-2025", "mcp-2026", "rest"]
-AuditSource = Literal["mcp", "rest"]
-AuditOutcome = Literal["ok", "error", "refused", "running"]
-OperationStatus = Literal["running", "succeeded", "failed", "superseded", "interrupted", "cancelled"]
-
-
-def utcnow() -> datetime:
-    return datetime.now(UTC)
-
-
-# --- records -----------------------------------------------------------------------------------
-
-
-class _Record(BaseModel):
-    model_config = ConfigDict(from_attributes=True)
-
-
-class VehicleRecord(VehicleSpec):
-    """A stored vehicle registration: the spec plus bookkeeping."""
-
-    model_config = ConfigDict(extra="forbid", from_attributes=True)
-
-    auto_connect: bool = True
-    created_at: datetime
-    updated_at: datetime
-
-    @property
-    def spec(self) -> VehicleSpec:
-        return VehicleSpec(
-            id=self.id, url=self.url, name=self.name, tags=list(self.tags), expected_sysid=self.expected_sysid
-        )
-
-
-class FlightRecord(_Record):
-    id: int
-    vehicle_id: str
-    started_at: datetime
-    ended_at: datetime | None = None
-    home_lat: float | None = None
-    home_lon: float | None = None
-    home_alt_amsl: float | None = None
-    duration_s: float | None = None
-    distance_m: float | None = None
-    max_alt_rel_m: float | None = None
-    battery_used_pct: float | None = None
-
-    @property
-    def is_open(self) -> bool:
-        return self.ended_at is None
-
-
-class TrackSample(_Record):
-    """One point of a flight's track. ``t`` accepts an aware datetime or a Unix timestamp."""
-
-    flight_id: int
-    t: datetime
-    lat: float = Field(ge=-90, le=90)
-    lon: float = Field(ge=-180, le=180)
-    alt_rel_m: float | None = None
-    heading_deg: float | None = None
-    ground_speed_mps: float | None = None
-    battery_pct: float | None = None
-
-    @field_validator("alt_rel_m", "heading_deg", "ground_speed_mps", "battery_pct")
-    @classmethod
-    def _finite_or_none(cls, value: float | None) -> float | None:
-        """A non-finite reading is no reading (and would make the GeoJSON invalid)."""
-        return value if value is None or math.isfinite(value) else None
-
-
-class StatusTextIn(_Record):
-    """A STATUSTEXT to store; ``severity`` is a MAV_SEVERITY number or name (stored as the name)."""
-
-    vehicle_id: str
-    flight_id: int | None = None
-    t: datetime
-    severity: str
-    text: str
-
-    @field_validator("severity", mode="before")
-    @classmethod
-    def _severity(cls, value: Any) -> str:
-        if isinstance(value, int) and 0 <= value < len(SEVERITY_NAMES):
-            return SEVERITY_NAMES[value]
-        name = getattr(value, "name", value)  # enums (e.g. MAVSDK's StatusTextType)
-        return str(name).upper()[:16]
-
-    @field_validator("text")
-    @classmethod
-    def _text(cls, value: str) -> str:
-        return value[:STATUS_TEXT_MAX]
-
-
-class StatusTextRecord(StatusTextIn):
-    id: int
-
-
-class SessionRecord(_Record):
-    key: str
-    kind: str
-    principal: str | None = None
-    client_name: str | None = None
-    client_version: str | None = None
-    first_seen: datetime
-    last_seen: datetime
-    request_count: int = 1
-
-
-class AuditEntry(_Record):
-    """One audited call. ``t`` defaults to now; arguments are bounded by the store."""
-
-    session_key: str | None = None
-    principal: str | None = None
-    source: AuditSource
-    vehicle_id: str | None = None
-    action: str
-    arguments: dict[str, Any] = Field(default_factory=dict)
-    outcome: AuditOutcome
-    error: str | None = None
-    duration_ms: float | None = None
-    t: datetime | None = None
-
-
-class AuditRecord(AuditEntry):
-    id: int
-    t: datetime
-
-
-class OperationRecord(_Record):
-    """A long-running vehicle action; saved (upserted by id) on every change of status or progress."""
-
-    id: str = Field(min_length=1, max_length=64)
-    vehicle_id: str
-    kind: str
-    params: dict[str, Any] = Field(default_factory=dict)
-    status: OperationStatus
-    progress: float = Field(0.0, ge=0.0, le=1.0)
-    message: str | None = None
-    result: dict[str, Any] | None = None
-    session_key: str | None = None
-    created_at: datetime = Field(default_factory=utcnow)
-    updated_at: datetime = Field(default_factory=utcnow)
-    finished_at: datetime | None = None
-
-
-class LockRecord(_Record):
-    """A stored operator lock (scope: a vehicle id, or "*" for the whole fleet)."""
-
-    scope: str
-    reason: str
-    by: str
-    locked_at: datetime
-
-
-# --- argument bounding -------------------------------------------------------------------------
-
-
-def bound_arguments(
-    arguments: dict[str, Any], max_string: int = AUDIT_MAX_STRING, max_json: int = AUDIT_MAX_JSON
-) -> dict[str, Any]:
-    """Make audit arguments JSON-safe and bounded: long strings cut, whole object capped in size."""
-
-    def walk(value: Any, depth: int) -> Any:
-        if depth > 8:
-            return "<nested too deep>"
-        if value is None or isinstance(value, bool | int):
-            return value
-        if isinstance(value, float):
-            return value if value == value and abs(value) != float("inf") else str(value)
-        if isinstance(value, str):
-            if len(value) > max_string:
-                return value[:max_string] + f"...<{len(value) - max_string} more chars>"
-            return value
-        if isinstance(value, dict):
-            return {str(k)[:max_string]: walk(v, depth + 1) for k, v in value.items()}
-        if isinstance(value, list | tuple | set):
-            return [walk(v, depth + 1) for v in value]
-        if isinstance(value, BaseModel):
-            return walk(value.model_dump(mode="json"), depth + 1)
-        return walk(str(value), depth + 1)
-
-    bounded = walk(dict(arguments), 0)
-    text = json.dumps(bounded, ensure_ascii=False)
-    if len(text) > max_json:
-        return {"_truncated": True, "_size": len(text), "_preview": text[: max_json // 2]}
-    return bounded
-
-
-# --- the store ---------------------------------------------------------------------------------
 
 
 def _is_sqlite(url: str) -> bool:
@@ -746,3 +597,30 @@ class Store:
                 LockRecord(scope=r.scope, reason=r.reason, by=r.locked_by, locked_at=r.locked_at)
                 for r in rows
             ]
+
+    # --- retention -------------------------------------------------------------------------------
+
+    async def prune(self, before: datetime) -> dict[str, int]:
+        """Delete history older than ``before``: flights that ended before it (with their tracks),
+        status texts, audit entries, sessions last seen and operations finished before it.
+        Registrations, locks, open flights and running operations are kept. Returns rows deleted."""
+        old_flights = select(FlightRow.id).where(FlightRow.ended_at.is_not(None), FlightRow.ended_at < before)
+        counts: dict[str, int] = {}
+        async with self._sessions.begin() as session:
+            steps = [
+                ("track_samples", delete(TrackSampleRow).where(TrackSampleRow.flight_id.in_(old_flights))),
+                ("status_texts", delete(StatusTextRow).where(StatusTextRow.t < before)),
+                ("flights", delete(FlightRow).where(FlightRow.id.in_(old_flights))),
+                ("audit", delete(AuditRow).where(AuditRow.t < before)),
+                ("sessions", delete(SessionRow).where(SessionRow.last_seen < before)),
+                (
+                    "operations",
+                    delete(OperationRow).where(
+                        OperationRow.finished_at.is_not(None), OperationRow.finished_at < before
+                    ),
+                ),
+            ]
+            for name, statement in steps:
+                result = await session.execute(statement.execution_options(synchronize_session=False))
+                counts[name] = int(result.rowcount or 0)
+        return counts

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Iterator
 from pathlib import Path
 
 import httpx
@@ -34,3 +34,20 @@ async def client(app: FastAPI) -> AsyncIterator[httpx.AsyncClient]:
     transport = httpx.ASGITransport(app=app)
     async with httpx.AsyncClient(transport=transport, base_url="http://127.0.0.1:8765") as client:
         yield client
+
+
+@pytest.fixture(scope="session")
+def pg_server_url() -> Iterator[str]:
+    from tests.persist.pg import find_pg_bin, postgres_server
+
+    if not (find_pg_bin("initdb") and find_pg_bin("postgres")):
+        pytest.skip("PostgreSQL server binaries are not installed (apt-get install postgresql)")
+    with postgres_server() as url:
+        yield url
+
+
+@pytest.fixture
+async def pg_database_url(pg_server_url: str) -> str:
+    from tests.persist.pg import create_database
+
+    return await create_database(pg_server_url)

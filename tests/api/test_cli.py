@@ -6,6 +6,7 @@ import asyncio
 import json
 import subprocess
 import sys
+from datetime import UTC, datetime, timedelta
 from pathlib import Path
 
 import pytest
@@ -115,3 +116,23 @@ def test_serve_refuses_a_public_bind_without_tokens(capsys: pytest.CaptureFixtur
     assert "loopback only" in capsys.readouterr().err
     assert run_cli("serve", "--port", "70000") == 2
     assert "port" in capsys.readouterr().err
+
+
+def test_db_prune_command(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    url = f"sqlite+aiosqlite:///{tmp_path / 'prune.db'}"
+
+    async def seed() -> None:
+        store = await Store.open(url)
+        try:
+            fid = await store.open_flight("alpha", datetime.now(UTC) - timedelta(days=100))
+            await store.close_flight(fid, datetime.now(UTC) - timedelta(days=99))
+            await store.open_flight("alpha", datetime.now(UTC))
+        finally:
+            await store.close()
+
+    asyncio.run(seed())
+    assert run_cli("db", "prune", "--older-than-days", "30", "--database-url", url) == 0
+    assert "1 flights" in capsys.readouterr().out
+    assert run_cli("db", "prune", "--older-than-days", "0", "--database-url", url) == 2
+    assert "positive number of days" in capsys.readouterr().err
+    assert run_cli("db", "prune", "--older-than-days", "nan", "--database-url", url) == 2

@@ -10,6 +10,8 @@ from pathlib import Path
 
 import httpx
 import pytest
+from mcp import Client
+from mcp.types import Implementation
 
 from gateway.registry.store import Store
 from gateway.util.ports import free_tcp_port
@@ -113,6 +115,16 @@ async def test_flown_flight_is_listed_with_its_track(tmp_path: Path) -> None:
             assert stop.status_code == 200, stop.text
             assert [(r["vehicle_id"], r["outcome"]) for r in stop.json()["results"]] == [("alpha", "sent")]
             assert "test over" in (await client.get("/api/v1/vehicles/alpha")).json()["locked"]
+            # an agent (MCP on the same app) is refused while the operator's lock holds, reads still work
+            base = str(client.base_url).rstrip("/")
+            async with Client(
+                f"{base}/mcp", client_info=Implementation(name="rest-test", version="1")
+            ) as agent:
+                goto = {"drone_id": "alpha", "latitude_deg": home.lat_deg, "longitude_deg": home.lon_deg}
+                refused = await agent.call_tool("go_to_location", {**goto, "altitude_m": 5, "wait": False})
+                assert refused.is_error and "test over" in refused.content[0].text
+                status = await agent.call_tool("get_armed", {"drone_id": "alpha"})
+                assert not status.is_error
 
             async def flight_closed() -> bool:
                 page = (await client.get("/api/v1/flights", params={"vehicle_id": "alpha"})).json()

@@ -491,3 +491,27 @@ async def test_operator_actions_and_fleet_stop(client: httpx.AsyncClient, app: F
 
     actions = [e["action"] for e in (await client.get("/api/v1/audit")).json()["items"]]
     assert "rest.fleet_stop" in actions and "rest.land_vehicle" in actions
+
+
+# --- the same API on PostgreSQL ----------------------------------------------------------------
+
+
+async def test_rest_on_postgresql(pg_database_url: str) -> None:
+    settings = Settings(database_url=pg_database_url, max_request_body_bytes=4096)
+    async with lifespan_running(create_app(settings, registry_factory=FakeRegistry)) as app:
+        transport = httpx.ASGITransport(app=app)
+        async with httpx.AsyncClient(transport=transport, base_url="http://127.0.0.1:8765") as client:
+            assert (await client.post("/api/v1/vehicles", json=ALPHA)).status_code == 201
+            assert_error(await client.post("/api/v1/vehicles", json=ALPHA), 409, "duplicate_vehicle")
+            ids = await seed_flights(store_of(app))
+            page = (await client.get("/api/v1/flights", params={"vehicle_id": "alpha", "limit": 1})).json()
+            assert page["total"] == 2 and page["items"][0]["id"] == ids[2]
+            feature = (await client.get(f"/api/v1/flights/{ids[0]}/track.geojson")).json()
+            assert len(feature["geometry"]["coordinates"]) == 5
+            await client.post("/api/v1/vehicles/alpha/lock", json={"reason": "pg"})
+            audit = (await client.get("/api/v1/audit")).json()
+            assert [e["action"] for e in audit["items"]][:2] == ["rest.lock_vehicle", "rest.register_vehicle"]
+    # restored from PostgreSQL by a new app
+    async with lifespan_running(create_app(settings, registry_factory=FakeRegistry)) as again:
+        assert again.state.gateway.locks.reason_for("alpha").endswith(": pg")
+        assert [v.id for v in await store_of(again).list_vehicles()] == ["alpha"]

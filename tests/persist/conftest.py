@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import os
-import uuid
 from collections.abc import AsyncIterator, Iterator
 from pathlib import Path
 
@@ -12,7 +11,7 @@ from sqlalchemy.engine import URL, make_url
 
 from gateway.registry.store import Store
 
-from .pg import find_pg_bin, postgres_server
+from .pg import create_database, find_pg_bin, postgres_server
 
 
 @pytest.fixture(scope="session")
@@ -33,24 +32,11 @@ def pg_base_url() -> Iterator[str]:
         yield url
 
 
-async def _create_database(base_url: str) -> str:
-    import asyncpg
-
-    name = f"gw_{uuid.uuid4().hex[:12]}"
-    dsn = base_url.replace("postgresql+asyncpg://", "postgresql://") + "/postgres"
-    conn = await asyncpg.connect(dsn)
-    try:
-        await conn.execute(f'CREATE DATABASE "{name}"')
-    finally:
-        await conn.close()
-    return f"{base_url}/{name}"
-
-
 @pytest.fixture(params=["sqlite", "postgresql"])
 async def db_url(request: pytest.FixtureRequest, tmp_path: Path) -> str:
     if request.param == "sqlite":
         return f"sqlite+aiosqlite:///{tmp_path / 'gateway.db'}"
-    return await _create_database(request.getfixturevalue("pg_base_url"))
+    return await create_database(request.getfixturevalue("pg_base_url"))
 
 
 @pytest.fixture

@@ -8,10 +8,11 @@ import sys
 from datetime import UTC, datetime, timedelta
 
 import pytest
-from sqlalchemy import event, text
+from sqlalchemy import event, text, update
 from sqlalchemy.exc import IntegrityError
 
 from gateway.errors import DuplicateVehicle, InvalidArgument, NotFound
+from gateway.registry.models import SessionRow
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import (
     AUDIT_MAX_STRING,
@@ -466,3 +467,60 @@ async def test_locks_are_stored_replaced_and_deleted(store: Store) -> None:
     assert await store.delete_lock("alpha") is True
     assert await store.delete_lock("alpha") is False
     assert [lk.scope for lk in await store.list_locks()] == ["*"]
+
+
+# --- retention ---------------------------------------------------------------------------------
+
+
+async def test_prune_deletes_old_history_only(store: Store) -> None:
+    old, new = T0, T0 + timedelta(days=40)
+    cutoff = T0 + timedelta(days=30)
+    await store.add_vehicle(spec("alpha"))
+    await store.save_lock("alpha", "kept", "op", old)
+    old_flight = await store.open_flight("alpha", old)
+    await store.add_track_samples([TrackSample(flight_id=old_flight, t=old, lat=1, lon=2)])
+    await store.close_flight(old_flight, old + timedelta(minutes=5))
+    open_flight = await store.open_flight("alpha", old)  # still open: kept with its track
+    await store.add_track_samples([TrackSample(flight_id=open_flight, t=old, lat=1, lon=2)])
+    new_flight = await store.open_flight("alpha", new)
+    await store.add_track_samples([TrackSample(flight_id=new_flight, t=new, lat=1, lon=2)])
+    await store.close_flight(new_flight, new + timedelta(minutes=5))
+    await store.add_status_texts(
+        [
+            StatusTextIn(vehicle_id="alpha", flight_id=old_flight, t=old, severity=6, text="old"),
+            StatusTextIn(vehicle_id="alpha", flight_id=new_flight, t=new, severity=6, text="new"),
+        ]
+    )
+    for t in (old, new):
+        await store.add_audit(AuditEntry(source="rest", action="x", outcome="ok", t=t))
+    await store.save_operation(
+        OperationRecord(
+            id="old", vehicle_id="alpha", kind="goto", status="succeeded", created_at=old, finished_at=old
+        )
+    )
+    await store.save_operation(
+        OperationRecord(id="run", vehicle_id="alpha", kind="goto", status="running", created_at=old)
+    )
+    await store.touch_session("s-old", "mcp-2025")
+    async with store.engine.begin() as conn:  # make that session old
+        await conn.execute(update(SessionRow).values(last_seen=old))
+    await store.touch_session("s-new", "mcp-2026")
+
+    counts = await store.prune(cutoff)
+    assert counts == {
+        "track_samples": 1,
+        "status_texts": 1,
+        "flights": 1,
+        "audit": 1,
+        "sessions": 1,
+        "operations": 1,
+    }
+    flights, total = await store.list_flights()
+    assert total == 2 and {f.id for f in flights} == {open_flight, new_flight}
+    assert len(await store.get_track(open_flight)) == 1 and len(await store.get_track(new_flight)) == 1
+    assert [t.text for t in await store.list_status_texts("alpha")] == ["new"]
+    assert await store.count_audit() == 1
+    assert [s.key for s in await store.list_sessions()] == ["s-new"]
+    assert [o.id for o in await store.list_operations()] == ["run"]
+    assert [v.id for v in await store.list_vehicles()] == ["alpha"] and len(await store.list_locks()) == 1
+    assert (await store.prune(cutoff)) == dict.fromkeys(counts, 0)

@@ -75,6 +75,9 @@ def test_cache_snapshot_reports_ages_and_staleness() -> None:
     assert snap["battery"]["stale"] is True and snap["battery"]["age_s"] >= 10.0
     assert cache.fresh("battery") is None  # stale values are never presented as current
     assert cache.fresh("position").lat_deg == 47.0
+    cache.live = False  # link lost: nothing is current, however young
+    assert cache.fresh("position") is None and cache.snapshot()["position"]["stale"] is True
+    cache.live = True
     got = []
     cache.on_status_text(got.append)
     cache.add_status_text("warning", "PreArm: Need Position Estimate")
