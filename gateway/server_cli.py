@@ -4,15 +4,18 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
 import ipaddress
 import json
 import math
 import os
 import sys
+from collections.abc import Iterator
 from datetime import UTC, datetime, timedelta
 from typing import Any
 
 import httpx
+import uvicorn
 from pydantic import ValidationError
 
 from gateway.config import Settings
@@ -117,8 +120,6 @@ def _is_loopback(host: str) -> bool:
 
 
 def cmd_serve(args: argparse.Namespace) -> int:
-    import uvicorn
-
     from gateway.app import create_app
 
     try:
@@ -140,10 +141,25 @@ def cmd_serve(args: argparse.Namespace) -> int:
         lifespan="on",
         timeout_graceful_shutdown=10,
     )
-    server = uvicorn.Server(config)
-    # uvicorn handles SIGINT/SIGTERM: it stops accepting, then the lifespan stops every sidecar.
+    server = GatewayServer(config)
+    # SIGINT/SIGTERM: uvicorn stops accepting, then the lifespan stops every sidecar; exit status 0.
     server.run()
     return 0 if server.started else 1
+
+
+class GatewayServer(uvicorn.Server):
+    """uvicorn's server, except that the signal which stopped it cleanly is not raised again afterwards
+    (uvicorn does, so the process would die of it): a clean stop exits with status 0."""
+
+    @contextlib.contextmanager
+    def capture_signals(self) -> Iterator[None]:
+        with super().capture_signals():
+            try:
+                yield
+            finally:
+                captured = getattr(self, "_captured_signals", None)
+                if isinstance(captured, list):
+                    captured.clear()
 
 
 # --- drones ----------------------------------------------------------------------------------------

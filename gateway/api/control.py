@@ -24,9 +24,9 @@ log = logging.getLogger(__name__)
 
 router = APIRouter(tags=["operator control"], route_class=AuditedRoute)
 
-Action = Literal["hold", "land", "rtl", "kill"]
+Action = Literal["hold", "land", "rtl"]
 STOP_LOCK_REASON = "emergency stop"
-_ACTIONS: dict[str, str] = {"hold": "hold", "land": "land", "rtl": "return_to_launch", "kill": "kill"}
+_ACTIONS: dict[str, str] = {"hold": "hold", "land": "land", "rtl": "return_to_launch"}
 
 
 class LockIn(BaseModel):
@@ -166,17 +166,11 @@ def _action_route(action: Action) -> None:
         endpoint,
         methods=["POST"],
         response_model=ActionOut,
-        summary={
-            "hold": "Hold position",
-            "land": "Land",
-            "rtl": "Return to launch",
-            "kill": "Kill the motors at once: a flying drone falls",
-        }[action]
-        + " (operator)",
+        summary={"hold": "Hold position", "land": "Land", "rtl": "Return to launch"}[action] + " (operator)",
     )
 
 
-for _action in ("hold", "land", "rtl", "kill"):  # kill is an operator decision: no agent rule applies
+for _action in ("hold", "land", "rtl"):
     _action_route(_action)  # type: ignore[arg-type]
 
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import sys
 import weakref
 from collections.abc import Sequence
 from datetime import datetime
@@ -85,7 +86,23 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-MIGRATIONS_DIR = Path(__file__).resolve().parents[2] / "migrations"
+# The Alembic scripts: the repository's migrations/ (source checkout, editable install), else the copy
+# a wheel installs under <prefix>/share/fleet-gateway/migrations (pyproject's data-files).
+MIGRATION_DIRS = (
+    Path(__file__).resolve().parents[2] / "migrations",
+    Path(sys.prefix) / "share" / "fleet-gateway" / "migrations",
+)
+
+
+def migrations_dir() -> Path:
+    for candidate in MIGRATION_DIRS:
+        if (candidate / "env.py").is_file():
+            return candidate
+    raise RuntimeError(
+        f"the database migrations are missing; looked in {', '.join(map(str, MIGRATION_DIRS))}"
+    )
+
+
 SQLITE_BUSY_TIMEOUT_MS = 10_000
 
 
@@ -120,7 +137,7 @@ def alembic_config(url: str) -> Any:
     from alembic.config import Config
 
     cfg = Config()
-    cfg.set_main_option("script_location", str(MIGRATIONS_DIR))
+    cfg.set_main_option("script_location", str(migrations_dir()))
     cfg.set_main_option("sqlalchemy.url", url.replace("%", "%%"))
     return cfg
 

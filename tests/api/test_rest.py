@@ -515,3 +515,34 @@ async def test_rest_on_postgresql(pg_database_url: str) -> None:
     async with lifespan_running(create_app(settings, registry_factory=FakeRegistry)) as again:
         assert again.state.gateway.locks.reason_for("alpha").endswith(": pg")
         assert [v.id for v in await store_of(again).list_vehicles()] == ["alpha"]
+
+
+@pytest.mark.parametrize(
+    ("path", "body", "field"),
+    [
+        ("takeoff", {"alt_rel_m": 0}, "alt_rel_m"),
+        ("takeoff", {"alt_rel_m": "high"}, "alt_rel_m"),
+        ("takeoff", {}, "alt_rel_m"),
+        ("goto", {"lat": 91, "lon": 8, "alt_rel_m": 10}, "lat"),
+        ("goto", {"lat": 47, "lon": 8, "alt_rel_m": -1}, "alt_rel_m"),
+        ("goto", {"lat": 47, "lon": 8, "alt_rel_m": 10, "speed": 3}, "speed"),
+    ],
+)
+async def test_operator_flight_commands_validate_first(
+    client: httpx.AsyncClient, app: FastAPI, path: str, body: dict, field: str
+) -> None:
+    await client.post("/api/v1/vehicles", json=ALPHA)
+    error = assert_error(
+        await client.post(f"/api/v1/vehicles/alpha/{path}", json=body), 422, "validation_error"
+    )
+    assert field in error["message"]
+    assert app.state.gateway.registry.get("alpha").actions == []
+
+
+async def test_operator_goto_rejects_nan(client: httpx.AsyncClient) -> None:
+    await client.post("/api/v1/vehicles", json=ALPHA)
+    raw = b'{"lat": NaN, "lon": 8, "alt_rel_m": 10}'
+    response = await client.post(
+        "/api/v1/vehicles/alpha/goto", content=raw, headers={"content-type": "application/json"}
+    )
+    assert response.status_code in (400, 422) and "lat" in response.text
