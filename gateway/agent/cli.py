@@ -216,7 +216,13 @@ async def _interactive(host: AgentHost, console: Console, stdin: Any, *, as_json
         if text == "/tools":
             console.print("[dim]" + ", ".join(sorted(host.tools)) + "[/]")
             continue
-        await host.run_turn(text)
+        try:
+            await host.run_turn(text)
+        except asyncio.CancelledError:
+            # Ctrl-C at the prompt's turn: stop waiting, keep the session (a second Ctrl-C still exits).
+            task = asyncio.current_task()
+            if task is None or task.uncancel() > 0:
+                raise
 
 
 def _is_tty(stream: Any) -> bool:

@@ -104,6 +104,10 @@ class RichDisplay:
         self._stop_status()
         self.console.print(f"[bold red]step limit[/] {escape(d['message'])}")
 
+    def _on_interrupted(self, d: dict[str, Any]) -> None:
+        self._stop_status()
+        self.console.print(f"[bold yellow]interrupted[/] {escape(d['message'])}")
+
     def _on_model_error(self, d: dict[str, Any]) -> None:
         self._stop_status()
         self.console.print(f"[bold red]model error[/] {escape(d['error'])}")

@@ -7,6 +7,7 @@ error (the gateway's refusals included) back to the model verbatim so the model 
 
 from __future__ import annotations
 
+import asyncio
 import itertools
 import json
 import time
@@ -171,6 +172,29 @@ class AgentHost:
         self.messages.append({"role": "user", "content": user_text})
         self._emit("turn_start", turn=self.turns, user=user_text)
         result = TurnResult(outcome="step_limit", final_text=None, steps=0)
+        try:
+            await self._loop(result)
+        except asyncio.CancelledError:
+            # The user interrupted (Ctrl-C): keep the conversation valid for the next turn and say that
+            # an action already sent goes on in the gateway (a cancelled wait does not stop a drone).
+            self._close_open_calls()
+            self._emit("interrupted", message="turn interrupted; actions already sent continue on the drones")
+            raise
+        result.wall_s = time.monotonic() - started
+        self.total_usage.merge(result.usage)
+        self._emit(
+            "turn_end",
+            turn=self.turns,
+            outcome=result.outcome,
+            steps=result.steps,
+            tool_calls=len(result.tool_calls),
+            prompt_tokens=result.usage.prompt_tokens,
+            completion_tokens=result.usage.completion_tokens,
+            wall_s=round(result.wall_s, 3),
+        )
+        return result
+
+    async def _loop(self, result: TurnResult) -> None:
         while result.steps < self.max_steps:
             result.steps += 1
             try:
@@ -197,19 +221,25 @@ class AgentHost:
                 max_steps=self.max_steps,
                 message=f"stopped after {self.max_steps} model steps without a final answer",
             )
-        result.wall_s = time.monotonic() - started
-        self.total_usage.merge(result.usage)
-        self._emit(
-            "turn_end",
-            turn=self.turns,
-            outcome=result.outcome,
-            steps=result.steps,
-            tool_calls=len(result.tool_calls),
-            prompt_tokens=result.usage.prompt_tokens,
-            completion_tokens=result.usage.completion_tokens,
-            wall_s=round(result.wall_s, 3),
-        )
-        return result
+
+    def _close_open_calls(self) -> None:
+        """Answer every tool call of the last assistant message that has no result yet (the API rejects
+        a conversation with unanswered tool calls)."""
+        for i in range(len(self.messages) - 1, -1, -1):
+            msg = self.messages[i]
+            if msg.get("role") == "assistant" and msg.get("tool_calls"):
+                answered = {m.get("tool_call_id") for m in self.messages[i + 1 :] if m.get("role") == "tool"}
+                for tc in msg["tool_calls"]:
+                    if tc["id"] not in answered:
+                        self.messages.append({
+                            "role": "tool",
+                            "tool_call_id": tc["id"],
+                            "content": "Interrupted by the user before the result arrived; an action already "
+                            "sent may still be running on the drone.",
+                        })  # fmt: skip
+                return
+            if msg.get("role") == "user":
+                return
 
     # --- model side ------------------------------------------------------------------------------
 

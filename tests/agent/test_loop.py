@@ -242,3 +242,34 @@ def test_events_serialise_as_json() -> None:
         "name": "land",
         "arguments": {"drone_id": "a"},
     }
+
+
+async def test_interrupted_turn_keeps_the_conversation_valid(toy, scripted) -> None:
+    """Ctrl-C while a tool runs: the open call gets an 'interrupted' result, and the next turn works."""
+    import asyncio
+
+    model = scripted([call("takeoff", drone_id="alpha", altitude_m=15), say("alpha may still be climbing")])
+    holder: list[asyncio.Task] = []
+    events: list[AgentEvent] = []
+
+    def on_event(e: AgentEvent) -> None:
+        events.append(e)
+        if e.kind == "progress" and holder:
+            holder[0].cancel()  # as asyncio.run does on Ctrl-C
+
+    async with McpLink(toy.url, TOKEN) as link:
+        tools = await link.list_tools()
+        host = AgentHost(
+            ModelConfig(model.base_url, "scripted", max_retries=0), link, tools, on_event=on_event
+        )
+        holder.append(asyncio.create_task(host.run_turn("take off alpha")))
+        with pytest.raises(asyncio.CancelledError):
+            await holder[0]
+        holder.clear()
+        assert host.messages[-1]["role"] == "tool"
+        assert host.messages[-1]["tool_call_id"] == host.messages[-2]["tool_calls"][0]["id"]
+        assert "Interrupted by the user" in host.messages[-1]["content"]
+        assert events[-1].kind == "interrupted"
+        result = await host.run_turn("what now?")
+    assert result.outcome == "answered"
+    assert "Interrupted by the user" in _tool_messages(model.requests[1])[-1]["content"]
