@@ -131,8 +131,11 @@ async def measure_size(n: int, repeats: int) -> dict[str, Any]:
 
 
 def render(results: list[dict[str, Any]]) -> str:
-    rows = []
+    rows: list[list[Any]] = []
     for r in results:
+        if "error" in r:
+            rows.append([r["n"], 0, f"failed: {r['error']}", "", "", "", ""])
+            continue
         f = r["formation"]
         call = common.pcts([x["call_s"] for x in f], (50, 100))
         by_phase: dict[str, list[float]] = {}
@@ -192,7 +195,10 @@ def main() -> int:
     results = []
     for n in sizes:
         print(f"-- {n} drones", flush=True)
-        results.append(asyncio.run(measure_size(n, repeats)))
+        try:
+            results.append(asyncio.run(measure_size(n, repeats)))
+        except Exception as exc:  # one size failing must not lose the others' figures
+            results.append({"n": n, "error": f"{type(exc).__name__}: {exc}"[:300]})
         print(render(results[-1:]).splitlines()[-1], flush=True)
     text = render(results)
     print(text)

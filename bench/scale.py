@@ -204,14 +204,22 @@ def main() -> int:
     sizes = [int(x) for x in (args.sizes or ("10,25,50" if args.full else "10")).split(",")]
     window = args.window or (FULL_WINDOW_S if args.full else WINDOW_S)
     info = common.machine()
-    results = []
+    results: list[dict[str, Any]] = []
+    failed: list[str] = []
     for n in sizes:
         print(f"-- {n} drones", flush=True)
-        r = asyncio.run(measure_size(n, window, ready_timeout_s=90.0 + 3.0 * n))
+        try:
+            r = asyncio.run(measure_size(n, window, ready_timeout_s=90.0 + 3.0 * n))
+        except Exception as exc:  # a size that breaks the setup is a result too
+            print(f"{n} drones: failed: {type(exc).__name__}: {exc}", flush=True)
+            failed.append(f"{n} drones: {type(exc).__name__}: {str(exc)[:300]}")
+            continue
         results.append(r)
         with contextlib.suppress(Exception):
             print(render([r], window).splitlines()[-1], flush=True)
     text = render(results, window)
+    if failed:
+        text += "\n\nSizes whose setup failed: " + "; ".join(failed)
     print(text)
     if args.write:
         common.write_section("scale", "Scale: drones per gateway", text, info)
