@@ -2,8 +2,8 @@
 every operation must never get a server error (5xx).
 
 The app is the real one (real SQLite store, real HTTP on loopback) with the REST unit tests' stand-in
-registry, so no request can start a sidecar on a generated URL. A drone "alpha" exists, and half the
-requests with a vehicle id aim at it. Examples are bounded so the test runs in about a minute.
+registry, so no request can start a sidecar on a generated URL. A drone "alpha" exists, and a share of the
+requests with a vehicle id aim at it. Examples are bounded (15 per operation) to keep the suite short.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from gateway.config import Settings
 from tests.api.fakes import FakeRegistry
 from tests.api.server import serve_in_thread
 
-EXAMPLES_PER_OPERATION = 40
+EXAMPLES_PER_OPERATION = 15
 DRONE = {"id": "alpha", "url": "udpin://127.0.0.1:14550", "expected_sysid": 1}
 
 
