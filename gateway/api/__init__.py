@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Depends
 
-from gateway.api import control, flights, flying, records, vehicles
+from gateway.api import control, flights, flying, geofences, records, vehicles
 from gateway.api.deps import authorize
 
 API_PREFIX = "/api/v1"
@@ -18,4 +18,5 @@ def build_api_router() -> APIRouter:
     api.include_router(records.router)
     api.include_router(control.router)
     api.include_router(flying.router)
+    api.include_router(geofences.router)
     return api

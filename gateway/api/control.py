@@ -25,6 +25,7 @@ log = logging.getLogger(__name__)
 router = APIRouter(tags=["operator control"], route_class=AuditedRoute)
 
 Action = Literal["hold", "land", "rtl"]
+STOP_LOCK_REASON = "emergency stop"
 _ACTIONS: dict[str, str] = {"hold": "hold", "land": "land", "rtl": "return_to_launch"}
 
 
@@ -67,12 +68,19 @@ class ActionOut(BaseModel):
 class StopIn(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
-    action: Literal["hold", "land"] = Field("hold", description="What every airborne drone is told to do.")
+    action: Literal["hold", "land", "rtl"] = Field(
+        "hold",
+        description="What every airborne drone is told to do: hold (GUIDED), land, or rtl.",
+    )
+    lock: bool = Field(
+        True,
+        description="Lock the fleet (before stopping) so agents cannot resume; false: locks unchanged.",
+    )
     lock_reason: str | None = Field(
         None,
         min_length=1,
         max_length=MAX_REASON_CHARS,
-        description="Also lock the fleet (before stopping) with this reason, so agents cannot resume.",
+        description=f"Reason of the fleet lock (default: '{STOP_LOCK_REASON}').",
     )
 
 
@@ -171,13 +179,18 @@ def _in_air(vehicle: Any) -> bool | None:
 
 
 @router.post(
-    "/fleet/stop", response_model=StopOut, summary="Emergency stop: every airborne drone holds or lands"
+    "/fleet/stop",
+    response_model=StopOut,
+    summary="Emergency stop: lock the fleet, then every airborne drone holds, lands or returns",
 )
 async def fleet_stop(
     gateway: GatewayDep, store: StoreDep, registry: RegistryDep, who: PrincipalDep, body: StopIn | None = None
 ) -> StopOut:
     body = body or StopIn()
-    fleet_lock = await _lock(gateway, store, FLEET, body.lock_reason, who.name) if body.lock_reason else None
+    fleet_lock = None
+    if body.lock or body.lock_reason:
+        reason = body.lock_reason or STOP_LOCK_REASON
+        fleet_lock = await _lock(gateway, store, FLEET, reason, who.name)
 
     async def one(vehicle: Any) -> ActionOut:
         state = str(getattr(vehicle.state, "value", vehicle.state))

@@ -41,6 +41,9 @@ ANONYMOUS_OPERATOR = Principal(name="anonymous", role="operator")
 
 READ_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
 
+#: Largest row id / offset a request may name: beyond it SQLite (64-bit) and PostgreSQL (BIGINT) overflow.
+MAX_ROW = 2**62
+
 
 def _tokens(text: str) -> list[bytes]:
     return [t.strip().encode() for t in text.split(",") if t.strip()]

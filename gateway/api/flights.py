@@ -5,14 +5,16 @@ from __future__ import annotations
 from datetime import datetime
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Query
+from fastapi import APIRouter, Path, Query
 from fastapi.responses import JSONResponse
 
 from gateway.api.audit import AuditedRoute
-from gateway.api.deps import StoreDep
+from gateway.api.deps import MAX_ROW, StoreDep
 from gateway.api.schemas import FlightPage, as_utc
 from gateway.errors import InvalidArgument, NotFound
 from gateway.registry.store import FlightRecord, TrackSample
+
+FlightId = Annotated[int, Path(ge=1, le=MAX_ROW, description="Flight id.")]
 
 router = APIRouter(prefix="/flights", tags=["flights"], route_class=AuditedRoute)
 
@@ -28,7 +30,7 @@ async def list_flights(
     ] = None,
     until: Annotated[datetime | None, Query(description="Flights started at or before this time.")] = None,
     limit: Annotated[int, Query(ge=1, le=500)] = 50,
-    offset: Annotated[int, Query(ge=0)] = 0,
+    offset: Annotated[int, Query(ge=0, le=MAX_ROW)] = 0,
 ) -> FlightPage:
     since, until = as_utc(since), as_utc(until)
     if since is not None and until is not None and since > until:
@@ -45,7 +47,7 @@ async def _flight(store: Any, flight_id: int) -> FlightRecord:
 
 
 @router.get("/{flight_id}", response_model=FlightRecord, summary="One flight with its summary figures")
-async def get_flight(flight_id: int, store: StoreDep) -> FlightRecord:
+async def get_flight(flight_id: FlightId, store: StoreDep) -> FlightRecord:
     return await _flight(store, flight_id)
 
 
@@ -78,7 +80,7 @@ def track_feature(flight: FlightRecord, track: list[TrackSample]) -> dict[str, A
     response_class=JSONResponse,
     responses={200: {"content": {GEOJSON_MEDIA_TYPE: {}}}},
 )
-async def flight_track(flight_id: int, store: StoreDep) -> JSONResponse:
+async def flight_track(flight_id: FlightId, store: StoreDep) -> JSONResponse:
     flight = await _flight(store, flight_id)
     track = await store.get_track(flight_id)
     return JSONResponse(track_feature(flight, track), media_type=GEOJSON_MEDIA_TYPE)

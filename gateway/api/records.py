@@ -7,7 +7,7 @@ from typing import Annotated
 from fastapi import APIRouter, Query
 
 from gateway.api.audit import AuditedRoute
-from gateway.api.deps import StoreDep
+from gateway.api.deps import MAX_ROW, StoreDep
 from gateway.api.schemas import AuditPage, OperationList, SessionList
 from gateway.registry.store import OperationStatus, SessionKind
 
@@ -20,7 +20,7 @@ async def list_sessions(
     kind: Annotated[SessionKind | None, Query()] = None,
     principal: Annotated[str | None, Query(max_length=200)] = None,
     limit: Annotated[int, Query(ge=1, le=1000)] = 100,
-    offset: Annotated[int, Query(ge=0)] = 0,
+    offset: Annotated[int, Query(ge=0, le=MAX_ROW)] = 0,
 ) -> SessionList:
     items = await store.list_sessions(kind=kind, principal=principal, limit=limit, offset=offset)
     return SessionList(items=items)
@@ -32,7 +32,7 @@ async def list_audit(
     vehicle_id: Annotated[str | None, Query(max_length=32)] = None,
     session_key: Annotated[str | None, Query(max_length=200)] = None,
     limit: Annotated[int, Query(ge=1, le=1000)] = 100,
-    offset: Annotated[int, Query(ge=0)] = 0,
+    offset: Annotated[int, Query(ge=0, le=MAX_ROW)] = 0,
 ) -> AuditPage:
     items = await store.list_audit(vehicle_id=vehicle_id, session_key=session_key, limit=limit, offset=offset)
     total = await store.count_audit(vehicle_id=vehicle_id, session_key=session_key)

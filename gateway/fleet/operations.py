@@ -29,6 +29,9 @@ from gateway.fleet import geo
 log = logging.getLogger(__name__)
 
 POLL_S = 0.2
+#: how long a mission may be out of AUTO before the operation fails (the gateway's own pause supersedes
+#: the operation right after switching mode)
+LEFT_AUTO_GRACE_S = 2.0
 """How often a monitor looks at the telemetry cache (the cache itself is updated by streams)."""
 SAVE_EVERY_S = 2.0
 """Progress of a running operation is written to the store at most this often."""
@@ -280,10 +283,19 @@ class MissionTracker:
 
     kind: str = "mission"
     _asked_at: float = 0.0
+    _seen_auto: bool = False
+    _left_auto_at: float | None = None
 
     async def poll(self, vehicle: Any) -> Poll:
         prog = value(vehicle, "mission_progress")
         current, total = (int(prog.current), int(prog.total)) if prog is not None else (0, 0)
+        left = self._left_auto(vehicle)
+        if left is not None:
+            return Poll(
+                0.0,
+                left,
+                failed=f"{left} at item {current} of {total}; the mission is no longer being flown",
+            )
         now = time.monotonic()
         if now - self._asked_at >= 1.0:
             self._asked_at = now
@@ -291,6 +303,24 @@ class MissionTracker:
                 return Poll(1.0, f"mission finished ({total} items)", done=True, eta_s=0.0)
         progress = max(0.0, min(0.99, (current - 1) / total)) if total else 0.0
         return Poll(progress, f"item {current} of {total}")
+
+    def _left_auto(self, vehicle: Any) -> str | None:
+        """The autopilot itself left AUTO (a failsafe, a pilot, another ground station) for longer than
+        LEFT_AUTO_GRACE_S. The gateway's own pause/hold supersedes the operation before that."""
+        mode = value(vehicle, "flight_mode")
+        if mode is None:
+            return None
+        if str(mode).upper() in ("AUTO", "MISSION", "AUTO.MISSION"):
+            self._seen_auto, self._left_auto_at = True, None
+            return None
+        if not self._seen_auto:
+            return None
+        now = time.monotonic()
+        if self._left_auto_at is None:
+            self._left_auto_at = now
+        if now - self._left_auto_at < LEFT_AUTO_GRACE_S:
+            return None
+        return f"the autopilot switched from AUTO to {mode} (failsafe, pilot or another ground station)"
 
 
 # ------------------------------------------------------------------------------------------------
@@ -452,7 +482,10 @@ class OperationManager:
         try:
             while not op.finished:
                 pos_age = age_s(vehicle, "position")
-                if pos_age is not None and pos_age > stale_after:
+                interruption = _interruption(vehicle)
+                if interruption is not None:
+                    self._update(op, op.progress, interruption, op.eta_s)
+                elif pos_age is not None and pos_age > stale_after:
                     self._update(op, op.progress, f"no telemetry for {pos_age:.0f} s (link lost?)", op.eta_s)
                 else:
                     poll = await tracker.poll(vehicle)
@@ -532,6 +565,24 @@ class OperationManager:
             )
         except Exception:
             log.exception("could not save operation %s", op.id)
+
+
+def _interruption(vehicle: Any) -> str | None:
+    """Why the gateway cannot follow the vehicle right now (sidecar restarting, link lost), or None."""
+    state = getattr(vehicle, "state", None)
+    name = str(getattr(state, "value", state or ""))
+    if not name or name == "ready":
+        return None
+    why = ""
+    try:
+        error = vehicle.status().get("last_error")
+        why = f" ({error})" if error else ""
+    except Exception:  # a status problem must not end the monitor
+        pass
+    return (
+        f"connection interrupted: {vehicle.id} is {name}{why}; the drone keeps flying its last command "
+        "on its own, and tracking resumes when it is ready again"
+    )
 
 
 def check_positive_altitude(alt_rel_m: float) -> None:

@@ -26,7 +26,8 @@ class AgentTokens(TokenVerifier):
 
     async def verify_token(self, token: str) -> AccessToken | None:
         given = token.encode()
-        if any(hmac.compare_digest(given, known) for known in self._tokens):
+        # compare against every token (a list, no early exit): timing says nothing about which matched
+        if any([hmac.compare_digest(given, known) for known in self._tokens]):
             return AccessToken(token=token, client_id=principal_of(token), scopes=[SCOPE])
         return None
 

@@ -22,7 +22,7 @@ from typing import Annotated, Any, Literal, Self
 
 from mcp.server.mcpserver import MCPServer
 from mcp.types import CallToolResult, TextContent, ToolAnnotations
-from pydantic import BaseModel, Field, PrivateAttr
+from pydantic import BaseModel, Field, PrivateAttr, ValidationError
 
 from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal
 
@@ -158,6 +158,13 @@ def _wrap(spec: ToolSpec, access: Any) -> Callable[..., Any]:
             if call is not None:
                 call.outcome, call.error = "error", exc.message
             return error_result(exc.message)
+        except ValidationError as exc:  # a model built inside the tool from its arguments (e.g. a waypoint)
+            message = "invalid arguments: " + "; ".join(
+                f"{'.'.join(str(p) for p in err['loc']) or 'value'}: {err['msg']}" for err in exc.errors()
+            )
+            if call is not None:
+                call.outcome, call.error = "error", message
+            return error_result(message)
         structured = result.model_dump(mode="json")
         if call is not None and structured.get("status") == "running":
             call.outcome = "running"

@@ -24,6 +24,7 @@ from __future__ import annotations
 import asyncio
 import atexit
 import enum
+import functools
 import logging
 import os
 import re
@@ -37,6 +38,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from gateway.config import Settings
+from gateway.registry import confine
 from gateway.util.ports import free_tcp_port
 
 log = logging.getLogger("gateway.sidecar")
@@ -92,11 +94,17 @@ def _kill_leftovers() -> None:
 
 
 def mavsdk_server_binary(settings: Settings) -> str:
-    if settings.mavsdk_server_path:
-        return settings.mavsdk_server_path
-    import mavsdk_grpc.bin
+    """The binary sidecars start from: by default the loopback-only copy made by ``confine``, so no
+    sidecar's gRPC port is reachable from another host (GATEWAY_SIDECAR_CONFINEMENT=none: as shipped)."""
+    return _confined_binary(
+        settings.sidecar_confinement, settings.mavsdk_server_path, settings.sidecar_cache_dir
+    )
 
-    return str(Path(mavsdk_grpc.bin.__file__).parent / "mavsdk_server")
+
+@functools.lru_cache(maxsize=8)
+def _confined_binary(confinement: str, explicit_path: str | None, cache_dir: str | None) -> str:
+    # cached: confine reads and hashes the whole binary (tens of MB), once per configuration is enough
+    return str(confine.sidecar_binary(confinement, explicit_path, Path(cache_dir) if cache_dir else None))
 
 
 class SidecarState(enum.StrEnum):
@@ -236,7 +244,13 @@ class Sidecar:
     async def _supervise(self) -> None:
         backoff = self.settings.sidecar_backoff_initial_s
         while not self._stopping:
-            reason = await self._run_once()
+            try:
+                reason = await self._run_once()
+            except confine.ConfinementError as exc:  # fail closed: never fall back to an exposed binary
+                self.info.state = SidecarState.FAILED
+                self.info.last_error = str(exc)
+                self._log.error("%s: %s", self.vehicle_id, exc)
+                return
             if self._stopping:
                 return
             stable = (

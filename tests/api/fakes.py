@@ -53,6 +53,9 @@ class FakeVehicle:
             raise VehicleNotReady(f"drone '{self.id}' is {self.state}, not ready", state=self.state)
         self.actions.append("rtl")
 
+    async def kill(self) -> None:
+        self.actions.append("kill")
+
     def status(self) -> dict[str, Any]:
         return {"state": self.state, "last_error": None, "sidecar": {"pid": None, "restarts": self.restarts}}
 

@@ -485,7 +485,9 @@ async def test_operator_actions_and_fleet_stop(client: httpx.AsyncClient, app: F
     }
     assert_error(await client.post("/api/v1/fleet/stop", json={"action": "kill"}), 422, "validation_error")
     default = (await client.post("/api/v1/fleet/stop")).json()
-    assert default["action"] == "hold" and default["fleet_lock"] is None
+    assert default["action"] == "hold" and default["fleet_lock"]["reason"] == "emergency stop"
+    unlocked = (await client.post("/api/v1/fleet/stop", json={"action": "rtl", "lock": False})).json()
+    assert unlocked["action"] == "rtl" and unlocked["fleet_lock"] is None
 
     actions = [e["action"] for e in (await client.get("/api/v1/audit")).json()["items"]]
     assert "rest.fleet_stop" in actions and "rest.land_vehicle" in actions

@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import os
 from collections.abc import AsyncIterator, Iterator
 from pathlib import Path
 
 import pytest
+from sqlalchemy.engine import URL, make_url
 
 from gateway.registry.store import Store
 
@@ -14,6 +16,16 @@ from .pg import create_database, find_pg_bin, postgres_server
 
 @pytest.fixture(scope="session")
 def pg_base_url() -> Iterator[str]:
+    """A PostgreSQL server URL without a database name: GATEWAY_TEST_DATABASE_URL when set (a role that
+    may CREATE DATABASE; each test gets its own), else a throwaway local server."""
+    given = os.environ.get("GATEWAY_TEST_DATABASE_URL", "").strip()
+    if given:
+        url = make_url(given)
+        if not url.drivername.startswith("postgresql"):
+            raise pytest.UsageError(f"GATEWAY_TEST_DATABASE_URL must be postgresql; got {url.drivername}")
+        server = URL.create("postgresql+asyncpg", url.username, url.password, url.host, url.port)
+        yield server.render_as_string(hide_password=False)
+        return
     if not (find_pg_bin("initdb") and find_pg_bin("postgres")):
         pytest.skip("PostgreSQL server binaries are not installed (apt-get install postgresql)")
     with postgres_server() as url:

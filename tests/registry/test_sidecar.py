@@ -164,7 +164,9 @@ async def test_repeated_crashes_end_in_failed_with_reason(stopper: list[Sidecar]
     broken = tmp_path / "mavsdk_server"
     broken.write_text("#!/bin/sh\necho 'cannot open serial port' >&2\nexit 3\n")
     broken.chmod(0o755)
-    car = Sidecar("echo", "serial:///dev/does-not-exist:57600", _settings(mavsdk_server_path=str(broken)))
+    # a stand-in script cannot be confined to loopback (that fails closed): run it as is
+    settings = _settings(mavsdk_server_path=str(broken), sidecar_confinement="none")
+    car = Sidecar("echo", "serial:///dev/does-not-exist:57600", settings)
     stopper.append(car)
     car.start()
     await _wait_for(lambda: car.state == SidecarState.FAILED)

@@ -172,6 +172,7 @@ async def kill_motors(
         await v.kill()
         message = "motors killed in flight"
     else:
+        fa.safety.check_kill(fa.context(v), via="mcp")  # locks and simulators-only hold on the ground too
         await v.disarm()
         message = "on the ground: disarmed"
     sup = await fa.operations.supersede(drone_id, "kill_motors")
