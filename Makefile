@@ -4,6 +4,9 @@ PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+# Most tests wait on simulated flights: two workers halve the suite's time on two cores.
+# Files stay whole on one worker (--dist loadfile), so a module's shared sim + gateway is built once.
+TEST_WORKERS ?= 2
 
 .PHONY: install demo test lint bench clean
 
@@ -20,7 +23,7 @@ demo: $(STAMP)
 
 test: $(STAMP)
 	$(BIN)/ruff check .
-	$(BIN)/python -m pytest -q $(PYTEST_ARGS)
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile $(PYTEST_ARGS)
 
 lint: $(STAMP)
 	$(BIN)/ruff check .

@@ -20,7 +20,6 @@ import os
 import platform
 import re
 import shutil
-import signal
 import sys
 import tempfile
 import time
@@ -30,6 +29,8 @@ from pathlib import Path
 from typing import Any
 
 import httpx
+
+from gateway.util.procs import stop_process_group
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs" / "benchmarks.md"
@@ -194,17 +195,7 @@ class CpuMeter:
 
 async def stop_group(proc: asyncio.subprocess.Process, grace_s: float = 10.0) -> None:
     """SIGTERM the process group, wait, then SIGKILL; never raises."""
-    if proc.returncode is not None:
-        return
-    with contextlib.suppress(ProcessLookupError, PermissionError):
-        os.killpg(proc.pid, signal.SIGTERM)
-    try:
-        await asyncio.wait_for(proc.wait(), grace_s)
-    except TimeoutError:
-        with contextlib.suppress(ProcessLookupError, PermissionError):
-            os.killpg(proc.pid, signal.SIGKILL)
-        with contextlib.suppress(Exception):
-            await asyncio.wait_for(proc.wait(), grace_s)
+    await stop_process_group(proc, grace_s)
 
 
 def _log_fd(path: Path) -> int:

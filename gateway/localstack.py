@@ -12,7 +12,6 @@ import contextlib
 import os
 import re
 import secrets
-import signal
 import sys
 import tempfile
 import time
@@ -23,6 +22,7 @@ from typing import Any
 import httpx
 
 from gateway.util.ports import free_tcp_port
+from gateway.util.procs import stop_process_group
 
 _VEHICLE_LINE = re.compile(r"^vehicle (\d+) sysid (\d+) (\S+)")
 
@@ -199,7 +199,7 @@ class LocalStack:
 
     async def _stop(self) -> None:
         for proc in reversed(self._procs):  # the gateway first: it ends its sidecars
-            await _stop_process(proc)
+            await stop_process_group(proc, grace_s=15.0)
         self._procs.clear()
         if self._tmp is not None:
             self._tmp.cleanup()
@@ -215,18 +215,3 @@ def _state_of(view: dict[str, Any]) -> str | None:
     if isinstance(state, dict):
         state = state.get("state")
     return state
-
-
-async def _stop_process(proc: asyncio.subprocess.Process, grace_s: float = 15.0) -> None:
-    if proc.returncode is None:
-        with contextlib.suppress(ProcessLookupError):
-            os.killpg(proc.pid, signal.SIGTERM)
-        try:
-            await asyncio.wait_for(proc.wait(), grace_s)
-        except TimeoutError:
-            with contextlib.suppress(ProcessLookupError):
-                os.killpg(proc.pid, signal.SIGKILL)
-            await proc.wait()
-    else:  # the leader is gone; make sure nothing of its group is left (e.g. sidecars)
-        with contextlib.suppress(ProcessLookupError, PermissionError):
-            os.killpg(proc.pid, signal.SIGKILL)

@@ -3,24 +3,13 @@
 from __future__ import annotations
 
 import asyncio
-import contextlib
-import os
-import signal
+
+from gateway.util.procs import stop_process_group
 
 
 async def stop_process(proc: asyncio.subprocess.Process, grace_s: float = 5.0) -> None:
     """SIGTERM the process group, wait, then SIGKILL; never raises."""
-    if proc.returncode is not None:
-        return
-    with contextlib.suppress(ProcessLookupError, PermissionError):
-        os.killpg(proc.pid, signal.SIGTERM)
-    try:
-        await asyncio.wait_for(proc.wait(), grace_s)
-    except TimeoutError:
-        with contextlib.suppress(ProcessLookupError, PermissionError):
-            os.killpg(proc.pid, signal.SIGKILL)
-        with contextlib.suppress(Exception):
-            await asyncio.wait_for(proc.wait(), grace_s)
+    await stop_process_group(proc, grace_s)
 
 
 def tail(path: str, n: int = 40) -> str:
