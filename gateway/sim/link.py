@@ -7,6 +7,7 @@ import asyncio
 import contextlib
 import logging
 import socket
+from abc import ABC, abstractmethod
 from collections.abc import Callable
 
 from gateway.sim.mavlink import Codec, MAVLinkMessage
@@ -17,7 +18,7 @@ log = logging.getLogger(__name__)
 Receiver = Callable[["Link", MAVLinkMessage], None]
 
 
-class Link:
+class Link(ABC):
     """Base: encoding, stream table, and the vehicle's fault switches (link down, packet loss)."""
 
     name = "link"
@@ -31,11 +32,13 @@ class Link:
         self.bytes_in = 0
 
     @property
+    @abstractmethod
     def connected(self) -> bool:
-        raise NotImplementedError
+        """Whether a ground station is attached to this link."""
 
+    @abstractmethod
     def _write(self, data: bytes) -> None:
-        raise NotImplementedError
+        """Put encoded bytes on the wire."""
 
     def send(self, msg: MAVLinkMessage) -> None:
         if not self.connected or not self._faults.passes():
@@ -50,11 +53,13 @@ class Link:
             if self._faults.passes():
                 self._receiver(self, msg)
 
+    @abstractmethod
     async def start(self) -> None:
-        raise NotImplementedError
+        """Open the link (listen or connect)."""
 
+    @abstractmethod
     async def stop(self) -> None:
-        raise NotImplementedError
+        """Close the link."""
 
 
 class LinkFaults:
