@@ -45,15 +45,6 @@ def sqlite_url(tmp_path: Path) -> str:
 
 
 @pytest.fixture
-async def store(db_url: str) -> AsyncIterator[Store]:
-    store = await Store.open(db_url)
-    try:
-        yield store
-    finally:
-        await store.close()
-
-
-@pytest.fixture
 async def sqlite_store(sqlite_url: str) -> AsyncIterator[Store]:
     store = await Store.open(sqlite_url)
     try:

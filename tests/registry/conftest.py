@@ -4,13 +4,11 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import AsyncIterator, Callable
-from pathlib import Path
 
 import pytest
 
 from gateway.config import Settings
 from gateway.registry.registry import Registry
-from gateway.registry.store import Store
 from tests.registry.procs import mavsdk_servers_of
 
 WAIT_S = 60.0  # generous: waiting is not asserting a duration
@@ -26,20 +24,6 @@ def fast_settings(**overrides: object) -> Settings:
     }
     base.update(overrides)
     return Settings(**base)  # type: ignore[arg-type]
-
-
-@pytest.fixture
-def db_url(tmp_path: Path) -> str:
-    return f"sqlite+aiosqlite:///{tmp_path / 'gateway.db'}"
-
-
-@pytest.fixture
-async def store(db_url: str) -> AsyncIterator[Store]:
-    store = await Store.open(db_url)
-    try:
-        yield store
-    finally:
-        await store.close()
 
 
 @pytest.fixture
