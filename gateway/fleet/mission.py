@@ -1,8 +1,10 @@
-"""User mission items and their MAVLink (mission_raw) encoding for ArduPilot.
+"""User mission items and their MAVLink (mission_raw) encoding, per autopilot.
 
-ArduPilot keeps HOME at sequence 0 and overwrites whatever is uploaded there, so the wire mission is
+ArduPilot keeps HOME at sequence 0 and overwrites whatever is uploaded there, so its wire mission is
 ``[home placeholder, item 1, ..., item N]`` and user item k is wire item k, as long as no item needs a
-companion command. An item with ``speed_mps`` is preceded by a DO_CHANGE_SPEED wire item; the
+companion command. PX4 has no home slot: it flies seq 0 like any other item (a placeholder there sends
+the drone back to home at ground level), so its wire mission is ``[item 1, ..., item N]`` (``home_slot``
+False). An item with ``speed_mps`` is preceded by a DO_CHANGE_SPEED wire item; the
 ``WirePlan`` keeps the wire-to-user mapping so progress and ``set_current`` stay in user numbers.
 """
 
@@ -110,10 +112,15 @@ def _deg7(value: float) -> int:
     return round(value * 1e7)
 
 
-def encode(items: list[MissionItem], home: tuple[float, float, float] | None) -> WirePlan:
-    """Wire items 0..M for ``items``; seq 0 is the home placeholder ArduPilot replaces."""
-    hlat, hlon, halt = home if home is not None else (0.0, 0.0, 0.0)
-    wire = [WireItem(0, MAV_FRAME_GLOBAL, MAV_CMD_NAV_WAYPOINT, x=_deg7(hlat), y=_deg7(hlon), z=halt)]
+def encode(
+    items: list[MissionItem], home: tuple[float, float, float] | None, *, home_slot: bool = True
+) -> WirePlan:
+    """Wire items 0..M for ``items``. With ``home_slot`` (ArduPilot), seq 0 is the home placeholder
+    the autopilot replaces; without it (PX4), seq 0 is the first user item."""
+    wire: list[WireItem] = []
+    if home_slot:
+        hlat, hlon, halt = home if home is not None else (0.0, 0.0, 0.0)
+        wire.append(WireItem(0, MAV_FRAME_GLOBAL, MAV_CMD_NAV_WAYPOINT, x=_deg7(hlat), y=_deg7(hlon), z=halt))
     user_to_wire: list[int] = []
     for item in items:
         if item.speed_mps is not None:
@@ -133,8 +140,8 @@ def encode(items: list[MissionItem], home: tuple[float, float, float] | None) ->
     return WirePlan(wire, user_to_wire)
 
 
-def decode(wire: list[Any]) -> tuple[list[MissionItem], WirePlan]:
-    """User items from a downloaded mission_raw list (seq 0, home, dropped)."""
+def decode(wire: list[Any], *, home_slot: bool = True) -> tuple[list[MissionItem], WirePlan]:
+    """User items from a downloaded mission_raw list (with ``home_slot``, seq 0, home, is dropped)."""
     items: list[MissionItem] = []
     user_to_wire: list[int] = []
     pending_speed: float | None = None
@@ -153,7 +160,7 @@ def decode(wire: list[Any]) -> tuple[list[MissionItem], WirePlan]:
             float(raw.z),
         )
         kept.append(w)
-        if w.seq == 0:
+        if home_slot and w.seq == 0:
             continue
         if w.command == MAV_CMD_DO_CHANGE_SPEED:
             pending_speed = w.param2 if w.param2 > 0 else None

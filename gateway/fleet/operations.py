@@ -129,6 +129,12 @@ def age_s(vehicle: Any, name: str) -> float | None:
     return None if sample is None else float(sample.age_s)
 
 
+def is_stale(vehicle: Any, age: float, limit_s: float) -> bool:
+    """A cached value is stale when older than ``limit_s``, and every value is while the link is lost
+    (even one that arrived just after the last heartbeat)."""
+    return age > limit_s or not vehicle.telemetry.live
+
+
 def position(vehicle: Any) -> tuple[float, float, float] | None:
     """(lat, lon, alt_rel_m) from the cache, or None."""
     pos = value(vehicle, "position")

@@ -11,7 +11,8 @@ The connection state is derived from facts, each time it is read:
 
 ArduPilot pitfalls handled here (see the reference captures): arm in GUIDED after waiting for
 ``is_armable``; hold is a GUIDED reposition to the current position (never MAVSDK's hold, i.e. LOITER);
-missions go through ``mission_raw`` with seq 0 = home hidden; unknown parameter names get no reply;
+missions go through ``mission_raw`` with seq 0 = home hidden (PX4 has no home slot, and its verdict on
+a mission comes after the upload's ACK, in a STATUSTEXT); unknown parameter names get no reply;
 telemetry rates are requested by the gateway and again whenever they are lost.
 """
 
@@ -37,12 +38,12 @@ from gateway.fleet import geo, mission
 from gateway.fleet.mission import MissionItem, WirePlan
 from gateway.fleet.modes import (
     ARDUCOPTER_MODE_NAMES,
-    ARDUCOPTER_MODES,
     COPTER_TYPES,
     MAV_AUTOPILOT_ARDUPILOTMEGA,
     MAV_AUTOPILOT_PX4,
-    PX4_MODES,
+    ModeChoice,
     autopilot_name,
+    require_mode,
 )
 from gateway.fleet.params import Parameters
 from gateway.fleet.rawlink import MAV_RESULT, MAV_RESULT_ACCEPTED, CommandChannel, LinkFacts, NoAck
@@ -80,6 +81,10 @@ MAV_CMD_REQUEST_MESSAGE = 512
 MAVLINK_MSG_MISSION_CURRENT = 42
 MAVLINK_MSG_SIMSTATE = 164
 MISSION_STATE_COMPLETE = 5
+#: PX4 checks an uploaded mission after acknowledging it and says so in STATUSTEXT within this time
+MISSION_VERDICT_S = 1.5
+#: how PX4's mission feasibility checks start their STATUSTEXT when they reject a mission
+PX4_MISSION_REJECTIONS = ("mission rejected", "geofence violation for waypoint", "waypoint above maximum")
 
 
 class ConnectionState(enum.StrEnum):
@@ -131,6 +136,7 @@ class Vehicle:
         self.autopilot_version: str | None = None
         self._mission_plan: WirePlan | None = None
         self._mission_state: int | None = None  # MISSION_CURRENT.mission_state (5 = COMPLETE)
+        self._mission_rejection: str | None = None  # the autopilot's words when it refused the mission
         self.params = Parameters(spec.id, self._call, self._require_session)
         self.sessions = 0  # gRPC sessions opened (1 + sidecar restarts that reached serving)
 
@@ -410,6 +416,7 @@ class Vehicle:
                 ("simstate", self._simstate, True),
                 ("conn", self._connection_state, False),
                 ("mission", self._mission_current, False),
+                ("events", self._px4_events, False),
             )
         ]
         self._session_tasks.append(asyncio.create_task(self._identify(system), name=f"ident-{self.id}"))
@@ -464,6 +471,17 @@ class Vehicle:
                 log.info("%s: SIMSTATE received: this vehicle is a simulator", self.id)
             self.is_simulator = True
             return  # known; stop streaming it through gRPC
+
+    async def _px4_events(self, system: System) -> None:
+        """PX4 tells a ground station that speaks the events protocol (MAVSDK does) why it refuses a
+        mission or an arming as EVENT messages, not STATUSTEXT: keep them with the status texts."""
+        while self._link.autopilot is None:  # noqa: ASYNC110 - set by the HEARTBEAT loop, no event to wait on
+            await asyncio.sleep(0.2)
+        if self._link.autopilot != MAV_AUTOPILOT_PX4:
+            await asyncio.Event().wait()  # nothing to follow on this link until the session ends
+        async for event in system.events.events():
+            severity = getattr(event.log_level, "name", "info").lower()
+            self.telemetry.add_status_text(severity, " ".join(str(event.message).split()))
 
     async def _connection_state(self, system: System) -> None:
         async for cs in system.core.connection_state():
@@ -602,6 +620,7 @@ class Vehicle:
         """Send COMMAND_LONG through mavlink_direct and wait for its COMMAND_ACK (MAVSDK has no call)."""
         system = self._require_session()
         target = self._link.sysid or self.spec.expected_sysid or 1
+        sent_at = time.time()
         try:
             result = await self._commands.send(
                 system,
@@ -617,50 +636,44 @@ class Vehicle:
         if result != MAV_RESULT_ACCEPTED:
             name = MAV_RESULT.get(result, str(result))
             raise CommandFailed(
-                f"{what} on drone '{self.id}' refused by the vehicle: {name}" + self._recent_complaint(),
+                f"{what} on drone '{self.id}' refused by the vehicle: {name}"
+                + self._recent_complaint(since=sent_at - 0.5),
                 vehicle_id=self.id,
                 result=name,
             )
 
-    def _recent_complaint(self, within_s: float = 5.0) -> str:
-        """The latest warning-or-worse status text of the last few seconds, to explain a refusal."""
-        now = time.time()
+    def _recent_complaint(self, within_s: float = 5.0, since: float | None = None) -> str:
+        """The latest warning-or-worse status text of the last few seconds (or since ``since``, wall
+        clock), to explain a refusal."""
+        oldest = time.time() - within_s if since is None else since
         for item in reversed(self.telemetry.status_texts):
-            if now - item.t > within_s:
+            if item.t < oldest:
                 break
             if item.severity in ("warning", "error", "critical", "alert", "emergency"):
                 return f" (vehicle says: {item.text})"
         return ""
 
     # --- modes ------------------------------------------------------------------------------------------
+    def resolve_mode(self, name: str) -> ModeChoice:
+        """The requested mode on this drone's autopilot; InvalidArgument listing its modes otherwise."""
+        return require_mode(name, self._link.autopilot == MAV_AUTOPILOT_PX4, self.id)
+
     async def set_flight_mode(self, name: str) -> None:
-        """Switch flight mode by name (ArduPilot names, or PX4 names on PX4); confirmed by HEARTBEAT."""
-        if not isinstance(name, str) or not name.strip():
-            raise InvalidArgument("flight mode name must be a non-empty string")
-        wanted = name.strip().upper()
+        """Switch flight mode by a common name (HOLD, RTL, LAND, MISSION, ...) or the autopilot's own;
+        done once the HEARTBEAT reports the new mode."""
+        choice = self.resolve_mode(name)
         self._require_session()
-        if self._link.autopilot == MAV_AUTOPILOT_PX4:
-            if wanted not in PX4_MODES:
-                raise InvalidArgument(f"unknown PX4 flight mode '{name}'; known: {', '.join(PX4_MODES)}")
-            main, sub = PX4_MODES[wanted]
-            await self._command_long(MAV_CMD_DO_SET_MODE, 1, main, sub, what=f"set mode {wanted}")
+        if self._link.custom_mode == choice.custom_mode:
             return
-        if wanted not in ARDUCOPTER_MODES:
-            raise InvalidArgument(
-                f"unknown ArduCopter flight mode '{name}'; known: {', '.join(ARDUCOPTER_MODES)}"
-            )
-        number = ARDUCOPTER_MODES[wanted]
-        if self._link.custom_mode == number:
-            return
-        await self._command_long(MAV_CMD_DO_SET_MODE, 1, number, what=f"set mode {wanted}")
+        await self._command_long(MAV_CMD_DO_SET_MODE, *choice.params, what=f"set mode {choice.native}")
         loop = asyncio.get_running_loop()
         deadline = loop.time() + MODE_CONFIRM_S
-        while self._link.custom_mode != number:
+        while self._link.custom_mode != choice.custom_mode:
             if loop.time() > deadline:
-                now = ARDUCOPTER_MODE_NAMES.get(self._link.custom_mode or -1, str(self._link.custom_mode))
+                now = self.telemetry.fresh("flight_mode") or f"custom mode {self._link.custom_mode}"
                 raise CommandFailed(
-                    f"set mode {wanted} on drone '{self.id}' was accepted "
-                    f"but the vehicle still reports {now}",
+                    f"set mode {choice.native} on drone '{self.id}' was accepted "
+                    f"but the vehicle still reports {now}" + self._recent_complaint(),
                     vehicle_id=self.id,
                 )
             await asyncio.sleep(0.05)
@@ -779,13 +792,18 @@ class Vehicle:
         against ArduPilot, whose MISSION_CURRENT.total leaves out home."""
         finished = self._mission_state == MISSION_STATE_COMPLETE
         plan = self._mission_plan
+        first = 1 if self._home_slot() else 0  # the wire seq of user item 1
         if plan is None:
-            user_total = max(0, total - 1)
-            user = min(max(0, current), user_total)
+            user_total = max(0, total - first)
+            user = min(max(0, current - first + 1), user_total)
         else:
             user_total = len(plan.user_to_wire)
-            user = plan.user_index(current) if current > 0 else 0
+            user = plan.user_index(current) if current >= first and user_total else 0
         return MissionProgressValue(user_total if finished else user, user_total, finished)
+
+    def _home_slot(self) -> bool:
+        """ArduPilot keeps home at mission seq 0; PX4 has no such slot (see gateway.fleet.mission)."""
+        return self._link.autopilot != MAV_AUTOPILOT_PX4
 
     async def _mission_current(self, system: System) -> None:
         """MISSION_CURRENT (requested at 1 Hz): current seq and the mission state."""
@@ -795,13 +813,16 @@ class Vehicle:
             if state != self._mission_state:
                 self._mission_state = state
                 total = int(fields.get("total", 0))
-                # MISSION_CURRENT.total excludes home; wire counts include it
-                self.telemetry.put(
-                    "mission_progress", self._map_progress(int(fields.get("seq", 0)), total + 1)
-                )
+                # ArduPilot's MISSION_CURRENT.total excludes home; wire counts include it
+                wire_total = total + 1 if self._home_slot() else total
+                progress = self._map_progress(int(fields.get("seq", 0)), wire_total)
+                self.telemetry.put("mission_progress", progress)
 
     async def upload_mission(self, items: Sequence[MissionItem | dict[str, Any]]) -> int:
-        """Upload user items 1..N (home at seq 0 is added and hidden). Returns N."""
+        """Upload user items 1..N (on ArduPilot, home at seq 0 is added and hidden). Returns N.
+
+        Raises CommandFailed with the autopilot's words when it refuses the mission, in the MISSION_ACK
+        or (PX4) in the STATUSTEXT of its feasibility check; such a mission is never started."""
         if not isinstance(items, list | tuple) or not items:
             raise InvalidArgument("a mission needs at least one item")
         if len(items) > mission.MAX_ITEMS:
@@ -815,7 +836,9 @@ class Vehicle:
         system = self._require_session()
         home = self.telemetry.home
         plan = mission.encode(
-            parsed, (home.value.lat_deg, home.value.lon_deg, home.value.abs_alt_m) if home else None
+            parsed,
+            (home.value.lat_deg, home.value.lon_deg, home.value.abs_alt_m) if home else None,
+            home_slot=self._home_slot(),
         )
         raw = [
             mavsdk_mission_raw.MissionItem(
@@ -824,16 +847,51 @@ class Vehicle:
             )
             for w in plan.items
         ]  # fmt: skip
-        await self._call("upload mission", system.mission_raw.upload_mission(raw), MISSION_TIMEOUT_S)
-        self._mission_plan = plan
+        self._mission_plan = None  # whatever was on board is being replaced
         self._mission_state = None
+        rejection = await self._upload_checked(system, raw)
+        self._mission_plan = plan
+        self._mission_rejection = rejection
+        if rejection is not None:
+            raise CommandFailed(
+                f"drone '{self.id}' rejected the mission ({len(parsed)} items): {rejection}. "
+                "It will not be started; change the items and upload again.",
+                vehicle_id=self.id,
+                result="MISSION_REJECTED",
+            )
         return len(parsed)
+
+    async def _upload_checked(self, system: System, raw: list[Any]) -> str | None:
+        """Upload; return the autopilot's rejection text if its feasibility check refused the mission."""
+        heard: list[str] = []
+        verdict = asyncio.Event()
+
+        def listen(item: Any) -> None:
+            text = str(item.text).strip()
+            if text.lower().startswith(PX4_MISSION_REJECTIONS):
+                heard.append(text)
+                verdict.set()
+
+        self.telemetry.on_status_text(listen)
+        try:
+            try:
+                await self._call("upload mission", system.mission_raw.upload_mission(raw), MISSION_TIMEOUT_S)
+            except CommandFailed as exc:  # a MISSION_ACK error: add what the autopilot said, if anything
+                raise CommandFailed(
+                    exc.message + self._recent_complaint(), vehicle_id=self.id, **exc.details
+                ) from None
+            if not self._home_slot():
+                with contextlib.suppress(TimeoutError):
+                    await asyncio.wait_for(verdict.wait(), MISSION_VERDICT_S)
+        finally:
+            self.telemetry.remove_status_listener(listen)
+        return heard[0] if heard else None
 
     async def download_mission(self) -> list[MissionItem]:
         """The vehicle's mission as user items 1..N (home, seq 0, hidden)."""
         system = self._require_session()
         raw = await self._call("download mission", system.mission_raw.download_mission(), MISSION_TIMEOUT_S)
-        items, plan = mission.decode(list(raw))
+        items, plan = mission.decode(list(raw), home_slot=self._home_slot())
         self._mission_plan = plan
         return items
 
@@ -843,12 +901,22 @@ class Vehicle:
         )
         self._mission_plan = WirePlan(items=[], user_to_wire=[])
         self._mission_state = None
+        self._mission_rejection = None
 
     async def start_mission(self) -> None:
-        """Run the uploaded mission. On the ground: arm in GUIDED, then MISSION_START (which takes off;
-        mission_raw.start_mission only switches to AUTO). In the air: switch to AUTO."""
+        """Run the uploaded mission. ArduPilot on the ground: arm in GUIDED, then MISSION_START (which
+        takes off; mission_raw.start_mission only switches to AUTO). PX4 on the ground: switch to
+        MISSION first, so that a mission PX4 refuses stops before the motors are armed. In the air:
+        switch to AUTO / MISSION."""
         self.require_ready()
         system = self.system
+        if self._mission_rejection is not None:
+            raise CommandFailed(
+                f"drone '{self.id}' rejected its uploaded mission ({self._mission_rejection}); "
+                "upload a corrected mission first",
+                vehicle_id=self.id,
+                result="MISSION_REJECTED",
+            )
         if self._mission_plan is None:
             await self.download_mission()
         if self._mission_plan is None or not self._mission_plan.user_to_wire:
@@ -860,8 +928,8 @@ class Vehicle:
             await self._call("start mission", system.mission_raw.start_mission())
             return
         if self._link.autopilot == MAV_AUTOPILOT_PX4:
-            await self._call("arm", system.action.arm())
             await self._call("start mission", system.mission_raw.start_mission())
+            await self._call("arm", system.action.arm())
             return
         await self.arm()
         await self._command_long(MAV_CMD_MISSION_START, 0, 0, what="start mission")

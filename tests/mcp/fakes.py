@@ -13,6 +13,7 @@ from typing import Any
 from gateway.config import Settings
 from gateway.errors import UnknownVehicle, VehicleNotReady
 from gateway.fleet import geo
+from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.operations import OperationManager
 
 HOME = (47.397742, 8.545594, 488.0)
@@ -33,6 +34,8 @@ def _pos(lat: float, lon: float, alt: float) -> SimpleNamespace:
 
 
 class FakeTelemetry(SimpleNamespace):
+    live = True
+
     def snapshot(self) -> dict[str, Any]:
         return {
             k: {"value": v.value, "age_s": v.age_s} for k, v in vars(self).items() if isinstance(v, Sample)
@@ -159,7 +162,11 @@ class FakeVehicle:
     async def set_max_speed(self, mps: float) -> None:
         self.sent.append(("speed", mps))
 
+    def resolve_mode(self, name: str) -> ModeChoice:
+        return require_mode(name, px4=False, vehicle_id=self.id)
+
     async def set_flight_mode(self, name: str) -> None:
+        self.resolve_mode(name)
         self.sent.append(("mode", name))
         self._set(flight_mode=name)
 

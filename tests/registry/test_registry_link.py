@@ -155,7 +155,8 @@ async def test_raw_commands_modes_and_unknown_parameter(store, registries) -> No
         await v.set_flight_mode("loiter")
         assert fake.custom_mode == 5
         await wait_until(lambda: v.telemetry.fresh("flight_mode") == "LOITER", what="mode in cache")
-        with pytest.raises(InvalidArgument, match="unknown ArduCopter flight mode 'WARP'"):
+        refusal = r"mode 'WARP' is not a mode of drone 'mike' \(ArduCopter\); its modes: HOLD, GUIDED"
+        with pytest.raises(InvalidArgument, match=refusal):
             await v.set_flight_mode("WARP")
         assert fake.custom_mode == 5
         # the gateway asked for MISSION_CURRENT by id, and probed for SIMSTATE (FAILED: not a simulator)

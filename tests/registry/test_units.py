@@ -8,8 +8,10 @@ from types import SimpleNamespace
 import pytest
 from pydantic import ValidationError
 
+from gateway.errors import InvalidArgument
 from gateway.fleet import mission
 from gateway.fleet.mission import MissionItem
+from gateway.fleet.modes import require_mode
 from gateway.fleet.params import param_aliases
 from gateway.fleet.telemetry import BatteryValue, PositionValue, Sample, TelemetryCache
 
@@ -38,6 +40,64 @@ def test_mission_encoding_hides_home_and_keeps_user_numbers() -> None:
     assert back[2].speed_mps == 5 and back[1].speed_mps is None
     assert back[1].lat == pytest.approx(47.3980) and back[1].hold_s == 2
     assert plan2.user_to_wire == plan.user_to_wire
+
+
+def test_px4_mission_has_no_home_slot() -> None:
+    """PX4 flies seq 0 like any item: a home placeholder there flew the drone to home at ground level."""
+    items = [
+        MissionItem(lat=47.3980, lon=8.5460, alt_rel_m=20),
+        MissionItem(lat=47.3990, lon=8.5470, alt_rel_m=25, speed_mps=5),
+        MissionItem(kind="land"),
+    ]
+    plan = mission.encode(items, HOME, home_slot=False)
+    assert [w.seq for w in plan.items] == [0, 1, 2, 3]
+    assert plan.items[0].command == mission.MAV_CMD_NAV_WAYPOINT and plan.items[0].z == 20
+    assert plan.items[0].frame == mission.MAV_FRAME_GLOBAL_RELATIVE_ALT
+    assert all(w.x != round(HOME[0] * 1e7) for w in plan.items)  # nothing at home
+    assert min(w.z for w in plan.items if w.command == mission.MAV_CMD_NAV_WAYPOINT) == 20
+    assert plan.user_to_wire == [0, 2, 3]
+    assert [plan.user_index(s) for s in (0, 1, 2, 3)] == [1, 2, 2, 3]
+    wire = [SimpleNamespace(**vars(w)) for w in plan.items]
+    back, plan2 = mission.decode(wire, home_slot=False)
+    assert [(i.kind, i.alt_rel_m) for i in back] == [("waypoint", 20), ("waypoint", 25), ("land", 0)]
+    assert back[1].speed_mps == 5
+    assert plan2.user_to_wire == plan.user_to_wire
+
+
+@pytest.mark.parametrize(
+    ("name", "px4", "native", "custom_mode"),
+    [
+        ("hold", False, "GUIDED", 4),
+        ("RTL", False, "RTL", 6),
+        ("mission", False, "AUTO", 3),
+        ("LOITER", False, "LOITER", 5),
+        ("HOLD", True, "AUTO.LOITER", (4 << 16) | (3 << 24)),
+        ("RTL", True, "AUTO.RTL", (4 << 16) | (5 << 24)),
+        ("LAND", True, "AUTO.LAND", (4 << 16) | (6 << 24)),
+        ("MISSION", True, "AUTO.MISSION", (4 << 16) | (4 << 24)),
+        ("takeoff", True, "AUTO.TAKEOFF", (4 << 16) | (2 << 24)),
+        ("POSITION", True, "POSCTL", 3 << 16),
+        ("auto.rtl", True, "AUTO.RTL", (4 << 16) | (5 << 24)),
+    ],
+)
+def test_common_mode_names_map_per_autopilot(name: str, px4: bool, native: str, custom_mode: int) -> None:
+    choice = require_mode(name, px4, "alpha")
+    assert (choice.native, choice.custom_mode) == (native, custom_mode)
+
+
+@pytest.mark.parametrize(
+    ("name", "px4", "message"),
+    [
+        ("TAKEOFF", False, "mode 'TAKEOFF' is not a mode of drone 'alpha' (ArduCopter); its modes: HOLD,"),
+        ("SMART_RTL", True, "(PX4); its modes: HOLD, GUIDED, RTL, LAND, MISSION, AUTO, TAKEOFF, MANUAL"),
+        ("GUIDED_NOGPS", True, "not a mode of drone 'alpha' (PX4)"),
+        ("", False, "mode must be a flight mode name; got ''"),
+    ],
+)
+def test_a_mode_the_drone_lacks_is_refused_with_its_modes(name: str, px4: bool, message: str) -> None:
+    with pytest.raises(InvalidArgument) as caught:
+        require_mode(name, px4, "alpha")
+    assert message in caught.value.message
 
 
 @pytest.mark.parametrize(

@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any
 
 from mcp.server.mcpserver import Context, Elicit, ElicitationResult, Resolve
 from mcp.server.mcpserver.exceptions import ToolError
 from pydantic import BaseModel, Field
 
 from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal
+from gateway.fleet.modes import LAUNCHING_MODES
 from gateway.fleet.operations import LandingTracker, TakeoffTracker, is_landed_and_disarmed, position, value
 from gateway.mcp.access import FleetAccess
 from gateway.mcp.results import ActionOut, OperationOut
@@ -16,7 +17,15 @@ from gateway.mcp.toolkit import DroneId, Toolset, Wait, check_drone_id, current_
 
 toolset = Toolset("flight")
 
-Mode = Literal["GUIDED", "AUTO", "RTL", "SMART_RTL", "LAND", "BRAKE", "HOLD"]
+Mode = Annotated[
+    str,
+    Field(
+        description="HOLD, RTL, LAND, MISSION, GUIDED or TAKEOFF (mapped to the drone's autopilot), "
+        "or one of its own modes",
+        examples=["HOLD", "RTL", "LAND", "MISSION"],
+        max_length=32,
+    ),
+]
 
 
 @toolset.tool(idempotent=True)
@@ -107,7 +116,7 @@ async def hold(fa: FleetAccess, drone_id: str, action: str) -> ActionOut:
     return ActionOut(
         drone_id=drone_id,
         action=action,
-        message=f"holding position in GUIDED{where}{stopped}",
+        message=f"holding position{where}{stopped}",
         superseded_operation=sup and sup.id,
     ).say(f"{drone_id} holding position{where}{stopped}")
 
@@ -182,21 +191,22 @@ async def kill_motors(
 
 
 @toolset.tool()
-async def set_flight_mode(
-    fa: FleetAccess, ctx: Context, drone_id: DroneId, mode: Annotated[Mode, Field(description="Mode name")]
-) -> ActionOut:
-    """Set the flight mode. HOLD = hover in GUIDED. Prefer land/return_to_launch (they track progress)."""
-    if mode == "HOLD":
-        return await hold(fa, drone_id, "set_flight_mode HOLD")
+async def set_flight_mode(fa: FleetAccess, ctx: Context, drone_id: DroneId, mode: Mode) -> ActionOut:
+    """Set the flight mode. HOLD = hover in place. Prefer land/return_to_launch (they track progress)."""
     v = fa.ready(drone_id)
-    if mode == "AUTO":
-        fa.guard_takeoff(v, f"set_flight_mode {mode}")
-    fa.safety.check_mode(fa.context(v), mode)
+    choice = v.resolve_mode(mode)
+    if choice.requested == "HOLD":
+        return await hold(fa, drone_id, "set_flight_mode HOLD")
+    if choice.native in LAUNCHING_MODES:
+        fa.guard_takeoff(v, f"set_flight_mode {choice.requested}")
+    fa.safety.check_mode(fa.context(v), choice.requested)
+    fa.safety.check_mode(fa.context(v), choice.native)
     await v.set_flight_mode(mode)
-    sup = await fa.operations.supersede(drone_id, f"set_flight_mode {mode}")
+    sup = await fa.operations.supersede(drone_id, f"set_flight_mode {choice.requested}")
+    named = choice.native if choice.native == choice.requested else f"{choice.requested} ({choice.native})"
     return ActionOut(
         drone_id=drone_id,
         action="set_flight_mode",
-        message=f"mode {mode}",
+        message=f"mode {named}",
         superseded_operation=sup and sup.id,
-    ).say(f"{drone_id} now in {mode}")
+    ).say(f"{drone_id} now in {named}")

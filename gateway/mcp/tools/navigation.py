@@ -17,6 +17,7 @@ from gateway.fleet.operations import (
     YawTracker,
     age_s,
     check_positive_altitude,
+    is_stale,
     position,
     value,
 )
@@ -35,7 +36,7 @@ def position_out(fa: FleetAccess, drone_id: str, which: str) -> PositionOut:
     if p is None:
         raise VehicleNotReady(f"no {which} position received from {drone_id} yet (state: {v.state})")
     age = age_s(v, which) or 0.0
-    stale = which == "position" and age > fa.settings.link_lost_after_s
+    stale = which == "position" and is_stale(v, age, fa.settings.link_lost_after_s)
     note = f" [STALE: {age:.0f} s old, link lost?]" if stale else ""
     return PositionOut(
         drone_id=drone_id,

@@ -13,6 +13,7 @@ from mcp.server.mcpserver import Context
 from pydantic import Field
 
 from gateway.errors import VehicleNotReady
+from gateway.fleet.operations import is_stale
 from gateway.mcp.access import FleetAccess
 from gateway.mcp.results import (
     AttitudeOut,
@@ -37,7 +38,7 @@ def read(fa: FleetAccess, drone_id: str, name: str) -> tuple[Any, float, bool, s
     if s is None:
         raise VehicleNotReady(f"no {name.replace('_', ' ')} received from {drone_id} yet (state: {v.state})")
     age = float(s.age_s)
-    stale = age > fa.settings.link_lost_after_s
+    stale = is_stale(v, age, fa.settings.link_lost_after_s)
     note = f" [STALE: {age:.0f} s old, link lost?]" if stale else ""
     return s.value, round(age, 2), stale, note
 
