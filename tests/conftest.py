@@ -11,6 +11,15 @@ from pathlib import Path
 import pytest
 
 from gateway.registry.store import Store
+from tests.helpers.timing import TIME_SCALE
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_configure(config: pytest.Config) -> None:
+    """FLEET_TEST_TIME_SCALE stretches pytest-timeout's per-test bound like every other deadline."""
+    timeout = getattr(config, "_env_timeout", None)
+    if timeout and TIME_SCALE != 1.0:
+        config._env_timeout = timeout * TIME_SCALE  # type: ignore[attr-defined]
 
 
 @pytest.fixture

@@ -11,8 +11,9 @@ from gateway.agent.mcp_link import McpLink, McpLinkError
 from gateway.agent.scripted import ScriptedReply, call, say
 from gateway.agent.stack import LocalStack
 from gateway.fleet.geo import horizontal_distance_m, offset_position
+from tests.helpers.timing import scaled
 
-pytestmark = pytest.mark.timeout(240)
+pytestmark = pytest.mark.timeout(scaled(240))
 
 
 @pytest.fixture

@@ -20,8 +20,9 @@ from fastapi import FastAPI
 from gateway.app import create_app
 from gateway.config import Settings
 from gateway.util.ports import free_tcp_port
+from tests.helpers.timing import scaled
 
-WAIT_S = 90.0  # generous: waiting is not asserting a duration
+WAIT_S = scaled(90.0)  # generous: waiting is not asserting a duration
 
 
 def live_settings(db_path: Path, **overrides: Any) -> Settings:

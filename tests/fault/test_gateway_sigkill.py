@@ -27,8 +27,9 @@ from gateway.fleet import geo
 from gateway.util.ports import free_tcp_port
 from tests.helpers import sim_process
 from tests.helpers.procs import tail
+from tests.helpers.timing import scaled
 
-WAIT_S = 90.0  # generous: waiting is never an assertion
+WAIT_S = scaled(90.0)  # generous: waiting is never an assertion
 
 
 def gateway_env(db: Path) -> dict[str, str]:

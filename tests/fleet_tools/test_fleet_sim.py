@@ -13,6 +13,7 @@ import pytest
 
 from gateway.fleet import geo
 from gateway.fleet.safety import LockBook
+from tests.helpers.timing import settled
 from tests.mcp.conftest import WAIT_S, Stack, distance_m, error_text, structured
 
 pytestmark = pytest.mark.asyncio(loop_scope="module")
@@ -144,12 +145,12 @@ async def test_formation_stops_and_holds_when_one_drone_is_taken_over(
         assert drones["d2"]["status"] == "superseded" and "d2" in r["message"], r["message"]
         held = [d for d in IDS if drones[d]["status"] == "held"]
         assert held, r["drones"]
-        await asyncio.sleep(2.0)  # let them brake, then they stay put
-        s1 = await _states(stack)
-        await asyncio.sleep(1.5)
-        s2 = await _states(stack)
+        s2 = await settled(
+            lambda: _states(stack),
+            lambda a, b: all(distance_m(b[d], a[d]["lat"], a[d]["lon"]) < 1.0 for d in held),
+            "held drones brake and stay put",
+        )
         for d in held:
-            assert distance_m(s2[d], s1[d]["lat"], s1[d]["lon"]) < 1.0, (d, s1[d], s2[d])
             assert distance_m(s2[d], drones[d]["target_lat"], drones[d]["target_lon"]) > 20.0, (d, s2[d])
         r = await _finish(c, structured(await c.call_tool("fleet_return_to_launch", {})))
         assert r["status"] == "succeeded", (r["message"], r["drones"])

@@ -29,12 +29,13 @@ from hypothesis import strategies as st
 from mcp.shared.exceptions import MCPError
 
 from tests.fuzz.schema_strategy import from_schema
+from tests.helpers.timing import scaled
 from tests.mcp.conftest import Stack
 
 pytestmark = pytest.mark.asyncio(loop_scope="module")
 DRONES = 1
 DRONE = "d1"
-CALL_TIMEOUT_S = 90.0  # a hang bound, generous (2 shared cores); not a duration assertion
+CALL_TIMEOUT_S = scaled(90.0)  # a hang bound, generous (2 shared cores); not a duration assertion
 VALID_EXAMPLES = 300
 MUTATED_EXAMPLES = 500
 

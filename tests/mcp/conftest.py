@@ -29,9 +29,10 @@ from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from tests.api.server import serve_in_thread
 from tests.helpers import sim_process
+from tests.helpers.timing import scaled
 from tests.registry.procs import mavsdk_servers_of
 
-WAIT_S = 90.0  # generous: waiting is never an assertion
+WAIT_S = scaled(90.0)  # generous: waiting is never an assertion
 
 
 @dataclass

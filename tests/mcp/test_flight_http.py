@@ -12,6 +12,7 @@ import time
 import pytest
 from mcp.shared.exceptions import MCPError
 
+from tests.helpers.timing import eventually, settled
 from tests.mcp.conftest import (
     Stack,
     distance_m,
@@ -137,6 +138,11 @@ async def test_goto_beyond_wait_cap_returns_running_and_monitor_flight_lands(sta
     await wait_audited(stack, "d3")
 
 
+def _still(a: dict, b: dict) -> bool:
+    """Two true states of a drone less than 1 m apart (horizontally and in height)."""
+    return distance_m(b, a["lat"], a["lon"]) < 1.0 and abs(b["rel_alt_m"] - a["rel_alt_m"]) < 1.0
+
+
 @pytest.mark.parametrize("mode", ["legacy", "auto"])
 async def test_cancelled_wait_leaves_flight_going_and_hold_stops_it(stack: Stack, mode: str) -> None:
     """The client gives up waiting (read timeout: the request is cancelled / its stream closed): the wait
@@ -150,18 +156,16 @@ async def test_cancelled_wait_leaves_flight_going_and_hold_stops_it(stack: Stack
         with pytest.raises(MCPError):
             await stack.call(c, "go_to_location", goto, read_timeout_seconds=1.0)
         before = distance_m(await stack.true_state("d4"), lat, lon)
-        await asyncio.sleep(1.5)
-        after = distance_m(await stack.true_state("d4"), lat, lon)
-        assert after < before - 3.0, (before, after)  # the drone keeps flying its goto
+
+        async def closer() -> bool:  # the drone keeps flying its goto
+            return distance_m(await stack.true_state("d4"), lat, lon) < before - 3.0
+
+        await eventually(closer, "d4 keeps flying towards its goto target after the wait was cancelled")
         running = (await stack.rest("/operations", vehicle_id="d4", status="running"))["items"]
         assert [o["kind"] for o in running] == ["goto"]
         r = structured(await stack.call(c, "hold_position", {"drone_id": "d4"}))
         assert r["superseded_operation"] == running[0]["id"], r
-        await asyncio.sleep(1.5)  # let it brake
-        s1 = await stack.true_state("d4")
-        await asyncio.sleep(1.5)
-        s2 = await stack.true_state("d4")
-        assert distance_m(s2, s1["lat"], s1["lon"]) < 1.0 and abs(s2["rel_alt_m"] - s1["rel_alt_m"]) < 1.0
+        s2 = await settled(lambda: stack.true_state("d4"), _still, "d4 brakes and holds")
         assert distance_m(s2, lat, lon) > 50.0  # stopped where it was, far from the target
         arrival = structured(await stack.call(c, "check_arrival", {"drone_id": "d4"}))
         assert arrival["status"] == "superseded" and arrival["arrived"] is False

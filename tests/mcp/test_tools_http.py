@@ -20,6 +20,7 @@ from mcp.types import ElicitResult
 
 from gateway.fleet import geo
 from gateway.mcp.server import load_toolset
+from tests.helpers.timing import settled
 from tests.mcp.conftest import (
     Stack,
     distance_m,
@@ -288,11 +289,14 @@ async def test_flight_tour_telemetry_resources_and_kill(stack: Stack) -> None:
         assert (await stack.true_state("d1"))["mode"] == "GUIDED"
         held = await stack.true_state("d1")
         r = await ok(stack, c, "hold_position", d)
-        await asyncio.sleep(1.0)
-        assert (
-            r["action"] == "hold_position"
-            and distance_m(await stack.true_state("d1"), held["lat"], held["lon"]) < 1
+        assert r["action"] == "hold_position"
+        still = await settled(
+            lambda: stack.true_state("d1"),
+            lambda a, b: distance_m(b, a["lat"], a["lon"]) < 0.5,
+            "d1 holding",
+            window_s=1.0,
         )
+        assert distance_m(still, held["lat"], held["lon"]) < 1
 
         drones = await c.read_resource("fleet://drones")
         assert {x["drone_id"] for x in json.loads(drones.contents[0].text)} == {"d1", "d2", "d3"}

@@ -9,9 +9,10 @@ import pytest
 
 from gateway.config import Settings
 from gateway.registry.registry import Registry
+from tests.helpers.timing import scaled
 from tests.registry.procs import mavsdk_servers_of
 
-WAIT_S = 60.0  # generous: waiting is not asserting a duration
+WAIT_S = scaled(60.0)  # generous: waiting is not asserting a duration
 
 
 def fast_settings(**overrides: object) -> Settings:

@@ -13,10 +13,11 @@ from gateway.registry.registry import Registry
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from tests.helpers import sim_process
+from tests.helpers.timing import scaled
 from tests.registry.procs import mavsdk_servers_of
 from tests.security.test_sidecar_confinement import _reachable, host_address  # noqa: F401 (fixture)
 
-WAIT_S = 60.0
+WAIT_S = scaled(60.0)
 
 
 async def _serving_port(registry: Registry, vehicle_id: str) -> tuple[int, int]:

@@ -46,23 +46,65 @@ def _non_loopback_ipv4() -> str | None:
     return None
 
 
+TEST_ADDRESS = "198.51.100.7"  # TEST-NET-2: never routed
+
+
+def _ip(*args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(["ip", *args], capture_output=True, text=True, check=False)
+
+
+def _add_test_address(name: str) -> tuple[str, list[tuple[str, ...]]] | None:
+    """Give this host a non-loopback IPv4 address by the first means the kernel offers: a dummy link,
+    a veth pair, or a second address on lo. Returns (how, undo commands), or None."""
+    attempts: list[tuple[str, list[tuple[str, ...]], list[tuple[str, ...]]]] = [
+        (
+            "dummy link",
+            [("link", "add", name, "type", "dummy"), ("addr", "add", f"{TEST_ADDRESS}/32", "dev", name),
+             ("link", "set", name, "up")],
+            [("link", "del", name)],
+        ),
+        (
+            "veth pair",
+            [("link", "add", name, "type", "veth", "peer", "name", f"{name}p"),
+             ("addr", "add", f"{TEST_ADDRESS}/32", "dev", name), ("link", "set", name, "up"),
+             ("link", "set", f"{name}p", "up")],
+            [("link", "del", name)],
+        ),
+        (
+            "address on lo",
+            [("addr", "add", f"{TEST_ADDRESS}/32", "dev", "lo")],
+            [("addr", "del", f"{TEST_ADDRESS}/32", "dev", "lo")],
+        ),
+    ]  # fmt: skip
+    for how, steps, undo in attempts:
+        if all(_ip(*step).returncode == 0 for step in steps):
+            return how, undo
+        for step in undo:
+            _ip(*step)
+    return None
+
+
 @pytest.fixture
 def host_address() -> Iterator[str]:
-    """A non-loopback IPv4 address of this host; a dummy interface is made when there is none."""
+    """A non-loopback IPv4 address of this host; one is added when there is none (needs root)."""
     address = _non_loopback_ipv4()
     if address:
         yield address
         return
     if os.geteuid() != 0:
         pytest.skip("this host has no non-loopback IPv4 address and cannot create one without root")
-    name = f"fgw{os.getpid() % 100000}"
-    subprocess.run(["ip", "link", "add", name, "type", "dummy"], check=True)
+    added = _add_test_address(f"fgw{os.getpid() % 100000}")
+    if added is None:
+        pytest.skip(
+            "this host has no non-loopback IPv4 address and 'ip' could add none "
+            "(no dummy or veth link type, and lo refused a second address)"
+        )
+    _how, undo = added
     try:
-        subprocess.run(["ip", "addr", "add", "198.51.100.7/32", "dev", name], check=True)
-        subprocess.run(["ip", "link", "set", name, "up"], check=True)
-        yield "198.51.100.7"
+        yield TEST_ADDRESS
     finally:
-        subprocess.run(["ip", "link", "del", name], check=False)
+        for step in undo:
+            _ip(*step)
 
 
 class _HeartbeatSource:

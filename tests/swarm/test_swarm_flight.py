@@ -35,6 +35,7 @@ from mcp.types import Implementation
 from gateway.fleet import geo
 from gateway.util.ports import free_tcp_port
 from tests.helpers.procs import tail
+from tests.helpers.timing import scaled
 from tests.swarm.separation import Sample, closest_approach
 from tests.swarm.topology import (
     DRONES,
@@ -56,7 +57,7 @@ _possible, _why = can_create_namespaces()
 SPEEDUP = 5.0
 MIN_SEPARATION_M = 5.0
 SAMPLE_PERIOD_S = 0.2
-WAIT_S = 180.0  # generous: waiting is never an assertion
+WAIT_S = scaled(180.0)  # generous: waiting is never an assertion
 BIN = Path(sys.executable).parent
 OPERATOR_TOKEN = secrets.token_hex(16)  # the compose file requires operator tokens; agents get their own
 AGENT_TOKEN = secrets.token_hex(16)
@@ -229,7 +230,7 @@ async def _finish(c: Client, r: dict[str, Any], figures: dict[str, Any]) -> dict
 
 
 @pytest.mark.skipif(not _possible, reason=f"network namespaces unavailable: {_why}")
-@pytest.mark.timeout(900)
+@pytest.mark.timeout(scaled(900))
 async def test_five_drone_formation_flight_keeps_separation(tmp_path: Path) -> None:
     started = time.monotonic()
     figures: dict[str, Any] = {}

@@ -1,0 +1,70 @@
+"""Test deadlines, stretched on slow or busy machines by one knob.
+
+``FLEET_TEST_TIME_SCALE=3 make test`` multiplies every deadline the tests wait on (and pytest's per-test
+timeout) by 3. Deadlines bound a wait; they never assert how long something took.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import os
+from collections.abc import Awaitable, Callable
+from typing import TypeVar
+
+T = TypeVar("T")
+
+
+def _scale() -> float:
+    raw = os.environ.get("FLEET_TEST_TIME_SCALE", "").strip()
+    if not raw:
+        return 1.0
+    try:
+        value = float(raw)
+    except ValueError:
+        raise SystemExit(f"FLEET_TEST_TIME_SCALE must be a number >= 1, e.g. 2; got {raw!r}") from None
+    if not value >= 1.0:
+        raise SystemExit(f"FLEET_TEST_TIME_SCALE must be a number >= 1, e.g. 2; got {raw!r}")
+    return value
+
+
+TIME_SCALE = _scale()
+
+
+def scaled(seconds: float) -> float:
+    """A deadline of ``seconds`` on an idle machine, stretched by FLEET_TEST_TIME_SCALE."""
+    return seconds * TIME_SCALE
+
+
+async def settled(
+    read: Callable[[], Awaitable[T]],
+    still: Callable[[T, T], bool],
+    what: str,
+    *,
+    window_s: float = 1.5,
+    within_s: float = 60.0,
+) -> T:
+    """Read until two readings ``window_s`` apart are ``still`` (e.g. a drone stopped moving); the
+    last reading. Raises AssertionError naming ``what`` after ``within_s`` (scaled) without that."""
+    loop = asyncio.get_running_loop()
+    deadline = loop.time() + scaled(within_s)
+    before = await read()
+    while True:
+        await asyncio.sleep(window_s)
+        now = await read()
+        if still(before, now):
+            return now
+        if loop.time() > deadline:
+            raise AssertionError(f"{what}: not settled within {scaled(within_s):g} s; last {before} -> {now}")
+        before = now
+
+
+async def eventually(check: Callable[[], Awaitable[T]], what: str, *, within_s: float = 60.0) -> T:
+    """Await ``check()`` until it returns something truthy; that value. AssertionError after the
+    (scaled) deadline, naming ``what`` and the last value seen."""
+    loop = asyncio.get_running_loop()
+    deadline = loop.time() + scaled(within_s)
+    while not (result := await check()):
+        if loop.time() > deadline:
+            raise AssertionError(f"{what}: not reached within {scaled(within_s):g} s; last {result!r}")
+        await asyncio.sleep(0.2)
+    return result
