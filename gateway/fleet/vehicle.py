@@ -79,6 +79,13 @@ MAV_CMD_MISSION_START = 300
 MAV_CMD_SET_MESSAGE_INTERVAL = 511
 MAV_CMD_REQUEST_MESSAGE = 512
 MAVLINK_MSG_MISSION_CURRENT = 42
+MAVLINK_MSG_EKF_STATUS_REPORT = 193
+EKF_POS_HORIZ_ABS = 16
+EKF_CONST_POS_MODE = 128
+#: arming refusals that go away by themselves while the autopilot initialises (retried within the cap)
+ARM_WAIT_TEXTS = ("position estimate", "ekf", "gps", "waiting", "initialis", "initializ", "heading", "gyros",
+                  "accels", "ahrs", "home")  # fmt: skip
+ARM_RETRY_S = 1.0
 MAVLINK_MSG_SIMSTATE = 164
 MISSION_STATE_COMPLETE = 5
 #: PX4 checks an uploaded mission after acknowledging it and says so in STATUSTEXT within this time
@@ -137,6 +144,7 @@ class Vehicle:
         self._mission_plan: WirePlan | None = None
         self._mission_state: int | None = None  # MISSION_CURRENT.mission_state (5 = COMPLETE)
         self._mission_rejection: str | None = None  # the autopilot's words when it refused the mission
+        self._ekf_flags: int | None = None  # EKF_STATUS_REPORT.flags (ArduPilot), None until one arrives
         self.params = Parameters(spec.id, self._call, self._require_session)
         self.sessions = 0  # gRPC sessions opened (1 + sidecar restarts that reached serving)
 
@@ -216,15 +224,37 @@ class Vehicle:
             return ConnectionState.LINK_LOST
         sample = self.telemetry.health  # raw age: fresh() depends on the state computed here
         health = sample.value if sample is not None and sample.age_s <= limit else None
-        if (
-            health is not None
-            and health.global_position_ok
-            and health.home_position_ok
-            and self.telemetry.home is not None
-            and not self.sysid_mismatch
-        ):
+        if self._waiting_for(health) is None and not self.sysid_mismatch:
             return ConnectionState.READY
         return ConnectionState.CONNECTED
+
+    def _waiting_for(self, health: Any) -> str | None:
+        """What a connected vehicle still lacks before it can be flown, in words; None when nothing."""
+        if health is None:
+            return "waiting for health reports"
+        if not health.global_position_ok:
+            return "waiting for a GPS position"
+        if not health.home_position_ok or self.telemetry.home is None:
+            return "waiting for the home position"
+        if not self._position_estimate_ok(health):
+            return "waiting for the position estimate (the EKF is not using GPS yet)"
+        return None
+
+    def _position_estimate_ok(self, health: Any) -> bool:
+        """ArduPilot says "Need Position Estimate" until its EKF uses GPS, well after GPS and home are
+        fine: EKF_STATUS_REPORT tells (absolute horizontal position, not constant-position mode).
+        Without that report, MAVSDK's local position health."""
+        flags = self._ekf_flags
+        if flags is not None and self._link.autopilot == MAV_AUTOPILOT_ARDUPILOTMEGA:
+            return bool(flags & EKF_POS_HORIZ_ABS) and not flags & EKF_CONST_POS_MODE
+        return bool(health.local_position_ok)
+
+    def initialising(self) -> str | None:
+        """While connected but not ready: what the vehicle is still waiting for (None otherwise)."""
+        if self.state != ConnectionState.CONNECTED:
+            return None
+        sample = self.telemetry.health
+        return self._waiting_for(sample.value if sample is not None else None)
 
     def status(self) -> dict[str, Any]:
         car = self._sidecar
@@ -252,6 +282,7 @@ class Vehicle:
             "autopilot_version": self.autopilot_version,
             "flight_mode": mode,
             "armed": armed,
+            "initialising": self.initialising(),
             "unsupported_streams": sorted(self._feed.unsupported_rates) if self._feed else [],
             "sidecar": {
                 "state": car.state.value if car else "stopped",
@@ -276,10 +307,13 @@ class Vehicle:
         reason = {
             ConnectionState.REGISTERED: "it is not connected (connect it first)",
             ConnectionState.CONNECTING: "its link is still being established",
-            ConnectionState.CONNECTED: "it is connected but not ready (waiting for GPS position and home)",
+            ConnectionState.CONNECTED: "it is connected but not ready (still initialising)",
             ConnectionState.LINK_LOST: "its link is lost (no heartbeat)",
             ConnectionState.FAILED: "its sidecar failed",
         }[state]
+        waiting = self.initialising()
+        if waiting is not None:
+            reason = f"it is connected but not ready: {waiting}"
         if self.sysid_mismatch:
             reason = (
                 f"it reports system id {self._link.sysid} but {self.spec.expected_sysid} is expected "
@@ -396,6 +430,7 @@ class Vehicle:
         self._commands = CommandChannel(self.settings.gcs_sysid)
         self._rates_requested_at = 0.0
         self._connected_flag = None
+        self._ekf_flags = None
         feed = TelemetryFeed(
             self.id,
             system,
@@ -417,6 +452,7 @@ class Vehicle:
                 ("conn", self._connection_state, False),
                 ("mission", self._mission_current, False),
                 ("events", self._px4_events, False),
+                ("ekf", self._ekf_status, False),
             )
         ]
         self._session_tasks.append(asyncio.create_task(self._identify(system), name=f"ident-{self.id}"))
@@ -471,6 +507,10 @@ class Vehicle:
                 log.info("%s: SIMSTATE received: this vehicle is a simulator", self.id)
             self.is_simulator = True
             return  # known; stop streaming it through gRPC
+
+    async def _ekf_status(self, system: System) -> None:
+        async for msg in system.mavlink_direct.message("EKF_STATUS_REPORT"):
+            self._ekf_flags = int(json.loads(msg.fields_json).get("flags", 0))
 
     async def _px4_events(self, system: System) -> None:
         """PX4 tells a ground station that speaks the events protocol (MAVSDK does) why it refuses a
@@ -542,11 +582,11 @@ class Vehicle:
             self._link.autopilot or 0, frozenset()
         )
         await feed.request_rates(lambda what, aw: self._call(what, aw, 5.0), skip)
-        # MISSION_CURRENT is only in ArduPilot's EXT_STAT stream: ask for it by id (mission progress)
-        with contextlib.suppress(CommandFailed):
-            await self._command_long(
-                MAV_CMD_SET_MESSAGE_INTERVAL, MAVLINK_MSG_MISSION_CURRENT, 1e6, what="rate"
-            )
+        # MISSION_CURRENT is only in ArduPilot's EXT_STAT stream: ask for it by id (mission progress);
+        # EKF_STATUS_REPORT says when the position estimate is ready (arming in GUIDED needs it)
+        for message_id in (MAVLINK_MSG_MISSION_CURRENT, MAVLINK_MSG_EKF_STATUS_REPORT):
+            with contextlib.suppress(CommandFailed):
+                await self._command_long(MAV_CMD_SET_MESSAGE_INTERVAL, message_id, 1e6, what="rate")
         if not self.is_simulator:  # a simulator says so with SIMSTATE; real ArduPilot answers FAILED
             with contextlib.suppress(CommandFailed):
                 await self._command_long(MAV_CMD_REQUEST_MESSAGE, MAVLINK_MSG_SIMSTATE, what="SIMSTATE")
@@ -587,7 +627,9 @@ class Vehicle:
 
     # --- calling MAVSDK ---------------------------------------------------------------------------------
     async def _call(self, what: str, aw: Awaitable[T], timeout_s: float = CALL_TIMEOUT_S) -> T:
-        """Await one gRPC call with a timeout; MAVSDK errors become CommandFailed with the result text."""
+        """Await one gRPC call with a timeout; MAVSDK errors become CommandFailed with the result text
+        and what the autopilot said about it (its status text, which may come just after the ACK)."""
+        started = time.time()
         try:
             return await asyncio.wait_for(aw, timeout_s)
         except TimeoutError:
@@ -608,8 +650,9 @@ class Vehicle:
             if result is None:
                 raise
             name = getattr(result.result, "name", str(result.result))
+            said = await self._complaint_since(started - 1.0)
             raise CommandFailed(
-                f"{what} on drone '{self.id}' failed: {result.result_str} ({name})",
+                f"{what} on drone '{self.id}' failed: {result.result_str} ({name})" + said,
                 vehicle_id=self.id,
                 result=name,
             ) from None
@@ -645,13 +688,26 @@ class Vehicle:
     def _recent_complaint(self, within_s: float = 5.0, since: float | None = None) -> str:
         """The latest warning-or-worse status text of the last few seconds (or since ``since``, wall
         clock), to explain a refusal."""
+        said = self._latest_complaint(within_s, since)
+        return "" if said is None else f" (vehicle says: {said})"
+
+    async def _complaint_since(self, since: float, grace_s: float = 0.5) -> str:
+        """``_recent_complaint`` since ``since``, waiting up to ``grace_s`` for a text to arrive."""
+        for _ in range(int(grace_s / 0.05)):
+            said = self._recent_complaint(since=since)
+            if said:
+                return said
+            await asyncio.sleep(0.05)
+        return self._recent_complaint(since=since)
+
+    def _latest_complaint(self, within_s: float = 5.0, since: float | None = None) -> str | None:
         oldest = time.time() - within_s if since is None else since
         for item in reversed(self.telemetry.status_texts):
             if item.t < oldest:
                 break
             if item.severity in ("warning", "error", "critical", "alert", "emergency"):
-                return f" (vehicle says: {item.text})"
-        return ""
+                return " ".join(item.text.split())[:200]
+        return None
 
     # --- modes ------------------------------------------------------------------------------------------
     def resolve_mode(self, name: str) -> ModeChoice:
@@ -680,32 +736,48 @@ class Vehicle:
 
     # --- actions ----------------------------------------------------------------------------------------
     async def arm(self) -> None:
-        """Arm in GUIDED (ArduPilot): switch first, then wait for is_armable in that mode, then arm."""
+        """Arm (ArduPilot: in GUIDED, switched to first). The arming attempt itself is the check: its
+        refusal carries the autopilot's reason. A reason the autopilot lifts by itself while it
+        initialises ("Need Position Estimate": SYS_STATUS's pre-arm bit lags a mode change by up to a
+        second) is retried for up to ARMABLE_WAIT_S; any other comes back at once, in its words."""
         self.require_ready()
         if self.telemetry.fresh("armed"):
             return
         system = self.system
-        if self._link.autopilot != MAV_AUTOPILOT_PX4:
-            await self.set_flight_mode("GUIDED")
-            await self._wait_armable(since=self._link.mode_changed_at)
-        await self._call("arm", system.action.arm())
-
-    async def _wait_armable(self, since: float) -> None:
-        """is_armable is evaluated for the current mode: wait for a health sample after the mode change."""
         loop = asyncio.get_running_loop()
         deadline = loop.time() + ARMABLE_WAIT_S
+        if self._link.autopilot != MAV_AUTOPILOT_PX4:
+            await self.set_flight_mode("GUIDED")
         while True:
-            sample = self.telemetry.health
-            if sample is not None and sample.received_at > since and sample.value.is_armable:
+            attempt_at = time.time()
+            try:
+                await self._call("arm", system.action.arm())
                 return
-            if loop.time() > deadline:
-                mode = self.telemetry.fresh("flight_mode") or "its mode"
-                raise CommandFailed(
-                    f"drone '{self.id}' is not armable in {mode} "
-                    f"after {ARMABLE_WAIT_S:g} s" + self._recent_complaint(60.0),
-                    vehicle_id=self.id,
-                )
-            await asyncio.sleep(0.1)
+            except CommandFailed as exc:
+                said = self._latest_complaint(since=attempt_at - 1.0)
+                passing = said is not None and any(word in said.lower() for word in ARM_WAIT_TEXTS)
+                if not passing or loop.time() + ARM_RETRY_S > deadline:
+                    raise self._arm_refusal(exc, said, waited=passing) from None
+            log.info("%s: arming refused while initialising (%s); retrying", self.id, said)
+            await asyncio.sleep(ARM_RETRY_S)
+
+    def _arm_refusal(self, exc: CommandFailed, said: str | None, waited: bool) -> CommandFailed:
+        if said is None:
+            return exc
+        gps = self.telemetry.fresh("gps_info")
+        facts = f"GPS {gps.fix_type}, {gps.num_satellites} satellites" if gps is not None else "no GPS report"
+        if waited:
+            return CommandFailed(
+                f"drone '{self.id}' cannot arm yet: autopilot says '{said}' ({facts}; still refused after "
+                f"{ARMABLE_WAIT_S:g} s); call again in a few seconds or check fleet_status",
+                vehicle_id=self.id,
+                result=exc.details.get("result"),
+            )
+        return CommandFailed(
+            f"drone '{self.id}' refused to arm: autopilot says '{said}' ({facts})",
+            vehicle_id=self.id,
+            result=exc.details.get("result"),
+        )
 
     async def disarm(self) -> None:
         await self._call("disarm", self._require_session().action.disarm())
@@ -929,7 +1001,7 @@ class Vehicle:
             return
         if self._link.autopilot == MAV_AUTOPILOT_PX4:
             await self._call("start mission", system.mission_raw.start_mission())
-            await self._call("arm", system.action.arm())
+            await self.arm()
             return
         await self.arm()
         await self._command_long(MAV_CMD_MISSION_START, 0, 0, what="start mission")

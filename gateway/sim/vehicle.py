@@ -71,6 +71,7 @@ BOOT_TEXTS = [
 ]
 
 PREARM_DISPLAY_PERIOD_S = 30.0
+PREARM_CHECK_PERIOD_S = 1.0
 GPS_LOSS_TO_EKF_S = 1.0  # the EKF stops trusting its position this long after the GPS fix is gone
 
 
@@ -135,6 +136,8 @@ class SimVehicle:
         self._gcs_last_seen: float | None = None
         self._boot_text_i = 0
         self._prearm_next_display = 15.0 + 13.0
+        self._prearm_checked_at: float | None = None
+        self._prearm_bit = False
         self._next_stat = 30.0
         self.flight_time_s = 0.0
         self._last_hb = -1.0
@@ -250,6 +253,15 @@ class SimVehicle:
 
     def nav_output(self) -> tuple[float, float, float]:
         return self.flight.nav_output()
+
+    def prearm_bit(self) -> bool:
+        """SYS_STATUS's pre-arm bit. ArduCopter re-runs its pre-arm checks about once a second, so the bit
+        lags a mode change: right after GUIDED is selected it can still say "armable" while arming in
+        GUIDED is refused with "Need Position Estimate" (seen on real ArduCopter SITL)."""
+        if self._prearm_checked_at is None or self.t - self._prearm_checked_at >= PREARM_CHECK_PERIOD_S:
+            self._prearm_checked_at = self.t
+            self._prearm_bit = self.prearm_failure() is None
+        return self._prearm_bit
 
     def prearm_failure(self, mode: Mode | None = None) -> str | None:
         """First failing pre-arm check for ``mode`` (default: current), as ArduPilot words it."""

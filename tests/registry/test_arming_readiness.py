@@ -1,0 +1,64 @@
+"""Ready means armable: a drone is not "ready" while its autopilot still lacks a position estimate, and
+an arming refusal comes back with the autopilot's own words, never a bare FAILED (simulator; the same
+sequence on real ArduCopter is in tests/real)."""
+
+from __future__ import annotations
+
+import pytest
+
+from gateway.errors import CommandFailed
+from gateway.fleet.vehicle import ConnectionState
+from gateway.registry.registry import Registry
+from gateway.registry.spec import VehicleSpec
+from tests.helpers.sim import sim_process
+from tests.registry.conftest import WAIT_S, fast_settings, wait_until
+
+SPEEDUP = 5.0  # the simulated boot (origin at 20 s, EKF using GPS at 41.6 s) takes ~8 s of wall time
+
+
+async def test_arm_right_after_ready_succeeds_and_initialising_is_named(store, registries) -> None:
+    async with sim_process(1, speedup=SPEEDUP) as sim:
+        reg = Registry(fast_settings(), store)
+        registries.append(reg)
+        await reg.start()
+        v = await reg.add(VehicleSpec(id="ap1", url=sim.urls[0]))
+        seen: list[str] = []
+
+        def initialising() -> bool:
+            waiting = v.status()["initialising"]  # what REST and list_drones show
+            if waiting and waiting not in seen:
+                seen.append(waiting)
+            return waiting is not None and "position estimate" in waiting
+
+        # GPS and home are there long before the EKF uses GPS: that span is "initialising", not ready
+        await wait_until(
+            initialising, within_s=WAIT_S, what="initialising: waiting for the position estimate"
+        )
+        assert v.state == ConnectionState.CONNECTED
+        assert (
+            v.status()["initialising"] == "waiting for the position estimate (the EKF is not using GPS yet)"
+        )
+        await v.wait_for_state(ConnectionState.READY, within_s=WAIT_S)
+        assert v.status()["initialising"] is None
+        await v.arm()  # at once: no "Need Position Estimate"
+        await wait_until(lambda: v.telemetry.fresh("armed") is True, what="armed")
+        await v.disarm()
+        await wait_until(lambda: v.telemetry.fresh("armed") is False, what="disarmed")
+
+
+async def test_an_arming_refusal_carries_the_autopilots_words(store, registries) -> None:
+    async with sim_process(1, speedup=SPEEDUP) as sim:
+        reg = Registry(fast_settings(), store)
+        registries.append(reg)
+        await reg.start()
+        v = await reg.add(VehicleSpec(id="ap2", url=sim.urls[0]))
+        await v.wait_for_state(ConnectionState.READY, within_s=WAIT_S)
+        await v.set_param("BATT_LOW_VOLT", 30.0)  # above the battery's voltage: arming checks refuse
+        with pytest.raises(CommandFailed) as refused:
+            await v.arm()
+        message = refused.value.message
+        assert message.startswith("drone 'ap2' refused to arm: autopilot says 'Arm: Battery 1 low voltage"), (
+            message
+        )
+        assert "GPS FIX_3D" in message or "GPS RTK" in message, message
+        assert v.telemetry.fresh("armed") is False
