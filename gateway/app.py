@@ -18,6 +18,7 @@ from fastapi import FastAPI
 from starlette.routing import Route
 
 from gateway.api import build_api_router, health, metrics
+from gateway.api.docs import install_docs
 from gateway.api.errors import install_error_handlers
 from gateway.api.limits import BodyLimitMiddleware
 from gateway.config import Settings, get_settings
@@ -58,10 +59,13 @@ def create_app(settings: Settings | None = None, registry_factory: RegistryFacto
         version=_version(),
         description="Operator REST API of the MCP gateway for a fleet of MAVLink drones.",
         lifespan=lifespan,
+        docs_url=None,  # served by install_docs from local assets
+        redoc_url=None,  # ReDoc exists only as a CDN script
     )
     app.state.gateway = gateway
     app.state.lifespan_hooks = hooks
     install_error_handlers(app)
+    install_docs(app)
     app.add_middleware(BodyLimitMiddleware, max_bytes=settings.max_request_body_bytes)
     metrics.install_metrics(app, gateway)
     app.include_router(health.router)

@@ -1,4 +1,8 @@
-"""`fleet-gateway` command line: each area of the gateway registers its own subcommands."""
+"""`fleet-gateway` command line: each area of the gateway registers its own subcommands.
+
+Only the module of the command being run is imported (``fleet-gateway --help`` imports none of them):
+the areas pull in uvicorn, SQLAlchemy, the MCP SDK or the OpenAI client, seconds of start-up together.
+"""
 
 from __future__ import annotations
 
@@ -8,17 +12,27 @@ import logging
 import sys
 from collections.abc import Sequence
 
-# Modules exposing ``register(subparsers)``; each adds its subcommands with ``set_defaults(func=...)``.
-COMMAND_MODULES: tuple[str, ...] = (
-    "gateway.sim.cli",
-    "gateway.demo",
-    "gateway.server_cli",
-    "gateway.mcp.cli",
-    "gateway.agent.cli",
-)
+#: command -> (module whose ``register(subparsers)`` adds it, its one-line help for ``--help``)
+COMMANDS: dict[str, tuple[str, str]] = {
+    "serve": ("gateway.server_cli", "run the gateway (REST API, /mcp, sidecars)"),
+    "demo": ("gateway.demo", "run the gateway with simulated drones and print how to connect an MCP client"),
+    "drones": ("gateway.server_cli", "register, list and remove drones"),
+    "db": ("gateway.server_cli", "database maintenance"),
+    "sim": ("gateway.sim.cli", "run simulated ArduCopter drones (MAVLink 2 over TCP, like ArduPilot SITL)"),
+    "mcp-stdio": (
+        "gateway.mcp.cli",
+        "serve MCP over stdio (for clients that launch the server as a process)",
+    ),
+    "agent": (
+        "gateway.agent.cli",
+        "let an OpenAI-compatible chat model fly the fleet through the gateway's MCP tools",
+    ),
+}
+OPTIONS_WITH_VALUE = {"--log-level"}
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The parser; the full subcommands of ``command``'s module, one-line placeholders for the rest."""
     parser = argparse.ArgumentParser(
         prog="fleet-gateway",
         description="MCP gateway that lets LLMs fly a fleet of MAVLink drones under operator control.",
@@ -26,19 +40,55 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--log-level", default=None, help="Python log level (default: GATEWAY_LOG_LEVEL or INFO)"
     )
-    subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for module_name in COMMAND_MODULES:
-        importlib.import_module(module_name).register(subparsers)
+    subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
+    loaded = COMMANDS[command][0] if command in COMMANDS else None
+    if loaded is not None:
+        importlib.import_module(loaded).register(subparsers)
+    for name, (module, help_text) in COMMANDS.items():
+        if module != loaded:
+            subparsers.add_parser(name, help=help_text, add_help=False)
     return parser
 
 
+def _command_word(argv: Sequence[str]) -> str | None:
+    """The first word of ``argv`` that is not an option or an option's value."""
+    skip = False
+    for word in argv:
+        if skip:
+            skip = False
+        elif word in OPTIONS_WITH_VALUE:
+            skip = True
+        elif not word.startswith("-"):
+            return word
+    return None
+
+
+def _deepest(parser: argparse.ArgumentParser, args: argparse.Namespace) -> argparse.ArgumentParser:
+    """The (sub)parser of the command that was chosen, so an error shows that command's usage."""
+    while True:
+        chosen = None
+        for action in parser._actions:  # argparse keeps its subparsers here and nowhere public
+            if isinstance(action, argparse._SubParsersAction):
+                chosen = action.choices.get(getattr(args, action.dest, None) or "")
+        if chosen is None:
+            return parser
+        parser = chosen
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    words = list(sys.argv[1:] if argv is None else argv)
+    parser = build_parser(_command_word(words))
+    args, unknown = parser.parse_known_args(words)
+    if unknown:
+        _deepest(parser, args).error(f"unrecognized argument(s): {' '.join(unknown)} (see --help)")
+    if args.command is None:
+        parser.error(f"a COMMAND is needed, one of: {', '.join(COMMANDS)} (fleet-gateway COMMAND --help)")
     from gateway.config import get_settings
 
     level = (args.log_level or get_settings().log_level).upper()
     logging.basicConfig(level=level, format="%(asctime)s %(levelname)s %(name)s: %(message)s")
+    if level != "DEBUG":  # schema upgrades say "Context impl SQLiteImpl" and the like on every start
+        logging.getLogger("alembic").setLevel(logging.WARNING)
     try:
         result = args.func(args)
     except KeyboardInterrupt:

@@ -9,7 +9,9 @@ import signal
 import sys
 from pathlib import Path
 
+from gateway.cli import COMMANDS
 from gateway.localstack import LocalStack, StackError
+from gateway.startup import StartupError, check_port_free
 
 DRONE_NAMES = ("alpha", "bravo", "charlie", "delta", "echo", "foxtrot", "golf", "hotel", "india")
 
@@ -35,7 +37,10 @@ Ctrl-C stops the gateway, its sidecars and the simulator.
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
-        "demo", help="run the gateway with simulated drones and print how to connect an MCP client"
+        "demo",
+        help=COMMANDS["demo"][1],
+        description="Start simulated drones, the gateway serving them and its MCP endpoint on this machine, "
+        "and print how to connect an MCP client. Ctrl-C stops everything.",
     )
     parser.add_argument("--count", type=int, default=3, help="simulated drones (1-9, default 3)")
     parser.add_argument("--port", type=int, default=8765, help="HTTP port of REST and /mcp (default 8765)")
@@ -57,6 +62,11 @@ def run(args: argparse.Namespace) -> int:
         return 2
     if not 0.1 <= args.speedup <= 100:
         print("fleet-gateway demo: error: --speedup must be 0.1-100", file=sys.stderr)
+        return 2
+    try:
+        check_port_free("127.0.0.1", args.port)
+    except StartupError as exc:
+        print(f"fleet-gateway demo: error: {exc}", file=sys.stderr)
         return 2
     if args.workdir is not None:
         args.workdir.mkdir(parents=True, exist_ok=True)

@@ -158,7 +158,7 @@ class LocalStack:
             if await self._gateway_ready(proc, port):
                 return
             self._procs.remove(proc)
-            if "address already in use" not in self.log_tail("gateway").lower() or attempt == attempts - 1:
+            if "already in use" not in self.log_tail("gateway").lower() or attempt == attempts - 1:
                 raise StackError(f"the gateway exited at start:\n{self.log_tail('gateway')}")
 
     async def _gateway_ready(self, proc: asyncio.subprocess.Process, port: int) -> bool:

@@ -18,22 +18,35 @@ import httpx
 import uvicorn
 from pydantic import ValidationError
 
+from gateway.cli import COMMANDS
 from gateway.config import Settings
 from gateway.errors import DuplicateVehicle, GatewayError
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store, create_engine_for, current_revision, upgrade_schema
+from gateway.startup import (
+    StartupError,
+    check_port_free,
+    check_sidecar_binary,
+    describe_database_error,
+    prepare_database_location,
+)
 
 LOOPBACK_NAMES = {"localhost"}
 
 
 def register(subparsers: Any) -> None:
-    serve = subparsers.add_parser("serve", help="run the gateway (REST API, /mcp, sidecars)")
+    serve = subparsers.add_parser(
+        "serve",
+        help=COMMANDS["serve"][1],
+        description="Serve the REST API, the MCP endpoint (/mcp) and the operator pages, and run one "
+        "mavsdk_server per registered drone. The database schema is upgraded on start.",
+    )
     serve.add_argument("--host", default=None, help="bind address (default GATEWAY_HOST or 127.0.0.1)")
     serve.add_argument("--port", type=int, default=None, help="HTTP port (default GATEWAY_PORT or 8765)")
     _database_option(serve)
     serve.set_defaults(func=cmd_serve)
 
-    drones = subparsers.add_parser("drones", help="register, list and remove drones")
+    drones = subparsers.add_parser("drones", help=COMMANDS["drones"][1])
     drone_cmds = drones.add_subparsers(dest="drones_command", required=True, metavar="ACTION")
 
     add = drone_cmds.add_parser("add", help="register a drone")
@@ -61,7 +74,7 @@ def register(subparsers: Any) -> None:
     _target_options(remove)
     remove.set_defaults(func=cmd_drones_remove)
 
-    db = subparsers.add_parser("db", help="database maintenance")
+    db = subparsers.add_parser("db", help=COMMANDS["db"][1])
     db_cmds = db.add_subparsers(dest="db_command", required=True, metavar="ACTION")
     upgrade = db_cmds.add_parser(
         "upgrade", help="upgrade the database schema (the gateway also does on start)"
@@ -137,6 +150,13 @@ def cmd_serve(args: argparse.Namespace) -> int:
             "the gateway binds to loopback only",
             2,
         )
+    try:  # in this order: nothing is written when the port is taken
+        check_port_free(settings.host, settings.port)
+        check_sidecar_binary(settings)
+        prepare_database_location(settings.database_url)
+        asyncio.run(_open_database(settings.database_url))
+    except StartupError as exc:
+        return _fail(str(exc), 2)
     app = create_app(settings)
     config = uvicorn.Config(
         app,
@@ -150,6 +170,15 @@ def cmd_serve(args: argparse.Namespace) -> int:
     # SIGINT/SIGTERM: uvicorn stops accepting, then the lifespan stops every sidecar; exit status 0.
     server.run()
     return 0 if server.started else 1
+
+
+async def _open_database(url: str) -> None:
+    """Open the database and bring its schema up to date; StartupError in one line if it cannot."""
+    try:
+        store = await Store.open(url)
+    except Exception as exc:
+        raise StartupError(describe_database_error(url, exc)) from None
+    await store.close()
 
 
 class GatewayServer(uvicorn.Server):
@@ -260,14 +289,20 @@ def _with_store(args: argparse.Namespace, action: Any) -> int:
         return _fail(_validation_text(exc), 2)
 
     async def run() -> str:
-        store = await Store.open(settings.database_url)
+        try:
+            store = await Store.open(settings.database_url)
+        except Exception as exc:
+            raise StartupError(describe_database_error(settings.database_url, exc)) from None
         try:
             return await action(store)
         finally:
             await store.close()
 
     try:
+        prepare_database_location(settings.database_url)
         print(asyncio.run(run()))
+    except StartupError as exc:
+        return _fail(str(exc), 2)
     except GatewayError as exc:
         return _fail(exc.message)
     return 0
@@ -324,14 +359,23 @@ def cmd_db_upgrade(args: argparse.Namespace) -> int:
         return _fail(_validation_text(exc), 2)
 
     async def run() -> str | None:
-        engine = create_engine_for(settings.database_url)
+        try:
+            engine = create_engine_for(settings.database_url)
+        except Exception as exc:
+            raise StartupError(describe_database_error(settings.database_url, exc)) from None
         try:
             await upgrade_schema(engine, settings.database_url, args.revision)
             return await current_revision(engine)
+        except Exception as exc:
+            raise StartupError(describe_database_error(settings.database_url, exc)) from None
         finally:
             await engine.dispose()
 
-    revision = asyncio.run(run())
+    try:
+        prepare_database_location(settings.database_url)
+        revision = asyncio.run(run())
+    except StartupError as exc:
+        return _fail(str(exc), 2)
     print(f"database at revision {revision}")
     return 0
 

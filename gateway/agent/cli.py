@@ -17,6 +17,7 @@ from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentHost, ModelConfig
 from gateway.agent.mcp_link import McpLink, McpLinkError
 from gateway.agent.settings import AgentSettings, split_list
 from gateway.agent.toolbox import ToolSelectionError, select_tools
+from gateway.cli import COMMANDS
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_STEP_LIMIT = 0, 1, 2, 3
 
@@ -37,7 +38,7 @@ exit status (one-shot): 0 answered, 1 failed, 2 bad usage, 3 step limit reached.
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "agent",
-        help="let an OpenAI-compatible chat model fly the fleet through the gateway's MCP tools",
+        help=COMMANDS["agent"][1],
         description="A small MCP host: hands the gateway's tools to a chat model and runs the tool loop. "
         "With a PROMPT it runs one turn and exits; without one it keeps a conversation at a prompt.",
         epilog=_EPILOG,

@@ -10,11 +10,13 @@ import argparse
 import asyncio
 from typing import Any
 
+from gateway.cli import COMMANDS
+
 
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "mcp-stdio",
-        help="serve MCP over stdio (for clients that launch the server as a process)",
+        help=COMMANDS["mcp-stdio"][1],
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
