@@ -85,8 +85,7 @@ def select_tools(
         offered = sorted({t.toolset for t in tools if t.toolset})
         if not offered:
             raise ToolSelectionError(
-                "the server's tools name no toolset in their _meta; "
-                "select tools by name with --tools"
+                "the server's tools name no toolset in their _meta; select tools by name with --tools"
             )
         bad = [s for s in wanted_sets if s not in offered]
         if bad:

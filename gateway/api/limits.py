@@ -4,9 +4,23 @@ from __future__ import annotations
 
 from starlette.datastructures import Headers
 from starlette.exceptions import HTTPException
+from starlette.responses import JSONResponse
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from gateway.api.errors import error_response
+
+INVALID_REQUEST = -32600  # JSON-RPC
+
+
+def mcp_body_too_large(size: int, limit: int) -> JSONResponse:
+    """413 with a JSON-RPC error body: MCP clients show its message (the tool call's arguments were too
+    big), where a plain 413 reaches the model as "Server returned an error response"."""
+    message = (
+        f"request of {size} bytes is larger than the gateway's limit of {limit} bytes "
+        "(GATEWAY_MAX_REQUEST_BODY_BYTES); nothing was done: send smaller arguments"
+    )
+    body = {"jsonrpc": "2.0", "id": None, "error": {"code": INVALID_REQUEST, "message": message}}
+    return JSONResponse(body, status_code=413)
 
 
 class BodyTooLarge(HTTPException):
@@ -27,6 +41,9 @@ class BodyLimitMiddleware:
             return
         declared = Headers(scope=scope).get("content-length")
         if declared is not None and declared.isdigit() and int(declared) > self.max_bytes:
+            if str(scope.get("path", "")).startswith("/mcp"):
+                await mcp_body_too_large(int(declared), self.max_bytes)(scope, receive, send)
+                return
             response = error_response(
                 413,
                 "body_too_large",

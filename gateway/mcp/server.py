@@ -23,6 +23,7 @@ from mcp.server.transport_security import TransportSecuritySettings
 from starlette.applications import Starlette
 
 from gateway.mcp.access import FleetAccess
+from gateway.mcp.arguments import advertise_policy_limits, install_argument_messages
 from gateway.mcp.auth import auth_options
 from gateway.mcp.resources import ResourceNotifier, register_prompts, register_resources
 from gateway.mcp.session import SessionAudit
@@ -75,7 +76,7 @@ def build_mcp(gateway: Any) -> MCPServer:
         instructions=INSTRUCTIONS.format(cap=settings.mcp_wait_cap_s),
         lifespan=lifespan,
         subscriptions=bus,
-        middleware=[SessionAudit(lambda: fa.store)],
+        middleware=[SessionAudit(lambda: fa.store, lambda: fa.operations)],
         **auth_options(settings),
     )
     server.fleet_access = fa  # type: ignore[attr-defined]  # resolvers reach the gateway through it
@@ -88,6 +89,8 @@ def build_mcp(gateway: Any) -> MCPServer:
     for tool in server._tool_manager.list_tools():
         strip_schema_titles(tool.parameters)
         collapse_optional_nulls(tool.parameters)
+        advertise_policy_limits(tool, settings)
+        install_argument_messages(tool)
         if tool.output_schema is not None:
             strip_schema_titles(tool.output_schema)
     notifier = ResourceNotifier(server, fa)

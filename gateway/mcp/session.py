@@ -11,6 +11,7 @@ this one middleware, including calls rejected before the tool ran (unknown tool,
 
 from __future__ import annotations
 
+import asyncio
 import logging
 import os
 import time
@@ -70,9 +71,11 @@ def session_info(ctx: Any) -> SessionInfo:
 class SessionAudit:
     """MCP server middleware: session bookkeeping for every message, audit rows for tool calls."""
 
-    def __init__(self, store_getter: Any) -> None:
+    def __init__(self, store_getter: Any, operations_getter: Any | None = None) -> None:
         self._store = store_getter
+        self._operations = operations_getter  # a running call's row gets its operation's real ending
         self._touched: dict[str, tuple[float, str | None]] = {}
+        self._followers: set[asyncio.Task[None]] = set()
 
     async def __call__(self, ctx: Any, call_next: Any) -> Any:
         if ctx.method == "initialize":
@@ -100,9 +103,11 @@ class SessionAudit:
             current_call.reset(token)
             outcome, error = _outcome(call, result, failure)
             with anyio.CancelScope(shield=True):
-                await self._audit(
+                row_id = await self._audit(
                     info, call, str(params.get("name", "?")), arguments, outcome, error, started
                 )
+            if row_id is not None and outcome == "running":
+                self._follow(row_id, _operation_id(result))
 
     async def _touch(self, info: SessionInfo, force: bool) -> None:
         store = self._store()
@@ -135,14 +140,14 @@ class SessionAudit:
         outcome: str,
         error: str | None,
         started: float,
-    ) -> None:
+    ) -> int | None:
         store = self._store()
         if store is None:
-            return
+            return None
         try:
             from gateway.registry.store import AuditEntry
 
-            await store.add_audit(
+            return await store.add_audit(
                 AuditEntry(
                     session_key=info.key,
                     principal=info.principal,
@@ -157,6 +162,40 @@ class SessionAudit:
             )
         except Exception:
             log.exception("could not write the audit row of %s", tool)
+            return None
+
+    def _follow(self, row_id: int, operation_id: str | None) -> None:
+        """A call that returned while its operation runs (wait:false): when the operation ends, its
+        audit row says how (ok, error, superseded, cancelled) instead of staying "running"."""
+        if self._operations is None or operation_id is None:
+            return
+        try:
+            op = self._operations().get(operation_id)
+        except Exception:  # not an operation of this gateway: the row stays as written
+            return
+        task = asyncio.create_task(self._finish_row(row_id, op), name=f"audit-{operation_id}")
+        self._followers.add(task)
+        task.add_done_callback(self._followers.discard)
+
+    async def _finish_row(self, row_id: int, op: Any) -> None:
+        await op.done.wait()
+        status = str(getattr(op.status, "value", op.status))
+        outcome = {"succeeded": "ok", "failed": "error", "interrupted": "error"}.get(status, status)
+        store = self._store()
+        if store is None:
+            return
+        try:
+            await store.finish_audit(row_id, outcome, None if outcome == "ok" else str(op.message))
+        except Exception:
+            log.exception("could not record the end of operation %s in the audit", op.id)
+
+
+def _operation_id(result: Any) -> str | None:
+    structured = getattr(result, "structured_content", None)
+    if structured is None and isinstance(result, dict):
+        structured = result.get("structuredContent")
+    value = structured.get("operation_id") if isinstance(structured, dict) else None
+    return value if isinstance(value, str) else None
 
 
 def _drone_id(arguments: Any) -> str | None:

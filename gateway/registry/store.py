@@ -521,6 +521,14 @@ class Store:
             await session.flush()
             return int(row.id)
 
+    async def finish_audit(self, row_id: int, outcome: str, error: str | None) -> None:
+        """Record how the action of an audit row ended (a call that returned while it was running)."""
+        async with self._sessions.begin() as session:
+            row = await session.get(AuditRow, row_id)
+            if row is not None:
+                row.outcome = outcome[:16]
+                row.error = error and error[:AUDIT_MAX_ERROR]
+
     def _audit_conditions(self, vehicle_id: str | None, session_key: str | None) -> list[Any]:
         conditions = []
         if vehicle_id is not None:

@@ -74,11 +74,13 @@ async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStac
     truth = stack.truth()
     model = scripted(
         [
-            call("takeoff", drone_id="bravo", altitude_m=500),  # the gateway refuses (max altitude)
+            # the schema advertises the policy's altitude limit, so the host refuses before calling
+            call("takeoff", drone_id="bravo", altitude_m=500),
             call("takeoff", drone_id="bravo", altitude_m="very high"),  # the host refuses (schema)
-            call(
-                "go_to_location", drone_id="bravo", latitude_deg=91, longitude_deg=0, altitude_m=10
-            ),  # schema
+            # the gateway refuses
+            ScriptedReply(
+                tool_calls=[("set_parameter", {"drone_id": "bravo", "name": "FENCE_ENABLE", "value": 0})]
+            ),
             call("get_position", drone_id="bravo"),  # then it keeps asking: the step limit stops it
         ],
         repeat_last=True,
@@ -90,11 +92,13 @@ async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStac
         result = await host.run_turn("climb bravo to 500 m")
 
     assert result.outcome == "step_limit" and len(model.requests) == 5
-    assert [c.status for c in result.tool_calls] == ["error", "invalid", "invalid", "ok", "ok"]
-    refusal = [m for m in model.requests[1]["messages"] if m["role"] == "tool"][-1]["content"]
-    assert "Refused: max_altitude" in refusal and "exceeds the limit of 120 m above home" in refusal
+    assert [c.status for c in result.tool_calls] == ["invalid", "invalid", "error", "ok", "ok"]
+    limit_msg = [m for m in model.requests[1]["messages"] if m["role"] == "tool"][-1]["content"]
+    assert "500 is greater than the maximum of 120" in limit_msg
     schema_msg = [m for m in model.requests[2]["messages"] if m["role"] == "tool"][-1]["content"]
     assert "'very high' is not of type 'number'" in schema_msg
+    refusal = [m for m in model.requests[3]["messages"] if m["role"] == "tool"][-1]["content"]
+    assert "Refused: param_deny" in refusal and "FENCE_ENABLE" in refusal
     # Bravo never left the ground.
     bravo = (await truth.snapshot(["bravo"]))["bravo"]
     assert bravo.landed and not bravo.armed

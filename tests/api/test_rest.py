@@ -415,7 +415,10 @@ async def test_mcp_is_served_beside_the_api(client: httpx.AsyncClient) -> None:
     assert "fleet" in response.text.lower() or "serverInfo" in response.text
     assert_error(await client.get("/mcp-nothing"), 404, "not_found")
     big = {**initialize, "params": {**initialize["params"], "pad": "x" * 5000}}
-    assert_error(await client.post("/mcp", json=big), 413, "body_too_large")
+    too_big = await client.post("/mcp", json=big)  # a JSON-RPC error, which MCP clients show
+    assert too_big.status_code == 413
+    error = too_big.json()["error"]
+    assert error["code"] == -32600 and "larger than the gateway's limit of" in error["message"], error
 
 
 # --- operator control --------------------------------------------------------------------------

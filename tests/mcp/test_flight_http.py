@@ -70,6 +70,12 @@ async def _premature_goto(stack: Stack) -> None:
         ] == "running":
             pass
         assert r["status"] == "succeeded" and r["kind"] == "takeoff", r
+
+        async def takeoff_audited_ok() -> bool:  # the wait:false call's row ends with the real outcome
+            rows = (await stack.rest("/audit", vehicle_id="d2", limit=100))["items"]
+            return next(a for a in rows if a["action"] == "takeoff")["outcome"] == "ok"
+
+        await eventually(takeoff_audited_ok, "the audit row of the wait:false takeoff says ok")
         r = structured(await stack.call(c, "go_to_location", goto))
         assert r["status"] == "succeeded", r
         assert distance_m(await stack.true_state("d2"), lat, lon) <= stack.settings.arrival_tolerance_m + 0.5
@@ -92,7 +98,8 @@ async def test_two_sessions_at_once_paper_prompt_and_premature_goto(stack: Stack
     assert modern[0]["last_seen"] > modern[0]["first_seen"]
     audit = (await stack.rest("/audit", session_key="anonymous|premature-goto/1.0", limit=100))["items"]
     outcomes = {(a["action"], a["outcome"]) for a in audit}
-    assert ("go_to_location", "refused") in outcomes and ("takeoff", "running") in outcomes, outcomes
+    # the wait:false takeoff was "running" when its call returned; its row now says how it ended
+    assert ("go_to_location", "refused") in outcomes and ("takeoff", "ok") in outcomes, outcomes
     assert all(a["duration_ms"] is not None and a["principal"] == "anonymous" for a in audit)
 
 

@@ -64,8 +64,15 @@ async def test_bad_inputs_are_tool_errors_and_send_nothing(stack: Stack) -> None
     cases: list[tuple[str, dict[str, Any], str]] = [
         ("get_battery", {"drone_id": "nope"}, "known ids: d1, d2, d3"),
         ("takeoff", {"drone_id": "nope", "altitude_m": 10}, "known ids"),
-        ("takeoff", {"drone_id": "d2", "altitude_m": -5}, "greater than 0"),
-        ("takeoff", {"drone_id": "d2", "altitude_m": "ten"}, "altitude_m"),
+        (
+            "takeoff",
+            {"drone_id": "d2", "altitude_m": -5},
+            "invalid arguments for takeoff: altitude_m must be a number (m above home), "
+            "0 < altitude_m <= 120 (got -5)",
+        ),
+        ("takeoff", {"drone_id": "d2", "altitude_m": "ten"}, '0 < altitude_m <= 120 (got "ten")'),
+        ("takeoff", {"drone_id": "d2"}, "altitude_m is required: a number (m above home), 0 < altitude_m"),
+        ("takeoff", {"drone_id": "d2", "altitude_m": 50000}, "altitude_m <= 120 (got 50000)"),
         ("takeoff", {"drone_id": "d2", "altitude_m": float("nan")}, "altitude_m"),
         ("takeoff", {"drone_id": "d2", "altitude_m": 500}, "120"),
         (
@@ -94,9 +101,9 @@ async def test_bad_inputs_are_tool_errors_and_send_nothing(stack: Stack) -> None
         ("set_flight_mode", {"drone_id": "d2", "mode": "WARP"}, "its modes: HOLD, GUIDED, RTL"),
         ("get_parameter", {"drone_id": "d2", "name": huge}, "name"),
         ("set_parameter", {"drone_id": "d2", "name": "FENCE_ENABLE", "value": 0}, "param_deny"),
-        ("set_max_speed", {"drone_id": "d2", "speed_mps": 0}, "greater than 0"),
+        ("set_max_speed", {"drone_id": "d2", "speed_mps": 0}, "speed_mps must be a number (m/s), 0 <"),
         ("upload_mission", {"drone_id": "d2", "waypoints": [{"lat": 95, "lon": 8, "alt_m": 10}]}, "90"),
-        ("set_current_waypoint", {"drone_id": "d2", "index": 0}, "greater than or equal to 1"),
+        ("set_current_waypoint", {"drone_id": "d2", "index": 0}, "index must be an integer (Item 1..N), 1"),
         ("move_to_relative", {"drone_id": "d2", "north_m": 1e9, "east_m": 0}, "north_m"),
         ("no_such_tool", {"drone_id": "d2"}, "Unknown tool"),
     ]
@@ -104,7 +111,10 @@ async def test_bad_inputs_are_tool_errors_and_send_nothing(stack: Stack) -> None
         for tool, args, needle in cases:
             text = error_text(await stack.call(c, tool, args))
             assert needle in text, (tool, text[:300])
+            assert "pydantic" not in text and "\n" not in text.strip(), text[:300]  # one plain line
             assert len(text) < 2000, (tool, len(text))  # the huge input is not echoed back
+        with pytest.raises(MCPError, match=r"larger than the gateway's limit of \d+ bytes"):
+            await stack.call(c, "get_position", {"drone_id": "x" * 2_000_000})  # over the body limit
     after = await stack.true_state("d2")
     assert (after["armed"], after["mode"]) == (before["armed"], before["mode"])
     assert distance_m(after, home_lat, home_lon) < 0.5

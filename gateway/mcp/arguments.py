@@ -1,0 +1,167 @@
+"""What a model reads when its tool arguments are wrong: one line per argument naming it, what was
+given and what is accepted (from the tool's own JSON schema), instead of pydantic's multi-line dump with
+class names and URLs. Also puts the limits the safety policy enforces into the advertised schemas."""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from mcp.server.mcpserver.exceptions import ToolError
+from pydantic import ValidationError
+
+from gateway.config import Settings
+
+#: argument names that are altitudes above home, bounded by the policy's max_altitude_m
+ALTITUDE_ARGUMENTS = ("altitude_m", "alt_m")
+
+
+def install_argument_messages(tool: Any) -> None:
+    """Validate a tool's arguments before the SDK does, raising a ToolError the model can act on."""
+    run = tool.run
+    schema = tool.parameters
+
+    async def run_checked(arguments: dict[str, Any], context: Any, convert_result: bool = False) -> Any:
+        try:
+            tool.fn_metadata.validate_arguments(arguments)
+        except ValidationError as exc:
+            raise ToolError(describe_invalid(tool.name, exc, schema)) from None
+        return await run(arguments, context, convert_result=convert_result)
+
+    object.__setattr__(tool, "run", run_checked)  # Tool is a pydantic model: bypass its __setattr__
+
+
+def describe_invalid(tool_name: str, exc: ValidationError, schema: dict[str, Any]) -> str:
+    lines: list[str] = []
+    seen: set[str] = set()
+    for err in exc.errors():
+        loc = [part for part in err.get("loc", ()) if part != "arguments"]
+        name = _path(loc) or "arguments"
+        if name in seen:  # a union reports each alternative: one line per argument is enough
+            continue
+        seen.add(name)
+        prop = _property(schema, loc)
+        accepted = _accepted(name, prop) if prop is not None else None
+        if err.get("type") == "missing":
+            lines.append(f"{name} is required" + (f": {accepted}" if accepted else ""))
+        elif err.get("type") == "extra_forbidden":
+            known = ", ".join(schema.get("properties", {})) or "none"
+            lines.append(f"{name} is not an argument of {tool_name}; its arguments: {known}")
+        elif accepted:
+            lines.append(f"{name} must be {accepted} (got {_given(err.get('input'))})")
+        else:
+            message = str(err.get("msg", "is not valid")).removeprefix("Value error, ")
+            lines.append(f"{name}: {message} (got {_given(err.get('input'))})")
+    return f"invalid arguments for {tool_name}: " + "; ".join(lines)
+
+
+def advertise_policy_limits(tool: Any, settings: Settings) -> None:
+    """An altitude above home advertises the policy's maximum (the model sees the real bound before it
+    calls). Where alt_frame may switch to AMSL the bound is said in the description instead."""
+    props = tool.parameters.get("properties", {})
+    limit = float(settings.max_altitude_m)
+    for name in ALTITUDE_ARGUMENTS:
+        prop = props.get(name)
+        if not isinstance(prop, dict):
+            continue
+        if "alt_frame" in props:
+            note = f"policy limit {limit:g} m above home"
+            description = prop.get("description", "")
+            if note not in description:
+                prop["description"] = f"{description}; {note}" if description else note
+            continue
+        target = _number_schema(prop)
+        if target is not None:
+            target["maximum"] = min(float(target.get("maximum", limit)), limit)
+
+
+def _number_schema(prop: dict[str, Any]) -> dict[str, Any] | None:
+    if prop.get("type") in ("number", "integer"):
+        return prop
+    for option in prop.get("anyOf", []):
+        if isinstance(option, dict) and option.get("type") in ("number", "integer"):
+            return option
+    return None
+
+
+def _path(loc: list[Any]) -> str:
+    out = ""
+    for part in loc:
+        out += f"[{part}]" if isinstance(part, int) else (f".{part}" if out else str(part))
+    return out
+
+
+def _property(schema: dict[str, Any], loc: list[Any]) -> dict[str, Any] | None:
+    """The JSON schema of the argument at ``loc`` (following arrays, objects and $refs)."""
+    node: Any = schema
+    for part in loc:
+        node = _resolve(schema, node)
+        if isinstance(part, int):
+            node = node.get("items") if isinstance(node, dict) else None
+        else:
+            node = node.get("properties", {}).get(part) if isinstance(node, dict) else None
+        if node is None:
+            return None
+    return _resolve(schema, node) if isinstance(node, dict) else None
+
+
+def _resolve(schema: dict[str, Any], node: Any) -> Any:
+    if isinstance(node, dict) and isinstance(node.get("$ref"), str):
+        key = node["$ref"].rsplit("/", 1)[-1]
+        return schema.get("$defs", {}).get(key, node)
+    if isinstance(node, dict) and "anyOf" in node:  # Optional[X]: describe X
+        options = [o for o in node["anyOf"] if not (isinstance(o, dict) and o.get("type") == "null")]
+        if len(options) == 1:
+            merged = {k: v for k, v in node.items() if k != "anyOf"}
+            return {**_resolve(schema, options[0]), **merged}
+    return node
+
+
+def _accepted(name: str, prop: dict[str, Any]) -> str | None:
+    if "enum" in prop:
+        return "one of " + ", ".join(str(v) for v in prop["enum"])
+    if "const" in prop:
+        return f"{prop['const']!r}"
+    kind = prop.get("type")
+    description = prop.get("description")
+    about = f" ({description})" if description else ""
+    if kind in ("number", "integer"):
+        noun = "an integer" if kind == "integer" else "a number"
+        bounds = _bounds(name, prop)
+        return f"{noun}{about}" + (f", {bounds}" if bounds else "")
+    if kind == "string":
+        size = f" of at most {prop['maxLength']} characters" if "maxLength" in prop else ""
+        pattern = f" matching {prop['pattern']}" if "pattern" in prop else ""
+        return f"a string{size}{pattern}{about}"
+    if kind == "boolean":
+        return f"true or false{about}"
+    if kind == "array":
+        size = f" of at most {prop['maxItems']} items" if "maxItems" in prop else ""
+        return f"a list{size}{about}"
+    if kind == "object":
+        return f"an object{about}"
+    return None
+
+
+def _bounds(name: str, prop: dict[str, Any]) -> str:
+    low = (
+        f"{_num(prop['exclusiveMinimum'])} < " if "exclusiveMinimum" in prop
+        else f"{_num(prop['minimum'])} <= " if "minimum" in prop else ""
+    )  # fmt: skip
+    high = (
+        f" < {_num(prop['exclusiveMaximum'])}" if "exclusiveMaximum" in prop
+        else f" <= {_num(prop['maximum'])}" if "maximum" in prop else ""
+    )  # fmt: skip
+    return f"{low}{name}{high}" if low or high else ""
+
+
+def _num(value: Any) -> str:
+    return f"{value:g}" if isinstance(value, float) else str(value)
+
+
+def _given(value: Any) -> str:
+    try:
+        text = json.dumps(value)
+    except (TypeError, ValueError):
+        text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
