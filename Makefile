@@ -11,10 +11,13 @@ TEST_WORKERS ?= 2
 .PHONY: install demo test lint bench clean
 
 $(STAMP): pyproject.toml
+	@echo "Installing fleet-gateway and its dependencies into $(VENV) (about a minute on a fresh machine)..."
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[dev]'
+	$(BIN)/python -m pip install --progress-bar off -e '.[dev]' | grep -E '^(Collecting|Successfully installed)' || true
+	@$(BIN)/python -c "import gateway, mcp, mavsdk_grpc" || { echo "make install: the installation failed (see the pip output above)"; exit 1; }
 	@touch $(STAMP)
+	@echo "Installed into $(VENV)."
 
 install: $(STAMP)
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import asyncio
 import contextlib
+import logging
 import signal
 import sys
 from pathlib import Path
@@ -19,7 +20,7 @@ CONNECT_HELP = """\
 fleet-gateway is running with {count} simulated drones: {drones}
   MCP endpoint (Streamable HTTP): {mcp_url}
   REST API for operators:         {api_url}/api/v1/vehicles   (OpenAPI docs: {api_url}/docs)
-  database and logs:              {workdir}
+  database and logs:              {workdir}  ({kept})
 
 Connect an MCP client:
   Claude Code:    claude mcp add --transport http fleet-gateway {mcp_url}
@@ -70,6 +71,8 @@ def run(args: argparse.Namespace) -> int:
         return 2
     if args.workdir is not None:
         args.workdir.mkdir(parents=True, exist_ok=True)
+    # the banner is what a person reads: request lines of the stack's own HTTP calls go nowhere
+    logging.getLogger("httpx").setLevel(logging.WARNING)
     try:
         return asyncio.run(_demo(args))
     except StackError as exc:
@@ -108,6 +111,7 @@ async def _demo(args: argparse.Namespace) -> int:
                 mcp_url=stack.mcp_url,
                 api_url=stack.api_url,
                 workdir=stack.workdir,
+                kept="kept" if args.workdir is not None else "deleted on exit; --workdir DIR keeps them",
             ),
             flush=True,
         )

@@ -325,6 +325,16 @@ class Vehicle:
             msg += f"; last error: {error}"
         raise VehicleNotReady(msg, state=state.value)
 
+    async def wait_initialised(self, within_s: float = ARMABLE_WAIT_S) -> None:
+        """Like require_ready, but a drone that is connected and still initialising (waiting for its
+        position estimate) is waited for, up to ``within_s``: arming or taking off right after
+        connecting then succeeds instead of failing."""
+        if self.state == ConnectionState.CONNECTED and self.initialising() is not None:
+            log.info("%s: %s; waiting up to %g s before arming", self.id, self.initialising(), within_s)
+            with contextlib.suppress(VehicleNotReady):
+                await self.wait_for_state(ConnectionState.READY, within_s=within_s)
+        self.require_ready()
+
     def _require_session(self) -> System:
         """For commands that must still be tried when the vehicle is not 'ready' (land, RTL, disarm...)."""
         if self._system is None or self.state in (ConnectionState.REGISTERED, ConnectionState.FAILED):
@@ -740,7 +750,7 @@ class Vehicle:
         refusal carries the autopilot's reason. A reason the autopilot lifts by itself while it
         initialises ("Need Position Estimate": SYS_STATUS's pre-arm bit lags a mode change by up to a
         second) is retried for up to ARMABLE_WAIT_S; any other comes back at once, in its words."""
-        self.require_ready()
+        await self.wait_initialised()
         if self.telemetry.fresh("armed"):
             return
         system = self.system
@@ -791,7 +801,7 @@ class Vehicle:
         geo.check_finite("takeoff altitude", alt_rel_m)
         if alt_rel_m <= 0:
             raise InvalidArgument(f"takeoff altitude must be above 0 m; got {alt_rel_m:g}")
-        self.require_ready()
+        await self.wait_initialised()
         system = self.system
         if self.telemetry.fresh("in_air"):
             raise CommandFailed(f"drone '{self.id}' is already flying; use goto to change altitude")

@@ -57,6 +57,12 @@ class FleetAccess:
         vehicle.require_ready()
         return vehicle
 
+    async def ready_to_arm(self, drone_id: str) -> Any:
+        """The vehicle once it can be armed: one that is still initialising is waited for (capped)."""
+        vehicle = self.vehicle(drone_id)
+        await vehicle.wait_initialised()
+        return vehicle
+
     def session_key(self) -> str | None:
         call = current_call.get()
         return None if call is None else call.session_key

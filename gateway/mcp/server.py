@@ -33,7 +33,8 @@ log = logging.getLogger(__name__)
 
 SERVER_NAME = "fleet-gateway"
 INSTRUCTIONS = (
-    "Flies MAVLink drones; every tool takes drone_id (list: fleet://drones). Altitudes are metres above "
+    "Flies MAVLink drones; drone tools take drone_id, fleet tools drone_ids (list: fleet://drones). "
+    "Altitudes are metres above "
     "home unless alt_frame='amsl'. Long actions (takeoff, goto, land, missions) wait until done, up to "
     "{cap:g} s; status 'running' means still in progress: call monitor_flight before the next move."
 )

@@ -55,6 +55,8 @@ async def test_fleet_flight_partial_failures_and_concurrent_dispatch(
     async with stack.client("auto", name="fleet-pilot") as c:
         # --- refused as a whole, every drone that cannot take part named with its rule and numbers
         locks.lock("d2", "propeller check", "alice")
+        listed = (await c.call_tool("list_drones", {})).content[0].text
+        assert "LOCKED" in listed and "propeller check" in listed, listed  # the lock is said in text too
         await stack.sim.control.set_battery(
             3, 28.0
         )  # below the 30 % takeoff minimum, above the sim's low-voltage failsafe

@@ -90,6 +90,12 @@ class FakeVehicle:
     def status(self) -> dict[str, Any]:
         return {"state": self.state, "is_simulator": True}
 
+    def initialising(self) -> str | None:
+        return None
+
+    async def wait_initialised(self) -> None:
+        self.require_ready()
+
     def require_ready(self) -> None:
         if self.state != "ready":
             raise VehicleNotReady(f"drone {self.id} is not ready (state: {self.state})")

@@ -14,6 +14,7 @@ Commands go out to all drones at once; long ones wait (capped) like the single-d
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import dataclasses
 import json
 import logging
@@ -81,6 +82,7 @@ class DroneRow(Result):
     operation: str | None
     locked: str | None
     stale: bool
+    initialising: str | None = None  # while connected, what the drone still waits for before it can fly
 
 
 class DronesOut(Result):
@@ -215,6 +217,7 @@ def _row(fa: FleetAccess, v: Any) -> DroneRow:
         operation=None if op is None else f"{op.kind} {op.status.value}",
         locked=fa.safety.locks.reason_for(v.id),
         stale=stale,
+        initialising=v.initialising(),
     )
 
 
@@ -238,13 +241,16 @@ async def list_drones(
     """All drones: id, name, tags, state, armed, in air, battery %, position (m above home), mode, action."""
     rows = [_row(fa, v) for v in fa.registry.all()]
     rows = [r for r in rows if (tag is None or tag in r.tags) and _matches(r, state)]
-    text = "; ".join(
-        f"{r.drone_id} {r.state}{' flying' if r.in_air else ''} bat {r.battery_pct}% alt {r.alt_m} m"
-        for r in rows
-    )
+    text = "; ".join(_row_text(r) for r in rows)
     return DronesOut(count=len(rows), drones=rows).say(
         f"{len(rows)} drone(s): {text}" if rows else "no drones"
     )
+
+
+def _row_text(r: DroneRow) -> str:
+    state = f"{r.state} ({r.initialising})" if r.initialising else r.state
+    text = f"{r.drone_id} {state}{' flying' if r.in_air else ''} bat {r.battery_pct}% alt {r.alt_m} m"
+    return text + (f" LOCKED: {r.locked}" if r.locked else "")
 
 
 def _cell(x: Any, digits: int = 0) -> str:
@@ -264,6 +270,7 @@ async def fleet_status(fa: FleetAccess, ctx: Context) -> FleetStatusOut:
     lines = ["id state arm air bat% alt_m mode action lock"]
     for r in rows:
         state = r.state + ("(stale)" if r.stale and r.state == "ready" else "")
+        state = "initialising" if r.initialising else state
         op = (r.operation or "-").replace(" running", "").replace(" ", "_")
         lines.append(
             " ".join(
@@ -413,6 +420,7 @@ async def fleet_takeoff(
     policy = fa.safety
     _low, high = policy.altitude_band(ids)
     altitudes = takeoff_altitudes(ids, alt_m, _stagger(fa, stagger_m), high)
+    await _initialised(fa, ids)
 
     def check(v: Any) -> None:
         v.require_ready()
@@ -434,6 +442,16 @@ async def fleet_takeoff(
         slots={d: {"target_alt_m": a} for d, a in altitudes.items()},
     )
     return _fleet_out(fa, await _run(ctx, fa, fop, wait))
+
+
+async def _initialised(fa: FleetAccess, ids: list[str]) -> None:
+    """Drones still initialising (connected, waiting for a position estimate) are waited for (capped),
+    all at once; whatever they are then is judged by the members' checks."""
+    waits = []
+    for drone_id in ids:
+        with contextlib.suppress(GatewayError):
+            waits.append(fa.vehicle(drone_id).wait_initialised())
+    await asyncio.gather(*waits, return_exceptions=True)
 
 
 def _recovery_members(
