@@ -163,15 +163,18 @@ async def test_tools_survive_generated_and_mutated_arguments(stack: Stack) -> No
             invalid = not validators[name].is_valid(as_received(tools[name], args))
             run(name, args, must_refuse=invalid)
 
+        # The fleet lock stays on in both phases: a mutation can still be valid (a takeoff below the
+        # altitude limit with another 'wait'), and a valid takeoff would fly. Invalid arguments are
+        # refused before any tool body runs, so the lock hides no validation hole.
         async with httpx.AsyncClient(base_url=stack.base_url, timeout=30) as http:
-            r = await http.post("/api/v1/fleet/lock", json={"reason": "fuzzing valid arguments"})
+            r = await http.post("/api/v1/fleet/lock", json={"reason": "fuzzing tool arguments"})
             assert r.status_code == 200, r.text
             try:
                 await asyncio.to_thread(valid_arguments)
+                await asyncio.to_thread(mutated_arguments)
             finally:
                 r = await http.delete("/api/v1/fleet/lock")
                 assert r.status_code == 200, r.text
-        await asyncio.to_thread(mutated_arguments)
 
         # the session still answers, and the drone is where it was
         r = await c.call_tool("get_position", {"drone_id": DRONE})
