@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Awaitable, Callable
 from typing import Any
 
@@ -57,9 +58,14 @@ class FleetAccess:
         vehicle.require_ready()
         return vehicle
 
-    async def ready_to_arm(self, drone_id: str) -> Any:
-        """The vehicle once it can be armed: one that is still initialising is waited for (capped)."""
+    async def ready_to_arm(self, drone_id: str, ctx: Any | None = None) -> Any:
+        """The vehicle once it can be armed: one that is still initialising is waited for (capped),
+        and the client is told what it waits for."""
         vehicle = self.vehicle(drone_id)
+        waiting = vehicle.initialising()
+        if waiting is not None and ctx is not None:
+            with contextlib.suppress(Exception):  # progress is a courtesy; the wait happens regardless
+                await ctx.report_progress(0.0, 1.0, f"{drone_id}: {waiting}")
         await vehicle.wait_initialised()
         return vehicle
 

@@ -13,7 +13,7 @@ from pydantic import ValidationError
 from gateway.config import Settings
 
 #: argument names that are altitudes above home, bounded by the policy's max_altitude_m
-ALTITUDE_ARGUMENTS = ("altitude_m", "alt_m")
+ALTITUDE_ARGUMENTS = ("altitude_m", "alt_m", "rtl_alt_m")
 
 
 def install_argument_messages(tool: Any) -> None:
@@ -73,6 +73,11 @@ def advertise_policy_limits(tool: Any, settings: Settings) -> None:
         target = _number_schema(prop)
         if target is not None:
             target["maximum"] = min(float(target.get("maximum", limit)), limit)
+    stagger = props.get("stagger_m")
+    if isinstance(stagger, dict):  # its default follows the configured minimum separation
+        from gateway.fleet.fleet_ops import FORMATION_TOLERANCE_M
+
+        stagger["default"] = settings.min_separation_m + 2 * FORMATION_TOLERANCE_M
 
 
 def _number_schema(prop: dict[str, Any]) -> dict[str, Any] | None:

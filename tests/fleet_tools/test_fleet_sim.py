@@ -74,7 +74,12 @@ async def test_fleet_flight_partial_failures_and_concurrent_dispatch(
         locks.unlock("d2")
         await stack.sim.control.set_battery(3, 100.0)
         await _until("battery restored", lambda: _battery_seen(stack, c, "d4", low=False))
-        r = await _finish(c, structured(await c.call_tool("fleet_takeoff", {"drone_ids": IDS, "alt_m": 8})))
+        first = await c.call_tool("fleet_takeoff", {"drone_ids": IDS, "alt_m": 8})
+        told = first.content[0].text  # the text says what each drone was told: staggered altitudes
+        altitudes = {d["drone_id"]: d["target_alt_m"] for d in structured(first)["drones"]}
+        assert sorted(altitudes.values()) == [8.0, 15.0, 22.0, 29.0], altitudes  # default stagger 7 m
+        assert all(f"(to {altitudes[d]:g} m)" in told for d in IDS), told
+        r = await _finish(c, structured(first))
         assert r["status"] == "succeeded", (r["message"], r["drones"])
         sent = [d["sent_after_s"] for d in r["drones"]]
         accepted = [d["accepted_after_s"] for d in r["drones"]]

@@ -11,7 +11,7 @@ import random
 import signal
 import socket
 import subprocess
-from collections.abc import AsyncIterator, Callable, Iterator
+from collections.abc import AsyncIterator, Callable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -77,6 +77,23 @@ def _stop(proc: subprocess.Popen[bytes]) -> None:
             proc.wait(timeout=10)
 
 
+@contextlib.contextmanager
+def _running(
+    argv: list[str], folder: Path, name: str, env: Mapping[str, str]
+) -> Iterator[tuple[subprocess.Popen[bytes], Path]]:
+    """Run an autopilot in ``folder`` (its own process group, output to NAME.log); always stopped."""
+    log = folder / f"{name}.log"
+    with log.open("wb") as out:
+        proc = subprocess.Popen(
+            argv, cwd=folder, env=dict(env), stdout=out, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+            start_new_session=True,
+        )  # fmt: skip
+    try:
+        yield proc, log
+    finally:
+        _stop(proc)
+
+
 def _need(*names: str) -> None:
     missing = [n for n in names if not os.environ.get(n)]
     if missing:
@@ -92,19 +109,12 @@ def arducopter(tmp_path: Path) -> Iterator[Autopilot]:
     _need("ARDUPILOT_SITL", "ARDUPILOT_DEFAULTS")
     ports = lambda i: (5760 + 10 * i, 5762 + 10 * i, 5763 + 10 * i)  # noqa: E731
     instance = _free_instance(ports, _tcp_free, range(1, 40))
-    log = tmp_path / "arducopter.log"
-    proc = subprocess.Popen(
-        [
-            os.environ["ARDUPILOT_SITL"], "--model", "+", "--speedup", "5", f"-I{instance}", "--sysid", "1",
-            "--defaults", os.environ["ARDUPILOT_DEFAULTS"], "--home", ",".join(str(x) for x in HOME),
-        ],
-        cwd=tmp_path, stdout=log.open("wb"), stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-        start_new_session=True,
-    )  # fmt: skip
-    try:
+    argv = [
+        os.environ["ARDUPILOT_SITL"], "--model", "+", "--speedup", "5", f"-I{instance}", "--sysid", "1",
+        "--defaults", os.environ["ARDUPILOT_DEFAULTS"], "--home", ",".join(str(x) for x in HOME),
+    ]  # fmt: skip
+    with _running(argv, tmp_path, "arducopter", os.environ) as (proc, log):
         yield Autopilot(f"tcpout://127.0.0.1:{5760 + 10 * instance}", proc, log)
-    finally:
-        _stop(proc)
 
 
 @pytest.fixture
@@ -115,22 +125,10 @@ def px4(tmp_path: Path) -> Iterator[Autopilot]:
     instance = _free_instance(
         lambda i: (14540 + i, 14580 + i, 18570 + i, 14280 + i, 13030 + i, 19450 + i), _udp_free, range(1, 10)
     )  # PX4 sends to 14540 + instance only for instances 0-9
-    log = tmp_path / "px4.log"
-    env = {
-        **os.environ,
-        "PX4_SIM_MODEL": "sihsim_quadx",
-        "PX4_SIMULATOR": "sihsim",
-        "PX4_SYS_AUTOSTART": "10040",
-    }
-    proc = subprocess.Popen(
-        [str(build / "bin" / "px4"), "-d", "-i", str(instance), str(build / "etc")],
-        cwd=tmp_path, env=env, stdout=log.open("wb"), stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-        start_new_session=True,
-    )  # fmt: skip
-    try:
+    sih = {"PX4_SIM_MODEL": "sihsim_quadx", "PX4_SIMULATOR": "sihsim", "PX4_SYS_AUTOSTART": "10040"}
+    argv = [str(build / "bin" / "px4"), "-d", "-i", str(instance), str(build / "etc")]
+    with _running(argv, tmp_path, "px4", {**os.environ, **sih}) as (proc, log):
         yield Autopilot(f"udpin://127.0.0.1:{14540 + instance}", proc, log)
-    finally:
-        _stop(proc)
 
 
 @pytest.fixture

@@ -4,24 +4,36 @@ sequence on real ArduCopter is in tests/real)."""
 
 from __future__ import annotations
 
+import contextlib
+from collections.abc import AsyncIterator
+
 import pytest
 
 from gateway.errors import CommandFailed
-from gateway.fleet.vehicle import ConnectionState
+from gateway.fleet.vehicle import ConnectionState, Vehicle
 from gateway.registry.registry import Registry
 from gateway.registry.spec import VehicleSpec
+from gateway.registry.store import Store
 from tests.helpers.sim import sim_process
 from tests.registry.conftest import WAIT_S, fast_settings, wait_until
 
 SPEEDUP = 5.0  # the simulated boot (origin at 20 s, EKF using GPS at 41.6 s) takes ~8 s of wall time
 
 
-async def test_arming_while_initialising_waits_for_the_position_estimate_and_arms(store, registries) -> None:
+@contextlib.asynccontextmanager
+async def one_simulated_drone(
+    store: Store, registries: list[Registry], drone_id: str
+) -> AsyncIterator[Vehicle]:
+    """A simulated drone registered in a started registry (stopped by the ``registries`` fixture)."""
     async with sim_process(1, speedup=SPEEDUP) as sim:
         reg = Registry(fast_settings(), store)
         registries.append(reg)
         await reg.start()
-        v = await reg.add(VehicleSpec(id="ap1", url=sim.urls[0]))
+        yield await reg.add(VehicleSpec(id=drone_id, url=sim.urls[0]))
+
+
+async def test_arming_while_initialising_waits_for_the_position_estimate_and_arms(store, registries) -> None:
+    async with one_simulated_drone(store, registries, "ap1") as v:
         seen: list[str] = []
 
         def initialising() -> bool:
@@ -44,11 +56,7 @@ async def test_arming_while_initialising_waits_for_the_position_estimate_and_arm
 
 
 async def test_an_arming_refusal_carries_the_autopilots_words(store, registries) -> None:
-    async with sim_process(1, speedup=SPEEDUP) as sim:
-        reg = Registry(fast_settings(), store)
-        registries.append(reg)
-        await reg.start()
-        v = await reg.add(VehicleSpec(id="ap2", url=sim.urls[0]))
+    async with one_simulated_drone(store, registries, "ap2") as v:
         await v.wait_for_state(ConnectionState.READY, within_s=WAIT_S)
         await v.set_param("BATT_LOW_VOLT", 30.0)  # above the battery's voltage: arming checks refuse
         with pytest.raises(CommandFailed) as refused:

@@ -163,7 +163,7 @@ def _fleet_out(fa: FleetAccess, fop: FleetOperation, not_sent: list[Unable] | No
         plan = {k: fop.plan[k] for k in ("formation", "spacing_m", "heading_deg", "alt_m", "min_clearance_m")}
         plan["conflicts_resolved"] = len(fop.plan.get("conflicts", []))
     out = FleetOut(**d, not_sent=[u.to_dict() for u in not_sent or []], plan=plan)
-    rows = "; ".join(f"{m['drone_id']} {m['status']}" for m in d["drones"])
+    rows = "; ".join(f"{m['drone_id']} {m['status']}{_told(m)}" for m in d["drones"])
     skipped = f"; not sent: {', '.join(u.drone_id for u in not_sent)}" if not_sent else ""
     if fop.status == "running":
         eta = f", ETA {d['eta_s']:.0f} s" if d["eta_s"] is not None else ""
@@ -175,6 +175,18 @@ def _fleet_out(fa: FleetAccess, fop: FleetOperation, not_sent: list[Unable] | No
     else:
         text = f"{fop.kind} {fop.id} {fop.status}: {fop.message}. {rows}{skipped}"
     return out.say(text)
+
+
+def _told(member: dict[str, Any]) -> str:
+    """What one drone was told, in words: its altitude, the altitude it transits at, where it returns."""
+    parts = []
+    if member.get("transit_alt_m") is not None:
+        parts.append(f"transit at {member['transit_alt_m']:g} m")
+    if member.get("target_alt_m") is not None:
+        parts.append(f"to {member['target_alt_m']:g} m")
+    if member.get("rtl_alt_m") is not None:
+        parts.append(f"returning at {member['rtl_alt_m']:g} m")
+    return f" ({', '.join(parts)})" if parts else ""
 
 
 async def _run(ctx: Context, fa: FleetAccess, fop: FleetOperation, wait: bool) -> FleetOperation:

@@ -31,7 +31,7 @@ Mode = Annotated[
 @toolset.tool(idempotent=True)
 async def arm_drone(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> ActionOut:
     """Arm the motors (switches to GUIDED first). takeoff arms by itself."""
-    v = await fa.ready_to_arm(drone_id)
+    v = await fa.ready_to_arm(drone_id, ctx)
     fa.safety.check_arm(fa.context(v))
     await v.arm()
     return ActionOut(drone_id=drone_id, action="arm", message="armed").say(f"{drone_id} armed")
@@ -60,7 +60,7 @@ async def takeoff(
     wait: Wait = True,
 ) -> OperationOut:
     """Arm if needed and climb to altitude_m above home; done when reached."""
-    v = await fa.ready_to_arm(drone_id)
+    v = await fa.ready_to_arm(drone_id, ctx)
     fa.guard_takeoff(v, "takeoff")
     if value(v, "in_air"):
         pos = position(v)
