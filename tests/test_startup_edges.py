@@ -85,6 +85,20 @@ def test_serve_on_a_port_in_use_says_so_before_writing_anything(tmp_path: Path) 
     assert list(tmp_path.iterdir()) == []  # no ./fleet-gateway.db left behind
 
 
+def test_a_second_demo_on_a_taken_port_says_so_at_once(tmp_path: Path) -> None:
+    with socket.socket() as holder:
+        holder.bind(("127.0.0.1", 0))
+        holder.listen()
+        port = holder.getsockname()[1]
+        result = fleet_gateway("demo", "--port", str(port), cwd=tmp_path)
+    assert result.returncode == 2
+    assert error_lines(result) == [
+        f"fleet-gateway demo: error: port {port} on 127.0.0.1 is already in use (another fleet-gateway?); "
+        "pass --port N (or set GATEWAY_PORT), or stop what holds it"
+    ]
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_a_missing_database_directory_is_created(tmp_path: Path) -> None:
     db = tmp_path / "not" / "yet" / "there" / "fg.db"
     result = fleet_gateway("db", "upgrade", "--database-url", f"sqlite+aiosqlite:///{db}", cwd=tmp_path)

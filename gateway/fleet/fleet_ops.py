@@ -774,8 +774,11 @@ def _rtl(
 
 
 async def set_rtl_altitude_param(vehicle: Any, alt_m: float) -> None:
-    """ArduPilot: RTL_ALT in centimetres above home (the autopilot returns higher if already higher)."""
-    await vehicle.set_param("RTL_ALT", round(alt_m * 100))
+    """The vehicle's return altitude above home (ArduPilot RTL_ALT in cm, PX4 RTL_RETURN_ALT in m); the
+    autopilot returns higher if it is already higher."""
+    name, per_metre = vehicle.return_altitude_param()
+    value = alt_m * per_metre
+    await vehicle.set_param(name, round(value) if per_metre == 100.0 else round(value, 2))
 
 
 def default_rtl_base_m(positions: Iterable[tuple[float, float, float]], floor_m: float = 15.0) -> float:

@@ -1037,6 +1037,13 @@ class Vehicle:
             await self._call("mission finished", self._require_session().mission_raw.is_mission_finished())
         )
 
+    def return_altitude_param(self) -> tuple[str, float]:
+        """The parameter that sets the altitude RTL flies home at, and its units per metre: ArduPilot's
+        RTL_ALT is in centimetres, PX4's RTL_RETURN_ALT in metres."""
+        if self._link.autopilot == MAV_AUTOPILOT_PX4:
+            return "RTL_RETURN_ALT", 1.0
+        return "RTL_ALT", 100.0
+
     # --- parameters (gateway.fleet.params) ---------------------------------------------------------------
     async def get_param(self, name: str) -> tuple[float | int, str]:
         """Value and type ('int' | 'float'); tries the other ArduPilot name if the parameter was renamed."""

@@ -90,6 +90,9 @@ class FakeVehicle:
     def status(self) -> dict[str, Any]:
         return {"state": self.state, "is_simulator": True}
 
+    def return_altitude_param(self) -> tuple[str, float]:
+        return "RTL_ALT", 100.0
+
     def initialising(self) -> str | None:
         return None
 

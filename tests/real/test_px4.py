@@ -5,6 +5,7 @@ from __future__ import annotations
 import pytest
 
 from gateway.errors import CommandFailed, InvalidArgument
+from gateway.fleet.fleet_ops import set_rtl_altitude_param
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.vehicle import ConnectionState
 from gateway.registry.spec import VehicleSpec
@@ -47,5 +48,8 @@ async def test_px4_refuses_a_bad_mission_unarmed_and_flies_a_good_one_at_its_alt
     value, _kind = await v.set_param("MPC_XY_VEL_MAX", 8.0)
     assert value == pytest.approx(8.0)
 
+    # fleet_return_to_launch sets each drone's return altitude: PX4's RTL_RETURN_ALT, in metres
+    await set_rtl_altitude_param(v, 20.0)
+    assert (await v.get_param("RTL_RETURN_ALT"))[0] == pytest.approx(20.0)
     await v.set_flight_mode("RTL")
     await until("landed and disarmed", lambda: v.telemetry.fresh("armed") is False, 180, v)

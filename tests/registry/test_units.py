@@ -146,3 +146,25 @@ def test_cache_snapshot_reports_ages_and_staleness() -> None:
     with pytest.raises(KeyError):
         cache.put("warp_drive", 1)
     assert cache.message_counts == {"position": 1, "status_text": 1}
+
+
+async def test_the_return_altitude_is_written_in_each_autopilots_parameter_and_units() -> None:
+    from gateway.config import Settings
+    from gateway.fleet.fleet_ops import set_rtl_altitude_param
+    from gateway.fleet.modes import MAV_AUTOPILOT_ARDUPILOTMEGA, MAV_AUTOPILOT_PX4
+    from gateway.fleet.vehicle import Vehicle
+    from gateway.registry.spec import VehicleSpec
+
+    written: list[tuple[str, float]] = []
+    v = Vehicle(VehicleSpec(id="rtl", url="udpin://127.0.0.1:14540"), Settings(_env_file=None))
+
+    async def record(name: str, value: float) -> tuple[float, str]:
+        written.append((name, value))
+        return value, "float"
+
+    v.set_param = record  # type: ignore[method-assign]
+    v._link.autopilot = MAV_AUTOPILOT_ARDUPILOTMEGA
+    await set_rtl_altitude_param(v, 22.5)
+    v._link.autopilot = MAV_AUTOPILOT_PX4
+    await set_rtl_altitude_param(v, 22.5)
+    assert written == [("RTL_ALT", 2250), ("RTL_RETURN_ALT", 22.5)]  # centimetres / metres

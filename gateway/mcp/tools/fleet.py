@@ -526,7 +526,7 @@ async def fleet_return_to_launch(
         if position(v) is None:
             raise VehicleNotReady(f"no position received from {v.id} yet")
         fa.safety.check_actuation(fa.context(v))
-        fa.safety.check_param_write("RTL_ALT", vehicle_id=v.id)
+        fa.safety.check_param_write(v.return_altitude_param()[0], vehicle_id=v.id)
 
     ids, vehicles, unable = _recovery_members(fa, drone_ids, "fleet_return_to_launch", check)
     positions = {d: position(v) for d, v in vehicles.items()}
