@@ -32,13 +32,15 @@ from typing import Any
 from rich.console import Console
 from rich.table import Table
 
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))  # the repository root: bench.agent_harness
+
+from bench.agent_harness.missions import Evidence, Mission, MissionContext, all_missions
+from bench.agent_harness.pilot import SELF_CHECK_MODEL, ScriptedPilot
+from bench.agent_harness.scripted import ScriptedModelServer
+from bench.agent_harness.stack import GatewayTruth, LocalStack, Sampler, SimTruth, reset_drones
 from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
 from gateway.agent.mcp_link import McpLink
-from gateway.agent.missions import Evidence, Mission, MissionContext, all_missions
-from gateway.agent.pilot import SELF_CHECK_MODEL, ScriptedPilot
-from gateway.agent.scripted import ScriptedModelServer
 from gateway.agent.settings import AgentSettings, split_list
-from gateway.agent.stack import GatewayTruth, LocalStack, Sampler, SimTruth, reset_drones
 from gateway.agent.toolbox import select_tools, tool_list_tokens
 
 DOCS = Path(__file__).resolve().parent.parent / "docs" / "benchmarks.md"

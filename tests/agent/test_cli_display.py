@@ -9,8 +9,8 @@ import json
 import pytest
 from rich.console import Console
 
+from bench.agent_harness.scripted import ScriptedReply, call, say
 from gateway.agent import cli
-from gateway.agent.scripted import ScriptedReply, call, say
 from tests.agent.toy_mcp import TOKEN
 
 

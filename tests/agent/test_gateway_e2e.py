@@ -6,10 +6,10 @@ from collections.abc import AsyncIterator
 
 import pytest
 
+from bench.agent_harness.scripted import ScriptedReply, call, say
+from bench.agent_harness.stack import LocalStack
 from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
 from gateway.agent.mcp_link import McpLink, McpLinkError
-from gateway.agent.scripted import ScriptedReply, call, say
-from gateway.agent.stack import LocalStack
 from gateway.fleet.geo import horizontal_distance_m, offset_position
 from tests.helpers.timing import scaled
 

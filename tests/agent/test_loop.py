@@ -7,9 +7,9 @@ from typing import Any
 
 import pytest
 
+from bench.agent_harness.scripted import ScriptedModelServer, ScriptedReply, call, say
 from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
 from gateway.agent.mcp_link import McpLink, McpLinkError
-from gateway.agent.scripted import ScriptedModelServer, ScriptedReply, call, say
 from tests.agent.toy_mcp import TOKEN, ToyServer
 
 
