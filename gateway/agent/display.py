@@ -12,7 +12,13 @@ from rich.status import Status
 
 from gateway.agent.host import AgentEvent
 
-_STATUS_STYLE = {"ok": "green", "error": "red", "invalid": "yellow", "unknown_tool": "yellow"}
+_STATUS_STYLE = {
+    "ok": "green",
+    "error": "red",
+    "invalid": "yellow",
+    "unknown_tool": "yellow",
+    "repeat": "yellow",
+}
 
 
 class JsonLinesDisplay:
@@ -99,6 +105,16 @@ class RichDisplay:
     def _on_final(self, d: dict[str, Any]) -> None:
         self._stop_status()
         self.console.print(f"[bold green]model[/] {escape(d['text'])}")
+
+    def _on_empty_reply(self, d: dict[str, Any]) -> None:
+        self.console.print(f"[yellow]empty reply[/] [dim]asking again with the request ({d['attempt']})[/]")
+
+    def _on_empty_answer(self, d: dict[str, Any]) -> None:
+        self._stop_status()
+        self.console.print(f"[bold red]no answer[/] {escape(d['message'])}")
+
+    def _on_arguments_corrected(self, d: dict[str, Any]) -> None:
+        self.console.print(f"  [dim]{escape('; '.join(d['notes']))}[/]")
 
     def _on_step_limit(self, d: dict[str, Any]) -> None:
         self._stop_status()

@@ -76,6 +76,11 @@ def loads_lenient(text: str) -> Any:
     raise ValueError(f"not valid JSON: {_shorten(text)}")
 
 
+def strip_thinking(content: str) -> str:
+    """The text without ``<think>`` blocks (what is left is what the model said)."""
+    return _THINK_RE.sub("", content)
+
+
 def parse_arguments(raw: Any) -> dict[str, Any]:
     """Turn a tool call's ``arguments`` (string, doubly encoded string, dict, None) into a dict.
 

@@ -97,15 +97,18 @@ async def test_json_transcript(toy, scripted) -> None:
     events = [json.loads(line) for line in buf.getvalue().splitlines()]
     assert [e["event"] for e in events] == [
         "turn_start",
+        "roster",
         "model_reply",
         "tool_call",
         "tool_result",
+        "roster",
         "model_reply",
         "final",
         "turn_end",
     ]
-    assert events[2]["arguments"] == {"drone_id": "alpha"}
-    assert events[3]["status"] == "ok" and events[3]["summary"] == "status=landed"
+    assert events[1]["ids"] == ["alpha", "bravo"]
+    assert events[3]["arguments"] == {"drone_id": "alpha"}
+    assert events[4]["status"] == "ok" and events[4]["summary"] == "status=landed"
     assert events[-1]["prompt_tokens"] > 0 and events[-1]["tool_calls"] == 1
 
 
@@ -141,7 +144,12 @@ async def test_interactive_keeps_the_conversation(toy, scripted) -> None:
     assert await cli.run_async(args, console=console, stdin=stdin) == cli.EXIT_OK
     assert len(model.requests) == 3
     history = [m.get("content") for m in model.requests[1]["messages"]]
-    assert history[-3:] == ["where is alpha?", "alpha is on the ground", "now take it up 5 m"]
+    roster = "Fleet now: alpha on the ground, battery 90%; bravo on the ground, battery 90%.\n\n"
+    assert history[-3:] == [
+        roster + "where is alpha?",
+        "alpha is on the ground",
+        roster + "now take it up 5 m",
+    ]
     assert "1 model calls" in buf.getvalue()
     assert toy.world.drones["alpha"].alt_m == 5.0
 
@@ -175,7 +183,7 @@ async def test_list_tools(toy) -> None:
     args = _parse(["--mcp-url", toy.url, "--token", TOKEN, "--list-tools", "--json"])
     assert await cli.run_async(args, console=console) == cli.EXIT_OK
     names = {json.loads(line)["name"] for line in buf.getvalue().splitlines()}
-    assert names == {"takeoff", "move_north", "land", "get_position"}
+    assert names == {"takeoff", "move_north", "land", "get_position", "list_drones"}
 
 
 @pytest.mark.parametrize(
