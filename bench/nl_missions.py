@@ -51,11 +51,23 @@ from bench.agent_harness.tokens import cl100k_tokens, model_tokens
 from bench.common import machine, write_section
 from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentEvent, AgentHost, ModelConfig, TurnResult
 from gateway.agent.mcp_link import McpLink
-from gateway.agent.profiles import PROFILES, apply_profile
+from gateway.agent.profiles import PROFILES, apply_profile, system_prompt_for
 from gateway.agent.roster import with_drone_enum
 from gateway.agent.settings import AgentSettings, split_list
 from gateway.agent.toolbox import select_tools
 
+VERBOSE_EVENTS = frozenset(
+    {
+        "model_reply",
+        "tool_call",
+        "tool_result",
+        "final",
+        "empty_reply",
+        "empty_answer",
+        "step_limit",
+        "model_error",
+    }
+)
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs" / "benchmarks.md"
 LOCAL_MODEL_SCRIPT = ROOT.parent / "shared" / "llm" / "serve-local-model"
@@ -135,6 +147,7 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         default=None,
         help=f"start {LOCAL_MODEL_SCRIPT} with this model for the run and stop it afterwards",
     )
+    p.add_argument("--max-tokens", type=int, default=200, help="longest model reply in tokens (default 200)")
     p.add_argument("--threads", type=int, default=2, help="threads of the --serve-local model (default 2)")
     p.add_argument("--speedup", type=float, default=5.0, help="simulator speed-up of the own sim (default 5)")
     p.add_argument("--write", action="store_true", help="add the results table to docs/benchmarks.md")
@@ -190,8 +203,9 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
         else:
             truth = GatewayTruth(link)
         shown = [with_drone_enum(t, drone_ids) for t in tools]
-        own = None if args.self_check else await model_tokens(args.endpoint, shown, DEFAULT_SYSTEM_PROMPT)
-        cl100k = cl100k_tokens(shown, DEFAULT_SYSTEM_PROMPT)
+        args.system_prompt = system_prompt_for(args.profile, DEFAULT_SYSTEM_PROMPT)
+        own = None if args.self_check else await model_tokens(args.endpoint, shown, args.system_prompt)
+        cl100k = cl100k_tokens(shown, args.system_prompt)
         args.tool_list = (
             f"{len(tools)} of {len(all_tools)} tools; system prompt + tool list "
             f"{'n/a' if own is None else own} tokens in the model's own tokenizer and template, "
@@ -211,6 +225,7 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
                 api_key=AgentSettings().resolved_api_key(),
                 timeout_s=args.model_timeout,
                 max_retries=0,
+                max_tokens=args.max_tokens,
             )
 
         runs = []
@@ -252,10 +267,12 @@ async def run_one(
     def on_event(e: AgentEvent) -> None:
         if e.kind == "tool_result":
             results.append(e.data)
-        if args.verbose and e.kind in ("tool_call", "tool_result", "final", "step_limit", "model_error"):
+        if args.verbose and e.kind in VERBOSE_EVENTS:
             console.print(f"[dim]  {mission.id} {e.kind}: {json.dumps(e.data, default=str)[:200]}[/]")
 
-    host = AgentHost(model, link, tools, max_steps=args.max_steps, on_event=on_event)
+    host = AgentHost(
+        model, link, tools, max_steps=args.max_steps, on_event=on_event, system_prompt=args.system_prompt
+    )
     console.print(f"[bold]{mission.id}[/] {prompt} [dim](load {os.getloadavg()[0]:.1f})[/]")
     sampler = Sampler(truth, list(mission.drones))
     async with sampler:

@@ -15,7 +15,7 @@ from rich.table import Table
 from gateway.agent.display import JsonLinesDisplay, RichDisplay
 from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentHost, ModelConfig
 from gateway.agent.mcp_link import McpLink, McpLinkError
-from gateway.agent.profiles import PROFILES, apply_profile
+from gateway.agent.profiles import PROFILES, apply_profile, system_prompt_for
 from gateway.agent.settings import AgentSettings, split_list
 from gateway.agent.toolbox import ToolSelectionError, select_tools
 from gateway.cli import COMMANDS
@@ -110,6 +110,12 @@ def add_agent_arguments(parser: argparse.ArgumentParser) -> None:
         help="seconds to wait for one model reply (default 300; CPU-only local models can be slow)",
     )
     parser.add_argument(
+        "--max-tokens",
+        type=_positive_int,
+        default=None,
+        help="longest reply the model may write, in tokens (default: the endpoint's)",
+    )
+    parser.add_argument(
         "--structured",
         action="store_true",
         help="also hand the model each result's structured content as JSON (more tokens)",
@@ -182,11 +188,14 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
                     if args.temperature is not None and args.temperature < 0
                     else args.temperature,
                     timeout_s=args.model_timeout,
+                    max_tokens=args.max_tokens,
                 ),
                 link,
                 tools,
                 max_steps=args.max_steps or env.max_steps,
-                system_prompt=args.system if args.system is not None else DEFAULT_SYSTEM_PROMPT,
+                system_prompt=args.system
+                if args.system is not None
+                else system_prompt_for(args.profile or env.profile, DEFAULT_SYSTEM_PROMPT),
                 on_event=display,
                 roster=not args.no_roster,
             )

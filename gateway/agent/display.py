@@ -18,6 +18,7 @@ _STATUS_STYLE = {
     "invalid": "yellow",
     "unknown_tool": "yellow",
     "repeat": "yellow",
+    "skipped": "yellow",
 }
 
 

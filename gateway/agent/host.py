@@ -89,6 +89,7 @@ class ModelConfig:
     temperature: float | None = 0.0
     timeout_s: float = 300.0
     max_retries: int = 1
+    max_tokens: int | None = None  # cap on one reply (a small model on a CPU can ramble for minutes)
 
 
 @dataclass
@@ -98,7 +99,7 @@ class ToolCallRecord:
     id: str
     name: str
     arguments: dict[str, Any] | None
-    status: str  # ok | error | invalid | unknown_tool | repeat
+    status: str  # ok | error | invalid | unknown_tool | repeat | skipped
     summary: str
     parsed_from_text: bool = False
     text: str = ""  # what the model was told
@@ -197,6 +198,7 @@ class AgentHost:
     def _set_tools(self, tools: Sequence[ToolInfo]) -> None:
         self.tools = {t.name: t for t in tools}
         self.tool_specs = [t.openai_spec() for t in tools]
+        self._parameters = {t.name: list((t.input_schema or {}).get("properties") or {}) for t in tools}
 
     async def refresh_roster(self) -> Roster | None:
         """Read the fleet from the gateway; when its ids changed, the tool schemas get the new ``enum``
@@ -284,8 +286,14 @@ class AgentHost:
             if parsed:
                 result.parsed_from_text += len(calls)
             self.messages.append(_assistant_message(content, calls, parsed))
+            failed: ToolCallRecord | None = None
             for call in calls:
-                record = await self._execute(result.steps, call, parsed, result)
+                if failed is not None:  # the calls of one reply are a plan: later steps need the earlier
+                    record = self._skip(result.steps, call, parsed, failed)
+                else:
+                    record = await self._execute(result.steps, call, parsed, result)
+                    if record.status in ("error", "invalid", "unknown_tool"):
+                        failed = record
                 result.tool_calls.append(record)
             if self.use_roster and result.steps < self.max_steps:
                 roster = await self.refresh_roster()
@@ -343,6 +351,8 @@ class AgentHost:
             kwargs["tools"] = self.tool_specs
         if self.model.temperature is not None:
             kwargs["temperature"] = self.model.temperature
+        if self.model.max_tokens is not None:
+            kwargs["max_tokens"] = self.model.max_tokens
         response = await self.chat.chat.completions.create(**kwargs)
         u = getattr(response, "usage", None)
         prompt = getattr(u, "prompt_tokens", None) if u is not None else None
@@ -363,7 +373,7 @@ class AgentHost:
         ]
         parsed = False
         if not calls and content:
-            found = extract_tool_calls(content, self.tools.keys())
+            found = extract_tool_calls(content, self._parameters)
             if found:
                 parsed = True
                 calls = [
@@ -472,6 +482,14 @@ class AgentHost:
             text=model_text,
             running=structured.get("status") == "running",
         )
+
+    def _skip(self, step: int, call: dict[str, Any], parsed: bool, failed: ToolCallRecord) -> ToolCallRecord:
+        """A later call of a reply whose earlier call failed: not sent, and the model is told why."""
+        text = f"Not executed: the earlier call {failed.name} in the same reply failed. Fix that first."
+        self.messages.append({"role": "tool", "tool_call_id": call["id"], "content": text})
+        self._emit("tool_result", step=step, id=call["id"], name=call["name"], status="skipped", summary=text,
+                   text=text)  # fmt: skip
+        return ToolCallRecord(call["id"], call["name"], None, "skipped", text, parsed, text)
 
     def _repeat_of(self, name: str, args: dict[str, Any], turn: TurnResult | None) -> ToolCallRecord | None:
         """The earlier call of this turn that this one repeats: same tool, same arguments, it succeeded

@@ -239,3 +239,18 @@ async def test_legacy_mcp_mode(toy, scripted) -> None:
                    "--endpoint", model.base_url, "--model", "m", "where is bravo"])  # fmt: skip
     assert await cli.run_async(args, console=console) == cli.EXIT_OK
     assert "bravo: 0 m north" in model.requests[1]["messages"][-1]["content"]
+
+
+async def test_small_profile_sends_its_tools_prompt_and_reply_cap(toy, scripted) -> None:
+    from gateway.agent.profiles import SMALL_MODEL_SYSTEM_PROMPT
+
+    model = scripted([say("ok")])
+    console, _ = _console()
+    argv = ["--mcp-url", toy.url, "--token", TOKEN, "--endpoint", model.base_url, "--model", "m",
+            "--profile", "small", "--max-tokens", "50", "hi"]  # fmt: skip
+    assert await cli.run_async(_parse(argv), console=console) == cli.EXIT_OK
+    request = model.requests[0]
+    # The toy server offers three of the small profile's tools; move_north and list_drones are not in it.
+    assert [t["function"]["name"] for t in request["tools"]] == ["takeoff", "land", "get_position"]
+    assert request["messages"][0]["content"] == SMALL_MODEL_SYSTEM_PROMPT
+    assert request["max_tokens"] == 50

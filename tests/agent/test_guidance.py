@@ -207,3 +207,21 @@ async def test_an_unknown_tool_gets_the_closest_one_and_firmer_when_repeated(toy
     assert "'get_location' does not exist; you called it again. Use get_position(drone_id: string)" in second
     assert "The closest tool is move_north(drone_id: string, distance_m: number)" in third
     assert toy.world.calls == []
+
+
+# --- several calls in one reply ------------------------------------------------------------------------
+
+
+async def test_after_a_failed_call_the_rest_of_the_reply_is_not_sent(toy, scripted) -> None:
+    plan = ScriptedReply(
+        tool_calls=[
+            ("move_north", {"drone_id": "alpha", "distance_m": 60}),  # on the ground: refused
+            ("land", {"drone_id": "alpha"}),
+        ]
+    )
+    model = scripted([plan, say("alpha must take off first")])
+    result = await _turn(toy, model, "fly alpha 60 m north and land")
+    assert [c.status for c in result.tool_calls] == ["error", "skipped"]
+    assert [name for name, _ in toy.world.calls] == ["move_north"]
+    skipped = _tool_texts(model.requests[1])[-1]
+    assert skipped.startswith("Not executed: the earlier call move_north in the same reply failed.")

@@ -232,3 +232,15 @@ def test_loads_lenient_prefers_strict_json() -> None:
     assert loads_lenient('{"a": {"b": {"c": 1}}}') == {"a": {"b": {"c": 1}}}
     with pytest.raises(ValueError, match="not valid JSON"):
         loads_lenient("{broken")
+
+
+def test_positional_python_style_calls_need_the_tools_parameters() -> None:
+    params = {"takeoff": ["drone_id", "altitude_m"], "land": ["drone_id"]}
+    calls = extract_tool_calls("takeoff(bravo, 20)\nthen land('bravo')", params)
+    assert [(c.name, c.arguments) for c in calls] == [
+        ("takeoff", {"drone_id": "bravo", "altitude_m": 20}),
+        ("land", {"drone_id": "bravo"}),
+    ]
+    assert "positional arguments" in calls[0].notes
+    assert extract_tool_calls("takeoff(bravo, 20)", ["takeoff"]) == []  # names only: keywords only
+    assert extract_tool_calls("land(bravo, 20)", params) == []  # more arguments than parameters
