@@ -206,10 +206,10 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
         args.system_prompt = system_prompt_for(args.profile, DEFAULT_SYSTEM_PROMPT)
         own = None if args.self_check else await model_tokens(args.endpoint, shown, args.system_prompt)
         cl100k = cl100k_tokens(shown, args.system_prompt)
+        own_text = "n/a" if own is None else f"{own[0]} (tool list alone {own[1]})"
         args.tool_list = (
-            f"{len(tools)} of {len(all_tools)} tools; system prompt + tool list "
-            f"{'n/a' if own is None else own} tokens in the model's own tokenizer and template, "
-            f"{'n/a' if cl100k is None else cl100k} in cl100k"
+            f"{len(tools)} of {len(all_tools)} tools; first request (system prompt, tool list, template) "
+            f"{own_text} tokens in the model's own tokenizer, {'n/a' if cl100k is None else cl100k} in cl100k"
         )
         console.print(f"[dim]tool list: {args.tool_list}; truth from {truth.source}[/]")
 

@@ -20,27 +20,30 @@ def server_root(base_url: str) -> str:
 
 async def model_tokens(
     base_url: str, tools: list[ToolInfo], system_prompt: str | None, user_text: str = "hi"
-) -> int | None:
-    """Tokens of a first request (system prompt + tool list + one short user line) in the model's own
-    template and tokenizer; None when the endpoint is not llama.cpp's server."""
+) -> tuple[int, int] | None:
+    """(whole first request, tool list alone) in tokens of the model's own template and tokenizer: the
+    request is a system prompt, the tool list and one short user line; the tool list's share is the
+    difference with the same request without tools. None when the endpoint is not llama.cpp's server."""
     messages: list[dict[str, Any]] = []
     if system_prompt:
         messages.append({"role": "system", "content": system_prompt})
     messages.append({"role": "user", "content": user_text})
-    body: dict[str, Any] = {"messages": messages}
-    if tools:
-        body["tools"] = [t.openai_spec() for t in tools]
     root = server_root(base_url)
+    counts = []
     try:
-        async with httpx.AsyncClient(timeout=60.0) as http:
-            rendered = await http.post(f"{root}/apply-template", json=body)
-            rendered.raise_for_status()
-            prompt = rendered.json()["prompt"]
-            counted = await http.post(f"{root}/tokenize", json={"content": prompt})
-            counted.raise_for_status()
-            return len(counted.json()["tokens"])
+        async with httpx.AsyncClient(timeout=120.0) as http:
+            for with_tools in (True, False):
+                body: dict[str, Any] = {"messages": messages}
+                if with_tools and tools:
+                    body["tools"] = [t.openai_spec() for t in tools]
+                rendered = await http.post(f"{root}/apply-template", json=body)
+                rendered.raise_for_status()
+                counted = await http.post(f"{root}/tokenize", json={"content": rendered.json()["prompt"]})
+                counted.raise_for_status()
+                counts.append(len(counted.json()["tokens"]))
     except (httpx.HTTPError, KeyError, ValueError):
         return None
+    return counts[0], counts[0] - counts[1]
 
 
 def cl100k_tokens(tools: list[ToolInfo], system_prompt: str | None) -> int | None:
