@@ -309,18 +309,20 @@ class AgentHost:
 
     async def _reprompt(self, result: TurnResult) -> str:
         """What the model is told after an empty reply: the request, what is done, the fleet now."""
-        done = [f"{c.name}({_args_text(c.arguments)}): {c.summary}" for c in result.tool_calls if c.ok]
+        # Results in words, never in call syntax: a model may echo this text, and an echoed call must not
+        # read as a new one.
+        done = [f"{c.name}: {c.summary}" for c in result.tool_calls if c.ok]
         roster = await self.refresh_roster()
         parts = [
             "Your reply was empty.",
-            f"The request was: {self._request}",
+            f"The request: {self._request}",
             "Done so far: " + ("; ".join(done) if done else "nothing yet") + ".",
         ]
         if roster is not None:
             parts.append(roster.text())
         parts.append(
-            "Call the tool for the next step of the request. If every part of it is done, answer in words "
-            "what was done."
+            "If that is the whole request, reply with one sentence saying what was done. Otherwise call the "
+            "tool for the next step."
         )
         return "\n".join(parts)
 
@@ -446,8 +448,8 @@ class AgentHost:
         elif earlier is not None:
             status = "repeat"
             outcome = ToolOutcome(
-                text=f"Not sent again: {name}({_args_text(args)}) already succeeded in this request "
-                f"({earlier.summary}). It is done; do not repeat it. The request was: {self._request} "
+                text=f"Not sent again: this {name} call already succeeded in this request "
+                f"({earlier.summary}). It is done; do not repeat it. The request: {self._request} "
                 "Call the tool for the next step, or answer in words if every part is done.",
                 is_error=False,
             )

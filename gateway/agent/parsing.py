@@ -290,6 +290,8 @@ def _python_style_calls(
             if end is None:
                 continue
             snippet = text[m.start() : end + 1]
+            if not _stands_alone(text, m.start(), end + 1):
+                continue
             try:
                 node = ast.parse(snippet, mode="eval").body
             except SyntaxError:
@@ -308,6 +310,20 @@ def _python_style_calls(
             calls.append(TextToolCall(name=name, arguments=args, raw=snippet, notes=notes))
     calls.sort(key=lambda c: text.find(c.raw))
     return calls
+
+
+_LIST_MARK_RE = re.compile(r"^\s*(?:[-*]|\d+[.)])?\s*$")
+_LINE_END_RE = re.compile(r"^\s*[;,.]?\s*$")
+
+
+def _stands_alone(text: str, start: int, end: int) -> bool:
+    """A python-style call counts only on a line of its own (a list marker before it, ``;`` after it):
+    in a sentence it is the model describing, or echoing, what was done. Measured: a 1.5B model echoed
+    "Done so far: takeoff(drone_id='alpha', ...)" and the drone took off again."""
+    line_start = text.rfind("\n", 0, start) + 1
+    line_end = text.find("\n", end)
+    line_end = len(text) if line_end < 0 else line_end
+    return bool(_LIST_MARK_RE.match(text[line_start:start]) and _LINE_END_RE.match(text[end:line_end]))
 
 
 def _literal(node: ast.expr) -> Any:

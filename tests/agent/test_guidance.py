@@ -110,8 +110,8 @@ async def test_an_empty_reply_is_asked_again_with_the_request_and_what_was_done(
     assert [name for name, _ in toy.world.calls] == ["takeoff", "land"]
     nudge = _user_texts(model.requests[2])[-1]
     assert nudge.startswith("Your reply was empty.")
-    assert "The request was: hop alpha to 15 m, then land it" in nudge
-    assert 'Done so far: takeoff(drone_id="alpha", altitude_m=15): status=reached' in nudge
+    assert "The request: hop alpha to 15 m, then land it" in nudge
+    assert "Done so far: takeoff: status=reached." in nudge  # results in words, no call to echo
     assert "Fleet now: alpha flying at 15 m" in nudge
     # The empty reply itself is not kept in the conversation.
     assert not any(
@@ -158,8 +158,8 @@ async def test_a_call_identical_to_one_that_just_succeeded_is_not_sent_again(toy
     assert [c.status for c in result.tool_calls] == ["ok", "ok", "repeat", "ok"]
     assert [name for name, _ in toy.world.calls] == ["takeoff", "land"]
     told = _tool_texts(model.requests[3])[-1]
-    assert told.startswith('Not sent again: takeoff(drone_id="alpha", altitude_m=15) already succeeded')
-    assert "The request was: take off alpha to 15 m and land" in told and "next step" in told
+    assert told.startswith("Not sent again: this takeoff call already succeeded in this request")
+    assert "The request: take off alpha to 15 m and land" in told and "next step" in told
 
 
 async def test_the_same_call_after_another_action_on_that_drone_is_sent(toy, scripted) -> None:
