@@ -25,6 +25,7 @@ from typing import Any, Protocol
 import openai
 
 from gateway.agent.parsing import ArgumentsError, extract_tool_calls, parse_arguments, strip_thinking
+from gateway.agent.repair import restore_request_numbers, swap_hint
 from gateway.agent.roster import (
     Roster,
     drones_named,
@@ -425,8 +426,9 @@ class AgentHost:
                 args = parse_arguments(call["raw_args"])
             except ArgumentsError as exc:
                 problem = str(exc)
-        if args is not None and self._enum_ids:
-            notes = normalise_drone_ids(args, self._enum_ids)
+        if args is not None:
+            notes = normalise_drone_ids(args, self._enum_ids) if self._enum_ids else []
+            notes += restore_request_numbers(args, self._request)
         self._emit(
             "tool_call",
             step=step,
@@ -457,7 +459,9 @@ class AgentHost:
             assert args is not None
             invalid = validate_arguments(tool, args)
             if invalid is not None:
-                status, outcome = "invalid", ToolOutcome(text=invalid, is_error=True)
+                hint = swap_hint(args)
+                text = f"{invalid} {hint}" if hint else invalid
+                status, outcome = "invalid", ToolOutcome(text=text, is_error=True)
             else:
 
                 async def progress(p: float, total: float | None, message: str | None) -> None:
