@@ -25,7 +25,7 @@ from typing import Any, Protocol
 import openai
 
 from gateway.agent.parsing import ArgumentsError, extract_tool_calls, parse_arguments, strip_thinking
-from gateway.agent.repair import restore_request_numbers, swap_hint
+from gateway.agent.repair import null_island, restore_request_numbers, swap_hint
 from gateway.agent.roster import (
     Roster,
     drones_named,
@@ -457,7 +457,7 @@ class AgentHost:
             )
         else:
             assert args is not None
-            invalid = validate_arguments(tool, args)
+            invalid = validate_arguments(tool, args) or null_island(args, self._request)
             if invalid is not None:
                 hint = swap_hint(args)
                 text = f"{invalid} {hint}" if hint else invalid

@@ -39,6 +39,21 @@ def restore_request_numbers(arguments: dict[str, Any], request: str) -> list[str
     return notes
 
 
+def null_island(arguments: dict[str, Any], request: str) -> str | None:
+    """A refusal for latitude 0, longitude 0 when the request gives no such point: a small model writes it
+    for "go up to 15 m" or "fly 60 m north" (measured: every prompt variant tried with the 1.5B model)."""
+    if re.search(r"(?<![\d.])0(?:\.0+)?\s*,\s*0(?:\.0+)?(?![\d.])", request or ""):
+        return None
+    for lat_name, lon_name in LAT_LON_PAIRS:
+        if arguments.get(lat_name) == 0 and arguments.get(lon_name) == 0:
+            return (
+                f"{lat_name}=0, {lon_name}=0 is not a place in the request. To go up, use takeoff (from "
+                "the ground) or move_to_relative with a negative down_m; to fly some metres north, south, "
+                "east or west, use move_to_relative. Nothing was executed."
+            )
+    return None
+
+
 def swap_hint(arguments: dict[str, Any]) -> str | None:
     """A sentence when a latitude is out of range but would be valid as the longitude and vice versa."""
     for lat_name, lon_name in LAT_LON_PAIRS:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from bench.agent_harness.scripted import call, say
 from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
 from gateway.agent.mcp_link import McpLink
-from gateway.agent.repair import restore_request_numbers, swap_hint
+from gateway.agent.repair import null_island, restore_request_numbers, swap_hint
 from tests.agent.toy_mcp import TOKEN
 
 REQUEST = "Launch bravo to 20 m and send it to -35.362855, 149.164955. Keep it hovering there."
@@ -43,6 +43,15 @@ def test_swapped_latitude_and_longitude_are_named() -> None:
     )
     assert swap_hint({"center_lat": 95.0, "center_lon": 10.0}) is not None
     assert swap_hint({"latitude_deg": -35.3, "longitude_deg": 149.1}) is None
+
+
+def test_latitude_and_longitude_zero_is_refused_unless_the_user_said_it() -> None:
+    zero = {"drone_id": "alpha", "latitude_deg": 0, "longitude_deg": 0, "altitude_m": 15}
+    refusal = null_island(zero, "Alpha: go up to 15 m, fly 60 metres north, and land there.")
+    assert refusal is not None and refusal.startswith("latitude_deg=0, longitude_deg=0 is not a place in the")
+    assert "move_to_relative" in refusal and "Nothing was executed" in refusal
+    assert null_island(zero, "fly alpha to 0, 0 at 15 m") is None
+    assert null_island({**zero, "latitude_deg": 0.5}, "go up") is None
 
 
 async def test_the_host_sends_the_users_number_and_says_so(toy, scripted) -> None:
