@@ -457,7 +457,11 @@ class AgentHost:
             )
         else:
             assert args is not None
-            invalid = validate_arguments(tool, args) or null_island(args, self._request)
+            invalid = (
+                self._unknown_arguments(tool, args)
+                or validate_arguments(tool, args)
+                or null_island(args, self._request)
+            )
             if invalid is not None:
                 hint = swap_hint(args)
                 text = f"{invalid} {hint}" if hint else invalid
@@ -488,6 +492,17 @@ class AgentHost:
             text=model_text,
             running=structured.get("status") == "running",
         )
+
+    def _unknown_arguments(self, tool: ToolInfo, args: dict[str, Any]) -> str | None:
+        """Arguments the tool does not have (in the gateway's own schema, hidden ones included) are refused
+        rather than silently dropped: a model that adds latitude_deg to takeoff has misread the tool."""
+        base = next((t for t in self.base_tools if t.name == tool.name), tool)
+        known = set((base.input_schema or {}).get("properties") or {})
+        extra = sorted(set(args) - known)
+        if not known or not extra:
+            return None
+        names = ", ".join(extra)
+        return f"{tool.name} has no argument {names}; it takes {signature(tool)}. Nothing was executed."
 
     def _skip(self, step: int, call: dict[str, Any], parsed: bool, failed: ToolCallRecord) -> ToolCallRecord:
         """A later call of a reply whose earlier call failed: not sent, and the model is told why."""

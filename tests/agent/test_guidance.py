@@ -99,6 +99,15 @@ async def test_drone_ids_are_an_enum_and_an_invented_id_is_refused_before_any_ca
     assert corrected == [["drone id 'Alpha' read as 'alpha'"]]
 
 
+async def test_an_argument_the_tool_does_not_have_is_refused(toy, scripted) -> None:
+    model = scripted([call("takeoff", drone_id="alpha", altitude_m=10, latitude_deg=-35.36), say("no")])
+    result = await _turn(toy, model, "take off alpha")
+    assert [c.status for c in result.tool_calls] == ["invalid"] and toy.world.calls == []
+    assert _tool_texts(model.requests[1])[-1].startswith(
+        "Error: takeoff has no argument latitude_deg; it takes takeoff(drone_id: string, altitude_m: number)."
+    )
+
+
 # --- empty replies -----------------------------------------------------------------------------------
 
 
