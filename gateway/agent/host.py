@@ -460,7 +460,7 @@ class AgentHost:
             invalid = (
                 self._unknown_arguments(tool, args)
                 or validate_arguments(tool, args)
-                or null_island(args, self._request)
+                or null_island(args, self._request, on_ground=self._on_ground(args.get("drone_id")))
             )
             if invalid is not None:
                 hint = swap_hint(args)
@@ -492,6 +492,10 @@ class AgentHost:
             text=model_text,
             running=structured.get("status") == "running",
         )
+
+    def _on_ground(self, drone_id: Any) -> bool:
+        entry = next((d for d in self.roster.drones if d.drone_id == drone_id), None) if self.roster else None
+        return entry is not None and entry.flying is False
 
     def _unknown_arguments(self, tool: ToolInfo, args: dict[str, Any]) -> str | None:
         """Arguments the tool does not have (in the gateway's own schema, hidden ones included) are refused

@@ -39,17 +39,25 @@ def restore_request_numbers(arguments: dict[str, Any], request: str) -> list[str
     return notes
 
 
-def null_island(arguments: dict[str, Any], request: str) -> str | None:
+def null_island(arguments: dict[str, Any], request: str, on_ground: bool = False) -> str | None:
     """A refusal for latitude 0, longitude 0 when the request gives no such point: a small model writes it
-    for "go up to 15 m" or "fly 60 m north" (measured: every prompt variant tried with the 1.5B model)."""
+    for "go up to 15 m" or "fly 60 m north" (measured: every prompt variant tried with the 1.5B model).
+    For a drone on the ground it names the takeoff to call, with the altitude the model asked for."""
     if re.search(r"(?<![\d.])0(?:\.0+)?\s*,\s*0(?:\.0+)?(?![\d.])", request or ""):
         return None
     for lat_name, lon_name in LAT_LON_PAIRS:
         if arguments.get(lat_name) == 0 and arguments.get(lon_name) == 0:
+            drone, alt = arguments.get("drone_id"), arguments.get("altitude_m") or arguments.get("alt_m")
+            first = ""
+            if on_ground and isinstance(drone, str) and isinstance(alt, int | float):
+                first = (
+                    f" {drone} is on the ground: to go up to {alt:g} m, call takeoff with "
+                    f'drone_id "{drone}" and altitude_m {alt:g} first.'
+                )
             return (
-                f"{lat_name}=0, {lon_name}=0 is not a place in the request. To go up, use takeoff (from "
-                "the ground) or move_to_relative with a negative down_m; to fly some metres north, south, "
-                "east or west, use move_to_relative. Nothing was executed."
+                f"{lat_name}=0, {lon_name}=0 is not a place in the request.{first} To go up, use takeoff "
+                "(from the ground) or move_to_relative with a negative down_m; to fly some metres north, "
+                "south, east or west, use move_to_relative. Nothing was executed."
             )
     return None
 

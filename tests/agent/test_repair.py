@@ -51,6 +51,12 @@ def test_latitude_and_longitude_zero_is_refused_unless_the_user_said_it() -> Non
     assert refusal is not None and refusal.startswith("latitude_deg=0, longitude_deg=0 is not a place in the")
     assert "move_to_relative" in refusal and "Nothing was executed" in refusal
     assert null_island(zero, "fly alpha to 0, 0 at 15 m") is None
+    on_ground = null_island(zero, "Alpha: go up to 15 m", on_ground=True)
+    assert on_ground is not None
+    assert (
+        'alpha is on the ground: to go up to 15 m, call takeoff with drone_id "alpha" and altitude_m 15'
+        in on_ground
+    )
     assert null_island({**zero, "latitude_deg": 0.5}, "go up") is None
 
 
