@@ -473,6 +473,16 @@ class AgentHost:
 
                 outcome = await self.caller.call_tool(name, args, progress)
                 status = "error" if outcome.is_error else "ok"
+                if outcome.is_error:
+                    outcome = ToolOutcome(
+                        outcome.text + self._takeoff_first(name, args), True, outcome.structured
+                    )
+        if status == "invalid" and self._same_invalid_again(name, args, turn):
+            outcome = ToolOutcome(
+                f"{outcome.text} This is the third time this same call was refused; it will not work. Stop "
+                "calling it: tell the user what was done and what was refused.",
+                is_error=True,
+            )
         model_text = outcome.text
         if outcome.is_error and not outcome.text.lower().startswith("error"):
             model_text = f"Error: {outcome.text}"  # the text itself stays verbatim
@@ -492,6 +502,26 @@ class AgentHost:
             text=model_text,
             running=structured.get("status") == "running",
         )
+
+    def _takeoff_first(self, name: str, args: dict[str, Any]) -> str:
+        """After a refused move of a drone the roster shows on the ground: the takeoff to call, with the
+        altitude of the refused call (the gateway's own text says "Call takeoff first" without numbers)."""
+        drone, alt = args.get("drone_id"), args.get("altitude_m")
+        if name == "takeoff" or not self._on_ground(drone) or not isinstance(alt, int | float):
+            return ""
+        return (
+            f' (Host note: {drone} is on the ground. Call takeoff with drone_id "{drone}" and altitude_m '
+            f"{alt:g} first, then this call again.)"
+        )
+
+    def _same_invalid_again(self, name: str, args: dict[str, Any] | None, turn: TurnResult | None) -> bool:
+        """This refused call was already refused twice in this turn, identically."""
+        if turn is None:
+            return False
+        same = [
+            c for c in turn.tool_calls if c.name == name and c.arguments == args and c.status == "invalid"
+        ]
+        return len(same) >= 2
 
     def _on_ground(self, drone_id: Any) -> bool:
         entry = next((d for d in self.roster.drones if d.drone_id == drone_id), None) if self.roster else None

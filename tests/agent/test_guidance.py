@@ -234,3 +234,26 @@ async def test_after_a_failed_call_the_rest_of_the_reply_is_not_sent(toy, script
     assert [name for name, _ in toy.world.calls] == ["move_north"]
     skipped = _tool_texts(model.requests[1])[-1]
     assert skipped.startswith("Not executed: the earlier call move_north in the same reply failed.")
+
+
+async def test_the_third_identical_refused_call_is_told_to_stop(toy, scripted) -> None:
+    model = scripted([call("land")] * 3 + [say("land needs a drone id; nothing was done")])
+    result = await _turn(toy, model, "land")
+    assert [c.status for c in result.tool_calls] == ["invalid"] * 3
+    texts = [_tool_texts(model.requests[i])[-1] for i in (1, 2, 3)]
+    assert ["third time" in t for t in texts] == [False, False, True]
+    assert "Stop calling it: tell the user what was done and what was refused." in texts[2]
+
+
+def test_a_refused_move_of_a_grounded_drone_names_the_takeoff_with_its_altitude() -> None:
+    from gateway.agent.roster import DroneEntry, Roster
+
+    host = AgentHost(ModelConfig("http://127.0.0.1:9/v1", "m"), caller=None, tools=[])  # type: ignore[arg-type]
+    host.roster = Roster((DroneEntry("bravo", False, 0.0, 100.0), DroneEntry("alpha", True, 10.0, 90.0)))
+    note = host._takeoff_first("go_to_location", {"drone_id": "bravo", "altitude_m": 30})
+    assert note == (
+        ' (Host note: bravo is on the ground. Call takeoff with drone_id "bravo" and altitude_m 30 first, '
+        "then this call again.)"
+    )
+    assert host._takeoff_first("go_to_location", {"drone_id": "alpha", "altitude_m": 30}) == ""  # flying
+    assert host._takeoff_first("takeoff", {"drone_id": "bravo", "altitude_m": 500}) == ""
