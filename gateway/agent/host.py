@@ -296,6 +296,9 @@ class AgentHost:
                     if record.status in ("error", "invalid", "unknown_tool"):
                         failed = record
                 result.tool_calls.append(record)
+            pending = _pending_text(result)
+            if pending:
+                self.messages[-1]["content"] += f"\n\n{pending}"
             if self.use_roster and result.steps < self.max_steps:
                 roster = await self.refresh_roster()
                 if roster is not None:
@@ -319,6 +322,9 @@ class AgentHost:
             f"The request: {self._request}",
             "Done so far: " + ("; ".join(done) if done else "nothing yet") + ".",
         ]
+        pending = _pending_text(result)
+        if pending:
+            parts.append(pending)
         if roster is not None:
             parts.append(roster.text())
         parts.append(
@@ -544,7 +550,11 @@ class AgentHost:
         self.messages.append({"role": "tool", "tool_call_id": call["id"], "content": text})
         self._emit("tool_result", step=step, id=call["id"], name=call["name"], status="skipped", summary=text,
                    text=text)  # fmt: skip
-        return ToolCallRecord(call["id"], call["name"], None, "skipped", text, parsed, text)
+        try:
+            args = parse_arguments(call["raw_args"]) if call.get("parse_error") is None else None
+        except ArgumentsError:
+            args = None
+        return ToolCallRecord(call["id"], call["name"], args, "skipped", text, parsed, text)
 
     def _repeat_of(self, name: str, args: dict[str, Any], turn: TurnResult | None) -> ToolCallRecord | None:
         """The earlier call of this turn that this one repeats: same tool, same arguments, it succeeded
@@ -576,6 +586,26 @@ class AgentHost:
             parts.append(hint)
         parts.append(f"Available tools: {', '.join(sorted(self.tools))}. Nothing was executed.")
         return " ".join(parts)
+
+
+def _pending_text(result: TurnResult) -> str:
+    """The calls of the model's own plan that were not sent because an earlier one failed, and have not
+    succeeded since: once the failure is fixed, they are still the next steps (measured: after a refused
+    go_to_location and a takeoff, the 1.5B model forgot the skipped move and landing)."""
+    pending: list[ToolCallRecord] = []
+    for i, c in enumerate(result.tool_calls):
+        if c.status != "skipped" or c.arguments is None:
+            continue
+        later = result.tool_calls[i + 1 :]
+        if any(d.ok and d.name == c.name and d.arguments == c.arguments for d in later):
+            continue
+        if any(p.name == c.name and p.arguments == c.arguments for p in pending):
+            continue
+        pending.append(c)
+    if not pending or result.tool_calls[-1].status == "skipped":
+        return ""  # nothing left, or the failure that skipped them is the latest news
+    calls = "\n".join(json.dumps({"name": c.name, "arguments": c.arguments}) for c in pending)
+    return f"Not sent yet from your earlier reply (their turn comes after the call that failed):\n{calls}"
 
 
 def _args_text(args: dict[str, Any] | None) -> str:

@@ -257,3 +257,30 @@ def test_a_refused_move_of_a_grounded_drone_names_the_takeoff_with_its_altitude(
     )
     assert host._takeoff_first("go_to_location", {"drone_id": "alpha", "altitude_m": 30}) == ""  # flying
     assert host._takeoff_first("takeoff", {"drone_id": "bravo", "altitude_m": 500}) == ""
+
+
+async def test_calls_skipped_after_a_failure_are_shown_as_still_to_do_until_they_run(toy, scripted) -> None:
+    plan = ScriptedReply(
+        tool_calls=[("move_north", {"drone_id": "alpha", "distance_m": 60}), ("land", {"drone_id": "alpha"})]
+    )
+    model = scripted(
+        [
+            plan,
+            call("takeoff", drone_id="alpha", altitude_m=10),
+            call("move_north", drone_id="alpha", distance_m=60),
+            call("land", drone_id="alpha"),
+            say("done"),
+        ]
+    )
+    result = await _turn(toy, model, "fly alpha 60 m north and land")
+    assert [c.status for c in result.tool_calls] == ["error", "skipped", "ok", "ok", "ok"]
+    after_failure, after_takeoff, after_move, after_land = (
+        _tool_texts(model.requests[i])[-1] for i in (1, 2, 3, 4)
+    )
+    assert "Not sent yet" not in after_failure  # the failure itself is the news
+    # The failed call is not repeated for the model (it may be the mistake); the skipped ones wait.
+    pending = "Not sent yet from your earlier reply (their turn comes after the call that failed):\n"
+    assert pending + '{"name": "land", "arguments": {"drone_id": "alpha"}}' in after_takeoff
+    assert "move_north" not in after_takeoff.split("Not sent yet")[1]
+    assert pending in after_move
+    assert "Not sent yet" not in after_land
