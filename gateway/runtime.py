@@ -49,6 +49,8 @@ class Gateway:
         self.operations: Any = None
         self._registry_factory = registry_factory or _default_registry
         self._registry_started = False
+        # The cluster node (gateway.cluster.node.ClusterNode) when GATEWAY_CLUSTER_NATS_URL is set.
+        self.cluster: Any = None
 
     @property
     def ready(self) -> bool:
@@ -67,15 +69,24 @@ class Gateway:
 
     async def start(self) -> None:
         """Open (and migrate) the database, then restore and connect the registered vehicles."""
+        if self.settings.clustered:
+            from gateway.cluster.node import check_settings
+
+            check_settings(self.settings)
         log.info("opening database %s", _redact(self.settings.database_url))
         self.store = await Store.open(self.settings.database_url)
         try:
             for lock in await self.store.list_locks():
                 self.locks.lock(lock.scope, lock.reason, lock.by, at=lock.locked_at)
             self.safety = SafetyPolicy.from_settings(self.settings, self.locks.view())
-            self.registry = self._registry_factory(self.settings, self.store)
+            if self.settings.clustered:
+                self.registry = self._cluster_registry()
+            else:
+                self.registry = self._registry_factory(self.settings, self.store)
             await self.registry.start()
             self._registry_started = True
+            if self.cluster is not None:
+                await self.cluster.start()
         except BaseException:
             await self.stop()
             raise
@@ -84,6 +95,12 @@ class Gateway:
     async def stop(self) -> None:
         """Stop every sidecar, then close the database. Safe to call twice."""
         self._registry_started = False
+        cluster, self.cluster = self.cluster, None
+        if cluster is not None:  # hand the vehicles over before the registry stops
+            try:
+                await cluster.stop()
+            except Exception:
+                log.exception("leaving the cluster failed")
         registry, self.registry = self.registry, None
         try:
             if registry is not None:
@@ -93,6 +110,19 @@ class Gateway:
             if store is not None:
                 await store.close()
         log.info("gateway stopped")
+
+    def _cluster_registry(self) -> Any:
+        """A registry whose vehicles start as views of other nodes' vehicles; this node's lease keeper
+        adopts the ones it wins."""
+        from gateway.cluster.node import ClusterNode, remote_factory
+        from gateway.registry.registry import Registry
+
+        self.cluster = ClusterNode(self)
+        registry = Registry(
+            self.settings, self.store, remote_factory=remote_factory(self.settings, self.cluster)
+        )
+        registry.on_registrations_changed(self.cluster.registrations_changed)
+        return registry
 
     async def __aenter__(self) -> Gateway:
         await self.start()

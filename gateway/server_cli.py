@@ -55,6 +55,9 @@ def register(subparsers: Any) -> None:
     add.add_argument("--name", default=None, help="human-readable name")
     add.add_argument("--sysid", type=int, default=None, help="MAVLink system id the drone must report")
     add.add_argument("--tag", action="append", default=[], help="a tag (repeatable)")
+    add.add_argument(
+        "--node-tag", default=None, help="cluster: only nodes carrying this tag own the drone (e.g. a site)"
+    )
     add.add_argument("--no-connect", action="store_true", help="register without connecting")
     add.add_argument(
         "--if-missing",
@@ -144,6 +147,13 @@ def cmd_serve(args: argparse.Namespace) -> int:
         settings = _settings(args, host=args.host, port=args.port)
     except ValidationError as exc:
         return _fail(_validation_text(exc), 2)
+    if settings.clustered:
+        from gateway.cluster.node import ClusterSetupError, check_settings
+
+        try:
+            check_settings(settings)
+        except ClusterSetupError as exc:
+            return _fail(exc.message, 2)
     if not _is_loopback(settings.host) and not settings.operator_tokens.strip():
         return _fail(
             f"refusing to serve on {settings.host}: without operator tokens (GATEWAY_OPERATOR_TOKENS) "
@@ -200,7 +210,14 @@ class GatewayServer(uvicorn.Server):
 
 
 def _spec_from_args(args: argparse.Namespace) -> VehicleSpec:
-    return VehicleSpec(id=args.id, url=args.url, name=args.name, tags=args.tag, expected_sysid=args.sysid)
+    return VehicleSpec(
+        id=args.id,
+        url=args.url,
+        name=args.name,
+        tags=args.tag,
+        expected_sysid=args.sysid,
+        node_tag=args.node_tag,
+    )
 
 
 def _validation_text(exc: ValidationError) -> str:

@@ -96,6 +96,11 @@ class StopOut(BaseModel):
 async def _lock(gateway: Any, store: Any, scope: str, reason: str, by: str) -> LockOut:
     lock = gateway.locks.lock(scope, reason, by, at=datetime.now(UTC))
     await store.save_lock(lock.scope, lock.reason, lock.by, lock.locked_at)
+    if getattr(gateway, "cluster", None) is not None:  # every node refuses agents from now on
+        await gateway.cluster.announce(
+            "lock",
+            {"scope": lock.scope, "reason": lock.reason, "by": lock.by, "at": lock.locked_at.isoformat()},
+        )
     log.warning("operator %s locked %s: %s", by, "the fleet" if scope == FLEET else scope, lock.reason)
     return LockOut.of(lock)
 
@@ -103,6 +108,8 @@ async def _lock(gateway: Any, store: Any, scope: str, reason: str, by: str) -> L
 async def _unlock(gateway: Any, store: Any, scope: str, by: str) -> UnlockOut:
     removed = gateway.locks.unlock(scope)
     stored = await store.delete_lock(scope)
+    if getattr(gateway, "cluster", None) is not None:
+        await gateway.cluster.announce("unlock", {"scope": scope})
     if removed or stored:
         log.warning("operator %s unlocked %s", by, "the fleet" if scope == FLEET else scope)
     return UnlockOut(scope=scope, was_locked=removed is not None or stored)
@@ -147,7 +154,11 @@ async def unlock_fleet(gateway: GatewayDep, store: StoreDep, who: PrincipalDep) 
 
 
 async def _act(gateway: Any, vehicle: Any, action: str) -> ActionOut:
-    """Send hold/land/rtl; the drone's running MCP operation (if any) is marked superseded."""
+    """Send hold/land/rtl; the drone's running MCP operation (if any) is marked superseded. A drone
+    owned by another cluster node gets it from its owner."""
+    if getattr(vehicle, "remote", False):
+        done = await vehicle.call("operator_action", {"action": action})
+        return ActionOut.model_validate({k: v for k, v in done.items() if k in ActionOut.model_fields})
     await getattr(vehicle, _ACTIONS[action])()
     superseded = None
     if gateway.operations is not None:

@@ -62,8 +62,9 @@ def build_mcp(gateway: Any) -> MCPServer:
     @contextlib.asynccontextmanager
     async def lifespan(server: MCPServer) -> AsyncIterator[dict[str, Any]]:
         try:
-            try:
-                await fa.operations.recover()
+            try:  # on a cluster node, each vehicle's operations are picked up by the node taking it over
+                if getattr(gateway, "cluster", None) is None:
+                    await fa.operations.recover()
             except Exception:  # a store problem must not keep the MCP surface down
                 log.exception("could not mark the previous process's operations interrupted")
             async with notifier_box["notifier"].running():

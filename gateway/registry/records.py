@@ -47,9 +47,7 @@ class VehicleRecord(VehicleSpec):
 
     @property
     def spec(self) -> VehicleSpec:
-        return VehicleSpec(
-            id=self.id, url=self.url, name=self.name, tags=list(self.tags), expected_sysid=self.expected_sysid
-        )
+        return VehicleSpec.model_validate(self.model_dump(include=set(VehicleSpec.model_fields)))
 
 
 class FlightRecord(_Record):
