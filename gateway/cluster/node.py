@@ -26,6 +26,7 @@ from gateway.cluster.bus import Bus, NoOwner, ProgressSink, tele_subject
 from gateway.cluster.keeper import LeasePlan, Wanted, plan
 from gateway.cluster.leases import Lease, LeaseStore, NodeRecord
 from gateway.cluster.remote import RemoteVehicle
+from gateway.cluster.takeover import pick_up_operations
 from gateway.config import Settings
 from gateway.errors import GatewayError, InvalidArgument
 from gateway.registry.spec import VehicleSpec
@@ -82,7 +83,6 @@ class ClusterNode:
             "operator_action": self._operator_action,
             "status": self._status,
         }
-        self.takeover_hooks: list[Callable[[Any, Lease, str | None], Awaitable[None]]] = []
         self.nodes: list[NodeRecord] = []
         self.all_leases: dict[str, Lease] = {}
         self.last_plan = LeasePlan()
@@ -241,11 +241,10 @@ class ClusterNode:
         self._served[vehicle_id] = await self.bus.serve_calls(vehicle_id, self._answer(vehicle_id))
         was = "" if previous in (None, self.node_id) else f" from node {previous}"
         log.warning("%s: now owned by node %s%s (lease epoch %d)", vehicle_id, self.node_id, was, lease.epoch)
-        for hook in list(self.takeover_hooks):
-            try:
-                await hook(vehicle, lease, previous)
-            except Exception:
-                log.exception("takeover of %s: a hook failed", vehicle_id)
+        try:
+            await pick_up_operations(self.gateway, self.node_id, vehicle, lease.epoch, previous)
+        except Exception:
+            log.exception("takeover of %s: picking up its operations failed", vehicle_id)
 
     async def _drop(self, vehicle_id: str, why: str) -> None:
         self.held.pop(vehicle_id, None)

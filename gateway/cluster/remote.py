@@ -155,7 +155,14 @@ class RemoteVehicle:
                 "snapshot_age_s": None if self.snapshot_age_s is None else round(self.snapshot_age_s, 3),
             }
         )
-        base.setdefault("sidecar", {"state": "remote", "pid": None, "grpc_port": None, "restarts": 0})
+        owners = base.get("sidecar") if isinstance(base.get("sidecar"), dict) else {}
+        base["sidecar"] = {  # it runs on the owner: no process or port of it here
+            "state": "remote",
+            "pid": None,
+            "grpc_port": None,
+            "restarts": int(owners.get("restarts") or 0),
+            "owner_state": owners.get("state"),
+        }
         return base
 
     def require_ready(self) -> None:
