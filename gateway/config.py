@@ -142,6 +142,11 @@ class Settings(BaseSettings):
     operator_tokens: str = Field("", description="Comma-separated bearer tokens with the operator role.")
     viewer_tokens: str = Field("", description="Comma-separated bearer tokens with the viewer role.")
     agent_tokens: str = Field("", description="Comma-separated bearer tokens for MCP agents.")
+    agent_scopes: dict[str, list[str]] = Field(
+        {},
+        description="Agents limited to some vehicles, as JSON: {token or agent-<8 hex> principal: [vehicle "
+        "ids and 'tag:<tag>' entries]}. Such an agent sees and commands only those; others see all.",
+    )
 
     # --- flight log -------------------------------------------------------------------------------
     track_sample_hz: float = Field(

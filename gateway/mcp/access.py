@@ -12,6 +12,7 @@ from gateway.errors import SafetyRefusal, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.operations import Operation, OperationManager, Tracker, position, value
 from gateway.mcp.results import OperationOut
+from gateway.mcp.scopes import ScopedRegistry, current_scope, scopes_by_principal
 from gateway.mcp.toolkit import current_call
 
 
@@ -26,11 +27,15 @@ class FleetAccess:
             operations = OperationManager(self.settings, store_getter=lambda: getattr(gateway, "store", None))
             gateway.operations = operations
         self.operations: OperationManager = operations
+        self._scopes = scopes_by_principal(self.settings)
 
     # -- vehicles ----------------------------------------------------------------------------------
     @property
     def registry(self) -> Any:
-        return self.gateway.registry
+        """The registry, as the calling agent may see it (GATEWAY_AGENT_SCOPES)."""
+        registry = self.gateway.registry
+        scope = current_scope(self._scopes)
+        return registry if scope is None or registry is None else ScopedRegistry(registry, scope)
 
     @property
     def store(self) -> Any:

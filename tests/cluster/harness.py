@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import json
 import os
 import shutil
 import signal
@@ -19,7 +20,9 @@ from pathlib import Path
 from typing import Any
 
 import httpx
+import httpx2
 from mcp import Client
+from mcp.client.streamable_http import streamable_http_client
 from mcp.types import Implementation
 
 from gateway.registry.spec import VehicleSpec
@@ -31,6 +34,9 @@ from tests.helpers.timing import scaled
 from tests.persist.pg import create_database, find_pg_bin, postgres_server
 
 NODE_NAMES = ("node-a", "node-b", "node-c", "node-d", "node-e")
+AGENT_TOKEN = "cluster-agent-token"  # sees every drone
+SCOPED_TOKEN = "cluster-scoped-token"  # sees d1 and the drones tagged "north"
+AGENT_SCOPES = json.dumps({SCOPED_TOKEN: ["d1", "tag:north"]})
 
 
 def find_nats_server() -> str | None:
@@ -120,8 +126,18 @@ class Node:
     def log_tail(self, n: int = 40) -> str:
         return tail(str(self.log), n)
 
-    def client(self, name: str = "cluster-test", mode: str = "auto", **kw: Any) -> Client:
-        return Client(self.mcp_url, mode=mode, client_info=Implementation(name=name, version="1.0"), **kw)
+    @contextlib.asynccontextmanager
+    async def client(self, name: str = "cluster-test", token: str = AGENT_TOKEN) -> AsyncIterator[Client]:
+        """An MCP client over Streamable HTTP with an agent token (the full one by default)."""
+        headers = {"authorization": f"Bearer {token}"}
+        async with (
+            httpx2.AsyncClient(headers=headers, timeout=httpx2.Timeout(120.0)) as http,
+            Client(
+                streamable_http_client(self.mcp_url, http_client=http),
+                client_info=Implementation(name=name, version="1.0"),
+            ) as c,
+        ):
+            yield c
 
     async def get(self, path: str, **params: Any) -> Any:
         async with httpx.AsyncClient(base_url=self.base_url, timeout=30) as http:
@@ -210,6 +226,8 @@ def node_env(name: str, port: int, database_url: str, nats_url: str, extra: dict
         GATEWAY_SIDECAR_BACKOFF_INITIAL_S="0.2",
         GATEWAY_SIDECAR_BACKOFF_MAX_S="1.0",
         GATEWAY_LOG_LEVEL="INFO",
+        GATEWAY_AGENT_TOKENS=f"{AGENT_TOKEN},{SCOPED_TOKEN}",
+        GATEWAY_AGENT_SCOPES=AGENT_SCOPES,
         PYTHONUNBUFFERED="1",
     )
     env.update(extra)

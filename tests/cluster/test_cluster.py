@@ -20,7 +20,7 @@ import pytest_asyncio
 from mcp.types import CallToolResult
 
 from gateway.fleet import geo
-from tests.cluster.harness import Cluster, Node, cluster, missing_engines, wait_spread
+from tests.cluster.harness import SCOPED_TOKEN, Cluster, Node, cluster, missing_engines, wait_spread
 from tests.helpers.timing import eventually, scaled
 from tests.registry.procs import alive, mavsdk_servers_of
 
@@ -56,7 +56,7 @@ class Calls:
 @pytest_asyncio.fixture(scope="module", loop_scope="module")
 async def cl(tmp_path_factory: pytest.TempPathFactory) -> AsyncIterator[Cluster]:
     workdir: Path = tmp_path_factory.mktemp("cluster")
-    async with cluster(workdir, drones=9, nodes=3, speedup=5.0) as c:
+    async with cluster(workdir, drones=9, nodes=3, speedup=5.0, vehicle_tags={"d4": ["north"]}) as c:
         c.calls = Calls()  # type: ignore[attr-defined]
         c.sidecars_seen = set()  # type: ignore[attr-defined]
         yield c
@@ -131,6 +131,23 @@ async def test_each_drone_has_one_owner_and_every_node_sees_the_whole_fleet(cl: 
         assert row["state"] == "ready" and row["stale"] is False, row
         assert geo.horizontal_distance_m(row["lat_deg"], row["lon_deg"], truth["lat"], truth["lon"]) < 3.0
     assert status["count"] == 9 and status["ready"] == 9 and len(status["table"].splitlines()) == 10
+
+
+async def test_a_scoped_agent_sees_and_commands_only_its_vehicles_on_every_node(cl: Cluster) -> None:
+    calls: Calls = cl.calls  # type: ignore[attr-defined]
+    for node in cl.nodes:
+        async with node.client(name=f"scoped-{node.name}", token=SCOPED_TOKEN) as mcp:
+            rows = ok(await calls.tool(mcp, "list_drones", {}))
+            assert sorted(r["drone_id"] for r in rows["drones"]) == ["d1", "d4"], rows
+            assert ok(await calls.tool(mcp, "fleet_status", {}))["count"] == 2
+            assert ok(await calls.tool(mcp, "get_telemetry", {"drone_id": "d4"}))
+            for tool, args in (("get_telemetry", {"drone_id": "d2"}), ("land", {"drone_id": "d9"})):
+                text = err(await calls.tool(mcp, tool, args))
+                assert "unknown drone id" in text and "known ids: d1, d4" in text, text
+            text = err(await calls.tool(mcp, "fleet_land", {"drone_ids": ["d1", "d5"]}))
+            assert "d5" in text and "unknown drone id" in text, text
+        async with node.client(name=f"full-{node.name}") as mcp:
+            assert ok(await calls.tool(mcp, "list_drones", {}))["count"] == 9
 
 
 async def test_lock_and_emergency_stop_from_node_b_reach_every_node_and_drone(cl: Cluster) -> None:
