@@ -146,6 +146,50 @@ async def takeover(c: Cluster, owners: dict[str, str]) -> dict[str, float]:
         await asyncio.sleep(0.05)
 
 
+def snapshot_costs(n: int = 2000) -> tuple[int, float, float]:
+    """Bytes of one snapshot of a flying drone, and the CPU time to encode it (owner) and to decode and
+    apply it (every other node), in microseconds."""
+    from types import SimpleNamespace
+
+    from gateway.cluster import snapshot
+    from gateway.fleet import telemetry as t
+
+    cache = t.TelemetryCache()
+    for name, value in {
+        "position": t.PositionValue(47.1, 8.2, 500.0, 10.0),
+        "home": t.PositionValue(47.1, 8.2, 490.0, 0.0),
+        "attitude": t.AttitudeValue(1.0, 2.0, 3.0),
+        "velocity_ned": t.VelocityNedValue(1.0, 2.0, 0.1),
+        "heading_deg": 90.0,
+        "battery": t.BatteryValue(80.0, 12.1),
+        "gps_info": t.GpsInfoValue(10, "FIX_3D"),
+        "flight_mode": "GUIDED",
+        "armed": True,
+        "in_air": True,
+        "landed_state": "IN_AIR",
+        "health": t.HealthValue(*[True] * 7),
+        "rc_status": t.RcStatusValue(True, True, None),
+        "imu": t.ImuValue((1.0, 2.0, 3.0), (0.1, 0.2, 0.3), 30.0),
+        "mission_progress": t.MissionProgressValue(1, 5),
+    }.items():
+        cache.put(name, value)
+    for i in range(10):
+        cache.add_status_text("info", f"status text number {i} of a flight")
+    status = {"id": "d1", "state": "ready", "sysid": 1, "autopilot": "ArduPilot", "is_simulator": True,
+              "sidecar": {"state": "serving", "pid": 1, "grpc_port": 1, "restarts": 0}}  # fmt: skip
+    vehicle = SimpleNamespace(id="d1", telemetry=cache, status=lambda: status)
+    payload = snapshot.encode(vehicle, "n", 1, 1, None)
+    started = time.process_time()
+    for _ in range(n):
+        snapshot.encode(vehicle, "n", 1, 1, None)
+    encode_us = (time.process_time() - started) / n * 1e6
+    into = t.TelemetryCache()
+    started = time.process_time()
+    for _ in range(n):
+        snapshot.apply(into, snapshot.decode(payload))
+    return len(payload), encode_us, (time.process_time() - started) / n * 1e6
+
+
 def row(name: str, samples: list[float]) -> list[str]:
     p = common.pcts(samples, (50, 99))
     return [name, str(len(samples)), common.ms(p["p50"]), common.ms(p["p99"])]
@@ -176,6 +220,7 @@ async def run(full: bool) -> str:
         to = await takeover(c, owners)
         ttl = float(c.nodes[0].env["GATEWAY_CLUSTER_LEASE_TTL_S"])
         hz = float(c.nodes[0].env["GATEWAY_CLUSTER_TELEMETRY_HZ"])
+    size, encode_us, decode_us = snapshot_costs()
     headers = ["what", "n", "p50 ms", "p99 ms"]
     table = common.table(
         headers,
@@ -197,6 +242,8 @@ async def run(full: bool) -> str:
         f"NATS traffic per drone per second (no calls): {traffic['in_msgs']:.2f} messages "
         f"({traffic['in_bytes'] / 1024:.2f} KiB) published, {traffic['out_msgs']:.2f} messages "
         f"({traffic['out_bytes'] / 1024:.2f} KiB) delivered (every node receives every snapshot).",
+        f"One snapshot of a flying drone: {size} bytes; CPU {encode_us:.0f} µs to encode (owner), "
+        f"{decode_us:.0f} µs to decode and apply (every other node).",
         "",
         f"Takeover after kill -9 of a node with {len(groups['node-c'])} drones: leases taken by the "
         "other nodes "

@@ -147,7 +147,8 @@ class ClusterNode:
         first = True
         while True:
             try:
-                await self.tick(acquire=not first)
+                # a database that hangs counts as one that fails: the fence below must still act
+                await asyncio.wait_for(self.tick(acquire=not first), self.settings.cluster_lease_ttl_s / 2)
             except asyncio.CancelledError:
                 raise
             except Exception:
