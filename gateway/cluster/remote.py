@@ -14,7 +14,7 @@ from collections.abc import Awaitable, Callable
 from typing import Any
 
 from gateway.config import Settings
-from gateway.errors import VehicleNotReady
+from gateway.errors import GatewayError, VehicleNotReady
 from gateway.fleet.telemetry import TelemetryCache
 from gateway.fleet.vehicle import ConnectionState
 from gateway.registry.spec import VehicleSpec
@@ -25,6 +25,13 @@ from . import snapshot
 Forward = Callable[
     [str, str, dict[str, Any], Callable[[dict[str, Any]], Awaitable[None]] | None], Awaitable[Any]
 ]
+
+
+class OwnedElsewhere(GatewayError, AttributeError):
+    """What a remote view cannot do here (it is also an AttributeError, so ``hasattr`` stays False)."""
+
+    code = "owned_elsewhere"
+    http_status = 409
 
 
 class RemoteVehicle:
@@ -210,3 +217,17 @@ class RemoteVehicle:
     ) -> Any:
         """Run the named call on the owning node; its result, or its error raised here."""
         return await self._forward(self.id, name, dict(arguments or {}), on_progress)
+
+    def __getattr__(self, name: str) -> Any:
+        """Anything of a local Vehicle this view does not have (its link, its actions) is refused in one
+        line that says where the drone is flown from."""
+        if name.startswith("_"):
+            raise AttributeError(name)
+        where = f"cluster node {self.owner}" if self.owner else "no cluster node right now"
+        raise OwnedElsewhere(
+            f"drone '{self.spec.id}' is owned by {where}; this node answers reads for it but cannot "
+            f"send it {name}: use the node that owns it "
+            "(GET /api/v1/cluster lists the nodes and their drones)",
+            vehicle_id=self.spec.id,
+            owner_node=self.owner,
+        )

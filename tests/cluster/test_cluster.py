@@ -131,6 +131,13 @@ async def test_each_drone_has_one_owner_and_every_node_sees_the_whole_fleet(cl: 
         assert row["state"] == "ready" and row["stale"] is False, row
         assert geo.horizontal_distance_m(row["lat_deg"], row["lon_deg"], truth["lat"], truth["lon"]) < 3.0
     assert status["count"] == 9 and status["ready"] == 9 and len(status["table"].splitlines()) == 10
+    # an agent command for a drone owned by another node is refused in one line that says where it is flown
+    # from (forwarding agent calls to the owner needs the one command path; operators' actions are forwarded)
+    elsewhere = by_owner(owners)["node-b"][0]
+    async with cl.node("node-a").client(name="elsewhere") as mcp:
+        text = err(await cl.calls.tool(mcp, "takeoff", {"drone_id": elsewhere, "altitude_m": 5}))  # type: ignore[attr-defined]
+    assert "owned by cluster node node-b" in text and "/api/v1/cluster" in text, text
+    assert not (await cl.true_state(elsewhere))["armed"]
 
 
 async def test_a_scoped_agent_sees_and_commands_only_its_vehicles_on_every_node(cl: Cluster) -> None:
