@@ -1,8 +1,10 @@
 """Cluster figures: three gateway nodes, NATS and PostgreSQL on this machine, nine simulated drones.
 
-- a cached read (MCP get_telemetry) on the drone's owner and on another node (both answer from their own
-  cache: reads are not forwarded), and one hop of a forwarded call alone (NATS request/reply to the owner);
-- an operator command (REST hold) sent to the owner and to another node, which forwards it to the owner;
+- a cached read answered by each node from its own telemetry cache (MCP get_telemetry, never forwarded),
+  on the drone's owner and on another node;
+- a cached read that is a verb (MCP check_arrival: the owner's operation and telemetry) on the owner and
+  forwarded by another node, and one hop of a forwarded call alone (NATS request/reply to the owner);
+- a command (MCP hold_position, REST hold) on the owner and forwarded by another node to the owner;
 - emergency stop from one node with drones of all three nodes in the air: the REST call returns after
   every owner answered that it sent the hold, so its duration bounds the time to the last command sent;
 - NATS traffic per drone per second (the server's own counters, no call running);
@@ -47,34 +49,37 @@ async def timed(samples: list[float], call: Any) -> Any:
     return result
 
 
-async def cached_reads(c: Cluster, owners: dict[str, str], n: int) -> dict[str, list[float]]:
+async def mcp_calls(
+    c: Cluster, owners: dict[str, str], tool: str, n: int, args: dict[str, Any] | None = None
+) -> dict[str, list[float]]:
+    """The tool on a drone node A owns: called on node A (local) and on node B (forwarded, for verbs)."""
     drone = by_owner(owners)["node-a"][0]
+    arguments = {"drone_id": drone, **(args or {})}
     out: dict[str, list[float]] = {"local": [], "remote": []}
     for label, node in (("local", c.node("node-a")), ("remote", c.node("node-b"))):
-        async with node.client(name=f"bench-read-{label}") as mcp:
+        async with node.client(name=f"bench-{tool}-{label}") as mcp:
             for _ in range(3):  # warm up
-                await mcp.call_tool("get_telemetry", {"drone_id": drone})
+                await mcp.call_tool(tool, arguments)
             for _ in range(n):
-                r = await timed(
-                    out[label], lambda mcp=mcp: mcp.call_tool("get_telemetry", {"drone_id": drone})
-                )
-                assert not r.is_error, r
+                r = await timed(out[label], lambda mcp=mcp: mcp.call_tool(tool, arguments))
+                assert not r.is_error, r.content[0].text if r.content else r
     return out
 
 
 async def forward_hop(c: Cluster, owners: dict[str, str], n: int) -> list[float]:
-    """One NATS request/reply to the owner ("status": its own fresh view), from a client of our own."""
+    """One NATS request/reply to the owner (the arrival verb), from a client of our own."""
     from gateway.cluster.bus import Bus
 
     bus = Bus([c.nats.url], "bench")
     await bus.connect()
     drone = by_owner(owners)["node-a"][0]
+    caller = {"via": "rest", "principal": "bench"}
     samples: list[float] = []
     try:
         for _ in range(3):
-            await bus.call(drone, "status", {}, {"node": "bench"}, 10.0)
+            await bus.call(drone, "arrival", {"drone_id": drone}, caller, 10.0)
         for _ in range(n):
-            await timed(samples, lambda: bus.call(drone, "status", {}, {"node": "bench"}, 10.0))
+            await timed(samples, lambda: bus.call(drone, "arrival", {"drone_id": drone}, caller, 10.0))
     finally:
         await bus.close()
     return samples
@@ -202,10 +207,12 @@ async def run(full: bool) -> str:
         owners = await wait_spread(c)
         groups = by_owner(owners)
         traffic = await nats_traffic(c, 20.0 if full else 10.0)
-        reads = await cached_reads(c, owners, n)
+        reads = await mcp_calls(c, owners, "get_telemetry", n)
+        arrivals = await mcp_calls(c, owners, "check_arrival", n)
         hop = await forward_hop(c, owners, n)
         flyers = [groups[name][0] for name in ("node-a", "node-b", "node-c")]
         await asyncio.gather(*(take_off(c, d, owners[d]) for d in flyers))
+        holds = await mcp_calls(c, owners, "hold_position", n // 2)
         cmds = await commands(c, owners, n // 2)
         stops = await emergency_stops(c, flyers, 10 if full else 5)
         async with httpx.AsyncClient(timeout=30) as http:
@@ -226,10 +233,14 @@ async def run(full: bool) -> str:
         headers,
         [
             row("cached read (MCP get_telemetry) on the owner", reads["local"]),
-            row("cached read (MCP get_telemetry) on another node", reads["remote"]),
+            row("cached read (MCP get_telemetry) on another node, from its cache", reads["remote"]),
+            row("cached read verb (MCP check_arrival) on the owner", arrivals["local"]),
+            row("cached read verb (MCP check_arrival) forwarded to the owner", arrivals["remote"]),
             row("forwarded call alone (NATS request/reply to the owner)", hop),
+            row("command (MCP hold_position) on the owner", holds["local"]),
+            row("command (MCP hold_position) forwarded to the owner", holds["remote"]),
             row("command (REST hold) on the owner", cmds["local"]),
-            row("command (REST hold) forwarded by another node", cmds["remote"]),
+            row("command (REST hold) forwarded to the owner", cmds["remote"]),
             row(f"emergency stop from node B, {len(flyers)} drones on 3 nodes", stops),
         ],
     )

@@ -10,7 +10,7 @@ import json
 import math
 import os
 import sys
-from collections.abc import Iterator
+from collections.abc import Awaitable, Callable, Iterator
 from datetime import UTC, datetime, timedelta
 from typing import Any
 
@@ -25,6 +25,7 @@ from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store, create_engine_for, current_revision, upgrade_schema
 from gateway.startup import (
     StartupError,
+    check_nats_reachable,
     check_port_free,
     check_sidecar_binary,
     describe_database_error,
@@ -164,6 +165,8 @@ def cmd_serve(args: argparse.Namespace) -> int:
         check_port_free(settings.host, settings.port)
         check_sidecar_binary(settings)
         prepare_database_location(settings.database_url)
+        if settings.clustered:
+            check_nats_reachable(settings.cluster_nats_url)
         asyncio.run(_open_database(settings.database_url))
     except StartupError as exc:
         return _fail(str(exc), 2)
@@ -299,7 +302,7 @@ def _table(items: list[dict[str, Any]], as_json: bool) -> str:
     return "\n".join(line.rstrip() for line in lines)
 
 
-def _with_store(args: argparse.Namespace, action: Any) -> int:
+def _with_store(args: argparse.Namespace, action: Callable[[Store], Awaitable[str]]) -> int:
     try:
         settings = _settings(args)
     except ValidationError as exc:
@@ -327,7 +330,7 @@ def _with_store(args: argparse.Namespace, action: Any) -> int:
 
 def _api_token(args: argparse.Namespace) -> str | None:
     if args.token:
-        return args.token
+        return str(args.token)
     if os.environ.get("GATEWAY_API_TOKEN"):
         return os.environ["GATEWAY_API_TOKEN"]
     try:

@@ -14,7 +14,7 @@ router = APIRouter(prefix="/cluster", tags=["cluster"])
 
 @router.get("", summary="Cluster nodes and the vehicles each one owns")
 async def cluster_view(gateway: GatewayDep) -> dict[str, Any]:
-    node = getattr(gateway, "cluster", None)
+    node = gateway.cluster
     if node is None:
         raise NotFound("this gateway is not a cluster node (GATEWAY_CLUSTER_NATS_URL is not set)")
     return node.describe()

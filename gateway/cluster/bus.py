@@ -28,7 +28,7 @@ from nats.aio.client import Client
 from nats.aio.msg import Msg
 from nats.aio.subscription import Subscription
 
-from gateway.errors import GatewayError
+from gateway.errors import GatewayError, NoOwner, OwnerTimeout
 
 log = logging.getLogger("gateway.cluster.bus")
 
@@ -49,20 +49,6 @@ def call_subject(vehicle_id: str) -> str:
 
 def event_subject(kind: str) -> str:
     return f"{PREFIX}.event.{kind}"
-
-
-class NoOwner(GatewayError):
-    """No node holds the drone's lease right now (a takeover is under way, or no node may own it)."""
-
-    code = "no_owner"
-    http_status = 503
-
-
-class ForwardTimeout(GatewayError):
-    """The owning node did not answer in time; the call may or may not have run there."""
-
-    code = "owner_timeout"
-    http_status = 504
 
 
 def _error_classes() -> dict[str, type[GatewayError]]:
@@ -89,7 +75,8 @@ def rebuild_error(body: dict[str, Any]) -> GatewayError:
     code = str(body.get("code") or "gateway_error")
     cls = _error_classes().get(code, GatewayError)
     exc = cls.__new__(cls)
-    details = body.get("details") if isinstance(body.get("details"), dict) else {}
+    raw = body.get("details")
+    details: dict[str, Any] = raw if isinstance(raw, dict) else {}
     GatewayError.__init__(exc, str(body.get("message") or code), **details)
     if "rule" in details:
         exc.rule = details["rule"]  # type: ignore[attr-defined]
@@ -101,6 +88,32 @@ def rebuild_error(body: dict[str, Any]) -> GatewayError:
 
 def _jsonable(value: Any) -> Any:
     return json.loads(json.dumps(value, default=str))
+
+
+async def probe(url: str, timeout_s: float) -> None:
+    """Connect to NATS once and leave: raises (naming the last connection error) when no server of
+    ``url`` answers within ``timeout_s``."""
+    errors: list[Exception] = []
+
+    async def quiet(exc: Exception) -> None:  # the client would log every failed attempt
+        errors.append(exc)
+
+    try:
+        nc = await asyncio.wait_for(
+            nats.connect(
+                servers=Bus.servers_of(url),
+                connect_timeout=min(2.0, timeout_s),
+                allow_reconnect=False,
+                max_reconnect_attempts=1,
+                error_cb=quiet,
+                name="fleet-gateway start-up check",
+            ),
+            timeout_s,
+        )
+    except Exception as exc:
+        cause = errors[-1] if errors else exc
+        raise ConnectionError(str(cause) or type(cause).__name__) from None
+    await nc.close()
 
 
 class Bus:
@@ -200,7 +213,7 @@ class Bus:
             while True:
                 remaining = deadline - time.monotonic()
                 if remaining <= 0:
-                    raise ForwardTimeout(
+                    raise OwnerTimeout(
                         f"the node that owns {vehicle_id} did not answer {name} within {timeout_s:g} s; "
                         f"it may still have run: check the drone's state before sending {name} again"
                     )

@@ -9,40 +9,40 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import contextvars
 import json
 import logging
 import random
 import time
-from collections.abc import Awaitable, Callable
+from collections.abc import Callable
 from datetime import datetime
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nats.aio.msg import Msg
 from nats.aio.subscription import Subscription
 
 from gateway.cluster import snapshot
-from gateway.cluster.bus import Bus, NoOwner, ProgressSink, tele_subject
+from gateway.cluster.bus import Bus, CallHandler, ProgressSink, tele_subject
+from gateway.cluster.forwarding import ClusterRouter, answer
 from gateway.cluster.keeper import LeasePlan, Wanted, plan
 from gateway.cluster.leases import Lease, LeaseStore, NodeRecord
 from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.takeover import pick_up_operations
 from gateway.config import Settings
-from gateway.errors import GatewayError, InvalidArgument
+from gateway.errors import GatewayError, NoOwner
+from gateway.fleet.caller import Caller
+from gateway.fleet.routing import OnMessage
 from gateway.registry.spec import VehicleSpec
 
-log = logging.getLogger("gateway.cluster")
+if TYPE_CHECKING:
+    from gateway.registry.registry import Registry
+    from gateway.runtime import Gateway
 
-CALLER: contextvars.ContextVar[dict[str, Any] | None] = contextvars.ContextVar("cluster_caller", default=None)
+log = logging.getLogger("gateway.cluster")
 
 #: a node stops its sidecars when it could not renew for this share of the lease time (before anyone
 #: else may take them over at the full lease time)
 SELF_FENCE_SHARE = 0.8
-
-OPERATOR_ACTIONS = {"hold": "hold", "land": "land", "rtl": "return_to_launch"}
-
-#: ``handler(vehicle, arguments, caller, progress)`` -> JSON result, run on the owner of ``vehicle``
-OwnerHandler = Callable[[Any, dict[str, Any], dict[str, Any], ProgressSink], Awaitable[Any]]
+CONNECT_TIMEOUT_S = 15.0
 
 
 class ClusterSetupError(GatewayError):
@@ -63,9 +63,11 @@ def check_settings(settings: Settings) -> None:
 class ClusterNode:
     """This process as a cluster node. ``start`` after the registry has started, ``stop`` before it stops."""
 
-    def __init__(self, gateway: Any) -> None:
+    def __init__(self, gateway: Gateway) -> None:
         self.gateway = gateway
         self.settings: Settings = gateway.settings
+        self.registry: Registry | None = None  # set by the runtime: the registry of this node
+        self.router = ClusterRouter(self)
         self.node_id = self.settings.node_id
         self.tags = self.settings.node_tags
         self.api_url = f"http://{self.settings.host}:{self.settings.port}"
@@ -79,14 +81,15 @@ class ClusterNode:
         self._kick = asyncio.Event()
         self._valid_until = 0.0
         self._tick_lock = asyncio.Lock()
-        self.handlers: dict[str, OwnerHandler] = {
-            "operator_action": self._operator_action,
-            "status": self._status,
-        }
         self.nodes: list[NodeRecord] = []
         self.all_leases: dict[str, Lease] = {}
         self.last_plan = LeasePlan()
         self.started = False
+
+    def _require_registry(self) -> Registry:
+        if self.registry is None or not self.gateway.ready:
+            raise NoOwner("this node's registry is not running (starting or stopping)")
+        return self.registry
 
     @property
     def interval_s(self) -> float:
@@ -96,8 +99,8 @@ class ClusterNode:
     async def start(self) -> None:
         store = self.gateway.require_store()
         self.leases = LeaseStore(store.engine, self.node_id, self.settings.cluster_lease_ttl_s)
-        try:
-            await self.bus.connect()
+        try:  # the client retries for ever: a server that never answers is a failed start
+            await asyncio.wait_for(self.bus.connect(), CONNECT_TIMEOUT_S)
         except Exception as exc:
             raise ClusterSetupError(
                 f"cannot reach NATS at {self.settings.cluster_nats_url} (GATEWAY_CLUSTER_NATS_URL): {exc!r}"
@@ -180,7 +183,7 @@ class ClusterNode:
                     self.held[vid] = renewed[vid]
             store = self.gateway.require_store()
             records = await store.list_vehicles()
-            registry = self.gateway.require_registry()
+            registry = self._require_registry()
             await registry.sync(records)
             self.all_leases = await self.leases.leases()
             self.nodes = await self.leases.nodes()
@@ -212,7 +215,7 @@ class ClusterNode:
             return result
 
     def _note_owners(self) -> None:
-        registry = self.gateway.registry
+        registry = self._require_registry()
         for vehicle in registry.all():
             if isinstance(vehicle, RemoteVehicle):
                 lease = self.all_leases.get(vehicle.id)
@@ -223,7 +226,7 @@ class ClusterNode:
 
     def _idle(self, vehicle_id: str) -> bool:
         """On the ground (or unknown: not connected) with no operation running."""
-        registry = self.gateway.registry
+        registry = self._require_registry()
         try:
             vehicle = registry.get(vehicle_id)
         except GatewayError:
@@ -236,7 +239,7 @@ class ClusterNode:
         return not in_air and not armed
 
     async def _adopt(self, vehicle_id: str, lease: Lease, previous: str | None) -> None:
-        registry = self.gateway.require_registry()
+        registry = self._require_registry()
         vehicle = await registry.adopt(vehicle_id)
         self.held[vehicle_id] = lease
         self._served[vehicle_id] = await self.bus.serve_calls(vehicle_id, self._answer(vehicle_id))
@@ -253,7 +256,7 @@ class ClusterNode:
         if sub is not None:
             with contextlib.suppress(Exception):
                 await sub.unsubscribe()
-        registry = self.gateway.registry
+        registry = self.registry
         if registry is not None:
             await registry.release(vehicle_id)
         log.info("%s: released by node %s (%s)", vehicle_id, self.node_id, why)
@@ -272,7 +275,7 @@ class ClusterNode:
             await asyncio.sleep(max(0.0, period - (time.monotonic() - started)))
 
     async def publish_snapshots(self) -> int:
-        registry = self.gateway.registry
+        registry = self.registry
         if registry is None or self.bus.nc is None:
             return 0
         count = 0
@@ -292,12 +295,14 @@ class ClusterNode:
         op = None if ops is None else ops.latest(vehicle_id)
         if op is None:
             return None
+        target = op.params.get("altitude_m")
         return {
             "id": op.id,
             "kind": op.kind,
-            "status": str(getattr(op.status, "value", op.status)),
+            "status": op.status.value,
             "progress": round(float(op.progress), 3),
             "message": op.message,
+            "target_alt_m": float(target) if isinstance(target, int | float) else None,
         }
 
     async def _on_snapshot(self, msg: Msg) -> None:
@@ -307,7 +312,7 @@ class ClusterNode:
             return
         if body.get("node") == self.node_id:
             return
-        registry = self.gateway.registry
+        registry = self.registry
         if registry is None:
             return
         try:
@@ -341,6 +346,12 @@ class ClusterNode:
             )
         elif kind == "unlock":
             self.gateway.locks.unlock(body["scope"])
+        elif kind == "stop":  # an operator's emergency stop on another node: end the fleet operations
+            fleet = self.gateway.fleet_operations  # this node coordinates (it stops its own drones)
+            registry = self.registry
+            if fleet is not None and registry is not None:
+                by = f"operator stop ({body.get('action')}) on node {body.get('node')}"
+                await fleet.supersede([v.id for v in registry.all()], by)
         elif kind in ("registry", "leases"):
             self.kick()
 
@@ -358,73 +369,34 @@ class ClusterNode:
                 book.lock(scope, lk.reason, lk.by, at=lk.locked_at)
 
     # --- calls routed to the owner --------------------------------------------------------------------
-    def forward(self) -> Callable[..., Awaitable[Any]]:
-        """The ``forward`` of remote views: send the call to the vehicle's owner over NATS."""
+    async def forward(
+        self,
+        drone_id: str,
+        verb: str,
+        caller: Caller,
+        arguments: dict[str, Any],
+        on_message: OnMessage | None,
+        wait_s: float,
+    ) -> Any:
+        """Run ``verb`` on the drone's owner (over NATS); its result, or its error raised here."""
+        if not self.started:
+            raise NoOwner(f"this node is not part of the cluster yet; cannot reach {drone_id}'s owner")
+        timeout = max(0.0, wait_s) + self.settings.cluster_forward_timeout_s
+        body = {**caller.to_dict(), "node": self.node_id}
+        return await self.bus.call(drone_id, verb, arguments, body, timeout, on_message)
 
-        async def send(
-            vehicle_id: str, name: str, arguments: dict[str, Any], on_progress: ProgressSink | None
-        ) -> Any:
-            if not self.started:
-                raise NoOwner(f"this node is not part of the cluster yet; cannot reach {vehicle_id}'s owner")
-            timeout = self.settings.mcp_wait_cap_s + self.settings.cluster_forward_timeout_s
-            caller = {"node": self.node_id}
-            caller.update(current_caller())
-            return await self.bus.call(vehicle_id, name, arguments, caller, timeout, on_progress)
-
-        return send
-
-    def _answer(
-        self, vehicle_id: str
-    ) -> Callable[[str, dict[str, Any], dict[str, Any], ProgressSink], Awaitable[Any]]:
+    def _answer(self, vehicle_id: str) -> CallHandler:
         async def handle(
             name: str, arguments: dict[str, Any], caller: dict[str, Any], progress: ProgressSink
         ) -> Any:
-            registry = self.gateway.require_registry()
-            if not registry.is_local(vehicle_id):
+            registry = self.registry
+            if registry is None or not registry.is_local(vehicle_id):
                 raise NoOwner(
                     f"node {self.node_id} no longer owns drone '{vehicle_id}': retry in a few seconds"
                 )
-            handler = self.handlers.get(name)
-            if handler is None:
-                raise InvalidArgument(
-                    f"call '{name}' is not known to node {self.node_id}; known: {sorted(self.handlers)}"
-                )
-            token = CALLER.set(caller)
-            try:
-                return await handler(registry.get(vehicle_id), arguments, caller, progress)
-            finally:
-                CALLER.reset(token)
+            return await answer(self.gateway.commander, name, arguments, caller, progress)
 
         return handle
-
-    async def _operator_action(
-        self, vehicle: Any, arguments: dict[str, Any], caller: dict[str, Any], progress: ProgressSink
-    ) -> dict[str, Any]:
-        """An operator's hold / land / RTL (REST, e-stop) on a vehicle this node owns: sent, and the
-        vehicle's running operation superseded, as on a single gateway."""
-        action = arguments.get("action")
-        method = OPERATOR_ACTIONS.get(str(action))
-        if method is None:
-            raise InvalidArgument(f"action must be one of {sorted(OPERATOR_ACTIONS)}; got {action!r}")
-        await getattr(vehicle, method)()
-        superseded = None
-        ops = self.gateway.operations
-        if ops is not None:
-            op = await ops.supersede(vehicle.id, by=f"operator {action}")
-            superseded = getattr(op, "id", None)
-        return {
-            "vehicle_id": vehicle.id,
-            "action": action,
-            "outcome": "sent",
-            "superseded_operation": superseded,
-            "node": self.node_id,
-        }
-
-    async def _status(
-        self, vehicle: Any, arguments: dict[str, Any], caller: dict[str, Any], progress: ProgressSink
-    ) -> dict[str, Any]:
-        """The owner's own view of the vehicle (fresher than a snapshot)."""
-        return {"status": vehicle.status(), "telemetry": vehicle.telemetry.snapshot(), "node": self.node_id}
 
     # --- views ----------------------------------------------------------------------------------------
     def describe(self) -> dict[str, Any]:
@@ -449,11 +421,5 @@ class ClusterNode:
         }
 
 
-def remote_factory(settings: Settings, node: ClusterNode) -> Callable[[VehicleSpec], RemoteVehicle]:
-    forward = node.forward()
-    return lambda spec: RemoteVehicle(spec, settings, forward)
-
-
-def current_caller() -> dict[str, Any]:
-    """Who made the call being run (on the owner: the caller as the forwarding node described it)."""
-    return dict(CALLER.get() or {})
+def remote_factory(settings: Settings) -> Callable[[VehicleSpec], RemoteVehicle]:
+    return lambda spec: RemoteVehicle(spec, settings)

@@ -1,34 +1,30 @@
-"""A vehicle owned by another node, as this node sees it: the owner's telemetry snapshots, and calls
-forwarded to the owner.
+"""A vehicle owned by another node, as this node sees it: the owner's telemetry snapshots.
 
 It answers the read side of :class:`~gateway.fleet.vehicle.Vehicle` (state, status, telemetry cache) so
-``list_drones``, ``fleet_status``, formation planning and separation checks see the whole fleet. Anything
-that needs the vehicle's link goes to its owner through :meth:`call`.
+``list_drones``, ``fleet_status``, formation planning and separation checks see the whole fleet. The
+commands go to the owner before they reach a vehicle (`gateway.cluster.forwarding`).
 """
 
 from __future__ import annotations
 
 import asyncio
 import time
-from collections.abc import Awaitable, Callable
+from collections.abc import Sequence
 from typing import Any
 
 from gateway.config import Settings
 from gateway.errors import GatewayError, VehicleNotReady
+from gateway.fleet.mission import MissionItem
+from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.telemetry import TelemetryCache
 from gateway.fleet.vehicle import ConnectionState
 from gateway.registry.spec import VehicleSpec
 
 from . import snapshot
 
-#: ``forward(vehicle_id, call name, JSON arguments, on_progress)`` -> JSON result
-Forward = Callable[
-    [str, str, dict[str, Any], Callable[[dict[str, Any]], Awaitable[None]] | None], Awaitable[Any]
-]
 
-
-class OwnedElsewhere(GatewayError, AttributeError):
-    """What a remote view cannot do here (it is also an AttributeError, so ``hasattr`` stays False)."""
+class OwnedElsewhere(GatewayError):
+    """What a remote view cannot do here: only the drone's owner talks to it."""
 
     code = "owned_elsewhere"
     http_status = 409
@@ -40,12 +36,11 @@ class RemoteVehicle:
     remote = True
     sidecar = None
 
-    def __init__(self, spec: VehicleSpec, settings: Settings, forward: Forward) -> None:
+    def __init__(self, spec: VehicleSpec, settings: Settings) -> None:
         self.spec = spec
         self.settings = settings
         self.telemetry = TelemetryCache(stale_after_s=settings.link_lost_after_s)
         self.telemetry.live = False
-        self._forward = forward
         self._status: dict[str, Any] = {}
         self._received_at: float | None = None
         self.owner: str | None = None  # node id from the lease table (None: nobody holds a live lease)
@@ -162,7 +157,8 @@ class RemoteVehicle:
                 "snapshot_age_s": None if self.snapshot_age_s is None else round(self.snapshot_age_s, 3),
             }
         )
-        owners = base.get("sidecar") if isinstance(base.get("sidecar"), dict) else {}
+        raw = base.get("sidecar")
+        owners: dict[str, Any] = raw if isinstance(raw, dict) else {}
         base["sidecar"] = {  # it runs on the owner: no process or port of it here
             "state": "remote",
             "pid": None,
@@ -208,26 +204,82 @@ class RemoteVehicle:
     async def disconnect(self) -> None:
         """Nothing to stop here: the owning node runs the sidecar."""
 
-    # --- forwarded calls -----------------------------------------------------------------------------
-    async def call(
-        self,
-        name: str,
-        arguments: dict[str, Any] | None = None,
-        on_progress: Callable[[dict[str, Any]], Awaitable[None]] | None = None,
-    ) -> Any:
-        """Run the named call on the owning node; its result, or its error raised here."""
-        return await self._forward(self.id, name, dict(arguments or {}), on_progress)
+    # --- what only the owner can do ------------------------------------------------------------------
+    # The Commander sends every verb for this drone to its owner (`gateway.cluster.forwarding`), so none
+    # of these is reached through it; anything else that tries is told where the drone is flown from.
 
-    def __getattr__(self, name: str) -> Any:
-        """Anything of a local Vehicle this view does not have (its link, its actions) is refused in one
-        line that says where the drone is flown from."""
-        if name.startswith("_"):
-            raise AttributeError(name)
+    def _elsewhere(self, action: str) -> OwnedElsewhere:
         where = f"cluster node {self.owner}" if self.owner else "no cluster node right now"
-        raise OwnedElsewhere(
+        return OwnedElsewhere(
             f"drone '{self.spec.id}' is owned by {where}; this node answers reads for it but cannot "
-            f"send it {name}: use the node that owns it "
+            f"send it {action}: use the node that owns it "
             "(GET /api/v1/cluster lists the nodes and their drones)",
             vehicle_id=self.spec.id,
             owner_node=self.owner,
         )
+
+    def resolve_mode(self, name: str) -> ModeChoice:
+        return require_mode(name, self.autopilot == "px4", self.id)
+
+    def return_altitude_param(self) -> tuple[str, float]:
+        return ("RTL_RETURN_ALT", 1.0) if self.autopilot == "px4" else ("RTL_ALT", 100.0)
+
+    async def arm(self) -> None:
+        raise self._elsewhere("arm")
+
+    async def disarm(self) -> None:
+        raise self._elsewhere("disarm")
+
+    async def kill(self) -> None:
+        raise self._elsewhere("kill")
+
+    async def takeoff(self, alt_rel_m: float) -> None:
+        raise self._elsewhere("takeoff")
+
+    async def goto(self, lat: float, lon: float, alt_rel_m: float, yaw_deg: float | None = None) -> None:
+        raise self._elsewhere("goto")
+
+    async def hold(self) -> None:
+        raise self._elsewhere("hold")
+
+    async def land(self) -> None:
+        raise self._elsewhere("land")
+
+    async def return_to_launch(self) -> None:
+        raise self._elsewhere("return_to_launch")
+
+    async def set_yaw(self, heading_deg: float) -> None:
+        raise self._elsewhere("set_yaw")
+
+    async def set_max_speed(self, mps: float) -> None:
+        raise self._elsewhere("set_max_speed")
+
+    async def set_flight_mode(self, name: str) -> None:
+        raise self._elsewhere("set_flight_mode")
+
+    async def upload_mission(self, items: Sequence[MissionItem]) -> int:
+        raise self._elsewhere("upload_mission")
+
+    async def download_mission(self) -> list[MissionItem]:
+        raise self._elsewhere("download_mission")
+
+    async def clear_mission(self) -> None:
+        raise self._elsewhere("clear_mission")
+
+    async def start_mission(self) -> None:
+        raise self._elsewhere("start_mission")
+
+    async def set_current_mission_item(self, user_index: int) -> None:
+        raise self._elsewhere("set_current_mission_item")
+
+    async def is_mission_finished(self) -> bool:
+        raise self._elsewhere("is_mission_finished")
+
+    async def get_param(self, name: str) -> tuple[float | int, str]:
+        raise self._elsewhere("get_param")
+
+    async def set_param(self, name: str, value: float | int) -> tuple[float | int, str]:
+        raise self._elsewhere("set_param")
+
+    async def list_params(self) -> dict[str, float | int]:
+        raise self._elsewhere("list_params")

@@ -106,6 +106,8 @@ class AuditRow(Base):
     outcome: Mapped[str] = mapped_column(String(16))
     error: Mapped[str | None] = mapped_column(Text)
     duration_ms: Mapped[float | None] = mapped_column(Float)
+    # the operation a call left running (wait:false): its end finishes the row, on whichever node
+    operation_id: Mapped[str | None] = mapped_column(String(64), index=True)
 
 
 class FlightRow(Base):

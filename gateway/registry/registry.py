@@ -18,15 +18,17 @@ from __future__ import annotations
 import asyncio
 import logging
 from collections.abc import Awaitable, Callable, Iterable
-from typing import Any
+from typing import Any, Protocol
 
 from pydantic import ValidationError
 
 from gateway.config import Settings
 from gateway.errors import InvalidArgument, UnknownVehicle
+from gateway.fleet.protocols import FlyingVehicle
 from gateway.fleet.vehicle import ConnectionState, Vehicle
 from gateway.registry.sidecar import Confine
 from gateway.registry.spec import VehicleSpec
+from gateway.registry.store import Store
 
 log = logging.getLogger("gateway.registry")
 
@@ -35,16 +37,30 @@ SPEC_FIELDS = set(VehicleSpec.model_fields)
 StateListener = Callable[[Vehicle, ConnectionState, ConnectionState], None]
 
 
+class RegisteredVehicle(FlyingVehicle, Protocol):
+    """What the registry holds: a `Vehicle` it runs, or (a cluster node) a view of a vehicle another
+    node runs (`gateway.cluster.remote.RemoteVehicle`)."""
+
+    spec: VehicleSpec
+
+    @property
+    def sidecar(self) -> object: ...
+
+    async def connect(self) -> None: ...
+
+    async def disconnect(self) -> None: ...
+
+
 class Registry:
     """Owns one Vehicle (and through it one sidecar) per registered drone."""
 
     def __init__(
         self,
         settings: Settings,
-        store: Any,
+        store: Store,
         *,
         confine: Confine | None = None,
-        remote_factory: Callable[[VehicleSpec], Any] | None = None,
+        remote_factory: Callable[[VehicleSpec], RegisteredVehicle] | None = None,
     ) -> None:
         """``remote_factory`` makes this the registry of a cluster node: every vehicle starts as a view of
         a vehicle owned elsewhere, and the node's lease keeper calls :meth:`adopt` / :meth:`release`."""
@@ -52,7 +68,7 @@ class Registry:
         self.store = store
         self._confine = confine
         self._remote_factory = remote_factory
-        self._vehicles: dict[str, Any] = {}
+        self._vehicles: dict[str, RegisteredVehicle] = {}
         self._listeners: list[StateListener] = []
         self._changed_hooks: list[Callable[[], Awaitable[None]]] = []
         self._lock = asyncio.Lock()
@@ -95,11 +111,12 @@ class Registry:
             self._started = False
 
     # --- registrations ----------------------------------------------------------------------------------
-    async def add(self, spec: VehicleSpec | dict[str, Any], connect: bool = True) -> Vehicle:
+    async def add(self, spec: VehicleSpec | dict[str, Any], connect: bool = True) -> RegisteredVehicle:
         """Register (persist) a vehicle and, by default, connect it. Raises DuplicateVehicle."""
         spec = _validate_spec(spec)
         async with self._lock:
             await self.store.add_vehicle(spec, auto_connect=connect)
+            vehicle: RegisteredVehicle
             if self.clustered:  # the node whose lease keeper takes it runs its sidecar
                 vehicle = self._vehicles[spec.id] = self._remote(spec)
             else:
@@ -109,13 +126,13 @@ class Registry:
         await self._registrations_changed()
         return vehicle
 
-    async def update(self, vehicle_id: str, **changes: Any) -> Vehicle:
+    async def update(self, vehicle_id: str, **changes: Any) -> RegisteredVehicle:
         """Change name, tags, expected_sysid, url or auto_connect; a new URL reconnects the vehicle."""
         old = self.get(vehicle_id)
         record = await self.store.update_vehicle(vehicle_id, **changes)
         spec = VehicleSpec.model_validate(record.model_dump(include=SPEC_FIELDS))
         was_connected = old.sidecar is not None
-        if getattr(old, "remote", False):
+        if not isinstance(old, Vehicle):
             old.spec = spec  # its owner reconnects it if the URL changed (sync)
         elif spec.url != old.spec.url and was_connected:
             await old.disconnect()
@@ -133,16 +150,16 @@ class Registry:
         self._vehicles.pop(vehicle_id, None)
         await self._registrations_changed()
 
-    def get(self, vehicle_id: str) -> Any:
+    def get(self, vehicle_id: str) -> RegisteredVehicle:
         vehicle = self._vehicles.get(vehicle_id) if isinstance(vehicle_id, str) else None
         if vehicle is None:
             raise UnknownVehicle(str(vehicle_id)[:64], list(self._vehicles))
         return vehicle
 
-    def all(self) -> list[Any]:
+    def all(self) -> list[RegisteredVehicle]:
         return [self._vehicles[k] for k in sorted(self._vehicles)]
 
-    async def connect(self, vehicle_id: str) -> Any:
+    async def connect(self, vehicle_id: str) -> RegisteredVehicle:
         """Connect (and keep connecting at every start). On a cluster node the owner connects it."""
         vehicle = self.get(vehicle_id)
         await vehicle.connect()
@@ -150,7 +167,7 @@ class Registry:
         await self._registrations_changed()
         return vehicle
 
-    async def disconnect(self, vehicle_id: str) -> Any:
+    async def disconnect(self, vehicle_id: str) -> RegisteredVehicle:
         vehicle = self.get(vehicle_id)
         await vehicle.disconnect()
         await self.store.update_vehicle(vehicle_id, auto_connect=False)
@@ -158,29 +175,32 @@ class Registry:
         return vehicle
 
     # --- cluster: which vehicles this node runs ------------------------------------------------------
+    def find(self, vehicle_id: str) -> RegisteredVehicle | None:
+        """The vehicle, or None (no error) when it is not registered."""
+        return self._vehicles.get(vehicle_id)
+
     def is_local(self, vehicle_id: str) -> bool:
-        vehicle = self._vehicles.get(vehicle_id)
-        return vehicle is not None and not getattr(vehicle, "remote", False)
+        return isinstance(self._vehicles.get(vehicle_id), Vehicle)
 
     def local(self) -> list[Vehicle]:
         """The vehicles whose sidecar runs in this process."""
-        return [v for v in self.all() if not getattr(v, "remote", False)]
+        return [v for v in self.all() if isinstance(v, Vehicle)]
 
     async def adopt(self, vehicle_id: str) -> Vehicle:
         """This node now owns the vehicle: replace its remote view by a connected local Vehicle."""
         async with self._lock:
             current = self.get(vehicle_id)
-            if not getattr(current, "remote", False):
+            if isinstance(current, Vehicle):
                 return current
             vehicle = self._make(current.spec)
         await vehicle.connect()
         return vehicle
 
-    async def release(self, vehicle_id: str) -> Any:
+    async def release(self, vehicle_id: str) -> RegisteredVehicle | None:
         """This node no longer owns the vehicle: stop its sidecar, keep a remote view of it."""
         async with self._lock:
             current = self._vehicles.get(vehicle_id)
-            if current is None or getattr(current, "remote", False):
+            if current is None or not isinstance(current, Vehicle):
                 return current
             assert self._remote_factory is not None, "release() is for cluster nodes"
             self._vehicles[vehicle_id] = remote = self._remote(current.spec)
@@ -202,7 +222,7 @@ class Registry:
         changed = []
         for vid in [v for v in self._vehicles if v not in specs]:
             gone = self._vehicles.pop(vid)
-            if not getattr(gone, "remote", False):
+            if isinstance(gone, Vehicle):
                 await gone.disconnect()
         for vid, spec in specs.items():
             current = self._vehicles.get(vid)
@@ -211,7 +231,7 @@ class Registry:
             elif current.spec != spec:
                 url_changed = current.spec.url != spec.url
                 current.spec = spec
-                if url_changed and not getattr(current, "remote", False) and current.sidecar is not None:
+                if url_changed and isinstance(current, Vehicle) and current.sidecar is not None:
                     await current.disconnect()
                     await current.connect()
                     changed.append(vid)
@@ -233,7 +253,7 @@ class Registry:
         self._listeners.append(listener)
 
     # --- internals --------------------------------------------------------------------------------------
-    def _remote(self, spec: VehicleSpec) -> Any:
+    def _remote(self, spec: VehicleSpec) -> RegisteredVehicle:
         assert self._remote_factory is not None
         return self._remote_factory(spec)
 
@@ -242,7 +262,7 @@ class Registry:
             spec,
             self.settings,
             store=self.store,
-            peers=self.all,
+            peers=self.local,  # duplicate system ids: among the vehicles whose links run here
             confine=self._confine,
             on_state=self._state_changed,
         )

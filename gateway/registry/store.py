@@ -16,7 +16,7 @@ from datetime import datetime
 from pathlib import Path
 from typing import Any
 
-from sqlalchemy import delete, event, func, or_, select, text
+from sqlalchemy import CursorResult, delete, event, func, insert, or_, select, text, update
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.ext.asyncio import AsyncEngine, async_sessionmaker, create_async_engine
 
@@ -35,6 +35,7 @@ from gateway.registry.records import (
     AUDIT_MAX_ERROR,
     AUDIT_MAX_JSON,
     AUDIT_MAX_STRING,
+    AUDIT_OUTCOME_OF_OPERATION,
     SEVERITY_NAMES,
     AuditEntry,
     AuditOutcome,
@@ -292,7 +293,7 @@ class Store:
     async def remove_vehicle(self, vehicle_id: str) -> None:
         async with self._sessions.begin() as session:
             result = await session.execute(delete(VehicleRow).where(VehicleRow.id == vehicle_id))
-            if result.rowcount == 0:
+            if _rowcount(result) == 0:
                 raise NotFound(f"no drone with id '{vehicle_id}' is registered", id=vehicle_id)
 
     async def get_vehicle(self, vehicle_id: str) -> VehicleRecord | None:
@@ -361,7 +362,7 @@ class Store:
             return 0
         rows = [s.model_dump() for s in samples]
         async with self._sessions.begin() as session:
-            await session.execute(TrackSampleRow.__table__.insert(), rows)
+            await session.execute(insert(TrackSampleRow), rows)
         return len(rows)
 
     async def add_status_texts(self, items: Sequence[StatusTextIn]) -> int:
@@ -369,7 +370,7 @@ class Store:
             return 0
         rows = [i.model_dump() for i in items]
         async with self._sessions.begin() as session:
-            await session.execute(StatusTextRow.__table__.insert(), rows)
+            await session.execute(insert(StatusTextRow), rows)
         return len(rows)
 
     async def list_flights(
@@ -517,19 +518,18 @@ class Store:
             outcome=entry.outcome,
             error=entry.error and entry.error[:AUDIT_MAX_ERROR],
             duration_ms=entry.duration_ms,
+            operation_id=entry.operation_id,
         )
         async with self._sessions.begin() as session:
             session.add(row)
             await session.flush()
-            return int(row.id)
-
-    async def finish_audit(self, row_id: int, outcome: str, error: str | None) -> None:
-        """Record how the action of an audit row ended (a call that returned while it was running)."""
-        async with self._sessions.begin() as session:
-            row = await session.get(AuditRow, row_id)
-            if row is not None:
-                row.outcome = outcome[:16]
-                row.error = error and error[:AUDIT_MAX_ERROR]
+            row_id = int(row.id)
+        if entry.outcome == "running" and entry.operation_id is not None:
+            # the operation may have ended before this row was written: then nobody else closes it
+            op = await self.get_operation(entry.operation_id)
+            if op is not None and op.status != "running":
+                await self._finish_audit_of(entry.operation_id, op.status, op.message)
+        return row_id
 
     def _audit_conditions(self, vehicle_id: str | None, session_key: str | None) -> list[Any]:
         conditions = []
@@ -567,6 +567,8 @@ class Store:
     # --- operations ------------------------------------------------------------------------------
 
     async def save_operation(self, op: OperationRecord) -> OperationRecord:
+        """Insert or update; an operation that has ended also finishes the audit rows of the calls that
+        left it running (whichever node ends it: its owner, or the node that took the drone over)."""
         values = op.model_dump()
         async with self._sessions.begin() as session:
             row = await session.get(OperationRow, op.id)
@@ -576,7 +578,21 @@ class Store:
                 for key, value in values.items():
                     if key != "id":
                         setattr(row, key, value)
+        if op.status != "running":
+            await self._finish_audit_of(op.id, op.status, op.message)
         return op
+
+    async def _finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
+        outcome = AUDIT_OUTCOME_OF_OPERATION.get(status, "error")
+        async with self._sessions.begin() as session:
+            await session.execute(
+                update(AuditRow)
+                .where(AuditRow.operation_id == operation_id, AuditRow.outcome == "running")
+                .values(
+                    outcome=outcome,
+                    error=None if outcome == "ok" else (message or status)[:AUDIT_MAX_ERROR],
+                )
+            )
 
     async def get_operation(self, operation_id: str) -> OperationRecord | None:
         async with self._sessions() as session:
@@ -615,7 +631,7 @@ class Store:
         """Remove the lock of ``scope``; False when there was none."""
         async with self._sessions.begin() as session:
             result = await session.execute(delete(LockRow).where(LockRow.scope == scope))
-            return bool(result.rowcount)
+            return bool(_rowcount(result))
 
     async def list_locks(self) -> list[LockRecord]:
         async with self._sessions() as session:
@@ -649,5 +665,10 @@ class Store:
             ]
             for name, statement in steps:
                 result = await session.execute(statement.execution_options(synchronize_session=False))
-                counts[name] = int(result.rowcount or 0)
+                counts[name] = _rowcount(result)
         return counts
+
+
+def _rowcount(result: object) -> int:
+    """Rows a DELETE/UPDATE touched (``Session.execute`` is typed as returning a plain ``Result``)."""
+    return int(result.rowcount or 0) if isinstance(result, CursorResult) else 0

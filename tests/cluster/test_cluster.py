@@ -131,13 +131,99 @@ async def test_each_drone_has_one_owner_and_every_node_sees_the_whole_fleet(cl: 
         assert row["state"] == "ready" and row["stale"] is False, row
         assert geo.horizontal_distance_m(row["lat_deg"], row["lon_deg"], truth["lat"], truth["lon"]) < 3.0
     assert status["count"] == 9 and status["ready"] == 9 and len(status["table"].splitlines()) == 10
-    # an agent command for a drone owned by another node is refused in one line that says where it is flown
-    # from (forwarding agent calls to the owner needs the one command path; operators' actions are forwarded)
-    elsewhere = by_owner(owners)["node-b"][0]
-    async with cl.node("node-a").client(name="elsewhere") as mcp:
-        text = err(await cl.calls.tool(mcp, "takeoff", {"drone_id": elsewhere, "altitude_m": 5}))  # type: ignore[attr-defined]
-    assert "owned by cluster node node-b" in text and "/api/v1/cluster" in text, text
-    assert not (await cl.true_state(elsewhere))["armed"]
+
+
+async def test_an_agent_on_node_a_flies_a_drone_owned_by_node_c(cl: Cluster) -> None:
+    """Every command goes to the drone's owner and comes back as a local one would: the result, the
+    owner's progress as MCP progress notifications, a refusal in the owner's own words, a wait
+    forwarded to the owner; the audit row of a call left running is finished when the owner ends it."""
+    calls: Calls = cl.calls  # type: ignore[attr-defined]
+    owners = await wait_spread(cl)
+    drone = by_owner(owners)["node-c"][0]
+    progress: list[tuple[float, str | None]] = []
+
+    async def on_progress(done: float, total: float | None, message: str | None) -> None:
+        progress.append((done, message))
+
+    async with cl.node("node-a").client(name="forwarded") as mcp:
+        up = ok(
+            await calls.tool(
+                mcp, "takeoff", {"drone_id": drone, "altitude_m": 10}, progress_callback=on_progress
+            )
+        )
+        assert up["status"] == "succeeded" and up["drone_id"] == drone, up
+        assert progress and any(0.0 < done < 1.0 for done, _ in progress), progress  # the owner's climb
+        assert abs((await cl.true_state(drone))["rel_alt_m"] - 10.0) < 1.5
+        # a goto, waited for on the owner
+        truth = await cl.true_state(drone)
+        lat, lon = geo.offset_position(truth["lat"], truth["lon"], 25.0, 0.0)
+        goto = {"drone_id": drone, "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 12}
+        there = ok(await calls.tool(mcp, "go_to_location", goto))
+        assert there["status"] == "succeeded", there
+        truth = await cl.true_state(drone)
+        assert geo.horizontal_distance_m(truth["lat"], truth["lon"], lat, lon) < 3.0
+        # a refusal: the same class (a refusal) and the same words as on the node that owns the drone
+        too_high = {**goto, "altitude_m": 5000}
+        refused_here = err(await calls.tool(mcp, "go_to_location", too_high))
+        async with cl.node("node-c").client(name="owner") as owner:
+            refused_there = err(await calls.tool(owner, "go_to_location", too_high))
+        assert refused_here.startswith("Refused: ") and refused_here == refused_there, (
+            refused_here,
+            refused_there,
+        )
+        # wait:false, then the wait forwarded to the owner (monitor_flight on node A)
+        back = {**goto, "latitude_deg": truth["lat"] - 0.0002, "wait": False}
+        leg = ok(await calls.tool(mcp, "go_to_location", back))
+        assert leg["status"] == "running", leg
+        monitored = ok(await calls.tool(mcp, "monitor_flight", {"drone_id": drone}))
+        assert monitored["operation_id"] == leg["operation_id"] and monitored["status"] == "succeeded", (
+            monitored
+        )
+
+        async def row_finished() -> bool:
+            rows = await cl.rows("SELECT outcome FROM audit WHERE operation_id = :i", i=leg["operation_id"])
+            return len(rows) == 1 and rows[0].outcome == "ok"
+
+        await eventually(
+            row_finished, "the audit row of the wait:false call finished by the owner", within_s=10
+        )
+        down = ok(await calls.tool(mcp, "land", {"drone_id": drone}))
+        assert down["status"] in ("succeeded", "running"), down
+    await eventually(lambda: landed(cl, [drone]), "the drone owned by node C landed", within_s=60)
+    # every operation is recorded under the id node A was given
+    ops = await cl.rows("SELECT id FROM operations WHERE vehicle_id = :v", v=drone)
+    assert {leg["operation_id"], up["operation_id"], there["operation_id"]} <= {r.id for r in ops}
+
+
+async def test_a_formation_spanning_every_node(cl: Cluster) -> None:
+    """Fleet verbs run on the node that received them; each drone's steps run on its owner."""
+    calls: Calls = cl.calls  # type: ignore[attr-defined]
+    owners = await wait_spread(cl)
+    groups = by_owner(owners)
+    team = [groups[name][-1] for name in ("node-a", "node-b", "node-c")]
+    async with cl.node("node-b").client(name="formation") as mcp:
+        up = ok(await calls.tool(mcp, "fleet_takeoff", {"drone_ids": team, "alt_m": 10}))
+        assert up["status"] == "succeeded", up
+        truths = [await cl.true_state(d) for d in team]
+        lat = sum(t["lat"] for t in truths) / 3
+        lon = sum(t["lon"] for t in truths) / 3
+        c_lat, c_lon = geo.offset_position(lat, lon, 30.0, 0.0)
+        args = {"drone_ids": team, "formation": "line", "center_lat": c_lat, "center_lon": c_lon,
+                "alt_m": 15, "spacing_m": 12}  # fmt: skip
+        formed = ok(await calls.tool(mcp, "formation_goto", args))
+        assert formed["status"] == "succeeded", formed
+        for member in formed["drones"]:
+            truth = await cl.true_state(member["drone_id"])
+            target = (member["target_lat"], member["target_lon"])
+            assert geo.horizontal_distance_m(truth["lat"], truth["lon"], *target) < 3.0, member
+            assert abs(truth["rel_alt_m"] - member["target_alt_m"]) < 1.5, member
+        # each drone's legs are operations of its owner (kind formation), not of node B
+        for d in team:
+            kinds = [r.kind for r in await cl.rows("SELECT kind FROM operations WHERE vehicle_id = :v", v=d)]
+            assert "formation" in kinds, (d, kinds)
+        down = ok(await calls.tool(mcp, "fleet_land", {"drone_ids": team}))
+        assert down["status"] in ("succeeded", "running"), down
+    await eventually(lambda: landed(cl, team), "the formation landed", within_s=90)
 
 
 async def test_a_scoped_agent_sees_and_commands_only_its_vehicles_on_every_node(cl: Cluster) -> None:
