@@ -95,16 +95,17 @@ class FlightController(AutoMixin, FailsafeMixin):
 
     # ------------------------------------------------------------------------------------------------
     # arming
-    def arm(self, force: bool) -> tuple[bool, str | None]:
+    def arm(self, force: bool) -> tuple[bool, list[str]]:
+        """Arm (``force``: without checks); a refusal returns every failing check, in ArduPilot's words."""
         v = self.v
         if v.armed:
-            return True, None
+            return True, []
         if not force:
             if v.mode not in _armable_modes(v):
-                return False, "Mode not armable"
-            failure = v.prearm_failure()
-            if failure:
-                return False, failure
+                return False, ["Mode not armable"]
+            failures = v.prearm_failures()
+            if failures:
+                return False, failures
         v.armed = True
         v.landed = True
         self.landed_since = v.t
@@ -112,7 +113,7 @@ class FlightController(AutoMixin, FailsafeMixin):
         v.auto_armed = False
         v.set_home_here()
         v.text(mav.MAV_SEVERITY_INFO, "Arming motors")
-        return True, None
+        return True, []
 
     def disarm(self, reason: str | None = None) -> None:
         v = self.v
