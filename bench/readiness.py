@@ -194,8 +194,8 @@ async def run_sim(speedup: float) -> Readiness:
 def spread(values: list[float]) -> str:
     if not values:
         return "n/a"
-    lo, hi = min(values), max(values)
-    return f"{lo:.1f}" if abs(hi - lo) < 0.05 else f"{lo:.1f}-{hi:.1f}"
+    lo, hi = f"{min(values):.1f}", f"{max(values):.1f}"
+    return lo if lo == hi else f"{lo}-{hi}"
 
 
 def report(title: str, runs: list[Readiness]) -> str:
