@@ -132,6 +132,7 @@ async def test_login_then_a_viewer_watches_every_drone_without_actions(
     await expect(page.locator(".home-icon").first).to_be_visible()
     await expect(page.locator("path.fence.keep-in")).to_have_count(1)
     await expect(page.locator("path.fence.keep-out")).to_have_count(1)
+    await expect(page.locator(".leaflet-tile")).to_have_count(0)  # no tile server configured: none asked
     await expect(page.locator(".leaflet-control-scale-line")).to_contain_text("m")
     # a viewer sees the buttons but cannot use them (the REST API would answer 403 anyway)
     await expect(page.locator("button.estop")).to_be_disabled()
@@ -142,6 +143,22 @@ async def test_login_then_a_viewer_watches_every_drone_without_actions(
     assert watched.urls and all(url.startswith(console_stack.base_url) for url in watched.urls), watched.urls
     assert not [url for url in watched.urls if VIEWER_TOKEN in url or "token" in url.lower()]
     assert watched.errors == []
+
+
+async def test_tiles_are_drawn_only_from_the_configured_server(console_stack: Stack, context: Any) -> None:
+    """GATEWAY_CONSOLE_TILES_URL switches the map to that tile server (here a file the gateway serves)."""
+    tiles = "/console/static/vendor/leaflet/images/layers.png?z={z}&x={x}&y={y}"
+    console_stack.settings.console_tiles_url = tiles  # read by /api/v1/console at each page load
+    try:
+        watched = await open_console(context, console_stack, VIEWER_TOKEN)
+        page = watched.page
+        await expect(page.locator("img.leaflet-tile-loaded").first).to_be_visible(timeout=ui_timeout_ms())
+        await expect(page.locator(".leaflet-marker-icon .drone[data-drone=d1]")).to_be_visible()
+        tile_urls = [url for url in watched.urls if "layers.png?z=" in url]
+        assert tile_urls and all(url.startswith(console_stack.base_url) for url in watched.urls)
+        assert all(re.search(r"z=\d+&x=\d+&y=\d+$", url) for url in tile_urls), tile_urls[:3]
+    finally:
+        console_stack.settings.console_tiles_url = None
 
 
 async def test_fleet_table_sorts_and_filters_by_tag(console_stack: Stack, context: Any) -> None:

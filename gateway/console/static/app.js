@@ -134,8 +134,19 @@ function Console({ config, onLogout }) {
       const result = await calls[r.kind]();
       if (r.kind === "stop") {
         const sent = result.results.filter((x) => x.outcome === "sent").map((x) => x.vehicle_id);
-        const failed = result.results.filter((x) => x.outcome === "failed");
-        notify(failed.length ? "error" : "ok", `Emergency stop (${result.action}): sent to ${sent.join(", ") || "no drone in the air"}` + (failed.length ? `; FAILED on ${failed.map((x) => `${x.vehicle_id} (${x.message})`).join(", ")}` : ""));
+        const others = (outcome) =>
+          result.results
+            .filter((x) => x.outcome === outcome)
+            .map((x) => `${x.vehicle_id} (${x.message})`)
+            .join(", ");
+        const failed = others("failed");
+        const skipped = others("skipped");
+        notify(
+          failed ? "error" : "ok",
+          `Emergency stop (${result.action}): sent to ${sent.join(", ") || "no drone in the air"}` +
+            (skipped ? `; skipped ${skipped}` : "") +
+            (failed ? `; FAILED on ${failed}` : ""),
+        );
       } else if (r.kind === "drone-action") {
         notify("ok", `${r.label} sent to ${r.drone}`);
       } else {
