@@ -175,6 +175,22 @@ async def test_fleet_table_sorts_and_filters_by_tag(console_stack: Stack, contex
     await expect(rows.first).to_have_attribute("data-drone", "d3")
 
 
+async def test_a_drone_whose_link_is_lost_is_shown_as_stale(console_stack: Stack, context: Any) -> None:
+    page = (await open_console(context, console_stack, VIEWER_TOKEN)).page
+    row = page.locator(".fleet-table tr[data-drone=d3]")
+    await expect(row).to_contain_text("on the ground", timeout=ui_timeout_ms())
+    await console_stack.sim.control.link_down(console_stack.index("d3"))
+    try:
+        await expect(row).to_contain_text("link lost", timeout=ui_timeout_ms())
+        await expect(page.locator(".drone.st-stale[data-drone=d3]")).to_be_visible()
+        await row.click()
+        await expect(page.locator(".detail")).to_contain_text("stale")
+    finally:
+        await console_stack.sim.control.link_up(console_stack.index("d3"))
+    await expect(row).to_contain_text("on the ground", timeout=ui_timeout_ms(60))
+    await expect(page.locator(".drone.st-ground[data-drone=d3]")).to_be_visible()
+
+
 async def test_mcp_takeoff_and_goto_move_the_marker(console_stack: Stack, context: Any) -> None:
     watched = await open_console(context, console_stack, OPERATOR_TOKEN)
     page = watched.page

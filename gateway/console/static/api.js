@@ -7,6 +7,7 @@
 import { EventSourceParserStream } from "./vendor/eventsource-parser/stream.js";
 
 const TOKEN_KEY = "fleet-gateway.console.token";
+const SILENCE_MS = 10000;
 export const API = "/api/v1";
 
 export function getToken() {
@@ -69,8 +70,18 @@ export async function streamEvents({ onEvent, onState, signal }) {
   let delay = 500;
   while (!signal.aborted) {
     onState("connecting");
+    // one attempt: ended by the caller, or by SILENCE_MS without a byte (a connection that hangs
+    // silently, e.g. behind a proxy, is dropped and opened again; the gateway sends every 0.5 s)
+    const attempt = new AbortController();
+    const stop = () => attempt.abort();
+    signal.addEventListener("abort", stop);
+    let silence = setTimeout(stop, SILENCE_MS);
+    const heard = () => {
+      clearTimeout(silence);
+      silence = setTimeout(stop, SILENCE_MS);
+    };
     try {
-      const response = await fetch(API + "/events", { headers: headers(), signal, cache: "no-store" });
+      const response = await fetch(API + "/events", { headers: headers(), signal: attempt.signal, cache: "no-store" });
       if (response.status === 401 || response.status === 403) {
         onState("unauthorized");
         return;
@@ -78,12 +89,13 @@ export async function streamEvents({ onEvent, onState, signal }) {
       if (!response.ok) throw new Error(`the gateway answered HTTP ${response.status}`);
       const reader = response.body
         .pipeThrough(new TextDecoderStream())
-        .pipeThrough(new EventSourceParserStream())
+        .pipeThrough(new EventSourceParserStream({ onComment: heard }))
         .getReader();
       let first = true;
       for (;;) {
         const { value, done } = await reader.read();
         if (done) break;
+        heard();
         if (first) {
           onState("live");
           delay = 500;
@@ -100,7 +112,10 @@ export async function streamEvents({ onEvent, onState, signal }) {
       if (!signal.aborted) onState("retrying", "the stream ended");
     } catch (error) {
       if (signal.aborted) return;
-      onState("retrying", String(error.message || error));
+      onState("retrying", attempt.signal.aborted ? "no data from the gateway" : String(error.message || error));
+    } finally {
+      clearTimeout(silence);
+      signal.removeEventListener("abort", stop);
     }
     await sleep(delay, signal);
     delay = Math.min(delay * 2, 5000);
