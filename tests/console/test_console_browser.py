@@ -31,6 +31,12 @@ pytestmark = pytest.mark.asyncio(loop_scope="module")
 expect: Any = None  # playwright.async_api.expect, imported once the browser fixture found Playwright
 
 
+@pytest_asyncio.fixture(scope="module", loop_scope="module", autouse=True)
+async def browser_first(browser: Any) -> Any:
+    """Probe for the browser before the gateway starts: without Chromium the module skips at once."""
+    return browser
+
+
 @pytest_asyncio.fixture(loop_scope="module")
 async def context(browser: Any) -> AsyncIterator[Any]:
     global expect
