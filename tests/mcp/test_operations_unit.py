@@ -22,6 +22,7 @@ from gateway.fleet.operations import (
     TakeoffTracker,
     YawTracker,
 )
+from tests.helpers.timing import eventually
 
 HOME = (47.397742, 8.545594, 488.0)
 
@@ -89,8 +90,8 @@ async def test_takeoff_succeeds_when_altitude_reached(settings: Settings) -> Non
     op = await mgr.start(v, TakeoffTracker(10.0), _noop, {"altitude_m": 10.0})
     assert mgr.takeoff_in_progress("d1") is op
     v.set(HOME[0], HOME[1], 4.0, armed=True, in_air=True)
-    await asyncio.sleep(0.5)
-    assert op.status is OpStatus.running and 0.3 < op.progress < 0.5
+    await eventually(lambda: _true(0.3 < op.progress < 0.5), "takeoff progress at 4 of 10 m")
+    assert op.status is OpStatus.running
     v.set(HOME[0], HOME[1], 9.8)
     await mgr.wait(op, cap_s=5.0)
     assert op.status is OpStatus.succeeded and op.progress == 1.0
@@ -196,8 +197,8 @@ async def test_land_yaw_and_mission_trackers(settings: Settings) -> None:
 
     v.telemetry.mission_progress = Sample(SimpleNamespace(current=2, total=4))
     mission = await mgr.start(v, MissionTracker(), _noop, {})
-    await asyncio.sleep(0.3)
-    assert mission.status is OpStatus.running and mission.message == "item 2 of 4"
+    await eventually(lambda: _true(mission.message == "item 2 of 4"), "mission progress item 2 of 4")
+    assert mission.status is OpStatus.running
     v.mission_done = True
     await mgr.wait(mission, cap_s=5)
     assert mission.status is OpStatus.succeeded
@@ -242,3 +243,7 @@ async def test_recover_marks_operations_of_a_previous_process_interrupted(tmp_pa
         assert await mgr.recover() == 0
     finally:
         await store.close()
+
+
+async def _true(condition: bool) -> bool:
+    return condition
