@@ -312,6 +312,10 @@ async def test_emergency_stop_lands_the_fleet(console_stack: Stack, context: Any
                 "flying", timeout=ui_timeout_ms()
             )
         await page.locator(".fleet-table tr[data-drone=d2]").click()
+        # where d2 is, from its own home (its goto was 25 m south, 35 m east of it)
+        await expect(page.locator(".detail .facts")).to_contain_text(
+            re.compile(r"E 3[45]\.\d m, N -2[45]\.\d m")
+        )
         await screenshot(page, "console")
         await page.locator("button.estop").click()
         dialog = page.locator("dialog[data-kind=stop]")

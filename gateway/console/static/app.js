@@ -49,6 +49,7 @@ function Console({ config, onLogout }) {
   const [flights, setFlights] = useState([]);
   const [flightsLoading, setFlightsLoading] = useState(false);
   const [replay, setReplay] = useState(null);
+  const [mapView, setMapView] = useState(null);
   const audit = useAudit();
   const flightIds = useRef("");
   const canAct = config.role === "operator";
@@ -189,7 +190,7 @@ function Console({ config, onLogout }) {
     <div class="body">
       <div class="left">
         <${FleetMap} origin=${origin} config=${config} vehicles=${vehicles} selectedId=${selectedId} onSelect=${setSelected} geofences=${geofences}
-          replay=${replay} />
+          replay=${replay} onReady=${setMapView} />
         <div class="legend">
           ${["ground", "armed", "air", "returning", "stale", "offline", "failed"].map((s) => html`<span><span class=${"dot st-" + s}></span>${{ ground: "on the ground", armed: "armed", air: "flying", returning: "landing / RTL", stale: "link lost", offline: "not connected", failed: "failed" }[s]}</span>`)}
           <span><span class="swatch track"></span>current flight</span>
@@ -204,7 +205,7 @@ function Console({ config, onLogout }) {
         </nav>
         ${tab === "fleet"
           ? html`<${FleetTable} vehicles=${vehicles} selectedId=${selectedId} onSelect=${setSelected} />
-              <${DroneDetail} drone=${selected} map=${window.fleetMap} canAct=${canAct} ask=${ask} />`
+              <${DroneDetail} drone=${selected} map=${mapView} canAct=${canAct} ask=${ask} />`
           : html`${replay
                 ? html`<${ReplayPanel} replay=${replay} setIndex=${(f) => setReplay((r) => r && { ...r, index: typeof f === "function" ? f(r.index) : f })} onClose=${() => setReplay(null)} />`
                 : ""}

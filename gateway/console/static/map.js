@@ -88,6 +88,13 @@ export class MapView {
     this.map.remove();
   }
 
+  // Metres east and north of `from` (default: the map's origin) to `to`; both {lat, lon}.
+  offset(to, from = null) {
+    const a = this.toLocal({ lat: to.lat, lng: to.lon });
+    const b = from ? this.toLocal({ lat: from.lat, lng: from.lon }) : { east: 0, north: 0 };
+    return { east: a.east - b.east, north: a.north - b.north };
+  }
+
   toLocal(latlng) {
     const [east, north] = this.local.forward([latlng.lng, latlng.lat]);
     return { east, north };
@@ -126,10 +133,11 @@ export class MapView {
     const Readout = L.Control.extend({
       onAdd() {
         const div = L.DomUtil.create("div", "cursor-readout");
-        div.textContent = "metres from home";
+        div.textContent = "metres from the fleet's home";
+        div.title = "the map's origin: the first home position the gateway knew";
         view.map.on("mousemove", (e) => {
           const { east, north } = view.toLocal(e.latlng);
-          div.textContent = `E ${num(east, 0)} m · N ${num(north, 0)} m from home`;
+          div.textContent = `E ${num(east, 0)} m · N ${num(north, 0)} m from the fleet's home`;
         });
         return div;
       },
@@ -306,7 +314,9 @@ export class MapView {
           : { className: "fence keep-in", color: "#1e8449", weight: 2, dashArray: "8 5", fillOpacity: 0.03 },
       onEachFeature: (feature, layer) => {
         const p = feature.properties;
-        layer.bindTooltip(`${p.kind === "keep_out" ? "keep out" : "keep in"}: ${p.name}${p.vehicle_id ? ` (${p.vehicle_id})` : ""}`);
+        // Leaflet puts tooltip strings into innerHTML: escape the operator-given names
+        const text = `${p.kind === "keep_out" ? "keep out" : "keep in"}: ${p.name}${p.vehicle_id ? ` (${p.vehicle_id})` : ""}`;
+        layer.bindTooltip(escapeHtml(text));
       },
     }).addTo(this.fences);
   }
@@ -348,7 +358,7 @@ export class MapView {
   }
 }
 
-export function FleetMap({ origin, config, vehicles, selectedId, onSelect, geofences, replay }) {
+export function FleetMap({ origin, config, vehicles, selectedId, onSelect, geofences, replay, onReady }) {
   const element = useRef(null);
   const view = useRef(null);
   const onSelectRef = useRef(onSelect);
@@ -363,6 +373,7 @@ export function FleetMap({ origin, config, vehicles, selectedId, onSelect, geofe
       onSelect: (id) => onSelectRef.current(id),
     });
     window.fleetMap = view.current; // for the browser tests and the curious operator
+    onReady(view.current);
     return undefined;
   }, [origin]);
 

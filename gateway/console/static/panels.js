@@ -88,13 +88,13 @@ function OperationBar({ op, compact }) {
 
 export function DroneDetail({ drone, map, canAct, ask }) {
   if (!drone) return html`<section class="panel detail empty">Click a drone on the map or in the table.</section>`;
-  const local = drone.position && map ? map.toLocal({ lat: drone.position.lat, lng: drone.position.lon }) : null;
+  const local = drone.position && drone.home && map ? map.offset(drone.position, drone.home) : null;
   const op = drone.operation;
   const rows = [
     ["State", situation(drone) + (drone.last_error ? ` (${drone.last_error})` : "")],
     ["Autopilot", `${drone.autopilot ?? "–"}${drone.is_simulator ? " (simulator)" : ""}`],
     ["Position", drone.position ? `${drone.position.lat.toFixed(7)}, ${drone.position.lon.toFixed(7)}` : "–"],
-    ["From home", local ? `E ${num(local.east, 1)} m, N ${num(local.north, 1)} m` : "–"],
+    ["From its home", local ? `E ${num(local.east, 1)} m, N ${num(local.north, 1)} m (${num(Math.hypot(local.east, local.north), 1)} m)` : "–"],
     ["Altitude", drone.position ? `${num(drone.position.alt_rel_m, 1)} m above home (${num(drone.position.alt_amsl_m, 1)} m AMSL)` : "–"],
     ["Heading", num(drone.heading_deg, 0, "°")],
     ["Speed", `${num(drone.ground_speed_mps, 1)} m/s, climb ${num(drone.climb_mps, 1)} m/s`],
