@@ -175,6 +175,12 @@ class Vehicle:
         return autopilot_name(self._link.autopilot) if self._link.autopilot is not None else None
 
     @property
+    def current_flight_id(self) -> int | None:
+        """The id of the flight being recorded (armed now), None on the ground or while not connected."""
+        recorder = self._recorder
+        return recorder.flight.id if recorder is not None and recorder.flight is not None else None
+
+    @property
     def last_heartbeat_age_s(self) -> float | None:
         hb = self._link.last_heartbeat
         return None if hb is None else max(0.0, time.monotonic() - hb)
