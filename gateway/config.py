@@ -148,6 +148,17 @@ class Settings(BaseSettings):
         "ids and 'tag:<tag>' entries]}. Such an agent sees and commands only those; others see all.",
     )
 
+    # --- operator console ---------------------------------------------------------------------------
+    console_tiles_url: str | None = Field(
+        None,
+        description="Map tile URL template of the /console map, e.g. "
+        "https://tile.example.org/{z}/{x}/{y}.png (the browser fetches the tiles); unset: the map is "
+        "drawn without tiles, in metres around the fleet's home (works offline).",
+    )
+    console_tiles_attribution: str = Field(
+        "", description="Attribution the tile server's licence asks for, shown in a corner of the map."
+    )
+
     # --- flight log -------------------------------------------------------------------------------
     track_sample_hz: float = Field(
         1.0, gt=0, le=10, description="Track samples recorded per second in flight."
@@ -204,6 +215,19 @@ class Settings(BaseSettings):
         if bad:
             raise ValueError(f"node tag(s) {bad} must be 1-32 of letters, digits, '_', '.', '-'")
         return ",".join(tags)
+
+    @field_validator("console_tiles_url")
+    @classmethod
+    def _tile_template(cls, value: str | None) -> str | None:
+        if value is None or not value.strip():
+            return None
+        missing = [p for p in ("{z}", "{x}", "{y}") if p not in value]
+        if missing or not value.startswith(("http://", "https://", "/")):
+            raise ValueError(
+                f"must be an http(s) URL (or a path on this server) with {{z}}, {{x}} and {{y}} in it, "
+                f"e.g. https://tile.example.org/{{z}}/{{x}}/{{y}}.png; got {value!r}"
+            )
+        return value.strip()
 
     @property
     def toolsets(self) -> list[str]:

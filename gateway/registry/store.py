@@ -11,12 +11,12 @@ import asyncio
 import logging
 import sys
 import weakref
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from datetime import datetime
 from pathlib import Path
 from typing import Any
 
-from sqlalchemy import CursorResult, delete, event, func, insert, or_, select, text, update
+from sqlalchemy import CursorResult, delete, event, func, insert, or_, select, text
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.ext.asyncio import AsyncEngine, async_sessionmaker, create_async_engine
 
@@ -86,6 +86,9 @@ __all__ = [
 ]
 
 log = logging.getLogger(__name__)
+
+#: Called with each audit row this store writes, and again when a row's outcome is finished.
+AuditListener = Callable[[AuditRecord], None]
 
 # The Alembic scripts: the repository's migrations/ (source checkout, editable install), else the copy
 # a wheel installs under <prefix>/share/fleet-gateway/migrations (pyproject's data-files).
@@ -202,6 +205,7 @@ class Store:
         self.url = url
         self._sessions = async_sessionmaker(engine, expire_on_commit=False)
         self._closed = False
+        self._audit_listeners: list[AuditListener] = []
 
     @classmethod
     async def open(cls, url: str, upgrade: bool = True) -> Store:
@@ -431,6 +435,18 @@ class Store:
             rows = (await session.scalars(query)).all()
             return [StatusTextRecord.model_validate(r) for r in reversed(rows)]
 
+    async def list_flight_status_texts(self, flight_id: int, limit: int = 500) -> list[StatusTextRecord]:
+        """The status texts received during a flight, oldest first (at most ``limit``, the first ones)."""
+        query = (
+            select(StatusTextRow)
+            .where(StatusTextRow.flight_id == flight_id)
+            .order_by(StatusTextRow.t, StatusTextRow.id)
+            .limit(limit)
+        )
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [StatusTextRecord.model_validate(r) for r in rows]
+
     # --- sessions --------------------------------------------------------------------------------
 
     async def touch_session(
@@ -506,6 +522,28 @@ class Store:
 
     # --- audit -----------------------------------------------------------------------------------
 
+    def on_audit(self, listener: AuditListener) -> Callable[[], None]:
+        """Call ``listener`` with every audit row written (or finished) through this store, after it is
+        committed; returns the function that removes it. Listeners run in the writer's task: keep them
+        quick and non-blocking (the live event stream queues the row and returns)."""
+        self._audit_listeners.append(listener)
+
+        def remove() -> None:
+            if listener in self._audit_listeners:
+                self._audit_listeners.remove(listener)
+
+        return remove
+
+    def _audit_written(self, row: AuditRow) -> None:
+        if not self._audit_listeners:
+            return
+        record = AuditRecord.model_validate(row)
+        for listener in list(self._audit_listeners):
+            try:
+                listener(record)
+            except Exception:  # a broken listener must not fail the audited call
+                log.exception("audit listener failed")
+
     async def add_audit(self, entry: AuditEntry) -> int:
         row = AuditRow(
             t=entry.t or utcnow(),
@@ -524,6 +562,7 @@ class Store:
             session.add(row)
             await session.flush()
             row_id = int(row.id)
+        self._audit_written(row)
         if entry.outcome == "running" and entry.operation_id is not None:
             # the operation may have ended before this row was written: then nobody else closes it
             op = await self.get_operation(entry.operation_id)
@@ -531,12 +570,24 @@ class Store:
                 await self._finish_audit_of(entry.operation_id, op.status, op.message)
         return row_id
 
-    def _audit_conditions(self, vehicle_id: str | None, session_key: str | None) -> list[Any]:
-        conditions = []
+    def _audit_conditions(
+        self,
+        vehicle_id: str | None,
+        session_key: str | None,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        include_fleet: bool = False,
+    ) -> list[Any]:
+        conditions: list[Any] = []
         if vehicle_id is not None:
-            conditions.append(AuditRow.vehicle_id == vehicle_id)
+            same = AuditRow.vehicle_id == vehicle_id
+            conditions.append(or_(same, AuditRow.vehicle_id.is_(None)) if include_fleet else same)
         if session_key is not None:
             conditions.append(AuditRow.session_key == session_key)
+        if since is not None:
+            conditions.append(AuditRow.t >= since)
+        if until is not None:
+            conditions.append(AuditRow.t <= until)
         return conditions
 
     async def list_audit(
@@ -545,11 +596,17 @@ class Store:
         session_key: str | None = None,
         limit: int = 100,
         offset: int = 0,
+        *,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        include_fleet: bool = False,
     ) -> list[AuditRecord]:
-        """Audit entries, newest first."""
+        """Audit entries, newest first; ``since``/``until`` bound their time (inclusive).
+        ``include_fleet`` adds, to a ``vehicle_id`` filter, the rows that name no single vehicle
+        (fleet-wide calls)."""
         query = (
             select(AuditRow)
-            .where(*self._audit_conditions(vehicle_id, session_key))
+            .where(*self._audit_conditions(vehicle_id, session_key, since, until, include_fleet))
             .order_by(AuditRow.t.desc(), AuditRow.id.desc())
             .limit(limit)
             .offset(offset)
@@ -558,9 +615,17 @@ class Store:
             rows = (await session.scalars(query)).all()
             return [AuditRecord.model_validate(r) for r in rows]
 
-    async def count_audit(self, vehicle_id: str | None = None, session_key: str | None = None) -> int:
+    async def count_audit(
+        self,
+        vehicle_id: str | None = None,
+        session_key: str | None = None,
+        *,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        include_fleet: bool = False,
+    ) -> int:
         query = select(func.count()).select_from(AuditRow)
-        query = query.where(*self._audit_conditions(vehicle_id, session_key))
+        query = query.where(*self._audit_conditions(vehicle_id, session_key, since, until, include_fleet))
         async with self._sessions() as session:
             return int((await session.execute(query)).scalar_one())
 
@@ -585,14 +650,15 @@ class Store:
     async def _finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
         outcome = AUDIT_OUTCOME_OF_OPERATION.get(status, "error")
         async with self._sessions.begin() as session:
-            await session.execute(
-                update(AuditRow)
-                .where(AuditRow.operation_id == operation_id, AuditRow.outcome == "running")
-                .values(
-                    outcome=outcome,
-                    error=None if outcome == "ok" else (message or status)[:AUDIT_MAX_ERROR],
-                )
+            query = select(AuditRow).where(
+                AuditRow.operation_id == operation_id, AuditRow.outcome == "running"
             )
+            rows = (await session.scalars(query)).all()
+            for row in rows:
+                row.outcome = outcome
+                row.error = None if outcome == "ok" else (message or status)[:AUDIT_MAX_ERROR]
+        for row in rows:  # the console's audit stream shows the row again, finished
+            self._audit_written(row)
 
     async def get_operation(self, operation_id: str) -> OperationRecord | None:
         async with self._sessions() as session:
