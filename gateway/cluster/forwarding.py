@@ -33,6 +33,8 @@ log = logging.getLogger("gateway.cluster.forwarding")
 
 #: calls an owner answers besides the routed verbs
 WAIT = "wait"
+ENDED_KEPT = 2000
+"""Operations of other nodes this node has seen end (newer than the owners' last snapshots)."""
 
 
 class ClusterRouter:
@@ -40,6 +42,17 @@ class ClusterRouter:
 
     def __init__(self, node: ClusterNode) -> None:
         self.node = node
+        self._ended: dict[str, str] = {}  # operation id -> its final status, as the owner answered
+
+    def _note(self, body: Any) -> None:
+        """Remember an operation the owner reported as ended: its snapshots may still say running for a
+        snapshot period, and a check here must not refuse a drone for an operation that is over."""
+        if isinstance(body, dict) and isinstance(body.get("operation_id"), str):
+            status = body.get("status")
+            if isinstance(status, str) and status != "running":
+                self._ended[body["operation_id"]] = status
+                while len(self._ended) > ENDED_KEPT:
+                    del self._ended[next(iter(self._ended))]
 
     def owns(self, drone_id: str) -> bool:
         registry = self.node.registry
@@ -51,7 +64,7 @@ class ClusterRouter:
         if not isinstance(vehicle, RemoteVehicle) or vehicle.operation is None:
             return None
         op = vehicle.operation
-        if op.get("status") != "running":
+        if op.get("status") != "running" or op.get("id") in self._ended:
             return None
         target = op.get("target_alt_m")
         return RunningOperation(
@@ -70,7 +83,14 @@ class ClusterRouter:
         on_message: OnMessage | None = None,
         wait_s: float = 0.0,
     ) -> Any:
-        return await self.node.forward(drone_id, verb, caller, arguments, on_message, wait_s)
+        async def observe(body: dict[str, Any]) -> None:
+            self._note(body.get("view"))
+            if on_message is not None:
+                await on_message(body)
+
+        result = await self.node.forward(drone_id, verb, caller, arguments, observe, wait_s)
+        self._note(result)
+        return result
 
     async def announce(self, kind: str, body: dict[str, Any]) -> None:
         await self.node.announce(kind, body)
