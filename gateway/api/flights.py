@@ -10,9 +10,9 @@ from fastapi.responses import JSONResponse
 
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import MAX_ROW, StoreDep
-from gateway.api.schemas import FlightPage, as_utc
+from gateway.api.schemas import FlightPage, StatusTextList, as_utc
 from gateway.errors import InvalidArgument, NotFound
-from gateway.registry.store import FlightRecord, TrackSample
+from gateway.registry.store import FlightRecord, Store, TrackSample
 
 FlightId = Annotated[int, Path(ge=1, le=MAX_ROW, description="Flight id.")]
 
@@ -39,7 +39,7 @@ async def list_flights(
     return FlightPage(items=items, total=total, limit=limit, offset=offset)
 
 
-async def _flight(store: Any, flight_id: int) -> FlightRecord:
+async def _flight(store: Store, flight_id: int) -> FlightRecord:
     flight = await store.get_flight(flight_id)
     if flight is None:
         raise NotFound(f"no flight with id {flight_id}", id=flight_id)
@@ -84,3 +84,18 @@ async def flight_track(flight_id: FlightId, store: StoreDep) -> JSONResponse:
     flight = await _flight(store, flight_id)
     track = await store.get_track(flight_id)
     return JSONResponse(track_feature(flight, track), media_type=GEOJSON_MEDIA_TYPE)
+
+
+@router.get(
+    "/{flight_id}/statustexts",
+    response_model=StatusTextList,
+    summary="The STATUSTEXT messages received during a flight, oldest first",
+)
+async def flight_status_texts(
+    flight_id: FlightId,
+    store: StoreDep,
+    limit: Annotated[int, Query(ge=1, le=1000, description="At most this many (the first ones).")] = 500,
+) -> StatusTextList:
+    flight = await _flight(store, flight_id)
+    items = await store.list_flight_status_texts(flight_id, limit=limit)
+    return StatusTextList(vehicle_id=flight.vehicle_id, items=items)

@@ -243,7 +243,8 @@ class TelemetryCache:
                 out[name] = None
                 continue
             value = sample.value
-            body: dict[str, Any] = _json_safe(asdict(value) if is_dataclass(value) else {"value": value})
+            plain = asdict(value) if is_dataclass(value) and not isinstance(value, type) else {"value": value}
+            body: dict[str, Any] = _json_safe(plain)
             age = round(sample.age_s, 3)
             body["age_s"] = age
             body["stale"] = age > self.stale_after_s or not self.live
@@ -367,10 +368,7 @@ class TelemetryFeed:
             "imu": (t.imu, lambda i: put("imu", _imu(i))),
             "raw_imu": (t.raw_imu, lambda i: put("imu", _imu(i))),
             "odometry": (t.odometry, lambda o: put("odometry", _odometry(o))),
-            "status_text": (
-                t.status_text,
-                lambda s: self.cache.add_status_text(s.type.name.lower(), str(s.text)),
-            ),
+            "status_text": (t.status_text, self._status_text),
             "mission_progress": (self.system.mission_raw.mission_progress, self._mission_progress),
         }
         for name, (subscribe, handle) in streams.items():
@@ -405,6 +403,9 @@ class TelemetryFeed:
         if refused:
             log.info("%s: streams not granted: %s", self.vehicle_id, ", ".join(sorted(refused)))
         return refused
+
+    def _status_text(self, text: Any) -> None:
+        self.cache.add_status_text(text.type.name.lower(), str(text.text))
 
     def _flight_mode(self, mode: Any) -> None:
         if self._use_mavsdk_mode():

@@ -34,7 +34,7 @@ from mavsdk_grpc import mission_raw as mavsdk_mission_raw
 
 from gateway.config import Settings
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
-from gateway.fleet import geo, mission
+from gateway.fleet import geo, mission, refusals
 from gateway.fleet.mission import MissionItem, WirePlan
 from gateway.fleet.modes import (
     ARDUCOPTER_MODE_NAMES,
@@ -84,7 +84,7 @@ EKF_POS_HORIZ_ABS = 16
 EKF_CONST_POS_MODE = 128
 #: arming refusals that go away by themselves while the autopilot initialises (retried within the cap)
 ARM_WAIT_TEXTS = ("position estimate", "ekf", "gps", "waiting", "initialis", "initializ", "heading", "gyros",
-                  "accels", "ahrs", "home")  # fmt: skip
+                  "accels", "ahrs", "home", "alt estimate")  # fmt: skip
 ARM_RETRY_S = 1.0
 MAVLINK_MSG_SIMSTATE = 164
 MISSION_STATE_COMPLETE = 5
@@ -173,6 +173,12 @@ class Vehicle:
     @property
     def autopilot(self) -> str | None:
         return autopilot_name(self._link.autopilot) if self._link.autopilot is not None else None
+
+    @property
+    def current_flight_id(self) -> int | None:
+        """The id of the flight being recorded (armed now), None on the ground or while not connected."""
+        recorder = self._recorder
+        return recorder.flight.id if recorder is not None and recorder.flight is not None else None
 
     @property
     def last_heartbeat_age_s(self) -> float | None:
@@ -660,7 +666,7 @@ class Vehicle:
             if result is None:
                 raise
             name = getattr(result.result, "name", str(result.result))
-            said = await self._complaint_since(started - 1.0)
+            said = await self._complaint_since(started)
             raise CommandFailed(
                 f"{what} on drone '{self.id}' failed: {result.result_str} ({name})" + said,
                 vehicle_id=self.id,
@@ -690,34 +696,40 @@ class Vehicle:
             name = MAV_RESULT.get(result, str(result))
             raise CommandFailed(
                 f"{what} on drone '{self.id}' refused by the vehicle: {name}"
-                + self._recent_complaint(since=sent_at - 0.5),
+                + await self._complaint_since(sent_at),
                 vehicle_id=self.id,
                 result=name,
             )
 
     def _recent_complaint(self, within_s: float = 5.0, since: float | None = None) -> str:
-        """The latest warning-or-worse status text of the last few seconds (or since ``since``, wall
-        clock), to explain a refusal."""
-        said = self._latest_complaint(within_s, since)
-        return "" if said is None else f" (vehicle says: {said})"
+        """What the autopilot said (warning or worse) in the last few seconds, or since ``since`` (wall
+        clock), to explain a refusal; "" when it said nothing."""
+        said = self._said_since(time.time() - within_s if since is None else since)
+        return f" (autopilot says: {refusals.quoted(said)})" if said else ""
 
-    async def _complaint_since(self, since: float, grace_s: float = 0.5) -> str:
-        """``_recent_complaint`` since ``since``, waiting up to ``grace_s`` for a text to arrive."""
-        for _ in range(int(grace_s / 0.05)):
-            said = self._recent_complaint(since=since)
-            if said:
-                return said
-            await asyncio.sleep(0.05)
-        return self._recent_complaint(since=since)
+    async def _complaint_since(self, since: float) -> str:
+        """Why the autopilot refused what was sent at ``since``: its texts (waiting briefly for them, as
+        they can follow the result), or what the vehicle was doing when it gave no reason."""
+        said = await refusals.wait_said(lambda: self.telemetry.status_texts, since)
+        return refusals.explain(said, self._facts())
 
-    def _latest_complaint(self, within_s: float = 5.0, since: float | None = None) -> str | None:
-        oldest = time.time() - within_s if since is None else since
-        for item in reversed(self.telemetry.status_texts):
-            if item.t < oldest:
-                break
-            if item.severity in ("warning", "error", "critical", "alert", "emergency"):
-                return " ".join(item.text.split())[:200]
-        return None
+    def _said_since(self, since: float) -> list[str]:
+        return refusals.said_since(self.telemetry.status_texts, since)
+
+    def _facts(self) -> str:
+        """The vehicle's state in a few words, for a refusal the autopilot did not explain."""
+        mode = self.telemetry.fresh("flight_mode")
+        armed = self.telemetry.fresh("armed")
+        in_air = self.telemetry.fresh("in_air")
+        parts = [
+            f"mode {mode}" if mode else "mode unknown",
+            "armed" if armed else "disarmed" if armed is False else "armed state unknown",
+            "in the air" if in_air else "on the ground" if in_air is False else "",
+        ]
+        waiting = self.initialising()
+        if waiting:
+            parts.append(waiting)
+        return "it is " + ", ".join(p for p in parts if p)
 
     # --- modes ------------------------------------------------------------------------------------------
     def resolve_mode(self, name: str) -> ModeChoice:
@@ -764,27 +776,28 @@ class Vehicle:
                 await self._call("arm", system.action.arm())
                 return
             except CommandFailed as exc:
-                said = self._latest_complaint(since=attempt_at - 1.0)
-                passing = said is not None and any(word in said.lower() for word in ARM_WAIT_TEXTS)
+                said = self._said_since(attempt_at)
+                passing = bool(said) and all(_lifts_by_itself(text) for text in said)
                 if not passing or loop.time() + ARM_RETRY_S > deadline:
                     raise self._arm_refusal(exc, said, waited=passing) from None
-            log.info("%s: arming refused while initialising (%s); retrying", self.id, said)
+            log.info("%s: arming refused while initialising (%s); retrying", self.id, "; ".join(said))
             await asyncio.sleep(ARM_RETRY_S)
 
-    def _arm_refusal(self, exc: CommandFailed, said: str | None, waited: bool) -> CommandFailed:
-        if said is None:
+    def _arm_refusal(self, exc: CommandFailed, said: list[str], waited: bool) -> CommandFailed:
+        if not said:
             return exc
         gps = self.telemetry.fresh("gps_info")
         facts = f"GPS {gps.fix_type}, {gps.num_satellites} satellites" if gps is not None else "no GPS report"
+        words = refusals.quoted(said)
         if waited:
             return CommandFailed(
-                f"drone '{self.id}' cannot arm yet: autopilot says '{said}' ({facts}; still refused after "
+                f"drone '{self.id}' cannot arm yet: autopilot says {words} ({facts}; still refused after "
                 f"{ARMABLE_WAIT_S:g} s); call again in a few seconds or check fleet_status",
                 vehicle_id=self.id,
                 result=exc.details.get("result"),
             )
         return CommandFailed(
-            f"drone '{self.id}' refused to arm: autopilot says '{said}' ({facts})",
+            f"drone '{self.id}' refused to arm: autopilot says {words} ({facts})",
             vehicle_id=self.id,
             result=exc.details.get("result"),
         )
@@ -1060,6 +1073,11 @@ class Vehicle:
     @property
     def params_fetched_age_s(self) -> float | None:
         return self.params.list_age_s
+
+
+def _lifts_by_itself(text: str) -> bool:
+    """An arming refusal that goes away while the autopilot initialises (EKF, GPS, sensors settling)."""
+    return any(word in text.lower() for word in ARM_WAIT_TEXTS)
 
 
 async def _keep(

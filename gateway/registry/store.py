@@ -11,12 +11,12 @@ import asyncio
 import logging
 import sys
 import weakref
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from datetime import datetime
 from pathlib import Path
 from typing import Any
 
-from sqlalchemy import delete, event, func, or_, select, text
+from sqlalchemy import CursorResult, delete, event, func, insert, or_, select, text
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.ext.asyncio import AsyncEngine, async_sessionmaker, create_async_engine
 
@@ -35,6 +35,7 @@ from gateway.registry.records import (
     AUDIT_MAX_ERROR,
     AUDIT_MAX_JSON,
     AUDIT_MAX_STRING,
+    AUDIT_OUTCOME_OF_OPERATION,
     SEVERITY_NAMES,
     AuditEntry,
     AuditOutcome,
@@ -85,6 +86,9 @@ __all__ = [
 ]
 
 log = logging.getLogger(__name__)
+
+#: Called with each audit row this store writes, and again when a row's outcome is finished.
+AuditListener = Callable[[AuditRecord], None]
 
 # The Alembic scripts: the repository's migrations/ (source checkout, editable install), else the copy
 # a wheel installs under <prefix>/share/fleet-gateway/migrations (pyproject's data-files).
@@ -201,6 +205,7 @@ class Store:
         self.url = url
         self._sessions = async_sessionmaker(engine, expire_on_commit=False)
         self._closed = False
+        self._audit_listeners: list[AuditListener] = []
 
     @classmethod
     async def open(cls, url: str, upgrade: bool = True) -> Store:
@@ -243,6 +248,7 @@ class Store:
             name=spec.name,
             tags=list(spec.tags),
             expected_sysid=spec.expected_sysid,
+            node_tag=spec.node_tag,
             auto_connect=auto_connect,
             created_at=now,
             updated_at=now,
@@ -256,7 +262,7 @@ class Store:
             raise DuplicateVehicle(f"a drone with id '{spec.id}' is already registered", id=spec.id) from exc
         return VehicleRecord.model_validate(row)
 
-    _UPDATABLE = frozenset({"name", "tags", "expected_sysid", "url", "auto_connect"})
+    _UPDATABLE = frozenset({"name", "tags", "expected_sysid", "node_tag", "url", "auto_connect"})
 
     async def update_vehicle(self, vehicle_id: str, **changes: Any) -> VehicleRecord:
         unknown = sorted(set(changes) - self._UPDATABLE)
@@ -283,6 +289,7 @@ class Store:
             row.name = spec.name
             row.tags = list(spec.tags)
             row.expected_sysid = spec.expected_sysid
+            row.node_tag = spec.node_tag
             row.auto_connect = auto_connect
             row.updated_at = utcnow()
         return VehicleRecord.model_validate(row)
@@ -290,7 +297,7 @@ class Store:
     async def remove_vehicle(self, vehicle_id: str) -> None:
         async with self._sessions.begin() as session:
             result = await session.execute(delete(VehicleRow).where(VehicleRow.id == vehicle_id))
-            if result.rowcount == 0:
+            if _rowcount(result) == 0:
                 raise NotFound(f"no drone with id '{vehicle_id}' is registered", id=vehicle_id)
 
     async def get_vehicle(self, vehicle_id: str) -> VehicleRecord | None:
@@ -359,7 +366,7 @@ class Store:
             return 0
         rows = [s.model_dump() for s in samples]
         async with self._sessions.begin() as session:
-            await session.execute(TrackSampleRow.__table__.insert(), rows)
+            await session.execute(insert(TrackSampleRow), rows)
         return len(rows)
 
     async def add_status_texts(self, items: Sequence[StatusTextIn]) -> int:
@@ -367,7 +374,7 @@ class Store:
             return 0
         rows = [i.model_dump() for i in items]
         async with self._sessions.begin() as session:
-            await session.execute(StatusTextRow.__table__.insert(), rows)
+            await session.execute(insert(StatusTextRow), rows)
         return len(rows)
 
     async def list_flights(
@@ -427,6 +434,18 @@ class Store:
         async with self._sessions() as session:
             rows = (await session.scalars(query)).all()
             return [StatusTextRecord.model_validate(r) for r in reversed(rows)]
+
+    async def list_flight_status_texts(self, flight_id: int, limit: int = 500) -> list[StatusTextRecord]:
+        """The status texts received during a flight, oldest first (at most ``limit``, the first ones)."""
+        query = (
+            select(StatusTextRow)
+            .where(StatusTextRow.flight_id == flight_id)
+            .order_by(StatusTextRow.t, StatusTextRow.id)
+            .limit(limit)
+        )
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [StatusTextRecord.model_validate(r) for r in rows]
 
     # --- sessions --------------------------------------------------------------------------------
 
@@ -503,6 +522,28 @@ class Store:
 
     # --- audit -----------------------------------------------------------------------------------
 
+    def on_audit(self, listener: AuditListener) -> Callable[[], None]:
+        """Call ``listener`` with every audit row written (or finished) through this store, after it is
+        committed; returns the function that removes it. Listeners run in the writer's task: keep them
+        quick and non-blocking (the live event stream queues the row and returns)."""
+        self._audit_listeners.append(listener)
+
+        def remove() -> None:
+            if listener in self._audit_listeners:
+                self._audit_listeners.remove(listener)
+
+        return remove
+
+    def _audit_written(self, row: AuditRow) -> None:
+        if not self._audit_listeners:
+            return
+        record = AuditRecord.model_validate(row)
+        for listener in list(self._audit_listeners):
+            try:
+                listener(record)
+            except Exception:  # a broken listener must not fail the audited call
+                log.exception("audit listener failed")
+
     async def add_audit(self, entry: AuditEntry) -> int:
         row = AuditRow(
             t=entry.t or utcnow(),
@@ -515,26 +556,38 @@ class Store:
             outcome=entry.outcome,
             error=entry.error and entry.error[:AUDIT_MAX_ERROR],
             duration_ms=entry.duration_ms,
+            operation_id=entry.operation_id,
         )
         async with self._sessions.begin() as session:
             session.add(row)
             await session.flush()
-            return int(row.id)
+            row_id = int(row.id)
+        self._audit_written(row)
+        if entry.outcome == "running" and entry.operation_id is not None:
+            # the operation may have ended before this row was written: then nobody else closes it
+            op = await self.get_operation(entry.operation_id)
+            if op is not None and op.status != "running":
+                await self._finish_audit_of(entry.operation_id, op.status, op.message)
+        return row_id
 
-    async def finish_audit(self, row_id: int, outcome: str, error: str | None) -> None:
-        """Record how the action of an audit row ended (a call that returned while it was running)."""
-        async with self._sessions.begin() as session:
-            row = await session.get(AuditRow, row_id)
-            if row is not None:
-                row.outcome = outcome[:16]
-                row.error = error and error[:AUDIT_MAX_ERROR]
-
-    def _audit_conditions(self, vehicle_id: str | None, session_key: str | None) -> list[Any]:
-        conditions = []
+    def _audit_conditions(
+        self,
+        vehicle_id: str | None,
+        session_key: str | None,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        include_fleet: bool = False,
+    ) -> list[Any]:
+        conditions: list[Any] = []
         if vehicle_id is not None:
-            conditions.append(AuditRow.vehicle_id == vehicle_id)
+            same = AuditRow.vehicle_id == vehicle_id
+            conditions.append(or_(same, AuditRow.vehicle_id.is_(None)) if include_fleet else same)
         if session_key is not None:
             conditions.append(AuditRow.session_key == session_key)
+        if since is not None:
+            conditions.append(AuditRow.t >= since)
+        if until is not None:
+            conditions.append(AuditRow.t <= until)
         return conditions
 
     async def list_audit(
@@ -543,11 +596,17 @@ class Store:
         session_key: str | None = None,
         limit: int = 100,
         offset: int = 0,
+        *,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        include_fleet: bool = False,
     ) -> list[AuditRecord]:
-        """Audit entries, newest first."""
+        """Audit entries, newest first; ``since``/``until`` bound their time (inclusive).
+        ``include_fleet`` adds, to a ``vehicle_id`` filter, the rows that name no single vehicle
+        (fleet-wide calls)."""
         query = (
             select(AuditRow)
-            .where(*self._audit_conditions(vehicle_id, session_key))
+            .where(*self._audit_conditions(vehicle_id, session_key, since, until, include_fleet))
             .order_by(AuditRow.t.desc(), AuditRow.id.desc())
             .limit(limit)
             .offset(offset)
@@ -556,15 +615,25 @@ class Store:
             rows = (await session.scalars(query)).all()
             return [AuditRecord.model_validate(r) for r in rows]
 
-    async def count_audit(self, vehicle_id: str | None = None, session_key: str | None = None) -> int:
+    async def count_audit(
+        self,
+        vehicle_id: str | None = None,
+        session_key: str | None = None,
+        *,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        include_fleet: bool = False,
+    ) -> int:
         query = select(func.count()).select_from(AuditRow)
-        query = query.where(*self._audit_conditions(vehicle_id, session_key))
+        query = query.where(*self._audit_conditions(vehicle_id, session_key, since, until, include_fleet))
         async with self._sessions() as session:
             return int((await session.execute(query)).scalar_one())
 
     # --- operations ------------------------------------------------------------------------------
 
     async def save_operation(self, op: OperationRecord) -> OperationRecord:
+        """Insert or update; an operation that has ended also finishes the audit rows of the calls that
+        left it running (whichever node ends it: its owner, or the node that took the drone over)."""
         values = op.model_dump()
         async with self._sessions.begin() as session:
             row = await session.get(OperationRow, op.id)
@@ -574,7 +643,22 @@ class Store:
                 for key, value in values.items():
                     if key != "id":
                         setattr(row, key, value)
+        if op.status != "running":
+            await self._finish_audit_of(op.id, op.status, op.message)
         return op
+
+    async def _finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
+        outcome = AUDIT_OUTCOME_OF_OPERATION.get(status, "error")
+        async with self._sessions.begin() as session:
+            query = select(AuditRow).where(
+                AuditRow.operation_id == operation_id, AuditRow.outcome == "running"
+            )
+            rows = (await session.scalars(query)).all()
+            for row in rows:
+                row.outcome = outcome
+                row.error = None if outcome == "ok" else (message or status)[:AUDIT_MAX_ERROR]
+        for row in rows:  # the console's audit stream shows the row again, finished
+            self._audit_written(row)
 
     async def get_operation(self, operation_id: str) -> OperationRecord | None:
         async with self._sessions() as session:
@@ -613,7 +697,7 @@ class Store:
         """Remove the lock of ``scope``; False when there was none."""
         async with self._sessions.begin() as session:
             result = await session.execute(delete(LockRow).where(LockRow.scope == scope))
-            return bool(result.rowcount)
+            return bool(_rowcount(result))
 
     async def list_locks(self) -> list[LockRecord]:
         async with self._sessions() as session:
@@ -647,5 +731,10 @@ class Store:
             ]
             for name, statement in steps:
                 result = await session.execute(statement.execution_options(synchronize_session=False))
-                counts[name] = int(result.rowcount or 0)
+                counts[name] = _rowcount(result)
         return counts
+
+
+def _rowcount(result: object) -> int:
+    """Rows a DELETE/UPDATE touched (``Session.execute`` is typed as returning a plain ``Result``)."""
+    return int(result.rowcount or 0) if isinstance(result, CursorResult) else 0

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import httpx
 import pytest
 from mcp import Client
 from mcp.types import Implementation
@@ -33,12 +34,24 @@ async def test_takeoff_then_goto_at_once_is_refused_and_limits_hold_on_real_ardu
     with serve_in_thread(app) as base_url:
         client = Client(f"{base_url}/mcp", client_info=Implementation(name="real-paper", version="1.0"))
         async with client as c:
+            seen: list[tuple[str, str | None, str, str | None]] = []  # list_drones and REST, while waiting
 
             async def ready() -> bool:
-                rows = structured(await c.call_tool("list_drones", {}))["drones"]
-                return rows[0]["state"] == "ready"
+                listed = await c.call_tool("list_drones", {})
+                row = structured(listed)["drones"][0]
+                async with httpx.AsyncClient(base_url=base_url) as http:
+                    rest = (await http.get("/api/v1/vehicles/ap1")).json()
+                rest_waits = rest["status"]["initialising"]
+                seen.append((row["state"], row["initialising"], rest["state"], rest_waits))
+                if row["initialising"]:
+                    assert f"ap1 connected ({row['initialising']})" in listed.content[0].text
+                return row["state"] == "ready"
 
             await eventually(ready, "ap1 ready", within_s=120)
+            # GPS and home long before the EKF uses GPS: "connected (waiting for the position estimate)"
+            estimate = "waiting for the position estimate (the EKF is not using GPS yet)"
+            assert ("connected", estimate, "connected", estimate) in seen, seen
+            assert seen[-1] == ("ready", None, "ready", None), seen
             home = structured(await c.call_tool("get_position", {"drone_id": "ap1"}))
             lat, lon = geo.offset_position(home["lat_deg"], home["lon_deg"], 40.0, 0.0)
             goto = {"drone_id": "ap1", "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 10}

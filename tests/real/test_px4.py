@@ -53,3 +53,28 @@ async def test_px4_refuses_a_bad_mission_unarmed_and_flies_a_good_one_at_its_alt
     assert (await v.get_param("RTL_RETURN_ALT"))[0] == pytest.approx(20.0)
     await v.set_flight_mode("RTL")
     await until("landed and disarmed", lambda: v.telemetry.fresh("armed") is False, 180, v)
+
+
+async def test_px4_is_initialising_until_it_can_arm_and_a_refusal_says_why(px4, registry):
+    v = await registry.add(VehicleSpec(id="px2", url=px4.url))
+    waits: list[str] = []
+
+    def ready() -> bool:
+        waiting = v.status()["initialising"]  # what REST and list_drones show
+        if waiting and waiting not in waits:
+            waits.append(waiting)
+        return v.state == ConnectionState.READY
+
+    await until("ready", ready, 90, v)
+    # PX4 SIH has its GPS position within seconds: how many steps are seen depends on the machine's load
+    assert waits and all(w.startswith("waiting for ") for w in waits), waits
+    assert v.status()["initialising"] is None
+    await v.arm()  # at once after "ready"
+    await until("armed", lambda: v.telemetry.fresh("armed") is True, 20, v)
+    await v.disarm()
+    await until("disarmed", lambda: v.telemetry.fresh("armed") is False, 20, v)
+
+    await v.set_flight_mode("LAND")
+    with pytest.raises(CommandFailed, match=r"'px2' refused to arm: autopilot says '(Arming|Preflight)"):
+        await v.arm()  # PX4 does not arm in LAND
+    assert v.telemetry.fresh("armed") is False
