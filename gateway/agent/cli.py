@@ -38,7 +38,7 @@ answer (empty replies, even after being asked again twice).
 """
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "agent",
         help=COMMANDS["agent"][1],
@@ -182,7 +182,7 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
             host = AgentHost(
                 ModelConfig(
                     endpoint=args.endpoint or env.endpoint,
-                    model=model_name,
+                    model=model_name or "",
                     api_key=env.resolved_api_key(),
                     temperature=None
                     if args.temperature is not None and args.temperature < 0

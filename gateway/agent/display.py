@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 import sys
-from typing import Any, TextIO
+from typing import IO, Any
 
 from rich.console import Console
 from rich.markup import escape
@@ -25,7 +25,7 @@ _STATUS_STYLE = {
 class JsonLinesDisplay:
     """One JSON object per event, flushed at once, so a pipe sees the flight as it happens."""
 
-    def __init__(self, stream: TextIO | None = None) -> None:
+    def __init__(self, stream: IO[str] | None = None) -> None:
         self.stream = stream or sys.stdout
 
     def __call__(self, event: AgentEvent) -> None:
@@ -150,7 +150,7 @@ class RichDisplay:
 
 def _progress_text(d: dict[str, Any]) -> str:
     p, total, msg = d.get("progress"), d.get("total"), d.get("message")
-    if total:
+    if total and isinstance(p, int | float):
         head = f"{100.0 * float(p) / float(total):.0f}%"
     else:
         head = f"{p:g}" if isinstance(p, (int, float)) else ""

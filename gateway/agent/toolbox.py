@@ -64,7 +64,7 @@ def toolset_of(meta: Mapping[str, Any]) -> str | None:
             return value
     for value in meta.values():
         if isinstance(value, Mapping) and isinstance(value.get("toolset"), str):
-            return value["toolset"]
+            return str(value["toolset"])
     return None
 
 
