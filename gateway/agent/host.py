@@ -480,7 +480,7 @@ class AgentHost:
                 outcome = await self.caller.call_tool(name, args, progress)
                 status = "error" if outcome.is_error else "ok"
                 if outcome.is_error:
-                    note = self._takeoff_first(name, args) + _down_note(args, outcome.text)
+                    note = self._takeoff_first(name, args)
                     outcome = ToolOutcome(outcome.text + note, True, outcome.structured)
         if status in ("invalid", "error") and self._same_invalid_again(name, args, turn):
             outcome = ToolOutcome(
@@ -584,17 +584,6 @@ class AgentHost:
             parts.append(hint)
         parts.append(f"Available tools: {', '.join(sorted(self.tools))}. Nothing was executed.")
         return " ".join(parts)
-
-
-def _down_note(args: dict[str, Any], error: str) -> str:
-    """A positive down_m refused for going below home: the model meant higher (measured: the 1.5B model
-    wrote down_m=10 for "10 m higher" 15 times in a row)."""
-    down = args.get("down_m")
-    if not isinstance(down, int | float) or down <= 0 or "above home" not in error:
-        return ""
-    return (
-        f" (Host note: down_m {down:g} means {down:g} m lower; to go {down:g} m higher use down_m -{down:g}.)"
-    )
 
 
 def _pending_text(result: TurnResult) -> str:

@@ -284,13 +284,3 @@ async def test_calls_skipped_after_a_failure_are_shown_as_still_to_do_until_they
     assert "move_north" not in after_takeoff.split("Not sent yet")[1]
     assert pending in after_move
     assert "Not sent yet" not in after_land
-
-
-def test_a_positive_down_m_refused_below_home_is_explained() -> None:
-    from gateway.agent.host import _down_note
-
-    text = "altitude_m -0.3 is not above home; give a flying altitude > 0 m above home"
-    assert _down_note({"down_m": 10}, text) == (
-        " (Host note: down_m 10 means 10 m lower; to go 10 m higher use down_m -10.)"
-    )
-    assert _down_note({"down_m": -10}, text) == "" and _down_note({"down_m": 10}, "busy") == ""
