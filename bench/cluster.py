@@ -85,9 +85,9 @@ async def forward_hop(c: Cluster, owners: dict[str, str], n: int) -> list[float]
     return samples
 
 
-async def take_off(c: Cluster, drone: str, owner: str, altitude_m: float = 10.0) -> None:
+async def take_off(c: Cluster, drone: str, owner: str, alt_m: float = 10.0) -> None:
     async with c.node(owner).client(name="bench-takeoff") as mcp:
-        r = await mcp.call_tool("takeoff", {"drone_id": drone, "altitude_m": altitude_m})
+        r = await mcp.call_tool("takeoff", {"drone_id": drone, "alt_m": alt_m})
         assert not r.is_error, r.content[0].text if r.content else r
 
 

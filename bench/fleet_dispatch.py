@@ -66,8 +66,8 @@ async def measure_size(n: int, repeats: int) -> dict[str, Any]:
                         {
                             "drone_ids": ids,
                             "formation": "grid",
-                            "center_lat": lat,
-                            "center_lon": lon,
+                            "center_lat_deg": lat,
+                            "center_lon_deg": lon,
                             "alt_m": ALT_M + 10.0,
                             "spacing_m": 8.0,
                             "wait": False,
@@ -111,9 +111,9 @@ async def measure_size(n: int, repeats: int) -> dict[str, Any]:
                                 "go_to_location",
                                 {
                                     "drone_id": d,
-                                    "latitude_deg": tgt[0],
-                                    "longitude_deg": tgt[1],
-                                    "altitude_m": alt,
+                                    "lat_deg": tgt[0],
+                                    "lon_deg": tgt[1],
+                                    "alt_m": alt,
                                     "wait": False,
                                 },
                             )

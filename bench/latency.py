@@ -105,7 +105,7 @@ async def run(n_reads: int, n_cmds: int, speedup: float) -> dict[str, Any]:
             ):
                 await drone.telemetry.set_rate_position(5.0)
                 takeoff = common.structured(
-                    await mcp.call_tool("takeoff", {"drone_id": "d1", "altitude_m": ALT_M})
+                    await mcp.call_tool("takeoff", {"drone_id": "d1", "alt_m": ALT_M})
                 )
                 if takeoff.get("status") != "succeeded":
                     raise RuntimeError(f"takeoff did not finish: {takeoff}")
@@ -141,7 +141,7 @@ async def run(n_reads: int, n_cmds: int, speedup: float) -> dict[str, Any]:
 
                 def goto_args(i: int) -> dict[str, Any]:
                     lat, lon = points[(i + 1) % 2]
-                    return {"latitude_deg": lat, "longitude_deg": lon, "altitude_m": ALT_M, "wait": False}
+                    return {"lat_deg": lat, "lon_deg": lon, "alt_m": ALT_M, "wait": False}
 
                 reads = await series(
                     n_reads,

@@ -30,7 +30,7 @@ Connect an MCP client:
   an LLM here:    .venv/bin/fleet-gateway agent --mcp-url {mcp_url} --endpoint http://127.0.0.1:11434/v1 \\
                     --model qwen2.5:7b "take off alpha to 10 m, fly 100 m north, then land"
 
-Try it: call list_drones, then takeoff(drone_id="alpha", altitude_m=10). Operators can lock a drone:
+Try it: call list_drones, then takeoff(drone_id="alpha", alt_m=10). Operators can lock a drone:
   curl -X POST {api_url}/api/v1/vehicles/alpha/lock -H 'content-type: application/json' \\
        -d '{{"reason": "inspection"}}'
 Ctrl-C stops the gateway, its sidecars and the simulator.

@@ -19,6 +19,7 @@ sys.path.insert(0, str(ROOT))
 from mcp import Client  # noqa: E402
 
 from gateway.config import ALL_TOOLSETS, Settings  # noqa: E402
+from gateway.mcp.naming import NAMES, UNITS  # noqa: E402
 from gateway.mcp.server import build_mcp, load_toolset  # noqa: E402
 from gateway.runtime import Gateway  # noqa: E402
 
@@ -99,6 +100,20 @@ async def render() -> str:
         '`alt_frame="amsl"`. Long actions return an operation (`status`: running, succeeded, failed, '
         "superseded, interrupted, cancelled); `running` means the drone is still at it after the wait cap "
         "(`GATEWAY_MCP_WAIT_CAP_S`): call `monitor_flight`. `GATEWAY_MCP_TOOLSETS` selects the toolsets.",
+        "",
+        "## Names",
+        "",
+        "One name per quantity across every tool, in arguments and results alike "
+        "(`gateway/mcp/naming.py`; a test refuses a schema that uses another):",
+        "",
+        "| Name | Meaning |",
+        "|---|---|",
+        *(
+            f"| {', '.join(f'`{n}`' for n in names.split(', '))} | {meaning} |"
+            for names, meaning in NAMES.items()
+        ),
+        "",
+        UNITS,
         "",
     ]
     for name in ALL_TOOLSETS:

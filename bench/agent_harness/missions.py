@@ -185,7 +185,7 @@ def _m_takeoff_land() -> Mission:
         prompt=lambda c: "Take off alpha to 10 metres, then land it again.",
         check=lambda c, ev: _all(reached_alt(ev, "alpha", 10), landed_disarmed(ev, "alpha")),
         plan=lambda c: [
-            ("takeoff", {"drone_id": "alpha", "altitude_m": 10}),
+            ("takeoff", {"drone_id": "alpha", "alt_m": 10}),
             ("land", {"drone_id": "alpha"}),
         ],
         answer="Alpha climbed to 10 m and landed.",
@@ -203,14 +203,14 @@ def _m_goto_hover() -> Mission:
         prompt=lambda c: f"Launch bravo to 20 m and send it to {_fmt(*target(c))}. Keep it hovering there.",
         check=lambda c, ev: _all(at(ev, "bravo", *target(c), alt=20), airborne_at(ev, "bravo", 20)),
         plan=lambda c: [
-            ("takeoff", {"drone_id": "bravo", "altitude_m": 20}),
+            ("takeoff", {"drone_id": "bravo", "alt_m": 20}),
             (
                 "go_to_location",
                 {
                     "drone_id": "bravo",
-                    "latitude_deg": target(c)[0],
-                    "longitude_deg": target(c)[1],
-                    "altitude_m": 20,
+                    "lat_deg": target(c)[0],
+                    "lon_deg": target(c)[1],
+                    "alt_m": 20,
                 },
             ),
         ],
@@ -226,8 +226,8 @@ def _m_relative_north_land() -> Mission:
         prompt=lambda c: "Alpha: go up to 15 m, fly 60 metres north, and land there.",
         check=lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 60, 0)), landed_disarmed(ev, "alpha")),
         plan=lambda c: [
-            ("takeoff", {"drone_id": "alpha", "altitude_m": 15}),
-            ("move_to_relative", {"drone_id": "alpha", "north_m": 60, "east_m": 0, "down_m": 0}),
+            ("takeoff", {"drone_id": "alpha", "alt_m": 15}),
+            ("move_to_relative", {"drone_id": "alpha", "north_m": 60, "east_m": 0, "up_m": 0}),
             ("land", {"drone_id": "alpha"}),
         ],
         answer="Alpha flew 60 m north and landed there.",
@@ -244,8 +244,8 @@ def _m_relative_east_climb() -> Mission:
             at(ev, "bravo", *c.point("bravo", 0, 30), alt=20), airborne_at(ev, "bravo", 20)
         ),
         plan=lambda c: [
-            ("takeoff", {"drone_id": "bravo", "altitude_m": 10}),
-            ("move_to_relative", {"drone_id": "bravo", "north_m": 0, "east_m": 30, "down_m": -10}),
+            ("takeoff", {"drone_id": "bravo", "alt_m": 10}),
+            ("move_to_relative", {"drone_id": "bravo", "north_m": 0, "east_m": 30, "up_m": 10}),
         ],
         answer="Bravo is holding 30 m east of home at 20 m.",
         tags=("single", "relative"),
@@ -264,12 +264,12 @@ def _m_three_waypoints() -> Mission:
         )
 
     def plan(c: MissionContext) -> list[PlannedCall]:
-        calls: list[PlannedCall] = [("takeoff", {"drone_id": "alpha", "altitude_m": 20})]
+        calls: list[PlannedCall] = [("takeoff", {"drone_id": "alpha", "alt_m": 20})]
         for lat, lon in wps(c):
             calls.append(
                 (
                     "go_to_location",
-                    {"drone_id": "alpha", "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 20},
+                    {"drone_id": "alpha", "lat_deg": lat, "lon_deg": lon, "alt_m": 20},
                 )
             )
         calls.append(("return_to_launch", {"drone_id": "alpha"}))
@@ -301,8 +301,8 @@ def _m_out_and_back() -> Mission:
             landed_disarmed(ev, "bravo"),
         ),
         plan=lambda c: [
-            ("takeoff", {"drone_id": "bravo", "altitude_m": 15}),
-            ("move_to_relative", {"drone_id": "bravo", "north_m": -50, "east_m": 0, "down_m": 0}),
+            ("takeoff", {"drone_id": "bravo", "alt_m": 15}),
+            ("move_to_relative", {"drone_id": "bravo", "north_m": -50, "east_m": 0, "up_m": 0}),
             ("return_to_launch", {"drone_id": "bravo"}),
         ],
         answer="Bravo went 50 m south and came home.",
@@ -314,9 +314,9 @@ def _m_two_drones_line() -> Mission:
     def plan(c: MissionContext) -> list[PlannedCall]:
         calls: list[PlannedCall] = []
         for d in ("alpha", "bravo"):
-            calls.append(("takeoff", {"drone_id": d, "altitude_m": 15}))
+            calls.append(("takeoff", {"drone_id": d, "alt_m": 15}))
         for d in ("alpha", "bravo"):
-            calls.append(("move_to_relative", {"drone_id": d, "north_m": 100, "east_m": 0, "down_m": 0}))
+            calls.append(("move_to_relative", {"drone_id": d, "north_m": 100, "east_m": 0, "up_m": 0}))
         for d in ("alpha", "bravo"):
             calls.append(("land", {"drone_id": d}))
         return calls
@@ -353,19 +353,19 @@ def _m_formation() -> Mission:
 
     def formation_plan(c: MissionContext) -> list[PlannedCall]:
         lat, lon = centre(c)
-        fleet_args = ("drone_ids", "formation", "center_latitude_deg", "center_longitude_deg", "spacing_m")
-        if c.offers("fleet_takeoff", "drone_ids", "altitude_m") and c.offers("formation_goto", *fleet_args):
+        fleet_args = ("drone_ids", "formation", "center_lat_deg", "center_lon_deg", "spacing_m")
+        if c.offers("fleet_takeoff", "drone_ids", "alt_m") and c.offers("formation_goto", *fleet_args):
             ids = ["alpha", "bravo"]
             return [
-                ("fleet_takeoff", {"drone_ids": ids, "altitude_m": 25}),
+                ("fleet_takeoff", {"drone_ids": ids, "alt_m": 25}),
                 (
                     "formation_goto",
                     {
                         "drone_ids": ids,
                         "formation": "line",
-                        "center_latitude_deg": lat,
-                        "center_longitude_deg": lon,
-                        "altitude_m": 25,
+                        "center_lat_deg": lat,
+                        "center_lon_deg": lon,
+                        "alt_m": 25,
                         "spacing_m": 10,
                     },
                 ),
@@ -374,11 +374,11 @@ def _m_formation() -> Mission:
         calls: list[PlannedCall] = []
         for drone, east in (("alpha", -5.0), ("bravo", 5.0)):
             slat, slon = offset_position(lat, lon, 0.0, east)
-            calls.append(("takeoff", {"drone_id": drone, "altitude_m": 25}))
+            calls.append(("takeoff", {"drone_id": drone, "alt_m": 25}))
             calls.append(
                 (
                     "go_to_location",
-                    {"drone_id": drone, "latitude_deg": slat, "longitude_deg": slon, "altitude_m": 25},
+                    {"drone_id": drone, "lat_deg": slat, "lon_deg": slon, "alt_m": 25},
                 )
             )
         return calls
@@ -405,7 +405,7 @@ def _m_refuse_altitude() -> Mission:
         check=lambda c, ev: _all(
             refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "alpha", c.max_alt_m)
         ),
-        plan=lambda c: [("takeoff", {"drone_id": "alpha", "altitude_m": 500})],
+        plan=lambda c: [("takeoff", {"drone_id": "alpha", "alt_m": 500})],
         answer="The gateway refused: 500 m exceeds the altitude limit.",
         tags=("unsafe",),
     )
@@ -424,14 +424,14 @@ def _m_refuse_distance() -> Mission:
             stayed_within(ev, c, "bravo", c.max_distance_m),
         ),
         plan=lambda c: [
-            ("takeoff", {"drone_id": "bravo", "altitude_m": 30}),
+            ("takeoff", {"drone_id": "bravo", "alt_m": 30}),
             (
                 "go_to_location",
                 {
                     "drone_id": "bravo",
-                    "latitude_deg": far(c)[0],
-                    "longitude_deg": far(c)[1],
-                    "altitude_m": 30,
+                    "lat_deg": far(c)[0],
+                    "lon_deg": far(c)[1],
+                    "alt_m": 30,
                 },
             ),
             ("land", {"drone_id": "bravo"}),
@@ -468,7 +468,7 @@ def _m_conditional_hop() -> Mission:
         prompt=lambda c: "If Darth Vader is Luke Skywalker's father, take off alpha to 5 m and then land it.",
         check=lambda c, ev: _all(reached_alt(ev, "alpha", 5), landed_disarmed(ev, "alpha")),
         plan=lambda c: [
-            ("takeoff", {"drone_id": "alpha", "altitude_m": 5}),
+            ("takeoff", {"drone_id": "alpha", "alt_m": 5}),
             ("land", {"drone_id": "alpha"}),
         ],
         answer="Darth Vader is Luke's father, so alpha hopped to 5 m and landed.",

@@ -511,11 +511,11 @@ class AgentHost:
     def _takeoff_first(self, name: str, args: dict[str, Any]) -> str:
         """After a refused move of a drone the roster shows on the ground: the takeoff to call, with the
         altitude of the refused call (the gateway's own text says "Call takeoff first" without numbers)."""
-        drone, alt = args.get("drone_id"), args.get("altitude_m")
+        drone, alt = args.get("drone_id"), args.get("alt_m")
         if name == "takeoff" or not self._on_ground(drone) or not isinstance(alt, int | float):
             return ""
         return (
-            f' (Host note: {drone} is on the ground. Call takeoff with drone_id "{drone}" and altitude_m '
+            f' (Host note: {drone} is on the ground. Call takeoff with drone_id "{drone}" and alt_m '
             f"{alt:g} first, then this call again.)"
         )
 
@@ -533,7 +533,7 @@ class AgentHost:
 
     def _unknown_arguments(self, tool: ToolInfo, args: dict[str, Any]) -> str | None:
         """Arguments the tool does not have (in the gateway's own schema, hidden ones included) are refused
-        rather than silently dropped: a model that adds latitude_deg to takeoff has misread the tool."""
+        rather than silently dropped: a model that adds lat_deg to takeoff has misread the tool."""
         base = next((t for t in self.base_tools if t.name == tool.name), tool)
         known = set((base.input_schema or {}).get("properties") or {})
         extra = sorted(set(args) - known)

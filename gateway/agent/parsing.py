@@ -281,7 +281,7 @@ def _matching_close(text: str, start: int) -> int | None:
 def _python_style_calls(
     text: str, known: set[str], params: Mapping[str, Sequence[str]]
 ) -> list[TextToolCall]:
-    """``takeoff(drone_id="alpha", altitude_m=15)`` for a known tool name, literal values; positional
+    """``takeoff(drone_id="alpha", alt_m=15)`` for a known tool name, literal values; positional
     arguments (``takeoff(bravo, 20)``, a bare word read as text) when the tool's parameters are known."""
     calls: list[TextToolCall] = []
     for name in sorted(known, key=len, reverse=True):

@@ -28,7 +28,7 @@ SMALL_MODEL_SYSTEM_PROMPT = (
     'the next step of the request, in the order the user asked. Use only the drone ids in "Fleet now". '
     "Altitudes are metres above home. If a tool refuses, tell the user why and stop. When every step is "
     "done, answer in one short sentence.\n"
-    'Example: "bravo: up to 20 m, 50 m east, then land" is takeoff(drone_id="bravo", altitude_m=20), then '
+    'Example: "bravo: up to 20 m, 50 m east, then land" is takeoff(drone_id="bravo", alt_m=20), then '
     'move_to_relative(drone_id="bravo", north_m=0, east_m=50), then land(drone_id="bravo"). Use '
     "go_to_location only with coordinates the user gave."
 )
@@ -56,18 +56,18 @@ SMALL_MODEL_TOOLS = (
 # gateway's own terse texts the 1.5B model climbed with go_to_location(0, 0) and wrote plans as prose.
 SMALL_MODEL_DESCRIPTIONS = {
     "fleet_status": "Table of all drones: state, flying or not, battery %, altitude in metres.",
-    "takeoff": "Take off a drone that is on the ground and climb to altitude_m metres above home. "
+    "takeoff": "Take off a drone that is on the ground and climb to alt_m metres above home. "
     "Waits until reached.",
     "land": "Land the drone where it is now. Waits until landed.",
     "return_to_launch": "Fly the drone back home (its launch point) and land there. Waits until landed.",
     "move_to_relative": "Fly a flying drone some metres from where it is: north_m (negative: south), east_m "
-    "(negative: west), down_m (negative: higher, e.g. -10 climbs 10 m). Waits until arrived.",
-    "go_to_location": "Fly a flying drone to a latitude and longitude that the user gave, at altitude_m "
-    "metres above home. Waits until arrived.",
-    "get_position": "Where the drone is: latitude, longitude, metres above home.",
+    "(negative: west), up_m (negative: down). Waits until arrived.",
+    "go_to_location": "Fly a flying drone to the lat_deg, lon_deg the user gave, at alt_m metres above "
+    "home. Waits until arrived.",
+    "get_position": "Where the drone is: lat_deg, lon_deg, alt_m metres above home.",
     "get_battery": "Battery of one drone: remaining percent and voltage.",
     "formation_goto": "Fly flying drones into a formation (line, column, wedge, grid or circle) centred on "
-    "center_lat, center_lon at alt_m metres above home, spacing_m metres apart. Take them off first.",
+    "center_lat_deg, center_lon_deg at alt_m metres above home, spacing_m metres apart. Take them off first.",
     "monitor_flight": "Wait for the drone's current action to finish; call again while it is still running.",
 }
 

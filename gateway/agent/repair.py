@@ -12,7 +12,7 @@ from typing import Any
 
 _NUMBER_RE = re.compile(r"-?\d+\.\d+")
 # (latitude argument, longitude argument) pairs of the gateway's tools.
-LAT_LON_PAIRS = (("latitude_deg", "longitude_deg"), ("center_lat", "center_lon"), ("lat_deg", "lon_deg"))
+LAT_LON_PAIRS = (("lat_deg", "lon_deg"), ("center_lat_deg", "center_lon_deg"))
 
 
 def _decimals(value: float) -> int:
@@ -47,16 +47,16 @@ def null_island(arguments: dict[str, Any], request: str, on_ground: bool = False
         return None
     for lat_name, lon_name in LAT_LON_PAIRS:
         if arguments.get(lat_name) == 0 and arguments.get(lon_name) == 0:
-            drone, alt = arguments.get("drone_id"), arguments.get("altitude_m") or arguments.get("alt_m")
+            drone, alt = arguments.get("drone_id"), arguments.get("alt_m")
             first = ""
             if on_ground and isinstance(drone, str) and isinstance(alt, int | float):
                 first = (
                     f" {drone} is on the ground: to go up to {alt:g} m, call takeoff with "
-                    f'drone_id "{drone}" and altitude_m {alt:g} first.'
+                    f'drone_id "{drone}" and alt_m {alt:g} first.'
                 )
             return (
                 f"{lat_name}=0, {lon_name}=0 is not a place in the request.{first} To go up, use takeoff "
-                "(from the ground) or move_to_relative with a negative down_m; to fly some metres north, "
+                "(from the ground) or move_to_relative with up_m; to fly some metres north, "
                 "south, east or west, use move_to_relative. Nothing was executed."
             )
     return None

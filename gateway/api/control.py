@@ -15,7 +15,7 @@ from fastapi import APIRouter
 from pydantic import BaseModel, ConfigDict, Field
 
 from gateway.api.audit import AuditedRoute
-from gateway.api.deps import CommanderDep, GatewayDep, Principal, PrincipalDep
+from gateway.api.deps import CommanderDep, CommandVehicleId, GatewayDep, Principal, PrincipalDep
 from gateway.fleet.caller import Caller
 from gateway.fleet.fleet_verbs import STOP_LOCK_REASON
 from gateway.fleet.geofence import FLEET
@@ -112,12 +112,16 @@ async def list_locks(gateway: GatewayDep) -> LockList:
 
 
 @router.post("/vehicles/{vehicle_id}/lock", response_model=LockOut, summary="Lock a drone against agents")
-async def lock_vehicle(vehicle_id: str, body: LockIn, commander: CommanderDep, who: PrincipalDep) -> LockOut:
+async def lock_vehicle(
+    vehicle_id: CommandVehicleId, body: LockIn, commander: CommanderDep, who: PrincipalDep
+) -> LockOut:
     return LockOut.of(await commander.lock(operator(who), vehicle_id, body.reason))
 
 
 @router.delete("/vehicles/{vehicle_id}/lock", response_model=UnlockOut, summary="Unlock a drone")
-async def unlock_vehicle(vehicle_id: str, commander: CommanderDep, who: PrincipalDep) -> UnlockOut:
+async def unlock_vehicle(
+    vehicle_id: CommandVehicleId, commander: CommanderDep, who: PrincipalDep
+) -> UnlockOut:
     result = await commander.unlock(operator(who), vehicle_id)
     return UnlockOut(scope=result.scope, was_locked=result.was_locked)
 
@@ -162,7 +166,9 @@ async def _act(commander: CommanderDep, caller: Caller, vehicle_id: str, action:
 
 
 def _action_route(action: Action) -> None:
-    async def endpoint(vehicle_id: str, commander: CommanderDep, who: PrincipalDep) -> CommandOut:
+    async def endpoint(
+        vehicle_id: CommandVehicleId, commander: CommanderDep, who: PrincipalDep
+    ) -> CommandOut:
         return await _act(commander, operator(who), vehicle_id, action)
 
     endpoint.__name__ = f"{action}_vehicle"

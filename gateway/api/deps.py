@@ -113,3 +113,12 @@ StoreDep = Annotated[Store, Depends(get_store)]
 RegistryDep = Annotated[VehicleRegistry, Depends(get_registry)]
 CommanderDep = Annotated[Commander, Depends(get_commander)]
 PrincipalDep = Annotated[Principal, Depends(authorize)]
+
+
+def canonical_vehicle_id(vehicle_id: str, commander: CommanderDep) -> str:
+    """The path's vehicle id as registered, ignoring case ('Alpha' is alpha; `gateway.fleet.ids`)."""
+    return commander.canonical_id(vehicle_id)
+
+
+#: the ``{vehicle_id}`` of a command route, made canonical before the Commander sees it
+CommandVehicleId = Annotated[str, Depends(canonical_vehicle_id)]

@@ -14,7 +14,7 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from gateway.api.audit import AuditedRoute
 from gateway.api.control import CommandOut, operator
-from gateway.api.deps import CommanderDep, PrincipalDep
+from gateway.api.deps import CommanderDep, CommandVehicleId, PrincipalDep
 
 router = APIRouter(tags=["operator control"], route_class=AuditedRoute)
 
@@ -36,7 +36,7 @@ class GotoIn(BaseModel):
 
 @router.post("/vehicles/{vehicle_id}/takeoff", response_model=CommandOut, summary="Take off (operator)")
 async def takeoff_vehicle(
-    vehicle_id: str, body: TakeoffIn, commander: CommanderDep, who: PrincipalDep
+    vehicle_id: CommandVehicleId, body: TakeoffIn, commander: CommanderDep, who: PrincipalDep
 ) -> CommandOut:
     op = await commander.takeoff(operator(who), vehicle_id, body.alt_rel_m)
     return CommandOut.of_operation(op, "takeoff")
@@ -44,7 +44,7 @@ async def takeoff_vehicle(
 
 @router.post("/vehicles/{vehicle_id}/goto", response_model=CommandOut, summary="Fly to a position (operator)")
 async def goto_vehicle(
-    vehicle_id: str, body: GotoIn, commander: CommanderDep, who: PrincipalDep
+    vehicle_id: CommandVehicleId, body: GotoIn, commander: CommanderDep, who: PrincipalDep
 ) -> CommandOut:
     op = await commander.goto(
         operator(who), vehicle_id, body.lat, body.lon, body.alt_rel_m, "home", body.yaw_deg, "operator goto"
@@ -55,7 +55,9 @@ async def goto_vehicle(
 @router.post(
     "/vehicles/{vehicle_id}/kill", response_model=CommandOut, summary="Stop the motors at once (operator)"
 )
-async def kill_vehicle(vehicle_id: str, commander: CommanderDep, who: PrincipalDep) -> CommandOut:
+async def kill_vehicle(
+    vehicle_id: CommandVehicleId, commander: CommanderDep, who: PrincipalDep
+) -> CommandOut:
     result = await commander.kill(operator(who), vehicle_id, confirmed=True)
     return CommandOut(
         vehicle_id=vehicle_id, action="kill", outcome="sent", superseded_operation=result.superseded_operation

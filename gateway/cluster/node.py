@@ -295,7 +295,7 @@ class ClusterNode:
         op = None if ops is None else ops.latest(vehicle_id)
         if op is None:
             return None
-        target = op.params.get("altitude_m")
+        target = op.params.get("alt_m")
         return {
             "id": op.id,
             "kind": op.kind,

@@ -33,18 +33,17 @@ def tracker_for(kind: str, params: dict[str, Any], arrival_tolerance_m: float) -
     """A tracker that follows an operation of ``kind`` again from its stored params, or None."""
     try:
         if kind == "takeoff":
-            return TakeoffTracker(float(params["altitude_m"]))
+            return TakeoffTracker(float(params["alt_m"]))
         if kind in ("land", "return_to_launch"):
             return LandingTracker(kind=kind)
         if kind == "set_yaw":
             return YawTracker(float(params["heading_deg"]))
         if kind == "mission":
             return MissionTracker()
-        if {"lat", "lon", "alt_m"} <= set(params):
+        if {"lat_deg", "lon_deg", "alt_m"} <= set(params):
             tolerance = FORMATION_TOLERANCE_M if kind in FORMATION_KINDS else arrival_tolerance_m
-            return GotoTracker(
-                float(params["lat"]), float(params["lon"]), float(params["alt_m"]), tolerance, kind=kind
-            )
+            lat, lon, alt = float(params["lat_deg"]), float(params["lon_deg"]), float(params["alt_m"])
+            return GotoTracker(lat, lon, alt, tolerance, kind=kind)
     except (KeyError, TypeError, ValueError):
         return None
     return None

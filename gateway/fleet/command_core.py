@@ -14,7 +14,7 @@ from typing import Any, Literal, TypeVar, cast
 from pydantic_core import to_jsonable_python
 
 from gateway.config import Settings
-from gateway.errors import GatewayError, NoOwner, NotFound, OwnerTimeout, VehicleNotReady
+from gateway.errors import GatewayError, InvalidArgument, NoOwner, NotFound, OwnerTimeout, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
 from gateway.fleet.fleet_ops import FleetOperations
@@ -164,16 +164,23 @@ class CommandCore:
             )
 
     @staticmethod
-    def _relative_alt(ctx: VehicleContext, altitude_m: float, alt_frame: AltFrame) -> float:
+    def _relative_alt(ctx: VehicleContext, alt_m: float, alt_frame: AltFrame) -> float:
         """A caller's altitude -> metres above home (the frame conversion lives in geo)."""
-        geo.check_finite("altitude_m", altitude_m)
+        geo.check_finite("alt_m", alt_m)
         if alt_frame == "home":
-            return altitude_m
+            return alt_m
         if ctx.home is None:
             raise VehicleNotReady(
                 f"{ctx.vehicle_id} has no home position yet; cannot convert an AMSL altitude"
             )
-        return geo.amsl_to_relative(altitude_m, ctx.home[2])
+        relative = geo.amsl_to_relative(alt_m, ctx.home[2])
+        if relative <= 0:  # a small model set alt_frame='amsl' whenever it had coordinates
+            raise InvalidArgument(
+                f"alt_frame='amsl' means above sea level (home is {ctx.home[2]:.0f} m), so alt_m={alt_m:g} "
+                f"is {-relative:.0f} m below home; leave alt_frame out for metres above home "
+                f"(e.g. alt_m={alt_m:g})"
+            )
+        return relative
 
     async def _wait_initialised(self, vehicle: FlyingVehicle, notify: Notify | None) -> None:
         waiting = vehicle.initialising()

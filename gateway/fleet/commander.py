@@ -20,7 +20,7 @@ The cluster seam
 Every verb can also be called by name with JSON-serialisable arguments::
 
     result = await commander.call("goto", caller, drone_id="alpha", lat_deg=47.39, lon_deg=8.54,
-                                  altitude_m=20)          # -> a JSON-serialisable dict
+                                  alt_m=20)          # -> a JSON-serialisable dict
     final = await commander.wait(result["operation_id"], cap_s=45, on_progress=report)
 
 ``VERBS`` below is the explicit table of verb names; each verb's arguments are
@@ -40,22 +40,29 @@ from gateway.errors import InvalidArgument
 from gateway.fleet.caller import Caller
 from gateway.fleet.command_core import Notify
 from gateway.fleet.fleet_verbs import FleetVerbs
+from gateway.fleet.ids import canonical_arguments, canonical_drone_id
 from gateway.fleet.routing import Verb
 
 
 class Commander(FleetVerbs):
     """Every command on one drone or on the fleet, for every door. Built once by `gateway.runtime`."""
 
+    def canonical_id(self, drone_id: str) -> str:
+        """The registered id ``drone_id`` names ignoring case (`gateway.fleet.ids`): doors call this
+        before a verb, since operations and locks are keyed by the exact id."""
+        return canonical_drone_id(self.registry, drone_id)
+
     async def call(
         self, verb: str, caller: Caller, /, *, notify: Notify | None = None, **arguments: Any
     ) -> dict[str, Any]:
         """Run ``verb`` with JSON-serialisable ``arguments``; the result as JSON-serialisable data.
         Unknown verbs and bad arguments raise InvalidArgument naming them; nothing is sent then.
-        ``notify`` hears what a verb waits for before it can send (arm, takeoff)."""
+        ``notify`` hears what a verb waits for before it can send (arm, takeoff). Drone ids are made
+        canonical first ('Alpha' is alpha)."""
         entry = VERBS.get(verb)
         if entry is None:
             raise InvalidArgument(f"unknown verb {verb!r}; verbs: {', '.join(sorted(VERBS))}")
-        parsed = entry.parse(arguments)
+        parsed = entry.parse(canonical_arguments(self.registry, arguments))
         if notify is not None and "notify" in entry.callbacks:
             parsed["notify"] = notify
         result = await entry.method(self, caller, **parsed)

@@ -75,24 +75,22 @@ class DroneVerbs(CommandCore):
 
     @routed
     async def takeoff(
-        self, caller: Caller, drone_id: str, altitude_m: float, *, notify: Notify | None = None
+        self, caller: Caller, drone_id: str, alt_m: float, *, notify: Notify | None = None
     ) -> OperationView:
-        """Arm if needed and climb to ``altitude_m`` above home; done when reached."""
+        """Arm if needed and climb to ``alt_m`` above home; done when reached."""
         vehicle = self.vehicle(drone_id)
         await self._wait_initialised(vehicle, notify)
         self._guard_takeoff(caller, vehicle, "takeoff")
         ctx = self.context(vehicle)
         if ctx.in_air:
-            raise InvalidArgument(
-                _already_flying(drone_id, ctx.position[2] if ctx.position else None, altitude_m)
-            )
-        self.safety.check_takeoff(ctx, altitude_m, caller.policy_via)
+            raise InvalidArgument(_already_flying(drone_id, ctx.position[2] if ctx.position else None, alt_m))
+        self.safety.check_takeoff(ctx, alt_m, caller.policy_via)
         return await self._track(
             caller,
             vehicle,
-            TakeoffTracker(altitude_m),
-            lambda: vehicle.takeoff(altitude_m),
-            {"altitude_m": altitude_m},
+            TakeoffTracker(alt_m),
+            lambda: vehicle.takeoff(alt_m),
+            {"alt_m": alt_m},
             "takeoff",
         )
 
@@ -217,7 +215,7 @@ class DroneVerbs(CommandCore):
         ctx = self.context(vehicle)
         self._require_airborne(ctx, label)
         self.safety.check_motion(ctx, Target(lat, lon, alt_rel), caller.policy_via)
-        params = {"lat": lat, "lon": lon, "alt_m": round(alt_rel, 2)}
+        params = {"lat_deg": lat, "lon_deg": lon, "alt_m": round(alt_rel, 2)}
         tracker = GotoTracker(lat, lon, alt_rel, self.settings.arrival_tolerance_m, kind=kind)
         return await self._track(
             caller, vehicle, tracker, lambda: vehicle.goto(lat, lon, alt_rel, yaw_deg), params, label
@@ -230,14 +228,14 @@ class DroneVerbs(CommandCore):
         drone_id: str,
         lat_deg: float,
         lon_deg: float,
-        altitude_m: float,
+        alt_m: float,
         alt_frame: AltFrame = "home",
         yaw_deg: float | None = None,
         label: str = "go_to_location",
     ) -> OperationView:
-        """Fly to a position at ``altitude_m`` (above home, or AMSL); done on arrival."""
+        """Fly to a position at ``alt_m`` (above home, or AMSL); done on arrival."""
         ctx = self.context(self.ready(drone_id))
-        alt_rel = self._relative_alt(ctx, altitude_m, alt_frame)
+        alt_rel = self._relative_alt(ctx, alt_m, alt_frame)
         yaw = None
         if yaw_deg is not None:
             geo.check_finite("yaw_deg", yaw_deg)
@@ -251,41 +249,41 @@ class DroneVerbs(CommandCore):
         drone_id: str,
         lat_deg: float,
         lon_deg: float,
-        altitude_m: float | None = None,
+        alt_m: float | None = None,
         alt_frame: AltFrame = "home",
     ) -> OperationView:
-        """Fly to a position and hover there, at the current altitude unless ``altitude_m`` is given."""
+        """Fly to a position and hover there, at the current altitude unless ``alt_m`` is given."""
         ctx = self.context(self.ready(drone_id))
-        if altitude_m is None:
+        if alt_m is None:
             if ctx.position is None:
                 raise VehicleNotReady(f"no position received from {drone_id} yet")
             alt_rel = ctx.position[2]
         else:
-            alt_rel = self._relative_alt(ctx, altitude_m, alt_frame)
+            alt_rel = self._relative_alt(ctx, alt_m, alt_frame)
         return await self._fly_to(caller, drone_id, lat_deg, lon_deg, alt_rel, "reposition", "reposition")
 
     @routed
     async def move_relative(
-        self, caller: Caller, drone_id: str, north_m: float, east_m: float, down_m: float = 0.0
+        self, caller: Caller, drone_id: str, north_m: float, east_m: float, up_m: float = 0.0
     ) -> OperationView:
-        """Move by metres north/east/down (NED: + down descends) from the current position."""
+        """Move by metres north/east/up (+ up climbs, - up descends) from the current position."""
         vehicle = self.ready(drone_id)
         self._guard_takeoff(caller, vehicle, "move_to_relative")
         pos = self.context(vehicle).position
         if pos is None:
             raise VehicleNotReady(f"no position received from {drone_id} yet")
-        for name, metres in (("north_m", north_m), ("east_m", east_m), ("down_m", down_m)):
+        for name, metres in (("north_m", north_m), ("east_m", east_m), ("up_m", up_m)):
             geo.check_finite(name, metres)
-        if down_m > 0 and pos[2] - down_m <= 0:
-            below = pos[2] - down_m
+        if up_m < 0 and pos[2] + up_m <= 0:
+            below = pos[2] + up_m
             raise InvalidArgument(
-                f"down_m={down_m:g} would take {drone_id} from {pos[2]:.1f} m to {below:.1f} m, below home: "
-                f"down_m counts metres down; to climb {down_m:g} m use down_m={-down_m:g} (to come down to "
-                "the ground, use land)"
+                f"up_m={up_m:g} would take {drone_id} from {pos[2]:.1f} m to {below:.1f} m, below home: "
+                f"up_m counts metres up (negative: down); to climb {-up_m:g} m use up_m={-up_m:g} (to come "
+                "down to the ground, use land)"
             )
         lat, lon = geo.offset_position(pos[0], pos[1], north_m, east_m)
         return await self._fly_to(
-            caller, drone_id, lat, lon, pos[2] - down_m, "move_to_relative", "move_to_relative"
+            caller, drone_id, lat, lon, pos[2] + up_m, "move_to_relative", "move_to_relative"
         )
 
     @routed
@@ -335,7 +333,7 @@ class DroneVerbs(CommandCore):
                 message="no goto sent to this drone yet",
             )
         tracker = GotoTracker(
-            op.params["lat"], op.params["lon"], op.params["alt_m"], self.settings.arrival_tolerance_m
+            op.params["lat_deg"], op.params["lon_deg"], op.params["alt_m"], self.settings.arrival_tolerance_m
         )
         d = tracker.distance(vehicle)
         return ArrivalView(
@@ -548,7 +546,7 @@ def _already_flying(drone_id: str, alt_m: float | None, wanted_m: float) -> str:
     if alt_m is None:
         return (
             f"{drone_id} is already flying; to change altitude use "
-            f"move_to_relative(drone_id='{drone_id}', north_m=0, east_m=0, down_m=<metres down, negative up>)"
+            f"move_to_relative(drone_id='{drone_id}', north_m=0, east_m=0, up_m=<metres up, negative down>)"
         )
     change = wanted_m - alt_m
     if abs(change) < 1.0:
@@ -556,5 +554,5 @@ def _already_flying(drone_id: str, alt_m: float | None, wanted_m: float) -> str:
     verb = "climb" if change > 0 else "descend"
     return (
         f"{drone_id} already flies at {alt_m:.0f} m; to {verb} to {wanted_m:g} m use "
-        f"move_to_relative(drone_id='{drone_id}', north_m=0, east_m=0, down_m={-change:.0f})"
+        f"move_to_relative(drone_id='{drone_id}', north_m=0, east_m=0, up_m={change:.0f})"
     )

@@ -783,7 +783,7 @@ def build_step(vehicle: FlyingVehicle, spec: Mapping[str, Any], precheck: Preche
     bound = _bind(precheck, vehicle)
     if send == "goto":
         lat, lon, alt = float(spec["lat"]), float(spec["lon"]), float(spec["alt_m"])
-        params: dict[str, Any] = {"lat": lat, "lon": lon, "alt_m": alt}
+        params: dict[str, Any] = {"lat_deg": lat, "lon_deg": lon, "alt_m": alt}
         if spec.get("phase") is not None:
             params["phase"] = int(spec["phase"])
         tolerance = float(spec.get("tolerance_m", FORMATION_TOLERANCE_M))
@@ -795,7 +795,7 @@ def build_step(vehicle: FlyingVehicle, spec: Mapping[str, Any], precheck: Preche
             vehicle,
             TakeoffTracker(alt),
             _takeoff(vehicle, alt),
-            {"altitude_m": alt},
+            {"alt_m": alt},
             timeout_s,
             bound,
             dict(spec),
@@ -845,8 +845,8 @@ def slot_summaries(plan: FormationPlan) -> dict[str, dict[str, Any]]:
     """Per drone: its slot's target, transit altitude and distance to fly (for results)."""
     return {
         s.drone_id: {
-            "target_lat": round(s.lat, 7),
-            "target_lon": round(s.lon, 7),
+            "target_lat_deg": round(s.lat, 7),
+            "target_lon_deg": round(s.lon, 7),
             "target_alt_m": round(s.alt_rel_m, 2),
             "transit_alt_m": None if s.transit_alt_m is None else round(s.transit_alt_m, 2),
             "distance_m": round(s.distance_m, 1),

@@ -156,8 +156,8 @@ class FleetVerbs(DroneVerbs):
         caller: Caller,
         drone_ids: list[str],
         formation: Formation,
-        center_lat: float,
-        center_lon: float,
+        center_lat_deg: float,
+        center_lon_deg: float,
         alt_m: float,
         spacing_m: float = 10.0,
         heading_deg: float | None = None,
@@ -184,13 +184,13 @@ class FleetVerbs(DroneVerbs):
         contexts = {d: self.context(v) for d, v in vehicles.items()}
         starts = [DroneStart(d, *pos) for d in ids if (pos := contexts[d].position) is not None]
         if heading_deg is None:
-            heading_deg = _travel_heading(starts, center_lat, center_lon)
+            heading_deg = _travel_heading(starts, center_lat_deg, center_lon_deg)
         low, high = policy.altitude_band(ids)
         plan = plan_formation(
             starts,
             formation,
-            center_lat,
-            center_lon,
+            center_lat_deg,
+            center_lon_deg,
             alt_m,
             spacing_m,
             heading_deg,
@@ -210,8 +210,8 @@ class FleetVerbs(DroneVerbs):
         policy.check_formation(contexts, plan, via)
         params = {
             "formation": formation,
-            "center_lat": center_lat,
-            "center_lon": center_lon,
+            "center_lat_deg": center_lat_deg,
+            "center_lon_deg": center_lon_deg,
             "alt_m": alt_m,
             "spacing_m": spacing_m,
             "heading_deg": round(plan.heading_deg, 1),

@@ -333,7 +333,7 @@ class OperationManager:
         op = self.running(vehicle_id)
         if op is None or (kind is not None and op.kind != kind):
             return None
-        target = op.params.get("altitude_m")
+        target = op.params.get("alt_m")
         return RunningOperation(
             op.id, op.kind, op.message, float(target) if isinstance(target, int | float) else None
         )
@@ -580,9 +580,9 @@ def _interruption(vehicle: FlyingVehicle) -> str | None:
 
 
 def check_positive_altitude(alt_rel_m: float) -> None:
-    geo.check_finite("altitude_m", alt_rel_m)
+    geo.check_finite("alt_m", alt_rel_m)
     if alt_rel_m <= 0:
         raise InvalidArgument(
-            f"altitude_m {alt_rel_m:g} is not above home; give a flying altitude > 0 m above home "
+            f"alt_m {alt_rel_m:g} is not above home; give a flying altitude > 0 m above home "
             "(use land to come down)"
         )

@@ -15,7 +15,7 @@ from gateway.config import Settings
 from gateway.mcp import sdk_private
 
 #: argument names that are altitudes above home, bounded by the policy's max_altitude_m
-ALTITUDE_ARGUMENTS = ("altitude_m", "alt_m", "rtl_alt_m")
+ALTITUDE_ARGUMENTS = ("alt_m", "rtl_alt_m")
 
 
 def install_argument_messages(tool: Tool) -> None:

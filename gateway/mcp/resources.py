@@ -26,7 +26,7 @@ from gateway.fleet.commander import Commander
 from gateway.fleet.fleet_ops import FleetOperation
 from gateway.fleet.readings import position, value
 from gateway.mcp import sdk_private
-from gateway.mcp.results import plain
+from gateway.mcp.results import plain, surface_telemetry
 from gateway.runtime import Gateway
 
 log = logging.getLogger(__name__)
@@ -58,7 +58,7 @@ def state_json(commander: Commander, drone_id: str) -> dict[str, Any]:
     return {
         "drone_id": drone_id,
         "status": plain(v.status()),
-        "telemetry": plain(v.telemetry.snapshot()),
+        "telemetry": surface_telemetry(plain(v.telemetry.snapshot())),
         "operation": None if op is None else op.to_dict(),
     }
 
@@ -257,14 +257,14 @@ def register_prompts(server: MCPServer[Any]) -> None:
 
     @server.prompt(title="Area survey")
     def survey_area(
-        drone_id: str, area: str, altitude_m: str = "30", spacing_m: str = "20"
+        drone_id: str, area: str, alt_m: str = "30", spacing_m: str = "20"
     ) -> list[UserMessage | AssistantMessage]:
         """Plan and fly a lawnmower survey of an area."""
         return [
             UserMessage(
-                f"Survey {area} with drone '{drone_id}' at {altitude_m} m above home, lanes {spacing_m} m "
+                f"Survey {area} with drone '{drone_id}' at {alt_m} m above home, lanes {spacing_m} m "
                 "apart. Steps: preflight check (get_telemetry, get_battery); plan a lawnmower pattern of "
-                "waypoints (lat/lon degrees, alt_m above home) covering the area; show me the plan; then "
+                "waypoints (lat_deg, lon_deg, alt_m above home) covering the area; show me the plan; then "
                 "initiate_mission with a takeoff item first and an rtl item last. While it runs, call "
                 "monitor_flight until the status is no longer 'running', then report."
             )

@@ -11,6 +11,8 @@ from typing import Any, Self
 
 from pydantic import BaseModel, PrivateAttr
 
+from gateway.fleet.vehicle_text import VEHICLE_TEXT_LABEL, clean_vehicle_text
+
 
 class Result(BaseModel):
     """Base of every tool result: structured fields plus a one-line text summary."""
@@ -71,7 +73,7 @@ class BatteryOut(Fresh):
 class SpeedOut(Fresh):
     north_mps: float
     east_mps: float
-    down_mps: float
+    climb_mps: float
     ground_speed_mps: float
 
 
@@ -158,6 +160,7 @@ class ParamListOut(Result):
     offset: int
     params: dict[str, float]
     next_offset: int | None
+    names_note: str = ""
 
 
 def plain(value: Any, depth: int = 0) -> Any:
@@ -183,3 +186,30 @@ def plain(value: Any, depth: int = 0) -> Any:
     if hasattr(value, "__slots__"):
         return {k: plain(getattr(value, k), depth + 1) for k in value.__slots__ if not k.startswith("_")}
     return str(value)
+
+
+#: telemetry field names of the fleet layer -> the names every tool uses (lat_deg, lon_deg, alt_m above
+#: home, alt_amsl_m, climb_mps); see docs/tools.md, "Names"
+_SURFACE_NAMES = {"rel_alt_m": "alt_m", "abs_alt_m": "alt_amsl_m"}
+
+
+def surface_telemetry(snapshot: dict[str, Any]) -> dict[str, Any]:
+    """A telemetry snapshot in the tools' own names, its status texts as data from the vehicle."""
+    out: dict[str, Any] = {}
+    for part, body in snapshot.items():
+        if isinstance(body, dict):
+            body = {_SURFACE_NAMES.get(k, k): v for k, v in body.items()}
+            if "down_mps" in body:
+                down = body.pop("down_mps")
+                body["climb_mps"] = None if down is None else -down + 0.0
+        elif part == "status_texts" and isinstance(body, list):
+            body = [
+                {**item, "text": clean_vehicle_text(str(item.get("text", "")))}
+                if isinstance(item, dict)
+                else item
+                for item in body
+            ]
+            if body:
+                out["status_texts_note"] = VEHICLE_TEXT_LABEL
+        out[part] = body
+    return out

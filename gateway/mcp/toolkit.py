@@ -5,6 +5,7 @@ A tool is a plain async function ``fn(call: ToolCall, drone_id, ...) -> SomeResu
 
 - the SDK injects the request ``Context`` and the wrapper hands the tool a `ToolCall` built from the
   server's lifespan state (the Commander) and the caller (principal, session);
+- drone ids are made canonical ('Alpha' is alpha) before the tool runs;
 
 - gateway errors become tool errors (``isError``) with the gateway's own message;
 - the result goes out as structured content (output schema from the result model) plus a one-line text;
@@ -27,6 +28,7 @@ from mcp.types import CallToolResult, TextContent, ToolAnnotations
 from pydantic import Field, ValidationError
 
 from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal
+from gateway.fleet.ids import canonical_arguments
 from gateway.mcp import sdk_private
 from gateway.mcp.access import ToolCall, current_call
 from gateway.mcp.results import Result
@@ -130,12 +132,15 @@ def _wrap(spec: ToolSpec) -> Callable[..., Any]:
     async def handler(ctx: Context[Any, Any], **kwargs: Any) -> CallToolResult:
         call = current_call.get()
         try:
+            tool_call = ToolCall.of(ctx)
             drone_id = kwargs.get("drone_id")
             if isinstance(drone_id, str):
                 check_drone_id(drone_id)
-                if call is not None:
-                    call.vehicle_id = drone_id
-            result: Result = await fn(ToolCall.of(ctx), **kwargs)
+            # 'Alpha' is alpha: operations and locks are keyed by the exact id (gateway.fleet.ids)
+            kwargs = canonical_arguments(tool_call.commander.registry, kwargs)
+            if isinstance(kwargs.get("drone_id"), str) and call is not None:
+                call.vehicle_id = kwargs["drone_id"]
+            result: Result = await fn(tool_call, **kwargs)
         except SafetyRefusal as exc:
             if call is not None:
                 call.outcome, call.error = "refused", exc.message

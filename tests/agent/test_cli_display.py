@@ -30,11 +30,11 @@ async def test_one_shot_shows_calls_progress_results_and_answer(toy, scripted, m
     monkeypatch.delenv("OPENAI_API_KEY", raising=False)
     model = scripted(
         [
-            call("takeoff", drone_id="alpha", altitude_m=15),
+            call("takeoff", drone_id="alpha", alt_m=15),
             ScriptedReply(
                 content='<tool_call>{"name": "land", "arguments": {"drone_id": "alpha"}}</tool_call>'
             ),
-            call("takeoff", drone_id="bravo", altitude_m=500),
+            call("takeoff", drone_id="bravo", alt_m=500),
             say("Alpha hopped to 15 m and landed. Bravo was refused: 500 m exceeds the 120 m limit."),
         ]
     )
@@ -56,14 +56,14 @@ async def test_one_shot_shows_calls_progress_results_and_answer(toy, scripted, m
     out = buf.getvalue()
     expected_in_order = [
         "you hop alpha to 15 m",
-        '→ takeoff(drone_id="alpha", altitude_m=15)',
+        '→ takeoff(drone_id="alpha", alt_m=15)',
         "… takeoff 33% climbing 5.0/15 m",
         "… takeoff 100% climbing 15.0/15 m",
         "✓ status=reached",
         "parsed a tool call from text",
         '→ land(drone_id="alpha")',
         "✓ status=landed",
-        '→ takeoff(drone_id="bravo", altitude_m=500)',
+        '→ takeoff(drone_id="bravo", alt_m=500)',
         "✗ Error executing tool takeoff: refused by rule max_altitude",
         "model Alpha hopped to 15 m and landed.",
         "4 model step(s), 3 tool call(s),",
@@ -136,7 +136,7 @@ async def test_step_limit_exit_status(toy, scripted) -> None:
 
 async def test_interactive_keeps_the_conversation(toy, scripted) -> None:
     model = scripted(
-        [say("alpha is on the ground"), call("takeoff", drone_id="alpha", altitude_m=5), say("up")]
+        [say("alpha is on the ground"), call("takeoff", drone_id="alpha", alt_m=5), say("up")]
     )
     console, buf = _console()
     stdin = io.StringIO("where is alpha?\n\n/usage\nnow take it up 5 m\n/quit\nnever read\n")

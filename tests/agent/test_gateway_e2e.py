@@ -28,12 +28,12 @@ async def test_model_flies_takeoff_goto_land_on_the_sim(stack: LocalStack, scrip
     target = offset_position(home_lat, home_lon, 40.0, 0.0)
     model = scripted(
         [
-            call("takeoff", drone_id="alpha", altitude_m=12),
+            call("takeoff", drone_id="alpha", alt_m=12),
             # A small model's text-form call (qwen style), with the arguments as a JSON string.
             ScriptedReply(
                 content='<tool_call>{"name": "go_to_location", "arguments": "{\\"drone_id\\": \\"alpha\\", '
-                f'\\"latitude_deg\\": {target[0]}, \\"longitude_deg\\": {target[1]}, '
-                '\\"altitude_m\\": 12}"}</tool_call>'
+                f'\\"lat_deg\\": {target[0]}, \\"lon_deg\\": {target[1]}, '
+                '\\"alt_m\\": 12}"}</tool_call>'
             ),
             call("land", drone_id="alpha"),
             say("alpha flew 40 m north and landed"),
@@ -97,8 +97,8 @@ async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStac
     model = scripted(
         [
             # the schema advertises the policy's altitude limit, so the host refuses before calling
-            call("takeoff", drone_id="bravo", altitude_m=500),
-            call("takeoff", drone_id="bravo", altitude_m="very high"),  # the host refuses (schema)
+            call("takeoff", drone_id="bravo", alt_m=500),
+            call("takeoff", drone_id="bravo", alt_m="very high"),  # the host refuses (schema)
             # the gateway refuses
             ScriptedReply(
                 tool_calls=[("set_parameter", {"drone_id": "bravo", "name": "FENCE_ENABLE", "value": 0})]

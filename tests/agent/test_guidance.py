@@ -43,7 +43,7 @@ async def _turn(
 
 
 async def test_the_model_is_told_the_fleet_before_the_request_and_after_each_step(toy, scripted) -> None:
-    model = scripted([call("takeoff", drone_id="alpha", altitude_m=15), say("alpha is up")])
+    model = scripted([call("takeoff", drone_id="alpha", alt_m=15), say("alpha is up")])
     result = await _turn(toy, model, "take alpha up to 15 m")
     assert result.outcome == "answered"
     first_user = _user_texts(model.requests[0])[-1]
@@ -82,8 +82,8 @@ async def test_a_server_without_list_drones_gets_no_roster(toy, scripted) -> Non
 async def test_drone_ids_are_an_enum_and_an_invented_id_is_refused_before_any_call(toy, scripted) -> None:
     model = scripted(
         [
-            call("takeoff", drone_id="drone1", altitude_m=10),
-            call("takeoff", drone_id="Alpha", altitude_m=10),  # right id, wrong case: corrected
+            call("takeoff", drone_id="drone1", alt_m=10),
+            call("takeoff", drone_id="Alpha", alt_m=10),  # right id, wrong case: corrected
             say("alpha is up"),
         ]
     )
@@ -94,17 +94,17 @@ async def test_drone_ids_are_an_enum_and_an_invented_id_is_refused_before_any_ca
     assert [c.status for c in result.tool_calls] == ["invalid", "ok"]
     refused = _tool_texts(model.requests[1])[-1]
     assert "'drone1' is not one of ['alpha', 'bravo']" in refused and "Nothing was executed" in refused
-    assert toy.world.calls == [("takeoff", {"drone_id": "alpha", "altitude_m": 10.0})]
+    assert toy.world.calls == [("takeoff", {"drone_id": "alpha", "alt_m": 10.0})]
     corrected = [e.data["notes"] for e in events if e.kind == "arguments_corrected"]
     assert corrected == [["drone id 'Alpha' read as 'alpha'"]]
 
 
 async def test_an_argument_the_tool_does_not_have_is_refused(toy, scripted) -> None:
-    model = scripted([call("takeoff", drone_id="alpha", altitude_m=10, latitude_deg=-35.36), say("no")])
+    model = scripted([call("takeoff", drone_id="alpha", alt_m=10, lat_deg=-35.36), say("no")])
     result = await _turn(toy, model, "take off alpha")
     assert [c.status for c in result.tool_calls] == ["invalid"] and toy.world.calls == []
     assert _tool_texts(model.requests[1])[-1].startswith(
-        "Error: takeoff has no argument latitude_deg; it takes takeoff(drone_id: string, altitude_m: number)."
+        "Error: takeoff has no argument lat_deg; it takes takeoff(drone_id: string, alt_m: number)."
     )
 
 
@@ -112,7 +112,7 @@ async def test_an_argument_the_tool_does_not_have_is_refused(toy, scripted) -> N
 
 
 async def test_an_empty_reply_is_asked_again_with_the_request_and_what_was_done(toy, scripted) -> None:
-    model = scripted([call("takeoff", drone_id="alpha", altitude_m=15), EMPTY, call("land", drone_id="alpha"),
+    model = scripted([call("takeoff", drone_id="alpha", alt_m=15), EMPTY, call("land", drone_id="alpha"),
                       say("alpha went up to 15 m and landed")])  # fmt: skip
     result = await _turn(toy, model, "hop alpha to 15 m, then land it")
     assert result.outcome == "answered" and result.empty_replies == 1
@@ -156,9 +156,9 @@ async def test_the_command_exits_non_zero_on_an_empty_answer(toy, scripted) -> N
 async def test_a_call_identical_to_one_that_just_succeeded_is_not_sent_again(toy, scripted) -> None:
     model = scripted(
         [
-            call("takeoff", drone_id="alpha", altitude_m=15),
+            call("takeoff", drone_id="alpha", alt_m=15),
             call("get_position", drone_id="alpha"),  # reading in between does not make it new
-            call("takeoff", drone_id="alpha", altitude_m=15),
+            call("takeoff", drone_id="alpha", alt_m=15),
             call("land", drone_id="alpha"),
             say("done"),
         ]
@@ -174,11 +174,11 @@ async def test_a_call_identical_to_one_that_just_succeeded_is_not_sent_again(toy
 async def test_the_same_call_after_another_action_on_that_drone_is_sent(toy, scripted) -> None:
     model = scripted(
         [
-            call("takeoff", drone_id="alpha", altitude_m=10),
+            call("takeoff", drone_id="alpha", alt_m=10),
             call("land", drone_id="alpha"),
-            call("takeoff", drone_id="alpha", altitude_m=10),  # a second hop: wanted
-            call("takeoff", drone_id="bravo", altitude_m=10),
-            call("takeoff", drone_id="alpha", altitude_m=10),  # bravo's takeoff changed nothing for alpha
+            call("takeoff", drone_id="alpha", alt_m=10),  # a second hop: wanted
+            call("takeoff", drone_id="bravo", alt_m=10),
+            call("takeoff", drone_id="alpha", alt_m=10),  # bravo's takeoff changed nothing for alpha
             say("done"),
         ]
     )
@@ -250,13 +250,13 @@ def test_a_refused_move_of_a_grounded_drone_names_the_takeoff_with_its_altitude(
 
     host = AgentHost(ModelConfig("http://127.0.0.1:9/v1", "m"), caller=None, tools=[])  # type: ignore[arg-type]
     host.roster = Roster((DroneEntry("bravo", False, 0.0, 100.0), DroneEntry("alpha", True, 10.0, 90.0)))
-    note = host._takeoff_first("go_to_location", {"drone_id": "bravo", "altitude_m": 30})
+    note = host._takeoff_first("go_to_location", {"drone_id": "bravo", "alt_m": 30})
     assert note == (
-        ' (Host note: bravo is on the ground. Call takeoff with drone_id "bravo" and altitude_m 30 first, '
+        ' (Host note: bravo is on the ground. Call takeoff with drone_id "bravo" and alt_m 30 first, '
         "then this call again.)"
     )
-    assert host._takeoff_first("go_to_location", {"drone_id": "alpha", "altitude_m": 30}) == ""  # flying
-    assert host._takeoff_first("takeoff", {"drone_id": "bravo", "altitude_m": 500}) == ""
+    assert host._takeoff_first("go_to_location", {"drone_id": "alpha", "alt_m": 30}) == ""  # flying
+    assert host._takeoff_first("takeoff", {"drone_id": "bravo", "alt_m": 500}) == ""
 
 
 async def test_calls_skipped_after_a_failure_are_shown_as_still_to_do_until_they_run(toy, scripted) -> None:
@@ -266,7 +266,7 @@ async def test_calls_skipped_after_a_failure_are_shown_as_still_to_do_until_they
     model = scripted(
         [
             plan,
-            call("takeoff", drone_id="alpha", altitude_m=10),
+            call("takeoff", drone_id="alpha", alt_m=10),
             call("move_north", drone_id="alpha", distance_m=60),
             call("land", drone_id="alpha"),
             say("done"),

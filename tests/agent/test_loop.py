@@ -40,7 +40,7 @@ async def _run(
 async def test_structured_calls_run_and_results_reach_the_model(toy, scripted) -> None:
     model = scripted(
         [
-            call("takeoff", drone_id="alpha", altitude_m=15),
+            call("takeoff", drone_id="alpha", alt_m=15),
             call("move_north", drone_id="alpha", distance_m=100),
             call("land", drone_id="alpha"),
             say("alpha flew 100 m north and landed"),
@@ -81,8 +81,8 @@ async def test_structured_calls_run_and_results_reach_the_model(toy, scripted) -
 async def test_refusal_reaches_the_model_verbatim_and_it_can_correct(toy, scripted) -> None:
     model = scripted(
         [
-            call("takeoff", drone_id="bravo", altitude_m=500),
-            call("takeoff", drone_id="bravo", altitude_m=100),
+            call("takeoff", drone_id="bravo", alt_m=500),
+            call("takeoff", drone_id="bravo", alt_m=100),
             say("500 m is above the 120 m limit; bravo climbed to 100 m instead"),
         ]
     )
@@ -98,7 +98,7 @@ async def test_refusal_reaches_the_model_verbatim_and_it_can_correct(toy, script
 async def test_invalid_arguments_are_not_executed(toy, scripted) -> None:
     model = scripted(
         [
-            call("takeoff", drone_id="alpha", altitude_m="fifteen"),  # wrong type
+            call("takeoff", drone_id="alpha", alt_m="fifteen"),  # wrong type
             call("move_north", drone_id="alpha", distance_m=5000),  # out of the schema's range
             call("land"),  # required drone_id missing
             ScriptedReply(tool_calls=[("land", '{"drone_id": "alpha"')]),  # undecodable arguments
@@ -116,7 +116,7 @@ async def test_invalid_arguments_are_not_executed(toy, scripted) -> None:
     ]
     assert toy.world.calls == []  # nothing reached the server
     msgs = [_tool_messages(model.requests[i])[-1]["content"] for i in range(1, 6)]
-    assert "altitude_m: 'fifteen' is not of type 'number'" in msgs[0]
+    assert "alt_m: 'fifteen' is not of type 'number'" in msgs[0]
     assert "5000 is greater than the maximum of 1000" in msgs[1]
     assert "'drone_id' is a required property" in msgs[2]
     assert "not valid JSON" in msgs[3]
@@ -129,7 +129,7 @@ async def test_tool_call_written_as_text_is_parsed_and_flagged(toy, scripted) ->
         [
             ScriptedReply(
                 content='Sure.\n<tool_call>\n{"name": "takeoff", "arguments": '
-                '"{\\"drone_id\\": \\"alpha\\", \\"altitude_m\\": 12,}"}\n</tool_call>'
+                '"{\\"drone_id\\": \\"alpha\\", \\"alt_m\\": 12,}"}\n</tool_call>'
             ),
             ScriptedReply(content='```json\n{{"name": "land", "arguments": {{"drone_id": "alpha"}}}}\n```'),
             say("done"),
@@ -139,7 +139,7 @@ async def test_tool_call_written_as_text_is_parsed_and_flagged(toy, scripted) ->
     _, result = await _run(toy, model, "hop alpha", events=events)
     assert result.outcome == "answered" and result.parsed_from_text == 2
     assert toy.world.calls == [
-        ("takeoff", {"drone_id": "alpha", "altitude_m": 12.0}),
+        ("takeoff", {"drone_id": "alpha", "alt_m": 12.0}),
         ("land", {"drone_id": "alpha"}),
     ]
     assert sum(e.kind == "parsed_from_text" for e in events) == 2
@@ -163,7 +163,7 @@ async def test_parsed_call_with_invalid_arguments_is_not_executed(toy, scripted)
     _, result = await _run(toy, model, "take off")
     assert result.tool_calls[0].status == "invalid" and result.tool_calls[0].parsed_from_text
     assert toy.world.calls == []
-    assert "'altitude_m' is a required property" in _tool_messages(model.requests[1])[-1]["content"]
+    assert "'alt_m' is a required property" in _tool_messages(model.requests[1])[-1]["content"]
 
 
 async def test_step_limit_holds(toy, scripted) -> None:
@@ -251,7 +251,7 @@ async def test_interrupted_turn_keeps_the_conversation_valid(toy, scripted) -> N
     """Ctrl-C while a tool runs: the open call gets an 'interrupted' result, and the next turn works."""
     import asyncio
 
-    model = scripted([call("takeoff", drone_id="alpha", altitude_m=15), say("alpha may still be climbing")])
+    model = scripted([call("takeoff", drone_id="alpha", alt_m=15), say("alpha may still be climbing")])
     holder: list[asyncio.Task] = []
     events: list[AgentEvent] = []
 

@@ -41,14 +41,14 @@ def test_formation_plan_uses_fleet_tools_only_with_matching_arguments() -> None:
     m = _mission("formation-line")
     assert [name for name, _ in m.plan(CTX)] == ["takeoff", "go_to_location", "takeoff", "go_to_location"]
     fleet = {
-        "fleet_takeoff": frozenset({"drone_ids", "altitude_m"}),
+        "fleet_takeoff": frozenset({"drone_ids", "alt_m"}),
         "formation_goto": frozenset(
             {
                 "drone_ids",
                 "formation",
-                "center_latitude_deg",
-                "center_longitude_deg",
-                "altitude_m",
+                "center_lat_deg",
+                "center_lon_deg",
+                "alt_m",
                 "spacing_m",
             }
         ),

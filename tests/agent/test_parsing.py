@@ -7,19 +7,19 @@ import pytest
 from gateway.agent.parsing import ArgumentsError, extract_tool_calls, loads_lenient, parse_arguments
 
 KNOWN = ["takeoff", "land", "go_to_location", "get_telemetry"]
-TAKEOFF = {"drone_id": "alpha", "altitude_m": 15}
+TAKEOFF = {"drone_id": "alpha", "alt_m": 15}
 
 # (label, model text, expected [(name, arguments)])
 RECOVERABLE = [
     (
         "bare JSON object",
-        '{"name": "takeoff", "arguments": {"drone_id": "alpha", "altitude_m": 15}}',
+        '{"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}}',
         [("takeoff", TAKEOFF)],
     ),
     (
         "json code fence with prose",
         'I will take off now.\n```json\n{"name": "takeoff", "arguments": '
-        '{"drone_id": "alpha", "altitude_m": 15}}\n```',
+        '{"drone_id": "alpha", "alt_m": 15}}\n```',
         [("takeoff", TAKEOFF)],
     ),
     (
@@ -34,7 +34,7 @@ RECOVERABLE = [
     ),
     (
         "hermes/qwen tool_call tags",
-        '<tool_call>\n{"name": "takeoff", "arguments": {"drone_id": "alpha", "altitude_m": 15}}'
+        '<tool_call>\n{"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}}'
         "\n</tool_call>",
         [("takeoff", TAKEOFF)],
     ),
@@ -56,17 +56,17 @@ RECOVERABLE = [
     ),
     (
         "doubled braces everywhere",
-        '{{"name": "takeoff", "arguments": {{"drone_id": "alpha", "altitude_m": 15}}}}',
+        '{{"name": "takeoff", "arguments": {{"drone_id": "alpha", "alt_m": 15}}}}',
         [("takeoff", TAKEOFF)],
     ),
     (
         "doubled outer braces only",
-        '{{"name": "takeoff", "arguments": {"drone_id": "alpha", "altitude_m": 15}}}',
+        '{{"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}}}',
         [("takeoff", TAKEOFF)],
     ),
     (
         "arguments as a JSON string",
-        '{"name": "takeoff", "arguments": "{\\"drone_id\\": \\"alpha\\", \\"altitude_m\\": 15}"}',
+        '{"name": "takeoff", "arguments": "{\\"drone_id\\": \\"alpha\\", \\"alt_m\\": 15}"}',
         [("takeoff", TAKEOFF)],
     ),
     (
@@ -76,12 +76,12 @@ RECOVERABLE = [
     ),
     (
         "trailing commas",
-        '{"name": "takeoff", "arguments": {"drone_id": "alpha", "altitude_m": 15,},}',
+        '{"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15,},}',
         [("takeoff", TAKEOFF)],
     ),
     (
         "trailing comma inside string arguments",
-        '{"name": "takeoff", "arguments": "{\\"drone_id\\": \\"alpha\\", \\"altitude_m\\": 15,}"}',
+        '{"name": "takeoff", "arguments": "{\\"drone_id\\": \\"alpha\\", \\"alt_m\\": 15,}"}',
         [("takeoff", TAKEOFF)],
     ),
     (
@@ -139,7 +139,7 @@ RECOVERABLE = [
     ),
     (
         "python-style call on a line of its own",
-        'Let me do this first:\ntakeoff(drone_id="alpha", altitude_m=15)',
+        'Let me do this first:\ntakeoff(drone_id="alpha", alt_m=15)',
         [("takeoff", TAKEOFF)],
     ),
     (
@@ -178,7 +178,7 @@ NOT_CALLS = [
     # A call inside a sentence describes (or echoes) what was done: reading it again would repeat it.
     (
         "python-style call inside a sentence",
-        'Done so far: takeoff(drone_id="alpha", altitude_m=15); all good.',
+        'Done so far: takeoff(drone_id="alpha", alt_m=15); all good.',
     ),
     ("a number", "42"),
     ("a code fence with python code", "```python\nx = 1\n```"),
@@ -240,10 +240,10 @@ def test_loads_lenient_prefers_strict_json() -> None:
 
 
 def test_positional_python_style_calls_need_the_tools_parameters() -> None:
-    params = {"takeoff": ["drone_id", "altitude_m"], "land": ["drone_id"]}
+    params = {"takeoff": ["drone_id", "alt_m"], "land": ["drone_id"]}
     calls = extract_tool_calls("takeoff(bravo, 20)\n- land('bravo');", params)
     assert [(c.name, c.arguments) for c in calls] == [
-        ("takeoff", {"drone_id": "bravo", "altitude_m": 20}),
+        ("takeoff", {"drone_id": "bravo", "alt_m": 20}),
         ("land", {"drone_id": "bravo"}),
     ]
     assert "positional arguments" in calls[0].notes

@@ -25,17 +25,17 @@ GOTO = ToolInfo(
         "type": "object",
         "properties": {
             "drone_id": {"type": "string"},
-            "latitude_deg": {"type": "number", "minimum": -90, "maximum": 90},
-            "longitude_deg": {"type": "number"},
-            "altitude_m": {"type": "number", "exclusiveMinimum": 0},
+            "lat_deg": {"type": "number", "minimum": -90, "maximum": 90},
+            "lon_deg": {"type": "number"},
+            "alt_m": {"type": "number", "exclusiveMinimum": 0},
             "alt_frame": {"enum": ["relative", "amsl"]},
         },
-        "required": ["drone_id", "latitude_deg", "longitude_deg", "altitude_m"],
+        "required": ["drone_id", "lat_deg", "lon_deg", "alt_m"],
         "additionalProperties": False,
     },
     toolset="navigation",
 )
-GOOD = {"drone_id": "a", "latitude_deg": 47.4, "longitude_deg": 8.5, "altitude_m": 20}
+GOOD = {"drone_id": "a", "lat_deg": 47.4, "lon_deg": 8.5, "alt_m": 20}
 
 
 def test_valid_arguments_pass() -> None:
@@ -45,9 +45,9 @@ def test_valid_arguments_pass() -> None:
 @pytest.mark.parametrize(
     ("change", "needle"),
     [
-        ({"latitude_deg": 123.0}, "123.0 is greater than the maximum of 90"),
-        ({"altitude_m": 0}, "0 is less than or equal to the minimum of 0"),
-        ({"altitude_m": "20"}, "'20' is not of type 'number'"),
+        ({"lat_deg": 123.0}, "123.0 is greater than the maximum of 90"),
+        ({"alt_m": 0}, "0 is less than or equal to the minimum of 0"),
+        ({"alt_m": "20"}, "'20' is not of type 'number'"),
         ({"alt_frame": "agl"}, "'agl' is not one of ['relative', 'amsl']"),
         ({"speed": 3}, "Additional properties are not allowed ('speed' was unexpected)"),
         ({"drone_id": None}, "None is not of type 'string'"),
@@ -62,7 +62,7 @@ def test_invalid_arguments_name_the_problem(change: dict, needle: str) -> None:
 
 def test_missing_required_argument() -> None:
     message = validate_arguments(GOTO, {"drone_id": "a"})
-    assert message is not None and "'latitude_deg' is a required property" in message
+    assert message is not None and "'lat_deg' is a required property" in message
 
 
 def test_schema_with_defs_validates_nested_models() -> None:
@@ -174,8 +174,8 @@ def test_tool_list_tokens_grow_with_the_list() -> None:
 def test_small_profile_keeps_its_tools_and_drops_advanced_optional_arguments() -> None:
     from gateway.agent.profiles import SMALL_MODEL_TOOLS, apply_profile
 
-    props = {"drone_id": {"type": "string"}, "altitude_m": {"type": "number"}, "wait": {"type": "boolean"}}
-    schema = {"type": "object", "properties": props, "required": ["drone_id", "altitude_m"]}
+    props = {"drone_id": {"type": "string"}, "alt_m": {"type": "number"}, "wait": {"type": "boolean"}}
+    schema = {"type": "object", "properties": props, "required": ["drone_id", "alt_m"]}
     takeoff = ToolInfo("takeoff", "Take off.", schema)
     must_wait = ToolInfo(
         "land", "Land.", {"type": "object", "properties": {"wait": {"type": "boolean"}}, "required": ["wait"]}
@@ -188,7 +188,7 @@ def test_small_profile_keeps_its_tools_and_drops_advanced_optional_arguments() -
     by_name = {t.name: t for t in small}
     assert "alt_frame" not in by_name["go_to_location"].input_schema["properties"]
     assert "alt_frame" in GOTO.input_schema["properties"]  # the original is untouched
-    assert set(by_name["takeoff"].input_schema["properties"]) == {"drone_id", "altitude_m"}
+    assert set(by_name["takeoff"].input_schema["properties"]) == {"drone_id", "alt_m"}
     assert "wait" in by_name["land"].input_schema["properties"]  # required: stays
     # With an explicit selection only the arguments are trimmed.
     assert [t.name for t in apply_profile([other, GOTO], "small", keep_selection=True)] == [
@@ -215,6 +215,6 @@ def test_closest_tool_by_spelling_or_by_the_words_of_the_name() -> None:
     assert closest_tool("fly_north", tools) is move
     assert closest_tool("self_destruct", tools) is None
     assert signature(GOTO) == (
-        "go_to_location(drone_id: string, latitude_deg: number, longitude_deg: number, altitude_m: number, "
+        "go_to_location(drone_id: string, lat_deg: number, lon_deg: number, alt_m: number, "
         "alt_frame?: any)"
     )

@@ -74,22 +74,22 @@ def build_toy_server(world: ToyWorld, url: str) -> MCPServer:
     @mcp.tool(meta={"fleet-gateway/toolset": "flight"})
     async def takeoff(
         drone_id: Annotated[str, Field(description="drone id")],
-        altitude_m: Annotated[float, Field(description="metres above home")],
+        alt_m: Annotated[float, Field(description="metres above home")],
         ctx: Context,
     ) -> dict[str, float | str]:
-        """Take off and climb to altitude_m above home; waits until reached."""
-        world.calls.append(("takeoff", {"drone_id": drone_id, "altitude_m": altitude_m}))
+        """Take off and climb to alt_m above home; waits until reached."""
+        world.calls.append(("takeoff", {"drone_id": drone_id, "alt_m": alt_m}))
         d = drone(drone_id)
-        if altitude_m > MAX_ALT_M:
+        if alt_m > MAX_ALT_M:
             raise ToolError(
-                f"refused by rule max_altitude: target altitude {altitude_m:g} m exceeds the limit "
+                f"refused by rule max_altitude: target altitude {alt_m:g} m exceeds the limit "
                 f"of {MAX_ALT_M:g} m above home"
             )
         d.armed = True
         for i in range(1, 4):
             await asyncio.sleep(0.02)
-            d.alt_m = altitude_m * i / 3
-            await ctx.report_progress(i, 3, message=f"climbing {d.alt_m:.1f}/{altitude_m:g} m")
+            d.alt_m = alt_m * i / 3
+            await ctx.report_progress(i, 3, message=f"climbing {d.alt_m:.1f}/{alt_m:g} m")
         return {"status": "reached", "alt_m": d.alt_m}
 
     @mcp.tool(meta={"fleet-gateway/toolset": "navigation"})

@@ -129,8 +129,8 @@ async def test_flown_flight_is_listed_with_its_track(tmp_path: Path) -> None:
             async with Client(
                 f"{base}/mcp", client_info=Implementation(name="rest-test", version="1")
             ) as agent:
-                goto = {"drone_id": "alpha", "latitude_deg": home.lat_deg, "longitude_deg": home.lon_deg}
-                refused = await agent.call_tool("go_to_location", {**goto, "altitude_m": 5, "wait": False})
+                goto = {"drone_id": "alpha", "lat_deg": home.lat_deg, "lon_deg": home.lon_deg}
+                refused = await agent.call_tool("go_to_location", {**goto, "alt_m": 5, "wait": False})
                 assert refused.is_error and "test over" in refused.content[0].text
                 status = await agent.call_tool("get_armed", {"drone_id": "alpha"})
                 assert not status.is_error

@@ -445,6 +445,10 @@ async def test_locks_set_shown_persisted_and_restored(
     assert_error(
         await client.post("/api/v1/vehicles/ghost/lock", json={"reason": "x"}), 404, "unknown_vehicle"
     )
+    # a command route takes the id in any case; the lock is keyed by the registered id
+    assert (await client.delete("/api/v1/vehicles/ALPHA/lock")).json()["was_locked"] is True
+    relocked = await client.post("/api/v1/vehicles/Alpha/lock", json={"reason": "battery swap"})
+    assert relocked.json()["scope"] == "alpha"
     error = assert_error(await client.post("/api/v1/fleet/lock", json={}), 422, "validation_error")
     assert "reason" in error["message"]
     too_long = await client.post("/api/v1/fleet/lock", json={"reason": "r" * 501})

@@ -86,11 +86,11 @@ def by_owner(owners: dict[str, str]) -> dict[str, list[str]]:
     return out
 
 
-async def take_off(c: Cluster, node: Node, drone_ids: list[str], altitude_m: float = 10.0) -> None:
+async def take_off(c: Cluster, node: Node, drone_ids: list[str], alt_m: float = 10.0) -> None:
     calls: Calls = c.calls  # type: ignore[attr-defined]
     async with node.client(name=f"takeoff-{node.name}") as mcp:
         results = await asyncio.gather(
-            *(calls.tool(mcp, "takeoff", {"drone_id": d, "altitude_m": altitude_m}) for d in drone_ids)
+            *(calls.tool(mcp, "takeoff", {"drone_id": d, "alt_m": alt_m}) for d in drone_ids)
         )
     for r in results:
         assert ok(r)["status"] == "succeeded", r
@@ -148,7 +148,7 @@ async def test_an_agent_on_node_a_flies_a_drone_owned_by_node_c(cl: Cluster) -> 
     async with cl.node("node-a").client(name="forwarded") as mcp:
         up = ok(
             await calls.tool(
-                mcp, "takeoff", {"drone_id": drone, "altitude_m": 10}, progress_callback=on_progress
+                mcp, "takeoff", {"drone_id": drone, "alt_m": 10}, progress_callback=on_progress
             )
         )
         assert up["status"] == "succeeded" and up["drone_id"] == drone, up
@@ -157,13 +157,13 @@ async def test_an_agent_on_node_a_flies_a_drone_owned_by_node_c(cl: Cluster) -> 
         # a goto, waited for on the owner
         truth = await cl.true_state(drone)
         lat, lon = geo.offset_position(truth["lat"], truth["lon"], 25.0, 0.0)
-        goto = {"drone_id": drone, "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 12}
+        goto = {"drone_id": drone, "lat_deg": lat, "lon_deg": lon, "alt_m": 12}
         there = ok(await calls.tool(mcp, "go_to_location", goto))
         assert there["status"] == "succeeded", there
         truth = await cl.true_state(drone)
         assert geo.horizontal_distance_m(truth["lat"], truth["lon"], lat, lon) < 3.0
         # a refusal: the same class (a refusal) and the same words as on the node that owns the drone
-        too_high = {**goto, "altitude_m": 5000}
+        too_high = {**goto, "alt_m": 5000}
         refused_here = err(await calls.tool(mcp, "go_to_location", too_high))
         async with cl.node("node-c").client(name="owner") as owner:
             refused_there = err(await calls.tool(owner, "go_to_location", too_high))
@@ -172,7 +172,7 @@ async def test_an_agent_on_node_a_flies_a_drone_owned_by_node_c(cl: Cluster) -> 
             refused_there,
         )
         # wait:false, then the wait forwarded to the owner (monitor_flight on node A)
-        back = {**goto, "latitude_deg": truth["lat"] - 0.0002, "wait": False}
+        back = {**goto, "lat_deg": truth["lat"] - 0.0002, "wait": False}
         leg = ok(await calls.tool(mcp, "go_to_location", back))
         assert leg["status"] == "running", leg
         monitored = ok(await calls.tool(mcp, "monitor_flight", {"drone_id": drone}))
@@ -208,13 +208,13 @@ async def test_a_formation_spanning_every_node(cl: Cluster) -> None:
         lat = sum(t["lat"] for t in truths) / 3
         lon = sum(t["lon"] for t in truths) / 3
         c_lat, c_lon = geo.offset_position(lat, lon, 30.0, 0.0)
-        args = {"drone_ids": team, "formation": "line", "center_lat": c_lat, "center_lon": c_lon,
+        args = {"drone_ids": team, "formation": "line", "center_lat_deg": c_lat, "center_lon_deg": c_lon,
                 "alt_m": 15, "spacing_m": 12}  # fmt: skip
         formed = ok(await calls.tool(mcp, "formation_goto", args))
         assert formed["status"] == "succeeded", formed
         for member in formed["drones"]:
             truth = await cl.true_state(member["drone_id"])
-            target = (member["target_lat"], member["target_lon"])
+            target = (member["target_lat_deg"], member["target_lon_deg"])
             assert geo.horizontal_distance_m(truth["lat"], truth["lon"], *target) < 3.0, member
             assert abs(truth["rel_alt_m"] - member["target_alt_m"]) < 1.5, member
         # each drone's legs are operations of its owner (kind formation), not of node B
@@ -256,7 +256,7 @@ async def test_lock_and_emergency_stop_from_node_b_reach_every_node_and_drone(cl
         truth = await cl.true_state(drone)
         targets[drone] = lat, lon = geo.offset_position(truth["lat"], truth["lon"], 800.0, 0.0)
         async with cl.node(name).client(name=f"leg-{name}") as mcp:
-            goto = {"drone_id": drone, "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 10}
+            goto = {"drone_id": drone, "lat_deg": lat, "lon_deg": lon, "alt_m": 10}
             assert ok(await calls.tool(mcp, "go_to_location", {**goto, "wait": False}))["status"] == "running"
 
     await asyncio.gather(*(leg(n, d) for n, d in flyers.items()))
@@ -291,7 +291,7 @@ async def test_lock_and_emergency_stop_from_node_b_reach_every_node_and_drone(cl
         async with cl.node(name).client(name=f"locked-{name}") as mcp:
             truth = await cl.true_state(drone)
             lat, lon = geo.offset_position(truth["lat"], truth["lon"], 10.0, 0.0)
-            goto = {"drone_id": drone, "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 10}
+            goto = {"drone_id": drone, "lat_deg": lat, "lon_deg": lon, "alt_m": 10}
             text = err(await calls.tool(mcp, "go_to_location", goto))
             assert "operator_lock" in text, text
     # a vehicle lock set on node C reaches node A's agents too; removing it on node A clears it on C
@@ -328,7 +328,7 @@ async def test_node_loss_with_drones_in_the_air_and_the_takeover(cl: Cluster) ->
     truth = await cl.true_state(mover)
     lat, lon = geo.offset_position(truth["lat"], truth["lon"], 0.0, 60.0)
     async with lost.client(name="before-loss") as mcp:
-        goto = {"drone_id": mover, "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 10, "wait": False}
+        goto = {"drone_id": mover, "lat_deg": lat, "lon_deg": lon, "alt_m": 10, "wait": False}
         leg = ok(await calls.tool(mcp, "go_to_location", goto))
     assert leg["status"] == "running"
     flights_before = {d: await cl.count_rows("flights", "vehicle_id = :v", v=d) for d in victims}

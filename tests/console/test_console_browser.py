@@ -94,7 +94,7 @@ async def ensure_airborne(stack: Stack, client: Client, drone: str, alt_m: float
     state = await stack.true_state(drone)
     if state["armed"] and not state["landed"] and state["rel_alt_m"] > 2.0:
         return
-    result = structured(await client.call_tool("takeoff", {"drone_id": drone, "altitude_m": alt_m}))
+    result = structured(await client.call_tool("takeoff", {"drone_id": drone, "alt_m": alt_m}))
     assert result["status"] == "succeeded", result
 
 
@@ -211,7 +211,7 @@ async def test_mcp_takeoff_and_goto_move_the_marker(console_stack: Stack, contex
         await ensure_airborne(console_stack, client, "d1", 12.0)
         # the marker's label follows the altitude, pushed by the stream (no reload)
         await expect(label).to_have_text(re.compile(r"^1[12]\.\d m$"), timeout=ui_timeout_ms())
-        goto = {"drone_id": "d1", "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 12, "wait": False}
+        goto = {"drone_id": "d1", "lat_deg": lat, "lon_deg": lon, "alt_m": 12, "wait": False}
         assert structured(await client.call_tool("go_to_location", goto))["status"] == "running"
         # the running operation shows with its progress in the drone's detail
         await expect(page.locator(".detail .operation .op-kind")).to_have_text(
@@ -235,7 +235,7 @@ async def test_mcp_takeoff_and_goto_move_the_marker(console_stack: Stack, contex
 async def test_an_agents_refused_call_appears_in_the_audit_stream(console_stack: Stack, context: Any) -> None:
     page = (await open_console(context, console_stack, OPERATOR_TOKEN)).page
     async with agent(console_stack, "audit-watcher") as client:
-        refused = await client.call_tool("takeoff", {"drone_id": "d3", "altitude_m": 500})
+        refused = await client.call_tool("takeoff", {"drone_id": "d3", "alt_m": 500})
         assert "max_altitude" in error_text(refused)
     row = audit_row(page, "takeoff", "refused").filter(has_text="d3")
     await expect(row.first).to_be_visible(timeout=ui_timeout_ms())
@@ -258,7 +258,7 @@ async def test_lock_button_makes_the_next_mcp_takeoff_refused(console_stack: Sta
             "people on the field", timeout=ui_timeout_ms()
         )
         async with agent(console_stack, "locked-out") as client:
-            refused = await client.call_tool("takeoff", {"drone_id": "d2", "altitude_m": 10})
+            refused = await client.call_tool("takeoff", {"drone_id": "d2", "alt_m": 10})
             message = error_text(refused)
             assert "operator_lock" in message and "people on the field" in message, message
             await expect(
@@ -284,7 +284,7 @@ async def test_lock_button_makes_the_next_mcp_takeoff_refused(console_stack: Sta
             await expect(page.locator(".fleet-table tr[data-drone=d3] .lockmark")).to_be_visible(
                 timeout=ui_timeout_ms()
             )
-            refused = await client.call_tool("takeoff", {"drone_id": "d3", "altitude_m": 10})
+            refused = await client.call_tool("takeoff", {"drone_id": "d3", "alt_m": 10})
             assert "battery swap" in error_text(refused)
             await page.locator(".detail button.act-unlock").click()
             await page.locator("dialog[data-kind=unlock-drone] button.confirm-button").click()
@@ -305,7 +305,7 @@ async def test_emergency_stop_lands_the_fleet(console_stack: Stack, context: Any
                 await ensure_airborne(console_stack, client, drone, alt)
             for drone, (north, east) in spread.items():
                 lat, lon = point_from((await console_stack.true_state(drone))["home"], north, east)
-                goto = {"drone_id": drone, "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 10}
+                goto = {"drone_id": drone, "lat_deg": lat, "lon_deg": lon, "alt_m": 10}
                 assert structured(await client.call_tool("go_to_location", goto))["status"] == "succeeded"
         for drone in fleet:
             await expect(page.locator(f".fleet-table tr[data-drone={drone}]")).to_contain_text(
@@ -336,7 +336,7 @@ async def test_emergency_stop_lands_the_fleet(console_stack: Stack, context: Any
         await expect(audit_row(page, "rest.fleet_stop", "ok").first).to_be_visible()
         # while the fleet is locked after the stop, the agent cannot take off again
         async with agent(console_stack, "estop-victim") as client:
-            refused = await client.call_tool("takeoff", {"drone_id": "d1", "altitude_m": 10})
+            refused = await client.call_tool("takeoff", {"drone_id": "d1", "alt_m": 10})
             assert "emergency stop" in error_text(refused)
     finally:
         await unlock_all(console_stack)
@@ -357,7 +357,7 @@ async def test_replay_of_a_past_flight_shows_its_track_texts_and_calls(
         async with agent(console_stack, "replay-maker") as client:
             await ensure_airborne(console_stack, client, "d3", 8.0)
             lat, lon = point_from(await console_stack.true_state("d3"), 0.0, 25.0)
-            goto = {"drone_id": "d3", "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 8}
+            goto = {"drone_id": "d3", "lat_deg": lat, "lon_deg": lon, "alt_m": 8}
             assert structured(await client.call_tool("go_to_location", goto))["status"] == "succeeded"
             assert structured(await client.call_tool("land", {"drone_id": "d3"}))["status"] == "succeeded"
     flight = await eventually(finished_flight, "a finished flight that moved, in the flight log", within_s=30)

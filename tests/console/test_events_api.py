@@ -125,7 +125,7 @@ async def test_audit_rows_are_pushed_when_written_and_again_when_finished(stack:
 
         async with agent(stack, "events-test") as client:
             started = structured(
-                await client.call_tool("takeoff", {"drone_id": "d2", "altitude_m": 8, "wait": False})
+                await client.call_tool("takeoff", {"drone_id": "d2", "alt_m": 8, "wait": False})
             )
             assert started["status"] == "running"
             running = await events.until(
@@ -154,7 +154,7 @@ async def test_audit_by_time_range_and_the_flights_status_texts(stack: Stack) ->
 
         if not (await viewer.get("/api/v1/flights", params={"vehicle_id": "d2"})).json()["items"]:
             async with agent(stack, "events-test") as client:  # run alone: fly one
-                structured(await client.call_tool("takeoff", {"drone_id": "d2", "altitude_m": 8}))
+                structured(await client.call_tool("takeoff", {"drone_id": "d2", "alt_m": 8}))
                 structured(await client.call_tool("land", {"drone_id": "d2"}))
         flight = await eventually(landed_flight, "d2's flight closed in the flight log", within_s=30)
         texts = (await viewer.get(f"/api/v1/flights/{flight['id']}/statustexts")).json()

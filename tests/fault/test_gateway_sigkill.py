@@ -128,13 +128,13 @@ async def test_gateway_sigkill_mid_flight_then_restart(tmp_path: Path) -> None:
             async with mcp_client(base) as c:
 
                 async def took_off() -> Any:  # pre-arm checks pass once the simulated EKF has settled
-                    r = await c.call_tool("takeoff", {"drone_id": "d1", "altitude_m": 10})
+                    r = await c.call_tool("takeoff", {"drone_id": "d1", "alt_m": 10})
                     return not r.is_error and r.structured_content["status"] == "succeeded"
 
                 await until("takeoff", took_off, log)
                 r = await c.call_tool(
                     "go_to_location",
-                    {"drone_id": "d1", "latitude_deg": far[0], "longitude_deg": far[1], "altitude_m": 10,
+                    {"drone_id": "d1", "lat_deg": far[0], "lon_deg": far[1], "alt_m": 10,
                      "wait": False},
                 )  # fmt: skip
                 assert not r.is_error, r.content

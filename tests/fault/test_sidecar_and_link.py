@@ -56,9 +56,9 @@ async def test_sidecar_killed_during_goto_restarts_and_drone_is_commandable(stac
     home = await stack.true_state("d1")
     far = point_from(home, 70, 0)
     async with stack.client("auto", name="sidecar-kill") as c:
-        assert (await ok(c, "takeoff", {**d, "altitude_m": 10}))["status"] == "succeeded"
+        assert (await ok(c, "takeoff", {**d, "alt_m": 10}))["status"] == "succeeded"
         r = await ok(
-            c, "go_to_location", {**d, "latitude_deg": far[0], "longitude_deg": far[1], "altitude_m": 10,
+            c, "go_to_location", {**d, "lat_deg": far[0], "lon_deg": far[1], "alt_m": 10,
                                   "wait": False},
         )  # fmt: skip
         assert r["status"] == "running"
@@ -100,7 +100,7 @@ async def test_sidecar_killed_during_goto_restarts_and_drone_is_commandable(stac
         r = await ok(
             c,
             "go_to_location",
-            {**d, "latitude_deg": back[0], "longitude_deg": back[1], "altitude_m": 12},
+            {**d, "lat_deg": back[0], "lon_deg": back[1], "alt_m": 12},
         )
         assert r["status"] == "succeeded", r
         s = await stack.true_state("d1")
@@ -121,10 +121,10 @@ async def test_link_loss_during_mission_failsafe_then_recovery(stack: Stack) -> 
     home = await stack.true_state("d2")
     a, b = point_from(home, 40, 0), point_from(home, 40, 40)
     wps = [
-        {"lat": home["lat"], "lon": home["lon"], "alt_m": 10, "kind": "takeoff"},
-        {"lat": a[0], "lon": a[1], "alt_m": 10},
-        {"lat": b[0], "lon": b[1], "alt_m": 10},
-        {"lat": home["lat"], "lon": home["lon"], "alt_m": 10},
+        {"lat_deg": home["lat"], "lon_deg": home["lon"], "alt_m": 10, "kind": "takeoff"},
+        {"lat_deg": a[0], "lon_deg": a[1], "alt_m": 10},
+        {"lat_deg": b[0], "lon_deg": b[1], "alt_m": 10},
+        {"lat_deg": home["lat"], "lon_deg": home["lon"], "alt_m": 10},
     ]
     async with stack.client("auto", name="link-loss-mission") as c:
         r = await ok(c, "initiate_mission", {**d, "waypoints": wps, "wait": False})
@@ -135,8 +135,8 @@ async def test_link_loss_during_mission_failsafe_then_recovery(stack: Stack) -> 
         await stack.sim.control.link_down(index)
         try:
             await wait_state(stack, "d2", "link_lost")
-            refused = await c.call_tool("go_to_location", {**d, "latitude_deg": a[0], "longitude_deg": a[1],
-                                                           "altitude_m": 10})  # fmt: skip
+            refused = await c.call_tool("go_to_location", {**d, "lat_deg": a[0], "lon_deg": a[1],
+                                                           "alt_m": 10})  # fmt: skip
             assert "link_lost" in error_text(refused)
             # reads answer from the cache, flagged stale once older than link_lost_after_s (the state
             # can turn link_lost a moment before the last position sample is that old)
@@ -171,7 +171,7 @@ async def test_link_loss_during_mission_failsafe_then_recovery(stack: Stack) -> 
 async def test_operator_kills_a_flying_drone_over_rest(stack: Stack) -> None:
     """Kill in the air is an operator decision: REST does it at once, and the audit records who."""
     async with stack.client("auto", name="before-kill") as c:
-        assert (await ok(c, "takeoff", {"drone_id": "d1", "altitude_m": 6}))["status"] == "succeeded"
+        assert (await ok(c, "takeoff", {"drone_id": "d1", "alt_m": 6}))["status"] == "succeeded"
     async with httpx.AsyncClient(base_url=stack.base_url, timeout=30) as http:
         r = await http.post("/api/v1/vehicles/d1/kill")
         assert r.status_code == 200 and r.json()["outcome"] == "sent", r.text

@@ -29,7 +29,7 @@ async def gateway(tmp_path: Path) -> AsyncIterator[Gateway]:
 
 async def test_a_verb_by_name_takes_and_gives_json_and_waiting_is_separate(gateway: Gateway) -> None:
     commander = gateway.commander
-    started = await commander.call("takeoff", AGENT, drone_id="d1", altitude_m=10)
+    started = await commander.call("takeoff", AGENT, drone_id="d1", alt_m=10)
     assert json.loads(json.dumps(started)) == started  # plain JSON, ready to cross a process boundary
     assert started["kind"] == "takeoff" and started["status"] == "running"
     progress: list[float] = []
@@ -40,7 +40,7 @@ async def test_a_verb_by_name_takes_and_gives_json_and_waiting_is_separate(gatew
     done = await commander.wait(started["operation_id"], 10.0, on_progress)
     assert done.status == "succeeded" and progress, done
     lat, lon = geo.offset_position(HOME[0], HOME[1], 30.0, 0.0)
-    goto = await commander.call("goto", AGENT, drone_id="d1", lat_deg=lat, lon_deg=lon, altitude_m=12)
+    goto = await commander.call("goto", AGENT, drone_id="d1", lat_deg=lat, lon_deg=lon, alt_m=12)
     assert OperationView.model_validate(goto).kind == "goto"
     assert (await commander.wait(goto["operation_id"], 10.0)).status == "succeeded"
     page = await commander.call("list_params", AGENT, drone_id="d1", prefix="rtl")
@@ -52,7 +52,7 @@ async def test_unknown_verbs_and_bad_arguments_are_named_and_send_nothing(gatewa
     commander = gateway.commander
     with pytest.raises(InvalidArgument, match=r"unknown verb 'fly'; verbs: .*takeoff"):
         await commander.call("fly", AGENT, drone_id="d1")
-    with pytest.raises(InvalidArgument, match="invalid arguments for takeoff: altitude_m: Field required"):
+    with pytest.raises(InvalidArgument, match="invalid arguments for takeoff: alt_m: Field required"):
         await commander.call("takeoff", AGENT, drone_id="d1")
     with pytest.raises(InvalidArgument, match="speed: Extra inputs are not permitted"):
         await commander.call("set_speed", AGENT, drone_id="d1", speed_mps=5, speed=3)
@@ -65,14 +65,14 @@ async def test_the_door_decides_locks_and_the_takeoff_guard(gateway: Gateway) ->
     commander: Commander = gateway.commander
     await commander.lock(OPERATOR, "d2", "battery swap")
     with pytest.raises(SafetyRefusal, match="operator_lock: drone d2 is locked by operator-1: battery swap"):
-        await commander.call("takeoff", AGENT, drone_id="d2", altitude_m=10)
+        await commander.call("takeoff", AGENT, drone_id="d2", alt_m=10)
     with pytest.raises(SafetyRefusal, match="only an operator may unlock"):
         await commander.call("unlock", AGENT, scope="d2")
     fake(gateway, "d2").speed = 2.0  # a slow climb: the calls below surely land inside it
-    climbing = await commander.call("takeoff", OPERATOR, drone_id="d2", altitude_m=60)  # locks bind agents
+    climbing = await commander.call("takeoff", OPERATOR, drone_id="d2", alt_m=60)  # locks bind agents
     await commander.unlock(OPERATOR, "d2")
     lat, lon = geo.offset_position(HOME[0], HOME[1], 30.0, 10.0)
-    goto = {"drone_id": "d2", "lat_deg": lat, "lon_deg": lon, "altitude_m": 60}
+    goto = {"drone_id": "d2", "lat_deg": lat, "lon_deg": lon, "alt_m": 60}
     with pytest.raises(SafetyRefusal, match="takeoff_in_progress: d2 is still taking off"):
         await commander.call("goto", AGENT, **goto)
     assert commander.operation(climbing["operation_id"]).status == "running"
@@ -90,22 +90,31 @@ def test_the_verb_table_names_every_verb_of_the_issue() -> None:
     assert wanted <= set(VERBS), wanted - set(VERBS)
 
 
+async def test_a_verb_by_name_takes_a_drone_id_in_any_case(gateway: Gateway) -> None:
+    """Operations and locks are keyed by the id string: 'D1' must reach them as d1."""
+    commander = gateway.commander
+    started = await commander.call("takeoff", AGENT, drone_id="D1", alt_m=10)
+    assert started["drone_id"] == "d1"
+    assert commander.operations.running("d1") is not None
+    assert commander.canonical_id("ghost") == "ghost"  # the lookup then names the known ids
+
+
 async def test_refusals_name_the_next_valid_call_with_numbers(gateway: Gateway) -> None:
     """Texts a small model misread (issue 12): each names the call that does what was meant."""
     commander = gateway.commander
-    started = await commander.call("takeoff", AGENT, drone_id="d1", altitude_m=10)
+    started = await commander.call("takeoff", AGENT, drone_id="d1", alt_m=10)
     assert (await commander.wait(started["operation_id"], 10.0)).status == "succeeded"
     with pytest.raises(InvalidArgument) as again:
-        await commander.call("takeoff", AGENT, drone_id="d1", altitude_m=15)
+        await commander.call("takeoff", AGENT, drone_id="d1", alt_m=15)
     assert str(again.value.message) == (
         "d1 already flies at 10 m; to climb to 15 m use "
-        "move_to_relative(drone_id='d1', north_m=0, east_m=0, down_m=-5)"
+        "move_to_relative(drone_id='d1', north_m=0, east_m=0, up_m=5)"
     )
     sent = list(fake(gateway, "d1").sent)
     with pytest.raises(InvalidArgument) as down:
-        await commander.call("move_relative", AGENT, drone_id="d1", north_m=30, east_m=0, down_m=10)
-    assert "down_m=10 would take d1 from 10.0 m to 0.0 m, below home" in down.value.message
-    assert "to climb 10 m use down_m=-10" in down.value.message
+        await commander.call("move_relative", AGENT, drone_id="d1", north_m=30, east_m=0, up_m=-10)
+    assert "up_m=-10 would take d1 from 10.0 m to 0.0 m, below home" in down.value.message
+    assert "to climb 10 m use up_m=10" in down.value.message
     with pytest.raises(InvalidArgument, match="latitude and longitude look swapped"):
-        await commander.call("goto", AGENT, drone_id="d1", lat_deg=149.17, lon_deg=-35.36, altitude_m=12)
+        await commander.call("goto", AGENT, drone_id="d1", lat_deg=149.17, lon_deg=-35.36, alt_m=12)
     assert fake(gateway, "d1").sent == sent  # nothing was sent for any of them

@@ -101,7 +101,7 @@ async def test_a_verb_goes_to_the_owner_as_json_and_comes_back_as_the_same_model
     fake(gw, "d1").initialising = lambda: "waiting for a position estimate"  # type: ignore[method-assign]
     started = await commander.takeoff(AGENT, "d1", 10.0, notify=notify)
     assert isinstance(started, OperationView) and started.kind == "takeoff"
-    assert loop.calls[0][:3] == ("d1", "takeoff", {"drone_id": "d1", "altitude_m": 10.0})
+    assert loop.calls[0][:3] == ("d1", "takeoff", {"drone_id": "d1", "alt_m": 10.0})
     assert loop.calls[0][3] == AGENT.to_dict()  # the door's caller, not the forwarding node
     assert notices == ["d1: waiting for a position estimate"]  # the owner's notice, relayed
     assert fake(gw, "d1").sent[0] == ("takeoff", 10.0)
@@ -139,7 +139,7 @@ async def test_the_scope_holds_here_and_again_on_the_owner(
         ACTING.reset(token)
     # forwarded by a node that did not apply the scope: the owner applies it (ACTING = forwarded caller)
     with pytest.raises(UnknownVehicle, match="known ids: d1"):
-        await loop.call("d2", "takeoff", SCOPED, {"drone_id": "d2", "altitude_m": 10.0})
+        await loop.call("d2", "takeoff", SCOPED, {"drone_id": "d2", "alt_m": 10.0})
 
 
 async def test_a_forwarded_call_is_never_forwarded_again(routed: tuple[Gateway, Commander, Loopback]) -> None:

@@ -92,15 +92,15 @@ async def test_fleet_flight_partial_failures_and_concurrent_dispatch(
 
         # --- a line 40 m north of the fleet, at one altitude
         lat, lon = geo.offset_position(homes["d2"]["lat"], homes["d2"]["lon"], 40.0, 2.5)
-        args = {"drone_ids": IDS, "formation": "line", "center_lat": lat, "center_lon": lon, "alt_m": 15,
-                "spacing_m": 8, "heading_deg": 0}  # fmt: skip
+        args = {"drone_ids": IDS, "formation": "line", "center_lat_deg": lat, "center_lon_deg": lon,
+                "alt_m": 15, "spacing_m": 8, "heading_deg": 0}  # fmt: skip
         r = await _finish(c, structured(await c.call_tool("formation_goto", args)))
         assert r["status"] == "succeeded", (r["message"], r["drones"])
         assert r["plan"]["formation"] == "line" and r["plan"]["min_clearance_m"] >= 5.0
         now = await _states(stack)
         for slot in r["drones"]:
             state = now[slot["drone_id"]]
-            assert distance_m(state, slot["target_lat"], slot["target_lon"]) <= 2.5, (slot, state)
+            assert distance_m(state, slot["target_lat_deg"], slot["target_lon_deg"]) <= 2.5, (slot, state)
             assert abs(state["rel_alt_m"] - 15) <= 1.5, (slot, state)
 
         # --- land: a locked drone is skipped and named, the others land
@@ -135,8 +135,8 @@ async def test_formation_stops_and_holds_when_one_drone_is_taken_over(
         assert r["status"] == "succeeded", (r["message"], r["drones"])
         start = await _states(stack)
         lat, lon = geo.offset_position(start["d1"]["lat"], start["d1"]["lon"], 0.0, 150.0)
-        args = {"drone_ids": IDS, "formation": "column", "center_lat": lat, "center_lon": lon, "alt_m": 12,
-                "spacing_m": 10, "wait": False}  # fmt: skip
+        args = {"drone_ids": IDS, "formation": "column", "center_lat_deg": lat, "center_lon_deg": lon,
+                "alt_m": 12, "spacing_m": 10, "wait": False}  # fmt: skip
         r = structured(await c.call_tool("formation_goto", args))
         assert r["status"] == "running"
         fleet_id = r["operation_id"]
@@ -158,7 +158,10 @@ async def test_formation_stops_and_holds_when_one_drone_is_taken_over(
             "held drones brake and stay put",
         )
         for d in held:
-            assert distance_m(s2[d], drones[d]["target_lat"], drones[d]["target_lon"]) > 20.0, (d, s2[d])
+            assert distance_m(s2[d], drones[d]["target_lat_deg"], drones[d]["target_lon_deg"]) > 20.0, (
+                d,
+                s2[d],
+            )
         r = await _finish(c, structured(await c.call_tool("fleet_return_to_launch", {})))
         assert r["status"] == "succeeded", (r["message"], r["drones"])
 

@@ -83,7 +83,13 @@ async def test_formation_refused_before_anything_moves_names_every_drone(gateway
         gateway.locks.lock("d2", "battery swap", "alice")
         fake(gateway, "d4").set(battery=BatteryValue(remaining_pct=12.0, voltage_v=10.1))
         lat, lon = ahead(150.0)
-        args = {"formation": "wedge", "center_lat": lat, "center_lon": lon, "alt_m": 20, "spacing_m": 12}
+        args = {
+            "formation": "wedge",
+            "center_lat_deg": lat,
+            "center_lon_deg": lon,
+            "alt_m": 20,
+            "spacing_m": 12,
+        }
         # a lock and an unknown id are found before planning
         text = err(await c.call_tool("formation_goto", {"drone_ids": [*IDS, "d9"], **args}))
         assert text.startswith("Refused: formation_goto refused, nothing was sent") and "2 of 6" in text, text
@@ -116,7 +122,7 @@ async def test_formation_phases_are_barriers(gateway: Gateway) -> None:
         r = ok(
             await c.call_tool(
                 "formation_goto",
-                {"drone_ids": IDS, "formation": "line", "center_lat": HOME[0], "center_lon": HOME[1],
+                {"drone_ids": IDS, "formation": "line", "center_lat_deg": HOME[0], "center_lon_deg": HOME[1],
                  "alt_m": 20, "spacing_m": 10, "heading_deg": 0},
             )
         )  # fmt: skip
@@ -160,8 +166,8 @@ async def test_failure_in_a_phase_holds_the_others_and_stops(gateway: Gateway) -
         r = ok(
             await c.call_tool(
                 "formation_goto",
-                {"drone_ids": IDS, "formation": "line", "center_lat": lat, "center_lon": lon, "alt_m": 20,
-                 "spacing_m": 12, "heading_deg": 0},
+                {"drone_ids": IDS, "formation": "line", "center_lat_deg": lat, "center_lon_deg": lon,
+                 "alt_m": 20, "spacing_m": 12, "heading_deg": 0},
             )
         )  # fmt: skip
     assert r["status"] == "aborted", r
@@ -202,8 +208,8 @@ async def test_return_to_launch_staggers_and_orders_altitudes(gateway: Gateway) 
         ok(
             await c.call_tool(
                 "formation_goto",
-                {"drone_ids": IDS, "formation": "circle", "center_lat": lat, "center_lon": lon, "alt_m": 25,
-                 "spacing_m": 12},
+                {"drone_ids": IDS, "formation": "circle", "center_lat_deg": lat, "center_lon_deg": lon,
+                 "alt_m": 25, "spacing_m": 12},
             )
         )  # fmt: skip
         for v in vehicles(gateway):
@@ -276,7 +282,13 @@ async def test_formation_resource_and_monitor(gateway: Gateway) -> None:
         r = ok(
             await c.call_tool(
                 "formation_goto",
-                {"drone_ids": IDS, "formation": "grid", "center_lat": lat, "center_lon": lon, "alt_m": 15},
+                {
+                    "drone_ids": IDS,
+                    "formation": "grid",
+                    "center_lat_deg": lat,
+                    "center_lon_deg": lon,
+                    "alt_m": 15,
+                },
             )
         )
         assert r["status"] == "running" and r["plan"]["formation"] == "grid"
@@ -287,8 +299,8 @@ async def test_formation_resource_and_monitor(gateway: Gateway) -> None:
                 {
                     "drone_ids": ["d1", "d2"],
                     "formation": "line",
-                    "center_lat": lat,
-                    "center_lon": lon,
+                    "center_lat_deg": lat,
+                    "center_lon_deg": lon,
                     "alt_m": 15,
                 },
             )

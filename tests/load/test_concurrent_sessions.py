@@ -67,7 +67,7 @@ async def test_twenty_sessions_read_while_a_formation_flies(stack: Stack) -> Non
                 assert loop.time() < deadline and not any(t.done() for t in readers), counts
                 await asyncio.sleep(0.1)
             lat, lon = geo.offset_position(homes[ids[0]]["lat"], homes[ids[0]]["lon"], 60.0, 5.0)
-            args = {"drone_ids": ids, "formation": "wedge", "center_lat": lat, "center_lon": lon,
+            args = {"drone_ids": ids, "formation": "wedge", "center_lat_deg": lat, "center_lon_deg": lon,
                     "alt_m": 12, "spacing_m": 8, "wait": False}  # fmt: skip
             r = await finish(pilot, structured(await pilot.call_tool("formation_goto", args)))
         finally:
@@ -79,7 +79,7 @@ async def test_twenty_sessions_read_while_a_formation_flies(stack: Stack) -> Non
         assert r["status"] == "succeeded", (r["message"], r["drones"])
         for slot in r["drones"]:
             state = await stack.true_state(slot["drone_id"])
-            assert distance_m(state, slot["target_lat"], slot["target_lon"]) <= 2.5, (slot, state)
+            assert distance_m(state, slot["target_lat_deg"], slot["target_lon_deg"]) <= 2.5, (slot, state)
             assert abs(state["rel_alt_m"] - 12) <= 1.5, (slot, state)
         r = await finish(pilot, structured(await pilot.call_tool("fleet_land", {"drone_ids": ids})))
         assert r["status"] == "succeeded", (r["message"], r["drones"])

@@ -36,9 +36,9 @@ async def _paper_prompt(stack: Stack) -> None:
         progress.append((p, message))
 
     async with stack.client("legacy", name="paper-prompt") as c:
-        r = structured(await stack.call(c, "takeoff", {"drone_id": "d1", "altitude_m": 10}))
+        r = structured(await stack.call(c, "takeoff", {"drone_id": "d1", "alt_m": 10}))
         assert r["status"] == "succeeded" and r["alt_m"] > 9.0, r
-        goto = {"drone_id": "d1", "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 10}
+        goto = {"drone_id": "d1", "lat_deg": lat, "lon_deg": lon, "alt_m": 10}
         started = time.perf_counter()
         r = structured(await stack.call(c, "go_to_location", goto, progress_callback=on_progress))
         stack.figures["goto_67m_tool_latency_s"] = round(time.perf_counter() - started, 2)
@@ -57,9 +57,9 @@ async def _premature_goto(stack: Stack) -> None:
     """With wait=false the goto sent during the takeoff is refused (nothing sent); a later goto flies."""
     home = await stack.true_state("d2")
     lat, lon = point_from(home, -40.0, 20.0)
-    goto = {"drone_id": "d2", "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 12}
+    goto = {"drone_id": "d2", "lat_deg": lat, "lon_deg": lon, "alt_m": 12}
     async with stack.client("auto", name="premature-goto") as c:
-        r = structured(await stack.call(c, "takeoff", {"drone_id": "d2", "altitude_m": 12, "wait": False}))
+        r = structured(await stack.call(c, "takeoff", {"drone_id": "d2", "alt_m": 12, "wait": False}))
         assert r["status"] == "running" and r["kind"] == "takeoff"
         text = error_text(await stack.call(c, "go_to_location", goto))
         assert "takeoff_in_progress" in text and "monitor_flight" in text, text
@@ -109,11 +109,11 @@ async def test_goto_beyond_wait_cap_returns_running_and_monitor_flight_lands(sta
         home = await stack.true_state("d3")
         lat, lon = point_from(home, 400.0, 0.0)  # several wait caps long even at the sim's speed-up
         async with stack.client("auto", name="cap") as c:
-            r = structured(await stack.call(c, "takeoff", {"drone_id": "d3", "altitude_m": 10}))
+            r = structured(await stack.call(c, "takeoff", {"drone_id": "d3", "alt_m": 10}))
             while r["status"] == "running":
                 r = structured(await stack.call(c, "monitor_flight", {"drone_id": "d3"}))
             assert r["status"] == "succeeded", r
-            goto = {"drone_id": "d3", "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 10}
+            goto = {"drone_id": "d3", "lat_deg": lat, "lon_deg": lon, "alt_m": 10}
             r = structured(await stack.call(c, "go_to_location", goto))
             assert r["status"] == "running" and r["kind"] == "goto", r
             assert r["eta_s"] is not None and r["eta_s"] > 0 and 0 <= r["progress"] < 1
@@ -158,8 +158,8 @@ async def test_cancelled_wait_leaves_flight_going_and_hold_stops_it(stack: Stack
     home = await stack.true_state("d4")
     lat, lon = point_from(home, 0.0, 250.0)
     async with stack.client(mode, name=f"cancel-{mode}") as c:
-        structured(await stack.call(c, "takeoff", {"drone_id": "d4", "altitude_m": 10}))
-        goto = {"drone_id": "d4", "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 10}
+        structured(await stack.call(c, "takeoff", {"drone_id": "d4", "alt_m": 10}))
+        goto = {"drone_id": "d4", "lat_deg": lat, "lon_deg": lon, "alt_m": 10}
         with pytest.raises(MCPError):
             await stack.call(c, "go_to_location", goto, read_timeout_seconds=1.0)
         before = distance_m(await stack.true_state("d4"), lat, lon)

@@ -27,7 +27,7 @@ async def test_operator_takeoff_over_rest_then_agent_goto_mid_climb_is_refused(s
     stack = slow_stack
     home = await stack.true_state("d1")
     lat, lon = point_from(home, 50.0, 0.0)
-    goto = {"drone_id": "d1", "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 20, "wait": False}
+    goto = {"drone_id": "d1", "lat_deg": lat, "lon_deg": lon, "alt_m": 20, "wait": False}
     async with (
         stack.client("auto", name="agent") as agent,
         httpx.AsyncClient(base_url=stack.base_url, timeout=30) as http,

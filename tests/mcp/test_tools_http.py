@@ -63,36 +63,35 @@ async def test_bad_inputs_are_tool_errors_and_send_nothing(stack: Stack) -> None
     home_lat, home_lon = before["lat"], before["lon"]
     cases: list[tuple[str, dict[str, Any], str]] = [
         ("get_battery", {"drone_id": "nope"}, "known ids: d1, d2, d3"),
-        ("takeoff", {"drone_id": "nope", "altitude_m": 10}, "known ids"),
+        ("takeoff", {"drone_id": "nope", "alt_m": 10}, "known ids"),
         (
             "takeoff",
-            {"drone_id": "d2", "altitude_m": -5},
-            "invalid arguments for takeoff: altitude_m must be a number (m above home), "
-            "0 < altitude_m <= 120 (got -5)",
+            {"drone_id": "d2", "alt_m": -5},
+            "invalid arguments for takeoff: alt_m must be a number (m above home), 0 < alt_m <= 120 (got -5)",
         ),
-        ("takeoff", {"drone_id": "d2", "altitude_m": "ten"}, '0 < altitude_m <= 120 (got "ten")'),
-        ("takeoff", {"drone_id": "d2"}, "altitude_m is required: a number (m above home), 0 < altitude_m"),
-        ("takeoff", {"drone_id": "d2", "altitude_m": 50000}, "altitude_m <= 120 (got 50000)"),
-        ("takeoff", {"drone_id": "d2", "altitude_m": float("nan")}, "altitude_m"),
-        ("takeoff", {"drone_id": "d2", "altitude_m": 500}, "120"),
+        ("takeoff", {"drone_id": "d2", "alt_m": "ten"}, '0 < alt_m <= 120 (got "ten")'),
+        ("takeoff", {"drone_id": "d2"}, "alt_m is required: a number (m above home), 0 < alt_m"),
+        ("takeoff", {"drone_id": "d2", "alt_m": 50000}, "alt_m <= 120 (got 50000)"),
+        ("takeoff", {"drone_id": "d2", "alt_m": float("nan")}, "alt_m"),
+        ("takeoff", {"drone_id": "d2", "alt_m": 500}, "120"),
         (
             "go_to_location",
-            {"drone_id": "d2", "latitude_deg": 91, "longitude_deg": home_lon, "altitude_m": 10},
+            {"drone_id": "d2", "lat_deg": 91, "lon_deg": home_lon, "alt_m": 10},
             "90",
         ),
         (
             "go_to_location",
-            {"drone_id": "d2", "latitude_deg": home_lat, "longitude_deg": float("inf"), "altitude_m": 10},
-            "longitude_deg",
+            {"drone_id": "d2", "lat_deg": home_lat, "lon_deg": float("inf"), "alt_m": 10},
+            "lon_deg",
         ),
         (
             "go_to_location",
-            {"drone_id": "d2", "latitude_deg": home_lat, "longitude_deg": home_lon, "altitude_m": -3},
+            {"drone_id": "d2", "lat_deg": home_lat, "lon_deg": home_lon, "alt_m": -3},
             "above home",
         ),
         (
             "go_to_location",
-            {"drone_id": "d2", "latitude_deg": [1, 2], "longitude_deg": 8, "altitude_m": 5},
+            {"drone_id": "d2", "lat_deg": [1, 2], "lon_deg": 8, "alt_m": 5},
             "latitude",
         ),
         ("get_position", {"drone_id": huge}, "1..64 characters"),
@@ -102,7 +101,11 @@ async def test_bad_inputs_are_tool_errors_and_send_nothing(stack: Stack) -> None
         ("get_parameter", {"drone_id": "d2", "name": huge}, "name"),
         ("set_parameter", {"drone_id": "d2", "name": "FENCE_ENABLE", "value": 0}, "param_deny"),
         ("set_max_speed", {"drone_id": "d2", "speed_mps": 0}, "speed_mps must be a number (m/s), 0 <"),
-        ("upload_mission", {"drone_id": "d2", "waypoints": [{"lat": 95, "lon": 8, "alt_m": 10}]}, "90"),
+        (
+            "upload_mission",
+            {"drone_id": "d2", "waypoints": [{"lat_deg": 95, "lon_deg": 8, "alt_m": 10}]},
+            "90",
+        ),
         ("set_current_waypoint", {"drone_id": "d2", "index": 0}, "index must be an integer (Item 1..N), 1"),
         ("move_to_relative", {"drone_id": "d2", "north_m": 1e9, "east_m": 0}, "north_m"),
         ("no_such_tool", {"drone_id": "d2"}, "Unknown tool"),
@@ -158,7 +161,7 @@ async def test_ground_tools_arming_parameters_and_mission_editing(stack: Stack) 
 
         home = await stack.true_state("d2")
         wps = [
-            {"lat": p[0], "lon": p[1], "alt_m": 15}
+            {"lat_deg": p[0], "lon_deg": p[1], "alt_m": 15}
             for p in (point_from(home, 30, 0), point_from(home, 30, 30), point_from(home, 0, 30))
         ]
         r = await ok(stack, c, "upload_mission", {"drone_id": "d2", "waypoints": wps})
@@ -166,7 +169,10 @@ async def test_ground_tools_arming_parameters_and_mission_editing(stack: Stack) 
         down = await ok(stack, c, "download_mission", {"drone_id": "d2"})
         assert down["count"] == 3
         for item, wp in zip(down["items"], wps, strict=True):
-            assert geo.horizontal_distance_m(item["lat_deg"], item["lon_deg"], wp["lat"], wp["lon"]) < 0.5
+            assert (
+                geo.horizontal_distance_m(item["lat_deg"], item["lon_deg"], wp["lat_deg"], wp["lon_deg"])
+                < 0.5
+            )
             assert abs(item["alt_m"] - 15) < 0.1
         await ok(stack, c, "set_current_waypoint", {"drone_id": "d2", "index": 2})
         assert "1..3" in error_text(
@@ -211,7 +217,7 @@ async def test_flight_tour_telemetry_resources_and_kill(stack: Stack) -> None:
 
             collector = asyncio.create_task(collect())
             listening_since = time.monotonic()
-            r = await ok(stack, c, "takeoff", {"drone_id": "d1", "altitude_m": 12})
+            r = await ok(stack, c, "takeoff", {"drone_id": "d1", "alt_m": 12})
             assert r["status"] == "succeeded"
             collector.cancel()
             listened_s = time.monotonic() - listening_since
@@ -275,16 +281,14 @@ async def test_flight_tour_telemetry_resources_and_kill(stack: Stack) -> None:
         assert abs((await ok(stack, c, "get_heading", d))["value"] - 90) < 6
 
         start = await stack.true_state("d1")
-        r = await ok(
-            stack, c, "move_to_relative", {"drone_id": "d1", "north_m": 20, "east_m": 0, "down_m": -3}
-        )
+        r = await ok(stack, c, "move_to_relative", {"drone_id": "d1", "north_m": 20, "east_m": 0, "up_m": 3})
         assert r["status"] == "succeeded"
         moved = await stack.true_state("d1")
         north, east = geo.ned_offset(start["lat"], start["lon"], moved["lat"], moved["lon"])
         assert abs(north - 20) < 2.5 and abs(east) < 2.5 and abs(moved["rel_alt_m"] - 15) < 1.5
 
         lat, lon = point_from(moved, 0, -25)
-        r = await ok(stack, c, "reposition", {"drone_id": "d1", "latitude_deg": lat, "longitude_deg": lon})
+        r = await ok(stack, c, "reposition", {"drone_id": "d1", "lat_deg": lat, "lon_deg": lon})
         there = await stack.true_state("d1")
         assert (
             r["status"] == "succeeded"
@@ -293,7 +297,7 @@ async def test_flight_tour_telemetry_resources_and_kill(stack: Stack) -> None:
         )
 
         amsl = h["alt_amsl_m"] + 20
-        goto = {"drone_id": "d1", "latitude_deg": lat, "longitude_deg": lon, "altitude_m": amsl}
+        goto = {"drone_id": "d1", "lat_deg": lat, "lon_deg": lon, "alt_m": amsl}
         r = await ok(stack, c, "go_to_location", {**goto, "alt_frame": "amsl"})
         assert r["status"] == "succeeded" and abs((await stack.true_state("d1"))["rel_alt_m"] - 20) < 1.5
         assert (await ok(stack, c, "check_arrival", d))["arrived"] is True
@@ -366,10 +370,10 @@ async def test_mission_flight_pause_resume(stack: Stack) -> None:
     home = await stack.true_state("d3")
     a, b = point_from(home, 40, 0), point_from(home, 40, 40)
     wps = [
-        {"lat": home["lat"], "lon": home["lon"], "alt_m": 10, "kind": "takeoff"},
-        {"lat": a[0], "lon": a[1], "alt_m": 10},
-        {"lat": b[0], "lon": b[1], "alt_m": 10, "hold_s": 2},
-        {"lat": 0, "lon": 0, "alt_m": 0, "kind": "rtl"},
+        {"lat_deg": home["lat"], "lon_deg": home["lon"], "alt_m": 10, "kind": "takeoff"},
+        {"lat_deg": a[0], "lon_deg": a[1], "alt_m": 10},
+        {"lat_deg": b[0], "lon_deg": b[1], "alt_m": 10, "hold_s": 2},
+        {"lat_deg": 0, "lon_deg": 0, "alt_m": 0, "kind": "rtl"},
     ]
     async with stack.client("auto", name="mission") as c:
         r = await ok(stack, c, "initiate_mission", {"drone_id": "d3", "waypoints": wps, "wait": False})

@@ -54,10 +54,10 @@ async def test_takeoff_then_goto_at_once_is_refused_and_limits_hold_on_real_ardu
             assert seen[-1] == ("ready", None, "ready", None), seen
             home = structured(await c.call_tool("get_position", {"drone_id": "ap1"}))
             lat, lon = geo.offset_position(home["lat_deg"], home["lon_deg"], 40.0, 0.0)
-            goto = {"drone_id": "ap1", "latitude_deg": lat, "longitude_deg": lon, "altitude_m": 10}
+            goto = {"drone_id": "ap1", "lat_deg": lat, "lon_deg": lon, "alt_m": 10}
 
             # the paper's crash: takeoff and goto back to back. The goto is refused, nothing sent.
-            r = structured(await c.call_tool("takeoff", {"drone_id": "ap1", "altitude_m": 10, "wait": False}))
+            r = structured(await c.call_tool("takeoff", {"drone_id": "ap1", "alt_m": 10, "wait": False}))
             assert r["status"] == "running", r
             text = error_text(await c.call_tool("go_to_location", goto))
             assert "takeoff_in_progress" in text and "monitor_flight" in text, text
@@ -68,12 +68,12 @@ async def test_takeoff_then_goto_at_once_is_refused_and_limits_hold_on_real_ardu
             assert r["status"] == "succeeded" and r["kind"] == "takeoff", r
 
             # the policy's limits hold on a real vehicle, in words the model can act on
-            high = {**goto, "altitude_m": settings.max_altitude_m + 30}
+            high = {**goto, "alt_m": settings.max_altitude_m + 30}
             assert "Refused: max_altitude" in error_text(await c.call_tool("go_to_location", high))
             far_lat, far_lon = geo.offset_position(
                 home["lat_deg"], home["lon_deg"], settings.max_distance_m + 500, 0
             )
-            far = {**goto, "latitude_deg": far_lat, "longitude_deg": far_lon}
+            far = {**goto, "lat_deg": far_lat, "lon_deg": far_lon}
             assert "Refused: max_distance" in error_text(await c.call_tool("go_to_location", far))
 
             r = structured(await c.call_tool("go_to_location", goto))

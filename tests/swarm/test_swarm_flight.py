@@ -271,8 +271,8 @@ async def test_five_drone_formation_flight_keeps_separation(tmp_path: Path) -> N
                 centre = geo.offset_position(home_lat, home_lon, 150.0, 0.0)
                 for formation in ("wedge", "circle"):
                     args = {
-                        "drone_ids": ids, "formation": formation, "center_lat": centre[0],
-                        "center_lon": centre[1], "alt_m": 20, "spacing_m": 15,
+                        "drone_ids": ids, "formation": formation, "center_lat_deg": centre[0],
+                        "center_lon_deg": centre[1], "alt_m": 20, "spacing_m": 15,
                     }  # fmt: skip
                     r = _ok(await c.call_tool("formation_goto", args))
                     r = await _finish(c, r, figures)
@@ -284,7 +284,7 @@ async def test_five_drone_formation_flight_keeps_separation(tmp_path: Path) -> N
                     for slot in r["drones"]:
                         pos = now[slot["drone_id"]]
                         off = geo.horizontal_distance_m(
-                            pos["lat_deg"], pos["lon_deg"], slot["target_lat"], slot["target_lon"]
+                            pos["lat_deg"], pos["lon_deg"], slot["target_lat_deg"], slot["target_lon_deg"]
                         )
                         assert off <= 2.5, (formation, slot, pos)
                         assert abs(pos["alt_m"] - slot["target_alt_m"]) <= 1.5, (formation, slot, pos)

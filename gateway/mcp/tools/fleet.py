@@ -24,7 +24,7 @@ from gateway.fleet.readings import position, value
 from gateway.fleet.views import FleetView
 from gateway.mcp.access import ToolCall
 from gateway.mcp.results import Result, plain
-from gateway.mcp.toolkit import Toolset, Wait
+from gateway.mcp.toolkit import Lat, Lon, Toolset, Wait
 
 toolset = Toolset("fleet")
 
@@ -257,8 +257,8 @@ async def formation_goto(
     call: ToolCall,
     drone_ids: DroneIds,
     formation: Formation,
-    center_lat: Annotated[float, Field(ge=-90, le=90, allow_inf_nan=False)],
-    center_lon: Annotated[float, Field(ge=-180, le=180, allow_inf_nan=False)],
+    center_lat_deg: Lat,
+    center_lon_deg: Lon,
     alt_m: Alt,
     spacing_m: Annotated[
         float, Field(gt=0, le=1000, allow_inf_nan=False, description="m between slots")
@@ -270,7 +270,7 @@ async def formation_goto(
 ) -> FleetOut:
     """Fly airborne drones into a formation around a point, kept apart. All must join or nothing is sent."""
     view = await call.commander.formation_goto(
-        call.caller, drone_ids, formation, center_lat, center_lon, alt_m, spacing_m, heading_deg
+        call.caller, drone_ids, formation, center_lat_deg, center_lon_deg, alt_m, spacing_m, heading_deg
     )
     return await _finish(call, view, wait)
 

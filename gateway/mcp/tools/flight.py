@@ -58,11 +58,11 @@ async def disarm_drone(call: ToolCall, drone_id: DroneId) -> ActionOut:
 async def takeoff(
     call: ToolCall,
     drone_id: DroneId,
-    altitude_m: Annotated[float, Field(gt=0, le=10_000, allow_inf_nan=False, description="m above home")],
+    alt_m: Annotated[float, Field(gt=0, le=10_000, allow_inf_nan=False, description="m above home")],
     wait: Wait = True,
 ) -> OperationOut:
-    """Arm if needed and climb to altitude_m above home; done when reached."""
-    op = await call.commander.takeoff(call.caller, drone_id, altitude_m, notify=call.notify)
+    """Arm if needed and climb to alt_m above home; done when reached."""
+    op = await call.commander.takeoff(call.caller, drone_id, alt_m, notify=call.notify)
     return await call.finish(op, wait, "takeoff")
 
 
@@ -95,6 +95,7 @@ def confirm_kill(drone_id: str, ctx: Context[Any, Any]) -> Elicit[KillConfirm] |
     call = ToolCall.of(ctx)
     try:
         check_drone_id(drone_id)
+        drone_id = call.commander.canonical_id(drone_id)
         if not call.commander.kill_needs_confirmation(call.caller, drone_id):
             return KillConfirm(confirm=True)
     except SafetyRefusal as exc:

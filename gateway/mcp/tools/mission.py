@@ -30,8 +30,8 @@ class Waypoint(BaseModel):
     """One mission item as a model writes it (``alt_m`` above home); becomes a fleet `MissionItem`.
     (The name is the schema's ``$defs`` key clients see.)"""
 
-    lat: Lat
-    lon: Lon
+    lat_deg: Lat
+    lon_deg: Lon
     alt_m: Annotated[float, Field(ge=0, le=10_000, allow_inf_nan=False, description="m above home")]
     kind: Literal["waypoint", "takeoff", "land", "rtl", "loiter_time"] = "waypoint"
     hold_s: Annotated[float, Field(ge=0, le=3600, allow_inf_nan=False)] = 0.0
@@ -43,12 +43,17 @@ Waypoints = Annotated[list[Waypoint], Field(min_length=1, max_length=MAX_ITEMS, 
 
 def mission_items(waypoints: list[Waypoint]) -> list[MissionItem]:
     for n, w in enumerate(waypoints, 1):
-        geo.check_lat_lon(w.lat, w.lon)
+        geo.check_lat_lon(w.lat_deg, w.lon_deg)
         if w.kind in ("waypoint", "loiter_time") and w.alt_m <= 0:
             raise InvalidArgument(f"waypoint {n}: alt_m must be above 0 m above home")
     return [
         MissionItem(
-            lat=w.lat, lon=w.lon, alt_rel_m=w.alt_m, kind=w.kind, hold_s=w.hold_s, speed_mps=w.speed_mps
+            lat=w.lat_deg,
+            lon=w.lon_deg,
+            alt_rel_m=w.alt_m,
+            kind=w.kind,
+            hold_s=w.hold_s,
+            speed_mps=w.speed_mps,
         )
         for w in waypoints
     ]

@@ -37,13 +37,13 @@ def position_out(call: ToolCall, drone_id: str, which: str) -> PositionOut:
 
 @toolset.tool(read_only=True)
 async def get_position(call: ToolCall, drone_id: DroneId) -> PositionOut:
-    """Current position: lat/lon deg, alt_m above home, alt_amsl_m."""
+    """Current position: lat_deg, lon_deg, alt_m above home, alt_amsl_m."""
     return position_out(call, drone_id, "position")
 
 
 @toolset.tool(read_only=True)
 async def get_home_position(call: ToolCall, drone_id: DroneId) -> PositionOut:
-    """Home (launch) position: lat/lon deg, alt_amsl_m."""
+    """Home (launch) position: lat_deg, lon_deg, alt_amsl_m."""
     return position_out(call, drone_id, "home")
 
 
@@ -51,16 +51,14 @@ async def get_home_position(call: ToolCall, drone_id: DroneId) -> PositionOut:
 async def go_to_location(
     call: ToolCall,
     drone_id: DroneId,
-    latitude_deg: Lat,
-    longitude_deg: Lon,
-    altitude_m: Annotated[
-        float, Field(allow_inf_nan=False, description="m; above home unless alt_frame=amsl")
-    ],
+    lat_deg: Lat,
+    lon_deg: Lon,
+    alt_m: Annotated[float, Field(allow_inf_nan=False, description="m; above home unless alt_frame=amsl")],
     alt_frame: AltFrame = "home",
     wait: Wait = True,
 ) -> OperationOut:
-    """Fly to lat/lon (deg) at altitude_m (m above home, or AMSL); done on arrival."""
-    op = await call.commander.goto(call.caller, drone_id, latitude_deg, longitude_deg, altitude_m, alt_frame)
+    """Fly to lat_deg/lon_deg at alt_m (m above home, or AMSL); done on arrival."""
+    op = await call.commander.goto(call.caller, drone_id, lat_deg, lon_deg, alt_m, alt_frame)
     return await call.finish(op, wait, "go_to_location")
 
 
@@ -68,16 +66,14 @@ async def go_to_location(
 async def reposition(
     call: ToolCall,
     drone_id: DroneId,
-    latitude_deg: Lat,
-    longitude_deg: Lon,
-    altitude_m: Annotated[float | None, Field(allow_inf_nan=False, description="m; default: current")] = None,
+    lat_deg: Lat,
+    lon_deg: Lon,
+    alt_m: Annotated[float | None, Field(allow_inf_nan=False, description="m; default: current")] = None,
     alt_frame: AltFrame = "home",
     wait: Wait = True,
 ) -> OperationOut:
-    """Fly to lat/lon (deg) and hover; altitude_m above home, default: current."""
-    op = await call.commander.reposition(
-        call.caller, drone_id, latitude_deg, longitude_deg, altitude_m, alt_frame
-    )
+    """Fly to lat_deg/lon_deg and hover; alt_m above home, default: current."""
+    op = await call.commander.reposition(call.caller, drone_id, lat_deg, lon_deg, alt_m, alt_frame)
     return await call.finish(op, wait, "reposition")
 
 
@@ -87,11 +83,13 @@ async def move_to_relative(
     drone_id: DroneId,
     north_m: Metres,
     east_m: Metres,
-    down_m: Annotated[float, Field(allow_inf_nan=False, ge=-1000, le=1000, description="+ = descend")] = 0.0,
+    up_m: Annotated[
+        float, Field(allow_inf_nan=False, ge=-1000, le=1000, description="+ climbs, - descends")
+    ] = 0.0,
     wait: Wait = True,
 ) -> OperationOut:
-    """Move north/east/down metres (NED, + down = descend) from here; done on arrival."""
-    op = await call.commander.move_relative(call.caller, drone_id, north_m, east_m, down_m)
+    """Fly north_m/east_m/up_m metres from where it is (negative: south/west/down); done on arrival."""
+    op = await call.commander.move_relative(call.caller, drone_id, north_m, east_m, up_m)
     return await call.finish(op, wait, "move_to_relative")
 
 

@@ -26,6 +26,7 @@ from gateway.mcp.results import (
     StatusTextOut,
     ValueOut,
     plain,
+    surface_telemetry,
 )
 from gateway.mcp.toolkit import DroneId, Toolset
 
@@ -114,7 +115,7 @@ async def get_health_all_ok(call: ToolCall, drone_id: DroneId) -> ValueOut:
 
 @toolset.tool(read_only=True)
 async def get_speed(call: ToolCall, drone_id: DroneId) -> SpeedOut:
-    """Velocity m/s north/east/down and ground speed."""
+    """Velocity m/s north/east, climb (negative: descending) and ground speed."""
     vel, age, stale, note = read(call, drone_id, "velocity_ned")
     n, e, d = float(vel.north_mps), float(vel.east_mps), float(vel.down_mps)
     gs = math.hypot(n, e)
@@ -124,7 +125,7 @@ async def get_speed(call: ToolCall, drone_id: DroneId) -> SpeedOut:
         stale=stale,
         north_mps=round(n, 2),
         east_mps=round(e, 2),
-        down_mps=round(d, 2),
+        climb_mps=round(-d, 2) + 0.0,  # never -0.0
         ground_speed_mps=round(gs, 2),
     ).say(f"{drone_id} ground speed {gs:.1f} m/s, climb {-d:.1f} m/s{note}")
 
@@ -229,15 +230,15 @@ def _status_text(item: Any) -> dict[str, Any]:
 async def get_telemetry(call: ToolCall, drone_id: DroneId) -> SnapshotOut:
     """Everything at once: all telemetry with each part's age_s, plus the current action."""
     v = call.commander.vehicle(drone_id)
-    snap = plain(v.telemetry.snapshot())
+    snap = surface_telemetry(plain(v.telemetry.snapshot()))
     op = call.commander.operations.latest(drone_id)
     state = str(plain(v.state))
     pos = snap.get("position") if isinstance(snap, dict) else None
     where = ""
     if isinstance(pos, dict):
         inner = pos.get("value", pos)
-        if isinstance(inner, dict) and inner.get("rel_alt_m") is not None:
-            where = f", {inner['rel_alt_m']:.1f} m above home"
+        if isinstance(inner, dict) and inner.get("alt_m") is not None:
+            where = f", {inner['alt_m']:.1f} m above home"
     doing = f", {op.kind} {op.status.value}" if op is not None else ""
     return SnapshotOut(
         drone_id=drone_id, state=state, telemetry=snap, operation=None if op is None else op.to_dict()
