@@ -25,7 +25,7 @@ from typing import Any, Protocol
 import openai
 
 from gateway.agent.parsing import ArgumentsError, extract_tool_calls, parse_arguments, strip_thinking
-from gateway.agent.repair import null_island, restore_request_numbers, swap_hint
+from gateway.agent.repair import direction_mismatch, null_island, restore_request_numbers, swap_hint
 from gateway.agent.roster import (
     Roster,
     drones_named,
@@ -467,6 +467,7 @@ class AgentHost:
                 self._unknown_arguments(tool, args)
                 or validate_arguments(tool, args)
                 or null_island(args, self._request, on_ground=self._on_ground(args.get("drone_id")))
+                or direction_mismatch(args, self._request)
             )
             if invalid is not None:
                 hint = swap_hint(args)

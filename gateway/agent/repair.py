@@ -72,3 +72,44 @@ def swap_hint(arguments: dict[str, Any]) -> str | None:
                 f"try {lat_name}={lon:g}, {lon_name}={lat:g}."
             )
     return None
+
+
+# "50 m south", "10 metres higher": a distance and a direction in the request
+_MOVE_RE = re.compile(
+    r"(\d+(?:\.\d+)?)\s*(?:m|metres?|meters?)\s+(?:to\s+the\s+)?(north|south|east|west|higher|up|lower|down)\b",
+    re.IGNORECASE,
+)
+_AXIS = {
+    "north": ("north_m", 1),
+    "south": ("north_m", -1),
+    "east": ("east_m", 1),
+    "west": ("east_m", -1),
+    "higher": ("up_m", 1),
+    "up": ("up_m", 1),
+    "lower": ("up_m", -1),
+    "down": ("up_m", -1),
+}
+
+
+def direction_mismatch(arguments: dict[str, Any], request: str) -> str | None:
+    """A refusal when a relative move puts a distance the request names on the wrong axis or with the
+    wrong sign (measured with the 1.5B model: "50 m south" sent as east_m=-50, "10 m higher" as a
+    descent). Only a distance the request names with a direction is judged; other numbers pass."""
+    moves = [
+        (float(m.group(1)), m.group(0), *_AXIS[m.group(2).lower()]) for m in _MOVE_RE.finditer(request or "")
+    ]
+    if not moves:
+        return None
+    for name in ("north_m", "east_m", "up_m"):
+        value = arguments.get(name)
+        if not isinstance(value, int | float) or isinstance(value, bool) or value == 0:
+            continue
+        same = [m for m in moves if m[0] == abs(value)]
+        if not same or any(axis == name and sign * abs(value) == value for _, _, axis, sign in same):
+            continue
+        distance, phrase, axis, sign = same[0]
+        return (
+            f"{name}={value:g} does not match '{phrase}' in the request: that is {axis}={sign * distance:g} "
+            "(north_m: + north, - south; east_m: + east, - west; up_m: + up, - down). Nothing was executed."
+        )
+    return None

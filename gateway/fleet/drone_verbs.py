@@ -213,6 +213,10 @@ class DroneVerbs(CommandCore):
         vehicle = self.ready(drone_id)
         self._guard_takeoff(caller, vehicle, label)
         ctx = self.context(vehicle)
+        if not (ctx.in_air and ctx.armed):
+            # a target the policy refuses anyway is said before "take off first": a small model took off
+            # as told, then gave up before ever hearing that the target itself was out of bounds
+            self.safety.check_motion(ctx, Target(lat, lon, alt_rel), caller.policy_via)
         self._require_airborne(ctx, label)
         self.safety.check_motion(ctx, Target(lat, lon, alt_rel), caller.policy_via)
         params = {"lat_deg": lat, "lon_deg": lon, "alt_m": round(alt_rel, 2)}

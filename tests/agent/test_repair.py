@@ -5,7 +5,7 @@ from __future__ import annotations
 from bench.agent_harness.scripted import call, say
 from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
 from gateway.agent.mcp_link import McpLink
-from gateway.agent.repair import null_island, restore_request_numbers, swap_hint
+from gateway.agent.repair import direction_mismatch, null_island, restore_request_numbers, swap_hint
 from tests.agent.toy_mcp import TOKEN
 
 REQUEST = "Launch bravo to 20 m and send it to -35.362855, 149.164955. Keep it hovering there."
@@ -81,3 +81,19 @@ async def test_the_host_sends_the_users_number_and_says_so(toy, scripted) -> Non
     assert [e.data["notes"] for e in events if e.kind == "arguments_corrected"] == [
         ["distance_m 20.12 read as 20.1234 (the number in the request)"]
     ]
+
+
+def test_a_named_distance_on_the_wrong_axis_or_sign_is_refused_with_the_right_one() -> None:
+    south = "Bravo, take off to 15 m, head 50 m south, then return to launch."
+    refusal = direction_mismatch({"drone_id": "bravo", "north_m": 0, "east_m": -50}, south)
+    assert refusal is not None and refusal.startswith(
+        "east_m=-50 does not match '50 m south' in the request: that is north_m=-50"
+    )
+    assert direction_mismatch({"drone_id": "bravo", "north_m": -50, "east_m": 0}, south) is None
+    climb = "Take bravo up to 10 m, then move it 30 m east and 10 m higher, and hold it there."
+    refusal = direction_mismatch({"north_m": 0, "east_m": 30, "up_m": -10}, climb)
+    assert refusal is not None and "that is up_m=10" in refusal
+    assert direction_mismatch({"north_m": 0, "east_m": 30, "up_m": 10}, climb) is None
+    # numbers the request does not tie to a direction are not judged
+    assert direction_mismatch({"north_m": 0, "east_m": 0, "up_m": -5}, climb) is None
+    assert direction_mismatch({"north_m": 12, "east_m": 0}, "Fly alpha north a bit.") is None

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from gateway.errors import InvalidArgument, SafetyRefusal
+from gateway.errors import InvalidArgument, SafetyRefusal, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
 from gateway.fleet.commander import VERBS, Commander
@@ -118,3 +118,16 @@ async def test_refusals_name_the_next_valid_call_with_numbers(gateway: Gateway) 
     with pytest.raises(InvalidArgument, match="latitude and longitude look swapped"):
         await commander.call("goto", AGENT, drone_id="d1", lat_deg=149.17, lon_deg=-35.36, alt_m=12)
     assert fake(gateway, "d1").sent == sent  # nothing was sent for any of them
+
+
+async def test_a_goto_on_the_ground_to_a_refused_target_says_the_refusal_first(gateway: Gateway) -> None:
+    """Taking off would not help: the small model took off as told, then gave up before hearing why."""
+    lat, lon = geo.offset_position(HOME[0], HOME[1], 50_000.0, 0.0)
+    with pytest.raises(SafetyRefusal, match="from home"):
+        await gateway.commander.call("goto", AGENT, drone_id="d1", lat_deg=lat, lon_deg=lon, alt_m=30)
+    near_lat, near_lon = geo.offset_position(HOME[0], HOME[1], 50.0, 0.0)
+    with pytest.raises(VehicleNotReady, match="Call takeoff first"):
+        await gateway.commander.call(
+            "goto", AGENT, drone_id="d1", lat_deg=near_lat, lon_deg=near_lon, alt_m=30
+        )
+    assert fake(gateway, "d1").sent == []

@@ -92,7 +92,7 @@ async def test_bad_inputs_are_tool_errors_and_send_nothing(stack: Stack) -> None
         (
             "go_to_location",
             {"drone_id": "d2", "lat_deg": [1, 2], "lon_deg": 8, "alt_m": 5},
-            "latitude",
+            "lat_deg must be a number",
         ),
         ("get_position", {"drone_id": huge}, "1..64 characters"),
         ("get_position", {"drone_id": 123}, "drone_id"),
