@@ -17,6 +17,7 @@ from __future__ import annotations
 import asyncio
 import itertools
 import json
+import re
 import time
 from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import dataclass, field
@@ -25,7 +26,15 @@ from typing import Any, Protocol
 import openai
 
 from gateway.agent.parsing import ArgumentsError, extract_tool_calls, parse_arguments, strip_thinking
-from gateway.agent.repair import direction_mismatch, null_island, restore_request_numbers, swap_hint
+from gateway.agent.repair import (
+    LAT_LON_PAIRS,
+    direction_mismatch,
+    null_island,
+    request_points,
+    restore_request_directions,
+    restore_request_numbers,
+    swap_hint,
+)
 from gateway.agent.roster import (
     Roster,
     drones_named,
@@ -189,6 +198,7 @@ class AgentHost:
         self.total_usage = Usage()
         self.turns = 0
         self._request = ""
+        self._host_notes: list[str] = []  # what the host itself told the model this turn (echo detection)
         self._ids = itertools.count(1)
         self.reset()
 
@@ -226,6 +236,7 @@ class AgentHost:
         self.turns += 1
         started = time.monotonic()
         self._request = user_text
+        self._host_notes = []
         self._emit("turn_start", turn=self.turns, user=user_text)
         roster = await self.refresh_roster()
         content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
@@ -265,13 +276,19 @@ class AgentHost:
                 break
             content, calls, parsed = reply
             if not calls:
-                if strip_thinking(content or "").strip():
+                said = strip_thinking(content or "").strip()
+                echo = bool(said) and self._echoes_host(said)
+                if said and not echo:
                     result.outcome, result.final_text = "answered", content or ""
                     self.messages.append({"role": "assistant", "content": content or ""})
                     self._emit("final", step=result.steps, text=content or "")
                     break
-                # An empty reply is not an answer: ask again with the request and what was done.
+                # An empty reply is not an answer, nor is one that only repeats the request or the host's
+                # own words (measured: the 1.5B model answered with the "done so far" re-prompt, the
+                # request, or the host's "call takeoff ... first" note): ask again.
                 result.empty_replies += 1
+                if echo:
+                    self._emit("echo_reply", step=result.steps, text=said)
                 if result.empty_replies > MAX_EMPTY_REPROMPTS:
                     result.outcome = "empty_answer"
                     self._emit(
@@ -282,7 +299,9 @@ class AgentHost:
                     )
                     break
                 self._emit("empty_reply", step=result.steps, attempt=result.empty_replies)
-                self.messages.append({"role": "user", "content": await self._reprompt(result)})
+                reprompt = await self._reprompt(result, echo)
+                self._host_notes.append(reprompt)
+                self.messages.append({"role": "user", "content": reprompt})
                 continue
             if parsed:
                 result.parsed_from_text += len(calls)
@@ -298,6 +317,7 @@ class AgentHost:
                 result.tool_calls.append(record)
             pending = _pending_text(result)
             if pending:
+                self._host_notes.append(pending)
                 self.messages[-1]["content"] += f"\n\n{pending}"
             if self.use_roster and result.steps < self.max_steps:
                 roster = await self.refresh_roster()
@@ -311,27 +331,61 @@ class AgentHost:
                 message=f"stopped after {self.max_steps} model steps without a final answer",
             )
 
-    async def _reprompt(self, result: TurnResult) -> str:
-        """What the model is told after an empty reply: the request, what is done, the fleet now."""
+    async def _reprompt(self, result: TurnResult, echo: bool = False) -> str:
+        """What the model is told after an empty reply: the request, what is done, what the request names
+        that nothing has touched yet, the fleet now."""
         # Results in words, never in call syntax: a model may echo this text, and an echoed call must not
         # read as a new one.
         done = [f"{c.name}: {c.summary}" for c in result.tool_calls if c.ok]
         roster = await self.refresh_roster()
         parts = [
-            "Your reply was empty.",
+            "Your reply only repeated the request or my note; that is not an answer."
+            if echo
+            else "Your reply was empty.",
             f"The request: {self._request}",
-            "Done so far: " + ("; ".join(done) if done else "nothing yet") + ".",
+            "Already done (do not repeat): " + ("; ".join(done) if done else "nothing yet") + ".",
         ]
+        untouched = self._untouched(result)
+        if untouched:
+            parts.append(untouched)
         pending = _pending_text(result)
         if pending:
             parts.append(pending)
         if roster is not None:
             parts.append(roster.text())
         parts.append(
-            "If that is the whole request, reply with one sentence saying what was done. Otherwise call the "
-            "tool for the next step."
+            "If every part of the request is done, reply with one sentence for the user saying what was "
+            "done. Otherwise reply with only the tool call for the next step."
         )
         return "\n".join(parts)
+
+    def _untouched(self, result: TurnResult) -> str:
+        """Facts about parts of the request no successful call has used yet: drones it names, coordinates
+        it gives (measured: after alpha's part, the 1.5B model forgot bravo; after two of three waypoints,
+        it stopped)."""
+        ok = [c.arguments for c in result.tool_calls if c.ok and c.arguments]
+        facts = []
+        ids = self.roster.ids if self.roster is not None else []
+        touched = {d for args in ok for d in drones_named(args) or ()}
+        named = [i for i in ids if re.search(rf"\b{re.escape(i)}\b", self._request, re.IGNORECASE)]
+        idle = [i for i in named if i not in touched]
+        if idle and touched:
+            facts.append(f"The request names {', '.join(idle)}, and nothing has been done with it yet.")
+        used = [
+            (float(args[lat]), float(args[lon]))
+            for args in ok
+            for lat, lon in LAT_LON_PAIRS
+            if isinstance(args.get(lat), int | float) and isinstance(args.get(lon), int | float)
+        ]
+        left = [
+            p
+            for p in request_points(self._request)
+            if not any(abs(p[0] - a) < 1e-5 and abs(p[1] - b) < 1e-5 for a, b in used)
+        ]
+        if left and used:
+            points = "; ".join(f"{a:g}, {b:g}" for a, b in left)
+            facts.append(f"Points in the request not flown to yet: {points}.")
+        return " ".join(facts)
 
     def _close_open_calls(self) -> None:
         """Answer every tool call of the last assistant message that has no result yet (the API rejects
@@ -435,6 +489,8 @@ class AgentHost:
         if args is not None:
             notes = normalise_drone_ids(args, self._enum_ids) if self._enum_ids else []
             notes += restore_request_numbers(args, self._request)
+            if name in ("move_to_relative",):
+                notes += restore_request_directions(args, self._request)
         self._emit(
             "tool_call",
             step=step,
@@ -455,7 +511,7 @@ class AgentHost:
             outcome = ToolOutcome(text=f"{problem} for {name}. Nothing was executed.", is_error=True)
         elif earlier is not None:
             status = "repeat"
-            outcome = ToolOutcome(
+            outcome = self._host_note(
                 text=f"Not sent again: this {name} call already succeeded in this request "
                 f"({earlier.summary}). It is done; do not repeat it. The request: {self._request} "
                 "Call the tool for the next step, or answer in words if every part is done.",
@@ -463,10 +519,13 @@ class AgentHost:
             )
         else:
             assert args is not None
+            island = null_island(args, self._request, on_ground=self._on_ground(args.get("drone_id")))
+            if island is not None:
+                self._host_notes.append(island)
             invalid = (
                 self._unknown_arguments(tool, args)
                 or validate_arguments(tool, args)
-                or null_island(args, self._request, on_ground=self._on_ground(args.get("drone_id")))
+                or island
                 or direction_mismatch(args, self._request)
             )
             if invalid is not None:
@@ -482,6 +541,8 @@ class AgentHost:
                 status = "error" if outcome.is_error else "ok"
                 if outcome.is_error:
                     note = self._takeoff_first(name, args)
+                    if note:
+                        self._host_notes.append(note)
                     outcome = ToolOutcome(outcome.text + note, True, outcome.structured)
         if status in ("invalid", "error") and self._same_invalid_again(name, args, turn):
             outcome = ToolOutcome(
@@ -508,6 +569,19 @@ class AgentHost:
             text=model_text,
             running=structured.get("status") == "running",
         )
+
+    def _host_note(self, text: str, is_error: bool) -> ToolOutcome:
+        self._host_notes.append(text)
+        return ToolOutcome(text=text, is_error=is_error)
+
+    def _echoes_host(self, said: str) -> bool:
+        """The reply only repeats the request, or copies what the host told the model this turn."""
+        text = _norm(said)
+        if len(text) < 20:
+            return False
+        if text in _norm(self._request):
+            return True
+        return any(text[:60] in _norm(note) for note in self._host_notes)
 
     def _takeoff_first(self, name: str, args: dict[str, Any]) -> str:
         """After a refused move of a drone the roster shows on the ground: the takeoff to call, with the
@@ -605,6 +679,10 @@ def _pending_text(result: TurnResult) -> str:
         return ""  # nothing left, or the failure that skipped them is the latest news
     calls = "\n".join(json.dumps({"name": c.name, "arguments": c.arguments}) for c in pending)
     return f"Not sent yet from your earlier reply (their turn comes after the call that failed):\n{calls}"
+
+
+def _norm(text: str) -> str:
+    return " ".join(re.sub(r"[^\w.,:=-]+", " ", text.lower()).split())
 
 
 def _args_text(args: dict[str, Any] | None) -> str:

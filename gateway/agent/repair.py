@@ -7,6 +7,7 @@ validation error, so the model can correct it."""
 
 from __future__ import annotations
 
+import json
 import re
 from typing import Any
 
@@ -50,10 +51,10 @@ def null_island(arguments: dict[str, Any], request: str, on_ground: bool = False
             drone, alt = arguments.get("drone_id"), arguments.get("alt_m")
             first = ""
             if on_ground and isinstance(drone, str) and isinstance(alt, int | float):
-                first = (
-                    f" {drone} is on the ground: to go up to {alt:g} m, call takeoff with "
-                    f'drone_id "{drone}" and alt_m {alt:g} first.'
-                )
+                takeoff = json.dumps({"name": "takeoff", "arguments": {"drone_id": drone, "alt_m": alt}})
+                # the call itself, as JSON: the 1.5B model answered with the sentence instead of acting on
+                # it; a model that copies this line sends the takeoff, which is the step it needs
+                first = f" {drone} is on the ground: to go up to {alt:g} m, take off first:\n{takeoff}\n"
             return (
                 f"{lat_name}=0, {lon_name}=0 is not a place in the request.{first} To go up, use takeoff "
                 "(from the ground) or move_to_relative with up_m; to fly some metres north, "
@@ -91,25 +92,65 @@ _AXIS = {
 }
 
 
-def direction_mismatch(arguments: dict[str, Any], request: str) -> str | None:
-    """A refusal when a relative move puts a distance the request names on the wrong axis or with the
-    wrong sign (measured with the 1.5B model: "50 m south" sent as east_m=-50, "10 m higher" as a
-    descent). Only a distance the request names with a direction is judged; other numbers pass."""
-    moves = [
+def _moves(request: str) -> list[tuple[float, str, str, int]]:
+    """(distance, phrase, axis argument, sign) of each "50 m south" in the request."""
+    return [
         (float(m.group(1)), m.group(0), *_AXIS[m.group(2).lower()]) for m in _MOVE_RE.finditer(request or "")
     ]
-    if not moves:
-        return None
+
+
+def _misplaced(
+    arguments: dict[str, Any], moves: list[tuple[float, str, str, int]]
+) -> tuple[str, float] | None:
+    """The first relative-move argument whose value is a distance the request names, but on another axis
+    or with the other sign; with the value it has."""
     for name in ("north_m", "east_m", "up_m"):
         value = arguments.get(name)
         if not isinstance(value, int | float) or isinstance(value, bool) or value == 0:
             continue
         same = [m for m in moves if m[0] == abs(value)]
-        if not same or any(axis == name and sign * abs(value) == value for _, _, axis, sign in same):
-            continue
-        distance, phrase, axis, sign = same[0]
-        return (
-            f"{name}={value:g} does not match '{phrase}' in the request: that is {axis}={sign * distance:g} "
-            "(north_m: + north, - south; east_m: + east, - west; up_m: + up, - down). Nothing was executed."
-        )
+        if same and not any(axis == name and sign * abs(value) == value for _, _, axis, sign in same):
+            return name, float(value)
     return None
+
+
+def restore_request_directions(arguments: dict[str, Any], request: str) -> list[str]:
+    """Move, in place, a distance the request names with a direction onto that direction's argument and
+    sign (measured with the 1.5B model: "50 m south" sent as east_m=-50 three times after being told
+    north_m=-50). Only when it is unambiguous: exactly one phrase names that distance and the argument it
+    belongs to is not already used. Returns a note per repair."""
+    moves = _moves(request)
+    notes: list[str] = []
+    while (wrong := _misplaced(arguments, moves)) is not None:
+        name, value = wrong
+        same = [m for m in moves if m[0] == abs(value)]
+        distance, phrase, axis, sign = same[0]
+        if len(same) != 1 or (axis != name and arguments.get(axis) not in (None, 0, 0.0)):
+            break
+        arguments[name] = 0.0
+        arguments[axis] = sign * distance
+        notes.append(f"{name}={value:g} read as {axis}={sign * distance:g} ('{phrase}' in the request)")
+    return notes
+
+
+def direction_mismatch(arguments: dict[str, Any], request: str) -> str | None:
+    """A refusal when a relative move puts a distance the request names on the wrong axis or with the
+    wrong sign and the host could not repair it (`restore_request_directions`)."""
+    moves = _moves(request)
+    wrong = _misplaced(arguments, moves)
+    if wrong is None:
+        return None
+    name, value = wrong
+    distance, phrase, axis, sign = next(m for m in moves if m[0] == abs(value))
+    return (
+        f"{name}={value:g} does not match '{phrase}' in the request: that is {axis}={sign * distance:g} "
+        "(north_m: + north, - south; east_m: + east, - west; up_m: + up, - down). Nothing was executed."
+    )
+
+
+_POINT_RE = re.compile(r"(-?\d{1,2}\.\d{3,})\s*,\s*(-?\d{1,3}\.\d{3,})")
+
+
+def request_points(request: str) -> list[tuple[float, float]]:
+    """The "lat, lon" pairs written in the request (three or more decimals each), in order."""
+    return [(float(a), float(b)) for a, b in _POINT_RE.findall(request or "")]

@@ -120,7 +120,7 @@ async def test_an_empty_reply_is_asked_again_with_the_request_and_what_was_done(
     nudge = _user_texts(model.requests[2])[-1]
     assert nudge.startswith("Your reply was empty.")
     assert "The request: hop alpha to 15 m, then land it" in nudge
-    assert "Done so far: takeoff: status=reached." in nudge  # results in words, no call to echo
+    assert "Already done (do not repeat): takeoff: status=reached." in nudge  # in words, no call to echo
     assert "Fleet now: alpha flying at 15 m" in nudge
     # The empty reply itself is not kept in the conversation.
     assert not any(
@@ -134,7 +134,7 @@ async def test_three_empty_replies_end_the_turn_as_empty_answer(toy, scripted) -
     result = await _turn(toy, model, "land bravo", events)
     assert result.outcome == "empty_answer" and result.final_text is None
     assert len(model.requests) == 3 and result.empty_replies == 3
-    assert "Done so far: nothing yet." in _user_texts(model.requests[1])[-1]
+    assert "Already done (do not repeat): nothing yet." in _user_texts(model.requests[1])[-1]
     assert [e.kind for e in events][-2:] == ["empty_answer", "turn_end"]
 
 
@@ -284,3 +284,27 @@ async def test_calls_skipped_after_a_failure_are_shown_as_still_to_do_until_they
     assert "move_north" not in after_takeoff.split("Not sent yet")[1]
     assert pending in after_move
     assert "Not sent yet" not in after_land
+
+
+async def test_a_reply_that_repeats_the_request_is_not_an_answer(toy, scripted) -> None:
+    prompt = "hop alpha to 15 m, then land it"
+    model = scripted([call("takeoff", drone_id="alpha", alt_m=15), say(prompt),
+                      call("land", drone_id="alpha"), say("alpha went up to 15 m and landed")])  # fmt: skip
+    events: list[AgentEvent] = []
+    result = await _turn(toy, model, prompt, events)
+    assert result.outcome == "answered" and result.final_text == "alpha went up to 15 m and landed"
+    assert result.empty_replies == 1
+    assert [e.data["text"] for e in events if e.kind == "echo_reply"] == [prompt]
+    nudge = _user_texts(model.requests[2])[-1]
+    assert nudge.startswith("Your reply only repeated the request or my note; that is not an answer.")
+    assert [name for name, _ in toy.world.calls] == ["takeoff", "land"]
+
+
+async def test_the_nudge_names_a_drone_of_the_request_nothing_was_done_with(toy, scripted) -> None:
+    model = scripted([call("takeoff", drone_id="alpha", alt_m=10), EMPTY,
+                      call("takeoff", drone_id="bravo", alt_m=10), say("both are up")])  # fmt: skip
+    result = await _turn(toy, model, "take off alpha and bravo to 10 m", [])
+    assert result.outcome == "answered"
+    nudge = _user_texts(model.requests[2])[-1]
+    assert "The request names bravo, and nothing has been done with it yet." in nudge
+    assert [args["drone_id"] for _, args in toy.world.calls] == ["alpha", "bravo"]

@@ -5,7 +5,13 @@ from __future__ import annotations
 from bench.agent_harness.scripted import call, say
 from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
 from gateway.agent.mcp_link import McpLink
-from gateway.agent.repair import direction_mismatch, null_island, restore_request_numbers, swap_hint
+from gateway.agent.repair import (
+    direction_mismatch,
+    null_island,
+    restore_request_directions,
+    restore_request_numbers,
+    swap_hint,
+)
 from tests.agent.toy_mcp import TOKEN
 
 REQUEST = "Launch bravo to 20 m and send it to -35.362855, 149.164955. Keep it hovering there."
@@ -54,9 +60,9 @@ def test_latitude_and_longitude_zero_is_refused_unless_the_user_said_it() -> Non
     on_ground = null_island(zero, "Alpha: go up to 15 m", on_ground=True)
     assert on_ground is not None
     assert (
-        'alpha is on the ground: to go up to 15 m, call takeoff with drone_id "alpha" and alt_m 15'
-        in on_ground
-    )
+        "alpha is on the ground: to go up to 15 m, take off first:\n"
+        '{"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}}\n'
+    ) in on_ground
     assert null_island({**zero, "lat_deg": 0.5}, "go up") is None
 
 
@@ -97,3 +103,22 @@ def test_a_named_distance_on_the_wrong_axis_or_sign_is_refused_with_the_right_on
     # numbers the request does not tie to a direction are not judged
     assert direction_mismatch({"north_m": 0, "east_m": 0, "up_m": -5}, climb) is None
     assert direction_mismatch({"north_m": 12, "east_m": 0}, "Fly alpha north a bit.") is None
+
+
+def test_an_unambiguous_misplaced_distance_is_moved_where_the_request_puts_it() -> None:
+    south = "Bravo, take off to 15 m, head 50 m south, then return to launch."
+    args = {"drone_id": "bravo", "north_m": 0, "east_m": -50}
+    assert restore_request_directions(args, south) == [
+        "east_m=-50 read as north_m=-50 ('50 m south' in the request)"
+    ]
+    assert args == {"drone_id": "bravo", "north_m": -50.0, "east_m": 0.0}
+    climb = "Take bravo up to 10 m, then move it 30 m east and 10 m higher, and hold it there."
+    args = {"north_m": 0, "east_m": 30, "up_m": -10}
+    assert restore_request_directions(args, climb) == [
+        "up_m=-10 read as up_m=10 ('10 m higher' in the request)"
+    ]
+    # two phrases with the same distance: not repaired (the refusal names the right argument instead)
+    both = "Fly alpha 50 m north and bravo 50 m west."
+    args = {"drone_id": "alpha", "north_m": 0, "east_m": 50}
+    assert restore_request_directions(args, both) == [] and args["east_m"] == 50
+    assert direction_mismatch(args, both) is not None
