@@ -29,7 +29,7 @@ class GatewayNotRunning(GatewayError):
 
 
 def _default_registry(settings: Settings, store: Store) -> Any:
-    from gateway.registry.registry import Registry
+    from gateway.fleet.registry import Registry
 
     return Registry(settings, store)
 

@@ -96,7 +96,7 @@ def get_store(request: Request) -> Store:
 
 
 def get_registry(request: Request) -> Any:
-    """The gateway's :class:`gateway.registry.registry.Registry`."""
+    """The gateway's :class:`gateway.fleet.registry.Registry`."""
     return request.app.state.gateway.require_registry()
 
 

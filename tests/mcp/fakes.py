@@ -13,6 +13,7 @@ from typing import Any
 from gateway.config import Settings
 from gateway.errors import UnknownVehicle, VehicleNotReady
 from gateway.fleet import geo
+from gateway.fleet.dialects import ARDUPILOT
 from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.operations import OperationManager
 
@@ -91,7 +92,11 @@ class FakeVehicle:
         return {"state": self.state, "is_simulator": True}
 
     def return_altitude_param(self) -> tuple[str, float]:
-        return "RTL_ALT", 100.0
+        return ARDUPILOT.return_altitude_param
+
+    @property
+    def protected_params(self) -> tuple[str, ...]:
+        return ARDUPILOT.protected_params
 
     def initialising(self) -> str | None:
         return None
@@ -172,7 +177,7 @@ class FakeVehicle:
         self.sent.append(("speed", mps))
 
     def resolve_mode(self, name: str) -> ModeChoice:
-        return require_mode(name, px4=False, vehicle_id=self.id)
+        return require_mode(name, ARDUPILOT, self.id)
 
     async def set_flight_mode(self, name: str) -> None:
         self.resolve_mode(name)

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from gateway.registry.registry import Registry
+from gateway.fleet.registry import Registry
 from tests.registry.conftest import fast_settings
 
 pytestmark = pytest.mark.real
@@ -57,10 +57,11 @@ def _udp_free(port: int) -> bool:
 
 
 def _free_instance(
-    ports: Callable[[int], tuple[int, ...]], check: Callable[[int], bool], instances: range
+    ports: Callable[[int], tuple[int, ...]], check: Callable[[int], bool], instances: range, taken: set[int]
 ) -> int:
     for instance in random.sample(instances, len(instances)):
-        if all(check(p) for p in ports(instance)):
+        if instance not in taken and all(check(p) for p in ports(instance)):
+            taken.add(instance)
             return instance
     pytest.skip("no autopilot instance number has its ports free on this host")
 
@@ -103,32 +104,66 @@ def _need(*names: str) -> None:
         )
 
 
-@pytest.fixture
-def arducopter(tmp_path: Path) -> Iterator[Autopilot]:
-    """ArduCopter SITL at speed-up 5 (about 9 s from start to flyable), TCP 5760 + 10 * instance."""
+@contextlib.contextmanager
+def launch_arducopter(folder: Path, taken: set[int]) -> Iterator[Autopilot]:
+    """ArduCopter SITL at speed-up 5 (about 9 s from start to flyable), TCP 5760 + 10 * instance,
+    system id = instance."""
     _need("ARDUPILOT_SITL", "ARDUPILOT_DEFAULTS")
     ports = lambda i: (5760 + 10 * i, 5762 + 10 * i, 5763 + 10 * i)  # noqa: E731
-    instance = _free_instance(ports, _tcp_free, range(1, 40))
+    instance = _free_instance(ports, _tcp_free, range(1, 40), taken)
     argv = [
-        os.environ["ARDUPILOT_SITL"], "--model", "+", "--speedup", "5", f"-I{instance}", "--sysid", "1",
-        "--defaults", os.environ["ARDUPILOT_DEFAULTS"], "--home", ",".join(str(x) for x in HOME),
+        os.environ["ARDUPILOT_SITL"], "--model", "+", "--speedup", "5", f"-I{instance}",
+        "--sysid", str(instance), "--defaults", os.environ["ARDUPILOT_DEFAULTS"],
+        "--home", ",".join(str(x) for x in HOME),
     ]  # fmt: skip
-    with _running(argv, tmp_path, "arducopter", os.environ) as (proc, log):
+    with _running(argv, folder, f"arducopter-{instance}", os.environ) as (proc, log):
         yield Autopilot(f"tcpout://127.0.0.1:{5760 + 10 * instance}", proc, log)
+
+
+@contextlib.contextmanager
+def launch_px4(folder: Path, taken: set[int]) -> Iterator[Autopilot]:
+    """PX4 SIH (physics inside the autopilot; real time only), MAVLink UDP 14540 + instance, system id
+    instance + 1. Each instance runs in its own folder (PX4 keeps its parameters and logs there)."""
+    _need("PX4_BUILD")
+    build = Path(os.environ["PX4_BUILD"])
+    instance = _free_instance(
+        lambda i: (14540 + i, 14580 + i, 18570 + i, 14280 + i, 13030 + i, 19450 + i),
+        _udp_free,
+        range(1, 10),
+        taken,
+    )  # PX4 sends to 14540 + instance only for instances 0-9
+    sih = {"PX4_SIM_MODEL": "sihsim_quadx", "PX4_SIMULATOR": "sihsim", "PX4_SYS_AUTOSTART": "10040"}
+    argv = [str(build / "bin" / "px4"), "-d", "-i", str(instance), str(build / "etc")]
+    home = folder / f"px4-{instance}"
+    home.mkdir()
+    with _running(argv, home, "px4", {**os.environ, **sih}) as (proc, log):
+        yield Autopilot(f"udpin://127.0.0.1:{14540 + instance}", proc, log)
+
+
+@pytest.fixture
+def arducopter(tmp_path: Path) -> Iterator[Autopilot]:
+    with launch_arducopter(tmp_path, set()) as autopilot:
+        yield autopilot
 
 
 @pytest.fixture
 def px4(tmp_path: Path) -> Iterator[Autopilot]:
-    """PX4 SIH (physics inside the autopilot; real time only), MAVLink UDP 14540 + instance."""
-    _need("PX4_BUILD")
-    build = Path(os.environ["PX4_BUILD"])
-    instance = _free_instance(
-        lambda i: (14540 + i, 14580 + i, 18570 + i, 14280 + i, 13030 + i, 19450 + i), _udp_free, range(1, 10)
-    )  # PX4 sends to 14540 + instance only for instances 0-9
-    sih = {"PX4_SIM_MODEL": "sihsim_quadx", "PX4_SIMULATOR": "sihsim", "PX4_SYS_AUTOSTART": "10040"}
-    argv = [str(build / "bin" / "px4"), "-d", "-i", str(instance), str(build / "etc")]
-    with _running(argv, tmp_path, "px4", {**os.environ, **sih}) as (proc, log):
-        yield Autopilot(f"udpin://127.0.0.1:{14540 + instance}", proc, log)
+    with launch_px4(tmp_path, set()) as autopilot:
+        yield autopilot
+
+
+@pytest.fixture
+def launch(tmp_path: Path) -> Iterator[Callable[[str, int], list[Autopilot]]]:
+    """``launch(kind, n)``: n autopilots of one kind ("ardupilot" or "px4") started together, each on its
+    own instance number; all stopped at the end of the test, also when it fails."""
+    taken: set[int] = set()
+    with contextlib.ExitStack() as stack:
+
+        def start(kind: str, n: int) -> list[Autopilot]:
+            launcher = {"ardupilot": launch_arducopter, "px4": launch_px4}[kind]
+            return [stack.enter_context(launcher(tmp_path, taken)) for _ in range(n)]
+
+        yield start
 
 
 @pytest.fixture

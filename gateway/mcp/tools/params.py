@@ -36,7 +36,7 @@ async def set_parameter(
     """Write one parameter (type taken from the drone). Safety parameters are refused."""
     v = fa.ready(drone_id)
     name = name.upper()
-    fa.safety.check_param_write(name)
+    fa.safety.check_param_write(name, vehicle_id=v.id, protected=v.protected_params)
     fa.safety.check_actuation(fa.context(v))
     val, kind = await v.set_param(name, value)
     return ParamOut(drone_id=drone_id, name=name, value=val, type=kind).say(

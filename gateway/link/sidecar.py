@@ -36,9 +36,10 @@ from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from gateway.config import Settings
-from gateway.registry import confine
+from gateway.link import confine
 from gateway.util.ports import free_tcp_port
 
 log = logging.getLogger("gateway.sidecar")
@@ -189,7 +190,7 @@ class Sidecar:
     def grpc_port(self) -> int | None:
         return self.info.grpc_port if self.info.state == SidecarState.SERVING else None
 
-    def status(self) -> dict:
+    def status(self) -> dict[str, Any]:
         return {
             "state": self.info.state.value,
             "pid": self.info.pid,

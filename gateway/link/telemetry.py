@@ -243,7 +243,8 @@ class TelemetryCache:
                 out[name] = None
                 continue
             value = sample.value
-            body: dict[str, Any] = _json_safe(asdict(value) if is_dataclass(value) else {"value": value})
+            plain = asdict(value) if is_dataclass(value) and not isinstance(value, type) else {"value": value}
+            body: dict[str, Any] = _json_safe(plain)
             age = round(sample.age_s, 3)
             body["age_s"] = age
             body["stale"] = age > self.stale_after_s or not self.live
@@ -369,7 +370,7 @@ class TelemetryFeed:
             "odometry": (t.odometry, lambda o: put("odometry", _odometry(o))),
             "status_text": (
                 t.status_text,
-                lambda s: self.cache.add_status_text(s.type.name.lower(), str(s.text)),
+                self._status_text,
             ),
             "mission_progress": (self.system.mission_raw.mission_progress, self._mission_progress),
         }
@@ -405,6 +406,9 @@ class TelemetryFeed:
         if refused:
             log.info("%s: streams not granted: %s", self.vehicle_id, ", ".join(sorted(refused)))
         return refused
+
+    def _status_text(self, item: Any) -> None:
+        self.cache.add_status_text(item.type.name.lower(), str(item.text))
 
     def _flight_mode(self, mode: Any) -> None:
         if self._use_mavsdk_mode():
