@@ -774,11 +774,9 @@ def _rtl(
 
 
 async def set_rtl_altitude_param(vehicle: Any, alt_m: float) -> None:
-    """The vehicle's return altitude above home (ArduPilot RTL_ALT in cm, PX4 RTL_RETURN_ALT in m); the
-    autopilot returns higher if it is already higher."""
-    name, per_metre = vehicle.return_altitude_param()
-    value = alt_m * per_metre
-    await vehicle.set_param(name, round(value) if per_metre == 100.0 else round(value, 2))
+    """The vehicle's return altitude above home, in its autopilot's parameter and units
+    (``Vehicle.set_return_altitude``); the autopilot returns higher if it is already higher."""
+    await vehicle.set_return_altitude(alt_m)
 
 
 def default_rtl_base_m(positions: Iterable[tuple[float, float, float]], floor_m: float = 15.0) -> float:

@@ -83,6 +83,7 @@ class Vehicle:
         self._mission_plan: WirePlan | None = None
         self._mission_state: int | None = None  # MISSION_CURRENT.mission_state (5 = COMPLETE)
         self._mission_rejection: str | None = None  # the autopilot's words when it refused the mission
+        self._return_alt_name: str | None = None  # the RTL altitude parameter this vehicle has
 
     # --- identity, state and the link ----------------------------------------------------------------
     @property
@@ -506,9 +507,31 @@ class Vehicle:
 
     # --- parameters (gateway.fleet.params) ---------------------------------------------------------------
     def return_altitude_param(self) -> tuple[str, float]:
-        """The parameter that sets the altitude RTL flies home at, and its units per metre: ArduPilot's
-        RTL_ALT is in centimetres, PX4's RTL_RETURN_ALT in metres."""
-        return self.dialect.return_altitude_param
+        """The parameter that sets the altitude RTL flies home at, and its units per metre (ArduPilot
+        4.7: RTL_ALT_M in metres, before: RTL_ALT in centimetres; PX4: RTL_RETURN_ALT in metres)."""
+        candidates = self.dialect.return_altitude_params
+        return next((c for c in candidates if c[0] == self._return_alt_name), candidates[0])
+
+    async def set_return_altitude(self, alt_m: float) -> tuple[str, float | int]:
+        """Set the altitude RTL climbs to before flying home (metres above home) in the parameter and
+        units this autopilot has; returns (parameter, value written)."""
+        geo.check_finite("return altitude", alt_m)
+        candidates = self.dialect.return_altitude_params
+        if self._return_alt_name is not None:  # the one this vehicle is known to have first
+            candidates = tuple(sorted(candidates, key=lambda c: c[0] != self._return_alt_name))
+        for name, per_metre in candidates:
+            value = alt_m * per_metre
+            try:
+                stored, _kind = await self.set_param(
+                    name, round(value) if per_metre >= 100 else round(value, 2)
+                )
+            except CommandFailed as exc:
+                if exc.details.get("result") == "UNKNOWN_PARAMETER" and (name, per_metre) != candidates[-1]:
+                    continue
+                raise
+            self._return_alt_name = name
+            return name, stored
+        raise AssertionError("unreachable: the last candidate raises")
 
     @property
     def protected_params(self) -> tuple[str, ...]:

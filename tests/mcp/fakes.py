@@ -92,7 +92,11 @@ class FakeVehicle:
         return {"state": self.state, "is_simulator": True}
 
     def return_altitude_param(self) -> tuple[str, float]:
-        return ARDUPILOT.return_altitude_param
+        return "RTL_ALT", 100.0  # this fake is an ArduPilot before 4.7
+
+    async def set_return_altitude(self, alt_m: float) -> tuple[str, float]:
+        stored, _kind = await self.set_param("RTL_ALT", round(alt_m * 100))
+        return "RTL_ALT", stored
 
     @property
     def protected_params(self) -> tuple[str, ...]:

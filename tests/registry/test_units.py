@@ -157,24 +157,36 @@ def test_cache_snapshot_reports_ages_and_staleness() -> None:
 
 async def test_the_return_altitude_is_written_in_each_autopilots_parameter_and_units() -> None:
     from gateway.config import Settings
+    from gateway.errors import CommandFailed
     from gateway.fleet.fleet_ops import set_rtl_altitude_param
     from gateway.fleet.vehicle import Vehicle
     from gateway.link.rawlink import MAV_AUTOPILOT_ARDUPILOTMEGA, MAV_AUTOPILOT_PX4
     from gateway.registry.spec import VehicleSpec
 
     written: list[tuple[str, float]] = []
-    v = Vehicle(VehicleSpec(id="rtl", url="udpin://127.0.0.1:14540"), Settings(_env_file=None))
+    known = {"RTL_ALT", "RTL_RETURN_ALT"}
 
     async def record(name: str, value: float) -> tuple[float, str]:
+        if name not in known:
+            raise CommandFailed(f"unknown parameter '{name}'", result="UNKNOWN_PARAMETER")
         written.append((name, value))
         return value, "float"
 
+    v = Vehicle(VehicleSpec(id="rtl", url="udpin://127.0.0.1:14540"), Settings(_env_file=None))
     v.set_param = record  # type: ignore[method-assign]
     v.link.facts.autopilot = MAV_AUTOPILOT_ARDUPILOTMEGA
-    await set_rtl_altitude_param(v, 22.5)
+    await set_rtl_altitude_param(v, 22.5)  # ArduPilot before 4.7: centimetres
+    known = {"RTL_ALT_M"}
+    v = Vehicle(VehicleSpec(id="rtl", url="udpin://127.0.0.1:14540"), Settings(_env_file=None))
+    v.set_param = record  # type: ignore[method-assign]
+    v.link.facts.autopilot = MAV_AUTOPILOT_ARDUPILOTMEGA
+    await set_rtl_altitude_param(v, 22.5)  # 4.7: RTL_ALT_M in metres
+    assert v.return_altitude_param() == ("RTL_ALT_M", 1.0)
+    await set_rtl_altitude_param(v, 30)  # remembered: the missing name is not asked again
+    known = {"RTL_RETURN_ALT"}
     v.link.facts.autopilot = MAV_AUTOPILOT_PX4
     await set_rtl_altitude_param(v, 22.5)
-    assert written == [("RTL_ALT", 2250), ("RTL_RETURN_ALT", 22.5)]  # centimetres / metres
+    assert written == [("RTL_ALT", 2250), ("RTL_ALT_M", 22.5), ("RTL_ALT_M", 30), ("RTL_RETURN_ALT", 22.5)]
 
 
 def test_each_dialect_protects_its_safety_parameters_whatever_the_deny_list_says() -> None:

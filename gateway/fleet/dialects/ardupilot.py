@@ -10,7 +10,8 @@
 * Missions: seq 0 is HOME (the autopilot overwrites it), user items are 1..N; MISSION_CURRENT.total
   leaves home out; MISSION_START while armed on the ground takes off (mission_raw.start_mission only
   switches to AUTO). A rejected mission fails the upload itself (MISSION_ACK error).
-* RTL_ALT is in centimetres. It refuses HIGHRES_IMU and ODOMETRY streams (RAW_IMU instead).
+* The RTL altitude is RTL_ALT_M in metres from 4.7 on, RTL_ALT in centimetres before. It refuses
+  HIGHRES_IMU and ODOMETRY streams (RAW_IMU instead).
 """
 
 from __future__ import annotations
@@ -68,7 +69,9 @@ class ArduPilot:
     follows_events = False
     arming_mode: str | None = "GUIDED"
     mission_verdict_s = 0.0
-    return_altitude_param = ("RTL_ALT", 100.0)
+    #: 4.7 replaced RTL_ALT (centimetres) with RTL_ALT_M (metres); it answers RTL_ALT with "does not
+    #: exist" at once, while older versions do not answer RTL_ALT_M at all: the old name is tried first
+    return_altitude_params = (("RTL_ALT", 100.0), ("RTL_ALT_M", 1.0))
     protected_params = PROTECTED_PARAMS
 
     # --- link facts ----------------------------------------------------------------------------------

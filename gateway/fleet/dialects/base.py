@@ -124,8 +124,9 @@ class Dialect(Protocol):
 
     # --- parameters ----------------------------------------------------------------------------------
     @property
-    def return_altitude_param(self) -> tuple[str, float]:
-        """The parameter RTL climbs to before flying home, and its units per metre."""
+    def return_altitude_params(self) -> tuple[tuple[str, float], ...]:
+        """The parameter RTL climbs to before flying home and its units per metre; several when
+        versions of the autopilot name it differently (the first the vehicle has is used)."""
         ...
 
     @property

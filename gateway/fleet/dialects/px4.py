@@ -73,7 +73,7 @@ class PX4:
     follows_events = True
     arming_mode: str | None = None
     mission_verdict_s = MISSION_VERDICT_S
-    return_altitude_param = ("RTL_RETURN_ALT", 1.0)
+    return_altitude_params = (("RTL_RETURN_ALT", 1.0),)
     protected_params = PROTECTED_PARAMS
 
     # --- link facts ----------------------------------------------------------------------------------
