@@ -7,31 +7,24 @@ ended, database closed).
 
 from __future__ import annotations
 
-import importlib.metadata
-import importlib.util
 import logging
 from collections.abc import AsyncIterator, Callable
 from contextlib import AbstractAsyncContextManager, AsyncExitStack, asynccontextmanager
 from typing import Any
 
 from fastapi import FastAPI
-from starlette.routing import Route
+from starlette.routing import Mount, Route
 
+from gateway import package_version
 from gateway.api import build_api_router, health, metrics
 from gateway.api.docs import install_docs
 from gateway.api.errors import install_error_handlers
 from gateway.api.limits import BodyLimitMiddleware
 from gateway.config import Settings, get_settings
+from gateway.mcp.server import build_mcp, mcp_http_app
 from gateway.runtime import Gateway, RegistryFactory
 
 log = logging.getLogger(__name__)
-
-
-def _version() -> str:
-    try:
-        return importlib.metadata.version("fleet-gateway")
-    except importlib.metadata.PackageNotFoundError:
-        return "0+unknown"
 
 
 LifespanHook = Callable[[], AbstractAsyncContextManager[Any]]
@@ -56,7 +49,7 @@ def create_app(settings: Settings | None = None, registry_factory: RegistryFacto
 
     app = FastAPI(
         title="fleet-gateway",
-        version=_version(),
+        version=package_version(),
         description="Operator REST API of the MCP gateway for a fleet of MAVLink drones.",
         lifespan=lifespan,
         docs_url=None,  # served by install_docs from local assets
@@ -75,27 +68,19 @@ def create_app(settings: Settings | None = None, registry_factory: RegistryFacto
     return app
 
 
-def mount_mcp(app: FastAPI, gateway: Gateway, hooks: list[LifespanHook]) -> bool:
-    """Serve the MCP area's Streamable HTTP app at /mcp, when that area is installed.
+def mount_mcp(app: FastAPI, gateway: Gateway, hooks: list[LifespanHook]) -> None:
+    """Serve the MCP server's Streamable HTTP app at /mcp.
 
-    ``gateway.mcp.server`` provides ``build_mcp(gateway)`` (an ``MCPServer``) and
-    ``streamable_http_app(mcp, settings)`` (its Starlette app, serving the path ``/mcp``). The session
-    manager must run in this app's lifespan: mounted sub-app lifespans never run.
+    The session manager must run in this app's lifespan (mounted sub-app lifespans never run); it
+    enters the MCP server's own lifespan, after the gateway has started.
 
     Rather than mounting the MCP app at "/" (which would answer every unknown path with its own
     plain-text 404), each path it serves is routed to it, so other paths keep the API's JSON errors.
     """
-    if importlib.util.find_spec("gateway.mcp.server") is None:
-        log.info("MCP server module not present: /mcp is not served")
-        return False
-    from gateway.mcp import server as mcp_server
-
-    mcp = mcp_server.build_mcp(gateway)
-    mcp_app = mcp_server.streamable_http_app(mcp, gateway.settings)
-    hooks.append(lambda: mcp.session_manager.run())
+    mcp = build_mcp(gateway)
+    mcp_app = mcp_http_app(mcp, gateway.settings)
+    hooks.append(mcp.session_manager.run)
     app.state.mcp = mcp
-    for route in getattr(mcp_app, "routes", []):
-        path = getattr(route, "path", None)
-        if path:
-            app.router.routes.append(Route(path, endpoint=mcp_app, include_in_schema=False))
-    return True
+    for route in mcp_app.routes:
+        if isinstance(route, Route | Mount):
+            app.router.routes.append(Route(route.path, endpoint=mcp_app, include_in_schema=False))

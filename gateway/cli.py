@@ -7,24 +7,56 @@ the areas pull in uvicorn, SQLAlchemy, the MCP SDK or the OpenAI client, seconds
 from __future__ import annotations
 
 import argparse
-import importlib
 import logging
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from types import ModuleType
 
-#: command -> (module whose ``register(subparsers)`` adds it, its one-line help for ``--help``)
-COMMANDS: dict[str, tuple[str, str]] = {
-    "serve": ("gateway.server_cli", "run the gateway (REST API, /mcp, sidecars)"),
-    "demo": ("gateway.demo", "run the gateway with simulated drones and print how to connect an MCP client"),
-    "drones": ("gateway.server_cli", "register, list and remove drones"),
-    "db": ("gateway.server_cli", "database maintenance"),
-    "sim": ("gateway.sim.cli", "run simulated ArduCopter drones (MAVLink 2 over TCP, like ArduPilot SITL)"),
-    "mcp-stdio": (
-        "gateway.mcp.cli",
-        "serve MCP over stdio (for clients that launch the server as a process)",
-    ),
+
+# Each loader imports its module only when called (``--help`` imports none of them). The module's
+# ``register(subparsers)`` adds its commands.
+def _server_cli() -> ModuleType:
+    from gateway import server_cli
+
+    return server_cli
+
+
+def _demo() -> ModuleType:
+    from gateway import demo
+
+    return demo
+
+
+def _sim_cli() -> ModuleType:
+    from gateway.sim import cli
+
+    return cli
+
+
+def _mcp_cli() -> ModuleType:
+    from gateway.mcp import cli
+
+    return cli
+
+
+def _agent_cli() -> ModuleType:
+    from gateway.agent import cli
+
+    return cli
+
+
+Loader = Callable[[], ModuleType]
+
+#: command -> (the loader of the module that adds it, its one-line help for ``--help``)
+COMMANDS: dict[str, tuple[Loader, str]] = {
+    "serve": (_server_cli, "run the gateway (REST API, /mcp, sidecars)"),
+    "demo": (_demo, "run the gateway with simulated drones and print how to connect an MCP client"),
+    "drones": (_server_cli, "register, list and remove drones"),
+    "db": (_server_cli, "database maintenance"),
+    "sim": (_sim_cli, "run simulated ArduCopter drones (MAVLink 2 over TCP, like ArduPilot SITL)"),
+    "mcp-stdio": (_mcp_cli, "serve MCP over stdio (for clients that launch the server as a process)"),
     "agent": (
-        "gateway.agent.cli",
+        _agent_cli,
         "let an OpenAI-compatible chat model fly the fleet through the gateway's MCP tools",
     ),
 }
@@ -43,9 +75,9 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
     loaded = COMMANDS[command][0] if command in COMMANDS else None
     if loaded is not None:
-        importlib.import_module(loaded).register(subparsers)
-    for name, (module, help_text) in COMMANDS.items():
-        if module != loaded:
+        loaded().register(subparsers)
+    for name, (loader, help_text) in COMMANDS.items():
+        if loader is not loaded:
             subparsers.add_parser(name, help=help_text, add_help=False)
     return parser
 

@@ -36,7 +36,7 @@ Ctrl-C stops the gateway, its sidecars and the simulator.
 """
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "demo",
         help=COMMANDS["demo"][1],

@@ -1,24 +1,29 @@
-"""The running gateway: settings, store and registry with one start/stop.
+"""The running gateway: every long-lived part, built here and only here, with one start/stop.
 
-The HTTP app (:mod:`gateway.app`) creates one :class:`Gateway` and starts it in its lifespan. It holds
-the operator locks (restored from the database) and the safety policy that reads them; the MCP area
-adds its ``operations``.
+The HTTP app (:mod:`gateway.app`) and ``mcp-stdio`` create one :class:`Gateway` and start it. Starting
+opens the store, restores the operator locks, builds the safety policy (which reads them through a
+read-only view), the operation managers and the `Commander` every door sends its commands through,
+then restores and connects the vehicles. Stopping ends running operations (recorded as interrupted),
+every sidecar, then the store.
 """
 
 from __future__ import annotations
 
 import logging
 from collections.abc import Callable
-from typing import Any
 
 from gateway.config import Settings
 from gateway.errors import GatewayError
+from gateway.fleet.commander import Commander
+from gateway.fleet.fleet_ops import FleetOperations
+from gateway.fleet.operations import OperationManager
+from gateway.fleet.protocols import VehicleRegistry
 from gateway.fleet.safety import LockBook, SafetyPolicy
 from gateway.registry.store import Store
 
 log = logging.getLogger(__name__)
 
-RegistryFactory = Callable[[Settings, Store], Any]
+RegistryFactory = Callable[[Settings, Store], VehicleRegistry]
 
 
 class GatewayNotRunning(GatewayError):
@@ -28,25 +33,28 @@ class GatewayNotRunning(GatewayError):
     http_status = 503
 
 
-def _default_registry(settings: Settings, store: Store) -> Any:
+def _default_registry(settings: Settings, store: Store) -> VehicleRegistry:
     from gateway.fleet.registry import Registry
 
     return Registry(settings, store)
 
 
 class Gateway:
-    """Owns the store and the vehicle registry for the life of the process."""
+    """Owns the store, the registry, the policy, the operations and the Commander for the life of the
+    process. Before `start` (and after `stop`) the parts that need the store are absent: their
+    accessors raise GatewayNotRunning."""
 
     def __init__(self, settings: Settings, registry_factory: RegistryFactory | None = None) -> None:
         self.settings = settings
         self.store: Store | None = None
-        self.registry: Any = None
+        self.registry: VehicleRegistry | None = None
         # Operator locks: set through REST, persisted, restored on start. Agents get only a read-only
         # view (through ``safety``). One book for the life of the gateway, so views stay valid.
         self.locks = LockBook()
         self.safety: SafetyPolicy | None = None
-        # The MCP area's OperationManager (it creates one when the gateway has none).
-        self.operations: Any = None
+        self.operations: OperationManager | None = None
+        self.fleet_operations: FleetOperations | None = None
+        self._commander: Commander | None = None
         self._registry_factory = registry_factory or _default_registry
         self._registry_started = False
 
@@ -60,20 +68,47 @@ class Gateway:
             raise GatewayNotRunning("the gateway's database is not open (starting or stopping)")
         return self.store
 
-    def require_registry(self) -> Any:
+    def require_registry(self) -> VehicleRegistry:
         if self.registry is None or not self._registry_started:
             raise GatewayNotRunning("the vehicle registry is not running (starting or stopping)")
         return self.registry
 
+    def require_safety(self) -> SafetyPolicy:
+        if self.safety is None:
+            raise GatewayNotRunning("the safety policy is not loaded yet (starting)")
+        return self.safety
+
+    @property
+    def commander(self) -> Commander:
+        """The one command path (`gateway.fleet.commander`); GatewayNotRunning before start."""
+        if self._commander is None or not self._registry_started:
+            raise GatewayNotRunning("the gateway is not running (starting or stopping); retry shortly")
+        return self._commander
+
     async def start(self) -> None:
-        """Open (and migrate) the database, then restore and connect the registered vehicles."""
+        """Open (and migrate) the database, build the policy, operations and Commander, then restore
+        and connect the registered vehicles."""
         log.info("opening database %s", _redact(self.settings.database_url))
         self.store = await Store.open(self.settings.database_url)
         try:
             for lock in await self.store.list_locks():
                 self.locks.lock(lock.scope, lock.reason, lock.by, at=lock.locked_at)
             self.safety = SafetyPolicy.from_settings(self.settings, self.locks.view())
+            self.operations = OperationManager(self.settings, self.store)
+            interrupted = await self.operations.recover()
+            if interrupted:
+                log.info("%d operation(s) of the previous process recorded as interrupted", interrupted)
+            self.fleet_operations = FleetOperations(self.operations, alive=lambda: self._registry_started)
             self.registry = self._registry_factory(self.settings, self.store)
+            self._commander = Commander(
+                self.settings,
+                self.registry,
+                self.store,
+                self.operations,
+                self.fleet_operations,
+                self.safety,
+                self.locks,
+            )
             await self.registry.start()
             self._registry_started = True
         except BaseException:
@@ -82,10 +117,18 @@ class Gateway:
         log.info("gateway started")
 
     async def stop(self) -> None:
-        """Stop every sidecar, then close the database. Safe to call twice."""
+        """End running operations (recorded as interrupted), stop every sidecar, then close the
+        database. Safe to call twice."""
         self._registry_started = False
+        self._commander = None
+        fleet_operations, self.fleet_operations = self.fleet_operations, None
+        operations, self.operations = self.operations, None
         registry, self.registry = self.registry, None
         try:
+            if fleet_operations is not None:
+                await fleet_operations.stop()
+            if operations is not None:
+                await operations.stop()
             if registry is not None:
                 await registry.stop()
         finally:

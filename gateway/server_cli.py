@@ -10,7 +10,7 @@ import json
 import math
 import os
 import sys
-from collections.abc import Iterator
+from collections.abc import Awaitable, Callable, Iterator
 from datetime import UTC, datetime, timedelta
 from typing import Any
 
@@ -282,7 +282,7 @@ def _table(items: list[dict[str, Any]], as_json: bool) -> str:
     return "\n".join(line.rstrip() for line in lines)
 
 
-def _with_store(args: argparse.Namespace, action: Any) -> int:
+def _with_store(args: argparse.Namespace, action: Callable[[Store], Awaitable[str]]) -> int:
     try:
         settings = _settings(args)
     except ValidationError as exc:
@@ -310,7 +310,7 @@ def _with_store(args: argparse.Namespace, action: Any) -> int:
 
 def _api_token(args: argparse.Namespace) -> str | None:
     if args.token:
-        return args.token
+        return str(args.token)
     if os.environ.get("GATEWAY_API_TOKEN"):
         return os.environ["GATEWAY_API_TOKEN"]
     try:

@@ -11,7 +11,6 @@ import asyncio
 import json
 import sys
 from pathlib import Path
-from types import SimpleNamespace
 from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -21,6 +20,7 @@ from mcp import Client  # noqa: E402
 
 from gateway.config import ALL_TOOLSETS, Settings  # noqa: E402
 from gateway.mcp.server import build_mcp, load_toolset  # noqa: E402
+from gateway.runtime import Gateway  # noqa: E402
 
 TARGET = ROOT / "docs" / "tools.md"
 
@@ -84,8 +84,7 @@ def _hints(annotations: Any) -> str:
 
 async def render() -> str:
     settings = Settings(_env_file=None, mcp_toolsets=",".join(ALL_TOOLSETS))
-    gateway = SimpleNamespace(settings=settings, store=None, registry=None)
-    server = build_mcp(gateway)
+    server = build_mcp(Gateway(settings))
     async with Client(server) as client:
         tools = {t.name: t for t in (await client.list_tools()).tools}
         resources = (await client.list_resources()).resources

@@ -14,6 +14,11 @@ from gateway.registry.store import Store
 from tests.helpers.timing import TIME_SCALE
 
 
+def pytest_report_header(config: pytest.Config) -> str:
+    source = "FLEET_TEST_TIME_SCALE" if os.environ.get("FLEET_TEST_TIME_SCALE") else "load average at start"
+    return f"test deadlines x{TIME_SCALE:g} ({source})"
+
+
 @pytest.hookimpl(trylast=True)
 def pytest_configure(config: pytest.Config) -> None:
     """FLEET_TEST_TIME_SCALE stretches pytest-timeout's per-test bound like every other deadline."""

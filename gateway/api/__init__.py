@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Depends
 
-from gateway.api import control, flights, flying, geofences, records, vehicles
+from gateway.api import activity, control, flights, flying, geofences, vehicles
 from gateway.api.deps import authorize
 
 API_PREFIX = "/api/v1"
@@ -15,7 +15,7 @@ def build_api_router() -> APIRouter:
     api = APIRouter(prefix=API_PREFIX, dependencies=[Depends(authorize)])
     api.include_router(vehicles.router)
     api.include_router(flights.router)
-    api.include_router(records.router)
+    api.include_router(activity.router)
     api.include_router(control.router)
     api.include_router(flying.router)
     api.include_router(geofences.router)

@@ -1,32 +1,35 @@
 """Operator take-over: locks (per drone and fleet-wide), hold / land / RTL, and the fleet stop.
 
 A lock refuses agents' (MCP) actuating commands on the drone; it is persisted and survives restarts.
-The actions here are the operator's own commands: they supersede the drone's current MCP operation.
+The actions here are the operator's own commands, each one Commander call with ``via="rest"``: land
+and RTL are tracked operations, hold ends the drone's current operation, and the fleet stop ends every
+running fleet operation before it tells the drones anything.
 """
 
 from __future__ import annotations
 
-import asyncio
-import logging
-from datetime import UTC, datetime
-from typing import Any, Literal
+from datetime import datetime
+from typing import Literal
 
 from fastapi import APIRouter
 from pydantic import BaseModel, ConfigDict, Field
 
 from gateway.api.audit import AuditedRoute
-from gateway.api.deps import GatewayDep, PrincipalDep, RegistryDep, StoreDep
-from gateway.errors import GatewayError, UnknownVehicle
+from gateway.api.deps import CommanderDep, GatewayDep, Principal, PrincipalDep
+from gateway.fleet.caller import Caller
+from gateway.fleet.fleet_verbs import STOP_LOCK_REASON
 from gateway.fleet.geofence import FLEET
 from gateway.fleet.safety import MAX_REASON_CHARS, Lock
-
-log = logging.getLogger(__name__)
+from gateway.fleet.views import LockResult, OperationView
 
 router = APIRouter(tags=["operator control"], route_class=AuditedRoute)
 
 Action = Literal["hold", "land", "rtl"]
-STOP_LOCK_REASON = "emergency stop"
-_ACTIONS: dict[str, str] = {"hold": "hold", "land": "land", "rtl": "return_to_launch"}
+
+
+def operator(who: Principal) -> Caller:
+    """The Commander's caller for a REST request."""
+    return Caller(via="rest", principal=who.name, session=who.session_key)
 
 
 class LockIn(BaseModel):
@@ -44,7 +47,7 @@ class LockOut(BaseModel):
     locked_at: datetime
 
     @classmethod
-    def of(cls, lock: Lock) -> LockOut:
+    def of(cls, lock: Lock | LockResult) -> LockOut:
         return cls(scope=lock.scope, reason=lock.reason, by=lock.by, locked_at=lock.locked_at)
 
 
@@ -57,12 +60,19 @@ class LockList(BaseModel):
     items: list[LockOut]
 
 
-class ActionOut(BaseModel):
+class CommandOut(BaseModel):
+    """What an operator command did: sent (and, for tracked ones, its operation), skipped or failed."""
+
     vehicle_id: str
     action: str
     outcome: Literal["sent", "skipped", "failed"]
     message: str | None = None
     superseded_operation: str | None = None
+    operation_id: str | None = Field(None, description="The tracked operation (GET /api/v1/operations).")
+
+    @classmethod
+    def of_operation(cls, op: OperationView, action: str) -> CommandOut:
+        return cls(vehicle_id=op.drone_id, action=action, outcome="sent", operation_id=op.operation_id)
 
 
 class StopIn(BaseModel):
@@ -87,25 +97,13 @@ class StopIn(BaseModel):
 class StopOut(BaseModel):
     action: str
     fleet_lock: LockOut | None
-    results: list[ActionOut]
+    superseded_fleet_operations: list[str] = Field(
+        default_factory=list, description="Fleet operations (formations...) ended before the stop."
+    )
+    results: list[CommandOut]
 
 
 # --- locks ---------------------------------------------------------------------------------------
-
-
-async def _lock(gateway: Any, store: Any, scope: str, reason: str, by: str) -> LockOut:
-    lock = gateway.locks.lock(scope, reason, by, at=datetime.now(UTC))
-    await store.save_lock(lock.scope, lock.reason, lock.by, lock.locked_at)
-    log.warning("operator %s locked %s: %s", by, "the fleet" if scope == FLEET else scope, lock.reason)
-    return LockOut.of(lock)
-
-
-async def _unlock(gateway: Any, store: Any, scope: str, by: str) -> UnlockOut:
-    removed = gateway.locks.unlock(scope)
-    stored = await store.delete_lock(scope)
-    if removed or stored:
-        log.warning("operator %s unlocked %s", by, "the fleet" if scope == FLEET else scope)
-    return UnlockOut(scope=scope, was_locked=removed is not None or stored)
 
 
 @router.get("/locks", response_model=LockList, summary="Operator locks in force")
@@ -114,68 +112,72 @@ async def list_locks(gateway: GatewayDep) -> LockList:
 
 
 @router.post("/vehicles/{vehicle_id}/lock", response_model=LockOut, summary="Lock a drone against agents")
-async def lock_vehicle(
-    vehicle_id: str,
-    body: LockIn,
-    gateway: GatewayDep,
-    store: StoreDep,
-    registry: RegistryDep,
-    who: PrincipalDep,
-) -> LockOut:
-    registry.get(vehicle_id)  # UnknownVehicle names the known ids
-    return await _lock(gateway, store, vehicle_id, body.reason, who.name)
+async def lock_vehicle(vehicle_id: str, body: LockIn, commander: CommanderDep, who: PrincipalDep) -> LockOut:
+    return LockOut.of(await commander.lock(operator(who), vehicle_id, body.reason))
 
 
 @router.delete("/vehicles/{vehicle_id}/lock", response_model=UnlockOut, summary="Unlock a drone")
-async def unlock_vehicle(
-    vehicle_id: str, gateway: GatewayDep, store: StoreDep, who: PrincipalDep
-) -> UnlockOut:
-    return await _unlock(gateway, store, vehicle_id, who.name)
+async def unlock_vehicle(vehicle_id: str, commander: CommanderDep, who: PrincipalDep) -> UnlockOut:
+    result = await commander.unlock(operator(who), vehicle_id)
+    return UnlockOut(scope=result.scope, was_locked=result.was_locked)
 
 
 @router.post("/fleet/lock", response_model=LockOut, summary="Lock the whole fleet against agents")
-async def lock_fleet(body: LockIn, gateway: GatewayDep, store: StoreDep, who: PrincipalDep) -> LockOut:
-    return await _lock(gateway, store, FLEET, body.reason, who.name)
+async def lock_fleet(body: LockIn, commander: CommanderDep, who: PrincipalDep) -> LockOut:
+    return LockOut.of(await commander.lock(operator(who), FLEET, body.reason))
 
 
 @router.delete("/fleet/lock", response_model=UnlockOut, summary="Remove the fleet lock")
-async def unlock_fleet(gateway: GatewayDep, store: StoreDep, who: PrincipalDep) -> UnlockOut:
-    return await _unlock(gateway, store, FLEET, who.name)
+async def unlock_fleet(commander: CommanderDep, who: PrincipalDep) -> UnlockOut:
+    result = await commander.unlock(operator(who), FLEET)
+    return UnlockOut(scope=result.scope, was_locked=result.was_locked)
 
 
 # --- actions -------------------------------------------------------------------------------------
 
 
-async def _act(gateway: Any, vehicle: Any, action: str) -> ActionOut:
-    """Send hold/land/rtl; the drone's running MCP operation (if any) is marked superseded."""
-    await getattr(vehicle, _ACTIONS[action])()
-    superseded = None
-    if gateway.operations is not None:
-        op = await gateway.operations.supersede(vehicle.id, by=f"operator {action}")
-        superseded = getattr(op, "id", None)
-    return ActionOut(vehicle_id=vehicle.id, action=action, outcome="sent", superseded_operation=superseded)
+async def _act(commander: CommanderDep, caller: Caller, vehicle_id: str, action: Action) -> CommandOut:
+    """Hold (ends the drone's current operation), land or RTL (tracked operations superseding it)."""
+    if action == "hold":
+        held = await commander.hold(caller, vehicle_id, "operator hold")
+        return CommandOut(
+            vehicle_id=vehicle_id,
+            action=action,
+            outcome="sent",
+            superseded_operation=held.superseded_operation,
+        )
+    previous = commander.operations.running(vehicle_id)
+    op = await (
+        commander.land(caller, vehicle_id)
+        if action == "land"
+        else commander.return_to_launch(caller, vehicle_id)
+    )
+    return CommandOut(
+        vehicle_id=vehicle_id,
+        action=action,
+        outcome="sent",
+        superseded_operation=None if previous is None else previous.id,
+        operation_id=op.operation_id,
+    )
 
 
 def _action_route(action: Action) -> None:
-    async def endpoint(vehicle_id: str, gateway: GatewayDep, registry: RegistryDep) -> ActionOut:
-        return await _act(gateway, registry.get(vehicle_id), action)
+    async def endpoint(vehicle_id: str, commander: CommanderDep, who: PrincipalDep) -> CommandOut:
+        return await _act(commander, operator(who), vehicle_id, action)
 
     endpoint.__name__ = f"{action}_vehicle"
     router.add_api_route(
         f"/vehicles/{{vehicle_id}}/{action}",
         endpoint,
         methods=["POST"],
-        response_model=ActionOut,
+        response_model=CommandOut,
         summary={"hold": "Hold position", "land": "Land", "rtl": "Return to launch"}[action] + " (operator)",
     )
 
 
-for _action in ("hold", "land", "rtl"):
-    _action_route(_action)  # type: ignore[arg-type]
-
-
-def _in_air(vehicle: Any) -> bool | None:
-    return vehicle.telemetry.fresh("in_air")
+_action_route("hold")
+_action_route("land")
+_action_route("rtl")
 
 
 @router.post(
@@ -183,31 +185,22 @@ def _in_air(vehicle: Any) -> bool | None:
     response_model=StopOut,
     summary="Emergency stop: lock the fleet, then every airborne drone holds, lands or returns",
 )
-async def fleet_stop(
-    gateway: GatewayDep, store: StoreDep, registry: RegistryDep, who: PrincipalDep, body: StopIn | None = None
-) -> StopOut:
+async def fleet_stop(commander: CommanderDep, who: PrincipalDep, body: StopIn | None = None) -> StopOut:
     body = body or StopIn()
-    fleet_lock = None
-    if body.lock or body.lock_reason:
-        reason = body.lock_reason or STOP_LOCK_REASON
-        fleet_lock = await _lock(gateway, store, FLEET, reason, who.name)
-
-    async def one(vehicle: Any) -> ActionOut:
-        state = str(getattr(vehicle.state, "value", vehicle.state))
-        if state in ("registered", "failed"):
-            message = f"not connected ({state})"
-            return ActionOut(vehicle_id=vehicle.id, action=body.action, outcome="skipped", message=message)
-        if _in_air(vehicle) is False:
-            return ActionOut(
-                vehicle_id=vehicle.id, action=body.action, outcome="skipped", message="on the ground"
+    result = await commander.stop_all(operator(who), body.action, body.lock, body.lock_reason)
+    return StopOut(
+        action=result.action,
+        fleet_lock=None if result.fleet_lock is None else LockOut.of(result.fleet_lock),
+        superseded_fleet_operations=result.superseded_fleet_operations,
+        results=[
+            CommandOut(
+                vehicle_id=r.drone_id,
+                action=r.action,
+                outcome=r.outcome,
+                message=r.message,
+                superseded_operation=r.superseded_operation,
+                operation_id=r.operation_id,
             )
-        try:
-            return await _act(gateway, vehicle, body.action)
-        except (GatewayError, UnknownVehicle) as exc:
-            return ActionOut(vehicle_id=vehicle.id, action=body.action, outcome="failed", message=exc.message)
-        except Exception as exc:  # one drone's failure must not stop the others
-            log.exception("fleet stop: %s failed on %s", body.action, vehicle.id)
-            return ActionOut(vehicle_id=vehicle.id, action=body.action, outcome="failed", message=repr(exc))
-
-    results = await asyncio.gather(*(one(v) for v in registry.all()))
-    return StopOut(action=body.action, fleet_lock=fleet_lock, results=list(results))
+            for r in result.results
+        ],
+    )

@@ -13,11 +13,13 @@ from __future__ import annotations
 import hashlib
 import hmac
 from dataclasses import dataclass
-from typing import Annotated, Any, Literal
+from typing import Annotated, Literal
 
 from fastapi import Depends, HTTPException, Request
 
 from gateway.config import Settings
+from gateway.fleet.commander import Commander
+from gateway.fleet.protocols import VehicleRegistry
 from gateway.registry.store import Store
 from gateway.runtime import Gateway
 
@@ -88,19 +90,26 @@ async def authorize(request: Request) -> Principal:
 
 
 def get_gateway(request: Request) -> Gateway:
-    return request.app.state.gateway
+    gateway: Gateway = request.app.state.gateway
+    return gateway
 
 
 def get_store(request: Request) -> Store:
-    return request.app.state.gateway.require_store()
+    return get_gateway(request).require_store()
 
 
-def get_registry(request: Request) -> Any:
+def get_registry(request: Request) -> VehicleRegistry:
     """The gateway's :class:`gateway.fleet.registry.Registry`."""
-    return request.app.state.gateway.require_registry()
+    return get_gateway(request).require_registry()
+
+
+def get_commander(request: Request) -> Commander:
+    """The one command path (503 while the gateway starts or stops)."""
+    return get_gateway(request).commander
 
 
 GatewayDep = Annotated[Gateway, Depends(get_gateway)]
 StoreDep = Annotated[Store, Depends(get_store)]
-RegistryDep = Annotated[Any, Depends(get_registry)]
+RegistryDep = Annotated[VehicleRegistry, Depends(get_registry)]
+CommanderDep = Annotated[Commander, Depends(get_commander)]
 PrincipalDep = Annotated[Principal, Depends(authorize)]

@@ -12,7 +12,7 @@ from gateway.api.audit import AuditedRoute
 from gateway.api.deps import MAX_ROW, StoreDep
 from gateway.api.schemas import FlightPage, as_utc
 from gateway.errors import InvalidArgument, NotFound
-from gateway.registry.store import FlightRecord, TrackSample
+from gateway.registry.store import FlightRecord, Store, TrackSample
 
 FlightId = Annotated[int, Path(ge=1, le=MAX_ROW, description="Flight id.")]
 
@@ -39,7 +39,7 @@ async def list_flights(
     return FlightPage(items=items, total=total, limit=limit, offset=offset)
 
 
-async def _flight(store: Any, flight_id: int) -> FlightRecord:
+async def _flight(store: Store, flight_id: int) -> FlightRecord:
     flight = await store.get_flight(flight_id)
     if flight is None:
         raise NotFound(f"no flight with id {flight_id}", id=flight_id)

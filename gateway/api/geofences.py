@@ -22,6 +22,8 @@ from gateway.api.audit import AuditedRoute
 from gateway.api.deps import GatewayDep, PrincipalDep, RegistryDep
 from gateway.errors import GatewayError, InvalidArgument
 from gateway.fleet.geofence import FLEET, GeofenceSet, Zone
+from gateway.fleet.safety import SafetyPolicy
+from gateway.runtime import Gateway
 
 log = logging.getLogger(__name__)
 
@@ -60,15 +62,11 @@ def _feature(zone: Zone) -> dict[str, Any]:
     return {"type": "Feature", "properties": props, "geometry": zone.geojson}
 
 
-def _policy(gateway: Any) -> Any:
-    if gateway.safety is None:
-        from gateway.runtime import GatewayNotRunning
-
-        raise GatewayNotRunning("the safety policy is not loaded yet (starting)")
-    return gateway.safety
+def _policy(gateway: Gateway) -> SafetyPolicy:
+    return gateway.require_safety()
 
 
-def _out(gateway: Any) -> GeofencesOut:
+def _out(gateway: Gateway) -> GeofencesOut:
     zones = sorted(_policy(gateway).geofences, key=lambda z: (z.scope != FLEET, z.scope, z.name))
     return GeofencesOut(features=[_feature(z) for z in zones], persisted=bool(gateway.settings.geofence_file))
 

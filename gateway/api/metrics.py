@@ -5,7 +5,7 @@ from __future__ import annotations
 import time
 from collections import Counter as Tally
 from collections.abc import Iterator
-from typing import Any
+from typing import TYPE_CHECKING
 
 from fastapi import APIRouter, FastAPI, Request, Response
 from prometheus_client import CONTENT_TYPE_LATEST, CollectorRegistry, Counter, Histogram, generate_latest
@@ -13,20 +13,24 @@ from prometheus_client.core import CounterMetricFamily, GaugeMetricFamily, Metri
 from prometheus_client.registry import Collector
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from gateway.fleet.protocols import FlyingVehicle
+
+if TYPE_CHECKING:
+    from gateway.runtime import Gateway
+
 CONNECTION_STATES = ("registered", "connecting", "connected", "ready", "link_lost", "failed")
 
 router = APIRouter(tags=["health"])
 
 
-def _state_name(vehicle: Any) -> str:
-    state = vehicle.state
-    return str(getattr(state, "value", state))
+def _state_name(vehicle: FlyingVehicle) -> str:
+    return str(vehicle.state)
 
 
 class FleetCollector(Collector):
     """Reads the fleet at scrape time: vehicles by state, sidecar restarts, telemetry message counts."""
 
-    def __init__(self, gateway: Any) -> None:
+    def __init__(self, gateway: Gateway) -> None:
         self.gateway = gateway
 
     def collect(self) -> Iterator[Metric]:
@@ -78,24 +82,20 @@ class FleetCollector(Collector):
         yield ages
 
 
-def _sample_ages(vehicle: Any) -> dict[str, float]:
+def _sample_ages(vehicle: FlyingVehicle) -> dict[str, float]:
     """Age of each telemetry part the cache holds (parts never received are left out)."""
     cache = vehicle.telemetry
     ages: dict[str, float] = {}
-    for name in getattr(cache, "FIELDS", ()):
-        sample = getattr(cache, name, None)
-        age = getattr(sample, "age_s", None)
-        if age is not None:
-            ages[name] = float(age)
+    for name in cache.FIELDS:
+        sample = getattr(cache, name)
+        if sample is not None:
+            ages[name] = float(sample.age_s)
     return ages
 
 
-def _message_counts(vehicle: Any) -> dict[str, int]:
+def _message_counts(vehicle: FlyingVehicle) -> dict[str, int]:
     """Per-stream update counts of the vehicle's telemetry cache."""
-    counts = getattr(vehicle.telemetry, "message_counts", None)
-    if counts is None:
-        return {}
-    return dict(counts() if callable(counts) else counts)
+    return dict(vehicle.telemetry.message_counts)
 
 
 def route_template(scope: Scope) -> str:
@@ -142,7 +142,7 @@ class RequestMetricsMiddleware:
             self.latency.labels(template).observe(time.perf_counter() - started)
 
 
-def install_metrics(app: FastAPI, gateway: Any) -> CollectorRegistry:
+def install_metrics(app: FastAPI, gateway: Gateway) -> CollectorRegistry:
     """Create the app's registry, its HTTP request metrics and the fleet collector."""
     registry = CollectorRegistry(auto_describe=True)
     registry.register(FleetCollector(gateway))

@@ -12,12 +12,14 @@ from gateway.api.audit import AuditedRoute
 from gateway.api.deps import GatewayDep, RegistryDep, StoreDep
 from gateway.api.schemas import StatusTextList, VehicleCreate, VehicleList, VehicleOut, VehicleUpdate, as_utc
 from gateway.errors import InvalidArgument, UnknownVehicle
+from gateway.fleet.protocols import FlyingVehicle, VehicleRegistry
+from gateway.fleet.safety import LockView
 from gateway.registry.store import Store, VehicleRecord
 
 router = APIRouter(prefix="/vehicles", tags=["vehicles"], route_class=AuditedRoute)
 
 
-def _live(registry: Any, vehicle_id: str) -> Any | None:
+def _live(registry: VehicleRegistry, vehicle_id: str) -> FlyingVehicle | None:
     """The registry's Vehicle, or None when the registry does not hold it."""
     try:
         return registry.get(vehicle_id)
@@ -26,7 +28,10 @@ def _live(registry: Any, vehicle_id: str) -> Any | None:
 
 
 def vehicle_view(
-    record: VehicleRecord, vehicle: Any | None, with_telemetry: bool = False, locks: Any = None
+    record: VehicleRecord,
+    vehicle: FlyingVehicle | None,
+    with_telemetry: bool = False,
+    locks: LockView | None = None,
 ) -> VehicleOut:
     data: dict[str, Any] = record.model_dump()
     if locks is not None:
@@ -41,7 +46,7 @@ def vehicle_view(
     return VehicleOut.model_validate(data)
 
 
-async def _record(store: Store, registry: Any, vehicle_id: str) -> VehicleRecord:
+async def _record(store: Store, registry: VehicleRegistry, vehicle_id: str) -> VehicleRecord:
     record = await store.get_vehicle(vehicle_id)
     if record is None:
         raise UnknownVehicle(vehicle_id[:64], [v.id for v in await store.list_vehicles()])

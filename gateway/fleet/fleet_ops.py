@@ -28,11 +28,26 @@ import uuid
 from collections.abc import Awaitable, Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from gateway.errors import GatewayError, InvalidArgument, NotFound, SafetyRefusal
 from gateway.fleet import geo
-from gateway.fleet.operations import Operation, OperationManager, OpStatus, Tracker
+from gateway.fleet.operations import (
+    GotoTracker,
+    LandingTracker,
+    Operation,
+    OperationManager,
+    OpStatus,
+    TakeoffTracker,
+    Tracker,
+)
+from gateway.fleet.protocols import FlyingVehicle
+
+if TYPE_CHECKING:
+    from gateway.fleet.formation import FormationPlan
+
+Send = Callable[[], Awaitable[None]]
+"""Sends one command to a drone (returns once the drone accepted it)."""
 
 log = logging.getLogger(__name__)
 
@@ -55,9 +70,9 @@ def _now() -> datetime:
 class Step:
     """One drone's part of a phase: send a command, then track it as the drone's current operation."""
 
-    vehicle: Any
+    vehicle: FlyingVehicle
     tracker: Tracker
-    send: Callable[[], Awaitable[Any]]
+    send: Send
     params: dict[str, Any]
     timeout_s: float | None = None  # the step fails if not finished by then (the vehicle keeps going)
     precheck: Callable[[], None] | None = None  # run inside the vehicle's command lock, just before send
@@ -624,12 +639,14 @@ def step_timeout_s(distance_m: float, slowest_mps: float = 1.0, margin_s: float 
 
 
 def collect_members(
-    drone_ids: Sequence[str], resolve: Callable[[str], Any], check: Callable[[Any], None]
-) -> tuple[dict[str, Any], list[Unable]]:
+    drone_ids: Sequence[str],
+    resolve: Callable[[str], FlyingVehicle],
+    check: Callable[[FlyingVehicle], None],
+) -> tuple[dict[str, FlyingVehicle], list[Unable]]:
     """Look every drone up (``resolve`` raises UnknownVehicle) and run ``check`` on it (raises a
     GatewayError, e.g. SafetyRefusal or VehicleNotReady, when it cannot take part). Every drone is
     checked, so one answer names all the drones that cannot take part."""
-    vehicles: dict[str, Any] = {}
+    vehicles: dict[str, FlyingVehicle] = {}
     unable: list[Unable] = []
     for drone_id in drone_ids:
         try:
@@ -642,18 +659,18 @@ def collect_members(
     return vehicles, unable
 
 
-Precheck = Callable[[Any], None]
+Precheck = Callable[[FlyingVehicle], None]
 """Checks a vehicle inside its command lock (e.g. "no takeoff in progress", against parallel tool calls)."""
 
 
-def _bind(precheck: Precheck | None, vehicle: Any) -> Callable[[], None] | None:
+def _bind(precheck: Precheck | None, vehicle: FlyingVehicle) -> Callable[[], None] | None:
     return None if precheck is None else (lambda: precheck(vehicle))
 
 
-def formation_phases(plan: Any, vehicles: Mapping[str, Any], precheck: Precheck | None = None) -> list[Phase]:
+def formation_phases(
+    plan: FormationPlan, vehicles: Mapping[str, FlyingVehicle], precheck: Precheck | None = None
+) -> list[Phase]:
     """The three phases of a `FormationPlan` as fleet-operation phases (each leg a tracked goto)."""
-    from gateway.fleet.operations import GotoTracker
-
     phases: list[Phase] = []
     for index, name in enumerate(FORMATION_PHASES):
         steps: dict[str, Step] = {}
@@ -672,7 +689,7 @@ def formation_phases(plan: Any, vehicles: Mapping[str, Any], precheck: Precheck 
     return phases
 
 
-def slot_summaries(plan: Any) -> dict[str, dict[str, Any]]:
+def slot_summaries(plan: FormationPlan) -> dict[str, dict[str, Any]]:
     """Per drone: its slot's target, transit altitude and distance to fly (for results)."""
     return {
         s.drone_id: {
@@ -687,10 +704,8 @@ def slot_summaries(plan: Any) -> dict[str, dict[str, Any]]:
 
 
 def takeoff_phase(
-    vehicles: Mapping[str, Any], altitudes: Mapping[str, float], precheck: Precheck | None = None
+    vehicles: Mapping[str, FlyingVehicle], altitudes: Mapping[str, float], precheck: Precheck | None = None
 ) -> Phase:
-    from gateway.fleet.operations import TakeoffTracker
-
     steps = {
         d: Step(
             vehicle=v,
@@ -705,9 +720,7 @@ def takeoff_phase(
     return Phase("take off to staggered altitudes", steps)
 
 
-def land_phase(vehicles: Mapping[str, Any]) -> Phase:
-    from gateway.fleet.operations import LandingTracker
-
+def land_phase(vehicles: Mapping[str, FlyingVehicle]) -> Phase:
     steps = {
         d: Step(vehicle=v, tracker=LandingTracker(kind="land"), send=v.land, params={})
         for d, v in vehicles.items()
@@ -716,17 +729,15 @@ def land_phase(vehicles: Mapping[str, Any]) -> Phase:
 
 
 def rtl_phases(
-    vehicles: Mapping[str, Any],
+    vehicles: Mapping[str, FlyingVehicle],
     altitudes: Mapping[str, float],
     positions: Mapping[str, tuple[float, float, float]],
-    set_rtl_altitude: Callable[[Any, float], Awaitable[Any]],
+    set_rtl_altitude: Callable[[FlyingVehicle, float], Awaitable[None]],
 ) -> list[Phase]:
     """Return to launch in two phases: (1) every drone climbs or descends in place to its return altitude,
     (2) each drone's RTL altitude is set, then RTL (the autopilot flies home at that altitude and lands;
     it would return at its current altitude if that were higher, which is why phase 1 also descends).
     The barrier keeps a drone from heading home while a neighbour is still moving through its layer."""
-    from gateway.fleet.operations import GotoTracker, LandingTracker
-
     climbs: dict[str, Step] = {}
     for d, v in vehicles.items():
         pos = positions.get(d)
@@ -755,17 +766,17 @@ def rtl_phases(
     ]
 
 
-def _goto(vehicle: Any, lat: float, lon: float, alt: float) -> Callable[[], Awaitable[Any]]:
+def _goto(vehicle: FlyingVehicle, lat: float, lon: float, alt: float) -> Send:
     return lambda: vehicle.goto(lat, lon, alt)
 
 
-def _takeoff(vehicle: Any, alt: float) -> Callable[[], Awaitable[Any]]:
+def _takeoff(vehicle: FlyingVehicle, alt: float) -> Send:
     return lambda: vehicle.takeoff(alt)
 
 
 def _rtl(
-    vehicle: Any, alt: float, set_rtl_altitude: Callable[[Any, float], Awaitable[Any]]
-) -> Callable[[], Awaitable[Any]]:
+    vehicle: FlyingVehicle, alt: float, set_rtl_altitude: Callable[[FlyingVehicle, float], Awaitable[None]]
+) -> Send:
     async def send() -> None:
         await set_rtl_altitude(vehicle, alt)
         await vehicle.return_to_launch()
@@ -773,7 +784,7 @@ def _rtl(
     return send
 
 
-async def set_rtl_altitude_param(vehicle: Any, alt_m: float) -> None:
+async def set_rtl_altitude_param(vehicle: FlyingVehicle, alt_m: float) -> None:
     """The vehicle's return altitude above home, in its autopilot's parameter and units
     (``Vehicle.set_return_altitude``); the autopilot returns higher if it is already higher."""
     await vehicle.set_return_altitude(alt_m)

@@ -50,7 +50,7 @@ class DroneStart:
 
 
 @dataclass(frozen=True)
-class Waypoint:
+class LegPoint:
     lat: float
     lon: float
     alt_rel_m: float
@@ -77,7 +77,7 @@ class SlotAssignment:
     east_m: float
     transit_alt_m: float | None  # None: flies directly (no conflict needed resolving)
     distance_m: float  # length of the drone's path, all legs
-    legs: list[Waypoint]
+    legs: list[LegPoint]
     conflicts_resolved: list[str] = field(default_factory=list)
 
 
@@ -92,7 +92,7 @@ class FormationPlan:
     min_separation_m: float
     slots: list[SlotAssignment]
     conflicts: list[Conflict]
-    phases: list[dict[str, Waypoint]]  # per phase: drone id -> waypoint; absent = stays put
+    phases: list[dict[str, LegPoint]]  # per phase: drone id -> waypoint; absent = stays put
     total_distance_m: float
     min_clearance_m: float | None  # smallest distance between two drones' segments in a phase; None: 1 drone
     notes: list[str] = field(default_factory=list)
@@ -148,7 +148,8 @@ def formation_offsets(
             radius = s / (2.0 * math.sin(math.pi / count))
             angle = 2.0 * math.pi * k / count
             pts = np.column_stack([radius * np.cos(angle), radius * np.sin(angle)])
-    return pts - pts.mean(axis=0)
+    centred: np.ndarray = pts - pts.mean(axis=0)
+    return centred
 
 
 def rotate_to_ned(offsets: np.ndarray, heading_deg: float) -> np.ndarray:
@@ -289,9 +290,9 @@ def plan_formation(
         for j in range(i + 1, n)
         if required[i, j] < min_separation_m
     ]
-    for a, b, d0 in close_pairs:
+    for first, second, d0 in close_pairs:
         notes.append(
-            f"drones {a} and {b} start {fmt(d0, 2)} m apart, below the minimum separation; "
+            f"drones {first} and {second} start {fmt(d0, 2)} m apart, below the minimum separation; "
             "their paths never bring them closer than that"
         )
 
@@ -303,14 +304,14 @@ def plan_formation(
         per_drone[i].append(f"with {starts[j].id}: direct paths {fmt(closest, 2)} m apart; {resolution}")
         per_drone[j].append(f"with {starts[i].id}: direct paths {fmt(closest, 2)} m apart; {resolution}")
 
-    def to_wp(p: np.ndarray) -> Waypoint:
+    def to_wp(p: np.ndarray) -> LegPoint:
         lat, lon = geo.offset_position(center_lat, center_lon, float(p[0]), float(p[1]))
-        return Waypoint(lat, lon, round(float(p[2]), 3))
+        return LegPoint(lat, lon, round(float(p[2]), 3))
 
-    phases: list[dict[str, Waypoint]] = [{}, {}, {}]
+    phases: list[dict[str, LegPoint]] = [{}, {}, {}]
     slots: list[SlotAssignment] = []
     for i, d in enumerate(starts):
-        legs: list[Waypoint] = []
+        legs: list[LegPoint] = []
         length = 0.0
         for k in range(3):
             a, b = phases_xyz[k][i]

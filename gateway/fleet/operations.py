@@ -23,16 +23,30 @@ from datetime import UTC, datetime
 from enum import StrEnum
 from typing import Any, Protocol
 
+from gateway.config import Settings
 from gateway.errors import InvalidArgument, NotFound
 from gateway.fleet import geo
+from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.readings import (
+    age_s,
+    climb_rate,
+    ground_speed,
+    home,
+    is_landed_and_disarmed,
+    position,
+    value,
+)
+from gateway.fleet.safety import RunningOperation
+from gateway.registry.records import OperationRecord
+from gateway.registry.store import Store
 
 log = logging.getLogger(__name__)
 
 POLL_S = 0.2
-#: how long a mission may be out of AUTO before the operation fails (the gateway's own pause supersedes
-#: the operation right after switching mode)
-LEFT_AUTO_GRACE_S = 2.0
 """How often a monitor looks at the telemetry cache (the cache itself is updated by streams)."""
+LEFT_AUTO_GRACE_S = 2.0
+"""How long a mission may be out of AUTO before the operation fails (the gateway's own pause supersedes
+the operation right after switching mode)."""
 SAVE_EVERY_S = 2.0
 """Progress of a running operation is written to the store at most this often."""
 
@@ -65,7 +79,7 @@ class Tracker(Protocol):
 
     kind: str
 
-    async def poll(self, vehicle: Any) -> Poll: ...
+    async def poll(self, vehicle: FlyingVehicle) -> Poll: ...
 
 
 @dataclass
@@ -114,59 +128,6 @@ def _now() -> datetime:
     return datetime.now(UTC)
 
 
-# ------------------------------------------------------------------------------------------------
-# Reading the telemetry cache (TelemetryCache fields are Sample(value, received_at) or None)
-# ------------------------------------------------------------------------------------------------
-
-
-def value(vehicle: Any, name: str) -> Any:
-    sample = getattr(vehicle.telemetry, name, None)
-    return None if sample is None else sample.value
-
-
-def age_s(vehicle: Any, name: str) -> float | None:
-    sample = getattr(vehicle.telemetry, name, None)
-    return None if sample is None else float(sample.age_s)
-
-
-def is_stale(vehicle: Any, age: float, limit_s: float) -> bool:
-    """A cached value is stale when older than ``limit_s``, and every value is while the link is lost
-    (even one that arrived just after the last heartbeat)."""
-    return age > limit_s or not vehicle.telemetry.live
-
-
-def position(vehicle: Any) -> tuple[float, float, float] | None:
-    """(lat, lon, alt_rel_m) from the cache, or None."""
-    pos = value(vehicle, "position")
-    if pos is None:
-        return None
-    return float(pos.lat_deg), float(pos.lon_deg), float(pos.rel_alt_m)
-
-
-def home(vehicle: Any) -> tuple[float, float, float] | None:
-    """(lat, lon, alt_amsl_m) of home from the cache, or None."""
-    h = value(vehicle, "home")
-    if h is None:
-        return None
-    return float(h.lat_deg), float(h.lon_deg), float(h.abs_alt_m)
-
-
-def ground_speed(vehicle: Any) -> float | None:
-    v = value(vehicle, "velocity_ned")
-    if v is None:
-        return None
-    return math.hypot(float(v.north_mps), float(v.east_mps))
-
-
-def climb_rate(vehicle: Any) -> float | None:
-    v = value(vehicle, "velocity_ned")
-    return None if v is None else -float(v.down_mps)
-
-
-def is_landed_and_disarmed(vehicle: Any) -> bool:
-    return value(vehicle, "armed") is False and value(vehicle, "in_air") is False
-
-
 def takeoff_tolerance_m(target_alt_m: float) -> float:
     """How close to the takeoff altitude counts as reached (ArduPilot stops a little short)."""
     return min(1.0, max(0.3, 0.05 * target_alt_m))
@@ -183,7 +144,7 @@ class TakeoffTracker:
     kind: str = "takeoff"
     _seen_armed: bool = False
 
-    async def poll(self, vehicle: Any) -> Poll:
+    async def poll(self, vehicle: FlyingVehicle) -> Poll:
         pos = position(vehicle)
         armed = value(vehicle, "armed")
         if armed:
@@ -213,13 +174,13 @@ class GotoTracker:
     kind: str = "goto"
     _start_dist: float | None = None
 
-    def distance(self, vehicle: Any) -> tuple[float, float] | None:
+    def distance(self, vehicle: FlyingVehicle) -> tuple[float, float] | None:
         pos = position(vehicle)
         if pos is None:
             return None
         return geo.horizontal_distance_m(pos[0], pos[1], self.lat, self.lon), self.alt_rel_m - pos[2]
 
-    async def poll(self, vehicle: Any) -> Poll:
+    async def poll(self, vehicle: FlyingVehicle) -> Poll:
         if value(vehicle, "armed") is False or value(vehicle, "in_air") is False:
             return Poll(0.0, "vehicle is not flying", failed="vehicle landed or disarmed before arriving")
         d = self.distance(vehicle)
@@ -243,7 +204,7 @@ class YawTracker:
     kind: str = "set_yaw"
     tolerance_deg: float = 5.0
 
-    async def poll(self, vehicle: Any) -> Poll:
+    async def poll(self, vehicle: FlyingVehicle) -> Poll:
         heading = value(vehicle, "heading_deg")
         if heading is None:
             return Poll(0.0, "waiting for heading telemetry")
@@ -260,7 +221,7 @@ class LandingTracker:
     kind: str = "land"
     _start: tuple[float, float] | None = None  # (altitude, horizontal distance to home) at start
 
-    async def poll(self, vehicle: Any) -> Poll:
+    async def poll(self, vehicle: FlyingVehicle) -> Poll:
         if is_landed_and_disarmed(vehicle):
             return Poll(1.0, "landed and disarmed", done=True, eta_s=0.0)
         pos = position(vehicle)
@@ -292,7 +253,7 @@ class MissionTracker:
     _seen_auto: bool = False
     _left_auto_at: float | None = None
 
-    async def poll(self, vehicle: Any) -> Poll:
+    async def poll(self, vehicle: FlyingVehicle) -> Poll:
         prog = value(vehicle, "mission_progress")
         current, total = (int(prog.current), int(prog.total)) if prog is not None else (0, 0)
         left = self._left_auto(vehicle)
@@ -310,7 +271,7 @@ class MissionTracker:
         progress = max(0.0, min(0.99, (current - 1) / total)) if total else 0.0
         return Poll(progress, f"item {current} of {total}")
 
-    def _left_auto(self, vehicle: Any) -> str | None:
+    def _left_auto(self, vehicle: FlyingVehicle) -> str | None:
         """The autopilot itself left AUTO (a failsafe, a pilot, another ground station) for longer than
         LEFT_AUTO_GRACE_S. The gateway's own pause/hold supersedes the operation before that."""
         mode = value(vehicle, "flight_mode")
@@ -337,11 +298,10 @@ class MissionTracker:
 class OperationManager:
     """One current operation per vehicle; monitors run independently of whoever waits on them."""
 
-    def __init__(self, settings: Any, store: Any | None = None, store_getter: Any | None = None) -> None:
-        """``store_getter`` (a callable) serves gateways whose store opens after this is built."""
+    def __init__(self, settings: Settings, store: Store | None = None) -> None:
+        """``store`` None keeps operations in memory only (unit tests of the trackers)."""
         self.settings = settings
-        self._store = store
-        self._store_getter = store_getter
+        self.store = store
         self._ops: dict[str, Operation] = {}
         self._current: dict[str, Operation] = {}  # latest operation per vehicle (may be finished)
         self._monitors: dict[str, asyncio.Task[None]] = {}
@@ -368,10 +328,20 @@ class OperationManager:
         op = self.running(vehicle_id)
         return op if op is not None and op.kind == "takeoff" else None
 
+    def running_facts(self, vehicle_id: str, kind: str | None = None) -> RunningOperation | None:
+        """The vehicle's running operation (of ``kind``, if given) as the safety policy sees it."""
+        op = self.running(vehicle_id)
+        if op is None or (kind is not None and op.kind != kind):
+            return None
+        target = op.params.get("altitude_m")
+        return RunningOperation(
+            op.id, op.kind, op.message, float(target) if isinstance(target, int | float) else None
+        )
+
     # -- commands --------------------------------------------------------------------------------
     async def start(
         self,
-        vehicle: Any,
+        vehicle: FlyingVehicle,
         tracker: Tracker,
         send: Callable[[], Awaitable[Any]],
         params: dict[str, Any],
@@ -483,7 +453,7 @@ class OperationManager:
         self._monitors.clear()
 
     # -- internals -------------------------------------------------------------------------------
-    async def _monitor(self, vehicle: Any, op: Operation, tracker: Tracker) -> None:
+    async def _monitor(self, vehicle: FlyingVehicle, op: Operation, tracker: Tracker) -> None:
         stale_after = float(getattr(self.settings, "link_lost_after_s", 3.0))
         try:
             while not op.finished:
@@ -539,10 +509,6 @@ class OperationManager:
             task.cancel()
         await self._save(op, force=True)
 
-    @property
-    def store(self) -> Any | None:
-        return self._store if self._store is not None or self._store_getter is None else self._store_getter()
-
     async def _save(self, op: Operation, force: bool = False) -> None:
         store = self.store
         if store is None:
@@ -552,8 +518,6 @@ class OperationManager:
             return
         self._last_saved[op.id] = now
         try:
-            from gateway.registry.store import OperationRecord
-
             await store.save_operation(
                 OperationRecord(
                     id=op.id,
@@ -573,10 +537,9 @@ class OperationManager:
             log.exception("could not save operation %s", op.id)
 
 
-def _interruption(vehicle: Any) -> str | None:
+def _interruption(vehicle: FlyingVehicle) -> str | None:
     """Why the gateway cannot follow the vehicle right now (sidecar restarting, link lost), or None."""
-    state = getattr(vehicle, "state", None)
-    name = str(getattr(state, "value", state or ""))
+    name = str(vehicle.state)
     if not name or name == "ready":
         return None
     why = ""

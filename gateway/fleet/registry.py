@@ -27,6 +27,7 @@ from gateway.errors import InvalidArgument, UnknownVehicle
 from gateway.fleet.vehicle import ConnectionState, Vehicle
 from gateway.link.sidecar import Confine
 from gateway.registry.spec import VehicleSpec
+from gateway.registry.store import Store
 
 log = logging.getLogger("gateway.registry")
 
@@ -36,7 +37,7 @@ StateListener = Callable[[Vehicle, ConnectionState, ConnectionState], None]
 class Registry:
     """Owns one Vehicle (and through it one sidecar) per registered drone."""
 
-    def __init__(self, settings: Settings, store: Any, *, confine: Confine | None = None) -> None:
+    def __init__(self, settings: Settings, store: Store, *, confine: Confine | None = None) -> None:
         self.settings = settings
         self.store = store
         self._confine = confine

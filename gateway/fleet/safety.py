@@ -1,16 +1,16 @@
 """Safety policy: pure checks run before anything is sent to a drone (no I/O, no clocks but lock times).
 
-Every check either returns an allowed `SafetyDecision` or raises `SafetyRefusal(rule, message, **numbers)`
-whose message starts with the rule's name and states the numbers involved, e.g.
-``max_altitude: target altitude 150 m exceeds the limit of 120 m above home``. `decide()` turns a check
-into a decision either way, for the audit table.
+Every check returns quietly when allowed, or raises `SafetyRefusal(rule, message, **numbers)` whose
+rule is a `Rule` member and whose message starts with the rule's name and states the numbers involved,
+e.g. ``max_altitude: target altitude 150 m exceeds the limit of 120 m above home``. The audit table
+records the refusal (rule, message, numbers) from the exception.
 
-Who calls what:
-- MCP tools call the checks with ``via="mcp"`` (the default): operator locks and `simulators_only` apply.
-- The REST operator API calls them with ``via="rest"``: limits still apply, locks do not (the operator
-  holds them), kill is allowed.
-- The MCP side only ever receives a `LockView` (read-only); unlocking is a `LockBook` method the REST
-  layer owns.
+Who calls what: the Commander (`gateway.fleet.commander`), for every door, with the caller's ``via``:
+- agents (MCP, and a node's own cluster commands) are judged with ``via="mcp"`` (the default): operator
+  locks, `simulators_only`, the parameter deny list, pilot modes in the air, the kill restriction and
+  the takeoff guard apply;
+- operators (REST, the console) with ``via="rest"``: the limits still apply, those others do not.
+- Agents only ever reach a `LockView` (read-only); locking and unlocking are operator verbs.
 """
 
 from __future__ import annotations
@@ -18,8 +18,8 @@ from __future__ import annotations
 import fnmatch
 import math
 import re
-from collections.abc import Callable, Iterable, Mapping, Sequence
-from dataclasses import asdict, dataclass, field, fields, replace
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import asdict, dataclass, fields, replace
 from datetime import UTC, datetime
 from enum import StrEnum
 from typing import TYPE_CHECKING, Any, Literal, Protocol
@@ -56,6 +56,9 @@ class Rule(StrEnum):
     MODE_IN_AIR = "mode_deny_in_air"
     KILL_IN_AIR = "kill_in_air"
     MIN_SEPARATION = "min_separation"
+    TAKEOFF_IN_PROGRESS = "takeoff_in_progress"
+    DRONE_BUSY = "drone_busy"
+    KILL_NOT_CONFIRMED = "kill_not_confirmed"
 
 
 # ------------------------------------------------------------------------------------------------
@@ -96,60 +99,38 @@ class Target:
     alt_rel_m: float
 
 
-class MissionItemLike(Protocol):
-    """The fields of `gateway.fleet.vehicle.MissionItem` the policy reads."""
-
-    lat: float
-    lon: float
-    alt_rel_m: float
-    kind: str
-    speed_mps: float | None
-
-
 @dataclass(frozen=True)
-class SafetyDecision:
-    """Outcome of one check, in a shape the audit table can store (`to_dict`)."""
+class RunningOperation:
+    """What the policy needs to know of a drone's running operation (the takeoff and busy rules)."""
 
-    rule: str
-    allowed: bool
+    operation_id: str
+    kind: str
     message: str
-    numbers: dict[str, Any] = field(default_factory=dict)
-    vehicle_id: str | None = None
-    needs_confirmation: bool = False
+    target_alt_m: float | None = None
 
-    @classmethod
-    def ok(
-        cls, check: str, vehicle_id: str | None = None, message: str = "allowed", **numbers: Any
-    ) -> SafetyDecision:
-        return cls(check, True, message, numbers, vehicle_id)
 
-    @classmethod
-    def from_refusal(cls, exc: SafetyRefusal, vehicle_id: str | None = None) -> SafetyDecision:
-        numbers = {k: v for k, v in exc.details.items() if k != "rule"}
-        vid = vehicle_id if vehicle_id is not None else numbers.get("vehicle_id")
-        return cls(exc.rule, False, exc.message, numbers, vid)
+class MissionItemLike(Protocol):
+    """The fields of `gateway.fleet.mission.MissionItem` the policy reads."""
 
-    def to_dict(self) -> dict[str, Any]:
-        return asdict(self)
+    @property
+    def lat(self) -> float: ...
 
-    def raise_if_refused(self) -> SafetyDecision:
-        if not self.allowed:
-            raise SafetyRefusal(self.rule, self.message, **self.numbers)
-        return self
+    @property
+    def lon(self) -> float: ...
+
+    @property
+    def alt_rel_m(self) -> float: ...
+
+    @property
+    def kind(self) -> str: ...
+
+    @property
+    def speed_mps(self) -> float | None: ...
 
 
 def refuse(rule: Rule | str, text: str, **numbers: Any) -> SafetyRefusal:
     """A refusal whose message starts with the rule name."""
     return SafetyRefusal(str(rule), f"{rule}: {text}", **numbers)
-
-
-def decide(check: Callable[..., SafetyDecision], *args: Any, **kwargs: Any) -> SafetyDecision:
-    """Run a check and return its decision, allowed or refused, without raising SafetyRefusal."""
-    try:
-        return check(*args, **kwargs)
-    except SafetyRefusal as exc:
-        ctx = next((a for a in args if isinstance(a, VehicleContext)), None)
-        return SafetyDecision.from_refusal(exc, ctx.vehicle_id if ctx else None)
 
 
 def fmt(value: float, digits: int = 1) -> str:
@@ -401,7 +382,7 @@ class SafetyPolicy:
 
     # --- gates shared by every actuating check ---------------------------------------------------
 
-    def check_actuation(self, ctx: VehicleContext, via: Via = "mcp") -> SafetyDecision:
+    def check_actuation(self, ctx: VehicleContext, via: Via = "mcp") -> None:
         """Operator locks and the simulators-only switch: refuse any actuating command from an agent.
         Operators (via="rest") are not held by either."""
         _check_via(via)
@@ -421,9 +402,8 @@ class SafetyPolicy:
                     "simulators only (GATEWAY_SIMULATORS_ONLY)",
                     vehicle_id=ctx.vehicle_id,
                 )
-        return SafetyDecision.ok("actuation", ctx.vehicle_id)
 
-    def check_mode(self, ctx: VehicleContext, mode: str, via: Via = "mcp") -> SafetyDecision:
+    def check_mode(self, ctx: VehicleContext, mode: str, via: Via = "mcp") -> None:
         """Flight mode changes: locks, simulators-only, and no pilot-stick modes in the air."""
         self.check_actuation(ctx, via)
         if not isinstance(mode, str) or not mode.strip():
@@ -439,28 +419,25 @@ class SafetyPolicy:
                 vehicle_id=ctx.vehicle_id,
                 mode=name,
             )
-        return SafetyDecision.ok("mode", ctx.vehicle_id, mode=name)
 
-    def check_arm(self, ctx: VehicleContext, via: Via = "mcp") -> SafetyDecision:
+    def check_arm(self, ctx: VehicleContext, via: Via = "mcp") -> None:
         """Arming: locks, simulators-only and the takeoff battery minimum."""
         self.check_actuation(ctx, via)
         self._check_battery(
             ctx, self.limits_for(ctx.vehicle_id).min_battery_takeoff_pct, Rule.BATTERY_TAKEOFF
         )
-        return SafetyDecision.ok("arm", ctx.vehicle_id)
 
     # --- motion ----------------------------------------------------------------------------------
 
-    def check_takeoff(self, ctx: VehicleContext, alt_rel_m: float, via: Via = "mcp") -> SafetyDecision:
+    def check_takeoff(self, ctx: VehicleContext, alt_rel_m: float, via: Via = "mcp") -> None:
         self.check_actuation(ctx, via)
         limits = self.limits_for(ctx.vehicle_id)
         _finite(ctx, "takeoff altitude", alt_rel_m)
         self._check_altitude(ctx, limits, "takeoff altitude", alt_rel_m)
         if not ctx.airborne:
             self._check_battery(ctx, limits.min_battery_takeoff_pct, Rule.BATTERY_TAKEOFF)
-        return SafetyDecision.ok("takeoff", ctx.vehicle_id, alt_rel_m=alt_rel_m)
 
-    def check_motion(self, ctx: VehicleContext, target: Target, via: Via = "mcp") -> SafetyDecision:
+    def check_motion(self, ctx: VehicleContext, target: Target, via: Via = "mcp") -> None:
         """A goto, reposition or relative move to `target`: altitude band, distance from home, geofences
         (the target and the straight leg from the current position) and the battery minimum for a leg."""
         self.check_actuation(ctx, via)
@@ -468,11 +445,8 @@ class SafetyPolicy:
         self._check_point(ctx, limits, target, "target")
         self._check_leg(ctx, self._start_of(ctx), target)
         self._check_battery(ctx, limits.min_battery_leg_pct, Rule.BATTERY_LEG)
-        return SafetyDecision.ok(
-            "motion", ctx.vehicle_id, lat=target.lat, lon=target.lon, alt_rel_m=target.alt_rel_m
-        )
 
-    def check_speed(self, ctx: VehicleContext, mps: float, via: Via = "mcp") -> SafetyDecision:
+    def check_speed(self, ctx: VehicleContext, mps: float, via: Via = "mcp") -> None:
         self.check_actuation(ctx, via)
         _finite(ctx, "speed", mps)
         limit = self.limits_for(ctx.vehicle_id).max_speed_mps
@@ -491,11 +465,8 @@ class SafetyPolicy:
                 speed_mps=mps,
                 limit_mps=limit,
             )
-        return SafetyDecision.ok("speed", ctx.vehicle_id, speed_mps=mps)
 
-    def check_mission(
-        self, ctx: VehicleContext, items: Sequence[MissionItemLike], via: Via = "mcp"
-    ) -> SafetyDecision:
+    def check_mission(self, ctx: VehicleContext, items: Sequence[MissionItemLike], via: Via = "mcp") -> None:
         """A mission, item by item (user items numbered from 1), including each leg between positions.
         Battery: the takeoff minimum when starting on the ground, else the leg minimum."""
         self.check_actuation(ctx, via)
@@ -509,8 +480,8 @@ class SafetyPolicy:
         previous = self._start_of(ctx)
         for number, item in enumerate(items, start=1):
             prefix = f"mission item {number}: "
-            kind = getattr(item, "kind", "waypoint")
-            speed = getattr(item, "speed_mps", None)
+            kind = item.kind
+            speed = item.speed_mps
             if speed is not None:
                 with _prefixed(prefix, item=number):
                     self.check_speed(ctx, speed, via)
@@ -529,11 +500,10 @@ class SafetyPolicy:
                     self._check_point(ctx, limits, target, "waypoint")
                 self._check_leg(ctx, previous, target)
             previous = (item.lat, item.lon)
-        return SafetyDecision.ok("mission", ctx.vehicle_id, items=len(items))
 
     def check_formation(
         self, contexts: Mapping[str, VehicleContext], plan: FormationPlan, via: Via = "mcp"
-    ) -> SafetyDecision:
+    ) -> None:
         """Every drone's legs of a formation plan (transit and final), and the plan's separation."""
         sep = self.settings.min_separation_m
         if plan.min_separation_m < sep:
@@ -562,20 +532,66 @@ class SafetyPolicy:
                     self._check_point(ctx, limits, target, "leg target")
                     self._check_leg(ctx, previous, target)
                 previous = (wp.lat, wp.lon)
-        return SafetyDecision.ok("formation", None, drones=len(plan.slots))
+
+    # --- sequencing: what is already running on the drone ------------------------------------------
+
+    def check_takeoff_finished(
+        self, ctx: VehicleContext, takeoff: RunningOperation | None, action: str, via: Via = "mcp"
+    ) -> None:
+        """No agent motion while a takeoff has not reached its altitude (the source paper's crash: goto
+        sent mid-climb). Operators may interrupt their own or an agent's takeoff."""
+        _check_via(via)
+        if takeoff is None or via == "rest":
+            return
+        alt = fmt(ctx.position[2]) if ctx.position is not None else "?"
+        target = "?" if takeoff.target_alt_m is None else fmt(takeoff.target_alt_m)
+        raise refuse(
+            Rule.TAKEOFF_IN_PROGRESS,
+            f"{ctx.vehicle_id} is still taking off ({alt} of {target} m above home); {action} was not "
+            f"sent. Wait for takeoff to finish: call monitor_flight(drone_id='{ctx.vehicle_id}'), then "
+            f"send {action} again.",
+            vehicle_id=ctx.vehicle_id,
+            operation_id=takeoff.operation_id,
+            alt_rel_m=None if ctx.position is None else round(ctx.position[2], 2),
+            target_alt_m=takeoff.target_alt_m,
+        )
+
+    def check_not_busy(self, ctx: VehicleContext, running: RunningOperation | None, action: str) -> None:
+        """A fleet command does not silently take over a drone still busy with its own operation."""
+        if running is None:
+            return
+        raise refuse(
+            Rule.DRONE_BUSY,
+            f"{ctx.vehicle_id} is still running {running.kind} (operation {running.operation_id}: "
+            f"{running.message}); wait for it (monitor_flight / monitor_fleet) or call fleet_hold before "
+            f"{action}",
+            vehicle_id=ctx.vehicle_id,
+            operation_id=running.operation_id,
+        )
+
+    def check_stagger(self, stagger_m: float) -> None:
+        """Drones returning home at altitudes closer than the minimum separation could meet."""
+        sep = self.settings.min_separation_m
+        if stagger_m < sep:
+            raise refuse(
+                Rule.MIN_SEPARATION,
+                f"return altitudes {stagger_m:g} m apart are closer than the minimum separation of {sep:g} m",
+                stagger_m=stagger_m,
+                limit_m=sep,
+            )
 
     # --- kill and parameters ---------------------------------------------------------------------
 
-    def check_kill(self, ctx: VehicleContext, via: Via = "mcp") -> SafetyDecision:
-        """Kill motors. Operators: allowed. Agents: on the ground (= disarm) allowed; in the air refused
-        unless `agents_may_kill`, and then allowed only with ``needs_confirmation`` set: the caller must
-        obtain a human's confirmation (MCP elicitation) before acting. No argument widens this."""
+    def check_kill(self, ctx: VehicleContext, via: Via = "mcp") -> bool:
+        """Kill motors; returns whether a human must confirm first. Operators: allowed. Agents: on the
+        ground (= disarm) allowed; in the air refused unless `agents_may_kill`, and then allowed only
+        once a human confirmed (MCP elicitation; `check_kill_confirmed`). No argument widens this."""
         _check_via(via)
         if via == "rest":
-            return SafetyDecision.ok("kill", ctx.vehicle_id, "operator kill allowed")
+            return False
         self.check_actuation(ctx, via)
         if not ctx.airborne:
-            return SafetyDecision.ok("kill", ctx.vehicle_id, "on the ground: kill acts as a disarm")
+            return False
         if not self.settings.agents_may_kill:
             raise refuse(
                 Rule.KILL_IN_AIR,
@@ -583,18 +599,21 @@ class SafetyPolicy:
                 "do this (GATEWAY_AGENTS_MAY_KILL is off). Use land, hold or return_to_launch",
                 vehicle_id=ctx.vehicle_id,
             )
-        return SafetyDecision(
-            "kill",
-            True,
-            f"drone {ctx.vehicle_id} is in the air: a human must confirm the kill before it is sent",
-            {},
-            ctx.vehicle_id,
-            needs_confirmation=True,
-        )
+        return True
+
+    def check_kill_confirmed(self, ctx: VehicleContext, confirmed: bool, via: Via = "mcp") -> None:
+        """An agent's kill is sent only once its confirmation came back accepted (an operator's at once)."""
+        _check_via(via)
+        if via == "mcp" and not confirmed:
+            raise refuse(
+                Rule.KILL_NOT_CONFIRMED,
+                f"kill of {ctx.vehicle_id} was not confirmed; nothing sent",
+                vehicle_id=ctx.vehicle_id,
+            )
 
     def check_param_write(
         self, name: str, via: Via = "mcp", vehicle_id: str | None = None, protected: Sequence[str] = ()
-    ) -> SafetyDecision:
+    ) -> None:
         """Refuse agent writes to parameters matching the deny list or ``protected``, the patterns the
         vehicle's autopilot dialect protects (glob patterns, case-insensitive)."""
         _check_via(via)
@@ -616,7 +635,6 @@ class SafetyPolicy:
                         param=upper,
                         pattern=pattern,
                     )
-        return SafetyDecision.ok("param_write", vehicle_id, param=upper)
 
     # --- pieces ----------------------------------------------------------------------------------
 
@@ -777,10 +795,9 @@ class _prefixed:
     def __enter__(self) -> None:
         return None
 
-    def __exit__(self, exc_type: Any, exc: BaseException | None, tb: Any) -> bool:
+    def __exit__(self, exc_type: Any, exc: BaseException | None, tb: Any) -> None:
         if isinstance(exc, SafetyRefusal):
             head = f"{exc.rule}: "
             body = exc.message[len(head) :] if exc.message.startswith(head) else exc.message
             details = {k: v for k, v in exc.details.items() if k != "rule"}
             raise SafetyRefusal(exc.rule, f"{head}{self.prefix}{body}", **details, **self.numbers) from None
-        return False

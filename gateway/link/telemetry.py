@@ -382,10 +382,7 @@ class TelemetryFeed:
             "imu": (t.imu, lambda i: put("imu", _imu(i))),
             "raw_imu": (t.raw_imu, lambda i: put("imu", _raw_imu(i))),
             "odometry": (t.odometry, lambda o: put("odometry", _odometry(o))),
-            "status_text": (
-                t.status_text,
-                self._status_text,
-            ),
+            "status_text": (t.status_text, self._status_text),
             "mission_progress": (self.system.mission_raw.mission_progress, self._mission_progress),
         }
         for name, (subscribe, handle) in streams.items():
@@ -421,8 +418,8 @@ class TelemetryFeed:
             log.info("%s: streams not granted: %s", self.vehicle_id, ", ".join(sorted(refused)))
         return refused
 
-    def _status_text(self, item: Any) -> None:
-        self.cache.add_status_text(item.type.name.lower(), str(item.text))
+    def _status_text(self, text: Any) -> None:
+        self.cache.add_status_text(text.type.name.lower(), str(text.text))
 
     def _flight_mode(self, mode: Any) -> None:
         if self._use_mavsdk_mode():

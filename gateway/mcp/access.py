@@ -1,184 +1,116 @@
-"""What the MCP tools need from the gateway: vehicles, safety checks, operations, and the waiting logic."""
+"""What an MCP tool gets: the Commander, the caller it acts for, and the presenting of its results.
+
+The MCP server's lifespan yields a `FleetState` (the running gateway's Commander and settings); the
+tool wrapper (`gateway.mcp.toolkit`) builds one `ToolCall` per call from it, naming the caller
+(``via="mcp"``, the token principal, the MCP session). A tool is one Commander call plus presenting its
+result: `ToolCall.finish` waits for an operation when the model asked to (capped, with progress
+notifications) and turns it into the tool's structured result and one line of text.
+"""
 
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Awaitable, Callable
-from typing import Any
+from contextvars import ContextVar
+from dataclasses import dataclass
+from typing import Any, Literal
 
 from mcp.server.mcpserver import Context
 
-from gateway.errors import SafetyRefusal, VehicleNotReady
-from gateway.fleet import geo
-from gateway.fleet.operations import Operation, OperationManager, Tracker, position, value
+from gateway.config import Settings
+from gateway.errors import GatewayError
+from gateway.fleet.caller import Caller
+from gateway.fleet.commander import Commander
+from gateway.fleet.views import OperationView
 from gateway.mcp.results import OperationOut
-from gateway.mcp.toolkit import current_call
+from gateway.runtime import Gateway
+
+# --- per-call audit information, set by the session middleware, filled in by the tool wrapper --------
 
 
-class FleetAccess:
-    """A thin view of the runtime ``Gateway`` (settings, registry, store, operations, safety)."""
+@dataclass
+class CallInfo:
+    session_key: str | None = None
+    principal: str | None = None
+    vehicle_id: str | None = None
+    outcome: Literal["ok", "error", "refused", "running"] | None = None
+    error: str | None = None
 
-    def __init__(self, gateway: Any) -> None:
-        self.gateway = gateway
-        self.settings = gateway.settings
-        operations = getattr(gateway, "operations", None)
-        if operations is None:
-            operations = OperationManager(self.settings, store_getter=lambda: getattr(gateway, "store", None))
-            gateway.operations = operations
-        self.operations: OperationManager = operations
 
-    # -- vehicles ----------------------------------------------------------------------------------
+current_call: ContextVar[CallInfo | None] = ContextVar("current_call", default=None)
+
+
+@dataclass(frozen=True)
+class FleetState:
+    """What the MCP server's lifespan yields (``ctx.request_context.lifespan_context``): the gateway
+    the server runs over. Its Commander is taken per call, so a server over a gateway that is not
+    running (listing tools for the docs) answers calls with "not running" instead of failing to start."""
+
+    gateway: Gateway
+
     @property
-    def registry(self) -> Any:
-        return self.gateway.registry
+    def commander(self) -> Commander:
+        return self.gateway.commander
 
     @property
-    def store(self) -> Any:
-        return getattr(self.gateway, "store", None)
+    def settings(self) -> Settings:
+        return self.gateway.settings
 
-    @property
-    def safety(self) -> Any:
-        policy = getattr(self.gateway, "safety", None)
-        if policy is None:
-            from gateway.fleet.safety import SafetyPolicy
 
-            locks = getattr(self.gateway, "locks", None)
-            if locks is not None and hasattr(locks, "view"):
-                locks = locks.view()
-            policy = SafetyPolicy.from_settings(self.settings, locks)
-            self.gateway.safety = policy
-        return policy
+class ToolCall:
+    """One tool call: the Commander, who asks, and how to present what came back."""
 
-    def vehicle(self, drone_id: str) -> Any:
-        """The registered vehicle (raises UnknownVehicle listing the known ids)."""
-        return self.registry.get(drone_id)
-
-    def ready(self, drone_id: str) -> Any:
-        vehicle = self.vehicle(drone_id)
-        vehicle.require_ready()
-        return vehicle
-
-    async def ready_to_arm(self, drone_id: str, ctx: Any | None = None) -> Any:
-        """The vehicle once it can be armed: one that is still initialising is waited for (capped),
-        and the client is told what it waits for."""
-        vehicle = self.vehicle(drone_id)
-        waiting = vehicle.initialising()
-        if waiting is not None and ctx is not None:
-            with contextlib.suppress(Exception):  # progress is a courtesy; the wait happens regardless
-                await ctx.report_progress(0.0, 1.0, f"{drone_id}: {waiting}")
-        await vehicle.wait_initialised()
-        return vehicle
-
-    def session_key(self) -> str | None:
+    def __init__(self, state: FleetState, ctx: Context[Any, Any]) -> None:
+        self.commander = state.commander
+        self.settings = state.settings
+        self.ctx = ctx
         call = current_call.get()
-        return None if call is None else call.session_key
-
-    # -- safety ------------------------------------------------------------------------------------
-    def context(self, vehicle: Any) -> Any:
-        from gateway.fleet.safety import VehicleContext
-
-        battery = value(vehicle, "battery")
-        h = value(vehicle, "home")
-        status = vehicle.status()
-        return VehicleContext(
-            vehicle_id=vehicle.id,
-            is_simulator=bool(status.get("is_simulator")),
-            armed=bool(value(vehicle, "armed")),
-            in_air=bool(value(vehicle, "in_air")),
-            battery_pct=None if battery is None else battery.remaining_pct,
-            home=None if h is None else (h.lat_deg, h.lon_deg, h.abs_alt_m),
-            position=position(vehicle),
+        principal = "local" if call is None or call.principal is None else call.principal
+        self.caller = Caller(
+            via="mcp", principal=principal, session=None if call is None else call.session_key
         )
 
-    def target(self, lat: float, lon: float, alt_rel_m: float) -> Any:
-        from gateway.fleet.safety import Target
+    @classmethod
+    def of(cls, ctx: Context[Any, Any]) -> ToolCall:
+        state = ctx.request_context.lifespan_context
+        if not isinstance(state, FleetState):
+            raise GatewayError("the MCP server runs without a gateway (its lifespan did not start)")
+        return cls(state, ctx)
 
-        return Target(lat=lat, lon=lon, alt_rel_m=alt_rel_m)
+    async def notify(self, text: str) -> None:
+        """Tell the client what the command waits for (a progress notification at 0)."""
+        with contextlib.suppress(Exception):  # progress is a courtesy
+            await self.ctx.report_progress(0.0, 1.0, text)
 
-    def check_motion(self, vehicle: Any, lat: float, lon: float, alt_rel_m: float) -> None:
-        ctx = self.context(vehicle)
-        self.safety.check_actuation(ctx)
-        self.safety.check_motion(ctx, self.target(lat, lon, alt_rel_m))
+    async def progress(self, view: OperationView) -> None:
+        await self.ctx.report_progress(round(view.progress, 3), 1.0, view.message)
 
-    def guard_takeoff(self, vehicle: Any, action: str) -> None:
-        """Refuse motion while a takeoff has not reached its altitude (the paper's crash)."""
-        op = self.operations.takeoff_in_progress(vehicle.id)
-        if op is None:
-            return
-        pos = position(vehicle)
-        alt = f"{pos[2]:.1f}" if pos else "?"
-        target = op.params.get("altitude_m")
-        raise SafetyRefusal(
-            "takeoff_in_progress",
-            f"takeoff_in_progress: {vehicle.id} is still taking off ({alt} of {target} m above home); "
-            f"{action} was not sent. Wait for takeoff to finish: call "
-            f"monitor_flight(drone_id='{vehicle.id}'), then send {action} again.",
-            operation_id=op.id,
+    async def finish(self, view: OperationView, wait: bool, action: str | None = None) -> OperationOut:
+        """Wait for the operation (capped, with progress) if asked, then present it."""
+        if wait and view.running:
+            view = await self.commander.wait(view.operation_id, self.settings.mcp_wait_cap_s, self.progress)
+        return operation_out(view, action)
+
+
+def operation_out(view: OperationView, action: str | None = None) -> OperationOut:
+    name = action or view.kind
+    if view.running:
+        eta = f", ETA {view.eta_s:.0f} s" if view.eta_s is not None else ""
+        text = (
+            f"{name} on {view.drone_id} still running ({view.progress:.0%}{eta}): {view.message}. "
+            f"Call monitor_flight(drone_id='{view.drone_id}') to keep waiting."
         )
-
-    def require_airborne(self, vehicle: Any, action: str) -> None:
-        if value(vehicle, "in_air") is not True or value(vehicle, "armed") is not True:
-            raise VehicleNotReady(
-                f"{vehicle.id} is on the ground; {action} needs a flying drone. Call takeoff first."
-            )
-
-    def relative_alt(self, vehicle: Any, altitude_m: float, alt_frame: str) -> float:
-        """Tool altitude -> metres above home (the frame conversion lives in geo)."""
-        geo.check_finite("altitude_m", altitude_m)
-        if alt_frame == "home":
-            return altitude_m
-        h = value(vehicle, "home")
-        if h is None:
-            raise VehicleNotReady(f"{vehicle.id} has no home position yet; cannot convert an AMSL altitude")
-        return geo.amsl_to_relative(altitude_m, h.abs_alt_m)
-
-    # -- operations --------------------------------------------------------------------------------
-    async def run(
-        self,
-        ctx: Context,
-        vehicle: Any,
-        tracker: Tracker,
-        send: Callable[[], Awaitable[Any]],
-        params: dict[str, Any],
-        wait: bool,
-        action: str,
-    ) -> OperationOut:
-        def precheck() -> None:
-            if tracker.kind not in ("land", "return_to_launch"):
-                self.guard_takeoff(vehicle, action)
-
-        op = await self.operations.start(vehicle, tracker, send, params, self.session_key(), precheck)
-        if wait:
-            await self.wait(ctx, op)
-        return self.out(op, vehicle, action)
-
-    async def wait(self, ctx: Context, op: Operation, cap_s: float | None = None) -> Operation:
-        async def on_progress(o: Operation) -> None:
-            await ctx.report_progress(round(o.progress, 3), 1.0, o.message)
-
-        return await self.operations.wait(op, cap_s, on_progress)
-
-    def out(self, op: Operation, vehicle: Any, action: str | None = None) -> OperationOut:
-        pos = position(vehicle)
-        name = action or op.kind
-        if op.status == "running":
-            eta = f", ETA {op.eta_s:.0f} s" if op.eta_s is not None else ""
-            text = (
-                f"{name} on {op.vehicle_id} still running ({op.progress:.0%}{eta}): {op.message}. "
-                f"Call monitor_flight(drone_id='{op.vehicle_id}') to keep waiting."
-            )
-        else:
-            text = f"{name} on {op.vehicle_id} {op.status}: {op.message}"
-        return OperationOut(
-            drone_id=op.vehicle_id,
-            operation_id=op.id,
-            kind=op.kind,
-            status=op.status.value,
-            progress=round(op.progress, 3),
-            message=op.message,
-            eta_s=None if op.eta_s is None else round(op.eta_s, 1),
-            elapsed_s=round(op.elapsed_s(), 1),
-            lat_deg=None if pos is None else pos[0],
-            lon_deg=None if pos is None else pos[1],
-            alt_m=None if pos is None else round(pos[2], 2),
-        ).say(text)
+    else:
+        text = f"{name} on {view.drone_id} {view.status}: {view.message}"
+    return OperationOut(
+        drone_id=view.drone_id,
+        operation_id=view.operation_id,
+        kind=view.kind,
+        status=view.status,
+        progress=view.progress,
+        message=view.message,
+        eta_s=view.eta_s,
+        elapsed_s=view.elapsed_s,
+        lat_deg=view.lat_deg,
+        lon_deg=view.lon_deg,
+        alt_m=view.alt_m,
+    ).say(text)

@@ -8,15 +8,17 @@ import json
 from typing import Any
 
 from mcp.server.mcpserver.exceptions import ToolError
+from mcp.server.mcpserver.tools import Tool
 from pydantic import ValidationError
 
 from gateway.config import Settings
+from gateway.mcp import sdk_private
 
 #: argument names that are altitudes above home, bounded by the policy's max_altitude_m
 ALTITUDE_ARGUMENTS = ("altitude_m", "alt_m", "rtl_alt_m")
 
 
-def install_argument_messages(tool: Any) -> None:
+def install_argument_messages(tool: Tool) -> None:
     """Validate a tool's arguments before the SDK does, raising a ToolError the model can act on."""
     run = tool.run
     schema = tool.parameters
@@ -28,7 +30,7 @@ def install_argument_messages(tool: Any) -> None:
             raise ToolError(describe_invalid(tool.name, exc, schema)) from None
         return await run(arguments, context, convert_result=convert_result)
 
-    object.__setattr__(tool, "run", run_checked)  # Tool is a pydantic model: bypass its __setattr__
+    sdk_private.replace_run(tool, run_checked)
 
 
 def describe_invalid(tool_name: str, exc: ValidationError, schema: dict[str, Any]) -> str:
@@ -55,7 +57,7 @@ def describe_invalid(tool_name: str, exc: ValidationError, schema: dict[str, Any
     return f"invalid arguments for {tool_name}: " + "; ".join(lines)
 
 
-def advertise_policy_limits(tool: Any, settings: Settings) -> None:
+def advertise_policy_limits(tool: Tool, settings: Settings) -> None:
     """An altitude above home advertises the policy's maximum (the model sees the real bound before it
     calls). Where alt_frame may switch to AMSL the bound is said in the description instead."""
     props = tool.parameters.get("properties", {})

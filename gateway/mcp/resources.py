@@ -13,32 +13,36 @@ import asyncio
 import contextlib
 import json
 import logging
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
 from typing import Any
 
 from mcp.server.mcpserver import AssistantMessage, MCPServer, UserMessage
 from mcp.server.mcpserver.exceptions import ResourceError, ResourceNotFoundError
-from mcp.server.subscriptions import ResourceUpdated
+from mcp.server.subscriptions import InMemorySubscriptionBus, ResourceUpdated
 from mcp.types import EmptyResult, SubscribeRequestParams, UnsubscribeRequestParams
 
 from gateway.errors import GatewayError, NotFound, UnknownVehicle
-from gateway.fleet.operations import position, value
-from gateway.mcp.access import FleetAccess
+from gateway.fleet.commander import Commander
+from gateway.fleet.fleet_ops import FleetOperation
+from gateway.fleet.readings import position, value
+from gateway.mcp import sdk_private
 from gateway.mcp.results import plain
+from gateway.runtime import Gateway
 
 log = logging.getLogger(__name__)
 
 NOTIFY_PERIOD_S = 1.0
+FORMATION_URI = "fleet://formation"
 
 
-def drones_json(fa: FleetAccess) -> list[dict[str, Any]]:
+def drones_json(commander: Commander) -> list[dict[str, Any]]:
     out = []
-    for v in fa.registry.all():
-        op = fa.operations.running(v.id)
+    for v in commander.registry.all():
+        op = commander.operations.running(v.id)
         out.append(
             {
                 "drone_id": v.id,
-                "name": getattr(v.spec, "name", None),
+                "name": v.spec.name,
                 "state": str(plain(v.state)),
                 "armed": value(v, "armed"),
                 "in_air": value(v, "in_air"),
@@ -48,9 +52,9 @@ def drones_json(fa: FleetAccess) -> list[dict[str, Any]]:
     return out
 
 
-def state_json(fa: FleetAccess, drone_id: str) -> dict[str, Any]:
-    v = fa.vehicle(drone_id)
-    op = fa.operations.latest(drone_id)
+def state_json(commander: Commander, drone_id: str) -> dict[str, Any]:
+    v = commander.vehicle(drone_id)
+    op = commander.operations.latest(drone_id)
     return {
         "drone_id": drone_id,
         "status": plain(v.status()),
@@ -59,8 +63,8 @@ def state_json(fa: FleetAccess, drone_id: str) -> dict[str, Any]:
     }
 
 
-async def mission_json(fa: FleetAccess, drone_id: str) -> dict[str, Any]:
-    v = fa.ready(drone_id)
+async def mission_json(commander: Commander, drone_id: str) -> dict[str, Any]:
+    v = commander.ready(drone_id)
     items = await v.download_mission()
     prog = value(v, "mission_progress")
     return {
@@ -81,17 +85,28 @@ async def mission_json(fa: FleetAccess, drone_id: str) -> dict[str, Any]:
     }
 
 
-class ResourceNotifier:
-    """Tracks resource fingerprints and notifies subscribers of changes (1 Hz at most)."""
+def formation_json(commander: Commander) -> dict[str, Any]:
+    """The last formation: its plan and progress (per drone), or a note that none was flown."""
+    fop = commander.fleet.latest("formation_goto")
+    if fop is None:
+        return {"formation": None, "message": "no formation flown yet"}
+    return {**fop.to_dict(), "plan": fop.plan}
 
-    def __init__(self, server: MCPServer, fa: FleetAccess) -> None:
-        self.server = server
-        self.fa = fa
+
+class ResourceNotifier:
+    """Tracks resource fingerprints and notifies subscribers of changes (1 Hz at most); the formation
+    resource is notified when a formation changes phase or a drone's outcome (not on every tick)."""
+
+    def __init__(self, gateway: Gateway, bus: InMemorySubscriptionBus, formation: bool) -> None:
+        self.gateway = gateway
+        self.bus = bus
+        self.formation = formation
         self.legacy: dict[str, set[Any]] = {}
         self._last: dict[str, Any] = {}
+        self._pending: set[asyncio.Task[None]] = set()
 
-    def install(self) -> None:
-        low = self.server._lowlevel_server
+    def install(self, server: MCPServer[Any]) -> None:
+        """Serve 2025-era ``resources/subscribe`` (the SDK's bus serves only 2026-07-28 listeners)."""
 
         async def on_subscribe(ctx: Any, p: SubscribeRequestParams) -> EmptyResult:
             self.legacy.setdefault(str(p.uri), set()).add(ctx.session)
@@ -101,18 +116,18 @@ class ResourceNotifier:
             self.legacy.get(str(p.uri), set()).discard(ctx.session)
             return EmptyResult()
 
-        low.add_request_handler("resources/subscribe", SubscribeRequestParams, on_subscribe)
-        low.add_request_handler("resources/unsubscribe", UnsubscribeRequestParams, on_unsubscribe)
+        sdk_private.add_request_handler(server, "resources/subscribe", SubscribeRequestParams, on_subscribe)
+        sdk_private.add_request_handler(
+            server, "resources/unsubscribe", UnsubscribeRequestParams, on_unsubscribe
+        )
 
-    def fingerprints(self) -> dict[str, Any]:
+    def fingerprints(self, commander: Commander) -> dict[str, Any]:
         prints: dict[str, Any] = {}
-        if self.fa.registry is None:
-            return prints
-        vehicles = list(self.fa.registry.all())
-        prints["fleet://drones"] = json.dumps(drones_json(self.fa), sort_keys=True, default=str)
+        vehicles = list(commander.registry.all())
+        prints["fleet://drones"] = json.dumps(drones_json(commander), sort_keys=True, default=str)
         for v in vehicles:
             pos = position(v)
-            op = self.fa.operations.latest(v.id)
+            op = commander.operations.latest(v.id)
             prints[f"drone://{v.id}/state"] = (
                 str(v.state),
                 value(v, "armed"),
@@ -129,29 +144,50 @@ class ResourceNotifier:
             )
         return prints
 
-    async def tick(self) -> list[str]:
-        prints = self.fingerprints()
+    async def publish(self, uri: str) -> None:
+        await self.bus.publish(ResourceUpdated(uri=uri))
+        for session in list(self.legacy.get(uri, ())):
+            try:
+                await session.send_resource_updated(uri)
+            except Exception:  # a session that went away stops being notified
+                self.legacy[uri].discard(session)
+
+    async def tick(self, commander: Commander) -> list[str]:
+        prints = self.fingerprints(commander)
         changed = [uri for uri, fp in prints.items() if uri in self._last and self._last[uri] != fp]
         self._last = prints
         for uri in changed:
-            await self.server._subscriptions.publish(ResourceUpdated(uri=uri))
-            for session in list(self.legacy.get(uri, ())):
-                try:
-                    await session.send_resource_updated(uri)
-                except Exception:
-                    self.legacy[uri].discard(session)
+            await self.publish(uri)
         return changed
 
     async def run(self) -> None:
         while True:
             try:
-                await self.tick()
+                if self.gateway.ready:
+                    await self.tick(self.gateway.commander)
             except Exception:
                 log.exception("resource notifier tick failed")
             await asyncio.sleep(NOTIFY_PERIOD_S)
 
+    def _on_fleet_change(self, fop: FleetOperation) -> None:
+        if fop.kind != "formation_goto":
+            return
+        task = asyncio.get_running_loop().create_task(self._publish_quietly(FORMATION_URI))
+        self._pending.add(task)  # keeps the task alive until it ran
+        task.add_done_callback(self._pending.discard)
+
+    async def _publish_quietly(self, uri: str) -> None:
+        try:
+            await self.publish(uri)
+        except Exception:  # a notification must never break a flight
+            log.exception("could not publish %s", uri)
+
     @contextlib.asynccontextmanager
     async def running(self) -> AsyncIterator[None]:
+        """For the MCP server's lifespan: the 1 Hz loop, and formation notices while the gateway runs."""
+        fleet = self.gateway.fleet_operations
+        if self.formation and fleet is not None:
+            fleet.listeners.append(self._on_fleet_change)
         task = asyncio.create_task(self.run(), name="mcp-resource-notifier")
         try:
             yield
@@ -159,6 +195,9 @@ class ResourceNotifier:
             task.cancel()
             with contextlib.suppress(asyncio.CancelledError):
                 await task
+            if fleet is not None:
+                with contextlib.suppress(ValueError):
+                    fleet.listeners.remove(self._on_fleet_change)
 
 
 def _resource_error(exc: GatewayError) -> ResourceError:
@@ -168,35 +207,43 @@ def _resource_error(exc: GatewayError) -> ResourceError:
     return ResourceError(exc.message)
 
 
-def _guard(fn: Any) -> Any:
+def _guard(fn: Callable[[], Any]) -> Any:
     try:
         return fn()
     except GatewayError as exc:
         raise _resource_error(exc) from None
 
 
-def register_resources(server: MCPServer, fa: FleetAccess) -> None:
+def register_resources(server: MCPServer[Any], gateway: Gateway, formation: bool) -> None:
+    if formation:
+
+        @server.resource(
+            FORMATION_URI, mime_type="application/json", description="Last formation: plan+progress"
+        )
+        def fleet_formation() -> str:
+            return json.dumps(_guard(lambda: formation_json(gateway.commander)), default=str)
+
     @server.resource(
         "fleet://drones", mime_type="application/json", description="All drones: id, state, action"
     )
     def fleet_drones() -> str:
-        return json.dumps(drones_json(fa), default=str)
+        return json.dumps(_guard(lambda: drones_json(gateway.commander)), default=str)
 
     @server.resource("drone://{drone_id}/state", mime_type="application/json", description="Status+telemetry")
     def drone_state(drone_id: str) -> str:
-        return json.dumps(_guard(lambda: state_json(fa, drone_id)), default=str)
+        return json.dumps(_guard(lambda: state_json(gateway.commander, drone_id)), default=str)
 
     @server.resource("drone://{drone_id}/mission", mime_type="application/json", description="Mission items")
     async def drone_mission(drone_id: str) -> str:
         try:
-            return json.dumps(await mission_json(fa, drone_id), default=str)
+            return json.dumps(await mission_json(gateway.commander, drone_id), default=str)
         except GatewayError as exc:
             raise _resource_error(exc) from None
 
 
-def register_prompts(server: MCPServer) -> None:
+def register_prompts(server: MCPServer[Any]) -> None:
     @server.prompt(title="Preflight check")
-    def preflight_check(drone_id: str) -> list:
+    def preflight_check(drone_id: str) -> list[UserMessage | AssistantMessage]:
         """Check a drone is fit to fly before takeoff."""
         return [
             UserMessage(
@@ -209,7 +256,9 @@ def register_prompts(server: MCPServer) -> None:
         ]
 
     @server.prompt(title="Area survey")
-    def survey_area(drone_id: str, area: str, altitude_m: str = "30", spacing_m: str = "20") -> list:
+    def survey_area(
+        drone_id: str, area: str, altitude_m: str = "30", spacing_m: str = "20"
+    ) -> list[UserMessage | AssistantMessage]:
         """Plan and fly a lawnmower survey of an area."""
         return [
             UserMessage(

@@ -5,10 +5,24 @@ from __future__ import annotations
 
 import dataclasses
 import enum
+import json
 import math
-from typing import Any
+from typing import Any, Self
 
-from gateway.mcp.toolkit import Result
+from pydantic import BaseModel, PrivateAttr
+
+
+class Result(BaseModel):
+    """Base of every tool result: structured fields plus a one-line text summary."""
+
+    _text: str = PrivateAttr(default="")
+
+    def say(self, text: str) -> Self:
+        self._text = text
+        return self
+
+    def text(self) -> str:
+        return self._text or json.dumps(self.model_dump(mode="json"), separators=(",", ":"))
 
 
 class OperationOut(Result):

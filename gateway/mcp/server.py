@@ -5,12 +5,17 @@ Mounting in the one ASGI app (``gateway/app.py``)::
     mcp = build_mcp(gateway)
     app.add_route("/mcp", mcp_http_app(mcp, settings), include_in_schema=False)
     # and inside the FastAPI lifespan, after gateway.start():
-    async with mcp_lifespan(mcp): ...
+    async with mcp.session_manager.run(): ...
+
+The server's lifespan (entered once, by the session manager or by ``run_stdio_async``, after the
+gateway has started) yields a `FleetState`: tools, the kill confirmation and the audit middleware
+reach the Commander through ``ctx.request_context.lifespan_context``. Resources cannot take a context
+(the SDK's static resources have none), so they and their change notifier read the gateway they were
+built over.
 """
 
 from __future__ import annotations
 
-import asyncio
 import contextlib
 import importlib
 import logging
@@ -22,12 +27,16 @@ from mcp.server.subscriptions import InMemorySubscriptionBus
 from mcp.server.transport_security import TransportSecuritySettings
 from starlette.applications import Starlette
 
-from gateway.mcp.access import FleetAccess
+from gateway import package_version
+from gateway.config import Settings
+from gateway.mcp import sdk_private
+from gateway.mcp.access import FleetState
 from gateway.mcp.arguments import advertise_policy_limits, install_argument_messages
 from gateway.mcp.auth import auth_options
 from gateway.mcp.resources import ResourceNotifier, register_prompts, register_resources
 from gateway.mcp.session import SessionAudit
 from gateway.mcp.toolkit import Toolset, collapse_optional_nulls, register_toolset, strip_schema_titles
+from gateway.runtime import Gateway
 
 log = logging.getLogger(__name__)
 
@@ -49,61 +58,49 @@ def load_toolset(name: str) -> Toolset | None:
             log.info("MCP toolset %r is not available in this build", name)
             return None
         raise
-    return module.toolset
+    toolset: Toolset = module.toolset
+    return toolset
 
 
-def build_mcp(gateway: Any) -> MCPServer:
-    """The MCP server over a runtime ``Gateway`` (settings, registry, store, operations, safety)."""
+def build_mcp(gateway: Gateway) -> MCPServer[FleetState]:
+    """The MCP server over a runtime ``Gateway`` (which need not be started yet: its Commander is taken
+    when the server's lifespan starts)."""
     settings = gateway.settings
-    fa = FleetAccess(gateway)
     bus = InMemorySubscriptionBus()
-    notifier_box: dict[str, ResourceNotifier] = {}
+    notifier = ResourceNotifier(gateway, bus, formation="fleet" in settings.toolsets)
 
     @contextlib.asynccontextmanager
-    async def lifespan(server: MCPServer) -> AsyncIterator[dict[str, Any]]:
-        try:
-            try:
-                await fa.operations.recover()
-            except Exception:  # a store problem must not keep the MCP surface down
-                log.exception("could not mark the previous process's operations interrupted")
-            async with notifier_box["notifier"].running():
-                yield {"fleet": fa}
-        finally:  # the gateway is going down: running operations are recorded as interrupted
-            await fa.operations.stop()
+    async def lifespan(_server: MCPServer[FleetState]) -> AsyncIterator[FleetState]:
+        async with notifier.running():
+            yield FleetState(gateway)
 
-    server = MCPServer(
+    server: MCPServer[FleetState] = MCPServer(
         SERVER_NAME,
-        version=_version(),
+        version=package_version(),
         instructions=INSTRUCTIONS.format(cap=settings.mcp_wait_cap_s),
         lifespan=lifespan,
         subscriptions=bus,
-        middleware=[SessionAudit(lambda: fa.store, lambda: fa.operations)],
+        middleware=[SessionAudit()],
         **auth_options(settings),
     )
-    server.fleet_access = fa  # type: ignore[attr-defined]  # resolvers reach the gateway through it
     for name in settings.toolsets:
         toolset = load_toolset(name)
         if toolset is not None:
-            register_toolset(server, toolset, fa)
-            if hasattr(toolset, "register_resources"):  # a toolset may bring resources (fleet://formation)
-                toolset.register_resources(server, fa)
-    for tool in server._tool_manager.list_tools():
+            register_toolset(server, toolset)
+    for tool in sdk_private.tools(server):
         strip_schema_titles(tool.parameters)
         collapse_optional_nulls(tool.parameters)
         advertise_policy_limits(tool, settings)
         install_argument_messages(tool)
         if tool.output_schema is not None:
             strip_schema_titles(tool.output_schema)
-    notifier = ResourceNotifier(server, fa)
-    notifier.install()
-    notifier_box["notifier"] = notifier
-    server.resource_notifier = notifier  # type: ignore[attr-defined]
-    register_resources(server, fa)
+    notifier.install(server)
+    register_resources(server, gateway, formation="fleet" in settings.toolsets)
     register_prompts(server)
     return server
 
 
-def mcp_http_app(server: MCPServer, settings: Any) -> Starlette:
+def mcp_http_app(server: MCPServer[Any], settings: Settings) -> Starlette:
     """The Streamable HTTP ASGI app serving the path ``/mcp``.
 
     Add it as the route ``/mcp`` of the FastAPI app (``app.add_route("/mcp", it)``): mounted at "/" it
@@ -111,7 +108,7 @@ def mcp_http_app(server: MCPServer, settings: Any) -> Starlette:
     """
     hosts = ["127.0.0.1:*", "localhost:*", "[::1]:*"]
     origins = ["http://127.0.0.1:*", "http://localhost:*", "http://[::1]:*"]
-    extra = [h.strip() for h in getattr(settings, "mcp_allowed_hosts", "").split(",") if h.strip()]
+    extra = [h.strip() for h in settings.mcp_allowed_hosts.split(",") if h.strip()]
     for host in extra:
         hosts += [host, f"{host}:*"]
         origins += [f"http://{host}", f"https://{host}", f"http://{host}:*", f"https://{host}:*"]
@@ -123,45 +120,3 @@ def mcp_http_app(server: MCPServer, settings: Any) -> Starlette:
             enable_dns_rebinding_protection=True, allowed_hosts=hosts, allowed_origins=origins
         ),
     )
-
-
-streamable_http_app = mcp_http_app
-"""The name gateway/app.py imports."""
-
-
-@contextlib.asynccontextmanager
-async def mcp_lifespan(server: MCPServer) -> AsyncIterator[None]:
-    """Run the Streamable HTTP session manager for the duration of the ASGI app's lifespan.
-
-    Mounted sub-app lifespans never run by themselves, so the app enters this. The session manager holds
-    an anyio task group, which must be exited by the task that entered it; lifespans are not always
-    entered and exited by one task (pytest fixtures, some servers), so it runs in a task of its own.
-    """
-    started = asyncio.Event()
-    stopping = asyncio.Event()
-
-    async def run() -> None:
-        async with server.session_manager.run():
-            started.set()
-            await stopping.wait()
-
-    task = asyncio.create_task(run(), name="mcp-session-manager")
-    waiter = asyncio.create_task(started.wait())
-    await asyncio.wait({task, waiter}, return_when=asyncio.FIRST_COMPLETED)
-    waiter.cancel()
-    if task.done():
-        task.result()  # it failed to start: raise its error here
-    try:
-        yield
-    finally:
-        stopping.set()
-        await task
-
-
-def _version() -> str:
-    try:
-        from importlib.metadata import version
-
-        return version("fleet-gateway")
-    except Exception:
-        return "0"

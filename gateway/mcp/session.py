@@ -21,7 +21,10 @@ from typing import Any
 import anyio
 from mcp.server.auth.middleware.auth_context import get_access_token
 
-from gateway.mcp.toolkit import CallInfo, current_call
+from gateway.fleet.operations import Operation, OperationManager
+from gateway.mcp.access import CallInfo, FleetState, current_call
+from gateway.registry.records import AuditEntry, SessionKind
+from gateway.registry.store import Store
 
 log = logging.getLogger(__name__)
 
@@ -33,7 +36,7 @@ TOUCH_EVERY_S = 5.0
 @dataclass(frozen=True)
 class SessionInfo:
     key: str
-    kind: str
+    kind: SessionKind
     principal: str
     client_name: str | None
     client_version: str | None
@@ -69,26 +72,29 @@ def session_info(ctx: Any) -> SessionInfo:
 
 
 class SessionAudit:
-    """MCP server middleware: session bookkeeping for every message, audit rows for tool calls."""
+    """MCP server middleware: session bookkeeping for every message, audit rows for tool calls. The
+    store and the operations come from the server's lifespan state (`FleetState`)."""
 
-    def __init__(self, store_getter: Any, operations_getter: Any | None = None) -> None:
-        self._store = store_getter
-        self._operations = operations_getter  # a running call's row gets its operation's real ending
+    def __init__(self) -> None:
         self._touched: dict[str, tuple[float, str | None]] = {}
         self._followers: set[asyncio.Task[None]] = set()
 
     async def __call__(self, ctx: Any, call_next: Any) -> Any:
         if ctx.method == "initialize":
             return await call_next(ctx)  # no session id yet; recorded from the next message on
+        state = ctx.lifespan_context
+        running = isinstance(state, FleetState) and state.gateway.ready
+        store = state.gateway.store if running else None
+        operations = state.gateway.operations if running else None
         info = session_info(ctx)
         is_call = ctx.method == "tools/call" and ctx.request_id is not None
-        await self._touch(info, force=is_call)
+        await self._touch(store, info, force=is_call)
         if not is_call:
             return await call_next(ctx)
 
         params = ctx.params or {}
         arguments = params.get("arguments") or {}
-        call = CallInfo(session_key=info.key, vehicle_id=_drone_id(arguments))
+        call = CallInfo(session_key=info.key, principal=info.principal, vehicle_id=_drone_id(arguments))
         token = current_call.set(call)
         started = time.perf_counter()
         result: Any = None
@@ -104,13 +110,12 @@ class SessionAudit:
             outcome, error = _outcome(call, result, failure)
             with anyio.CancelScope(shield=True):
                 row_id = await self._audit(
-                    info, call, str(params.get("name", "?")), arguments, outcome, error, started
+                    store, info, call, str(params.get("name", "?")), arguments, outcome, error, started
                 )
-            if row_id is not None and outcome == "running":
-                self._follow(row_id, _operation_id(result))
+            if store is not None and operations is not None and row_id is not None and outcome == "running":
+                self._follow(store, operations, row_id, _operation_id(result))
 
-    async def _touch(self, info: SessionInfo, force: bool) -> None:
-        store = self._store()
+    async def _touch(self, store: Store | None, info: SessionInfo, force: bool) -> None:
         if store is None:
             return
         now = time.monotonic()
@@ -133,6 +138,7 @@ class SessionAudit:
 
     async def _audit(
         self,
+        store: Store | None,
         info: SessionInfo,
         call: CallInfo,
         tool: str,
@@ -141,12 +147,9 @@ class SessionAudit:
         error: str | None,
         started: float,
     ) -> int | None:
-        store = self._store()
         if store is None:
             return None
         try:
-            from gateway.registry.store import AuditEntry
-
             return await store.add_audit(
                 AuditEntry(
                     session_key=info.key,
@@ -164,26 +167,25 @@ class SessionAudit:
             log.exception("could not write the audit row of %s", tool)
             return None
 
-    def _follow(self, row_id: int, operation_id: str | None) -> None:
+    def _follow(
+        self, store: Store, operations: OperationManager, row_id: int, operation_id: str | None
+    ) -> None:
         """A call that returned while its operation runs (wait:false): when the operation ends, its
         audit row says how (ok, error, superseded, cancelled) instead of staying "running"."""
-        if self._operations is None or operation_id is None:
+        if operation_id is None:
             return
         try:
-            op = self._operations().get(operation_id)
+            op = operations.get(operation_id)
         except Exception:  # not an operation of this gateway: the row stays as written
             return
-        task = asyncio.create_task(self._finish_row(row_id, op), name=f"audit-{operation_id}")
+        task = asyncio.create_task(self._finish_row(store, row_id, op), name=f"audit-{operation_id}")
         self._followers.add(task)
         task.add_done_callback(self._followers.discard)
 
-    async def _finish_row(self, row_id: int, op: Any) -> None:
+    async def _finish_row(self, store: Store, row_id: int, op: Operation) -> None:
         await op.done.wait()
-        status = str(getattr(op.status, "value", op.status))
+        status = op.status.value
         outcome = {"succeeded": "ok", "failed": "error", "interrupted": "error"}.get(status, status)
-        store = self._store()
-        if store is None:
-            return
         try:
             await store.finish_audit(row_id, outcome, None if outcome == "ok" else str(op.message))
         except Exception:

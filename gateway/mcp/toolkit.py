@@ -1,7 +1,10 @@
 """How toolsets are declared and turned into MCP tools.
 
-A tool is a plain async function ``fn(fa: FleetAccess, ctx: Context, drone_id, ...) -> SomeResult``
-registered on a :class:`Toolset`. :func:`register_toolset` wraps it so that
+A tool is a plain async function ``fn(call: ToolCall, drone_id, ...) -> SomeResult`` registered on a
+:class:`Toolset`. :func:`register_toolset` wraps it so that
+
+- the SDK injects the request ``Context`` and the wrapper hands the tool a `ToolCall` built from the
+  server's lifespan state (the Commander) and the caller (principal, session);
 
 - gateway errors become tool errors (``isError``) with the gateway's own message;
 - the result goes out as structured content (output schema from the result model) plus a one-line text;
@@ -15,16 +18,18 @@ import inspect
 import json
 import logging
 import typing
-from collections.abc import Callable
-from contextvars import ContextVar
+from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
-from typing import Annotated, Any, Literal, Self
+from typing import Annotated, Any, Literal
 
-from mcp.server.mcpserver import MCPServer
+from mcp.server.mcpserver import Context, MCPServer
 from mcp.types import CallToolResult, TextContent, ToolAnnotations
-from pydantic import BaseModel, Field, PrivateAttr, ValidationError
+from pydantic import Field, ValidationError
 
 from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal
+from gateway.mcp import sdk_private
+from gateway.mcp.access import ToolCall, current_call
+from gateway.mcp.results import Result
 
 log = logging.getLogger(__name__)
 
@@ -40,39 +45,15 @@ Lon = Annotated[float, Field(ge=-180, le=180, allow_inf_nan=False)]
 Metres = Annotated[float, Field(allow_inf_nan=False, ge=-10_000, le=10_000)]
 
 
-class Result(BaseModel):
-    """Base of every tool result: structured fields plus a one-line text summary."""
-
-    _text: str = PrivateAttr(default="")
-
-    def say(self, text: str) -> Self:
-        self._text = text
-        return self
-
-    def text(self) -> str:
-        return self._text or json.dumps(self.model_dump(mode="json"), separators=(",", ":"))
-
-
-# --- per-call audit information, set by the session middleware, filled in by the wrapper -----------
-
-
-@dataclass
-class CallInfo:
-    session_key: str | None = None
-    vehicle_id: str | None = None
-    outcome: Literal["ok", "error", "refused", "running"] | None = None
-    error: str | None = None
-
-
-current_call: ContextVar[CallInfo | None] = ContextVar("current_call", default=None)
-
-
 # --- toolsets ------------------------------------------------------------------------------------
+
+
+ToolFn = Callable[..., Awaitable[Result]]
 
 
 @dataclass
 class ToolSpec:
-    fn: Callable[..., Any]
+    fn: ToolFn
     name: str
     title: str | None
     annotations: ToolAnnotations
@@ -95,7 +76,7 @@ class Toolset:
         idempotent: bool = False,
         title: str | None = None,
         advertise: dict[str, dict[str, Any]] | None = None,
-    ) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    ) -> Callable[[ToolFn], ToolFn]:
         """Declare a tool. Annotations must tell the truth: read-only tools change nothing.
 
         ``advertise`` replaces the schema shown to clients for some parameters, e.g. to point at
@@ -107,7 +88,7 @@ class Toolset:
                 readOnlyHint=False, destructiveHint=destructive, idempotentHint=idempotent, openWorldHint=True
             )
 
-        def decorator(fn: Callable[..., Any]) -> Callable[..., Any]:
+        def decorator(fn: ToolFn) -> ToolFn:
             self.tools.append(
                 ToolSpec(
                     fn=fn, name=fn.__name__, title=title, annotations=annotations, advertise=advertise or {}
@@ -129,19 +110,24 @@ def error_result(message: str) -> CallToolResult:
     return CallToolResult(content=[TextContent(type="text", text=message)], is_error=True)
 
 
-def _wrap(spec: ToolSpec, access: Any) -> Callable[..., Any]:
+def _wrap(spec: ToolSpec) -> Callable[..., Any]:
+    """The handler the SDK registers: the tool's own parameters (without its ``ToolCall``) plus the
+    SDK-injected ``ctx``."""
     fn = spec.fn
     hints = typing.get_type_hints(fn, include_extras=True)
     sig = inspect.signature(fn)
     result_model = hints["return"]
     params = [
         p.replace(annotation=hints.get(p.name, p.annotation))
-        for p in list(sig.parameters.values())[1:]  # drop the FleetAccess parameter
+        for p in list(sig.parameters.values())[1:]  # drop the ToolCall parameter
     ]
+    if any(p.name == "ctx" for p in params):
+        raise ValueError(f"tool {spec.name}: 'ctx' is the wrapper's; name the parameter otherwise")
+    params.append(inspect.Parameter("ctx", inspect.Parameter.KEYWORD_ONLY, annotation=Context))
     return_annotation = Annotated[CallToolResult, result_model]
 
     @functools.wraps(fn)
-    async def handler(**kwargs: Any) -> CallToolResult:
+    async def handler(ctx: Context[Any, Any], **kwargs: Any) -> CallToolResult:
         call = current_call.get()
         try:
             drone_id = kwargs.get("drone_id")
@@ -149,7 +135,7 @@ def _wrap(spec: ToolSpec, access: Any) -> Callable[..., Any]:
                 check_drone_id(drone_id)
                 if call is not None:
                     call.vehicle_id = drone_id
-            result: Result = await fn(access, **kwargs)
+            result: Result = await fn(ToolCall.of(ctx), **kwargs)
         except SafetyRefusal as exc:
             if call is not None:
                 call.outcome, call.error = "refused", exc.message
@@ -181,12 +167,12 @@ def _wrap(spec: ToolSpec, access: Any) -> Callable[..., Any]:
 TOOLSET_META_KEY = "fleet-gateway/toolset"
 
 
-def register_toolset(server: MCPServer, toolset: Toolset, access: Any) -> list[str]:
+def register_toolset(server: MCPServer[Any], toolset: Toolset) -> list[str]:
     names = []
     for spec in toolset.tools:
         description = inspect.cleandoc(spec.fn.__doc__ or "")
         server.add_tool(
-            _wrap(spec, access),
+            _wrap(spec),
             name=spec.name,
             title=spec.title,
             description=description,
@@ -195,9 +181,7 @@ def register_toolset(server: MCPServer, toolset: Toolset, access: Any) -> list[s
             meta={TOOLSET_META_KEY: toolset.name},
         )
         if spec.advertise:
-            tool = server._tool_manager.get_tool(spec.name)
-            assert tool is not None
-            _advertise(tool.parameters, spec.advertise)
+            _advertise(sdk_private.tool(server, spec.name).parameters, spec.advertise)
         names.append(spec.name)
     return names
 
@@ -224,7 +208,7 @@ def strip_schema_titles(schema: Any) -> None:
         props = schema.get("properties")
         schema.pop("title", None)
         for key, sub in schema.items():
-            if key == "properties" and isinstance(sub, dict):
+            if key == "properties" and isinstance(sub, dict) and isinstance(props, dict):
                 for prop in props.values():
                     strip_schema_titles(prop)
             else:

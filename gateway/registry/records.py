@@ -200,7 +200,7 @@ def bound_arguments(
             return walk(value.model_dump(mode="json"), depth + 1)
         return walk(str(value), depth + 1)
 
-    bounded = walk(dict(arguments), 0)
+    bounded: dict[str, Any] = walk(dict(arguments), 0)
     text = json.dumps(bounded, ensure_ascii=False)
     if len(text) > max_json:
         return {"_truncated": True, "_size": len(text), "_preview": text[: max_json // 2]}

@@ -16,7 +16,7 @@ from datetime import datetime
 from pathlib import Path
 from typing import Any
 
-from sqlalchemy import delete, event, func, or_, select, text
+from sqlalchemy import CursorResult, delete, event, func, insert, or_, select, text
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.ext.asyncio import AsyncEngine, async_sessionmaker, create_async_engine
 
@@ -290,7 +290,7 @@ class Store:
     async def remove_vehicle(self, vehicle_id: str) -> None:
         async with self._sessions.begin() as session:
             result = await session.execute(delete(VehicleRow).where(VehicleRow.id == vehicle_id))
-            if result.rowcount == 0:
+            if _rowcount(result) == 0:
                 raise NotFound(f"no drone with id '{vehicle_id}' is registered", id=vehicle_id)
 
     async def get_vehicle(self, vehicle_id: str) -> VehicleRecord | None:
@@ -359,7 +359,7 @@ class Store:
             return 0
         rows = [s.model_dump() for s in samples]
         async with self._sessions.begin() as session:
-            await session.execute(TrackSampleRow.__table__.insert(), rows)
+            await session.execute(insert(TrackSampleRow), rows)
         return len(rows)
 
     async def add_status_texts(self, items: Sequence[StatusTextIn]) -> int:
@@ -367,7 +367,7 @@ class Store:
             return 0
         rows = [i.model_dump() for i in items]
         async with self._sessions.begin() as session:
-            await session.execute(StatusTextRow.__table__.insert(), rows)
+            await session.execute(insert(StatusTextRow), rows)
         return len(rows)
 
     async def list_flights(
@@ -613,7 +613,7 @@ class Store:
         """Remove the lock of ``scope``; False when there was none."""
         async with self._sessions.begin() as session:
             result = await session.execute(delete(LockRow).where(LockRow.scope == scope))
-            return bool(result.rowcount)
+            return bool(_rowcount(result))
 
     async def list_locks(self) -> list[LockRecord]:
         async with self._sessions() as session:
@@ -647,5 +647,10 @@ class Store:
             ]
             for name, statement in steps:
                 result = await session.execute(statement.execution_options(synchronize_session=False))
-                counts[name] = int(result.rowcount or 0)
+                counts[name] = _rowcount(result)
         return counts
+
+
+def _rowcount(result: object) -> int:
+    """Rows a DELETE/UPDATE touched (``Session.execute`` is typed as returning a plain ``Result``)."""
+    return int(result.rowcount or 0) if isinstance(result, CursorResult) else 0

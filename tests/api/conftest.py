@@ -11,8 +11,8 @@ from fastapi import FastAPI
 
 from gateway.app import create_app
 from gateway.config import Settings
+from tests.fakes import FakeRegistry
 
-from .fakes import FakeRegistry
 from .live import lifespan_running
 
 

@@ -13,8 +13,8 @@ from fastapi import FastAPI
 from gateway.app import create_app
 from gateway.config import Settings
 from gateway.server_cli import main
+from tests.fakes import FakeRegistry
 
-from .fakes import FakeRegistry
 from .live import lifespan_running
 from .server import serve_in_thread
 

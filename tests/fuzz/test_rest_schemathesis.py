@@ -20,8 +20,8 @@ from schemathesis.generation import GenerationMode
 
 from gateway.app import create_app
 from gateway.config import Settings
-from tests.api.fakes import FakeRegistry
 from tests.api.server import serve_in_thread
+from tests.fakes import FakeRegistry
 
 EXAMPLES_PER_OPERATION = 15
 DRONE = {"id": "alpha", "url": "udpin://127.0.0.1:14550", "expected_sysid": 1}

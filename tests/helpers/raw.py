@@ -10,6 +10,7 @@ from collections.abc import AsyncIterator, Callable
 from pymavlink.dialects.v20 import ardupilotmega as mav
 
 from gateway.sim.mavlink import Codec
+from tests.helpers.timing import scaled
 
 
 class RawMavlink:
@@ -73,7 +74,7 @@ class RawMavlink:
                     if msg.get_type() == kind and predicate(msg):
                         return msg
 
-        return await asyncio.wait_for(scan(), timeout_s)
+        return await asyncio.wait_for(scan(), scaled(timeout_s))
 
     async def command(self, command: int, *params: float, timeout_s: float = 10) -> mav.MAVLink_message:
         """COMMAND_LONG with up to 7 params; returns its COMMAND_ACK."""

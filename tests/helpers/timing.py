@@ -1,7 +1,10 @@
 """Test deadlines, stretched on slow or busy machines by one knob.
 
 ``FLEET_TEST_TIME_SCALE=3 make test`` multiplies every deadline the tests wait on (and pytest's per-test
-timeout) by 3. Deadlines bound a wait; they never assert how long something took.
+timeout) by 3. Without it the scale follows the machine's load when the run starts: a 2-core machine
+with a load average of 6 waits up to 3 times longer (at most ``MAX_AUTO_SCALE``), so a run on a busy
+machine gets the time an idle one would not need. Deadlines bound a wait; they never assert how long
+something took.
 """
 
 from __future__ import annotations
@@ -14,10 +17,22 @@ from typing import TypeVar
 T = TypeVar("T")
 
 
+MAX_AUTO_SCALE = 4.0
+
+
+def _load_scale() -> float:
+    """Load average per core at start, between 1 and MAX_AUTO_SCALE (1 where the OS has no load average)."""
+    try:
+        load = os.getloadavg()[0]
+    except OSError:
+        return 1.0
+    return min(MAX_AUTO_SCALE, max(1.0, round(load / (os.cpu_count() or 1), 1)))
+
+
 def _scale() -> float:
     raw = os.environ.get("FLEET_TEST_TIME_SCALE", "").strip()
     if not raw:
-        return 1.0
+        return _load_scale()
     try:
         value = float(raw)
     except ValueError:

@@ -3,9 +3,6 @@
 from __future__ import annotations
 
 import asyncio
-import time
-from dataclasses import dataclass, field
-from types import SimpleNamespace
 from typing import Any
 
 import pytest
@@ -22,48 +19,24 @@ from gateway.fleet.operations import (
     TakeoffTracker,
     YawTracker,
 )
-
-HOME = (47.397742, 8.545594, 488.0)
-
-
-@dataclass
-class Sample:
-    value: Any
-    received_at: float = field(default_factory=time.monotonic)
-
-    @property
-    def age_s(self) -> float:
-        return time.monotonic() - self.received_at
+from gateway.link.telemetry import MissionProgressValue
+from tests.fakes import HOME, FakeVehicle, position_value
+from tests.helpers.timing import eventually
 
 
-class FakeVehicle:
-    def __init__(self, vid: str = "d1") -> None:
-        self.id = vid
-        self.telemetry = SimpleNamespace(
-            position=None,
-            home=Sample(_pos(*HOME[:2], 0.0)),
-            armed=Sample(False),
-            in_air=Sample(False),
-            velocity_ned=Sample(SimpleNamespace(north_mps=0.0, east_mps=0.0, down_mps=0.0)),
-            heading_deg=Sample(0.0),
-            mission_progress=None,
-        )
-        self.set(HOME[0], HOME[1], 0.0)
-        self.mission_done = False
-
-    def set(self, lat: float, lon: float, alt: float, armed: bool | None = None, in_air: bool | None = None):
-        self.telemetry.position = Sample(_pos(lat, lon, alt))
-        if armed is not None:
-            self.telemetry.armed = Sample(armed)
-        if in_air is not None:
-            self.telemetry.in_air = Sample(in_air)
-
-    async def is_mission_finished(self) -> bool:
-        return self.mission_done
+def drone() -> FakeVehicle:
+    """The shared fake drone; the tests set its telemetry by hand (no streaming, no registry)."""
+    return FakeVehicle("d1")
 
 
-def _pos(lat: float, lon: float, alt: float) -> SimpleNamespace:
-    return SimpleNamespace(lat_deg=lat, lon_deg=lon, rel_alt_m=alt, abs_alt_m=HOME[2] + alt)
+def at(
+    v: FakeVehicle, lat: float, lon: float, alt: float, armed: bool | None = None, in_air: bool | None = None
+) -> None:
+    v.set(position=position_value(lat, lon, alt))
+    if armed is not None:
+        v.set(armed=armed)
+    if in_air is not None:
+        v.set(in_air=in_air)
 
 
 class FakeStore:
@@ -84,14 +57,14 @@ async def _noop() -> None:
 
 
 async def test_takeoff_succeeds_when_altitude_reached(settings: Settings) -> None:
-    v = FakeVehicle()
+    v = drone()
     mgr = OperationManager(settings)
     op = await mgr.start(v, TakeoffTracker(10.0), _noop, {"altitude_m": 10.0})
     assert mgr.takeoff_in_progress("d1") is op
-    v.set(HOME[0], HOME[1], 4.0, armed=True, in_air=True)
-    await asyncio.sleep(0.5)
-    assert op.status is OpStatus.running and 0.3 < op.progress < 0.5
-    v.set(HOME[0], HOME[1], 9.8)
+    at(v, HOME[0], HOME[1], 4.0, armed=True, in_air=True)
+    await eventually(lambda: _true(0.3 < op.progress < 0.5), "takeoff progress at 4 of 10 m")
+    assert op.status is OpStatus.running
+    at(v, HOME[0], HOME[1], 9.8)
     await mgr.wait(op, cap_s=5.0)
     assert op.status is OpStatus.succeeded and op.progress == 1.0
     assert mgr.takeoff_in_progress("d1") is None
@@ -99,8 +72,8 @@ async def test_takeoff_succeeds_when_altitude_reached(settings: Settings) -> Non
 
 
 async def test_wait_cap_returns_running_and_reports_progress(settings: Settings) -> None:
-    v = FakeVehicle()
-    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    v = drone()
+    at(v, HOME[0], HOME[1], 10.0, armed=True, in_air=True)
     mgr = OperationManager(settings)
     lat, lon = geo.offset_position(HOME[0], HOME[1], 100.0, 0.0)
     op = await mgr.start(v, GotoTracker(lat, lon, 10.0, 2.0, kind="goto"), _noop, {})
@@ -112,7 +85,7 @@ async def test_wait_cap_returns_running_and_reports_progress(settings: Settings)
     async def fly() -> None:
         for north in (20.0, 50.0, 80.0):
             await asyncio.sleep(0.3)
-            v.set(*geo.offset_position(HOME[0], HOME[1], north, 0.0), 10.0)
+            at(v, *geo.offset_position(HOME[0], HOME[1], north, 0.0), 10.0)
 
     flight = asyncio.create_task(fly())
     await mgr.wait(op, cap_s=1.5, on_progress=on_progress)
@@ -120,15 +93,15 @@ async def test_wait_cap_returns_running_and_reports_progress(settings: Settings)
     assert op.status is OpStatus.running
     assert op.eta_s is not None and op.progress > 0.5
     assert any("m to go" in m for m in seen)
-    v.set(lat, lon, 10.5)
+    at(v, lat, lon, 10.5)
     await mgr.wait(op, cap_s=5.0)
     assert op.status is OpStatus.succeeded
     await mgr.stop()
 
 
 async def test_new_command_supersedes_and_failed_send_keeps_current(settings: Settings) -> None:
-    v = FakeVehicle()
-    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    v = drone()
+    at(v, HOME[0], HOME[1], 10.0, armed=True, in_air=True)
     store = FakeStore()
     mgr = OperationManager(settings, store)
     first = await mgr.start(v, GotoTracker(HOME[0] + 0.001, HOME[1], 10.0, 2.0), _noop, {})
@@ -147,8 +120,8 @@ async def test_new_command_supersedes_and_failed_send_keeps_current(settings: Se
 
 
 async def test_cancelled_waiter_leaves_operation_running(settings: Settings) -> None:
-    v = FakeVehicle()
-    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    v = drone()
+    at(v, HOME[0], HOME[1], 10.0, armed=True, in_air=True)
     mgr = OperationManager(settings)
     op = await mgr.start(v, GotoTracker(HOME[0] + 0.001, HOME[1], 10.0, 2.0), _noop, {})
     waiter = asyncio.create_task(mgr.wait(op, cap_s=30))
@@ -158,46 +131,46 @@ async def test_cancelled_waiter_leaves_operation_running(settings: Settings) -> 
         await waiter
     await asyncio.sleep(0.3)
     assert op.status is OpStatus.running
-    v.set(HOME[0] + 0.001, HOME[1], 10.0)
+    at(v, HOME[0] + 0.001, HOME[1], 10.0)
     await mgr.wait(op, cap_s=5)
     assert op.status is OpStatus.succeeded
     await mgr.stop()
 
 
 async def test_goto_fails_when_vehicle_lands(settings: Settings) -> None:
-    v = FakeVehicle()
-    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    v = drone()
+    at(v, HOME[0], HOME[1], 10.0, armed=True, in_air=True)
     mgr = OperationManager(settings)
     op = await mgr.start(v, GotoTracker(HOME[0] + 0.01, HOME[1], 10.0, 2.0), _noop, {})
-    v.set(HOME[0], HOME[1], 0.0, armed=False, in_air=False)
+    at(v, HOME[0], HOME[1], 0.0, armed=False, in_air=False)
     await mgr.wait(op, cap_s=5)
     assert op.status is OpStatus.failed and "landed" in op.message
 
 
 async def test_land_yaw_and_mission_trackers(settings: Settings) -> None:
-    v = FakeVehicle()
-    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    v = drone()
+    at(v, HOME[0], HOME[1], 10.0, armed=True, in_air=True)
     mgr = OperationManager(settings)
     land = await mgr.start(v, LandingTracker(kind="land"), _noop, {})
     await asyncio.sleep(0.3)
     assert land.status is OpStatus.running
-    v.set(HOME[0], HOME[1], 0.0, armed=False, in_air=False)
+    at(v, HOME[0], HOME[1], 0.0, armed=False, in_air=False)
     await mgr.wait(land, cap_s=5)
     assert land.status is OpStatus.succeeded
 
-    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
-    v.telemetry.heading_deg = Sample(350.0)
+    at(v, HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    v.set(heading_deg=350.0)
     yaw = await mgr.start(v, YawTracker(90.0), _noop, {})
     await asyncio.sleep(0.3)
     assert yaw.status is OpStatus.running
-    v.telemetry.heading_deg = Sample(88.0)
+    v.set(heading_deg=88.0)
     await mgr.wait(yaw, cap_s=5)
     assert yaw.status is OpStatus.succeeded
 
-    v.telemetry.mission_progress = Sample(SimpleNamespace(current=2, total=4))
+    v.set(mission_progress=MissionProgressValue(2, 4))
     mission = await mgr.start(v, MissionTracker(), _noop, {})
-    await asyncio.sleep(0.3)
-    assert mission.status is OpStatus.running and mission.message == "item 2 of 4"
+    await eventually(lambda: _true(mission.message == "item 2 of 4"), "mission progress item 2 of 4")
+    assert mission.status is OpStatus.running
     v.mission_done = True
     await mgr.wait(mission, cap_s=5)
     assert mission.status is OpStatus.succeeded
@@ -205,8 +178,8 @@ async def test_land_yaw_and_mission_trackers(settings: Settings) -> None:
 
 
 async def test_stop_interrupts_and_store_records_every_state(settings: Settings) -> None:
-    v = FakeVehicle()
-    v.set(HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    v = drone()
+    at(v, HOME[0], HOME[1], 10.0, armed=True, in_air=True)
     store = FakeStore()
     mgr = OperationManager(settings, store)
     op = await mgr.start(v, GotoTracker(HOME[0] + 0.01, HOME[1], 10.0, 2.0), _noop, {"x": 1})
@@ -242,3 +215,7 @@ async def test_recover_marks_operations_of_a_previous_process_interrupted(tmp_pa
         assert await mgr.recover() == 0
     finally:
         await store.close()
+
+
+async def _true(condition: bool) -> bool:
+    return condition

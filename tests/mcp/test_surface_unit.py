@@ -1,15 +1,18 @@
-"""Unit tests of the MCP surface over an in-process client and a fake gateway (both protocol eras)."""
+"""Unit tests of the MCP surface over an in-process client, the real gateway and fake drones (both
+protocol eras)."""
 
 from __future__ import annotations
 
 import asyncio
+from collections.abc import AsyncIterator
+from pathlib import Path
 
 import pytest
 from mcp import Client
 
-from gateway.config import Settings
 from gateway.mcp.server import build_mcp
-from tests.mcp.fakes import FakeGateway
+from gateway.runtime import Gateway
+from tests.fakes import FakeVehicle, fake, fake_gateway, unit_settings
 
 
 @pytest.fixture(params=["auto", "legacy"])
@@ -18,11 +21,13 @@ def mode(request: pytest.FixtureRequest) -> str:
 
 
 @pytest.fixture
-def gateway() -> FakeGateway:
-    return FakeGateway(Settings(_env_file=None, mcp_wait_cap_s=5.0))
+async def gateway(tmp_path: Path) -> AsyncIterator[Gateway]:
+    settings = unit_settings(tmp_path, mcp_wait_cap_s=5.0)
+    async with fake_gateway(settings, [FakeVehicle("d1"), FakeVehicle("d2")]) as gw:
+        yield gw
 
 
-async def test_takeoff_goto_land_and_refusals(gateway: FakeGateway, mode: str) -> None:
+async def test_takeoff_goto_land_and_refusals(gateway: Gateway, mode: str) -> None:
     server = build_mcp(gateway)
     async with Client(server, mode=mode) as c:
         listed = (await c.list_tools()).tools
@@ -58,10 +63,10 @@ async def test_takeoff_goto_land_and_refusals(gateway: FakeGateway, mode: str) -
         assert r.structured_content["total"] == 300 and r.structured_content["next_offset"] == 100
 
 
-async def test_parallel_takeoff_and_goto_the_goto_is_refused(gateway: FakeGateway) -> None:
+async def test_parallel_takeoff_and_goto_the_goto_is_refused(gateway: Gateway) -> None:
     """LLM hosts may issue tool calls in parallel: a goto racing a takeoff (still arming) is refused."""
     server = build_mcp(gateway)
-    vehicle = gateway.registry.get("d1")
+    vehicle = fake(gateway, "d1")
     vehicle.arm_delay_s = 0.5
     goto = {"drone_id": "d1", "latitude_deg": 47.398, "longitude_deg": 8.5456, "altitude_m": 10}
     async with Client(server) as c:
@@ -69,7 +74,7 @@ async def test_parallel_takeoff_and_goto_the_goto_is_refused(gateway: FakeGatewa
         async def late_goto() -> object:
             await asyncio.sleep(0.1)  # sent while the takeoff command is still being sent
             # armed and lifting off: the takeoff guard, not the on-the-ground check, must refuse
-            vehicle.telemetry.in_air.value = vehicle.telemetry.armed.value = True
+            vehicle.set(in_air=True, armed=True)
             return await c.call_tool("go_to_location", goto)
 
         takeoff, refused = await asyncio.gather(

@@ -7,20 +7,20 @@ Counted with tiktoken's cl100k_base on the compact JSON of what a host sends to 
 from __future__ import annotations
 
 import json
-from types import SimpleNamespace
 
 import tiktoken
 from mcp import Client
 
 from gateway.config import Settings
 from gateway.mcp.server import build_mcp
+from gateway.runtime import Gateway
 
 BUDGET_TOKENS = 2500
 
 
 async def _tools(toolsets: str) -> list:
     settings = Settings(_env_file=None, mcp_toolsets=toolsets)
-    server = build_mcp(SimpleNamespace(settings=settings, store=None, registry=None))
+    server = build_mcp(Gateway(settings))
     async with Client(server) as c:
         return (await c.list_tools()).tools
 

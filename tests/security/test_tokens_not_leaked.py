@@ -10,8 +10,8 @@ import pytest
 
 from gateway.app import create_app
 from gateway.config import Settings
-from tests.api.fakes import FakeRegistry
 from tests.api.server import serve_in_thread
+from tests.fakes import FakeRegistry
 
 OPERATOR, VIEWER, AGENT = "op-Zq8w-secret", "view-Zq8w-secret", "agent-Zq8w-secret"
 WRONG = "wrong-Zq8w-secret"

@@ -8,6 +8,9 @@ from collections.abc import AsyncIterator, Callable
 from typing import TypeVar
 
 from mavsdk_grpc import System
+from mavsdk_grpc.action import ActionError
+
+from tests.helpers.timing import scaled
 
 T = TypeVar("T")
 
@@ -43,7 +46,7 @@ async def wait_for(stream: AsyncIterator[T], predicate: Callable[[T], bool], tim
                 return item
         raise AssertionError("stream ended")
 
-    return await asyncio.wait_for(scan(), timeout_s)
+    return await asyncio.wait_for(scan(), scaled(timeout_s))
 
 
 async def ready_to_fly(drone: System) -> None:
@@ -54,9 +57,24 @@ async def ready_to_fly(drone: System) -> None:
     await wait_for(drone.telemetry.health(), lambda h: h.is_armable)
 
 
+async def arm(drone: System, within_s: float = 15.0) -> None:
+    """Arm as a ground station must on ArduCopter: its pre-arm bit is re-evaluated about once a second,
+    so right after a mode change it can still say armable while arming is refused ("Need Position
+    Estimate"); a refusal is retried until the (scaled) deadline, and the last one raised."""
+    deadline = asyncio.get_running_loop().time() + scaled(within_s)
+    while True:
+        try:
+            await drone.action.arm()
+            return
+        except ActionError:
+            if asyncio.get_running_loop().time() > deadline:
+                raise
+            await asyncio.sleep(0.2)
+
+
 async def take_off(drone: System, alt_m: float = 10.0) -> None:
     await drone.action.set_takeoff_altitude(alt_m)
-    await drone.action.arm()
+    await arm(drone)
     await drone.action.takeoff()
     await wait_for(drone.telemetry.position(), lambda p: p.relative_altitude_m > alt_m - 1.0)
 

@@ -8,7 +8,8 @@ import pytest
 from mavsdk_grpc.telemetry import LandedState
 
 from tests.helpers import mavsdk_system, sim_process
-from tests.sim.flying import SPEEDUP, distance_m, offset, ready_to_fly, set_rates, take_off, wait_for
+from tests.helpers.timing import eventually
+from tests.sim.flying import SPEEDUP, arm, distance_m, offset, ready_to_fly, set_rates, take_off, wait_for
 
 
 async def test_health_becomes_ok_only_when_rates_are_requested() -> None:
@@ -58,7 +59,7 @@ async def test_arm_takeoff_goto_land_autodisarm() -> None:
 async def test_armed_on_ground_without_takeoff_auto_disarms() -> None:
     async with sim_process(1, speedup=SPEEDUP) as sim, mavsdk_system(sim.urls[0]) as drone:
         await ready_to_fly(drone)
-        await drone.action.arm()
+        await arm(drone)
         assert await wait_for(drone.telemetry.armed(), lambda armed: armed)
         # DISARM_DELAY (10 s simulated) later the vehicle disarms by itself
         await wait_for(drone.telemetry.armed(), lambda armed: not armed, timeout_s=60)
@@ -82,12 +83,13 @@ async def test_reboot_loses_stream_rates_until_requested_again() -> None:
         await (
             drone.action.reboot()
         )  # MAV_CMD_PREFLIGHT_REBOOT_SHUTDOWN: TCP dropped, mavsdk_server reconnects
-        for _ in range(100):
+
+        async def rebooted() -> dict | None:
             truth = await sim.control.state(0)
-            if truth["client_connected"] and truth["boots"] == 2:
-                break
-            await asyncio.sleep(0.1)
-        assert truth["client_connected"] and truth["mode"] == "STABILIZE"
+            return truth if truth["client_connected"] and truth["boots"] == 2 else None
+
+        truth = await eventually(rebooted, "reboot and reconnection", within_s=10)
+        assert truth["mode"] == "STABILIZE"
         with pytest.raises(TimeoutError):  # rates are gone and mavsdk_server does not re-request them
             await wait_for(drone.telemetry.position(), lambda _p: True, timeout_s=1.5)
         await set_rates(drone)

@@ -8,7 +8,7 @@ from mavsdk_grpc.mission_raw import MissionItem
 from mavsdk_grpc.telemetry import FlightMode
 
 from tests.helpers import mavsdk_system, sim_process
-from tests.sim.flying import SPEEDUP, distance_m, offset, ready_to_fly, take_off, wait_for
+from tests.sim.flying import SPEEDUP, arm, distance_m, offset, ready_to_fly, take_off, wait_for
 
 NAV_WAYPOINT, NAV_RTL, NAV_TAKEOFF, DO_CHANGE_SPEED = 16, 20, 22, 178
 FRAME_REL_INT = 6
@@ -79,7 +79,7 @@ async def test_auto_armed_on_the_ground_waits_and_clear_leaves_only_home() -> No
         home = await wait_for(drone.telemetry.home(), lambda _h: True)
         await drone.mission_raw.upload_mission(_plan(home.latitude_deg, home.longitude_deg))
         await sim.control.set_param(0, "DISARM_DELAY", 0)  # no auto-disarm while we watch it wait
-        await drone.action.arm()
+        await arm(drone)
         # mission_raw.start_mission() is DO_SET_MODE AUTO only: armed on the ground the mission does not
         # start (not "auto-armed"); MAV_CMD_MISSION_START would take off (test_guided_raw)
         await drone.mission_raw.start_mission()

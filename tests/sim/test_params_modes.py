@@ -10,7 +10,8 @@ from mavsdk_grpc.param import ParamError
 from mavsdk_grpc.telemetry import FlightMode
 
 from tests.helpers import mavsdk_system, sim_process
-from tests.sim.flying import SPEEDUP, ready_to_fly, set_rates, take_off, wait_for
+from tests.helpers.timing import scaled
+from tests.sim.flying import SPEEDUP, arm, ready_to_fly, set_rates, take_off, wait_for
 
 
 async def test_parameter_get_set_readback_list_and_unknown() -> None:
@@ -77,14 +78,14 @@ async def test_arming_refused_under_gps_loss() -> None:
             with pytest.raises(ActionError) as refused:
                 await drone.action.arm()
             assert "FAILED" in str(refused.value) or "DENIED" in str(refused.value)
-            await asyncio.wait_for(_until(lambda: "Arm: Need Position Estimate" in texts), 10)
+            await asyncio.wait_for(_until(lambda: "Arm: Need Position Estimate" in texts), scaled(10))
         finally:
             collector.cancel()
         assert not (await sim.control.state(0))["armed"]
 
         await sim.control.gps_loss(0, lost=False)
         await wait_for(drone.telemetry.health(), lambda h: h.is_armable)
-        await drone.action.arm()
+        await arm(drone)
         assert (await sim.control.state(0))["armed"]
 
 

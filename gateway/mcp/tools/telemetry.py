@@ -9,12 +9,11 @@ from __future__ import annotations
 import math
 from typing import Annotated, Any
 
-from mcp.server.mcpserver import Context
 from pydantic import Field
 
 from gateway.errors import VehicleNotReady
-from gateway.fleet.operations import is_stale
-from gateway.mcp.access import FleetAccess
+from gateway.fleet.readings import is_stale
+from gateway.mcp.access import ToolCall
 from gateway.mcp.results import (
     AttitudeOut,
     BatteryOut,
@@ -31,28 +30,28 @@ from gateway.mcp.toolkit import DroneId, Toolset
 toolset = Toolset("telemetry")
 
 
-def read(fa: FleetAccess, drone_id: str, name: str) -> tuple[Any, float, bool, str]:
+def read(call: ToolCall, drone_id: str, name: str) -> tuple[Any, float, bool, str]:
     """(value, age_s, stale, note) of one cached telemetry part."""
-    v = fa.vehicle(drone_id)
+    v = call.commander.vehicle(drone_id)
     s = getattr(v.telemetry, name, None)
     if s is None:
         raise VehicleNotReady(f"no {name.replace('_', ' ')} received from {drone_id} yet (state: {v.state})")
     age = float(s.age_s)
-    stale = is_stale(v, age, fa.settings.link_lost_after_s)
+    stale = is_stale(v, age, call.settings.link_lost_after_s)
     note = f" [STALE: {age:.0f} s old, link lost?]" if stale else ""
     return s.value, round(age, 2), stale, note
 
 
-def _value_tool(fa: FleetAccess, drone_id: str, name: str, label: str) -> ValueOut:
-    val, age, stale, note = read(fa, drone_id, name)
+def _value_tool(call: ToolCall, drone_id: str, name: str, label: str) -> ValueOut:
+    val, age, stale, note = read(call, drone_id, name)
     val = plain(val)
     return ValueOut(drone_id=drone_id, age_s=age, stale=stale, value=val).say(
         f"{drone_id} {label}: {val}{note}"
     )
 
 
-def _data_tool(fa: FleetAccess, drone_id: str, name: str) -> DataOut:
-    val, age, stale, note = read(fa, drone_id, name)
+def _data_tool(call: ToolCall, drone_id: str, name: str) -> DataOut:
+    val, age, stale, note = read(call, drone_id, name)
     data = plain(val)
     if not isinstance(data, dict):
         data = {"value": data}
@@ -71,9 +70,9 @@ def _short(v: Any) -> str:
 
 
 @toolset.tool(read_only=True)
-async def get_battery(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> BatteryOut:
+async def get_battery(call: ToolCall, drone_id: DroneId) -> BatteryOut:
     """Battery remaining_pct (0-100) and voltage_v."""
-    b, age, stale, note = read(fa, drone_id, "battery")
+    b, age, stale, note = read(call, drone_id, "battery")
     pct = plain(b.remaining_pct)
     volts = plain(b.voltage_v)
     pct_text = "unknown" if pct is None else f"{pct:.0f}%"
@@ -84,21 +83,21 @@ async def get_battery(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> Batte
 
 
 @toolset.tool(read_only=True)
-async def get_flight_mode(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> ValueOut:
+async def get_flight_mode(call: ToolCall, drone_id: DroneId) -> ValueOut:
     """Current flight mode name (e.g. GUIDED, AUTO, RTL, LAND)."""
-    return _value_tool(fa, drone_id, "flight_mode", "flight mode")
+    return _value_tool(call, drone_id, "flight_mode", "flight mode")
 
 
 @toolset.tool(read_only=True)
-async def get_health(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> DataOut:
+async def get_health(call: ToolCall, drone_id: DroneId) -> DataOut:
     """Sensor/arming health flags."""
-    return _data_tool(fa, drone_id, "health")
+    return _data_tool(call, drone_id, "health")
 
 
 @toolset.tool(read_only=True)
-async def get_health_all_ok(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> ValueOut:
+async def get_health_all_ok(call: ToolCall, drone_id: DroneId) -> ValueOut:
     """true when every health check passes and the drone is armable."""
-    h, age, stale, note = read(fa, drone_id, "health")
+    h, age, stale, note = read(call, drone_id, "health")
     flags = plain(h)
     if isinstance(flags, dict):
         failing = sorted(k for k, x in flags.items() if x is False)
@@ -112,9 +111,9 @@ async def get_health_all_ok(fa: FleetAccess, ctx: Context, drone_id: DroneId) ->
 
 
 @toolset.tool(read_only=True)
-async def get_speed(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> SpeedOut:
+async def get_speed(call: ToolCall, drone_id: DroneId) -> SpeedOut:
     """Velocity m/s north/east/down and ground speed."""
-    vel, age, stale, note = read(fa, drone_id, "velocity_ned")
+    vel, age, stale, note = read(call, drone_id, "velocity_ned")
     n, e, d = float(vel.north_mps), float(vel.east_mps), float(vel.down_mps)
     gs = math.hypot(n, e)
     return SpeedOut(
@@ -129,9 +128,9 @@ async def get_speed(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> SpeedOu
 
 
 @toolset.tool(read_only=True)
-async def get_attitude(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> AttitudeOut:
+async def get_attitude(call: ToolCall, drone_id: DroneId) -> AttitudeOut:
     """Roll, pitch, yaw in degrees."""
-    a, age, stale, note = read(fa, drone_id, "attitude")
+    a, age, stale, note = read(call, drone_id, "attitude")
     r, p, y = float(a.roll_deg), float(a.pitch_deg), float(a.yaw_deg)
     return AttitudeOut(
         drone_id=drone_id,
@@ -144,9 +143,9 @@ async def get_attitude(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> Atti
 
 
 @toolset.tool(read_only=True)
-async def get_gps_info(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> GpsOut:
+async def get_gps_info(call: ToolCall, drone_id: DroneId) -> GpsOut:
     """GPS satellites and fix type."""
-    g, age, stale, note = read(fa, drone_id, "gps_info")
+    g, age, stale, note = read(call, drone_id, "gps_info")
     fix = plain(g.fix_type)
     return GpsOut(
         drone_id=drone_id, age_s=age, stale=stale, num_satellites=int(g.num_satellites), fix_type=str(fix)
@@ -154,56 +153,55 @@ async def get_gps_info(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> GpsO
 
 
 @toolset.tool(read_only=True)
-async def get_in_air(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> ValueOut:
+async def get_in_air(call: ToolCall, drone_id: DroneId) -> ValueOut:
     """true when flying."""
-    return _value_tool(fa, drone_id, "in_air", "in air")
+    return _value_tool(call, drone_id, "in_air", "in air")
 
 
 @toolset.tool(read_only=True)
-async def get_armed(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> ValueOut:
+async def get_armed(call: ToolCall, drone_id: DroneId) -> ValueOut:
     """true when the motors are armed."""
-    return _value_tool(fa, drone_id, "armed", "armed")
+    return _value_tool(call, drone_id, "armed", "armed")
 
 
 @toolset.tool(read_only=True)
-async def get_landed_state(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> ValueOut:
+async def get_landed_state(call: ToolCall, drone_id: DroneId) -> ValueOut:
     """ON_GROUND, TAKING_OFF, IN_AIR, LANDING or UNKNOWN."""
-    return _value_tool(fa, drone_id, "landed_state", "landed state")
+    return _value_tool(call, drone_id, "landed_state", "landed state")
 
 
 @toolset.tool(read_only=True)
-async def get_rc_status(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> DataOut:
+async def get_rc_status(call: ToolCall, drone_id: DroneId) -> DataOut:
     """RC link: available, signal strength %."""
-    return _data_tool(fa, drone_id, "rc_status")
+    return _data_tool(call, drone_id, "rc_status")
 
 
 @toolset.tool(read_only=True)
-async def get_heading(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> ValueOut:
+async def get_heading(call: ToolCall, drone_id: DroneId) -> ValueOut:
     """Compass heading, degrees from north."""
-    return _value_tool(fa, drone_id, "heading_deg", "heading deg")
+    return _value_tool(call, drone_id, "heading_deg", "heading deg")
 
 
 @toolset.tool(read_only=True)
-async def get_imu(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> DataOut:
+async def get_imu(call: ToolCall, drone_id: DroneId) -> DataOut:
     """IMU: acceleration m/s², angular rate rad/s, temperature °C."""
-    return _data_tool(fa, drone_id, "imu")
+    return _data_tool(call, drone_id, "imu")
 
 
 @toolset.tool(read_only=True)
-async def get_odometry(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> DataOut:
+async def get_odometry(call: ToolCall, drone_id: DroneId) -> DataOut:
     """Odometry: body-frame position m, velocity m/s, orientation."""
-    return _data_tool(fa, drone_id, "odometry")
+    return _data_tool(call, drone_id, "odometry")
 
 
 @toolset.tool(read_only=True)
 async def print_status_text(
-    fa: FleetAccess,
-    ctx: Context,
+    call: ToolCall,
     drone_id: DroneId,
     limit: Annotated[int, Field(ge=1, le=100, description="Newest N")] = 20,
 ) -> StatusTextOut:
     """Recent autopilot status messages, oldest first."""
-    v = fa.vehicle(drone_id)
+    v = call.commander.vehicle(drone_id)
     texts = list(getattr(v.telemetry, "status_texts", None) or [])[-limit:]
     messages = [_status_text(t) for t in texts]
     lines = "; ".join(f"[{m['severity']}] {m['text']}" for m in messages) or "none"
@@ -224,11 +222,11 @@ def _status_text(item: Any) -> dict[str, Any]:
 
 
 @toolset.tool(read_only=True)
-async def get_telemetry(fa: FleetAccess, ctx: Context, drone_id: DroneId) -> SnapshotOut:
+async def get_telemetry(call: ToolCall, drone_id: DroneId) -> SnapshotOut:
     """Everything at once: all telemetry with each part's age_s, plus the current action."""
-    v = fa.vehicle(drone_id)
+    v = call.commander.vehicle(drone_id)
     snap = plain(v.telemetry.snapshot())
-    op = fa.operations.latest(drone_id)
+    op = call.commander.operations.latest(drone_id)
     state = str(plain(v.state))
     pos = snap.get("position") if isinstance(snap, dict) else None
     where = ""

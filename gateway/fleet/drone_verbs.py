@@ -1,0 +1,507 @@
+"""The Commander's verbs on one drone: flight (arm, takeoff, land, return, hold, kill, mode),
+navigation (goto, reposition, relative move, yaw, speed), missions and parameters.
+
+Each verb resolves the drone, judges one fresh `VehicleContext` with the policy (as the caller's door
+decides) and then starts a tracked operation under the drone's command lock or sends an instant command.
+Messages name what to do next; ``label`` is how the caller names the command (its MCP tool name), used
+in those messages and in the superseded operation's reason.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+
+from gateway.errors import InvalidArgument, NotFound, VehicleNotReady
+from gateway.fleet import geo
+from gateway.fleet.caller import Caller
+from gateway.fleet.command_core import NAV_KINDS, AltFrame, CommandCore, Notify, OnProgress
+from gateway.fleet.mission import MissionItem
+from gateway.fleet.modes import LAUNCHING_MODES
+from gateway.fleet.operations import (
+    GotoTracker,
+    LandingTracker,
+    MissionTracker,
+    OpStatus,
+    TakeoffTracker,
+    YawTracker,
+    check_positive_altitude,
+)
+from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.readings import is_landed_and_disarmed, position, value
+from gateway.fleet.safety import Target
+from gateway.fleet.views import (
+    ActionResult,
+    ArrivalView,
+    MissionProgressView,
+    MissionView,
+    OperationView,
+    ParamPage,
+    ParamValue,
+)
+
+
+class DroneVerbs(CommandCore):
+    """Commands on one drone."""
+
+    # ------------------------------------------------------------------------------------------------
+    # flight: arm, disarm, takeoff, land, return, hold, kill, mode
+    # ------------------------------------------------------------------------------------------------
+
+    async def arm(self, caller: Caller, drone_id: str, *, notify: Notify | None = None) -> ActionResult:
+        vehicle = self.vehicle(drone_id)
+        await self._wait_initialised(vehicle, notify)
+        self.safety.check_arm(self.context(vehicle), caller.policy_via)
+        await vehicle.arm()
+        return ActionResult(drone_id=drone_id, action="arm", message="armed")
+
+    async def disarm(self, caller: Caller, drone_id: str, label: str = "disarm_drone") -> ActionResult:
+        vehicle = self.ready(drone_id)
+        ctx = self.context(vehicle)
+        if ctx.in_air:
+            raise InvalidArgument(
+                f"{drone_id} is in the air; call land first (disarm only works on the ground)"
+            )
+        self.safety.check_actuation(ctx, caller.policy_via)
+        await vehicle.disarm()
+        sup = await self._supersede(drone_id, label)
+        return ActionResult(
+            drone_id=drone_id, action="disarm", message="disarmed", superseded_operation=sup and sup.id
+        )
+
+    async def takeoff(
+        self, caller: Caller, drone_id: str, altitude_m: float, *, notify: Notify | None = None
+    ) -> OperationView:
+        """Arm if needed and climb to ``altitude_m`` above home; done when reached."""
+        vehicle = self.vehicle(drone_id)
+        await self._wait_initialised(vehicle, notify)
+        self._guard_takeoff(caller, vehicle, "takeoff")
+        ctx = self.context(vehicle)
+        if ctx.in_air:
+            alt = f" at {ctx.position[2]:.1f} m" if ctx.position else ""
+            raise InvalidArgument(f"{drone_id} is already flying{alt}; use go_to_location to change altitude")
+        self.safety.check_takeoff(ctx, altitude_m, caller.policy_via)
+        return await self._track(
+            caller,
+            vehicle,
+            TakeoffTracker(altitude_m),
+            lambda: vehicle.takeoff(altitude_m),
+            {"altitude_m": altitude_m},
+            "takeoff",
+        )
+
+    async def land(self, caller: Caller, drone_id: str) -> OperationView:
+        """Land where the drone is; done when landed and disarmed."""
+        vehicle = self._for_recovery(caller, drone_id)
+        if is_landed_and_disarmed(vehicle):
+            raise InvalidArgument(f"{drone_id} is already on the ground and disarmed")
+        self.safety.check_actuation(self.context(vehicle), caller.policy_via)
+        return await self._track(caller, vehicle, LandingTracker(kind="land"), vehicle.land, {}, "land")
+
+    async def return_to_launch(self, caller: Caller, drone_id: str) -> OperationView:
+        """Fly home and land; done when landed and disarmed."""
+        vehicle = self._for_recovery(caller, drone_id)
+        ctx = self.context(vehicle)
+        if not caller.is_operator:
+            self._require_airborne(ctx, "return_to_launch")
+        self.safety.check_actuation(ctx, caller.policy_via)
+        return await self._track(
+            caller,
+            vehicle,
+            LandingTracker(kind="return_to_launch"),
+            vehicle.return_to_launch,
+            {},
+            "return_to_launch",
+        )
+
+    async def hold(self, caller: Caller, drone_id: str, label: str = "hold_position") -> ActionResult:
+        """GUIDED reposition to the current position (never LOITER/ALT_HOLD, which sink without RC);
+        ends the drone's current operation."""
+        vehicle = self._for_recovery(caller, drone_id)
+        ctx = self.context(vehicle)
+        if not caller.is_operator:
+            self._require_airborne(ctx, label)
+        self.safety.check_actuation(ctx, caller.policy_via)
+        await vehicle.hold()
+        sup = await self._supersede(drone_id, label)
+        pos = position(vehicle)
+        where = f" at {pos[2]:.1f} m above home" if pos else ""
+        stopped = f"; stopped {sup.kind} {sup.id}" if sup else ""
+        return ActionResult(
+            drone_id=drone_id,
+            action=label,
+            message=f"holding position{where}{stopped}",
+            superseded_operation=sup and sup.id,
+        )
+
+    def kill_needs_confirmation(self, caller: Caller, drone_id: str) -> bool:
+        """Whether a kill by this caller must first be confirmed by a human: an agent's kill of an
+        airborne drone, when the policy allows agents to kill at all (else it is refused here, before
+        anyone is asked)."""
+        vehicle = self.ready(drone_id) if not caller.is_operator else self.vehicle(drone_id)
+        return self.safety.check_kill(self.context(vehicle), caller.policy_via)
+
+    async def kill(self, caller: Caller, drone_id: str, confirmed: bool = False) -> ActionResult:
+        """Cut the motors. An agent's: only with ``confirmed`` (a human said yes), and on the ground it
+        only disarms. An operator's: at once, wherever the drone is."""
+        vehicle = self._for_recovery(caller, drone_id)
+        ctx = self.context(vehicle)
+        self.safety.check_kill_confirmed(ctx, confirmed, caller.policy_via)
+        self.safety.check_kill(ctx, caller.policy_via)  # locks and simulators-only hold on the ground too
+        if caller.is_operator or ctx.airborne:
+            await vehicle.kill()
+            message = "motors killed in flight" if ctx.airborne else "motors killed"
+        else:
+            await vehicle.disarm()
+            message = "on the ground: disarmed"
+        sup = await self._supersede(drone_id, "kill_motors")
+        return ActionResult(
+            drone_id=drone_id, action="kill", message=message, superseded_operation=sup and sup.id
+        )
+
+    async def set_mode(self, caller: Caller, drone_id: str, mode: str) -> ActionResult:
+        """Flight mode by a common name (HOLD, RTL, LAND, MISSION...) or the autopilot's own. HOLD is the
+        gateway's safe hold."""
+        vehicle = self.ready(drone_id)
+        choice = vehicle.resolve_mode(mode)
+        if choice.requested == "HOLD":
+            return await self.hold(caller, drone_id, "set_flight_mode HOLD")
+        if choice.native in LAUNCHING_MODES:
+            self._guard_takeoff(caller, vehicle, f"set_flight_mode {choice.requested}")
+        ctx = self.context(vehicle)
+        self.safety.check_mode(ctx, choice.requested, caller.policy_via)
+        self.safety.check_mode(ctx, choice.native, caller.policy_via)
+        await vehicle.set_flight_mode(mode)
+        sup = await self._supersede(drone_id, f"set_flight_mode {choice.requested}")
+        named = (
+            choice.native if choice.native == choice.requested else f"{choice.requested} ({choice.native})"
+        )
+        return ActionResult(
+            drone_id=drone_id,
+            action="set_flight_mode",
+            message=f"mode {named}",
+            superseded_operation=sup and sup.id,
+            facts={"mode": named},
+        )
+
+    # ------------------------------------------------------------------------------------------------
+    # navigation: goto, reposition, relative move, yaw, speed
+    # ------------------------------------------------------------------------------------------------
+
+    async def _fly_to(
+        self,
+        caller: Caller,
+        drone_id: str,
+        lat: float,
+        lon: float,
+        alt_rel: float,
+        kind: str,
+        label: str,
+        yaw_deg: float | None = None,
+    ) -> OperationView:
+        geo.check_lat_lon(lat, lon)
+        check_positive_altitude(alt_rel)
+        vehicle = self.ready(drone_id)
+        self._guard_takeoff(caller, vehicle, label)
+        ctx = self.context(vehicle)
+        self._require_airborne(ctx, label)
+        self.safety.check_motion(ctx, Target(lat, lon, alt_rel), caller.policy_via)
+        params = {"lat": lat, "lon": lon, "alt_m": round(alt_rel, 2)}
+        tracker = GotoTracker(lat, lon, alt_rel, self.settings.arrival_tolerance_m, kind=kind)
+        return await self._track(
+            caller, vehicle, tracker, lambda: vehicle.goto(lat, lon, alt_rel, yaw_deg), params, label
+        )
+
+    async def goto(
+        self,
+        caller: Caller,
+        drone_id: str,
+        lat_deg: float,
+        lon_deg: float,
+        altitude_m: float,
+        alt_frame: AltFrame = "home",
+        yaw_deg: float | None = None,
+        label: str = "go_to_location",
+    ) -> OperationView:
+        """Fly to a position at ``altitude_m`` (above home, or AMSL); done on arrival."""
+        ctx = self.context(self.ready(drone_id))
+        alt_rel = self._relative_alt(ctx, altitude_m, alt_frame)
+        yaw = None
+        if yaw_deg is not None:
+            geo.check_finite("yaw_deg", yaw_deg)
+            yaw = yaw_deg % 360.0
+        return await self._fly_to(caller, drone_id, lat_deg, lon_deg, alt_rel, "goto", label, yaw)
+
+    async def reposition(
+        self,
+        caller: Caller,
+        drone_id: str,
+        lat_deg: float,
+        lon_deg: float,
+        altitude_m: float | None = None,
+        alt_frame: AltFrame = "home",
+    ) -> OperationView:
+        """Fly to a position and hover there, at the current altitude unless ``altitude_m`` is given."""
+        ctx = self.context(self.ready(drone_id))
+        if altitude_m is None:
+            if ctx.position is None:
+                raise VehicleNotReady(f"no position received from {drone_id} yet")
+            alt_rel = ctx.position[2]
+        else:
+            alt_rel = self._relative_alt(ctx, altitude_m, alt_frame)
+        return await self._fly_to(caller, drone_id, lat_deg, lon_deg, alt_rel, "reposition", "reposition")
+
+    async def move_relative(
+        self, caller: Caller, drone_id: str, north_m: float, east_m: float, down_m: float = 0.0
+    ) -> OperationView:
+        """Move by metres north/east/down (NED: + down descends) from the current position."""
+        vehicle = self.ready(drone_id)
+        self._guard_takeoff(caller, vehicle, "move_to_relative")
+        pos = self.context(vehicle).position
+        if pos is None:
+            raise VehicleNotReady(f"no position received from {drone_id} yet")
+        for name, metres in (("north_m", north_m), ("east_m", east_m), ("down_m", down_m)):
+            geo.check_finite(name, metres)
+        lat, lon = geo.offset_position(pos[0], pos[1], north_m, east_m)
+        return await self._fly_to(
+            caller, drone_id, lat, lon, pos[2] - down_m, "move_to_relative", "move_to_relative"
+        )
+
+    async def set_yaw(self, caller: Caller, drone_id: str, heading_deg: float) -> OperationView:
+        """Turn in place to a heading (degrees from true north, clockwise); done when facing it."""
+        vehicle = self.ready(drone_id)
+        self._guard_takeoff(caller, vehicle, "set_yaw")
+        ctx = self.context(vehicle)
+        self._require_airborne(ctx, "set_yaw")
+        self.safety.check_actuation(ctx, caller.policy_via)
+        return await self._track(
+            caller,
+            vehicle,
+            YawTracker(heading_deg),
+            lambda: vehicle.set_yaw(heading_deg),
+            {"heading_deg": heading_deg},
+            "set_yaw",
+        )
+
+    async def set_speed(self, caller: Caller, drone_id: str, speed_mps: float) -> ActionResult:
+        """The horizontal speed of gotos, m/s (within the policy's limit)."""
+        vehicle = self.ready(drone_id)
+        self.safety.check_speed(self.context(vehicle), speed_mps, caller.policy_via)
+        await vehicle.set_max_speed(speed_mps)
+        return ActionResult(
+            drone_id=drone_id,
+            action="set_max_speed",
+            message=f"max speed {speed_mps:g} m/s",
+            facts={"speed_mps": speed_mps},
+        )
+
+    async def arrival(self, caller: Caller, drone_id: str) -> ArrivalView:
+        """Whether the drone's last goto arrived, with the distance left; answers at once."""
+        vehicle = self.vehicle(drone_id)
+        op = self.operations.latest(drone_id)
+        if op is None or op.kind not in NAV_KINDS:
+            return ArrivalView(
+                drone_id=drone_id,
+                arrived=False,
+                operation_id=None,
+                kind=None,
+                status=None,
+                distance_m=None,
+                vertical_m=None,
+                message="no goto sent to this drone yet",
+            )
+        tracker = GotoTracker(
+            op.params["lat"], op.params["lon"], op.params["alt_m"], self.settings.arrival_tolerance_m
+        )
+        d = tracker.distance(vehicle)
+        return ArrivalView(
+            drone_id=drone_id,
+            arrived=op.status is OpStatus.succeeded,
+            operation_id=op.id,
+            kind=op.kind,
+            status=op.status.value,
+            distance_m=None if d is None else round(d[0], 1),
+            vertical_m=None if d is None else round(d[1], 1),
+            message=op.message,
+        )
+
+    async def monitor(
+        self,
+        caller: Caller,
+        drone_id: str,
+        land_on_arrival: bool = False,
+        cap_s: float | None = None,
+        on_progress: OnProgress | None = None,
+    ) -> OperationView:
+        """Wait (capped) for the drone's current operation; with ``land_on_arrival``, a goto that
+        arrived is followed by a landing, waited for within the same cap."""
+        vehicle = self.vehicle(drone_id)
+        op = self.operations.latest(drone_id)
+        if op is None:
+            raise NotFound(
+                f"{drone_id} has no action to monitor (state: {vehicle.state}); nothing was started yet"
+            )
+        start = time.monotonic()
+        cap = self.settings.mcp_wait_cap_s if cap_s is None else cap_s
+        view = await self.wait(op.id, cap, on_progress)
+        if (
+            land_on_arrival
+            and view.kind in NAV_KINDS
+            and view.status == "succeeded"
+            and value(vehicle, "in_air")
+        ):
+            self.safety.check_actuation(self.context(vehicle), caller.policy_via)
+            landing = await self._track(
+                caller, vehicle, LandingTracker(kind="land"), vehicle.land, {}, "land"
+            )
+            view = await self.wait(
+                landing.operation_id, max(0.0, cap - (time.monotonic() - start)), on_progress
+            )
+        return view
+
+    # ------------------------------------------------------------------------------------------------
+    # missions
+    # ------------------------------------------------------------------------------------------------
+
+    async def _upload(self, caller: Caller, vehicle: FlyingVehicle, items: Sequence[MissionItem]) -> int:
+        ctx = self.context(vehicle)
+        self.safety.check_mission(ctx, items, caller.policy_via)
+        running = self.operations.running(vehicle.id)
+        if running is not None and running.kind == "mission":
+            raise InvalidArgument(
+                f"{vehicle.id} is flying a mission; call pause_mission before uploading another"
+            )
+        await vehicle.upload_mission(items)
+        return len(items)
+
+    async def upload_mission(self, caller: Caller, drone_id: str, items: list[MissionItem]) -> ActionResult:
+        """Store a mission on the drone (items numbered 1..N, altitudes above home) without starting it."""
+        vehicle = self.ready(drone_id)
+        count = await self._upload(caller, vehicle, items)
+        return ActionResult(
+            drone_id=drone_id,
+            action="upload_mission",
+            message=f"{count} items uploaded",
+            facts={"items": count},
+        )
+
+    async def start_mission(
+        self,
+        caller: Caller,
+        drone_id: str,
+        items: list[MissionItem] | None = None,
+        label: str = "initiate_mission",
+    ) -> OperationView:
+        """Upload ``items`` first if given, then fly the stored mission; done when it is finished. On the
+        ground the mission must begin with a takeoff item."""
+        vehicle = self.ready(drone_id)
+        self._guard_takeoff(caller, vehicle, label)
+        if items:
+            await self._upload(caller, vehicle, items)
+        ctx = self.context(vehicle)
+        self.safety.check_actuation(ctx, caller.policy_via)
+        if not ctx.in_air:
+            stored = await vehicle.download_mission()
+            if not stored:
+                raise InvalidArgument(f"{drone_id} has no mission; give waypoints to initiate_mission")
+            if stored[0].kind != "takeoff":
+                raise InvalidArgument(
+                    f"{drone_id} is on the ground and the mission does not start with a takeoff item; "
+                    "call takeoff first or make item 1 kind='takeoff'"
+                )
+            self.safety.check_takeoff(ctx, stored[0].alt_rel_m, caller.policy_via)
+        return await self._track(caller, vehicle, MissionTracker(), vehicle.start_mission, {}, label)
+
+    async def resume_mission(self, caller: Caller, drone_id: str) -> OperationView:
+        """Continue the stored mission from its current item."""
+        return await self.start_mission(caller, drone_id, None, "resume_mission")
+
+    async def pause_mission(
+        self, caller: Caller, drone_id: str, label: str = "pause_mission"
+    ) -> ActionResult:
+        """Pause = the safe hold (GUIDED, not LOITER); resume_mission continues."""
+        return await self.hold(caller, drone_id, label)
+
+    async def download_mission(self, caller: Caller, drone_id: str) -> MissionView:
+        vehicle = self.ready(drone_id)
+        return MissionView(drone_id=drone_id, items=await vehicle.download_mission())
+
+    async def clear_mission(self, caller: Caller, drone_id: str) -> ActionResult:
+        vehicle = self.ready(drone_id)
+        running = self.operations.running(drone_id)
+        if running is not None and running.kind == "mission":
+            raise InvalidArgument(f"{drone_id} is flying its mission; call pause_mission first")
+        self.safety.check_actuation(self.context(vehicle), caller.policy_via)
+        await vehicle.clear_mission()
+        return ActionResult(drone_id=drone_id, action="clear_mission", message="mission cleared")
+
+    async def set_current_item(self, caller: Caller, drone_id: str, index: int) -> ActionResult:
+        """Make mission item ``index`` (1..N) the next target."""
+        vehicle = self.ready(drone_id)
+        prog = value(vehicle, "mission_progress")
+        total = int(prog.total) if prog is not None else None
+        if total is not None and total > 0 and index > total:
+            raise InvalidArgument(f"index {index} is beyond the mission's {total} items (valid: 1..{total})")
+        self._guard_takeoff(caller, vehicle, "set_current_waypoint")
+        self.safety.check_actuation(self.context(vehicle), caller.policy_via)
+        await vehicle.set_current_mission_item(index)
+        return ActionResult(
+            drone_id=drone_id,
+            action="set_current_waypoint",
+            message=f"next item {index}",
+            facts={"index": index},
+        )
+
+    async def mission_progress(self, caller: Caller, drone_id: str) -> MissionProgressView:
+        """The item being flown (1..N), the count, and whether the mission ran to its end."""
+        vehicle = self.ready(drone_id)
+        prog = value(vehicle, "mission_progress")
+        current, total = (int(prog.current), int(prog.total)) if prog is not None else (0, 0)
+        finished = await vehicle.is_mission_finished()
+        op = self.operations.latest(drone_id)
+        status = op.status.value if op is not None and op.kind == "mission" else None
+        return MissionProgressView(
+            drone_id=drone_id, current=current, total=total, finished=finished, operation_status=status
+        )
+
+    # ------------------------------------------------------------------------------------------------
+    # parameters
+    # ------------------------------------------------------------------------------------------------
+
+    async def get_param(self, caller: Caller, drone_id: str, name: str) -> ParamValue:
+        vehicle = self.ready(drone_id)
+        name = name.upper()
+        val, kind = await vehicle.get_param(name)
+        return ParamValue(drone_id=drone_id, name=name, value=val, type=kind)
+
+    async def set_param(self, caller: Caller, drone_id: str, name: str, value: float) -> ParamValue:
+        """Write a parameter with the drone's own type for it; agents may not write protected ones."""
+        vehicle = self.ready(drone_id)
+        name = name.upper()
+        self.safety.check_param_write(
+            name, caller.policy_via, vehicle_id=drone_id, protected=vehicle.protected_params
+        )
+        self.safety.check_actuation(self.context(vehicle), caller.policy_via)
+        val, kind = await vehicle.set_param(name, value)
+        return ParamValue(drone_id=drone_id, name=name, value=val, type=kind)
+
+    async def list_params(
+        self, caller: Caller, drone_id: str, prefix: str = "", offset: int = 0, limit: int = 100
+    ) -> ParamPage:
+        """One page of the parameters whose name starts with ``prefix``, sorted by name."""
+        if offset < 0 or not 1 <= limit <= 500:
+            raise InvalidArgument(f"offset must be >= 0 and limit 1..500; got offset={offset}, limit={limit}")
+        vehicle = self.ready(drone_id)
+        prefix = prefix.upper()
+        every = await vehicle.list_params()
+        names = sorted(n for n in every if n.startswith(prefix))
+        page = names[offset : offset + limit]
+        nxt = offset + limit if offset + limit < len(names) else None
+        return ParamPage(
+            drone_id=drone_id,
+            prefix=prefix,
+            total=len(names),
+            offset=offset,
+            params={n: float(every[n]) for n in page},
+            next_offset=nxt,
+        )

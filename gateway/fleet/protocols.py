@@ -1,0 +1,129 @@
+"""What the flight logic needs of a vehicle and of the registry that holds the vehicles.
+
+`gateway.fleet.vehicle.Vehicle` satisfies `FlyingVehicle`, and so does the one fake vehicle of the unit
+tests (`tests/fakes.py`): the Commander, the operation trackers and the fleet operations are written
+against these Protocols, never against the MAVSDK-backed class.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any, Protocol
+
+from gateway.fleet.mission import MissionItem
+from gateway.fleet.modes import ModeChoice
+from gateway.link.telemetry import TelemetryCache
+from gateway.registry.spec import VehicleSpec
+
+if TYPE_CHECKING:
+    from gateway.fleet.vehicle import ConnectionState
+
+
+class FlyingVehicle(Protocol):
+    """One drone: identity, connection state, telemetry cache, and the commands it takes."""
+
+    @property
+    def telemetry(self) -> TelemetryCache: ...
+
+    @property
+    def is_simulator(self) -> bool: ...
+
+    @property
+    def id(self) -> str: ...
+
+    @property
+    def spec(self) -> VehicleSpec: ...
+
+    @property
+    def state(self) -> ConnectionState: ...
+
+    def status(self) -> dict[str, Any]: ...
+
+    def require_ready(self) -> None:
+        """Raise VehicleNotReady (naming the state and why) unless the vehicle can fly."""
+
+    def initialising(self) -> str | None:
+        """While connected but not ready: what the vehicle still waits for."""
+
+    async def wait_initialised(self) -> None:
+        """Wait (capped) for a vehicle still initialising, then require_ready."""
+
+    def resolve_mode(self, name: str) -> ModeChoice: ...
+
+    def return_altitude_param(self) -> tuple[str, float]:
+        """The parameter holding the RTL altitude and its units per metre."""
+
+    async def set_return_altitude(self, alt_m: float) -> tuple[str, float | int]:
+        """Write the RTL altitude (m above home) in the autopilot's parameter and units."""
+
+    @property
+    def protected_params(self) -> tuple[str, ...]:
+        """Patterns of the parameters the vehicle's autopilot protects from agents."""
+
+    async def arm(self) -> None: ...
+
+    async def disarm(self) -> None: ...
+
+    async def kill(self) -> None: ...
+
+    async def takeoff(self, alt_rel_m: float) -> None: ...
+
+    async def goto(self, lat: float, lon: float, alt_rel_m: float, yaw_deg: float | None = None) -> None: ...
+
+    async def hold(self) -> None: ...
+
+    async def land(self) -> None: ...
+
+    async def return_to_launch(self) -> None: ...
+
+    async def set_yaw(self, heading_deg: float) -> None: ...
+
+    async def set_max_speed(self, mps: float) -> None: ...
+
+    async def set_flight_mode(self, name: str) -> None: ...
+
+    async def upload_mission(self, items: Sequence[MissionItem]) -> int: ...
+
+    async def download_mission(self) -> list[MissionItem]: ...
+
+    async def clear_mission(self) -> None: ...
+
+    async def start_mission(self) -> None: ...
+
+    async def set_current_mission_item(self, user_index: int) -> None: ...
+
+    async def is_mission_finished(self) -> bool: ...
+
+    async def get_param(self, name: str) -> tuple[float | int, str]: ...
+
+    async def set_param(self, name: str, value: float | int) -> tuple[float | int, str]: ...
+
+    async def list_params(self) -> dict[str, float | int]: ...
+
+
+class VehicleDirectory(Protocol):
+    """Finding vehicles: what the Commander needs of the registry."""
+
+    def get(self, vehicle_id: str) -> FlyingVehicle:
+        """The vehicle; UnknownVehicle (listing the known ids) otherwise."""
+
+    def all(self) -> Sequence[FlyingVehicle]: ...
+
+
+class VehicleRegistry(VehicleDirectory, Protocol):
+    """The whole registry as the runtime and the REST API use it (the real one is
+    `gateway.fleet.registry.Registry`)."""
+
+    async def start(self) -> None: ...
+
+    async def stop(self) -> None: ...
+
+    async def add(self, spec: VehicleSpec, connect: bool = True) -> FlyingVehicle: ...
+
+    async def update(self, vehicle_id: str, **changes: Any) -> FlyingVehicle: ...
+
+    async def remove(self, vehicle_id: str) -> None: ...
+
+    async def connect(self, vehicle_id: str) -> FlyingVehicle: ...
+
+    async def disconnect(self, vehicle_id: str) -> FlyingVehicle: ...

@@ -1,0 +1,90 @@
+"""Reading a vehicle's telemetry cache: values, their age, and the few derived facts every caller needs.
+
+Two kinds of read: ``value`` takes whatever the cache holds (for trackers following a flight, which
+judge staleness themselves), ``fresh`` only a value younger than the stale limit while the link is live
+(for decisions: the safety policy never judges stale data as current).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.safety import VehicleContext
+from gateway.link.telemetry import Sample
+
+
+def sample(vehicle: FlyingVehicle, name: str) -> Sample[Any] | None:
+    found: Sample[Any] | None = getattr(vehicle.telemetry, name)
+    return found
+
+
+def value(vehicle: FlyingVehicle, name: str) -> Any:
+    """The cached value of stream ``name`` (None when never received), however old."""
+    found = sample(vehicle, name)
+    return None if found is None else found.value
+
+
+def age_s(vehicle: FlyingVehicle, name: str) -> float | None:
+    found = sample(vehicle, name)
+    return None if found is None else float(found.age_s)
+
+
+def is_stale(vehicle: FlyingVehicle, age: float, limit_s: float) -> bool:
+    """A cached value is stale when older than ``limit_s``, and every value is while the link is lost
+    (even one that arrived just after the last heartbeat)."""
+    return age > limit_s or not vehicle.telemetry.live
+
+
+def position(vehicle: FlyingVehicle) -> tuple[float, float, float] | None:
+    """(lat, lon, alt_rel_m) from the cache, or None."""
+    pos = value(vehicle, "position")
+    if pos is None:
+        return None
+    return float(pos.lat_deg), float(pos.lon_deg), float(pos.rel_alt_m)
+
+
+def home(vehicle: FlyingVehicle) -> tuple[float, float, float] | None:
+    """(lat, lon, alt_amsl_m) of home from the cache, or None."""
+    h = value(vehicle, "home")
+    if h is None:
+        return None
+    return float(h.lat_deg), float(h.lon_deg), float(h.abs_alt_m)
+
+
+def ground_speed(vehicle: FlyingVehicle) -> float | None:
+    v = value(vehicle, "velocity_ned")
+    if v is None:
+        return None
+    return math.hypot(float(v.north_mps), float(v.east_mps))
+
+
+def climb_rate(vehicle: FlyingVehicle) -> float | None:
+    v = value(vehicle, "velocity_ned")
+    return None if v is None else -float(v.down_mps)
+
+
+def is_landed_and_disarmed(vehicle: FlyingVehicle) -> bool:
+    return value(vehicle, "armed") is False and value(vehicle, "in_air") is False
+
+
+def is_flying(vehicle: FlyingVehicle) -> bool:
+    """Armed and in the air, as far as the cache says."""
+    return value(vehicle, "in_air") is True and value(vehicle, "armed") is True
+
+
+def vehicle_context(vehicle: FlyingVehicle) -> VehicleContext:
+    """What the safety policy judges, from fresh telemetry only (stale or missing values are None):
+    the one builder, for every door (MCP, REST, console, cluster)."""
+    fresh = vehicle.telemetry.fresh
+    battery, h, pos = fresh("battery"), fresh("home"), fresh("position")
+    return VehicleContext(
+        vehicle_id=vehicle.id,
+        is_simulator=bool(vehicle.is_simulator),
+        armed=bool(fresh("armed")),
+        in_air=bool(fresh("in_air")),
+        battery_pct=None if battery is None else battery.remaining_pct,
+        home=None if h is None else (float(h.lat_deg), float(h.lon_deg), float(h.abs_alt_m)),
+        position=None if pos is None else (float(pos.lat_deg), float(pos.lon_deg), float(pos.rel_alt_m)),
+    )

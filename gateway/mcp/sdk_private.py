@@ -1,0 +1,47 @@
+"""The only place the gateway reaches into the MCP SDK's private attributes, and why.
+
+``mcp`` 2.x has no public way to
+
+- get at a registered tool's ``Tool`` object (its advertised ``parameters`` schema, its ``run``): the
+  gateway shortens the advertised schemas (titles, optional nulls, the policy's limits) and validates
+  arguments first to answer with one line per bad argument. ``MCPServer.list_tools()`` returns copies
+  in wire form, and ``add_tool()`` returns nothing;
+- register a handler for ``resources/subscribe`` / ``resources/unsubscribe`` on an ``MCPServer``:
+  2025-era clients subscribe that way, and the SDK's ``subscriptions`` bus serves only 2026-07-28
+  ``subscriptions/listen`` (see /work/shared/MCP-NOTES.md, resources).
+
+Each use is one function here, so an SDK upgrade that adds a public way changes this file only.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Awaitable, Callable
+from typing import Any
+
+from mcp.server.mcpserver import MCPServer
+from mcp.server.mcpserver.tools import Tool
+
+
+def tools(server: MCPServer[Any]) -> list[Tool]:
+    """The registered tools, as the server keeps them (mutable)."""
+    return list(server._tool_manager.list_tools())
+
+
+def tool(server: MCPServer[Any], name: str) -> Tool:
+    found = server._tool_manager.get_tool(name)
+    if found is None:
+        raise KeyError(f"no tool named {name!r} is registered")
+    return found
+
+
+def replace_run(tool: Tool, run: Callable[..., Awaitable[Any]]) -> None:
+    """Put a wrapper in place of a tool's ``run`` (``Tool`` is a pydantic model that refuses new values
+    for its methods through ``__setattr__``)."""
+    object.__setattr__(tool, "run", run)
+
+
+def add_request_handler(
+    server: MCPServer[Any], method: str, params_type: type[Any], handler: Callable[..., Awaitable[Any]]
+) -> None:
+    """A handler for a request method the ``MCPServer`` layer does not expose."""
+    server._lowlevel_server.add_request_handler(method, params_type, handler)

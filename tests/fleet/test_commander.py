@@ -1,0 +1,90 @@
+"""The Commander's seam: every verb by name with JSON arguments and a JSON result, waiting as a separate
+step, and the door deciding the policy. The real Gateway (store, policy, operations) over fake drones."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import AsyncIterator
+from pathlib import Path
+
+import pytest
+
+from gateway.errors import InvalidArgument, SafetyRefusal
+from gateway.fleet import geo
+from gateway.fleet.caller import Caller
+from gateway.fleet.commander import VERBS, Commander
+from gateway.fleet.views import OperationView
+from gateway.runtime import Gateway
+from tests.fakes import HOME, fake, fake_gateway, spread, unit_settings
+
+AGENT = Caller(via="mcp", principal="agent-1", session="s1")
+OPERATOR = Caller(via="rest", principal="operator-1", session="rest:operator-1")
+
+
+@pytest.fixture
+async def gateway(tmp_path: Path) -> AsyncIterator[Gateway]:
+    async with fake_gateway(unit_settings(tmp_path, mcp_wait_cap_s=10.0), spread(2)) as gw:
+        yield gw
+
+
+async def test_a_verb_by_name_takes_and_gives_json_and_waiting_is_separate(gateway: Gateway) -> None:
+    commander = gateway.commander
+    started = await commander.call("takeoff", AGENT, drone_id="d1", altitude_m=10)
+    assert json.loads(json.dumps(started)) == started  # plain JSON, ready to cross a process boundary
+    assert started["kind"] == "takeoff" and started["status"] == "running"
+    progress: list[float] = []
+
+    async def on_progress(view: OperationView) -> None:
+        progress.append(view.progress)
+
+    done = await commander.wait(started["operation_id"], 10.0, on_progress)
+    assert done.status == "succeeded" and progress, done
+    lat, lon = geo.offset_position(HOME[0], HOME[1], 30.0, 0.0)
+    goto = await commander.call("goto", AGENT, drone_id="d1", lat_deg=lat, lon_deg=lon, altitude_m=12)
+    assert OperationView.model_validate(goto).kind == "goto"
+    assert (await commander.wait(goto["operation_id"], 10.0)).status == "succeeded"
+    page = await commander.call("list_params", AGENT, drone_id="d1", prefix="rtl")
+    assert page["params"] == {"RTL_ALT": 1500.0} and page["next_offset"] is None
+    assert fake(gateway, "d1").sent[:2] == [("takeoff", 10.0), ("goto", lat, lon, 12.0)]
+
+
+async def test_unknown_verbs_and_bad_arguments_are_named_and_send_nothing(gateway: Gateway) -> None:
+    commander = gateway.commander
+    with pytest.raises(InvalidArgument, match=r"unknown verb 'fly'; verbs: .*takeoff"):
+        await commander.call("fly", AGENT, drone_id="d1")
+    with pytest.raises(InvalidArgument, match="invalid arguments for takeoff: altitude_m: Field required"):
+        await commander.call("takeoff", AGENT, drone_id="d1")
+    with pytest.raises(InvalidArgument, match="speed: Extra inputs are not permitted"):
+        await commander.call("set_speed", AGENT, drone_id="d1", speed_mps=5, speed=3)
+    with pytest.raises(InvalidArgument, match="via must be one of mcp, rest, console, cluster"):
+        Caller(via="radio", principal="x")  # type: ignore[arg-type]
+    assert fake(gateway, "d1").sent == []
+
+
+async def test_the_door_decides_locks_and_the_takeoff_guard(gateway: Gateway) -> None:
+    commander: Commander = gateway.commander
+    await commander.lock(OPERATOR, "d2", "battery swap")
+    with pytest.raises(SafetyRefusal, match="operator_lock: drone d2 is locked by operator-1: battery swap"):
+        await commander.call("takeoff", AGENT, drone_id="d2", altitude_m=10)
+    with pytest.raises(SafetyRefusal, match="only an operator may unlock"):
+        await commander.call("unlock", AGENT, scope="d2")
+    fake(gateway, "d2").speed = 2.0  # a slow climb: the calls below surely land inside it
+    climbing = await commander.call("takeoff", OPERATOR, drone_id="d2", altitude_m=60)  # locks bind agents
+    await commander.unlock(OPERATOR, "d2")
+    lat, lon = geo.offset_position(HOME[0], HOME[1], 30.0, 10.0)
+    goto = {"drone_id": "d2", "lat_deg": lat, "lon_deg": lon, "altitude_m": 60}
+    with pytest.raises(SafetyRefusal, match="takeoff_in_progress: d2 is still taking off"):
+        await commander.call("goto", AGENT, **goto)
+    assert commander.operation(climbing["operation_id"]).status == "running"
+    # an operator (here the console) may interrupt the climb: its goto supersedes the takeoff
+    moved = await commander.call("goto", Caller("console", "bob"), **goto)
+    assert moved["kind"] == "goto" and commander.operation(climbing["operation_id"]).status == "superseded"
+
+
+def test_the_verb_table_names_every_verb_of_the_issue() -> None:
+    wanted = {"takeoff", "goto", "move_relative", "reposition", "land", "return_to_launch", "hold", "set_yaw",
+              "set_speed", "set_mode", "arm", "disarm", "kill", "upload_mission", "download_mission",
+              "clear_mission", "start_mission", "pause_mission", "resume_mission", "set_current_item",
+              "get_param", "set_param", "list_params", "formation_goto", "fleet_takeoff", "fleet_land",
+              "fleet_return_to_launch", "fleet_hold", "stop_all"}  # fmt: skip
+    assert wanted <= set(VERBS), wanted - set(VERBS)
