@@ -176,7 +176,7 @@ async def ground_checks(t: Tour, d: str) -> None:
     assert (await t.ok("get_armed", drone_id=d))["value"] is False
     assert (await t.ok("get_in_air", drone_id=d))["value"] is False
     assert (await t.ok("get_landed_state", drone_id=d))["value"] == "ON_GROUND"
-    assert (await t.ok("get_health_all_ok", drone_id=d))["value"] is True
+    await t.until("get_health_all_ok", lambda r: r["value"] is True, 30, "health all ok", drone_id=d)
     health = (await t.ok("get_health", drone_id=d))["data"]
     assert health["global_position_ok"] and health["home_position_ok"], health
     gps = await t.ok("get_gps_info", drone_id=d)
