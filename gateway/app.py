@@ -1,4 +1,4 @@
-"""The one ASGI app of the gateway: REST under /api/v1, /healthz, /readyz, /metrics, /docs, and /mcp.
+"""The one ASGI app of the gateway: REST under /api/v1, /healthz, /readyz, /metrics, /docs, /console, /mcp.
 
 ``create_app(settings)`` builds the app and its :class:`~gateway.runtime.Gateway` (``app.state.gateway``),
 which the lifespan starts (database migrated and opened, vehicles restored) and stops (every sidecar
@@ -21,6 +21,7 @@ from gateway.api.docs import install_docs
 from gateway.api.errors import install_error_handlers
 from gateway.api.limits import BodyLimitMiddleware
 from gateway.config import Settings, get_settings
+from gateway.console import install_console
 from gateway.mcp.server import build_mcp, mcp_http_app
 from gateway.runtime import Gateway, RegistryFactory
 
@@ -64,6 +65,7 @@ def create_app(settings: Settings | None = None, registry_factory: RegistryFacto
     app.include_router(health.router)
     app.include_router(metrics.router)
     app.include_router(build_api_router())
+    install_console(app)
     mount_mcp(app, gateway, hooks)  # last: after the REST routes
     return app
 

@@ -141,6 +141,17 @@ class Settings(BaseSettings):
     viewer_tokens: str = Field("", description="Comma-separated bearer tokens with the viewer role.")
     agent_tokens: str = Field("", description="Comma-separated bearer tokens for MCP agents.")
 
+    # --- operator console ---------------------------------------------------------------------------
+    console_tiles_url: str | None = Field(
+        None,
+        description="Map tile URL template of the /console map, e.g. "
+        "https://tile.example.org/{z}/{x}/{y}.png (the browser fetches the tiles); unset: the map is "
+        "drawn without tiles, in metres around the fleet's home (works offline).",
+    )
+    console_tiles_attribution: str = Field(
+        "", description="Attribution the tile server's licence asks for, shown in a corner of the map."
+    )
+
     # --- flight log -------------------------------------------------------------------------------
     track_sample_hz: float = Field(
         1.0, gt=0, le=10, description="Track samples recorded per second in flight."
@@ -155,6 +166,19 @@ class Settings(BaseSettings):
         if unknown:
             raise ValueError(f"unknown toolset(s) {unknown}; known: {list(ALL_TOOLSETS)}")
         return ",".join(names)
+
+    @field_validator("console_tiles_url")
+    @classmethod
+    def _tile_template(cls, value: str | None) -> str | None:
+        if value is None or not value.strip():
+            return None
+        missing = [p for p in ("{z}", "{x}", "{y}") if p not in value]
+        if missing or not value.startswith(("http://", "https://", "/")):
+            raise ValueError(
+                f"must be an http(s) URL (or a path on this server) with {{z}}, {{x}} and {{y}} in it, "
+                f"e.g. https://tile.example.org/{{z}}/{{x}}/{{y}}.png; got {value!r}"
+            )
+        return value.strip()
 
     @property
     def toolsets(self) -> list[str]:

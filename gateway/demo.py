@@ -20,6 +20,7 @@ CONNECT_HELP = """\
 fleet-gateway is running with {count} simulated drones: {drones}
   MCP endpoint (Streamable HTTP): {mcp_url}
   REST API for operators:         {api_url}/api/v1/vehicles   (OpenAPI docs: {api_url}/docs)
+  operator console (browser):     {api_url}/console
   database and logs:              {workdir}  ({kept})
 
 Connect an MCP client:

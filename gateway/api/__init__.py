@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Depends
 
-from gateway.api import activity, control, flights, flying, geofences, vehicles
+from gateway import console
+from gateway.api import activity, control, events, flights, flying, geofences, vehicles
 from gateway.api.deps import authorize
 
 API_PREFIX = "/api/v1"
@@ -19,4 +20,6 @@ def build_api_router() -> APIRouter:
     api.include_router(control.router)
     api.include_router(flying.router)
     api.include_router(geofences.router)
+    api.include_router(events.router)
+    api.include_router(console.router)
     return api

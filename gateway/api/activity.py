@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
-from typing import Annotated
+from datetime import datetime
+from typing import Annotated, Any
 
 from fastapi import APIRouter, Query
 
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import MAX_ROW, StoreDep
-from gateway.api.schemas import AuditPage, OperationList, SessionList
+from gateway.api.schemas import AuditPage, OperationList, SessionList, as_utc
+from gateway.errors import InvalidArgument
 from gateway.registry.store import OperationStatus, SessionKind
 
 router = APIRouter(route_class=AuditedRoute)
@@ -31,11 +33,21 @@ async def list_audit(
     store: StoreDep,
     vehicle_id: Annotated[str | None, Query(max_length=32)] = None,
     session_key: Annotated[str | None, Query(max_length=200)] = None,
+    since: Annotated[datetime | None, Query(description="Only entries at or after this time.")] = None,
+    until: Annotated[datetime | None, Query(description="Only entries at or before this time.")] = None,
+    include_fleet: Annotated[
+        bool,
+        Query(description="With vehicle_id: also the entries that name no single vehicle (fleet tools)."),
+    ] = False,
     limit: Annotated[int, Query(ge=1, le=1000)] = 100,
     offset: Annotated[int, Query(ge=0, le=MAX_ROW)] = 0,
 ) -> AuditPage:
-    items = await store.list_audit(vehicle_id=vehicle_id, session_key=session_key, limit=limit, offset=offset)
-    total = await store.count_audit(vehicle_id=vehicle_id, session_key=session_key)
+    since, until = as_utc(since), as_utc(until)
+    if since is not None and until is not None and since > until:
+        raise InvalidArgument(f"since ({since.isoformat()}) is after until ({until.isoformat()})")
+    where: dict[str, Any] = {"since": since, "until": until, "include_fleet": include_fleet}
+    items = await store.list_audit(vehicle_id, session_key, limit, offset, **where)
+    total = await store.count_audit(vehicle_id, session_key, **where)
     return AuditPage(items=items, total=total, limit=limit, offset=offset)
 
 

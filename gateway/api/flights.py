@@ -10,7 +10,7 @@ from fastapi.responses import JSONResponse
 
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import MAX_ROW, StoreDep
-from gateway.api.schemas import FlightPage, as_utc
+from gateway.api.schemas import FlightPage, StatusTextList, as_utc
 from gateway.errors import InvalidArgument, NotFound
 from gateway.registry.store import FlightRecord, Store, TrackSample
 
@@ -84,3 +84,18 @@ async def flight_track(flight_id: FlightId, store: StoreDep) -> JSONResponse:
     flight = await _flight(store, flight_id)
     track = await store.get_track(flight_id)
     return JSONResponse(track_feature(flight, track), media_type=GEOJSON_MEDIA_TYPE)
+
+
+@router.get(
+    "/{flight_id}/statustexts",
+    response_model=StatusTextList,
+    summary="The STATUSTEXT messages received during a flight, oldest first",
+)
+async def flight_status_texts(
+    flight_id: FlightId,
+    store: StoreDep,
+    limit: Annotated[int, Query(ge=1, le=1000, description="At most this many (the first ones).")] = 500,
+) -> StatusTextList:
+    flight = await _flight(store, flight_id)
+    items = await store.list_flight_status_texts(flight_id, limit=limit)
+    return StatusTextList(vehicle_id=flight.vehicle_id, items=items)

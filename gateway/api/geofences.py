@@ -66,7 +66,7 @@ def _policy(gateway: Gateway) -> SafetyPolicy:
     return gateway.require_safety()
 
 
-def _out(gateway: Gateway) -> GeofencesOut:
+def geofences_out(gateway: Gateway) -> GeofencesOut:
     zones = sorted(_policy(gateway).geofences, key=lambda z: (z.scope != FLEET, z.scope, z.name))
     return GeofencesOut(features=[_feature(z) for z in zones], persisted=bool(gateway.settings.geofence_file))
 
@@ -119,12 +119,12 @@ def _replace(gateway: Any, scope: str, zones: list[Zone], who: str) -> Geofences
     policy.geofences = fences
     what = "the fleet" if scope == FLEET else scope
     log.warning("operator %s set %d geofence zone(s) for %s", who, len(zones), what)
-    return _out(gateway)
+    return geofences_out(gateway)
 
 
 @router.get("/geofences", response_model=GeofencesOut, summary="All geofence zones (fleet and per drone)")
 async def list_geofences(gateway: GatewayDep) -> GeofencesOut:
-    return _out(gateway)
+    return geofences_out(gateway)
 
 
 @router.put("/fleet/geofences", response_model=GeofencesOut, summary="Replace the fleet-wide geofence zones")

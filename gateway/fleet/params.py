@@ -7,6 +7,10 @@
 * Each parameter has its own type; reading with the wrong getter gives WRONG_TYPE, so the type is
   detected once and remembered, and writes use it.
 * The full list (~1000+ names) is fetched once and cached with its time.
+* Neither autopilot refuses a value outside a parameter's range: ArduPilot clamps an integer to its
+  type (FENCE_ENABLE is 8-bit: 1000 is stored as 127; through MAVSDK, which casts to the type it
+  learnt, as -24) and says nothing. Integers are read back after a
+  write; a value that did not stick is put back and refused.
 """
 
 from __future__ import annotations
@@ -21,6 +25,11 @@ from gateway.errors import CommandFailed, InvalidArgument
 
 PARAM_TIMEOUT_S = 6.0  # MAVSDK gives up on a param after ~3 s
 PARAM_LIST_TIMEOUT_S = 60.0
+
+INT32_RANGE = (-(2**31), 2**31 - 1)  # MAVSDK's set_param_int carries an int32
+#: what the autopilot answers for a name it does not have: nothing (ArduPilot up to 4.6, MAVSDK times
+#: out) or PARAM_ERROR (newer ArduPilot)
+_NO_SUCH_PARAMETER = ("TIMEOUT", "DOES_NOT_EXIST")
 
 PARAM_NAME = re.compile(r"^[A-Za-z0-9_]{1,16}$")
 _RENAMES = {"SYSID_THISMAV": "MAV_SYSID", "SYSID_MYGCS": "MAV_GCS_SYSID"}
@@ -78,7 +87,7 @@ class Parameters:
                 result = exc.details.get("result")
                 if result == "WRONG_TYPE":
                     continue
-                if result in ("TIMEOUT", "DOES_NOT_EXIST"):
+                if result in _NO_SUCH_PARAMETER:
                     return None
                 raise
             self._types[name] = k
@@ -110,17 +119,25 @@ class Parameters:
         name = check_param_name(name)
         if not isinstance(value, int | float) or isinstance(value, bool) or not math.isfinite(value):
             raise InvalidArgument(f"parameter value must be a finite number; got {value!r}")
-        _current, kind = await self.get(name)
+        current, kind = await self.get(name)
         real = self._names.get(name, name)
         system = self._system()
         stored: Value
         if kind == "int":
             if float(value) != int(value):
                 raise InvalidArgument(f"parameter {real} is an integer; got {value!r}")
+            if not INT32_RANGE[0] <= int(value) <= INT32_RANGE[1]:
+                low, high = INT32_RANGE
+                raise InvalidArgument(f"parameter {real} is a 32-bit integer ({low}..{high}); got {value!r}")
             stored = int(value)
-            await self._call(
-                f"write parameter {real}", system.param.set_param_int(real, stored), PARAM_TIMEOUT_S
-            )
+            await self._write_int(system, real, stored)
+            got, _kind = await self._read(system, real) or (stored, kind)
+            if got != stored:  # clamped to the parameter's type: put the old value back
+                await self._write_int(system, real, int(current))
+                raise InvalidArgument(
+                    f"parameter {real} cannot hold {stored}: drone '{self.vehicle_id}' stored {got} (the "
+                    f"value does not fit its type), so it was set back to {current}; give a value that fits"
+                )
         else:
             stored = float(value)
             await self._call(
@@ -129,6 +146,9 @@ class Parameters:
         if self._cache is not None:
             self._cache[real] = stored
         return stored, kind
+
+    async def _write_int(self, system: Any, name: str, value: int) -> None:
+        await self._call(f"write parameter {name}", system.param.set_param_int(name, value), PARAM_TIMEOUT_S)
 
     async def all(self, max_age_s: float | None = None) -> dict[str, Value]:
         """Every parameter, fetched once and cached; ``max_age_s`` refetches an older copy."""

@@ -30,6 +30,7 @@ from gateway.fleet.dialects import protected_params as every_protected_param
 from gateway.fleet.mission import MissionItem, WirePlan
 from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.params import Parameters
+from gateway.link import refusals
 from gateway.link.session import ConnectionState, Link, Peer
 from gateway.link.sidecar import Confine, Sidecar
 from gateway.link.telemetry import MissionProgressValue, StatusTextValue, TelemetryCache
@@ -134,6 +135,12 @@ class Vehicle:
     @property
     def sessions(self) -> int:
         return self.link.sessions
+
+    @property
+    def current_flight_id(self) -> int | None:
+        """The id of the flight being recorded (armed now), None on the ground or while not connected."""
+        recorder = self._recorder
+        return recorder.flight.id if recorder is not None and recorder.flight is not None else None
 
     @property
     def last_heartbeat_age_s(self) -> float | None:
@@ -252,27 +259,28 @@ class Vehicle:
                 await self.link.call("arm", system.action.arm())
                 return
             except CommandFailed as exc:
-                said = self.link.latest_complaint(since=attempt_at - 1.0)
-                passing = said is not None and dialect.arming_will_pass(said)
+                said = self.link.said_since(attempt_at)
+                passing = bool(said) and all(dialect.arming_will_pass(text) for text in said)
                 if not passing or loop.time() + ARM_RETRY_S > deadline:
                     raise self._arm_refusal(exc, said, waited=passing) from None
-            log.info("%s: arming refused while initialising (%s); retrying", self.id, said)
+            log.info("%s: arming refused while initialising (%s); retrying", self.id, "; ".join(said))
             await asyncio.sleep(ARM_RETRY_S)
 
-    def _arm_refusal(self, exc: CommandFailed, said: str | None, waited: bool) -> CommandFailed:
-        if said is None:
+    def _arm_refusal(self, exc: CommandFailed, said: list[str], waited: bool) -> CommandFailed:
+        if not said:
             return exc
         gps = self.telemetry.fresh("gps_info")
         facts = f"GPS {gps.fix_type}, {gps.num_satellites} satellites" if gps is not None else "no GPS report"
+        words = refusals.quoted(said)
         if waited:
             return CommandFailed(
-                f"drone '{self.id}' cannot arm yet: autopilot says '{said}' ({facts}; still refused after "
+                f"drone '{self.id}' cannot arm yet: autopilot says {words} ({facts}; still refused after "
                 f"{ARMABLE_WAIT_S:g} s); call again in a few seconds or check fleet_status",
                 vehicle_id=self.id,
                 result=exc.details.get("result"),
             )
         return CommandFailed(
-            f"drone '{self.id}' refused to arm: autopilot says '{said}' ({facts})",
+            f"drone '{self.id}' refused to arm: autopilot says {words} ({facts})",
             vehicle_id=self.id,
             result=exc.details.get("result"),
         )

@@ -35,6 +35,7 @@ from mavsdk_grpc import System
 
 from gateway.config import Settings
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
+from gateway.link import refusals
 from gateway.link.rawlink import (
     MAV_RESULT,
     MAV_RESULT_ACCEPTED,
@@ -63,7 +64,6 @@ MAV_CMD_REQUEST_MESSAGE = 512
 MAVLINK_MSG_MISSION_CURRENT = 42
 MAVLINK_MSG_EKF_STATUS_REPORT = 193
 MAVLINK_MSG_SIMSTATE = 164
-COMPLAINT_SEVERITIES = ("warning", "error", "critical", "alert", "emergency")
 
 
 class ConnectionState(enum.StrEnum):
@@ -94,6 +94,10 @@ class LinkRules(Protocol):
 
     def position_estimate_ok(self, health: HealthValue, ekf_flags: int | None) -> bool:
         """Whether the autopilot's position estimate is good enough to arm and fly."""
+        ...
+
+    def on_ground(self, telemetry: TelemetryCache) -> bool | None:
+        """Whether the vehicle is on the ground (None: no fresh telemetry says)."""
         ...
 
 
@@ -667,7 +671,7 @@ class Link:
             if result is None:
                 raise
             name = getattr(result.result, "name", str(result.result))
-            said = await self._complaint_since(started - 1.0)
+            said = await self._complaint_since(started)
             raise CommandFailed(
                 f"{what} on drone '{self.id}' failed: {result.result_str} ({name})" + said,
                 vehicle_id=self.id,
@@ -697,34 +701,41 @@ class Link:
             name = MAV_RESULT.get(result, str(result))
             raise CommandFailed(
                 f"{what} on drone '{self.id}' refused by the vehicle: {name}"
-                + self.recent_complaint(since=sent_at - 0.5),
+                + await self._complaint_since(sent_at),
                 vehicle_id=self.id,
                 result=name,
             )
 
     def recent_complaint(self, within_s: float = 5.0, since: float | None = None) -> str:
-        """The latest warning-or-worse status text of the last few seconds (or since ``since``, wall
-        clock), to explain a refusal: `` (vehicle says: ...)`` or an empty string."""
-        said = self.latest_complaint(within_s, since)
-        return "" if said is None else f" (vehicle says: {said})"
+        """What the autopilot said (warning or worse) in the last few seconds, or since ``since`` (wall
+        clock), to explain a refusal: `` (autopilot says: 'A'; 'B')`` or "" when it said nothing."""
+        said = self.said_since(time.time() - within_s if since is None else since)
+        return f" (autopilot says: {refusals.quoted(said)})" if said else ""
 
-    async def _complaint_since(self, since: float, grace_s: float = 0.5) -> str:
-        """``recent_complaint`` since ``since``, waiting up to ``grace_s`` for a text to arrive."""
-        for _ in range(int(grace_s / 0.05)):
-            said = self.recent_complaint(since=since)
-            if said:
-                return said
-            await asyncio.sleep(0.05)
-        return self.recent_complaint(since=since)
+    def said_since(self, since: float) -> list[str]:
+        """The autopilot's distinct warning-or-worse texts since ``since`` (wall clock), oldest first."""
+        return refusals.said_since(self.telemetry.status_texts, since)
 
-    def latest_complaint(self, within_s: float = 5.0, since: float | None = None) -> str | None:
-        oldest = time.time() - within_s if since is None else since
-        for item in reversed(self.telemetry.status_texts):
-            if item.t < oldest:
-                break
-            if item.severity in COMPLAINT_SEVERITIES:
-                return " ".join(item.text.split())[:200]
-        return None
+    async def _complaint_since(self, since: float) -> str:
+        """Why the autopilot refused what was sent at ``since``: its texts (waiting briefly for them, as
+        they can follow the result), or what the vehicle was doing when it gave no reason."""
+        said = await refusals.wait_said(lambda: self.telemetry.status_texts, since)
+        return refusals.explain(said, self.describe_facts())
+
+    def describe_facts(self) -> str:
+        """The vehicle's state in a few words, for a refusal the autopilot did not explain."""
+        mode = self.telemetry.fresh("flight_mode")
+        armed = self.telemetry.fresh("armed")
+        on_ground = self.rules.on_ground(self.telemetry)
+        parts = [
+            f"mode {mode}" if mode else "mode unknown",
+            "armed" if armed else "disarmed" if armed is False else "armed state unknown",
+            "on the ground" if on_ground else "in the air" if on_ground is False else "",
+        ]
+        waiting = self.initialising()
+        if waiting:
+            parts.append(waiting)
+        return "it is " + ", ".join(p for p in parts if p)
 
 
 async def _keep(vehicle_id: str, name: str, subscribe: SessionJob, system: System, once: bool) -> None:

@@ -11,7 +11,7 @@ import asyncio
 import logging
 import sys
 import weakref
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from datetime import datetime
 from pathlib import Path
 from typing import Any
@@ -85,6 +85,9 @@ __all__ = [
 ]
 
 log = logging.getLogger(__name__)
+
+#: Called with each audit row this store writes, and again when a row's outcome is finished.
+AuditListener = Callable[[AuditRecord], None]
 
 # The Alembic scripts: the repository's migrations/ (source checkout, editable install), else the copy
 # a wheel installs under <prefix>/share/fleet-gateway/migrations (pyproject's data-files).
@@ -201,6 +204,7 @@ class Store:
         self.url = url
         self._sessions = async_sessionmaker(engine, expire_on_commit=False)
         self._closed = False
+        self._audit_listeners: list[AuditListener] = []
 
     @classmethod
     async def open(cls, url: str, upgrade: bool = True) -> Store:
@@ -428,6 +432,18 @@ class Store:
             rows = (await session.scalars(query)).all()
             return [StatusTextRecord.model_validate(r) for r in reversed(rows)]
 
+    async def list_flight_status_texts(self, flight_id: int, limit: int = 500) -> list[StatusTextRecord]:
+        """The status texts received during a flight, oldest first (at most ``limit``, the first ones)."""
+        query = (
+            select(StatusTextRow)
+            .where(StatusTextRow.flight_id == flight_id)
+            .order_by(StatusTextRow.t, StatusTextRow.id)
+            .limit(limit)
+        )
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [StatusTextRecord.model_validate(r) for r in rows]
+
     # --- sessions --------------------------------------------------------------------------------
 
     async def touch_session(
@@ -503,6 +519,28 @@ class Store:
 
     # --- audit -----------------------------------------------------------------------------------
 
+    def on_audit(self, listener: AuditListener) -> Callable[[], None]:
+        """Call ``listener`` with every audit row written (or finished) through this store, after it is
+        committed; returns the function that removes it. Listeners run in the writer's task: keep them
+        quick and non-blocking (the live event stream queues the row and returns)."""
+        self._audit_listeners.append(listener)
+
+        def remove() -> None:
+            if listener in self._audit_listeners:
+                self._audit_listeners.remove(listener)
+
+        return remove
+
+    def _audit_written(self, row: AuditRow) -> None:
+        if not self._audit_listeners:
+            return
+        record = AuditRecord.model_validate(row)
+        for listener in list(self._audit_listeners):
+            try:
+                listener(record)
+            except Exception:  # a broken listener must not fail the audited call
+                log.exception("audit listener failed")
+
     async def add_audit(self, entry: AuditEntry) -> int:
         row = AuditRow(
             t=entry.t or utcnow(),
@@ -519,7 +557,8 @@ class Store:
         async with self._sessions.begin() as session:
             session.add(row)
             await session.flush()
-            return int(row.id)
+        self._audit_written(row)
+        return int(row.id)
 
     async def finish_audit(self, row_id: int, outcome: str, error: str | None) -> None:
         """Record how the action of an audit row ended (a call that returned while it was running)."""
@@ -528,13 +567,27 @@ class Store:
             if row is not None:
                 row.outcome = outcome[:16]
                 row.error = error and error[:AUDIT_MAX_ERROR]
+        if row is not None:
+            self._audit_written(row)
 
-    def _audit_conditions(self, vehicle_id: str | None, session_key: str | None) -> list[Any]:
-        conditions = []
+    def _audit_conditions(
+        self,
+        vehicle_id: str | None,
+        session_key: str | None,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        include_fleet: bool = False,
+    ) -> list[Any]:
+        conditions: list[Any] = []
         if vehicle_id is not None:
-            conditions.append(AuditRow.vehicle_id == vehicle_id)
+            same = AuditRow.vehicle_id == vehicle_id
+            conditions.append(or_(same, AuditRow.vehicle_id.is_(None)) if include_fleet else same)
         if session_key is not None:
             conditions.append(AuditRow.session_key == session_key)
+        if since is not None:
+            conditions.append(AuditRow.t >= since)
+        if until is not None:
+            conditions.append(AuditRow.t <= until)
         return conditions
 
     async def list_audit(
@@ -543,11 +596,17 @@ class Store:
         session_key: str | None = None,
         limit: int = 100,
         offset: int = 0,
+        *,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        include_fleet: bool = False,
     ) -> list[AuditRecord]:
-        """Audit entries, newest first."""
+        """Audit entries, newest first; ``since``/``until`` bound their time (inclusive).
+        ``include_fleet`` adds, to a ``vehicle_id`` filter, the rows that name no single vehicle
+        (fleet-wide calls)."""
         query = (
             select(AuditRow)
-            .where(*self._audit_conditions(vehicle_id, session_key))
+            .where(*self._audit_conditions(vehicle_id, session_key, since, until, include_fleet))
             .order_by(AuditRow.t.desc(), AuditRow.id.desc())
             .limit(limit)
             .offset(offset)
@@ -556,9 +615,17 @@ class Store:
             rows = (await session.scalars(query)).all()
             return [AuditRecord.model_validate(r) for r in rows]
 
-    async def count_audit(self, vehicle_id: str | None = None, session_key: str | None = None) -> int:
+    async def count_audit(
+        self,
+        vehicle_id: str | None = None,
+        session_key: str | None = None,
+        *,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        include_fleet: bool = False,
+    ) -> int:
         query = select(func.count()).select_from(AuditRow)
-        query = query.where(*self._audit_conditions(vehicle_id, session_key))
+        query = query.where(*self._audit_conditions(vehicle_id, session_key, since, until, include_fleet))
         async with self._sessions() as session:
             return int((await session.execute(query)).scalar_one())
 

@@ -59,9 +59,10 @@ class CommandHandler:
     def _cmd_400(self, link, msg, is_int):  # MAV_CMD_COMPONENT_ARM_DISARM
         v = self.v
         if msg.param1 == 1:
-            ok, why = v.flight.arm(force=round(msg.param2) == FORCE_ARM_MAGIC)
+            ok, failures = v.flight.arm(force=round(msg.param2) == FORCE_ARM_MAGIC)
             if not ok:
-                v.text(mav.MAV_SEVERITY_CRITICAL, f"Arm: {why}")
+                for failure in failures:  # one text per failing check, as ArduCopter 4.7
+                    v.text(mav.MAV_SEVERITY_CRITICAL, f"Arm: {failure}")
                 return FAILED
             return ACCEPTED
         if msg.param1 == 0:

@@ -18,6 +18,13 @@ if TYPE_CHECKING:
     from gateway.sim.vehicle import SimVehicle
 
 SPOOL_UP_S = 3.5  # motors spool up before lift-off (measured: 0.2 m reached 4.1 s after NAV_TAKEOFF)
+#: ArduCopter's RTL climb leg ends this long after RTL starts even when already at RTL_ALT (an S-curve
+#: leg of no length; measured on SITL: the return starts 1.0-1.1 s after the mode change)
+RTL_CLIMB_MIN_S = 1.0
+#: ArduCopter's S-curve return leg ends (and RTL_LOIT_TIME starts) this long after the vehicle is within
+#: 0.3 m of home: its jerk-limited stop settles slowly (measured on SITL: descent starts 8.7 s after
+#: coming within 1 m of home with RTL_LOIT_TIME 5 s)
+RTL_ARRIVAL_SETTLE_S = 2.4
 LAND_DETECT_S = 2.0  # touchdown -> "Disarming motors" in LAND / RTL / AUTO land (measured 2.1 s)
 YAW_RATE_DPS = 60.0  # ATC_SLEW_YAW default 6000 cdeg/s
 PILOT_DESCENT_FALLBACK = 2.5
@@ -40,6 +47,7 @@ class FlightController(AutoMixin, FailsafeMixin):
         self.rtl_phase: str | None = None
         self.rtl_alt = 0.0
         self.rtl_loiter_until = 0.0
+        self.rtl_started = 0.0
         self.touchdown_t: float | None = None
         self.landed_since = 0.0
         self.land_pause_until = 0.0
@@ -56,6 +64,7 @@ class FlightController(AutoMixin, FailsafeMixin):
         if self.v.mode == Mode.RTL and self._p("RTL_SPEED") > 0 and "h" not in self.speed_override:
             speed_h = self._p("RTL_SPEED") / 100.0
         return Limits(
+            jerk_h=self._p("WPNAV_JERK") if self.v.mode == Mode.RTL and self.rtl_phase == "return" else None,
             speed_h=max(0.2, speed_h),
             speed_up=max(0.1, self.speed_override.get("up", self._p("WPNAV_SPEED_UP") / 100.0)),
             speed_dn=max(0.1, self.speed_override.get("dn", self._p("WPNAV_SPEED_DN") / 100.0)),
@@ -95,16 +104,17 @@ class FlightController(AutoMixin, FailsafeMixin):
 
     # ------------------------------------------------------------------------------------------------
     # arming
-    def arm(self, force: bool) -> tuple[bool, str | None]:
+    def arm(self, force: bool) -> tuple[bool, list[str]]:
+        """Arm (``force``: without checks); a refusal returns every failing check, in ArduPilot's words."""
         v = self.v
         if v.armed:
-            return True, None
+            return True, []
         if not force:
             if v.mode not in _armable_modes(v):
-                return False, "Mode not armable"
-            failure = v.prearm_failure()
-            if failure:
-                return False, failure
+                return False, ["Mode not armable"]
+            failures = v.prearm_failures()
+            if failures:
+                return False, failures
         v.armed = True
         v.landed = True
         self.landed_since = v.t
@@ -112,7 +122,7 @@ class FlightController(AutoMixin, FailsafeMixin):
         v.auto_armed = False
         v.set_home_here()
         v.text(mav.MAV_SEVERITY_INFO, "Arming motors")
-        return True, None
+        return True, []
 
     def disarm(self, reason: str | None = None) -> None:
         v = self.v
@@ -156,6 +166,7 @@ class FlightController(AutoMixin, FailsafeMixin):
                     v.text(mav.MAV_SEVERITY_CRITICAL, "Auto: Missing Takeoff Cmd")
                     return self._mode_failed(mode, "init failed", announce_failure)
         self._enter(mode)
+        v.broadcast(v.heartbeat())  # ArduPilot announces a new mode at once (set_mode sends a HEARTBEAT)
         return True, None
 
     def _mode_failed(self, mode: Mode, why: str, announce: bool) -> tuple[bool, str]:
@@ -186,6 +197,7 @@ class FlightController(AutoMixin, FailsafeMixin):
             self.descending = True
         elif mode == Mode.RTL:
             self.rtl_phase = "climb"
+            self.rtl_started = v.t
             rtl_alt = self._p("RTL_ALT") / 100.0
             self.rtl_alt = max(b.up, self._home_up() + rtl_alt) if rtl_alt > 0 else b.up
         elif mode == Mode.SMART_RTL:
@@ -443,12 +455,13 @@ class FlightController(AutoMixin, FailsafeMixin):
         if v.t < self.land_pause_until:
             b.move_v_velocity(0.0, lim, dt)
             return
-        rel = v.rel_alt()
-        land_alt_low = self._p("LAND_ALT_LOW") / 100.0
+        # ArduCopter's land_run_vertical_control: fast (LAND_SPEED_HIGH or WPNAV_SPEED_DN) high up, slowing
+        # with its square-root controller to reach LAND_ALT_LOW at LAND_SPEED, then LAND_SPEED
+        land_alt_low = max(1.0, self._p("LAND_ALT_LOW") / 100.0)
         high = self._p("LAND_SPEED_HIGH") / 100.0 or lim.speed_dn
-        speed = high if rel > land_alt_low else self._p("LAND_SPEED") / 100.0
-        # slow down smoothly to the final descent rate over the last metres above LAND_ALT_LOW
-        b.move_v_velocity(-max(0.1, speed), lim, dt)
+        slow = max(0.1, self._p("LAND_SPEED") / 100.0)
+        floor = b.up - v.rel_alt() + land_alt_low
+        b.move_v_velocity_to_floor(floor, max(slow, high), slow, lim, dt)
 
     def _pilot_throttle_low(self, dt: float) -> None:
         """Pilot-throttle modes with the SITL RC throttle at minimum: hold position (LOITER/POSHOLD) and
@@ -475,7 +488,8 @@ class FlightController(AutoMixin, FailsafeMixin):
         phase = self.rtl_phase
         if phase == "climb":
             b.move_h_velocity(0.0, 0.0, lim, dt)
-            if abs(b.move_v_to(self.rtl_alt, lim, dt)) < 0.1 and b.ground_speed < 0.2:
+            climbed = abs(b.move_v_to(self.rtl_alt, lim, dt)) < 0.1 and b.ground_speed < 0.2
+            if climbed and v.t - self.rtl_started >= RTL_CLIMB_MIN_S:
                 self.rtl_phase = "return"
         elif phase == "return":
             self.target = (hn, he, self.rtl_alt)
@@ -483,7 +497,7 @@ class FlightController(AutoMixin, FailsafeMixin):
                 self._face(hn, he, dt)
             if self._fly_to_target(dt) < 0.3:
                 self.rtl_phase = "loiter"
-                self.rtl_loiter_until = v.t + self._p("RTL_LOIT_TIME") / 1000.0
+                self.rtl_loiter_until = v.t + RTL_ARRIVAL_SETTLE_S + self._p("RTL_LOIT_TIME") / 1000.0
         elif phase == "loiter":
             self._hold(dt)
             if v.t >= self.rtl_loiter_until:

@@ -52,6 +52,9 @@ class Limits:
     speed_dn: float = 1.5
     accel_h: float = 2.5
     accel_v: float = 1.0
+    #: horizontal jerk limit (m/s^3) while speeding up, for legs ArduPilot plans as S-curves (WPNAV_JERK
+    #: in RTL); None: the acceleration limit applies at once (GUIDED repositions)
+    jerk_h: float | None = None
 
 
 @dataclass
@@ -76,9 +79,13 @@ class Body:
         self.accel_n = self.accel_e = 0.0
 
     # -- horizontal -------------------------------------------------------------------------------
-    def _apply_h(self, want_n: float, want_e: float, accel: float, dt: float) -> None:
+    def _apply_h(
+        self, want_n: float, want_e: float, accel: float, dt: float, jerk: float | None = None
+    ) -> None:
         dvn, dve = want_n - self.vn, want_e - self.ve
         dv = math.hypot(dvn, dve)
+        if jerk is not None and math.hypot(want_n, want_e) > self.ground_speed:  # speeding up: S-curve
+            accel = min(accel, math.hypot(self.accel_n, self.accel_e) + jerk * dt)
         max_dv = accel * dt
         if dv > max_dv > 0:
             dvn, dve = dvn * max_dv / dv, dve * max_dv / dv
@@ -100,13 +107,26 @@ class Body:
         if speed * dt >= dist:
             speed = dist / dt
         want_n, want_e = (dn / dist * speed, de / dist * speed) if dist > 0 else (0.0, 0.0)
-        self._apply_h(want_n, want_e, lim.accel_h, dt)
+        self._apply_h(want_n, want_e, lim.accel_h, dt, lim.jerk_h)
         return math.hypot(north - self.north, east - self.east)
 
     def move_h_velocity(self, vn: float, ve: float, lim: Limits, dt: float) -> None:
         self._apply_h(vn, ve, lim.accel_h, dt)
 
     # -- vertical ---------------------------------------------------------------------------------
+    def move_v_velocity_to_floor(
+        self, floor_up: float, fast: float, slow: float, lim: Limits, dt: float, kp: float = 1.0
+    ) -> None:
+        """Descend at up to ``fast`` m/s, slowing with ArduPilot's square-root controller (gain ``kp``,
+        acceleration ``lim.accel_v``) to reach ``floor_up`` at ``slow`` m/s, then go on at ``slow``."""
+        err = self.up - floor_up
+        linear = lim.accel_v / (kp * kp)
+        if err > linear:
+            rate = math.sqrt(2.0 * lim.accel_v * (err - linear / 2.0))
+        else:
+            rate = kp * max(0.0, err)
+        self._apply_v(-min(fast, max(slow, rate)), lim.accel_v, dt)
+
     def _apply_v(self, want: float, accel: float, dt: float) -> None:
         dv = want - self.vu
         max_dv = accel * dt

@@ -31,21 +31,25 @@ log = logging.getLogger(__name__)
 
 @dataclass(frozen=True)
 class Timeline:
-    """Boot milestones of ArduCopter SITL (seconds after process start, measured at speedup 1)."""
+    """Boot milestones of ArduCopter SITL (simulated seconds since boot). Measured with
+    ``bench/readiness.py --real`` on ArduCopter 4.7-dev SITL (see docs/simulator.md): the same at
+    speed-up 1 and 5 within 0.2 s except ``accels_ok`` and ``prearm_ok``, about 0.6 s later at 5."""
 
     boot_done: float = 1.8
     baro: float = 1.93
     ready: float = 2.45
-    mag_ok: float = 2.6
+    mag_ok: float = 2.6  # compass and battery monitor healthy
     rc7: float = 2.75
     ekf_init: float = 4.46
-    tilt: float = 5.8
+    tilt: float = 5.8  # from here the EKF has attitude and an altitude estimate
     yaw_align: float = 5.9
     gps_detect: float = 9.8
+    gps_fix: float = 10.1  # 3D fix (GPS_RAW_INT fix_type >= 3; MAVSDK: global/local position ok)
+    accels_ok: float = 12.6  # "Accels inconsistent" until here, then "Gyros inconsistent"
     origin: float = 20.0
     origin2: float = 20.2
-    prearm_ok: float = 22.6
-    ekf_gps: float = 41.6
+    prearm_ok: float = 22.8  # gyros consistent: armable in STABILIZE
+    ekf_gps: float = 41.6  # "EKF3 IMU0 is using GPS": armable in GUIDED, LOITER, AUTO...
 
 
 BOOT_TEXTS = [
@@ -195,7 +199,7 @@ class SimVehicle:
 
     @property
     def gps_has_fix(self) -> bool:
-        return self.gps_detected and not self.gps_lost
+        return self.t >= self.timeline.gps_fix and not self.gps_lost
 
     @property
     def origin_set(self) -> bool:
@@ -265,21 +269,42 @@ class SimVehicle:
 
     def prearm_failure(self, mode: Mode | None = None) -> str | None:
         """First failing pre-arm check for ``mode`` (default: current), as ArduPilot words it."""
+        failures = self.prearm_failures(mode)
+        return failures[0] if failures else None
+
+    def prearm_failures(self, mode: Mode | None = None) -> list[str]:
+        """Every failing pre-arm check for ``mode`` (default: current), in the order ArduCopter 4.7
+        reports them on an arming attempt (one "Arm: ..." text each; measured on SITL, see Timeline)."""
         mode = self.mode if mode is None else mode
+        tl = self.timeline
+        t = self.t
         checks = self.params.get("ARMING_CHECK") != 0
-        if self.t < self.timeline.ekf_init:
-            return "AHRS: not using configured AHRS type"
-        if checks and self.t < self.timeline.prearm_ok:
-            return "Accels inconsistent"
-        if mode in REQUIRES_POSITION and not self.position_ok:
-            return "Need Position Estimate"
+        failures: list[str] = []
+        if t < tl.tilt:
+            failures.append("Need Alt Estimate")
+        if checks and t < tl.accels_ok:
+            failures.append("Accels inconsistent")
+        elif checks and t < tl.prearm_ok:
+            failures.append("Gyros inconsistent")
+        if t < tl.tilt:
+            failures.append("EKF attitude is bad")
+        if checks and t < tl.mag_ok:
+            failures.append("Compass 1 not healthy")
+        if checks and tl.gps_detect <= t < tl.gps_fix:
+            failures.append("GPS 1: Bad fix")
+        elif not self.origin_set:
+            failures.append("AHRS: waiting for home")
+        elif mode in REQUIRES_POSITION and not self.position_ok:
+            failures.append("Need Position Estimate")
+        if checks and t < tl.mag_ok:
+            failures.append("Battery 1 unhealthy")
         if checks:
             battery = self._battery_arming_failure()
             if battery:
-                return f"Battery 1 {battery}"
-        if checks and self.failsafe_gcs:
-            return "GCS failsafe on"
-        return None
+                failures.append(f"Battery 1 {battery}")
+            if self.failsafe_gcs:
+                failures.append("GCS failsafe on")
+        return failures
 
     def _battery_arming_failure(self) -> str | None:
         """AP_BattMonitor_Backend::arming_checks: thresholds compared with the present state, no timer."""

@@ -33,7 +33,12 @@ def test_rest_api_answers_generated_requests_without_server_errors(tmp_path: Pat
     checked: dict[str, int] = {}
     with serve_in_thread(app) as base_url:
         schema = schemathesis.openapi.from_url(f"{base_url}/openapi.json")
-        operations = [result.ok() for result in schema.get_all_operations()]
+        # the live event stream never ends (it is tested in tests/console/test_events_api.py)
+        operations = [
+            op
+            for op in (result.ok() for result in schema.get_all_operations())
+            if op.path != "/api/v1/events"
+        ]
         assert len(operations) >= 20, [op.label for op in operations]
 
         def ensure_drone() -> None:

@@ -46,6 +46,8 @@ class Stack:
     drone_ids: list[str]
     calls: dict[str, int] = field(default_factory=dict)
     figures: dict[str, float] = field(default_factory=dict)
+    #: the bearer token rest() sends (when the gateway has operator tokens)
+    token: str | None = None
 
     @property
     def mcp_url(self) -> str:
@@ -58,7 +60,8 @@ class Stack:
         return await self.sim.control.state(self.index(drone_id))
 
     async def rest(self, path: str, **params: Any) -> Any:
-        async with httpx.AsyncClient(base_url=self.base_url, timeout=30) as http:
+        headers = {"Authorization": f"Bearer {self.token}"} if self.token else {}
+        async with httpx.AsyncClient(base_url=self.base_url, timeout=30, headers=headers) as http:
             r = await http.get(f"/api/v1{path}", params=params)
             r.raise_for_status()
             return r.json()
@@ -88,21 +91,29 @@ def integration_settings(tmp: Path, **overrides: Any) -> Settings:
 
 @contextlib.asynccontextmanager
 async def gateway_stack(
-    tmp: Path, count: int, speedup: float = 8.0, **overrides: Any
+    tmp: Path,
+    count: int,
+    speedup: float = 8.0,
+    *,
+    token: str | None = None,
+    tags: dict[str, list[str]] | None = None,
+    **overrides: Any,
 ) -> AsyncIterator[Stack]:
+    """Drones d1..dN (with ``tags`` by id); ``token`` is what ``Stack.rest`` authenticates with."""
     async with sim_process(count=count, speedup=speedup) as sim:
         settings = integration_settings(tmp, **overrides)
         ids = [f"d{i + 1}" for i in range(count)]
         store = await Store.open(settings.database_url)
         try:
             for vid, url, sysid in zip(ids, sim.urls, sim.sysids, strict=True):
-                await store.add_vehicle(VehicleSpec(id=vid, url=url, expected_sysid=sysid))
+                spec = VehicleSpec(id=vid, url=url, expected_sysid=sysid, tags=(tags or {}).get(vid, []))
+                await store.add_vehicle(spec)
         finally:
             await store.close()
         app = create_app(settings)
         try:
             with serve_in_thread(app) as base_url:
-                stack = Stack(base_url, sim, settings, app, ids)
+                stack = Stack(base_url, sim, settings, app, ids, token=token)
                 await wait_ready(stack)
                 yield stack
         finally:

@@ -29,10 +29,10 @@ from gateway.fleet.modes import canonical
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from tests.api.server import serve_in_thread
+from tests.helpers.autopilots import Autopilot
 from tests.helpers.timing import scaled
 from tests.mcp.conftest import error_text, integration_settings, structured
 from tests.mcp.test_tools_doc import B2_TOOLS
-from tests.real.conftest import Autopilot
 
 DRONE_TOOLS = {*B2_TOOLS, "get_telemetry"}  # the 46 tools that act on one drone
 
@@ -55,6 +55,9 @@ class Profile:
     hold_mode: str  # what get_flight_mode says while holding
     mission_mode: str  # ... while flying the mission
     acceptance_param: str | None = None  # metres within which the autopilot counts a waypoint reached
+    #: the "initialising" reason list_drones and REST must show during boot (None: any "waiting for ...",
+    #: or none at all, as PX4 SIH may be ready before the first look)
+    boot_wait: str | None = None
 
 
 @dataclass
@@ -136,16 +139,52 @@ async def gateway_over(tmp: Path, profile: Profile, autopilots: list[Autopilot],
         async with client as c:
             tour = Tour(c, base_url, profile, ids)
             try:
-                await tour.until(
-                    "list_drones",
-                    lambda r: all(d["state"] == "ready" for d in r["drones"]),
-                    profile.boot_s,
-                    "every drone ready",
-                )
+                last = await boot(tour)
             except AssertionError as exc:
                 logs = "\n".join(f"--- {a.log.name}\n{a.log_tail(15)}" for a in autopilots)
                 raise AssertionError(f"{exc}\n{logs}") from None
+            # "ready" means armable: the drone that was ready last arms at once, in the arming mode
+            await tour.ok("arm_drone", drone_id=last)
+            await tour.until("get_armed", lambda r: r["value"] is True, 15, "armed at once", drone_id=last)
+            await tour.ok("disarm_drone", drone_id=last)
+            await tour.until("get_armed", lambda r: r["value"] is False, 15, "disarmed", drone_id=last)
             yield tour, settings
+
+
+async def boot(t: Tour) -> str:
+    """Wait for every drone to be ready, while list_drones and REST say what each is waiting for (the
+    same words in both); returns the drone that was ready last."""
+    p = t.profile
+    seen: dict[str, list[tuple[str, str | None, str, str | None]]] = {d: [] for d in t.ids}
+    order: list[str] = []
+
+    async def all_ready() -> bool:
+        listed = await t.client.call_tool("list_drones", {})
+        rest = {v["id"]: v for v in (await t.rest("GET", "/vehicles"))["items"]}
+        for row in structured(listed)["drones"]:
+            d, waiting = row["drone_id"], row["initialising"]
+            rest_waiting = (rest[d].get("status") or {}).get("initialising")
+            seen[d].append((row["state"], waiting, rest[d]["state"], rest_waiting))
+            if waiting:
+                assert f"{d} connected ({waiting})" in listed.content[0].text, listed.content[0].text
+            if row["state"] == "ready" and d not in order:
+                order.append(d)
+        return len(order) == len(t.ids)
+
+    loop = asyncio.get_running_loop()
+    deadline = loop.time() + scaled(p.boot_s)
+    while not await all_ready():
+        if loop.time() > deadline:
+            raise AssertionError(f"not every drone ready within {scaled(p.boot_s):g} s: {seen}")
+        await asyncio.sleep(0.3)
+    for d, rows in seen.items():
+        assert rows[-1] == ("ready", None, "ready", None), (d, rows)
+        waits = {w for _s, w, _r, rw in rows for w in (w, rw) if w}
+        assert all(w.startswith("waiting for ") for w in waits), (d, rows)
+    if p.boot_wait is not None:  # seen on a drone (all three may boot before the first look), at both doors
+        expected = ("connected", p.boot_wait, "connected", p.boot_wait)
+        assert any(expected in rows for rows in seen.values()), seen
+    return order[-1]
 
 
 def keep_out_zone(home: dict[str, Any], north_m: float, side_m: float) -> dict[str, Any]:

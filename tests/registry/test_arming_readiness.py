@@ -9,7 +9,7 @@ from collections.abc import AsyncIterator
 
 import pytest
 
-from gateway.errors import CommandFailed
+from gateway.errors import CommandFailed, InvalidArgument
 from gateway.fleet.registry import Registry
 from gateway.fleet.vehicle import ConnectionState, Vehicle
 from gateway.registry.spec import VehicleSpec
@@ -67,3 +67,35 @@ async def test_an_arming_refusal_carries_the_autopilots_words(store, registries)
         )
         assert "GPS FIX_3D" in message or "GPS RTK" in message, message
         assert v.telemetry.fresh("armed") is False
+
+
+async def test_refusals_carry_the_autopilots_words_or_what_the_drone_was_doing(store, registries) -> None:
+    """Every refused command says why: the autopilot's texts, or (when it gave none) the drone's state;
+    never a bare "Failed (FAILED)". Arming at once after "ready" succeeds."""
+    async with one_simulated_drone(store, registries, "ap3") as v:
+        await v.wait_for_state(ConnectionState.READY, within_s=WAIT_S)
+        with pytest.raises(CommandFailed, match=r"drone 'ap3' has no mission to start; upload one first"):
+            await v.start_mission()
+        # out of the parameter's range: the autopilot clamps silently; the gateway refuses and restores
+        with pytest.raises(InvalidArgument, match=r"FENCE_ENABLE cannot hold 1000: drone 'ap3' stored -24"):
+            await v.set_param("FENCE_ENABLE", 1000)
+        assert await v.get_param("FENCE_ENABLE") == (0, "int")
+        with pytest.raises(InvalidArgument, match=r"RTL_ALT is a 32-bit integer"):
+            await v.set_param("RTL_ALT", 1e12)
+
+        await v.arm()  # at once after "ready"
+        await wait_until(lambda: v.telemetry.fresh("armed") is True, what="armed")
+        with pytest.raises(CommandFailed) as refused:  # AUTO without a mission, armed
+            await v.set_flight_mode("MISSION")
+        assert "autopilot says: 'Mode change to AUTO failed: init failed'" in refused.value.message
+
+        await v.takeoff(10)
+        await wait_until(lambda: v.telemetry.fresh("in_air") is True, what="in the air")
+        with pytest.raises(CommandFailed) as silent:  # ArduCopter refuses a disarm in flight without a word
+            await v.disarm()
+        assert silent.value.message == (
+            "disarm on drone 'ap3' failed: Failed (FAILED) "
+            "(the autopilot gave no reason; it is mode GUIDED, armed, in the air)"
+        )
+        await v.land()
+        await wait_until(lambda: v.telemetry.fresh("armed") is False, what="landed and disarmed")

@@ -30,7 +30,7 @@ def _run(v: SimVehicle, predicate, limit_s: float = 300.0) -> float:
 def _flying_guided(v: SimVehicle, alt: float = 10.0) -> None:
     _run(v, lambda: v.position_ok)
     assert v.flight.set_mode(Mode.GUIDED)[0]
-    assert v.flight.arm(force=False) == (True, None)
+    assert v.flight.arm(force=False) == (True, [])
     assert v.flight.takeoff(alt)
     _run(v, lambda: abs(v.rel_alt() - alt) < 0.01 and not v.flight.is_taking_off())
 
@@ -126,7 +126,7 @@ def test_armed_in_stabilize_before_ekf_uses_gps_cannot_fly_guided() -> None:
     v = _vehicle()
     _run(v, lambda: v.prearm_failure() is None)  # current mode: STABILIZE
     assert v.t < v.timeline.ekf_gps
-    assert v.flight.arm(force=False) == (True, None)
+    assert v.flight.arm(force=False) == (True, [])
     assert v.flight.set_mode(Mode.GUIDED) == (False, "requires position")
     assert v.status_texts[-1][2] == "Mode change to GUIDED failed: requires position"
     assert not v.flight.takeoff(10.0)  # still STABILIZE

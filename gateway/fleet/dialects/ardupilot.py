@@ -53,7 +53,7 @@ MAV_CMD_CONDITION_YAW = 115
 MAV_CMD_MISSION_START = 300
 #: arming refusals that go away by themselves while the autopilot initialises (retried within the cap)
 ARM_WAIT_TEXTS = ("position estimate", "ekf", "gps", "waiting", "initialis", "initializ", "heading", "gyros",
-                  "accels", "ahrs", "home")  # fmt: skip
+                  "accels", "ahrs", "home", "alt estimate")  # fmt: skip
 #: arming checks, fences, failsafes, battery failsafe thresholds, system ids (4.x and 4.7 names)
 PROTECTED_PARAMS = (
     "ARMING_*", "FENCE_*", "FS_*", "BATT*_FS_*", "BATT*_LOW_*", "BATT*_CRT_*", "SYSID_*", "MAV_SYSID",

@@ -1,0 +1,129 @@
+"""A JSON picture of the whole fleet at one instant, read from the telemetry caches (no vehicle is asked).
+
+This is what the live event stream (:mod:`gateway.api.events`) sends a few times a second and what the
+operator console draws: per drone its connection state, position, heading, altitude, battery, mode,
+the current operation and flight, the last status texts and its lock; for the fleet the fleet lock
+and the origin of the console's metric map (the first home position known, by drone id).
+
+Values keep their age: a value older than the vehicle's stale limit (or any value while its link is
+down) is sent with ``stale: true`` so the page shows it as last known, never as current.
+"""
+
+from __future__ import annotations
+
+import math
+from datetime import UTC, datetime
+from typing import Any
+
+from gateway.fleet.geofence import FLEET
+
+STATUS_TEXTS_PER_DRONE = 5
+
+
+def _num(value: Any, digits: int) -> float | None:
+    if value is None:
+        return None
+    value = float(value)
+    return round(value, digits) if math.isfinite(value) else None
+
+
+def _sample(cache: Any, name: str) -> tuple[Any, float | None, bool]:
+    """(value, age_s, stale) of one cached stream; (None, None, True) when never received."""
+    sample = getattr(cache, name, None)
+    if sample is None:
+        return None, None, True
+    age = sample.age_s
+    return sample.value, round(age, 2), age > cache.stale_after_s or not cache.live
+
+
+def _position(cache: Any) -> dict[str, Any] | None:
+    pos, age, stale = _sample(cache, "position")
+    if pos is None:
+        return None
+    return {
+        "lat": pos.lat_deg,
+        "lon": pos.lon_deg,
+        "alt_rel_m": _num(pos.rel_alt_m, 2),
+        "alt_amsl_m": _num(pos.abs_alt_m, 2),
+        "age_s": age,
+        "stale": stale,
+    }
+
+
+def _home(cache: Any) -> dict[str, Any] | None:
+    home, _age, _stale = _sample(cache, "home")
+    if home is None:
+        return None
+    return {"lat": home.lat_deg, "lon": home.lon_deg, "alt_amsl_m": _num(home.abs_alt_m, 2)}
+
+
+def _operation(operations: Any, vehicle_id: str) -> dict[str, Any] | None:
+    if operations is None:
+        return None
+    op = operations.latest(vehicle_id)
+    return None if op is None else op.to_dict()
+
+
+def vehicle_view(vehicle: Any, operations: Any, locks: Any) -> dict[str, Any]:
+    cache = vehicle.telemetry
+    value = cache.fresh
+    battery, battery_age, battery_stale = _sample(cache, "battery")
+    velocity = value("velocity_ned")
+    gps = value("gps_info")
+    progress = value("mission_progress")
+    state = vehicle.state
+    return {
+        "id": vehicle.id,
+        "name": vehicle.spec.name,
+        "tags": list(vehicle.spec.tags),
+        "state": str(getattr(state, "value", state)),
+        "initialising": vehicle.initialising(),
+        "last_error": vehicle.last_error,
+        "locked": locks.reason_for(vehicle.id),  # fleet lock included: whether agents may command it
+        "own_lock": _lock_view(locks.get(vehicle.id)),  # this drone's own lock (the one to unlock here)
+        "is_simulator": vehicle.is_simulator,
+        "autopilot": vehicle.autopilot,
+        "position": _position(cache),
+        "home": _home(cache),
+        "heading_deg": _num(value("heading_deg"), 1),
+        "ground_speed_mps": None if velocity is None else _num(velocity.ground_speed_mps, 2),
+        "climb_mps": None if velocity is None else _num(-velocity.down_mps, 2),
+        "battery_pct": None if battery is None else _num(battery.remaining_pct, 1),
+        "battery_v": None if battery is None else _num(battery.voltage_v, 2),
+        "battery_stale": battery_stale,
+        "battery_age_s": battery_age,
+        "flight_mode": value("flight_mode"),
+        "armed": value("armed"),
+        "in_air": value("in_air"),
+        "landed_state": value("landed_state"),
+        "gps": None if gps is None else {"satellites": gps.num_satellites, "fix": gps.fix_type},
+        "mission": None
+        if progress is None
+        else {"current": progress.current, "total": progress.total, "finished": progress.finished},
+        "operation": _operation(operations, vehicle.id),
+        "flight_id": vehicle.current_flight_id,
+        "status_texts": [
+            {"t": item.t, "severity": item.severity, "text": item.text}
+            for item in list(cache.status_texts)[-STATUS_TEXTS_PER_DRONE:]
+        ],
+    }
+
+
+def _lock_view(lock: Any) -> dict[str, Any] | None:
+    if lock is None:
+        return None
+    return {"reason": lock.reason, "by": lock.by, "locked_at": lock.locked_at.isoformat()}
+
+
+def fleet_view(gateway: Any) -> dict[str, Any]:
+    """The fleet now; ``vehicles`` sorted by id, ``origin`` the first known home (None before any)."""
+    registry = gateway.registry
+    vehicles = sorted(registry.all(), key=lambda v: v.id) if registry is not None else []
+    views = [vehicle_view(v, gateway.operations, gateway.locks) for v in vehicles]
+    origin = next(({"lat": v["home"]["lat"], "lon": v["home"]["lon"]} for v in views if v["home"]), None)
+    return {
+        "t": datetime.now(UTC).isoformat(),
+        "fleet_lock": _lock_view(gateway.locks.get(FLEET)),
+        "origin": origin,
+        "vehicles": views,
+    }

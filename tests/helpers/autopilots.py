@@ -1,0 +1,164 @@
+"""Real autopilots (test equipment): ArduCopter SITL and PX4 SIH started from the binaries that
+``eval "$(../shared/sitl/install)"`` points at (``ARDUPILOT_SITL``, ``ARDUPILOT_DEFAULTS``, ``PX4_BUILD``).
+
+Used by the ``tests/real`` fixtures and by benchmarks that compare the simulator with a real autopilot.
+Each autopilot runs on an instance number whose ports are free, in a folder of the caller's, in its own
+process group, and is always stopped (SIGTERM, then SIGKILL)."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import random
+import signal
+import socket
+import subprocess
+import time
+from collections.abc import Callable, Iterator, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+HOME = (-35.363261, 149.165230, 584.0, 353.0)  # lat, lon, alt AMSL, heading: ArduPilot's CMAC
+
+
+class Unavailable(RuntimeError):
+    """The autopilot cannot be started here (variables unset, no free instance); the text says why."""
+
+
+@dataclass
+class Autopilot:
+    url: str  # for mavsdk_server
+    process: subprocess.Popen[bytes]
+    log: Path
+    started_at: float  # time.monotonic() just before the process was started
+
+    def log_tail(self, n: int = 30) -> str:
+        with contextlib.suppress(OSError):
+            return "\n".join(self.log.read_text(errors="replace").splitlines()[-n:])
+        return ""
+
+
+def missing(*names: str) -> str | None:
+    """Why a real autopilot is not available (None when the variables are all set)."""
+    absent = [n for n in names if not os.environ.get(n)]
+    if not absent:
+        return None
+    return (
+        f"real autopilot not available: {', '.join(absent)} unset "
+        '(run eval "$(../shared/sitl/install)" or point them at your own SITL build)'
+    )
+
+
+def ardupilot_missing() -> str | None:
+    return missing("ARDUPILOT_SITL", "ARDUPILOT_DEFAULTS")
+
+
+def px4_missing() -> str | None:
+    return missing("PX4_BUILD")
+
+
+def _tcp_free(port: int) -> bool:
+    with socket.socket() as s:
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            s.bind(("127.0.0.1", port))
+        except OSError:
+            return False
+    return True
+
+
+def _udp_free(port: int) -> bool:
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        try:
+            s.bind(("127.0.0.1", port))
+        except OSError:
+            return False
+    return True
+
+
+def _free_instance(
+    ports: Callable[[int], tuple[int, ...]],
+    check: Callable[[int], bool],
+    instances: range,
+    taken: set[int] | None,
+) -> int:
+    """An instance number whose ports are free and that is not in ``taken`` (the numbers of autopilots
+    just started, whose ports may not be bound yet); added to ``taken``."""
+    for instance in random.sample(instances, len(instances)):
+        if (taken is None or instance not in taken) and all(check(p) for p in ports(instance)):
+            if taken is not None:
+                taken.add(instance)
+            return instance
+    raise Unavailable("no autopilot instance number has its ports free on this host")
+
+
+def _stop(proc: subprocess.Popen[bytes]) -> None:
+    if proc.poll() is None:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(proc.pid, signal.SIGTERM)
+        try:
+            proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait(timeout=10)
+
+
+@contextlib.contextmanager
+def _running(
+    argv: list[str], folder: Path, name: str, env: Mapping[str, str]
+) -> Iterator[tuple[subprocess.Popen[bytes], Path, float]]:
+    """Run an autopilot in ``folder`` (its own process group, output to NAME.log); always stopped."""
+    log = folder / f"{name}.log"
+    with log.open("wb") as out:
+        started = time.monotonic()
+        proc = subprocess.Popen(
+            argv, cwd=folder, env=dict(env), stdout=out, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+            start_new_session=True,
+        )  # fmt: skip
+    try:
+        yield proc, log, started
+    finally:
+        _stop(proc)
+
+
+@contextlib.contextmanager
+def arducopter(
+    folder: Path, speedup: float = 5.0, sysid: int | None = 1, taken: set[int] | None = None
+) -> Iterator[Autopilot]:
+    """ArduCopter SITL (frame +, SITL default parameters), TCP 5760 + 10 * instance; system id ``sysid``
+    (None: the instance number, so that several flying together have distinct ones)."""
+    why = ardupilot_missing()
+    if why:
+        raise Unavailable(why)
+    ports = lambda i: (5760 + 10 * i, 5762 + 10 * i, 5763 + 10 * i)  # noqa: E731
+    instance = _free_instance(ports, _tcp_free, range(1, 40), taken)
+    argv = [
+        os.environ["ARDUPILOT_SITL"], "--model", "+", "--speedup", f"{speedup:g}", f"-I{instance}",
+        "--sysid", str(instance if sysid is None else sysid), "--defaults", os.environ["ARDUPILOT_DEFAULTS"],
+        "--home", ",".join(str(x) for x in HOME),
+    ]  # fmt: skip
+    with _running(argv, folder, f"arducopter-{instance}", os.environ) as (proc, log, started):
+        yield Autopilot(f"tcpout://127.0.0.1:{5760 + 10 * instance}", proc, log, started)
+
+
+@contextlib.contextmanager
+def px4(folder: Path, taken: set[int] | None = None) -> Iterator[Autopilot]:
+    """PX4 SIH (physics inside the autopilot; real time only), MAVLink UDP 14540 + instance, system id
+    instance + 1. Each instance runs in its own subfolder (PX4 keeps its parameters and logs there)."""
+    why = px4_missing()
+    if why:
+        raise Unavailable(why)
+    build = Path(os.environ["PX4_BUILD"])
+    instance = _free_instance(
+        lambda i: (14540 + i, 14580 + i, 18570 + i, 14280 + i, 13030 + i, 19450 + i),
+        _udp_free,
+        range(1, 10),
+        taken,
+    )  # PX4 sends to 14540 + instance only for instances 0-9
+    sih = {"PX4_SIM_MODEL": "sihsim_quadx", "PX4_SIMULATOR": "sihsim", "PX4_SYS_AUTOSTART": "10040"}
+    argv = [str(build / "bin" / "px4"), "-d", "-i", str(instance), str(build / "etc")]
+    home = folder / f"px4-{instance}"
+    home.mkdir(exist_ok=True)
+    with _running(argv, home, "px4", {**os.environ, **sih}) as (proc, log, started):
+        yield Autopilot(f"udpin://127.0.0.1:{14540 + instance}", proc, log, started)

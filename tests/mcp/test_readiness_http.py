@@ -1,0 +1,63 @@
+"""A drone that is connected but still initialising says so in list_drones and REST, and arm_drone at
+once after "ready" arms: an MCP client over Streamable HTTP, the gateway served by uvicorn, one simulated
+ArduCopter booting from zero (the same on real ArduCopter is checked while tests/real/tour.py boots)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import httpx
+from mcp import Client
+from mcp.types import Implementation
+
+from gateway.app import create_app
+from gateway.registry.spec import VehicleSpec
+from gateway.registry.store import Store
+from tests.api.server import serve_in_thread
+from tests.helpers import sim_process
+from tests.helpers.timing import eventually
+from tests.mcp.conftest import integration_settings, structured
+
+
+async def _state(http: httpx.AsyncClient, state: str) -> bool:
+    return bool((await http.get("/api/v1/vehicles/d1")).json()["state"] == state)
+
+
+ESTIMATE = "waiting for the position estimate (the EKF is not using GPS yet)"
+
+
+async def test_list_drones_and_rest_say_initialising_until_the_drone_can_arm(tmp_path: Path) -> None:
+    async with sim_process(1, speedup=8.0) as sim:
+        settings = integration_settings(tmp_path)
+        store = await Store.open(settings.database_url)
+        try:
+            await store.add_vehicle(VehicleSpec(id="d1", url=sim.urls[0]))
+        finally:
+            await store.close()
+        with serve_in_thread(create_app(settings)) as base_url:
+            client = Client(f"{base_url}/mcp", client_info=Implementation(name="readiness", version="1.0"))
+            async with client as c, httpx.AsyncClient(base_url=base_url) as http:
+                seen: list[tuple[str, str | None, str, str | None]] = []
+
+                async def ready() -> bool:
+                    listed = await c.call_tool("list_drones", {})
+                    row = structured(listed)["drones"][0]
+                    rest = (await http.get("/api/v1/vehicles/d1")).json()
+                    rest_waits = (rest.get("status") or {}).get("initialising")  # None until loaded
+                    seen.append((row["state"], row["initialising"], rest["state"], rest_waits))
+                    if row["initialising"]:
+                        assert f"d1 connected ({row['initialising']})" in listed.content[0].text
+                    return row["state"] == "ready" and rest["state"] == "ready"
+
+                await eventually(ready, "d1 ready", within_s=60)
+                # the simulator booted while the gateway started: boot it again from zero, watched
+                await sim.control.reboot(0)
+                await eventually(lambda: _state(http, "connected"), "d1 rebooting", within_s=30)
+                seen.clear()
+                await eventually(ready, "d1 ready after the reboot", within_s=60)
+                assert ("connected", ESTIMATE, "connected", ESTIMATE) in seen, seen
+                assert seen[-1] == ("ready", None, "ready", None), seen
+
+                armed = structured(await c.call_tool("arm_drone", {"drone_id": "d1"}))  # at once
+                assert armed["action"] == "arm" and armed["message"] == "armed", armed
+                assert (await sim.control.state(0))["armed"] is True
