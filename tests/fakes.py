@@ -139,6 +139,9 @@ class FakeVehicle:
     def resolve_mode(self, name: str) -> ModeChoice:
         return require_mode(name, ARDUPILOT, self.id)
 
+    def on_ground(self, fresh: bool = True) -> bool | None:
+        return ARDUPILOT.on_ground(self.telemetry, fresh=fresh)
+
     def return_altitude_param(self) -> tuple[str, float]:
         return "RTL_ALT", 100.0  # an ArduPilot before 4.7
 

@@ -28,7 +28,7 @@ from gateway.fleet.operations import (
     check_positive_altitude,
 )
 from gateway.fleet.protocols import FlyingVehicle
-from gateway.fleet.readings import is_landed_and_disarmed, position, value
+from gateway.fleet.readings import is_airborne, is_landed_and_disarmed, position, value
 from gateway.fleet.safety import Target
 from gateway.fleet.views import (
     ActionResult,
@@ -344,12 +344,7 @@ class DroneVerbs(CommandCore):
         start = time.monotonic()
         cap = self.settings.mcp_wait_cap_s if cap_s is None else cap_s
         view = await self.wait(op.id, cap, on_progress)
-        if (
-            land_on_arrival
-            and view.kind in NAV_KINDS
-            and view.status == "succeeded"
-            and value(vehicle, "in_air")
-        ):
+        if land_on_arrival and view.kind in NAV_KINDS and view.status == "succeeded" and is_airborne(vehicle):
             self.safety.check_actuation(self.context(vehicle), caller.policy_via)
             landing = await self._track(
                 caller, vehicle, LandingTracker(kind="land"), vehicle.land, {}, "land"

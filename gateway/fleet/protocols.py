@@ -50,6 +50,10 @@ class FlyingVehicle(Protocol):
 
     def resolve_mode(self, name: str) -> ModeChoice: ...
 
+    def on_ground(self, fresh: bool = True) -> bool | None:
+        """On the ground as the autopilot's dialect tells (None: unknown; ``fresh=False`` reads cached
+        values however old)."""
+
     def return_altitude_param(self) -> tuple[str, float]:
         """The parameter holding the RTL altitude and its units per metre."""
 

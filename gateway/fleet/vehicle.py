@@ -177,9 +177,10 @@ class Vehicle:
     async def wait_for_state(self, *states: ConnectionState | str, within_s: float = 60.0) -> ConnectionState:
         return await self.link.wait_for_state(*states, within_s=within_s)
 
-    def on_ground(self) -> bool | None:
-        """Whether the vehicle is on the ground, as its autopilot tells (None: no fresh telemetry)."""
-        return self.dialect.on_ground(self.telemetry)
+    def on_ground(self, fresh: bool = True) -> bool | None:
+        """Whether the vehicle is on the ground, as its autopilot tells (its dialect decides from in_air or
+        the landed state); None when no fresh telemetry says (``fresh=False``: from cached values)."""
+        return self.dialect.on_ground(self.telemetry, fresh=fresh)
 
     def _state_changed(self, old: ConnectionState, new: ConnectionState) -> None:
         if self._on_state is not None:

@@ -13,8 +13,10 @@ from gateway.fleet import mission
 from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import require_mode
+from gateway.fleet.operations import LandingTracker
 from gateway.fleet.params import param_aliases
 from gateway.link.telemetry import BatteryValue, MissionProgressValue, PositionValue, Sample, TelemetryCache
+from tests.fakes import FakeVehicle
 
 HOME = (47.397742, 8.545594, 488.0)
 
@@ -213,6 +215,28 @@ def test_px4_is_on_the_ground_by_its_land_detector_not_by_in_air() -> None:
     cache.put("landed_state", "ON_GROUND")
     assert PX4_DIALECT.on_ground(cache) is True
     assert PX4_DIALECT.on_ground(TelemetryCache()) is None
+
+
+async def test_trackers_read_the_landed_state_through_the_dialect_however_old() -> None:
+    """Trackers judge staleness themselves: they read the cached landed state (fresh=False), and on PX4
+    a landing is over by the land detector, not by MAVSDK's in_air."""
+    cache = TelemetryCache(stale_after_s=0.0)  # everything is stale at once
+    cache.put("in_air", False)
+    cache.put("landed_state", "LANDING")
+    assert PX4_DIALECT.on_ground(cache) is None and ARDUPILOT.on_ground(cache) is None
+    assert PX4_DIALECT.on_ground(cache, fresh=False) is False
+    assert ARDUPILOT.on_ground(cache, fresh=False) is True
+
+    class Px4Fake(FakeVehicle):
+        def on_ground(self, fresh: bool = True) -> bool | None:
+            return PX4_DIALECT.on_ground(self.telemetry, fresh=fresh)
+
+    drone = Px4Fake("px1")
+    drone.set(armed=False, in_air=False, landed_state="LANDING")
+    tracker = LandingTracker(kind="land")
+    assert not (await tracker.poll(drone)).done
+    drone.set(landed_state="ON_GROUND")
+    assert (await tracker.poll(drone)).done
 
 
 def test_mission_progress_is_counted_in_user_items_per_dialect() -> None:

@@ -19,7 +19,7 @@ from __future__ import annotations
 from collections.abc import Awaitable, Callable
 
 from gateway.fleet import mission
-from gateway.fleet.dialects.base import LinkOps, matches_any, user_progress
+from gateway.fleet.dialects.base import LinkOps, matches_any, reader, user_progress
 from gateway.fleet.mission import MissionItem, WirePlan
 from gateway.fleet.modes import COMMON_MODES, ModeChoice, canonical
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
@@ -104,8 +104,8 @@ class ArduPilot:
     def arming_will_pass(self, complaint: str) -> bool:
         return matches_any(complaint, ARM_WAIT_TEXTS)
 
-    def on_ground(self, telemetry: TelemetryCache) -> bool | None:
-        in_air = telemetry.fresh("in_air")
+    def on_ground(self, telemetry: TelemetryCache, *, fresh: bool = True) -> bool | None:
+        in_air = reader(telemetry, fresh)("in_air")
         return None if in_air is None else not in_air
 
     async def set_yaw(self, link: LinkOps, heading_deg: float) -> None:

@@ -12,7 +12,7 @@ Everything else (the verbs, the operations, the policy) is the same for every au
 from __future__ import annotations
 
 from collections.abc import Awaitable, Callable
-from typing import Protocol, TypeVar
+from typing import Any, Protocol, TypeVar
 
 from mavsdk_grpc import System
 
@@ -79,8 +79,9 @@ class Dialect(Protocol):
         """Whether an arming refusal is one the autopilot lifts by itself while it initialises."""
         ...
 
-    def on_ground(self, telemetry: TelemetryCache) -> bool | None:
-        """Whether the vehicle is on the ground (None: no fresh telemetry says)."""
+    def on_ground(self, telemetry: TelemetryCache, *, fresh: bool = True) -> bool | None:
+        """Whether the vehicle is on the ground: None when no fresh telemetry says (``fresh=False``:
+        from the cached values however old, for trackers that judge staleness themselves)."""
         ...
 
     async def set_yaw(self, link: LinkOps, heading_deg: float) -> None:
@@ -147,6 +148,13 @@ def user_progress(
         user_total = len(plan.user_to_wire)
         user = plan.user_index(current_seq) if current_seq >= first_user_seq and user_total else 0
     return MissionProgressValue(user_total if finished else user, user_total, finished)
+
+
+def reader(telemetry: TelemetryCache, fresh: bool) -> Callable[[str], Any]:
+    """How a dialect reads a telemetry value: fresh only, or the cached one however old."""
+    if fresh:
+        return telemetry.fresh
+    return lambda name: None if (sample := getattr(telemetry, name)) is None else sample.value
 
 
 def matches_any(text: str, words: tuple[str, ...]) -> bool:

@@ -21,7 +21,7 @@ from collections.abc import Awaitable, Callable
 
 from gateway.errors import CommandFailed
 from gateway.fleet import mission
-from gateway.fleet.dialects.base import LinkOps, matches_any, user_progress
+from gateway.fleet.dialects.base import LinkOps, matches_any, reader, user_progress
 from gateway.fleet.mission import MissionItem, WirePlan
 from gateway.fleet.modes import COMMON_MODES, ModeChoice, canonical
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
@@ -101,11 +101,12 @@ class PX4:
     def arming_will_pass(self, complaint: str) -> bool:
         return matches_any(complaint, ARM_WAIT_TEXTS)
 
-    def on_ground(self, telemetry: TelemetryCache) -> bool | None:
-        landed = telemetry.fresh("landed_state")
+    def on_ground(self, telemetry: TelemetryCache, *, fresh: bool = True) -> bool | None:
+        read = reader(telemetry, fresh)
+        landed = read("landed_state")
         if landed in ("ON_GROUND", "IN_AIR", "TAKING_OFF", "LANDING"):
             return bool(landed == "ON_GROUND")
-        in_air = telemetry.fresh("in_air")
+        in_air = read("in_air")
         return None if in_air is None else not in_air
 
     async def set_yaw(self, link: LinkOps, heading_deg: float) -> None:
