@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+import socket
 from functools import lru_cache
 
 from pydantic import Field, field_validator
@@ -140,6 +142,11 @@ class Settings(BaseSettings):
     operator_tokens: str = Field("", description="Comma-separated bearer tokens with the operator role.")
     viewer_tokens: str = Field("", description="Comma-separated bearer tokens with the viewer role.")
     agent_tokens: str = Field("", description="Comma-separated bearer tokens for MCP agents.")
+    agent_scopes: dict[str, list[str]] = Field(
+        {},
+        description="Agents limited to some vehicles, as JSON: {token or agent-<8 hex> principal: [vehicle "
+        "ids and 'tag:<tag>' entries]}. Such an agent sees and commands only those; others see all.",
+    )
 
     # --- operator console ---------------------------------------------------------------------------
     console_tiles_url: str | None = Field(
@@ -158,6 +165,39 @@ class Settings(BaseSettings):
     )
     track_flush_s: float = Field(2.0, gt=0, description="Seconds between batched track writes.")
 
+    # --- cluster (several `serve` nodes on one PostgreSQL and NATS; docs/cluster.md) --------------
+    cluster_nats_url: str = Field(
+        "",
+        description="NATS server URL(s), comma-separated (e.g. nats://10.0.0.2:4222). Set, with a "
+        "PostgreSQL database_url, every `serve` is a cluster node; empty: one gateway on its own.",
+    )
+    cluster_node_id: str = Field(
+        "",
+        pattern=r"^([a-z0-9][a-z0-9-]{0,31})?$",
+        description="This node's id (1-32 of a-z, 0-9, '-'); default: the host name and HTTP port.",
+    )
+    cluster_node_tags: str = Field(
+        "",
+        description="Comma-separated tags of this node (e.g. site-north): a drone registered with "
+        "node_tag is only ever owned by nodes that carry that tag.",
+    )
+    cluster_lease_ttl_s: float = Field(
+        10.0,
+        ge=1.0,
+        le=300.0,
+        description="How long a node's lease on a drone lasts without renewal (renewed every third of "
+        "it): a dead node's drones are taken over after at most this long.",
+    )
+    cluster_telemetry_hz: float = Field(
+        2.0, gt=0, le=20, description="Telemetry snapshots per second each owner publishes per drone."
+    )
+    cluster_forward_timeout_s: float = Field(
+        15.0,
+        gt=0,
+        le=600,
+        description="Longest a forwarded call waits for the owning node beyond the MCP wait cap.",
+    )
+
     @field_validator("mcp_toolsets")
     @classmethod
     def _known_toolsets(cls, value: str) -> str:
@@ -166,6 +206,15 @@ class Settings(BaseSettings):
         if unknown:
             raise ValueError(f"unknown toolset(s) {unknown}; known: {list(ALL_TOOLSETS)}")
         return ",".join(names)
+
+    @field_validator("cluster_node_tags")
+    @classmethod
+    def _node_tags(cls, value: str) -> str:
+        tags = [t.strip() for t in value.split(",") if t.strip()]
+        bad = [t for t in tags if not re.match(r"^[A-Za-z0-9_.\-]{1,32}$", t)]
+        if bad:
+            raise ValueError(f"node tag(s) {bad} must be 1-32 of letters, digits, '_', '.', '-'")
+        return ",".join(tags)
 
     @field_validator("console_tiles_url")
     @classmethod
@@ -183,6 +232,23 @@ class Settings(BaseSettings):
     @property
     def toolsets(self) -> list[str]:
         return [n for n in self.mcp_toolsets.split(",") if n]
+
+    @property
+    def clustered(self) -> bool:
+        """True when this gateway is a node of a cluster (a NATS URL is set)."""
+        return bool(self.cluster_nats_url.strip())
+
+    @property
+    def node_id(self) -> str:
+        """This node's id: the setting, else ``<host name>-<port>`` made a valid id."""
+        if self.cluster_node_id:
+            return self.cluster_node_id
+        host = re.sub(r"[^a-z0-9-]+", "-", socket.gethostname().lower()).strip("-") or "node"
+        return f"{host[:26]}-{self.port}"[:32]
+
+    @property
+    def node_tags(self) -> list[str]:
+        return [t for t in self.cluster_node_tags.split(",") if t]
 
 
 @lru_cache

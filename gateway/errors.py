@@ -70,3 +70,18 @@ class SafetyRefusal(GatewayError):
     def __init__(self, rule: str, message: str, **details: Any) -> None:
         super().__init__(message, rule=rule, **details)
         self.rule = rule
+
+
+class NoOwner(GatewayError):
+    """Cluster: no node holds the drone's lease right now (its node was lost and a takeover is under
+    way, or no live node may own it)."""
+
+    code = "no_owner"
+    http_status = 503
+
+
+class OwnerTimeout(GatewayError):
+    """Cluster: the node owning the drone did not answer in time; the call may or may not have run."""
+
+    code = "owner_timeout"
+    http_status = 504

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 from gateway.config import Settings
 from gateway.errors import GatewayError
@@ -19,7 +20,12 @@ from gateway.fleet.fleet_ops import FleetOperations
 from gateway.fleet.operations import OperationManager
 from gateway.fleet.protocols import VehicleRegistry
 from gateway.fleet.safety import LockBook, SafetyPolicy
+from gateway.fleet.scopes import ScopedDirectory
+from gateway.mcp.scopes import scopes_by_principal
 from gateway.registry.store import Store
+
+if TYPE_CHECKING:
+    from gateway.cluster.node import ClusterNode
 
 log = logging.getLogger(__name__)
 
@@ -57,6 +63,8 @@ class Gateway:
         self._commander: Commander | None = None
         self._registry_factory = registry_factory or _default_registry
         self._registry_started = False
+        # This process as a node of a cluster, when GATEWAY_CLUSTER_NATS_URL is set.
+        self.cluster: ClusterNode | None = None
 
     @property
     def ready(self) -> bool:
@@ -88,6 +96,10 @@ class Gateway:
     async def start(self) -> None:
         """Open (and migrate) the database, build the policy, operations and Commander, then restore
         and connect the registered vehicles."""
+        if self.settings.clustered:
+            from gateway.cluster.node import check_settings
+
+            check_settings(self.settings)
         log.info("opening database %s", _redact(self.settings.database_url))
         self.store = await Store.open(self.settings.database_url)
         try:
@@ -95,22 +107,33 @@ class Gateway:
                 self.locks.lock(lock.scope, lock.reason, lock.by, at=lock.locked_at)
             self.safety = SafetyPolicy.from_settings(self.settings, self.locks.view())
             self.operations = OperationManager(self.settings, self.store)
-            interrupted = await self.operations.recover()
-            if interrupted:
-                log.info("%d operation(s) of the previous process recorded as interrupted", interrupted)
-            self.fleet_operations = FleetOperations(self.operations, alive=lambda: self._registry_started)
-            self.registry = self._registry_factory(self.settings, self.store)
+            if self.settings.clustered:
+                # other nodes are running theirs: each vehicle's operations are picked up by the node
+                # that takes the vehicle over (gateway.cluster.takeover), never all at once here
+                self.registry = self._cluster_registry(self.store)
+            else:
+                interrupted = await self.operations.recover()
+                if interrupted:
+                    log.info("%d operation(s) of the previous process recorded as interrupted", interrupted)
+                self.registry = self._registry_factory(self.settings, self.store)
+            router = None if self.cluster is None else self.cluster.router
+            self.fleet_operations = FleetOperations(
+                self.operations, alive=lambda: self._registry_started, router=router
+            )
             self._commander = Commander(
                 self.settings,
-                self.registry,
+                ScopedDirectory(self.registry, scopes_by_principal(self.settings)),
                 self.store,
                 self.operations,
                 self.fleet_operations,
                 self.safety,
                 self.locks,
+                router=router,
             )
             await self.registry.start()
             self._registry_started = True
+            if self.cluster is not None:
+                await self.cluster.start()
         except BaseException:
             await self.stop()
             raise
@@ -123,12 +146,18 @@ class Gateway:
         self._commander = None
         fleet_operations, self.fleet_operations = self.fleet_operations, None
         operations, self.operations = self.operations, None
+        cluster, self.cluster = self.cluster, None
         registry, self.registry = self.registry, None
         try:
             if fleet_operations is not None:
                 await fleet_operations.stop()
             if operations is not None:
                 await operations.stop()
+            if cluster is not None:  # after its operations are recorded, before its sidecars stop:
+                try:  # hand the vehicles over
+                    await cluster.stop()
+                except Exception:
+                    log.exception("leaving the cluster failed")
             if registry is not None:
                 await registry.stop()
         finally:
@@ -136,6 +165,19 @@ class Gateway:
             if store is not None:
                 await store.close()
         log.info("gateway stopped")
+
+    def _cluster_registry(self, store: Store) -> VehicleRegistry:
+        """A registry whose vehicles start as views of other nodes' vehicles; this node's lease keeper
+        adopts the ones it wins. The Commander's verbs for the others go to their owners."""
+        from gateway.cluster.node import ClusterNode, remote_factory
+        from gateway.fleet.registry import Registry
+
+        node = self.cluster = ClusterNode(self)
+        registry = node.registry = Registry(
+            self.settings, store, remote_factory=remote_factory(self.settings)
+        )
+        registry.on_registrations_changed(node.registrations_changed)
+        return registry
 
     async def __aenter__(self) -> Gateway:
         await self.start()

@@ -25,6 +25,7 @@ from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store, create_engine_for, current_revision, upgrade_schema
 from gateway.startup import (
     StartupError,
+    check_nats_reachable,
     check_port_free,
     check_sidecar_binary,
     describe_database_error,
@@ -55,6 +56,9 @@ def register(subparsers: Any) -> None:
     add.add_argument("--name", default=None, help="human-readable name")
     add.add_argument("--sysid", type=int, default=None, help="MAVLink system id the drone must report")
     add.add_argument("--tag", action="append", default=[], help="a tag (repeatable)")
+    add.add_argument(
+        "--node-tag", default=None, help="cluster: only nodes carrying this tag own the drone (e.g. a site)"
+    )
     add.add_argument("--no-connect", action="store_true", help="register without connecting")
     add.add_argument(
         "--if-missing",
@@ -144,6 +148,13 @@ def cmd_serve(args: argparse.Namespace) -> int:
         settings = _settings(args, host=args.host, port=args.port)
     except ValidationError as exc:
         return _fail(_validation_text(exc), 2)
+    if settings.clustered:
+        from gateway.cluster.node import ClusterSetupError, check_settings
+
+        try:
+            check_settings(settings)
+        except ClusterSetupError as exc:
+            return _fail(exc.message, 2)
     if not _is_loopback(settings.host) and not settings.operator_tokens.strip():
         return _fail(
             f"refusing to serve on {settings.host}: without operator tokens (GATEWAY_OPERATOR_TOKENS) "
@@ -154,6 +165,8 @@ def cmd_serve(args: argparse.Namespace) -> int:
         check_port_free(settings.host, settings.port)
         check_sidecar_binary(settings)
         prepare_database_location(settings.database_url)
+        if settings.clustered:
+            check_nats_reachable(settings.cluster_nats_url)
         asyncio.run(_open_database(settings.database_url))
     except StartupError as exc:
         return _fail(str(exc), 2)
@@ -200,7 +213,14 @@ class GatewayServer(uvicorn.Server):
 
 
 def _spec_from_args(args: argparse.Namespace) -> VehicleSpec:
-    return VehicleSpec(id=args.id, url=args.url, name=args.name, tags=args.tag, expected_sysid=args.sysid)
+    return VehicleSpec(
+        id=args.id,
+        url=args.url,
+        name=args.name,
+        tags=args.tag,
+        expected_sysid=args.sysid,
+        node_tag=args.node_tag,
+    )
 
 
 def _validation_text(exc: ValidationError) -> str:

@@ -108,3 +108,19 @@ def check_sidecar_binary(settings: Settings) -> None:
             f"mavsdk_server at {binary} is missing or not executable; reinstall mavsdk-grpc "
             "(make install) or set GATEWAY_MAVSDK_SERVER_PATH"
         )
+
+
+def check_nats_reachable(nats_url: str, timeout_s: float = 5.0) -> None:
+    """A cluster node's NATS server answers (GATEWAY_CLUSTER_NATS_URL); StartupError in one line if not."""
+    import asyncio
+
+    from gateway.cluster.bus import probe
+
+    try:
+        asyncio.run(probe(nats_url, timeout_s))
+    except Exception as exc:
+        reason = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise StartupError(
+            f"cannot reach NATS at {nats_url} (GATEWAY_CLUSTER_NATS_URL): {reason[:200]}; is nats-server "
+            "running and reachable? fix the URL, or unset GATEWAY_CLUSTER_NATS_URL to run a gateway alone"
+        ) from None

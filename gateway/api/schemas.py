@@ -7,7 +7,7 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
-from gateway.registry.spec import VehicleSpec, validate_connection_url
+from gateway.registry.spec import NODE_TAG_PATTERN, VehicleSpec, validate_connection_url
 from gateway.registry.store import (
     AuditRecord,
     FlightRecord,
@@ -38,6 +38,9 @@ class VehicleUpdate(BaseModel):
     name: str | None = Field(None, max_length=100)
     tags: list[str] | None = Field(None, max_length=20)
     expected_sysid: int | None = Field(None, ge=1, le=255)
+    node_tag: str | None = Field(
+        None, pattern=NODE_TAG_PATTERN, description="Cluster: only nodes with this tag own it; null: any."
+    )
     auto_connect: bool | None = Field(None, description="Connect this vehicle whenever the gateway starts.")
 
     @field_validator("url")

@@ -6,19 +6,23 @@ follows and for the cluster seam)."""
 from __future__ import annotations
 
 import contextlib
+import functools
 import logging
 from collections.abc import Awaitable, Callable
-from typing import Any, Literal
+from typing import Any, Literal, TypeVar, cast
+
+from pydantic_core import to_jsonable_python
 
 from gateway.config import Settings
-from gateway.errors import GatewayError, VehicleNotReady
+from gateway.errors import GatewayError, NoOwner, NotFound, OwnerTimeout, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
 from gateway.fleet.fleet_ops import FleetOperations
 from gateway.fleet.operations import Operation, OperationManager, Tracker
 from gateway.fleet.protocols import FlyingVehicle, VehicleDirectory
 from gateway.fleet.readings import vehicle_context
-from gateway.fleet.safety import LockBook, SafetyPolicy, VehicleContext
+from gateway.fleet.routing import FORWARDED, Router, Verb
+from gateway.fleet.safety import LockBook, RunningOperation, SafetyPolicy, VehicleContext
 from gateway.fleet.views import OperationView
 from gateway.registry.store import Store
 
@@ -31,6 +35,64 @@ Notify = Callable[[str], Awaitable[None]]
 
 NAV_KINDS = ("goto", "reposition", "move_to_relative")
 RECOVERY_KINDS = ("land", "return_to_launch")
+ELSEWHERE_KEPT = 2000
+"""Operations started on other nodes whose drone this node remembers (to forward waits on them)."""
+WAITER = Caller(via="cluster", principal="waiter")
+"""Who forwards a wait: waiting changes nothing, whoever started the operation."""
+
+VerbMethod = TypeVar("VerbMethod", bound=Callable[..., Awaitable[Any]])
+
+#: every verb on one drone that runs on the drone's owner, by name (filled by `routed`)
+ROUTED: dict[str, Verb] = {}
+
+
+def routed(method: VerbMethod) -> VerbMethod:
+    """Run the verb where its drone is: here when this node owns it (or there is no cluster), else on
+    its owner through the router, with the same arguments, callbacks (as progress messages) and result
+    model. The drone is looked up here first, so an unknown drone (or one outside the agent's scope) is
+    named by this node exactly as by the owner."""
+    name = method.__name__
+
+    @functools.wraps(method)
+    async def run(self: CommandCore, *args: Any, **kwargs: Any) -> Any:
+        bound = verb.signature.bind(self, *args, **kwargs)
+        caller: Caller = bound.arguments["caller"]
+        drone_id: str = bound.arguments["drone_id"]
+        router = self.router
+        if router is None or router.owns(drone_id):
+            return await method(self, *args, **kwargs)
+        self.registry.get(drone_id)
+        if FORWARDED.get():
+            raise NoOwner(f"this node does not own drone '{drone_id}' (any more): retry in a few seconds")
+        callbacks = {k: bound.arguments[k] for k in verb.callbacks if bound.arguments.get(k) is not None}
+        arguments = {
+            k: to_jsonable_python(v)
+            for k, v in bound.arguments.items()
+            if k not in ("self", "caller") and k not in verb.callbacks
+        }
+        wait_s = float(arguments.get("cap_s") or self.settings.mcp_wait_cap_s)
+        result = await router.call(drone_id, name, caller, arguments, _relay(callbacks), wait_s=wait_s)
+        answer = verb.result.model_validate(result)
+        if isinstance(answer, OperationView):
+            self._remember_elsewhere(answer.operation_id, drone_id)
+        return answer
+
+    verb = ROUTED[name] = Verb(method, wrapper=run)
+    return cast(VerbMethod, run)
+
+
+def _relay(callbacks: dict[str, Any]) -> Callable[[dict[str, Any]], Awaitable[None]] | None:
+    """The owner's progress messages to the verb's own callbacks (``notify``, ``on_progress``)."""
+    if not callbacks:
+        return None
+
+    async def relay(body: dict[str, Any]) -> None:
+        if "notice" in body and "notify" in callbacks:
+            await callbacks["notify"](str(body["notice"]))
+        elif "view" in body and "on_progress" in callbacks:
+            await callbacks["on_progress"](OperationView.model_validate(body["view"]))
+
+    return relay
 
 
 class CommandCore:
@@ -45,7 +107,9 @@ class CommandCore:
         fleet: FleetOperations,
         safety: SafetyPolicy,
         locks: LockBook,
+        router: Router | None = None,
     ) -> None:
+        """``router``: on a cluster node, where the drones this node does not own are run."""
         self.settings = settings
         self.registry = registry
         self.store = store
@@ -53,6 +117,8 @@ class CommandCore:
         self.fleet = fleet
         self.safety = safety
         self.locks = locks
+        self.router = router
+        self._elsewhere: dict[str, str] = {}  # operation id -> drone id, of operations run elsewhere
 
     # ------------------------------------------------------------------------------------------------
     # resolving drones and judging them
@@ -77,12 +143,18 @@ class CommandCore:
     def context(vehicle: FlyingVehicle) -> VehicleContext:
         return vehicle_context(vehicle)
 
+    def _running(self, drone_id: str, kind: str | None = None) -> RunningOperation | None:
+        """The drone's running operation, here or (a drone owned elsewhere) as its owner published it."""
+        if self.router is not None and not self.router.owns(drone_id):
+            running = self.router.running(drone_id)
+            return running if running is not None and (kind is None or running.kind == kind) else None
+        return self.operations.running_facts(drone_id, kind)
+
     def _guard_takeoff(self, caller: Caller, vehicle: FlyingVehicle, action: str) -> None:
         """Rule takeoff_in_progress; also run inside the command lock, just before sending."""
         self.safety.check_takeoff_finished(
-            self.context(vehicle), self.operations.running_facts(vehicle.id, "takeoff"), action,
-            caller.policy_via,
-        )  # fmt: skip
+            self.context(vehicle), self._running(vehicle.id, "takeoff"), action, caller.policy_via
+        )
 
     @staticmethod
     def _require_airborne(ctx: VehicleContext, action: str) -> None:
@@ -150,8 +222,15 @@ class CommandCore:
         self, operation_id: str, cap_s: float | None = None, on_progress: OnProgress | None = None
     ) -> OperationView:
         """Wait until the operation has finished or ``cap_s`` passed (default: the MCP wait cap),
-        reporting progress on each change. Cancelling the waiter stops nothing on the drone."""
-        op = self.operations.get(operation_id)
+        reporting progress on each change. Cancelling the waiter stops nothing on the drone. An
+        operation that runs on another cluster node is waited for there."""
+        try:
+            op = self.operations.get(operation_id)
+        except NotFound:
+            drone_id = await self._drone_of(operation_id)
+            if drone_id is None or self.router is None or self.router.owns(drone_id):
+                raise
+            return await self._wait_elsewhere(drone_id, operation_id, cap_s, on_progress)
 
         async def report(o: Operation) -> None:
             if on_progress is not None:
@@ -161,3 +240,39 @@ class CommandCore:
 
     async def _supersede(self, drone_id: str, by: str) -> Operation | None:
         return await self.operations.supersede(drone_id, by)
+
+    # ------------------------------------------------------------------------------------------------
+    # operations that run on another cluster node
+    # ------------------------------------------------------------------------------------------------
+
+    def _remember_elsewhere(self, operation_id: str, drone_id: str) -> None:
+        self._elsewhere[operation_id] = drone_id
+        while len(self._elsewhere) > ELSEWHERE_KEPT:
+            del self._elsewhere[next(iter(self._elsewhere))]
+
+    async def _drone_of(self, operation_id: str) -> str | None:
+        """The drone of an operation this node does not run: remembered, or from the database."""
+        known = self._elsewhere.get(operation_id)
+        if known is not None or self.store is None:
+            return known
+        record = await self.store.get_operation(operation_id)
+        return None if record is None else record.vehicle_id
+
+    async def _wait_elsewhere(
+        self, drone_id: str, operation_id: str, cap_s: float | None, on_progress: OnProgress | None
+    ) -> OperationView:
+        """Forward the wait to the drone's owner, its progress back to ``on_progress``. If the owner is
+        lost meanwhile, the answer is what the database holds, saying so."""
+        assert self.router is not None
+        cap = self.settings.mcp_wait_cap_s if cap_s is None else cap_s
+        relay = _relay({"on_progress": on_progress}) if on_progress is not None else None
+        try:
+            result = await self.router.call(
+                drone_id, "wait", WAITER, {"operation_id": operation_id, "cap_s": cap}, relay, wait_s=cap
+            )
+        except (NoOwner, OwnerTimeout) as exc:
+            record = None if self.store is None else await self.store.get_operation(operation_id)
+            if record is None:
+                raise
+            return OperationView.of_record(record, f"{record.message or record.status} ({exc.message})")
+        return OperationView.model_validate(result)

@@ -34,58 +34,32 @@ arguments.
 
 from __future__ import annotations
 
-import inspect
-import typing
-from collections.abc import Awaitable, Callable
 from typing import Any
-
-from pydantic import BaseModel, ConfigDict, ValidationError, create_model
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.caller import Caller
+from gateway.fleet.command_core import Notify
 from gateway.fleet.fleet_verbs import FleetVerbs
+from gateway.fleet.routing import Verb
 
 
 class Commander(FleetVerbs):
     """Every command on one drone or on the fleet, for every door. Built once by `gateway.runtime`."""
 
-    async def call(self, verb: str, caller: Caller, **arguments: Any) -> dict[str, Any]:
+    async def call(
+        self, verb: str, caller: Caller, /, *, notify: Notify | None = None, **arguments: Any
+    ) -> dict[str, Any]:
         """Run ``verb`` with JSON-serialisable ``arguments``; the result as JSON-serialisable data.
-        Unknown verbs and bad arguments raise InvalidArgument naming them; nothing is sent then."""
+        Unknown verbs and bad arguments raise InvalidArgument naming them; nothing is sent then.
+        ``notify`` hears what a verb waits for before it can send (arm, takeoff)."""
         entry = VERBS.get(verb)
         if entry is None:
             raise InvalidArgument(f"unknown verb {verb!r}; verbs: {', '.join(sorted(VERBS))}")
-        try:
-            parsed = entry.arguments.model_validate(arguments)
-        except ValidationError as exc:
-            problems = "; ".join(
-                f"{'.'.join(str(p) for p in err['loc']) or 'arguments'}: {err['msg']}" for err in exc.errors()
-            )
-            raise InvalidArgument(f"invalid arguments for {verb}: {problems}") from None
-        result = await entry.method(self, caller, **{k: getattr(parsed, k) for k in parsed.model_fields_set})
+        parsed = entry.parse(arguments)
+        if notify is not None and "notify" in entry.callbacks:
+            parsed["notify"] = notify
+        result = await entry.method(self, caller, **parsed)
         return result.model_dump(mode="json")
-
-
-Method = Callable[..., Awaitable[BaseModel]]
-
-
-class Verb:
-    """One entry of the verb table: the method and the model its JSON arguments are validated with
-    (built from the method's keyword parameters after ``caller``; keyword-only ones, such as
-    callbacks, are not part of a verb's arguments)."""
-
-    def __init__(self, method: Method) -> None:
-        self.method = method
-        hints = typing.get_type_hints(method)
-        fields: dict[str, Any] = {}
-        for name, param in list(inspect.signature(method).parameters.items())[2:]:
-            if param.kind is not inspect.Parameter.POSITIONAL_OR_KEYWORD:
-                continue
-            default = ... if param.default is inspect.Parameter.empty else param.default
-            fields[name] = (hints[name], default)
-        self.arguments: type[BaseModel] = create_model(
-            f"{method.__name__}_arguments", __config__=ConfigDict(extra="forbid"), **fields
-        )
 
 
 #: The verbs every door (and a forwarding cluster node) may call by name.

@@ -5,6 +5,8 @@ Each verb resolves the drone, judges one fresh `VehicleContext` with the policy 
 decides) and then starts a tracked operation under the drone's command lock or sends an instant command.
 Messages name what to do next; ``label`` is how the caller names the command (its MCP tool name), used
 in those messages and in the superseded operation's reason.
+
+Every verb on one drone is ``@routed``: on a cluster node it runs on the node that owns the drone.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from collections.abc import Sequence
 from gateway.errors import InvalidArgument, NotFound, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
-from gateway.fleet.command_core import NAV_KINDS, AltFrame, CommandCore, Notify, OnProgress
+from gateway.fleet.command_core import NAV_KINDS, AltFrame, CommandCore, Notify, OnProgress, routed
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import LAUNCHING_MODES
 from gateway.fleet.operations import (
@@ -48,6 +50,7 @@ class DroneVerbs(CommandCore):
     # flight: arm, disarm, takeoff, land, return, hold, kill, mode
     # ------------------------------------------------------------------------------------------------
 
+    @routed
     async def arm(self, caller: Caller, drone_id: str, *, notify: Notify | None = None) -> ActionResult:
         vehicle = self.vehicle(drone_id)
         await self._wait_initialised(vehicle, notify)
@@ -55,6 +58,7 @@ class DroneVerbs(CommandCore):
         await vehicle.arm()
         return ActionResult(drone_id=drone_id, action="arm", message="armed")
 
+    @routed
     async def disarm(self, caller: Caller, drone_id: str, label: str = "disarm_drone") -> ActionResult:
         vehicle = self.ready(drone_id)
         ctx = self.context(vehicle)
@@ -69,6 +73,7 @@ class DroneVerbs(CommandCore):
             drone_id=drone_id, action="disarm", message="disarmed", superseded_operation=sup and sup.id
         )
 
+    @routed
     async def takeoff(
         self, caller: Caller, drone_id: str, altitude_m: float, *, notify: Notify | None = None
     ) -> OperationView:
@@ -90,6 +95,7 @@ class DroneVerbs(CommandCore):
             "takeoff",
         )
 
+    @routed
     async def land(self, caller: Caller, drone_id: str) -> OperationView:
         """Land where the drone is; done when landed and disarmed."""
         vehicle = self._for_recovery(caller, drone_id)
@@ -98,6 +104,7 @@ class DroneVerbs(CommandCore):
         self.safety.check_actuation(self.context(vehicle), caller.policy_via)
         return await self._track(caller, vehicle, LandingTracker(kind="land"), vehicle.land, {}, "land")
 
+    @routed
     async def return_to_launch(self, caller: Caller, drone_id: str) -> OperationView:
         """Fly home and land; done when landed and disarmed."""
         vehicle = self._for_recovery(caller, drone_id)
@@ -114,6 +121,7 @@ class DroneVerbs(CommandCore):
             "return_to_launch",
         )
 
+    @routed
     async def hold(self, caller: Caller, drone_id: str, label: str = "hold_position") -> ActionResult:
         """GUIDED reposition to the current position (never LOITER/ALT_HOLD, which sink without RC);
         ends the drone's current operation."""
@@ -141,6 +149,7 @@ class DroneVerbs(CommandCore):
         vehicle = self.ready(drone_id) if not caller.is_operator else self.vehicle(drone_id)
         return self.safety.check_kill(self.context(vehicle), caller.policy_via)
 
+    @routed
     async def kill(self, caller: Caller, drone_id: str, confirmed: bool = False) -> ActionResult:
         """Cut the motors. An agent's: only with ``confirmed`` (a human said yes), and on the ground it
         only disarms. An operator's: at once, wherever the drone is."""
@@ -159,6 +168,7 @@ class DroneVerbs(CommandCore):
             drone_id=drone_id, action="kill", message=message, superseded_operation=sup and sup.id
         )
 
+    @routed
     async def set_mode(self, caller: Caller, drone_id: str, mode: str) -> ActionResult:
         """Flight mode by a common name (HOLD, RTL, LAND, MISSION...) or the autopilot's own. HOLD is the
         gateway's safe hold."""
@@ -212,6 +222,7 @@ class DroneVerbs(CommandCore):
             caller, vehicle, tracker, lambda: vehicle.goto(lat, lon, alt_rel, yaw_deg), params, label
         )
 
+    @routed
     async def goto(
         self,
         caller: Caller,
@@ -232,6 +243,7 @@ class DroneVerbs(CommandCore):
             yaw = yaw_deg % 360.0
         return await self._fly_to(caller, drone_id, lat_deg, lon_deg, alt_rel, "goto", label, yaw)
 
+    @routed
     async def reposition(
         self,
         caller: Caller,
@@ -251,6 +263,7 @@ class DroneVerbs(CommandCore):
             alt_rel = self._relative_alt(ctx, altitude_m, alt_frame)
         return await self._fly_to(caller, drone_id, lat_deg, lon_deg, alt_rel, "reposition", "reposition")
 
+    @routed
     async def move_relative(
         self, caller: Caller, drone_id: str, north_m: float, east_m: float, down_m: float = 0.0
     ) -> OperationView:
@@ -267,6 +280,7 @@ class DroneVerbs(CommandCore):
             caller, drone_id, lat, lon, pos[2] - down_m, "move_to_relative", "move_to_relative"
         )
 
+    @routed
     async def set_yaw(self, caller: Caller, drone_id: str, heading_deg: float) -> OperationView:
         """Turn in place to a heading (degrees from true north, clockwise); done when facing it."""
         vehicle = self.ready(drone_id)
@@ -283,6 +297,7 @@ class DroneVerbs(CommandCore):
             "set_yaw",
         )
 
+    @routed
     async def set_speed(self, caller: Caller, drone_id: str, speed_mps: float) -> ActionResult:
         """The horizontal speed of gotos, m/s (within the policy's limit)."""
         vehicle = self.ready(drone_id)
@@ -295,6 +310,7 @@ class DroneVerbs(CommandCore):
             facts={"speed_mps": speed_mps},
         )
 
+    @routed
     async def arrival(self, caller: Caller, drone_id: str) -> ArrivalView:
         """Whether the drone's last goto arrived, with the distance left; answers at once."""
         vehicle = self.vehicle(drone_id)
@@ -325,12 +341,14 @@ class DroneVerbs(CommandCore):
             message=op.message,
         )
 
+    @routed
     async def monitor(
         self,
         caller: Caller,
         drone_id: str,
         land_on_arrival: bool = False,
         cap_s: float | None = None,
+        *,
         on_progress: OnProgress | None = None,
     ) -> OperationView:
         """Wait (capped) for the drone's current operation; with ``land_on_arrival``, a goto that
@@ -369,6 +387,7 @@ class DroneVerbs(CommandCore):
         await vehicle.upload_mission(items)
         return len(items)
 
+    @routed
     async def upload_mission(self, caller: Caller, drone_id: str, items: list[MissionItem]) -> ActionResult:
         """Store a mission on the drone (items numbered 1..N, altitudes above home) without starting it."""
         vehicle = self.ready(drone_id)
@@ -380,6 +399,7 @@ class DroneVerbs(CommandCore):
             facts={"items": count},
         )
 
+    @routed
     async def start_mission(
         self,
         caller: Caller,
@@ -407,20 +427,24 @@ class DroneVerbs(CommandCore):
             self.safety.check_takeoff(ctx, stored[0].alt_rel_m, caller.policy_via)
         return await self._track(caller, vehicle, MissionTracker(), vehicle.start_mission, {}, label)
 
+    @routed
     async def resume_mission(self, caller: Caller, drone_id: str) -> OperationView:
         """Continue the stored mission from its current item."""
         return await self.start_mission(caller, drone_id, None, "resume_mission")
 
+    @routed
     async def pause_mission(
         self, caller: Caller, drone_id: str, label: str = "pause_mission"
     ) -> ActionResult:
         """Pause = the safe hold (GUIDED, not LOITER); resume_mission continues."""
         return await self.hold(caller, drone_id, label)
 
+    @routed
     async def download_mission(self, caller: Caller, drone_id: str) -> MissionView:
         vehicle = self.ready(drone_id)
         return MissionView(drone_id=drone_id, items=await vehicle.download_mission())
 
+    @routed
     async def clear_mission(self, caller: Caller, drone_id: str) -> ActionResult:
         vehicle = self.ready(drone_id)
         running = self.operations.running(drone_id)
@@ -430,6 +454,7 @@ class DroneVerbs(CommandCore):
         await vehicle.clear_mission()
         return ActionResult(drone_id=drone_id, action="clear_mission", message="mission cleared")
 
+    @routed
     async def set_current_item(self, caller: Caller, drone_id: str, index: int) -> ActionResult:
         """Make mission item ``index`` (1..N) the next target."""
         vehicle = self.ready(drone_id)
@@ -447,6 +472,7 @@ class DroneVerbs(CommandCore):
             facts={"index": index},
         )
 
+    @routed
     async def mission_progress(self, caller: Caller, drone_id: str) -> MissionProgressView:
         """The item being flown (1..N), the count, and whether the mission ran to its end."""
         vehicle = self.ready(drone_id)
@@ -463,12 +489,14 @@ class DroneVerbs(CommandCore):
     # parameters
     # ------------------------------------------------------------------------------------------------
 
+    @routed
     async def get_param(self, caller: Caller, drone_id: str, name: str) -> ParamValue:
         vehicle = self.ready(drone_id)
         name = name.upper()
         val, kind = await vehicle.get_param(name)
         return ParamValue(drone_id=drone_id, name=name, value=val, type=kind)
 
+    @routed
     async def set_param(self, caller: Caller, drone_id: str, name: str, value: float) -> ParamValue:
         """Write a parameter with the drone's own type for it; agents may not write protected ones."""
         vehicle = self.ready(drone_id)
@@ -480,6 +508,7 @@ class DroneVerbs(CommandCore):
         val, kind = await vehicle.set_param(name, value)
         return ParamValue(drone_id=drone_id, name=name, value=val, type=kind)
 
+    @routed
     async def list_params(
         self, caller: Caller, drone_id: str, prefix: str = "", offset: int = 0, limit: int = 100
     ) -> ParamPage:

@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING, Any
 
 from gateway.errors import GatewayError, InvalidArgument, NotFound, SafetyRefusal
 from gateway.fleet import geo
+from gateway.fleet.caller import Caller
 from gateway.fleet.operations import (
     GotoTracker,
     LandingTracker,
@@ -42,6 +43,7 @@ from gateway.fleet.operations import (
     Tracker,
 )
 from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.routing import Router
 
 if TYPE_CHECKING:
     from gateway.fleet.formation import FormationPlan
@@ -55,6 +57,10 @@ POLL_S = 0.2
 """How often a running fleet operation looks at its drones' operations."""
 MAX_FINISHED_KEPT = 50
 """Finished fleet operations kept in memory (for monitor_fleet and fleet://formation)."""
+FLEET_CALLER = Caller(via="cluster", principal="fleet")
+"""The caller of a fleet operation started without one (judged as an agent)."""
+FOLLOW_WAIT_S = 30.0
+"""A step run on another node is followed by waits of this length, one after the other."""
 
 
 def _now() -> datetime:
@@ -68,7 +74,8 @@ def _now() -> datetime:
 
 @dataclass
 class Step:
-    """One drone's part of a phase: send a command, then track it as the drone's current operation."""
+    """One drone's part of a phase: send a command, then track it as the drone's current operation.
+    ``spec`` describes it as JSON (see `build_step`), so the node owning the drone can run it there."""
 
     vehicle: FlyingVehicle
     tracker: Tracker
@@ -76,6 +83,7 @@ class Step:
     params: dict[str, Any]
     timeout_s: float | None = None  # the step fails if not finished by then (the vehicle keeps going)
     precheck: Callable[[], None] | None = None  # run inside the vehicle's command lock, just before send
+    spec: dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass
@@ -129,6 +137,7 @@ class FleetOperation:
     session_key: str | None = None
     plan: dict[str, Any] | None = None
     notes: list[str] = field(default_factory=list)
+    caller: Caller = FLEET_CALLER  # who asked: a step run on another node is judged as theirs
     status: str = "running"
     message: str = "starting"
     phase: int = 0  # 1-based index of the phase running (0: not started)
@@ -338,12 +347,20 @@ Listener = Callable[["FleetOperation"], None]
 class FleetOperations:
     """Runs fleet operations over the per-drone `OperationManager`; keeps the latest ones."""
 
-    def __init__(self, operations: OperationManager, alive: Callable[[], bool] | None = None) -> None:
-        """``alive`` tells a running fleet operation the gateway still runs (else it is interrupted)."""
+    def __init__(
+        self,
+        operations: OperationManager,
+        alive: Callable[[], bool] | None = None,
+        router: Router | None = None,
+    ) -> None:
+        """``alive`` tells a running fleet operation the gateway still runs (else it is interrupted);
+        ``router`` (a cluster node) runs the steps of drones owned by other nodes on their owners."""
         self.operations = operations
         self._alive = alive or (lambda: True)
+        self.router = router
         self._ops: dict[str, FleetOperation] = {}
         self._tasks: dict[str, asyncio.Task[None]] = {}
+        self._followers: set[asyncio.Task[None]] = set()
         self.listeners: list[Listener] = []
 
     # -- queries -------------------------------------------------------------------------------
@@ -374,6 +391,7 @@ class FleetOperations:
         plan: dict[str, Any] | None = None,
         slots: Mapping[str, dict[str, Any]] | None = None,
         notes: Sequence[str] = (),
+        caller: Caller | None = None,
     ) -> FleetOperation:
         """Start a fleet operation. Its first phase's commands are sent before this returns (so a refused
         command shows at once); later phases run in a background task."""
@@ -387,6 +405,7 @@ class FleetOperations:
             session_key=session_key,
             plan=plan,
             notes=list(notes),
+            caller=caller or FLEET_CALLER,
         )
         involved = {d for p in phases for d in p.steps}
         for drone_id, member in fop.members.items():
@@ -435,12 +454,84 @@ class FleetOperations:
         for fop in list(self._ops.values()):
             if not fop.finished:
                 self._finish(fop, "interrupted", "gateway stopped while the fleet operation was running")
-        tasks = list(self._tasks.values())
+        tasks = list(self._tasks.values()) + list(self._followers)
         for task in tasks:
             task.cancel()
         for task in tasks:
             with contextlib.suppress(asyncio.CancelledError, Exception):
                 await task
+
+    # -- steps of drones another cluster node owns ------------------------------------------------------
+    def _elsewhere(self, drone_id: str) -> Router | None:
+        router = self.router
+        return router if router is not None and not router.owns(drone_id) else None
+
+    async def _start_step(self, fop: FleetOperation, drone_id: str, step: Step) -> Operation:
+        """Start the step here, or on the drone's owner: then a local mirror of the owner's operation,
+        kept up to date by following it there."""
+        router = self._elsewhere(drone_id)
+        if router is None:
+            extra = {"precheck": step.precheck} if step.precheck is not None else {}
+            return await self.operations.start(
+                step.vehicle, step.tracker, step.send, step.params, fop.session_key, **extra
+            )
+        started = await router.call(
+            drone_id, "run_step", fop.caller, {"drone_id": drone_id, "spec": step.spec}
+        )
+        mirror = Operation(
+            id=str(started["operation_id"]),
+            vehicle_id=drone_id,
+            kind=str(started["kind"]),
+            params=dict(started.get("params") or {}),
+            session_key=fop.session_key,
+            created_at=_now(),
+        )
+        _mirror(mirror, started)
+        task = asyncio.create_task(self._follow(router, mirror), name=f"follow-{mirror.id}")
+        self._followers.add(task)
+        task.add_done_callback(self._followers.discard)
+        return mirror
+
+    async def _follow(self, router: Router, mirror: Operation) -> None:
+        """Wait on the owner, again and again, until the operation there has finished."""
+
+        async def message(body: dict[str, Any]) -> None:
+            if isinstance(body.get("view"), dict):
+                _mirror(mirror, body["view"])
+
+        failures = 0
+        while not mirror.finished:
+            try:
+                view = await router.call(
+                    mirror.vehicle_id,
+                    "wait",
+                    FLEET_CALLER,
+                    {"operation_id": mirror.id, "cap_s": FOLLOW_WAIT_S},
+                    message,
+                    wait_s=FOLLOW_WAIT_S,
+                )
+                _mirror(mirror, view)
+                failures = 0
+            except asyncio.CancelledError:
+                raise
+            except GatewayError as exc:  # the owner was lost: its successor picks the operation up
+                failures += 1
+                mirror.message = f"following {mirror.vehicle_id} on its owner failed: {exc.message}"
+                mirror.changed.set()
+                if failures >= 5:
+                    _mirror(mirror, {"status": OpStatus.interrupted.value, "message": mirror.message})
+                    return
+                await asyncio.sleep(1.0)
+
+    async def _hold(self, fop: FleetOperation, drone_id: str, step: Step) -> None:
+        router = self._elsewhere(drone_id)
+        if router is None:
+            await step.vehicle.hold()
+            await self.operations.supersede(drone_id, f"{fop.kind} abort")
+            return
+        await router.call(
+            drone_id, "hold_step", fop.caller, {"drone_id": drone_id, "reason": f"{fop.kind} abort"}
+        )
 
     # -- internals -------------------------------------------------------------------------------
     async def _run(self, fop: FleetOperation, phases: list[Phase]) -> None:
@@ -480,10 +571,7 @@ class FleetOperations:
             member.sent_after_s = round(time.monotonic() - fop.started_mono, 3)
             member.status, member.message = "running", "command sent"
             try:
-                extra = {"precheck": step.precheck} if step.precheck is not None else {}
-                op = await self.operations.start(
-                    step.vehicle, step.tracker, step.send, step.params, fop.session_key, **extra
-                )
+                op = await self._start_step(fop, drone_id, step)
             except GatewayError as exc:
                 member.status, member.message, member.operation_id = "failed", exc.message, None
                 return
@@ -546,8 +634,7 @@ class FleetOperations:
             step = phase.steps[drone_id]
             member = fop.members[drone_id]
             try:
-                await step.vehicle.hold()
-                await self.operations.supersede(drone_id, f"{fop.kind} abort")
+                await self._hold(fop, drone_id, step)
                 member.status, member.message = "held", "held in place: the fleet operation was stopped"
             except GatewayError as exc:
                 member.status, member.message = "failed", f"hold after abort failed: {exc.message}"
@@ -618,6 +705,20 @@ class FleetOperations:
             del self._ops[key]
 
 
+def _mirror(mirror: Operation, view: Mapping[str, Any]) -> None:
+    """Bring a local mirror of an operation another node runs up to date with its view there."""
+    mirror.progress = float(view.get("progress", mirror.progress) or 0.0)
+    mirror.message = str(view.get("message") or mirror.message)
+    eta = view.get("eta_s")
+    mirror.eta_s = None if eta is None else float(eta)
+    status = OpStatus(str(view.get("status") or "running"))
+    if status is not OpStatus.running and not mirror.finished:
+        mirror.status = status
+        mirror.finished_at = _now()
+        mirror.done.set()
+    mirror.changed.set()
+
+
 # ------------------------------------------------------------------------------------------------
 # building fleet operations (the MCP tools and REST call these; no MCP in here)
 # ------------------------------------------------------------------------------------------------
@@ -667,6 +768,54 @@ def _bind(precheck: Precheck | None, vehicle: FlyingVehicle) -> Callable[[], Non
     return None if precheck is None else (lambda: precheck(vehicle))
 
 
+def build_step(vehicle: FlyingVehicle, spec: Mapping[str, Any], precheck: Precheck | None = None) -> Step:
+    """One drone's step from its JSON description (the node owning the drone rebuilds it from the same):
+
+    - ``{"send": "goto", "lat", "lon", "alt_m", "tolerance_m", "kind", "phase"?}``: a tracked goto;
+    - ``{"send": "takeoff", "alt_m"}``, ``{"send": "land"}``, ``{"send": "rtl", "alt_m"}`` (return at
+      that altitude above home);
+
+    each with an optional ``timeout_s`` and ``guard`` (the action named by the takeoff guard that
+    ``precheck`` runs inside the drone's command lock)."""
+    send = spec.get("send")
+    timeout = spec.get("timeout_s")
+    timeout_s = None if timeout is None else float(timeout)
+    bound = _bind(precheck, vehicle)
+    if send == "goto":
+        lat, lon, alt = float(spec["lat"]), float(spec["lon"]), float(spec["alt_m"])
+        params: dict[str, Any] = {"lat": lat, "lon": lon, "alt_m": alt}
+        if spec.get("phase") is not None:
+            params["phase"] = int(spec["phase"])
+        tolerance = float(spec.get("tolerance_m", FORMATION_TOLERANCE_M))
+        tracker: Tracker = GotoTracker(lat, lon, alt, tolerance, kind=str(spec.get("kind", "formation")))
+        return Step(vehicle, tracker, _goto(vehicle, lat, lon, alt), params, timeout_s, bound, dict(spec))
+    if send == "takeoff":
+        alt = float(spec["alt_m"])
+        return Step(
+            vehicle,
+            TakeoffTracker(alt),
+            _takeoff(vehicle, alt),
+            {"altitude_m": alt},
+            timeout_s,
+            bound,
+            dict(spec),
+        )
+    if send == "land":
+        return Step(vehicle, LandingTracker(kind="land"), vehicle.land, {}, timeout_s, bound, dict(spec))
+    if send == "rtl":
+        alt = float(spec["alt_m"])
+        return Step(
+            vehicle,
+            LandingTracker(kind="return_to_launch"),
+            _rtl(vehicle, alt, set_rtl_altitude_param),
+            {"rtl_alt_m": alt},
+            timeout_s,
+            bound,
+            dict(spec),
+        )
+    raise InvalidArgument(f"unknown fleet step {send!r}; steps: goto, takeoff, land, rtl")
+
+
 def formation_phases(
     plan: FormationPlan, vehicles: Mapping[str, FlyingVehicle], precheck: Precheck | None = None
 ) -> list[Phase]:
@@ -675,16 +824,19 @@ def formation_phases(
     for index, name in enumerate(FORMATION_PHASES):
         steps: dict[str, Step] = {}
         for drone_id, wp in plan.phases[index].items():
-            vehicle = vehicles[drone_id]
             slot = plan.slot_for(drone_id)
-            steps[drone_id] = Step(
-                vehicle=vehicle,
-                tracker=GotoTracker(wp.lat, wp.lon, wp.alt_rel_m, FORMATION_TOLERANCE_M, kind="formation"),
-                send=_goto(vehicle, wp.lat, wp.lon, wp.alt_rel_m),
-                params={"lat": wp.lat, "lon": wp.lon, "alt_m": wp.alt_rel_m, "phase": index + 1},
-                timeout_s=step_timeout_s(slot.distance_m),
-                precheck=_bind(precheck, vehicle),
-            )
+            spec = {
+                "send": "goto",
+                "lat": wp.lat,
+                "lon": wp.lon,
+                "alt_m": wp.alt_rel_m,
+                "tolerance_m": FORMATION_TOLERANCE_M,
+                "kind": "formation",
+                "phase": index + 1,
+                "timeout_s": step_timeout_s(slot.distance_m),
+                "guard": None if precheck is None else "formation_goto",
+            }
+            steps[drone_id] = build_step(vehicles[drone_id], spec, precheck)
         phases.append(Phase(name, steps, abort_on_failure=True))
     return phases
 
@@ -707,13 +859,15 @@ def takeoff_phase(
     vehicles: Mapping[str, FlyingVehicle], altitudes: Mapping[str, float], precheck: Precheck | None = None
 ) -> Phase:
     steps = {
-        d: Step(
-            vehicle=v,
-            tracker=TakeoffTracker(altitudes[d]),
-            send=_takeoff(v, altitudes[d]),
-            params={"altitude_m": altitudes[d]},
-            timeout_s=step_timeout_s(altitudes[d], slowest_mps=0.5),
-            precheck=_bind(precheck, v),
+        d: build_step(
+            v,
+            {
+                "send": "takeoff",
+                "alt_m": altitudes[d],
+                "timeout_s": step_timeout_s(altitudes[d], slowest_mps=0.5),
+                "guard": None if precheck is None else "fleet_takeoff",
+            },
+            precheck,
         )
         for d, v in vehicles.items()
     }
@@ -721,18 +875,13 @@ def takeoff_phase(
 
 
 def land_phase(vehicles: Mapping[str, FlyingVehicle]) -> Phase:
-    steps = {
-        d: Step(vehicle=v, tracker=LandingTracker(kind="land"), send=v.land, params={})
-        for d, v in vehicles.items()
-    }
-    return Phase("land in place", steps)
+    return Phase("land in place", {d: build_step(v, {"send": "land"}) for d, v in vehicles.items()})
 
 
 def rtl_phases(
     vehicles: Mapping[str, FlyingVehicle],
     altitudes: Mapping[str, float],
     positions: Mapping[str, tuple[float, float, float]],
-    set_rtl_altitude: Callable[[FlyingVehicle, float], Awaitable[None]],
 ) -> list[Phase]:
     """Return to launch in two phases: (1) every drone climbs or descends in place to its return altitude,
     (2) each drone's RTL altitude is set, then RTL (the autopilot flies home at that altitude and lands;
@@ -744,22 +893,19 @@ def rtl_phases(
         if pos is None or abs(pos[2] - altitudes[d]) <= FORMATION_TOLERANCE_M:
             continue
         lat, lon, alt = pos
-        climbs[d] = Step(
-            vehicle=v,
-            tracker=GotoTracker(lat, lon, altitudes[d], FORMATION_TOLERANCE_M, kind="fleet_climb"),
-            send=_goto(v, lat, lon, altitudes[d]),
-            params={"lat": lat, "lon": lon, "alt_m": altitudes[d]},
-            timeout_s=step_timeout_s(abs(altitudes[d] - alt), slowest_mps=0.5),
+        climbs[d] = build_step(
+            v,
+            {
+                "send": "goto",
+                "lat": lat,
+                "lon": lon,
+                "alt_m": altitudes[d],
+                "tolerance_m": FORMATION_TOLERANCE_M,
+                "kind": "fleet_climb",
+                "timeout_s": step_timeout_s(abs(altitudes[d] - alt), slowest_mps=0.5),
+            },
         )
-    returns = {
-        d: Step(
-            vehicle=v,
-            tracker=LandingTracker(kind="return_to_launch"),
-            send=_rtl(v, altitudes[d], set_rtl_altitude),
-            params={"rtl_alt_m": altitudes[d]},
-        )
-        for d, v in vehicles.items()
-    }
+    returns = {d: build_step(v, {"send": "rtl", "alt_m": altitudes[d]}) for d, v in vehicles.items()}
     return [
         Phase("climb or descend in place to return altitudes", climbs),
         Phase("return home and land", returns),

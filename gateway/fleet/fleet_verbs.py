@@ -20,16 +20,18 @@ import dataclasses
 import logging
 from collections.abc import Awaitable, Callable, Sequence
 from datetime import UTC, datetime
-from typing import Literal
+from typing import Any, Literal
 
 from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
+from gateway.fleet.command_core import routed
 from gateway.fleet.drone_verbs import DroneVerbs
 from gateway.fleet.fleet_ops import (
     FORMATION_TOLERANCE_M,
     FleetOperation,
     Unable,
+    build_step,
     check_drone_ids,
     collect_members,
     default_rtl_base_m,
@@ -38,7 +40,6 @@ from gateway.fleet.fleet_ops import (
     refuse_fleet,
     rtl_order,
     rtl_phases,
-    set_rtl_altitude_param,
     slot_summaries,
     takeoff_phase,
 )
@@ -47,7 +48,16 @@ from gateway.fleet.geofence import FLEET
 from gateway.fleet.protocols import FlyingVehicle
 from gateway.fleet.readings import home, is_landed_and_disarmed, position
 from gateway.fleet.safety import Rule, refuse
-from gateway.fleet.views import FleetHoldResult, FleetView, LockResult, StopOutcome, StopResult, UnlockResult
+from gateway.fleet.views import (
+    ActionResult,
+    FleetHoldResult,
+    FleetView,
+    LockResult,
+    OperationView,
+    StopOutcome,
+    StopResult,
+    UnlockResult,
+)
 
 log = logging.getLogger(__name__)
 
@@ -113,7 +123,7 @@ class FleetVerbs(DroneVerbs):
         return check_drone_ids(drone_ids)
 
     def _busy(self, vehicle: FlyingVehicle, action: str) -> None:
-        self.safety.check_not_busy(self.context(vehicle), self.operations.running_facts(vehicle.id), action)
+        self.safety.check_not_busy(self.context(vehicle), self._running(vehicle.id), action)
 
     def _stagger(self, stagger_m: float | None) -> float:
         """Default: the minimum separation plus 1 m of altitude-holding error for each of two drones."""
@@ -212,6 +222,7 @@ class FleetVerbs(DroneVerbs):
             formation_phases(plan, vehicles, lambda v: self._guard_takeoff(caller, v, "formation_goto")),
             params,
             caller.session,
+            caller=caller,
             plan=plan.to_dict(),
             slots=slot_summaries(plan),
             notes=plan.notes,
@@ -246,6 +257,7 @@ class FleetVerbs(DroneVerbs):
             [takeoff_phase(vehicles, altitudes, lambda v: self._guard_takeoff(caller, v, "fleet_takeoff"))],
             {"alt_m": alt_m, "altitudes_m": altitudes},
             caller.session,
+            caller=caller,
             slots={d: {"target_alt_m": a} for d, a in altitudes.items()},
         )
         return self.fleet_view(fop)
@@ -265,7 +277,12 @@ class FleetVerbs(DroneVerbs):
 
         ids, vehicles, unable = self._recovery_members(drone_ids, "fleet_land", check)
         fop = await self.fleet.start(
-            "fleet_land", list(vehicles), [land_phase(vehicles)], {"drone_ids": ids}, caller.session
+            "fleet_land",
+            list(vehicles),
+            [land_phase(vehicles)],
+            {"drone_ids": ids},
+            caller.session,
+            caller=caller,
         )
         return self.fleet_view(fop, unable)
 
@@ -310,9 +327,10 @@ class FleetVerbs(DroneVerbs):
         fop = await self.fleet.start(
             "fleet_return_to_launch",
             order,
-            rtl_phases(vehicles, altitudes, positions, set_rtl_altitude_param),
+            rtl_phases(vehicles, altitudes, positions),
             {"drone_ids": ids, "rtl_altitudes_m": altitudes},
             caller.session,
+            caller=caller,
             slots={d: {"rtl_alt_m": a} for d, a in altitudes.items()},
             notes=notes,
         )
@@ -334,8 +352,7 @@ class FleetVerbs(DroneVerbs):
 
         async def hold(drone_id: str, v: FlyingVehicle) -> None:
             try:
-                await v.hold()
-                await self.operations.supersede(drone_id, "fleet_hold")
+                await self.hold_step(caller, drone_id, "fleet_hold")  # on its owner, in a cluster
             except GatewayError as exc:
                 failed.append({"drone_id": drone_id, "code": exc.code, "message": exc.message})
 
@@ -346,6 +363,33 @@ class FleetVerbs(DroneVerbs):
             failed=failed,
             not_sent=[u.to_dict() for u in unable],
             superseded_fleet_operations=[f.id for f in superseded],
+        )
+
+    # ------------------------------------------------------------------------------------------------
+    # one drone's step of a fleet operation coordinated by another cluster node
+    # ------------------------------------------------------------------------------------------------
+
+    @routed
+    async def run_step(self, caller: Caller, drone_id: str, spec: dict[str, Any]) -> OperationView:
+        """Start one drone's step (`gateway.fleet.fleet_ops.build_step`) as its operation here, with the
+        takeoff guard inside its command lock, for the node coordinating the fleet operation."""
+        vehicle = self.vehicle(drone_id)
+        guard = spec.get("guard")
+        precheck = None if not guard else (lambda v: self._guard_takeoff(caller, v, str(guard)))
+        step = build_step(vehicle, spec, precheck)
+        op = await self.operations.start(
+            vehicle, step.tracker, step.send, step.params, caller.session, step.precheck
+        )
+        return OperationView.of(op, vehicle)
+
+    @routed
+    async def hold_step(self, caller: Caller, drone_id: str, reason: str) -> ActionResult:
+        """Hold a drone whose fleet operation (coordinated by another node) was stopped."""
+        vehicle = self.vehicle(drone_id)
+        await vehicle.hold()
+        sup = await self._supersede(drone_id, reason)
+        return ActionResult(
+            drone_id=drone_id, action="hold", message="held", superseded_operation=sup and sup.id
         )
 
     # ------------------------------------------------------------------------------------------------
@@ -371,12 +415,17 @@ class FleetVerbs(DroneVerbs):
         log.warning(
             "operator %s locked %s: %s", lock.by, "the fleet" if scope == FLEET else scope, lock.reason
         )
-        return LockResult(scope=lock.scope, reason=lock.reason, by=lock.by, locked_at=lock.locked_at)
+        result = LockResult(scope=lock.scope, reason=lock.reason, by=lock.by, locked_at=lock.locked_at)
+        if self.router is not None:  # every node refuses agents from now on
+            await self.router.announce("lock", result.model_dump(mode="json"))
+        return result
 
     async def unlock(self, caller: Caller, scope: str) -> UnlockResult:
         self._operator_only(caller, "unlock drones")
         removed = self.locks.unlock(scope)
         stored = await self.store.delete_lock(scope) if self.store is not None else False
+        if self.router is not None:
+            await self.router.announce("unlock", {"scope": scope})
         if removed or stored:
             log.warning("operator %s unlocked %s", caller.principal, "the fleet" if scope == FLEET else scope)
         return UnlockResult(scope=scope, was_locked=removed is not None or stored)
@@ -392,6 +441,8 @@ class FleetVerbs(DroneVerbs):
             fleet_lock = await self.lock(caller, FLEET, lock_reason or STOP_LOCK_REASON)
         vehicles = list(self.registry.all())
         superseded = await self.fleet.supersede([v.id for v in vehicles], f"operator stop ({action})")
+        if self.router is not None:  # fleet operations coordinated by other nodes end there too
+            await self.router.announce("stop", {"action": action, "by": caller.principal})
 
         async def one(vehicle: FlyingVehicle) -> StopOutcome:
             state = str(vehicle.state)

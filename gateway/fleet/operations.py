@@ -453,6 +453,31 @@ class OperationManager:
                 await task
         self._monitors.clear()
 
+    async def resume(self, record: Any, vehicle: Any, tracker: Tracker, message: str) -> Operation:
+        """Follow an operation another process started (a cluster node that was lost): same id, kind and
+        params, tracked again from the vehicle's telemetry here."""
+        op = Operation(
+            id=record.id,
+            vehicle_id=record.vehicle_id,
+            kind=record.kind,
+            params=dict(record.params or {}),
+            session_key=record.session_key,
+            created_at=record.created_at,
+            progress=float(record.progress or 0.0),
+            message=message,
+            updated_at=_now(),
+        )
+        previous = self.running(vehicle.id)
+        if previous is not None:
+            await self._finish(previous, OpStatus.superseded, f"superseded by {op.kind} {op.id}")
+        self._ops[op.id] = op
+        self._current[vehicle.id] = op
+        await self._save(op, force=True)
+        self._monitors[op.id] = asyncio.create_task(
+            self._monitor(vehicle, op, tracker), name=f"op-{op.kind}-{op.id}"
+        )
+        return op
+
     # -- internals -------------------------------------------------------------------------------
     async def _monitor(self, vehicle: FlyingVehicle, op: Operation, tracker: Tracker) -> None:
         stale_after = float(getattr(self.settings, "link_lost_after_s", 3.0))

@@ -17,13 +17,14 @@ from __future__ import annotations
 
 import asyncio
 import logging
-from collections.abc import Callable
-from typing import Any
+from collections.abc import Awaitable, Callable, Iterable
+from typing import Any, Protocol
 
 from pydantic import ValidationError
 
 from gateway.config import Settings
 from gateway.errors import InvalidArgument, UnknownVehicle
+from gateway.fleet.protocols import FlyingVehicle
 from gateway.fleet.vehicle import ConnectionState, Vehicle
 from gateway.link.sidecar import Confine
 from gateway.registry.spec import VehicleSpec
@@ -31,18 +32,45 @@ from gateway.registry.store import Store
 
 log = logging.getLogger("gateway.registry")
 
+SPEC_FIELDS = set(VehicleSpec.model_fields)
+
 StateListener = Callable[[Vehicle, ConnectionState, ConnectionState], None]
+
+
+class RegisteredVehicle(FlyingVehicle, Protocol):
+    """What the registry holds: a `Vehicle` it runs, or (a cluster node) a view of a vehicle another
+    node runs (`gateway.cluster.remote.RemoteVehicle`)."""
+
+    spec: VehicleSpec
+
+    @property
+    def sidecar(self) -> object: ...
+
+    async def connect(self) -> None: ...
+
+    async def disconnect(self) -> None: ...
 
 
 class Registry:
     """Owns one Vehicle (and through it one sidecar) per registered drone."""
 
-    def __init__(self, settings: Settings, store: Store, *, confine: Confine | None = None) -> None:
+    def __init__(
+        self,
+        settings: Settings,
+        store: Store,
+        *,
+        confine: Confine | None = None,
+        remote_factory: Callable[[VehicleSpec], RegisteredVehicle] | None = None,
+    ) -> None:
+        """``remote_factory`` makes this the registry of a cluster node: every vehicle starts as a view of
+        a vehicle owned elsewhere, and the node's lease keeper calls :meth:`adopt` / :meth:`release`."""
         self.settings = settings
         self.store = store
         self._confine = confine
-        self._vehicles: dict[str, Vehicle] = {}
+        self._remote_factory = remote_factory
+        self._vehicles: dict[str, RegisteredVehicle] = {}
         self._listeners: list[StateListener] = []
+        self._changed_hooks: list[Callable[[], Awaitable[None]]] = []
         self._lock = asyncio.Lock()
         self._started = False
 
@@ -55,16 +83,21 @@ class Registry:
             self._started = True
             for record in await self.store.list_vehicles():
                 try:
-                    spec = VehicleSpec.model_validate(
-                        record.model_dump(include={"id", "url", "name", "tags", "expected_sysid"})
-                    )
+                    spec = VehicleSpec.model_validate(record.model_dump(include=SPEC_FIELDS))
                 except ValidationError as exc:  # a row edited by hand must not keep the others down
                     log.error("not restoring vehicle %r: invalid registration: %s", record.id, exc)
+                    continue
+                if self.clustered:
+                    self._vehicles[spec.id] = self._remote(spec)
                     continue
                 vehicle = self._make(spec)
                 if record.auto_connect:
                     await vehicle.connect()
             log.info("registry started with %d vehicle(s)", len(self._vehicles))
+
+    @property
+    def clustered(self) -> bool:
+        return self._remote_factory is not None
 
     async def stop(self) -> None:
         """Disconnect every vehicle; no mavsdk_server process remains afterwards."""
@@ -78,30 +111,36 @@ class Registry:
             self._started = False
 
     # --- registrations ----------------------------------------------------------------------------------
-    async def add(self, spec: VehicleSpec | dict[str, Any], connect: bool = True) -> Vehicle:
+    async def add(self, spec: VehicleSpec | dict[str, Any], connect: bool = True) -> RegisteredVehicle:
         """Register (persist) a vehicle and, by default, connect it. Raises DuplicateVehicle."""
         spec = _validate_spec(spec)
         async with self._lock:
             await self.store.add_vehicle(spec, auto_connect=connect)
-            vehicle = self._make(spec)
-        if connect:
+            vehicle: RegisteredVehicle
+            if self.clustered:  # the node whose lease keeper takes it runs its sidecar
+                vehicle = self._vehicles[spec.id] = self._remote(spec)
+            else:
+                vehicle = self._make(spec)
+        if connect and not self.clustered:
             await vehicle.connect()
+        await self._registrations_changed()
         return vehicle
 
-    async def update(self, vehicle_id: str, **changes: Any) -> Vehicle:
+    async def update(self, vehicle_id: str, **changes: Any) -> RegisteredVehicle:
         """Change name, tags, expected_sysid, url or auto_connect; a new URL reconnects the vehicle."""
         old = self.get(vehicle_id)
         record = await self.store.update_vehicle(vehicle_id, **changes)
-        spec = VehicleSpec.model_validate(
-            record.model_dump(include={"id", "url", "name", "tags", "expected_sysid"})
-        )
+        spec = VehicleSpec.model_validate(record.model_dump(include=SPEC_FIELDS))
         was_connected = old.sidecar is not None
-        if spec.url != old.spec.url and was_connected:
+        if not isinstance(old, Vehicle):
+            old.spec = spec  # its owner reconnects it if the URL changed (sync)
+        elif spec.url != old.spec.url and was_connected:
             await old.disconnect()
             old.spec = spec
             await old.connect()
         else:
             old.spec = spec
+        await self._registrations_changed()
         return old
 
     async def remove(self, vehicle_id: str) -> None:
@@ -109,39 +148,121 @@ class Registry:
         await vehicle.disconnect()
         await self.store.remove_vehicle(vehicle_id)
         self._vehicles.pop(vehicle_id, None)
+        await self._registrations_changed()
 
-    def get(self, vehicle_id: str) -> Vehicle:
+    def get(self, vehicle_id: str) -> RegisteredVehicle:
         vehicle = self._vehicles.get(vehicle_id) if isinstance(vehicle_id, str) else None
         if vehicle is None:
             raise UnknownVehicle(str(vehicle_id)[:64], list(self._vehicles))
         return vehicle
 
-    def all(self) -> list[Vehicle]:
+    def all(self) -> list[RegisteredVehicle]:
         return [self._vehicles[k] for k in sorted(self._vehicles)]
 
-    async def connect(self, vehicle_id: str) -> Vehicle:
+    async def connect(self, vehicle_id: str) -> RegisteredVehicle:
+        """Connect (and keep connecting at every start). On a cluster node the owner connects it."""
         vehicle = self.get(vehicle_id)
         await vehicle.connect()
         await self.store.update_vehicle(vehicle_id, auto_connect=True)
+        await self._registrations_changed()
         return vehicle
 
-    async def disconnect(self, vehicle_id: str) -> Vehicle:
+    async def disconnect(self, vehicle_id: str) -> RegisteredVehicle:
         vehicle = self.get(vehicle_id)
         await vehicle.disconnect()
         await self.store.update_vehicle(vehicle_id, auto_connect=False)
+        await self._registrations_changed()
         return vehicle
+
+    # --- cluster: which vehicles this node runs ------------------------------------------------------
+    def find(self, vehicle_id: str) -> RegisteredVehicle | None:
+        """The vehicle, or None (no error) when it is not registered."""
+        return self._vehicles.get(vehicle_id)
+
+    def is_local(self, vehicle_id: str) -> bool:
+        return isinstance(self._vehicles.get(vehicle_id), Vehicle)
+
+    def local(self) -> list[Vehicle]:
+        """The vehicles whose sidecar runs in this process."""
+        return [v for v in self.all() if isinstance(v, Vehicle)]
+
+    async def adopt(self, vehicle_id: str) -> Vehicle:
+        """This node now owns the vehicle: replace its remote view by a connected local Vehicle."""
+        async with self._lock:
+            current = self.get(vehicle_id)
+            if isinstance(current, Vehicle):
+                return current
+            vehicle = self._make(current.spec)
+        await vehicle.connect()
+        return vehicle
+
+    async def release(self, vehicle_id: str) -> RegisteredVehicle | None:
+        """This node no longer owns the vehicle: stop its sidecar, keep a remote view of it."""
+        async with self._lock:
+            current = self._vehicles.get(vehicle_id)
+            if current is None or not isinstance(current, Vehicle):
+                return current
+            assert self._remote_factory is not None, "release() is for cluster nodes"
+            self._vehicles[vehicle_id] = remote = self._remote(current.spec)
+        try:
+            await current.disconnect()
+        except Exception:
+            log.exception("stopping %s after its lease ended failed", vehicle_id)
+        return remote
+
+    async def sync(self, records: Iterable[Any]) -> list[str]:
+        """Match the registrations in the database (changed on another node); returns the ids of local
+        vehicles whose URL changed (reconnected)."""
+        specs = {}
+        for record in records:
+            try:
+                specs[record.id] = VehicleSpec.model_validate(record.model_dump(include=SPEC_FIELDS))
+            except ValidationError:
+                continue
+        changed = []
+        for vid in [v for v in self._vehicles if v not in specs]:
+            gone = self._vehicles.pop(vid)
+            if isinstance(gone, Vehicle):
+                await gone.disconnect()
+        for vid, spec in specs.items():
+            current = self._vehicles.get(vid)
+            if current is None:
+                self._vehicles[vid] = self._remote(spec)
+            elif current.spec != spec:
+                url_changed = current.spec.url != spec.url
+                current.spec = spec
+                if url_changed and isinstance(current, Vehicle) and current.sidecar is not None:
+                    await current.disconnect()
+                    await current.connect()
+                    changed.append(vid)
+        return changed
+
+    def on_registrations_changed(self, hook: Callable[[], Awaitable[None]]) -> None:
+        """``await hook()`` after a registration was added, changed or removed through this registry."""
+        self._changed_hooks.append(hook)
+
+    async def _registrations_changed(self) -> None:
+        for hook in list(self._changed_hooks):
+            try:
+                await hook()
+            except Exception:
+                log.exception("registration hook failed")
 
     def on_state_change(self, listener: StateListener) -> None:
         """``listener(vehicle, old, new)`` on every connection state change (e.g. MCP resource updates)."""
         self._listeners.append(listener)
 
     # --- internals --------------------------------------------------------------------------------------
+    def _remote(self, spec: VehicleSpec) -> RegisteredVehicle:
+        assert self._remote_factory is not None
+        return self._remote_factory(spec)
+
     def _make(self, spec: VehicleSpec) -> Vehicle:
         vehicle = Vehicle(
             spec,
             self.settings,
             store=self.store,
-            peers=self.all,
+            peers=self.local,  # duplicate system ids: among the vehicles whose links run here
             confine=self._confine,
             on_state=self._state_changed,
         )

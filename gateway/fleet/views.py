@@ -3,7 +3,7 @@ and rebuilt from JSON (``model_validate``), so a result can cross a process boun
 
 from __future__ import annotations
 
-from datetime import datetime
+from datetime import UTC, datetime
 from typing import Any, Literal
 
 from pydantic import BaseModel, Field
@@ -12,6 +12,7 @@ from gateway.fleet.mission import MissionItem
 from gateway.fleet.operations import Operation
 from gateway.fleet.protocols import FlyingVehicle
 from gateway.fleet.readings import position
+from gateway.registry.records import OperationRecord
 
 
 class OperationView(BaseModel):
@@ -46,6 +47,24 @@ class OperationView(BaseModel):
             lat_deg=None if pos is None else pos[0],
             lon_deg=None if pos is None else pos[1],
             alt_m=None if pos is None else round(pos[2], 2),
+        )
+
+    @classmethod
+    def of_record(cls, record: OperationRecord, message: str | None = None) -> OperationView:
+        """A stored operation (run by another process), as the database last had it."""
+        end = record.finished_at or datetime.now(UTC)
+        start = record.created_at
+        if start.tzinfo is None or end.tzinfo is None:  # SQLite gives naive UTC times
+            start, end = start.replace(tzinfo=UTC), end.replace(tzinfo=UTC)
+        return cls(
+            operation_id=record.id,
+            drone_id=record.vehicle_id,
+            kind=record.kind,
+            status=record.status,
+            progress=round(record.progress, 3),
+            message=message or record.message or record.status,
+            elapsed_s=round(max(0.0, (end - start).total_seconds()), 1),
+            params=dict(record.params),
         )
 
     @property

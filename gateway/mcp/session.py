@@ -11,7 +11,6 @@ this one middleware, including calls rejected before the tool ran (unknown tool,
 
 from __future__ import annotations
 
-import asyncio
 import logging
 import os
 import time
@@ -21,7 +20,8 @@ from typing import Any
 import anyio
 from mcp.server.auth.middleware.auth_context import get_access_token
 
-from gateway.fleet.operations import Operation, OperationManager
+from gateway.fleet.caller import Caller
+from gateway.fleet.routing import ACTING
 from gateway.mcp.access import CallInfo, FleetState, current_call
 from gateway.registry.records import AuditEntry, SessionKind
 from gateway.registry.store import Store
@@ -73,11 +73,10 @@ def session_info(ctx: Any) -> SessionInfo:
 
 class SessionAudit:
     """MCP server middleware: session bookkeeping for every message, audit rows for tool calls. The
-    store and the operations come from the server's lifespan state (`FleetState`)."""
+    store comes from the server's lifespan state (`FleetState`)."""
 
     def __init__(self) -> None:
         self._touched: dict[str, tuple[float, str | None]] = {}
-        self._followers: set[asyncio.Task[None]] = set()
 
     async def __call__(self, ctx: Any, call_next: Any) -> Any:
         if ctx.method == "initialize":
@@ -85,13 +84,25 @@ class SessionAudit:
         state = ctx.lifespan_context
         running = isinstance(state, FleetState) and state.gateway.ready
         store = state.gateway.store if running else None
-        operations = state.gateway.operations if running else None
         info = session_info(ctx)
         is_call = ctx.method == "tools/call" and ctx.request_id is not None
         await self._touch(store, info, force=is_call)
-        if not is_call:
-            return await call_next(ctx)
+        # who acts in this request: the Commander's registry shows an agent only its scope of vehicles
+        acting = ACTING.set(Caller(via="mcp", principal=info.principal, session=info.key))
+        try:
+            if not is_call:
+                return await call_next(ctx)
+            return await self._call(ctx, call_next, info, store)
+        finally:
+            ACTING.reset(acting)
 
+    async def _call(
+        self,
+        ctx: Any,
+        call_next: Any,
+        info: SessionInfo,
+        store: Store | None,
+    ) -> Any:
         params = ctx.params or {}
         arguments = params.get("arguments") or {}
         call = CallInfo(session_key=info.key, principal=info.principal, vehicle_id=_drone_id(arguments))
@@ -108,12 +119,21 @@ class SessionAudit:
         finally:
             current_call.reset(token)
             outcome, error = _outcome(call, result, failure)
+            # a call that returns while its operation runs (wait:false) names it: when the operation
+            # ends, on whichever node runs it then, the store finishes the row (Store.save_operation)
+            operation_id = _operation_id(result) if outcome == "running" else None
             with anyio.CancelScope(shield=True):
-                row_id = await self._audit(
-                    store, info, call, str(params.get("name", "?")), arguments, outcome, error, started
+                await self._audit(
+                    store,
+                    info,
+                    call,
+                    str(params.get("name", "?")),
+                    arguments,
+                    outcome,
+                    error,
+                    started,
+                    operation_id,
                 )
-            if store is not None and operations is not None and row_id is not None and outcome == "running":
-                self._follow(store, operations, row_id, _operation_id(result))
 
     async def _touch(self, store: Store | None, info: SessionInfo, force: bool) -> None:
         if store is None:
@@ -146,6 +166,7 @@ class SessionAudit:
         outcome: str,
         error: str | None,
         started: float,
+        operation_id: str | None = None,
     ) -> int | None:
         if store is None:
             return None
@@ -161,35 +182,12 @@ class SessionAudit:
                     outcome=outcome,
                     error=None if error is None else error[:1000],
                     duration_ms=round((time.perf_counter() - started) * 1000.0, 1),
+                    operation_id=operation_id,
                 )
             )
         except Exception:
             log.exception("could not write the audit row of %s", tool)
             return None
-
-    def _follow(
-        self, store: Store, operations: OperationManager, row_id: int, operation_id: str | None
-    ) -> None:
-        """A call that returned while its operation runs (wait:false): when the operation ends, its
-        audit row says how (ok, error, superseded, cancelled) instead of staying "running"."""
-        if operation_id is None:
-            return
-        try:
-            op = operations.get(operation_id)
-        except Exception:  # not an operation of this gateway: the row stays as written
-            return
-        task = asyncio.create_task(self._finish_row(store, row_id, op), name=f"audit-{operation_id}")
-        self._followers.add(task)
-        task.add_done_callback(self._followers.discard)
-
-    async def _finish_row(self, store: Store, row_id: int, op: Operation) -> None:
-        await op.done.wait()
-        status = op.status.value
-        outcome = {"succeeded": "ok", "failed": "error", "interrupted": "error"}.get(status, status)
-        try:
-            await store.finish_audit(row_id, outcome, None if outcome == "ok" else str(op.message))
-        except Exception:
-            log.exception("could not record the end of operation %s in the audit", op.id)
 
 
 def _operation_id(result: Any) -> str | None:

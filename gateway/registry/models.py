@@ -72,6 +72,7 @@ class VehicleRow(Base):
     name: Mapped[str | None] = mapped_column(String(100))
     tags: Mapped[list[str]] = mapped_column(JSON, default=list)
     expected_sysid: Mapped[int | None] = mapped_column(Integer)
+    node_tag: Mapped[str | None] = mapped_column(String(32))
     auto_connect: Mapped[bool] = mapped_column(Boolean, default=True)
     created_at: Mapped[datetime] = mapped_column(UTCDateTime())
     updated_at: Mapped[datetime] = mapped_column(UTCDateTime())
@@ -105,6 +106,8 @@ class AuditRow(Base):
     outcome: Mapped[str] = mapped_column(String(16))
     error: Mapped[str | None] = mapped_column(Text)
     duration_ms: Mapped[float | None] = mapped_column(Float)
+    # the operation a call left running (wait:false): its end finishes the row, on whichever node
+    operation_id: Mapped[str | None] = mapped_column(String(64), index=True)
 
 
 class FlightRow(Base):
@@ -186,3 +189,32 @@ class LockRow(Base):
     reason: Mapped[str] = mapped_column(Text)
     locked_by: Mapped[str] = mapped_column(String(200))
     locked_at: Mapped[datetime] = mapped_column(UTCDateTime())
+
+
+class ClusterNodeRow(Base):
+    """A gateway node of a cluster; alive while ``expires_at`` is in the future (renewed with its leases)."""
+
+    __tablename__ = "cluster_nodes"
+
+    node_id: Mapped[str] = mapped_column(String(32), primary_key=True)
+    tags: Mapped[list[str]] = mapped_column(JSON, default=list)
+    api_url: Mapped[str | None] = mapped_column(String(256))
+    started_at: Mapped[datetime] = mapped_column(UTCDateTime())
+    last_seen: Mapped[datetime] = mapped_column(UTCDateTime())
+    expires_at: Mapped[datetime] = mapped_column(UTCDateTime(), index=True)
+
+
+class VehicleLeaseRow(Base):
+    """Which node owns (runs the sidecar of) a vehicle, until when. ``epoch`` grows at every change of
+    owner: a fencing number that tells a late message of the previous owner from the current one."""
+
+    __tablename__ = "vehicle_leases"
+
+    vehicle_id: Mapped[str] = mapped_column(
+        String(32), ForeignKey("vehicles.id", ondelete="CASCADE"), primary_key=True
+    )
+    node_id: Mapped[str] = mapped_column(String(32), index=True)
+    epoch: Mapped[int] = mapped_column(BigInteger, default=1)
+    acquired_at: Mapped[datetime] = mapped_column(UTCDateTime())
+    renewed_at: Mapped[datetime] = mapped_column(UTCDateTime())
+    expires_at: Mapped[datetime] = mapped_column(UTCDateTime())

@@ -21,8 +21,16 @@ SEVERITY_NAMES = ("EMERGENCY", "ALERT", "CRITICAL", "ERROR", "WARNING", "NOTICE"
 
 SessionKind = Literal["mcp-2025", "mcp-2026", "rest"]
 AuditSource = Literal["mcp", "rest"]
-AuditOutcome = Literal["ok", "error", "refused", "running"]
+AuditOutcome = Literal["ok", "error", "refused", "running", "superseded", "cancelled"]
 OperationStatus = Literal["running", "succeeded", "failed", "superseded", "interrupted", "cancelled"]
+#: how a call that left its operation running ends in the audit, by how the operation ended
+AUDIT_OUTCOME_OF_OPERATION: dict[str, AuditOutcome] = {
+    "succeeded": "ok",
+    "failed": "error",
+    "interrupted": "error",
+    "superseded": "superseded",
+    "cancelled": "cancelled",
+}
 
 
 def utcnow() -> datetime:
@@ -47,9 +55,7 @@ class VehicleRecord(VehicleSpec):
 
     @property
     def spec(self) -> VehicleSpec:
-        return VehicleSpec(
-            id=self.id, url=self.url, name=self.name, tags=list(self.tags), expected_sysid=self.expected_sysid
-        )
+        return VehicleSpec.model_validate(self.model_dump(include=set(VehicleSpec.model_fields)))
 
 
 class FlightRecord(_Record):
@@ -140,6 +146,7 @@ class AuditEntry(_Record):
     error: str | None = None
     duration_ms: float | None = None
     t: datetime | None = None
+    operation_id: str | None = None
 
 
 class AuditRecord(AuditEntry):

@@ -8,6 +8,7 @@ from urllib.parse import urlsplit
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
 VEHICLE_ID_PATTERN = r"^[a-z0-9-]{1,32}$"
+NODE_TAG_PATTERN = r"^[A-Za-z0-9_.\-]{1,32}$"
 CONNECTION_SCHEMES = ("udpin", "udpout", "tcpin", "tcpout", "serial")
 _HOSTNAME = re.compile(r"^[A-Za-z0-9.\-]{1,253}$")
 
@@ -55,6 +56,12 @@ class VehicleSpec(BaseModel):
     tags: list[str] = Field(default_factory=list, max_length=20, description="Free tags, e.g. ['survey'].")
     expected_sysid: int | None = Field(
         None, ge=1, le=255, description="MAVLink system id the vehicle must report."
+    )
+    node_tag: str | None = Field(
+        None,
+        pattern=NODE_TAG_PATTERN,
+        description="Cluster only: nodes carrying this tag (GATEWAY_CLUSTER_NODE_TAGS) own the drone, "
+        "e.g. the site whose radio reaches it; unset: any node.",
     )
 
     @field_validator("url")

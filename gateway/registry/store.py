@@ -35,6 +35,7 @@ from gateway.registry.records import (
     AUDIT_MAX_ERROR,
     AUDIT_MAX_JSON,
     AUDIT_MAX_STRING,
+    AUDIT_OUTCOME_OF_OPERATION,
     SEVERITY_NAMES,
     AuditEntry,
     AuditOutcome,
@@ -247,6 +248,7 @@ class Store:
             name=spec.name,
             tags=list(spec.tags),
             expected_sysid=spec.expected_sysid,
+            node_tag=spec.node_tag,
             auto_connect=auto_connect,
             created_at=now,
             updated_at=now,
@@ -260,7 +262,7 @@ class Store:
             raise DuplicateVehicle(f"a drone with id '{spec.id}' is already registered", id=spec.id) from exc
         return VehicleRecord.model_validate(row)
 
-    _UPDATABLE = frozenset({"name", "tags", "expected_sysid", "url", "auto_connect"})
+    _UPDATABLE = frozenset({"name", "tags", "expected_sysid", "node_tag", "url", "auto_connect"})
 
     async def update_vehicle(self, vehicle_id: str, **changes: Any) -> VehicleRecord:
         unknown = sorted(set(changes) - self._UPDATABLE)
@@ -287,6 +289,7 @@ class Store:
             row.name = spec.name
             row.tags = list(spec.tags)
             row.expected_sysid = spec.expected_sysid
+            row.node_tag = spec.node_tag
             row.auto_connect = auto_connect
             row.updated_at = utcnow()
         return VehicleRecord.model_validate(row)
@@ -553,22 +556,19 @@ class Store:
             outcome=entry.outcome,
             error=entry.error and entry.error[:AUDIT_MAX_ERROR],
             duration_ms=entry.duration_ms,
+            operation_id=entry.operation_id,
         )
         async with self._sessions.begin() as session:
             session.add(row)
             await session.flush()
+            row_id = int(row.id)
         self._audit_written(row)
-        return int(row.id)
-
-    async def finish_audit(self, row_id: int, outcome: str, error: str | None) -> None:
-        """Record how the action of an audit row ended (a call that returned while it was running)."""
-        async with self._sessions.begin() as session:
-            row = await session.get(AuditRow, row_id)
-            if row is not None:
-                row.outcome = outcome[:16]
-                row.error = error and error[:AUDIT_MAX_ERROR]
-        if row is not None:
-            self._audit_written(row)
+        if entry.outcome == "running" and entry.operation_id is not None:
+            # the operation may have ended before this row was written: then nobody else closes it
+            op = await self.get_operation(entry.operation_id)
+            if op is not None and op.status != "running":
+                await self._finish_audit_of(entry.operation_id, op.status, op.message)
+        return row_id
 
     def _audit_conditions(
         self,
@@ -632,6 +632,8 @@ class Store:
     # --- operations ------------------------------------------------------------------------------
 
     async def save_operation(self, op: OperationRecord) -> OperationRecord:
+        """Insert or update; an operation that has ended also finishes the audit rows of the calls that
+        left it running (whichever node ends it: its owner, or the node that took the drone over)."""
         values = op.model_dump()
         async with self._sessions.begin() as session:
             row = await session.get(OperationRow, op.id)
@@ -641,7 +643,22 @@ class Store:
                 for key, value in values.items():
                     if key != "id":
                         setattr(row, key, value)
+        if op.status != "running":
+            await self._finish_audit_of(op.id, op.status, op.message)
         return op
+
+    async def _finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
+        outcome = AUDIT_OUTCOME_OF_OPERATION.get(status, "error")
+        async with self._sessions.begin() as session:
+            query = select(AuditRow).where(
+                AuditRow.operation_id == operation_id, AuditRow.outcome == "running"
+            )
+            rows = (await session.scalars(query)).all()
+            for row in rows:
+                row.outcome = outcome
+                row.error = None if outcome == "ok" else (message or status)[:AUDIT_MAX_ERROR]
+        for row in rows:  # the console's audit stream shows the row again, finished
+            self._audit_written(row)
 
     async def get_operation(self, operation_id: str) -> OperationRecord | None:
         async with self._sessions() as session:

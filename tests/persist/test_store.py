@@ -37,7 +37,7 @@ def spec(vid: str = "alpha", port: int = 5760, **kw) -> VehicleSpec:
 
 
 async def test_open_upgrades_to_head(store: Store) -> None:
-    assert await current_revision(store.engine) == head_revision() == "0002"
+    assert await current_revision(store.engine) == head_revision() == "0004"
     assert await store.ping()
 
 
@@ -82,9 +82,19 @@ async def test_upgrade_from_the_first_revision_keeps_data(db_url: str) -> None:
         assert await current_revision(engine) == "0001"
     finally:
         await engine.dispose()
-    old = Store(create_engine_for(db_url), db_url)  # the old schema, not upgraded
-    await old.add_vehicle(spec("alpha"))
-    await old.close()
+    old = create_engine_for(db_url)  # the old schema, written with the old columns only
+    try:
+        async with old.begin() as conn:
+            now = datetime.now(UTC)
+            await conn.execute(
+                text(
+                    "INSERT INTO vehicles (id, url, tags, auto_connect, created_at, updated_at) "
+                    "VALUES ('alpha', 'tcpout://127.0.0.1:5760', '[]', true, :now, :now)"
+                ),
+                {"now": now},
+            )
+    finally:
+        await old.dispose()
     store = await Store.open(db_url)
     try:
         assert await current_revision(store.engine) == head_revision()

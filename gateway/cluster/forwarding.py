@@ -1,0 +1,138 @@
+"""The Commander's router on a cluster node: verbs for drones another node owns go to that owner.
+
+Both ends of one mechanism (`gateway.fleet.routing` says what crosses):
+
+- :class:`ClusterRouter` is the router the runtime gives the Commander and the fleet operations: a verb
+  for a drone this node does not own goes, with the caller of the door it came through and its JSON
+  arguments, to the drone's subject on NATS (`gateway.cluster.bus`), where only the owner listens;
+- :func:`answer` runs such a call on the owner: the same verb of its own Commander (so the policy, the
+  takeoff guard inside the drone's command lock, and the agent's scope are judged there again, on
+  the owner's fresh telemetry), its callbacks sent back as progress messages, its result as JSON.
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import TYPE_CHECKING, Any
+
+from gateway.errors import InvalidArgument
+from gateway.fleet.caller import Caller
+from gateway.fleet.command_core import ROUTED
+from gateway.fleet.commander import Commander
+from gateway.fleet.routing import ACTING, FORWARDED, OnMessage
+from gateway.fleet.safety import RunningOperation
+from gateway.fleet.views import OperationView
+
+from .bus import ProgressSink
+from .remote import RemoteVehicle
+
+if TYPE_CHECKING:
+    from .node import ClusterNode
+
+log = logging.getLogger("gateway.cluster.forwarding")
+
+#: calls an owner answers besides the routed verbs
+WAIT = "wait"
+ENDED_KEPT = 2000
+"""Operations of other nodes this node has seen end (newer than the owners' last snapshots)."""
+
+
+class ClusterRouter:
+    """Where a drone's verbs run, seen from this node."""
+
+    def __init__(self, node: ClusterNode) -> None:
+        self.node = node
+        self._ended: dict[str, str] = {}  # operation id -> its final status, as the owner answered
+
+    def _note(self, body: Any) -> None:
+        """Remember an operation the owner reported as ended: its snapshots may still say running for a
+        snapshot period, and a check here must not refuse a drone for an operation that is over."""
+        if isinstance(body, dict) and isinstance(body.get("operation_id"), str):
+            status = body.get("status")
+            if isinstance(status, str) and status != "running":
+                self._ended[body["operation_id"]] = status
+                while len(self._ended) > ENDED_KEPT:
+                    del self._ended[next(iter(self._ended))]
+
+    def owns(self, drone_id: str) -> bool:
+        registry = self.node.registry
+        return registry is not None and registry.is_local(drone_id)
+
+    def running(self, drone_id: str) -> RunningOperation | None:
+        registry = self.node.registry
+        vehicle = None if registry is None else registry.find(drone_id)
+        if not isinstance(vehicle, RemoteVehicle) or vehicle.operation is None:
+            return None
+        op = vehicle.operation
+        if op.get("status") != "running" or op.get("id") in self._ended:
+            return None
+        target = op.get("target_alt_m")
+        return RunningOperation(
+            str(op.get("id")),
+            str(op.get("kind")),
+            str(op.get("message") or ""),
+            float(target) if isinstance(target, int | float) else None,
+        )
+
+    async def call(
+        self,
+        drone_id: str,
+        verb: str,
+        caller: Caller,
+        arguments: dict[str, Any],
+        on_message: OnMessage | None = None,
+        wait_s: float = 0.0,
+    ) -> Any:
+        async def observe(body: dict[str, Any]) -> None:
+            self._note(body.get("view"))
+            if on_message is not None:
+                await on_message(body)
+
+        result = await self.node.forward(drone_id, verb, caller, arguments, observe, wait_s)
+        self._note(result)
+        return result
+
+    async def announce(self, kind: str, body: dict[str, Any]) -> None:
+        await self.node.announce(kind, body)
+
+
+async def answer(
+    commander: Commander,
+    name: str,
+    arguments: dict[str, Any],
+    caller_body: dict[str, Any],
+    progress: ProgressSink,
+) -> Any:
+    """Run a call another node forwarded (this node owns its drone); the JSON result."""
+    caller = Caller.from_dict(caller_body)
+    forwarded = FORWARDED.set(True)
+    acting = ACTING.set(caller)
+    try:
+
+        async def view_progress(view: OperationView) -> None:
+            await progress({"view": view.model_dump(mode="json")})
+
+        async def notice(text: str) -> None:
+            await progress({"notice": text})
+
+        if name == WAIT:
+            operation_id, cap_s = arguments.get("operation_id"), arguments.get("cap_s")
+            if not isinstance(operation_id, str) or not isinstance(cap_s, int | float):
+                raise InvalidArgument(
+                    f"wait needs operation_id (text) and cap_s (seconds); got {arguments!r}"
+                )
+            view = await commander.wait(operation_id, float(cap_s), view_progress)
+            return view.model_dump(mode="json")
+        verb = ROUTED.get(name)
+        if verb is None:
+            raise InvalidArgument(
+                f"unknown forwarded call {name!r}; calls: {', '.join(sorted([*ROUTED, WAIT]))}"
+            )
+        parsed = verb.parse(arguments)
+        callbacks: dict[str, Any] = {"notify": notice, "on_progress": view_progress}
+        parsed.update({k: v for k, v in callbacks.items() if k in verb.callbacks})
+        result = await verb.method(commander, caller, **parsed)
+        return result.model_dump(mode="json")
+    finally:
+        ACTING.reset(acting)
+        FORWARDED.reset(forwarded)

@@ -1,0 +1,307 @@
+"""A vehicle owned by another node, as this node sees it: the owner's telemetry snapshots.
+
+It answers the read side of :class:`~gateway.fleet.vehicle.Vehicle` (state, status, telemetry cache) so
+``list_drones``, ``fleet_status``, formation planning and separation checks see the whole fleet. The
+commands go to the owner before they reach a vehicle (`gateway.cluster.forwarding`).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from collections.abc import Sequence
+from typing import Any
+
+from gateway.config import Settings
+from gateway.errors import GatewayError, VehicleNotReady
+from gateway.fleet.dialects import Dialect, dialect_named
+from gateway.fleet.dialects import protected_params as every_protected_param
+from gateway.fleet.mission import MissionItem
+from gateway.fleet.modes import ModeChoice, require_mode
+from gateway.fleet.vehicle import ConnectionState
+from gateway.link.telemetry import TelemetryCache
+from gateway.registry.spec import VehicleSpec
+
+from . import snapshot
+
+
+class OwnedElsewhere(GatewayError):
+    """What a remote view cannot do here: only the drone's owner talks to it."""
+
+    code = "owned_elsewhere"
+    http_status = 409
+
+
+class RemoteVehicle:
+    """A registered vehicle whose sidecar runs on another node (or on none, between owners)."""
+
+    remote = True
+    sidecar = None
+
+    def __init__(self, spec: VehicleSpec, settings: Settings) -> None:
+        self.spec = spec
+        self.settings = settings
+        self.telemetry = TelemetryCache(stale_after_s=settings.link_lost_after_s)
+        self.telemetry.live = False
+        self._status: dict[str, Any] = {}
+        self._received_at: float | None = None
+        self.owner: str | None = None  # node id from the lease table (None: nobody holds a live lease)
+        self.epoch: int = 0
+        self.operation: dict[str, Any] | None = None  # the owner's current operation, as it published it
+        self._seq = -1
+
+    # --- identity and state ------------------------------------------------------------------------
+    @property
+    def id(self) -> str:
+        return self.spec.id
+
+    def set_owner(self, node_id: str | None, epoch: int = 0) -> None:
+        if node_id != self.owner:
+            self._seq = -1
+        self.owner = node_id
+        self.epoch = max(self.epoch, epoch) if node_id is not None else self.epoch
+
+    def apply(self, body: dict[str, Any]) -> bool:
+        """Take a snapshot in; False when it is older than one already applied (a previous owner)."""
+        epoch, seq = int(body.get("epoch") or 0), int(body.get("seq") or 0)
+        if epoch < self.epoch or (
+            epoch == self.epoch and body.get("node") == self.owner and seq <= self._seq
+        ):
+            return False
+        self.epoch, self._seq = epoch, seq
+        self.owner = str(body.get("node") or self.owner)
+        snapshot.apply(self.telemetry, body)
+        status = body.get("status")
+        self._status = status if isinstance(status, dict) else {}
+        op = body.get("operation")
+        self.operation = op if isinstance(op, dict) else None
+        self._received_at = time.monotonic()
+        return True
+
+    @property
+    def snapshot_age_s(self) -> float | None:
+        return None if self._received_at is None else time.monotonic() - self._received_at
+
+    def _fresh(self) -> bool:
+        age = self.snapshot_age_s
+        return age is not None and age <= self.settings.link_lost_after_s
+
+    @property
+    def state(self) -> ConnectionState:
+        if self.owner is None:
+            return ConnectionState.REGISTERED
+        if not self._fresh():
+            return ConnectionState.LINK_LOST if self._received_at is not None else ConnectionState.CONNECTING
+        try:
+            return ConnectionState(self._status.get("state", "connecting"))
+        except ValueError:
+            return ConnectionState.CONNECTING
+
+    @property
+    def last_error(self) -> str | None:
+        if self.owner is None:
+            return "no node owns this drone right now (waiting for a node to take its lease)"
+        if not self._fresh():
+            age = self.snapshot_age_s
+            heard = "never" if age is None else f"{age:.0f} s ago"
+            return f"no telemetry from its owner node {self.owner} (last snapshot {heard})"
+        error = self._status.get("last_error")
+        return error if isinstance(error, str) else None
+
+    @property
+    def sysid(self) -> int | None:
+        return self._status.get("sysid")
+
+    @property
+    def autopilot(self) -> str | None:
+        return self._status.get("autopilot")
+
+    @property
+    def autopilot_version(self) -> str | None:
+        return self._status.get("autopilot_version")
+
+    @property
+    def current_flight_id(self) -> int | None:
+        """None: the owner node records the flight (it appears in /api/v1/flights once stored)."""
+        return None
+
+    @property
+    def is_simulator(self) -> bool:
+        return bool(self._status.get("is_simulator"))
+
+    @property
+    def sysid_mismatch(self) -> bool:
+        return bool(self._status.get("sysid_mismatch"))
+
+    @property
+    def last_heartbeat_age_s(self) -> float | None:
+        age = self._status.get("last_heartbeat_age_s")
+        extra = self.snapshot_age_s or 0.0
+        return None if age is None else float(age) + extra
+
+    def initialising(self) -> str | None:
+        if self.state != ConnectionState.CONNECTED:
+            return None
+        value = self._status.get("initialising")
+        return value if isinstance(value, str) else None
+
+    def status(self) -> dict[str, Any]:
+        state = self.state
+        base = dict(self._status)
+        base.update(
+            {
+                "id": self.id,
+                "name": self.spec.name,
+                "url": self.spec.url,
+                "tags": list(self.spec.tags),
+                "state": state.value,
+                "last_error": self.last_error,
+                "last_heartbeat_age_s": None
+                if self.last_heartbeat_age_s is None
+                else round(self.last_heartbeat_age_s, 3),
+                "owner_node": self.owner,
+                "lease_epoch": self.epoch,
+                "snapshot_age_s": None if self.snapshot_age_s is None else round(self.snapshot_age_s, 3),
+            }
+        )
+        raw = base.get("sidecar")
+        owners: dict[str, Any] = raw if isinstance(raw, dict) else {}
+        base["sidecar"] = {  # it runs on the owner: no process or port of it here
+            "state": "remote",
+            "pid": None,
+            "grpc_port": None,
+            "restarts": int(owners.get("restarts") or 0),
+            "owner_state": owners.get("state"),
+        }
+        return base
+
+    def require_ready(self) -> None:
+        state = self.state
+        if state == ConnectionState.READY:
+            return
+        why = self.last_error or self.initialising() or "not ready"
+        raise VehicleNotReady(f"drone '{self.id}' is {state.value}: {why}", state=state.value)
+
+    async def wait_for_state(self, *states: ConnectionState | str, within_s: float = 60.0) -> ConnectionState:
+        wanted = {ConnectionState(s) for s in states}
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + within_s
+        while (state := self.state) not in wanted:
+            if loop.time() > deadline:
+                raise VehicleNotReady(
+                    f"drone '{self.id}' did not reach {'/'.join(sorted(s.value for s in wanted))} within "
+                    f"{within_s:g} s; it is {state.value}",
+                    state=state.value,
+                )
+            await asyncio.sleep(0.1)
+        return state
+
+    async def wait_initialised(self, within_s: float = 60.0) -> None:
+        if self.state == ConnectionState.CONNECTED and self.initialising() is not None:
+            try:
+                await self.wait_for_state(ConnectionState.READY, within_s=within_s)
+            except VehicleNotReady:
+                pass
+        self.require_ready()
+
+    # --- lifecycle: the owner's business ------------------------------------------------------------
+    async def connect(self) -> None:
+        """Nothing to start here: the owning node runs the sidecar."""
+
+    async def disconnect(self) -> None:
+        """Nothing to stop here: the owning node runs the sidecar."""
+
+    # --- what only the owner can do ------------------------------------------------------------------
+    # The Commander sends every verb for this drone to its owner (`gateway.cluster.forwarding`), so none
+    # of these is reached through it; anything else that tries is told where the drone is flown from.
+
+    def _elsewhere(self, action: str) -> OwnedElsewhere:
+        where = f"cluster node {self.owner}" if self.owner else "no cluster node right now"
+        return OwnedElsewhere(
+            f"drone '{self.spec.id}' is owned by {where}; this node answers reads for it but cannot "
+            f"send it {action}: use the node that owns it "
+            "(GET /api/v1/cluster lists the nodes and their drones)",
+            vehicle_id=self.spec.id,
+            owner_node=self.owner,
+        )
+
+    @property
+    def dialect(self) -> Dialect:
+        """The autopilot's dialect, by the autopilot the owner reports (ArduPilot's until it says)."""
+        return dialect_named(self.autopilot)
+
+    def resolve_mode(self, name: str) -> ModeChoice:
+        return require_mode(name, self.dialect, self.id)
+
+    def on_ground(self, fresh: bool = True) -> bool | None:
+        return self.dialect.on_ground(self.telemetry, fresh=fresh)
+
+    def return_altitude_param(self) -> tuple[str, float]:
+        return self.dialect.return_altitude_params[0]  # which of them the vehicle has, its owner knows
+
+    async def set_return_altitude(self, alt_m: float) -> tuple[str, float | int]:
+        raise self._elsewhere("set_return_altitude")
+
+    @property
+    def protected_params(self) -> tuple[str, ...]:
+        return every_protected_param() if self.autopilot is None else self.dialect.protected_params
+
+    async def arm(self) -> None:
+        raise self._elsewhere("arm")
+
+    async def disarm(self) -> None:
+        raise self._elsewhere("disarm")
+
+    async def kill(self) -> None:
+        raise self._elsewhere("kill")
+
+    async def takeoff(self, alt_rel_m: float) -> None:
+        raise self._elsewhere("takeoff")
+
+    async def goto(self, lat: float, lon: float, alt_rel_m: float, yaw_deg: float | None = None) -> None:
+        raise self._elsewhere("goto")
+
+    async def hold(self) -> None:
+        raise self._elsewhere("hold")
+
+    async def land(self) -> None:
+        raise self._elsewhere("land")
+
+    async def return_to_launch(self) -> None:
+        raise self._elsewhere("return_to_launch")
+
+    async def set_yaw(self, heading_deg: float) -> None:
+        raise self._elsewhere("set_yaw")
+
+    async def set_max_speed(self, mps: float) -> None:
+        raise self._elsewhere("set_max_speed")
+
+    async def set_flight_mode(self, name: str) -> None:
+        raise self._elsewhere("set_flight_mode")
+
+    async def upload_mission(self, items: Sequence[MissionItem]) -> int:
+        raise self._elsewhere("upload_mission")
+
+    async def download_mission(self) -> list[MissionItem]:
+        raise self._elsewhere("download_mission")
+
+    async def clear_mission(self) -> None:
+        raise self._elsewhere("clear_mission")
+
+    async def start_mission(self) -> None:
+        raise self._elsewhere("start_mission")
+
+    async def set_current_mission_item(self, user_index: int) -> None:
+        raise self._elsewhere("set_current_mission_item")
+
+    async def is_mission_finished(self) -> bool:
+        raise self._elsewhere("is_mission_finished")
+
+    async def get_param(self, name: str) -> tuple[float | int, str]:
+        raise self._elsewhere("get_param")
+
+    async def set_param(self, name: str, value: float | int) -> tuple[float | int, str]:
+        raise self._elsewhere("set_param")
+
+    async def list_params(self) -> dict[str, float | int]:
+        raise self._elsewhere("list_params")

@@ -1,0 +1,93 @@
+"""What a node does with the operations of a vehicle it has just taken over from a lost node.
+
+The lost node could not record how its running operations ended. The new owner reads them from the
+database: the newest one it can follow again (takeoff, goto-like moves, land, RTL, yaw, mission) it
+tracks from its own telemetry under the same operation id, saying so in its message; any other is
+recorded as interrupted with what happened. Either way a client that asks (monitor_flight,
+get_operation, the audit) reads the truth.
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import Any
+
+from gateway.fleet.fleet_ops import FORMATION_TOLERANCE_M
+from gateway.fleet.operations import (
+    GotoTracker,
+    LandingTracker,
+    MissionTracker,
+    OpStatus,
+    TakeoffTracker,
+    Tracker,
+    YawTracker,
+)
+
+log = logging.getLogger("gateway.cluster.takeover")
+
+#: operations of fleet formations are held to the formation's tolerance, single gotos to the setting
+FORMATION_KINDS = frozenset({"formation", "fleet_climb"})
+
+
+def tracker_for(kind: str, params: dict[str, Any], arrival_tolerance_m: float) -> Tracker | None:
+    """A tracker that follows an operation of ``kind`` again from its stored params, or None."""
+    try:
+        if kind == "takeoff":
+            return TakeoffTracker(float(params["altitude_m"]))
+        if kind in ("land", "return_to_launch"):
+            return LandingTracker(kind=kind)
+        if kind == "set_yaw":
+            return YawTracker(float(params["heading_deg"]))
+        if kind == "mission":
+            return MissionTracker()
+        if {"lat", "lon", "alt_m"} <= set(params):
+            tolerance = FORMATION_TOLERANCE_M if kind in FORMATION_KINDS else arrival_tolerance_m
+            return GotoTracker(
+                float(params["lat"]), float(params["lon"]), float(params["alt_m"]), tolerance, kind=kind
+            )
+    except (KeyError, TypeError, ValueError):
+        return None
+    return None
+
+
+async def pick_up_operations(
+    gateway: Any, node_id: str, vehicle: Any, epoch: int, previous: str | None
+) -> int:
+    """Resume or close the running operations the previous owner left in the database; how many."""
+    store = gateway.store
+    if store is None:
+        return 0
+    ops = gateway.operations
+    records = await store.list_operations(vehicle_id=vehicle.id, status="running", limit=20)
+    records = [r for r in records if ops is None or r.id not in getattr(ops, "_ops", {})]
+    lost = f"node {previous}" if previous and previous != node_id else "its previous node"
+    for index, record in enumerate(records):  # newest first
+        tracker = tracker_for(record.kind, record.params, gateway.settings.arrival_tolerance_m)
+        if index == 0 and ops is not None and tracker is not None:
+            note = (
+                f"{lost} was lost while this {record.kind} ran; node {node_id} took {vehicle.id} over "
+                f"(lease epoch {epoch}) and follows it again"
+            )
+            await ops.resume(record, vehicle, tracker, note)
+            log.warning("%s: resumed %s %s after taking the drone over", vehicle.id, record.kind, record.id)
+            continue
+        from gateway.registry.records import utcnow
+
+        now = utcnow()
+        why = "a newer operation was running" if index else "it cannot be followed again"
+        message = (
+            f"{lost} was lost while this {record.kind} ran; node {node_id} took {vehicle.id} over and "
+            f"stopped tracking it ({why}); the drone keeps flying its last command on its own: "
+            "check get_telemetry before the next command"
+        )
+        await store.save_operation(
+            record.model_copy(
+                update={
+                    "status": OpStatus.interrupted.value,
+                    "message": message,
+                    "updated_at": now,
+                    "finished_at": now,
+                }
+            )
+        )
+    return len(records)
