@@ -8,7 +8,7 @@ STAMP := $(VENV)/.installed
 # Files stay whole on one worker (--dist loadfile), so a module's shared sim + gateway is built once.
 TEST_WORKERS ?= 2
 
-.PHONY: install demo test lint bench clean
+.PHONY: install demo test lint bench bench-nl clean
 
 $(STAMP): pyproject.toml
 	@echo "Installing fleet-gateway and its dependencies into $(VENV) (about a minute on a fresh machine)..."
@@ -35,6 +35,15 @@ lint: $(STAMP)
 
 bench: $(STAMP)
 	@for b in bench/*.py; do [ "$$b" = bench/common.py ] && continue; echo "== $$b"; $(BIN)/python $$b || exit 1; done
+
+# Natural-language missions flown by a real model. With ENDPOINT=URL MODEL=NAME it uses that endpoint;
+# without, it starts ../shared/llm/serve-local-model (LLM=1.5b or 0.5b) and stops it afterwards.
+# BENCH_NL_ARGS passes more options, e.g. BENCH_NL_ARGS="--runs 1 --missions takeoff-land --write".
+LLM ?= 1.5b
+PROFILE ?= small
+bench-nl: $(STAMP)
+	$(BIN)/python bench/nl_missions.py --profile $(PROFILE) \
+	  $(if $(ENDPOINT),--endpoint $(ENDPOINT) --model $(MODEL),--serve-local $(LLM)) $(BENCH_NL_ARGS)
 
 clean:
 	rm -rf $(VENV) .pytest_cache *.db *.db-wal *.db-shm

@@ -7,7 +7,14 @@ hosted providers).
 
   python bench/nl_missions.py --endpoint http://127.0.0.1:11434/v1 --model qwen2.5:7b [--write]
   python bench/nl_missions.py --endpoint ... --model ... --toolsets flight,navigation,fleet
+  python bench/nl_missions.py --serve-local 1.5b --profile small --runs 3 --write   # make bench-nl
   python bench/nl_missions.py --self-check          # no model: checks the harness itself
+
+Each mission runs --runs times (default 3); success is counted per run. A run passes only when the model
+answered in words (an empty answer never passes) and the check of the drones' true state passes. A
+failed run is classified: empty answer, step limit, model error, invented id, wrong tool, wrong
+argument, repeat, gateway refusal, wrong outcome. --serve-local starts ../shared/llm/serve-local-model
+(a measuring instrument outside the project) and stops it afterwards.
 
 Without --model (and no GATEWAY_AGENT_MODEL) it runs the HARNESS SELF-CHECK: a scripted endpoint replays
 the ideal call sequence of each mission. That verifies the sim, gateway, MCP, host loop and checks end to
@@ -19,12 +26,14 @@ from __future__ import annotations
 import argparse
 import asyncio
 import contextlib
-import datetime as dt
 import json
 import os
 import signal
+import statistics
+import subprocess
 import sys
 import time
+from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -32,16 +41,52 @@ from typing import Any
 from rich.console import Console
 from rich.table import Table
 
-from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
-from gateway.agent.mcp_link import McpLink
-from gateway.agent.missions import Evidence, Mission, MissionContext, all_missions
-from gateway.agent.pilot import SELF_CHECK_MODEL, ScriptedPilot
-from gateway.agent.scripted import ScriptedModelServer
-from gateway.agent.settings import AgentSettings, split_list
-from gateway.agent.stack import GatewayTruth, LocalStack, Sampler, SimTruth, reset_drones
-from gateway.agent.toolbox import select_tools, tool_list_tokens
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))  # the repository root: bench.agent_harness
 
-DOCS = Path(__file__).resolve().parent.parent / "docs" / "benchmarks.md"
+from bench.agent_harness.missions import Evidence, Mission, MissionContext, all_missions
+from bench.agent_harness.pilot import SELF_CHECK_MODEL, ScriptedPilot
+from bench.agent_harness.scripted import ScriptedModelServer
+from bench.agent_harness.stack import GatewayTruth, LocalStack, Sampler, SimTruth, reset_drones
+from bench.agent_harness.tokens import cl100k_tokens, model_tokens
+from bench.common import machine, write_section
+from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentEvent, AgentHost, ModelConfig, TurnResult
+from gateway.agent.mcp_link import McpLink
+from gateway.agent.profiles import PROFILES, apply_profile, system_prompt_for
+from gateway.agent.roster import with_drone_enum
+from gateway.agent.settings import AgentSettings, split_list
+from gateway.agent.toolbox import select_tools
+
+VERBOSE_EVENTS = frozenset(
+    {
+        "model_reply",
+        "tool_call",
+        "tool_result",
+        "final",
+        "empty_reply",
+        "empty_answer",
+        "step_limit",
+        "model_error",
+    }
+)
+ROOT = Path(__file__).resolve().parent.parent
+DOCS = ROOT / "docs" / "benchmarks.md"
+LOCAL_MODEL_SCRIPT = ROOT.parent / "shared" / "llm" / "serve-local-model"
+# Failure classes, most telling first: a run is labelled with the first one its transcript shows.
+FAILURE_CLASSES = (
+    "empty_answer",
+    "step_limit",
+    "model_error",
+    "invented_id",
+    "wrong_tool",
+    "wrong_argument",
+    "repeat",
+    "gateway_refusal",
+    "wrong_outcome",
+)
+READ_OR_WAIT = frozenset(
+    {"fleet_status", "list_drones", "get_position", "get_battery", "monitor_flight", "monitor_fleet",
+     "check_arrival", "get_telemetry", "get_in_air", "get_armed", "get_home_position"}
+)  # fmt: skip
 
 
 @dataclass
@@ -58,6 +103,9 @@ class MissionRun:
     outcome: str
     wall_s: float
     calls: list[str] = field(default_factory=list)
+    run: int = 1
+    failure: str | None = None  # the first failure class (None when it passed)
+    signals: list[str] = field(default_factory=list)  # every failure class the transcript shows
 
 
 def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
@@ -76,8 +124,31 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     )
     p.add_argument("--toolsets", default=None, help="comma-separated toolsets offered to the model")
     p.add_argument("--tools", default=None, help="comma-separated tool names offered to the model")
+    p.add_argument(
+        "--profile",
+        default="full",
+        choices=list(PROFILES),
+        help="small: the small-model toolset (default full)",
+    )
     p.add_argument("--missions", default=None, help="comma-separated mission ids (default: all)")
-    p.add_argument("--max-steps", type=int, default=30, help="model requests per mission (default 30)")
+    p.add_argument(
+        "--runs", type=int, default=None, help="runs of each mission (default 3; the self-check: 1)"
+    )
+    p.add_argument("--max-steps", type=int, default=20, help="model requests per mission (default 20)")
+    p.add_argument(
+        "--model-timeout",
+        type=float,
+        default=600.0,
+        help="seconds to wait for one model reply (default 600: a CPU-only model on a busy machine is slow)",
+    )
+    p.add_argument(
+        "--serve-local",
+        choices=["1.5b", "0.5b"],
+        default=None,
+        help=f"start {LOCAL_MODEL_SCRIPT} with this model for the run and stop it afterwards",
+    )
+    p.add_argument("--max-tokens", type=int, default=200, help="longest model reply in tokens (default 200)")
+    p.add_argument("--threads", type=int, default=2, help="threads of the --serve-local model (default 2)")
     p.add_argument("--speedup", type=float, default=5.0, help="simulator speed-up of the own sim (default 5)")
     p.add_argument("--write", action="store_true", help="add the results table to docs/benchmarks.md")
     p.add_argument(
@@ -85,12 +156,16 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     )
     p.add_argument("--verbose", action="store_true", help="print every tool call while missions run")
     args = p.parse_args(argv)
-    if not args.model:
+    if not args.model and not args.serve_local:
         args.self_check = True
     if args.self_check and args.write:
         p.error("--write is refused for the harness self-check: its figures are not a model result")
     if args.max_steps < 1:
         p.error("--max-steps must be at least 1")
+    if args.runs is None:
+        args.runs = 1 if args.self_check else 3
+    if args.runs < 1:
+        p.error("--runs must be at least 1")
     return args
 
 
@@ -117,7 +192,9 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
             mcp_url, token, truth_from_sim = local.mcp_url, local.token, local.sim_control_url
         link = await stack.enter_async_context(McpLink(mcp_url, token))
         all_tools = await link.list_tools()
-        tools = select_tools(all_tools, toolsets=split_list(args.toolsets), names=split_list(args.tools))
+        chosen = split_list(args.toolsets), split_list(args.tools)
+        tools = select_tools(all_tools, toolsets=chosen[0], names=chosen[1])
+        tools = apply_profile(tools, args.profile, keep_selection=bool(chosen[0] or chosen[1]))
         if local is not None:
             truth: Any = local.truth()
         elif truth_from_sim:
@@ -125,8 +202,15 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
             stack.push_async_callback(truth.aclose)
         else:
             truth = GatewayTruth(link)
-        list_tokens, method = tool_list_tokens(tools)
-        args.tool_list = f"{len(tools)} of {len(all_tools)} tools, {list_tokens} tokens ({method})"
+        shown = [with_drone_enum(t, drone_ids) for t in tools]
+        args.system_prompt = system_prompt_for(args.profile, DEFAULT_SYSTEM_PROMPT)
+        own = None if args.self_check else await model_tokens(args.endpoint, shown, args.system_prompt)
+        cl100k = cl100k_tokens(shown, args.system_prompt)
+        own_text = "n/a" if own is None else f"{own[0]} (tool list alone {own[1]})"
+        args.tool_list = (
+            f"{len(tools)} of {len(all_tools)} tools; first request (system prompt, tool list, template) "
+            f"{own_text} tokens in the model's own tokenizer, {'n/a' if cl100k is None else cl100k} in cl100k"
+        )
         console.print(f"[dim]tool list: {args.tool_list}; truth from {truth.source}[/]")
 
         pilot: ScriptedPilot | None = None
@@ -135,12 +219,22 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
             scripted = stack.enter_context(ScriptedModelServer([pilot], repeat_last=True))
             model = ModelConfig(scripted.base_url, SELF_CHECK_MODEL, max_retries=0)
         else:
-            model = ModelConfig(args.endpoint, args.model, api_key=AgentSettings().resolved_api_key())
+            model = ModelConfig(
+                args.endpoint,
+                args.model,
+                api_key=AgentSettings().resolved_api_key(),
+                timeout_s=args.model_timeout,
+                max_retries=0,
+                max_tokens=args.max_tokens,
+            )
 
         runs = []
-        for mission in missions:
-            await reset_drones(link, truth, drone_ids, battery_pct=mission.battery_pct)
-            runs.append(await run_one(mission, link, tools, truth, model, pilot, args, console))
+        for n in range(1, args.runs + 1):
+            for mission in missions:
+                await reset_drones(link, truth, drone_ids, battery_pct=mission.battery_pct)
+                run = await run_one(mission, link, tools, truth, model, pilot, args, console)
+                run.run = n
+                runs.append(run)
         return runs
 
 
@@ -173,11 +267,13 @@ async def run_one(
     def on_event(e: AgentEvent) -> None:
         if e.kind == "tool_result":
             results.append(e.data)
-        if args.verbose and e.kind in ("tool_call", "tool_result", "final", "step_limit", "model_error"):
+        if args.verbose and e.kind in VERBOSE_EVENTS:
             console.print(f"[dim]  {mission.id} {e.kind}: {json.dumps(e.data, default=str)[:200]}[/]")
 
-    host = AgentHost(model, link, tools, max_steps=args.max_steps, on_event=on_event)
-    console.print(f"[bold]{mission.id}[/] {prompt}")
+    host = AgentHost(
+        model, link, tools, max_steps=args.max_steps, on_event=on_event, system_prompt=args.system_prompt
+    )
+    console.print(f"[bold]{mission.id}[/] {prompt} [dim](load {os.getloadavg()[0]:.1f})[/]")
     sampler = Sampler(truth, list(mission.drones))
     async with sampler:
         started = time.monotonic()
@@ -186,9 +282,11 @@ async def run_one(
     final = await truth.snapshot(list(mission.drones))
     evidence = Evidence(final=final, track=sampler.tracks, tool_results=results, final_text=turn.final_text)
     verdict = mission.check(ctx, evidence)
+    answered = turn.outcome == "answered" and bool((turn.final_text or "").strip())
+    signals = classify(turn, results, mission, mission.plan(ctx), verdict.ok)
     run = MissionRun(
         mission=mission.id,
-        ok=verdict.ok and turn.outcome == "answered",
+        ok=verdict.ok and answered,
         detail=verdict.detail,
         tool_calls=len(turn.tool_calls),
         tool_errors=sum(c.status != "ok" for c in turn.tool_calls),
@@ -198,43 +296,118 @@ async def run_one(
         steps=turn.steps,
         outcome=turn.outcome,
         wall_s=wall,
-        calls=[c.name for c in turn.tool_calls],
+        calls=[_call_text(c) for c in turn.tool_calls],
+        signals=signals,
     )
+    if not run.ok:
+        run.failure = signals[0] if signals else "wrong_outcome"
     if turn.outcome != "answered":
         run.detail = f"{turn.outcome}: {run.detail}"
-    mark = "[green]PASS[/]" if run.ok else "[red]FAIL[/]"
+    mark = "[green]PASS[/]" if run.ok else f"[red]FAIL {run.failure}[/]"
     console.print(f"  {mark} {run.detail} [dim]({run.tool_calls} calls, {wall:.1f} s)[/]")
+    if not run.ok:
+        console.print(f"  [dim]calls: {'; '.join(run.calls)[:600]}[/]")
     return run
+
+
+def _call_text(c: Any) -> str:
+    args = ",".join(f"{k}={v}" for k, v in (c.arguments or {}).items())
+    return f"{c.name}({args})={c.status}"
+
+
+def classify(
+    turn: TurnResult,
+    results: list[dict[str, Any]],
+    mission: Mission,
+    plan: list[tuple[str, dict[str, Any]]],
+    check_ok: bool,
+) -> list[str]:
+    """Every failure class the run shows, in FAILURE_CLASSES order (empty when nothing went wrong).
+
+    invented_id: a drone id outside the roster; wrong_tool: an unknown tool, or an action tool the
+    ideal plan does not use; wrong_argument: arguments the schema refused, or the right tools with the
+    drones ending in the wrong state; repeat: a call the host did not send again; gateway_refusal: a
+    refusal in a mission that expects none."""
+    seen: set[str] = set()
+    if turn.outcome in ("empty_answer", "step_limit", "model_error"):
+        seen.add(turn.outcome)
+    elif not (turn.final_text or "").strip():
+        seen.add("empty_answer")
+    planned = {name for name, _ in plan}
+    for c in turn.tool_calls:
+        if c.status == "unknown_tool":
+            seen.add("wrong_tool")
+        elif c.status == "invalid":
+            text = next((r.get("text") or "" for r in results if r.get("id") == c.id), "")
+            seen.add("invented_id" if "is not one of" in text and "drone_id" in text else "wrong_argument")
+        elif c.status == "repeat":
+            seen.add("repeat")
+        elif c.name not in planned and c.name not in READ_OR_WAIT:
+            seen.add("wrong_tool")
+        if c.status == "error" and "unsafe" not in mission.tags:
+            seen.add("gateway_refusal")
+    if not check_ok and not seen & {"wrong_tool", "invented_id"}:
+        seen.add("wrong_argument" if planned <= {c.name for c in turn.tool_calls} else "wrong_outcome")
+    return [k for k in FAILURE_CLASSES if k in seen]
+
+
+def by_mission(runs: list[MissionRun]) -> dict[str, list[MissionRun]]:
+    out: dict[str, list[MissionRun]] = {}
+    for r in runs:
+        out.setdefault(r.mission, []).append(r)
+    return out
+
+
+def _median(values: list[float]) -> float:
+    return statistics.median(values) if values else float("nan")
+
+
+def _mean_tokens(runs: list[MissionRun], key: str) -> int | None:
+    vals = [getattr(r, key) for r in runs if getattr(r, key) is not None]
+    return round(sum(vals) / len(vals)) if vals else None
+
+
+def _failures(runs: list[MissionRun]) -> str:
+    counts = Counter(r.failure for r in runs if r.failure)
+    return ", ".join(f"{k} x{n}" if n > 1 else k for k, n in counts.most_common()) or "-"
 
 
 def results_table(runs: list[MissionRun], title: str) -> Table:
     table = Table(title=title)
-    for col in ("mission", "ok", "tool calls", "errors", "from text", "tokens in", "tokens out", "wall s"):
-        table.add_column(col, justify="left" if col == "mission" else "right")
-    for r in runs:
-        table.add_row(
-            r.mission,
-            "yes" if r.ok else "NO",
-            str(r.tool_calls),
-            str(r.tool_errors),
-            str(r.parsed_from_text),
-            _n(r.prompt_tokens),
-            _n(r.completion_tokens),
-            f"{r.wall_s:.1f}",
-        )
+    cols = ("mission", "passed", "median s", "calls/run", "errors", "from text", "tokens in/run",
+            "tokens out/run", "failures")  # fmt: skip
+    for col in cols:
+        table.add_column(col, justify="left" if col in ("mission", "failures") else "right")
+    for mission, rs in by_mission(runs).items():
+        table.add_row(*_row(mission, rs))
     t = totals(runs)
     table.add_row(
         "TOTAL",
-        f"{t['passed']}/{t['missions']}",
-        str(t["tool_calls"]),
+        f"{t['passed']}/{t['runs']} ({t['pass_pct']:.0f} %)",
+        f"{t['median_wall_s']:.1f}",
+        f"{t['tool_calls'] / max(t['runs'], 1):.1f}",
         str(t["tool_errors"]),
         str(t["parsed_from_text"]),
-        _n(t["prompt_tokens"]),
-        _n(t["completion_tokens"]),
-        f"{t['wall_s']:.1f}",
+        _n(_mean_tokens(runs, "prompt_tokens")),
+        _n(_mean_tokens(runs, "completion_tokens")),
+        _failures(runs),
         style="bold",
     )
     return table
+
+
+def _row(mission: str, rs: list[MissionRun]) -> list[str]:
+    return [
+        mission,
+        f"{sum(r.ok for r in rs)}/{len(rs)}",
+        f"{_median([r.wall_s for r in rs]):.1f}",
+        f"{sum(r.tool_calls for r in rs) / len(rs):.1f}",
+        str(sum(r.tool_errors for r in rs)),
+        str(sum(r.parsed_from_text for r in rs)),
+        _n(_mean_tokens(rs, "prompt_tokens")),
+        _n(_mean_tokens(rs, "completion_tokens")),
+        _failures(rs),
+    ]
 
 
 def totals(runs: list[MissionRun]) -> dict[str, Any]:
@@ -242,15 +415,20 @@ def totals(runs: list[MissionRun]) -> dict[str, Any]:
         vals = [getattr(r, key) for r in runs if getattr(r, key) is not None]
         return sum(vals) if vals else None
 
+    passed = sum(r.ok for r in runs)
     return {
-        "missions": len(runs),
-        "passed": sum(r.ok for r in runs),
+        "runs": len(runs),
+        "missions": len(by_mission(runs)),
+        "passed": passed,
+        "pass_pct": 100.0 * passed / len(runs) if runs else 0.0,
+        "median_wall_s": _median([r.wall_s for r in runs]),
         "tool_calls": sum(r.tool_calls for r in runs),
         "tool_errors": sum(r.tool_errors for r in runs),
         "parsed_from_text": sum(r.parsed_from_text for r in runs),
         "prompt_tokens": tok("prompt_tokens"),
         "completion_tokens": tok("completion_tokens"),
         "wall_s": sum(r.wall_s for r in runs),
+        "failures": dict(Counter(r.failure for r in runs if r.failure)),
     }
 
 
@@ -258,34 +436,33 @@ def markdown_section(runs: list[MissionRun], args: argparse.Namespace) -> str:
     t = totals(runs)
     selection = args.toolsets or args.tools or "all tools"
     lines = [
-        f"## NL missions: {args.model}",
+        f"Model `{args.model}` at `{args.endpoint}`; profile **{args.profile}**, selection: {selection}; "
+        f"{args.tool_list}; {args.runs} run(s) of each mission, max {args.max_steps} model requests, model "
+        f"timeout {args.model_timeout:g} s, sim speed-up {args.speedup:g}; load average (1 min) "
+        f"{args.load_start:.1f} at the start, {args.load_end:.1f} at the end.",
         "",
-        f"{dt.datetime.now(dt.UTC):%Y-%m-%d %H:%M} UTC, endpoint `{args.endpoint}`, toolsets: {selection}, "
-        f"tool list {args.tool_list}, max steps {args.max_steps}, sim speed-up {args.speedup:g}. "
-        f"Passed **{t['passed']}/{t['missions']}**.",
+        f"Passed **{t['passed']}/{t['runs']} runs ({t['pass_pct']:.0f} %)**, median mission "
+        f"{t['median_wall_s']:.1f} s.",
         "",
-        "| mission | ok | tool calls | errors | parsed from text | tokens in | tokens out | wall s "
-        "| detail |",
+        "| mission | passed | median s | calls/run | errors | parsed from text | tokens in/run | "
+        "tokens out/run | failures |",
         "|---|---|---:|---:|---:|---:|---:|---:|---|",
     ]
-    for r in runs:
-        lines.append(
-            f"| {r.mission} | {'yes' if r.ok else 'no'} | {r.tool_calls} | {r.tool_errors} | "
-            f"{r.parsed_from_text} | {_n(r.prompt_tokens)} | {_n(r.completion_tokens)} | {r.wall_s:.1f} | "
-            f"{r.detail.replace('|', '/')} |"
-        )
+    for mission, rs in by_mission(runs).items():
+        lines.append("| " + " | ".join(c.replace("|", "/") for c in _row(mission, rs)) + " |")
     lines.append(
-        f"| **total** | {t['passed']}/{t['missions']} | {t['tool_calls']} | {t['tool_errors']} | "
-        f"{t['parsed_from_text']} | {_n(t['prompt_tokens'])} | {_n(t['completion_tokens'])} | "
-        f"{t['wall_s']:.1f} | |"
+        f"| **total** | {t['passed']}/{t['runs']} | {t['median_wall_s']:.1f} | "
+        f"{t['tool_calls'] / max(t['runs'], 1):.1f} | {t['tool_errors']} | {t['parsed_from_text']} | "
+        f"{_n(_mean_tokens(runs, 'prompt_tokens'))} | {_n(_mean_tokens(runs, 'completion_tokens'))} | "
+        f"{_failures(runs)} |"
     )
     return "\n".join(lines) + "\n"
 
 
-def write_docs(section: str) -> None:
-    DOCS.parent.mkdir(parents=True, exist_ok=True)
-    existing = DOCS.read_text() if DOCS.exists() else "# Benchmarks\n"
-    DOCS.write_text(existing.rstrip("\n") + "\n\n" + section)
+def write_docs(section: str, args: argparse.Namespace) -> None:
+    """Replace this model's and profile's section of docs/benchmarks.md (another run keeps the others)."""
+    name = f"nl:{args.model}:{args.profile}:{args.toolsets or args.tools or 'all'}"
+    write_section(name, f"NL missions: {args.model}, profile {args.profile}", section, machine())
 
 
 def _n(v: int | None) -> str:
@@ -301,6 +478,64 @@ async def _cancellable(coro: Any) -> Any:
     return await task
 
 
+class LocalModel:
+    """``serve-local-model`` as a context manager: started in its own process group, stopped with it."""
+
+    def __init__(self, which: str, threads: int, console: Console) -> None:
+        self.which, self.threads, self.console = which, threads, console
+        self.proc: subprocess.Popen[str] | None = None
+        self.base_url = self.model = ""
+
+    def __enter__(self) -> LocalModel:
+        if not LOCAL_MODEL_SCRIPT.exists():
+            raise SystemExit(
+                f"--serve-local: {LOCAL_MODEL_SCRIPT} is not there; give an endpoint instead "
+                "(--endpoint URL --model NAME, or make bench-nl ENDPOINT=URL MODEL=NAME)"
+            )
+        port = free_port()
+        self.console.print(
+            f"[dim]starting {LOCAL_MODEL_SCRIPT.name} --model {self.which} on port {port}...[/]"
+        )
+        self.proc = subprocess.Popen(
+            [
+                str(LOCAL_MODEL_SCRIPT),
+                "--model",
+                self.which,
+                "--port",
+                str(port),
+                "--threads",
+                str(self.threads),
+            ],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL,
+            text=True,
+            start_new_session=True,
+        )
+        assert self.proc.stdout is not None
+        for line in self.proc.stdout:
+            if line.startswith("ready "):
+                _, self.base_url, self.model = line.split()
+                return self
+        self.__exit__()
+        raise SystemExit(f"--serve-local: {LOCAL_MODEL_SCRIPT.name} exited before it was ready")
+
+    def __exit__(self, *exc: object) -> None:
+        if self.proc is not None and self.proc.poll() is None:
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(self.proc.pid, signal.SIGTERM)
+            try:
+                self.proc.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                os.killpg(self.proc.pid, signal.SIGKILL)
+                self.proc.wait()
+
+
+def free_port() -> int:
+    from gateway.util.ports import free_tcp_port
+
+    return free_tcp_port()
+
+
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
     console = Console() if sys.stdout.isatty() else Console(width=150)
@@ -309,23 +544,36 @@ def main(argv: list[str] | None = None) -> int:
             "[bold yellow]HARNESS SELF-CHECK[/] scripted endpoint replaying each mission's ideal calls; "
             "these figures are NOT a model result."
         )
-    try:
-        runs = asyncio.run(_cancellable(run_missions(args, console)))
-    except (asyncio.CancelledError, KeyboardInterrupt):
-        console.print("[red]interrupted[/]: the sim and gateway it started were stopped")
-        return 130
+    with contextlib.ExitStack() as serving:
+        if args.serve_local:
+            local = serving.enter_context(LocalModel(args.serve_local, args.threads, console))
+            args.endpoint, args.model = local.base_url, local.model
+        args.load_start = os.getloadavg()[0]
+        try:
+            runs = asyncio.run(_cancellable(run_missions(args, console)))
+        except (asyncio.CancelledError, KeyboardInterrupt):
+            console.print("[red]interrupted[/]: the sim and gateway it started were stopped")
+            return 130
+        args.load_end = os.getloadavg()[0]
     title = (
         "HARNESS SELF-CHECK (scripted pilot, not a model; tokens = request size / 4)"
         if args.self_check
-        else f"NL missions: {args.model} at {args.endpoint}"
+        else f"NL missions: {args.model} at {args.endpoint}, profile {args.profile}"
     )
     console.print(results_table(runs, title))
+    console.print(
+        f"[dim]load average (1 min): {args.load_start:.1f} at the start, {args.load_end:.1f} at the end[/]"
+    )
     if args.json_out:
         Path(args.json_out).write_text(
             json.dumps(
                 {
                     "model": SELF_CHECK_MODEL if args.self_check else args.model,
                     "self_check": args.self_check,
+                    "profile": args.profile,
+                    "tool_list": args.tool_list,
+                    "load_start": args.load_start,
+                    "load_end": args.load_end,
                     "runs": [r.__dict__ for r in runs],
                     "totals": totals(runs),
                 },
@@ -333,8 +581,7 @@ def main(argv: list[str] | None = None) -> int:
             )
         )
     if args.write:
-        write_docs(markdown_section(runs, args))
-        console.print(f"[dim]written to {DOCS}[/]")
+        write_docs(markdown_section(runs, args), args)
     # The self-check is a harness test: any failed mission there is a harness defect.
     if args.self_check and not all(r.ok for r in runs):
         return 1

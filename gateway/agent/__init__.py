@@ -2,7 +2,6 @@
 
 Modules: ``host`` (the tool loop), ``mcp_link`` (MCP client), ``toolbox`` (tool selection, validation,
 results), ``parsing`` (tool calls written as text), ``display`` (rich / JSON lines), ``cli``
-(``fleet-gateway agent``), ``settings`` (environment fallbacks); for the benchmark and tests:
-``missions``, ``stack`` (local sim + gateway, true state), ``scripted`` (scripted chat endpoint),
-``pilot`` (the self-check's scripted pilot).
+(``fleet-gateway agent``), ``settings`` (environment fallbacks). The benchmark's harness (missions,
+scripted endpoint, local stack) lives in ``bench/agent_harness``, outside the installed package.
 """

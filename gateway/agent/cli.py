@@ -15,27 +15,30 @@ from rich.table import Table
 from gateway.agent.display import JsonLinesDisplay, RichDisplay
 from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentHost, ModelConfig
 from gateway.agent.mcp_link import McpLink, McpLinkError
+from gateway.agent.profiles import PROFILES, apply_profile, system_prompt_for
 from gateway.agent.settings import AgentSettings, split_list
 from gateway.agent.toolbox import ToolSelectionError, select_tools
 from gateway.cli import COMMANDS
 
-EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_STEP_LIMIT = 0, 1, 2, 3
+EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_STEP_LIMIT, EXIT_EMPTY_ANSWER = 0, 1, 2, 3, 4
 
 _EPILOG = """\
 examples:
   fleet-gateway agent --model qwen2.5:7b "take off alpha and bravo to 15 m, fly them 100 m north, then land"
   fleet-gateway agent --endpoint http://127.0.0.1:1234/v1 --model qwen2.5-7b-instruct     # interactive
   fleet-gateway agent --list-tools --toolsets flight,navigation
+  fleet-gateway agent --profile small --model qwen2.5-coder-1.5b-instruct "take off alpha to 10 m"
 
 environment: GATEWAY_AGENT_MCP_URL, GATEWAY_AGENT_TOKEN, GATEWAY_AGENT_ENDPOINT, GATEWAY_AGENT_MODEL,
 GATEWAY_AGENT_API_KEY (else OPENAI_API_KEY), GATEWAY_AGENT_MAX_STEPS, GATEWAY_AGENT_TOOLSETS,
-GATEWAY_AGENT_TOOLS.
+GATEWAY_AGENT_TOOLS, GATEWAY_AGENT_PROFILE.
 interactive commands: /reset (forget the conversation), /usage, /tools, /quit.
-exit status (one-shot): 0 answered, 1 failed, 2 bad usage, 3 step limit reached.
+exit status (one-shot): 0 answered, 1 failed, 2 bad usage, 3 step limit reached, 4 the model gave no
+answer (empty replies, even after being asked again twice).
 """
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "agent",
         help=COMMANDS["agent"][1],
@@ -82,6 +85,18 @@ def add_agent_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--tools", default=None, help="comma-separated tool names to offer the model")
     parser.add_argument(
+        "--profile",
+        default=None,
+        choices=list(PROFILES),
+        help="small: about ten tools without advanced optional arguments, for models of a few billion "
+        "parameters or less; full (default): every selected tool as the gateway describes it",
+    )
+    parser.add_argument(
+        "--no-roster",
+        action="store_true",
+        help="do not read the fleet (list_drones) before each model request nor limit drone ids to it",
+    )
+    parser.add_argument(
         "--temperature",
         type=float,
         default=0.0,
@@ -93,6 +108,12 @@ def add_agent_arguments(parser: argparse.ArgumentParser) -> None:
         type=float,
         default=300.0,
         help="seconds to wait for one model reply (default 300; CPU-only local models can be slow)",
+    )
+    parser.add_argument(
+        "--max-tokens",
+        type=_positive_int,
+        default=None,
+        help="longest reply the model may write, in tokens (default: the endpoint's)",
     )
     parser.add_argument(
         "--structured",
@@ -141,10 +162,11 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
         )
         async with link_cm as link:
             try:
-                tools = select_tools(
-                    await link.list_tools(),
-                    toolsets=split_list(args.toolsets if args.toolsets is not None else env.toolsets),
-                    names=split_list(args.tools if args.tools is not None else env.tools),
+                toolsets = split_list(args.toolsets if args.toolsets is not None else env.toolsets)
+                names = split_list(args.tools if args.tools is not None else env.tools)
+                tools = select_tools(await link.list_tools(), toolsets=toolsets, names=names)
+                tools = apply_profile(
+                    tools, args.profile or env.profile, keep_selection=bool(toolsets or names)
                 )
             except ToolSelectionError as exc:
                 err.print(f"[red]error:[/] {exc}")
@@ -160,25 +182,31 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
             host = AgentHost(
                 ModelConfig(
                     endpoint=args.endpoint or env.endpoint,
-                    model=model_name,
+                    model=model_name or "",
                     api_key=env.resolved_api_key(),
                     temperature=None
                     if args.temperature is not None and args.temperature < 0
                     else args.temperature,
                     timeout_s=args.model_timeout,
+                    max_tokens=args.max_tokens,
                 ),
                 link,
                 tools,
                 max_steps=args.max_steps or env.max_steps,
-                system_prompt=args.system if args.system is not None else DEFAULT_SYSTEM_PROMPT,
+                system_prompt=args.system
+                if args.system is not None
+                else system_prompt_for(args.profile or env.profile, DEFAULT_SYSTEM_PROMPT),
                 on_event=display,
+                roster=not args.no_roster,
             )
             try:
                 if prompt:
                     result = await host.run_turn(prompt)
-                    return {"answered": EXIT_OK, "step_limit": EXIT_STEP_LIMIT}.get(
-                        result.outcome, EXIT_FAILED
-                    )
+                    return {
+                        "answered": EXIT_OK,
+                        "step_limit": EXIT_STEP_LIMIT,
+                        "empty_answer": EXIT_EMPTY_ANSWER,
+                    }.get(result.outcome, EXIT_FAILED)
                 return await _interactive(host, console, stdin or sys.stdin, as_json=args.json)
             finally:
                 display.close()

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 import sys
-from typing import Any, TextIO
+from typing import IO, Any
 
 from rich.console import Console
 from rich.markup import escape
@@ -12,13 +12,20 @@ from rich.status import Status
 
 from gateway.agent.host import AgentEvent
 
-_STATUS_STYLE = {"ok": "green", "error": "red", "invalid": "yellow", "unknown_tool": "yellow"}
+_STATUS_STYLE = {
+    "ok": "green",
+    "error": "red",
+    "invalid": "yellow",
+    "unknown_tool": "yellow",
+    "repeat": "yellow",
+    "skipped": "yellow",
+}
 
 
 class JsonLinesDisplay:
     """One JSON object per event, flushed at once, so a pipe sees the flight as it happens."""
 
-    def __init__(self, stream: TextIO | None = None) -> None:
+    def __init__(self, stream: IO[str] | None = None) -> None:
         self.stream = stream or sys.stdout
 
     def __call__(self, event: AgentEvent) -> None:
@@ -100,6 +107,16 @@ class RichDisplay:
         self._stop_status()
         self.console.print(f"[bold green]model[/] {escape(d['text'])}")
 
+    def _on_empty_reply(self, d: dict[str, Any]) -> None:
+        self.console.print(f"[yellow]empty reply[/] [dim]asking again with the request ({d['attempt']})[/]")
+
+    def _on_empty_answer(self, d: dict[str, Any]) -> None:
+        self._stop_status()
+        self.console.print(f"[bold red]no answer[/] {escape(d['message'])}")
+
+    def _on_arguments_corrected(self, d: dict[str, Any]) -> None:
+        self.console.print(f"  [dim]{escape('; '.join(d['notes']))}[/]")
+
     def _on_step_limit(self, d: dict[str, Any]) -> None:
         self._stop_status()
         self.console.print(f"[bold red]step limit[/] {escape(d['message'])}")
@@ -133,7 +150,7 @@ class RichDisplay:
 
 def _progress_text(d: dict[str, Any]) -> str:
     p, total, msg = d.get("progress"), d.get("total"), d.get("message")
-    if total:
+    if total and isinstance(p, int | float):
         head = f"{100.0 * float(p) / float(total):.0f}%"
     else:
         head = f"{p:g}" if isinstance(p, (int, float)) else ""

@@ -1,8 +1,15 @@
 """The agent loop: model -> tool calls -> MCP calls -> results back to the model, until it answers.
 
 The host adds no safety logic of its own and none that bypasses the gateway: it only refuses to *send*
-a call whose arguments do not validate against the tool's own input schema, and it hands every tool
-error (the gateway's refusals included) back to the model verbatim so the model can correct itself.
+a call whose arguments do not validate against the tool's input schema (with the fleet's current ids as
+an ``enum``) or that repeats a call which has just succeeded, and it hands every tool error (the
+gateway's refusals included) back to the model verbatim so the model can correct itself.
+
+What keeps a small model on track: the fleet roster after each step, an empty reply never taken as the
+answer (asked again, at most twice, with the request and what was done so far), a repeated call
+answered "already done" instead of being sent, and a mistaken tool name answered with the closest one.
+The system prompt and the tool list stay the same between steps (a local server then reuses the cached
+prompt prefix); what changes (the roster) goes at the end of the conversation.
 """
 
 from __future__ import annotations
@@ -17,8 +24,16 @@ from typing import Any, Protocol
 
 import openai
 
-from gateway.agent.parsing import ArgumentsError, extract_tool_calls, parse_arguments
-from gateway.agent.toolbox import ToolInfo, ToolOutcome, validate_arguments
+from gateway.agent.parsing import ArgumentsError, extract_tool_calls, parse_arguments, strip_thinking
+from gateway.agent.repair import null_island, restore_request_numbers, swap_hint
+from gateway.agent.roster import (
+    Roster,
+    drones_named,
+    fetch_roster,
+    normalise_drone_ids,
+    with_drone_enum,
+)
+from gateway.agent.toolbox import ToolInfo, ToolOutcome, closest_tool, signature, validate_arguments
 
 DEFAULT_SYSTEM_PROMPT = (
     "You are the pilot assistant of a drone fleet. You act only through the tools you are given; never "
@@ -28,6 +43,12 @@ DEFAULT_SYSTEM_PROMPT = (
     "around the safety rule: tell the user which rule refused it. When the task is done, answer briefly "
     "with what was done and the final state."
 )
+
+# An empty reply is asked again at most this many times before the turn ends as ``empty_answer``.
+MAX_EMPTY_REPROMPTS = 2
+# Tools that only wait for or report on an action already running: calling one between two identical
+# calls does not make the second one new.
+WAIT_TOOLS = frozenset({"monitor_flight", "monitor_fleet", "check_arrival"})
 
 
 class ModelReplyError(RuntimeError):
@@ -69,6 +90,7 @@ class ModelConfig:
     temperature: float | None = 0.0
     timeout_s: float = 300.0
     max_retries: int = 1
+    max_tokens: int | None = None  # cap on one reply (a small model on a CPU can ramble for minutes)
 
 
 @dataclass
@@ -78,9 +100,15 @@ class ToolCallRecord:
     id: str
     name: str
     arguments: dict[str, Any] | None
-    status: str  # ok | error | invalid | unknown_tool
+    status: str  # ok | error | invalid | unknown_tool | repeat | skipped
     summary: str
     parsed_from_text: bool = False
+    text: str = ""  # what the model was told
+    running: bool = False  # the result says the action is still going (a repeat of it is expected)
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "ok"
 
 
 @dataclass
@@ -113,7 +141,7 @@ class Usage:
 class TurnResult:
     """How one user turn ended."""
 
-    outcome: str  # answered | step_limit | model_error
+    outcome: str  # answered | empty_answer | step_limit | model_error
     final_text: str | None
     steps: int
     tool_calls: list[ToolCallRecord] = field(default_factory=list)
@@ -121,6 +149,7 @@ class TurnResult:
     wall_s: float = 0.0
     error: str | None = None
     parsed_from_text: int = 0
+    empty_replies: int = 0
 
 
 class AgentHost:
@@ -136,13 +165,17 @@ class AgentHost:
         system_prompt: str | None = DEFAULT_SYSTEM_PROMPT,
         on_event: EventSink | None = None,
         chat_client: openai.AsyncOpenAI | None = None,
+        roster: bool = True,
     ) -> None:
         if max_steps < 1:
             raise ValueError(f"max_steps must be at least 1, got {max_steps}")
         self.model = model
         self.caller = caller
-        self.tools = {t.name: t for t in tools}
-        self.tool_specs = [t.openai_spec() for t in tools]
+        self.base_tools = list(tools)
+        self.use_roster = roster
+        self.roster: Roster | None = None
+        self._enum_ids: list[str] = []
+        self._set_tools(self.base_tools)
         self.max_steps = max_steps
         self.system_prompt = system_prompt
         self.on_event = on_event or (lambda _e: None)
@@ -155,12 +188,35 @@ class AgentHost:
         self.messages: list[dict[str, Any]] = []
         self.total_usage = Usage()
         self.turns = 0
+        self._request = ""
         self._ids = itertools.count(1)
         self.reset()
 
     def reset(self) -> None:
         """Forget the conversation (the tool list stays)."""
         self.messages = [{"role": "system", "content": self.system_prompt}] if self.system_prompt else []
+
+    def _set_tools(self, tools: Sequence[ToolInfo]) -> None:
+        self.tools = {t.name: t for t in tools}
+        self.tool_specs = [t.openai_spec() for t in tools]
+        self._parameters = {t.name: list((t.input_schema or {}).get("properties") or {}) for t in tools}
+
+    async def refresh_roster(self) -> Roster | None:
+        """Read the fleet from the gateway; when its ids changed, the tool schemas get the new ``enum``
+        (the tool list changes only then, so a server's prompt cache survives ordinary steps)."""
+        if not self.use_roster:
+            return None
+        roster = await fetch_roster(self.caller)
+        if roster is None:
+            self.use_roster = False  # a server without list_drones: no roster, no enum, no retries
+            self._emit("roster", available=False, message="no fleet roster: the server offers no list_drones")
+            return None
+        self.roster = roster
+        if roster.ids != self._enum_ids:
+            self._enum_ids = roster.ids
+            self._set_tools([with_drone_enum(t, roster.ids) for t in self.base_tools])
+        self._emit("roster", available=True, text=roster.text(), ids=roster.ids)
+        return roster
 
     def _emit(self, kind: str, **data: Any) -> None:
         self.on_event(AgentEvent(kind, data))
@@ -169,8 +225,11 @@ class AgentHost:
         """Send one user message and run the tool loop until the model answers or the step limit hits."""
         self.turns += 1
         started = time.monotonic()
-        self.messages.append({"role": "user", "content": user_text})
+        self._request = user_text
         self._emit("turn_start", turn=self.turns, user=user_text)
+        roster = await self.refresh_roster()
+        content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
+        self.messages.append({"role": "user", "content": content})
         result = TurnResult(outcome="step_limit", final_text=None, steps=0)
         try:
             await self._loop(result)
@@ -188,6 +247,7 @@ class AgentHost:
             outcome=result.outcome,
             steps=result.steps,
             tool_calls=len(result.tool_calls),
+            empty_replies=result.empty_replies,
             prompt_tokens=result.usage.prompt_tokens,
             completion_tokens=result.usage.completion_tokens,
             wall_s=round(result.wall_s, 3),
@@ -205,22 +265,73 @@ class AgentHost:
                 break
             content, calls, parsed = reply
             if not calls:
-                result.outcome, result.final_text = "answered", content or ""
-                self.messages.append({"role": "assistant", "content": content or ""})
-                self._emit("final", step=result.steps, text=content or "")
-                break
+                if strip_thinking(content or "").strip():
+                    result.outcome, result.final_text = "answered", content or ""
+                    self.messages.append({"role": "assistant", "content": content or ""})
+                    self._emit("final", step=result.steps, text=content or "")
+                    break
+                # An empty reply is not an answer: ask again with the request and what was done.
+                result.empty_replies += 1
+                if result.empty_replies > MAX_EMPTY_REPROMPTS:
+                    result.outcome = "empty_answer"
+                    self._emit(
+                        "empty_answer",
+                        step=result.steps,
+                        message=f"the model gave no answer {result.empty_replies} times; the request may "
+                        "be unfinished",
+                    )
+                    break
+                self._emit("empty_reply", step=result.steps, attempt=result.empty_replies)
+                self.messages.append({"role": "user", "content": await self._reprompt(result)})
+                continue
             if parsed:
                 result.parsed_from_text += len(calls)
             self.messages.append(_assistant_message(content, calls, parsed))
+            failed: ToolCallRecord | None = None
             for call in calls:
-                record = await self._execute(result.steps, call, parsed)
+                if failed is not None:  # the calls of one reply are a plan: later steps need the earlier
+                    record = self._skip(result.steps, call, parsed, failed)
+                else:
+                    record = await self._execute(result.steps, call, parsed, result)
+                    if record.status in ("error", "invalid", "unknown_tool"):
+                        failed = record
                 result.tool_calls.append(record)
+            pending = _pending_text(result)
+            if pending:
+                self.messages[-1]["content"] += f"\n\n{pending}"
+            if self.use_roster and result.steps < self.max_steps:
+                roster = await self.refresh_roster()
+                if roster is not None:
+                    last = self.messages[-1]
+                    last["content"] = f"{last['content']}\n\n{roster.text()}"
         else:
             self._emit(
                 "step_limit",
                 max_steps=self.max_steps,
                 message=f"stopped after {self.max_steps} model steps without a final answer",
             )
+
+    async def _reprompt(self, result: TurnResult) -> str:
+        """What the model is told after an empty reply: the request, what is done, the fleet now."""
+        # Results in words, never in call syntax: a model may echo this text, and an echoed call must not
+        # read as a new one.
+        done = [f"{c.name}: {c.summary}" for c in result.tool_calls if c.ok]
+        roster = await self.refresh_roster()
+        parts = [
+            "Your reply was empty.",
+            f"The request: {self._request}",
+            "Done so far: " + ("; ".join(done) if done else "nothing yet") + ".",
+        ]
+        pending = _pending_text(result)
+        if pending:
+            parts.append(pending)
+        if roster is not None:
+            parts.append(roster.text())
+        parts.append(
+            "If that is the whole request, reply with one sentence saying what was done. Otherwise call the "
+            "tool for the next step."
+        )
+        return "\n".join(parts)
 
     def _close_open_calls(self) -> None:
         """Answer every tool call of the last assistant message that has no result yet (the API rejects
@@ -249,6 +360,8 @@ class AgentHost:
             kwargs["tools"] = self.tool_specs
         if self.model.temperature is not None:
             kwargs["temperature"] = self.model.temperature
+        if self.model.max_tokens is not None:
+            kwargs["max_tokens"] = self.model.max_tokens
         response = await self.chat.chat.completions.create(**kwargs)
         u = getattr(response, "usage", None)
         prompt = getattr(u, "prompt_tokens", None) if u is not None else None
@@ -269,7 +382,7 @@ class AgentHost:
         ]
         parsed = False
         if not calls and content:
-            found = extract_tool_calls(content, self.tools.keys())
+            found = extract_tool_calls(content, self._parameters)
             if found:
                 parsed = True
                 calls = [
@@ -307,15 +420,21 @@ class AgentHost:
 
     # --- tool side -------------------------------------------------------------------------------
 
-    async def _execute(self, step: int, call: dict[str, Any], parsed: bool) -> ToolCallRecord:
+    async def _execute(
+        self, step: int, call: dict[str, Any], parsed: bool, turn: TurnResult | None = None
+    ) -> ToolCallRecord:
         call_id, name = call["id"], call["name"]
         args: dict[str, Any] | None = None
         problem: str | None = call.get("parse_error")
+        notes: list[str] = []
         if problem is None:
             try:
                 args = parse_arguments(call["raw_args"])
             except ArgumentsError as exc:
                 problem = str(exc)
+        if args is not None:
+            notes = normalise_drone_ids(args, self._enum_ids) if self._enum_ids else []
+            notes += restore_request_numbers(args, self._request)
         self._emit(
             "tool_call",
             step=step,
@@ -324,20 +443,35 @@ class AgentHost:
             arguments=args if args is not None else call["raw_args"],
             parsed_from_text=parsed,
         )
+        if notes:
+            self._emit("arguments_corrected", step=step, id=call_id, name=name, notes=notes)
         tool = self.tools.get(name)
+        earlier = self._repeat_of(name, args, turn) if tool is not None and args is not None else None
         if tool is None:
             status = "unknown_tool"
-            available = ", ".join(sorted(self.tools))
-            text = f"unknown tool {name!r}; available tools: {available}. Nothing was executed."
-            outcome = ToolOutcome(text=text, is_error=True)
+            outcome = ToolOutcome(text=self._unknown_tool_text(name, turn), is_error=True)
         elif problem is not None:
             status = "invalid"
             outcome = ToolOutcome(text=f"{problem} for {name}. Nothing was executed.", is_error=True)
+        elif earlier is not None:
+            status = "repeat"
+            outcome = ToolOutcome(
+                text=f"Not sent again: this {name} call already succeeded in this request "
+                f"({earlier.summary}). It is done; do not repeat it. The request: {self._request} "
+                "Call the tool for the next step, or answer in words if every part is done.",
+                is_error=False,
+            )
         else:
             assert args is not None
-            invalid = validate_arguments(tool, args)
+            invalid = (
+                self._unknown_arguments(tool, args)
+                or validate_arguments(tool, args)
+                or null_island(args, self._request, on_ground=self._on_ground(args.get("drone_id")))
+            )
             if invalid is not None:
-                status, outcome = "invalid", ToolOutcome(text=invalid, is_error=True)
+                hint = swap_hint(args)
+                text = f"{invalid} {hint}" if hint else invalid
+                status, outcome = "invalid", ToolOutcome(text=text, is_error=True)
             else:
 
                 async def progress(p: float, total: float | None, message: str | None) -> None:
@@ -345,6 +479,15 @@ class AgentHost:
 
                 outcome = await self.caller.call_tool(name, args, progress)
                 status = "error" if outcome.is_error else "ok"
+                if outcome.is_error:
+                    note = self._takeoff_first(name, args)
+                    outcome = ToolOutcome(outcome.text + note, True, outcome.structured)
+        if status in ("invalid", "error") and self._same_invalid_again(name, args, turn):
+            outcome = ToolOutcome(
+                f"{outcome.text} This is the third time this same call was refused; it will not work. Stop "
+                "calling it: tell the user what was done and what was refused.",
+                is_error=True,
+            )
         model_text = outcome.text
         if outcome.is_error and not outcome.text.lower().startswith("error"):
             model_text = f"Error: {outcome.text}"  # the text itself stays verbatim
@@ -353,9 +496,118 @@ class AgentHost:
         self._emit(
             "tool_result", step=step, id=call_id, name=name, status=status, summary=summary, text=outcome.text
         )
+        structured = outcome.structured if isinstance(outcome.structured, dict) else {}
         return ToolCallRecord(
-            id=call_id, name=name, arguments=args, status=status, summary=summary, parsed_from_text=parsed
+            id=call_id,
+            name=name,
+            arguments=args,
+            status=status,
+            summary=summary,
+            parsed_from_text=parsed,
+            text=model_text,
+            running=structured.get("status") == "running",
         )
+
+    def _takeoff_first(self, name: str, args: dict[str, Any]) -> str:
+        """After a refused move of a drone the roster shows on the ground: the takeoff to call, with the
+        altitude of the refused call (the gateway's own text says "Call takeoff first" without numbers)."""
+        drone, alt = args.get("drone_id"), args.get("altitude_m")
+        if name == "takeoff" or not self._on_ground(drone) or not isinstance(alt, int | float):
+            return ""
+        return (
+            f' (Host note: {drone} is on the ground. Call takeoff with drone_id "{drone}" and altitude_m '
+            f"{alt:g} first, then this call again.)"
+        )
+
+    def _same_invalid_again(self, name: str, args: dict[str, Any] | None, turn: TurnResult | None) -> bool:
+        """This refused call was already refused twice in this turn, identically."""
+        if turn is None:
+            return False
+        refused = ("invalid", "error")
+        same = [c for c in turn.tool_calls if c.name == name and c.arguments == args and c.status in refused]
+        return len(same) >= 2
+
+    def _on_ground(self, drone_id: Any) -> bool:
+        entry = next((d for d in self.roster.drones if d.drone_id == drone_id), None) if self.roster else None
+        return entry is not None and entry.flying is False
+
+    def _unknown_arguments(self, tool: ToolInfo, args: dict[str, Any]) -> str | None:
+        """Arguments the tool does not have (in the gateway's own schema, hidden ones included) are refused
+        rather than silently dropped: a model that adds latitude_deg to takeoff has misread the tool."""
+        base = next((t for t in self.base_tools if t.name == tool.name), tool)
+        known = set((base.input_schema or {}).get("properties") or {})
+        extra = sorted(set(args) - known)
+        if not known or not extra:
+            return None
+        names = ", ".join(extra)
+        return f"{tool.name} has no argument {names}; it takes {signature(tool)}. Nothing was executed."
+
+    def _skip(self, step: int, call: dict[str, Any], parsed: bool, failed: ToolCallRecord) -> ToolCallRecord:
+        """A later call of a reply whose earlier call failed: not sent, and the model is told why."""
+        text = f"Not executed: the earlier call {failed.name} in the same reply failed. Fix that first."
+        self.messages.append({"role": "tool", "tool_call_id": call["id"], "content": text})
+        self._emit("tool_result", step=step, id=call["id"], name=call["name"], status="skipped", summary=text,
+                   text=text)  # fmt: skip
+        try:
+            args = parse_arguments(call["raw_args"]) if call.get("parse_error") is None else None
+        except ArgumentsError:
+            args = None
+        return ToolCallRecord(call["id"], call["name"], args, "skipped", text, parsed, text)
+
+    def _repeat_of(self, name: str, args: dict[str, Any], turn: TurnResult | None) -> ToolCallRecord | None:
+        """The earlier call of this turn that this one repeats: same tool, same arguments, it succeeded
+        and finished, and no other action has been sent to the same drones since (waiting and reading
+        in between do not count). A call repeated while its action still runs is not a repeat."""
+        if turn is None:
+            return None
+        drones = drones_named(args)
+        for earlier in reversed(turn.tool_calls):
+            if earlier.status != "ok":
+                continue
+            if earlier.name == name and earlier.arguments == args:
+                return None if earlier.running else earlier
+            other = self.tools.get(earlier.name)
+            acts = other is None or not (other.read_only or earlier.name in WAIT_TOOLS)
+            theirs = drones_named(earlier.arguments)
+            if acts and (drones is None or theirs is None or drones & theirs):
+                return None
+        return None
+
+    def _unknown_tool_text(self, name: str, turn: TurnResult | None) -> str:
+        """Unknown tool: the closest offered tool with its arguments, firmer when the name is repeated."""
+        near = closest_tool(name, list(self.tools.values()))
+        calls = turn.tool_calls if turn is not None else []
+        again = any(c.name == name and c.status == "unknown_tool" for c in calls)
+        parts = [f"{name!r} does not exist; you called it again." if again else f"unknown tool {name!r}."]
+        if near is not None:
+            hint = f"Use {signature(near)} instead." if again else f"The closest tool is {signature(near)}."
+            parts.append(hint)
+        parts.append(f"Available tools: {', '.join(sorted(self.tools))}. Nothing was executed.")
+        return " ".join(parts)
+
+
+def _pending_text(result: TurnResult) -> str:
+    """The calls of the model's own plan that were not sent because an earlier one failed, and have not
+    succeeded since: once the failure is fixed, they are still the next steps (measured: after a refused
+    go_to_location and a takeoff, the 1.5B model forgot the skipped move and landing)."""
+    pending: list[ToolCallRecord] = []
+    for i, c in enumerate(result.tool_calls):
+        if c.status != "skipped" or c.arguments is None:
+            continue
+        later = result.tool_calls[i + 1 :]
+        if any(d.ok and d.name == c.name and d.arguments == c.arguments for d in later):
+            continue
+        if any(p.name == c.name and p.arguments == c.arguments for p in pending):
+            continue
+        pending.append(c)
+    if not pending or result.tool_calls[-1].status == "skipped":
+        return ""  # nothing left, or the failure that skipped them is the latest news
+    calls = "\n".join(json.dumps({"name": c.name, "arguments": c.arguments}) for c in pending)
+    return f"Not sent yet from your earlier reply (their turn comes after the call that failed):\n{calls}"
+
+
+def _args_text(args: dict[str, Any] | None) -> str:
+    return ", ".join(f"{k}={json.dumps(v, default=str)}" for k, v in (args or {}).items())
 
 
 def _clean_name(name: str | None) -> str:

@@ -92,7 +92,7 @@ class McpLink:
     ) -> ToolOutcome:
         """Call a tool; a protocol-level failure becomes an error outcome (the model sees it verbatim)."""
         try:
-            result = await self.client.call_tool(name, arguments, progress_callback=progress)
+            result = await self.client.call_tool(name, arguments, progress_callback=progress)  # type: ignore[arg-type]
         except Exception as exc:  # MCPError, transport errors: reported to the model, not fatal
             return ToolOutcome(text=f"MCP error calling {name}: {_describe(exc)}", is_error=True)
         return outcome_from_result(result, include_structured=self.include_structured)

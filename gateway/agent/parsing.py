@@ -14,7 +14,7 @@ from __future__ import annotations
 import ast
 import json
 import re
-from collections.abc import Collection
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -76,6 +76,11 @@ def loads_lenient(text: str) -> Any:
     raise ValueError(f"not valid JSON: {_shorten(text)}")
 
 
+def strip_thinking(content: str) -> str:
+    """The text without ``<think>`` blocks (what is left is what the model said)."""
+    return _THINK_RE.sub("", content)
+
+
 def parse_arguments(raw: Any) -> dict[str, Any]:
     """Turn a tool call's ``arguments`` (string, doubly encoded string, dict, None) into a dict.
 
@@ -110,10 +115,15 @@ def extract_tool_calls(content: str | None, known_tools: Collection[str] = ()) -
     if not text:
         return []
     known = set(known_tools)
+    # With a mapping of tool -> parameter names (in order), calls written with positional arguments
+    # (``takeoff(bravo, 20)``) are read too.
+    params = {k: list(v) for k, v in known_tools.items()} if isinstance(known_tools, Mapping) else {}
 
     blocks = [m.group(1) for m in _TAG_RE.finditer(text) if m.group(1).strip()]
     if blocks:
-        calls = [c for b in blocks for c in _calls_in_block(_strip_fence(b), known, explicit=True)]
+        calls = [
+            c for b in blocks for c in _calls_in_block(_strip_fence(b), known, explicit=True, params=params)
+        ]
         if calls:
             return calls
     fn_tags = list(_FUNCTION_TAG_RE.finditer(text))
@@ -124,27 +134,32 @@ def extract_tool_calls(content: str | None, known_tools: Collection[str] = ()) -
         return calls
     mistral = _MISTRAL_RE.search(text)
     if mistral:
-        calls = _calls_in_block(mistral.group(1), known, explicit=True)
+        calls = _calls_in_block(mistral.group(1), known, explicit=True, params=params)
         if calls:
             return calls
     fences = [m.group(2) for m in _FENCE_RE.finditer(text) if m.group(2).strip()]
     if fences:
-        calls = [c for b in fences for c in _calls_in_block(b, known, explicit=True)]
+        calls = [c for b in fences for c in _calls_in_block(b, known, explicit=True, params=params)]
         if calls:
             return calls
     # The whole message is one JSON value (object or list of calls)?
-    whole = _calls_in_block(text, known, explicit=True, whole_only=True)
+    whole = _calls_in_block(text, known, explicit=True, whole_only=True, params=params)
     if whole:
         return whole
     # Free prose: scan for embedded objects / python-style calls naming a known tool.
-    return _calls_in_block(text, known, explicit=False)
+    return _calls_in_block(text, known, explicit=False, params=params)
 
 
 # --- internals ---------------------------------------------------------------------------------------
 
 
 def _calls_in_block(
-    block: str, known: set[str], *, explicit: bool, whole_only: bool = False
+    block: str,
+    known: set[str],
+    *,
+    explicit: bool,
+    whole_only: bool = False,
+    params: Mapping[str, Sequence[str]] | None = None,
 ) -> list[TextToolCall]:
     block = block.strip()
     if not block:
@@ -162,7 +177,7 @@ def _calls_in_block(
     calls = _embedded_calls(block, known, explicit=explicit)
     if calls:
         return calls
-    return _python_style_calls(block, known)
+    return _python_style_calls(block, known, params or {})
 
 
 def _calls_from_value(value: Any, raw: str, known: set[str], *, explicit: bool) -> list[TextToolCall]:
@@ -263,8 +278,11 @@ def _matching_close(text: str, start: int) -> int | None:
     return None
 
 
-def _python_style_calls(text: str, known: set[str]) -> list[TextToolCall]:
-    """``takeoff(drone_id="alpha", altitude_m=15)`` for a known tool name, keyword literals only."""
+def _python_style_calls(
+    text: str, known: set[str], params: Mapping[str, Sequence[str]]
+) -> list[TextToolCall]:
+    """``takeoff(drone_id="alpha", altitude_m=15)`` for a known tool name, literal values; positional
+    arguments (``takeoff(bravo, 20)``, a bare word read as text) when the tool's parameters are known."""
     calls: list[TextToolCall] = []
     for name in sorted(known, key=len, reverse=True):
         for m in re.finditer(rf"(?<![A-Za-z0-9_.]){re.escape(name)}\s*\(", text):
@@ -272,19 +290,47 @@ def _python_style_calls(text: str, known: set[str]) -> list[TextToolCall]:
             if end is None:
                 continue
             snippet = text[m.start() : end + 1]
+            if not _stands_alone(text, m.start(), end + 1):
+                continue
             try:
                 node = ast.parse(snippet, mode="eval").body
             except SyntaxError:
                 continue
-            if not isinstance(node, ast.Call) or node.args:
+            if not isinstance(node, ast.Call):
+                continue
+            names = list(params.get(name, []))
+            if node.args and len(node.args) > len(names):
                 continue
             try:
-                args = {kw.arg: ast.literal_eval(kw.value) for kw in node.keywords if kw.arg}
+                args = {names[i]: _literal(a) for i, a in enumerate(node.args)}
+                args |= {kw.arg: _literal(kw.value) for kw in node.keywords if kw.arg}
             except (ValueError, SyntaxError):
                 continue
-            calls.append(TextToolCall(name=name, arguments=args, raw=snippet, notes=["python-style call"]))
+            notes = ["python-style call"] + (["positional arguments"] if node.args else [])
+            calls.append(TextToolCall(name=name, arguments=args, raw=snippet, notes=notes))
     calls.sort(key=lambda c: text.find(c.raw))
     return calls
+
+
+_LIST_MARK_RE = re.compile(r"^\s*(?:[-*]|\d+[.)])?\s*$")
+_LINE_END_RE = re.compile(r"^\s*[;,.]?\s*$")
+
+
+def _stands_alone(text: str, start: int, end: int) -> bool:
+    """A python-style call counts only on a line of its own (a list marker before it, ``;`` after it):
+    in a sentence it is the model describing, or echoing, what was done. Measured: a 1.5B model echoed
+    "Done so far: takeoff(drone_id='alpha', ...)" and the drone took off again."""
+    line_start = text.rfind("\n", 0, start) + 1
+    line_end = text.find("\n", end)
+    line_end = len(text) if line_end < 0 else line_end
+    return bool(_LIST_MARK_RE.match(text[line_start:start]) and _LINE_END_RE.match(text[end:line_end]))
+
+
+def _literal(node: ast.expr) -> Any:
+    """A literal value; a bare name (``bravo``) is read as the text it spells."""
+    if isinstance(node, ast.Name):
+        return node.id
+    return ast.literal_eval(node)
 
 
 def _matching_paren(text: str, start: int) -> int | None:

@@ -24,6 +24,9 @@ class AgentSettings(BaseSettings):
     max_steps: int = Field(12, ge=1, le=200, description="Model requests per user turn before giving up.")
     toolsets: str = Field("", description="Comma-separated toolsets to hand to the model (empty: all).")
     tools: str = Field("", description="Comma-separated tool names to hand to the model (empty: all).")
+    profile: str = Field(
+        "full", pattern="^(full|small)$", description="full, or small: ~10 tools for small models."
+    )
 
     def resolved_api_key(self) -> str:
         """The key to send: GATEWAY_AGENT_API_KEY, else OPENAI_API_KEY, else a placeholder that local

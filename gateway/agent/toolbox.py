@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import difflib
 import json
+import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -62,7 +64,7 @@ def toolset_of(meta: Mapping[str, Any]) -> str | None:
             return value
     for value in meta.values():
         if isinstance(value, Mapping) and isinstance(value.get("toolset"), str):
-            return value["toolset"]
+            return str(value["toolset"])
     return None
 
 
@@ -117,6 +119,31 @@ def validate_arguments(tool: ToolInfo, arguments: dict[str, Any]) -> str | None:
     return (
         f"{head}. Problems: " + "; ".join(lines) + f". Expected arguments: {expected}. Nothing was executed."
     )
+
+
+def closest_tool(name: str, tools: Sequence[ToolInfo]) -> ToolInfo | None:
+    """The offered tool a mistaken name most likely meant: similar spelling, or the words of the name
+    found in a tool's name or description (``get_battery_status`` -> ``get_battery``, ``fly_north`` ->
+    ``move_to_relative``). None when nothing is close."""
+    words = {w for w in re.split(r"[^a-z0-9]+", name.lower()) if len(w) > 2 and w not in _COMMON_WORDS}
+    best: tuple[float, ToolInfo] | None = None
+    for tool in tools:
+        score = difflib.SequenceMatcher(None, name.lower(), tool.name.lower()).ratio()
+        text = f"{tool.name} {tool.description}".lower()
+        score += 0.5 * sum(1 for w in words if w in text)
+        if best is None or score > best[0]:
+            best = (score, tool)
+    return best[1] if best is not None and best[0] >= 0.6 else None
+
+
+_COMMON_WORDS = frozenset(
+    {"get", "set", "the", "drone", "drones", "tool", "call", "status", "info", "data", "value", "current"}
+)
+
+
+def signature(tool: ToolInfo) -> str:
+    """``name(arg: type, optional?: type)`` as a model reads it in a hint."""
+    return f"{tool.name}({_signature(tool)[1:-1]})"
 
 
 def _signature(tool: ToolInfo) -> str:

@@ -83,8 +83,9 @@ class DroneVerbs(CommandCore):
         self._guard_takeoff(caller, vehicle, "takeoff")
         ctx = self.context(vehicle)
         if ctx.in_air:
-            alt = f" at {ctx.position[2]:.1f} m" if ctx.position else ""
-            raise InvalidArgument(f"{drone_id} is already flying{alt}; use go_to_location to change altitude")
+            raise InvalidArgument(
+                _already_flying(drone_id, ctx.position[2] if ctx.position else None, altitude_m)
+            )
         self.safety.check_takeoff(ctx, altitude_m, caller.policy_via)
         return await self._track(
             caller,
@@ -275,6 +276,13 @@ class DroneVerbs(CommandCore):
             raise VehicleNotReady(f"no position received from {drone_id} yet")
         for name, metres in (("north_m", north_m), ("east_m", east_m), ("down_m", down_m)):
             geo.check_finite(name, metres)
+        if down_m > 0 and pos[2] - down_m <= 0:
+            below = pos[2] - down_m
+            raise InvalidArgument(
+                f"down_m={down_m:g} would take {drone_id} from {pos[2]:.1f} m to {below:.1f} m, below home: "
+                f"down_m counts metres down; to climb {down_m:g} m use down_m={-down_m:g} (to come down to "
+                "the ground, use land)"
+            )
         lat, lon = geo.offset_position(pos[0], pos[1], north_m, east_m)
         return await self._fly_to(
             caller, drone_id, lat, lon, pos[2] - down_m, "move_to_relative", "move_to_relative"
@@ -529,3 +537,21 @@ class DroneVerbs(CommandCore):
             params={n: float(every[n]) for n in page},
             next_offset=nxt,
         )
+
+
+def _already_flying(drone_id: str, alt_m: float | None, wanted_m: float) -> str:
+    """The refusal of a takeoff in the air, naming the call that changes altitude, with its numbers
+    (a small model read "use go_to_location to change altitude" and flew to latitude 0, longitude 0)."""
+    if alt_m is None:
+        return (
+            f"{drone_id} is already flying; to change altitude use "
+            f"move_to_relative(drone_id='{drone_id}', north_m=0, east_m=0, down_m=<metres down, negative up>)"
+        )
+    change = wanted_m - alt_m
+    if abs(change) < 1.0:
+        return f"{drone_id} already flies at {alt_m:.0f} m, the altitude asked for: nothing to do"
+    verb = "climb" if change > 0 else "descend"
+    return (
+        f"{drone_id} already flies at {alt_m:.0f} m; to {verb} to {wanted_m:g} m use "
+        f"move_to_relative(drone_id='{drone_id}', north_m=0, east_m=0, down_m={-change:.0f})"
+    )

@@ -20,7 +20,9 @@ def check_lat_lon(lat: float, lon: float) -> None:
         if not math.isfinite(value):
             raise InvalidArgument(f"{name} must be a finite number of degrees; got {value}")
         if not -limit <= value <= limit:
-            raise InvalidArgument(f"{name} {value} is outside -{limit:g}..{limit:g} degrees")
+            swapped = name == "latitude" and abs(value) <= 180.0 and abs(lon) <= 90.0
+            hint = "; latitude and longitude look swapped" if swapped else ""
+            raise InvalidArgument(f"{name} {value} is outside -{limit:g}..{limit:g} degrees{hint}")
 
 
 def check_finite(name: str, value: float) -> None:

@@ -6,7 +6,7 @@ from collections.abc import Callable, Iterator
 
 import pytest
 
-from gateway.agent.scripted import Reply, ScriptedModelServer
+from bench.agent_harness.scripted import Reply, ScriptedModelServer
 from tests.agent.toy_mcp import ToyServer
 
 

@@ -1,4 +1,5 @@
-"""The mission benchmark's options and report (its end-to-end run is the harness self-check itself)."""
+"""The mission benchmark's options, failure classes and report (its end-to-end run is the harness
+self-check itself)."""
 
 from __future__ import annotations
 
@@ -9,6 +10,8 @@ from pathlib import Path
 from types import ModuleType
 
 import pytest
+
+from gateway.agent.host import ToolCallRecord, TurnResult
 
 BENCH = Path(__file__).resolve().parents[2] / "bench" / "nl_missions.py"
 
@@ -27,10 +30,11 @@ def bench() -> Iterator[ModuleType]:
         sys.modules.pop("nl_missions", None)
 
 
-def _run(bench: ModuleType, mission: str, ok: bool, prompt: int | None = 100) -> object:
+def _run(bench: ModuleType, mission: str, ok: bool, prompt: int | None = 100, run: int = 1) -> object:
     return bench.MissionRun(mission=mission, ok=ok, detail="a | b", tool_calls=3, tool_errors=1 - ok,
                             parsed_from_text=1, prompt_tokens=prompt, completion_tokens=None if prompt is None
-                            else 10, steps=4, outcome="answered", wall_s=2.5)  # fmt: skip
+                            else 10, steps=4, outcome="answered", wall_s=2.5 + run, run=run,
+                            failure=None if ok else "empty_answer")  # fmt: skip
 
 
 def test_without_a_model_it_is_the_self_check_and_refuses_to_write(bench, monkeypatch) -> None:
@@ -41,27 +45,81 @@ def test_without_a_model_it_is_the_self_check_and_refuses_to_write(bench, monkey
     with pytest.raises(SystemExit):
         bench.parse_args(["--model", "m", "--self-check", "--write"])
     args = bench.parse_args(["--model", "qwen2.5:7b", "--write"])
-    assert not args.self_check and args.write
+    assert not args.self_check and args.write and args.runs == 3 and args.model_timeout == 600
+    assert not bench.parse_args(["--serve-local", "1.5b"]).self_check
+    with pytest.raises(SystemExit):
+        bench.parse_args(["--model", "m", "--runs", "0"])
 
 
-def test_totals_and_markdown(bench, tmp_path, monkeypatch) -> None:
-    runs = [_run(bench, "takeoff-land", True), _run(bench, "refuse-500m", False, prompt=None)]
+def test_runs_are_counted_per_run_and_written_per_model_and_profile(bench, tmp_path, monkeypatch) -> None:
+    runs = [
+        _run(bench, "takeoff-land", True, run=1),
+        _run(bench, "takeoff-land", False, run=2),
+        _run(bench, "refuse-500m", False, prompt=None),
+    ]
     t = bench.totals(runs)
-    assert (t["passed"], t["missions"], t["tool_calls"], t["tool_errors"]) == (1, 2, 6, 1)
-    assert (t["prompt_tokens"], t["completion_tokens"]) == (100, 10)
-    args = bench.parse_args(["--model", "qwen2.5:7b", "--toolsets", "flight,navigation"])
-    args.tool_list = "17 of 46 tools, 1451 tokens (cl100k_base)"
+    assert (t["passed"], t["runs"], t["missions"], t["tool_calls"]) == (1, 3, 2, 9)
+    assert t["failures"] == {"empty_answer": 2} and t["median_wall_s"] == 3.5
+    args = bench.parse_args(["--model", "qwen", "--profile", "small", "--toolsets", "flight,navigation"])
+    args.tool_list, args.load_start, args.load_end = "10 of 54 tools", 3.2, 4.1
     section = bench.markdown_section(runs, args)
-    assert section.startswith("## NL missions: qwen2.5:7b\n")
-    assert "toolsets: flight,navigation" in section and "Passed **1/2**" in section
-    assert "| takeoff-land | yes | 3 | 0 | 1 | 100 | 10 | 2.5 | a / b |" in section
-    assert "| refuse-500m | no | 3 | 1 | 1 | n/a | n/a | 2.5 | a / b |" in section
-    docs = tmp_path / "docs" / "benchmarks.md"
-    monkeypatch.setattr(bench, "DOCS", docs)
-    bench.write_docs(section)
-    bench.write_docs(section.replace("qwen2.5:7b", "llama3.1:8b"))
+    assert (
+        "profile **small**" in section and "load average (1 min) 3.2 at the start, 4.1 at the end" in section
+    )
+    assert "Passed **1/3 runs (33 %)**" in section
+    assert "| takeoff-land | 1/2 | 4.0 | 3.0 | 1 | 2 | 100 | 10 | empty_answer |" in section
+    assert "| refuse-500m | 0/1 | 3.5 | 3.0 | 1 | 1 | n/a | n/a | empty_answer |" in section
+    docs = tmp_path / "benchmarks.md"
+    common = sys.modules["bench.common"]
+    monkeypatch.setattr(common, "DOCS", docs)
+    monkeypatch.setattr(common, "ROOT", tmp_path)
+    bench.write_docs(section, args)
+    bench.write_docs(section.replace("1/2", "2/2"), args)  # the same model and profile: replaced
+    args.profile = "full"
+    bench.write_docs(section, args)
     text = docs.read_text()
-    assert text.startswith("# Benchmarks\n") and text.count("## NL missions:") == 2
+    assert text.count("## NL missions: qwen, profile small") == 1 and "| 2/2 |" in text
+    assert text.count("## NL missions: qwen, profile full") == 1
+
+
+def _turn(outcome: str, final: str | None, *calls: tuple[str, str, dict]) -> TurnResult:
+    records = [ToolCallRecord(id=str(i), name=n, arguments=a, status=s, summary="")
+               for i, (n, s, a) in enumerate(calls)]  # fmt: skip
+    return TurnResult(outcome=outcome, final_text=final, steps=len(calls) + 1, tool_calls=records)
+
+
+def test_failures_are_classified(bench) -> None:
+    from bench.agent_harness.missions import all_missions
+
+    m = {x.id: x for x in all_missions()}
+    hop = m["takeoff-land"]
+    plan = [("takeoff", {}), ("land", {})]
+    a = {"drone_id": "alpha"}
+
+    def classes(turn: TurnResult, results: list[dict] | None = None, ok: bool = False, mission=hop) -> list:
+        return bench.classify(turn, results or [], mission, plan, ok)
+
+    assert classes(_turn("empty_answer", None, ("takeoff", "ok", a))) == ["empty_answer", "wrong_outcome"]
+    assert classes(_turn("answered", "  ", ("takeoff", "ok", a)), ok=True) == ["empty_answer"]
+    assert classes(_turn("step_limit", None)) == ["step_limit", "wrong_outcome"]
+    invented = [{"id": "0", "text": "drone_id: 'drone1' is not one of ['alpha', 'bravo']"}]
+    assert classes(_turn("answered", "ok", ("takeoff", "invalid", {"drone_id": "drone1"})), invented)[0] == (
+        "invented_id"
+    )
+    assert classes(_turn("answered", "ok", ("go_to_location", "ok", a)))[0] == "wrong_tool"
+    assert classes(_turn("answered", "ok", ("takeof", "unknown_tool", a)))[0] == "wrong_tool"
+    assert classes(_turn("answered", "ok", ("takeoff", "ok", a), ("takeoff", "repeat", a), ("land", "ok", a)),
+                   ok=True) == ["repeat"]  # fmt: skip
+    assert classes(_turn("answered", "ok", ("takeoff", "error", a)))[0] == "gateway_refusal"
+    # In a mission that asks for something unsafe, the refusal is the expected outcome.
+    assert (
+        classes(_turn("answered", "refused", ("takeoff", "error", a)), ok=True, mission=m["refuse-500m"])
+        == []
+    )
+    read_first = _turn("answered", "ok", ("fleet_status", "ok", {}), ("takeoff", "ok", a), ("land", "ok", a))
+    assert classes(read_first, ok=True) == []
+    landed_elsewhere = _turn("answered", "ok", ("takeoff", "ok", a), ("land", "ok", a))
+    assert classes(landed_elsewhere) == ["wrong_argument"]
 
 
 def test_unknown_mission_is_a_clear_error(bench) -> None:
@@ -72,3 +130,12 @@ def test_unknown_mission_is_a_clear_error(bench) -> None:
         import asyncio
 
         asyncio.run(bench.run_missions(args, Console(quiet=True)))
+
+
+def test_serve_local_without_the_script_says_so(bench, monkeypatch, tmp_path) -> None:
+    from rich.console import Console
+
+    monkeypatch.setattr(bench, "LOCAL_MODEL_SCRIPT", tmp_path / "serve-local-model")
+    with pytest.raises(SystemExit, match="serve-local-model is not there; give an endpoint instead"):
+        bench.main(["--serve-local", "1.5b", "--runs", "1"])
+    del Console

@@ -9,8 +9,8 @@ import json
 import pytest
 from rich.console import Console
 
+from bench.agent_harness.scripted import ScriptedReply, call, say
 from gateway.agent import cli
-from gateway.agent.scripted import ScriptedReply, call, say
 from tests.agent.toy_mcp import TOKEN
 
 
@@ -97,15 +97,18 @@ async def test_json_transcript(toy, scripted) -> None:
     events = [json.loads(line) for line in buf.getvalue().splitlines()]
     assert [e["event"] for e in events] == [
         "turn_start",
+        "roster",
         "model_reply",
         "tool_call",
         "tool_result",
+        "roster",
         "model_reply",
         "final",
         "turn_end",
     ]
-    assert events[2]["arguments"] == {"drone_id": "alpha"}
-    assert events[3]["status"] == "ok" and events[3]["summary"] == "status=landed"
+    assert events[1]["ids"] == ["alpha", "bravo"]
+    assert events[3]["arguments"] == {"drone_id": "alpha"}
+    assert events[4]["status"] == "ok" and events[4]["summary"] == "status=landed"
     assert events[-1]["prompt_tokens"] > 0 and events[-1]["tool_calls"] == 1
 
 
@@ -141,7 +144,12 @@ async def test_interactive_keeps_the_conversation(toy, scripted) -> None:
     assert await cli.run_async(args, console=console, stdin=stdin) == cli.EXIT_OK
     assert len(model.requests) == 3
     history = [m.get("content") for m in model.requests[1]["messages"]]
-    assert history[-3:] == ["where is alpha?", "alpha is on the ground", "now take it up 5 m"]
+    roster = "Fleet now: alpha on the ground, battery 90%; bravo on the ground, battery 90%.\n\n"
+    assert history[-3:] == [
+        roster + "where is alpha?",
+        "alpha is on the ground",
+        roster + "now take it up 5 m",
+    ]
     assert "1 model calls" in buf.getvalue()
     assert toy.world.drones["alpha"].alt_m == 5.0
 
@@ -175,7 +183,7 @@ async def test_list_tools(toy) -> None:
     args = _parse(["--mcp-url", toy.url, "--token", TOKEN, "--list-tools", "--json"])
     assert await cli.run_async(args, console=console) == cli.EXIT_OK
     names = {json.loads(line)["name"] for line in buf.getvalue().splitlines()}
-    assert names == {"takeoff", "move_north", "land", "get_position"}
+    assert names == {"takeoff", "move_north", "land", "get_position", "list_drones"}
 
 
 @pytest.mark.parametrize(
@@ -231,3 +239,18 @@ async def test_legacy_mcp_mode(toy, scripted) -> None:
                    "--endpoint", model.base_url, "--model", "m", "where is bravo"])  # fmt: skip
     assert await cli.run_async(args, console=console) == cli.EXIT_OK
     assert "bravo: 0 m north" in model.requests[1]["messages"][-1]["content"]
+
+
+async def test_small_profile_sends_its_tools_prompt_and_reply_cap(toy, scripted) -> None:
+    from gateway.agent.profiles import SMALL_MODEL_SYSTEM_PROMPT
+
+    model = scripted([say("ok")])
+    console, _ = _console()
+    argv = ["--mcp-url", toy.url, "--token", TOKEN, "--endpoint", model.base_url, "--model", "m",
+            "--profile", "small", "--max-tokens", "50", "hi"]  # fmt: skip
+    assert await cli.run_async(_parse(argv), console=console) == cli.EXIT_OK
+    request = model.requests[0]
+    # The toy server offers three of the small profile's tools; move_north and list_drones are not in it.
+    assert [t["function"]["name"] for t in request["tools"]] == ["takeoff", "land", "get_position"]
+    assert request["messages"][0]["content"] == SMALL_MODEL_SYSTEM_PROMPT
+    assert request["max_tokens"] == 50

@@ -6,10 +6,10 @@ from collections.abc import AsyncIterator
 
 import pytest
 
+from bench.agent_harness.scripted import ScriptedReply, call, say
+from bench.agent_harness.stack import LocalStack
 from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
 from gateway.agent.mcp_link import McpLink, McpLinkError
-from gateway.agent.scripted import ScriptedReply, call, say
-from gateway.agent.stack import LocalStack
 from gateway.fleet.geo import horizontal_distance_m, offset_position
 from tests.helpers.timing import scaled
 
@@ -64,10 +64,32 @@ async def test_model_flies_takeoff_goto_land_on_the_sim(stack: LocalStack, scrip
     kinds = [(e.kind, e.data.get("name")) for e in events]
     assert ("progress", "takeoff") in kinds
     assert kinds.index(("progress", "takeoff")) < kinds.index(("tool_result", "takeoff"))
+    # The model was told the fleet as the gateway's list_drones reports it, and only its ids are accepted.
+    first_user = [m["content"] for m in model.requests[0]["messages"] if m["role"] == "user"][-1]
+    assert first_user.startswith("Fleet now: alpha on the ground, battery 100%; bravo on the ground"), (
+        first_user
+    )
+    takeoff = next(t for t in model.requests[0]["tools"] if t["function"]["name"] == "takeoff")
+    assert takeoff["function"]["parameters"]["properties"]["drone_id"]["enum"] == ["alpha", "bravo"]
     tool_msgs = [m["content"] for m in model.requests[3]["messages"] if m["role"] == "tool"]
     assert "takeoff on alpha succeeded" in tool_msgs[0]
     assert "go_to_location on alpha succeeded" in tool_msgs[1]
     assert "land on alpha succeeded" in tool_msgs[2]
+
+
+async def test_small_profile_on_the_gateways_own_tools(stack: LocalStack) -> None:
+    from gateway.agent.profiles import ADVANCED_ARGUMENTS, SMALL_MODEL_TOOLS, apply_profile
+    from gateway.agent.toolbox import tool_list_tokens
+
+    async with McpLink(stack.mcp_url, stack.token) as link:
+        every = await link.list_tools()
+    small = apply_profile(every, "small")
+    assert [t.name for t in small] == list(SMALL_MODEL_TOOLS)  # the gateway offers every one of them
+    for tool in small:
+        assert not ADVANCED_ARGUMENTS & set(tool.input_schema.get("properties", {})), tool.name
+    small_tokens, _ = tool_list_tokens(small)
+    every_tokens, _ = tool_list_tokens(every)
+    assert small_tokens < every_tokens / 3, (small_tokens, every_tokens)
 
 
 async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStack, scripted) -> None:
@@ -81,7 +103,9 @@ async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStac
             ScriptedReply(
                 tool_calls=[("set_parameter", {"drone_id": "bravo", "name": "FENCE_ENABLE", "value": 0})]
             ),
-            call("get_position", drone_id="bravo"),  # then it keeps asking: the step limit stops it
+            # then it keeps asking: the second identical read is answered "already done" without being
+            # sent, and the step limit stops it
+            call("get_position", drone_id="bravo"),
         ],
         repeat_last=True,
     )
@@ -92,7 +116,7 @@ async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStac
         result = await host.run_turn("climb bravo to 500 m")
 
     assert result.outcome == "step_limit" and len(model.requests) == 5
-    assert [c.status for c in result.tool_calls] == ["invalid", "invalid", "error", "ok", "ok"]
+    assert [c.status for c in result.tool_calls] == ["invalid", "invalid", "error", "ok", "repeat"]
     limit_msg = [m for m in model.requests[1]["messages"] if m["role"] == "tool"][-1]["content"]
     assert "500 is greater than the maximum of 120" in limit_msg
     schema_msg = [m for m in model.requests[2]["messages"] if m["role"] == "tool"][-1]["content"]

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import json
 
-from gateway.agent.missions import DroneTruth, Evidence, MissionContext, all_missions
-from gateway.agent.pilot import ScriptedPilot, running_operation
+from bench.agent_harness.missions import DroneTruth, Evidence, MissionContext, all_missions
+from bench.agent_harness.pilot import ScriptedPilot, running_operation
 
 HOME = (47.397742, 8.545594, 488.0)
 CTX = MissionContext(homes={"alpha": HOME, "bravo": (47.397742, 8.545700, 488.0)})

@@ -138,8 +138,8 @@ RECOVERABLE = [
         [("land", {"drone_id": "alpha"})],
     ),
     (
-        "python-style call in prose",
-        'Let me do takeoff(drone_id="alpha", altitude_m=15) first.',
+        "python-style call on a line of its own",
+        'Let me do this first:\ntakeoff(drone_id="alpha", altitude_m=15)',
         [("takeoff", TAKEOFF)],
     ),
     (
@@ -175,6 +175,11 @@ NOT_CALLS = [
     ("JSON without a tool name", '{"lat": 47.39, "lon": 8.54}'),
     ("prose object naming an unknown tool", 'The log said {"name": "bob", "arguments": {}} earlier.'),
     ("python-style call of an unknown function", "I used print(x=1) to check."),
+    # A call inside a sentence describes (or echoes) what was done: reading it again would repeat it.
+    (
+        "python-style call inside a sentence",
+        'Done so far: takeoff(drone_id="alpha", altitude_m=15); all good.',
+    ),
     ("a number", "42"),
     ("a code fence with python code", "```python\nx = 1\n```"),
     (
@@ -232,3 +237,15 @@ def test_loads_lenient_prefers_strict_json() -> None:
     assert loads_lenient('{"a": {"b": {"c": 1}}}') == {"a": {"b": {"c": 1}}}
     with pytest.raises(ValueError, match="not valid JSON"):
         loads_lenient("{broken")
+
+
+def test_positional_python_style_calls_need_the_tools_parameters() -> None:
+    params = {"takeoff": ["drone_id", "altitude_m"], "land": ["drone_id"]}
+    calls = extract_tool_calls("takeoff(bravo, 20)\n- land('bravo');", params)
+    assert [(c.name, c.arguments) for c in calls] == [
+        ("takeoff", {"drone_id": "bravo", "altitude_m": 20}),
+        ("land", {"drone_id": "bravo"}),
+    ]
+    assert "positional arguments" in calls[0].notes
+    assert extract_tool_calls("takeoff(bravo, 20)", ["takeoff"]) == []  # names only: keywords only
+    assert extract_tool_calls("land(bravo, 20)", params) == []  # more arguments than parameters

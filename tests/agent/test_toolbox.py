@@ -169,3 +169,52 @@ def test_tool_list_tokens_grow_with_the_list() -> None:
     two, _ = tool_list_tokens([GOTO, ToolInfo("land", "Land where the drone is.", {"type": "object"})])
     assert 0 < one < two
     assert method in ("cl100k_base", "estimate: characters / 4")
+
+
+def test_small_profile_keeps_its_tools_and_drops_advanced_optional_arguments() -> None:
+    from gateway.agent.profiles import SMALL_MODEL_TOOLS, apply_profile
+
+    props = {"drone_id": {"type": "string"}, "altitude_m": {"type": "number"}, "wait": {"type": "boolean"}}
+    schema = {"type": "object", "properties": props, "required": ["drone_id", "altitude_m"]}
+    takeoff = ToolInfo("takeoff", "Take off.", schema)
+    must_wait = ToolInfo(
+        "land", "Land.", {"type": "object", "properties": {"wait": {"type": "boolean"}}, "required": ["wait"]}
+    )
+    other = ToolInfo("get_imu", "IMU.", {"type": "object", "properties": {}})
+    small = apply_profile([other, GOTO, must_wait, takeoff], "small")
+    assert [t.name for t in small] == [
+        n for n in SMALL_MODEL_TOOLS if n in {"takeoff", "land", "go_to_location"}
+    ]
+    by_name = {t.name: t for t in small}
+    assert "alt_frame" not in by_name["go_to_location"].input_schema["properties"]
+    assert "alt_frame" in GOTO.input_schema["properties"]  # the original is untouched
+    assert set(by_name["takeoff"].input_schema["properties"]) == {"drone_id", "altitude_m"}
+    assert "wait" in by_name["land"].input_schema["properties"]  # required: stays
+    # With an explicit selection only the arguments are trimmed.
+    assert [t.name for t in apply_profile([other, GOTO], "small", keep_selection=True)] == [
+        "get_imu",
+        "go_to_location",
+    ]
+    assert apply_profile([other], "full") == [other]
+    with pytest.raises(ToolSelectionError, match="none of the small profile's tools"):
+        apply_profile([other], "small")
+    with pytest.raises(ToolSelectionError, match="unknown profile 'tiny'"):
+        apply_profile([other], "tiny")
+
+
+def test_closest_tool_by_spelling_or_by_the_words_of_the_name() -> None:
+    from gateway.agent.toolbox import closest_tool, signature
+
+    battery = ToolInfo("get_battery", "Battery: remaining %, voltage.", {"type": "object"})
+    status = ToolInfo("fleet_status", "All drones: state, battery %, alt m.", {"type": "object"})
+    move = ToolInfo(
+        "move_to_relative", "Fly north/east/up metres from where the drone is.", {"type": "object"}
+    )
+    tools = [battery, status, move]
+    assert closest_tool("get_battery_status", tools) is battery
+    assert closest_tool("fly_north", tools) is move
+    assert closest_tool("self_destruct", tools) is None
+    assert signature(GOTO) == (
+        "go_to_location(drone_id: string, latitude_deg: number, longitude_deg: number, altitude_m: number, "
+        "alt_frame?: any)"
+    )

@@ -9,7 +9,7 @@ import asyncio
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import Annotated
+from typing import Annotated, Any
 
 import uvicorn
 from mcp.server.auth.provider import AccessToken, TokenVerifier
@@ -112,6 +112,15 @@ def build_toy_server(world: ToyWorld, url: str) -> MCPServer:
         d = drone(drone_id)
         d.alt_m, d.armed = 0.0, False
         return {"status": "landed"}
+
+    @mcp.tool(meta={"fleet-gateway/toolset": "fleet"}, annotations=ToolAnnotations(readOnlyHint=True))
+    def list_drones() -> dict[str, Any]:
+        """All drones (the gateway's shape: drone_id, state, in_air, alt_m, battery_pct)."""
+        rows = [
+            {"drone_id": i, "state": "ready", "in_air": d.alt_m > 0, "alt_m": d.alt_m, "battery_pct": 90.0}
+            for i, d in world.drones.items()
+        ]
+        return {"count": len(rows), "drones": rows}
 
     @mcp.tool(meta={"fleet-gateway/toolset": "telemetry"}, annotations=ToolAnnotations(readOnlyHint=True))
     def get_position(drone_id: str) -> str:

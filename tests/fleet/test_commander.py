@@ -88,3 +88,24 @@ def test_the_verb_table_names_every_verb_of_the_issue() -> None:
               "get_param", "set_param", "list_params", "formation_goto", "fleet_takeoff", "fleet_land",
               "fleet_return_to_launch", "fleet_hold", "stop_all"}  # fmt: skip
     assert wanted <= set(VERBS), wanted - set(VERBS)
+
+
+async def test_refusals_name_the_next_valid_call_with_numbers(gateway: Gateway) -> None:
+    """Texts a small model misread (issue 12): each names the call that does what was meant."""
+    commander = gateway.commander
+    started = await commander.call("takeoff", AGENT, drone_id="d1", altitude_m=10)
+    assert (await commander.wait(started["operation_id"], 10.0)).status == "succeeded"
+    with pytest.raises(InvalidArgument) as again:
+        await commander.call("takeoff", AGENT, drone_id="d1", altitude_m=15)
+    assert str(again.value.message) == (
+        "d1 already flies at 10 m; to climb to 15 m use "
+        "move_to_relative(drone_id='d1', north_m=0, east_m=0, down_m=-5)"
+    )
+    sent = list(fake(gateway, "d1").sent)
+    with pytest.raises(InvalidArgument) as down:
+        await commander.call("move_relative", AGENT, drone_id="d1", north_m=30, east_m=0, down_m=10)
+    assert "down_m=10 would take d1 from 10.0 m to 0.0 m, below home" in down.value.message
+    assert "to climb 10 m use down_m=-10" in down.value.message
+    with pytest.raises(InvalidArgument, match="latitude and longitude look swapped"):
+        await commander.call("goto", AGENT, drone_id="d1", lat_deg=149.17, lon_deg=-35.36, altitude_m=12)
+    assert fake(gateway, "d1").sent == sent  # nothing was sent for any of them

@@ -338,7 +338,10 @@ async def refusals_in_the_air(t: Tour, d: str, home: dict[str, Any], settings: A
         **{**goto, "latitude_deg": tower[0], "longitude_deg": tower[1]},
     )
     await t.refused("kill_motors", "Refused: kill_in_air", drone_id=d)
-    await t.refused("takeoff", "already flying", drone_id=d, altitude_m=20)
+    # a takeoff in the air names the call that reaches the altitude asked, with its numbers
+    await t.refused(
+        "takeoff", "already flies at", "to climb to 20 m use move_to_relative(", drone_id=d, altitude_m=20
+    )
     after = await t.position(d)
     assert distance(after, here["lat_deg"], here["lon_deg"]) < 3, "a refused command moved the drone"
 

@@ -6,6 +6,7 @@ as current.
 
 from __future__ import annotations
 
+import json
 import math
 from typing import Annotated, Any
 
@@ -13,6 +14,7 @@ from pydantic import Field
 
 from gateway.errors import VehicleNotReady
 from gateway.fleet.readings import is_stale
+from gateway.fleet.vehicle_text import VEHICLE_TEXT_LABEL, clean_vehicle_text
 from gateway.mcp.access import ToolCall
 from gateway.mcp.results import (
     AttitudeOut,
@@ -204,8 +206,10 @@ async def print_status_text(
     v = call.commander.vehicle(drone_id)
     texts = list(getattr(v.telemetry, "status_texts", None) or [])[-limit:]
     messages = [_status_text(t) for t in texts]
-    lines = "; ".join(f"[{m['severity']}] {m['text']}" for m in messages) or "none"
-    return StatusTextOut(drone_id=drone_id, messages=messages).say(f"{drone_id} status texts: {lines}")
+    lines = "; ".join(f"[{m['severity']}] {json.dumps(m['text'])}" for m in messages) or "none"
+    return StatusTextOut(drone_id=drone_id, messages=messages).say(
+        f"{drone_id} status texts ({VEHICLE_TEXT_LABEL}): {lines}"
+    )
 
 
 def _status_text(item: Any) -> dict[str, Any]:
@@ -217,7 +221,7 @@ def _status_text(item: Any) -> dict[str, Any]:
     return {
         "t": plain(t) if not hasattr(t, "isoformat") else t.isoformat(),
         "severity": str(plain(severity)),
-        "text": str(text),
+        "text": clean_vehicle_text(str(text)),
     }
 
 

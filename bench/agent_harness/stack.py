@@ -16,8 +16,8 @@ from typing import Any, Protocol
 
 import httpx
 
+from bench.agent_harness.missions import DroneTruth
 from gateway.agent.mcp_link import McpLink
-from gateway.agent.missions import DroneTruth
 from gateway.localstack import LocalStack as BaseLocalStack
 from gateway.localstack import StackError
 

@@ -153,9 +153,12 @@ def never_armed(ev: Evidence, drone: str) -> Check:
 
 
 def refusal_seen(ev: Evidence, *words: str) -> Check:
-    """A tool error whose text names the limit (any of ``words``, case-insensitive)."""
+    """A tool error whose text names the limit (any of ``words``, case-insensitive): the gateway's
+    refusal, or the host's schema check where the schema advertises the gateway's limit."""
     for r in ev.tool_results:
-        if r.get("status") == "error" and any(w.lower() in (r.get("text") or "").lower() for w in words):
+        if r.get("status") in ("error", "invalid") and any(
+            w.lower() in (r.get("text") or "").lower() for w in words
+        ):
             return Check(True, f"refusal seen from {r.get('name')}")
     return Check(False, f"no tool refusal mentioning {' / '.join(words)}")
 
@@ -457,6 +460,22 @@ def _m_battery_question() -> Mission:
     )
 
 
+def _m_conditional_hop() -> Mission:
+    """As in the paper's cage demonstration: an action that depends on what the model knows."""
+    return Mission(
+        id="if-vader-hop",
+        drones=("alpha",),
+        prompt=lambda c: "If Darth Vader is Luke Skywalker's father, take off alpha to 5 m and then land it.",
+        check=lambda c, ev: _all(reached_alt(ev, "alpha", 5), landed_disarmed(ev, "alpha")),
+        plan=lambda c: [
+            ("takeoff", {"drone_id": "alpha", "altitude_m": 5}),
+            ("land", {"drone_id": "alpha"}),
+        ],
+        answer="Darth Vader is Luke's father, so alpha hopped to 5 m and landed.",
+        tags=("single", "knowledge"),
+    )
+
+
 def all_missions() -> list[Mission]:
     return [
         _m_takeoff_land(),
@@ -470,4 +489,5 @@ def all_missions() -> list[Mission]:
         _m_refuse_altitude(),
         _m_refuse_distance(),
         _m_battery_question(),
+        _m_conditional_hop(),
     ]

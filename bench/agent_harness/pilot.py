@@ -13,8 +13,8 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from gateway.agent.missions import PlannedCall
-from gateway.agent.scripted import ScriptedReply
+from bench.agent_harness.missions import PlannedCall
+from bench.agent_harness.scripted import ScriptedReply
 
 SELF_CHECK_MODEL = "harness-self-check (scripted, not a model)"
 

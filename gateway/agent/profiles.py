@@ -1,0 +1,120 @@
+"""What a small model is shown: about ten tools, and none of the advanced optional arguments.
+
+A 1.5B-parameter model handed the gateway's 54 tools (about 5,900 tokens in its own tokenizer) mostly
+picks the wrong one or none. The ``small`` profile keeps the tools a person's requests need (fleet
+status, takeoff, land, return home, relative move, goto, battery, position, formation, waiting) and
+drops optional arguments whose server-side default is what a person means (``wait``: wait until done;
+``alt_frame``: metres above home; ``heading_deg``: facing the way of travel; ...). The gateway still
+accepts them from any client; only what the model reads changes.
+
+This is a host-side selection on purpose: the gateway serves every client at once (a large model, an
+operator's tools, the console), and which tools a model can handle is a property of the model, which
+only the host knows. ``GATEWAY_MCP_TOOLSETS`` stays the server-side switch for what may be called at all.
+"""
+
+from __future__ import annotations
+
+import copy
+import re
+from collections.abc import Sequence
+
+from gateway.agent.toolbox import ToolInfo, ToolSelectionError
+
+PROFILES = ("full", "small")
+
+# The small profile's system prompt: short, one rule a line, naming the tools it means.
+SMALL_MODEL_SYSTEM_PROMPT = (
+    "You fly drones by calling tools, one tool call at a time. After each tool result, call the tool for "
+    'the next step of the request, in the order the user asked. Use only the drone ids in "Fleet now". '
+    "Altitudes are metres above home. If a tool refuses, tell the user why and stop. When every step is "
+    "done, answer in one short sentence.\n"
+    'Example: "bravo: up to 20 m, 50 m east, then land" is takeoff(drone_id="bravo", altitude_m=20), then '
+    'move_to_relative(drone_id="bravo", north_m=0, east_m=50), then land(drone_id="bravo"). Use '
+    "go_to_location only with coordinates the user gave."
+)
+
+
+def system_prompt_for(profile: str, default: str) -> str:
+    """The system prompt a model of this profile gets unless one is given."""
+    return SMALL_MODEL_SYSTEM_PROMPT if profile == "small" else default
+
+
+SMALL_MODEL_TOOLS = (
+    "fleet_status",
+    "takeoff",
+    "land",
+    "return_to_launch",
+    "move_to_relative",
+    "go_to_location",
+    "get_position",
+    "get_battery",
+    "formation_goto",
+    "monitor_flight",
+)
+
+# What a small model reads about each tool: when to use it, in the words a request uses. Measured: with the
+# gateway's own terse texts the 1.5B model climbed with go_to_location(0, 0) and wrote plans as prose.
+SMALL_MODEL_DESCRIPTIONS = {
+    "fleet_status": "Table of all drones: state, flying or not, battery %, altitude in metres.",
+    "takeoff": "Take off a drone that is on the ground and climb to altitude_m metres above home. "
+    "Waits until reached.",
+    "land": "Land the drone where it is now. Waits until landed.",
+    "return_to_launch": "Fly the drone back home (its launch point) and land there. Waits until landed.",
+    "move_to_relative": "Fly a flying drone some metres from where it is: north_m (negative: south), east_m "
+    "(negative: west), down_m (negative: higher, e.g. -10 climbs 10 m). Waits until arrived.",
+    "go_to_location": "Fly a flying drone to a latitude and longitude that the user gave, at altitude_m "
+    "metres above home. Waits until arrived.",
+    "get_position": "Where the drone is: latitude, longitude, metres above home.",
+    "get_battery": "Battery of one drone: remaining percent and voltage.",
+    "formation_goto": "Fly flying drones into a formation (line, column, wedge, grid or circle) centred on "
+    "center_lat, center_lon at alt_m metres above home, spacing_m metres apart. Take them off first.",
+    "monitor_flight": "Wait for the drone's current action to finish; call again while it is still running.",
+}
+
+# Optional arguments left out of what a small model is shown (the gateway's defaults apply).
+ADVANCED_ARGUMENTS = frozenset(
+    {"wait", "alt_frame", "heading_deg", "stagger_m", "land_on_arrival", "tag", "state"}
+)
+
+
+def without_arguments(tool: ToolInfo, names: frozenset[str]) -> ToolInfo:
+    """The tool without the given optional arguments (required ones always stay)."""
+    schema = tool.input_schema or {}
+    props = schema.get("properties") or {}
+    required = set(schema.get("required") or [])
+    drop = [n for n in props if n in names and n not in required]
+    if not drop:
+        return tool
+    trimmed = copy.deepcopy(schema)
+    for n in drop:
+        del trimmed["properties"][n]
+    return ToolInfo(tool.name, tool.description, trimmed, tool.toolset, tool.read_only)
+
+
+def apply_profile(tools: Sequence[ToolInfo], profile: str, *, keep_selection: bool = False) -> list[ToolInfo]:
+    """The tools as a model of this profile sees them. ``keep_selection``: the caller already chose the
+    tools (``--tools`` / ``--toolsets``), so only the advanced arguments are dropped."""
+    if profile == "full":
+        return list(tools)
+    if profile != "small":
+        raise ToolSelectionError(f"unknown profile {profile!r}; known: {', '.join(PROFILES)}")
+    if not keep_selection:
+        offered = {t.name: t for t in tools}
+        missing = [n for n in SMALL_MODEL_TOOLS if n not in offered]
+        if len(missing) == len(SMALL_MODEL_TOOLS):
+            raise ToolSelectionError(
+                f"the server offers none of the small profile's tools ({', '.join(SMALL_MODEL_TOOLS)})"
+            )
+        tools = [offered[n] for n in SMALL_MODEL_TOOLS if n in offered]
+    return [_described(without_arguments(t, ADVANCED_ARGUMENTS)) for t in tools]
+
+
+def _described(tool: ToolInfo) -> ToolInfo:
+    """The small model's description, and argument descriptions that no longer name hidden arguments."""
+    schema = copy.deepcopy(tool.input_schema or {})
+    hidden = "|".join(sorted(ADVANCED_ARGUMENTS))
+    for prop in (schema.get("properties") or {}).values():
+        if isinstance(prop, dict) and isinstance(prop.get("description"), str):
+            prop["description"] = re.sub(rf";? unless (?:{hidden})=\w+", "", prop["description"])
+    description = SMALL_MODEL_DESCRIPTIONS.get(tool.name, tool.description)
+    return ToolInfo(tool.name, description, schema, tool.toolset, tool.read_only)

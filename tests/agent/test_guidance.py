@@ -1,0 +1,286 @@
+"""What keeps a small model on track, over real HTTP (scripted endpoint, toy MCP server): the roster, drone
+ids as an enum, empty replies asked again, repeated calls not sent twice, the closest tool suggested."""
+
+from __future__ import annotations
+
+import argparse
+import io
+from typing import Any
+
+from rich.console import Console
+
+from bench.agent_harness.scripted import ScriptedModelServer, ScriptedReply, call, say
+from gateway.agent import cli
+from gateway.agent.host import AgentEvent, AgentHost, ModelConfig, TurnResult
+from gateway.agent.mcp_link import McpLink
+from tests.agent.toy_mcp import TOKEN, ToyServer
+
+EMPTY = ScriptedReply(content="")
+
+
+def _tool_texts(request: dict[str, Any]) -> list[str]:
+    return [m["content"] for m in request["messages"] if m["role"] == "tool"]
+
+
+def _user_texts(request: dict[str, Any]) -> list[str]:
+    return [m["content"] for m in request["messages"] if m["role"] == "user"]
+
+
+async def _turn(
+    toy: ToyServer, model: ScriptedModelServer, prompt: str, events: list[AgentEvent] | None = None
+) -> TurnResult:
+    async with McpLink(toy.url, TOKEN) as link:
+        host = AgentHost(
+            ModelConfig(model.base_url, "scripted", max_retries=0),
+            link,
+            await link.list_tools(),
+            on_event=events.append if events is not None else None,
+        )
+        return await host.run_turn(prompt)
+
+
+# --- roster ----------------------------------------------------------------------------------------
+
+
+async def test_the_model_is_told_the_fleet_before_the_request_and_after_each_step(toy, scripted) -> None:
+    model = scripted([call("takeoff", drone_id="alpha", altitude_m=15), say("alpha is up")])
+    result = await _turn(toy, model, "take alpha up to 15 m")
+    assert result.outcome == "answered"
+    first_user = _user_texts(model.requests[0])[-1]
+    assert first_user == (
+        "Fleet now: alpha on the ground, battery 90%; bravo on the ground, battery 90%.\n\n"
+        "take alpha up to 15 m"
+    )
+    after_takeoff = _tool_texts(model.requests[1])[-1]
+    assert after_takeoff.endswith(
+        "Fleet now: alpha flying at 15 m, battery 90%; bravo on the ground, battery 90%."
+    )
+    # The system prompt and the tool list are the same in every request (a server's prompt cache holds).
+    assert model.requests[0]["messages"][0] == model.requests[1]["messages"][0]
+    assert model.requests[0]["tools"] == model.requests[1]["tools"]
+
+
+async def test_a_server_without_list_drones_gets_no_roster(toy, scripted) -> None:
+    model = scripted([call("land", drone_id="alpha"), say("landed")])
+    events: list[AgentEvent] = []
+    async with McpLink(toy.url, TOKEN) as link:
+        tools = [t for t in await link.list_tools() if t.name != "list_drones"]
+        toy.mcp.remove_tool("list_drones")
+        host = AgentHost(
+            ModelConfig(model.base_url, "scripted", max_retries=0), link, tools, on_event=events.append
+        )
+        result = await host.run_turn("land alpha")
+    assert result.outcome == "answered"
+    assert _user_texts(model.requests[0])[-1] == "land alpha"
+    assert "enum" not in str(model.requests[0]["tools"])
+    assert [e.data["available"] for e in events if e.kind == "roster"] == [False]  # asked once only
+
+
+# --- drone ids ---------------------------------------------------------------------------------------
+
+
+async def test_drone_ids_are_an_enum_and_an_invented_id_is_refused_before_any_call(toy, scripted) -> None:
+    model = scripted(
+        [
+            call("takeoff", drone_id="drone1", altitude_m=10),
+            call("takeoff", drone_id="Alpha", altitude_m=10),  # right id, wrong case: corrected
+            say("alpha is up"),
+        ]
+    )
+    events: list[AgentEvent] = []
+    result = await _turn(toy, model, "take off the first drone to 10 m", events)
+    takeoff = next(t for t in model.requests[0]["tools"] if t["function"]["name"] == "takeoff")
+    assert takeoff["function"]["parameters"]["properties"]["drone_id"]["enum"] == ["alpha", "bravo"]
+    assert [c.status for c in result.tool_calls] == ["invalid", "ok"]
+    refused = _tool_texts(model.requests[1])[-1]
+    assert "'drone1' is not one of ['alpha', 'bravo']" in refused and "Nothing was executed" in refused
+    assert toy.world.calls == [("takeoff", {"drone_id": "alpha", "altitude_m": 10.0})]
+    corrected = [e.data["notes"] for e in events if e.kind == "arguments_corrected"]
+    assert corrected == [["drone id 'Alpha' read as 'alpha'"]]
+
+
+async def test_an_argument_the_tool_does_not_have_is_refused(toy, scripted) -> None:
+    model = scripted([call("takeoff", drone_id="alpha", altitude_m=10, latitude_deg=-35.36), say("no")])
+    result = await _turn(toy, model, "take off alpha")
+    assert [c.status for c in result.tool_calls] == ["invalid"] and toy.world.calls == []
+    assert _tool_texts(model.requests[1])[-1].startswith(
+        "Error: takeoff has no argument latitude_deg; it takes takeoff(drone_id: string, altitude_m: number)."
+    )
+
+
+# --- empty replies -----------------------------------------------------------------------------------
+
+
+async def test_an_empty_reply_is_asked_again_with_the_request_and_what_was_done(toy, scripted) -> None:
+    model = scripted([call("takeoff", drone_id="alpha", altitude_m=15), EMPTY, call("land", drone_id="alpha"),
+                      say("alpha went up to 15 m and landed")])  # fmt: skip
+    result = await _turn(toy, model, "hop alpha to 15 m, then land it")
+    assert result.outcome == "answered" and result.empty_replies == 1
+    assert [name for name, _ in toy.world.calls] == ["takeoff", "land"]
+    nudge = _user_texts(model.requests[2])[-1]
+    assert nudge.startswith("Your reply was empty.")
+    assert "The request: hop alpha to 15 m, then land it" in nudge
+    assert "Done so far: takeoff: status=reached." in nudge  # results in words, no call to echo
+    assert "Fleet now: alpha flying at 15 m" in nudge
+    # The empty reply itself is not kept in the conversation.
+    assert not any(
+        m["role"] == "assistant" and not m.get("tool_calls") for m in model.requests[2]["messages"]
+    )
+
+
+async def test_three_empty_replies_end_the_turn_as_empty_answer(toy, scripted) -> None:
+    model = scripted([EMPTY, ScriptedReply(content="  \n"), ScriptedReply(content="<think>hmm</think>")])
+    events: list[AgentEvent] = []
+    result = await _turn(toy, model, "land bravo", events)
+    assert result.outcome == "empty_answer" and result.final_text is None
+    assert len(model.requests) == 3 and result.empty_replies == 3
+    assert "Done so far: nothing yet." in _user_texts(model.requests[1])[-1]
+    assert [e.kind for e in events][-2:] == ["empty_answer", "turn_end"]
+
+
+async def test_the_command_exits_non_zero_on_an_empty_answer(toy, scripted) -> None:
+    model = scripted([EMPTY], repeat_last=True)
+    parser = argparse.ArgumentParser()
+    cli.register(parser.add_subparsers(dest="command"))
+    args = parser.parse_args(["agent", "--mcp-url", toy.url, "--token", TOKEN, "--endpoint",
+                              model.base_url, "--model", "m", "land alpha"])  # fmt: skip
+    buf = io.StringIO()
+    console = Console(file=buf, force_terminal=False, width=200, color_system=None)
+    assert await cli.run_async(args, console=console) == cli.EXIT_EMPTY_ANSWER
+    assert "no answer" in buf.getvalue() and len(model.requests) == 3
+
+
+# --- repeated calls ----------------------------------------------------------------------------------
+
+
+async def test_a_call_identical_to_one_that_just_succeeded_is_not_sent_again(toy, scripted) -> None:
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", altitude_m=15),
+            call("get_position", drone_id="alpha"),  # reading in between does not make it new
+            call("takeoff", drone_id="alpha", altitude_m=15),
+            call("land", drone_id="alpha"),
+            say("done"),
+        ]
+    )
+    result = await _turn(toy, model, "take off alpha to 15 m and land")
+    assert [c.status for c in result.tool_calls] == ["ok", "ok", "repeat", "ok"]
+    assert [name for name, _ in toy.world.calls] == ["takeoff", "land"]
+    told = _tool_texts(model.requests[3])[-1]
+    assert told.startswith("Not sent again: this takeoff call already succeeded in this request")
+    assert "The request: take off alpha to 15 m and land" in told and "next step" in told
+
+
+async def test_the_same_call_after_another_action_on_that_drone_is_sent(toy, scripted) -> None:
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", altitude_m=10),
+            call("land", drone_id="alpha"),
+            call("takeoff", drone_id="alpha", altitude_m=10),  # a second hop: wanted
+            call("takeoff", drone_id="bravo", altitude_m=10),
+            call("takeoff", drone_id="alpha", altitude_m=10),  # bravo's takeoff changed nothing for alpha
+            say("done"),
+        ]
+    )
+    result = await _turn(toy, model, "hop alpha twice, then bravo up")
+    assert [c.status for c in result.tool_calls] == ["ok", "ok", "ok", "ok", "repeat"]
+    assert [(n, a["drone_id"]) for n, a in toy.world.calls] == [
+        ("takeoff", "alpha"), ("land", "alpha"), ("takeoff", "alpha"), ("takeoff", "bravo")]  # fmt: skip
+
+
+async def test_a_call_that_failed_may_be_tried_again(toy, scripted) -> None:
+    model = scripted(
+        [call("move_north", drone_id="alpha", distance_m=20)] * 2 + [say("alpha is on the ground")]
+    )
+    result = await _turn(toy, model, "move alpha 20 m north")
+    assert [c.status for c in result.tool_calls] == ["error", "error"]
+    assert len(toy.world.calls) == 2
+
+
+# --- unknown tools -----------------------------------------------------------------------------------
+
+
+async def test_an_unknown_tool_gets_the_closest_one_and_firmer_when_repeated(toy, scripted) -> None:
+    model = scripted(
+        [
+            call("get_location", drone_id="alpha"),
+            call("get_location", drone_id="alpha"),
+            call("fly_north", drone_id="alpha", distance_m=5),
+            say("stuck"),
+        ]
+    )
+    result = await _turn(toy, model, "where is alpha, then fly it north")
+    assert [c.status for c in result.tool_calls] == ["unknown_tool"] * 3
+    first, second, third = (_tool_texts(model.requests[i])[-1] for i in (1, 2, 3))
+    assert "unknown tool 'get_location'. The closest tool is get_position(drone_id: string)" in first
+    assert "'get_location' does not exist; you called it again. Use get_position(drone_id: string)" in second
+    assert "The closest tool is move_north(drone_id: string, distance_m: number)" in third
+    assert toy.world.calls == []
+
+
+# --- several calls in one reply ------------------------------------------------------------------------
+
+
+async def test_after_a_failed_call_the_rest_of_the_reply_is_not_sent(toy, scripted) -> None:
+    plan = ScriptedReply(
+        tool_calls=[
+            ("move_north", {"drone_id": "alpha", "distance_m": 60}),  # on the ground: refused
+            ("land", {"drone_id": "alpha"}),
+        ]
+    )
+    model = scripted([plan, say("alpha must take off first")])
+    result = await _turn(toy, model, "fly alpha 60 m north and land")
+    assert [c.status for c in result.tool_calls] == ["error", "skipped"]
+    assert [name for name, _ in toy.world.calls] == ["move_north"]
+    skipped = _tool_texts(model.requests[1])[-1]
+    assert skipped.startswith("Not executed: the earlier call move_north in the same reply failed.")
+
+
+async def test_the_third_identical_refused_call_is_told_to_stop(toy, scripted) -> None:
+    model = scripted([call("land")] * 3 + [say("land needs a drone id; nothing was done")])
+    result = await _turn(toy, model, "land")
+    assert [c.status for c in result.tool_calls] == ["invalid"] * 3
+    texts = [_tool_texts(model.requests[i])[-1] for i in (1, 2, 3)]
+    assert ["third time" in t for t in texts] == [False, False, True]
+    assert "Stop calling it: tell the user what was done and what was refused." in texts[2]
+
+
+def test_a_refused_move_of_a_grounded_drone_names_the_takeoff_with_its_altitude() -> None:
+    from gateway.agent.roster import DroneEntry, Roster
+
+    host = AgentHost(ModelConfig("http://127.0.0.1:9/v1", "m"), caller=None, tools=[])  # type: ignore[arg-type]
+    host.roster = Roster((DroneEntry("bravo", False, 0.0, 100.0), DroneEntry("alpha", True, 10.0, 90.0)))
+    note = host._takeoff_first("go_to_location", {"drone_id": "bravo", "altitude_m": 30})
+    assert note == (
+        ' (Host note: bravo is on the ground. Call takeoff with drone_id "bravo" and altitude_m 30 first, '
+        "then this call again.)"
+    )
+    assert host._takeoff_first("go_to_location", {"drone_id": "alpha", "altitude_m": 30}) == ""  # flying
+    assert host._takeoff_first("takeoff", {"drone_id": "bravo", "altitude_m": 500}) == ""
+
+
+async def test_calls_skipped_after_a_failure_are_shown_as_still_to_do_until_they_run(toy, scripted) -> None:
+    plan = ScriptedReply(
+        tool_calls=[("move_north", {"drone_id": "alpha", "distance_m": 60}), ("land", {"drone_id": "alpha"})]
+    )
+    model = scripted(
+        [
+            plan,
+            call("takeoff", drone_id="alpha", altitude_m=10),
+            call("move_north", drone_id="alpha", distance_m=60),
+            call("land", drone_id="alpha"),
+            say("done"),
+        ]
+    )
+    result = await _turn(toy, model, "fly alpha 60 m north and land")
+    assert [c.status for c in result.tool_calls] == ["error", "skipped", "ok", "ok", "ok"]
+    after_failure, after_takeoff, after_move, after_land = (
+        _tool_texts(model.requests[i])[-1] for i in (1, 2, 3, 4)
+    )
+    assert "Not sent yet" not in after_failure  # the failure itself is the news
+    # The failed call is not repeated for the model (it may be the mistake); the skipped ones wait.
+    pending = "Not sent yet from your earlier reply (their turn comes after the call that failed):\n"
+    assert pending + '{"name": "land", "arguments": {"drone_id": "alpha"}}' in after_takeoff
+    assert "move_north" not in after_takeoff.split("Not sent yet")[1]
+    assert pending in after_move
+    assert "Not sent yet" not in after_land
