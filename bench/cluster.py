@@ -157,7 +157,7 @@ def snapshot_costs(n: int = 2000) -> tuple[int, float, float]:
     from types import SimpleNamespace
 
     from gateway.cluster import snapshot
-    from gateway.fleet import telemetry as t
+    from gateway.link import telemetry as t
 
     cache = t.TelemetryCache()
     for name, value in {

@@ -39,7 +39,7 @@ async def direct_system(url: str, workdir: Path) -> AsyncIterator[Any]:
     """A mavsdk_grpc System through its own (loopback-confined) mavsdk_server on ``url``."""
     from mavsdk_grpc import System
 
-    from gateway.registry.confine import sidecar_binary
+    from gateway.link.confine import sidecar_binary
     from gateway.util.ports import free_tcp_port
 
     binary = sidecar_binary("loopback", None, None)

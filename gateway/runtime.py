@@ -40,7 +40,7 @@ class GatewayNotRunning(GatewayError):
 
 
 def _default_registry(settings: Settings, store: Store) -> VehicleRegistry:
-    from gateway.registry.registry import Registry
+    from gateway.fleet.registry import Registry
 
     return Registry(settings, store)
 
@@ -170,7 +170,7 @@ class Gateway:
         """A registry whose vehicles start as views of other nodes' vehicles; this node's lease keeper
         adopts the ones it wins. The Commander's verbs for the others go to their owners."""
         from gateway.cluster.node import ClusterNode, remote_factory
-        from gateway.registry.registry import Registry
+        from gateway.fleet.registry import Registry
 
         node = self.cluster = ClusterNode(self)
         registry = node.registry = Registry(

@@ -91,7 +91,7 @@ def describe_database_error(database_url: str, exc: BaseException) -> str:
 
 def check_sidecar_binary(settings: Settings) -> None:
     """The mavsdk_server the sidecars start from exists and can be made loopback-only."""
-    from gateway.registry.sidecar import mavsdk_server_binary
+    from gateway.link.sidecar import mavsdk_server_binary
 
     explicit = settings.mavsdk_server_path
     if explicit and not Path(explicit).is_file():

@@ -22,10 +22,12 @@ from typing import Any
 from gateway.config import Settings
 from gateway.errors import CommandFailed, UnknownVehicle, VehicleNotReady
 from gateway.fleet import geo
+from gateway.fleet.dialects import ARDUPILOT
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.protocols import FlyingVehicle, VehicleRegistry
-from gateway.fleet.telemetry import (
+from gateway.fleet.vehicle import ConnectionState
+from gateway.link.telemetry import (
     AttitudeValue,
     BatteryValue,
     GpsInfoValue,
@@ -36,7 +38,6 @@ from gateway.fleet.telemetry import (
     TelemetryCache,
     VelocityNedValue,
 )
-from gateway.fleet.vehicle import ConnectionState
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from gateway.runtime import Gateway
@@ -136,10 +137,21 @@ class FakeVehicle:
         self.require_ready()
 
     def resolve_mode(self, name: str) -> ModeChoice:
-        return require_mode(name, False, self.id)
+        return require_mode(name, ARDUPILOT, self.id)
+
+    def on_ground(self, fresh: bool = True) -> bool | None:
+        return ARDUPILOT.on_ground(self.telemetry, fresh=fresh)
 
     def return_altitude_param(self) -> tuple[str, float]:
-        return "RTL_ALT", 100.0
+        return "RTL_ALT", 100.0  # an ArduPilot before 4.7
+
+    async def set_return_altitude(self, alt_m: float) -> tuple[str, float | int]:
+        stored, _kind = await self.set_param("RTL_ALT", round(alt_m * 100))
+        return "RTL_ALT", stored
+
+    @property
+    def protected_params(self) -> tuple[str, ...]:
+        return ARDUPILOT.protected_params
 
     # --- telemetry ---------------------------------------------------------------------------------------
     def set(self, **parts: Any) -> None:

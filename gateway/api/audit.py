@@ -67,12 +67,12 @@ async def record_rest_call(
         args = await _arguments(request)
         session_key = principal.session_key if principal else None
         if principal is not None:
-            await store.touch_session(session_key, "rest", principal=principal.name)
+            await store.touch_session(session_key, principal.door, principal=principal.name)
         await store.add_audit(
             AuditEntry(
                 session_key=session_key,
                 principal=principal.name if principal else None,
-                source="rest",
+                source=principal.door if principal else "rest",
                 vehicle_id=_vehicle_id(request, args),
                 action=action,
                 arguments=args,

@@ -29,7 +29,7 @@ Action = Literal["hold", "land", "rtl"]
 
 def operator(who: Principal) -> Caller:
     """The Commander's caller for a REST request."""
-    return Caller(via="rest", principal=who.name, session=who.session_key)
+    return Caller(via=who.door, principal=who.name, session=who.session_key)
 
 
 class LockIn(BaseModel):

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import hashlib
 import hmac
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Annotated, Literal
 
 from fastapi import Depends, HTTPException, Request
@@ -24,6 +24,10 @@ from gateway.registry.store import Store
 from gateway.runtime import Gateway
 
 Role = Literal["operator", "viewer"]
+#: The operator's door: the console marks its requests with this header so the audit and the Commander
+#: tell a console click from a script calling REST; both are operators.
+Door = Literal["rest", "console"]
+DOOR_HEADER = "x-fleet-door"
 
 
 @dataclass(frozen=True)
@@ -32,10 +36,11 @@ class Principal:
 
     name: str
     role: Role
+    door: Door = "rest"
 
     @property
     def session_key(self) -> str:
-        return f"rest:{self.name}"
+        return f"{self.door}:{self.name}"
 
 
 ANONYMOUS_OPERATOR = Principal(name="anonymous", role="operator")
@@ -83,6 +88,8 @@ def identify(settings: Settings, authorization: str | None) -> Principal:
 async def authorize(request: Request) -> Principal:
     """Identify the caller, check its role may use this method, and remember it (read by the audit)."""
     principal = identify(request.app.state.gateway.settings, request.headers.get("authorization"))
+    if request.headers.get(DOOR_HEADER, "").strip().lower() == "console":
+        principal = replace(principal, door="console")
     request.state.principal = principal
     if principal.role == "viewer" and request.method not in READ_METHODS:
         raise HTTPException(403, detail="a viewer token can only read; this needs an operator token")
@@ -99,7 +106,7 @@ def get_store(request: Request) -> Store:
 
 
 def get_registry(request: Request) -> VehicleRegistry:
-    """The gateway's :class:`gateway.registry.registry.Registry`."""
+    """The gateway's :class:`gateway.fleet.registry.Registry`."""
     return get_gateway(request).require_registry()
 
 

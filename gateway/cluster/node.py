@@ -34,7 +34,7 @@ from gateway.fleet.routing import OnMessage
 from gateway.registry.spec import VehicleSpec
 
 if TYPE_CHECKING:
-    from gateway.registry.registry import Registry
+    from gateway.fleet.registry import Registry
     from gateway.runtime import Gateway
 
 log = logging.getLogger("gateway.cluster")
@@ -234,9 +234,9 @@ class ClusterNode:
         ops = self.gateway.operations
         if ops is not None and ops.running(vehicle_id) is not None:
             return False
-        in_air = vehicle.telemetry.fresh("in_air")
+        flying = vehicle.on_ground() is False  # the autopilot's dialect reads its landed state
         armed = vehicle.telemetry.fresh("armed")
-        return not in_air and not armed
+        return not flying and not armed
 
     async def _adopt(self, vehicle_id: str, lease: Lease, previous: str | None) -> None:
         registry = self._require_registry()

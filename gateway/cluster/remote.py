@@ -14,10 +14,12 @@ from typing import Any
 
 from gateway.config import Settings
 from gateway.errors import GatewayError, VehicleNotReady
+from gateway.fleet.dialects import Dialect, dialect_named
+from gateway.fleet.dialects import protected_params as every_protected_param
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice, require_mode
-from gateway.fleet.telemetry import TelemetryCache
 from gateway.fleet.vehicle import ConnectionState
+from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 
 from . import snapshot
@@ -119,6 +121,11 @@ class RemoteVehicle:
         return self._status.get("autopilot_version")
 
     @property
+    def current_flight_id(self) -> int | None:
+        """None: the owner node records the flight (it appears in /api/v1/flights once stored)."""
+        return None
+
+    @property
     def is_simulator(self) -> bool:
         return bool(self._status.get("is_simulator"))
 
@@ -218,11 +225,26 @@ class RemoteVehicle:
             owner_node=self.owner,
         )
 
+    @property
+    def dialect(self) -> Dialect:
+        """The autopilot's dialect, by the autopilot the owner reports (ArduPilot's until it says)."""
+        return dialect_named(self.autopilot)
+
     def resolve_mode(self, name: str) -> ModeChoice:
-        return require_mode(name, self.autopilot == "px4", self.id)
+        return require_mode(name, self.dialect, self.id)
+
+    def on_ground(self, fresh: bool = True) -> bool | None:
+        return self.dialect.on_ground(self.telemetry, fresh=fresh)
 
     def return_altitude_param(self) -> tuple[str, float]:
-        return ("RTL_RETURN_ALT", 1.0) if self.autopilot == "px4" else ("RTL_ALT", 100.0)
+        return self.dialect.return_altitude_params[0]  # which of them the vehicle has, its owner knows
+
+    async def set_return_altitude(self, alt_m: float) -> tuple[str, float | int]:
+        raise self._elsewhere("set_return_altitude")
+
+    @property
+    def protected_params(self) -> tuple[str, ...]:
+        return every_protected_param() if self.autopilot is None else self.dialect.protected_params
 
     async def arm(self) -> None:
         raise self._elsewhere("arm")

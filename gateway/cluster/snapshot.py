@@ -2,7 +2,7 @@
 
 A snapshot carries the vehicle's status (state, sysid, autopilot...), every cached telemetry value with
 its age when sent, the last status texts and the owner's current operation. The receiver rebuilds the
-same :class:`~gateway.fleet.telemetry.TelemetryCache` values, each aged by what it was at the owner, so
+same :class:`~gateway.link.telemetry.TelemetryCache` values, each aged by what it was at the owner, so
 freshness rules (stale after ``link_lost_after_s``) hold on every node.
 """
 
@@ -15,7 +15,7 @@ from collections import deque
 from dataclasses import asdict, fields, is_dataclass
 from typing import Any
 
-from gateway.fleet.telemetry import (
+from gateway.link.telemetry import (
     AttitudeValue,
     BatteryValue,
     GpsInfoValue,

@@ -30,7 +30,7 @@ from gateway.fleet.operations import (
     check_positive_altitude,
 )
 from gateway.fleet.protocols import FlyingVehicle
-from gateway.fleet.readings import is_landed_and_disarmed, position, value
+from gateway.fleet.readings import is_airborne, is_landed_and_disarmed, position, value
 from gateway.fleet.safety import Target
 from gateway.fleet.views import (
     ActionResult,
@@ -372,12 +372,7 @@ class DroneVerbs(CommandCore):
         start = time.monotonic()
         cap = self.settings.mcp_wait_cap_s if cap_s is None else cap_s
         view = await self.wait(op.id, cap, on_progress)
-        if (
-            land_on_arrival
-            and view.kind in NAV_KINDS
-            and view.status == "succeeded"
-            and value(vehicle, "in_air")
-        ):
+        if land_on_arrival and view.kind in NAV_KINDS and view.status == "succeeded" and is_airborne(vehicle):
             self.safety.check_actuation(self.context(vehicle), caller.policy_via)
             landing = await self._track(
                 caller, vehicle, LandingTracker(kind="land"), vehicle.land, {}, "land"
@@ -516,7 +511,9 @@ class DroneVerbs(CommandCore):
         """Write a parameter with the drone's own type for it; agents may not write protected ones."""
         vehicle = self.ready(drone_id)
         name = name.upper()
-        self.safety.check_param_write(name, caller.policy_via, vehicle_id=drone_id)
+        self.safety.check_param_write(
+            name, caller.policy_via, vehicle_id=drone_id, protected=vehicle.protected_params
+        )
         self.safety.check_actuation(self.context(vehicle), caller.policy_via)
         val, kind = await vehicle.set_param(name, value)
         return ParamValue(drone_id=drone_id, name=name, value=val, type=kind)

@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from typing import TYPE_CHECKING, Any
 
-from gateway.errors import CommandFailed, GatewayError, InvalidArgument, NotFound, SafetyRefusal
+from gateway.errors import GatewayError, InvalidArgument, NotFound, SafetyRefusal
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
 from gateway.fleet.operations import (
@@ -931,17 +931,9 @@ def _rtl(
 
 
 async def set_rtl_altitude_param(vehicle: FlyingVehicle, alt_m: float) -> None:
-    """The vehicle's return altitude above home (ArduPilot RTL_ALT in cm, or RTL_ALT_M in m since
-    ArduPilot master of 2026; PX4 RTL_RETURN_ALT in m); the autopilot returns higher if it is already
-    higher."""
-    name, per_metre = vehicle.return_altitude_param()
-    value = alt_m * per_metre
-    try:
-        await vehicle.set_param(name, round(value) if per_metre == 100.0 else round(value, 2))
-    except CommandFailed as exc:
-        if name != "RTL_ALT" or exc.details.get("result") != "UNKNOWN_PARAMETER":
-            raise
-        await vehicle.set_param("RTL_ALT_M", round(alt_m, 2))
+    """The vehicle's return altitude above home, in its autopilot's parameter and units
+    (``Vehicle.set_return_altitude``); the autopilot returns higher if it is already higher."""
+    await vehicle.set_return_altitude(alt_m)
 
 
 def default_rtl_base_m(positions: Iterable[tuple[float, float, float]], floor_m: float = 15.0) -> float:

@@ -450,7 +450,7 @@ class FleetVerbs(DroneVerbs):
                 return StopOutcome(
                     drone_id=vehicle.id, action=action, outcome="skipped", message=f"not connected ({state})"
                 )
-            if vehicle.telemetry.fresh("in_air") is False:
+            if vehicle.on_ground() is True:
                 return StopOutcome(
                     drone_id=vehicle.id, action=action, outcome="skipped", message="on the ground"
                 )

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from gateway.config import Settings
 from gateway.fleet import geo
-from gateway.fleet.telemetry import StatusTextValue
+from gateway.link.telemetry import StatusTextValue
 from gateway.registry.store import StatusTextIn, TrackSample
 
 if TYPE_CHECKING:

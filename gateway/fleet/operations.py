@@ -32,6 +32,7 @@ from gateway.fleet.readings import (
     climb_rate,
     ground_speed,
     home,
+    is_landed,
     is_landed_and_disarmed,
     position,
     value,
@@ -181,7 +182,7 @@ class GotoTracker:
         return geo.horizontal_distance_m(pos[0], pos[1], self.lat, self.lon), self.alt_rel_m - pos[2]
 
     async def poll(self, vehicle: FlyingVehicle) -> Poll:
-        if value(vehicle, "armed") is False or value(vehicle, "in_air") is False:
+        if value(vehicle, "armed") is False or is_landed(vehicle):
             return Poll(0.0, "vehicle is not flying", failed="vehicle landed or disarmed before arriving")
         d = self.distance(vehicle)
         if d is None:
@@ -238,7 +239,7 @@ class LandingTracker:
         progress = max(0.0, min(0.99, 1.0 - (alt + horiz) / max(total, 0.1)))
         speed = ground_speed(vehicle) or 0.0
         eta = horiz / max(speed, 1.0) + alt / 1.0
-        if value(vehicle, "in_air") is False:
+        if is_landed(vehicle):
             return Poll(0.99, "on the ground, waiting for disarm", eta_s=3.0)
         where = f"{horiz:.0f} m from home, " if self.kind == "return_to_launch" else ""
         return Poll(progress, f"{where}{alt:.1f} m above home", eta_s=eta)

@@ -1,7 +1,8 @@
 """Autopilot parameters through MAVSDK's param plugin, with ArduPilot's quirks handled.
 
-* An unknown name gets no reply at all: MAVSDK times out after ~3 s; that is reported as "unknown
-  parameter", after trying the name's other spelling (ArduPilot 4.7 renamed SYSID_THISMAV -> MAV_SYSID,
+* An unknown name gets no reply at all from older ArduPilot (MAVSDK times out after ~3 s) and a
+  PARAM_ERROR "does not exist" from newer ones and PX4; both are reported as "unknown parameter", after
+  trying the name's other spelling (ArduPilot 4.7 renamed SYSID_THISMAV -> MAV_SYSID,
   SYSID_MYGCS -> MAV_GCS_SYSID, SRn_* -> MAV(n+1)_*).
 * Each parameter has its own type; reading with the wrong getter gives WRONG_TYPE, so the type is
   detected once and remembered, and writes use it.
@@ -108,7 +109,7 @@ class Parameters:
         alias = param_aliases(name)
         raise CommandFailed(
             f"unknown parameter '{name}' on drone '{self.vehicle_id}': the vehicle did not answer "
-            "(ArduPilot ignores unknown names)" + (f"; also tried {', '.join(alias)}" if alias else ""),
+            "or said it does not exist" + (f"; also tried {', '.join(alias)}" if alias else ""),
             vehicle_id=self.vehicle_id,
             result="UNKNOWN_PARAMETER",
         )

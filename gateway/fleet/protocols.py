@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice
-from gateway.fleet.telemetry import TelemetryCache
+from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 
 if TYPE_CHECKING:
@@ -22,7 +22,8 @@ if TYPE_CHECKING:
 class FlyingVehicle(Protocol):
     """One drone: identity, connection state, telemetry cache, and the commands it takes."""
 
-    telemetry: TelemetryCache
+    @property
+    def telemetry(self) -> TelemetryCache: ...
 
     @property
     def is_simulator(self) -> bool: ...
@@ -49,8 +50,19 @@ class FlyingVehicle(Protocol):
 
     def resolve_mode(self, name: str) -> ModeChoice: ...
 
+    def on_ground(self, fresh: bool = True) -> bool | None:
+        """On the ground as the autopilot's dialect tells (None: unknown; ``fresh=False`` reads cached
+        values however old)."""
+
     def return_altitude_param(self) -> tuple[str, float]:
         """The parameter holding the RTL altitude and its units per metre."""
+
+    async def set_return_altitude(self, alt_m: float) -> tuple[str, float | int]:
+        """Write the RTL altitude (m above home) in the autopilot's parameter and units."""
+
+    @property
+    def protected_params(self) -> tuple[str, ...]:
+        """Patterns of the parameters the vehicle's autopilot protects from agents."""
 
     async def arm(self) -> None: ...
 
@@ -104,7 +116,7 @@ class VehicleDirectory(Protocol):
 
 class VehicleRegistry(VehicleDirectory, Protocol):
     """The whole registry as the runtime and the REST API use it (the real one is
-    `gateway.registry.registry.Registry`)."""
+    `gateway.fleet.registry.Registry`)."""
 
     async def start(self) -> None: ...
 

@@ -12,7 +12,7 @@ from typing import Any
 
 from gateway.fleet.protocols import FlyingVehicle
 from gateway.fleet.safety import VehicleContext
-from gateway.fleet.telemetry import Sample
+from gateway.link.telemetry import Sample
 
 
 def sample(vehicle: FlyingVehicle, name: str) -> Sample[Any] | None:
@@ -65,13 +65,23 @@ def climb_rate(vehicle: FlyingVehicle) -> float | None:
     return None if v is None else -float(v.down_mps)
 
 
+def is_landed(vehicle: FlyingVehicle) -> bool:
+    """On the ground as far as the cache says (the autopilot's dialect reads its landed state)."""
+    return vehicle.on_ground(fresh=False) is True
+
+
+def is_airborne(vehicle: FlyingVehicle) -> bool:
+    """In the air as far as the cache says (the autopilot's dialect reads its landed state)."""
+    return vehicle.on_ground(fresh=False) is False
+
+
 def is_landed_and_disarmed(vehicle: FlyingVehicle) -> bool:
-    return value(vehicle, "armed") is False and value(vehicle, "in_air") is False
+    return value(vehicle, "armed") is False and is_landed(vehicle)
 
 
 def is_flying(vehicle: FlyingVehicle) -> bool:
     """Armed and in the air, as far as the cache says."""
-    return value(vehicle, "in_air") is True and value(vehicle, "armed") is True
+    return is_airborne(vehicle) and value(vehicle, "armed") is True
 
 
 def vehicle_context(vehicle: FlyingVehicle) -> VehicleContext:
@@ -83,7 +93,7 @@ def vehicle_context(vehicle: FlyingVehicle) -> VehicleContext:
         vehicle_id=vehicle.id,
         is_simulator=bool(vehicle.is_simulator),
         armed=bool(fresh("armed")),
-        in_air=bool(fresh("in_air")),
+        in_air=vehicle.on_ground() is False,
         battery_pct=None if battery is None else battery.remaining_pct,
         home=None if h is None else (float(h.lat_deg), float(h.lon_deg), float(h.abs_alt_m)),
         position=None if pos is None else (float(pos.lat_deg), float(pos.lon_deg), float(pos.rel_alt_m)),

@@ -611,8 +611,11 @@ class SafetyPolicy:
                 vehicle_id=ctx.vehicle_id,
             )
 
-    def check_param_write(self, name: str, via: Via = "mcp", vehicle_id: str | None = None) -> None:
-        """Refuse agent writes to parameters matching the deny list (glob patterns, case-insensitive)."""
+    def check_param_write(
+        self, name: str, via: Via = "mcp", vehicle_id: str | None = None, protected: Sequence[str] = ()
+    ) -> None:
+        """Refuse agent writes to parameters matching the deny list or ``protected``, the patterns the
+        vehicle's autopilot dialect protects (glob patterns, case-insensitive)."""
         _check_via(via)
         if not isinstance(name, str) or not _PARAM_NAME_RE.match(name.strip().upper()):
             raise refuse(
@@ -622,7 +625,7 @@ class SafetyPolicy:
             )
         upper = name.strip().upper()
         if via == "mcp":
-            for pattern in self.param_deny_patterns:
+            for pattern in dict.fromkeys([*self.param_deny_patterns, *(p.upper() for p in protected)]):
                 if fnmatch.fnmatchcase(upper, pattern):
                     raise refuse(
                         Rule.PARAM_DENY,

@@ -19,8 +19,8 @@ STATUS_TEXT_MAX = 255
 # MAVLink MAV_SEVERITY numbers to the names MAVSDK uses.
 SEVERITY_NAMES = ("EMERGENCY", "ALERT", "CRITICAL", "ERROR", "WARNING", "NOTICE", "INFO", "DEBUG")
 
-SessionKind = Literal["mcp-2025", "mcp-2026", "rest"]
-AuditSource = Literal["mcp", "rest"]
+SessionKind = Literal["mcp-2025", "mcp-2026", "rest", "console"]
+AuditSource = Literal["mcp", "rest", "console"]
 AuditOutcome = Literal["ok", "error", "refused", "running", "superseded", "cancelled"]
 OperationStatus = Literal["running", "succeeded", "failed", "superseded", "interrupted", "cancelled"]
 #: how a call that left its operation running ends in the audit, by how the operation ended

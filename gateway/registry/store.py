@@ -14,7 +14,7 @@ import weakref
 from collections.abc import Callable, Sequence
 from datetime import datetime
 from pathlib import Path
-from typing import Any
+from typing import Any, get_args
 
 from sqlalchemy import CursorResult, delete, event, func, insert, or_, select, text
 from sqlalchemy.exc import IntegrityError
@@ -458,7 +458,7 @@ class Store:
         client_version: str | None = None,
     ) -> SessionRecord:
         """Record that a session was seen now (insert or update; portable, no dialect upsert)."""
-        if kind not in ("mcp-2025", "mcp-2026", "rest"):
+        if kind not in get_args(SessionKind):
             raise InvalidArgument(f"unknown session kind '{kind}'", field="kind")
         key = key[:200]
         for attempt in range(2):

@@ -109,6 +109,16 @@ async def unlock_all(stack: Stack) -> None:
             (await http.delete(path)).raise_for_status()
 
 
+async def operator_get(stack: Stack, path: str, **params: Any) -> Any:
+    import httpx
+
+    headers = {"Authorization": f"Bearer {OPERATOR_TOKEN}"}
+    async with httpx.AsyncClient(base_url=stack.base_url, headers=headers, timeout=30) as http:
+        response = await http.get(f"/api/v1{path}", params=params)
+        response.raise_for_status()
+        return response.json()
+
+
 def audit_row(page: Any, action: str, outcome: str) -> Any:
     return page.locator(f".audit-panel tr.audit-row.outcome-{outcome}", has_text=action)
 
@@ -265,6 +275,9 @@ async def test_lock_button_makes_the_next_mcp_takeoff_refused(console_stack: Sta
                 audit_row(page, "takeoff", "refused").filter(has_text="people on the field").first
             ).to_be_visible(timeout=ui_timeout_ms())
             await expect(audit_row(page, "rest.lock_fleet", "ok").first).to_be_visible()
+            rows = (await operator_get(console_stack, "/audit", limit=200))["items"]
+            locks = [r for r in rows if r["action"] == "rest.lock_fleet" and r["outcome"] == "ok"]
+            assert locks and locks[0]["source"] == "console", locks  # the click is audited as the console's
             state = await console_stack.true_state("d2")
             assert not state["armed"], state
 

@@ -14,8 +14,8 @@ from mcp import Client
 
 from gateway.fleet import geo
 from gateway.fleet.fleet_ops import rtl_order
-from gateway.fleet.telemetry import BatteryValue
 from gateway.fleet.vehicle import ConnectionState
+from gateway.link.telemetry import BatteryValue
 from gateway.mcp.server import build_mcp
 from gateway.runtime import Gateway
 from tests.fakes import HOME, FakeVehicle, fake, fake_gateway, spread, unit_settings

@@ -77,10 +77,17 @@ def _udp_free(port: int) -> bool:
 
 
 def _free_instance(
-    ports: Callable[[int], tuple[int, ...]], check: Callable[[int], bool], instances: range
+    ports: Callable[[int], tuple[int, ...]],
+    check: Callable[[int], bool],
+    instances: range,
+    taken: set[int] | None,
 ) -> int:
+    """An instance number whose ports are free and that is not in ``taken`` (the numbers of autopilots
+    just started, whose ports may not be bound yet); added to ``taken``."""
     for instance in random.sample(instances, len(instances)):
-        if all(check(p) for p in ports(instance)):
+        if (taken is None or instance not in taken) and all(check(p) for p in ports(instance)):
+            if taken is not None:
+                taken.add(instance)
             return instance
     raise Unavailable("no autopilot instance number has its ports free on this host")
 
@@ -116,16 +123,19 @@ def _running(
 
 
 @contextlib.contextmanager
-def arducopter(folder: Path, speedup: float = 5.0, sysid: int = 1) -> Iterator[Autopilot]:
-    """ArduCopter SITL (frame +, SITL default parameters), TCP 5760 + 10 * instance."""
+def arducopter(
+    folder: Path, speedup: float = 5.0, sysid: int | None = 1, taken: set[int] | None = None
+) -> Iterator[Autopilot]:
+    """ArduCopter SITL (frame +, SITL default parameters), TCP 5760 + 10 * instance; system id ``sysid``
+    (None: the instance number, so that several flying together have distinct ones)."""
     why = ardupilot_missing()
     if why:
         raise Unavailable(why)
     ports = lambda i: (5760 + 10 * i, 5762 + 10 * i, 5763 + 10 * i)  # noqa: E731
-    instance = _free_instance(ports, _tcp_free, range(1, 40))
+    instance = _free_instance(ports, _tcp_free, range(1, 40), taken)
     argv = [
         os.environ["ARDUPILOT_SITL"], "--model", "+", "--speedup", f"{speedup:g}", f"-I{instance}",
-        "--sysid", str(sysid), "--defaults", os.environ["ARDUPILOT_DEFAULTS"],
+        "--sysid", str(instance if sysid is None else sysid), "--defaults", os.environ["ARDUPILOT_DEFAULTS"],
         "--home", ",".join(str(x) for x in HOME),
     ]  # fmt: skip
     with _running(argv, folder, f"arducopter-{instance}", os.environ) as (proc, log, started):
@@ -133,16 +143,22 @@ def arducopter(folder: Path, speedup: float = 5.0, sysid: int = 1) -> Iterator[A
 
 
 @contextlib.contextmanager
-def px4(folder: Path) -> Iterator[Autopilot]:
-    """PX4 SIH (physics inside the autopilot; real time only), MAVLink UDP 14540 + instance."""
+def px4(folder: Path, taken: set[int] | None = None) -> Iterator[Autopilot]:
+    """PX4 SIH (physics inside the autopilot; real time only), MAVLink UDP 14540 + instance, system id
+    instance + 1. Each instance runs in its own subfolder (PX4 keeps its parameters and logs there)."""
     why = px4_missing()
     if why:
         raise Unavailable(why)
     build = Path(os.environ["PX4_BUILD"])
     instance = _free_instance(
-        lambda i: (14540 + i, 14580 + i, 18570 + i, 14280 + i, 13030 + i, 19450 + i), _udp_free, range(1, 10)
+        lambda i: (14540 + i, 14580 + i, 18570 + i, 14280 + i, 13030 + i, 19450 + i),
+        _udp_free,
+        range(1, 10),
+        taken,
     )  # PX4 sends to 14540 + instance only for instances 0-9
     sih = {"PX4_SIM_MODEL": "sihsim_quadx", "PX4_SIMULATOR": "sihsim", "PX4_SYS_AUTOSTART": "10040"}
     argv = [str(build / "bin" / "px4"), "-d", "-i", str(instance), str(build / "etc")]
-    with _running(argv, folder, f"px4-{instance}", {**os.environ, **sih}) as (proc, log, started):
+    home = folder / f"px4-{instance}"
+    home.mkdir(exist_ok=True)
+    with _running(argv, home, "px4", {**os.environ, **sih}) as (proc, log, started):
         yield Autopilot(f"udpin://127.0.0.1:{14540 + instance}", proc, log, started)

@@ -19,7 +19,7 @@ from gateway.fleet.operations import (
     TakeoffTracker,
     YawTracker,
 )
-from gateway.fleet.telemetry import MissionProgressValue
+from gateway.link.telemetry import MissionProgressValue
 from tests.fakes import HOME, FakeVehicle, position_value
 from tests.helpers.timing import eventually
 

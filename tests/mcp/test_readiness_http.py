@@ -1,6 +1,6 @@
 """A drone that is connected but still initialising says so in list_drones and REST, and arm_drone at
 once after "ready" arms: an MCP client over Streamable HTTP, the gateway served by uvicorn, one simulated
-ArduCopter booting from zero (the same sequence on real ArduCopter is in tests/real/test_mcp_ardupilot.py)."""
+ArduCopter booting from zero (the same on real ArduCopter is checked while tests/real/tour.py boots)."""
 
 from __future__ import annotations
 

@@ -1,16 +1,17 @@
 """Real autopilots for tests: ArduCopter SITL and PX4 SIH (``tests/helpers/autopilots.py``), started from
 the binaries that ``eval "$(../shared/sitl/install)"`` points at. Without them every test here skips and
-says so. Each test starts its own autopilot on an instance number whose ports are free, in a temporary
-folder, and stops it afterwards, also when it fails."""
+says so. Each test starts its own autopilots on instance numbers whose ports are free, in a temporary
+folder, and stops them afterwards, also when it fails."""
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator, Iterator
+import contextlib
+from collections.abc import AsyncIterator, Callable, Iterator
 from pathlib import Path
 
 import pytest
 
-from gateway.registry.registry import Registry
+from gateway.fleet.registry import Registry
 from tests.helpers import autopilots
 from tests.helpers.autopilots import Autopilot
 from tests.registry.conftest import fast_settings
@@ -36,6 +37,28 @@ def px4(tmp_path: Path) -> Iterator[Autopilot]:
             yield ap
     except autopilots.Unavailable as exc:
         pytest.skip(str(exc))
+
+
+@pytest.fixture
+def launch(tmp_path: Path) -> Iterator[Callable[[str, int], list[Autopilot]]]:
+    """``launch(kind, n)``: n autopilots of one kind ("ardupilot" at speed-up 5, each with its instance
+    number as system id, or "px4") started together, each on its own instance number; all stopped at
+    the end of the test, also when it fails."""
+    taken: set[int] = set()
+    with contextlib.ExitStack() as stack:
+
+        def start(kind: str, n: int) -> list[Autopilot]:
+            def one() -> contextlib.AbstractContextManager[Autopilot]:
+                if kind == "px4":
+                    return autopilots.px4(tmp_path, taken=taken)
+                return autopilots.arducopter(tmp_path, speedup=5, sysid=None, taken=taken)
+
+            try:
+                return [stack.enter_context(one()) for _ in range(n)]
+            except autopilots.Unavailable as exc:
+                pytest.skip(str(exc))
+
+        yield start
 
 
 @pytest.fixture

@@ -16,8 +16,8 @@ import pytest
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.mission import MissionItem
+from gateway.fleet.registry import Registry
 from gateway.fleet.vehicle import ConnectionState, Vehicle
-from gateway.registry.registry import Registry
 from gateway.registry.spec import VehicleSpec
 from tests.helpers.sim import sim_process
 from tests.registry.conftest import WAIT_S, fast_settings, wait_until
@@ -126,8 +126,8 @@ async def test_link_loss_staleness_and_wrong_sysid(store, registries) -> None:
         # streams lost while heartbeats go on (what an autopilot reboot does to the rates): the gateway
         # notices the silent position stream and requests the rates again by itself
         # SET_MESSAGE_INTERVAL(GLOBAL_POSITION_INT, -1): the vehicle stops sending it, as after a reboot
-        await good._command_long(511, 33, -1, what="disable GLOBAL_POSITION_INT")
-        await good._command_long(511, 30, -1, what="disable ATTITUDE")
+        await good.link.command_long(511, 33, -1, what="disable GLOBAL_POSITION_INT")
+        await good.link.command_long(511, 30, -1, what="disable ATTITUDE")
         await wait_until(lambda: good.telemetry.fresh("position", max_age_s=1.0) is None, what="silence")
         await wait_until(
             lambda: good.telemetry.fresh("position", max_age_s=0.5) is not None, what="rates back"

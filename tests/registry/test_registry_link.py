@@ -13,8 +13,8 @@ import signal
 import pytest
 
 from gateway.errors import CommandFailed, DuplicateVehicle, InvalidArgument, UnknownVehicle, VehicleNotReady
+from gateway.fleet.registry import Registry
 from gateway.fleet.vehicle import ConnectionState
-from gateway.registry.registry import Registry
 from gateway.registry.spec import VehicleSpec
 from gateway.util.ports import free_udp_port
 from tests.helpers.timing import settled
@@ -153,13 +153,13 @@ async def test_raw_commands_modes_and_unknown_parameter(store, registries) -> No
         await v.wait_for_state(ConnectionState.CONNECTED)
         await wait_until(lambda: v.sysid == 41, what="heartbeat")
         # DO_SET_MODE goes out through mavlink_direct, is ACKed, and the HEARTBEAT confirms it
-        await v.set_flight_mode("loiter")
-        assert fake.custom_mode == 5
-        await wait_until(lambda: v.telemetry.fresh("flight_mode") == "LOITER", what="mode in cache")
+        await v.set_flight_mode("circle")
+        assert fake.custom_mode == 7
+        await wait_until(lambda: v.telemetry.fresh("flight_mode") == "CIRCLE", what="mode in cache")
         refusal = r"mode 'WARP' is not a mode of drone 'mike' \(ArduCopter\); its modes: HOLD, GUIDED"
         with pytest.raises(InvalidArgument, match=refusal):
             await v.set_flight_mode("WARP")
-        assert fake.custom_mode == 5
+        assert fake.custom_mode == 7
         # the gateway asked for MISSION_CURRENT by id, and probed for SIMSTATE (FAILED: not a simulator)
         await wait_until(
             lambda: any(

@@ -13,8 +13,8 @@ import time
 import pytest
 
 from gateway.config import Settings
-from gateway.registry import sidecar as sidecar_mod
-from gateway.registry.sidecar import Sidecar, SidecarState
+from gateway.link import sidecar as sidecar_mod
+from gateway.link.sidecar import Sidecar, SidecarState
 from gateway.util.ports import free_udp_port
 from tests.registry.heartbeat import HeartbeatVehicle
 from tests.registry.procs import alive, mavsdk_servers_of
@@ -195,7 +195,7 @@ def test_confinement_wrapper_is_applied_to_the_command() -> None:
 _GATEWAY_STANDIN = """
 import asyncio, sys
 from gateway.config import Settings
-from gateway.registry import sidecar
+from gateway.link import sidecar
 if sys.argv[1] == "shim":
     sidecar.shutil.which = lambda name: None  # force the Python exec shim instead of setpriv
 async def main():

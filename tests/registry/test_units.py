@@ -10,10 +10,13 @@ from pydantic import ValidationError
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import mission
+from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import require_mode
+from gateway.fleet.operations import LandingTracker
 from gateway.fleet.params import param_aliases
-from gateway.fleet.telemetry import BatteryValue, PositionValue, Sample, TelemetryCache
+from gateway.link.telemetry import BatteryValue, MissionProgressValue, PositionValue, Sample, TelemetryCache
+from tests.fakes import FakeVehicle
 
 HOME = (47.397742, 8.545594, 488.0)
 
@@ -70,18 +73,22 @@ def test_px4_mission_has_no_home_slot() -> None:
         ("hold", False, "GUIDED", 4),
         ("RTL", False, "RTL", 6),
         ("mission", False, "AUTO", 3),
-        ("LOITER", False, "LOITER", 5),
+        ("LOITER", False, "GUIDED", 4),  # a hold: ArduCopter's LOITER sinks without RC throttle
+        ("POSITION", False, "GUIDED", 4),
+        ("brake", False, "BRAKE", 17),
         ("HOLD", True, "AUTO.LOITER", (4 << 16) | (3 << 24)),
         ("RTL", True, "AUTO.RTL", (4 << 16) | (5 << 24)),
         ("LAND", True, "AUTO.LAND", (4 << 16) | (6 << 24)),
         ("MISSION", True, "AUTO.MISSION", (4 << 16) | (4 << 24)),
         ("takeoff", True, "AUTO.TAKEOFF", (4 << 16) | (2 << 24)),
-        ("POSITION", True, "POSCTL", 3 << 16),
+        ("POSITION", True, "AUTO.LOITER", (4 << 16) | (3 << 24)),
+        ("loiter", True, "AUTO.LOITER", (4 << 16) | (3 << 24)),
+        ("AUTO", True, "AUTO.MISSION", (4 << 16) | (4 << 24)),
         ("auto.rtl", True, "AUTO.RTL", (4 << 16) | (5 << 24)),
     ],
 )
 def test_common_mode_names_map_per_autopilot(name: str, px4: bool, native: str, custom_mode: int) -> None:
-    choice = require_mode(name, px4, "alpha")
+    choice = require_mode(name, PX4_DIALECT if px4 else ARDUPILOT, "alpha")
     assert (choice.native, choice.custom_mode) == (native, custom_mode)
 
 
@@ -89,14 +96,16 @@ def test_common_mode_names_map_per_autopilot(name: str, px4: bool, native: str, 
     ("name", "px4", "message"),
     [
         ("TAKEOFF", False, "mode 'TAKEOFF' is not a mode of drone 'alpha' (ArduCopter); its modes: HOLD,"),
-        ("SMART_RTL", True, "(PX4); its modes: HOLD, GUIDED, RTL, LAND, MISSION, AUTO, TAKEOFF, MANUAL"),
+        ("SMART_RTL", True, "(PX4); its modes: HOLD, GUIDED, RTL, LAND, MISSION, TAKEOFF, AUTO.LOITER,"),
+        ("POSCTL", True, "not a mode of drone 'alpha' (PX4)"),  # needs a pilot's sticks
+        ("FLIP", False, "its modes: HOLD, GUIDED, RTL, LAND, MISSION, BRAKE, SMART_RTL, CIRCLE, STABILIZE"),
         ("GUIDED_NOGPS", True, "not a mode of drone 'alpha' (PX4)"),
         ("", False, "mode must be a flight mode name; got ''"),
     ],
 )
 def test_a_mode_the_drone_lacks_is_refused_with_its_modes(name: str, px4: bool, message: str) -> None:
     with pytest.raises(InvalidArgument) as caught:
-        require_mode(name, px4, "alpha")
+        require_mode(name, PX4_DIALECT if px4 else ARDUPILOT, "alpha")
     assert message in caught.value.message
 
 
@@ -150,21 +159,103 @@ def test_cache_snapshot_reports_ages_and_staleness() -> None:
 
 async def test_the_return_altitude_is_written_in_each_autopilots_parameter_and_units() -> None:
     from gateway.config import Settings
+    from gateway.errors import CommandFailed
     from gateway.fleet.fleet_ops import set_rtl_altitude_param
-    from gateway.fleet.modes import MAV_AUTOPILOT_ARDUPILOTMEGA, MAV_AUTOPILOT_PX4
     from gateway.fleet.vehicle import Vehicle
+    from gateway.link.rawlink import MAV_AUTOPILOT_ARDUPILOTMEGA, MAV_AUTOPILOT_PX4
     from gateway.registry.spec import VehicleSpec
 
     written: list[tuple[str, float]] = []
-    v = Vehicle(VehicleSpec(id="rtl", url="udpin://127.0.0.1:14540"), Settings(_env_file=None))
+    known = {"RTL_ALT", "RTL_RETURN_ALT"}
 
     async def record(name: str, value: float) -> tuple[float, str]:
+        if name not in known:
+            raise CommandFailed(f"unknown parameter '{name}'", result="UNKNOWN_PARAMETER")
         written.append((name, value))
         return value, "float"
 
+    v = Vehicle(VehicleSpec(id="rtl", url="udpin://127.0.0.1:14540"), Settings(_env_file=None))
     v.set_param = record  # type: ignore[method-assign]
-    v._link.autopilot = MAV_AUTOPILOT_ARDUPILOTMEGA
+    v.link.facts.autopilot = MAV_AUTOPILOT_ARDUPILOTMEGA
+    await set_rtl_altitude_param(v, 22.5)  # ArduPilot before 4.7: centimetres
+    known = {"RTL_ALT_M"}
+    v = Vehicle(VehicleSpec(id="rtl", url="udpin://127.0.0.1:14540"), Settings(_env_file=None))
+    v.set_param = record  # type: ignore[method-assign]
+    v.link.facts.autopilot = MAV_AUTOPILOT_ARDUPILOTMEGA
+    await set_rtl_altitude_param(v, 22.5)  # 4.7: RTL_ALT_M in metres
+    assert v.return_altitude_param() == ("RTL_ALT_M", 1.0)
+    await set_rtl_altitude_param(v, 30)  # remembered: the missing name is not asked again
+    known = {"RTL_RETURN_ALT"}
+    v.link.facts.autopilot = MAV_AUTOPILOT_PX4
     await set_rtl_altitude_param(v, 22.5)
-    v._link.autopilot = MAV_AUTOPILOT_PX4
-    await set_rtl_altitude_param(v, 22.5)
-    assert written == [("RTL_ALT", 2250), ("RTL_RETURN_ALT", 22.5)]  # centimetres / metres
+    assert written == [("RTL_ALT", 2250), ("RTL_ALT_M", 22.5), ("RTL_ALT_M", 30), ("RTL_RETURN_ALT", 22.5)]
+
+
+def test_each_dialect_protects_its_safety_parameters_whatever_the_deny_list_says() -> None:
+    from gateway.config import DEFAULT_PARAM_DENY_PATTERNS, Settings
+    from gateway.errors import SafetyRefusal
+    from gateway.fleet.safety import SafetyPolicy, split_patterns
+
+    for dialect in (ARDUPILOT, PX4_DIALECT):  # the default deny list names every dialect's patterns
+        assert set(dialect.protected_params) <= set(split_patterns(DEFAULT_PARAM_DENY_PATTERNS)), dialect.name
+    narrowed = SafetyPolicy(Settings(_env_file=None, param_deny_patterns="WPNAV_*"))
+    for dialect, name in ((PX4_DIALECT, "COM_ARM_WO_GPS"), (PX4_DIALECT, "GF_ACTION"),
+                          (PX4_DIALECT, "NAV_DLL_ACT"), (ARDUPILOT, "ARMING_CHECK")):  # fmt: skip
+        with pytest.raises(SafetyRefusal, match=f"parameter {name} matches the protected pattern"):
+            narrowed.check_param_write(name, vehicle_id="alpha", protected=dialect.protected_params)
+    narrowed.check_param_write("MPC_XY_VEL_MAX", protected=PX4_DIALECT.protected_params)  # not protected
+    narrowed.check_param_write("COM_ARM_WO_GPS", via="rest", protected=PX4_DIALECT.protected_params)
+
+
+def test_px4_is_on_the_ground_by_its_land_detector_not_by_in_air() -> None:
+    cache = TelemetryCache()
+    cache.put("in_air", False)
+    cache.put("landed_state", "TAKING_OFF")
+    assert PX4_DIALECT.on_ground(cache) is False and ARDUPILOT.on_ground(cache) is True
+    cache.put("landed_state", "ON_GROUND")
+    assert PX4_DIALECT.on_ground(cache) is True
+    assert PX4_DIALECT.on_ground(TelemetryCache()) is None
+
+
+async def test_trackers_read_the_landed_state_through_the_dialect_however_old() -> None:
+    """Trackers judge staleness themselves: they read the cached landed state (fresh=False), and on PX4
+    a landing is over by the land detector, not by MAVSDK's in_air."""
+    cache = TelemetryCache(stale_after_s=0.0)  # everything is stale at once
+    cache.put("in_air", False)
+    cache.put("landed_state", "LANDING")
+    assert PX4_DIALECT.on_ground(cache) is None and ARDUPILOT.on_ground(cache) is None
+    assert PX4_DIALECT.on_ground(cache, fresh=False) is False
+    assert ARDUPILOT.on_ground(cache, fresh=False) is True
+
+    class Px4Fake(FakeVehicle):
+        def on_ground(self, fresh: bool = True) -> bool | None:
+            return PX4_DIALECT.on_ground(self.telemetry, fresh=fresh)
+
+    drone = Px4Fake("px1")
+    drone.set(armed=False, in_air=False, landed_state="LANDING")
+    tracker = LandingTracker(kind="land")
+    assert not (await tracker.poll(drone)).done
+    drone.set(landed_state="ON_GROUND")
+    assert (await tracker.poll(drone)).done
+
+
+def test_mission_progress_is_counted_in_user_items_per_dialect() -> None:
+    items = [
+        MissionItem(lat=47.398, lon=8.546, alt_rel_m=20),
+        MissionItem(lat=47.399, lon=8.547, alt_rel_m=20),
+    ]
+    ap = ARDUPILOT.encode_mission(items, HOME)
+    px = PX4_DIALECT.encode_mission(items, HOME)
+    # MISSION_CURRENT on ArduPilot: seq 2 of total 2 (home left out) is the second user item
+    assert ARDUPILOT.mission_progress(2, 2, ap, False, from_mission_current=True) == MissionProgressValue(
+        2, 2
+    )
+    assert ARDUPILOT.mission_progress(1, 3, ap, False, from_mission_current=False).current == 1
+    assert PX4_DIALECT.mission_progress(0, 2, px, False, from_mission_current=True) == MissionProgressValue(
+        1, 2
+    )
+    assert PX4_DIALECT.mission_progress(1, 2, None, True, from_mission_current=False) == MissionProgressValue(
+        2, 2, True
+    )
+    assert PX4_DIALECT.mission_rejection("Mission rejected: takeoff not first waypoint item")
+    assert not ARDUPILOT.mission_rejection("Mission rejected: whatever")  # ArduPilot says it in the ACK

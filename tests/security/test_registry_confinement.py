@@ -8,8 +8,8 @@ import os
 from pathlib import Path
 
 from gateway.config import Settings
-from gateway.registry import confine
-from gateway.registry.registry import Registry
+from gateway.fleet.registry import Registry
+from gateway.link import confine
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from tests.helpers import sim_process

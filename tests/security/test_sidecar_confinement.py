@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from gateway.registry import confine
+from gateway.link import confine
 from gateway.util.ports import free_tcp_port, free_udp_port
 
 os.environ.setdefault("MAVLINK20", "1")

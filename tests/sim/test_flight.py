@@ -83,6 +83,7 @@ async def test_reboot_loses_stream_rates_until_requested_again() -> None:
         await (
             drone.action.reboot()
         )  # MAV_CMD_PREFLIGHT_REBOOT_SHUTDOWN: TCP dropped, mavsdk_server reconnects
+
         async def rebooted() -> dict | None:
             truth = await sim.control.state(0)
             return truth if truth["client_connected"] and truth["boots"] == 2 else None

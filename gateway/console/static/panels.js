@@ -174,6 +174,7 @@ export function AuditPanel({ rows, freshIds }) {
           <option value="problems">refused and failed</option>
           <option value="mcp">agents (MCP)</option>
           <option value="rest">operators (REST)</option>
+          <option value="console">operators (console)</option>
         </select>
       </label>
     </div>

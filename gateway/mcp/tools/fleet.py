@@ -155,7 +155,7 @@ def _row(call: ToolCall, v: FlyingVehicle) -> DroneRow:
         tags=list(v.spec.tags),
         state=str(plain(v.state)),
         armed=value(v, "armed"),
-        in_air=value(v, "in_air"),
+        in_air=None if (landed := v.on_ground(fresh=False)) is None else not landed,
         battery_pct=None if battery is None else round(float(battery.remaining_pct), 1),
         lat_deg=None if pos is None else round(pos[0], 7),
         lon_deg=None if pos is None else round(pos[1], 7),

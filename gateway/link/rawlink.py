@@ -32,6 +32,17 @@ MAV_RESULT = {
     6: "CANCELLED",
 }
 GCS_COMPID = 190  # mavsdk_server's own component id (--compid)
+MAV_AUTOPILOT_ARDUPILOTMEGA = 3
+MAV_AUTOPILOT_PX4 = 12
+
+
+def autopilot_name(mav_autopilot: int) -> str:
+    """The HEARTBEAT's MAV_AUTOPILOT as the gateway reports it."""
+    if mav_autopilot == MAV_AUTOPILOT_ARDUPILOTMEGA:
+        return "ardupilot"
+    if mav_autopilot == MAV_AUTOPILOT_PX4:
+        return "px4"
+    return f"mav_autopilot_{mav_autopilot}"
 
 
 class LinkFacts:

@@ -292,6 +292,20 @@ def _imu(i: Any) -> ImuValue:
     )
 
 
+MILLI_G_TO_MPS2 = 9.80665 / 1000.0
+
+
+def _raw_imu(i: Any) -> ImuValue:
+    """RAW_IMU (ArduPilot's IMU stream) carries its raw units, milli-g and milli-rad/s, which MAVSDK
+    passes through unconverted; the cache holds m/s^2 and rad/s like HIGHRES_IMU's."""
+    a, g = i.acceleration_frd, i.angular_velocity_frd
+    return ImuValue(
+        (a.forward_m_s2 * MILLI_G_TO_MPS2, a.right_m_s2 * MILLI_G_TO_MPS2, a.down_m_s2 * MILLI_G_TO_MPS2),
+        (g.forward_rad_s / 1000.0, g.right_rad_s / 1000.0, g.down_rad_s / 1000.0),
+        _finite(i.temperature_degc),
+    )
+
+
 def _odometry(o: Any) -> OdometryValue:
     p, v = o.position_body, o.velocity_body
     return OdometryValue((p.x_m, p.y_m, p.z_m), (v.x_m_s, v.y_m_s, v.z_m_s))
@@ -366,7 +380,7 @@ class TelemetryFeed:
                 ),
             ),
             "imu": (t.imu, lambda i: put("imu", _imu(i))),
-            "raw_imu": (t.raw_imu, lambda i: put("imu", _imu(i))),
+            "raw_imu": (t.raw_imu, lambda i: put("imu", _raw_imu(i))),
             "odometry": (t.odometry, lambda o: put("odometry", _odometry(o))),
             "status_text": (t.status_text, self._status_text),
             "mission_progress": (self.system.mission_raw.mission_progress, self._mission_progress),

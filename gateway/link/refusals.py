@@ -12,7 +12,7 @@ from __future__ import annotations
 import asyncio
 from collections.abc import Callable, Iterable
 
-from gateway.fleet.telemetry import StatusTextValue
+from gateway.link.telemetry import StatusTextValue
 
 #: severities that can explain a refusal (PX4 reports some refusals as "notice" events)
 RELEVANT = frozenset({"notice", "warning", "error", "critical", "alert", "emergency"})

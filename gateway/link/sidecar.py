@@ -39,7 +39,7 @@ from pathlib import Path
 from typing import Any
 
 from gateway.config import Settings
-from gateway.registry import confine
+from gateway.link import confine
 from gateway.util.ports import free_tcp_port
 
 log = logging.getLogger("gateway.sidecar")

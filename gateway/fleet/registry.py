@@ -9,8 +9,8 @@
     ...
     await registry.stop()                       # no mavsdk_server process remains
 
-Each Vehicle owns one mavsdk_server sidecar (gateway.registry.sidecar), its telemetry cache
-(gateway.fleet.telemetry) and its flight recorder (gateway.fleet.flightlog).
+Each Vehicle owns one mavsdk_server sidecar (gateway.link.sidecar), its telemetry cache
+(gateway.link.telemetry) and its flight recorder (gateway.fleet.flightlog).
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from gateway.config import Settings
 from gateway.errors import InvalidArgument, UnknownVehicle
 from gateway.fleet.protocols import FlyingVehicle
 from gateway.fleet.vehicle import ConnectionState, Vehicle
-from gateway.registry.sidecar import Confine
+from gateway.link.sidecar import Confine
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 

@@ -1,0 +1,139 @@
+"""ArduPilot (ArduCopter): what it does its own way.
+
+* Modes are HEARTBEAT custom mode numbers; MAVSDK misnames them (OFFBOARD for GUIDED, HOLD for LOITER),
+  so the HEARTBEAT's number is named here. HOLD / LOITER is flown as a GUIDED reposition to where the
+  vehicle is: ArduCopter's LOITER and ALT_HOLD sink without RC throttle (MAVSDK#2039, ArduPilot#29458).
+* Arm in GUIDED: ``is_armable`` is evaluated for the current mode, and arming in STABILIZE succeeds
+  before the EKF uses GPS, after which a GUIDED takeoff fails and the vehicle disarms.
+* "Ready" waits for EKF_STATUS_REPORT to show an absolute horizontal position (not constant-position
+  mode): "PreArm: Need Position Estimate" comes well after GPS and home are fine.
+* Missions: seq 0 is HOME (the autopilot overwrites it), user items are 1..N; MISSION_CURRENT.total
+  leaves home out; MISSION_START while armed on the ground takes off (mission_raw.start_mission only
+  switches to AUTO). A rejected mission fails the upload itself (MISSION_ACK error).
+* The RTL altitude is RTL_ALT_M in metres from 4.7 on, RTL_ALT in centimetres before. It refuses
+  HIGHRES_IMU and ODOMETRY streams (RAW_IMU instead).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Awaitable, Callable
+
+from gateway.fleet import mission
+from gateway.fleet.dialects.base import LinkOps, matches_any, reader, user_progress
+from gateway.fleet.mission import MissionItem, WirePlan
+from gateway.fleet.modes import COMMON_MODES, ModeChoice, canonical
+from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
+
+#: every ArduCopter mode, by HEARTBEAT custom_mode number (for naming what the vehicle reports)
+ARDUCOPTER_MODES: dict[str, int] = {
+    "STABILIZE": 0, "ACRO": 1, "ALT_HOLD": 2, "AUTO": 3, "GUIDED": 4, "LOITER": 5, "RTL": 6, "CIRCLE": 7,
+    "LAND": 9, "DRIFT": 11, "SPORT": 13, "FLIP": 14, "AUTOTUNE": 15, "POSHOLD": 16, "BRAKE": 17, "THROW": 18,
+    "AVOID_ADSB": 19, "GUIDED_NOGPS": 20, "SMART_RTL": 21, "FLOWHOLD": 22, "FOLLOW": 23, "ZIGZAG": 24,
+    "SYSTEMID": 25, "AUTOROTATE": 26, "AUTO_RTL": 27, "TURTLE": 28,
+}  # fmt: skip
+ARDUCOPTER_MODE_NAMES = {number: name for name, number in ARDUCOPTER_MODES.items()}
+#: common name -> ArduCopter mode (TAKEOFF: none; takeoff is a GUIDED command here)
+COMMON_TO_NATIVE: dict[str, str] = {
+    "HOLD": "GUIDED",
+    "GUIDED": "GUIDED",
+    "RTL": "RTL",
+    "LAND": "LAND",
+    "MISSION": "AUTO",
+}
+#: ArduCopter's own modes that set_flight_mode offers besides the common ones: the autonomous ones, and
+#: the pilot modes an operator may want on the ground (agents may not select those in the air:
+#: GATEWAY_MODE_DENY_IN_AIR). Modes that need sticks or special frames (ACRO, FLIP, THROW, TURTLE,
+#: AUTOROTATE, ...) are left out.
+OFFERED_NATIVE = ("BRAKE", "SMART_RTL", "CIRCLE", "STABILIZE", "ALT_HOLD", "POSHOLD")
+#: MAV_TYPE values flown by ArduCopter (quad, coaxial, heli, hexa, octo, tri, dodeca, deca)
+COPTER_TYPES = frozenset({2, 3, 4, 13, 14, 15, 29, 35})
+EKF_POS_HORIZ_ABS = 16
+EKF_CONST_POS_MODE = 128
+MAV_CMD_CONDITION_YAW = 115
+MAV_CMD_MISSION_START = 300
+#: arming refusals that go away by themselves while the autopilot initialises (retried within the cap)
+ARM_WAIT_TEXTS = ("position estimate", "ekf", "gps", "waiting", "initialis", "initializ", "heading", "gyros",
+                  "accels", "ahrs", "home", "alt estimate")  # fmt: skip
+#: arming checks, fences, failsafes, battery failsafe thresholds, system ids (4.x and 4.7 names)
+PROTECTED_PARAMS = (
+    "ARMING_*", "FENCE_*", "FS_*", "BATT*_FS_*", "BATT*_LOW_*", "BATT*_CRT_*", "SYSID_*", "MAV_SYSID",
+    "MAV_GCS_SYSID", "BRD_SAFETY*", "FLTMODE_GCSBLOCK", "RC_FS_*", "THR_FS*",
+)  # fmt: skip
+
+
+class ArduPilot:
+    """The ArduCopter dialect (also used for a link whose autopilot is not known yet)."""
+
+    name = "ArduCopter"
+    skipped_streams = frozenset({"imu", "odometry"})
+    follows_events = False
+    arming_mode: str | None = "GUIDED"
+    mission_verdict_s = 0.0
+    #: 4.7 replaced RTL_ALT (centimetres) with RTL_ALT_M (metres); it answers RTL_ALT with "does not
+    #: exist" at once, while older versions do not answer RTL_ALT_M at all: the old name is tried first
+    return_altitude_params = (("RTL_ALT", 100.0), ("RTL_ALT_M", 1.0))
+    protected_params = PROTECTED_PARAMS
+
+    # --- link facts ----------------------------------------------------------------------------------
+    def mode_name(self, custom_mode: int, mav_type: int) -> str | None:
+        if mav_type not in COPTER_TYPES:
+            return None  # not a copter: MAVSDK's names
+        return ARDUCOPTER_MODE_NAMES.get(custom_mode, f"MODE_{custom_mode}")
+
+    def position_estimate_ok(self, health: HealthValue, ekf_flags: int | None) -> bool:
+        if ekf_flags is None:
+            return health.local_position_ok
+        return bool(ekf_flags & EKF_POS_HORIZ_ABS) and not ekf_flags & EKF_CONST_POS_MODE
+
+    # --- flight modes --------------------------------------------------------------------------------
+    def mode_names(self) -> list[str]:
+        common = [name for name in COMMON_MODES if name in COMMON_TO_NATIVE]
+        return common + [name for name in OFFERED_NATIVE if name not in common]
+
+    def resolve_mode(self, name: str) -> ModeChoice | None:
+        wanted = canonical(name)
+        native = COMMON_TO_NATIVE.get(wanted)
+        if native is None:
+            if wanted not in OFFERED_NATIVE:
+                return None
+            native = wanted
+        number = ARDUCOPTER_MODES[native]
+        return ModeChoice(wanted, native, number, (1.0, float(number)))
+
+    # --- arming and the ground -----------------------------------------------------------------------
+    def arming_will_pass(self, complaint: str) -> bool:
+        return matches_any(complaint, ARM_WAIT_TEXTS)
+
+    def on_ground(self, telemetry: TelemetryCache, *, fresh: bool = True) -> bool | None:
+        in_air = reader(telemetry, fresh)("in_air")
+        return None if in_air is None else not in_air
+
+    async def set_yaw(self, link: LinkOps, heading_deg: float) -> None:
+        # CONDITION_YAW: p1 angle, p2 rate (0 = default), p3 direction (0 = shortest), p4 0 = absolute
+        await link.command_long(MAV_CMD_CONDITION_YAW, heading_deg, 0, 0, 0, what="set yaw")
+
+    # --- missions ------------------------------------------------------------------------------------
+    def encode_mission(self, items: list[MissionItem], home: tuple[float, float, float] | None) -> WirePlan:
+        return mission.encode(items, home, home_slot=True)
+
+    def decode_mission(self, wire: list[object]) -> tuple[list[MissionItem], WirePlan]:
+        return mission.decode(wire, home_slot=True)
+
+    def mission_rejection(self, text: str) -> bool:
+        return False  # ArduPilot refuses in the MISSION_ACK: the upload itself fails
+
+    def mission_progress(
+        self,
+        current_seq: int,
+        total: int,
+        plan: WirePlan | None,
+        finished: bool,
+        *,
+        from_mission_current: bool,
+    ) -> MissionProgressValue:
+        wire_total = total + 1 if from_mission_current else total  # MISSION_CURRENT.total leaves home out
+        return user_progress(current_seq, wire_total, plan, finished, first_user_seq=1)
+
+    async def start_mission_on_ground(self, link: LinkOps, arm: Callable[[], Awaitable[None]]) -> None:
+        await arm()  # in GUIDED
+        await link.command_long(MAV_CMD_MISSION_START, 0, 0, what="start mission")

@@ -1,0 +1,162 @@
+"""The seam between the flight verbs and an autopilot: the ``Dialect`` Protocol, and what a dialect may use
+of the vehicle's link (``LinkOps``).
+
+A dialect owns what differs between autopilots: its flight modes and the mapping of the common mode
+names onto them, how a mission is laid out on the wire (ArduPilot's home slot 0; PX4 none) and how its
+progress is counted, how the autopilot says it rejects a mission, the RTL altitude parameter and its
+units, the arming rules, the parameters agents may not write, how to tell the vehicle is on the ground,
+and the link facts (refused streams, mode names in HEARTBEAT, position estimate, EVENT messages).
+Everything else (the verbs, the operations, the policy) is the same for every autopilot.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Awaitable, Callable
+from typing import Any, Protocol, TypeVar
+
+from mavsdk_grpc import System
+
+from gateway.fleet.mission import MissionItem, WirePlan
+from gateway.fleet.modes import ModeChoice
+from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
+
+T = TypeVar("T")
+
+
+class LinkOps(Protocol):
+    """What a dialect may use of the vehicle's link (``gateway.link.session.Link`` has all of it)."""
+
+    @property
+    def id(self) -> str: ...
+
+    @property
+    def system(self) -> System: ...
+
+    @property
+    def telemetry(self) -> TelemetryCache: ...
+
+    async def call(self, what: str, aw: Awaitable[T], timeout_s: float = ...) -> T: ...
+
+    async def command_long(self, command: int, *params: float, what: str) -> None: ...
+
+
+class Dialect(Protocol):
+    """One autopilot's way of doing what the verbs need. Implementations: ``ardupilot.ArduPilot``,
+    ``px4.PX4``; ``gateway.fleet.dialects.dialect_for`` picks one from the HEARTBEAT's autopilot."""
+
+    @property
+    def name(self) -> str:
+        """The autopilot as a person names it, for messages ("ArduCopter", "PX4")."""
+        ...
+
+    # --- link facts (gateway.link.session.LinkRules) ---------------------------------------------------
+    @property
+    def skipped_streams(self) -> frozenset[str]: ...
+
+    @property
+    def follows_events(self) -> bool: ...
+
+    def mode_name(self, custom_mode: int, mav_type: int) -> str | None: ...
+
+    def position_estimate_ok(self, health: HealthValue, ekf_flags: int | None) -> bool: ...
+
+    # --- flight modes --------------------------------------------------------------------------------
+    def mode_names(self) -> list[str]:
+        """Every name set_flight_mode accepts on this autopilot: the common ones, then its own."""
+        ...
+
+    def resolve_mode(self, name: str) -> ModeChoice | None:
+        """The mode ``name`` (common or native, any case) means here, or None if there is none."""
+        ...
+
+    # --- arming and the ground -----------------------------------------------------------------------
+    @property
+    def arming_mode(self) -> str | None:
+        """The mode to switch to before arming (ArduPilot: GUIDED), None to arm in the current one."""
+        ...
+
+    def arming_will_pass(self, complaint: str) -> bool:
+        """Whether an arming refusal is one the autopilot lifts by itself while it initialises."""
+        ...
+
+    def on_ground(self, telemetry: TelemetryCache, *, fresh: bool = True) -> bool | None:
+        """Whether the vehicle is on the ground: None when no fresh telemetry says (``fresh=False``:
+        from the cached values however old, for trackers that judge staleness themselves)."""
+        ...
+
+    async def set_yaw(self, link: LinkOps, heading_deg: float) -> None:
+        """Turn in place to ``heading_deg`` (0-360, from true north)."""
+        ...
+
+    # --- missions ------------------------------------------------------------------------------------
+    def encode_mission(self, items: list[MissionItem], home: tuple[float, float, float] | None) -> WirePlan:
+        """The wire mission for the user's items (1..N)."""
+        ...
+
+    def decode_mission(self, wire: list[object]) -> tuple[list[MissionItem], WirePlan]:
+        """The user's items from a downloaded wire mission."""
+        ...
+
+    @property
+    def mission_verdict_s(self) -> float:
+        """How long after the upload's ACK the autopilot may still reject the mission (0: never)."""
+        ...
+
+    def mission_rejection(self, text: str) -> bool:
+        """Whether a status text is the autopilot rejecting the uploaded mission."""
+        ...
+
+    def mission_progress(
+        self,
+        current_seq: int,
+        total: int,
+        plan: WirePlan | None,
+        finished: bool,
+        *,
+        from_mission_current: bool,
+    ) -> MissionProgressValue:
+        """Wire progress in user item numbers. ``total`` is MAVSDK's wire count or, with
+        ``from_mission_current``, MISSION_CURRENT.total (which leaves ArduPilot's home out)."""
+        ...
+
+    async def start_mission_on_ground(self, link: LinkOps, arm: Callable[[], Awaitable[None]]) -> None:
+        """Arm and start the uploaded (accepted) mission from the ground; the vehicle takes off."""
+        ...
+
+    # --- parameters ----------------------------------------------------------------------------------
+    @property
+    def return_altitude_params(self) -> tuple[tuple[str, float], ...]:
+        """The parameter RTL climbs to before flying home and its units per metre; several when
+        versions of the autopilot name it differently (the first the vehicle has is used)."""
+        ...
+
+    @property
+    def protected_params(self) -> tuple[str, ...]:
+        """Glob patterns of parameters agents may not write (arming checks, fences, failsafes, ids)."""
+        ...
+
+
+def user_progress(
+    current_seq: int, wire_total: int, plan: WirePlan | None, finished: bool, first_user_seq: int
+) -> MissionProgressValue:
+    """Progress in user numbers: ``first_user_seq`` is the wire seq of user item 1 (1 behind a home
+    slot, else 0); ``plan`` (when known) maps DO_CHANGE_SPEED items to the item they belong to."""
+    if plan is None:
+        user_total = max(0, wire_total - first_user_seq)
+        user = min(max(0, current_seq - first_user_seq + 1), user_total)
+    else:
+        user_total = len(plan.user_to_wire)
+        user = plan.user_index(current_seq) if current_seq >= first_user_seq and user_total else 0
+    return MissionProgressValue(user_total if finished else user, user_total, finished)
+
+
+def reader(telemetry: TelemetryCache, fresh: bool) -> Callable[[str], Any]:
+    """How a dialect reads a telemetry value: fresh only, or the cached one however old."""
+    if fresh:
+        return telemetry.fresh
+    return lambda name: None if (sample := getattr(telemetry, name)) is None else sample.value
+
+
+def matches_any(text: str, words: tuple[str, ...]) -> bool:
+    lowered = text.lower()
+    return any(word in lowered for word in words)

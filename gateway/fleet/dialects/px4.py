@@ -1,0 +1,144 @@
+"""PX4: what it does its own way (measured on PX4 1.16 SITL with SIH through mavsdk_server 4.0.5).
+
+* Modes are main/sub modes packed in the HEARTBEAT's custom mode (main << 16 | sub << 24); MAVSDK
+  names them well (HOLD, MISSION, RETURN_TO_LAUNCH...). HOLD and GUIDED are AUTO.LOITER (Hold), in
+  which PX4 flies the gateway's reposition commands. The pilot modes (MANUAL, ALTCTL, POSCTL,
+  STABILIZED, ACRO) need manual control input and OFFBOARD a setpoint stream: not offered.
+* Missions have no home slot: PX4 flies seq 0 like any item (ArduPilot's placeholder there flew the
+  drone back to home at ground level). PX4 acknowledges an upload, then checks the mission and says
+  "Mission rejected: ..." in an EVENT / STATUSTEXT within about a second: that is the rejection. From
+  the ground, switch to MISSION first (refused for a mission PX4 rejected) and only then arm.
+* Arming in the current mode (Hold); readiness from MAVSDK's local position health.
+* RTL climbs to RTL_RETURN_ALT, in metres. PX4 refuses RAW_IMU (HIGHRES_IMU instead) and explains
+  refusals in EVENT messages.
+* On the ground means EXTENDED_SYS_STATE's landed state ON_GROUND (its land detector), not merely
+  "not in air": PX4 reports TAKING_OFF / LANDING between the two.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Awaitable, Callable
+
+from gateway.errors import CommandFailed
+from gateway.fleet import mission
+from gateway.fleet.dialects.base import LinkOps, matches_any, reader, user_progress
+from gateway.fleet.mission import MissionItem, WirePlan
+from gateway.fleet.modes import COMMON_MODES, ModeChoice, canonical
+from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
+
+#: PX4 main / sub modes (px4_custom_mode.h); DO_SET_MODE takes them as param2 / param3
+PX4_MODES: dict[str, tuple[int, int]] = {
+    "MANUAL": (1, 0),
+    "ALTCTL": (2, 0),
+    "POSCTL": (3, 0),
+    "AUTO.TAKEOFF": (4, 2),
+    "AUTO.LOITER": (4, 3),
+    "AUTO.MISSION": (4, 4),
+    "AUTO.RTL": (4, 5),
+    "AUTO.LAND": (4, 6),
+    "ACRO": (5, 0),
+    "OFFBOARD": (6, 0),
+    "STABILIZED": (7, 0),
+}
+COMMON_TO_NATIVE: dict[str, str] = {
+    "HOLD": "AUTO.LOITER",
+    "GUIDED": "AUTO.LOITER",
+    "RTL": "AUTO.RTL",
+    "LAND": "AUTO.LAND",
+    "MISSION": "AUTO.MISSION",
+    "TAKEOFF": "AUTO.TAKEOFF",
+}
+#: PX4's own names set_flight_mode offers: the autonomous modes (the others need a pilot or offboard)
+OFFERED_NATIVE = ("AUTO.LOITER", "AUTO.RTL", "AUTO.LAND", "AUTO.MISSION", "AUTO.TAKEOFF")
+#: how PX4's mission feasibility checks begin their text when they reject a mission
+MISSION_REJECTIONS = ("mission rejected", "geofence violation for waypoint", "geofence breach on path",
+                      "waypoint above maximum", "first waypoint too far")  # fmt: skip
+MISSION_VERDICT_S = 1.5
+#: arming refusals that go away by themselves while PX4's estimator and GPS settle
+ARM_WAIT_TEXTS = ("position estimate", "global position", "local position", "home position", "gps",
+                  "estimator", "ekf", "initializ", "initialis", "heading", "attitude")  # fmt: skip
+#: commander (arming checks, failsafes: COM_ARM_*, COM_*_ACT, ...), geofence, data link and RC loss,
+#: circuit breakers, system ids, battery failsafe thresholds, failure detector
+PROTECTED_PARAMS = (
+    "COM_*", "GF_*", "NAV_DLL_*", "NAV_RCL_*", "CBRK_*", "MAV_SYS_ID", "MAV_COMP_ID", "BAT*_LOW_THR",
+    "BAT*_CRIT_THR", "BAT*_EMERGEN_THR", "FD_*",
+)  # fmt: skip
+
+
+class PX4:
+    """The PX4 dialect."""
+
+    name = "PX4"
+    skipped_streams = frozenset({"raw_imu"})
+    follows_events = True
+    arming_mode: str | None = None
+    mission_verdict_s = MISSION_VERDICT_S
+    return_altitude_params = (("RTL_RETURN_ALT", 1.0),)
+    protected_params = PROTECTED_PARAMS
+
+    # --- link facts ----------------------------------------------------------------------------------
+    def mode_name(self, custom_mode: int, mav_type: int) -> str | None:
+        return None  # MAVSDK names PX4's modes
+
+    def position_estimate_ok(self, health: HealthValue, ekf_flags: int | None) -> bool:
+        return health.local_position_ok
+
+    # --- flight modes --------------------------------------------------------------------------------
+    def mode_names(self) -> list[str]:
+        return [name for name in COMMON_MODES if name in COMMON_TO_NATIVE] + list(OFFERED_NATIVE)
+
+    def resolve_mode(self, name: str) -> ModeChoice | None:
+        wanted = canonical(name)
+        native = COMMON_TO_NATIVE.get(wanted)
+        if native is None:
+            if wanted not in OFFERED_NATIVE:
+                return None
+            native = wanted
+        main, sub = PX4_MODES[native]
+        return ModeChoice(wanted, native, (main << 16) | (sub << 24), (1.0, float(main), float(sub)))
+
+    # --- arming and the ground -----------------------------------------------------------------------
+    def arming_will_pass(self, complaint: str) -> bool:
+        return matches_any(complaint, ARM_WAIT_TEXTS)
+
+    def on_ground(self, telemetry: TelemetryCache, *, fresh: bool = True) -> bool | None:
+        read = reader(telemetry, fresh)
+        landed = read("landed_state")
+        if landed in ("ON_GROUND", "IN_AIR", "TAKING_OFF", "LANDING"):
+            return bool(landed == "ON_GROUND")
+        in_air = read("in_air")
+        return None if in_air is None else not in_air
+
+    async def set_yaw(self, link: LinkOps, heading_deg: float) -> None:
+        # PX4 ignores CONDITION_YAW outside missions: a reposition to where it is, with the heading
+        pos = link.telemetry.fresh("position")
+        if pos is None:
+            raise CommandFailed(f"cannot yaw drone '{link.id}': no current position", vehicle_id=link.id)
+        goto = link.system.action.goto_location(pos.lat_deg, pos.lon_deg, pos.abs_alt_m, heading_deg)
+        await link.call("set yaw", goto)
+
+    # --- missions ------------------------------------------------------------------------------------
+    def encode_mission(self, items: list[MissionItem], home: tuple[float, float, float] | None) -> WirePlan:
+        return mission.encode(items, home, home_slot=False)
+
+    def decode_mission(self, wire: list[object]) -> tuple[list[MissionItem], WirePlan]:
+        return mission.decode(wire, home_slot=False)
+
+    def mission_rejection(self, text: str) -> bool:
+        return text.strip().lower().startswith(MISSION_REJECTIONS)
+
+    def mission_progress(
+        self,
+        current_seq: int,
+        total: int,
+        plan: WirePlan | None,
+        finished: bool,
+        *,
+        from_mission_current: bool,
+    ) -> MissionProgressValue:
+        return user_progress(current_seq, total, plan, finished, first_user_seq=0)
+
+    async def start_mission_on_ground(self, link: LinkOps, arm: Callable[[], Awaitable[None]]) -> None:
+        # MISSION first: PX4 refuses the mode for a mission it rejected, before any motor turns
+        await link.call("start mission", link.system.mission_raw.start_mission())
+        await arm()

@@ -1,0 +1,49 @@
+"""Every drone tool, a mission (and one PX4 rejects), the modes, the refusals and a short formation on
+real PX4 SIH (real time), through MCP over HTTP: see tests/real/tour.py."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from tests.helpers.timing import scaled
+from tests.real.tour import Profile, run_tour
+
+pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(900))]
+
+PX4 = Profile(
+    prefix="px",
+    autopilot="px4",
+    boot_s=120,
+    ground_modes=(
+        ("AUTO.LOITER", "HOLD"),
+        ("POSITION", "HOLD"),
+        ("RTL", "RETURN_TO_LAUNCH"),
+        ("LAND", "LAND"),
+        ("GUIDED", "HOLD"),
+    ),
+    air_modes=(
+        ("LAND", "LAND"),
+        ("RTL", "RETURN_TO_LAUNCH"),
+        ("AUTO.RTL", "RETURN_TO_LAUNCH"),
+        ("TAKEOFF", "TAKEOFF"),
+        ("LOITER", "HOLD"),
+        ("GUIDED", "HOLD"),
+        ("AUTO.LAND", "LAND"),
+        ("AUTO.TAKEOFF", "TAKEOFF"),
+    ),
+    mission_modes=("MISSION", "AUTO.MISSION"),
+    air_refused=(),
+    lacks="SMART_RTL",
+    speed_param=("MPC_XY_VEL_MAX", 8.0),
+    protected="COM_ARM_WO_GPS",
+    return_alt_param="RTL_RETURN_ALT",
+    hold_mode="HOLD",
+    mission_mode="MISSION",
+    acceptance_param="NAV_ACC_RAD",  # 10 m by default: PX4 turns that far before a waypoint
+)
+
+
+async def test_every_drone_tool_mission_modes_and_formation_on_px4(launch, tmp_path: Path) -> None:
+    await run_tour(tmp_path, PX4, launch("px4", 3))
