@@ -21,7 +21,7 @@ from pydantic import Field
 from gateway.fleet.fleet_verbs import Formation
 from gateway.fleet.protocols import FlyingVehicle
 from gateway.fleet.readings import position, value
-from gateway.fleet.views import FleetView
+from gateway.fleet.views import FleetHoldResult, FleetView
 from gateway.mcp.access import ToolCall
 from gateway.mcp.results import Result, plain
 from gateway.mcp.toolkit import Lat, Lon, Toolset, Wait
@@ -69,30 +69,12 @@ class FleetStatusOut(Result):
     table: str
 
 
-class FleetOut(Result):
+class FleetOut(FleetView, Result):
     """A fleet operation: per-drone outcomes in ``drones``; 'running' means call monitor_fleet."""
 
-    operation_id: str
-    kind: str
-    status: str
-    message: str
-    phase: int
-    phases: list[str]
-    progress: float
-    eta_s: float | None
-    elapsed_s: float
-    dispatch_s: list[float]
-    drones: list[dict[str, Any]]
-    not_sent: list[dict[str, Any]] = Field(default_factory=list)
-    notes: list[str] = Field(default_factory=list)
-    plan: dict[str, Any] | None = None
 
-
-class FleetHoldOut(Result):
-    held: list[str]
-    failed: list[dict[str, Any]]
-    not_sent: list[dict[str, Any]]
-    superseded_fleet_operations: list[str]
+class FleetHoldOut(FleetHoldResult, Result):
+    """Which drones hold now, which failed, which were not sent the hold."""
 
 
 # --- presenting ------------------------------------------------------------------------------------------
