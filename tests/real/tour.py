@@ -290,9 +290,9 @@ async def mission_rejected_on_the_ground(t: Tour, d: str) -> None:
     home = await t.ok("get_home_position", drone_id=d)
     lat, lon = geo.offset_position(home["lat_deg"], home["lon_deg"], 30, 0)
     bad = [
-        {"lat": home["lat_deg"], "lon": home["lon_deg"], "alt_m": 10, "kind": "takeoff"},
-        {"lat": lat, "lon": lon, "alt_m": 15},
-        {"lat": lat, "lon": lon, "alt_m": 10, "kind": "takeoff"},
+        {"lat_deg": home["lat_deg"], "lon_deg": home["lon_deg"], "alt_m": 10, "kind": "takeoff"},
+        {"lat_deg": lat, "lon_deg": lon, "alt_m": 15},
+        {"lat_deg": lat, "lon_deg": lon, "alt_m": 10, "kind": "takeoff"},
     ]
     await t.refused(
         "upload_mission", "rejected the mission (3 items)", "Mission rejected", drone_id=d, waypoints=bad
@@ -351,9 +351,7 @@ async def navigation(t: Tour, d: str, home: dict[str, Any]) -> None:
     speed = await t.ok("set_max_speed", drone_id=d, speed_mps=5)
     assert "5" in speed["message"], speed
     lat, lon = geo.offset_position(home["lat_deg"], home["lon_deg"], 50, 0)
-    op = await t.ok(
-        "go_to_location", drone_id=d, lat_deg=lat, lon_deg=lon, alt_m=15, wait=False
-    )
+    op = await t.ok("go_to_location", drone_id=d, lat_deg=lat, lon_deg=lon, alt_m=15, wait=False)
     fastest = 0.0
     while op["status"] == "running":
         fastest = max(fastest, (await t.ok("get_speed", drone_id=d))["ground_speed_mps"])
@@ -385,9 +383,7 @@ async def navigation(t: Tour, d: str, home: dict[str, Any]) -> None:
 
     # hold: a goto is under way, hold stops it where the drone is (plus its braking distance)
     far = geo.offset_position(home["lat_deg"], home["lon_deg"], 50, 80)
-    op = await t.ok(
-        "go_to_location", drone_id=d, lat_deg=far[0], lon_deg=far[1], alt_m=15, wait=False
-    )
+    op = await t.ok("go_to_location", drone_id=d, lat_deg=far[0], lon_deg=far[1], alt_m=15, wait=False)
     await t.until("get_speed", lambda r: r["ground_speed_mps"] > 3, 20, "moving", drone_id=d)
     at_hold = await t.position(d)
     held = await t.ok("hold_position", drone_id=d)
@@ -422,7 +418,7 @@ async def mission(t: Tour, d: str, home: dict[str, Any]) -> None:
     alt = 15.0
     corners = [(40.0, 0.0), (40.0, 40.0), (0.0, 40.0)]
     wps = [
-        {"lat": la, "lon": lo, "alt_m": alt}
+        {"lat_deg": la, "lon_deg": lo, "alt_m": alt}
         for la, lo in (geo.offset_position(home["lat_deg"], home["lon_deg"], n, e) for n, e in corners)
     ]
     assert "3 items" in (await t.ok("upload_mission", drone_id=d, waypoints=wps))["message"]
@@ -431,7 +427,8 @@ async def mission(t: Tour, d: str, home: dict[str, Any]) -> None:
         back
     )
     for got, sent in zip(back, wps, strict=True):
-        assert abs(got["lat_deg"] - sent["lat"]) < 2e-7 and abs(got["lon_deg"] - sent["lon"]) < 2e-7, (
+        same = abs(got["lat_deg"] - sent["lat_deg"]) < 2e-7 and abs(got["lon_deg"] - sent["lon_deg"]) < 2e-7
+        assert same, (
             got,
             sent,
         )
@@ -476,7 +473,9 @@ async def mission(t: Tour, d: str, home: dict[str, Any]) -> None:
     if t.profile.acceptance_param is not None:
         reach = (await t.ok("get_parameter", drone_id=d, name=t.profile.acceptance_param))["value"] + 1.5
     for wp in wps:
-        closest = min(geo.horizontal_distance_m(la, lo, wp["lat"], wp["lon"]) for _k, la, lo, _a in track)
+        closest = min(
+            geo.horizontal_distance_m(la, lo, wp["lat_deg"], wp["lon_deg"]) for _k, la, lo, _a in track
+        )
         assert closest < reach, (wp, closest, reach)
     lowest = min(a for k, _la, _lo, a in track if k >= 2)
     assert lowest > alt - 1.5, f"flew down to {lowest:.1f} m between waypoints (mission at {alt} m)"
