@@ -392,7 +392,11 @@ async def test_replay_of_a_past_flight_shows_its_track_texts_and_calls(
     assert last_index >= 3
     await slider.fill(str(last_index))
     await expect(panel.locator(".timeline li.past").last).to_be_visible()
-    last = await page.evaluate("() => window.fleetMap.replayMarker.getLatLng()")
-    assert (first["lat"], first["lng"]) != (last["lat"], last["lng"])
+
+    async def marker_moved() -> dict[str, float] | None:  # the map follows the slider after a frame
+        here = await page.evaluate("() => window.fleetMap.replayMarker.getLatLng()")
+        return here if (here["lat"], here["lng"]) != (first["lat"], first["lng"]) else None
+
+    await eventually(marker_moved, "the replay marker at the flight's last sample", within_s=10)
     await slider.fill(str(last_index // 2))
     await screenshot(page, "replay")
