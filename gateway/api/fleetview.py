@@ -12,9 +12,11 @@ down) is sent with ``stale: true`` so the page shows it as last known, never as 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from datetime import UTC, datetime
 from typing import Any
 
+from gateway.errors import GatewayError
 from gateway.fleet.geofence import FLEET
 
 STATUS_TEXTS_PER_DRONE = 5
@@ -57,14 +59,24 @@ def _home(cache: Any) -> dict[str, Any] | None:
     return {"lat": home.lat_deg, "lon": home.lon_deg, "alt_amsl_m": _num(home.abs_alt_m, 2)}
 
 
-def _operation(operations: Any, vehicle_id: str) -> dict[str, Any] | None:
-    if operations is None:
-        return None
-    op = operations.latest(vehicle_id)
-    return None if op is None else op.to_dict()
+OperationOf = Callable[[str], dict[str, Any] | None]
 
 
-def vehicle_view(vehicle: Any, operations: Any, locks: Any) -> dict[str, Any]:
+def _no_operation(vehicle_id: str) -> None:
+    return None
+
+
+def _operation_of(gateway: Any) -> OperationOf:
+    """Each drone's latest operation: the Commander's (on a cluster node also the ones the owners of
+    the other drones publish); none while the gateway starts or stops."""
+    try:
+        reader: OperationOf = gateway.commander.current_operation
+    except GatewayError:
+        return _no_operation
+    return reader
+
+
+def vehicle_view(vehicle: Any, operation_of: OperationOf, locks: Any) -> dict[str, Any]:
     cache = vehicle.telemetry
     value = cache.fresh
     battery, battery_age, battery_stale = _sample(cache, "battery")
@@ -100,7 +112,7 @@ def vehicle_view(vehicle: Any, operations: Any, locks: Any) -> dict[str, Any]:
         "mission": None
         if progress is None
         else {"current": progress.current, "total": progress.total, "finished": progress.finished},
-        "operation": _operation(operations, vehicle.id),
+        "operation": operation_of(vehicle.id),
         "flight_id": vehicle.current_flight_id,
         "status_texts": [
             {"t": item.t, "severity": item.severity, "text": item.text}
@@ -119,7 +131,8 @@ def fleet_view(gateway: Any) -> dict[str, Any]:
     """The fleet now; ``vehicles`` sorted by id, ``origin`` the first known home (None before any)."""
     registry = gateway.registry
     vehicles = sorted(registry.all(), key=lambda v: v.id) if registry is not None else []
-    views = [vehicle_view(v, gateway.operations, gateway.locks) for v in vehicles]
+    operation_of = _operation_of(gateway)
+    views = [vehicle_view(v, operation_of, gateway.locks) for v in vehicles]
     origin = next(({"lat": v["home"]["lat"], "lon": v["home"]["lon"]} for v in views if v["home"]), None)
     return {
         "t": datetime.now(UTC).isoformat(),

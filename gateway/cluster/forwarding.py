@@ -58,13 +58,25 @@ class ClusterRouter:
         registry = self.node.registry
         return registry is not None and registry.is_local(drone_id)
 
-    def running(self, drone_id: str) -> RunningOperation | None:
+    def published(self, drone_id: str) -> dict[str, Any] | None:
+        """The latest operation of a drone owned elsewhere as its owner published it with its last
+        snapshot, aged by that snapshot's age; ended if this node has seen it end since."""
         registry = self.node.registry
         vehicle = None if registry is None else registry.find(drone_id)
         if not isinstance(vehicle, RemoteVehicle) or vehicle.operation is None:
             return None
-        op = vehicle.operation
-        if op.get("status") != "running" or op.get("id") in self._ended:
+        op = dict(vehicle.operation)
+        ended = self._ended.get(str(op.get("id")))
+        if ended is not None and op.get("status") == "running":
+            op["status"] = ended
+        elapsed, age = op.get("elapsed_s"), vehicle.snapshot_age_s
+        if isinstance(elapsed, int | float) and age is not None:
+            op["elapsed_s"] = round(elapsed + age, 1)
+        return op
+
+    def running(self, drone_id: str) -> RunningOperation | None:
+        op = self.published(drone_id)
+        if op is None or op.get("status") != "running":
             return None
         target = op.get("target_alt_m")
         return RunningOperation(

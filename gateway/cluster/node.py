@@ -303,6 +303,9 @@ class ClusterNode:
             "progress": round(float(op.progress), 3),
             "message": op.message,
             "target_alt_m": float(target) if isinstance(target, int | float) else None,
+            "eta_s": None if op.eta_s is None else round(op.eta_s, 1),
+            "elapsed_s": round(op.elapsed_s(), 1),
+            "params": op.params,
         }
 
     async def _on_snapshot(self, msg: Msg) -> None:

@@ -65,7 +65,7 @@ async def pick_up_operations(
         if index == 0 and ops is not None and tracker is not None:
             note = (
                 f"{lost} was lost while this {record.kind} ran; node {node_id} took {vehicle.id} over "
-                f"(lease epoch {epoch}) and follows it again"
+                f"(lease epoch {epoch}) and has tracked it since"
             )
             await ops.resume(record, vehicle, tracker, note)
             log.warning("%s: resumed %s %s after taking the drone over", vehicle.id, record.kind, record.id)

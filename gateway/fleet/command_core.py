@@ -219,6 +219,27 @@ class CommandCore:
     def operation(self, operation_id: str) -> OperationView:
         return self.view(self.operations.get(operation_id))
 
+    def current_operation(self, drone_id: str) -> dict[str, Any] | None:
+        """The drone's latest operation (running or finished) as ``Operation.to_dict`` gives it: this
+        node's own, or for a drone owned by another cluster node the one its owner published."""
+        if self.router is not None and not self.router.owns(drone_id):
+            published = self.router.published(drone_id)
+            if published is None:
+                return None
+            return {
+                "operation_id": str(published.get("id")),
+                "drone_id": drone_id,
+                "kind": str(published.get("kind")),
+                "status": str(published.get("status")),
+                "progress": published.get("progress"),
+                "message": published.get("message"),
+                "eta_s": published.get("eta_s"),
+                "elapsed_s": published.get("elapsed_s"),
+                "params": published.get("params") or {},
+            }
+        op = self.operations.latest(drone_id)
+        return None if op is None else op.to_dict()
+
     def latest_operation(self, drone_id: str) -> OperationView | None:
         """The drone's most recent operation, running or finished."""
         self.registry.get(drone_id)

@@ -94,6 +94,8 @@ class Operation:
     status: OpStatus = OpStatus.running
     progress: float = 0.0
     message: str = "command sent"
+    #: what every later message keeps saying (e.g. that another node took the operation over)
+    note: str | None = None
     eta_s: float | None = None
     updated_at: datetime | None = None
     finished_at: datetime | None = None
@@ -465,6 +467,7 @@ class OperationManager:
             created_at=record.created_at,
             progress=float(record.progress or 0.0),
             message=message,
+            note=message,
             updated_at=_now(),
         )
         previous = self.running(vehicle.id)
@@ -513,6 +516,7 @@ class OperationManager:
             self._monitors.pop(op.id, None)
 
     def _update(self, op: Operation, progress: float, message: str, eta_s: float | None) -> None:
+        message = _noted(op, message)
         if (progress, message) != (op.progress, op.message):
             op.progress = max(op.progress, progress) if op.kind != "set_yaw" else progress
             op.message = message
@@ -524,7 +528,7 @@ class OperationManager:
         if op.finished:
             return
         op.status = status
-        op.message = message
+        op.message = _noted(op, message)
         op.finished_at = op.updated_at = _now()
         if status is not OpStatus.succeeded:
             op.eta_s = None
@@ -561,6 +565,14 @@ class OperationManager:
             )
         except Exception:
             log.exception("could not save operation %s", op.id)
+
+
+def _noted(op: Operation, message: str) -> str:
+    """``message`` followed by the operation's note, so a tracker's progress or result never hides it
+    (a client monitoring a taken-over operation learns what happened to it)."""
+    if not op.note or op.note in message:
+        return message
+    return f"{message}; {op.note}"
 
 
 def _interruption(vehicle: FlyingVehicle) -> str | None:

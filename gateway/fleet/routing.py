@@ -45,6 +45,10 @@ class Router(Protocol):
     def running(self, drone_id: str) -> RunningOperation | None:
         """The running operation of a drone owned elsewhere, as its owner last published it."""
 
+    def published(self, drone_id: str) -> dict[str, Any] | None:
+        """The latest operation of a drone owned elsewhere, as its owner last published it (keys:
+        id, kind, status, progress, message, eta_s, elapsed_s, params); None when there is none."""
+
     async def call(
         self,
         drone_id: str,

@@ -251,15 +251,35 @@ async def test_lock_and_emergency_stop_from_node_b_reach_every_node_and_drone(cl
     await asyncio.gather(*(take_off(cl, cl.node(n), [d]) for n, d in flyers.items()))
     # each owner sends its drone on a long leg (wait=false: the operation runs on)
     targets: dict[str, tuple[float, float]] = {}
+    legs: dict[str, str] = {}
 
     async def leg(name: str, drone: str) -> None:
         truth = await cl.true_state(drone)
         targets[drone] = lat, lon = geo.offset_position(truth["lat"], truth["lon"], 800.0, 0.0)
         async with cl.node(name).client(name=f"leg-{name}") as mcp:
             goto = {"drone_id": drone, "lat_deg": lat, "lon_deg": lon, "alt_m": 10}
-            assert ok(await calls.tool(mcp, "go_to_location", {**goto, "wait": False}))["status"] == "running"
+            started = ok(await calls.tool(mcp, "go_to_location", {**goto, "wait": False}))
+            assert started["status"] == "running", started
+            legs[drone] = started["operation_id"]
 
     await asyncio.gather(*(leg(n, d) for n, d in flyers.items()))
+
+    # node A's reads show each drone's current action, wherever it is owned (its owner publishes it)
+    async def actions_on_node_a() -> tuple[Any, ...] | None:
+        async with cl.node("node-a").client(name="reader") as mcp:
+            rows = {r["drone_id"]: r for r in ok(await calls.tool(mcp, "list_drones", {}))["drones"]}
+            table = ok(await calls.tool(mcp, "fleet_status", {}))["table"].splitlines()
+            seen = {d: ok(await calls.tool(mcp, "get_telemetry", {"drone_id": d})) for d in flyers.values()}
+        if all(rows[d]["operation"] == "goto running" for d in flyers.values()):
+            return rows, table, seen
+        return None
+
+    _rows, table, seen = await eventually(actions_on_node_a, "every leg listed on node A", within_s=10)
+    for drone in flyers.values():
+        assert any(line.split()[0] == drone and line.split()[-2] == "goto" for line in table), table
+        operation = seen[drone]["operation"]
+        assert operation["operation_id"] == legs[drone] and operation["status"] == "running", operation
+        assert operation["kind"] == "goto" and operation["params"]["alt_m"] == 10, operation
 
     stop = await calls.post(cl.node("node-b"), "/fleet/stop", {"action": "hold"})
     assert stop["fleet_lock"]["scope"] == "*"
@@ -324,14 +344,15 @@ async def test_node_loss_with_drones_in_the_air_and_the_takeover(cl: Cluster) ->
     lost = cl.node("node-c")
     victims = by_owner(owners)["node-c"]
     await take_off(cl, lost, victims)
+    flights_before = {d: await cl.count_rows("flights", "vehicle_id = :v", v=d) for d in victims}
     mover = victims[0]
     truth = await cl.true_state(mover)
-    lat, lon = geo.offset_position(truth["lat"], truth["lon"], 0.0, 60.0)
+    # a leg long enough to be still flying when the node dies right after it started
+    lat, lon = geo.offset_position(truth["lat"], truth["lon"], 0.0, 200.0)
     async with lost.client(name="before-loss") as mcp:
         goto = {"drone_id": mover, "lat_deg": lat, "lon_deg": lon, "alt_m": 10, "wait": False}
         leg = ok(await calls.tool(mcp, "go_to_location", goto))
     assert leg["status"] == "running"
-    flights_before = {d: await cl.count_rows("flights", "vehicle_id = :v", v=d) for d in victims}
 
     lost.kill9()  # node loss: the gateway and its sidecars die at once
     survivors = [cl.node("node-a"), cl.node("node-b")]
@@ -356,13 +377,18 @@ async def test_node_loss_with_drones_in_the_air_and_the_takeover(cl: Cluster) ->
         assert v["telemetry"]["position"]["stale"] is False
     # the leg that was flying is followed again by its new owner, under the same operation id, and says so
     async with cl.node(new_owners[mover]).client(name="after-loss") as mcp:
-        monitored = ok(await calls.tool(mcp, "monitor_flight", {"drone_id": mover}))
+        answer = await calls.tool(mcp, "monitor_flight", {"drone_id": mover})
+    monitored, monitored_text = ok(answer), answer.content[0].text
     assert monitored["operation_id"] == leg["operation_id"], monitored
     assert monitored["status"] == "succeeded", monitored
+    # the client is told what happened, in the result and in the text it reads
+    honest = f"node node-c was lost while this goto ran; node {new_owners[mover]} took {mover} over"
+    assert honest in monitored["message"], monitored
+    assert honest in monitored_text, monitored_text
     truth = await cl.true_state(mover)
     assert geo.horizontal_distance_m(truth["lat"], truth["lon"], lat, lon) < 3.0
     rows = await cl.rows("SELECT status, message FROM operations WHERE id = :i", i=leg["operation_id"])
-    assert rows[0].status == "succeeded"
+    assert rows[0].status == "succeeded" and honest in rows[0].message, rows
     ops = (await survivors[0].get("/operations", vehicle_id=mover))["items"]
     assert not [o for o in ops if o["status"] == "running"], ops
     # no flight lost: the flight node C left open is closed, and the rest of it is a new flight

@@ -1,18 +1,25 @@
 """Leases on a real PostgreSQL: one owner per vehicle under races, renewal, expiry, takeover, release,
-fencing epochs, and the lease plan (fair shares, pinning by tag, handing over only idle vehicles)."""
+fencing epochs, the lease plan (fair shares, pinning by tag, handing over only idle vehicles), and a
+node's lease keeper (``ClusterNode.tick``) carrying out the pinning by tag on the database."""
 
 from __future__ import annotations
 
 import asyncio
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Iterable
 from datetime import UTC, datetime, timedelta
+from types import SimpleNamespace
+from typing import Any
 
 import pytest
 
 from gateway.cluster.keeper import Wanted, plan
 from gateway.cluster.leases import Lease, LeaseStore, NodeRecord
+from gateway.cluster.node import ClusterNode
+from gateway.config import Settings
+from gateway.fleet.safety import LockBook
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
+from tests.helpers.timing import eventually
 from tests.persist.pg import create_database
 
 
@@ -99,6 +106,102 @@ async def test_node_heartbeats_say_who_is_alive(pg_store: Store) -> None:
     assert nodes["a"].alive and nodes["a"].tags == ["site-n"] and not nodes["b"].alive
     await a.leave()
     assert not {n.node_id: n for n in await a.nodes()}["a"].alive
+
+
+# --- pinning by tag, as a node's lease keeper carries it out on the database --------------------------
+
+
+class GroundedDrone:
+    """A drone of this node, on the ground and idle (the keeper may hand it over to balance)."""
+
+    telemetry = SimpleNamespace(fresh=lambda name: None)
+
+    def on_ground(self, fresh: bool = True) -> bool:
+        return True
+
+
+class KeeperRegistry:
+    """What the lease keeper asks of its node's registry: which drones it runs (no sidecars here)."""
+
+    def __init__(self) -> None:
+        self.local: set[str] = set()
+
+    async def sync(self, records: Iterable[Any]) -> list[str]:
+        return []
+
+    def all(self) -> list[Any]:
+        return []
+
+    def is_local(self, vehicle_id: str) -> bool:
+        return vehicle_id in self.local
+
+    def get(self, vehicle_id: str) -> GroundedDrone:
+        return GroundedDrone()
+
+    async def adopt(self, vehicle_id: str) -> Any:
+        self.local.add(vehicle_id)
+        return SimpleNamespace(id=vehicle_id)
+
+    async def release(self, vehicle_id: str) -> None:
+        self.local.discard(vehicle_id)
+
+
+class SilentBus:
+    """No NATS: the keeper's calls and broadcasts go nowhere (the leases are all that is tested)."""
+
+    async def serve_calls(self, vehicle_id: str, handler: Any) -> Any:
+        return SimpleNamespace(unsubscribe=self.broadcast)
+
+    async def broadcast(self, *args: Any) -> None:
+        return None
+
+
+def keeper(store: Store, name: str, tags: str, ttl_s: float) -> ClusterNode:
+    """A cluster node of ``tags`` whose lease keeper runs on ``store``'s PostgreSQL database."""
+    settings = Settings(_env_file=None, cluster_nats_url="nats://127.0.0.1:4222", cluster_node_id=name,
+                        cluster_node_tags=tags, cluster_lease_ttl_s=ttl_s)  # fmt: skip
+    gateway = SimpleNamespace(settings=settings, store=store, require_store=lambda: store, operations=None,
+                              locks=LockBook(), ready=True)  # fmt: skip
+    node = ClusterNode(gateway)  # type: ignore[arg-type]
+    node.registry = KeeperRegistry()  # type: ignore[assignment]
+    node.bus = SilentBus()  # type: ignore[assignment]
+    node.leases = LeaseStore(store.engine, name, ttl_s)
+    return node
+
+
+async def leases_in(store: Store) -> dict[str, Lease]:
+    return await LeaseStore(store.engine, "reader", ttl_s=30).leases()
+
+
+async def test_a_drone_pinned_to_a_tag_is_owned_only_by_nodes_carrying_that_tag(pg_store: Store) -> None:
+    await pg_store.add_vehicle(VehicleSpec(id="pinned", url="tcpout://127.0.0.1:5770", node_tag="site-north"))
+    south = keeper(pg_store, "south", "site-south", ttl_s=30)
+    for _ in range(3):  # alone in the cluster, with room for every drone it may own
+        await south.tick()
+        assert "pinned" not in south.held and "pinned" not in south.last_plan.candidates
+    assert sorted(south.held) == [f"v{i}" for i in range(6)]
+    assert "pinned" not in await leases_in(pg_store)
+
+    north = keeper(pg_store, "north", "site-north,site-west", ttl_s=1)
+    await north.tick()
+    assert "pinned" in north.held
+    lease = (await leases_in(pg_store))["pinned"]
+    assert lease.node_id == "north" and lease.epoch == 1 and lease.live
+
+    # the north node is lost: its lease expires, and still the south node never takes the drone
+    async def expired() -> bool:
+        return not (await leases_in(pg_store))["pinned"].live
+
+    await eventually(expired, "the lost north node's lease on the pinned drone expired", within_s=10)
+    for _ in range(3):
+        await south.tick()
+        assert "pinned" not in south.held
+    assert (await leases_in(pg_store))["pinned"].node_id == "north"
+    # another node of the north site takes it over
+    relief = keeper(pg_store, "north-2", "site-north", ttl_s=30)
+    await relief.tick()
+    lease = (await leases_in(pg_store))["pinned"]
+    assert "pinned" in relief.held and lease.node_id == "north-2" and lease.epoch == 2 and lease.live
 
 
 def test_leases_refuse_sqlite() -> None:

@@ -15,6 +15,7 @@ import pytest
 import pytest_asyncio
 from mcp import Client
 
+from gateway.fleet import geo
 from tests.console.conftest import (
     AGENT_TOKEN,
     OPERATOR_TOKEN,
@@ -23,7 +24,7 @@ from tests.console.conftest import (
     screenshot,
     ui_timeout_ms,
 )
-from tests.helpers.timing import eventually
+from tests.helpers.timing import eventually, settled
 from tests.mcp.conftest import Stack, error_text, point_from, structured, wait_until_true
 
 pytestmark = pytest.mark.asyncio(loop_scope="module")
@@ -308,6 +309,92 @@ async def test_lock_button_makes_the_next_mcp_takeoff_refused(console_stack: Sta
         await unlock_all(console_stack)
 
 
+async def rest_position(stack: Stack, drone: str) -> dict[str, Any]:
+    """Where the gateway says the drone is (GET /api/v1/vehicles/{id}: its telemetry cache)."""
+    return (await stack.rest(f"/vehicles/{drone}"))["telemetry"]["position"]
+
+
+def apart_m(a: dict[str, Any], b: dict[str, Any]) -> float:
+    """Horizontal metres between two positions given as lat_deg/lon_deg."""
+    return geo.horizontal_distance_m(a["lat_deg"], a["lon_deg"], b["lat_deg"], b["lon_deg"])
+
+
+async def newest_operation(stack: Stack, drone: str, kind: str) -> dict[str, Any] | None:
+    items = (await stack.rest("/operations", vehicle_id=drone, limit=10))["items"]
+    return next((op for op in items if op["kind"] == kind), None)
+
+
+async def test_hold_and_land_buttons_act_on_their_drone_and_are_audited_as_the_console(
+    console_stack: Stack, context: Any
+) -> None:
+    stack = console_stack
+    page = (await open_console(context, stack, OPERATOR_TOKEN)).page
+    async with agent(stack, "button-target") as client:
+        await ensure_airborne(stack, client, "d1", 12.0)
+        await ensure_airborne(stack, client, "d2", 10.0)
+        # Hold on d2: the dialog is open before d2 sets off, so the click lands while it flies its leg
+        await page.locator(".fleet-table tr[data-drone=d2]").click()
+        await page.locator(".detail[data-drone=d2] button.act-hold").click()
+        dialog = page.locator("dialog[data-kind=drone-action]")
+        await expect(dialog).to_contain_text('Send "hold" to d2 now?')
+        slow = {"drone_id": "d2", "speed_mps": 3.0}  # a leg that lasts seconds
+        structured(await client.call_tool("set_max_speed", slow))
+        lat, lon = point_from((await stack.true_state("d2"))["home"], -60.0, 120.0)
+        start = await rest_position(stack, "d2")
+        goto = {"drone_id": "d2", "lat_deg": lat, "lon_deg": lon, "alt_m": 10, "wait": False}
+        leg = structured(await client.call_tool("go_to_location", goto))
+        assert leg["status"] == "running", leg
+
+        async def under_way() -> bool:
+            return apart_m(await rest_position(stack, "d2"), start) > 5.0
+
+        await eventually(under_way, "d2 under way on its leg", within_s=30)
+        await dialog.locator("button.confirm-button").click()
+        await expect(page.locator(".notice", has_text="Hold sent to d2")).to_be_visible(
+            timeout=ui_timeout_ms()
+        )
+
+        async def leg_ended() -> str | None:
+            op = await newest_operation(stack, "d2", "goto")
+            ended = op is not None and op["id"] == leg["operation_id"] and op["status"] != "running"
+            return op["status"] if ended and op is not None else None
+
+        assert await eventually(leg_ended, "d2's leg ended by the hold") == "superseded"
+        held = await settled(
+            lambda: rest_position(stack, "d2"),
+            lambda a, b: apart_m(a, b) < 0.5,
+            "d2 holding where it was",
+        )
+        assert apart_m(held, {"lat_deg": lat, "lon_deg": lon}) > 30.0, held
+        assert held["rel_alt_m"] > 8.0, held  # held in the air, not landed
+
+    # Land on d1: it comes down where it is and disarms (its operation, as REST reports it)
+    await page.locator(".fleet-table tr[data-drone=d1]").click()
+    await page.locator(".detail[data-drone=d1] button.act-land").click()
+    dialog = page.locator("dialog[data-kind=drone-action]")
+    await expect(dialog).to_contain_text('Send "land" to d1 now?')
+    above = await rest_position(stack, "d1")
+    await dialog.locator("button.confirm-button").click()
+    await expect(page.locator(".notice", has_text="Land sent to d1")).to_be_visible(timeout=ui_timeout_ms())
+
+    async def landed_and_disarmed() -> dict[str, Any] | None:
+        op = await newest_operation(stack, "d1", "land")
+        return op if op and op["status"] == "succeeded" else None
+
+    await eventually(landed_and_disarmed, "d1's landing succeeded (landed and disarmed)", within_s=90)
+    telemetry = (await stack.rest("/vehicles/d1"))["telemetry"]
+    assert telemetry["armed"]["value"] is False and telemetry["position"]["rel_alt_m"] < 1.0, telemetry
+    assert apart_m(telemetry["position"], above) < 3.0, (above, telemetry["position"])
+    assert (await stack.true_state("d2"))["armed"]  # the other drone still holds in the air
+    # each click is one REST call audited as the console's, with the operator's principal
+    for drone, action in (("d2", "rest.hold_vehicle"), ("d1", "rest.land_vehicle")):
+        rows = [r for r in (await stack.rest("/audit", vehicle_id=drone))["items"] if r["action"] == action]
+        assert len(rows) == 1 and rows[0]["outcome"] == "ok", rows
+        assert rows[0]["source"] == "console" and rows[0]["principal"], rows
+        assert OPERATOR_TOKEN not in str(rows[0])
+    await expect(audit_row(page, "rest.land_vehicle", "ok").first).to_contain_text("console")
+
+
 async def test_emergency_stop_lands_the_fleet(console_stack: Stack, context: Any) -> None:
     page = (await open_console(context, console_stack, OPERATOR_TOKEN)).page
     fleet = ("d1", "d2", "d3")
@@ -392,7 +479,11 @@ async def test_replay_of_a_past_flight_shows_its_track_texts_and_calls(
     assert last_index >= 3
     await slider.fill(str(last_index))
     await expect(panel.locator(".timeline li.past").last).to_be_visible()
-    last = await page.evaluate("() => window.fleetMap.replayMarker.getLatLng()")
-    assert (first["lat"], first["lng"]) != (last["lat"], last["lng"])
+
+    async def marker_moved() -> dict[str, float] | None:  # the map follows the slider after a frame
+        here = await page.evaluate("() => window.fleetMap.replayMarker.getLatLng()")
+        return here if (here["lat"], here["lng"]) != (first["lat"], first["lng"]) else None
+
+    await eventually(marker_moved, "the replay marker at the flight's last sample", within_s=10)
     await slider.fill(str(last_index // 2))
     await screenshot(page, "replay")

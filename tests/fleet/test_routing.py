@@ -44,6 +44,9 @@ class Loopback:
     def running(self, drone_id: str) -> RunningOperation | None:
         return None
 
+    def published(self, drone_id: str) -> dict[str, Any] | None:
+        return None
+
     async def call(
         self,
         drone_id: str,

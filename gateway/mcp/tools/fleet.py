@@ -129,7 +129,7 @@ def _row(call: ToolCall, v: FlyingVehicle) -> DroneRow:
     battery = value(v, "battery")
     sample = v.telemetry.position
     stale = sample is None or float(sample.age_s) > call.settings.link_lost_after_s
-    op = call.commander.operations.running(v.id)
+    op = call.commander.current_operation(v.id)  # on a cluster node also a drone owned elsewhere
     mode = value(v, "flight_mode")
     return DroneRow(
         drone_id=v.id,
@@ -143,7 +143,7 @@ def _row(call: ToolCall, v: FlyingVehicle) -> DroneRow:
         lon_deg=None if pos is None else round(pos[1], 7),
         alt_m=None if pos is None else round(pos[2], 1),
         flight_mode=None if mode is None else str(plain(mode)),
-        operation=None if op is None else f"{op.kind} {op.status.value}",
+        operation=None if op is None or op["status"] != "running" else f"{op['kind']} running",
         locked=call.commander.locks.reason_for(v.id),
         stale=stale,
         initialising=v.initialising(),

@@ -231,7 +231,7 @@ async def get_telemetry(call: ToolCall, drone_id: DroneId) -> SnapshotOut:
     """Everything at once: all telemetry with each part's age_s, plus the current action."""
     v = call.commander.vehicle(drone_id)
     snap = surface_telemetry(plain(v.telemetry.snapshot()))
-    op = call.commander.operations.latest(drone_id)
+    op = call.commander.current_operation(drone_id)  # on a cluster node also a drone owned elsewhere
     state = str(plain(v.state))
     pos = snap.get("position") if isinstance(snap, dict) else None
     where = ""
@@ -239,7 +239,7 @@ async def get_telemetry(call: ToolCall, drone_id: DroneId) -> SnapshotOut:
         inner = pos.get("value", pos)
         if isinstance(inner, dict) and inner.get("alt_m") is not None:
             where = f", {inner['alt_m']:.1f} m above home"
-    doing = f", {op.kind} {op.status.value}" if op is not None else ""
-    return SnapshotOut(
-        drone_id=drone_id, state=state, telemetry=snap, operation=None if op is None else op.to_dict()
-    ).say(f"{drone_id} {state}{where}{doing}")
+    doing = f", {op['kind']} {op['status']}" if op is not None else ""
+    return SnapshotOut(drone_id=drone_id, state=state, telemetry=snap, operation=op).say(
+        f"{drone_id} {state}{where}{doing}"
+    )

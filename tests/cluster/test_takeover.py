@@ -1,0 +1,92 @@
+"""What a node does with the operations a lost node left running (gateway.cluster.takeover), on the real
+Gateway (store, operations, Commander) over a fake drone: the newest one it can follow is tracked again
+under the same id and keeps saying what happened until it ends; every other one is recorded as
+interrupted, saying so."""
+
+from __future__ import annotations
+
+from collections.abc import AsyncIterator
+from datetime import timedelta
+from pathlib import Path
+
+import pytest
+
+from gateway.cluster.takeover import pick_up_operations
+from gateway.fleet import geo
+from gateway.fleet.caller import Caller
+from gateway.registry.records import OperationRecord, utcnow
+from gateway.runtime import Gateway
+from tests.fakes import HOME, fake, fake_gateway, position_value, spread, unit_settings
+from tests.helpers.timing import eventually
+
+AGENT = Caller(via="mcp", principal="agent-1", session="s1")
+LOST = "node node-c was lost while this"
+
+
+@pytest.fixture
+async def gateway(tmp_path: Path) -> AsyncIterator[Gateway]:
+    async with fake_gateway(unit_settings(tmp_path, mcp_wait_cap_s=10.0), spread(1)) as gw:
+        drone = fake(gw, "d1")
+        drone.set(armed=True, in_air=True, landed_state="IN_AIR", flight_mode="GUIDED",
+                  position=position_value(HOME[0], HOME[1], 10.0))  # fmt: skip
+        yield gw
+
+
+async def left_running(gateway: Gateway, op_id: str, kind: str, age_s: float, **params: float) -> None:
+    """An operation the lost node wrote as running ``age_s`` ago and never finished."""
+    at = utcnow() - timedelta(seconds=age_s)
+    record = OperationRecord(id=op_id, vehicle_id="d1", kind=kind, params=params, status="running",
+                             progress=0.3, message="command sent", session_key="s1", created_at=at,
+                             updated_at=at)  # fmt: skip
+    await gateway.require_store().save_operation(record)
+
+
+async def test_a_taken_over_goto_says_its_node_was_lost_until_it_ends_and_an_older_one_is_interrupted(
+    gateway: Gateway,
+) -> None:
+    store = gateway.require_store()
+    lat, lon = geo.offset_position(HOME[0], HOME[1], 30.0, 0.0)
+    await left_running(gateway, "older-takeoff", "takeoff", 20.0, alt_m=10.0)
+    await left_running(gateway, "newer-goto", "goto", 5.0, lat_deg=lat, lon_deg=lon, alt_m=10.0)
+    vehicle = gateway.require_registry().get("d1")
+
+    assert await pick_up_operations(gateway, "node-a", vehicle, 2, "node-c") == 2
+
+    # the older one: interrupted, and the record says why and what the drone does now
+    older = await store.get_operation("older-takeoff")
+    assert older is not None and older.status == "interrupted" and older.finished_at is not None
+    assert older.message is not None
+    assert older.message.startswith(f"{LOST} takeoff ran; node node-a took d1 over"), older.message
+    assert "(a newer operation was running)" in older.message
+    assert "keeps flying its last command on its own" in older.message
+    # the newer one: followed again under its id; its progress messages keep the note
+    ops = gateway.commander.operations
+    resumed = ops.get("newer-goto")
+    note = f"{LOST} goto ran; node node-a took d1 over (lease epoch 2) and has tracked it since"
+
+    async def tracked() -> str | None:
+        return resumed.message if "m to go" in resumed.message else None
+
+    assert (await eventually(tracked, "a progress message of the resumed goto", within_s=10)).endswith(note)
+    # the drone arrives on its own (it flew its last command): what monitor_flight answers says it all
+    fake(gateway, "d1").set(position=position_value(lat, lon, 10.0))
+    view = await gateway.commander.monitor(AGENT, "d1")
+    assert view.operation_id == "newer-goto" and view.status == "succeeded", view
+    assert view.message.startswith("arrived (") and view.message.endswith(note), view.message
+    stored = await store.get_operation("newer-goto")
+    assert stored is not None and stored.status == "succeeded" and stored.message == view.message
+
+
+async def test_an_operation_that_cannot_be_followed_again_is_interrupted_saying_so(gateway: Gateway) -> None:
+    await left_running(gateway, "no-target", "goto", 5.0, alt_m=10.0)  # its stored target is incomplete
+    vehicle = gateway.require_registry().get("d1")
+
+    assert await pick_up_operations(gateway, "node-b", vehicle, 3, "node-c") == 1
+
+    record = await gateway.require_store().get_operation("no-target")
+    assert record is not None and record.status == "interrupted", record
+    assert record.message == (
+        f"{LOST} goto ran; node node-b took d1 over and stopped tracking it (it cannot be followed again); "
+        "the drone keeps flying its last command on its own: check get_telemetry before the next command"
+    )
+    assert gateway.commander.operations.latest("d1") is None  # nothing is tracked on this node
