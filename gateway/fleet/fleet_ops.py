@@ -342,6 +342,8 @@ def _passes_near(
 # ------------------------------------------------------------------------------------------------
 
 Listener = Callable[["FleetOperation"], None]
+Ended = Callable[["FleetOperation"], Awaitable[None]]
+"""Told once when a fleet operation has ended (e.g. to finish the audit rows of the calls it outlived)."""
 
 
 class FleetOperations:
@@ -352,15 +354,19 @@ class FleetOperations:
         operations: OperationManager,
         alive: Callable[[], bool] | None = None,
         router: Router | None = None,
+        on_ended: Ended | None = None,
     ) -> None:
         """``alive`` tells a running fleet operation the gateway still runs (else it is interrupted);
-        ``router`` (a cluster node) runs the steps of drones owned by other nodes on their owners."""
+        ``router`` (a cluster node) runs the steps of drones owned by other nodes on their owners;
+        ``on_ended`` is awaited (in a task of its own) once each fleet operation has ended."""
         self.operations = operations
         self._alive = alive or (lambda: True)
         self.router = router
+        self._on_ended = on_ended
         self._ops: dict[str, FleetOperation] = {}
         self._tasks: dict[str, asyncio.Task[None]] = {}
         self._followers: set[asyncio.Task[None]] = set()
+        self._enders: set[asyncio.Task[None]] = set()
         self.listeners: list[Listener] = []
 
     # -- queries -------------------------------------------------------------------------------
@@ -460,6 +466,9 @@ class FleetOperations:
         for task in tasks:
             with contextlib.suppress(asyncio.CancelledError, Exception):
                 await task
+        for ender in list(self._enders):  # let the last outcomes be recorded before the store closes
+            with contextlib.suppress(asyncio.CancelledError, Exception):
+                await ender
 
     # -- steps of drones another cluster node owns ------------------------------------------------------
     def _elsewhere(self, drone_id: str) -> Router | None:
@@ -685,6 +694,17 @@ class FleetOperations:
         if task is not None and task is not asyncio.current_task():
             task.cancel()
         self._notify(fop)
+        if self._on_ended is not None:
+            ender = asyncio.create_task(self._ended(fop), name=f"fleet-ended-{fop.id}")
+            self._enders.add(ender)
+            ender.add_done_callback(self._enders.discard)
+
+    async def _ended(self, fop: FleetOperation) -> None:
+        assert self._on_ended is not None
+        try:
+            await self._on_ended(fop)
+        except Exception:  # recording an outcome must never touch the fleet
+            log.exception("recording the end of fleet operation %s failed", fop.id)
 
     def _changed(self, fop: FleetOperation, message: str, notify: bool = False) -> None:
         fop.message = message
