@@ -792,8 +792,8 @@ def build_step(vehicle: FlyingVehicle, spec: Mapping[str, Any], precheck: Preche
     """One drone's step from its JSON description (the node owning the drone rebuilds it from the same):
 
     - ``{"send": "goto", "lat", "lon", "alt_m", "tolerance_m", "kind", "phase"?}``: a tracked goto;
-    - ``{"send": "takeoff", "alt_m"}``, ``{"send": "land"}``, ``{"send": "rtl", "alt_m"}`` (return at
-      that altitude above home);
+    - ``{"send": "takeoff", "alt_m", "arm_within_s"?}`` (how long arming may wait), ``{"send": "land"}``,
+      ``{"send": "rtl", "alt_m"}`` (return at that altitude above home);
 
     each with an optional ``timeout_s`` and ``guard`` (the action named by the takeoff guard that
     ``precheck`` runs inside the drone's command lock)."""
@@ -811,10 +811,11 @@ def build_step(vehicle: FlyingVehicle, spec: Mapping[str, Any], precheck: Preche
         return Step(vehicle, tracker, _goto(vehicle, lat, lon, alt), params, timeout_s, bound, dict(spec))
     if send == "takeoff":
         alt = float(spec["alt_m"])
+        arm_within = spec.get("arm_within_s")
         return Step(
             vehicle,
             TakeoffTracker(alt),
-            _takeoff(vehicle, alt),
+            _takeoff(vehicle, alt, None if arm_within is None else float(arm_within)),
             {"alt_m": alt},
             timeout_s,
             bound,
@@ -876,14 +877,19 @@ def slot_summaries(plan: FormationPlan) -> dict[str, dict[str, Any]]:
 
 
 def takeoff_phase(
-    vehicles: Mapping[str, FlyingVehicle], altitudes: Mapping[str, float], precheck: Precheck | None = None
+    vehicles: Mapping[str, FlyingVehicle],
+    altitudes: Mapping[str, float],
+    precheck: Precheck | None = None,
+    arm_within_s: float | None = None,
 ) -> Phase:
+    """Every drone takes off to its altitude; ``arm_within_s`` bounds each drone's wait to arm."""
     steps = {
         d: build_step(
             v,
             {
                 "send": "takeoff",
                 "alt_m": altitudes[d],
+                "arm_within_s": arm_within_s,
                 "timeout_s": step_timeout_s(altitudes[d], slowest_mps=0.5),
                 "guard": None if precheck is None else "fleet_takeoff",
             },
@@ -936,8 +942,10 @@ def _goto(vehicle: FlyingVehicle, lat: float, lon: float, alt: float) -> Send:
     return lambda: vehicle.goto(lat, lon, alt)
 
 
-def _takeoff(vehicle: FlyingVehicle, alt: float) -> Send:
-    return lambda: vehicle.takeoff(alt)
+def _takeoff(vehicle: FlyingVehicle, alt: float, arm_within_s: float | None) -> Send:
+    if arm_within_s is None:
+        return lambda: vehicle.takeoff(alt)
+    return lambda: vehicle.takeoff(alt, arm_within_s)
 
 
 def _rtl(
