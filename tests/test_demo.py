@@ -70,6 +70,9 @@ async def test_demo_serves_three_ready_drones_over_mcp_and_stops_cleanly(process
     mcp_url = f"http://127.0.0.1:{port}/mcp"
     assert f"MCP endpoint (Streamable HTTP): {mcp_url}" in text
     assert f"claude mcp add --transport http fleet-gateway {mcp_url}" in text
+    # what a person reads up to the banner is the demo's own lines: no log records (they go to its log)
+    noise = [line for line in lines if "HTTP Request" in line or " INFO " in line or line.startswith("INFO")]
+    assert not noise, "log lines before the banner:\n" + "".join(noise)
 
     async with McpLink(mcp_url) as link:
         outcome = await link.call_tool("list_drones", {})
