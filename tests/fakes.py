@@ -41,6 +41,7 @@ from gateway.link.telemetry import (
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from gateway.runtime import Gateway
+from tests.helpers.timing import scaled
 
 HOME = (47.397742, 8.545594, 488.0)
 STREAM_S = 0.2
@@ -222,7 +223,7 @@ class FakeVehicle:
             )
         self.log.append((time.monotonic(), name, args))
         if self.barrier is not None:
-            await asyncio.wait_for(self.barrier.wait(), 5.0)
+            await asyncio.wait_for(self.barrier.wait(), scaled(5.0))
         if self.latency_s:
             await asyncio.sleep(self.latency_s)
         if name in self.fail:

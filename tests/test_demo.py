@@ -12,6 +12,7 @@ from pathlib import Path
 
 from gateway.agent.mcp_link import McpLink
 from gateway.util.ports import free_tcp_port
+from tests.helpers.timing import scaled
 
 
 def _children_of(pid: int) -> set[int]:
@@ -34,7 +35,7 @@ def _children_of(pid: int) -> set[int]:
 
 async def _read_until(proc: subprocess.Popen, marker: str, timeout_s: float) -> list[str]:
     lines: list[str] = []
-    deadline = time.monotonic() + timeout_s
+    deadline = time.monotonic() + scaled(timeout_s)
     assert proc.stdout is not None
     while time.monotonic() < deadline:
         line = await asyncio.to_thread(proc.stdout.readline)
@@ -84,7 +85,7 @@ async def test_demo_serves_three_ready_drones_over_mcp_and_stops_cleanly(process
     helpers = _children_of(proc.pid)
     assert helpers, "the demo runs its simulator and gateway as child processes"
     proc.send_signal(signal.SIGINT)
-    assert await asyncio.to_thread(proc.wait, 60) == 0
+    assert await asyncio.to_thread(proc.wait, scaled(60)) == 0
     rest = proc.stdout.read() if proc.stdout else ""
     assert "stopped" in rest
     still_alive = _alive(helpers)
