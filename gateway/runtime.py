@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 from gateway.config import Settings
 from gateway.errors import GatewayError
 from gateway.fleet.commander import Commander
-from gateway.fleet.fleet_ops import FleetOperations
+from gateway.fleet.fleet_ops import FleetOperation, FleetOperations
 from gateway.fleet.operations import OperationManager
 from gateway.fleet.protocols import VehicleRegistry
 from gateway.fleet.safety import LockBook, SafetyPolicy
@@ -117,8 +117,14 @@ class Gateway:
                     log.info("%d operation(s) of the previous process recorded as interrupted", interrupted)
                 self.registry = self._registry_factory(self.settings, self.store)
             router = None if self.cluster is None else self.cluster.router
+            store = self.store
+
+            async def fleet_ended(fop: FleetOperation) -> None:
+                # calls that returned while it ran (wait:false, a capped wait) end with its outcome
+                await store.finish_audit_of(fop.id, fop.status, fop.message)
+
             self.fleet_operations = FleetOperations(
-                self.operations, alive=lambda: self._registry_started, router=router
+                self.operations, alive=lambda: self._registry_started, router=router, on_ended=fleet_ended
             )
             self._commander = Commander(
                 self.settings,

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from gateway.registry.store import Store
-from tests.helpers.timing import TIME_SCALE
+from tests.helpers.timing import TIME_SCALE, scaled
 
 
 def pytest_report_header(config: pytest.Config) -> str:
@@ -40,13 +40,13 @@ def process_reaper() -> Iterator[list[subprocess.Popen]]:
                 pass
     for proc in procs:
         try:
-            proc.wait(timeout=5)
+            proc.wait(timeout=scaled(5))
         except subprocess.TimeoutExpired:
             try:
                 os.killpg(proc.pid, signal.SIGKILL) if _own_group(proc) else proc.kill()
             except ProcessLookupError:
                 pass
-            proc.wait(timeout=5)
+            proc.wait(timeout=scaled(5))
 
 
 def _own_group(proc: subprocess.Popen) -> bool:

@@ -25,7 +25,7 @@ from gateway.fleet import geo
 from gateway.fleet.dialects import ARDUPILOT
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice, require_mode
-from gateway.fleet.protocols import FlyingVehicle, VehicleRegistry
+from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleRegistry
 from gateway.fleet.vehicle import ConnectionState
 from gateway.link.telemetry import (
     AttitudeValue,
@@ -41,6 +41,7 @@ from gateway.link.telemetry import (
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from gateway.runtime import Gateway
+from tests.helpers.timing import scaled
 
 HOME = (47.397742, 8.545594, 488.0)
 STREAM_S = 0.2
@@ -133,8 +134,12 @@ class FakeVehicle:
     def initialising(self) -> str | None:
         return None
 
-    async def wait_initialised(self) -> None:
+    async def wait_initialised(self, within_s: float = 60.0, notify: Notify | None = None) -> bool:
+        waiting = self.initialising()  # a fake is ready at once; a test may make it say what it waits for
+        if waiting is not None and notify is not None:
+            await notify(f"{self.id}: {waiting}")
         self.require_ready()
+        return True
 
     def resolve_mode(self, name: str) -> ModeChoice:
         return require_mode(name, ARDUPILOT, self.id)
@@ -218,7 +223,7 @@ class FakeVehicle:
             )
         self.log.append((time.monotonic(), name, args))
         if self.barrier is not None:
-            await asyncio.wait_for(self.barrier.wait(), 5.0)
+            await asyncio.wait_for(self.barrier.wait(), scaled(5.0))
         if self.latency_s:
             await asyncio.sleep(self.latency_s)
         if name in self.fail:
@@ -226,7 +231,7 @@ class FakeVehicle:
         self.sent.append((name, *args))
 
     # --- actions (FlyingVehicle) -------------------------------------------------------------------------
-    async def arm(self) -> None:
+    async def arm(self, within_s: float = 60.0, notify: Notify | None = None) -> None:
         await self._command("arm")
         self.set(armed=True, flight_mode="GUIDED")
 
@@ -240,7 +245,7 @@ class FakeVehicle:
             self._flight.cancel()
         self.set(armed=False, in_air=False, position=position_value(*self.pos()[:2], 0.0))
 
-    async def takeoff(self, alt_rel_m: float) -> None:
+    async def takeoff(self, alt_rel_m: float, within_s: float = 60.0, notify: Notify | None = None) -> None:
         await asyncio.sleep(self.arm_delay_s)  # arming takes a while on a real vehicle
         await self._command("takeoff", alt_rel_m)
         self.set(armed=True, in_air=True, flight_mode="GUIDED")

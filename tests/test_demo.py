@@ -12,6 +12,7 @@ from pathlib import Path
 
 from gateway.agent.mcp_link import McpLink
 from gateway.util.ports import free_tcp_port
+from tests.helpers.timing import scaled
 
 
 def _children_of(pid: int) -> set[int]:
@@ -34,7 +35,7 @@ def _children_of(pid: int) -> set[int]:
 
 async def _read_until(proc: subprocess.Popen, marker: str, timeout_s: float) -> list[str]:
     lines: list[str] = []
-    deadline = time.monotonic() + timeout_s
+    deadline = time.monotonic() + scaled(timeout_s)
     assert proc.stdout is not None
     while time.monotonic() < deadline:
         line = await asyncio.to_thread(proc.stdout.readline)
@@ -70,6 +71,9 @@ async def test_demo_serves_three_ready_drones_over_mcp_and_stops_cleanly(process
     mcp_url = f"http://127.0.0.1:{port}/mcp"
     assert f"MCP endpoint (Streamable HTTP): {mcp_url}" in text
     assert f"claude mcp add --transport http fleet-gateway {mcp_url}" in text
+    # what a person reads up to the banner is the demo's own lines: no log records (they go to its log)
+    noise = [line for line in lines if "HTTP Request" in line or " INFO " in line or line.startswith("INFO")]
+    assert not noise, "log lines before the banner:\n" + "".join(noise)
 
     async with McpLink(mcp_url) as link:
         outcome = await link.call_tool("list_drones", {})
@@ -81,7 +85,7 @@ async def test_demo_serves_three_ready_drones_over_mcp_and_stops_cleanly(process
     helpers = _children_of(proc.pid)
     assert helpers, "the demo runs its simulator and gateway as child processes"
     proc.send_signal(signal.SIGINT)
-    assert await asyncio.to_thread(proc.wait, 60) == 0
+    assert await asyncio.to_thread(proc.wait, scaled(60)) == 0
     rest = proc.stdout.read() if proc.stdout else ""
     assert "stopped" in rest
     still_alive = _alive(helpers)

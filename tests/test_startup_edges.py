@@ -15,6 +15,7 @@ import pytest
 from gateway.app import create_app
 from gateway.config import Settings
 from gateway.util.ports import free_tcp_port
+from tests.helpers.timing import scaled
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -26,7 +27,7 @@ def fleet_gateway(
     environment.pop("GATEWAY_DATABASE_URL", None)
     return subprocess.run(
         [sys.executable, "-m", "gateway.cli", *args],
-        cwd=cwd, env=environment, capture_output=True, text=True, timeout=120,
+        cwd=cwd, env=environment, capture_output=True, text=True, timeout=scaled(120),
     )  # fmt: skip
 
 

@@ -8,6 +8,7 @@ commands go to the owner before they reach a vehicle (`gateway.cluster.forwardin
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import time
 from collections.abc import Sequence
 from typing import Any
@@ -18,6 +19,7 @@ from gateway.fleet.dialects import Dialect, dialect_named
 from gateway.fleet.dialects import protected_params as every_protected_param
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice, require_mode
+from gateway.fleet.protocols import Notify
 from gateway.fleet.vehicle import ConnectionState
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
@@ -196,13 +198,20 @@ class RemoteVehicle:
             await asyncio.sleep(0.1)
         return state
 
-    async def wait_initialised(self, within_s: float = 60.0) -> None:
-        if self.state == ConnectionState.CONNECTED and self.initialising() is not None:
+    async def wait_initialised(self, within_s: float = 60.0, notify: Notify | None = None) -> bool:
+        """Wait, as its owner publishes it, for a drone still initialising; then require_ready (whether
+        an arming attempt may be made anyway is for the owner to judge)."""
+        waiting = self.initialising()
+        if self.state == ConnectionState.CONNECTED and waiting is not None:
+            if notify is not None:
+                with contextlib.suppress(Exception):
+                    await notify(f"{self.id}: {waiting}")
             try:
                 await self.wait_for_state(ConnectionState.READY, within_s=within_s)
             except VehicleNotReady:
                 pass
         self.require_ready()
+        return True
 
     # --- lifecycle: the owner's business ------------------------------------------------------------
     async def connect(self) -> None:
@@ -246,7 +255,7 @@ class RemoteVehicle:
     def protected_params(self) -> tuple[str, ...]:
         return every_protected_param() if self.autopilot is None else self.dialect.protected_params
 
-    async def arm(self) -> None:
+    async def arm(self, within_s: float = 60.0, notify: Notify | None = None) -> None:
         raise self._elsewhere("arm")
 
     async def disarm(self) -> None:
@@ -255,7 +264,7 @@ class RemoteVehicle:
     async def kill(self) -> None:
         raise self._elsewhere("kill")
 
-    async def takeoff(self, alt_rel_m: float) -> None:
+    async def takeoff(self, alt_rel_m: float, within_s: float = 60.0, notify: Notify | None = None) -> None:
         raise self._elsewhere("takeoff")
 
     async def goto(self, lat: float, lon: float, alt_rel_m: float, yaw_deg: float | None = None) -> None:

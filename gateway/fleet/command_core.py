@@ -5,7 +5,7 @@ follows and for the cluster seam)."""
 
 from __future__ import annotations
 
-import contextlib
+import asyncio
 import functools
 import logging
 from collections.abc import Awaitable, Callable
@@ -19,7 +19,7 @@ from gateway.fleet import geo
 from gateway.fleet.caller import Caller
 from gateway.fleet.fleet_ops import FleetOperations
 from gateway.fleet.operations import Operation, OperationManager, Tracker
-from gateway.fleet.protocols import FlyingVehicle, VehicleDirectory
+from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleDirectory
 from gateway.fleet.readings import vehicle_context
 from gateway.fleet.routing import FORWARDED, Router, Verb
 from gateway.fleet.safety import LockBook, RunningOperation, SafetyPolicy, VehicleContext
@@ -30,8 +30,6 @@ log = logging.getLogger(__name__)
 
 AltFrame = Literal["home", "amsl"]
 OnProgress = Callable[[OperationView], Awaitable[None]]
-Notify = Callable[[str], Awaitable[None]]
-"""Told, in words, what a command waits for before it can be sent (e.g. a drone still initialising)."""
 
 NAV_KINDS = ("goto", "reposition", "move_to_relative")
 RECOVERY_KINDS = ("land", "return_to_launch")
@@ -182,12 +180,20 @@ class CommandCore:
             )
         return relative
 
-    async def _wait_initialised(self, vehicle: FlyingVehicle, notify: Notify | None) -> None:
-        waiting = vehicle.initialising()
-        if waiting is not None and notify is not None:
-            with contextlib.suppress(Exception):  # a courtesy; the wait happens regardless
-                await notify(f"{vehicle.id}: {waiting}")
-        await vehicle.wait_initialised()
+    def _arming_deadline(self) -> float:
+        """When a command that arms (arm, takeoff, fleet takeoff) stops waiting for its drones to be
+        able to arm: one deadline, the MCP wait cap from now, for initialising and arming together."""
+        return asyncio.get_running_loop().time() + self.settings.mcp_wait_cap_s
+
+    @staticmethod
+    def _left(deadline: float) -> float:
+        return max(0.0, deadline - asyncio.get_running_loop().time())
+
+    async def _wait_initialised(self, vehicle: FlyingVehicle, notify: Notify | None, deadline: float) -> None:
+        """Wait until ``deadline`` for a drone still initialising, ``notify`` hearing what it waits for.
+        A drone that is still initialising then is left to its arming attempt, whose refusal says why
+        in the autopilot's words; one in no state to arm raises VehicleNotReady naming why."""
+        await vehicle.wait_initialised(self._left(deadline), notify)
 
     # ------------------------------------------------------------------------------------------------
     # operations

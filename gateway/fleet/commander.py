@@ -38,9 +38,9 @@ from typing import Any
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.caller import Caller
-from gateway.fleet.command_core import Notify
 from gateway.fleet.fleet_verbs import FleetVerbs
 from gateway.fleet.ids import canonical_arguments, canonical_drone_id
+from gateway.fleet.protocols import Notify
 from gateway.fleet.routing import Verb
 
 

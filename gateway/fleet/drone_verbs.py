@@ -17,7 +17,7 @@ from collections.abc import Sequence
 from gateway.errors import InvalidArgument, NotFound, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
-from gateway.fleet.command_core import NAV_KINDS, AltFrame, CommandCore, Notify, OnProgress, routed
+from gateway.fleet.command_core import NAV_KINDS, AltFrame, CommandCore, OnProgress, routed
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import LAUNCHING_MODES
 from gateway.fleet.operations import (
@@ -29,7 +29,7 @@ from gateway.fleet.operations import (
     YawTracker,
     check_positive_altitude,
 )
-from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.protocols import FlyingVehicle, Notify
 from gateway.fleet.readings import is_airborne, is_landed_and_disarmed, position, value
 from gateway.fleet.safety import Target
 from gateway.fleet.views import (
@@ -52,10 +52,12 @@ class DroneVerbs(CommandCore):
 
     @routed
     async def arm(self, caller: Caller, drone_id: str, *, notify: Notify | None = None) -> ActionResult:
+        """Arm; a drone still initialising is waited for, within the wait cap (see `Vehicle.arm`)."""
         vehicle = self.vehicle(drone_id)
-        await self._wait_initialised(vehicle, notify)
+        deadline = self._arming_deadline()
+        await self._wait_initialised(vehicle, notify, deadline)
         self.safety.check_arm(self.context(vehicle), caller.policy_via)
-        await vehicle.arm()
+        await vehicle.arm(self._left(deadline), notify)
         return ActionResult(drone_id=drone_id, action="arm", message="armed")
 
     @routed
@@ -79,7 +81,8 @@ class DroneVerbs(CommandCore):
     ) -> OperationView:
         """Arm if needed and climb to ``alt_m`` above home; done when reached."""
         vehicle = self.vehicle(drone_id)
-        await self._wait_initialised(vehicle, notify)
+        deadline = self._arming_deadline()  # initialising and arming wait together, within the cap
+        await self._wait_initialised(vehicle, notify, deadline)
         self._guard_takeoff(caller, vehicle, "takeoff")
         ctx = self.context(vehicle)
         if ctx.in_air:
@@ -89,7 +92,7 @@ class DroneVerbs(CommandCore):
             caller,
             vehicle,
             TakeoffTracker(alt_m),
-            lambda: vehicle.takeoff(alt_m),
+            lambda: vehicle.takeoff(alt_m, self._left(deadline), notify),
             {"alt_m": alt_m},
             "takeoff",
         )

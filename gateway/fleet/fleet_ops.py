@@ -342,6 +342,8 @@ def _passes_near(
 # ------------------------------------------------------------------------------------------------
 
 Listener = Callable[["FleetOperation"], None]
+Ended = Callable[["FleetOperation"], Awaitable[None]]
+"""Told once when a fleet operation has ended (e.g. to finish the audit rows of the calls it outlived)."""
 
 
 class FleetOperations:
@@ -352,15 +354,19 @@ class FleetOperations:
         operations: OperationManager,
         alive: Callable[[], bool] | None = None,
         router: Router | None = None,
+        on_ended: Ended | None = None,
     ) -> None:
         """``alive`` tells a running fleet operation the gateway still runs (else it is interrupted);
-        ``router`` (a cluster node) runs the steps of drones owned by other nodes on their owners."""
+        ``router`` (a cluster node) runs the steps of drones owned by other nodes on their owners;
+        ``on_ended`` is awaited (in a task of its own) once each fleet operation has ended."""
         self.operations = operations
         self._alive = alive or (lambda: True)
         self.router = router
+        self._on_ended = on_ended
         self._ops: dict[str, FleetOperation] = {}
         self._tasks: dict[str, asyncio.Task[None]] = {}
         self._followers: set[asyncio.Task[None]] = set()
+        self._enders: set[asyncio.Task[None]] = set()
         self.listeners: list[Listener] = []
 
     # -- queries -------------------------------------------------------------------------------
@@ -460,6 +466,9 @@ class FleetOperations:
         for task in tasks:
             with contextlib.suppress(asyncio.CancelledError, Exception):
                 await task
+        for ender in list(self._enders):  # let the last outcomes be recorded before the store closes
+            with contextlib.suppress(asyncio.CancelledError, Exception):
+                await ender
 
     # -- steps of drones another cluster node owns ------------------------------------------------------
     def _elsewhere(self, drone_id: str) -> Router | None:
@@ -685,6 +694,17 @@ class FleetOperations:
         if task is not None and task is not asyncio.current_task():
             task.cancel()
         self._notify(fop)
+        if self._on_ended is not None:
+            ender = asyncio.create_task(self._ended(fop), name=f"fleet-ended-{fop.id}")
+            self._enders.add(ender)
+            ender.add_done_callback(self._enders.discard)
+
+    async def _ended(self, fop: FleetOperation) -> None:
+        assert self._on_ended is not None
+        try:
+            await self._on_ended(fop)
+        except Exception:  # recording an outcome must never touch the fleet
+            log.exception("recording the end of fleet operation %s failed", fop.id)
 
     def _changed(self, fop: FleetOperation, message: str, notify: bool = False) -> None:
         fop.message = message
@@ -772,8 +792,8 @@ def build_step(vehicle: FlyingVehicle, spec: Mapping[str, Any], precheck: Preche
     """One drone's step from its JSON description (the node owning the drone rebuilds it from the same):
 
     - ``{"send": "goto", "lat", "lon", "alt_m", "tolerance_m", "kind", "phase"?}``: a tracked goto;
-    - ``{"send": "takeoff", "alt_m"}``, ``{"send": "land"}``, ``{"send": "rtl", "alt_m"}`` (return at
-      that altitude above home);
+    - ``{"send": "takeoff", "alt_m", "arm_within_s"?}`` (how long arming may wait), ``{"send": "land"}``,
+      ``{"send": "rtl", "alt_m"}`` (return at that altitude above home);
 
     each with an optional ``timeout_s`` and ``guard`` (the action named by the takeoff guard that
     ``precheck`` runs inside the drone's command lock)."""
@@ -791,10 +811,11 @@ def build_step(vehicle: FlyingVehicle, spec: Mapping[str, Any], precheck: Preche
         return Step(vehicle, tracker, _goto(vehicle, lat, lon, alt), params, timeout_s, bound, dict(spec))
     if send == "takeoff":
         alt = float(spec["alt_m"])
+        arm_within = spec.get("arm_within_s")
         return Step(
             vehicle,
             TakeoffTracker(alt),
-            _takeoff(vehicle, alt),
+            _takeoff(vehicle, alt, None if arm_within is None else float(arm_within)),
             {"alt_m": alt},
             timeout_s,
             bound,
@@ -856,14 +877,19 @@ def slot_summaries(plan: FormationPlan) -> dict[str, dict[str, Any]]:
 
 
 def takeoff_phase(
-    vehicles: Mapping[str, FlyingVehicle], altitudes: Mapping[str, float], precheck: Precheck | None = None
+    vehicles: Mapping[str, FlyingVehicle],
+    altitudes: Mapping[str, float],
+    precheck: Precheck | None = None,
+    arm_within_s: float | None = None,
 ) -> Phase:
+    """Every drone takes off to its altitude; ``arm_within_s`` bounds each drone's wait to arm."""
     steps = {
         d: build_step(
             v,
             {
                 "send": "takeoff",
                 "alt_m": altitudes[d],
+                "arm_within_s": arm_within_s,
                 "timeout_s": step_timeout_s(altitudes[d], slowest_mps=0.5),
                 "guard": None if precheck is None else "fleet_takeoff",
             },
@@ -916,8 +942,10 @@ def _goto(vehicle: FlyingVehicle, lat: float, lon: float, alt: float) -> Send:
     return lambda: vehicle.goto(lat, lon, alt)
 
 
-def _takeoff(vehicle: FlyingVehicle, alt: float) -> Send:
-    return lambda: vehicle.takeoff(alt)
+def _takeoff(vehicle: FlyingVehicle, alt: float, arm_within_s: float | None) -> Send:
+    if arm_within_s is None:
+        return lambda: vehicle.takeoff(alt)
+    return lambda: vehicle.takeoff(alt, arm_within_s)
 
 
 def _rtl(

@@ -45,7 +45,7 @@ from gateway.fleet.fleet_ops import (
 )
 from gateway.fleet.formation import DroneStart, plan_formation, rtl_altitudes, takeoff_altitudes
 from gateway.fleet.geofence import FLEET
-from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.protocols import FlyingVehicle, Notify
 from gateway.fleet.readings import home, is_landed_and_disarmed, position
 from gateway.fleet.safety import Rule, refuse
 from gateway.fleet.views import (
@@ -138,13 +138,14 @@ class FleetVerbs(DroneVerbs):
             raise refuse_fleet(action, unable, len(ids))
         return ids, vehicles, unable
 
-    async def _initialised(self, ids: Sequence[str]) -> None:
-        """Drones still initialising (connected, waiting for a position estimate) are waited for (capped),
-        all at once; whatever they are then is judged by the members' checks."""
+    async def _initialised(self, ids: Sequence[str], notify: Notify | None, deadline: float) -> None:
+        """Drones still initialising (connected, waiting for a position estimate) are waited for until
+        ``deadline``, all at once, ``notify`` hearing what each waits for; whatever they are then is
+        judged by the members' checks."""
         waits = []
         for drone_id in ids:
             with contextlib.suppress(GatewayError):
-                waits.append(self.registry.get(drone_id).wait_initialised())
+                waits.append(self.registry.get(drone_id).wait_initialised(self._left(deadline), notify))
         await asyncio.gather(*waits, return_exceptions=True)
 
     # ------------------------------------------------------------------------------------------------
@@ -230,15 +231,23 @@ class FleetVerbs(DroneVerbs):
         return self.fleet_view(fop)
 
     async def fleet_takeoff(
-        self, caller: Caller, drone_ids: list[str], alt_m: float, stagger_m: float | None = None
+        self,
+        caller: Caller,
+        drone_ids: list[str],
+        alt_m: float,
+        stagger_m: float | None = None,
+        *,
+        notify: Notify | None = None,
     ) -> FleetView:
         """Take off drones at once to alt_m, alt_m + stagger, ... (in the order given); all must be able,
-        or none go."""
+        or none go. Drones still initialising are waited for first (``notify`` hears what each waits
+        for); that wait and the drones' arming share one deadline, the wait cap."""
         ids = check_drone_ids(drone_ids)
         policy = self.safety
         _low, high = policy.altitude_band(ids)
         altitudes = takeoff_altitudes(ids, alt_m, self._stagger(stagger_m), high)
-        await self._initialised(ids)
+        deadline = self._arming_deadline()
+        await self._initialised(ids, notify, deadline)
 
         def check(v: FlyingVehicle) -> None:
             v.require_ready()
@@ -254,7 +263,14 @@ class FleetVerbs(DroneVerbs):
         fop = await self.fleet.start(
             "fleet_takeoff",
             ids,
-            [takeoff_phase(vehicles, altitudes, lambda v: self._guard_takeoff(caller, v, "fleet_takeoff"))],
+            [
+                takeoff_phase(
+                    vehicles,
+                    altitudes,
+                    lambda v: self._guard_takeoff(caller, v, "fleet_takeoff"),
+                    arm_within_s=self._left(deadline),
+                )
+            ],
             {"alt_m": alt_m, "altitudes_m": altitudes},
             caller.session,
             caller=caller,

@@ -7,7 +7,7 @@ against these Protocols, never against the MAVSDK-backed class.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Awaitable, Callable, Sequence
 from typing import TYPE_CHECKING, Any, Protocol
 
 from gateway.fleet.mission import MissionItem
@@ -17,6 +17,9 @@ from gateway.registry.spec import VehicleSpec
 
 if TYPE_CHECKING:
     from gateway.fleet.vehicle import ConnectionState
+
+Notify = Callable[[str], Awaitable[None]]
+"""Told, in words, what a command waits for before it can be sent (e.g. a drone still initialising)."""
 
 
 class FlyingVehicle(Protocol):
@@ -45,8 +48,10 @@ class FlyingVehicle(Protocol):
     def initialising(self) -> str | None:
         """While connected but not ready: what the vehicle still waits for."""
 
-    async def wait_initialised(self) -> None:
-        """Wait (capped) for a vehicle still initialising, then require_ready."""
+    async def wait_initialised(self, within_s: float = ..., notify: Notify | None = None) -> bool:
+        """Wait up to ``within_s`` for a vehicle still initialising (``notify`` hears what it waits
+        for): True once ready; False when the time ran out while it still initialises and its
+        autopilot can judge an arming attempt; VehicleNotReady naming why in any other state."""
 
     def resolve_mode(self, name: str) -> ModeChoice: ...
 
@@ -64,13 +69,16 @@ class FlyingVehicle(Protocol):
     def protected_params(self) -> tuple[str, ...]:
         """Patterns of the parameters the vehicle's autopilot protects from agents."""
 
-    async def arm(self) -> None: ...
+    async def arm(self, within_s: float = ..., notify: Notify | None = None) -> None:
+        """Arm, waiting (all within ``within_s``) for a drone still initialising and for refusals the
+        autopilot lifts by itself; the refusal says why in the autopilot's words."""
 
     async def disarm(self) -> None: ...
 
     async def kill(self) -> None: ...
 
-    async def takeoff(self, alt_rel_m: float) -> None: ...
+    async def takeoff(self, alt_rel_m: float, within_s: float = ..., notify: Notify | None = None) -> None:
+        """Arm as ``arm`` does (within ``within_s``), then take off; returns once accepted."""
 
     async def goto(self, lat: float, lon: float, alt_rel_m: float, yaw_deg: float | None = None) -> None: ...
 

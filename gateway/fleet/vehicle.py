@@ -31,7 +31,7 @@ from gateway.fleet.mission import MissionItem, WirePlan
 from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.params import Parameters
 from gateway.link import refusals
-from gateway.link.session import ConnectionState, Link, Peer
+from gateway.link.session import ConnectionState, Link, OnWait, Peer
 from gateway.link.sidecar import Confine, Sidecar
 from gateway.link.telemetry import MissionProgressValue, StatusTextValue, TelemetryCache
 from gateway.registry.spec import VehicleSpec
@@ -171,8 +171,15 @@ class Vehicle:
     def require_ready(self) -> None:
         self.link.require_ready()
 
-    async def wait_initialised(self, within_s: float = ARMABLE_WAIT_S) -> None:
-        await self.link.wait_initialised(within_s)
+    async def wait_initialised(self, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None) -> bool:
+        """Wait up to ``within_s`` for a drone still initialising, ``notify`` hearing what it waits for;
+        True once ready, False when the time ran out while it still initialises and its autopilot can
+        judge an arming attempt. VehicleNotReady (naming why) in any other state."""
+        if await self.link.wait_ready(within_s, notify):
+            return True
+        if not (self.initialising() is not None and self.link.judges_arming()):
+            self.require_ready()
+        return False
 
     async def wait_for_state(self, *states: ConnectionState | str, within_s: float = 60.0) -> ConnectionState:
         return await self.link.wait_for_state(*states, within_s=within_s)
@@ -240,20 +247,34 @@ class Vehicle:
             await asyncio.sleep(0.05)
 
     # --- actions ----------------------------------------------------------------------------------------
-    async def arm(self) -> None:
-        """Arm (in the dialect's arming mode, switched to first: ArduPilot's GUIDED). The arming attempt
-        itself is the check: its refusal carries the autopilot's reason. A reason the autopilot lifts by
-        itself while it initialises ("Need Position Estimate": SYS_STATUS's pre-arm bit lags a mode
-        change by up to a second) is retried for up to ARMABLE_WAIT_S; any other comes back at once."""
-        await self.wait_initialised()
+    async def arm(self, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None) -> None:
+        """Arm (in the dialect's arming mode, switched to first: ArduPilot's GUIDED).
+
+        One deadline, ``within_s`` from now, bounds the whole wait: for a drone still initialising to
+        become ready (``notify`` hears what it waits for), then for the autopilot to stop refusing for
+        a reason it lifts by itself ("Need Position Estimate": SYS_STATUS's pre-arm bit lags a mode
+        change by up to a second), retried every ARM_RETRY_S. The arming attempt itself is the check:
+        when the time runs out while the drone still initialises, one attempt gets the autopilot's own
+        reason. Either way the refusal says in its words why it cannot arm yet and what to do; any
+        other refusal comes back at once."""
+        deadline = asyncio.get_running_loop().time() + within_s
+        ready = await self.wait_initialised(within_s, notify)
+        await self._arm_by(deadline, ready, notify)
+
+    async def _arm_by(self, deadline: float, ready: bool, notify: OnWait | None) -> None:
         if self.telemetry.fresh("armed"):
             return
         system = self.system
         dialect = self.dialect
         loop = asyncio.get_running_loop()
-        deadline = loop.time() + ARMABLE_WAIT_S
+        started = time.time()
         if dialect.arming_mode is not None:
-            await self._switch_mode(self.resolve_mode(dialect.arming_mode))
+            try:
+                await self._switch_mode(self.resolve_mode(dialect.arming_mode))
+            except CommandFailed as exc:
+                if ready:
+                    raise
+                raise self._arm_refusal(exc, self.link.said_since(started), waited=True) from None
         while True:
             attempt_at = time.time()
             try:
@@ -262,21 +283,30 @@ class Vehicle:
             except CommandFailed as exc:
                 said = self.link.said_since(attempt_at)
                 passing = bool(said) and all(dialect.arming_will_pass(text) for text in said)
-                if not passing or loop.time() + ARM_RETRY_S > deadline:
-                    raise self._arm_refusal(exc, said, waited=passing) from None
+                if not ready or not passing or loop.time() + ARM_RETRY_S > deadline:
+                    raise self._arm_refusal(exc, said, waited=passing or not ready) from None
             log.info("%s: arming refused while initialising (%s); retrying", self.id, "; ".join(said))
+            if notify is not None:
+                with contextlib.suppress(Exception):  # a courtesy; the retry happens regardless
+                    await notify(f"{self.id}: autopilot says {refusals.quoted(said)}; trying again")
             await asyncio.sleep(ARM_RETRY_S)
 
     def _arm_refusal(self, exc: CommandFailed, said: list[str], waited: bool) -> CommandFailed:
+        """The refusal of an arming attempt: the autopilot's words and the drone's GPS (and, while it
+        initialises, what the gateway still waits for); a reason it lifts by itself ("waited") also
+        says what to do."""
         if not said:
             return exc
         gps = self.telemetry.fresh("gps_info")
         facts = f"GPS {gps.fix_type}, {gps.num_satellites} satellites" if gps is not None else "no GPS report"
+        waiting = self.initialising()
+        if waiting is not None:
+            facts += f"; still {waiting}"
         words = refusals.quoted(said)
         if waited:
             return CommandFailed(
-                f"drone '{self.id}' cannot arm yet: autopilot says {words} ({facts}; still refused after "
-                f"{ARMABLE_WAIT_S:g} s); call again in a few seconds or check fleet_status",
+                f"drone '{self.id}' cannot arm yet: autopilot says {words} ({facts}); call again in a few "
+                "seconds or check fleet_status",
                 vehicle_id=self.id,
                 result=exc.details.get("result"),
             )
@@ -293,16 +323,20 @@ class Vehicle:
         """Stop the motors at once, even in the air (the policy decides who may call this)."""
         await self.link.call("kill", self.link.require_session().action.kill())
 
-    async def takeoff(self, alt_rel_m: float) -> None:
-        """Arm if needed, then take off to ``alt_rel_m`` metres above home. Returns once accepted."""
+    async def takeoff(
+        self, alt_rel_m: float, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None
+    ) -> None:
+        """Arm if needed (waiting for it as ``arm`` does, up to ``within_s`` in all), then take off to
+        ``alt_rel_m`` metres above home. Returns once accepted."""
         geo.check_finite("takeoff altitude", alt_rel_m)
         if alt_rel_m <= 0:
             raise InvalidArgument(f"takeoff altitude must be above 0 m; got {alt_rel_m:g}")
-        await self.wait_initialised()
+        deadline = asyncio.get_running_loop().time() + within_s
+        ready = await self.wait_initialised(within_s, notify)
         system = self.system
         if self.on_ground() is False:
             raise CommandFailed(f"drone '{self.id}' is already flying; use goto to change altitude")
-        await self.arm()
+        await self._arm_by(deadline, ready, notify)
         await self.link.call("set takeoff altitude", system.action.set_takeoff_altitude(float(alt_rel_m)))
         await self.link.call("takeoff", system.action.takeoff())
 

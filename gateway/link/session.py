@@ -50,6 +50,8 @@ from gateway.registry.spec import VehicleSpec
 
 log = logging.getLogger("gateway.link")
 T = TypeVar("T")
+OnWait = Callable[[str], Awaitable[None]]
+"""Told, in words, what a vehicle still initialising is waiting for (each time that changes)."""
 
 __all__ = ["ConnectionState", "Link", "LinkRules", "SessionJob"]
 
@@ -307,15 +309,44 @@ class Link:
             msg += f"; last error: {error}"
         raise VehicleNotReady(msg, state=state.value)
 
-    async def wait_initialised(self, within_s: float = READY_WAIT_S) -> None:
+    async def wait_ready(self, within_s: float = READY_WAIT_S, on_wait: OnWait | None = None) -> bool:
+        """Wait up to ``within_s`` for a vehicle that is connected and still initialising (waiting for
+        its position estimate...) to become ready, telling ``on_wait`` ("alpha: waiting for ...") each
+        time what it waits for changes; whether it is ready. A vehicle in any other state is not
+        waited for."""
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + max(0.0, within_s)
+        told: str | None = None
+        if self.state == ConnectionState.CONNECTED and self.initialising() is not None:
+            log.info("%s: %s; waiting up to %g s", self.id, self.initialising(), within_s)
+        while self.state != ConnectionState.READY:
+            waiting = self.initialising()
+            if waiting is None or loop.time() >= deadline:
+                break
+            if waiting != told and on_wait is not None:
+                told = waiting
+                with contextlib.suppress(Exception):  # a courtesy; the wait happens regardless
+                    await on_wait(f"{self.id}: {waiting}")
+            await asyncio.sleep(min(0.1, max(0.0, deadline - loop.time())))
+        return self.state == ConnectionState.READY
+
+    async def wait_initialised(self, within_s: float = READY_WAIT_S, on_wait: OnWait | None = None) -> None:
         """Like require_ready, but a drone that is connected and still initialising (waiting for its
         position estimate) is waited for, up to ``within_s``: arming or taking off right after
         connecting then succeeds instead of failing."""
-        if self.state == ConnectionState.CONNECTED and self.initialising() is not None:
-            log.info("%s: %s; waiting up to %g s before arming", self.id, self.initialising(), within_s)
-            with contextlib.suppress(VehicleNotReady):
-                await self.wait_for_state(ConnectionState.READY, within_s=within_s)
+        await self.wait_ready(within_s, on_wait)
         self.require_ready()
+
+    def judges_arming(self) -> bool:
+        """Connected to the expected vehicle, which reports its health: an arming attempt now gets the
+        autopilot's own judgement (refused, in its words, while it lacks what it needs to fly)."""
+        sample = self.telemetry.health
+        return (
+            self.state in (ConnectionState.CONNECTED, ConnectionState.READY)
+            and not self.sysid_mismatch
+            and sample is not None
+            and sample.age_s <= self.settings.link_lost_after_s
+        )
 
     def require_session(self) -> System:
         """For commands that must still be tried when the vehicle is not 'ready' (land, RTL, disarm...)."""

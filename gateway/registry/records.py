@@ -23,13 +23,16 @@ SessionKind = Literal["mcp-2025", "mcp-2026", "rest", "console"]
 AuditSource = Literal["mcp", "rest", "console"]
 AuditOutcome = Literal["ok", "error", "refused", "running", "superseded", "cancelled"]
 OperationStatus = Literal["running", "succeeded", "failed", "superseded", "interrupted", "cancelled"]
-#: how a call that left its operation running ends in the audit, by how the operation ended
+#: how a call that left its operation running ends in the audit, by how the operation ended (a fleet
+#: operation's "partial" and "aborted" are errors too: not every drone did what was asked)
 AUDIT_OUTCOME_OF_OPERATION: dict[str, AuditOutcome] = {
     "succeeded": "ok",
     "failed": "error",
     "interrupted": "error",
     "superseded": "superseded",
     "cancelled": "cancelled",
+    "partial": "error",
+    "aborted": "error",
 }
 
 

@@ -89,6 +89,8 @@ log = logging.getLogger(__name__)
 
 #: Called with each audit row this store writes, and again when a row's outcome is finished.
 AuditListener = Callable[[AuditRecord], None]
+ENDED_ELSEWHERE_KEPT = 500
+"""Outcomes of operations kept only in memory (fleet operations) remembered for audit rows written late."""
 
 # The Alembic scripts: the repository's migrations/ (source checkout, editable install), else the copy
 # a wheel installs under <prefix>/share/fleet-gateway/migrations (pyproject's data-files).
@@ -206,6 +208,8 @@ class Store:
         self._sessions = async_sessionmaker(engine, expire_on_commit=False)
         self._closed = False
         self._audit_listeners: list[AuditListener] = []
+        # operation id -> (status, message) of ended operations this store does not keep (fleet ones)
+        self._ended_elsewhere: dict[str, tuple[str, str | None]] = {}
 
     @classmethod
     async def open(cls, url: str, upgrade: bool = True) -> Store:
@@ -565,9 +569,13 @@ class Store:
         self._audit_written(row)
         if entry.outcome == "running" and entry.operation_id is not None:
             # the operation may have ended before this row was written: then nobody else closes it
-            op = await self.get_operation(entry.operation_id)
-            if op is not None and op.status != "running":
-                await self._finish_audit_of(entry.operation_id, op.status, op.message)
+            ended = self._ended_elsewhere.get(entry.operation_id)
+            if ended is not None:
+                await self._finish_audit_of(entry.operation_id, *ended)
+            else:
+                op = await self.get_operation(entry.operation_id)
+                if op is not None and op.status != "running":
+                    await self._finish_audit_of(entry.operation_id, op.status, op.message)
         return row_id
 
     def _audit_conditions(
@@ -646,6 +654,15 @@ class Store:
         if op.status != "running":
             await self._finish_audit_of(op.id, op.status, op.message)
         return op
+
+    async def finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
+        """An operation this store does not keep (a fleet operation, held in memory by its node) ended:
+        finish the audit rows of the calls that left it running, and remember how it ended so that a
+        row written after this (the call's row is written once its answer is sent) is finished too."""
+        self._ended_elsewhere[operation_id] = (status, message)
+        while len(self._ended_elsewhere) > ENDED_ELSEWHERE_KEPT:
+            del self._ended_elsewhere[next(iter(self._ended_elsewhere))]
+        await self._finish_audit_of(operation_id, status, message)
 
     async def _finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
         outcome = AUDIT_OUTCOME_OF_OPERATION.get(status, "error")

@@ -8,6 +8,7 @@ Routes (vehicle = index 0..N-1):
   POST /vehicles/{i}/link        {"up": bool}
   POST /vehicles/{i}/packet_loss {"pct": 0..100}
   POST /vehicles/{i}/gps         {"ok": bool}
+  POST /vehicles/{i}/estimate    {"held": bool}   (the EKF's position estimate held back: GPS and home kept)
   POST /vehicles/{i}/battery     {"pct": 0..100}
   POST /vehicles/{i}/param       {"name": str, "value": number}   (as if set by a GCS, without MAVLink)
   POST /vehicles/{i}/reboot      {}    (restart: boot timeline from zero, stream rates lost, clients dropped)
@@ -129,6 +130,8 @@ class ControlServer:
             _call(vehicle.set_packet_loss, _number(args, "pct"))
         elif action == "gps":
             vehicle.set_gps(_bool(args, "ok"))
+        elif action == "estimate":
+            vehicle.hold_estimate(_bool(args, "held"))
         elif action == "battery":
             _call(vehicle.set_battery, _number(args, "pct"))
         elif action == "reboot":
@@ -219,6 +222,10 @@ class SimControl:
 
     async def gps_loss(self, index: int, lost: bool = True) -> dict:
         return await self._post(f"/vehicles/{index}/gps", {"ok": not lost})
+
+    async def hold_estimate(self, index: int, held: bool = True) -> dict:
+        """Hold the EKF's position estimate back (or release it): GUIDED arming refused meanwhile."""
+        return await self._post(f"/vehicles/{index}/estimate", {"held": held})
 
     async def set_battery(self, index: int, pct: float) -> dict:
         return await self._post(f"/vehicles/{index}/battery", {"pct": pct})

@@ -112,6 +112,7 @@ class SimVehicle:
         self._heading0 = heading % 360.0
         self.faults = LinkFaults(self.rng)
         self.gps_lost = False
+        self.estimate_held = False  # the EKF never starts using GPS (as if still converging)
         self.battery = Battery()
         self.status_texts: list[tuple[float, int, str]] = []
         self.boots = 0
@@ -208,7 +209,7 @@ class SimVehicle:
     @property
     def position_ok(self) -> bool:
         """The EKF has a horizontal position (it uses GPS and has not lost it)."""
-        if self.t < self.timeline.ekf_gps:
+        if self.t < self.timeline.ekf_gps or self.estimate_held:
             return False
         return not (
             self.gps_lost
@@ -586,6 +587,12 @@ class SimVehicle:
     def set_gps(self, ok: bool) -> None:
         self.gps_lost = not ok
 
+    def hold_estimate(self, held: bool) -> None:
+        """Hold the EKF's position estimate back (GPS fix, home and the pre-arm bit in STABILIZE are
+        unaffected): arming in GUIDED is refused with "Need Position Estimate", as on a real ArduCopter
+        whose EKF is still converging, until it is released."""
+        self.estimate_held = held
+
     def set_battery(self, pct: float) -> None:
         if not 0 <= pct <= 100:
             raise ValueError(f"battery level must be 0..100 %, got {pct}")
@@ -616,6 +623,7 @@ class SimVehicle:
             "battery_pct": self.battery.remaining_pct,
             "battery_v": self.battery.voltage,
             "gps_ok": not self.gps_lost,
+            "estimate_held": self.estimate_held,
             "link_up": self.faults.up,
             "packet_loss_pct": self.faults.loss_pct,
             "failsafe_gcs": self.failsafe_gcs,

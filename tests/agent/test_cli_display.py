@@ -12,6 +12,7 @@ from rich.console import Console
 from bench.agent_harness.scripted import ScriptedReply, call, say
 from gateway.agent import cli
 from tests.agent.toy_mcp import TOKEN
+from tests.helpers.timing import scaled
 
 
 def _parse(argv: list[str]) -> argparse.Namespace:
@@ -224,7 +225,7 @@ def test_console_entry_point_runs_the_agent(toy, scripted) -> None:
     proc = subprocess.run(
         [sys.executable, "-m", "gateway.cli", "agent", "--mcp-url", toy.url, "--token", TOKEN,
          "--endpoint", model.base_url, "--model", "m", "--json", "land alpha"],
-        capture_output=True, text=True, timeout=120,
+        capture_output=True, text=True, timeout=scaled(120),
     )  # fmt: skip
     assert proc.returncode == 0, proc.stderr
     events = [json.loads(line) for line in proc.stdout.splitlines() if line.startswith("{")]

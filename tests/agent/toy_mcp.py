@@ -20,6 +20,7 @@ from mcp.types import ToolAnnotations
 from pydantic import Field
 
 from gateway.util.ports import free_tcp_port
+from tests.helpers.timing import scaled
 
 TOKEN = "toy-agent-token"
 MAX_ALT_M = 120.0
@@ -147,7 +148,7 @@ class ToyServer:
 
     def __enter__(self) -> ToyServer:
         self._thread.start()
-        deadline = time.monotonic() + 30
+        deadline = time.monotonic() + scaled(30)
         while not self._server.started:
             if not self._thread.is_alive() or time.monotonic() > deadline:
                 raise RuntimeError("toy MCP server did not start")
@@ -156,4 +157,4 @@ class ToyServer:
 
     def __exit__(self, *exc: object) -> None:
         self._server.should_exit = True
-        self._thread.join(timeout=10)
+        self._thread.join(timeout=scaled(10))

@@ -55,7 +55,7 @@ async def served(settings: Settings) -> AsyncIterator[tuple[FastAPI, httpx.Async
             if time.monotonic() > deadline:
                 raise TimeoutError("the gateway server did not start")
             await asyncio.sleep(0.05)
-        async with httpx.AsyncClient(base_url=f"http://127.0.0.1:{port}", timeout=30.0) as client:
+        async with httpx.AsyncClient(base_url=f"http://127.0.0.1:{port}", timeout=scaled(30.0)) as client:
             yield app, client
     finally:
         server.should_exit = True

@@ -11,6 +11,7 @@ import uvicorn
 from fastapi import FastAPI
 
 from gateway.util.ports import free_tcp_port
+from tests.helpers.timing import scaled
 
 
 @contextmanager
@@ -23,7 +24,7 @@ def serve_in_thread(app: FastAPI, startup_timeout_s: float = 60.0) -> Iterator[s
     thread = threading.Thread(target=server.run, name=f"uvicorn-{port}", daemon=True)
     thread.start()
     try:
-        deadline = time.monotonic() + startup_timeout_s
+        deadline = time.monotonic() + scaled(startup_timeout_s)
         while not server.started:
             if not thread.is_alive():
                 raise RuntimeError("the test server exited during startup")
@@ -33,4 +34,4 @@ def serve_in_thread(app: FastAPI, startup_timeout_s: float = 60.0) -> Iterator[s
         yield f"http://127.0.0.1:{port}"
     finally:
         server.should_exit = True
-        thread.join(timeout=60)
+        thread.join(timeout=scaled(60))

@@ -16,6 +16,7 @@ from gateway.config import Settings
 from gateway.registry.store import Store, create_engine_for, current_revision, head_revision
 from gateway.server_cli import main
 from tests.fakes import FakeRegistry
+from tests.helpers.timing import scaled
 
 from .server import serve_in_thread
 
@@ -41,7 +42,7 @@ def test_db_upgrade_command_in_a_subprocess(tmp_path: Path) -> None:
         [sys.executable, "-m", "gateway.server_cli", "db", "upgrade", "--database-url", url],
         capture_output=True,
         text=True,
-        timeout=120,
+        timeout=scaled(120),
     )
     assert result.returncode == 0, result.stderr
     assert f"database at revision {head_revision()}" in result.stdout

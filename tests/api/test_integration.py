@@ -17,6 +17,7 @@ from gateway.registry.store import Store
 from gateway.util.ports import free_tcp_port
 from tests.helpers import sim_process
 from tests.helpers.procs import stop_process, tail
+from tests.helpers.timing import scaled
 from tests.registry.procs import alive, mavsdk_servers_of
 
 from .live import WAIT_S, live_settings, served, states, wait_all_ready, wait_until
@@ -201,7 +202,7 @@ async def test_serve_command_stops_cleanly_on_signals(tmp_path: Path, stop_signa
                 start_new_session=True,
             )
         try:
-            async with httpx.AsyncClient(base_url=f"http://127.0.0.1:{port}", timeout=30.0) as client:
+            async with httpx.AsyncClient(base_url=f"http://127.0.0.1:{port}", timeout=scaled(30.0)) as client:
 
                 async def up() -> bool:
                     try:

@@ -100,10 +100,10 @@ def nats_server(workdir: Path) -> Iterator[NatsServer]:
         if proc.poll() is None:
             proc.terminate()
             try:
-                proc.wait(timeout=10)
+                proc.wait(timeout=scaled(10))
             except subprocess.TimeoutExpired:
                 proc.kill()
-                proc.wait(timeout=10)
+                proc.wait(timeout=scaled(10))
 
 
 @dataclass
@@ -131,7 +131,7 @@ class Node:
         """An MCP client over Streamable HTTP with an agent token (the full one by default)."""
         headers = {"authorization": f"Bearer {token}"}
         async with (
-            httpx2.AsyncClient(headers=headers, timeout=httpx2.Timeout(120.0)) as http,
+            httpx2.AsyncClient(headers=headers, timeout=httpx2.Timeout(scaled(120.0))) as http,
             Client(
                 streamable_http_client(self.mcp_url, http_client=http),
                 client_info=Implementation(name=name, version="1.0"),
@@ -140,24 +140,24 @@ class Node:
             yield c
 
     async def get(self, path: str, **params: Any) -> Any:
-        async with httpx.AsyncClient(base_url=self.base_url, timeout=30) as http:
+        async with httpx.AsyncClient(base_url=self.base_url, timeout=scaled(30)) as http:
             r = await http.get(f"/api/v1{path}", params=params)
             r.raise_for_status()
             return r.json()
 
     async def post(self, path: str, body: Any = None) -> httpx.Response:
-        async with httpx.AsyncClient(base_url=self.base_url, timeout=60) as http:
+        async with httpx.AsyncClient(base_url=self.base_url, timeout=scaled(60)) as http:
             return await http.post(f"/api/v1{path}", json=body)
 
     async def delete(self, path: str) -> httpx.Response:
-        async with httpx.AsyncClient(base_url=self.base_url, timeout=60) as http:
+        async with httpx.AsyncClient(base_url=self.base_url, timeout=scaled(60)) as http:
             return await http.delete(f"/api/v1{path}")
 
     def kill9(self) -> None:
         """Node loss: SIGKILL the gateway (its sidecars die with it: PR_SET_PDEATHSIG)."""
         with contextlib.suppress(ProcessLookupError):
             os.killpg(self.proc.pid, signal.SIGKILL)
-        self.proc.wait(timeout=10)
+        self.proc.wait(timeout=scaled(10))
 
 
 @dataclass
@@ -256,7 +256,7 @@ def start_node(name: str, database_url: str, nats_url: str, workdir: Path, extra
 async def wait_node_ready(node: Node, within_s: float) -> None:
     loop = asyncio.get_running_loop()
     deadline = loop.time() + scaled(within_s)
-    async with httpx.AsyncClient(base_url=node.base_url, timeout=5) as http:
+    async with httpx.AsyncClient(base_url=node.base_url, timeout=scaled(5)) as http:
         while True:
             if not node.alive:
                 raise RuntimeError(f"{node.name} exited:\n{node.log_tail()}")
@@ -276,11 +276,11 @@ def stop_node(node: Node, grace_s: float = 15.0) -> None:
     with contextlib.suppress(ProcessLookupError):
         os.killpg(node.proc.pid, signal.SIGTERM)
     try:
-        node.proc.wait(timeout=grace_s)
+        node.proc.wait(timeout=scaled(grace_s))
     except subprocess.TimeoutExpired:
         with contextlib.suppress(ProcessLookupError):
             os.killpg(node.proc.pid, signal.SIGKILL)
-        node.proc.wait(timeout=10)
+        node.proc.wait(timeout=scaled(10))
 
 
 @contextlib.asynccontextmanager

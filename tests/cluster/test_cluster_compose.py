@@ -14,6 +14,7 @@ import yaml
 
 from gateway.config import Settings
 from gateway.registry.spec import VehicleSpec
+from tests.helpers.timing import scaled
 
 ROOT = Path(__file__).resolve().parents[2]
 COMPOSE = ROOT / "deploy" / "docker-compose.cluster.yml"
@@ -76,7 +77,7 @@ def test_the_registrar_adds_exactly_the_drones_the_simulator_serves() -> None:
         capture_output=True,
         text=True,
         check=True,
-        timeout=30,
+        timeout=scaled(30),
     ).stdout.splitlines()
     assert len(printed) == count
     for i, line in enumerate(printed):

@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 
 from gateway.util.ports import free_tcp_port
+from tests.helpers.timing import scaled
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -24,7 +25,7 @@ def test_serve_with_nats_unreachable_says_so_in_one_line_and_exits_non_zero(tmp_
     }
     result = subprocess.run(
         [sys.executable, "-m", "gateway.cli", "serve", "--port", str(free_tcp_port())],
-        cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120,
+        cwd=tmp_path, env=env, capture_output=True, text=True, timeout=scaled(120),
     )  # fmt: skip
     lines = [line for line in result.stderr.splitlines() if line.strip()]
     assert result.returncode == 2, result.stderr

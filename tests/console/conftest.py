@@ -104,14 +104,14 @@ async def stack_geofences(stack: Stack) -> None:
         ],
     }
     headers = {"Authorization": f"Bearer {OPERATOR_TOKEN}"}
-    async with httpx.AsyncClient(base_url=stack.base_url, headers=headers, timeout=30) as http:
+    async with httpx.AsyncClient(base_url=stack.base_url, headers=headers, timeout=scaled(30)) as http:
         (await http.put("/api/v1/fleet/geofences", json=zones)).raise_for_status()
 
 
 @contextlib.asynccontextmanager
 async def agent(stack: Stack, name: str = "console-test-agent") -> AsyncIterator[Client]:
     """An MCP client over Streamable HTTP with the agent token, as an LLM host would connect."""
-    http = httpx2.AsyncClient(headers={"Authorization": f"Bearer {AGENT_TOKEN}"}, timeout=120)
+    http = httpx2.AsyncClient(headers={"Authorization": f"Bearer {AGENT_TOKEN}"}, timeout=scaled(120))
     async with (
         http,
         Client(

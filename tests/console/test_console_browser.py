@@ -24,7 +24,7 @@ from tests.console.conftest import (
     screenshot,
     ui_timeout_ms,
 )
-from tests.helpers.timing import eventually, settled
+from tests.helpers.timing import eventually, scaled, settled
 from tests.mcp.conftest import Stack, error_text, point_from, structured, wait_until_true
 
 pytestmark = pytest.mark.asyncio(loop_scope="module")
@@ -104,7 +104,7 @@ async def unlock_all(stack: Stack) -> None:
     import httpx
 
     headers = {"Authorization": f"Bearer {OPERATOR_TOKEN}"}
-    async with httpx.AsyncClient(base_url=stack.base_url, headers=headers, timeout=30) as http:
+    async with httpx.AsyncClient(base_url=stack.base_url, headers=headers, timeout=scaled(30)) as http:
         for lock in (await http.get("/api/v1/locks")).json()["items"]:
             path = "/api/v1/fleet/lock" if lock["scope"] == "*" else f"/api/v1/vehicles/{lock['scope']}/lock"
             (await http.delete(path)).raise_for_status()
@@ -114,7 +114,7 @@ async def operator_get(stack: Stack, path: str, **params: Any) -> Any:
     import httpx
 
     headers = {"Authorization": f"Bearer {OPERATOR_TOKEN}"}
-    async with httpx.AsyncClient(base_url=stack.base_url, headers=headers, timeout=30) as http:
+    async with httpx.AsyncClient(base_url=stack.base_url, headers=headers, timeout=scaled(30)) as http:
         response = await http.get(f"/api/v1{path}", params=params)
         response.raise_for_status()
         return response.json()
@@ -449,7 +449,8 @@ async def test_replay_of_a_past_flight_shows_its_track_texts_and_calls(
     import httpx
 
     async def finished_flight() -> dict[str, Any] | None:
-        async with httpx.AsyncClient(base_url=console_stack.base_url, headers=headers, timeout=30) as http:
+        base = console_stack.base_url
+        async with httpx.AsyncClient(base_url=base, headers=headers, timeout=scaled(30)) as http:
             items = (await http.get("/api/v1/flights", params={"limit": 50})).json()["items"]
         return next((f for f in items if f["ended_at"] and (f["distance_m"] or 0) > 10.0), None)
 

@@ -62,10 +62,10 @@ def gateway_process(db: Path, log: Path) -> Iterator[tuple[subprocess.Popen, str
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGTERM)
             try:
-                proc.wait(timeout=20)
+                proc.wait(timeout=scaled(20))
             except subprocess.TimeoutExpired:
                 os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait(timeout=5)
+                proc.wait(timeout=scaled(5))
 
 
 async def until(what: str, check: Any, log: Path) -> Any:
@@ -84,7 +84,7 @@ async def until(what: str, check: Any, log: Path) -> Any:
 
 
 async def vehicle_state(base: str) -> str | None:
-    async with httpx.AsyncClient(base_url=base, timeout=5) as http:
+    async with httpx.AsyncClient(base_url=base, timeout=scaled(5)) as http:
         r = await http.get("/api/v1/vehicles/d1")
         return r.json().get("state") if r.status_code == 200 else None
 
@@ -96,7 +96,7 @@ async def mcp_client(base: str) -> AsyncIterator[Client]:
 
 
 def query(db: Path, sql: str, *args: Any) -> list[tuple]:
-    with contextlib.closing(sqlite3.connect(f"file:{db}?mode=ro", uri=True, timeout=10)) as conn:
+    with contextlib.closing(sqlite3.connect(f"file:{db}?mode=ro", uri=True, timeout=scaled(10))) as conn:
         return conn.execute(sql, args).fetchall()
 
 
@@ -119,7 +119,7 @@ async def test_gateway_sigkill_mid_flight_then_restart(tmp_path: Path) -> None:
         url = sim.urls[0]
         with gateway_process(db, log) as (proc, base):
             await until("gateway up", lambda: _get_ok(base, "/healthz"), log)
-            async with httpx.AsyncClient(base_url=base, timeout=10) as http:
+            async with httpx.AsyncClient(base_url=base, timeout=scaled(10)) as http:
                 r = await http.post("/api/v1/vehicles", json={"id": "d1", "url": url, "expected_sysid": 1})
                 assert r.status_code == 201, r.text
             await until("d1 ready", lambda: _is(base, "ready"), log)
@@ -147,7 +147,7 @@ async def test_gateway_sigkill_mid_flight_then_restart(tmp_path: Path) -> None:
             committed = query(db, "SELECT flight_id, t, lat, lon FROM track_samples ORDER BY id")
             (flight_id,) = {row[0] for row in committed}
             proc.send_signal(signal.SIGKILL)
-            proc.wait(timeout=10)
+            proc.wait(timeout=scaled(10))
 
             async def no_sidecar() -> bool:
                 return not sidecars_for(url)
@@ -187,7 +187,7 @@ async def test_gateway_sigkill_mid_flight_then_restart(tmp_path: Path) -> None:
 
 
 async def _get_ok(base: str, path: str) -> bool:
-    async with httpx.AsyncClient(base_url=base, timeout=5) as http:
+    async with httpx.AsyncClient(base_url=base, timeout=scaled(5)) as http:
         return (await http.get(path)).status_code == 200
 
 

@@ -15,6 +15,7 @@ import httpx
 import pytest
 from mcp.types import CallToolResult
 
+from tests.helpers.timing import scaled
 from tests.mcp.conftest import (
     WAIT_S,
     Stack,
@@ -172,7 +173,7 @@ async def test_operator_kills_a_flying_drone_over_rest(stack: Stack) -> None:
     """Kill in the air is an operator decision: REST does it at once, and the audit records who."""
     async with stack.client("auto", name="before-kill") as c:
         assert (await ok(c, "takeoff", {"drone_id": "d1", "alt_m": 6}))["status"] == "succeeded"
-    async with httpx.AsyncClient(base_url=stack.base_url, timeout=30) as http:
+    async with httpx.AsyncClient(base_url=stack.base_url, timeout=scaled(30)) as http:
         r = await http.post("/api/v1/vehicles/d1/kill")
         assert r.status_code == 200 and r.json()["outcome"] == "sent", r.text
         await wait_until_true(stack, "d1", lambda s: not s["armed"], "motors stopped")

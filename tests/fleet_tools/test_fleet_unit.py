@@ -119,16 +119,18 @@ async def test_formation_phases_are_barriers(gateway: Gateway) -> None:
         ok(await c.call_tool("fleet_takeoff", {"drone_ids": IDS, "alt_m": 20, "stagger_m": 0}))
         for v in vehicles(gateway):
             v.log.clear()
-        r = ok(
-            await c.call_tool(
-                "formation_goto",
-                {"drone_ids": IDS, "formation": "line", "center_lat_deg": HOME[0], "center_lon_deg": HOME[1],
-                 "alt_m": 20, "spacing_m": 10, "heading_deg": 0},
-            )
+        result = await c.call_tool(
+            "formation_goto",
+            {"drone_ids": IDS, "formation": "line", "center_lat_deg": HOME[0], "center_lon_deg": HOME[1],
+             "alt_m": 20, "spacing_m": 10, "heading_deg": 0},
         )  # fmt: skip
+    r = ok(result)
     assert r["status"] == "succeeded", r
     layered = [d for d in r["drones"] if d["transit_alt_m"] is not None]
     assert len(layered) == 4, "the test needs crossing paths"
+    told = result.content[0].text  # the text names each layered drone's transit altitude, not only the data
+    for d in layered:
+        assert f"{d['drone_id']} succeeded (transit at {d['transit_alt_m']:g} m, to 20 m)" in told, told
     plan = gateway.fleet_operations.latest("formation_goto").plan
     legs_by_phase = [set(p) for p in plan["phases"]]
     # every drone's gotos are in phase order; a phase's first command comes after the previous

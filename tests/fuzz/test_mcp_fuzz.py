@@ -166,7 +166,7 @@ async def test_tools_survive_generated_and_mutated_arguments(stack: Stack) -> No
         # The fleet lock stays on in both phases: a mutation can still be valid (a takeoff below the
         # altitude limit with another 'wait'), and a valid takeoff would fly. Invalid arguments are
         # refused before any tool body runs, so the lock hides no validation hole.
-        async with httpx.AsyncClient(base_url=stack.base_url, timeout=30) as http:
+        async with httpx.AsyncClient(base_url=stack.base_url, timeout=scaled(30)) as http:
             r = await http.post("/api/v1/fleet/lock", json={"reason": "fuzzing tool arguments"})
             assert r.status_code == 200, r.text
             try:

@@ -22,6 +22,7 @@ from gateway.app import create_app
 from gateway.config import Settings
 from tests.api.server import serve_in_thread
 from tests.fakes import FakeRegistry
+from tests.helpers.timing import scaled
 
 EXAMPLES_PER_OPERATION = 15
 DRONE = {"id": "alpha", "url": "udpin://127.0.0.1:14550", "expected_sysid": 1}
@@ -42,7 +43,7 @@ def test_rest_api_answers_generated_requests_without_server_errors(tmp_path: Pat
         assert len(operations) >= 20, [op.label for op in operations]
 
         def ensure_drone() -> None:
-            httpx.post(f"{base_url}/api/v1/vehicles", json=DRONE, timeout=30)
+            httpx.post(f"{base_url}/api/v1/vehicles", json=DRONE, timeout=scaled(30))
 
         for operation in operations:
             strategies = [
@@ -66,7 +67,7 @@ def test_rest_api_answers_generated_requests_without_server_errors(tmp_path: Pat
             @given(case=st.one_of(strategies))
             def run(case: Any) -> None:
                 ensure_drone()
-                case.call_and_validate(base_url=base_url, checks=[not_a_server_error], timeout=30)
+                case.call_and_validate(base_url=base_url, checks=[not_a_server_error], timeout=scaled(30))
                 label = case.operation.label
                 checked[label] = checked.get(label, 0) + 1
 

@@ -16,6 +16,7 @@ from mavsdk_grpc import System
 
 from gateway.util.ports import free_tcp_port
 from tests.helpers.procs import stop_process, tail
+from tests.helpers.timing import scaled
 
 
 def mavsdk_server_binary() -> Path:
@@ -59,7 +60,7 @@ async def start_mavsdk_server(
             stdout=log, stderr=log, stdin=asyncio.subprocess.DEVNULL, start_new_session=True,
         )  # fmt: skip
         try:
-            deadline = time.monotonic() + timeout_s
+            deadline = time.monotonic() + scaled(timeout_s)
             while time.monotonic() < deadline and proc.returncode is None:
                 if await _port_open(port):
                     break
@@ -87,5 +88,5 @@ async def mavsdk_system(url: str, *, timeout_s: float = 60.0) -> AsyncIterator[S
     """A ``mavsdk_grpc.System`` connected through its own mavsdk_server sidecar to the vehicle at ``url``."""
     async with start_mavsdk_server(url, timeout_s=timeout_s) as server:
         system = System(mavsdk_server_address="127.0.0.1", port=server.grpc_port)
-        await asyncio.wait_for(system.connect(), timeout_s)
+        await asyncio.wait_for(system.connect(), scaled(timeout_s))
         yield system

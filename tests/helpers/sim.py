@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 from gateway.sim.control import SimControl
 from tests.helpers.procs import stop_process, tail
+from tests.helpers.timing import scaled
 
 _VEHICLE_LINE = re.compile(r"^vehicle (\d+) sysid (\d+) (\S+)")
 
@@ -94,7 +95,7 @@ async def sim_process(
                 elif line == "ready":
                     return
 
-        await asyncio.wait_for(read_banner(), start_timeout_s)
+        await asyncio.wait_for(read_banner(), scaled(start_timeout_s))
         control = SimControl(control_url)
         yield SimProcess(urls, sysids, control, control_url, proc.pid, log.name, udp_urls)
     finally:

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import httpx
 
+from tests.helpers.timing import scaled
 from tests.mcp.conftest import gateway_stack, structured
 
 DRONES = 10
@@ -33,7 +34,7 @@ async def main() -> int:
                     print("takeoff failed:", r["message"])
                     return 1
             timings: dict[str, list[float]] = {"hold": [], "land": []}
-            async with httpx.AsyncClient(base_url=stack.base_url, timeout=30) as http:
+            async with httpx.AsyncClient(base_url=stack.base_url, timeout=scaled(30)) as http:
                 for action in ("hold", "hold", "hold", "land"):
                     await http.delete("/api/v1/fleet/lock")
                     start = time.perf_counter()

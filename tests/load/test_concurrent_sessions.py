@@ -11,6 +11,7 @@ from typing import Any
 import pytest
 
 from gateway.fleet import geo
+from tests.helpers.timing import scaled
 from tests.mcp.conftest import Stack, distance_m, structured
 
 pytestmark = pytest.mark.asyncio(loop_scope="module")
@@ -62,7 +63,7 @@ async def test_twenty_sessions_read_while_a_formation_flies(stack: Stack) -> Non
         readers = [asyncio.create_task(reader(stack, n, done, counts, errors)) for n in range(READERS)]
         try:
             loop = asyncio.get_running_loop()
-            deadline = loop.time() + 60
+            deadline = loop.time() + scaled(60)
             while counts["sessions"] < READERS:  # every session open and reading before the formation
                 assert loop.time() < deadline and not any(t.done() for t in readers), counts
                 await asyncio.sleep(0.1)

@@ -61,7 +61,7 @@ class Stack:
 
     async def rest(self, path: str, **params: Any) -> Any:
         headers = {"Authorization": f"Bearer {self.token}"} if self.token else {}
-        async with httpx.AsyncClient(base_url=self.base_url, timeout=30, headers=headers) as http:
+        async with httpx.AsyncClient(base_url=self.base_url, timeout=scaled(30), headers=headers) as http:
             r = await http.get(f"/api/v1{path}", params=params)
             r.raise_for_status()
             return r.json()
@@ -148,7 +148,7 @@ async def stack(
 async def wait_audited(stack: Stack, drone_id: str) -> None:
     """The audit table holds exactly the calls this test session made on ``drone_id``."""
     loop = asyncio.get_running_loop()
-    deadline = loop.time() + 15.0
+    deadline = loop.time() + scaled(15.0)
     while True:
         total = (await stack.rest("/audit", vehicle_id=drone_id, limit=1))["total"]
         if total == stack.calls.get(drone_id, 0) or loop.time() > deadline:

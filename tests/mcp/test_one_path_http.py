@@ -10,6 +10,7 @@ import httpx
 import pytest
 import pytest_asyncio
 
+from tests.helpers.timing import scaled
 from tests.mcp.conftest import Stack, error_text, gateway_stack, point_from, structured, wait_until_true
 
 pytestmark = pytest.mark.asyncio(loop_scope="module")
@@ -30,7 +31,7 @@ async def test_operator_takeoff_over_rest_then_agent_goto_mid_climb_is_refused(s
     goto = {"drone_id": "d1", "lat_deg": lat, "lon_deg": lon, "alt_m": 20, "wait": False}
     async with (
         stack.client("auto", name="agent") as agent,
-        httpx.AsyncClient(base_url=stack.base_url, timeout=30) as http,
+        httpx.AsyncClient(base_url=stack.base_url, timeout=scaled(30)) as http,
     ):
         r = await http.post("/api/v1/vehicles/d1/takeoff", json={"alt_rel_m": CLIMB_TO_M})
         assert r.status_code == 200, r.text

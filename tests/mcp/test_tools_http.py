@@ -20,7 +20,7 @@ from mcp.types import ElicitResult
 
 from gateway.fleet import geo
 from gateway.mcp.server import load_toolset
-from tests.helpers.timing import settled
+from tests.helpers.timing import scaled, settled
 from tests.mcp.conftest import (
     Stack,
     distance_m,
@@ -50,7 +50,7 @@ async def ok(stack: Stack, c: Any, tool: str, args: dict[str, Any], **kw: Any) -
 async def until_tool(stack: Stack, c: Any, tool: str, args: dict[str, Any], predicate: Any) -> dict[str, Any]:
     """Call a read tool until its answer satisfies predicate (the cache follows the vehicle within ~1 s)."""
     loop = asyncio.get_running_loop()
-    deadline = loop.time() + 30.0
+    deadline = loop.time() + scaled(30.0)
     while not predicate(r := await ok(stack, c, tool, args)):
         assert loop.time() < deadline, (tool, r)
         await asyncio.sleep(0.2)
@@ -379,7 +379,7 @@ async def test_mission_flight_pause_resume(stack: Stack) -> None:
         r = await ok(stack, c, "initiate_mission", {"drone_id": "d3", "waypoints": wps, "wait": False})
         assert r["status"] == "running" and r["kind"] == "mission"
         loop = asyncio.get_running_loop()
-        deadline = loop.time() + 90
+        deadline = loop.time() + scaled(90)
         while (prog := await ok(stack, c, "print_mission_progress", d))["current"] < 2:
             assert loop.time() < deadline, prog
             await asyncio.sleep(0.3)
@@ -403,7 +403,7 @@ async def test_mission_flight_pause_resume(stack: Stack) -> None:
 
 async def wait_state(stack: Stack, drone_id: str, state: str) -> None:
     loop = asyncio.get_running_loop()
-    deadline = loop.time() + 60
+    deadline = loop.time() + scaled(60)
     while (current := (await stack.rest(f"/vehicles/{drone_id}"))["state"]) != state:
         assert loop.time() < deadline, f"{drone_id} stayed {current}, never {state}"
         await asyncio.sleep(0.2)
@@ -432,7 +432,7 @@ async def test_link_loss_reads_say_stale_and_commands_name_the_state(stack: Stac
 async def test_mcp_route_rejects_foreign_hosts_and_rest_keeps_its_errors(stack: Stack) -> None:
     body = {"jsonrpc": "2.0", "id": 1, "method": "tools/list", "params": {}}
     headers = {"accept": "application/json, text/event-stream", "mcp-protocol-version": "2026-07-28"}
-    async with httpx.AsyncClient(base_url=stack.base_url, timeout=30) as http:
+    async with httpx.AsyncClient(base_url=stack.base_url, timeout=scaled(30)) as http:
         r = await http.post("/mcp", json=body, headers={**headers, "host": "evil.example"})
         assert r.status_code == 421
         r = await http.post("/mcp", json=body, headers={**headers, "origin": "http://evil.example"})

@@ -14,6 +14,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from gateway.util.ports import free_tcp_port
+from tests.helpers.timing import scaled
 
 PG_BIN_DIRS = [Path(p) for p in sorted(Path("/usr/lib/postgresql").glob("*/bin"), reverse=True)]
 
@@ -58,7 +59,7 @@ def postgres_server(timeout_s: float = 60.0) -> Iterator[str]:
             ),
             check=True,
             capture_output=True,
-            timeout=120,
+            timeout=scaled(120),
         )
         proc = subprocess.Popen(
             _as_postgres_user(
@@ -68,7 +69,7 @@ def postgres_server(timeout_s: float = 60.0) -> Iterator[str]:
             stderr=subprocess.PIPE,
             start_new_session=True,
         )
-        deadline = time.monotonic() + timeout_s
+        deadline = time.monotonic() + scaled(timeout_s)
         while True:
             ready = subprocess.run(
                 [find_pg_bin("pg_isready") or "pg_isready", "-h", "127.0.0.1", "-p", str(port)],
@@ -86,10 +87,10 @@ def postgres_server(timeout_s: float = 60.0) -> Iterator[str]:
         if proc is not None and proc.poll() is None:
             os.killpg(proc.pid, signal.SIGINT)  # postmaster: fast shutdown
             try:
-                proc.wait(timeout=20)
+                proc.wait(timeout=scaled(20))
             except subprocess.TimeoutExpired:
                 os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait(timeout=10)
+                proc.wait(timeout=scaled(10))
         shutil.rmtree(root, ignore_errors=True)
 
 

@@ -25,6 +25,7 @@ from gateway.registry.store import (
     current_revision,
     head_revision,
 )
+from tests.helpers.timing import scaled
 
 T0 = datetime(2026, 5, 1, 12, 0, tzinfo=UTC)
 
@@ -127,7 +128,7 @@ async def test_concurrent_upgrades_from_several_processes(db_url: str) -> None:
         for _ in range(4)
     ]
     try:
-        results = [await asyncio.wait_for(p.communicate(), 120) for p in procs]
+        results = [await asyncio.wait_for(p.communicate(), scaled(120)) for p in procs]
     finally:
         for p in procs:
             if p.returncode is None:

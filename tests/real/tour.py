@@ -108,7 +108,7 @@ class Tour:
         return op
 
     async def rest(self, method: str, path: str, **kw: Any) -> Any:
-        async with httpx.AsyncClient(base_url=self.base_url, timeout=30) as http:
+        async with httpx.AsyncClient(base_url=self.base_url, timeout=scaled(30)) as http:
             r = await http.request(method, f"/api/v1{path}", **kw)
             r.raise_for_status()
             return r.json() if r.content else None

@@ -16,10 +16,11 @@ from gateway.config import Settings
 from gateway.link import sidecar as sidecar_mod
 from gateway.link.sidecar import Sidecar, SidecarState
 from gateway.util.ports import free_udp_port
+from tests.helpers.timing import scaled
 from tests.registry.heartbeat import HeartbeatVehicle
 from tests.registry.procs import alive, mavsdk_servers_of
 
-WAIT = 30.0
+WAIT = scaled(30.0)  # generous: waiting is never an assertion
 
 
 def _settings(**overrides: object) -> Settings:

@@ -14,6 +14,7 @@ import pytest
 
 from gateway.link import confine
 from gateway.util.ports import free_tcp_port, free_udp_port
+from tests.helpers.timing import scaled
 
 os.environ.setdefault("MAVLINK20", "1")
 
@@ -130,12 +131,12 @@ class _HeartbeatSource:
 
     def __exit__(self, *exc: object) -> None:
         self._stop.set()
-        self._thread.join(timeout=2)
+        self._thread.join(timeout=scaled(2))
         self._link.close()
 
 
 def _wait_listening(port: int, proc: subprocess.Popen, timeout: float = 20.0) -> None:
-    deadline = time.monotonic() + timeout
+    deadline = time.monotonic() + scaled(timeout)
     while time.monotonic() < deadline:
         assert proc.poll() is None, "mavsdk_server exited early"
         try:

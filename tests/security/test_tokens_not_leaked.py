@@ -12,6 +12,7 @@ from gateway.app import create_app
 from gateway.config import Settings
 from tests.api.server import serve_in_thread
 from tests.fakes import FakeRegistry
+from tests.helpers.timing import scaled
 
 OPERATOR, VIEWER, AGENT = "op-Zq8w-secret", "view-Zq8w-secret", "agent-Zq8w-secret"
 WRONG = "wrong-Zq8w-secret"
@@ -46,7 +47,7 @@ def test_tokens_stay_out_of_logs_and_database(tmp_path: Path, caplog: pytest.Log
     )
     caplog.set_level(logging.DEBUG)
     with serve_in_thread(create_app(settings, registry_factory=FakeRegistry)) as base:
-        with httpx.Client(base_url=base, timeout=30) as http:
+        with httpx.Client(base_url=base, timeout=scaled(30)) as http:
 
             def auth(token: str) -> dict[str, str]:
                 return {"authorization": f"Bearer {token}"}

@@ -17,6 +17,7 @@ from gateway.sim.fleet import parse_home
 from gateway.sim.params import ParamError, ParamTable
 from gateway.util.ports import free_udp_port
 from tests.helpers import mavsdk_system, sim_process
+from tests.helpers.timing import scaled
 from tests.sim.flying import SPEEDUP, set_rates, wait_for
 
 
@@ -33,7 +34,10 @@ from tests.sim.flying import SPEEDUP, set_rates, wait_for
 )
 def test_cli_rejects_bad_input_with_a_clear_message(args: list[str], message: str) -> None:
     result = subprocess.run(
-        [sys.executable, "-m", "gateway.cli", "sim", *args], capture_output=True, text=True, timeout=60
+        [sys.executable, "-m", "gateway.cli", "sim", *args],
+        capture_output=True,
+        text=True,
+        timeout=scaled(60),
     )
     assert result.returncode == 2
     assert message in result.stderr
@@ -97,13 +101,13 @@ async def test_sim_prints_three_vehicles_and_stops_on_sigint() -> None:
     try:
         lines: list[str] = []
         while "ready" not in lines:
-            raw = await asyncio.wait_for(proc.stdout.readline(), 30)
+            raw = await asyncio.wait_for(proc.stdout.readline(), scaled(30))
             assert raw, "demo exited early"
             lines.append(raw.decode().strip())
         vehicles = [line for line in lines if line.startswith("vehicle ")]
         assert len(vehicles) == 3 and all("tcpout://127.0.0.1:" in v for v in vehicles)
         os.killpg(proc.pid, signal.SIGINT)
-        assert await asyncio.wait_for(proc.wait(), 15) == 0
+        assert await asyncio.wait_for(proc.wait(), scaled(15)) == 0
     finally:
         if proc.returncode is None:
             os.killpg(proc.pid, signal.SIGKILL)

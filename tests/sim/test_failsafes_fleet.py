@@ -7,6 +7,7 @@ import asyncio
 from mavsdk_grpc.telemetry import FlightMode
 
 from tests.helpers import mavsdk_system, sim_process
+from tests.helpers.timing import eventually
 from tests.sim.flying import SPEEDUP, distance_m, offset, ready_to_fly, take_off, wait_for
 
 
@@ -31,24 +32,27 @@ async def test_gcs_heartbeat_loss_triggers_rtl_only_for_the_configured_gcs() -> 
             assert truth["gcs_heartbeat_age_s"] is None and not truth["failsafe_gcs"]
 
         await drone.param.set_param_int("MAV_GCS_SYSID", 245)
-        for _ in range(100):  # until a heartbeat from system 245 has been seen (ArduPilot: never seen, no FS)
-            if (await sim.control.state(0))["gcs_heartbeat_age_s"] is not None:
-                break
-            await asyncio.sleep(0.1)
+
+        async def gcs_seen() -> bool:  # a heartbeat from system 245 (ArduPilot: never seen, no failsafe)
+            return (await sim.control.state(0))["gcs_heartbeat_age_s"] is not None
+
+        await eventually(gcs_seen, "a heartbeat of the configured GCS seen", within_s=10)
         await sim.control.link_down(0)
-        for _ in range(600):  # FS_GCS_TIMEOUT: 3 s wall at speed-up 30
+
+        async def failsafe() -> dict | None:  # FS_GCS_TIMEOUT: 3 s wall at speed-up 30
             truth = await sim.control.state(0)
-            if truth["failsafe_gcs"]:
-                break
-            await asyncio.sleep(0.05)
-        assert truth["failsafe_gcs"] and truth["mode"] == "RTL"
+            return truth if truth["failsafe_gcs"] else None
+
+        truth = await eventually(failsafe, "the GCS failsafe", within_s=30)
+        assert truth["mode"] == "RTL"
         await sim.control.link_up(0)
         await wait_for(drone.telemetry.flight_mode(), lambda m: m == FlightMode.RETURN_TO_LAUNCH)
         assert "GCS Failsafe" in await _texts(sim)
-        for _ in range(600):  # heartbeats from 245 again: the failsafe clears (the vehicle stays in RTL)
-            if "GCS Failsafe Cleared" in await _texts(sim):
-                break
-            await asyncio.sleep(0.05)
+
+        async def cleared() -> bool:  # heartbeats from 245 again: the failsafe clears (it stays in RTL)
+            return "GCS Failsafe Cleared" in await _texts(sim)
+
+        await eventually(cleared, "the GCS failsafe cleared", within_s=30)
         truth = await sim.control.state(0)
         assert not truth["failsafe_gcs"] and truth["mode"] == "RTL"
 

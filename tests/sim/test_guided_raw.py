@@ -9,6 +9,7 @@ from pymavlink.dialects.v20 import ardupilotmega as mav
 
 from tests.helpers import sim_process
 from tests.helpers.raw import RawMavlink, raw_mavlink
+from tests.helpers.timing import scaled
 from tests.sim.flying import SPEEDUP, distance_m, offset
 
 ACCEPTED, DENIED, FAILED = mav.MAV_RESULT_ACCEPTED, mav.MAV_RESULT_DENIED, mav.MAV_RESULT_FAILED
@@ -18,14 +19,14 @@ POS_ONLY = 0b0000_1111_1111_1000  # type_mask: use position only
 
 
 async def _until(sim, predicate, timeout_s: float = 60.0) -> dict:
-    """Poll the simulator's true state until predicate(state) holds."""
-    state: dict = {}
-    for _ in range(int(timeout_s / 0.05)):
-        state = await sim.control.state(0)
-        if predicate(state):
-            return state
+    """Poll the simulator's true state until predicate(state) holds (a scaled deadline, never asserted)."""
+    loop = asyncio.get_running_loop()
+    deadline = loop.time() + scaled(timeout_s)
+    while not predicate(state := await sim.control.state(0)):
+        if loop.time() > deadline:
+            raise AssertionError(f"condition not reached within {scaled(timeout_s):g} s; last state {state}")
         await asyncio.sleep(0.05)
-    raise AssertionError(f"condition not reached; last state {state}")
+    return state
 
 
 async def _armed_in_guided(sim, gcs: RawMavlink) -> None:

@@ -10,7 +10,7 @@ from mavsdk_grpc.param import ParamError
 from mavsdk_grpc.telemetry import FlightMode
 
 from tests.helpers import mavsdk_system, sim_process
-from tests.helpers.timing import scaled
+from tests.helpers.timing import eventually, scaled
 from tests.sim.flying import SPEEDUP, arm, ready_to_fly, set_rates, take_off, wait_for
 
 
@@ -90,7 +90,7 @@ async def test_arming_refused_under_gps_loss() -> None:
 
 
 async def _until(condition) -> None:
-    for _ in range(1000):
-        if condition():
-            return
-        await asyncio.sleep(0.05)
+    async def check() -> bool:
+        return bool(condition())
+
+    await eventually(check, "condition", within_s=50)

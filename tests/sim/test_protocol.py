@@ -31,12 +31,12 @@ async def test_streams_silent_until_requested_then_interval_and_data_stream() ->
         assert ack.result == ACCEPTED
         t0 = time.monotonic()
         mark = gcs.last_mark
-        positions: list = []
-        for _ in range(200):
+
+        async def six_positions() -> list:
             positions = [m for _t, m in gcs.received[mark:] if m.get_type() == "GLOBAL_POSITION_INT"]
-            if len(positions) >= 6:
-                break
-            await asyncio.sleep(0.05)
+            return positions if len(positions) >= 6 else []
+
+        positions = await eventually(six_positions, "6 GLOBAL_POSITION_INT at the new rate", within_s=10)
         gaps = {b.time_boot_ms - a.time_boot_ms for a, b in itertools.pairwise(positions)}
         assert all(150 <= g <= 260 for g in gaps), gaps  # 5 Hz in simulated time
         allowed = SILENT_DEFAULTS | {"GLOBAL_POSITION_INT", "COMMAND_ACK"}

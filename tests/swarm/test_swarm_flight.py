@@ -93,14 +93,14 @@ class Procs:
             if proc.poll() is None:
                 with contextlib.suppress(ProcessLookupError):
                     os.killpg(proc.pid, signal.SIGTERM)
-        deadline = time.monotonic() + 15
+        deadline = time.monotonic() + scaled(15)
         for proc in self.procs.values():
             try:
                 proc.wait(timeout=max(0.1, deadline - time.monotonic()))
             except subprocess.TimeoutExpired:
                 with contextlib.suppress(ProcessLookupError):
                     os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait(timeout=5)
+                proc.wait(timeout=scaled(5))
 
 
 def _namespaces(tag: str) -> list[str]:
@@ -160,7 +160,7 @@ async def swarm(tmp: Path) -> AsyncIterator[str]:
         }
         procs.start("gateway", _program(gateway_command("127.0.0.1", port)), env=env, cwd=tmp)
         base = f"http://127.0.0.1:{port}"
-        async with httpx.AsyncClient(base_url=base, timeout=10, headers=OPERATOR) as http:
+        async with httpx.AsyncClient(base_url=base, timeout=scaled(10), headers=OPERATOR) as http:
 
             async def readyz() -> bool:
                 if procs.procs["gateway"].poll() is not None:
@@ -169,8 +169,9 @@ async def swarm(tmp: Path) -> AsyncIterator[str]:
                     return (await http.get("/readyz")).status_code == 200
                 return False
 
-            await _wait_for("gateway /readyz", readyz, 60)
-            async with httpx.AsyncClient(base_url=base, timeout=10) as anonymous:  # tokens are enforced
+            await _wait_for("gateway /readyz", readyz, scaled(60))
+            # tokens are enforced
+            async with httpx.AsyncClient(base_url=base, timeout=scaled(10)) as anonymous:
                 assert (await anonymous.get("/api/v1/vehicles")).status_code == 401
                 assert (await anonymous.post("/mcp", json={})).status_code == 401
             for i in range(DRONES):
@@ -304,11 +305,11 @@ async def test_five_drone_formation_flight_keeps_separation(tmp_path: Path) -> N
             figures["flight_s"] = round(time.monotonic() - flight_started, 1)
         finally:
             stop.set()
-            await asyncio.wait_for(watcher, 30)
+            await asyncio.wait_for(watcher, scaled(30))
 
         # the recorded 1 Hz tracks (flight log in the gateway's database, through REST)
         tracks: dict[str, list[Sample]] = {d: [] for d in ids}
-        async with httpx.AsyncClient(base_url=base, timeout=30, headers=OPERATOR) as http:
+        async with httpx.AsyncClient(base_url=base, timeout=scaled(30), headers=OPERATOR) as http:
             for d in ids:
                 flights = (await http.get("/api/v1/flights", params={"vehicle_id": d})).json()["items"]
                 assert flights, f"no flight recorded for {d}"

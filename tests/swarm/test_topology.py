@@ -9,6 +9,7 @@ import time
 
 import pytest
 
+from tests.helpers.timing import scaled
 from tests.swarm.topology import GATEWAY_ADDRESS, SwarmNetwork, can_create_namespaces, drone_address
 
 pytestmark = pytest.mark.swarm
@@ -35,10 +36,10 @@ def test_gateway_reaches_every_drone_namespace_and_cleanup_is_complete(process_r
             )
             process_reaper.append(proc)
             assert proc.stdout is not None and proc.stdout.readline().strip() == "up"
-            deadline = time.monotonic() + 10
+            deadline = time.monotonic() + scaled(10)
             while True:
                 try:
-                    conn = socket.create_connection((drone_address(index), 5760), timeout=2)
+                    conn = socket.create_connection((drone_address(index), 5760), timeout=scaled(2))
                     break
                 except OSError:
                     if time.monotonic() > deadline:

@@ -17,6 +17,8 @@ import subprocess
 import time
 from dataclasses import dataclass, field
 
+from tests.helpers.timing import scaled
+
 SUBNET_PREFIX = "10.201.0"
 GATEWAY_ADDRESS = f"{SUBNET_PREFIX}.2"
 PREFIX_LEN = 24
@@ -110,7 +112,7 @@ LOCK_PATH = (
 
 def _acquire_lock(timeout_s: float) -> int:
     fd = os.open(LOCK_PATH, os.O_RDWR | os.O_CREAT, 0o600)
-    deadline = time.monotonic() + timeout_s
+    deadline = time.monotonic() + scaled(timeout_s)
     while True:
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -118,7 +120,8 @@ def _acquire_lock(timeout_s: float) -> int:
         except BlockingIOError:
             if time.monotonic() > deadline:
                 os.close(fd)
-                raise TimeoutError(f"another swarm network held {LOCK_PATH} for {timeout_s:.0f} s") from None
+                held = f"{scaled(timeout_s):.0f} s"
+                raise TimeoutError(f"another swarm network held {LOCK_PATH} for {held}") from None
             time.sleep(0.2)
 
 

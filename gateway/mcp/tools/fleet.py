@@ -268,7 +268,7 @@ async def fleet_takeoff(
     wait: Wait = True,
 ) -> FleetOut:
     """Take off drones at once to alt_m, alt_m+stagger, ... (given order). All must be able, or none go."""
-    view = await call.commander.fleet_takeoff(call.caller, drone_ids, alt_m, stagger_m)
+    view = await call.commander.fleet_takeoff(call.caller, drone_ids, alt_m, stagger_m, notify=call.notify)
     return await _finish(call, view, wait)
 
 
