@@ -459,7 +459,7 @@ class FleetVerbs(DroneVerbs):
                     drone_id=vehicle.id, action=action, outcome="skipped", message="on the ground"
                 )
             try:
-                return await self._stop_one(caller, vehicle.id, action)
+                return await self.stop_one(caller, vehicle.id, action)
             except GatewayError as exc:
                 return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=exc.message)
             except Exception as exc:  # one drone's failure must not stop the others
@@ -474,8 +474,10 @@ class FleetVerbs(DroneVerbs):
             results=list(results),
         )
 
-    async def _stop_one(self, caller: Caller, drone_id: str, action: StopAction) -> StopOutcome:
-        previous = self.operations.running(drone_id)
+    async def stop_one(self, caller: Caller, drone_id: str, action: StopAction) -> StopOutcome:
+        """One drone's part of a stop: hold (ends its operation), land or RTL (tracked operations that
+        supersede it). The REST hold/land/RTL routes are this too."""
+        previous = self._running(drone_id)
         if action == "hold":
             held = await self.hold(caller, drone_id, "operator hold")
             return StopOutcome(
@@ -491,7 +493,7 @@ class FleetVerbs(DroneVerbs):
             drone_id=drone_id,
             action=action,
             outcome="sent",
-            superseded_operation=None if previous is None else previous.id,
+            superseded_operation=None if previous is None else previous.operation_id,
             operation_id=op.operation_id,
         )
 
