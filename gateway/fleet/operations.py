@@ -459,7 +459,9 @@ class OperationManager:
                 await task
         self._monitors.clear()
 
-    async def resume(self, record: Any, vehicle: Any, tracker: Tracker, message: str) -> Operation:
+    async def resume(
+        self, record: OperationRecord, vehicle: FlyingVehicle, tracker: Tracker, message: str
+    ) -> Operation:
         """Follow an operation another process started (a cluster node that was lost): same id, kind and
         params, tracked again from the vehicle's telemetry here."""
         op = Operation(

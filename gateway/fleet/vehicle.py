@@ -17,7 +17,7 @@ import json
 import logging
 import time
 from collections.abc import Callable, Iterable, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from mavsdk_grpc import System
 from mavsdk_grpc import mission_raw as mavsdk_mission_raw
@@ -27,6 +27,7 @@ from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
 from gateway.fleet import geo, mission
 from gateway.fleet.dialects import Dialect, dialect_for
 from gateway.fleet.dialects import protected_params as every_protected_param
+from gateway.fleet.flightlog import FlightRecorder
 from gateway.fleet.mission import MissionItem, WirePlan
 from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.params import Parameters
@@ -35,9 +36,7 @@ from gateway.link.session import ConnectionState, Link, Peer
 from gateway.link.sidecar import Confine, Sidecar
 from gateway.link.telemetry import MissionProgressValue, StatusTextValue, TelemetryCache
 from gateway.registry.spec import VehicleSpec
-
-if TYPE_CHECKING:
-    from gateway.fleet.flightlog import FlightRecorder
+from gateway.registry.store import Store
 
 log = logging.getLogger("gateway.vehicle")
 
@@ -61,7 +60,7 @@ class Vehicle:
         spec: VehicleSpec,
         settings: Settings,
         *,
-        store: Any | None = None,
+        store: Store | None = None,
         peers: Callable[[], Iterable[Peer]] | None = None,
         confine: Confine | None = None,
         on_state: StateListener | None = None,
@@ -191,8 +190,6 @@ class Vehicle:
         """Start the link (sidecar, session) and the flight recorder (idempotent, returns at once)."""
         await self.link.connect()  # a failed sidecar starts afresh; a running one is left alone
         if self.store is not None and self._recorder is None:
-            from gateway.fleet.flightlog import FlightRecorder
-
             self._recorder = FlightRecorder(self, self.store, self.settings)
             await self._recorder.start()
 
@@ -422,7 +419,9 @@ class Vehicle:
             )
         return len(parsed)
 
-    async def _upload_checked(self, system: System, raw: list[Any], dialect: Dialect) -> str | None:
+    async def _upload_checked(
+        self, system: System, raw: list[mavsdk_mission_raw.MissionItem], dialect: Dialect
+    ) -> str | None:
         """Upload; return the autopilot's rejection text if its feasibility check refused the mission."""
         heard: list[str] = []
         verdict = asyncio.Event()
