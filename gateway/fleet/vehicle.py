@@ -381,7 +381,10 @@ class Vehicle:
         """Upload user items 1..N in the dialect's layout (ArduPilot: home at seq 0, hidden). Returns N.
 
         Raises CommandFailed with the autopilot's words when it refuses the mission, in the MISSION_ACK
-        or (PX4) in the text of its feasibility check; such a mission is never started."""
+        (ArduPilot: e.g. NO_SPACE and "Only N items are supported") or (PX4) in the text of its
+        feasibility check. After a refused (or failed) upload the drone holds the mission it had, or
+        one it rejected: either way not the caller's, so `start_mission` refuses until an upload
+        succeeds or the mission is cleared."""
         if not isinstance(items, list | tuple) or not items:
             raise InvalidArgument("a mission needs at least one item")
         if len(items) > mission.MAX_ITEMS:
@@ -407,7 +410,11 @@ class Vehicle:
         ]  # fmt: skip
         self._mission_plan = None  # whatever was on board is being replaced
         self._mission_state = None
-        rejection = await self._upload_checked(system, raw, dialect)
+        try:
+            rejection = await self._upload_checked(system, raw, dialect)
+        except CommandFailed as exc:
+            self._mission_rejection = exc.message
+            raise
         self._mission_plan = plan
         self._mission_rejection = rejection
         if rejection is not None:
@@ -422,7 +429,8 @@ class Vehicle:
     async def _upload_checked(
         self, system: System, raw: list[mavsdk_mission_raw.MissionItem], dialect: Dialect
     ) -> str | None:
-        """Upload; return the autopilot's rejection text if its feasibility check refused the mission."""
+        """Upload; return the autopilot's rejection text if its feasibility check refused the mission
+        after accepting the transfer (PX4). A MISSION_ACK error raises CommandFailed."""
         heard: list[str] = []
         verdict = asyncio.Event()
 
@@ -434,14 +442,8 @@ class Vehicle:
 
         self.telemetry.on_status_text(listen)
         try:
-            try:
-                await self.link.call(
-                    "upload mission", system.mission_raw.upload_mission(raw), MISSION_TIMEOUT_S
-                )
-            except CommandFailed as exc:  # a MISSION_ACK error: add what the autopilot said, if anything
-                raise CommandFailed(
-                    exc.message + self.link.recent_complaint(), vehicle_id=self.id, **exc.details
-                ) from None
+            # a MISSION_ACK error raises CommandFailed with the result and what the autopilot said
+            await self.link.call("upload mission", system.mission_raw.upload_mission(raw), MISSION_TIMEOUT_S)
             if dialect.mission_verdict_s > 0:
                 with contextlib.suppress(TimeoutError):
                     await asyncio.wait_for(verdict.wait(), dialect.mission_verdict_s)
@@ -474,8 +476,8 @@ class Vehicle:
         system = self.system
         if self._mission_rejection is not None:
             raise CommandFailed(
-                f"drone '{self.id}' rejected its uploaded mission ({self._mission_rejection}); "
-                "upload a corrected mission first",
+                f"drone '{self.id}' rejected the last mission uploaded to it ({self._mission_rejection}); "
+                "it starts none until it accepts one: upload a corrected mission first",
                 vehicle_id=self.id,
                 result="MISSION_REJECTED",
             )
