@@ -20,8 +20,7 @@ from gateway.fleet.fleet_ops import FleetOperation, FleetOperations
 from gateway.fleet.operations import OperationManager
 from gateway.fleet.protocols import VehicleRegistry
 from gateway.fleet.safety import LockBook, SafetyPolicy
-from gateway.fleet.scopes import ScopedDirectory
-from gateway.mcp.scopes import scopes_by_principal
+from gateway.fleet.scopes import ScopedDirectory, scopes_by_principal
 from gateway.registry.store import Store
 
 if TYPE_CHECKING:

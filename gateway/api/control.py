@@ -20,7 +20,7 @@ from gateway.fleet.caller import Caller
 from gateway.fleet.fleet_verbs import STOP_LOCK_REASON
 from gateway.fleet.geofence import FLEET
 from gateway.fleet.safety import MAX_REASON_CHARS, Lock
-from gateway.fleet.views import LockResult, OperationView
+from gateway.fleet.views import LockResult, OperationView, StopOutcome
 
 router = APIRouter(tags=["operator control"], route_class=AuditedRoute)
 
@@ -73,6 +73,17 @@ class CommandOut(BaseModel):
     @classmethod
     def of_operation(cls, op: OperationView, action: str) -> CommandOut:
         return cls(vehicle_id=op.drone_id, action=action, outcome="sent", operation_id=op.operation_id)
+
+    @classmethod
+    def of_outcome(cls, r: StopOutcome) -> CommandOut:
+        return cls(
+            vehicle_id=r.drone_id,
+            action=r.action,
+            outcome=r.outcome,
+            message=r.message,
+            superseded_operation=r.superseded_operation,
+            operation_id=r.operation_id,
+        )
 
 
 class StopIn(BaseModel):
@@ -140,36 +151,14 @@ async def unlock_fleet(commander: CommanderDep, who: PrincipalDep) -> UnlockOut:
 # --- actions -------------------------------------------------------------------------------------
 
 
-async def _act(commander: CommanderDep, caller: Caller, vehicle_id: str, action: Action) -> CommandOut:
-    """Hold (ends the drone's current operation), land or RTL (tracked operations superseding it)."""
-    if action == "hold":
-        held = await commander.hold(caller, vehicle_id, "operator hold")
-        return CommandOut(
-            vehicle_id=vehicle_id,
-            action=action,
-            outcome="sent",
-            superseded_operation=held.superseded_operation,
-        )
-    previous = commander.operations.running(vehicle_id)
-    op = await (
-        commander.land(caller, vehicle_id)
-        if action == "land"
-        else commander.return_to_launch(caller, vehicle_id)
-    )
-    return CommandOut(
-        vehicle_id=vehicle_id,
-        action=action,
-        outcome="sent",
-        superseded_operation=None if previous is None else previous.id,
-        operation_id=op.operation_id,
-    )
-
-
 def _action_route(action: Action) -> None:
+    """Hold (ends the drone's current operation), land or RTL (tracked operations superseding it): the
+    Commander's stop of one drone, as the fleet stop sends it to each."""
+
     async def endpoint(
         vehicle_id: CommandVehicleId, commander: CommanderDep, who: PrincipalDep
     ) -> CommandOut:
-        return await _act(commander, operator(who), vehicle_id, action)
+        return CommandOut.of_outcome(await commander.stop_one(operator(who), vehicle_id, action))
 
     endpoint.__name__ = f"{action}_vehicle"
     router.add_api_route(
@@ -198,15 +187,5 @@ async def fleet_stop(commander: CommanderDep, who: PrincipalDep, body: StopIn | 
         action=result.action,
         fleet_lock=None if result.fleet_lock is None else LockOut.of(result.fleet_lock),
         superseded_fleet_operations=result.superseded_fleet_operations,
-        results=[
-            CommandOut(
-                vehicle_id=r.drone_id,
-                action=r.action,
-                outcome=r.outcome,
-                message=r.message,
-                superseded_operation=r.superseded_operation,
-                operation_id=r.operation_id,
-            )
-            for r in result.results
-        ],
+        results=[CommandOut.of_outcome(r) for r in result.results],
     )

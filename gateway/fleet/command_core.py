@@ -39,6 +39,7 @@ WAITER = Caller(via="cluster", principal="waiter")
 """Who forwards a wait: waiting changes nothing, whoever started the operation."""
 
 VerbMethod = TypeVar("VerbMethod", bound=Callable[..., Awaitable[Any]])
+T = TypeVar("T")
 
 #: every verb on one drone that runs on the drone's owner, by name (filled by `routed`)
 ROUTED: dict[str, Verb] = {}
@@ -149,7 +150,12 @@ class CommandCore:
         return self.operations.running_facts(drone_id, kind)
 
     def _guard_takeoff(self, caller: Caller, vehicle: FlyingVehicle, action: str) -> None:
-        """Rule takeoff_in_progress; also run inside the command lock, just before sending."""
+        """Rule takeoff_in_progress, one rule for every verb: while the drone's takeoff climbs, an
+        agent's command that acts on the drone is refused, except the safety actions (land, RTL, hold,
+        and the modes that are them: HOLD, LAND, RTL; kill; disarm). So motion, yaw, speed, mode
+        changes, parameter writes, missions (upload, clear, start, resume, next item), arming and
+        formations wait for the climb. Runs inside the command lock, just before sending (`_track`,
+        `_instant`); a verb may call it earlier too, to refuse before any other work."""
         self.safety.check_takeoff_finished(
             self.context(vehicle), self._running(vehicle.id, "takeoff"), action, caller.policy_via
         )
@@ -214,6 +220,27 @@ class CommandCore:
 
         op = await self.operations.start(vehicle, tracker, send, params, caller.session, precheck)
         return OperationView.of(op, vehicle)
+
+    async def _instant(
+        self,
+        caller: Caller,
+        vehicle: FlyingVehicle,
+        action: str,
+        send: Callable[[], Awaitable[T]],
+        *,
+        safety_action: bool = False,
+        ends_operation: bool = False,
+    ) -> tuple[T, Operation | None]:
+        """An instant command, sent under the drone's command lock like `_track`'s (so it never
+        overtakes a command still being sent to the drone): the takeoff guard inside the lock unless it
+        is a ``safety_action``, the command, then (``ends_operation``) the drone's running operation is
+        superseded by ``action``. Returns what ``send`` returned and the operation it ended."""
+        async with self.operations.command_lock(vehicle.id):
+            if not safety_action:
+                self._guard_takeoff(caller, vehicle, action)
+            result = await send()
+            ended = await self._supersede(vehicle.id, action) if ends_operation else None
+        return result, ended
 
     def view(self, op: Operation) -> OperationView:
         try:

@@ -2,7 +2,9 @@
 navigation (goto, reposition, relative move, yaw, speed), missions and parameters.
 
 Each verb resolves the drone, judges one fresh `VehicleContext` with the policy (as the caller's door
-decides) and then starts a tracked operation under the drone's command lock or sends an instant command.
+decides) and then acts under the drone's command lock: it starts a tracked operation (`_track`) or sends
+an instant command (`_instant`), with the takeoff guard inside the lock for everything but the safety
+actions (`CommandCore._guard_takeoff` states the rule). Only kill sends without the lock (see `kill`).
 Messages name what to do next; ``label`` is how the caller names the command (its MCP tool name), used
 in those messages and in the superseded operation's reason.
 
@@ -11,6 +13,7 @@ Every verb on one drone is ``@routed``: on a cluster node it runs on the node th
 
 from __future__ import annotations
 
+import contextlib
 import time
 from collections.abc import Sequence
 
@@ -19,7 +22,7 @@ from gateway.fleet import geo
 from gateway.fleet.caller import Caller
 from gateway.fleet.command_core import NAV_KINDS, AltFrame, CommandCore, OnProgress, routed
 from gateway.fleet.mission import MissionItem
-from gateway.fleet.modes import LAUNCHING_MODES
+from gateway.fleet.modes import ModeChoice
 from gateway.fleet.operations import (
     GotoTracker,
     LandingTracker,
@@ -57,7 +60,7 @@ class DroneVerbs(CommandCore):
         deadline = self._arming_deadline()
         await self._wait_initialised(vehicle, notify, deadline)
         self.safety.check_arm(self.context(vehicle), caller.policy_via)
-        await vehicle.arm(self._left(deadline), notify)
+        await self._instant(caller, vehicle, "arm_drone", lambda: vehicle.arm(self._left(deadline), notify))
         return ActionResult(drone_id=drone_id, action="arm", message="armed")
 
     @routed
@@ -69,8 +72,9 @@ class DroneVerbs(CommandCore):
                 f"{drone_id} is in the air; call land first (disarm only works on the ground)"
             )
         self.safety.check_actuation(ctx, caller.policy_via)
-        await vehicle.disarm()
-        sup = await self._supersede(drone_id, label)
+        _, sup = await self._instant(
+            caller, vehicle, label, vehicle.disarm, safety_action=True, ends_operation=True
+        )
         return ActionResult(
             drone_id=drone_id, action="disarm", message="disarmed", superseded_operation=sup and sup.id
         )
@@ -132,8 +136,9 @@ class DroneVerbs(CommandCore):
         if not caller.is_operator:
             self._require_airborne(ctx, label)
         self.safety.check_actuation(ctx, caller.policy_via)
-        await vehicle.hold()
-        sup = await self._supersede(drone_id, label)
+        _, sup = await self._instant(
+            caller, vehicle, label, vehicle.hold, safety_action=True, ends_operation=True
+        )
         pos = position(vehicle)
         where = f" at {pos[2]:.1f} m above home" if pos else ""
         stopped = f"; stopped {sup.kind} {sup.id}" if sup else ""
@@ -154,7 +159,13 @@ class DroneVerbs(CommandCore):
     @routed
     async def kill(self, caller: Caller, drone_id: str, confirmed: bool = False) -> ActionResult:
         """Cut the motors. An agent's: only with ``confirmed`` (a human said yes), and on the ground it
-        only disarms. An operator's: at once, wherever the drone is."""
+        only disarms. An operator's: at once, wherever the drone is.
+
+        The one command sent without the drone's command lock: the lock is held while a command is
+        sent, and a send can last long (a takeoff or mission start whose arming the autopilot refuses
+        while it initialises retries for up to a minute; a mission upload takes up to 30 s). Cutting
+        the motors must not wait behind that. It ends whatever operation is recorded; a command still
+        being sent may complete after it (nothing can call back what is already on its way)."""
         vehicle = self._for_recovery(caller, drone_id)
         ctx = self.context(vehicle)
         self.safety.check_kill_confirmed(ctx, confirmed, caller.policy_via)
@@ -178,13 +189,21 @@ class DroneVerbs(CommandCore):
         choice = vehicle.resolve_mode(mode)
         if choice.requested == "HOLD":
             return await self.hold(caller, drone_id, "set_flight_mode HOLD")
-        if choice.native in LAUNCHING_MODES:
-            self._guard_takeoff(caller, vehicle, f"set_flight_mode {choice.requested}")
+        label = f"set_flight_mode {choice.requested}"
+        safety = _is_landing_mode(vehicle, choice)
+        if not safety:
+            self._guard_takeoff(caller, vehicle, label)
         ctx = self.context(vehicle)
         self.safety.check_mode(ctx, choice.requested, caller.policy_via)
         self.safety.check_mode(ctx, choice.native, caller.policy_via)
-        await vehicle.set_flight_mode(mode)
-        sup = await self._supersede(drone_id, f"set_flight_mode {choice.requested}")
+        _, sup = await self._instant(
+            caller,
+            vehicle,
+            label,
+            lambda: vehicle.set_flight_mode(mode),
+            safety_action=safety,
+            ends_operation=True,
+        )
         named = (
             choice.native if choice.native == choice.requested else f"{choice.requested} ({choice.native})"
         )
@@ -315,7 +334,7 @@ class DroneVerbs(CommandCore):
         """The horizontal speed of gotos, m/s (within the policy's limit)."""
         vehicle = self.ready(drone_id)
         self.safety.check_speed(self.context(vehicle), speed_mps, caller.policy_via)
-        await vehicle.set_max_speed(speed_mps)
+        await self._instant(caller, vehicle, "set_max_speed", lambda: vehicle.set_max_speed(speed_mps))
         return ActionResult(
             drone_id=drone_id,
             action="set_max_speed",
@@ -389,22 +408,28 @@ class DroneVerbs(CommandCore):
     # missions
     # ------------------------------------------------------------------------------------------------
 
-    async def _upload(self, caller: Caller, vehicle: FlyingVehicle, items: Sequence[MissionItem]) -> int:
+    async def _upload(
+        self, caller: Caller, vehicle: FlyingVehicle, items: Sequence[MissionItem], action: str
+    ) -> int:
         ctx = self.context(vehicle)
         self.safety.check_mission(ctx, items, caller.policy_via)
-        running = self.operations.running(vehicle.id)
-        if running is not None and running.kind == "mission":
-            raise InvalidArgument(
-                f"{vehicle.id} is flying a mission; call pause_mission before uploading another"
-            )
-        await vehicle.upload_mission(items)
+
+        async def send() -> int:
+            running = self.operations.running(vehicle.id)
+            if running is not None and running.kind == "mission":
+                raise InvalidArgument(
+                    f"{vehicle.id} is flying a mission; call pause_mission before uploading another"
+                )
+            return await vehicle.upload_mission(items)
+
+        await self._instant(caller, vehicle, action, send)
         return len(items)
 
     @routed
     async def upload_mission(self, caller: Caller, drone_id: str, items: list[MissionItem]) -> ActionResult:
         """Store a mission on the drone (items numbered 1..N, altitudes above home) without starting it."""
         vehicle = self.ready(drone_id)
-        count = await self._upload(caller, vehicle, items)
+        count = await self._upload(caller, vehicle, items, "upload_mission")
         return ActionResult(
             drone_id=drone_id,
             action="upload_mission",
@@ -425,7 +450,7 @@ class DroneVerbs(CommandCore):
         vehicle = self.ready(drone_id)
         self._guard_takeoff(caller, vehicle, label)
         if items:
-            await self._upload(caller, vehicle, items)
+            await self._upload(caller, vehicle, items, label)
         ctx = self.context(vehicle)
         self.safety.check_actuation(ctx, caller.policy_via)
         if not ctx.in_air:
@@ -460,11 +485,15 @@ class DroneVerbs(CommandCore):
     @routed
     async def clear_mission(self, caller: Caller, drone_id: str) -> ActionResult:
         vehicle = self.ready(drone_id)
-        running = self.operations.running(drone_id)
-        if running is not None and running.kind == "mission":
-            raise InvalidArgument(f"{drone_id} is flying its mission; call pause_mission first")
         self.safety.check_actuation(self.context(vehicle), caller.policy_via)
-        await vehicle.clear_mission()
+
+        async def send() -> None:
+            running = self.operations.running(drone_id)
+            if running is not None and running.kind == "mission":
+                raise InvalidArgument(f"{drone_id} is flying its mission; call pause_mission first")
+            await vehicle.clear_mission()
+
+        await self._instant(caller, vehicle, "clear_mission", send)
         return ActionResult(drone_id=drone_id, action="clear_mission", message="mission cleared")
 
     @routed
@@ -477,7 +506,9 @@ class DroneVerbs(CommandCore):
             raise InvalidArgument(f"index {index} is beyond the mission's {total} items (valid: 1..{total})")
         self._guard_takeoff(caller, vehicle, "set_current_waypoint")
         self.safety.check_actuation(self.context(vehicle), caller.policy_via)
-        await vehicle.set_current_mission_item(index)
+        await self._instant(
+            caller, vehicle, "set_current_waypoint", lambda: vehicle.set_current_mission_item(index)
+        )
         return ActionResult(
             drone_id=drone_id,
             action="set_current_waypoint",
@@ -518,7 +549,9 @@ class DroneVerbs(CommandCore):
             name, caller.policy_via, vehicle_id=drone_id, protected=vehicle.protected_params
         )
         self.safety.check_actuation(self.context(vehicle), caller.policy_via)
-        val, kind = await vehicle.set_param(name, value)
+        (val, kind), _ = await self._instant(
+            caller, vehicle, f"set_parameter {name}", lambda: vehicle.set_param(name, value)
+        )
         return ParamValue(drone_id=drone_id, name=name, value=val, type=kind)
 
     @routed
@@ -542,6 +575,16 @@ class DroneVerbs(CommandCore):
             params={n: float(every[n]) for n in page},
             next_offset=nxt,
         )
+
+
+def _is_landing_mode(vehicle: FlyingVehicle, choice: ModeChoice) -> bool:
+    """Whether ``choice`` is the drone's LAND or RTL mode, by whichever name it was asked for: a safety
+    action, never refused by the takeoff guard."""
+    for name in ("LAND", "RTL"):
+        with contextlib.suppress(InvalidArgument):
+            if vehicle.resolve_mode(name).native == choice.native:
+                return True
+    return False
 
 
 def _already_flying(drone_id: str, alt_m: float | None, wanted_m: float) -> str:

@@ -534,9 +534,10 @@ class FleetOperations:
 
     async def _hold(self, fop: FleetOperation, drone_id: str, step: Step) -> None:
         router = self._elsewhere(drone_id)
-        if router is None:
-            await step.vehicle.hold()
-            await self.operations.supersede(drone_id, f"{fop.kind} abort")
+        if router is None:  # under the drone's command lock, like every command but kill
+            async with self.operations.command_lock(drone_id):
+                await step.vehicle.hold()
+                await self.operations.supersede(drone_id, f"{fop.kind} abort")
             return
         await router.call(
             drone_id, "hold_step", fop.caller, {"drone_id": drone_id, "reason": f"{fop.kind} abort"}

@@ -9,7 +9,10 @@ Who takes part (the same rule for every fleet verb, also in docs/fleet.md):
   drone that can take them, and the result lists the others (not_sent) with the reason.
 - stop_all is the operator's emergency stop: it locks the fleet (unless told not to), ends every
   running fleet operation first (so a formation's own abort cannot race it), then tells every airborne
-  drone to hold, land or return, each as a tracked operation where the action has one.
+  drone to hold, land or return, each as a tracked operation where the action has one. Each drone's
+  stop goes under its command lock like every command (kill is the one exception): a command still
+  being sent to the drone finishes first, so that the stop is the last word the drone hears rather
+  than being overtaken by it.
 """
 
 from __future__ import annotations
@@ -402,8 +405,9 @@ class FleetVerbs(DroneVerbs):
     async def hold_step(self, caller: Caller, drone_id: str, reason: str) -> ActionResult:
         """Hold a drone whose fleet operation (coordinated by another node) was stopped."""
         vehicle = self.vehicle(drone_id)
-        await vehicle.hold()
-        sup = await self._supersede(drone_id, reason)
+        _, sup = await self._instant(
+            caller, vehicle, reason, vehicle.hold, safety_action=True, ends_operation=True
+        )
         return ActionResult(
             drone_id=drone_id, action="hold", message="held", superseded_operation=sup and sup.id
         )
@@ -471,7 +475,7 @@ class FleetVerbs(DroneVerbs):
                     drone_id=vehicle.id, action=action, outcome="skipped", message="on the ground"
                 )
             try:
-                return await self._stop_one(caller, vehicle.id, action)
+                return await self.stop_one(caller, vehicle.id, action)
             except GatewayError as exc:
                 return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=exc.message)
             except Exception as exc:  # one drone's failure must not stop the others
@@ -486,8 +490,10 @@ class FleetVerbs(DroneVerbs):
             results=list(results),
         )
 
-    async def _stop_one(self, caller: Caller, drone_id: str, action: StopAction) -> StopOutcome:
-        previous = self.operations.running(drone_id)
+    async def stop_one(self, caller: Caller, drone_id: str, action: StopAction) -> StopOutcome:
+        """One drone's part of a stop: hold (ends its operation), land or RTL (tracked operations that
+        supersede it). The REST hold/land/RTL routes are this too."""
+        previous = self._running(drone_id)
         if action == "hold":
             held = await self.hold(caller, drone_id, "operator hold")
             return StopOutcome(
@@ -503,7 +509,7 @@ class FleetVerbs(DroneVerbs):
             drone_id=drone_id,
             action=action,
             outcome="sent",
-            superseded_operation=None if previous is None else previous.id,
+            superseded_operation=None if previous is None else previous.operation_id,
             operation_id=op.operation_id,
         )
 

@@ -12,15 +12,12 @@ import contextlib
 import itertools
 import logging
 from datetime import UTC, datetime
-from typing import TYPE_CHECKING, Any
+from typing import Protocol
 
 from gateway.config import Settings
 from gateway.fleet import geo
-from gateway.link.telemetry import StatusTextValue
-from gateway.registry.store import StatusTextIn, TrackSample
-
-if TYPE_CHECKING:
-    from gateway.fleet.vehicle import Vehicle
+from gateway.link.telemetry import StatusTextValue, TelemetryCache
+from gateway.registry.store import StatusTextIn, Store, TrackSample
 
 log = logging.getLogger("gateway.flightlog")
 
@@ -56,10 +53,20 @@ class _Flight:
         return max(0.0, self.battery_start - self.battery_last)
 
 
+class Recorded(Protocol):
+    """What the recorder reads of a vehicle: its id and its telemetry cache."""
+
+    @property
+    def id(self) -> str: ...
+
+    @property
+    def telemetry(self) -> TelemetryCache: ...
+
+
 class FlightRecorder:
     """Records the flights of one vehicle while it is connected."""
 
-    def __init__(self, vehicle: Vehicle, store: Any, settings: Settings) -> None:
+    def __init__(self, vehicle: Recorded, store: Store, settings: Settings) -> None:
         self.vehicle = vehicle
         self.store = store
         self.settings = settings

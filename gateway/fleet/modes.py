@@ -21,8 +21,6 @@ COMMON_MODES: dict[str, tuple[str, ...]] = {
 }
 #: synonym -> common name
 COMMON_SYNONYMS = {alias: name for name, aliases in COMMON_MODES.items() for alias in aliases}
-#: native names of the modes that fly a mission or take off by themselves (guarded like a takeoff)
-LAUNCHING_MODES = frozenset({"AUTO", "AUTO.MISSION", "AUTO.TAKEOFF"})
 
 
 @dataclass(frozen=True)
@@ -39,11 +37,6 @@ class ModeChoice:
     def is_hold(self) -> bool:
         """A hover in place: flown as the hold action in the air (never a mode that sinks without RC)."""
         return self.requested == "HOLD"
-
-    @property
-    def launches(self) -> bool:
-        """The mode takes off or flies a mission by itself (guarded like a takeoff)."""
-        return self.native in LAUNCHING_MODES
 
 
 class ModeTable(Protocol):

@@ -342,6 +342,13 @@ class OperationManager:
         )
 
     # -- commands --------------------------------------------------------------------------------
+    def command_lock(self, vehicle_id: str) -> asyncio.Lock:
+        """The drone's command lock: every command to one drone is sent under it, one at a time (`start`
+        here, the Commander's instant commands too). It is held while a command is checked and *sent*
+        (usually well under a second; at most as long as the send takes, e.g. a takeoff whose arming
+        the autopilot refuses while it initialises), never while an operation runs."""
+        return self._locks.setdefault(vehicle_id, asyncio.Lock())
+
     async def start(
         self,
         vehicle: FlyingVehicle,
@@ -358,8 +365,7 @@ class OperationManager:
         (LLM hosts issue parallel tool calls). A command that fails raises and leaves the current
         operation as it was: the vehicle is still doing it. On success the previous one is superseded.
         """
-        lock = self._locks.setdefault(vehicle.id, asyncio.Lock())
-        async with lock:
+        async with self.command_lock(vehicle.id):
             if precheck is not None:
                 precheck()
             await send()
@@ -455,7 +461,9 @@ class OperationManager:
                 await task
         self._monitors.clear()
 
-    async def resume(self, record: Any, vehicle: Any, tracker: Tracker, message: str) -> Operation:
+    async def resume(
+        self, record: OperationRecord, vehicle: FlyingVehicle, tracker: Tracker, message: str
+    ) -> Operation:
         """Follow an operation another process started (a cluster node that was lost): same id, kind and
         params, tracked again from the vehicle's telemetry here."""
         op = Operation(

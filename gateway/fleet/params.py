@@ -21,6 +21,8 @@ import time
 from collections.abc import Awaitable, Callable
 from typing import Any
 
+from mavsdk_grpc import System
+
 from gateway.errors import CommandFailed, InvalidArgument
 
 PARAM_TIMEOUT_S = 6.0  # MAVSDK gives up on a param after ~3 s
@@ -63,7 +65,7 @@ class Parameters:
     """The parameters of one vehicle. ``call(what, awaitable, timeout_s)`` maps MAVSDK errors to
     CommandFailed (with ``result`` in the details); ``system()`` returns the current MAVSDK System."""
 
-    def __init__(self, vehicle_id: str, call: Call, system: Callable[[], Any]) -> None:
+    def __init__(self, vehicle_id: str, call: Call, system: Callable[[], System]) -> None:
         self.vehicle_id = vehicle_id
         self._call = call
         self._system = system
@@ -76,7 +78,7 @@ class Parameters:
     def list_age_s(self) -> float | None:
         return None if self._cached_at is None else time.monotonic() - self._cached_at
 
-    async def _read(self, system: Any, name: str) -> tuple[Value, str] | None:
+    async def _read(self, system: System, name: str) -> tuple[Value, str] | None:
         """(value, type) or None when the vehicle does not answer (unknown name)."""
         kind = self._types.get(name, "int")
         for k in (kind, "float" if kind == "int" else "int"):
@@ -147,7 +149,7 @@ class Parameters:
             self._cache[real] = stored
         return stored, kind
 
-    async def _write_int(self, system: Any, name: str, value: int) -> None:
+    async def _write_int(self, system: System, name: str, value: int) -> None:
         await self._call(f"write parameter {name}", system.param.set_param_int(name, value), PARAM_TIMEOUT_S)
 
     async def all(self, max_age_s: float | None = None) -> dict[str, Value]:

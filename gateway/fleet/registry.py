@@ -27,6 +27,7 @@ from gateway.errors import InvalidArgument, UnknownVehicle
 from gateway.fleet.protocols import FlyingVehicle
 from gateway.fleet.vehicle import ConnectionState, Vehicle
 from gateway.link.sidecar import Confine
+from gateway.registry.records import VehicleRecord
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 
@@ -210,7 +211,7 @@ class Registry:
             log.exception("stopping %s after its lease ended failed", vehicle_id)
         return remote
 
-    async def sync(self, records: Iterable[Any]) -> list[str]:
+    async def sync(self, records: Iterable[VehicleRecord]) -> list[str]:
         """Match the registrations in the database (changed on another node); returns the ids of local
         vehicles whose URL changed (reconnected)."""
         specs = {}

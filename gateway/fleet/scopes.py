@@ -1,9 +1,9 @@
 """Agent tokens scoped to some vehicles (GATEWAY_AGENT_SCOPES): such an agent sees and commands only those.
 
 A scope is a list of vehicle ids and ``tag:<tag>`` entries, keyed by the agent's principal name
-(``agent-<8 hex>``, see `gateway.mcp.auth`). A vehicle outside the scope does not exist for that agent:
-it is absent from every list and naming it is an unknown drone. Operators (REST, the console) have no
-scope.
+(``agent-<8 hex>``: `principal_of` its token, the name `gateway.mcp.auth` gives agents). A vehicle
+outside the scope does not exist for that agent: it is absent from every list and naming it is an
+unknown drone. Operators (REST, the console) have no scope.
 
 The Commander's registry is a `ScopedDirectory`: it asks who is acting (`gateway.fleet.routing.ACTING`,
 set by the MCP door for each request and by a cluster node for each call forwarded to it), so the scope
@@ -12,15 +12,24 @@ is applied on the node the agent talks to and again on the node that owns the dr
 
 from __future__ import annotations
 
+import hashlib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
+from gateway.config import Settings
 from gateway.errors import UnknownVehicle
 from gateway.fleet.caller import Caller
 from gateway.fleet.protocols import FlyingVehicle, VehicleDirectory
 from gateway.fleet.routing import ACTING
 
 TAG_PREFIX = "tag:"
+PRINCIPAL_PREFIX = "agent-"
+
+
+def principal_of(token: str) -> str:
+    """An agent's principal name: ``agent-<first 8 hex of the token's SHA-256>``, stable and never the
+    token itself."""
+    return PRINCIPAL_PREFIX + hashlib.sha256(token.encode()).hexdigest()[:8]
 
 
 @dataclass(frozen=True)
@@ -64,3 +73,12 @@ class ScopedDirectory:
         if vehicle is None:
             raise UnknownVehicle(str(vehicle_id)[:64], list(allowed))
         return vehicle
+
+
+def scopes_by_principal(settings: Settings) -> dict[str, VehicleScope]:
+    """GATEWAY_AGENT_SCOPES as the Commander applies them: every key (an agent's token, or its
+    principal name) turned into the agent's principal name."""
+    return {
+        (key if key.startswith(PRINCIPAL_PREFIX) else principal_of(key)): VehicleScope.parse(list(entries))
+        for key, entries in settings.agent_scopes.items()
+    }

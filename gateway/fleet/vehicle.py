@@ -17,7 +17,7 @@ import json
 import logging
 import time
 from collections.abc import Callable, Iterable, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from mavsdk_grpc import System
 from mavsdk_grpc import mission_raw as mavsdk_mission_raw
@@ -27,6 +27,7 @@ from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
 from gateway.fleet import geo, mission
 from gateway.fleet.dialects import Dialect, dialect_for
 from gateway.fleet.dialects import protected_params as every_protected_param
+from gateway.fleet.flightlog import FlightRecorder
 from gateway.fleet.mission import MissionItem, WirePlan
 from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.params import Parameters
@@ -35,9 +36,7 @@ from gateway.link.session import ConnectionState, Link, OnWait, Peer
 from gateway.link.sidecar import Confine, Sidecar
 from gateway.link.telemetry import MissionProgressValue, StatusTextValue, TelemetryCache
 from gateway.registry.spec import VehicleSpec
-
-if TYPE_CHECKING:
-    from gateway.fleet.flightlog import FlightRecorder
+from gateway.registry.store import Store
 
 log = logging.getLogger("gateway.vehicle")
 
@@ -61,7 +60,7 @@ class Vehicle:
         spec: VehicleSpec,
         settings: Settings,
         *,
-        store: Any | None = None,
+        store: Store | None = None,
         peers: Callable[[], Iterable[Peer]] | None = None,
         confine: Confine | None = None,
         on_state: StateListener | None = None,
@@ -198,8 +197,6 @@ class Vehicle:
         """Start the link (sidecar, session) and the flight recorder (idempotent, returns at once)."""
         await self.link.connect()  # a failed sidecar starts afresh; a running one is left alone
         if self.store is not None and self._recorder is None:
-            from gateway.fleet.flightlog import FlightRecorder
-
             self._recorder = FlightRecorder(self, self.store, self.settings)
             await self._recorder.start()
 
@@ -418,7 +415,10 @@ class Vehicle:
         """Upload user items 1..N in the dialect's layout (ArduPilot: home at seq 0, hidden). Returns N.
 
         Raises CommandFailed with the autopilot's words when it refuses the mission, in the MISSION_ACK
-        or (PX4) in the text of its feasibility check; such a mission is never started."""
+        (ArduPilot: e.g. NO_SPACE and "Only N items are supported") or (PX4) in the text of its
+        feasibility check. After a refused (or failed) upload the drone holds the mission it had, or
+        one it rejected: either way not the caller's, so `start_mission` refuses until an upload
+        succeeds or the mission is cleared."""
         if not isinstance(items, list | tuple) or not items:
             raise InvalidArgument("a mission needs at least one item")
         if len(items) > mission.MAX_ITEMS:
@@ -444,7 +444,11 @@ class Vehicle:
         ]  # fmt: skip
         self._mission_plan = None  # whatever was on board is being replaced
         self._mission_state = None
-        rejection = await self._upload_checked(system, raw, dialect)
+        try:
+            rejection = await self._upload_checked(system, raw, dialect)
+        except CommandFailed as exc:
+            self._mission_rejection = exc.message
+            raise
         self._mission_plan = plan
         self._mission_rejection = rejection
         if rejection is not None:
@@ -456,8 +460,11 @@ class Vehicle:
             )
         return len(parsed)
 
-    async def _upload_checked(self, system: System, raw: list[Any], dialect: Dialect) -> str | None:
-        """Upload; return the autopilot's rejection text if its feasibility check refused the mission."""
+    async def _upload_checked(
+        self, system: System, raw: list[mavsdk_mission_raw.MissionItem], dialect: Dialect
+    ) -> str | None:
+        """Upload; return the autopilot's rejection text if its feasibility check refused the mission
+        after accepting the transfer (PX4). A MISSION_ACK error raises CommandFailed."""
         heard: list[str] = []
         verdict = asyncio.Event()
 
@@ -469,14 +476,8 @@ class Vehicle:
 
         self.telemetry.on_status_text(listen)
         try:
-            try:
-                await self.link.call(
-                    "upload mission", system.mission_raw.upload_mission(raw), MISSION_TIMEOUT_S
-                )
-            except CommandFailed as exc:  # a MISSION_ACK error: add what the autopilot said, if anything
-                raise CommandFailed(
-                    exc.message + self.link.recent_complaint(), vehicle_id=self.id, **exc.details
-                ) from None
+            # a MISSION_ACK error raises CommandFailed with the result and what the autopilot said
+            await self.link.call("upload mission", system.mission_raw.upload_mission(raw), MISSION_TIMEOUT_S)
             if dialect.mission_verdict_s > 0:
                 with contextlib.suppress(TimeoutError):
                     await asyncio.wait_for(verdict.wait(), dialect.mission_verdict_s)
@@ -509,8 +510,8 @@ class Vehicle:
         system = self.system
         if self._mission_rejection is not None:
             raise CommandFailed(
-                f"drone '{self.id}' rejected its uploaded mission ({self._mission_rejection}); "
-                "upload a corrected mission first",
+                f"drone '{self.id}' rejected the last mission uploaded to it ({self._mission_rejection}); "
+                "it starts none until it accepts one: upload a corrected mission first",
                 vehicle_id=self.id,
                 result="MISSION_REJECTED",
             )

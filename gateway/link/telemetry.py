@@ -40,9 +40,6 @@ STREAM_RATES_HZ: dict[str, float] = {
     "raw_imu": 2.0,  # RAW_IMU (ArduPilot has no HIGHRES_IMU)
     "odometry": 2.0,  # ODOMETRY (PX4; ArduPilot answers "No ap_message for mavlink id (331)")
 }
-#: Streams not requested from ArduPilot (it refuses them, with a STATUSTEXT for each).
-ARDUPILOT_SKIP = frozenset({"imu", "odometry"})
-PX4_SKIP = frozenset({"raw_imu"})
 
 
 @dataclass(frozen=True)

@@ -1,23 +1,23 @@
 """Bearer tokens for MCP agents (GATEWAY_AGENT_TOKENS): with tokens configured, /mcp requires one.
 
-The principal of an agent is ``agent-<first 8 hex of the token's SHA-256>``: stable, and never the token.
+The principal of an agent is ``agent-<first 8 hex of the token's SHA-256>``: stable, and never the token
+(`gateway.fleet.scopes.principal_of`, beside the agents' vehicle scopes keyed by it).
 Sessions of 2026-07-28 clients are keyed by it; the SDK binds 2025-era sessions to it.
 """
 
 from __future__ import annotations
 
-import hashlib
 import hmac
 from typing import Any
 
 from mcp.server.auth.provider import AccessToken, TokenVerifier
 from mcp.server.auth.settings import AuthSettings
 
+from gateway.fleet.scopes import principal_of
+
+__all__ = ["SCOPE", "AgentTokens", "auth_options", "principal_of"]
+
 SCOPE = "fleet"
-
-
-def principal_of(token: str) -> str:
-    return "agent-" + hashlib.sha256(token.encode()).hexdigest()[:8]
 
 
 class AgentTokens(TokenVerifier):

@@ -11,6 +11,7 @@ Routes (vehicle = index 0..N-1):
   POST /vehicles/{i}/estimate    {"held": bool}   (the EKF's position estimate held back: GPS and home kept)
   POST /vehicles/{i}/battery     {"pct": 0..100}
   POST /vehicles/{i}/param       {"name": str, "value": number}   (as if set by a GCS, without MAVLink)
+  POST /vehicles/{i}/mission_capacity {"items": int | null}   (storage, home included; null: unlimited)
   POST /vehicles/{i}/reboot      {}    (restart: boot timeline from zero, stream rates lost, clients dropped)
 Errors answer 400/404 with {"error": "..."}.
 """
@@ -136,6 +137,11 @@ class ControlServer:
             _call(vehicle.set_battery, _number(args, "pct"))
         elif action == "reboot":
             vehicle.reboot()
+        elif action == "mission_capacity":
+            items = args.get("items")
+            if items is not None and (isinstance(items, bool) or not isinstance(items, int)):
+                raise ControlError(400, "'items' must be a whole number of mission items or null")
+            _call(vehicle.set_mission_capacity, items)
         elif action == "param":
             name = args.get("name")
             if not isinstance(name, str):
@@ -236,3 +242,7 @@ class SimControl:
 
     async def set_param(self, index: int, name: str, value: float) -> dict:
         return await self._post(f"/vehicles/{index}/param", {"name": name, "value": value})
+
+    async def set_mission_capacity(self, index: int, items: int | None) -> dict:
+        """Mission storage in items, home included (None: unlimited): longer uploads get NO_SPACE."""
+        return await self._post(f"/vehicles/{index}/mission_capacity", {"items": items})

@@ -1,7 +1,10 @@
 """Mission storage and the MAVLink mission microservice as ArduPilot implements it.
 
 * Upload: MISSION_COUNT -> the vehicle asks with MISSION_REQUEST (#40) for each seq -> MISSION_ACK.
-  An item with the wrong seq gets MISSION_ACK INVALID_SEQUENCE (the transfer goes on).
+  An item with the wrong seq gets MISSION_ACK INVALID_SEQUENCE (the transfer goes on). A count above
+  the storage (``max_items``, counting home; unlimited unless set) is refused at once with MISSION_ACK
+  NO_SPACE and "Only N items are supported", as ArduPilot's MissionItemProtocol does; the stored
+  mission stays as it was.
 * Seq 0 is always HOME: whatever is uploaded there is replaced; downloads return the current home.
 * Download: MISSION_REQUEST_LIST -> MISSION_COUNT -> MISSION_REQUEST(_INT) -> MISSION_ITEM(_INT).
 """
@@ -97,6 +100,7 @@ class MissionStore:
         self._text = text
         self.items: list[Item] = [Item(command=mav.MAV_CMD_NAV_WAYPOINT, frame=mav.MAV_FRAME_GLOBAL)]
         self.other: dict[int, list[Item]] = {mav.MAV_MISSION_TYPE_FENCE: [], mav.MAV_MISSION_TYPE_RALLY: []}
+        self.max_items: int | None = None  # mission storage, home included; None: unlimited
         self._upload: _Upload | None = None
         self.now = 0.0
 
@@ -155,6 +159,11 @@ class MissionStore:
 
     def _on_count(self, link, msg) -> None:
         mission_type = getattr(msg, "mission_type", 0)
+        limit = self.max_items if mission_type == TYPE_MISSION else None
+        if limit is not None and msg.count > limit:
+            self._ack(link, msg, mav.MAV_MISSION_NO_SPACE, mission_type)
+            self._text(mav.MAV_SEVERITY_WARNING, f"Only {limit} items are supported")
+            return
         if msg.count == 0:
             self._store(mission_type, [])
             self._ack(link, msg, mav.MAV_MISSION_ACCEPTED, mission_type)

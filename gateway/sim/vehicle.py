@@ -598,6 +598,15 @@ class SimVehicle:
             raise ValueError(f"battery level must be 0..100 %, got {pct}")
         self.battery.set_remaining(pct)
 
+    def set_mission_capacity(self, items: int | None) -> None:
+        """How many mission items the storage holds, home included (None: unlimited), as a board with
+        little storage: a longer upload is refused with MISSION_ACK NO_SPACE."""
+        if items is not None and not (isinstance(items, int) and 1 <= items <= 65535):
+            raise ValueError(
+                f"mission capacity must be 1..65535 items (home included) or null; got {items!r}"
+            )
+        self.mission.max_items = items
+
     def state(self) -> dict:
         lat, lon, alt = self.position()
         return {
@@ -634,5 +643,6 @@ class SimVehicle:
             "position_ok": self.position_ok,
             "mission_current": self.auto.current,
             "mission_count": self.mission.count(),
+            "mission_capacity": self.mission.max_items,
             "client_connected": self.links[0].connected,
         }

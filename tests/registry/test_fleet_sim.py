@@ -15,10 +15,12 @@ import pytest
 
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
 from gateway.fleet import geo
+from gateway.fleet.caller import Caller
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.registry import Registry
 from gateway.fleet.vehicle import ConnectionState, Vehicle
 from gateway.registry.spec import VehicleSpec
+from gateway.runtime import Gateway
 from tests.helpers.sim import sim_process
 from tests.registry.conftest import WAIT_S, fast_settings, wait_until
 from tests.registry.procs import alive, mavsdk_servers_of, rss_kib
@@ -259,6 +261,52 @@ async def test_mission_round_trip_run_and_parameters(store, registries) -> None:
         assert len(params) > 100 and params["WPNAV_SPEED"] == pytest.approx(750)
         await v.clear_mission()
         assert await v.download_mission() == []
+
+
+async def test_a_mission_the_autopilot_refuses_on_upload_is_refused_in_its_words_and_never_armed_for(
+    db_url: str,
+) -> None:
+    """ArduPilot answers a mission longer than its storage with MISSION_ACK NO_SPACE and "Only N items
+    are supported", and keeps the mission it had. The caller hears that refusal; initiate_mission then
+    arms nothing (not even for the mission still on board) until a mission is uploaded that fits."""
+    agent = Caller(via="mcp", principal="agent-1", session="s1")
+    async with sim_process(1, speedup=SPEEDUP) as sim, Gateway(fast_settings(database_url=db_url)) as gateway:
+        vehicle = await gateway.require_registry().add(VehicleSpec(id="d1", url=sim.urls[0]))
+        await vehicle.wait_for_state(READY, within_s=WAIT_S)
+        commander = gateway.commander
+        home = vehicle.telemetry.home.value
+        p1 = geo.offset_position(home.lat_deg, home.lon_deg, 30.0, 0.0)
+        land = MissionItem(kind="land", lat=home.lat_deg, lon=home.lon_deg)
+        fits = [MissionItem(kind="takeoff", alt_rel_m=5), land]
+        too_long = [
+            MissionItem(kind="takeoff", alt_rel_m=5),
+            MissionItem(lat=p1[0], lon=p1[1], alt_rel_m=10),
+            land,
+        ]
+        assert (await commander.upload_mission(agent, "d1", fits)).facts == {"items": 2}
+        await sim.control.set_mission_capacity(0, 3)  # home + 2 items
+
+        with pytest.raises(CommandFailed) as refused:
+            await commander.upload_mission(agent, "d1", too_long)
+        assert "'Only 3 items are supported'" in refused.value.message, refused.value.message
+        assert refused.value.details["result"] == "TOO_MANY_MISSION_ITEMS", refused.value.details
+        assert len(await vehicle.download_mission()) == 2  # the autopilot kept the mission it had
+
+        with pytest.raises(CommandFailed, match="upload a corrected mission first") as not_started:
+            await commander.start_mission(agent, "d1", label="initiate_mission")
+        assert "Only 3 items are supported" in not_started.value.message, not_started.value.message
+        with pytest.raises(CommandFailed, match="Only 3 items are supported"):
+            await commander.start_mission(agent, "d1", too_long, label="initiate_mission")
+        state = await sim.control.state(0)
+        assert state["armed"] is False and state["mode"] != "AUTO", state
+        texts = [text for _t, _sev, text in await sim.control.status_texts(0)]
+        assert not any("Arming motors" in t for t in texts), texts
+
+        # a mission that fits clears the refusal: it is started and flown
+        await commander.upload_mission(agent, "d1", fits)
+        started = await commander.start_mission(agent, "d1", label="initiate_mission")
+        assert (await commander.wait(started.operation_id, WAIT_S)).status == "succeeded"
+    assert mavsdk_servers_of() == []
 
 
 async def test_vehicle_reboot_rates_are_requested_again(store, registries) -> None:
