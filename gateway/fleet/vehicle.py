@@ -271,7 +271,8 @@ class Vehicle:
             except CommandFailed as exc:
                 if ready:
                     raise
-                raise self._arm_refusal(exc, self.link.said_since(started), waited=True) from None
+                said = self.link.said_since(started)
+                raise self._arm_refusal(exc, said, waited=True, ready=False) from None
         while True:
             attempt_at = time.time()
             try:
@@ -281,17 +282,28 @@ class Vehicle:
                 said = self.link.said_since(attempt_at)
                 passing = bool(said) and all(dialect.arming_will_pass(text) for text in said)
                 if not ready or not passing or loop.time() + ARM_RETRY_S > deadline:
-                    raise self._arm_refusal(exc, said, waited=passing or not ready) from None
+                    raise self._arm_refusal(exc, said, waited=passing or not ready, ready=ready) from None
             log.info("%s: arming refused while initialising (%s); retrying", self.id, "; ".join(said))
             if notify is not None:
                 with contextlib.suppress(Exception):  # a courtesy; the retry happens regardless
                     await notify(f"{self.id}: autopilot says {refusals.quoted(said)}; trying again")
             await asyncio.sleep(ARM_RETRY_S)
 
-    def _arm_refusal(self, exc: CommandFailed, said: list[str], waited: bool) -> CommandFailed:
+    def _arm_refusal(
+        self, exc: CommandFailed, said: list[str], waited: bool, ready: bool = True
+    ) -> CommandFailed | VehicleNotReady:
         """The refusal of an arming attempt: the autopilot's words and the drone's GPS (and, while it
         initialises, what the gateway still waits for); a reason it lifts by itself ("waited") also
-        says what to do."""
+        says what to do. A drone still initialising (not ``ready``) is refused as not ready, in the
+        autopilot's words when it gave any, else in the gateway's (what it still waits for)."""
+        if not said and not ready:
+            try:
+                self.require_ready()
+            except VehicleNotReady as not_ready:
+                return VehicleNotReady(
+                    f"{not_ready.message}; call again in a few seconds or check fleet_status",
+                    state=self.state.value,
+                )
         if not said:
             return exc
         gps = self.telemetry.fresh("gps_info")
@@ -301,12 +313,13 @@ class Vehicle:
             facts += f"; still {waiting}"
         words = refusals.quoted(said)
         if waited:
-            return CommandFailed(
+            text = (
                 f"drone '{self.id}' cannot arm yet: autopilot says {words} ({facts}); call again in a few "
-                "seconds or check fleet_status",
-                vehicle_id=self.id,
-                result=exc.details.get("result"),
+                "seconds or check fleet_status"
             )
+            if not ready:
+                return VehicleNotReady(text, state=self.state.value)
+            return CommandFailed(text, vehicle_id=self.id, result=exc.details.get("result"))
         return CommandFailed(
             f"drone '{self.id}' refused to arm: autopilot says {words} ({facts})",
             vehicle_id=self.id,

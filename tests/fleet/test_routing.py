@@ -108,6 +108,7 @@ async def test_a_verb_goes_to_the_owner_as_json_and_comes_back_as_the_same_model
     assert loop.calls[0][3] == AGENT.to_dict()  # the door's caller, not the forwarding node
     assert notices == ["d1: waiting for a position estimate"]  # the owner's notice, relayed
     assert fake(gw, "d1").sent[0] == ("takeoff", 10.0)
+    await commander.monitor(AGENT, "d1", cap_s=10.0)  # an agent's upload waits for the takeoff to end
     items = [MissionItem(lat=HOME[0], lon=HOME[1], alt_rel_m=10.0, kind="waypoint")]
     uploaded = await commander.upload_mission(AGENT, "d1", items)
     assert isinstance(uploaded, ActionResult) and uploaded.facts == {"items": 1}

@@ -45,8 +45,9 @@ async def test_register_persist_restore_and_stop(store, registries) -> None:
         assert status["last_heartbeat_age_s"] is not None and status["sysid_mismatch"] is False
         assert status["last_heartbeat_at"].endswith("+00:00")
         # not ready: no position/home from a heartbeat-only vehicle; actions say so instead of hanging
+        # (asked to wait at most 2 s; the heartbeat-only vehicle gives no reason, so the gateway's is named)
         with pytest.raises(VehicleNotReady, match="connected but not ready"):
-            await a.takeoff(10)
+            await a.takeoff(10, within_s=2.0)
         with pytest.raises(DuplicateVehicle):
             await reg.add(_spec("alpha", ports[1]))
         with pytest.raises(UnknownVehicle, match="alpha, bravo"):
