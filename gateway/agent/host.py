@@ -25,6 +25,7 @@ from typing import Any, Protocol
 
 import openai
 
+from gateway.agent.answer import ANSWER_TOOL, ANSWER_TOOL_INFO, answer_text, finish_hint
 from gateway.agent.parsing import ArgumentsError, extract_tool_calls, parse_arguments, strip_thinking
 from gateway.agent.repair import (
     LAT_LON_PAIRS,
@@ -175,12 +176,15 @@ class AgentHost:
         on_event: EventSink | None = None,
         chat_client: openai.AsyncOpenAI | None = None,
         roster: bool = True,
+        answer_tool: bool = False,
     ) -> None:
         if max_steps < 1:
             raise ValueError(f"max_steps must be at least 1, got {max_steps}")
         self.model = model
         self.caller = caller
-        self.base_tools = list(tools)
+        # answer_tool: offer the host's own answer_user tool, the way a small model ends a turn (answer.py)
+        self.answer_tool = answer_tool
+        self.base_tools = list(tools) + ([ANSWER_TOOL_INFO] if answer_tool else [])
         self.use_roster = roster
         self.roster: Roster | None = None
         self._enum_ids: list[str] = []
@@ -199,6 +203,7 @@ class AgentHost:
         self.turns = 0
         self._request = ""
         self._host_notes: list[str] = []  # what the host itself told the model this turn (echo detection)
+        self._held_answer = False  # an answer_user was already sent back once this turn as premature
         self._ids = itertools.count(1)
         self.reset()
 
@@ -237,6 +242,7 @@ class AgentHost:
         started = time.monotonic()
         self._request = user_text
         self._host_notes = []
+        self._held_answer = False
         self._emit("turn_start", turn=self.turns, user=user_text)
         roster = await self.refresh_roster()
         content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
@@ -307,14 +313,35 @@ class AgentHost:
                 result.parsed_from_text += len(calls)
             self.messages.append(_assistant_message(content, calls, parsed))
             failed: ToolCallRecord | None = None
+            answer: str | None = None
+            gave_up = False
             for call in calls:
                 if failed is not None:  # the calls of one reply are a plan: later steps need the earlier
-                    record = self._skip(result.steps, call, parsed, failed)
+                    why = f"the earlier call {failed.name} in the same reply failed. Fix that first."
+                    record = self._skip(result.steps, call, parsed, why)
+                elif answer is not None or gave_up:
+                    record = self._skip(result.steps, call, parsed, "the turn ended with answer_user.")
+                elif call["name"] == ANSWER_TOOL and self.answer_tool:
+                    answer, gave_up = self._answer_call(result.steps, call, parsed, result)
+                    continue
                 else:
                     record = await self._execute(result.steps, call, parsed, result)
                     if record.status in ("error", "invalid", "unknown_tool"):
                         failed = record
                 result.tool_calls.append(record)
+            if answer is not None:
+                result.outcome, result.final_text = "answered", answer
+                self._emit("final", step=result.steps, text=answer, via=ANSWER_TOOL)
+                break
+            if gave_up:
+                result.outcome = "empty_answer"
+                self._emit(
+                    "empty_answer",
+                    step=result.steps,
+                    message=f"the model gave no answer {result.empty_replies} times; the request may be "
+                    "unfinished",
+                )
+                break
             pending = _pending_text(result)
             if pending:
                 self._host_notes.append(pending)
@@ -353,9 +380,14 @@ class AgentHost:
             parts.append(pending)
         if roster is not None:
             parts.append(roster.text())
+        finish = (
+            "call answer_user with one sentence for the user saying what was done"
+            if self.answer_tool
+            else "reply with one sentence for the user saying what was done"
+        )
         parts.append(
-            "If every part of the request is done, reply with one sentence for the user saying what was "
-            "done. Otherwise reply with only the tool call for the next step."
+            f"If every part of the request is done, {finish}. Otherwise reply with only the tool call for "
+            "the next step."
         )
         return "\n".join(parts)
 
@@ -514,7 +546,8 @@ class AgentHost:
             outcome = self._host_note(
                 text=f"Not sent again: this {name} call already succeeded in this request "
                 f"({earlier.summary}). It is done; do not repeat it. The request: {self._request} "
-                "Call the tool for the next step, or answer in words if every part is done.",
+                f"Call the tool for the next step, or {finish_hint(self.answer_tool)} if every part is "
+                "done.",
                 is_error=False,
             )
         else:
@@ -547,7 +580,7 @@ class AgentHost:
         if status in ("invalid", "error") and self._same_invalid_again(name, args, turn):
             outcome = ToolOutcome(
                 f"{outcome.text} This is the third time this same call was refused; it will not work. Stop "
-                "calling it: tell the user what was done and what was refused.",
+                f"calling it: {finish_hint(self.answer_tool)}, saying what was done and what was refused.",
                 is_error=True,
             )
         model_text = outcome.text
@@ -617,9 +650,10 @@ class AgentHost:
         names = ", ".join(extra)
         return f"{tool.name} has no argument {names}; it takes {signature(tool)}. Nothing was executed."
 
-    def _skip(self, step: int, call: dict[str, Any], parsed: bool, failed: ToolCallRecord) -> ToolCallRecord:
-        """A later call of a reply whose earlier call failed: not sent, and the model is told why."""
-        text = f"Not executed: the earlier call {failed.name} in the same reply failed. Fix that first."
+    def _skip(self, step: int, call: dict[str, Any], parsed: bool, why: str) -> ToolCallRecord:
+        """A later call of a reply that is not sent (an earlier call failed, or the turn ended): the model
+        is told why."""
+        text = f"Not executed: {why}"
         self.messages.append({"role": "tool", "tool_call_id": call["id"], "content": text})
         self._emit("tool_result", step=step, id=call["id"], name=call["name"], status="skipped", summary=text,
                    text=text)  # fmt: skip
@@ -628,6 +662,57 @@ class AgentHost:
         except ArgumentsError:
             args = None
         return ToolCallRecord(call["id"], call["name"], args, "skipped", text, parsed, text)
+
+    def _answer_call(
+        self, step: int, call: dict[str, Any], parsed: bool, result: TurnResult
+    ) -> tuple[str | None, bool]:
+        """An ``answer_user`` call: the answer that ends the turn, or None when it is sent back (empty, an
+        echo, or premature once); the flag says the model has now given no answer too often."""
+        try:
+            args = parse_arguments(call["raw_args"]) if call.get("parse_error") is None else None
+        except ArgumentsError:
+            args = None
+        text = answer_text(args)
+        shown = args if args is not None else call["raw_args"]
+        self._emit(
+            "tool_call", step=step, id=call["id"], name=ANSWER_TOOL, arguments=shown, parsed_from_text=parsed
+        )
+        reply: str
+        answer: str | None = None
+        gave_up = False
+        if not text or self._echoes_host(text):
+            result.empty_replies += 1
+            gave_up = result.empty_replies > MAX_EMPTY_REPROMPTS
+            reply = (
+                "Not an answer: answer_user needs text, one sentence for the user saying what was done and "
+                "where the drones are now."
+                if not text
+                else "Not an answer: that only repeats the request or my note. Say in one sentence what was "
+                "done and where the drones are now."
+            )
+        else:
+            untouched = "" if self._held_answer else self._untouched(result)
+            if untouched:
+                self._held_answer = True
+                reply = (
+                    f"Not finished yet: {untouched} Call the tool for the next step; call answer_user when "
+                    "every part is done, or to say why it cannot be done."
+                )
+            else:
+                answer, reply = text, "Delivered to the user."
+        self._host_notes.append(reply)
+        self.messages.append({"role": "tool", "tool_call_id": call["id"], "content": reply})
+        status = "ok" if answer is not None else "invalid"
+        self._emit(
+            "tool_result",
+            step=step,
+            id=call["id"],
+            name=ANSWER_TOOL,
+            status=status,
+            summary=reply,
+            text=reply,
+        )
+        return answer, gave_up
 
     def _repeat_of(self, name: str, args: dict[str, Any], turn: TurnResult | None) -> ToolCallRecord | None:
         """The earlier call of this turn that this one repeats: same tool, same arguments, it succeeded
