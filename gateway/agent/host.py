@@ -59,6 +59,9 @@ MAX_EMPTY_REPROMPTS = 2
 # Tools that only wait for or report on an action already running: calling one between two identical
 # calls does not make the second one new.
 WAIT_TOOLS = frozenset({"monitor_flight", "monitor_fleet", "check_arrival"})
+# With ``follow_running``: how many capped waits the host itself adds to an action still running (each
+# monitor call waits up to the gateway's cap, 45 s by default) before it hands "running" to the model.
+MAX_FOLLOW_WAITS = 20
 
 
 class ModelReplyError(RuntimeError):
@@ -177,6 +180,7 @@ class AgentHost:
         chat_client: openai.AsyncOpenAI | None = None,
         roster: bool = True,
         answer_tool: bool = False,
+        follow_running: bool = False,
     ) -> None:
         if max_steps < 1:
             raise ValueError(f"max_steps must be at least 1, got {max_steps}")
@@ -185,6 +189,10 @@ class AgentHost:
         # answer_tool: offer the host's own answer_user tool, the way a small model ends a turn (answer.py)
         self.answer_tool = answer_tool
         self.base_tools = list(tools) + ([ANSWER_TOOL_INFO] if answer_tool else [])
+        # follow_running: an action whose capped wait ended while it still runs is waited for by the host
+        # (monitor_flight / monitor_fleet), so the model sees how it ended, as if the call had waited.
+        self.follow_running = follow_running
+        self._truncated = False  # the model's last reply stopped at the token limit
         self.use_roster = roster
         self.roster: Roster | None = None
         self._enum_ids: list[str] = []
@@ -203,7 +211,7 @@ class AgentHost:
         self.turns = 0
         self._request = ""
         self._host_notes: list[str] = []  # what the host itself told the model this turn (echo detection)
-        self._held_answer = False  # an answer_user was already sent back once this turn as premature
+        self._held: set[str] = set()  # why answers were sent back this turn (each reason once)
         self._ids = itertools.count(1)
         self.reset()
 
@@ -242,7 +250,7 @@ class AgentHost:
         started = time.monotonic()
         self._request = user_text
         self._host_notes = []
-        self._held_answer = False
+        self._held = set()
         self._emit("turn_start", turn=self.turns, user=user_text)
         roster = await self.refresh_roster()
         content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
@@ -284,7 +292,7 @@ class AgentHost:
             if not calls:
                 said = strip_thinking(content or "").strip()
                 echo = bool(said) and self._echoes_host(said)
-                if said and not echo:
+                if said and not echo and not self._truncated:
                     result.outcome, result.final_text = "answered", content or ""
                     self.messages.append({"role": "assistant", "content": content or ""})
                     self._emit("final", step=result.steps, text=content or "")
@@ -306,6 +314,11 @@ class AgentHost:
                     break
                 self._emit("empty_reply", step=result.steps, attempt=result.empty_replies)
                 reprompt = await self._reprompt(result, echo)
+                if self._truncated:
+                    reprompt = (
+                        "Your reply was cut off at the length limit before a complete tool call. Write only "
+                        f"the next tool call.\n{reprompt}"
+                    )
                 self._host_notes.append(reprompt)
                 self.messages.append({"role": "user", "content": reprompt})
                 continue
@@ -322,7 +335,7 @@ class AgentHost:
                 elif answer is not None or gave_up:
                     record = self._skip(result.steps, call, parsed, "the turn ended with answer_user.")
                 elif call["name"] == ANSWER_TOOL and self.answer_tool:
-                    answer, gave_up = self._answer_call(result.steps, call, parsed, result)
+                    answer, gave_up = await self._answer_call(result.steps, call, parsed, result)
                     continue
                 else:
                     record = await self._execute(result.steps, call, parsed, result)
@@ -346,6 +359,15 @@ class AgentHost:
             if pending:
                 self._host_notes.append(pending)
                 self.messages[-1]["content"] += f"\n\n{pending}"
+            if self._truncated:
+                # Measured: a 6-step plan written as text stopped at 200 tokens inside the 4th call; the
+                # 4th waypoint and the return home were never read, and the model did not notice.
+                cut = (
+                    "(Your reply was cut off at the length limit after this call; whatever came after it was "
+                    "not read. Send the remaining steps, one call at a time.)"
+                )
+                self._host_notes.append(cut)
+                self.messages[-1]["content"] += f"\n\n{cut}"
             if self.use_roster and result.steps < self.max_steps:
                 roster = await self.refresh_roster()
                 if roster is not None:
@@ -391,18 +413,28 @@ class AgentHost:
         )
         return "\n".join(parts)
 
-    def _untouched(self, result: TurnResult) -> str:
+    def _untouched(self, result: TurnResult, answering: bool = False) -> str:
         """Facts about parts of the request no successful call has used yet: drones it names, coordinates
         it gives (measured: after alpha's part, the 1.5B model forgot bravo; after two of three waypoints,
         it stopped)."""
         ok = [c.arguments for c in result.tool_calls if c.ok and c.arguments]
+        acted = [c.arguments for c in result.tool_calls if c.ok and c.arguments and self._acts(c.name)]
         facts = []
         ids = self.roster.ids if self.roster is not None else []
-        touched = {d for args in ok for d in drones_named(args) or ()}
+        # Only actions count: reading or waiting on a drone (monitor_flight answered with the drone's
+        # last, older operation) did nothing with it (measured: bravo was read, then forgotten).
+        touched = {d for args in acted for d in drones_named(args) or ()}
         named = [i for i in ids if re.search(rf"\b{re.escape(i)}\b", self._request, re.IGNORECASE)]
         idle = [i for i in named if i not in touched]
         if idle and touched:
             facts.append(f"The request names {', '.join(idle)}, and nothing has been done with it yet.")
+        flying = [d.drone_id for d in (self.roster.drones if self.roster else ()) if d.flying]
+        aloft = [i for i in (named or sorted(touched)) if i in flying]
+        # Only against an answer: in the middle of a plan a drone still flies before its last step.
+        if answering and aloft and _LAND_WORDS.search(self._request):
+            # Measured: "take off alpha to 10 m, then land it" answered "climbed and landed" after the
+            # takeoff alone.
+            facts.append(f"The request asks to land or come home, and {', '.join(aloft)} is still flying.")
         used = [
             (float(args[lat]), float(args[lon]))
             for args in ok
@@ -457,6 +489,7 @@ class AgentHost:
             raise ModelReplyError("the model endpoint returned no choices")
         message = response.choices[0].message
         content = message.content
+        self._truncated = response.choices[0].finish_reason == "length"
         calls = [
             {
                 "id": tc.id or self._new_id(),
@@ -571,6 +604,8 @@ class AgentHost:
                     self._emit("progress", id=call_id, name=name, progress=p, total=total, message=message)
 
                 outcome = await self.caller.call_tool(name, args, progress)
+                if self.follow_running:
+                    outcome = await self._follow(step, call_id, name, args, outcome, progress)
                 status = "error" if outcome.is_error else "ok"
                 if outcome.is_error:
                     note = self._takeoff_first(name, args)
@@ -608,13 +643,28 @@ class AgentHost:
         return ToolOutcome(text=text, is_error=is_error)
 
     def _echoes_host(self, said: str) -> bool:
-        """The reply only repeats the request, or copies what the host told the model this turn."""
+        """The reply only repeats the request, or copies what the host told the model or an error a tool
+        gave this turn (measured: an answer that was the host's note on an invalid call). A copied read
+        ("alpha battery 73 %") is a fine answer."""
         text = _norm(said)
+        text = text[len("error:") :].strip() if text.startswith("error:") else text
         if len(text) < 20:
             return False
         if text in _norm(self._request):
             return True
-        return any(text[:60] in _norm(note) for note in self._host_notes)
+        told = [*self._host_notes, *self._tool_errors_this_turn()]
+        return any(text[:60] in _norm(note) for note in told)
+
+    def _tool_errors_this_turn(self) -> list[str]:
+        """The errors tools gave the model since the user's request."""
+        texts: list[str] = []
+        for msg in reversed(self.messages):
+            if msg.get("role") == "user" and not str(msg.get("content", "")).startswith("Your reply"):
+                break
+            content = msg.get("content")
+            if msg.get("role") == "tool" and isinstance(content, str) and content.startswith("Error:"):
+                texts.append(content[len("Error:") :])
+        return texts
 
     def _takeoff_first(self, name: str, args: dict[str, Any]) -> str:
         """After a refused move of a drone the roster shows on the ground: the takeoff to call, with the
@@ -663,7 +713,7 @@ class AgentHost:
             args = None
         return ToolCallRecord(call["id"], call["name"], args, "skipped", text, parsed, text)
 
-    def _answer_call(
+    async def _answer_call(
         self, step: int, call: dict[str, Any], parsed: bool, result: TurnResult
     ) -> tuple[str | None, bool]:
         """An ``answer_user`` call: the answer that ends the turn, or None when it is sent back (empty, an
@@ -691,13 +741,9 @@ class AgentHost:
                 "done and where the drones are now."
             )
         else:
-            untouched = "" if self._held_answer else self._untouched(result)
-            if untouched:
-                self._held_answer = True
-                reply = (
-                    f"Not finished yet: {untouched} Call the tool for the next step; call answer_user when "
-                    "every part is done, or to say why it cannot be done."
-                )
+            held = await self._hold_answer(result)
+            if held:
+                reply = held
             else:
                 answer, reply = text, "Delivered to the user."
         self._host_notes.append(reply)
@@ -713,6 +759,66 @@ class AgentHost:
             text=reply,
         )
         return answer, gave_up
+
+    async def _hold_answer(self, result: TurnResult) -> str | None:
+        """Why an answer is sent back instead of ending the turn, or None; each reason at most once a turn,
+        so a model that answers again is believed."""
+        last = result.tool_calls[-1] if result.tool_calls else None
+        if last is not None and last.status in ("invalid", "unknown_tool") and "invalid" not in self._held:
+            # Measured: after the host's note on go_to_location(0, 0) the 1.5B model answered with the note
+            # itself; the call was the model's own mistake and nothing had been done.
+            self._held.add("invalid")
+            return (
+                f"Not finished yet: your {last.name} call was not valid, so nothing was sent; my note above "
+                "says how to fix it. Send the corrected call, then the rest of the request."
+            )
+        if "untouched" in self._held:
+            return None
+        if self.use_roster:
+            await self.refresh_roster()  # whether a drone still flies is read now, not a step ago
+        untouched = self._untouched(result, answering=True)
+        if not untouched:
+            return None
+        self._held.add("untouched")
+        return (
+            f"Not finished yet: {untouched} Call the tool for the next step; call answer_user when every "
+            "part is done, or to say why it cannot be done."
+        )
+
+    def _acts(self, name: str) -> bool:
+        """The tool acts on drones (not a read, not a wait)."""
+        tool = self.tools.get(name)
+        return name not in WAIT_TOOLS and name != ANSWER_TOOL and not (tool is not None and tool.read_only)
+
+    async def _follow(
+        self,
+        step: int,
+        call_id: str,
+        name: str,
+        args: dict[str, Any],
+        outcome: ToolOutcome,
+        progress: Callable[[float, float | None, str | None], Awaitable[None]],
+    ) -> ToolOutcome:
+        """Wait for an action the gateway reported still running after its capped wait (not one the model
+        sent with ``wait: false``): monitor_fleet for a fleet operation, monitor_flight for one drone."""
+        if args.get("wait") is False:
+            return outcome
+        for _ in range(MAX_FOLLOW_WAITS):
+            data = outcome.structured if isinstance(outcome.structured, dict) else {}
+            if outcome.is_error or data.get("status") != "running":
+                return outcome
+            if isinstance(data.get("drones"), list) and isinstance(data.get("operation_id"), str):
+                tool, targs = "monitor_fleet", {"operation_id": data["operation_id"]}
+            elif isinstance(data.get("drone_id"), str):
+                tool, targs = "monitor_flight", {"drone_id": data["drone_id"]}
+            else:
+                return outcome
+            self._emit("following", step=step, id=call_id, name=name, tool=tool, arguments=targs)
+            followed = await self.caller.call_tool(tool, targs, progress)
+            if followed.is_error:  # e.g. a server that does not offer the monitor tool: keep "running"
+                return outcome
+            outcome = followed
+        return outcome
 
     def _repeat_of(self, name: str, args: dict[str, Any], turn: TurnResult | None) -> ToolCallRecord | None:
         """The earlier call of this turn that this one repeats: same tool, same arguments, it succeeded
@@ -744,6 +850,14 @@ class AgentHost:
             parts.append(hint)
         parts.append(f"Available tools: {', '.join(sorted(self.tools))}. Nothing was executed.")
         return " ".join(parts)
+
+
+# Words of a request that ask for a landing or a return home.
+_LAND_WORDS = re.compile(
+    r"\b(?:land|lands|landing|rtl|return(?:s|ing)? (?:to (?:launch|home)|home)|(?:bring|come|go|fly|get) "
+    r"(?:\w+ )?(?:back )?home)\b",
+    re.IGNORECASE,
+)
 
 
 def _pending_text(result: TurnResult) -> str:
