@@ -212,6 +212,9 @@ class AgentHost:
         self._request = ""
         self._host_notes: list[str] = []  # what the host itself told the model this turn (echo detection)
         self._held: set[str] = set()  # why answers were sent back this turn (each reason once)
+        self._error_texts: list[
+            str
+        ] = []  # the errors tools gave this turn (an answer copying one is no answer)
         self._ids = itertools.count(1)
         self.reset()
 
@@ -251,6 +254,7 @@ class AgentHost:
         self._request = user_text
         self._host_notes = []
         self._held = set()
+        self._error_texts = []
         self._emit("turn_start", turn=self.turns, user=user_text)
         roster = await self.refresh_roster()
         content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
@@ -619,6 +623,8 @@ class AgentHost:
                 is_error=True,
             )
         model_text = outcome.text
+        if status in ("invalid", "error", "unknown_tool"):
+            self._error_texts.append(outcome.text)
         if outcome.is_error and not outcome.text.lower().startswith("error"):
             model_text = f"Error: {outcome.text}"  # the text itself stays verbatim
         self.messages.append({"role": "tool", "tool_call_id": call_id, "content": model_text})
@@ -647,24 +653,13 @@ class AgentHost:
         gave this turn (measured: an answer that was the host's note on an invalid call). A copied read
         ("alpha battery 73 %") is a fine answer."""
         text = _norm(said)
-        text = text[len("error:") :].strip() if text.startswith("error:") else text
+        text = re.sub(r"^error(?: executing tool \w+)?:\s*", "", text)
         if len(text) < 20:
             return False
         if text in _norm(self._request):
             return True
-        told = [*self._host_notes, *self._tool_errors_this_turn()]
+        told = [*self._host_notes, *self._error_texts]
         return any(text[:60] in _norm(note) for note in told)
-
-    def _tool_errors_this_turn(self) -> list[str]:
-        """The errors tools gave the model since the user's request."""
-        texts: list[str] = []
-        for msg in reversed(self.messages):
-            if msg.get("role") == "user" and not str(msg.get("content", "")).startswith("Your reply"):
-                break
-            content = msg.get("content")
-            if msg.get("role") == "tool" and isinstance(content, str) and content.startswith("Error:"):
-                texts.append(content[len("Error:") :])
-        return texts
 
     def _takeoff_first(self, name: str, args: dict[str, Any]) -> str:
         """After a refused move of a drone the roster shows on the ground: the takeoff to call, with the

@@ -134,3 +134,62 @@ def test_answer_text_reads_text_or_the_one_string_a_model_put_under_another_name
     assert answer_text({"answer": "done"}) == "done"
     assert answer_text({"a": "x", "b": "y"}) == ""
     assert answer_text(None) == ""
+
+
+async def test_an_answer_right_after_an_invalid_call_is_sent_back_to_fix_the_call(toy, scripted) -> None:
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m="ten"),
+            call(ANSWER_TOOL, text="I could not take off."),
+            call("takeoff", drone_id="alpha", alt_m=10),
+            call(ANSWER_TOOL, text="Alpha is at 10 m."),
+        ]
+    )
+    _, result = await _run(toy, model, "take off alpha to 10 m")
+    assert _last_tool_text(model.requests[2]).startswith("Not finished yet: your takeoff call was not valid")
+    assert result.final_text == "Alpha is at 10 m." and toy.world.drones["alpha"].alt_m == 10.0
+
+
+async def test_an_answer_that_leaves_a_drone_flying_the_request_lands_is_sent_back(toy, scripted) -> None:
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=10),
+            call(ANSWER_TOOL, text="Alpha climbed to 10 m and landed."),
+            call("land", drone_id="alpha"),
+            call(ANSWER_TOOL, text="Alpha climbed to 10 m and landed."),
+        ]
+    )
+    _, result = await _run(toy, model, "take off alpha to 10 m, then land it again")
+    held = _last_tool_text(model.requests[2])
+    assert held.startswith(
+        "Not finished yet: The request asks to land or come home, and alpha is still flying. Call the tool "
+        "for the next step; call answer_user when every part is done, or to say why it cannot be done."
+    )
+    assert result.outcome == "answered" and not toy.world.drones["alpha"].armed
+
+
+async def test_an_answer_that_copies_a_tool_error_is_an_echo_but_a_copied_reading_is_an_answer(
+    toy, scripted
+) -> None:
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=500),
+            call(
+                ANSWER_TOOL,
+                text="Error: refused by rule max_altitude: target altitude 500 m exceeds the limit",
+            ),
+            call(ANSWER_TOOL, text="The gateway refused 500 m; its limit is 120 m above home."),
+        ]
+    )
+    _, result = await _run(toy, model, "climb alpha to 500 m")
+    assert result.empty_replies == 1
+    assert result.final_text == "The gateway refused 500 m; its limit is 120 m above home."
+
+    model = scripted(
+        [
+            call("get_position", drone_id="bravo"),
+            call(ANSWER_TOOL, text="bravo: 0 m north, 0 m up, armed=False"),
+        ]
+    )
+    _, result = await _run(toy, model, "where is bravo?")
+    assert result.final_text == "bravo: 0 m north, 0 m up, armed=False"
