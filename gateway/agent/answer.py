@@ -21,8 +21,9 @@ ANSWER_TOOL = "answer_user"
 
 ANSWER_TOOL_INFO = ToolInfo(
     name=ANSWER_TOOL,
-    description="Finish: tell the user in one or two sentences what was done and where the drones are now "
-    "(or why a tool refused). Call it once every step of the request is done, or when you must stop.",
+    description="Your final answer to the user, in one or two sentences: what was done and where the drones "
+    "are now, or why it cannot be done. Only when every step of the request has succeeded or was refused; "
+    "after a step that succeeded, call the tool for the next step instead.",
     input_schema={
         "type": "object",
         "properties": {"text": {"type": "string", "description": "Your answer to the user."}},
