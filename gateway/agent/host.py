@@ -26,7 +26,13 @@ from typing import Any, Protocol
 import openai
 
 from gateway.agent.answer import ANSWER_TOOL, ANSWER_TOOL_INFO, answer_text, finish_hint
-from gateway.agent.parsing import ArgumentsError, extract_tool_calls, parse_arguments, strip_thinking
+from gateway.agent.parsing import (
+    ArgumentsError,
+    extract_tool_calls,
+    known_case,
+    parse_arguments,
+    strip_thinking,
+)
 from gateway.agent.repair import (
     LAT_LON_PAIRS,
     direction_mismatch,
@@ -497,7 +503,7 @@ class AgentHost:
         calls = [
             {
                 "id": tc.id or self._new_id(),
-                "name": _clean_name(tc.function.name),
+                "name": known_case(_clean_name(tc.function.name), self.tools),
                 "raw_args": tc.function.arguments,
             }
             for tc in (message.tool_calls or [])
@@ -724,10 +730,16 @@ class AgentHost:
         )
         reply: str
         answer: str | None = None
-        gave_up = False
-        if not text or self._echoes_host(text):
+        empty = not text or self._echoes_host(text)
+        # An answer is held back first (once per reason): a model that gives up with an echo after its
+        # own invalid call is told how to go on, not only that the echo is no answer.
+        held = await self._hold_answer(result)
+        if held:
+            reply = held
+            if empty:
+                result.empty_replies += 1
+        elif empty:
             result.empty_replies += 1
-            gave_up = result.empty_replies > MAX_EMPTY_REPROMPTS
             reply = (
                 "Not an answer: answer_user needs text, one sentence for the user saying what was done and "
                 "where the drones are now."
@@ -736,11 +748,8 @@ class AgentHost:
                 "done and where the drones are now."
             )
         else:
-            held = await self._hold_answer(result)
-            if held:
-                reply = held
-            else:
-                answer, reply = text, "Delivered to the user."
+            answer, reply = text, "Delivered to the user."
+        gave_up = answer is None and result.empty_replies > MAX_EMPTY_REPROMPTS
         self._host_notes.append(reply)
         self.messages.append({"role": "tool", "tool_call_id": call["id"], "content": reply})
         status = "ok" if answer is not None else "invalid"
@@ -861,7 +870,7 @@ def _pending_text(result: TurnResult) -> str:
     go_to_location and a takeoff, the 1.5B model forgot the skipped move and landing)."""
     pending: list[ToolCallRecord] = []
     for i, c in enumerate(result.tool_calls):
-        if c.status != "skipped" or c.arguments is None:
+        if c.status != "skipped" or c.arguments is None or c.name == ANSWER_TOOL:
             continue
         later = result.tool_calls[i + 1 :]
         if any(d.ok and d.name == c.name and d.arguments == c.arguments for d in later):
