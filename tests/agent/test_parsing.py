@@ -260,3 +260,16 @@ def test_a_known_tool_written_in_another_case_is_read_as_that_tool() -> None:
     ]
     json_calls = extract_tool_calls('{"name": "Takeoff", "arguments": {"alt_m": 5}}', {"takeoff": ["alt_m"]})
     assert [c.name for c in json_calls] == ["takeoff"]
+
+
+def test_calls_joined_on_one_line_by_commas_or_then_are_all_read() -> None:
+    params = {"takeoff": ["drone_id", "alt_m"], "land": ["drone_id"]}
+    for text in (
+        'takeoff(drone_id="alpha", alt_m=5), land(drone_id="alpha")',
+        'takeoff(drone_id="alpha", alt_m=5); land(drone_id="alpha")',
+        'takeoff(drone_id="alpha", alt_m=5), then land(drone_id="alpha")',
+    ):
+        assert [c.name for c in extract_tool_calls(text, params)] == ["takeoff", "land"], text
+    # In a sentence they stay a description.
+    said = 'Done so far: takeoff(drone_id="alpha", alt_m=5), land(drone_id="alpha")'
+    assert extract_tool_calls(said, params) == []
