@@ -49,9 +49,10 @@ from bench.agent_harness.scripted import ScriptedModelServer
 from bench.agent_harness.stack import GatewayTruth, LocalStack, Sampler, SimTruth, reset_drones
 from bench.agent_harness.tokens import cl100k_tokens, model_tokens
 from bench.common import machine, write_section
+from gateway.agent.answer import ANSWER_TOOL_INFO
 from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentEvent, AgentHost, ModelConfig, TurnResult
 from gateway.agent.mcp_link import McpLink
-from gateway.agent.profiles import PROFILES, apply_profile, system_prompt_for
+from gateway.agent.profiles import PROFILES, apply_profile, host_options_for, system_prompt_for
 from gateway.agent.roster import with_drone_enum
 from gateway.agent.settings import AgentSettings, split_list
 from gateway.agent.toolbox import select_tools
@@ -147,7 +148,7 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         default=None,
         help=f"start {LOCAL_MODEL_SCRIPT} with this model for the run and stop it afterwards",
     )
-    p.add_argument("--max-tokens", type=int, default=200, help="longest model reply in tokens (default 200)")
+    p.add_argument("--max-tokens", type=int, default=400, help="longest model reply in tokens (default 400)")
     p.add_argument("--threads", type=int, default=2, help="threads of the --serve-local model (default 2)")
     p.add_argument("--speedup", type=float, default=5.0, help="simulator speed-up of the own sim (default 5)")
     p.add_argument("--write", action="store_true", help="add the results table to docs/benchmarks.md")
@@ -155,6 +156,12 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         "--json", dest="json_out", default=None, help="also write per-mission results as JSON here"
     )
     p.add_argument("--verbose", action="store_true", help="print every tool call while missions run")
+    p.add_argument(
+        "--events",
+        dest="events_out",
+        default=None,
+        help="append every host event of every run (model replies, calls, results) as JSON lines here",
+    )
     args = p.parse_args(argv)
     if not args.model and not args.serve_local:
         args.self_check = True
@@ -203,6 +210,8 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
         else:
             truth = GatewayTruth(link)
         shown = [with_drone_enum(t, drone_ids) for t in tools]
+        if host_options_for(args.profile)["answer_tool"]:
+            shown.append(ANSWER_TOOL_INFO)  # the host's own tool is part of what the model reads
         args.system_prompt = system_prompt_for(args.profile, DEFAULT_SYSTEM_PROMPT)
         own = None if args.self_check else await model_tokens(args.endpoint, shown, args.system_prompt)
         cl100k = cl100k_tokens(shown, args.system_prompt)
@@ -267,11 +276,20 @@ async def run_one(
     def on_event(e: AgentEvent) -> None:
         if e.kind == "tool_result":
             results.append(e.data)
+        if args.events_out:
+            with open(args.events_out, "a", encoding="utf-8") as out:
+                out.write(json.dumps({"mission": mission.id, **e.to_json()}, default=str) + "\n")
         if args.verbose and e.kind in VERBOSE_EVENTS:
             console.print(f"[dim]  {mission.id} {e.kind}: {json.dumps(e.data, default=str)[:200]}[/]")
 
     host = AgentHost(
-        model, link, tools, max_steps=args.max_steps, on_event=on_event, system_prompt=args.system_prompt
+        model,
+        link,
+        tools,
+        max_steps=args.max_steps,
+        on_event=on_event,
+        system_prompt=args.system_prompt,
+        **host_options_for(args.profile),
     )
     console.print(f"[bold]{mission.id}[/] {prompt} [dim](load {os.getloadavg()[0]:.1f})[/]")
     sampler = Sampler(truth, list(mission.drones))

@@ -26,6 +26,7 @@ class ScriptedReply:
     content: str | None = None
     tool_calls: Sequence[tuple[str, Any]] = ()
     usage: dict[str, int] | None = None
+    finish_reason: str | None = None  # None: "tool_calls" or "stop", as the reply has calls or not
 
 
 Reply = ScriptedReply | Callable[[dict[str, Any]], ScriptedReply]
@@ -162,7 +163,7 @@ class ScriptedModelServer:
                 {
                     "index": 0,
                     "message": message,
-                    "finish_reason": "tool_calls" if reply.tool_calls else "stop",
+                    "finish_reason": reply.finish_reason or ("tool_calls" if reply.tool_calls else "stop"),
                 }
             ],
         }

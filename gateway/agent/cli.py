@@ -15,7 +15,7 @@ from rich.table import Table
 from gateway.agent.display import JsonLinesDisplay, RichDisplay
 from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentHost, ModelConfig
 from gateway.agent.mcp_link import McpLink, McpLinkError
-from gateway.agent.profiles import PROFILES, apply_profile, system_prompt_for
+from gateway.agent.profiles import PROFILES, apply_profile, host_options_for, system_prompt_for
 from gateway.agent.settings import AgentSettings, split_list
 from gateway.agent.toolbox import ToolSelectionError, select_tools
 from gateway.cli import COMMANDS
@@ -198,6 +198,7 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
                 else system_prompt_for(args.profile or env.profile, DEFAULT_SYSTEM_PROMPT),
                 on_event=display,
                 roster=not args.no_roster,
+                **host_options_for(args.profile or env.profile),
             )
             try:
                 if prompt:

@@ -25,7 +25,14 @@ from typing import Any, Protocol
 
 import openai
 
-from gateway.agent.parsing import ArgumentsError, extract_tool_calls, parse_arguments, strip_thinking
+from gateway.agent.answer import ANSWER_TOOL, ANSWER_TOOL_INFO, answer_text, finish_hint
+from gateway.agent.parsing import (
+    ArgumentsError,
+    extract_tool_calls,
+    known_case,
+    parse_arguments,
+    strip_thinking,
+)
 from gateway.agent.repair import (
     LAT_LON_PAIRS,
     direction_mismatch,
@@ -58,6 +65,9 @@ MAX_EMPTY_REPROMPTS = 2
 # Tools that only wait for or report on an action already running: calling one between two identical
 # calls does not make the second one new.
 WAIT_TOOLS = frozenset({"monitor_flight", "monitor_fleet", "check_arrival"})
+# With ``follow_running``: how many capped waits the host itself adds to an action still running (each
+# monitor call waits up to the gateway's cap, 45 s by default) before it hands "running" to the model.
+MAX_FOLLOW_WAITS = 20
 
 
 class ModelReplyError(RuntimeError):
@@ -175,12 +185,20 @@ class AgentHost:
         on_event: EventSink | None = None,
         chat_client: openai.AsyncOpenAI | None = None,
         roster: bool = True,
+        answer_tool: bool = False,
+        follow_running: bool = False,
     ) -> None:
         if max_steps < 1:
             raise ValueError(f"max_steps must be at least 1, got {max_steps}")
         self.model = model
         self.caller = caller
-        self.base_tools = list(tools)
+        # answer_tool: offer the host's own answer_user tool, the way a small model ends a turn (answer.py)
+        self.answer_tool = answer_tool
+        self.base_tools = list(tools) + ([ANSWER_TOOL_INFO] if answer_tool else [])
+        # follow_running: an action whose capped wait ended while it still runs is waited for by the host
+        # (monitor_flight / monitor_fleet), so the model sees how it ended, as if the call had waited.
+        self.follow_running = follow_running
+        self._truncated = False  # the model's last reply stopped at the token limit
         self.use_roster = roster
         self.roster: Roster | None = None
         self._enum_ids: list[str] = []
@@ -199,6 +217,10 @@ class AgentHost:
         self.turns = 0
         self._request = ""
         self._host_notes: list[str] = []  # what the host itself told the model this turn (echo detection)
+        self._held: set[str] = set()  # why answers were sent back this turn (each reason once)
+        self._error_texts: list[
+            str
+        ] = []  # the errors tools gave this turn (an answer copying one is no answer)
         self._ids = itertools.count(1)
         self.reset()
 
@@ -237,6 +259,8 @@ class AgentHost:
         started = time.monotonic()
         self._request = user_text
         self._host_notes = []
+        self._held = set()
+        self._error_texts = []
         self._emit("turn_start", turn=self.turns, user=user_text)
         roster = await self.refresh_roster()
         content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
@@ -278,7 +302,7 @@ class AgentHost:
             if not calls:
                 said = strip_thinking(content or "").strip()
                 echo = bool(said) and self._echoes_host(said)
-                if said and not echo:
+                if said and not echo and not self._truncated:
                     result.outcome, result.final_text = "answered", content or ""
                     self.messages.append({"role": "assistant", "content": content or ""})
                     self._emit("final", step=result.steps, text=content or "")
@@ -300,6 +324,11 @@ class AgentHost:
                     break
                 self._emit("empty_reply", step=result.steps, attempt=result.empty_replies)
                 reprompt = await self._reprompt(result, echo)
+                if self._truncated:
+                    reprompt = (
+                        "Your reply was cut off at the length limit before a complete tool call. Write only "
+                        f"the next tool call.\n{reprompt}"
+                    )
                 self._host_notes.append(reprompt)
                 self.messages.append({"role": "user", "content": reprompt})
                 continue
@@ -307,18 +336,48 @@ class AgentHost:
                 result.parsed_from_text += len(calls)
             self.messages.append(_assistant_message(content, calls, parsed))
             failed: ToolCallRecord | None = None
+            answer: str | None = None
+            gave_up = False
             for call in calls:
                 if failed is not None:  # the calls of one reply are a plan: later steps need the earlier
-                    record = self._skip(result.steps, call, parsed, failed)
+                    why = f"the earlier call {failed.name} in the same reply failed. Fix that first."
+                    record = self._skip(result.steps, call, parsed, why)
+                elif answer is not None or gave_up:
+                    record = self._skip(result.steps, call, parsed, "the turn ended with answer_user.")
+                elif call["name"] == ANSWER_TOOL and self.answer_tool:
+                    answer, gave_up = await self._answer_call(result.steps, call, parsed, result)
+                    continue
                 else:
                     record = await self._execute(result.steps, call, parsed, result)
                     if record.status in ("error", "invalid", "unknown_tool"):
                         failed = record
                 result.tool_calls.append(record)
+            if answer is not None:
+                result.outcome, result.final_text = "answered", answer
+                self._emit("final", step=result.steps, text=answer, via=ANSWER_TOOL)
+                break
+            if gave_up:
+                result.outcome = "empty_answer"
+                self._emit(
+                    "empty_answer",
+                    step=result.steps,
+                    message=f"the model gave no answer {result.empty_replies} times; the request may be "
+                    "unfinished",
+                )
+                break
             pending = _pending_text(result)
             if pending:
                 self._host_notes.append(pending)
                 self.messages[-1]["content"] += f"\n\n{pending}"
+            if self._truncated:
+                # Measured: a 6-step plan written as text stopped at 200 tokens inside the 4th call; the
+                # 4th waypoint and the return home were never read, and the model did not notice.
+                cut = (
+                    "(Your reply was cut off at the length limit after this call; whatever came after it was "
+                    "not read. Send the remaining steps, one call at a time.)"
+                )
+                self._host_notes.append(cut)
+                self.messages[-1]["content"] += f"\n\n{cut}"
             if self.use_roster and result.steps < self.max_steps:
                 roster = await self.refresh_roster()
                 if roster is not None:
@@ -353,24 +412,39 @@ class AgentHost:
             parts.append(pending)
         if roster is not None:
             parts.append(roster.text())
+        finish = (
+            "call answer_user with one sentence for the user saying what was done"
+            if self.answer_tool
+            else "reply with one sentence for the user saying what was done"
+        )
         parts.append(
-            "If every part of the request is done, reply with one sentence for the user saying what was "
-            "done. Otherwise reply with only the tool call for the next step."
+            f"If every part of the request is done, {finish}. Otherwise reply with only the tool call for "
+            "the next step."
         )
         return "\n".join(parts)
 
-    def _untouched(self, result: TurnResult) -> str:
+    def _untouched(self, result: TurnResult, answering: bool = False) -> str:
         """Facts about parts of the request no successful call has used yet: drones it names, coordinates
         it gives (measured: after alpha's part, the 1.5B model forgot bravo; after two of three waypoints,
         it stopped)."""
         ok = [c.arguments for c in result.tool_calls if c.ok and c.arguments]
+        acted = [c.arguments for c in result.tool_calls if c.ok and c.arguments and self._acts(c.name)]
         facts = []
         ids = self.roster.ids if self.roster is not None else []
-        touched = {d for args in ok for d in drones_named(args) or ()}
+        # Only actions count: reading or waiting on a drone (monitor_flight answered with the drone's
+        # last, older operation) did nothing with it (measured: bravo was read, then forgotten).
+        touched = {d for args in acted for d in drones_named(args) or ()}
         named = [i for i in ids if re.search(rf"\b{re.escape(i)}\b", self._request, re.IGNORECASE)]
         idle = [i for i in named if i not in touched]
         if idle and touched:
             facts.append(f"The request names {', '.join(idle)}, and nothing has been done with it yet.")
+        flying = [d.drone_id for d in (self.roster.drones if self.roster else ()) if d.flying]
+        aloft = [i for i in (named or sorted(touched)) if i in flying]
+        # Only against an answer: in the middle of a plan a drone still flies before its last step.
+        if answering and aloft and _LAND_WORDS.search(self._request):
+            # Measured: "take off alpha to 10 m, then land it" answered "climbed and landed" after the
+            # takeoff alone.
+            facts.append(f"The request asks to land or come home, and {', '.join(aloft)} is still flying.")
         used = [
             (float(args[lat]), float(args[lon]))
             for args in ok
@@ -425,10 +499,11 @@ class AgentHost:
             raise ModelReplyError("the model endpoint returned no choices")
         message = response.choices[0].message
         content = message.content
+        self._truncated = response.choices[0].finish_reason == "length"
         calls = [
             {
                 "id": tc.id or self._new_id(),
-                "name": _clean_name(tc.function.name),
+                "name": known_case(_clean_name(tc.function.name), self.tools),
                 "raw_args": tc.function.arguments,
             }
             for tc in (message.tool_calls or [])
@@ -514,7 +589,8 @@ class AgentHost:
             outcome = self._host_note(
                 text=f"Not sent again: this {name} call already succeeded in this request "
                 f"({earlier.summary}). It is done; do not repeat it. The request: {self._request} "
-                "Call the tool for the next step, or answer in words if every part is done.",
+                f"Call the tool for the next step, or {finish_hint(self.answer_tool)} if every part is "
+                "done.",
                 is_error=False,
             )
         else:
@@ -538,6 +614,8 @@ class AgentHost:
                     self._emit("progress", id=call_id, name=name, progress=p, total=total, message=message)
 
                 outcome = await self.caller.call_tool(name, args, progress)
+                if self.follow_running:
+                    outcome = await self._follow(step, call_id, name, args, outcome, progress)
                 status = "error" if outcome.is_error else "ok"
                 if outcome.is_error:
                     note = self._takeoff_first(name, args)
@@ -547,10 +625,12 @@ class AgentHost:
         if status in ("invalid", "error") and self._same_invalid_again(name, args, turn):
             outcome = ToolOutcome(
                 f"{outcome.text} This is the third time this same call was refused; it will not work. Stop "
-                "calling it: tell the user what was done and what was refused.",
+                f"calling it: {finish_hint(self.answer_tool)}, saying what was done and what was refused.",
                 is_error=True,
             )
         model_text = outcome.text
+        if status in ("invalid", "error", "unknown_tool"):
+            self._error_texts.append(outcome.text)
         if outcome.is_error and not outcome.text.lower().startswith("error"):
             model_text = f"Error: {outcome.text}"  # the text itself stays verbatim
         self.messages.append({"role": "tool", "tool_call_id": call_id, "content": model_text})
@@ -575,13 +655,17 @@ class AgentHost:
         return ToolOutcome(text=text, is_error=is_error)
 
     def _echoes_host(self, said: str) -> bool:
-        """The reply only repeats the request, or copies what the host told the model this turn."""
+        """The reply only repeats the request, or copies what the host told the model or an error a tool
+        gave this turn (measured: an answer that was the host's note on an invalid call). A copied read
+        ("alpha battery 73 %") is a fine answer."""
         text = _norm(said)
+        text = re.sub(r"^error(?: executing tool \w+)?:\s*", "", text)
         if len(text) < 20:
             return False
         if text in _norm(self._request):
             return True
-        return any(text[:60] in _norm(note) for note in self._host_notes)
+        told = [*self._host_notes, *self._error_texts]
+        return any(text[:60] in _norm(note) for note in told)
 
     def _takeoff_first(self, name: str, args: dict[str, Any]) -> str:
         """After a refused move of a drone the roster shows on the ground: the takeoff to call, with the
@@ -617,9 +701,10 @@ class AgentHost:
         names = ", ".join(extra)
         return f"{tool.name} has no argument {names}; it takes {signature(tool)}. Nothing was executed."
 
-    def _skip(self, step: int, call: dict[str, Any], parsed: bool, failed: ToolCallRecord) -> ToolCallRecord:
-        """A later call of a reply whose earlier call failed: not sent, and the model is told why."""
-        text = f"Not executed: the earlier call {failed.name} in the same reply failed. Fix that first."
+    def _skip(self, step: int, call: dict[str, Any], parsed: bool, why: str) -> ToolCallRecord:
+        """A later call of a reply that is not sent (an earlier call failed, or the turn ended): the model
+        is told why."""
+        text = f"Not executed: {why}"
         self.messages.append({"role": "tool", "tool_call_id": call["id"], "content": text})
         self._emit("tool_result", step=step, id=call["id"], name=call["name"], status="skipped", summary=text,
                    text=text)  # fmt: skip
@@ -628,6 +713,116 @@ class AgentHost:
         except ArgumentsError:
             args = None
         return ToolCallRecord(call["id"], call["name"], args, "skipped", text, parsed, text)
+
+    async def _answer_call(
+        self, step: int, call: dict[str, Any], parsed: bool, result: TurnResult
+    ) -> tuple[str | None, bool]:
+        """An ``answer_user`` call: the answer that ends the turn, or None when it is sent back (empty, an
+        echo, or premature once); the flag says the model has now given no answer too often."""
+        try:
+            args = parse_arguments(call["raw_args"]) if call.get("parse_error") is None else None
+        except ArgumentsError:
+            args = None
+        text = answer_text(args)
+        shown = args if args is not None else call["raw_args"]
+        self._emit(
+            "tool_call", step=step, id=call["id"], name=ANSWER_TOOL, arguments=shown, parsed_from_text=parsed
+        )
+        reply: str
+        answer: str | None = None
+        empty = not text or self._echoes_host(text)
+        # An answer is held back first (once per reason): a model that gives up with an echo after its
+        # own invalid call is told how to go on, not only that the echo is no answer.
+        held = await self._hold_answer(result)
+        if held:
+            reply = held
+            if empty:
+                result.empty_replies += 1
+        elif empty:
+            result.empty_replies += 1
+            reply = (
+                "Not an answer: answer_user needs text, one sentence for the user saying what was done and "
+                "where the drones are now."
+                if not text
+                else "Not an answer: that only repeats the request or my note. Say in one sentence what was "
+                "done and where the drones are now."
+            )
+        else:
+            answer, reply = text, "Delivered to the user."
+        gave_up = answer is None and result.empty_replies > MAX_EMPTY_REPROMPTS
+        self._host_notes.append(reply)
+        self.messages.append({"role": "tool", "tool_call_id": call["id"], "content": reply})
+        status = "ok" if answer is not None else "invalid"
+        self._emit(
+            "tool_result",
+            step=step,
+            id=call["id"],
+            name=ANSWER_TOOL,
+            status=status,
+            summary=reply,
+            text=reply,
+        )
+        return answer, gave_up
+
+    async def _hold_answer(self, result: TurnResult) -> str | None:
+        """Why an answer is sent back instead of ending the turn, or None; each reason at most once a turn,
+        so a model that answers again is believed."""
+        last = result.tool_calls[-1] if result.tool_calls else None
+        if last is not None and last.status in ("invalid", "unknown_tool") and "invalid" not in self._held:
+            # Measured: after the host's note on go_to_location(0, 0) the 1.5B model answered with the note
+            # itself; the call was the model's own mistake and nothing had been done.
+            self._held.add("invalid")
+            return (
+                f"Not finished yet: your {last.name} call was not valid, so nothing was sent; my note above "
+                "says how to fix it. Send the corrected call, then the rest of the request."
+            )
+        if "untouched" in self._held:
+            return None
+        if self.use_roster:
+            await self.refresh_roster()  # whether a drone still flies is read now, not a step ago
+        untouched = self._untouched(result, answering=True)
+        if not untouched:
+            return None
+        self._held.add("untouched")
+        return (
+            f"Not finished yet: {untouched} Call the tool for the next step; call answer_user when every "
+            "part is done, or to say why it cannot be done."
+        )
+
+    def _acts(self, name: str) -> bool:
+        """The tool acts on drones (not a read, not a wait)."""
+        tool = self.tools.get(name)
+        return name not in WAIT_TOOLS and name != ANSWER_TOOL and not (tool is not None and tool.read_only)
+
+    async def _follow(
+        self,
+        step: int,
+        call_id: str,
+        name: str,
+        args: dict[str, Any],
+        outcome: ToolOutcome,
+        progress: Callable[[float, float | None, str | None], Awaitable[None]],
+    ) -> ToolOutcome:
+        """Wait for an action the gateway reported still running after its capped wait (not one the model
+        sent with ``wait: false``): monitor_fleet for a fleet operation, monitor_flight for one drone."""
+        if args.get("wait") is False:
+            return outcome
+        for _ in range(MAX_FOLLOW_WAITS):
+            data = outcome.structured if isinstance(outcome.structured, dict) else {}
+            if outcome.is_error or data.get("status") != "running":
+                return outcome
+            if isinstance(data.get("drones"), list) and isinstance(data.get("operation_id"), str):
+                tool, targs = "monitor_fleet", {"operation_id": data["operation_id"]}
+            elif isinstance(data.get("drone_id"), str):
+                tool, targs = "monitor_flight", {"drone_id": data["drone_id"]}
+            else:
+                return outcome
+            self._emit("following", step=step, id=call_id, name=name, tool=tool, arguments=targs)
+            followed = await self.caller.call_tool(tool, targs, progress)
+            if followed.is_error:  # e.g. a server that does not offer the monitor tool: keep "running"
+                return outcome
+            outcome = followed
+        return outcome
 
     def _repeat_of(self, name: str, args: dict[str, Any], turn: TurnResult | None) -> ToolCallRecord | None:
         """The earlier call of this turn that this one repeats: same tool, same arguments, it succeeded
@@ -661,13 +856,21 @@ class AgentHost:
         return " ".join(parts)
 
 
+# Words of a request that ask for a landing or a return home.
+_LAND_WORDS = re.compile(
+    r"\b(?:land|lands|landing|rtl|return(?:s|ing)? (?:to (?:launch|home)|home)|(?:bring|come|go|fly|get) "
+    r"(?:\w+ )?(?:back )?home)\b",
+    re.IGNORECASE,
+)
+
+
 def _pending_text(result: TurnResult) -> str:
     """The calls of the model's own plan that were not sent because an earlier one failed, and have not
     succeeded since: once the failure is fixed, they are still the next steps (measured: after a refused
     go_to_location and a takeoff, the 1.5B model forgot the skipped move and landing)."""
     pending: list[ToolCallRecord] = []
     for i, c in enumerate(result.tool_calls):
-        if c.status != "skipped" or c.arguments is None:
+        if c.status != "skipped" or c.arguments is None or c.name == ANSWER_TOOL:
             continue
         later = result.tool_calls[i + 1 :]
         if any(d.ok and d.name == c.name and d.arguments == c.arguments for d in later):

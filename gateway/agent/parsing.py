@@ -201,6 +201,7 @@ def _calls_from_value(value: Any, raw: str, known: set[str], *, explicit: bool) 
     name = name.strip()
     if name.startswith("functions."):
         name = name[len("functions.") :]
+    name = known_case(name, known)
     if not explicit and name not in known:
         return []
     arg_key = next((k for k in _ARG_KEYS if k in value), None)
@@ -215,6 +216,14 @@ def _calls_from_value(value: Any, raw: str, known: set[str], *, explicit: bool) 
         if raw_args:
             notes.append("arguments written beside the name")
     return [_finish(name, raw_args, raw, notes)]
+
+
+def known_case(name: str, known: Collection[str]) -> str:
+    """The known tool name that ``name`` spells in another case (``Takeoff``), else ``name``."""
+    if name in known:
+        return name
+    matches = [k for k in known if k.lower() == name.lower()]
+    return matches[0] if len(matches) == 1 else name
 
 
 def _call_from_parts(name: str, args_text: str, raw: str, notes: list[str]) -> TextToolCall:
@@ -285,7 +294,8 @@ def _python_style_calls(
     arguments (``takeoff(bravo, 20)``, a bare word read as text) when the tool's parameters are known."""
     calls: list[TextToolCall] = []
     for name in sorted(known, key=len, reverse=True):
-        for m in re.finditer(rf"(?<![A-Za-z0-9_.]){re.escape(name)}\s*\(", text):
+        # any case: the 1.5B model began a line with "Formation_goto(...)"
+        for m in re.finditer(rf"(?<![A-Za-z0-9_.]){re.escape(name)}\s*\(", text, re.IGNORECASE):
             end = _matching_paren(text, m.end() - 1)
             if end is None:
                 continue
@@ -314,6 +324,9 @@ def _python_style_calls(
 
 _LIST_MARK_RE = re.compile(r"^\s*(?:[-*]|\d+[.)])?\s*$")
 _LINE_END_RE = re.compile(r"^\s*[;,.]?\s*$")
+_JOIN = r"\s*(?:[,;]|(?:,\s*)?(?:and\s+)?then)\s*"
+_AFTER_CALL_RE = re.compile(rf"^\s*(?:[-*]|\d+[.)])?\s*[A-Za-z_][\w.]*\s*\(.*\){_JOIN}$")
+_BEFORE_CALL_RE = re.compile(rf"^{_JOIN}[A-Za-z_][\w.]*\s*\(")
 
 
 def _stands_alone(text: str, start: int, end: int) -> bool:
@@ -323,7 +336,12 @@ def _stands_alone(text: str, start: int, end: int) -> bool:
     line_start = text.rfind("\n", 0, start) + 1
     line_end = text.find("\n", end)
     line_end = len(text) if line_end < 0 else line_end
-    return bool(_LIST_MARK_RE.match(text[line_start:start]) and _LINE_END_RE.match(text[end:line_end]))
+    before, after = text[line_start:start], text[end:line_end]
+    # Several calls on one line, joined by "," ";" or "then", count too (measured: the 1.5B model wrote
+    # 'takeoff(drone_id="alpha", alt_m=5), land(drone_id="alpha")' as its whole reply).
+    first = bool(_LIST_MARK_RE.match(before)) or bool(_AFTER_CALL_RE.match(before))
+    last = bool(_LINE_END_RE.match(after)) or bool(_BEFORE_CALL_RE.match(after))
+    return first and last
 
 
 def _literal(node: ast.expr) -> Any:

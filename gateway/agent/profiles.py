@@ -2,7 +2,8 @@
 
 A 1.5B-parameter model handed the gateway's 54 tools (about 5,900 tokens in its own tokenizer) mostly
 picks the wrong one or none. The ``small`` profile keeps the tools a person's requests need (fleet
-status, takeoff, land, return home, relative move, goto, battery, position, formation, waiting) and
+status, takeoff, land, return home, relative move, goto, battery, position, formation; the host itself
+waits for actions that outlast the gateway's capped wait) and
 drops optional arguments whose server-side default is what a person means (``wait``: wait until done;
 ``alt_frame``: metres above home; ``heading_deg``: facing the way of travel; ...). The gateway still
 accepts them from any client; only what the model reads changes.
@@ -17,6 +18,7 @@ from __future__ import annotations
 import copy
 import re
 from collections.abc import Sequence
+from typing import TypedDict
 
 from gateway.agent.toolbox import ToolInfo, ToolSelectionError
 
@@ -39,6 +41,24 @@ def system_prompt_for(profile: str, default: str) -> str:
     return SMALL_MODEL_SYSTEM_PROMPT if profile == "small" else default
 
 
+class HostOptions(TypedDict):
+    """Keyword arguments of ``AgentHost`` that depend on the profile."""
+
+    answer_tool: bool
+    follow_running: bool
+
+
+def host_options_for(profile: str) -> HostOptions:
+    """How the host helps a model of this profile (keyword arguments of ``AgentHost``).
+
+    ``answer_tool``: the host's answer_user tool (gateway/agent/answer.py); small models end a turn far
+    more reliably with a tool call than with prose. ``follow_running``: the host waits for an action still
+    running after the gateway's capped wait, so the model never needs monitor_flight (measured: the 1.5B
+    model called it after every finished action, and read an older operation's result as news)."""
+    small = profile == "small"
+    return HostOptions(answer_tool=small, follow_running=small)
+
+
 SMALL_MODEL_TOOLS = (
     "fleet_status",
     "takeoff",
@@ -49,7 +69,6 @@ SMALL_MODEL_TOOLS = (
     "get_position",
     "get_battery",
     "formation_goto",
-    "monitor_flight",
 )
 
 # What a small model reads about each tool: when to use it, in the words a request uses. Measured: with the
@@ -68,7 +87,6 @@ SMALL_MODEL_DESCRIPTIONS = {
     "get_battery": "Battery of one drone: remaining percent and voltage.",
     "formation_goto": "Fly flying drones into a formation (line, column, wedge, grid or circle) centred on "
     "center_lat_deg, center_lon_deg at alt_m metres above home, spacing_m metres apart. Take them off first.",
-    "monitor_flight": "Wait for the drone's current action to finish; call again while it is still running.",
 }
 
 # Optional arguments left out of what a small model is shown (the gateway's defaults apply).

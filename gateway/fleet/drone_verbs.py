@@ -295,11 +295,15 @@ class DroneVerbs(CommandCore):
         """Move by metres north/east/up (+ up climbs, - up descends) from the current position."""
         vehicle = self.ready(drone_id)
         self._guard_takeoff(caller, vehicle, "move_to_relative")
-        pos = self.context(vehicle).position
+        ctx = self.context(vehicle)
+        pos = ctx.position
         if pos is None:
             raise VehicleNotReady(f"no position received from {drone_id} yet")
         for name, metres in (("north_m", north_m), ("east_m", east_m), ("up_m", up_m)):
             geo.check_finite(name, metres)
+        # A drone on the ground hears "take off first", not that 0 m is below home (measured: the 1.5B
+        # model, told "alt_m 0 is not above home" for a grounded bravo, gave up on it).
+        self._require_airborne(ctx, "move_to_relative")
         if up_m < 0 and pos[2] + up_m <= 0:
             below = pos[2] + up_m
             raise InvalidArgument(

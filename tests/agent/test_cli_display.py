@@ -252,6 +252,8 @@ async def test_small_profile_sends_its_tools_prompt_and_reply_cap(toy, scripted)
     assert await cli.run_async(_parse(argv), console=console) == cli.EXIT_OK
     request = model.requests[0]
     # The toy server offers three of the small profile's tools; move_north and list_drones are not in it.
-    assert [t["function"]["name"] for t in request["tools"]] == ["takeoff", "land", "get_position"]
+    # The host adds its own answer_user, how a small model ends its turn.
+    names = [t["function"]["name"] for t in request["tools"]]
+    assert names == ["takeoff", "land", "get_position", "answer_user"]
     assert request["messages"][0]["content"] == SMALL_MODEL_SYSTEM_PROMPT
     assert request["max_tokens"] == 50

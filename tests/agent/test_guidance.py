@@ -242,7 +242,7 @@ async def test_the_third_identical_refused_call_is_told_to_stop(toy, scripted) -
     assert [c.status for c in result.tool_calls] == ["invalid"] * 3
     texts = [_tool_texts(model.requests[i])[-1] for i in (1, 2, 3)]
     assert ["third time" in t for t in texts] == [False, False, True]
-    assert "Stop calling it: tell the user what was done and what was refused." in texts[2]
+    assert "Stop calling it: answer in words, saying what was done and what was refused." in texts[2]
 
 
 def test_a_refused_move_of_a_grounded_drone_names_the_takeoff_with_its_altitude() -> None:

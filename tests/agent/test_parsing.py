@@ -249,3 +249,27 @@ def test_positional_python_style_calls_need_the_tools_parameters() -> None:
     assert "positional arguments" in calls[0].notes
     assert extract_tool_calls("takeoff(bravo, 20)", ["takeoff"]) == []  # names only: keywords only
     assert extract_tool_calls("land(bravo, 20)", params) == []  # more arguments than parameters
+
+
+def test_a_known_tool_written_in_another_case_is_read_as_that_tool() -> None:
+    """The 1.5B model began a reply with ``Formation_goto(...)``: read, not taken as the answer."""
+    text = 'Formation_goto(drone_ids=["alpha", "bravo"], formation="line", alt_m=25)'
+    calls = extract_tool_calls(text, {"formation_goto": ["drone_ids", "formation", "alt_m"]})
+    assert [(c.name, c.arguments) for c in calls] == [
+        ("formation_goto", {"drone_ids": ["alpha", "bravo"], "formation": "line", "alt_m": 25})
+    ]
+    json_calls = extract_tool_calls('{"name": "Takeoff", "arguments": {"alt_m": 5}}', {"takeoff": ["alt_m"]})
+    assert [c.name for c in json_calls] == ["takeoff"]
+
+
+def test_calls_joined_on_one_line_by_commas_or_then_are_all_read() -> None:
+    params = {"takeoff": ["drone_id", "alt_m"], "land": ["drone_id"]}
+    for text in (
+        'takeoff(drone_id="alpha", alt_m=5), land(drone_id="alpha")',
+        'takeoff(drone_id="alpha", alt_m=5); land(drone_id="alpha")',
+        'takeoff(drone_id="alpha", alt_m=5), then land(drone_id="alpha")',
+    ):
+        assert [c.name for c in extract_tool_calls(text, params)] == ["takeoff", "land"], text
+    # In a sentence they stay a description.
+    said = 'Done so far: takeoff(drone_id="alpha", alt_m=5), land(drone_id="alpha")'
+    assert extract_tool_calls(said, params) == []

@@ -131,3 +131,10 @@ async def test_a_goto_on_the_ground_to_a_refused_target_says_the_refusal_first(g
             "goto", AGENT, drone_id="d1", lat_deg=near_lat, lon_deg=near_lon, alt_m=30
         )
     assert fake(gateway, "d1").sent == []
+
+
+async def test_a_relative_move_of_a_drone_on_the_ground_says_take_off_first(gateway: Gateway) -> None:
+    """Not "alt_m 0 is not above home": told that, the small model gave up on the grounded drone."""
+    with pytest.raises(VehicleNotReady, match="d1 is on the ground; move_to_relative needs a flying drone"):
+        await gateway.commander.call("move_relative", AGENT, drone_id="d1", north_m=100, east_m=0)
+    assert fake(gateway, "d1").sent == []

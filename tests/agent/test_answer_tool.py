@@ -1,0 +1,195 @@
+"""The host's answer_user tool: how a small model ends a turn (a scripted model, a real toy MCP server)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from bench.agent_harness.scripted import ScriptedModelServer, ScriptedReply, call, say
+from gateway.agent.answer import ANSWER_TOOL, answer_text
+from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
+from gateway.agent.mcp_link import McpLink
+from tests.agent.toy_mcp import TOKEN, ToyServer
+
+
+async def _run(
+    toy: ToyServer, model: ScriptedModelServer, prompt: str, events: list[AgentEvent] | None = None
+) -> tuple[AgentHost, Any]:
+    async with McpLink(toy.url, TOKEN) as link:
+        host = AgentHost(
+            ModelConfig(model.base_url, "scripted", max_retries=0),
+            link,
+            await link.list_tools(),
+            on_event=(events.append if events is not None else None),
+            answer_tool=True,
+        )
+        result = await host.run_turn(prompt)
+    return host, result
+
+
+def _last_tool_text(request: dict[str, Any]) -> str:
+    return [m for m in request["messages"] if m["role"] == "tool"][-1]["content"]
+
+
+async def test_the_model_is_offered_answer_user_and_calling_it_ends_the_turn_with_its_text(
+    toy, scripted
+) -> None:
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=10),
+            call("land", drone_id="alpha"),
+            call(ANSWER_TOOL, text="Alpha went up to 10 m and landed."),
+        ]
+    )
+    events: list[AgentEvent] = []
+    _, result = await _run(toy, model, "take off alpha to 10 m, then land it", events)
+
+    assert ANSWER_TOOL in {t["function"]["name"] for t in model.requests[0]["tools"]}
+    assert result.outcome == "answered"
+    assert result.final_text == "Alpha went up to 10 m and landed."
+    # The answer is the host's, never a gateway call.
+    assert [c.name for c in result.tool_calls] == ["takeoff", "land"]
+    assert ANSWER_TOOL not in [c[0] for c in toy.world.calls]
+    assert len(model.requests) == 3  # nothing asked after the answer
+    assert [e.data.get("via") for e in events if e.kind == "final"] == [ANSWER_TOOL]
+
+
+async def test_an_answer_written_as_text_in_the_same_reply_as_the_last_call_ends_the_turn(
+    toy, scripted
+) -> None:
+    model = scripted(
+        [
+            say(
+                '{"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 5}}\n'
+                '{"name": "answer_user", "arguments": {"text": "Alpha is hovering at 5 m."}}'
+            )
+        ]
+    )
+    _, result = await _run(toy, model, "take off alpha to 5 m")
+    assert result.outcome == "answered" and result.final_text == "Alpha is hovering at 5 m."
+    assert [(c.name, c.status) for c in result.tool_calls] == [("takeoff", "ok")]
+    assert toy.world.drones["alpha"].alt_m == 5.0
+
+
+async def test_an_answer_after_a_failed_call_of_the_same_reply_is_not_taken(toy, scripted) -> None:
+    model = scripted(
+        [
+            ScriptedReply(
+                tool_calls=[
+                    ("takeoff", '{"drone_id": "alpha", "alt_m": 500}'),
+                    (ANSWER_TOOL, '{"text": "Alpha is at 500 m."}'),
+                ]
+            ),
+            call(ANSWER_TOOL, text="The gateway refused 500 m: the limit is 120 m above home."),
+        ]
+    )
+    _, result = await _run(toy, model, "climb alpha to 500 m")
+    assert [(c.name, c.status) for c in result.tool_calls] == [("takeoff", "error"), (ANSWER_TOOL, "skipped")]
+    assert result.final_text == "The gateway refused 500 m: the limit is 120 m above home."
+
+
+async def test_an_empty_or_echoed_answer_is_asked_again_and_three_end_as_empty_answer(toy, scripted) -> None:
+    request = "take off alpha to 10 m"
+    model = scripted(
+        [call(ANSWER_TOOL, text=""), call(ANSWER_TOOL, text=request), call(ANSWER_TOOL, text="  ")]
+    )
+    _, result = await _run(toy, model, request)
+    assert result.outcome == "empty_answer" and result.final_text is None
+    assert result.empty_replies == 3
+    assert "Not an answer: answer_user needs text" in _last_tool_text(model.requests[1])
+    assert "Not an answer: that only repeats the request" in _last_tool_text(model.requests[2])
+
+
+async def test_an_answer_that_forgets_a_named_drone_is_sent_back_once_then_taken(toy, scripted) -> None:
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=10),
+            call(ANSWER_TOOL, text="Alpha is up."),
+            call("takeoff", drone_id="bravo", alt_m=10),
+            call(ANSWER_TOOL, text="Alpha and bravo are at 10 m."),
+        ]
+    )
+    _, result = await _run(toy, model, "take off alpha and bravo to 10 m")
+    held = _last_tool_text(model.requests[2])
+    assert held.startswith(
+        "Not finished yet: The request names bravo, and nothing has been done with it yet."
+    )
+    assert result.final_text == "Alpha and bravo are at 10 m."
+    assert toy.world.drones["bravo"].alt_m == 10.0
+
+
+async def test_a_premature_answer_is_held_back_only_once(toy, scripted) -> None:
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=10),
+            call(ANSWER_TOOL, text="Only alpha flew."),
+            call(ANSWER_TOOL, text="Only alpha flew; bravo stayed down."),
+        ]
+    )
+    _, result = await _run(toy, model, "take off alpha and bravo to 10 m")
+    assert result.outcome == "answered" and result.final_text == "Only alpha flew; bravo stayed down."
+
+
+def test_answer_text_reads_text_or_the_one_string_a_model_put_under_another_name() -> None:
+    assert answer_text({"text": " done "}) == "done"
+    assert answer_text({"answer": "done"}) == "done"
+    assert answer_text({"a": "x", "b": "y"}) == ""
+    assert answer_text(None) == ""
+
+
+async def test_an_answer_right_after_an_invalid_call_is_sent_back_to_fix_the_call(toy, scripted) -> None:
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m="ten"),
+            call(ANSWER_TOOL, text="I could not take off."),
+            call("takeoff", drone_id="alpha", alt_m=10),
+            call(ANSWER_TOOL, text="Alpha is at 10 m."),
+        ]
+    )
+    _, result = await _run(toy, model, "take off alpha to 10 m")
+    assert _last_tool_text(model.requests[2]).startswith("Not finished yet: your takeoff call was not valid")
+    assert result.final_text == "Alpha is at 10 m." and toy.world.drones["alpha"].alt_m == 10.0
+
+
+async def test_an_answer_that_leaves_a_drone_flying_the_request_lands_is_sent_back(toy, scripted) -> None:
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=10),
+            call(ANSWER_TOOL, text="Alpha climbed to 10 m and landed."),
+            call("land", drone_id="alpha"),
+            call(ANSWER_TOOL, text="Alpha climbed to 10 m and landed."),
+        ]
+    )
+    _, result = await _run(toy, model, "take off alpha to 10 m, then land it again")
+    held = _last_tool_text(model.requests[2])
+    assert held.startswith(
+        "Not finished yet: The request asks to land or come home, and alpha is still flying. Call the tool "
+        "for the next step; call answer_user when every part is done, or to say why it cannot be done."
+    )
+    assert result.outcome == "answered" and not toy.world.drones["alpha"].armed
+
+
+async def test_an_answer_that_copies_a_tool_error_is_an_echo_but_a_copied_reading_is_an_answer(
+    toy, scripted
+) -> None:
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=500),
+            call(
+                ANSWER_TOOL,
+                text="Error: refused by rule max_altitude: target altitude 500 m exceeds the limit",
+            ),
+            call(ANSWER_TOOL, text="The gateway refused 500 m; its limit is 120 m above home."),
+        ]
+    )
+    _, result = await _run(toy, model, "climb alpha to 500 m")
+    assert result.empty_replies == 1
+    assert result.final_text == "The gateway refused 500 m; its limit is 120 m above home."
+
+    model = scripted(
+        [
+            call("get_position", drone_id="bravo"),
+            call(ANSWER_TOOL, text="bravo: 0 m north, 0 m up, armed=False"),
+        ]
+    )
+    _, result = await _run(toy, model, "where is bravo?")
+    assert result.final_text == "bravo: 0 m north, 0 m up, armed=False"
