@@ -767,7 +767,8 @@ class AgentHost:
     async def _hold_answer(self, result: TurnResult) -> str | None:
         """Why an answer is sent back instead of ending the turn, or None; each reason at most once a turn,
         so a model that answers again is believed."""
-        last = result.tool_calls[-1] if result.tool_calls else None
+        # the last call that ran (calls skipped after it in the same reply do not count)
+        last = next((c for c in reversed(result.tool_calls) if c.status != "skipped"), None)
         if last is not None and last.status in ("invalid", "unknown_tool") and "invalid" not in self._held:
             # Measured: after the host's note on go_to_location(0, 0) the 1.5B model answered with the note
             # itself; the call was the model's own mistake and nothing had been done.

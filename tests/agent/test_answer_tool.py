@@ -193,3 +193,23 @@ async def test_an_answer_that_copies_a_tool_error_is_an_echo_but_a_copied_readin
     )
     _, result = await _run(toy, model, "where is bravo?")
     assert result.final_text == "bravo: 0 m north, 0 m up, armed=False"
+
+
+async def test_an_answer_after_an_invalid_call_whose_plan_was_skipped_is_sent_back_too(toy, scripted) -> None:
+    model = scripted(
+        [
+            ScriptedReply(
+                tool_calls=[
+                    ("takeoff", '{"drone_id": "alpha", "alt_m": "ten"}'),
+                    ("land", '{"drone_id": "alpha"}'),
+                ]
+            ),
+            call(ANSWER_TOOL, text="Nothing yet."),
+            call("takeoff", drone_id="alpha", alt_m=10),
+            call("land", drone_id="alpha"),
+            call(ANSWER_TOOL, text="Alpha went up to 10 m and landed."),
+        ]
+    )
+    _, result = await _run(toy, model, "take off alpha to 10 m, then land it")
+    assert _last_tool_text(model.requests[2]).startswith("Not finished yet: your takeoff call was not valid")
+    assert result.final_text == "Alpha went up to 10 m and landed."
