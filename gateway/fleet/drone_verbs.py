@@ -106,7 +106,10 @@ class DroneVerbs(CommandCore):
         """Land where the drone is; done when landed and disarmed."""
         vehicle = self._for_recovery(caller, drone_id)
         if is_landed_and_disarmed(vehicle):
-            raise InvalidArgument(f"{drone_id} is already on the ground and disarmed")
+            raise InvalidArgument(
+                f"{drone_id} is already on the ground and disarmed: nothing to do, it is landed as asked "
+                "(do not take it off again unless the request says so)"
+            )
         self.safety.check_actuation(self.context(vehicle), caller.policy_via)
         return await self._track(caller, vehicle, LandingTracker(kind="land"), vehicle.land, {}, "land")
 
