@@ -21,12 +21,11 @@ ANSWER_TOOL = "answer_user"
 
 ANSWER_TOOL_INFO = ToolInfo(
     name=ANSWER_TOOL,
-    description="Your final answer to the user, in one or two sentences: what was done and where the drones "
-    "are now, or why it cannot be done. Only when every step of the request has succeeded or was refused; "
-    "after a step that succeeded, call the tool for the next step instead.",
+    description="Final answer to the user, one or two sentences: what was done, or why not. Only once every "
+    "step succeeded or was refused; after a step, call the next step's tool instead.",
     input_schema={
         "type": "object",
-        "properties": {"text": {"type": "string", "description": "Your answer to the user."}},
+        "properties": {"text": {"type": "string"}},
         "required": ["text"],
     },
     toolset=None,
