@@ -629,7 +629,11 @@ class AgentHost:
                 is_error=True,
             )
         model_text = outcome.text
-        if status in ("invalid", "error", "unknown_tool"):
+        if status in ("invalid", "unknown_tool"):
+            # the host's own refusals are instructions to the model, no answer for the user; a gateway
+            # refusal copied as the answer ("refused by rule max_altitude ...", "already on the ground")
+            # does tell the user what happened (measured: an answer copying "alpha is already on the
+            # ground" after a finished survey was sent back three times)
             self._error_texts.append(outcome.text)
         if outcome.is_error and not outcome.text.lower().startswith("error"):
             model_text = f"Error: {outcome.text}"  # the text itself stays verbatim
@@ -705,6 +709,7 @@ class AgentHost:
         """A later call of a reply that is not sent (an earlier call failed, or the turn ended): the model
         is told why."""
         text = f"Not executed: {why}"
+        self._host_notes.append(text)  # measured: copied back as the answer
         self.messages.append({"role": "tool", "tool_call_id": call["id"], "content": text})
         self._emit("tool_result", step=step, id=call["id"], name=call["name"], status="skipped", summary=text,
                    text=text)  # fmt: skip

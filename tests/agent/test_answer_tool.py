@@ -168,23 +168,32 @@ async def test_an_answer_that_leaves_a_drone_flying_the_request_lands_is_sent_ba
     assert result.outcome == "answered" and not toy.world.drones["alpha"].armed
 
 
-async def test_an_answer_that_copies_a_tool_error_is_an_echo_but_a_copied_reading_is_an_answer(
+async def test_an_answer_that_copies_the_hosts_refusal_is_an_echo_but_a_copied_gateway_text_is_an_answer(
     toy, scripted
 ) -> None:
     model = scripted(
         [
-            call("takeoff", drone_id="alpha", alt_m=500),
+            call("takeoff", drone_id="alpha", alt_m="high"),
+            call("takeoff", drone_id="alpha", alt_m=10),
             call(
                 ANSWER_TOOL,
-                text="Error: refused by rule max_altitude: target altitude 500 m exceeds the limit",
+                text="Error: invalid arguments for takeoff: 'high' is not of type 'number'.",
             ),
-            call(ANSWER_TOOL, text="The gateway refused 500 m; its limit is 120 m above home."),
+            call(ANSWER_TOOL, text="Alpha is at 10 m."),
         ]
     )
-    _, result = await _run(toy, model, "climb alpha to 500 m")
-    assert result.empty_replies == 1
-    assert result.final_text == "The gateway refused 500 m; its limit is 120 m above home."
+    _, result = await _run(toy, model, "take alpha up")
+    assert result.empty_replies == 1 and result.final_text == "Alpha is at 10 m."
 
+    # A gateway refusal or a reading, copied, tells the user what happened.
+    model = scripted(
+        [
+            call("takeoff", drone_id="bravo", alt_m=500),
+            call(ANSWER_TOOL, text="refused by rule max_altitude: target altitude 500 m exceeds the limit"),
+        ]
+    )
+    _, result = await _run(toy, model, "climb bravo to 500 m")
+    assert result.final_text == "refused by rule max_altitude: target altitude 500 m exceeds the limit"
     model = scripted(
         [
             call("get_position", drone_id="bravo"),
