@@ -49,7 +49,14 @@ from gateway.agent.roster import (
     normalise_drone_ids,
     with_drone_enum,
 )
-from gateway.agent.toolbox import ToolInfo, ToolOutcome, closest_tool, signature, validate_arguments
+from gateway.agent.toolbox import (
+    ToolInfo,
+    ToolOutcome,
+    closest_tool,
+    only_beyond_limits,
+    signature,
+    validate_arguments,
+)
 
 DEFAULT_SYSTEM_PROMPT = (
     "You are the pilot assistant of a drone fleet. You act only through the tools you are given; never "
@@ -598,9 +605,11 @@ class AgentHost:
             island = null_island(args, self._request, on_ground=self._on_ground(args.get("drone_id")))
             if island is not None:
                 self._host_notes.append(island)
+            # a number beyond an advertised limit is sent: the gateway refuses it naming its rule
+            schema_problem = None if only_beyond_limits(tool, args) else validate_arguments(tool, args)
             invalid = (
                 self._unknown_arguments(tool, args)
-                or validate_arguments(tool, args)
+                or schema_problem
                 or island
                 or direction_mismatch(args, self._request)
             )

@@ -121,6 +121,24 @@ def validate_arguments(tool: ToolInfo, arguments: dict[str, Any]) -> str | None:
     )
 
 
+# Schema keywords that carry the gateway's limits in force (the policy's altitude limit, a speed limit).
+_LIMIT_KEYWORDS = frozenset({"maximum", "minimum", "exclusiveMaximum", "exclusiveMinimum"})
+
+
+def only_beyond_limits(tool: ToolInfo, arguments: dict[str, Any]) -> bool:
+    """The arguments break the schema only by a number beyond an advertised limit (``alt_m: 500`` where
+    the policy allows 120). Such a call is the gateway's to refuse: its refusal names the rule and is an
+    answer the model may give the user, where the host's own schema message reads as a mistake to fix
+    (measured: "Climb alpha to 500 m" failed 3 of 3 runs once the host refused it itself)."""
+    schema = tool.input_schema or {"type": "object"}
+    try:
+        cls = jsonschema.validators.validator_for(schema, default=jsonschema.Draft202012Validator)
+        errors = list(cls(schema).iter_errors(arguments))
+    except jsonschema.exceptions.SchemaError:
+        return False
+    return bool(errors) and all(e.validator in _LIMIT_KEYWORDS for e in errors)
+
+
 def closest_tool(name: str, tools: Sequence[ToolInfo]) -> ToolInfo | None:
     """The offered tool a mistaken name most likely meant: similar spelling, or the words of the name
     found in a tool's name or description (``get_battery_status`` -> ``get_battery``, ``fly_north`` ->

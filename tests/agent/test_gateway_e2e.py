@@ -96,7 +96,7 @@ async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStac
     truth = stack.truth()
     model = scripted(
         [
-            # the schema advertises the policy's altitude limit, so the host refuses before calling
+            # beyond the policy's altitude limit the schema advertises: sent, and the gateway refuses it
             call("takeoff", drone_id="bravo", alt_m=500),
             call("takeoff", drone_id="bravo", alt_m="very high"),  # the host refuses (schema)
             # the gateway refuses
@@ -116,9 +116,9 @@ async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStac
         result = await host.run_turn("climb bravo to 500 m")
 
     assert result.outcome == "step_limit" and len(model.requests) == 5
-    assert [c.status for c in result.tool_calls] == ["invalid", "invalid", "error", "ok", "repeat"]
+    assert [c.status for c in result.tool_calls] == ["error", "invalid", "error", "ok", "repeat"]
     limit_msg = [m for m in model.requests[1]["messages"] if m["role"] == "tool"][-1]["content"]
-    assert "500 is greater than the maximum of 120" in limit_msg
+    assert "Refused: max_altitude: takeoff altitude 500 m exceeds the limit of 120 m" in limit_msg, limit_msg
     schema_msg = [m for m in model.requests[2]["messages"] if m["role"] == "tool"][-1]["content"]
     assert "'very high' is not of type 'number'" in schema_msg
     refusal = [m for m in model.requests[3]["messages"] if m["role"] == "tool"][-1]["content"]

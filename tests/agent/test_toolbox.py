@@ -215,6 +215,23 @@ def test_closest_tool_by_spelling_or_by_the_words_of_the_name() -> None:
     assert closest_tool("fly_north", tools) is move
     assert closest_tool("self_destruct", tools) is None
     assert signature(GOTO) == (
-        "go_to_location(drone_id: string, lat_deg: number, lon_deg: number, alt_m: number, "
-        "alt_frame?: any)"
+        "go_to_location(drone_id: string, lat_deg: number, lon_deg: number, alt_m: number, alt_frame?: any)"
     )
+
+
+def test_only_a_number_beyond_an_advertised_limit_is_left_to_the_server() -> None:
+    from gateway.agent.toolbox import only_beyond_limits
+
+    tool = ToolInfo(
+        "takeoff",
+        "t",
+        {
+            "type": "object",
+            "properties": {"drone_id": {"type": "string"}, "alt_m": {"type": "number", "maximum": 120}},
+            "required": ["drone_id", "alt_m"],
+        },
+    )
+    assert only_beyond_limits(tool, {"drone_id": "a", "alt_m": 500})
+    assert not only_beyond_limits(tool, {"drone_id": "a", "alt_m": 50})  # nothing wrong at all
+    assert not only_beyond_limits(tool, {"drone_id": "a", "alt_m": "high"})  # a wrong type
+    assert not only_beyond_limits(tool, {"alt_m": 500})  # a missing argument besides the limit
