@@ -321,13 +321,7 @@ class AgentHost:
                 if echo:
                     self._emit("echo_reply", step=result.steps, text=said)
                 if result.empty_replies > MAX_EMPTY_REPROMPTS:
-                    result.outcome = "empty_answer"
-                    self._emit(
-                        "empty_answer",
-                        step=result.steps,
-                        message=f"the model gave no answer {result.empty_replies} times; the request may "
-                        "be unfinished",
-                    )
+                    self._end_without_answer(result)
                     break
                 self._emit("empty_reply", step=result.steps, attempt=result.empty_replies)
                 reprompt = await self._reprompt(result, echo)
@@ -364,13 +358,7 @@ class AgentHost:
                 self._emit("final", step=result.steps, text=answer, via=ANSWER_TOOL)
                 break
             if gave_up:
-                result.outcome = "empty_answer"
-                self._emit(
-                    "empty_answer",
-                    step=result.steps,
-                    message=f"the model gave no answer {result.empty_replies} times; the request may be "
-                    "unfinished",
-                )
+                self._end_without_answer(result)
                 break
             pending = _pending_text(result)
             if pending:
@@ -396,6 +384,15 @@ class AgentHost:
                 max_steps=self.max_steps,
                 message=f"stopped after {self.max_steps} model steps without a final answer",
             )
+
+    def _end_without_answer(self, result: TurnResult) -> None:
+        """The turn ends as ``empty_answer``: the model gave no answer too many times."""
+        result.outcome = "empty_answer"
+        self._emit(
+            "empty_answer",
+            step=result.steps,
+            message=f"the model gave no answer {result.empty_replies} times; the request may be unfinished",
+        )
 
     async def _reprompt(self, result: TurnResult, echo: bool = False) -> str:
         """What the model is told after an empty reply: the request, what is done, what the request names

@@ -6,24 +6,15 @@ from typing import Any
 
 from bench.agent_harness.scripted import ScriptedModelServer, ScriptedReply, call, say
 from gateway.agent.answer import ANSWER_TOOL, answer_text
-from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
-from gateway.agent.mcp_link import McpLink
-from tests.agent.toy_mcp import TOKEN, ToyServer
+from gateway.agent.host import AgentEvent, AgentHost
+from tests.agent.test_loop import run_on_toy
+from tests.agent.toy_mcp import ToyServer
 
 
 async def _run(
     toy: ToyServer, model: ScriptedModelServer, prompt: str, events: list[AgentEvent] | None = None
 ) -> tuple[AgentHost, Any]:
-    async with McpLink(toy.url, TOKEN) as link:
-        host = AgentHost(
-            ModelConfig(model.base_url, "scripted", max_retries=0),
-            link,
-            await link.list_tools(),
-            on_event=(events.append if events is not None else None),
-            answer_tool=True,
-        )
-        result = await host.run_turn(prompt)
-    return host, result
+    return await run_on_toy(toy, model, prompt, events=events, answer_tool=True)
 
 
 def _last_tool_text(request: dict[str, Any]) -> str:

@@ -17,14 +17,16 @@ def _tool_messages(request: dict[str, Any]) -> list[dict[str, Any]]:
     return [m for m in request["messages"] if m["role"] == "tool"]
 
 
-async def _run(
+async def run_on_toy(
     toy: ToyServer,
     model: ScriptedModelServer,
     prompt: str,
     *,
     max_steps: int = 12,
     events: list[AgentEvent] | None = None,
+    answer_tool: bool = False,
 ) -> tuple[AgentHost, Any]:
+    """One turn of a host over the toy server's tools (``answer_tool``: with the host's answer_user)."""
     async with McpLink(toy.url, TOKEN) as link:
         host = AgentHost(
             ModelConfig(model.base_url, "scripted", max_retries=0),
@@ -32,6 +34,7 @@ async def _run(
             await link.list_tools(),
             max_steps=max_steps,
             on_event=(events.append if events is not None else None),
+            answer_tool=answer_tool,
         )
         result = await host.run_turn(prompt)
     return host, result
@@ -47,7 +50,7 @@ async def test_structured_calls_run_and_results_reach_the_model(toy, scripted) -
         ]
     )
     events: list[AgentEvent] = []
-    _, result = await _run(toy, model, "take off alpha to 15 m, fly 100 m north, land", events=events)
+    _, result = await run_on_toy(toy, model, "take off alpha to 15 m, fly 100 m north, land", events=events)
 
     assert result.outcome == "answered"
     assert result.final_text == "alpha flew 100 m north and landed"
@@ -86,7 +89,7 @@ async def test_refusal_reaches_the_model_verbatim_and_it_can_correct(toy, script
             say("500 m is above the 120 m limit; bravo climbed to 100 m instead"),
         ]
     )
-    _, result = await _run(toy, model, "climb bravo to 500 m")
+    _, result = await run_on_toy(toy, model, "climb bravo to 500 m")
     assert [c.status for c in result.tool_calls] == ["error", "ok"]
     refusal = _tool_messages(model.requests[1])[-1]["content"]
     assert (
@@ -107,7 +110,7 @@ async def test_invalid_arguments_are_not_executed(toy, scripted) -> None:
             say("I could not do it"),
         ]
     )
-    _, result = await _run(toy, model, "do bad things")
+    _, result = await run_on_toy(toy, model, "do bad things")
     assert [c.status for c in result.tool_calls] == [
         "invalid",
         "error",
@@ -137,7 +140,7 @@ async def test_tool_call_written_as_text_is_parsed_and_flagged(toy, scripted) ->
         ]
     )
     events: list[AgentEvent] = []
-    _, result = await _run(toy, model, "hop alpha", events=events)
+    _, result = await run_on_toy(toy, model, "hop alpha", events=events)
     assert result.outcome == "answered" and result.parsed_from_text == 2
     assert toy.world.calls == [
         ("takeoff", {"drone_id": "alpha", "alt_m": 12.0}),
@@ -161,7 +164,7 @@ async def test_parsed_call_with_invalid_arguments_is_not_executed(toy, scripted)
             say("missing altitude"),
         ]
     )
-    _, result = await _run(toy, model, "take off")
+    _, result = await run_on_toy(toy, model, "take off")
     assert result.tool_calls[0].status == "invalid" and result.tool_calls[0].parsed_from_text
     assert toy.world.calls == []
     assert "'alt_m' is a required property" in _tool_messages(model.requests[1])[-1]["content"]
@@ -170,7 +173,7 @@ async def test_parsed_call_with_invalid_arguments_is_not_executed(toy, scripted)
 async def test_step_limit_holds(toy, scripted) -> None:
     model = scripted([call("get_position", drone_id="alpha")], repeat_last=True)
     events: list[AgentEvent] = []
-    _, result = await _run(toy, model, "keep looking", max_steps=3, events=events)
+    _, result = await run_on_toy(toy, model, "keep looking", max_steps=3, events=events)
     assert result.outcome == "step_limit" and result.final_text is None
     assert result.steps == 3 and len(model.requests) == 3 and len(result.tool_calls) == 3
     assert any(e.kind == "step_limit" for e in events)
@@ -208,7 +211,7 @@ async def test_token_accounting_per_turn_and_session(toy, scripted) -> None:
 async def test_model_endpoint_failure_ends_the_turn_cleanly(toy, scripted) -> None:
     model = scripted([call("get_position", drone_id="alpha")])  # second request: script exhausted -> HTTP 500
     events: list[AgentEvent] = []
-    _, result = await _run(toy, model, "where?", events=events)
+    _, result = await run_on_toy(toy, model, "where?", events=events)
     assert result.outcome == "model_error" and "exhausted" in (result.error or "")
     assert [e.kind for e in events][-2:] == ["model_error", "turn_end"]
 

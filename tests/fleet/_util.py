@@ -6,9 +6,13 @@ from typing import Any
 
 from gateway.config import Settings
 from gateway.fleet import geo
+from gateway.fleet.caller import Caller
 from gateway.fleet.safety import SafetyPolicy, VehicleContext
 
 HOME = (47.397742, 8.545594, 488.0)  # lat, lon, alt AMSL
+
+AGENT = Caller(via="mcp", principal="agent-1", session="s1")
+OPERATOR = Caller(via="rest", principal="operator-1", session="rest:operator-1")
 
 
 def settings(**overrides: Any) -> Settings:

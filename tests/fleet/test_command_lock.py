@@ -7,8 +7,6 @@ until the test releases it), so what the lock does is seen without timing anythi
 from __future__ import annotations
 
 import asyncio
-from collections.abc import AsyncIterator
-from pathlib import Path
 
 import pytest
 
@@ -16,17 +14,9 @@ from gateway.errors import SafetyRefusal
 from gateway.fleet.caller import Caller
 from gateway.fleet.mission import MissionItem
 from gateway.runtime import Gateway
-from tests.fakes import FakeVehicle, fake, fake_gateway, spread, unit_settings
+from tests.fakes import FakeVehicle, fake
+from tests.fleet._util import AGENT, OPERATOR
 from tests.helpers.timing import scaled
-
-AGENT = Caller(via="mcp", principal="agent-1", session="s1")
-OPERATOR = Caller(via="rest", principal="operator-1", session="rest:operator-1")
-
-
-@pytest.fixture
-async def gateway(tmp_path: Path) -> AsyncIterator[Gateway]:
-    async with fake_gateway(unit_settings(tmp_path, mcp_wait_cap_s=10.0), spread(2)) as gw:
-        yield gw
 
 
 def commands(vehicle: FakeVehicle) -> list[str]:

@@ -4,8 +4,6 @@ step, and the door deciding the policy. The real Gateway (store, policy, operati
 from __future__ import annotations
 
 import json
-from collections.abc import AsyncIterator
-from pathlib import Path
 
 import pytest
 
@@ -15,16 +13,8 @@ from gateway.fleet.caller import Caller
 from gateway.fleet.commander import VERBS, Commander
 from gateway.fleet.views import OperationView
 from gateway.runtime import Gateway
-from tests.fakes import HOME, fake, fake_gateway, spread, unit_settings
-
-AGENT = Caller(via="mcp", principal="agent-1", session="s1")
-OPERATOR = Caller(via="rest", principal="operator-1", session="rest:operator-1")
-
-
-@pytest.fixture
-async def gateway(tmp_path: Path) -> AsyncIterator[Gateway]:
-    async with fake_gateway(unit_settings(tmp_path, mcp_wait_cap_s=10.0), spread(2)) as gw:
-        yield gw
+from tests.fakes import HOME, fake
+from tests.fleet._util import AGENT, OPERATOR
 
 
 async def test_a_verb_by_name_takes_and_gives_json_and_waiting_is_separate(gateway: Gateway) -> None:
