@@ -240,7 +240,9 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
         runs = []
         for n in range(1, args.runs + 1):
             for mission in missions:
-                await reset_drones(link, truth, drone_ids, battery_pct=mission.battery_pct)
+                await reset_drones(
+                    link, truth, drone_ids, battery_pct=mission.battery_pct, speedup=args.speedup
+                )
                 run = await run_one(mission, link, tools, truth, model, pilot, args, console)
                 run.run = n
                 runs.append(run)

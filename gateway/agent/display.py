@@ -19,6 +19,7 @@ _STATUS_STYLE = {
     "unknown_tool": "yellow",
     "repeat": "yellow",
     "skipped": "yellow",
+    "left_out": "yellow",
 }
 
 

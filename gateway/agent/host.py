@@ -26,6 +26,13 @@ from typing import Any, Protocol
 import openai
 
 from gateway.agent.answer import ANSWER_TOOL, ANSWER_TOOL_INFO, answer_text, finish_hint
+from gateway.agent.intent import (
+    Reading,
+    coordinates_as_metres,
+    superseded,
+    swapped_request_point,
+    zero_zero_as_here,
+)
 from gateway.agent.parsing import (
     ArgumentsError,
     extract_tool_calls,
@@ -35,6 +42,7 @@ from gateway.agent.parsing import (
 )
 from gateway.agent.repair import (
     LAT_LON_PAIRS,
+    altitude_not_a_climb,
     direction_mismatch,
     null_island,
     request_points,
@@ -43,6 +51,7 @@ from gateway.agent.repair import (
     swap_hint,
 )
 from gateway.agent.roster import (
+    DroneEntry,
     Roster,
     drones_named,
     fetch_roster,
@@ -126,7 +135,7 @@ class ToolCallRecord:
     id: str
     name: str
     arguments: dict[str, Any] | None
-    status: str  # ok | error | invalid | unknown_tool | repeat | skipped
+    status: str  # ok | error | invalid | unknown_tool | repeat | skipped | left_out
     summary: str
     parsed_from_text: bool = False
     text: str = ""  # what the model was told
@@ -176,6 +185,8 @@ class TurnResult:
     error: str | None = None
     parsed_from_text: int = 0
     empty_replies: int = 0
+    # empty replies since the model last acted; the turn ends when it passes MAX_EMPTY_REPROMPTS
+    empty_streak: int = 0
 
 
 class AgentHost:
@@ -225,9 +236,11 @@ class AgentHost:
         self._request = ""
         self._host_notes: list[str] = []  # what the host itself told the model this turn (echo detection)
         self._held: set[str] = set()  # why answers were sent back this turn (each reason once)
-        self._error_texts: list[
-            str
-        ] = []  # the errors tools gave this turn (an answer copying one is no answer)
+        # the host's own refusals of calls this turn (an answer copying one is no answer)
+        self._error_texts: list[str] = []
+        # the gateway's refusals this turn: an answer copying one tells the user what happened, even when
+        # a host note quoted it first
+        self._refusals: list[str] = []
         self._ids = itertools.count(1)
         self.reset()
 
@@ -268,6 +281,7 @@ class AgentHost:
         self._host_notes = []
         self._held = set()
         self._error_texts = []
+        self._refusals = []
         self._emit("turn_start", turn=self.turns, user=user_text)
         roster = await self.refresh_roster()
         content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
@@ -318,12 +332,13 @@ class AgentHost:
                 # own words (measured: the 1.5B model answered with the "done so far" re-prompt, the
                 # request, or the host's "call takeoff ... first" note): ask again.
                 result.empty_replies += 1
+                result.empty_streak += 1
                 if echo:
                     self._emit("echo_reply", step=result.steps, text=said)
-                if result.empty_replies > MAX_EMPTY_REPROMPTS:
+                if result.empty_streak > MAX_EMPTY_REPROMPTS:
                     self._end_without_answer(result)
                     break
-                self._emit("empty_reply", step=result.steps, attempt=result.empty_replies)
+                self._emit("empty_reply", step=result.steps, attempt=result.empty_streak)
                 reprompt = await self._reprompt(result, echo)
                 if self._truncated:
                     reprompt = (
@@ -339,8 +354,11 @@ class AgentHost:
             failed: ToolCallRecord | None = None
             answer: str | None = None
             gave_up = False
-            for call in calls:
-                if failed is not None:  # the calls of one reply are a plan: later steps need the earlier
+            for i, call in enumerate(calls):
+                left_out = self._left_out(call, calls[i + 1 :]) if failed is None and answer is None else None
+                if left_out is not None:
+                    record = self._skip(result.steps, call, parsed, left_out, status="left_out")
+                elif failed is not None:  # the calls of one reply are a plan: later steps need the earlier
                     why = f"the earlier call {failed.name} in the same reply failed. Fix that first."
                     record = self._skip(result.steps, call, parsed, why)
                 elif answer is not None or gave_up:
@@ -352,6 +370,9 @@ class AgentHost:
                     record = await self._execute(result.steps, call, parsed, result)
                     if record.status in ("error", "invalid", "unknown_tool"):
                         failed = record
+                    elif record.ok and self._acts(record.name):
+                        # the model acted again after being asked: a later empty reply starts a new count
+                        result.empty_streak = 0
                 result.tool_calls.append(record)
             if answer is not None:
                 result.outcome, result.final_text = "answered", answer
@@ -391,7 +412,7 @@ class AgentHost:
         self._emit(
             "empty_answer",
             step=result.steps,
-            message=f"the model gave no answer {result.empty_replies} times; the request may be unfinished",
+            message=f"no answer {result.empty_streak} times in a row; the request may be unfinished",
         )
 
     async def _reprompt(self, result: TurnResult, echo: bool = False) -> str:
@@ -408,6 +429,15 @@ class AgentHost:
             f"The request: {self._request}",
             "Already done (do not repeat): " + ("; ".join(done) if done else "nothing yet") + ".",
         ]
+        refused = [c for c in result.tool_calls if c.status == "error"]
+        if refused:
+            # Measured: after "Refused: max_distance ..." the 1.5B model replied with nothing twice; a
+            # refusal is an outcome to report, not a step still to do.
+            parts.append(
+                "Refused (cannot be done, do not retry): "
+                + "; ".join(f"{c.name}: {c.summary}" for c in refused[-2:])
+                + "."
+            )
         untouched = self._untouched(result)
         if untouched:
             parts.append(untouched)
@@ -416,13 +446,15 @@ class AgentHost:
             parts.append(pending)
         if roster is not None:
             parts.append(roster.text())
+        said = "what was done and what was refused" if refused else "what was done"
         finish = (
-            "call answer_user with one sentence for the user saying what was done"
+            f"call answer_user with one sentence for the user saying {said}"
             if self.answer_tool
-            else "reply with one sentence for the user saying what was done"
+            else f"reply with one sentence for the user saying {said}"
         )
+        what = "done or refused" if refused else "done"
         parts.append(
-            f"If every part of the request is done, {finish}. Otherwise reply with only the tool call for "
+            f"If every part of the request is {what}, {finish}. Otherwise reply with only the tool call for "
             "the next step."
         )
         return "\n".join(parts)
@@ -565,11 +597,20 @@ class AgentHost:
                 args = parse_arguments(call["raw_args"])
             except ArgumentsError as exc:
                 problem = str(exc)
+        reading: Reading | None = None
         if args is not None:
             notes = normalise_drone_ids(args, self._enum_ids) if self._enum_ids else []
             notes += restore_request_numbers(args, self._request)
+            notes += swapped_request_point(args, self._request)
+            reading = await self._read_as_meant(name, args)
+            if reading is not None:
+                name, args = reading.name, reading.arguments
+                notes.append(reading.note)
             if name in ("move_to_relative",):
                 notes += restore_request_directions(args, self._request)
+                notes += altitude_not_a_climb(
+                    args, self._request, await self._altitude_now(args.get("drone_id"))
+                )
         self._emit(
             "tool_call",
             step=step,
@@ -623,6 +664,11 @@ class AgentHost:
                 if self.follow_running:
                     outcome = await self._follow(step, call_id, name, args, outcome, progress)
                 status = "error" if outcome.is_error else "ok"
+                if reading is not None:  # the model learns what its call was read as, after the result
+                    # (measured: with the note first, the 1.5B model answered a refusal by copying the note)
+                    outcome = ToolOutcome(
+                        f"{outcome.text} (Host note: {reading.note}.)", outcome.is_error, outcome.structured
+                    )
                 if outcome.is_error:
                     note = self._takeoff_first(name, args)
                     if note:
@@ -641,6 +687,8 @@ class AgentHost:
             # does tell the user what happened (measured: an answer copying "alpha is already on the
             # ground" after a finished survey was sent back three times)
             self._error_texts.append(outcome.text)
+        elif status == "error":
+            self._refusals.append(outcome.text)
         if outcome.is_error and not outcome.text.lower().startswith("error"):
             model_text = f"Error: {outcome.text}"  # the text itself stays verbatim
         self.messages.append({"role": "tool", "tool_call_id": call_id, "content": model_text})
@@ -660,6 +708,31 @@ class AgentHost:
             running=structured.get("status") == "running",
         )
 
+    async def _read_as_meant(self, name: str, args: dict[str, Any]) -> Reading | None:
+        """The call a small model meant by this one (gateway/agent/intent.py), read against the fleet as it
+        is now (in a plan, the takeoff before this call has changed it since the last roster)."""
+        zero = name == "go_to_location" and args.get("lat_deg") == 0 and args.get("lon_deg") == 0
+        metres = name == "move_to_relative" and len(request_points(self._request)) > 0
+        if not (zero or metres) or not self.use_roster:
+            return None
+        await self.refresh_roster()
+        drone = self._entry(args.get("drone_id"))
+        return zero_zero_as_here(name, args, self._request, drone) or coordinates_as_metres(
+            name, args, self._request, drone
+        )
+
+    async def _altitude_now(self, drone_id: Any) -> float | None:
+        """The drone's altitude as the gateway reads it now (the roster may be a plan's takeoff old)."""
+        if not self.use_roster:
+            return None
+        await self.refresh_roster()
+        entry = self._entry(drone_id)
+        return entry.alt_m if entry is not None and entry.flying else None
+
+    def _entry(self, drone_id: Any) -> DroneEntry | None:
+        drones = self.roster.drones if self.roster is not None else ()
+        return next((d for d in drones if d.drone_id == drone_id), None)
+
     def _host_note(self, text: str, is_error: bool) -> ToolOutcome:
         self._host_notes.append(text)
         return ToolOutcome(text=text, is_error=is_error)
@@ -674,6 +747,8 @@ class AgentHost:
             return False
         if text in _norm(self._request):
             return True
+        if any(text[:60] in _norm(refusal) for refusal in self._refusals):
+            return False
         told = [*self._host_notes, *self._error_texts]
         return any(text[:60] in _norm(note) for note in told)
 
@@ -697,7 +772,7 @@ class AgentHost:
         return len(same) >= 2
 
     def _on_ground(self, drone_id: Any) -> bool:
-        entry = next((d for d in self.roster.drones if d.drone_id == drone_id), None) if self.roster else None
+        entry = self._entry(drone_id)
         return entry is not None and entry.flying is False
 
     def _unknown_arguments(self, tool: ToolInfo, args: dict[str, Any]) -> str | None:
@@ -711,19 +786,29 @@ class AgentHost:
         names = ", ".join(extra)
         return f"{tool.name} has no argument {names}; it takes {signature(tool)}. Nothing was executed."
 
-    def _skip(self, step: int, call: dict[str, Any], parsed: bool, why: str) -> ToolCallRecord:
-        """A later call of a reply that is not sent (an earlier call failed, or the turn ended): the model
-        is told why."""
-        text = f"Not executed: {why}"
+    def _skip(
+        self, step: int, call: dict[str, Any], parsed: bool, why: str, status: str = "skipped"
+    ) -> ToolCallRecord:
+        """A call of a reply that is not sent (an earlier call failed, the turn ended, or a later call
+        supersedes it: ``left_out``): the model is told why."""
+        text = (
+            f"Not executed: {why}"
+            if status == "skipped"
+            else f"Left out: {why}; the rest of your reply goes on."
+        )
         self._host_notes.append(text)  # measured: copied back as the answer
         self.messages.append({"role": "tool", "tool_call_id": call["id"], "content": text})
-        self._emit("tool_result", step=step, id=call["id"], name=call["name"], status="skipped", summary=text,
+        self._emit("tool_result", step=step, id=call["id"], name=call["name"], status=status, summary=text,
                    text=text)  # fmt: skip
-        try:
-            args = parse_arguments(call["raw_args"]) if call.get("parse_error") is None else None
-        except ArgumentsError:
-            args = None
-        return ToolCallRecord(call["id"], call["name"], args, "skipped", text, parsed, text)
+        return ToolCallRecord(call["id"], call["name"], _call_arguments(call), status, text, parsed, text)
+
+    def _left_out(self, call: dict[str, Any], later: list[dict[str, Any]]) -> str | None:
+        """Why this call of a plan is left out because the calls after it supersede it, or None."""
+        args = _call_arguments(call)
+        if args is None:
+            return None
+        planned = [(c["name"], a) for c in later if (a := _call_arguments(c)) is not None]
+        return superseded(call["name"], args, self._request, planned)
 
     async def _answer_call(
         self, step: int, call: dict[str, Any], parsed: bool, result: TurnResult
@@ -749,8 +834,10 @@ class AgentHost:
             reply = held
             if empty:
                 result.empty_replies += 1
+                result.empty_streak += 1
         elif empty:
             result.empty_replies += 1
+            result.empty_streak += 1
             reply = (
                 "Not an answer: answer_user needs text, one sentence for the user saying what was done and "
                 "where the drones are now."
@@ -760,7 +847,7 @@ class AgentHost:
             )
         else:
             answer, reply = text, "Delivered to the user."
-        gave_up = answer is None and result.empty_replies > MAX_EMPTY_REPROMPTS
+        gave_up = answer is None and result.empty_streak > MAX_EMPTY_REPROMPTS
         self._host_notes.append(reply)
         self.messages.append({"role": "tool", "tool_call_id": call["id"], "content": reply})
         status = "ok" if answer is not None else "invalid"
@@ -779,7 +866,7 @@ class AgentHost:
         """Why an answer is sent back instead of ending the turn, or None; each reason at most once a turn,
         so a model that answers again is believed."""
         # the last call that ran (calls skipped after it in the same reply do not count)
-        last = next((c for c in reversed(result.tool_calls) if c.status != "skipped"), None)
+        last = next((c for c in reversed(result.tool_calls) if c.status not in ("skipped", "left_out")), None)
         if last is not None and last.status in ("invalid", "unknown_tool") and "invalid" not in self._held:
             # Measured: after the host's note on go_to_location(0, 0) the 1.5B model answered with the note
             # itself; the call was the model's own mistake and nothing had been done.
@@ -894,6 +981,16 @@ def _pending_text(result: TurnResult) -> str:
         return ""  # nothing left, or the failure that skipped them is the latest news
     calls = "\n".join(json.dumps({"name": c.name, "arguments": c.arguments}) for c in pending)
     return f"Not sent yet from your earlier reply (their turn comes after the call that failed):\n{calls}"
+
+
+def _call_arguments(call: dict[str, Any]) -> dict[str, Any] | None:
+    """A call's arguments as a dict, or None when they do not parse."""
+    if call.get("parse_error") is not None:
+        return None
+    try:
+        return parse_arguments(call["raw_args"])
+    except ArgumentsError:
+        return None
 
 
 def _norm(text: str) -> str:

@@ -40,11 +40,19 @@ def restore_request_numbers(arguments: dict[str, Any], request: str) -> list[str
     return notes
 
 
+_ZERO_ZERO_RE = re.compile(r"(?<![\d.])0(?:\.0+)?\s*,\s*0(?:\.0+)?(?![\d.])")
+
+
+def names_zero_zero(request: str) -> bool:
+    """The request itself gives the point 0, 0."""
+    return bool(_ZERO_ZERO_RE.search(request or ""))
+
+
 def null_island(arguments: dict[str, Any], request: str, on_ground: bool = False) -> str | None:
     """A refusal for latitude 0, longitude 0 when the request gives no such point: a small model writes it
     for "go up to 15 m" or "fly 60 m north" (measured: every prompt variant tried with the 1.5B model).
     For a drone on the ground it names the takeoff to call, with the altitude the model asked for."""
-    if re.search(r"(?<![\d.])0(?:\.0+)?\s*,\s*0(?:\.0+)?(?![\d.])", request or ""):
+    if names_zero_zero(request):
         return None
     for lat_name, lon_name in LAT_LON_PAIRS:
         if arguments.get(lat_name) == 0 and arguments.get(lon_name) == 0:
@@ -131,6 +139,29 @@ def restore_request_directions(arguments: dict[str, Any], request: str) -> list[
         arguments[axis] = sign * distance
         notes.append(f"{name}={value:g} read as {axis}={sign * distance:g} ('{phrase}' in the request)")
     return notes
+
+
+# "to 15 m", "at 30 m": an altitude the request asks for, not a distance to move
+_ALTITUDE_RE = re.compile(
+    r"\b(?:to|at)\s+(\d+(?:\.\d+)?)\s*(?:m|metres?|meters?)\b(?!\s+(?:north|south|east|west))", re.IGNORECASE
+)
+
+
+def altitude_not_a_climb(arguments: dict[str, Any], request: str, alt_now: float | None) -> list[str]:
+    """Set ``up_m`` to 0, in place, when its size is an altitude the request asks for ("take off to 15 m"),
+    the drone already flies at about that altitude, and the request names no distance up or down
+    (measured with the 1.5B model: "take off to 15 m, head 50 m south" planned as takeoff, then
+    move_to_relative with up_m=-15, into the ground). Returns a note."""
+    up = arguments.get("up_m")
+    if not isinstance(up, int | float) or isinstance(up, bool) or up == 0 or alt_now is None:
+        return []
+    if any(axis == "up_m" for _, _, axis, _ in _moves(request)):
+        return []
+    altitudes = {float(m) for m in _ALTITUDE_RE.findall(request or "")}
+    if abs(up) not in altitudes or abs(alt_now - abs(up)) > 3.0:
+        return []
+    arguments["up_m"] = 0.0
+    return [f"up_m={up:g} read as up_m=0: the drone is already at the {abs(up):g} m the request asks for"]
 
 
 def direction_mismatch(arguments: dict[str, Any], request: str) -> str | None:

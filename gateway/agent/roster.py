@@ -33,6 +33,8 @@ class DroneEntry:
     battery_pct: float | None
     state: str | None = None
     operation: str | None = None
+    lat_deg: float | None = None  # where it is; not shown to the model, used to read "0, 0" as "here"
+    lon_deg: float | None = None
 
     def text(self) -> str:
         if self.state not in (None, "ready"):
@@ -80,6 +82,8 @@ class Roster:
                     battery_pct=_num(row.get("battery_pct")),
                     state=row.get("state") if isinstance(row.get("state"), str) else None,
                     operation=row.get("operation") if isinstance(row.get("operation"), str) else None,
+                    lat_deg=_num(row.get("lat_deg")),
+                    lon_deg=_num(row.get("lon_deg")),
                 )
             )
         return cls(tuple(out))

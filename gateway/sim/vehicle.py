@@ -464,6 +464,8 @@ class SimVehicle:
             self.flight_time_s += dt
         if not self.battery.follow_charge and self.params.get("SIM_BATT_CAP_AH") > 0:
             self.battery.follow_charge = True
+        if (capacity := self.params.get("BATT_CAPACITY")) > 0:
+            self.battery.capacity_mah = capacity  # as ArduPilot: remaining % is consumed mAh of BATT_CAPACITY
         self.battery.drain(dt, self.armed, self.flying)
         self._failsafes()
 

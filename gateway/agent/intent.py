@@ -1,0 +1,129 @@
+"""Calls a small model writes for something else, read as what it means, and shown as such.
+
+Measured with the 1.5B coder model (small profile, 3 runs of 12 missions): its first reply is usually the
+whole plan, and the plan is right but for one call written with the wrong tool. "Go up to 15 m" became
+``go_to_location(lat 0, lon 0, alt 15)`` in every run, and "send bravo to -35.318194, 149.165285"
+became ``move_to_relative(east_m=-35.318194, up_m=149.165285)``. Refused, the plan stopped there and the
+model rarely found its way back (empty replies, its own call again, the host's note as the answer). Read
+as what they mean, the rest of the plan runs.
+
+Each reading is narrow, uses only what the request and the fleet show, and returns the call to send
+with a note the transcript shows. The gateway checks the new call like any other.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from gateway.agent.repair import names_zero_zero, request_points
+from gateway.agent.roster import DroneEntry
+
+_SAME_DEG = 1e-4  # about 10 m: a coordinate copied with a digit or two fewer is still the same one
+
+
+@dataclass(frozen=True)
+class Reading:
+    """The call to send instead, and why."""
+
+    name: str
+    arguments: dict[str, Any]
+    note: str
+
+
+def zero_zero_as_here(
+    name: str, args: dict[str, Any], request: str, drone: DroneEntry | None
+) -> Reading | None:
+    """``go_to_location`` to latitude 0, longitude 0, a point the request never gives, is the model's way
+    of saying "here, at this altitude": a takeoff for a drone on the ground, the drone's own position for
+    one that flies."""
+    if name != "go_to_location" or args.get("lat_deg") != 0 or args.get("lon_deg") != 0:
+        return None
+    alt = args.get("alt_m")
+    if names_zero_zero(request) or drone is None or not isinstance(alt, int | float) or isinstance(alt, bool):
+        return None
+    who = drone.drone_id
+    if drone.flying is False:
+        return Reading(
+            "takeoff",
+            {"drone_id": who, "alt_m": alt},
+            f"go_to_location(0, 0, {alt:g} m) read as takeoff to {alt:g} m: {who} is on the ground and the "
+            "request names no point 0, 0",
+        )
+    if drone.flying and drone.lat_deg is not None and drone.lon_deg is not None:
+        here = {**args, "lat_deg": drone.lat_deg, "lon_deg": drone.lon_deg}
+        return Reading(
+            "go_to_location",
+            here,
+            f"lat_deg=0, lon_deg=0 read as where {who} is now ({drone.lat_deg:.6f}, {drone.lon_deg:.6f}): "
+            "the request names no point 0, 0",
+        )
+    return None
+
+
+def coordinates_as_metres(
+    name: str, args: dict[str, Any], request: str, drone: DroneEntry | None
+) -> Reading | None:
+    """``move_to_relative`` whose metres are the two numbers of a point in the request is a flight to that
+    point: ``go_to_location`` there, at the altitude the drone flies at now."""
+    if name != "move_to_relative" or drone is None or not drone.flying or drone.alt_m is None:
+        return None
+    values = [v for k in ("north_m", "east_m", "up_m") if isinstance(v := args.get(k), int | float) and v]
+    for lat, lon in request_points(request):
+        if len(values) == 2 and _close(values, (lat, lon)):
+            alt = round(drone.alt_m, 1)
+            return Reading(
+                "go_to_location",
+                {"drone_id": drone.drone_id, "lat_deg": lat, "lon_deg": lon, "alt_m": alt},
+                f"move_to_relative by {values[0]} and {values[1]} m read as go_to_location({lat}, {lon}) at "
+                f"{alt:g} m: those are the coordinates in the request, not metres",
+            )
+    return None
+
+
+def _close(values: list[float], point: tuple[float, float]) -> bool:
+    a, b = values
+    lat, lon = point
+    same = abs(a - lat) < _SAME_DEG and abs(b - lon) < _SAME_DEG
+    crossed = abs(a - lon) < _SAME_DEG and abs(b - lat) < _SAME_DEG
+    return same or crossed
+
+
+def swapped_request_point(args: dict[str, Any], request: str) -> list[str]:
+    """Swap, in place, a latitude and longitude that are a point of the request the other way round (the
+    latitude then out of -90..90); returns a note when it did."""
+    notes: list[str] = []
+    for lat_name, lon_name in (("lat_deg", "lon_deg"), ("center_lat_deg", "center_lon_deg")):
+        lat, lon = args.get(lat_name), args.get(lon_name)
+        if not (isinstance(lat, int | float) and isinstance(lon, int | float)) or abs(lat) <= 90:
+            continue
+        for p_lat, p_lon in request_points(request):
+            if abs(lon - p_lat) < _SAME_DEG and abs(lat - p_lon) < _SAME_DEG:
+                args[lat_name], args[lon_name] = lon, lat
+                notes.append(
+                    f"{lat_name}={lat}, {lon_name}={lon} swapped: the request gives {p_lat}, {p_lon}"
+                )
+                break
+    return notes
+
+
+def superseded(
+    name: str, args: dict[str, Any], request: str, later: list[tuple[str, dict[str, Any]]]
+) -> str | None:
+    """A ``formation_goto`` centred on 0, 0 (a point the request never names) whose every drone the same
+    reply moves afterwards by metres: the later moves say where the model means them to go, so the
+    formation step is left out. Returns the note, or None."""
+    if name != "formation_goto" or args.get("center_lat_deg") != 0 or args.get("center_lon_deg") != 0:
+        return None
+    if names_zero_zero(request):
+        return None
+    drones = args.get("drone_ids")
+    if not isinstance(drones, list) or not drones:
+        return None
+    moved = {a.get("drone_id") for n, a in later if n == "move_to_relative"}
+    if not all(d in moved for d in drones):
+        return None
+    return (
+        "formation_goto centred on 0, 0 left out: the request names no point 0, 0, and the moves that follow "
+        f"in the same reply say where {', '.join(map(str, drones))} should go"
+    )
