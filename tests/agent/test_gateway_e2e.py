@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+import json
 from collections.abc import AsyncIterator
 
 import pytest
 
-from bench.agent_harness.scripted import ScriptedReply, call, say
+from bench.agent_harness.scripted import ScriptedModelServer, ScriptedReply, call, say
 from bench.agent_harness.stack import LocalStack
-from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
+from gateway.agent.host import AgentEvent, AgentHost, ModelConfig, TurnResult
 from gateway.agent.mcp_link import McpLink, McpLinkError
 from gateway.fleet.geo import horizontal_distance_m, offset_position
 from tests.helpers.timing import scaled
@@ -130,6 +131,155 @@ async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStac
     with pytest.raises(McpLinkError, match="cannot open an MCP session"):
         async with McpLink(stack.mcp_url, "not-the-token"):
             pass
+
+
+async def _host_turn(
+    stack: LocalStack, model: ScriptedModelServer, request: str, events: list[AgentEvent]
+) -> TurnResult:
+    async with McpLink(stack.mcp_url, stack.token) as link:
+        host = AgentHost(
+            ModelConfig(model.base_url, "scripted", max_retries=0),
+            link,
+            await link.list_tools(),
+            on_event=events.append,
+        )
+        return await host.run_turn(request)
+
+
+def _text_plan(*calls: tuple[str, dict]) -> ScriptedReply:
+    """A whole plan in one reply, written as text the way the 1.5B model writes it (doubled braces)."""
+    return ScriptedReply(
+        content="\n".join("{" + json.dumps({"name": n, "arguments": a}) + "}" for n, a in calls)
+    )
+
+
+async def test_a_small_models_plan_with_zero_zero_for_up_flies_as_meant(stack: LocalStack, scripted) -> None:
+    """The measured first reply to "go up to 15 m, fly 60 m north, land": go_to_location(0, 0, 15) is read as
+    the takeoff, and the rest of the plan runs in the same reply."""
+    truth = stack.truth()
+    home = (await truth.homes(["alpha"]))["alpha"]
+    model = scripted(
+        [
+            _text_plan(
+                ("go_to_location", {"drone_id": "alpha", "lat_deg": 0, "lon_deg": 0, "alt_m": 12}),
+                ("move_to_relative", {"drone_id": "alpha", "north_m": 30, "east_m": 0, "up_m": 0}),
+                ("land", {"drone_id": "alpha"}),
+            ),
+            say("alpha flew 30 m north and landed there"),
+        ]
+    )
+    events: list[AgentEvent] = []
+    result = await _host_turn(
+        stack, model, "Alpha: go up to 12 m, fly 30 metres north, and land there.", events
+    )
+    assert result.outcome == "answered", result
+    assert [(c.name, c.status) for c in result.tool_calls] == [
+        ("takeoff", "ok"),
+        ("move_to_relative", "ok"),
+        ("land", "ok"),
+    ], result.tool_calls
+    corrected = [e.data["notes"] for e in events if e.kind == "arguments_corrected"]
+    assert corrected == [
+        ["go_to_location(0, 0, 12 m) read as takeoff to 12 m: alpha is on the ground and the request names "
+         "no point 0, 0"]
+    ]  # fmt: skip
+    told = [m["content"] for m in model.requests[1]["messages"] if m["role"] == "tool"]
+    assert (
+        told[0].startswith("takeoff on alpha succeeded")
+        and "(Host note: go_to_location(0, 0, 12 m)" in told[0]
+    )
+    final = (await truth.snapshot(["alpha"]))["alpha"]
+    north = horizontal_distance_m(final.lat, final.lon, *offset_position(home[0], home[1], 30.0, 0.0))
+    assert north < 6.0 and final.landed and not final.armed, (north, final)
+
+
+async def test_a_zero_zero_formation_before_each_drones_own_move_is_left_out(
+    stack: LocalStack, scripted
+) -> None:
+    """The measured plan for "take off alpha and bravo, fly them in a line 100 m north, then land"."""
+    truth = stack.truth()
+    homes = await truth.homes(["alpha", "bravo"])
+    formation = {
+        "drone_ids": ["alpha", "bravo"],
+        "formation": "line",
+        "center_lat_deg": 0,
+        "center_lon_deg": 0,
+        "alt_m": 10,
+        "spacing_m": 20,
+    }
+    model = scripted(
+        [
+            _text_plan(
+                ("takeoff", {"drone_id": "alpha", "alt_m": 10}),
+                ("takeoff", {"drone_id": "bravo", "alt_m": 10}),
+                ("formation_goto", formation),
+                ("move_to_relative", {"drone_id": "alpha", "north_m": 20, "east_m": 0, "up_m": 0}),
+                ("move_to_relative", {"drone_id": "bravo", "north_m": 20, "east_m": 0, "up_m": 0}),
+            ),
+            say("both drones are 20 m north of home"),
+        ]
+    )
+    events: list[AgentEvent] = []
+    result = await _host_turn(
+        stack, model, "Take off alpha and bravo to 10 m, fly them in a line 20 m north.", events
+    )
+    assert result.outcome == "answered", result
+    assert [(c.name, c.status) for c in result.tool_calls] == [
+        ("takeoff", "ok"),
+        ("takeoff", "ok"),
+        ("formation_goto", "left_out"),
+        ("move_to_relative", "ok"),
+        ("move_to_relative", "ok"),
+    ], result.tool_calls
+    told = [m["content"] for m in model.requests[1]["messages"] if m["role"] == "tool"]
+    assert told[2].startswith("Left out: formation_goto centred on 0, 0 left out") and "goes on" in told[2]
+    final = await truth.snapshot(["alpha", "bravo"])
+    for d in ("alpha", "bravo"):
+        want = offset_position(homes[d][0], homes[d][1], 20.0, 0.0)
+        assert horizontal_distance_m(final[d].lat, final[d].lon, *want) < 6.0, (d, final[d])
+
+
+async def test_coordinates_written_as_metres_go_to_that_point_and_the_refusal_is_the_answer(
+    stack: LocalStack, scripted
+) -> None:
+    """A far point given as move_to_relative metres is read as go_to_location there; the gateway refuses the
+    distance, and the model's answer copying that refusal ends the turn (after a re-prompt that quoted it)."""
+    truth = stack.truth()
+    home = (await truth.homes(["bravo"]))["bravo"]
+    far = offset_position(home[0], home[1], 5000.0, 0.0)
+    request = f"Send bravo at 10 m to {far[0]:.6f}, {far[1]:.6f}, that's the farm 5 km north."
+    refusal = "Refused: max_distance: target is 5000 m from home, beyond the limit of 1000 m"
+    model = scripted(
+        [
+            _text_plan(
+                ("takeoff", {"drone_id": "bravo", "alt_m": 10}),
+                (
+                    "move_to_relative",
+                    {"drone_id": "bravo", "north_m": 0, "east_m": round(far[0], 6), "up_m": round(far[1], 6)},
+                ),
+                ("land", {"drone_id": "bravo"}),
+            ),
+            ScriptedReply(content=""),
+            say(refusal),
+        ]
+    )
+    events: list[AgentEvent] = []
+    result = await _host_turn(stack, model, request, events)
+    assert result.outcome == "answered" and result.final_text == refusal, result
+    assert [(c.name, c.status) for c in result.tool_calls] == [
+        ("takeoff", "ok"),
+        ("go_to_location", "error"),
+        ("land", "skipped"),
+    ], result.tool_calls
+    went = result.tool_calls[1].arguments or {}
+    assert (went["lat_deg"], went["lon_deg"]) == (round(far[0], 6), round(far[1], 6))
+    told = [m["content"] for m in model.requests[1]["messages"] if m["role"] == "tool"][1]
+    assert told.startswith(f"Error: {refusal}") and "not metres" in told
+    reprompt = [m["content"] for m in model.requests[2]["messages"] if m["role"] == "user"][-1]
+    assert f"Refused (cannot be done, do not retry): go_to_location: {refusal}" in reprompt
+    assert "If every part of the request is done or refused" in reprompt
+    bravo = (await truth.snapshot(["bravo"]))["bravo"]
+    assert horizontal_distance_m(bravo.lat, bravo.lon, home[0], home[1]) < 10.0, bravo
 
 
 async def test_stack_moves_on_when_its_port_is_taken(monkeypatch) -> None:

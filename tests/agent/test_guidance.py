@@ -138,6 +138,29 @@ async def test_three_empty_replies_end_the_turn_as_empty_answer(toy, scripted) -
     assert [e.kind for e in events][-2:] == ["empty_answer", "turn_end"]
 
 
+async def test_the_count_of_empty_replies_starts_again_once_the_model_acts(toy, scripted) -> None:
+    # Measured: the 1.5B model answers a re-prompt with the next step and then falls silent again after
+    # its result; the step limit, not an old count, bounds a model that keeps making progress.
+    takeoff, land = call("takeoff", drone_id="alpha", alt_m=15), call("land", drone_id="alpha")
+    model = scripted([takeoff, EMPTY, EMPTY, land, EMPTY, EMPTY, say("alpha went up to 15 m and landed")])
+    events: list[AgentEvent] = []
+    result = await _turn(toy, model, "hop alpha to 15 m, then land it", events)
+    assert result.outcome == "answered" and result.empty_replies == 4
+    assert [e.data["attempt"] for e in events if e.kind == "empty_reply"] == [1, 2, 1, 2]
+
+
+async def test_a_refusal_is_named_in_the_re_prompt_and_copying_it_is_an_answer(toy, scripted) -> None:
+    refusal = "refused by rule max_altitude: target altitude 500 m exceeds the limit of 120 m above home"
+    model = scripted([call("takeoff", drone_id="alpha", alt_m=500), EMPTY, say(refusal)])
+    result = await _turn(toy, model, "climb alpha to 500 m", [])
+    assert result.outcome == "answered" and result.final_text == refusal
+    nudge = _user_texts(model.requests[2])[-1]
+    said = f"Refused (cannot be done, do not retry): takeoff: Error executing tool takeoff: {refusal}."
+    assert said in nudge
+    assert "If every part of the request is done or refused, reply with one sentence for the user saying " \
+        "what was done and what was refused." in nudge  # fmt: skip
+
+
 async def test_the_command_exits_non_zero_on_an_empty_answer(toy, scripted) -> None:
     model = scripted([EMPTY], repeat_last=True)
     parser = argparse.ArgumentParser()
