@@ -155,3 +155,16 @@ def test_auto_mission_with_rtl_item_comes_home_and_lands() -> None:
     assert abs(v.body.north) < 0.5 and abs(v.body.east) < 0.5  # home
     texts = [t for _t, _s, t in v.status_texts]
     assert "Reached command #1" in texts and "Mission: 2 RTL" in texts
+
+
+def test_remaining_battery_is_counted_against_batt_capacity_like_ardupilot() -> None:
+    v, big = _vehicle(), _vehicle()
+    big.params.set("BATT_CAPACITY", 6600.0)
+    for drone in (v, big):
+        _flying_guided(drone)
+        drone.set_battery(100.0)
+        end = drone.t + 60.0
+        _run(drone, lambda d=drone, e=end: d.t >= e)  # one minute of hover
+    used, used_big = 100.0 - v.battery.remaining_pct, 100.0 - big.battery.remaining_pct
+    assert 13.0 < used < 15.0  # 27.8 A for 60 s of a 3300 mAh pack: 463 mAh, 14.0 %
+    assert abs(used_big - used / 2) < 0.3
