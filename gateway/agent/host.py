@@ -670,7 +670,7 @@ class AgentHost:
                         f"{outcome.text} (Host note: {reading.note}.)", outcome.is_error, outcome.structured
                     )
                 if outcome.is_error:
-                    note = self._takeoff_first(name, args)
+                    note = await self._takeoff_first(name, args)
                     if note:
                         self._host_notes.append(note)
                     outcome = ToolOutcome(outcome.text + note, True, outcome.structured)
@@ -752,11 +752,18 @@ class AgentHost:
         told = [*self._host_notes, *self._error_texts]
         return any(text[:60] in _norm(note) for note in told)
 
-    def _takeoff_first(self, name: str, args: dict[str, Any]) -> str:
-        """After a refused move of a drone the roster shows on the ground: the takeoff to call, with the
-        altitude of the refused call (the gateway's own text says "Call takeoff first" without numbers)."""
+    async def _takeoff_first(self, name: str, args: dict[str, Any]) -> str:
+        """After a refused move of a drone on the ground: the takeoff to call, with the altitude of the
+        refused call (the gateway's own text says "Call takeoff first" without numbers). The fleet is read
+        again first: measured, a roster read before the reply still showed bravo on the ground after the
+        reply's own takeoff, and the note sent the model to take off again instead of reporting the
+        gateway's distance refusal."""
         drone, alt = args.get("drone_id"), args.get("alt_m")
-        if name == "takeoff" or not self._on_ground(drone) or not isinstance(alt, int | float):
+        if name == "takeoff" or not isinstance(alt, int | float):
+            return ""
+        if self.use_roster:
+            await self.refresh_roster()
+        if not self._on_ground(drone):
             return ""
         return (
             f' (Host note: {drone} is on the ground. Call takeoff with drone_id "{drone}" and alt_m '

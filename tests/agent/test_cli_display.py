@@ -136,9 +136,7 @@ async def test_step_limit_exit_status(toy, scripted) -> None:
 
 
 async def test_interactive_keeps_the_conversation(toy, scripted) -> None:
-    model = scripted(
-        [say("alpha is on the ground"), call("takeoff", drone_id="alpha", alt_m=5), say("up")]
-    )
+    model = scripted([say("alpha is on the ground"), call("takeoff", drone_id="alpha", alt_m=5), say("up")])
     console, buf = _console()
     stdin = io.StringIO("where is alpha?\n\n/usage\nnow take it up 5 m\n/quit\nnever read\n")
     args = _parse(["--mcp-url", toy.url, "--token", TOKEN, "--endpoint", model.base_url, "--model", "m"])

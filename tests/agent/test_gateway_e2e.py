@@ -275,6 +275,7 @@ async def test_coordinates_written_as_metres_go_to_that_point_and_the_refusal_is
     assert (went["lat_deg"], went["lon_deg"]) == (round(far[0], 6), round(far[1], 6))
     told = [m["content"] for m in model.requests[1]["messages"] if m["role"] == "tool"][1]
     assert told.startswith(f"Error: {refusal}") and "not metres" in told
+    assert "is on the ground" not in told  # the takeoff earlier in the same reply is known (fresh roster)
     reprompt = [m["content"] for m in model.requests[2]["messages"] if m["role"] == "user"][-1]
     assert f"Refused (cannot be done, do not retry): go_to_location: {refusal}" in reprompt
     assert "If every part of the request is done or refused" in reprompt

@@ -34,8 +34,7 @@ RECOVERABLE = [
     ),
     (
         "hermes/qwen tool_call tags",
-        '<tool_call>\n{"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}}'
-        "\n</tool_call>",
+        '<tool_call>\n{"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}}\n</tool_call>',
         [("takeoff", TAKEOFF)],
     ),
     (
