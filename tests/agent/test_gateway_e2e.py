@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import json
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
 
 import pytest
 
@@ -23,23 +23,14 @@ async def stack() -> AsyncIterator[LocalStack]:
         yield s
 
 
-async def test_model_flies_takeoff_goto_land_on_the_sim(stack: LocalStack, scripted) -> None:
-    truth = stack.truth()
-    home_lat, home_lon, _ = (await truth.homes(["alpha"]))["alpha"]
-    target = offset_position(home_lat, home_lon, 40.0, 0.0)
-    model = scripted(
-        [
-            call("takeoff", drone_id="alpha", alt_m=12),
-            # A small model's text-form call (qwen style), with the arguments as a JSON string.
-            ScriptedReply(
-                content='<tool_call>{"name": "go_to_location", "arguments": "{\\"drone_id\\": \\"alpha\\", '
-                f'\\"lat_deg\\": {target[0]}, \\"lon_deg\\": {target[1]}, '
-                '\\"alt_m\\": 12}"}</tool_call>'
-            ),
-            call("land", drone_id="alpha"),
-            say("alpha flew 40 m north and landed"),
-        ]
-    )
+async def _turn_with(
+    stack: LocalStack,
+    scripted: Callable[..., ScriptedModelServer],
+    request: str,
+    replies: list[ScriptedReply],
+) -> tuple[TurnResult, list[AgentEvent], ScriptedModelServer]:
+    """One turn of the host on the stack's gateway, the model replaying ``replies``."""
+    model = scripted(replies)
     events: list[AgentEvent] = []
     async with McpLink(stack.mcp_url, stack.token) as link:
         host = AgentHost(
@@ -48,7 +39,30 @@ async def test_model_flies_takeoff_goto_land_on_the_sim(stack: LocalStack, scrip
             await link.list_tools(),
             on_event=events.append,
         )
-        result = await host.run_turn("take alpha up to 12 m, 40 m north, and land")
+        return await host.run_turn(request), events, model
+
+
+def _ran(result: TurnResult) -> list[tuple[str, str]]:
+    return [(c.name, c.status) for c in result.tool_calls]
+
+
+async def test_model_flies_takeoff_goto_land_on_the_sim(stack: LocalStack, scripted) -> None:
+    truth = stack.truth()
+    home_lat, home_lon, _ = (await truth.homes(["alpha"]))["alpha"]
+    target = offset_position(home_lat, home_lon, 40.0, 0.0)
+    replies = [
+        call("takeoff", drone_id="alpha", alt_m=12),
+        # A small model's text-form call (qwen style), with the arguments as a JSON string.
+        ScriptedReply(
+            content='<tool_call>{"name": "go_to_location", "arguments": "{\\"drone_id\\": \\"alpha\\", '
+            f'\\"lat_deg\\": {target[0]}, \\"lon_deg\\": {target[1]}, '
+            '\\"alt_m\\": 12}"}</tool_call>'
+        ),
+        call("land", drone_id="alpha"),
+        say("alpha flew 40 m north and landed"),
+    ]
+    request = "take alpha up to 12 m, 40 m north, and land"
+    result, events, model = await _turn_with(stack, scripted, request, replies)
 
     assert result.outcome == "answered", result
     assert [(c.name, c.status) for c in result.tool_calls] == [
@@ -133,19 +147,6 @@ async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStac
             pass
 
 
-async def _host_turn(
-    stack: LocalStack, model: ScriptedModelServer, request: str, events: list[AgentEvent]
-) -> TurnResult:
-    async with McpLink(stack.mcp_url, stack.token) as link:
-        host = AgentHost(
-            ModelConfig(model.base_url, "scripted", max_retries=0),
-            link,
-            await link.list_tools(),
-            on_event=events.append,
-        )
-        return await host.run_turn(request)
-
-
 def _text_plan(*calls: tuple[str, dict]) -> ScriptedReply:
     """A whole plan in one reply, written as text the way the 1.5B model writes it (doubled braces)."""
     return ScriptedReply(
@@ -158,26 +159,15 @@ async def test_a_small_models_plan_with_zero_zero_for_up_flies_as_meant(stack: L
     the takeoff, and the rest of the plan runs in the same reply."""
     truth = stack.truth()
     home = (await truth.homes(["alpha"]))["alpha"]
-    model = scripted(
-        [
-            _text_plan(
-                ("go_to_location", {"drone_id": "alpha", "lat_deg": 0, "lon_deg": 0, "alt_m": 12}),
-                ("move_to_relative", {"drone_id": "alpha", "north_m": 30, "east_m": 0, "up_m": 0}),
-                ("land", {"drone_id": "alpha"}),
-            ),
-            say("alpha flew 30 m north and landed there"),
-        ]
+    plan = _text_plan(
+        ("go_to_location", {"drone_id": "alpha", "lat_deg": 0, "lon_deg": 0, "alt_m": 12}),
+        ("move_to_relative", {"drone_id": "alpha", "north_m": 30, "east_m": 0, "up_m": 0}),
+        ("land", {"drone_id": "alpha"}),
     )
-    events: list[AgentEvent] = []
-    result = await _host_turn(
-        stack, model, "Alpha: go up to 12 m, fly 30 metres north, and land there.", events
-    )
+    request = "Alpha: go up to 12 m, fly 30 metres north, and land there."
+    result, events, model = await _turn_with(stack, scripted, request, [plan, say("alpha flew 30 m north")])
     assert result.outcome == "answered", result
-    assert [(c.name, c.status) for c in result.tool_calls] == [
-        ("takeoff", "ok"),
-        ("move_to_relative", "ok"),
-        ("land", "ok"),
-    ], result.tool_calls
+    assert _ran(result) == [("takeoff", "ok"), ("move_to_relative", "ok"), ("land", "ok")], result
     corrected = [e.data["notes"] for e in events if e.kind == "arguments_corrected"]
     assert corrected == [
         ["go_to_location(0, 0, 12 m) read as takeoff to 12 m: alpha is on the ground and the request names "
@@ -207,24 +197,17 @@ async def test_a_zero_zero_formation_before_each_drones_own_move_is_left_out(
         "alt_m": 10,
         "spacing_m": 20,
     }
-    model = scripted(
-        [
-            _text_plan(
-                ("takeoff", {"drone_id": "alpha", "alt_m": 10}),
-                ("takeoff", {"drone_id": "bravo", "alt_m": 10}),
-                ("formation_goto", formation),
-                ("move_to_relative", {"drone_id": "alpha", "north_m": 20, "east_m": 0, "up_m": 0}),
-                ("move_to_relative", {"drone_id": "bravo", "north_m": 20, "east_m": 0, "up_m": 0}),
-            ),
-            say("both drones are 20 m north of home"),
-        ]
+    plan = _text_plan(
+        ("takeoff", {"drone_id": "alpha", "alt_m": 10}),
+        ("takeoff", {"drone_id": "bravo", "alt_m": 10}),
+        ("formation_goto", formation),
+        ("move_to_relative", {"drone_id": "alpha", "north_m": 20, "east_m": 0, "up_m": 0}),
+        ("move_to_relative", {"drone_id": "bravo", "north_m": 20, "east_m": 0, "up_m": 0}),
     )
-    events: list[AgentEvent] = []
-    result = await _host_turn(
-        stack, model, "Take off alpha and bravo to 10 m, fly them in a line 20 m north.", events
-    )
+    request = "Take off alpha and bravo to 10 m, fly them in a line 20 m north."
+    result, _, model = await _turn_with(stack, scripted, request, [plan, say("both are 20 m north")])
     assert result.outcome == "answered", result
-    assert [(c.name, c.status) for c in result.tool_calls] == [
+    assert _ran(result) == [
         ("takeoff", "ok"),
         ("takeoff", "ok"),
         ("formation_goto", "left_out"),
@@ -249,28 +232,16 @@ async def test_coordinates_written_as_metres_go_to_that_point_and_the_refusal_is
     far = offset_position(home[0], home[1], 5000.0, 0.0)
     request = f"Send bravo at 10 m to {far[0]:.6f}, {far[1]:.6f}, that's the farm 5 km north."
     refusal = "Refused: max_distance: target is 5000 m from home, beyond the limit of 1000 m"
-    model = scripted(
-        [
-            _text_plan(
-                ("takeoff", {"drone_id": "bravo", "alt_m": 10}),
-                (
-                    "move_to_relative",
-                    {"drone_id": "bravo", "north_m": 0, "east_m": round(far[0], 6), "up_m": round(far[1], 6)},
-                ),
-                ("land", {"drone_id": "bravo"}),
-            ),
-            ScriptedReply(content=""),
-            say(refusal),
-        ]
+    metres = {"drone_id": "bravo", "north_m": 0, "east_m": round(far[0], 6), "up_m": round(far[1], 6)}
+    plan = _text_plan(
+        ("takeoff", {"drone_id": "bravo", "alt_m": 10}),
+        ("move_to_relative", metres),
+        ("land", {"drone_id": "bravo"}),
     )
-    events: list[AgentEvent] = []
-    result = await _host_turn(stack, model, request, events)
+    replies = [plan, ScriptedReply(content=""), say(refusal)]
+    result, _, model = await _turn_with(stack, scripted, request, replies)
     assert result.outcome == "answered" and result.final_text == refusal, result
-    assert [(c.name, c.status) for c in result.tool_calls] == [
-        ("takeoff", "ok"),
-        ("go_to_location", "error"),
-        ("land", "skipped"),
-    ], result.tool_calls
+    assert _ran(result) == [("takeoff", "ok"), ("go_to_location", "error"), ("land", "skipped")], result
     went = result.tool_calls[1].arguments or {}
     assert (went["lat_deg"], went["lon_deg"]) == (round(far[0], 6), round(far[1], 6))
     told = [m["content"] for m in model.requests[1]["messages"] if m["role"] == "tool"][1]
