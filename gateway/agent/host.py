@@ -747,8 +747,8 @@ class AgentHost:
             return False
         if text in _norm(self._request):
             return True
-        if any(text[:60] in _norm(refusal) for refusal in self._refusals):
-            return False
+        if any(text[:60] in _norm(refusal) or _norm(refusal)[:50] in text for refusal in self._refusals):
+            return False  # it tells the user what the gateway refused, whatever else it copies
         told = [*self._host_notes, *self._error_texts]
         return any(text[:60] in _norm(note) for note in told)
 
@@ -833,7 +833,8 @@ class AgentHost:
         )
         reply: str
         answer: str | None = None
-        empty = not text or self._echoes_host(text)
+        stale = self._written_before_results(text, result)
+        empty = not text or stale or self._echoes_host(text)
         # An answer is held back first (once per reason): a model that gives up with an echo after its
         # own invalid call is told how to go on, not only that the echo is no answer.
         held = await self._hold_answer(result)
@@ -845,13 +846,21 @@ class AgentHost:
         elif empty:
             result.empty_replies += 1
             result.empty_streak += 1
-            reply = (
-                "Not an answer: answer_user needs text, one sentence for the user saying what was done and "
-                "where the drones are now."
-                if not text
-                else "Not an answer: that only repeats the request or my note. Say in one sentence what was "
-                "done and where the drones are now."
-            )
+            if not text:
+                reply = (
+                    "Not an answer: answer_user needs text, one sentence for the user saying what was done "
+                    "and where the drones are now."
+                )
+            elif stale:
+                reply = (
+                    "Not an answer: you wrote it with your plan, before the results; it was not sent. Since "
+                    f"then: {_outcomes_text(result)} Say in one sentence what really happened."
+                )
+            else:
+                reply = (
+                    "Not an answer: that only repeats the request or my note. Say in one sentence what was "
+                    "done and where the drones are now."
+                )
         else:
             answer, reply = text, "Delivered to the user."
         gave_up = answer is None and result.empty_streak > MAX_EMPTY_REPROMPTS
@@ -868,6 +877,16 @@ class AgentHost:
             text=reply,
         )
         return answer, gave_up
+
+    def _written_before_results(self, text: str, result: TurnResult) -> bool:
+        """The answer is one the model wrote into a plan that then failed (skipped with the rest of it),
+        sent again unchanged after a refusal. Measured: "Bravo has taken off and is flying to the farm",
+        written beside the go_to_location the gateway refused, came back word for word as the answer."""
+        refused = any(c.status in ("error", "invalid") for c in result.tool_calls)
+        return refused and any(
+            c.name == ANSWER_TOOL and c.status == "skipped" and answer_text(c.arguments) == text
+            for c in result.tool_calls
+        )
 
     async def _hold_answer(self, result: TurnResult) -> str | None:
         """Why an answer is sent back instead of ending the turn, or None; each reason at most once a turn,
@@ -988,6 +1007,16 @@ def _pending_text(result: TurnResult) -> str:
         return ""  # nothing left, or the failure that skipped them is the latest news
     calls = "\n".join(json.dumps({"name": c.name, "arguments": c.arguments}) for c in pending)
     return f"Not sent yet from your earlier reply (their turn comes after the call that failed):\n{calls}"
+
+
+def _outcomes_text(result: TurnResult) -> str:
+    """What the calls of the turn did, in words: the done ones and the refused ones."""
+    done = [f"{c.name}: {c.summary}" for c in result.tool_calls if c.ok and c.name != ANSWER_TOOL]
+    refused = [f"{c.name}: {c.summary}" for c in result.tool_calls if c.status == "error"]
+    parts = [f"done: {'; '.join(done)}." if done else "nothing done."]
+    if refused:
+        parts.append("refused: " + "; ".join(refused) + ".")
+    return " ".join(parts)
 
 
 def _call_arguments(call: dict[str, Any]) -> dict[str, Any] | None:

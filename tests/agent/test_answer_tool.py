@@ -78,6 +78,35 @@ async def test_an_answer_after_a_failed_call_of_the_same_reply_is_not_taken(toy,
     assert result.final_text == "The gateway refused 500 m: the limit is 120 m above home."
 
 
+async def test_an_answer_written_before_a_refusal_is_not_believed_when_sent_again_unchanged(
+    toy, scripted
+) -> None:
+    plan = ScriptedReply(
+        tool_calls=[
+            ("takeoff", '{"drone_id": "alpha", "alt_m": 500}'),
+            (ANSWER_TOOL, '{"text": "Alpha is at 500 m."}'),
+        ]
+    )
+    model = scripted([plan, call(ANSWER_TOOL, text="Alpha is at 500 m."), call(ANSWER_TOOL, text="copied")])
+    _, result = await _run(toy, model, "climb alpha to 500 m")
+    told = _last_tool_text(model.requests[2])
+    assert told.startswith("Not an answer: you wrote it with your plan, before the results; it was not sent.")
+    assert "refused: takeoff: Error executing tool takeoff: refused by rule max_altitude" in told
+    assert result.outcome == "answered" and result.final_text == "copied"
+
+
+async def test_an_answer_that_quotes_the_gateways_refusal_is_an_answer_even_inside_a_host_note(
+    toy, scripted
+) -> None:
+    refusal = "refused by rule max_altitude: target altitude 500 m exceeds the limit of 120 m above home"
+    # the re-prompt's own line, copied: a host note, and yet it tells the user what was refused
+    quoting = f"Refused (cannot be done, do not retry): takeoff: Error executing tool takeoff: {refusal}."
+    model = scripted([call("takeoff", drone_id="alpha", alt_m=500), ScriptedReply(content=""),
+                      call(ANSWER_TOOL, text=quoting)])  # fmt: skip
+    _, result = await _run(toy, model, "climb alpha to 500 m")
+    assert result.outcome == "answered" and result.final_text == quoting
+
+
 async def test_an_empty_or_echoed_answer_is_asked_again_and_three_end_as_empty_answer(toy, scripted) -> None:
     request = "take off alpha to 10 m"
     model = scripted(

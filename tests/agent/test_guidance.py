@@ -268,18 +268,19 @@ async def test_the_third_identical_refused_call_is_told_to_stop(toy, scripted) -
     assert "Stop calling it: answer in words, saying what was done and what was refused." in texts[2]
 
 
-def test_a_refused_move_of_a_grounded_drone_names_the_takeoff_with_its_altitude() -> None:
+async def test_a_refused_move_of_a_grounded_drone_names_the_takeoff_with_its_altitude() -> None:
     from gateway.agent.roster import DroneEntry, Roster
 
     host = AgentHost(ModelConfig("http://127.0.0.1:9/v1", "m"), caller=None, tools=[])  # type: ignore[arg-type]
+    host.use_roster = False  # the roster below is the fleet (reading it again is tested on the gateway)
     host.roster = Roster((DroneEntry("bravo", False, 0.0, 100.0), DroneEntry("alpha", True, 10.0, 90.0)))
-    note = host._takeoff_first("go_to_location", {"drone_id": "bravo", "alt_m": 30})
+    note = await host._takeoff_first("go_to_location", {"drone_id": "bravo", "alt_m": 30})
     assert note == (
         ' (Host note: bravo is on the ground. Call takeoff with drone_id "bravo" and alt_m 30 first, '
         "then this call again.)"
     )
-    assert host._takeoff_first("go_to_location", {"drone_id": "alpha", "alt_m": 30}) == ""  # flying
-    assert host._takeoff_first("takeoff", {"drone_id": "bravo", "alt_m": 500}) == ""
+    assert await host._takeoff_first("go_to_location", {"drone_id": "alpha", "alt_m": 30}) == ""  # flying
+    assert await host._takeoff_first("takeoff", {"drone_id": "bravo", "alt_m": 500}) == ""
 
 
 async def test_calls_skipped_after_a_failure_are_shown_as_still_to_do_until_they_run(toy, scripted) -> None:
