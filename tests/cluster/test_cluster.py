@@ -147,9 +147,7 @@ async def test_an_agent_on_node_a_flies_a_drone_owned_by_node_c(cl: Cluster) -> 
 
     async with cl.node("node-a").client(name="forwarded") as mcp:
         up = ok(
-            await calls.tool(
-                mcp, "takeoff", {"drone_id": drone, "alt_m": 10}, progress_callback=on_progress
-            )
+            await calls.tool(mcp, "takeoff", {"drone_id": drone, "alt_m": 10}, progress_callback=on_progress)
         )
         assert up["status"] == "succeeded" and up["drone_id"] == drone, up
         assert progress and any(0.0 < done < 1.0 for done, _ in progress), progress  # the owner's climb
