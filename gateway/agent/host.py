@@ -429,7 +429,7 @@ class AgentHost:
             f"The request: {self._request}",
             "Already done (do not repeat): " + ("; ".join(done) if done else "nothing yet") + ".",
         ]
-        refused = [c for c in result.tool_calls if c.status == "error"]
+        refused = [c for c in result.tool_calls if _refused(c)]
         if refused:
             # Measured: after "Refused: max_distance ..." the 1.5B model replied with nothing twice; a
             # refusal is an outcome to report, not a step still to do.
@@ -1009,10 +1009,20 @@ def _pending_text(result: TurnResult) -> str:
     return f"Not sent yet from your earlier reply (their turn comes after the call that failed):\n{calls}"
 
 
+_REFUSAL_RE = re.compile(r"^(?:error[^:]*:\s*)*refused\b", re.IGNORECASE)
+
+
+def _refused(record: ToolCallRecord) -> bool:
+    """The gateway refused the call by a rule ("Refused: max_distance: ..."): an outcome to report. Other
+    errors ("alt_m 0 is not above home") are mistakes the model can correct (measured: an alt_m=0 error
+    labelled "cannot be done" was passed on to the user instead of corrected)."""
+    return record.status == "error" and bool(_REFUSAL_RE.match(record.text))
+
+
 def _outcomes_text(result: TurnResult) -> str:
     """What the calls of the turn did, in words: the done ones and the refused ones."""
     done = [f"{c.name}: {c.summary}" for c in result.tool_calls if c.ok and c.name != ANSWER_TOOL]
-    refused = [f"{c.name}: {c.summary}" for c in result.tool_calls if c.status == "error"]
+    refused = [f"{c.name}: {c.summary}" for c in result.tool_calls if _refused(c)]
     parts = [f"done: {'; '.join(done)}." if done else "nothing done."]
     if refused:
         parts.append("refused: " + "; ".join(refused) + ".")

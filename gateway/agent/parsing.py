@@ -32,6 +32,12 @@ _MISTRAL_RE = re.compile(r"\[TOOL_CALLS\]\s*(.*)", re.DOTALL)
 _TRAILING_COMMA_RE = re.compile(r",(\s*[}\]])")
 # Reasoning models (qwen3, deepseek-r1) think aloud first; a call drafted while thinking is not a call.
 _THINK_RE = re.compile(r"<think>.*?(?:</think>|\Z)", re.DOTALL | re.IGNORECASE)
+# An answer whose text quotes JSON without escaping it: {"name": "answer_user", "arguments": {"text": "..."}}
+# read up to its last closing braces (the answer comes last in a plan).
+_BROKEN_ANSWER_RE = re.compile(
+    r'\{\{?\s*"name"\s*:\s*"(answer_user)"\s*,\s*"arguments"\s*:\s*\{\s*"text"\s*:\s*"(.*)"\s*\}\s*\}',
+    re.DOTALL,
+)
 
 
 class ArgumentsError(ValueError):
@@ -256,6 +262,13 @@ def _embedded_calls(text: str, known: set[str], *, explicit: bool) -> list[TextT
                     calls += found
                     i = end + 1
                     continue
+            broken = _BROKEN_ANSWER_RE.match(text, i)
+            if broken is not None and broken.group(1) in known:
+                # Measured: an answer copying the host's note with a call in it as raw JSON; read as calls,
+                # the quoted land landed a drone the user wanted hovering. The quote is the answer's text.
+                calls.append(TextToolCall(broken.group(1), {"text": broken.group(2)}, broken.group(0),
+                                          notes=["answer text with unescaped quotes"]))  # fmt: skip
+                break
         i += 1
     return calls
 

@@ -161,6 +161,15 @@ async def test_a_refusal_is_named_in_the_re_prompt_and_copying_it_is_an_answer(t
         "what was done and what was refused." in nudge  # fmt: skip
 
 
+async def test_an_error_the_model_can_correct_is_not_named_a_refusal_in_the_re_prompt(toy, scripted) -> None:
+    model = scripted(
+        [call("move_north", drone_id="alpha", distance_m=20), EMPTY, say("alpha is on the ground")]
+    )
+    await _turn(toy, model, "fly alpha 20 m north", [])
+    nudge = _user_texts(model.requests[2])[-1]
+    assert "Refused" not in nudge and "If every part of the request is done, reply" in nudge
+
+
 async def test_the_command_exits_non_zero_on_an_empty_answer(toy, scripted) -> None:
     model = scripted([EMPTY], repeat_last=True)
     parser = argparse.ArgumentParser()

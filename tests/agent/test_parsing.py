@@ -272,3 +272,20 @@ def test_calls_joined_on_one_line_by_commas_or_then_are_all_read() -> None:
     # In a sentence they stay a description.
     said = 'Done so far: takeoff(drone_id="alpha", alt_m=5), land(drone_id="alpha")'
     assert extract_tool_calls(said, params) == []
+
+
+def test_a_call_quoted_inside_an_answer_with_unescaped_quotes_is_the_answers_text_not_a_call() -> None:
+    # Measured: the 1.5B model copied the host's note, with a skipped land call as raw JSON, into its
+    # answer; read as a call, the land brought down a drone the user wanted hovering.
+    quoted = '{"name": "land", "arguments": {"drone_id": "bravo"}}'
+    content = (
+        '{"name": "answer_user", "arguments": {"text": "Already done: takeoff. Not sent yet: '
+        + quoted
+        + '"}}'
+    )
+    known = {"answer_user": ["text"], "land": ["drone_id"]}
+    calls = extract_tool_calls(content, known)
+    text = f"Already done: takeoff. Not sent yet: {quoted}"
+    assert [(c.name, c.arguments) for c in calls] == [("answer_user", {"text": text})]
+    # without the answer tool offered, nothing is read as an answer
+    assert [c.name for c in extract_tool_calls(content, {"land": ["drone_id"]})] == ["land"]
