@@ -19,7 +19,7 @@ import itertools
 import json
 import re
 import time
-from collections.abc import Awaitable, Callable, Sequence
+from collections.abc import Awaitable, Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
@@ -238,9 +238,9 @@ class AgentHost:
         self._held: set[str] = set()  # why answers were sent back this turn (each reason once)
         # the host's own refusals of calls this turn (an answer copying one is no answer)
         self._error_texts: list[str] = []
-        # the gateway's refusals this turn: an answer copying one tells the user what happened, even when
-        # a host note quoted it first
-        self._refusals: list[str] = []
+        # the gateway's errors this turn (its refusals among them): an answer copying one tells the user
+        # what happened, even when a host note quoted it first
+        self._gateway_errors: list[str] = []
         self._ids = itertools.count(1)
         self.reset()
 
@@ -281,7 +281,7 @@ class AgentHost:
         self._host_notes = []
         self._held = set()
         self._error_texts = []
-        self._refusals = []
+        self._gateway_errors = []
         self._emit("turn_start", turn=self.turns, user=user_text)
         roster = await self.refresh_roster()
         content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
@@ -420,24 +420,20 @@ class AgentHost:
         that nothing has touched yet, the fleet now."""
         # Results in words, never in call syntax: a model may echo this text, and an echoed call must not
         # read as a new one.
-        done = [f"{c.name}: {c.summary}" for c in result.tool_calls if c.ok]
+        done = _in_words(c for c in result.tool_calls if c.ok)
         roster = await self.refresh_roster()
         parts = [
             "Your reply only repeated the request or my note; that is not an answer."
             if echo
             else "Your reply was empty.",
             f"The request: {self._request}",
-            "Already done (do not repeat): " + ("; ".join(done) if done else "nothing yet") + ".",
+            f"Already done (do not repeat): {done or 'nothing yet'}.",
         ]
         refused = [c for c in result.tool_calls if _refused(c)]
         if refused:
             # Measured: after "Refused: max_distance ..." the 1.5B model replied with nothing twice; a
             # refusal is an outcome to report, not a step still to do.
-            parts.append(
-                "Refused (cannot be done, do not retry): "
-                + "; ".join(f"{c.name}: {c.summary}" for c in refused[-2:])
-                + "."
-            )
+            parts.append(f"Refused (cannot be done, do not retry): {_in_words(refused[-2:])}.")
         untouched = self._untouched(result)
         if untouched:
             parts.append(untouched)
@@ -608,9 +604,10 @@ class AgentHost:
                 notes.append(reading.note)
             if name in ("move_to_relative",):
                 notes += restore_request_directions(args, self._request)
-                notes += altitude_not_a_climb(
-                    args, self._request, await self._altitude_now(args.get("drone_id"))
-                )
+                if args.get("up_m"):  # the fleet is read only when there is a climb to judge
+                    drone = await self._fresh_entry(args.get("drone_id"))
+                    alt_now = drone.alt_m if drone is not None and drone.flying else None
+                    notes += altitude_not_a_climb(args, self._request, alt_now)
         self._emit(
             "tool_call",
             step=step,
@@ -688,7 +685,7 @@ class AgentHost:
             # ground" after a finished survey was sent back three times)
             self._error_texts.append(outcome.text)
         elif status == "error":
-            self._refusals.append(outcome.text)
+            self._gateway_errors.append(outcome.text)
         if outcome.is_error and not outcome.text.lower().startswith("error"):
             model_text = f"Error: {outcome.text}"  # the text itself stays verbatim
         self.messages.append({"role": "tool", "tool_call_id": call_id, "content": model_text})
@@ -713,21 +710,20 @@ class AgentHost:
         is now (in a plan, the takeoff before this call has changed it since the last roster)."""
         zero = name == "go_to_location" and args.get("lat_deg") == 0 and args.get("lon_deg") == 0
         metres = name == "move_to_relative" and len(request_points(self._request)) > 0
-        if not (zero or metres) or not self.use_roster:
+        if not (zero or metres):
             return None
-        await self.refresh_roster()
-        drone = self._entry(args.get("drone_id"))
+        drone = await self._fresh_entry(args.get("drone_id"))
         return zero_zero_as_here(name, args, self._request, drone) or coordinates_as_metres(
             name, args, self._request, drone
         )
 
-    async def _altitude_now(self, drone_id: Any) -> float | None:
-        """The drone's altitude as the gateway reads it now (the roster may be a plan's takeoff old)."""
+    async def _fresh_entry(self, drone_id: Any) -> DroneEntry | None:
+        """The drone as the gateway reports it now: in a plan, the roster read before the reply is out of
+        date once the reply's own takeoff has run. None without a roster."""
         if not self.use_roster:
             return None
         await self.refresh_roster()
-        entry = self._entry(drone_id)
-        return entry.alt_m if entry is not None and entry.flying else None
+        return self._entry(drone_id)
 
     def _entry(self, drone_id: Any) -> DroneEntry | None:
         drones = self.roster.drones if self.roster is not None else ()
@@ -747,7 +743,7 @@ class AgentHost:
             return False
         if text in _norm(self._request):
             return True
-        if any(text[:60] in _norm(refusal) or _norm(refusal)[:50] in text for refusal in self._refusals):
+        if any(text[:60] in _norm(error) or _norm(error)[:50] in text for error in self._gateway_errors):
             return False  # it tells the user what the gateway refused, whatever else it copies
         told = [*self._host_notes, *self._error_texts]
         return any(text[:60] in _norm(note) for note in told)
@@ -761,9 +757,8 @@ class AgentHost:
         drone, alt = args.get("drone_id"), args.get("alt_m")
         if name == "takeoff" or not isinstance(alt, int | float):
             return ""
-        if self.use_roster:
-            await self.refresh_roster()
-        if not self._on_ground(drone):
+        entry = await self._fresh_entry(drone) if self.use_roster else self._entry(drone)
+        if entry is None or entry.flying is not False:
             return ""
         return (
             f' (Host note: {drone} is on the ground. Call takeoff with drone_id "{drone}" and alt_m '
@@ -1019,14 +1014,17 @@ def _refused(record: ToolCallRecord) -> bool:
     return record.status == "error" and bool(_REFUSAL_RE.match(record.text))
 
 
+def _in_words(records: Iterable[ToolCallRecord]) -> str:
+    """Calls and their results in words, never in call syntax (a model may echo it: an echoed call must
+    not read as a new one)."""
+    return "; ".join(f"{c.name}: {c.summary}" for c in records)
+
+
 def _outcomes_text(result: TurnResult) -> str:
     """What the calls of the turn did, in words: the done ones and the refused ones."""
-    done = [f"{c.name}: {c.summary}" for c in result.tool_calls if c.ok and c.name != ANSWER_TOOL]
-    refused = [f"{c.name}: {c.summary}" for c in result.tool_calls if _refused(c)]
-    parts = [f"done: {'; '.join(done)}." if done else "nothing done."]
-    if refused:
-        parts.append("refused: " + "; ".join(refused) + ".")
-    return " ".join(parts)
+    done = _in_words(c for c in result.tool_calls if c.ok)
+    refused = _in_words(c for c in result.tool_calls if _refused(c))
+    return (f"done: {done}." if done else "nothing done.") + (f" refused: {refused}." if refused else "")
 
 
 def _call_arguments(call: dict[str, Any]) -> dict[str, Any] | None:

@@ -16,7 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from gateway.agent.repair import names_zero_zero, request_points
+from gateway.agent.repair import LAT_LON_PAIRS, names_zero_zero, request_points
 from gateway.agent.roster import DroneEntry
 
 _SAME_DEG = 1e-4  # about 10 m: a coordinate copied with a digit or two fewer is still the same one
@@ -93,7 +93,7 @@ def swapped_request_point(args: dict[str, Any], request: str) -> list[str]:
     """Swap, in place, a latitude and longitude that are a point of the request the other way round (the
     latitude then out of -90..90); returns a note when it did."""
     notes: list[str] = []
-    for lat_name, lon_name in (("lat_deg", "lon_deg"), ("center_lat_deg", "center_lon_deg")):
+    for lat_name, lon_name in LAT_LON_PAIRS:
         lat, lon = args.get(lat_name), args.get(lon_name)
         if not (isinstance(lat, int | float) and isinstance(lon, int | float)) or abs(lat) <= 90:
             continue

@@ -18,6 +18,8 @@ from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from gateway.agent.answer import ANSWER_TOOL
+
 _NAME_KEYS = ("name", "tool", "tool_name", "function_name", "function", "recipient_name")
 _ARG_KEYS = ("arguments", "parameters", "args", "input", "params", "kwargs")
 
@@ -35,7 +37,7 @@ _THINK_RE = re.compile(r"<think>.*?(?:</think>|\Z)", re.DOTALL | re.IGNORECASE)
 # An answer whose text quotes JSON without escaping it: {"name": "answer_user", "arguments": {"text": "..."}}
 # read up to its last closing braces (the answer comes last in a plan).
 _BROKEN_ANSWER_RE = re.compile(
-    r'\{\{?\s*"name"\s*:\s*"(answer_user)"\s*,\s*"arguments"\s*:\s*\{\s*"text"\s*:\s*"(.*)"\s*\}\s*\}',
+    rf'\{{\{{?\s*"name"\s*:\s*"({ANSWER_TOOL})"\s*,\s*"arguments"\s*:\s*\{{\s*"text"\s*:\s*"(.*)"\s*\}}\s*\}}',
     re.DOTALL,
 )
 
