@@ -98,13 +98,18 @@ def select_tools(
     return keep
 
 
+def _schema_errors(tool: ToolInfo, arguments: dict[str, Any]) -> list[jsonschema.ValidationError]:
+    """What is wrong with ``arguments`` against the tool's input schema (SchemaError: the schema itself
+    is broken)."""
+    schema = tool.input_schema or {"type": "object"}
+    cls = jsonschema.validators.validator_for(schema, default=jsonschema.Draft202012Validator)
+    return list(cls(schema).iter_errors(arguments))
+
+
 def validate_arguments(tool: ToolInfo, arguments: dict[str, Any]) -> str | None:
     """None when ``arguments`` validate against the tool's input schema, else a message for the model."""
-    schema = tool.input_schema or {"type": "object"}
     try:
-        cls = jsonschema.validators.validator_for(schema, default=jsonschema.Draft202012Validator)
-        validator = cls(schema)
-        errors = list(validator.iter_errors(arguments))
+        errors = _schema_errors(tool, arguments)
     except jsonschema.exceptions.SchemaError as exc:  # the server's schema itself is broken
         return f"the tool's input schema cannot be used for validation: {exc.message}"
     if not errors:
@@ -130,10 +135,8 @@ def only_beyond_limits(tool: ToolInfo, arguments: dict[str, Any]) -> bool:
     the policy allows 120). Such a call is the gateway's to refuse: its refusal names the rule and is an
     answer the model may give the user, where the host's own schema message reads as a mistake to fix
     (measured: "Climb alpha to 500 m" failed 3 of 3 runs once the host refused it itself)."""
-    schema = tool.input_schema or {"type": "object"}
     try:
-        cls = jsonschema.validators.validator_for(schema, default=jsonschema.Draft202012Validator)
-        errors = list(cls(schema).iter_errors(arguments))
+        errors = _schema_errors(tool, arguments)
     except jsonschema.exceptions.SchemaError:
         return False
     return bool(errors) and all(e.validator in _LIMIT_KEYWORDS for e in errors)
