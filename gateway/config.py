@@ -197,6 +197,13 @@ class Settings(BaseSettings):
         le=600,
         description="Longest a forwarded call waits for the owning node beyond the MCP wait cap.",
     )
+    cluster_accept_timeout_s: float = Field(
+        3.0,
+        gt=0,
+        le=60,
+        description="How long a forwarded call waits for the owning node to accept it; the owner "
+        "refuses to start a call it receives later, so the caller's 'not run' is true.",
+    )
 
     @field_validator("mcp_toolsets")
     @classmethod

@@ -80,6 +80,15 @@ class NoOwner(GatewayError):
     http_status = 503
 
 
+class NotRun(GatewayError):
+    """Cluster: a forwarded call was not run: the bus is unreachable from this node, or the owner did not
+    accept it before its deadline (the owner refuses it if it arrives later), or it was sent for a lease
+    epoch the owner no longer holds."""
+
+    code = "not_run"
+    http_status = 503
+
+
 class OwnerTimeout(GatewayError):
     """Cluster: the node owning the drone did not answer in time; the call may or may not have run."""
 

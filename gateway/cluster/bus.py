@@ -6,7 +6,11 @@ Subjects (``fleet.`` prefix):
 - ``fleet.call.<vehicle>``: calls for a vehicle; only its owner subscribes (queue group ``owner``, so a
   handover overlap never runs a call twice). The caller gets zero or more ``progress`` messages, then
   one ``result``, on its reply inbox (NATS request/reply with partial replies). Nobody subscribed
-  (no owner at the moment) is NATS's "no responders" status, answered at once;
+  (no owner at the moment) is NATS's "no responders" status, answered at once. A call carries the
+  wall-clock time by which the owner must accept it and the lease epoch the caller saw; the owner
+  answers ``accepted`` first, and refuses (runs nothing) a call that reaches it after that time or for
+  an epoch it does not hold. A caller that heard no ``accepted`` in time says "not run", and that is
+  true: a call delayed in the bus (a node cut off, then healed) is dropped by its owner, not run;
 - ``fleet.event.<kind>``: broadcasts to every node (operator locks, registrations changed, stop).
 
 Errors cross as ``{code, message, details}`` and are raised again on the caller as the same
@@ -28,15 +32,20 @@ from nats.aio.client import Client
 from nats.aio.msg import Msg
 from nats.aio.subscription import Subscription
 
-from gateway.errors import GatewayError, NoOwner, OwnerTimeout
+from gateway.errors import GatewayError, NoOwner, NotRun, OwnerTimeout
 
 log = logging.getLogger("gateway.cluster.bus")
 
 PREFIX = "fleet"
 KIND = "Fleet-Kind"
+#: the owner refuses a call this long after its accept deadline already (clocks of nodes differ a little:
+#: NTP keeps them within milliseconds); the caller waits this long past the deadline before "not run"
+CLOCK_MARGIN_S = 0.5
 ProgressSink = Callable[[dict[str, Any]], Awaitable[None]]
 #: ``handler(call name, arguments, caller, progress)`` -> JSON-serialisable result
 CallHandler = Callable[[str, dict[str, Any], dict[str, Any], ProgressSink], Awaitable[Any]]
+#: ``check(epoch the caller saw)`` raises when the call must not run here (a stale epoch)
+CallCheck = Callable[[int | None], None]
 
 
 def tele_subject(vehicle_id: str) -> str:
@@ -188,6 +197,17 @@ class Bus:
         return await self.client.subscribe(subject, queue=queue, cb=handler)
 
     # --- calls to a vehicle's owner -----------------------------------------------------------------
+    @property
+    def connected(self) -> bool:
+        return self.nc is not None and self.nc.is_connected
+
+    def cut_off(self, what: str) -> NotRun:
+        return NotRun(
+            f"this node is cut off from the cluster's bus (NATS at {', '.join(self.servers)}): {what} was "
+            "not sent and did not run; call a node that reaches the bus, or retry when this one does",
+            bus="down",
+        )
+
     async def call(
         self,
         vehicle_id: str,
@@ -196,8 +216,15 @@ class Bus:
         caller: dict[str, Any],
         timeout_s: float,
         on_progress: ProgressSink | None = None,
+        *,
+        accept_s: float = 3.0,
+        epoch: int | None = None,
     ) -> Any:
-        """Run ``name`` on the vehicle's owner; its result, or its error raised again here."""
+        """Run ``name`` on the vehicle's owner; its result, or its error raised again here. The owner
+        must accept it within ``accept_s`` (else :class:`NotRun`, and the owner will not run it later);
+        then its answer may take ``timeout_s`` in all (else :class:`OwnerTimeout`: it was running)."""
+        if not self.connected:
+            raise self.cut_off(f"{name} for {vehicle_id}")
         nc = self.client
         inbox = nc.new_inbox()
         replies: asyncio.Queue[Msg] = asyncio.Queue()
@@ -207,29 +234,52 @@ class Bus:
 
         sub = await nc.subscribe(inbox, cb=collect)
         try:
-            body = json.dumps({"call": name, "args": arguments, "caller": caller}, default=str).encode()
+            accept_by = time.time() + accept_s
+            body = json.dumps(
+                {"call": name, "args": arguments, "caller": caller, "accept_by": accept_by, "epoch": epoch},
+                default=str,
+            ).encode()
             await self.publish(call_subject(vehicle_id), body, reply=inbox)
-            deadline = time.monotonic() + timeout_s
+            started = time.monotonic()
+            accept_deadline = started + accept_s + CLOCK_MARGIN_S
+            deadline = started + max(timeout_s, accept_s + CLOCK_MARGIN_S)
+            accepted = False
             while True:
-                remaining = deadline - time.monotonic()
-                if remaining <= 0:
+                now = time.monotonic()
+                if not accepted and now >= accept_deadline:
+                    why = "" if self.connected else " (this node lost the bus meanwhile)"
+                    raise NotRun(
+                        f"the node that owns {vehicle_id} did not accept {name} within {accept_s:g} s"
+                        f"{why}: it was not run, and its owner refuses it if it arrives later",
+                        vehicle_id=vehicle_id,
+                    )
+                if now >= deadline:
                     raise OwnerTimeout(
-                        f"the node that owns {vehicle_id} did not answer {name} within {timeout_s:g} s; "
-                        f"it may still have run: check the drone's state before sending {name} again"
+                        f"the node that owns {vehicle_id} accepted {name} but did not answer within "
+                        f"{timeout_s:g} s; it may still be running: check the drone's state before sending "
+                        f"{name} again",
+                        vehicle_id=vehicle_id,
                     )
                 try:
-                    msg = await asyncio.wait_for(replies.get(), remaining)
+                    msg = await asyncio.wait_for(
+                        replies.get(), (deadline if accepted else accept_deadline) - now
+                    )
                 except TimeoutError:
                     continue
                 headers = msg.headers or {}
                 if headers.get("Status") == "503":
                     raise NoOwner(
                         f"no node owns drone '{vehicle_id}' right now (its node was lost and a takeover is "
-                        "under way, or no live node may own it): retry in a few seconds",
+                        f"under way, or no live node may own it): {name} was not run; retry in a few seconds",
                         vehicle_id=vehicle_id,
                     )
+                kind = headers.get(KIND)
+                if kind == "accepted":
+                    accepted = True
+                    continue
                 reply = json.loads(msg.data) if msg.data else {}
-                if headers.get(KIND) == "progress":
+                if kind == "progress":
+                    accepted = True
                     if on_progress is not None:
                         with contextlib.suppress(Exception):  # progress is a courtesy
                             await on_progress(reply)
@@ -241,17 +291,24 @@ class Bus:
             with contextlib.suppress(Exception):
                 await sub.unsubscribe()
 
-    async def serve_calls(self, vehicle_id: str, handler: CallHandler) -> Subscription:
-        """Answer calls for ``vehicle_id`` (this node owns it) with ``handler``, each in its own task."""
+    async def serve_calls(
+        self, vehicle_id: str, handler: CallHandler, check: CallCheck | None = None
+    ) -> Subscription:
+        """Answer calls for ``vehicle_id`` (this node owns it) with ``handler``, each in its own task;
+        ``check`` refuses a call for a lease epoch this node does not hold."""
 
         async def on_message(msg: Msg) -> None:
-            task = asyncio.create_task(self._answer(msg, handler), name=f"call-{vehicle_id}")
+            task = asyncio.create_task(self._answer(msg, handler, check), name=f"call-{vehicle_id}")
             self._tasks.add(task)
             task.add_done_callback(self._tasks.discard)
 
         return await self.subscribe(call_subject(vehicle_id), on_message, queue="owner")
 
-    async def _answer(self, msg: Msg, handler: CallHandler) -> None:
+    async def _reply(self, reply_to: str | None, kind: str, body: dict[str, Any]) -> None:
+        if reply_to:
+            await self.publish(reply_to, json.dumps(body, default=str).encode(), headers={KIND: kind})
+
+    async def _answer(self, msg: Msg, handler: CallHandler, check: CallCheck | None = None) -> None:
         reply_to = msg.reply
         try:
             body = json.loads(msg.data)
@@ -260,28 +317,40 @@ class Bus:
                 dict(body.get("args") or {}),
                 dict(body.get("caller") or {}),
             )
+            accept_by = body.get("accept_by")
+            epoch = body.get("epoch")
         except Exception as exc:
             answer: dict[str, Any] = {
                 "ok": False,
                 "error": {"code": "invalid_argument", "message": f"bad call: {exc}"},
             }
         else:
-
-            async def progress(update: dict[str, Any]) -> None:
-                if reply_to:
-                    await self.publish(
-                        reply_to, json.dumps(update, default=str).encode(), headers={KIND: "progress"}
-                    )
-
+            late = isinstance(accept_by, int | float) and time.time() > accept_by
             try:
-                answer = {"ok": True, "result": _jsonable(await handler(name, arguments, caller, progress))}
+                if late:  # its caller has been told it did not run: it must not
+                    late_s = time.time() - float(accept_by)
+                    log.warning("dropped %s from %s: it arrived %.1f s after its deadline", name,
+                                caller.get("node", "?"), late_s)  # fmt: skip
+                    raise NotRun(f"{name} reached the owner {late_s:.1f} s after its deadline: not run")
+                if check is not None:
+                    check(epoch if isinstance(epoch, int) else None)
             except GatewayError as exc:
                 answer = {"ok": False, "error": error_body(exc)}
-            except Exception as exc:
-                log.exception("forwarded call %s failed", name)
-                answer = {
-                    "ok": False,
-                    "error": {"code": "gateway_error", "message": f"{name} failed on the owner: {exc!r}"},
-                }
-        if reply_to:
-            await self.publish(reply_to, json.dumps(answer, default=str).encode(), headers={KIND: "result"})
+            else:
+                await self._reply(reply_to, "accepted", {})
+
+                async def progress(update: dict[str, Any]) -> None:
+                    await self._reply(reply_to, "progress", update)
+
+                try:
+                    result = await handler(name, arguments, caller, progress)
+                    answer = {"ok": True, "result": _jsonable(result)}
+                except GatewayError as exc:
+                    answer = {"ok": False, "error": error_body(exc)}
+                except Exception as exc:
+                    log.exception("forwarded call %s failed", name)
+                    answer = {
+                        "ok": False,
+                        "error": {"code": "gateway_error", "message": f"{name} failed on the owner: {exc!r}"},
+                    }
+        await self._reply(reply_to, "result", answer)

@@ -21,14 +21,14 @@ from nats.aio.msg import Msg
 from nats.aio.subscription import Subscription
 
 from gateway.cluster import snapshot
-from gateway.cluster.bus import Bus, CallHandler, ProgressSink, tele_subject
+from gateway.cluster.bus import Bus, CallCheck, CallHandler, ProgressSink, tele_subject
 from gateway.cluster.forwarding import ClusterRouter, answer
 from gateway.cluster.keeper import LeasePlan, Wanted, plan
 from gateway.cluster.leases import Lease, LeaseStore, NodeRecord
 from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.takeover import pick_up_operations
 from gateway.config import Settings
-from gateway.errors import GatewayError, NoOwner
+from gateway.errors import GatewayError, NoOwner, NotRun
 from gateway.fleet.caller import Caller
 from gateway.fleet.routing import OnMessage
 from gateway.registry.spec import VehicleSpec
@@ -43,6 +43,9 @@ log = logging.getLogger("gateway.cluster")
 #: else may take them over at the full lease time)
 SELF_FENCE_SHARE = 0.8
 CONNECT_TIMEOUT_S = 15.0
+#: forwarded verbs that only read the drone: they get a short timeout, not the MCP wait cap
+READS = frozenset({"arrival", "mission_progress", "get_param", "list_params", "download_mission"})
+READ_TIMEOUT_S = 5.0
 
 
 class ClusterSetupError(GatewayError):
@@ -242,7 +245,9 @@ class ClusterNode:
         registry = self._require_registry()
         vehicle = await registry.adopt(vehicle_id)
         self.held[vehicle_id] = lease
-        self._served[vehicle_id] = await self.bus.serve_calls(vehicle_id, self._answer(vehicle_id))
+        self._served[vehicle_id] = await self.bus.serve_calls(
+            vehicle_id, self._answer(vehicle_id), self._check_epoch(vehicle_id)
+        )
         was = "" if previous in (None, self.node_id) else f" from node {previous}"
         log.warning("%s: now owned by node %s%s (lease epoch %d)", vehicle_id, self.node_id, was, lease.epoch)
         try:
@@ -384,9 +389,33 @@ class ClusterNode:
         """Run ``verb`` on the drone's owner (over NATS); its result, or its error raised here."""
         if not self.started:
             raise NoOwner(f"this node is not part of the cluster yet; cannot reach {drone_id}'s owner")
-        timeout = max(0.0, wait_s) + self.settings.cluster_forward_timeout_s
+        forward_s = self.settings.cluster_forward_timeout_s
+        if verb in READS:  # a read has nothing to wait for on the owner
+            timeout = min(forward_s, READ_TIMEOUT_S)
+        else:
+            timeout = max(0.0, wait_s) + forward_s
         body = {**caller.to_dict(), "node": self.node_id}
-        return await self.bus.call(drone_id, verb, arguments, body, timeout, on_message)
+        registry = self.registry
+        vehicle = None if registry is None else registry.find(drone_id)
+        epoch = vehicle.epoch if isinstance(vehicle, RemoteVehicle) and vehicle.epoch > 0 else None
+        accept_s = min(self.settings.cluster_accept_timeout_s, timeout)
+        return await self.bus.call(
+            drone_id, verb, arguments, body, timeout, on_message, accept_s=accept_s, epoch=epoch
+        )
+
+    def _check_epoch(self, vehicle_id: str) -> CallCheck:
+        def check(epoch: int | None) -> None:
+            lease = self.held.get(vehicle_id)
+            if lease is None:
+                raise NoOwner(f"node {self.node_id} no longer owns drone '{vehicle_id}': not run; retry")
+            if epoch is not None and epoch != lease.epoch:
+                raise NotRun(
+                    f"a call for drone '{vehicle_id}' sent for lease epoch {epoch} reached node {self.node_id}, "
+                    f"which holds epoch {lease.epoch}: not run (the caller's view of its owner was out of "
+                    "date); retry"
+                )
+
+        return check
 
     def _answer(self, vehicle_id: str) -> CallHandler:
         async def handle(

@@ -45,6 +45,8 @@ __all__ = ["ConnectionState", "MissionItem", "Vehicle"]
 MISSION_TIMEOUT_S = 30.0
 ARMABLE_WAIT_S = 60.0
 MODE_CONFIRM_S = 4.0
+#: closing the flight log never holds a link open longer than this (a database that hangs)
+RECORDER_STOP_S = 5.0
 ARM_RETRY_S = 1.0
 MAV_CMD_DO_SET_MODE = 176
 MISSION_STATE_COMPLETE = 5  # MISSION_CURRENT.mission_state
@@ -201,11 +203,17 @@ class Vehicle:
             await self._recorder.start()
 
     async def disconnect(self) -> None:
-        """Stop everything of this vehicle; no mavsdk_server process remains."""
-        if self._recorder is not None:
-            recorder, self._recorder = self._recorder, None
-            await recorder.stop()
-        await self.link.disconnect()
+        """Stop everything of this vehicle; no mavsdk_server process remains, whatever the flight log
+        could or could not write (what it could not is kept in the store's spool, or logged)."""
+        try:
+            if self._recorder is not None:
+                recorder, self._recorder = self._recorder, None
+                try:
+                    await asyncio.wait_for(recorder.stop(), RECORDER_STOP_S)
+                except Exception:
+                    log.exception("%s: the flight log could not be closed; stopping the link anyway", self.id)
+        finally:
+            await self.link.disconnect()
 
     # --- modes ------------------------------------------------------------------------------------------
     def mode_names(self) -> list[str]:

@@ -430,11 +430,13 @@ class Link:
             with contextlib.suppress(asyncio.CancelledError):
                 await self._monitor_task
             self._monitor_task = None
-        await self._end_session()
-        if self._sidecar is not None:
-            car, self._sidecar = self._sidecar, None
-            await car.stop()
-        self._note_state()
+        try:
+            await self._end_session()
+        finally:  # the sidecar stops whatever ending the session raised
+            if self._sidecar is not None:
+                car, self._sidecar = self._sidecar, None
+                await car.stop()
+            self._note_state()
 
     # --- session (one per serving sidecar process) ---------------------------------------------------------
     def _on_serving(self, port: int) -> None:

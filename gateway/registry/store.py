@@ -55,6 +55,7 @@ from gateway.registry.records import (
     utcnow,
 )
 from gateway.registry.spec import VehicleSpec
+from gateway.registry.spool import Spool
 
 # The records are part of the store's API: import them from here or from gateway.registry.records.
 __all__ = [
@@ -210,6 +211,8 @@ class Store:
         self._audit_listeners: list[AuditListener] = []
         # operation id -> (status, message) of ended operations this store does not keep (fleet ones)
         self._ended_elsewhere: dict[str, tuple[str, str | None]] = {}
+        #: history writes the database could not take (it was unreachable), written when it is back
+        self.spool = Spool()
 
     @classmethod
     async def open(cls, url: str, upgrade: bool = True) -> Store:
@@ -229,6 +232,8 @@ class Store:
     async def close(self) -> None:
         if not self._closed:
             self._closed = True
+            await self.spool.flush(2.0)
+            await self.spool.close()
             await self.engine.dispose()
 
     async def ping(self) -> bool:
@@ -344,17 +349,22 @@ class Store:
         distance_m: float | None = None,
         max_alt_rel_m: float | None = None,
         battery_used_pct: float | None = None,
-    ) -> FlightRecord:
-        async with self._sessions.begin() as session:
-            row = await session.get(FlightRow, flight_id)
-            if row is None:
-                raise NotFound(f"no flight with id {flight_id}", id=flight_id)
-            row.ended_at = ended_at
-            row.duration_s = duration_s
-            row.distance_m = distance_m
-            row.max_alt_rel_m = max_alt_rel_m
-            row.battery_used_pct = battery_used_pct
-        return FlightRecord.model_validate(row)
+    ) -> FlightRecord | None:
+        """End a flight; None when the database is unreachable (the end is written when it is back)."""
+
+        async def write() -> FlightRecord:
+            async with self._sessions.begin() as session:
+                row = await session.get(FlightRow, flight_id)
+                if row is None:
+                    raise NotFound(f"no flight with id {flight_id}", id=flight_id)
+                row.ended_at = ended_at
+                row.duration_s = duration_s
+                row.distance_m = distance_m
+                row.max_alt_rel_m = max_alt_rel_m
+                row.battery_used_pct = battery_used_pct
+            return FlightRecord.model_validate(row)
+
+        return await self.spool.write(f"the end of flight {flight_id}", write)
 
     async def list_open_flights(self, vehicle_id: str | None = None) -> list[FlightRecord]:
         query = select(FlightRow).where(FlightRow.ended_at.is_(None))
@@ -365,21 +375,30 @@ class Store:
             return [FlightRecord.model_validate(r) for r in rows]
 
     async def add_track_samples(self, samples: Sequence[TrackSample]) -> int:
-        """Insert a batch of track samples in one transaction; returns how many were written."""
+        """Insert a batch of track samples in one transaction; returns how many were written (0: kept
+        until the database is back)."""
         if not samples:
             return 0
         rows = [s.model_dump() for s in samples]
-        async with self._sessions.begin() as session:
-            await session.execute(insert(TrackSampleRow), rows)
-        return len(rows)
+
+        async def write() -> int:
+            async with self._sessions.begin() as session:
+                await session.execute(insert(TrackSampleRow), rows)
+            return len(rows)
+
+        return await self.spool.write(f"{len(rows)} track samples", write) or 0
 
     async def add_status_texts(self, items: Sequence[StatusTextIn]) -> int:
         if not items:
             return 0
         rows = [i.model_dump() for i in items]
-        async with self._sessions.begin() as session:
-            await session.execute(insert(StatusTextRow), rows)
-        return len(rows)
+
+        async def write() -> int:
+            async with self._sessions.begin() as session:
+                await session.execute(insert(StatusTextRow), rows)
+            return len(rows)
+
+        return await self.spool.write(f"{len(rows)} status texts", write) or 0
 
     async def list_flights(
         self,
@@ -548,8 +567,10 @@ class Store:
             except Exception:  # a broken listener must not fail the audited call
                 log.exception("audit listener failed")
 
-    async def add_audit(self, entry: AuditEntry) -> int:
-        row = AuditRow(
+    async def add_audit(self, entry: AuditEntry) -> int | None:
+        """Write an audit row; its id, or None when the database is unreachable: the row is kept on this
+        node, with its time, and written in order when the database is back."""
+        values = dict(
             t=entry.t or utcnow(),
             session_key=entry.session_key and entry.session_key[:200],
             principal=entry.principal and entry.principal[:200],
@@ -562,21 +583,26 @@ class Store:
             duration_ms=entry.duration_ms,
             operation_id=entry.operation_id,
         )
-        async with self._sessions.begin() as session:
-            session.add(row)
-            await session.flush()
-            row_id = int(row.id)
-        self._audit_written(row)
-        if entry.outcome == "running" and entry.operation_id is not None:
-            # the operation may have ended before this row was written: then nobody else closes it
-            ended = self._ended_elsewhere.get(entry.operation_id)
-            if ended is not None:
-                await self._finish_audit_of(entry.operation_id, *ended)
-            else:
-                op = await self.get_operation(entry.operation_id)
-                if op is not None and op.status != "running":
-                    await self._finish_audit_of(entry.operation_id, op.status, op.message)
-        return row_id
+
+        async def write() -> int:
+            row = AuditRow(**values)  # a fresh row for each attempt
+            async with self._sessions.begin() as session:
+                session.add(row)
+                await session.flush()
+                row_id = int(row.id)
+            self._audit_written(row)
+            if entry.outcome == "running" and entry.operation_id is not None:
+                # the operation may have ended before this row was written: then nobody else closes it
+                ended = self._ended_elsewhere.get(entry.operation_id)
+                if ended is not None:
+                    await self._finish_audit_of(entry.operation_id, *ended)
+                else:
+                    op = await self.get_operation(entry.operation_id)
+                    if op is not None and op.status != "running":
+                        await self._finish_audit_of(entry.operation_id, op.status, op.message)
+            return row_id
+
+        return await self.spool.write(f"the audit row of {entry.action[:100]}", write)
 
     def _audit_conditions(
         self,
@@ -643,16 +669,20 @@ class Store:
         """Insert or update; an operation that has ended also finishes the audit rows of the calls that
         left it running (whichever node ends it: its owner, or the node that took the drone over)."""
         values = op.model_dump()
-        async with self._sessions.begin() as session:
-            row = await session.get(OperationRow, op.id)
-            if row is None:
-                session.add(OperationRow(**values))
-            else:
-                for key, value in values.items():
-                    if key != "id":
-                        setattr(row, key, value)
-        if op.status != "running":
-            await self._finish_audit_of(op.id, op.status, op.message)
+
+        async def write() -> None:
+            async with self._sessions.begin() as session:
+                row = await session.get(OperationRow, op.id)
+                if row is None:
+                    session.add(OperationRow(**values))
+                else:
+                    for key, value in values.items():
+                        if key != "id":
+                            setattr(row, key, value)
+            if op.status != "running":
+                await self._finish_audit_of(op.id, op.status, op.message)
+
+        await self.spool.write(f"operation {op.id} ({op.status})", write)
         return op
 
     async def finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
@@ -662,7 +692,9 @@ class Store:
         self._ended_elsewhere[operation_id] = (status, message)
         while len(self._ended_elsewhere) > ENDED_ELSEWHERE_KEPT:
             del self._ended_elsewhere[next(iter(self._ended_elsewhere))]
-        await self._finish_audit_of(operation_id, status, message)
+        await self.spool.write(
+            f"the end of operation {operation_id}", lambda: self._finish_audit_of(operation_id, status, message)
+        )
 
     async def _finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
         outcome = AUDIT_OUTCOME_OF_OPERATION.get(status, "error")
@@ -700,21 +732,31 @@ class Store:
 
     # --- operator locks --------------------------------------------------------------------------
 
-    async def save_lock(self, scope: str, reason: str, by: str, locked_at: datetime) -> LockRecord:
-        """Store (or replace) the lock of ``scope``."""
-        async with self._sessions.begin() as session:
-            row = await session.get(LockRow, scope)
-            if row is None:
-                session.add(LockRow(scope=scope, reason=reason, locked_by=by[:200], locked_at=locked_at))
-            else:
-                row.reason, row.locked_by, row.locked_at = reason, by[:200], locked_at
-        return LockRecord(scope=scope, reason=reason, by=by[:200], locked_at=locked_at)
+    async def save_lock(self, scope: str, reason: str, by: str, locked_at: datetime) -> LockRecord | None:
+        """Store (or replace) the lock of ``scope``; None when the database is unreachable (it is
+        stored, in order, when the database is back)."""
+
+        async def write() -> LockRecord:
+            async with self._sessions.begin() as session:
+                row = await session.get(LockRow, scope)
+                if row is None:
+                    session.add(LockRow(scope=scope, reason=reason, locked_by=by[:200], locked_at=locked_at))
+                else:
+                    row.reason, row.locked_by, row.locked_at = reason, by[:200], locked_at
+            return LockRecord(scope=scope, reason=reason, by=by[:200], locked_at=locked_at)
+
+        return await self.spool.write(f"the lock of {scope}", write)
 
     async def delete_lock(self, scope: str) -> bool:
-        """Remove the lock of ``scope``; False when there was none."""
-        async with self._sessions.begin() as session:
-            result = await session.execute(delete(LockRow).where(LockRow.scope == scope))
-            return bool(_rowcount(result))
+        """Remove the lock of ``scope``; False when there was none (or the database is unreachable:
+        then it is removed when the database is back)."""
+
+        async def write() -> bool:
+            async with self._sessions.begin() as session:
+                result = await session.execute(delete(LockRow).where(LockRow.scope == scope))
+                return bool(_rowcount(result))
+
+        return bool(await self.spool.write(f"the unlock of {scope}", write))
 
     async def list_locks(self) -> list[LockRecord]:
         async with self._sessions() as session:
