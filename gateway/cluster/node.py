@@ -43,6 +43,8 @@ log = logging.getLogger("gateway.cluster")
 #: else may take them over at the full lease time)
 SELF_FENCE_SHARE = 0.8
 CONNECT_TIMEOUT_S = 15.0
+#: a stopping node gives the database and the bus this long each to hear it leave
+LEAVE_TIMEOUT_S = 3.0
 #: forwarded verbs that only read the drone: they get a short timeout, not the MCP wait cap
 READS = frozenset({"arrival", "mission_progress", "get_param", "list_params", "download_mission"})
 READ_TIMEOUT_S = 5.0
@@ -127,16 +129,34 @@ class ClusterNode:
         await asyncio.gather(*self._tasks, return_exceptions=True)
         self._tasks = []
         held = list(self.held)
-        for vid in held:
-            await self._drop(vid, "node stopping")
+        await self._drop_all(held, "node stopping")
+        # neither the database nor the bus may keep a stopping node alive: its sidecars are stopped
+        # already; a lease it cannot release expires on its own
         if self.leases is not None:
-            with contextlib.suppress(Exception):
-                await self.leases.release(held)
-                await self.leases.leave()
-        if held:
+            try:
+                await asyncio.wait_for(self._leave(held), LEAVE_TIMEOUT_S)
+            except Exception as exc:
+                log.warning("could not release the leases of node %s (%r): they expire on their own",
+                            self.node_id, exc)  # fmt: skip
+        if held and self.bus.connected:
             with contextlib.suppress(Exception):
                 await self.bus.broadcast("leases", {"node": self.node_id, "released": held})
-        await self.bus.close()
+        try:
+            await asyncio.wait_for(self.bus.close(), LEAVE_TIMEOUT_S)
+        except Exception as exc:
+            log.warning("closing the bus connection failed (%r)", exc)
+
+    async def _leave(self, held: list[str]) -> None:
+        assert self.leases is not None
+        await self.leases.release(held)
+        await self.leases.leave()
+
+    async def _drop_all(self, vehicle_ids: list[str], why: str) -> None:
+        """Stop the sidecars of these vehicles, all at once (none waits behind another's flight log)."""
+        results = await asyncio.gather(*(self._drop(v, why) for v in vehicle_ids), return_exceptions=True)
+        for vid, result in zip(vehicle_ids, results, strict=True):
+            if isinstance(result, BaseException):
+                log.error("%s: stopping it raised %r", vid, result)
 
     # --- leases ----------------------------------------------------------------------------------------
     async def registrations_changed(self) -> None:
@@ -163,8 +183,7 @@ class ClusterNode:
                     log.error(
                         "node %s could not renew its leases in time: stopping its sidecars", self.node_id
                     )
-                    for vid in list(self.held):
-                        await self._drop(vid, "leases could not be renewed")
+                    await self._drop_all(list(self.held), "leases could not be renewed")
             first = False
             self._kick.clear()
             with contextlib.suppress(TimeoutError):
@@ -228,7 +247,9 @@ class ClusterNode:
                     vehicle.set_owner(None)
 
     def _idle(self, vehicle_id: str) -> bool:
-        """On the ground (or unknown: not connected) with no operation running."""
+        """Known to be on the ground and disarmed, with no operation running; or not linked at all (never
+        connected, or connecting is not wanted). A link that is connecting, lost or failed is not idle:
+        the drone may be in the air, and is never handed over for balance."""
         registry = self._require_registry()
         try:
             vehicle = registry.get(vehicle_id)
@@ -237,9 +258,11 @@ class ClusterNode:
         ops = self.gateway.operations
         if ops is not None and ops.running(vehicle_id) is not None:
             return False
-        flying = vehicle.on_ground() is False  # the autopilot's dialect reads its landed state
+        if str(vehicle.state) == "registered":
+            return True
+        landed = vehicle.on_ground() is True  # the autopilot's dialect reads its landed state
         armed = vehicle.telemetry.fresh("armed")
-        return not flying and not armed
+        return landed and armed is False
 
     async def _adopt(self, vehicle_id: str, lease: Lease, previous: str | None) -> None:
         registry = self._require_registry()
@@ -364,8 +387,12 @@ class ClusterNode:
             self.kick()
 
     async def _sync_locks(self) -> None:
-        """The locks in the database are the truth: catch up with any broadcast this node missed."""
+        """The locks in the database are the truth: catch up with any broadcast this node missed. Not
+        while this node still keeps writes the database could not take (a lock among them): until they
+        are written, this node's locks are newer than the database's."""
         store = self.gateway.require_store()
+        if store.spool.waiting:
+            return
         stored = {lk.scope: lk for lk in await store.list_locks()}
         book = self.gateway.locks
         for lock in book.all():
@@ -410,9 +437,9 @@ class ClusterNode:
                 raise NoOwner(f"node {self.node_id} no longer owns drone '{vehicle_id}': not run; retry")
             if epoch is not None and epoch != lease.epoch:
                 raise NotRun(
-                    f"a call for drone '{vehicle_id}' sent for lease epoch {epoch} reached node {self.node_id}, "
-                    f"which holds epoch {lease.epoch}: not run (the caller's view of its owner was out of "
-                    "date); retry"
+                    f"a call for drone '{vehicle_id}' sent for lease epoch {epoch} reached node "
+                    f"{self.node_id}, which holds epoch {lease.epoch}: not run (the caller's view of its "
+                    "owner was out of date); retry"
                 )
 
         return check

@@ -25,7 +25,7 @@ from collections.abc import Awaitable, Callable, Sequence
 from datetime import UTC, datetime
 from typing import Any, Literal
 
-from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal, VehicleNotReady
+from gateway.errors import GatewayError, InvalidArgument, NoOwner, NotRun, SafetyRefusal, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
 from gateway.fleet.command_core import routed
@@ -68,6 +68,9 @@ Formation = Literal["line", "column", "wedge", "grid", "circle"]
 StopAction = Literal["hold", "land", "rtl"]
 OnFleetProgress = Callable[[FleetView], Awaitable[None]]
 STOP_LOCK_REASON = "emergency stop"
+#: the stop's answer says whether its lock is stored if the database answers within this (else: later)
+STORE_LOCK_WAIT_S = 1.0
+_STORING: set[asyncio.Task[bool]] = set()
 
 
 class FleetVerbs(DroneVerbs):
@@ -425,20 +428,34 @@ class FleetVerbs(DroneVerbs):
             )
 
     async def lock(self, caller: Caller, scope: str, reason: str) -> LockResult:
-        """Lock one drone (its id) or the fleet ("*") against agents' actuating commands; persisted."""
+        """Lock one drone (its id) or the fleet ("*") against agents' actuating commands: at once on this
+        node and every node that hears the broadcast; stored (later, if the database is unreachable)."""
         self._operator_only(caller, "lock drones")
+        result = await self._lock_now(caller, scope, reason)
+        result.stored = await self._store_lock(result)
+        return result
+
+    async def _lock_now(self, caller: Caller, scope: str, reason: str) -> LockResult:
+        """The lock in memory and on the bus: it holds before anything is written."""
         if scope != FLEET:
             self.registry.get(scope)  # UnknownVehicle names the known ids
         lock = self.locks.lock(scope, reason, caller.principal, at=datetime.now(UTC))
-        if self.store is not None:
-            await self.store.save_lock(lock.scope, lock.reason, lock.by, lock.locked_at)
         log.warning(
             "operator %s locked %s: %s", lock.by, "the fleet" if scope == FLEET else scope, lock.reason
         )
         result = LockResult(scope=lock.scope, reason=lock.reason, by=lock.by, locked_at=lock.locked_at)
         if self.router is not None:  # every node refuses agents from now on
-            await self.router.announce("lock", result.model_dump(mode="json"))
+            await self.router.announce("lock", result.model_dump(mode="json", exclude={"stored"}))
         return result
+
+    async def _store_lock(self, lock: LockResult) -> bool:
+        """True when the lock is in the database now; False when it is kept until the database is back."""
+        if self.store is None:
+            return True
+        stored = await self.store.save_lock(lock.scope, lock.reason, lock.by, lock.locked_at)
+        if stored is None:
+            log.warning("the lock of %s is kept on this node until the database is back", lock.scope)
+        return stored is not None
 
     async def unlock(self, caller: Caller, scope: str) -> UnlockResult:
         self._operator_only(caller, "unlock drones")
@@ -456,9 +473,15 @@ class FleetVerbs(DroneVerbs):
         """Emergency stop: lock the fleet (unless ``lock`` is false and no reason is given), end every
         running fleet operation, then every airborne drone holds, lands or returns, all at once."""
         self._operator_only(caller, "stop the fleet")
+        # Nothing here waits on the database: the lock holds in memory (and on every node that hears the
+        # broadcast) before the drones are told, and is stored beside the stops, later if need be.
         fleet_lock = None
+        storing: asyncio.Task[bool] | None = None
         if lock or lock_reason:
-            fleet_lock = await self.lock(caller, FLEET, lock_reason or STOP_LOCK_REASON)
+            fleet_lock = await self._lock_now(caller, FLEET, lock_reason or STOP_LOCK_REASON)
+            storing = asyncio.create_task(self._store_lock(fleet_lock))
+            _STORING.add(storing)  # it may outlive this call (a database that hangs)
+            storing.add_done_callback(_STORING.discard)
         vehicles = list(self.registry.all())
         superseded = await self.fleet.supersede([v.id for v in vehicles], f"operator stop ({action})")
         if self.router is not None:  # fleet operations coordinated by other nodes end there too
@@ -466,6 +489,14 @@ class FleetVerbs(DroneVerbs):
 
         async def one(vehicle: FlyingVehicle) -> StopOutcome:
             state = str(vehicle.state)
+            if getattr(vehicle, "remote", False) and getattr(vehicle, "owner", None) is None:
+                return StopOutcome(
+                    drone_id=vehicle.id,
+                    action=action,
+                    outcome="unreached",
+                    message="no node holds its link right now (its node was lost or could not renew its "
+                    "lease): nothing was sent",
+                )
             if state in ("registered", "failed"):
                 return StopOutcome(
                     drone_id=vehicle.id, action=action, outcome="skipped", message=f"not connected ({state})"
@@ -476,6 +507,10 @@ class FleetVerbs(DroneVerbs):
                 )
             try:
                 return await self.stop_one(caller, vehicle.id, action)
+            except (NotRun, NoOwner) as exc:
+                return StopOutcome(
+                    drone_id=vehicle.id, action=action, outcome="unreached", message=exc.message
+                )
             except GatewayError as exc:
                 return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=exc.message)
             except Exception as exc:  # one drone's failure must not stop the others
@@ -483,6 +518,9 @@ class FleetVerbs(DroneVerbs):
                 return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=repr(exc))
 
         results = await asyncio.gather(*(one(v) for v in vehicles))
+        if fleet_lock is not None and storing is not None:
+            done, _ = await asyncio.wait({storing}, timeout=STORE_LOCK_WAIT_S)
+            fleet_lock.stored = bool(done and not storing.exception() and storing.result())
         return StopResult(
             action=action,
             fleet_lock=fleet_lock,

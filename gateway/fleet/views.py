@@ -159,7 +159,11 @@ class StopOutcome(BaseModel):
 
     drone_id: str
     action: str
-    outcome: Literal["sent", "skipped", "failed"]
+    outcome: Literal["sent", "skipped", "unreached", "failed"] = Field(
+        description="sent: the drone's node sent the command to the drone; skipped: on the ground or not "
+        "connected; unreached: nothing was sent (no node holds its link, or its node could not be reached "
+        "in time: it will not run it later); failed: the command was refused or its answer was lost."
+    )
     message: str | None = None
     superseded_operation: str | None = None
     operation_id: str | None = None
@@ -170,6 +174,11 @@ class LockResult(BaseModel):
     reason: str
     by: str
     locked_at: datetime
+    stored: bool = Field(
+        True,
+        description="False: the database was unreachable; the lock holds on this node (and every node "
+        "that heard of it) now and is stored when the database is back.",
+    )
 
 
 class UnlockResult(BaseModel):

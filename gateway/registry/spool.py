@@ -82,7 +82,9 @@ class Spool:
             except Exception as exc:
                 if not unreachable(exc):
                     raise
-                log.warning("database unreachable (%s): %s kept on this node until it is back", _short(exc), what)
+                log.warning(
+                    "database unreachable (%s): %s kept on this node until it is back", _short(exc), what
+                )
         self._keep(what, write)
         return None
 
@@ -118,7 +120,7 @@ class Spool:
         """Wait up to ``within_s`` for the kept writes to reach the database; True when none is left."""
         loop = asyncio.get_running_loop()
         deadline = loop.time() + within_s
-        while self._queue and loop.time() < deadline:
+        while self._queue and loop.time() < deadline:  # noqa: ASYNC110 (the drain task pops the queue)
             await asyncio.sleep(0.1)
         return not self._queue
 

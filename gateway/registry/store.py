@@ -693,7 +693,8 @@ class Store:
         while len(self._ended_elsewhere) > ENDED_ELSEWHERE_KEPT:
             del self._ended_elsewhere[next(iter(self._ended_elsewhere))]
         await self.spool.write(
-            f"the end of operation {operation_id}", lambda: self._finish_audit_of(operation_id, status, message)
+            f"the end of operation {operation_id}",
+            lambda: self._finish_audit_of(operation_id, status, message),
         )
 
     async def _finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
