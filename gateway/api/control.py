@@ -45,10 +45,16 @@ class LockOut(BaseModel):
     reason: str
     by: str
     locked_at: datetime
+    stored: bool = Field(
+        True,
+        description="False: the database was unreachable; the lock holds on the nodes now and is stored "
+        "when the database is back.",
+    )
 
     @classmethod
     def of(cls, lock: Lock | LockResult) -> LockOut:
-        return cls(scope=lock.scope, reason=lock.reason, by=lock.by, locked_at=lock.locked_at)
+        stored = lock.stored if isinstance(lock, LockResult) else True
+        return cls(scope=lock.scope, reason=lock.reason, by=lock.by, locked_at=lock.locked_at, stored=stored)
 
 
 class UnlockOut(BaseModel):
@@ -61,11 +67,16 @@ class LockList(BaseModel):
 
 
 class CommandOut(BaseModel):
-    """What an operator command did: sent (and, for tracked ones, its operation), skipped or failed."""
+    """What an operator command did: sent (and, for tracked ones, its operation), skipped, unreached
+    (nothing was sent) or failed."""
 
     vehicle_id: str
     action: str
-    outcome: Literal["sent", "skipped", "failed"]
+    outcome: Literal["sent", "skipped", "unreached", "failed"] = Field(
+        description="sent: the drone's node sent the command to the drone; skipped: on the ground or not "
+        "connected; unreached: nothing was sent (no node holds its link, or its node could not be reached "
+        "in time, and it will not run it later); failed: refused, or its answer was lost."
+    )
     message: str | None = None
     superseded_operation: str | None = None
     operation_id: str | None = Field(None, description="The tracked operation (GET /api/v1/operations).")

@@ -114,7 +114,8 @@ async def test_node_heartbeats_say_who_is_alive(pg_store: Store) -> None:
 class GroundedDrone:
     """A drone of this node, on the ground and idle (the keeper may hand it over to balance)."""
 
-    telemetry = SimpleNamespace(fresh=lambda name: None)
+    state = "ready"
+    telemetry = SimpleNamespace(fresh=lambda name: False if name == "armed" else None)
 
     def on_ground(self, fresh: bool = True) -> bool:
         return True
@@ -149,7 +150,9 @@ class KeeperRegistry:
 class SilentBus:
     """No NATS: the keeper's calls and broadcasts go nowhere (the leases are all that is tested)."""
 
-    async def serve_calls(self, vehicle_id: str, handler: Any) -> Any:
+    connected = True
+
+    async def serve_calls(self, vehicle_id: str, handler: Any, check: Any = None) -> Any:
         return SimpleNamespace(unsubscribe=self.broadcast)
 
     async def broadcast(self, *args: Any) -> None:

@@ -40,58 +40,105 @@ def _as_postgres_user(cmd: list[str]) -> list[str]:
     return cmd
 
 
-@contextmanager
-def postgres_server(timeout_s: float = 60.0) -> Iterator[str]:
-    """Start PostgreSQL on 127.0.0.1:<free port>; yield its base URL (no database path)."""
-    initdb, postgres = find_pg_bin("initdb"), find_pg_bin("postgres")
-    if not initdb or not postgres:
-        raise FileNotFoundError("PostgreSQL server binaries (initdb, postgres) are not installed")
-    root = Path(tempfile.mkdtemp(prefix="gw-pg-"))
-    data = root / "data"
-    port = free_tcp_port()
-    proc: subprocess.Popen | None = None
-    try:
+class PostgresServer:
+    """A throwaway PostgreSQL server on 127.0.0.1 that a test may stop and start again (same port, same
+    data): the database's outage as its clients see it (connections refused, then back)."""
+
+    def __init__(self, timeout_s: float = 60.0) -> None:
+        initdb, postgres = find_pg_bin("initdb"), find_pg_bin("postgres")
+        if not initdb or not postgres:
+            raise FileNotFoundError("PostgreSQL server binaries (initdb, postgres) are not installed")
+        self.postgres = postgres
+        self.timeout_s = timeout_s
+        self.root = Path(tempfile.mkdtemp(prefix="gw-pg-"))
+        self.data = self.root / "data"
+        self.port = free_tcp_port()
+        self.proc: subprocess.Popen | None = None
         if os.geteuid() == 0:
-            shutil.chown(root, "postgres", "postgres")
+            shutil.chown(self.root, "postgres", "postgres")
         subprocess.run(
             _as_postgres_user(
-                [initdb, "-D", str(data), "-A", "trust", "-U", "gw", "--no-sync", "-E", "UTF8"]
+                [initdb, "-D", str(self.data), "-A", "trust", "-U", "gw", "--no-sync", "-E", "UTF8"]
             ),
             check=True,
             capture_output=True,
             timeout=scaled(120),
         )
-        proc = subprocess.Popen(
-            _as_postgres_user(
-                [postgres, "-D", str(data), "-h", "127.0.0.1", "-p", str(port), "-k", str(root), *FAST_UNSAFE]
-            ),
+
+    @property
+    def url(self) -> str:
+        return f"postgresql+asyncpg://gw@127.0.0.1:{self.port}"
+
+    @property
+    def running(self) -> bool:
+        return self.proc is not None and self.proc.poll() is None
+
+    def start(self) -> None:
+        cmd = [
+            self.postgres,
+            "-D",
+            str(self.data),
+            "-h",
+            "127.0.0.1",
+            "-p",
+            str(self.port),
+            "-k",
+            str(self.root),
+        ]
+        self.proc = proc = subprocess.Popen(
+            _as_postgres_user([*cmd, *FAST_UNSAFE]),
             stdout=subprocess.DEVNULL,
             stderr=subprocess.PIPE,
             start_new_session=True,
         )
-        deadline = time.monotonic() + scaled(timeout_s)
+        deadline = time.monotonic() + scaled(self.timeout_s)
         while True:
             ready = subprocess.run(
-                [find_pg_bin("pg_isready") or "pg_isready", "-h", "127.0.0.1", "-p", str(port)],
+                [find_pg_bin("pg_isready") or "pg_isready", "-h", "127.0.0.1", "-p", str(self.port)],
                 capture_output=True,
             )
             if ready.returncode == 0:
-                break
+                return
             if proc.poll() is not None:
+                assert proc.stderr is not None
                 raise RuntimeError(f"postgres exited: {proc.stderr.read().decode(errors='replace')[-2000:]}")
             if time.monotonic() > deadline:
                 raise TimeoutError("postgres did not accept connections in time")
             time.sleep(0.2)
-        yield f"postgresql+asyncpg://gw@127.0.0.1:{port}"
+
+    def stop(self) -> None:
+        """Fast shutdown: open connections are closed, new ones refused."""
+        proc, self.proc = self.proc, None
+        if proc is None or proc.poll() is not None:
+            return
+        os.killpg(proc.pid, signal.SIGINT)  # postmaster: fast shutdown
+        try:
+            proc.wait(timeout=scaled(20))
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait(timeout=scaled(10))
+
+    def remove(self) -> None:
+        self.stop()
+        shutil.rmtree(self.root, ignore_errors=True)
+
+
+@contextmanager
+def restartable_postgres(timeout_s: float = 60.0) -> Iterator[PostgresServer]:
+    """A started :class:`PostgresServer`, stopped and removed on exit."""
+    server = PostgresServer(timeout_s)
+    try:
+        server.start()
+        yield server
     finally:
-        if proc is not None and proc.poll() is None:
-            os.killpg(proc.pid, signal.SIGINT)  # postmaster: fast shutdown
-            try:
-                proc.wait(timeout=scaled(20))
-            except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait(timeout=scaled(10))
-        shutil.rmtree(root, ignore_errors=True)
+        server.remove()
+
+
+@contextmanager
+def postgres_server(timeout_s: float = 60.0) -> Iterator[str]:
+    """Start PostgreSQL on 127.0.0.1:<free port>; yield its base URL (no database path)."""
+    with restartable_postgres(timeout_s) as server:
+        yield server.url
 
 
 async def create_database(base_url: str) -> str:

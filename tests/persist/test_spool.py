@@ -1,0 +1,78 @@
+"""The store while its PostgreSQL server is stopped and started again: the history it could not write
+(audit rows, an operation, track samples, an operator lock) is kept on the node, answered at once, and
+written when the server is back, in the order it was made and with the times it was made."""
+
+from __future__ import annotations
+
+from collections.abc import AsyncIterator
+from datetime import UTC, datetime, timedelta
+
+import pytest
+import pytest_asyncio
+
+from gateway.registry.records import AuditEntry, OperationRecord, TrackSample
+from gateway.registry.spec import VehicleSpec
+from gateway.registry.store import Store
+from tests.persist.pg import PostgresServer, create_database, find_pg_bin, restartable_postgres
+
+pytestmark = pytest.mark.skipif(
+    not (find_pg_bin("initdb") and find_pg_bin("postgres")),
+    reason="PostgreSQL server binaries are not installed (apt-get install postgresql)",
+)
+
+
+@pytest_asyncio.fixture
+async def server_and_store() -> AsyncIterator[tuple[PostgresServer, Store]]:
+    with restartable_postgres() as server:
+        store = await Store.open(await create_database(server.url))
+        try:
+            yield server, store
+        finally:
+            if not server.running:
+                server.start()
+            await store.close()
+
+
+def entry(action: str) -> AuditEntry:
+    return AuditEntry(source="rest", principal="ops", vehicle_id="d1", action=action, outcome="ok")
+
+
+async def test_history_written_while_the_database_is_down_reaches_it_in_order_when_it_is_back(
+    server_and_store: tuple[PostgresServer, Store],
+) -> None:
+    server, store = server_and_store
+    await store.add_vehicle(VehicleSpec(id="d1", url="tcpout://127.0.0.1:5760"))
+    started = datetime.now(UTC)
+    flight = await store.open_flight("d1", started)
+    assert await store.add_audit(entry("before")) is not None
+
+    server.stop()
+    made: list[datetime] = []
+    for action in ("during-1", "during-2", "during-3"):
+        made.append(datetime.now(UTC))
+        assert await store.add_audit(entry(action)) is None  # kept, not failed
+    now = datetime.now(UTC)
+    op = OperationRecord(id="op-1", vehicle_id="d1", kind="land", status="succeeded", progress=1.0,
+                         created_at=now, updated_at=now, finished_at=now)  # fmt: skip
+    assert (await store.save_operation(op)).id == "op-1"
+    samples = [
+        TrackSample(flight_id=flight, t=now + timedelta(seconds=i), lat=1.0, lon=2.0) for i in range(3)
+    ]
+    assert await store.add_track_samples(samples) == 0  # none written yet
+    assert await store.save_lock("*", "emergency stop", "ops", now) is None
+    assert len(store.spool) == 6
+    back = datetime.now(UTC)
+
+    server.start()
+    assert await store.spool.flush(60.0), f"{len(store.spool)} writes still kept"
+    rows = sorted(await store.list_audit(limit=10), key=lambda r: r.id)
+    assert [r.action for r in rows] == ["before", "during-1", "during-2", "during-3"]
+    for row, t in zip(rows[1:], made, strict=True):  # the time each call was made, not when written
+        assert abs((row.t.replace(tzinfo=UTC) - t).total_seconds()) < 1.0 and row.t.replace(tzinfo=UTC) < back
+    stored_op = await store.get_operation("op-1")
+    assert stored_op is not None and stored_op.status == "succeeded"
+    assert len(await store.get_track(flight)) == 3
+    assert [lk.scope for lk in await store.list_locks()] == ["*"]
+    assert store.spool.dropped == 0
+    # and once written, the store writes straight through again
+    assert await store.add_audit(entry("after")) is not None
