@@ -14,7 +14,7 @@ import socket
 import subprocess
 import sys
 import time
-from collections.abc import AsyncIterator, Iterator
+from collections.abc import AsyncIterator, Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -299,6 +299,11 @@ async def postgres_url() -> AsyncIterator[str]:
 
 
 @contextlib.asynccontextmanager
+async def _database_on(server_url: str) -> AsyncIterator[str]:
+    yield await create_database(server_url)
+
+
+@contextlib.asynccontextmanager
 async def cluster(
     workdir: Path,
     *,
@@ -307,10 +312,15 @@ async def cluster(
     speedup: float = 8.0,
     extra_env: dict[str, str] | None = None,
     vehicle_tags: dict[str, list[str]] | None = None,
+    database_server: str | None = None,
+    nats_via: Callable[[str, str], str] | None = None,
 ) -> AsyncIterator[Cluster]:
-    """NATS + PostgreSQL + a simulator with ``drones`` drones + ``nodes`` gateway nodes, all ready."""
+    """NATS + PostgreSQL + a simulator with ``drones`` drones + ``nodes`` gateway nodes, all ready.
+    ``database_server``: the base URL of a PostgreSQL server to make the database on (one the test
+    stops and starts); ``nats_via(node name, NATS URL)``: the NATS URL that node uses (a proxy)."""
     extra = dict(extra_env or {})
-    async with postgres_url() as database_url, sim_process(count=drones, speedup=speedup) as sim:
+    databases = postgres_url() if database_server is None else _database_on(database_server)
+    async with databases as database_url, sim_process(count=drones, speedup=speedup) as sim:
         with nats_server(workdir) as nats:
             ids = [f"d{i + 1}" for i in range(drones)]
             store = await Store.open(database_url)
@@ -323,7 +333,8 @@ async def cluster(
             started: list[Node] = []
             try:
                 for name in NODE_NAMES[:nodes]:
-                    started.append(start_node(name, database_url, nats.url, workdir, extra))
+                    url = nats.url if nats_via is None else nats_via(name, nats.url)
+                    started.append(start_node(name, database_url, url, workdir, extra))
                 for node in started:
                     await wait_node_ready(node, 90.0)
                 yield Cluster(nats, database_url, sim, started, ids, workdir, extra)

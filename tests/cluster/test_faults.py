@@ -1,0 +1,204 @@
+"""The cluster under its own engines' faults, with real PostgreSQL, NATS, sidecars and simulated drones:
+
+- PostgreSQL stopped under three drones in the air: the emergency stop answers at once and every drone
+  lands; every node then fences itself (no sidecar left behind, whatever its flight log could not write);
+  when PostgreSQL is back, each drone is ready again under exactly one sidecar, without restarting a node,
+  the stop is in the audit with the time it was made, and its fleet lock is stored. SIGTERM ends every node.
+- one node cut off from NATS (a TCP proxy the test controls, between the node and NATS): a command
+  forwarded to it, and one it forwards, answer "not run" within the accept time; when the link heals, the
+  owners drop both (they arrive after their deadline) and the drones stay on the ground.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import os
+import signal
+import subprocess
+from collections.abc import Iterator
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+from urllib.parse import urlparse
+
+import pytest
+from mcp.types import CallToolResult
+
+from tests.cluster.harness import Node, cluster, missing_engines, wait_spread
+from tests.helpers.tcpproxy import TcpProxy
+from tests.helpers.timing import eventually, scaled
+from tests.persist.pg import find_pg_bin, restartable_postgres
+from tests.registry.procs import mavsdk_servers_of
+
+pytestmark = [
+    pytest.mark.skipif(missing_engines() is not None, reason=str(missing_engines())),
+    pytest.mark.skipif(
+        not (find_pg_bin("initdb") and find_pg_bin("postgres")),
+        reason="these tests stop and start their own PostgreSQL server: its binaries are not installed",
+    ),
+]
+
+
+def ok(r: CallToolResult) -> dict[str, Any]:
+    assert not r.is_error, r.content[0].text if r.content else r
+    assert r.structured_content is not None
+    return r.structured_content
+
+
+def err(r: CallToolResult) -> str:
+    assert r.is_error, r.structured_content
+    return r.content[0].text
+
+
+def sidecars(nodes: list[Node]) -> dict[str, list[int]]:
+    return {n.name: mavsdk_servers_of(n.proc.pid) for n in nodes}
+
+
+def log_has(node: Node, text: str) -> bool:
+    return text in node.log.read_text(errors="replace")
+
+
+async def take_off(node: Node, drone_ids: list[str], alt_m: float = 10.0) -> None:
+    async with node.client(name="takeoff") as mcp:
+        results = await asyncio.gather(
+            *(mcp.call_tool("takeoff", {"drone_id": d, "alt_m": alt_m}) for d in drone_ids)
+        )
+    for r in results:
+        assert ok(r)["status"] == "succeeded", r
+
+
+async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
+    with restartable_postgres() as pg:
+        async with cluster(
+            tmp_path, drones=3, nodes=2, speedup=5.0, database_server=pg.url,
+            extra_env={"GATEWAY_CLUSTER_LEASE_TTL_S": "6"},
+        ) as c:  # fmt: skip
+            await wait_spread(c)
+            pids = {n.name: n.proc.pid for n in c.nodes}
+            await take_off(c.node("node-a"), c.drone_ids)
+
+            pg.stop()
+            stopped_at = datetime.now(UTC)
+            response = await c.node("node-b").post("/fleet/stop", {"action": "land"})
+            assert response.status_code == 200, response.text
+            stop = response.json()
+            outcomes = {r["vehicle_id"]: r for r in stop["results"]}
+            assert all(outcomes[d]["outcome"] == "sent" for d in c.drone_ids), outcomes
+            assert stop["fleet_lock"]["scope"] == "*" and stop["fleet_lock"]["stored"] is False, stop
+
+            async def all_landing() -> bool:
+                return all((await c.true_state(d))["mode"] == "LAND" for d in c.drone_ids)
+
+            await eventually(all_landing, "every drone in LAND after the stop", within_s=3)
+
+            # no database: each node fences itself, and no sidecar is left behind
+            def fenced() -> bool:
+                return all(log_has(n, "could not renew its leases in time") for n in c.nodes)
+
+            async def fenced_and_stopped() -> dict[str, list[int]] | None:
+                found = sidecars(c.nodes)
+                return found if fenced() and not any(found.values()) else None
+
+            with contextlib.suppress(AssertionError):
+                await eventually(fenced_and_stopped, "every node fenced, its sidecars stopped", within_s=30)
+            assert fenced(), "\n".join(n.log_tail(20) for n in c.nodes)
+            assert not any(sidecars(c.nodes).values()), sidecars(c.nodes)
+            assert all(n.alive for n in c.nodes)
+
+            pg.start()
+            back_at = datetime.now(UTC)
+
+            async def one_sidecar_each() -> dict[str, str] | None:
+                owners = await c.owners()
+                states = await c.states(c.node("node-a"))
+                found = sidecars(c.nodes)
+                if (
+                    len(owners) == len(c.drone_ids)
+                    and all(states.get(d) == "ready" for d in c.drone_ids)
+                    and sum(len(v) for v in found.values()) == len(c.drone_ids)
+                ):
+                    return owners
+                return None
+
+            owners = await eventually(one_sidecar_each, "every drone ready under one sidecar", within_s=90)
+            found = sidecars(c.nodes)
+            for name, held in {n: [d for d, o in owners.items() if o == n] for n in pids}.items():
+                assert len(found[name]) == len(held), (found, owners)
+            assert {n.name: n.proc.pid for n in c.nodes if n.alive} == pids  # no node was restarted
+
+            async def stop_audited() -> list[Any]:
+                return await c.rows("SELECT t FROM audit WHERE action = 'rest.fleet_stop'")
+
+            rows = await eventually(
+                stop_audited, "the stop's audit row after the database is back", within_s=30
+            )
+            assert len(rows) == 1
+            t = rows[0][0] if rows[0][0].tzinfo else rows[0][0].replace(tzinfo=UTC)
+            assert stopped_at.timestamp() - 1 < t.timestamp() < back_at.timestamp()  # the time it was made
+            assert [r[0] for r in await c.rows("SELECT scope FROM locks")] == ["*"]
+
+            # SIGTERM ends every node, sidecars and all
+            for node in c.nodes:
+                os.killpg(node.proc.pid, signal.SIGTERM)
+            for node in c.nodes:
+                try:
+                    node.proc.wait(timeout=scaled(30))
+                except subprocess.TimeoutExpired:
+                    raise AssertionError(f"{node.name} did not end on SIGTERM:\n{node.log_tail()}") from None
+                assert mavsdk_servers_of(node.proc.pid) == []
+
+
+@contextlib.contextmanager
+def proxies() -> Iterator[dict[str, TcpProxy]]:
+    made: dict[str, TcpProxy] = {}
+    try:
+        yield made
+    finally:
+        for proxy in made.values():
+            proxy.close()
+
+
+async def test_a_node_cut_off_from_nats_runs_no_late_command(tmp_path: Path) -> None:
+    with proxies() as made:
+
+        def via(name: str, url: str) -> str:
+            if name != "node-b":
+                return url
+            target = urlparse(url)
+            made[name] = proxy = TcpProxy(target.hostname or "127.0.0.1", target.port or 4222)
+            return f"nats://127.0.0.1:{proxy.port}"
+
+        async with cluster(tmp_path, drones=2, nodes=2, speedup=5.0, nats_via=via) as c:
+            owners = await wait_spread(c)
+            on_a = next(d for d, n in owners.items() if n == "node-a")
+            on_b = next(d for d, n in owners.items() if n == "node-b")
+            node_a, node_b = c.node("node-a"), c.node("node-b")
+
+            made["node-b"].cut()
+            async with (
+                node_a.client(name="to-the-cut-off-owner") as mcp_a,
+                node_b.client(name="cut-off") as mcp_b,
+            ):
+                to_b, from_b = await asyncio.gather(
+                    mcp_a.call_tool("takeoff", {"drone_id": on_b, "alt_m": 10}),
+                    mcp_b.call_tool("takeoff", {"drone_id": on_a, "alt_m": 10}),
+                )
+            for text in (err(to_b), err(from_b)):
+                assert "did not accept takeoff" in text and "it was not run" in text, text
+            made["node-b"].heal()
+
+            # both calls reach their owners once the link heals, late: each owner drops its call
+            async def both_dropped() -> bool:
+                return log_has(node_b, "dropped takeoff from node-a") and log_has(
+                    node_a, "dropped takeoff from node-b"
+                )
+
+            await eventually(both_dropped, "each owner dropped the late takeoff", within_s=60)
+            for drone in (on_a, on_b):
+                truth = await c.true_state(drone)
+                assert not truth["armed"] and truth["rel_alt_m"] < 0.5, (drone, truth)
+            # the cluster works again across the healed link
+            await wait_spread(c)
+            async with node_a.client(name="after") as mcp:
+                assert ok(await mcp.call_tool("get_parameter", {"drone_id": on_b, "name": "WPNAV_SPEED"}))
