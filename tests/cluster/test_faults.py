@@ -1,6 +1,6 @@
 """The cluster under its own engines' faults, with real PostgreSQL, NATS, sidecars and simulated drones:
 
-- PostgreSQL stopped under three drones in the air: the emergency stop answers at once and every drone
+- PostgreSQL stopped for 20 s under three drones in the air: the emergency stop answers at once and every drone
   lands; every node then fences itself (no sidecar left behind, whatever its flight log could not write);
   when PostgreSQL is back, each drone is ready again under exactly one sidecar, without restarting a node,
   the stop is in the audit with the time it was made, and its fleet lock is stored. SIGTERM ends every node.
@@ -38,6 +38,9 @@ pytestmark = [
         reason="these tests stop and start their own PostgreSQL server: its binaries are not installed",
     ),
 ]
+
+
+OUTAGE_S = 20.0
 
 
 def ok(r: CallToolResult) -> dict[str, Any]:
@@ -88,7 +91,8 @@ async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
             assert stop["fleet_lock"]["scope"] == "*" and stop["fleet_lock"]["stored"] is False, stop
 
             async def all_landing() -> bool:
-                return all((await c.true_state(d))["mode"] == "LAND" for d in c.drone_ids)
+                modes = [(await c.true_state(d))["mode"] for d in c.drone_ids]
+                return modes == ["LAND"] * len(c.drone_ids)
 
             await eventually(all_landing, "every drone in LAND after the stop", within_s=3)
 
@@ -105,6 +109,8 @@ async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
             assert fenced(), "\n".join(n.log_tail(20) for n in c.nodes)
             assert not any(sidecars(c.nodes).values()), sidecars(c.nodes)
             assert all(n.alive for n in c.nodes)
+            # the outage lasts as long as the one this is about (its leases expire in the meantime)
+            await asyncio.sleep(max(0.0, OUTAGE_S - (datetime.now(UTC) - stopped_at).total_seconds()))
 
             pg.start()
             back_at = datetime.now(UTC)
