@@ -1,9 +1,10 @@
 """The cluster under its own engines' faults, with real PostgreSQL, NATS, sidecars and simulated drones:
 
-- PostgreSQL stopped for 20 s under three drones in the air: the emergency stop answers at once and every drone
-  lands; every node then fences itself (no sidecar left behind, whatever its flight log could not write);
-  when PostgreSQL is back, each drone is ready again under exactly one sidecar, without restarting a node,
-  the stop is in the audit with the time it was made, and its fleet lock is stored. SIGTERM ends every node.
+- PostgreSQL stopped for 20 s under three drones in the air: the emergency stop answers at once and
+  every drone lands; every node then fences itself (no sidecar left behind, whatever its flight log
+  could not write); when PostgreSQL is back, each drone is ready again under exactly one sidecar,
+  without restarting a node, the stop is in the audit with the time it was made, and its fleet lock is
+  stored. SIGTERM ends every node.
 - one node cut off from NATS (a TCP proxy the test controls, between the node and NATS): a command
   forwarded to it, and one it forwards, answer "not run" within the accept time; when the link heals, the
   owners drop both (they arrive after their deadline) and the drones stay on the ground.
