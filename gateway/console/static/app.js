@@ -141,12 +141,16 @@ function Console({ config, onLogout }) {
             .map((x) => `${x.vehicle_id} (${x.message})`)
             .join(", ");
         const failed = others("failed");
+        const unreached = others("unreached");
         const skipped = others("skipped");
+        const unstored = result.fleet_lock && result.fleet_lock.stored === false;
         notify(
-          failed ? "error" : "ok",
+          failed || unreached ? "error" : "ok",
           `Emergency stop (${result.action}): sent to ${sent.join(", ") || "no drone in the air"}` +
             (skipped ? `; skipped ${skipped}` : "") +
-            (failed ? `; FAILED on ${failed}` : ""),
+            (unreached ? `; NOT REACHED (nothing sent): ${unreached}` : "") +
+            (failed ? `; FAILED on ${failed}` : "") +
+            (unstored ? "; the fleet lock holds but is stored only when the database is back" : ""),
         );
       } else if (r.kind === "drone-action") {
         notify("ok", `${r.label} sent to ${r.drone}`);
