@@ -45,6 +45,9 @@ SELF_FENCE_SHARE = 0.8
 CONNECT_TIMEOUT_S = 15.0
 #: a stopping node gives the database and the bus this long each to hear it leave
 LEAVE_TIMEOUT_S = 3.0
+#: a lock heard on the bus holds this long at most while the database does not have it (its node keeps it
+#: until the database is back); an unlock heard on the bus, or the lock seen stored, ends the wait
+HEARD_LOCK_KEPT_S = 600.0
 #: forwarded verbs that only read the drone: they get a short timeout, not the MCP wait cap
 READS = frozenset({"arrival", "mission_progress", "get_param", "list_params", "download_mission"})
 READ_TIMEOUT_S = 5.0
@@ -86,6 +89,7 @@ class ClusterNode:
         self._kick = asyncio.Event()
         self._valid_until = 0.0
         self._tick_lock = asyncio.Lock()
+        self._heard_locks: dict[str, float] = {}  # scope -> when a lock of it was heard on the bus
         self.nodes: list[NodeRecord] = []
         self.all_leases: dict[str, Lease] = {}
         self.last_plan = LeasePlan()
@@ -371,12 +375,14 @@ class ClusterNode:
         if body.get("node") == self.node_id:
             return
         if kind == "lock":
-            at = body.get("at")
+            at = body.get("at") or body.get("locked_at")
             self.gateway.locks.lock(
                 body["scope"], body["reason"], body["by"], at=datetime.fromisoformat(at) if at else None
             )
+            self._heard_locks[body["scope"]] = time.monotonic()
         elif kind == "unlock":
             self.gateway.locks.unlock(body["scope"])
+            self._heard_locks.pop(body["scope"], None)
         elif kind == "stop":  # an operator's emergency stop on another node: end the fleet operations
             fleet = self.gateway.fleet_operations  # this node coordinates (it stops its own drones)
             registry = self.registry
@@ -395,8 +401,14 @@ class ClusterNode:
             return
         stored = {lk.scope: lk for lk in await store.list_locks()}
         book = self.gateway.locks
+        now = time.monotonic()
+        for scope in [
+            s for s, heard in self._heard_locks.items() if s in stored or now - heard > HEARD_LOCK_KEPT_S
+        ]:
+            del self._heard_locks[scope]
         for lock in book.all():
-            if lock.scope not in stored:
+            # a lock heard on the bus that its node has not stored yet (the database was down there) holds
+            if lock.scope not in stored and lock.scope not in self._heard_locks:
                 book.unlock(lock.scope)
         for scope, lk in stored.items():
             current = {x.scope: x for x in book.all()}.get(scope)

@@ -5,6 +5,7 @@ node's lease keeper (``ClusterNode.tick``) carrying out the pinning by tag on th
 from __future__ import annotations
 
 import asyncio
+import json
 from collections.abc import AsyncIterator, Iterable
 from datetime import UTC, datetime, timedelta
 from types import SimpleNamespace
@@ -261,3 +262,50 @@ def test_plan_pins_by_tag_and_releases_what_is_no_longer_ours() -> None:
         "a", [], [Wanted(f"v{i}") for i in range(4)], {}, [node("a"), node("b", alive=False)], set(), set()
     )
     assert p.room == 4
+
+
+# --- what a node's keeper makes of the locks and of its drones' state ---------------------------------
+
+
+async def test_a_lock_heard_on_the_bus_holds_until_its_node_has_stored_it(pg_store: Store) -> None:
+    """The stopping node kept its fleet lock while the database was down; the database is back here
+    first: re-reading the locks must not lift the lock that node has not written yet."""
+    node = keeper(pg_store, "a", "", ttl_s=30)
+    body = {"scope": "*", "reason": "emergency stop", "by": "ops", "node": "b",
+            "locked_at": datetime.now(UTC).isoformat()}  # fmt: skip
+    await node._on_event(SimpleNamespace(subject="fleet.event.lock", data=json.dumps(body).encode()))  # type: ignore[arg-type]
+    await node._sync_locks()
+    assert node.gateway.locks.get("*") is not None  # not in the database yet: still holds
+    await pg_store.save_lock("*", "emergency stop", "ops", datetime.now(UTC))
+    await node._sync_locks()
+    await pg_store.delete_lock("*")  # stored once, then removed (a missed unlock): the database decides
+    await node._sync_locks()
+    assert node.gateway.locks.get("*") is None
+
+
+class Drone:
+    def __init__(self, state: str, on_ground: bool | None, armed: bool | None) -> None:
+        self.state, self._on_ground = state, on_ground
+        self.telemetry = SimpleNamespace(fresh=lambda name: armed if name == "armed" else None)
+
+    def on_ground(self, fresh: bool = True) -> bool | None:
+        return self._on_ground
+
+
+@pytest.mark.parametrize(
+    ("drone", "idle"),
+    [
+        (Drone("ready", True, False), True),  # landed and disarmed
+        (Drone("registered", None, None), True),  # never linked: nothing to hand over but the lease
+        (Drone("connecting", None, None), False),  # may be in the air: its link is not up yet
+        (Drone("link_lost", None, None), False),
+        (Drone("ready", False, True), False),  # flying
+        (Drone("ready", True, True), False),  # armed on the ground
+    ],
+)
+def test_only_a_drone_known_to_be_landed_counts_as_idle(drone: Drone, idle: bool) -> None:
+    settings = Settings(_env_file=None, cluster_nats_url="nats://127.0.0.1:4222", cluster_node_id="a")
+    gateway = SimpleNamespace(settings=settings, operations=None, ready=True)
+    node = ClusterNode(gateway)  # type: ignore[arg-type]
+    node.registry = SimpleNamespace(get=lambda vehicle_id: drone)  # type: ignore[assignment]
+    assert node._idle("d1") is idle
