@@ -80,6 +80,14 @@ class NoOwner(GatewayError):
     http_status = 503
 
 
+class OwnerLost(NoOwner):
+    """Cluster: the node running a forwarded call lost the drone's lease while the caller waited (it was
+    lost, or fenced itself); the call had been accepted there, so it may have run."""
+
+    code = "owner_lost"
+    http_status = 503
+
+
 class NotRun(GatewayError):
     """Cluster: a forwarded call was not run: the bus is unreachable from this node, or the owner did not
     accept it before its deadline (the owner refuses it if it arrives later), or it was sent for a lease

@@ -32,7 +32,7 @@ from nats.aio.client import Client
 from nats.aio.msg import Msg
 from nats.aio.subscription import Subscription
 
-from gateway.errors import GatewayError, NoOwner, NotRun, OwnerTimeout
+from gateway.errors import GatewayError, NoOwner, NotRun, OwnerLost, OwnerTimeout
 
 log = logging.getLogger("gateway.cluster.bus")
 
@@ -41,6 +41,8 @@ KIND = "Fleet-Kind"
 #: the owner refuses a call this long after its accept deadline already (clocks of nodes differ a little:
 #: NTP keeps them within milliseconds); the caller waits this long past the deadline before "not run"
 CLOCK_MARGIN_S = 0.5
+#: how often a caller waiting on an accepted call checks that its node still owns the vehicle
+OWNER_CHECK_S = 0.5
 ProgressSink = Callable[[dict[str, Any]], Awaitable[None]]
 #: ``handler(call name, arguments, caller, progress)`` -> JSON-serialisable result
 CallHandler = Callable[[str, dict[str, Any], dict[str, Any], ProgressSink], Awaitable[Any]]
@@ -219,10 +221,13 @@ class Bus:
         *,
         accept_s: float = 3.0,
         epoch: int | None = None,
+        owner_gone: Callable[[], str | None] | None = None,
     ) -> Any:
         """Run ``name`` on the vehicle's owner; its result, or its error raised again here. The owner
         must accept it within ``accept_s`` (else :class:`NotRun`, and the owner will not run it later);
-        then its answer may take ``timeout_s`` in all (else :class:`OwnerTimeout`: it was running)."""
+        then its answer may take ``timeout_s`` in all (else :class:`OwnerTimeout`: it was running).
+        ``owner_gone()`` says why the node that accepted it no longer owns the vehicle (None while it
+        does): then :class:`OwnerLost` at once, not at the timeout."""
         if not self.connected:
             raise self.cut_off(f"{name} for {vehicle_id}")
         nc = self.client
@@ -253,6 +258,13 @@ class Bus:
                         f"{why}: it was not run, and its owner refuses it if it arrives later",
                         vehicle_id=vehicle_id,
                     )
+                gone = owner_gone() if accepted and owner_gone is not None else None
+                if gone is not None:
+                    raise OwnerLost(
+                        f"{gone} while it ran {name} for {vehicle_id}; the call had been accepted, so it may "
+                        "have run",
+                        vehicle_id=vehicle_id,
+                    )
                 if now >= deadline:
                     raise OwnerTimeout(
                         f"the node that owns {vehicle_id} accepted {name} but did not answer within "
@@ -260,10 +272,11 @@ class Bus:
                         f"{name} again",
                         vehicle_id=vehicle_id,
                     )
+                wait_s = (deadline if accepted else accept_deadline) - now
+                if owner_gone is not None:
+                    wait_s = min(wait_s, OWNER_CHECK_S)
                 try:
-                    msg = await asyncio.wait_for(
-                        replies.get(), (deadline if accepted else accept_deadline) - now
-                    )
+                    msg = await asyncio.wait_for(replies.get(), wait_s)
                 except TimeoutError:
                     continue
                 headers = msg.headers or {}

@@ -438,9 +438,21 @@ class ClusterNode:
         vehicle = None if registry is None else registry.find(drone_id)
         epoch = vehicle.epoch if isinstance(vehicle, RemoteVehicle) and vehicle.epoch > 0 else None
         accept_s = min(self.settings.cluster_accept_timeout_s, timeout)
+        owner_gone = None
+        if isinstance(vehicle, RemoteVehicle):
+            view, owner, seen_epoch = vehicle, vehicle.owner, vehicle.epoch
+
+            def owner_gone() -> str | None:
+                if view.owner == owner and view.epoch == seen_epoch:
+                    return None
+                if view.owner is None:
+                    return f"node {owner} lost drone {drone_id}'s lease"
+                return f"drone {drone_id} changed owner (node {owner} -> node {view.owner})"
+
         return await self.bus.call(
-            drone_id, verb, arguments, body, timeout, on_message, accept_s=accept_s, epoch=epoch
-        )
+            drone_id, verb, arguments, body, timeout, on_message, accept_s=accept_s, epoch=epoch,
+            owner_gone=owner_gone,
+        )  # fmt: skip
 
     def _check_epoch(self, vehicle_id: str) -> CallCheck:
         def check(epoch: int | None) -> None:

@@ -14,7 +14,15 @@ from typing import Any, Literal, TypeVar, cast
 from pydantic_core import to_jsonable_python
 
 from gateway.config import Settings
-from gateway.errors import GatewayError, InvalidArgument, NoOwner, NotFound, OwnerTimeout, VehicleNotReady
+from gateway.errors import (
+    GatewayError,
+    InvalidArgument,
+    NoOwner,
+    NotFound,
+    NotRun,
+    OwnerTimeout,
+    VehicleNotReady,
+)
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
 from gateway.fleet.fleet_ops import FleetOperations
@@ -34,6 +42,8 @@ OnProgress = Callable[[OperationView], Awaitable[None]]
 NAV_KINDS = ("goto", "reposition", "move_to_relative")
 RECOVERY_KINDS = ("land", "return_to_launch")
 ELSEWHERE_KEPT = 2000
+FOLLOW_RETRY_S = 0.5
+"""How often a wait that lost its operation's node asks again (until a node has taken the drone over)."""
 """Operations started on other nodes whose drone this node remembers (to forward waits on them)."""
 WAITER = Caller(via="cluster", principal="waiter")
 """Who forwards a wait: waiting changes nothing, whoever started the operation."""
@@ -70,7 +80,30 @@ def routed(method: VerbMethod) -> VerbMethod:
             if k not in ("self", "caller") and k not in verb.callbacks
         }
         wait_s = float(arguments.get("cap_s") or self.settings.mcp_wait_cap_s)
-        result = await router.call(drone_id, name, caller, arguments, _relay(callbacks), wait_s=wait_s)
+        relay = _relay(callbacks)
+        seen: dict[str, str] = {}  # the operation the owner reported (its progress), to follow it
+
+        async def watch(body: dict[str, Any]) -> None:
+            view = body.get("view")
+            if isinstance(view, dict) and isinstance(view.get("operation_id"), str):
+                seen["operation_id"] = view["operation_id"]
+            if relay is not None:
+                await relay(body)
+
+        started = asyncio.get_running_loop().time()
+        try:
+            result = await router.call(drone_id, name, caller, arguments, watch, wait_s=wait_s)
+        except (NoOwner, OwnerTimeout):
+            # the owner was lost while the verb waited on its operation: follow the operation to the
+            # node that takes the drone over (same id), for what is left of the wait
+            operation_id = seen.get("operation_id")
+            if operation_id is None or verb.result is not OperationView:
+                raise
+            left = wait_s - (asyncio.get_running_loop().time() - started)
+            self._remember_elsewhere(operation_id, drone_id)
+            return await self._wait_elsewhere(
+                drone_id, operation_id, max(0.0, left), callbacks.get("on_progress")
+            )
         answer = verb.result.model_validate(result)
         if isinstance(answer, OperationView):
             self._remember_elsewhere(answer.operation_id, drone_id)
@@ -319,21 +352,49 @@ class CommandCore:
         record = await self.store.get_operation(operation_id)
         return None if record is None else record.vehicle_id
 
+    async def _record_of(self, operation_id: str) -> Any:
+        """The operation as the database holds it; None when unknown or the database is unreachable."""
+        if self.store is None:
+            return None
+        try:
+            return await self.store.get_operation(operation_id)
+        except Exception:
+            log.warning("could not read operation %s from the database", operation_id)
+            return None
+
     async def _wait_elsewhere(
         self, drone_id: str, operation_id: str, cap_s: float | None, on_progress: OnProgress | None
     ) -> OperationView:
         """Forward the wait to the drone's owner, its progress back to ``on_progress``. If the owner is
-        lost meanwhile, the answer is what the database holds, saying so."""
+        lost meanwhile, the wait follows the operation to the node that takes the drone over (which
+        tracks it under the same id); when the wait's time is up first, the answer is what the database
+        holds, saying so."""
         assert self.router is not None
         cap = self.settings.mcp_wait_cap_s if cap_s is None else cap_s
         relay = _relay({"on_progress": on_progress}) if on_progress is not None else None
-        try:
-            result = await self.router.call(
-                drone_id, "wait", WAITER, {"operation_id": operation_id, "cap_s": cap}, relay, wait_s=cap
-            )
-        except (NoOwner, OwnerTimeout) as exc:
-            record = None if self.store is None else await self.store.get_operation(operation_id)
-            if record is None:
-                raise
-            return OperationView.of_record(record, f"{record.message or record.status} ({exc.message})")
-        return OperationView.model_validate(result)
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + cap
+        while True:
+            left = max(0.0, deadline - loop.time())
+            try:
+                result = await self.router.call(
+                    drone_id,
+                    "wait",
+                    WAITER,
+                    {"operation_id": operation_id, "cap_s": left},
+                    relay,
+                    wait_s=left,
+                )
+                return OperationView.model_validate(result)
+            except (NoOwner, OwnerTimeout, NotRun, NotFound) as exc:
+                # no owner yet (a takeover under way), or the new owner has not picked the operation up
+                # yet; unless the database says it has ended (the new owner could not follow it)
+                record = await self._record_of(operation_id)
+                ended = record is not None and record.status != "running"
+                retry = not ended and not isinstance(exc, OwnerTimeout)
+                if retry and loop.time() + FOLLOW_RETRY_S < deadline:
+                    await asyncio.sleep(FOLLOW_RETRY_S)
+                    continue
+                if record is None:
+                    raise
+                return OperationView.of_record(record, f"{record.message or record.status} ({exc.message})")

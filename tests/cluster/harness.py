@@ -7,6 +7,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import json
+import math
 import os
 import shutil
 import signal
@@ -344,8 +345,8 @@ async def cluster(
 
 
 async def wait_spread(c: Cluster, within_s: float = 90.0) -> dict[str, str]:
-    """Until every drone has one owner, every live node owns some, and every node sees every drone
-    ready; the owners."""
+    """Until every drone has one owner, every live node owns some and none more than its fair share, and
+    every node sees every drone ready; the owners."""
     loop = asyncio.get_running_loop()
     deadline = loop.time() + scaled(within_s)
     last: Any = None
@@ -355,6 +356,10 @@ async def wait_spread(c: Cluster, within_s: float = 90.0) -> dict[str, str]:
             states = [await c.states(n) for n in c.live_nodes]
             last = (owners, states)
             spread = {n.name for n in c.live_nodes} <= set(owners.values())
+            # and settled: no node holds more than its fair share (it would hand the extra ones over as
+            # soon as they are ready and idle on the ground)
+            views = [await n.get("/cluster") for n in c.live_nodes]
+            spread = spread and all(len(v["held"]) <= math.ceil(v["share"] - 1e-9) for v in views)
             if (
                 len(owners) == len(c.drone_ids)
                 and spread

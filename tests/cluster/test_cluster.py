@@ -351,6 +351,19 @@ async def test_node_loss_with_drones_in_the_air_and_the_takeover(cl: Cluster) ->
         goto = {"drone_id": mover, "lat_deg": lat, "lon_deg": lon, "alt_m": 10, "wait": False}
         leg = ok(await calls.tool(mcp, "go_to_location", goto))
     assert leg["status"] == "running"
+    # an agent on node A waits on the leg (the wait runs on node C): it must follow the leg across the loss
+    progressed = asyncio.Event()
+
+    async def on_progress(progress: float, total: float | None, message: str | None) -> None:
+        progressed.set()
+
+    async def wait_from_a() -> dict[str, Any]:
+        async with cl.node("node-a").client(name="waiting-across-loss") as mcp:
+            args = {"drone_id": mover}
+            return ok(await calls.tool(mcp, "monitor_flight", args, progress_callback=on_progress))
+
+    waiting = asyncio.create_task(wait_from_a())
+    await asyncio.wait_for(progressed.wait(), scaled(30))  # node C reports the leg's progress
 
     lost.kill9()  # node loss: the gateway and its sidecars die at once
     survivors = [cl.node("node-a"), cl.node("node-b")]
@@ -385,6 +398,10 @@ async def test_node_loss_with_drones_in_the_air_and_the_takeover(cl: Cluster) ->
     assert honest in monitored_text, monitored_text
     truth = await cl.true_state(mover)
     assert geo.horizontal_distance_m(truth["lat"], truth["lon"], lat, lon) < 3.0
+    # node A's wait followed the leg to its new owner and ended with it (not at the forwarding timeout
+    # with the database's 'running')
+    followed = await asyncio.wait_for(waiting, scaled(60))
+    assert followed["operation_id"] == leg["operation_id"] and followed["status"] == "succeeded", followed
     rows = await cl.rows("SELECT status, message FROM operations WHERE id = :i", i=leg["operation_id"])
     assert rows[0].status == "succeeded" and honest in rows[0].message, rows
     ops = (await survivors[0].get("/operations", vehicle_id=mover))["items"]
