@@ -155,6 +155,16 @@ class ClusterNode:
         await self.leases.release(held)
         await self.leases.leave()
 
+    async def _stop_strays(self) -> None:
+        """A sidecar runs only under a lease this node holds: stop any other (none should exist)."""
+        registry = self.registry
+        if registry is None:
+            return
+        strays = [v.id for v in registry.all() if registry.is_local(v.id) and v.id not in self.held]
+        for vid in strays:
+            log.error("%s: its sidecar ran without this node holding its lease: stopping it", vid)
+        await self._drop_all(strays, "no lease held")
+
     async def _drop_all(self, vehicle_ids: list[str], why: str) -> None:
         """Stop the sidecars of these vehicles, all at once (none waits behind another's flight log)."""
         results = await asyncio.gather(*(self._drop(v, why) for v in vehicle_ids), return_exceptions=True)
@@ -188,6 +198,8 @@ class ClusterNode:
                         "node %s could not renew its leases in time: stopping its sidecars", self.node_id
                     )
                     await self._drop_all(list(self.held), "leases could not be renewed")
+                with contextlib.suppress(Exception):
+                    await self._stop_strays()
             first = False
             self._kick.clear()
             with contextlib.suppress(TimeoutError):
@@ -207,6 +219,7 @@ class ClusterNode:
                     await self._drop(vid, "lease lost")
                 else:
                     self.held[vid] = renewed[vid]
+            await self._stop_strays()
             store = self.gateway.require_store()
             records = await store.list_vehicles()
             registry = self._require_registry()
@@ -270,11 +283,16 @@ class ClusterNode:
 
     async def _adopt(self, vehicle_id: str, lease: Lease, previous: str | None) -> None:
         registry = self._require_registry()
-        vehicle = await registry.adopt(vehicle_id)
-        self.held[vehicle_id] = lease
-        self._served[vehicle_id] = await self.bus.serve_calls(
-            vehicle_id, self._answer(vehicle_id), self._check_epoch(vehicle_id)
-        )
+        self.held[vehicle_id] = lease  # renewed from now on: a sidecar never runs without its lease
+        try:
+            vehicle = await registry.adopt(vehicle_id)
+            self._served[vehicle_id] = await self.bus.serve_calls(
+                vehicle_id, self._answer(vehicle_id), self._check_epoch(vehicle_id)
+            )
+        except BaseException:  # failed, or cut short (a tick that took too long): nothing half-adopted
+            log.error("%s: adopting it failed: its sidecar is stopped, its lease left to expire", vehicle_id)
+            await self._drop(vehicle_id, "adopting failed")
+            raise
         was = "" if previous in (None, self.node_id) else f" from node {previous}"
         log.warning("%s: now owned by node %s%s (lease epoch %d)", vehicle_id, self.node_id, was, lease.epoch)
         try:

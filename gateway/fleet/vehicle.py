@@ -199,8 +199,9 @@ class Vehicle:
         """Start the link (sidecar, session) and the flight recorder (idempotent, returns at once)."""
         await self.link.connect()  # a failed sidecar starts afresh; a running one is left alone
         if self.store is not None and self._recorder is None:
-            self._recorder = FlightRecorder(self, self.store, self.settings)
-            await self._recorder.start()
+            recorder = FlightRecorder(self, self.store, self.settings)
+            await recorder.start()  # a start that failed is tried again by the next connect
+            self._recorder = recorder
 
     async def disconnect(self) -> None:
         """Stop everything of this vehicle; no mavsdk_server process remains, whatever the flight log

@@ -7,7 +7,8 @@
   stored. SIGTERM ends every node.
 - one node cut off from NATS (a TCP proxy the test controls, between the node and NATS): a command
   forwarded to it, and one it forwards, answer "not run" within the accept time; when the link heals, the
-  owners drop both (they arrive after their deadline) and the drones stay on the ground.
+  owners drop both (they arrive after their deadline) and the drones stay on the ground. Cut off, the
+  node still ends on SIGTERM.
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ from tests.cluster.harness import Node, cluster, missing_engines, wait_spread
 from tests.helpers.tcpproxy import TcpProxy
 from tests.helpers.timing import eventually, scaled
 from tests.persist.pg import find_pg_bin, restartable_postgres
-from tests.registry.procs import mavsdk_servers_of
+from tests.registry.procs import alive, mavsdk_servers_of
 
 pytestmark = [
     pytest.mark.skipif(missing_engines() is not None, reason=str(missing_engines())),
@@ -146,14 +147,15 @@ async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
             assert [r[0] for r in await c.rows("SELECT scope FROM locks")] == ["*"]
 
             # SIGTERM ends every node, sidecars and all
+            running = [p for pids_of in sidecars(c.nodes).values() for p in pids_of]
             for node in c.nodes:
-                os.killpg(node.proc.pid, signal.SIGTERM)
+                os.kill(node.proc.pid, signal.SIGTERM)
             for node in c.nodes:
                 try:
                     node.proc.wait(timeout=scaled(30))
                 except subprocess.TimeoutExpired:
                     raise AssertionError(f"{node.name} did not end on SIGTERM:\n{node.log_tail()}") from None
-                assert mavsdk_servers_of(node.proc.pid) == []
+            assert not [p for p in running if alive(p)]
 
 
 @contextlib.contextmanager
@@ -209,3 +211,13 @@ async def test_a_node_cut_off_from_nats_runs_no_late_command(tmp_path: Path) -> 
             await wait_spread(c)
             async with node_a.client(name="after") as mcp:
                 assert ok(await mcp.call_tool("get_parameter", {"drone_id": on_b, "name": "WPNAV_SPEED"}))
+            # cut off again, SIGTERM still ends the node (its bus connection cannot hold it)
+            made["node-b"].cut()
+            its_sidecars = mavsdk_servers_of(node_b.proc.pid)
+            assert its_sidecars
+            os.kill(node_b.proc.pid, signal.SIGTERM)
+            try:
+                node_b.proc.wait(timeout=scaled(30))
+            except subprocess.TimeoutExpired:
+                raise AssertionError(f"node-b did not end on SIGTERM:\n{node_b.log_tail()}") from None
+            assert not [p for p in its_sidecars if alive(p)]

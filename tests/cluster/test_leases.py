@@ -309,3 +309,28 @@ def test_only_a_drone_known_to_be_landed_counts_as_idle(drone: Drone, idle: bool
     node = ClusterNode(gateway)  # type: ignore[arg-type]
     node.registry = SimpleNamespace(get=lambda vehicle_id: drone)  # type: ignore[assignment]
     assert node._idle("d1") is idle
+
+
+class AdoptionCutShort(KeeperRegistry):
+    """Adopting starts the drone's sidecar (it is local) and then fails, as a tick cut short by its time
+    limit, or a flight log that could not start, does."""
+
+    async def adopt(self, vehicle_id: str) -> Any:
+        self.local.add(vehicle_id)
+        raise RuntimeError("the flight log could not start")
+
+    def all(self) -> list[Any]:
+        return [SimpleNamespace(id=v) for v in sorted(self.local)]
+
+
+async def test_a_sidecar_never_runs_without_its_lease(pg_store: Store) -> None:
+    node = keeper(pg_store, "a", "", ttl_s=30)
+    node.registry = registry = AdoptionCutShort()  # type: ignore[assignment]
+    with pytest.raises(RuntimeError, match="flight log"):
+        await node.tick()
+    assert not node.held and not registry.local  # nothing half adopted: no sidecar, no lease renewed
+    # a local drone the node holds no lease of, however it came about, is stopped at the next tick
+    registry.local.add("v5")
+    registry.adopt = KeeperRegistry.adopt.__get__(registry)  # type: ignore[method-assign]
+    await node.tick()
+    assert registry.local == set(node.held) and len(node.held) == 5  # the one cut short expires first
