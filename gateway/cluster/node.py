@@ -90,6 +90,8 @@ class ClusterNode:
         self._valid_until = 0.0
         self._tick_lock = asyncio.Lock()
         self._heard_locks: dict[str, float] = {}  # scope -> when a lock of it was heard on the bus
+        self._adopting_from: dict[str, str] = {}  # vehicle -> the node it was taken from, while adopting
+        self._adoptions: set[asyncio.Task[None]] = set()
         self.nodes: list[NodeRecord] = []
         self.all_leases: dict[str, Lease] = {}
         self.last_plan = LeasePlan()
@@ -132,6 +134,8 @@ class ClusterNode:
             task.cancel()
         await asyncio.gather(*self._tasks, return_exceptions=True)
         self._tasks = []
+        if self._adoptions:  # let an adoption under way finish first: then its sidecar is stopped below
+            await asyncio.wait(set(self._adoptions), timeout=LEAVE_TIMEOUT_S * 3)
         held = list(self.held)
         await self._drop_all(held, "node stopping")
         # neither the database nor the bus may keep a stopping node alive: its sidecars are stopped
@@ -248,7 +252,15 @@ class ClusterNode:
                     if lease is None:
                         continue
                     taken += 1
-                    await self._adopt(vid, lease, previous.node_id if previous is not None else None)
+                    was = previous.node_id if previous is not None else None
+                    if was == self.node_id:  # our own lease of an adoption that failed: who had it before
+                        was = self._adopting_from.get(vid, was)
+                    # the tick's time limit is for a database that hangs, not for starting a sidecar: an
+                    # adoption under way finishes (or undoes itself) even when the tick is cut short
+                    adoption = asyncio.create_task(self._adopt(vid, lease, was), name=f"adopt-{vid}")
+                    self._adoptions.add(adoption)
+                    adoption.add_done_callback(self._adoptions.discard)
+                    await asyncio.shield(adoption)
             if result.release:
                 await self.bus.broadcast("leases", {"node": self.node_id, "released": result.release})
             return result
@@ -289,10 +301,13 @@ class ClusterNode:
             self._served[vehicle_id] = await self.bus.serve_calls(
                 vehicle_id, self._answer(vehicle_id), self._check_epoch(vehicle_id)
             )
-        except BaseException:  # failed, or cut short (a tick that took too long): nothing half-adopted
+        except BaseException:  # failed, or cut short (the node stopping): nothing half-adopted
             log.error("%s: adopting it failed: its sidecar is stopped, its lease left to expire", vehicle_id)
+            if previous not in (None, self.node_id):
+                self._adopting_from[vehicle_id] = previous
             await self._drop(vehicle_id, "adopting failed")
             raise
+        self._adopting_from.pop(vehicle_id, None)
         was = "" if previous in (None, self.node_id) else f" from node {previous}"
         log.warning("%s: now owned by node %s%s (lease epoch %d)", vehicle_id, self.node_id, was, lease.epoch)
         try:
