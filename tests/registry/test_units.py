@@ -203,7 +203,9 @@ def test_each_dialect_protects_its_safety_parameters_whatever_the_deny_list_says
                           (PX4_DIALECT, "NAV_DLL_ACT"), (ARDUPILOT, "ARMING_CHECK")):  # fmt: skip
         with pytest.raises(SafetyRefusal, match=f"parameter {name} matches the protected pattern"):
             narrowed.check_param_write(name, vehicle_id="alpha", protected=dialect.protected_params)
-    narrowed.check_param_write("MPC_XY_VEL_MAX", protected=PX4_DIALECT.protected_params)  # not protected
+    narrowed.check_param_write(  # not protected, and governed by the speed limit
+        "MPC_XY_VEL_MAX", 5, protected=PX4_DIALECT.protected_params, governed=PX4_DIALECT.limit_params
+    )
     narrowed.check_param_write("COM_ARM_WO_GPS", via="rest", protected=PX4_DIALECT.protected_params)
 
 
