@@ -96,6 +96,7 @@ async def test_bad_inputs_are_tool_errors_and_send_nothing(stack: Stack) -> None
         ),
         ("get_position", {"drone_id": huge}, "1..64 characters"),
         ("get_position", {"drone_id": 123}, "drone_id"),
+        ("get_position", {"drone_id": "evil\nline\x1b[2J"}, "unknown drone id 'evil\\nline\\x1b[2J'"),
         ("set_flight_mode", {"drone_id": "d2", "mode": huge}, "mode"),
         ("set_flight_mode", {"drone_id": "d2", "mode": "WARP"}, "its modes: HOLD, GUIDED, RTL"),
         ("get_parameter", {"drone_id": "d2", "name": huge}, "name"),
