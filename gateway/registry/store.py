@@ -56,6 +56,7 @@ from gateway.registry.records import (
 )
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.spool import Spool
+from gateway.util.text import printable
 
 # The records are part of the store's API: import them from here or from gateway.registry.records.
 __all__ = [
@@ -572,11 +573,11 @@ class Store:
         node, with its time, and written in order when the database is back."""
         values = dict(
             t=entry.t or utcnow(),
-            session_key=entry.session_key and entry.session_key[:200],
-            principal=entry.principal and entry.principal[:200],
+            session_key=entry.session_key and printable(entry.session_key, 200),
+            principal=entry.principal and printable(entry.principal, 200),
             source=entry.source,
-            vehicle_id=entry.vehicle_id and entry.vehicle_id[:32],
-            action=entry.action[:100],
+            vehicle_id=entry.vehicle_id and printable(entry.vehicle_id, 32),
+            action=printable(entry.action, 100),
             arguments=bound_arguments(entry.arguments),
             outcome=entry.outcome,
             error=entry.error and entry.error[:AUDIT_MAX_ERROR],
@@ -602,7 +603,7 @@ class Store:
                         await self._finish_audit_of(entry.operation_id, op.status, op.message)
             return row_id
 
-        return await self.spool.write(f"the audit row of {entry.action[:100]}", write)
+        return await self.spool.write(f"the audit row of {values['action']}", write)
 
     def _audit_conditions(
         self,
