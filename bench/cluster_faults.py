@@ -90,11 +90,13 @@ async def postgres_outage() -> dict[str, float]:
             back = time.perf_counter()
 
             async def ready() -> bool:
-                owners = await c.owners()
+                held = {n.name: (await n.get("/cluster"))["held"] for n in c.nodes}
                 states = await c.states(c.node("node-a"))
-                sidecars = sum(len(mavsdk_servers_of(n.proc.pid)) for n in c.nodes)
+                every = sorted(d for drones in held.values() for d in drones)
                 return (
-                    len(owners) == 3 and all(states.get(d) == "ready" for d in c.drone_ids) and sidecars == 3
+                    every == sorted(c.drone_ids)
+                    and all(len(mavsdk_servers_of(n.proc.pid)) == len(held[n.name]) for n in c.nodes)
+                    and all(states.get(d) == "ready" for d in c.drone_ids)
                 )
 
             ready_s = await until(ready, "every drone ready under one sidecar", 120, back)
