@@ -354,7 +354,15 @@ class Swarm:
             raise Failed(f"registrars did not all succeed: {failed or registrars}\n{self.explain()}")
 
     def fly(self) -> None:
-        asyncio.run(self._fly())
+        try:
+            asyncio.run(self._fly())
+        except BaseExceptionGroup as group:  # the MCP client's task groups wrap what went wrong
+            failed = group.subgroup(lambda e: isinstance(e, Failed))
+            while failed is not None and isinstance(failed.exceptions[0], BaseExceptionGroup):
+                failed = failed.exceptions[0]
+            if failed is not None:
+                raise failed.exceptions[0] from None
+            raise
 
     @contextlib.asynccontextmanager
     async def _client(self) -> AsyncIterator[Any]:
@@ -399,13 +407,16 @@ class Swarm:
             async def positions() -> dict[str, dict[str, Any]]:
                 return {row["drone_id"]: row for row in ok(await c.call_tool("list_drones", {}))["drones"]}
 
-            await operation("fleet_takeoff", {"drone_ids": ids, "alt_m": 10})
+            # each drone climbs to its own altitude (10 m and up, staggered so neighbours never share one)
+            r = await operation("fleet_takeoff", {"drone_ids": ids, "alt_m": 10})
+            told = {m["drone_id"]: m["target_alt_m"] for m in r["drones"]}
             now = await positions()
             for i, d in enumerate(ids):
                 lat, lon = (float(x) for x in drone_home(i).split(",")[:2])
                 off = geo.horizontal_distance_m(now[d]["lat_deg"], now[d]["lon_deg"], lat, lon)
-                if not (now[d]["in_air"] and abs(now[d]["alt_m"] - 10) <= 1.5 and off <= 3.0):
-                    raise Failed(f"after fleet_takeoff {d} is not 10 m above its home: {now[d]}")
+                if not (now[d]["in_air"] and abs(now[d]["alt_m"] - told[d]) <= 1.5 and off <= 3.0):
+                    raise Failed(f"after fleet_takeoff {d} is not {told[d]} m above its home: {now[d]}")
+            self.figures["takeoff_alts_m"] = "/".join(f"{told[d]:g}" for d in ids)
 
             home_lat, home_lon = (float(x) for x in drone_home(DRONES // 2).split(",")[:2])
             centre = geo.offset_position(home_lat, home_lon, 60.0, 0.0)
@@ -497,7 +508,7 @@ def swarm_test(env: dict[str, str], base: str) -> str:
     total = round(time.monotonic() - started, 1)
     return (
         f"swarm-test: PASSED: {DRONES} drones, each in its own container, flown by an MCP client outside: "
-        f"fleet_takeoff to 10 m {f['fleet_takeoff_s']} s, formation_goto wedge 60 m north "
+        f"fleet_takeoff to {f['takeoff_alts_m']} m {f['fleet_takeoff_s']} s, formation_goto wedge 60 m north "
         f"{f['formation_goto_s']} s (worst {f['wedge_worst_off_m']} m off its slot), fleet_land "
         f"{f['fleet_land_s']} s (worst {f['landed_worst_off_m']} m from below its slot); image "
         f"{f['image_mb']} MB built in {f['build_s']} s, up {f['up_s']} s, down {f['down_s']} s, "
