@@ -8,7 +8,7 @@ STAMP := $(VENV)/.installed
 # Files stay whole on one worker (--dist loadfile), so a module's shared sim + gateway is built once.
 TEST_WORKERS ?= 2
 
-.PHONY: install demo test lint bench bench-nl swarm-test clean
+.PHONY: install demo test lint bench bench-nl swarm-test cluster-test clean
 
 $(STAMP): pyproject.toml
 	@echo "Installing fleet-gateway and its dependencies into $(VENV) (about a minute on a fresh machine)..."
@@ -50,6 +50,11 @@ bench-nl: $(STAMP)
 # outside, everything removed afterwards. Skips, saying why, where containers cannot run.
 swarm-test: $(STAMP)
 	$(BIN)/python scripts/swarm_test.py
+
+# deploy/docker-compose.cluster.yml the same way: NATS and PostgreSQL built from Debian packages, two
+# gateway nodes, nine drones; one node's container killed, the other takes its drones over.
+cluster-test: $(STAMP)
+	$(BIN)/python scripts/cluster_test.py
 
 clean:
 	rm -rf $(VENV) .pytest_cache *.db *.db-wal *.db-shm

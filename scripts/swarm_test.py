@@ -270,6 +270,9 @@ def swarm_lock() -> Iterator[None]:
 class Swarm:
     """The compose project: built, brought up, torn down; figures collected on the way."""
 
+    compose_file = COMPOSE_FILE
+    project = PROJECT
+
     def __init__(self, env: dict[str, str], base: str) -> None:
         from gateway.util.ports import free_tcp_port
 
@@ -286,24 +289,29 @@ class Swarm:
         self.url = f"http://127.0.0.1:{self.port}"
         self.figures: dict[str, Any] = {}
         self.compose_bin = podman_compose()
+        self.images: list[str] = []  # built by this run, removed at the end
 
     def compose(self, *argv: str, timeout: float = 600) -> str:
         return run(
-            [self.compose_bin, "-p", PROJECT, "-f", str(COMPOSE_FILE), *argv],
+            [self.compose_bin, "-p", self.project, "-f", str(self.compose_file), *argv],
             env=self.env, timeout=timeout, cwd=ROOT,
         )  # fmt: skip
 
-    def build(self) -> None:
+    def build(self, image: str = IMAGE, containerfile: Path = DOCKERFILE, figure: str = "") -> None:
+        """Build ``image`` on the base image (its size and build time are figures ``figure``image_mb...)."""
+        if image_exists(image, self.env):
+            raise Failed(f"an image {image} exists already; remove it (podman rmi {image}) and run again")
         started = time.monotonic()
+        self.images.append(image)
         run(
             ["podman", "build", "--layers=false", "--build-arg", f"BASE_IMAGE={self.base}",
-             "-f", str(DOCKERFILE), "-t", IMAGE, str(ROOT)],
+             "-f", str(containerfile), "-t", image, str(ROOT)],
             env=self.env, timeout=1200,
         )  # fmt: skip
-        self.figures["build_s"] = round(time.monotonic() - started, 1)
-        size = int(run(["podman", "image", "inspect", IMAGE, "--format", "{{.Size}}"], env=self.env).strip())
-        self.figures["image_mb"] = round(size / 1e6)
-        log(f"built {IMAGE} ({self.figures['image_mb']} MB) in {self.figures['build_s']} s")
+        self.figures[f"{figure}build_s"] = round(time.monotonic() - started, 1)
+        size = int(run(["podman", "image", "inspect", image, "--format", "{{.Size}}"], env=self.env).strip())
+        self.figures[f"{figure}image_mb"] = round(size / 1e6)
+        log(f"built {image} ({round(size / 1e6)} MB) in {self.figures[f'{figure}build_s']} s")
 
     def up(self) -> None:
         started = time.monotonic()
@@ -313,7 +321,7 @@ class Swarm:
         log(f"gateway and {DRONES} drones ready in {self.figures['up_s']} s")
 
     def containers(self) -> list[dict[str, Any]]:
-        label = f"label=io.podman.compose.project={PROJECT}"
+        label = f"label=io.podman.compose.project={self.project}"
         out = run(["podman", "ps", "-a", "--filter", label, "--format", "json"], env=self.env)
         return list(json.loads(out or "[]"))
 
@@ -459,7 +467,7 @@ class Swarm:
             self.compose("down", "-v", "-t", "10", timeout=300)
         except Failed as exc:
             problems.append(str(exc))
-        label = f"label=io.podman.compose.project={PROJECT}"
+        label = f"label=io.podman.compose.project={self.project}"
         leftovers = run(["podman", "ps", "-a", "-q", "--filter", label], env=self.env, check=False).split()
         if leftovers:
             run(["podman", "rm", "-f", "-v", *leftovers], env=self.env, check=False)
@@ -467,7 +475,8 @@ class Swarm:
             names = run(["podman", kind, "ls", "-q", "--filter", label], env=self.env, check=False).split()
             if names:
                 run(["podman", kind, "rm", "-f", *names], env=self.env, check=False)
-        run(["podman", "rmi", "-f", IMAGE], env=self.env, check=False)  # ours: it did not exist before
+        if self.images:  # ours: none existed before
+            run(["podman", "rmi", "-f", *self.images], env=self.env, check=False)
         after = snapshot(self.env)
         cache = set(
             run(["podman", "images", "-q", "--no-trunc", LOCAL_BASE], env=self.env, check=False).split()
@@ -487,8 +496,6 @@ def swarm_test(env: dict[str, str], base: str) -> str:
     with swarm_lock():
         before = snapshot(env)
         swarm = Swarm(env, base)
-        if image_exists(IMAGE, env):
-            raise Failed(f"an image {IMAGE} exists already; remove it (podman rmi {IMAGE}) and run again")
         error: BaseException | None = None
         try:
             swarm.build()
