@@ -149,12 +149,18 @@ class Cluster(s.Swarm):
                 rows = ok(await c.call_tool("list_drones", {}))["drones"]
                 return next(r for r in rows if r["drone_id"] == drone)
 
+            async def operation(tool: str, args: dict[str, Any]) -> dict[str, Any]:
+                r = ok(await c.call_tool(tool, args))
+                while r["status"] == "running":
+                    r = ok(await c.call_tool("monitor_flight", {"drone_id": drone}))
+                return r
+
             started = time.monotonic()
-            r = ok(await c.call_tool("takeoff", {"drone_id": drone, "alt_m": 8}))
+            r = await operation("takeoff", {"drone_id": drone, "alt_m": 8})
             now = await row()
             if r.get("status") != "succeeded" or not now["in_air"] or abs(now["alt_m"] - 8) > 1.5:
                 raise s.Failed(f"takeoff of {drone} through node-a: {r} / {now}")
-            r = ok(await c.call_tool("land", {"drone_id": drone}))
+            r = await operation("land", {"drone_id": drone})
             now = await row()
             if r.get("status") != "succeeded" or now["armed"] or now["in_air"] or abs(now["alt_m"]) > 1.0:
                 raise s.Failed(f"land of {drone} through node-a: {r} / {now}")
