@@ -65,8 +65,11 @@ class Failed(Exception):
     """The swarm test ran and something did not work."""
 
 
+LOG_PREFIX = ["swarm-test"]  # scripts/cluster_test.py says cluster-test
+
+
 def log(message: str) -> None:
-    print(f"swarm-test: {message}", flush=True)
+    print(f"{LOG_PREFIX[0]}: {message}", flush=True)
 
 
 def run(argv: list[str], *, check: bool = True, timeout: float | None = None, **kw: Any) -> str:
