@@ -172,8 +172,9 @@ class Cluster(s.Swarm):
 
 def cluster_test(env: dict[str, str], base: str) -> str:
     started = time.monotonic()
-    before = s.snapshot(env)
     cluster = Cluster(env, base)
+    cluster.clear_leftovers()
+    before = s.snapshot(env)
     error: BaseException | None = None
     try:
         cluster.build_all()

@@ -1,15 +1,17 @@
 """`make swarm-test`: deploy/docker-compose.yml run for real with podman, flown from outside.
 
-    .venv/bin/python scripts/swarm_test.py [--keep-base] [--base-only]
+    .venv/bin/python scripts/swarm_test.py [--base-only]
 
-1. Environment: podman, podman-compose, buildah, runc and debootstrap from Debian when missing (as root);
-   podman runs with a containers.conf of this script's (ulimits within the host's hard limits, runc).
+1. Environment: podman, buildah, runc, netavark, aardvark-dns, iptables and debootstrap from Debian when
+   missing (as root), podman-compose >= 1.1 from PyPI; podman runs with a containers.conf of this
+   script's (ulimits within the host's hard limits, runc, netavark).
 2. Base image: the Dockerfile's FROM (python:3.11-slim) when it is present or can be pulled; otherwise a
    local one built once from Debian packages with debootstrap (Debian's python3.11 in a venv at /usr/local,
    the host's CA bundle) and kept as localhost/fleet-gateway-base:bookworm, the only thing left behind.
 3. A probe container runs; if none can, the script says why and exits 0 having skipped (CI stays green on
    machines that cannot run containers).
-4. The image is built from deploy/Dockerfile, the compose project comes up (a gateway and five simulated
+4. Leftovers of an earlier run that was killed are removed (by their labels). The image is built from
+   deploy/Dockerfile, the compose project comes up (a gateway and five simulated
    drones, each in its own container at its own address; the registrars wait for the gateway themselves),
    and a real MCP client on the host flies fleet_takeoff, formation_goto (wedge) and fleet_land, then
    checks each drone's final position.
@@ -47,6 +49,7 @@ UPSTREAM_BASE = "python:3.11-slim"
 LOCAL_BASE = "localhost/fleet-gateway-base:bookworm"
 PROJECT = "fleet-gateway-swarm-test"
 IMAGE = "fleet-gateway:latest"  # the compose file's
+TEST_LABEL = "io.fleet-gateway.test"  # on the images a test run builds: its project's name
 # podman's networks: netavark with aardvark-dns (service names resolve) and iptables (published ports).
 # podman-compose comes from PyPI (the dev extra): Debian's 1.0.3 ignores ipam subnets and fixed addresses.
 DEBIAN_PACKAGES = ("podman", "buildah", "runc", "netavark", "aardvark-dns", "iptables", "debootstrap")
@@ -224,7 +227,7 @@ def build_local_base(env: dict[str, str]) -> None:
 
 
 def probe(base: str, env: dict[str, str]) -> None:
-    """A container runs and reaches the network namespace machinery, or the test is skipped."""
+    """A container runs on podman's default bridge network (netavark, iptables), or the test is skipped."""
     done = subprocess.run(
         ["podman", "run", "--rm", base, "python3", "-c", "print('ok')"],
         env=env, capture_output=True, text=True, timeout=180, check=False,
@@ -308,7 +311,7 @@ class Swarm:
         self.images.append(image)
         run(
             ["podman", "build", "--layers=false", "--build-arg", f"BASE_IMAGE={self.base}",
-             "-f", str(containerfile), "-t", image, str(ROOT)],
+             "--label", f"{TEST_LABEL}={self.project}", "-f", str(containerfile), "-t", image, str(ROOT)],
             env=self.env, timeout=1200,
         )  # fmt: skip
         self.figures[f"{figure}build_s"] = round(time.monotonic() - started, 1)
@@ -462,14 +465,25 @@ class Swarm:
                     raise Failed(f"after fleet_land {d} is not on the ground below its slot: {pos}")
             self.figures["landed_worst_off_m"] = round(worst, 2)
 
-    def down(self, before: dict[str, set[str]]) -> None:
-        """Remove everything this run made, then check that podman holds nothing more than before."""
-        started = time.monotonic()
-        problems = []
-        try:
-            self.compose("down", "-v", "-t", "10", timeout=300)
-        except Failed as exc:
-            problems.append(str(exc))
+    def clear_leftovers(self) -> None:
+        """Remove what an earlier run of this test left when it was killed: its compose project's
+        containers, volumes and networks, and the images it labelled as its own."""
+        label = f"label=io.podman.compose.project={self.project}"
+        found = run(["podman", "ps", "-a", "-q", "--filter", label], env=self.env, check=False).split()
+        for kind in ("volume", "network"):
+            found += run(["podman", kind, "ls", "-q", "--filter", label], env=self.env, check=False).split()
+        ours = f"label={TEST_LABEL}={self.project}"
+        images = run(["podman", "images", "-q", "--filter", ours], env=self.env, check=False).split()
+        if found or images:
+            log(
+                f"removing what an earlier run left: {len(found)} containers, volumes or networks, "
+                f"{len(images)} images"
+            )
+            self.remove_project()
+            if images:
+                run(["podman", "rmi", "-f", *images], env=self.env, check=False)
+
+    def remove_project(self) -> None:
         label = f"label=io.podman.compose.project={self.project}"
         leftovers = run(["podman", "ps", "-a", "-q", "--filter", label], env=self.env, check=False).split()
         if leftovers:
@@ -478,6 +492,16 @@ class Swarm:
             names = run(["podman", kind, "ls", "-q", "--filter", label], env=self.env, check=False).split()
             if names:
                 run(["podman", kind, "rm", "-f", *names], env=self.env, check=False)
+
+    def down(self, before: dict[str, set[str]]) -> None:
+        """Remove everything this run made, then check that podman holds nothing more than before."""
+        started = time.monotonic()
+        problems = []
+        try:
+            self.compose("down", "-v", "-t", "10", timeout=300)
+        except Failed as exc:
+            problems.append(str(exc))
+        self.remove_project()
         if self.images:  # ours: none existed before
             run(["podman", "rmi", "-f", *self.images], env=self.env, check=False)
         after = snapshot(self.env)
@@ -497,8 +521,9 @@ class Swarm:
 def swarm_test(env: dict[str, str], base: str) -> str:
     started = time.monotonic()
     with swarm_lock():
-        before = snapshot(env)
         swarm = Swarm(env, base)
+        swarm.clear_leftovers()
+        before = snapshot(env)
         error: BaseException | None = None
         try:
             swarm.build()
