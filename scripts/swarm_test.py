@@ -30,6 +30,7 @@ import os
 import resource
 import secrets
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -76,9 +77,13 @@ def log(message: str) -> None:
 
 
 def run(argv: list[str], *, check: bool = True, timeout: float | None = None, **kw: Any) -> str:
-    """Run a command, return its stdout; on failure raise Failed with the command and its output tail."""
+    """Run a command, return its stdout; on failure raise Failed with the command and its output tail.
+    The command runs in its own session: a signal meant for this script (a CI time limit's SIGINT to the
+    whole process group) reaches it only through this script, which stops it or lets its teardown finish."""
     try:
-        done = subprocess.run(argv, capture_output=True, text=True, timeout=timeout, check=False, **kw)
+        done = subprocess.run(
+            argv, capture_output=True, text=True, timeout=timeout, check=False, start_new_session=True, **kw
+        )
     except subprocess.TimeoutExpired as exc:
         raise Failed(f"{' '.join(argv[:4])} ... did not finish within {timeout:.0f} s") from exc
     if check and done.returncode != 0:
@@ -271,6 +276,23 @@ def swarm_lock() -> Iterator[None]:
         yield
     finally:
         os.close(fd)
+
+
+@contextlib.contextmanager
+def signals_deferred() -> Iterator[None]:
+    """SIGINT and SIGTERM noted but not acted on inside; raised as KeyboardInterrupt once out."""
+    caught: list[int] = []
+    handlers = {
+        sig: signal.signal(sig, lambda n, _f: caught.append(n)) for sig in (signal.SIGINT, signal.SIGTERM)
+    }
+    try:
+        yield
+    finally:
+        for sig, handler in handlers.items():
+            signal.signal(sig, handler)
+    if caught:
+        log(f"teardown finished; now stopping for signal {caught[0]}")
+        raise KeyboardInterrupt
 
 
 class Swarm:
@@ -494,7 +516,12 @@ class Swarm:
                 run(["podman", kind, "rm", "-f", *names], env=self.env, check=False)
 
     def down(self, before: dict[str, set[str]]) -> None:
-        """Remove everything this run made, then check that podman holds nothing more than before."""
+        """Remove everything this run made, then check that podman holds nothing more than before.
+        SIGINT and SIGTERM (a CI time limit, Ctrl-C) wait until this is done."""
+        with signals_deferred():
+            self._down(before)
+
+    def _down(self, before: dict[str, set[str]]) -> None:
         started = time.monotonic()
         problems = []
         try:
