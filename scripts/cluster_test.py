@@ -150,8 +150,11 @@ class Cluster(s.Swarm):
                 return next(r for r in rows if r["drone_id"] == drone)
 
             async def operation(tool: str, args: dict[str, Any]) -> dict[str, Any]:
+                started = time.monotonic()
                 r = ok(await c.call_tool(tool, args))
                 while r["status"] == "running":
+                    if time.monotonic() - started > s.WAIT_S:
+                        raise s.Failed(f"{tool} of {drone} still running after {s.WAIT_S:.0f} s: {r}")
                     r = ok(await c.call_tool("monitor_flight", {"drone_id": drone}))
                 return r
 

@@ -433,6 +433,8 @@ class Swarm:
                 started = time.monotonic()
                 r = ok(await c.call_tool(tool, args))
                 while r["status"] == "running":
+                    if time.monotonic() - started > WAIT_S:
+                        raise Failed(f"{tool} still running after {WAIT_S:.0f} s: {json.dumps(r)[:1500]}")
                     r = ok(await c.call_tool("monitor_fleet", {"operation_id": r["operation_id"]}))
                 if r["status"] != "succeeded":
                     raise Failed(f"{tool} ended {r['status']}: {json.dumps(r)[:1500]}")
