@@ -81,6 +81,23 @@ def test_gateway_service_network_volume_and_healthcheck() -> None:
     assert gateway["ports"] == [f"127.0.0.1:${{GATEWAY_PUBLISH_PORT:-{t.GATEWAY_PORT}}}:{t.GATEWAY_PORT}"]
 
 
+def test_the_gateway_answers_the_host_its_registrars_call() -> None:
+    """The gateway refuses foreign Host headers: the registrars' --api address must be one it answers."""
+    from urllib.parse import urlsplit
+
+    from gateway.config import Settings
+    from gateway.hosts import host_allowed
+
+    services = _compose()["services"]
+    env = services["gateway"]["environment"]
+    settings = Settings(_env_file=None, allowed_hosts=env.get("GATEWAY_ALLOWED_HOSTS", ""))
+    for i in range(t.DRONES):
+        command = services[f"register-drone-{i + 1}"]["command"]
+        api = urlsplit(command[command.index("--api") + 1])
+        assert host_allowed(api.netloc, settings), api.netloc
+    assert not host_allowed("evil.example:8765", settings)
+
+
 def test_registrars_wait_for_the_gateway_themselves() -> None:
     """podman-compose ignores `condition: service_healthy`: each registrar waits for /readyz itself."""
     for i in range(t.DRONES):
