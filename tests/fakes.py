@@ -144,6 +144,19 @@ class FakeVehicle:
     def resolve_mode(self, name: str) -> ModeChoice:
         return require_mode(name, ARDUPILOT, self.id)
 
+    def heartbeat_mode(self) -> tuple[str, bool] | None:
+        mode, armed = self.telemetry.flight_mode, self.telemetry.armed
+        if mode is None or armed is None:
+            return None
+        return str(mode.value), bool(armed.value)
+
+    def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
+        return ARDUPILOT.commanded_modes(kind, done=done)
+
+    def recent_texts(self, within_s: float) -> list[str]:
+        since = time.time() - within_s
+        return [item.text for item in list(self.telemetry.status_texts) if item.t >= since]
+
     def on_ground(self, fresh: bool = True) -> bool | None:
         return ARDUPILOT.on_ground(self.telemetry, fresh=fresh)
 

@@ -230,16 +230,24 @@ class CommandCore:
         *,
         safety_action: bool = False,
         ends_operation: bool = False,
+        commands: str | None = None,
+        modes: frozenset[str] | None = None,
     ) -> tuple[T, Operation | None]:
         """An instant command, sent under the drone's command lock like `_track`'s (so it never
         overtakes a command still being sent to the drone): the takeoff guard inside the lock unless it
         is a ``safety_action``, the command, then (``ends_operation``) the drone's running operation is
-        superseded by ``action``. Returns what ``send`` returned and the operation it ended."""
+        superseded by ``action`` and the gateway expects the drone in the mode the command brings
+        (``commands``: what it is, e.g. "hold"; ``modes``: the modes it shows, when not that kind's;
+        neither: nothing to judge, e.g. disarm). Returns what ``send`` returned and the operation it
+        ended."""
         async with self.operations.command_lock(vehicle.id):
             if not safety_action:
                 self._guard_takeoff(caller, vehicle, action)
             result = await send()
-            ended = await self._supersede(vehicle.id, action) if ends_operation else None
+            ended = None
+            if ends_operation:
+                ended = await self._supersede(vehicle.id, action)
+                self.operations.expect(vehicle, commands, modes=modes)
         return result, ended
 
     def view(self, op: Operation) -> OperationView:

@@ -140,7 +140,7 @@ class DroneVerbs(CommandCore):
             self._require_airborne(ctx, label)
         self.safety.check_actuation(ctx, caller.policy_via)
         _, sup = await self._instant(
-            caller, vehicle, label, vehicle.hold, safety_action=True, ends_operation=True
+            caller, vehicle, label, vehicle.hold, safety_action=True, ends_operation=True, commands="hold"
         )
         pos = position(vehicle)
         where = f" at {pos[2]:.1f} m above home" if pos else ""
@@ -180,6 +180,7 @@ class DroneVerbs(CommandCore):
             await vehicle.disarm()
             message = "on the ground: disarmed"
         sup = await self._supersede(drone_id, "kill_motors")
+        self.operations.forget(drone_id)
         return ActionResult(
             drone_id=drone_id, action="kill", message=message, superseded_operation=sup and sup.id
         )
@@ -206,6 +207,8 @@ class DroneVerbs(CommandCore):
             lambda: vehicle.set_flight_mode(mode),
             safety_action=safety,
             ends_operation=True,
+            commands=label,
+            modes=frozenset({choice.native}),
         )
         named = (
             choice.native if choice.native == choice.requested else f"{choice.requested} ({choice.native})"
