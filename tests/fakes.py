@@ -275,10 +275,12 @@ class FakeVehicle:
 
     async def land(self) -> None:
         await self._command("land")
+        self.set(flight_mode="LAND")
         self._fly(*self.pos()[:2], 0.0, then=self._landed)
 
     async def return_to_launch(self) -> None:
         await self._command("rtl")
+        self.set(flight_mode="RTL")
         self._fly(self.home_ll[0], self.home_ll[1], 0.0, then=self._landed)
 
     async def set_yaw(self, heading_deg: float) -> None:
@@ -289,9 +291,9 @@ class FakeVehicle:
         await self._command("speed", mps)
 
     async def set_flight_mode(self, name: str) -> None:
-        self.resolve_mode(name)
+        native = self.resolve_mode(name).native
         await self._command("mode", name)
-        self.set(flight_mode=name)
+        self.set(flight_mode=native)
 
     async def upload_mission(self, items: Sequence[MissionItem]) -> int:
         await self._command("upload", len(items))
@@ -309,7 +311,12 @@ class FakeVehicle:
 
     async def start_mission(self) -> None:
         await self._command("start_mission")
-        self.set(in_air=True, armed=True, mission_progress=MissionProgressValue(1, len(self.mission)))
+        self.set(
+            in_air=True,
+            armed=True,
+            flight_mode="AUTO",
+            mission_progress=MissionProgressValue(1, len(self.mission)),
+        )
         last = self.mission[-1]
         self._fly(last.lat, last.lon, max(last.alt_rel_m, 5.0), then=self._mission_finished)
 

@@ -317,7 +317,7 @@ class OperationManager:
         self._locks: dict[str, asyncio.Lock] = {}
         self._expected: dict[str, ModeExpectation] = {}  # what the gateway last commanded, per vehicle
         self._watches: dict[str, asyncio.Task[None]] = {}
-        #: told of every takeover after the operation ended (the runtime locks the drone)
+        #: told of every takeover before its operation ends (the runtime locks the drone)
         self.on_takeover: TakeoverHandler | None = None
         #: the drone's takeover lock, if it has one (the runtime reads the LockBook)
         self.taken_over: Callable[[str], Lock | None] = lambda _vehicle_id: None
@@ -484,10 +484,13 @@ class OperationManager:
         )
         self._expected.pop(vehicle.id, None)
         log.warning("%s: %s", vehicle.id, takeover.message())
+        if self.on_takeover is not None:  # locked first: whoever hears the operation end finds it locked
+            try:
+                await self.on_takeover(vehicle, takeover)
+            except Exception:
+                log.exception("recording the takeover of %s failed", vehicle.id)
         if running is not None:
             await self._finish(running, OpStatus.interrupted, takeover.message())
-        if self.on_takeover is not None:
-            await self.on_takeover(vehicle, takeover)
 
     async def supersede(self, vehicle_id: str, by: str) -> Operation | None:
         """A non-tracked command (hold, mode change, kill, disarm) replaced the current operation."""
