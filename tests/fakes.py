@@ -27,6 +27,7 @@ from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleRegistry
 from gateway.fleet.vehicle import ConnectionState
+from gateway.link import refusals
 from gateway.link.telemetry import (
     AttitudeValue,
     BatteryValue,
@@ -154,8 +155,7 @@ class FakeVehicle:
         return ARDUPILOT.commanded_modes(kind, done=done)
 
     def recent_texts(self, within_s: float) -> list[str]:
-        since = time.time() - within_s
-        return [item.text for item in list(self.telemetry.status_texts) if item.t >= since]
+        return refusals.said_since(self.telemetry.status_texts, time.time() - within_s)
 
     def on_ground(self, fresh: bool = True) -> bool | None:
         return ARDUPILOT.on_ground(self.telemetry, fresh=fresh)

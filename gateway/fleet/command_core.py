@@ -22,7 +22,15 @@ from gateway.fleet.operations import Operation, OperationManager, Tracker
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleDirectory
 from gateway.fleet.readings import vehicle_context
 from gateway.fleet.routing import FORWARDED, Router, Verb
-from gateway.fleet.safety import LockBook, RunningOperation, SafetyPolicy, VehicleContext
+from gateway.fleet.safety import (
+    LockBook,
+    Rule,
+    RunningOperation,
+    SafetyPolicy,
+    VehicleContext,
+    refuse,
+    taken_over_text,
+)
 from gateway.fleet.views import OperationView
 from gateway.registry.store import Store
 
@@ -43,6 +51,10 @@ T = TypeVar("T")
 
 #: every verb on one drone that runs on the drone's owner, by name (filled by `routed`)
 ROUTED: dict[str, Verb] = {}
+#: the routed verbs that only read: allowed to agents on a drone a pilot or ground station took over
+READ_VERBS = frozenset(
+    {"arrival", "monitor", "download_mission", "mission_progress", "get_param", "list_params"}
+)
 
 
 def routed(method: VerbMethod) -> VerbMethod:
@@ -57,6 +69,8 @@ def routed(method: VerbMethod) -> VerbMethod:
         bound = verb.signature.bind(self, *args, **kwargs)
         caller: Caller = bound.arguments["caller"]
         drone_id: str = bound.arguments["drone_id"]
+        if name not in READ_VERBS and not caller.is_operator:
+            self._refuse_taken_over(drone_id)  # before any other check: the pilot's word comes first
         router = self.router
         if router is None or router.owns(drone_id):
             return await method(self, *args, **kwargs)
@@ -141,6 +155,14 @@ class CommandCore:
     @staticmethod
     def context(vehicle: FlyingVehicle) -> VehicleContext:
         return vehicle_context(vehicle)
+
+    def _refuse_taken_over(self, drone_id: str) -> None:
+        """Rule taken_over: a pilot, another ground station or a failsafe took the drone
+        (`gateway.fleet.takeover`); every actuating agent verb on it is refused until an operator
+        releases it (the policy's `check_actuation` says the same, for fleet verbs and direct calls)."""
+        taken = self.locks.takeover_for(drone_id)
+        if taken is not None:
+            raise refuse(Rule.TAKEN_OVER, taken_over_text(drone_id, taken), vehicle_id=drone_id)
 
     def _running(self, drone_id: str, kind: str | None = None) -> RunningOperation | None:
         """The drone's running operation, here or (a drone owned elsewhere) as its owner published it."""

@@ -64,7 +64,7 @@ class FlyingVehicle(Protocol):
         ``kind``; ``done``: once it succeeded), in its own names (`Dialect.commanded_modes`)."""
 
     def recent_texts(self, within_s: float) -> list[str]:
-        """The autopilot's status texts of the last ``within_s`` seconds, oldest first."""
+        """The autopilot's status texts (notice or worse) of the last ``within_s`` seconds, oldest first."""
 
     def on_ground(self, fresh: bool = True) -> bool | None:
         """On the ground as the autopilot's dialect tells (None: unknown; ``fresh=False`` reads cached

@@ -235,9 +235,9 @@ class Vehicle:
         return self.dialect.commanded_modes(kind, done=done)
 
     def recent_texts(self, within_s: float) -> list[str]:
-        """What the autopilot said (any severity) in the last ``within_s`` seconds, oldest first."""
-        since = time.time() - within_s
-        return [item.text for item in list(self.telemetry.status_texts) if item.t >= since]
+        """What the autopilot said (notice or worse: what explains a failsafe, not its info chatter) in
+        the last ``within_s`` seconds, oldest first."""
+        return self.link.said_since(time.time() - within_s)
 
     async def set_flight_mode(self, name: str) -> None:
         """Switch flight mode by a common name (HOLD, RTL, LAND, MISSION, ...) or the autopilot's own;
