@@ -16,6 +16,7 @@ from __future__ import annotations
 import contextlib
 import time
 from collections.abc import Sequence
+from typing import Any
 
 from gateway.errors import InvalidArgument, NotFound, VehicleNotReady
 from gateway.fleet import geo
@@ -207,8 +208,7 @@ class DroneVerbs(CommandCore):
             lambda: vehicle.set_flight_mode(mode),
             safety_action=safety,
             ends_operation=True,
-            commands=label,
-            modes=frozenset({choice.native}),
+            **_commanded(vehicle, choice),
         )
         named = (
             choice.native if choice.native == choice.requested else f"{choice.requested} ({choice.native})"
@@ -585,6 +585,22 @@ class DroneVerbs(CommandCore):
             params={n: float(every[n]) for n in page},
             next_offset=nxt,
         )
+
+
+def _commanded(vehicle: FlyingVehicle, choice: ModeChoice) -> dict[str, Any]:
+    """What a mode change commands, for the takeover watch: the mission, return, landing or takeoff
+    mode is judged as that operation is (the autopilot's own next modes included: PX4 holds after a
+    mission), any other mode as itself."""
+    for common, kind in (
+        ("MISSION", "mission"),
+        ("RTL", "return_to_launch"),
+        ("LAND", "land"),
+        ("TAKEOFF", "takeoff"),
+    ):
+        with contextlib.suppress(InvalidArgument):
+            if vehicle.resolve_mode(common).native == choice.native:
+                return {"commands": kind}
+    return {"commands": f"set_flight_mode {choice.native}", "modes": frozenset({choice.native})}
 
 
 def _is_landing_mode(vehicle: FlyingVehicle, choice: ModeChoice) -> bool:

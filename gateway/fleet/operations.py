@@ -461,12 +461,12 @@ class OperationManager:
         if not exp.seen:
             return  # the command's own mode has not shown yet
         running = mine if mine is not None and not mine.finished else None
-        if running is not None and running.kind == "mission" and mode in exp.settled:
+        if exp.kind == "mission" and mode in exp.settled:  # the mission may just have ended
             now = time.monotonic()
             exp.outside_since = exp.outside_since or now
             if await vehicle.is_mission_finished():
-                exp.last_mode = mode
-                return  # the tracker ends it as succeeded
+                exp.modes, exp.last_mode = exp.settled, mode  # it ended: where it settles is commanded
+                return  # (a tracked mission's tracker ends it as succeeded)
             if now - exp.outside_since < MISSION_END_GRACE_S:
                 return
         if self._expected.get(vehicle.id) is not exp or self.command_lock(vehicle.id).locked():
