@@ -14,7 +14,7 @@ from gateway.errors import SafetyRefusal
 from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
 from gateway.fleet.takeover import likely_cause
 from gateway.runtime import Gateway
-from tests.fakes import FakeVehicle, fake, fake_gateway, spread, unit_settings
+from tests.fakes import FakeVehicle, fake, fake_gateway, position_value, spread, unit_settings
 from tests.fleet._util import AGENT, OPERATOR, at
 from tests.helpers.timing import scaled
 
@@ -180,3 +180,24 @@ def test_the_cause_comes_from_what_the_autopilot_said() -> None:
     assert likely_cause("RTL", ["Radio Failsafe - Continuing Auto"])[0] == "radio (RC) failsafe"
     assert likely_cause("LAND", ["EKF variance"])[0] == "EKF / navigation failsafe"
     assert "failsafe" in likely_cause("RTL", [])[0]
+
+
+async def test_after_a_restart_monitor_and_arrival_tell_what_the_flying_drone_does(tmp_path: Path) -> None:
+    settings = unit_settings(tmp_path, mcp_wait_cap_s=10.0)
+    async with fake_gateway(settings, spread(1)) as gateway:
+        goto_id = await flying_goto(gateway)
+    flying = spread(1)
+    lat, lon = at(100, 0, flying[0].home_ll)
+    flying[0].set(armed=True, in_air=True, landed_state="IN_AIR", flight_mode="GUIDED",
+                  position=position_value(lat, lon, 10.0))  # fmt: skip
+    async with fake_gateway(settings, flying) as gateway:
+        view = await gateway.commander.monitor(AGENT, "d1")
+        assert view.operation_id == goto_id and view.status == "interrupted", view
+        assert (
+            "while the operation was running; now: mode GUIDED, in the air at 10.0 m above home"
+            in view.message
+        )
+        assert "m from the goto's target" in view.message
+        arrival = await gateway.commander.arrival(AGENT, "d1")
+        assert arrival.operation_id == goto_id and arrival.status == "interrupted" and not arrival.arrived
+        assert arrival.distance_m is not None and arrival.distance_m > 250
