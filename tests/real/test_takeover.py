@@ -145,7 +145,8 @@ async def takeover_mid_takeoff_and_mission(
     t: Tour, ap: Autopilot, *, takeoff: tuple[dict[str, Any], str], mission: tuple[dict[str, Any], str]
 ) -> None:
     """Takeoff: the second GCS switches at 5 m of a 30 m climb; mission (from the ground): at 40 m of a
-    300 m leg. Each call ends interrupted naming the modes; the drone is released once it is down."""
+    300 m leg. Each call ends interrupted naming the modes, the agent is refused, an operator releases
+    the drone (after the takeoff once it is down, after the mission in the air) and the agent flies it."""
     d = t.ids[0]
     waiting = asyncio.create_task(t.call("takeoff", {"drone_id": d, "alt_m": 30}))
     await t.until("get_position", lambda p: p["alt_m"] > 5, 60, "5 m up", drone_id=d)
@@ -166,7 +167,11 @@ async def takeover_mid_takeoff_and_mission(
     r = await interrupted_by_second_gcs(t, ap, waiting, mission[0], "initiate_mission")
     assert r["status"] == "interrupted" and mission[1] in r["message"], r
     await t.refused("resume_mission", "taken_over", drone_id=d)
-    await released_when_down(t, d)
+    # the pilot is done (PX4's Hold hovers on; ArduCopter's RTL flies home): released in the air, the
+    # agent lands it
+    assert (await t.rest("DELETE", f"/vehicles/{d}/takeover"))["was_locked"] is True
+    landed = await t.finish(await t.ok("land", drone_id=d), 180)
+    assert landed["status"] == "succeeded", landed
 
 
 async def run(tmp: Path, profile: Profile, ap: Autopilot, scenario: Any, **kw: Any) -> None:
