@@ -220,6 +220,9 @@ def main() -> int:
     except s.Failed as exc:
         print(f"cluster-test: FAILED: {exc}", flush=True)
         return 1
+    except KeyboardInterrupt:
+        print("cluster-test: INTERRUPTED (SIGINT/SIGTERM) after tearing down what it made", flush=True)
+        return 130
 
 
 if __name__ == "__main__":

@@ -601,6 +601,9 @@ def main() -> int:
     except Failed as exc:
         print(f"swarm-test: FAILED: {exc}", flush=True)
         return 1
+    except KeyboardInterrupt:
+        print("swarm-test: INTERRUPTED (SIGINT/SIGTERM) after tearing down what it made", flush=True)
+        return 130
 
 
 if __name__ == "__main__":
