@@ -206,6 +206,7 @@ def cluster_test(env: dict[str, str], base: str) -> str:
 
 def main() -> int:
     s.LOG_PREFIX[0] = "cluster-test"
+    s.sigterm_interrupts()
     try:
         s.install_missing()
         with tempfile.TemporaryDirectory(prefix="fgw-cluster-") as tmp:
