@@ -79,6 +79,14 @@ def register(subparsers: Any) -> None:
     _target_options(remove)
     remove.set_defaults(func=cmd_drones_remove)
 
+    release = drone_cmds.add_parser(
+        "release",
+        help="give a drone taken over by a pilot or ground station back to agents (docs/safety.md)",
+    )
+    release.add_argument("id", help="drone id")
+    _target_options(release)
+    release.set_defaults(func=cmd_drones_release)
+
     db = subparsers.add_parser("db", help=COMMANDS["db"][1])
     db_cmds = db.add_subparsers(dest="db_command", required=True, metavar="ACTION")
     upgrade = db_cmds.add_parser(
@@ -289,6 +297,33 @@ def cmd_drones_remove(args: argparse.Namespace) -> int:
     async def run(store: Store) -> str:
         await store.remove_vehicle(args.id)
         return f"removed {args.id}"
+
+    return _with_store(args, run)
+
+
+def cmd_drones_release(args: argparse.Namespace) -> int:
+    def said(was_locked: bool) -> str:
+        return (
+            f"released {args.id}: agents may command it again"
+            if was_locked
+            else f"{args.id} was not taken over"
+        )
+
+    if args.api:
+        return _api_call(
+            args,
+            "DELETE",
+            f"/api/v1/vehicles/{args.id}/takeover",
+            None,
+            lambda d: said(bool(d["was_locked"])),
+        )
+
+    async def run(store: Store) -> str:
+        if not await store.delete_takeover(args.id):
+            return said(False)
+        return (
+            said(True) + " after the gateway's next start (use --api URL to release it in a running gateway)"
+        )
 
     return _with_store(args, run)
 
