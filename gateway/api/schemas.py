@@ -7,6 +7,7 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
+from gateway.api.telemetry_schema import TelemetrySnapshot, VehicleStatus
 from gateway.registry.spec import NODE_TAG_PATTERN, VehicleSpec, validate_connection_url
 from gateway.registry.store import (
     AuditRecord,
@@ -67,9 +68,9 @@ class VehicleOut(VehicleRecord):
     model_config = ConfigDict(extra="ignore")
 
     state: str | None = Field(None, description="registered, connecting, connected, ready, link_lost, failed")
-    status: dict[str, Any] | None = Field(None, description="Connection details: heartbeat age, sidecar...")
+    status: VehicleStatus | None = Field(None, description="Connection details: heartbeat age, sidecar...")
     locked: str | None = Field(None, description="Why agents may not command this drone (operator locks).")
-    telemetry: dict[str, Any] | None = Field(
+    telemetry: TelemetrySnapshot | None = Field(  # type: ignore[valid-type]
         None, description="Latest telemetry snapshot, each part with its age (only on GET of one vehicle)."
     )
 
