@@ -43,7 +43,9 @@ class VehicleStatus(_Open):
     sysid: int | None = Field(None, description="MAVLink system id heard on the link.")
     expected_sysid: int | None = None
     sysid_mismatch: bool | None = None
-    duplicate_sysid: bool | None = None
+    duplicate_sysid: list[str] = Field(
+        default_factory=list, description="Other connected vehicles reporting the same system id."
+    )
     other_sysids_on_link: list[int] = Field(default_factory=list)
     is_simulator: bool | None = None
     autopilot: str | None = Field(None, description="ardupilot, px4 or another MAV_AUTOPILOT name.")
