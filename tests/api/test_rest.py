@@ -5,6 +5,7 @@ Live vehicles (real sidecars and simulated drones) are covered by test_integrati
 
 from __future__ import annotations
 
+import asyncio
 import re
 from datetime import UTC, datetime, timedelta
 from pathlib import Path
@@ -18,6 +19,7 @@ from gateway.config import Settings
 from gateway.fleet.vehicle import ConnectionState
 from gateway.registry.store import AuditEntry, StatusTextIn, Store, TrackSample
 from tests.fakes import FakeRegistry
+from tests.helpers.timing import scaled
 
 from .live import lifespan_running
 
@@ -451,6 +453,18 @@ async def test_metrics_per_app(client: httpx.AsyncClient, app: FastAPI, settings
         'fleet_gateway_http_requests_total{method="POST",route="/api/v1/vehicles",status="201"} 1.0' in text
     )
     assert "fleet_gateway_ready 1.0" in text
+    assert 'fleet_gateway_calls_total{action="rest.register_vehicle",outcome="ok",source="rest"} 1.0' in text
+    # a refusal counts by its rule
+    app.state.gateway.registry.get("alpha").state = ConnectionState.READY
+    refused = await client.post("/api/v1/vehicles/alpha/takeoff", json={"alt_rel_m": 5000})
+    assert refused.status_code == 403 and refused.json()["error"]["message"].startswith("max_altitude")
+    counted = 'fleet_gateway_refusals_total{rule="max_altitude"} 1.0'
+    deadline = asyncio.get_running_loop().time() + scaled(10)
+    while counted not in (text := (await client.get("/metrics")).text):  # audited after the answer
+        assert asyncio.get_running_loop().time() < deadline, text
+        await asyncio.sleep(0.05)
+    call = 'fleet_gateway_calls_total{action="rest.takeoff_vehicle",outcome="refused",source="rest"} 1.0'
+    assert call in text
 
     other = create_app(settings.model_copy(update={"database_url": f"sqlite+aiosqlite:///{tmp_path}/b.db"}))
     assert other.state.metrics_registry is not app.state.metrics_registry
