@@ -52,6 +52,8 @@ _WHY = {
 _COMMAND_TAGS = {"operator control"}
 _CONFLICTS = {("post", "/api/v1/vehicles")}
 BEARER = "bearer"
+#: the paths behind `gateway.api.deps.authorize`: the API (its router's dependency) and /metrics
+SECURED = ("/api/v1", "/metrics")
 
 
 def operation_id(route: APIRoute) -> str:
@@ -89,12 +91,15 @@ def build_openapi(app: FastAPI) -> dict[str, Any]:
     }
     error_ref = {"application/json": {"schema": {"$ref": "#/components/schemas/Error"}}}
     for path, item in schema.get("paths", {}).items():
-        if not path.startswith("/api/v1"):
+        if not path.startswith(SECURED):
             continue
         for method, operation in item.items():
             operation["security"] = [{BEARER: []}]
             responses = operation.setdefault("responses", {})
-            for code, why in _responses(method, path, operation).items():
+            codes = (
+                _responses(method, path, operation) if path.startswith("/api/v1") else {"401": _WHY["401"]}
+            )
+            for code, why in codes.items():
                 responses[code] = {"description": why, "content": error_ref}
     components["schemas"].pop("HTTPValidationError", None)
     components["schemas"].pop("ValidationError", None)
