@@ -23,7 +23,8 @@ from datetime import datetime
 from typing import Any
 from xml.sax.saxutils import escape
 
-from pymavlink.dialects.v20 import common as mavlink2
+# ardupilotmega includes the common messages, and it is the dialect the image keeps (deploy/Dockerfile)
+from pymavlink.dialects.v20 import ardupilotmega as mavlink2
 
 from gateway.registry.records import FlightRecord, StatusTextRecord, TrackSample
 
