@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import asyncio
 import logging
-import sys
 import weakref
 from collections.abc import Callable, Sequence
 from datetime import datetime
@@ -94,20 +93,18 @@ AuditListener = Callable[[AuditRecord], None]
 ENDED_ELSEWHERE_KEPT = 500
 """Outcomes of operations kept only in memory (fleet operations) remembered for audit rows written late."""
 
-# The Alembic scripts: the repository's migrations/ (source checkout, editable install), else the copy
-# a wheel installs under <prefix>/share/fleet-gateway/migrations (pyproject's data-files).
-MIGRATION_DIRS = (
-    Path(__file__).resolve().parents[2] / "migrations",
-    Path(sys.prefix) / "share" / "fleet-gateway" / "migrations",
-)
+# The Alembic scripts ship inside the package (package data, ``gateway/migrations``), so they are found
+# wherever pip puts the package: a virtual environment, ``--user``, a distribution's system pip, a
+# ``--target`` directory or an editable checkout.
+MIGRATIONS_DIR = Path(__file__).resolve().parents[1] / "migrations"
 
 
 def migrations_dir() -> Path:
-    for candidate in MIGRATION_DIRS:
-        if (candidate / "env.py").is_file():
-            return candidate
+    if (MIGRATIONS_DIR / "env.py").is_file():
+        return MIGRATIONS_DIR
     raise RuntimeError(
-        f"the database migrations are missing; looked in {', '.join(map(str, MIGRATION_DIRS))}"
+        f"the database migrations are missing: {MIGRATIONS_DIR} has no env.py (a damaged install? "
+        "reinstall fleet-gateway)"
     )
 
 
