@@ -9,9 +9,10 @@ Peers, each installed in its own virtual environment (under ``--venvs``, default
   not on PyPI; without a checkout it is left out and the script says so).
 
 Every server gets its own ArduCopter SITL (``eval "$(../shared/sitl/install)"``; real time, so stream
-rates are a real vehicle's) and is driven by one MCP client (this project's SDK: Streamable HTTP, and SSE
-for droneserver, which serves nothing else). Calls are interleaved: in each round every server answers
-each kind of call once, so all see the same machine load. Kinds of call:
+rates are a real vehicle's; droneserver's MAVSDK asks for no streams, so its autopilot gets the SR0_*
+stream rates a ground station would set, position 5 Hz) and is driven by one MCP client (this project's
+SDK: Streamable HTTP, and SSE for droneserver, which serves nothing else). Calls are interleaved: in
+each round every server answers each kind of call once, so all see the same machine load. Kinds of call:
 
 - position read: fleet-gateway ``get_position`` (from its cache), mavlink-mcp ``get_status`` (its
   state cache), droneserver ``get_position`` (waits for the next stream message);
@@ -274,6 +275,38 @@ async def mavlink_mcp(ap: Any, wd: Path, venvs: Path) -> AsyncIterator[Server]:
         stop(proc)
 
 
+# What a ground station sets for droneserver's autopilot: its MAVSDK never asks ArduPilot for streams,
+# and ArduCopter sends none until asked (the gateway and mavlink-mcp ask for theirs).
+GCS_STREAM_RATES = {
+    "SR0_POSITION": 5, "SR0_EXTRA1": 4, "SR0_EXTRA2": 1, "SR0_EXTRA3": 1, "SR0_EXT_STAT": 1,
+    "SR0_RC_CHAN": 1, "SR0_RAW_SENS": 1,
+}  # fmt: skip
+
+
+def set_stream_params(ap: Any, timeout_s: float = 60.0) -> None:
+    """Set the SR0_* stream rates through the autopilot's first port (droneserver connects to it after:
+    SITL accepts a new client there once this one has gone)."""
+    from pymavlink import mavutil
+
+    link = mavutil.mavlink_connection(f"tcp:127.0.0.1:{tcp_port(ap.url)}", source_system=250)
+    try:
+        if link.wait_heartbeat(timeout=timeout_s) is None:
+            raise RuntimeError("no heartbeat from droneserver's autopilot")
+        for name, value in GCS_STREAM_RATES.items():
+            for _attempt in range(5):
+                link.mav.param_set_send(
+                    link.target_system, link.target_component, name.encode(), float(value),
+                    mavutil.mavlink.MAV_PARAM_TYPE_REAL32,
+                )  # fmt: skip
+                ack = link.recv_match(type="PARAM_VALUE", blocking=True, timeout=3)
+                if ack is not None and ack.param_id == name:
+                    break
+            else:
+                raise RuntimeError(f"the autopilot did not confirm {name}")
+    finally:
+        link.close()
+
+
 @contextlib.asynccontextmanager
 async def droneserver(ap: Any, wd: Path, venvs: Path, src: Path) -> AsyncIterator[Server]:
     from gateway.util.ports import free_tcp_port
@@ -289,6 +322,7 @@ async def droneserver(ap: Any, wd: Path, venvs: Path, src: Path) -> AsyncIterato
         "MAVLINK_PROTOCOL": "tcp",
         "PYTHONPATH": str(src),
     }
+    await asyncio.to_thread(set_stream_params, ap)
     argv = [str(env / "bin" / "python"), str(src / "src" / "server" / "droneserver_http.py")]
     proc = spawn(argv, wd / "droneserver.log", run_env, cwd=src)
     try:
