@@ -205,16 +205,24 @@ async def tool_tokens(server: Server) -> tuple[int, int, int]:
 
 @contextlib.contextmanager
 def autopilots(folder: Path, n: int) -> Iterator[list[Any]]:
+    """``n`` ArduCopter SITLs; the third (droneserver's) boots with the GCS stream rates as defaults."""
     from tests.helpers.autopilots import arducopter
 
+    defaults = os.environ["ARDUPILOT_DEFAULTS"]
+    gcs = folder / "gcs-streams.parm"
+    gcs.write_text("".join(f"{k} {v}\n" for k, v in GCS_STREAM_RATES.items()))
     with contextlib.ExitStack() as stack:
         taken: set[int] = set()
         aps = []
         for i in range(n):
             sub = folder / f"sitl{i}"
             sub.mkdir()
-            ap = stack.enter_context(arducopter(sub, speedup=1.0, sysid=1, taken=taken))
-            taken.add(int(ap.url.rsplit(":", 1)[1]))
+            if i == 2:  # the helper reads the defaults when it starts the autopilot
+                os.environ["ARDUPILOT_DEFAULTS"] = f"{defaults},{gcs}"
+            try:
+                ap = stack.enter_context(arducopter(sub, speedup=1.0, sysid=1, taken=taken))
+            finally:
+                os.environ["ARDUPILOT_DEFAULTS"] = defaults
             aps.append(ap)
         yield aps
 
@@ -283,30 +291,6 @@ GCS_STREAM_RATES = {
 }  # fmt: skip
 
 
-def set_stream_params(ap: Any, timeout_s: float = 60.0) -> None:
-    """Set the SR0_* stream rates through the autopilot's first port (droneserver connects to it after:
-    SITL accepts a new client there once this one has gone)."""
-    from pymavlink import mavutil
-
-    link = mavutil.mavlink_connection(f"tcp:127.0.0.1:{tcp_port(ap.url)}", source_system=250)
-    try:
-        if link.wait_heartbeat(timeout=timeout_s) is None:
-            raise RuntimeError("no heartbeat from droneserver's autopilot")
-        for name, value in GCS_STREAM_RATES.items():
-            for _attempt in range(5):
-                link.mav.param_set_send(
-                    link.target_system, link.target_component, name.encode(), float(value),
-                    mavutil.mavlink.MAV_PARAM_TYPE_REAL32,
-                )  # fmt: skip
-                ack = link.recv_match(type="PARAM_VALUE", blocking=True, timeout=3)
-                if ack is not None and ack.param_id == name:
-                    break
-            else:
-                raise RuntimeError(f"the autopilot did not confirm {name}")
-    finally:
-        link.close()
-
-
 @contextlib.asynccontextmanager
 async def droneserver(ap: Any, wd: Path, venvs: Path, src: Path) -> AsyncIterator[Server]:
     from gateway.util.ports import free_tcp_port
@@ -322,7 +306,6 @@ async def droneserver(ap: Any, wd: Path, venvs: Path, src: Path) -> AsyncIterato
         "MAVLINK_PROTOCOL": "tcp",
         "PYTHONPATH": str(src),
     }
-    await asyncio.to_thread(set_stream_params, ap)
     argv = [str(env / "bin" / "python"), str(src / "src" / "server" / "droneserver_http.py")]
     proc = spawn(argv, wd / "droneserver.log", run_env, cwd=src)
     try:

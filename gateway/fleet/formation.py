@@ -29,7 +29,6 @@ from dataclasses import asdict, dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy.optimize import linear_sum_assignment
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
@@ -257,6 +256,9 @@ def plan_formation(
         [[*geo.ned_offset(center_lat, center_lon, d.lat, d.lon), d.alt_rel_m] for d in starts]
     )
     slot_xyz = np.column_stack([slots_ne, np.full(n, float(alt_m))])
+
+    # imported here: scipy.optimize costs the process about 50 MiB, paid only by a gateway that plans
+    from scipy.optimize import linear_sum_assignment
 
     cost = np.linalg.norm(start_xyz[:, None, :] - slot_xyz[None, :, :], axis=2)
     rows, cols = linear_sum_assignment(cost)
