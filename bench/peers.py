@@ -9,7 +9,7 @@ Peers, each installed in its own virtual environment (under ``--venvs``, default
   not on PyPI; without a checkout it is left out and the script says so).
 
 Every server gets its own ArduCopter SITL (``eval "$(../shared/sitl/install)"``; real time, so stream
-rates are a real vehicle's; droneserver's MAVSDK asks for no streams, so its autopilot gets the SR0_*
+rates are a real vehicle's; droneserver's MAVSDK asks for no streams, so its autopilot gets the MAV1_*
 stream rates a ground station would set, position 5 Hz) and is driven by one MCP client (this project's
 SDK: Streamable HTTP, and SSE for droneserver, which serves nothing else). Calls are interleaved: in
 each round every server answers each kind of call once, so all see the same machine load. Kinds of call:
@@ -286,8 +286,8 @@ async def mavlink_mcp(ap: Any, wd: Path, venvs: Path) -> AsyncIterator[Server]:
 # What a ground station sets for droneserver's autopilot: its MAVSDK never asks ArduPilot for streams,
 # and ArduCopter sends none until asked (the gateway and mavlink-mcp ask for theirs).
 GCS_STREAM_RATES = {
-    "SR0_POSITION": 5, "SR0_EXTRA1": 4, "SR0_EXTRA2": 1, "SR0_EXTRA3": 1, "SR0_EXT_STAT": 1,
-    "SR0_RC_CHAN": 1, "SR0_RAW_SENS": 1,
+    "MAV1_POSITION": 5, "MAV1_EXTRA1": 4, "MAV1_EXTRA2": 1, "MAV1_EXTRA3": 1, "MAV1_EXT_STAT": 1,
+    "MAV1_RC_CHAN": 1, "MAV1_RAW_SENS": 1,
 }  # fmt: skip
 
 
@@ -335,7 +335,7 @@ def has_position(server: Server) -> Callable[[Any], bool]:
             return not (result.structured_content or {}).get("stale", True)
         if server.name.startswith("droneserver"):
             return '"success"' in body or "'success'" in body or "latitude_deg" in body
-        return "lat" in body.lower() and "no position" not in body.lower()
+        return "pos=(" in body  # mavlink-mcp's status line once it has a position
 
     return ok
 
