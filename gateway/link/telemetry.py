@@ -430,7 +430,9 @@ class TelemetryFeed:
 
     def _attitude(self, a: Any) -> None:
         self.cache.put("attitude", AttitudeValue(a.roll_deg, a.pitch_deg, a.yaw_deg))
-        self.cache.put("heading_deg", float(a.yaw_deg) % 360.0)
+        yaw = float(a.yaw_deg)
+        if math.isfinite(yaw):
+            self.cache.put("heading_deg", yaw % 360.0)
 
     def _status_text(self, text: Any) -> None:
         self.cache.add_status_text(text.type.name.lower(), str(text.text))
