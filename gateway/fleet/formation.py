@@ -258,9 +258,6 @@ def plan_formation(
     )
     slot_xyz = np.column_stack([slots_ne, np.full(n, float(alt_m))])
 
-    # imported here: scipy.optimize costs the process about 50 MiB, paid only by a gateway that plans
-    from scipy.optimize import linear_sum_assignment
-
     cost = np.linalg.norm(start_xyz[:, None, :] - slot_xyz[None, :, :], axis=2)
     slot_of = min_cost_assignment(cost.tolist())
     target_xyz = np.array([slot_xyz[slot_of[i]] for i in range(n)])
