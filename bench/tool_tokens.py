@@ -9,7 +9,7 @@ the same handler the HTTP endpoint serves), built once with all toolsets and onc
 The paper's server used about 5,000 tokens for 45 tools; targets here: all tools under 4,200 and the
 ``flight,navigation,telemetry`` core under 2,500. The first target, 4,000, was met with 3,982; the schemas
 then grew by the limits they advertise (the policy's altitude limit, argument bounds), which let a model
-see a limit before it is refused, and the budget followed (4,096 measured on 2026-11-27). A model with a
+see a limit before it is refused, and the budget followed (4,102 measured on 2026-11-27). A model with a
 small context window gets the small profile (docs/agent.md), about 1,400 tokens.
 """
 
