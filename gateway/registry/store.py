@@ -610,6 +610,8 @@ class Store:
         with its call, as `add_audit`'s callers do."""
         if self._closed:
             raise RuntimeError("the store is closed")
+        if entry.t is None:  # the row's time is the call's end, not the batch's write
+            entry = entry.model_copy(update={"t": utcnow()})
         self._audit_queue.append((entry, seen))
         if self._audit_writer is None or self._audit_writer.done():
             self._audit_flush = asyncio.Event()
