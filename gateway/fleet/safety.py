@@ -668,7 +668,9 @@ class SafetyPolicy:
         if distance > limits.max_distance_m:
             raise refuse(
                 Rule.MAX_DISTANCE,
-                f"{what} is {fmt(distance)} m from home, beyond the limit of {fmt(limits.max_distance_m)} m",
+                f"{what} is {fmt(distance)} m from home, beyond the limit of {fmt(limits.max_distance_m)} m; "
+                f"nothing was sent: tell the user it cannot be flown, or choose a point within "
+                f"{fmt(limits.max_distance_m)} m of home",
                 vehicle_id=ctx.vehicle_id,
                 distance_m=round(distance, 2),
                 limit_m=limits.max_distance_m,
@@ -713,7 +715,8 @@ class SafetyPolicy:
         if alt > limits.max_altitude_m:
             raise refuse(
                 Rule.MAX_ALTITUDE,
-                f"{what} {fmt(alt)} m exceeds the limit of {fmt(limits.max_altitude_m)} m above home",
+                f"{what} {fmt(alt)} m exceeds the limit of {fmt(limits.max_altitude_m)} m above home; "
+                f"nothing was sent: fly at most {fmt(limits.max_altitude_m)} m, or tell the user the limit",
                 vehicle_id=ctx.vehicle_id,
                 alt_rel_m=alt,
                 limit_m=limits.max_altitude_m,
@@ -736,7 +739,8 @@ class SafetyPolicy:
         if pct < minimum:
             raise refuse(
                 rule,
-                f"battery {fmt(pct)} % is below the {fmt(minimum)} % needed to {purpose}",
+                f"battery {fmt(pct)} % is below the {fmt(minimum)} % needed to {purpose}; nothing was "
+                + ("sent: tell the user" if not ctx.airborne else "sent: bring it home (return_to_launch)"),
                 vehicle_id=ctx.vehicle_id,
                 battery_pct=pct,
                 minimum_pct=minimum,
