@@ -187,6 +187,8 @@ class TurnResult:
     empty_replies: int = 0
     # empty replies since the model last acted; the turn ends when it passes MAX_EMPTY_REPROMPTS
     empty_streak: int = 0
+    # who wrote final_text: the model, or the host from the gateway's results when the model gave none
+    answered_by: str = "model"
 
 
 class AgentHost:
@@ -295,6 +297,8 @@ class AgentHost:
             self._close_open_calls()
             self._emit("interrupted", message="turn interrupted; actions already sent continue on the drones")
             raise
+        if result.outcome != "answered":
+            await self._answer_for_the_model(result)
         result.wall_s = time.monotonic() - started
         self.total_usage.merge(result.usage)
         self._emit(
@@ -405,6 +409,37 @@ class AgentHost:
                 max_steps=self.max_steps,
                 message=f"stopped after {self.max_steps} model steps without a final answer",
             )
+
+    async def _answer_for_the_model(self, result: TurnResult) -> None:
+        """The model gave no answer (empty replies, the step limit, a model error): the host answers from
+        the gateway's own results, marked as the host's: what each call did or why the gateway refused
+        it, and where the drones named are now. A model that stopped replying after some call ran or was
+        refused considered the request finished: the turn counts as answered. One stopped by the step
+        limit or a model error, or in which nothing ran, keeps its outcome (and its exit status)."""
+        done = [c for c in result.tool_calls if c.ok and c.name != ANSWER_TOOL]
+        refused = [c for c in result.tool_calls if c.status == "error"]
+        parts = []
+        if done:
+            parts.append("Done: " + "; ".join(f"{c.name} ({c.summary})" for c in done) + ".")
+        if refused:
+            why = "; ".join(f"{c.name}: {_first_line(c.text)}" for c in refused[-3:])
+            parts.append(f"Not done, the gateway refused: {why}.")
+        if not done and not refused:
+            reason = result.error or f"the model gave no usable reply ({result.outcome})"
+            parts.append(f"Nothing was done: {reason}.")
+        roster = await self.refresh_roster() if self.use_roster else None
+        if roster is not None:
+            touched = {d for c in [*done, *refused] for d in drones_named(c.arguments) or ()}
+            named = {d for d in roster.ids if re.search(rf"\b{re.escape(d)}\b", self._request, re.IGNORECASE)}
+            drones = [e.text() for e in roster.drones if e.drone_id in touched | named]
+            if drones:
+                parts.append("Now: " + "; ".join(drones) + ".")
+        text = "(Answer from the host, from the gateway's results: the model gave none.) " + " ".join(parts)
+        if (done or refused) and result.outcome == "empty_answer":
+            result.outcome = "answered"
+        result.final_text, result.answered_by = text, "host"
+        self.messages.append({"role": "assistant", "content": text})
+        self._emit("final", step=result.steps, text=text, via="host")
 
     def _end_without_answer(self, result: TurnResult) -> None:
         """The turn ends as ``empty_answer``: the model gave no answer too many times."""
@@ -626,6 +661,16 @@ class AgentHost:
         elif problem is not None:
             status = "invalid"
             outcome = ToolOutcome(text=f"{problem} for {name}. Nothing was executed.", is_error=True)
+        elif earlier is None and args is not None and (done_before := self._refly_of(name, args, turn)):
+            status = "repeat"
+            so_far = _in_words(c for c in (turn.tool_calls if turn else []) if c.ok)
+            outcome = self._host_note(
+                text=f"Not sent: this {name} call already ran earlier in this request and succeeded "
+                f"({done_before.summary}), and the request does not ask for it again. The request: "
+                f"{self._request} Done so far: {so_far}. If every part is done, "
+                f"{finish_hint(self.answer_tool)}; else call the tool for the next step.",
+                is_error=False,
+            )
         elif earlier is not None:
             status = "repeat"
             outcome = self._host_note(
@@ -740,7 +785,13 @@ class AgentHost:
         text = _norm(said)
         text = re.sub(r"^error(?: executing tool \w+)?:\s*", "", text)
         if len(text) < 20:
-            return False
+            # a short reply that is a whole phrase of the host's note (measured: "Nothing yet.", from
+            # "Already done: nothing yet", was taken as the answer)
+            short = text.strip(" .,:;-")
+            told = [*self._host_notes, *self._error_texts]
+            return bool(short) and any(
+                short == phrase.strip() for note in told for phrase in re.split(r"[.,:;]", _norm(note))
+            )
         if text in _norm(self._request):
             return True
         if any(text[:60] in _norm(error) or _norm(error)[:50] in text for error in self._gateway_errors):
@@ -963,6 +1014,18 @@ class AgentHost:
                 return None
         return None
 
+    def _refly_of(self, name: str, args: dict[str, Any], turn: TurnResult | None) -> ToolCallRecord | None:
+        """The earlier action of this turn that this call would fly again: same tool, same arguments,
+        succeeded and finished, with other actions since (so `_repeat_of` lets it through), while the
+        request asks for nothing twice. Measured: "fly out, then bring it back and land where it took
+        off" flew out, returned and landed, then took off and flew out again."""
+        if turn is None or not self._acts(name) or _AGAIN_WORDS.search(self._request):
+            return None
+        return next(
+            (c for c in turn.tool_calls if c.ok and not c.running and c.name == name and c.arguments == args),
+            None,
+        )
+
     def _unknown_tool_text(self, name: str, turn: TurnResult | None) -> str:
         """Unknown tool: the closest offered tool with its arguments, firmer when the name is repeated."""
         near = closest_tool(name, list(self.tools.values()))
@@ -982,6 +1045,17 @@ _LAND_WORDS = re.compile(
     r"(?:\w+ )?(?:back )?home)\b",
     re.IGNORECASE,
 )
+
+
+# Words of a request that ask for a step more than once.
+_AGAIN_WORDS = re.compile(
+    r"\b(?:again|twice|thrice|repeat\w*|\d+ times|two times|three times|back and forth|laps?|loops?)\b",
+    re.IGNORECASE,
+)
+
+
+def _first_line(text: str) -> str:
+    return next((s.strip() for s in text.splitlines() if s.strip()), "")
 
 
 def _pending_text(result: TurnResult) -> str:
