@@ -96,6 +96,14 @@ async def test_json_transcript(toy, scripted) -> None:
     )
     assert await cli.run_async(args, console=console) == cli.EXIT_OK
     events = [json.loads(line) for line in buf.getvalue().splitlines()]
+    # --profile auto (the default): the choice and its reason first ("m" tells no size: full)
+    assert events[0] == {
+        "event": "profile",
+        "profile": "full",
+        "auto": True,
+        "reason": "m: its size is not known (neither the endpoint nor its name tell)",
+    }
+    events = events[1:]
     assert [e["event"] for e in events] == [
         "turn_start",
         "roster",
