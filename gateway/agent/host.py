@@ -711,7 +711,12 @@ class AgentHost:
                     outcome = ToolOutcome(
                         f"{outcome.text} (Host note: {reading.note}.)", outcome.is_error, outcome.structured
                     )
-                if outcome.is_error:
+                if outcome.is_error and "take off first" in outcome.text.lower().replace(
+                    "takeoff", "take off"
+                ):
+                    # only where the gateway says the drone must take off first: a relative move from
+                    # the ground refused for its distance would otherwise be answered "take off first,
+                    # then this call again" (the issue's grounded far leg: takeoff, then the same refusal)
                     note = await self._takeoff_first(name, args)
                     if note:
                         self._host_notes.append(note)

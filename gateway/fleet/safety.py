@@ -786,6 +786,12 @@ def _geofence_refusal(ctx: VehicleContext, v: Violation, what: str) -> SafetyRef
     else:
         text = f"the straight path to the target crosses keep-out zone '{v.zone}' for {fmt(v.metres)} m"
         rule = Rule.KEEP_OUT
+    nxt = (
+        "choose a point clear of the zone, or tell the user"
+        if v.breach == "target"
+        else "fly around the zone in legs that stay clear of it, or tell the user"
+    )
+    text = f"{text}; nothing was sent: {nxt}"
     return refuse(rule, text, vehicle_id=ctx.vehicle_id, zone=v.zone, metres=round(v.metres, 2))
 
 
