@@ -115,9 +115,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         _deepest(parser, args).error(f"unrecognized argument(s): {' '.join(unknown)} (see --help)")
     if args.command is None:
         parser.error(f"a COMMAND is needed, one of: {', '.join(COMMANDS)} (fleet-gateway COMMAND --help)")
+    from pydantic import ValidationError
+
     from gateway.config import get_settings
 
-    level = (args.log_level or get_settings().log_level).upper()
+    try:
+        configured = get_settings().log_level
+    except ValidationError:  # a wrong setting: the command itself names it, in one line
+        configured = "INFO"
+    level = (args.log_level or configured).upper()
     logging.basicConfig(level=level, format="%(asctime)s %(levelname)s %(name)s: %(message)s")
     if level != "DEBUG":  # schema upgrades say "Context impl SQLiteImpl" and the like on every start
         logging.getLogger("alembic").setLevel(logging.WARNING)

@@ -6,8 +6,10 @@ import re
 import socket
 from functools import lru_cache
 
-from pydantic import Field, field_validator
+from pydantic import Field, field_validator, model_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
+
+from gateway.principals import PRINCIPAL_PREFIX, principal_of, split_tokens
 
 ALL_TOOLSETS = ("flight", "navigation", "mission", "telemetry", "params", "fleet")
 
@@ -19,6 +21,15 @@ DEFAULT_PARAM_DENY_PATTERNS = ",".join(
         "MAV_SYSID", "MAV_GCS_SYSID", "BRD_SAFETY*", "FLTMODE_GCSBLOCK", "RC_FS_*", "THR_FS*",
         "COM_*", "GF_*", "NAV_DLL_*", "NAV_RCL_*", "CBRK_*", "MAV_SYS_ID", "MAV_COMP_ID",
         "BAT*_LOW_THR", "BAT*_CRIT_THR", "BAT*_EMERGEN_THR", "FD_*",
+    )
+)  # fmt: skip
+#: tuning an agent may change without reaching around a limit: accelerations, jerk, waypoint radius, yaw
+#: behaviour, orbit rate (ArduPilot and PX4 names)
+DEFAULT_AGENT_PARAM_ALLOW = ",".join(
+    (
+        "WPNAV_ACCEL", "WPNAV_ACCEL_Z", "WPNAV_ACCEL_C", "WPNAV_JERK", "WPNAV_RADIUS", "WP_YAW_BEHAVIOR",
+        "LOIT_ACC_MAX*", "LOIT_BRK_*", "CIRCLE_RATE", "MPC_ACC_HOR", "MPC_ACC_HOR_MAX", "MPC_ACC_UP_MAX",
+        "MPC_ACC_DOWN_MAX", "MPC_JERK_AUTO", "MPC_JERK_MAX", "NAV_ACC_RAD", "MPC_YAWRAUTO_MAX",
     )
 )  # fmt: skip
 DEFAULT_MODE_DENY_IN_AIR = ",".join(
@@ -91,10 +102,15 @@ class Settings(BaseSettings):
     mcp_wait_cap_s: float = Field(
         45.0, gt=0, le=600, description="Longest a tool waits for its operation before answering 'running'."
     )
-    mcp_allowed_hosts: str = Field(
+    allowed_hosts: str = Field(
         "",
-        description="Comma-separated extra Host names /mcp accepts (DNS-rebinding protection); "
-        "loopback names are always allowed.",
+        description="Comma-separated extra Host names (and browser Origin hosts) that /mcp and the REST "
+        "API answer, e.g. the name of a proxy in front of the gateway; loopback names are always "
+        "allowed; '*' allows any (when a proxy checks them). A foreign Host or Origin is refused: a web "
+        "page cannot command drones through DNS rebinding or a cross-site form.",
+    )
+    mcp_allowed_hosts: str = Field(
+        "", description="Older name of GATEWAY_ALLOWED_HOSTS, still read (both lists are merged)."
     )
     arrival_tolerance_m: float = Field(2.0, gt=0, description="Horizontal distance counted as arrived.")
 
@@ -108,6 +124,12 @@ class Settings(BaseSettings):
     min_battery_takeoff_pct: float = Field(30.0, ge=0, le=100, description="Battery needed to take off.")
     min_battery_leg_pct: float = Field(25.0, ge=0, le=100, description="Battery needed to start a new leg.")
     max_speed_mps: float = Field(15.0, gt=0, description="Highest horizontal speed an agent may set.")
+    max_vertical_speed_mps: float = Field(
+        5.0,
+        gt=0,
+        description="Highest climb, descent or landing speed an agent may set through an autopilot "
+        "parameter (WPNAV_SPEED_UP, LAND_SPEED, MPC_Z_VEL_MAX_UP, ...).",
+    )
     min_separation_m: float = Field(5.0, gt=0, description="Minimum distance kept between fleet drones.")
     agents_may_kill: bool = Field(False, description="Whether MCP agents may kill motors in the air.")
     simulators_only: bool = Field(False, description="Refuse every actuating MCP tool on real vehicles.")
@@ -122,6 +144,12 @@ class Settings(BaseSettings):
         description="Comma-separated glob patterns (case-insensitive) of autopilot parameters MCP agents "
         "may not write: arming checks, fences, failsafes, system ids (ArduPilot and PX4 names).",
     )
+    agent_param_allow: str = Field(
+        DEFAULT_AGENT_PARAM_ALLOW,
+        description="Comma-separated glob patterns of autopilot parameters MCP agents may write besides "
+        "those governed by a limit (speeds, return altitude: checked against the limits). Every other "
+        "parameter is refused for agents; operators write any parameter over REST.",
+    )
     mode_deny_in_air: str = Field(
         DEFAULT_MODE_DENY_IN_AIR,
         description="Comma-separated flight modes MCP agents may not select while airborne: modes that "
@@ -135,7 +163,8 @@ class Settings(BaseSettings):
     vehicle_limits: dict[str, dict[str, float]] = Field(
         {},
         description="Per-vehicle overrides as JSON: {vehicle_id: {max_altitude_m, max_distance_m, "
-        "min_battery_takeoff_pct, min_battery_leg_pct, max_speed_mps, min_altitude_m}}.",
+        "min_battery_takeoff_pct, min_battery_leg_pct, max_speed_mps, min_altitude_m, "
+        "max_vertical_speed_mps}}.",
     )
 
     # --- auth -------------------------------------------------------------------------------------
@@ -228,6 +257,22 @@ class Settings(BaseSettings):
                 f"e.g. https://tile.example.org/{{z}}/{{x}}/{{y}}.png; got {value!r}"
             )
         return value.strip()
+
+    @model_validator(mode="after")
+    def _scopes_name_configured_agents(self) -> Settings:
+        """Scopes fail closed: a key that is neither a configured agent token nor the principal name of
+        one would confine nobody (the agent it was meant for would see the whole fleet)."""
+        tokens = split_tokens(self.agent_tokens)
+        principals = {principal_of(t) for t in tokens}
+        for key in self.agent_scopes:
+            if key not in tokens and key not in principals:
+                shown = key if key.startswith(PRINCIPAL_PREFIX) else f"{key[:4]}... ({len(key)} characters)"
+                raise ValueError(
+                    f"GATEWAY_AGENT_SCOPES key {shown} is neither one of GATEWAY_AGENT_TOKENS nor the "
+                    "principal name (agent-<8 hex>) of one, so it would confine no agent; add the token to "
+                    "GATEWAY_AGENT_TOKENS or correct the key"
+                )
+        return self
 
     @property
     def toolsets(self) -> list[str]:

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from gateway.util.text import printable
+
 
 class GatewayError(Exception):
     code = "gateway_error"
@@ -36,7 +38,8 @@ class UnknownVehicle(GatewayError):
 
     def __init__(self, vehicle_id: str, known: list[str]) -> None:
         known_text = ", ".join(sorted(known)) if known else "none registered"
-        super().__init__(f"unknown drone id '{vehicle_id}'; known ids: {known_text}", known=sorted(known))
+        shown = printable(str(vehicle_id), 64)
+        super().__init__(f"unknown drone id '{shown}'; known ids: {known_text}", known=sorted(known))
 
 
 class DuplicateVehicle(GatewayError):

@@ -226,8 +226,9 @@ def _spec_from_args(args: argparse.Namespace) -> VehicleSpec:
 def _validation_text(exc: ValidationError) -> str:
     parts = []
     for err in exc.errors():
-        field = ".".join(str(p) for p in err.get("loc", ())) or "value"
-        parts.append(f"{field}: {str(err.get('msg', '')).removeprefix('Value error, ')}")
+        field = ".".join(str(p) for p in err.get("loc", ()))
+        message = str(err.get("msg", "")).removeprefix("Value error, ")
+        parts.append(f"{field}: {message}" if field else message)
     return "; ".join(parts)
 
 

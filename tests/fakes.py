@@ -15,7 +15,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import time
-from collections.abc import AsyncIterator, Callable, Sequence
+from collections.abc import AsyncIterator, Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -25,6 +25,7 @@ from gateway.fleet import geo
 from gateway.fleet.dialects import ARDUPILOT
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice, require_mode
+from gateway.fleet.param_limits import ParamLimit
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleRegistry
 from gateway.fleet.vehicle import ConnectionState
 from gateway.link.telemetry import (
@@ -157,6 +158,10 @@ class FakeVehicle:
     @property
     def protected_params(self) -> tuple[str, ...]:
         return ARDUPILOT.protected_params
+
+    @property
+    def limit_params(self) -> Mapping[str, ParamLimit]:
+        return ARDUPILOT.limit_params
 
     # --- telemetry ---------------------------------------------------------------------------------------
     def set(self, **parts: Any) -> None:

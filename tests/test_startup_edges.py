@@ -159,3 +159,12 @@ async def test_docs_load_no_asset_from_another_host(tmp_path: Path) -> None:
             r = await http.get(asset)
             assert r.status_code == 200 and len(r.content) > 10_000, asset
         assert (await http.get("/openapi.json")).json()["info"]["title"] == "fleet-gateway"
+
+
+def test_a_scope_that_confines_no_agent_stops_serve_with_one_line(tmp_path: Path) -> None:
+    env = {"GATEWAY_AGENT_TOKENS": "alpha-token", "GATEWAY_AGENT_SCOPES": '{"agent-0badc0de": ["alpha"]}'}
+    result = fleet_gateway("serve", "--port", str(free_tcp_port()), cwd=tmp_path, env=env)
+    assert result.returncode == 2
+    lines = error_lines(result)
+    assert len(lines) == 1 and "GATEWAY_AGENT_SCOPES key agent-0badc0de is neither" in lines[0], lines
+    assert list(tmp_path.iterdir()) == []  # nothing written

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-from datetime import datetime
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Query
 
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import MAX_ROW, StoreDep
-from gateway.api.schemas import AuditPage, OperationList, SessionList, as_utc
+from gateway.api.schemas import AuditPage, IsoTime, OperationList, SessionList, as_utc
 from gateway.errors import InvalidArgument
 from gateway.registry.store import OperationStatus, SessionKind
 
@@ -33,8 +32,8 @@ async def list_audit(
     store: StoreDep,
     vehicle_id: Annotated[str | None, Query(max_length=32)] = None,
     session_key: Annotated[str | None, Query(max_length=200)] = None,
-    since: Annotated[datetime | None, Query(description="Only entries at or after this time.")] = None,
-    until: Annotated[datetime | None, Query(description="Only entries at or before this time.")] = None,
+    since: Annotated[IsoTime | None, Query(description="Only entries at or after this time.")] = None,
+    until: Annotated[IsoTime | None, Query(description="Only entries at or before this time.")] = None,
     include_fleet: Annotated[
         bool,
         Query(description="With vehicle_id: also the entries that name no single vehicle (fleet tools)."),

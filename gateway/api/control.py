@@ -12,7 +12,7 @@ from datetime import datetime
 from typing import Literal
 
 from fastapi import APIRouter
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, StrictBool
 
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import CommanderDep, CommandVehicleId, GatewayDep, Principal, PrincipalDep
@@ -93,7 +93,7 @@ class StopIn(BaseModel):
         "hold",
         description="What every airborne drone is told to do: hold (GUIDED), land, or rtl.",
     )
-    lock: bool = Field(
+    lock: StrictBool = Field(
         True,
         description="Lock the fleet (before stopping) so agents cannot resume; false: locks unchanged.",
     )

@@ -20,6 +20,7 @@ from fastapi import Depends, HTTPException, Request
 from gateway.config import Settings
 from gateway.fleet.commander import Commander
 from gateway.fleet.protocols import VehicleRegistry
+from gateway.hosts import foreign_request
 from gateway.registry.store import Store
 from gateway.runtime import Gateway
 
@@ -86,8 +87,20 @@ def identify(settings: Settings, authorization: str | None) -> Principal:
 
 
 async def authorize(request: Request) -> Principal:
-    """Identify the caller, check its role may use this method, and remember it (read by the audit)."""
-    principal = identify(request.app.state.gateway.settings, request.headers.get("authorization"))
+    """Refuse a request from another site (`gateway.hosts`), identify the caller, check its role may use
+    this method, and remember it (read by the audit)."""
+    settings = request.app.state.gateway.settings
+    headers = request.headers
+    foreign = foreign_request(
+        request.method not in READ_METHODS,
+        headers.get("host"),
+        headers.get("origin"),
+        headers.get("sec-fetch-site"),
+        settings,
+    )
+    if foreign is not None:
+        raise HTTPException(foreign[0], detail=foreign[1])
+    principal = identify(settings, headers.get("authorization"))
     if request.headers.get(DOOR_HEADER, "").strip().lower() == "console":
         principal = replace(principal, door="console")
     request.state.principal = principal

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from datetime import datetime
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Path, Query
@@ -10,7 +9,7 @@ from fastapi.responses import JSONResponse
 
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import MAX_ROW, StoreDep
-from gateway.api.schemas import FlightPage, StatusTextList, as_utc
+from gateway.api.schemas import FlightPage, IsoTime, StatusTextList, as_utc
 from gateway.errors import InvalidArgument, NotFound
 from gateway.registry.store import FlightRecord, Store, TrackSample
 
@@ -26,9 +25,9 @@ async def list_flights(
     store: StoreDep,
     vehicle_id: Annotated[str | None, Query(description="Only this vehicle's flights.")] = None,
     since: Annotated[
-        datetime | None, Query(description="Flights still in the air at or after this time.")
+        IsoTime | None, Query(description="Flights still in the air at or after this time.")
     ] = None,
-    until: Annotated[datetime | None, Query(description="Flights started at or before this time.")] = None,
+    until: Annotated[IsoTime | None, Query(description="Flights started at or before this time.")] = None,
     limit: Annotated[int, Query(ge=1, le=500)] = 50,
     offset: Annotated[int, Query(ge=0, le=MAX_ROW)] = 0,
 ) -> FlightPage:

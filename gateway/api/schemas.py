@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+import re
 from datetime import UTC, datetime
-from typing import Any
+from typing import Annotated, Any
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, field_validator
 
 from gateway.registry.spec import NODE_TAG_PATTERN, VehicleSpec, validate_connection_url
 from gateway.registry.store import (
@@ -17,11 +18,24 @@ from gateway.registry.store import (
     VehicleRecord,
 )
 
+_NUMBER = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
+
+
+def _iso_time_only(value: Any) -> Any:
+    """A time in a query is ISO 8601: a bare number ('0.5') would be read as seconds since 1970."""
+    if isinstance(value, int | float) or (isinstance(value, str) and _NUMBER.match(value)):
+        raise ValueError(f"must be an ISO 8601 time such as 2026-11-27T10:00:00Z; got {str(value)[:40]!r}")
+    return value
+
+
+#: a time given in a query string: ISO 8601 only
+IsoTime = Annotated[datetime, BeforeValidator(_iso_time_only)]
+
 
 class VehicleCreate(VehicleSpec):
     """A registration: the vehicle spec, and whether to connect now (and on every start)."""
 
-    connect: bool = Field(
+    connect: StrictBool = Field(
         True, description="Start the vehicle's sidecar now and whenever the gateway starts."
     )
 
@@ -41,7 +55,9 @@ class VehicleUpdate(BaseModel):
     node_tag: str | None = Field(
         None, pattern=NODE_TAG_PATTERN, description="Cluster: only nodes with this tag own it; null: any."
     )
-    auto_connect: bool | None = Field(None, description="Connect this vehicle whenever the gateway starts.")
+    auto_connect: StrictBool | None = Field(
+        None, description="Connect this vehicle whenever the gateway starts."
+    )
 
     @field_validator("url")
     @classmethod

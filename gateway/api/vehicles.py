@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from datetime import datetime
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Query, Response
@@ -10,7 +9,15 @@ from fastapi.encoders import jsonable_encoder
 
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import GatewayDep, RegistryDep, StoreDep
-from gateway.api.schemas import StatusTextList, VehicleCreate, VehicleList, VehicleOut, VehicleUpdate, as_utc
+from gateway.api.schemas import (
+    IsoTime,
+    StatusTextList,
+    VehicleCreate,
+    VehicleList,
+    VehicleOut,
+    VehicleUpdate,
+    as_utc,
+)
 from gateway.errors import InvalidArgument, UnknownVehicle
 from gateway.fleet.protocols import FlyingVehicle, VehicleRegistry
 from gateway.fleet.safety import LockView
@@ -128,7 +135,7 @@ async def status_texts(
         int, Query(ge=1, le=1000, description="Newest messages to return (oldest first).")
     ] = 100,
     since: Annotated[
-        datetime | None, Query(description="Only messages at or after this time (ISO 8601).")
+        IsoTime | None, Query(description="Only messages at or after this time (ISO 8601).")
     ] = None,
 ) -> StatusTextList:
     await _record(store, registry, vehicle_id)

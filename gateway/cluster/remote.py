@@ -10,15 +10,17 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import time
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 from gateway.config import Settings
 from gateway.errors import GatewayError, VehicleNotReady
 from gateway.fleet.dialects import Dialect, dialect_named
+from gateway.fleet.dialects import limit_params as every_limit_param
 from gateway.fleet.dialects import protected_params as every_protected_param
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice, require_mode
+from gateway.fleet.param_limits import ParamLimit
 from gateway.fleet.protocols import Notify
 from gateway.fleet.vehicle import ConnectionState
 from gateway.link.telemetry import TelemetryCache
@@ -254,6 +256,10 @@ class RemoteVehicle:
     @property
     def protected_params(self) -> tuple[str, ...]:
         return every_protected_param() if self.autopilot is None else self.dialect.protected_params
+
+    @property
+    def limit_params(self) -> Mapping[str, ParamLimit]:
+        return every_limit_param() if self.autopilot is None else self.dialect.limit_params
 
     async def arm(self, within_s: float = 60.0, notify: Notify | None = None) -> None:
         raise self._elsewhere("arm")

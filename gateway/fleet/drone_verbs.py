@@ -610,11 +610,17 @@ class DroneVerbs(CommandCore):
 
     @routed
     async def set_param(self, caller: Caller, drone_id: str, name: str, value: float) -> ParamValue:
-        """Write a parameter with the drone's own type for it; agents may not write protected ones."""
+        """Write a parameter with the drone's own type for it; agents may write only parameters a limit
+        governs (within it) or the allowlist names (`SafetyPolicy.check_param_write`)."""
         vehicle = self.ready(drone_id)
         name = name.upper()
         self.safety.check_param_write(
-            name, caller.policy_via, vehicle_id=drone_id, protected=vehicle.protected_params
+            name,
+            value,
+            via=caller.policy_via,
+            vehicle_id=drone_id,
+            protected=vehicle.protected_params,
+            governed=vehicle.limit_params,
         )
         self.safety.check_actuation(self.context(vehicle), caller.policy_via)
         (val, kind), _ = await self._instant(

@@ -376,7 +376,9 @@ class FleetVerbs(DroneVerbs):
             if ctx.position is None:
                 raise VehicleNotReady(f"no position received from {v.id} yet")
             self.safety.check_actuation(ctx, caller.policy_via)
-            self.safety.check_param_write(v.return_altitude_param()[0], caller.policy_via, vehicle_id=v.id)
+            self.safety.check_param_write(
+                v.return_altitude_param()[0], via=caller.policy_via, vehicle_id=v.id, governed=v.limit_params
+            )
 
         ids, vehicles, unable = self._recovery_members(drone_ids, "fleet_return_to_launch", check)
         positions = {d: pos for d, v in vehicles.items() if (pos := position(v)) is not None}

@@ -7,11 +7,12 @@ against these Protocols, never against the MAVSDK-backed class.
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable, Sequence
+from collections.abc import Awaitable, Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, Protocol
 
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice
+from gateway.fleet.param_limits import ParamLimit
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 
@@ -68,6 +69,10 @@ class FlyingVehicle(Protocol):
     @property
     def protected_params(self) -> tuple[str, ...]:
         """Patterns of the parameters the vehicle's autopilot protects from agents."""
+
+    @property
+    def limit_params(self) -> Mapping[str, ParamLimit]:
+        """The parameters that could walk around a policy limit, each with the limit it governs."""
 
     async def arm(self, within_s: float = ..., notify: Notify | None = None) -> None:
         """Arm, waiting (all within ``within_s``) for a drone still initialising and for refusals the

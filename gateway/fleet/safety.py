@@ -15,7 +15,6 @@ Who calls what: the Commander (`gateway.fleet.commander`), for every door, with 
 
 from __future__ import annotations
 
-import fnmatch
 import math
 import re
 from collections.abc import Iterable, Mapping, Sequence
@@ -26,8 +25,9 @@ from typing import TYPE_CHECKING, Any, Literal, Protocol
 
 from gateway.config import Settings
 from gateway.errors import InvalidArgument, SafetyRefusal
-from gateway.fleet import geo
+from gateway.fleet import geo, param_limits
 from gateway.fleet.geofence import FLEET, GeofenceSet, Violation, load_geofence_file
+from gateway.fleet.param_limits import ParamLimit
 
 if TYPE_CHECKING:
     from gateway.fleet.formation import FormationPlan
@@ -53,6 +53,8 @@ class Rule(StrEnum):
     BATTERY_LEG = "min_battery_leg"
     MAX_SPEED = "max_speed"
     PARAM_DENY = "param_deny"
+    PARAM_LIMIT = "param_limit"
+    PARAM_NOT_ALLOWED = "param_not_allowed"
     MODE_IN_AIR = "mode_deny_in_air"
     KILL_IN_AIR = "kill_in_air"
     MIN_SEPARATION = "min_separation"
@@ -273,6 +275,7 @@ class Limits:
     min_battery_leg_pct: float
     max_speed_mps: float
     min_altitude_m: float
+    max_vertical_speed_mps: float
 
     @classmethod
     def from_settings(cls, settings: Settings) -> Limits:
@@ -287,7 +290,7 @@ class Limits:
         for name, value in overrides.items():
             if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
                 raise InvalidArgument(f"vehicle limit {name} must be a finite number; got {value!r}")
-            if value < 0 or (value == 0 and name in ("max_altitude_m", "max_distance_m", "max_speed_mps")):
+            if value < 0 or (value == 0 and name in _POSITIVE_LIMITS):
                 raise InvalidArgument(f"vehicle limit {name} must be positive; got {value}")
             if name.endswith("_pct") and value > 100:
                 raise InvalidArgument(f"vehicle limit {name} must be 0..100 %; got {value}")
@@ -299,6 +302,9 @@ class Limits:
                 f"{fmt(merged.max_altitude_m)}"
             )
         return merged
+
+
+_POSITIVE_LIMITS = ("max_altitude_m", "max_distance_m", "max_speed_mps", "max_vertical_speed_mps")
 
 
 def split_patterns(text: str) -> tuple[str, ...]:
@@ -327,6 +333,7 @@ class SafetyPolicy:
         self.geofences = geofences if geofences is not None else GeofenceSet()
         self.fleet_limits = Limits.from_settings(settings)
         self.param_deny_patterns = split_patterns(settings.param_deny_patterns)
+        self.param_allow_patterns = split_patterns(settings.agent_param_allow)
         self.mode_deny_in_air = frozenset(split_patterns(settings.mode_deny_in_air))
         self._overrides: dict[str, Limits] = {}
         merged = {**settings.vehicle_limits, **(vehicle_limits or {})}
@@ -370,6 +377,7 @@ class SafetyPolicy:
             "agents_may_kill": self.settings.agents_may_kill,
             "simulators_only": self.settings.simulators_only,
             "param_deny_patterns": list(self.param_deny_patterns),
+            "agent_param_allow": list(self.param_allow_patterns),
             "mode_deny_in_air": sorted(self.mode_deny_in_air),
             "geofences": [{"name": z.name, "kind": z.kind, "scope": z.scope} for z in zones],
         }
@@ -612,10 +620,19 @@ class SafetyPolicy:
             )
 
     def check_param_write(
-        self, name: str, via: Via = "mcp", vehicle_id: str | None = None, protected: Sequence[str] = ()
+        self,
+        name: str,
+        value: float | None = None,
+        via: Via = "mcp",
+        vehicle_id: str | None = None,
+        protected: Sequence[str] = (),
+        governed: Mapping[str, ParamLimit] | None = None,
     ) -> None:
-        """Refuse agent writes to parameters matching the deny list or ``protected``, the patterns the
-        vehicle's autopilot dialect protects (glob patterns, case-insensitive)."""
+        """An agent may write a parameter only when (1) it matches neither the deny list nor the
+        dialect's ``protected`` patterns, and (2) it is ``governed`` by a policy limit and ``value`` keeps
+        within it, or it matches the operator's allowlist (GATEWAY_AGENT_PARAM_ALLOW). Everything else
+        (sensors, estimator sources, serial ports, ...) is refused: an allowlist misses no dangerous name.
+        Operators (via="rest") may write any parameter."""
         _check_via(via)
         if not isinstance(name, str) or not _PARAM_NAME_RE.match(name.strip().upper()):
             raise refuse(
@@ -624,17 +641,45 @@ class SafetyPolicy:
                 vehicle_id=vehicle_id,
             )
         upper = name.strip().upper()
-        if via == "mcp":
-            for pattern in dict.fromkeys([*self.param_deny_patterns, *(p.upper() for p in protected)]):
-                if fnmatch.fnmatchcase(upper, pattern):
-                    raise refuse(
-                        Rule.PARAM_DENY,
-                        f"parameter {upper} matches the protected pattern {pattern}: agents may not change "
-                        "arming checks, fences, failsafes or system ids; ask an operator",
-                        vehicle_id=vehicle_id,
-                        param=upper,
-                        pattern=pattern,
-                    )
+        if via != "mcp":
+            return
+        denied = param_limits.matches(upper, [*self.param_deny_patterns, *protected])
+        if denied is not None:
+            raise refuse(
+                Rule.PARAM_DENY,
+                f"parameter {upper} matches the protected pattern {denied.upper()}: agents may not change "
+                "arming checks, fences, failsafes or system ids; ask an operator",
+                vehicle_id=vehicle_id,
+                param=upper,
+                pattern=denied.upper(),
+            )
+        rule = param_limits.governing(governed or {}, upper)
+        if rule is not None:
+            if value is None:
+                return
+            limits = self.limits_for(vehicle_id) if vehicle_id else self.fleet_limits
+            limit_value = getattr(limits, rule.limit)
+            why = param_limits.beyond_limit(upper, float(value), rule, limit_value)
+            if why is not None:
+                raise refuse(
+                    Rule.PARAM_LIMIT,
+                    f"{why}; nothing was written",
+                    vehicle_id=vehicle_id,
+                    param=upper,
+                    value=value,
+                    limit=rule.limit,
+                    limit_value=limit_value,
+                )
+            return
+        if param_limits.matches(upper, self.param_allow_patterns) is None:
+            raise refuse(
+                Rule.PARAM_NOT_ALLOWED,
+                f"agents may write only parameters that a limit governs ({', '.join(sorted(governed or {}))}"
+                f") or that GATEWAY_AGENT_PARAM_ALLOW names; {upper} is neither, so nothing was written. An "
+                "operator can write it over REST or add it to GATEWAY_AGENT_PARAM_ALLOW",
+                vehicle_id=vehicle_id,
+                param=upper,
+            )
 
     # --- pieces ----------------------------------------------------------------------------------
 

@@ -12,7 +12,6 @@ is applied on the node the agent talks to and again on the node that owns the dr
 
 from __future__ import annotations
 
-import hashlib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -21,15 +20,10 @@ from gateway.errors import UnknownVehicle
 from gateway.fleet.caller import Caller
 from gateway.fleet.protocols import FlyingVehicle, VehicleDirectory
 from gateway.fleet.routing import ACTING
+from gateway.principals import PRINCIPAL_PREFIX, principal_of, split_tokens
 
 TAG_PREFIX = "tag:"
-PRINCIPAL_PREFIX = "agent-"
-
-
-def principal_of(token: str) -> str:
-    """An agent's principal name: ``agent-<first 8 hex of the token's SHA-256>``, stable and never the
-    token itself."""
-    return PRINCIPAL_PREFIX + hashlib.sha256(token.encode()).hexdigest()[:8]
+__all__ = ["PRINCIPAL_PREFIX", "ScopedDirectory", "VehicleScope", "principal_of", "scopes_by_principal"]
 
 
 @dataclass(frozen=True)
@@ -77,8 +71,11 @@ class ScopedDirectory:
 
 def scopes_by_principal(settings: Settings) -> dict[str, VehicleScope]:
     """GATEWAY_AGENT_SCOPES as the Commander applies them: every key (an agent's token, or its
-    principal name) turned into the agent's principal name."""
+    principal name) turned into the agent's principal name. A key is a token when it is one of the
+    configured agent tokens, whatever it looks like (a token may start with ``agent-``); Settings has
+    already refused a key that is neither."""
+    tokens = set(split_tokens(settings.agent_tokens))
     return {
-        (key if key.startswith(PRINCIPAL_PREFIX) else principal_of(key)): VehicleScope.parse(list(entries))
+        (principal_of(key) if key in tokens else key): VehicleScope.parse(list(entries))
         for key, entries in settings.agent_scopes.items()
     }

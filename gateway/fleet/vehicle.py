@@ -16,7 +16,7 @@ import contextlib
 import json
 import logging
 import time
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import Any
 
 from mavsdk_grpc import System
@@ -26,10 +26,12 @@ from gateway.config import Settings
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
 from gateway.fleet import geo, mission
 from gateway.fleet.dialects import Dialect, dialect_for
+from gateway.fleet.dialects import limit_params as every_limit_param
 from gateway.fleet.dialects import protected_params as every_protected_param
 from gateway.fleet.flightlog import FlightRecorder
 from gateway.fleet.mission import MissionItem, WirePlan
 from gateway.fleet.modes import ModeChoice, require_mode
+from gateway.fleet.param_limits import ParamLimit
 from gateway.fleet.params import Parameters
 from gateway.link import refusals
 from gateway.link.session import ConnectionState, Link, OnWait, Peer
@@ -597,6 +599,14 @@ class Vehicle:
         if self.link.facts.autopilot is None:
             return every_protected_param()
         return self.dialect.protected_params
+
+    @property
+    def limit_params(self) -> Mapping[str, ParamLimit]:
+        """The parameters governed by a policy limit on this drone's autopilot (every dialect's while
+        the autopilot is not known yet)."""
+        if self.link.facts.autopilot is None:
+            return every_limit_param()
+        return self.dialect.limit_params
 
     async def get_param(self, name: str) -> tuple[float | int, str]:
         """Value and type ('int' | 'float'); tries the other ArduPilot name if the parameter was renamed."""

@@ -273,6 +273,13 @@ def _position(p: Any) -> PositionValue:
     )
 
 
+def has_global_position(p: Any) -> bool:
+    """Whether a position (or home) item is a real fix: while an autopilot boots it streams latitude and
+    longitude 0, 0 (ArduPilot before its EKF origin) or NaN, which must never be reported as fresh."""
+    lat, lon = float(p.latitude_deg), float(p.longitude_deg)
+    return math.isfinite(lat) and math.isfinite(lon) and not (lat == 0.0 and lon == 0.0)
+
+
 def _battery(b: Any) -> BatteryValue:
     remaining = _finite(b.remaining_percent)
     if remaining is not None and remaining < 0:  # -1 / NaN: the autopilot does not know
@@ -344,12 +351,16 @@ class TelemetryFeed:
         self._tasks: list[asyncio.Task[None]] = []
         self.unsupported_rates: dict[str, str] = {}
 
+    def _put_fixed(self, name: str, item: Any) -> None:
+        if has_global_position(item):
+            self.cache.put(name, _position(item))
+
     def start(self) -> None:
         t = self.system.telemetry
         put = self.cache.put
         streams: dict[str, tuple[Callable[[], AsyncIterator[Any]], Callable[[Any], None]]] = {
-            "position": (t.position, lambda p: put("position", _position(p))),
-            "home": (t.home, lambda p: put("home", _position(p))),
+            "position": (t.position, lambda p: self._put_fixed("position", p)),
+            "home": (t.home, lambda p: self._put_fixed("home", p)),
             "attitude": (
                 t.attitude_euler,
                 lambda a: put("attitude", AttitudeValue(a.roll_deg, a.pitch_deg, a.yaw_deg)),

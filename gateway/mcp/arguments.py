@@ -4,6 +4,7 @@ class names and URLs. Also puts the limits the safety policy enforces into the a
 
 from __future__ import annotations
 
+import difflib
 import json
 from typing import Any
 
@@ -22,8 +23,12 @@ def install_argument_messages(tool: Tool) -> None:
     """Validate a tool's arguments before the SDK does, raising a ToolError the model can act on."""
     run = tool.run
     schema = tool.parameters
+    known = frozenset(schema.get("properties", {}))
 
     async def run_checked(arguments: dict[str, Any], context: Any, convert_result: bool = False) -> Any:
+        unknown = [name for name in arguments if name not in known]
+        if unknown:
+            raise ToolError(describe_unknown(tool.name, unknown, schema))
         try:
             tool.fn_metadata.validate_arguments(arguments)
         except ValidationError as exc:
@@ -31,6 +36,24 @@ def install_argument_messages(tool: Tool) -> None:
         return await run(arguments, context, convert_result=convert_result)
 
     sdk_private.replace_run(tool, run_checked)
+
+
+def describe_unknown(tool_name: str, unknown: list[str], schema: dict[str, Any]) -> str:
+    """One line naming each argument the tool does not have, its closest real name, and the tool's
+    arguments: nothing is sent (a silently dropped argument let a model believe it set something)."""
+    known = list(schema.get("properties", {}))
+    parts = []
+    for name in unknown:
+        shown = _given(name)
+        close = difflib.get_close_matches(str(name), known, n=1, cutoff=0.6)
+        parts.append(
+            f"{shown} is not an argument of {tool_name}" + (f" (did you mean {close[0]}?)" if close else "")
+        )
+    return (
+        f"invalid arguments for {tool_name}: "
+        + "; ".join(parts)
+        + f"; nothing was sent. Its arguments: {', '.join(known) or 'none'}"
+    )
 
 
 def describe_invalid(tool_name: str, exc: ValidationError, schema: dict[str, Any]) -> str:

@@ -13,7 +13,7 @@ from typing import Any
 from mcp.server.auth.provider import AccessToken, TokenVerifier
 from mcp.server.auth.settings import AuthSettings
 
-from gateway.fleet.scopes import principal_of
+from gateway.principals import principal_of
 
 __all__ = ["SCOPE", "AgentTokens", "auth_options", "principal_of"]
 

@@ -29,6 +29,7 @@ from starlette.applications import Starlette
 
 from gateway import package_version
 from gateway.config import Settings
+from gateway.hosts import mcp_transport_lists
 from gateway.mcp import sdk_private
 from gateway.mcp.access import FleetState
 from gateway.mcp.arguments import advertise_policy_limits, install_argument_messages
@@ -106,12 +107,7 @@ def mcp_http_app(server: MCPServer[Any], settings: Settings) -> Starlette:
     Add it as the route ``/mcp`` of the FastAPI app (``app.add_route("/mcp", it)``): mounted at "/" it
     would also catch every unknown REST URL (plain-text 404s, and 404 instead of 405).
     """
-    hosts = ["127.0.0.1:*", "localhost:*", "[::1]:*"]
-    origins = ["http://127.0.0.1:*", "http://localhost:*", "http://[::1]:*"]
-    extra = [h.strip() for h in settings.mcp_allowed_hosts.split(",") if h.strip()]
-    for host in extra:
-        hosts += [host, f"{host}:*"]
-        origins += [f"http://{host}", f"https://{host}", f"http://{host}:*", f"https://{host}:*"]
+    hosts, origins = mcp_transport_lists(settings)
     return server.streamable_http_app(
         streamable_http_path="/mcp",
         json_response=False,  # SSE: progress notifications need it

@@ -55,6 +55,7 @@ from gateway.registry.records import (
     utcnow,
 )
 from gateway.registry.spec import VehicleSpec
+from gateway.util.text import printable
 
 # The records are part of the store's API: import them from here or from gateway.registry.records.
 __all__ = [
@@ -551,11 +552,11 @@ class Store:
     async def add_audit(self, entry: AuditEntry) -> int:
         row = AuditRow(
             t=entry.t or utcnow(),
-            session_key=entry.session_key and entry.session_key[:200],
-            principal=entry.principal and entry.principal[:200],
+            session_key=entry.session_key and printable(entry.session_key, 200),
+            principal=entry.principal and printable(entry.principal, 200),
             source=entry.source,
-            vehicle_id=entry.vehicle_id and entry.vehicle_id[:32],
-            action=entry.action[:100],
+            vehicle_id=entry.vehicle_id and printable(entry.vehicle_id, 32),
+            action=printable(entry.action, 100),
             arguments=bound_arguments(entry.arguments),
             outcome=entry.outcome,
             error=entry.error and entry.error[:AUDIT_MAX_ERROR],

@@ -78,9 +78,11 @@ async def test_tokens_are_required_and_roles_enforced(secured: tuple[FastAPI, ht
     sessions = (await client.get("/api/v1/sessions", headers=bearer(VIEWER))).json()["items"]
     assert sorted(s["key"] for s in sessions) == sorted([f"rest:{name}", f"rest:{viewer}"])
 
-    # health, readiness and metrics stay open for probes and scrapers
-    for path in ("/healthz", "/readyz", "/metrics"):
+    # health and readiness stay open for probes; metrics need a token like every other read
+    for path in ("/healthz", "/readyz"):
         assert (await client.get(path)).status_code == 200
+    assert (await client.get("/metrics")).status_code == 401
+    assert "gateway_vehicles" in (await client.get("/metrics", headers=bearer(VIEWER))).text
 
 
 def test_cli_sends_the_operator_token(

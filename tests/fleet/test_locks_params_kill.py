@@ -8,6 +8,7 @@ import pytest
 
 from gateway.config import DEFAULT_PARAM_DENY_PATTERNS
 from gateway.errors import InvalidArgument, SafetyRefusal
+from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
 from gateway.fleet.safety import LockBook, LockView, ReadOnlyLocks, SafetyPolicy, Target
 from tests.fleet._util import at, ctx, ground, policy, settings
 
@@ -197,19 +198,89 @@ def test_protected_parameters_are_refused_for_agents(name: str) -> None:
     assert err.details["param"] == name.upper() and err.details["pattern"] in DEFAULT_PARAM_DENY_PATTERNS
 
 
+AP = ARDUPILOT.limit_params
+PX = PX4_DIALECT.limit_params
+
+
 @pytest.mark.parametrize(
-    "name", ["WPNAV_SPEED", "RTL_ALT", "LAND_SPEED", "BATT_CAPACITY", "MAV1_POSITION", "MPC_XY_VEL_MAX"]
+    ("name", "value", "governed", "words"),
+    [
+        (
+            "WPNAV_SPEED",
+            4000,
+            AP,
+            "WPNAV_SPEED 4000 cm/s (40 m/s) would let the autopilot exceed the max_speed_mps",
+        ),
+        ("RTL_ALT", 30000, AP, "RTL_ALT 30000 cm (300 m) would let the autopilot exceed the max_altitude_m"),
+        (
+            "RTL_ALT_M",
+            300,
+            AP,
+            "RTL_ALT_M 300 m would let the autopilot exceed the max_altitude_m limit of 120",
+        ),
+        (
+            "LAND_SPEED",
+            500,
+            AP,
+            "LAND_SPEED 500 cm/s is above the autopilot's range for it; accepted: 30 to 200",
+        ),
+        (
+            "RTL_SPEED_MS",
+            16,
+            AP,
+            "exceed the max_speed_mps limit of 15 m/s (horizontal speed); accepted: 0 to 15",
+        ),
+        ("WPNAV_SPEED_UP", 600, AP, "exceed the max_vertical_speed_mps limit of 5 m/s"),
+        ("WPNAV_SPEED", 10, AP, "WPNAV_SPEED 10 cm/s is below its range; accepted: 20 to 1500 cm/s"),
+        ("MPC_XY_VEL_MAX", 20, PX, "MPC_XY_VEL_MAX 20 m/s would let the autopilot exceed the max_speed_mps"),
+        ("MPC_XY_CRUISE", 16, PX, "limit of 15 m/s"),
+        ("RTL_RETURN_ALT", 300, PX, "RTL_RETURN_ALT 300 m would let the autopilot exceed the max_altitude_m"),
+        ("RTL_RETURN_ALT", 130, PX, "exceed the max_altitude_m limit of 120 m"),
+        ("MPC_Z_VEL_MAX_UP", 6, PX, "exceed the max_vertical_speed_mps limit of 5 m/s"),
+        ("MPC_LAND_SPEED", 4.5, PX, "above the autopilot's range"),
+    ],
 )
-def test_ordinary_parameters_are_allowed(name: str) -> None:
-    policy().check_param_write(name)  # no refusal
+def test_parameters_that_set_what_the_autopilot_flies_at_are_held_to_the_limits(
+    name: str, value: float, governed, words: str
+) -> None:
+    err = refusal(policy().check_param_write, name, value, vehicle_id="alpha", governed=governed)
+    assert err.rule == "param_limit" and words in err.message, err.message
+    assert err.message.endswith("nothing was written")
+    policy().check_param_write(name, value, via="rest", governed=governed)  # operators: any value
 
 
-def test_deny_patterns_are_configurable_and_operators_may_write() -> None:
-    p = policy(param_deny_patterns="WPNAV_*, rtl_alt")
-    assert refusal(p.check_param_write, "WPNAV_SPEED").details["pattern"] == "WPNAV_*"
-    assert refusal(p.check_param_write, "RTL_ALT").rule == "param_deny"
-    p.check_param_write("ARMING_CHECK")
-    policy().check_param_write("ARMING_CHECK", via="rest")
+def test_a_vehicles_own_limits_bound_its_parameters() -> None:
+    p = policy(vehicle_limits={"alpha": {"max_speed_mps": 5}})
+    assert (
+        "limit of 5 m/s"
+        in refusal(p.check_param_write, "WPNAV_SPEED", 600, vehicle_id="alpha", governed=AP).message
+    )
+    p.check_param_write("WPNAV_SPEED", 600, vehicle_id="bravo", governed=AP)
+
+
+@pytest.mark.parametrize(
+    ("name", "value", "governed"),
+    [("WPNAV_SPEED", 1500, AP), ("RTL_ALT", 3000, AP), ("LAND_SPEED", 150, AP), ("WPNAV_ACCEL", 250, AP),
+     ("MPC_XY_VEL_MAX", 12, PX), ("RTL_RETURN_ALT", 60, PX), ("MPC_ACC_HOR", 3, PX), ("NAV_ACC_RAD", 2, PX)],
+)  # fmt: skip
+def test_parameters_within_the_limits_or_allowlisted_are_written(name: str, value: float, governed) -> None:
+    policy().check_param_write(name, value, vehicle_id="alpha", governed=governed)  # no refusal
+
+
+@pytest.mark.parametrize(
+    "name", ["GPS1_TYPE", "EK3_SRC1_POSXY", "SERIAL0_PROTOCOL", "BATT_CAPACITY", "MAV1_POSITION",
+             "MOT_SPIN_MIN", "INS_ACCOFFS_X", "SIM_SPEEDUP", "EKF2_GPS_CTRL", "SYS_AUTOSTART",
+             "DISARM_DELAY"],
+)  # fmt: skip
+def test_parameters_neither_governed_nor_allowlisted_are_refused_for_agents(name: str) -> None:
+    err = refusal(policy().check_param_write, name, 0, vehicle_id="alpha", governed={**AP, **PX})
+    assert err.rule == "param_not_allowed", err.message
+    assert f"{name} is neither, so nothing was written" in err.message
+    assert "GATEWAY_AGENT_PARAM_ALLOW" in err.message and "REST" in err.message
+    policy(agent_param_allow=f"{name[:3]}*").check_param_write(
+        name, 0, governed=AP
+    )  # the operator allowed it
+    policy().check_param_write(name, 0, via="rest")
 
 
 @pytest.mark.parametrize("name", ["", "WAY_TOO_LONG_PARAMETER_NAME", "ARMING CHECK", "FENCE-ENABLE", 5])

@@ -38,6 +38,7 @@ async def test_list_drones_and_rest_say_initialising_until_the_drone_can_arm(tmp
             client = Client(f"{base_url}/mcp", client_info=Implementation(name="readiness", version="1.0"))
             async with client as c, httpx.AsyncClient(base_url=base_url) as http:
                 seen: list[tuple[str, str | None, str, str | None]] = []
+                positions: list[dict[str, object]] = []
 
                 async def ready() -> bool:
                     listed = await c.call_tool("list_drones", {})
@@ -45,6 +46,15 @@ async def test_list_drones_and_rest_say_initialising_until_the_drone_can_arm(tmp
                     rest = (await http.get("/api/v1/vehicles/d1")).json()
                     rest_waits = (rest.get("status") or {}).get("initialising")  # None until loaded
                     seen.append((row["state"], row["initialising"], rest["state"], rest_waits))
+                    # while booting the autopilot streams 0, 0: never reported as a position
+                    pos = await c.call_tool("get_position", {"drone_id": "d1"})
+                    if pos.is_error:
+                        assert "no position position from d1 yet" not in pos.content[0].text
+                        assert "has no global position fix" in pos.content[0].text, pos.content
+                    else:
+                        where = structured(pos)
+                        assert (where["lat_deg"], where["lon_deg"]) != (0.0, 0.0), where
+                        positions.append(where)
                     if row["initialising"]:
                         assert f"d1 connected ({row['initialising']})" in listed.content[0].text
                     return row["state"] == "ready" and rest["state"] == "ready"
@@ -57,6 +67,7 @@ async def test_list_drones_and_rest_say_initialising_until_the_drone_can_arm(tmp
                 await eventually(ready, "d1 ready after the reboot", within_s=60)
                 assert ("connected", ESTIMATE, "connected", ESTIMATE) in seen, seen
                 assert seen[-1] == ("ready", None, "ready", None), seen
+                assert len(positions) >= 2, positions  # read through the reboot, never at 0, 0
 
                 armed = structured(await c.call_tool("arm_drone", {"drone_id": "d1"}))  # at once
                 assert armed["action"] == "arm" and armed["message"] == "armed", armed

@@ -96,11 +96,23 @@ async def test_bad_inputs_are_tool_errors_and_send_nothing(stack: Stack) -> None
         ),
         ("get_position", {"drone_id": huge}, "1..64 characters"),
         ("get_position", {"drone_id": 123}, "drone_id"),
+        ("get_position", {"drone_id": "evil\nline\x1b[2J"}, "unknown drone id 'evil\\nline\\x1b[2J'"),
         ("set_flight_mode", {"drone_id": "d2", "mode": huge}, "mode"),
         ("set_flight_mode", {"drone_id": "d2", "mode": "WARP"}, "its modes: HOLD, GUIDED, RTL"),
         ("get_parameter", {"drone_id": "d2", "name": huge}, "name"),
         ("set_parameter", {"drone_id": "d2", "name": "FENCE_ENABLE", "value": 0}, "param_deny"),
+        ("set_parameter", {"drone_id": "d2", "name": "WPNAV_SPEED", "value": 4000}, "param_limit: WPNAV"),
+        ("set_parameter", {"drone_id": "d2", "name": "RTL_ALT", "value": 30000}, "(300 m) would let"),
+        ("set_parameter", {"drone_id": "d2", "name": "LAND_SPEED", "value": 500}, "accepted: 30 to 200"),
+        ("set_parameter", {"drone_id": "d2", "name": "GPS1_TYPE", "value": 0}, "param_not_allowed"),
+        ("set_parameter", {"drone_id": "d2", "name": "EK3_SRC1_POSXY", "value": 0}, "param_not_allowed"),
+        ("set_parameter", {"drone_id": "d2", "name": "SERIAL0_PROTOCOL", "value": 0}, "param_not_allowed"),
         ("set_max_speed", {"drone_id": "d2", "speed_mps": 0}, "speed_mps must be a number (m/s), 0 <"),
+        (
+            "set_max_speed",
+            {"drone_id": "d2", "speed_mps": 5, "speeed_mps": 3},
+            '"speeed_mps" is not an argument of set_max_speed (did you mean speed_mps?); nothing was sent',
+        ),
         (
             "upload_mission",
             {"drone_id": "d2", "waypoints": [{"lat_deg": 95, "lon_deg": 8, "alt_m": 10}]},
@@ -129,8 +141,7 @@ async def test_bad_inputs_are_tool_errors_and_send_nothing(stack: Stack) -> None
 async def test_ground_tools_arming_parameters_and_mission_editing(stack: Stack) -> None:
     async with stack.client("legacy", name="ground") as c:
         # no auto-disarm on the ground while this test arms and disarms (ArduPilot's DISARM_DELAY)
-        r = await ok(stack, c, "set_parameter", {"drone_id": "d2", "name": "DISARM_DELAY", "value": 0})
-        assert r["value"] == 0
+        await stack.sim.control.set_param(stack.index("d2"), "DISARM_DELAY", 0)
         r = await ok(stack, c, "arm_drone", {"drone_id": "d2"})
         assert r["action"] == "arm"
         await wait_until_true(stack, "d2", lambda s: s["armed"], "armed")
@@ -148,6 +159,8 @@ async def test_ground_tools_arming_parameters_and_mission_editing(stack: Stack) 
         assert speed["value"] > 0
         r = await ok(stack, c, "set_parameter", {"drone_id": "d2", "name": "wpnav_speed", "value": 750})
         assert r["name"] == "WPNAV_SPEED" and r["value"] == 750
+        r = await ok(stack, c, "set_parameter", {"drone_id": "d2", "name": "WPNAV_ACCEL", "value": 250})
+        assert r["value"] == 250  # on the agents' allowlist
         assert (await ok(stack, c, "get_parameter", {"drone_id": "d2", "name": "WPNAV_SPEED"}))[
             "value"
         ] == 750

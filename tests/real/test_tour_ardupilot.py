@@ -40,6 +40,14 @@ ARDUCOPTER = Profile(
     lacks="TAKEOFF",
     speed_param=("WPNAV_SPEED", 750.0),
     protected="ARMING_CHECK",
+    param_refusals=(
+        ("WPNAV_SPEED", 4000.0, "param_limit: WPNAV_SPEED 4000 cm/s (40 m/s)"),
+        ("RTL_ALT_M", 300.0, "exceed the max_altitude_m limit"),  # 4.7's name (RTL_ALT before)
+        ("LAND_SPD_MS", 5.0, "above the autopilot's range"),  # 4.7's name (LAND_SPEED before)
+        ("GPS1_TYPE", 0.0, "param_not_allowed"),
+        ("EK3_SRC1_POSXY", 0.0, "param_not_allowed"),
+        ("SERIAL0_PROTOCOL", 0.0, "param_not_allowed"),
+    ),
     return_alt_param="RTL_ALT_M",  # 4.7: metres (RTL_ALT in centimetres before)
     hold_mode="GUIDED",
     mission_mode="AUTO",

@@ -38,6 +38,13 @@ PX4 = Profile(
     lacks="SMART_RTL",
     speed_param=("MPC_XY_VEL_MAX", 8.0),
     protected="COM_ARM_WO_GPS",
+    param_refusals=(
+        ("MPC_XY_VEL_MAX", 20.0, "param_limit: MPC_XY_VEL_MAX 20 m/s would let the autopilot exceed"),
+        ("RTL_RETURN_ALT", 130.0, "exceed the max_altitude_m limit of 120 m"),
+        ("MPC_Z_VEL_MAX_UP", 6.0, "max_vertical_speed_mps"),
+        ("EKF2_GPS_CTRL", 0.0, "param_not_allowed"),
+        ("SYS_AUTOSTART", 0.0, "param_not_allowed"),
+    ),
     return_alt_param="RTL_RETURN_ALT",
     hold_mode="HOLD",
     mission_mode="MISSION",

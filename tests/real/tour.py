@@ -58,6 +58,8 @@ class Profile:
     #: the "initialising" reason list_drones and REST must show during boot (None: any "waiting for ...",
     #: or none at all, as PX4 SIH may be ready before the first look)
     boot_wait: str | None = None
+    #: parameters an agent's write is refused for, on the real autopilot: (name, value, words of the refusal)
+    param_refusals: tuple[tuple[str, float, str], ...] = ()
 
 
 @dataclass
@@ -259,6 +261,10 @@ async def ground_checks(t: Tour, d: str) -> None:
         "next_offset"
     ]
     await t.refused("set_parameter", "Refused: param_deny", drone_id=d, name=p.protected, value=0)
+    for name, value, words in p.param_refusals:  # limits reached around through a parameter; no allowlist
+        before = (await t.ok("get_parameter", drone_id=d, name=name))["value"]
+        await t.refused("set_parameter", words, "nothing was written", drone_id=d, name=name, value=value)
+        assert (await t.ok("get_parameter", drone_id=d, name=name))["value"] == before, name
 
     # flight modes on the ground: each is reported by the autopilot's HEARTBEAT
     for asked, reported in p.ground_modes:

@@ -203,7 +203,9 @@ def test_each_dialect_protects_its_safety_parameters_whatever_the_deny_list_says
                           (PX4_DIALECT, "NAV_DLL_ACT"), (ARDUPILOT, "ARMING_CHECK")):  # fmt: skip
         with pytest.raises(SafetyRefusal, match=f"parameter {name} matches the protected pattern"):
             narrowed.check_param_write(name, vehicle_id="alpha", protected=dialect.protected_params)
-    narrowed.check_param_write("MPC_XY_VEL_MAX", protected=PX4_DIALECT.protected_params)  # not protected
+    narrowed.check_param_write(  # not protected, and governed by the speed limit
+        "MPC_XY_VEL_MAX", 5, protected=PX4_DIALECT.protected_params, governed=PX4_DIALECT.limit_params
+    )
     narrowed.check_param_write("COM_ARM_WO_GPS", via="rest", protected=PX4_DIALECT.protected_params)
 
 
@@ -259,3 +261,58 @@ def test_mission_progress_is_counted_in_user_items_per_dialect() -> None:
     )
     assert PX4_DIALECT.mission_rejection("Mission rejected: takeoff not first waypoint item")
     assert not ARDUPILOT.mission_rejection("Mission rejected: whatever")  # ArduPilot says it in the ACK
+
+
+async def test_a_booting_autopilots_zero_or_nan_position_is_never_cached() -> None:
+    """While ArduCopter boots it streams latitude/longitude 0, 0 (before its EKF origin): that is no
+    position, so get_position says "no position yet" instead of 0, 0 marked fresh; a real fix is kept,
+    and a later 0, 0 does not replace it (the old one ages and goes stale instead)."""
+    import asyncio
+    import math
+    from types import SimpleNamespace
+
+    from gateway.link.telemetry import TelemetryFeed
+
+    def item(lat: float, lon: float) -> SimpleNamespace:
+        return SimpleNamespace(
+            latitude_deg=lat, longitude_deg=lon, absolute_altitude_m=584.0, relative_altitude_m=0.0
+        )
+
+    fed = asyncio.Event()
+    booting = [item(0.0, 0.0), item(math.nan, math.nan), item(0.0, 0.0)]
+
+    async def positions():
+        for p in booting:
+            yield p
+        fed.set()
+        await asyncio.Event().wait()  # the stream stays open
+
+    async def silent():
+        await asyncio.Event().wait()
+        yield None
+
+    class Telemetry:
+        def __getattr__(self, name: str):
+            return positions if name in ("position", "home") else silent
+
+    cache = TelemetryCache()
+    system = SimpleNamespace(telemetry=Telemetry(), mission_raw=SimpleNamespace(mission_progress=silent))
+    feed = TelemetryFeed("d1", system, cache)
+    feed.start()
+    try:
+        await asyncio.wait_for(fed.wait(), 10)
+        assert cache.position is None and cache.home is None
+        booting[:] = [item(-35.36, 149.16), item(0.0, 0.0)]
+        fed.clear()
+        await feed.stop()
+        feed.start()
+        await asyncio.wait_for(fed.wait(), 10)
+        assert cache.position is not None and (
+            cache.position.value.lat_deg,
+            cache.position.value.lon_deg,
+        ) == (
+            -35.36,
+            149.16,
+        )
+    finally:
+        await feed.stop()

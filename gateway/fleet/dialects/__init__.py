@@ -9,11 +9,12 @@ from __future__ import annotations
 from gateway.fleet.dialects.ardupilot import ArduPilot
 from gateway.fleet.dialects.base import Dialect, LinkOps
 from gateway.fleet.dialects.px4 import PX4
+from gateway.fleet.param_limits import ParamLimit
 from gateway.link.rawlink import MAV_AUTOPILOT_PX4
 
 __all__ = [
     "ARDUPILOT", "DIALECTS", "PX4_DIALECT", "Dialect", "LinkOps", "dialect_for", "dialect_named",
-    "protected_params",
+    "limit_params", "protected_params",
 ]  # fmt: skip
 
 ARDUPILOT: Dialect = ArduPilot()
@@ -35,3 +36,8 @@ def dialect_named(autopilot: str | None) -> Dialect:
 def protected_params() -> tuple[str, ...]:
     """Every dialect's protected parameter patterns (for a vehicle whose autopilot is not known yet)."""
     return tuple(dict.fromkeys(p for d in DIALECTS for p in d.protected_params))
+
+
+def limit_params() -> dict[str, ParamLimit]:
+    """Every dialect's limit-governing parameters (for a vehicle whose autopilot is not known yet)."""
+    return {name: rule for d in DIALECTS for name, rule in d.limit_params.items()}

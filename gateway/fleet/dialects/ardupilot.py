@@ -16,12 +16,13 @@
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable, Callable, Mapping
 
 from gateway.fleet import mission
 from gateway.fleet.dialects.base import LinkOps, matches_any, reader, user_progress
 from gateway.fleet.mission import MissionItem, WirePlan
 from gateway.fleet.modes import COMMON_MODES, ModeChoice, canonical
+from gateway.fleet.param_limits import ParamLimit
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 
 #: every ArduCopter mode, by HEARTBEAT custom_mode number (for naming what the vehicle reports)
@@ -59,6 +60,32 @@ PROTECTED_PARAMS = (
     "ARMING_*", "FENCE_*", "FS_*", "BATT*_FS_*", "BATT*_LOW_*", "BATT*_CRT_*", "SYSID_*", "MAV_SYSID",
     "MAV_GCS_SYSID", "BRD_SAFETY*", "FLTMODE_GCSBLOCK", "RC_FS_*", "THR_FS*",
 )  # fmt: skip
+#: parameters that set what ArduCopter flies at, each mapped to the policy limit it could walk around, in
+#: its own units with its documented range (both naming generations: 4.7 moved several to metres)
+LIMIT_PARAMS: dict[str, ParamLimit] = {
+    "WPNAV_SPEED": ParamLimit("max_speed_mps", "cm/s", 100.0, 20.0, 2000.0),
+    "RTL_SPEED": ParamLimit("max_speed_mps", "cm/s", 100.0, 0.0, 2000.0),  # 0: WPNAV_SPEED
+    "RTL_SPEED_MS": ParamLimit("max_speed_mps", "m/s", 1.0, 0.0, 20.0),
+    "LOIT_SPEED": ParamLimit("max_speed_mps", "cm/s", 100.0, 20.0, 3500.0),
+    "LOIT_SPEED_MS": ParamLimit("max_speed_mps", "m/s", 1.0, 0.2, 35.0),
+    "WPNAV_SPEED_UP": ParamLimit("max_vertical_speed_mps", "cm/s", 100.0, 10.0, 1000.0),
+    "WPNAV_SPEED_DN": ParamLimit("max_vertical_speed_mps", "cm/s", 100.0, 10.0, 500.0),
+    "PILOT_SPEED_UP": ParamLimit("max_vertical_speed_mps", "cm/s", 100.0, 50.0, 500.0),
+    "PILOT_SPEED_DN": ParamLimit("max_vertical_speed_mps", "cm/s", 100.0, 0.0, 500.0),  # 0: _UP
+    "LAND_SPEED": ParamLimit("max_vertical_speed_mps", "cm/s", 100.0, 30.0, 200.0),
+    "LAND_SPD_MS": ParamLimit("max_vertical_speed_mps", "m/s", 1.0, 0.3, 2.0),
+    "LAND_SPEED_HIGH": ParamLimit("max_vertical_speed_mps", "cm/s", 100.0, 0.0, 500.0),
+    "LAND_SPD_HIGH_MS": ParamLimit("max_vertical_speed_mps", "m/s", 1.0, 0.0, 5.0),
+    "RTL_ALT": ParamLimit("max_altitude_m", "cm", 100.0, 0.0, 300000.0),  # 0: return at the altitude flown
+    "RTL_ALT_M": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 3000.0),
+    "RTL_ALT_FINAL": ParamLimit("max_altitude_m", "cm", 100.0, 0.0, 1000.0),
+    "RTL_ALT_FINAL_M": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 10.0),
+    "RTL_CLIMB_MIN": ParamLimit("max_altitude_m", "cm", 100.0, 0.0, 3000.0),
+    "RTL_CLIMB_MIN_M": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 30.0),
+    "PILOT_TKOFF_ALT": ParamLimit("max_altitude_m", "cm", 100.0, 0.0, 1000.0),
+    "CIRCLE_RADIUS": ParamLimit("max_distance_m", "cm", 100.0, 0.0, 200000.0),
+    "CIRCLE_RADIUS_M": ParamLimit("max_distance_m", "m", 1.0, 0.0, 2000.0),
+}
 
 
 class ArduPilot:
@@ -73,6 +100,7 @@ class ArduPilot:
     #: exist" at once, while older versions do not answer RTL_ALT_M at all: the old name is tried first
     return_altitude_params = (("RTL_ALT", 100.0), ("RTL_ALT_M", 1.0))
     protected_params = PROTECTED_PARAMS
+    limit_params: Mapping[str, ParamLimit] = LIMIT_PARAMS
 
     # --- link facts ----------------------------------------------------------------------------------
     def mode_name(self, custom_mode: int, mav_type: int) -> str | None:

@@ -11,13 +11,14 @@ Everything else (the verbs, the operations, the policy) is the same for every au
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable, Callable, Mapping
 from typing import Any, Protocol, TypeVar
 
 from mavsdk_grpc import System
 
 from gateway.fleet.mission import MissionItem, WirePlan
 from gateway.fleet.modes import ModeChoice
+from gateway.fleet.param_limits import ParamLimit
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 
 T = TypeVar("T")
@@ -133,6 +134,12 @@ class Dialect(Protocol):
     @property
     def protected_params(self) -> tuple[str, ...]:
         """Glob patterns of parameters agents may not write (arming checks, fences, failsafes, ids)."""
+        ...
+
+    @property
+    def limit_params(self) -> Mapping[str, ParamLimit]:
+        """The parameters that set what the autopilot flies at, by name, each with the policy limit it
+        could walk around (checked on an agent's write)."""
         ...
 
 

@@ -17,13 +17,14 @@
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable, Callable, Mapping
 
 from gateway.errors import CommandFailed
 from gateway.fleet import mission
 from gateway.fleet.dialects.base import LinkOps, matches_any, reader, user_progress
 from gateway.fleet.mission import MissionItem, WirePlan
 from gateway.fleet.modes import COMMON_MODES, ModeChoice, canonical
+from gateway.fleet.param_limits import ParamLimit
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 
 #: PX4 main / sub modes (px4_custom_mode.h); DO_SET_MODE takes them as param2 / param3
@@ -63,6 +64,25 @@ PROTECTED_PARAMS = (
     "COM_*", "GF_*", "NAV_DLL_*", "NAV_RCL_*", "CBRK_*", "MAV_SYS_ID", "MAV_COMP_ID", "BAT*_LOW_THR",
     "BAT*_CRIT_THR", "BAT*_EMERGEN_THR", "FD_*",
 )  # fmt: skip
+#: parameters that set what PX4 flies at, each mapped to the policy limit it could walk around (metres,
+#: m/s) with its documented range
+LIMIT_PARAMS: dict[str, ParamLimit] = {
+    "MPC_XY_VEL_MAX": ParamLimit("max_speed_mps", "m/s", 1.0, 0.0, 20.0),
+    "MPC_XY_CRUISE": ParamLimit("max_speed_mps", "m/s", 1.0, 0.0, 20.0),
+    "MPC_VEL_MANUAL": ParamLimit("max_speed_mps", "m/s", 1.0, 0.0, 20.0),
+    "MPC_XY_VEL_ALL": ParamLimit("max_speed_mps", "m/s", 1.0, -20.0, 20.0),  # negative: unused
+    "MPC_Z_VEL_MAX_UP": ParamLimit("max_vertical_speed_mps", "m/s", 1.0, 0.5, 8.0),
+    "MPC_Z_VEL_MAX_DN": ParamLimit("max_vertical_speed_mps", "m/s", 1.0, 0.5, 4.0),
+    "MPC_Z_V_AUTO_UP": ParamLimit("max_vertical_speed_mps", "m/s", 1.0, 0.5, 8.0),
+    "MPC_Z_V_AUTO_DN": ParamLimit("max_vertical_speed_mps", "m/s", 1.0, 0.5, 4.0),
+    "MPC_Z_VEL_ALL": ParamLimit("max_vertical_speed_mps", "m/s", 1.0, -3.0, 8.0),  # negative: unused
+    "MPC_TKO_SPEED": ParamLimit("max_vertical_speed_mps", "m/s", 1.0, 1.0, 5.0),
+    "MPC_LAND_SPEED": ParamLimit("max_vertical_speed_mps", "m/s", 1.0, 0.6, 4.0),
+    "MPC_LAND_CRWL": ParamLimit("max_vertical_speed_mps", "m/s", 1.0, 0.1, 4.0),
+    "RTL_RETURN_ALT": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 150.0),
+    "RTL_DESCEND_ALT": ParamLimit("max_altitude_m", "m", 1.0, 2.0, 500.0),
+    "MIS_TAKEOFF_ALT": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 80.0),
+}
 
 
 class PX4:
@@ -75,6 +95,7 @@ class PX4:
     mission_verdict_s = MISSION_VERDICT_S
     return_altitude_params = (("RTL_RETURN_ALT", 1.0),)
     protected_params = PROTECTED_PARAMS
+    limit_params: Mapping[str, ParamLimit] = LIMIT_PARAMS
 
     # --- link facts ----------------------------------------------------------------------------------
     def mode_name(self, custom_mode: int, mav_type: int) -> str | None:

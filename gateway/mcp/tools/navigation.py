@@ -20,7 +20,13 @@ def position_out(call: ToolCall, drone_id: str, which: str) -> PositionOut:
     v = call.commander.vehicle(drone_id)
     p = value(v, which)
     if p is None:
-        raise VehicleNotReady(f"no {which} position received from {drone_id} yet (state: {v.state})")
+        gps = value(v, "gps_info")
+        fix = "" if gps is None else f"; GPS fix {gps.fix_type}, {gps.num_satellites} satellites"
+        what = "position" if which == "position" else f"{which} position"
+        raise VehicleNotReady(
+            f"no {what} from {drone_id} yet: the autopilot has no global position fix "
+            f"(state: {v.state}{fix}); try again once its GPS has a fix"
+        )
     age = age_s(v, which) or 0.0
     stale = which == "position" and is_stale(v, age, call.settings.link_lost_after_s)
     note = f" [STALE: {age:.0f} s old, link lost?]" if stale else ""

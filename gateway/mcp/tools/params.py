@@ -33,7 +33,7 @@ async def set_parameter(
     name: ParamName,
     value: Annotated[float, Field(allow_inf_nan=False)],
 ) -> ParamOut:
-    """Write one parameter (type taken from the drone). Safety parameters are refused."""
+    """Write one parameter (type from the drone): speeds and altitudes within the limits, or allowlisted."""
     p = await call.commander.set_param(call.caller, drone_id, name, value)
     shown = _vehicle_name(p.name)
     return ParamOut(drone_id=drone_id, name=shown, value=p.value, type=p.type).say(
