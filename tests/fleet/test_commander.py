@@ -152,6 +152,17 @@ async def test_a_climb_from_the_ground_is_up_m_and_a_landing_mid_climb_sends_no_
     assert [c[0] for c in d1.sent] == ["takeoff", "land"] and d1.sent[0] == ("takeoff", 15.0)
 
 
+async def test_a_leg_the_autopilot_refuses_after_the_climb_fails_the_operation_saying_so(
+    gateway: Gateway,
+) -> None:
+    commander = gateway.commander
+    fake(gateway, "d1").fail = {"goto": "not in GUIDED"}
+    started = await commander.call("move_relative", AGENT, drone_id="d1", east_m=30, alt_m=10)
+    done = await commander.wait(started["operation_id"], 20.0)
+    assert done.status == "failed", done
+    assert "the next leg was not accepted: goto on drone 'd1' failed: not in GUIDED" in done.message, done
+
+
 async def test_a_relative_move_of_a_drone_on_the_ground_needs_an_altitude_and_a_leg_within_limits(
     gateway: Gateway,
 ) -> None:
