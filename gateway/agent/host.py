@@ -243,6 +243,7 @@ class AgentHost:
         # the gateway's errors this turn (its refusals among them): an answer copying one tells the user
         # what happened, even when a host note quoted it first
         self._gateway_errors: list[str] = []
+        self._refly_held: set[str] = set()  # calls held back once as flying a finished step again
         self._ids = itertools.count(1)
         self.reset()
 
@@ -284,6 +285,7 @@ class AgentHost:
         self._held = set()
         self._error_texts = []
         self._gateway_errors = []
+        self._refly_held = set()
         self._emit("turn_start", turn=self.turns, user=user_text)
         roster = await self.refresh_roster()
         content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
@@ -661,14 +663,12 @@ class AgentHost:
         elif problem is not None:
             status = "invalid"
             outcome = ToolOutcome(text=f"{problem} for {name}. Nothing was executed.", is_error=True)
-        elif earlier is None and args is not None and (done_before := self._refly_of(name, args, turn)):
+        elif earlier is None and args is not None and (refly := self._refly_of(name, args, turn)):
             status = "repeat"
             so_far = _in_words(c for c in (turn.tool_calls if turn else []) if c.ok)
             outcome = self._host_note(
-                text=f"Not sent: this {name} call already ran earlier in this request and succeeded "
-                f"({done_before.summary}), and the request does not ask for it again. The request: "
-                f"{self._request} Done so far: {so_far}. If every part is done, "
-                f"{finish_hint(self.answer_tool)}; else call the tool for the next step.",
+                text=f"Not sent: {refly} The request: {self._request} Done so far: {so_far}. If every part "
+                f"is done, {finish_hint(self.answer_tool)}; else call the tool for the next step.",
                 is_error=False,
             )
         elif earlier is not None:
@@ -1019,17 +1019,39 @@ class AgentHost:
                 return None
         return None
 
-    def _refly_of(self, name: str, args: dict[str, Any], turn: TurnResult | None) -> ToolCallRecord | None:
-        """The earlier action of this turn that this call would fly again: same tool, same arguments,
-        succeeded and finished, with other actions since (so `_repeat_of` lets it through), while the
-        request asks for nothing twice. Measured: "fly out, then bring it back and land where it took
-        off" flew out, returned and landed, then took off and flew out again."""
+    def _refly_of(self, name: str, args: dict[str, Any], turn: TurnResult | None) -> str | None:
+        """Why this action would fly a finished part of the request again, or None. Measured: "fly out,
+        then bring it back and land where it took off" flew out, returned and landed, then took off and
+        flew out again. Two cases, unless the request asks for something more than once: the same call
+        (tool and arguments) already succeeded, with other actions since (so `_repeat_of` lets it
+        through); or the drone is back on the ground after the landing or return the request ends with,
+        and this call would take it up. Held back once: the same call sent again goes through."""
         if turn is None or not self._acts(name) or _AGAIN_WORDS.search(self._request):
             return None
-        return next(
+        key = json.dumps([name, args], sort_keys=True, default=str)
+        if key in self._refly_held:
+            return None
+        why = None
+        same = next(
             (c for c in turn.tool_calls if c.ok and not c.running and c.name == name and c.arguments == args),
             None,
         )
+        if same is not None:
+            why = f"this {name} call already ran earlier in this request and succeeded ({same.summary})."
+        elif name not in _DOWN_TOOLS and _ends_landed(self._request):
+            drones = drones_named(args) or frozenset()
+            for c in reversed(turn.tool_calls):
+                down = drones_named(c.arguments)
+                landed = [d for d in drones if self._on_ground(d) and (down is None or d in down)]
+                if c.ok and c.name in _DOWN_TOOLS - {"fleet_hold", "hold_position"} and landed:
+                    why = (
+                        f"{', '.join(landed)} already came down as the request's last step asks "
+                        f"({c.name}: {c.summary}); {name} would take it up again."
+                    )
+                    break
+        if why is not None:
+            self._refly_held.add(key)
+        return why
 
     def _unknown_tool_text(self, name: str, turn: TurnResult | None) -> str:
         """Unknown tool: the closest offered tool with its arguments, firmer when the name is repeated."""
@@ -1050,6 +1072,27 @@ _LAND_WORDS = re.compile(
     r"(?:\w+ )?(?:back )?home)\b",
     re.IGNORECASE,
 )
+
+
+# Tools that bring drones down or stop them.
+_DOWN_TOOLS = frozenset(
+    {"land", "return_to_launch", "fleet_land", "fleet_return_to_launch", "fleet_hold", "hold_position"}
+)
+# Words after a request's last landing that ask for more flying.
+_MOTION_WORDS = re.compile(
+    r"\b(?:take (?:it |them )?off|takeoff|fly|go|move|climb|head|send|up|raise|hover|formation)\b",
+    re.IGNORECASE,
+)
+_DOWN_WORDS = re.compile(
+    rf"{_LAND_WORDS.pattern}|\b(?:set|put|bring) (?:it|them|\w+) (?:back )?down\b|\btouch(?:es)? down\b",
+    re.IGNORECASE,
+)
+
+
+def _ends_landed(request: str) -> bool:
+    """The request's last step brings the drones down: a landing or return, with no motion asked after it."""
+    ends = [m.end() for m in _DOWN_WORDS.finditer(request)]
+    return bool(ends) and not _MOTION_WORDS.search(request[ends[-1] :])
 
 
 # Words of a request that ask for a step more than once.

@@ -390,3 +390,23 @@ async def test_a_finished_step_is_not_flown_again_unless_the_request_asks(toy, s
     assert toy.world.calls[-1][0] == "land"
     again = await _turn(toy, scripted(plan), "alpha: 30 m north at 10 m, back, land, then do it all again")
     assert [c.status for c in again.tool_calls][-1] == "ok", again.tool_calls
+
+
+async def test_a_drone_landed_as_the_request_ends_is_not_taken_up_again(toy, scripted) -> None:
+    """The landing was the request's last step: another takeoff (other arguments) is held back once; the
+    same call sent again goes through (the model may know better)."""
+    plan = [
+        call("takeoff", drone_id="alpha", alt_m=10),
+        call("move_north", drone_id="alpha", distance_m=20),
+        call("land", drone_id="alpha"),
+        call("takeoff", drone_id="alpha", alt_m=12),
+        call("takeoff", drone_id="alpha", alt_m=12),
+        say("alpha flew 20 m north and landed."),
+    ]
+    result = await _turn(toy, scripted(plan), "alpha: up to 10 m, 20 m north, then set it down there")
+    assert [c.status for c in result.tool_calls] == ["ok", "ok", "ok", "repeat", "ok"], result.tool_calls
+    assert "alpha already came down as the request's last step asks" in result.tool_calls[3].text
+    ongoing = await _turn(
+        toy, scripted(plan[:5]), "alpha: up to 10 m, 20 m north, land, then take off to 12 m"
+    )
+    assert [c.status for c in ongoing.tool_calls][:4] == ["ok", "ok", "ok", "ok"], ongoing.tool_calls
