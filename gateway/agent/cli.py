@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
 import json
 import logging
 import sys
@@ -18,6 +19,7 @@ from gateway.agent.display import JsonLinesDisplay, RichDisplay
 from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentEvent, AgentHost, ModelConfig
 from gateway.agent.mcp_link import McpLink, McpLinkError
 from gateway.agent.profiles import PROFILES, apply_profile, host_options_for, system_prompt_for
+from gateway.agent.servers import ToolRouter, link_for
 from gateway.agent.settings import AgentSettings, split_list
 from gateway.agent.toolbox import ToolSelectionError, select_tools
 from gateway.cli import COMMANDS
@@ -68,6 +70,14 @@ def add_agent_arguments(parser: argparse.ArgumentParser) -> None:
         help="MCP protocol negotiation: auto (2026-07-28, falls back to a handshake) or legacy (2025-era)",
     )
     parser.add_argument("--token", default=None, help="bearer token for /mcp (default: GATEWAY_AGENT_TOKEN)")
+    parser.add_argument(
+        "--server",
+        action="append",
+        default=None,
+        metavar="URL_OR_COMMAND",
+        help="another MCP server whose tools are offered beside the gateway's (repeatable): a URL, or a "
+        "command speaking MCP over stdio, e.g. --server 'python -m places_server'",
+    )
     parser.add_argument(
         "--endpoint",
         default=None,
@@ -174,15 +184,21 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
         link_cm = McpLink(
             mcp_url, args.token or env.token, include_structured=args.structured, mode=args.mcp_mode
         )
-        async with link_cm as link:
+        async with link_cm as link, contextlib.AsyncExitStack() as servers:
+            router = ToolRouter(link)
             try:
                 toolsets = split_list(args.toolsets if args.toolsets is not None else env.toolsets)
                 names = split_list(args.tools if args.tools is not None else env.tools)
-                tools = select_tools(await link.list_tools(), toolsets=toolsets, names=names)
+                offered = await link.list_tools()
+                tools = select_tools(offered, toolsets=toolsets, names=names)
                 tools = apply_profile(tools, profile, keep_selection=bool(toolsets or names))
             except ToolSelectionError as exc:
                 err.print(f"[red]error:[/] {exc}")
                 return EXIT_USAGE
+            taken = {t.name for t in offered}
+            for spec in args.server or ():
+                await router.attach(await servers.enter_async_context(link_for(spec)), taken)
+            tools = [*tools, *router.extra_tools]
             if args.list_tools:
                 _print_tools(tools, console, as_json=args.json)
                 return EXIT_OK
@@ -193,6 +209,12 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
             )
             if asked == "auto" and args.json:
                 display(AgentEvent("profile", {"profile": profile, "auto": True, "reason": choice.reason}))
+            if router.left_out:
+                left = "tools of --server left out (their names are taken): " + ", ".join(router.left_out)
+                if args.json:
+                    display(AgentEvent("servers", {"left_out": router.left_out, "message": left}))
+                else:
+                    err.print(f"[yellow]{left}[/]")
             host = AgentHost(
                 ModelConfig(
                     endpoint=args.endpoint or env.endpoint,
@@ -204,7 +226,7 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
                     timeout_s=args.model_timeout,
                     max_tokens=args.max_tokens,
                 ),
-                link,
+                router,
                 tools,
                 max_steps=args.max_steps or env.max_steps,
                 system_prompt=args.system
