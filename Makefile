@@ -8,7 +8,7 @@ STAMP := $(VENV)/.installed
 # Files stay whole on one worker (--dist loadfile), so a module's shared sim + gateway is built once.
 TEST_WORKERS ?= 2
 
-.PHONY: install demo test lint bench bench-nl clean
+.PHONY: install demo test lint bench bench-nl swarm-test cluster-test clean
 
 $(STAMP): pyproject.toml
 	@echo "Installing fleet-gateway and its dependencies into $(VENV) (about a minute on a fresh machine)..."
@@ -44,6 +44,17 @@ PROFILE ?= small
 bench-nl: $(STAMP)
 	$(BIN)/python bench/nl_missions.py --profile $(PROFILE) \
 	  $(if $(ENDPOINT),--endpoint $(ENDPOINT) --model $(MODEL),--serve-local $(LLM)) $(BENCH_NL_ARGS)
+
+# deploy/docker-compose.yml run for real with podman (installed from Debian when missing; as root): the
+# image built, a gateway and five simulated drones in their own containers, flown from an MCP client
+# outside, everything removed afterwards. Skips, saying why, where containers cannot run.
+swarm-test: $(STAMP)
+	$(BIN)/python scripts/swarm_test.py
+
+# deploy/docker-compose.cluster.yml the same way: NATS and PostgreSQL built from Debian packages, two
+# gateway nodes, nine drones; one node's container killed, the other takes its drones over.
+cluster-test: $(STAMP)
+	$(BIN)/python scripts/cluster_test.py
 
 clean:
 	rm -rf $(VENV) .pytest_cache *.db *.db-wal *.db-shm

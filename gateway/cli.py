@@ -40,8 +40,15 @@ def _mcp_cli() -> ModuleType:
 
 
 def _agent_cli() -> ModuleType:
-    from gateway.agent import cli
-
+    try:
+        from gateway.agent import cli
+    except ModuleNotFoundError as exc:  # the gateway's image leaves the agent host's model client out
+        if exc.name != "openai":
+            raise
+        raise SystemExit(
+            "error: `fleet-gateway agent` needs the OpenAI client, an optional extra: "
+            "pip install 'fleet-gateway[agent]'"
+        ) from None
     return cli
 
 

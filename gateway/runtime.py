@@ -104,6 +104,8 @@ class Gateway:
         try:
             for lock in await self.store.list_locks():
                 self.locks.lock(lock.scope, lock.reason, lock.by, at=lock.locked_at)
+            for lock in await self.store.list_takeovers():
+                self.locks.take_over(lock.scope, lock.reason, at=lock.locked_at, by=lock.by)
             self.safety = SafetyPolicy.from_settings(self.settings, self.locks.view())
             self.operations = OperationManager(self.settings, self.store)
             if self.settings.clustered:
@@ -135,6 +137,8 @@ class Gateway:
                 self.locks,
                 router=router,
             )
+            self.operations.on_takeover = self._commander.taken_over
+            self.operations.taken_over = self.locks.takeover_for
             await self.registry.start()
             self._registry_started = True
             if self.cluster is not None:

@@ -10,6 +10,7 @@ import json
 import math
 import os
 import sys
+import time
 from collections.abc import Awaitable, Callable, Iterator
 from datetime import UTC, datetime, timedelta
 from typing import Any
@@ -78,6 +79,14 @@ def register(subparsers: Any) -> None:
     _target_options(remove)
     remove.set_defaults(func=cmd_drones_remove)
 
+    release = drone_cmds.add_parser(
+        "release",
+        help="give a drone taken over by a pilot or ground station back to agents (docs/safety.md)",
+    )
+    release.add_argument("id", help="drone id")
+    _target_options(release)
+    release.set_defaults(func=cmd_drones_release)
+
     db = subparsers.add_parser("db", help=COMMANDS["db"][1])
     db_cmds = db.add_subparsers(dest="db_command", required=True, metavar="ACTION")
     upgrade = db_cmds.add_parser(
@@ -114,6 +123,14 @@ def _target_options(parser: argparse.ArgumentParser) -> None:
         "--token",
         default=None,
         help="bearer token for --api (default: GATEWAY_API_TOKEN, else the first of GATEWAY_OPERATOR_TOKENS)",
+    )
+    parser.add_argument(
+        "--wait",
+        type=float,
+        default=0.0,
+        metavar="SECONDS",
+        help="with --api: wait up to SECONDS for the gateway to answer /readyz before the call (for "
+        "provisioning beside a gateway that is still starting; default 0: call at once)",
     )
 
 
@@ -284,6 +301,33 @@ def cmd_drones_remove(args: argparse.Namespace) -> int:
     return _with_store(args, run)
 
 
+def cmd_drones_release(args: argparse.Namespace) -> int:
+    def said(was_locked: bool) -> str:
+        return (
+            f"released {args.id}: agents may command it again"
+            if was_locked
+            else f"{args.id} was not taken over"
+        )
+
+    if args.api:
+        return _api_call(
+            args,
+            "DELETE",
+            f"/api/v1/vehicles/{args.id}/takeover",
+            None,
+            lambda d: said(bool(d["was_locked"])),
+        )
+
+    async def run(store: Store) -> str:
+        if not await store.delete_takeover(args.id):
+            return said(False)
+        return (
+            said(True) + " after the gateway's next start (use --api URL to release it in a running gateway)"
+        )
+
+    return _with_store(args, run)
+
+
 def _table(items: list[dict[str, Any]], as_json: bool) -> str:
     if as_json:
         return json.dumps(items, indent=2)
@@ -353,6 +397,10 @@ def _api_call(
     base = args.api
     token = _api_token(args)
     headers = {"Authorization": f"Bearer {token}"} if token else {}
+    if not math.isfinite(args.wait) or args.wait < 0:
+        return _fail(f"--wait must be a number of seconds, 0 or more; got {args.wait}", 2)
+    if args.wait > 0 and not _wait_ready(base, args.wait):
+        return _fail(f"the gateway at {base} did not answer /readyz within {args.wait:g} s (--wait)")
     try:
         response = httpx.request(method, base.rstrip("/") + path, json=body, headers=headers, timeout=30.0)
     except httpx.HTTPError as exc:
@@ -368,6 +416,18 @@ def _api_call(
             return _fail(f"HTTP {response.status_code}: {response.text[:200]}")
     print(render(response.json() if response.content else None))
     return 0
+
+
+def _wait_ready(base: str, wait_s: float) -> bool:
+    """True once ``base``/readyz answers 200, False if it has not within ``wait_s`` seconds."""
+    deadline = time.monotonic() + wait_s
+    while True:
+        with contextlib.suppress(httpx.HTTPError):
+            if httpx.get(base.rstrip("/") + "/readyz", timeout=5.0).status_code == 200:
+                return True
+        if time.monotonic() >= deadline:
+            return False
+        time.sleep(min(1.0, max(0.0, deadline - time.monotonic())))
 
 
 # --- db --------------------------------------------------------------------------------------------

@@ -98,7 +98,9 @@ async def render() -> str:
         f"{len(tools)} tools. Each drone's tools take `drone_id`; the fleet tools take `drone_ids` (none: "
         "every drone) or an `operation_id`. Altitudes are metres above home unless "
         '`alt_frame="amsl"`. Long actions return an operation (`status`: running, succeeded, failed, '
-        "superseded, interrupted, cancelled); `running` means the drone is still at it after the wait cap "
+        "superseded, interrupted, cancelled; `interrupted`: a pilot, another ground station or a failsafe "
+        "changed the drone's mode, see [safety.md](safety.md)); `running` means the drone is still at it "
+        "after the wait cap "
         "(`GATEWAY_MCP_WAIT_CAP_S`): call `monitor_flight`. `GATEWAY_MCP_TOOLSETS` selects the toolsets.",
         "",
         "## Names",

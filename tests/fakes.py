@@ -28,6 +28,7 @@ from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.param_limits import ParamLimit
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleRegistry
 from gateway.fleet.vehicle import ConnectionState
+from gateway.link import refusals
 from gateway.link.telemetry import (
     AttitudeValue,
     BatteryValue,
@@ -144,6 +145,18 @@ class FakeVehicle:
 
     def resolve_mode(self, name: str) -> ModeChoice:
         return require_mode(name, ARDUPILOT, self.id)
+
+    def heartbeat_mode(self) -> tuple[str, bool] | None:
+        mode, armed = self.telemetry.flight_mode, self.telemetry.armed
+        if mode is None or armed is None:
+            return None
+        return str(mode.value), bool(armed.value)
+
+    def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
+        return ARDUPILOT.commanded_modes(kind, done=done)
+
+    def recent_texts(self, within_s: float) -> list[str]:
+        return refusals.said_since(self.telemetry.status_texts, time.time() - within_s)
 
     def on_ground(self, fresh: bool = True) -> bool | None:
         return ARDUPILOT.on_ground(self.telemetry, fresh=fresh)
@@ -267,10 +280,12 @@ class FakeVehicle:
 
     async def land(self) -> None:
         await self._command("land")
+        self.set(flight_mode="LAND")
         self._fly(*self.pos()[:2], 0.0, then=self._landed)
 
     async def return_to_launch(self) -> None:
         await self._command("rtl")
+        self.set(flight_mode="RTL")
         self._fly(self.home_ll[0], self.home_ll[1], 0.0, then=self._landed)
 
     async def set_yaw(self, heading_deg: float) -> None:
@@ -281,9 +296,9 @@ class FakeVehicle:
         await self._command("speed", mps)
 
     async def set_flight_mode(self, name: str) -> None:
-        self.resolve_mode(name)
+        native = self.resolve_mode(name).native
         await self._command("mode", name)
-        self.set(flight_mode=name)
+        self.set(flight_mode=native)
 
     async def upload_mission(self, items: Sequence[MissionItem]) -> int:
         await self._command("upload", len(items))
@@ -301,7 +316,12 @@ class FakeVehicle:
 
     async def start_mission(self) -> None:
         await self._command("start_mission")
-        self.set(in_air=True, armed=True, mission_progress=MissionProgressValue(1, len(self.mission)))
+        self.set(
+            in_air=True,
+            armed=True,
+            flight_mode="AUTO",
+            mission_progress=MissionProgressValue(1, len(self.mission)),
+        )
         last = self.mission[-1]
         self._fly(last.lat, last.lon, max(last.alt_rel_m, 5.0), then=self._mission_finished)
 

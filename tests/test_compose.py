@@ -77,13 +77,44 @@ def test_gateway_service_network_volume_and_healthcheck() -> None:
     # operator tokens are required to listen beyond loopback: compose refuses to start without one
     assert ":?" in gateway["environment"]["GATEWAY_OPERATOR_TOKENS"]
     assert any("/readyz" in part for part in gateway["healthcheck"]["test"])
-    assert gateway["ports"] == [f"127.0.0.1:{t.GATEWAY_PORT}:{t.GATEWAY_PORT}"]
+    # published on loopback only, on 8765 unless GATEWAY_PUBLISH_PORT says otherwise (the swarm test's port)
+    assert gateway["ports"] == [f"127.0.0.1:${{GATEWAY_PUBLISH_PORT:-{t.GATEWAY_PORT}}}:{t.GATEWAY_PORT}"]
+
+
+def test_the_gateway_answers_the_host_its_registrars_call() -> None:
+    """The gateway refuses foreign Host headers: the registrars' --api address must be one it answers."""
+    from urllib.parse import urlsplit
+
+    from gateway.config import Settings
+    from gateway.hosts import host_allowed
+
+    services = _compose()["services"]
+    env = services["gateway"]["environment"]
+    settings = Settings(_env_file=None, allowed_hosts=env.get("GATEWAY_ALLOWED_HOSTS", ""))
+    for i in range(t.DRONES):
+        command = services[f"register-drone-{i + 1}"]["command"]
+        api = urlsplit(command[command.index("--api") + 1])
+        assert host_allowed(api.netloc, settings), api.netloc
+    assert not host_allowed("evil.example:8765", settings)
+
+
+def test_registrars_wait_for_the_gateway_themselves() -> None:
+    """podman-compose ignores `condition: service_healthy`: each registrar waits for /readyz itself."""
+    for i in range(t.DRONES):
+        command = _compose()["services"][f"register-drone-{i + 1}"]["command"]
+        assert float(command[command.index("--wait") + 1]) >= 60
 
 
 def test_dockerfile_runs_unprivileged_and_ships_the_migrations() -> None:
     text = DOCKERFILE.read_text()
     user = re.search(r"^USER\s+(\S+)", text, re.M)
     assert user is not None and user.group(1) not in ("root", "0")
+    # one user name across the image and the systemd unit
+    unit = (ROOT / "deploy" / "fleet-gateway.service").read_text()
+    assert re.search(rf"^User={re.escape(user.group(1))}$", unit, re.M)
+    assert re.search(rf"--create-home {re.escape(user.group(1))}$", text, re.M)
+    # no VOLUME: it gives every container (drones too) an anonymous volume that outlives it
+    assert not re.search(r"^VOLUME\b", text, re.M)
     assert re.search(r"^COPY migrations \./migrations$", text, re.M)
     # the wheel's data-files carry the migrations; the build checks the store finds them
     assert "pip install ." in text and "migrations_dir" in text

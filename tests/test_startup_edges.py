@@ -48,6 +48,30 @@ def test_top_level_help_imports_none_of_the_command_areas() -> None:
     assert out.stdout.strip() == "", f"--help imported {out.stdout.strip()}"
 
 
+def test_agent_without_the_openai_extra_says_how_to_add_it() -> None:
+    """The image leaves the agent host's model client out: `fleet-gateway agent` then says what to install,
+    in one line, and the gateway's own commands do not need it."""
+    code = (
+        "import sys\n"
+        "sys.modules['openai'] = None  # as if not installed: importing it raises ModuleNotFoundError\n"
+        "from gateway.cli import main\n"
+        "try:\n"
+        "    main(['agent', '--help'])\n"
+        "except SystemExit as exc:\n"
+        "    print(exc.code)\n"
+        "from gateway import server_cli, app\n"
+        "from gateway.sim import cli\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=scaled(60)
+    )
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == (
+        "error: `fleet-gateway agent` needs the OpenAI client, an optional extra: "
+        "pip install 'fleet-gateway[agent]'"
+    )
+
+
 @pytest.mark.parametrize(
     ("args", "usage", "named"),
     [

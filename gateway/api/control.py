@@ -148,6 +148,29 @@ async def unlock_fleet(commander: CommanderDep, who: PrincipalDep) -> UnlockOut:
     return UnlockOut(scope=result.scope, was_locked=result.was_locked)
 
 
+# --- takeover locks (a pilot, another ground station or a failsafe took the drone) ----------------
+
+
+@router.get("/takeovers", response_model=LockList, summary="Drones taken over by a pilot or ground station")
+async def list_takeovers(gateway: GatewayDep) -> LockList:
+    """Drones whose mode a pilot, another ground station or a failsafe changed while the gateway flew
+    them: agents are refused until an operator releases them (docs/safety.md)."""
+    return LockList(items=[LockOut.of(lk) for lk in gateway.locks.takeovers()])
+
+
+@router.delete(
+    "/vehicles/{vehicle_id}/takeover",
+    response_model=UnlockOut,
+    summary="Release a drone taken over by a pilot or ground station",
+)
+async def release_takeover(
+    vehicle_id: CommandVehicleId, commander: CommanderDep, who: PrincipalDep
+) -> UnlockOut:
+    """Agents may command the drone again (the pilot or ground station is done with it)."""
+    result = await commander.release(operator(who), vehicle_id)
+    return UnlockOut(scope=result.scope, was_locked=result.was_locked)
+
+
 # --- actions -------------------------------------------------------------------------------------
 
 

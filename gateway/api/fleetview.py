@@ -93,6 +93,7 @@ def vehicle_view(vehicle: Any, operation_of: OperationOf, locks: Any) -> dict[st
         "last_error": vehicle.last_error,
         "locked": locks.reason_for(vehicle.id),  # fleet lock included: whether agents may command it
         "own_lock": _lock_view(locks.get(vehicle.id)),  # this drone's own lock (the one to unlock here)
+        "taken_over": _lock_view(locks.takeover_for(vehicle.id)),  # a pilot or GCS took it: release here
         "is_simulator": vehicle.is_simulator,
         "autopilot": vehicle.autopilot,
         "position": _position(cache),

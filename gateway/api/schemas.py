@@ -84,7 +84,14 @@ class VehicleOut(VehicleRecord):
 
     state: str | None = Field(None, description="registered, connecting, connected, ready, link_lost, failed")
     status: dict[str, Any] | None = Field(None, description="Connection details: heartbeat age, sidecar...")
-    locked: str | None = Field(None, description="Why agents may not command this drone (operator locks).")
+    locked: str | None = Field(
+        None, description="Why agents may not command this drone (its takeover lock, operator locks)."
+    )
+    taken_over: dict[str, Any] | None = Field(
+        None,
+        description="Its takeover lock: a pilot, another ground station or a failsafe changed its mode "
+        "while the gateway flew it (reason, by, locked_at); DELETE /vehicles/{id}/takeover releases it.",
+    )
     telemetry: dict[str, Any] | None = Field(
         None, description="Latest telemetry snapshot, each part with its age (only on GET of one vehicle)."
     )

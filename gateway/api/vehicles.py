@@ -43,6 +43,9 @@ def vehicle_view(
     data: dict[str, Any] = record.model_dump()
     if locks is not None:
         data["locked"] = locks.reason_for(record.id)
+        taken = locks.takeover_for(record.id)
+        if taken is not None:
+            data["taken_over"] = {"reason": taken.reason, "by": taken.by, "locked_at": taken.locked_at}
     if vehicle is not None:
         status = jsonable_encoder(vehicle.status())
         data["status"] = status

@@ -349,6 +349,13 @@ class ClusterNode:
             )
         elif kind == "unlock":
             self.gateway.locks.unlock(body["scope"])
+        elif kind == "takeover":  # a pilot or ground station took a drone owned by another node
+            at = body.get("at")
+            self.gateway.locks.take_over(
+                body["scope"], body["reason"], at=datetime.fromisoformat(at) if at else None, by=body["by"]
+            )
+        elif kind == "release":
+            self.gateway.locks.release(body["scope"])
         elif kind == "stop":  # an operator's emergency stop on another node: end the fleet operations
             fleet = self.gateway.fleet_operations  # this node coordinates (it stops its own drones)
             registry = self.registry

@@ -247,6 +247,15 @@ class RemoteVehicle:
     def on_ground(self, fresh: bool = True) -> bool | None:
         return self.dialect.on_ground(self.telemetry, fresh=fresh)
 
+    def heartbeat_mode(self) -> tuple[str, bool] | None:
+        return None  # its owner watches the mode (and tells the cluster of a takeover)
+
+    def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
+        return self.dialect.commanded_modes(kind, done=done)
+
+    def recent_texts(self, within_s: float) -> list[str]:
+        return []
+
     def return_altitude_param(self) -> tuple[str, float]:
         return self.dialect.return_altitude_params[0]  # which of them the vehicle has, its owner knows
 

@@ -22,7 +22,15 @@ from gateway.fleet.operations import Operation, OperationManager, Tracker
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleDirectory
 from gateway.fleet.readings import vehicle_context
 from gateway.fleet.routing import FORWARDED, Router, Verb
-from gateway.fleet.safety import LockBook, RunningOperation, SafetyPolicy, VehicleContext
+from gateway.fleet.safety import (
+    LockBook,
+    Rule,
+    RunningOperation,
+    SafetyPolicy,
+    VehicleContext,
+    refuse,
+    taken_over_text,
+)
 from gateway.fleet.views import OperationView
 from gateway.registry.store import Store
 
@@ -43,6 +51,10 @@ T = TypeVar("T")
 
 #: every verb on one drone that runs on the drone's owner, by name (filled by `routed`)
 ROUTED: dict[str, Verb] = {}
+#: the routed verbs that only read: allowed to agents on a drone a pilot or ground station took over
+READ_VERBS = frozenset(
+    {"arrival", "monitor", "download_mission", "mission_progress", "get_param", "list_params"}
+)
 
 
 def routed(method: VerbMethod) -> VerbMethod:
@@ -57,6 +69,8 @@ def routed(method: VerbMethod) -> VerbMethod:
         bound = verb.signature.bind(self, *args, **kwargs)
         caller: Caller = bound.arguments["caller"]
         drone_id: str = bound.arguments["drone_id"]
+        if name not in READ_VERBS and not caller.is_operator:
+            self._refuse_taken_over(drone_id)  # before any other check: the pilot's word comes first
         router = self.router
         if router is None or router.owns(drone_id):
             return await method(self, *args, **kwargs)
@@ -141,6 +155,14 @@ class CommandCore:
     @staticmethod
     def context(vehicle: FlyingVehicle) -> VehicleContext:
         return vehicle_context(vehicle)
+
+    def _refuse_taken_over(self, drone_id: str) -> None:
+        """Rule taken_over: a pilot, another ground station or a failsafe took the drone
+        (`gateway.fleet.takeover`); every actuating agent verb on it is refused until an operator
+        releases it (the policy's `check_actuation` says the same, for fleet verbs and direct calls)."""
+        taken = self.locks.takeover_for(drone_id)
+        if taken is not None:
+            raise refuse(Rule.TAKEN_OVER, taken_over_text(drone_id, taken), vehicle_id=drone_id)
 
     def _running(self, drone_id: str, kind: str | None = None) -> RunningOperation | None:
         """The drone's running operation, here or (a drone owned elsewhere) as its owner published it."""
@@ -230,16 +252,24 @@ class CommandCore:
         *,
         safety_action: bool = False,
         ends_operation: bool = False,
+        commands: str | None = None,
+        modes: frozenset[str] | None = None,
     ) -> tuple[T, Operation | None]:
         """An instant command, sent under the drone's command lock like `_track`'s (so it never
         overtakes a command still being sent to the drone): the takeoff guard inside the lock unless it
         is a ``safety_action``, the command, then (``ends_operation``) the drone's running operation is
-        superseded by ``action``. Returns what ``send`` returned and the operation it ended."""
+        superseded by ``action`` and the gateway expects the drone in the mode the command brings
+        (``commands``: what it is, e.g. "hold"; ``modes``: the modes it shows, when not that kind's;
+        neither: nothing to judge, e.g. disarm). Returns what ``send`` returned and the operation it
+        ended."""
         async with self.operations.command_lock(vehicle.id):
             if not safety_action:
                 self._guard_takeoff(caller, vehicle, action)
             result = await send()
-            ended = await self._supersede(vehicle.id, action) if ends_operation else None
+            ended = None
+            if ends_operation:
+                ended = await self._supersede(vehicle.id, action)
+                self.operations.expect(vehicle, commands, modes=modes)
         return result, ended
 
     def view(self, op: Operation) -> OperationView:

@@ -109,4 +109,5 @@ VERBS: dict[str, Verb] = {
     "stop_all": Verb(Commander.stop_all),
     "lock": Verb(Commander.lock),
     "unlock": Verb(Commander.unlock),
+    "release": Verb(Commander.release),
 }

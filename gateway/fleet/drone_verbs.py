@@ -16,6 +16,7 @@ from __future__ import annotations
 import contextlib
 import time
 from collections.abc import Sequence
+from typing import Any
 
 from gateway.errors import InvalidArgument, NotFound, VehicleNotReady
 from gateway.fleet import geo
@@ -45,6 +46,7 @@ from gateway.fleet.views import (
     ParamPage,
     ParamValue,
 )
+from gateway.registry.records import OperationRecord
 
 
 class DroneVerbs(CommandCore):
@@ -141,7 +143,7 @@ class DroneVerbs(CommandCore):
             self._require_airborne(ctx, label)
         self.safety.check_actuation(ctx, caller.policy_via)
         _, sup = await self._instant(
-            caller, vehicle, label, vehicle.hold, safety_action=True, ends_operation=True
+            caller, vehicle, label, vehicle.hold, safety_action=True, ends_operation=True, commands="hold"
         )
         pos = position(vehicle)
         where = f" at {pos[2]:.1f} m above home" if pos else ""
@@ -181,6 +183,7 @@ class DroneVerbs(CommandCore):
             await vehicle.disarm()
             message = "on the ground: disarmed"
         sup = await self._supersede(drone_id, "kill_motors")
+        self.operations.forget(drone_id)
         return ActionResult(
             drone_id=drone_id, action="kill", message=message, superseded_operation=sup and sup.id
         )
@@ -207,6 +210,7 @@ class DroneVerbs(CommandCore):
             lambda: vehicle.set_flight_mode(mode),
             safety_action=safety,
             ends_operation=True,
+            **_commanded(vehicle, choice),
         )
         named = (
             choice.native if choice.native == choice.requested else f"{choice.requested} ({choice.native})"
@@ -415,6 +419,22 @@ class DroneVerbs(CommandCore):
         """Whether the drone's last goto arrived, with the distance left; answers at once."""
         vehicle = self.vehicle(drone_id)
         op = self.operations.latest(drone_id)
+        if op is None:
+            record = await self._stored_latest(drone_id, NAV_KINDS)
+            if record is not None:  # sent by the process before a restart: the truth as it is now
+                d = GotoTracker(
+                    record.params["lat_deg"], record.params["lon_deg"], record.params["alt_m"], 1.0
+                ).distance(vehicle)
+                return ArrivalView(
+                    drone_id=drone_id,
+                    arrived=record.status == OpStatus.succeeded.value,
+                    operation_id=record.id,
+                    kind=record.kind,
+                    status=record.status,
+                    distance_m=None if d is None else round(d[0], 1),
+                    vertical_m=None if d is None else round(d[1], 1),
+                    message=_restart_truth(vehicle, record),
+                )
         if op is None or op.kind not in NAV_KINDS:
             return ArrivalView(
                 drone_id=drone_id,
@@ -456,6 +476,15 @@ class DroneVerbs(CommandCore):
         vehicle = self.vehicle(drone_id)
         op = self.operations.latest(drone_id)
         if op is None:
+            record = await self._stored_latest(drone_id)
+            if record is not None:  # started by the process before a restart: the truth as it is now
+                return OperationView.of_record(record, _restart_truth(vehicle, record))
+            if is_airborne(vehicle):
+                raise NotFound(
+                    f"this gateway started nothing on {drone_id}, yet it is in the air "
+                    f"({_now_doing(vehicle)}): flown by a pilot or another ground station, or by a gateway "
+                    "whose records are gone"
+                )
             raise NotFound(
                 f"{drone_id} has no action to monitor (state: {vehicle.state}); nothing was started yet"
             )
@@ -471,6 +500,18 @@ class DroneVerbs(CommandCore):
                 landing.operation_id, max(0.0, cap - (time.monotonic() - start)), on_progress
             )
         return view
+
+    async def _stored_latest(
+        self, drone_id: str, kinds: Sequence[str] | None = None
+    ) -> OperationRecord | None:
+        """The drone's newest operation in the database (of ``kinds``), for a process that has none of
+        its own (it restarted)."""
+        if self.store is None:
+            return None
+        for record in await self.store.list_operations(vehicle_id=drone_id, limit=20):
+            if kinds is None or record.kind in kinds:
+                return record
+        return None
 
     # ------------------------------------------------------------------------------------------------
     # missions
@@ -649,6 +690,49 @@ class DroneVerbs(CommandCore):
             params={n: float(every[n]) for n in page},
             next_offset=nxt,
         )
+
+
+def _commanded(vehicle: FlyingVehicle, choice: ModeChoice) -> dict[str, Any]:
+    """What a mode change commands, for the takeover watch: the mission, return, landing or takeoff
+    mode is judged as that operation is (the autopilot's own next modes included: PX4 holds after a
+    mission), any other mode as itself."""
+    for common, kind in (
+        ("MISSION", "mission"),
+        ("RTL", "return_to_launch"),
+        ("LAND", "land"),
+        ("TAKEOFF", "takeoff"),
+    ):
+        with contextlib.suppress(InvalidArgument):
+            if vehicle.resolve_mode(common).native == choice.native:
+                return {"commands": kind}
+    return {"commands": f"set_flight_mode {choice.native}", "modes": frozenset({choice.native})}
+
+
+def _now_doing(vehicle: FlyingVehicle) -> str:
+    """What the drone does now, from its telemetry: mode, airborne, altitude."""
+    mode = value(vehicle, "flight_mode") or "unknown"
+    pos = position(vehicle)
+    where = f" at {pos[2]:.1f} m above home" if pos is not None else ""
+    state = "in the air" if is_airborne(vehicle) else "on the ground"
+    return f"mode {mode}, {state}{where}"
+
+
+def _restart_truth(vehicle: FlyingVehicle, record: OperationRecord) -> str:
+    """A stored operation and the drone now, for a caller of a process that did not run it: e.g. "the
+    gateway restarted while this operation was running; now: mode GUIDED, in the air at 12.0 m above
+    home, 180 m from the goto's target"."""
+    said = record.message or record.status
+    target = ""
+    params = record.params or {}
+    pos = position(vehicle)
+    if (
+        pos is not None
+        and isinstance(params.get("lat_deg"), int | float)
+        and isinstance(params.get("lon_deg"), int | float)
+    ):
+        far = geo.horizontal_distance_m(pos[0], pos[1], float(params["lat_deg"]), float(params["lon_deg"]))
+        target = f", {far:.0f} m from the {record.kind}'s target"
+    return f"{said}; now: {_now_doing(vehicle)}{target}"
 
 
 def _is_landing_mode(vehicle: FlyingVehicle, choice: ModeChoice) -> bool:

@@ -538,6 +538,7 @@ class FleetOperations:
             async with self.operations.command_lock(drone_id):
                 await step.vehicle.hold()
                 await self.operations.supersede(drone_id, f"{fop.kind} abort")
+                self.operations.expect(step.vehicle, "hold")
             return
         await router.call(
             drone_id, "hold_step", fop.caller, {"drone_id": drone_id, "reason": f"{fop.kind} abort"}
@@ -578,6 +579,11 @@ class FleetOperations:
 
         async def one(drone_id: str, step: Step) -> None:
             member = fop.members[drone_id]
+            taken = self.operations.taken_over(drone_id)
+            if taken is not None and (not fop.caller.is_operator or taken.locked_at >= fop.created_at):
+                # a pilot or ground station has it: the gateway sends it nothing on its own
+                member.status, member.message = "not_sent", f"not sent: {drone_id} was {taken.reason}"
+                return
             member.sent_after_s = round(time.monotonic() - fop.started_mono, 3)
             member.status, member.message = "running", "command sent"
             try:

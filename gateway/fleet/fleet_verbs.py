@@ -51,6 +51,7 @@ from gateway.fleet.geofence import FLEET
 from gateway.fleet.protocols import FlyingVehicle, Notify
 from gateway.fleet.readings import home, is_landed_and_disarmed, position
 from gateway.fleet.safety import Rule, refuse
+from gateway.fleet.takeover import Takeover
 from gateway.fleet.views import (
     ActionResult,
     FleetHoldResult,
@@ -61,6 +62,7 @@ from gateway.fleet.views import (
     StopResult,
     UnlockResult,
 )
+from gateway.registry.records import AuditEntry
 
 log = logging.getLogger(__name__)
 
@@ -459,7 +461,7 @@ class FleetVerbs(DroneVerbs):
         """Hold a drone whose fleet operation (coordinated by another node) was stopped."""
         vehicle = self.vehicle(drone_id)
         _, sup = await self._instant(
-            caller, vehicle, reason, vehicle.hold, safety_action=True, ends_operation=True
+            caller, vehicle, reason, vehicle.hold, safety_action=True, ends_operation=True, commands="hold"
         )
         return ActionResult(
             drone_id=drone_id, action="hold", message="held", superseded_operation=sup and sup.id
@@ -502,6 +504,51 @@ class FleetVerbs(DroneVerbs):
         if removed or stored:
             log.warning("operator %s unlocked %s", caller.principal, "the fleet" if scope == FLEET else scope)
         return UnlockResult(scope=scope, was_locked=removed is not None or stored)
+
+    # ------------------------------------------------------------------------------------------------
+    # takeover locks: a pilot, another ground station or a failsafe took a drone (gateway.fleet.takeover)
+    # ------------------------------------------------------------------------------------------------
+
+    async def taken_over(self, vehicle: FlyingVehicle, takeover: Takeover) -> None:
+        """The OperationManager saw a mode change the gateway did not command (its operation already
+        ended as interrupted): lock the drone for agents, persist and audit the lock, tell the other
+        nodes. Nothing is sent to the drone."""
+        lock = self.locks.take_over(vehicle.id, takeover.lock_reason(), at=takeover.at)
+        if self.store is not None:
+            try:
+                await self.store.save_takeover(lock.scope, lock.reason, lock.by, lock.locked_at)
+                await self.store.add_audit(
+                    AuditEntry(
+                        principal="autopilot",
+                        source="gateway",
+                        vehicle_id=vehicle.id,
+                        action="takeover",
+                        arguments=takeover.to_record(),
+                        outcome="ok",
+                        error=takeover.message(),
+                        t=takeover.at,
+                        operation_id=takeover.operation_id,
+                    )
+                )
+            except Exception:  # the lock holds in memory whatever the database says
+                log.exception("could not store the takeover of %s", vehicle.id)
+        if self.router is not None:
+            await self.router.announce(
+                "takeover",
+                {"scope": lock.scope, "reason": lock.reason, "by": lock.by, "at": lock.locked_at.isoformat()},
+            )
+
+    async def release(self, caller: Caller, drone_id: str) -> UnlockResult:
+        """An operator gives a taken-over drone back to agents (the pilot is done with it)."""
+        self._operator_only(caller, "release a drone taken over by a pilot or ground station")
+        self.registry.get(drone_id)
+        removed = self.locks.release(drone_id)
+        stored = await self.store.delete_takeover(drone_id) if self.store is not None else False
+        if self.router is not None:
+            await self.router.announce("release", {"scope": drone_id})
+        if removed or stored:
+            log.warning("operator %s released %s after a takeover", caller.principal, drone_id)
+        return UnlockResult(scope=drone_id, was_locked=removed is not None or stored)
 
     async def stop_all(
         self, caller: Caller, action: StopAction = "hold", lock: bool = True, lock_reason: str | None = None

@@ -29,10 +29,10 @@ from dataclasses import asdict, dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy.optimize import linear_sum_assignment
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
+from gateway.fleet.assignment import min_cost_assignment
 from gateway.fleet.safety import Rule, fmt, refuse
 
 FORMATIONS = ("line", "column", "wedge", "grid", "circle")
@@ -259,8 +259,7 @@ def plan_formation(
     slot_xyz = np.column_stack([slots_ne, np.full(n, float(alt_m))])
 
     cost = np.linalg.norm(start_xyz[:, None, :] - slot_xyz[None, :, :], axis=2)
-    rows, cols = linear_sum_assignment(cost)
-    slot_of = dict(zip(rows.tolist(), cols.tolist(), strict=True))
+    slot_of = min_cost_assignment(cost.tolist())
     target_xyz = np.array([slot_xyz[slot_of[i]] for i in range(n)])
 
     required = np.full((n, n), float(min_separation_m))

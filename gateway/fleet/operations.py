@@ -37,7 +37,8 @@ from gateway.fleet.readings import (
     position,
     value,
 )
-from gateway.fleet.safety import RunningOperation
+from gateway.fleet.safety import Lock, RunningOperation
+from gateway.fleet.takeover import CAUSE_WINDOW_S, ModeExpectation, Takeover, likely_cause
 from gateway.registry.records import OperationRecord
 from gateway.registry.store import Store
 
@@ -50,6 +51,9 @@ LEFT_AUTO_GRACE_S = 2.0
 the operation right after switching mode)."""
 SAVE_EVERY_S = 2.0
 """Progress of a running operation is written to the store at most this often."""
+MISSION_END_GRACE_S = 0.8
+"""How long a mission that left its mode for one it settles in (PX4 holds at the end) may take to say
+it finished before the change counts as a takeover."""
 
 
 class OpStatus(StrEnum):
@@ -134,6 +138,7 @@ class Operation:
 
 
 ProgressCallback = Callable[[Operation], Awaitable[None]]
+TakeoverHandler = Callable[[FlyingVehicle, Takeover], Awaitable[None]]
 
 
 def _now() -> datetime:
@@ -346,6 +351,12 @@ class OperationManager:
         self._trackers: dict[str, Tracker] = {}  # of the running operations
         self._last_saved: dict[str, float] = {}
         self._locks: dict[str, asyncio.Lock] = {}
+        self._expected: dict[str, ModeExpectation] = {}  # what the gateway last commanded, per vehicle
+        self._watches: dict[str, asyncio.Task[None]] = {}
+        #: told of every takeover before its operation ends (the runtime locks the drone)
+        self.on_takeover: TakeoverHandler | None = None
+        #: the drone's takeover lock, if it has one (the runtime reads the LockBook)
+        self.taken_over: Callable[[str], Lock | None] = lambda _vehicle_id: None
 
     # -- queries -------------------------------------------------------------------------------
     def get(self, operation_id: str) -> Operation:
@@ -424,11 +435,104 @@ class OperationManager:
             self._ops[op.id] = op
             self._current[vehicle.id] = op
             self._trackers[op.id] = tracker
+            self.expect(vehicle, op.kind, op.id, _climb_modes(vehicle, op.kind, tracker))
             await self._save(op, force=True)
             self._monitors[op.id] = asyncio.create_task(
                 self._monitor(vehicle, op, tracker), name=f"op-{op.kind}-{op.id}"
             )
             return op
+
+    # -- what the gateway commanded, and takeovers -------------------------------------------------
+    def expect(
+        self,
+        vehicle: FlyingVehicle,
+        kind: str | None,
+        operation_id: str | None = None,
+        modes: frozenset[str] | None = None,
+    ) -> None:
+        """Record what the gateway just commanded ``vehicle`` (called under its command lock, after the
+        command was accepted): an operation of ``kind``, or an instant command whose ``modes`` are
+        given (a mode change); None: nothing the mode can be judged by (kill, disarm). From then on a
+        change to a mode the gateway did not command ends the operation (`gateway.fleet.takeover`)."""
+        wanted = modes if modes is not None else (vehicle.commanded_modes(kind) if kind else frozenset())
+        if not wanted or kind is None:
+            self._expected.pop(vehicle.id, None)
+            return
+        settled = modes if modes is not None else vehicle.commanded_modes(kind, done=True)
+        self._expected[vehicle.id] = ModeExpectation(kind, wanted, settled | wanted, operation_id)
+        watch = self._watches.get(vehicle.id)
+        if watch is None or watch.done():
+            self._watches[vehicle.id] = asyncio.create_task(self._watch(vehicle), name=f"watch-{vehicle.id}")
+
+    def expected(self, vehicle_id: str) -> ModeExpectation | None:
+        return self._expected.get(vehicle_id)
+
+    def forget(self, vehicle_id: str) -> None:
+        """The gateway commands nothing the mode shows (a takeover, kill): nothing more is judged."""
+        self._expected.pop(vehicle_id, None)
+
+    async def _watch(self, vehicle: FlyingVehicle) -> None:
+        """Judge the vehicle's HEARTBEAT mode every POLL_S while the gateway expects something of it."""
+        while vehicle.id in self._expected:
+            await asyncio.sleep(POLL_S)
+            try:
+                await self._judge_mode(vehicle)
+            except asyncio.CancelledError:
+                raise
+            except Exception:  # the watch must never die silently
+                log.exception("mode watch of %s failed", vehicle.id)
+        self._watches.pop(vehicle.id, None)
+
+    async def _judge_mode(self, vehicle: FlyingVehicle) -> None:
+        exp = self._expected.get(vehicle.id)
+        if exp is None or self.command_lock(vehicle.id).locked():
+            return  # the gateway is sending a command: the mode it brings is its own
+        heard = vehicle.heartbeat_mode()
+        if heard is None:
+            return
+        mode, armed = heard
+        if not armed:  # on the ground, disarmed: nothing flies; the next arming starts afresh
+            exp.seen, exp.outside_since = False, None
+            return
+        op = self._current.get(vehicle.id)
+        mine = op if op is not None and op.id == exp.operation_id else None
+        done = mine is not None and mine.status is OpStatus.succeeded
+        if mode in exp.modes or (done and mode in exp.settled):
+            exp.seen, exp.outside_since, exp.last_mode = True, None, mode
+            return
+        if not exp.seen:
+            return  # the command's own mode has not shown yet
+        running = mine if mine is not None and not mine.finished else None
+        if exp.kind == "mission" and mode in exp.settled:  # the mission may just have ended
+            now = time.monotonic()
+            exp.outside_since = exp.outside_since or now
+            if await vehicle.is_mission_finished():
+                exp.modes, exp.last_mode = exp.settled, mode  # it ended: where it settles is commanded
+                return  # (a tracked mission's tracker ends it as succeeded)
+            if now - exp.outside_since < MISSION_END_GRACE_S:
+                return
+        if self._expected.get(vehicle.id) is not exp or self.command_lock(vehicle.id).locked():
+            return  # a command went out meanwhile
+        cause, said = likely_cause(mode, vehicle.recent_texts(CAUSE_WINDOW_S))
+        takeover = Takeover(
+            vehicle_id=vehicle.id,
+            from_mode=exp.last_mode or "?",
+            to_mode=mode,
+            cause=cause,
+            said=said,
+            at=_now(),
+            operation_id=running.id if running is not None else None,
+            operation_kind=running.kind if running is not None else exp.kind,
+        )
+        self._expected.pop(vehicle.id, None)
+        log.warning("%s: %s", vehicle.id, takeover.message())
+        if self.on_takeover is not None:  # locked first: whoever hears the operation end finds it locked
+            try:
+                await self.on_takeover(vehicle, takeover)
+            except Exception:
+                log.exception("recording the takeover of %s failed", vehicle.id)
+        if running is not None:
+            await self._finish(running, OpStatus.interrupted, takeover.message())
 
     async def supersede(self, vehicle_id: str, by: str) -> Operation | None:
         """A non-tracked command (hold, mode change, kill, disarm) replaced the current operation."""
@@ -495,13 +599,15 @@ class OperationManager:
                 await self._finish(
                     op, OpStatus.interrupted, "gateway stopped while the operation was running"
                 )
-        tasks = list(self._monitors.values())
+        self._expected.clear()
+        tasks = list(self._monitors.values()) + list(self._watches.values())
         for task in tasks:
             task.cancel()
         for task in tasks:
             with contextlib.suppress(asyncio.CancelledError, Exception):
                 await task
         self._monitors.clear()
+        self._watches.clear()
 
     async def resume(
         self, record: OperationRecord, vehicle: FlyingVehicle, tracker: Tracker, message: str
@@ -526,6 +632,7 @@ class OperationManager:
         self._ops[op.id] = op
         self._current[vehicle.id] = op
         self._trackers[op.id] = tracker
+        self.expect(vehicle, op.kind, op.id, _climb_modes(vehicle, op.kind, tracker))
         await self._save(op, force=True)
         self._monitors[op.id] = asyncio.create_task(
             self._monitor(vehicle, op, tracker), name=f"op-{op.kind}-{op.id}"
@@ -635,6 +742,15 @@ class OperationManager:
             )
         except Exception:
             log.exception("could not save operation %s", op.id)
+
+
+def _climb_modes(vehicle: FlyingVehicle, kind: str, tracker: Tracker) -> frozenset[str] | None:
+    """The modes of an operation that takes off first: its takeoff's and its own (PX4 climbs in
+    AUTO.TAKEOFF, then holds and flies the leg in AUTO.LOITER); None for any other operation (its kind
+    says)."""
+    if not getattr(tracker, "climbing", False):
+        return None
+    return vehicle.commanded_modes("takeoff") | vehicle.commanded_modes(kind)
 
 
 def _noted(op: Operation, message: str) -> str:

@@ -56,6 +56,17 @@ class FlyingVehicle(Protocol):
 
     def resolve_mode(self, name: str) -> ModeChoice: ...
 
+    def heartbeat_mode(self) -> tuple[str, bool] | None:
+        """The autopilot's name of the mode its HEARTBEAT shows and whether it is armed (None: no
+        fresh HEARTBEAT)."""
+
+    def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
+        """The modes the autopilot may show while it does what the gateway commanded (an operation of
+        ``kind``; ``done``: once it succeeded), in its own names (`Dialect.commanded_modes`)."""
+
+    def recent_texts(self, within_s: float) -> list[str]:
+        """The autopilot's status texts (notice or worse) of the last ``within_s`` seconds, oldest first."""
+
     def on_ground(self, fresh: bool = True) -> bool | None:
         """On the ground as the autopilot's dialect tells (None: unknown; ``fresh=False`` reads cached
         values however old)."""

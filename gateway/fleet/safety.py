@@ -39,6 +39,7 @@ class Rule(StrEnum):
     """Names of the rules; they appear in refusals, audit rows and docs/safety.md."""
 
     OPERATOR_LOCK = "operator_lock"
+    TAKEN_OVER = "taken_over"
     SIMULATORS_ONLY = "simulators_only"
     INVALID_INPUT = "invalid_input"
     MIN_ALTITUDE = "min_altitude"
@@ -169,6 +170,8 @@ class LockView(Protocol):
 
     def reason_for(self, vehicle_id: str) -> str | None: ...
 
+    def takeover_for(self, vehicle_id: str) -> Lock | None: ...
+
     def locks_for(self, vehicle_id: str) -> list[Lock]: ...
 
     def all(self) -> list[Lock]: ...
@@ -180,6 +183,7 @@ class LockBook:
 
     def __init__(self) -> None:
         self._locks: dict[str, Lock] = {}
+        self._takeovers: dict[str, Lock] = {}  # vehicle id -> its takeover lock (gateway.fleet.takeover)
 
     def lock(self, scope: str, reason: str, by: str, at: datetime | None = None) -> Lock:
         """Lock a vehicle (or "*": the fleet). Locking again replaces the reason and who."""
@@ -204,12 +208,35 @@ class LockBook:
     def get(self, scope: str) -> Lock | None:
         return self._locks.get(scope)
 
+    # Takeover locks: set by the gateway when a pilot, another ground station or a failsafe changed a
+    # drone's mode (`gateway.fleet.takeover`); agents are refused until an operator releases the drone.
+    # Kept apart from the operator's locks: unlocking one never lifts the other.
+    def take_over(
+        self, vehicle_id: str, reason: str, at: datetime | None = None, by: str = "autopilot"
+    ) -> Lock:
+        lock = Lock(vehicle_id, reason.strip()[:MAX_REASON_CHARS], by, at or datetime.now(UTC))
+        self._takeovers[vehicle_id] = lock
+        return lock
+
+    def release(self, vehicle_id: str) -> Lock | None:
+        """Lift a drone's takeover lock; returns it, or None when there was none (idempotent)."""
+        return self._takeovers.pop(vehicle_id, None)
+
+    def takeover_for(self, vehicle_id: str) -> Lock | None:
+        return self._takeovers.get(vehicle_id)
+
+    def takeovers(self) -> list[Lock]:
+        return sorted(self._takeovers.values(), key=lambda lk: lk.scope)
+
     def locks_for(self, vehicle_id: str) -> list[Lock]:
         return [lk for key in (FLEET, vehicle_id) if (lk := self._locks.get(key)) is not None]
 
     def reason_for(self, vehicle_id: str) -> str | None:
-        """Why this vehicle is locked (fleet lock first), or None when it is not."""
+        """Why this vehicle is locked (its takeover first, then the fleet lock), or None when it is not."""
         parts = []
+        taken = self._takeovers.get(vehicle_id)
+        if taken is not None:
+            parts.append(f"drone {vehicle_id} was {taken.reason}; an operator must release it")
         for lk in self.locks_for(vehicle_id):
             what = "the fleet is locked" if lk.scope == FLEET else f"drone {vehicle_id} is locked"
             parts.append(f"{what} by {lk.by}: {lk.reason}")
@@ -239,10 +266,20 @@ class LockBook:
         return book
 
 
+def taken_over_text(vehicle_id: str, lock: Lock) -> str:
+    """An agent's refusal on a taken-over drone: what happened, and what an operator must do."""
+    return (
+        f"drone {vehicle_id} was {lock.reason}. A pilot or ground station has control; the gateway sends "
+        f"this drone nothing until an operator releases it (REST DELETE /api/v1/vehicles/{vehicle_id}/"
+        f"takeover, `fleet-gateway drones release {vehicle_id}`, or the console). Do not retry; read-only "
+        "tools still work"
+    )
+
+
 class ReadOnlyLocks:
     """A `LockView` over a `LockBook`: no lock or unlock here, by construction."""
 
-    __slots__ = ("_all", "_locks_for", "_reason_for")
+    __slots__ = ("_all", "_locks_for", "_reason_for", "_takeover_for")
 
     def __init__(self, book: LockBook) -> None:
         # Bound methods only: the view keeps no attribute through which the book could be reached
@@ -250,6 +287,7 @@ class ReadOnlyLocks:
         self._reason_for = book.reason_for
         self._locks_for = book.locks_for
         self._all = book.all
+        self._takeover_for = book.takeover_for
 
     def reason_for(self, vehicle_id: str) -> str | None:
         return self._reason_for(vehicle_id)
@@ -259,6 +297,9 @@ class ReadOnlyLocks:
 
     def all(self) -> list[Lock]:
         return self._all()
+
+    def takeover_for(self, vehicle_id: str) -> Lock | None:
+        return self._takeover_for(vehicle_id)
 
 
 # ------------------------------------------------------------------------------------------------
@@ -395,6 +436,11 @@ class SafetyPolicy:
         Operators (via="rest") are not held by either."""
         _check_via(via)
         if via == "mcp":
+            taken = self.locks.takeover_for(ctx.vehicle_id)
+            if taken is not None:
+                raise refuse(
+                    Rule.TAKEN_OVER, taken_over_text(ctx.vehicle_id, taken), vehicle_id=ctx.vehicle_id
+                )
             reason = self.locks.reason_for(ctx.vehicle_id)
             if reason is not None:
                 raise refuse(

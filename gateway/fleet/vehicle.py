@@ -218,6 +218,29 @@ class Vehicle:
         """The requested mode on this drone's autopilot; InvalidArgument listing its modes otherwise."""
         return require_mode(name, self.dialect, self.id)
 
+    def heartbeat_mode(self) -> tuple[str, bool] | None:
+        """The autopilot's own name of the mode its last HEARTBEAT shows, and whether it is armed; None
+        before the first HEARTBEAT of the session or while it is stale."""
+        facts = self.link.facts
+        age = self.link.last_heartbeat_age_s
+        if (
+            facts.custom_mode is None
+            or facts.autopilot is None
+            or age is None
+            or age > self.settings.link_lost_after_s
+        ):
+            return None
+        return self.dialect.native_mode(facts.custom_mode), bool(facts.armed)
+
+    def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
+        """The modes an operation of ``kind`` the gateway commanded may show (the dialect's)."""
+        return self.dialect.commanded_modes(kind, done=done)
+
+    def recent_texts(self, within_s: float) -> list[str]:
+        """What the autopilot said (notice or worse: what explains a failsafe, not its info chatter) in
+        the last ``within_s`` seconds, oldest first."""
+        return self.link.said_since(time.time() - within_s)
+
     async def set_flight_mode(self, name: str) -> None:
         """Switch flight mode by a common name (HOLD, RTL, LAND, MISSION, ...) or the autopilot's own;
         done once the HEARTBEAT reports the new mode. HOLD in the air is the hold action."""

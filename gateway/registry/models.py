@@ -191,6 +191,18 @@ class LockRow(Base):
     locked_at: Mapped[datetime] = mapped_column(UTCDateTime())
 
 
+class TakeoverRow(Base):
+    """A drone taken over by a pilot, another ground station or a failsafe (`gateway.fleet.takeover`):
+    agents are refused until an operator releases it; survives restarts."""
+
+    __tablename__ = "takeovers"
+
+    vehicle_id: Mapped[str] = mapped_column(String(32), primary_key=True)
+    reason: Mapped[str] = mapped_column(Text)
+    locked_by: Mapped[str] = mapped_column(String(200))
+    locked_at: Mapped[datetime] = mapped_column(UTCDateTime())
+
+
 class ClusterNodeRow(Base):
     """A gateway node of a cluster; alive while ``expires_at`` is in the future (renewed with its leases)."""
 

@@ -20,7 +20,8 @@ STATUS_TEXT_MAX = 255
 SEVERITY_NAMES = ("EMERGENCY", "ALERT", "CRITICAL", "ERROR", "WARNING", "NOTICE", "INFO", "DEBUG")
 
 SessionKind = Literal["mcp-2025", "mcp-2026", "rest", "console"]
-AuditSource = Literal["mcp", "rest", "console"]
+#: the door a call came through; "gateway": what the gateway itself recorded (a takeover it saw)
+AuditSource = Literal["mcp", "rest", "console", "gateway"]
 AuditOutcome = Literal["ok", "error", "refused", "running", "superseded", "cancelled"]
 OperationStatus = Literal["running", "succeeded", "failed", "superseded", "interrupted", "cancelled"]
 #: how a call that left its operation running ends in the audit, by how the operation ended (a fleet

@@ -28,6 +28,7 @@ from gateway.registry.models import (
     OperationRow,
     SessionRow,
     StatusTextRow,
+    TakeoverRow,
     TrackSampleRow,
     VehicleRow,
 )
@@ -722,6 +723,34 @@ class Store:
             rows = (await session.scalars(select(LockRow).order_by(LockRow.scope))).all()
             return [
                 LockRecord(scope=r.scope, reason=r.reason, by=r.locked_by, locked_at=r.locked_at)
+                for r in rows
+            ]
+
+    # --- takeover locks (gateway.fleet.takeover) ----------------------------------------------------
+
+    async def save_takeover(self, vehicle_id: str, reason: str, by: str, locked_at: datetime) -> LockRecord:
+        """Store (or replace) the takeover lock of a drone."""
+        async with self._sessions.begin() as session:
+            row = await session.get(TakeoverRow, vehicle_id)
+            if row is None:
+                session.add(
+                    TakeoverRow(vehicle_id=vehicle_id, reason=reason, locked_by=by[:200], locked_at=locked_at)
+                )
+            else:
+                row.reason, row.locked_by, row.locked_at = reason, by[:200], locked_at
+        return LockRecord(scope=vehicle_id, reason=reason, by=by[:200], locked_at=locked_at)
+
+    async def delete_takeover(self, vehicle_id: str) -> bool:
+        """Remove a drone's takeover lock; False when there was none."""
+        async with self._sessions.begin() as session:
+            result = await session.execute(delete(TakeoverRow).where(TakeoverRow.vehicle_id == vehicle_id))
+            return bool(_rowcount(result))
+
+    async def list_takeovers(self) -> list[LockRecord]:
+        async with self._sessions() as session:
+            rows = (await session.scalars(select(TakeoverRow).order_by(TakeoverRow.vehicle_id))).all()
+            return [
+                LockRecord(scope=r.vehicle_id, reason=r.reason, by=r.locked_by, locked_at=r.locked_at)
                 for r in rows
             ]
 

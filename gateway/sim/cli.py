@@ -56,6 +56,13 @@ def add_sim_arguments(parser: argparse.ArgumentParser, default_count: int = 1) -
     parser.add_argument("--count", type=int, default=default_count, help="number of vehicles")
     parser.add_argument("--tcp-base-port", type=_port, default=5760, help="TCP port of vehicle 0 (0 = any)")
     parser.add_argument("--udp-base-port", type=_port, default=None, help="also send UDP to 127.0.0.1:P+i")
+    parser.add_argument(
+        "--gcs-base-port",
+        type=_port,
+        default=None,
+        help="a second MAVLink TCP port per vehicle, P+10*i (0 = any), for another ground station (as "
+        "SITL's SERIAL1, 5762)",
+    )
     parser.add_argument("--speedup", type=_positive_float, default=1.0, help="simulated time speed-up")
     parser.add_argument(
         "--home",
@@ -75,6 +82,7 @@ def build_fleet(args: argparse.Namespace) -> SimFleet:
         args.count,
         tcp_base_port=args.tcp_base_port,
         udp_base_port=args.udp_base_port,
+        gcs_base_port=getattr(args, "gcs_base_port", None),
         speedup=args.speedup,
         home=args.home,
         bind=args.bind,
@@ -99,6 +107,7 @@ async def serve(args: argparse.Namespace, banner: bool = True) -> None:
         if banner:
             for v in fleet.vehicles:
                 extra = f" udp {v.udp_url}" if v.udp_url else ""
+                extra += f" gcs {v.gcs_url}" if v.gcs_url else ""
                 print(f"vehicle {v.index} sysid {v.sysid} {v.url}{extra}", flush=True)
             if control is not None:
                 print(f"control {control.url}", flush=True)

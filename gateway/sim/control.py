@@ -137,6 +137,14 @@ class ControlServer:
             _call(vehicle.set_battery, _number(args, "pct"))
         elif action == "reboot":
             vehicle.reboot()
+        elif action == "mode":  # a pilot's RC switch or another ground station (not the gateway)
+            name, text = args.get("mode"), args.get("text")
+            if not isinstance(name, str) or (text is not None and not isinstance(text, str)):
+                raise ControlError(400, "'mode' must be a mode name and 'text' (optional) a string")
+            try:
+                vehicle.pilot_mode(name, text)
+            except ValueError as exc:
+                raise ControlError(400, str(exc)) from None
         elif action == "mission_capacity":
             items = args.get("items")
             if items is not None and (isinstance(items, bool) or not isinstance(items, int)):
@@ -235,6 +243,10 @@ class SimControl:
 
     async def set_battery(self, index: int, pct: float) -> dict:
         return await self._post(f"/vehicles/{index}/battery", {"pct": pct})
+
+    async def pilot_mode(self, index: int, mode: str, text: str | None = None) -> dict:
+        """Switch mode as a pilot or another ground station would; ``text``: a STATUSTEXT said first."""
+        return await self._post(f"/vehicles/{index}/mode", {"mode": mode, "text": text})
 
     async def reboot(self, index: int) -> dict:
         """Restart the vehicle like an autopilot reboot (stream rates are lost; TCP clients reconnect)."""

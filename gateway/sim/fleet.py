@@ -35,7 +35,8 @@ def parse_home(text: str) -> tuple[float, float, float, float]:
 
 class SimFleet:
     """``count`` vehicles: vehicle i has sysid ``sysid_base + i``, TCP port ``tcp_base_port + 10*i``
-    (0 = any free port), optional UDP output to ``udp_base_port + i``; homes 5 m apart eastwards."""
+    (0 = any free port), optional UDP output to ``udp_base_port + i``, optional second ground station
+    port ``gcs_base_port + 10*i`` (0 = any free port); homes 5 m apart eastwards."""
 
     def __init__(
         self,
@@ -43,6 +44,7 @@ class SimFleet:
         *,
         tcp_base_port: int = 5760,
         udp_base_port: int | None = None,
+        gcs_base_port: int | None = None,
         speedup: float = 1.0,
         home: tuple[float, float, float, float] = DEFAULT_HOME,
         bind: str = "127.0.0.1",
@@ -76,6 +78,7 @@ class SimFleet:
                     bind=bind,
                     tcp_port=tcp_base_port + 10 * i if tcp_base_port else 0,
                     udp_port=udp_base_port + i if udp_base_port else None,
+                    gcs_port=_port_of(gcs_base_port, i),
                     timeline=timeline,
                 )
             )
@@ -148,6 +151,13 @@ class SimFleet:
 
     def describe(self) -> list[dict]:
         return [v.state() for v in self.vehicles]
+
+
+def _port_of(base: int | None, index: int) -> int | None:
+    """Vehicle ``index``'s port from a base port (None: no such port; 0: any free one)."""
+    if base is None:
+        return None
+    return base + 10 * index if base else 0
 
 
 def spread(vehicles: Sequence[SimVehicle]) -> list[str]:

@@ -94,8 +94,11 @@ class SimVehicle:
         bind: str = "127.0.0.1",
         tcp_port: int = 5760,
         udp_port: int | None = None,
+        gcs_port: int | None = None,
         timeline: Timeline | None = None,
     ) -> None:
+        """``gcs_port``: a second MAVLink TCP port (0: any free one) for another ground station, as
+        SITL's SERIAL1 (5762): a pilot's GCS switching modes beside the gateway."""
         if not 1 <= sysid <= 255:
             raise ValueError(f"system id must be 1..255, got {sysid}")
         if not speedup > 0 or not math.isfinite(speedup):
@@ -123,6 +126,10 @@ class SimVehicle:
         self.links: list[Link] = [TcpServerLink(sysid, self._receive, self.faults, bind, tcp_port)]
         if udp_port:
             self.links.append(UdpOutLink(sysid, self._receive, self.faults, "127.0.0.1", udp_port))
+        self.gcs_link: TcpServerLink | None = None
+        if gcs_port is not None:
+            self.gcs_link = TcpServerLink(sysid, self._receive, self.faults, bind, gcs_port)
+            self.links.append(self.gcs_link)
         self._wall_last: float | None = None
 
     def _boot(self) -> None:
@@ -187,6 +194,26 @@ class SimVehicle:
             if isinstance(link, UdpOutLink):
                 return f"udpin://127.0.0.1:{link.port}"
         return None
+
+    @property
+    def gcs_url(self) -> str | None:
+        """The second ground station's port (mavsdk_server / pymavlink syntax: tcpout / tcp:)."""
+        link = self.gcs_link
+        return None if link is None else f"tcpout://{link.bind}:{link.port}"
+
+    def pilot_mode(self, name: str, text: str | None = None) -> None:
+        """Switch mode as a pilot's RC switch or another ground station would (the gateway did not ask):
+        ``text``, when given, is said first (as a failsafe announces itself). ValueError: no such mode
+        or the autopilot refuses it (its words)."""
+        try:
+            mode = Mode[name.strip().upper()]
+        except KeyError:
+            raise ValueError(f"no such mode {name!r}") from None
+        if text:
+            self.text(mav.MAV_SEVERITY_CRITICAL, text)
+        ok, why = self.flight.set_mode(int(mode))
+        if not ok:
+            raise ValueError(f"mode change to {mode.name} refused: {why}")
 
     # ------------------------------------------------------------------------------------------------
     # derived state
@@ -616,6 +643,7 @@ class SimVehicle:
             "sysid": self.sysid,
             "url": self.url,
             "udp_url": self.udp_url,
+            "gcs_url": self.gcs_url,
             "t_boot_s": round(self.t, 3),
             "boots": self.boots,
             "mode": mode_name(self.mode),

@@ -15,9 +15,10 @@ from tests.helpers.timing import scaled
 
 
 @contextmanager
-def serve_in_thread(app: FastAPI, startup_timeout_s: float = 60.0) -> Iterator[str]:
-    """Yield the base URL of ``app`` served on 127.0.0.1; the server (and its lifespan) stop on exit."""
-    port = free_tcp_port()
+def serve_in_thread(app: FastAPI, startup_timeout_s: float = 60.0, port: int | None = None) -> Iterator[str]:
+    """Yield the base URL of ``app`` served on 127.0.0.1 (a free port unless ``port``); the server (and its
+    lifespan) stop on exit."""
+    port = port or free_tcp_port()
     server = uvicorn.Server(
         uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning", lifespan="on")
     )

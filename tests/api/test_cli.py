@@ -6,6 +6,8 @@ import asyncio
 import json
 import subprocess
 import sys
+import threading
+import time
 from datetime import UTC, datetime, timedelta
 from pathlib import Path
 
@@ -15,6 +17,7 @@ from gateway.app import create_app
 from gateway.config import Settings
 from gateway.registry.store import Store, create_engine_for, current_revision, head_revision
 from gateway.server_cli import main
+from gateway.util.ports import free_tcp_port
 from tests.fakes import FakeRegistry
 from tests.helpers.timing import scaled
 
@@ -128,6 +131,34 @@ def test_drones_through_a_running_gateway(tmp_path: Path, capsys: pytest.Capture
         assert run_cli("drones", "remove", "alpha", "--api", base) == 0
     port_closed = run_cli("drones", "list", "--api", base)
     assert port_closed == 1 and "cannot reach the gateway" in capsys.readouterr().err
+
+
+def test_registration_waits_for_a_gateway_still_starting(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`drones add --api URL --wait S` started before the gateway listens (as podman-compose starts the
+    compose file's registrars) registers once the gateway is ready."""
+    port = free_tcp_port()
+    base = f"http://127.0.0.1:{port}"
+    codes: list[int] = []
+    argv = ["drones", "add", "alpha", "tcpout://127.0.0.1:5760", "--api", base, "--wait", str(scaled(120))]
+    registrar = threading.Thread(target=lambda: codes.append(run_cli(*argv)))
+    registrar.start()
+    try:
+        time.sleep(1.0)  # the registrar asks a closed port meanwhile
+        assert registrar.is_alive(), capsys.readouterr()
+        settings = Settings(database_url=f"sqlite+aiosqlite:///{tmp_path / 'late.db'}")
+        with serve_in_thread(create_app(settings, registry_factory=FakeRegistry), port=port):
+            registrar.join(timeout=scaled(120))
+            assert codes == [0], capsys.readouterr()
+            assert "registered alpha" in capsys.readouterr().out
+    finally:
+        registrar.join(timeout=scaled(130))
+    # nobody answers: the wait ends with one line; a bad --wait is named and nothing is called
+    assert run_cli("drones", "list", "--api", base, "--wait", "0.5") == 1
+    assert f"the gateway at {base} did not answer /readyz within 0.5 s (--wait)" in capsys.readouterr().err
+    assert run_cli("drones", "list", "--api", base, "--wait", "-3") == 2
+    assert "--wait must be a number of seconds, 0 or more; got -3.0" in capsys.readouterr().err
 
 
 def test_serve_refuses_a_public_bind_without_tokens(capsys: pytest.CaptureFixture[str]) -> None:

@@ -13,6 +13,7 @@ from typing import Any
 import yaml
 
 from gateway.config import Settings
+from gateway.hosts import host_allowed
 from gateway.registry.spec import VehicleSpec
 from tests.helpers.timing import scaled
 
@@ -33,8 +34,11 @@ def _resolved(value: str) -> str:
 def test_services_are_nats_postgres_three_nodes_the_drones_and_their_registrar() -> None:
     services = _compose()["services"]
     assert sorted(services) == sorted(["nats", "postgres", "drones", "register-drones", *NODES])
-    assert services["nats"]["image"].startswith("nats:")
-    assert services["postgres"]["image"].startswith("postgres:")
+    # the official images unless NATS_IMAGE / POSTGRES_IMAGE name others (deploy/debian/ builds them)
+    assert services["nats"]["image"].startswith("${NATS_IMAGE:-nats:")
+    assert services["postgres"]["image"].startswith("${POSTGRES_IMAGE:-postgres:")
+    for name in ("nats.Containerfile", "postgres.Containerfile", "postgres-entrypoint.sh"):
+        assert (ROOT / "deploy" / "debian" / name).is_file(), name
 
 
 def test_every_node_is_a_valid_cluster_node_on_one_database_and_one_nats() -> None:
@@ -86,4 +90,9 @@ def test_the_registrar_adds_exactly_the_drones_the_simulator_serves() -> None:
         spec = VehicleSpec(id=args[3], url=args[4], expected_sysid=int(args[args.index("--sysid") + 1]))
         assert spec.url == f"tcpout://drones:{base + 10 * i}" and spec.expected_sysid == i + 1
         assert "--if-missing" in args and args[args.index("--api") + 1] == "http://node-a:8765"
+        # node-a answers that Host (foreign Host headers are refused)
+        node_env = {k: _resolved(str(v)) for k, v in services["node-a"]["environment"].items()}
+        allowed = Settings(_env_file=None, allowed_hosts=node_env.get("GATEWAY_ALLOWED_HOSTS", ""))
+        assert host_allowed("node-a:8765", allowed) and not host_allowed("evil.example", allowed)
+        assert float(args[args.index("--wait") + 1]) >= 60  # waits for node-a itself (podman-compose)
     assert services["register-drones"]["depends_on"]["node-a"]["condition"] == "service_healthy"

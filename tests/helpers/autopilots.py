@@ -33,6 +33,9 @@ class Autopilot:
     process: subprocess.Popen[bytes]
     log: Path
     started_at: float  # time.monotonic() just before the process was started
+    #: another ground station's way in (pymavlink syntax): ArduCopter SITL's SERIAL1 TCP port, PX4's GCS
+    #: MAVLink instance (UDP; it answers whoever writes to it)
+    gcs: str | None = None
 
     def log_tail(self, n: int = 30) -> str:
         with contextlib.suppress(OSError):
@@ -141,7 +144,13 @@ def arducopter(
         "--home", ",".join(str(x) for x in HOME),
     ]  # fmt: skip
     with _running(argv, folder, f"arducopter-{instance}", os.environ) as (proc, log, started):
-        yield Autopilot(f"tcpout://127.0.0.1:{5760 + 10 * instance}", proc, log, started)
+        yield Autopilot(
+            f"tcpout://127.0.0.1:{5760 + 10 * instance}",
+            proc,
+            log,
+            started,
+            f"tcp:127.0.0.1:{5762 + 10 * instance}",
+        )
 
 
 @contextlib.contextmanager
@@ -163,4 +172,10 @@ def px4(folder: Path, taken: set[int] | None = None) -> Iterator[Autopilot]:
     home = folder / f"px4-{instance}"
     home.mkdir(exist_ok=True)
     with _running(argv, home, "px4", {**os.environ, **sih}) as (proc, log, started):
-        yield Autopilot(f"udpin://127.0.0.1:{14540 + instance}", proc, log, started)
+        yield Autopilot(
+            f"udpin://127.0.0.1:{14540 + instance}",
+            proc,
+            log,
+            started,
+            f"udpout:127.0.0.1:{18570 + instance}",
+        )

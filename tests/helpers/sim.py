@@ -29,6 +29,8 @@ class SimProcess:
     pid: int
     log_path: str
     udp_urls: list[str | None] = field(default_factory=list)
+    #: each vehicle's second ground station port (``extra_args=["--gcs-base-port", "0"]``)
+    gcs_urls: list[str | None] = field(default_factory=list)
 
     def log_tail(self, n: int = 40) -> str:
         return tail(self.log_path, n)
@@ -73,6 +75,7 @@ async def sim_process(
     try:
         urls: list[str] = []
         udp_urls: list[str | None] = []
+        gcs_urls: list[str | None] = []
         sysids: list[int] = []
         control_url = ""
 
@@ -90,6 +93,8 @@ async def sim_process(
                     urls.append(match.group(3))
                     udp = re.search(r" udp (\S+)", line)
                     udp_urls.append(udp.group(1) if udp else None)
+                    gcs = re.search(r" gcs (\S+)", line)
+                    gcs_urls.append(gcs.group(1) if gcs else None)
                 elif line.startswith("control "):
                     control_url = line.split(" ", 1)[1]
                 elif line == "ready":
@@ -97,7 +102,7 @@ async def sim_process(
 
         await asyncio.wait_for(read_banner(), scaled(start_timeout_s))
         control = SimControl(control_url)
-        yield SimProcess(urls, sysids, control, control_url, proc.pid, log.name, udp_urls)
+        yield SimProcess(urls, sysids, control, control_url, proc.pid, log.name, udp_urls, gcs_urls)
     finally:
         if control is not None:
             await control.aclose()

@@ -97,10 +97,12 @@ async def gateway_stack(
     *,
     token: str | None = None,
     tags: dict[str, list[str]] | None = None,
+    sim_args: tuple[str, ...] = (),
     **overrides: Any,
 ) -> AsyncIterator[Stack]:
-    """Drones d1..dN (with ``tags`` by id); ``token`` is what ``Stack.rest`` authenticates with."""
-    async with sim_process(count=count, speedup=speedup) as sim:
+    """Drones d1..dN (with ``tags`` by id); ``token`` is what ``Stack.rest`` authenticates with;
+    ``sim_args``: more arguments of the simulator."""
+    async with sim_process(count=count, speedup=speedup, extra_args=sim_args) as sim:
         settings = integration_settings(tmp, **overrides)
         ids = [f"d{i + 1}" for i in range(count)]
         store = await Store.open(settings.database_url)

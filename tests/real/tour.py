@@ -127,7 +127,7 @@ def distance(a: dict[str, Any], lat: float, lon: float) -> float:
 async def gateway_over(tmp: Path, profile: Profile, autopilots: list[Autopilot], **overrides: Any):  # type: ignore[no-untyped-def]
     """The gateway (REST + /mcp on a free loopback port) with one drone per autopilot, all ready, and
     an MCP client on it."""
-    settings = integration_settings(tmp, mcp_wait_cap_s=10.0, arrival_tolerance_m=3.0, **overrides)
+    settings = integration_settings(tmp, **{"mcp_wait_cap_s": 10.0, "arrival_tolerance_m": 3.0, **overrides})
     ids = [f"{profile.prefix}{k + 1}" for k in range(len(autopilots))]
     store = await Store.open(settings.database_url)
     try:

@@ -78,12 +78,17 @@ def gateway_command(host: str = "0.0.0.0", port: int = GATEWAY_PORT) -> list[str
     return ["fleet-gateway", "serve", "--host", host, "--port", str(port)]
 
 
+REGISTER_WAIT_S = 180
+"""How long a registrar waits for the gateway's /readyz: compose engines that ignore ``depends_on:
+condition: service_healthy`` (podman-compose) start it beside a gateway that is still starting."""
+
+
 def register_command(index: int, api: str) -> list[str]:
-    """Registers drone ``index`` with a running gateway (the compose file's one-shot registrar)."""
+    """Registers drone ``index`` with a gateway, once it is ready (the compose file's one-shot registrar)."""
     return [
         "fleet-gateway", "drones", "add", drone_id(index), drone_url(index),
         "--sysid", str(drone_sysid(index)), "--name", f"Drone {index + 1}", "--tag", "swarm",
-        "--if-missing", "--api", api,
+        "--if-missing", "--api", api, "--wait", str(REGISTER_WAIT_S),
     ]  # fmt: skip
 
 

@@ -126,6 +126,7 @@ function Console({ config, onLogout }) {
       "drone-action": () => api(`/vehicles/${r.drone}/${r.action}`, { method: "POST" }),
       "lock-drone": () => api(`/vehicles/${r.drone}/lock`, { method: "POST", body: { reason: choice.reason } }),
       "unlock-drone": () => api(`/vehicles/${r.drone}/lock`, { method: "DELETE" }),
+      "release-drone": () => api(`/vehicles/${r.drone}/takeover`, { method: "DELETE" }),
       "lock-fleet": () => api("/fleet/lock", { method: "POST", body: { reason: choice.reason } }),
       "unlock-fleet": () => api("/fleet/lock", { method: "DELETE" }),
       stop: () => api("/fleet/stop", { method: "POST", body: { action: choice.action, lock: choice.lock } }),

@@ -116,6 +116,8 @@ export function DroneDetail({ drone, map, canAct, ask }) {
     ${drone.locked && html`<div class="lock-note">⚿ ${drone.locked}</div>`}
     <div class="actions">
       ${act("hold", "Hold")} ${act("land", "Land")} ${act("rtl", "Return home")}
+      ${drone.taken_over && html`<button type="button" class="act act-release" disabled=${!canAct} title=${canAct ? "" : READ_ONLY}
+            onClick=${() => ask({ kind: "release-drone", drone: drone.id })}>Release to agents</button>`}
       ${drone.own_lock
         ? html`<button type="button" class="act act-unlock" disabled=${!canAct} title=${canAct ? "" : READ_ONLY}
             onClick=${() => ask({ kind: "unlock-drone", drone: drone.id })}>Unlock drone</button>`
@@ -303,6 +305,8 @@ function describe(request) {
       return { title: `Lock ${request.drone}`, text: `Agents' commands to ${request.drone} will be refused with your reason until an operator unlocks it.`, confirm: "Lock drone", reason: true };
     case "unlock-drone":
       return { title: `Unlock ${request.drone}`, text: `Agents may command ${request.drone} again (a fleet lock still applies).`, confirm: "Unlock drone" };
+    case "release-drone":
+      return { title: `Release ${request.drone}`, text: `A pilot or ground station took ${request.drone}. Release it only when they are done with it: agents may command it again (other locks stay).`, confirm: "Release drone" };
     case "lock-fleet":
       return { title: "Lock the fleet", text: "Agents' commands to every drone will be refused with your reason until an operator unlocks the fleet.", confirm: "Lock fleet", reason: true };
     case "unlock-fleet":

@@ -48,6 +48,17 @@ COMMON_TO_NATIVE: dict[str, str] = {
 OFFERED_NATIVE = ("BRAKE", "SMART_RTL", "CIRCLE", "STABILIZE", "ALT_HOLD", "POSHOLD")
 #: MAV_TYPE values flown by ArduCopter (quad, coaxial, heli, hexa, octo, tri, dodeca, deca)
 COPTER_TYPES = frozenset({2, 3, 4, 13, 14, 15, 29, 35})
+#: the modes the gateway's own commands put ArduCopter in, per operation kind (`commanded_modes`): every
+#: motion is a GUIDED command (hold too), a landing LAND, a return RTL (which may end in LAND), a mission
+#: AUTO (its RTL and LAND items are flown in AUTO)
+GUIDED_KINDS = frozenset({"takeoff", "goto", "reposition", "move_to_relative", "set_yaw", "hold", "formation",
+                          "fleet_climb"})  # fmt: skip
+COMMANDED_MODES: dict[str, frozenset[str]] = {
+    **{kind: frozenset({"GUIDED"}) for kind in GUIDED_KINDS},
+    "land": frozenset({"LAND"}),
+    "return_to_launch": frozenset({"RTL", "LAND"}),
+    "mission": frozenset({"AUTO"}),
+}
 EKF_POS_HORIZ_ABS = 16
 EKF_CONST_POS_MODE = 128
 MAV_CMD_CONDITION_YAW = 115
@@ -127,6 +138,12 @@ class ArduPilot:
             native = wanted
         number = ARDUCOPTER_MODES[native]
         return ModeChoice(wanted, native, number, (1.0, float(number)))
+
+    def native_mode(self, custom_mode: int) -> str:
+        return ARDUCOPTER_MODE_NAMES.get(custom_mode, f"MODE_{custom_mode}")
+
+    def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
+        return COMMANDED_MODES.get(kind, frozenset())
 
     # --- arming and the ground -----------------------------------------------------------------------
     def arming_will_pass(self, complaint: str) -> bool:

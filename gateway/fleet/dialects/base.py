@@ -70,6 +70,19 @@ class Dialect(Protocol):
         """The mode ``name`` (common or native, any case) means here, or None if there is none."""
         ...
 
+    def native_mode(self, custom_mode: int) -> str:
+        """The autopilot's own name of a HEARTBEAT custom mode (e.g. GUIDED, AUTO.LOITER)."""
+        ...
+
+    def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
+        """The native modes the vehicle may be in while it does what the gateway commanded: an
+        operation of ``kind`` (takeoff, goto, reposition, move_to_relative, set_yaw, hold, land,
+        return_to_launch, mission, formation, fleet_climb), or ``done`` once that operation succeeded
+        (PX4 holds after a takeoff or a mission). Any other mode is one the gateway did not command: a
+        pilot, another ground station or a failsafe chose it (`gateway.fleet.takeover`). Empty for a
+        kind the dialect does not fly in a known mode (then nothing is judged)."""
+        ...
+
     # --- arming and the ground -----------------------------------------------------------------------
     @property
     def arming_mode(self) -> str | None:

@@ -49,6 +49,23 @@ COMMON_TO_NATIVE: dict[str, str] = {
     "MISSION": "AUTO.MISSION",
     "TAKEOFF": "AUTO.TAKEOFF",
 }
+#: the modes the gateway's own commands put PX4 in, per operation kind (`commanded_modes`): takeoff is
+#: AUTO.TAKEOFF, after which PX4 holds by itself; every motion (goto, reposition, yaw, hold) is a
+#: reposition flown in AUTO.LOITER; a return may end in AUTO.LAND; a mission is AUTO.MISSION, after
+#: which PX4 holds (or returns, lands: its last item decides). A pilot's "Hold" during a goto leaves the
+#: mode as it was (AUTO.LOITER): PX4 gives no sign of it in the HEARTBEAT.
+LOITER_KINDS = frozenset({"goto", "reposition", "move_to_relative", "set_yaw", "hold", "formation",
+                          "fleet_climb"})  # fmt: skip
+COMMANDED_MODES: dict[str, frozenset[str]] = {
+    **{kind: frozenset({"AUTO.LOITER"}) for kind in LOITER_KINDS},
+    "takeoff": frozenset({"AUTO.TAKEOFF", "AUTO.LOITER"}),
+    "land": frozenset({"AUTO.LAND"}),
+    "return_to_launch": frozenset({"AUTO.RTL", "AUTO.LAND"}),
+    "mission": frozenset({"AUTO.MISSION"}),
+}
+SETTLED_MODES: dict[str, frozenset[str]] = {
+    "mission": frozenset({"AUTO.MISSION", "AUTO.LOITER", "AUTO.RTL", "AUTO.LAND"}),
+}
 #: PX4's own names set_flight_mode offers: the autonomous modes (the others need a pilot or offboard)
 OFFERED_NATIVE = ("AUTO.LOITER", "AUTO.RTL", "AUTO.LAND", "AUTO.MISSION", "AUTO.TAKEOFF")
 #: how PX4's mission feasibility checks begin their text when they reject a mission
@@ -117,6 +134,18 @@ class PX4:
             native = wanted
         main, sub = PX4_MODES[native]
         return ModeChoice(wanted, native, (main << 16) | (sub << 24), (1.0, float(main), float(sub)))
+
+    def native_mode(self, custom_mode: int) -> str:
+        main, sub = (custom_mode >> 16) & 0xFF, (custom_mode >> 24) & 0xFF
+        for name, (m, s) in PX4_MODES.items():
+            if m == main and (s == sub or (s == 0 and main != 4)):
+                return name
+        return f"MODE_{main}.{sub}"
+
+    def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
+        if done and kind in SETTLED_MODES:
+            return SETTLED_MODES[kind]
+        return COMMANDED_MODES.get(kind, frozenset())
 
     # --- arming and the ground -----------------------------------------------------------------------
     def arming_will_pass(self, complaint: str) -> bool:

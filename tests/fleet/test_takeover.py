@@ -1,0 +1,203 @@
+"""A pilot or ground station always wins: the real Gateway (Commander, policy, operations, store) over
+fake drones whose HEARTBEAT mode the test switches as a pilot would (the fake reports the mode the last
+command brought, like an autopilot does)."""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+
+from gateway.errors import SafetyRefusal
+from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
+from gateway.fleet.takeover import likely_cause
+from gateway.runtime import Gateway
+from tests.fakes import FakeVehicle, fake, fake_gateway, position_value, spread, unit_settings
+from tests.fleet._util import AGENT, OPERATOR, at
+from tests.helpers.timing import scaled
+
+
+async def until(check: Callable[[], object], what: str, within_s: float = 10.0) -> None:
+    deadline = asyncio.get_running_loop().time() + scaled(within_s)
+    while not check():
+        if asyncio.get_running_loop().time() > deadline:
+            raise AssertionError(f"timed out waiting for {what}")
+        await asyncio.sleep(0.02)
+
+
+async def flying_goto(gateway: Gateway, drone: str = "d1") -> str:
+    """``drone`` in the air and on a long goto (slow), seen in GUIDED by the watch; the goto's id."""
+    d = fake(gateway, drone)
+    c = gateway.commander
+    took = await c.takeoff(AGENT, drone, 10.0)
+    assert (await c.wait(took.operation_id, 10)).status == "succeeded"
+    d.speed = 2.0
+    lat, lon = at(400, 0, d.home_ll)
+    op = await c.goto(AGENT, drone, lat, lon, 10.0)
+    ops = gateway.operations
+    assert ops is not None
+    await until(lambda: (e := ops.expected(drone)) is not None and e.seen, "the goto seen in GUIDED")
+    return op.operation_id
+
+
+def pilot_switch(d: FakeVehicle, mode: str, said: str | None = None) -> None:
+    if said:
+        d.telemetry.add_status_text("critical", said)
+    d.set(flight_mode=mode)
+
+
+async def test_a_pilot_switch_mid_goto_ends_it_locks_the_drone_and_an_operator_releases_it(
+    gateway: Gateway,
+) -> None:
+    c = gateway.commander
+    d1 = fake(gateway, "d1")
+    goto_id = await flying_goto(gateway)
+    waiter = asyncio.create_task(c.wait(goto_id, 60))
+    await asyncio.sleep(0.3)
+    assert not waiter.done()
+    pilot_switch(d1, "LOITER")
+    view = await asyncio.wait_for(waiter, scaled(5))  # the waiting call returns at once
+    assert view.status == "interrupted"
+    assert "from GUIDED to LOITER: a pilot or another ground station took control" in view.message
+    arrival = await c.arrival(AGENT, "d1")
+    assert arrival.status == "interrupted" and "GUIDED to LOITER" in arrival.message
+
+    sent_before = len(d1.sent)
+    with pytest.raises(SafetyRefusal) as refused:
+        await c.move_relative(AGENT, "d1", 10.0, 0.0)
+    assert refused.value.rule == "taken_over"
+    assert "taken over in LOITER" in refused.value.message
+    assert "DELETE /api/v1/vehicles/d1/takeover" in refused.value.message
+    for attempt in (c.hold(AGENT, "d1"), c.land(AGENT, "d1"), c.set_mode(AGENT, "d1", "GUIDED")):
+        with pytest.raises(SafetyRefusal):
+            await attempt
+    assert len(d1.sent) == sent_before  # nothing reached the drone: the pilot keeps LOITER
+    assert d1.telemetry.flight_mode is not None and d1.telemetry.flight_mode.value == "LOITER"
+    assert (await c.arrival(AGENT, "d1")).status == "interrupted"  # read tools still answer
+
+    store = gateway.require_store()
+    assert [t.scope for t in await store.list_takeovers()] == ["d1"]
+    audit = await store.list_audit(vehicle_id="d1")
+    row = next(r for r in audit if r.action == "takeover")
+    assert row.source == "gateway" and row.principal == "autopilot" and row.operation_id == goto_id
+    assert row.arguments["to_mode"] == "LOITER"
+    assert "taken over" in (gateway.locks.reason_for("d1") or "")
+
+    with pytest.raises(SafetyRefusal):  # agents cannot release
+        await c.release(AGENT, "d1")
+    released = await c.release(OPERATOR, "d1")
+    assert released.was_locked and await store.list_takeovers() == []
+    moved = await c.move_relative(AGENT, "d1", 5.0, 0.0)
+    assert moved.status == "running"
+
+
+async def test_a_failsafe_is_named_in_the_autopilots_words(gateway: Gateway) -> None:
+    d1 = fake(gateway, "d1")
+    goto_id = await flying_goto(gateway)
+    pilot_switch(d1, "RTL", said="Battery Failsafe")
+    view = await gateway.commander.wait(goto_id, 10)
+    assert view.status == "interrupted"
+    assert "from GUIDED to RTL: battery failsafe (autopilot says: 'Battery Failsafe')" in view.message
+
+
+async def test_the_gateways_own_commands_are_never_a_takeover(gateway: Gateway) -> None:
+    c = gateway.commander
+    goto_id = await flying_goto(gateway)
+    mode = await c.set_mode(AGENT, "d1", "CIRCLE")  # the gateway's own mode change supersedes the goto
+    assert mode.superseded_operation == goto_id
+    await asyncio.sleep(0.6)  # several polls of the watch
+    landing = await c.land(AGENT, "d1")
+    assert (await c.wait(landing.operation_id, 20)).status == "succeeded"
+    assert gateway.locks.takeover_for("d1") is None
+    ops = gateway.operations
+    assert ops is not None and (await c.wait(goto_id, 1)).status == "superseded"
+
+
+async def test_an_operator_still_commands_a_taken_over_drone_and_a_restart_keeps_the_lock(
+    tmp_path: Path,
+) -> None:
+    settings = unit_settings(tmp_path, mcp_wait_cap_s=10.0)
+    async with fake_gateway(settings, spread(1)) as gateway:
+        d1 = fake(gateway, "d1")
+        goto_id = await flying_goto(gateway)
+        pilot_switch(d1, "LOITER")
+        assert (await gateway.commander.wait(goto_id, 10)).status == "interrupted"
+        rtl = await gateway.commander.return_to_launch(OPERATOR, "d1")  # operators stay allowed
+        assert rtl.status == "running"
+    async with fake_gateway(settings, spread(1)) as gateway:
+        taken = gateway.locks.takeover_for("d1")
+        assert taken is not None and "LOITER" in taken.reason
+        with pytest.raises(SafetyRefusal):
+            await gateway.commander.takeoff(AGENT, "d1", 10.0)
+
+
+async def test_a_formation_with_a_taken_over_drone_stops_and_holds_the_others(tmp_path: Path) -> None:
+    async with fake_gateway(unit_settings(tmp_path, mcp_wait_cap_s=10.0), spread(3)) as gateway:
+        c = gateway.commander
+        rise = await c.fleet_takeoff(AGENT, ["d1", "d2", "d3"], 10.0)
+        assert (await c.wait_fleet(rise.operation_id, 20)).status == "succeeded"
+        drones = [fake(gateway, d) for d in ("d1", "d2", "d3")]
+        for d in drones:
+            d.speed = 2.0
+        lat, lon = at(300, 0)
+        formed = await c.formation_goto(AGENT, ["d1", "d2", "d3"], "line", lat, lon, 15.0)
+        ops = gateway.operations
+        assert ops is not None
+        await until(
+            lambda: all(
+                (e := ops.expected(d.id)) is not None and e.seen and e.kind == "formation" for d in drones
+            ),
+            "every drone on its formation leg",
+        )
+        held_before = [sum(1 for s in d.sent if s[0] == "hold") for d in drones]
+        pilot_switch(drones[1], "POSHOLD")
+        view = await c.wait_fleet(formed.operation_id, 20)
+        assert view.status == "aborted"
+        members = {m["drone_id"]: m for m in view.drones}
+        assert members["d2"]["status"] == "interrupted" and "GUIDED to POSHOLD" in members["d2"]["message"]
+        assert members["d1"]["status"] == "held" and members["d3"]["status"] == "held"
+        held_after = [sum(1 for s in d.sent if s[0] == "hold") for d in drones]
+        assert held_after[1] == held_before[1]  # the taken-over drone heard nothing
+        assert held_after[0] > held_before[0] and held_after[2] > held_before[2]
+        assert gateway.locks.takeover_for("d2") is not None
+
+
+def test_each_dialect_names_the_modes_its_commands_bring() -> None:
+    assert ARDUPILOT.commanded_modes("goto") == {"GUIDED"}
+    assert ARDUPILOT.commanded_modes("mission") == {"AUTO"}
+    assert PX4_DIALECT.commanded_modes("goto") == {"AUTO.LOITER"}
+    assert "AUTO.LOITER" not in PX4_DIALECT.commanded_modes("mission")
+    assert "AUTO.LOITER" in PX4_DIALECT.commanded_modes("mission", done=True)
+    assert PX4_DIALECT.native_mode((3 << 16) | (0 << 24)) == "POSCTL"
+    assert PX4_DIALECT.native_mode((4 << 16) | (5 << 24)) == "AUTO.RTL"
+    assert ARDUPILOT.native_mode(5) == "LOITER"
+
+
+def test_the_cause_comes_from_what_the_autopilot_said() -> None:
+    assert likely_cause("LOITER", []) == ("a pilot or another ground station took control", None)
+    assert likely_cause("RTL", ["Radio Failsafe - Continuing Auto"])[0] == "radio (RC) failsafe"
+    assert likely_cause("LAND", ["EKF variance"])[0] == "EKF / navigation failsafe"
+    assert "failsafe" in likely_cause("RTL", [])[0]
+
+
+async def test_after_a_restart_monitor_and_arrival_tell_what_the_flying_drone_does(tmp_path: Path) -> None:
+    settings = unit_settings(tmp_path, mcp_wait_cap_s=10.0)
+    async with fake_gateway(settings, spread(1)) as gateway:
+        goto_id = await flying_goto(gateway)
+    flying = spread(1)
+    lat, lon = at(100, 0, flying[0].home_ll)
+    flying[0].set(armed=True, in_air=True, landed_state="IN_AIR", flight_mode="GUIDED",
+                  position=position_value(lat, lon, 10.0))  # fmt: skip
+    async with fake_gateway(settings, flying) as gateway:
+        view = await gateway.commander.monitor(AGENT, "d1")
+        assert view.operation_id == goto_id and view.status == "interrupted", view
+        assert (
+            "while the operation was running; now: mode GUIDED, in the air at 10.0 m above home"
+            in view.message
+        )
+        assert "m from the goto's target" in view.message
+        arrival = await gateway.commander.arrival(AGENT, "d1")
+        assert arrival.operation_id == goto_id and arrival.status == "interrupted" and not arrival.arrived
+        assert arrival.distance_m is not None and arrival.distance_m > 250

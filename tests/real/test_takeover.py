@@ -1,0 +1,221 @@
+"""A pilot or ground station always wins, on the real autopilots: an agent's go_to_location is flying
+(through MCP over HTTP, the gateway with its SQLite store and a mavsdk_server), when a second ground
+station (pymavlink, on the autopilot's other port: ArduCopter SITL's SERIAL1 TCP port, PX4's GCS MAVLink
+instance) switches the mode, as a pilot's RC switch or QGroundControl does. The waiting call returns
+saying so, the autopilot keeps the pilot's mode while the agent keeps trying and is refused, and after
+an operator's release (REST) the agent flies the drone again.
+
+Figures (the call's return after the mode change) are printed, never asserted."""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from pathlib import Path
+from typing import Any
+
+import pytest
+from pymavlink import mavutil
+
+from gateway.fleet import geo
+from tests.helpers.autopilots import Autopilot
+from tests.helpers.timing import scaled
+from tests.mcp.conftest import structured
+from tests.real.test_tour_ardupilot import ARDUCOPTER
+from tests.real.test_tour_px4 import PX4
+from tests.real.tour import Profile, Tour, distance, gateway_over
+
+pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(600))]
+
+MAV_CMD_DO_SET_MODE = 176
+
+
+#: the second ground station's connection per address, kept for the test: PX4's GCS instance answers
+#: the first partner it heard (its address and port), not a new one
+_GCS: dict[str, Any] = {}
+
+
+def second_gcs_sets_mode(address: str, custom_mode: int, px4_modes: tuple[int, int] | None = None) -> float:
+    """Another ground station switches the mode: SET_MODE for ArduCopter (Mission Planner's mode
+    buttons), DO_SET_MODE with main/sub mode for PX4 (QGroundControl's). Returns when it was sent
+    (monotonic)."""
+    conn = _GCS.get(address)
+    if conn is None:
+        conn = _GCS[address] = mavutil.mavlink_connection(address, source_system=250, source_component=190)
+    deadline = time.monotonic() + scaled(20)
+    while True:  # PX4's GCS instance answers once it heard us: say hello until it does
+        conn.mav.heartbeat_send(mavutil.mavlink.MAV_TYPE_GCS, mavutil.mavlink.MAV_AUTOPILOT_INVALID, 0, 0, 0)
+        hb = conn.recv_match(type="HEARTBEAT", blocking=True, timeout=1.0)
+        if hb is not None and hb.type != mavutil.mavlink.MAV_TYPE_GCS:
+            break
+        if time.monotonic() > deadline:
+            raise AssertionError(f"no HEARTBEAT from the autopilot on {address}")
+    target = hb.get_srcSystem()
+    if px4_modes is None:
+        conn.mav.set_mode_send(target, mavutil.mavlink.MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, custom_mode)
+    else:
+        main, sub = px4_modes
+        conn.mav.command_long_send(target, 1, MAV_CMD_DO_SET_MODE, 0, 1, main, sub, 0, 0, 0, 0)
+    sent = time.monotonic()
+    conn.recv_match(type="COMMAND_ACK", blocking=True, timeout=2.0)
+    return sent
+
+
+async def takeover_mid_goto(
+    t: Tour, ap: Autopilot, *, switch: dict[str, Any], from_mode: str, to_mode: str, reported: str
+) -> None:
+    d = t.ids[0]
+    assert ap.gcs is not None
+    op = await t.ok("takeoff", drone_id=d, alt_m=12)
+    op = await t.finish(op, 90)
+    assert op["status"] == "succeeded", op
+    home = await t.ok("get_home_position", drone_id=d)
+    lat, lon = geo.offset_position(home["lat_deg"], home["lon_deg"], 400, 0)
+    waiting = asyncio.create_task(
+        t.call("go_to_location", {"drone_id": d, "lat_deg": lat, "lon_deg": lon, "alt_m": 12, "wait": True})
+    )
+    away = lambda p: distance(p, home["lat_deg"], home["lon_deg"]) > 40  # noqa: E731
+    await t.until("get_position", away, 120, "40 m out", drone_id=d)
+    assert not waiting.done()
+    returned: list[float] = []
+    waiting.add_done_callback(lambda _task: returned.append(time.monotonic()))
+    switched = await asyncio.to_thread(second_gcs_sets_mode, ap.gcs, **switch)
+    result = await asyncio.wait_for(waiting, scaled(30))
+    returned_s = returned[0] - switched
+    r = structured(result)
+    name = t.profile.autopilot
+    print(f"\nFIGURE {name}: go_to_location returned {returned_s:.2f} s after the mode change was sent")
+    if r["status"] == "running":  # the wait cap ran out first: that is a failure of its own
+        raise AssertionError(f"the goto did not end when the mode changed: {r}")
+    assert r["status"] == "interrupted", r
+    assert f"the autopilot switched from {from_mode} to {to_mode}" in r["message"], r
+    arrival = await t.ok("check_arrival", drone_id=d)
+    assert arrival["status"] == "interrupted" and to_mode in arrival["message"], arrival
+
+    # the agent keeps trying for 10 s; every try is refused and the pilot's mode stays
+    loop = asyncio.get_running_loop()
+    until = loop.time() + 10.0
+    tries = 0
+    while loop.time() < until:
+        text = await t.refused("move_to_relative", "taken_over", f"taken over in {to_mode}",
+                               drone_id=d, north_m=20, east_m=0)  # fmt: skip
+        assert f"DELETE /api/v1/vehicles/{d}/takeover" in text
+        await t.refused("hold_position", "taken_over", drone_id=d)
+        assert (await t.ok("get_flight_mode", drone_id=d))["value"] == reported
+        tries += 1
+        await asyncio.sleep(0.5)
+    assert tries >= 5
+    row = next(r for r in (await t.ok("list_drones"))["drones"] if r["drone_id"] == d)
+    assert row["locked"] and f"taken over in {to_mode}" in row["locked"], row
+    taken = (await t.rest("GET", f"/vehicles/{d}"))["taken_over"]
+    assert taken is not None and to_mode in taken["reason"], taken
+
+    # whatever the pilot's mode does with the drone, it ends on the ground: then an operator releases it
+    await t.until("get_armed", lambda r: r["value"] is False, 180, "down and disarmed", drone_id=d)
+    assert (await t.rest("DELETE", f"/vehicles/{d}/takeover"))["was_locked"] is True
+    op = await t.finish(await t.ok("takeoff", drone_id=d, alt_m=8), 90)
+    assert op["status"] == "succeeded", op
+    moved = await t.finish(await t.ok("move_to_relative", drone_id=d, north_m=10, east_m=0), 60)
+    assert moved["status"] == "succeeded", moved
+    landed = await t.finish(await t.ok("land", drone_id=d), 120)
+    assert landed["status"] == "succeeded", landed
+    assert (await t.rest("GET", f"/vehicles/{d}"))["taken_over"] is None
+
+
+async def interrupted_by_second_gcs(
+    t: Tour, ap: Autopilot, waiting: asyncio.Task[Any], switch: dict[str, Any], what: str
+) -> dict[str, Any]:
+    """The second ground station switches the mode while ``waiting`` (a tool call) waits; its answer."""
+    assert ap.gcs is not None and not waiting.done()
+    returned: list[float] = []
+    waiting.add_done_callback(lambda _task: returned.append(time.monotonic()))
+    switched = await asyncio.to_thread(second_gcs_sets_mode, ap.gcs, **switch)
+    r = structured(await asyncio.wait_for(waiting, scaled(60)))
+    after = returned[0] - switched
+    print(f"\nFIGURE {t.profile.autopilot}: {what} returned {after:.2f} s after the mode change was sent")
+    return r
+
+
+async def released_when_down(t: Tour, d: str) -> None:
+    await t.until("get_armed", lambda r: r["value"] is False, 180, "down and disarmed", drone_id=d)
+    assert (await t.rest("DELETE", f"/vehicles/{d}/takeover"))["was_locked"] is True
+
+
+async def takeover_mid_takeoff_and_mission(
+    t: Tour, ap: Autopilot, *, takeoff: tuple[dict[str, Any], str], mission: tuple[dict[str, Any], str]
+) -> None:
+    """Takeoff: the second GCS switches at 5 m of a 30 m climb; mission (from the ground): at 40 m of a
+    300 m leg. Each call ends interrupted naming the modes, the agent is refused, an operator releases
+    the drone (after the takeoff once it is down, after the mission in the air) and the agent flies it."""
+    d = t.ids[0]
+    waiting = asyncio.create_task(t.call("takeoff", {"drone_id": d, "alt_m": 30}))
+    await t.until("get_position", lambda p: p["alt_m"] > 5, 60, "5 m up", drone_id=d)
+    r = await interrupted_by_second_gcs(t, ap, waiting, takeoff[0], "takeoff")
+    assert r["status"] == "interrupted" and takeoff[1] in r["message"], r
+    await t.refused("takeoff", "taken_over", drone_id=d, alt_m=10)
+    await released_when_down(t, d)
+
+    home = await t.ok("get_home_position", drone_id=d)
+    lat, lon = geo.offset_position(home["lat_deg"], home["lon_deg"], 300, 0)
+    items = [
+        {"lat_deg": home["lat_deg"], "lon_deg": home["lon_deg"], "alt_m": 12, "kind": "takeoff"},
+        {"lat_deg": lat, "lon_deg": lon, "alt_m": 12},
+    ]
+    waiting = asyncio.create_task(t.call("initiate_mission", {"drone_id": d, "waypoints": items}))
+    away = lambda p: distance(p, home["lat_deg"], home["lon_deg"]) > 40  # noqa: E731
+    await t.until("get_position", away, 180, "40 m along the mission", drone_id=d)
+    r = await interrupted_by_second_gcs(t, ap, waiting, mission[0], "initiate_mission")
+    assert r["status"] == "interrupted" and mission[1] in r["message"], r
+    await t.refused("resume_mission", "taken_over", drone_id=d)
+    # the pilot is done (PX4's Hold hovers on; ArduCopter's RTL flies home): released in the air, the
+    # agent lands it
+    assert (await t.rest("DELETE", f"/vehicles/{d}/takeover"))["was_locked"] is True
+    landed = await t.finish(await t.ok("land", drone_id=d), 180)
+    assert landed["status"] == "succeeded", landed
+
+
+async def run(tmp: Path, profile: Profile, ap: Autopilot, scenario: Any, **kw: Any) -> None:
+    async with gateway_over(tmp, profile, [ap], mcp_wait_cap_s=120.0) as (tour, _settings):  # a long wait
+        try:
+            await scenario(tour, ap, **kw)
+        except AssertionError as exc:
+            raise AssertionError(f"{exc}\n--- {ap.log.name}\n{ap.log_tail(20)}") from None
+        finally:
+            conn = _GCS.pop(ap.gcs or "", None)
+            if conn is not None:
+                conn.close()
+
+
+async def test_a_second_ground_station_switches_arducopter_to_loiter_mid_goto(
+    arducopter, tmp_path: Path
+) -> None:
+    loiter = {"switch": {"custom_mode": 5}, "from_mode": "GUIDED", "to_mode": "LOITER", "reported": "LOITER"}
+    await run(tmp_path, ARDUCOPTER, arducopter, takeover_mid_goto, **loiter)
+
+
+async def test_a_second_ground_station_takes_arducopter_mid_takeoff_and_mid_mission(
+    arducopter, tmp_path: Path
+) -> None:
+    takeoff = ({"custom_mode": 5}, "the autopilot switched from GUIDED to LOITER")
+    mission = ({"custom_mode": 6}, "the autopilot switched from AUTO to RTL")
+    await run(
+        tmp_path, ARDUCOPTER, arducopter, takeover_mid_takeoff_and_mission, takeoff=takeoff, mission=mission
+    )
+
+
+async def test_a_second_ground_station_switches_px4_to_return_mid_goto(px4, tmp_path: Path) -> None:
+    rtl = {"custom_mode": 0, "px4_modes": (4, 5)}
+    kw = {"switch": rtl, "from_mode": "AUTO.LOITER", "to_mode": "AUTO.RTL", "reported": "RETURN_TO_LAUNCH"}
+    await run(tmp_path, PX4, px4, takeover_mid_goto, **kw)
+
+
+async def test_a_second_ground_station_takes_px4_mid_takeoff_and_mid_mission(px4, tmp_path: Path) -> None:
+    takeoff = (
+        {"custom_mode": 0, "px4_modes": (4, 6)},
+        "the autopilot switched from AUTO.TAKEOFF to AUTO.LAND",
+    )
+    mission = (
+        {"custom_mode": 0, "px4_modes": (4, 3)},
+        "the autopilot switched from AUTO.MISSION to AUTO.LOITER",
+    )
+    await run(tmp_path, PX4, px4, takeover_mid_takeoff_and_mission, takeoff=takeoff, mission=mission)
