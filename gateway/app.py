@@ -20,6 +20,7 @@ from gateway.api import build_api_router, health, metrics
 from gateway.api.docs import install_docs
 from gateway.api.errors import install_error_handlers
 from gateway.api.limits import BodyLimitMiddleware
+from gateway.api.openapi import install_openapi, operation_id
 from gateway.config import Settings, get_settings
 from gateway.console import install_console
 from gateway.mcp.server import build_mcp, mcp_http_app
@@ -55,6 +56,7 @@ def create_app(settings: Settings | None = None, registry_factory: RegistryFacto
         lifespan=lifespan,
         docs_url=None,  # served by install_docs from local assets
         redoc_url=None,  # ReDoc exists only as a CDN script
+        generate_unique_id_function=operation_id,
     )
     app.state.gateway = gateway
     app.state.lifespan_hooks = hooks
@@ -67,6 +69,7 @@ def create_app(settings: Settings | None = None, registry_factory: RegistryFacto
     app.include_router(build_api_router())
     install_console(app)
     mount_mcp(app, gateway, hooks)  # last: after the REST routes
+    install_openapi(app)
     return app
 
 

@@ -1,9 +1,10 @@
 """The running gateway: every long-lived part, built here and only here, with one start/stop.
 
 The HTTP app (:mod:`gateway.app`) and ``mcp-stdio`` create one :class:`Gateway` and start it. Starting
-opens the store, restores the operator locks, builds the safety policy (which reads them through a
-read-only view), the operation managers and the `Commander` every door sends its commands through,
-then restores and connects the vehicles. Stopping ends running operations (recorded as interrupted),
+opens the store, restores the operator locks and the takeover locks (`gateway.fleet.takeover`), builds
+the safety policy (which reads them through a read-only view), the operation managers and the
+`Commander` every door sends its commands through (the operations tell it of takeovers), then restores
+and connects the vehicles. Stopping ends running operations (recorded as interrupted),
 every sidecar, then the store.
 """
 

@@ -13,6 +13,7 @@ import sys
 import time
 from collections.abc import Awaitable, Callable, Iterator
 from datetime import UTC, datetime, timedelta
+from pathlib import Path
 from typing import Any
 
 import httpx
@@ -78,6 +79,27 @@ def register(subparsers: Any) -> None:
     remove.add_argument("id", help="drone id")
     _target_options(remove)
     remove.set_defaults(func=cmd_drones_remove)
+
+    mission = drone_cmds.add_parser(
+        "mission", help="a drone's mission as a ground station's file (QGC .plan or QGC WPL 110), in or out"
+    )
+    mission_cmds = mission.add_subparsers(dest="mission_command", required=True, metavar="ACTION")
+    put = mission_cmds.add_parser(
+        "put", help="store a mission file on a connected drone (checked like any mission)"
+    )
+    put.add_argument("id", help="drone id")
+    put.add_argument("file", help="a .plan (JSON) or QGC WPL 110 waypoint file; - reads standard input")
+    put.add_argument(
+        "--format", choices=("plan", "waypoints"), default=None, help="default: told from the file"
+    )
+    _target_options(put)
+    put.set_defaults(func=cmd_drones_mission_put)
+    get = mission_cmds.add_parser("get", help="write a connected drone's mission as a file")
+    get.add_argument("id", help="drone id")
+    get.add_argument("--format", choices=("plan", "waypoints"), default="plan", help="default: plan")
+    get.add_argument("--output", "-o", default=None, help="file to write (default: standard output)")
+    _target_options(get)
+    get.set_defaults(func=cmd_drones_mission_get)
 
     release = drone_cmds.add_parser(
         "release",
@@ -299,6 +321,56 @@ def cmd_drones_remove(args: argparse.Namespace) -> int:
         return f"removed {args.id}"
 
     return _with_store(args, run)
+
+
+def _mission_request(args: argparse.Namespace, method: str, **kw: Any) -> httpx.Response | int:
+    """A mission-file request to the running gateway; an int is the exit code of a failure (printed)."""
+    if not args.api:
+        return _fail("drones mission needs --api URL: the file goes to (or comes from) a connected drone", 2)
+    token = _api_token(args)
+    headers = {"Authorization": f"Bearer {token}"} if token else {}
+    url = f"{args.api.rstrip('/')}/api/v1/vehicles/{args.id}/mission"
+    try:
+        response = httpx.request(
+            method, url, headers={**headers, **kw.pop("headers", {})}, timeout=60.0, **kw
+        )
+    except httpx.HTTPError as exc:
+        return _fail(f"cannot reach the gateway at {args.api}: {exc}")
+    if response.status_code >= 400:
+        try:
+            error = response.json()["error"]
+            return _fail(f"{error['message']} ({error['code']})")
+        except (ValueError, KeyError, TypeError):
+            return _fail(f"HTTP {response.status_code}: {response.text[:200]}")
+    return response
+
+
+def cmd_drones_mission_put(args: argparse.Namespace) -> int:
+    try:
+        text = sys.stdin.read() if args.file == "-" else Path(args.file).read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeDecodeError) as exc:
+        return _fail(f"cannot read the mission file {args.file}: {exc}", 2)
+    params = {"format": args.format} if args.format else {}
+    kind = "application/json" if text.lstrip().startswith("{") else "text/plain"
+    response = _mission_request(
+        args, "PUT", content=text.encode(), params=params, headers={"content-type": kind}
+    )
+    if isinstance(response, int):
+        return response
+    print(f"{args.id}: {response.json()['message']}")
+    return 0
+
+
+def cmd_drones_mission_get(args: argparse.Namespace) -> int:
+    response = _mission_request(args, "GET", params={"format": args.format})
+    if isinstance(response, int):
+        return response
+    if args.output:
+        Path(args.output).write_text(response.text, encoding="utf-8")
+        print(f"{args.id}: mission written to {args.output} ({args.format})")
+    else:
+        print(response.text, end="")
+    return 0
 
 
 def cmd_drones_release(args: argparse.Namespace) -> int:

@@ -206,6 +206,7 @@ def cluster_test(env: dict[str, str], base: str) -> str:
 
 def main() -> int:
     s.LOG_PREFIX[0] = "cluster-test"
+    s.sigterm_interrupts()
     try:
         s.install_missing()
         with tempfile.TemporaryDirectory(prefix="fgw-cluster-") as tmp:
@@ -220,6 +221,9 @@ def main() -> int:
     except s.Failed as exc:
         print(f"cluster-test: FAILED: {exc}", flush=True)
         return 1
+    except KeyboardInterrupt:
+        print("cluster-test: INTERRUPTED (SIGINT/SIGTERM) after tearing down what it made", flush=True)
+        return 130
 
 
 if __name__ == "__main__":

@@ -278,6 +278,15 @@ def swarm_lock() -> Iterator[None]:
         os.close(fd)
 
 
+def sigterm_interrupts() -> None:
+    """SIGTERM stops the run as Ctrl-C does (KeyboardInterrupt), so its teardown still runs."""
+
+    def interrupt(_signum: int, _frame: object) -> None:
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGTERM, interrupt)
+
+
 @contextlib.contextmanager
 def signals_deferred() -> Iterator[None]:
     """SIGINT and SIGTERM noted but not acted on inside; raised as KeyboardInterrupt once out."""
@@ -584,6 +593,7 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0])
     parser.add_argument("--base-only", action="store_true", help="prepare the base image and stop")
     args = parser.parse_args()
+    sigterm_interrupts()
     try:
         install_missing()
         with tempfile.TemporaryDirectory(prefix="fgw-swarm-") as tmp:
@@ -601,6 +611,9 @@ def main() -> int:
     except Failed as exc:
         print(f"swarm-test: FAILED: {exc}", flush=True)
         return 1
+    except KeyboardInterrupt:
+        print("swarm-test: INTERRUPTED (SIGINT/SIGTERM) after tearing down what it made", flush=True)
+        return 130
 
 
 if __name__ == "__main__":

@@ -5,7 +5,7 @@ from __future__ import annotations
 from fastapi import APIRouter, Depends
 
 from gateway import console
-from gateway.api import activity, cluster, control, events, flights, flying, geofences, vehicles
+from gateway.api import activity, cluster, control, events, flights, flying, geofences, missions, vehicles
 from gateway.api.deps import authorize
 
 API_PREFIX = "/api/v1"
@@ -19,6 +19,7 @@ def build_api_router() -> APIRouter:
     api.include_router(activity.router)
     api.include_router(control.router)
     api.include_router(flying.router)
+    api.include_router(missions.router)
     api.include_router(geofences.router)
     api.include_router(cluster.router)
     api.include_router(events.router)

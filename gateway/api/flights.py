@@ -1,23 +1,27 @@
-"""/api/v1/flights: flown flights (arm to disarm) and their tracks as GeoJSON."""
+"""/api/v1/flights: flown flights (arm to disarm) and their tracks as GeoJSON, KML and MAVLink telemetry
+logs (the formats: `gateway.fleet.flight_export`)."""
 
 from __future__ import annotations
 
-from typing import Annotated, Any
+from typing import Annotated
 
 from fastapi import APIRouter, Path, Query
-from fastapi.responses import JSONResponse
+from fastapi.responses import JSONResponse, Response
 
 from gateway.api.audit import AuditedRoute
-from gateway.api.deps import MAX_ROW, StoreDep
+from gateway.api.deps import MAX_ROW, RegistryDep, StoreDep
 from gateway.api.schemas import FlightPage, IsoTime, StatusTextList, as_utc
-from gateway.errors import InvalidArgument, NotFound
-from gateway.registry.store import FlightRecord, Store, TrackSample
+from gateway.errors import InvalidArgument, NotFound, UnknownVehicle
+from gateway.fleet.flight_export import track_feature, track_kml, track_tlog
+from gateway.registry.store import FlightRecord, Store
 
 FlightId = Annotated[int, Path(ge=1, le=MAX_ROW, description="Flight id.")]
 
 router = APIRouter(prefix="/flights", tags=["flights"], route_class=AuditedRoute)
 
 GEOJSON_MEDIA_TYPE = "application/geo+json"
+KML_MEDIA_TYPE = "application/vnd.google-earth.kml+xml"
+TLOG_MEDIA_TYPE = "application/octet-stream"
 
 
 @router.get("", response_model=FlightPage, summary="Flights, newest first, filtered by vehicle and time")
@@ -50,29 +54,6 @@ async def get_flight(flight_id: FlightId, store: StoreDep) -> FlightRecord:
     return await _flight(store, flight_id)
 
 
-def track_feature(flight: FlightRecord, track: list[TrackSample]) -> dict[str, Any]:
-    """A GeoJSON Feature: LineString [lon, lat, alt_rel_m] with per-point arrays in the properties.
-
-    The per-point arrays run parallel to the coordinates (``times`` as ISO 8601, like the common
-    ``coordTimes`` convention). A track of one point is a Point, an empty one has no geometry.
-    """
-    coordinates = [[s.lon, s.lat, s.alt_rel_m] if s.alt_rel_m is not None else [s.lon, s.lat] for s in track]
-    if len(coordinates) >= 2:
-        geometry: dict[str, Any] | None = {"type": "LineString", "coordinates": coordinates}
-    elif coordinates:
-        geometry = {"type": "Point", "coordinates": coordinates[0]}
-    else:
-        geometry = None
-    properties: dict[str, Any] = flight.model_dump(mode="json")
-    properties["flight_id"] = properties.pop("id")
-    properties["sample_count"] = len(track)
-    properties["altitude_reference"] = "metres above home"
-    properties["times"] = [s.t.isoformat() for s in track]
-    for name in ("alt_rel_m", "heading_deg", "ground_speed_mps", "battery_pct"):
-        properties[name] = [getattr(s, name) for s in track]
-    return {"type": "Feature", "id": flight.id, "geometry": geometry, "properties": properties}
-
-
 @router.get(
     "/{flight_id}/track.geojson",
     summary="The flight's track as a GeoJSON Feature (LineString)",
@@ -83,6 +64,52 @@ async def flight_track(flight_id: FlightId, store: StoreDep) -> JSONResponse:
     flight = await _flight(store, flight_id)
     track = await store.get_track(flight_id)
     return JSONResponse(track_feature(flight, track), media_type=GEOJSON_MEDIA_TYPE)
+
+
+def _attachment(name: str) -> dict[str, str]:
+    return {"Content-Disposition": f'attachment; filename="{name}"'}
+
+
+@router.get(
+    "/{flight_id}/track.kml",
+    summary="The flight's track as KML (Google Earth, GIS tools), altitudes above mean sea level",
+    response_class=Response,
+    responses={200: {"content": {KML_MEDIA_TYPE: {}}}},
+)
+async def flight_kml(flight_id: FlightId, store: StoreDep) -> Response:
+    flight = await _flight(store, flight_id)
+    track = await store.get_track(flight_id)
+    return Response(
+        track_kml(flight, track),
+        media_type=KML_MEDIA_TYPE,
+        headers=_attachment(f"{flight.vehicle_id}-flight-{flight_id}.kml"),
+    )
+
+
+@router.get(
+    "/{flight_id}/tlog",
+    summary="The flight as a MAVLink telemetry log (.tlog: QGroundControl, Mission Planner, MAVExplorer)",
+    description="Written from the recorded 1 Hz track and status texts, from the vehicle's system id: "
+    "HEARTBEAT, GLOBAL_POSITION_INT, VFR_HUD and SYS_STATUS per sample, STATUSTEXT at its time.",
+    response_class=Response,
+    responses={200: {"content": {TLOG_MEDIA_TYPE: {}}}},
+)
+async def flight_tlog(flight_id: FlightId, store: StoreDep, registry: RegistryDep) -> Response:
+    flight = await _flight(store, flight_id)
+    track = await store.get_track(flight_id)
+    texts = await store.list_flight_status_texts(flight_id, limit=1000)
+    vehicle = await store.get_vehicle(flight.vehicle_id)
+    sysid, autopilot = (vehicle.expected_sysid if vehicle else None) or 1, None
+    try:
+        status = registry.get(flight.vehicle_id).status()
+        sysid = status.get("sysid") or sysid
+        autopilot = status.get("autopilot")
+    except UnknownVehicle:
+        pass
+    data = track_tlog(flight, track, texts, sysid=sysid, autopilot=autopilot)
+    return Response(
+        data, media_type=TLOG_MEDIA_TYPE, headers=_attachment(f"{flight.vehicle_id}-flight-{flight_id}.tlog")
+    )
 
 
 @router.get(

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import time
 from collections import Counter as Tally
-from collections.abc import Iterator
+from collections.abc import AsyncIterator, Iterator
+from contextlib import asynccontextmanager
 from typing import TYPE_CHECKING
 
 from fastapi import APIRouter, Depends, FastAPI, Request, Response
@@ -14,7 +15,9 @@ from prometheus_client.registry import Collector
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from gateway.api.deps import authorize
+from gateway.errors import SafetyRefusal
 from gateway.fleet.protocols import FlyingVehicle
+from gateway.registry.records import AuditRecord
 
 if TYPE_CHECKING:
     from gateway.runtime import Gateway
@@ -143,6 +146,43 @@ class RequestMetricsMiddleware:
             self.latency.labels(template).observe(time.perf_counter() - started)
 
 
+class AuditMetrics:
+    """Counts every audited call once its outcome is known (a call left running counts when its
+    operation ends): calls by door, action and outcome; refusals by rule (a refusal's message begins
+    with its rule); how calls that ran an operation ended."""
+
+    def __init__(self, registry: CollectorRegistry) -> None:
+        self.calls = Counter(
+            "fleet_gateway_calls",
+            "Audited calls (MCP tools, REST and console actions) by door, action and outcome",
+            ["source", "action", "outcome"],
+            registry=registry,
+        )
+        self.refusals = Counter(
+            "fleet_gateway_refusals",
+            "Calls refused by the safety policy, by rule",
+            ["rule"],
+            registry=registry,
+        )
+        self.operations = Counter(
+            "fleet_gateway_operation_outcomes",
+            "Calls that started a tracked operation, by how the operation ended",
+            ["outcome"],
+            registry=registry,
+        )
+
+    def record(self, row: AuditRecord) -> None:
+        if row.outcome == "running":
+            return
+        self.calls.labels(row.source, row.action, row.outcome).inc()
+        if row.outcome == "refused":
+            text = (row.error or "").removeprefix(f"{SafetyRefusal.code}: ")  # REST rows name the code first
+            rule = text.split(":", 1)[0].strip()
+            self.refusals.labels(rule if rule.replace("_", "").isalnum() else "other").inc()
+        if row.operation_id is not None:
+            self.operations.labels(row.outcome).inc()
+
+
 def install_metrics(app: FastAPI, gateway: Gateway) -> CollectorRegistry:
     """Create the app's registry, its HTTP request metrics and the fleet collector."""
     registry = CollectorRegistry(auto_describe=True)
@@ -162,6 +202,17 @@ def install_metrics(app: FastAPI, gateway: Gateway) -> CollectorRegistry:
 
     app.add_middleware(RequestMetricsMiddleware, requests=requests, latency=latency)
     app.state.metrics_registry = registry
+    audit = AuditMetrics(registry)
+
+    @asynccontextmanager
+    async def count_audit() -> AsyncIterator[None]:  # runs once the gateway (and its store) started
+        stop = gateway.require_store().on_audit(audit.record)
+        try:
+            yield
+        finally:
+            stop()
+
+    app.state.lifespan_hooks.append(count_audit)
     return registry
 
 

@@ -8,6 +8,7 @@ from typing import Annotated, Any
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, field_validator
 
+from gateway.api.telemetry_schema import TelemetrySnapshot, VehicleStatus
 from gateway.registry.spec import NODE_TAG_PATTERN, VehicleSpec, validate_connection_url
 from gateway.registry.store import (
     AuditRecord,
@@ -83,7 +84,7 @@ class VehicleOut(VehicleRecord):
     model_config = ConfigDict(extra="ignore")
 
     state: str | None = Field(None, description="registered, connecting, connected, ready, link_lost, failed")
-    status: dict[str, Any] | None = Field(None, description="Connection details: heartbeat age, sidecar...")
+    status: VehicleStatus | None = Field(None, description="Connection details: heartbeat age, sidecar...")
     locked: str | None = Field(
         None, description="Why agents may not command this drone (its takeover lock, operator locks)."
     )
@@ -92,7 +93,7 @@ class VehicleOut(VehicleRecord):
         description="Its takeover lock: a pilot, another ground station or a failsafe changed its mode "
         "while the gateway flew it (reason, by, locked_at); DELETE /vehicles/{id}/takeover releases it.",
     )
-    telemetry: dict[str, Any] | None = Field(
+    telemetry: TelemetrySnapshot | None = Field(  # type: ignore[valid-type]
         None, description="Latest telemetry snapshot, each part with its age (only on GET of one vehicle)."
     )
 

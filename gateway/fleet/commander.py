@@ -89,6 +89,8 @@ VERBS: dict[str, Verb] = {
     "arrival": Verb(Commander.arrival),
     # missions
     "upload_mission": Verb(Commander.upload_mission),
+    "upload_mission_file": Verb(Commander.upload_mission_file),
+    "export_mission": Verb(Commander.export_mission),
     "download_mission": Verb(Commander.download_mission),
     "clear_mission": Verb(Commander.clear_mission),
     "start_mission": Verb(Commander.start_mission),

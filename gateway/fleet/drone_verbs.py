@@ -19,7 +19,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from gateway.errors import InvalidArgument, NotFound, VehicleNotReady
-from gateway.fleet import geo
+from gateway.fleet import geo, mission_files
 from gateway.fleet.caller import Caller
 from gateway.fleet.command_core import NAV_KINDS, AltFrame, CommandCore, OnProgress, routed
 from gateway.fleet.mission import MissionItem
@@ -40,6 +40,7 @@ from gateway.fleet.safety import Target, VehicleContext
 from gateway.fleet.views import (
     ActionResult,
     ArrivalView,
+    MissionFileView,
     MissionProgressView,
     MissionView,
     OperationView,
@@ -545,6 +546,50 @@ class DroneVerbs(CommandCore):
             message=f"{count} items uploaded",
             facts={"items": count},
         )
+
+    @routed
+    async def upload_mission_file(
+        self, caller: Caller, drone_id: str, content: str, file_format: str | None = None
+    ) -> ActionResult:
+        """Store a ground station's mission file on the drone (QGC .plan or QGC WPL 110; told from the
+        text when ``file_format`` is None), each item sent as the file has it, after the same policy
+        checks as upload_mission (`gateway.fleet.mission_files` says how the file's items are read)."""
+        if file_format is not None and file_format not in mission_files.FORMATS:
+            raise InvalidArgument(
+                f"file_format {file_format!r} is not one of {', '.join(mission_files.FORMATS)}"
+            )
+        vehicle = self.ready(drone_id)
+        parsed = mission_files.parse(content, file_format)
+        ctx = self.context(vehicle)
+        items = mission_files.mission_items(parsed, ctx.home, ctx.position)
+        count = await self._upload(caller, vehicle, items, "upload_mission_file")
+        return ActionResult(
+            drone_id=drone_id,
+            action="upload_mission_file",
+            message=f"{count} items uploaded from the mission file",
+            facts={"items": count},
+        )
+
+    @routed
+    async def export_mission(
+        self, caller: Caller, drone_id: str, file_format: str = "plan"
+    ) -> MissionFileView:
+        """The drone's mission as a QGC .plan (``plan``) or QGC WPL 110 (``waypoints``) file."""
+        if file_format not in mission_files.FORMATS:
+            raise InvalidArgument(
+                f"file_format {file_format!r} is not one of {', '.join(mission_files.FORMATS)}"
+            )
+        vehicle = self.ready(drone_id)
+        raws = mission_files.raw_items(await vehicle.download_mission())
+        home = self.context(vehicle).home
+        autopilot = vehicle.status().get("autopilot")
+        content = mission_files.write(
+            file_format,
+            raws,
+            home,
+            autopilot if isinstance(autopilot, str) else None,
+        )
+        return MissionFileView(drone_id=drone_id, format=file_format, items=len(raws), content=content)
 
     @routed
     async def start_mission(

@@ -14,7 +14,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.geo import check_lat_lon
@@ -42,6 +42,23 @@ _CMD_TO_KIND = {v: k for k, v in _KIND_TO_CMD.items()}
 MAX_ITEMS = 700
 
 
+@dataclass(frozen=True)
+class RawItem:
+    """One MAVLink mission item as a mission file or the autopilot holds it (x, y in degrees, except in
+    MAV_FRAME_MISSION where they are plain numbers)."""
+
+    frame: int
+    command: int
+    param1: float = 0.0
+    param2: float = 0.0
+    param3: float = 0.0
+    param4: float = 0.0
+    x: float = 0.0
+    y: float = 0.0
+    z: float = 0.0
+    autocontinue: bool = True
+
+
 class MissionItem(BaseModel):
     """One user mission item (user numbering starts at 1). Altitudes are metres above home.
 
@@ -58,6 +75,25 @@ class MissionItem(BaseModel):
     hold_s: float = Field(0.0, ge=0, le=3600, description="Waypoint hold / loiter time, seconds.")
     speed_mps: float | None = Field(None, gt=0, le=50, description="Ground speed from this item on.")
     command: int | None = Field(None, description="MAVLink command id (only for kind 'other').")
+    # the MAVLink item exactly as a mission file (or the autopilot) has it: sent as is instead of one
+    # built from the fields above, which then only say what the policy checks. Never from JSON input.
+    _raw: RawItem | None = PrivateAttr(default=None)
+    # downloaded: the DO_CHANGE_SPEED item sent before this one (folded into speed_mps above)
+    _lead: tuple[RawItem, ...] = PrivateAttr(default=())
+
+    @property
+    def raw(self) -> RawItem | None:
+        return self._raw
+
+    @property
+    def raw_items(self) -> tuple[RawItem, ...]:
+        """The MAVLink items this item stands for, as the autopilot holds them (empty: built here)."""
+        return (*self._lead, self._raw) if self._raw is not None else ()
+
+    def attach_raw(self, raw: RawItem, lead: tuple[RawItem, ...] = ()) -> MissionItem:
+        self._raw = raw
+        self._lead = lead
+        return self
 
     @model_validator(mode="after")
     def _check(self) -> MissionItem:
@@ -123,6 +159,10 @@ def encode(
         wire.append(WireItem(0, MAV_FRAME_GLOBAL, MAV_CMD_NAV_WAYPOINT, x=_deg7(hlat), y=_deg7(hlon), z=halt))
     user_to_wire: list[int] = []
     for item in items:
+        if item.raw is not None:
+            user_to_wire.append(len(wire))
+            wire.append(_wire_of(len(wire), item.raw))
+            continue
         if item.speed_mps is not None:
             wire.append(
                 WireItem(len(wire), MAV_FRAME_MISSION, MAV_CMD_DO_CHANGE_SPEED, 1.0, item.speed_mps, -1.0)
@@ -140,12 +180,27 @@ def encode(
     return WirePlan(wire, user_to_wire)
 
 
+def _scaled(frame: int) -> bool:
+    return frame != MAV_FRAME_MISSION
+
+
+def _wire_of(seq: int, raw: RawItem) -> WireItem:
+    x, y = (_deg7(raw.x), _deg7(raw.y)) if _scaled(raw.frame) else (round(raw.x), round(raw.y))
+    return WireItem(seq, raw.frame, raw.command, raw.param1, raw.param2, raw.param3, raw.param4, x, y, raw.z)
+
+
+def _raw_of(w: WireItem, autocontinue: bool) -> RawItem:
+    x, y = (w.x / 1e7, w.y / 1e7) if _scaled(w.frame) else (float(w.x), float(w.y))
+    return RawItem(w.frame, w.command, w.param1, w.param2, w.param3, w.param4, x, y, w.z, autocontinue)
+
+
 def decode(wire: list[Any], *, home_slot: bool = True) -> tuple[list[MissionItem], WirePlan]:
     """User items from a downloaded mission_raw list (with ``home_slot``, seq 0, home, is dropped)."""
     items: list[MissionItem] = []
     user_to_wire: list[int] = []
     pending_speed: float | None = None
     kept: list[WireItem] = []
+    lead: list[RawItem] = []
     for raw in sorted(wire, key=lambda w: w.seq):
         w = WireItem(
             int(raw.seq),
@@ -164,6 +219,7 @@ def decode(wire: list[Any], *, home_slot: bool = True) -> tuple[list[MissionItem
             continue
         if w.command == MAV_CMD_DO_CHANGE_SPEED:
             pending_speed = w.param2 if w.param2 > 0 else None
+            lead.append(_raw_of(w, bool(getattr(raw, "autocontinue", 1))))
             continue
         kind = _CMD_TO_KIND.get(w.command, "other")
         # model_construct: a mission written by another planner is reported as it is, not re-validated
@@ -178,6 +234,8 @@ def decode(wire: list[Any], *, home_slot: bool = True) -> tuple[list[MissionItem
                 command=w.command if kind == "other" else None,
             )
         )
+        items[-1].attach_raw(_raw_of(w, bool(getattr(raw, "autocontinue", 1))), tuple(lead))
+        lead.clear()
         user_to_wire.append(w.seq)
         pending_speed = None
     return items, WirePlan(kept, user_to_wire)

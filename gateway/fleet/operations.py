@@ -6,6 +6,10 @@ disarmed, mission finished), failed, or superseded by a newer command. Callers (
 *wait* on an operation with a cap; a waiter going away never touches the vehicle. One current
 operation per vehicle; each is saved through the Store so its fate outlives the request that made it.
 
+The manager also watches each vehicle's HEARTBEAT mode against what the gateway last commanded it
+(`expect`, `gateway.fleet.takeover`): a mode the gateway did not send ends the operation as
+``interrupted`` and hands the takeover to ``on_takeover`` (the drone is locked for agents).
+
 No MCP or HTTP in here.
 """
 

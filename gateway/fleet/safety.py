@@ -62,6 +62,15 @@ class Rule(StrEnum):
     TAKEOFF_IN_PROGRESS = "takeoff_in_progress"
     DRONE_BUSY = "drone_busy"
     KILL_NOT_CONFIRMED = "kill_not_confirmed"
+    MISSION_COMMAND = "mission_command_deny"
+
+
+#: mission commands that would undo the safety layer from inside a mission: DO_SET_HOME (179),
+#: DO_SET_PARAMETER (180), DO_FLIGHTTERMINATION (185), DO_FENCE_ENABLE (207), DO_MOTOR_TEST (209)
+DENIED_MISSION_COMMANDS = {179: "DO_SET_HOME", 180: "DO_SET_PARAMETER", 185: "DO_FLIGHTTERMINATION",
+                           207: "DO_FENCE_ENABLE", 209: "DO_MOTOR_TEST"}  # fmt: skip
+#: NAV commands that fly to a position: a mission item of kind "other" with one is checked as a waypoint
+POSITION_NAV_COMMANDS = frozenset({16, 17, 18, 19, 21, 22, 31, 82, 84, 85, 94})
 
 
 # ------------------------------------------------------------------------------------------------
@@ -129,6 +138,9 @@ class MissionItemLike(Protocol):
 
     @property
     def speed_mps(self) -> float | None: ...
+
+    @property
+    def command(self) -> int | None: ...
 
 
 def refuse(rule: Rule | str, text: str, **numbers: Any) -> SafetyRefusal:
@@ -542,6 +554,18 @@ class SafetyPolicy:
             if kind == "rtl":
                 previous = (ctx.home[0], ctx.home[1]) if ctx.home else None
                 continue
+            if kind == "other" and item.command not in POSITION_NAV_COMMANDS:
+                denied = DENIED_MISSION_COMMANDS.get(item.command or 0)
+                if denied is not None:
+                    raise refuse(
+                        Rule.MISSION_COMMAND,
+                        f"{prefix}{denied} ({item.command}) is not accepted in a mission: it would change "
+                        "what the safety layer relies on",
+                        vehicle_id=ctx.vehicle_id,
+                        item=number,
+                        command=item.command,
+                    )
+                continue  # not a position (DO_JUMP, CONDITION_YAW, DO_SET_ROI, ...): passes through
             with _prefixed(prefix, item=number):
                 if kind == "takeoff":
                     _finite(ctx, "takeoff altitude", item.alt_rel_m)

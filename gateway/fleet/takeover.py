@@ -113,7 +113,8 @@ def likely_cause(to_mode: str, texts: Iterable[str]) -> tuple[str, str | None]:
                 return cause, _SPACE.sub(" ", text).strip()[:200]
     if to_mode in FAILSAFE_MODES:
         return (
-            "a pilot, another ground station or an autopilot failsafe chose it (the autopilot said why not)",
+            "a pilot, another ground station or an autopilot failsafe chose it "
+            "(the autopilot did not say why)",
             None,
         )
     return "a pilot or another ground station took control", None

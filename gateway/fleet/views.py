@@ -99,6 +99,15 @@ class MissionView(BaseModel):
     items: list[MissionItem]
 
 
+class MissionFileView(BaseModel):
+    """A drone's mission as a ground station's file (QGC .plan JSON or QGC WPL 110 text)."""
+
+    drone_id: str
+    format: str
+    items: int
+    content: str
+
+
 class MissionProgressView(BaseModel):
     drone_id: str
     current: int

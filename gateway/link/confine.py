@@ -1,16 +1,27 @@
 """Keep every sidecar's gRPC control port reachable from this host only.
 
-mavsdk_server 4.0.5 listens for gRPC on ``0.0.0.0:<port>`` (hard-coded in
-``GrpcServer::setup_port``, no option). Left as is, each sidecar is an unauthenticated side door
-to a drone around every safety rule. The binary is statically linked, so an LD_PRELOAD bind shim
-cannot help, and a network namespace needs privileges and a MAVLink bridge.
+mavsdk_server 4.0.5 listens for gRPC on ``0.0.0.0:<port>`` (``"0.0.0.0:" + std::to_string(port)`` in
+``GrpcServer::setup_port``, no option). Left as is, each sidecar is an unauthenticated side door to a
+drone around every safety rule. The binary is statically linked, so an LD_PRELOAD bind shim cannot
+help, and a network namespace needs privileges and a MAVLink bridge.
 
-What works unprivileged and everywhere: the address is an 8-byte immediate operand
-(``movabs rax, "0.0.0.0:"``) used three times in ``setup_port``. We write a copy of the binary in
-which those operands read ``"127.0.1:"`` (same length; the inet_aton short form of 127.0.0.1,
-which gRPC's resolver accepts), and run sidecars from that copy. Nothing else in the binary is
-touched, and the copy is only made when the bytes are exactly as expected; anything else fails
-closed with a message saying what to do.
+What works unprivileged: a copy of the binary in which the 8 bytes ``"0.0.0.0:"`` of that one address
+read ``"127.0.1:"`` (same length; the inet_aton short form of 127.0.0.1, which gRPC's resolver
+accepts); sidecars run from the copy. Where the compiler put those bytes depends on the architecture
+of the build, read from the ELF header:
+
+* x86-64: an 8-byte immediate operand, ``movabs rax, "0.0.0.0:"`` (``48 b8`` + the bytes), three
+  times in ``setup_port``;
+* aarch64: a NUL-terminated 8-byte literal in ``.rodata`` that ``setup_port`` loads with
+  ``adrp``/``add`` and prepends to the port (``basic_string::_M_replace(0, 0, literal, 8)``); it is
+  the only such literal in the binary and the only reference to it is in ``setup_port`` (checked
+  with ``aarch64-linux-gnu-objdump`` on the mavsdk-grpc 4.0.5 aarch64 wheel).
+
+Nothing else is touched, and the copy is only made when the bytes are exactly as expected; anything
+else (another build, another architecture) fails closed with a message saying what to do. The patch
+is not the only guard: the sidecar supervisor checks in /proc, after every start, that the gRPC port
+listens on loopback only, whatever the binary (``gateway.link.sidecar``), and stops a sidecar that
+does not.
 """
 
 from __future__ import annotations
@@ -19,14 +30,38 @@ import hashlib
 import logging
 import os
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 
 log = logging.getLogger(__name__)
 
-# movabs rax, imm64 (REX.W B8) followed by the 8 ASCII bytes of the listen-address prefix.
-_ANY_OPERAND = b"\x48\xb8" + b"0.0.0.0:"
-_LOOPBACK_OPERAND = b"\x48\xb8" + b"127.0.1:"
-_EXPECTED_OCCURRENCES = 3
+
+@dataclass(frozen=True)
+class ListenSite:
+    """How one architecture's build holds the gRPC listen-address prefix, and its loopback twin."""
+
+    architecture: str
+    exposed: bytes
+    loopback: bytes
+    occurrences: int
+
+
+# ELF e_machine -> the site of that architecture's build
+_SITES = {
+    62: ListenSite("x86-64", b"\x48\xb8" + b"0.0.0.0:", b"\x48\xb8" + b"127.0.1:", 3),  # EM_X86_64
+    183: ListenSite(
+        "aarch64", b"\x00" + b"0.0.0.0:" + b"\x00", b"\x00" + b"127.0.1:" + b"\x00", 1
+    ),  # EM_AARCH64
+}
+_MACHINE_NAMES = {
+    3: "x86 (32-bit)",
+    8: "MIPS",
+    20: "PowerPC",
+    21: "PowerPC64",
+    40: "ARM (32-bit)",
+    243: "RISC-V",
+}
+SUPPORTED_ARCHITECTURES = tuple(site.architecture for site in _SITES.values())
 
 
 class ConfinementError(RuntimeError):
@@ -49,20 +84,56 @@ def _sha256(data: bytes) -> str:
     return hashlib.sha256(data).hexdigest()
 
 
+def elf_machine(data: bytes) -> int | None:
+    """The ELF header's e_machine (62 x86-64, 183 aarch64), or None when ``data`` is no ELF file."""
+    if len(data) < 20 or data[:4] != b"\x7fELF":
+        return None
+    return int.from_bytes(data[18:20], "little" if data[5] == 1 else "big")
+
+
+def listen_site(data: bytes) -> ListenSite:
+    """The listen-address site for the binary's architecture; fails closed for any other."""
+    machine = elf_machine(data)
+    if machine is None:
+        raise ConfinementError(
+            "mavsdk_server is not an ELF executable, so it cannot be confined to loopback; set "
+            "GATEWAY_MAVSDK_SERVER_PATH to mavsdk-grpc 4.0.5's binary"
+        )
+    site = _SITES.get(machine)
+    if site is None:
+        name = _MACHINE_NAMES.get(machine, f"ELF machine {machine}")
+        raise ConfinementError(
+            f"mavsdk_server is built for {name}; the gateway can confine its gRPC port to loopback on "
+            f"{' and '.join(SUPPORTED_ARCHITECTURES)} only. Run on one of those, or set "
+            "GATEWAY_SIDECAR_CONFINEMENT=none and firewall the sidecar ports yourself."
+        )
+    return site
+
+
 def patch_listen_address(data: bytes) -> bytes:
     """Return the binary with its gRPC listen address moved from all interfaces to 127.0.0.1."""
-    found = data.count(_ANY_OPERAND)
-    if found != _EXPECTED_OCCURRENCES:
-        already = data.count(_LOOPBACK_OPERAND)
-        if found == 0 and already == _EXPECTED_OCCURRENCES:
+    site = listen_site(data)
+    found = data.count(site.exposed)
+    if found != site.occurrences:
+        already = data.count(site.loopback)
+        if found == 0 and already == site.occurrences:
             return data
         raise ConfinementError(
-            f"mavsdk_server does not have the expected gRPC listen-address code ({found} matches, "
-            f"expected {_EXPECTED_OCCURRENCES}); it is not the 4.0.5 build this gateway knows how to "
-            "confine. Use mavsdk-grpc 4.0.5, or set GATEWAY_SIDECAR_CONFINEMENT=none and firewall the "
-            "sidecar ports yourself."
+            f"mavsdk_server ({site.architecture}) does not have the expected gRPC listen-address code "
+            f"({found} matches, expected {site.occurrences}); it is not the 4.0.5 build this gateway knows "
+            "how to confine. Use mavsdk-grpc 4.0.5, or set GATEWAY_SIDECAR_CONFINEMENT=none and firewall "
+            "the sidecar ports yourself."
         )
-    return data.replace(_ANY_OPERAND, _LOOPBACK_OPERAND)
+    return data.replace(site.exposed, site.loopback)
+
+
+def is_confined(data: bytes) -> bool:
+    """The binary is a loopback-only copy (its site reads 127.0.1: as often as the build has it)."""
+    try:
+        site = listen_site(data)
+    except ConfinementError:
+        return False
+    return data.count(site.exposed) == 0 and data.count(site.loopback) == site.occurrences
 
 
 def loopback_mavsdk_server(source: Path | None = None, cache_dir: Path | None = None) -> Path:
@@ -72,7 +143,7 @@ def loopback_mavsdk_server(source: Path | None = None, cache_dir: Path | None = 
     data = source.read_bytes()
     target = cache_dir / f"mavsdk_server-loopback-{_sha256(data)[:16]}"
     if target.exists() and os.access(target, os.X_OK):
-        if target.read_bytes().count(_LOOPBACK_OPERAND) == _EXPECTED_OCCURRENCES:
+        if is_confined(target.read_bytes()):
             return target
         log.warning("confined sidecar binary %s is damaged; writing it again", target)
     patched = patch_listen_address(data)

@@ -11,8 +11,11 @@ What mavsdk_server 4.0.5 does that shapes this module (measured):
   on the port belongs to its own process; otherwise it respawns on another port.
 * A port held by a non-reuseport socket makes it exit with ``Failed to bind server to port``: also
   retried on another port, not counted as a crash.
-* It binds gRPC on 0.0.0.0. ``SpawnPlan`` / ``Sidecar.confine`` is the one place where a confinement
-  wrapper (network namespace, LD_PRELOAD bind shim) is inserted around the command.
+* It binds gRPC on 0.0.0.0. Sidecars run from a loopback-only copy (``gateway.link.confine``), and
+  with that confinement on, the supervisor checks in /proc after every start that the process's gRPC
+  socket listens on a loopback address; one that listens anywhere else is stopped and the vehicle
+  fails closed, whatever binary or architecture made it. ``SpawnPlan`` / ``Sidecar.confine`` is the
+  one place where a wrapper (network namespace, an emulator) is inserted around the command.
 
 Every sidecar runs in its own process group with PR_SET_PDEATHSIG=SIGKILL (set by an exec wrapper,
 see ``die_with_parent``), so it dies with the gateway even when the gateway is SIGKILLed; ``stop()``
@@ -25,6 +28,7 @@ import asyncio
 import atexit
 import enum
 import functools
+import ipaddress
 import logging
 import os
 import re
@@ -338,6 +342,7 @@ class Sidecar:
         )
         bind_failed = False
         foreign_listener = False
+        exposed_on: list[str] = []
         link_failed: str | None = None
         assert proc.stdout is not None
         try:
@@ -357,6 +362,9 @@ class Sidecar:
                     match = _LISTEN.search(line)
                     if match and int(match.group(1)) == plan.grpc_port:
                         if await self._port_is_ours(proc.pid, plan.grpc_port):
+                            exposed_on = self._exposed_listeners(proc.pid, plan.grpc_port)
+                            if exposed_on:
+                                break
                             self.info.state = SidecarState.SERVING
                             self.info.complaint = None
                             self.info.serving_since = time.monotonic()
@@ -369,12 +377,18 @@ class Sidecar:
         finally:
             was_serving = self.info.state == SidecarState.SERVING
             self._serving.clear()
-            if foreign_listener or bind_failed or link_failed or self._stopping:
+            if foreign_listener or bind_failed or link_failed or exposed_on or self._stopping:
                 await self._terminate()
             code = await proc.wait()
             _LIVE_PGIDS.discard(proc.pid)
             self._proc = None
             self.info.pid = None
+        if exposed_on:
+            raise confine.ConfinementError(
+                f"mavsdk_server for {self.vehicle_id} listened for gRPC on {', '.join(exposed_on)}, not on "
+                "loopback only; it was stopped. Use mavsdk-grpc 4.0.5's binary, or set "
+                "GATEWAY_SIDECAR_CONFINEMENT=none and firewall the sidecar ports yourself."
+            )
         if foreign_listener or bind_failed:
             return "port-taken"
         if link_failed:
@@ -426,6 +440,13 @@ class Sidecar:
         self._log.debug("gRPC port %d of %s not visible in /proc/net; not verified", port, self.vehicle_id)
         return True
 
+    def _exposed_listeners(self, pid: int, port: int) -> list[str]:
+        """With loopback confinement on: the addresses other than loopback ``pid`` listens on at ``port``."""
+        if self.settings.sidecar_confinement != "loopback":
+            return []
+        addresses = listening_addresses(port, socket_inodes(pid))
+        return sorted(a for a in addresses if not ipaddress.ip_address(a).is_loopback)
+
     async def _terminate(self) -> None:
         proc = self._proc
         if proc is None or proc.returncode is not None:
@@ -458,6 +479,35 @@ def listening_inodes(port: int) -> set[int]:
             if int(cols[1].rsplit(":", 1)[1], 16) == port:
                 inodes.add(int(cols[9]))
     return inodes
+
+
+def _proc_net_address(hex_address: str) -> str:
+    """A /proc/net/tcp{,6} local address (hex, 32-bit words in host byte order) as text."""
+    raw = bytes.fromhex(hex_address)
+    order = sys.byteorder
+    words = b"".join(int.from_bytes(raw[i : i + 4], "big").to_bytes(4, order) for i in range(0, len(raw), 4))
+    address = ipaddress.ip_address(words)
+    if isinstance(address, ipaddress.IPv6Address) and address.ipv4_mapped is not None:
+        return str(address.ipv4_mapped)
+    return str(address)
+
+
+def listening_addresses(port: int, inodes: set[int]) -> set[str]:
+    """The local addresses of the TCP listeners on ``port`` whose socket inode is in ``inodes``."""
+    found: set[str] = set()
+    for table in ("/proc/net/tcp", "/proc/net/tcp6"):
+        try:
+            lines = Path(table).read_text().splitlines()[1:]
+        except OSError:
+            continue
+        for line in lines:
+            cols = line.split()
+            if len(cols) < 10 or cols[3] != "0A" or int(cols[9]) not in inodes:
+                continue
+            address, _, hex_port = cols[1].rpartition(":")
+            if int(hex_port, 16) == port:
+                found.add(_proc_net_address(address))
+    return found
 
 
 def socket_inodes(pid: int) -> set[int]:

@@ -25,20 +25,24 @@ log = logging.getLogger("gateway.telemetry")
 T = TypeVar("T")
 
 #: Streams and the rate (Hz) the gateway requests for each; MAVSDK's set_rate_<name>.
+#: Each message costs the sidecar its parsing and the gateway one gRPC stream item (the most of a drone's
+#: CPU at rest), so a stream gets the rate its readers need: position for the operations' trackers
+#: (arrival within tolerance) and the 1 Hz flight track; the rest for read tools and the cache's
+#: staleness limit (3 s), which a 1 Hz stream keeps well inside.
 STREAM_RATES_HZ: dict[str, float] = {
-    "position": 5.0,  # GLOBAL_POSITION_INT: position, heading, velocity
-    "velocity_ned": 5.0,
+    "position": 5.0,  # GLOBAL_POSITION_INT: position and velocity
+    "velocity_ned": 2.0,
     "home": 1.0,
-    "attitude_euler": 4.0,
-    "in_air": 2.0,  # EXTENDED_SYS_STATE
+    "attitude_euler": 2.0,  # ATTITUDE: attitude, and the heading (its yaw)
+    "in_air": 2.0,  # EXTENDED_SYS_STATE (landed detection)
     "landed_state": 2.0,
     "gps_info": 1.0,
     "battery": 1.0,
     "rc_status": 1.0,
     "health": 1.0,  # SYS_STATUS
-    "imu": 2.0,  # HIGHRES_IMU (PX4)
-    "raw_imu": 2.0,  # RAW_IMU (ArduPilot has no HIGHRES_IMU)
-    "odometry": 2.0,  # ODOMETRY (PX4; ArduPilot answers "No ap_message for mavlink id (331)")
+    "imu": 1.0,  # HIGHRES_IMU (PX4)
+    "raw_imu": 1.0,  # RAW_IMU (ArduPilot has no HIGHRES_IMU)
+    "odometry": 1.0,  # ODOMETRY (PX4; ArduPilot answers "No ap_message for mavlink id (331)")
 }
 
 
@@ -361,15 +365,13 @@ class TelemetryFeed:
         streams: dict[str, tuple[Callable[[], AsyncIterator[Any]], Callable[[Any], None]]] = {
             "position": (t.position, lambda p: self._put_fixed("position", p)),
             "home": (t.home, lambda p: self._put_fixed("home", p)),
-            "attitude": (
-                t.attitude_euler,
-                lambda a: put("attitude", AttitudeValue(a.roll_deg, a.pitch_deg, a.yaw_deg)),
-            ),
+            # the heading is the attitude's yaw: no stream of its own (MAVSDK's heading stream repeats
+            # GLOBAL_POSITION_INT's at the position rate, one more gRPC item per position)
+            "attitude": (t.attitude_euler, self._attitude),
             "velocity_ned": (
                 t.velocity_ned,
                 lambda v: put("velocity_ned", VelocityNedValue(v.north_m_s, v.east_m_s, v.down_m_s)),
             ),
-            "heading": (t.heading, lambda h: put("heading_deg", float(h.heading_deg))),
             "battery": (t.battery, lambda b: put("battery", _battery(b))),
             "gps_info": (
                 t.gps_info,
@@ -425,6 +427,12 @@ class TelemetryFeed:
         if refused:
             log.info("%s: streams not granted: %s", self.vehicle_id, ", ".join(sorted(refused)))
         return refused
+
+    def _attitude(self, a: Any) -> None:
+        self.cache.put("attitude", AttitudeValue(a.roll_deg, a.pitch_deg, a.yaw_deg))
+        yaw = float(a.yaw_deg)
+        if math.isfinite(yaw):
+            self.cache.put("heading_deg", yaw % 360.0)
 
     def _status_text(self, text: Any) -> None:
         self.cache.add_status_text(text.type.name.lower(), str(text.text))

@@ -36,7 +36,13 @@ from gateway.mcp.arguments import advertise_policy_limits, install_argument_mess
 from gateway.mcp.auth import auth_options
 from gateway.mcp.resources import ResourceNotifier, register_prompts, register_resources
 from gateway.mcp.session import SessionAudit
-from gateway.mcp.toolkit import Toolset, collapse_optional_nulls, register_toolset, strip_schema_titles
+from gateway.mcp.toolkit import (
+    Toolset,
+    collapse_optional_nulls,
+    nullable_type_lists,
+    register_toolset,
+    strip_schema_titles,
+)
 from gateway.runtime import Gateway
 
 log = logging.getLogger(__name__)
@@ -95,6 +101,9 @@ def build_mcp(gateway: Gateway) -> MCPServer[FleetState]:
         install_argument_messages(tool)
         if tool.output_schema is not None:
             strip_schema_titles(tool.output_schema)
+            compact = nullable_type_lists(tool.output_schema)
+            tool.output_schema.clear()
+            tool.output_schema.update(compact)
     notifier.install(server)
     register_resources(server, gateway, formation="fleet" in settings.toolsets)
     register_prompts(server)

@@ -5,8 +5,9 @@
 - 2026-07-28 clients (stateless, no session id): the session is the caller's identity (token principal)
   plus the clientInfo sent in each request's ``_meta``; first and last seen are kept by the store.
 
-Both are recorded through ``Store.touch_session``; every ``tools/call`` through ``Store.add_audit``, from
-this one middleware, including calls rejected before the tool ran (unknown tool, invalid arguments).
+Both are recorded through ``Store.touch_session``; every ``tools/call`` through ``Store.queue_audit``
+(its row and its session's touch, written off the request path in batches), from this one middleware,
+including calls rejected before the tool ran (unknown tool, invalid arguments).
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ from gateway.fleet.caller import Caller
 from gateway.fleet.routing import ACTING
 from gateway.mcp.access import CallInfo, FleetState, current_call
 from gateway.registry.records import AuditEntry, SessionKind
-from gateway.registry.store import Store
+from gateway.registry.store import SessionSeen, Store
 
 log = logging.getLogger(__name__)
 
@@ -86,7 +87,8 @@ class SessionAudit:
         store = state.gateway.store if running else None
         info = session_info(ctx)
         is_call = ctx.method == "tools/call" and ctx.request_id is not None
-        await self._touch(store, info, force=is_call)
+        if not is_call:  # a call's touch of its session is written with its audit row
+            await self._touch(store, info)
         # who acts in this request: the Commander's registry shows an agent only its scope of vehicles
         acting = ACTING.set(Caller(via="mcp", principal=info.principal, session=info.key))
         try:
@@ -122,29 +124,30 @@ class SessionAudit:
             # a call that returns while its operation runs (wait:false) names it: when the operation
             # ends, on whichever node runs it then, the store finishes the row (Store.save_operation)
             operation_id = _operation_id(result) if outcome == "running" else None
-            with anyio.CancelScope(shield=True):
-                await self._audit(
-                    store,
-                    info,
-                    call,
-                    str(params.get("name", "?")),
-                    arguments,
-                    outcome,
-                    error,
-                    started,
-                    operation_id,
-                )
+            self._audit(
+                store,
+                info,
+                call,
+                str(params.get("name", "?")),
+                arguments,
+                outcome,
+                error,
+                started,
+                operation_id,
+            )
 
-    async def _touch(self, store: Store | None, info: SessionInfo, force: bool) -> None:
-        if store is None:
-            return
-        now = time.monotonic()
-        last = self._touched.get(info.key)
-        if not force and last is not None and now - last[0] < TOUCH_EVERY_S and last[1] == info.client_name:
-            return
+    def _note_touched(self, info: SessionInfo) -> None:
         if len(self._touched) > 10_000:
             self._touched.clear()
-        self._touched[info.key] = (now, info.client_name)
+        self._touched[info.key] = (time.monotonic(), info.client_name)
+
+    async def _touch(self, store: Store | None, info: SessionInfo) -> None:
+        if store is None:
+            return
+        last = self._touched.get(info.key)
+        if last is not None and time.monotonic() - last[0] < TOUCH_EVERY_S and last[1] == info.client_name:
+            return
+        self._note_touched(info)
         try:
             await store.touch_session(
                 info.key,
@@ -156,7 +159,7 @@ class SessionAudit:
         except Exception:
             log.exception("could not record MCP session %s", info.key)
 
-    async def _audit(
+    def _audit(
         self,
         store: Store | None,
         info: SessionInfo,
@@ -167,11 +170,14 @@ class SessionAudit:
         error: str | None,
         started: float,
         operation_id: str | None = None,
-    ) -> int | None:
+    ) -> None:
+        """Queue the call's audit row with the touch of its session (written off the request path, in
+        batches: `Store.queue_audit`)."""
         if store is None:
-            return None
+            return
+        self._note_touched(info)
         try:
-            return await store.add_audit(
+            store.queue_audit(
                 AuditEntry(
                     session_key=info.key,
                     principal=info.principal,
@@ -183,11 +189,11 @@ class SessionAudit:
                     error=None if error is None else error[:1000],
                     duration_ms=round((time.perf_counter() - started) * 1000.0, 1),
                     operation_id=operation_id,
-                )
+                ),
+                SessionSeen(info.key, info.kind, info.principal, info.client_name, info.client_version),
             )
         except Exception:
-            log.exception("could not write the audit row of %s", tool)
-            return None
+            log.exception("could not queue the audit row of %s", tool)
 
 
 def _operation_id(result: Any) -> str | None:

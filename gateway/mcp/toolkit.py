@@ -253,3 +253,23 @@ def _collapsed(prop: Any) -> Any:
     [kept] = [v for v in variants if v != {"type": "null"}]
     merged = {k: v for k, v in prop.items() if k not in ("anyOf", "default")}
     return {**kept, **merged}
+
+
+def nullable_type_lists(schema: Any) -> Any:
+    """``anyOf: [{"type": X}, {"type": "null"}]`` written as ``"type": [X, "null"]`` (the same values).
+
+    For output schemas, which every client that checks structured results validates each result
+    against: a list of 100 drones is 1,300 nullable fields, and the ``anyOf`` form costs a validator
+    two sub-schemas each (and costs tokens where a client shows the schema to a model)."""
+    if isinstance(schema, list):
+        return [nullable_type_lists(item) for item in schema]
+    if not isinstance(schema, dict):
+        return schema
+    out = {k: nullable_type_lists(v) for k, v in schema.items()}
+    variants = out.get("anyOf")
+    if isinstance(variants, list) and len(variants) == 2 and {"type": "null"} in variants:
+        [kept] = [v for v in variants if v != {"type": "null"}]
+        if isinstance(kept, dict) and set(kept) == {"type"} and isinstance(kept["type"], str):
+            del out["anyOf"]
+            out["type"] = [kept["type"], "null"]
+    return out

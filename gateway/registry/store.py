@@ -8,15 +8,16 @@ returns plain pydantic records, never live ORM objects. Only portable SQL is use
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import logging
-import sys
 import weakref
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from datetime import datetime
 from pathlib import Path
 from typing import Any, get_args
 
-from sqlalchemy import CursorResult, delete, event, func, insert, or_, select, text
+from sqlalchemy import CursorResult, delete, event, func, insert, or_, select, text, update
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.ext.asyncio import AsyncEngine, async_sessionmaker, create_async_engine
 
@@ -74,6 +75,7 @@ __all__ = [
     "OperationStatus",
     "SessionKind",
     "SessionRecord",
+    "SessionSeen",
     "StatusTextIn",
     "StatusTextRecord",
     "Store",
@@ -91,23 +93,37 @@ log = logging.getLogger(__name__)
 
 #: Called with each audit row this store writes, and again when a row's outcome is finished.
 AuditListener = Callable[[AuditRecord], None]
+AUDIT_BATCH_S = 0.05
+"""The longest a queued audit row waits for others to share its transaction (`Store.queue_audit`);
+readers and `close` cut it short."""
+
 ENDED_ELSEWHERE_KEPT = 500
 """Outcomes of operations kept only in memory (fleet operations) remembered for audit rows written late."""
 
-# The Alembic scripts: the repository's migrations/ (source checkout, editable install), else the copy
-# a wheel installs under <prefix>/share/fleet-gateway/migrations (pyproject's data-files).
-MIGRATION_DIRS = (
-    Path(__file__).resolve().parents[2] / "migrations",
-    Path(sys.prefix) / "share" / "fleet-gateway" / "migrations",
-)
+
+@dataclass(frozen=True)
+class SessionSeen:
+    """A session seen by one audited call: written with the call's audit row (`Store.queue_audit`)."""
+
+    key: str
+    kind: SessionKind
+    principal: str | None = None
+    client_name: str | None = None
+    client_version: str | None = None
+
+
+# The Alembic scripts ship inside the package (package data, ``gateway/migrations``), so they are found
+# wherever pip puts the package: a virtual environment, ``--user``, a distribution's system pip, a
+# ``--target`` directory or an editable checkout.
+MIGRATIONS_DIR = Path(__file__).resolve().parents[1] / "migrations"
 
 
 def migrations_dir() -> Path:
-    for candidate in MIGRATION_DIRS:
-        if (candidate / "env.py").is_file():
-            return candidate
+    if (MIGRATIONS_DIR / "env.py").is_file():
+        return MIGRATIONS_DIR
     raise RuntimeError(
-        f"the database migrations are missing; looked in {', '.join(map(str, MIGRATION_DIRS))}"
+        f"the database migrations are missing: {MIGRATIONS_DIR} has no env.py (a damaged install? "
+        "reinstall fleet-gateway)"
     )
 
 
@@ -212,6 +228,10 @@ class Store:
         self._audit_listeners: list[AuditListener] = []
         # operation id -> (status, message) of ended operations this store does not keep (fleet ones)
         self._ended_elsewhere: dict[str, tuple[str, str | None]] = {}
+        # audit rows (with the session each call touched) waiting for the writer task (queue_audit)
+        self._audit_queue: list[tuple[AuditEntry, SessionSeen | None]] = []
+        self._audit_writer: asyncio.Task[None] | None = None
+        self._audit_flush: asyncio.Event | None = None
 
     @classmethod
     async def open(cls, url: str, upgrade: bool = True) -> Store:
@@ -230,6 +250,7 @@ class Store:
 
     async def close(self) -> None:
         if not self._closed:
+            await self.flush_audit()  # nothing queued is lost on a clean stop
             self._closed = True
             await self.engine.dispose()
 
@@ -501,6 +522,7 @@ class Store:
         raise AssertionError("unreachable")
 
     async def get_session(self, key: str) -> SessionRecord | None:
+        await self.flush_audit()
         async with self._sessions() as session:
             row = await session.get(SessionRow, key)
             return None if row is None else SessionRecord.model_validate(row)
@@ -514,6 +536,7 @@ class Store:
         offset: int = 0,
     ) -> list[SessionRecord]:
         """Sessions, most recently seen first."""
+        await self.flush_audit()
         query = select(SessionRow)
         if kind is not None:
             query = query.where(SessionRow.kind == kind)
@@ -540,10 +563,10 @@ class Store:
 
         return remove
 
-    def _audit_written(self, row: AuditRow) -> None:
+    def _audit_written(self, row: AuditRow | AuditRecord) -> None:
         if not self._audit_listeners:
             return
-        record = AuditRecord.model_validate(row)
+        record = row if isinstance(row, AuditRecord) else AuditRecord.model_validate(row)
         for listener in list(self._audit_listeners):
             try:
                 listener(record)
@@ -570,15 +593,125 @@ class Store:
             row_id = int(row.id)
         self._audit_written(row)
         if entry.outcome == "running" and entry.operation_id is not None:
-            # the operation may have ended before this row was written: then nobody else closes it
-            ended = self._ended_elsewhere.get(entry.operation_id)
-            if ended is not None:
-                await self._finish_audit_of(entry.operation_id, *ended)
-            else:
-                op = await self.get_operation(entry.operation_id)
-                if op is not None and op.status != "running":
-                    await self._finish_audit_of(entry.operation_id, op.status, op.message)
+            await self._finish_if_ended(entry.operation_id)
         return row_id
+
+    def queue_audit(self, entry: AuditEntry, seen: SessionSeen | None = None) -> None:
+        """Record one call without waiting for the database (the MCP door's path, per tool call).
+
+        The row, and the touch of the session the call came in (``seen``: last seen, one more request),
+        are written by the store's writer task together with the calls queued within ``AUDIT_BATCH_S``,
+        in one transaction. Every reader of audit rows or sessions, the finishing of a running row and
+        `close` wait for the queue first, so no reader misses a row and a clean stop loses none; a
+        batch the database refuses is written again row by row, and a row that still fails is logged
+        with its call, as `add_audit`'s callers do."""
+        if self._closed:
+            raise RuntimeError("the store is closed")
+        if entry.t is None:  # the row's time is the call's end, not the batch's write
+            entry = entry.model_copy(update={"t": utcnow()})
+        self._audit_queue.append((entry, seen))
+        if self._audit_writer is None or self._audit_writer.done():
+            self._audit_flush = asyncio.Event()
+            self._audit_writer = asyncio.get_running_loop().create_task(
+                self._write_queued(self._audit_flush), name="audit-writer"
+            )
+
+    async def flush_audit(self) -> None:
+        """Wait until every queued audit row is written (at once: the batching pause is cut short)."""
+        while self._audit_writer is not None and not self._audit_writer.done():
+            if self._audit_flush is not None:
+                self._audit_flush.set()
+            await asyncio.shield(self._audit_writer)
+
+    async def _write_queued(self, flush: asyncio.Event) -> None:
+        while self._audit_queue:
+            if not flush.is_set():  # calls arriving meanwhile share the transaction
+                with contextlib.suppress(TimeoutError):
+                    await asyncio.wait_for(flush.wait(), AUDIT_BATCH_S)
+            batch, self._audit_queue = self._audit_queue, []
+            try:
+                await self._write_audit_batch(batch)
+            except Exception:
+                log.exception("could not write %d audit rows at once; writing them one by one", len(batch))
+                for item in batch:
+                    try:
+                        await self._write_audit_batch([item])
+                    except Exception:
+                        log.exception("could not write the audit row of %s", item[0].action)
+
+    async def _write_audit_batch(self, batch: list[tuple[AuditEntry, SessionSeen | None]]) -> None:
+        seen: dict[str, tuple[SessionSeen, int]] = {}
+        for _entry, s in batch:
+            if s is not None:
+                seen[s.key[:200]] = (s, seen.get(s.key[:200], (s, 0))[1] + 1)
+        values = [self._audit_values(entry) for entry, _ in batch]
+        async with self._sessions.begin() as session:
+            for key, (s, count) in seen.items():
+                await self._touch_in(session, key, s, count)
+            statement = insert(AuditRow).returning(AuditRow.id, sort_by_parameter_order=True)
+            ids = (await session.scalars(statement, values)).all()
+        for (entry, _s), row, row_id in zip(batch, values, ids, strict=True):
+            if self._audit_listeners:
+                self._audit_written(AuditRecord.model_validate({**row, "id": row_id}))
+            if entry.outcome == "running" and entry.operation_id is not None:
+                await self._finish_if_ended(entry.operation_id)
+
+    @staticmethod
+    async def _touch_in(session: Any, key: str, s: SessionSeen, count: int) -> None:
+        """Last seen now and ``count`` more requests (the row is made when it is new)."""
+        now = utcnow()
+        changes: dict[str, Any] = {
+            "last_seen": now,
+            "request_count": func.coalesce(SessionRow.request_count, 0) + count,
+            "kind": s.kind,
+        }
+        if s.principal is not None:
+            changes["principal"] = s.principal
+        if s.client_name:
+            changes["client_name"] = s.client_name[:200]
+        if s.client_version:
+            changes["client_version"] = s.client_version[:100]
+        result = await session.execute(update(SessionRow).where(SessionRow.key == key).values(**changes))
+        if not _rowcount(result):
+            await session.execute(
+                insert(SessionRow).values(
+                    key=key,
+                    kind=s.kind,
+                    principal=s.principal,
+                    client_name=(s.client_name or None) and s.client_name[:200],
+                    client_version=(s.client_version or None) and s.client_version[:100],
+                    first_seen=now,
+                    last_seen=now,
+                    request_count=count,
+                )
+            )
+
+    @staticmethod
+    def _audit_values(entry: AuditEntry) -> dict[str, Any]:
+        return {
+            "t": entry.t or utcnow(),
+            "session_key": entry.session_key and entry.session_key[:200],
+            "principal": entry.principal and entry.principal[:200],
+            "source": entry.source,
+            "vehicle_id": entry.vehicle_id and entry.vehicle_id[:32],
+            "action": entry.action[:100],
+            "arguments": bound_arguments(entry.arguments),
+            "outcome": entry.outcome,
+            "error": entry.error and entry.error[:AUDIT_MAX_ERROR],
+            "duration_ms": entry.duration_ms,
+            "operation_id": entry.operation_id,
+        }
+
+    async def _finish_if_ended(self, operation_id: str) -> None:
+        """A running row was just written: the operation may have ended before, and then nobody else
+        finishes the row."""
+        ended = self._ended_elsewhere.get(operation_id)
+        if ended is not None:
+            await self._finish_audit_rows(operation_id, *ended)
+            return
+        op = await self.get_operation(operation_id)
+        if op is not None and op.status != "running":
+            await self._finish_audit_rows(operation_id, op.status, op.message)
 
     def _audit_conditions(
         self,
@@ -614,6 +747,7 @@ class Store:
         """Audit entries, newest first; ``since``/``until`` bound their time (inclusive).
         ``include_fleet`` adds, to a ``vehicle_id`` filter, the rows that name no single vehicle
         (fleet-wide calls)."""
+        await self.flush_audit()
         query = (
             select(AuditRow)
             .where(*self._audit_conditions(vehicle_id, session_key, since, until, include_fleet))
@@ -634,6 +768,7 @@ class Store:
         until: datetime | None = None,
         include_fleet: bool = False,
     ) -> int:
+        await self.flush_audit()
         query = select(func.count()).select_from(AuditRow)
         query = query.where(*self._audit_conditions(vehicle_id, session_key, since, until, include_fleet))
         async with self._sessions() as session:
@@ -667,6 +802,10 @@ class Store:
         await self._finish_audit_of(operation_id, status, message)
 
     async def _finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
+        await self.flush_audit()  # a row still queued is finished too
+        await self._finish_audit_rows(operation_id, status, message)
+
+    async def _finish_audit_rows(self, operation_id: str, status: str, message: str | None) -> None:
         outcome = AUDIT_OUTCOME_OF_OPERATION.get(status, "error")
         async with self._sessions.begin() as session:
             query = select(AuditRow).where(
@@ -762,6 +901,7 @@ class Store:
         Registrations, locks, open flights and running operations are kept. Returns rows deleted."""
         old_flights = select(FlightRow.id).where(FlightRow.ended_at.is_not(None), FlightRow.ended_at < before)
         counts: dict[str, int] = {}
+        await self.flush_audit()
         async with self._sessions.begin() as session:
             steps = [
                 ("track_samples", delete(TrackSampleRow).where(TrackSampleRow.flight_id.in_(old_flights))),

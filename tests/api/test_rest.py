@@ -5,8 +5,10 @@ Live vehicles (real sidecars and simulated drones) are covered by test_integrati
 
 from __future__ import annotations
 
+import asyncio
 import re
 from datetime import UTC, datetime, timedelta
+from pathlib import Path
 
 import httpx
 import pytest
@@ -17,6 +19,7 @@ from gateway.config import Settings
 from gateway.fleet.vehicle import ConnectionState
 from gateway.registry.store import AuditEntry, StatusTextIn, Store, TrackSample
 from tests.fakes import FakeRegistry
+from tests.helpers.timing import scaled
 
 from .live import lifespan_running
 
@@ -305,14 +308,68 @@ async def test_flight_and_track_geojson(client: httpx.AsyncClient, app: FastAPI)
     feature = response.json()
     assert feature["type"] == "Feature" and feature["geometry"]["type"] == "LineString"
     coords = feature["geometry"]["coordinates"]
-    assert len(coords) == 5 and coords[1] == [8.0, pytest.approx(47.00001), 1.0]  # lon, lat, alt
+    # lon, lat, altitude above mean sea level (home 400 m AMSL + 1 m above home)
+    assert len(coords) == 5 and coords[1] == [8.0, pytest.approx(47.00001), 401.0]
     props = feature["properties"]
     assert props["flight_id"] == ids[0] and props["sample_count"] == 5
+    assert props["alt_rel_m"] == [0.0, 1.0, 2.0, 3.0, 4.0] and "mean sea level" in props["altitude_reference"]
     assert props["battery_pct"] == [100.0, 99.0, 98.0, 97.0, 96.0]
     assert len(props["times"]) == 5 and props["times"][0].startswith("2026-05-01T12:00:00")
 
     assert_error(await client.get("/api/v1/flights/999"), 404, "not_found")
     assert_error(await client.get("/api/v1/flights/999/track.geojson"), 404, "not_found")
+
+
+async def test_flight_as_kml_and_tlog(client: httpx.AsyncClient, app: FastAPI, tmp_path: Path) -> None:
+    """KML with altitudes above sea level; a .tlog that pymavlink reads back to the whole track."""
+    import xml.etree.ElementTree as ET
+
+    from pymavlink import mavutil
+
+    await client.post("/api/v1/vehicles", json={**ALPHA, "expected_sysid": 7})
+    ids = await seed_flights(store_of(app))
+    await store_of(app).add_status_texts(
+        [
+            StatusTextIn(
+                vehicle_id="alpha",
+                flight_id=ids[0],
+                t=T0 + timedelta(seconds=2),
+                severity=4,
+                text="PreArm: test",
+            )
+        ]
+    )
+    kml = await client.get(f"/api/v1/flights/{ids[0]}/track.kml")
+    assert kml.status_code == 200 and kml.headers["content-type"].startswith(
+        "application/vnd.google-earth.kml+xml"
+    )
+    ns = {"k": "http://www.opengis.net/kml/2.2", "gx": "http://www.google.com/kml/ext/2.2"}
+    root = ET.fromstring(kml.content)
+    line = root.find(".//k:LineString", ns)
+    assert line is not None and line.findtext("k:altitudeMode", namespaces=ns) == "absolute"
+    points = [p.split(",") for p in (line.findtext("k:coordinates", namespaces=ns) or "").split()]
+    assert len(points) == 5 and [float(p[2]) for p in points] == [400.0, 401.0, 402.0, 403.0, 404.0]
+    assert len(root.findall(".//gx:Track/k:when", ns)) == 5
+
+    tlog = await client.get(f"/api/v1/flights/{ids[0]}/tlog")
+    assert tlog.status_code == 200 and 'filename="alpha-flight-' in tlog.headers["content-disposition"]
+    path = tmp_path / "flight.tlog"
+    path.write_bytes(tlog.content)
+    log = mavutil.mavlink_connection(str(path), dialect="common")
+    positions, texts, stamps = [], [], []
+    while (msg := log.recv_match()) is not None:
+        if msg.get_type() == "GLOBAL_POSITION_INT":
+            assert msg.get_srcSystem() == 7
+            positions.append((msg.lat / 1e7, msg.lon / 1e7, msg.alt / 1000, msg.relative_alt / 1000))
+            stamps.append(msg._timestamp)
+        elif msg.get_type() == "STATUSTEXT":
+            texts.append((msg.severity, msg.text))
+    assert [p[3] for p in positions] == [0.0, 1.0, 2.0, 3.0, 4.0]
+    assert positions[1] == (pytest.approx(47.00001), 8.0, 401.0, 1.0)
+    assert stamps[0] == pytest.approx(T0.timestamp()) and stamps[4] - stamps[0] == pytest.approx(4.0)
+    assert texts == [(4, "PreArm: test")]
+    assert_error(await client.get("/api/v1/flights/999/tlog"), 404, "not_found")
+    assert_error(await client.get("/api/v1/flights/999/track.kml"), 404, "not_found")
 
 
 async def test_empty_track_has_no_geometry(client: httpx.AsyncClient, app: FastAPI) -> None:
@@ -396,6 +453,18 @@ async def test_metrics_per_app(client: httpx.AsyncClient, app: FastAPI, settings
         'fleet_gateway_http_requests_total{method="POST",route="/api/v1/vehicles",status="201"} 1.0' in text
     )
     assert "fleet_gateway_ready 1.0" in text
+    assert 'fleet_gateway_calls_total{action="rest.register_vehicle",outcome="ok",source="rest"} 1.0' in text
+    # a refusal counts by its rule
+    app.state.gateway.registry.get("alpha").state = ConnectionState.READY
+    refused = await client.post("/api/v1/vehicles/alpha/takeoff", json={"alt_rel_m": 5000})
+    assert refused.status_code == 403 and refused.json()["error"]["message"].startswith("max_altitude")
+    counted = 'fleet_gateway_refusals_total{rule="max_altitude"} 1.0'
+    deadline = asyncio.get_running_loop().time() + scaled(10)
+    while counted not in (text := (await client.get("/metrics")).text):  # audited after the answer
+        assert asyncio.get_running_loop().time() < deadline, text
+        await asyncio.sleep(0.05)
+    call = 'fleet_gateway_calls_total{action="rest.takeoff_vehicle",outcome="refused",source="rest"} 1.0'
+    assert call in text
 
     other = create_app(settings.model_copy(update={"database_url": f"sqlite+aiosqlite:///{tmp_path}/b.db"}))
     assert other.state.metrics_registry is not app.state.metrics_registry

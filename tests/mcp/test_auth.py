@@ -3,7 +3,10 @@ principal (derived from the token, never the token itself). In-process ASGI, no 
 
 from __future__ import annotations
 
+import contextlib
+from collections.abc import AsyncIterator
 from pathlib import Path
+from typing import Any
 
 import httpx2
 import pytest
@@ -20,6 +23,21 @@ from tests.fakes import FakeVehicle, fake, fake_gateway, unit_settings
 URL = "http://127.0.0.1:8765/mcp"
 
 
+@contextlib.asynccontextmanager
+async def agent_client(app: Any, token: str) -> AsyncIterator[Client]:
+    """An MCP client presenting ``token`` to the in-process app."""
+    http = httpx2.AsyncClient(
+        transport=httpx2.ASGITransport(app=app),
+        base_url="http://127.0.0.1:8765",
+        headers={"authorization": f"Bearer {token}"},
+    )
+    client = Client(
+        streamable_http_client(URL, http_client=http), client_info=Implementation(name="a", version="1")
+    )
+    async with http, client as c:
+        yield c
+
+
 async def test_agent_token_required_and_recorded_as_principal(tmp_path: Path) -> None:
     settings = unit_settings(tmp_path, agent_tokens="s3cret-token,other-token")
     async with fake_gateway(settings, [FakeVehicle("d1")]) as gateway:
@@ -33,18 +51,7 @@ async def test_agent_token_required_and_recorded_as_principal(tmp_path: Path) ->
                 assert (await anon.post("/mcp", json=body, headers=headers)).status_code == 401
                 bad = {**headers, "authorization": "Bearer wrong"}
                 assert (await anon.post("/mcp", json=body, headers=bad)).status_code == 401
-            http = httpx2.AsyncClient(
-                transport=transport,
-                base_url="http://127.0.0.1:8765",
-                headers={"authorization": "Bearer s3cret-token"},
-            )
-            async with (
-                http,
-                Client(
-                    streamable_http_client(URL, http_client=http),
-                    client_info=Implementation(name="a", version="1"),
-                ) as c,
-            ):
+            async with agent_client(app, "s3cret-token") as c:
                 r = await c.call_tool("get_battery", {"drone_id": "d1"})
                 assert r.structured_content["remaining_pct"] == 87.0
         store = gateway.require_store()
@@ -65,18 +72,7 @@ async def test_a_scope_keyed_by_a_token_that_looks_like_a_principal_confines_tha
         server = build_mcp(gateway)
         app = mcp_http_app(server, settings)
         async with server.session_manager.run():
-            http = httpx2.AsyncClient(
-                transport=httpx2.ASGITransport(app=app),
-                base_url="http://127.0.0.1:8765",
-                headers={"authorization": f"Bearer {token}"},
-            )
-            async with (
-                http,
-                Client(
-                    streamable_http_client(URL, http_client=http),
-                    client_info=Implementation(name="a", version="1"),
-                ) as c,
-            ):
+            async with agent_client(app, token) as c:
                 listed = await c.call_tool("list_drones", {})
                 assert [d["drone_id"] for d in listed.structured_content["drones"]] == ["d1"]
                 calls = {"get_battery": {}, "takeoff": {"alt_m": 10}, "land": {}, "disarm_drone": {}}

@@ -57,3 +57,27 @@ def test_advertise_replaces_a_parameter_and_drops_unused_definitions() -> None:
     assert schema["$defs"] == {"Other": {"type": "string"}}
     with pytest.raises(ValueError, match="unknown parameter 'nope'"):
         _advertise(schema, {"nope": {}})
+
+
+def test_output_schemas_write_nullable_fields_as_type_lists_accepting_the_same_values() -> None:
+    import jsonschema
+
+    from gateway.mcp.toolkit import nullable_type_lists
+
+    schema = {
+        "type": "object",
+        "properties": {
+            "battery_pct": {"anyOf": [{"type": "number"}, {"type": "null"}], "description": "%"},
+            "mode": {"anyOf": [{"type": "string", "enum": ["a"]}, {"type": "null"}]},  # more than a type
+            "row": {"anyOf": [{"$ref": "#/$defs/Row"}, {"type": "null"}]},
+        },
+        "$defs": {"Row": {"type": "object"}},
+    }
+    compact = nullable_type_lists(schema)
+    assert compact["properties"]["battery_pct"] == {"type": ["number", "null"], "description": "%"}
+    assert compact["properties"]["mode"] == schema["properties"]["mode"]
+    assert compact["properties"]["row"] == schema["properties"]["row"]
+    for value, ok in ((1.5, True), (None, True), ("x", False)):
+        for s in (schema, compact):
+            valid = jsonschema.Draft202012Validator(s).is_valid({"battery_pct": value})
+            assert valid is ok, (s, value)

@@ -17,7 +17,9 @@ from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import (
     AUDIT_MAX_STRING,
     AuditEntry,
+    AuditRecord,
     OperationRecord,
+    SessionSeen,
     StatusTextIn,
     Store,
     TrackSample,
@@ -399,6 +401,58 @@ async def test_audit_add_and_list(store: Store) -> None:
     assert [e.arguments["alt"] for e in await store.list_audit(session_key="s2")] == [4, 3]
     assert [e.arguments["alt"] for e in await store.list_audit(limit=2, offset=1)] == [3, 2]
     assert await store.count_audit() == 5 and await store.count_audit(vehicle_id="bravo") == 2
+
+
+async def test_queued_audit_rows_are_written_in_batches_and_seen_by_every_reader(store: Store) -> None:
+    seen: list[AuditRecord] = []
+    store.on_audit(seen.append)
+    batches: list[int] = []
+    writes = store._write_audit_batch
+
+    async def counted(batch: list) -> None:  # type: ignore[type-arg]
+        batches.append(len(batch))
+        await writes(batch)
+
+    store._write_audit_batch = counted  # type: ignore[method-assign]
+    who = SessionSeen("s1", "mcp-2026", principal="agent", client_name="bench", client_version="1")
+    for i in range(5):
+        store.queue_audit(
+            AuditEntry(
+                source="mcp", action="get_position", vehicle_id="alpha", arguments={"i": i}, outcome="ok"
+            ),
+            who,
+        )
+    # a reader does not wait for the batching pause, and misses nothing
+    assert [e.arguments["i"] for e in await store.list_audit()] == [4, 3, 2, 1, 0]
+    assert batches == [5]
+    session = await store.get_session("s1")
+    assert session is not None and session.request_count == 5 and session.client_name == "bench"
+    assert [r.arguments["i"] for r in seen] == [0, 1, 2, 3, 4]  # listeners see each row once written
+    store.queue_audit(AuditEntry(source="mcp", action="land", outcome="ok"), who)
+    assert await store.count_audit() == 6
+    assert (await store.get_session("s1")).request_count == 6  # type: ignore[union-attr]
+
+
+async def test_a_queued_running_row_of_an_operation_that_already_ended_is_finished(store: Store) -> None:
+    op = OperationRecord(id="op-q", vehicle_id="alpha", kind="goto", status="running")
+    await store.save_operation(op)
+    await store.save_operation(op.model_copy(update={"status": "succeeded", "message": "arrived"}))
+    store.queue_audit(
+        AuditEntry(source="mcp", action="go_to_location", outcome="running", operation_id="op-q")
+    )
+    [row] = await store.list_audit()
+    assert row.outcome == "ok" and row.operation_id == "op-q"
+
+
+async def test_close_writes_what_is_queued(db_url: str) -> None:
+    store = await Store.open(db_url)
+    store.queue_audit(AuditEntry(source="mcp", action="takeoff", outcome="ok"))
+    await store.close()
+    reopened = await Store.open(db_url)
+    try:
+        assert [e.action for e in await reopened.list_audit()] == ["takeoff"]
+    finally:
+        await reopened.close()
 
 
 def test_audit_entry_rejects_unknown_outcome() -> None:

@@ -61,7 +61,8 @@ async def test_registry_sidecar_refuses_non_loopback(tmp_path: Path, host_addres
 async def test_unconfinable_binary_fails_closed(tmp_path: Path) -> None:
     """A mavsdk_server build the gateway cannot confine is never started as is: the vehicle is failed."""
     fake = tmp_path / "mavsdk_server"
-    fake.write_bytes(b"#!/bin/sh\nexit 0\n")
+    # an x86-64 ELF header, but not the build whose listen-address code the gateway knows
+    fake.write_bytes(b"\x7fELF\x02\x01\x01" + bytes(11) + (62).to_bytes(2, "little") + bytes(64))
     fake.chmod(0o755)
     settings = Settings(
         _env_file=None,

@@ -316,11 +316,9 @@ async def test_five_drone_formation_flight_keeps_separation(tmp_path: Path) -> N
                 for flight in flights:
                     feature = (await http.get(f"/api/v1/flights/{flight['id']}/track.geojson")).json()
                     coords = feature["geometry"]["coordinates"] if feature["geometry"] else []
-                    times = feature["properties"]["times"]
-                    for (lon, lat, *alt), t in zip(coords, times, strict=True):
-                        tracks[d].append(
-                            (datetime.fromisoformat(t).timestamp(), lat, lon, alt[0] if alt else 0.0)
-                        )
+                    times, rel = feature["properties"]["times"], feature["properties"]["alt_rel_m"]
+                    for (lon, lat, *_amsl), t, alt in zip(coords, times, rel, strict=True):
+                        tracks[d].append((datetime.fromisoformat(t).timestamp(), lat, lon, alt or 0.0))
         figures["samples_live"] = sum(len(v) for v in live.values())
         figures["samples_track"] = sum(len(v) for v in tracks.values())
         assert all(len(v) > 50 for v in live.values()), {d: len(v) for d, v in live.items()}

@@ -1,0 +1,77 @@
+"""/api/v1/vehicles/{id}/mission: a ground station's mission file in (QGC .plan or QGC WPL 110) and out.
+
+Both are one Commander call with the operator's caller (``via="rest"``): the upload goes through the same
+policy checks as ``upload_mission``, item by item, and a refusal names the item's number (the file's
+sequence number) and the rule. How the file's items are read: `gateway.fleet.mission_files`.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from fastapi import APIRouter, Query, Request, Response
+
+from gateway.api.audit import AuditedRoute
+from gateway.api.control import CommandOut, operator
+from gateway.api.deps import CommanderDep, CommandVehicleId, PrincipalDep
+from gateway.errors import InvalidArgument
+
+router = APIRouter(tags=["operator control"], route_class=AuditedRoute)
+
+FileFormat = Literal["plan", "waypoints"]
+MEDIA = {"plan": "application/json", "waypoints": "text/plain"}
+SUFFIX = {"plan": "plan", "waypoints": "waypoints"}
+_FILE_BODY = {
+    "required": True,
+    "content": {
+        "application/json": {"schema": {"type": "object", "description": "A QGroundControl .plan file."}},
+        "text/plain": {"schema": {"type": "string", "description": "A QGC WPL 110 waypoint file."}},
+    },
+}
+
+
+@router.put(
+    "/vehicles/{vehicle_id}/mission",
+    response_model=CommandOut,
+    summary="Store a mission file on the vehicle (QGC .plan or QGC WPL 110), checked like any mission",
+    openapi_extra={"requestBody": _FILE_BODY},
+)
+async def put_mission_file(
+    vehicle_id: CommandVehicleId,
+    request: Request,
+    commander: CommanderDep,
+    who: PrincipalDep,
+    file_format: Annotated[
+        FileFormat | None,
+        Query(alias="format", description="plan or waypoints; default: told from the file."),
+    ] = None,
+) -> CommandOut:
+    try:
+        content = (await request.body()).decode("utf-8-sig")
+    except UnicodeDecodeError:
+        raise InvalidArgument("the mission file is not UTF-8 text") from None
+    result = await commander.upload_mission_file(operator(who), vehicle_id, content, file_format)
+    return CommandOut(
+        vehicle_id=vehicle_id, action="upload_mission_file", outcome="sent", message=result.message
+    )
+
+
+@router.get(
+    "/vehicles/{vehicle_id}/mission",
+    summary="The vehicle's mission as a QGC .plan or a QGC WPL 110 file",
+    response_class=Response,
+    responses={200: {"content": {"application/json": {}, "text/plain": {}}}},
+)
+async def get_mission_file(
+    vehicle_id: CommandVehicleId,
+    commander: CommanderDep,
+    who: PrincipalDep,
+    file_format: Annotated[FileFormat, Query(alias="format", description="plan or waypoints.")] = "plan",
+) -> Response:
+    view = await commander.export_mission(operator(who), vehicle_id, file_format)
+    name = f"{vehicle_id}.{SUFFIX[file_format]}"
+    return Response(
+        view.content,
+        media_type=MEDIA[file_format],
+        headers={"Content-Disposition": f'attachment; filename="{name}"'},
+    )

@@ -1,0 +1,117 @@
+"""The OpenAPI document at /openapi.json: operation ids, the bearer scheme and the error responses.
+
+FastAPI documents what a route returns when it succeeds and a 422 of its own shape. This adds what the
+gateway really answers besides: the one error body (``gateway.api.errors``) for every error status, the
+bearer scheme of ``gateway.api.deps.authorize`` (401 without a valid token when tokens are configured;
+403 for a viewer token on anything but a read), 404 on routes that name a vehicle, flight, operation or
+zone, 409 where the vehicle's state or an existing registration conflicts, 403/409/502 on the commands
+the Commander sends to a drone (a safety refusal, a drone not ready, the autopilot's refusal), and 503
+while the gateway starts or stops. Operation ids are the route functions' names (``list_vehicles``).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from fastapi import FastAPI
+from fastapi.openapi.utils import get_openapi
+from fastapi.routing import APIRoute
+
+ERROR_SCHEMA: dict[str, Any] = {
+    "title": "Error",
+    "type": "object",
+    "required": ["error"],
+    "properties": {
+        "error": {
+            "type": "object",
+            "required": ["code", "message"],
+            "properties": {
+                "code": {
+                    "type": "string",
+                    "description": "Stable machine-readable code, e.g. unknown_vehicle.",
+                },
+                "message": {
+                    "type": "string",
+                    "description": "One line saying what was wrong and what is accepted.",
+                },
+                "details": {"description": "Structured details (fields, rule, numbers), when there are any."},
+            },
+        }
+    },
+}
+
+_WHY = {
+    "401": "No token, or an unknown one, while operator or viewer tokens are configured.",
+    "403": "A viewer token on a route that changes something.",
+    "404": "No such vehicle, flight, operation or zone.",
+    "409": "The vehicle's state or an existing registration conflicts with the request.",
+    "422": "An argument is invalid: the message names it, what was given and what is accepted.",
+    "502": "The autopilot refused the command (its own words are in the message).",
+    "503": "The gateway is starting or stopping, or the vehicle's owner node cannot be reached.",
+}
+_COMMAND_TAGS = {"operator control"}
+_CONFLICTS = {("post", "/api/v1/vehicles")}
+BEARER = "bearer"
+#: the paths behind `gateway.api.deps.authorize`: the API (its router's dependency) and /metrics
+SECURED = ("/api/v1", "/metrics")
+
+
+def operation_id(route: APIRoute) -> str:
+    """The route function's name: readable, and unique (checked by the tests)."""
+    return route.name
+
+
+def _responses(method: str, path: str, operation: dict[str, Any]) -> dict[str, str]:
+    codes = {"401": _WHY["401"], "422": _WHY["422"], "503": _WHY["503"]}
+    if method not in ("get", "head", "options"):
+        codes["403"] = _WHY["403"]
+    if "{" in path:
+        codes["404"] = _WHY["404"]
+    if (method, path) in _CONFLICTS:
+        codes["409"] = "A vehicle with this id is already registered."
+    if _COMMAND_TAGS & set(operation.get("tags", ())):
+        codes["403"] = "A safety rule refused the command (details.rule names it), or a viewer token."
+        codes["409"] = "The vehicle is not ready (the message says its state and why)."
+        codes["502"] = _WHY["502"]
+    return codes
+
+
+def build_openapi(app: FastAPI) -> dict[str, Any]:
+    schema = get_openapi(title=app.title, version=app.version, description=app.description, routes=app.routes)
+    components = schema.setdefault("components", {})
+    components.setdefault("schemas", {})["Error"] = ERROR_SCHEMA
+    components["securitySchemes"] = {
+        BEARER: {
+            "type": "http",
+            "scheme": "bearer",
+            "description": "An operator token (everything) or a viewer token (reads only), from "
+            "GATEWAY_OPERATOR_TOKENS / GATEWAY_VIEWER_TOKENS. With none configured the API is open "
+            "and the gateway listens on loopback only.",
+        }
+    }
+    error_ref = {"application/json": {"schema": {"$ref": "#/components/schemas/Error"}}}
+    for path, item in schema.get("paths", {}).items():
+        if not path.startswith(SECURED):
+            continue
+        for method, operation in item.items():
+            operation["security"] = [{BEARER: []}]
+            responses = operation.setdefault("responses", {})
+            codes = (
+                _responses(method, path, operation) if path.startswith("/api/v1") else {"401": _WHY["401"]}
+            )
+            for code, why in codes.items():
+                responses[code] = {"description": why, "content": error_ref}
+    components["schemas"].pop("HTTPValidationError", None)
+    components["schemas"].pop("ValidationError", None)
+    return schema
+
+
+def install_openapi(app: FastAPI) -> None:
+    """Serve :func:`build_openapi`'s document (built once, on first request)."""
+
+    def openapi() -> dict[str, Any]:
+        if app.openapi_schema is None:
+            app.openapi_schema = build_openapi(app)
+        return app.openapi_schema
+
+    app.openapi = openapi  # type: ignore[method-assign]
