@@ -50,6 +50,8 @@ from bench.agent_harness.stack import GatewayTruth, LocalStack, Sampler, SimTrut
 from bench.agent_harness.tokens import cl100k_tokens, model_tokens
 from bench.common import machine, write_section
 from gateway.agent.answer import ANSWER_TOOL_INFO
+from gateway.agent.autoprofile import ProfileChoice
+from gateway.agent.autoprofile import resolve as resolve_profile
 from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentEvent, AgentHost, ModelConfig, TurnResult
 from gateway.agent.mcp_link import McpLink
 from gateway.agent.profiles import PROFILES, apply_profile, host_options_for, system_prompt_for
@@ -127,9 +129,9 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     p.add_argument("--tools", default=None, help="comma-separated tool names offered to the model")
     p.add_argument(
         "--profile",
-        default="full",
-        choices=list(PROFILES),
-        help="small: the small-model toolset (default full)",
+        default="auto",
+        choices=[*PROFILES, "auto"],
+        help="small: the small-model toolset; full; auto (default): as `fleet-gateway agent` chooses",
     )
     p.add_argument("--missions", default=None, help="comma-separated mission ids (default: all)")
     p.add_argument(
@@ -568,6 +570,18 @@ def main(argv: list[str] | None = None) -> int:
         if args.serve_local:
             local = serving.enter_context(LocalModel(args.serve_local, args.threads, console))
             args.endpoint, args.model = local.base_url, local.model
+        if args.profile == "auto":
+            choice = (
+                ProfileChoice("full", "the self-check")
+                if args.self_check
+                else asyncio.run(
+                    resolve_profile(
+                        "auto", args.endpoint, args.model or "", AgentSettings().resolved_api_key()
+                    )
+                )
+            )
+            args.profile = choice.profile
+            console.print(f"[dim]profile {choice.profile} (auto): {choice.reason}[/]")
         args.load_start = os.getloadavg()[0]
         try:
             runs = asyncio.run(_cancellable(run_missions(args, console)))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
 import json
 import logging
 import sys
@@ -12,10 +13,13 @@ from typing import Any
 from rich.console import Console
 from rich.table import Table
 
+from gateway.agent.autoprofile import ProfileChoice
+from gateway.agent.autoprofile import resolve as resolve_profile
 from gateway.agent.display import JsonLinesDisplay, RichDisplay
-from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentHost, ModelConfig
+from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentEvent, AgentHost, ModelConfig
 from gateway.agent.mcp_link import McpLink, McpLinkError
 from gateway.agent.profiles import PROFILES, apply_profile, host_options_for, system_prompt_for
+from gateway.agent.servers import ToolRouter, link_for
 from gateway.agent.settings import AgentSettings, split_list
 from gateway.agent.toolbox import ToolSelectionError, select_tools
 from gateway.cli import COMMANDS
@@ -27,14 +31,15 @@ examples:
   fleet-gateway agent --model qwen2.5:7b "take off alpha and bravo to 15 m, fly them 100 m north, then land"
   fleet-gateway agent --endpoint http://127.0.0.1:1234/v1 --model qwen2.5-7b-instruct     # interactive
   fleet-gateway agent --list-tools --toolsets flight,navigation
-  fleet-gateway agent --profile small --model qwen2.5-coder-1.5b-instruct "take off alpha to 10 m"
+  fleet-gateway agent --model qwen2.5-coder-1.5b-instruct "take off alpha to 10 m"   # picks --profile small
 
 environment: GATEWAY_AGENT_MCP_URL, GATEWAY_AGENT_TOKEN, GATEWAY_AGENT_ENDPOINT, GATEWAY_AGENT_MODEL,
 GATEWAY_AGENT_API_KEY (else OPENAI_API_KEY), GATEWAY_AGENT_MAX_STEPS, GATEWAY_AGENT_TOOLSETS,
-GATEWAY_AGENT_TOOLS, GATEWAY_AGENT_PROFILE.
+GATEWAY_AGENT_TOOLS, GATEWAY_AGENT_PROFILE (full, small or auto).
 interactive commands: /reset (forget the conversation), /usage, /tools, /quit.
-exit status (one-shot): 0 answered, 1 failed, 2 bad usage, 3 step limit reached, 4 the model gave no
-answer (empty replies, even after being asked again twice).
+exit status (one-shot): 0 answered (by the model, or by the host from the gateway's results when the model
+stopped replying after acting), 1 failed, 2 bad usage, 3 step limit reached, 4 nothing was done and the
+model gave no answer (empty replies, even after being asked again twice).
 """
 
 
@@ -66,6 +71,14 @@ def add_agent_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--token", default=None, help="bearer token for /mcp (default: GATEWAY_AGENT_TOKEN)")
     parser.add_argument(
+        "--server",
+        action="append",
+        default=None,
+        metavar="URL_OR_COMMAND",
+        help="another MCP server whose tools are offered beside the gateway's (repeatable): a URL, or a "
+        "command speaking MCP over stdio, e.g. --server 'python -m places_server'",
+    )
+    parser.add_argument(
         "--endpoint",
         default=None,
         help="OpenAI-compatible base URL, e.g. "
@@ -87,9 +100,10 @@ def add_agent_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--profile",
         default=None,
-        choices=list(PROFILES),
+        choices=[*PROFILES, "auto"],
         help="small: about ten tools without advanced optional arguments, for models of a few billion "
-        "parameters or less; full (default): every selected tool as the gateway describes it",
+        "parameters or less; full: every selected tool as the gateway describes it; auto (default): "
+        "small when the endpoint (llama.cpp, Ollama) or the model's name says it is a small model",
     )
     parser.add_argument(
         "--no-roster",
@@ -156,21 +170,35 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
     if not args.list_tools and not model_name:
         err.print("[red]error:[/] no model given: use --model NAME or set GATEWAY_AGENT_MODEL")
         return EXIT_USAGE
+    asked = args.profile or env.profile
+    if asked == "auto" and not model_name:
+        choice = ProfileChoice("full", "no model named")
+    else:
+        choice = await resolve_profile(
+            asked, args.endpoint or env.endpoint, model_name or "", env.resolved_api_key()
+        )
+    profile = choice.profile
+    if asked == "auto" and not args.json:
+        err.print(f"[dim]profile {profile} (auto): {choice.reason}[/]")
     try:
         link_cm = McpLink(
             mcp_url, args.token or env.token, include_structured=args.structured, mode=args.mcp_mode
         )
-        async with link_cm as link:
+        async with link_cm as link, contextlib.AsyncExitStack() as servers:
+            router = ToolRouter(link)
             try:
                 toolsets = split_list(args.toolsets if args.toolsets is not None else env.toolsets)
                 names = split_list(args.tools if args.tools is not None else env.tools)
-                tools = select_tools(await link.list_tools(), toolsets=toolsets, names=names)
-                tools = apply_profile(
-                    tools, args.profile or env.profile, keep_selection=bool(toolsets or names)
-                )
+                offered = await link.list_tools()
+                tools = select_tools(offered, toolsets=toolsets, names=names)
+                tools = apply_profile(tools, profile, keep_selection=bool(toolsets or names))
             except ToolSelectionError as exc:
                 err.print(f"[red]error:[/] {exc}")
                 return EXIT_USAGE
+            taken = {t.name for t in offered}
+            for spec in args.server or ():
+                await router.attach(await servers.enter_async_context(link_for(spec)), taken)
+            tools = [*tools, *router.extra_tools]
             if args.list_tools:
                 _print_tools(tools, console, as_json=args.json)
                 return EXIT_OK
@@ -179,6 +207,14 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
                 if args.json
                 else RichDisplay(console, echo_user=bool(prompt) or not _is_tty(stdin or sys.stdin))
             )
+            if asked == "auto" and args.json:
+                display(AgentEvent("profile", {"profile": profile, "auto": True, "reason": choice.reason}))
+            if router.left_out:
+                left = "tools of --server left out (their names are taken): " + ", ".join(router.left_out)
+                if args.json:
+                    display(AgentEvent("servers", {"left_out": router.left_out, "message": left}))
+                else:
+                    err.print(f"[yellow]{left}[/]")
             host = AgentHost(
                 ModelConfig(
                     endpoint=args.endpoint or env.endpoint,
@@ -190,15 +226,15 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
                     timeout_s=args.model_timeout,
                     max_tokens=args.max_tokens,
                 ),
-                link,
+                router,
                 tools,
                 max_steps=args.max_steps or env.max_steps,
                 system_prompt=args.system
                 if args.system is not None
-                else system_prompt_for(args.profile or env.profile, DEFAULT_SYSTEM_PROMPT),
+                else system_prompt_for(profile, DEFAULT_SYSTEM_PROMPT),
                 on_event=display,
                 roster=not args.no_roster,
-                **host_options_for(args.profile or env.profile),
+                **host_options_for(profile),
             )
             try:
                 if prompt:

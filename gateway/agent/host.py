@@ -187,6 +187,8 @@ class TurnResult:
     empty_replies: int = 0
     # empty replies since the model last acted; the turn ends when it passes MAX_EMPTY_REPROMPTS
     empty_streak: int = 0
+    # who wrote final_text: the model, or the host from the gateway's results when the model gave none
+    answered_by: str = "model"
 
 
 class AgentHost:
@@ -241,6 +243,7 @@ class AgentHost:
         # the gateway's errors this turn (its refusals among them): an answer copying one tells the user
         # what happened, even when a host note quoted it first
         self._gateway_errors: list[str] = []
+        self._refly_held: set[str] = set()  # calls held back once as flying a finished step again
         self._ids = itertools.count(1)
         self.reset()
 
@@ -282,6 +285,7 @@ class AgentHost:
         self._held = set()
         self._error_texts = []
         self._gateway_errors = []
+        self._refly_held = set()
         self._emit("turn_start", turn=self.turns, user=user_text)
         roster = await self.refresh_roster()
         content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
@@ -295,6 +299,8 @@ class AgentHost:
             self._close_open_calls()
             self._emit("interrupted", message="turn interrupted; actions already sent continue on the drones")
             raise
+        if result.outcome != "answered":
+            await self._answer_for_the_model(result)
         result.wall_s = time.monotonic() - started
         self.total_usage.merge(result.usage)
         self._emit(
@@ -405,6 +411,37 @@ class AgentHost:
                 max_steps=self.max_steps,
                 message=f"stopped after {self.max_steps} model steps without a final answer",
             )
+
+    async def _answer_for_the_model(self, result: TurnResult) -> None:
+        """The model gave no answer (empty replies, the step limit, a model error): the host answers from
+        the gateway's own results, marked as the host's: what each call did or why the gateway refused
+        it, and where the drones named are now. A model that stopped replying after some call ran or was
+        refused considered the request finished: the turn counts as answered. One stopped by the step
+        limit or a model error, or in which nothing ran, keeps its outcome (and its exit status)."""
+        done = [c for c in result.tool_calls if c.ok and c.name != ANSWER_TOOL]
+        refused = [c for c in result.tool_calls if c.status == "error"]
+        parts = []
+        if done:
+            parts.append("Done: " + "; ".join(f"{c.name} ({c.summary})" for c in done) + ".")
+        if refused:
+            why = "; ".join(f"{c.name}: {_first_line(c.text)}" for c in refused[-3:])
+            parts.append(f"Not done, the gateway refused: {why}.")
+        if not done and not refused:
+            reason = result.error or f"the model gave no usable reply ({result.outcome})"
+            parts.append(f"Nothing was done: {reason}.")
+        roster = await self.refresh_roster() if self.use_roster else None
+        if roster is not None:
+            touched = {d for c in [*done, *refused] for d in drones_named(c.arguments) or ()}
+            named = {d for d in roster.ids if re.search(rf"\b{re.escape(d)}\b", self._request, re.IGNORECASE)}
+            drones = [e.text() for e in roster.drones if e.drone_id in touched | named]
+            if drones:
+                parts.append("Now: " + "; ".join(drones) + ".")
+        text = "(Answer from the host, from the gateway's results: the model gave none.) " + " ".join(parts)
+        if (done or refused) and result.outcome == "empty_answer":
+            result.outcome = "answered"
+        result.final_text, result.answered_by = text, "host"
+        self.messages.append({"role": "assistant", "content": text})
+        self._emit("final", step=result.steps, text=text, via="host")
 
     def _end_without_answer(self, result: TurnResult) -> None:
         """The turn ends as ``empty_answer``: the model gave no answer too many times."""
@@ -626,6 +663,14 @@ class AgentHost:
         elif problem is not None:
             status = "invalid"
             outcome = ToolOutcome(text=f"{problem} for {name}. Nothing was executed.", is_error=True)
+        elif earlier is None and args is not None and (refly := self._refly_of(name, args, turn)):
+            status = "repeat"
+            so_far = _in_words(c for c in (turn.tool_calls if turn else []) if c.ok)
+            outcome = self._host_note(
+                text=f"Not sent: {refly} The request: {self._request} Done so far: {so_far}. If every part "
+                f"is done, {finish_hint(self.answer_tool)}; else call the tool for the next step.",
+                is_error=False,
+            )
         elif earlier is not None:
             status = "repeat"
             outcome = self._host_note(
@@ -666,7 +711,12 @@ class AgentHost:
                     outcome = ToolOutcome(
                         f"{outcome.text} (Host note: {reading.note}.)", outcome.is_error, outcome.structured
                     )
-                if outcome.is_error:
+                if outcome.is_error and "take off first" in outcome.text.lower().replace(
+                    "takeoff", "take off"
+                ):
+                    # only where the gateway says the drone must take off first: a relative move from
+                    # the ground refused for its distance would otherwise be answered "take off first,
+                    # then this call again" (the issue's grounded far leg: takeoff, then the same refusal)
                     note = await self._takeoff_first(name, args)
                     if note:
                         self._host_notes.append(note)
@@ -740,7 +790,13 @@ class AgentHost:
         text = _norm(said)
         text = re.sub(r"^error(?: executing tool \w+)?:\s*", "", text)
         if len(text) < 20:
-            return False
+            # a short reply that is a whole phrase of the host's note (measured: "Nothing yet.", from
+            # "Already done: nothing yet", was taken as the answer)
+            short = text.strip(" .,:;-")
+            told = [*self._host_notes, *self._error_texts]
+            return bool(short) and any(
+                short == phrase.strip() for note in told for phrase in re.split(r"[.,:;]", _norm(note))
+            )
         if text in _norm(self._request):
             return True
         if any(text[:60] in _norm(error) or _norm(error)[:50] in text for error in self._gateway_errors):
@@ -963,6 +1019,40 @@ class AgentHost:
                 return None
         return None
 
+    def _refly_of(self, name: str, args: dict[str, Any], turn: TurnResult | None) -> str | None:
+        """Why this action would fly a finished part of the request again, or None. Measured: "fly out,
+        then bring it back and land where it took off" flew out, returned and landed, then took off and
+        flew out again. Two cases, unless the request asks for something more than once: the same call
+        (tool and arguments) already succeeded, with other actions since (so `_repeat_of` lets it
+        through); or the drone is back on the ground after the landing or return the request ends with,
+        and this call would take it up. Held back once: the same call sent again goes through."""
+        if turn is None or not self._acts(name) or _AGAIN_WORDS.search(self._request):
+            return None
+        key = json.dumps([name, args], sort_keys=True, default=str)
+        if key in self._refly_held:
+            return None
+        why = None
+        same = next(
+            (c for c in turn.tool_calls if c.ok and not c.running and c.name == name and c.arguments == args),
+            None,
+        )
+        if same is not None:
+            why = f"this {name} call already ran earlier in this request and succeeded ({same.summary})."
+        elif name not in _DOWN_TOOLS and _ends_landed(self._request):
+            drones = drones_named(args) or frozenset()
+            for c in reversed(turn.tool_calls):
+                down = drones_named(c.arguments)
+                landed = [d for d in drones if self._on_ground(d) and (down is None or d in down)]
+                if c.ok and c.name in _DOWN_TOOLS - {"fleet_hold", "hold_position"} and landed:
+                    why = (
+                        f"{', '.join(landed)} already came down as the request's last step asks "
+                        f"({c.name}: {c.summary}); {name} would take it up again."
+                    )
+                    break
+        if why is not None:
+            self._refly_held.add(key)
+        return why
+
     def _unknown_tool_text(self, name: str, turn: TurnResult | None) -> str:
         """Unknown tool: the closest offered tool with its arguments, firmer when the name is repeated."""
         near = closest_tool(name, list(self.tools.values()))
@@ -982,6 +1072,38 @@ _LAND_WORDS = re.compile(
     r"(?:\w+ )?(?:back )?home)\b",
     re.IGNORECASE,
 )
+
+
+# Tools that bring drones down or stop them.
+_DOWN_TOOLS = frozenset(
+    {"land", "return_to_launch", "fleet_land", "fleet_return_to_launch", "fleet_hold", "hold_position"}
+)
+# Words after a request's last landing that ask for more flying.
+_MOTION_WORDS = re.compile(
+    r"\b(?:take (?:it |them )?off|takeoff|fly|go|move|climb|head|send|up|raise|hover|formation)\b",
+    re.IGNORECASE,
+)
+_DOWN_WORDS = re.compile(
+    rf"{_LAND_WORDS.pattern}|\b(?:set|put|bring) (?:it|them|\w+) (?:back )?down\b|\btouch(?:es)? down\b",
+    re.IGNORECASE,
+)
+
+
+def _ends_landed(request: str) -> bool:
+    """The request's last step brings the drones down: a landing or return, with no motion asked after it."""
+    ends = [m.end() for m in _DOWN_WORDS.finditer(request)]
+    return bool(ends) and not _MOTION_WORDS.search(request[ends[-1] :])
+
+
+# Words of a request that ask for a step more than once.
+_AGAIN_WORDS = re.compile(
+    r"\b(?:again|twice|thrice|repeat\w*|\d+ times|two times|three times|back and forth|laps?|loops?)\b",
+    re.IGNORECASE,
+)
+
+
+def _first_line(text: str) -> str:
+    return next((s.strip() for s in text.splitlines() if s.strip()), "")
 
 
 def _pending_text(result: TurnResult) -> str:

@@ -30,9 +30,8 @@ SMALL_MODEL_SYSTEM_PROMPT = (
     'the next step of the request, in the order the user asked. Use only the drone ids in "Fleet now". '
     "Altitudes are metres above home. If a tool refuses, tell the user why and stop. When every step is "
     "done, answer in one short sentence.\n"
-    'Example: "bravo: up to 20 m, 50 m east, then land" is takeoff(drone_id="bravo", alt_m=20), then '
-    'move_to_relative(drone_id="bravo", north_m=0, east_m=50), then land(drone_id="bravo"). Use '
-    "go_to_location only with coordinates the user gave."
+    'Example: "bravo: 50 m east at 20 m, then land" is move_to_relative(drone_id="bravo", east_m=50, '
+    'alt_m=20), then land(drone_id="bravo"). Use go_to_location only with coordinates the user gave.'
 )
 
 
@@ -79,20 +78,26 @@ SMALL_MODEL_DESCRIPTIONS = {
     "Waits until reached.",
     "land": "Land the drone where it is now. Waits until landed.",
     "return_to_launch": "Fly the drone back home (its launch point) and land there. Waits until landed.",
-    "move_to_relative": "Fly a flying drone some metres from where it is: north_m (negative: south), east_m "
-    "(negative: west), up_m (negative: down). Waits until arrived.",
+    "move_to_relative": "Fly a drone some metres from where it is: north_m (negative: south), east_m "
+    "(negative: west), and either up_m (metres up, negative: down) or alt_m (metres above home). A drone on "
+    "the ground takes off first. Waits until arrived.",
     "go_to_location": "Fly a flying drone to the lat_deg, lon_deg the user gave, at alt_m metres above "
     "home. Waits until arrived.",
     "get_position": "Where the drone is: lat_deg, lon_deg, alt_m metres above home.",
     "get_battery": "Battery of one drone: remaining percent and voltage.",
-    "formation_goto": "Fly flying drones into a formation (line, column, wedge, grid or circle) centred on "
-    "center_lat_deg, center_lon_deg at alt_m metres above home, spacing_m metres apart. Take them off first.",
+    "formation_goto": "Fly drones into a formation (line, column, wedge, grid or circle) at alt_m metres "
+    "above home, spacing_m metres apart, centred where they are now, moved north_m/east_m metres. "
+    "center_lat_deg, center_lon_deg only for coordinates the user gave. Drones on the ground take off first.",
 }
 
 # Optional arguments left out of what a small model is shown (the gateway's defaults apply).
 ADVANCED_ARGUMENTS = frozenset(
     {"wait", "alt_frame", "heading_deg", "stagger_m", "land_on_arrival", "tag", "state"}
 )
+
+# Schema bounds a small model is not shown (the gateway checks them and its refusal names the limit): they
+# cost tokens on every turn and a person's request never comes near them. alt_m's maximum stays.
+BOUNDS_LEFT_TO_THE_GATEWAY = ("minimum", "maximum", "exclusiveMinimum", "minItems", "maxItems")
 
 
 def without_arguments(tool: ToolInfo, names: frozenset[str]) -> ToolInfo:
@@ -131,8 +136,13 @@ def _described(tool: ToolInfo) -> ToolInfo:
     """The small model's description, and argument descriptions that no longer name hidden arguments."""
     schema = copy.deepcopy(tool.input_schema or {})
     hidden = "|".join(sorted(ADVANCED_ARGUMENTS))
-    for prop in (schema.get("properties") or {}).values():
-        if isinstance(prop, dict) and isinstance(prop.get("description"), str):
+    for name, prop in (schema.get("properties") or {}).items():
+        if not isinstance(prop, dict):
+            continue
+        if isinstance(prop.get("description"), str):
             prop["description"] = re.sub(rf";? unless (?:{hidden})=\w+", "", prop["description"])
+        for bound in BOUNDS_LEFT_TO_THE_GATEWAY:
+            if not (name == "alt_m" and bound == "maximum"):  # the altitude limit is worth reading
+                prop.pop(bound, None)
     description = SMALL_MODEL_DESCRIPTIONS.get(tool.name, tool.description)
     return ToolInfo(tool.name, description, schema, tool.toolset, tool.read_only)

@@ -25,7 +25,9 @@ class AgentSettings(BaseSettings):
     toolsets: str = Field("", description="Comma-separated toolsets to hand to the model (empty: all).")
     tools: str = Field("", description="Comma-separated tool names to hand to the model (empty: all).")
     profile: str = Field(
-        "full", pattern="^(full|small)$", description="full, or small: ~10 tools for small models."
+        "auto",
+        pattern="^(full|small|auto)$",
+        description="full, small (~10 tools for small models) or auto: small for a small model.",
     )
 
     def resolved_api_key(self) -> str:

@@ -34,6 +34,11 @@ def tracker_for(kind: str, params: dict[str, Any], arrival_tolerance_m: float) -
     try:
         if kind == "takeoff":
             return TakeoffTracker(float(params["alt_m"]))
+        if params.get("takeoff_first"):
+            # a relative move that took off first: whether its leg was sent before the node was lost is
+            # not recorded, so it is closed as interrupted (the message says to check the drone) rather
+            # than followed as a goto that may never have been sent
+            return None
         if kind in ("land", "return_to_launch"):
             return LandingTracker(kind=kind)
         if kind == "set_yaw":

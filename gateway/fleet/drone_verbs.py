@@ -25,6 +25,7 @@ from gateway.fleet.command_core import NAV_KINDS, AltFrame, CommandCore, OnProgr
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice
 from gateway.fleet.operations import (
+    ClimbThenGoTracker,
     GotoTracker,
     LandingTracker,
     MissionTracker,
@@ -35,7 +36,7 @@ from gateway.fleet.operations import (
 )
 from gateway.fleet.protocols import FlyingVehicle, Notify
 from gateway.fleet.readings import is_airborne, is_landed_and_disarmed, position, value
-from gateway.fleet.safety import Target
+from gateway.fleet.safety import Target, VehicleContext
 from gateway.fleet.views import (
     ActionResult,
     ArrivalView,
@@ -298,30 +299,90 @@ class DroneVerbs(CommandCore):
 
     @routed
     async def move_relative(
-        self, caller: Caller, drone_id: str, north_m: float, east_m: float, up_m: float = 0.0
+        self,
+        caller: Caller,
+        drone_id: str,
+        north_m: float = 0.0,
+        east_m: float = 0.0,
+        up_m: float | None = None,
+        alt_m: float | None = None,
+        *,
+        notify: Notify | None = None,
     ) -> OperationView:
-        """Move by metres north/east/up (+ up climbs, - up descends) from the current position."""
-        vehicle = self.ready(drone_id)
+        """Move by metres north/east from the current position, climbing ``up_m`` (negative: down) or
+        to ``alt_m`` above home. From the ground the drone takes off to that altitude first, in the same
+        operation (`ClimbThenGoTracker`: the leg is sent only once the climb is done); every check of
+        the takeoff and of the leg is made before anything is sent."""
+        for name, metres in (("north_m", north_m), ("east_m", east_m), ("up_m", up_m), ("alt_m", alt_m)):
+            if metres is not None:
+                geo.check_finite(name, metres)
+        if alt_m is not None and up_m not in (None, 0.0):
+            raise InvalidArgument(
+                f"give either up_m (a climb, here {up_m:g} m) or alt_m (an altitude above home, here "
+                f"{alt_m:g} m), not both; nothing was sent"
+            )
+        vehicle = self.vehicle(drone_id)
+        deadline = self._arming_deadline()
+        if not is_airborne(vehicle):
+            await self._wait_initialised(vehicle, notify, deadline)
+        vehicle.require_ready()
         self._guard_takeoff(caller, vehicle, "move_to_relative")
         ctx = self.context(vehicle)
         pos = ctx.position
         if pos is None:
             raise VehicleNotReady(f"no position received from {drone_id} yet")
-        for name, metres in (("north_m", north_m), ("east_m", east_m), ("up_m", up_m)):
-            geo.check_finite(name, metres)
-        # A drone on the ground hears "take off first", not that 0 m is below home (measured: the 1.5B
-        # model, told "alt_m 0 is not above home" for a grounded bravo, gave up on it).
-        self._require_airborne(ctx, "move_to_relative")
-        if up_m < 0 and pos[2] + up_m <= 0:
-            below = pos[2] + up_m
+        lat, lon = geo.offset_position(pos[0], pos[1], north_m, east_m)
+        if not (ctx.in_air and ctx.armed):
+            return await self._climb_then_go(
+                caller, vehicle, ctx, lat, lon, north_m, east_m, up_m, alt_m, deadline, notify
+            )
+        up = up_m or 0.0
+        target = alt_m if alt_m is not None else pos[2] + up
+        if alt_m is None and up < 0 and target <= 0:
             raise InvalidArgument(
-                f"up_m={up_m:g} would take {drone_id} from {pos[2]:.1f} m to {below:.1f} m, below home: "
-                f"up_m counts metres up (negative: down); to climb {-up_m:g} m use up_m={-up_m:g} (to come "
+                f"up_m={up:g} would take {drone_id} from {pos[2]:.1f} m to {target:.1f} m, below home: "
+                f"up_m counts metres up (negative: down); to climb {-up:g} m use up_m={-up:g} (to come "
                 "down to the ground, use land)"
             )
-        lat, lon = geo.offset_position(pos[0], pos[1], north_m, east_m)
-        return await self._fly_to(
-            caller, drone_id, lat, lon, pos[2] + up_m, "move_to_relative", "move_to_relative"
+        return await self._fly_to(caller, drone_id, lat, lon, target, "move_to_relative", "move_to_relative")
+
+    async def _climb_then_go(
+        self,
+        caller: Caller,
+        vehicle: FlyingVehicle,
+        ctx: VehicleContext,
+        lat: float,
+        lon: float,
+        north_m: float,
+        east_m: float,
+        up_m: float | None,
+        alt_m: float | None,
+        deadline: float,
+        notify: Notify | None,
+    ) -> OperationView:
+        """A relative move asked of a drone on the ground: take off to the altitude asked (``alt_m``, or
+        ``up_m`` above the ground), then fly the leg, as one tracked operation."""
+        drone_id = vehicle.id
+        alt = alt_m if alt_m is not None else up_m
+        if alt is None or alt <= 0:
+            raise InvalidArgument(
+                f"{drone_id} is on the ground; say how high to fly: move_to_relative(drone_id='{drone_id}', "
+                f"north_m={north_m:g}, east_m={east_m:g}, alt_m=<metres above home>) takes off to alt_m "
+                "first, then flies there; nothing was sent"
+            )
+        # the leg first: a target the policy refuses is said before anything flies
+        self.safety.check_motion(ctx, Target(lat, lon, alt), caller.policy_via)
+        self.safety.check_takeoff(ctx, alt, caller.policy_via)
+        leg = GotoTracker(lat, lon, alt, self.settings.arrival_tolerance_m, kind="move_to_relative")
+        tracker = ClimbThenGoTracker(TakeoffTracker(alt), leg, lambda: vehicle.goto(lat, lon, alt))
+        params = {"lat_deg": lat, "lon_deg": lon, "alt_m": round(alt, 2), "takeoff_first": True}
+        return await self._track(
+            caller,
+            vehicle,
+            tracker,
+            lambda: vehicle.takeoff(alt, self._left(deadline), notify),
+            params,
+            "move_to_relative",
         )
 
     @routed

@@ -888,8 +888,10 @@ def takeoff_phase(
     altitudes: Mapping[str, float],
     precheck: Precheck | None = None,
     arm_within_s: float | None = None,
+    guard: str = "fleet_takeoff",
 ) -> Phase:
-    """Every drone takes off to its altitude; ``arm_within_s`` bounds each drone's wait to arm."""
+    """Every drone takes off to its altitude; ``arm_within_s`` bounds each drone's wait to arm; ``guard``
+    names the action in the takeoff guard's refusals."""
     steps = {
         d: build_step(
             v,
@@ -898,7 +900,7 @@ def takeoff_phase(
                 "alt_m": altitudes[d],
                 "arm_within_s": arm_within_s,
                 "timeout_s": step_timeout_s(altitudes[d], slowest_mps=0.5),
-                "guard": None if precheck is None else "fleet_takeoff",
+                "guard": None if precheck is None else guard,
             },
             precheck,
         )

@@ -165,23 +165,45 @@ class FleetVerbs(DroneVerbs):
         caller: Caller,
         drone_ids: list[str],
         formation: Formation,
-        center_lat_deg: float,
-        center_lon_deg: float,
+        center_lat_deg: float | None,
+        center_lon_deg: float | None,
         alt_m: float,
         spacing_m: float = 10.0,
         heading_deg: float | None = None,
+        north_m: float = 0.0,
+        east_m: float = 0.0,
+        *,
+        notify: Notify | None = None,
     ) -> FleetView:
-        """Fly airborne drones into a formation around a point, kept apart; all must join or nothing is
-        sent. Runs in three phases with barriers (`gateway.fleet.formation`)."""
+        """Fly drones into a formation around a point, kept apart; all must join or nothing is sent. The
+        point: the centre given, else the drones' own centre (where they are), moved ``north_m`` and
+        ``east_m``. Drones on the ground take off first (a first phase, to staggered altitudes as in
+        `fleet_takeoff`); then the three phases with barriers of `gateway.fleet.formation`."""
         ids = check_drone_ids(drone_ids)
+        if (center_lat_deg is None) != (center_lon_deg is None):
+            raise InvalidArgument(
+                "give both center_lat_deg and center_lon_deg, or neither (the formation is then centred "
+                "where the drones are, moved north_m/east_m)"
+            )
+        for name, metres in (("north_m", north_m), ("east_m", east_m)):
+            geo.check_finite(name, metres)
         policy = self.safety
         via = caller.policy_via
+        deadline = self._arming_deadline()
+        grounded = [d for d in ids if self._on_ground(d)]
+        if grounded:
+            await self._initialised(grounded, notify, deadline)
+        low, high = policy.altitude_band(ids)
+        climbs = takeoff_altitudes(grounded, alt_m, self._stagger(None), high) if grounded else {}
 
         def check(v: FlyingVehicle) -> None:
             v.require_ready()
             self._guard_takeoff(caller, v, "formation_goto")
             ctx = self.context(v)
-            self._require_airborne(ctx, "formation_goto")
+            if v.id in climbs:
+                policy.check_takeoff(ctx, climbs[v.id], via)
+            else:
+                self._require_airborne(ctx, "formation_goto")
             self._busy(v, "formation_goto")
             if ctx.position is None:
                 raise VehicleNotReady(f"no position received from {v.id} yet")
@@ -191,10 +213,20 @@ class FleetVerbs(DroneVerbs):
         if unable:
             raise refuse_fleet("formation_goto", unable, len(ids))
         contexts = {d: self.context(v) for d, v in vehicles.items()}
-        starts = [DroneStart(d, *pos) for d in ids if (pos := contexts[d].position) is not None]
+        starts = [
+            DroneStart(d, pos[0], pos[1], climbs.get(d, pos[2]))
+            for d in ids
+            if (pos := contexts[d].position) is not None
+        ]
+        if center_lat_deg is None or center_lon_deg is None:
+            center_lat_deg = sum(s.lat for s in starts) / len(starts)
+            center_lon_deg = sum(s.lon for s in starts) / len(starts)
+        if north_m or east_m:
+            center_lat_deg, center_lon_deg = geo.offset_position(
+                center_lat_deg, center_lon_deg, north_m, east_m
+            )
         if heading_deg is None:
             heading_deg = _travel_heading(starts, center_lat_deg, center_lon_deg)
-        low, high = policy.altitude_band(ids)
         plan = plan_formation(
             starts,
             formation,
@@ -217,7 +249,7 @@ class FleetVerbs(DroneVerbs):
         if unable:
             raise refuse_fleet("formation_goto", unable, len(ids))
         policy.check_formation(contexts, plan, via)
-        params = {
+        params: dict[str, Any] = {
             "formation": formation,
             "center_lat_deg": center_lat_deg,
             "center_lon_deg": center_lon_deg,
@@ -225,10 +257,21 @@ class FleetVerbs(DroneVerbs):
             "spacing_m": spacing_m,
             "heading_deg": round(plan.heading_deg, 1),
         }
+        guard = lambda v: self._guard_takeoff(caller, v, "formation_goto")  # noqa: E731
+        phases = formation_phases(plan, vehicles, guard)
+        if climbs:
+            params["took_off_first"] = climbs
+            first = takeoff_phase(
+                {d: vehicles[d] for d in climbs}, climbs, guard, self._left(deadline), "formation_goto"
+            )
+            phases = [
+                dataclasses.replace(first, name="take off the drones on the ground", abort_on_failure=True),
+                *phases,
+            ]
         fop = await self.fleet.start(
             "formation_goto",
             ids,
-            formation_phases(plan, vehicles, lambda v: self._guard_takeoff(caller, v, "formation_goto")),
+            phases,
             params,
             caller.session,
             caller=caller,
@@ -237,6 +280,14 @@ class FleetVerbs(DroneVerbs):
             notes=plan.notes,
         )
         return self.fleet_view(fop)
+
+    def _on_ground(self, drone_id: str) -> bool:
+        """A drone known to be on the ground (an unknown one is left to the members' checks)."""
+        try:
+            vehicle = self.registry.get(drone_id)
+        except GatewayError:
+            return False
+        return vehicle.on_ground() is True
 
     async def fleet_takeoff(
         self,

@@ -81,6 +81,9 @@ class Poll:
     done: bool = False
     failed: str | None = None
     eta_s: float | None = None
+    then: Callable[[], Awaitable[Any]] | None = None
+    """The operation's next command, for the manager to send (under the drone's command lock, only while
+    the operation still runs): the leg of a `ClimbThenGoTracker` once its climb is done."""
 
 
 class Tracker(Protocol):
@@ -89,6 +92,12 @@ class Tracker(Protocol):
     kind: str
 
     async def poll(self, vehicle: FlyingVehicle) -> Poll: ...
+
+
+def is_climbing(op: Operation, tracker: Tracker | None) -> bool:
+    """Whether the operation is a takeoff still climbing: a takeoff, or an operation that took off first
+    and has not reached its altitude yet (the takeoff guard holds other commands back meanwhile)."""
+    return op.kind == "takeoff" or bool(getattr(tracker, "climbing", False))
 
 
 @dataclass
@@ -211,6 +220,32 @@ class GotoTracker:
 
 
 @dataclass
+class ClimbThenGoTracker:
+    """One operation from the ground: take off to the leg's altitude, then fly the leg there. The leg's
+    command (``send_leg``) is sent by the manager only once the climb is reached, so the takeoff guard's
+    rule (nothing but the climb until it is done: the source paper's crash was a goto sent mid-climb)
+    holds inside the operation too, and the guard refuses other commands while ``climbing``."""
+
+    takeoff: TakeoffTracker
+    leg: GotoTracker
+    send_leg: Callable[[], Awaitable[Any]]
+    kind: str = "move_to_relative"
+    climbing: bool = True
+
+    async def poll(self, vehicle: FlyingVehicle) -> Poll:
+        if not self.climbing:
+            return await self.leg.poll(vehicle)
+        climb = await self.takeoff.poll(vehicle)
+        if climb.failed is not None:
+            return climb
+        target = self.takeoff.target_alt_m
+        if not climb.done:
+            return Poll(0.3 * climb.progress, f"taking off first: {climb.message}", eta_s=climb.eta_s)
+        self.climbing = False
+        return Poll(0.3, f"took off to {target:g} m; flying the leg", then=self.send_leg)
+
+
+@dataclass
 class YawTracker:
     heading_deg: float
     kind: str = "set_yaw"
@@ -317,6 +352,7 @@ class OperationManager:
         self._ops: dict[str, Operation] = {}
         self._current: dict[str, Operation] = {}  # latest operation per vehicle (may be finished)
         self._monitors: dict[str, asyncio.Task[None]] = {}
+        self._trackers: dict[str, Tracker] = {}  # of the running operations
         self._last_saved: dict[str, float] = {}
         self._locks: dict[str, asyncio.Lock] = {}
         self._expected: dict[str, ModeExpectation] = {}  # what the gateway last commanded, per vehicle
@@ -342,18 +378,23 @@ class OperationManager:
         return op if op is not None and not op.finished else None
 
     def takeoff_in_progress(self, vehicle_id: str) -> Operation | None:
-        """The running takeoff that has not yet reached its altitude, if any."""
+        """The running takeoff that has not yet reached its altitude, if any (also an operation that
+        takes off first, while it climbs)."""
         op = self.running(vehicle_id)
-        return op if op is not None and op.kind == "takeoff" else None
+        return op if op is not None and is_climbing(op, self._trackers.get(op.id)) else None
 
     def running_facts(self, vehicle_id: str, kind: str | None = None) -> RunningOperation | None:
-        """The vehicle's running operation (of ``kind``, if given) as the safety policy sees it."""
+        """The vehicle's running operation (of ``kind``, if given) as the safety policy sees it; an
+        operation that takes off first is a ``takeoff`` while it climbs."""
         op = self.running(vehicle_id)
-        if op is None or (kind is not None and op.kind != kind):
+        if op is None:
+            return None
+        op_kind = "takeoff" if is_climbing(op, self._trackers.get(op.id)) else op.kind
+        if kind is not None and op_kind != kind:
             return None
         target = op.params.get("alt_m")
         return RunningOperation(
-            op.id, op.kind, op.message, float(target) if isinstance(target, int | float) else None
+            op.id, op_kind, op.message, float(target) if isinstance(target, int | float) else None
         )
 
     # -- commands --------------------------------------------------------------------------------
@@ -397,7 +438,8 @@ class OperationManager:
                 await self._finish(previous, OpStatus.superseded, f"superseded by {op.kind} {op.id}")
             self._ops[op.id] = op
             self._current[vehicle.id] = op
-            self.expect(vehicle, op.kind, op.id)
+            self._trackers[op.id] = tracker
+            self.expect(vehicle, op.kind, op.id, _climb_modes(vehicle, op.kind, tracker))
             await self._save(op, force=True)
             self._monitors[op.id] = asyncio.create_task(
                 self._monitor(vehicle, op, tracker), name=f"op-{op.kind}-{op.id}"
@@ -593,7 +635,8 @@ class OperationManager:
             await self._finish(previous, OpStatus.superseded, f"superseded by {op.kind} {op.id}")
         self._ops[op.id] = op
         self._current[vehicle.id] = op
-        self.expect(vehicle, op.kind, op.id)
+        self._trackers[op.id] = tracker
+        self.expect(vehicle, op.kind, op.id, _climb_modes(vehicle, op.kind, tracker))
         await self._save(op, force=True)
         self._monitors[op.id] = asyncio.create_task(
             self._monitor(vehicle, op, tracker), name=f"op-{op.kind}-{op.id}"
@@ -618,6 +661,8 @@ class OperationManager:
                     if poll.failed:
                         await self._finish(op, OpStatus.failed, poll.failed)
                         break
+                    if poll.then is not None and not await self._send_next(vehicle, op, poll.then):
+                        break
                     if poll.done:
                         op.progress = 1.0
                         op.eta_s = 0.0
@@ -633,6 +678,23 @@ class OperationManager:
             await self._finish(op, OpStatus.failed, f"monitoring failed: {exc}")
         finally:
             self._monitors.pop(op.id, None)
+            self._trackers.pop(op.id, None)
+
+    async def _send_next(
+        self, vehicle: FlyingVehicle, op: Operation, send: Callable[[], Awaitable[Any]]
+    ) -> bool:
+        """Send the operation's next command under the drone's command lock, unless another command
+        ended the operation meanwhile; False when it is not (any more) to be followed."""
+        async with self.command_lock(vehicle.id):
+            if op.finished:
+                return False
+            try:
+                await send()
+            except Exception as exc:
+                message = getattr(exc, "message", None) or str(exc) or type(exc).__name__
+                await self._finish(op, OpStatus.failed, f"the next leg was not accepted: {message}")
+                return False
+        return True
 
     def _update(self, op: Operation, progress: float, message: str, eta_s: float | None) -> None:
         message = _noted(op, message)
@@ -684,6 +746,15 @@ class OperationManager:
             )
         except Exception:
             log.exception("could not save operation %s", op.id)
+
+
+def _climb_modes(vehicle: FlyingVehicle, kind: str, tracker: Tracker) -> frozenset[str] | None:
+    """The modes of an operation that takes off first: its takeoff's and its own (PX4 climbs in
+    AUTO.TAKEOFF, then holds and flies the leg in AUTO.LOITER); None for any other operation (its kind
+    says)."""
+    if not getattr(tracker, "climbing", False):
+        return None
+    return vehicle.commanded_modes("takeoff") | vehicle.commanded_modes(kind)
 
 
 def _noted(op: Operation, message: str) -> str:

@@ -783,7 +783,9 @@ class SafetyPolicy:
         if distance > limits.max_distance_m:
             raise refuse(
                 Rule.MAX_DISTANCE,
-                f"{what} is {fmt(distance)} m from home, beyond the limit of {fmt(limits.max_distance_m)} m",
+                f"{what} is {fmt(distance)} m from home, beyond the limit of {fmt(limits.max_distance_m)} m; "
+                f"nothing was sent: tell the user it cannot be flown, or choose a point within "
+                f"{fmt(limits.max_distance_m)} m of home",
                 vehicle_id=ctx.vehicle_id,
                 distance_m=round(distance, 2),
                 limit_m=limits.max_distance_m,
@@ -828,7 +830,8 @@ class SafetyPolicy:
         if alt > limits.max_altitude_m:
             raise refuse(
                 Rule.MAX_ALTITUDE,
-                f"{what} {fmt(alt)} m exceeds the limit of {fmt(limits.max_altitude_m)} m above home",
+                f"{what} {fmt(alt)} m exceeds the limit of {fmt(limits.max_altitude_m)} m above home; "
+                f"nothing was sent: fly at most {fmt(limits.max_altitude_m)} m, or tell the user the limit",
                 vehicle_id=ctx.vehicle_id,
                 alt_rel_m=alt,
                 limit_m=limits.max_altitude_m,
@@ -851,7 +854,8 @@ class SafetyPolicy:
         if pct < minimum:
             raise refuse(
                 rule,
-                f"battery {fmt(pct)} % is below the {fmt(minimum)} % needed to {purpose}",
+                f"battery {fmt(pct)} % is below the {fmt(minimum)} % needed to {purpose}; nothing was "
+                + ("sent: tell the user" if not ctx.airborne else "sent: bring it home (return_to_launch)"),
                 vehicle_id=ctx.vehicle_id,
                 battery_pct=pct,
                 minimum_pct=minimum,
@@ -897,6 +901,12 @@ def _geofence_refusal(ctx: VehicleContext, v: Violation, what: str) -> SafetyRef
     else:
         text = f"the straight path to the target crosses keep-out zone '{v.zone}' for {fmt(v.metres)} m"
         rule = Rule.KEEP_OUT
+    nxt = (
+        "choose a point clear of the zone, or tell the user"
+        if v.breach == "target"
+        else "fly around the zone in legs that stay clear of it, or tell the user"
+    )
+    text = f"{text}; nothing was sent: {nxt}"
     return refuse(rule, text, vehicle_id=ctx.vehicle_id, zone=v.zone, metres=round(v.metres, 2))
 
 

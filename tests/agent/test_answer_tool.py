@@ -113,7 +113,9 @@ async def test_an_empty_or_echoed_answer_is_asked_again_and_three_end_as_empty_a
         [call(ANSWER_TOOL, text=""), call(ANSWER_TOOL, text=request), call(ANSWER_TOOL, text="  ")]
     )
     _, result = await _run(toy, model, request)
-    assert result.outcome == "empty_answer" and result.final_text is None
+    assert result.outcome == "empty_answer" and result.answered_by == "host"
+    assert (result.final_text or "").startswith("(Answer from the host"), result.final_text
+    assert "Nothing was done" in result.final_text
     assert result.empty_replies == 3
     assert "Not an answer: answer_user needs text" in _last_tool_text(model.requests[1])
     assert "Not an answer: that only repeats the request" in _last_tool_text(model.requests[2])

@@ -96,6 +96,14 @@ async def test_json_transcript(toy, scripted) -> None:
     )
     assert await cli.run_async(args, console=console) == cli.EXIT_OK
     events = [json.loads(line) for line in buf.getvalue().splitlines()]
+    # --profile auto (the default): the choice and its reason first ("m" tells no size: full)
+    assert events[0] == {
+        "event": "profile",
+        "profile": "full",
+        "auto": True,
+        "reason": "m: its size is not known (neither the endpoint nor its name tell)",
+    }
+    events = events[1:]
     assert [e["event"] for e in events] == [
         "turn_start",
         "roster",
@@ -255,3 +263,29 @@ async def test_small_profile_sends_its_tools_prompt_and_reply_cap(toy, scripted)
     assert names == ["takeoff", "land", "get_position", "answer_user"]
     assert request["messages"][0]["content"] == SMALL_MODEL_SYSTEM_PROMPT
     assert request["max_tokens"] == 50
+
+
+async def test_another_mcp_server_adds_its_tools_beside_the_gateways(toy, scripted) -> None:
+    """A places server over stdio (a command): its find_place is offered and called there; its takeoff,
+    a name the gateway already uses, is left out, so the gateway's takeoff still reaches the gateway."""
+    import sys
+
+    model = scripted(
+        [
+            call("find_place", place="the water tower"),
+            call("takeoff", drone_id="bravo", alt_m=10),
+            say("bravo is up; the water tower is at 47.3981, 8.5456"),
+        ]
+    )
+    console, buf = _console()
+    server = f"{sys.executable} -m tests.agent.places_mcp"
+    base = ["--mcp-url", toy.url, "--token", TOKEN, "--endpoint", model.base_url, "--model", "m"]
+    args = _parse([*base, "--server", server, "--json", "take bravo up and find the water tower"])
+    assert await cli.run_async(args, console=console) == cli.EXIT_OK
+    events = [json.loads(line) for line in buf.getvalue().splitlines()]
+    results = {e["name"]: e for e in events if e["event"] == "tool_result"}
+    assert results["find_place"]["status"] == "ok" and "47.3981" in results["find_place"]["text"], results
+    assert toy.world.calls == [("takeoff", {"drone_id": "bravo", "alt_m": 10})]  # the gateway's own takeoff
+    offered = {t["function"]["name"] for t in model.requests[0]["tools"]}
+    assert {"find_place", "takeoff", "land", "move_north"} <= offered, offered
+    assert next(e for e in events if e["event"] == "servers")["left_out"] == ["takeoff"]

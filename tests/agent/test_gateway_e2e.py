@@ -147,6 +147,79 @@ async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStac
             pass
 
 
+async def test_request_shaped_tools_take_one_or_two_model_calls(stack: LocalStack, scripted) -> None:
+    """With the small profile, as a small model sees it, from the ground: a relative move at an altitude
+    then a landing is two calls; a leg beyond the distance limit is one call, refused before anything
+    flies, and the turn still ends with an answer saying so (here the host's, the model giving none); a
+    formation where the drones are is one call."""
+    from gateway.agent.answer import ANSWER_TOOL
+    from gateway.agent.profiles import SMALL_MODEL_SYSTEM_PROMPT, apply_profile, host_options_for
+
+    truth = stack.truth()
+    homes = await truth.homes(["alpha", "bravo"])
+
+    async def turn(request: str, replies: list[ScriptedReply]) -> tuple[TurnResult, ScriptedModelServer]:
+        model = scripted(replies)
+        async with McpLink(stack.mcp_url, stack.token) as link:
+            host = AgentHost(
+                ModelConfig(model.base_url, "scripted", max_retries=0),
+                link,
+                apply_profile(await link.list_tools(), "small"),
+                system_prompt=SMALL_MODEL_SYSTEM_PROMPT,
+                **host_options_for("small"),
+            )
+            return await host.run_turn(request), model
+
+    moved, model = await turn(
+        "bravo: 30 m east at 15 m, then put it down",
+        [
+            call("move_to_relative", drone_id="bravo", east_m=30, alt_m=15),
+            call("land", drone_id="bravo"),
+            call(ANSWER_TOOL, text="bravo flew 30 m east at 15 m and landed."),
+        ],
+    )
+    assert moved.outcome == "answered" and _ran(moved) == [("move_to_relative", "ok"), ("land", "ok")], moved
+    assert len(model.requests) == 3  # two calls and the answer
+    bravo = (await truth.snapshot(["bravo"]))["bravo"]
+    want = offset_position(homes["bravo"][0], homes["bravo"][1], 0.0, 30.0)
+    assert bravo.landed and horizontal_distance_m(bravo.lat, bravo.lon, *want) < 6.0, bravo
+
+    far, model = await turn(
+        "send bravo 5 km north at 20 m",
+        [call("move_to_relative", drone_id="bravo", north_m=5000, alt_m=20)]
+        + [ScriptedReply(content="")] * 3,
+    )
+    assert _ran(far) == [("move_to_relative", "error")], far
+    assert far.outcome == "answered" and far.answered_by == "host", far
+    assert "max_distance" in (far.final_text or "") and "beyond the limit of 1000 m" in (far.final_text or "")
+    told = [m["content"] for m in model.requests[1]["messages"] if m["role"] == "tool"][-1]
+    assert "nothing was sent" in told and "Host note" not in told, told  # no "take off first" for a refusal
+    bravo_now = (await truth.snapshot(["bravo"]))["bravo"]
+    assert (
+        bravo_now.landed
+        and not bravo_now.armed
+        and horizontal_distance_m(bravo_now.lat, bravo_now.lon, bravo.lat, bravo.lon) < 2.0
+    ), bravo_now  # nothing flew
+
+    before = await truth.snapshot(["alpha", "bravo"])
+    centre = (sum(d.lat for d in before.values()) / 2, sum(d.lon for d in before.values()) / 2)
+    formed, model = await turn(
+        "alpha and bravo side by side, 12 m apart, at 20 m, right where they are",
+        [
+            call("formation_goto", drone_ids=["alpha", "bravo"], formation="line", alt_m=20, spacing_m=12),
+            call(ANSWER_TOOL, text="alpha and bravo fly in a line 12 m apart at 20 m."),
+        ],
+    )
+    assert formed.outcome == "answered" and _ran(formed) == [("formation_goto", "ok")], formed
+    assert len(model.requests) == 2
+    now = await truth.snapshot(["alpha", "bravo"])
+    a, b = now["alpha"], now["bravo"]
+    assert abs(a.alt_rel_m - 20) < 2 and abs(b.alt_rel_m - 20) < 2, now
+    assert abs(horizontal_distance_m(a.lat, a.lon, b.lat, b.lon) - 12.0) < 3.0, now
+    mid = ((a.lat + b.lat) / 2, (a.lon + b.lon) / 2)
+    assert horizontal_distance_m(*mid, *centre) < 4.0, (mid, centre)
+
+
 def _text_plan(*calls: tuple[str, dict]) -> ScriptedReply:
     """A whole plan in one reply, written as text the way the 1.5B model writes it (doubled braces)."""
     return ScriptedReply(

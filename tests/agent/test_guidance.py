@@ -132,10 +132,13 @@ async def test_three_empty_replies_end_the_turn_as_empty_answer(toy, scripted) -
     model = scripted([EMPTY, ScriptedReply(content="  \n"), ScriptedReply(content="<think>hmm</think>")])
     events: list[AgentEvent] = []
     result = await _turn(toy, model, "land bravo", events)
-    assert result.outcome == "empty_answer" and result.final_text is None
+    assert result.outcome == "empty_answer" and result.answered_by == "host"
+    assert (result.final_text or "").startswith("(Answer from the host"), result.final_text
+    assert "Nothing was done" in result.final_text
     assert len(model.requests) == 3 and result.empty_replies == 3
     assert "Already done (do not repeat): nothing yet." in _user_texts(model.requests[1])[-1]
-    assert [e.kind for e in events][-2:] == ["empty_answer", "turn_end"]
+    assert [e.kind for e in events if e.kind != "roster"][-3:] == ["empty_answer", "final", "turn_end"]
+    assert events[-2].data["via"] == "host"
 
 
 async def test_the_count_of_empty_replies_starts_again_once_the_model_acts(toy, scripted) -> None:
@@ -341,3 +344,69 @@ async def test_the_nudge_names_a_drone_of_the_request_nothing_was_done_with(toy,
     nudge = _user_texts(model.requests[2])[-1]
     assert "The request names bravo, and nothing has been done with it yet." in nudge
     assert [args["drone_id"] for _, args in toy.world.calls] == ["alpha", "bravo"]
+
+
+# --- every turn ends with an answer; finished steps are not flown again -------------------------------
+
+
+async def test_a_model_that_stops_after_acting_is_answered_for_by_the_host(toy, scripted) -> None:
+    """Flown right, then no answer (empty replies): the host answers from the gateway's results, marked
+    as its own, and the turn counts as answered (exit status 0)."""
+    model = scripted([call("takeoff", drone_id="alpha", alt_m=12), EMPTY, EMPTY, EMPTY])
+    events: list[AgentEvent] = []
+    result = await _turn(toy, model, "alpha up to 12 m please", events)
+    assert result.outcome == "answered" and result.answered_by == "host", result
+    text = result.final_text or ""
+    assert text.startswith("(Answer from the host, from the gateway's results"), text
+    assert "Done: takeoff (" in text and "alpha flying at 12 m" in text, text
+    final = next(e for e in events if e.kind == "final")
+    assert final.data["via"] == "host"
+
+
+async def test_a_short_echo_of_the_hosts_note_is_no_answer(toy, scripted) -> None:
+    """Measured: "Nothing yet." (the re-prompt's "Already done: nothing yet") ended a turn as its answer."""
+    model = scripted([EMPTY, say("Nothing yet."), call("land", drone_id="bravo"), say("bravo landed.")])
+    result = await _turn(toy, model, "land bravo", None)
+    assert result.outcome == "answered" and result.final_text == "bravo landed.", result
+    assert result.answered_by == "model" and result.empty_replies == 2
+
+
+async def test_a_finished_step_is_not_flown_again_unless_the_request_asks(toy, scripted) -> None:
+    """Out, back and landed, then the model starts over: the same takeoff is not sent again; with "again"
+    in the request it is."""
+    plan = [
+        call("takeoff", drone_id="alpha", alt_m=10),
+        call("move_north", drone_id="alpha", distance_m=30),
+        call("move_north", drone_id="alpha", distance_m=-30),
+        call("land", drone_id="alpha"),
+        call("takeoff", drone_id="alpha", alt_m=10),
+        say("alpha is back on the ground where it took off."),
+    ]
+    result = await _turn(
+        toy, scripted(plan), "alpha: 30 m north at 10 m, then back and land where it started"
+    )
+    assert [c.status for c in result.tool_calls] == ["ok", "ok", "ok", "ok", "repeat"], result.tool_calls
+    assert "already ran earlier in this request" in result.tool_calls[-1].text
+    assert toy.world.calls[-1][0] == "land"
+    again = await _turn(toy, scripted(plan), "alpha: 30 m north at 10 m, back, land, then do it all again")
+    assert [c.status for c in again.tool_calls][-1] == "ok", again.tool_calls
+
+
+async def test_a_drone_landed_as_the_request_ends_is_not_taken_up_again(toy, scripted) -> None:
+    """The landing was the request's last step: another takeoff (other arguments) is held back once; the
+    same call sent again goes through (the model may know better)."""
+    plan = [
+        call("takeoff", drone_id="alpha", alt_m=10),
+        call("move_north", drone_id="alpha", distance_m=20),
+        call("land", drone_id="alpha"),
+        call("takeoff", drone_id="alpha", alt_m=12),
+        call("takeoff", drone_id="alpha", alt_m=12),
+        say("alpha flew 20 m north and landed."),
+    ]
+    result = await _turn(toy, scripted(plan), "alpha: up to 10 m, 20 m north, then set it down there")
+    assert [c.status for c in result.tool_calls] == ["ok", "ok", "ok", "repeat", "ok"], result.tool_calls
+    assert "alpha already came down as the request's last step asks" in result.tool_calls[3].text
+    ongoing = await _turn(
+        toy, scripted(plan[:5]), "alpha: up to 10 m, 20 m north, land, then take off to 12 m"
+    )
+    assert [c.status for c in ongoing.tool_calls][:4] == ["ok", "ok", "ok", "ok"], ongoing.tool_calls

@@ -174,7 +174,8 @@ async def test_step_limit_holds(toy, scripted) -> None:
     model = scripted([call("get_position", drone_id="alpha")], repeat_last=True)
     events: list[AgentEvent] = []
     _, result = await run_on_toy(toy, model, "keep looking", max_steps=3, events=events)
-    assert result.outcome == "step_limit" and result.final_text is None
+    assert result.outcome == "step_limit" and result.answered_by == "host"
+    assert "Done: get_position" in (result.final_text or ""), result.final_text
     assert result.steps == 3 and len(model.requests) == 3 and len(result.tool_calls) == 3
     assert any(e.kind == "step_limit" for e in events)
 
@@ -213,7 +214,9 @@ async def test_model_endpoint_failure_ends_the_turn_cleanly(toy, scripted) -> No
     events: list[AgentEvent] = []
     _, result = await run_on_toy(toy, model, "where?", events=events)
     assert result.outcome == "model_error" and "exhausted" in (result.error or "")
-    assert [e.kind for e in events][-2:] == ["model_error", "turn_end"]
+    assert [e.kind for e in events if e.kind != "roster"][-3:] == ["model_error", "final", "turn_end"]
+    # the host still answers from what the gateway did: the position read before the model failed
+    assert result.answered_by == "host" and "Done: get_position" in (result.final_text or ""), result
 
 
 async def test_bad_token_is_a_clear_error(toy) -> None:

@@ -123,8 +123,70 @@ async def test_a_goto_on_the_ground_to_a_refused_target_says_the_refusal_first(g
     assert fake(gateway, "d1").sent == []
 
 
-async def test_a_relative_move_of_a_drone_on_the_ground_says_take_off_first(gateway: Gateway) -> None:
-    """Not "alt_m 0 is not above home": told that, the small model gave up on the grounded drone."""
-    with pytest.raises(VehicleNotReady, match="d1 is on the ground; move_to_relative needs a flying drone"):
-        await gateway.commander.call("move_relative", AGENT, drone_id="d1", north_m=100, east_m=0)
+async def test_a_relative_move_from_the_ground_takes_off_first_as_one_operation(gateway: Gateway) -> None:
+    """One call: the climb, then the leg at the altitude asked, one operation; while it climbs, the
+    takeoff guard holds other commands back, and the leg is not sent before the climb is done."""
+    commander = gateway.commander
+    d1 = fake(gateway, "d1")
+    d1.speed = 2.0  # a slow climb: the refused call below surely lands inside it
+    started = await commander.call("move_relative", AGENT, drone_id="d1", north_m=30, east_m=20, alt_m=12)
+    assert started["kind"] == "move_to_relative" and started["status"] == "running"
+    lat, lon = geo.offset_position(HOME[0], HOME[1], 30.0, 20.0)
+    with pytest.raises(SafetyRefusal, match="takeoff_in_progress: d1 is still taking off"):
+        await commander.call("goto", AGENT, drone_id="d1", lat_deg=lat, lon_deg=lon, alt_m=12)
+    assert [c[0] for c in d1.sent] == ["takeoff"]  # the leg waits for the climb
+    d1.speed = 150.0
+    done = await commander.wait(started["operation_id"], 20.0)
+    assert done.status == "succeeded" and done.kind == "move_to_relative", done
+    assert d1.sent == [("takeoff", 12.0), ("goto", pytest.approx(lat), pytest.approx(lon), 12.0)]
+
+
+async def test_a_climb_from_the_ground_is_up_m_and_a_landing_mid_climb_sends_no_leg(gateway: Gateway) -> None:
+    commander = gateway.commander
+    d1 = fake(gateway, "d1")
+    d1.speed = 2.0
+    started = await commander.call("move_relative", AGENT, drone_id="d1", north_m=40, up_m=15)
+    landing = await commander.call("land", AGENT, drone_id="d1")  # a safety action: never held back
+    assert (await commander.wait(landing["operation_id"], 20.0)).status == "succeeded"
+    assert commander.operation(started["operation_id"]).status == "superseded"
+    assert [c[0] for c in d1.sent] == ["takeoff", "land"] and d1.sent[0] == ("takeoff", 15.0)
+
+
+async def test_a_leg_the_autopilot_refuses_after_the_climb_fails_the_operation_saying_so(
+    gateway: Gateway,
+) -> None:
+    commander = gateway.commander
+    fake(gateway, "d1").fail = {"goto": "not in GUIDED"}
+    started = await commander.call("move_relative", AGENT, drone_id="d1", east_m=30, alt_m=10)
+    done = await commander.wait(started["operation_id"], 20.0)
+    assert done.status == "failed", done
+    assert "the next leg was not accepted: goto on drone 'd1' failed: not in GUIDED" in done.message, done
+
+
+async def test_a_relative_move_of_a_drone_on_the_ground_needs_an_altitude_and_a_leg_within_limits(
+    gateway: Gateway,
+) -> None:
+    """Nothing flies: the leg beyond the distance limit is refused by that rule (naming the limit), and
+    without an altitude the refusal names the call to make."""
+    commander = gateway.commander
+    with pytest.raises(InvalidArgument) as no_alt:
+        await commander.call("move_relative", AGENT, drone_id="d1", north_m=100, east_m=0)
+    assert "move_to_relative(drone_id='d1', north_m=100, east_m=0, alt_m=<metres above home>)" in (
+        no_alt.value.message
+    )
+    with pytest.raises(SafetyRefusal) as far:
+        await commander.call("move_relative", AGENT, drone_id="d1", north_m=0, east_m=5000, alt_m=30)
+    assert far.value.rule == "max_distance" and "beyond the limit of 1000 m" in far.value.message
+    with pytest.raises(InvalidArgument, match=r"give either up_m .* or alt_m"):
+        await commander.call("move_relative", AGENT, drone_id="d1", north_m=10, up_m=5, alt_m=30)
     assert fake(gateway, "d1").sent == []
+
+
+async def test_a_flying_drone_moves_to_an_altitude_above_home(gateway: Gateway) -> None:
+    commander = gateway.commander
+    started = await commander.call("takeoff", AGENT, drone_id="d1", alt_m=10)
+    assert (await commander.wait(started["operation_id"], 10.0)).status == "succeeded"
+    moved = await commander.call("move_relative", AGENT, drone_id="d1", east_m=20, alt_m=25)
+    assert (await commander.wait(moved["operation_id"], 10.0)).status == "succeeded"
+    lat, lon = geo.offset_position(HOME[0], HOME[1], 0.0, 20.0)
+    assert fake(gateway, "d1").sent[-1] == ("goto", pytest.approx(lat), pytest.approx(lon), 25.0)

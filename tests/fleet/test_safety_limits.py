@@ -32,7 +32,10 @@ def test_max_altitude_refuses_with_rule_and_numbers_and_allows_the_limit() -> No
     p.check_motion(ctx(), target(alt=120.0))
     err = refusal(p.check_motion, ctx(), target(alt=150.0))
     assert err.rule == "max_altitude"
-    assert err.message == "max_altitude: target altitude 150 m exceeds the limit of 120 m above home"
+    assert err.message == (
+        "max_altitude: target altitude 150 m exceeds the limit of 120 m above home; "
+        "nothing was sent: fly at most 120 m, or tell the user the limit"
+    )
     assert err.details["alt_rel_m"] == 150.0 and err.details["limit_m"] == 120.0
     assert refusal(p.check_motion, ctx(), target(alt=120.01)).rule == "max_altitude"
 
@@ -257,7 +260,8 @@ def test_mission_items_are_checked_one_by_one_naming_the_item() -> None:
     err = refusal(p.check_mission, ground(), items)
     assert err.rule == "max_altitude"
     assert err.message == (
-        "max_altitude: mission item 3: waypoint altitude 150 m exceeds the limit of 120 m above home"
+        "max_altitude: mission item 3: waypoint altitude 150 m exceeds the limit of 120 m above home; "
+        "nothing was sent: fly at most 120 m, or tell the user the limit"
     )
     assert err.details["item"] == 3
     items[2] = item(100, 100, alt=120.0)

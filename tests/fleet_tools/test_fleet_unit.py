@@ -375,3 +375,34 @@ async def test_return_altitudes_fall_back_to_the_separation_when_the_margin_does
         start = 10.0 + 5 * IDS.index(v.id)
         if abs(start - alts[v.id]) > 1.0:
             assert gotos and gotos[-1][2] == alts[v.id], (v.id, gotos)
+
+
+async def test_a_formation_placed_where_the_drones_are_takes_off_grounded_ones_first(
+    gateway: Gateway,
+) -> None:
+    """No centre given: the drones' own centre, moved north_m; the drones on the ground take off first
+    (staggered, a phase of the same fleet operation), then fly into the formation."""
+    three = ["d1", "d2", "d3"]
+    positions = [geo.offset_position(HOME[0], HOME[1], 0.0, 10.0 * k) for k in range(3)]
+    lat0 = sum(p[0] for p in positions) / 3
+    lon0 = sum(p[1] for p in positions) / 3
+    async with Client(build_mcp(gateway)) as c:
+        far = {"drone_ids": three, "formation": "line", "alt_m": 15, "north_m": 5000}
+        text = err(await c.call_tool("formation_goto", far))
+        assert "max_distance" in text and "beyond the limit of 1000 m" in text, text
+        assert all(sent_names(fake(gateway, d)) == [] for d in three)
+        result = ok(
+            await c.call_tool(
+                "formation_goto", {"drone_ids": three, "formation": "line", "alt_m": 15, "north_m": 30}
+            )
+        )
+    assert result["status"] == "succeeded", result
+    assert result["phases"][0] == "take off the drones on the ground" and len(result["phases"]) == 4, result
+    for d in three:
+        names = sent_names(fake(gateway, d))
+        assert names[0] == "takeoff" and "goto" in names[1:], (d, names)
+    slots = [(s["target_lat_deg"], s["target_lon_deg"]) for s in result["drones"]]
+    centre = (sum(s[0] for s in slots) / 3, sum(s[1] for s in slots) / 3)
+    north, east = geo.ned_offset(lat0, lon0, *centre)
+    assert abs(north - 30.0) < 0.5 and abs(east) < 0.5, (north, east)
+    assert all(d["target_alt_m"] == 15 for d in result["drones"]), result

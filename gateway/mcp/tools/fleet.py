@@ -24,7 +24,7 @@ from gateway.fleet.readings import position, value
 from gateway.fleet.views import FleetHoldResult, FleetView
 from gateway.mcp.access import ToolCall
 from gateway.mcp.results import Result, plain
-from gateway.mcp.toolkit import Lat, Lon, Toolset, Wait
+from gateway.mcp.toolkit import Metres, Toolset, Wait
 
 toolset = Toolset("fleet")
 
@@ -239,9 +239,11 @@ async def formation_goto(
     call: ToolCall,
     drone_ids: DroneIds,
     formation: Formation,
-    center_lat_deg: Lat,
-    center_lon_deg: Lon,
     alt_m: Alt,
+    center_lat_deg: Annotated[float | None, Field(ge=-90, le=90, allow_inf_nan=False)] = None,
+    center_lon_deg: Annotated[float | None, Field(ge=-180, le=180, allow_inf_nan=False)] = None,
+    north_m: Annotated[Metres, Field(description="Centre moved north; default: where they are")] = 0.0,
+    east_m: Annotated[Metres, Field(description="Centre moved east")] = 0.0,
     spacing_m: Annotated[
         float, Field(gt=0, le=1000, allow_inf_nan=False, description="m between slots")
     ] = 10.0,
@@ -250,9 +252,19 @@ async def formation_goto(
     ] = None,
     wait: Wait = True,
 ) -> FleetOut:
-    """Fly airborne drones into a formation around a point, kept apart. All must join or nothing is sent."""
+    """Fly drones into a formation at a centre (default: theirs), kept apart; grounded ones take off first."""
     view = await call.commander.formation_goto(
-        call.caller, drone_ids, formation, center_lat_deg, center_lon_deg, alt_m, spacing_m, heading_deg
+        call.caller,
+        drone_ids,
+        formation,
+        center_lat_deg,
+        center_lon_deg,
+        alt_m,
+        spacing_m,
+        heading_deg,
+        north_m,
+        east_m,
+        notify=call.notify,
     )
     return await _finish(call, view, wait)
 

@@ -87,15 +87,20 @@ async def reposition(
 async def move_to_relative(
     call: ToolCall,
     drone_id: DroneId,
-    north_m: Metres,
-    east_m: Metres,
+    north_m: Metres = 0.0,
+    east_m: Metres = 0.0,
     up_m: Annotated[
-        float, Field(allow_inf_nan=False, ge=-1000, le=1000, description="+ climbs, - descends")
-    ] = 0.0,
+        float | None, Field(allow_inf_nan=False, ge=-1000, le=1000, description="+ climbs, - descends")
+    ] = None,
+    alt_m: Annotated[
+        float | None, Field(allow_inf_nan=False, description="m above home (not with up_m)")
+    ] = None,
     wait: Wait = True,
 ) -> OperationOut:
-    """Fly north_m/east_m/up_m metres from where it is (negative: south/west/down); done on arrival."""
-    op = await call.commander.move_relative(call.caller, drone_id, north_m, east_m, up_m)
+    """Fly north_m/east_m metres from where it is, up_m or at alt_m; from the ground takes off first."""
+    op = await call.commander.move_relative(
+        call.caller, drone_id, north_m, east_m, up_m, alt_m, notify=call.notify
+    )
     return await call.finish(op, wait, "move_to_relative")
 
 
