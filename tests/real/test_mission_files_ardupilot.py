@@ -5,17 +5,16 @@ flown to the end; the flight's .tlog opens in pymavlink with the whole track."""
 
 from __future__ import annotations
 
-import asyncio
 from pathlib import Path
 
 import httpx
 import pytest
-from pymavlink import mavutil
 
 from gateway.fleet import mission_files
 from tests.helpers.timing import scaled
 from tests.real.test_tour_ardupilot import ARDUCOPTER
 from tests.real.tour import gateway_over
+from tests.real.waits import closed_flight, tlog_points
 
 pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(900))]
 
@@ -54,25 +53,14 @@ async def test_the_autotest_mission_file_flies_to_the_end_and_logs_as_tlog(launc
             assert op["status"] == "succeeded" and op["kind"] == "mission", op
 
             # the last item is RTL: the drone comes home, lands and disarms, which closes the flight
-            loop = asyncio.get_running_loop()
-            deadline = loop.time() + scaled(300)
-            while True:
-                flights = (await http.get("/flights", params={"vehicle_id": d})).json()["items"]
-                if flights and flights[0]["ended_at"] is not None:
-                    break
-                assert loop.time() < deadline, f"the flight was not closed: {flights}"
-                await asyncio.sleep(1.0)
-            flight = flights[0]
+            flight = await closed_flight(http, d, 300)
             tlog = await http.get(f"/flights/{flight['id']}/tlog")
             assert tlog.status_code == 200
             track = (await http.get(f"/flights/{flight['id']}/track.geojson")).json()
 
     path = tmp_path / "flight.tlog"
     path.write_bytes(tlog.content)
-    log = mavutil.mavlink_connection(str(path), dialect="ardupilotmega")
-    points = []
-    while (msg := log.recv_match(type="GLOBAL_POSITION_INT")) is not None:
-        points.append((msg.lat / 1e7, msg.lon / 1e7, msg.relative_alt / 1000))
+    points = tlog_points(path, "ardupilotmega")
     assert len(points) == track["properties"]["sample_count"] >= 20
     # the whole track: the mission's southern leg (-35.365361), its 40 m waypoint, and home again
     assert min(p[0] for p in points) == pytest.approx(-35.365361, abs=2e-4)

@@ -4,17 +4,16 @@ initiate_mission; the flight's .tlog holds the track."""
 
 from __future__ import annotations
 
-import asyncio
 from pathlib import Path
 
 import httpx
 import pytest
-from pymavlink import mavutil
 
 from gateway.fleet import mission_files
 from tests.helpers.timing import scaled
 from tests.real.test_tour_px4 import PX4
 from tests.real.tour import gateway_over
+from tests.real.waits import closed_flight, tlog_points
 
 pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(900))]
 
@@ -42,23 +41,13 @@ async def test_a_px4_plan_file_flies_to_the_end(launch, tmp_path: Path) -> None:
             op = await t.finish(op, 600)
             assert op["status"] == "succeeded" and op["kind"] == "mission", op
 
-            loop = asyncio.get_running_loop()
-            deadline = loop.time() + scaled(300)
-            while True:
-                flights = (await http.get("/flights", params={"vehicle_id": d})).json()["items"]
-                if flights and flights[0]["ended_at"] is not None:
-                    break
-                assert loop.time() < deadline, f"the flight was not closed: {flights}"
-                await asyncio.sleep(1.0)
-            tlog = await http.get(f"/flights/{flights[0]['id']}/tlog")
+            flight = await closed_flight(http, d, 300)
+            tlog = await http.get(f"/flights/{flight['id']}/tlog")
             assert tlog.status_code == 200
 
     path = tmp_path / "flight.tlog"
     path.write_bytes(tlog.content)
-    log = mavutil.mavlink_connection(str(path), dialect="common")
-    points = []
-    while (msg := log.recv_match(type="GLOBAL_POSITION_INT")) is not None:
-        points.append((msg.lat / 1e7, msg.lon / 1e7, msg.relative_alt / 1000))
+    points = tlog_points(path, "common")
     assert len(points) >= 20
     assert max(p[0] for p in points) == pytest.approx(47.3981, abs=1.5e-4)  # the northern waypoints
     # the north-east waypoint (item 5, 20 m) is in the track; the highest point is PX4's RTL climb (30 m)
