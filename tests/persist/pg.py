@@ -91,20 +91,29 @@ class PostgresServer:
             stderr=subprocess.PIPE,
             start_new_session=True,
         )
+        started = time.time() - 1.0  # the pid file's mtime has whole-second precision on some filesystems
         deadline = time.monotonic() + scaled(self.timeout_s)
         while True:
-            ready = subprocess.run(
-                [find_pg_bin("pg_isready") or "pg_isready", "-h", "127.0.0.1", "-p", str(self.port)],
-                capture_output=True,
-            )
-            if ready.returncode == 0:
-                return
             if proc.poll() is not None:
                 assert proc.stderr is not None
                 raise RuntimeError(f"postgres exited: {proc.stderr.read().decode(errors='replace')[-2000:]}")
+            if self._ready(started):
+                return
             if time.monotonic() > deadline:
                 raise TimeoutError("postgres did not accept connections in time")
             time.sleep(0.2)
+
+    def _ready(self, started: float) -> bool:
+        """Our postmaster says it accepts connections on our port: read from its pid file in our data
+        directory, not probed on the port, which another server could hold if it took the port first."""
+        pid_file = self.data / "postmaster.pid"
+        try:
+            fresh = pid_file.stat().st_mtime >= started
+            lines = pid_file.read_text().splitlines()
+        except OSError:
+            return False
+        ours = len(lines) >= 8 and lines[3].strip() == str(self.port)
+        return fresh and ours and lines[7].strip() == "ready"
 
     def stop(self) -> None:
         """Fast shutdown: open connections are closed, new ones refused."""

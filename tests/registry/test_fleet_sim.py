@@ -207,6 +207,33 @@ async def test_flight_through_vehicle_api_is_logged(store, registries) -> None:
         assert any("Arming motors" in t.text for t in texts)
 
 
+async def test_a_takeoff_behind_a_stale_armed_cache_arms_for_real(store, registries, monkeypatch) -> None:
+    """"armed" comes with the 1 Hz heartbeat, so the cache can say armed a beat after the autopilot
+    disarmed on the ground (a landing, DISARM_DELAY). The takeoff that trusted it is refused by the
+    autopilot; the gateway then arms for real and takes off, instead of failing the call."""
+    async with sim_process(1, speedup=SPEEDUP) as sim:
+        reg = Registry(fast_settings(), store)
+        registries.append(reg)
+        await reg.start()
+        v = await reg.add(VehicleSpec(id="stale", url=sim.urls[0]))
+        await v.wait_for_state(READY, within_s=WAIT_S)
+        assert (await sim.control.state(0))["armed"] is False
+        real_fresh = v.telemetry.fresh
+        asked: list[str] = []
+
+        def armed_a_beat_ago(name: str, max_age_s: float | None = None):
+            if name == "armed" and "armed" not in asked:
+                asked.append(name)
+                return True  # the cached heartbeat from before the disarm
+            return real_fresh(name, max_age_s)
+
+        monkeypatch.setattr(v.telemetry, "fresh", armed_a_beat_ago)
+        await v.takeoff(5)
+        assert asked == ["armed"]
+        await _wait_alt(v, 4.5)
+        assert (await sim.control.state(0))["armed"] is True
+
+
 async def test_mission_round_trip_run_and_parameters(store, registries) -> None:
     async with sim_process(1, speedup=SPEEDUP) as sim:
         reg = Registry(fast_settings(), store)
