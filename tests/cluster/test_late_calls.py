@@ -75,6 +75,7 @@ async def test_a_call_reaching_the_owner_after_its_deadline_is_dropped(
     body = {"call": "goto", "args": {}, "caller": {"node": "node-x"}, "accept_by": 0.0, "epoch": 7}
     await nc.publish(call_subject("d1"), json.dumps(body).encode(), reply=inbox)
     msg = await asyncio.wait_for(answers.get(), 10.0)
+    assert msg.data, f"an empty message (headers {msg.headers}): the owner never heard the call"
     reply = json.loads(msg.data)
     assert (msg.headers or {}).get("Fleet-Kind") == "result" and reply["error"]["code"] == "not_run", reply
     assert "after its deadline" in reply["error"]["message"]
