@@ -36,16 +36,120 @@ from __future__ import annotations
 
 from typing import Any
 
+from pydantic import BaseModel
+
+from gateway.config import Settings
 from gateway.errors import InvalidArgument
 from gateway.fleet.caller import Caller
+from gateway.fleet.command_core import OperationDesk
+from gateway.fleet.command_pass import CommandPass
+from gateway.fleet.drone_verbs import DroneVerbs
+from gateway.fleet.fleet_ops import FleetOperations
 from gateway.fleet.fleet_verbs import FleetVerbs
 from gateway.fleet.ids import canonical_arguments, canonical_drone_id
-from gateway.fleet.protocols import Notify
-from gateway.fleet.routing import Verb
+from gateway.fleet.operations import OperationManager
+from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleDirectory
+from gateway.fleet.routing import Router, Verb
+from gateway.fleet.safety import LockBook, SafetyPolicy
+from gateway.registry.store import Store
 
 
-class Commander(FleetVerbs):
-    """Every command on one drone or on the fleet, for every door. Built once by `gateway.runtime`."""
+class Commander:
+    """Every command on one drone or on the fleet, for every door. Built once by `gateway.runtime`.
+
+    Composed, not inherited: the pass (`CommandPass`), the operation desk (views and waits), the verbs
+    on one drone (`DroneVerbs`) and on the fleet (`FleetVerbs`); the verbs are its attributes, so a
+    door calls ``commander.goto(...)`` and a name calls ``commander.call("goto", ...)``."""
+
+    def __init__(
+        self,
+        settings: Settings,
+        registry: VehicleDirectory,
+        store: Store | None,
+        operations: OperationManager,
+        fleet: FleetOperations,
+        safety: SafetyPolicy,
+        locks: LockBook,
+        router: Router | None = None,
+    ) -> None:
+        """``router``: on a cluster node, where the drones this node does not own are run."""
+        self.settings = settings
+        self.registry = registry
+        self.store = store
+        self.operations = operations
+        self.fleet = fleet
+        self.safety = safety
+        self.locks = locks
+        self.router = router
+        self.commands = CommandPass(settings, registry, operations, safety, locks, router)
+        self.desk = desk = OperationDesk(settings, registry, store, operations, router)
+        self.drones = drones = DroneVerbs(self.commands, desk, store)
+        self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, drones, fleet, store)
+        # operations
+        self.view = desk.view
+        self.operation = desk.operation
+        self.current_operation = desk.current_operation
+        self.latest_operation = desk.latest_operation
+        self.wait = desk.wait
+        # one drone: flight
+        self.arm = drones.arm
+        self.disarm = drones.disarm
+        self.takeoff = drones.takeoff
+        self.land = drones.land
+        self.return_to_launch = drones.return_to_launch
+        self.hold = drones.hold
+        self.kill = drones.kill
+        self.kill_needs_confirmation = drones.kill_needs_confirmation
+        self.set_mode = drones.set_mode
+        # one drone: navigation
+        self.goto = drones.goto
+        self.reposition = drones.reposition
+        self.move_relative = drones.move_relative
+        self.set_yaw = drones.set_yaw
+        self.set_speed = drones.set_speed
+        self.arrival = drones.arrival
+        self.monitor = drones.monitor
+        # one drone: missions and parameters
+        self.upload_mission = drones.upload_mission
+        self.upload_mission_file = drones.upload_mission_file
+        self.export_mission = drones.export_mission
+        self.download_mission = drones.download_mission
+        self.clear_mission = drones.clear_mission
+        self.start_mission = drones.start_mission
+        self.pause_mission = drones.pause_mission
+        self.resume_mission = drones.resume_mission
+        self.set_current_item = drones.set_current_item
+        self.mission_progress = drones.mission_progress
+        self.get_param = drones.get_param
+        self.set_param = drones.set_param
+        self.list_params = drones.list_params
+        # the fleet
+        self.fleet_view = fleet_verbs.fleet_view
+        self.fleet_operation = fleet_verbs.fleet_operation
+        self.wait_fleet = fleet_verbs.wait_fleet
+        self.formation_goto = fleet_verbs.formation_goto
+        self.fleet_takeoff = fleet_verbs.fleet_takeoff
+        self.fleet_land = fleet_verbs.fleet_land
+        self.fleet_return_to_launch = fleet_verbs.fleet_return_to_launch
+        self.fleet_hold = fleet_verbs.fleet_hold
+        self.run_step = fleet_verbs.run_step
+        self.hold_step = fleet_verbs.hold_step
+        self.lock = fleet_verbs.lock
+        self.unlock = fleet_verbs.unlock
+        self.taken_over = fleet_verbs.taken_over
+        self.release = fleet_verbs.release
+        self.stop_all = fleet_verbs.stop_all
+        self.stop_one = fleet_verbs.stop_one
+
+    def vehicle(self, drone_id: str) -> FlyingVehicle:
+        """The registered drone, in whatever state (for reads); UnknownVehicle lists the known ids."""
+        return self.registry.get(drone_id)
+
+    def ready(self, drone_id: str) -> FlyingVehicle:
+        """The drone, if it can fly (VehicleNotReady names its state and why otherwise), for reads."""
+        vehicle = self.registry.get(drone_id)
+        vehicle.require_ready()
+        return vehicle
 
     def canonical_id(self, drone_id: str) -> str:
         """The registered id ``drone_id`` names ignoring case (`gateway.fleet.ids`): doors call this
@@ -65,51 +169,55 @@ class Commander(FleetVerbs):
         parsed = entry.parse(canonical_arguments(self.registry, arguments))
         if notify is not None and "notify" in entry.callbacks:
             parsed["notify"] = notify
-        result = await entry.method(self, caller, **parsed)
+        result: BaseModel = await getattr(self, verb)(caller, **parsed)
         return result.model_dump(mode="json")
 
 
-#: The verbs every door (and a forwarding cluster node) may call by name.
+#: The verbs every door (and a forwarding cluster node) may call by name: their arguments are the
+#: keyword parameters after ``caller`` of the method the Commander holds under that name.
 VERBS: dict[str, Verb] = {
-    # flight
-    "arm": Verb(Commander.arm),
-    "disarm": Verb(Commander.disarm),
-    "takeoff": Verb(Commander.takeoff),
-    "land": Verb(Commander.land),
-    "return_to_launch": Verb(Commander.return_to_launch),
-    "hold": Verb(Commander.hold),
-    "kill": Verb(Commander.kill),
-    "set_mode": Verb(Commander.set_mode),
-    # navigation
-    "goto": Verb(Commander.goto),
-    "reposition": Verb(Commander.reposition),
-    "move_relative": Verb(Commander.move_relative),
-    "set_yaw": Verb(Commander.set_yaw),
-    "set_speed": Verb(Commander.set_speed),
-    "arrival": Verb(Commander.arrival),
-    # missions
-    "upload_mission": Verb(Commander.upload_mission),
-    "upload_mission_file": Verb(Commander.upload_mission_file),
-    "export_mission": Verb(Commander.export_mission),
-    "download_mission": Verb(Commander.download_mission),
-    "clear_mission": Verb(Commander.clear_mission),
-    "start_mission": Verb(Commander.start_mission),
-    "pause_mission": Verb(Commander.pause_mission),
-    "resume_mission": Verb(Commander.resume_mission),
-    "set_current_item": Verb(Commander.set_current_item),
-    "mission_progress": Verb(Commander.mission_progress),
-    # parameters
-    "get_param": Verb(Commander.get_param),
-    "set_param": Verb(Commander.set_param),
-    "list_params": Verb(Commander.list_params),
-    # the fleet
-    "formation_goto": Verb(Commander.formation_goto),
-    "fleet_takeoff": Verb(Commander.fleet_takeoff),
-    "fleet_land": Verb(Commander.fleet_land),
-    "fleet_return_to_launch": Verb(Commander.fleet_return_to_launch),
-    "fleet_hold": Verb(Commander.fleet_hold),
-    "stop_all": Verb(Commander.stop_all),
-    "lock": Verb(Commander.lock),
-    "unlock": Verb(Commander.unlock),
-    "release": Verb(Commander.release),
+    verb.__name__: Verb(verb)
+    for verb in (
+        # flight
+        DroneVerbs.arm,
+        DroneVerbs.disarm,
+        DroneVerbs.takeoff,
+        DroneVerbs.land,
+        DroneVerbs.return_to_launch,
+        DroneVerbs.hold,
+        DroneVerbs.kill,
+        DroneVerbs.set_mode,
+        # navigation
+        DroneVerbs.goto,
+        DroneVerbs.reposition,
+        DroneVerbs.move_relative,
+        DroneVerbs.set_yaw,
+        DroneVerbs.set_speed,
+        DroneVerbs.arrival,
+        # missions
+        DroneVerbs.upload_mission,
+        DroneVerbs.upload_mission_file,
+        DroneVerbs.export_mission,
+        DroneVerbs.download_mission,
+        DroneVerbs.clear_mission,
+        DroneVerbs.start_mission,
+        DroneVerbs.pause_mission,
+        DroneVerbs.resume_mission,
+        DroneVerbs.set_current_item,
+        DroneVerbs.mission_progress,
+        # parameters
+        DroneVerbs.get_param,
+        DroneVerbs.set_param,
+        DroneVerbs.list_params,
+        # the fleet
+        FleetVerbs.formation_goto,
+        FleetVerbs.fleet_takeoff,
+        FleetVerbs.fleet_land,
+        FleetVerbs.fleet_return_to_launch,
+        FleetVerbs.fleet_hold,
+        FleetVerbs.stop_all,
+        FleetVerbs.lock,
+        FleetVerbs.unlock,
+        FleetVerbs.release,
+    )
 }

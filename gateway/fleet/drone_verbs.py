@@ -1,10 +1,10 @@
 """The Commander's verbs on one drone: flight (arm, takeoff, land, return, hold, kill, mode),
 navigation (goto, reposition, relative move, yaw, speed), missions and parameters.
 
-Each verb resolves the drone, judges one fresh `VehicleContext` with the policy (as the caller's door
-decides) and then acts under the drone's command lock: it starts a tracked operation (`_track`) or sends
-an instant command (`_instant`), with the takeoff guard inside the lock for everything but the safety
-actions (`CommandCore._guard_takeoff` states the rule). Only kill sends without the lock (see `kill`).
+Each actuating verb is one run of the pass (`gateway.fleet.command_pass.CommandPass.run`): it gives the
+pass its checks and what to send (``decide``, judged on the one `VehicleContext` the pass builds), and
+the pass resolves the drone, applies the policy, sends under the drone's command lock, tracks and
+audits. Only kill sends without the lock (see `kill`).
 Messages name what to do next; ``label`` is how the caller names the command (its MCP tool name), used
 in those messages and in the superseded operation's reason.
 
@@ -15,13 +15,24 @@ from __future__ import annotations
 
 import contextlib
 import time
-from collections.abc import Sequence
+from collections.abc import Awaitable, Callable, Sequence
 from typing import Any
 
 from gateway.errors import InvalidArgument, NotFound, VehicleNotReady
 from gateway.fleet import geo, mission_files
 from gateway.fleet.caller import Caller
-from gateway.fleet.command_core import NAV_KINDS, AltFrame, CommandCore, OnProgress, routed
+from gateway.fleet.command_core import (
+    NAV_KINDS,
+    AltFrame,
+    OnProgress,
+    OperationDesk,
+    arming_deadline,
+    left,
+    relative_alt,
+    require_airborne,
+    routed,
+)
+from gateway.fleet.command_pass import CommandPass, Need, Order, Sent
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice
 from gateway.fleet.operations import (
@@ -29,13 +40,14 @@ from gateway.fleet.operations import (
     GotoTracker,
     LandingTracker,
     MissionTracker,
+    Operation,
     OpStatus,
     TakeoffTracker,
     YawTracker,
     check_positive_altitude,
 )
 from gateway.fleet.protocols import FlyingVehicle, Notify
-from gateway.fleet.readings import is_airborne, is_landed_and_disarmed, position, value
+from gateway.fleet.readings import is_airborne, is_landed_and_disarmed, position, value, vehicle_context
 from gateway.fleet.safety import Target, VehicleContext
 from gateway.fleet.views import (
     ActionResult,
@@ -48,10 +60,34 @@ from gateway.fleet.views import (
     ParamValue,
 )
 from gateway.registry.records import OperationRecord
+from gateway.registry.store import Store
+
+Prepare = Callable[[FlyingVehicle], Awaitable[None]]
 
 
-class DroneVerbs(CommandCore):
-    """Commands on one drone."""
+class DroneVerbs:
+    """Commands on one drone, each one run of the pass (`CommandPass.run`)."""
+
+    def __init__(self, commands: CommandPass, desk: OperationDesk, store: Store | None) -> None:
+        self.commands = commands
+        self.desk = desk
+        self.store = store
+        self.settings = commands.settings
+        self.registry = commands.registry
+        self.router = commands.router
+        self.safety = commands.safety
+        self.operations = commands.operations
+
+    def _wait_initialised(self, deadline: float, notify: Notify | None) -> Prepare:
+        """A ``prepare`` step: wait until ``deadline`` for a drone still initialising, ``notify``
+        hearing what it waits for. A drone that is still initialising then is left to its arming
+        attempt, whose refusal says why in the autopilot's words; one in no state to arm raises
+        VehicleNotReady naming why."""
+
+        async def prepare(vehicle: FlyingVehicle) -> None:
+            await vehicle.wait_initialised(left(deadline), notify)
+
+        return prepare
 
     # ------------------------------------------------------------------------------------------------
     # flight: arm, disarm, takeoff, land, return, hold, kill, mode
@@ -60,27 +96,35 @@ class DroneVerbs(CommandCore):
     @routed
     async def arm(self, caller: Caller, drone_id: str, *, notify: Notify | None = None) -> ActionResult:
         """Arm; a drone still initialising is waited for, within the wait cap (see `Vehicle.arm`)."""
-        vehicle = self.vehicle(drone_id)
-        deadline = self._arming_deadline()
-        await self._wait_initialised(vehicle, notify, deadline)
-        self.safety.check_arm(self.context(vehicle), caller.policy_via)
-        await self._instant(caller, vehicle, "arm_drone", lambda: vehicle.arm(self._left(deadline), notify))
+        deadline = arming_deadline(self.settings)
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            self.safety.check_arm(ctx, caller.policy_via)
+            return Order(lambda: vehicle.arm(left(deadline), notify))
+
+        await self.commands.run(
+            caller,
+            drone_id,
+            "arm_drone",
+            decide,
+            need=Need.ANY,
+            prepare=self._wait_initialised(deadline, notify),
+        )
         return ActionResult(drone_id=drone_id, action="arm", message="armed")
 
     @routed
     async def disarm(self, caller: Caller, drone_id: str, label: str = "disarm_drone") -> ActionResult:
-        vehicle = self.ready(drone_id)
-        ctx = self.context(vehicle)
-        if ctx.in_air:
-            raise InvalidArgument(
-                f"{drone_id} is in the air; call land first (disarm only works on the ground)"
-            )
-        self.safety.check_actuation(ctx, caller.policy_via)
-        _, sup = await self._instant(
-            caller, vehicle, label, vehicle.disarm, safety_action=True, ends_operation=True
-        )
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            if ctx.in_air:
+                raise InvalidArgument(
+                    f"{drone_id} is in the air; call land first (disarm only works on the ground)"
+                )
+            self.safety.check_actuation(ctx, caller.policy_via)
+            return Order(vehicle.disarm, ends_operation=True)
+
+        sent = await self.commands.run(caller, drone_id, label, decide, safety_action=True)
         return ActionResult(
-            drone_id=drone_id, action="disarm", message="disarmed", superseded_operation=sup and sup.id
+            drone_id=drone_id, action="disarm", message="disarmed", superseded_operation=_id(sent.ended)
         )
 
     @routed
@@ -88,80 +132,95 @@ class DroneVerbs(CommandCore):
         self, caller: Caller, drone_id: str, alt_m: float, *, notify: Notify | None = None
     ) -> OperationView:
         """Arm if needed and climb to ``alt_m`` above home; done when reached."""
-        vehicle = self.vehicle(drone_id)
-        deadline = self._arming_deadline()  # initialising and arming wait together, within the cap
-        await self._wait_initialised(vehicle, notify, deadline)
-        self._guard_takeoff(caller, vehicle, "takeoff")
-        ctx = self.context(vehicle)
-        if ctx.in_air:
-            raise InvalidArgument(_already_flying(drone_id, ctx.position[2] if ctx.position else None, alt_m))
-        self.safety.check_takeoff(ctx, alt_m, caller.policy_via)
-        return await self._track(
+        deadline = arming_deadline(self.settings)  # initialising and arming wait together, within the cap
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            if ctx.in_air:
+                raise InvalidArgument(
+                    _already_flying(drone_id, ctx.position[2] if ctx.position else None, alt_m)
+                )
+            self.safety.check_takeoff(ctx, alt_m, caller.policy_via)
+            return Order(
+                lambda: vehicle.takeoff(alt_m, left(deadline), notify),
+                TakeoffTracker(alt_m),
+                {"alt_m": alt_m},
+            )
+
+        sent = await self.commands.run(
             caller,
-            vehicle,
-            TakeoffTracker(alt_m),
-            lambda: vehicle.takeoff(alt_m, self._left(deadline), notify),
-            {"alt_m": alt_m},
+            drone_id,
             "takeoff",
+            decide,
+            need=Need.ANY,
+            prepare=self._wait_initialised(deadline, notify),
         )
+        return _view(sent)
 
     @routed
     async def land(self, caller: Caller, drone_id: str) -> OperationView:
         """Land where the drone is; done when landed and disarmed."""
-        vehicle = self._for_recovery(caller, drone_id)
-        if is_landed_and_disarmed(vehicle):
-            raise InvalidArgument(
-                f"{drone_id} is already on the ground and disarmed: nothing to do, it is landed as asked "
-                "(do not take it off again unless the request says so)"
-            )
-        self.safety.check_actuation(self.context(vehicle), caller.policy_via)
-        return await self._track(caller, vehicle, LandingTracker(kind="land"), vehicle.land, {}, "land")
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            if is_landed_and_disarmed(vehicle):
+                raise InvalidArgument(
+                    f"{drone_id} is already on the ground and disarmed: nothing to do, it is landed as "
+                    "asked (do not take it off again unless the request says so)"
+                )
+            self.safety.check_actuation(ctx, caller.policy_via)
+            return Order(vehicle.land, LandingTracker(kind="land"))
+
+        sent = await self.commands.run(
+            caller, drone_id, "land", decide, need=Need.RECOVERY, safety_action=True
+        )
+        return _view(sent)
 
     @routed
     async def return_to_launch(self, caller: Caller, drone_id: str) -> OperationView:
         """Fly home and land; done when landed and disarmed."""
-        vehicle = self._for_recovery(caller, drone_id)
-        ctx = self.context(vehicle)
-        if not caller.is_operator:
-            self._require_airborne(ctx, "return_to_launch")
-        self.safety.check_actuation(ctx, caller.policy_via)
-        return await self._track(
-            caller,
-            vehicle,
-            LandingTracker(kind="return_to_launch"),
-            vehicle.return_to_launch,
-            {},
-            "return_to_launch",
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            if not caller.is_operator:
+                require_airborne(ctx, "return_to_launch")
+            self.safety.check_actuation(ctx, caller.policy_via)
+            return Order(vehicle.return_to_launch, LandingTracker(kind="return_to_launch"))
+
+        sent = await self.commands.run(
+            caller, drone_id, "return_to_launch", decide, need=Need.RECOVERY, safety_action=True
         )
+        return _view(sent)
 
     @routed
     async def hold(self, caller: Caller, drone_id: str, label: str = "hold_position") -> ActionResult:
         """GUIDED reposition to the current position (never LOITER/ALT_HOLD, which sink without RC);
         ends the drone's current operation."""
-        vehicle = self._for_recovery(caller, drone_id)
-        ctx = self.context(vehicle)
-        if not caller.is_operator:
-            self._require_airborne(ctx, label)
-        self.safety.check_actuation(ctx, caller.policy_via)
-        _, sup = await self._instant(
-            caller, vehicle, label, vehicle.hold, safety_action=True, ends_operation=True, commands="hold"
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            if not caller.is_operator:
+                require_airborne(ctx, label)
+            self.safety.check_actuation(ctx, caller.policy_via)
+            return Order(vehicle.hold, ends_operation=True, commands="hold")
+
+        sent = await self.commands.run(
+            caller, drone_id, label, decide, need=Need.RECOVERY, safety_action=True
         )
-        pos = position(vehicle)
+        pos = position(sent.vehicle)
         where = f" at {pos[2]:.1f} m above home" if pos else ""
-        stopped = f"; stopped {sup.kind} {sup.id}" if sup else ""
+        stopped = f"; stopped {sent.ended.kind} {sent.ended.id}" if sent.ended else ""
         return ActionResult(
             drone_id=drone_id,
             action=label,
             message=f"holding position{where}{stopped}",
-            superseded_operation=sup and sup.id,
+            superseded_operation=_id(sent.ended),
         )
 
     def kill_needs_confirmation(self, caller: Caller, drone_id: str) -> bool:
         """Whether a kill by this caller must first be confirmed by a human: an agent's kill of an
         airborne drone, when the policy allows agents to kill at all (else it is refused here, before
-        anyone is asked)."""
-        vehicle = self.ready(drone_id) if not caller.is_operator else self.vehicle(drone_id)
-        return self.safety.check_kill(self.context(vehicle), caller.policy_via)
+        anyone is asked). Judges only: nothing is sent."""
+        vehicle = self.registry.get(drone_id)
+        if not caller.is_operator:
+            vehicle.require_ready()
+        return self.safety.check_kill(vehicle_context(vehicle), caller.policy_via)
 
     @routed
     async def kill(self, caller: Caller, drone_id: str, confirmed: bool = False) -> ActionResult:
@@ -173,45 +232,44 @@ class DroneVerbs(CommandCore):
         while it initialises retries for up to a minute; a mission upload takes up to 30 s). Cutting
         the motors must not wait behind that. It ends whatever operation is recorded; a command still
         being sent may complete after it (nothing can call back what is already on its way)."""
-        vehicle = self._for_recovery(caller, drone_id)
-        ctx = self.context(vehicle)
-        self.safety.check_kill_confirmed(ctx, confirmed, caller.policy_via)
-        self.safety.check_kill(ctx, caller.policy_via)  # locks and simulators-only hold on the ground too
-        if caller.is_operator or ctx.airborne:
-            await vehicle.kill()
-            message = "motors killed in flight" if ctx.airborne else "motors killed"
-        else:
-            await vehicle.disarm()
-            message = "on the ground: disarmed"
-        sup = await self._supersede(drone_id, "kill_motors")
-        self.operations.forget(drone_id)
-        return ActionResult(
-            drone_id=drone_id, action="kill", message=message, superseded_operation=sup and sup.id
+        said: list[str] = []
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            self.safety.check_kill_confirmed(ctx, confirmed, caller.policy_via)
+            self.safety.check_kill(ctx, caller.policy_via)  # locks and simulators-only hold on the ground too
+            if caller.is_operator or ctx.airborne:
+                said.append("motors killed in flight" if ctx.airborne else "motors killed")
+                return Order(vehicle.kill)
+            said.append("on the ground: disarmed")
+            return Order(vehicle.disarm)
+
+        await self.commands.run(
+            caller, drone_id, "kill_motors", decide, need=Need.RECOVERY, safety_action=True, locked=False
         )
+        sup = await self.operations.supersede(drone_id, "kill_motors")
+        self.operations.forget(drone_id)
+        return ActionResult(drone_id=drone_id, action="kill", message=said[0], superseded_operation=_id(sup))
 
     @routed
     async def set_mode(self, caller: Caller, drone_id: str, mode: str) -> ActionResult:
         """Flight mode by a common name (HOLD, RTL, LAND, MISSION...) or the autopilot's own. HOLD is the
         gateway's safe hold."""
-        vehicle = self.ready(drone_id)
+        vehicle = self.registry.get(drone_id)
+        vehicle.require_ready()
         choice = vehicle.resolve_mode(mode)
         if choice.requested == "HOLD":
             return await self.hold(caller, drone_id, "set_flight_mode HOLD")
         label = f"set_flight_mode {choice.requested}"
-        safety = _is_landing_mode(vehicle, choice)
-        if not safety:
-            self._guard_takeoff(caller, vehicle, label)
-        ctx = self.context(vehicle)
-        self.safety.check_mode(ctx, choice.requested, caller.policy_via)
-        self.safety.check_mode(ctx, choice.native, caller.policy_via)
-        _, sup = await self._instant(
-            caller,
-            vehicle,
-            label,
-            lambda: vehicle.set_flight_mode(mode),
-            safety_action=safety,
-            ends_operation=True,
-            **_commanded(vehicle, choice),
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            self.safety.check_mode(ctx, choice.requested, caller.policy_via)
+            self.safety.check_mode(ctx, choice.native, caller.policy_via)
+            return Order(
+                lambda: vehicle.set_flight_mode(mode), ends_operation=True, **_commanded(vehicle, choice)
+            )
+
+        sent = await self.commands.run(
+            caller, drone_id, label, decide, safety_action=_is_landing_mode(vehicle, choice)
         )
         named = (
             choice.native if choice.native == choice.requested else f"{choice.requested} ({choice.native})"
@@ -220,7 +278,7 @@ class DroneVerbs(CommandCore):
             drone_id=drone_id,
             action="set_flight_mode",
             message=f"mode {named}",
-            superseded_operation=sup and sup.id,
+            superseded_operation=_id(sent.ended),
             facts={"mode": named},
         )
 
@@ -228,33 +286,29 @@ class DroneVerbs(CommandCore):
     # navigation: goto, reposition, relative move, yaw, speed
     # ------------------------------------------------------------------------------------------------
 
-    async def _fly_to(
+    def _fly_to(
         self,
         caller: Caller,
-        drone_id: str,
-        lat: float,
-        lon: float,
-        alt_rel: float,
+        vehicle: FlyingVehicle,
+        ctx: VehicleContext,
+        target: tuple[float, float, float],
         kind: str,
         label: str,
         yaw_deg: float | None = None,
-    ) -> OperationView:
+    ) -> Order:
+        """The order of a flight to ``target`` (lat, lon, metres above home), after its checks."""
+        lat, lon, alt_rel = target
         geo.check_lat_lon(lat, lon)
         check_positive_altitude(alt_rel)
-        vehicle = self.ready(drone_id)
-        self._guard_takeoff(caller, vehicle, label)
-        ctx = self.context(vehicle)
         if not (ctx.in_air and ctx.armed):
             # a target the policy refuses anyway is said before "take off first": a small model took off
             # as told, then gave up before ever hearing that the target itself was out of bounds
             self.safety.check_motion(ctx, Target(lat, lon, alt_rel), caller.policy_via)
-        self._require_airborne(ctx, label)
+        require_airborne(ctx, label)
         self.safety.check_motion(ctx, Target(lat, lon, alt_rel), caller.policy_via)
         params = {"lat_deg": lat, "lon_deg": lon, "alt_m": round(alt_rel, 2)}
         tracker = GotoTracker(lat, lon, alt_rel, self.settings.arrival_tolerance_m, kind=kind)
-        return await self._track(
-            caller, vehicle, tracker, lambda: vehicle.goto(lat, lon, alt_rel, yaw_deg), params, label
-        )
+        return Order(lambda: vehicle.goto(lat, lon, alt_rel, yaw_deg), tracker, params)
 
     @routed
     async def goto(
@@ -269,13 +323,16 @@ class DroneVerbs(CommandCore):
         label: str = "go_to_location",
     ) -> OperationView:
         """Fly to a position at ``alt_m`` (above home, or AMSL); done on arrival."""
-        ctx = self.context(self.ready(drone_id))
-        alt_rel = self._relative_alt(ctx, alt_m, alt_frame)
-        yaw = None
-        if yaw_deg is not None:
-            geo.check_finite("yaw_deg", yaw_deg)
-            yaw = yaw_deg % 360.0
-        return await self._fly_to(caller, drone_id, lat_deg, lon_deg, alt_rel, "goto", label, yaw)
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            alt_rel = relative_alt(ctx, alt_m, alt_frame)
+            yaw = None
+            if yaw_deg is not None:
+                geo.check_finite("yaw_deg", yaw_deg)
+                yaw = yaw_deg % 360.0
+            return self._fly_to(caller, vehicle, ctx, (lat_deg, lon_deg, alt_rel), "goto", label, yaw)
+
+        return _view(await self.commands.run(caller, drone_id, label, decide))
 
     @routed
     async def reposition(
@@ -288,14 +345,18 @@ class DroneVerbs(CommandCore):
         alt_frame: AltFrame = "home",
     ) -> OperationView:
         """Fly to a position and hover there, at the current altitude unless ``alt_m`` is given."""
-        ctx = self.context(self.ready(drone_id))
-        if alt_m is None:
-            if ctx.position is None:
-                raise VehicleNotReady(f"no position received from {drone_id} yet")
-            alt_rel = ctx.position[2]
-        else:
-            alt_rel = self._relative_alt(ctx, alt_m, alt_frame)
-        return await self._fly_to(caller, drone_id, lat_deg, lon_deg, alt_rel, "reposition", "reposition")
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            if alt_m is None:
+                if ctx.position is None:
+                    raise VehicleNotReady(f"no position received from {drone_id} yet")
+                alt_rel = ctx.position[2]
+            else:
+                alt_rel = relative_alt(ctx, alt_m, alt_frame)
+            target = (lat_deg, lon_deg, alt_rel)
+            return self._fly_to(caller, vehicle, ctx, target, "reposition", "reposition")
+
+        return _view(await self.commands.run(caller, drone_id, "reposition", decide))
 
     @routed
     async def move_relative(
@@ -321,48 +382,54 @@ class DroneVerbs(CommandCore):
                 f"give either up_m (a climb, here {up_m:g} m) or alt_m (an altitude above home, here "
                 f"{alt_m:g} m), not both; nothing was sent"
             )
-        vehicle = self.vehicle(drone_id)
-        deadline = self._arming_deadline()
-        if not is_airborne(vehicle):
-            await self._wait_initialised(vehicle, notify, deadline)
-        vehicle.require_ready()
-        self._guard_takeoff(caller, vehicle, "move_to_relative")
-        ctx = self.context(vehicle)
-        pos = ctx.position
-        if pos is None:
-            raise VehicleNotReady(f"no position received from {drone_id} yet")
-        lat, lon = geo.offset_position(pos[0], pos[1], north_m, east_m)
-        if not (ctx.in_air and ctx.armed):
-            return await self._climb_then_go(
-                caller, vehicle, ctx, lat, lon, north_m, east_m, up_m, alt_m, deadline, notify
-            )
-        up = up_m or 0.0
-        target = alt_m if alt_m is not None else pos[2] + up
-        if alt_m is None and up < 0 and target <= 0:
-            raise InvalidArgument(
-                f"up_m={up:g} would take {drone_id} from {pos[2]:.1f} m to {target:.1f} m, below home: "
-                f"up_m counts metres up (negative: down); to climb {-up:g} m use up_m={-up:g} (to come "
-                "down to the ground, use land)"
-            )
-        return await self._fly_to(caller, drone_id, lat, lon, target, "move_to_relative", "move_to_relative")
+        deadline = arming_deadline(self.settings)
+        wait_initialised = self._wait_initialised(deadline, notify)
 
-    async def _climb_then_go(
+        async def prepare(vehicle: FlyingVehicle) -> None:
+            if not is_airborne(vehicle):
+                await wait_initialised(vehicle)
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            pos = ctx.position
+            if pos is None:
+                raise VehicleNotReady(f"no position received from {drone_id} yet")
+            lat, lon = geo.offset_position(pos[0], pos[1], north_m, east_m)
+            if not (ctx.in_air and ctx.armed):
+                return self._climb_then_go(
+                    caller, vehicle, ctx, (lat, lon), north_m, east_m, up_m, alt_m, deadline, notify
+                )
+            up = up_m or 0.0
+            target = alt_m if alt_m is not None else pos[2] + up
+            if alt_m is None and up < 0 and target <= 0:
+                raise InvalidArgument(
+                    f"up_m={up:g} would take {drone_id} from {pos[2]:.1f} m to {target:.1f} m, below home: "
+                    f"up_m counts metres up (negative: down); to climb {-up:g} m use up_m={-up:g} (to come "
+                    "down to the ground, use land)"
+                )
+            return self._fly_to(
+                caller, vehicle, ctx, (lat, lon, target), "move_to_relative", "move_to_relative"
+            )
+
+        sent = await self.commands.run(caller, drone_id, "move_to_relative", decide, prepare=prepare)
+        return _view(sent)
+
+    def _climb_then_go(
         self,
         caller: Caller,
         vehicle: FlyingVehicle,
         ctx: VehicleContext,
-        lat: float,
-        lon: float,
+        point: tuple[float, float],
         north_m: float,
         east_m: float,
         up_m: float | None,
         alt_m: float | None,
         deadline: float,
         notify: Notify | None,
-    ) -> OperationView:
+    ) -> Order:
         """A relative move asked of a drone on the ground: take off to the altitude asked (``alt_m``, or
         ``up_m`` above the ground), then fly the leg, as one tracked operation."""
         drone_id = vehicle.id
+        lat, lon = point
         alt = alt_m if alt_m is not None else up_m
         if alt is None or alt <= 0:
             raise InvalidArgument(
@@ -376,38 +443,30 @@ class DroneVerbs(CommandCore):
         leg = GotoTracker(lat, lon, alt, self.settings.arrival_tolerance_m, kind="move_to_relative")
         tracker = ClimbThenGoTracker(TakeoffTracker(alt), leg, lambda: vehicle.goto(lat, lon, alt))
         params = {"lat_deg": lat, "lon_deg": lon, "alt_m": round(alt, 2), "takeoff_first": True}
-        return await self._track(
-            caller,
-            vehicle,
-            tracker,
-            lambda: vehicle.takeoff(alt, self._left(deadline), notify),
-            params,
-            "move_to_relative",
-        )
+        return Order(lambda: vehicle.takeoff(alt, left(deadline), notify), tracker, params)
 
     @routed
     async def set_yaw(self, caller: Caller, drone_id: str, heading_deg: float) -> OperationView:
         """Turn in place to a heading (degrees from true north, clockwise); done when facing it."""
-        vehicle = self.ready(drone_id)
-        self._guard_takeoff(caller, vehicle, "set_yaw")
-        ctx = self.context(vehicle)
-        self._require_airborne(ctx, "set_yaw")
-        self.safety.check_actuation(ctx, caller.policy_via)
-        return await self._track(
-            caller,
-            vehicle,
-            YawTracker(heading_deg),
-            lambda: vehicle.set_yaw(heading_deg),
-            {"heading_deg": heading_deg},
-            "set_yaw",
-        )
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            require_airborne(ctx, "set_yaw")
+            self.safety.check_actuation(ctx, caller.policy_via)
+            return Order(
+                lambda: vehicle.set_yaw(heading_deg), YawTracker(heading_deg), {"heading_deg": heading_deg}
+            )
+
+        return _view(await self.commands.run(caller, drone_id, "set_yaw", decide))
 
     @routed
     async def set_speed(self, caller: Caller, drone_id: str, speed_mps: float) -> ActionResult:
         """The horizontal speed of gotos, m/s (within the policy's limit)."""
-        vehicle = self.ready(drone_id)
-        self.safety.check_speed(self.context(vehicle), speed_mps, caller.policy_via)
-        await self._instant(caller, vehicle, "set_max_speed", lambda: vehicle.set_max_speed(speed_mps))
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            self.safety.check_speed(ctx, speed_mps, caller.policy_via)
+            return Order(lambda: vehicle.set_max_speed(speed_mps))
+
+        await self.commands.run(caller, drone_id, "set_max_speed", decide)
         return ActionResult(
             drone_id=drone_id,
             action="set_max_speed",
@@ -418,7 +477,7 @@ class DroneVerbs(CommandCore):
     @routed
     async def arrival(self, caller: Caller, drone_id: str) -> ArrivalView:
         """Whether the drone's last goto arrived, with the distance left; answers at once."""
-        vehicle = self.vehicle(drone_id)
+        vehicle = self.registry.get(drone_id)
         op = self.operations.latest(drone_id)
         if op is None:
             record = await self._stored_latest(drone_id, NAV_KINDS)
@@ -474,7 +533,7 @@ class DroneVerbs(CommandCore):
     ) -> OperationView:
         """Wait (capped) for the drone's current operation; with ``land_on_arrival``, a goto that
         arrived is followed by a landing, waited for within the same cap."""
-        vehicle = self.vehicle(drone_id)
+        vehicle = self.registry.get(drone_id)
         op = self.operations.latest(drone_id)
         if op is None:
             record = await self._stored_latest(drone_id)
@@ -491,13 +550,17 @@ class DroneVerbs(CommandCore):
             )
         start = time.monotonic()
         cap = self.settings.mcp_wait_cap_s if cap_s is None else cap_s
-        view = await self.wait(op.id, cap, on_progress)
+        view = await self.desk.wait(op.id, cap, on_progress)
         if land_on_arrival and view.kind in NAV_KINDS and view.status == "succeeded" and is_airborne(vehicle):
-            self.safety.check_actuation(self.context(vehicle), caller.policy_via)
-            landing = await self._track(
-                caller, vehicle, LandingTracker(kind="land"), vehicle.land, {}, "land"
+
+            def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+                self.safety.check_actuation(ctx, caller.policy_via)
+                return Order(vehicle.land, LandingTracker(kind="land"))
+
+            landing = _view(
+                await self.commands.run(caller, drone_id, "land", decide, need=Need.ANY, safety_action=True)
             )
-            view = await self.wait(
+            view = await self.desk.wait(
                 landing.operation_id, max(0.0, cap - (time.monotonic() - start)), on_progress
             )
         return view
@@ -518,10 +581,10 @@ class DroneVerbs(CommandCore):
     # missions
     # ------------------------------------------------------------------------------------------------
 
-    async def _upload(
-        self, caller: Caller, vehicle: FlyingVehicle, items: Sequence[MissionItem], action: str
-    ) -> int:
-        ctx = self.context(vehicle)
+    def _upload(
+        self, caller: Caller, vehicle: FlyingVehicle, ctx: VehicleContext, items: Sequence[MissionItem]
+    ) -> Order:
+        """The order that stores ``items`` on the drone, after the policy's mission checks."""
         self.safety.check_mission(ctx, items, caller.policy_via)
 
         async def send() -> int:
@@ -532,14 +595,17 @@ class DroneVerbs(CommandCore):
                 )
             return await vehicle.upload_mission(items)
 
-        await self._instant(caller, vehicle, action, send)
-        return len(items)
+        return Order(send)
 
     @routed
     async def upload_mission(self, caller: Caller, drone_id: str, items: list[MissionItem]) -> ActionResult:
         """Store a mission on the drone (items numbered 1..N, altitudes above home) without starting it."""
-        vehicle = self.ready(drone_id)
-        count = await self._upload(caller, vehicle, items, "upload_mission")
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            return self._upload(caller, vehicle, ctx, items)
+
+        await self.commands.run(caller, drone_id, "upload_mission", decide)
+        count = len(items)
         return ActionResult(
             drone_id=drone_id,
             action="upload_mission",
@@ -558,16 +624,20 @@ class DroneVerbs(CommandCore):
             raise InvalidArgument(
                 f"file_format {file_format!r} is not one of {', '.join(mission_files.FORMATS)}"
             )
-        vehicle = self.ready(drone_id)
-        parsed = mission_files.parse(content, file_format)
-        ctx = self.context(vehicle)
-        items = mission_files.mission_items(parsed, ctx.home, ctx.position)
-        count = await self._upload(caller, vehicle, items, "upload_mission_file")
+        counted: list[int] = []
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            parsed = mission_files.parse(content, file_format)
+            items = mission_files.mission_items(parsed, ctx.home, ctx.position)
+            counted.append(len(items))
+            return self._upload(caller, vehicle, ctx, items)
+
+        await self.commands.run(caller, drone_id, "upload_mission_file", decide)
         return ActionResult(
             drone_id=drone_id,
             action="upload_mission_file",
-            message=f"{count} items uploaded from the mission file",
-            facts={"items": count},
+            message=f"{counted[0]} items uploaded from the mission file",
+            facts={"items": counted[0]},
         )
 
     @routed
@@ -579,9 +649,10 @@ class DroneVerbs(CommandCore):
             raise InvalidArgument(
                 f"file_format {file_format!r} is not one of {', '.join(mission_files.FORMATS)}"
             )
-        vehicle = self.ready(drone_id)
+        vehicle = self.registry.get(drone_id)
+        vehicle.require_ready()
         raws = mission_files.raw_items(await vehicle.download_mission())
-        home = self.context(vehicle).home
+        home = vehicle_context(vehicle).home
         autopilot = vehicle.status().get("autopilot")
         content = mission_files.write(
             file_format,
@@ -601,23 +672,28 @@ class DroneVerbs(CommandCore):
     ) -> OperationView:
         """Upload ``items`` first if given, then fly the stored mission; done when it is finished. On the
         ground the mission must begin with a takeoff item."""
-        vehicle = self.ready(drone_id)
-        self._guard_takeoff(caller, vehicle, label)
         if items:
-            await self._upload(caller, vehicle, items, label)
-        ctx = self.context(vehicle)
-        self.safety.check_actuation(ctx, caller.policy_via)
-        if not ctx.in_air:
-            stored = await vehicle.download_mission()
-            if not stored:
-                raise InvalidArgument(f"{drone_id} has no mission; give waypoints to initiate_mission")
-            if stored[0].kind != "takeoff":
-                raise InvalidArgument(
-                    f"{drone_id} is on the ground and the mission does not start with a takeoff item; "
-                    "call takeoff first or make item 1 kind='takeoff'"
-                )
-            self.safety.check_takeoff(ctx, stored[0].alt_rel_m, caller.policy_via)
-        return await self._track(caller, vehicle, MissionTracker(), vehicle.start_mission, {}, label)
+
+            def upload(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+                return self._upload(caller, vehicle, ctx, items)
+
+            await self.commands.run(caller, drone_id, label, upload)
+
+        async def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            self.safety.check_actuation(ctx, caller.policy_via)
+            if not ctx.in_air:
+                stored = await vehicle.download_mission()
+                if not stored:
+                    raise InvalidArgument(f"{drone_id} has no mission; give waypoints to initiate_mission")
+                if stored[0].kind != "takeoff":
+                    raise InvalidArgument(
+                        f"{drone_id} is on the ground and the mission does not start with a takeoff item; "
+                        "call takeoff first or make item 1 kind='takeoff'"
+                    )
+                self.safety.check_takeoff(ctx, stored[0].alt_rel_m, caller.policy_via)
+            return Order(vehicle.start_mission, MissionTracker())
+
+        return _view(await self.commands.run(caller, drone_id, label, decide))
 
     @routed
     async def resume_mission(self, caller: Caller, drone_id: str) -> OperationView:
@@ -633,36 +709,41 @@ class DroneVerbs(CommandCore):
 
     @routed
     async def download_mission(self, caller: Caller, drone_id: str) -> MissionView:
-        vehicle = self.ready(drone_id)
+        vehicle = self.registry.get(drone_id)
+        vehicle.require_ready()
         return MissionView(drone_id=drone_id, items=await vehicle.download_mission())
 
     @routed
     async def clear_mission(self, caller: Caller, drone_id: str) -> ActionResult:
-        vehicle = self.ready(drone_id)
-        self.safety.check_actuation(self.context(vehicle), caller.policy_via)
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            self.safety.check_actuation(ctx, caller.policy_via)
 
-        async def send() -> None:
-            running = self.operations.running(drone_id)
-            if running is not None and running.kind == "mission":
-                raise InvalidArgument(f"{drone_id} is flying its mission; call pause_mission first")
-            await vehicle.clear_mission()
+            async def send() -> None:
+                running = self.operations.running(drone_id)
+                if running is not None and running.kind == "mission":
+                    raise InvalidArgument(f"{drone_id} is flying its mission; call pause_mission first")
+                await vehicle.clear_mission()
 
-        await self._instant(caller, vehicle, "clear_mission", send)
+            return Order(send)
+
+        await self.commands.run(caller, drone_id, "clear_mission", decide)
         return ActionResult(drone_id=drone_id, action="clear_mission", message="mission cleared")
 
     @routed
     async def set_current_item(self, caller: Caller, drone_id: str, index: int) -> ActionResult:
         """Make mission item ``index`` (1..N) the next target."""
-        vehicle = self.ready(drone_id)
-        prog = value(vehicle, "mission_progress")
-        total = int(prog.total) if prog is not None else None
-        if total is not None and total > 0 and index > total:
-            raise InvalidArgument(f"index {index} is beyond the mission's {total} items (valid: 1..{total})")
-        self._guard_takeoff(caller, vehicle, "set_current_waypoint")
-        self.safety.check_actuation(self.context(vehicle), caller.policy_via)
-        await self._instant(
-            caller, vehicle, "set_current_waypoint", lambda: vehicle.set_current_mission_item(index)
-        )
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            prog = value(vehicle, "mission_progress")
+            total = int(prog.total) if prog is not None else None
+            if total is not None and total > 0 and index > total:
+                raise InvalidArgument(
+                    f"index {index} is beyond the mission's {total} items (valid: 1..{total})"
+                )
+            self.safety.check_actuation(ctx, caller.policy_via)
+            return Order(lambda: vehicle.set_current_mission_item(index))
+
+        await self.commands.run(caller, drone_id, "set_current_waypoint", decide)
         return ActionResult(
             drone_id=drone_id,
             action="set_current_waypoint",
@@ -673,7 +754,8 @@ class DroneVerbs(CommandCore):
     @routed
     async def mission_progress(self, caller: Caller, drone_id: str) -> MissionProgressView:
         """The item being flown (1..N), the count, and whether the mission ran to its end."""
-        vehicle = self.ready(drone_id)
+        vehicle = self.registry.get(drone_id)
+        vehicle.require_ready()
         prog = value(vehicle, "mission_progress")
         current, total = (int(prog.current), int(prog.total)) if prog is not None else (0, 0)
         finished = await vehicle.is_mission_finished()
@@ -689,7 +771,8 @@ class DroneVerbs(CommandCore):
 
     @routed
     async def get_param(self, caller: Caller, drone_id: str, name: str) -> ParamValue:
-        vehicle = self.ready(drone_id)
+        vehicle = self.registry.get(drone_id)
+        vehicle.require_ready()
         name = name.upper()
         val, kind = await vehicle.get_param(name)
         return ParamValue(drone_id=drone_id, name=name, value=val, type=kind)
@@ -697,21 +780,24 @@ class DroneVerbs(CommandCore):
     @routed
     async def set_param(self, caller: Caller, drone_id: str, name: str, value: float) -> ParamValue:
         """Write a parameter with the drone's own type for it; agents may write only parameters a limit
-        governs (within it) or the allowlist names (`SafetyPolicy.check_param_write`)."""
-        vehicle = self.ready(drone_id)
+        governs (within it) or the allowlist names (rules param_limit, param_not_allowed:
+        `SafetyPolicy.check_param_write`)."""
         name = name.upper()
-        self.safety.check_param_write(
-            name,
-            value,
-            via=caller.policy_via,
-            vehicle_id=drone_id,
-            protected=vehicle.protected_params,
-            governed=vehicle.limit_params,
-        )
-        self.safety.check_actuation(self.context(vehicle), caller.policy_via)
-        (val, kind), _ = await self._instant(
-            caller, vehicle, f"set_parameter {name}", lambda: vehicle.set_param(name, value)
-        )
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            self.safety.check_param_write(
+                name,
+                value,
+                via=caller.policy_via,
+                vehicle_id=drone_id,
+                protected=vehicle.protected_params,
+                governed=vehicle.limit_params,
+            )
+            self.safety.check_actuation(ctx, caller.policy_via)
+            return Order(lambda: vehicle.set_param(name, value))
+
+        sent = await self.commands.run(caller, drone_id, f"set_parameter {name}", decide)
+        val, kind = sent.result
         return ParamValue(drone_id=drone_id, name=name, value=val, type=kind)
 
     @routed
@@ -721,7 +807,8 @@ class DroneVerbs(CommandCore):
         """One page of the parameters whose name starts with ``prefix``, sorted by name."""
         if offset < 0 or not 1 <= limit <= 500:
             raise InvalidArgument(f"offset must be >= 0 and limit 1..500; got offset={offset}, limit={limit}")
-        vehicle = self.ready(drone_id)
+        vehicle = self.registry.get(drone_id)
+        vehicle.require_ready()
         prefix = prefix.upper()
         every = await vehicle.list_params()
         names = sorted(n for n in every if n.startswith(prefix))
@@ -735,6 +822,16 @@ class DroneVerbs(CommandCore):
             params={n: float(every[n]) for n in page},
             next_offset=nxt,
         )
+
+
+def _view(sent: Sent) -> OperationView:
+    """The operation a tracked command started."""
+    assert sent.operation is not None
+    return OperationView.of(sent.operation, sent.vehicle)
+
+
+def _id(op: Operation | None) -> str | None:
+    return None if op is None else op.id
 
 
 def _commanded(vehicle: FlyingVehicle, choice: ModeChoice) -> dict[str, Any]:

@@ -342,6 +342,10 @@ def _passes_near(
 # ------------------------------------------------------------------------------------------------
 
 Listener = Callable[["FleetOperation"], None]
+RunHere = Callable[[Caller, str, Mapping[str, Any]], Awaitable[Operation]]
+"""Runs one drone's step (its JSON spec) on this node, as the drone's operation."""
+HoldHere = Callable[[Caller, str, str], Awaitable[Operation | None]]
+"""Holds one drone (the reason names the fleet operation); the operation it ended."""
 Ended = Callable[["FleetOperation"], Awaitable[None]]
 """Told once when a fleet operation has ended (e.g. to finish the audit rows of the calls it outlived)."""
 
@@ -368,6 +372,13 @@ class FleetOperations:
         self._followers: set[asyncio.Task[None]] = set()
         self._enders: set[asyncio.Task[None]] = set()
         self.listeners: list[Listener] = []
+        self._run_here: RunHere | None = None
+        self._hold_here: HoldHere | None = None
+
+    def run_steps_with(self, run_here: RunHere, hold_here: HoldHere) -> None:
+        """How a step on a drone this node owns is run: the Commander's pass (`FleetVerbs.step_here`,
+        `FleetVerbs.hold_here`), the same one every command on one drone takes."""
+        self._run_here, self._hold_here = run_here, hold_here
 
     # -- queries -------------------------------------------------------------------------------
     def get(self, operation_id: str) -> FleetOperation:
@@ -480,10 +491,9 @@ class FleetOperations:
         kept up to date by following it there."""
         router = self._elsewhere(drone_id)
         if router is None:
-            extra = {"precheck": step.precheck} if step.precheck is not None else {}
-            return await self.operations.start(
-                step.vehicle, step.tracker, step.send, step.params, fop.session_key, **extra
-            )
+            if self._run_here is None:
+                raise RuntimeError("fleet steps are not bound to a command pass (run_steps_with)")
+            return await self._run_here(fop.caller, drone_id, step.spec)
         started = await router.call(
             drone_id, "run_step", fop.caller, {"drone_id": drone_id, "spec": step.spec}
         )
@@ -534,11 +544,10 @@ class FleetOperations:
 
     async def _hold(self, fop: FleetOperation, drone_id: str, step: Step) -> None:
         router = self._elsewhere(drone_id)
-        if router is None:  # under the drone's command lock, like every command but kill
-            async with self.operations.command_lock(drone_id):
-                await step.vehicle.hold()
-                await self.operations.supersede(drone_id, f"{fop.kind} abort")
-                self.operations.expect(step.vehicle, "hold")
+        if router is None:  # the pass: under the drone's command lock, like every command but kill
+            if self._hold_here is None:
+                raise RuntimeError("fleet steps are not bound to a command pass (run_steps_with)")
+            await self._hold_here(fop.caller, drone_id, f"{fop.kind} abort")
             return
         await router.call(
             drone_id, "hold_step", fop.caller, {"drone_id": drone_id, "reason": f"{fop.kind} abort"}

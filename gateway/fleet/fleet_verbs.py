@@ -21,18 +21,20 @@ import asyncio
 import contextlib
 import dataclasses
 import logging
-from collections.abc import Awaitable, Callable, Sequence
+from collections.abc import Awaitable, Callable, Mapping, Sequence
 from datetime import UTC, datetime
 from typing import Any, Literal
 
 from gateway.errors import GatewayError, InvalidArgument, NoOwner, NotRun, SafetyRefusal, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
-from gateway.fleet.command_core import routed
+from gateway.fleet.command_core import OperationDesk, arming_deadline, left, require_airborne, routed
+from gateway.fleet.command_pass import CommandPass, Need, Order
 from gateway.fleet.drone_verbs import DroneVerbs
 from gateway.fleet.fleet_ops import (
     FORMATION_TOLERANCE_M,
     FleetOperation,
+    FleetOperations,
     Unable,
     build_step,
     check_drone_ids,
@@ -48,9 +50,10 @@ from gateway.fleet.fleet_ops import (
 )
 from gateway.fleet.formation import DroneStart, plan_formation, rtl_altitudes, takeoff_altitudes
 from gateway.fleet.geofence import FLEET
+from gateway.fleet.operations import Operation
 from gateway.fleet.protocols import FlyingVehicle, Notify
-from gateway.fleet.readings import home, is_landed_and_disarmed, position
-from gateway.fleet.safety import Rule, refuse
+from gateway.fleet.readings import home, is_landed_and_disarmed, position, vehicle_context
+from gateway.fleet.safety import Rule, VehicleContext, refuse
 from gateway.fleet.takeover import Takeover
 from gateway.fleet.views import (
     ActionResult,
@@ -63,6 +66,7 @@ from gateway.fleet.views import (
     UnlockResult,
 )
 from gateway.registry.records import AuditEntry
+from gateway.registry.store import Store
 
 log = logging.getLogger(__name__)
 
@@ -75,8 +79,35 @@ STORE_LOCK_WAIT_S = 1.0
 _STORING: set[asyncio.Task[bool]] = set()
 
 
-class FleetVerbs(DroneVerbs):
-    """Commands on several drones at once, and the operator locks."""
+class FleetVerbs:
+    """Commands on several drones at once, and the operator locks: fleet-level checks and plans, then
+    the same pass per drone (`CommandPass.run`, through `step_here` / `hold_here`, or the drone's owner
+    in a cluster)."""
+
+    def __init__(
+        self,
+        commands: CommandPass,
+        desk: OperationDesk,
+        drones: DroneVerbs,
+        fleet: FleetOperations,
+        store: Store | None,
+    ) -> None:
+        self.commands = commands
+        self.desk = desk
+        self.drones = drones
+        self.fleet = fleet
+        self.store = store
+        self.settings = commands.settings
+        self.registry = commands.registry
+        self.router = commands.router
+        self.safety = commands.safety
+        self.locks = commands.locks
+        self.operations = commands.operations
+        fleet.run_steps_with(self.step_here, self.hold_here)
+
+    def _guard(self, caller: Caller, action: str) -> Callable[[FlyingVehicle], None]:
+        """The takeoff guard of a fleet step, judged inside the drone's command lock."""
+        return lambda v: self.commands.guard_takeoff(caller, vehicle_context(v), action)
 
     # ------------------------------------------------------------------------------------------------
     # fleet operations: views and waiting
@@ -130,8 +161,8 @@ class FleetVerbs(DroneVerbs):
             return ids
         return check_drone_ids(drone_ids)
 
-    def _busy(self, vehicle: FlyingVehicle, action: str) -> None:
-        self.safety.check_not_busy(self.context(vehicle), self._running(vehicle.id), action)
+    def _busy(self, ctx: VehicleContext, action: str) -> None:
+        self.safety.check_not_busy(ctx, self.commands.running(ctx.vehicle_id), action)
 
     def _stagger(self, stagger_m: float | None) -> float:
         """Default: the minimum separation plus 1 m of altitude-holding error for each of two drones."""
@@ -153,7 +184,7 @@ class FleetVerbs(DroneVerbs):
         waits = []
         for drone_id in ids:
             with contextlib.suppress(GatewayError):
-                waits.append(self.registry.get(drone_id).wait_initialised(self._left(deadline), notify))
+                waits.append(self.registry.get(drone_id).wait_initialised(left(deadline), notify))
         await asyncio.gather(*waits, return_exceptions=True)
 
     # ------------------------------------------------------------------------------------------------
@@ -189,22 +220,24 @@ class FleetVerbs(DroneVerbs):
             geo.check_finite(name, metres)
         policy = self.safety
         via = caller.policy_via
-        deadline = self._arming_deadline()
+        deadline = arming_deadline(self.settings)
         grounded = [d for d in ids if self._on_ground(d)]
         if grounded:
             await self._initialised(grounded, notify, deadline)
         low, high = policy.altitude_band(ids)
         climbs = takeoff_altitudes(grounded, alt_m, self._stagger(None), high) if grounded else {}
 
+        contexts: dict[str, VehicleContext] = {}
+
         def check(v: FlyingVehicle) -> None:
             v.require_ready()
-            self._guard_takeoff(caller, v, "formation_goto")
-            ctx = self.context(v)
+            ctx = contexts[v.id] = vehicle_context(v)
+            self.commands.guard_takeoff(caller, ctx, "formation_goto")
             if v.id in climbs:
                 policy.check_takeoff(ctx, climbs[v.id], via)
             else:
-                self._require_airborne(ctx, "formation_goto")
-            self._busy(v, "formation_goto")
+                require_airborne(ctx, "formation_goto")
+            self._busy(ctx, "formation_goto")
             if ctx.position is None:
                 raise VehicleNotReady(f"no position received from {v.id} yet")
             policy.check_actuation(ctx, via)
@@ -212,7 +245,6 @@ class FleetVerbs(DroneVerbs):
         vehicles, unable = collect_members(ids, self.registry.get, check)
         if unable:
             raise refuse_fleet("formation_goto", unable, len(ids))
-        contexts = {d: self.context(v) for d, v in vehicles.items()}
         starts = [
             DroneStart(d, pos[0], pos[1], climbs.get(d, pos[2]))
             for d in ids
@@ -257,12 +289,12 @@ class FleetVerbs(DroneVerbs):
             "spacing_m": spacing_m,
             "heading_deg": round(plan.heading_deg, 1),
         }
-        guard = lambda v: self._guard_takeoff(caller, v, "formation_goto")  # noqa: E731
+        guard = self._guard(caller, "formation_goto")
         phases = formation_phases(plan, vehicles, guard)
         if climbs:
             params["took_off_first"] = climbs
             first = takeoff_phase(
-                {d: vehicles[d] for d in climbs}, climbs, guard, self._left(deadline), "formation_goto"
+                {d: vehicles[d] for d in climbs}, climbs, guard, left(deadline), "formation_goto"
             )
             phases = [
                 dataclasses.replace(first, name="take off the drones on the ground", abort_on_failure=True),
@@ -305,15 +337,15 @@ class FleetVerbs(DroneVerbs):
         policy = self.safety
         _low, high = policy.altitude_band(ids)
         altitudes = takeoff_altitudes(ids, alt_m, self._stagger(stagger_m), high)
-        deadline = self._arming_deadline()
+        deadline = arming_deadline(self.settings)
         await self._initialised(ids, notify, deadline)
 
         def check(v: FlyingVehicle) -> None:
             v.require_ready()
-            ctx = self.context(v)
+            ctx = vehicle_context(v)
             if ctx.in_air:
                 raise InvalidArgument(f"{v.id} is already flying; use formation_goto or go_to_location")
-            self._busy(v, "fleet_takeoff")
+            self._busy(ctx, "fleet_takeoff")
             policy.check_takeoff(ctx, altitudes[v.id], caller.policy_via)
 
         vehicles, unable = collect_members(ids, self.registry.get, check)
@@ -326,8 +358,8 @@ class FleetVerbs(DroneVerbs):
                 takeoff_phase(
                     vehicles,
                     altitudes,
-                    lambda v: self._guard_takeoff(caller, v, "fleet_takeoff"),
-                    arm_within_s=self._left(deadline),
+                    self._guard(caller, "fleet_takeoff"),
+                    arm_within_s=left(deadline),
                 )
             ],
             {"alt_m": alt_m, "altitudes_m": altitudes},
@@ -348,7 +380,7 @@ class FleetVerbs(DroneVerbs):
             v.require_ready()
             if is_landed_and_disarmed(v):
                 raise InvalidArgument(f"{v.id} is already on the ground and disarmed")
-            self.safety.check_actuation(self.context(v), caller.policy_via)
+            self.safety.check_actuation(vehicle_context(v), caller.policy_via)
 
         ids, vehicles, unable = self._recovery_members(drone_ids, "fleet_land", check)
         fop = await self.fleet.start(
@@ -376,8 +408,8 @@ class FleetVerbs(DroneVerbs):
 
         def check(v: FlyingVehicle) -> None:
             v.require_ready()
-            ctx = self.context(v)
-            self._require_airborne(ctx, "fleet_return_to_launch")
+            ctx = vehicle_context(v)
+            require_airborne(ctx, "fleet_return_to_launch")
             if ctx.position is None:
                 raise VehicleNotReady(f"no position received from {v.id} yet")
             self.safety.check_actuation(ctx, caller.policy_via)
@@ -419,8 +451,8 @@ class FleetVerbs(DroneVerbs):
 
         def check(v: FlyingVehicle) -> None:
             v.require_ready()
-            ctx = self.context(v)
-            self._require_airborne(ctx, "fleet_hold")
+            ctx = vehicle_context(v)
+            require_airborne(ctx, "fleet_hold")
             self.safety.check_actuation(ctx, caller.policy_via)
 
         _ids, vehicles, unable = self._recovery_members(drone_ids, "fleet_hold", check)
@@ -446,26 +478,44 @@ class FleetVerbs(DroneVerbs):
     # one drone's step of a fleet operation coordinated by another cluster node
     # ------------------------------------------------------------------------------------------------
 
+    async def step_here(self, caller: Caller, drone_id: str, spec: Mapping[str, Any]) -> Operation:
+        """One drone's step of a fleet operation (`gateway.fleet.fleet_ops.build_step`), as one run of
+        the pass on this node: the takeover lock, the takeoff guard (named by the step's ``guard``;
+        none for a recovery step) before and inside the command lock, then the step's operation."""
+        guard = spec.get("guard")
+        action = str(guard or spec.get("kind") or "fleet step")
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            step = build_step(vehicle, spec)
+            return Order(step.send, step.tracker, step.params)
+
+        sent = await self.commands.run(
+            caller, drone_id, action, decide, need=Need.ANY, safety_action=not guard, audited=False
+        )
+        assert sent.operation is not None
+        return sent.operation
+
+    async def hold_here(self, caller: Caller, drone_id: str, reason: str) -> Operation | None:
+        """Hold a drone whose fleet operation was stopped (one run of the pass); the operation it ended."""
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            return Order(vehicle.hold, ends_operation=True, commands="hold")
+
+        sent = await self.commands.run(
+            caller, drone_id, reason, decide, need=Need.ANY, safety_action=True, audited=False
+        )
+        return sent.ended
+
     @routed
     async def run_step(self, caller: Caller, drone_id: str, spec: dict[str, Any]) -> OperationView:
-        """Start one drone's step (`gateway.fleet.fleet_ops.build_step`) as its operation here, with the
-        takeoff guard inside its command lock, for the node coordinating the fleet operation."""
-        vehicle = self.vehicle(drone_id)
-        guard = spec.get("guard")
-        precheck = None if not guard else (lambda v: self._guard_takeoff(caller, v, str(guard)))
-        step = build_step(vehicle, spec, precheck)
-        op = await self.operations.start(
-            vehicle, step.tracker, step.send, step.params, caller.session, step.precheck
-        )
-        return OperationView.of(op, vehicle)
+        """Start one drone's step here, for the node coordinating the fleet operation (`step_here`)."""
+        op = await self.step_here(caller, drone_id, spec)
+        return OperationView.of(op, self.registry.get(drone_id))
 
     @routed
     async def hold_step(self, caller: Caller, drone_id: str, reason: str) -> ActionResult:
         """Hold a drone whose fleet operation (coordinated by another node) was stopped."""
-        vehicle = self.vehicle(drone_id)
-        _, sup = await self._instant(
-            caller, vehicle, reason, vehicle.hold, safety_action=True, ends_operation=True, commands="hold"
-        )
+        sup = await self.hold_here(caller, drone_id, reason)
         return ActionResult(
             drone_id=drone_id, action="hold", message="held", superseded_operation=sup and sup.id
         )
@@ -631,9 +681,9 @@ class FleetVerbs(DroneVerbs):
     async def stop_one(self, caller: Caller, drone_id: str, action: StopAction) -> StopOutcome:
         """One drone's part of a stop: hold (ends its operation), land or RTL (tracked operations that
         supersede it). The REST hold/land/RTL routes are this too."""
-        previous = self._running(drone_id)
+        previous = self.commands.running(drone_id)
         if action == "hold":
-            held = await self.hold(caller, drone_id, "operator hold")
+            held = await self.drones.hold(caller, drone_id, "operator hold")
             return StopOutcome(
                 drone_id=drone_id,
                 action=action,
@@ -641,7 +691,9 @@ class FleetVerbs(DroneVerbs):
                 superseded_operation=held.superseded_operation,
             )
         op = await (
-            self.land(caller, drone_id) if action == "land" else self.return_to_launch(caller, drone_id)
+            self.drones.land(caller, drone_id)
+            if action == "land"
+            else self.drones.return_to_launch(caller, drone_id)
         )
         return StopOutcome(
             drone_id=drone_id,
