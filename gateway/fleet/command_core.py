@@ -50,6 +50,9 @@ VerbMethod = TypeVar("VerbMethod", bound=Callable[..., Awaitable[Any]])
 
 #: every verb on one drone that runs on the drone's owner, by name (filled by `routed`)
 ROUTED: dict[str, Verb] = {}
+#: the verbs every door (and a forwarding cluster node) may call by name (filled by `command`): their
+#: arguments are the keyword parameters after ``caller``, their result the method's result model
+VERBS: dict[str, Verb] = {}
 #: the routed verbs that only read: allowed to agents on a drone a pilot or ground station took over
 READ_VERBS = frozenset(
     {
@@ -133,13 +136,23 @@ def routed(method: VerbMethod) -> VerbMethod:
         return answer
 
     # forwarded calls reach the verb by name on the Commander, which holds every verb
-    verb = ROUTED[name] = Verb(method, wrapper=_by_name(name))
+    verb = ROUTED[name] = Verb(method, wrapper=_by_name(method))
     return cast(VerbMethod, run)
 
 
-def _by_name(name: str) -> Callable[..., Awaitable[Any]]:
+def command(method: VerbMethod) -> VerbMethod:
+    """Declare a verb a door may call by name (`Commander.call`): registered here, in `VERBS`, from its
+    own signature; nothing else lists it. Put it above ``@routed``."""
+    VERBS[method.__name__] = Verb(method, wrapper=_by_name(method))
+    return method
+
+
+def _by_name(method: Callable[..., Any]) -> Callable[..., Awaitable[Any]]:
+    """Call the verb on the Commander's part that holds it (``commander.parts``, by class name)."""
+    part, name = method.__qualname__.split(".")[-2:]
+
     async def call(commander: Any, *args: Any, **kwargs: Any) -> Any:
-        return await getattr(commander, name)(*args, **kwargs)
+        return await getattr(commander.parts[part], name)(*args, **kwargs)
 
     return call
 

@@ -41,7 +41,7 @@ from pydantic import BaseModel
 from gateway.config import Settings
 from gateway.errors import InvalidArgument
 from gateway.fleet.caller import Caller
-from gateway.fleet.command_core import OperationDesk
+from gateway.fleet.command_core import VERBS, OperationDesk
 from gateway.fleet.command_pass import CommandPass
 from gateway.fleet.drone_verbs import DroneVerbs
 from gateway.fleet.fleet_ops import FleetOperations
@@ -49,7 +49,7 @@ from gateway.fleet.fleet_verbs import FleetVerbs
 from gateway.fleet.ids import canonical_arguments, canonical_drone_id
 from gateway.fleet.operations import OperationManager
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleDirectory
-from gateway.fleet.routing import Router, Verb
+from gateway.fleet.routing import Router
 from gateway.fleet.safety import LockBook, SafetyPolicy
 from gateway.registry.store import Store
 
@@ -85,6 +85,9 @@ class Commander:
         self.desk = desk = OperationDesk(settings, registry, store, operations, router)
         self.drones = drones = DroneVerbs(self.commands, desk, store)
         self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, drones, fleet, store)
+        #: where a verb called by name runs (`gateway.fleet.command_core.command`)
+        self.parts: dict[str, object] = {"DroneVerbs": drones, "FleetVerbs": fleet_verbs}
+        # the verbs as the doors call them (typed); a verb called only by name needs no line here
         # operations
         self.view = desk.view
         self.operation = desk.operation
@@ -169,55 +172,8 @@ class Commander:
         parsed = entry.parse(canonical_arguments(self.registry, arguments))
         if notify is not None and "notify" in entry.callbacks:
             parsed["notify"] = notify
-        result: BaseModel = await getattr(self, verb)(caller, **parsed)
+        result: BaseModel = await entry.method(self, caller, **parsed)
         return result.model_dump(mode="json")
 
 
-#: The verbs every door (and a forwarding cluster node) may call by name: their arguments are the
-#: keyword parameters after ``caller`` of the method the Commander holds under that name.
-VERBS: dict[str, Verb] = {
-    verb.__name__: Verb(verb)
-    for verb in (
-        # flight
-        DroneVerbs.arm,
-        DroneVerbs.disarm,
-        DroneVerbs.takeoff,
-        DroneVerbs.land,
-        DroneVerbs.return_to_launch,
-        DroneVerbs.hold,
-        DroneVerbs.kill,
-        DroneVerbs.set_mode,
-        # navigation
-        DroneVerbs.goto,
-        DroneVerbs.reposition,
-        DroneVerbs.move_relative,
-        DroneVerbs.set_yaw,
-        DroneVerbs.set_speed,
-        DroneVerbs.arrival,
-        # missions
-        DroneVerbs.upload_mission,
-        DroneVerbs.upload_mission_file,
-        DroneVerbs.export_mission,
-        DroneVerbs.download_mission,
-        DroneVerbs.clear_mission,
-        DroneVerbs.start_mission,
-        DroneVerbs.pause_mission,
-        DroneVerbs.resume_mission,
-        DroneVerbs.set_current_item,
-        DroneVerbs.mission_progress,
-        # parameters
-        DroneVerbs.get_param,
-        DroneVerbs.set_param,
-        DroneVerbs.list_params,
-        # the fleet
-        FleetVerbs.formation_goto,
-        FleetVerbs.fleet_takeoff,
-        FleetVerbs.fleet_land,
-        FleetVerbs.fleet_return_to_launch,
-        FleetVerbs.fleet_hold,
-        FleetVerbs.stop_all,
-        FleetVerbs.lock,
-        FleetVerbs.unlock,
-        FleetVerbs.release,
-    )
-}
+__all__ = ["VERBS", "Commander"]

@@ -27,6 +27,7 @@ from gateway.fleet.command_core import (
     OnProgress,
     OperationDesk,
     arming_deadline,
+    command,
     left,
     relative_alt,
     require_airborne,
@@ -93,6 +94,7 @@ class DroneVerbs:
     # flight: arm, disarm, takeoff, land, return, hold, kill, mode
     # ------------------------------------------------------------------------------------------------
 
+    @command
     @routed
     async def arm(self, caller: Caller, drone_id: str, *, notify: Notify | None = None) -> ActionResult:
         """Arm; a drone still initialising is waited for, within the wait cap (see `Vehicle.arm`)."""
@@ -112,6 +114,7 @@ class DroneVerbs:
         )
         return ActionResult(drone_id=drone_id, action="arm", message="armed")
 
+    @command
     @routed
     async def disarm(self, caller: Caller, drone_id: str, label: str = "disarm_drone") -> ActionResult:
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
@@ -127,6 +130,7 @@ class DroneVerbs:
             drone_id=drone_id, action="disarm", message="disarmed", superseded_operation=_id(sent.ended)
         )
 
+    @command
     @routed
     async def takeoff(
         self, caller: Caller, drone_id: str, alt_m: float, *, notify: Notify | None = None
@@ -156,6 +160,7 @@ class DroneVerbs:
         )
         return _view(sent)
 
+    @command
     @routed
     async def land(self, caller: Caller, drone_id: str) -> OperationView:
         """Land where the drone is; done when landed and disarmed."""
@@ -174,6 +179,7 @@ class DroneVerbs:
         )
         return _view(sent)
 
+    @command
     @routed
     async def return_to_launch(self, caller: Caller, drone_id: str) -> OperationView:
         """Fly home and land; done when landed and disarmed."""
@@ -189,6 +195,7 @@ class DroneVerbs:
         )
         return _view(sent)
 
+    @command
     @routed
     async def hold(self, caller: Caller, drone_id: str, label: str = "hold_position") -> ActionResult:
         """GUIDED reposition to the current position (never LOITER/ALT_HOLD, which sink without RC);
@@ -222,6 +229,7 @@ class DroneVerbs:
             vehicle.require_ready()
         return self.safety.check_kill(vehicle_context(vehicle), caller.policy_via)
 
+    @command
     @routed
     async def kill(self, caller: Caller, drone_id: str, confirmed: bool = False) -> ActionResult:
         """Cut the motors. An agent's: only with ``confirmed`` (a human said yes), and on the ground it
@@ -250,6 +258,7 @@ class DroneVerbs:
         self.operations.forget(drone_id)
         return ActionResult(drone_id=drone_id, action="kill", message=said[0], superseded_operation=_id(sup))
 
+    @command
     @routed
     async def set_mode(self, caller: Caller, drone_id: str, mode: str) -> ActionResult:
         """Flight mode by a common name (HOLD, RTL, LAND, MISSION...) or the autopilot's own. HOLD is the
@@ -310,6 +319,7 @@ class DroneVerbs:
         tracker = GotoTracker(lat, lon, alt_rel, self.settings.arrival_tolerance_m, kind=kind)
         return Order(lambda: vehicle.goto(lat, lon, alt_rel, yaw_deg), tracker, params)
 
+    @command
     @routed
     async def goto(
         self,
@@ -334,6 +344,7 @@ class DroneVerbs:
 
         return _view(await self.commands.run(caller, drone_id, label, decide))
 
+    @command
     @routed
     async def reposition(
         self,
@@ -358,6 +369,7 @@ class DroneVerbs:
 
         return _view(await self.commands.run(caller, drone_id, "reposition", decide))
 
+    @command
     @routed
     async def move_relative(
         self,
@@ -445,6 +457,7 @@ class DroneVerbs:
         params = {"lat_deg": lat, "lon_deg": lon, "alt_m": round(alt, 2), "takeoff_first": True}
         return Order(lambda: vehicle.takeoff(alt, left(deadline), notify), tracker, params)
 
+    @command
     @routed
     async def set_yaw(self, caller: Caller, drone_id: str, heading_deg: float) -> OperationView:
         """Turn in place to a heading (degrees from true north, clockwise); done when facing it."""
@@ -458,6 +471,7 @@ class DroneVerbs:
 
         return _view(await self.commands.run(caller, drone_id, "set_yaw", decide))
 
+    @command
     @routed
     async def set_speed(self, caller: Caller, drone_id: str, speed_mps: float) -> ActionResult:
         """The horizontal speed of gotos, m/s (within the policy's limit)."""
@@ -474,6 +488,7 @@ class DroneVerbs:
             facts={"speed_mps": speed_mps},
         )
 
+    @command
     @routed
     async def arrival(self, caller: Caller, drone_id: str) -> ArrivalView:
         """Whether the drone's last goto arrived, with the distance left; answers at once."""
@@ -597,6 +612,7 @@ class DroneVerbs:
 
         return Order(send)
 
+    @command
     @routed
     async def upload_mission(self, caller: Caller, drone_id: str, items: list[MissionItem]) -> ActionResult:
         """Store a mission on the drone (items numbered 1..N, altitudes above home) without starting it."""
@@ -613,6 +629,7 @@ class DroneVerbs:
             facts={"items": count},
         )
 
+    @command
     @routed
     async def upload_mission_file(
         self, caller: Caller, drone_id: str, content: str, file_format: str | None = None
@@ -640,6 +657,7 @@ class DroneVerbs:
             facts={"items": counted[0]},
         )
 
+    @command
     @routed
     async def export_mission(
         self, caller: Caller, drone_id: str, file_format: str = "plan"
@@ -662,6 +680,7 @@ class DroneVerbs:
         )
         return MissionFileView(drone_id=drone_id, format=file_format, items=len(raws), content=content)
 
+    @command
     @routed
     async def start_mission(
         self,
@@ -695,11 +714,13 @@ class DroneVerbs:
 
         return _view(await self.commands.run(caller, drone_id, label, decide))
 
+    @command
     @routed
     async def resume_mission(self, caller: Caller, drone_id: str) -> OperationView:
         """Continue the stored mission from its current item."""
         return await self.start_mission(caller, drone_id, None, "resume_mission")
 
+    @command
     @routed
     async def pause_mission(
         self, caller: Caller, drone_id: str, label: str = "pause_mission"
@@ -707,12 +728,14 @@ class DroneVerbs:
         """Pause = the safe hold (GUIDED, not LOITER); resume_mission continues."""
         return await self.hold(caller, drone_id, label)
 
+    @command
     @routed
     async def download_mission(self, caller: Caller, drone_id: str) -> MissionView:
         vehicle = self.registry.get(drone_id)
         vehicle.require_ready()
         return MissionView(drone_id=drone_id, items=await vehicle.download_mission())
 
+    @command
     @routed
     async def clear_mission(self, caller: Caller, drone_id: str) -> ActionResult:
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
@@ -729,6 +752,7 @@ class DroneVerbs:
         await self.commands.run(caller, drone_id, "clear_mission", decide)
         return ActionResult(drone_id=drone_id, action="clear_mission", message="mission cleared")
 
+    @command
     @routed
     async def set_current_item(self, caller: Caller, drone_id: str, index: int) -> ActionResult:
         """Make mission item ``index`` (1..N) the next target."""
@@ -751,6 +775,7 @@ class DroneVerbs:
             facts={"index": index},
         )
 
+    @command
     @routed
     async def mission_progress(self, caller: Caller, drone_id: str) -> MissionProgressView:
         """The item being flown (1..N), the count, and whether the mission ran to its end."""
@@ -769,6 +794,7 @@ class DroneVerbs:
     # parameters
     # ------------------------------------------------------------------------------------------------
 
+    @command
     @routed
     async def get_param(self, caller: Caller, drone_id: str, name: str) -> ParamValue:
         vehicle = self.registry.get(drone_id)
@@ -777,6 +803,7 @@ class DroneVerbs:
         val, kind = await vehicle.get_param(name)
         return ParamValue(drone_id=drone_id, name=name, value=val, type=kind)
 
+    @command
     @routed
     async def set_param(self, caller: Caller, drone_id: str, name: str, value: float) -> ParamValue:
         """Write a parameter with the drone's own type for it; agents may write only parameters a limit
@@ -800,6 +827,7 @@ class DroneVerbs:
         val, kind = sent.result
         return ParamValue(drone_id=drone_id, name=name, value=val, type=kind)
 
+    @command
     @routed
     async def list_params(
         self, caller: Caller, drone_id: str, prefix: str = "", offset: int = 0, limit: int = 100

@@ -28,7 +28,14 @@ from typing import Any, Literal
 from gateway.errors import GatewayError, InvalidArgument, NoOwner, NotRun, SafetyRefusal, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
-from gateway.fleet.command_core import OperationDesk, arming_deadline, left, require_airborne, routed
+from gateway.fleet.command_core import (
+    OperationDesk,
+    arming_deadline,
+    command,
+    left,
+    require_airborne,
+    routed,
+)
 from gateway.fleet.command_pass import CommandPass, Need, Order
 from gateway.fleet.drone_verbs import DroneVerbs
 from gateway.fleet.fleet_ops import (
@@ -191,6 +198,7 @@ class FleetVerbs:
     # formation and fleet takeoff: all drones or none
     # ------------------------------------------------------------------------------------------------
 
+    @command
     async def formation_goto(
         self,
         caller: Caller,
@@ -321,6 +329,7 @@ class FleetVerbs:
             return False
         return vehicle.on_ground() is True
 
+    @command
     async def fleet_takeoff(
         self,
         caller: Caller,
@@ -373,6 +382,7 @@ class FleetVerbs:
     # recovery: to every drone that can take it
     # ------------------------------------------------------------------------------------------------
 
+    @command
     async def fleet_land(self, caller: Caller, drone_ids: list[str] | None = None) -> FleetView:
         """Land drones in place, all at once; done when disarmed. Those that cannot are in not_sent."""
 
@@ -393,6 +403,7 @@ class FleetVerbs:
         )
         return self.fleet_view(fop, unable)
 
+    @command
     async def fleet_return_to_launch(
         self,
         caller: Caller,
@@ -445,6 +456,7 @@ class FleetVerbs:
         )
         return self.fleet_view(fop, unable)
 
+    @command
     async def fleet_hold(self, caller: Caller, drone_ids: list[str] | None = None) -> FleetHoldResult:
         """Stop drones where they are (GUIDED hover), ending their operations and any fleet operation
         they are part of. Those that cannot are in not_sent."""
@@ -532,6 +544,7 @@ class FleetVerbs:
                 via=caller.via,
             )
 
+    @command
     async def lock(self, caller: Caller, scope: str, reason: str) -> LockResult:
         """Lock one drone (its id) or the fleet ("*") against agents' actuating commands: at once on this
         node and every node that hears the broadcast; stored (later, if the database is unreachable)."""
@@ -562,6 +575,7 @@ class FleetVerbs:
             log.warning("the lock of %s is kept on this node until the database is back", lock.scope)
         return stored is not None
 
+    @command
     async def unlock(self, caller: Caller, scope: str) -> UnlockResult:
         self._operator_only(caller, "unlock drones")
         removed = self.locks.unlock(scope)
@@ -605,6 +619,7 @@ class FleetVerbs:
                 {"scope": lock.scope, "reason": lock.reason, "by": lock.by, "at": lock.locked_at.isoformat()},
             )
 
+    @command
     async def release(self, caller: Caller, drone_id: str) -> UnlockResult:
         """An operator gives a taken-over drone back to agents (the pilot is done with it)."""
         self._operator_only(caller, "release a drone taken over by a pilot or ground station")
@@ -617,6 +632,7 @@ class FleetVerbs:
             log.warning("operator %s released %s after a takeover", caller.principal, drone_id)
         return UnlockResult(scope=drone_id, was_locked=removed is not None or stored)
 
+    @command
     async def stop_all(
         self, caller: Caller, action: StopAction = "hold", lock: bool = True, lock_reason: str | None = None
     ) -> StopResult:
