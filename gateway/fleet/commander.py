@@ -1,16 +1,17 @@
 """The Commander: the one path every command takes, whichever door it came through.
 
-Every verb (takeoff, goto, land, hold, mission start, formation, fleet stop...) does the same five
-things, in this order, here and nowhere else:
+It is composed of four parts, each with one job:
 
-1. resolve the drone (UnknownVehicle names the known ids; VehicleNotReady names the state and why);
-2. build one `VehicleContext` from fresh telemetry (`gateway.fleet.readings.vehicle_context`);
-3. run the safety policy on it, judged by who asked (`Caller.via`: operators are not held by locks
-   or the simulators-only switch, may kill in flight and interrupt a takeoff; agents are);
-4. start a tracked operation under the drone's command lock (`OperationManager.start`: the takeoff
-   guard runs inside the lock, so a goto racing a takeoff that is still being sent is refused), or
-   send an instant command;
-5. return a result model (`gateway.fleet.views`): an `OperationView` to wait on, or an `ActionResult`.
+- `CommandPass` (`gateway.fleet.command_pass`): the one pass every command on one drone takes, here and
+  nowhere else: the takeover lock, resolve the drone once, one `VehicleContext` from fresh telemetry,
+  the policy judged by who asked (`Caller.via`: operators are not held by locks or the simulators-only
+  switch, may kill in flight and interrupt a takeoff; agents are), the drone's command lock (the takeoff
+  guard inside it), the send, the tracked operation, the audit row at send;
+- `DroneVerbs` (`gateway.fleet.drone_verbs`): each command on one drone, declared once (its arguments,
+  checks, vehicle call and tracker) and run through the pass;
+- `FleetVerbs` (`gateway.fleet.fleet_verbs`): the fleet commands, fleet-level checks and plans composed
+  of the same pass per drone;
+- `OperationDesk` (`gateway.fleet.command_core`): views of operations and waiting on them.
 
 MCP tools (`gateway.mcp.tools`) and REST routes (`gateway.api`) are one call to a verb plus presenting
 its result; they hold no checks of their own.
@@ -23,13 +24,12 @@ Every verb can also be called by name with JSON-serialisable arguments::
                                   alt_m=20)          # -> a JSON-serialisable dict
     final = await commander.wait(result["operation_id"], cap_s=45, on_progress=report)
 
-``VERBS`` below is the explicit table of verb names; each verb's arguments are
-the keyword parameters of its method after ``caller`` (validated by a pydantic model built from the
-signature, so a forwarded call is checked exactly as a local one), and its result is the method's
-result model dumped to JSON. Waiting is a separate step (`wait`, `wait_fleet`), so a node that does not
-own a drone can forward the call to the owner (NATS request/reply) and then forward the wait, with
-progress, the same way. Callbacks (progress, "still initialising" notices) are never part of a verb's
-arguments.
+``VERBS`` is filled by each verb's ``@command`` declaration; a verb's arguments are the keyword
+parameters of its method after ``caller`` (validated by a pydantic model built from the signature, so a
+forwarded call is checked exactly as a local one), and its result is the method's result model dumped
+to JSON. Waiting is a separate step (`wait`, `wait_fleet`), so a node that does not own a drone can
+forward the call to the owner (NATS request/reply) and then forward the wait, with progress, the same
+way. Callbacks (progress, "still initialising" notices) are never part of a verb's arguments.
 """
 
 from __future__ import annotations
