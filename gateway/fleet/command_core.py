@@ -26,7 +26,7 @@ from gateway.errors import (
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
 from gateway.fleet.command_pass import CommandPass
-from gateway.fleet.operations import Operation, OperationManager
+from gateway.fleet.operations import Operation
 from gateway.fleet.protocols import FlyingVehicle, VehicleDirectory
 from gateway.fleet.routing import FORWARDED, Router, Verb
 from gateway.fleet.safety import VehicleContext
@@ -209,19 +209,14 @@ class OperationDesk:
     """Operations as the doors see them: views, the latest, waiting (here, or forwarded to the node
     that runs the operation, following it when that node is lost). One per Commander."""
 
-    def __init__(
-        self,
-        settings: Settings,
-        registry: VehicleDirectory,
-        store: Store | None,
-        operations: OperationManager,
-        router: Router | None = None,
-    ) -> None:
-        self.settings = settings
-        self.registry = registry
+    def __init__(self, commands: CommandPass, store: Store | None) -> None:
+        """The pass's collaborators (settings, registry, operations, router); ``store``: the operations
+        of a process that restarted, and of drones other nodes run."""
+        self.settings = commands.settings
+        self.registry = commands.registry
+        self.operations = commands.operations
+        self.router = commands.router
         self.store = store
-        self.operations = operations
-        self.router = router
         self._elsewhere: dict[str, str] = {}  # operation id -> drone id, of operations run elsewhere
 
     # ------------------------------------------------------------------------------------------------

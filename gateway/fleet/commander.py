@@ -82,7 +82,7 @@ class Commander:
         self.locks = locks
         self.router = router
         self.commands = CommandPass(settings, registry, operations, safety, locks, router)
-        self.desk = desk = OperationDesk(settings, registry, store, operations, router)
+        self.desk = desk = OperationDesk(self.commands, store)
         self.drones = drones = DroneVerbs(self.commands, desk, store)
         self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, drones, fleet, store)
         #: where a verb called by name runs (`gateway.fleet.command_core.command`)
