@@ -1,7 +1,8 @@
 """What the Commander's parts share besides the pass: ``@routed`` (a verb runs where its drone is), the
 operation desk (views of operations and waiting on them, here or on the node that runs them) and the
 small flight rules the verbs judge a context with. The pass itself is `gateway.fleet.command_pass`; the
-verbs are `drone_verbs` and `fleet_verbs`; `gateway.fleet.commander` composes them."""
+verbs are `drone_verbs` (flight), `navigation_verbs`, `mission_verbs` and `fleet_verbs`;
+`gateway.fleet.commander` composes them."""
 
 from __future__ import annotations
 
@@ -27,8 +28,8 @@ from gateway.fleet import geo
 from gateway.fleet.caller import Caller
 from gateway.fleet.command_pass import CommandPass
 from gateway.fleet.operations import Operation
-from gateway.fleet.protocols import FlyingVehicle, VehicleDirectory
-from gateway.fleet.routing import FORWARDED, Router, Verb
+from gateway.fleet.protocols import FlyingVehicle, Notify
+from gateway.fleet.routing import FORWARDED, Verb
 from gateway.fleet.safety import VehicleContext
 from gateway.fleet.views import OperationView
 from gateway.registry.store import Store
@@ -68,11 +69,8 @@ READ_VERBS = frozenset(
 
 
 class RoutedVerbs(Protocol):
-    """What ``@routed`` needs of the object whose verbs it wraps (`DroneVerbs`, `FleetVerbs`)."""
+    """What ``@routed`` needs of the object whose verbs it wraps (`FlightVerbs`, `FleetVerbs`...)."""
 
-    settings: Settings
-    registry: VehicleDirectory
-    router: Router | None
     desk: OperationDesk
     commands: CommandPass
 
@@ -90,12 +88,12 @@ def routed(method: VerbMethod) -> VerbMethod:
         bound = verb.signature.bind(self, *args, **kwargs)
         caller: Caller = bound.arguments["caller"]
         drone_id: str = bound.arguments["drone_id"]
-        router = self.router
+        router = self.commands.router
         if router is None or router.owns(drone_id):
             return await method(self, *args, **kwargs)  # the pass judges it here
         if name not in READ_VERBS and not caller.is_operator:
             self.commands.refuse_taken_over(drone_id)  # before forwarding: the pilot's word comes first
-        self.registry.get(drone_id)
+        self.commands.registry.get(drone_id)
         if FORWARDED.get():
             raise NoOwner(f"this node does not own drone '{drone_id}' (any more): retry in a few seconds")
         callbacks = {k: bound.arguments[k] for k in verb.callbacks if bound.arguments.get(k) is not None}
@@ -104,7 +102,7 @@ def routed(method: VerbMethod) -> VerbMethod:
             for k, v in bound.arguments.items()
             if k not in ("self", "caller") and k not in verb.callbacks
         }
-        wait_s = float(arguments.get("cap_s") or self.settings.mcp_wait_cap_s)
+        wait_s = float(arguments.get("cap_s") or self.commands.settings.mcp_wait_cap_s)
         relay = _relay(callbacks)
         seen: dict[str, str] = {}  # the operation the owner reported (its progress), to follow it
 
@@ -203,6 +201,18 @@ def arming_deadline(settings: Settings) -> float:
 
 def left(deadline: float) -> float:
     return max(0.0, deadline - asyncio.get_running_loop().time())
+
+
+def wait_initialised(deadline: float, notify: Notify | None) -> Callable[[FlyingVehicle], Awaitable[None]]:
+    """A ``prepare`` step of the pass: wait until ``deadline`` for a drone still initialising,
+    ``notify`` hearing what it waits for. A drone that is still initialising then is left to its arming
+    attempt, whose refusal says why in the autopilot's words; one in no state to arm raises
+    VehicleNotReady naming why."""
+
+    async def prepare(vehicle: FlyingVehicle) -> None:
+        await vehicle.wait_initialised(left(deadline), notify)
+
+    return prepare
 
 
 class OperationDesk:

@@ -48,6 +48,7 @@ from gateway.fleet.safety import (
     taken_over_text,
 )
 from gateway.fleet.safety import Rule as SafetyRule
+from gateway.fleet.views import OperationView
 
 RECOVERY_KINDS = ("land", "return_to_launch")
 
@@ -95,6 +96,15 @@ class Sent:
     """What an instant command's send returned."""
     ended: Operation | None = None
     """The operation an instant command superseded."""
+
+    def view(self) -> OperationView:
+        """The operation a tracked command started, as the doors show it."""
+        assert self.operation is not None, "an instant command has no operation"
+        return OperationView.of(self.operation, self.vehicle)
+
+    @property
+    def ended_id(self) -> str | None:
+        return None if self.ended is None else self.ended.id
 
 
 Decide = Callable[[FlyingVehicle, VehicleContext], "Order | Awaitable[Order]"]

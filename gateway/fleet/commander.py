@@ -7,8 +7,9 @@ It is composed of four parts, each with one job:
   the policy judged by who asked (`Caller.via`: operators are not held by locks or the simulators-only
   switch, may kill in flight and interrupt a takeoff; agents are), the drone's command lock (the takeoff
   guard inside it), the send, the tracked operation, the audit row at send;
-- `DroneVerbs` (`gateway.fleet.drone_verbs`): each command on one drone, declared once (its arguments,
-  checks, vehicle call and tracker) and run through the pass;
+- `FlightVerbs`, `NavigationVerbs`, `MissionVerbs` (`gateway.fleet.drone_verbs`, `navigation_verbs`,
+  `mission_verbs`): each command on one drone, declared once (its arguments, checks, vehicle call and
+  tracker) and run through the pass;
 - `FleetVerbs` (`gateway.fleet.fleet_verbs`): the fleet commands, fleet-level checks and plans composed
   of the same pass per drone;
 - `OperationDesk` (`gateway.fleet.command_core`): views of operations and waiting on them.
@@ -43,10 +44,12 @@ from gateway.errors import InvalidArgument
 from gateway.fleet.caller import Caller
 from gateway.fleet.command_core import VERBS, OperationDesk
 from gateway.fleet.command_pass import CommandPass
-from gateway.fleet.drone_verbs import DroneVerbs
+from gateway.fleet.drone_verbs import FlightVerbs
 from gateway.fleet.fleet_ops import FleetOperations
 from gateway.fleet.fleet_verbs import FleetVerbs
 from gateway.fleet.ids import canonical_arguments, canonical_drone_id
+from gateway.fleet.mission_verbs import MissionVerbs
+from gateway.fleet.navigation_verbs import NavigationVerbs
 from gateway.fleet.operations import OperationManager
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleDirectory
 from gateway.fleet.routing import Router
@@ -58,7 +61,7 @@ class Commander:
     """Every command on one drone or on the fleet, for every door. Built once by `gateway.runtime`.
 
     Composed, not inherited: the pass (`CommandPass`), the operation desk (views and waits), the verbs
-    on one drone (`DroneVerbs`) and on the fleet (`FleetVerbs`); the verbs are its attributes, so a
+    on one drone (flight, navigation, missions) and on the fleet; the verbs are its attributes, so a
     door calls ``commander.goto(...)`` and a name calls ``commander.call("goto", ...)``."""
 
     def __init__(
@@ -83,10 +86,14 @@ class Commander:
         self.router = router
         self.commands = CommandPass(settings, registry, operations, safety, locks, router)
         self.desk = desk = OperationDesk(self.commands, store)
-        self.drones = drones = DroneVerbs(self.commands, desk, store)
-        self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, drones, fleet, store)
-        #: where a verb called by name runs (`gateway.fleet.command_core.command`)
-        self.parts: dict[str, object] = {"DroneVerbs": drones, "FleetVerbs": fleet_verbs}
+        self.flight = flight = FlightVerbs(self.commands, desk)
+        self.navigation = navigation = NavigationVerbs(self.commands, desk)
+        self.missions = missions = MissionVerbs(self.commands, desk, flight)
+        self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, flight, fleet, store)
+        #: where a verb called by name runs (`gateway.fleet.command_core.command`), by class name
+        self.parts: dict[str, object] = {
+            type(part).__name__: part for part in (flight, navigation, missions, fleet_verbs)
+        }
         # the verbs as the doors call them (typed); a verb called only by name needs no line here
         # operations
         self.view = desk.view
@@ -95,37 +102,37 @@ class Commander:
         self.latest_operation = desk.latest_operation
         self.wait = desk.wait
         # one drone: flight
-        self.arm = drones.arm
-        self.disarm = drones.disarm
-        self.takeoff = drones.takeoff
-        self.land = drones.land
-        self.return_to_launch = drones.return_to_launch
-        self.hold = drones.hold
-        self.kill = drones.kill
-        self.kill_needs_confirmation = drones.kill_needs_confirmation
-        self.set_mode = drones.set_mode
+        self.arm = flight.arm
+        self.disarm = flight.disarm
+        self.takeoff = flight.takeoff
+        self.land = flight.land
+        self.return_to_launch = flight.return_to_launch
+        self.hold = flight.hold
+        self.kill = flight.kill
+        self.kill_needs_confirmation = flight.kill_needs_confirmation
+        self.set_mode = flight.set_mode
         # one drone: navigation
-        self.goto = drones.goto
-        self.reposition = drones.reposition
-        self.move_relative = drones.move_relative
-        self.set_yaw = drones.set_yaw
-        self.set_speed = drones.set_speed
-        self.arrival = drones.arrival
-        self.monitor = drones.monitor
+        self.goto = navigation.goto
+        self.reposition = navigation.reposition
+        self.move_relative = navigation.move_relative
+        self.set_yaw = navigation.set_yaw
+        self.set_speed = navigation.set_speed
+        self.arrival = navigation.arrival
+        self.monitor = navigation.monitor
         # one drone: missions and parameters
-        self.upload_mission = drones.upload_mission
-        self.upload_mission_file = drones.upload_mission_file
-        self.export_mission = drones.export_mission
-        self.download_mission = drones.download_mission
-        self.clear_mission = drones.clear_mission
-        self.start_mission = drones.start_mission
-        self.pause_mission = drones.pause_mission
-        self.resume_mission = drones.resume_mission
-        self.set_current_item = drones.set_current_item
-        self.mission_progress = drones.mission_progress
-        self.get_param = drones.get_param
-        self.set_param = drones.set_param
-        self.list_params = drones.list_params
+        self.upload_mission = missions.upload_mission
+        self.upload_mission_file = missions.upload_mission_file
+        self.export_mission = missions.export_mission
+        self.download_mission = missions.download_mission
+        self.clear_mission = missions.clear_mission
+        self.start_mission = missions.start_mission
+        self.pause_mission = missions.pause_mission
+        self.resume_mission = missions.resume_mission
+        self.set_current_item = missions.set_current_item
+        self.mission_progress = missions.mission_progress
+        self.get_param = missions.get_param
+        self.set_param = missions.set_param
+        self.list_params = missions.list_params
         # the fleet
         self.fleet_view = fleet_verbs.fleet_view
         self.fleet_operation = fleet_verbs.fleet_operation

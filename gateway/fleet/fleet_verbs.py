@@ -37,7 +37,7 @@ from gateway.fleet.command_core import (
     routed,
 )
 from gateway.fleet.command_pass import CommandPass, Need, Order
-from gateway.fleet.drone_verbs import DroneVerbs
+from gateway.fleet.drone_verbs import FlightVerbs
 from gateway.fleet.fleet_ops import (
     FORMATION_TOLERANCE_M,
     FleetOperation,
@@ -95,13 +95,13 @@ class FleetVerbs:
         self,
         commands: CommandPass,
         desk: OperationDesk,
-        drones: DroneVerbs,
+        flight: FlightVerbs,
         fleet: FleetOperations,
         store: Store | None,
     ) -> None:
         self.commands = commands
         self.desk = desk
-        self.drones = drones
+        self.flight = flight
         self.fleet = fleet
         self.store = store
         self.settings = commands.settings
@@ -699,7 +699,7 @@ class FleetVerbs:
         supersede it). The REST hold/land/RTL routes are this too."""
         previous = self.commands.running(drone_id)
         if action == "hold":
-            held = await self.drones.hold(caller, drone_id, "operator hold")
+            held = await self.flight.hold(caller, drone_id, "operator hold")
             return StopOutcome(
                 drone_id=drone_id,
                 action=action,
@@ -707,9 +707,9 @@ class FleetVerbs:
                 superseded_operation=held.superseded_operation,
             )
         op = await (
-            self.drones.land(caller, drone_id)
+            self.flight.land(caller, drone_id)
             if action == "land"
-            else self.drones.return_to_launch(caller, drone_id)
+            else self.flight.return_to_launch(caller, drone_id)
         )
         return StopOutcome(
             drone_id=drone_id,
