@@ -51,6 +51,7 @@ from gateway.fleet.ids import canonical_arguments, canonical_drone_id
 from gateway.fleet.mission_verbs import MissionVerbs
 from gateway.fleet.navigation_verbs import NavigationVerbs
 from gateway.fleet.operations import OperationManager
+from gateway.fleet.operator_verbs import OperatorVerbs
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleDirectory
 from gateway.fleet.routing import Router
 from gateway.fleet.safety import LockBook, SafetyPolicy
@@ -90,9 +91,10 @@ class Commander:
         self.navigation = navigation = NavigationVerbs(self.commands, desk)
         self.missions = missions = MissionVerbs(self.commands, desk, flight)
         self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, flight, fleet, store)
+        self.operator = operator = OperatorVerbs(self.commands, flight, fleet, store)
         #: where a verb called by name runs (`gateway.fleet.command_core.command`), by class name
         self.parts: dict[str, object] = {
-            type(part).__name__: part for part in (flight, navigation, missions, fleet_verbs)
+            type(part).__name__: part for part in (flight, navigation, missions, fleet_verbs, operator)
         }
         # the verbs as the doors call them (typed); a verb called only by name needs no line here
         # operations
@@ -144,12 +146,12 @@ class Commander:
         self.fleet_hold = fleet_verbs.fleet_hold
         self.run_step = fleet_verbs.run_step
         self.hold_step = fleet_verbs.hold_step
-        self.lock = fleet_verbs.lock
-        self.unlock = fleet_verbs.unlock
-        self.taken_over = fleet_verbs.taken_over
-        self.release = fleet_verbs.release
-        self.stop_all = fleet_verbs.stop_all
-        self.stop_one = fleet_verbs.stop_one
+        self.lock = operator.lock
+        self.unlock = operator.unlock
+        self.taken_over = operator.taken_over
+        self.release = operator.release
+        self.stop_all = operator.stop_all
+        self.stop_one = operator.stop_one
 
     def vehicle(self, drone_id: str) -> FlyingVehicle:
         """The registered drone, in whatever state (for reads); UnknownVehicle lists the known ids."""

@@ -79,6 +79,7 @@ async def test_the_pass_tells_the_door_the_operation_once_it_is_sent(gateway: Ga
     ends; a fleet operation's steps are not the call and tell nothing."""
     commander = gateway.commander
     told: list[str] = []
+    fake(gateway, "d1").speed = 0.5  # a slow climb: it surely still runs when the call returns
     token = AUDIT_SENT.set(told.append)
     try:
         climb = await commander.takeoff(AGENT, "d1", 10.0)
