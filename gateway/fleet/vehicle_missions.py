@@ -89,6 +89,7 @@ class MissionControl:
         feasibility check. After a refused (or failed) upload the drone holds the mission it had, or
         one it rejected: either way not the caller's, so `start_mission` refuses until an upload
         succeeds or the mission is cleared."""
+        dialect = self.vehicle.require_dialect()
         if not isinstance(items, list | tuple) or not items:
             raise InvalidArgument("a mission needs at least one item")
         if len(items) > mission.MAX_ITEMS:
@@ -99,7 +100,6 @@ class MissionControl:
                 parsed.append(item if isinstance(item, MissionItem) else MissionItem.model_validate(item))
             except Exception as exc:
                 raise InvalidArgument(f"mission item {k}: {exc}") from None
-        dialect = self.vehicle.require_dialect()
         system = self.link.require_session()
         home = self.link.telemetry.home
         plan = dialect.encode_mission(
@@ -200,9 +200,9 @@ class MissionControl:
         await dialect.start_mission_on_ground(self.link, self.vehicle.arm)
 
     async def set_current(self, user_index: int) -> None:
+        self.vehicle.require_dialect()
         if not isinstance(user_index, int) or isinstance(user_index, bool):
             raise InvalidArgument(f"mission item index must be an integer; got {user_index!r}")
-        self.vehicle.require_dialect()
         system = self.link.require_session()
         if self.plan is None:
             await self.download()
