@@ -1,18 +1,19 @@
-"""One registered drone: the verbs a caller flies it with, over its link (``gateway.link.session.Link``:
-sidecar, MAVSDK session, connection state, telemetry cache) and its autopilot's dialect
-(``gateway.fleet.dialects``: everything that differs between ArduPilot and PX4).
+"""One registered drone: what is read of it and the actions a caller flies it with, over its link
+(``gateway.link.session.Link``: sidecar, MAVSDK session, connection state, telemetry cache) and its
+autopilot's dialect (``gateway.fleet.dialects``: everything that differs between ArduPilot and PX4).
 
-The verbs are the same for every autopilot; where an autopilot does something its own way, the verb asks
-the dialect. Hold is a reposition to where the vehicle is (never a mode that sinks without RC); missions
-are uploaded with ``mission_raw`` in the dialect's layout and come back in user numbers 1..N; a mission
-the autopilot rejects is refused with its words and never started; altitudes are metres above home,
-converted to AMSL with the cached home in one place (``goto``).
+`Vehicle` is a `FlyingVehicle` (`gateway.fleet.protocols`): its read view and its actions. The actions
+are the same for every autopilot; where an autopilot does something its own way, the action asks the
+dialect, and every action first asks for it (`require_dialect`): an autopilot the gateway has no dialect
+for is refused in one line before anything is sent. Hold is a reposition to where the vehicle is (never
+a mode that sinks without RC); altitudes are metres above home, converted to AMSL with the cached home
+in one place (``goto``). Arming and mode switches live in ``vehicle_arming``, missions in
+``vehicle_missions``, parameters in ``params``.
 """
 
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import logging
 import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -31,9 +32,9 @@ from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.param_limits import ParamLimit
 from gateway.fleet.params import Parameters
+from gateway.fleet.vehicle_arming import Arming
 from gateway.fleet.vehicle_missions import MissionControl
 from gateway.fleet.waits import wait_for_state
-from gateway.link import refusals
 from gateway.link.session import ConnectionState, Link, OnWait, Peer
 from gateway.link.sidecar import Confine, Sidecar
 from gateway.link.telemetry import TelemetryCache
@@ -45,11 +46,8 @@ log = logging.getLogger("gateway.vehicle")
 __all__ = ["ConnectionState", "MissionItem", "Vehicle"]
 
 ARMABLE_WAIT_S = 60.0
-MODE_CONFIRM_S = 4.0
 #: closing the flight log never holds a link open longer than this (a database that hangs)
 RECORDER_STOP_S = 5.0
-ARM_RETRY_S = 1.0
-MAV_CMD_DO_SET_MODE = 176
 
 StateListener = Callable[["Vehicle", ConnectionState, ConnectionState], None]
 
@@ -81,6 +79,7 @@ class Vehicle:
             session_jobs=[("mission", lambda system: self.missions.follow(system))],
         )
         self.missions = MissionControl(self.link, self)
+        self.arming = Arming(self.link, self)
         self.params = Parameters(spec.id, self.link.call, self.link.require_session)
         self._recorder: FlightRecorder | None = None
         self._return_alt_name: str | None = None  # the RTL altitude parameter this vehicle has
@@ -261,24 +260,7 @@ class Vehicle:
         if choice.is_hold and self.on_ground() is False:
             await self.hold()
             return
-        await self._switch_mode(choice)
-
-    async def _switch_mode(self, choice: ModeChoice) -> None:
-        facts = self.link.facts
-        if facts.custom_mode == choice.custom_mode:
-            return
-        await self.link.command_long(MAV_CMD_DO_SET_MODE, *choice.params, what=f"set mode {choice.native}")
-        loop = asyncio.get_running_loop()
-        deadline = loop.time() + MODE_CONFIRM_S
-        while self.link.facts.custom_mode != choice.custom_mode:
-            if loop.time() > deadline:
-                now = self.telemetry.fresh("flight_mode") or f"custom mode {self.link.facts.custom_mode}"
-                raise CommandFailed(
-                    f"set mode {choice.native} on drone '{self.id}' was accepted "
-                    f"but the vehicle still reports {now}" + self.link.recent_complaint(),
-                    vehicle_id=self.id,
-                )
-            await asyncio.sleep(0.05)
+        await self.arming.switch_mode(choice)
 
     # --- actions ----------------------------------------------------------------------------------------
     async def arm(self, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None) -> None:
@@ -294,78 +276,7 @@ class Vehicle:
         self.require_dialect()
         deadline = asyncio.get_running_loop().time() + within_s
         ready = await self.wait_initialised(within_s, notify)
-        await self._arm_by(deadline, ready, notify)
-
-    async def _arm_by(
-        self, deadline: float, ready: bool, notify: OnWait | None, trust_cache: bool = True
-    ) -> bool:
-        """Arm unless the cached state says armed (``trust_cache``); True when an arm command was sent."""
-        if trust_cache and self.telemetry.fresh("armed"):
-            return False
-        system = self.system
-        dialect = self.require_dialect()
-        loop = asyncio.get_running_loop()
-        started = time.time()
-        if dialect.arming_mode is not None:
-            try:
-                await self._switch_mode(self.resolve_mode(dialect.arming_mode))
-            except CommandFailed as exc:
-                if ready:
-                    raise
-                said = self.link.said_since(started)
-                raise self._arm_refusal(exc, said, waited=True, ready=False) from None
-        while True:
-            attempt_at = time.time()
-            try:
-                await self.link.call("arm", system.action.arm())
-                return True
-            except CommandFailed as exc:
-                said = self.link.said_since(attempt_at)
-                passing = bool(said) and all(dialect.arming_will_pass(text) for text in said)
-                if not ready or not passing or loop.time() + ARM_RETRY_S > deadline:
-                    raise self._arm_refusal(exc, said, waited=passing or not ready, ready=ready) from None
-            log.info("%s: arming refused while initialising (%s); retrying", self.id, "; ".join(said))
-            if notify is not None:
-                with contextlib.suppress(Exception):  # a courtesy; the retry happens regardless
-                    await notify(f"{self.id}: autopilot says {refusals.quoted(said)}; trying again")
-            await asyncio.sleep(ARM_RETRY_S)
-
-    def _arm_refusal(
-        self, exc: CommandFailed, said: list[str], waited: bool, ready: bool = True
-    ) -> CommandFailed | VehicleNotReady:
-        """The refusal of an arming attempt: the autopilot's words and the drone's GPS (and, while it
-        initialises, what the gateway still waits for); a reason it lifts by itself ("waited") also
-        says what to do. A drone still initialising (not ``ready``) is refused as not ready, in the
-        autopilot's words when it gave any, else in the gateway's (what it still waits for)."""
-        if not said and not ready:
-            try:
-                self.require_ready()
-            except VehicleNotReady as not_ready:
-                return VehicleNotReady(
-                    f"{not_ready.message}; call again in a few seconds or check fleet_status",
-                    state=self.state.value,
-                )
-        if not said:
-            return exc
-        gps = self.telemetry.fresh("gps_info")
-        facts = f"GPS {gps.fix_type}, {gps.num_satellites} satellites" if gps is not None else "no GPS report"
-        waiting = self.initialising()
-        if waiting is not None:
-            facts += f"; still {waiting}"
-        words = refusals.quoted(said)
-        if waited:
-            text = (
-                f"drone '{self.id}' cannot arm yet: autopilot says {words} ({facts}); call again in a few "
-                "seconds or check fleet_status"
-            )
-            if not ready:
-                return VehicleNotReady(text, state=self.state.value)
-            return CommandFailed(text, vehicle_id=self.id, result=exc.details.get("result"))
-        return CommandFailed(
-            f"drone '{self.id}' refused to arm: autopilot says {words} ({facts})",
-            vehicle_id=self.id,
-            result=exc.details.get("result"),
-        )
+        await self.arming.arm_by(deadline, ready, notify)
 
     async def disarm(self) -> None:
         self.require_dialect()
@@ -392,7 +303,7 @@ class Vehicle:
             raise CommandFailed(f"drone '{self.id}' is already flying; use goto to change altitude")
         # the altitude first: between arming and the takeoff command, ArduPilot's DISARM_DELAY runs
         await self.link.call("set takeoff altitude", system.action.set_takeoff_altitude(float(alt_rel_m)))
-        sent_arm = await self._arm_by(deadline, ready, notify)
+        sent_arm = await self.arming.arm_by(deadline, ready, notify)
         try:
             await self.link.call("takeoff", system.action.takeoff())
         except CommandFailed:
@@ -401,7 +312,7 @@ class Vehicle:
             # "armed" came from the cache (the 1 Hz heartbeat), which can be a beat behind an autopilot
             # that disarmed on the ground after a landing: arm for real, then try once more
             log.info("%s: takeoff refused while the cache said armed; arming and trying again", self.id)
-            await self._arm_by(deadline, ready, notify, trust_cache=False)
+            await self.arming.arm_by(deadline, ready, notify, trust_cache=False)
             await self.link.call("takeoff", system.action.takeoff())
 
     def home_amsl_m(self) -> float:
