@@ -43,7 +43,7 @@ class RemoteVehicle:
         self.settings = settings
         self.telemetry = TelemetryCache(stale_after_s=settings.link_lost_after_s)
         self.telemetry.live = False
-        self._status: dict[str, Any] = {}
+        self._status: dict[str, object] = {}  # the owner's Vehicle.status(), as JSON
         self._received_at: float | None = None
         self.owner: str | None = None  # node id from the lease table (None: nobody holds a live lease)
         self.epoch: int = 0
@@ -93,7 +93,7 @@ class RemoteVehicle:
         if not self._fresh():
             return ConnectionState.LINK_LOST if self._received_at is not None else ConnectionState.CONNECTING
         try:
-            return ConnectionState(self._status.get("state", "connecting"))
+            return ConnectionState(str(self._status.get("state", "connecting")))
         except ValueError:
             return ConnectionState.CONNECTING
 
@@ -105,20 +105,24 @@ class RemoteVehicle:
             age = self.snapshot_age_s
             heard = "never" if age is None else f"{age:.0f} s ago"
             return f"no telemetry from its owner node {self.owner} (last snapshot {heard})"
-        error = self._status.get("last_error")
-        return error if isinstance(error, str) else None
+        return self._text("last_error")
+
+    def _text(self, key: str) -> str | None:
+        value = self._status.get(key)
+        return value if isinstance(value, str) else None
 
     @property
     def sysid(self) -> int | None:
-        return self._status.get("sysid")
+        value = self._status.get("sysid")
+        return value if isinstance(value, int) else None
 
     @property
     def autopilot(self) -> str | None:
-        return self._status.get("autopilot")
+        return self._text("autopilot")
 
     @property
     def autopilot_version(self) -> str | None:
-        return self._status.get("autopilot_version")
+        return self._text("autopilot_version")
 
     @property
     def current_flight_id(self) -> int | None:
@@ -137,17 +141,16 @@ class RemoteVehicle:
     def last_heartbeat_age_s(self) -> float | None:
         age = self._status.get("last_heartbeat_age_s")
         extra = self.snapshot_age_s or 0.0
-        return None if age is None else float(age) + extra
+        return float(age) + extra if isinstance(age, int | float) else None
 
     def initialising(self) -> str | None:
         if self.state != ConnectionState.CONNECTED:
             return None
-        value = self._status.get("initialising")
-        return value if isinstance(value, str) else None
+        return self._text("initialising")
 
     def status(self) -> dict[str, Any]:
         state = self.state
-        base = dict(self._status)
+        base: dict[str, Any] = dict(self._status)
         base.update(
             {
                 "id": self.id,

@@ -13,7 +13,7 @@ Everything else (the verbs, the operations, the policy) is the same for every au
 from __future__ import annotations
 
 from collections.abc import Awaitable, Callable, Mapping
-from typing import Any, Protocol, TypeVar
+from typing import Protocol, TypeVar
 
 from mavsdk_grpc import System
 
@@ -181,7 +181,7 @@ def user_progress(
     return MissionProgressValue(user_total if finished else user, user_total, finished)
 
 
-def reader(telemetry: TelemetryCache, fresh: bool) -> Callable[[str], Any]:
+def reader(telemetry: TelemetryCache, fresh: bool) -> Callable[[str], object]:
     """How a dialect reads a telemetry value: fresh only, or the cached one however old."""
     if fresh:
         return telemetry.fresh
