@@ -12,6 +12,11 @@ flying vehicle (`VehicleDirectory.flown`, or `flying(view)` for a view in hand),
 when this node cannot fly it (another node owns it; `flown` also when the gateway has no dialect for its
 autopilot, which every action refuses anyway). The Commander, the operation trackers
 and the fleet operations are written against these Protocols, never against the MAVSDK-backed class.
+
+A new autopilot call is a member of `VehicleActions` here and its body in `gateway.fleet.vehicle` (which
+asks `require_dialect()` first); only when autopilots do it differently, a `Dialect` method too
+(`gateway.fleet.dialects.base`, with each dialect's body). Nothing else on this side: a remote view has
+no actions to stub, and the registry hands out whatever `FlyingVehicle` has.
 """
 
 from __future__ import annotations
