@@ -28,7 +28,7 @@ from gateway.fleet import geo
 from gateway.fleet.caller import Caller
 from gateway.fleet.command_pass import CommandPass
 from gateway.fleet.operations import Operation
-from gateway.fleet.protocols import FlyingVehicle, Notify
+from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.fleet.routing import FORWARDED, Verb
 from gateway.fleet.safety import VehicleContext
 from gateway.fleet.views import OperationView
@@ -235,7 +235,7 @@ class OperationDesk:
 
     def view(self, op: Operation) -> OperationView:
         try:
-            vehicle: FlyingVehicle | None = self.registry.get(op.vehicle_id)
+            vehicle: VehicleView | None = self.registry.get(op.vehicle_id)
         except GatewayError:  # removed since: the operation is still worth reporting
             vehicle = None
         return OperationView.of(op, vehicle)

@@ -6,6 +6,8 @@ the command lock, is `CommandPass.run` with ``locked=False``). In this order, ea
 1. the takeover lock first (rule taken_over: an agent's command on a drone a pilot, another ground
    station or a failsafe took is refused before anything else), then resolve the drone in the
    (scoped) registry: UnknownVehicle names the known ids;
+   the drone to command (`VehicleDirectory.flown`: refused in words when another node flies it or
+   its autopilot has no dialect here);
 2. ``prepare``: what must happen before the drone is judged (arm and takeoff wait for a drone that is
    still initialising, within the wait cap); then its readiness (`Need`): VehicleNotReady names why;
 3. build ONE `VehicleContext` from its fresh telemetry (`gateway.fleet.readings.vehicle_context`);
@@ -148,7 +150,7 @@ class CommandPass:
         only); ``audited=False``: a step of a fleet operation, whose call is audited as the fleet's."""
         if not caller.is_operator:
             self.refuse_taken_over(drone_id)  # before any other check: the pilot's word comes first
-        vehicle = self.registry.get(drone_id)
+        vehicle = self.registry.flown(drone_id)  # refused in words when this node cannot fly it
         if prepare is not None:
             await prepare(vehicle)
         if need is Need.READY or (need is Need.RECOVERY and not caller.is_operator):

@@ -52,7 +52,7 @@ from gateway.fleet.mission_verbs import MissionVerbs
 from gateway.fleet.navigation_verbs import NavigationVerbs
 from gateway.fleet.operations import OperationManager
 from gateway.fleet.operator_verbs import OperatorVerbs
-from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleDirectory
+from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleDirectory, VehicleView
 from gateway.fleet.routing import Router
 from gateway.fleet.safety import LockBook, SafetyPolicy
 from gateway.registry.store import Store
@@ -153,13 +153,13 @@ class Commander:
         self.stop_all = operator.stop_all
         self.stop_one = operator.stop_one
 
-    def vehicle(self, drone_id: str) -> FlyingVehicle:
+    def vehicle(self, drone_id: str) -> VehicleView:
         """The registered drone, in whatever state (for reads); UnknownVehicle lists the known ids."""
         return self.registry.get(drone_id)
 
     def ready(self, drone_id: str) -> FlyingVehicle:
-        """The drone, if it can fly (VehicleNotReady names its state and why otherwise), for reads."""
-        vehicle = self.registry.get(drone_id)
+        """The drone flown here, if it can fly (VehicleNotReady names its state and why otherwise)."""
+        vehicle = self.registry.flown(drone_id)
         vehicle.require_ready()
         return vehicle
 

@@ -28,7 +28,7 @@ from gateway.fleet.command_core import (
 from gateway.fleet.command_pass import CommandPass, Need, Order
 from gateway.fleet.modes import ModeChoice
 from gateway.fleet.operations import LandingTracker, TakeoffTracker
-from gateway.fleet.protocols import FlyingVehicle, Notify
+from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.fleet.readings import is_landed_and_disarmed, position, vehicle_context
 from gateway.fleet.safety import VehicleContext
 from gateway.fleet.views import ActionResult, OperationView
@@ -248,7 +248,7 @@ class FlightVerbs:
         )
 
 
-def _commanded(vehicle: FlyingVehicle, choice: ModeChoice) -> dict[str, Any]:
+def _commanded(vehicle: VehicleView, choice: ModeChoice) -> dict[str, Any]:
     """What a mode change commands, for the takeover watch: the mission, return, landing or takeoff
     mode is judged as that operation is (the autopilot's own next modes included: PX4 holds after a
     mission), any other mode as itself."""
@@ -264,7 +264,7 @@ def _commanded(vehicle: FlyingVehicle, choice: ModeChoice) -> dict[str, Any]:
     return {"commands": f"set_flight_mode {choice.native}", "modes": frozenset({choice.native})}
 
 
-def _is_landing_mode(vehicle: FlyingVehicle, choice: ModeChoice) -> bool:
+def _is_landing_mode(vehicle: VehicleView, choice: ModeChoice) -> bool:
     """Whether ``choice`` is the drone's LAND or RTL mode, by whichever name it was asked for: a safety
     action, never refused by the takeoff guard."""
     for name in ("LAND", "RTL"):

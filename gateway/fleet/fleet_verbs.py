@@ -51,7 +51,7 @@ from gateway.fleet.fleet_ops import (
 )
 from gateway.fleet.formation import DroneStart, plan_formation, rtl_altitudes, takeoff_altitudes
 from gateway.fleet.operations import Operation
-from gateway.fleet.protocols import FlyingVehicle, Notify
+from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.fleet.readings import home, is_landed_and_disarmed, position, vehicle_context
 from gateway.fleet.safety import VehicleContext
 from gateway.fleet.views import (
@@ -93,7 +93,7 @@ class FleetVerbs:
         self.operations = commands.operations
         fleet.run_steps_with(self.step_here, self.hold_here)
 
-    def _guard(self, caller: Caller, action: str) -> Callable[[FlyingVehicle], None]:
+    def _guard(self, caller: Caller, action: str) -> Callable[[VehicleView], None]:
         """The takeoff guard of a fleet step, judged inside the drone's command lock."""
         return lambda v: self.commands.guard_takeoff(caller, vehicle_context(v), action)
 
@@ -157,8 +157,8 @@ class FleetVerbs:
         return self.settings.min_separation_m + 2 * FORMATION_TOLERANCE_M if stagger_m is None else stagger_m
 
     def _recovery_members(
-        self, drone_ids: Sequence[str] | None, action: str, check: Callable[[FlyingVehicle], None]
-    ) -> tuple[list[str], dict[str, FlyingVehicle], list[Unable]]:
+        self, drone_ids: Sequence[str] | None, action: str, check: Callable[[VehicleView], None]
+    ) -> tuple[list[str], dict[str, VehicleView], list[Unable]]:
         ids = self._all_ids(drone_ids)
         vehicles, unable = collect_members(ids, self.registry.get, check)
         if not vehicles:
@@ -218,7 +218,7 @@ class FleetVerbs:
 
         contexts: dict[str, VehicleContext] = {}
 
-        def check(v: FlyingVehicle) -> None:
+        def check(v: VehicleView) -> None:
             v.require_ready()
             ctx = contexts[v.id] = vehicle_context(v)
             self.commands.guard_takeoff(caller, ctx, "formation_goto")
@@ -330,7 +330,7 @@ class FleetVerbs:
         deadline = arming_deadline(self.settings)
         await self._initialised(ids, notify, deadline)
 
-        def check(v: FlyingVehicle) -> None:
+        def check(v: VehicleView) -> None:
             v.require_ready()
             ctx = vehicle_context(v)
             if ctx.in_air:
@@ -367,7 +367,7 @@ class FleetVerbs:
     async def fleet_land(self, caller: Caller, drone_ids: list[str] | None = None) -> FleetView:
         """Land drones in place, all at once; done when disarmed. Those that cannot are in not_sent."""
 
-        def check(v: FlyingVehicle) -> None:
+        def check(v: VehicleView) -> None:
             v.require_ready()
             if is_landed_and_disarmed(v):
                 raise InvalidArgument(f"{v.id} is already on the ground and disarmed")
@@ -398,7 +398,7 @@ class FleetVerbs:
         sep = self.settings.min_separation_m
         self.safety.check_stagger(stagger)
 
-        def check(v: FlyingVehicle) -> None:
+        def check(v: VehicleView) -> None:
             v.require_ready()
             ctx = vehicle_context(v)
             require_airborne(ctx, "fleet_return_to_launch")
@@ -442,7 +442,7 @@ class FleetVerbs:
         """Stop drones where they are (GUIDED hover), ending their operations and any fleet operation
         they are part of. Those that cannot are in not_sent."""
 
-        def check(v: FlyingVehicle) -> None:
+        def check(v: VehicleView) -> None:
             v.require_ready()
             ctx = vehicle_context(v)
             require_airborne(ctx, "fleet_hold")
@@ -452,7 +452,7 @@ class FleetVerbs:
         superseded = await self.fleet.supersede(vehicles, "fleet_hold")
         failed: list[dict[str, object]] = []
 
-        async def hold(drone_id: str, v: FlyingVehicle) -> None:
+        async def hold(drone_id: str, v: VehicleView) -> None:
             try:
                 await self.hold_step(caller, drone_id, "fleet_hold")  # on its owner, in a cluster
             except GatewayError as exc:

@@ -110,7 +110,7 @@ class MissionVerbs:
             raise InvalidArgument(
                 f"file_format {file_format!r} is not one of {', '.join(mission_files.FORMATS)}"
             )
-        vehicle = self.commands.registry.get(drone_id)
+        vehicle = self.commands.registry.flown(drone_id)
         vehicle.require_ready()
         raws = mission_files.raw_items(await vehicle.download_mission())
         home = vehicle_context(vehicle).home
@@ -174,7 +174,7 @@ class MissionVerbs:
     @command
     @routed
     async def download_mission(self, caller: Caller, drone_id: str) -> MissionView:
-        vehicle = self.commands.registry.get(drone_id)
+        vehicle = self.commands.registry.flown(drone_id)
         vehicle.require_ready()
         return MissionView(drone_id=drone_id, items=await vehicle.download_mission())
 
@@ -222,7 +222,7 @@ class MissionVerbs:
     @routed
     async def mission_progress(self, caller: Caller, drone_id: str) -> MissionProgressView:
         """The item being flown (1..N), the count, and whether the mission ran to its end."""
-        vehicle = self.commands.registry.get(drone_id)
+        vehicle = self.commands.registry.flown(drone_id)
         vehicle.require_ready()
         prog = value(vehicle, "mission_progress")
         current, total = (int(prog.current), int(prog.total)) if prog is not None else (0, 0)
@@ -240,7 +240,7 @@ class MissionVerbs:
     @command
     @routed
     async def get_param(self, caller: Caller, drone_id: str, name: str) -> ParamValue:
-        vehicle = self.commands.registry.get(drone_id)
+        vehicle = self.commands.registry.flown(drone_id)
         vehicle.require_ready()
         name = name.upper()
         val, kind = await vehicle.get_param(name)
@@ -278,7 +278,7 @@ class MissionVerbs:
         """One page of the parameters whose name starts with ``prefix``, sorted by name."""
         if offset < 0 or not 1 <= limit <= 500:
             raise InvalidArgument(f"offset must be >= 0 and limit 1..500; got offset={offset}, limit={limit}")
-        vehicle = self.commands.registry.get(drone_id)
+        vehicle = self.commands.registry.flown(drone_id)
         vehicle.require_ready()
         prefix = prefix.upper()
         every = await vehicle.list_params()

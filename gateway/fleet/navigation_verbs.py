@@ -36,7 +36,7 @@ from gateway.fleet.operations import (
     YawTracker,
     check_positive_altitude,
 )
-from gateway.fleet.protocols import FlyingVehicle, Notify
+from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.fleet.readings import is_airborne, position, value
 from gateway.fleet.safety import Target, VehicleContext
 from gateway.fleet.views import ActionResult, ArrivalView, OperationView
@@ -351,7 +351,7 @@ class NavigationVerbs:
         return None
 
 
-def _now_doing(vehicle: FlyingVehicle) -> str:
+def _now_doing(vehicle: VehicleView) -> str:
     """What the drone does now, from its telemetry: mode, airborne, altitude."""
     mode = value(vehicle, "flight_mode") or "unknown"
     pos = position(vehicle)
@@ -360,7 +360,7 @@ def _now_doing(vehicle: FlyingVehicle) -> str:
     return f"mode {mode}, {state}{where}"
 
 
-def _restart_truth(vehicle: FlyingVehicle, record: OperationRecord) -> str:
+def _restart_truth(vehicle: VehicleView, record: OperationRecord) -> str:
     """A stored operation and the drone now, for a caller of a process that did not run it: e.g. "the
     gateway restarted while this operation was running; now: mode GUIDED, in the air at 12.0 m above
     home, 180 m from the goto's target"."""

@@ -23,7 +23,7 @@ from gateway.fleet.command_pass import CommandPass
 from gateway.fleet.drone_verbs import FlightVerbs
 from gateway.fleet.fleet_ops import FleetOperations
 from gateway.fleet.geofence import FLEET
-from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.protocols import VehicleView
 from gateway.fleet.safety import Rule, refuse
 from gateway.fleet.takeover import Takeover
 from gateway.fleet.views import LockResult, StopOutcome, StopResult, UnlockResult
@@ -107,7 +107,7 @@ class OperatorVerbs:
     # takeover locks: a pilot, another ground station or a failsafe took a drone (gateway.fleet.takeover)
     # ------------------------------------------------------------------------------------------------
 
-    async def taken_over(self, vehicle: FlyingVehicle, takeover: Takeover) -> None:
+    async def taken_over(self, vehicle: VehicleView, takeover: Takeover) -> None:
         """The OperationManager saw a mode change the gateway did not command (its operation already
         ended as interrupted): lock the drone for agents, persist and audit the lock, tell the other
         nodes. Nothing is sent to the drone."""
@@ -170,7 +170,7 @@ class OperatorVerbs:
         if self.router is not None:  # fleet operations coordinated by other nodes end there too
             await self.router.announce("stop", {"action": action, "by": caller.principal})
 
-        async def one(vehicle: FlyingVehicle) -> StopOutcome:
+        async def one(vehicle: VehicleView) -> StopOutcome:
             state = str(vehicle.state)
             if getattr(vehicle, "remote", False) and getattr(vehicle, "owner", None) is None:
                 return StopOutcome(
