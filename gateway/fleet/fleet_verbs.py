@@ -33,17 +33,19 @@ from gateway.fleet.command_core import (
 from gateway.fleet.command_pass import CommandPass, Need, Order
 from gateway.fleet.drone_verbs import FlightVerbs
 from gateway.fleet.fleet_ops import (
-    FORMATION_TOLERANCE_M,
     FleetOperation,
     FleetOperations,
     Unable,
-    build_step,
     check_drone_ids,
     collect_members,
+    refuse_fleet,
+)
+from gateway.fleet.fleet_steps import (
+    FORMATION_TOLERANCE_M,
+    build_step,
     default_rtl_base_m,
     formation_phases,
     land_phase,
-    refuse_fleet,
     rtl_order,
     rtl_phases,
     slot_summaries,
