@@ -112,24 +112,17 @@ class Sent:
 Decide = Callable[[FlyingVehicle, VehicleContext], "Order | Awaitable[Order]"]
 
 
+@dataclass
 class CommandPass:
-    """The one pass (see the module docstring); one per Commander."""
+    """The one pass (see the module docstring); one per Commander, over its collaborators. ``router``:
+    on a cluster node, where the drones this node does not own are run."""
 
-    def __init__(
-        self,
-        settings: Settings,
-        registry: VehicleDirectory,
-        operations: OperationManager,
-        safety: SafetyPolicy,
-        locks: LockBook,
-        router: Router | None = None,
-    ) -> None:
-        self.settings = settings
-        self.registry = registry
-        self.operations = operations
-        self.safety = safety
-        self.locks = locks
-        self.router = router
+    settings: Settings
+    registry: VehicleDirectory
+    operations: OperationManager
+    safety: SafetyPolicy
+    locks: LockBook
+    router: Router | None = None
 
     async def run(
         self,

@@ -49,9 +49,7 @@ class OperatorVerbs:
         self.flight = flight
         self.fleet = fleet
         self.store = store
-        self.registry = commands.registry
-        self.router = commands.router
-        self.locks = commands.locks
+        self.registry, self.router, self.locks = commands.registry, commands.router, commands.locks
 
     def _operator_only(self, caller: Caller, what: str) -> None:
         if not caller.is_operator:
