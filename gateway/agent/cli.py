@@ -16,12 +16,14 @@ from rich.table import Table
 from gateway.agent.autoprofile import ProfileChoice
 from gateway.agent.autoprofile import resolve as resolve_profile
 from gateway.agent.display import JsonLinesDisplay, RichDisplay
-from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentEvent, AgentHost, ModelConfig
+from gateway.agent.host import AgentHost
 from gateway.agent.mcp_link import McpLink, McpLinkError
 from gateway.agent.profiles import PROFILES, apply_profile, host_options_for, system_prompt_for
 from gateway.agent.servers import ToolRouter, link_for
 from gateway.agent.settings import AgentSettings, split_list
 from gateway.agent.toolbox import ToolSelectionError, select_tools
+from gateway.agent.turns import AgentEvent, ModelConfig
+from gateway.agent.wording import DEFAULT_SYSTEM_PROMPT
 from gateway.cli import COMMANDS
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_STEP_LIMIT, EXIT_EMPTY_ANSWER = 0, 1, 2, 3, 4

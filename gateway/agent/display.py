@@ -10,7 +10,7 @@ from rich.console import Console
 from rich.markup import escape
 from rich.status import Status
 
-from gateway.agent.host import AgentEvent
+from gateway.agent.turns import AgentEvent
 
 _STATUS_STYLE = {
     "ok": "green",

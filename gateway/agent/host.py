@@ -19,7 +19,6 @@ what the host says to the model and the user in wording.py.
 from __future__ import annotations
 
 import asyncio
-import itertools
 import time
 from collections.abc import Sequence
 from typing import Any
@@ -28,10 +27,17 @@ import openai
 
 from gateway.agent import checks, wording
 from gateway.agent.answer import ANSWER_TOOL, ANSWER_TOOL_INFO, answer_text, finish_hint
-from gateway.agent.chat import Message, ModelReply, ask_model, assistant_message, call_arguments
+from gateway.agent.chat import (
+    ChatModel,
+    Message,
+    ModelReply,
+    assistant_message,
+    call_arguments,
+    close_open_calls,
+)
 from gateway.agent.intent import Reading, read_call
 from gateway.agent.parsing import ArgumentsError, parse_arguments, strip_thinking
-from gateway.agent.roster import DroneEntry, Roster, fetch_roster, with_drone_enum
+from gateway.agent.roster import FleetView, Roster
 from gateway.agent.toolbox import ToolInfo, ToolOutcome
 from gateway.agent.turns import (
     MAX_EMPTY_REPROMPTS,
@@ -48,29 +54,10 @@ from gateway.agent.turns import (
     TurnResult,
     Usage,
 )
+from gateway.agent.wording import DEFAULT_SYSTEM_PROMPT
 
-# The records of a turn are imported from here by the CLI, the benchmarks and the tests.
-__all__ = [
-    "DEFAULT_SYSTEM_PROMPT",
-    "AgentEvent",
-    "AgentHost",
-    "EventSink",
-    "ModelConfig",
-    "ModelReplyError",
-    "ToolCallRecord",
-    "ToolCaller",
-    "TurnResult",
-    "Usage",
-]
-
-DEFAULT_SYSTEM_PROMPT = (
-    "You are the pilot assistant of a drone fleet. You act only through the tools you are given; never "
-    "claim an action that no tool result confirmed. Altitudes are metres above each drone's home unless a "
-    "tool says otherwise. When a tool reports an operation still running, keep checking with the tools "
-    "until it is done before the next step of a plan. If a tool refuses a request, do not try to work "
-    "around the safety rule: tell the user which rule refused it. When the task is done, answer briefly "
-    "with what was done and the final state."
-)
+# DEFAULT_SYSTEM_PROMPT (wording.py), AgentEvent, ModelConfig, ToolCallRecord and TurnResult (turns.py)
+# are imported from here too.
 
 # With ``follow_running``: how many capped waits the host itself adds to an action still running (each
 # monitor call waits up to the gateway's cap, 45 s by default) before it hands "running" to the model.
@@ -100,56 +87,36 @@ class AgentHost:
         self.caller = caller
         # answer_tool: offer the host's own answer_user tool, the way a small model ends a turn (answer.py)
         self.answer_tool = answer_tool
-        self.base_tools = list(tools) + ([ANSWER_TOOL_INFO] if answer_tool else [])
+        base_tools = list(tools) + ([ANSWER_TOOL_INFO] if answer_tool else [])
         # follow_running: an action whose capped wait ended while it still runs is waited for by the host
         # (monitor_flight / monitor_fleet), so the model sees how it ended, as if the call had waited.
         self.follow_running = follow_running
         self._truncated = False  # the model's last reply stopped at the token limit
-        self.use_roster = roster
-        self.roster: Roster | None = None
-        self._enum_ids: list[str] = []
-        self._set_tools(self.base_tools)
+        self.fleet = FleetView(caller, base_tools, roster, self._roster_read)
         self.max_steps = max_steps
         self.system_prompt = system_prompt
         self.on_event = on_event or (lambda _e: None)
-        self.chat = chat_client or openai.AsyncOpenAI(
-            base_url=model.endpoint,
-            api_key=model.api_key or "not-needed",
-            timeout=model.timeout_s,
-            max_retries=model.max_retries,
-        )
+        self._chat = ChatModel(model, chat_client)
         self.messages: list[Message] = []
         self.total_usage = Usage()
         self.turns = 0
         self._memory = TurnMemory()  # what this turn has said and done, to judge the next reply
-        self._ids = itertools.count(1)
         self.reset()
 
     def reset(self) -> None:
         """Forget the conversation (the tool list stays)."""
         self.messages = [{"role": "system", "content": self.system_prompt}] if self.system_prompt else []
 
-    def _set_tools(self, tools: Sequence[ToolInfo]) -> None:
-        self.tools = {t.name: t for t in tools}
-        self.tool_specs = [t.openai_spec() for t in tools]
-        self._parameters = {t.name: list((t.input_schema or {}).get("properties") or {}) for t in tools}
+    # the fleet and the tools as offered (the fleet's ids as an ``enum``): see roster.FleetView
+    @property
+    def tools(self) -> dict[str, ToolInfo]:
+        return self.fleet.tools
 
-    async def refresh_roster(self) -> Roster | None:
-        """Read the fleet from the gateway; when its ids changed, the tool schemas get the new ``enum``
-        (the tool list changes only then, so a server's prompt cache survives ordinary steps)."""
-        if not self.use_roster:
-            return None
-        roster = await fetch_roster(self.caller)
+    def _roster_read(self, roster: Roster | None) -> None:
         if roster is None:
-            self.use_roster = False  # a server without list_drones: no roster, no enum, no retries
             self._emit("roster", available=False, message="no fleet roster: the server offers no list_drones")
-            return None
-        self.roster = roster
-        if roster.ids != self._enum_ids:
-            self._enum_ids = roster.ids
-            self._set_tools([with_drone_enum(t, roster.ids) for t in self.base_tools])
-        self._emit("roster", available=True, text=roster.text(), ids=roster.ids)
-        return roster
+        else:
+            self._emit("roster", available=True, text=roster.text(), ids=roster.ids)
 
     def _emit(self, kind: str, **data: Any) -> None:
         self.on_event(AgentEvent(kind, data))
@@ -165,7 +132,7 @@ class AgentHost:
         started = time.monotonic()
         self._memory = TurnMemory(request=user_text)
         self._emit("turn_start", turn=self.turns, user=user_text)
-        roster = await self.refresh_roster()
+        roster = await self.fleet.refresh()
         content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
         self.messages.append({"role": "user", "content": content})
         result = TurnResult(outcome="step_limit", final_text=None, steps=0)
@@ -174,7 +141,7 @@ class AgentHost:
         except asyncio.CancelledError:
             # The user interrupted (Ctrl-C): keep the conversation valid for the next turn and say that
             # an action already sent goes on in the gateway (a cancelled wait does not stop a drone).
-            self._close_open_calls()
+            close_open_calls(self.messages, wording.INTERRUPTED)
             self._emit("interrupted", message="turn interrupted; actions already sent continue on the drones")
             raise
         if result.outcome != "answered":
@@ -270,8 +237,8 @@ class AgentHost:
                 self.messages[-1]["content"] += f"\n\n{self._note(pending)}"
             if self._truncated:
                 self.messages[-1]["content"] += f"\n\n{self._note(wording.CUT_AFTER_CALL)}"
-            if self.use_roster and result.steps < self.max_steps:
-                roster = await self.refresh_roster()
+            if self.fleet.enabled and result.steps < self.max_steps:
+                roster = await self.fleet.refresh()
                 if roster is not None:
                     last = self.messages[-1]
                     last["content"] = f"{last['content']}\n\n{roster.text()}"
@@ -287,7 +254,7 @@ class AgentHost:
         the gateway's own results (wording.answer_from_results). A model that stopped replying after some
         call ran or was refused considered the request finished: the turn counts as answered. One stopped
         by the step limit or a model error, or in which nothing ran, keeps its outcome (and exit status)."""
-        roster = await self.refresh_roster() if self.use_roster else None
+        roster = await self.fleet.refresh() if self.fleet.enabled else None
         text = wording.answer_from_results(result, self._memory.request, roster)
         if result.outcome == "empty_answer" and any(
             (c.ok and c.name != ANSWER_TOOL) or c.status == "error" for c in result.tool_calls
@@ -308,31 +275,12 @@ class AgentHost:
 
     async def _reprompt(self, result: TurnResult, echo: bool = False) -> str:
         """What the model is told after an empty reply (wording.reprompt_text), with the fleet read now."""
-        roster = await self.refresh_roster()
-        untouched = checks.untouched(result, self._memory.request, self.roster, self.tools)
+        roster = await self.fleet.refresh()
+        untouched = checks.untouched(result, self._memory.request, self.fleet.roster, self.tools)
         return wording.reprompt_text(result, self._memory.request, echo, untouched, roster, self.answer_tool)
 
-    def _close_open_calls(self) -> None:
-        """Answer every tool call of the last assistant message that has no result yet (the API rejects
-        a conversation with unanswered tool calls)."""
-        for i in range(len(self.messages) - 1, -1, -1):
-            msg = self.messages[i]
-            if msg.get("role") == "assistant" and msg.get("tool_calls"):
-                answered = {m.get("tool_call_id") for m in self.messages[i + 1 :] if m.get("role") == "tool"}
-                for tc in msg["tool_calls"]:
-                    if tc["id"] not in answered:
-                        self.messages.append(
-                            {"role": "tool", "tool_call_id": tc["id"], "content": wording.INTERRUPTED}
-                        )
-                return
-            if msg.get("role") == "user":
-                return
-
     async def _ask_model(self, step: int, usage: Usage) -> ModelReply:
-        reply = await ask_model(
-            self.chat, self.model, self.messages, self.tool_specs, self.tools, self._parameters, self._new_id,
-            usage,
-        )  # fmt: skip
+        reply = await self._chat.ask(self.messages, self.fleet.specs, self.fleet.parameters, usage)
         self._truncated = reply.truncated
         self._emit(
             "model_reply",
@@ -349,9 +297,6 @@ class AgentHost:
             message = f"parsed {count} tool call(s) from text"
             self._emit("parsed_from_text", step=step, count=count, message=message, notes=reply.notes)
         return reply
-
-    def _new_id(self) -> str:
-        return f"call_host_{next(self._ids)}"
 
     # --- tool side -------------------------------------------------------------------------------
 
@@ -370,7 +315,7 @@ class AgentHost:
         reading: Reading | None = None
         if args is not None:
             name, args, reading, notes = await read_call(
-                name, args, self._memory.request, self._enum_ids, self._fresh_entry
+                name, args, self._memory.request, self.fleet.ids, self.fleet.fresh_entry
             )
         self._emit(
             "tool_call",
@@ -384,8 +329,8 @@ class AgentHost:
             self._emit("arguments_corrected", step=step, id=call_id, name=name, notes=notes)
         tool = self.tools.get(name)
         status, outcome = checks.held_back(
-            name, tool, args, problem, turn, self._memory, tools=self.tools, base_tools=self.base_tools,
-            answer_tool=self.answer_tool, on_ground=self._on_ground,
+            name, tool, args, problem, turn, self._memory, tools=self.tools, base_tools=self.fleet.base_tools,
+            answer_tool=self.answer_tool, on_ground=self.fleet.on_ground,
         )  # fmt: skip
         if outcome is None:
             assert tool is not None and args is not None
@@ -452,22 +397,6 @@ class AgentHost:
             outcome = ToolOutcome(outcome.text + note, True, outcome.structured)
         return status, outcome
 
-    async def _fresh_entry(self, drone_id: object) -> DroneEntry | None:
-        """The drone as the gateway reports it now: in a plan, the roster read before the reply is out of
-        date once the reply's own takeoff has run. None without a roster."""
-        if not self.use_roster:
-            return None
-        await self.refresh_roster()
-        return self._entry(drone_id)
-
-    def _entry(self, drone_id: object) -> DroneEntry | None:
-        drones = self.roster.drones if self.roster is not None else ()
-        return next((d for d in drones if d.drone_id == drone_id), None)
-
-    def _on_ground(self, drone_id: object) -> bool:
-        entry = self._entry(drone_id)
-        return entry is not None and entry.flying is False
-
     async def _takeoff_first(self, name: str, args: Arguments) -> str:
         """After a refused move of a drone on the ground: the takeoff to call, with the altitude of the
         refused call (the gateway's own text says "Call takeoff first" without numbers). The fleet is read
@@ -477,13 +406,10 @@ class AgentHost:
         drone, alt = args.get("drone_id"), args.get("alt_m")
         if name == "takeoff" or not isinstance(alt, int | float):
             return ""
-        entry = await self._fresh_entry(drone) if self.use_roster else self._entry(drone)
+        entry = await self.fleet.fresh_entry(drone) if self.fleet.enabled else self.fleet.entry(drone)
         if entry is None or entry.flying is not False:
             return ""
-        return (
-            f' (Host note: {drone} is on the ground. Call takeoff with drone_id "{drone}" and alt_m '
-            f"{alt:g} first, then this call again.)"
-        )
+        return wording.takeoff_first(drone, alt)
 
     async def _follow(
         self, step: int, call_id: str, name: str, args: Arguments, outcome: ToolOutcome, progress: Progress
@@ -571,9 +497,11 @@ class AgentHost:
             return wording.invalid_last_call(last.name)
         if "untouched" in held:
             return None
-        if self.use_roster:
-            await self.refresh_roster()  # whether a drone still flies is read now, not a step ago
-        untouched = checks.untouched(result, self._memory.request, self.roster, self.tools, answering=True)
+        if self.fleet.enabled:
+            await self.fleet.refresh()  # whether a drone still flies is read now, not a step ago
+        untouched = checks.untouched(
+            result, self._memory.request, self.fleet.roster, self.tools, answering=True
+        )
         if not untouched:
             return None
         held.add("untouched")

@@ -9,7 +9,7 @@ validation refuses a wrong id before anything is sent.
 from __future__ import annotations
 
 import copy
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
@@ -95,6 +95,66 @@ async def fetch_roster(caller: RosterCaller) -> Roster | None:
     if outcome.is_error:
         return None
     return Roster.from_structured(outcome.structured)
+
+
+class FleetView:
+    """The fleet as the host knows it, and the tools as the model is offered them: the roster is read
+    from the gateway's ``list_drones`` (before each model request, and again where a call needs it
+    fresh); when its ids change the tool schemas get them as an ``enum`` (the tool list changes only
+    then, so a server's prompt cache survives ordinary steps)."""
+
+    def __init__(
+        self,
+        caller: RosterCaller,
+        base_tools: Sequence[ToolInfo],
+        enabled: bool,
+        on_read: Callable[[Roster | None], None],
+    ) -> None:
+        self.caller = caller
+        self.base_tools = list(base_tools)  # as the gateway declares them
+        self.enabled = enabled  # False: no roster, no enum, no retries
+        self.roster: Roster | None = None
+        self.ids: list[str] = []  # the ids written into the tool schemas
+        self._on_read = on_read  # told each roster read (None: the server offers no list_drones)
+        self._offer(self.base_tools)
+
+    def _offer(self, tools: Sequence[ToolInfo]) -> None:
+        self.tools = {t.name: t for t in tools}
+        self.specs = [t.openai_spec() for t in tools]
+        # each tool's argument names, to read a call the model wrote as text
+        self.parameters = {t.name: list((t.input_schema or {}).get("properties") or {}) for t in tools}
+
+    async def refresh(self) -> Roster | None:
+        """Read the fleet from the gateway (None when there is no roster)."""
+        if not self.enabled:
+            return None
+        roster = await fetch_roster(self.caller)
+        if roster is None:
+            self.enabled = False  # a server without list_drones
+            self._on_read(None)
+            return None
+        self.roster = roster
+        if roster.ids != self.ids:
+            self.ids = roster.ids
+            self._offer([with_drone_enum(t, roster.ids) for t in self.base_tools])
+        self._on_read(roster)
+        return roster
+
+    async def fresh_entry(self, drone_id: object) -> DroneEntry | None:
+        """The drone as the gateway reports it now: in a plan, the roster read before the reply is out of
+        date once the reply's own takeoff has run. None without a roster."""
+        if not self.enabled:
+            return None
+        await self.refresh()
+        return self.entry(drone_id)
+
+    def entry(self, drone_id: object) -> DroneEntry | None:
+        drones = self.roster.drones if self.roster is not None else ()
+        return next((d for d in drones if d.drone_id == drone_id), None)
+
+    def on_ground(self, drone_id: object) -> bool:
+        entry = self.entry(drone_id)
+        return entry is not None and entry.flying is False
 
 
 def with_drone_enum(tool: ToolInfo, ids: Sequence[str]) -> ToolInfo:

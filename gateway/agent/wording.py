@@ -1,5 +1,5 @@
-"""What the host says: its notes to the model (asked again, held back, not sent) and its own answer to the
-user when the model gave none.
+"""What the host says: its system prompt, its notes to the model (asked again, held back, not sent),
+and its own answer to the user when the model gave none.
 
 Results are put in words, never in call syntax: a model may echo this text, and an echoed call must not
 read as a new one. Each text carries the measurement that shaped it.
@@ -15,6 +15,15 @@ from gateway.agent.answer import ANSWER_TOOL, answer_text
 from gateway.agent.roster import Roster, drones_named
 from gateway.agent.turns import ToolCallRecord, TurnMemory, TurnResult
 
+# The system prompt of the full profile (profiles.py has the small model's).
+DEFAULT_SYSTEM_PROMPT = (
+    "You are the pilot assistant of a drone fleet. You act only through the tools you are given; never "
+    "claim an action that no tool result confirmed. Altitudes are metres above each drone's home unless a "
+    "tool says otherwise. When a tool reports an operation still running, keep checking with the tools "
+    "until it is done before the next step of a plan. If a tool refuses a request, do not try to work "
+    "around the safety rule: tell the user which rule refused it. When the task is done, answer briefly "
+    "with what was done and the final state."
+)
 INTERRUPTED = (
     "Interrupted by the user before the result arrived; an action already sent may still be running on "
     "the drone."
@@ -84,6 +93,15 @@ def skip_text(why: str, status: str) -> str:
     if status == "skipped":
         return f"Not executed: {why}"
     return f"Left out: {why}; the rest of your reply goes on."
+
+
+def takeoff_first(drone: object, alt: float) -> str:
+    """Added to the gateway's "take off first" refusal of a move of a drone on the ground: the takeoff
+    to call, with the altitude of the refused call (the gateway's own text gives no numbers)."""
+    return (
+        f' (Host note: {drone} is on the ground. Call takeoff with drone_id "{drone}" and alt_m '
+        f"{alt:g} first, then this call again.)"
+    )
 
 
 def echoes_host(said: str, memory: TurnMemory) -> bool:
