@@ -20,7 +20,7 @@ import httpx
 import uvicorn
 from pydantic import ValidationError
 
-from gateway.cli import COMMANDS
+from gateway.cli_help import COMMAND_HELP
 from gateway.config import Settings
 from gateway.errors import DuplicateVehicle, GatewayError
 from gateway.registry.spec import VehicleSpec
@@ -40,7 +40,7 @@ LOOPBACK_NAMES = {"localhost"}
 def register(subparsers: Any) -> None:
     serve = subparsers.add_parser(
         "serve",
-        help=COMMANDS["serve"][1],
+        help=COMMAND_HELP["serve"],
         description="Serve the REST API, the MCP endpoint (/mcp) and the operator pages, and run one "
         "mavsdk_server per registered drone. The database schema is upgraded on start.",
     )
@@ -49,7 +49,7 @@ def register(subparsers: Any) -> None:
     _database_option(serve)
     serve.set_defaults(func=cmd_serve)
 
-    drones = subparsers.add_parser("drones", help=COMMANDS["drones"][1])
+    drones = subparsers.add_parser("drones", help=COMMAND_HELP["drones"])
     drone_cmds = drones.add_subparsers(dest="drones_command", required=True, metavar="ACTION")
 
     add = drone_cmds.add_parser("add", help="register a drone")
@@ -109,7 +109,7 @@ def register(subparsers: Any) -> None:
     _target_options(release)
     release.set_defaults(func=cmd_drones_release)
 
-    db = subparsers.add_parser("db", help=COMMANDS["db"][1])
+    db = subparsers.add_parser("db", help=COMMAND_HELP["db"])
     db_cmds = db.add_subparsers(dest="db_command", required=True, metavar="ACTION")
     upgrade = db_cmds.add_parser(
         "upgrade", help="upgrade the database schema (the gateway also does on start)"

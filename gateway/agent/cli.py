@@ -24,7 +24,7 @@ from gateway.agent.settings import AgentSettings, split_list
 from gateway.agent.toolbox import ToolSelectionError, select_tools
 from gateway.agent.turns import AgentEvent, ModelConfig
 from gateway.agent.wording import DEFAULT_SYSTEM_PROMPT
-from gateway.cli import COMMANDS
+from gateway.cli_help import COMMAND_HELP
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_STEP_LIMIT, EXIT_EMPTY_ANSWER = 0, 1, 2, 3, 4
 
@@ -48,7 +48,7 @@ model gave no answer (empty replies, even after being asked again twice).
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "agent",
-        help=COMMANDS["agent"][1],
+        help=COMMAND_HELP["agent"],
         description="A small MCP host: hands the gateway's tools to a chat model and runs the tool loop. "
         "With a PROMPT it runs one turn and exits; without one it keeps a conversation at a prompt.",
         epilog=_EPILOG,
