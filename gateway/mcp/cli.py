@@ -8,12 +8,11 @@ from __future__ import annotations
 
 import argparse
 import asyncio
-from typing import Any
 
 from gateway.cli_help import COMMAND_HELP
 
 
-def register(subparsers: Any) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "mcp-stdio",
         help=COMMAND_HELP["mcp-stdio"],
