@@ -15,7 +15,8 @@ from typing import Any
 import openai
 
 from gateway.agent.parsing import ArgumentsError, extract_tool_calls, known_case, parse_arguments
-from gateway.agent.turns import Arguments, ModelCall, ModelConfig, ModelReplyError, Usage
+from gateway.agent.toolbox import Arguments
+from gateway.agent.turns import ModelCall, ModelConfig, ModelReplyError, Usage
 
 # One message of the conversation, in the Chat Completions wire form (role, content, tool_calls ...).
 Message = dict[str, Any]

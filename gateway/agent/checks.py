@@ -19,6 +19,7 @@ from gateway.agent.intent import superseded
 from gateway.agent.repair import LAT_LON_PAIRS, direction_mismatch, null_island, request_points, swap_hint
 from gateway.agent.roster import Roster, drones_named
 from gateway.agent.toolbox import (
+    Arguments,
     ToolInfo,
     ToolOutcome,
     closest_tool,
@@ -26,7 +27,7 @@ from gateway.agent.toolbox import (
     signature,
     validate_arguments,
 )
-from gateway.agent.turns import Arguments, ModelCall, ToolCallRecord, TurnMemory, TurnResult
+from gateway.agent.turns import ModelCall, ToolCallRecord, TurnMemory, TurnResult
 
 # Tools that only wait for or report on an action already running: calling one between two identical
 # calls does not make the second one new.

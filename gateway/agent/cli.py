@@ -8,7 +8,8 @@ import contextlib
 import json
 import logging
 import sys
-from typing import Any
+from collections.abc import Sequence
+from typing import TextIO
 
 from rich.console import Console
 from rich.table import Table
@@ -21,7 +22,7 @@ from gateway.agent.mcp_link import McpLink, McpLinkError
 from gateway.agent.profiles import PROFILES, apply_profile, host_options_for, system_prompt_for
 from gateway.agent.servers import ToolRouter, link_for
 from gateway.agent.settings import AgentSettings, split_list
-from gateway.agent.toolbox import ToolSelectionError, select_tools
+from gateway.agent.toolbox import ToolInfo, ToolSelectionError, select_tools
 from gateway.agent.turns import AgentEvent, ModelConfig
 from gateway.agent.wording import DEFAULT_SYSTEM_PROMPT
 from gateway.cli_help import COMMAND_HELP
@@ -161,7 +162,9 @@ def run(args: argparse.Namespace) -> int:
     return asyncio.run(run_async(args))
 
 
-async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Console | None = None) -> int:
+async def run_async(
+    args: argparse.Namespace, *, stdin: TextIO | None = None, console: Console | None = None
+) -> int:
     """The command's body (separate from ``run`` so tests can drive it inside their event loop)."""
     env = AgentSettings()
     console = console or Console()
@@ -254,7 +257,7 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
         return EXIT_FAILED
 
 
-async def _interactive(host: AgentHost, console: Console, stdin: Any, *, as_json: bool) -> int:
+async def _interactive(host: AgentHost, console: Console, stdin: TextIO, *, as_json: bool) -> int:
     if not as_json:
         console.print(
             f"[dim]{len(host.tools)} tools, model {host.model.model} at {host.model.endpoint}. "
@@ -293,12 +296,12 @@ async def _interactive(host: AgentHost, console: Console, stdin: Any, *, as_json
                 raise
 
 
-def _is_tty(stream: Any) -> bool:
+def _is_tty(stream: object) -> bool:
     isatty = getattr(stream, "isatty", None)
     return bool(isatty and isatty())
 
 
-def _print_tools(tools: list[Any], console: Console, *, as_json: bool) -> None:
+def _print_tools(tools: Sequence[ToolInfo], console: Console, *, as_json: bool) -> None:
     if as_json:
         for t in tools:
             console.file.write(

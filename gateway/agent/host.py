@@ -38,11 +38,10 @@ from gateway.agent.chat import (
 from gateway.agent.intent import Reading, read_call
 from gateway.agent.parsing import ArgumentsError, parse_arguments, strip_thinking
 from gateway.agent.roster import FleetView, Roster
-from gateway.agent.toolbox import ToolInfo, ToolOutcome
+from gateway.agent.toolbox import Arguments, ToolInfo, ToolOutcome
 from gateway.agent.turns import (
     MAX_EMPTY_REPROMPTS,
     AgentEvent,
-    Arguments,
     EventSink,
     ModelCall,
     ModelConfig,

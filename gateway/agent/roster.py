@@ -11,18 +11,14 @@ from __future__ import annotations
 import copy
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Protocol
 
-from gateway.agent.toolbox import ToolInfo, ToolOutcome
+from gateway.agent.toolbox import Arguments, ToolInfo
+from gateway.agent.turns import ToolCaller
 
 ROSTER_TOOL = "list_drones"
 # Arguments that name one drone / several drones in the gateway's tools.
 DRONE_ID_ARGS = ("drone_id",)
 DRONE_IDS_ARGS = ("drone_ids",)
-
-
-class RosterCaller(Protocol):
-    async def call_tool(self, name: str, arguments: dict[str, Any], progress: Any = None) -> ToolOutcome: ...
 
 
 @dataclass(frozen=True)
@@ -65,7 +61,7 @@ class Roster:
         return "Fleet now: " + "; ".join(d.text() for d in self.drones) + "."
 
     @classmethod
-    def from_structured(cls, data: Any) -> Roster | None:
+    def from_structured(cls, data: object) -> Roster | None:
         """From ``list_drones``' structured result (``{"drones": [{"drone_id", "in_air", ...}]}``)."""
         rows = data.get("drones") if isinstance(data, Mapping) else None
         if not isinstance(rows, list):
@@ -89,7 +85,7 @@ class Roster:
         return cls(tuple(out))
 
 
-async def fetch_roster(caller: RosterCaller) -> Roster | None:
+async def fetch_roster(caller: ToolCaller) -> Roster | None:
     """The roster from the gateway, or None when it cannot be read (the model then goes without it)."""
     outcome = await caller.call_tool(ROSTER_TOOL, {})
     if outcome.is_error:
@@ -105,7 +101,7 @@ class FleetView:
 
     def __init__(
         self,
-        caller: RosterCaller,
+        caller: ToolCaller,
         base_tools: Sequence[ToolInfo],
         enabled: bool,
         on_read: Callable[[Roster | None], None],
@@ -177,7 +173,7 @@ def with_drone_enum(tool: ToolInfo, ids: Sequence[str]) -> ToolInfo:
     return ToolInfo(tool.name, tool.description, schema, tool.toolset, tool.read_only)
 
 
-def normalise_drone_ids(arguments: dict[str, Any], ids: Sequence[str]) -> list[str]:
+def normalise_drone_ids(arguments: Arguments, ids: Sequence[str]) -> list[str]:
     """Correct the case of drone ids in place where exactly one known id matches (``Alpha`` -> ``alpha``),
     as the gateway itself accepts them; returns notes naming each correction."""
     notes: list[str] = []
@@ -185,7 +181,7 @@ def normalise_drone_ids(arguments: dict[str, Any], ids: Sequence[str]) -> list[s
     for i in ids:
         by_lower.setdefault(i.lower(), []).append(i)
 
-    def fix(value: Any) -> Any:
+    def fix(value: object) -> object:
         if isinstance(value, str) and value not in ids:
             match = by_lower.get(value.strip().lower(), [])
             if len(match) == 1:
@@ -202,7 +198,7 @@ def normalise_drone_ids(arguments: dict[str, Any], ids: Sequence[str]) -> list[s
     return notes
 
 
-def drones_named(arguments: dict[str, Any] | None) -> frozenset[str] | None:
+def drones_named(arguments: Arguments | None) -> frozenset[str] | None:
     """The drones a call names; None when it names none (a fleet call without ids means all drones)."""
     if not arguments:
         return None
@@ -216,9 +212,9 @@ def drones_named(arguments: dict[str, Any] | None) -> frozenset[str] | None:
     return frozenset(named) if named else None
 
 
-def _bool(v: Any) -> bool | None:
+def _bool(v: object) -> bool | None:
     return v if isinstance(v, bool) else None
 
 
-def _num(v: Any) -> float | None:
+def _num(v: object) -> float | None:
     return float(v) if isinstance(v, int | float) and not isinstance(v, bool) else None

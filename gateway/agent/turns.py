@@ -10,15 +10,17 @@ from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
 from typing import Any, NotRequired, Protocol, TypedDict
 
-from gateway.agent.toolbox import ToolOutcome
+from gateway.agent.toolbox import Arguments, ToolOutcome
 
 # An empty reply is asked again at most this many times before the turn ends as ``empty_answer``.
 MAX_EMPTY_REPROMPTS = 2
 
-# A tool call's arguments: the JSON object the model wrote (any JSON value under each name).
-Arguments = dict[str, Any]
 # The MCP progress callback: progress, total, message.
 Progress = Callable[[float, float | None, str | None], Awaitable[None]]
+
+
+# The fields of one event: JSON values, a different set for each kind (``--json`` prints them as they are).
+EventData = dict[str, Any]
 
 
 class ModelReplyError(RuntimeError):
@@ -30,9 +32,9 @@ class AgentEvent:
     """One thing that happened in a turn; displays render these, ``--json`` prints them as lines."""
 
     kind: str
-    data: dict[str, Any]  # the fields of this kind of event, JSON values (``--json`` prints them)
+    data: EventData
 
-    def to_json(self) -> dict[str, Any]:
+    def to_json(self) -> EventData:
         return {"event": self.kind, **self.data}
 
 
