@@ -51,7 +51,9 @@ class GroundStation:
         ACK (a real ground station reads all the time)."""
         while self.conn.recv_match(blocking=False) is not None:
             pass
-        self.conn.mav.heartbeat_send(mavutil.mavlink.MAV_TYPE_GCS, mavutil.mavlink.MAV_AUTOPILOT_INVALID, 0, 0, 0)
+        self.conn.mav.heartbeat_send(
+            mavutil.mavlink.MAV_TYPE_GCS, mavutil.mavlink.MAV_AUTOPILOT_INVALID, 0, 0, 0
+        )
         self.conn.mav.command_long_send(
             target,
             1,
