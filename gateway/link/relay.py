@@ -279,7 +279,8 @@ class TcpEndpoint(Endpoint):
             try:
                 reader, writer = await asyncio.wait_for(asyncio.open_connection(self.host, self.port), 10.0)
             except (OSError, TimeoutError) as exc:
-                self.complaint = f"cannot connect to {self.host}:{self.port}: {exc or 'timed out'}"
+                reason = os.strerror(exc.errno) if exc.errno else "no answer within 10 s"
+                self.complaint = f"cannot connect to {self.host}:{self.port}: {reason}"
                 await asyncio.sleep(delay)
                 delay = min(delay * 2, RECONNECT_MAX_S)
                 continue
@@ -295,6 +296,8 @@ class TcpEndpoint(Endpoint):
             self._readers.add(task)
         try:
             await self._serve(reader, writer)
+        except asyncio.CancelledError:
+            pass  # closing: asyncio's server callback would log a cancelled client task as an error
         finally:
             if task is not None:
                 self._readers.discard(task)
