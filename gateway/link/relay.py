@@ -43,6 +43,8 @@ STX_V2 = 0xFD
 MAX_BUFFER = 64 * 1024
 RECONNECT_INITIAL_S = 0.5
 RECONNECT_MAX_S = 5.0
+#: a UDP send error (nobody listening) is forgotten after this long without another
+UDP_ERROR_QUIET_S = 3.0
 
 _TARGETED = {
     msgid: cls
@@ -197,7 +199,9 @@ class _Datagrams(asyncio.DatagramProtocol):
         self.owner.datagram(data, addr)
 
     def error_received(self, exc: Exception) -> None:  # e.g. ICMP port unreachable: nobody listens yet
-        self.owner.complaint = f"{self.owner.url}: {exc}"
+        reason = os.strerror(exc.errno) if isinstance(exc, OSError) and exc.errno else str(exc)
+        self.owner.complaint = f"{self.owner.url}: {reason}"
+        self.owner.error_at = time.monotonic()
 
 
 class UdpEndpoint(Endpoint):
@@ -207,6 +211,7 @@ class UdpEndpoint(Endpoint):
         super().__init__(url, deliver)
         self._transport: asyncio.DatagramTransport | None = None
         self._peer: tuple[str, int] | None = None
+        self.error_at = 0.0  # monotonic, of the last send error the kernel reported
 
     @property
     def bound_port(self) -> int:
@@ -244,6 +249,8 @@ class UdpEndpoint(Endpoint):
         else:
             self._transport.sendto(data)
         self.stats.frames_out += 1
+        if self.complaint is not None and time.monotonic() - self.error_at > UDP_ERROR_QUIET_S:
+            self.complaint = None  # sent on without an error coming back: someone listens again
 
     async def close(self) -> None:
         if self._transport is not None:

@@ -7,6 +7,8 @@ a takeover the gateway reports."""
 from __future__ import annotations
 
 import asyncio
+import os
+import signal
 import time
 from collections.abc import AsyncIterator
 from typing import Any
@@ -142,5 +144,39 @@ async def test_a_ground_station_sees_the_drone_and_takes_it(stack: Stack) -> Non
         assert station["frames_out"] > 0, station
         # the gateway's own session still hears only the drone (the ground station's traffic goes to it)
         assert vehicle["status"]["other_sysids_on_link"] == [], vehicle["status"]
+    finally:
+        gcs.close()
+
+
+async def test_the_ground_station_keeps_the_drone_while_the_sidecar_restarts(stack: Stack) -> None:
+    """The relay holds the drone's link, so a sidecar killed and restarted by its supervisor costs the
+    ground station nothing, and the gateway's own session comes back through the relay."""
+    vehicle = await stack.rest("/vehicles/d1")
+    [endpoint] = vehicle["gcs_endpoints"]
+    before = vehicle["status"]["sidecar"]
+    assert before["state"] == "serving" and before["pid"], before
+    gcs = GroundStation.__new__(GroundStation)  # listen on the registered endpoint's port again
+    gcs.port = int(endpoint.rsplit(":", 1)[1])
+    gcs.conn = mavutil.mavlink_connection(f"udpin:127.0.0.1:{gcs.port}", source_system=GCS_SYSID)
+    try:
+        os.kill(before["pid"], signal.SIGKILL)
+        sysid = stack.sim.sysids[0]
+        for _ in range(3):  # the drone's heartbeats go on reaching the ground station
+            await asyncio.to_thread(gcs.wait, "HEARTBEAT", scaled(10), lambda m: m.get_srcSystem() == sysid)
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + scaled(60)
+        while True:
+            status = (await stack.rest("/vehicles/d1"))["status"]
+            back = status["state"] == "ready" and status["sidecar"]["restarts"] > before["restarts"]
+            if back and status["ground_stations"][0]["error"] is None:  # the closed port's ICMP forgotten
+                break
+            assert loop.time() < deadline, f"the sidecar did not come back through the relay: {status}"
+            await asyncio.sleep(0.25)
+        assert status["sidecar"]["pid"] != before["pid"]
+        [station] = status["ground_stations"]
+        assert station["error"] is None and station["frames_out"] > 0, station
+        await asyncio.to_thread(
+            gcs.wait, "GLOBAL_POSITION_INT", scaled(10), lambda m: m.get_srcSystem() == sysid
+        )
     finally:
         gcs.close()
