@@ -29,11 +29,14 @@ import termios
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
 from pymavlink.dialects.v20 import ardupilotmega as mavlink
 from pymavlink.generator.mavcrc import x25crc
+
+from gateway.link.sidecar import socket_inodes
 
 log = logging.getLogger("gateway.relay")
 
@@ -212,6 +215,8 @@ class UdpEndpoint(Endpoint):
         self._transport: asyncio.DatagramTransport | None = None
         self._peer: tuple[str, int] | None = None
         self.error_at = 0.0  # monotonic, of the last send error the kernel reported
+        #: udpin: whether a new sender may become the peer (None: anyone, the latest sender wins)
+        self.accept: Callable[[tuple[str, int]], bool] | None = None
 
     @property
     def bound_port(self) -> int:
@@ -237,7 +242,10 @@ class UdpEndpoint(Endpoint):
 
     def datagram(self, data: bytes, addr: Any) -> None:
         if self.scheme == "udpin":
-            self._peer = (str(addr[0]), int(addr[1]))
+            peer = (str(addr[0]), int(addr[1]))
+            if peer != self._peer and self.accept is not None and not self.accept(peer):
+                return  # not who this endpoint is for (the sidecar's socket: another local process)
+            self._peer = peer
         self.complaint = None
         self.received(data, self._peer)
 
@@ -453,12 +461,22 @@ def open_endpoint(url: str, deliver: Deliver) -> Endpoint:
 class Relay:
     """The vehicle's link, its sidecar's loopback socket and its ground stations, routed."""
 
-    def __init__(self, vehicle_id: str, vehicle_url: str, gcs_urls: list[str]) -> None:
+    def __init__(
+        self,
+        vehicle_id: str,
+        vehicle_url: str,
+        gcs_urls: list[str],
+        sidecar_pid: Callable[[], int | None] | None = None,
+    ) -> None:
+        """``sidecar_pid``: the sidecar's process id now; given, only a socket of that process is
+        taken as the sidecar (another local process cannot step in between it and the drone)."""
         self.vehicle_id = vehicle_id
         self.vehicle_url = vehicle_url
         self.gcs_urls = list(gcs_urls)
         self.vehicle = open_endpoint(vehicle_url, self._from_vehicle)
         self.sidecar = UdpEndpoint("udpin://127.0.0.1:0", self._to_vehicle)
+        if sidecar_pid is not None:
+            self.sidecar.accept = lambda peer: _udp_socket_of(sidecar_pid(), peer)
         self.ground_stations = [open_endpoint(url, self._to_vehicle) for url in self.gcs_urls]
         self._started: list[Endpoint] = []
         self._log = logging.getLogger(f"gateway.relay.{vehicle_id}")
@@ -521,3 +539,21 @@ class Relay:
 
     def _to_vehicle(self, _source: Endpoint, frame: Frame) -> None:
         self.vehicle.send(frame.data)
+
+
+def _udp_socket_of(pid: int | None, peer: tuple[str, int]) -> bool:
+    """Whether the UDP socket bound to ``peer`` (a loopback address and port) belongs to process ``pid``."""
+    if pid is None:
+        return False
+    wanted = f"{peer[1]:04X}"
+    inodes: set[int] = set()
+    for table in ("/proc/net/udp", "/proc/net/udp6"):
+        try:
+            lines = Path(table).read_text().splitlines()[1:]
+        except OSError:
+            continue
+        for line in lines:
+            cols = line.split()
+            if len(cols) > 9 and cols[1].rsplit(":", 1)[1] == wanted:
+                inodes.add(int(cols[9]))
+    return bool(inodes & socket_inodes(pid))

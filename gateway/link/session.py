@@ -422,7 +422,9 @@ class Link:
         url = self.spec.url
         if self.spec.gcs_endpoints:
             # the gateway holds the drone's link and relays it to the sidecar and the ground stations
-            relay = Relay(self.id, self.spec.url, list(self.spec.gcs_endpoints))
+            relay = Relay(
+                self.id, self.spec.url, list(self.spec.gcs_endpoints), sidecar_pid=self._sidecar_pid
+            )
             await relay.start()
             self._relay = relay
             url = relay.sidecar_url
@@ -436,6 +438,9 @@ class Link:
         )
         self._sidecar.start()
         self._monitor_task = asyncio.create_task(self._monitor(), name=f"monitor-{self.id}")
+
+    def _sidecar_pid(self) -> int | None:
+        return self._sidecar.pid if self._sidecar is not None else None
 
     async def disconnect(self) -> None:
         """Stop everything of this link; no mavsdk_server process remains."""

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 import os
+import sys
 import time
 import tty
 from collections.abc import AsyncIterator
@@ -213,3 +214,34 @@ def test_bad_endpoints_are_refused_in_one_line(bad: str) -> None:
     [e] = err.value.errors()
     assert e["loc"] == ("gcs_endpoints",)
     assert f"'{bad}' is not accepted" in e["msg"] and "udpout://host:port" in e["msg"]
+
+
+async def test_only_the_sidecar_process_is_taken_as_the_sidecar() -> None:
+    """Another local process writing to the relay's sidecar port does not get between the sidecar and
+    the drone: its frames are dropped, and the drone's still go to the sidecar."""
+    drone_port = free_udp_port()
+    drone = Peer(f"udpin:127.0.0.1:{drone_port}", DRONE)
+    relay = Relay("r5", f"udpout://127.0.0.1:{drone_port}", [], sidecar_pid=os.getpid)
+    await relay.start()
+    port = relay.sidecar.bound_port
+    intruder = frame(mavlink.MAVLink_heartbeat_message(6, 8, 0, 0, 0, 3), sysid=66).hex()
+    script = (
+        "import socket,sys;s=socket.socket(socket.AF_INET,socket.SOCK_DGRAM);"
+        f"s.sendto(bytes.fromhex('{intruder}'),('127.0.0.1',{port}))"
+    )
+    sidecar = Peer(relay.sidecar_url.replace("udpout://", "udpout:"), SIDECAR)
+    try:
+        proc = await asyncio.create_subprocess_exec(sys.executable, "-c", script)
+        assert await proc.wait() == 0
+        sidecar.conn.mav.heartbeat_send(6, 8, 0, 0, 0)
+        hb = await asyncio.to_thread(drone.receive, "HEARTBEAT", 10)
+        assert hb is not None and hb.get_srcSystem() == SIDECAR
+        assert (
+            await asyncio.to_thread(drone.receive, "HEARTBEAT", 1, lambda m: m.get_srcSystem() == 66) is None
+        )
+        drone.conn.mav.heartbeat_send(2, 3, 81, 4, 3)
+        assert await asyncio.to_thread(sidecar.receive, "HEARTBEAT", 10) is not None
+    finally:
+        sidecar.close()
+        drone.close()
+        await relay.close()
