@@ -46,6 +46,8 @@ STX_V2 = 0xFD
 MAX_BUFFER = 64 * 1024
 RECONNECT_INITIAL_S = 0.5
 RECONNECT_MAX_S = 5.0
+#: how often an endpoint that could not be opened (port taken...) is tried again
+REOPEN_S = 3.0
 #: a UDP send error (nobody listening) is forgotten after this long without another
 UDP_ERROR_QUIET_S = 3.0
 
@@ -479,6 +481,7 @@ class Relay:
             self.sidecar.accept = lambda peer: _udp_socket_of(sidecar_pid(), peer)
         self.ground_stations = [open_endpoint(url, self._to_vehicle) for url in self.gcs_urls]
         self._started: list[Endpoint] = []
+        self._retries: list[asyncio.Task[None]] = []
         self._log = logging.getLogger(f"gateway.relay.{vehicle_id}")
 
     @property
@@ -487,21 +490,19 @@ class Relay:
         return f"udpout://127.0.0.1:{self.sidecar.bound_port}"
 
     async def start(self) -> None:
-        """Open every endpoint; a ground station endpoint that cannot be opened (its port is taken) is
-        reported in ``status`` and does not stop the others; the vehicle's and the sidecar's must open."""
-        try:
-            for endpoint in (self.sidecar, self.vehicle):
-                await endpoint.start()
-                self._started.append(endpoint)
-        except BaseException:
-            await self.close()
-            raise
-        for endpoint in self.ground_stations:
+        """Open every endpoint. One that cannot be opened now (its port is taken, its address is not
+        this host's) is reported (``complaint``, ``status``) and tried again every few seconds; it does
+        not stop the others. Only the sidecar's loopback socket must open at once."""
+        await self.sidecar.start()
+        self._started.append(self.sidecar)
+        for endpoint in (self.vehicle, *self.ground_stations):
             try:
                 await endpoint.start()
             except (OSError, ValueError) as exc:
-                endpoint.complaint = f"cannot open {endpoint.url}: {exc}"
-                self._log.error("%s: ground station endpoint %s", self.vehicle_id, endpoint.complaint)
+                self._failed_to_open(endpoint, exc)
+                self._retries.append(
+                    asyncio.create_task(self._keep_opening(endpoint), name=f"relay-open-{endpoint.url}")
+                )
                 continue
             self._started.append(endpoint)
         self._log.info(
@@ -513,7 +514,29 @@ class Relay:
             ", ".join(self.gcs_urls),
         )
 
+    def _failed_to_open(self, endpoint: Endpoint, exc: Exception) -> None:
+        reason = os.strerror(exc.errno) if isinstance(exc, OSError) and exc.errno else str(exc)
+        endpoint.complaint = f"cannot open {endpoint.url}: {reason}"
+
+    async def _keep_opening(self, endpoint: Endpoint) -> None:
+        self._log.error("%s: %s; trying again every %g s", self.vehicle_id, endpoint.complaint, REOPEN_S)
+        while True:
+            await asyncio.sleep(REOPEN_S)
+            try:
+                await endpoint.start()
+            except (OSError, ValueError) as exc:
+                self._failed_to_open(endpoint, exc)
+                continue
+            endpoint.complaint = None
+            self._started.append(endpoint)
+            self._log.info("%s: %s is open now", self.vehicle_id, endpoint.url)
+            return
+
     async def close(self) -> None:
+        retries, self._retries = self._retries, []
+        for task in retries:
+            task.cancel()
+        await asyncio.gather(*retries, return_exceptions=True)
         started, self._started = self._started, []
         for endpoint in started:
             with contextlib.suppress(Exception):

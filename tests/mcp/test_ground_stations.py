@@ -9,6 +9,7 @@ from __future__ import annotations
 import asyncio
 import os
 import signal
+import socket
 import time
 from collections.abc import AsyncIterator
 from typing import Any
@@ -180,3 +181,33 @@ async def test_the_ground_station_keeps_the_drone_while_the_sidecar_restarts(sta
         )
     finally:
         gcs.close()
+
+
+async def test_a_vehicle_port_the_relay_cannot_open_is_named_and_registered_with_its_endpoints(
+    stack: Stack,
+) -> None:
+    """POST with gcs_endpoints: stored and shown; the vehicle's own port is taken, so the relay says so
+    in the drone's last_error (and keeps trying) instead of failing the registration."""
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as taken:
+        taken.bind(("127.0.0.1", 0))
+        port = taken.getsockname()[1]
+        gcs = f"tcpin://127.0.0.1:{free_udp_port()}"
+        body = {"id": "d9", "url": f"udpin://127.0.0.1:{port}", "gcs_endpoints": [gcs]}
+        async with httpx.AsyncClient(base_url=stack.base_url, timeout=scaled(30)) as http:
+            r = await http.post("/api/v1/vehicles", json=body)
+            assert r.status_code == 201, r.text
+            assert r.json()["gcs_endpoints"] == [gcs]
+            try:
+                loop = asyncio.get_running_loop()
+                deadline = loop.time() + scaled(20)
+                expected = f"waiting for the vehicle on udpin://127.0.0.1:{port}: cannot open"
+                while expected not in str(
+                    (v := (await http.get("/api/v1/vehicles/d9")).json())["status"]["last_error"]
+                ):
+                    assert loop.time() < deadline, v
+                    await asyncio.sleep(0.2)
+                assert "Address already in use" in v["status"]["last_error"] and v["state"] == "connecting", v
+                listed = (await http.get("/api/v1/vehicles")).json()["items"]
+                assert next(x for x in listed if x["id"] == "d9")["gcs_endpoints"] == [gcs]
+            finally:
+                assert (await http.delete("/api/v1/vehicles/d9")).status_code == 204
