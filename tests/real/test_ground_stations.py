@@ -1,4 +1,4 @@
-"""A ground station beside the gateway, on real ArduCopter SITL: the drone is registered with a
+"""A ground station beside the gateway, on real ArduCopter SITL (and PX4 SIH): the drone is registered with a
 ``gcs_endpoints`` entry (PATCH over REST), the gateway then holds its link and relays it, and a pymavlink
 ground station listening there sees the drone as if connected to it: HEARTBEAT and GLOBAL_POSITION_INT
 (the climb of the agent's takeoff among them), the COMMAND_ACK of its own request. Its switch to LAND
@@ -18,12 +18,15 @@ from gateway.util.ports import free_udp_port
 from tests.helpers.autopilots import Autopilot
 from tests.helpers.timing import scaled
 from tests.real.test_tour_ardupilot import ARDUCOPTER
-from tests.real.tour import Tour, gateway_over
+from tests.real.test_tour_px4 import PX4
+from tests.real.tour import Profile, Tour, gateway_over
 
 pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(600))]
 
 GCS_SYSID = 250
-ARDUCOPTER_LAND = 9
+#: DO_SET_MODE param2/param3 for LAND: ArduCopter's custom mode 9; PX4's main mode AUTO (4), sub LAND (6)
+ARDUCOPTER_LAND = (9.0, 0.0)
+PX4_LAND = (4.0, 6.0)
 
 
 class GroundStation:
@@ -51,6 +54,20 @@ class GroundStation:
                 return msg
         raise AssertionError(f"the ground station got no {kind} within {scaled(within_s):g} s")
 
+    def seen(self, kinds: set[str], within_s: float) -> dict[str, Any]:
+        """The first message of each kind (in any order) within ``within_s``."""
+        found: dict[str, Any] = {}
+        deadline = time.monotonic() + scaled(within_s)
+        while time.monotonic() < deadline and set(found) != kinds:
+            msg = self.conn.recv_match(type=list(kinds - set(found)), blocking=True, timeout=0.5)
+            if msg is not None:
+                found[msg.get_type()] = msg
+        missing = kinds - set(found)
+        assert not missing, (
+            f"the ground station got no {', '.join(sorted(missing))} within {scaled(within_s):g} s"
+        )
+        return found
+
     def command(self, target: int, command: int, *params: float) -> Any:
         """COMMAND_LONG from this ground station; its COMMAND_ACK (addressed to it)."""
         self.drain()
@@ -73,10 +90,24 @@ async def ready(t: Tour, drone: str) -> None:
 async def test_a_ground_station_at_gcs_endpoints_sees_and_commands_arducopter(
     arducopter: Autopilot, tmp_path: Path
 ) -> None:
+    await sees_and_commands(
+        arducopter, tmp_path, ARDUCOPTER, mavutil.mavlink.MAV_AUTOPILOT_ARDUPILOTMEGA, ARDUCOPTER_LAND
+    )
+
+
+async def test_a_ground_station_at_gcs_endpoints_sees_and_commands_px4(
+    px4: Autopilot, tmp_path: Path
+) -> None:
+    await sees_and_commands(px4, tmp_path, PX4, mavutil.mavlink.MAV_AUTOPILOT_PX4, PX4_LAND)
+
+
+async def sees_and_commands(
+    autopilot: Autopilot, tmp_path: Path, profile: Profile, mav_autopilot: int, land: tuple[float, float]
+) -> None:
     gcs = GroundStation()
     endpoint = f"udpout://127.0.0.1:{gcs.port}"
     try:
-        async with gateway_over(tmp_path, ARDUCOPTER, [arducopter]) as (t, _settings):
+        async with gateway_over(tmp_path, profile, [autopilot]) as (t, _settings):
             d = t.ids[0]
             body = await t.rest("PATCH", f"/vehicles/{d}", json={"gcs_endpoints": [endpoint]})
             assert body["gcs_endpoints"] == [endpoint], body
@@ -84,21 +115,22 @@ async def test_a_ground_station_at_gcs_endpoints_sees_and_commands_arducopter(
             sysid = (await t.rest("GET", f"/vehicles/{d}"))["status"]["sysid"]
 
             hb = await asyncio.to_thread(gcs.wait, "HEARTBEAT", 20, lambda m: m.get_srcSystem() == sysid)
-            assert hb.autopilot == mavutil.mavlink.MAV_AUTOPILOT_ARDUPILOTMEGA, hb
+            assert hb.autopilot == mav_autopilot, hb
             assert hb.type == mavutil.mavlink.MAV_TYPE_QUADROTOR, hb
             home = await t.ok("get_home_position", drone_id=d)
             pos = await asyncio.to_thread(
                 gcs.wait, "GLOBAL_POSITION_INT", 20, lambda m: m.get_srcSystem() == sysid
             )
             assert abs(pos.lat / 1e7 - home["lat_deg"]) < 1e-3 and abs(pos.lon / 1e7 - home["lon_deg"]) < 1e-3
-            ack = await asyncio.to_thread(
-                gcs.command,
-                sysid,
-                mavutil.mavlink.MAV_CMD_REQUEST_MESSAGE,
-                mavutil.mavlink.MAVLINK_MSG_ID_AUTOPILOT_VERSION,
-            )
-            assert ack.result == mavutil.mavlink.MAV_RESULT_ACCEPTED, ack
-            await asyncio.to_thread(gcs.wait, "AUTOPILOT_VERSION", 10)
+            await asyncio.to_thread(gcs.drain)
+            gcs.conn.mav.command_long_send(
+                sysid, 1, mavutil.mavlink.MAV_CMD_REQUEST_MESSAGE, 0,
+                mavutil.mavlink.MAVLINK_MSG_ID_AUTOPILOT_VERSION, 0, 0, 0, 0, 0, 0,
+            )  # fmt: skip
+            # the autopilot answers with the message and the ACK, in either order (PX4: message first)
+            answer = await asyncio.to_thread(gcs.seen, {"COMMAND_ACK", "AUTOPILOT_VERSION"}, 15)
+            ack = answer["COMMAND_ACK"]
+            assert ack.target_system == GCS_SYSID and ack.result == mavutil.mavlink.MAV_RESULT_ACCEPTED, ack
 
             op = await t.finish(await t.ok("takeoff", drone_id=d, alt_m=10), 90)
             assert op["status"] == "succeeded", op
@@ -113,7 +145,7 @@ async def test_a_ground_station_at_gcs_endpoints_sees_and_commands_arducopter(
                 sysid,
                 mavutil.mavlink.MAV_CMD_DO_SET_MODE,
                 mavutil.mavlink.MAV_MODE_FLAG_CUSTOM_MODE_ENABLED,
-                ARDUCOPTER_LAND,
+                *land,
             )
             assert ack.result == mavutil.mavlink.MAV_RESULT_ACCEPTED, ack
             loop = asyncio.get_running_loop()
@@ -129,6 +161,6 @@ async def test_a_ground_station_at_gcs_endpoints_sees_and_commands_arducopter(
             assert GCS_SYSID in station["system_ids"] and station["error"] is None, station
             assert vehicle["status"]["other_sysids_on_link"] == [], vehicle["status"]
     except AssertionError as exc:
-        raise AssertionError(f"{exc}\n--- {arducopter.log.name}\n{arducopter.log_tail(20)}") from None
+        raise AssertionError(f"{exc}\n--- {autopilot.log.name}\n{autopilot.log_tail(20)}") from None
     finally:
         gcs.close()
