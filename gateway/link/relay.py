@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import ipaddress
 import logging
 import os
 import termios
@@ -495,6 +496,14 @@ class Relay:
         not stop the others. Only the sidecar's loopback socket must open at once."""
         await self.sidecar.start()
         self._started.append(self.sidecar)
+        for gcs in self.ground_stations:
+            if gcs.scheme in ("udpin", "tcpin") and not _is_loopback(gcs.host):
+                self._log.warning(
+                    "%s: ground station endpoint %s listens beyond this host: whoever reaches it can "
+                    "command the drone, outside the gateway's safety policy",
+                    self.vehicle_id,
+                    gcs.url,
+                )
         for endpoint in (self.vehicle, *self.ground_stations):
             try:
                 await endpoint.start()
@@ -580,3 +589,12 @@ def _udp_socket_of(pid: int | None, peer: tuple[str, int]) -> bool:
             if len(cols) > 9 and cols[1].rsplit(":", 1)[1] == wanted:
                 inodes.add(int(cols[9]))
     return bool(inodes & socket_inodes(pid))
+
+
+def _is_loopback(host: str) -> bool:
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
