@@ -38,6 +38,14 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     add.add_argument(
         "--node-tag", default=None, help="cluster: only nodes carrying this tag own the drone (e.g. a site)"
     )
+    add.add_argument(
+        "--gcs",
+        action="append",
+        default=[],
+        metavar="URL",
+        help="a ground station endpoint the drone's MAVLink is relayed to, e.g. udpout://127.0.0.1:14550 "
+        "or tcpin://127.0.0.1:5790 (repeatable; README: Ground stations beside the gateway)",
+    )
     add.add_argument("--no-connect", action="store_true", help="register without connecting")
     add.add_argument(
         "--if-missing",
@@ -118,6 +126,7 @@ def _spec_from_args(args: argparse.Namespace) -> VehicleSpec:
         tags=args.tag,
         expected_sysid=args.sysid,
         node_tag=args.node_tag,
+        gcs_endpoints=args.gcs,
     )
 
 
