@@ -33,7 +33,6 @@ class Step:
     send: Send
     params: dict[str, Any]
     timeout_s: float | None = None  # the step fails if not finished by then (the vehicle keeps going)
-    precheck: Callable[[], None] | None = None  # run inside the vehicle's command lock, just before send
     spec: dict[str, Any] = field(default_factory=dict)
 
 
@@ -120,27 +119,18 @@ def step_timeout_s(distance_m: float, slowest_mps: float = 1.0, margin_s: float 
     return margin_s + max(0.0, distance_m) / slowest_mps
 
 
-Precheck = Callable[[VehicleView], None]
-"""Checks a vehicle inside its command lock (e.g. "no takeoff in progress", against parallel tool calls)."""
-
-
-def _bind(precheck: Precheck | None, vehicle: VehicleView) -> Callable[[], None] | None:
-    return None if precheck is None else (lambda: precheck(vehicle))
-
-
-def build_step(vehicle: VehicleView, spec: Mapping[str, Any], precheck: Precheck | None = None) -> Step:
+def build_step(vehicle: VehicleView, spec: Mapping[str, Any]) -> Step:
     """One drone's step from its JSON description (the node owning the drone rebuilds it from the same):
 
     - ``{"send": "goto", "lat", "lon", "alt_m", "tolerance_m", "kind", "phase"?}``: a tracked goto;
     - ``{"send": "takeoff", "alt_m", "arm_within_s"?}`` (how long arming may wait), ``{"send": "land"}``,
       ``{"send": "rtl", "alt_m"}`` (return at that altitude above home);
 
-    each with an optional ``timeout_s`` and ``guard`` (the action named by the takeoff guard that
-    ``precheck`` runs inside the drone's command lock)."""
+    each with an optional ``timeout_s`` and ``guard`` (the action the takeoff guard names: the
+    Commander's pass runs the guard, inside the drone's command lock too; no guard: a recovery step)."""
     send = spec.get("send")
     timeout = spec.get("timeout_s")
     timeout_s = None if timeout is None else float(timeout)
-    bound = _bind(precheck, vehicle)
     if send == "goto":
         lat, lon, alt = float(spec["lat"]), float(spec["lon"]), float(spec["alt_m"])
         params: dict[str, Any] = {"lat_deg": lat, "lon_deg": lon, "alt_m": alt}
@@ -148,7 +138,7 @@ def build_step(vehicle: VehicleView, spec: Mapping[str, Any], precheck: Precheck
             params["phase"] = int(spec["phase"])
         tolerance = float(spec.get("tolerance_m", FORMATION_TOLERANCE_M))
         tracker: Tracker = GotoTracker(lat, lon, alt, tolerance, kind=str(spec.get("kind", "formation")))
-        return Step(vehicle, tracker, _goto(vehicle, lat, lon, alt), params, timeout_s, bound, dict(spec))
+        return Step(vehicle, tracker, _goto(vehicle, lat, lon, alt), params, timeout_s, dict(spec))
     if send == "takeoff":
         alt = float(spec["alt_m"])
         arm_within = spec.get("arm_within_s")
@@ -158,12 +148,11 @@ def build_step(vehicle: VehicleView, spec: Mapping[str, Any], precheck: Precheck
             _takeoff(vehicle, alt, None if arm_within is None else float(arm_within)),
             {"alt_m": alt},
             timeout_s,
-            bound,
             dict(spec),
         )
     if send == "land":
         land = lambda: flying(vehicle).land()  # noqa: E731
-        return Step(vehicle, LandingTracker(kind="land"), land, {}, timeout_s, bound, dict(spec))
+        return Step(vehicle, LandingTracker(kind="land"), land, {}, timeout_s, dict(spec))
     if send == "rtl":
         alt = float(spec["alt_m"])
         return Step(
@@ -172,16 +161,16 @@ def build_step(vehicle: VehicleView, spec: Mapping[str, Any], precheck: Precheck
             _rtl(vehicle, alt, set_rtl_altitude_param),
             {"rtl_alt_m": alt},
             timeout_s,
-            bound,
             dict(spec),
         )
     raise InvalidArgument(f"unknown fleet step {send!r}; steps: goto, takeoff, land, rtl")
 
 
 def formation_phases(
-    plan: FormationPlan, vehicles: Mapping[str, VehicleView], precheck: Precheck | None = None
+    plan: FormationPlan, vehicles: Mapping[str, VehicleView], guard: str | None = None
 ) -> list[Phase]:
-    """The three phases of a `FormationPlan` as fleet-operation phases (each leg a tracked goto)."""
+    """The three phases of a `FormationPlan` as fleet-operation phases (each leg a tracked goto);
+    ``guard``: the action the takeoff guard names (None: no guard)."""
     phases: list[Phase] = []
     for index, name in enumerate(FORMATION_PHASES):
         steps: dict[str, Step] = {}
@@ -196,9 +185,9 @@ def formation_phases(
                 "kind": "formation",
                 "phase": index + 1,
                 "timeout_s": step_timeout_s(slot.distance_m),
-                "guard": None if precheck is None else "formation_goto",
+                "guard": guard,
             }
-            steps[drone_id] = build_step(vehicles[drone_id], spec, precheck)
+            steps[drone_id] = build_step(vehicles[drone_id], spec)
         phases.append(Phase(name, steps, abort_on_failure=True))
     return phases
 
@@ -220,12 +209,11 @@ def slot_summaries(plan: FormationPlan) -> dict[str, dict[str, Any]]:
 def takeoff_phase(
     vehicles: Mapping[str, VehicleView],
     altitudes: Mapping[str, float],
-    precheck: Precheck | None = None,
+    guard: str | None = None,
     arm_within_s: float | None = None,
-    guard: str = "fleet_takeoff",
 ) -> Phase:
     """Every drone takes off to its altitude; ``arm_within_s`` bounds each drone's wait to arm; ``guard``
-    names the action in the takeoff guard's refusals."""
+    names the action in the takeoff guard's refusals (None: no guard)."""
     steps = {
         d: build_step(
             v,
@@ -234,9 +222,8 @@ def takeoff_phase(
                 "alt_m": altitudes[d],
                 "arm_within_s": arm_within_s,
                 "timeout_s": step_timeout_s(altitudes[d], slowest_mps=0.5),
-                "guard": None if precheck is None else guard,
+                "guard": guard,
             },
-            precheck,
         )
         for d, v in vehicles.items()
     }

@@ -95,10 +95,6 @@ class FleetVerbs:
         self.operations = commands.operations
         fleet.run_steps_with(self.step_here, self.hold_here)
 
-    def _guard(self, caller: Caller, action: str) -> Callable[[VehicleView], None]:
-        """The takeoff guard of a fleet step, judged inside the drone's command lock."""
-        return lambda v: self.commands.guard_takeoff(caller, vehicle_context(v), action)
-
     # ------------------------------------------------------------------------------------------------
     # fleet operations: views and waiting
     # ------------------------------------------------------------------------------------------------
@@ -280,13 +276,10 @@ class FleetVerbs:
             "spacing_m": spacing_m,
             "heading_deg": round(plan.heading_deg, 1),
         }
-        guard = self._guard(caller, "formation_goto")
-        phases = formation_phases(plan, vehicles, guard)
+        phases = formation_phases(plan, vehicles, guard="formation_goto")
         if climbs:
             params["took_off_first"] = climbs
-            first = takeoff_phase(
-                {d: vehicles[d] for d in climbs}, climbs, guard, left(deadline), "formation_goto"
-            )
+            first = takeoff_phase({d: vehicles[d] for d in climbs}, climbs, "formation_goto", left(deadline))
             phases = [
                 dataclasses.replace(first, name="take off the drones on the ground", abort_on_failure=True),
                 *phases,
@@ -350,7 +343,7 @@ class FleetVerbs:
                 takeoff_phase(
                     vehicles,
                     altitudes,
-                    self._guard(caller, "fleet_takeoff"),
+                    "fleet_takeoff",
                     arm_within_s=left(deadline),
                 )
             ],
