@@ -539,12 +539,12 @@ class Link:
             self._commands.cancel_all()
             await _close_system(system)
 
-    def _mavsdk_names_modes(self) -> bool:
+    def _mavsdk_names_modes(self) -> bool | None:
         """MAVSDK's flight mode names are used unless the dialect names the HEARTBEAT's mode itself
-        (ArduCopter: MAVSDK would say OFFBOARD for GUIDED, HOLD for LOITER)."""
+        (ArduCopter: MAVSDK would say OFFBOARD for GUIDED, HOLD for LOITER); None before a HEARTBEAT."""
         facts = self.facts
         if facts.autopilot is None:
-            return False
+            return None
         return self.rules.mode_name(facts.custom_mode or 0, facts.mav_type or 0) is None
 
     async def _heartbeats(self, system: System) -> None:
@@ -557,6 +557,7 @@ class Link:
                     f"system id mismatch: vehicle reports {facts.sysid}, expected {self.spec.expected_sysid}"
                 )
                 log.error("%s: %s", self.id, self._last_error)
+            self.telemetry.put("armed", bool(facts.armed))  # the telemetry feed has no armed stream
             name = self.rules.mode_name(facts.custom_mode or 0, facts.mav_type or 0)
             if name is not None:
                 self.telemetry.put("flight_mode", name)
