@@ -23,7 +23,7 @@ from tests.helpers.timing import scaled
 from tests.mcp.conftest import structured
 from tests.real.test_tour_ardupilot import ARDUCOPTER
 from tests.real.test_tour_px4 import PX4
-from tests.real.tour import Profile, Tour, distance, gateway_over
+from tests.real.tour import Profile, Tour, distance, fleet_finish, gateway_over
 
 pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(600))]
 
@@ -219,3 +219,79 @@ async def test_a_second_ground_station_takes_px4_mid_takeoff_and_mid_mission(px4
         "the autopilot switched from AUTO.MISSION to AUTO.LOITER",
     )
     await run(tmp_path, PX4, px4, takeover_mid_takeoff_and_mission, takeoff=takeoff, mission=mission)
+
+
+async def takeover_mid_formation(
+    t: Tour, aps: list[Autopilot], *, switch: dict[str, Any], from_mode: str, to_mode: str, reported: str
+) -> None:
+    """Two drones take off together and fly a line formation 300 m north; 40 m out the second ground
+    station switches the second drone's mode. The waiting formation_goto returns aborted: that drone
+    `interrupted` naming both modes, the other `held` (docs/safety.md: a formation is planned together, so
+    it stops). The pilot's mode stays while the agent keeps trying for 10 s; once the pilot has it down,
+    an operator releases it and the agent flies it again."""
+    first, taken = t.ids
+    gcs = aps[1].gcs
+    assert gcs is not None
+    rise = await fleet_finish(t, await t.ok("fleet_takeoff", drone_ids=t.ids, alt_m=10, wait=False), 150)
+    assert rise["status"] == "succeeded", rise
+    home = await t.ok("get_home_position", drone_id=first)
+    lat, lon = geo.offset_position(home["lat_deg"], home["lon_deg"], 300, 0)
+    args = {"drone_ids": t.ids, "formation": "line", "center_lat_deg": lat, "center_lon_deg": lon,
+            "alt_m": 12, "spacing_m": 12, "wait": True}  # fmt: skip
+    waiting = asyncio.create_task(t.call("formation_goto", args))
+    away = lambda p: distance(p, home["lat_deg"], home["lon_deg"]) > 40  # noqa: E731
+    await t.until("get_position", away, 150, "40 m along the formation leg", drone_id=taken)
+    r = await interrupted_by_second_gcs(t, aps[1], waiting, switch, "formation_goto")
+    assert r["status"] == "aborted", r
+    members = {m["drone_id"]: m for m in r["drones"]}
+    assert members[taken]["status"] == "interrupted", members
+    assert f"the autopilot switched from {from_mode} to {to_mode}" in members[taken]["message"], members
+    assert members[first]["status"] == "held", members
+    arrival = await t.ok("check_arrival", drone_id=taken)
+    assert arrival["status"] == "interrupted" and to_mode in arrival["message"], arrival
+
+    # the agent keeps trying for 10 s: on the drone, and with a new formation; the pilot's mode stays
+    loop = asyncio.get_running_loop()
+    until = loop.time() + 10.0
+    tries = 0
+    while loop.time() < until:
+        await t.refused("move_to_relative", "taken_over", f"taken over in {to_mode}",
+                        drone_id=taken, north_m=20, east_m=0)  # fmt: skip
+        again = await t.call("formation_goto", {**args, "wait": False})
+        assert again.is_error and "taken_over" in again.content[0].text, again
+        assert (await t.ok("get_flight_mode", drone_id=taken))["value"] == reported
+        tries += 1
+        await asyncio.sleep(0.5)
+    assert tries >= 5
+    # the other drone still holds where the formation left it, in the gateway's hands
+    assert (await t.ok("get_flight_mode", drone_id=first))["value"] == t.profile.hold_mode
+
+    await released_when_down(t, taken)
+    op = await t.finish(await t.ok("takeoff", drone_id=taken, alt_m=8), 90)
+    assert op["status"] == "succeeded", op
+    down = await fleet_finish(t, await t.ok("fleet_land", drone_ids=t.ids, wait=False), 240)
+    assert down["status"] == "succeeded", down
+
+
+async def run_formation(tmp: Path, profile: Profile, aps: list[Autopilot], **kw: Any) -> None:
+    async with gateway_over(tmp, profile, aps, mcp_wait_cap_s=120.0) as (tour, _settings):
+        try:
+            await takeover_mid_formation(tour, aps, **kw)
+        except AssertionError as exc:
+            logs = "\n".join(f"--- {a.log.name}\n{a.log_tail(15)}" for a in aps)
+            raise AssertionError(f"{exc}\n{logs}") from None
+        finally:
+            conn = _GCS.pop(aps[1].gcs or "", None)
+            if conn is not None:
+                conn.close()
+
+
+async def test_a_second_ground_station_takes_an_arducopter_mid_formation(launch, tmp_path: Path) -> None:
+    kw = {"switch": {"custom_mode": 5}, "from_mode": "GUIDED", "to_mode": "LOITER", "reported": "LOITER"}
+    await run_formation(tmp_path, ARDUCOPTER, launch("ardupilot", 2), **kw)
+
+
+async def test_a_second_ground_station_takes_a_px4_mid_formation(launch, tmp_path: Path) -> None:
+    rtl = {"custom_mode": 0, "px4_modes": (4, 5)}
+    kw = {"switch": rtl, "from_mode": "AUTO.LOITER", "to_mode": "AUTO.RTL", "reported": "RETURN_TO_LAUNCH"}
+    await run_formation(tmp_path, PX4, launch("px4", 2), **kw)
