@@ -142,6 +142,9 @@ class Gateway:
             self.operations.taken_over = self.locks.takeover_for
             await self.registry.start()
             self._registry_started = True
+            if not self.settings.clustered:  # a drone found flying keeps its mode watch (a cluster
+                # node arms it only for the running operations it resumes: gateway.cluster.takeover)
+                self.operations.watch_found_flying(self.registry.all())
             if self.cluster is not None:
                 await self.cluster.start()
         except BaseException:

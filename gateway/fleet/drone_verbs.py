@@ -759,6 +759,9 @@ def _now_doing(vehicle: FlyingVehicle) -> str:
     pos = position(vehicle)
     where = f" at {pos[2]:.1f} m above home" if pos is not None else ""
     state = "in the air" if is_airborne(vehicle) else "on the ground"
+    heard, prog = vehicle.heartbeat_mode(), value(vehicle, "mission_progress")
+    if heard is not None and heard[0] in vehicle.commanded_modes("mission") and prog is not None:
+        where += f", flying mission item {int(prog.current)} of {int(prog.total)}"  # MISSION_CURRENT
     return f"mode {mode}, {state}{where}"
 
 
@@ -767,6 +770,8 @@ def _restart_truth(vehicle: FlyingVehicle, record: OperationRecord) -> str:
     gateway restarted while this operation was running; now: mode GUIDED, in the air at 12.0 m above
     home, 180 m from the goto's target"."""
     said = record.message or record.status
+    if "restarted" not in said and "gateway stopped" not in said:  # it ended before this process
+        said = f"{said} (before the gateway restarted)"
     target = ""
     params = record.params or {}
     pos = position(vehicle)

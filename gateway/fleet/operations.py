@@ -21,7 +21,7 @@ import logging
 import math
 import time
 import uuid
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable, Callable, Iterable
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from enum import StrEnum
@@ -58,6 +58,9 @@ SAVE_EVERY_S = 2.0
 MISSION_END_GRACE_S = 0.8
 """How long a mission that left its mode for one it settles in (PX4 holds at the end) may take to say
 it finished before the change counts as a takeover."""
+FOUND_FLYING_WAIT_S = 120.0
+"""After a restart: how long the gateway waits for a vehicle's first HEARTBEAT and landed state before it
+gives up looking whether the vehicle is flying (its mode watch is then armed by its next command)."""
 
 
 class OpStatus(StrEnum):
@@ -357,6 +360,7 @@ class OperationManager:
         self._locks: dict[str, asyncio.Lock] = {}
         self._expected: dict[str, ModeExpectation] = {}  # what the gateway last commanded, per vehicle
         self._watches: dict[str, asyncio.Task[None]] = {}
+        self._finders: dict[str, asyncio.Task[None]] = {}  # after a restart: is the vehicle flying?
         #: told of every takeover before its operation ends (the runtime locks the drone)
         self.on_takeover: TakeoverHandler | None = None
         #: the drone's takeover lock, if it has one (the runtime reads the LockBook)
@@ -474,6 +478,74 @@ class OperationManager:
     def forget(self, vehicle_id: str) -> None:
         """The gateway commands nothing the mode shows (a takeover, kill): nothing more is judged."""
         self._expected.pop(vehicle_id, None)
+
+    def watch_found_flying(self, vehicles: Iterable[FlyingVehicle]) -> None:
+        """After a restart: every vehicle found armed in the air gets its mode watch again, so a pilot's
+        later switch is a takeover as before. It is judged by what the gateway last commanded it (its
+        newest stored operation) while the vehicle is in one of that command's modes; in any other mode
+        (the process died before it commanded one, or someone switched meanwhile) by the mode it was
+        found in. Each vehicle is looked at once its HEARTBEAT and landed state are known."""
+        for vehicle in vehicles:
+            task = self._finders.get(vehicle.id)
+            if task is None or task.done():
+                self._finders[vehicle.id] = asyncio.create_task(
+                    self._found_flying(vehicle), name=f"found-flying-{vehicle.id}"
+                )
+
+    async def _found_flying(self, vehicle: FlyingVehicle) -> None:
+        try:
+            deadline = time.monotonic() + FOUND_FLYING_WAIT_S
+            while (heard := vehicle.heartbeat_mode()) is None or (
+                heard[1] and vehicle.on_ground(fresh=False) is None
+            ):
+                if time.monotonic() > deadline:
+                    log.info(
+                        "%s: no HEARTBEAT after the restart; its mode watch waits for a command", vehicle.id
+                    )
+                    return
+                await asyncio.sleep(POLL_S)
+            mode, armed = heard
+            if not armed or vehicle.on_ground(fresh=False) is not False:
+                return  # on the ground: its next arming and command start afresh
+            if vehicle.id in self._expected or self.taken_over(vehicle.id) is not None:
+                return  # a command since the restart (its own watch), or a pilot has it already
+            record = await self._newest_record(vehicle.id)
+            kind = record.kind if record is not None else None
+            modes = (
+                (vehicle.commanded_modes(kind) | vehicle.commanded_modes(kind, done=True)) if kind else None
+            )
+            if vehicle.id in self._expected:
+                return
+            if kind is not None and modes and mode in modes:
+                exp = ModeExpectation(kind, modes, modes, seen=True, last_mode=mode)
+            else:
+                found = frozenset({mode})
+                exp = ModeExpectation(f"found flying in {mode}", found, found, seen=True, last_mode=mode)
+            self._expected[vehicle.id] = exp
+            log.info(
+                "%s: found flying in %s after the restart; its mode watch is on (%s)",
+                vehicle.id,
+                mode,
+                exp.kind,
+            )
+            watch = self._watches.get(vehicle.id)
+            if watch is None or watch.done():
+                self._watches[vehicle.id] = asyncio.create_task(
+                    self._watch(vehicle), name=f"watch-{vehicle.id}"
+                )
+        except asyncio.CancelledError:
+            raise
+        except Exception:  # a restart must go on whatever one vehicle's look does
+            log.exception("looking whether %s is flying after the restart failed", vehicle.id)
+        finally:
+            if self._finders.get(vehicle.id) is asyncio.current_task():
+                self._finders.pop(vehicle.id, None)
+
+    async def _newest_record(self, vehicle_id: str) -> OperationRecord | None:
+        if self.store is None:
+            return None
+        records = await self.store.list_operations(vehicle_id=vehicle_id, limit=1)
+        return records[0] if records else None
 
     async def _watch(self, vehicle: FlyingVehicle) -> None:
         """Judge the vehicle's HEARTBEAT mode every POLL_S while the gateway expects something of it."""
@@ -604,7 +676,7 @@ class OperationManager:
                     op, OpStatus.interrupted, "gateway stopped while the operation was running"
                 )
         self._expected.clear()
-        tasks = list(self._monitors.values()) + list(self._watches.values())
+        tasks = [*self._monitors.values(), *self._watches.values(), *self._finders.values()]
         for task in tasks:
             task.cancel()
         for task in tasks:
@@ -612,6 +684,7 @@ class OperationManager:
                 await task
         self._monitors.clear()
         self._watches.clear()
+        self._finders.clear()
 
     async def resume(
         self, record: OperationRecord, vehicle: FlyingVehicle, tracker: Tracker, message: str

@@ -201,3 +201,34 @@ async def test_after_a_restart_monitor_and_arrival_tell_what_the_flying_drone_do
         arrival = await gateway.commander.arrival(AGENT, "d1")
         assert arrival.operation_id == goto_id and arrival.status == "interrupted" and not arrival.arrived
         assert arrival.distance_m is not None and arrival.distance_m > 250
+        # the mode watch is armed again for it: a pilot's later switch is a takeover as before
+        ops = gateway.operations
+        assert ops is not None
+        await until(lambda: (e := ops.expected("d1")) is not None and e.seen, "the watch armed again")
+        pilot_switch(fake(gateway, "d1"), "LOITER")
+        await until(lambda: gateway.locks.takeover_for("d1") is not None, "the takeover seen after the restart")
+        taken = gateway.locks.takeover_for("d1")
+        assert taken is not None and "left GUIDED" in taken.reason, taken
+        with pytest.raises(SafetyRefusal):
+            await gateway.commander.move_relative(AGENT, "d1", 10.0, 0.0)
+
+
+async def test_a_drone_found_flying_in_a_mode_the_gateway_did_not_command_is_watched_in_it(
+    tmp_path: Path,
+) -> None:
+    """Found in LOITER after a restart whose last command was a goto (GUIDED): judged by LOITER; the
+    gateway's own next command replaces that watch, a pilot's switch away from LOITER is a takeover."""
+    settings = unit_settings(tmp_path, mcp_wait_cap_s=10.0)
+    async with fake_gateway(settings, spread(1)) as gateway:
+        await flying_goto(gateway)
+    flying = spread(1)
+    flying[0].set(armed=True, in_air=True, landed_state="IN_AIR", flight_mode="LOITER",
+                  position=position_value(*flying[0].home_ll, 10.0))  # fmt: skip
+    async with fake_gateway(settings, flying) as gateway:
+        ops = gateway.operations
+        assert ops is not None
+        await until(lambda: (e := ops.expected("d1")) is not None, "the watch armed")
+        exp = ops.expected("d1")
+        assert exp is not None and exp.modes == {"LOITER"} and exp.kind == "found flying in LOITER"
+        pilot_switch(fake(gateway, "d1"), "ALT_HOLD")
+        await until(lambda: gateway.locks.takeover_for("d1") is not None, "the takeover")
