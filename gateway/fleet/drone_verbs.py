@@ -437,6 +437,7 @@ class DroneVerbs(CommandCore):
                     message=_restart_truth(vehicle, record),
                 )
         if op is None or op.kind not in NAV_KINDS:
+            flying = f"; it is flying: {_now_doing(vehicle)}" if op is None and is_airborne(vehicle) else ""
             return ArrivalView(
                 drone_id=drone_id,
                 arrived=False,
@@ -445,7 +446,7 @@ class DroneVerbs(CommandCore):
                 status=None,
                 distance_m=None,
                 vertical_m=None,
-                message="no goto sent to this drone yet",
+                message=f"no goto sent to this drone yet{flying}",
             )
         tracker = GotoTracker(
             op.params["lat_deg"], op.params["lon_deg"], op.params["alt_m"], self.settings.arrival_tolerance_m
