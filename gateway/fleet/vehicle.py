@@ -52,6 +52,9 @@ RECORDER_STOP_S = 5.0
 ARM_RETRY_S = 1.0
 MAV_CMD_DO_SET_MODE = 176
 MISSION_STATE_COMPLETE = 5  # MISSION_CURRENT.mission_state
+MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT = 87
+MAV_CMD_SET_MESSAGE_INTERVAL = 511
+POSITION_IGNORED = 0b111  # POSITION_TARGET_TYPEMASK: x, y, z ignored (a velocity or attitude target)
 
 StateListener = Callable[["Vehicle", ConnectionState, ConnectionState], None]
 
@@ -80,7 +83,7 @@ class Vehicle:
             confine=confine,
             on_state=self._state_changed,
             mission_progress=self._wire_progress,
-            session_jobs=[("mission", self._mission_current)],
+            session_jobs=[("mission", self._mission_current), ("target", self._position_target)],
         )
         self.params = Parameters(spec.id, self.link.call, self.link.require_session)
         self._recorder: FlightRecorder | None = None
@@ -88,6 +91,8 @@ class Vehicle:
         self._mission_state: int | None = None  # MISSION_CURRENT.mission_state (5 = COMPLETE)
         self._mission_rejection: str | None = None  # the autopilot's words when it refused the mission
         self._return_alt_name: str | None = None  # the RTL altitude parameter this vehicle has
+        #: POSITION_TARGET_GLOBAL_INT: where the autopilot flies to (lat, lon, monotonic time heard)
+        self._target: tuple[float, float, float] | None = None
 
     # --- identity, state and the link ----------------------------------------------------------------
     @property
@@ -470,6 +475,29 @@ class Vehicle:
                     from_mission_current=True,
                 )
                 self.telemetry.put("mission_progress", progress)
+
+    def position_target(self) -> tuple[float, float, float] | None:
+        """Where the autopilot says it flies to (POSITION_TARGET_GLOBAL_INT): latitude, longitude and
+        when it said so (monotonic); None when it has not said (or not for this session)."""
+        return self._target
+
+    async def _position_target(self, system: System) -> None:
+        """POSITION_TARGET_GLOBAL_INT, asked for at 2 Hz (ArduPilot streams it only with EXT_STAT; PX4
+        streams it anyway): the target a goto's takeover watch compares with the gateway's own."""
+        self._target = None
+        while self.link.facts.autopilot is None:  # noqa: ASYNC110 - set by the HEARTBEAT loop
+            await asyncio.sleep(0.2)
+        with contextlib.suppress(CommandFailed):
+            await self.link.command_long(
+                MAV_CMD_SET_MESSAGE_INTERVAL, MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT, 5e5, what="rate"
+            )
+        async for msg in system.mavlink_direct.message("POSITION_TARGET_GLOBAL_INT"):
+            fields = json.loads(msg.fields_json)
+            if int(fields.get("type_mask", 0)) & POSITION_IGNORED == POSITION_IGNORED:
+                continue  # no position in it
+            lat, lon = int(fields.get("lat_int", 0)) / 1e7, int(fields.get("lon_int", 0)) / 1e7
+            if lat or lon:
+                self._target = (lat, lon, time.monotonic())
 
     async def upload_mission(self, items: Sequence[MissionItem | dict[str, Any]]) -> int:
         """Upload user items 1..N in the dialect's layout (ArduPilot: home at seq 0, hidden). Returns N.
