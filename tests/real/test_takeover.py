@@ -10,6 +10,7 @@ Figures (the call's return after the mode change) are printed, never asserted.""
 from __future__ import annotations
 
 import asyncio
+import math
 import time
 from pathlib import Path
 from typing import Any
@@ -28,6 +29,7 @@ from tests.real.tour import Profile, Tour, distance, fleet_finish, gateway_over
 pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(600))]
 
 MAV_CMD_DO_SET_MODE = 176
+MAV_CMD_DO_REPOSITION = 192
 
 
 #: the second ground station's connection per address, kept for the test: PX4's GCS instance answers
@@ -122,6 +124,69 @@ async def takeover_mid_goto(
     assert (await t.rest("GET", f"/vehicles/{d}"))["taken_over"] is None
 
 
+def second_gcs_pauses(address: str) -> float:
+    """Another ground station pauses the drone where it is, as QGroundControl's Pause does on PX4: a
+    DO_REPOSITION without a position (the mode stays Hold). Returns when it was sent (monotonic)."""
+    conn = _GCS[address]  # second_gcs_sets_mode opened it and knows the autopilot answers
+    while (hb := conn.recv_match(type="HEARTBEAT", blocking=True, timeout=2.0)) is not None:
+        if hb.type != mavutil.mavlink.MAV_TYPE_GCS:
+            break
+    assert hb is not None, f"no HEARTBEAT from the autopilot on {address}"
+    nan = math.nan
+    conn.mav.command_long_send(hb.get_srcSystem(), 1, MAV_CMD_DO_REPOSITION, 0, -1, 1, 0, nan, nan, nan, nan)
+    sent = time.monotonic()
+    ack = conn.recv_match(type="COMMAND_ACK", blocking=True, timeout=3.0)
+    assert ack is not None and ack.result == 0, ack
+    return sent
+
+
+async def px4_paused_by_a_second_gcs_mid_goto(t: Tour, ap: Autopilot) -> None:
+    """PX4 flies the gateway's gotos in Hold, so a second ground station's Hold selection changes nothing
+    (PX4 keeps flying the goto: measured) and its Pause (a reposition to where the drone is) leaves the
+    mode as it was. The autopilot's own target tells: the waiting goto ends interrupted, the drone holds
+    where the ground station put it while the agent keeps trying, and after an operator's release the
+    agent flies it again."""
+    d = t.ids[0]
+    assert ap.gcs is not None
+    op = await t.finish(await t.ok("takeoff", drone_id=d, alt_m=12), 90)
+    assert op["status"] == "succeeded", op
+    home = await t.ok("get_home_position", drone_id=d)
+    lat, lon = geo.offset_position(home["lat_deg"], home["lon_deg"], 400, 0)
+    waiting = asyncio.create_task(
+        t.call("go_to_location", {"drone_id": d, "lat_deg": lat, "lon_deg": lon, "alt_m": 12, "wait": True})
+    )
+    away = lambda p: distance(p, home["lat_deg"], home["lon_deg"]) > 40  # noqa: E731
+    await t.until("get_position", away, 120, "40 m out", drone_id=d)
+    # Hold selected by the second ground station: accepted, and nothing changes (the goto flies on)
+    await asyncio.to_thread(second_gcs_sets_mode, ap.gcs, 0, (4, 3))
+    before = await t.position(d)
+    await t.until("get_position", lambda p: distance(p, before["lat_deg"], before["lon_deg"]) > 15, 30,
+                  "the goto flying on after a Hold selection", drone_id=d)  # fmt: skip
+    assert not waiting.done()
+    returned: list[float] = []
+    waiting.add_done_callback(lambda _task: returned.append(time.monotonic()))
+    paused = await asyncio.to_thread(second_gcs_pauses, ap.gcs)
+    r = structured(await asyncio.wait_for(waiting, scaled(60)))
+    print(f"\nFIGURE px4: go_to_location returned {returned[0] - paused:.2f} s after the Pause was sent")
+    assert r["status"] == "interrupted", r
+    assert "the autopilot left the gateway's target while staying in AUTO.LOITER" in r["message"], r
+    assert "another ground station repositioned or paused it" in r["message"], r
+
+    loop = asyncio.get_running_loop()
+    until = loop.time() + 10.0
+    held = await t.position(d)
+    while loop.time() < until:
+        await t.refused("move_to_relative", "taken_over", drone_id=d, north_m=20, east_m=0)
+        assert (await t.ok("get_flight_mode", drone_id=d))["value"] == "HOLD"
+        await asyncio.sleep(0.5)
+    assert distance(await t.position(d), held["lat_deg"], held["lon_deg"]) < 10  # where the GCS paused it
+    assert (await t.rest("DELETE", f"/vehicles/{d}/takeover"))["was_locked"] is True
+    moved = await t.finish(await t.ok("move_to_relative", drone_id=d, north_m=10, east_m=0), 60)
+    assert moved["status"] == "succeeded", moved
+    landed = await t.finish(await t.ok("land", drone_id=d), 120)
+    assert landed["status"] == "succeeded", landed
+
+
 async def interrupted_by_second_gcs(
     t: Tour, ap: Autopilot, waiting: asyncio.Task[Any], switch: dict[str, Any], what: str
 ) -> dict[str, Any]:
@@ -207,6 +272,10 @@ async def test_a_second_ground_station_switches_px4_to_return_mid_goto(px4, tmp_
     rtl = {"custom_mode": 0, "px4_modes": (4, 5)}
     kw = {"switch": rtl, "from_mode": "AUTO.LOITER", "to_mode": "AUTO.RTL", "reported": "RETURN_TO_LAUNCH"}
     await run(tmp_path, PX4, px4, takeover_mid_goto, **kw)
+
+
+async def test_a_second_ground_station_pauses_a_px4_goto_in_hold(px4, tmp_path: Path) -> None:
+    await run(tmp_path, PX4, px4, px4_paused_by_a_second_gcs_mid_goto)
 
 
 async def test_a_second_ground_station_takes_px4_mid_takeoff_and_mid_mission(px4, tmp_path: Path) -> None:
