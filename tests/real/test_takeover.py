@@ -37,10 +37,9 @@ MAV_CMD_DO_REPOSITION = 192
 _GCS: dict[str, Any] = {}
 
 
-def second_gcs_sets_mode(address: str, custom_mode: int, px4_modes: tuple[int, int] | None = None) -> float:
-    """Another ground station switches the mode: SET_MODE for ArduCopter (Mission Planner's mode
-    buttons), DO_SET_MODE with main/sub mode for PX4 (QGroundControl's). Returns when it was sent
-    (monotonic)."""
+def second_gcs(address: str) -> tuple[Any, int]:
+    """The second ground station's connection on ``address`` (opened once, kept) and the autopilot's
+    system id, once the autopilot is heard there."""
     conn = _GCS.get(address)
     if conn is None:
         conn = _GCS[address] = mavutil.mavlink_connection(address, source_system=250, source_component=190)
@@ -49,10 +48,16 @@ def second_gcs_sets_mode(address: str, custom_mode: int, px4_modes: tuple[int, i
         conn.mav.heartbeat_send(mavutil.mavlink.MAV_TYPE_GCS, mavutil.mavlink.MAV_AUTOPILOT_INVALID, 0, 0, 0)
         hb = conn.recv_match(type="HEARTBEAT", blocking=True, timeout=1.0)
         if hb is not None and hb.type != mavutil.mavlink.MAV_TYPE_GCS:
-            break
+            return conn, hb.get_srcSystem()
         if time.monotonic() > deadline:
             raise AssertionError(f"no HEARTBEAT from the autopilot on {address}")
-    target = hb.get_srcSystem()
+
+
+def second_gcs_sets_mode(address: str, custom_mode: int, px4_modes: tuple[int, int] | None = None) -> float:
+    """Another ground station switches the mode: SET_MODE for ArduCopter (Mission Planner's mode
+    buttons), DO_SET_MODE with main/sub mode for PX4 (QGroundControl's). Returns when it was sent
+    (monotonic)."""
+    conn, target = second_gcs(address)
     if px4_modes is None:
         conn.mav.set_mode_send(target, mavutil.mavlink.MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, custom_mode)
     else:
@@ -127,13 +132,9 @@ async def takeover_mid_goto(
 def second_gcs_pauses(address: str) -> float:
     """Another ground station pauses the drone where it is, as QGroundControl's Pause does on PX4: a
     DO_REPOSITION without a position (the mode stays Hold). Returns when it was sent (monotonic)."""
-    conn = _GCS[address]  # second_gcs_sets_mode opened it and knows the autopilot answers
-    while (hb := conn.recv_match(type="HEARTBEAT", blocking=True, timeout=2.0)) is not None:
-        if hb.type != mavutil.mavlink.MAV_TYPE_GCS:
-            break
-    assert hb is not None, f"no HEARTBEAT from the autopilot on {address}"
+    conn, target = second_gcs(address)
     nan = math.nan
-    conn.mav.command_long_send(hb.get_srcSystem(), 1, MAV_CMD_DO_REPOSITION, 0, -1, 1, 0, nan, nan, nan, nan)
+    conn.mav.command_long_send(target, 1, MAV_CMD_DO_REPOSITION, 0, -1, 1, 0, nan, nan, nan, nan)
     sent = time.monotonic()
     ack = conn.recv_match(type="COMMAND_ACK", blocking=True, timeout=3.0)
     assert ack is not None and ack.result == 0, ack
@@ -183,6 +184,50 @@ async def px4_paused_by_a_second_gcs_mid_goto(t: Tour, ap: Autopilot) -> None:
     assert (await t.rest("DELETE", f"/vehicles/{d}/takeover"))["was_locked"] is True
     moved = await t.finish(await t.ok("move_to_relative", drone_id=d, north_m=10, east_m=0), 60)
     assert moved["status"] == "succeeded", moved
+    landed = await t.finish(await t.ok("land", drone_id=d), 120)
+    assert landed["status"] == "succeeded", landed
+
+
+def second_gcs_flies_to(address: str, lat: float, lon: float, alt_m: float) -> float:
+    """Another ground station sends the drone elsewhere in GUIDED (SET_POSITION_TARGET_GLOBAL_INT, as a
+    ground station's "fly to here" does): the mode stays. Returns when it was sent (monotonic)."""
+    conn, target = second_gcs(address)
+    position_only = 0b110111111000
+    conn.mav.set_position_target_global_int_send(
+        0, target, 1, mavutil.mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, position_only,
+        int(lat * 1e7), int(lon * 1e7), alt_m, 0, 0, 0, 0, 0, 0, 0, 0,
+    )  # fmt: skip
+    return time.monotonic()
+
+
+async def arducopter_sent_elsewhere_by_a_second_gcs_mid_goto(t: Tour, ap: Autopilot) -> None:
+    """In GUIDED a second ground station sends the drone 150 m east of its goto: the mode stays GUIDED,
+    the autopilot's target tells. The waiting goto ends interrupted, the agent is refused, and after an
+    operator's release the agent lands it."""
+    d = t.ids[0]
+    assert ap.gcs is not None
+    op = await t.finish(await t.ok("takeoff", drone_id=d, alt_m=12), 90)
+    assert op["status"] == "succeeded", op
+    home = await t.ok("get_home_position", drone_id=d)
+    lat, lon = geo.offset_position(home["lat_deg"], home["lon_deg"], 400, 0)
+    waiting = asyncio.create_task(
+        t.call("go_to_location", {"drone_id": d, "lat_deg": lat, "lon_deg": lon, "alt_m": 12, "wait": True})
+    )
+    away = lambda p: distance(p, home["lat_deg"], home["lon_deg"]) > 40  # noqa: E731
+    here = await t.until("get_position", away, 120, "40 m out", drone_id=d)
+    await asyncio.to_thread(second_gcs, ap.gcs)
+    returned: list[float] = []
+    waiting.add_done_callback(lambda _task: returned.append(time.monotonic()))
+    elsewhere = geo.offset_position(here["lat_deg"], here["lon_deg"], 0, 150)
+    sent = await asyncio.to_thread(second_gcs_flies_to, ap.gcs, *elsewhere, 12)
+    r = structured(await asyncio.wait_for(waiting, scaled(60)))
+    after = returned[0] - sent
+    print(f"\nFIGURE ardupilot: go_to_location returned {after:.2f} s after the new target was sent")
+    assert r["status"] == "interrupted", r
+    assert "the autopilot left the gateway's target while staying in GUIDED" in r["message"], r
+    await t.refused("move_to_relative", "taken_over", drone_id=d, north_m=20, east_m=0)
+    assert (await t.ok("get_flight_mode", drone_id=d))["value"] == "GUIDED"
+    assert (await t.rest("DELETE", f"/vehicles/{d}/takeover"))["was_locked"] is True
     landed = await t.finish(await t.ok("land", drone_id=d), 120)
     assert landed["status"] == "succeeded", landed
 
@@ -256,6 +301,12 @@ async def test_a_second_ground_station_switches_arducopter_to_loiter_mid_goto(
 ) -> None:
     loiter = {"switch": {"custom_mode": 5}, "from_mode": "GUIDED", "to_mode": "LOITER", "reported": "LOITER"}
     await run(tmp_path, ARDUCOPTER, arducopter, takeover_mid_goto, **loiter)
+
+
+async def test_a_second_ground_station_sends_an_arducopter_elsewhere_in_guided(
+    arducopter, tmp_path: Path
+) -> None:
+    await run(tmp_path, ARDUCOPTER, arducopter, arducopter_sent_elsewhere_by_a_second_gcs_mid_goto)
 
 
 async def test_a_second_ground_station_takes_arducopter_mid_takeoff_and_mid_mission(
