@@ -49,6 +49,9 @@ from gateway.fleet.views import (
 )
 from gateway.registry.records import OperationRecord
 
+TARGET_FRESH_S = 5.0
+"""How old the autopilot's reported target may be to say where a drone is heading."""
+
 
 class DroneVerbs(CommandCore):
     """Commands on one drone."""
@@ -763,6 +766,14 @@ def _now_doing(vehicle: FlyingVehicle) -> str:
     heard, prog = vehicle.heartbeat_mode(), value(vehicle, "mission_progress")
     if heard is not None and heard[0] in vehicle.commanded_modes("mission") and prog is not None:
         where += f", flying mission item {int(prog.current)} of {int(prog.total)}"  # MISSION_CURRENT
+    target = vehicle.position_target()  # POSITION_TARGET_GLOBAL_INT
+    if target is not None and pos is not None and time.monotonic() - target[2] < TARGET_FRESH_S:
+        far = geo.horizontal_distance_m(pos[0], pos[1], target[0], target[1])
+        where += (
+            f", heading for the autopilot's target {far:.0f} m away ({target[0]:.6f}, {target[1]:.6f})"
+            if far > 3.0
+            else ", holding at the autopilot's target"
+        )
     return f"mode {mode}, {state}{where}"
 
 

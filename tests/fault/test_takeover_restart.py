@@ -51,13 +51,20 @@ async def test_a_drone_flying_through_a_gateway_restart_is_reported_and_watched(
         with gateway_process(db, log) as (proc, base):
             await until("d1 restored and ready", lambda: _is(base, "ready"), log)
             async with mcp_client(base) as c:
-                r = await c.call_tool("monitor_flight", {"drone_id": "d1"})
-                assert not r.is_error, r.content
-                view = r.structured_content
+
+                async def heading() -> Any:  # once the autopilot's target (asked for at 2 Hz) is heard
+                    r = await c.call_tool("monitor_flight", {"drone_id": "d1"})
+                    assert not r.is_error, r.content
+                    view = r.structured_content
+                    return view if "heading for" in view["message"] else None
+
+                view = await until("monitor_flight naming the autopilot's target", heading, log)
                 assert view["kind"] == "goto" and view["status"] == "interrupted", view
                 said = view["message"]
+                print(f"\nmonitor_flight after the restart: {said}")
                 assert "the gateway restarted while this operation was running" in said, said
                 assert "now: mode GUIDED, in the air" in said and "m from the goto's target" in said, said
+                assert "heading for the autopilot's target" in said, said  # POSITION_TARGET_GLOBAL_INT
                 r = await c.call_tool("check_arrival", {"drone_id": "d1"})
                 arrival = r.structured_content
                 assert arrival["arrived"] is False and "the gateway restarted" in arrival["message"], arrival
