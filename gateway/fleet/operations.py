@@ -515,6 +515,8 @@ class OperationManager:
             mode, armed = heard
             if not armed or vehicle.on_ground(fresh=False) is not False:
                 return  # on the ground: its next arming and command start afresh
+            if not vehicle.commanded_modes("goto"):
+                return  # an autopilot the gateway has no dialect for: it commands it nothing
             if vehicle.id in self._expected or self.taken_over(vehicle.id) is not None:
                 return  # a command since the restart (its own watch), or a pilot has it already
             record = await self._newest_record(vehicle.id)

@@ -14,7 +14,6 @@ in one place (``goto``). Arming and mode switches live in ``vehicle_arming``, mi
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import json
 import logging
 import time
@@ -50,8 +49,6 @@ __all__ = ["ConnectionState", "MissionItem", "Vehicle"]
 ARMABLE_WAIT_S = 60.0
 #: closing the flight log never holds a link open longer than this (a database that hangs)
 RECORDER_STOP_S = 5.0
-MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT = 87
-MAV_CMD_SET_MESSAGE_INTERVAL = 511
 POSITION_IGNORED = 0b111  # POSITION_TARGET_TYPEMASK: x, y, z ignored (a velocity or attitude target)
 
 StateListener = Callable[["Vehicle", ConnectionState, ConnectionState], None]
@@ -386,15 +383,9 @@ class Vehicle:
         return self._target
 
     async def _position_target(self, system: System) -> None:
-        """POSITION_TARGET_GLOBAL_INT, asked for at 2 Hz (ArduPilot streams it only with EXT_STAT; PX4
-        streams it anyway): the target a goto's takeover watch compares with the gateway's own."""
+        """POSITION_TARGET_GLOBAL_INT (the link asks for it at 2 Hz with the other rates): the target a
+        goto's takeover watch compares with the gateway's own."""
         self._target = None
-        while self.link.facts.autopilot is None:  # noqa: ASYNC110 - set by the HEARTBEAT loop
-            await asyncio.sleep(0.2)
-        with contextlib.suppress(CommandFailed):
-            await self.link.command_long(
-                MAV_CMD_SET_MESSAGE_INTERVAL, MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT, 5e5, what="rate"
-            )
         async for msg in system.mavlink_direct.message("POSITION_TARGET_GLOBAL_INT"):
             fields = json.loads(msg.fields_json)
             if int(fields.get("type_mask", 0)) & POSITION_IGNORED == POSITION_IGNORED:
