@@ -94,7 +94,8 @@ async def update_vehicle(
     changes = body.changes()
     if not changes:
         raise InvalidArgument(
-            "nothing to update: give at least one of url, name, tags, expected_sysid, node_tag, auto_connect"
+            "nothing to update: give at least one of url, name, tags, expected_sysid, node_tag, "
+            "gcs_endpoints, auto_connect"
         )
     await _record(store, registry, vehicle_id)
     await registry.update(vehicle_id, **changes)

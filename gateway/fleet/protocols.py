@@ -32,7 +32,7 @@ from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 
 if TYPE_CHECKING:
-    from gateway.fleet.vehicle import ConnectionState
+    from gateway.link.session import ConnectionState
 
 Notify = Callable[[str], Awaitable[None]]
 """Told, in words, what a command waits for before it can be sent (e.g. a drone still initialising)."""

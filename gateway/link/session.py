@@ -44,6 +44,7 @@ from gateway.link.rawlink import (
     NoAck,
     autopilot_name,
 )
+from gateway.link.relay import Relay
 from gateway.link.sidecar import Confine, Sidecar, SidecarState
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache, TelemetryFeed
 from gateway.registry.spec import VehicleSpec
@@ -150,6 +151,7 @@ class Link:
         self._mission_progress = mission_progress
         self._jobs = list(session_jobs)
         self._sidecar: Sidecar | None = None
+        self._relay: Relay | None = None  # when ground stations share the drone's MAVLink
         self._system: System | None = None
         self._session_task: asyncio.Task[None] | None = None
         self._session_started: float | None = None
@@ -280,8 +282,11 @@ class Link:
     def describe_error(self) -> str | None:
         """The last failure; while connecting, what the sidecar complains about (refused, no device...)."""
         car = self._sidecar
-        if car is not None and car.state == SidecarState.STARTING and car.info.complaint:
-            return f"waiting for the vehicle on {self.spec.url}: {car.info.complaint}"
+        relay = self._relay
+        if car is not None and car.state == SidecarState.STARTING:
+            complaint = relay.complaint if relay is not None else car.info.complaint
+            if complaint:
+                return f"waiting for the vehicle on {self.spec.url}: {complaint}"
         return self._last_error
 
     def require_ready(self) -> None:
@@ -387,6 +392,8 @@ class Link:
                 "grpc_port": car.grpc_port if car else None,
                 "restarts": car.info.restarts if car else 0,
             },
+            # each ground station endpoint the drone's MAVLink is relayed to, and what passed
+            "ground_stations": self._relay.status() if self._relay is not None else [],
         }
 
     # --- lifecycle --------------------------------------------------------------------------------------
@@ -397,9 +404,18 @@ class Link:
                 return
             await self.disconnect()  # connecting a failed vehicle again starts afresh
         self._last_error = None
+        url = self.spec.url
+        if self.spec.gcs_endpoints:
+            # the gateway holds the drone's link and relays it to the sidecar and the ground stations
+            relay = Relay(
+                self.id, self.spec.url, list(self.spec.gcs_endpoints), sidecar_pid=self._sidecar_pid
+            )
+            await relay.start()
+            self._relay = relay
+            url = relay.sidecar_url
         self._sidecar = Sidecar(
             self.id,
-            self.spec.url,
+            url,
             self.settings,
             on_serving=self._on_serving,
             on_down=self._on_sidecar_down,
@@ -407,6 +423,9 @@ class Link:
         )
         self._sidecar.start()
         self._monitor_task = asyncio.create_task(self._monitor(), name=f"monitor-{self.id}")
+
+    def _sidecar_pid(self) -> int | None:
+        return self._sidecar.pid if self._sidecar is not None else None
 
     async def disconnect(self) -> None:
         """Stop everything of this link; no mavsdk_server process remains."""
@@ -418,9 +437,14 @@ class Link:
         try:
             await self._end_session()
         finally:  # the sidecar stops whatever ending the session raised
-            if self._sidecar is not None:
-                car, self._sidecar = self._sidecar, None
-                await car.stop()
+            try:
+                if self._sidecar is not None:
+                    car, self._sidecar = self._sidecar, None
+                    await car.stop()
+            finally:
+                if self._relay is not None:
+                    relay, self._relay = self._relay, None
+                    await relay.close()
             self._note_state()
 
     # --- session (one per serving sidecar process) ---------------------------------------------------------

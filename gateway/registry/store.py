@@ -282,6 +282,7 @@ class Store:
             tags=list(spec.tags),
             expected_sysid=spec.expected_sysid,
             node_tag=spec.node_tag,
+            gcs_endpoints=list(spec.gcs_endpoints),
             auto_connect=auto_connect,
             created_at=now,
             updated_at=now,
@@ -295,7 +296,9 @@ class Store:
             raise DuplicateVehicle(f"a drone with id '{spec.id}' is already registered", id=spec.id) from exc
         return VehicleRecord.model_validate(row)
 
-    _UPDATABLE = frozenset({"name", "tags", "expected_sysid", "node_tag", "url", "auto_connect"})
+    _UPDATABLE = frozenset(
+        {"name", "tags", "expected_sysid", "node_tag", "url", "gcs_endpoints", "auto_connect"}
+    )
 
     async def update_vehicle(self, vehicle_id: str, **changes: Any) -> VehicleRecord:
         unknown = sorted(set(changes) - self._UPDATABLE)
@@ -323,6 +326,7 @@ class Store:
             row.tags = list(spec.tags)
             row.expected_sysid = spec.expected_sysid
             row.node_tag = spec.node_tag
+            row.gcs_endpoints = list(spec.gcs_endpoints)
             row.auto_connect = auto_connect
             row.updated_at = utcnow()
         return VehicleRecord.model_validate(row)
