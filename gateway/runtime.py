@@ -19,7 +19,7 @@ from gateway.errors import GatewayError
 from gateway.fleet.commander import Commander
 from gateway.fleet.fleet_ops import FleetOperation, FleetOperations
 from gateway.fleet.operations import OperationManager
-from gateway.fleet.protocols import VehicleRegistry
+from gateway.fleet.protocols import VehicleActions, VehicleRegistry, flying
 from gateway.fleet.safety import LockBook, SafetyPolicy
 from gateway.fleet.scopes import ScopedDirectory, scopes_by_principal
 from gateway.registry.store import Store
@@ -142,6 +142,11 @@ class Gateway:
             self.operations.taken_over = self.locks.takeover_for
             await self.registry.start()
             self._registry_started = True
+            if not self.settings.clustered:  # a drone found flying keeps its mode watch (a cluster
+                # node arms it only for the running operations it resumes: gateway.cluster.takeover)
+                self.operations.watch_found_flying(
+                    flying(v) for v in self.registry.all() if isinstance(v, VehicleActions)
+                )
             if self.cluster is not None:
                 await self.cluster.start()
         except BaseException:
