@@ -1,10 +1,10 @@
 """The cluster under its own engines' faults, with real PostgreSQL, NATS, sidecars and simulated drones:
 
-- PostgreSQL stopped for 20 s under three drones in the air: the emergency stop answers at once and
-  every drone lands; every node then fences itself (no sidecar left behind, whatever its flight log
-  could not write); when PostgreSQL is back, each drone is ready again under exactly one sidecar,
-  without restarting a node, the stop is in the audit with the time it was made, and its fleet lock is
-  stored. SIGTERM ends every node.
+- PostgreSQL stopped for 20 s under three drones in the air: every node fences itself (no sidecar left
+  behind, whatever its flight log could not write); an emergency stop then still puts every drone into
+  LAND, sent by each fenced node over the drone's own link; when PostgreSQL is back, each drone is ready
+  again under exactly one sidecar, without restarting a node, the stop is in the audit with the time it
+  was made, and its fleet lock is stored. SIGTERM ends every node.
 - one node cut off from NATS (a TCP proxy the test controls, between the node and NATS): a command
   forwarded to it, and one it forwards, answer "not run" within the accept time; when the link heals, the
   owners drop both (they arrive after their deadline) and the drones stay on the ground. Cut off, the
@@ -85,18 +85,6 @@ async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
 
             pg.stop()
             stopped_at = datetime.now(UTC)
-            response = await c.node("node-b").post("/fleet/stop", {"action": "land"})
-            assert response.status_code == 200, response.text
-            stop = response.json()
-            outcomes = {r["vehicle_id"]: r for r in stop["results"]}
-            assert all(outcomes[d]["outcome"] == "sent" for d in c.drone_ids), outcomes
-            assert stop["fleet_lock"]["scope"] == "*" and stop["fleet_lock"]["stored"] is False, stop
-
-            async def all_landing() -> bool:
-                modes = [(await c.true_state(d))["mode"] for d in c.drone_ids]
-                return modes == ["LAND"] * len(c.drone_ids)
-
-            await eventually(all_landing, "every drone in LAND after the stop", within_s=3)
 
             # no database: each node fences itself, and no sidecar is left behind
             def fenced() -> bool:
@@ -111,6 +99,24 @@ async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
             assert fenced(), "\n".join(n.log_tail(20) for n in c.nodes)
             assert not any(sidecars(c.nodes).values()), sidecars(c.nodes)
             assert all(n.alive for n in c.nodes)
+            modes = {d: (await c.true_state(d))["mode"] for d in c.drone_ids}
+            assert "LAND" not in modes.values(), modes  # still flying their last command
+
+            # the stop, now that no node holds a link: each fenced node sends it over the drone's own link
+            response = await c.node("node-b").post("/fleet/stop", {"action": "land"})
+            assert response.status_code == 200, response.text
+            stop = response.json()
+            outcomes = {r["vehicle_id"]: r for r in stop["results"]}
+            assert all(outcomes[d]["outcome"] == "sent" for d in c.drone_ids), outcomes
+            assert stop["fleet_lock"]["scope"] == "*" and stop["fleet_lock"]["stored"] is False, stop
+
+            async def all_landing() -> bool:
+                modes = [(await c.true_state(d))["mode"] for d in c.drone_ids]
+                return modes == ["LAND"] * len(c.drone_ids)
+
+            await eventually(all_landing, "every drone in LAND after the stop", within_s=3)
+            assert all(log_has(n, "sent over its own link by fenced node") for n in c.nodes), outcomes
+            assert not any(sidecars(c.nodes).values()), sidecars(c.nodes)  # the links were only borrowed
             # the outage lasts as long as the one this is about (its leases expire in the meantime)
             await asyncio.sleep(max(0.0, OUTAGE_S - (datetime.now(UTC) - stopped_at).total_seconds()))
 
