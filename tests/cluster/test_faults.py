@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import json
 import os
 import signal
 import subprocess
@@ -26,11 +27,21 @@ from urllib.parse import urlparse
 
 import pytest
 from mcp.types import CallToolResult
+from sqlalchemy import text
 
-from tests.cluster.harness import Node, cluster, missing_engines, wait_spread
+from gateway.registry.store import Store
+from tests.cluster.harness import (
+    Node,
+    cluster,
+    missing_engines,
+    start_node,
+    stop_node,
+    wait_node_ready,
+    wait_spread,
+)
 from tests.helpers.tcpproxy import TcpProxy
 from tests.helpers.timing import eventually, scaled
-from tests.persist.pg import find_pg_bin, restartable_postgres
+from tests.persist.pg import create_database, find_pg_bin, restartable_postgres
 from tests.registry.procs import alive, mavsdk_servers_of
 
 pytestmark = [
@@ -227,3 +238,58 @@ async def test_a_node_cut_off_from_nats_runs_no_late_command(tmp_path: Path) -> 
             except subprocess.TimeoutExpired:
                 raise AssertionError(f"node-b did not end on SIGTERM:\n{node_b.log_tail()}") from None
             assert not [p for p in its_sidecars if alive(p)]
+
+
+async def test_writes_kept_during_an_outage_survive_a_kill_9(tmp_path: Path) -> None:
+    """A gateway killed (-9) while the database is down keeps what it could not write in its spool file;
+    started again once the database is back, it writes those rows first, in order, with their times."""
+    spool = tmp_path / "gw" / "spool.jsonl"
+    with restartable_postgres() as pg:
+        store = await Store.open(await create_database(pg.url))  # the schema, made once
+        url = store.url
+        await store.close()
+        env = {"GATEWAY_SPOOL_PATH": str(spool)}
+        node = start_node("gw", url, "", tmp_path, env)
+        try:
+            await wait_node_ready(node, 60)
+            pg.stop()
+            outage = datetime.now(UTC)
+            for action in ("hold", "land", "hold"):
+                response = await node.post("/fleet/stop", {"action": action})
+                assert response.status_code == 200, response.text
+                assert response.json()["fleet_lock"]["stored"] is False
+
+            async def kept() -> list[dict[str, Any]] | None:
+                lines = [json.loads(x) for x in spool.read_text().splitlines()] if spool.exists() else []
+                audit = [x for x in lines if x.get("kind", "").startswith("audit")]
+                return lines if len(audit) >= 1 and any(x.get("kind") == "lock" for x in lines) else None
+
+            lines = await eventually(kept, "the stops' audit rows and lock in the spool file", within_s=30)
+            node.kill9()
+            assert spool.exists() and not any("done" in x for x in lines), lines
+            killed = datetime.now(UTC)
+
+            pg.start()
+            node = start_node("gw", url, "", tmp_path, env)
+            await wait_node_ready(node, 60)
+            rows = await _rows(
+                url, "SELECT action, t FROM audit WHERE action = 'rest.fleet_stop' ORDER BY id"
+            )
+            assert len(rows) == 3, rows
+            for _action, t in rows:  # the time each stop was made, not when it was written
+                t = t if t.tzinfo else t.replace(tzinfo=UTC)
+                assert outage.timestamp() - 1 < t.timestamp() < killed.timestamp(), (t, outage, killed)
+            assert [r[0] for r in await _rows(url, "SELECT scope FROM locks")] == ["*"]
+            assert not spool.exists()  # all written: nothing waits
+            assert log_has(node, "writes kept by this node's previous run")
+        finally:
+            stop_node(node)
+
+
+async def _rows(url: str, sql: str) -> list[Any]:
+    store = await Store.open(url, upgrade=False)
+    try:
+        async with store.engine.connect() as conn:
+            return list((await conn.execute(text(sql))).all())
+    finally:
+        await store.close()
