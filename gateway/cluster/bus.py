@@ -11,7 +11,7 @@ Subjects (``fleet.`` prefix):
   answers ``accepted`` first, and refuses (runs nothing) a call that reaches it after that time or for
   an epoch it does not hold. A caller that heard no ``accepted`` in time says "not run", and that is
   true: a call delayed in the bus (a node cut off, then healed) is dropped by its owner, not run;
-- ``fleet.stop.<vehicle>``: a stop (land, return) for a vehicle whose node fenced itself (the database
+- ``fleet.stop.<vehicle>``: a stop (land, return, hold) for a vehicle whose node fenced itself (the database
   unreachable) and stopped its sidecar: that node alone listens, and sends it over the drone's own link;
 - ``fleet.event.<kind>``: broadcasts to every node (operator locks, registrations changed, stop).
 
@@ -61,7 +61,7 @@ def call_subject(vehicle_id: str) -> str:
 
 
 def stop_subject(vehicle_id: str) -> str:
-    """Stops (land, return) for a vehicle whose node fenced itself: it sends them over the drone's own
+    """Stops (land, return, hold) for a vehicle whose node fenced itself: it sends them over the drone's own
     link (`gateway.cluster.stoplink`)."""
     return f"{PREFIX}.stop.{vehicle_id}"
 

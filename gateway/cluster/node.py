@@ -33,7 +33,7 @@ from gateway.config import Settings
 from gateway.errors import CommandFailed, GatewayError, NoOwner, NotRun
 from gateway.fleet.caller import Caller
 from gateway.fleet.routing import OnMessage
-from gateway.fleet.views import OperationView
+from gateway.fleet.views import ActionResult, OperationView
 from gateway.registry.spec import VehicleSpec
 
 if TYPE_CHECKING:
@@ -54,8 +54,9 @@ HEARD_LOCK_KEPT_S = 600.0
 #: forwarded verbs that only read the drone: they get a short timeout, not the MCP wait cap
 READS = frozenset({"arrival", "mission_progress", "get_param", "list_params", "download_mission"})
 READ_TIMEOUT_S = 5.0
-#: a stop sent over a drone's own link by its fenced node: its whole answer (open, send, ack) within this
-STOP_SEND_S = 1.5
+#: a stop sent over a drone's own link by its fenced node: its whole answer (open, for a hold ask where
+#: the drone is, send, ack) within this (a land is sent at once; this bounds waiting for its answer)
+STOP_SEND_S = 4.0
 
 
 class ClusterSetupError(GatewayError):
@@ -98,7 +99,7 @@ class ClusterNode:
         self._adopting_from: dict[str, str] = {}  # vehicle -> the node it was taken from, while adopting
         self._adoptions: set[asyncio.Task[None]] = set()
         # drones this node owned when it fenced itself (database unreachable): it keeps a stop-only path
-        # to each (land, return, over the drone's own link) until another node holds a live lease of it
+        # to each (land, return, hold over the drone's own link) until a node holds a live lease of it
         self.fenced: dict[str, StopTarget] = {}
         self._stop_paths: dict[str, Subscription] = {}
         self.nodes: list[NodeRecord] = []
@@ -347,7 +348,7 @@ class ClusterNode:
         log.info("%s: released by node %s (%s)", vehicle_id, self.node_id, why)
 
     # --- the stop-only path of a fenced node ----------------------------------------------------------
-    # Fencing exists so that no two nodes command one drone. A stop (land, return) is the one command
+    # Fencing exists so that no two nodes command one drone. A stop (land, return, hold) is the one command
     # that is safe to send twice, so a node that fenced itself because the database was unreachable keeps
     # a way to stop the drones it owned: on the drone's stop subject, and for its own callers, it sends
     # the stop over the drone's own link (`gateway.cluster.stoplink`), opened for that moment only.
@@ -379,7 +380,7 @@ class ClusterNode:
                     log.error("%s: cannot listen for stops on the bus (%r): only this node's own stops "
                               "reach it", vid, exc)  # fmt: skip
         if targets:
-            log.warning("node %s keeps a stop-only path (land, return over the drone's own link) to %s "
+            log.warning("node %s keeps a stop-only path (land, return, hold over the drone's own link) to %s "
                         "until another node holds their leases", self.node_id,
                         ", ".join(t.vehicle_id for t in targets))  # fmt: skip
 
@@ -414,16 +415,17 @@ class ClusterNode:
         return handle
 
     async def stop_directly(self, vehicle_id: str, verb: str, caller: Caller) -> dict[str, Any]:
-        """An operator's land or return, sent over the drone's own link by this fenced node."""
+        """An operator's land, return or hold, sent over the drone's own link by this fenced node."""
         target = self.fenced.get(vehicle_id)
         if target is None:
             raise NoOwner(f"node {self.node_id} has no stop path to drone '{vehicle_id}' any more: retry")
         if verb not in STOP_COMMANDS or not caller.is_operator:
             raise NotRun(
                 f"node {self.node_id} fenced itself (the database was unreachable) and holds no link to "
-                f"{vehicle_id}: it sends only an operator's land or return_to_launch over the drone's own "
-                f"link; {verb} was not run"
+                f"{vehicle_id}: it sends only an operator's land, return_to_launch or hold over the drone's "
+                f"own link; {verb} was not run"
             )
+        started = time.monotonic()
         try:
             answer_ = await send_stop(target, verb, STOP_SEND_S)
         except Exception as exc:
@@ -432,10 +434,19 @@ class ClusterNode:
                 f"node {self.node_id} (fenced) could not open {vehicle_id}'s link ({exc}): "
                 f"{verb} was not sent"
             ) from None
-        log.warning("%s: %s sent over its own link by fenced node %s for %s (autopilot: %s)", vehicle_id,
-                    verb, self.node_id, caller.principal, answer_)  # fmt: skip
+        log.warning("%s: %s sent over its own link by fenced node %s for %s (autopilot: %s, after %.0f ms)",
+                    vehicle_id, verb, self.node_id, caller.principal, answer_,
+                    (time.monotonic() - started) * 1000)  # fmt: skip
         if answer_ in ("DENIED", "UNSUPPORTED", "FAILED", "TEMPORARILY_REJECTED", "CANCELLED"):
             raise CommandFailed(f"{vehicle_id} refused {verb} sent over its own link: {answer_}")
+        if verb == "hold":
+            return ActionResult(
+                drone_id=vehicle_id,
+                action="hold",
+                message=f"hold (a reposition to where it is) sent over the drone's own link by node "
+                f"{self.node_id}, fenced while the database was unreachable (autopilot: {answer_})",
+                facts={"via": "direct link", "node": self.node_id},
+            ).model_dump(mode="json")
         return OperationView(
             operation_id=f"direct-{uuid.uuid4().hex[:12]}",
             drone_id=vehicle_id,

@@ -1,8 +1,9 @@
 """The cluster under its own engines' faults, with real PostgreSQL, NATS, sidecars and simulated drones:
 
 - PostgreSQL stopped for 20 s under three drones in the air: every node fences itself (no sidecar left
-  behind, whatever its flight log could not write); an emergency stop then still puts every drone into
-  LAND, sent by each fenced node over the drone's own link; when PostgreSQL is back, each drone is ready
+  behind, whatever its flight log could not write); an emergency stop then still reaches every drone,
+  sent by each fenced node over the drone's own link: a hold from one node, then a land from the other
+  puts every drone into LAND; when PostgreSQL is back, each drone is ready
   again under exactly one sidecar, without restarting a node, the stop is in the audit with the time it
   was made, and its fleet lock is stored. SIGTERM ends every node.
 - one node cut off from NATS (a TCP proxy the test controls, between the node and NATS): a command
@@ -17,6 +18,7 @@ import asyncio
 import contextlib
 import json
 import os
+import re
 import signal
 import subprocess
 from collections.abc import Iterator
@@ -113,7 +115,15 @@ async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
             modes = {d: (await c.true_state(d))["mode"] for d in c.drone_ids}
             assert "LAND" not in modes.values(), modes  # still flying their last command
 
-            # the stop, now that no node holds a link: each fenced node sends it over the drone's own link
+            # a stop now that no node holds a link: each fenced node sends it over the drone's own link;
+            # from either node, hold (a reposition to where the drone is) and then land
+            response = await c.node("node-a").post("/fleet/stop", {"action": "hold"})
+            assert response.status_code == 200, response.text
+            held = {r["vehicle_id"]: r["outcome"] for r in response.json()["results"]}
+            assert held == {d: "sent" for d in c.drone_ids}, response.json()
+            logs = "".join(n.log.read_text(errors="replace") for n in c.nodes)
+            for d in c.drone_ids:  # the autopilot took it
+                assert re.search(rf"{d}: hold sent over its own link by fenced node .*ACCEPTED", logs), d
             response = await c.node("node-b").post("/fleet/stop", {"action": "land"})
             assert response.status_code == 200, response.text
             stop = response.json()
@@ -152,15 +162,17 @@ async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
             await eventually(one_sidecar_each, "every drone ready under one sidecar", within_s=90)
             assert {n.name: n.proc.pid for n in c.nodes if n.alive} == pids  # no node was restarted
 
-            async def stop_audited() -> list[Any]:
-                return await c.rows("SELECT t FROM audit WHERE action = 'rest.fleet_stop'")
+            async def stops_audited() -> list[Any] | None:
+                rows = await c.rows("SELECT t FROM audit WHERE action = 'rest.fleet_stop' ORDER BY t")
+                return rows if len(rows) >= 2 else None
 
             rows = await eventually(
-                stop_audited, "the stop's audit row after the database is back", within_s=30
+                stops_audited, "both stops' audit rows after the database is back", within_s=30
             )
-            assert len(rows) == 1
-            t = rows[0][0] if rows[0][0].tzinfo else rows[0][0].replace(tzinfo=UTC)
-            assert stopped_at.timestamp() - 1 < t.timestamp() < back_at.timestamp()  # the time it was made
+            assert len(rows) == 2, rows  # the hold and the land
+            for (t,) in rows:  # the time each was made
+                t = t if t.tzinfo else t.replace(tzinfo=UTC)
+                assert stopped_at.timestamp() - 1 < t.timestamp() < back_at.timestamp(), (t, stopped_at)
             assert [r[0] for r in await c.rows("SELECT scope FROM locks")] == ["*"]
 
             # SIGTERM ends every node, sidecars and all
