@@ -34,7 +34,7 @@ from gateway.fleet.operations import (
     YawTracker,
     check_positive_altitude,
 )
-from gateway.fleet.protocols import FlyingVehicle, Notify
+from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.fleet.readings import is_airborne, is_landed_and_disarmed, position, value
 from gateway.fleet.safety import Target, VehicleContext
 from gateway.fleet.views import (
@@ -60,7 +60,7 @@ class DroneVerbs(CommandCore):
     @routed
     async def arm(self, caller: Caller, drone_id: str, *, notify: Notify | None = None) -> ActionResult:
         """Arm; a drone still initialising is waited for, within the wait cap (see `Vehicle.arm`)."""
-        vehicle = self.vehicle(drone_id)
+        vehicle = self.flown(drone_id)
         deadline = self._arming_deadline()
         await self._wait_initialised(vehicle, notify, deadline)
         self.safety.check_arm(self.context(vehicle), caller.policy_via)
@@ -88,7 +88,7 @@ class DroneVerbs(CommandCore):
         self, caller: Caller, drone_id: str, alt_m: float, *, notify: Notify | None = None
     ) -> OperationView:
         """Arm if needed and climb to ``alt_m`` above home; done when reached."""
-        vehicle = self.vehicle(drone_id)
+        vehicle = self.flown(drone_id)
         deadline = self._arming_deadline()  # initialising and arming wait together, within the cap
         await self._wait_initialised(vehicle, notify, deadline)
         self._guard_takeoff(caller, vehicle, "takeoff")
@@ -321,7 +321,7 @@ class DroneVerbs(CommandCore):
                 f"give either up_m (a climb, here {up_m:g} m) or alt_m (an altitude above home, here "
                 f"{alt_m:g} m), not both; nothing was sent"
             )
-        vehicle = self.vehicle(drone_id)
+        vehicle = self.flown(drone_id)
         deadline = self._arming_deadline()
         if not is_airborne(vehicle):
             await self._wait_initialised(vehicle, notify, deadline)
@@ -494,9 +494,8 @@ class DroneVerbs(CommandCore):
         view = await self.wait(op.id, cap, on_progress)
         if land_on_arrival and view.kind in NAV_KINDS and view.status == "succeeded" and is_airborne(vehicle):
             self.safety.check_actuation(self.context(vehicle), caller.policy_via)
-            landing = await self._track(
-                caller, vehicle, LandingTracker(kind="land"), vehicle.land, {}, "land"
-            )
+            flown = self.flown(drone_id)
+            landing = await self._track(caller, flown, LandingTracker(kind="land"), flown.land, {}, "land")
             view = await self.wait(
                 landing.operation_id, max(0.0, cap - (time.monotonic() - start)), on_progress
             )
@@ -737,7 +736,7 @@ class DroneVerbs(CommandCore):
         )
 
 
-def _commanded(vehicle: FlyingVehicle, choice: ModeChoice) -> dict[str, Any]:
+def _commanded(vehicle: VehicleView, choice: ModeChoice) -> dict[str, Any]:
     """What a mode change commands, for the takeover watch: the mission, return, landing or takeoff
     mode is judged as that operation is (the autopilot's own next modes included: PX4 holds after a
     mission), any other mode as itself."""
@@ -753,7 +752,7 @@ def _commanded(vehicle: FlyingVehicle, choice: ModeChoice) -> dict[str, Any]:
     return {"commands": f"set_flight_mode {choice.native}", "modes": frozenset({choice.native})}
 
 
-def _now_doing(vehicle: FlyingVehicle) -> str:
+def _now_doing(vehicle: VehicleView) -> str:
     """What the drone does now, from its telemetry: mode, airborne, altitude."""
     mode = value(vehicle, "flight_mode") or "unknown"
     pos = position(vehicle)
@@ -762,7 +761,7 @@ def _now_doing(vehicle: FlyingVehicle) -> str:
     return f"mode {mode}, {state}{where}"
 
 
-def _restart_truth(vehicle: FlyingVehicle, record: OperationRecord) -> str:
+def _restart_truth(vehicle: VehicleView, record: OperationRecord) -> str:
     """A stored operation and the drone now, for a caller of a process that did not run it: e.g. "the
     gateway restarted while this operation was running; now: mode GUIDED, in the air at 12.0 m above
     home, 180 m from the goto's target"."""
@@ -780,7 +779,7 @@ def _restart_truth(vehicle: FlyingVehicle, record: OperationRecord) -> str:
     return f"{said}; now: {_now_doing(vehicle)}{target}"
 
 
-def _is_landing_mode(vehicle: FlyingVehicle, choice: ModeChoice) -> bool:
+def _is_landing_mode(vehicle: VehicleView, choice: ModeChoice) -> bool:
     """Whether ``choice`` is the drone's LAND or RTL mode, by whichever name it was asked for: a safety
     action, never refused by the takeoff guard."""
     for name in ("LAND", "RTL"):

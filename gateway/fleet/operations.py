@@ -30,7 +30,7 @@ from typing import Any, Protocol
 from gateway.config import Settings
 from gateway.errors import InvalidArgument, NotFound
 from gateway.fleet import geo
-from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.protocols import FlyingVehicle, VehicleView
 from gateway.fleet.readings import (
     age_s,
     climb_rate,
@@ -195,7 +195,7 @@ class GotoTracker:
     kind: str = "goto"
     _start_dist: float | None = None
 
-    def distance(self, vehicle: FlyingVehicle) -> tuple[float, float] | None:
+    def distance(self, vehicle: VehicleView) -> tuple[float, float] | None:
         pos = position(vehicle)
         if pos is None:
             return None

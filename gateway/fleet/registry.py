@@ -24,7 +24,7 @@ from pydantic import ValidationError
 
 from gateway.config import Settings
 from gateway.errors import InvalidArgument, UnknownVehicle
-from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.protocols import FlyingVehicle, VehicleView, flying
 from gateway.fleet.vehicle import ConnectionState, Vehicle
 from gateway.link.sidecar import Confine
 from gateway.registry.records import VehicleRecord
@@ -38,7 +38,7 @@ SPEC_FIELDS = set(VehicleSpec.model_fields)
 StateListener = Callable[[Vehicle, ConnectionState, ConnectionState], None]
 
 
-class RegisteredVehicle(FlyingVehicle, Protocol):
+class RegisteredVehicle(VehicleView, Protocol):
     """What the registry holds: a `Vehicle` it runs, or (a cluster node) a view of a vehicle another
     node runs (`gateway.cluster.remote.RemoteVehicle`)."""
 
@@ -156,6 +156,15 @@ class Registry:
         if vehicle is None:
             raise UnknownVehicle(str(vehicle_id)[:64], list(self._vehicles))
         return vehicle
+
+    def flown(self, vehicle_id: str) -> FlyingVehicle:
+        """The vehicle, to send it commands: a `Vehicle` this node flies whose autopilot the gateway has
+        a dialect for. OwnedElsewhere for a drone another cluster node flies (this node shows it),
+        NoDialect for an autopilot without a dialect (`Vehicle.require_dialect`)."""
+        vehicle = self.get(vehicle_id)
+        if isinstance(vehicle, Vehicle):
+            vehicle.require_dialect()
+        return flying(vehicle)
 
     def all(self) -> list[RegisteredVehicle]:
         return [self._vehicles[k] for k in sorted(self._vehicles)]

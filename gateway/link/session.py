@@ -354,22 +354,6 @@ class Link:
             self.require_ready()
         return self.system
 
-    async def wait_for_state(self, *states: ConnectionState | str, within_s: float = 60.0) -> ConnectionState:
-        """Wait until the state is one of ``states``; raise VehicleNotReady naming the state otherwise."""
-        wanted = {ConnectionState(s) for s in states}
-        loop = asyncio.get_running_loop()
-        deadline = loop.time() + within_s
-        while (state := self.state) not in wanted:
-            if loop.time() > deadline:
-                raise VehicleNotReady(
-                    f"drone '{self.id}' did not reach {'/'.join(sorted(s.value for s in wanted))} within "
-                    f"{within_s:g} s; it is {state.value}"
-                    + (f" ({self._last_error})" if self._last_error else ""),
-                    state=state.value,
-                )
-            await asyncio.sleep(0.1)
-        return state
-
     def status(self) -> dict[str, Any]:
         car = self._sidecar
         age = self.last_heartbeat_age_s
