@@ -103,6 +103,9 @@ class Gateway:
         log.info("opening database %s", _redact(self.settings.database_url))
         self.store = await Store.open(self.settings.database_url)
         try:
+            spool_file = self.settings.spool_file
+            if spool_file is not None:  # writes a killed run kept go first, before anything new
+                await self.store.keep_spool_in(spool_file)
             for lock in await self.store.list_locks():
                 self.locks.lock(lock.scope, lock.reason, lock.by, at=lock.locked_at)
             for lock in await self.store.list_takeovers():
