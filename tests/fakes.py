@@ -82,6 +82,8 @@ class FakeVehicle:
         self.params.update({f"SR0_P{i:03d}": float(i) for i in range(300)})
         self.mission: list[MissionItem] = []
         self.mission_done = False
+        #: what the autopilot says it flies to (lat, lon, monotonic), set by a test; None: not said
+        self.target: tuple[float, float, float] | None = None
         lat, lon = geo.offset_position(HOME[0], HOME[1], 0.0, east_m)
         self.home_ll = (lat, lon)
         self.telemetry = TelemetryCache(stale_after_s=stale_after_s)
@@ -158,6 +160,9 @@ class FakeVehicle:
         if mode is None or armed is None:
             return None
         return str(mode.value), bool(armed.value)
+
+    def position_target(self) -> tuple[float, float, float] | None:
+        return self.target
 
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         return ARDUPILOT.commanded_modes(kind, done=done)

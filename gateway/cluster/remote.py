@@ -225,6 +225,9 @@ class RemoteVehicle:
     def heartbeat_mode(self) -> tuple[str, bool] | None:
         return None  # its owner watches the mode (and tells the cluster of a takeover)
 
+    def position_target(self) -> tuple[float, float, float] | None:
+        return None  # its owner compares it (and tells the cluster of a takeover)
+
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         return self.dialect.commanded_modes(kind, done=done)
 

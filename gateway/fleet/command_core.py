@@ -39,7 +39,9 @@ log = logging.getLogger(__name__)
 AltFrame = Literal["home", "amsl"]
 OnProgress = Callable[[OperationView], Awaitable[None]]
 
-NAV_KINDS = ("goto", "reposition", "move_to_relative")
+#: operations that fly to a point (their params: lat_deg, lon_deg, alt_m); a formation or fleet-climb leg
+#: is one too, so check_arrival answers for a drone whose formation leg a pilot took over
+NAV_KINDS = ("goto", "reposition", "move_to_relative", "formation", "fleet_climb")
 ELSEWHERE_KEPT = 2000
 """Operations started on other nodes whose drone this node remembers (to forward waits on them)."""
 FOLLOW_RETRY_S = 0.5

@@ -42,6 +42,9 @@ from gateway.fleet.safety import Target, VehicleContext
 from gateway.fleet.views import ActionResult, ArrivalView, OperationView
 from gateway.registry.records import OperationRecord
 
+TARGET_FRESH_S = 5.0
+"""How old the autopilot's reported target may be to say where a drone is heading."""
+
 
 class NavigationVerbs:
     """Where a drone flies, and how its flight stands."""
@@ -266,6 +269,7 @@ class NavigationVerbs:
                     message=_restart_truth(vehicle, record),
                 )
         if op is None or op.kind not in NAV_KINDS:
+            flying = f"; it is flying: {_now_doing(vehicle)}" if op is None and is_airborne(vehicle) else ""
             return ArrivalView(
                 drone_id=drone_id,
                 arrived=False,
@@ -274,7 +278,7 @@ class NavigationVerbs:
                 status=None,
                 distance_m=None,
                 vertical_m=None,
-                message="no goto sent to this drone yet",
+                message=f"no goto sent to this drone yet{flying}",
             )
         tracker = GotoTracker(
             op.params["lat_deg"],
@@ -357,6 +361,17 @@ def _now_doing(vehicle: VehicleView) -> str:
     pos = position(vehicle)
     where = f" at {pos[2]:.1f} m above home" if pos is not None else ""
     state = "in the air" if is_airborne(vehicle) else "on the ground"
+    heard, prog = vehicle.heartbeat_mode(), value(vehicle, "mission_progress")
+    if heard is not None and heard[0] in vehicle.commanded_modes("mission") and prog is not None:
+        where += f", flying mission item {int(prog.current)} of {int(prog.total)}"  # MISSION_CURRENT
+    target = vehicle.position_target()  # POSITION_TARGET_GLOBAL_INT
+    if target is not None and pos is not None and time.monotonic() - target[2] < TARGET_FRESH_S:
+        far = geo.horizontal_distance_m(pos[0], pos[1], target[0], target[1])
+        where += (
+            f", heading for the autopilot's target {far:.0f} m away ({target[0]:.6f}, {target[1]:.6f})"
+            if far > 3.0
+            else ", holding at the autopilot's target"
+        )
     return f"mode {mode}, {state}{where}"
 
 
@@ -365,6 +380,8 @@ def _restart_truth(vehicle: VehicleView, record: OperationRecord) -> str:
     gateway restarted while this operation was running; now: mode GUIDED, in the air at 12.0 m above
     home, 180 m from the goto's target"."""
     said = record.message or record.status
+    if "restarted" not in said and "gateway stopped" not in said:  # it ended before this process
+        said = f"{said} (before the gateway restarted)"
     target = ""
     params = record.params or {}
     pos = position(vehicle)

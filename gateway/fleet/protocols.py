@@ -87,6 +87,10 @@ class VehicleView(Protocol):
         """The autopilot's name of the mode its HEARTBEAT shows and whether it is armed (None: no
         fresh HEARTBEAT)."""
 
+    def position_target(self) -> tuple[float, float, float] | None:
+        """Where the autopilot says it flies to (POSITION_TARGET_GLOBAL_INT): lat, lon and when it said
+        so (monotonic); None when it has not said."""
+
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         """The modes the autopilot may show while it does what the gateway commanded (an operation of
         ``kind``; ``done``: once it succeeded), in its own names (`Dialect.commanded_modes`)."""

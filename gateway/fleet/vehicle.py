@@ -14,6 +14,7 @@ in one place (``goto``). Arming and mode switches live in ``vehicle_arming``, mi
 from __future__ import annotations
 
 import asyncio
+import json
 import logging
 import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -48,6 +49,7 @@ __all__ = ["ConnectionState", "MissionItem", "Vehicle"]
 ARMABLE_WAIT_S = 60.0
 #: closing the flight log never holds a link open longer than this (a database that hangs)
 RECORDER_STOP_S = 5.0
+POSITION_IGNORED = 0b111  # POSITION_TARGET_TYPEMASK: x, y, z ignored (a velocity or attitude target)
 
 StateListener = Callable[["Vehicle", ConnectionState, ConnectionState], None]
 
@@ -76,13 +78,18 @@ class Vehicle:
             confine=confine,
             on_state=self._state_changed,
             mission_progress=lambda current, total: self.missions.wire_progress(current, total),
-            session_jobs=[("mission", lambda system: self.missions.follow(system))],
+            session_jobs=[
+                ("mission", lambda system: self.missions.follow(system)),
+                ("target", self._position_target),
+            ],
         )
         self.missions = MissionControl(self.link, self)
         self.arming = Arming(self.link, self)
         self.params = Parameters(spec.id, self.link.call, self.link.require_session)
         self._recorder: FlightRecorder | None = None
         self._return_alt_name: str | None = None  # the RTL altitude parameter this vehicle has
+        #: POSITION_TARGET_GLOBAL_INT: where the autopilot flies to (lat, lon, monotonic time heard)
+        self._target: tuple[float, float, float] | None = None
 
     # --- identity, state and the link ----------------------------------------------------------------
     @property
@@ -368,6 +375,24 @@ class Vehicle:
         if mps <= 0:
             raise InvalidArgument(f"speed must be above 0 m/s; got {mps:g}")
         await self.link.call("set speed", self.link.require_session().action.set_current_speed(float(mps)))
+
+    # --- where the autopilot flies to ---------------------------------------------------------------------
+    def position_target(self) -> tuple[float, float, float] | None:
+        """Where the autopilot says it flies to (POSITION_TARGET_GLOBAL_INT): latitude, longitude and
+        when it said so (monotonic); None when it has not said (or not for this session)."""
+        return self._target
+
+    async def _position_target(self, system: System) -> None:
+        """POSITION_TARGET_GLOBAL_INT (the link asks for it at 2 Hz with the other rates): the target a
+        goto's takeover watch compares with the gateway's own."""
+        self._target = None
+        async for msg in system.mavlink_direct.message("POSITION_TARGET_GLOBAL_INT"):
+            fields = json.loads(msg.fields_json)
+            if int(fields.get("type_mask", 0)) & POSITION_IGNORED == POSITION_IGNORED:
+                continue  # no position in it
+            lat, lon = int(fields.get("lat_int", 0)) / 1e7, int(fields.get("lon_int", 0)) / 1e7
+            if lat or lon:
+                self._target = (lat, lon, time.monotonic())
 
     # --- missions (gateway.fleet.vehicle_missions) --------------------------------------------------------
     async def upload_mission(self, items: Sequence[MissionItem | dict[str, object]]) -> int:

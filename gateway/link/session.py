@@ -66,6 +66,7 @@ MAV_CMD_SET_MESSAGE_INTERVAL = 511
 MAV_CMD_REQUEST_MESSAGE = 512
 MAVLINK_MSG_MISSION_CURRENT = 42
 MAVLINK_MSG_EKF_STATUS_REPORT = 193
+MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT = 87
 MAVLINK_MSG_SIMSTATE = 164
 
 
@@ -646,10 +647,15 @@ class Link:
         skip = self.rules.skipped_streams if self.facts.autopilot is not None else frozenset()
         await feed.request_rates(lambda what, aw: self.call(what, aw, 5.0), skip)
         # MISSION_CURRENT is only in ArduPilot's EXT_STAT stream: ask for it by id (mission progress);
-        # EKF_STATUS_REPORT says when the position estimate is ready (arming in GUIDED needs it)
-        for message_id in (MAVLINK_MSG_MISSION_CURRENT, MAVLINK_MSG_EKF_STATUS_REPORT):
+        # EKF_STATUS_REPORT says when the position estimate is ready (arming in GUIDED needs it);
+        # POSITION_TARGET_GLOBAL_INT (EXT_STAT too) is where it flies to (gateway.fleet.takeover)
+        for message_id, interval_us in (
+            (MAVLINK_MSG_MISSION_CURRENT, 1e6),
+            (MAVLINK_MSG_EKF_STATUS_REPORT, 1e6),
+            (MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT, 5e5),
+        ):
             with contextlib.suppress(CommandFailed):
-                await self.command_long(MAV_CMD_SET_MESSAGE_INTERVAL, message_id, 1e6, what="rate")
+                await self.command_long(MAV_CMD_SET_MESSAGE_INTERVAL, message_id, interval_us, what="rate")
         if not self.is_simulator:  # a simulator says so with SIMSTATE; real ArduPilot answers FAILED
             with contextlib.suppress(CommandFailed):
                 await self.command_long(MAV_CMD_REQUEST_MESSAGE, MAVLINK_MSG_SIMSTATE, what="SIMSTATE")
