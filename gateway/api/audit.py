@@ -1,8 +1,5 @@
 """Audit of REST calls: every state-changing request (POST, PUT, PATCH, DELETE) is written to the
 audit table with source 'rest', the caller, the vehicle, the arguments, the outcome and the duration.
-A command that started a tracked operation (the command pass says so, `AUDIT_SENT`) is written as
-running, naming the operation, once its answer (sent) is ready; the store completes the row when the
-operation ends.
 
 Reads are not audited: dashboards poll them and they change nothing. Routers opt in by using
 :class:`AuditedRoute` as their ``route_class``.
@@ -22,7 +19,6 @@ from fastapi.routing import APIRoute
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from gateway.errors import GatewayError, SafetyRefusal
-from gateway.fleet.command_pass import AUDIT_SENT
 from gateway.registry.store import AuditEntry
 
 log = logging.getLogger(__name__)
@@ -58,16 +54,9 @@ def _vehicle_id(request: Request, args: dict[str, Any]) -> str | None:
 
 
 async def record_rest_call(
-    request: Request,
-    action: str,
-    outcome: str,
-    error: str | None,
-    started: float,
-    operation_id: str | None = None,
+    request: Request, action: str, outcome: str, error: str | None, started: float
 ) -> None:
-    """Write one audit row (and touch the caller's REST session); never fails the request. A call that
-    started a tracked operation (``operation_id``) is written as running, and the store completes the
-    row when the operation ends."""
+    """Write one audit row (and touch the caller's REST session); never fails the request."""
     duration_ms = (time.perf_counter() - started) * 1000.0
     gateway = request.app.state.gateway
     store = gateway.store
@@ -90,10 +79,9 @@ async def record_rest_call(
                 vehicle_id=_vehicle_id(request, args),
                 action=action,
                 arguments=args,
-                outcome="running" if operation_id is not None else outcome,
+                outcome=outcome,
                 error=error,
                 duration_ms=duration_ms,
-                operation_id=operation_id,
             )
         )
     except Exception:
@@ -111,8 +99,6 @@ class AuditedRoute(APIRoute):
             if request.method not in AUDITED_METHODS:
                 return await handler(request)
             started = time.perf_counter()
-            sent: list[str] = []  # the operation the command pass started, told when it was sent
-            audit_sent = AUDIT_SENT.set(lambda operation_id: None if sent else sent.append(operation_id))
             try:
                 response = await handler(request)
             except SafetyRefusal as exc:
@@ -131,12 +117,9 @@ class AuditedRoute(APIRoute):
             except Exception as exc:
                 await record_rest_call(request, action, "error", f"internal_error: {exc!r}"[:500], started)
                 raise
-            finally:
-                AUDIT_SENT.reset(audit_sent)
             outcome = "ok" if response.status_code < 400 else "error"
             error = None if outcome == "ok" else f"http_{response.status_code}"
-            operation_id = sent[0] if sent and outcome == "ok" else None
-            await record_rest_call(request, action, outcome, error, started, operation_id)
+            await record_rest_call(request, action, outcome, error, started)
             return response
 
         return audited

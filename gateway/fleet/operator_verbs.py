@@ -19,7 +19,7 @@ from typing import Literal
 from gateway.errors import GatewayError, NoOwner, NotRun
 from gateway.fleet.caller import Caller
 from gateway.fleet.command_core import command
-from gateway.fleet.command_pass import AUDIT_SENT, CommandPass
+from gateway.fleet.command_pass import CommandPass
 from gateway.fleet.drone_verbs import FlightVerbs
 from gateway.fleet.fleet_ops import FleetOperations
 from gateway.fleet.geofence import FLEET
@@ -169,7 +169,6 @@ class OperatorVerbs:
             await self.router.announce("stop", {"action": action, "by": caller.principal})
 
         async def one(vehicle: VehicleView) -> StopOutcome:
-            AUDIT_SENT.set(None)  # the stop's own row is the call's (this task's context is a copy)
             state = str(vehicle.state)
             if getattr(vehicle, "remote", False) and getattr(vehicle, "owner", None) is None:
                 return StopOutcome(

@@ -576,21 +576,8 @@ async def test_operator_actions_and_fleet_stop(client: httpx.AsyncClient, app: F
     unlocked = (await client.post("/api/v1/fleet/stop", json={"action": "rtl", "lock": False})).json()
     assert unlocked["action"] == "rtl" and unlocked["fleet_lock"] is None
 
-    rows = (await client.get("/api/v1/audit")).json()["items"]
-    actions = [e["action"] for e in rows]
+    actions = [e["action"] for e in (await client.get("/api/v1/audit")).json()["items"]]
     assert "rest.fleet_stop" in actions and "rest.land_vehicle" in actions
-    # the tracked landing's row was written when the command pass sent it, naming its operation (the
-    # store completes it when the landing ends); the instant hold's is done; a stop's row is the stop's
-    by_action = {e["action"]: e for e in rows}  # the first of each action (rows: newest first)
-    land = by_action["rest.land_vehicle"]
-    # (the fleet stops below superseded that landing: the row says so once the store has it)
-    assert land["operation_id"] == sent["operation_id"] and land["outcome"] in ("running", "superseded"), land
-    assert (
-        by_action["rest.hold_vehicle"]["outcome"] == "ok"
-        and by_action["rest.hold_vehicle"]["operation_id"] is None
-    )
-    stops = [e for e in rows if e["action"] == "rest.fleet_stop"]
-    assert all(e["operation_id"] is None for e in stops) and [e["outcome"] for e in stops].count("ok") == 4
 
 
 # --- the same API on PostgreSQL ----------------------------------------------------------------
