@@ -17,8 +17,8 @@ from pydantic import BaseModel, ConfigDict, Field, StrictBool
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import CommanderDep, CommandVehicleId, GatewayDep, Principal, PrincipalDep
 from gateway.fleet.caller import Caller
-from gateway.fleet.fleet_verbs import STOP_LOCK_REASON
 from gateway.fleet.geofence import FLEET
+from gateway.fleet.operator_verbs import STOP_LOCK_REASON
 from gateway.fleet.safety import MAX_REASON_CHARS, Lock
 from gateway.fleet.views import LockResult, OperationView, StopOutcome
 

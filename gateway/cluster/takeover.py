@@ -12,7 +12,7 @@ from __future__ import annotations
 import logging
 from typing import Any
 
-from gateway.fleet.fleet_ops import FORMATION_TOLERANCE_M
+from gateway.fleet.fleet_steps import FORMATION_TOLERANCE_M
 from gateway.fleet.operations import (
     GotoTracker,
     LandingTracker,

@@ -1,16 +1,18 @@
 """The Commander: the one path every command takes, whichever door it came through.
 
-Every verb (takeoff, goto, land, hold, mission start, formation, fleet stop...) does the same five
-things, in this order, here and nowhere else:
+It is composed of four parts, each with one job:
 
-1. resolve the drone (UnknownVehicle names the known ids; VehicleNotReady names the state and why);
-2. build one `VehicleContext` from fresh telemetry (`gateway.fleet.readings.vehicle_context`);
-3. run the safety policy on it, judged by who asked (`Caller.via`: operators are not held by locks
-   or the simulators-only switch, may kill in flight and interrupt a takeoff; agents are);
-4. start a tracked operation under the drone's command lock (`OperationManager.start`: the takeoff
-   guard runs inside the lock, so a goto racing a takeoff that is still being sent is refused), or
-   send an instant command;
-5. return a result model (`gateway.fleet.views`): an `OperationView` to wait on, or an `ActionResult`.
+- `CommandPass` (`gateway.fleet.command_pass`): the one pass every command on one drone takes, here and
+  nowhere else: the takeover lock, resolve the drone once, one `VehicleContext` from fresh telemetry,
+  the policy judged by who asked (`Caller.via`: operators are not held by locks or the simulators-only
+  switch, may kill in flight and interrupt a takeoff; agents are), the drone's command lock (the takeoff
+  guard inside it), the send, the tracked operation, the audit row at send;
+- `FlightVerbs`, `NavigationVerbs`, `MissionVerbs` (`gateway.fleet.drone_verbs`, `navigation_verbs`,
+  `mission_verbs`): each command on one drone, declared once (its arguments, checks, vehicle call and
+  tracker) and run through the pass;
+- `FleetVerbs` (`gateway.fleet.fleet_verbs`): the fleet commands, fleet-level checks and plans composed
+  of the same pass per drone;
+- `OperationDesk` (`gateway.fleet.command_core`): views of operations and waiting on them.
 
 MCP tools (`gateway.mcp.tools`) and REST routes (`gateway.api`) are one call to a verb plus presenting
 its result; they hold no checks of their own.
@@ -23,29 +25,143 @@ Every verb can also be called by name with JSON-serialisable arguments::
                                   alt_m=20)          # -> a JSON-serialisable dict
     final = await commander.wait(result["operation_id"], cap_s=45, on_progress=report)
 
-``VERBS`` below is the explicit table of verb names; each verb's arguments are
-the keyword parameters of its method after ``caller`` (validated by a pydantic model built from the
-signature, so a forwarded call is checked exactly as a local one), and its result is the method's
-result model dumped to JSON. Waiting is a separate step (`wait`, `wait_fleet`), so a node that does not
-own a drone can forward the call to the owner (NATS request/reply) and then forward the wait, with
-progress, the same way. Callbacks (progress, "still initialising" notices) are never part of a verb's
-arguments.
+``VERBS`` is filled by each verb's ``@command`` declaration; a verb's arguments are the keyword
+parameters of its method after ``caller`` (validated by a pydantic model built from the signature, so a
+forwarded call is checked exactly as a local one), and its result is the method's result model dumped
+to JSON. Waiting is a separate step (`wait`, `wait_fleet`), so a node that does not own a drone can
+forward the call to the owner (NATS request/reply) and then forward the wait, with progress, the same
+way. Callbacks (progress, "still initialising" notices) are never part of a verb's arguments.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
+from pydantic import BaseModel
+
+from gateway.config import Settings
 from gateway.errors import InvalidArgument
 from gateway.fleet.caller import Caller
+from gateway.fleet.command_core import VERBS, OperationDesk
+from gateway.fleet.command_pass import CommandPass
+from gateway.fleet.drone_verbs import FlightVerbs
+from gateway.fleet.fleet_ops import FleetOperations
 from gateway.fleet.fleet_verbs import FleetVerbs
 from gateway.fleet.ids import canonical_arguments, canonical_drone_id
-from gateway.fleet.protocols import Notify
-from gateway.fleet.routing import Verb
+from gateway.fleet.mission_verbs import MissionVerbs
+from gateway.fleet.navigation_verbs import NavigationVerbs
+from gateway.fleet.operations import OperationManager
+from gateway.fleet.operator_verbs import OperatorVerbs
+from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleDirectory, VehicleView
+from gateway.fleet.routing import Router
+from gateway.fleet.safety import LockBook, SafetyPolicy
+from gateway.registry.store import Store
 
 
-class Commander(FleetVerbs):
-    """Every command on one drone or on the fleet, for every door. Built once by `gateway.runtime`."""
+class Commander:
+    """Every command on one drone or on the fleet, for every door. Built once by `gateway.runtime`.
+
+    Composed, not inherited: the pass (`CommandPass`), the operation desk (views and waits), the verbs
+    on one drone (flight, navigation, missions) and on the fleet; the verbs are its attributes, so a
+    door calls ``commander.goto(...)`` and a name calls ``commander.call("goto", ...)``."""
+
+    def __init__(
+        self,
+        settings: Settings,
+        registry: VehicleDirectory,
+        store: Store | None,
+        operations: OperationManager,
+        fleet: FleetOperations,
+        safety: SafetyPolicy,
+        locks: LockBook,
+        router: Router | None = None,
+    ) -> None:
+        """``router``: on a cluster node, where the drones this node does not own are run."""
+        self.settings = settings
+        self.registry = registry
+        self.store = store
+        self.operations = operations
+        self.fleet = fleet
+        self.safety = safety
+        self.locks = locks
+        self.router = router
+        self.commands = CommandPass(settings, registry, operations, safety, locks, router)
+        self.desk = desk = OperationDesk(self.commands, store)
+        self.flight = flight = FlightVerbs(self.commands, desk)
+        self.navigation = navigation = NavigationVerbs(self.commands, desk)
+        self.missions = missions = MissionVerbs(self.commands, desk, flight)
+        self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, flight, fleet, store)
+        self.operator = operator = OperatorVerbs(self.commands, flight, fleet, store)
+        #: where a verb called by name runs (`gateway.fleet.command_core.command`), by class name
+        self.parts: dict[str, object] = {
+            type(part).__name__: part for part in (flight, navigation, missions, fleet_verbs, operator)
+        }
+        # the verbs as the doors call them (typed); a verb called only by name needs no line here
+        # operations
+        self.view = desk.view
+        self.operation = desk.operation
+        self.current_operation = desk.current_operation
+        self.latest_operation = desk.latest_operation
+        self.wait = desk.wait
+        # one drone: flight
+        self.arm = flight.arm
+        self.disarm = flight.disarm
+        self.takeoff = flight.takeoff
+        self.land = flight.land
+        self.return_to_launch = flight.return_to_launch
+        self.hold = flight.hold
+        self.kill = flight.kill
+        self.kill_needs_confirmation = flight.kill_needs_confirmation
+        self.set_mode = flight.set_mode
+        # one drone: navigation
+        self.goto = navigation.goto
+        self.reposition = navigation.reposition
+        self.move_relative = navigation.move_relative
+        self.set_yaw = navigation.set_yaw
+        self.set_speed = navigation.set_speed
+        self.arrival = navigation.arrival
+        self.monitor = navigation.monitor
+        # one drone: missions and parameters
+        self.upload_mission = missions.upload_mission
+        self.upload_mission_file = missions.upload_mission_file
+        self.export_mission = missions.export_mission
+        self.download_mission = missions.download_mission
+        self.clear_mission = missions.clear_mission
+        self.start_mission = missions.start_mission
+        self.pause_mission = missions.pause_mission
+        self.resume_mission = missions.resume_mission
+        self.set_current_item = missions.set_current_item
+        self.mission_progress = missions.mission_progress
+        self.get_param = missions.get_param
+        self.set_param = missions.set_param
+        self.list_params = missions.list_params
+        # the fleet
+        self.fleet_view = fleet_verbs.fleet_view
+        self.fleet_operation = fleet_verbs.fleet_operation
+        self.wait_fleet = fleet_verbs.wait_fleet
+        self.formation_goto = fleet_verbs.formation_goto
+        self.fleet_takeoff = fleet_verbs.fleet_takeoff
+        self.fleet_land = fleet_verbs.fleet_land
+        self.fleet_return_to_launch = fleet_verbs.fleet_return_to_launch
+        self.fleet_hold = fleet_verbs.fleet_hold
+        self.run_step = fleet_verbs.run_step
+        self.hold_step = fleet_verbs.hold_step
+        self.lock = operator.lock
+        self.unlock = operator.unlock
+        self.taken_over = operator.taken_over
+        self.release = operator.release
+        self.stop_all = operator.stop_all
+        self.stop_one = operator.stop_one
+
+    def vehicle(self, drone_id: str) -> VehicleView:
+        """The registered drone, in whatever state (for reads); UnknownVehicle lists the known ids."""
+        return self.registry.get(drone_id)
+
+    def ready(self, drone_id: str) -> FlyingVehicle:
+        """The drone flown here, if it can fly (VehicleNotReady names its state and why otherwise)."""
+        vehicle = self.registry.flown(drone_id)
+        vehicle.require_ready()
+        return vehicle
 
     def canonical_id(self, drone_id: str) -> str:
         """The registered id ``drone_id`` names ignoring case (`gateway.fleet.ids`): doors call this
@@ -65,51 +181,8 @@ class Commander(FleetVerbs):
         parsed = entry.parse(canonical_arguments(self.registry, arguments))
         if notify is not None and "notify" in entry.callbacks:
             parsed["notify"] = notify
-        result = await entry.method(self, caller, **parsed)
+        result: BaseModel = await entry.method(self, caller, **parsed)
         return result.model_dump(mode="json")
 
 
-#: The verbs every door (and a forwarding cluster node) may call by name.
-VERBS: dict[str, Verb] = {
-    # flight
-    "arm": Verb(Commander.arm),
-    "disarm": Verb(Commander.disarm),
-    "takeoff": Verb(Commander.takeoff),
-    "land": Verb(Commander.land),
-    "return_to_launch": Verb(Commander.return_to_launch),
-    "hold": Verb(Commander.hold),
-    "kill": Verb(Commander.kill),
-    "set_mode": Verb(Commander.set_mode),
-    # navigation
-    "goto": Verb(Commander.goto),
-    "reposition": Verb(Commander.reposition),
-    "move_relative": Verb(Commander.move_relative),
-    "set_yaw": Verb(Commander.set_yaw),
-    "set_speed": Verb(Commander.set_speed),
-    "arrival": Verb(Commander.arrival),
-    # missions
-    "upload_mission": Verb(Commander.upload_mission),
-    "upload_mission_file": Verb(Commander.upload_mission_file),
-    "export_mission": Verb(Commander.export_mission),
-    "download_mission": Verb(Commander.download_mission),
-    "clear_mission": Verb(Commander.clear_mission),
-    "start_mission": Verb(Commander.start_mission),
-    "pause_mission": Verb(Commander.pause_mission),
-    "resume_mission": Verb(Commander.resume_mission),
-    "set_current_item": Verb(Commander.set_current_item),
-    "mission_progress": Verb(Commander.mission_progress),
-    # parameters
-    "get_param": Verb(Commander.get_param),
-    "set_param": Verb(Commander.set_param),
-    "list_params": Verb(Commander.list_params),
-    # the fleet
-    "formation_goto": Verb(Commander.formation_goto),
-    "fleet_takeoff": Verb(Commander.fleet_takeoff),
-    "fleet_land": Verb(Commander.fleet_land),
-    "fleet_return_to_launch": Verb(Commander.fleet_return_to_launch),
-    "fleet_hold": Verb(Commander.fleet_hold),
-    "stop_all": Verb(Commander.stop_all),
-    "lock": Verb(Commander.lock),
-    "unlock": Verb(Commander.unlock),
-    "release": Verb(Commander.release),
-}
+__all__ = ["VERBS", "Commander"]

@@ -1,5 +1,5 @@
-"""The Commander's verbs on several drones: formation, fleet takeoff, land, return, hold, the emergency
-stop, and the operator locks.
+"""The Commander's verbs on several drones: formation, fleet takeoff, land, return, hold (the
+operator's locks and emergency stop are `gateway.fleet.operator_verbs`).
 
 Who takes part (the same rule for every fleet verb, also in docs/fleet.md):
 - formation_goto and fleet_takeoff change the fleet's geometry: every named drone is checked first and
@@ -7,12 +7,7 @@ Who takes part (the same rule for every fleet verb, also in docs/fleet.md):
   sent and the error names each such drone with the reason (rule and numbers).
 - fleet_land, fleet_return_to_launch and fleet_hold bring drones down or stop them: they go to every
   drone that can take them, and the result lists the others (not_sent) with the reason.
-- stop_all is the operator's emergency stop: it locks the fleet (unless told not to), ends every
-  running fleet operation first (so a formation's own abort cannot race it), then tells every airborne
-  drone to hold, land or return, each as a tracked operation where the action has one. Each drone's
-  stop goes under its command lock like every command (kill is the one exception): a command still
-  being sent to the drone finishes first, so that the stop is the last word the drone hears rather
-  than being overtaken by it.
+- stop_all (`operator_verbs`) is the operator's emergency stop, to every airborne drone.
 """
 
 from __future__ import annotations
@@ -21,62 +16,84 @@ import asyncio
 import contextlib
 import dataclasses
 import logging
-from collections.abc import Awaitable, Callable, Sequence
-from datetime import UTC, datetime
+from collections.abc import Awaitable, Callable, Mapping, Sequence
 from typing import Any, Literal
 
-from gateway.errors import GatewayError, InvalidArgument, NoOwner, NotRun, SafetyRefusal, VehicleNotReady
+from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
-from gateway.fleet.command_core import routed
-from gateway.fleet.drone_verbs import DroneVerbs
+from gateway.fleet.command_core import (
+    OperationDesk,
+    arming_deadline,
+    command,
+    left,
+    require_airborne,
+    routed,
+)
+from gateway.fleet.command_pass import CommandPass, Need, Order
+from gateway.fleet.drone_verbs import FlightVerbs
 from gateway.fleet.fleet_ops import (
-    FORMATION_TOLERANCE_M,
     FleetOperation,
+    FleetOperations,
     Unable,
-    build_step,
     check_drone_ids,
     collect_members,
+    refuse_fleet,
+)
+from gateway.fleet.fleet_steps import (
+    FORMATION_TOLERANCE_M,
+    build_step,
     default_rtl_base_m,
     formation_phases,
     land_phase,
-    refuse_fleet,
     rtl_order,
     rtl_phases,
     slot_summaries,
     takeoff_phase,
 )
 from gateway.fleet.formation import DroneStart, plan_formation, rtl_altitudes, takeoff_altitudes
-from gateway.fleet.geofence import FLEET
-from gateway.fleet.protocols import Notify, VehicleView
-from gateway.fleet.readings import home, is_landed_and_disarmed, position
-from gateway.fleet.safety import Rule, refuse
-from gateway.fleet.takeover import Takeover
+from gateway.fleet.operations import Operation
+from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleView
+from gateway.fleet.readings import home, is_landed_and_disarmed, position, vehicle_context
+from gateway.fleet.safety import VehicleContext
 from gateway.fleet.views import (
     ActionResult,
     FleetHoldResult,
     FleetView,
-    LockResult,
     OperationView,
-    StopOutcome,
-    StopResult,
-    UnlockResult,
 )
-from gateway.registry.records import AuditEntry
+from gateway.registry.store import Store
 
 log = logging.getLogger(__name__)
 
 Formation = Literal["line", "column", "wedge", "grid", "circle"]
-StopAction = Literal["hold", "land", "rtl"]
 OnFleetProgress = Callable[[FleetView], Awaitable[None]]
-STOP_LOCK_REASON = "emergency stop"
-#: the stop's answer says whether its lock is stored if the database answers within this (else: later)
-STORE_LOCK_WAIT_S = 1.0
-_STORING: set[asyncio.Task[bool]] = set()
 
 
-class FleetVerbs(DroneVerbs):
-    """Commands on several drones at once, and the operator locks."""
+class FleetVerbs:
+    """Commands on several drones at once: fleet-level checks and plans, then the same pass per drone
+    (`CommandPass.run`, through `step_here` / `hold_here`, or the drone's owner in a cluster). The
+    operator's locks and emergency stop are `gateway.fleet.operator_verbs`."""
+
+    def __init__(
+        self,
+        commands: CommandPass,
+        desk: OperationDesk,
+        flight: FlightVerbs,
+        fleet: FleetOperations,
+        store: Store | None,
+    ) -> None:
+        self.commands = commands
+        self.desk = desk
+        self.flight = flight
+        self.fleet = fleet
+        self.store = store
+        self.settings = commands.settings
+        self.registry = commands.registry
+        self.router = commands.router
+        self.safety = commands.safety
+        self.operations = commands.operations
+        fleet.run_steps_with(self.step_here, self.hold_here)
 
     # ------------------------------------------------------------------------------------------------
     # fleet operations: views and waiting
@@ -130,8 +147,8 @@ class FleetVerbs(DroneVerbs):
             return ids
         return check_drone_ids(drone_ids)
 
-    def _busy(self, vehicle: VehicleView, action: str) -> None:
-        self.safety.check_not_busy(self.context(vehicle), self._running(vehicle.id), action)
+    def _busy(self, ctx: VehicleContext, action: str) -> None:
+        self.safety.check_not_busy(ctx, self.commands.running(ctx.vehicle_id), action)
 
     def _stagger(self, stagger_m: float | None) -> float:
         """Default: the minimum separation plus 1 m of altitude-holding error for each of two drones."""
@@ -153,13 +170,14 @@ class FleetVerbs(DroneVerbs):
         waits = []
         for drone_id in ids:
             with contextlib.suppress(GatewayError):
-                waits.append(self.registry.get(drone_id).wait_initialised(self._left(deadline), notify))
+                waits.append(self.registry.get(drone_id).wait_initialised(left(deadline), notify))
         await asyncio.gather(*waits, return_exceptions=True)
 
     # ------------------------------------------------------------------------------------------------
     # formation and fleet takeoff: all drones or none
     # ------------------------------------------------------------------------------------------------
 
+    @command
     async def formation_goto(
         self,
         caller: Caller,
@@ -189,22 +207,24 @@ class FleetVerbs(DroneVerbs):
             geo.check_finite(name, metres)
         policy = self.safety
         via = caller.policy_via
-        deadline = self._arming_deadline()
+        deadline = arming_deadline(self.settings)
         grounded = [d for d in ids if self._on_ground(d)]
         if grounded:
             await self._initialised(grounded, notify, deadline)
         low, high = policy.altitude_band(ids)
         climbs = takeoff_altitudes(grounded, alt_m, self._stagger(None), high) if grounded else {}
 
+        contexts: dict[str, VehicleContext] = {}
+
         def check(v: VehicleView) -> None:
             v.require_ready()
-            self._guard_takeoff(caller, v, "formation_goto")
-            ctx = self.context(v)
+            ctx = contexts[v.id] = vehicle_context(v)
+            self.commands.guard_takeoff(caller, ctx, "formation_goto")
             if v.id in climbs:
                 policy.check_takeoff(ctx, climbs[v.id], via)
             else:
-                self._require_airborne(ctx, "formation_goto")
-            self._busy(v, "formation_goto")
+                require_airborne(ctx, "formation_goto")
+            self._busy(ctx, "formation_goto")
             if ctx.position is None:
                 raise VehicleNotReady(f"no position received from {v.id} yet")
             policy.check_actuation(ctx, via)
@@ -212,7 +232,6 @@ class FleetVerbs(DroneVerbs):
         vehicles, unable = collect_members(ids, self.registry.get, check)
         if unable:
             raise refuse_fleet("formation_goto", unable, len(ids))
-        contexts = {d: self.context(v) for d, v in vehicles.items()}
         starts = [
             DroneStart(d, pos[0], pos[1], climbs.get(d, pos[2]))
             for d in ids
@@ -257,13 +276,10 @@ class FleetVerbs(DroneVerbs):
             "spacing_m": spacing_m,
             "heading_deg": round(plan.heading_deg, 1),
         }
-        guard = lambda v: self._guard_takeoff(caller, v, "formation_goto")  # noqa: E731
-        phases = formation_phases(plan, vehicles, guard)
+        phases = formation_phases(plan, vehicles, guard="formation_goto")
         if climbs:
             params["took_off_first"] = climbs
-            first = takeoff_phase(
-                {d: vehicles[d] for d in climbs}, climbs, guard, self._left(deadline), "formation_goto"
-            )
+            first = takeoff_phase({d: vehicles[d] for d in climbs}, climbs, "formation_goto", left(deadline))
             phases = [
                 dataclasses.replace(first, name="take off the drones on the ground", abort_on_failure=True),
                 *phases,
@@ -289,6 +305,7 @@ class FleetVerbs(DroneVerbs):
             return False
         return vehicle.on_ground() is True
 
+    @command
     async def fleet_takeoff(
         self,
         caller: Caller,
@@ -305,15 +322,15 @@ class FleetVerbs(DroneVerbs):
         policy = self.safety
         _low, high = policy.altitude_band(ids)
         altitudes = takeoff_altitudes(ids, alt_m, self._stagger(stagger_m), high)
-        deadline = self._arming_deadline()
+        deadline = arming_deadline(self.settings)
         await self._initialised(ids, notify, deadline)
 
         def check(v: VehicleView) -> None:
             v.require_ready()
-            ctx = self.context(v)
+            ctx = vehicle_context(v)
             if ctx.in_air:
                 raise InvalidArgument(f"{v.id} is already flying; use formation_goto or go_to_location")
-            self._busy(v, "fleet_takeoff")
+            self._busy(ctx, "fleet_takeoff")
             policy.check_takeoff(ctx, altitudes[v.id], caller.policy_via)
 
         vehicles, unable = collect_members(ids, self.registry.get, check)
@@ -326,8 +343,8 @@ class FleetVerbs(DroneVerbs):
                 takeoff_phase(
                     vehicles,
                     altitudes,
-                    lambda v: self._guard_takeoff(caller, v, "fleet_takeoff"),
-                    arm_within_s=self._left(deadline),
+                    "fleet_takeoff",
+                    arm_within_s=left(deadline),
                 )
             ],
             {"alt_m": alt_m, "altitudes_m": altitudes},
@@ -341,6 +358,7 @@ class FleetVerbs(DroneVerbs):
     # recovery: to every drone that can take it
     # ------------------------------------------------------------------------------------------------
 
+    @command
     async def fleet_land(self, caller: Caller, drone_ids: list[str] | None = None) -> FleetView:
         """Land drones in place, all at once; done when disarmed. Those that cannot are in not_sent."""
 
@@ -348,7 +366,7 @@ class FleetVerbs(DroneVerbs):
             v.require_ready()
             if is_landed_and_disarmed(v):
                 raise InvalidArgument(f"{v.id} is already on the ground and disarmed")
-            self.safety.check_actuation(self.context(v), caller.policy_via)
+            self.safety.check_actuation(vehicle_context(v), caller.policy_via)
 
         ids, vehicles, unable = self._recovery_members(drone_ids, "fleet_land", check)
         fop = await self.fleet.start(
@@ -361,6 +379,7 @@ class FleetVerbs(DroneVerbs):
         )
         return self.fleet_view(fop, unable)
 
+    @command
     async def fleet_return_to_launch(
         self,
         caller: Caller,
@@ -376,8 +395,8 @@ class FleetVerbs(DroneVerbs):
 
         def check(v: VehicleView) -> None:
             v.require_ready()
-            ctx = self.context(v)
-            self._require_airborne(ctx, "fleet_return_to_launch")
+            ctx = vehicle_context(v)
+            require_airborne(ctx, "fleet_return_to_launch")
             if ctx.position is None:
                 raise VehicleNotReady(f"no position received from {v.id} yet")
             self.safety.check_actuation(ctx, caller.policy_via)
@@ -413,14 +432,15 @@ class FleetVerbs(DroneVerbs):
         )
         return self.fleet_view(fop, unable)
 
+    @command
     async def fleet_hold(self, caller: Caller, drone_ids: list[str] | None = None) -> FleetHoldResult:
         """Stop drones where they are (GUIDED hover), ending their operations and any fleet operation
         they are part of. Those that cannot are in not_sent."""
 
         def check(v: VehicleView) -> None:
             v.require_ready()
-            ctx = self.context(v)
-            self._require_airborne(ctx, "fleet_hold")
+            ctx = vehicle_context(v)
+            require_airborne(ctx, "fleet_hold")
             self.safety.check_actuation(ctx, caller.policy_via)
 
         _ids, vehicles, unable = self._recovery_members(drone_ids, "fleet_hold", check)
@@ -446,209 +466,46 @@ class FleetVerbs(DroneVerbs):
     # one drone's step of a fleet operation coordinated by another cluster node
     # ------------------------------------------------------------------------------------------------
 
+    async def step_here(self, caller: Caller, drone_id: str, spec: Mapping[str, Any]) -> Operation:
+        """One drone's step of a fleet operation (`gateway.fleet.fleet_ops.build_step`), as one run of
+        the pass on this node: the takeover lock, the takeoff guard (named by the step's ``guard``;
+        none for a recovery step) before and inside the command lock, then the step's operation."""
+        guard = spec.get("guard")
+        action = str(guard or spec.get("kind") or "fleet step")
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            step = build_step(vehicle, spec)
+            return Order(step.send, step.tracker, step.params)
+
+        sent = await self.commands.run(
+            caller, drone_id, action, decide, need=Need.ANY, safety_action=not guard, audited=False
+        )
+        assert sent.operation is not None
+        return sent.operation
+
+    async def hold_here(self, caller: Caller, drone_id: str, reason: str) -> Operation | None:
+        """Hold a drone whose fleet operation was stopped (one run of the pass); the operation it ended."""
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            return Order(vehicle.hold, ends_operation=True, commands="hold")
+
+        sent = await self.commands.run(
+            caller, drone_id, reason, decide, need=Need.ANY, safety_action=True, audited=False
+        )
+        return sent.ended
+
     @routed
     async def run_step(self, caller: Caller, drone_id: str, spec: dict[str, Any]) -> OperationView:
-        """Start one drone's step (`gateway.fleet.fleet_ops.build_step`) as its operation here, with the
-        takeoff guard inside its command lock, for the node coordinating the fleet operation."""
-        vehicle = self.flown(drone_id)
-        guard = spec.get("guard")
-        precheck = None if not guard else (lambda v: self._guard_takeoff(caller, v, str(guard)))
-        step = build_step(vehicle, spec, precheck)
-        op = await self.operations.start(
-            vehicle, step.tracker, step.send, step.params, caller.session, step.precheck
-        )
-        return OperationView.of(op, vehicle)
+        """Start one drone's step here, for the node coordinating the fleet operation (`step_here`)."""
+        op = await self.step_here(caller, drone_id, spec)
+        return OperationView.of(op, self.registry.get(drone_id))
 
     @routed
     async def hold_step(self, caller: Caller, drone_id: str, reason: str) -> ActionResult:
         """Hold a drone whose fleet operation (coordinated by another node) was stopped."""
-        vehicle = self.flown(drone_id)
-        _, sup = await self._instant(
-            caller, vehicle, reason, vehicle.hold, safety_action=True, ends_operation=True, commands="hold"
-        )
+        sup = await self.hold_here(caller, drone_id, reason)
         return ActionResult(
             drone_id=drone_id, action="hold", message="held", superseded_operation=sup and sup.id
-        )
-
-    # ------------------------------------------------------------------------------------------------
-    # the operator's emergency stop and locks
-    # ------------------------------------------------------------------------------------------------
-
-    def _operator_only(self, caller: Caller, what: str) -> None:
-        if not caller.is_operator:
-            raise refuse(
-                Rule.OPERATOR_LOCK,
-                f"only an operator may {what}; agents cannot change locks or stop the fleet",
-                via=caller.via,
-            )
-
-    async def lock(self, caller: Caller, scope: str, reason: str) -> LockResult:
-        """Lock one drone (its id) or the fleet ("*") against agents' actuating commands: at once on this
-        node and every node that hears the broadcast; stored (later, if the database is unreachable)."""
-        self._operator_only(caller, "lock drones")
-        result = await self._lock_now(caller, scope, reason)
-        result.stored = await self._store_lock(result)
-        return result
-
-    async def _lock_now(self, caller: Caller, scope: str, reason: str) -> LockResult:
-        """The lock in memory and on the bus: it holds before anything is written."""
-        if scope != FLEET:
-            self.registry.get(scope)  # UnknownVehicle names the known ids
-        lock = self.locks.lock(scope, reason, caller.principal, at=datetime.now(UTC))
-        log.warning(
-            "operator %s locked %s: %s", lock.by, "the fleet" if scope == FLEET else scope, lock.reason
-        )
-        result = LockResult(scope=lock.scope, reason=lock.reason, by=lock.by, locked_at=lock.locked_at)
-        if self.router is not None:  # every node refuses agents from now on
-            await self.router.announce("lock", result.model_dump(mode="json", exclude={"stored"}))
-        return result
-
-    async def _store_lock(self, lock: LockResult) -> bool:
-        """True when the lock is in the database now; False when it is kept until the database is back."""
-        if self.store is None:
-            return True
-        stored = await self.store.save_lock(lock.scope, lock.reason, lock.by, lock.locked_at)
-        if stored is None:
-            log.warning("the lock of %s is kept on this node until the database is back", lock.scope)
-        return stored is not None
-
-    async def unlock(self, caller: Caller, scope: str) -> UnlockResult:
-        self._operator_only(caller, "unlock drones")
-        removed = self.locks.unlock(scope)
-        stored = await self.store.delete_lock(scope) if self.store is not None else False
-        if self.router is not None:
-            await self.router.announce("unlock", {"scope": scope})
-        if removed or stored:
-            log.warning("operator %s unlocked %s", caller.principal, "the fleet" if scope == FLEET else scope)
-        return UnlockResult(scope=scope, was_locked=removed is not None or stored)
-
-    # ------------------------------------------------------------------------------------------------
-    # takeover locks: a pilot, another ground station or a failsafe took a drone (gateway.fleet.takeover)
-    # ------------------------------------------------------------------------------------------------
-
-    async def taken_over(self, vehicle: VehicleView, takeover: Takeover) -> None:
-        """The OperationManager saw a mode change the gateway did not command (its operation already
-        ended as interrupted): lock the drone for agents, persist and audit the lock, tell the other
-        nodes. Nothing is sent to the drone."""
-        lock = self.locks.take_over(vehicle.id, takeover.lock_reason(), at=takeover.at)
-        if self.store is not None:
-            try:
-                await self.store.save_takeover(lock.scope, lock.reason, lock.by, lock.locked_at)
-                await self.store.add_audit(
-                    AuditEntry(
-                        principal="autopilot",
-                        source="gateway",
-                        vehicle_id=vehicle.id,
-                        action="takeover",
-                        arguments=takeover.to_record(),
-                        outcome="ok",
-                        error=takeover.message(),
-                        t=takeover.at,
-                        operation_id=takeover.operation_id,
-                    )
-                )
-            except Exception:  # the lock holds in memory whatever the database says
-                log.exception("could not store the takeover of %s", vehicle.id)
-        if self.router is not None:
-            await self.router.announce(
-                "takeover",
-                {"scope": lock.scope, "reason": lock.reason, "by": lock.by, "at": lock.locked_at.isoformat()},
-            )
-
-    async def release(self, caller: Caller, drone_id: str) -> UnlockResult:
-        """An operator gives a taken-over drone back to agents (the pilot is done with it)."""
-        self._operator_only(caller, "release a drone taken over by a pilot or ground station")
-        self.registry.get(drone_id)
-        removed = self.locks.release(drone_id)
-        stored = await self.store.delete_takeover(drone_id) if self.store is not None else False
-        if self.router is not None:
-            await self.router.announce("release", {"scope": drone_id})
-        if removed or stored:
-            log.warning("operator %s released %s after a takeover", caller.principal, drone_id)
-        return UnlockResult(scope=drone_id, was_locked=removed is not None or stored)
-
-    async def stop_all(
-        self, caller: Caller, action: StopAction = "hold", lock: bool = True, lock_reason: str | None = None
-    ) -> StopResult:
-        """Emergency stop: lock the fleet (unless ``lock`` is false and no reason is given), end every
-        running fleet operation, then every airborne drone holds, lands or returns, all at once."""
-        self._operator_only(caller, "stop the fleet")
-        # Nothing here waits on the database: the lock holds in memory (and on every node that hears the
-        # broadcast) before the drones are told, and is stored beside the stops, later if need be.
-        fleet_lock = None
-        storing: asyncio.Task[bool] | None = None
-        if lock or lock_reason:
-            fleet_lock = await self._lock_now(caller, FLEET, lock_reason or STOP_LOCK_REASON)
-            storing = asyncio.create_task(self._store_lock(fleet_lock))
-            _STORING.add(storing)  # it may outlive this call (a database that hangs)
-            storing.add_done_callback(_STORING.discard)
-        vehicles = list(self.registry.all())
-        superseded = await self.fleet.supersede([v.id for v in vehicles], f"operator stop ({action})")
-        if self.router is not None:  # fleet operations coordinated by other nodes end there too
-            await self.router.announce("stop", {"action": action, "by": caller.principal})
-
-        async def one(vehicle: VehicleView) -> StopOutcome:
-            state = str(vehicle.state)
-            if getattr(vehicle, "remote", False) and getattr(vehicle, "owner", None) is None:
-                return StopOutcome(
-                    drone_id=vehicle.id,
-                    action=action,
-                    outcome="unreached",
-                    message="no node holds its link right now (its node was lost or could not renew its "
-                    "lease): nothing was sent",
-                )
-            if state in ("registered", "failed"):
-                return StopOutcome(
-                    drone_id=vehicle.id, action=action, outcome="skipped", message=f"not connected ({state})"
-                )
-            if vehicle.on_ground() is True:
-                return StopOutcome(
-                    drone_id=vehicle.id, action=action, outcome="skipped", message="on the ground"
-                )
-            try:
-                return await self.stop_one(caller, vehicle.id, action)
-            except (NotRun, NoOwner) as exc:
-                return StopOutcome(
-                    drone_id=vehicle.id, action=action, outcome="unreached", message=exc.message
-                )
-            except GatewayError as exc:
-                return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=exc.message)
-            except Exception as exc:  # one drone's failure must not stop the others
-                log.exception("fleet stop: %s failed on %s", action, vehicle.id)
-                return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=repr(exc))
-
-        results = await asyncio.gather(*(one(v) for v in vehicles))
-        if fleet_lock is not None and storing is not None:
-            done, _ = await asyncio.wait({storing}, timeout=STORE_LOCK_WAIT_S)
-            fleet_lock.stored = bool(done and not storing.exception() and storing.result())
-        return StopResult(
-            action=action,
-            fleet_lock=fleet_lock,
-            superseded_fleet_operations=[f.id for f in superseded],
-            results=list(results),
-        )
-
-    async def stop_one(self, caller: Caller, drone_id: str, action: StopAction) -> StopOutcome:
-        """One drone's part of a stop: hold (ends its operation), land or RTL (tracked operations that
-        supersede it). The REST hold/land/RTL routes are this too."""
-        previous = self._running(drone_id)
-        if action == "hold":
-            held = await self.hold(caller, drone_id, "operator hold")
-            return StopOutcome(
-                drone_id=drone_id,
-                action=action,
-                outcome="sent",
-                superseded_operation=held.superseded_operation,
-            )
-        op = await (
-            self.land(caller, drone_id) if action == "land" else self.return_to_launch(caller, drone_id)
-        )
-        return StopOutcome(
-            drone_id=drone_id,
-            action=action,
-            outcome="sent",
-            superseded_operation=None if previous is None else previous.operation_id,
-            operation_id=op.operation_id,
         )
 
 

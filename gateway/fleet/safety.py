@@ -21,7 +21,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import asdict, dataclass, fields, replace
 from datetime import UTC, datetime
 from enum import StrEnum
-from typing import TYPE_CHECKING, Any, Literal, Protocol
+from typing import Any, Literal, Protocol
 
 from gateway.config import Settings
 from gateway.errors import InvalidArgument, SafetyRefusal
@@ -29,10 +29,37 @@ from gateway.fleet import geo, param_limits
 from gateway.fleet.geofence import FLEET, GeofenceSet, Violation, load_geofence_file
 from gateway.fleet.param_limits import ParamLimit
 
-if TYPE_CHECKING:
-    from gateway.fleet.formation import FormationPlan
-
 Via = Literal["mcp", "rest"]
+
+
+class PlannedPoint(Protocol):
+    """A point of a formation leg as the policy judges it (`gateway.fleet.formation.LegPoint`)."""
+
+    @property
+    def lat(self) -> float: ...
+    @property
+    def lon(self) -> float: ...
+    @property
+    def alt_rel_m(self) -> float: ...
+
+
+class PlannedSlot(Protocol):
+    """One drone's part of a formation plan (`gateway.fleet.formation.SlotAssignment`)."""
+
+    @property
+    def drone_id(self) -> str: ...
+    @property
+    def legs(self) -> Sequence[PlannedPoint]: ...
+
+
+class PlannedFormation(Protocol):
+    """What the policy reads of a formation plan (`gateway.fleet.formation.FormationPlan`), so that the
+    policy does not import the planner, which raises the policy's refusals."""
+
+    @property
+    def min_separation_m(self) -> float: ...
+    @property
+    def slots(self) -> Sequence[PlannedSlot]: ...
 
 
 class Rule(StrEnum):
@@ -580,7 +607,7 @@ class SafetyPolicy:
             previous = (item.lat, item.lon)
 
     def check_formation(
-        self, contexts: Mapping[str, VehicleContext], plan: FormationPlan, via: Via = "mcp"
+        self, contexts: Mapping[str, VehicleContext], plan: PlannedFormation, via: Via = "mcp"
     ) -> None:
         """Every drone's legs of a formation plan (transit and final), and the plan's separation."""
         sep = self.settings.min_separation_m

@@ -20,7 +20,9 @@ ALTITUDE_ARGUMENTS = ("alt_m", "rtl_alt_m")
 
 
 def install_argument_messages(tool: Tool) -> None:
-    """Validate a tool's arguments before the SDK does, raising a ToolError the model can act on."""
+    """Answer a tool's bad arguments with a ToolError the model can act on. The arguments are validated
+    once, by the SDK's own run (`Tool.run`): its validation error is re-worded here, one line per
+    argument; an argument the tool does not have (which the SDK would drop) is refused first."""
     run = tool.run
     schema = tool.parameters
     known = frozenset(schema.get("properties", {}))
@@ -30,10 +32,13 @@ def install_argument_messages(tool: Tool) -> None:
         if unknown:
             raise ToolError(describe_unknown(tool.name, unknown, schema))
         try:
-            tool.fn_metadata.validate_arguments(arguments)
-        except ValidationError as exc:
-            raise ToolError(describe_invalid(tool.name, exc, schema)) from None
-        return await run(arguments, context, convert_result=convert_result)
+            return await run(arguments, context, convert_result=convert_result)
+        except ToolError as exc:
+            # the SDK raises its argument validation's error as a ToolError caused by it; a tool body's
+            # own failures arrive otherwise (a ToolError caused by a ToolError, or UnexpectedToolError)
+            if isinstance(exc.__cause__, ValidationError):
+                raise ToolError(describe_invalid(tool.name, exc.__cause__, schema)) from None
+            raise
 
     sdk_private.replace_run(tool, run_checked)
 
@@ -100,7 +105,7 @@ def advertise_policy_limits(tool: Tool, settings: Settings) -> None:
             target["maximum"] = min(float(target.get("maximum", limit)), limit)
     stagger = props.get("stagger_m")
     if isinstance(stagger, dict):  # its default follows the configured minimum separation
-        from gateway.fleet.fleet_ops import FORMATION_TOLERANCE_M
+        from gateway.fleet.fleet_steps import FORMATION_TOLERANCE_M
 
         stagger["default"] = settings.min_separation_m + 2 * FORMATION_TOLERANCE_M
 

@@ -7,7 +7,10 @@
 
 Both are recorded through ``Store.touch_session``; every ``tools/call`` through ``Store.queue_audit``
 (its row and its session's touch, written off the request path in batches), from this one middleware,
-including calls rejected before the tool ran (unknown tool, invalid arguments).
+including calls rejected before the tool ran (unknown tool, invalid arguments). A call whose command
+starts an operation on a drone has its row written the moment the command pass sends it
+(`gateway.fleet.command_pass.AUDIT_SENT`: outcome running, naming the operation), and the store
+completes the row when the operation ends; every other call's row is written when the call ends.
 """
 
 from __future__ import annotations
@@ -22,6 +25,7 @@ import anyio
 from mcp.server.auth.middleware.auth_context import get_access_token
 
 from gateway.fleet.caller import Caller
+from gateway.fleet.command_pass import AUDIT_SENT
 from gateway.fleet.routing import ACTING
 from gateway.mcp.access import CallInfo, FleetState, current_call
 from gateway.registry.records import AuditEntry, SessionKind
@@ -109,7 +113,18 @@ class SessionAudit:
         arguments = params.get("arguments") or {}
         call = CallInfo(session_key=info.key, principal=info.principal, vehicle_id=_drone_id(arguments))
         token = current_call.set(call)
+        tool = str(params.get("name", "?"))
         started = time.perf_counter()
+        written: list[str] = []
+
+        def sent(operation_id: str) -> None:
+            """The command pass sent the call's operation: its row now, running; the store completes it
+            when the operation ends (a crash while it flies loses no call)."""
+            if not written:
+                written.append(operation_id)
+                self._audit(store, info, call, tool, arguments, "running", None, started, operation_id)
+
+        audit_sent = AUDIT_SENT.set(sent)
         result: Any = None
         failure: BaseException | None = None
         try:
@@ -119,22 +134,29 @@ class SessionAudit:
             failure = exc
             raise
         finally:
+            AUDIT_SENT.reset(audit_sent)
             current_call.reset(token)
-            outcome, error = _outcome(call, result, failure)
-            # a call that returns while its operation runs (wait:false) names it: when the operation
-            # ends, on whichever node runs it then, the store finishes the row (Store.save_operation)
-            operation_id = _operation_id(result) if outcome == "running" else None
-            self._audit(
-                store,
-                info,
-                call,
-                str(params.get("name", "?")),
-                arguments,
-                outcome,
-                error,
-                started,
-                operation_id,
-            )
+            if not written:
+                self._audit_end(store, info, call, tool, arguments, result, failure, started)
+
+    def _audit_end(
+        self,
+        store: Store | None,
+        info: SessionInfo,
+        call: CallInfo,
+        tool: str,
+        arguments: Any,
+        result: Any,
+        failure: BaseException | None,
+        started: float,
+    ) -> None:
+        """The row of a call that sent no operation (a read, a refusal, an instant command, a fleet
+        command: its operation is started by the fleet engine), written when it ends. A call that
+        returns while an operation runs (wait:false) names it: when the operation ends, on whichever
+        node runs it then, the store finishes the row (Store.save_operation)."""
+        outcome, error = _outcome(call, result, failure)
+        operation_id = _operation_id(result) if outcome == "running" else None
+        self._audit(store, info, call, tool, arguments, outcome, error, started, operation_id)
 
     def _note_touched(self, info: SessionInfo) -> None:
         if len(self._touched) > 10_000:

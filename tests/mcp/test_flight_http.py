@@ -180,5 +180,8 @@ async def test_cancelled_wait_leaves_flight_going_and_hold_stops_it(stack: Stack
     await wait_until_true(stack, "d4", lambda s: not s["armed"], "disarmed after landing")
     await wait_audited(stack, "d4")
     audit = (await stack.rest("/audit", vehicle_id="d4", limit=100))["items"]
+    # the goto's row was written when the goto was sent; the cancelled wait changed nothing on the
+    # drone, so the row ends as the goto did: stopped by the hold
     cancelled = next(a for a in audit if a["action"] == "go_to_location")  # newest first
-    assert cancelled["outcome"] == "error" and "cancelled" in cancelled["error"], cancelled
+    assert cancelled["operation_id"] == running[0]["id"], cancelled
+    assert cancelled["outcome"] == "superseded" and "hold_position" in cancelled["error"], cancelled

@@ -160,7 +160,7 @@ def test_cache_snapshot_reports_ages_and_staleness() -> None:
 async def test_the_return_altitude_is_written_in_each_autopilots_parameter_and_units() -> None:
     from gateway.config import Settings
     from gateway.errors import CommandFailed
-    from gateway.fleet.fleet_ops import set_rtl_altitude_param
+    from gateway.fleet.fleet_steps import set_rtl_altitude_param
     from gateway.fleet.vehicle import Vehicle
     from gateway.link.rawlink import MAV_AUTOPILOT_ARDUPILOTMEGA, MAV_AUTOPILOT_PX4
     from gateway.registry.spec import VehicleSpec

@@ -1,0 +1,51 @@
+"""A tool call's arguments are validated once (by the SDK's run), and a bad one is still answered in
+one line naming the argument, what was given and what is accepted. In-process client, the real gateway
+and fake drones."""
+
+from __future__ import annotations
+
+from collections.abc import AsyncIterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+from mcp import Client
+from mcp.server.mcpserver.utilities.func_metadata import FuncMetadata
+
+from gateway.mcp.server import build_mcp
+from gateway.runtime import Gateway
+from tests.fakes import FakeVehicle, fake, fake_gateway, unit_settings
+
+
+@pytest.fixture
+async def gateway(tmp_path: Path) -> AsyncIterator[Gateway]:
+    async with fake_gateway(unit_settings(tmp_path, mcp_wait_cap_s=5.0), [FakeVehicle("d1")]) as gw:
+        yield gw
+
+
+async def test_arguments_are_validated_once_and_refused_in_one_line(
+    gateway: Gateway, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    validated: list[dict[str, Any]] = []
+    validate = FuncMetadata.validate_arguments
+
+    def counting(self: FuncMetadata, arguments: dict[str, Any]) -> dict[str, Any]:
+        validated.append(arguments)
+        return validate(self, arguments)
+
+    monkeypatch.setattr(FuncMetadata, "validate_arguments", counting)
+    async with Client(build_mcp(gateway)) as c:
+        r = await c.call_tool("set_max_speed", {"drone_id": "d1", "speed_mps": 5})
+        assert not r.is_error, r.content
+        assert len(validated) == 1, validated
+        validated.clear()
+        r = await c.call_tool("set_max_speed", {"drone_id": "d1", "speed_mps": 500})
+        assert r.is_error and len(validated) == 1
+        text = r.content[0].text
+        assert text == (
+            "invalid arguments for set_max_speed: speed_mps must be a number (m/s), "
+            "0 < speed_mps <= 100 (got 500)"
+        ), text
+        r = await c.call_tool("set_max_speed", {"drone_id": "d1", "speed": 5})
+        assert r.is_error and '"speed" is not an argument of set_max_speed' in r.content[0].text
+    assert fake(gateway, "d1").sent == [("speed", 5.0)]  # only the valid call reached the drone
