@@ -30,14 +30,13 @@ import termios
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
 from pymavlink.dialects.v20 import ardupilotmega as mavlink
 from pymavlink.generator.mavcrc import x25crc
 
-from gateway.link.sidecar import socket_inodes
+from gateway.link.sidecar import proc_net_rows, socket_inodes
 
 log = logging.getLogger("gateway.relay")
 
@@ -577,17 +576,7 @@ def _udp_socket_of(pid: int | None, peer: tuple[str, int]) -> bool:
     """Whether the UDP socket bound to ``peer`` (a loopback address and port) belongs to process ``pid``."""
     if pid is None:
         return False
-    wanted = f"{peer[1]:04X}"
-    inodes: set[int] = set()
-    for table in ("/proc/net/udp", "/proc/net/udp6"):
-        try:
-            lines = Path(table).read_text().splitlines()[1:]
-        except OSError:
-            continue
-        for line in lines:
-            cols = line.split()
-            if len(cols) > 9 and cols[1].rsplit(":", 1)[1] == wanted:
-                inodes.add(int(cols[9]))
+    inodes = {row.inode for row in proc_net_rows("udp") if row.port == peer[1]}
     return bool(inodes & socket_inodes(pid))
 
 

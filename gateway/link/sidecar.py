@@ -37,16 +37,17 @@ import signal
 import sys
 import time
 from collections import deque
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from gateway.config import Settings
 from gateway.link import confine
 from gateway.util.ports import free_tcp_port
 
 log = logging.getLogger("gateway.sidecar")
+TCP_LISTEN = "0A"  # the state column of a listening socket in /proc/net/tcp
 
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
 _LEVEL = re.compile(r"^\[\d\d:\d\d:\d\d\|(\w+)\s*\]\s*")
@@ -464,21 +465,33 @@ class Sidecar:
         _LIVE_PGIDS.discard(proc.pid)
 
 
-def listening_inodes(port: int) -> set[int]:
-    """Socket inodes of TCP listeners (IPv4 and IPv6) on ``port``, from /proc/net."""
-    inodes: set[int] = set()
-    for table in ("/proc/net/tcp", "/proc/net/tcp6"):
+class ProcNetRow(NamedTuple):
+    """One socket of /proc/net/{tcp,udp}{,6}: its local address (hex), port, state and inode."""
+
+    address: str
+    port: int
+    state: str
+    inode: int
+
+
+def proc_net_rows(protocol: str) -> Iterator[ProcNetRow]:
+    """The sockets of ``protocol`` ("tcp" or "udp"), IPv4 and IPv6, from /proc/net."""
+    for table in (f"/proc/net/{protocol}", f"/proc/net/{protocol}6"):
         try:
             lines = Path(table).read_text().splitlines()[1:]
         except OSError:
             continue
         for line in lines:
             cols = line.split()
-            if len(cols) < 10 or cols[3] != "0A":  # 0A = LISTEN
+            if len(cols) < 10:
                 continue
-            if int(cols[1].rsplit(":", 1)[1], 16) == port:
-                inodes.add(int(cols[9]))
-    return inodes
+            address, _, hex_port = cols[1].rpartition(":")
+            yield ProcNetRow(address, int(hex_port, 16), cols[3], int(cols[9]))
+
+
+def listening_inodes(port: int) -> set[int]:
+    """Socket inodes of TCP listeners (IPv4 and IPv6) on ``port``, from /proc/net."""
+    return {row.inode for row in proc_net_rows("tcp") if row.state == TCP_LISTEN and row.port == port}
 
 
 def _proc_net_address(hex_address: str) -> str:
@@ -494,20 +507,11 @@ def _proc_net_address(hex_address: str) -> str:
 
 def listening_addresses(port: int, inodes: set[int]) -> set[str]:
     """The local addresses of the TCP listeners on ``port`` whose socket inode is in ``inodes``."""
-    found: set[str] = set()
-    for table in ("/proc/net/tcp", "/proc/net/tcp6"):
-        try:
-            lines = Path(table).read_text().splitlines()[1:]
-        except OSError:
-            continue
-        for line in lines:
-            cols = line.split()
-            if len(cols) < 10 or cols[3] != "0A" or int(cols[9]) not in inodes:
-                continue
-            address, _, hex_port = cols[1].rpartition(":")
-            if int(hex_port, 16) == port:
-                found.add(_proc_net_address(address))
-    return found
+    return {
+        _proc_net_address(row.address)
+        for row in proc_net_rows("tcp")
+        if row.state == TCP_LISTEN and row.port == port and row.inode in inodes
+    }
 
 
 def socket_inodes(pid: int) -> set[int]:
