@@ -8,91 +8,15 @@ one; the SQLite file passes ``PRAGMA integrity_check``.
 
 from __future__ import annotations
 
-import asyncio
 import contextlib
-import os
 import signal
 import sqlite3
-import subprocess
-import sys
-from collections.abc import AsyncIterator, Iterator
 from pathlib import Path
 from typing import Any
 
-import httpx
-from mcp import Client
-from mcp.types import Implementation
-
-from gateway.fleet import geo
-from gateway.util.ports import free_tcp_port
+from tests.fault.gateway_proc import fly_d1_toward, gateway_process, get_ok, is_state, mcp_client, until
 from tests.helpers import sim_process
-from tests.helpers.procs import tail
 from tests.helpers.timing import scaled
-
-WAIT_S = scaled(90.0)  # generous: waiting is never an assertion
-
-
-def gateway_env(db: Path) -> dict[str, str]:
-    env = {k: v for k, v in os.environ.items() if not k.startswith("GATEWAY_")}
-    env.update(
-        GATEWAY_DATABASE_URL=f"sqlite+aiosqlite:///{db}",
-        GATEWAY_TRACK_FLUSH_S="0.5",
-        GATEWAY_SIDECAR_BACKOFF_INITIAL_S="0.2",
-        GATEWAY_SIDECAR_BACKOFF_MAX_S="1.0",
-        PYTHONUNBUFFERED="1",
-    )
-    return env
-
-
-@contextlib.contextmanager
-def gateway_process(db: Path, log: Path) -> Iterator[tuple[subprocess.Popen, str]]:
-    port = free_tcp_port()
-    with log.open("ab") as out:
-        proc = subprocess.Popen(
-            [sys.executable, "-m", "gateway.cli", "serve", "--host", "127.0.0.1", "--port", str(port)],
-            env=gateway_env(db),
-            stdout=out,
-            stderr=subprocess.STDOUT,
-            stdin=subprocess.DEVNULL,
-            start_new_session=True,
-        )
-    try:
-        yield proc, f"http://127.0.0.1:{port}"
-    finally:
-        if proc.poll() is None:
-            os.killpg(proc.pid, signal.SIGTERM)
-            try:
-                proc.wait(timeout=scaled(20))
-            except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait(timeout=scaled(5))
-
-
-async def until(what: str, check: Any, log: Path) -> Any:
-    loop = asyncio.get_running_loop()
-    deadline = loop.time() + WAIT_S
-    while True:
-        try:
-            result = await check()
-        except (httpx.HTTPError, OSError):
-            result = None
-        if result:
-            return result
-        if loop.time() > deadline:
-            raise AssertionError(f"{what} not reached\n{tail(str(log), 40)}")
-        await asyncio.sleep(0.2)
-
-
-async def vehicle_state(base: str) -> str | None:
-    async with httpx.AsyncClient(base_url=base, timeout=scaled(5)) as http:
-        r = await http.get("/api/v1/vehicles/d1")
-        return r.json().get("state") if r.status_code == 200 else None
-
-
-@contextlib.asynccontextmanager
-async def mcp_client(base: str) -> AsyncIterator[Client]:
-    async with Client(f"{base}/mcp", client_info=Implementation(name="sigkill", version="1")) as c:
-        yield c
 
 
 def query(db: Path, sql: str, *args: Any) -> list[tuple]:
@@ -118,26 +42,8 @@ async def test_gateway_sigkill_mid_flight_then_restart(tmp_path: Path) -> None:
     async with sim_process(count=1, speedup=8.0) as sim:
         url = sim.urls[0]
         with gateway_process(db, log) as (proc, base):
-            await until("gateway up", lambda: _get_ok(base, "/healthz"), log)
-            async with httpx.AsyncClient(base_url=base, timeout=scaled(10)) as http:
-                r = await http.post("/api/v1/vehicles", json={"id": "d1", "url": url, "expected_sysid": 1})
-                assert r.status_code == 201, r.text
-            await until("d1 ready", lambda: _is(base, "ready"), log)
-            home = await sim.control.state(0)
-            far = geo.offset_position(home["lat"], home["lon"], 60, 0)
-            async with mcp_client(base) as c:
-
-                async def took_off() -> Any:  # pre-arm checks pass once the simulated EKF has settled
-                    r = await c.call_tool("takeoff", {"drone_id": "d1", "alt_m": 10})
-                    return not r.is_error and r.structured_content["status"] == "succeeded"
-
-                await until("takeoff", took_off, log)
-                r = await c.call_tool(
-                    "go_to_location",
-                    {"drone_id": "d1", "lat_deg": far[0], "lon_deg": far[1], "alt_m": 10,
-                     "wait": False},
-                )  # fmt: skip
-                assert not r.is_error, r.content
+            await until("gateway up", lambda: get_ok(base, "/healthz"), log)
+            await fly_d1_toward(base, url, await sim.control.state(0), 60, log)
 
             async def some_samples() -> bool:
                 rows = query(db, "SELECT count(*) FROM track_samples")
@@ -158,7 +64,7 @@ async def test_gateway_sigkill_mid_flight_then_restart(tmp_path: Path) -> None:
         assert s["armed"] and s["mode"] == "GUIDED", s
 
         with gateway_process(db, log) as (proc, base):
-            await until("d1 restored and ready", lambda: _is(base, "ready"), log)
+            await until("d1 restored and ready", lambda: is_state(base, "ready"), log)
             flights = {
                 row[0]: row
                 for row in query(db, "SELECT id, ended_at, duration_s FROM flights WHERE vehicle_id = 'd1'")
@@ -184,12 +90,3 @@ async def test_gateway_sigkill_mid_flight_then_restart(tmp_path: Path) -> None:
             await until("the resumed flight closed after landing", closed, log)
         assert query(db, "PRAGMA integrity_check") == [("ok",)]
         assert not sidecars_for(url)
-
-
-async def _get_ok(base: str, path: str) -> bool:
-    async with httpx.AsyncClient(base_url=base, timeout=scaled(5)) as http:
-        return (await http.get(path)).status_code == 200
-
-
-async def _is(base: str, state: str) -> bool:
-    return await vehicle_state(base) == state

@@ -15,8 +15,7 @@ from typing import Any
 
 import httpx
 
-from gateway.fleet import geo
-from tests.fault.test_gateway_sigkill import _get_ok, _is, gateway_process, mcp_client, until
+from tests.fault.gateway_proc import fly_d1_toward, gateway_process, get_ok, is_state, mcp_client, until
 from tests.helpers import sim_process
 from tests.helpers.timing import scaled
 
@@ -26,30 +25,13 @@ async def test_a_drone_flying_through_a_gateway_restart_is_reported_and_watched(
     async with sim_process(count=1, speedup=4.0) as sim:
         url = sim.urls[0]
         with gateway_process(db, log) as (proc, base):
-            await until("gateway up", lambda: _get_ok(base, "/healthz"), log)
-            async with httpx.AsyncClient(base_url=base, timeout=scaled(10)) as http:
-                r = await http.post("/api/v1/vehicles", json={"id": "d1", "url": url, "expected_sysid": 1})
-                assert r.status_code == 201, r.text
-            await until("d1 ready", lambda: _is(base, "ready"), log)
-            home = await sim.control.state(0)
-            far = geo.offset_position(home["lat"], home["lon"], 600, 0)
-            async with mcp_client(base) as c:
-
-                async def took_off() -> Any:  # pre-arm checks pass once the simulated EKF has settled
-                    r = await c.call_tool("takeoff", {"drone_id": "d1", "alt_m": 10})
-                    return not r.is_error and r.structured_content["status"] == "succeeded"
-
-                await until("takeoff", took_off, log)
-                r = await c.call_tool(
-                    "go_to_location",
-                    {"drone_id": "d1", "lat_deg": far[0], "lon_deg": far[1], "alt_m": 10, "wait": False},
-                )
-                assert not r.is_error, r.content
+            await until("gateway up", lambda: get_ok(base, "/healthz"), log)
+            await fly_d1_toward(base, url, await sim.control.state(0), 600, log)
             proc.send_signal(signal.SIGKILL)
             proc.wait(timeout=scaled(10))
 
         with gateway_process(db, log) as (proc, base):
-            await until("d1 restored and ready", lambda: _is(base, "ready"), log)
+            await until("d1 restored and ready", lambda: is_state(base, "ready"), log)
             async with mcp_client(base) as c:
 
                 async def heading() -> Any:  # once the autopilot's target (asked for at 2 Hz) is heard
