@@ -16,6 +16,8 @@ The corpus was written in full before any model ran on it (2026-11-27).
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
 
+# ruff: noqa: E501  (the entries are laid out one request a block, as a table)
+
 from __future__ import annotations
 
 import re
