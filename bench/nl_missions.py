@@ -206,6 +206,7 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         args.runs = 1 if args.self_check else 3
     if args.runs < 1:
         p.error("--runs must be at least 1")
+    args.completed = []  # the runs finished so far (run_missions appends; kept when interrupted)
     if args.sitl and args.gateway_url:
         p.error("--sitl starts its own gateway; leave out --gateway-url")
     return args
@@ -301,7 +302,7 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
                 max_tokens=args.max_tokens,
             )
 
-        runs = []
+        runs: list[MissionRun] = args.completed  # kept by main: an interrupted bench reports what finished
         for n in range(1, args.runs + 1):
             for mission in missions:
                 await reset_drones(
@@ -709,11 +710,15 @@ def main(argv: list[str] | None = None) -> int:
             args.profile = choice.profile
             console.print(f"[dim]profile {choice.profile} (auto): {choice.reason}[/]")
         args.load_start = os.getloadavg()[0]
+        interrupted = False
         try:
             runs = asyncio.run(_cancellable(run_missions(args, console)))
         except (asyncio.CancelledError, KeyboardInterrupt):
             console.print("[red]interrupted[/]: the sim and gateway it started were stopped")
-            return 130
+            runs, interrupted = args.completed, True
+            if not runs:
+                return 130
+            console.print(f"[yellow]reporting the {len(runs)} run(s) that finished (not written to docs)[/]")
         args.load_end = os.getloadavg()[0]
     title = (
         "HARNESS SELF-CHECK (scripted pilot, not a model; tokens = request size / 4)"
@@ -738,12 +743,15 @@ def main(argv: list[str] | None = None) -> int:
                     "tool_list": args.tool_list,
                     "load_start": args.load_start,
                     "load_end": args.load_end,
+                    "interrupted": interrupted,
                     "runs": [r.__dict__ for r in runs],
                     "totals": totals(runs),
                 },
                 indent=2,
             )
         )
+    if interrupted:
+        return 130
     if args.write:
         write_docs(markdown_section(runs, args), args)
     # The self-check is a harness test: any failed mission there is a harness defect.

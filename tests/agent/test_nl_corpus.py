@@ -140,3 +140,23 @@ def test_formation_check_reads_spacing_centre_and_altitude() -> None:
     assert not formation_at(CTX, ev, DRONES, 20, 15, 0, 0).ok, "15 m spacing was asked"
     low = {d: _hovering("bravo", 0, east, 5) for d, east in zip(DRONES, (-8, 0, 8), strict=True)}
     assert not formation_at(CTX, Evidence(low, {}, [], "done"), DRONES, 20, 8, 0, 0).ok
+
+
+def test_an_interrupted_bench_still_reports_the_runs_that_finished(
+    bench: ModuleType, monkeypatch, tmp_path
+) -> None:
+    import asyncio
+    import json
+
+    async def one_then_cancelled(args, console) -> list:
+        args.tool_list = "9 of 54 tools"
+        r = bench.MissionRun("single-bravo-bob", True, "ok", 2, 0, 0, 10, 5, 2, "answered", 1.0, [])
+        r.cls, r.half = "single", "test"
+        args.completed.append(r)
+        raise asyncio.CancelledError
+
+    monkeypatch.setattr(bench, "run_missions", one_then_cancelled)
+    out = tmp_path / "runs.json"
+    assert bench.main(["--half", "test", "--json", str(out)]) == 130
+    data = json.loads(out.read_text())
+    assert data["interrupted"] is True and [r["mission"] for r in data["runs"]] == ["single-bravo-bob"]
