@@ -101,6 +101,7 @@ def stop_pyspy(proc: subprocess.Popen[bytes]) -> None:
         proc.wait()
 
 
+INGEST = "telemetry ingest (gRPC streams)"
 # what a frame belongs to, first match wins (module path fragments of py-spy's "func (file:line)")
 BUCKETS = [
     ("audit + session rows (SQLAlchemy / aiosqlite)", ("sqlalchemy", "aiosqlite", "registry/store.py")),
@@ -108,7 +109,7 @@ BUCKETS = [
     ("JSON encode / decode", ("json/", "orjson")),
     ("MCP SDK (session, routing, SSE)", ("mcp/server", "mcp/shared", "sse_starlette", "mcp/types")),
     ("HTTP server (uvicorn, starlette, h11)", ("uvicorn", "starlette", "h11", "httptools")),
-    ("telemetry ingest (gRPC streams)", ("grpc", "mavsdk_grpc", "link/telemetry.py")),
+    (INGEST, ("grpc", "mavsdk_grpc", "link/telemetry.py")),
     ("gateway code", ("gateway/",)),
     ("asyncio / anyio event loop", ("asyncio", "anyio")),
 ]
@@ -211,14 +212,23 @@ def render(r: dict[str, Any], n: int, profile: bool) -> str:
         for label in CALLS:
             p = r[label]["profile"]
             total = max(1, p["total"])
+            # the telemetry ingest goes on whether calls come or not: the call's milliseconds are shared
+            # out over the other samples
+            calls = max(1, total - p["buckets"].get(INGEST, 0))
+            cpu_ms = r[label]["cpu_ms"]
             lines += [
                 "",
                 f"Profile of {label} (py-spy, {total} samples on the gateway's threads; share of samples, "
-                "each stack counted once for the innermost part it is in):",
+                "each stack counted once for the innermost part it is in; ms per call: the call's CPU "
+                f"({cpu_ms:.2f} ms) shared out over the samples that are not the telemetry ingest, which "
+                "goes on without calls):",
                 "",
                 common.table(
-                    ["where", "share"],
-                    [[k, f"{v / total:.0%}"] for k, v in p["buckets"].most_common()],
+                    ["where", "share", "ms per call"],
+                    [
+                        [k, f"{v / total:.0%}", "-" if k == INGEST else f"{cpu_ms * v / calls:.2f}"]
+                        for k, v in p["buckets"].most_common()
+                    ],
                 ),
                 "",
                 "Hottest functions (self time): "

@@ -1,9 +1,10 @@
 """Cluster fault figures: what the engines' faults cost, on this machine (real PostgreSQL, NATS, sidecars,
 simulated drones; two nodes, three drones, 10 s lease, the default):
 
-- PostgreSQL stopped for 20 s under three drones in the air: how long the emergency stop (land, from the
-  node that owns fewer of them) takes to answer, until every drone is in LAND (the simulator's own
-  mode), until both nodes fenced themselves, and, once PostgreSQL is started again, until every drone is
+- PostgreSQL stopped for 20 s under three drones in the air: how long until both nodes fenced
+  themselves (no sidecar left); then how long the emergency stop (land, from the node that owns fewer of
+  them, each fenced node sending it over the drone's own link) takes to answer, and until every drone is
+  in LAND (the simulator's own mode); once PostgreSQL is started again, how long until every drone is
   ready under exactly one sidecar; how many writes the nodes kept and wrote late;
 - one node cut off from NATS (a TCP proxy cut): how long a command forwarded to it, and one it forwards,
   take to answer "not run".
@@ -69,6 +70,13 @@ async def postgres_outage() -> dict[str, float]:
                 )
             fewer = min(("node-a", "node-b"), key=lambda n: sum(1 for o in owners.values() if o == n))
             pg.stop()
+            stopped = time.perf_counter()
+
+            async def fenced() -> bool:
+                gone = not any(mavsdk_servers_of(n.proc.pid) for n in c.nodes)
+                return gone and all(log_has(n, "could not renew its leases in time") for n in c.nodes)
+
+            fence = await until(fenced, "both nodes fenced", 60, stopped)
             started = time.perf_counter()
             response = await c.node(fewer).post("/fleet/stop", {"action": "land"})
             answered = time.perf_counter() - started
@@ -79,13 +87,7 @@ async def postgres_outage() -> dict[str, float]:
                 return [(await c.true_state(d))["mode"] for d in c.drone_ids] == ["LAND"] * 3
 
             in_land = await until(landing, "every drone in LAND", 30, started)
-
-            async def fenced() -> bool:
-                gone = not any(mavsdk_servers_of(n.proc.pid) for n in c.nodes)
-                return gone and all(log_has(n, "could not renew its leases in time") for n in c.nodes)
-
-            fence = await until(fenced, "both nodes fenced", 60, started)
-            await asyncio.sleep(max(0.0, OUTAGE_S - (time.perf_counter() - started)))
+            await asyncio.sleep(max(0.0, OUTAGE_S - (time.perf_counter() - stopped)))
             pg.start()
             back = time.perf_counter()
 
@@ -162,11 +164,11 @@ def main() -> int:
         [
             [
                 "PostgreSQL stopped (20 s), 3 drones in the air",
-                "emergency stop (land) answered",
-                f"{pg['stop_answer_s'] * 1000:.0f} ms",
+                "both nodes fenced, no sidecar left (10 s lease)",
+                f"{pg['fenced_s']:.1f} s",
             ],
+            ["", "then emergency stop (land) answered", f"{pg['stop_answer_s'] * 1000:.0f} ms"],
             ["", "every drone in LAND after the stop", f"{pg['in_land_s']:.2f} s"],
-            ["", "both nodes fenced, no sidecar left (10 s lease)", f"{pg['fenced_s']:.1f} s"],
             [
                 "",
                 "PostgreSQL back: every drone ready under one sidecar",

@@ -28,6 +28,7 @@ FULL_WINDOW_S = 30.0
 READ_RATE_HZ = 10.0
 IDLE_WINDOW_S = 15.0
 LIST_EVERY_S = 0.5
+LIST_BURST = 30
 # Thresholds of the "signs of overload" column: a 5 Hz position stream is at most ~0.2 s old when the
 # gateway keeps up; a read tool answering from the cache should take milliseconds.
 AGE_LIMIT_S = 1.0
@@ -85,6 +86,24 @@ async def idle_ingest(gw: common.Gateway, sidecars: list[int], n: int) -> dict[s
     }
 
 
+async def listing_cost(gw: common.Gateway, mcp: Any, have_list: bool, idle_pct: float) -> dict[str, Any]:
+    """``LIST_BURST`` fleet listings back to back, nothing else calling: the gateway's CPU per listing
+    (its /proc counters less its idle rate, so the figure holds on a busy machine) and their latency."""
+    lat: list[float] = []
+    c0, t0, own0 = common.cpu_seconds(gw.pid), time.monotonic(), time.process_time()
+    for _ in range(LIST_BURST):
+        t = time.perf_counter()
+        await list_fleet(mcp, have_list)
+        lat.append(time.perf_counter() - t)
+    cpu = common.cpu_seconds(gw.pid) - c0 - idle_pct / 100.0 * (time.monotonic() - t0)
+    client = time.process_time() - own0  # the MCP client: the request, the result and its validation
+    return {
+        "list_cpu_ms": 1000.0 * cpu / LIST_BURST,
+        "list_client_cpu_ms": 1000.0 * client / LIST_BURST,
+        "list_burst_lat": lat,
+    }
+
+
 async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[str, Any]:
     with common.workdir(f"scale{n}") as wd:
         async with common.sim(n, speedup=1.0, workdir=wd) as sim_, common.gateway(sim_, workdir=wd) as gw:
@@ -135,6 +154,7 @@ async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[
 
                 await asyncio.gather(reader(), lister())
                 busy1, total1 = machine_cpu()
+                listing = await listing_cost(gw, mcp, have_list, idle["idle_gw_pct_per_drone"] * n)
                 sc_rss = [common.rss_kb(p) for p in sidecars]
                 sc_mem = [common.smaps_kb(p) for p in sidecars]
                 result = {
@@ -162,8 +182,15 @@ async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[
                     "read_lat": read_lat,
                     "list_kind": "list_drones" if have_list else "fleet://drones resource",
                     **idle,
+                    **listing,
+                    "load": _load(),
                 }
     return result
+
+
+def _load() -> str:
+    with open("/proc/loadavg") as fh:
+        return " ".join(fh.read().split()[:3])
 
 
 def overload_signs(r: dict[str, Any]) -> list[str]:
@@ -216,6 +243,17 @@ def render(results: list[dict[str, Any]], window_s: float) -> str:
         ]
         for r in results
     ]
+    list_rows = [
+        [
+            r["n"],
+            f"{r['list_cpu_ms']:.1f}",
+            f"{r['list_client_cpu_ms']:.1f}",
+            f"{common.ms(common.percentile(r['list_burst_lat'], 50))} / "
+            f"{common.ms(common.percentile(r['list_burst_lat'], 99))}",
+            r["load"],
+        ]
+        for r in results
+    ]
     kinds = {r["list_kind"] for r in results}
     lines = [
         f"Simulator at real time; measured on the ground over a {window_s:g} s window after all drones "
@@ -248,6 +286,22 @@ def render(results: list[dict[str, Any]], window_s: float) -> str:
         common.table(
             ["drones", "gateway CPU per drone %", "CPU per sidecar %", "updates per drone per s", "streams"],
             idle_rows,
+        ),
+        "",
+        f"The fleet listing alone: {LIST_BURST} listings back to back after the window, nothing else "
+        "calling; "
+        "the gateway's CPU per listing (its /proc counters less its idle rate: holds on a busy machine) and "
+        "the listing's latency at the client (which validates the result against the output schema).",
+        "",
+        common.table(
+            [
+                "drones",
+                "gateway CPU per listing, ms",
+                "client CPU per listing, ms",
+                "latency p50 / p99 ms",
+                "load average 1/5/15 min",
+            ],
+            list_rows,
         ),
     ]
     return "\n".join(lines)

@@ -12,6 +12,8 @@ import sys
 from collections.abc import Callable, Sequence
 from types import ModuleType
 
+from gateway.cli_help import COMMAND_HELP
+
 
 # Each loader imports its module only when called (``--help`` imports none of them). The module's
 # ``register(subparsers)`` adds its commands.
@@ -54,18 +56,15 @@ def _agent_cli() -> ModuleType:
 
 Loader = Callable[[], ModuleType]
 
-#: command -> (the loader of the module that adds it, its one-line help for ``--help``)
-COMMANDS: dict[str, tuple[Loader, str]] = {
-    "serve": (_server_cli, "run the gateway (REST API, /mcp, sidecars)"),
-    "demo": (_demo, "run the gateway with simulated drones and print how to connect an MCP client"),
-    "drones": (_server_cli, "register, list and remove drones"),
-    "db": (_server_cli, "database maintenance"),
-    "sim": (_sim_cli, "run simulated ArduCopter drones (MAVLink 2 over TCP, like ArduPilot SITL)"),
-    "mcp-stdio": (_mcp_cli, "serve MCP over stdio (for clients that launch the server as a process)"),
-    "agent": (
-        _agent_cli,
-        "let an OpenAI-compatible chat model fly the fleet through the gateway's MCP tools",
-    ),
+#: command -> the loader of the module that adds it (its one-line help is in gateway/cli_help.py)
+COMMANDS: dict[str, Loader] = {
+    "serve": _server_cli,
+    "demo": _demo,
+    "drones": _server_cli,
+    "db": _server_cli,
+    "sim": _sim_cli,
+    "mcp-stdio": _mcp_cli,
+    "agent": _agent_cli,
 }
 OPTIONS_WITH_VALUE = {"--log-level"}
 
@@ -80,12 +79,12 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
         "--log-level", default=None, help="Python log level (default: GATEWAY_LOG_LEVEL or INFO)"
     )
     subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
-    loaded = COMMANDS[command][0] if command in COMMANDS else None
+    loaded = COMMANDS.get(command or "")
     if loaded is not None:
         loaded().register(subparsers)
-    for name, (loader, help_text) in COMMANDS.items():
+    for name, loader in COMMANDS.items():
         if loader is not loaded:
-            subparsers.add_parser(name, help=help_text, add_help=False)
+            subparsers.add_parser(name, help=COMMAND_HELP[name], add_help=False)
     return parser
 
 

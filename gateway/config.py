@@ -5,6 +5,7 @@ from __future__ import annotations
 import re
 import socket
 from functools import lru_cache
+from pathlib import Path
 
 from pydantic import Field, field_validator, model_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
@@ -193,6 +194,12 @@ class Settings(BaseSettings):
         1.0, gt=0, le=10, description="Track samples recorded per second in flight."
     )
     track_flush_s: float = Field(2.0, gt=0, description="Seconds between batched track writes.")
+    spool_path: str = Field(
+        "",
+        description="File (JSON lines) where the history writes the database could not take wait until "
+        "it is back, so a gateway killed meanwhile writes them after its restart; default: "
+        "fleet-gateway-spool-<node id>.jsonl in the working directory; 'none': memory only.",
+    )
 
     # --- cluster (several `serve` nodes on one PostgreSQL and NATS; docs/cluster.md) --------------
     cluster_nats_url: str = Field(
@@ -297,6 +304,14 @@ class Settings(BaseSettings):
             return self.cluster_node_id
         host = re.sub(r"[^a-z0-9-]+", "-", socket.gethostname().lower()).strip("-") or "node"
         return f"{host[:26]}-{self.port}"[:32]
+
+    @property
+    def spool_file(self) -> Path | None:
+        """Where the writes the database could not take are kept (None: memory only)."""
+        given = self.spool_path.strip()
+        if given.lower() == "none":
+            return None
+        return Path(given) if given else Path(f"fleet-gateway-spool-{self.node_id}.jsonl")
 
     @property
     def node_tags(self) -> list[str]:

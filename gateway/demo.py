@@ -10,7 +10,7 @@ import signal
 import sys
 from pathlib import Path
 
-from gateway.cli import COMMANDS
+from gateway.cli_help import COMMAND_HELP
 from gateway.localstack import LocalStack, StackError
 from gateway.startup import StartupError, check_port_free
 
@@ -40,7 +40,7 @@ Ctrl-C stops the gateway, its sidecars and the simulator.
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "demo",
-        help=COMMANDS["demo"][1],
+        help=COMMAND_HELP["demo"],
         description="Start simulated drones, the gateway serving them and its MCP endpoint on this machine, "
         "and print how to connect an MCP client. Ctrl-C stops everything.",
     )

@@ -64,6 +64,31 @@ class CommandFailed(GatewayError):
     http_status = 502
 
 
+class NoDialect(GatewayError):
+    """The drone's autopilot (as its HEARTBEAT names it) has no dialect in this gateway: it is shown,
+    never commanded."""
+
+    code = "no_dialect"
+    http_status = 409
+
+
+class OwnedElsewhere(GatewayError):
+    """Cluster: another node flies the drone; this node shows it but cannot command it."""
+
+    code = "owned_elsewhere"
+    http_status = 409
+
+    @classmethod
+    def of(cls, vehicle_id: str, owner_node: str | None) -> OwnedElsewhere:
+        where = f"cluster node {owner_node}" if owner_node else "no cluster node right now"
+        return cls(
+            f"drone '{vehicle_id}' is owned by {where}; this node answers reads for it but cannot "
+            "command it: use the node that owns it (GET /api/v1/cluster lists the nodes and their drones)",
+            vehicle_id=vehicle_id,
+            owner_node=owner_node,
+        )
+
+
 class SafetyRefusal(GatewayError):
     """A safety rule refused the request; ``rule`` names it."""
 

@@ -19,7 +19,7 @@ from gateway.errors import GatewayError
 from gateway.fleet.commander import Commander
 from gateway.fleet.fleet_ops import FleetOperation, FleetOperations
 from gateway.fleet.operations import OperationManager
-from gateway.fleet.protocols import VehicleRegistry
+from gateway.fleet.protocols import VehicleActions, VehicleRegistry, flying
 from gateway.fleet.safety import LockBook, SafetyPolicy
 from gateway.fleet.scopes import ScopedDirectory, scopes_by_principal
 from gateway.registry.store import Store
@@ -103,6 +103,9 @@ class Gateway:
         log.info("opening database %s", _redact(self.settings.database_url))
         self.store = await Store.open(self.settings.database_url)
         try:
+            spool_file = self.settings.spool_file
+            if spool_file is not None:  # writes a killed run kept go first, before anything new
+                await self.store.keep_spool_in(spool_file)
             for lock in await self.store.list_locks():
                 self.locks.lock(lock.scope, lock.reason, lock.by, at=lock.locked_at)
             for lock in await self.store.list_takeovers():
@@ -142,6 +145,11 @@ class Gateway:
             self.operations.taken_over = self.locks.takeover_for
             await self.registry.start()
             self._registry_started = True
+            if not self.settings.clustered:  # a drone found flying keeps its mode watch (a cluster
+                # node arms it only for the running operations it resumes: gateway.cluster.takeover)
+                self.operations.watch_found_flying(
+                    flying(v) for v in self.registry.all() if isinstance(v, VehicleActions)
+                )
             if self.cluster is not None:
                 await self.cluster.start()
         except BaseException:

@@ -1,4 +1,4 @@
-"""`fleet-gateway serve`, `fleet-gateway drones add|list|remove`, `fleet-gateway db upgrade`."""
+"""`fleet-gateway serve` and `fleet-gateway db upgrade|prune` (`drones` comes from gateway/drones_cli.py)."""
 
 from __future__ import annotations
 
@@ -6,24 +6,17 @@ import argparse
 import asyncio
 import contextlib
 import ipaddress
-import json
 import math
-import os
 import sys
-import time
-from collections.abc import Awaitable, Callable, Iterator
+from collections.abc import Iterator
 from datetime import UTC, datetime, timedelta
-from pathlib import Path
-from typing import Any
 
-import httpx
 import uvicorn
 from pydantic import ValidationError
 
-from gateway.cli import COMMANDS
-from gateway.config import Settings
-from gateway.errors import DuplicateVehicle, GatewayError
-from gateway.registry.spec import VehicleSpec
+from gateway import drones_cli
+from gateway.cli_help import COMMAND_HELP
+from gateway.cli_support import database_option, fail, settings_from, validation_text, with_store
 from gateway.registry.store import Store, create_engine_for, current_revision, upgrade_schema
 from gateway.startup import (
     StartupError,
@@ -37,85 +30,27 @@ from gateway.startup import (
 LOOPBACK_NAMES = {"localhost"}
 
 
-def register(subparsers: Any) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     serve = subparsers.add_parser(
         "serve",
-        help=COMMANDS["serve"][1],
+        help=COMMAND_HELP["serve"],
         description="Serve the REST API, the MCP endpoint (/mcp) and the operator pages, and run one "
         "mavsdk_server per registered drone. The database schema is upgraded on start.",
     )
     serve.add_argument("--host", default=None, help="bind address (default GATEWAY_HOST or 127.0.0.1)")
     serve.add_argument("--port", type=int, default=None, help="HTTP port (default GATEWAY_PORT or 8765)")
-    _database_option(serve)
+    database_option(serve)
     serve.set_defaults(func=cmd_serve)
 
-    drones = subparsers.add_parser("drones", help=COMMANDS["drones"][1])
-    drone_cmds = drones.add_subparsers(dest="drones_command", required=True, metavar="ACTION")
+    drones_cli.register(subparsers)
 
-    add = drone_cmds.add_parser("add", help="register a drone")
-    add.add_argument("id", help="drone id: 1-32 of a-z, 0-9, '-'")
-    add.add_argument("url", help="MAVLink URL in mavsdk_server syntax, e.g. tcpout://127.0.0.1:5760")
-    add.add_argument("--name", default=None, help="human-readable name")
-    add.add_argument("--sysid", type=int, default=None, help="MAVLink system id the drone must report")
-    add.add_argument("--tag", action="append", default=[], help="a tag (repeatable)")
-    add.add_argument(
-        "--node-tag", default=None, help="cluster: only nodes carrying this tag own the drone (e.g. a site)"
-    )
-    add.add_argument("--no-connect", action="store_true", help="register without connecting")
-    add.add_argument(
-        "--if-missing",
-        action="store_true",
-        help="succeed without change when the id is already registered (for provisioning scripts)",
-    )
-    _target_options(add)
-    add.set_defaults(func=cmd_drones_add)
-
-    lst = drone_cmds.add_parser("list", help="list registered drones")
-    lst.add_argument("--json", action="store_true", help="print JSON instead of a table")
-    _target_options(lst)
-    lst.set_defaults(func=cmd_drones_list)
-
-    remove = drone_cmds.add_parser("remove", help="remove a drone")
-    remove.add_argument("id", help="drone id")
-    _target_options(remove)
-    remove.set_defaults(func=cmd_drones_remove)
-
-    mission = drone_cmds.add_parser(
-        "mission", help="a drone's mission as a ground station's file (QGC .plan or QGC WPL 110), in or out"
-    )
-    mission_cmds = mission.add_subparsers(dest="mission_command", required=True, metavar="ACTION")
-    put = mission_cmds.add_parser(
-        "put", help="store a mission file on a connected drone (checked like any mission)"
-    )
-    put.add_argument("id", help="drone id")
-    put.add_argument("file", help="a .plan (JSON) or QGC WPL 110 waypoint file; - reads standard input")
-    put.add_argument(
-        "--format", choices=("plan", "waypoints"), default=None, help="default: told from the file"
-    )
-    _target_options(put)
-    put.set_defaults(func=cmd_drones_mission_put)
-    get = mission_cmds.add_parser("get", help="write a connected drone's mission as a file")
-    get.add_argument("id", help="drone id")
-    get.add_argument("--format", choices=("plan", "waypoints"), default="plan", help="default: plan")
-    get.add_argument("--output", "-o", default=None, help="file to write (default: standard output)")
-    _target_options(get)
-    get.set_defaults(func=cmd_drones_mission_get)
-
-    release = drone_cmds.add_parser(
-        "release",
-        help="give a drone taken over by a pilot or ground station back to agents (docs/safety.md)",
-    )
-    release.add_argument("id", help="drone id")
-    _target_options(release)
-    release.set_defaults(func=cmd_drones_release)
-
-    db = subparsers.add_parser("db", help=COMMANDS["db"][1])
+    db = subparsers.add_parser("db", help=COMMAND_HELP["db"])
     db_cmds = db.add_subparsers(dest="db_command", required=True, metavar="ACTION")
     upgrade = db_cmds.add_parser(
         "upgrade", help="upgrade the database schema (the gateway also does on start)"
     )
     upgrade.add_argument("--revision", default="head", help="target Alembic revision (default head)")
-    _database_option(upgrade)
+    database_option(upgrade)
     upgrade.set_defaults(func=cmd_db_upgrade)
     prune = db_cmds.add_parser(
         "prune", help="delete flights, tracks, status texts, audit and sessions older than N days"
@@ -123,49 +58,8 @@ def register(subparsers: Any) -> None:
     prune.add_argument(
         "--older-than-days", type=float, required=True, metavar="DAYS", help="age limit in days"
     )
-    _database_option(prune)
+    database_option(prune)
     prune.set_defaults(func=cmd_db_prune)
-
-
-def _database_option(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument(
-        "--database-url", default=None, help="SQLAlchemy async URL (default GATEWAY_DATABASE_URL)"
-    )
-
-
-def _target_options(parser: argparse.ArgumentParser) -> None:
-    _database_option(parser)
-    parser.add_argument(
-        "--api",
-        default=None,
-        metavar="URL",
-        help="talk to a running gateway's REST API (e.g. http://127.0.0.1:8765) instead of the database",
-    )
-    parser.add_argument(
-        "--token",
-        default=None,
-        help="bearer token for --api (default: GATEWAY_API_TOKEN, else the first of GATEWAY_OPERATOR_TOKENS)",
-    )
-    parser.add_argument(
-        "--wait",
-        type=float,
-        default=0.0,
-        metavar="SECONDS",
-        help="with --api: wait up to SECONDS for the gateway to answer /readyz before the call (for "
-        "provisioning beside a gateway that is still starting; default 0: call at once)",
-    )
-
-
-def _settings(args: argparse.Namespace, **overrides: Any) -> Settings:
-    values = {k: v for k, v in overrides.items() if v is not None}
-    if getattr(args, "database_url", None):
-        values["database_url"] = args.database_url
-    return Settings(**values)
-
-
-def _fail(message: str, code: int = 1) -> int:
-    print(f"error: {message}", file=sys.stderr)
-    return code
 
 
 def _is_loopback(host: str) -> bool:
@@ -184,18 +78,18 @@ def cmd_serve(args: argparse.Namespace) -> int:
     from gateway.app import create_app
 
     try:
-        settings = _settings(args, host=args.host, port=args.port)
+        settings = settings_from(args, host=args.host, port=args.port)
     except ValidationError as exc:
-        return _fail(_validation_text(exc), 2)
+        return fail(validation_text(exc), 2)
     if settings.clustered:
         from gateway.cluster.node import ClusterSetupError, check_settings
 
         try:
             check_settings(settings)
         except ClusterSetupError as exc:
-            return _fail(exc.message, 2)
+            return fail(exc.message, 2)
     if not _is_loopback(settings.host) and not settings.operator_tokens.strip():
-        return _fail(
+        return fail(
             f"refusing to serve on {settings.host}: without operator tokens (GATEWAY_OPERATOR_TOKENS) "
             "the gateway binds to loopback only",
             2,
@@ -208,7 +102,7 @@ def cmd_serve(args: argparse.Namespace) -> int:
             check_nats_reachable(settings.cluster_nats_url)
         asyncio.run(_open_database(settings.database_url))
     except StartupError as exc:
-        return _fail(str(exc), 2)
+        return fail(str(exc), 2)
     app = create_app(settings)
     config = uvicorn.Config(
         app,
@@ -248,268 +142,14 @@ class GatewayServer(uvicorn.Server):
                     captured.clear()
 
 
-# --- drones ----------------------------------------------------------------------------------------
-
-
-def _spec_from_args(args: argparse.Namespace) -> VehicleSpec:
-    return VehicleSpec(
-        id=args.id,
-        url=args.url,
-        name=args.name,
-        tags=args.tag,
-        expected_sysid=args.sysid,
-        node_tag=args.node_tag,
-    )
-
-
-def _validation_text(exc: ValidationError) -> str:
-    parts = []
-    for err in exc.errors():
-        field = ".".join(str(p) for p in err.get("loc", ()))
-        message = str(err.get("msg", "")).removeprefix("Value error, ")
-        parts.append(f"{field}: {message}" if field else message)
-    return "; ".join(parts)
-
-
-def cmd_drones_add(args: argparse.Namespace) -> int:
-    try:
-        spec = _spec_from_args(args)
-    except ValidationError as exc:
-        return _fail(f"invalid drone: {_validation_text(exc)}", 2)
-    connect = not args.no_connect
-    already = f"{spec.id} is already registered; left as it is"
-    if args.api:
-        body = {**spec.model_dump(), "connect": connect}
-        return _api_call(
-            args,
-            "POST",
-            "/api/v1/vehicles",
-            body,
-            lambda d: f"registered {d['id']} ({d['url']})",
-            ok_codes={DuplicateVehicle.code: already} if args.if_missing else None,
-        )
-
-    async def run(store: Store) -> str:
-        try:
-            record = await store.add_vehicle(spec, auto_connect=connect)
-        except DuplicateVehicle:
-            if args.if_missing:
-                return already
-            raise
-        return f"registered {record.id} ({record.url}); a running gateway picks it up on its next start"
-
-    return _with_store(args, run)
-
-
-def cmd_drones_list(args: argparse.Namespace) -> int:
-    if args.api:
-        return _api_call(args, "GET", "/api/v1/vehicles", None, lambda d: _table(d["items"], args.json))
-
-    async def run(store: Store) -> str:
-        records = [r.model_dump(mode="json") for r in await store.list_vehicles()]
-        return _table(records, args.json)
-
-    return _with_store(args, run)
-
-
-def cmd_drones_remove(args: argparse.Namespace) -> int:
-    if args.api:
-        return _api_call(args, "DELETE", f"/api/v1/vehicles/{args.id}", None, lambda _d: f"removed {args.id}")
-
-    async def run(store: Store) -> str:
-        await store.remove_vehicle(args.id)
-        return f"removed {args.id}"
-
-    return _with_store(args, run)
-
-
-def _mission_request(args: argparse.Namespace, method: str, **kw: Any) -> httpx.Response | int:
-    """A mission-file request to the running gateway; an int is the exit code of a failure (printed)."""
-    if not args.api:
-        return _fail("drones mission needs --api URL: the file goes to (or comes from) a connected drone", 2)
-    token = _api_token(args)
-    headers = {"Authorization": f"Bearer {token}"} if token else {}
-    url = f"{args.api.rstrip('/')}/api/v1/vehicles/{args.id}/mission"
-    try:
-        response = httpx.request(
-            method, url, headers={**headers, **kw.pop("headers", {})}, timeout=60.0, **kw
-        )
-    except httpx.HTTPError as exc:
-        return _fail(f"cannot reach the gateway at {args.api}: {exc}")
-    if response.status_code >= 400:
-        try:
-            error = response.json()["error"]
-            return _fail(f"{error['message']} ({error['code']})")
-        except (ValueError, KeyError, TypeError):
-            return _fail(f"HTTP {response.status_code}: {response.text[:200]}")
-    return response
-
-
-def cmd_drones_mission_put(args: argparse.Namespace) -> int:
-    try:
-        text = sys.stdin.read() if args.file == "-" else Path(args.file).read_text(encoding="utf-8-sig")
-    except (OSError, UnicodeDecodeError) as exc:
-        return _fail(f"cannot read the mission file {args.file}: {exc}", 2)
-    params = {"format": args.format} if args.format else {}
-    kind = "application/json" if text.lstrip().startswith("{") else "text/plain"
-    response = _mission_request(
-        args, "PUT", content=text.encode(), params=params, headers={"content-type": kind}
-    )
-    if isinstance(response, int):
-        return response
-    print(f"{args.id}: {response.json()['message']}")
-    return 0
-
-
-def cmd_drones_mission_get(args: argparse.Namespace) -> int:
-    response = _mission_request(args, "GET", params={"format": args.format})
-    if isinstance(response, int):
-        return response
-    if args.output:
-        Path(args.output).write_text(response.text, encoding="utf-8")
-        print(f"{args.id}: mission written to {args.output} ({args.format})")
-    else:
-        print(response.text, end="")
-    return 0
-
-
-def cmd_drones_release(args: argparse.Namespace) -> int:
-    def said(was_locked: bool) -> str:
-        return (
-            f"released {args.id}: agents may command it again"
-            if was_locked
-            else f"{args.id} was not taken over"
-        )
-
-    if args.api:
-        return _api_call(
-            args,
-            "DELETE",
-            f"/api/v1/vehicles/{args.id}/takeover",
-            None,
-            lambda d: said(bool(d["was_locked"])),
-        )
-
-    async def run(store: Store) -> str:
-        if not await store.delete_takeover(args.id):
-            return said(False)
-        return (
-            said(True) + " after the gateway's next start (use --api URL to release it in a running gateway)"
-        )
-
-    return _with_store(args, run)
-
-
-def _table(items: list[dict[str, Any]], as_json: bool) -> str:
-    if as_json:
-        return json.dumps(items, indent=2)
-    if not items:
-        return "no drones registered"
-    columns = ["id", "url", "name", "tags", "expected_sysid", "auto_connect", "state"]
-    rows = [
-        [
-            ",".join(item.get(c) or []) if c == "tags" else ("" if item.get(c) is None else str(item.get(c)))
-            for c in columns
-        ]
-        for item in items
-    ]
-    widths = [max(len(c), *(len(r[i]) for r in rows)) for i, c in enumerate(columns)]
-    lines = ["  ".join(c.upper().ljust(w) for c, w in zip(columns, widths, strict=True))]
-    lines += ["  ".join(v.ljust(w) for v, w in zip(row, widths, strict=True)) for row in rows]
-    return "\n".join(line.rstrip() for line in lines)
-
-
-def _with_store(args: argparse.Namespace, action: Callable[[Store], Awaitable[str]]) -> int:
-    try:
-        settings = _settings(args)
-    except ValidationError as exc:
-        return _fail(_validation_text(exc), 2)
-
-    async def run() -> str:
-        try:
-            store = await Store.open(settings.database_url)
-        except Exception as exc:
-            raise StartupError(describe_database_error(settings.database_url, exc)) from None
-        try:
-            return await action(store)
-        finally:
-            await store.close()
-
-    try:
-        prepare_database_location(settings.database_url)
-        print(asyncio.run(run()))
-    except StartupError as exc:
-        return _fail(str(exc), 2)
-    except GatewayError as exc:
-        return _fail(exc.message)
-    return 0
-
-
-def _api_token(args: argparse.Namespace) -> str | None:
-    if args.token:
-        return str(args.token)
-    if os.environ.get("GATEWAY_API_TOKEN"):
-        return os.environ["GATEWAY_API_TOKEN"]
-    try:
-        operators = [t.strip() for t in Settings().operator_tokens.split(",") if t.strip()]
-    except ValidationError:
-        return None
-    return operators[0] if operators else None
-
-
-def _api_call(
-    args: argparse.Namespace,
-    method: str,
-    path: str,
-    body: Any,
-    render: Any,
-    ok_codes: dict[str, str] | None = None,
-) -> int:
-    """Call the gateway's REST API; an error whose code is in ``ok_codes`` prints its text and succeeds."""
-    base = args.api
-    token = _api_token(args)
-    headers = {"Authorization": f"Bearer {token}"} if token else {}
-    if not math.isfinite(args.wait) or args.wait < 0:
-        return _fail(f"--wait must be a number of seconds, 0 or more; got {args.wait}", 2)
-    if args.wait > 0 and not _wait_ready(base, args.wait):
-        return _fail(f"the gateway at {base} did not answer /readyz within {args.wait:g} s (--wait)")
-    try:
-        response = httpx.request(method, base.rstrip("/") + path, json=body, headers=headers, timeout=30.0)
-    except httpx.HTTPError as exc:
-        return _fail(f"cannot reach the gateway at {base}: {exc}")
-    if response.status_code >= 400:
-        try:
-            error = response.json()["error"]
-            if ok_codes and error["code"] in ok_codes:
-                print(ok_codes[error["code"]])
-                return 0
-            return _fail(f"{error['message']} ({error['code']})")
-        except (ValueError, KeyError, TypeError):
-            return _fail(f"HTTP {response.status_code}: {response.text[:200]}")
-    print(render(response.json() if response.content else None))
-    return 0
-
-
-def _wait_ready(base: str, wait_s: float) -> bool:
-    """True once ``base``/readyz answers 200, False if it has not within ``wait_s`` seconds."""
-    deadline = time.monotonic() + wait_s
-    while True:
-        with contextlib.suppress(httpx.HTTPError):
-            if httpx.get(base.rstrip("/") + "/readyz", timeout=5.0).status_code == 200:
-                return True
-        if time.monotonic() >= deadline:
-            return False
-        time.sleep(min(1.0, max(0.0, deadline - time.monotonic())))
-
-
 # --- db --------------------------------------------------------------------------------------------
 
 
 def cmd_db_upgrade(args: argparse.Namespace) -> int:
     try:
-        settings = _settings(args)
+        settings = settings_from(args)
     except ValidationError as exc:
-        return _fail(_validation_text(exc), 2)
+        return fail(validation_text(exc), 2)
 
     async def run() -> str | None:
         try:
@@ -528,14 +168,14 @@ def cmd_db_upgrade(args: argparse.Namespace) -> int:
         prepare_database_location(settings.database_url)
         revision = asyncio.run(run())
     except StartupError as exc:
-        return _fail(str(exc), 2)
+        return fail(str(exc), 2)
     print(f"database at revision {revision}")
     return 0
 
 
 def cmd_db_prune(args: argparse.Namespace) -> int:
     if not math.isfinite(args.older_than_days) or args.older_than_days <= 0:
-        return _fail(f"--older-than-days must be a positive number of days; got {args.older_than_days}", 2)
+        return fail(f"--older-than-days must be a positive number of days; got {args.older_than_days}", 2)
     cutoff = datetime.now(UTC) - timedelta(days=args.older_than_days)
 
     async def run(store: Store) -> str:
@@ -543,7 +183,7 @@ def cmd_db_prune(args: argparse.Namespace) -> int:
         deleted = ", ".join(f"{n} {name}" for name, n in counts.items())
         return f"deleted what was older than {cutoff.isoformat(timespec='seconds')}: {deleted}"
 
-    return _with_store(args, run)
+    return with_store(args, run)
 
 
 def main(argv: list[str] | None = None) -> int:

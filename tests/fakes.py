@@ -1,4 +1,4 @@
-"""The one fake vehicle (and registry) of the unit tests. It implements `FlyingVehicle` and
+"""The one fake vehicle (and registry) of the unit tests. It implements `FlyingVehicle` (view and actions) and
 `VehicleRegistry` (checked at the bottom), so unit tests run the real runtime `Gateway` (the real
 Commander, policy, operations and a real SQLite store) with only the drones faked. Integration tests
 use the simulator and real mavsdk_server sidecars instead.
@@ -28,6 +28,7 @@ from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.param_limits import ParamLimit
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleRegistry
 from gateway.fleet.vehicle import ConnectionState
+from gateway.fleet.waits import wait_for_state
 from gateway.link import refusals
 from gateway.link.telemetry import (
     AttitudeValue,
@@ -81,6 +82,8 @@ class FakeVehicle:
         self.params.update({f"SR0_P{i:03d}": float(i) for i in range(300)})
         self.mission: list[MissionItem] = []
         self.mission_done = False
+        #: what the autopilot says it flies to (lat, lon, monotonic), set by a test; None: not said
+        self.target: tuple[float, float, float] | None = None
         lat, lon = geo.offset_position(HOME[0], HOME[1], 0.0, east_m)
         self.home_ll = (lat, lon)
         self.telemetry = TelemetryCache(stale_after_s=stale_after_s)
@@ -105,7 +108,7 @@ class FakeVehicle:
         self._flight: asyncio.Task[None] | None = None
         self._stream: asyncio.Task[None] | None = None
 
-    # --- identity and state (FlyingVehicle) -----------------------------------------------------------
+    # --- identity and state (VehicleView) -------------------------------------------------------------
     @property
     def id(self) -> str:
         return self._spec.id
@@ -117,6 +120,9 @@ class FakeVehicle:
     @spec.setter
     def spec(self, spec: VehicleSpec) -> None:
         self._spec = spec
+
+    last_error: str | None = None
+    autopilot: str | None = "ardupilot"
 
     def status(self) -> dict[str, Any]:
         return {
@@ -136,6 +142,9 @@ class FakeVehicle:
     def initialising(self) -> str | None:
         return None
 
+    async def wait_for_state(self, *states: ConnectionState | str, within_s: float = 60.0) -> ConnectionState:
+        return await wait_for_state(self, *states, within_s=within_s)
+
     async def wait_initialised(self, within_s: float = 60.0, notify: Notify | None = None) -> bool:
         waiting = self.initialising()  # a fake is ready at once; a test may make it say what it waits for
         if waiting is not None and notify is not None:
@@ -151,6 +160,9 @@ class FakeVehicle:
         if mode is None or armed is None:
             return None
         return str(mode.value), bool(armed.value)
+
+    def position_target(self) -> tuple[float, float, float] | None:
+        return self.target
 
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         return ARDUPILOT.commanded_modes(kind, done=done)
@@ -393,6 +405,9 @@ class FakeRegistry:
         if vehicle_id not in self.vehicles:
             raise UnknownVehicle(vehicle_id, list(self.vehicles))
         return self.vehicles[vehicle_id]
+
+    def flown(self, vehicle_id: str) -> FakeVehicle:
+        return self.get(vehicle_id)  # every fake drone is flown here, as ArduPilot
 
     def all(self) -> list[FakeVehicle]:
         return list(self.vehicles.values())

@@ -13,9 +13,7 @@ note, counts as an empty reply and is asked again, as before.
 
 from __future__ import annotations
 
-from typing import Any
-
-from gateway.agent.toolbox import ToolInfo
+from gateway.agent.toolbox import Arguments, ToolInfo
 
 ANSWER_TOOL = "answer_user"
 
@@ -33,7 +31,7 @@ ANSWER_TOOL_INFO = ToolInfo(
 )
 
 
-def answer_text(arguments: dict[str, Any] | None) -> str:
+def answer_text(arguments: Arguments | None) -> str:
     """The answer an ``answer_user`` call carries: its ``text``, or the one string argument a model put
     under another name (``answer``, ``message``); empty when there is none."""
     if not arguments:

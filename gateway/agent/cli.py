@@ -8,7 +8,8 @@ import contextlib
 import json
 import logging
 import sys
-from typing import Any
+from collections.abc import Sequence
+from typing import TextIO
 
 from rich.console import Console
 from rich.table import Table
@@ -16,13 +17,15 @@ from rich.table import Table
 from gateway.agent.autoprofile import ProfileChoice
 from gateway.agent.autoprofile import resolve as resolve_profile
 from gateway.agent.display import JsonLinesDisplay, RichDisplay
-from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentEvent, AgentHost, ModelConfig
+from gateway.agent.host import AgentHost
 from gateway.agent.mcp_link import McpLink, McpLinkError
 from gateway.agent.profiles import PROFILES, apply_profile, host_options_for, system_prompt_for
 from gateway.agent.servers import ToolRouter, link_for
 from gateway.agent.settings import AgentSettings, split_list
-from gateway.agent.toolbox import ToolSelectionError, select_tools
-from gateway.cli import COMMANDS
+from gateway.agent.toolbox import ToolInfo, ToolSelectionError, select_tools
+from gateway.agent.turns import AgentEvent, ModelConfig
+from gateway.agent.wording import DEFAULT_SYSTEM_PROMPT
+from gateway.cli_help import COMMAND_HELP
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_STEP_LIMIT, EXIT_EMPTY_ANSWER = 0, 1, 2, 3, 4
 
@@ -46,7 +49,7 @@ model gave no answer (empty replies, even after being asked again twice).
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "agent",
-        help=COMMANDS["agent"][1],
+        help=COMMAND_HELP["agent"],
         description="A small MCP host: hands the gateway's tools to a chat model and runs the tool loop. "
         "With a PROMPT it runs one turn and exits; without one it keeps a conversation at a prompt.",
         epilog=_EPILOG,
@@ -159,7 +162,9 @@ def run(args: argparse.Namespace) -> int:
     return asyncio.run(run_async(args))
 
 
-async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Console | None = None) -> int:
+async def run_async(
+    args: argparse.Namespace, *, stdin: TextIO | None = None, console: Console | None = None
+) -> int:
     """The command's body (separate from ``run`` so tests can drive it inside their event loop)."""
     env = AgentSettings()
     console = console or Console()
@@ -252,7 +257,7 @@ async def run_async(args: argparse.Namespace, *, stdin: Any = None, console: Con
         return EXIT_FAILED
 
 
-async def _interactive(host: AgentHost, console: Console, stdin: Any, *, as_json: bool) -> int:
+async def _interactive(host: AgentHost, console: Console, stdin: TextIO, *, as_json: bool) -> int:
     if not as_json:
         console.print(
             f"[dim]{len(host.tools)} tools, model {host.model.model} at {host.model.endpoint}. "
@@ -291,12 +296,12 @@ async def _interactive(host: AgentHost, console: Console, stdin: Any, *, as_json
                 raise
 
 
-def _is_tty(stream: Any) -> bool:
+def _is_tty(stream: object) -> bool:
     isatty = getattr(stream, "isatty", None)
     return bool(isatty and isatty())
 
 
-def _print_tools(tools: list[Any], console: Console, *, as_json: bool) -> None:
+def _print_tools(tools: Sequence[ToolInfo], console: Console, *, as_json: bool) -> None:
     if as_json:
         for t in tools:
             console.file.write(

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import json
 import sys
-from typing import IO, Any
+from typing import IO
 
 from rich.console import Console
 from rich.markup import escape
 from rich.status import Status
 
-from gateway.agent.host import AgentEvent
+from gateway.agent.turns import AgentEvent, EventData
 
 _STATUS_STYLE = {
     "ok": "green",
@@ -62,19 +62,19 @@ class RichDisplay:
 
     # --- handlers --------------------------------------------------------------------------------
 
-    def _on_turn_start(self, d: dict[str, Any]) -> None:
+    def _on_turn_start(self, d: EventData) -> None:
         if self.echo_user:
             self.console.print(f"[bold cyan]you[/] {escape(d['user'])}")
 
-    def _on_model_reply(self, d: dict[str, Any]) -> None:
+    def _on_model_reply(self, d: EventData) -> None:
         if d.get("tool_calls") and d.get("content") and not d.get("parsed_from_text"):
             self.console.print(f"[dim]model: {escape(_one_line(d['content'], 200))}[/]")
 
-    def _on_parsed_from_text(self, d: dict[str, Any]) -> None:
+    def _on_parsed_from_text(self, d: EventData) -> None:
         notes = f" ({', '.join(d['notes'])})" if d.get("notes") else ""
         self.console.print(f"[yellow]parsed a tool call from text[/] [dim]x{d['count']}{escape(notes)}[/]")
 
-    def _on_tool_call(self, d: dict[str, Any]) -> None:
+    def _on_tool_call(self, d: EventData) -> None:
         args = d["arguments"]
         if isinstance(args, dict):
             shown = ", ".join(f"{k}={json.dumps(v, default=str)}" for k, v in args.items())
@@ -86,7 +86,7 @@ class RichDisplay:
             self._status = self.console.status(f"[dim]{escape(d['name'])} running…[/]")
             self._status.start()
 
-    def _on_progress(self, d: dict[str, Any]) -> None:
+    def _on_progress(self, d: EventData) -> None:
         text = _progress_text(d)
         key = (d["id"], text)
         if key == self._last_progress:
@@ -97,40 +97,40 @@ class RichDisplay:
         else:
             self.console.print(f"  [blue]… {escape(d['name'])}[/] {escape(text)}")
 
-    def _on_tool_result(self, d: dict[str, Any]) -> None:
+    def _on_tool_result(self, d: EventData) -> None:
         self._stop_status()
         style = _STATUS_STYLE.get(d["status"], "white")
         mark = "✓" if d["status"] == "ok" else "✗"
         label = "" if d["status"] in ("ok", "error") else f" {d['status'].replace('_', ' ')}:"
         self.console.print(f"  [{style}]{mark}{label}[/] {escape(d['summary'])}")
 
-    def _on_final(self, d: dict[str, Any]) -> None:
+    def _on_final(self, d: EventData) -> None:
         self._stop_status()
         self.console.print(f"[bold green]model[/] {escape(d['text'])}")
 
-    def _on_empty_reply(self, d: dict[str, Any]) -> None:
+    def _on_empty_reply(self, d: EventData) -> None:
         self.console.print(f"[yellow]empty reply[/] [dim]asking again with the request ({d['attempt']})[/]")
 
-    def _on_empty_answer(self, d: dict[str, Any]) -> None:
+    def _on_empty_answer(self, d: EventData) -> None:
         self._stop_status()
         self.console.print(f"[bold red]no answer[/] {escape(d['message'])}")
 
-    def _on_arguments_corrected(self, d: dict[str, Any]) -> None:
+    def _on_arguments_corrected(self, d: EventData) -> None:
         self.console.print(f"  [dim]{escape('; '.join(d['notes']))}[/]")
 
-    def _on_step_limit(self, d: dict[str, Any]) -> None:
+    def _on_step_limit(self, d: EventData) -> None:
         self._stop_status()
         self.console.print(f"[bold red]step limit[/] {escape(d['message'])}")
 
-    def _on_interrupted(self, d: dict[str, Any]) -> None:
+    def _on_interrupted(self, d: EventData) -> None:
         self._stop_status()
         self.console.print(f"[bold yellow]interrupted[/] {escape(d['message'])}")
 
-    def _on_model_error(self, d: dict[str, Any]) -> None:
+    def _on_model_error(self, d: EventData) -> None:
         self._stop_status()
         self.console.print(f"[bold red]model error[/] {escape(d['error'])}")
 
-    def _on_turn_end(self, d: dict[str, Any]) -> None:
+    def _on_turn_end(self, d: EventData) -> None:
         if not self.show_usage:
             return
         tokens = (
@@ -149,7 +149,7 @@ class RichDisplay:
             self._status = None
 
 
-def _progress_text(d: dict[str, Any]) -> str:
+def _progress_text(d: EventData) -> str:
     p, total, msg = d.get("progress"), d.get("total"), d.get("message")
     if total and isinstance(p, int | float):
         head = f"{100.0 * float(p) / float(total):.0f}%"

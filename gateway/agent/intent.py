@@ -13,11 +13,22 @@ with a note the transcript shows. The gateway checks the new call like any other
 
 from __future__ import annotations
 
+from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import dataclass
-from typing import Any
 
-from gateway.agent.repair import LAT_LON_PAIRS, names_zero_zero, request_points
-from gateway.agent.roster import DroneEntry
+from gateway.agent.repair import (
+    LAT_LON_PAIRS,
+    altitude_not_a_climb,
+    names_zero_zero,
+    request_points,
+    restore_request_directions,
+    restore_request_numbers,
+)
+from gateway.agent.roster import DroneEntry, normalise_drone_ids
+from gateway.agent.toolbox import Arguments
+
+# The drone as the gateway reports it now (the fleet read again), or None without a roster.
+FreshEntry = Callable[[object], Awaitable[DroneEntry | None]]
 
 _SAME_DEG = 1e-4  # about 10 m: a coordinate copied with a digit or two fewer is still the same one
 
@@ -27,13 +38,11 @@ class Reading:
     """The call to send instead, and why."""
 
     name: str
-    arguments: dict[str, Any]
+    arguments: Arguments
     note: str
 
 
-def zero_zero_as_here(
-    name: str, args: dict[str, Any], request: str, drone: DroneEntry | None
-) -> Reading | None:
+def zero_zero_as_here(name: str, args: Arguments, request: str, drone: DroneEntry | None) -> Reading | None:
     """``go_to_location`` to latitude 0, longitude 0, a point the request never gives, is the model's way
     of saying "here, at this altitude": a takeoff for a drone on the ground, the drone's own position for
     one that flies."""
@@ -62,7 +71,7 @@ def zero_zero_as_here(
 
 
 def coordinates_as_metres(
-    name: str, args: dict[str, Any], request: str, drone: DroneEntry | None
+    name: str, args: Arguments, request: str, drone: DroneEntry | None
 ) -> Reading | None:
     """``move_to_relative`` whose metres are the two numbers of a point in the request is a flight to that
     point: ``go_to_location`` there, at the altitude the drone flies at now."""
@@ -89,7 +98,7 @@ def _close(values: list[float], point: tuple[float, float]) -> bool:
     return same or crossed
 
 
-def swapped_request_point(args: dict[str, Any], request: str) -> list[str]:
+def swapped_request_point(args: Arguments, request: str) -> list[str]:
     """Swap, in place, a latitude and longitude that are a point of the request the other way round (the
     latitude then out of -90..90); returns a note when it did."""
     notes: list[str] = []
@@ -107,9 +116,7 @@ def swapped_request_point(args: dict[str, Any], request: str) -> list[str]:
     return notes
 
 
-def superseded(
-    name: str, args: dict[str, Any], request: str, later: list[tuple[str, dict[str, Any]]]
-) -> str | None:
+def superseded(name: str, args: Arguments, request: str, later: list[tuple[str, Arguments]]) -> str | None:
     """A ``formation_goto`` centred on 0, 0 (a point the request never names) whose every drone the same
     reply moves afterwards by metres: the later moves say where the model means them to go, so the
     formation step is left out. Returns the note, or None."""
@@ -127,3 +134,36 @@ def superseded(
         "formation_goto centred on 0, 0 left out: the request names no point 0, 0, and the moves that follow "
         f"in the same reply say where {', '.join(map(str, drones))} should go"
     )
+
+
+async def read_call(
+    name: str, args: Arguments, request: str, ids: Sequence[str], fresh_entry: FreshEntry
+) -> tuple[str, Arguments, Reading | None, list[str]]:
+    """The call as the model meant it: ids, numbers and directions put back as the request gives them
+    (repair.py), a call written with the wrong tool read as the one meant; with the notes that say so.
+    ``args`` is corrected in place; the reading, when there is one, names the call to send instead."""
+    notes = normalise_drone_ids(args, ids) if ids else []
+    notes += restore_request_numbers(args, request)
+    notes += swapped_request_point(args, request)
+    reading = await _read_as_meant(name, args, request, fresh_entry)
+    if reading is not None:
+        name, args = reading.name, reading.arguments
+        notes.append(reading.note)
+    if name in ("move_to_relative",):
+        notes += restore_request_directions(args, request)
+        if args.get("up_m"):  # the fleet is read only when there is a climb to judge
+            drone = await fresh_entry(args.get("drone_id"))
+            alt_now = drone.alt_m if drone is not None and drone.flying else None
+            notes += altitude_not_a_climb(args, request, alt_now)
+    return name, args, reading, notes
+
+
+async def _read_as_meant(name: str, args: Arguments, request: str, fresh_entry: FreshEntry) -> Reading | None:
+    """The call a small model meant by this one, read against the fleet as it is now (in a plan, the
+    takeoff before this call has changed it since the last roster)."""
+    zero = name == "go_to_location" and args.get("lat_deg") == 0 and args.get("lon_deg") == 0
+    metres = name == "move_to_relative" and len(request_points(request)) > 0
+    if not (zero or metres):
+        return None
+    drone = await fresh_entry(args.get("drone_id"))
+    return zero_zero_as_here(name, args, request, drone) or coordinates_as_metres(name, args, request, drone)

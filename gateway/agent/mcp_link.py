@@ -4,14 +4,13 @@ from __future__ import annotations
 
 from collections.abc import Awaitable, Callable
 from contextlib import AsyncExitStack
-from typing import Any
 
 import httpx2
 from mcp import Client
 from mcp.client.streamable_http import streamable_http_client
 from mcp.types import Implementation
 
-from gateway.agent.toolbox import ToolInfo, ToolOutcome, outcome_from_result, tool_info_from_mcp
+from gateway.agent.toolbox import Arguments, ToolInfo, ToolOutcome, outcome_from_result, tool_info_from_mcp
 
 ProgressFn = Callable[[float, float | None, str | None], Awaitable[None]]
 
@@ -88,7 +87,7 @@ class McpLink:
         return tools
 
     async def call_tool(
-        self, name: str, arguments: dict[str, Any], progress: ProgressFn | None = None
+        self, name: str, arguments: Arguments, progress: ProgressFn | None = None
     ) -> ToolOutcome:
         """Call a tool; a protocol-level failure becomes an error outcome (the model sees it verbatim)."""
         try:

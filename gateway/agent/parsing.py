@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from gateway.agent.answer import ANSWER_TOOL
+from gateway.agent.toolbox import Arguments
 
 _NAME_KEYS = ("name", "tool", "tool_name", "function_name", "function", "recipient_name")
 _ARG_KEYS = ("arguments", "parameters", "args", "input", "params", "kwargs")
@@ -51,7 +52,7 @@ class TextToolCall:
     """A tool call recovered from message text. ``arguments`` is None when they could not be decoded."""
 
     name: str
-    arguments: dict[str, Any] | None
+    arguments: Arguments | None
     raw: str
     error: str | None = None
     notes: list[str] = field(default_factory=list)
@@ -89,7 +90,7 @@ def strip_thinking(content: str) -> str:
     return _THINK_RE.sub("", content)
 
 
-def parse_arguments(raw: Any) -> dict[str, Any]:
+def parse_arguments(raw: Any) -> Arguments:
     """Turn a tool call's ``arguments`` (string, doubly encoded string, dict, None) into a dict.
 
     Raises ArgumentsError naming the problem when the result is not a JSON object."""

@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import json
 import re
-from typing import Any
+
+from gateway.agent.toolbox import Arguments
 
 _NUMBER_RE = re.compile(r"-?\d+\.\d+")
 # (latitude argument, longitude argument) pairs of the gateway's tools.
@@ -21,7 +22,7 @@ def _decimals(value: float) -> int:
     return len(text.split(".")[1]) if "." in text and "e" not in text else 0
 
 
-def restore_request_numbers(arguments: dict[str, Any], request: str) -> list[str]:
+def restore_request_numbers(arguments: Arguments, request: str) -> list[str]:
     """Replace in place each number with at least two decimals that is the rounded form of exactly one
     longer number in the request; returns a note per replacement."""
     given = {float(m) for m in _NUMBER_RE.findall(request or "")}
@@ -48,7 +49,7 @@ def names_zero_zero(request: str) -> bool:
     return bool(_ZERO_ZERO_RE.search(request or ""))
 
 
-def null_island(arguments: dict[str, Any], request: str, on_ground: bool = False) -> str | None:
+def null_island(arguments: Arguments, request: str, on_ground: bool = False) -> str | None:
     """A refusal for latitude 0, longitude 0 when the request gives no such point: a small model writes it
     for "go up to 15 m" or "fly 60 m north" (measured: every prompt variant tried with the 1.5B model).
     For a drone on the ground it names the takeoff to call, with the altitude the model asked for."""
@@ -71,7 +72,7 @@ def null_island(arguments: dict[str, Any], request: str, on_ground: bool = False
     return None
 
 
-def swap_hint(arguments: dict[str, Any]) -> str | None:
+def swap_hint(arguments: Arguments) -> str | None:
     """A sentence when a latitude is out of range but would be valid as the longitude and vice versa."""
     for lat_name, lon_name in LAT_LON_PAIRS:
         lat, lon = arguments.get(lat_name), arguments.get(lon_name)
@@ -107,9 +108,7 @@ def _moves(request: str) -> list[tuple[float, str, str, int]]:
     ]
 
 
-def _misplaced(
-    arguments: dict[str, Any], moves: list[tuple[float, str, str, int]]
-) -> tuple[str, float] | None:
+def _misplaced(arguments: Arguments, moves: list[tuple[float, str, str, int]]) -> tuple[str, float] | None:
     """The first relative-move argument whose value is a distance the request names, but on another axis
     or with the other sign; with the value it has."""
     for name in ("north_m", "east_m", "up_m"):
@@ -122,7 +121,7 @@ def _misplaced(
     return None
 
 
-def restore_request_directions(arguments: dict[str, Any], request: str) -> list[str]:
+def restore_request_directions(arguments: Arguments, request: str) -> list[str]:
     """Move, in place, a distance the request names with a direction onto that direction's argument and
     sign (measured with the 1.5B model: "50 m south" sent as east_m=-50 three times after being told
     north_m=-50). Only when it is unambiguous: exactly one phrase names that distance and the argument it
@@ -147,7 +146,7 @@ _ALTITUDE_RE = re.compile(
 )
 
 
-def altitude_not_a_climb(arguments: dict[str, Any], request: str, alt_now: float | None) -> list[str]:
+def altitude_not_a_climb(arguments: Arguments, request: str, alt_now: float | None) -> list[str]:
     """Set ``up_m`` to 0, in place, when its size is an altitude the request asks for ("take off to 15 m"),
     the drone already flies at about that altitude, and the request names no distance up or down
     (measured with the 1.5B model: "take off to 15 m, head 50 m south" planned as takeoff, then
@@ -164,7 +163,7 @@ def altitude_not_a_climb(arguments: dict[str, Any], request: str, alt_now: float
     return [f"up_m={up:g} read as up_m=0: the drone is already at the {abs(up):g} m the request asks for"]
 
 
-def direction_mismatch(arguments: dict[str, Any], request: str) -> str | None:
+def direction_mismatch(arguments: Arguments, request: str) -> str | None:
     """A refusal when a relative move puts a distance the request names on the wrong axis or with the
     wrong sign and the host could not repair it (`restore_request_directions`)."""
     moves = _moves(request)

@@ -9,20 +9,16 @@ validation refuses a wrong id before anything is sent.
 from __future__ import annotations
 
 import copy
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Protocol
 
-from gateway.agent.toolbox import ToolInfo, ToolOutcome
+from gateway.agent.toolbox import Arguments, ToolInfo
+from gateway.agent.turns import ToolCaller
 
 ROSTER_TOOL = "list_drones"
 # Arguments that name one drone / several drones in the gateway's tools.
 DRONE_ID_ARGS = ("drone_id",)
 DRONE_IDS_ARGS = ("drone_ids",)
-
-
-class RosterCaller(Protocol):
-    async def call_tool(self, name: str, arguments: dict[str, Any], progress: Any = None) -> ToolOutcome: ...
 
 
 @dataclass(frozen=True)
@@ -65,7 +61,7 @@ class Roster:
         return "Fleet now: " + "; ".join(d.text() for d in self.drones) + "."
 
     @classmethod
-    def from_structured(cls, data: Any) -> Roster | None:
+    def from_structured(cls, data: object) -> Roster | None:
         """From ``list_drones``' structured result (``{"drones": [{"drone_id", "in_air", ...}]}``)."""
         rows = data.get("drones") if isinstance(data, Mapping) else None
         if not isinstance(rows, list):
@@ -89,12 +85,72 @@ class Roster:
         return cls(tuple(out))
 
 
-async def fetch_roster(caller: RosterCaller) -> Roster | None:
+async def fetch_roster(caller: ToolCaller) -> Roster | None:
     """The roster from the gateway, or None when it cannot be read (the model then goes without it)."""
     outcome = await caller.call_tool(ROSTER_TOOL, {})
     if outcome.is_error:
         return None
     return Roster.from_structured(outcome.structured)
+
+
+class FleetView:
+    """The fleet as the host knows it, and the tools as the model is offered them: the roster is read
+    from the gateway's ``list_drones`` (before each model request, and again where a call needs it
+    fresh); when its ids change the tool schemas get them as an ``enum`` (the tool list changes only
+    then, so a server's prompt cache survives ordinary steps)."""
+
+    def __init__(
+        self,
+        caller: ToolCaller,
+        base_tools: Sequence[ToolInfo],
+        enabled: bool,
+        on_read: Callable[[Roster | None], None],
+    ) -> None:
+        self.caller = caller
+        self.base_tools = list(base_tools)  # as the gateway declares them
+        self.enabled = enabled  # False: no roster, no enum, no retries
+        self.roster: Roster | None = None
+        self.ids: list[str] = []  # the ids written into the tool schemas
+        self._on_read = on_read  # told each roster read (None: the server offers no list_drones)
+        self._offer(self.base_tools)
+
+    def _offer(self, tools: Sequence[ToolInfo]) -> None:
+        self.tools = {t.name: t for t in tools}
+        self.specs = [t.openai_spec() for t in tools]
+        # each tool's argument names, to read a call the model wrote as text
+        self.parameters = {t.name: list((t.input_schema or {}).get("properties") or {}) for t in tools}
+
+    async def refresh(self) -> Roster | None:
+        """Read the fleet from the gateway (None when there is no roster)."""
+        if not self.enabled:
+            return None
+        roster = await fetch_roster(self.caller)
+        if roster is None:
+            self.enabled = False  # a server without list_drones
+            self._on_read(None)
+            return None
+        self.roster = roster
+        if roster.ids != self.ids:
+            self.ids = roster.ids
+            self._offer([with_drone_enum(t, roster.ids) for t in self.base_tools])
+        self._on_read(roster)
+        return roster
+
+    async def fresh_entry(self, drone_id: object) -> DroneEntry | None:
+        """The drone as the gateway reports it now: in a plan, the roster read before the reply is out of
+        date once the reply's own takeoff has run. None without a roster."""
+        if not self.enabled:
+            return None
+        await self.refresh()
+        return self.entry(drone_id)
+
+    def entry(self, drone_id: object) -> DroneEntry | None:
+        drones = self.roster.drones if self.roster is not None else ()
+        return next((d for d in drones if d.drone_id == drone_id), None)
+
+    def on_ground(self, drone_id: object) -> bool:
+        entry = self.entry(drone_id)
+        return entry is not None and entry.flying is False
 
 
 def with_drone_enum(tool: ToolInfo, ids: Sequence[str]) -> ToolInfo:
@@ -117,7 +173,7 @@ def with_drone_enum(tool: ToolInfo, ids: Sequence[str]) -> ToolInfo:
     return ToolInfo(tool.name, tool.description, schema, tool.toolset, tool.read_only)
 
 
-def normalise_drone_ids(arguments: dict[str, Any], ids: Sequence[str]) -> list[str]:
+def normalise_drone_ids(arguments: Arguments, ids: Sequence[str]) -> list[str]:
     """Correct the case of drone ids in place where exactly one known id matches (``Alpha`` -> ``alpha``),
     as the gateway itself accepts them; returns notes naming each correction."""
     notes: list[str] = []
@@ -125,7 +181,7 @@ def normalise_drone_ids(arguments: dict[str, Any], ids: Sequence[str]) -> list[s
     for i in ids:
         by_lower.setdefault(i.lower(), []).append(i)
 
-    def fix(value: Any) -> Any:
+    def fix(value: object) -> object:
         if isinstance(value, str) and value not in ids:
             match = by_lower.get(value.strip().lower(), [])
             if len(match) == 1:
@@ -142,7 +198,7 @@ def normalise_drone_ids(arguments: dict[str, Any], ids: Sequence[str]) -> list[s
     return notes
 
 
-def drones_named(arguments: dict[str, Any] | None) -> frozenset[str] | None:
+def drones_named(arguments: Arguments | None) -> frozenset[str] | None:
     """The drones a call names; None when it names none (a fleet call without ids means all drones)."""
     if not arguments:
         return None
@@ -156,9 +212,9 @@ def drones_named(arguments: dict[str, Any] | None) -> frozenset[str] | None:
     return frozenset(named) if named else None
 
 
-def _bool(v: Any) -> bool | None:
+def _bool(v: object) -> bool | None:
     return v if isinstance(v, bool) else None
 
 
-def _num(v: Any) -> float | None:
+def _num(v: object) -> float | None:
     return float(v) if isinstance(v, int | float) and not isinstance(v, bool) else None

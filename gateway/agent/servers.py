@@ -14,13 +14,12 @@ from __future__ import annotations
 import shlex
 from collections.abc import Sequence
 from contextlib import AsyncExitStack
-from typing import Any
 
 from mcp import Client, StdioServerParameters
 from mcp.types import Implementation
 
 from gateway.agent.mcp_link import McpLink, McpLinkError, ProgressFn, _describe
-from gateway.agent.toolbox import ToolInfo, ToolOutcome, outcome_from_result, tool_info_from_mcp
+from gateway.agent.toolbox import Arguments, ToolInfo, ToolOutcome, outcome_from_result, tool_info_from_mcp
 
 
 class StdioLink:
@@ -64,7 +63,7 @@ class StdioLink:
         return [tool_info_from_mcp(t) for t in (await self._client.list_tools()).tools]
 
     async def call_tool(
-        self, name: str, arguments: dict[str, Any], progress: ProgressFn | None = None
+        self, name: str, arguments: Arguments, progress: ProgressFn | None = None
     ) -> ToolOutcome:
         assert self._client is not None, "StdioLink is not open"
         try:
@@ -110,7 +109,7 @@ class ToolRouter:
         return list(await self.gateway.list_tools()) + list(self.extra_tools)
 
     async def call_tool(
-        self, name: str, arguments: dict[str, Any], progress: ProgressFn | None = None
+        self, name: str, arguments: Arguments, progress: ProgressFn | None = None
     ) -> ToolOutcome:
         link = self._owner.get(name)
         if link is None:

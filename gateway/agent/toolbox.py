@@ -7,10 +7,18 @@ import json
 import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import jsonschema
 from jsonschema.exceptions import best_match
+
+if TYPE_CHECKING:
+    from mcp.types import CallToolResult, Tool
+
+# Values that are JSON by nature keep ``Any``, named here once: a tool call's arguments as the model
+# wrote them, a tool's JSON Schema, a result's structured content.
+Arguments = dict[str, Any]
+JsonSchema = dict[str, Any]
 
 # Keys under which a tool's ``_meta`` may name its toolset (the first one present wins).
 TOOLSET_META_KEYS = ("fleet-gateway/toolset", "fleet_gateway/toolset", "io.fleet-gateway/toolset", "toolset")
@@ -26,7 +34,7 @@ class ToolInfo:
 
     name: str
     description: str
-    input_schema: dict[str, Any]
+    input_schema: JsonSchema
     toolset: str | None = None
     read_only: bool | None = None
 
@@ -40,7 +48,7 @@ class ToolInfo:
         }
 
 
-def tool_info_from_mcp(tool: Any) -> ToolInfo:
+def tool_info_from_mcp(tool: Tool) -> ToolInfo:
     """Build a ToolInfo from an ``mcp.types.Tool`` (or anything with the same attributes)."""
     meta = getattr(tool, "meta", None) or {}
     toolset = toolset_of(meta)
@@ -98,7 +106,7 @@ def select_tools(
     return keep
 
 
-def _schema_errors(tool: ToolInfo, arguments: dict[str, Any]) -> list[jsonschema.ValidationError]:
+def _schema_errors(tool: ToolInfo, arguments: Arguments) -> list[jsonschema.ValidationError]:
     """What is wrong with ``arguments`` against the tool's input schema (SchemaError: the schema itself
     is broken)."""
     schema = tool.input_schema or {"type": "object"}
@@ -106,7 +114,7 @@ def _schema_errors(tool: ToolInfo, arguments: dict[str, Any]) -> list[jsonschema
     return list(cls(schema).iter_errors(arguments))
 
 
-def validate_arguments(tool: ToolInfo, arguments: dict[str, Any]) -> str | None:
+def validate_arguments(tool: ToolInfo, arguments: Arguments) -> str | None:
     """None when ``arguments`` validate against the tool's input schema, else a message for the model."""
     try:
         errors = _schema_errors(tool, arguments)
@@ -130,7 +138,7 @@ def validate_arguments(tool: ToolInfo, arguments: dict[str, Any]) -> str | None:
 _LIMIT_KEYWORDS = frozenset({"maximum", "minimum", "exclusiveMaximum", "exclusiveMinimum"})
 
 
-def only_beyond_limits(tool: ToolInfo, arguments: dict[str, Any]) -> bool:
+def only_beyond_limits(tool: ToolInfo, arguments: Arguments) -> bool:
     """The arguments break the schema only by a number beyond an advertised limit (``alt_m: 500`` where
     the policy allows 120). Such a call is the gateway's to refuse: its refusal names the rule and is an
     answer the model may give the user, where the host's own schema message reads as a mistake to fix
@@ -191,7 +199,9 @@ class ToolOutcome:
         return one_line_summary(self.text, self.structured, limit)
 
 
-def outcome_from_result(result: Any, max_chars: int = 6000, include_structured: bool = False) -> ToolOutcome:
+def outcome_from_result(
+    result: CallToolResult, max_chars: int = 6000, include_structured: bool = False
+) -> ToolOutcome:
     """Convert an ``mcp.types.CallToolResult`` into the text handed back to the model (verbatim, bounded).
 
     The text is the result's content blocks, as MCP hosts show them to models. With

@@ -16,7 +16,7 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from gateway.api.deps import authorize
 from gateway.errors import SafetyRefusal
-from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.protocols import VehicleView
 from gateway.registry.records import AuditRecord
 
 if TYPE_CHECKING:
@@ -27,7 +27,7 @@ CONNECTION_STATES = ("registered", "connecting", "connected", "ready", "link_los
 router = APIRouter(tags=["health"])
 
 
-def _state_name(vehicle: FlyingVehicle) -> str:
+def _state_name(vehicle: VehicleView) -> str:
     return str(vehicle.state)
 
 
@@ -86,7 +86,7 @@ class FleetCollector(Collector):
         yield ages
 
 
-def _sample_ages(vehicle: FlyingVehicle) -> dict[str, float]:
+def _sample_ages(vehicle: VehicleView) -> dict[str, float]:
     """Age of each telemetry part the cache holds (parts never received are left out)."""
     cache = vehicle.telemetry
     ages: dict[str, float] = {}
@@ -97,7 +97,7 @@ def _sample_ages(vehicle: FlyingVehicle) -> dict[str, float]:
     return ages
 
 
-def _message_counts(vehicle: FlyingVehicle) -> dict[str, int]:
+def _message_counts(vehicle: VehicleView) -> dict[str, int]:
     """Per-stream update counts of the vehicle's telemetry cache."""
     return dict(vehicle.telemetry.message_counts)
 

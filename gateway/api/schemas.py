@@ -9,7 +9,12 @@ from typing import Annotated, Any
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, field_validator
 
 from gateway.api.telemetry_schema import TelemetrySnapshot, VehicleStatus
-from gateway.registry.spec import NODE_TAG_PATTERN, VehicleSpec, validate_connection_url
+from gateway.registry.spec import (
+    NODE_TAG_PATTERN,
+    VehicleSpec,
+    validate_connection_url,
+    validate_gcs_endpoints,
+)
 from gateway.registry.store import (
     AuditRecord,
     FlightRecord,
@@ -56,6 +61,11 @@ class VehicleUpdate(BaseModel):
     node_tag: str | None = Field(
         None, pattern=NODE_TAG_PATTERN, description="Cluster: only nodes with this tag own it; null: any."
     )
+    gcs_endpoints: list[str] | None = Field(
+        None,
+        description="The ground station endpoints, replacing the registered ones ([] removes them all); "
+        "changing them reconnects a connected vehicle.",
+    )
     auto_connect: StrictBool | None = Field(
         None, description="Connect this vehicle whenever the gateway starts."
     )
@@ -66,6 +76,13 @@ class VehicleUpdate(BaseModel):
         if value is None:
             raise ValueError("url cannot be null")
         return validate_connection_url(value)
+
+    @field_validator("gcs_endpoints")
+    @classmethod
+    def _gcs(cls, value: list[str] | None) -> list[str] | None:
+        if value is None:
+            raise ValueError("gcs_endpoints cannot be null; [] removes them all")
+        return validate_gcs_endpoints(value)
 
     @field_validator("tags", "auto_connect")
     @classmethod

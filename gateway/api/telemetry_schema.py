@@ -28,6 +28,16 @@ class SidecarStatus(_Open):
     restarts: int = 0
 
 
+class GroundStationStatus(_Open):
+    url: str = Field(description="The endpoint as registered (gcs_endpoints).")
+    peer: str | None = Field(None, description="Who is connected there now (address:port), if anyone.")
+    frames_in: int = Field(0, description="MAVLink frames received from ground stations there.")
+    frames_out: int = Field(0, description="MAVLink frames relayed to ground stations there.")
+    last_in_age_s: float | None = None
+    system_ids: list[int] = Field(default_factory=list, description="MAVLink system ids heard there.")
+    error: str | None = Field(None, description="Why the endpoint is not open or not reached.")
+
+
 class VehicleStatus(_Open):
     """The link's view of a vehicle: connection state, heartbeat, autopilot, sidecar."""
 
@@ -55,6 +65,9 @@ class VehicleStatus(_Open):
     initialising: str | None = Field(None, description="What a connected vehicle still waits for.")
     unsupported_streams: list[str] = Field(default_factory=list)
     sidecar: SidecarStatus | None = None
+    ground_stations: list[GroundStationStatus] = Field(
+        default_factory=list, description="The gcs_endpoints the drone's MAVLink is relayed to, live."
+    )
 
 
 class StatusTextItem(_Open):

@@ -19,14 +19,14 @@ from gateway.api.schemas import (
     as_utc,
 )
 from gateway.errors import InvalidArgument, UnknownVehicle
-from gateway.fleet.protocols import FlyingVehicle, VehicleRegistry
+from gateway.fleet.protocols import VehicleRegistry, VehicleView
 from gateway.fleet.safety import LockView
 from gateway.registry.store import Store, VehicleRecord
 
 router = APIRouter(prefix="/vehicles", tags=["vehicles"], route_class=AuditedRoute)
 
 
-def _live(registry: VehicleRegistry, vehicle_id: str) -> FlyingVehicle | None:
+def _live(registry: VehicleRegistry, vehicle_id: str) -> VehicleView | None:
     """The registry's Vehicle, or None when the registry does not hold it."""
     try:
         return registry.get(vehicle_id)
@@ -36,7 +36,7 @@ def _live(registry: VehicleRegistry, vehicle_id: str) -> FlyingVehicle | None:
 
 def vehicle_view(
     record: VehicleRecord,
-    vehicle: FlyingVehicle | None,
+    vehicle: VehicleView | None,
     with_telemetry: bool = False,
     locks: LockView | None = None,
 ) -> VehicleOut:
@@ -94,7 +94,8 @@ async def update_vehicle(
     changes = body.changes()
     if not changes:
         raise InvalidArgument(
-            "nothing to update: give at least one of url, name, tags, expected_sysid, node_tag, auto_connect"
+            "nothing to update: give at least one of url, name, tags, expected_sysid, node_tag, "
+            "gcs_endpoints, auto_connect"
         )
     await _record(store, registry, vehicle_id)
     await registry.update(vehicle_id, **changes)

@@ -11,6 +11,8 @@ Subjects (``fleet.`` prefix):
   answers ``accepted`` first, and refuses (runs nothing) a call that reaches it after that time or for
   an epoch it does not hold. A caller that heard no ``accepted`` in time says "not run", and that is
   true: a call delayed in the bus (a node cut off, then healed) is dropped by its owner, not run;
+- ``fleet.stop.<vehicle>``: a stop (land, return, hold) for a vehicle whose node fenced itself (the database
+  unreachable) and stopped its sidecar: that node alone listens, and sends it over the drone's own link;
 - ``fleet.event.<kind>``: broadcasts to every node (operator locks, registrations changed, stop).
 
 Errors cross as ``{code, message, details}`` and are raised again on the caller as the same
@@ -56,6 +58,12 @@ def tele_subject(vehicle_id: str) -> str:
 
 def call_subject(vehicle_id: str) -> str:
     return f"{PREFIX}.call.{vehicle_id}"
+
+
+def stop_subject(vehicle_id: str) -> str:
+    """Stops (land, return, hold) for a vehicle whose node fenced itself: it sends them over the drone's own
+    link (`gateway.cluster.stoplink`)."""
+    return f"{PREFIX}.stop.{vehicle_id}"
 
 
 def event_subject(kind: str) -> str:
@@ -222,12 +230,14 @@ class Bus:
         accept_s: float = 3.0,
         epoch: int | None = None,
         owner_gone: Callable[[], str | None] | None = None,
+        subject: str | None = None,
     ) -> Any:
         """Run ``name`` on the vehicle's owner; its result, or its error raised again here. The owner
         must accept it within ``accept_s`` (else :class:`NotRun`, and the owner will not run it later);
         then its answer may take ``timeout_s`` in all (else :class:`OwnerTimeout`: it was running).
         ``owner_gone()`` says why the node that accepted it no longer owns the vehicle (None while it
-        does): then :class:`OwnerLost` at once, not at the timeout."""
+        does): then :class:`OwnerLost` at once, not at the timeout. ``subject``: another than the
+        vehicle's call subject (its stop subject)."""
         if not self.connected:
             raise self.cut_off(f"{name} for {vehicle_id}")
         nc = self.client
@@ -244,7 +254,7 @@ class Bus:
                 {"call": name, "args": arguments, "caller": caller, "accept_by": accept_by, "epoch": epoch},
                 default=str,
             ).encode()
-            await self.publish(call_subject(vehicle_id), body, reply=inbox)
+            await self.publish(subject or call_subject(vehicle_id), body, reply=inbox)
             started = time.monotonic()
             accept_deadline = started + accept_s + CLOCK_MARGIN_S
             deadline = started + max(timeout_s, accept_s + CLOCK_MARGIN_S)
@@ -305,17 +315,22 @@ class Bus:
                 await sub.unsubscribe()
 
     async def serve_calls(
-        self, vehicle_id: str, handler: CallHandler, check: CallCheck | None = None
+        self,
+        vehicle_id: str,
+        handler: CallHandler,
+        check: CallCheck | None = None,
+        subject: str | None = None,
     ) -> Subscription:
         """Answer calls for ``vehicle_id`` (this node owns it) with ``handler``, each in its own task;
-        ``check`` refuses a call for a lease epoch this node does not hold."""
+        ``check`` refuses a call for a lease epoch this node does not hold. ``subject``: another than the
+        vehicle's call subject (its stop subject)."""
 
         async def on_message(msg: Msg) -> None:
             task = asyncio.create_task(self._answer(msg, handler, check), name=f"call-{vehicle_id}")
             self._tasks.add(task)
             task.add_done_callback(self._tasks.discard)
 
-        return await self.subscribe(call_subject(vehicle_id), on_message, queue="owner")
+        return await self.subscribe(subject or call_subject(vehicle_id), on_message, queue="owner")
 
     async def _reply(self, reply_to: str | None, kind: str, body: dict[str, Any]) -> None:
         if reply_to:

@@ -13,6 +13,7 @@ import json
 import logging
 import random
 import time
+import uuid
 from collections.abc import Callable
 from datetime import datetime
 from typing import TYPE_CHECKING, Any
@@ -21,16 +22,18 @@ from nats.aio.msg import Msg
 from nats.aio.subscription import Subscription
 
 from gateway.cluster import snapshot
-from gateway.cluster.bus import Bus, CallCheck, CallHandler, ProgressSink, tele_subject
+from gateway.cluster.bus import Bus, CallCheck, CallHandler, ProgressSink, stop_subject, tele_subject
 from gateway.cluster.forwarding import ClusterRouter, answer
 from gateway.cluster.keeper import LeasePlan, Wanted, plan
 from gateway.cluster.leases import Lease, LeaseStore, NodeRecord
 from gateway.cluster.remote import RemoteVehicle
+from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget, send_stop
 from gateway.cluster.takeover import pick_up_operations
 from gateway.config import Settings
-from gateway.errors import GatewayError, NoOwner, NotRun
+from gateway.errors import CommandFailed, GatewayError, NoOwner, NotRun
 from gateway.fleet.caller import Caller
 from gateway.fleet.routing import OnMessage
+from gateway.fleet.views import ActionResult, OperationView
 from gateway.registry.spec import VehicleSpec
 
 if TYPE_CHECKING:
@@ -51,6 +54,9 @@ HEARD_LOCK_KEPT_S = 600.0
 #: forwarded verbs that only read the drone: they get a short timeout, not the MCP wait cap
 READS = frozenset({"arrival", "mission_progress", "get_param", "list_params", "download_mission"})
 READ_TIMEOUT_S = 5.0
+#: a stop sent over a drone's own link by its fenced node: its whole answer (open, for a hold ask where
+#: the drone is, send, ack) within this (a land is sent at once; this bounds waiting for its answer)
+STOP_SEND_S = 4.0
 
 
 class ClusterSetupError(GatewayError):
@@ -92,6 +98,10 @@ class ClusterNode:
         self._heard_locks: dict[str, float] = {}  # scope -> when a lock of it was heard on the bus
         self._adopting_from: dict[str, str] = {}  # vehicle -> the node it was taken from, while adopting
         self._adoptions: set[asyncio.Task[None]] = set()
+        # drones this node owned when it fenced itself (database unreachable): it keeps a stop-only path
+        # to each (land, return, hold over the drone's own link) until a node holds a live lease of it
+        self.fenced: dict[str, StopTarget] = {}
+        self._stop_paths: dict[str, Subscription] = {}
         self.nodes: list[NodeRecord] = []
         self.all_leases: dict[str, Lease] = {}
         self.last_plan = LeasePlan()
@@ -137,6 +147,7 @@ class ClusterNode:
         if self._adoptions:  # let an adoption under way finish first: then its sidecar is stopped below
             await asyncio.wait(set(self._adoptions), timeout=LEAVE_TIMEOUT_S * 3)
         held = list(self.held)
+        await self._end_stop_paths(list(self.fenced), "node stopping")
         await self._drop_all(held, "node stopping")
         # neither the database nor the bus may keep a stopping node alive: its sidecars are stopped
         # already; a lease it cannot release expires on its own
@@ -201,7 +212,9 @@ class ClusterNode:
                     log.error(
                         "node %s could not renew its leases in time: stopping its sidecars", self.node_id
                     )
+                    targets = self._stop_targets()
                     await self._drop_all(list(self.held), "leases could not be renewed")
+                    await self._keep_stop_paths(targets)
                 with contextlib.suppress(Exception):
                     await self._stop_strays()
             first = False
@@ -230,6 +243,11 @@ class ClusterNode:
             await registry.sync(records)
             self.all_leases = await self.leases.leases()
             self.nodes = await self.leases.nodes()
+            await self._end_stop_paths(
+                [v for v in self.fenced if v not in self.all_leases or self.all_leases[v].live
+                 or v not in {r.id for r in records}],
+                "the database is back and a node holds its lease",
+            )  # fmt: skip
             self._note_owners()
             await self._sync_locks()
             wanted = [Wanted(r.id, r.node_tag, r.auto_connect) for r in records]
@@ -270,8 +288,11 @@ class ClusterNode:
         for vehicle in registry.all():
             if isinstance(vehicle, RemoteVehicle):
                 lease = self.all_leases.get(vehicle.id)
+                fenced = self.fenced.get(vehicle.id)
                 if lease is not None and lease.live and lease.node_id != self.node_id:
                     vehicle.set_owner(lease.node_id, lease.epoch)
+                elif fenced is not None:  # nobody holds its link: this node's stop-only path reaches it
+                    vehicle.set_owner(self.node_id, fenced.epoch)
                 else:
                     vehicle.set_owner(None)
 
@@ -325,6 +346,118 @@ class ClusterNode:
         if registry is not None:
             await registry.release(vehicle_id)
         log.info("%s: released by node %s (%s)", vehicle_id, self.node_id, why)
+
+    # --- the stop-only path of a fenced node ----------------------------------------------------------
+    # Fencing exists so that no two nodes command one drone. A stop (land, return, hold) is the one command
+    # that is safe to send twice, so a node that fenced itself because the database was unreachable keeps
+    # a way to stop the drones it owned: on the drone's stop subject, and for its own callers, it sends
+    # the stop over the drone's own link (`gateway.cluster.stoplink`), opened for that moment only.
+    def _stop_targets(self) -> list[StopTarget]:
+        registry = self.registry
+        targets = []
+        for vid, lease in self.held.items():
+            vehicle = None if registry is None else registry.find(vid)
+            if vehicle is None:
+                continue
+            sysid = getattr(vehicle, "sysid", None) or vehicle.spec.expected_sysid
+            targets.append(StopTarget(vid, vehicle.spec.url, sysid, lease.epoch))
+        return targets
+
+    async def _keep_stop_paths(self, targets: list[StopTarget]) -> None:
+        registry = self.registry
+        for target in targets:
+            vid = target.vehicle_id
+            self.fenced[vid] = target
+            view = None if registry is None else registry.find(vid)
+            if isinstance(view, RemoteVehicle):  # its stops go to this node, which answers on the side
+                view.set_owner(self.node_id, target.epoch)
+            if vid not in self._stop_paths:
+                try:
+                    self._stop_paths[vid] = await self.bus.serve_calls(
+                        vid, self._stop_answer(vid), self._check_fenced(vid), subject=stop_subject(vid)
+                    )
+                except Exception as exc:
+                    log.error("%s: cannot listen for stops on the bus (%r): only this node's own stops "
+                              "reach it", vid, exc)  # fmt: skip
+        if targets:
+            log.warning("node %s keeps a stop-only path (land, return, hold over the drone's own link) to %s "
+                        "until another node holds their leases", self.node_id,
+                        ", ".join(t.vehicle_id for t in targets))  # fmt: skip
+
+    async def _end_stop_paths(self, vehicle_ids: list[str], why: str) -> None:
+        for vid in vehicle_ids:
+            self.fenced.pop(vid, None)
+            sub = self._stop_paths.pop(vid, None)
+            if sub is not None:
+                with contextlib.suppress(Exception):
+                    await sub.unsubscribe()
+            log.info("%s: node %s ends its stop-only path (%s)", vid, self.node_id, why)
+
+    def _check_fenced(self, vehicle_id: str) -> CallCheck:
+        def check(epoch: int | None) -> None:
+            target = self.fenced.get(vehicle_id)
+            if target is None:
+                raise NoOwner(f"node {self.node_id} has no stop path to drone '{vehicle_id}' any more: retry")
+            if epoch is not None and epoch != target.epoch:
+                raise NotRun(
+                    f"a stop for drone '{vehicle_id}' sent for lease epoch {epoch} reached node "
+                    f"{self.node_id}, which last held epoch {target.epoch}: not run; retry"
+                )
+
+        return check
+
+    def _stop_answer(self, vehicle_id: str) -> CallHandler:
+        async def handle(
+            name: str, arguments: dict[str, Any], caller: dict[str, Any], progress: ProgressSink
+        ) -> Any:
+            return await self.stop_directly(vehicle_id, name, Caller.from_dict(caller))
+
+        return handle
+
+    async def stop_directly(self, vehicle_id: str, verb: str, caller: Caller) -> dict[str, Any]:
+        """An operator's land, return or hold, sent over the drone's own link by this fenced node."""
+        target = self.fenced.get(vehicle_id)
+        if target is None:
+            raise NoOwner(f"node {self.node_id} has no stop path to drone '{vehicle_id}' any more: retry")
+        if verb not in STOP_COMMANDS or not caller.is_operator:
+            raise NotRun(
+                f"node {self.node_id} fenced itself (the database was unreachable) and holds no link to "
+                f"{vehicle_id}: it sends only an operator's land, return_to_launch or hold over the drone's "
+                f"own link; {verb} was not run"
+            )
+        started = time.monotonic()
+        try:
+            answer_ = await send_stop(target, verb, STOP_SEND_S)
+        except Exception as exc:
+            log.error("%s: %s over its own link failed (%r): nothing sent", vehicle_id, verb, exc)
+            raise NotRun(
+                f"node {self.node_id} (fenced) could not open {vehicle_id}'s link ({exc}): "
+                f"{verb} was not sent"
+            ) from None
+        log.warning("%s: %s sent over its own link by fenced node %s for %s (autopilot: %s, after %.0f ms)",
+                    vehicle_id, verb, self.node_id, caller.principal, answer_,
+                    (time.monotonic() - started) * 1000)  # fmt: skip
+        if answer_ in ("DENIED", "UNSUPPORTED", "FAILED", "TEMPORARILY_REJECTED", "CANCELLED"):
+            raise CommandFailed(f"{vehicle_id} refused {verb} sent over its own link: {answer_}")
+        if verb == "hold":
+            return ActionResult(
+                drone_id=vehicle_id,
+                action="hold",
+                message=f"hold (a reposition to where it is) sent over the drone's own link by node "
+                f"{self.node_id}, fenced while the database was unreachable (autopilot: {answer_})",
+                facts={"via": "direct link", "node": self.node_id},
+            ).model_dump(mode="json")
+        return OperationView(
+            operation_id=f"direct-{uuid.uuid4().hex[:12]}",
+            drone_id=vehicle_id,
+            kind=verb,
+            status="sent",
+            progress=0.0,
+            message=f"{verb} sent over the drone's own link by node {self.node_id}, fenced while the "
+            f"database was unreachable (autopilot: {answer_}); not tracked: its state shows when it lands",
+            elapsed_s=0.0,
+            params={"via": "direct link", "node": self.node_id},
+        ).model_dump(mode="json")
 
     # --- telemetry fan-out ----------------------------------------------------------------------------
     async def _publish(self) -> None:
@@ -489,9 +622,22 @@ class ClusterNode:
                     return f"node {owner} lost drone {drone_id}'s lease"
                 return f"drone {drone_id} changed owner (node {owner} -> node {view.owner})"
 
+        stop = verb in STOP_COMMANDS and caller.is_operator
+        if stop and drone_id in self.fenced:  # no bus needed: this node sends it over the drone's link
+            return await self.stop_directly(drone_id, verb, caller)
+        try:
+            return await self.bus.call(
+                drone_id, verb, arguments, body, timeout, on_message, accept_s=accept_s, epoch=epoch,
+                owner_gone=owner_gone,
+            )  # fmt: skip
+        except NoOwner:
+            if not stop:
+                raise
+        # nobody holds the drone's link: the node that last did may have fenced itself, and keep a
+        # stop-only path to it (a land sent twice is still a land)
         return await self.bus.call(
-            drone_id, verb, arguments, body, timeout, on_message, accept_s=accept_s, epoch=epoch,
-            owner_gone=owner_gone,
+            drone_id, verb, arguments, body, accept_s + STOP_SEND_S + 1.0, on_message, accept_s=accept_s,
+            epoch=epoch, subject=stop_subject(drone_id),
         )  # fmt: skip
 
     def _check_epoch(self, vehicle_id: str) -> CallCheck:

@@ -1,39 +1,35 @@
 """A vehicle owned by another node, as this node sees it: the owner's telemetry snapshots.
 
-It answers the read side of :class:`~gateway.fleet.vehicle.Vehicle` (state, status, telemetry cache) so
-``list_drones``, ``fleet_status``, formation planning and separation checks see the whole fleet. The
-commands go to the owner before they reach a vehicle (`gateway.cluster.forwarding`).
+It is a `~gateway.fleet.protocols.VehicleView` (state, status, telemetry cache, its owner's dialect's
+answers) so ``list_drones``, ``fleet_status``, formation planning and separation checks see the whole
+fleet; it has no actions. The commands go to the owner before they reach a vehicle
+(`gateway.cluster.forwarding`); anything that asks this node's registry to fly it
+(`Registry.flown`) is told, as `OwnedElsewhere`, which node does.
 """
 
 from __future__ import annotations
 
-import asyncio
 import contextlib
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from typing import Any
 
 from gateway.config import Settings
-from gateway.errors import GatewayError, VehicleNotReady
-from gateway.fleet.dialects import Dialect, dialect_named
+from gateway.errors import OwnedElsewhere, VehicleNotReady
+from gateway.fleet.dialects import DialectReads, autopilot_number, dialect_named, flying_dialect
 from gateway.fleet.dialects import limit_params as every_limit_param
 from gateway.fleet.dialects import protected_params as every_protected_param
-from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.param_limits import ParamLimit
 from gateway.fleet.protocols import Notify
 from gateway.fleet.vehicle import ConnectionState
+from gateway.fleet.waits import wait_for_state
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 
 from . import snapshot
 
-
-class OwnedElsewhere(GatewayError):
-    """What a remote view cannot do here: only the drone's owner talks to it."""
-
-    code = "owned_elsewhere"
-    http_status = 409
+__all__ = ["OwnedElsewhere", "RemoteVehicle"]  # OwnedElsewhere lives in gateway.errors
 
 
 class RemoteVehicle:
@@ -47,7 +43,7 @@ class RemoteVehicle:
         self.settings = settings
         self.telemetry = TelemetryCache(stale_after_s=settings.link_lost_after_s)
         self.telemetry.live = False
-        self._status: dict[str, Any] = {}
+        self._status: dict[str, object] = {}  # the owner's Vehicle.status(), as JSON
         self._received_at: float | None = None
         self.owner: str | None = None  # node id from the lease table (None: nobody holds a live lease)
         self.epoch: int = 0
@@ -97,7 +93,7 @@ class RemoteVehicle:
         if not self._fresh():
             return ConnectionState.LINK_LOST if self._received_at is not None else ConnectionState.CONNECTING
         try:
-            return ConnectionState(self._status.get("state", "connecting"))
+            return ConnectionState(str(self._status.get("state", "connecting")))
         except ValueError:
             return ConnectionState.CONNECTING
 
@@ -109,20 +105,24 @@ class RemoteVehicle:
             age = self.snapshot_age_s
             heard = "never" if age is None else f"{age:.0f} s ago"
             return f"no telemetry from its owner node {self.owner} (last snapshot {heard})"
-        error = self._status.get("last_error")
-        return error if isinstance(error, str) else None
+        return self._text("last_error")
+
+    def _text(self, key: str) -> str | None:
+        value = self._status.get(key)
+        return value if isinstance(value, str) else None
 
     @property
     def sysid(self) -> int | None:
-        return self._status.get("sysid")
+        value = self._status.get("sysid")
+        return value if isinstance(value, int) else None
 
     @property
     def autopilot(self) -> str | None:
-        return self._status.get("autopilot")
+        return self._text("autopilot")
 
     @property
     def autopilot_version(self) -> str | None:
-        return self._status.get("autopilot_version")
+        return self._text("autopilot_version")
 
     @property
     def current_flight_id(self) -> int | None:
@@ -141,17 +141,16 @@ class RemoteVehicle:
     def last_heartbeat_age_s(self) -> float | None:
         age = self._status.get("last_heartbeat_age_s")
         extra = self.snapshot_age_s or 0.0
-        return None if age is None else float(age) + extra
+        return float(age) + extra if isinstance(age, int | float) else None
 
     def initialising(self) -> str | None:
         if self.state != ConnectionState.CONNECTED:
             return None
-        value = self._status.get("initialising")
-        return value if isinstance(value, str) else None
+        return self._text("initialising")
 
     def status(self) -> dict[str, Any]:
         state = self.state
-        base = dict(self._status)
+        base: dict[str, Any] = dict(self._status)
         base.update(
             {
                 "id": self.id,
@@ -187,18 +186,7 @@ class RemoteVehicle:
         raise VehicleNotReady(f"drone '{self.id}' is {state.value}: {why}", state=state.value)
 
     async def wait_for_state(self, *states: ConnectionState | str, within_s: float = 60.0) -> ConnectionState:
-        wanted = {ConnectionState(s) for s in states}
-        loop = asyncio.get_running_loop()
-        deadline = loop.time() + within_s
-        while (state := self.state) not in wanted:
-            if loop.time() > deadline:
-                raise VehicleNotReady(
-                    f"drone '{self.id}' did not reach {'/'.join(sorted(s.value for s in wanted))} within "
-                    f"{within_s:g} s; it is {state.value}",
-                    state=state.value,
-                )
-            await asyncio.sleep(0.1)
-        return state
+        return await wait_for_state(self, *states, within_s=within_s)
 
     async def wait_initialised(self, within_s: float = 60.0, notify: Notify | None = None) -> bool:
         """Wait, as its owner publishes it, for a drone still initialising; then require_ready (whether
@@ -222,22 +210,9 @@ class RemoteVehicle:
     async def disconnect(self) -> None:
         """Nothing to stop here: the owning node runs the sidecar."""
 
-    # --- what only the owner can do ------------------------------------------------------------------
-    # The Commander sends every verb for this drone to its owner (`gateway.cluster.forwarding`), so none
-    # of these is reached through it; anything else that tries is told where the drone is flown from.
-
-    def _elsewhere(self, action: str) -> OwnedElsewhere:
-        where = f"cluster node {self.owner}" if self.owner else "no cluster node right now"
-        return OwnedElsewhere(
-            f"drone '{self.spec.id}' is owned by {where}; this node answers reads for it but cannot "
-            f"send it {action}: use the node that owns it "
-            "(GET /api/v1/cluster lists the nodes and their drones)",
-            vehicle_id=self.spec.id,
-            owner_node=self.owner,
-        )
-
+    # --- what its owner's dialect says (the commands go to the owner: gateway.cluster.forwarding) ----
     @property
-    def dialect(self) -> Dialect:
+    def dialect(self) -> DialectReads:
         """The autopilot's dialect, by the autopilot the owner reports (ArduPilot's until it says)."""
         return dialect_named(self.autopilot)
 
@@ -250,6 +225,9 @@ class RemoteVehicle:
     def heartbeat_mode(self) -> tuple[str, bool] | None:
         return None  # its owner watches the mode (and tells the cluster of a takeover)
 
+    def position_target(self) -> tuple[float, float, float] | None:
+        return None  # its owner compares it (and tells the cluster of a takeover)
+
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         return self.dialect.commanded_modes(kind, done=done)
 
@@ -257,10 +235,8 @@ class RemoteVehicle:
         return []
 
     def return_altitude_param(self) -> tuple[str, float]:
-        return self.dialect.return_altitude_params[0]  # which of them the vehicle has, its owner knows
-
-    async def set_return_altitude(self, alt_m: float) -> tuple[str, float | int]:
-        raise self._elsewhere("set_return_altitude")
+        # which of them the vehicle has, its owner knows; no dialect for its autopilot: NoDialect
+        return flying_dialect(autopilot_number(self.autopilot), self.id).return_altitude_params[0]
 
     @property
     def protected_params(self) -> tuple[str, ...]:
@@ -269,63 +245,3 @@ class RemoteVehicle:
     @property
     def limit_params(self) -> Mapping[str, ParamLimit]:
         return every_limit_param() if self.autopilot is None else self.dialect.limit_params
-
-    async def arm(self, within_s: float = 60.0, notify: Notify | None = None) -> None:
-        raise self._elsewhere("arm")
-
-    async def disarm(self) -> None:
-        raise self._elsewhere("disarm")
-
-    async def kill(self) -> None:
-        raise self._elsewhere("kill")
-
-    async def takeoff(self, alt_rel_m: float, within_s: float = 60.0, notify: Notify | None = None) -> None:
-        raise self._elsewhere("takeoff")
-
-    async def goto(self, lat: float, lon: float, alt_rel_m: float, yaw_deg: float | None = None) -> None:
-        raise self._elsewhere("goto")
-
-    async def hold(self) -> None:
-        raise self._elsewhere("hold")
-
-    async def land(self) -> None:
-        raise self._elsewhere("land")
-
-    async def return_to_launch(self) -> None:
-        raise self._elsewhere("return_to_launch")
-
-    async def set_yaw(self, heading_deg: float) -> None:
-        raise self._elsewhere("set_yaw")
-
-    async def set_max_speed(self, mps: float) -> None:
-        raise self._elsewhere("set_max_speed")
-
-    async def set_flight_mode(self, name: str) -> None:
-        raise self._elsewhere("set_flight_mode")
-
-    async def upload_mission(self, items: Sequence[MissionItem]) -> int:
-        raise self._elsewhere("upload_mission")
-
-    async def download_mission(self) -> list[MissionItem]:
-        raise self._elsewhere("download_mission")
-
-    async def clear_mission(self) -> None:
-        raise self._elsewhere("clear_mission")
-
-    async def start_mission(self) -> None:
-        raise self._elsewhere("start_mission")
-
-    async def set_current_mission_item(self, user_index: int) -> None:
-        raise self._elsewhere("set_current_mission_item")
-
-    async def is_mission_finished(self) -> bool:
-        raise self._elsewhere("is_mission_finished")
-
-    async def get_param(self, name: str) -> tuple[float | int, str]:
-        raise self._elsewhere("get_param")
-
-    async def set_param(self, name: str, value: float | int) -> tuple[float | int, str]:
-        raise self._elsewhere("set_param")
-
-    async def list_params(self) -> dict[str, float | int]:
-        raise self._elsewhere("list_params")

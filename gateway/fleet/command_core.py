@@ -27,7 +27,7 @@ from gateway.fleet import geo
 from gateway.fleet.caller import Caller
 from gateway.fleet.fleet_ops import FleetOperations
 from gateway.fleet.operations import Operation, OperationManager, Tracker
-from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleDirectory
+from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleDirectory, VehicleView
 from gateway.fleet.readings import vehicle_context
 from gateway.fleet.routing import FORWARDED, Router, Verb
 from gateway.fleet.safety import (
@@ -47,7 +47,9 @@ log = logging.getLogger(__name__)
 AltFrame = Literal["home", "amsl"]
 OnProgress = Callable[[OperationView], Awaitable[None]]
 
-NAV_KINDS = ("goto", "reposition", "move_to_relative")
+#: operations that fly to a point (their params: lat_deg, lon_deg, alt_m); a formation or fleet-climb leg
+#: is one too, so check_arrival answers for a drone whose formation leg a pilot took over
+NAV_KINDS = ("goto", "reposition", "move_to_relative", "formation", "fleet_climb")
 RECOVERY_KINDS = ("land", "return_to_launch")
 ELSEWHERE_KEPT = 2000
 FOLLOW_RETRY_S = 0.5
@@ -170,23 +172,28 @@ class CommandCore:
     # resolving drones and judging them
     # ------------------------------------------------------------------------------------------------
 
-    def vehicle(self, drone_id: str) -> FlyingVehicle:
+    def vehicle(self, drone_id: str) -> VehicleView:
         """The registered drone, in whatever state (for reads); UnknownVehicle lists the known ids."""
         return self.registry.get(drone_id)
 
+    def flown(self, drone_id: str) -> FlyingVehicle:
+        """The drone, to command it (in whatever state): refused in words when this node cannot fly it
+        (`VehicleDirectory.flown`: another node owns it, or its autopilot has no dialect here)."""
+        return self.registry.flown(drone_id)
+
     def ready(self, drone_id: str) -> FlyingVehicle:
         """The drone, if it can fly (VehicleNotReady names its state and why otherwise)."""
-        vehicle = self.registry.get(drone_id)
+        vehicle = self.registry.flown(drone_id)
         vehicle.require_ready()
         return vehicle
 
     def _for_recovery(self, caller: Caller, drone_id: str) -> FlyingVehicle:
         """Land, RTL, hold and kill: an operator's goes to the drone in any state (the vehicle still
         needs a session to send it); an agent's needs a ready drone."""
-        return self.registry.get(drone_id) if caller.is_operator else self.ready(drone_id)
+        return self.registry.flown(drone_id) if caller.is_operator else self.ready(drone_id)
 
     @staticmethod
-    def context(vehicle: FlyingVehicle) -> VehicleContext:
+    def context(vehicle: VehicleView) -> VehicleContext:
         return vehicle_context(vehicle)
 
     def _refuse_taken_over(self, drone_id: str) -> None:
@@ -204,7 +211,7 @@ class CommandCore:
             return running if running is not None and (kind is None or running.kind == kind) else None
         return self.operations.running_facts(drone_id, kind)
 
-    def _guard_takeoff(self, caller: Caller, vehicle: FlyingVehicle, action: str) -> None:
+    def _guard_takeoff(self, caller: Caller, vehicle: VehicleView, action: str) -> None:
         """Rule takeoff_in_progress, one rule for every verb: while the drone's takeoff climbs, an
         agent's command that acts on the drone is refused, except the safety actions (land, RTL, hold,
         and the modes that are them: HOLD, LAND, RTL; kill; disarm). So motion, yaw, speed, mode
@@ -250,7 +257,7 @@ class CommandCore:
     def _left(deadline: float) -> float:
         return max(0.0, deadline - asyncio.get_running_loop().time())
 
-    async def _wait_initialised(self, vehicle: FlyingVehicle, notify: Notify | None, deadline: float) -> None:
+    async def _wait_initialised(self, vehicle: VehicleView, notify: Notify | None, deadline: float) -> None:
         """Wait until ``deadline`` for a drone still initialising, ``notify`` hearing what it waits for.
         A drone that is still initialising then is left to its arming attempt, whose refusal says why
         in the autopilot's words; one in no state to arm raises VehicleNotReady naming why."""
@@ -307,7 +314,7 @@ class CommandCore:
 
     def view(self, op: Operation) -> OperationView:
         try:
-            vehicle: FlyingVehicle | None = self.registry.get(op.vehicle_id)
+            vehicle: VehicleView | None = self.registry.get(op.vehicle_id)
         except GatewayError:  # removed since: the operation is still worth reporting
             vehicle = None
         return OperationView.of(op, vehicle)

@@ -34,7 +34,7 @@ from gateway.fleet.operations import (
     YawTracker,
     check_positive_altitude,
 )
-from gateway.fleet.protocols import FlyingVehicle, Notify
+from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.fleet.readings import is_airborne, is_landed_and_disarmed, position, value
 from gateway.fleet.safety import Target, VehicleContext
 from gateway.fleet.views import (
@@ -49,6 +49,9 @@ from gateway.fleet.views import (
 )
 from gateway.registry.records import OperationRecord
 
+TARGET_FRESH_S = 5.0
+"""How old the autopilot's reported target may be to say where a drone is heading."""
+
 
 class DroneVerbs(CommandCore):
     """Commands on one drone."""
@@ -60,7 +63,7 @@ class DroneVerbs(CommandCore):
     @routed
     async def arm(self, caller: Caller, drone_id: str, *, notify: Notify | None = None) -> ActionResult:
         """Arm; a drone still initialising is waited for, within the wait cap (see `Vehicle.arm`)."""
-        vehicle = self.vehicle(drone_id)
+        vehicle = self.flown(drone_id)
         deadline = self._arming_deadline()
         await self._wait_initialised(vehicle, notify, deadline)
         self.safety.check_arm(self.context(vehicle), caller.policy_via)
@@ -88,7 +91,7 @@ class DroneVerbs(CommandCore):
         self, caller: Caller, drone_id: str, alt_m: float, *, notify: Notify | None = None
     ) -> OperationView:
         """Arm if needed and climb to ``alt_m`` above home; done when reached."""
-        vehicle = self.vehicle(drone_id)
+        vehicle = self.flown(drone_id)
         deadline = self._arming_deadline()  # initialising and arming wait together, within the cap
         await self._wait_initialised(vehicle, notify, deadline)
         self._guard_takeoff(caller, vehicle, "takeoff")
@@ -321,7 +324,7 @@ class DroneVerbs(CommandCore):
                 f"give either up_m (a climb, here {up_m:g} m) or alt_m (an altitude above home, here "
                 f"{alt_m:g} m), not both; nothing was sent"
             )
-        vehicle = self.vehicle(drone_id)
+        vehicle = self.flown(drone_id)
         deadline = self._arming_deadline()
         if not is_airborne(vehicle):
             await self._wait_initialised(vehicle, notify, deadline)
@@ -437,6 +440,7 @@ class DroneVerbs(CommandCore):
                     message=_restart_truth(vehicle, record),
                 )
         if op is None or op.kind not in NAV_KINDS:
+            flying = f"; it is flying: {_now_doing(vehicle)}" if op is None and is_airborne(vehicle) else ""
             return ArrivalView(
                 drone_id=drone_id,
                 arrived=False,
@@ -445,7 +449,7 @@ class DroneVerbs(CommandCore):
                 status=None,
                 distance_m=None,
                 vertical_m=None,
-                message="no goto sent to this drone yet",
+                message=f"no goto sent to this drone yet{flying}",
             )
         tracker = GotoTracker(
             op.params["lat_deg"], op.params["lon_deg"], op.params["alt_m"], self.settings.arrival_tolerance_m
@@ -494,9 +498,8 @@ class DroneVerbs(CommandCore):
         view = await self.wait(op.id, cap, on_progress)
         if land_on_arrival and view.kind in NAV_KINDS and view.status == "succeeded" and is_airborne(vehicle):
             self.safety.check_actuation(self.context(vehicle), caller.policy_via)
-            landing = await self._track(
-                caller, vehicle, LandingTracker(kind="land"), vehicle.land, {}, "land"
-            )
+            flown = self.flown(drone_id)
+            landing = await self._track(caller, flown, LandingTracker(kind="land"), flown.land, {}, "land")
             view = await self.wait(
                 landing.operation_id, max(0.0, cap - (time.monotonic() - start)), on_progress
             )
@@ -737,7 +740,7 @@ class DroneVerbs(CommandCore):
         )
 
 
-def _commanded(vehicle: FlyingVehicle, choice: ModeChoice) -> dict[str, Any]:
+def _commanded(vehicle: VehicleView, choice: ModeChoice) -> dict[str, Any]:
     """What a mode change commands, for the takeover watch: the mission, return, landing or takeoff
     mode is judged as that operation is (the autopilot's own next modes included: PX4 holds after a
     mission), any other mode as itself."""
@@ -753,20 +756,33 @@ def _commanded(vehicle: FlyingVehicle, choice: ModeChoice) -> dict[str, Any]:
     return {"commands": f"set_flight_mode {choice.native}", "modes": frozenset({choice.native})}
 
 
-def _now_doing(vehicle: FlyingVehicle) -> str:
+def _now_doing(vehicle: VehicleView) -> str:
     """What the drone does now, from its telemetry: mode, airborne, altitude."""
     mode = value(vehicle, "flight_mode") or "unknown"
     pos = position(vehicle)
     where = f" at {pos[2]:.1f} m above home" if pos is not None else ""
     state = "in the air" if is_airborne(vehicle) else "on the ground"
+    heard, prog = vehicle.heartbeat_mode(), value(vehicle, "mission_progress")
+    if heard is not None and heard[0] in vehicle.commanded_modes("mission") and prog is not None:
+        where += f", flying mission item {int(prog.current)} of {int(prog.total)}"  # MISSION_CURRENT
+    target = vehicle.position_target()  # POSITION_TARGET_GLOBAL_INT
+    if target is not None and pos is not None and time.monotonic() - target[2] < TARGET_FRESH_S:
+        far = geo.horizontal_distance_m(pos[0], pos[1], target[0], target[1])
+        where += (
+            f", heading for the autopilot's target {far:.0f} m away ({target[0]:.6f}, {target[1]:.6f})"
+            if far > 3.0
+            else ", holding at the autopilot's target"
+        )
     return f"mode {mode}, {state}{where}"
 
 
-def _restart_truth(vehicle: FlyingVehicle, record: OperationRecord) -> str:
+def _restart_truth(vehicle: VehicleView, record: OperationRecord) -> str:
     """A stored operation and the drone now, for a caller of a process that did not run it: e.g. "the
     gateway restarted while this operation was running; now: mode GUIDED, in the air at 12.0 m above
     home, 180 m from the goto's target"."""
     said = record.message or record.status
+    if "restarted" not in said and "gateway stopped" not in said:  # it ended before this process
+        said = f"{said} (before the gateway restarted)"
     target = ""
     params = record.params or {}
     pos = position(vehicle)
@@ -780,7 +796,7 @@ def _restart_truth(vehicle: FlyingVehicle, record: OperationRecord) -> str:
     return f"{said}; now: {_now_doing(vehicle)}{target}"
 
 
-def _is_landing_mode(vehicle: FlyingVehicle, choice: ModeChoice) -> bool:
+def _is_landing_mode(vehicle: VehicleView, choice: ModeChoice) -> bool:
     """Whether ``choice`` is the drone's LAND or RTL mode, by whichever name it was asked for: a safety
     action, never refused by the takeoff guard."""
     for name in ("LAND", "RTL"):

@@ -42,7 +42,7 @@ from gateway.fleet.operations import (
     TakeoffTracker,
     Tracker,
 )
-from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.protocols import VehicleView, flying
 from gateway.fleet.routing import Router
 
 if TYPE_CHECKING:
@@ -77,7 +77,7 @@ class Step:
     """One drone's part of a phase: send a command, then track it as the drone's current operation.
     ``spec`` describes it as JSON (see `build_step`), so the node owning the drone can run it there."""
 
-    vehicle: FlyingVehicle
+    vehicle: VehicleView
     tracker: Tracker
     send: Send
     params: dict[str, Any]
@@ -482,7 +482,7 @@ class FleetOperations:
         if router is None:
             extra = {"precheck": step.precheck} if step.precheck is not None else {}
             return await self.operations.start(
-                step.vehicle, step.tracker, step.send, step.params, fop.session_key, **extra
+                flying(step.vehicle), step.tracker, step.send, step.params, fop.session_key, **extra
             )
         started = await router.call(
             drone_id, "run_step", fop.caller, {"drone_id": drone_id, "spec": step.spec}
@@ -535,10 +535,11 @@ class FleetOperations:
     async def _hold(self, fop: FleetOperation, drone_id: str, step: Step) -> None:
         router = self._elsewhere(drone_id)
         if router is None:  # under the drone's command lock, like every command but kill
+            vehicle = flying(step.vehicle)
             async with self.operations.command_lock(drone_id):
-                await step.vehicle.hold()
+                await vehicle.hold()
                 await self.operations.supersede(drone_id, f"{fop.kind} abort")
-                self.operations.expect(step.vehicle, "hold")
+                self.operations.expect(vehicle, "hold")
             return
         await router.call(
             drone_id, "hold_step", fop.caller, {"drone_id": drone_id, "reason": f"{fop.kind} abort"}
@@ -768,13 +769,13 @@ def step_timeout_s(distance_m: float, slowest_mps: float = 1.0, margin_s: float 
 
 def collect_members(
     drone_ids: Sequence[str],
-    resolve: Callable[[str], FlyingVehicle],
-    check: Callable[[FlyingVehicle], None],
-) -> tuple[dict[str, FlyingVehicle], list[Unable]]:
+    resolve: Callable[[str], VehicleView],
+    check: Callable[[VehicleView], None],
+) -> tuple[dict[str, VehicleView], list[Unable]]:
     """Look every drone up (``resolve`` raises UnknownVehicle) and run ``check`` on it (raises a
     GatewayError, e.g. SafetyRefusal or VehicleNotReady, when it cannot take part). Every drone is
     checked, so one answer names all the drones that cannot take part."""
-    vehicles: dict[str, FlyingVehicle] = {}
+    vehicles: dict[str, VehicleView] = {}
     unable: list[Unable] = []
     for drone_id in drone_ids:
         try:
@@ -787,15 +788,15 @@ def collect_members(
     return vehicles, unable
 
 
-Precheck = Callable[[FlyingVehicle], None]
+Precheck = Callable[[VehicleView], None]
 """Checks a vehicle inside its command lock (e.g. "no takeoff in progress", against parallel tool calls)."""
 
 
-def _bind(precheck: Precheck | None, vehicle: FlyingVehicle) -> Callable[[], None] | None:
+def _bind(precheck: Precheck | None, vehicle: VehicleView) -> Callable[[], None] | None:
     return None if precheck is None else (lambda: precheck(vehicle))
 
 
-def build_step(vehicle: FlyingVehicle, spec: Mapping[str, Any], precheck: Precheck | None = None) -> Step:
+def build_step(vehicle: VehicleView, spec: Mapping[str, Any], precheck: Precheck | None = None) -> Step:
     """One drone's step from its JSON description (the node owning the drone rebuilds it from the same):
 
     - ``{"send": "goto", "lat", "lon", "alt_m", "tolerance_m", "kind", "phase"?}``: a tracked goto;
@@ -829,7 +830,8 @@ def build_step(vehicle: FlyingVehicle, spec: Mapping[str, Any], precheck: Preche
             dict(spec),
         )
     if send == "land":
-        return Step(vehicle, LandingTracker(kind="land"), vehicle.land, {}, timeout_s, bound, dict(spec))
+        land = lambda: flying(vehicle).land()  # noqa: E731
+        return Step(vehicle, LandingTracker(kind="land"), land, {}, timeout_s, bound, dict(spec))
     if send == "rtl":
         alt = float(spec["alt_m"])
         return Step(
@@ -845,7 +847,7 @@ def build_step(vehicle: FlyingVehicle, spec: Mapping[str, Any], precheck: Preche
 
 
 def formation_phases(
-    plan: FormationPlan, vehicles: Mapping[str, FlyingVehicle], precheck: Precheck | None = None
+    plan: FormationPlan, vehicles: Mapping[str, VehicleView], precheck: Precheck | None = None
 ) -> list[Phase]:
     """The three phases of a `FormationPlan` as fleet-operation phases (each leg a tracked goto)."""
     phases: list[Phase] = []
@@ -884,7 +886,7 @@ def slot_summaries(plan: FormationPlan) -> dict[str, dict[str, Any]]:
 
 
 def takeoff_phase(
-    vehicles: Mapping[str, FlyingVehicle],
+    vehicles: Mapping[str, VehicleView],
     altitudes: Mapping[str, float],
     precheck: Precheck | None = None,
     arm_within_s: float | None = None,
@@ -909,12 +911,12 @@ def takeoff_phase(
     return Phase("take off to staggered altitudes", steps)
 
 
-def land_phase(vehicles: Mapping[str, FlyingVehicle]) -> Phase:
+def land_phase(vehicles: Mapping[str, VehicleView]) -> Phase:
     return Phase("land in place", {d: build_step(v, {"send": "land"}) for d, v in vehicles.items()})
 
 
 def rtl_phases(
-    vehicles: Mapping[str, FlyingVehicle],
+    vehicles: Mapping[str, VehicleView],
     altitudes: Mapping[str, float],
     positions: Mapping[str, tuple[float, float, float]],
 ) -> list[Phase]:
@@ -947,30 +949,30 @@ def rtl_phases(
     ]
 
 
-def _goto(vehicle: FlyingVehicle, lat: float, lon: float, alt: float) -> Send:
-    return lambda: vehicle.goto(lat, lon, alt)
+def _goto(vehicle: VehicleView, lat: float, lon: float, alt: float) -> Send:
+    return lambda: flying(vehicle).goto(lat, lon, alt)
 
 
-def _takeoff(vehicle: FlyingVehicle, alt: float, arm_within_s: float | None) -> Send:
+def _takeoff(vehicle: VehicleView, alt: float, arm_within_s: float | None) -> Send:
     if arm_within_s is None:
-        return lambda: vehicle.takeoff(alt)
-    return lambda: vehicle.takeoff(alt, arm_within_s)
+        return lambda: flying(vehicle).takeoff(alt)
+    return lambda: flying(vehicle).takeoff(alt, arm_within_s)
 
 
 def _rtl(
-    vehicle: FlyingVehicle, alt: float, set_rtl_altitude: Callable[[FlyingVehicle, float], Awaitable[None]]
+    vehicle: VehicleView, alt: float, set_rtl_altitude: Callable[[VehicleView, float], Awaitable[None]]
 ) -> Send:
     async def send() -> None:
         await set_rtl_altitude(vehicle, alt)
-        await vehicle.return_to_launch()
+        await flying(vehicle).return_to_launch()
 
     return send
 
 
-async def set_rtl_altitude_param(vehicle: FlyingVehicle, alt_m: float) -> None:
+async def set_rtl_altitude_param(vehicle: VehicleView, alt_m: float) -> None:
     """The vehicle's return altitude above home, in its autopilot's parameter and units
     (``Vehicle.set_return_altitude``); the autopilot returns higher if it is already higher."""
-    await vehicle.set_return_altitude(alt_m)
+    await flying(vehicle).set_return_altitude(alt_m)
 
 
 def default_rtl_base_m(positions: Iterable[tuple[float, float, float]], floor_m: float = 15.0) -> float:

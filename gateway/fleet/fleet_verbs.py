@@ -48,7 +48,7 @@ from gateway.fleet.fleet_ops import (
 )
 from gateway.fleet.formation import DroneStart, plan_formation, rtl_altitudes, takeoff_altitudes
 from gateway.fleet.geofence import FLEET
-from gateway.fleet.protocols import FlyingVehicle, Notify
+from gateway.fleet.protocols import Notify, VehicleView
 from gateway.fleet.readings import home, is_landed_and_disarmed, position
 from gateway.fleet.safety import Rule, refuse
 from gateway.fleet.takeover import Takeover
@@ -130,7 +130,7 @@ class FleetVerbs(DroneVerbs):
             return ids
         return check_drone_ids(drone_ids)
 
-    def _busy(self, vehicle: FlyingVehicle, action: str) -> None:
+    def _busy(self, vehicle: VehicleView, action: str) -> None:
         self.safety.check_not_busy(self.context(vehicle), self._running(vehicle.id), action)
 
     def _stagger(self, stagger_m: float | None) -> float:
@@ -138,8 +138,8 @@ class FleetVerbs(DroneVerbs):
         return self.settings.min_separation_m + 2 * FORMATION_TOLERANCE_M if stagger_m is None else stagger_m
 
     def _recovery_members(
-        self, drone_ids: Sequence[str] | None, action: str, check: Callable[[FlyingVehicle], None]
-    ) -> tuple[list[str], dict[str, FlyingVehicle], list[Unable]]:
+        self, drone_ids: Sequence[str] | None, action: str, check: Callable[[VehicleView], None]
+    ) -> tuple[list[str], dict[str, VehicleView], list[Unable]]:
         ids = self._all_ids(drone_ids)
         vehicles, unable = collect_members(ids, self.registry.get, check)
         if not vehicles:
@@ -196,7 +196,7 @@ class FleetVerbs(DroneVerbs):
         low, high = policy.altitude_band(ids)
         climbs = takeoff_altitudes(grounded, alt_m, self._stagger(None), high) if grounded else {}
 
-        def check(v: FlyingVehicle) -> None:
+        def check(v: VehicleView) -> None:
             v.require_ready()
             self._guard_takeoff(caller, v, "formation_goto")
             ctx = self.context(v)
@@ -308,7 +308,7 @@ class FleetVerbs(DroneVerbs):
         deadline = self._arming_deadline()
         await self._initialised(ids, notify, deadline)
 
-        def check(v: FlyingVehicle) -> None:
+        def check(v: VehicleView) -> None:
             v.require_ready()
             ctx = self.context(v)
             if ctx.in_air:
@@ -344,7 +344,7 @@ class FleetVerbs(DroneVerbs):
     async def fleet_land(self, caller: Caller, drone_ids: list[str] | None = None) -> FleetView:
         """Land drones in place, all at once; done when disarmed. Those that cannot are in not_sent."""
 
-        def check(v: FlyingVehicle) -> None:
+        def check(v: VehicleView) -> None:
             v.require_ready()
             if is_landed_and_disarmed(v):
                 raise InvalidArgument(f"{v.id} is already on the ground and disarmed")
@@ -374,7 +374,7 @@ class FleetVerbs(DroneVerbs):
         sep = self.settings.min_separation_m
         self.safety.check_stagger(stagger)
 
-        def check(v: FlyingVehicle) -> None:
+        def check(v: VehicleView) -> None:
             v.require_ready()
             ctx = self.context(v)
             self._require_airborne(ctx, "fleet_return_to_launch")
@@ -417,7 +417,7 @@ class FleetVerbs(DroneVerbs):
         """Stop drones where they are (GUIDED hover), ending their operations and any fleet operation
         they are part of. Those that cannot are in not_sent."""
 
-        def check(v: FlyingVehicle) -> None:
+        def check(v: VehicleView) -> None:
             v.require_ready()
             ctx = self.context(v)
             self._require_airborne(ctx, "fleet_hold")
@@ -427,7 +427,7 @@ class FleetVerbs(DroneVerbs):
         superseded = await self.fleet.supersede(vehicles, "fleet_hold")
         failed: list[dict[str, object]] = []
 
-        async def hold(drone_id: str, v: FlyingVehicle) -> None:
+        async def hold(drone_id: str, v: VehicleView) -> None:
             try:
                 await self.hold_step(caller, drone_id, "fleet_hold")  # on its owner, in a cluster
             except GatewayError as exc:
@@ -450,7 +450,7 @@ class FleetVerbs(DroneVerbs):
     async def run_step(self, caller: Caller, drone_id: str, spec: dict[str, Any]) -> OperationView:
         """Start one drone's step (`gateway.fleet.fleet_ops.build_step`) as its operation here, with the
         takeoff guard inside its command lock, for the node coordinating the fleet operation."""
-        vehicle = self.vehicle(drone_id)
+        vehicle = self.flown(drone_id)
         guard = spec.get("guard")
         precheck = None if not guard else (lambda v: self._guard_takeoff(caller, v, str(guard)))
         step = build_step(vehicle, spec, precheck)
@@ -462,7 +462,7 @@ class FleetVerbs(DroneVerbs):
     @routed
     async def hold_step(self, caller: Caller, drone_id: str, reason: str) -> ActionResult:
         """Hold a drone whose fleet operation (coordinated by another node) was stopped."""
-        vehicle = self.vehicle(drone_id)
+        vehicle = self.flown(drone_id)
         _, sup = await self._instant(
             caller, vehicle, reason, vehicle.hold, safety_action=True, ends_operation=True, commands="hold"
         )
@@ -526,7 +526,7 @@ class FleetVerbs(DroneVerbs):
     # takeover locks: a pilot, another ground station or a failsafe took a drone (gateway.fleet.takeover)
     # ------------------------------------------------------------------------------------------------
 
-    async def taken_over(self, vehicle: FlyingVehicle, takeover: Takeover) -> None:
+    async def taken_over(self, vehicle: VehicleView, takeover: Takeover) -> None:
         """The OperationManager saw a mode change the gateway did not command (its operation already
         ended as interrupted): lock the drone for agents, persist and audit the lock, tell the other
         nodes. Nothing is sent to the drone."""
@@ -587,7 +587,7 @@ class FleetVerbs(DroneVerbs):
         if self.router is not None:  # fleet operations coordinated by other nodes end there too
             await self.router.announce("stop", {"action": action, "by": caller.principal})
 
-        async def one(vehicle: FlyingVehicle) -> StopOutcome:
+        async def one(vehicle: VehicleView) -> StopOutcome:
             state = str(vehicle.state)
             if getattr(vehicle, "remote", False) and getattr(vehicle, "owner", None) is None:
                 return StopOutcome(

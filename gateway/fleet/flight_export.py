@@ -23,9 +23,6 @@ from datetime import datetime
 from typing import Any
 from xml.sax.saxutils import escape
 
-# ardupilotmega includes the common messages, and it is the dialect the image keeps (deploy/Dockerfile)
-from pymavlink.dialects.v20 import ardupilotmega as mavlink2
-
 from gateway.registry.records import FlightRecord, StatusTextRecord, TrackSample
 
 ALTITUDE_REFERENCE = "metres above mean sea level (home altitude AMSL + height above home)"
@@ -108,7 +105,7 @@ def track_kml(flight: FlightRecord, track: Sequence[TrackSample]) -> str:
 _SEVERITY = {
     "EMERGENCY": 0, "ALERT": 1, "CRITICAL": 2, "ERROR": 3, "WARNING": 4, "NOTICE": 5, "INFO": 6, "DEBUG": 7,
 }  # fmt: skip
-_AUTOPILOT = {"ardupilot": mavlink2.MAV_AUTOPILOT_ARDUPILOTMEGA, "px4": mavlink2.MAV_AUTOPILOT_PX4}
+_AUTOPILOT = {"ardupilot": "MAV_AUTOPILOT_ARDUPILOTMEGA", "px4": "MAV_AUTOPILOT_PX4"}
 
 
 class _Sink:
@@ -134,6 +131,10 @@ def track_tlog(
     autopilot: str | None = None,
 ) -> bytes:
     """The flight as a MAVLink 2 telemetry log, written from its recorded track (see the module doc)."""
+    # ardupilotmega includes the common messages, and it is the dialect the image keeps
+    # (deploy/Dockerfile); about 12 MiB, imported when a log is first exported
+    from pymavlink.dialects.v20 import ardupilotmega as mavlink2
+
     sink = _Sink()
     mav = mavlink2.MAVLink(sink, srcSystem=sysid, srcComponent=mavlink2.MAV_COMP_ID_AUTOPILOT1)
     records: list[tuple[float, int, bytes]] = []  # (time, order, packet): sorted into time order
@@ -144,7 +145,7 @@ def track_tlog(
         records.append((t, order, b"".join(sink.packets)))
 
     armed = mavlink2.MAV_MODE_FLAG_SAFETY_ARMED | mavlink2.MAV_MODE_FLAG_CUSTOM_MODE_ENABLED
-    ap = _AUTOPILOT.get(autopilot or "", mavlink2.MAV_AUTOPILOT_GENERIC)
+    ap = int(getattr(mavlink2, _AUTOPILOT.get(autopilot or "", "MAV_AUTOPILOT_GENERIC")))
     home_mm = round(_finite(flight.home_alt_amsl) * 1000)
     boot = flight.started_at.timestamp()
     for s in track:

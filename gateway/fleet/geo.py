@@ -7,8 +7,6 @@ from __future__ import annotations
 
 import math
 
-import pymap3d
-
 from gateway.errors import InvalidArgument
 
 
@@ -32,12 +30,16 @@ def check_finite(name: str, value: float) -> None:
 
 def ned_offset(lat0: float, lon0: float, lat: float, lon: float) -> tuple[float, float]:
     """North and east metres from (lat0, lon0) to (lat, lon), on the ellipsoid's local tangent plane."""
+    import pymap3d  # with numpy about 15 MiB: imported when a distance is first needed
+
     north, east, _ = pymap3d.geodetic2ned(lat, lon, 0.0, lat0, lon0, 0.0)
     return float(north), float(east)
 
 
 def offset_position(lat0: float, lon0: float, north_m: float, east_m: float) -> tuple[float, float]:
     """The point north_m / east_m metres away from (lat0, lon0)."""
+    import pymap3d
+
     lat, lon, _ = pymap3d.ned2geodetic(north_m, east_m, 0.0, lat0, lon0, 0.0)
     return float(lat), float(lon)
 

@@ -21,14 +21,14 @@ import math
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Literal
-
-import shapely
-from shapely.geometry import LineString, MultiPolygon, Point, Polygon, shape
-from shapely.geometry.base import BaseGeometry
+from typing import TYPE_CHECKING, Any, Literal
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
+
+if TYPE_CHECKING:  # shapely (and numpy under it, about 18 MiB) is imported when a zone is first made
+    from shapely.geometry import Point, Polygon
+    from shapely.geometry.base import BaseGeometry
 
 ZoneKind = Literal["keep_in", "keep_out"]
 ZONE_KINDS: tuple[ZoneKind, ...] = ("keep_in", "keep_out")
@@ -69,6 +69,9 @@ class Zone:
             raise InvalidArgument(
                 f"geofence '{name}' must be a GeoJSON Polygon or MultiPolygon geometry; got {got!r}"
             )
+        import shapely
+        from shapely.geometry import shape
+
         try:
             lonlat = shape(geometry)
         except Exception as exc:  # shapely raises several types for malformed coordinates
@@ -94,6 +97,8 @@ class Zone:
         return cls(name=name, kind=kind, scope=scope, geojson=dict(geometry), origin=origin, local=local)
 
     def _point(self, lat: float, lon: float) -> Point:
+        from shapely.geometry import Point
+
         north, east = geo.ned_offset(self.origin[0], self.origin[1], lat, lon)
         return Point(east, north)
 
@@ -113,6 +118,8 @@ class Zone:
         return float(self.local.boundary.distance(point))
 
     def leg(self, start: tuple[float, float], end: tuple[float, float]) -> BaseGeometry:
+        from shapely.geometry import LineString
+
         a, b = self._point(*start), self._point(*end)
         if a.equals(b):
             return a
@@ -123,6 +130,8 @@ class Zone:
 
 
 def _project_geometry(lonlat: BaseGeometry, origin: tuple[float, float]) -> BaseGeometry:
+    from shapely.geometry import MultiPolygon, Polygon
+
     def project_ring(coords: Iterable[tuple[float, ...]]) -> list[tuple[float, float]]:
         out = []
         for lon, lat, *_ in coords:
@@ -249,6 +258,9 @@ def load_geofence_file(path: str | Path) -> GeofenceSet:
 
 def _single_piece_from_start(inside: BaseGeometry, zone: Zone, start: tuple[float, float]) -> bool:
     """True when the part of a leg inside the zone is one connected piece that begins at the start."""
+    import shapely
+    from shapely.geometry import Point
+
     if inside.geom_type == "Point":
         return True
     if inside.geom_type != "LineString":

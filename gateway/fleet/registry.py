@@ -24,7 +24,7 @@ from pydantic import ValidationError
 
 from gateway.config import Settings
 from gateway.errors import InvalidArgument, UnknownVehicle
-from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.protocols import FlyingVehicle, VehicleView, flying
 from gateway.fleet.vehicle import ConnectionState, Vehicle
 from gateway.link.sidecar import Confine
 from gateway.registry.records import VehicleRecord
@@ -38,7 +38,7 @@ SPEC_FIELDS = set(VehicleSpec.model_fields)
 StateListener = Callable[[Vehicle, ConnectionState, ConnectionState], None]
 
 
-class RegisteredVehicle(FlyingVehicle, Protocol):
+class RegisteredVehicle(VehicleView, Protocol):
     """What the registry holds: a `Vehicle` it runs, or (a cluster node) a view of a vehicle another
     node runs (`gateway.cluster.remote.RemoteVehicle`)."""
 
@@ -128,14 +128,15 @@ class Registry:
         return vehicle
 
     async def update(self, vehicle_id: str, **changes: Any) -> RegisteredVehicle:
-        """Change name, tags, expected_sysid, url or auto_connect; a new URL reconnects the vehicle."""
+        """Change name, tags, expected_sysid, url, gcs_endpoints or auto_connect; a new URL or new ground
+        station endpoints reconnect the vehicle."""
         old = self.get(vehicle_id)
         record = await self.store.update_vehicle(vehicle_id, **changes)
         spec = VehicleSpec.model_validate(record.model_dump(include=SPEC_FIELDS))
         was_connected = old.sidecar is not None
         if not isinstance(old, Vehicle):
             old.spec = spec  # its owner reconnects it if the URL changed (sync)
-        elif spec.url != old.spec.url and was_connected:
+        elif _link_changed(old.spec, spec) and was_connected:
             await old.disconnect()
             old.spec = spec
             await old.connect()
@@ -156,6 +157,15 @@ class Registry:
         if vehicle is None:
             raise UnknownVehicle(str(vehicle_id)[:64], list(self._vehicles))
         return vehicle
+
+    def flown(self, vehicle_id: str) -> FlyingVehicle:
+        """The vehicle, to send it commands: a `Vehicle` this node flies whose autopilot the gateway has
+        a dialect for. OwnedElsewhere for a drone another cluster node flies (this node shows it),
+        NoDialect for an autopilot without a dialect (`Vehicle.require_dialect`)."""
+        vehicle = self.get(vehicle_id)
+        if isinstance(vehicle, Vehicle):
+            vehicle.require_dialect()
+        return flying(vehicle)
 
     def all(self) -> list[RegisteredVehicle]:
         return [self._vehicles[k] for k in sorted(self._vehicles)]
@@ -230,7 +240,7 @@ class Registry:
             if current is None:
                 self._vehicles[vid] = self._remote(spec)
             elif current.spec != spec:
-                url_changed = current.spec.url != spec.url
+                url_changed = _link_changed(current.spec, spec)
                 current.spec = spec
                 if url_changed and isinstance(current, Vehicle) and current.sidecar is not None:
                     await current.disconnect()
@@ -284,3 +294,8 @@ def _validate_spec(spec: VehicleSpec | dict[str, Any]) -> VehicleSpec:
     except ValidationError as exc:
         problems = "; ".join(f"{'.'.join(map(str, e['loc'])) or 'spec'}: {e['msg']}" for e in exc.errors())
         raise InvalidArgument(f"invalid vehicle registration: {problems}") from None
+
+
+def _link_changed(old: VehicleSpec, new: VehicleSpec) -> bool:
+    """The drone's link must be opened again: another URL, or other ground station endpoints."""
+    return (old.url, old.gcs_endpoints) != (new.url, new.gcs_endpoints)

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from gateway.config import Settings
 from gateway.errors import UnknownVehicle
 from gateway.fleet.caller import Caller
-from gateway.fleet.protocols import FlyingVehicle, VehicleDirectory
+from gateway.fleet.protocols import FlyingVehicle, VehicleDirectory, VehicleView
 from gateway.fleet.routing import ACTING
 from gateway.principals import PRINCIPAL_PREFIX, principal_of, split_tokens
 
@@ -37,7 +37,7 @@ class VehicleScope:
         tags = {e.removeprefix(TAG_PREFIX) for e in entries if e.startswith(TAG_PREFIX)}
         return cls(frozenset(ids), frozenset(tags))
 
-    def allows(self, vehicle: FlyingVehicle) -> bool:
+    def allows(self, vehicle: VehicleView) -> bool:
         return vehicle.id in self.ids or bool(self.tags.intersection(vehicle.spec.tags or []))
 
 
@@ -53,12 +53,12 @@ class ScopedDirectory:
             return None
         return self.scopes.get(caller.principal)
 
-    def all(self) -> Sequence[FlyingVehicle]:
+    def all(self) -> Sequence[VehicleView]:
         scope = self.scope_of(ACTING.get())
         every = self.directory.all()
         return every if scope is None else [v for v in every if scope.allows(v)]
 
-    def get(self, vehicle_id: str) -> FlyingVehicle:
+    def get(self, vehicle_id: str) -> VehicleView:
         scope = self.scope_of(ACTING.get())
         if scope is None:
             return self.directory.get(vehicle_id)
@@ -67,6 +67,10 @@ class ScopedDirectory:
         if vehicle is None:
             raise UnknownVehicle(str(vehicle_id)[:64], list(allowed))
         return vehicle
+
+    def flown(self, vehicle_id: str) -> FlyingVehicle:
+        self.get(vehicle_id)  # in the caller's scope (UnknownVehicle otherwise)
+        return self.directory.flown(vehicle_id)
 
 
 def scopes_by_principal(settings: Settings) -> dict[str, VehicleScope]:

@@ -54,6 +54,8 @@ class ModeExpectation:
     #: that may have just finished), monotonic
     outside_since: float | None = None
     last_mode: str | None = None
+    #: when the autopilot's reported target was first seen away from the running goto's (monotonic)
+    target_off_since: float | None = None
 
 
 @dataclass(frozen=True)
@@ -68,6 +70,8 @@ class Takeover:
     at: datetime
     operation_id: str | None = None
     operation_kind: str | None = None
+    #: the mode stayed; the autopilot's target moved away from the gateway's (another ground station)
+    retargeted: bool = False
 
     @property
     def failsafe(self) -> bool:
@@ -76,6 +80,12 @@ class Takeover:
     def message(self) -> str:
         """How the operation ended, for the caller waiting on it."""
         said = f" (autopilot says: '{self.said}')" if self.said else ""
+        if self.retargeted:
+            return (
+                f"the autopilot left the gateway's target while staying in {self.to_mode}: {self.cause}. "
+                f"The ground station has control now; drone {self.vehicle_id} is locked for agents until an "
+                "operator releases it"
+            )
         return (
             f"the autopilot switched from {self.from_mode} to {self.to_mode}: {self.cause}{said}. The "
             f"{'failsafe' if self.failsafe and self.said else 'pilot or ground station'} has control now; "
@@ -85,6 +95,11 @@ class Takeover:
     def lock_reason(self) -> str:
         """The takeover lock's reason, shown to agents, operators, list_drones and REST."""
         said = f" (autopilot says: '{self.said}')" if self.said else ""
+        if self.retargeted:
+            return (
+                f"taken over in {self.to_mode} at {self.at.strftime('%H:%M:%S')} UTC: the autopilot left "
+                f"the gateway's target, {self.cause}"
+            )
         return (
             f"taken over in {self.to_mode} at {self.at.strftime('%H:%M:%S')} UTC: the autopilot left "
             f"{self.from_mode}, {self.cause}{said}"
@@ -100,6 +115,7 @@ class Takeover:
             "at": self.at.isoformat(),
             "operation_id": self.operation_id,
             "operation_kind": self.operation_kind,
+            "retargeted": "yes" if self.retargeted else None,
         }
 
 

@@ -1,18 +1,19 @@
-"""One registered drone: the verbs a caller flies it with, over its link (``gateway.link.session.Link``:
-sidecar, MAVSDK session, connection state, telemetry cache) and its autopilot's dialect
-(``gateway.fleet.dialects``: everything that differs between ArduPilot and PX4).
+"""One registered drone: what is read of it and the actions a caller flies it with, over its link
+(``gateway.link.session.Link``: sidecar, MAVSDK session, connection state, telemetry cache) and its
+autopilot's dialect (``gateway.fleet.dialects``: everything that differs between ArduPilot and PX4).
 
-The verbs are the same for every autopilot; where an autopilot does something its own way, the verb asks
-the dialect. Hold is a reposition to where the vehicle is (never a mode that sinks without RC); missions
-are uploaded with ``mission_raw`` in the dialect's layout and come back in user numbers 1..N; a mission
-the autopilot rejects is refused with its words and never started; altitudes are metres above home,
-converted to AMSL with the cached home in one place (``goto``).
+`Vehicle` is a `FlyingVehicle` (`gateway.fleet.protocols`): its read view and its actions. The actions
+are the same for every autopilot; where an autopilot does something its own way, the action asks the
+dialect, and every action first asks for it (`require_dialect`): an autopilot the gateway has no dialect
+for is refused in one line before anything is sent. Hold is a reposition to where the vehicle is (never
+a mode that sinks without RC); altitudes are metres above home, converted to AMSL with the cached home
+in one place (``goto``). Arming and mode switches live in ``vehicle_arming``, missions in
+``vehicle_missions``, parameters in ``params``.
 """
 
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import json
 import logging
 import time
@@ -20,23 +21,24 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import Any
 
 from mavsdk_grpc import System
-from mavsdk_grpc import mission_raw as mavsdk_mission_raw
 
 from gateway.config import Settings
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
-from gateway.fleet import geo, mission
-from gateway.fleet.dialects import Dialect, dialect_for
+from gateway.fleet import geo
+from gateway.fleet.dialects import Dialect, DialectReads, dialect_for, flying_dialect
 from gateway.fleet.dialects import limit_params as every_limit_param
 from gateway.fleet.dialects import protected_params as every_protected_param
 from gateway.fleet.flightlog import FlightRecorder
-from gateway.fleet.mission import MissionItem, WirePlan
+from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import ModeChoice, require_mode
 from gateway.fleet.param_limits import ParamLimit
 from gateway.fleet.params import Parameters
-from gateway.link import refusals
+from gateway.fleet.vehicle_arming import Arming
+from gateway.fleet.vehicle_missions import MissionControl
+from gateway.fleet.waits import wait_for_state
 from gateway.link.session import ConnectionState, Link, OnWait, Peer
 from gateway.link.sidecar import Confine, Sidecar
-from gateway.link.telemetry import MissionProgressValue, StatusTextValue, TelemetryCache
+from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 
@@ -44,14 +46,10 @@ log = logging.getLogger("gateway.vehicle")
 
 __all__ = ["ConnectionState", "MissionItem", "Vehicle"]
 
-MISSION_TIMEOUT_S = 30.0
 ARMABLE_WAIT_S = 60.0
-MODE_CONFIRM_S = 4.0
 #: closing the flight log never holds a link open longer than this (a database that hangs)
 RECORDER_STOP_S = 5.0
-ARM_RETRY_S = 1.0
-MAV_CMD_DO_SET_MODE = 176
-MISSION_STATE_COMPLETE = 5  # MISSION_CURRENT.mission_state
+POSITION_IGNORED = 0b111  # POSITION_TARGET_TYPEMASK: x, y, z ignored (a velocity or attitude target)
 
 StateListener = Callable[["Vehicle", ConnectionState, ConnectionState], None]
 
@@ -79,15 +77,19 @@ class Vehicle:
             peers=peers,
             confine=confine,
             on_state=self._state_changed,
-            mission_progress=self._wire_progress,
-            session_jobs=[("mission", self._mission_current)],
+            mission_progress=lambda current, total: self.missions.wire_progress(current, total),
+            session_jobs=[
+                ("mission", lambda system: self.missions.follow(system)),
+                ("target", self._position_target),
+            ],
         )
+        self.missions = MissionControl(self.link, self)
+        self.arming = Arming(self.link, self)
         self.params = Parameters(spec.id, self.link.call, self.link.require_session)
         self._recorder: FlightRecorder | None = None
-        self._mission_plan: WirePlan | None = None
-        self._mission_state: int | None = None  # MISSION_CURRENT.mission_state (5 = COMPLETE)
-        self._mission_rejection: str | None = None  # the autopilot's words when it refused the mission
         self._return_alt_name: str | None = None  # the RTL altitude parameter this vehicle has
+        #: POSITION_TARGET_GLOBAL_INT: where the autopilot flies to (lat, lon, monotonic time heard)
+        self._target: tuple[float, float, float] | None = None
 
     # --- identity, state and the link ----------------------------------------------------------------
     @property
@@ -103,9 +105,15 @@ class Vehicle:
         self.link.spec = spec
 
     @property
-    def dialect(self) -> Dialect:
-        """The autopilot's dialect (ArduPilot's until the first HEARTBEAT says otherwise)."""
+    def dialect(self) -> DialectReads:
+        """What is read through the autopilot's dialect (ArduPilot's until the first HEARTBEAT says
+        otherwise; `Unsupported`'s for an autopilot the gateway has no dialect for)."""
         return dialect_for(self.link.facts.autopilot)
+
+    def require_dialect(self) -> Dialect:
+        """The dialect commands to this drone are sent through; NoDialect (saying which autopilot and
+        what to do) when the gateway has none for its autopilot. Every action asks it first."""
+        return flying_dialect(self.link.facts.autopilot, self.id)
 
     @property
     def telemetry(self) -> TelemetryCache:
@@ -185,7 +193,7 @@ class Vehicle:
         return False
 
     async def wait_for_state(self, *states: ConnectionState | str, within_s: float = 60.0) -> ConnectionState:
-        return await self.link.wait_for_state(*states, within_s=within_s)
+        return await wait_for_state(self, *states, within_s=within_s)
 
     def on_ground(self, fresh: bool = True) -> bool | None:
         """Whether the vehicle is on the ground, as its autopilot tells (its dialect decides from in_air or
@@ -253,29 +261,13 @@ class Vehicle:
     async def set_flight_mode(self, name: str) -> None:
         """Switch flight mode by a common name (HOLD, RTL, LAND, MISSION, ...) or the autopilot's own;
         done once the HEARTBEAT reports the new mode. HOLD in the air is the hold action."""
+        self.require_dialect()
         choice = self.resolve_mode(name)
         self.link.require_session()
         if choice.is_hold and self.on_ground() is False:
             await self.hold()
             return
-        await self._switch_mode(choice)
-
-    async def _switch_mode(self, choice: ModeChoice) -> None:
-        facts = self.link.facts
-        if facts.custom_mode == choice.custom_mode:
-            return
-        await self.link.command_long(MAV_CMD_DO_SET_MODE, *choice.params, what=f"set mode {choice.native}")
-        loop = asyncio.get_running_loop()
-        deadline = loop.time() + MODE_CONFIRM_S
-        while self.link.facts.custom_mode != choice.custom_mode:
-            if loop.time() > deadline:
-                now = self.telemetry.fresh("flight_mode") or f"custom mode {self.link.facts.custom_mode}"
-                raise CommandFailed(
-                    f"set mode {choice.native} on drone '{self.id}' was accepted "
-                    f"but the vehicle still reports {now}" + self.link.recent_complaint(),
-                    vehicle_id=self.id,
-                )
-            await asyncio.sleep(0.05)
+        await self.arming.switch_mode(choice)
 
     # --- actions ----------------------------------------------------------------------------------------
     async def arm(self, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None) -> None:
@@ -288,86 +280,18 @@ class Vehicle:
         when the time runs out while the drone still initialises, one attempt gets the autopilot's own
         reason. Either way the refusal says in its words why it cannot arm yet and what to do; any
         other refusal comes back at once."""
+        self.require_dialect()
         deadline = asyncio.get_running_loop().time() + within_s
         ready = await self.wait_initialised(within_s, notify)
-        await self._arm_by(deadline, ready, notify)
-
-    async def _arm_by(
-        self, deadline: float, ready: bool, notify: OnWait | None, trust_cache: bool = True
-    ) -> bool:
-        """Arm unless the cached state says armed (``trust_cache``); True when an arm command was sent."""
-        if trust_cache and self.telemetry.fresh("armed"):
-            return False
-        system = self.system
-        dialect = self.dialect
-        loop = asyncio.get_running_loop()
-        started = time.time()
-        if dialect.arming_mode is not None:
-            try:
-                await self._switch_mode(self.resolve_mode(dialect.arming_mode))
-            except CommandFailed as exc:
-                if ready:
-                    raise
-                said = self.link.said_since(started)
-                raise self._arm_refusal(exc, said, waited=True, ready=False) from None
-        while True:
-            attempt_at = time.time()
-            try:
-                await self.link.call("arm", system.action.arm())
-                return True
-            except CommandFailed as exc:
-                said = self.link.said_since(attempt_at)
-                passing = bool(said) and all(dialect.arming_will_pass(text) for text in said)
-                if not ready or not passing or loop.time() + ARM_RETRY_S > deadline:
-                    raise self._arm_refusal(exc, said, waited=passing or not ready, ready=ready) from None
-            log.info("%s: arming refused while initialising (%s); retrying", self.id, "; ".join(said))
-            if notify is not None:
-                with contextlib.suppress(Exception):  # a courtesy; the retry happens regardless
-                    await notify(f"{self.id}: autopilot says {refusals.quoted(said)}; trying again")
-            await asyncio.sleep(ARM_RETRY_S)
-
-    def _arm_refusal(
-        self, exc: CommandFailed, said: list[str], waited: bool, ready: bool = True
-    ) -> CommandFailed | VehicleNotReady:
-        """The refusal of an arming attempt: the autopilot's words and the drone's GPS (and, while it
-        initialises, what the gateway still waits for); a reason it lifts by itself ("waited") also
-        says what to do. A drone still initialising (not ``ready``) is refused as not ready, in the
-        autopilot's words when it gave any, else in the gateway's (what it still waits for)."""
-        if not said and not ready:
-            try:
-                self.require_ready()
-            except VehicleNotReady as not_ready:
-                return VehicleNotReady(
-                    f"{not_ready.message}; call again in a few seconds or check fleet_status",
-                    state=self.state.value,
-                )
-        if not said:
-            return exc
-        gps = self.telemetry.fresh("gps_info")
-        facts = f"GPS {gps.fix_type}, {gps.num_satellites} satellites" if gps is not None else "no GPS report"
-        waiting = self.initialising()
-        if waiting is not None:
-            facts += f"; still {waiting}"
-        words = refusals.quoted(said)
-        if waited:
-            text = (
-                f"drone '{self.id}' cannot arm yet: autopilot says {words} ({facts}); call again in a few "
-                "seconds or check fleet_status"
-            )
-            if not ready:
-                return VehicleNotReady(text, state=self.state.value)
-            return CommandFailed(text, vehicle_id=self.id, result=exc.details.get("result"))
-        return CommandFailed(
-            f"drone '{self.id}' refused to arm: autopilot says {words} ({facts})",
-            vehicle_id=self.id,
-            result=exc.details.get("result"),
-        )
+        await self.arming.arm_by(deadline, ready, notify)
 
     async def disarm(self) -> None:
+        self.require_dialect()
         await self.link.call("disarm", self.link.require_session().action.disarm())
 
     async def kill(self) -> None:
         """Stop the motors at once, even in the air (the policy decides who may call this)."""
+        self.require_dialect()
         await self.link.call("kill", self.link.require_session().action.kill())
 
     async def takeoff(
@@ -375,6 +299,7 @@ class Vehicle:
     ) -> None:
         """Arm if needed (waiting for it as ``arm`` does, up to ``within_s`` in all), then take off to
         ``alt_rel_m`` metres above home. Returns once accepted."""
+        self.require_dialect()
         geo.check_finite("takeoff altitude", alt_rel_m)
         if alt_rel_m <= 0:
             raise InvalidArgument(f"takeoff altitude must be above 0 m; got {alt_rel_m:g}")
@@ -385,7 +310,7 @@ class Vehicle:
             raise CommandFailed(f"drone '{self.id}' is already flying; use goto to change altitude")
         # the altitude first: between arming and the takeoff command, ArduPilot's DISARM_DELAY runs
         await self.link.call("set takeoff altitude", system.action.set_takeoff_altitude(float(alt_rel_m)))
-        sent_arm = await self._arm_by(deadline, ready, notify)
+        sent_arm = await self.arming.arm_by(deadline, ready, notify)
         try:
             await self.link.call("takeoff", system.action.takeoff())
         except CommandFailed:
@@ -394,7 +319,7 @@ class Vehicle:
             # "armed" came from the cache (the 1 Hz heartbeat), which can be a beat behind an autopilot
             # that disarmed on the ground after a landing: arm for real, then try once more
             log.info("%s: takeoff refused while the cache said armed; arming and trying again", self.id)
-            await self._arm_by(deadline, ready, notify, trust_cache=False)
+            await self.arming.arm_by(deadline, ready, notify, trust_cache=False)
             await self.link.call("takeoff", system.action.takeoff())
 
     def home_amsl_m(self) -> float:
@@ -405,6 +330,7 @@ class Vehicle:
 
     async def goto(self, lat: float, lon: float, alt_rel_m: float, yaw_deg: float | None = None) -> None:
         """Fly to lat/lon at ``alt_rel_m`` above home (converted to AMSL with the cached home)."""
+        self.require_dialect()
         geo.check_lat_lon(lat, lon)
         geo.check_finite("altitude", alt_rel_m)
         if yaw_deg is not None:
@@ -417,6 +343,7 @@ class Vehicle:
     async def hold(self) -> None:
         """Hold position: a reposition to where the vehicle is now (never LOITER/ALT_HOLD, in which a
         copter without RC throttle descends). On the ground there is nothing to hold."""
+        self.require_dialect()
         system = self.link.require_session()
         if self.on_ground() is not False:
             return
@@ -428,199 +355,76 @@ class Vehicle:
         )
 
     async def land(self) -> None:
+        self.require_dialect()
         await self.link.call("land", self.link.require_session().action.land())
 
     async def return_to_launch(self) -> None:
+        self.require_dialect()
         await self.link.call("return to launch", self.link.require_session().action.return_to_launch())
 
     async def set_yaw(self, heading_deg: float) -> None:
         """Turn to a heading (degrees from true north) in place."""
+        dialect = self.require_dialect()
         geo.check_finite("heading", heading_deg)
         self.require_ready()
-        await self.dialect.set_yaw(self.link, float(heading_deg) % 360.0)
+        await dialect.set_yaw(self.link, float(heading_deg) % 360.0)
 
     async def set_max_speed(self, mps: float) -> None:
+        self.require_dialect()
         geo.check_finite("speed", mps)
         if mps <= 0:
             raise InvalidArgument(f"speed must be above 0 m/s; got {mps:g}")
         await self.link.call("set speed", self.link.require_session().action.set_current_speed(float(mps)))
 
-    # --- missions ---------------------------------------------------------------------------------------
-    def _wire_progress(self, current: int, total: int) -> MissionProgressValue:
-        """MAVSDK's mission progress (wire seq, wire count) in user numbers. "Finished" comes from
-        MISSION_CURRENT's mission_state COMPLETE: MAVSDK's progress never reaches current == total
-        against ArduPilot, whose MISSION_CURRENT.total leaves out home."""
-        finished = self._mission_state == MISSION_STATE_COMPLETE
-        return self.dialect.mission_progress(
-            current, total, self._mission_plan, finished, from_mission_current=False
-        )
+    # --- where the autopilot flies to ---------------------------------------------------------------------
+    def position_target(self) -> tuple[float, float, float] | None:
+        """Where the autopilot says it flies to (POSITION_TARGET_GLOBAL_INT): latitude, longitude and
+        when it said so (monotonic); None when it has not said (or not for this session)."""
+        return self._target
 
-    async def _mission_current(self, system: System) -> None:
-        """MISSION_CURRENT (requested at 1 Hz): current seq and the mission state."""
-        async for msg in system.mavlink_direct.message("MISSION_CURRENT"):
+    async def _position_target(self, system: System) -> None:
+        """POSITION_TARGET_GLOBAL_INT (the link asks for it at 2 Hz with the other rates): the target a
+        goto's takeover watch compares with the gateway's own."""
+        self._target = None
+        async for msg in system.mavlink_direct.message("POSITION_TARGET_GLOBAL_INT"):
             fields = json.loads(msg.fields_json)
-            state = int(fields.get("mission_state", 0))
-            if state != self._mission_state:
-                self._mission_state = state
-                progress = self.dialect.mission_progress(
-                    int(fields.get("seq", 0)),
-                    int(fields.get("total", 0)),
-                    self._mission_plan,
-                    state == MISSION_STATE_COMPLETE,
-                    from_mission_current=True,
-                )
-                self.telemetry.put("mission_progress", progress)
+            if int(fields.get("type_mask", 0)) & POSITION_IGNORED == POSITION_IGNORED:
+                continue  # no position in it
+            lat, lon = int(fields.get("lat_int", 0)) / 1e7, int(fields.get("lon_int", 0)) / 1e7
+            if lat or lon:
+                self._target = (lat, lon, time.monotonic())
 
-    async def upload_mission(self, items: Sequence[MissionItem | dict[str, Any]]) -> int:
-        """Upload user items 1..N in the dialect's layout (ArduPilot: home at seq 0, hidden). Returns N.
-
-        Raises CommandFailed with the autopilot's words when it refuses the mission, in the MISSION_ACK
-        (ArduPilot: e.g. NO_SPACE and "Only N items are supported") or (PX4) in the text of its
-        feasibility check. After a refused (or failed) upload the drone holds the mission it had, or
-        one it rejected: either way not the caller's, so `start_mission` refuses until an upload
-        succeeds or the mission is cleared."""
-        if not isinstance(items, list | tuple) or not items:
-            raise InvalidArgument("a mission needs at least one item")
-        if len(items) > mission.MAX_ITEMS:
-            raise InvalidArgument(f"a mission holds at most {mission.MAX_ITEMS} items; got {len(items)}")
-        parsed: list[MissionItem] = []
-        for k, item in enumerate(items, start=1):
-            try:
-                parsed.append(item if isinstance(item, MissionItem) else MissionItem.model_validate(item))
-            except Exception as exc:
-                raise InvalidArgument(f"mission item {k}: {exc}") from None
-        system = self.link.require_session()
-        home = self.telemetry.home
-        dialect = self.dialect
-        plan = dialect.encode_mission(
-            parsed, (home.value.lat_deg, home.value.lon_deg, home.value.abs_alt_m) if home else None
-        )
-        raw = [
-            mavsdk_mission_raw.MissionItem(
-                w.seq, w.frame, w.command, 1 if w.seq == 0 else 0, 1,
-                w.param1, w.param2, w.param3, w.param4, w.x, w.y, w.z, 0,
-            )
-            for w in plan.items
-        ]  # fmt: skip
-        self._mission_plan = None  # whatever was on board is being replaced
-        self._mission_state = None
-        try:
-            rejection = await self._upload_checked(system, raw, dialect)
-        except CommandFailed as exc:
-            self._mission_rejection = exc.message
-            raise
-        self._mission_plan = plan
-        self._mission_rejection = rejection
-        if rejection is not None:
-            raise CommandFailed(
-                f"drone '{self.id}' rejected the mission ({len(parsed)} items): {rejection}. "
-                "It will not be started; change the items and upload again.",
-                vehicle_id=self.id,
-                result="MISSION_REJECTED",
-            )
-        return len(parsed)
-
-    async def _upload_checked(
-        self, system: System, raw: list[mavsdk_mission_raw.MissionItem], dialect: Dialect
-    ) -> str | None:
-        """Upload; return the autopilot's rejection text if its feasibility check refused the mission
-        after accepting the transfer (PX4). A MISSION_ACK error raises CommandFailed."""
-        heard: list[str] = []
-        verdict = asyncio.Event()
-
-        def listen(item: StatusTextValue) -> None:
-            text = item.text.strip()
-            if dialect.mission_rejection(text):
-                heard.append(text)
-                verdict.set()
-
-        self.telemetry.on_status_text(listen)
-        try:
-            # a MISSION_ACK error raises CommandFailed with the result and what the autopilot said
-            await self.link.call("upload mission", system.mission_raw.upload_mission(raw), MISSION_TIMEOUT_S)
-            if dialect.mission_verdict_s > 0:
-                with contextlib.suppress(TimeoutError):
-                    await asyncio.wait_for(verdict.wait(), dialect.mission_verdict_s)
-        finally:
-            self.telemetry.remove_status_listener(listen)
-        return heard[0] if heard else None
+    # --- missions (gateway.fleet.vehicle_missions) --------------------------------------------------------
+    async def upload_mission(self, items: Sequence[MissionItem | dict[str, object]]) -> int:
+        return await self.missions.upload(items)
 
     async def download_mission(self) -> list[MissionItem]:
-        """The vehicle's mission as user items 1..N."""
-        system = self.link.require_session()
-        raw = await self.link.call(
-            "download mission", system.mission_raw.download_mission(), MISSION_TIMEOUT_S
-        )
-        items, plan = self.dialect.decode_mission(list(raw))
-        self._mission_plan = plan
-        return items
+        return await self.missions.download()
 
     async def clear_mission(self) -> None:
-        await self.link.call(
-            "clear mission", self.link.require_session().mission_raw.clear_mission(), MISSION_TIMEOUT_S
-        )
-        self._mission_plan = WirePlan(items=[], user_to_wire=[])
-        self._mission_state = None
-        self._mission_rejection = None
+        await self.missions.clear()
 
     async def start_mission(self) -> None:
-        """Run the uploaded mission: in the air, switch to it (AUTO / MISSION); on the ground, the
-        dialect's way of arming and starting it. A mission the autopilot rejected is never started."""
-        self.require_ready()
-        system = self.system
-        if self._mission_rejection is not None:
-            raise CommandFailed(
-                f"drone '{self.id}' rejected the last mission uploaded to it ({self._mission_rejection}); "
-                "it starts none until it accepts one: upload a corrected mission first",
-                vehicle_id=self.id,
-                result="MISSION_REJECTED",
-            )
-        if self._mission_plan is None:
-            await self.download_mission()
-        if self._mission_plan is None or not self._mission_plan.user_to_wire:
-            raise CommandFailed(
-                f"drone '{self.id}' has no mission to start; upload one first", vehicle_id=self.id
-            )
-        self._mission_state = None  # a COMPLETE from an earlier run is not this run's
-        if self.on_ground() is False:
-            await self.link.call("start mission", system.mission_raw.start_mission())
-            return
-        await self.dialect.start_mission_on_ground(self.link, self.arm)
+        await self.missions.start()
 
     async def set_current_mission_item(self, user_index: int) -> None:
-        if not isinstance(user_index, int) or isinstance(user_index, bool):
-            raise InvalidArgument(f"mission item index must be an integer; got {user_index!r}")
-        system = self.link.require_session()
-        if self._mission_plan is None:
-            await self.download_mission()
-        plan = self._mission_plan
-        count = len(plan.user_to_wire) if plan else 0
-        if plan is None or not 1 <= user_index <= count:
-            raise InvalidArgument(f"mission item index must be 1..{count}; got {user_index}")
-        await self.link.call(
-            "set current mission item", system.mission_raw.set_current_mission_item(plan.wire_seq(user_index))
-        )
+        await self.missions.set_current(user_index)
 
     async def is_mission_finished(self) -> bool:
-        if self._mission_state == MISSION_STATE_COMPLETE:
-            return True
-        finished = await self.link.call(
-            "mission finished", self.link.require_session().mission_raw.is_mission_finished()
-        )
-        return bool(finished)
+        return await self.missions.is_finished()
 
     # --- parameters (gateway.fleet.params) ---------------------------------------------------------------
     def return_altitude_param(self) -> tuple[str, float]:
         """The parameter that sets the altitude RTL flies home at, and its units per metre (ArduPilot
         4.7: RTL_ALT_M in metres, before: RTL_ALT in centimetres; PX4: RTL_RETURN_ALT in metres)."""
-        candidates = self.dialect.return_altitude_params
+        candidates = self.require_dialect().return_altitude_params
         return next((c for c in candidates if c[0] == self._return_alt_name), candidates[0])
 
     async def set_return_altitude(self, alt_m: float) -> tuple[str, float | int]:
         """Set the altitude RTL climbs to before flying home (metres above home) in the parameter and
         units this autopilot has; returns (parameter, value written)."""
+        candidates = self.require_dialect().return_altitude_params
         geo.check_finite("return altitude", alt_m)
-        candidates = self.dialect.return_altitude_params
         if self._return_alt_name is not None:  # the one this vehicle is known to have first
             candidates = tuple(sorted(candidates, key=lambda c: c[0] != self._return_alt_name))
         for name, per_metre in candidates:
@@ -655,14 +459,17 @@ class Vehicle:
 
     async def get_param(self, name: str) -> tuple[float | int, str]:
         """Value and type ('int' | 'float'); tries the other ArduPilot name if the parameter was renamed."""
+        self.require_dialect()
         return await self.params.get(name)
 
     async def set_param(self, name: str, value: float | int) -> tuple[float | int, str]:
         """Write a parameter with the vehicle's own type for it; returns (stored value, type)."""
+        self.require_dialect()
         return await self.params.set(name, value)
 
     async def list_params(self, max_age_s: float | None = None) -> dict[str, float | int]:
         """All parameters, fetched once and cached; ``max_age_s`` forces a refetch of an older copy."""
+        self.require_dialect()
         return await self.params.all(max_age_s)
 
     @property

@@ -10,7 +10,7 @@ from pydantic import BaseModel, Field
 
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.operations import Operation
-from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.protocols import VehicleView
 from gateway.fleet.readings import position
 from gateway.registry.records import OperationRecord
 
@@ -32,7 +32,7 @@ class OperationView(BaseModel):
     alt_m: float | None = None
 
     @classmethod
-    def of(cls, op: Operation, vehicle: FlyingVehicle | None) -> OperationView:
+    def of(cls, op: Operation, vehicle: VehicleView | None) -> OperationView:
         pos = None if vehicle is None else position(vehicle)
         return cls(
             operation_id=op.id,

@@ -44,6 +44,7 @@ from gateway.link.rawlink import (
     NoAck,
     autopilot_name,
 )
+from gateway.link.relay import Relay
 from gateway.link.sidecar import Confine, Sidecar, SidecarState
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache, TelemetryFeed
 from gateway.registry.spec import VehicleSpec
@@ -65,6 +66,7 @@ MAV_CMD_SET_MESSAGE_INTERVAL = 511
 MAV_CMD_REQUEST_MESSAGE = 512
 MAVLINK_MSG_MISSION_CURRENT = 42
 MAVLINK_MSG_EKF_STATUS_REPORT = 193
+MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT = 87
 MAVLINK_MSG_SIMSTATE = 164
 
 
@@ -149,6 +151,7 @@ class Link:
         self._mission_progress = mission_progress
         self._jobs = list(session_jobs)
         self._sidecar: Sidecar | None = None
+        self._relay: Relay | None = None  # when ground stations share the drone's MAVLink
         self._system: System | None = None
         self._session_task: asyncio.Task[None] | None = None
         self._session_started: float | None = None
@@ -279,8 +282,11 @@ class Link:
     def describe_error(self) -> str | None:
         """The last failure; while connecting, what the sidecar complains about (refused, no device...)."""
         car = self._sidecar
-        if car is not None and car.state == SidecarState.STARTING and car.info.complaint:
-            return f"waiting for the vehicle on {self.spec.url}: {car.info.complaint}"
+        relay = self._relay
+        if car is not None and car.state == SidecarState.STARTING:
+            complaint = relay.complaint if relay is not None else car.info.complaint
+            if complaint:
+                return f"waiting for the vehicle on {self.spec.url}: {complaint}"
         return self._last_error
 
     def require_ready(self) -> None:
@@ -354,22 +360,6 @@ class Link:
             self.require_ready()
         return self.system
 
-    async def wait_for_state(self, *states: ConnectionState | str, within_s: float = 60.0) -> ConnectionState:
-        """Wait until the state is one of ``states``; raise VehicleNotReady naming the state otherwise."""
-        wanted = {ConnectionState(s) for s in states}
-        loop = asyncio.get_running_loop()
-        deadline = loop.time() + within_s
-        while (state := self.state) not in wanted:
-            if loop.time() > deadline:
-                raise VehicleNotReady(
-                    f"drone '{self.id}' did not reach {'/'.join(sorted(s.value for s in wanted))} within "
-                    f"{within_s:g} s; it is {state.value}"
-                    + (f" ({self._last_error})" if self._last_error else ""),
-                    state=state.value,
-                )
-            await asyncio.sleep(0.1)
-        return state
-
     def status(self) -> dict[str, Any]:
         car = self._sidecar
         age = self.last_heartbeat_age_s
@@ -402,6 +392,8 @@ class Link:
                 "grpc_port": car.grpc_port if car else None,
                 "restarts": car.info.restarts if car else 0,
             },
+            # each ground station endpoint the drone's MAVLink is relayed to, and what passed
+            "ground_stations": self._relay.status() if self._relay is not None else [],
         }
 
     # --- lifecycle --------------------------------------------------------------------------------------
@@ -412,9 +404,18 @@ class Link:
                 return
             await self.disconnect()  # connecting a failed vehicle again starts afresh
         self._last_error = None
+        url = self.spec.url
+        if self.spec.gcs_endpoints:
+            # the gateway holds the drone's link and relays it to the sidecar and the ground stations
+            relay = Relay(
+                self.id, self.spec.url, list(self.spec.gcs_endpoints), sidecar_pid=self._sidecar_pid
+            )
+            await relay.start()
+            self._relay = relay
+            url = relay.sidecar_url
         self._sidecar = Sidecar(
             self.id,
-            self.spec.url,
+            url,
             self.settings,
             on_serving=self._on_serving,
             on_down=self._on_sidecar_down,
@@ -422,6 +423,9 @@ class Link:
         )
         self._sidecar.start()
         self._monitor_task = asyncio.create_task(self._monitor(), name=f"monitor-{self.id}")
+
+    def _sidecar_pid(self) -> int | None:
+        return self._sidecar.pid if self._sidecar is not None else None
 
     async def disconnect(self) -> None:
         """Stop everything of this link; no mavsdk_server process remains."""
@@ -433,9 +437,14 @@ class Link:
         try:
             await self._end_session()
         finally:  # the sidecar stops whatever ending the session raised
-            if self._sidecar is not None:
-                car, self._sidecar = self._sidecar, None
-                await car.stop()
+            try:
+                if self._sidecar is not None:
+                    car, self._sidecar = self._sidecar, None
+                    await car.stop()
+            finally:
+                if self._relay is not None:
+                    relay, self._relay = self._relay, None
+                    await relay.close()
             self._note_state()
 
     # --- session (one per serving sidecar process) ---------------------------------------------------------
@@ -531,12 +540,12 @@ class Link:
             self._commands.cancel_all()
             await _close_system(system)
 
-    def _mavsdk_names_modes(self) -> bool:
+    def _mavsdk_names_modes(self) -> bool | None:
         """MAVSDK's flight mode names are used unless the dialect names the HEARTBEAT's mode itself
-        (ArduCopter: MAVSDK would say OFFBOARD for GUIDED, HOLD for LOITER)."""
+        (ArduCopter: MAVSDK would say OFFBOARD for GUIDED, HOLD for LOITER); None before a HEARTBEAT."""
         facts = self.facts
         if facts.autopilot is None:
-            return False
+            return None
         return self.rules.mode_name(facts.custom_mode or 0, facts.mav_type or 0) is None
 
     async def _heartbeats(self, system: System) -> None:
@@ -549,6 +558,7 @@ class Link:
                     f"system id mismatch: vehicle reports {facts.sysid}, expected {self.spec.expected_sysid}"
                 )
                 log.error("%s: %s", self.id, self._last_error)
+            self.telemetry.put("armed", bool(facts.armed))  # the telemetry feed has no armed stream
             name = self.rules.mode_name(facts.custom_mode or 0, facts.mav_type or 0)
             if name is not None:
                 self.telemetry.put("flight_mode", name)
@@ -637,10 +647,15 @@ class Link:
         skip = self.rules.skipped_streams if self.facts.autopilot is not None else frozenset()
         await feed.request_rates(lambda what, aw: self.call(what, aw, 5.0), skip)
         # MISSION_CURRENT is only in ArduPilot's EXT_STAT stream: ask for it by id (mission progress);
-        # EKF_STATUS_REPORT says when the position estimate is ready (arming in GUIDED needs it)
-        for message_id in (MAVLINK_MSG_MISSION_CURRENT, MAVLINK_MSG_EKF_STATUS_REPORT):
+        # EKF_STATUS_REPORT says when the position estimate is ready (arming in GUIDED needs it);
+        # POSITION_TARGET_GLOBAL_INT (EXT_STAT too) is where it flies to (gateway.fleet.takeover)
+        for message_id, interval_us in (
+            (MAVLINK_MSG_MISSION_CURRENT, 1e6),
+            (MAVLINK_MSG_EKF_STATUS_REPORT, 1e6),
+            (MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT, 5e5),
+        ):
             with contextlib.suppress(CommandFailed):
-                await self.command_long(MAV_CMD_SET_MESSAGE_INTERVAL, message_id, 1e6, what="rate")
+                await self.command_long(MAV_CMD_SET_MESSAGE_INTERVAL, message_id, interval_us, what="rate")
         if not self.is_simulator:  # a simulator says so with SIMSTATE; real ArduPilot answers FAILED
             with contextlib.suppress(CommandFailed):
                 await self.command_long(MAV_CMD_REQUEST_MESSAGE, MAVLINK_MSG_SIMSTATE, what="SIMSTATE")

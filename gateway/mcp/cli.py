@@ -8,15 +8,14 @@ from __future__ import annotations
 
 import argparse
 import asyncio
-from typing import Any
 
-from gateway.cli import COMMANDS
+from gateway.cli_help import COMMAND_HELP
 
 
-def register(subparsers: Any) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "mcp-stdio",
-        help=COMMANDS["mcp-stdio"][1],
+        help=COMMAND_HELP["mcp-stdio"],
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )

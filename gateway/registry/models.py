@@ -73,6 +73,7 @@ class VehicleRow(Base):
     tags: Mapped[list[str]] = mapped_column(JSON, default=list)
     expected_sysid: Mapped[int | None] = mapped_column(Integer)
     node_tag: Mapped[str | None] = mapped_column(String(32))
+    gcs_endpoints: Mapped[list[str]] = mapped_column(JSON, default=list, server_default="[]")
     auto_connect: Mapped[bool] = mapped_column(Boolean, default=True)
     created_at: Mapped[datetime] = mapped_column(UTCDateTime())
     updated_at: Mapped[datetime] = mapped_column(UTCDateTime())

@@ -5,11 +5,13 @@ from __future__ import annotations
 import re
 from urllib.parse import urlsplit
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 VEHICLE_ID_PATTERN = r"^[a-z0-9-]{1,32}$"
 NODE_TAG_PATTERN = r"^[A-Za-z0-9_.\-]{1,32}$"
 CONNECTION_SCHEMES = ("udpin", "udpout", "tcpin", "tcpout", "serial")
+GCS_SCHEMES = ("udpout", "udpin", "tcpin", "tcpout")
+MAX_GCS_ENDPOINTS = 8
 _HOSTNAME = re.compile(r"^[A-Za-z0-9.\-]{1,253}$")
 
 
@@ -43,6 +45,27 @@ def validate_connection_url(url: str) -> str:
     return url
 
 
+def validate_gcs_endpoints(urls: list[str]) -> list[str]:
+    """Check ground station endpoint URLs (network MAVLink URLs, distinct); raise ValueError with one line
+    saying what was given and what is accepted (the caller names the field: gcs_endpoints)."""
+    accepted = "udpout://host:port, udpin://host:port, tcpin://host:port or tcpout://host:port"
+    if len(urls) > MAX_GCS_ENDPOINTS:
+        raise ValueError(f"{len(urls)} endpoints given; at most {MAX_GCS_ENDPOINTS} are accepted")
+    seen: set[str] = set()
+    for url in urls:
+        shown = url[:80]
+        if not isinstance(url, str) or urlsplit(url).scheme not in GCS_SCHEMES:
+            raise ValueError(f"'{shown}' is not accepted; give MAVLink URLs {accepted}")
+        try:
+            validate_connection_url(url)
+        except ValueError as exc:
+            raise ValueError(f"'{shown}' is not accepted ({exc}); give {accepted}") from None
+        if url in seen:
+            raise ValueError(f"'{shown}' is given twice; give each endpoint once")
+        seen.add(url)
+    return urls
+
+
 class VehicleSpec(BaseModel):
     """A vehicle registration as an operator submits it."""
 
@@ -63,11 +86,32 @@ class VehicleSpec(BaseModel):
         description="Cluster only: nodes carrying this tag (GATEWAY_CLUSTER_NODE_TAGS) own the drone, "
         "e.g. the site whose radio reaches it; unset: any node.",
     )
+    gcs_endpoints: list[str] = Field(
+        default_factory=list,
+        description="Ground stations that share the drone's MAVLink (relayed both ways; they can command "
+        "it, and a mode change from one is a takeover): MAVLink URLs such as udpout://127.0.0.1:14550 "
+        "(send to a ground station listening there) or tcpin://0.0.0.0:5790 (ground stations connect "
+        f"here); at most {MAX_GCS_ENDPOINTS}. Binding an address other than loopback exposes the drone "
+        "to that network.",
+    )
 
     @field_validator("url")
     @classmethod
     def _url(cls, value: str) -> str:
         return validate_connection_url(value)
+
+    @field_validator("gcs_endpoints")
+    @classmethod
+    def _gcs(cls, value: list[str]) -> list[str]:
+        return validate_gcs_endpoints(value)
+
+    @model_validator(mode="after")
+    def _gcs_not_the_vehicle(self) -> VehicleSpec:
+        if self.url in self.gcs_endpoints:
+            raise ValueError(
+                f"gcs_endpoints: '{self.url}' is the drone's own URL; give the ground stations' endpoints"
+            )
+        return self
 
     @field_validator("tags")
     @classmethod

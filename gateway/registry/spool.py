@@ -8,15 +8,25 @@ made (the rows carry their own times). One task drains the queue, oldest first, 
 ``RETRY_S`` until the database answers again. A write the database refuses for its content (a bad row)
 is logged and dropped, so it cannot hold back the others. The queue is bounded: past ``limit`` the
 oldest writes are dropped, and counted.
+
+Attached to a file (:meth:`Spool.attach`, the node's ``GATEWAY_SPOOL_PATH``), each kept write is also
+appended to it as one JSON line (its kind and data, flushed to the disk before the caller is answered),
+and each one written (or dropped) is marked done by another line; the file is emptied when nothing
+waits. A node killed while writes wait finds them there when it starts again and writes them first, in
+order, with their own times. A write made for the file carries a ``record`` (kind, JSON data) that the
+spool's ``apply`` writes again after a restart.
 """
 
 from __future__ import annotations
 
 import asyncio
 import contextlib
+import json
 import logging
+import os
 from collections import deque
 from collections.abc import Awaitable, Callable
+from pathlib import Path
 from typing import Any, TypeVar
 
 import sqlalchemy.exc
@@ -28,6 +38,9 @@ RETRY_S = 1.0
 #: one write never holds its caller longer than this (a database that hangs counts as unreachable)
 WRITE_TIMEOUT_S = 5.0
 LIMIT = 100_000
+#: (kind, JSON data) of a write that can be made again after a restart
+Record = tuple[str, dict[str, Any]]
+Apply = Callable[[str, dict[str, Any]], Awaitable[Any]]
 
 
 def unreachable(exc: BaseException) -> bool:
@@ -59,13 +72,61 @@ def unreachable(exc: BaseException) -> bool:
 class Spool:
     """The writes that wait for the database, in order."""
 
-    def __init__(self, limit: int = LIMIT) -> None:
+    def __init__(self, limit: int = LIMIT, apply: Apply | None = None) -> None:
         self.limit = limit
-        self._queue: deque[tuple[str, Callable[[], Awaitable[Any]]]] = deque()
+        self.apply = apply
+        # (what, write, its number in the file or None)
+        self._queue: deque[tuple[str, Callable[[], Awaitable[Any]], int | None]] = deque()
         self._task: asyncio.Task[None] | None = None
         self.dropped = 0
         self.written_late = 0
         self._closed = False
+        self.path: Path | None = None
+        self._file: Any = None
+        self._next = 0
+
+    async def attach(self, path: Path) -> int:
+        """Keep the writes in ``path`` too; the writes a previous run left there are queued first (and
+        written as soon as the database answers). Returns how many there were."""
+        if self.apply is None:
+            raise ValueError("a spool kept in a file needs apply (how to write a kept record again)")
+        self.path = path
+        try:
+            left = self._read(path)
+            if not left:
+                self._close_file(unlink=True)
+                return 0
+            self._file = path.open("w", encoding="utf-8")  # the file again, with the pending ones only
+        except OSError as exc:
+            log.error("cannot keep writes in %s (%r): they are kept in memory only", path, exc)
+            self.path = None
+            return 0
+        apply = self.apply
+        for _n, what, kind, data in left:
+            self._keep(what, _bind(apply, kind, data), (kind, data))
+        log.warning("%d writes kept by this node's previous run while the database was unreachable (%s) "
+                    "are written first", len(left), path)  # fmt: skip
+        return len(left)
+
+    @staticmethod
+    def _read(path: Path) -> list[tuple[int, str, str, dict[str, Any]]]:
+        """The writes in the file not marked done, in order."""
+        try:
+            lines = path.read_text(encoding="utf-8").splitlines()
+        except FileNotFoundError:
+            return []
+        kept: dict[int, tuple[int, str, str, dict[str, Any]]] = {}
+        for number, line in enumerate(lines, 1):
+            try:
+                item = json.loads(line)
+                if "done" in item:
+                    kept.pop(int(item["done"]), None)
+                else:
+                    n = int(item["n"])
+                    kept[n] = (n, str(item["what"]), str(item["kind"]), dict(item["data"]))
+            except (ValueError, KeyError, TypeError):  # a line cut short when the node was killed
+                log.error("%s line %d is not a kept write (cut short?): skipped", path, number)
+        return [kept[n] for n in sorted(kept)]
 
     def __len__(self) -> int:
         return len(self._queue)
@@ -74,8 +135,11 @@ class Spool:
     def waiting(self) -> bool:
         return bool(self._queue)
 
-    async def write(self, what: str, write: Callable[[], Awaitable[T]]) -> T | None:
-        """``write()`` now, or (database unreachable, or earlier writes waiting) later: then None."""
+    async def write(
+        self, what: str, write: Callable[[], Awaitable[T]], record: Record | None = None
+    ) -> T | None:
+        """``write()`` now, or (database unreachable, or earlier writes waiting) later: then None.
+        ``record``: what to keep in the file, to write it after a restart."""
         if not self._queue:
             try:
                 return await asyncio.wait_for(write(), WRITE_TIMEOUT_S)
@@ -85,21 +149,62 @@ class Spool:
                 log.warning(
                     "database unreachable (%s): %s kept on this node until it is back", _short(exc), what
                 )
-        self._keep(what, write)
+        self._keep(what, write, record)
         return None
 
-    def _keep(self, what: str, write: Callable[[], Awaitable[Any]]) -> None:
-        self._queue.append((what, write))
+    def _keep(self, what: str, write: Callable[[], Awaitable[Any]], record: Record | None = None) -> None:
+        number = self._journal(what, record)
+        self._queue.append((what, write, number))
         while len(self._queue) > self.limit:
-            lost, _ = self._queue.popleft()
+            lost, _, lost_number = self._queue.popleft()
             self.dropped += 1
+            self._done(lost_number)
             log.error("spool full (%d writes): %s dropped", self.limit, lost)
         if not self._closed and (self._task is None or self._task.done()):
             self._task = asyncio.create_task(self._drain(), name="store-spool")
 
+    def _journal(self, what: str, record: Record | None) -> int | None:
+        """Append the write to the file (flushed to the disk); its number there, or None."""
+        if self.path is None or record is None:
+            return None
+        number = self._next
+        self._next += 1
+        kind, data = record
+        try:
+            if self._file is None:
+                self.path.parent.mkdir(parents=True, exist_ok=True)
+                self._file = self.path.open("a", encoding="utf-8")
+            self._line({"n": number, "what": what, "kind": kind, "data": data})
+        except (OSError, TypeError, ValueError) as exc:
+            log.error("could not keep %s in %s (%r): it is kept in memory only", what, self.path, exc)
+            return None
+        return number
+
+    def _line(self, item: dict[str, Any]) -> None:
+        self._file.write(json.dumps(item, default=str) + "\n")
+        self._file.flush()
+        os.fsync(self._file.fileno())
+
+    def _done(self, number: int | None) -> None:
+        if number is None or self._file is None:
+            return
+        try:
+            self._line({"done": number})
+        except OSError as exc:
+            log.error("could not mark a kept write done in %s (%r): it may be written twice", self.path, exc)
+
+    def _close_file(self, unlink: bool) -> None:
+        if self._file is not None:
+            with contextlib.suppress(OSError):
+                self._file.close()
+            self._file = None
+        if unlink and self.path is not None:
+            with contextlib.suppress(OSError):
+                self.path.unlink()
+
     async def _drain(self) -> None:
         while self._queue:
-            what, write = self._queue[0]
+            what, write, number = self._queue[0]
             try:
                 await asyncio.wait_for(write(), WRITE_TIMEOUT_S)
             except asyncio.CancelledError:
@@ -113,7 +218,9 @@ class Spool:
             else:
                 self.written_late += 1
             self._queue.popleft()
+            self._done(number)
             if not self._queue:
+                self._close_file(unlink=True)  # nothing waits: the next outage starts a new file
                 log.warning("database back: the writes kept on this node are written (%d)", self.written_late)
 
     async def flush(self, within_s: float) -> bool:
@@ -130,7 +237,12 @@ class Spool:
             self._task.cancel()
             with contextlib.suppress(asyncio.CancelledError, Exception):
                 await self._task
-        if self._queue:
+        if self._queue and self._file is not None:
+            log.error("%d writes kept while the database was unreachable wait in %s: they are written when "
+                      "this node starts again (first: %s)", len(self._queue), self.path,
+                      self._queue[0][0])  # fmt: skip
+            self._close_file(unlink=False)
+        elif self._queue:
             log.error("%d writes kept while the database was unreachable are lost: the gateway stopped "
                       "before it came back (first: %s)", len(self._queue), self._queue[0][0])  # fmt: skip
 
@@ -138,3 +250,7 @@ class Spool:
 def _short(exc: BaseException) -> str:
     text = str(exc).strip().splitlines()
     return f"{type(exc).__name__}: {text[0][:120]}" if text else type(exc).__name__
+
+
+def _bind(apply: Apply, kind: str, data: dict[str, Any]) -> Callable[[], Awaitable[Any]]:
+    return lambda: apply(kind, data)

@@ -9,14 +9,15 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import dataclasses
 import functools
 import logging
 import weakref
-from collections.abc import Callable, Sequence
+from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import dataclass
 from datetime import datetime
 from pathlib import Path
-from typing import Any, get_args
+from typing import Any, cast, get_args
 
 from sqlalchemy import CursorResult, delete, event, func, insert, or_, select, text, update
 from sqlalchemy.exc import IntegrityError
@@ -101,6 +102,10 @@ readers and `close` cut it short."""
 
 ENDED_ELSEWHERE_KEPT = 500
 """Outcomes of operations kept only in memory (fleet operations) remembered for audit rows written late."""
+
+
+#: how long a start waits for the writes its previous run kept to reach the database
+KEPT_REPLAY_S = 30.0
 
 
 @dataclass(frozen=True)
@@ -231,7 +236,20 @@ class Store:
         # operation id -> (status, message) of ended operations this store does not keep (fleet ones)
         self._ended_elsewhere: dict[str, tuple[str, str | None]] = {}
         #: history writes the database could not take (it was unreachable), written when it is back
-        self.spool = Spool()
+        self.spool = Spool(apply=self._apply_kept)
+        self._kept_writers: dict[str, Callable[[dict[str, Any]], Awaitable[Any]]] = {
+            "flight_end": self._write_flight_end,
+            "track_samples": self._write_track_samples,
+            "status_texts": self._write_status_texts,
+            "audit": self._write_audit,
+            "audit_batch": self._write_audit_batch_of,
+            "operation": self._write_operation,
+            "operation_end": self._write_operation_end,
+            "lock": self._write_lock,
+            "unlock": self._write_unlock,
+            "takeover": self._write_takeover,
+            "takeover_release": self._write_takeover_release,
+        }
         # audit rows (with the session each call touched) waiting for the writer task (queue_audit)
         self._audit_queue: list[tuple[AuditEntry, SessionSeen | None]] = []
         self._audit_writer: asyncio.Task[None] | None = None
@@ -247,6 +265,29 @@ class Store:
             await engine.dispose()
             raise
         return cls(engine, url)
+
+    async def keep_spool_in(self, path: Path) -> int:
+        """Keep the writes the database cannot take in ``path`` (JSON lines) as well as in memory, so a
+        node killed during an outage writes them after its restart; returns how many a previous run of
+        this node left there (they are written, in order, before any new write)."""
+        left = await self.spool.attach(path)
+        if left and not await self.spool.flush(KEPT_REPLAY_S):  # the locks among them count at once
+            log.error(
+                "%d writes of the previous run are not written yet: they wait in %s", len(self.spool), path
+            )
+        return left
+
+    async def _kept(self, what: str, kind: str, data: dict[str, Any]) -> Any:
+        """Write now, or keep (``kind``, ``data``: JSON) until the database is back."""
+        write = functools.partial(self._apply_kept, kind, data)
+        return await self.spool.write(what, write, record=(kind, data))
+
+    async def _apply_kept(self, kind: str, data: dict[str, Any]) -> Any:
+        writer = self._kept_writers.get(kind)
+        if writer is None:
+            kinds = ", ".join(sorted(self._kept_writers))
+            raise ValueError(f"unknown kind of kept write {kind!r}; kinds: {kinds}")
+        return await writer(data)
 
     @property
     def is_open(self) -> bool:
@@ -282,6 +323,7 @@ class Store:
             tags=list(spec.tags),
             expected_sysid=spec.expected_sysid,
             node_tag=spec.node_tag,
+            gcs_endpoints=list(spec.gcs_endpoints),
             auto_connect=auto_connect,
             created_at=now,
             updated_at=now,
@@ -295,7 +337,9 @@ class Store:
             raise DuplicateVehicle(f"a drone with id '{spec.id}' is already registered", id=spec.id) from exc
         return VehicleRecord.model_validate(row)
 
-    _UPDATABLE = frozenset({"name", "tags", "expected_sysid", "node_tag", "url", "auto_connect"})
+    _UPDATABLE = frozenset(
+        {"name", "tags", "expected_sysid", "node_tag", "url", "gcs_endpoints", "auto_connect"}
+    )
 
     async def update_vehicle(self, vehicle_id: str, **changes: Any) -> VehicleRecord:
         unknown = sorted(set(changes) - self._UPDATABLE)
@@ -323,6 +367,7 @@ class Store:
             row.tags = list(spec.tags)
             row.expected_sysid = spec.expected_sysid
             row.node_tag = spec.node_tag
+            row.gcs_endpoints = list(spec.gcs_endpoints)
             row.auto_connect = auto_connect
             row.updated_at = utcnow()
         return VehicleRecord.model_validate(row)
@@ -375,20 +420,25 @@ class Store:
         battery_used_pct: float | None = None,
     ) -> FlightRecord | None:
         """End a flight; None when the database is unreachable (the end is written when it is back)."""
+        data = {
+            "flight_id": flight_id, "ended_at": ended_at.isoformat(), "duration_s": duration_s,
+            "distance_m": distance_m, "max_alt_rel_m": max_alt_rel_m, "battery_used_pct": battery_used_pct,
+        }  # fmt: skip
+        kept = await self._kept(f"the end of flight {flight_id}", "flight_end", data)
+        return cast(FlightRecord | None, kept)
 
-        async def write() -> FlightRecord:
-            async with self._sessions.begin() as session:
-                row = await session.get(FlightRow, flight_id)
-                if row is None:
-                    raise NotFound(f"no flight with id {flight_id}", id=flight_id)
-                row.ended_at = ended_at
-                row.duration_s = duration_s
-                row.distance_m = distance_m
-                row.max_alt_rel_m = max_alt_rel_m
-                row.battery_used_pct = battery_used_pct
-            return FlightRecord.model_validate(row)
-
-        return await self.spool.write(f"the end of flight {flight_id}", write)
+    async def _write_flight_end(self, data: dict[str, Any]) -> FlightRecord:
+        flight_id = int(data["flight_id"])
+        async with self._sessions.begin() as session:
+            row = await session.get(FlightRow, flight_id)
+            if row is None:
+                raise NotFound(f"no flight with id {flight_id}", id=flight_id)
+            row.ended_at = datetime.fromisoformat(data["ended_at"])
+            row.duration_s = data["duration_s"]
+            row.distance_m = data["distance_m"]
+            row.max_alt_rel_m = data["max_alt_rel_m"]
+            row.battery_used_pct = data["battery_used_pct"]
+        return FlightRecord.model_validate(row)
 
     async def list_open_flights(self, vehicle_id: str | None = None) -> list[FlightRecord]:
         query = select(FlightRow).where(FlightRow.ended_at.is_(None))
@@ -403,26 +453,26 @@ class Store:
         until the database is back)."""
         if not samples:
             return 0
-        rows = [s.model_dump() for s in samples]
+        data = {"rows": [s.model_dump(mode="json") for s in samples]}
+        return await self._kept(f"{len(samples)} track samples", "track_samples", data) or 0
 
-        async def write() -> int:
-            async with self._sessions.begin() as session:
-                await session.execute(insert(TrackSampleRow), rows)
-            return len(rows)
-
-        return await self.spool.write(f"{len(rows)} track samples", write) or 0
+    async def _write_track_samples(self, data: dict[str, Any]) -> int:
+        rows = [TrackSample.model_validate(r).model_dump() for r in data["rows"]]
+        async with self._sessions.begin() as session:
+            await session.execute(insert(TrackSampleRow), rows)
+        return len(rows)
 
     async def add_status_texts(self, items: Sequence[StatusTextIn]) -> int:
         if not items:
             return 0
-        rows = [i.model_dump() for i in items]
+        data = {"rows": [i.model_dump(mode="json") for i in items]}
+        return await self._kept(f"{len(items)} status texts", "status_texts", data) or 0
 
-        async def write() -> int:
-            async with self._sessions.begin() as session:
-                await session.execute(insert(StatusTextRow), rows)
-            return len(rows)
-
-        return await self.spool.write(f"{len(rows)} status texts", write) or 0
+    async def _write_status_texts(self, data: dict[str, Any]) -> int:
+        rows = [StatusTextIn.model_validate(r).model_dump() for r in data["rows"]]
+        async with self._sessions.begin() as session:
+            await session.execute(insert(StatusTextRow), rows)
+        return len(rows)
 
     async def list_flights(
         self,
@@ -610,18 +660,21 @@ class Store:
             operation_id=entry.operation_id,
         )
 
-        async def write() -> int:
-            row = AuditRow(**values)  # a fresh row for each attempt
-            async with self._sessions.begin() as session:
-                session.add(row)
-                await session.flush()
-                row_id = int(row.id)
-            self._audit_written(row)
-            if entry.outcome == "running" and entry.operation_id is not None:
-                await self._finish_if_ended(entry.operation_id)
-            return row_id
+        t = values["t"]
+        data = {"values": {**values, "t": t.isoformat() if isinstance(t, datetime) else t}}
+        return cast(int | None, await self._kept(f"the audit row of {values['action']}", "audit", data))
 
-        return await self.spool.write(f"the audit row of {values['action']}", write)
+    async def _write_audit(self, data: dict[str, Any]) -> int:
+        values = {**data["values"], "t": datetime.fromisoformat(data["values"]["t"])}
+        row = AuditRow(**values)  # a fresh row for each attempt
+        async with self._sessions.begin() as session:
+            session.add(row)
+            await session.flush()
+            row_id = int(row.id)
+        self._audit_written(row)
+        if values["outcome"] == "running" and values["operation_id"] is not None:
+            await self._finish_if_ended(values["operation_id"])
+        return row_id
 
     def queue_audit(self, entry: AuditEntry, seen: SessionSeen | None = None) -> None:
         """Record one call without waiting for the database (the MCP door's path, per tool call).
@@ -656,10 +709,14 @@ class Store:
                 with contextlib.suppress(TimeoutError):
                     await asyncio.wait_for(flush.wait(), AUDIT_BATCH_S)
             batch, self._audit_queue = self._audit_queue, []
+            data = {
+                "rows": [
+                    {"entry": e.model_dump(mode="json"), "seen": None if s is None else dataclasses.asdict(s)}
+                    for e, s in batch
+                ]
+            }
             try:  # the database unreachable: kept in the spool, in order, with their times
-                await self.spool.write(
-                    f"{len(batch)} audit rows", functools.partial(self._write_audit_batch, batch)
-                )
+                await self._kept(f"{len(batch)} audit rows", "audit_batch", data)
             except Exception:
                 log.exception("could not write %d audit rows at once; writing them one by one", len(batch))
                 for item in batch:
@@ -667,6 +724,14 @@ class Store:
                         await self._write_audit_batch([item])
                     except Exception:
                         log.exception("could not write the audit row of %s", item[0].action)
+
+    async def _write_audit_batch_of(self, data: dict[str, Any]) -> None:
+        await self._write_audit_batch(
+            [
+                (AuditEntry.model_validate(r["entry"]), SessionSeen(**r["seen"]) if r["seen"] else None)
+                for r in data["rows"]
+            ]
+        )
 
     async def _write_audit_batch(self, batch: list[tuple[AuditEntry, SessionSeen | None]]) -> None:
         seen: dict[str, tuple[SessionSeen, int]] = {}
@@ -808,22 +873,22 @@ class Store:
     async def save_operation(self, op: OperationRecord) -> OperationRecord:
         """Insert or update; an operation that has ended also finishes the audit rows of the calls that
         left it running (whichever node ends it: its owner, or the node that took the drone over)."""
-        values = op.model_dump()
-
-        async def write() -> None:
-            async with self._sessions.begin() as session:
-                row = await session.get(OperationRow, op.id)
-                if row is None:
-                    session.add(OperationRow(**values))
-                else:
-                    for key, value in values.items():
-                        if key != "id":
-                            setattr(row, key, value)
-            if op.status != "running":
-                await self._finish_audit_of(op.id, op.status, op.message)
-
-        await self.spool.write(f"operation {op.id} ({op.status})", write)
+        await self._kept(f"operation {op.id} ({op.status})", "operation", {"op": op.model_dump(mode="json")})
         return op
+
+    async def _write_operation(self, data: dict[str, Any]) -> None:
+        op = OperationRecord.model_validate(data["op"])
+        values = op.model_dump()
+        async with self._sessions.begin() as session:
+            row = await session.get(OperationRow, op.id)
+            if row is None:
+                session.add(OperationRow(**values))
+            else:
+                for key, value in values.items():
+                    if key != "id":
+                        setattr(row, key, value)
+        if op.status != "running":
+            await self._finish_audit_of(op.id, op.status, op.message)
 
     async def finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
         """An operation this store does not keep (a fleet operation, held in memory by its node) ended:
@@ -832,10 +897,11 @@ class Store:
         self._ended_elsewhere[operation_id] = (status, message)
         while len(self._ended_elsewhere) > ENDED_ELSEWHERE_KEPT:
             del self._ended_elsewhere[next(iter(self._ended_elsewhere))]
-        await self.spool.write(
-            f"the end of operation {operation_id}",
-            lambda: self._finish_audit_of(operation_id, status, message),
-        )
+        data = {"operation_id": operation_id, "status": status, "message": message}
+        await self._kept(f"the end of operation {operation_id}", "operation_end", data)
+
+    async def _write_operation_end(self, data: dict[str, Any]) -> None:
+        await self._finish_audit_of(data["operation_id"], data["status"], data["message"])
 
     async def _finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
         await self.flush_audit()  # a row still queued is finished too
@@ -880,28 +946,29 @@ class Store:
     async def save_lock(self, scope: str, reason: str, by: str, locked_at: datetime) -> LockRecord | None:
         """Store (or replace) the lock of ``scope``; None when the database is unreachable (it is
         stored, in order, when the database is back)."""
+        data = {"scope": scope, "reason": reason, "by": by[:200], "locked_at": locked_at.isoformat()}
+        return cast(LockRecord | None, await self._kept(f"the lock of {scope}", "lock", data))
 
-        async def write() -> LockRecord:
-            async with self._sessions.begin() as session:
-                row = await session.get(LockRow, scope)
-                if row is None:
-                    session.add(LockRow(scope=scope, reason=reason, locked_by=by[:200], locked_at=locked_at))
-                else:
-                    row.reason, row.locked_by, row.locked_at = reason, by[:200], locked_at
-            return LockRecord(scope=scope, reason=reason, by=by[:200], locked_at=locked_at)
-
-        return await self.spool.write(f"the lock of {scope}", write)
+    async def _write_lock(self, data: dict[str, Any]) -> LockRecord:
+        scope, reason, by = data["scope"], data["reason"], data["by"]
+        locked_at = datetime.fromisoformat(data["locked_at"])
+        async with self._sessions.begin() as session:
+            row = await session.get(LockRow, scope)
+            if row is None:
+                session.add(LockRow(scope=scope, reason=reason, locked_by=by, locked_at=locked_at))
+            else:
+                row.reason, row.locked_by, row.locked_at = reason, by, locked_at
+        return LockRecord(scope=scope, reason=reason, by=by, locked_at=locked_at)
 
     async def delete_lock(self, scope: str) -> bool:
         """Remove the lock of ``scope``; False when there was none (or the database is unreachable:
         then it is removed when the database is back)."""
+        return bool(await self._kept(f"the unlock of {scope}", "unlock", {"scope": scope}))
 
-        async def write() -> bool:
-            async with self._sessions.begin() as session:
-                result = await session.execute(delete(LockRow).where(LockRow.scope == scope))
-                return bool(_rowcount(result))
-
-        return bool(await self.spool.write(f"the unlock of {scope}", write))
+    async def _write_unlock(self, data: dict[str, Any]) -> bool:
+        async with self._sessions.begin() as session:
+            result = await session.execute(delete(LockRow).where(LockRow.scope == data["scope"]))
+            return bool(_rowcount(result))
 
     async def list_locks(self) -> list[LockRecord]:
         async with self._sessions() as session:
@@ -918,34 +985,37 @@ class Store:
     ) -> LockRecord | None:
         """Store (or replace) the takeover lock of a drone; None when the database is unreachable (it is
         stored, in order, when the database is back)."""
+        data = {"vehicle_id": vehicle_id, "reason": reason, "by": by[:200]} | {
+            "locked_at": locked_at.isoformat()
+        }
+        kept = await self._kept(f"the takeover lock of {vehicle_id}", "takeover", data)
+        return cast(LockRecord | None, kept)
 
-        async def write() -> LockRecord:
-            async with self._sessions.begin() as session:
-                row = await session.get(TakeoverRow, vehicle_id)
-                if row is None:
-                    session.add(
-                        TakeoverRow(
-                            vehicle_id=vehicle_id, reason=reason, locked_by=by[:200], locked_at=locked_at
-                        )
-                    )
-                else:
-                    row.reason, row.locked_by, row.locked_at = reason, by[:200], locked_at
-            return LockRecord(scope=vehicle_id, reason=reason, by=by[:200], locked_at=locked_at)
-
-        return await self.spool.write(f"the takeover lock of {vehicle_id}", write)
+    async def _write_takeover(self, data: dict[str, Any]) -> LockRecord:
+        vehicle_id, reason, by = data["vehicle_id"], data["reason"], data["by"]
+        locked_at = datetime.fromisoformat(data["locked_at"])
+        async with self._sessions.begin() as session:
+            row = await session.get(TakeoverRow, vehicle_id)
+            if row is None:
+                session.add(
+                    TakeoverRow(vehicle_id=vehicle_id, reason=reason, locked_by=by, locked_at=locked_at)
+                )
+            else:
+                row.reason, row.locked_by, row.locked_at = reason, by, locked_at
+        return LockRecord(scope=vehicle_id, reason=reason, by=by, locked_at=locked_at)
 
     async def delete_takeover(self, vehicle_id: str) -> bool:
         """Remove a drone's takeover lock; False when there was none (or the database is unreachable:
         then it is removed when the database is back)."""
+        data = {"vehicle_id": vehicle_id}
+        return bool(await self._kept(f"the release of {vehicle_id}", "takeover_release", data))
 
-        async def write() -> bool:
-            async with self._sessions.begin() as session:
-                result = await session.execute(
-                    delete(TakeoverRow).where(TakeoverRow.vehicle_id == vehicle_id)
-                )
-                return bool(_rowcount(result))
-
-        return bool(await self.spool.write(f"the release of {vehicle_id}", write))
+    async def _write_takeover_release(self, data: dict[str, Any]) -> bool:
+        async with self._sessions.begin() as session:
+            result = await session.execute(
+                delete(TakeoverRow).where(TakeoverRow.vehicle_id == data["vehicle_id"])
+            )
+            return bool(_rowcount(result))
 
     async def list_takeovers(self) -> list[LockRecord]:
         async with self._sessions() as session:

@@ -8,7 +8,7 @@ import contextlib
 import signal
 import sys
 
-from gateway.cli import COMMANDS
+from gateway.cli_help import COMMAND_HELP
 from gateway.sim.control import ControlServer
 from gateway.sim.fleet import DEFAULT_HOME, SimFleet, parse_home
 from gateway.sim.params import FIRMWARES
@@ -17,7 +17,7 @@ from gateway.sim.params import FIRMWARES
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "sim",
-        help=COMMANDS["sim"][1],
+        help=COMMAND_HELP["sim"],
         description="Run N simulated ArduCopter 4.x vehicles in one process. Vehicle i listens on TCP "
         "bind:tcp_base_port+10*i with system id sysid_base+i.",
     )
@@ -75,10 +75,13 @@ def add_sim_arguments(parser: argparse.ArgumentParser, default_count: int = 1) -
     parser.add_argument("--seed", type=int, default=None, help="seed of the sensor-noise random source")
     parser.add_argument("--control-port", type=_port, default=None, help="serve the JSON control API here")
     parser.add_argument("--firmware", choices=FIRMWARES, default="4.7", help="parameter naming generation")
+    parser.add_argument(
+        "--autopilot", type=int, default=3, help="MAV_AUTOPILOT its HEARTBEAT names (3 ArduPilot, 0 generic)"
+    )
 
 
 def build_fleet(args: argparse.Namespace) -> SimFleet:
-    return SimFleet(
+    fleet = SimFleet(
         args.count,
         tcp_base_port=args.tcp_base_port,
         udp_base_port=args.udp_base_port,
@@ -90,6 +93,9 @@ def build_fleet(args: argparse.Namespace) -> SimFleet:
         seed=args.seed,
         firmware=args.firmware,
     )
+    for vehicle in fleet.vehicles:  # it still flies as ArduCopter: the announcement is what changes
+        vehicle.autopilot = getattr(args, "autopilot", vehicle.autopilot)
+    return fleet
 
 
 async def serve(args: argparse.Namespace, banner: bool = True) -> None:

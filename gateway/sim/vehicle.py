@@ -105,6 +105,7 @@ class SimVehicle:
             raise ValueError(f"speedup must be a positive number, got {speedup}")
         self.index = index
         self.speedup = speedup
+        self.autopilot = mav.MAV_AUTOPILOT_ARDUPILOTMEGA  # what its HEARTBEAT announces (sim --autopilot)
         self.rng = random.Random(seed)
         self.timeline = timeline or Timeline()
         lat, lon, alt, heading = home
@@ -367,7 +368,7 @@ class SimVehicle:
             status = (
                 mav.MAV_STATE_ACTIVE if self.flying and not self.flight.on_ground() else mav.MAV_STATE_STANDBY
             )
-        return mav.MAVLink_heartbeat_message(mav.MAV_TYPE_QUADROTOR, mav.MAV_AUTOPILOT_ARDUPILOTMEGA, base,
+        return mav.MAVLink_heartbeat_message(mav.MAV_TYPE_QUADROTOR, self.autopilot, base,
                                              int(self.mode), status, 3)  # fmt: skip
 
     def build(self, msg_id: int) -> mav.MAVLink_message | None:

@@ -6,7 +6,8 @@ from typing import Any
 
 from bench.agent_harness.scripted import ScriptedModelServer, ScriptedReply, call, say
 from gateway.agent.answer import ANSWER_TOOL, answer_text
-from gateway.agent.host import AgentEvent, AgentHost
+from gateway.agent.host import AgentHost
+from gateway.agent.turns import AgentEvent
 from tests.agent.test_loop import run_on_toy
 from tests.agent.toy_mcp import ToyServer
 

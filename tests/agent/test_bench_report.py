@@ -11,7 +11,7 @@ from types import ModuleType
 
 import pytest
 
-from gateway.agent.host import ToolCallRecord, TurnResult
+from gateway.agent.turns import ToolCallRecord, TurnResult
 
 BENCH = Path(__file__).resolve().parents[2] / "bench" / "nl_missions.py"
 

@@ -7,8 +7,9 @@ from collections.abc import Awaitable, Callable
 from typing import Any
 
 from bench.agent_harness.scripted import ScriptedReply, call, say
-from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
+from gateway.agent.host import AgentHost
 from gateway.agent.toolbox import ToolInfo, ToolOutcome
+from gateway.agent.turns import AgentEvent, ModelConfig
 
 Progress = Callable[[float, float | None, str | None], Awaitable[None]] | None
 

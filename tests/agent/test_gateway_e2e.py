@@ -9,8 +9,9 @@ import pytest
 
 from bench.agent_harness.scripted import ScriptedModelServer, ScriptedReply, call, say
 from bench.agent_harness.stack import LocalStack
-from gateway.agent.host import AgentEvent, AgentHost, ModelConfig, TurnResult
+from gateway.agent.host import AgentHost
 from gateway.agent.mcp_link import McpLink, McpLinkError
+from gateway.agent.turns import AgentEvent, ModelConfig, TurnResult
 from gateway.fleet.geo import horizontal_distance_m, offset_position
 from tests.helpers.timing import scaled
 

@@ -11,8 +11,9 @@ from rich.console import Console
 
 from bench.agent_harness.scripted import ScriptedModelServer, ScriptedReply, call, say
 from gateway.agent import cli
-from gateway.agent.host import AgentEvent, AgentHost, ModelConfig, TurnResult
+from gateway.agent.host import AgentHost
 from gateway.agent.mcp_link import McpLink
+from gateway.agent.turns import AgentEvent, ModelConfig, TurnResult
 from tests.agent.toy_mcp import TOKEN, ToyServer
 
 EMPTY = ScriptedReply(content="")
@@ -284,8 +285,10 @@ async def test_a_refused_move_of_a_grounded_drone_names_the_takeoff_with_its_alt
     from gateway.agent.roster import DroneEntry, Roster
 
     host = AgentHost(ModelConfig("http://127.0.0.1:9/v1", "m"), caller=None, tools=[])  # type: ignore[arg-type]
-    host.use_roster = False  # the roster below is the fleet (reading it again is tested on the gateway)
-    host.roster = Roster((DroneEntry("bravo", False, 0.0, 100.0), DroneEntry("alpha", True, 10.0, 90.0)))
+    host.fleet.enabled = False  # the roster below is the fleet (reading it again is tested on the gateway)
+    host.fleet.roster = Roster(
+        (DroneEntry("bravo", False, 0.0, 100.0), DroneEntry("alpha", True, 10.0, 90.0))
+    )
     note = await host._takeoff_first("go_to_location", {"drone_id": "bravo", "alt_m": 30})
     assert note == (
         ' (Host note: bravo is on the ground. Call takeoff with drone_id "bravo" and alt_m 30 first, '

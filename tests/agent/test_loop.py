@@ -8,8 +8,9 @@ from typing import Any
 import pytest
 
 from bench.agent_harness.scripted import ScriptedModelServer, ScriptedReply, call, say
-from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
+from gateway.agent.host import AgentHost
 from gateway.agent.mcp_link import McpLink, McpLinkError
+from gateway.agent.turns import AgentEvent, ModelConfig
 from tests.agent.toy_mcp import TOKEN, ToyServer
 
 

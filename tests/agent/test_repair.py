@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from bench.agent_harness.scripted import call, say
-from gateway.agent.host import AgentEvent, AgentHost, ModelConfig
+from gateway.agent.host import AgentHost
 from gateway.agent.mcp_link import McpLink
 from gateway.agent.repair import (
     direction_mismatch,
@@ -12,6 +12,7 @@ from gateway.agent.repair import (
     restore_request_numbers,
     swap_hint,
 )
+from gateway.agent.turns import AgentEvent, ModelConfig
 from tests.agent.toy_mcp import TOKEN
 
 REQUEST = "Launch bravo to 20 m and send it to -35.362855, 149.164955. Keep it hovering there."

@@ -186,3 +186,32 @@ def test_db_prune_command(tmp_path: Path, capsys: pytest.CaptureFixture[str]) ->
     assert run_cli("db", "prune", "--older-than-days", "0", "--database-url", url) == 2
     assert "positive number of days" in capsys.readouterr().err
     assert run_cli("db", "prune", "--older-than-days", "nan", "--database-url", url) == 2
+
+
+def test_drones_add_takes_ground_station_endpoints(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`--gcs URL`, repeatable, is stored with the registration (and shown); a bad one is named in one line
+    and registers nothing. Through a running gateway the same field goes over REST."""
+    url = f"sqlite+aiosqlite:///{tmp_path / 'cli.db'}"
+    db = ["--database-url", url]
+    gcs = ["--gcs", "udpout://127.0.0.1:14550", "--gcs", "tcpin://127.0.0.1:5790"]
+    assert run_cli("drones", "add", "alpha", "tcpout://127.0.0.1:5760", *gcs, *db) == 0
+    assert (
+        run_cli("drones", "add", "bravo", "tcpout://127.0.0.1:5770", "--gcs", "udp://127.0.0.1:1", *db) == 2
+    )
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "gcs_endpoints: 'udp://127.0.0.1:1' is not accepted" in err[0], err
+    assert "udpout://host:port" in err[0]
+    assert run_cli("drones", "list", "--json", *db) == 0
+    [alpha] = json.loads(capsys.readouterr().out)
+    assert alpha["gcs_endpoints"] == ["udpout://127.0.0.1:14550", "tcpin://127.0.0.1:5790"]
+
+    settings = Settings(database_url=f"sqlite+aiosqlite:///{tmp_path / 'api.db'}")
+    app = create_app(settings, registry_factory=FakeRegistry)
+    with serve_in_thread(app) as base:
+        assert run_cli("drones", "add", "alpha", "tcpout://127.0.0.1:5760", *gcs[:2], "--api", base) == 0
+        capsys.readouterr()
+        assert run_cli("drones", "list", "--json", "--api", base) == 0
+        [drone] = json.loads(capsys.readouterr().out)
+        assert drone["gcs_endpoints"] == ["udpout://127.0.0.1:14550"]

@@ -1,10 +1,11 @@
 """The cluster under its own engines' faults, with real PostgreSQL, NATS, sidecars and simulated drones:
 
-- PostgreSQL stopped for 20 s under three drones in the air: the emergency stop answers at once and
-  every drone lands; every node then fences itself (no sidecar left behind, whatever its flight log
-  could not write); when PostgreSQL is back, each drone is ready again under exactly one sidecar,
-  without restarting a node, the stop is in the audit with the time it was made, and its fleet lock is
-  stored. SIGTERM ends every node.
+- PostgreSQL stopped for 20 s under three drones in the air: every node fences itself (no sidecar left
+  behind, whatever its flight log could not write); an emergency stop then still reaches every drone,
+  sent by each fenced node over the drone's own link: a hold from one node, then a land from the other
+  puts every drone into LAND; when PostgreSQL is back, each drone is ready
+  again under exactly one sidecar, without restarting a node, the stop is in the audit with the time it
+  was made, and its fleet lock is stored. SIGTERM ends every node.
 - one node cut off from NATS (a TCP proxy the test controls, between the node and NATS): a command
   forwarded to it, and one it forwards, answer "not run" within the accept time; when the link heals, the
   owners drop both (they arrive after their deadline) and the drones stay on the ground. Cut off, the
@@ -15,7 +16,9 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import json
 import os
+import re
 import signal
 import subprocess
 from collections.abc import Iterator
@@ -26,11 +29,21 @@ from urllib.parse import urlparse
 
 import pytest
 from mcp.types import CallToolResult
+from sqlalchemy import text
 
-from tests.cluster.harness import Node, cluster, missing_engines, wait_spread
+from gateway.registry.store import Store
+from tests.cluster.harness import (
+    Node,
+    cluster,
+    missing_engines,
+    start_node,
+    stop_node,
+    wait_node_ready,
+    wait_spread,
+)
 from tests.helpers.tcpproxy import TcpProxy
 from tests.helpers.timing import eventually, scaled
-from tests.persist.pg import find_pg_bin, restartable_postgres
+from tests.persist.pg import create_database, find_pg_bin, restartable_postgres
 from tests.registry.procs import alive, mavsdk_servers_of
 
 pytestmark = [
@@ -85,18 +98,6 @@ async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
 
             pg.stop()
             stopped_at = datetime.now(UTC)
-            response = await c.node("node-b").post("/fleet/stop", {"action": "land"})
-            assert response.status_code == 200, response.text
-            stop = response.json()
-            outcomes = {r["vehicle_id"]: r for r in stop["results"]}
-            assert all(outcomes[d]["outcome"] == "sent" for d in c.drone_ids), outcomes
-            assert stop["fleet_lock"]["scope"] == "*" and stop["fleet_lock"]["stored"] is False, stop
-
-            async def all_landing() -> bool:
-                modes = [(await c.true_state(d))["mode"] for d in c.drone_ids]
-                return modes == ["LAND"] * len(c.drone_ids)
-
-            await eventually(all_landing, "every drone in LAND after the stop", within_s=3)
 
             # no database: each node fences itself, and no sidecar is left behind
             def fenced() -> bool:
@@ -111,6 +112,32 @@ async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
             assert fenced(), "\n".join(n.log_tail(20) for n in c.nodes)
             assert not any(sidecars(c.nodes).values()), sidecars(c.nodes)
             assert all(n.alive for n in c.nodes)
+            modes = {d: (await c.true_state(d))["mode"] for d in c.drone_ids}
+            assert "LAND" not in modes.values(), modes  # still flying their last command
+
+            # a stop now that no node holds a link: each fenced node sends it over the drone's own link;
+            # from either node, hold (a reposition to where the drone is) and then land
+            response = await c.node("node-a").post("/fleet/stop", {"action": "hold"})
+            assert response.status_code == 200, response.text
+            held = {r["vehicle_id"]: r["outcome"] for r in response.json()["results"]}
+            assert held == {d: "sent" for d in c.drone_ids}, response.json()
+            logs = "".join(n.log.read_text(errors="replace") for n in c.nodes)
+            for d in c.drone_ids:  # the autopilot took it
+                assert re.search(rf"{d}: hold sent over its own link by fenced node .*ACCEPTED", logs), d
+            response = await c.node("node-b").post("/fleet/stop", {"action": "land"})
+            assert response.status_code == 200, response.text
+            stop = response.json()
+            outcomes = {r["vehicle_id"]: r for r in stop["results"]}
+            assert all(outcomes[d]["outcome"] == "sent" for d in c.drone_ids), outcomes
+            assert stop["fleet_lock"]["scope"] == "*" and stop["fleet_lock"]["stored"] is False, stop
+
+            async def all_landing() -> bool:
+                modes = [(await c.true_state(d))["mode"] for d in c.drone_ids]
+                return modes == ["LAND"] * len(c.drone_ids)
+
+            await eventually(all_landing, "every drone in LAND after the stop", within_s=3)
+            assert all(log_has(n, "sent over its own link by fenced node") for n in c.nodes), outcomes
+            assert not any(sidecars(c.nodes).values()), sidecars(c.nodes)  # the links were only borrowed
             # the outage lasts as long as the one this is about (its leases expire in the meantime)
             await asyncio.sleep(max(0.0, OUTAGE_S - (datetime.now(UTC) - stopped_at).total_seconds()))
 
@@ -135,15 +162,17 @@ async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
             await eventually(one_sidecar_each, "every drone ready under one sidecar", within_s=90)
             assert {n.name: n.proc.pid for n in c.nodes if n.alive} == pids  # no node was restarted
 
-            async def stop_audited() -> list[Any]:
-                return await c.rows("SELECT t FROM audit WHERE action = 'rest.fleet_stop'")
+            async def stops_audited() -> list[Any] | None:
+                rows = await c.rows("SELECT t FROM audit WHERE action = 'rest.fleet_stop' ORDER BY t")
+                return rows if len(rows) >= 2 else None
 
             rows = await eventually(
-                stop_audited, "the stop's audit row after the database is back", within_s=30
+                stops_audited, "both stops' audit rows after the database is back", within_s=30
             )
-            assert len(rows) == 1
-            t = rows[0][0] if rows[0][0].tzinfo else rows[0][0].replace(tzinfo=UTC)
-            assert stopped_at.timestamp() - 1 < t.timestamp() < back_at.timestamp()  # the time it was made
+            assert len(rows) == 2, rows  # the hold and the land
+            for (t,) in rows:  # the time each was made
+                t = t if t.tzinfo else t.replace(tzinfo=UTC)
+                assert stopped_at.timestamp() - 1 < t.timestamp() < back_at.timestamp(), (t, stopped_at)
             assert [r[0] for r in await c.rows("SELECT scope FROM locks")] == ["*"]
 
             # SIGTERM ends every node, sidecars and all
@@ -221,3 +250,58 @@ async def test_a_node_cut_off_from_nats_runs_no_late_command(tmp_path: Path) -> 
             except subprocess.TimeoutExpired:
                 raise AssertionError(f"node-b did not end on SIGTERM:\n{node_b.log_tail()}") from None
             assert not [p for p in its_sidecars if alive(p)]
+
+
+async def test_writes_kept_during_an_outage_survive_a_kill_9(tmp_path: Path) -> None:
+    """A gateway killed (-9) while the database is down keeps what it could not write in its spool file;
+    started again once the database is back, it writes those rows first, in order, with their times."""
+    spool = tmp_path / "gw" / "spool.jsonl"
+    with restartable_postgres() as pg:
+        store = await Store.open(await create_database(pg.url))  # the schema, made once
+        url = store.url
+        await store.close()
+        env = {"GATEWAY_SPOOL_PATH": str(spool)}
+        node = start_node("gw", url, "", tmp_path, env)
+        try:
+            await wait_node_ready(node, 60)
+            pg.stop()
+            outage = datetime.now(UTC)
+            for action in ("hold", "land", "hold"):
+                response = await node.post("/fleet/stop", {"action": action})
+                assert response.status_code == 200, response.text
+                assert response.json()["fleet_lock"]["stored"] is False
+
+            async def kept() -> list[dict[str, Any]] | None:
+                lines = [json.loads(x) for x in spool.read_text().splitlines()] if spool.exists() else []
+                audit = [x for x in lines if x.get("kind", "").startswith("audit")]
+                return lines if len(audit) >= 1 and any(x.get("kind") == "lock" for x in lines) else None
+
+            lines = await eventually(kept, "the stops' audit rows and lock in the spool file", within_s=30)
+            node.kill9()
+            assert spool.exists() and not any("done" in x for x in lines), lines
+            killed = datetime.now(UTC)
+
+            pg.start()
+            node = start_node("gw", url, "", tmp_path, env)
+            await wait_node_ready(node, 60)
+            rows = await _rows(
+                url, "SELECT action, t FROM audit WHERE action = 'rest.fleet_stop' ORDER BY id"
+            )
+            assert len(rows) == 3, rows
+            for _action, t in rows:  # the time each stop was made, not when it was written
+                t = t if t.tzinfo else t.replace(tzinfo=UTC)
+                assert outage.timestamp() - 1 < t.timestamp() < killed.timestamp(), (t, outage, killed)
+            assert [r[0] for r in await _rows(url, "SELECT scope FROM locks")] == ["*"]
+            assert not spool.exists()  # all written: nothing waits
+            assert log_has(node, "writes kept by this node's previous run")
+        finally:
+            stop_node(node)
+
+
+async def _rows(url: str, sql: str) -> list[Any]:
+    store = await Store.open(url, upgrade=False)
+    try:
+        async with store.engine.connect() as conn:
+            return list((await conn.execute(text(sql))).all())
+    finally:
+        await store.close()

@@ -15,6 +15,7 @@ from gateway.cluster.remote import OwnedElsewhere, RemoteVehicle
 from gateway.config import Settings
 from gateway.errors import InvalidArgument
 from gateway.fleet.commander import Commander
+from gateway.fleet.protocols import VehicleActions, flying
 from gateway.fleet.safety import LockBook
 from gateway.registry.spec import VehicleSpec
 from tests.fakes import fake_gateway, unit_settings
@@ -44,8 +45,9 @@ async def test_a_remote_drone_answers_with_its_owners_autopilot_dialect() -> Non
     px4.telemetry.put("in_air", False)
     px4.telemetry.put("landed_state", "LANDING")
     assert px4.on_ground(fresh=False) is False  # PX4's land detector decides, not in_air
+    assert not isinstance(px4, VehicleActions)  # a view: the commands go to its owner
     with pytest.raises(OwnedElsewhere, match=r"owned by cluster node node-c"):
-        await px4.set_return_altitude(30.0)
+        flying(px4)
 
 
 async def test_a_drone_owned_elsewhere_reports_the_operation_its_owner_published(tmp_path: Path) -> None:

@@ -5,6 +5,7 @@ command brought, like an autopilot does)."""
 from __future__ import annotations
 
 import asyncio
+import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -91,6 +92,41 @@ async def test_a_pilot_switch_mid_goto_ends_it_locks_the_drone_and_an_operator_r
     assert released.was_locked and await store.list_takeovers() == []
     moved = await c.move_relative(AGENT, "d1", 5.0, 0.0)
     assert moved.status == "running"
+
+
+async def test_another_ground_station_moving_the_target_in_the_same_mode_ends_the_goto(
+    gateway: Gateway,
+) -> None:
+    """PX4 flies gotos in Hold, so QGroundControl's Pause (a reposition to where the drone is) leaves the
+    mode as it was: the autopilot's own target (POSITION_TARGET_GLOBAL_INT) tells. Reports of the goto's
+    own target change nothing."""
+    d1 = fake(gateway, "d1")
+    goto_id = await flying_goto(gateway)
+    ops = gateway.operations
+    assert ops is not None
+    goto = ops.get(goto_id)
+    lat, lon = goto.params["lat_deg"], goto.params["lon_deg"]
+    loop = asyncio.get_running_loop()
+    until_s = loop.time() + 3.0
+    while loop.time() < until_s:  # its own target, reported well after the command: not a takeover
+        d1.target = (lat, lon, time.monotonic())
+        await asyncio.sleep(0.1)
+    assert gateway.locks.takeover_for("d1") is None and not goto.finished
+    waiter = asyncio.create_task(gateway.commander.wait(goto_id, 60))
+    here = d1.telemetry.position
+    assert here is not None
+
+    def paused() -> bool:
+        d1.target = (here.value.lat_deg, here.value.lon_deg, time.monotonic())
+        return waiter.done()
+
+    await until(paused, "the goto interrupted")
+    view = waiter.result()
+    assert view.status == "interrupted", view
+    assert "left the gateway's target while staying in GUIDED" in view.message, view.message
+    assert "another ground station repositioned or paused it" in view.message
+    taken = gateway.locks.takeover_for("d1")
+    assert taken is not None and "the autopilot left the gateway's target" in taken.reason
 
 
 async def test_a_failsafe_is_named_in_the_autopilots_words(gateway: Gateway) -> None:
@@ -201,3 +237,34 @@ async def test_after_a_restart_monitor_and_arrival_tell_what_the_flying_drone_do
         arrival = await gateway.commander.arrival(AGENT, "d1")
         assert arrival.operation_id == goto_id and arrival.status == "interrupted" and not arrival.arrived
         assert arrival.distance_m is not None and arrival.distance_m > 250
+        # the mode watch is armed again for it: a pilot's later switch is a takeover as before
+        ops = gateway.operations
+        assert ops is not None
+        await until(lambda: (e := ops.expected("d1")) is not None and e.seen, "the watch armed again")
+        pilot_switch(fake(gateway, "d1"), "LOITER")
+        await until(lambda: gateway.locks.takeover_for("d1") is not None, "the takeover after the restart")
+        taken = gateway.locks.takeover_for("d1")
+        assert taken is not None and "left GUIDED" in taken.reason, taken
+        with pytest.raises(SafetyRefusal):
+            await gateway.commander.move_relative(AGENT, "d1", 10.0, 0.0)
+
+
+async def test_a_drone_found_flying_in_a_mode_the_gateway_did_not_command_is_watched_in_it(
+    tmp_path: Path,
+) -> None:
+    """Found in LOITER after a restart whose last command was a goto (GUIDED): judged by LOITER; the
+    gateway's own next command replaces that watch, a pilot's switch away from LOITER is a takeover."""
+    settings = unit_settings(tmp_path, mcp_wait_cap_s=10.0)
+    async with fake_gateway(settings, spread(1)) as gateway:
+        await flying_goto(gateway)
+    flying = spread(1)
+    flying[0].set(armed=True, in_air=True, landed_state="IN_AIR", flight_mode="LOITER",
+                  position=position_value(*flying[0].home_ll, 10.0))  # fmt: skip
+    async with fake_gateway(settings, flying) as gateway:
+        ops = gateway.operations
+        assert ops is not None
+        await until(lambda: ops.expected("d1") is not None, "the watch armed")
+        exp = ops.expected("d1")
+        assert exp is not None and exp.modes == {"LOITER"} and exp.kind == "found flying in LOITER"
+        pilot_switch(fake(gateway, "d1"), "ALT_HOLD")
+        await until(lambda: gateway.locks.takeover_for("d1") is not None, "the takeover")

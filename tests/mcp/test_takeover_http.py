@@ -173,3 +173,44 @@ async def test_the_gateways_own_commands_never_count_as_a_takeover(stack: Stack)
         r = structured(await stack.call(c, "return_to_launch", {"drone_id": "d1"}))
         assert r["status"] == "succeeded", r
     assert (await stack.rest("/vehicles/d1"))["taken_over"] is None
+
+
+def gcs_fly_to(url: str, lat: float, lon: float, alt_m: float) -> None:
+    """Another ground station sends the drone elsewhere in GUIDED (SET_POSITION_TARGET_GLOBAL_INT, a
+    ground station's "fly to here"): the mode stays GUIDED."""
+    address = url.removeprefix("tcpout://")
+    conn = mavutil.mavlink_connection(f"tcp:{address}", source_system=250, source_component=190)
+    try:
+        if conn.wait_heartbeat(timeout=scaled(10)) is None:
+            raise AssertionError(f"no HEARTBEAT on the second ground station port {address}")
+        conn.mav.set_position_target_global_int_send(
+            0, conn.target_system, 1, mavutil.mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, 0xDF8,
+            round(lat * 1e7), round(lon * 1e7), alt_m, 0, 0, 0, 0, 0, 0, 0, 0,
+        )  # fmt: skip
+    finally:
+        conn.close()
+
+
+async def test_a_second_ground_station_sending_the_drone_elsewhere_in_guided_is_a_takeover(
+    stack: Stack,
+) -> None:
+    async with stack.client("auto", name="agent") as c:
+        took = structured(await stack.call(c, "takeoff", {"drone_id": "d1", "alt_m": 10}))
+        assert took["status"] == "succeeded", took
+        here = await stack.true_state("d1")
+        lat, lon = point_from(here, 400.0, 0.0)
+        goto = {"drone_id": "d1", "lat_deg": lat, "lon_deg": lon, "alt_m": 10}
+        waiting = asyncio.create_task(stack.call(c, "go_to_location", goto))
+        await wait_until_true(stack, "d1", lambda s: s["ground_speed_mps"] > 2.0, "d1 on its way")
+        elsewhere = point_from(here, 0.0, 150.0)
+        await asyncio.to_thread(gcs_fly_to, stack.sim.gcs_urls[0], *elsewhere, 10.0)
+        sent = time.monotonic()
+        r = structured(await asyncio.wait_for(waiting, scaled(30)))
+        stack.figures["goto returned after another GCS's new target, s"] = round(time.monotonic() - sent, 2)
+        assert r["status"] == "interrupted", r
+        assert "the autopilot left the gateway's target while staying in GUIDED" in r["message"], r
+        text = error_text(await stack.call(c, "move_to_relative", {"drone_id": "d1", "north_m": 5}))
+        assert "taken_over" in text, text
+        assert (await stack.true_state("d1"))["mode"] == "GUIDED"
+        assert (await release(stack, "d1"))["was_locked"] is True
+        assert structured(await stack.call(c, "land", {"drone_id": "d1"}))["status"] == "succeeded"

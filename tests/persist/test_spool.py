@@ -4,14 +4,18 @@ written when the server is back, in the order it was made and with the times it 
 
 from __future__ import annotations
 
+import functools
 from collections.abc import AsyncIterator
 from datetime import UTC, datetime, timedelta
+from pathlib import Path
+from typing import Any
 
 import pytest
 import pytest_asyncio
 
 from gateway.registry.records import AuditEntry, OperationRecord, TrackSample
 from gateway.registry.spec import VehicleSpec
+from gateway.registry.spool import Spool
 from gateway.registry.store import Store
 from tests.persist.pg import PostgresServer, create_database, find_pg_bin, restartable_postgres
 
@@ -76,3 +80,38 @@ async def test_history_written_while_the_database_is_down_reaches_it_in_order_wh
     assert store.spool.dropped == 0
     # and once written, the store writes straight through again
     assert await store.add_audit(entry("after")) is not None
+
+
+async def test_the_spool_file_gives_a_restarted_node_what_it_kept_and_no_more(tmp_path: Path) -> None:
+    """The file alone (the database a function that refuses, then takes): kept writes are there in
+    order, those written are marked done, a line cut short by a kill is skipped, and an empty spool
+    leaves no file."""
+    path = tmp_path / "spool.jsonl"
+    down = True
+    written: list[tuple[str, dict[str, Any]]] = []
+
+    async def apply(kind: str, data: dict[str, Any]) -> None:
+        if down:
+            raise ConnectionRefusedError("database down")
+        written.append((kind, data))
+
+    first = Spool(apply=apply)
+    assert await first.attach(path) == 0 and not path.exists()
+    for i in range(3):
+        data = {"i": i}
+        assert (
+            await first.write(f"row {i}", functools.partial(apply, "row", data), record=("row", data)) is None
+        )
+    assert len(path.read_text().splitlines()) == 3
+    with path.open("a") as f:  # the node killed in the middle of a line
+        f.write('{"n": 3, "what": "row 3", "ki')
+    await first.close()  # (a kill leaves the file as it is; close cancels the retries)
+
+    down = False
+    second = Spool(apply=apply)
+    assert await second.attach(path) == 3
+    assert await second.flush(10.0)
+    assert written == [("row", {"i": 0}), ("row", {"i": 1}), ("row", {"i": 2})]
+    assert not path.exists()  # nothing waits: no file
+    third = Spool(apply=apply)
+    assert await third.attach(path) == 0 and len(written) == 3  # nothing is written twice

@@ -40,7 +40,7 @@ def spec(vid: str = "alpha", port: int = 5760, **kw) -> VehicleSpec:
 
 
 async def test_open_upgrades_to_head(store: Store) -> None:
-    assert await current_revision(store.engine) == head_revision() == "0005"
+    assert await current_revision(store.engine) == head_revision() == "0006"
     assert await store.ping()
 
 
@@ -157,6 +157,20 @@ async def test_migrations_match_the_models(store: Store) -> None:
 
 
 # --- vehicles ----------------------------------------------------------------------------------
+
+
+async def test_gcs_endpoints_are_stored_and_changed(store: Store) -> None:
+    endpoints = ["udpout://127.0.0.1:14550", "tcpin://127.0.0.1:5790"]
+    rec = await store.add_vehicle(spec("alpha", gcs_endpoints=endpoints))
+    assert rec.gcs_endpoints == endpoints and rec.spec.gcs_endpoints == endpoints
+    assert (await store.get_vehicle("alpha")).gcs_endpoints == endpoints  # type: ignore[union-attr]
+    changed = await store.update_vehicle("alpha", gcs_endpoints=endpoints[1:])
+    assert changed.gcs_endpoints == endpoints[1:]
+    with pytest.raises(InvalidArgument, match="is not accepted"):
+        await store.update_vehicle("alpha", gcs_endpoints=["serial:///dev/ttyUSB0"])
+    assert (await store.get_vehicle("alpha")).gcs_endpoints == endpoints[1:]  # type: ignore[union-attr]
+    await store.add_vehicle(spec("bravo", 5770))
+    assert (await store.get_vehicle("bravo")).gcs_endpoints == []  # type: ignore[union-attr]
 
 
 async def test_vehicle_crud(store: Store) -> None:

@@ -10,6 +10,7 @@ Figures (the call's return after the mode change) are printed, never asserted.""
 from __future__ import annotations
 
 import asyncio
+import math
 import time
 from pathlib import Path
 from typing import Any
@@ -23,11 +24,12 @@ from tests.helpers.timing import scaled
 from tests.mcp.conftest import structured
 from tests.real.test_tour_ardupilot import ARDUCOPTER
 from tests.real.test_tour_px4 import PX4
-from tests.real.tour import Profile, Tour, distance, gateway_over
+from tests.real.tour import Profile, Tour, distance, fleet_finish, gateway_over
 
 pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(600))]
 
 MAV_CMD_DO_SET_MODE = 176
+MAV_CMD_DO_REPOSITION = 192
 
 
 #: the second ground station's connection per address, kept for the test: PX4's GCS instance answers
@@ -35,10 +37,9 @@ MAV_CMD_DO_SET_MODE = 176
 _GCS: dict[str, Any] = {}
 
 
-def second_gcs_sets_mode(address: str, custom_mode: int, px4_modes: tuple[int, int] | None = None) -> float:
-    """Another ground station switches the mode: SET_MODE for ArduCopter (Mission Planner's mode
-    buttons), DO_SET_MODE with main/sub mode for PX4 (QGroundControl's). Returns when it was sent
-    (monotonic)."""
+def second_gcs(address: str) -> tuple[Any, int]:
+    """The second ground station's connection on ``address`` (opened once, kept) and the autopilot's
+    system id, once the autopilot is heard there."""
     conn = _GCS.get(address)
     if conn is None:
         conn = _GCS[address] = mavutil.mavlink_connection(address, source_system=250, source_component=190)
@@ -47,10 +48,16 @@ def second_gcs_sets_mode(address: str, custom_mode: int, px4_modes: tuple[int, i
         conn.mav.heartbeat_send(mavutil.mavlink.MAV_TYPE_GCS, mavutil.mavlink.MAV_AUTOPILOT_INVALID, 0, 0, 0)
         hb = conn.recv_match(type="HEARTBEAT", blocking=True, timeout=1.0)
         if hb is not None and hb.type != mavutil.mavlink.MAV_TYPE_GCS:
-            break
+            return conn, hb.get_srcSystem()
         if time.monotonic() > deadline:
             raise AssertionError(f"no HEARTBEAT from the autopilot on {address}")
-    target = hb.get_srcSystem()
+
+
+def second_gcs_sets_mode(address: str, custom_mode: int, px4_modes: tuple[int, int] | None = None) -> float:
+    """Another ground station switches the mode: SET_MODE for ArduCopter (Mission Planner's mode
+    buttons), DO_SET_MODE with main/sub mode for PX4 (QGroundControl's). Returns when it was sent
+    (monotonic)."""
+    conn, target = second_gcs(address)
     if px4_modes is None:
         conn.mav.set_mode_send(target, mavutil.mavlink.MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, custom_mode)
     else:
@@ -120,6 +127,109 @@ async def takeover_mid_goto(
     landed = await t.finish(await t.ok("land", drone_id=d), 120)
     assert landed["status"] == "succeeded", landed
     assert (await t.rest("GET", f"/vehicles/{d}"))["taken_over"] is None
+
+
+def second_gcs_pauses(address: str) -> float:
+    """Another ground station pauses the drone where it is, as QGroundControl's Pause does on PX4: a
+    DO_REPOSITION without a position (the mode stays Hold). Returns when it was sent (monotonic)."""
+    conn, target = second_gcs(address)
+    nan = math.nan
+    conn.mav.command_long_send(target, 1, MAV_CMD_DO_REPOSITION, 0, -1, 1, 0, nan, nan, nan, nan)
+    sent = time.monotonic()
+    ack = conn.recv_match(type="COMMAND_ACK", blocking=True, timeout=3.0)
+    assert ack is not None and ack.result == 0, ack
+    return sent
+
+
+async def px4_paused_by_a_second_gcs_mid_goto(t: Tour, ap: Autopilot) -> None:
+    """PX4 flies the gateway's gotos in Hold, so a second ground station's Hold selection changes nothing
+    (PX4 keeps flying the goto: measured) and its Pause (a reposition to where the drone is) leaves the
+    mode as it was. The autopilot's own target tells: the waiting goto ends interrupted, the drone holds
+    where the ground station put it while the agent keeps trying, and after an operator's release the
+    agent flies it again."""
+    d = t.ids[0]
+    assert ap.gcs is not None
+    op = await t.finish(await t.ok("takeoff", drone_id=d, alt_m=12), 90)
+    assert op["status"] == "succeeded", op
+    home = await t.ok("get_home_position", drone_id=d)
+    lat, lon = geo.offset_position(home["lat_deg"], home["lon_deg"], 400, 0)
+    waiting = asyncio.create_task(
+        t.call("go_to_location", {"drone_id": d, "lat_deg": lat, "lon_deg": lon, "alt_m": 12, "wait": True})
+    )
+    away = lambda p: distance(p, home["lat_deg"], home["lon_deg"]) > 40  # noqa: E731
+    await t.until("get_position", away, 120, "40 m out", drone_id=d)
+    # Hold selected by the second ground station: accepted, and nothing changes (the goto flies on)
+    await asyncio.to_thread(second_gcs_sets_mode, ap.gcs, 0, (4, 3))
+    before = await t.position(d)
+    await t.until("get_position", lambda p: distance(p, before["lat_deg"], before["lon_deg"]) > 15, 30,
+                  "the goto flying on after a Hold selection", drone_id=d)  # fmt: skip
+    assert not waiting.done()
+    returned: list[float] = []
+    waiting.add_done_callback(lambda _task: returned.append(time.monotonic()))
+    paused = await asyncio.to_thread(second_gcs_pauses, ap.gcs)
+    r = structured(await asyncio.wait_for(waiting, scaled(60)))
+    print(f"\nFIGURE px4: go_to_location returned {returned[0] - paused:.2f} s after the Pause was sent")
+    assert r["status"] == "interrupted", r
+    assert "the autopilot left the gateway's target while staying in AUTO.LOITER" in r["message"], r
+    assert "another ground station repositioned or paused it" in r["message"], r
+
+    loop = asyncio.get_running_loop()
+    until = loop.time() + 10.0
+    held = await t.position(d)
+    while loop.time() < until:
+        await t.refused("move_to_relative", "taken_over", drone_id=d, north_m=20, east_m=0)
+        assert (await t.ok("get_flight_mode", drone_id=d))["value"] == "HOLD"
+        await asyncio.sleep(0.5)
+    assert distance(await t.position(d), held["lat_deg"], held["lon_deg"]) < 10  # where the GCS paused it
+    assert (await t.rest("DELETE", f"/vehicles/{d}/takeover"))["was_locked"] is True
+    moved = await t.finish(await t.ok("move_to_relative", drone_id=d, north_m=10, east_m=0), 60)
+    assert moved["status"] == "succeeded", moved
+    landed = await t.finish(await t.ok("land", drone_id=d), 120)
+    assert landed["status"] == "succeeded", landed
+
+
+def second_gcs_flies_to(address: str, lat: float, lon: float, alt_m: float) -> float:
+    """Another ground station sends the drone elsewhere in GUIDED (SET_POSITION_TARGET_GLOBAL_INT, as a
+    ground station's "fly to here" does): the mode stays. Returns when it was sent (monotonic)."""
+    conn, target = second_gcs(address)
+    position_only = 0b110111111000
+    conn.mav.set_position_target_global_int_send(
+        0, target, 1, mavutil.mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, position_only,
+        int(lat * 1e7), int(lon * 1e7), alt_m, 0, 0, 0, 0, 0, 0, 0, 0,
+    )  # fmt: skip
+    return time.monotonic()
+
+
+async def arducopter_sent_elsewhere_by_a_second_gcs_mid_goto(t: Tour, ap: Autopilot) -> None:
+    """In GUIDED a second ground station sends the drone 150 m east of its goto: the mode stays GUIDED,
+    the autopilot's target tells. The waiting goto ends interrupted, the agent is refused, and after an
+    operator's release the agent lands it."""
+    d = t.ids[0]
+    assert ap.gcs is not None
+    op = await t.finish(await t.ok("takeoff", drone_id=d, alt_m=12), 90)
+    assert op["status"] == "succeeded", op
+    home = await t.ok("get_home_position", drone_id=d)
+    lat, lon = geo.offset_position(home["lat_deg"], home["lon_deg"], 400, 0)
+    waiting = asyncio.create_task(
+        t.call("go_to_location", {"drone_id": d, "lat_deg": lat, "lon_deg": lon, "alt_m": 12, "wait": True})
+    )
+    away = lambda p: distance(p, home["lat_deg"], home["lon_deg"]) > 40  # noqa: E731
+    here = await t.until("get_position", away, 120, "40 m out", drone_id=d)
+    await asyncio.to_thread(second_gcs, ap.gcs)
+    returned: list[float] = []
+    waiting.add_done_callback(lambda _task: returned.append(time.monotonic()))
+    elsewhere = geo.offset_position(here["lat_deg"], here["lon_deg"], 0, 150)
+    sent = await asyncio.to_thread(second_gcs_flies_to, ap.gcs, *elsewhere, 12)
+    r = structured(await asyncio.wait_for(waiting, scaled(60)))
+    after = returned[0] - sent
+    print(f"\nFIGURE ardupilot: go_to_location returned {after:.2f} s after the new target was sent")
+    assert r["status"] == "interrupted", r
+    assert "the autopilot left the gateway's target while staying in GUIDED" in r["message"], r
+    await t.refused("move_to_relative", "taken_over", drone_id=d, north_m=20, east_m=0)
+    assert (await t.ok("get_flight_mode", drone_id=d))["value"] == "GUIDED"
+    assert (await t.rest("DELETE", f"/vehicles/{d}/takeover"))["was_locked"] is True
+    landed = await t.finish(await t.ok("land", drone_id=d), 120)
+    assert landed["status"] == "succeeded", landed
 
 
 async def interrupted_by_second_gcs(
@@ -193,6 +303,12 @@ async def test_a_second_ground_station_switches_arducopter_to_loiter_mid_goto(
     await run(tmp_path, ARDUCOPTER, arducopter, takeover_mid_goto, **loiter)
 
 
+async def test_a_second_ground_station_sends_an_arducopter_elsewhere_in_guided(
+    arducopter, tmp_path: Path
+) -> None:
+    await run(tmp_path, ARDUCOPTER, arducopter, arducopter_sent_elsewhere_by_a_second_gcs_mid_goto)
+
+
 async def test_a_second_ground_station_takes_arducopter_mid_takeoff_and_mid_mission(
     arducopter, tmp_path: Path
 ) -> None:
@@ -209,6 +325,10 @@ async def test_a_second_ground_station_switches_px4_to_return_mid_goto(px4, tmp_
     await run(tmp_path, PX4, px4, takeover_mid_goto, **kw)
 
 
+async def test_a_second_ground_station_pauses_a_px4_goto_in_hold(px4, tmp_path: Path) -> None:
+    await run(tmp_path, PX4, px4, px4_paused_by_a_second_gcs_mid_goto)
+
+
 async def test_a_second_ground_station_takes_px4_mid_takeoff_and_mid_mission(px4, tmp_path: Path) -> None:
     takeoff = (
         {"custom_mode": 0, "px4_modes": (4, 6)},
@@ -219,3 +339,79 @@ async def test_a_second_ground_station_takes_px4_mid_takeoff_and_mid_mission(px4
         "the autopilot switched from AUTO.MISSION to AUTO.LOITER",
     )
     await run(tmp_path, PX4, px4, takeover_mid_takeoff_and_mission, takeoff=takeoff, mission=mission)
+
+
+async def takeover_mid_formation(
+    t: Tour, aps: list[Autopilot], *, switch: dict[str, Any], from_mode: str, to_mode: str, reported: str
+) -> None:
+    """Two drones take off together and fly a line formation 300 m north; 40 m out the second ground
+    station switches the second drone's mode. The waiting formation_goto returns aborted: that drone
+    `interrupted` naming both modes, the other `held` (docs/safety.md: a formation is planned together, so
+    it stops). The pilot's mode stays while the agent keeps trying for 10 s; once the pilot has it down,
+    an operator releases it and the agent flies it again."""
+    first, taken = t.ids
+    gcs = aps[1].gcs
+    assert gcs is not None
+    rise = await fleet_finish(t, await t.ok("fleet_takeoff", drone_ids=t.ids, alt_m=10, wait=False), 150)
+    assert rise["status"] == "succeeded", rise
+    home = await t.ok("get_home_position", drone_id=first)
+    lat, lon = geo.offset_position(home["lat_deg"], home["lon_deg"], 300, 0)
+    args = {"drone_ids": t.ids, "formation": "line", "center_lat_deg": lat, "center_lon_deg": lon,
+            "alt_m": 12, "spacing_m": 12, "wait": True}  # fmt: skip
+    waiting = asyncio.create_task(t.call("formation_goto", args))
+    away = lambda p: distance(p, home["lat_deg"], home["lon_deg"]) > 40  # noqa: E731
+    await t.until("get_position", away, 150, "40 m along the formation leg", drone_id=taken)
+    r = await interrupted_by_second_gcs(t, aps[1], waiting, switch, "formation_goto")
+    assert r["status"] == "aborted", r
+    members = {m["drone_id"]: m for m in r["drones"]}
+    assert members[taken]["status"] == "interrupted", members
+    assert f"the autopilot switched from {from_mode} to {to_mode}" in members[taken]["message"], members
+    assert members[first]["status"] == "held", members
+    arrival = await t.ok("check_arrival", drone_id=taken)
+    assert arrival["status"] == "interrupted" and to_mode in arrival["message"], arrival
+
+    # the agent keeps trying for 10 s: on the drone, and with a new formation; the pilot's mode stays
+    loop = asyncio.get_running_loop()
+    until = loop.time() + 10.0
+    tries = 0
+    while loop.time() < until:
+        await t.refused("move_to_relative", "taken_over", f"taken over in {to_mode}",
+                        drone_id=taken, north_m=20, east_m=0)  # fmt: skip
+        again = await t.call("formation_goto", {**args, "wait": False})
+        assert again.is_error and "taken_over" in again.content[0].text, again
+        assert (await t.ok("get_flight_mode", drone_id=taken))["value"] == reported
+        tries += 1
+        await asyncio.sleep(0.5)
+    assert tries >= 5
+    # the other drone still holds where the formation left it, in the gateway's hands
+    assert (await t.ok("get_flight_mode", drone_id=first))["value"] == t.profile.hold_mode
+
+    await released_when_down(t, taken)
+    op = await t.finish(await t.ok("takeoff", drone_id=taken, alt_m=8), 90)
+    assert op["status"] == "succeeded", op
+    down = await fleet_finish(t, await t.ok("fleet_land", drone_ids=t.ids, wait=False), 240)
+    assert down["status"] == "succeeded", down
+
+
+async def run_formation(tmp: Path, profile: Profile, aps: list[Autopilot], **kw: Any) -> None:
+    async with gateway_over(tmp, profile, aps, mcp_wait_cap_s=120.0) as (tour, _settings):
+        try:
+            await takeover_mid_formation(tour, aps, **kw)
+        except AssertionError as exc:
+            logs = "\n".join(f"--- {a.log.name}\n{a.log_tail(15)}" for a in aps)
+            raise AssertionError(f"{exc}\n{logs}") from None
+        finally:
+            conn = _GCS.pop(aps[1].gcs or "", None)
+            if conn is not None:
+                conn.close()
+
+
+async def test_a_second_ground_station_takes_an_arducopter_mid_formation(launch, tmp_path: Path) -> None:
+    kw = {"switch": {"custom_mode": 5}, "from_mode": "GUIDED", "to_mode": "LOITER", "reported": "LOITER"}
+    await run_formation(tmp_path, ARDUCOPTER, launch("ardupilot", 2), **kw)
+
+
+async def test_a_second_ground_station_takes_a_px4_mid_formation(launch, tmp_path: Path) -> None:
+    rtl = {"custom_mode": 0, "px4_modes": (4, 5)}
+    kw = {"switch": rtl, "from_mode": "AUTO.LOITER", "to_mode": "AUTO.RTL", "reported": "RETURN_TO_LAUNCH"}
+    await run_formation(tmp_path, PX4, launch("px4", 2), **kw)

@@ -316,3 +316,79 @@ async def test_a_booting_autopilots_zero_or_nan_position_is_never_cached() -> No
         )
     finally:
         await feed.stop()
+
+
+async def test_telemetry_rates_follow_the_drone_between_rest_and_active() -> None:
+    """At rest the streams are asked for at their rest rates; the first landed state that shows the drone
+    in the air (or an armed HEARTBEAT) switches position to 5 Hz for the trackers, and back to 1 Hz once
+    it is disarmed on the ground. in_air is taken from the landed state (no stream of its own), and
+    MAVSDK's flight mode stream is not subscribed where the link names the modes itself."""
+    import asyncio
+    import enum
+
+    from gateway.link.telemetry import ACTIVE_RATES_HZ, STREAM_RATES_HZ, TelemetryFeed
+
+    class Landed(enum.Enum):
+        ON_GROUND = 1
+        IN_AIR = 2
+        TAKING_OFF = 3
+        UNKNOWN = 0
+
+    landed: asyncio.Queue[Landed] = asyncio.Queue()
+    subscribed: list[str] = []
+    rates: list[tuple[str, float]] = []
+
+    async def landed_states():
+        while True:
+            yield await landed.get()
+
+    async def silent():
+        await asyncio.Event().wait()
+        yield None
+
+    class Telemetry:
+        def __getattr__(self, name: str):
+            if name.startswith("set_rate_"):
+
+                async def set_rate(hz: float) -> None:
+                    rates.append((name.removeprefix("set_rate_"), hz))
+
+                return set_rate
+            subscribed.append(name)
+            return landed_states if name == "landed_state" else silent
+
+    async def call(_what: str, aw):
+        return await aw
+
+    async def until(predicate, what: str) -> None:
+        deadline = asyncio.get_running_loop().time() + 10
+        while not predicate():
+            assert asyncio.get_running_loop().time() < deadline, f"timed out waiting for {what}"
+            await asyncio.sleep(0.01)
+
+    cache = TelemetryCache()
+    system = SimpleNamespace(telemetry=Telemetry(), mission_raw=SimpleNamespace(mission_progress=silent))
+    feed = TelemetryFeed("d1", system, cache, use_mavsdk_flight_mode=lambda: False)
+    feed.start()
+    try:
+        await feed.request_rates(call)
+        assert dict(rates) == STREAM_RATES_HZ  # at rest: every stream at its rest rate
+        assert "in_air" not in subscribed and "armed" not in subscribed and "heading" not in subscribed
+        rates.clear()
+        landed.put_nowait(Landed.TAKING_OFF)
+        await until(lambda: dict(rates) == ACTIVE_RATES_HZ, "the active rates")
+        assert cache.fresh("in_air") is True and cache.fresh("landed_state") == "TAKING_OFF"
+        rates.clear()
+        landed.put_nowait(Landed.UNKNOWN)  # keeps the last answer, as MAVSDK's in_air does
+        await until(lambda: cache.fresh("landed_state") == "UNKNOWN", "the unknown landed state")
+        assert cache.fresh("in_air") is True and feed.active and rates == []
+        cache.put("armed", True)  # landed but still armed: still active
+        landed.put_nowait(Landed.ON_GROUND)
+        await until(lambda: cache.fresh("in_air") is False, "on the ground")
+        assert feed.active and rates == []
+        cache.put("armed", False)  # disarmed: the next item brings the rest rates back
+        landed.put_nowait(Landed.ON_GROUND)
+        await until(lambda: dict(rates) == {k: STREAM_RATES_HZ[k] for k in ACTIVE_RATES_HZ}, "the rest rates")
+        assert not feed.active and "flight_mode" not in subscribed
+    finally:
+        await feed.stop()

@@ -1,5 +1,6 @@
-"""The seam between the flight verbs and an autopilot: the ``Dialect`` Protocol, and what a dialect may use
-of the vehicle's link (``LinkOps``).
+"""The seam between the flight verbs and an autopilot: the ``Dialect`` Protocol (``DialectReads``, what is
+read through it, and what sending commands needs), and what a dialect may use of the vehicle's link
+(``LinkOps``).
 
 A dialect owns what differs between autopilots: its flight modes and the mapping of the common mode
 names onto them, how a mission is laid out on the wire (ArduPilot's home slot 0; PX4 none) and how its
@@ -12,7 +13,7 @@ Everything else (the verbs, the operations, the policy) is the same for every au
 from __future__ import annotations
 
 from collections.abc import Awaitable, Callable, Mapping
-from typing import Any, Protocol, TypeVar
+from typing import Protocol, TypeVar
 
 from mavsdk_grpc import System
 
@@ -41,9 +42,10 @@ class LinkOps(Protocol):
     async def command_long(self, command: int, *params: float, what: str) -> None: ...
 
 
-class Dialect(Protocol):
-    """One autopilot's way of doing what the verbs need. Implementations: ``ardupilot.ArduPilot``,
-    ``px4.PX4``; ``gateway.fleet.dialects.dialect_for`` picks one from the HEARTBEAT's autopilot."""
+class DialectReads(Protocol):
+    """What the gateway reads through an autopilot's dialect: link facts, the names of its modes, the
+    landed state, mission progress and its parameters. Every autopilot has this much, even one the
+    gateway has no dialect for (``unsupported.Unsupported``)."""
 
     @property
     def name(self) -> str:
@@ -83,7 +85,52 @@ class Dialect(Protocol):
         kind the dialect does not fly in a known mode (then nothing is judged)."""
         ...
 
-    # --- arming and the ground -----------------------------------------------------------------------
+    # --- the ground ----------------------------------------------------------------------------------
+    def on_ground(self, telemetry: TelemetryCache, *, fresh: bool = True) -> bool | None:
+        """Whether the vehicle is on the ground: None when no fresh telemetry says (``fresh=False``:
+        from the cached values however old, for trackers that judge staleness themselves)."""
+        ...
+
+    # --- missions ------------------------------------------------------------------------------------
+    def mission_progress(
+        self,
+        current_seq: int,
+        total: int,
+        plan: WirePlan | None,
+        finished: bool,
+        *,
+        from_mission_current: bool,
+    ) -> MissionProgressValue:
+        """Wire progress in user item numbers. ``total`` is MAVSDK's wire count or, with
+        ``from_mission_current``, MISSION_CURRENT.total (which leaves ArduPilot's home out)."""
+        ...
+
+    # --- parameters ----------------------------------------------------------------------------------
+    @property
+    def return_altitude_params(self) -> tuple[tuple[str, float], ...]:
+        """The parameter RTL climbs to before flying home and its units per metre; several when
+        versions of the autopilot name it differently (the first the vehicle has is used). Empty when
+        the gateway does not know it."""
+        ...
+
+    @property
+    def protected_params(self) -> tuple[str, ...]:
+        """Glob patterns of parameters agents may not write (arming checks, fences, failsafes, ids)."""
+        ...
+
+    @property
+    def limit_params(self) -> Mapping[str, ParamLimit]:
+        """The parameters that set what the autopilot flies at, by name, each with the policy limit it
+        could walk around (checked on an agent's write)."""
+        ...
+
+
+class Dialect(DialectReads, Protocol):
+    """One autopilot's way of doing what the verbs need: its reads, and how commands are sent to it.
+    Implementations: ``ardupilot.ArduPilot``, ``px4.PX4``; ``gateway.fleet.dialects`` finds them in its
+    registry by the autopilot the HEARTBEAT names."""
+
+    # --- arming ----------------------------------------------------------------------------------------
     @property
     def arming_mode(self) -> str | None:
         """The mode to switch to before arming (ArduPilot: GUIDED), None to arm in the current one."""
@@ -91,11 +138,6 @@ class Dialect(Protocol):
 
     def arming_will_pass(self, complaint: str) -> bool:
         """Whether an arming refusal is one the autopilot lifts by itself while it initialises."""
-        ...
-
-    def on_ground(self, telemetry: TelemetryCache, *, fresh: bool = True) -> bool | None:
-        """Whether the vehicle is on the ground: None when no fresh telemetry says (``fresh=False``:
-        from the cached values however old, for trackers that judge staleness themselves)."""
         ...
 
     async def set_yaw(self, link: LinkOps, heading_deg: float) -> None:
@@ -120,39 +162,8 @@ class Dialect(Protocol):
         """Whether a status text is the autopilot rejecting the uploaded mission."""
         ...
 
-    def mission_progress(
-        self,
-        current_seq: int,
-        total: int,
-        plan: WirePlan | None,
-        finished: bool,
-        *,
-        from_mission_current: bool,
-    ) -> MissionProgressValue:
-        """Wire progress in user item numbers. ``total`` is MAVSDK's wire count or, with
-        ``from_mission_current``, MISSION_CURRENT.total (which leaves ArduPilot's home out)."""
-        ...
-
     async def start_mission_on_ground(self, link: LinkOps, arm: Callable[[], Awaitable[None]]) -> None:
         """Arm and start the uploaded (accepted) mission from the ground; the vehicle takes off."""
-        ...
-
-    # --- parameters ----------------------------------------------------------------------------------
-    @property
-    def return_altitude_params(self) -> tuple[tuple[str, float], ...]:
-        """The parameter RTL climbs to before flying home and its units per metre; several when
-        versions of the autopilot name it differently (the first the vehicle has is used)."""
-        ...
-
-    @property
-    def protected_params(self) -> tuple[str, ...]:
-        """Glob patterns of parameters agents may not write (arming checks, fences, failsafes, ids)."""
-        ...
-
-    @property
-    def limit_params(self) -> Mapping[str, ParamLimit]:
-        """The parameters that set what the autopilot flies at, by name, each with the policy limit it
-        could walk around (checked on an agent's write)."""
         ...
 
 
@@ -170,7 +181,7 @@ def user_progress(
     return MissionProgressValue(user_total if finished else user, user_total, finished)
 
 
-def reader(telemetry: TelemetryCache, fresh: bool) -> Callable[[str], Any]:
+def reader(telemetry: TelemetryCache, fresh: bool) -> Callable[[str], object]:
     """How a dialect reads a telemetry value: fresh only, or the cached one however old."""
     if fresh:
         return telemetry.fresh

@@ -19,7 +19,7 @@ from typing import Annotated, Any, Literal
 from pydantic import Field
 
 from gateway.fleet.fleet_verbs import Formation
-from gateway.fleet.protocols import FlyingVehicle
+from gateway.fleet.protocols import VehicleView
 from gateway.fleet.readings import position, value
 from gateway.fleet.views import FleetHoldResult, FleetView
 from gateway.mcp.access import ToolCall
@@ -124,7 +124,7 @@ async def _finish(call: ToolCall, view: FleetView, wait: bool) -> FleetOut:
 # --- read tools ----------------------------------------------------------------------------------------
 
 
-def _row(call: ToolCall, v: FlyingVehicle) -> DroneRow:
+def _row(call: ToolCall, v: VehicleView) -> DroneRow:
     pos = position(v)
     battery = value(v, "battery")
     sample = v.telemetry.position

@@ -1,0 +1,121 @@
+"""A fenced node's last way to stop the drones it owned: one MAVLink command over the drone's own link.
+
+A node that cannot renew its leases (PostgreSQL unreachable) stops its sidecars, so that no second node
+can ever command its drones. Landing or returning is the one command that is safe to send twice (a
+drone told to land by two nodes lands), so for an emergency stop the fenced node opens the drone's link
+itself for a moment, sends ``MAV_CMD_NAV_LAND`` or ``MAV_CMD_NAV_RETURN_TO_LAUNCH`` (a COMMAND_LONG,
+the same for ArduPilot and PX4), or, to hold, asks the drone where it is (``GLOBAL_POSITION_INT``) and
+sends ``MAV_CMD_DO_REPOSITION`` there (a COMMAND_INT that switches to GUIDED on ArduPilot, to hold on
+PX4: the gateway's own hold), waits briefly for its COMMAND_ACK, and closes the link again, so the
+sidecar that the next owner starts finds it free.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import math
+import time
+from dataclasses import dataclass
+from typing import Any
+from urllib.parse import urlparse
+
+from pymavlink import mavutil
+
+#: the stops a fenced node can send without its sidecar: the verb -> MAV_CMD
+STOP_COMMANDS = {
+    "land": 21,
+    "return_to_launch": 20,
+    "hold": 192,
+}  # NAV_LAND, NAV_RETURN_TO_LAUNCH, DO_REPOSITION
+MAV_CMD_REQUEST_MESSAGE = 512
+GLOBAL_POSITION_INT = 33
+MAV_FRAME_GLOBAL_RELATIVE_ALT_INT = 6
+MAV_DO_REPOSITION_FLAGS_CHANGE_MODE = 1
+SOURCE_SYSTEM = 245  # a ground station's id, as mavsdk_server uses
+SOURCE_COMPONENT = 191  # not mavsdk_server's 190: the autopilot's log tells the two apart
+RESEND_S = 0.3
+MAV_RESULT = {0: "ACCEPTED", 1: "TEMPORARILY_REJECTED", 2: "DENIED", 3: "UNSUPPORTED", 4: "FAILED",
+              5: "IN_PROGRESS", 6: "CANCELLED"}  # fmt: skip
+
+
+@dataclass(frozen=True)
+class StopTarget:
+    """What a node remembers of a drone it owned when it fenced itself."""
+
+    vehicle_id: str
+    url: str
+    sysid: int | None
+    epoch: int
+
+
+def pymavlink_device(url: str) -> tuple[str, dict[str, Any], bool]:
+    """The drone's URL (mavsdk_server syntax) as pymavlink's device, its options, and whether the link
+    must first hear the drone to know where to send (we listen: ``udpin``, ``tcpin``)."""
+    parts = urlparse(url)
+    if parts.scheme == "serial":
+        path, _, baud = (parts.path or parts.netloc).partition(":")
+        return path, {"baud": int(baud) if baud else 57600}, False
+    where = f"{parts.hostname}:{parts.port}"
+    if parts.scheme == "tcpout":
+        return f"tcp:{where}", {"retries": 1}, False
+    if parts.scheme == "tcpin":
+        return f"tcpin:{where}", {}, True
+    if parts.scheme == "udpin":
+        return f"udpin:{where}", {}, True
+    if parts.scheme == "udpout":
+        return f"udpout:{where}", {}, False
+    raise ValueError(f"url: the scheme must be one of serial, tcpout, tcpin, udpin, udpout; got '{url}'")
+
+
+def _send(target: StopTarget, command: int, within_s: float) -> str:
+    device, options, listen_first = pymavlink_device(target.url)
+    deadline = time.monotonic() + within_s
+    conn = mavutil.mavlink_connection(
+        device, source_system=SOURCE_SYSTEM, source_component=SOURCE_COMPONENT, **options
+    )
+    try:
+        sysid = target.sysid
+        if listen_first or sysid is None:
+            beat = conn.wait_heartbeat(blocking=True, timeout=max(0.1, deadline - time.monotonic()))
+            if beat is None:
+                raise TimeoutError(f"no HEARTBEAT from {target.vehicle_id} within {within_s:g} s")
+            sysid = sysid or beat.get_srcSystem()
+        send = _sender(conn, sysid, command, deadline)
+        sent = 0
+        while time.monotonic() < deadline:
+            send()
+            sent += 1
+            until = min(deadline, time.monotonic() + RESEND_S)
+            while time.monotonic() < until:
+                ack = conn.recv_match(type="COMMAND_ACK", blocking=True, timeout=until - time.monotonic())
+                if ack is not None and ack.command == command:
+                    return MAV_RESULT.get(ack.result, str(ack.result))
+        return f"no COMMAND_ACK after {sent} sends"
+    finally:
+        conn.close()
+
+
+def _sender(conn: Any, sysid: int, command: int, deadline: float) -> Any:
+    """How to send ``command``: a COMMAND_LONG, or for a hold a reposition to where the drone is now."""
+    if command != STOP_COMMANDS["hold"]:
+        return lambda: conn.mav.command_long_send(sysid, 1, command, 0, 0, 0, 0, 0, 0, 0, 0)
+    where = None
+    while where is None and time.monotonic() < deadline:
+        conn.mav.command_long_send(
+            sysid, 1, MAV_CMD_REQUEST_MESSAGE, 0, GLOBAL_POSITION_INT, 0, 0, 0, 0, 0, 0
+        )
+        where = conn.recv_match(type="GLOBAL_POSITION_INT", blocking=True, timeout=RESEND_S)
+    if where is None:
+        raise TimeoutError("the drone did not say where it is (GLOBAL_POSITION_INT): nothing sent")
+    lat, lon, alt_m = where.lat, where.lon, where.relative_alt / 1000.0
+    return lambda: conn.mav.command_int_send(
+        sysid, 1, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, command, 0, 0,
+        -1, MAV_DO_REPOSITION_FLAGS_CHANGE_MODE, 0, math.nan, lat, lon, alt_m,
+    )  # fmt: skip
+
+
+async def send_stop(target: StopTarget, verb: str, within_s: float = 1.5) -> str:
+    """Send the stop ``verb`` (land, return_to_launch, hold) straight to the drone; the autopilot's answer
+    (``ACCEPTED``...) or ``no COMMAND_ACK ...``. Raises OSError/TimeoutError when the link cannot be
+    opened (another process holds it, the drone is silent)."""
+    return await asyncio.to_thread(_send, target, STOP_COMMANDS[verb], within_s)

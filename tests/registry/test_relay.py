@@ -1,0 +1,255 @@
+"""The ground station relay (gateway/link/relay.py) on real loopback sockets and a pseudo-terminal:
+framing, routing (each frame to whom it concerns, system ids kept) and every kind of endpoint. pymavlink
+plays the drone, the sidecar and the ground stations."""
+
+from __future__ import annotations
+
+import asyncio
+import os
+import sys
+import time
+import tty
+from collections.abc import AsyncIterator
+from typing import Any
+
+import pytest
+import pytest_asyncio
+
+os.environ.setdefault("MAVLINK20", "1")  # the peers speak MAVLink 2 (addressed COMMAND_ACK)
+from pymavlink import mavutil
+from pymavlink.dialects.v10 import ardupilotmega as mavlink1
+from pymavlink.dialects.v20 import ardupilotmega as mavlink
+
+from gateway.link.relay import FrameSplitter, Relay, target_system
+from gateway.util.ports import free_tcp_port, free_udp_port
+from tests.helpers.timing import scaled
+
+DRONE, SIDECAR, GCS_A, GCS_B = 1, 245, 255, 250
+
+
+def frame(msg: Any, sysid: int = DRONE) -> bytes:
+    return bytes(msg.pack(mavlink.MAVLink(None, srcSystem=sysid, srcComponent=1)))
+
+
+def heartbeat() -> Any:
+    return mavlink.MAVLink_heartbeat_message(2, 3, 81, 4, 3, 3)
+
+
+def ack(target: int) -> Any:
+    return mavlink.MAVLink_command_ack_message(176, 0, 0, 0, target, 190)
+
+
+def test_frames_are_cut_from_a_stream_with_noise_and_bad_frames_between() -> None:
+    good = frame(heartbeat())
+    targeted = frame(ack(GCS_A))
+    broken = bytearray(frame(heartbeat()))
+    broken[-1] ^= 0xFF  # its CRC no longer matches
+    stream = b"\x00\xfe\x13noise" + good + bytes(broken) + targeted + good[:7]
+    splitter = FrameSplitter()
+    frames = splitter.feed(stream[:20]) + splitter.feed(stream[20:])
+    assert [f.data for f in frames] == [good, targeted]
+    assert [f.sysid for f in frames] == [DRONE, DRONE]
+    assert [f.msgid for f in frames] == [0, 77]
+    assert splitter.feed(good[7:]) and [target_system(f) for f in frames] == [0, GCS_A]
+    v1 = bytes(mavlink1.MAVLink_heartbeat_message(2, 3, 81, 4, 3, 3).pack(mavlink1.MAVLink(None, 1, 1)))
+    assert v1[0] == 0xFE and [f.data for f in FrameSplitter().feed(v1)] == [v1]
+
+
+class Peer:
+    """A pymavlink connection with a background-free receive helper."""
+
+    def __init__(self, address: str, sysid: int) -> None:
+        self.conn = mavutil.mavlink_connection(address, source_system=sysid, source_component=1)
+
+    def receive(self, kind: str, within_s: float, condition: Any = None) -> Any | None:
+        deadline = time.monotonic() + scaled(within_s)
+        while time.monotonic() < deadline:
+            msg = self.conn.recv_match(type=kind, blocking=True, timeout=0.2)
+            if msg is not None and (condition is None or condition(msg)):
+                return msg
+        return None
+
+    def close(self) -> None:
+        self.conn.close()
+
+
+@pytest_asyncio.fixture
+async def relay_with_peers() -> AsyncIterator[tuple[Relay, dict[str, Peer]]]:
+    """Drone at udpin (the relay sends to it), ground station A at a tcpin endpoint, B at udpout."""
+    drone_port, tcp_port, udp_port = free_udp_port(), free_tcp_port(), free_udp_port()
+    drone = Peer(f"udpin:127.0.0.1:{drone_port}", DRONE)
+    gcs_b = Peer(f"udpin:127.0.0.1:{udp_port}", GCS_B)
+    relay = Relay(
+        "r1",
+        f"udpout://127.0.0.1:{drone_port}",
+        [f"tcpin://127.0.0.1:{tcp_port}", f"udpout://127.0.0.1:{udp_port}"],
+    )
+    await relay.start()
+    sidecar = Peer(relay.sidecar_url.replace("udpout://", "udpout:"), SIDECAR)
+    gcs_a = await asyncio.to_thread(Peer, f"tcp:127.0.0.1:{tcp_port}", GCS_A)
+    peers = {"drone": drone, "sidecar": sidecar, "a": gcs_a, "b": gcs_b}
+    try:
+        yield relay, peers
+    finally:
+        for peer in peers.values():
+            peer.close()
+        await relay.close()
+
+
+async def test_frames_go_to_whom_they_concern_with_their_system_ids(
+    relay_with_peers: tuple[Relay, dict[str, Peer]],
+) -> None:
+    relay, p = relay_with_peers
+    # the sidecar and ground station A speak first: the drone (udpin) learns where the relay is
+    for name in ("sidecar", "a"):
+        p[name].conn.mav.heartbeat_send(6, 8, 0, 0, 0)
+    heard = set()
+    for _ in range(2):
+        hb = await asyncio.to_thread(p["drone"].receive, "HEARTBEAT", 10)
+        assert hb is not None, f"the drone heard only {heard}"
+        heard.add(hb.get_srcSystem())
+    assert heard == {SIDECAR, GCS_A}  # each keeps its own system id
+
+    p["drone"].conn.mav.heartbeat_send(2, 3, 81, 4, 3)
+    for name in ("sidecar", "a", "b"):
+        hb = await asyncio.to_thread(p[name].receive, "HEARTBEAT", 10, lambda m: m.get_srcSystem() == DRONE)
+        assert hb is not None, f"{name} got no HEARTBEAT from the drone"
+    p["b"].conn.mav.heartbeat_send(6, 8, 0, 0, 0)  # B (udpin) answers whoever sent to it: the relay
+    hb = await asyncio.to_thread(p["drone"].receive, "HEARTBEAT", 10)
+    assert hb is not None and hb.get_srcSystem() == GCS_B
+
+    # addressed frames: only where their system was heard
+    p["drone"].conn.write(frame(ack(GCS_A)))
+    p["drone"].conn.write(frame(ack(SIDECAR)))
+    got_a = await asyncio.to_thread(p["a"].receive, "COMMAND_ACK", 10)
+    got_sidecar = await asyncio.to_thread(p["sidecar"].receive, "COMMAND_ACK", 10)
+    assert got_a is not None and got_a.target_system == GCS_A
+    assert got_sidecar is not None and got_sidecar.target_system == SIDECAR
+    assert await asyncio.to_thread(p["a"].receive, "COMMAND_ACK", 1) is None  # not the sidecar's
+    assert await asyncio.to_thread(p["b"].receive, "COMMAND_ACK", 1) is None  # neither for B
+    assert await asyncio.to_thread(p["sidecar"].receive, "COMMAND_ACK", 1) is None
+
+    # a ground station's traffic goes to the drone only, never to the sidecar
+    p["a"].conn.mav.command_long_send(DRONE, 1, 176, 0, 1, 5, 0, 0, 0, 0, 0)
+    cmd = await asyncio.to_thread(p["drone"].receive, "COMMAND_LONG", 10)
+    assert cmd is not None and cmd.get_srcSystem() == GCS_A
+    assert await asyncio.to_thread(p["sidecar"].receive, "COMMAND_LONG", 1) is None
+    status = {s["url"].split(":")[0]: s for s in relay.status()}
+    assert status["tcpin"]["system_ids"] == [GCS_A] and status["udpout"]["system_ids"] == [GCS_B]
+    assert status["tcpin"]["frames_in"] >= 2 and status["tcpin"]["frames_out"] >= 2
+    assert status["tcpin"]["peer"] is not None and status["tcpin"]["error"] is None
+
+
+async def test_a_serial_vehicle_is_relayed() -> None:
+    master, slave = os.openpty()
+    tty.setraw(master)
+    udp_port = free_udp_port()
+    gcs = Peer(f"udpin:127.0.0.1:{udp_port}", GCS_A)
+    relay = Relay("r2", f"serial://{os.ttyname(slave)}:115200", [f"udpout://127.0.0.1:{udp_port}"])
+    await relay.start()
+    try:
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + scaled(10)
+        while relay.vehicle.peer is None:  # the device is opened by the relay's own task
+            assert loop.time() < deadline, relay.complaint
+            await asyncio.sleep(0.05)
+        os.write(master, frame(heartbeat()))
+        hb = await asyncio.to_thread(gcs.receive, "HEARTBEAT", 10)
+        assert hb is not None and hb.get_srcSystem() == DRONE
+        gcs.conn.mav.command_long_send(DRONE, 1, 176, 0, 1, 5, 0, 0, 0, 0, 0)
+        splitter, got = FrameSplitter(), []
+        while not got:
+            assert loop.time() < deadline + scaled(10), "nothing reached the serial device"
+            await asyncio.sleep(0.05)
+            try:
+                got = splitter.feed(os.read(master, 4096))
+            except BlockingIOError:
+                continue
+        assert got[0].sysid == GCS_A and got[0].msgid == 76
+    finally:
+        await relay.close()
+        gcs.close()
+        os.close(master)
+        os.close(slave)
+
+
+async def test_a_vehicle_nobody_answers_for_is_named_with_the_reason() -> None:
+    port = free_tcp_port()
+    relay = Relay("r3", f"tcpout://127.0.0.1:{port}", [f"udpout://127.0.0.1:{free_udp_port()}"])
+    await relay.start()
+    try:
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + scaled(10)
+        while relay.complaint is None:
+            assert loop.time() < deadline
+            await asyncio.sleep(0.05)
+        assert f"cannot connect to 127.0.0.1:{port}: Connection refused" in relay.complaint
+    finally:
+        await relay.close()
+
+
+async def test_a_ground_station_port_already_taken_is_reported_and_opened_once_free() -> None:
+    port = free_tcp_port()
+    blocker = await asyncio.start_server(lambda r, w: None, "127.0.0.1", port)
+    relay = Relay("r4", f"udpout://127.0.0.1:{free_udp_port()}", [f"tcpin://127.0.0.1:{port}"])
+    try:
+        await relay.start()
+        [status] = relay.status()
+        assert status["error"] == f"cannot open tcpin://127.0.0.1:{port}: Address already in use", status
+        assert relay.sidecar_url.startswith("udpout://127.0.0.1:")
+        blocker.close()
+        await blocker.wait_closed()
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + scaled(20)
+        while relay.status()[0]["error"] is not None:  # tried again until the port is free
+            assert loop.time() < deadline, relay.status()
+            await asyncio.sleep(0.1)
+        gcs = await asyncio.to_thread(Peer, f"tcp:127.0.0.1:{port}", GCS_A)
+        gcs.close()
+    finally:
+        await relay.close()
+        blocker.close()
+
+
+@pytest.mark.parametrize("bad", ["serial:///dev/ttyS0", "http://127.0.0.1:1", "udpout://127.0.0.1"])
+def test_bad_endpoints_are_refused_in_one_line(bad: str) -> None:
+    from pydantic import ValidationError
+
+    from gateway.registry.spec import VehicleSpec
+
+    with pytest.raises(ValidationError) as err:
+        VehicleSpec(id="a", url="tcpout://127.0.0.1:5760", gcs_endpoints=[bad])
+    [e] = err.value.errors()
+    assert e["loc"] == ("gcs_endpoints",)
+    assert f"'{bad}' is not accepted" in e["msg"] and "udpout://host:port" in e["msg"]
+
+
+async def test_only_the_sidecar_process_is_taken_as_the_sidecar() -> None:
+    """Another local process writing to the relay's sidecar port does not get between the sidecar and
+    the drone: its frames are dropped, and the drone's still go to the sidecar."""
+    drone_port = free_udp_port()
+    drone = Peer(f"udpin:127.0.0.1:{drone_port}", DRONE)
+    relay = Relay("r5", f"udpout://127.0.0.1:{drone_port}", [], sidecar_pid=os.getpid)
+    await relay.start()
+    port = relay.sidecar.bound_port
+    intruder = frame(mavlink.MAVLink_heartbeat_message(6, 8, 0, 0, 0, 3), sysid=66).hex()
+    script = (
+        "import socket,sys;s=socket.socket(socket.AF_INET,socket.SOCK_DGRAM);"
+        f"s.sendto(bytes.fromhex('{intruder}'),('127.0.0.1',{port}))"
+    )
+    sidecar = Peer(relay.sidecar_url.replace("udpout://", "udpout:"), SIDECAR)
+    try:
+        proc = await asyncio.create_subprocess_exec(sys.executable, "-c", script)
+        assert await proc.wait() == 0
+        sidecar.conn.mav.heartbeat_send(6, 8, 0, 0, 0)
+        hb = await asyncio.to_thread(drone.receive, "HEARTBEAT", 10)
+        assert hb is not None and hb.get_srcSystem() == SIDECAR
+        assert (
+            await asyncio.to_thread(drone.receive, "HEARTBEAT", 1, lambda m: m.get_srcSystem() == 66) is None
+        )
+        drone.conn.mav.heartbeat_send(2, 3, 81, 4, 3)
+        assert await asyncio.to_thread(sidecar.receive, "HEARTBEAT", 10) is not None
+    finally:
+        sidecar.close()
+        drone.close()
+        await relay.close()
