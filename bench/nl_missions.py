@@ -9,12 +9,21 @@ hosted providers).
   python bench/nl_missions.py --endpoint ... --model ... --toolsets flight,navigation,fleet
   python bench/nl_missions.py --serve-local 1.5b --profile small --runs 3 --write   # make bench-nl
   python bench/nl_missions.py --self-check          # no model: checks the harness itself
+  python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the corpus's test half, per class
+  python bench/nl_missions.py --half dev --sitl      # the dev half on three ArduCopter SITL drones
+
+--half dev|test|all runs the generalisation corpus (bench/nl_corpus.py: 40 requests in 8 classes, a fixed
+development/test split) instead of the 12 missions, and reports per half and per class. --sitl flies on
+three real ArduCopter SITL instances (``eval "$(/work/shared/sitl/install)"``) instead of the simulator;
+the truth is then the gateway's telemetry, and requests that set a battery level are left out (SITL's
+battery cannot be set by the harness).
 
 Each mission runs --runs times (default 3); success is counted per run. A run passes only when the model
 answered in words (an empty answer never passes) and the check of the drones' true state passes. A
 failed run is classified: empty answer, step limit, model error, invented id, wrong tool, wrong
-argument, repeat, gateway refusal, wrong outcome. --serve-local starts ../shared/llm/serve-local-model
-(a measuring instrument outside the project) and stops it afterwards.
+argument, repeat, gateway refusal, wrong outcome. --serve-local starts llm/serve-local-model of the shared
+folder (--shared-dir, else $FLEET_SHARED_DIR, else ../shared beside the checkout; a measuring instrument
+outside the project) and stops it afterwards.
 
 Without --model (and no GATEWAY_AGENT_MODEL) it runs the HARNESS SELF-CHECK: a scripted endpoint replays
 the ideal call sequence of each mission. That verifies the sim, gateway, MCP, host loop and checks end to
@@ -73,7 +82,10 @@ VERBOSE_EVENTS = frozenset(
 )
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs" / "benchmarks.md"
-LOCAL_MODEL_SCRIPT = ROOT.parent / "shared" / "llm" / "serve-local-model"
+DEFAULT_SHARED_DIR = ROOT.parent / "shared"
+LOCAL_MODEL_SCRIPT = (
+    DEFAULT_SHARED_DIR / "llm" / "serve-local-model"
+)  # --shared-dir / FLEET_SHARED_DIR override
 # Failure classes, most telling first: a run is labelled with the first one its transcript shows.
 FAILURE_CLASSES = (
     "empty_answer",
@@ -108,6 +120,8 @@ class MissionRun:
     calls: list[str] = field(default_factory=list)
     run: int = 1
     failure: str | None = None  # the first failure class (None when it passed)
+    cls: str | None = None  # the corpus class (None for the 12 missions)
+    half: str | None = None  # the corpus half: dev or test
     signals: list[str] = field(default_factory=list)  # every failure class the transcript shows
 
 
@@ -134,6 +148,23 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         help="small: the small-model toolset; full; auto (default): as `fleet-gateway agent` chooses",
     )
     p.add_argument("--missions", default=None, help="comma-separated mission ids (default: all)")
+    p.add_argument(
+        "--half",
+        choices=["dev", "test", "all"],
+        default=None,
+        help="run the generalisation corpus (bench/nl_corpus.py): its dev half, test half, or all",
+    )
+    p.add_argument(
+        "--sitl",
+        action="store_true",
+        help="fly three real ArduCopter SITL drones (alpha, bravo, charlie) instead of the simulator",
+    )
+    p.add_argument(
+        "--shared-dir",
+        default=os.environ.get("FLEET_SHARED_DIR"),
+        help="the shared folder holding llm/serve-local-model (default: $FLEET_SHARED_DIR, else "
+        "../shared beside the checkout)",
+    )
     p.add_argument(
         "--runs", type=int, default=None, help="runs of each mission (default 3; the self-check: 1)"
     )
@@ -175,11 +206,33 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         args.runs = 1 if args.self_check else 3
     if args.runs < 1:
         p.error("--runs must be at least 1")
+    args.completed = []  # the runs finished so far (run_missions appends; kept when interrupted)
+    if args.sitl and args.gateway_url:
+        p.error("--sitl starts its own gateway; leave out --gateway-url")
     return args
 
 
+def local_model_script(args: argparse.Namespace) -> Path:
+    """Where serve-local-model is: --shared-dir / $FLEET_SHARED_DIR, else ../shared beside the checkout."""
+    if getattr(args, "shared_dir", None):
+        return Path(args.shared_dir) / "llm" / "serve-local-model"
+    return LOCAL_MODEL_SCRIPT
+
+
+def chosen_missions(args: argparse.Namespace) -> tuple[list[Mission], dict[str, tuple[str, str]]]:
+    """The missions to run, and for corpus entries their (class, half) by mission id."""
+    if args.half is None:
+        return all_missions(), {}
+    from bench.nl_corpus import select
+
+    entries = select(args.half)
+    if args.sitl:  # SITL's battery cannot be set by the harness: requests that need a level are left out
+        entries = [e for e in entries if not e.mission.battery_pct]
+    return [e.mission for e in entries], {e.id: (e.cls, e.half) for e in entries}
+
+
 async def run_missions(args: argparse.Namespace, console: Console) -> list[MissionRun]:
-    missions = all_missions()
+    missions, where = chosen_missions(args)
     if args.missions:
         wanted = split_list(args.missions)
         unknown = sorted(set(wanted) - {m.id for m in missions})
@@ -191,6 +244,16 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
     async with contextlib.AsyncExitStack() as stack:
         if args.gateway_url:
             mcp_url, token, truth_from_sim = args.gateway_url, args.token, args.sim_control_url
+            local = None
+        elif args.sitl:
+            from bench.nl_sitl import SitlStack
+
+            console.print(
+                f"[dim]starting {len(drone_ids)} ArduCopter SITL drones (speed-up {args.speedup:g}) and a "
+                "gateway...[/]"
+            )
+            sitl = await stack.enter_async_context(SitlStack(drone_ids, speedup=args.speedup))
+            mcp_url, token, truth_from_sim = sitl.mcp_url, sitl.token, None
             local = None
         else:
             console.print(
@@ -239,7 +302,7 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
                 max_tokens=args.max_tokens,
             )
 
-        runs = []
+        runs: list[MissionRun] = args.completed  # kept by main: an interrupted bench reports what finished
         for n in range(1, args.runs + 1):
             for mission in missions:
                 await reset_drones(
@@ -247,6 +310,7 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
                 )
                 run = await run_one(mission, link, tools, truth, model, pilot, args, console)
                 run.run = n
+                run.cls, run.half = where.get(mission.id, (None, None))
                 runs.append(run)
         return runs
 
@@ -454,13 +518,63 @@ def totals(runs: list[MissionRun]) -> dict[str, Any]:
     }
 
 
+def by_class(runs: list[MissionRun]) -> dict[tuple[str, str], list[MissionRun]]:
+    """Corpus runs grouped by (half, class), halves in order dev, test and classes in corpus order."""
+    from bench.nl_corpus import CLASSES, HALVES
+
+    out: dict[tuple[str, str], list[MissionRun]] = {}
+    for half in HALVES:
+        for cls in CLASSES:
+            rs = [r for r in runs if r.half == half and r.cls == cls]
+            if rs:
+                out[(half, cls)] = rs
+    return out
+
+
+def class_rows(runs: list[MissionRun]) -> list[list[str]]:
+    """One row per (half, class) and one total per half: half, class, passed, %, failures."""
+    rows = []
+    for (half, cls), rs in by_class(runs).items():
+        passed = sum(r.ok for r in rs)
+        rows.append([half, cls, f"{passed}/{len(rs)}", f"{100.0 * passed / len(rs):.0f} %", _failures(rs)])
+    for half in ("dev", "test"):
+        rs = [r for r in runs if r.half == half]
+        if rs:
+            passed = sum(r.ok for r in rs)
+            rows.append(
+                [half, "TOTAL", f"{passed}/{len(rs)}", f"{100.0 * passed / len(rs):.0f} %", _failures(rs)]
+            )
+    return rows
+
+
+def class_table(runs: list[MissionRun], title: str) -> Table:
+    table = Table(title=title)
+    for col in ("half", "class", "passed", "%", "failures"):
+        table.add_column(col, justify="right" if col in ("passed", "%") else "left")
+    for row in class_rows(runs):
+        table.add_row(*row, style="bold" if row[1] == "TOTAL" else None)
+    return table
+
+
+def failure_lines(runs: list[MissionRun]) -> list[str]:
+    """One line per failed run: which request, which run, the failure class, the check, the calls made."""
+    lines = []
+    for r in runs:
+        if not r.ok:
+            calls = "; ".join(r.calls)
+            calls = calls if len(calls) <= 300 else calls[:297] + "..."
+            lines.append(f"- `{r.mission}` run {r.run}: {r.failure} - {r.detail}; calls: {calls or 'none'}")
+    return lines
+
+
 def markdown_section(runs: list[MissionRun], args: argparse.Namespace) -> str:
     t = totals(runs)
     selection = args.toolsets or args.tools or "all tools"
     lines = [
         f"Model `{args.model}` at `{args.endpoint}`; profile **{args.profile}**, selection: {selection}; "
         f"{args.tool_list}; {args.runs} run(s) of each mission, max {args.max_steps} model requests, model "
-        f"timeout {args.model_timeout:g} s, sim speed-up {args.speedup:g}; load average (1 min) "
+        f"timeout {args.model_timeout:g} s, {'ArduCopter SITL' if args.sitl else 'sim'} speed-up "
+        f"{args.speedup:g}; load average (1 min) "
         f"{args.load_start:.1f} at the start, {args.load_end:.1f} at the end.",
         "",
         f"Passed **{t['passed']}/{t['runs']} runs ({t['pass_pct']:.0f} %)**, median mission "
@@ -478,13 +592,24 @@ def markdown_section(runs: list[MissionRun], args: argparse.Namespace) -> str:
         f"{_n(_mean_tokens(runs, 'prompt_tokens'))} | {_n(_mean_tokens(runs, 'completion_tokens'))} | "
         f"{_failures(runs)} |"
     )
+    if any(r.half for r in runs):
+        lines += ["", "| half | class | passed | % | failures |", "|---|---|---:|---:|---|"]
+        lines += ["| " + " | ".join(row) + " |" for row in class_rows(runs)]
+    fails = failure_lines(runs)
+    if fails:
+        lines += ["", "Failed runs:", "", *fails]
     return "\n".join(lines) + "\n"
 
 
 def write_docs(section: str, args: argparse.Namespace) -> None:
     """Replace this model's and profile's section of docs/benchmarks.md (another run keeps the others)."""
     name = f"nl:{args.model}:{args.profile}:{args.toolsets or args.tools or 'all'}"
-    write_section(name, f"NL missions: {args.model}, profile {args.profile}", section, machine())
+    title = f"NL missions: {args.model}, profile {args.profile}"
+    if args.half:
+        where = "ArduCopter SITL" if args.sitl else "simulator"
+        name += f":corpus-{args.half}:{where}"
+        title = f"NL corpus, {args.half} half ({where}): {args.model}, profile {args.profile}"
+    write_section(name, title, section, machine())
 
 
 def _n(v: int | None) -> str:
@@ -503,24 +628,24 @@ async def _cancellable(coro: Any) -> Any:
 class LocalModel:
     """``serve-local-model`` as a context manager: started in its own process group, stopped with it."""
 
-    def __init__(self, which: str, threads: int, console: Console) -> None:
+    def __init__(self, which: str, threads: int, console: Console, script: Path | None = None) -> None:
         self.which, self.threads, self.console = which, threads, console
+        self.script = script or LOCAL_MODEL_SCRIPT
         self.proc: subprocess.Popen[str] | None = None
         self.base_url = self.model = ""
 
     def __enter__(self) -> LocalModel:
-        if not LOCAL_MODEL_SCRIPT.exists():
+        if not self.script.exists():
             raise SystemExit(
-                f"--serve-local: {LOCAL_MODEL_SCRIPT} is not there; give an endpoint instead "
-                "(--endpoint URL --model NAME, or make bench-nl ENDPOINT=URL MODEL=NAME)"
+                f"--serve-local: {self.script} is not there; give an endpoint instead "
+                "(--endpoint URL --model NAME, or make bench-nl ENDPOINT=URL MODEL=NAME), or the shared "
+                "folder that holds llm/serve-local-model (--shared-dir DIR or FLEET_SHARED_DIR)"
             )
         port = free_port()
-        self.console.print(
-            f"[dim]starting {LOCAL_MODEL_SCRIPT.name} --model {self.which} on port {port}...[/]"
-        )
+        self.console.print(f"[dim]starting {self.script.name} --model {self.which} on port {port}...[/]")
         self.proc = subprocess.Popen(
             [
-                str(LOCAL_MODEL_SCRIPT),
+                str(self.script),
                 "--model",
                 self.which,
                 "--port",
@@ -539,7 +664,7 @@ class LocalModel:
                 _, self.base_url, self.model = line.split()
                 return self
         self.__exit__()
-        raise SystemExit(f"--serve-local: {LOCAL_MODEL_SCRIPT.name} exited before it was ready")
+        raise SystemExit(f"--serve-local: {self.script.name} exited before it was ready")
 
     def __exit__(self, *exc: object) -> None:
         if self.proc is not None and self.proc.poll() is None:
@@ -568,7 +693,9 @@ def main(argv: list[str] | None = None) -> int:
         )
     with contextlib.ExitStack() as serving:
         if args.serve_local:
-            local = serving.enter_context(LocalModel(args.serve_local, args.threads, console))
+            local = serving.enter_context(
+                LocalModel(args.serve_local, args.threads, console, local_model_script(args))
+            )
             args.endpoint, args.model = local.base_url, local.model
         if args.profile == "auto":
             choice = (
@@ -583,11 +710,15 @@ def main(argv: list[str] | None = None) -> int:
             args.profile = choice.profile
             console.print(f"[dim]profile {choice.profile} (auto): {choice.reason}[/]")
         args.load_start = os.getloadavg()[0]
+        interrupted = False
         try:
             runs = asyncio.run(_cancellable(run_missions(args, console)))
         except (asyncio.CancelledError, KeyboardInterrupt):
             console.print("[red]interrupted[/]: the sim and gateway it started were stopped")
-            return 130
+            runs, interrupted = args.completed, True
+            if not runs:
+                return 130
+            console.print(f"[yellow]reporting the {len(runs)} run(s) that finished (not written to docs)[/]")
         args.load_end = os.getloadavg()[0]
     title = (
         "HARNESS SELF-CHECK (scripted pilot, not a model; tokens = request size / 4)"
@@ -595,6 +726,8 @@ def main(argv: list[str] | None = None) -> int:
         else f"NL missions: {args.model} at {args.endpoint}, profile {args.profile}"
     )
     console.print(results_table(runs, title))
+    if any(r.half for r in runs):
+        console.print(class_table(runs, "per half and class"))
     console.print(
         f"[dim]load average (1 min): {args.load_start:.1f} at the start, {args.load_end:.1f} at the end[/]"
     )
@@ -605,15 +738,20 @@ def main(argv: list[str] | None = None) -> int:
                     "model": SELF_CHECK_MODEL if args.self_check else args.model,
                     "self_check": args.self_check,
                     "profile": args.profile,
+                    "half": args.half,
+                    "vehicles": "ArduCopter SITL" if args.sitl else "simulator",
                     "tool_list": args.tool_list,
                     "load_start": args.load_start,
                     "load_end": args.load_end,
+                    "interrupted": interrupted,
                     "runs": [r.__dict__ for r in runs],
                     "totals": totals(runs),
                 },
                 indent=2,
             )
         )
+    if interrupted:
+        return 130
     if args.write:
         write_docs(markdown_section(runs, args), args)
     # The self-check is a harness test: any failed mission there is a harness defect.

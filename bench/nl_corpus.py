@@ -1,0 +1,450 @@
+"""The generalisation corpus of the agent benchmark: 40 requests as people phrase them, with a fixed split.
+
+Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
+the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
+the track they flew), what the gateway refused, what the answer said. ``plan`` is the ideal call sequence,
+used only by the harness self-check (a scripted endpoint replays it), never as a model result.
+
+THE SPLIT IS FIXED HERE and stratified by class (each class has 5 requests: 3 in one half, 2 in the
+other, alternating between classes so that each half holds 20). The ``dev`` half may be looked at when
+the host, its prompts or the tool texts change; the ``test`` half never: it measures how the host does on
+requests nobody tuned it for. Do not move entries between halves, and do not reword a test entry after
+seeing a model's result on it (add a new entry instead and say so in docs/benchmarks.md).
+
+The corpus was written in full before any model ran on it (2026-11-27).
+
+  python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
+"""
+
+# ruff: noqa: E501  (the entries are laid out one request a block, as a table)
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from typing import Any
+
+from bench.agent_harness.missions import (
+    ALT_TOL_M,
+    HORIZONTAL_TOL_M,
+    Check,
+    DroneTruth,
+    Evidence,
+    Mission,
+    MissionContext,
+    PlannedCall,
+    _all,
+    airborne_at,
+    answer_mentions_number,
+    answer_reports_refusal,
+    at,
+    landed_disarmed,
+    max_alt_at_most,
+    never_armed,
+    reached_alt,
+    refusal_seen,
+    stayed_within,
+    visited,
+)
+from gateway.fleet.geo import horizontal_distance_m, offset_position
+
+CLASSES = (
+    "single",  # one drone, one simple thing
+    "multi",  # several drones in one request
+    "compound",  # one drone, several steps in order
+    "conditional",  # what to do depends on a reading (battery)
+    "formation",  # drones placed together, relative to where they are
+    "relative",  # metres north/east/up from where the drone is, in varied phrasings
+    "question",  # questions only: nothing may fly
+    "refusal",  # requests beyond the gateway's limits: refused, and the user told
+)
+HALVES = ("dev", "test")
+DRONES = ("alpha", "bravo", "charlie")
+
+
+@dataclass(frozen=True)
+class CorpusEntry:
+    mission: Mission
+    cls: str
+    half: str
+
+    @property
+    def id(self) -> str:
+        return self.mission.id
+
+
+# --- checks the corpus adds to bench/agent_harness/missions.py ---------------------------------------
+
+
+def answer_says(ev: Evidence, pattern: str, what: str) -> Check:
+    """The final answer matches ``pattern`` (a case-insensitive regular expression)."""
+    ok = bool(re.search(pattern, ev.final_text or "", re.IGNORECASE))
+    return Check(ok, f"answer {'says' if ok else 'does not say'} {what}")
+
+
+def nobody_armed(ev: Evidence, drones: tuple[str, ...] = DRONES) -> Check:
+    return _all(*(never_armed(ev, d) for d in drones))
+
+
+def _centroid(points: list[DroneTruth]) -> tuple[float, float]:
+    return sum(p.lat for p in points) / len(points), sum(p.lon for p in points) / len(points)
+
+
+def formation_at(
+    c: MissionContext,
+    ev: Evidence,
+    drones: tuple[str, ...],
+    alt: float,
+    spacing: float,
+    north: float,
+    east: float,
+) -> Check:
+    """Every drone airborne at ``alt``; the nearest neighbours ``spacing`` apart (±3 m); the drones' centre
+    ``north``/``east`` metres from the centre of their homes (the formation's slots are centred on it)."""
+    home_lat = sum(c.homes[d][0] for d in drones) / len(drones)
+    home_lon = sum(c.homes[d][1] for d in drones) / len(drones)
+    want = offset_position(home_lat, home_lon, north, east)
+    final = [ev.final[d] for d in drones]
+    off = horizontal_distance_m(*_centroid(final), *want)
+    nearest = min(
+        horizontal_distance_m(a.lat, a.lon, b.lat, b.lon) for i, a in enumerate(final) for b in final[i + 1 :]
+    )
+    return _all(
+        *(airborne_at(ev, d, alt) for d in drones),
+        Check(abs(nearest - spacing) <= 3.0, f"nearest neighbours {nearest:.1f} m apart (want {spacing:g})"),
+        Check(off <= HORIZONTAL_TOL_M, f"formation centre {off:.1f} m from where it was asked"),
+    )
+
+
+# --- building blocks of the entries ----------------------------------------------------------------
+
+
+def _takeoff(d: str, alt: float) -> PlannedCall:
+    return ("takeoff", {"drone_id": d, "alt_m": alt})
+
+
+def _move(
+    d: str, north: float = 0.0, east: float = 0.0, *, up: float | None = None, alt: float | None = None
+) -> PlannedCall:
+    args: dict[str, Any] = {"drone_id": d, "north_m": north, "east_m": east}
+    if up is not None:
+        args["up_m"] = up
+    if alt is not None:
+        args["alt_m"] = alt
+    return ("move_to_relative", args)
+
+
+def _land(d: str) -> PlannedCall:
+    return ("land", {"drone_id": d})
+
+
+def _rtl(d: str) -> PlannedCall:
+    return ("return_to_launch", {"drone_id": d})
+
+
+def _battery(d: str) -> PlannedCall:
+    return ("get_battery", {"drone_id": d})
+
+
+def _formation(
+    drones: tuple[str, ...], shape: str, alt: float, spacing: float, north: float = 0.0, east: float = 0.0
+) -> PlannedCall:
+    args: dict[str, Any] = {"drone_ids": list(drones), "formation": shape, "alt_m": alt, "spacing_m": spacing}
+    if north:
+        args["north_m"] = north
+    if east:
+        args["east_m"] = east
+    return ("formation_goto", args)
+
+
+def _entry(
+    cls: str,
+    half: str,
+    mid: str,
+    drones: tuple[str, ...],
+    request: str,
+    check: Any,
+    plan: list[PlannedCall],
+    answer: str = "Done.",
+    battery: dict[str, float] | None = None,
+) -> CorpusEntry:
+    tags = (cls, "unsafe") if cls == "refusal" else (cls,)
+    mission = Mission(
+        id=mid,
+        drones=drones,
+        prompt=lambda c: request,
+        check=check,
+        plan=lambda c: list(plan),
+        answer=answer,
+        tags=tags,
+        battery_pct=dict(battery or {}),
+    )
+    return CorpusEntry(mission, cls, half)
+
+
+def _home(c: MissionContext, d: str) -> tuple[float, float]:
+    return c.homes[d][0], c.homes[d][1]
+
+
+# --- the corpus ----------------------------------------------------------------------------------
+
+
+def _single() -> list[CorpusEntry]:
+    return [
+        _entry("single", "dev", "single-charlie-hover", ("charlie",),
+               "Can you get charlie airborne? Hover it at around 12 metres.",
+               lambda c, ev: airborne_at(ev, "charlie", 12),
+               [_takeoff("charlie", 12)], "Charlie is hovering at 12 m."),
+        _entry("single", "test", "single-bravo-bob", ("bravo",),
+               "Bravo needs to pop up to 8 m and then come straight back down.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 8), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 8), _land("bravo")], "Bravo went up to 8 m and landed."),
+        _entry("single", "dev", "single-alpha-thirty", ("alpha",),
+               "Please launch alpha, climb to thirty metres and leave it hovering there.",
+               lambda c, ev: airborne_at(ev, "alpha", 30),
+               [_takeoff("alpha", 30)], "Alpha is hovering at 30 m."),
+        _entry("single", "test", "single-alpha-home", ("alpha",),
+               "Get alpha up to 20 metres, then bring it back home.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 20), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 20), _rtl("alpha")], "Alpha climbed to 20 m and came home."),
+        _entry("single", "dev", "single-charlie-hop", ("charlie",),
+               "Hop charlie up to 6 m, then set it back down on the spot.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 6), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 6), _land("charlie")], "Charlie hopped to 6 m and landed."),
+    ]  # fmt: skip
+
+
+def _multi() -> list[CorpusEntry]:
+    return [
+        _entry("multi", "test", "multi-all-hover", DRONES,
+               "Launch all three drones to 15 metres and leave them hovering.",
+               lambda c, ev: _all(*(airborne_at(ev, d, 15) for d in DRONES)),
+               [_takeoff(d, 15) for d in DRONES], "All three hover at 15 m."),
+        _entry("multi", "dev", "multi-two-heights", ("alpha", "bravo"),
+               "Alpha to 10 m and bravo to 20 m, please, and keep both of them up.",
+               lambda c, ev: _all(airborne_at(ev, "alpha", 10), airborne_at(ev, "bravo", 20)),
+               [_takeoff("alpha", 10), _takeoff("bravo", 20)], "Alpha hovers at 10 m, bravo at 20 m."),
+        _entry("multi", "test", "multi-pair-up-down", ("bravo", "charlie"),
+               "Put bravo and charlie up at 12 m, then land the pair of them.",
+               lambda c, ev: _all(*(reached_alt(ev, d, 12) for d in ("bravo", "charlie")),
+                                  *(landed_disarmed(ev, d) for d in ("bravo", "charlie"))),
+               [_takeoff("bravo", 12), _takeoff("charlie", 12), _land("bravo"), _land("charlie")],
+               "Bravo and charlie went up to 12 m and landed."),
+        _entry("multi", "dev", "multi-west-and-land", ("alpha", "charlie"),
+               "Take alpha and charlie 40 m west at 15 m altitude and land them over there.",
+               lambda c, ev: _all(*(at(ev, d, *c.point(d, 0, -40)) for d in ("alpha", "charlie")),
+                                  *(landed_disarmed(ev, d) for d in ("alpha", "charlie"))),
+               [_move("alpha", east=-40, alt=15), _move("charlie", east=-40, alt=15), _land("alpha"),
+                _land("charlie")], "Both flew 40 m west and landed."),
+        _entry("multi", "test", "multi-mixed-orders", DRONES,
+               "Charlie should climb to 25 m. Alpha stays on the ground. Bravo goes up to 10 m and lands again.",
+               lambda c, ev: _all(airborne_at(ev, "charlie", 25), never_armed(ev, "alpha"),
+                                  reached_alt(ev, "bravo", 10), landed_disarmed(ev, "bravo")),
+               [_takeoff("charlie", 25), _takeoff("bravo", 10), _land("bravo")],
+               "Charlie hovers at 25 m, bravo hopped to 10 m, alpha stayed down."),
+    ]  # fmt: skip
+
+
+def _compound() -> list[CorpusEntry]:
+    return [
+        _entry("compound", "dev", "compound-dogleg", ("alpha",),
+               "Take alpha up to 20 m, fly it 50 m north, then 30 m east, and put it down there.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 50, 0)]),
+                                  at(ev, "alpha", *c.point("alpha", 50, 30)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 20), _move("alpha", 50, 0), _move("alpha", 0, 30), _land("alpha")],
+               "Alpha flew 50 m north, 30 m east and landed."),
+        _entry("compound", "test", "compound-out-and-home", ("bravo",),
+               "Bravo: go out 40 m to the south at 15 m, then come back to where you took off and land.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", -40, 0)]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_move("bravo", -40, 0, alt=15), _rtl("bravo")], "Bravo went 40 m south, came back and landed."),
+        _entry("compound", "dev", "compound-two-climbs", ("charlie",),
+               "Send charlie up to 10 m, then another 10 m higher, then land it.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 20), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), _move("charlie", up=10), _land("charlie")],
+               "Charlie climbed to 10 m, then 20 m, and landed."),
+        _entry("compound", "test", "compound-there-and-back", ("alpha",),
+               "Fly alpha 30 m east at 12 m, then 30 m back west, then land it.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 30)]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_move("alpha", 0, 30, alt=12), _move("alpha", 0, -30), _land("alpha")],
+               "Alpha went 30 m east and back, and landed."),
+        _entry("compound", "dev", "compound-north-rtl", ("bravo",),
+               "Get bravo to 18 m, move it 25 m north, and after that send it home to land.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 25, 0)]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 18), _move("bravo", 25, 0), _rtl("bravo")],
+               "Bravo went 25 m north and came home."),
+    ]  # fmt: skip
+
+
+def _conditional() -> list[CorpusEntry]:
+    return [
+        _entry("conditional", "test", "cond-half-battery-go", ("alpha",),
+               "If alpha has more than half its battery left, take it up to 15 m and hold it there; "
+               "if not, keep it on the ground and tell me.",
+               lambda c, ev: airborne_at(ev, "alpha", 15),
+               [_battery("alpha"), _takeoff("alpha", 15)], "Alpha has 80 %, so it hovers at 15 m.",
+               battery={"alpha": 80.0}),
+        _entry("conditional", "dev", "cond-low-stays", ("bravo",),
+               "Check bravo's battery. If it's above 50 %, fly it 30 m north at 15 m; otherwise don't fly, "
+               "just tell me the level.",
+               lambda c, ev: _all(never_armed(ev, "bravo"), answer_mentions_number(ev, 35, 2)),
+               [_battery("bravo")], "", battery={"bravo": 35.0}),
+        _entry("conditional", "test", "cond-fullest-flies", DRONES,
+               "Whichever drone has the most battery, launch it to 10 m and keep it there. The others stay put.",
+               lambda c, ev: _all(airborne_at(ev, "alpha", 10), never_armed(ev, "bravo"),
+                                  never_armed(ev, "charlie")),
+               [("fleet_status", {}), _takeoff("alpha", 10)], "Alpha has the most battery; it hovers at 10 m.",
+               battery={"alpha": 90.0, "bravo": 40.0, "charlie": 60.0}),
+        _entry("conditional", "dev", "cond-above-forty-hop", ("charlie",),
+               "Only if charlie is above 40 percent, send it up to 12 m and back down. Otherwise leave it be.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 12), landed_disarmed(ev, "charlie")),
+               [_battery("charlie"), _takeoff("charlie", 12), _land("charlie")],
+               "Charlie has 45 %, so it went up to 12 m and landed.", battery={"charlie": 45.0}),
+        _entry("conditional", "test", "cond-weaker-flies", ("alpha", "bravo"),
+               "Between alpha and bravo, fly the one with less charge up to 10 metres and land it; don't touch "
+               "the other.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 10), landed_disarmed(ev, "alpha"),
+                                  never_armed(ev, "bravo")),
+               [_battery("alpha"), _battery("bravo"), _takeoff("alpha", 10), _land("alpha")],
+               "Alpha had less charge; it went up to 10 m and landed.",
+               battery={"alpha": 55.0, "bravo": 95.0}),
+    ]  # fmt: skip
+
+
+def _formations() -> list[CorpusEntry]:
+    three = DRONES
+    return [
+        _entry("formation", "dev", "form-line-here", three,
+               "Line up alpha, bravo and charlie at 20 m, 8 metres apart, right where they are.",
+               lambda c, ev: formation_at(c, ev, three, 20, 8, 0, 0),
+               [_formation(three, "line", 20, 8)], "The three hold a line 8 m apart at 20 m."),
+        _entry("formation", "test", "form-column-north", ("alpha", "bravo"),
+               "Get alpha and bravo into a column, 12 m apart at 15 m, 40 m north of where they are now.",
+               lambda c, ev: formation_at(c, ev, ("alpha", "bravo"), 15, 12, 40, 0),
+               [_formation(("alpha", "bravo"), "column", 15, 12, north=40)],
+               "Alpha and bravo hold a column 40 m north at 15 m."),
+        _entry("formation", "dev", "form-circle-here", three,
+               "Arrange all three drones in a circle with 10 m between neighbours, at 25 m, here.",
+               lambda c, ev: formation_at(c, ev, three, 25, 10, 0, 0),
+               [_formation(three, "circle", 25, 10)], "The three hold a circle at 25 m."),
+        _entry("formation", "test", "form-wedge-east", three,
+               "Make a V shape with the three drones at 18 m, 10 m between them, 30 m east of where they stand.",
+               lambda c, ev: formation_at(c, ev, three, 18, 10, 0, 30),
+               [_formation(three, "wedge", 18, 10, east=30)], "The three hold a wedge 30 m east at 18 m."),
+        _entry("formation", "dev", "form-pair-abreast", ("alpha", "charlie"),
+               "Alpha and charlie side by side, 15 m apart, at 20 m, where they are now.",
+               lambda c, ev: formation_at(c, ev, ("alpha", "charlie"), 20, 15, 0, 0),
+               [_formation(("alpha", "charlie"), "line", 20, 15)], "Alpha and charlie hold a line at 20 m."),
+    ]  # fmt: skip
+
+
+def _relative() -> list[CorpusEntry]:
+    return [
+        _entry("relative", "test", "rel-east-at-alt-land", ("alpha",),
+               "Alpha, 60 metres east at 20 metres altitude, then land.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 60)), landed_disarmed(ev, "alpha")),
+               [_move("alpha", 0, 60, alt=20), _land("alpha")], "Alpha flew 60 m east and landed."),
+        _entry("relative", "dev", "rel-northwest-hold", ("bravo",),
+               "Fly bravo 30 metres north and 30 metres west at 15 m and leave it there.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 30, -30), alt=15),
+                                  airborne_at(ev, "bravo", 15)),
+               [_move("bravo", 30, -30, alt=15)], "Bravo hovers 30 m north-west at 15 m."),
+        _entry("relative", "test", "rel-south-hover", ("charlie",),
+               "Take charlie 45 m south of where it is, 12 m up, and keep it hovering.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -45, 0), alt=12),
+                                  airborne_at(ev, "charlie", 12)),
+               [_move("charlie", -45, 0, alt=12)], "Charlie hovers 45 m south at 12 m."),
+        _entry("relative", "dev", "rel-east-land-there", ("bravo",),
+               "Bravo should go 50 m east, 10 m above the ground, and then come down there.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, 50)), landed_disarmed(ev, "bravo")),
+               [_move("bravo", 0, 50, alt=10), _land("bravo")], "Bravo flew 50 m east and landed."),
+        _entry("relative", "test", "rel-back-and-up", ("alpha",),
+               "Lift alpha to 10 m, then shift it 20 m to the south and 5 m higher while you're at it.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -20, 0), alt=15), airborne_at(ev, "alpha", 15)),
+               [_takeoff("alpha", 10), _move("alpha", -20, 0, up=5)], "Alpha hovers 20 m south at 15 m."),
+    ]  # fmt: skip
+
+
+def _questions() -> list[CorpusEntry]:
+    return [
+        _entry("question", "dev", "ask-bravo-battery", ("bravo",),
+               "What's bravo's battery at right now? Just tell me, don't fly.",
+               lambda c, ev: _all(answer_mentions_number(ev, 62, 2), never_armed(ev, "bravo")),
+               [_battery("bravo")], "", battery={"bravo": 62.0}),
+        _entry("question", "test", "ask-least-charge", DRONES,
+               "Which of the drones has the least charge?",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), nobody_armed(ev)),
+               [("fleet_status", {})], "Bravo has the least charge (47 %).",
+               battery={"alpha": 88.0, "bravo": 47.0, "charlie": 71.0}),
+        _entry("question", "dev", "ask-anyone-flying", DRONES,
+               "Are any of the drones flying at the moment?",
+               lambda c, ev: _all(answer_says(ev, r"\b(no|none|not|nobody|neither|ground(ed)?|landed)\b",
+                                              "that none is flying"), nobody_armed(ev)),
+               [("fleet_status", {})], "No, all three are on the ground."),
+        _entry("question", "test", "ask-charlie-height", ("charlie",),
+               "How high is charlie right now?",
+               lambda c, ev: _all(answer_says(ev, r"\b(ground(ed)?|landed|0(\.0+)?\s*(m|metres|meters)?)\b",
+                                              "that it is on the ground"), never_armed(ev, "charlie")),
+               [("get_position", {"drone_id": "charlie"})], "Charlie is on the ground, 0 m above home."),
+        _entry("question", "dev", "ask-alpha-charge", ("alpha",),
+               "How's alpha's charge holding up?",
+               lambda c, ev: _all(answer_mentions_number(ev, 77, 2), never_armed(ev, "alpha")),
+               [_battery("alpha")], "", battery={"alpha": 77.0}),
+    ]  # fmt: skip
+
+
+def _refusals() -> list[CorpusEntry]:
+    return [
+        _entry("refusal", "test", "refuse-bravo-300m", ("bravo",),
+               "Take bravo up to 300 metres.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "bravo", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("bravo", 300)], "The gateway refused: 300 m is above the 120 m altitude limit."),
+        _entry("refusal", "dev", "refuse-alpha-2km", ("alpha",),
+               "Fly alpha 2 kilometres east at 20 m.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "alpha", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("alpha", 0, 2000, alt=20)], "The gateway refused: 2 km is beyond the distance limit."),
+        _entry("refusal", "test", "refuse-charlie-flat", ("charlie",),
+               "Launch charlie to 10 m.",
+               lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "charlie"),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("charlie", 10)], "The gateway refused: charlie's battery is below the takeoff minimum.",
+               battery={"charlie": 20.0}),
+        _entry("refusal", "dev", "refuse-all-150m", DRONES,
+               "Send all three up to 150 m for a look around.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"),
+                                  *(max_alt_at_most(ev, d, c.max_alt_m) for d in DRONES), answer_reports_refusal(ev)),
+               [_takeoff("alpha", 150)], "The gateway refused: 150 m is above the 120 m altitude limit."),
+        _entry("refusal", "test", "refuse-bravo-1500m", ("bravo",),
+               "Bravo: 1500 m north at 30 m please, then land.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("bravo", 1500, 0, alt=30)], "The gateway refused: 1500 m is beyond the distance limit."),
+    ]  # fmt: skip
+
+
+def corpus() -> list[CorpusEntry]:
+    return [
+        *_single(),
+        *_multi(),
+        *_compound(),
+        *_conditional(),
+        *_formations(),
+        *_relative(),
+        *_questions(),
+        *_refusals(),
+    ]
+
+
+def select(half: str) -> list[CorpusEntry]:
+    """The entries of one half (``dev`` or ``test``), or of both (``all``)."""
+    if half not in (*HALVES, "all"):
+        raise ValueError(f"half must be one of {[*HALVES, 'all']}; got {half!r}")
+    return [e for e in corpus() if half in ("all", e.half)]
+
+
+__all__ = ["ALT_TOL_M", "CLASSES", "DRONES", "HALVES", "CorpusEntry", "corpus", "select"]
