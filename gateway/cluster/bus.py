@@ -267,6 +267,7 @@ class Bus:
                         f"the node that owns {vehicle_id} did not accept {name} within {accept_s:g} s"
                         f"{why}: it was not run, and its owner refuses it if it arrives later",
                         vehicle_id=vehicle_id,
+                        bus="no answer",
                     )
                 gone = owner_gone() if accepted and owner_gone is not None else None
                 if gone is not None:

@@ -27,6 +27,7 @@ from gateway.cluster.forwarding import ClusterRouter, answer
 from gateway.cluster.keeper import LeasePlan, Wanted, plan
 from gateway.cluster.leases import Lease, LeaseStore, NodeRecord
 from gateway.cluster.remote import RemoteVehicle
+from gateway.cluster.stop_notify import StopRelay
 from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget, send_stop
 from gateway.cluster.takeover import pick_up_operations
 from gateway.config import Settings
@@ -57,6 +58,8 @@ READ_TIMEOUT_S = 5.0
 #: a stop sent over a drone's own link by its fenced node: its whole answer (open, for a hold ask where
 #: the drone is, send, ack) within this (a land is sent at once; this bounds waiting for its answer)
 STOP_SEND_S = 4.0
+#: a stop the bus did not carry, relayed through PostgreSQL notifications: its owner's answer within this
+RELAY_S = 5.0
 
 
 class ClusterSetupError(GatewayError):
@@ -102,6 +105,7 @@ class ClusterNode:
         # to each (land, return, hold over the drone's own link) until a node holds a live lease of it
         self.fenced: dict[str, StopTarget] = {}
         self._stop_paths: dict[str, Subscription] = {}
+        self.relay: StopRelay | None = None  # stops through PostgreSQL when the bus does not carry them
         self.nodes: list[NodeRecord] = []
         self.all_leases: dict[str, Lease] = {}
         self.last_plan = LeasePlan()
@@ -129,6 +133,8 @@ class ClusterNode:
         self._subs.append(await self.bus.subscribe(tele_subject("*"), self._on_snapshot))
         self._subs.append(await self.bus.subscribe("fleet.event.>", self._on_event))
         await self.leases.heartbeat(self.tags, self.api_url)
+        self.relay = StopRelay(store.url, self.node_id, self._relayed_stop)
+        await self.relay.start()
         self.started = True
         log.info("cluster node %s (tags %s) joined; lease %.0f s", self.node_id, self.tags or "none",
                  self.settings.cluster_lease_ttl_s)  # fmt: skip
@@ -146,6 +152,9 @@ class ClusterNode:
         self._tasks = []
         if self._adoptions:  # let an adoption under way finish first: then its sidecar is stopped below
             await asyncio.wait(set(self._adoptions), timeout=LEAVE_TIMEOUT_S * 3)
+        if self.relay is not None:
+            relay, self.relay = self.relay, None
+            await relay.close()
         held = list(self.held)
         await self._end_stop_paths(list(self.fenced), "node stopping")
         await self._drop_all(held, "node stopping")
@@ -630,6 +639,12 @@ class ClusterNode:
                 drone_id, verb, arguments, body, timeout, on_message, accept_s=accept_s, epoch=epoch,
                 owner_gone=owner_gone,
             )  # fmt: skip
+        except NotRun as exc:
+            # the bus did not carry it (this node cut off, or no answer in the accept time): a stop goes
+            # through PostgreSQL notifications to the owner (`gateway.cluster.stop_notify`)
+            if not (stop and exc.details.get("bus") in ("down", "no answer") and self.relay is not None):
+                raise
+            return await self.relay.send(drone_id, verb, arguments, epoch, body, RELAY_S)
         except NoOwner:
             if not stop:
                 raise
@@ -639,6 +654,25 @@ class ClusterNode:
             drone_id, verb, arguments, body, accept_s + STOP_SEND_S + 1.0, on_message, accept_s=accept_s,
             epoch=epoch, subject=stop_subject(drone_id),
         )  # fmt: skip
+
+    async def _relayed_stop(self, stop: dict[str, Any]) -> Any:
+        """A stop another node relayed through PostgreSQL: run it when this node owns the drone under
+        that epoch (the same path as a stop over the bus), or keeps a stop-only path to it; None (silent)
+        when the drone is not this node's."""
+        vid, verb, epoch = str(stop.get("vehicle")), str(stop.get("command")), stop.get("epoch")
+        epoch = epoch if isinstance(epoch, int) else None
+        caller = dict(stop.get("by") or {})
+        if vid in self.held:
+            self._check_epoch(vid)(epoch)
+            if verb not in STOP_COMMANDS or not Caller.from_dict(caller).is_operator:
+                raise NotRun(f"only an operator's land, return_to_launch or hold crosses PostgreSQL: {verb} "
+                             "was not run")  # fmt: skip
+            log.warning("%s: %s relayed through PostgreSQL from node %s", vid, verb, stop.get("node"))
+            return await self._answer(vid)(verb, dict(stop.get("args") or {}), caller, _no_progress)
+        if vid in self.fenced:
+            self._check_fenced(vid)(epoch)
+            return await self.stop_directly(vid, verb, Caller.from_dict(caller))
+        return None
 
     def _check_epoch(self, vehicle_id: str) -> CallCheck:
         def check(epoch: int | None) -> None:
@@ -688,6 +722,10 @@ class ClusterNode:
                 for n in self.nodes
             ],
         }
+
+
+async def _no_progress(_update: dict[str, Any]) -> None:
+    return None
 
 
 def remote_factory(settings: Settings) -> Callable[[VehicleSpec], RemoteVehicle]:

@@ -1,0 +1,193 @@
+"""Stops relayed through PostgreSQL notifications, for a node cut off from NATS that reaches the database.
+
+An operator's stop (land, return, hold) for a drone another node owns goes over the bus
+(`gateway.cluster.bus`). When the bus does not carry it (this node is cut off from NATS, or the owner did
+not accept it within the accept time), the stopping node publishes it with ``pg_notify`` on
+:data:`STOP_CHANNEL`: ``{id, vehicle, command, args, epoch, by, node, at, accept_by}``. Every node listens
+on that channel (one asyncpg connection of its own, opened again when the database returns); the node
+that owns the drone under that lease epoch (or keeps a stop-only path to it after fencing itself) runs
+the stop through the same path as a stop that came over the bus, and answers on :data:`ACK_CHANNEL`
+``{id, node, ok, result | error}``. Only the three stops cross this way; anything else is refused, and a
+stop that arrives after its ``accept_by`` is dropped (its caller has been told "unreached"). Without an
+answer in time the stopping node says "no path": nothing is known to have been sent.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import json
+import logging
+import time
+import uuid
+from collections.abc import Awaitable, Callable
+from typing import Any
+
+import asyncpg  # type: ignore[import-untyped]
+from sqlalchemy.engine import make_url
+
+from gateway.errors import GatewayError, NotRun
+
+from .bus import error_body, rebuild_error
+
+log = logging.getLogger("gateway.cluster.stop_notify")
+
+STOP_CHANNEL = "fleet_stop"
+ACK_CHANNEL = "fleet_stop_ack"
+#: the verbs that may cross this way
+RELAYED = frozenset({"land", "return_to_launch", "hold"})
+#: how long the listener waits before opening its connection again
+RECONNECT_S = 1.0
+#: ``handler(stop)`` -> the stop's JSON result when this node ran it, None when the drone is not this
+#: node's (it stays silent); raises a GatewayError when it is this node's and it refused it
+StopHandler = Callable[[dict[str, Any]], Awaitable[Any]]
+
+
+def asyncpg_dsn(database_url: str) -> str:
+    """The store's SQLAlchemy URL (``postgresql+asyncpg://...``) as a DSN asyncpg takes."""
+    return make_url(database_url).set(drivername="postgresql").render_as_string(hide_password=False)
+
+
+class StopRelay:
+    """One node's end of the relay: it listens for stops and their answers, and sends its own."""
+
+    def __init__(self, database_url: str, node_id: str, handler: StopHandler) -> None:
+        self.dsn = asyncpg_dsn(database_url)
+        self.node_id = node_id
+        self.handler = handler
+        self.conn: asyncpg.Connection | None = None
+        self._pending: dict[str, asyncio.Future[dict[str, Any]]] = {}
+        self._task: asyncio.Task[None] | None = None
+        self._tasks: set[asyncio.Task[None]] = set()
+        self._ready = asyncio.Event()
+
+    async def start(self) -> None:
+        self._task = asyncio.create_task(self._listen(), name="cluster-stop-relay")
+
+    async def close(self) -> None:
+        tasks = [t for t in (self._task, *self._tasks) if t is not None]
+        for task in tasks:
+            task.cancel()
+        await asyncio.gather(*tasks, return_exceptions=True)
+        conn, self.conn = self.conn, None
+        if conn is not None:
+            with contextlib.suppress(Exception):
+                await asyncio.wait_for(conn.close(), 3.0)
+
+    async def _listen(self) -> None:
+        lost = False
+        while True:
+            try:
+                conn = await asyncpg.connect(self.dsn, timeout=5.0)
+                closed = asyncio.Event()
+                conn.add_termination_listener(lambda _c, ended=closed: ended.set())
+                await conn.add_listener(STOP_CHANNEL, self._on_notify)
+                await conn.add_listener(ACK_CHANNEL, self._on_notify)
+                self.conn = conn
+                self._ready.set()
+                if lost:
+                    log.warning("stop relay: listening on PostgreSQL again (%s)", STOP_CHANNEL)
+                lost = False
+                while not closed.is_set():  # a dead server is seen when a query fails
+                    with contextlib.suppress(TimeoutError):
+                        await asyncio.wait_for(closed.wait(), 2.0)
+                    if not closed.is_set():
+                        await asyncio.wait_for(conn.execute("SELECT 1"), 5.0)
+            except asyncio.CancelledError:
+                raise
+            except Exception as exc:
+                if not lost:
+                    log.warning("stop relay: not listening on PostgreSQL (%r): retrying", exc)
+                lost = True
+            self._ready.clear()
+            conn_, self.conn = self.conn, None
+            if conn_ is not None:
+                conn_.terminate()
+            await asyncio.sleep(RECONNECT_S)
+
+    def _on_notify(self, _conn: Any, _pid: int, channel: str, payload: str) -> None:
+        try:
+            body = json.loads(payload)
+        except ValueError:
+            log.warning("stop relay: unreadable notification on %s: %.200s", channel, payload)
+            return
+        if not isinstance(body, dict):
+            return
+        if channel == ACK_CHANNEL:
+            future = self._pending.get(str(body.get("id")))
+            if future is not None and not future.done():
+                future.set_result(body)
+            return
+        if body.get("node") == self.node_id:  # its own stop: this node did not reach the owner
+            return
+        task = asyncio.create_task(self._run(body), name=f"relayed-stop-{body.get('vehicle')}")
+        self._tasks.add(task)
+        task.add_done_callback(self._tasks.discard)
+
+    async def _run(self, body: dict[str, Any]) -> None:
+        command = body.get("command")
+        try:
+            if command not in RELAYED:  # never accepted this way, whoever owns the drone
+                log.warning(
+                    "stop relay: refused %r for %s from node %s: only land, return_to_launch and hold "
+                    "cross PostgreSQL", command, body.get("vehicle"), body.get("node"),
+                )  # fmt: skip
+                return
+            accept_by = body.get("accept_by")
+            if isinstance(accept_by, int | float) and time.time() > accept_by:  # its caller heard "no path"
+                log.info("stop relay: dropped %s for %s from node %s: it arrived %.1f s after its deadline",
+                         command, body.get("vehicle"), body.get("node"), time.time() - accept_by)  # fmt: skip
+                return
+            result = await self.handler(body)
+            if result is None:
+                return
+            answer: dict[str, Any] = {"ok": True, "result": result}
+        except GatewayError as exc:
+            answer = {"ok": False, "error": error_body(exc)}
+        except Exception as exc:
+            log.exception("stop relay: %s for %s failed", command, body.get("vehicle"))
+            failed = {"code": "gateway_error", "message": f"{command} failed: {exc!r}"}
+            answer = {"ok": False, "error": failed}
+        await self._notify(ACK_CHANNEL, {"id": body.get("id"), "node": self.node_id, **answer})
+
+    async def _notify(self, channel: str, body: dict[str, Any]) -> None:
+        conn = self.conn
+        if conn is None:
+            raise ConnectionError("not connected to PostgreSQL")
+        await conn.execute("SELECT pg_notify($1, $2)", channel, json.dumps(body, default=str))
+
+    async def send(
+        self, vehicle_id: str, command: str, arguments: dict[str, Any], epoch: int | None,
+        caller: dict[str, Any], within_s: float,
+    ) -> Any:  # fmt: skip
+        """Relay the stop ``command`` for ``vehicle_id`` to its owner; the owner's result, or its error
+        raised again here; :class:`NotRun` ("no path") when no node answered within ``within_s``."""
+        if command not in RELAYED:
+            raise NotRun(f"only land, return_to_launch and hold cross PostgreSQL; {command} was not sent")
+        stop_id = uuid.uuid4().hex
+        started = time.monotonic()
+        future: asyncio.Future[dict[str, Any]] = asyncio.get_running_loop().create_future()
+        self._pending[stop_id] = future
+        try:
+            with contextlib.suppress(TimeoutError):  # the listener may be reconnecting
+                await asyncio.wait_for(self._ready.wait(), within_s / 2)
+            body = {"id": stop_id, "vehicle": vehicle_id, "command": command, "args": arguments,
+                    "epoch": epoch, "by": caller, "node": self.node_id, "at": time.time(),
+                    "accept_by": time.time() + within_s}  # fmt: skip
+            try:
+                await asyncio.wait_for(self._notify(STOP_CHANNEL, body), within_s / 2)
+                answer = await asyncio.wait_for(future, max(0.1, within_s - (time.monotonic() - started)))
+            except (TimeoutError, ConnectionError, OSError, asyncpg.PostgresError) as exc:
+                raise NotRun(
+                    f"no path to {vehicle_id}'s owner: the bus did not carry {command}, and no node answered "
+                    f"it through PostgreSQL notifications within {within_s:g} s ({type(exc).__name__}): "
+                    "nothing is known to have been sent",
+                    vehicle_id=vehicle_id,
+                ) from None
+        finally:
+            self._pending.pop(stop_id, None)
+        log.warning("%s: %s relayed through PostgreSQL to node %s (answered after %.0f ms)", vehicle_id,
+                    command, answer.get("node"), (time.monotonic() - started) * 1000)  # fmt: skip
+        if answer.get("ok"):
+            return answer.get("result")
+        raise rebuild_error(answer.get("error") or {})
