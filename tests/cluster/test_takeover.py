@@ -73,8 +73,13 @@ async def test_a_taken_over_goto_says_its_node_was_lost_until_it_ends_and_an_old
     view = await gateway.commander.monitor(AGENT, "d1")
     assert view.operation_id == "newer-goto" and view.status == "succeeded", view
     assert view.message.startswith("arrived (") and view.message.endswith(note), view.message
-    stored = await store.get_operation("newer-goto")
-    assert stored is not None and stored.status == "succeeded" and stored.message == view.message
+
+    async def stored_as_answered() -> OperationRecord | None:  # the store writes behind the answer
+        record = await store.get_operation("newer-goto")
+        return record if record is not None and record.status == "succeeded" else None
+
+    stored = await eventually(stored_as_answered, "the resumed goto stored as succeeded", within_s=10)
+    assert stored.message == view.message
 
 
 async def test_an_operation_that_cannot_be_followed_again_is_interrupted_saying_so(gateway: Gateway) -> None:

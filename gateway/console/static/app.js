@@ -10,6 +10,8 @@ import { api, ApiError, getToken, setToken, streamEvents } from "./api.js";
 import { FleetMap } from "./map.js";
 import { AuditPanel, ConfirmDialog, DroneDetail, FleetTable, FlightsPanel, LoginForm, ReplayPanel } from "./panels.js";
 
+const CALLS_BEFORE_ARMING_MS = 60000;
+
 const html = htm.bind(h);
 
 const AUDIT_KEEP = 500;
@@ -108,7 +110,10 @@ function Console({ config, onLogout }) {
   const openReplay = useCallback(async (flight) => {
     try {
       const until = flight.ended_at || new Date().toISOString();
-      const query = new URLSearchParams({ vehicle_id: flight.vehicle_id, since: flight.started_at, until, include_fleet: "true", limit: "1000" });
+      // a call is audited when it is sent, so the takeoff or mission start that began the flight comes
+      // before its arming (up to the gateway's 60 s wait for a drone to become armable)
+      const since = new Date(Date.parse(flight.started_at) - CALLS_BEFORE_ARMING_MS).toISOString();
+      const query = new URLSearchParams({ vehicle_id: flight.vehicle_id, since, until, include_fleet: "true", limit: "1000" });
       const [feature, texts, rows] = await Promise.all([
         api(`/flights/${flight.id}/track.geojson`),
         api(`/flights/${flight.id}/statustexts`),
