@@ -60,6 +60,9 @@ READ_TIMEOUT_S = 5.0
 STOP_SEND_S = 4.0
 #: a stop the bus did not carry, relayed through PostgreSQL notifications: its owner's answer within this
 RELAY_S = 5.0
+#: an operator's stop its owner has not accepted over the bus by then goes through PostgreSQL instead (the
+#: owner refuses the bus copy if it arrives later, so it runs once); the stop reaches the drone within 1 s
+STOP_ACCEPT_S = 0.5
 
 
 class ClusterSetupError(GatewayError):
@@ -634,17 +637,31 @@ class ClusterNode:
         stop = verb in STOP_COMMANDS and caller.is_operator
         if stop and drone_id in self.fenced:  # no bus needed: this node sends it over the drone's link
             return await self.stop_directly(drone_id, verb, caller)
+        # a stop gets a short accept time on the bus only where PostgreSQL can carry it instead
+        relay = self.relay if stop else None
+        short = relay is not None and relay.listening
         try:
             return await self.bus.call(
-                drone_id, verb, arguments, body, timeout, on_message, accept_s=accept_s, epoch=epoch,
+                drone_id, verb, arguments, body, timeout, on_message,
+                accept_s=min(accept_s, STOP_ACCEPT_S) if short else accept_s, epoch=epoch,
                 owner_gone=owner_gone,
             )  # fmt: skip
         except NotRun as exc:
             # the bus did not carry it (this node cut off, or no answer in the accept time): a stop goes
             # through PostgreSQL notifications to the owner (`gateway.cluster.stop_notify`)
-            if not (stop and exc.details.get("bus") in ("down", "no answer") and self.relay is not None):
+            if relay is None or exc.details.get("bus") not in ("down", "no answer"):
                 raise
-            return await self.relay.send(drone_id, verb, arguments, epoch, body, RELAY_S)
+            try:
+                return await relay.send(drone_id, verb, arguments, epoch, body, RELAY_S)
+            except NotRun:
+                if not (short and exc.details.get("bus") == "no answer"):
+                    raise
+            # PostgreSQL did not carry it either while the bus is up: the bus once more, with the whole
+            # accept time, for an owner slow to answer
+            return await self.bus.call(
+                drone_id, verb, arguments, body, timeout, on_message, accept_s=accept_s, epoch=epoch,
+                owner_gone=owner_gone,
+            )  # fmt: skip
         except NoOwner:
             if not stop:
                 raise

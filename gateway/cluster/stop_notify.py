@@ -64,6 +64,11 @@ class StopRelay:
     async def start(self) -> None:
         self._task = asyncio.create_task(self._listen(), name="cluster-stop-relay")
 
+    @property
+    def listening(self) -> bool:
+        """Whether this node is connected to PostgreSQL and listening (as far as it has seen)."""
+        return self._ready.is_set()
+
     async def close(self) -> None:
         tasks = [t for t in (self._task, *self._tasks) if t is not None]
         for task in tasks:
