@@ -21,6 +21,7 @@ the gateway's own session comes and goes.
 
 from __future__ import annotations
 
+import abc
 import asyncio
 import contextlib
 import ipaddress
@@ -146,8 +147,9 @@ class EndpointStats:
     last_in: float | None = None  # monotonic
 
 
-class Endpoint:
-    """One side of the relay: opened as its URL says; hands every frame it receives to ``deliver``."""
+class Endpoint(abc.ABC):
+    """One side of the relay: opened as its URL says; hands every frame it receives to ``deliver``.
+    Each transport (UDP, TCP, serial) opens, sends and closes in its own way."""
 
     def __init__(self, url: str, deliver: Deliver) -> None:
         self.url = url
@@ -161,15 +163,14 @@ class Endpoint:
         self._deliver = deliver
         self._splitters: dict[Any, FrameSplitter] = {}
 
-    # subclasses
-    async def start(self) -> None:
-        raise NotImplementedError
+    @abc.abstractmethod
+    async def start(self) -> None: ...
 
-    def send(self, data: bytes) -> None:
-        raise NotImplementedError
+    @abc.abstractmethod
+    def send(self, data: bytes) -> None: ...
 
-    async def close(self) -> None:
-        raise NotImplementedError
+    @abc.abstractmethod
+    async def close(self) -> None: ...
 
     @property
     def peer(self) -> str | None:
