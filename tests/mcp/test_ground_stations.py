@@ -152,14 +152,14 @@ async def test_a_ground_station_sees_the_drone_and_takes_it(stack: Stack) -> Non
 async def test_the_ground_station_keeps_the_drone_while_the_sidecar_restarts(stack: Stack) -> None:
     """The relay holds the drone's link, so a sidecar killed and restarted by its supervisor costs the
     ground station nothing, and the gateway's own session comes back through the relay."""
-    vehicle = await stack.rest("/vehicles/d1")
-    [endpoint] = vehicle["gcs_endpoints"]
-    before = vehicle["status"]["sidecar"]
-    assert before["state"] == "serving" and before["pid"], before
-    gcs = GroundStation.__new__(GroundStation)  # listen on the registered endpoint's port again
-    gcs.port = int(endpoint.rsplit(":", 1)[1])
-    gcs.conn = mavutil.mavlink_connection(f"udpin:127.0.0.1:{gcs.port}", source_system=GCS_SYSID)
+    gcs = GroundStation()
     try:
+        endpoint = f"udpout://127.0.0.1:{gcs.port}"  # its own, so this test runs alone as well
+        r = await patch(stack, "d1", {"gcs_endpoints": [endpoint]})
+        assert r.status_code == 200, r.text
+        await wait_ready(stack)
+        before = (await stack.rest("/vehicles/d1"))["status"]["sidecar"]
+        assert before["state"] == "serving" and before["pid"], before
         os.kill(before["pid"], signal.SIGKILL)
         sysid = stack.sim.sysids[0]
         for _ in range(3):  # the drone's heartbeats go on reaching the ground station
