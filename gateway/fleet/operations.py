@@ -369,6 +369,8 @@ class OperationManager:
         self._watches: dict[str, asyncio.Task[None]] = {}
         self._finders: dict[str, asyncio.Task[None]] = {}  # after a restart: is the vehicle flying?
         self._sent_at: dict[str, float] = {}  # when an operation's latest command (its leg) was sent
+        # the leg (its send time) whose target the autopilot has been seen flying to, per operation
+        self._adopted: dict[str, float] = {}
         #: told of every takeover before its operation ends (the runtime locks the drone)
         self.on_takeover: TakeoverHandler | None = None
         #: the drone's takeover lock, if it has one (the runtime reads the LockBook)
@@ -615,11 +617,19 @@ class OperationManager:
         if not isinstance(leg, GotoTracker) or target is None:
             return None
         lat, lon, heard_at = target
-        if heard_at < self._sent_at.get(op.id, op.started_mono) + TARGET_SETTLE_S:
-            exp.target_off_since = None  # said before the command could show in it
-            return None
+        sent = self._sent_at.get(op.id, op.started_mono)
         off = geo.horizontal_distance_m(lat, lon, leg.lat, leg.lon)
         if off <= max(TARGET_MOVED_M, 3 * leg.tolerance_m):
+            exp.target_off_since = None
+            if heard_at >= sent:
+                self._adopted[op.id] = sent  # it flies this leg: from now on a move away is someone else's
+            return None
+        if heard_at < sent + TARGET_SETTLE_S:
+            exp.target_off_since = None  # said before the command could show in it
+            return None
+        if self._adopted.get(op.id) != sent:
+            # not yet seen flying this leg's target: a report from before it, which a loaded link or
+            # gateway can hand over long after it was said, never counts as a takeover
             exp.target_off_since = None
             return None
         if exp.target_off_since is None:
@@ -810,6 +820,7 @@ class OperationManager:
             self._monitors.pop(op.id, None)
             self._trackers.pop(op.id, None)
             self._sent_at.pop(op.id, None)
+            self._adopted.pop(op.id, None)
 
     async def _send_next(
         self, vehicle: FlyingVehicle, op: Operation, send: Callable[[], Awaitable[Any]]

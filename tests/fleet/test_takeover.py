@@ -129,6 +129,25 @@ async def test_another_ground_station_moving_the_target_in_the_same_mode_ends_th
     assert taken is not None and "the autopilot left the gateway's target" in taken.reason
 
 
+async def test_a_target_from_before_the_goto_handed_over_late_is_not_a_takeover(gateway: Gateway) -> None:
+    """A loaded link or gateway can hand over the autopilot's reports long after they were said: a target
+    far from the goto's, heard well after the send but before the autopilot was ever seen flying the
+    goto's own target, is the previous one, not another ground station's."""
+    d1 = fake(gateway, "d1")
+    goto_id = await flying_goto(gateway)
+    ops = gateway.operations
+    assert ops is not None
+    goto = ops.get(goto_id)
+    here = d1.telemetry.position
+    assert here is not None
+    loop = asyncio.get_running_loop()
+    until_s = loop.time() + 3.0
+    while loop.time() < until_s:  # the previous target, reported late and again and again
+        d1.target = (here.value.lat_deg, here.value.lon_deg, time.monotonic())
+        await asyncio.sleep(0.1)
+    assert gateway.locks.takeover_for("d1") is None and not goto.finished
+
+
 async def test_a_failsafe_is_named_in_the_autopilots_words(gateway: Gateway) -> None:
     d1 = fake(gateway, "d1")
     goto_id = await flying_goto(gateway)
