@@ -12,9 +12,8 @@ import sys
 import time
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import httpx
 from pydantic import ValidationError
 
 from gateway.cli_help import COMMAND_HELP
@@ -23,6 +22,9 @@ from gateway.config import Settings
 from gateway.errors import DuplicateVehicle
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
+
+if TYPE_CHECKING:  # httpx (and its CLI extras rich, pygments) is imported by the commands that call the API
+    import httpx
 
 
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -197,6 +199,8 @@ def _mission_request(
     if content_type is not None:
         headers["content-type"] = content_type
     url = f"{args.api.rstrip('/')}/api/v1/vehicles/{args.id}/mission"
+    import httpx
+
     try:
         response = httpx.request(method, url, headers=headers, timeout=60.0, params=params, content=content)
     except httpx.HTTPError as exc:
@@ -310,6 +314,8 @@ def _api_call(
         return fail(f"--wait must be a number of seconds, 0 or more; got {args.wait}", 2)
     if args.wait > 0 and not _wait_ready(base, args.wait):
         return fail(f"the gateway at {base} did not answer /readyz within {args.wait:g} s (--wait)")
+    import httpx
+
     try:
         response = httpx.request(method, base.rstrip("/") + path, json=body, headers=headers, timeout=30.0)
     except httpx.HTTPError as exc:
@@ -329,6 +335,8 @@ def _api_call(
 
 def _wait_ready(base: str, wait_s: float) -> bool:
     """True once ``base``/readyz answers 200, False if it has not within ``wait_s`` seconds."""
+    import httpx
+
     deadline = time.monotonic() + wait_s
     while True:
         with contextlib.suppress(httpx.HTTPError):

@@ -28,7 +28,7 @@ import logging
 import time
 from collections.abc import Awaitable, Callable, Iterable
 from datetime import UTC, datetime
-from typing import Any, Protocol, TypeVar
+from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 import grpc
 from mavsdk_grpc import System
@@ -44,10 +44,12 @@ from gateway.link.rawlink import (
     NoAck,
     autopilot_name,
 )
-from gateway.link.relay import Relay
 from gateway.link.sidecar import Confine, Sidecar, SidecarState
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache, TelemetryFeed
 from gateway.registry.spec import VehicleSpec
+
+if TYPE_CHECKING:
+    from gateway.link.relay import Relay
 
 log = logging.getLogger("gateway.link")
 T = TypeVar("T")
@@ -407,6 +409,9 @@ class Link:
         url = self.spec.url
         if self.spec.gcs_endpoints:
             # the gateway holds the drone's link and relays it to the sidecar and the ground stations
+            # (the relay's MAVLink dialect, about 7 MiB, is loaded only for a drone that has some)
+            from gateway.link.relay import Relay
+
             relay = Relay(
                 self.id, self.spec.url, list(self.spec.gcs_endpoints), sidecar_pid=self._sidecar_pid
             )

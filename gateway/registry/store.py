@@ -58,6 +58,7 @@ from gateway.registry.records import (
     bound_arguments,
     utcnow,
 )
+from gateway.registry.schema_check import schema_is_current
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.spool import Spool
 from gateway.util.text import printable
@@ -259,7 +260,7 @@ class Store:
     async def open(cls, url: str, upgrade: bool = True) -> Store:
         engine = create_engine_for(url)
         try:
-            if upgrade:
+            if upgrade and not await schema_is_current(engine, migrations_dir()):
                 await upgrade_schema(engine, url)
         except BaseException:
             await engine.dispose()

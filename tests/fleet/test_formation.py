@@ -21,9 +21,9 @@ from gateway.fleet.formation import (
     FormationPlan,
     plan_formation,
     rtl_altitudes,
-    segment_distance,
     takeoff_altitudes,
 )
+from gateway.fleet.formation_geometry import segment_distance
 from gateway.fleet.safety import SafetyPolicy, VehicleContext
 from tests.fleet._util import HOME
 from tests.fleet._util import settings as make_settings
