@@ -63,6 +63,10 @@ CALL_TIMEOUT_S = 10.0
 CONNECT_TIMEOUT_S = 10.0
 READY_WAIT_S = 60.0
 RATE_RETRY_S = 5.0
+#: the link monitor's period (s); it also wakes when the link-lost limit is reached, ``MONITOR_LATE_S``
+#: after it (so the heartbeat is then older than the limit)
+MONITOR_PERIOD_S = 1.0
+MONITOR_LATE_S = 0.01
 
 MAV_CMD_SET_MESSAGE_INTERVAL = 511
 MAV_CMD_REQUEST_MESSAGE = 512
@@ -567,6 +571,7 @@ class Link:
             name = self.rules.mode_name(facts.custom_mode or 0, facts.mav_type or 0)
             if name is not None:
                 self.telemetry.put("flight_mode", name)
+            self._note_state()  # connected again, ready: seen with the heartbeat, not at the next check
 
     async def _simstate(self, system: System) -> None:
         async for _msg in system.mavlink_direct.message("SIMSTATE"):
@@ -666,7 +671,12 @@ class Link:
                 await self.command_long(MAV_CMD_REQUEST_MESSAGE, MAVLINK_MSG_SIMSTATE, what="SIMSTATE")
 
     async def _monitor(self) -> None:
-        """Every 0.25 s: log state changes, re-request rates when streams stopped while heartbeats go on."""
+        """Log state changes and re-request rates when streams stopped while heartbeats go on.
+
+        Wakes once a second (``MONITOR_PERIOD_S``), and when the last heartbeat (or, before the first, the
+        session's start) reaches the link-lost limit: the one change that comes with nothing arriving.
+        Changes that come with data are noted as it arrives (the HEARTBEAT loop) or when ``state`` is
+        read; the health and the rate check can wait a second."""
         while True:
             self._note_state()
             if self._system is not None:
@@ -680,7 +690,18 @@ class Link:
                 )
                 if heartbeats_fresh and streams_silent:
                     self._schedule_rates("telemetry streams silent while heartbeats continue (reboot?)")
-            await asyncio.sleep(0.25)
+            await asyncio.sleep(self._monitor_wait_s())
+
+    def _monitor_wait_s(self) -> float:
+        """Until the next check: ``MONITOR_PERIOD_S``, or less when the link-lost limit comes first."""
+        wait = MONITOR_PERIOD_S
+        if self._system is not None and self._session_started is not None:
+            hb = self.facts.last_heartbeat
+            since = hb if hb is not None else self._session_started
+            until_lost = since + self.settings.link_lost_after_s - time.monotonic()
+            if until_lost >= 0.0:
+                wait = min(wait, until_lost + MONITOR_LATE_S)
+        return max(MONITOR_LATE_S, wait)
 
     def _note_state(self) -> None:
         state = self._compute_state()
