@@ -68,7 +68,7 @@ def create_app(settings: Settings | None = None, registry_factory: RegistryFacto
     app.include_router(metrics.router)
     app.include_router(build_api_router())
     install_console(app)
-    mount_mcp(app, gateway, hooks)  # last: after the REST routes
+    mount_mcp(app, gateway, hooks)
     install_openapi(app)
     return app
 
@@ -86,6 +86,11 @@ def mount_mcp(app: FastAPI, gateway: Gateway, hooks: list[LifespanHook]) -> None
     mcp_app = mcp_http_app(mcp, gateway.settings)
     hooks.append(mcp.session_manager.run)
     app.state.mcp = mcp
-    for route in mcp_app.routes:
-        if isinstance(route, Route | Mount):
-            app.router.routes.append(Route(route.path, endpoint=mcp_app, include_in_schema=False))
+    # first in the route list: every tool call is matched against it before the REST API's routes
+    # (about a tenth of the gateway's CPU for a small call went to trying those first)
+    mcp_routes = [
+        Route(route.path, endpoint=mcp_app, include_in_schema=False)
+        for route in mcp_app.routes
+        if isinstance(route, Route | Mount)
+    ]
+    app.router.routes[:0] = mcp_routes
