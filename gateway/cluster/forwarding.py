@@ -20,7 +20,7 @@ from gateway.fleet.caller import Caller
 from gateway.fleet.command_core import ROUTED
 from gateway.fleet.commander import Commander
 from gateway.fleet.routing import ACTING, FORWARDED, OnMessage
-from gateway.fleet.safety import RunningOperation
+from gateway.fleet.safety_inputs import RunningOperation
 from gateway.fleet.views import OperationView
 
 from .bus import ProgressSink

@@ -32,11 +32,8 @@ from typing import TYPE_CHECKING, Any
 from gateway.errors import GatewayError, InvalidArgument, NotFound, SafetyRefusal
 from gateway.fleet.caller import Caller
 from gateway.fleet.fleet_steps import Phase, Step
-from gateway.fleet.operations import (
-    Operation,
-    OperationManager,
-    OpStatus,
-)
+from gateway.fleet.operation_state import Operation, OpStatus
+from gateway.fleet.operations import OperationManager
 from gateway.fleet.protocols import VehicleView
 from gateway.fleet.routing import Router
 

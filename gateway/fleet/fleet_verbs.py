@@ -52,10 +52,10 @@ from gateway.fleet.fleet_steps import (
     takeoff_phase,
 )
 from gateway.fleet.formation import DroneStart, plan_formation, rtl_altitudes, takeoff_altitudes
-from gateway.fleet.operations import Operation
+from gateway.fleet.operation_state import Operation
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.fleet.readings import home, is_landed_and_disarmed, position, vehicle_context
-from gateway.fleet.safety import VehicleContext
+from gateway.fleet.safety_inputs import VehicleContext
 from gateway.fleet.views import (
     ActionResult,
     FleetHoldResult,
