@@ -32,14 +32,9 @@ from gateway.fleet.command_core import (
 )
 from gateway.fleet.command_pass import CommandPass, Need, Order
 from gateway.fleet.drone_verbs import FlightVerbs
-from gateway.fleet.fleet_ops import (
-    FleetOperation,
-    FleetOperations,
-    Unable,
-    check_drone_ids,
-    collect_members,
-    refuse_fleet,
-)
+from gateway.fleet.fleet_operation import FleetOperation
+from gateway.fleet.fleet_ops import FleetOperations
+from gateway.fleet.fleet_refusals import Unable, check_drone_ids, collect_members, refuse_fleet
 from gateway.fleet.fleet_steps import (
     FORMATION_TOLERANCE_M,
     build_step,
