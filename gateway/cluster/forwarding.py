@@ -100,7 +100,7 @@ class ClusterRouter:
             if on_message is not None:
                 await on_message(body)
 
-        result = await self.node.forward(drone_id, verb, caller, arguments, observe, wait_s)
+        result = await self.node.calls.forward(drone_id, verb, caller, arguments, observe, wait_s)
         self._note(result)
         return result
 
