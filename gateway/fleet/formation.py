@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Any
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
 from gateway.fleet.assignment import min_cost_assignment
-from gateway.fleet.safety import Rule, fmt, refuse
+from gateway.fleet.safety_rules import Rule, fmt, refuse
 
 if TYPE_CHECKING:
     import numpy as np

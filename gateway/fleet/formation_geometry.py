@@ -12,7 +12,7 @@ import numpy as np
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.formation import FORMATIONS, TOL_M
-from gateway.fleet.safety import Rule, fmt, refuse
+from gateway.fleet.safety_rules import Rule, fmt, refuse
 
 # ------------------------------------------------------------------------------------------------
 # geometry

@@ -8,15 +8,15 @@ from pathlib import Path
 
 from sqlalchemy import text
 
-from gateway.registry.schema_check import head_from_files, schema_is_current
-from gateway.registry.store import (
-    Store,
+from gateway.registry.database import (
     create_engine_for,
     current_revision,
     head_revision,
     migrations_dir,
     upgrade_schema,
 )
+from gateway.registry.schema_check import head_from_files, schema_is_current
+from gateway.registry.store import Store
 
 
 def test_head_read_from_the_files_is_alembics_head() -> None:
@@ -80,7 +80,11 @@ def test_a_current_database_opens_without_importing_alembic(tmp_path: Path) -> N
 
     def open_in_a_new_process() -> str:
         done = subprocess.run(
-            [sys.executable, "-c", OPEN_AND_CLOSE, url], capture_output=True, text=True, timeout=120, check=True
+            [sys.executable, "-c", OPEN_AND_CLOSE, url],
+            capture_output=True,
+            text=True,
+            timeout=120,
+            check=True,
         )
         return done.stdout.strip()
 
