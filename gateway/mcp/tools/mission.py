@@ -17,9 +17,9 @@ from gateway.mcp.results import (
     MissionProgressOut,
     OperationOut,
     ValueOut,
+    action_out,
 )
 from gateway.mcp.toolkit import DroneId, Lat, Lon, Toolset, Wait
-from gateway.mcp.tools.flight import action_out
 
 toolset = Toolset("mission")
 
