@@ -23,3 +23,6 @@ FlightMode = Annotated[
         max_length=32,
     ),
 ]
+MISSION_ITEMS = 200
+"""The most mission items a tool call carries (the autopilot may hold more: `gateway.fleet.mission`)."""
+ItemIndex = Annotated[int, Field(ge=1, le=MISSION_ITEMS, description="Item 1..N")]

@@ -164,7 +164,18 @@ class FlightVerbs:
         )
         return sent.view()
 
-    @command(tool=Tool("hold_position", "flight", idempotent=True, says="{drone_id} {message}"))
+    @command(
+        tool=(
+            Tool("hold_position", "flight", idempotent=True, says="{drone_id} {message}"),
+            Tool(
+                "hold_mission_position",
+                "mission",
+                idempotent=True,
+                says="{drone_id} {message}",
+                description="Hover in place (GUIDED) during a mission; resume_mission continues.",
+            ),
+        )
+    )
     @routed
     async def hold(self, caller: Caller, drone_id: DroneId, label: str = "hold_position") -> ActionResult:
         """Stop and hover where the drone is (GUIDED); ends the current action.
