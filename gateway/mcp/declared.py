@@ -34,11 +34,9 @@ CALLBACKS = frozenset({"notify"})
 
 
 def complete(toolset: Toolset) -> Toolset:
-    """Put the tools the verbs declare for ``toolset`` into it (once), where its module said
-    (``declared_here``) or after its hand-written tools. A hand-written tool of the same name as a
-    declared one is refused: one tool, one way."""
-    if toolset.complete:
-        return toolset
+    """``toolset`` with the tools the verbs declare for it, where its module said (``declared_here``)
+    or after its hand-written tools: a new `Toolset` (the module's keeps its hand-written tools only). A
+    hand-written tool of the same name as a declared one is refused: one tool, one way."""
     written = {spec.name for spec in toolset.tools}
     generated = [tool_spec(tool) for tool in declared(toolset.name)]
     twice = sorted(written & {spec.name for spec in generated})
@@ -47,9 +45,7 @@ def complete(toolset: Toolset) -> Toolset:
             f"toolset {toolset.name}: {', '.join(twice)} is declared by a verb and written by hand too"
         )
     at = len(toolset.tools) if toolset.declared_at is None else toolset.declared_at
-    toolset.tools[at:at] = generated
-    toolset.complete = True
-    return toolset
+    return Toolset(toolset.name, [*toolset.tools[:at], *generated, *toolset.tools[at:]])
 
 
 def declared(toolset: str) -> list[Tool]:

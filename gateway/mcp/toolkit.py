@@ -66,16 +66,14 @@ class ToolSpec:
 
 @dataclass
 class Toolset:
-    """A named group of tools; GATEWAY_MCP_TOOLSETS selects which toolsets a server exposes. Its
-    ``tools``: the hand-written ones, with the tools the verbs declare for it put in by `load_toolset`
-    (`gateway.mcp.declared.complete`) where ``declared_here()`` was called, else after them."""
+    """A named group of tools; GATEWAY_MCP_TOOLSETS selects which toolsets a server exposes. A
+    module's ``toolset`` holds its hand-written tools; `load_toolset` gives it complete, with the tools
+    the verbs declare for it (`gateway.mcp.declared.complete`) where ``declared_here()`` was called."""
 
     name: str
     tools: list[ToolSpec] = field(default_factory=list)
     #: where the declared tools go in ``tools`` (None: after the hand-written ones)
     declared_at: int | None = None
-    #: whether the declared tools are in ``tools`` yet
-    complete: bool = False
 
     def declared_here(self) -> None:
         """Put the tools the verbs declare for this toolset here, in the order the verbs are declared
