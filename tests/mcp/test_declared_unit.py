@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import importlib
 import inspect
+import re
 from collections.abc import AsyncIterator, Iterator
 from pathlib import Path
 from typing import Annotated, Any
@@ -143,3 +144,20 @@ def test_no_tool_is_both_declared_and_written_by_hand() -> None:
     copy.tool()(takeoff)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="takeoff is declared by a verb and written by hand too"):
         complete(copy)
+
+
+def test_contributing_shows_a_command_in_three_files_as_the_code_has_it() -> None:
+    """The example of CONTRIBUTING.md ("Adding a command and its tool") is the real code of its three
+    files: the verb with its tool, the VehicleActions member, its body."""
+    root = Path(__file__).resolve().parents[2]
+    text = (root / "CONTRIBUTING.md").read_text()
+    shown = re.findall(
+        r"\*\*[1-3]\. [^*]*?`(gateway/fleet/[a-z_]+\.py)`\*\*.*?```python\n(.*?)```", text, re.S
+    )
+    assert [path for path, _ in shown] == [
+        "gateway/fleet/navigation_verbs.py",
+        "gateway/fleet/protocols.py",
+        "gateway/fleet/vehicle.py",
+    ]
+    for path, code in shown:
+        assert code in (root / path).read_text(), path
