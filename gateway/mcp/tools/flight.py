@@ -17,8 +17,8 @@ from gateway.mcp.toolkit import DroneId, Toolset, check_drone_id
 
 toolset = Toolset("flight")
 
-# arm_drone, disarm_drone, takeoff, land, return_to_launch, hold_position and set_flight_mode are declared
-# with their verbs (gateway/fleet/drone_verbs.py) and generated (gateway/mcp/declared.py)
+# here: the tools the verbs declare for this toolset (@command(tool=Tool(..., "flight")), mostly in
+# gateway/fleet/drone_verbs.py), built by gateway/mcp/declared.py (the hand-written: this module)
 toolset.declared_here()
 
 

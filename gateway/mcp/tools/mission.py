@@ -139,6 +139,6 @@ async def is_mission_finished(call: ToolCall, drone_id: DroneId) -> ValueOut:
     )
 
 
-# pause_mission, hold_mission_position, resume_mission, clear_mission and set_current_waypoint are declared
-# with their verbs (gateway/fleet/mission_verbs.py, drone_verbs.py) and generated (gateway/mcp/declared.py)
+# here: the tools the verbs declare for this toolset (@command(tool=Tool(..., "mission")), mostly in
+# gateway/fleet/mission_verbs.py), built by gateway/mcp/declared.py (the hand-written: this module)
 toolset.declared_here()

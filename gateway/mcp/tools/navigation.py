@@ -52,8 +52,8 @@ async def get_home_position(call: ToolCall, drone_id: DroneId) -> PositionOut:
     return position_out(call, drone_id, "home")
 
 
-# go_to_location, reposition, move_to_relative, set_yaw and set_max_speed are declared with their verbs
-# (gateway/fleet/navigation_verbs.py) and generated (gateway/mcp/declared.py)
+# here: the tools the verbs declare for this toolset (@command(tool=Tool(..., "navigation")), mostly in
+# gateway/fleet/navigation_verbs.py), built by gateway/mcp/declared.py (the hand-written: this module)
 toolset.declared_here()
 
 
