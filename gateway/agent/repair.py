@@ -84,9 +84,10 @@ def swap_hint(arguments: Arguments) -> str | None:
     return None
 
 
-# "50 m south", "10 metres higher": a distance and a direction in the request
+# "50 m south", "10 metres higher", "25 m back west": a distance and a direction in the request
 _MOVE_RE = re.compile(
-    r"(\d+(?:\.\d+)?)\s*(?:m|metres?|meters?)\s+(?:to\s+the\s+)?(north|south|east|west|higher|up|lower|down)\b",
+    r"(\d+(?:\.\d+)?)\s*(?:m|metres?|meters?)\s+(?:(?:back|further|farther|more|due|to\s+the)\s+)*"
+    r"(north|south|east|west|higher|up|lower|down)\b",
     re.IGNORECASE,
 )
 _AXIS = {

@@ -106,6 +106,20 @@ def test_a_named_distance_on_the_wrong_axis_or_sign_is_refused_with_the_right_on
     assert direction_mismatch({"north_m": 12, "east_m": 0}, "Fly alpha north a bit.") is None
 
 
+def test_a_way_back_named_with_back_or_further_is_a_direction_of_its_own() -> None:
+    """A return leg ("25 m back south") names its own direction: the call that flies it is right and is
+    neither rewritten onto the outbound leg's direction nor refused."""
+    there_and_back = "Fly bravo 25 m north at 10 m, then bring it 25 m back south and land it."
+    back = {"drone_id": "bravo", "north_m": -25, "east_m": 0}
+    assert restore_request_directions(dict(back), there_and_back) == []
+    assert direction_mismatch(back, there_and_back) is None
+    assert direction_mismatch({"drone_id": "bravo", "north_m": 25}, there_and_back) is None
+    further = "Move charlie 15 metres further east."
+    assert direction_mismatch({"east_m": -15}, further) is not None
+    moved: dict[str, object] = {"north_m": 15, "east_m": 0}
+    assert restore_request_directions(moved, further) and moved["east_m"] == 15
+
+
 def test_an_unambiguous_misplaced_distance_is_moved_where_the_request_puts_it() -> None:
     south = "Bravo, take off to 15 m, head 50 m south, then return to launch."
     args = {"drone_id": "bravo", "north_m": 0, "east_m": -50}
