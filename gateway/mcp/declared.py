@@ -75,13 +75,14 @@ def tool_spec(tool: Tool) -> ToolSpec:
             continue
         params.append(param.replace(annotation=hints[name]))
     if operation:
-        params.append(inspect.Parameter("wait", inspect.Parameter.POSITIONAL_OR_KEYWORD, default=True))
-        params[-1] = params[-1].replace(annotation=Wait)
+        params.append(
+            inspect.Parameter("wait", inspect.Parameter.POSITIONAL_OR_KEYWORD, default=True, annotation=Wait)
+        )
     filled = {"label": tool.name} if "label" in verb.signature.parameters else {}
     feeds_notify = "notify" in verb.callbacks
 
     async def run(call: ToolCall, **arguments: Any) -> Result:
-        wait = bool(arguments.pop("wait", True))
+        wait = bool(arguments.pop("wait", True)) if operation else False
         extra: dict[str, Any] = {"notify": call.notify} if feeds_notify else {}
         result = await verb.method(call.commander, call.caller, **arguments, **filled, **extra)
         if isinstance(result, OperationView):
