@@ -14,7 +14,7 @@ import time
 
 from pymavlink.dialects.v20 import ardupilotmega as mavlink
 
-from gateway.link.relay import FrameSplitter, target_system
+from gateway.link.mavlink_frames import FrameSplitter, target_system
 
 
 def main() -> None:

@@ -17,10 +17,12 @@ from typing import TYPE_CHECKING
 from gateway.config import Settings
 from gateway.errors import GatewayError
 from gateway.fleet.commander import Commander
-from gateway.fleet.fleet_ops import FleetOperation, FleetOperations
+from gateway.fleet.fleet_operation import FleetOperation
+from gateway.fleet.fleet_ops import FleetOperations
 from gateway.fleet.operations import OperationManager
+from gateway.fleet.operator_locks import LockBook
 from gateway.fleet.protocols import VehicleActions, VehicleRegistry, flying
-from gateway.fleet.safety import LockBook, SafetyPolicy
+from gateway.fleet.safety import SafetyPolicy
 from gateway.fleet.scopes import ScopedDirectory, scopes_by_principal
 from gateway.registry.store import Store
 

@@ -17,7 +17,8 @@ from pydantic import ValidationError
 from gateway import drones_cli
 from gateway.cli_help import COMMAND_HELP
 from gateway.cli_support import database_option, fail, settings_from, validation_text, with_store
-from gateway.registry.store import Store, create_engine_for, current_revision, upgrade_schema
+from gateway.registry.database import create_engine_for, current_revision, upgrade_schema
+from gateway.registry.store import Store
 from gateway.startup import (
     StartupError,
     check_nats_reachable,

@@ -127,7 +127,7 @@ def test_dockerfile_runs_unprivileged_and_ships_the_migrations() -> None:
 
 def test_image_build_checks_the_migrations_the_store_uses() -> None:
     """The image installs the wheel, whose package data carries the migrations the store looks up."""
-    from gateway.registry.store import migrations_dir
+    from gateway.registry.database import migrations_dir
 
     text = (ROOT / "deploy" / "Dockerfile").read_text()
     assert "pip install ." in text and "migrations_dir" in text

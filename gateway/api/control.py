@@ -18,8 +18,8 @@ from gateway.api.audit import AuditedRoute
 from gateway.api.deps import CommanderDep, CommandVehicleId, GatewayDep, Principal, PrincipalDep
 from gateway.fleet.caller import Caller
 from gateway.fleet.geofence import FLEET
+from gateway.fleet.operator_locks import MAX_REASON_CHARS, Lock
 from gateway.fleet.operator_verbs import STOP_LOCK_REASON
-from gateway.fleet.safety import MAX_REASON_CHARS, Lock
 from gateway.fleet.views import LockResult, OperationView, StopOutcome
 
 router = APIRouter(tags=["operator control"], route_class=AuditedRoute)

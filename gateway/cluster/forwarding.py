@@ -20,7 +20,7 @@ from gateway.fleet.caller import Caller
 from gateway.fleet.command_core import ROUTED
 from gateway.fleet.commander import Commander
 from gateway.fleet.routing import ACTING, FORWARDED, OnMessage
-from gateway.fleet.safety import RunningOperation
+from gateway.fleet.safety_inputs import RunningOperation
 from gateway.fleet.views import OperationView
 
 from .bus import ProgressSink
@@ -100,7 +100,7 @@ class ClusterRouter:
             if on_message is not None:
                 await on_message(body)
 
-        result = await self.node.forward(drone_id, verb, caller, arguments, observe, wait_s)
+        result = await self.node.calls.forward(drone_id, verb, caller, arguments, observe, wait_s)
         self._note(result)
         return result
 

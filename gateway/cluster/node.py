@@ -3,6 +3,8 @@
 The runtime (:class:`gateway.runtime.Gateway`) builds one when ``GATEWAY_CLUSTER_NATS_URL`` is set; the
 registry then holds a :class:`~gateway.cluster.remote.RemoteVehicle` for every vehicle this node does not
 own, and this node adopts and releases vehicles as its lease keeper wins and loses their leases.
+Beside it: `gateway.cluster.owner_calls` (calls routed to a drone's owner), `gateway.cluster.fenced_stops`
+(the stop-only path of a fenced node) and `gateway.cluster.telemetry_fanout` (snapshots between nodes).
 """
 
 from __future__ import annotations
@@ -13,7 +15,6 @@ import json
 import logging
 import random
 import time
-import uuid
 from collections.abc import Callable
 from datetime import datetime
 from typing import TYPE_CHECKING, Any
@@ -21,20 +22,19 @@ from typing import TYPE_CHECKING, Any
 from nats.aio.msg import Msg
 from nats.aio.subscription import Subscription
 
-from gateway.cluster import snapshot
-from gateway.cluster.bus import Bus, CallCheck, CallHandler, ProgressSink, stop_subject, tele_subject
-from gateway.cluster.forwarding import ClusterRouter, answer
+from gateway.cluster.bus import Bus, tele_subject
+from gateway.cluster.fenced_stops import FencedStops
+from gateway.cluster.forwarding import ClusterRouter
 from gateway.cluster.keeper import LeasePlan, Wanted, plan
 from gateway.cluster.leases import Lease, LeaseStore, NodeRecord
+from gateway.cluster.owner_calls import OwnerCalls
 from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stop_notify import StopRelay
-from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget, send_stop
+from gateway.cluster.stoplink import StopTarget
 from gateway.cluster.takeover import pick_up_operations
+from gateway.cluster.telemetry_fanout import TelemetryFanout
 from gateway.config import Settings
-from gateway.errors import CommandFailed, GatewayError, NoOwner, NotRun
-from gateway.fleet.caller import Caller
-from gateway.fleet.routing import OnMessage
-from gateway.fleet.views import ActionResult, OperationView
+from gateway.errors import GatewayError, NoOwner
 from gateway.registry.spec import VehicleSpec
 
 if TYPE_CHECKING:
@@ -52,17 +52,6 @@ LEAVE_TIMEOUT_S = 3.0
 #: a lock heard on the bus holds this long at most while the database does not have it (its node keeps it
 #: until the database is back); an unlock heard on the bus, or the lock seen stored, ends the wait
 HEARD_LOCK_KEPT_S = 600.0
-#: forwarded verbs that only read the drone: they get a short timeout, not the MCP wait cap
-READS = frozenset({"arrival", "mission_progress", "get_param", "list_params", "download_mission"})
-READ_TIMEOUT_S = 5.0
-#: a stop sent over a drone's own link by its fenced node: its whole answer (open, for a hold ask where
-#: the drone is, send, ack) within this (a land is sent at once; this bounds waiting for its answer)
-STOP_SEND_S = 4.0
-#: a stop the bus did not carry, relayed through PostgreSQL notifications: its owner's answer within this
-RELAY_S = 5.0
-#: an operator's stop its owner has not accepted over the bus by then goes through PostgreSQL instead (the
-#: owner refuses the bus copy if it arrives later, so it runs once); the stop reaches the drone within 1 s
-STOP_ACCEPT_S = 0.5
 
 
 class ClusterSetupError(GatewayError):
@@ -97,22 +86,25 @@ class ClusterNode:
         self._served: dict[str, Subscription] = {}
         self._subs: list[Subscription] = []
         self._tasks: list[asyncio.Task[None]] = []
-        self._seq = 0
         self._kick = asyncio.Event()
         self._valid_until = 0.0
         self._tick_lock = asyncio.Lock()
         self._heard_locks: dict[str, float] = {}  # scope -> when a lock of it was heard on the bus
         self._adopting_from: dict[str, str] = {}  # vehicle -> the node it was taken from, while adopting
         self._adoptions: set[asyncio.Task[None]] = set()
-        # drones this node owned when it fenced itself (database unreachable): it keeps a stop-only path
-        # to each (land, return, hold over the drone's own link) until a node holds a live lease of it
-        self.fenced: dict[str, StopTarget] = {}
-        self._stop_paths: dict[str, Subscription] = {}
+        self.stops = FencedStops(self)  # the stop-only path of this node once it fenced itself
+        self.fanout = TelemetryFanout(self)
+        self.calls = OwnerCalls(self)  # calls routed to a drone's owner, and answered for this node's
         self.relay: StopRelay | None = None  # stops through PostgreSQL when the bus does not carry them
         self.nodes: list[NodeRecord] = []
         self.all_leases: dict[str, Lease] = {}
         self.last_plan = LeasePlan()
         self.started = False
+
+    @property
+    def fenced(self) -> dict[str, StopTarget]:
+        """The drones this node owned when it fenced itself, to which it keeps a stop-only path."""
+        return self.stops.fenced
 
     def _require_registry(self) -> Registry:
         if self.registry is None or not self.gateway.ready:
@@ -133,17 +125,17 @@ class ClusterNode:
             raise ClusterSetupError(
                 f"cannot reach NATS at {self.settings.cluster_nats_url} (GATEWAY_CLUSTER_NATS_URL): {exc!r}"
             ) from None
-        self._subs.append(await self.bus.subscribe(tele_subject("*"), self._on_snapshot))
+        self._subs.append(await self.bus.subscribe(tele_subject("*"), self.fanout.on_snapshot))
         self._subs.append(await self.bus.subscribe("fleet.event.>", self._on_event))
         await self.leases.heartbeat(self.tags, self.api_url)
-        self.relay = StopRelay(store.url, self.node_id, self._relayed_stop)
+        self.relay = StopRelay(store.url, self.node_id, self.calls.relayed_stop)
         await self.relay.start()
         self.started = True
         log.info("cluster node %s (tags %s) joined; lease %.0f s", self.node_id, self.tags or "none",
                  self.settings.cluster_lease_ttl_s)  # fmt: skip
         self._tasks = [
             asyncio.create_task(self._keep(), name="cluster-leases"),
-            asyncio.create_task(self._publish(), name="cluster-telemetry"),
+            asyncio.create_task(self.fanout.run(), name="cluster-telemetry"),
         ]
 
     async def stop(self) -> None:
@@ -159,7 +151,7 @@ class ClusterNode:
             relay, self.relay = self.relay, None
             await relay.close()
         held = list(self.held)
-        await self._end_stop_paths(list(self.fenced), "node stopping")
+        await self.stops.end(list(self.fenced), "node stopping")
         await self._drop_all(held, "node stopping")
         # neither the database nor the bus may keep a stopping node alive: its sidecars are stopped
         # already; a lease it cannot release expires on its own
@@ -224,9 +216,9 @@ class ClusterNode:
                     log.error(
                         "node %s could not renew its leases in time: stopping its sidecars", self.node_id
                     )
-                    targets = self._stop_targets()
+                    targets = self.stops.targets()
                     await self._drop_all(list(self.held), "leases could not be renewed")
-                    await self._keep_stop_paths(targets)
+                    await self.stops.keep(targets)
                 with contextlib.suppress(Exception):
                     await self._stop_strays()
             first = False
@@ -255,7 +247,7 @@ class ClusterNode:
             await registry.sync(records)
             self.all_leases = await self.leases.leases()
             self.nodes = await self.leases.nodes()
-            await self._end_stop_paths(
+            await self.stops.end(
                 [v for v in self.fenced if v not in self.all_leases or self.all_leases[v].live
                  or v not in {r.id for r in records}],
                 "the database is back and a node holds its lease",
@@ -332,7 +324,7 @@ class ClusterNode:
         try:
             vehicle = await registry.adopt(vehicle_id)
             self._served[vehicle_id] = await self.bus.serve_calls(
-                vehicle_id, self._answer(vehicle_id), self._check_epoch(vehicle_id)
+                vehicle_id, self.calls.answer(vehicle_id), self.calls.check_epoch(vehicle_id)
             )
         except BaseException:  # failed, or cut short (the node stopping): nothing half-adopted
             log.error("%s: adopting it failed: its sidecar is stopped, its lease left to expire", vehicle_id)
@@ -358,183 +350,6 @@ class ClusterNode:
         if registry is not None:
             await registry.release(vehicle_id)
         log.info("%s: released by node %s (%s)", vehicle_id, self.node_id, why)
-
-    # --- the stop-only path of a fenced node ----------------------------------------------------------
-    # Fencing exists so that no two nodes command one drone. A stop (land, return, hold) is the one command
-    # that is safe to send twice, so a node that fenced itself because the database was unreachable keeps
-    # a way to stop the drones it owned: on the drone's stop subject, and for its own callers, it sends
-    # the stop over the drone's own link (`gateway.cluster.stoplink`), opened for that moment only.
-    def _stop_targets(self) -> list[StopTarget]:
-        registry = self.registry
-        targets = []
-        for vid, lease in self.held.items():
-            vehicle = None if registry is None else registry.find(vid)
-            if vehicle is None:
-                continue
-            sysid = getattr(vehicle, "sysid", None) or vehicle.spec.expected_sysid
-            targets.append(StopTarget(vid, vehicle.spec.url, sysid, lease.epoch))
-        return targets
-
-    async def _keep_stop_paths(self, targets: list[StopTarget]) -> None:
-        registry = self.registry
-        for target in targets:
-            vid = target.vehicle_id
-            self.fenced[vid] = target
-            view = None if registry is None else registry.find(vid)
-            if isinstance(view, RemoteVehicle):  # its stops go to this node, which answers on the side
-                view.set_owner(self.node_id, target.epoch)
-            if vid not in self._stop_paths:
-                try:
-                    self._stop_paths[vid] = await self.bus.serve_calls(
-                        vid, self._stop_answer(vid), self._check_fenced(vid), subject=stop_subject(vid)
-                    )
-                except Exception as exc:
-                    log.error("%s: cannot listen for stops on the bus (%r): only this node's own stops "
-                              "reach it", vid, exc)  # fmt: skip
-        if targets:
-            log.warning("node %s keeps a stop-only path (land, return, hold over the drone's own link) to %s "
-                        "until another node holds their leases", self.node_id,
-                        ", ".join(t.vehicle_id for t in targets))  # fmt: skip
-
-    async def _end_stop_paths(self, vehicle_ids: list[str], why: str) -> None:
-        for vid in vehicle_ids:
-            self.fenced.pop(vid, None)
-            sub = self._stop_paths.pop(vid, None)
-            if sub is not None:
-                with contextlib.suppress(Exception):
-                    await sub.unsubscribe()
-            log.info("%s: node %s ends its stop-only path (%s)", vid, self.node_id, why)
-
-    def _check_fenced(self, vehicle_id: str) -> CallCheck:
-        def check(epoch: int | None) -> None:
-            target = self.fenced.get(vehicle_id)
-            if target is None:
-                raise NoOwner(f"node {self.node_id} has no stop path to drone '{vehicle_id}' any more: retry")
-            if epoch is not None and epoch != target.epoch:
-                raise NotRun(
-                    f"a stop for drone '{vehicle_id}' sent for lease epoch {epoch} reached node "
-                    f"{self.node_id}, which last held epoch {target.epoch}: not run; retry"
-                )
-
-        return check
-
-    def _stop_answer(self, vehicle_id: str) -> CallHandler:
-        async def handle(
-            name: str, arguments: dict[str, Any], caller: dict[str, Any], progress: ProgressSink
-        ) -> Any:
-            return await self.stop_directly(vehicle_id, name, Caller.from_dict(caller))
-
-        return handle
-
-    async def stop_directly(self, vehicle_id: str, verb: str, caller: Caller) -> dict[str, Any]:
-        """An operator's land, return or hold, sent over the drone's own link by this fenced node."""
-        target = self.fenced.get(vehicle_id)
-        if target is None:
-            raise NoOwner(f"node {self.node_id} has no stop path to drone '{vehicle_id}' any more: retry")
-        if verb not in STOP_COMMANDS or not caller.is_operator:
-            raise NotRun(
-                f"node {self.node_id} fenced itself (the database was unreachable) and holds no link to "
-                f"{vehicle_id}: it sends only an operator's land, return_to_launch or hold over the drone's "
-                f"own link; {verb} was not run"
-            )
-        started = time.monotonic()
-        try:
-            answer_ = await send_stop(target, verb, STOP_SEND_S)
-        except Exception as exc:
-            log.error("%s: %s over its own link failed (%r): nothing sent", vehicle_id, verb, exc)
-            raise NotRun(
-                f"node {self.node_id} (fenced) could not open {vehicle_id}'s link ({exc}): "
-                f"{verb} was not sent"
-            ) from None
-        log.warning("%s: %s sent over its own link by fenced node %s for %s (autopilot: %s, after %.0f ms)",
-                    vehicle_id, verb, self.node_id, caller.principal, answer_,
-                    (time.monotonic() - started) * 1000)  # fmt: skip
-        if answer_ in ("DENIED", "UNSUPPORTED", "FAILED", "TEMPORARILY_REJECTED", "CANCELLED"):
-            raise CommandFailed(f"{vehicle_id} refused {verb} sent over its own link: {answer_}")
-        if verb == "hold":
-            return ActionResult(
-                drone_id=vehicle_id,
-                action="hold",
-                message=f"hold (a reposition to where it is) sent over the drone's own link by node "
-                f"{self.node_id}, fenced while the database was unreachable (autopilot: {answer_})",
-                facts={"via": "direct link", "node": self.node_id},
-            ).model_dump(mode="json")
-        return OperationView(
-            operation_id=f"direct-{uuid.uuid4().hex[:12]}",
-            drone_id=vehicle_id,
-            kind=verb,
-            status="sent",
-            progress=0.0,
-            message=f"{verb} sent over the drone's own link by node {self.node_id}, fenced while the "
-            f"database was unreachable (autopilot: {answer_}); not tracked: its state shows when it lands",
-            elapsed_s=0.0,
-            params={"via": "direct link", "node": self.node_id},
-        ).model_dump(mode="json")
-
-    # --- telemetry fan-out ----------------------------------------------------------------------------
-    async def _publish(self) -> None:
-        period = 1.0 / self.settings.cluster_telemetry_hz
-        while True:
-            started = time.monotonic()
-            try:
-                await self.publish_snapshots()
-            except asyncio.CancelledError:
-                raise
-            except Exception:
-                log.exception("publishing telemetry snapshots failed")
-            await asyncio.sleep(max(0.0, period - (time.monotonic() - started)))
-
-    async def publish_snapshots(self) -> int:
-        registry = self.registry
-        if registry is None or self.bus.nc is None:
-            return 0
-        count = 0
-        for vid, lease in list(self.held.items()):
-            if not registry.is_local(vid):
-                continue
-            self._seq += 1
-            payload = snapshot.encode(
-                registry.get(vid), self.node_id, lease.epoch, self._seq, self._operation(vid)
-            )
-            await self.bus.publish(tele_subject(vid), payload)
-            count += 1
-        return count
-
-    def _operation(self, vehicle_id: str) -> dict[str, Any] | None:
-        ops = self.gateway.operations
-        op = None if ops is None else ops.latest(vehicle_id)
-        if op is None:
-            return None
-        target = op.params.get("alt_m")
-        return {
-            "id": op.id,
-            "kind": op.kind,
-            "status": op.status.value,
-            "progress": round(float(op.progress), 3),
-            "message": op.message,
-            "target_alt_m": float(target) if isinstance(target, int | float) else None,
-            "eta_s": None if op.eta_s is None else round(op.eta_s, 1),
-            "elapsed_s": round(op.elapsed_s(), 1),
-            "params": op.params,
-        }
-
-    async def _on_snapshot(self, msg: Msg) -> None:
-        try:
-            body = snapshot.decode(msg.data)
-        except ValueError:
-            return
-        if body.get("node") == self.node_id:
-            return
-        registry = self.registry
-        if registry is None:
-            return
-        try:
-            vehicle = registry.get(body["id"])
-        except GatewayError:
-            self.kick()  # a vehicle registered on another node: pick the registration up
-            return
-        if isinstance(vehicle, RemoteVehicle):
-            vehicle.apply(body)
 
     # --- broadcasts -----------------------------------------------------------------------------------
     async def announce(self, kind: str, body: dict[str, Any]) -> None:
@@ -600,124 +415,6 @@ class ClusterNode:
             if current is None or current.reason != lk.reason or current.by != lk.by:
                 book.lock(scope, lk.reason, lk.by, at=lk.locked_at)
 
-    # --- calls routed to the owner --------------------------------------------------------------------
-    async def forward(
-        self,
-        drone_id: str,
-        verb: str,
-        caller: Caller,
-        arguments: dict[str, Any],
-        on_message: OnMessage | None,
-        wait_s: float,
-    ) -> Any:
-        """Run ``verb`` on the drone's owner (over NATS); its result, or its error raised here."""
-        if not self.started:
-            raise NoOwner(f"this node is not part of the cluster yet; cannot reach {drone_id}'s owner")
-        forward_s = self.settings.cluster_forward_timeout_s
-        if verb in READS:  # a read has nothing to wait for on the owner
-            timeout = min(forward_s, READ_TIMEOUT_S)
-        else:
-            timeout = max(0.0, wait_s) + forward_s
-        body = {**caller.to_dict(), "node": self.node_id}
-        registry = self.registry
-        vehicle = None if registry is None else registry.find(drone_id)
-        epoch = vehicle.epoch if isinstance(vehicle, RemoteVehicle) and vehicle.epoch > 0 else None
-        accept_s = min(self.settings.cluster_accept_timeout_s, timeout)
-        owner_gone = None
-        if isinstance(vehicle, RemoteVehicle):
-            view, owner, seen_epoch = vehicle, vehicle.owner, vehicle.epoch
-
-            def owner_gone() -> str | None:
-                if view.owner == owner and view.epoch == seen_epoch:
-                    return None
-                if view.owner is None:
-                    return f"node {owner} lost drone {drone_id}'s lease"
-                return f"drone {drone_id} changed owner (node {owner} -> node {view.owner})"
-
-        stop = verb in STOP_COMMANDS and caller.is_operator
-        if stop and drone_id in self.fenced:  # no bus needed: this node sends it over the drone's link
-            return await self.stop_directly(drone_id, verb, caller)
-        # a stop gets a short accept time on the bus only where PostgreSQL can carry it instead
-        relay = self.relay if stop else None
-        short = relay is not None and relay.listening
-        try:
-            return await self.bus.call(
-                drone_id, verb, arguments, body, timeout, on_message,
-                accept_s=min(accept_s, STOP_ACCEPT_S) if short else accept_s, epoch=epoch,
-                owner_gone=owner_gone,
-            )  # fmt: skip
-        except NotRun as exc:
-            # the bus did not carry it (this node cut off, or no answer in the accept time): a stop goes
-            # through PostgreSQL notifications to the owner (`gateway.cluster.stop_notify`)
-            if relay is None or exc.details.get("bus") not in ("down", "no answer"):
-                raise
-            try:
-                return await relay.send(drone_id, verb, arguments, epoch, body, RELAY_S)
-            except NotRun:
-                if not (short and exc.details.get("bus") == "no answer"):
-                    raise
-            # PostgreSQL did not carry it either while the bus is up: the bus once more, with the whole
-            # accept time, for an owner slow to answer
-            return await self.bus.call(
-                drone_id, verb, arguments, body, timeout, on_message, accept_s=accept_s, epoch=epoch,
-                owner_gone=owner_gone,
-            )  # fmt: skip
-        except NoOwner:
-            if not stop:
-                raise
-        # nobody holds the drone's link: the node that last did may have fenced itself, and keep a
-        # stop-only path to it (a land sent twice is still a land)
-        return await self.bus.call(
-            drone_id, verb, arguments, body, accept_s + STOP_SEND_S + 1.0, on_message, accept_s=accept_s,
-            epoch=epoch, subject=stop_subject(drone_id),
-        )  # fmt: skip
-
-    async def _relayed_stop(self, stop: dict[str, Any]) -> Any:
-        """A stop another node relayed through PostgreSQL: run it when this node owns the drone under
-        that epoch (the same path as a stop over the bus), or keeps a stop-only path to it; None (silent)
-        when the drone is not this node's."""
-        vid, verb, epoch = str(stop.get("vehicle")), str(stop.get("command")), stop.get("epoch")
-        epoch = epoch if isinstance(epoch, int) else None
-        caller = dict(stop.get("by") or {})
-        if vid in self.held:
-            self._check_epoch(vid)(epoch)
-            if verb not in STOP_COMMANDS or not Caller.from_dict(caller).is_operator:
-                raise NotRun(f"only an operator's land, return_to_launch or hold crosses PostgreSQL: {verb} "
-                             "was not run")  # fmt: skip
-            log.warning("%s: %s relayed through PostgreSQL from node %s", vid, verb, stop.get("node"))
-            return await self._answer(vid)(verb, dict(stop.get("args") or {}), caller, _no_progress)
-        if vid in self.fenced:
-            self._check_fenced(vid)(epoch)
-            return await self.stop_directly(vid, verb, Caller.from_dict(caller))
-        return None
-
-    def _check_epoch(self, vehicle_id: str) -> CallCheck:
-        def check(epoch: int | None) -> None:
-            lease = self.held.get(vehicle_id)
-            if lease is None:
-                raise NoOwner(f"node {self.node_id} no longer owns drone '{vehicle_id}': not run; retry")
-            if epoch is not None and epoch != lease.epoch:
-                raise NotRun(
-                    f"a call for drone '{vehicle_id}' sent for lease epoch {epoch} reached node "
-                    f"{self.node_id}, which holds epoch {lease.epoch}: not run (the caller's view of its "
-                    "owner was out of date); retry"
-                )
-
-        return check
-
-    def _answer(self, vehicle_id: str) -> CallHandler:
-        async def handle(
-            name: str, arguments: dict[str, Any], caller: dict[str, Any], progress: ProgressSink
-        ) -> Any:
-            registry = self.registry
-            if registry is None or not registry.is_local(vehicle_id):
-                raise NoOwner(
-                    f"node {self.node_id} no longer owns drone '{vehicle_id}': retry in a few seconds"
-                )
-            return await answer(self.gateway.commander, name, arguments, caller, progress)
-
-        return handle
-
     # --- views ----------------------------------------------------------------------------------------
     def describe(self) -> dict[str, Any]:
         return {
@@ -739,10 +436,6 @@ class ClusterNode:
                 for n in self.nodes
             ],
         }
-
-
-async def _no_progress(_update: dict[str, Any]) -> None:
-    return None
 
 
 def remote_factory(settings: Settings) -> Callable[[VehicleSpec], RemoteVehicle]:

@@ -13,11 +13,11 @@ import logging
 from typing import Any
 
 from gateway.fleet.fleet_steps import FORMATION_TOLERANCE_M
-from gateway.fleet.operations import (
+from gateway.fleet.operation_state import OpStatus
+from gateway.fleet.trackers import (
     GotoTracker,
     LandingTracker,
     MissionTracker,
-    OpStatus,
     TakeoffTracker,
     Tracker,
     YawTracker,

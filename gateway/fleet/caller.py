@@ -12,7 +12,7 @@ from dataclasses import asdict, dataclass
 from typing import Any, Literal, get_args
 
 from gateway.errors import InvalidArgument
-from gateway.fleet.safety import Via
+from gateway.fleet.safety_rules import Via
 
 Door = Literal["mcp", "rest", "console", "cluster"]
 DOORS: tuple[str, ...] = get_args(Door)

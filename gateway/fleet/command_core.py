@@ -31,10 +31,10 @@ from gateway.fleet import geo
 from gateway.fleet.arguments import AltFrame
 from gateway.fleet.caller import Caller
 from gateway.fleet.command_pass import CommandPass
-from gateway.fleet.operations import Operation
+from gateway.fleet.operation_state import Operation
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.fleet.routing import FORWARDED, Verb
-from gateway.fleet.safety import VehicleContext
+from gateway.fleet.safety_inputs import VehicleContext
 from gateway.fleet.views import ActionResult, OperationView
 from gateway.registry.store import Store
 

@@ -37,19 +37,17 @@ from typing import Any
 
 from gateway.config import Settings
 from gateway.fleet.caller import Caller
-from gateway.fleet.operations import Operation, OperationManager, Tracker
+from gateway.fleet.operation_state import Operation
+from gateway.fleet.operations import OperationManager
+from gateway.fleet.operator_locks import LockBook, taken_over_text
 from gateway.fleet.protocols import FlyingVehicle, VehicleDirectory
 from gateway.fleet.readings import vehicle_context
 from gateway.fleet.routing import Router
-from gateway.fleet.safety import (
-    LockBook,
-    RunningOperation,
-    SafetyPolicy,
-    VehicleContext,
-    refuse,
-    taken_over_text,
-)
-from gateway.fleet.safety import Rule as SafetyRule
+from gateway.fleet.safety import SafetyPolicy
+from gateway.fleet.safety_inputs import RunningOperation, VehicleContext
+from gateway.fleet.safety_rules import Rule as SafetyRule
+from gateway.fleet.safety_rules import refuse
+from gateway.fleet.trackers import Tracker
 from gateway.fleet.views import OperationView
 
 RECOVERY_KINDS = ("land", "return_to_launch")

@@ -51,10 +51,11 @@ from gateway.fleet.ids import canonical_arguments, canonical_drone_id
 from gateway.fleet.mission_verbs import MissionVerbs
 from gateway.fleet.navigation_verbs import NavigationVerbs
 from gateway.fleet.operations import OperationManager
+from gateway.fleet.operator_locks import LockBook
 from gateway.fleet.operator_verbs import OperatorVerbs
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleDirectory, VehicleView
 from gateway.fleet.routing import Router
-from gateway.fleet.safety import LockBook, SafetyPolicy
+from gateway.fleet.safety import SafetyPolicy
 from gateway.registry.store import Store
 
 

@@ -31,10 +31,10 @@ from gateway.fleet.command_core import (
 )
 from gateway.fleet.command_pass import CommandPass, Need, Order
 from gateway.fleet.modes import ModeChoice
-from gateway.fleet.operations import LandingTracker, TakeoffTracker
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.fleet.readings import is_landed_and_disarmed, position, vehicle_context
-from gateway.fleet.safety import VehicleContext
+from gateway.fleet.safety_inputs import VehicleContext
+from gateway.fleet.trackers import LandingTracker, TakeoffTracker
 from gateway.fleet.views import ActionResult, OperationView
 
 

@@ -25,23 +25,17 @@ import logging
 import time
 import uuid
 from collections.abc import Awaitable, Callable, Iterable, Mapping, Sequence
-from dataclasses import dataclass, field
 from datetime import UTC, datetime
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-from gateway.errors import GatewayError, InvalidArgument, NotFound, SafetyRefusal
+from gateway.errors import GatewayError, NotFound
 from gateway.fleet.caller import Caller
+from gateway.fleet.fleet_operation import FLEET_CALLER, FleetOperation, Member
 from gateway.fleet.fleet_steps import Phase, Step
-from gateway.fleet.operations import (
-    Operation,
-    OperationManager,
-    OpStatus,
-)
-from gateway.fleet.protocols import VehicleView
+from gateway.fleet.operation_state import Operation, OpStatus
+from gateway.fleet.operations import OperationManager
 from gateway.fleet.routing import Router
-
-if TYPE_CHECKING:
-    pass
+from gateway.fleet.step_mirror import follow, mirror_view
 
 log = logging.getLogger(__name__)
 
@@ -49,207 +43,10 @@ POLL_S = 0.2
 """How often a running fleet operation looks at its drones' operations."""
 MAX_FINISHED_KEPT = 50
 """Finished fleet operations kept in memory (for monitor_fleet and fleet://formation)."""
-FLEET_CALLER = Caller(via="cluster", principal="fleet")
-"""The caller of a fleet operation started without one (judged as an agent)."""
-FOLLOW_WAIT_S = 30.0
-"""A step run on another node is followed by waits of this length, one after the other."""
 
 
 def _now() -> datetime:
     return datetime.now(UTC)
-
-
-# ------------------------------------------------------------------------------------------------
-# what a fleet operation is made of
-# ------------------------------------------------------------------------------------------------
-
-
-@dataclass
-class Member:
-    """One drone of a fleet operation: its latest outcome and, for formations, its slot."""
-
-    drone_id: str
-    status: str = "waiting"  # waiting | running | succeeded | failed | superseded | held | not_sent
-    message: str = "waiting for its phase"
-    operation_id: str | None = None
-    sent_after_s: float | None = None  # since the fleet operation started: its latest command went out
-    accepted_after_s: float | None = None  # ... and was accepted by the vehicle
-    slot: dict[str, Any] | None = None
-
-    def to_dict(self) -> dict[str, Any]:
-        out: dict[str, Any] = {
-            "drone_id": self.drone_id,
-            "status": self.status,
-            "message": self.message,
-            "operation_id": self.operation_id,
-            "sent_after_s": self.sent_after_s,
-            "accepted_after_s": self.accepted_after_s,
-        }
-        if self.slot is not None:
-            out.update(self.slot)
-        return out
-
-
-FINAL_FLEET = frozenset({"succeeded", "partial", "failed", "aborted", "superseded", "interrupted"})
-
-
-@dataclass
-class FleetOperation:
-    """A group of per-drone operations run in phases. Status: running, then succeeded (every drone),
-    partial (some drones), failed (none), aborted (a formation stopped after a failure), superseded or
-    interrupted."""
-
-    id: str
-    kind: str
-    drone_ids: list[str]
-    params: dict[str, Any]
-    members: dict[str, Member]
-    phase_names: list[str]
-    session_key: str | None = None
-    plan: dict[str, Any] | None = None
-    notes: list[str] = field(default_factory=list)
-    caller: Caller = FLEET_CALLER  # who asked: a step run on another node is judged as theirs
-    status: str = "running"
-    message: str = "starting"
-    phase: int = 0  # 1-based index of the phase running (0: not started)
-    dispatch_s: list[float] = field(default_factory=list)  # per phase: first command sent -> all accepted
-    created_at: datetime = field(default_factory=_now)
-    started_mono: float = field(default_factory=time.monotonic)
-    finished_mono: float | None = None
-    changed: asyncio.Event = field(default_factory=asyncio.Event, repr=False)
-    done: asyncio.Event = field(default_factory=asyncio.Event, repr=False)
-    dispatched: asyncio.Event = field(default_factory=asyncio.Event, repr=False)  # first phase sent
-    ops: dict[str, Operation] = field(default_factory=dict, repr=False)  # current step per drone
-
-    @property
-    def finished(self) -> bool:
-        return self.status in FINAL_FLEET
-
-    def elapsed_s(self) -> float:
-        end = self.finished_mono if self.finished_mono is not None else time.monotonic()
-        return end - self.started_mono
-
-    @property
-    def progress(self) -> float:
-        """Phases done plus the mean progress of the current phase's steps, over the phase count."""
-        if self.status == "succeeded":
-            return 1.0
-        total = max(1, len(self.phase_names))
-        current = [op.progress if not op.finished or op.status is not OpStatus.succeeded else 1.0
-                   for op in self.ops.values()]  # fmt: skip
-        within = sum(current) / len(current) if current else 0.0
-        return max(0.0, min(1.0, (max(self.phase, 1) - 1 + within) / total))
-
-    def eta_s(self) -> float | None:
-        etas = [op.eta_s for op in self.ops.values() if not op.finished and op.eta_s is not None]
-        return max(etas) if etas else None
-
-    def to_dict(self) -> dict[str, Any]:
-        eta = self.eta_s()
-        return {
-            "operation_id": self.id,
-            "kind": self.kind,
-            "status": self.status,
-            "message": self.message,
-            "phase": self.phase,
-            "phases": list(self.phase_names),
-            "progress": round(self.progress, 3),
-            "eta_s": None if eta is None or self.finished else round(eta, 1),
-            "elapsed_s": round(self.elapsed_s(), 1),
-            "dispatch_s": [round(d, 3) for d in self.dispatch_s],
-            "drones": [m.to_dict() for m in self.members.values()],
-            "notes": list(self.notes),
-        }
-
-
-# ------------------------------------------------------------------------------------------------
-# refusing a fleet command before anything is sent
-# ------------------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class Unable:
-    """Why one drone cannot take part: the safety rule (or the gateway error's code) and the message."""
-
-    drone_id: str
-    code: str
-    message: str
-    details: dict[str, Any] = field(default_factory=dict)
-    safety: bool = False  # refused by a safety rule (not an input or state error)
-
-    @classmethod
-    def from_error(cls, drone_id: str, exc: GatewayError) -> Unable:
-        details = {k: v for k, v in exc.details.items() if k != "rule"}
-        rule = exc.details.get("rule") if isinstance(exc, SafetyRefusal) else None
-        return cls(drone_id, str(rule or exc.code), exc.message, details, safety=rule is not None)
-
-    def to_dict(self) -> dict[str, Any]:
-        return {"drone_id": self.drone_id, "code": self.code, "message": self.message, **self.details}
-
-
-def _refusal_text(action: str, unable: Sequence[Unable], total: int) -> str:
-    lines = "; ".join(f"{u.drone_id}: {u.message}" for u in unable)
-    return (
-        f"{action} refused, nothing was sent: {len(unable)} of {total} drone(s) cannot take part "
-        f"(all must, for {action}) - {lines}"
-    )
-
-
-class FleetRefused(SafetyRefusal):
-    """A fleet command of which nothing was sent because safety rules refused some of its drones.
-    ``rule`` is the drones' rule when they share one, else ``fleet_members``; each drone's rule and
-    numbers are in ``drones``."""
-
-    code = "fleet_refused"
-    http_status = 403
-
-    def __init__(self, action: str, unable: Sequence[Unable], total: int) -> None:
-        rules = sorted({u.code for u in unable})
-        rule = rules[0] if len(rules) == 1 else "fleet_members"
-        super().__init__(
-            rule, _refusal_text(action, unable, total), rules=rules, drones=[u.to_dict() for u in unable]
-        )
-        self.unable = list(unable)
-
-
-class FleetUnavailable(GatewayError):
-    """A fleet command of which nothing was sent because some drones are unknown or not in a state to
-    take part (no safety rule involved)."""
-
-    code = "fleet_unavailable"
-    http_status = 409
-
-    def __init__(self, action: str, unable: Sequence[Unable], total: int) -> None:
-        super().__init__(
-            _refusal_text(action, unable, total),
-            codes=sorted({u.code for u in unable}),
-            drones=[u.to_dict() for u in unable],
-        )
-        self.unable = list(unable)
-
-
-def refuse_fleet(action: str, unable: Sequence[Unable], total: int) -> GatewayError:
-    """The error for a fleet command some drones cannot take part in: a safety refusal when any drone was
-    refused by a rule, else an availability error. Either way every drone's reason is in it."""
-    if any(u.safety for u in unable):
-        return FleetRefused(action, unable, total)
-    return FleetUnavailable(action, unable, total)
-
-
-def check_drone_ids(drone_ids: Sequence[str], max_count: int = 64) -> list[str]:
-    """A non-empty list of distinct ids; duplicates and oversize lists are refused, naming them."""
-    ids = list(drone_ids)
-    if not ids:
-        raise InvalidArgument("drone_ids is empty: name at least one drone (see list_drones)")
-    if len(ids) > max_count:
-        raise InvalidArgument(f"drone_ids has {len(ids)} entries; at most {max_count} drones per command")
-    bad = [i for i in ids if not isinstance(i, str) or not 0 < len(i) <= 64]
-    if bad:
-        raise InvalidArgument(f"drone ids must be 1..64 characters; got {bad[:3]!r}")
-    dupes = sorted({i for i in ids if ids.count(i) > 1})
-    if dupes:
-        raise InvalidArgument(f"drone ids appear more than once: {dupes}")
-    return ids
 
 
 # ------------------------------------------------------------------------------------------------
@@ -420,42 +217,11 @@ class FleetOperations:
             session_key=fop.session_key,
             created_at=_now(),
         )
-        _mirror(mirror, started)
-        task = asyncio.create_task(self._follow(router, mirror), name=f"follow-{mirror.id}")
+        mirror_view(mirror, started)
+        task = asyncio.create_task(follow(router, mirror), name=f"follow-{mirror.id}")
         self._followers.add(task)
         task.add_done_callback(self._followers.discard)
         return mirror
-
-    async def _follow(self, router: Router, mirror: Operation) -> None:
-        """Wait on the owner, again and again, until the operation there has finished."""
-
-        async def message(body: dict[str, Any]) -> None:
-            if isinstance(body.get("view"), dict):
-                _mirror(mirror, body["view"])
-
-        failures = 0
-        while not mirror.finished:
-            try:
-                view = await router.call(
-                    mirror.vehicle_id,
-                    "wait",
-                    FLEET_CALLER,
-                    {"operation_id": mirror.id, "cap_s": FOLLOW_WAIT_S},
-                    message,
-                    wait_s=FOLLOW_WAIT_S,
-                )
-                _mirror(mirror, view)
-                failures = 0
-            except asyncio.CancelledError:
-                raise
-            except GatewayError as exc:  # the owner was lost: its successor picks the operation up
-                failures += 1
-                mirror.message = f"following {mirror.vehicle_id} on its owner failed: {exc.message}"
-                mirror.changed.set()
-                if failures >= 5:
-                    _mirror(mirror, {"status": OpStatus.interrupted.value, "message": mirror.message})
-                    return
-                await asyncio.sleep(1.0)
 
     async def _hold(self, fop: FleetOperation, drone_id: str, step: Step) -> None:
         router = self._elsewhere(drone_id)
@@ -654,38 +420,3 @@ class FleetOperations:
         finished = [k for k, f in self._ops.items() if f.finished]
         for key in finished[: max(0, len(finished) - MAX_FINISHED_KEPT)]:
             del self._ops[key]
-
-
-def _mirror(mirror: Operation, view: Mapping[str, Any]) -> None:
-    """Bring a local mirror of an operation another node runs up to date with its view there."""
-    mirror.progress = float(view.get("progress", mirror.progress) or 0.0)
-    mirror.message = str(view.get("message") or mirror.message)
-    eta = view.get("eta_s")
-    mirror.eta_s = None if eta is None else float(eta)
-    status = OpStatus(str(view.get("status") or "running"))
-    if status is not OpStatus.running and not mirror.finished:
-        mirror.status = status
-        mirror.finished_at = _now()
-        mirror.done.set()
-    mirror.changed.set()
-
-
-def collect_members(
-    drone_ids: Sequence[str],
-    resolve: Callable[[str], VehicleView],
-    check: Callable[[VehicleView], None],
-) -> tuple[dict[str, VehicleView], list[Unable]]:
-    """Look every drone up (``resolve`` raises UnknownVehicle) and run ``check`` on it (raises a
-    GatewayError, e.g. SafetyRefusal or VehicleNotReady, when it cannot take part). Every drone is
-    checked, so one answer names all the drones that cannot take part."""
-    vehicles: dict[str, VehicleView] = {}
-    unable: list[Unable] = []
-    for drone_id in drone_ids:
-        try:
-            vehicle = resolve(drone_id)
-            check(vehicle)
-        except GatewayError as exc:
-            unable.append(Unable.from_error(drone_id, exc))
-            continue
-        vehicles[drone_id] = vehicle
-    return vehicles, unable

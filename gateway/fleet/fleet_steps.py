@@ -13,8 +13,8 @@ from typing import TYPE_CHECKING, Any
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
-from gateway.fleet.operations import GotoTracker, LandingTracker, TakeoffTracker, Tracker
 from gateway.fleet.protocols import VehicleView, flying
+from gateway.fleet.trackers import GotoTracker, LandingTracker, TakeoffTracker, Tracker
 
 if TYPE_CHECKING:
     from gateway.fleet.formation import FormationPlan

@@ -32,14 +32,9 @@ from gateway.fleet.command_core import (
 )
 from gateway.fleet.command_pass import CommandPass, Need, Order
 from gateway.fleet.drone_verbs import FlightVerbs
-from gateway.fleet.fleet_ops import (
-    FleetOperation,
-    FleetOperations,
-    Unable,
-    check_drone_ids,
-    collect_members,
-    refuse_fleet,
-)
+from gateway.fleet.fleet_operation import FleetOperation
+from gateway.fleet.fleet_ops import FleetOperations
+from gateway.fleet.fleet_refusals import Unable, check_drone_ids, collect_members, refuse_fleet
 from gateway.fleet.fleet_steps import (
     FORMATION_TOLERANCE_M,
     build_step,
@@ -52,10 +47,10 @@ from gateway.fleet.fleet_steps import (
     takeoff_phase,
 )
 from gateway.fleet.formation import DroneStart, plan_formation, rtl_altitudes, takeoff_altitudes
-from gateway.fleet.operations import Operation
+from gateway.fleet.operation_state import Operation
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.fleet.readings import home, is_landed_and_disarmed, position, vehicle_context
-from gateway.fleet.safety import VehicleContext
+from gateway.fleet.safety_inputs import VehicleContext
 from gateway.fleet.views import (
     ActionResult,
     FleetHoldResult,

@@ -33,7 +33,7 @@ import numpy as np
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
 from gateway.fleet.assignment import min_cost_assignment
-from gateway.fleet.safety import Rule, fmt, refuse
+from gateway.fleet.safety_rules import Rule, fmt, refuse
 
 FORMATIONS = ("line", "column", "wedge", "grid", "circle")
 TOL_M = 1e-6

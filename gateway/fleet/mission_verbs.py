@@ -17,10 +17,10 @@ from gateway.fleet.command_core import OperationDesk, Tool, command, routed
 from gateway.fleet.command_pass import CommandPass, Order
 from gateway.fleet.drone_verbs import FlightVerbs
 from gateway.fleet.mission import MissionItem
-from gateway.fleet.operations import MissionTracker
 from gateway.fleet.protocols import FlyingVehicle
 from gateway.fleet.readings import value, vehicle_context
-from gateway.fleet.safety import VehicleContext
+from gateway.fleet.safety_inputs import VehicleContext
+from gateway.fleet.trackers import MissionTracker
 from gateway.fleet.views import (
     ActionResult,
     MissionFileView,

@@ -31,18 +31,12 @@ from gateway.fleet.command_core import (
     wait_initialised,
 )
 from gateway.fleet.command_pass import CommandPass, Need, Order
-from gateway.fleet.operations import (
-    ClimbThenGoTracker,
-    GotoTracker,
-    LandingTracker,
-    OpStatus,
-    TakeoffTracker,
-    YawTracker,
-    check_positive_altitude,
-)
+from gateway.fleet.operation_state import OpStatus
+from gateway.fleet.operations import check_positive_altitude
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.fleet.readings import is_airborne, position, value
-from gateway.fleet.safety import Target, VehicleContext
+from gateway.fleet.safety_inputs import Target, VehicleContext
+from gateway.fleet.trackers import ClimbThenGoTracker, GotoTracker, LandingTracker, TakeoffTracker, YawTracker
 from gateway.fleet.views import ActionResult, ArrivalView, OperationView
 from gateway.registry.records import OperationRecord
 

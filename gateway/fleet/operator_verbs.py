@@ -24,7 +24,7 @@ from gateway.fleet.drone_verbs import FlightVerbs
 from gateway.fleet.fleet_ops import FleetOperations
 from gateway.fleet.geofence import FLEET
 from gateway.fleet.protocols import VehicleView
-from gateway.fleet.safety import Rule, refuse
+from gateway.fleet.safety_rules import Rule, refuse
 from gateway.fleet.takeover import Takeover
 from gateway.fleet.views import LockResult, StopOutcome, StopResult, UnlockResult
 from gateway.registry.records import AuditEntry

@@ -11,7 +11,7 @@ import math
 from typing import Any
 
 from gateway.fleet.protocols import VehicleView
-from gateway.fleet.safety import VehicleContext
+from gateway.fleet.safety_inputs import VehicleContext
 from gateway.link.telemetry import Sample
 
 

@@ -24,7 +24,7 @@ from pydantic import BaseModel, ConfigDict, ValidationError, create_model
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.caller import Caller
-from gateway.fleet.safety import RunningOperation
+from gateway.fleet.safety_inputs import RunningOperation
 
 OnMessage = Callable[[dict[str, Any]], Awaitable[None]]
 

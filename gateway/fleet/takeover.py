@@ -8,7 +8,7 @@ gateway commanded, a switch to any other mode that the gateway did not send (its
 under the drone's command lock, and the watch looks away meanwhile) is a *takeover*: a pilot's RC mode
 switch, another ground station, or the autopilot's own failsafe. The running operation then ends as
 ``interrupted`` with `Takeover.message`, and the drone is locked for agents (`Takeover.lock_reason`,
-`gateway.fleet.safety.LockBook.take_over`) until an operator releases it. The gateway sends that drone
+`gateway.fleet.operator_locks.LockBook.take_over`) until an operator releases it. The gateway sends that drone
 nothing on its own meanwhile.
 
 Pure logic: no I/O, no clocks but the times handed in.

@@ -9,7 +9,7 @@ from typing import Any, Literal
 from pydantic import BaseModel, Field
 
 from gateway.fleet.mission import MissionItem
-from gateway.fleet.operations import Operation
+from gateway.fleet.operation_state import Operation
 from gateway.fleet.protocols import VehicleView
 from gateway.fleet.readings import position
 from gateway.registry.records import OperationRecord

@@ -23,7 +23,7 @@ from mcp.types import EmptyResult, SubscribeRequestParams, UnsubscribeRequestPar
 
 from gateway.errors import GatewayError, NotFound, UnknownVehicle
 from gateway.fleet.commander import Commander
-from gateway.fleet.fleet_ops import FleetOperation
+from gateway.fleet.fleet_operation import FleetOperation
 from gateway.fleet.readings import position, value
 from gateway.mcp import sdk_private
 from gateway.mcp.results import plain, surface_telemetry

@@ -29,7 +29,8 @@ from gateway.fleet.command_pass import AUDIT_SENT
 from gateway.fleet.routing import ACTING
 from gateway.mcp.access import CallInfo, FleetState, current_call
 from gateway.registry.records import AuditEntry, SessionKind
-from gateway.registry.store import SessionSeen, Store
+from gateway.registry.store import Store
+from gateway.registry.store_audit import SessionSeen
 
 log = logging.getLogger(__name__)
 

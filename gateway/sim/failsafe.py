@@ -1,4 +1,5 @@
-"""Failsafe reactions (GCS loss, battery, EKF) and the geofence, with ArduCopter's actions and texts."""
+"""Failsafes: what triggers them at each step (GCS heartbeat loss, GPS loss, battery) and the reactions
+(GCS loss, battery, EKF) and the geofence, with ArduCopter's actions and texts."""
 
 from __future__ import annotations
 
@@ -169,3 +170,47 @@ class FailsafeMixin:
             return
         elif not self.set_mode(Mode.RTL)[0]:
             self.set_mode(Mode.LAND)
+
+
+def check_failsafes(v: SimVehicle) -> None:
+    """What triggers the failsafes, judged at each step: GCS heartbeat loss, GPS loss, battery."""
+    # GCS heartbeat loss: only heartbeats from MAV_GCS_SYSID count (ArduPilot's sysid_mygcs_seen).
+    fs_gcs = int(v.params.get("FS_GCS_ENABLE"))
+    if fs_gcs and v._gcs_last_seen is not None:
+        timeout = v.params.get("FS_GCS_TIMEOUT")
+        lost = v.t - v._gcs_last_seen > timeout
+        if lost and not v.failsafe_gcs:
+            v.failsafe_gcs = True
+            v.flight.gcs_failsafe(fs_gcs)
+        elif not lost and v.failsafe_gcs:
+            v.failsafe_gcs = False
+            v.text(mav.MAV_SEVERITY_WARNING, "GCS Failsafe Cleared")
+    elif v.failsafe_gcs and not fs_gcs:
+        v.failsafe_gcs = False
+    # GPS loss -> the EKF loses its position a moment later.
+    if v.gps_lost and v._gps_lost_at is None:
+        v._gps_lost_at = v.t
+    elif not v.gps_lost:
+        v._gps_lost_at = None
+    v.flight.ekf_check()
+    # Battery: AP_BattMonitor only checks its failsafes while armed
+    p = v.params.get
+    if not v.armed:
+        v.battery.check(v.t, 0, 0, 0, 0, 0)  # resets the low-voltage timer
+        return
+    level = v.battery.check(
+        v.t,
+        p("BATT_LOW_VOLT"),
+        p("BATT_LOW_MAH"),
+        p("BATT_CRT_VOLT"),
+        p("BATT_CRT_MAH"),
+        p("BATT_LOW_TIMER"),
+    )
+    if level:
+        b = v.battery
+        v.text(
+            mav.MAV_SEVERITY_WARNING,
+            f"Battery 1 is {level} {b.voltage:.2f}V used {b.consumed_mah:.0f} mAh",
+        )
+        action = int(p("BATT_FS_CRT_ACT") if level == "critical" else p("BATT_FS_LOW_ACT"))
+        v.flight.battery_failsafe(action)

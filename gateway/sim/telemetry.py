@@ -59,7 +59,7 @@ def sys_status(v: SimVehicle) -> mav.MAVLink_message:
         health &= ~S.MAV_SYS_STATUS_GEOFENCE
     if v.armed:
         enabled |= S.MAV_SYS_STATUS_LOGGING
-    if v.prearm_bit():
+    if v.boot_state.prearm_bit():
         health |= S.MAV_SYS_STATUS_PREARM_CHECK
     if v.battery.failsafe:
         health &= ~S.MAV_SYS_STATUS_SENSOR_BATTERY

@@ -1,6 +1,7 @@
-"""One simulated ArduCopter: state, boot timeline, MAVLink I/O, failsafes.
+"""One simulated ArduCopter: state, MAVLink I/O and the clock.
 
-Flight behaviour (modes, navigation) lives in ``flight.py``, command handling in ``commands.py``;
+Flight behaviour (modes, navigation) lives in ``flight.py``, command handling in ``commands.py``, the
+boot timeline and pre-arm checks in ``boot.py``, failsafe triggers and reactions in ``failsafe.py``;
 this module ties them to the links and the clock. All times are *simulated* seconds since boot.
 """
 
@@ -10,18 +11,19 @@ import logging
 import math
 import random
 import time
-from dataclasses import dataclass
 
 from pymavlink.dialects.v20 import ardupilotmega as mav
 
 from gateway.sim import telemetry
 from gateway.sim.auto import AutoState
 from gateway.sim.battery import Battery
+from gateway.sim.boot import BootSequence, Timeline
 from gateway.sim.commands import CommandHandler
+from gateway.sim.failsafe import check_failsafes
 from gateway.sim.flight import FlightController
 from gateway.sim.link import Link, LinkFaults, TcpServerLink, UdpOutLink
 from gateway.sim.mission import MissionStore
-from gateway.sim.modes import GUIDED_FLAG_MODES, REQUIRES_POSITION, Mode, mode_name
+from gateway.sim.modes import GUIDED_FLAG_MODES, Mode, mode_name
 from gateway.sim.params import Param, ParamTable
 from gateway.sim.physics import MAX_STEP_S, Body, LocalFrame
 from gateway.sim.streams import GROUP_PARAM
@@ -29,53 +31,6 @@ from gateway.sim.streams import GROUP_PARAM
 log = logging.getLogger(__name__)
 
 
-@dataclass(frozen=True)
-class Timeline:
-    """Boot milestones of ArduCopter SITL (simulated seconds since boot). Measured with
-    ``bench/readiness.py --real`` on ArduCopter 4.7-dev SITL (see docs/simulator.md): the same at
-    speed-up 1 and 5 within 0.2 s except ``accels_ok`` and ``prearm_ok``, about 0.6 s later at 5."""
-
-    boot_done: float = 1.8
-    baro: float = 1.93
-    ready: float = 2.45
-    mag_ok: float = 2.6  # compass and battery monitor healthy
-    rc7: float = 2.75
-    ekf_init: float = 4.46
-    tilt: float = 5.8  # from here the EKF has attitude and an altitude estimate
-    yaw_align: float = 5.9
-    gps_detect: float = 9.8
-    gps_fix: float = 10.1  # 3D fix (GPS_RAW_INT fix_type >= 3; MAVSDK: global/local position ok)
-    accels_ok: float = 12.6  # "Accels inconsistent" until here, then "Gyros inconsistent"
-    origin: float = 20.0
-    origin2: float = 20.2
-    prearm_ok: float = 22.8  # gyros consistent: armable in STABILIZE
-    ekf_gps: float = 41.6  # "EKF3 IMU0 is using GPS": armable in GUIDED, LOITER, AUTO...
-
-
-BOOT_TEXTS = [
-    ("baro", "Barometer 1 calibration complete"),
-    ("baro", "Barometer 2 calibration complete"),
-    ("ready", "ArduPilot Ready"),
-    ("ready", "AHRS: DCM active"),
-    ("rc7", "RC7: SaveWaypoint LOW"),
-    ("ekf_init", "EKF3 IMU0 initialised"),
-    ("ekf_init", "EKF3 IMU1 initialised"),
-    ("ekf_init", "AHRS: EKF3 active"),
-    ("tilt", "EKF3 IMU0 tilt alignment complete"),
-    ("tilt", "EKF3 IMU1 tilt alignment complete"),
-    ("yaw_align", "EKF3 IMU0 MAG0 initial yaw alignment complete"),
-    ("yaw_align", "EKF3 IMU1 MAG0 initial yaw alignment complete"),
-    ("gps_detect", "GPS 1: probing for u-blox at 230400 baud"),
-    ("gps_detect", "GPS 1: detected u-blox"),
-    ("origin", "EKF3 IMU0 origin set"),
-    ("origin", "Field Elevation Set: {field_elev}m"),
-    ("origin2", "EKF3 IMU1 origin set"),
-    ("ekf_gps", "EKF3 IMU0 is using GPS"),
-    ("ekf_gps", "EKF3 IMU1 is using GPS"),
-]
-
-PREARM_DISPLAY_PERIOD_S = 30.0
-PREARM_CHECK_PERIOD_S = 1.0
 GPS_LOSS_TO_EKF_S = 1.0  # the EKF stops trusting its position this long after the GPS fix is gone
 
 
@@ -147,16 +102,12 @@ class SimVehicle:
         self.failsafe_gcs = False
         self.battery.failsafe = None
         self._gcs_last_seen: float | None = None
-        self._boot_text_i = 0
-        self._prearm_next_display = 15.0 + 13.0
-        self._prearm_checked_at: float | None = None
-        self._prearm_bit = False
-        self._next_stat = 30.0
         self.flight_time_s = 0.0
         self._last_hb = -1.0
         self._last_timesync = 0.0
         self.auto = AutoState()
         self.flight = FlightController(self)
+        self.boot_state = BootSequence(self)
 
     def reboot(self) -> None:
         """Restart like a rebooted autopilot: boot timeline from zero, stream rates gone, TCP clients
@@ -286,69 +237,6 @@ class SimVehicle:
 
     def nav_output(self) -> tuple[float, float, float]:
         return self.flight.nav_output()
-
-    def prearm_bit(self) -> bool:
-        """SYS_STATUS's pre-arm bit. ArduCopter re-runs its pre-arm checks about once a second, so the bit
-        lags a mode change: right after GUIDED is selected it can still say "armable" while arming in
-        GUIDED is refused with "Need Position Estimate" (seen on real ArduCopter SITL)."""
-        if self._prearm_checked_at is None or self.t - self._prearm_checked_at >= PREARM_CHECK_PERIOD_S:
-            self._prearm_checked_at = self.t
-            self._prearm_bit = self.prearm_failure() is None
-        return self._prearm_bit
-
-    def prearm_failure(self, mode: Mode | None = None) -> str | None:
-        """First failing pre-arm check for ``mode`` (default: current), as ArduPilot words it."""
-        failures = self.prearm_failures(mode)
-        return failures[0] if failures else None
-
-    def prearm_failures(self, mode: Mode | None = None) -> list[str]:
-        """Every failing pre-arm check for ``mode`` (default: current), in the order ArduCopter 4.7
-        reports them on an arming attempt (one "Arm: ..." text each; measured on SITL, see Timeline)."""
-        mode = self.mode if mode is None else mode
-        tl = self.timeline
-        t = self.t
-        checks = self.params.get("ARMING_CHECK") != 0
-        failures: list[str] = []
-        if t < tl.tilt:
-            failures.append("Need Alt Estimate")
-        if checks and t < tl.accels_ok:
-            failures.append("Accels inconsistent")
-        elif checks and t < tl.prearm_ok:
-            failures.append("Gyros inconsistent")
-        if t < tl.tilt:
-            failures.append("EKF attitude is bad")
-        if checks and t < tl.mag_ok:
-            failures.append("Compass 1 not healthy")
-        if checks and tl.gps_detect <= t < tl.gps_fix:
-            failures.append("GPS 1: Bad fix")
-        elif not self.origin_set:
-            failures.append("AHRS: waiting for home")
-        elif mode in REQUIRES_POSITION and not self.position_ok:
-            failures.append("Need Position Estimate")
-        if checks and t < tl.mag_ok:
-            failures.append("Battery 1 unhealthy")
-        if checks:
-            battery = self._battery_arming_failure()
-            if battery:
-                failures.append(f"Battery 1 {battery}")
-            if self.failsafe_gcs:
-                failures.append("GCS failsafe on")
-        return failures
-
-    def _battery_arming_failure(self) -> str | None:
-        """AP_BattMonitor_Backend::arming_checks: thresholds compared with the present state, no timer."""
-        p = self.params.get
-        b = self.battery
-        remaining = b.capacity_mah - b.consumed_mah
-        checks = [
-            (p("BATT_LOW_VOLT") > 0 and b.voltage < p("BATT_LOW_VOLT"), "low voltage failsafe"),
-            (p("BATT_LOW_MAH") > 0 and remaining < p("BATT_LOW_MAH"), "low capacity failsafe"),
-            (p("BATT_CRT_VOLT") > 0 and b.voltage < p("BATT_CRT_VOLT"), "critical voltage failsafe"),
-            (p("BATT_CRT_MAH") > 0 and remaining < p("BATT_CRT_MAH"), "critical capacity failsafe"),
-            (p("BATT_ARM_VOLT") > 0 and b.voltage < p("BATT_ARM_VOLT"), "below minimum arming voltage"),
-            (p("BATT_ARM_MAH") > 0 and remaining < p("BATT_ARM_MAH"), "below minimum arming capacity"),
-        ]
-        return next((text for failed, text in checks if failed), None)
 
     # ------------------------------------------------------------------------------------------------
     # output
@@ -486,7 +374,7 @@ class SimVehicle:
 
     def _step(self, dt: float) -> None:
         self.t += dt
-        self._boot_timeline()
+        self.boot_state.step()
         self.flight.step(dt)
         if self.flying:
             self.flight_time_s += dt
@@ -495,39 +383,9 @@ class SimVehicle:
         if (capacity := self.params.get("BATT_CAPACITY")) > 0:
             self.battery.capacity_mah = capacity  # as ArduPilot: remaining % is consumed mAh of BATT_CAPACITY
         self.battery.drain(dt, self.armed, self.flying)
-        self._failsafes()
+        check_failsafes(self)
 
-    def _boot_timeline(self) -> None:
-        tl = self.timeline
-        while self._boot_text_i < len(BOOT_TEXTS):
-            attr, text = BOOT_TEXTS[self._boot_text_i]
-            if self.t < getattr(tl, attr):
-                break
-            self._boot_text_i += 1
-            self.text(mav.MAV_SEVERITY_INFO, text.format(field_elev=round(self.frame.alt0)))
-            if attr == "origin" and "origin set" in text:
-                self._set_origin()
-            if attr == "baro" and text.startswith("Barometer 2"):
-                for name in ("BARO1_GND_PRESS", "BARO2_GND_PRESS", "INS_GYR_ID", "INS_ACC_ID"):
-                    self.notify_param(name, self.params.get(name))
-            if attr == "rc7":
-                self.notify_param("EK3_SRC1_POSXY", 3)
-        if self.t >= self._next_stat:
-            self._next_stat += 30.0
-            self._stat_params()
-        if self.t >= self._prearm_next_display:
-            self._prearm_next_display = self.t + PREARM_DISPLAY_PERIOD_S
-            if not self.armed:
-                failure = self.prearm_failure()
-                if failure:
-                    self.text(mav.MAV_SEVERITY_CRITICAL, f"PreArm: {failure}")
-
-    def _stat_params(self) -> None:
-        if self.flight_time_s > 0:
-            self.notify_param("STAT_FLTTIME", round(self.flight_time_s))
-        self.notify_param("STAT_RUNTIME", round(self.t))
-
-    def _set_origin(self) -> None:
+    def set_origin(self) -> None:
         self.home = self.position()
         if self.params.get("MIS_TOTAL") < 1:
             self.notify_param("MIS_TOTAL", 1)  # home becomes mission item 0
@@ -546,48 +404,6 @@ class SimVehicle:
             msg = builder(self)
             if msg is not None:
                 self.broadcast(msg)
-
-    def _failsafes(self) -> None:
-        # GCS heartbeat loss: only heartbeats from MAV_GCS_SYSID count (ArduPilot's sysid_mygcs_seen).
-        fs_gcs = int(self.params.get("FS_GCS_ENABLE"))
-        if fs_gcs and self._gcs_last_seen is not None:
-            timeout = self.params.get("FS_GCS_TIMEOUT")
-            lost = self.t - self._gcs_last_seen > timeout
-            if lost and not self.failsafe_gcs:
-                self.failsafe_gcs = True
-                self.flight.gcs_failsafe(fs_gcs)
-            elif not lost and self.failsafe_gcs:
-                self.failsafe_gcs = False
-                self.text(mav.MAV_SEVERITY_WARNING, "GCS Failsafe Cleared")
-        elif self.failsafe_gcs and not fs_gcs:
-            self.failsafe_gcs = False
-        # GPS loss -> the EKF loses its position a moment later.
-        if self.gps_lost and self._gps_lost_at is None:
-            self._gps_lost_at = self.t
-        elif not self.gps_lost:
-            self._gps_lost_at = None
-        self.flight.ekf_check()
-        # Battery: AP_BattMonitor only checks its failsafes while armed
-        p = self.params.get
-        if not self.armed:
-            self.battery.check(self.t, 0, 0, 0, 0, 0)  # resets the low-voltage timer
-            return
-        level = self.battery.check(
-            self.t,
-            p("BATT_LOW_VOLT"),
-            p("BATT_LOW_MAH"),
-            p("BATT_CRT_VOLT"),
-            p("BATT_CRT_MAH"),
-            p("BATT_LOW_TIMER"),
-        )
-        if level:
-            b = self.battery
-            self.text(
-                mav.MAV_SEVERITY_WARNING,
-                f"Battery 1 is {level} {b.voltage:.2f}V used {b.consumed_mah:.0f} mAh",
-            )
-            action = int(p("BATT_FS_CRT_ACT") if level == "critical" else p("BATT_FS_LOW_ACT"))
-            self.flight.battery_failsafe(action)
 
     def _emit(self) -> None:
         if self.t - self._last_hb >= 1.0:

@@ -15,7 +15,8 @@ import pytest
 
 from gateway.app import create_app
 from gateway.config import Settings
-from gateway.registry.store import Store, create_engine_for, current_revision, head_revision
+from gateway.registry.database import create_engine_for, current_revision, head_revision
+from gateway.registry.store import Store
 from gateway.server_cli import main
 from gateway.util.ports import free_tcp_port
 from tests.fakes import FakeRegistry

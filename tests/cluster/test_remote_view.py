@@ -15,8 +15,8 @@ from gateway.cluster.remote import OwnedElsewhere, RemoteVehicle
 from gateway.config import Settings
 from gateway.errors import InvalidArgument
 from gateway.fleet.commander import Commander
+from gateway.fleet.operator_locks import LockBook
 from gateway.fleet.protocols import VehicleActions, flying
-from gateway.fleet.safety import LockBook
 from gateway.registry.spec import VehicleSpec
 from tests.fakes import fake_gateway, unit_settings
 

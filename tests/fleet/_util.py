@@ -7,7 +7,8 @@ from typing import Any
 from gateway.config import Settings
 from gateway.fleet import geo
 from gateway.fleet.caller import Caller
-from gateway.fleet.safety import SafetyPolicy, VehicleContext
+from gateway.fleet.safety import SafetyPolicy
+from gateway.fleet.safety_inputs import VehicleContext
 
 HOME = (47.397742, 8.545594, 488.0)  # lat, lon, alt AMSL
 

@@ -10,7 +10,7 @@ import pytest
 from gateway.errors import SafetyRefusal
 from gateway.fleet import geo
 from gateway.fleet.command_pass import AUDIT_SENT
-from gateway.fleet.safety import VehicleContext
+from gateway.fleet.safety_inputs import VehicleContext
 from gateway.runtime import Gateway
 from tests.fakes import HOME, fake
 from tests.fleet._util import AGENT, OPERATOR

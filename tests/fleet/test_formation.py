@@ -24,7 +24,8 @@ from gateway.fleet.formation import (
     segment_distance,
     takeoff_altitudes,
 )
-from gateway.fleet.safety import SafetyPolicy, VehicleContext
+from gateway.fleet.safety import SafetyPolicy
+from gateway.fleet.safety_inputs import VehicleContext
 from tests.fleet._util import HOME
 from tests.fleet._util import settings as make_settings
 

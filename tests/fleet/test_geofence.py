@@ -11,7 +11,8 @@ from hypothesis import strategies as st
 from gateway.config import Settings
 from gateway.errors import InvalidArgument, SafetyRefusal
 from gateway.fleet.geofence import GeofenceSet, load_geofence_file
-from gateway.fleet.safety import SafetyPolicy, Target
+from gateway.fleet.safety import SafetyPolicy
+from gateway.fleet.safety_inputs import Target
 from tests.fleet._util import HOME, at, ctx, settings, square
 
 

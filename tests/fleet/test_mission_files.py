@@ -11,7 +11,8 @@ import pytest
 
 from gateway.errors import InvalidArgument, SafetyRefusal
 from gateway.fleet import mission, mission_files
-from gateway.fleet.safety import SafetyPolicy, VehicleContext
+from gateway.fleet.safety import SafetyPolicy
+from gateway.fleet.safety_inputs import VehicleContext
 from tests.fleet._util import settings
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "missions"

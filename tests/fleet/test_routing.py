@@ -20,7 +20,7 @@ from gateway.fleet.caller import Caller
 from gateway.fleet.commander import Commander
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.routing import ACTING, FORWARDED, OnMessage
-from gateway.fleet.safety import RunningOperation
+from gateway.fleet.safety_inputs import RunningOperation
 from gateway.fleet.scopes import ScopedDirectory, VehicleScope
 from gateway.fleet.views import ActionResult, OperationView
 from gateway.runtime import Gateway

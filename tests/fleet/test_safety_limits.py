@@ -10,7 +10,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from gateway.errors import InvalidArgument, SafetyRefusal
-from gateway.fleet.safety import RunningOperation, SafetyPolicy, Target
+from gateway.fleet.safety import SafetyPolicy
+from gateway.fleet.safety_inputs import RunningOperation, Target
 from tests.fleet._util import at, ctx, ground, policy, settings
 
 

@@ -12,6 +12,7 @@ from sqlalchemy import event, text, update
 from sqlalchemy.exc import IntegrityError
 
 from gateway.errors import DuplicateVehicle, InvalidArgument, NotFound
+from gateway.registry.database import current_revision, head_revision
 from gateway.registry.models import SessionRow
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import (
@@ -19,14 +20,12 @@ from gateway.registry.store import (
     AuditEntry,
     AuditRecord,
     OperationRecord,
-    SessionSeen,
     StatusTextIn,
     Store,
     TrackSample,
     bound_arguments,
-    current_revision,
-    head_revision,
 )
+from gateway.registry.store_audit import SessionSeen
 from tests.helpers.timing import scaled
 
 T0 = datetime(2026, 5, 1, 12, 0, tzinfo=UTC)
@@ -77,7 +76,7 @@ async def test_reopen_keeps_data_and_schema(db_url: str) -> None:
 
 async def test_upgrade_from_the_first_revision_keeps_data(db_url: str) -> None:
     """A database made by an older gateway (revision 0001) is upgraded in place on open."""
-    from gateway.registry.store import create_engine_for, upgrade_schema
+    from gateway.registry.database import create_engine_for, upgrade_schema
 
     engine = create_engine_for(db_url)
     try:

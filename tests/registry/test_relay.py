@@ -20,7 +20,8 @@ from pymavlink import mavutil
 from pymavlink.dialects.v10 import ardupilotmega as mavlink1
 from pymavlink.dialects.v20 import ardupilotmega as mavlink
 
-from gateway.link.relay import FrameSplitter, Relay, target_system
+from gateway.link.mavlink_frames import FrameSplitter, target_system
+from gateway.link.relay import Relay
 from gateway.util.ports import free_tcp_port, free_udp_port
 from tests.helpers.timing import scaled
 

@@ -13,6 +13,7 @@ import time
 import pytest
 
 from gateway.config import Settings
+from gateway.link import proc_sockets
 from gateway.link import sidecar as sidecar_mod
 from gateway.link.sidecar import Sidecar, SidecarState
 from gateway.util.ports import free_udp_port
@@ -63,7 +64,7 @@ async def test_serves_after_discovery_and_stop_leaves_nothing(stopper: list[Side
         port = car.grpc_port
         assert port is not None
         # the gRPC port really is open, and by our process
-        assert sidecar_mod.listening_inodes(port) <= sidecar_mod.socket_inodes(pid)
+        assert proc_sockets.listening_inodes(port) <= proc_sockets.socket_inodes(pid)
         assert car.status()["vehicle_discovered"] is True
         await car.stop()
     assert not alive(pid)

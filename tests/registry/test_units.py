@@ -13,8 +13,8 @@ from gateway.fleet import mission
 from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
 from gateway.fleet.mission import MissionItem
 from gateway.fleet.modes import require_mode
-from gateway.fleet.operations import LandingTracker
 from gateway.fleet.params import param_aliases
+from gateway.fleet.trackers import LandingTracker
 from gateway.link.telemetry import BatteryValue, MissionProgressValue, PositionValue, Sample, TelemetryCache
 from tests.fakes import FakeVehicle
 
@@ -194,7 +194,8 @@ async def test_the_return_altitude_is_written_in_each_autopilots_parameter_and_u
 def test_each_dialect_protects_its_safety_parameters_whatever_the_deny_list_says() -> None:
     from gateway.config import DEFAULT_PARAM_DENY_PATTERNS, Settings
     from gateway.errors import SafetyRefusal
-    from gateway.fleet.safety import SafetyPolicy, split_patterns
+    from gateway.fleet.safety import SafetyPolicy
+    from gateway.fleet.vehicle_limits import split_patterns
 
     for dialect in (ARDUPILOT, PX4_DIALECT):  # the default deny list names every dialect's patterns
         assert set(dialect.protected_params) <= set(split_patterns(DEFAULT_PARAM_DENY_PATTERNS)), dialect.name

@@ -268,7 +268,8 @@ async def test_aarch64_sidecar_starts_confined_under_qemu(tmp_path: Path, host_a
     import dataclasses
 
     from gateway.config import Settings
-    from gateway.link.sidecar import Sidecar, SidecarState, listening_addresses, socket_inodes
+    from gateway.link.proc_sockets import listening_addresses, socket_inodes
+    from gateway.link.sidecar import Sidecar, SidecarState
     from tests.registry.heartbeat import HeartbeatVehicle
 
     source, qemu = _aarch64_mavsdk_server(), _qemu_aarch64()

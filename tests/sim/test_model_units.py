@@ -37,10 +37,10 @@ def _flying_guided(v: SimVehicle, alt: float = 10.0) -> None:
 
 def test_boot_timeline_matches_reference() -> None:
     v = _vehicle()
-    _run(v, lambda: v.prearm_failure(Mode.STABILIZE) is None)
+    _run(v, lambda: v.boot_state.prearm_failure(Mode.STABILIZE) is None)
     assert 22.0 <= v.t <= 23.5  # reference: 22.6 s
-    assert v.prearm_failure(Mode.GUIDED) == "Need Position Estimate"
-    _run(v, lambda: v.prearm_failure(Mode.GUIDED) is None)
+    assert v.boot_state.prearm_failure(Mode.GUIDED) == "Need Position Estimate"
+    _run(v, lambda: v.boot_state.prearm_failure(Mode.GUIDED) is None)
     assert 41.0 <= v.t <= 44.5  # reference: 41.6-44 s
     texts = [text for _t, _s, text in v.status_texts]
     assert (
@@ -124,7 +124,7 @@ def test_auto_disarm_and_cpu_starvation_catch_up() -> None:
 def test_armed_in_stabilize_before_ekf_uses_gps_cannot_fly_guided() -> None:
     """Reference section 7: armable in STABILIZE at 22.6 s, GUIDED refused until the EKF uses GPS."""
     v = _vehicle()
-    _run(v, lambda: v.prearm_failure() is None)  # current mode: STABILIZE
+    _run(v, lambda: v.boot_state.prearm_failure() is None)  # current mode: STABILIZE
     assert v.t < v.timeline.ekf_gps
     assert v.flight.arm(force=False) == (True, [])
     assert v.flight.set_mode(Mode.GUIDED) == (False, "requires position")

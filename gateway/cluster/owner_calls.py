@@ -1,0 +1,161 @@
+"""Calls routed to a drone's owner: a command on a drone another node owns goes to that node over the
+bus (an operator's stop also through PostgreSQL, or to a fenced node's stop-only path), and this node
+answers the calls for the drones it owns."""
+
+from __future__ import annotations
+
+import logging
+from typing import TYPE_CHECKING, Any
+
+from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, stop_subject
+from gateway.cluster.fenced_stops import STOP_SEND_S
+from gateway.cluster.forwarding import answer
+from gateway.cluster.remote import RemoteVehicle
+from gateway.cluster.stoplink import STOP_COMMANDS
+from gateway.errors import NoOwner, NotRun
+from gateway.fleet.caller import Caller
+from gateway.fleet.routing import OnMessage
+
+if TYPE_CHECKING:
+    from gateway.cluster.node import ClusterNode
+
+log = logging.getLogger("gateway.cluster")
+
+#: forwarded verbs that only read the drone: they get a short timeout, not the MCP wait cap
+READS = frozenset({"arrival", "mission_progress", "get_param", "list_params", "download_mission"})
+READ_TIMEOUT_S = 5.0
+#: a stop the bus did not carry, relayed through PostgreSQL notifications: its owner's answer within this
+RELAY_S = 5.0
+#: an operator's stop its owner has not accepted over the bus by then goes through PostgreSQL instead (the
+#: owner refuses the bus copy if it arrives later, so it runs once); the stop reaches the drone within 1 s
+STOP_ACCEPT_S = 0.5
+
+
+class OwnerCalls:
+    """Forwards this node's calls on other nodes' drones; answers the calls on its own."""
+
+    def __init__(self, node: ClusterNode) -> None:
+        self._node = node
+
+    async def forward(
+        self,
+        drone_id: str,
+        verb: str,
+        caller: Caller,
+        arguments: dict[str, Any],
+        on_message: OnMessage | None,
+        wait_s: float,
+    ) -> Any:
+        """Run ``verb`` on the drone's owner (over NATS); its result, or its error raised here."""
+        if not self._node.started:
+            raise NoOwner(f"this node is not part of the cluster yet; cannot reach {drone_id}'s owner")
+        forward_s = self._node.settings.cluster_forward_timeout_s
+        if verb in READS:  # a read has nothing to wait for on the owner
+            timeout = min(forward_s, READ_TIMEOUT_S)
+        else:
+            timeout = max(0.0, wait_s) + forward_s
+        body = {**caller.to_dict(), "node": self._node.node_id}
+        registry = self._node.registry
+        vehicle = None if registry is None else registry.find(drone_id)
+        epoch = vehicle.epoch if isinstance(vehicle, RemoteVehicle) and vehicle.epoch > 0 else None
+        accept_s = min(self._node.settings.cluster_accept_timeout_s, timeout)
+        owner_gone = None
+        if isinstance(vehicle, RemoteVehicle):
+            view, owner, seen_epoch = vehicle, vehicle.owner, vehicle.epoch
+
+            def owner_gone() -> str | None:
+                if view.owner == owner and view.epoch == seen_epoch:
+                    return None
+                if view.owner is None:
+                    return f"node {owner} lost drone {drone_id}'s lease"
+                return f"drone {drone_id} changed owner (node {owner} -> node {view.owner})"
+
+        stop = verb in STOP_COMMANDS and caller.is_operator
+        if stop and drone_id in self._node.fenced:  # no bus needed: this node sends it over the drone's link
+            return await self._node.stops.stop_directly(drone_id, verb, caller)
+        # a stop gets a short accept time on the bus only where PostgreSQL can carry it instead
+        relay = self._node.relay if stop else None
+        short = relay is not None and relay.listening
+        try:
+            return await self._node.bus.call(
+                drone_id, verb, arguments, body, timeout, on_message,
+                accept_s=min(accept_s, STOP_ACCEPT_S) if short else accept_s, epoch=epoch,
+                owner_gone=owner_gone,
+            )  # fmt: skip
+        except NotRun as exc:
+            # the bus did not carry it (this node cut off, or no answer in the accept time): a stop goes
+            # through PostgreSQL notifications to the owner (`gateway.cluster.stop_notify`)
+            if relay is None or exc.details.get("bus") not in ("down", "no answer"):
+                raise
+            try:
+                return await relay.send(drone_id, verb, arguments, epoch, body, RELAY_S)
+            except NotRun:
+                if not (short and exc.details.get("bus") == "no answer"):
+                    raise
+            # PostgreSQL did not carry it either while the bus is up: the bus once more, with the whole
+            # accept time, for an owner slow to answer
+            return await self._node.bus.call(
+                drone_id, verb, arguments, body, timeout, on_message, accept_s=accept_s, epoch=epoch,
+                owner_gone=owner_gone,
+            )  # fmt: skip
+        except NoOwner:
+            if not stop:
+                raise
+        # nobody holds the drone's link: the node that last did may have fenced itself, and keep a
+        # stop-only path to it (a land sent twice is still a land)
+        return await self._node.bus.call(
+            drone_id, verb, arguments, body, accept_s + STOP_SEND_S + 1.0, on_message, accept_s=accept_s,
+            epoch=epoch, subject=stop_subject(drone_id),
+        )  # fmt: skip
+
+    async def relayed_stop(self, stop: dict[str, Any]) -> Any:
+        """A stop another node relayed through PostgreSQL: run it when this node owns the drone under
+        that epoch (the same path as a stop over the bus), or keeps a stop-only path to it; None (silent)
+        when the drone is not this node's."""
+        vid, verb, epoch = str(stop.get("vehicle")), str(stop.get("command")), stop.get("epoch")
+        epoch = epoch if isinstance(epoch, int) else None
+        caller = dict(stop.get("by") or {})
+        if vid in self._node.held:
+            self.check_epoch(vid)(epoch)
+            if verb not in STOP_COMMANDS or not Caller.from_dict(caller).is_operator:
+                raise NotRun(f"only an operator's land, return_to_launch or hold crosses PostgreSQL: {verb} "
+                             "was not run")  # fmt: skip
+            log.warning("%s: %s relayed through PostgreSQL from node %s", vid, verb, stop.get("node"))
+            return await self.answer(vid)(verb, dict(stop.get("args") or {}), caller, _no_progress)
+        if vid in self._node.fenced:
+            self._node.stops.check(vid)(epoch)
+            return await self._node.stops.stop_directly(vid, verb, Caller.from_dict(caller))
+        return None
+
+    def check_epoch(self, vehicle_id: str) -> CallCheck:
+        def check(epoch: int | None) -> None:
+            lease = self._node.held.get(vehicle_id)
+            if lease is None:
+                raise NoOwner(
+                    f"node {self._node.node_id} no longer owns drone '{vehicle_id}': not run; retry"
+                )
+            if epoch is not None and epoch != lease.epoch:
+                raise NotRun(
+                    f"a call for drone '{vehicle_id}' sent for lease epoch {epoch} reached node "
+                    f"{self._node.node_id}, which holds epoch {lease.epoch}: not run (the caller's view of "
+                    "its owner was out of date); retry"
+                )
+
+        return check
+
+    def answer(self, vehicle_id: str) -> CallHandler:
+        async def handle(
+            name: str, arguments: dict[str, Any], caller: dict[str, Any], progress: ProgressSink
+        ) -> Any:
+            registry = self._node.registry
+            if registry is None or not registry.is_local(vehicle_id):
+                raise NoOwner(
+                    f"node {self._node.node_id} no longer owns drone '{vehicle_id}': retry in a few seconds"
+                )
+            return await answer(self._node.gateway.commander, name, arguments, caller, progress)
+
+        return handle
+
+
+async def _no_progress(_update: dict[str, Any]) -> None:
+    return None

@@ -1,0 +1,354 @@
+"""The relay's endpoints, one per URL: UDP (`udpin`/`udpout`), TCP (`tcpin` as a server, `tcpout` as a
+client that reconnects) and serial (`serial`), each opened again while it cannot be, and counting what
+it carried."""
+
+from __future__ import annotations
+
+import abc
+import asyncio
+import contextlib
+import os
+import termios
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+from urllib.parse import urlsplit
+
+from gateway.link.mavlink_frames import MAX_BUFFER, Frame, FrameSplitter
+
+RECONNECT_INITIAL_S = 0.5
+RECONNECT_MAX_S = 5.0
+#: how often an endpoint that could not be opened (port taken...) is tried again
+REOPEN_S = 3.0
+#: a UDP send error (nobody listening) is forgotten after this long without another
+UDP_ERROR_QUIET_S = 3.0
+
+_BAUDS = {
+    int(name[1:]): getattr(termios, name)
+    for name in dir(termios)
+    if name.startswith("B") and name[1:].isdigit()
+}
+
+
+Deliver = Callable[["Endpoint", Frame], None]
+
+
+@dataclass
+class EndpointStats:
+    frames_in: int = 0
+    frames_out: int = 0
+    last_in: float | None = None  # monotonic
+
+
+class Endpoint(abc.ABC):
+    """One side of the relay: opened as its URL says; hands every frame it receives to ``deliver``.
+    Each transport (UDP, TCP, serial) opens, sends and closes in its own way."""
+
+    def __init__(self, url: str, deliver: Deliver) -> None:
+        self.url = url
+        parts = urlsplit(url)
+        self.scheme = parts.scheme
+        self.host = parts.hostname or ""
+        self.port = parts.port or 0
+        self.stats = EndpointStats()
+        self.sysids: set[int] = set()
+        self.complaint: str | None = None
+        self._deliver = deliver
+        self._splitters: dict[Any, FrameSplitter] = {}
+
+    @abc.abstractmethod
+    async def start(self) -> None: ...
+
+    @abc.abstractmethod
+    def send(self, data: bytes) -> None: ...
+
+    @abc.abstractmethod
+    async def close(self) -> None: ...
+
+    @property
+    def peer(self) -> str | None:
+        return None
+
+    def received(self, data: bytes, source: Any = None) -> None:
+        splitter = self._splitters.setdefault(source, FrameSplitter())
+        for frame in splitter.feed(data):
+            self.stats.frames_in += 1
+            self.stats.last_in = time.monotonic()
+            self.sysids.add(frame.sysid)
+            self._deliver(self, frame)
+
+    def status(self) -> dict[str, Any]:
+        age = None if self.stats.last_in is None else round(time.monotonic() - self.stats.last_in, 3)
+        return {
+            "url": self.url,
+            "peer": self.peer,
+            "frames_in": self.stats.frames_in,
+            "frames_out": self.stats.frames_out,
+            "last_in_age_s": age,
+            "system_ids": sorted(self.sysids),
+            "error": self.complaint,
+        }
+
+
+class _Datagrams(asyncio.DatagramProtocol):
+    def __init__(self, owner: UdpEndpoint) -> None:
+        self.owner = owner
+
+    def datagram_received(self, data: bytes, addr: Any) -> None:
+        self.owner.datagram(data, addr)
+
+    def error_received(self, exc: Exception) -> None:  # e.g. ICMP port unreachable: nobody listens yet
+        reason = os.strerror(exc.errno) if isinstance(exc, OSError) and exc.errno else str(exc)
+        self.owner.complaint = f"{self.owner.url}: {reason}"
+        self.owner.error_at = time.monotonic()
+
+
+class UdpEndpoint(Endpoint):
+    """``udpin``: bind host:port, answer the latest sender; ``udpout``: send to host:port."""
+
+    def __init__(self, url: str, deliver: Deliver) -> None:
+        super().__init__(url, deliver)
+        self._transport: asyncio.DatagramTransport | None = None
+        self._peer: tuple[str, int] | None = None
+        self.error_at = 0.0  # monotonic, of the last send error the kernel reported
+        #: udpin: whether a new sender may become the peer (None: anyone, the latest sender wins)
+        self.accept: Callable[[tuple[str, int]], bool] | None = None
+
+    @property
+    def bound_port(self) -> int:
+        assert self._transport is not None
+        return int(self._transport.get_extra_info("sockname")[1])
+
+    @property
+    def peer(self) -> str | None:
+        return None if self._peer is None else f"{self._peer[0]}:{self._peer[1]}"
+
+    async def start(self) -> None:
+        loop = asyncio.get_running_loop()
+        if self.scheme == "udpin":
+            transport, _ = await loop.create_datagram_endpoint(
+                lambda: _Datagrams(self), local_addr=(self.host, self.port)
+            )
+        else:
+            self._peer = (self.host, self.port)
+            transport, _ = await loop.create_datagram_endpoint(
+                lambda: _Datagrams(self), remote_addr=(self.host, self.port)
+            )
+        self._transport = transport
+
+    def datagram(self, data: bytes, addr: Any) -> None:
+        if self.scheme == "udpin":
+            peer = (str(addr[0]), int(addr[1]))
+            if peer != self._peer and self.accept is not None and not self.accept(peer):
+                return  # not who this endpoint is for (the sidecar's socket: another local process)
+            self._peer = peer
+        self.complaint = None
+        self.received(data, self._peer)
+
+    def send(self, data: bytes) -> None:
+        if self._transport is None or self._peer is None:
+            return  # udpin: nobody has spoken to us yet
+        if self.scheme == "udpin":
+            self._transport.sendto(data, self._peer)
+        else:
+            self._transport.sendto(data)
+        self.stats.frames_out += 1
+        if self.complaint is not None and time.monotonic() - self.error_at > UDP_ERROR_QUIET_S:
+            self.complaint = None  # sent on without an error coming back: someone listens again
+
+    async def close(self) -> None:
+        if self._transport is not None:
+            self._transport.close()
+            self._transport = None
+
+
+class TcpEndpoint(Endpoint):
+    """``tcpout``: connect to host:port (again and again while it fails or drops); ``tcpin``: listen on
+    host:port, every client connected gets every frame."""
+
+    def __init__(self, url: str, deliver: Deliver) -> None:
+        super().__init__(url, deliver)
+        self._writers: list[asyncio.StreamWriter] = []
+        self._server: asyncio.Server | None = None
+        self._task: asyncio.Task[None] | None = None
+        self._readers: set[asyncio.Task[None]] = set()
+
+    @property
+    def peer(self) -> str | None:
+        peers = [w.get_extra_info("peername") for w in self._writers]
+        return ", ".join(f"{p[0]}:{p[1]}" for p in peers if p) or None
+
+    async def start(self) -> None:
+        if self.scheme == "tcpin":
+            self._server = await asyncio.start_server(self._client, self.host, self.port)
+        else:
+            self._task = asyncio.create_task(self._connect_loop(), name=f"relay-{self.url}")
+
+    async def _connect_loop(self) -> None:
+        delay = RECONNECT_INITIAL_S
+        while True:
+            try:
+                reader, writer = await asyncio.wait_for(asyncio.open_connection(self.host, self.port), 10.0)
+            except (OSError, TimeoutError) as exc:
+                reason = os.strerror(exc.errno) if exc.errno else "no answer within 10 s"
+                self.complaint = f"cannot connect to {self.host}:{self.port}: {reason}"
+                await asyncio.sleep(delay)
+                delay = min(delay * 2, RECONNECT_MAX_S)
+                continue
+            self.complaint = None
+            delay = RECONNECT_INITIAL_S
+            await self._serve(reader, writer)
+            self.complaint = f"{self.host}:{self.port} closed the connection"
+            await asyncio.sleep(delay)
+
+    async def _client(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        task = asyncio.current_task()
+        if task is not None:
+            self._readers.add(task)
+        try:
+            await self._serve(reader, writer)
+        except asyncio.CancelledError:
+            pass  # closing: asyncio's server callback would log a cancelled client task as an error
+        finally:
+            if task is not None:
+                self._readers.discard(task)
+
+    async def _serve(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        self._writers.append(writer)
+        try:
+            while chunk := await reader.read(4096):
+                self.received(chunk, id(writer))
+        except OSError:
+            pass
+        finally:
+            self._writers.remove(writer)
+            self._splitters.pop(id(writer), None)
+            writer.close()
+
+    def send(self, data: bytes) -> None:
+        for writer in list(self._writers):
+            if writer.is_closing():
+                continue
+            if writer.transport.get_write_buffer_size() > MAX_BUFFER:
+                continue  # a stalled reader: drop rather than buffer without bound (MAVLink is lossy)
+            writer.write(data)
+            self.stats.frames_out += 1
+
+    async def close(self) -> None:
+        tasks = [t for t in (self._task, *self._readers) if t is not None]
+        if self._server is not None:
+            self._server.close()
+        for writer in list(self._writers):
+            writer.close()
+        for task in tasks:
+            task.cancel()
+        await asyncio.gather(*tasks, return_exceptions=True)
+        if self._server is not None:
+            with contextlib.suppress(Exception):
+                await asyncio.wait_for(self._server.wait_closed(), 2.0)
+        self._server = None
+        self._task = None
+
+
+class SerialEndpoint(Endpoint):
+    """``serial:///dev/ttyX[:baud]``: the device in raw mode (default 57600 baud), reopened while it fails."""
+
+    def __init__(self, url: str, deliver: Deliver) -> None:
+        super().__init__(url, deliver)
+        device, _, baud = urlsplit(url).path.partition(":")
+        self.device = device
+        self.baud = int(baud) if baud else 57600
+        self._fd: int | None = None
+        self._task: asyncio.Task[None] | None = None
+
+    @property
+    def peer(self) -> str | None:
+        return self.device if self._fd is not None else None
+
+    async def start(self) -> None:
+        if self.baud not in _BAUDS:
+            raise ValueError(f"serial baud rate {self.baud} is not one this system supports")
+        self._task = asyncio.create_task(self._open_loop(), name=f"relay-{self.url}")
+
+    def _open(self) -> int:
+        fd = os.open(self.device, os.O_RDWR | os.O_NOCTTY | os.O_NONBLOCK)
+        try:
+            attrs = termios.tcgetattr(fd)
+            attrs[0] = 0  # iflag
+            attrs[1] = 0  # oflag
+            attrs[2] = termios.CS8 | termios.CREAD | termios.CLOCAL  # cflag
+            attrs[3] = 0  # lflag
+            attrs[4] = attrs[5] = _BAUDS[self.baud]
+            termios.tcsetattr(fd, termios.TCSANOW, attrs)
+        except BaseException:
+            os.close(fd)
+            raise
+        return fd
+
+    async def _open_loop(self) -> None:
+        loop = asyncio.get_running_loop()
+        delay = RECONNECT_INITIAL_S
+        while True:
+            try:
+                fd = self._open()
+            except OSError as exc:
+                self.complaint = f"cannot open {self.device}: {exc.strerror or exc}"
+                await asyncio.sleep(delay)
+                delay = min(delay * 2, RECONNECT_MAX_S)
+                continue
+            self.complaint = None
+            delay = RECONNECT_INITIAL_S
+            gone = asyncio.Event()
+            self._fd = fd
+
+            def readable(fd: int = fd, gone: asyncio.Event = gone) -> None:
+                try:
+                    data = os.read(fd, 4096)
+                except BlockingIOError:
+                    return
+                except OSError as exc:
+                    self.complaint = f"{self.device}: {exc.strerror or exc}"
+                    data = b""
+                if not data:
+                    gone.set()
+                    return
+                self.received(data)
+
+            loop.add_reader(fd, readable)
+            try:
+                await gone.wait()
+            finally:
+                loop.remove_reader(fd)
+                self._fd = None
+                os.close(fd)
+            await asyncio.sleep(delay)
+
+    def send(self, data: bytes) -> None:
+        if self._fd is None:
+            return
+        try:
+            os.write(self._fd, data)
+            self.stats.frames_out += 1
+        except BlockingIOError:
+            pass  # the device's buffer is full: dropped, MAVLink is lossy
+        except OSError as exc:
+            self.complaint = f"{self.device}: {exc.strerror or exc}"
+
+    async def close(self) -> None:
+        if self._task is not None:
+            self._task.cancel()
+            with contextlib.suppress(asyncio.CancelledError):
+                await self._task
+            self._task = None
+
+
+def open_endpoint(url: str, deliver: Deliver) -> Endpoint:
+    scheme = urlsplit(url).scheme
+    if scheme in ("udpin", "udpout"):
+        return UdpEndpoint(url, deliver)
+    if scheme in ("tcpin", "tcpout"):
+        return TcpEndpoint(url, deliver)
+    if scheme == "serial":
+        return SerialEndpoint(url, deliver)
+    raise ValueError(f"no MAVLink endpoint for '{url}'")

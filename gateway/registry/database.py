@@ -1,0 +1,116 @@
+"""The database itself: an async engine for a URL (SQLite gets WAL mode and a busy timeout) and the
+schema's Alembic migrations (upgrade to head, one upgrade at a time; the head and current revisions)."""
+
+from __future__ import annotations
+
+import asyncio
+import weakref
+from pathlib import Path
+from typing import Any
+
+from sqlalchemy import event, text
+from sqlalchemy.ext.asyncio import AsyncEngine, create_async_engine
+
+# The Alembic scripts ship inside the package (package data, ``gateway/migrations``), so they are found
+# wherever pip puts the package: a virtual environment, ``--user``, a distribution's system pip, a
+# ``--target`` directory or an editable checkout.
+MIGRATIONS_DIR = Path(__file__).resolve().parents[1] / "migrations"
+
+
+def migrations_dir() -> Path:
+    if (MIGRATIONS_DIR / "env.py").is_file():
+        return MIGRATIONS_DIR
+    raise RuntimeError(
+        f"the database migrations are missing: {MIGRATIONS_DIR} has no env.py (a damaged install? "
+        "reinstall fleet-gateway)"
+    )
+
+
+SQLITE_BUSY_TIMEOUT_MS = 10_000
+
+
+def _is_sqlite(url: str) -> bool:
+    return url.startswith("sqlite")
+
+
+def _install_sqlite_pragmas(engine: AsyncEngine) -> None:
+    @event.listens_for(engine.sync_engine, "connect")
+    def _on_connect(dbapi_connection: Any, _record: Any) -> None:
+        cursor = dbapi_connection.cursor()
+        cursor.execute(f"PRAGMA busy_timeout={SQLITE_BUSY_TIMEOUT_MS}")
+        cursor.execute("PRAGMA journal_mode=WAL")
+        cursor.execute("PRAGMA synchronous=NORMAL")
+        cursor.execute("PRAGMA foreign_keys=ON")
+        cursor.close()
+
+
+def create_engine_for(url: str) -> AsyncEngine:
+    """An async engine for ``url``, with SQLite's pragmas installed when it is SQLite."""
+    kwargs: dict[str, Any] = {"pool_pre_ping": not _is_sqlite(url)}
+    if _is_sqlite(url):
+        kwargs["connect_args"] = {"timeout": SQLITE_BUSY_TIMEOUT_MS / 1000}
+    engine = create_async_engine(url, **kwargs)
+    if _is_sqlite(url):
+        _install_sqlite_pragmas(engine)
+    return engine
+
+
+def alembic_config(url: str) -> Any:
+    """An Alembic Config pointing at the project's migrations and ``url``."""
+    from alembic.config import Config
+
+    cfg = Config()
+    cfg.set_main_option("script_location", str(migrations_dir()))
+    cfg.set_main_option("sqlalchemy.url", url.replace("%", "%%"))
+    return cfg
+
+
+# Alembic keeps its migration context in module globals: two upgrades interleaving in one event loop
+# would clobber each other, so they take turns (one lock per loop; tests run many loops).
+MIGRATION_LOCK_KEY = 0x666C6565  # PostgreSQL advisory lock id of schema upgrades ("flee")
+_MIGRATION_LOCKS: weakref.WeakKeyDictionary[asyncio.AbstractEventLoop, asyncio.Lock] = (
+    weakref.WeakKeyDictionary()
+)
+
+
+async def upgrade_schema(engine: AsyncEngine, url: str, revision: str = "head") -> None:
+    """Run Alembic migrations up to ``revision`` on ``engine`` (sharing its connection).
+
+    Across processes, the whole upgrade is one transaction holding the database's write lock (SQLite:
+    ``BEGIN IMMEDIATE``; PostgreSQL: an advisory lock): a second gateway or ``db upgrade`` starting at
+    the same time waits, then finds the schema current.
+    """
+    from alembic import command
+
+    cfg = alembic_config(url)
+
+    def _run(connection: Any) -> None:
+        cfg.attributes["connection"] = connection
+        command.upgrade(cfg, revision)
+
+    lock = _MIGRATION_LOCKS.setdefault(asyncio.get_running_loop(), asyncio.Lock())
+    async with lock, engine.begin() as conn:
+        if conn.dialect.name == "sqlite":
+            await conn.exec_driver_sql("BEGIN IMMEDIATE")
+        elif conn.dialect.name == "postgresql":  # held until this transaction ends
+            await conn.execute(text("SELECT pg_advisory_xact_lock(:key)"), {"key": MIGRATION_LOCK_KEY})
+        await conn.run_sync(_run)
+
+
+def head_revision() -> str:
+    """The newest schema revision among the project's migrations."""
+    from alembic.script import ScriptDirectory
+
+    head = ScriptDirectory.from_config(alembic_config("sqlite://")).get_current_head()
+    assert head is not None, "no migrations found"
+    return head
+
+
+async def current_revision(engine: AsyncEngine) -> str | None:
+    from alembic.runtime.migration import MigrationContext
+
+    def _get(connection: Any) -> str | None:
+        return MigrationContext.configure(connection).get_current_revision()
+
+    async with engine.connect() as conn:
+        return await conn.run_sync(_get)

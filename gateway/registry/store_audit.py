@@ -1,0 +1,429 @@
+"""The store's audit trail: every call's audit row (written at once, or queued by the MCP door and
+written in batches by a writer task within AUDIT_BATCH_S), the sessions the calls came in, the live
+listeners of written rows, and the finishing of rows left running once their operation ends."""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import dataclasses
+import logging
+from collections.abc import Callable
+from dataclasses import dataclass
+from datetime import datetime
+from typing import Any, cast, get_args
+
+from sqlalchemy import func, insert, or_, select, update
+from sqlalchemy.exc import IntegrityError
+from sqlalchemy.ext.asyncio import AsyncEngine
+
+from gateway.errors import InvalidArgument
+from gateway.registry.models import (
+    AuditRow,
+    OperationRow,
+    SessionRow,
+)
+from gateway.registry.records import (
+    AUDIT_MAX_ERROR,
+    AUDIT_OUTCOME_OF_OPERATION,
+    AuditEntry,
+    AuditRecord,
+    SessionKind,
+    SessionRecord,
+    bound_arguments,
+    utcnow,
+)
+from gateway.registry.store_core import StoreCore, rowcount
+from gateway.util.text import printable
+
+log = logging.getLogger(__name__)
+
+#: Called with each audit row this store writes, and again when a row's outcome is finished.
+AuditListener = Callable[[AuditRecord], None]
+AUDIT_BATCH_S = 0.05
+"""The longest a queued audit row waits for others to share its transaction (`Store.queue_audit`);
+readers and `close` cut it short."""
+
+ENDED_ELSEWHERE_KEPT = 500
+"""Outcomes of operations kept only in memory (fleet operations) remembered for audit rows written late."""
+
+
+@dataclass(frozen=True)
+class SessionSeen:
+    """A session seen by one audited call: written with the call's audit row (`Store.queue_audit`)."""
+
+    key: str
+    kind: SessionKind
+    principal: str | None = None
+    client_name: str | None = None
+    client_version: str | None = None
+
+
+class AuditTrail(StoreCore):
+    """The audit rows of the calls, written at once or queued, and the sessions the calls came in; a row
+    left running is finished when its operation ends."""
+
+    def __init__(self, engine: AsyncEngine, url: str) -> None:
+        super().__init__(engine, url)
+        self._audit_listeners: list[AuditListener] = []
+        # operation id -> (status, message) of ended operations this store does not keep (fleet ones)
+        self._ended_elsewhere: dict[str, tuple[str, str | None]] = {}
+        # audit rows (with the session each call touched) waiting for the writer task (queue_audit)
+        self._audit_queue: list[tuple[AuditEntry, SessionSeen | None]] = []
+        self._audit_writer: asyncio.Task[None] | None = None
+        self._audit_flush: asyncio.Event | None = None
+
+    # --- sessions --------------------------------------------------------------------------------
+
+    async def touch_session(
+        self,
+        key: str,
+        kind: SessionKind,
+        principal: str | None = None,
+        client_name: str | None = None,
+        client_version: str | None = None,
+    ) -> SessionRecord:
+        """Record that a session was seen now (insert or update; portable, no dialect upsert)."""
+        if kind not in get_args(SessionKind):
+            raise InvalidArgument(f"unknown session kind '{kind}'", field="kind")
+        key = key[:200]
+        for attempt in range(2):
+            now = utcnow()
+            try:
+                async with self._sessions.begin() as session:
+                    row = await session.get(SessionRow, key)
+                    if row is None:
+                        row = SessionRow(
+                            key=key,
+                            kind=kind,
+                            principal=principal,
+                            client_name=(client_name or None) and client_name[:200],
+                            client_version=(client_version or None) and client_version[:100],
+                            first_seen=now,
+                            last_seen=now,
+                            request_count=1,
+                        )
+                        session.add(row)
+                    else:
+                        row.last_seen = now
+                        row.request_count = (row.request_count or 0) + 1
+                        row.kind = kind
+                        if principal is not None:
+                            row.principal = principal
+                        if client_name:
+                            row.client_name = client_name[:200]
+                        if client_version:
+                            row.client_version = client_version[:100]
+                return SessionRecord.model_validate(row)
+            except IntegrityError:
+                if attempt:  # a concurrent insert won twice: give up loudly
+                    raise
+        raise AssertionError("unreachable")
+
+    async def get_session(self, key: str) -> SessionRecord | None:
+        await self.flush_audit()
+        async with self._sessions() as session:
+            row = await session.get(SessionRow, key)
+            return None if row is None else SessionRecord.model_validate(row)
+
+    async def list_sessions(
+        self,
+        kind: str | None = None,
+        principal: str | None = None,
+        since: datetime | None = None,
+        limit: int = 100,
+        offset: int = 0,
+    ) -> list[SessionRecord]:
+        """Sessions, most recently seen first."""
+        await self.flush_audit()
+        query = select(SessionRow)
+        if kind is not None:
+            query = query.where(SessionRow.kind == kind)
+        if principal is not None:
+            query = query.where(SessionRow.principal == principal)
+        if since is not None:
+            query = query.where(SessionRow.last_seen >= since)
+        query = query.order_by(SessionRow.last_seen.desc(), SessionRow.key).limit(limit).offset(offset)
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [SessionRecord.model_validate(r) for r in rows]
+
+    # --- audit -----------------------------------------------------------------------------------
+
+    def on_audit(self, listener: AuditListener) -> Callable[[], None]:
+        """Call ``listener`` with every audit row written (or finished) through this store, after it is
+        committed; returns the function that removes it. Listeners run in the writer's task: keep them
+        quick and non-blocking (the live event stream queues the row and returns)."""
+        self._audit_listeners.append(listener)
+
+        def remove() -> None:
+            if listener in self._audit_listeners:
+                self._audit_listeners.remove(listener)
+
+        return remove
+
+    def _audit_written(self, row: AuditRow | AuditRecord) -> None:
+        if not self._audit_listeners:
+            return
+        record = row if isinstance(row, AuditRecord) else AuditRecord.model_validate(row)
+        for listener in list(self._audit_listeners):
+            try:
+                listener(record)
+            except Exception:  # a broken listener must not fail the audited call
+                log.exception("audit listener failed")
+
+    async def add_audit(self, entry: AuditEntry) -> int | None:
+        """Write an audit row; its id, or None when the database is unreachable: the row is kept on this
+        node, with its time, and written in order when the database is back."""
+        values = dict(
+            t=entry.t or utcnow(),
+            session_key=entry.session_key and printable(entry.session_key, 200),
+            principal=entry.principal and printable(entry.principal, 200),
+            source=entry.source,
+            vehicle_id=entry.vehicle_id and printable(entry.vehicle_id, 32),
+            action=printable(entry.action, 100),
+            arguments=bound_arguments(entry.arguments),
+            outcome=entry.outcome,
+            error=entry.error and entry.error[:AUDIT_MAX_ERROR],
+            duration_ms=entry.duration_ms,
+            operation_id=entry.operation_id,
+        )
+
+        t = values["t"]
+        data = {"values": {**values, "t": t.isoformat() if isinstance(t, datetime) else t}}
+        return cast(int | None, await self._kept(f"the audit row of {values['action']}", "audit", data))
+
+    async def _write_audit(self, data: dict[str, Any]) -> int:
+        values = {**data["values"], "t": datetime.fromisoformat(data["values"]["t"])}
+        row = AuditRow(**values)  # a fresh row for each attempt
+        async with self._sessions.begin() as session:
+            session.add(row)
+            await session.flush()
+            row_id = int(row.id)
+        self._audit_written(row)
+        if values["outcome"] == "running" and values["operation_id"] is not None:
+            await self._finish_if_ended(values["operation_id"])
+        return row_id
+
+    def queue_audit(self, entry: AuditEntry, seen: SessionSeen | None = None) -> None:
+        """Record one call without waiting for the database (the MCP door's path, per tool call).
+
+        The row, and the touch of the session the call came in (``seen``: last seen, one more request),
+        are written by the store's writer task together with the calls queued within ``AUDIT_BATCH_S``,
+        in one transaction. Every reader of audit rows or sessions, the finishing of a running row and
+        `close` wait for the queue first, so no reader misses a row and a clean stop loses none; a
+        batch the database refuses is written again row by row, and a row that still fails is logged
+        with its call, as `add_audit`'s callers do."""
+        if self._closed:
+            raise RuntimeError("the store is closed")
+        if entry.t is None:  # the row's time is the call's end, not the batch's write
+            entry = entry.model_copy(update={"t": utcnow()})
+        self._audit_queue.append((entry, seen))
+        if self._audit_writer is None or self._audit_writer.done():
+            self._audit_flush = asyncio.Event()
+            self._audit_writer = asyncio.get_running_loop().create_task(
+                self._write_queued(self._audit_flush), name="audit-writer"
+            )
+
+    async def flush_audit(self) -> None:
+        """Wait until every queued audit row is written (at once: the batching pause is cut short)."""
+        while self._audit_writer is not None and not self._audit_writer.done():
+            if self._audit_flush is not None:
+                self._audit_flush.set()
+            await asyncio.shield(self._audit_writer)
+
+    async def _write_queued(self, flush: asyncio.Event) -> None:
+        while self._audit_queue:
+            if not flush.is_set():  # calls arriving meanwhile share the transaction
+                with contextlib.suppress(TimeoutError):
+                    await asyncio.wait_for(flush.wait(), AUDIT_BATCH_S)
+            batch, self._audit_queue = self._audit_queue, []
+            data = {
+                "rows": [
+                    {"entry": e.model_dump(mode="json"), "seen": None if s is None else dataclasses.asdict(s)}
+                    for e, s in batch
+                ]
+            }
+            try:  # the database unreachable: kept in the spool, in order, with their times
+                await self._kept(f"{len(batch)} audit rows", "audit_batch", data)
+            except Exception:
+                log.exception("could not write %d audit rows at once; writing them one by one", len(batch))
+                for item in batch:
+                    try:
+                        await self._write_audit_batch([item])
+                    except Exception:
+                        log.exception("could not write the audit row of %s", item[0].action)
+
+    async def _write_audit_batch_of(self, data: dict[str, Any]) -> None:
+        await self._write_audit_batch(
+            [
+                (AuditEntry.model_validate(r["entry"]), SessionSeen(**r["seen"]) if r["seen"] else None)
+                for r in data["rows"]
+            ]
+        )
+
+    async def _write_audit_batch(self, batch: list[tuple[AuditEntry, SessionSeen | None]]) -> None:
+        seen: dict[str, tuple[SessionSeen, int]] = {}
+        for _entry, s in batch:
+            if s is not None:
+                seen[s.key[:200]] = (s, seen.get(s.key[:200], (s, 0))[1] + 1)
+        values = [self._audit_values(entry) for entry, _ in batch]
+        async with self._sessions.begin() as session:
+            for key, (s, count) in seen.items():
+                await self._touch_in(session, key, s, count)
+            statement = insert(AuditRow).returning(AuditRow.id, sort_by_parameter_order=True)
+            ids = (await session.scalars(statement, values)).all()
+        for (entry, _s), row, row_id in zip(batch, values, ids, strict=True):
+            if self._audit_listeners:
+                self._audit_written(AuditRecord.model_validate({**row, "id": row_id}))
+            if entry.outcome == "running" and entry.operation_id is not None:
+                await self._finish_if_ended(entry.operation_id)
+
+    @staticmethod
+    async def _touch_in(session: Any, key: str, s: SessionSeen, count: int) -> None:
+        """Last seen now and ``count`` more requests (the row is made when it is new)."""
+        now = utcnow()
+        changes: dict[str, Any] = {
+            "last_seen": now,
+            "request_count": func.coalesce(SessionRow.request_count, 0) + count,
+            "kind": s.kind,
+        }
+        if s.principal is not None:
+            changes["principal"] = s.principal
+        if s.client_name:
+            changes["client_name"] = s.client_name[:200]
+        if s.client_version:
+            changes["client_version"] = s.client_version[:100]
+        result = await session.execute(update(SessionRow).where(SessionRow.key == key).values(**changes))
+        if not rowcount(result):
+            await session.execute(
+                insert(SessionRow).values(
+                    key=key,
+                    kind=s.kind,
+                    principal=s.principal,
+                    client_name=(s.client_name or None) and s.client_name[:200],
+                    client_version=(s.client_version or None) and s.client_version[:100],
+                    first_seen=now,
+                    last_seen=now,
+                    request_count=count,
+                )
+            )
+
+    @staticmethod
+    def _audit_values(entry: AuditEntry) -> dict[str, Any]:
+        return {
+            "t": entry.t or utcnow(),
+            "session_key": entry.session_key and entry.session_key[:200],
+            "principal": entry.principal and entry.principal[:200],
+            "source": entry.source,
+            "vehicle_id": entry.vehicle_id and entry.vehicle_id[:32],
+            "action": entry.action[:100],
+            "arguments": bound_arguments(entry.arguments),
+            "outcome": entry.outcome,
+            "error": entry.error and entry.error[:AUDIT_MAX_ERROR],
+            "duration_ms": entry.duration_ms,
+            "operation_id": entry.operation_id,
+        }
+
+    async def _finish_if_ended(self, operation_id: str) -> None:
+        """A running row was just written: the operation may have ended before, and then nobody else
+        finishes the row."""
+        ended = self._ended_elsewhere.get(operation_id)
+        if ended is not None:
+            await self._finish_audit_rows(operation_id, *ended)
+            return
+        async with self._sessions() as session:
+            op = await session.get(OperationRow, operation_id)
+        if op is not None and op.status != "running":
+            await self._finish_audit_rows(operation_id, op.status, op.message)
+
+    def _audit_conditions(
+        self,
+        vehicle_id: str | None,
+        session_key: str | None,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        include_fleet: bool = False,
+    ) -> list[Any]:
+        conditions: list[Any] = []
+        if vehicle_id is not None:
+            same = AuditRow.vehicle_id == vehicle_id
+            conditions.append(or_(same, AuditRow.vehicle_id.is_(None)) if include_fleet else same)
+        if session_key is not None:
+            conditions.append(AuditRow.session_key == session_key)
+        if since is not None:
+            conditions.append(AuditRow.t >= since)
+        if until is not None:
+            conditions.append(AuditRow.t <= until)
+        return conditions
+
+    async def list_audit(
+        self,
+        vehicle_id: str | None = None,
+        session_key: str | None = None,
+        limit: int = 100,
+        offset: int = 0,
+        *,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        include_fleet: bool = False,
+    ) -> list[AuditRecord]:
+        """Audit entries, newest first; ``since``/``until`` bound their time (inclusive).
+        ``include_fleet`` adds, to a ``vehicle_id`` filter, the rows that name no single vehicle
+        (fleet-wide calls)."""
+        await self.flush_audit()
+        query = (
+            select(AuditRow)
+            .where(*self._audit_conditions(vehicle_id, session_key, since, until, include_fleet))
+            .order_by(AuditRow.t.desc(), AuditRow.id.desc())
+            .limit(limit)
+            .offset(offset)
+        )
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [AuditRecord.model_validate(r) for r in rows]
+
+    async def count_audit(
+        self,
+        vehicle_id: str | None = None,
+        session_key: str | None = None,
+        *,
+        since: datetime | None = None,
+        until: datetime | None = None,
+        include_fleet: bool = False,
+    ) -> int:
+        await self.flush_audit()
+        query = select(func.count()).select_from(AuditRow)
+        query = query.where(*self._audit_conditions(vehicle_id, session_key, since, until, include_fleet))
+        async with self._sessions() as session:
+            return int((await session.execute(query)).scalar_one())
+
+    async def finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
+        """An operation this store does not keep (a fleet operation, held in memory by its node) ended:
+        finish the audit rows of the calls that left it running, and remember how it ended so that a
+        row written after this (the call's row is written once its answer is sent) is finished too."""
+        self._ended_elsewhere[operation_id] = (status, message)
+        while len(self._ended_elsewhere) > ENDED_ELSEWHERE_KEPT:
+            del self._ended_elsewhere[next(iter(self._ended_elsewhere))]
+        data = {"operation_id": operation_id, "status": status, "message": message}
+        await self._kept(f"the end of operation {operation_id}", "operation_end", data)
+
+    async def _write_operation_end(self, data: dict[str, Any]) -> None:
+        await self._finish_audit_of(data["operation_id"], data["status"], data["message"])
+
+    async def _finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
+        await self.flush_audit()  # a row still queued is finished too
+        await self._finish_audit_rows(operation_id, status, message)
+
+    async def _finish_audit_rows(self, operation_id: str, status: str, message: str | None) -> None:
+        outcome = AUDIT_OUTCOME_OF_OPERATION.get(status, "error")
+        async with self._sessions.begin() as session:
+            query = select(AuditRow).where(
+                AuditRow.operation_id == operation_id, AuditRow.outcome == "running"
+            )
+            rows = (await session.scalars(query)).all()
+            for row in rows:
+                row.outcome = outcome
+                row.error = None if outcome == "ok" else (message or status)[:AUDIT_MAX_ERROR]
+        for row in rows:  # the console's audit stream shows the row again, finished
+            self._audit_written(row)

@@ -1,0 +1,76 @@
+"""What every table of the store writes through: the engine's sessions, and the spool that keeps a
+write the database cannot take (it is unreachable) and writes it, in order, once the database is back."""
+
+from __future__ import annotations
+
+import functools
+import logging
+from collections.abc import Awaitable, Callable
+from pathlib import Path
+from typing import Any
+
+from sqlalchemy import CursorResult, select
+from sqlalchemy.ext.asyncio import AsyncEngine, async_sessionmaker
+
+from gateway.registry.spool import Spool
+
+log = logging.getLogger(__name__)
+
+#: how long a start waits for the writes its previous run kept to reach the database
+KEPT_REPLAY_S = 30.0
+
+
+class StoreCore:
+    """The engine, its sessions and the spool; the tables of `gateway.registry.store.Store` build on it."""
+
+    def __init__(self, engine: AsyncEngine, url: str) -> None:
+        self.engine = engine
+        self.url = url
+        self._sessions = async_sessionmaker(engine, expire_on_commit=False)
+        self._closed = False
+        #: history writes the database could not take (it was unreachable), written when it is back
+        self.spool = Spool(apply=self._apply_kept)
+        #: how each kind of kept write is written (the Store names its tables' writers)
+        self._kept_writers: dict[str, Callable[[dict[str, Any]], Awaitable[Any]]] = {}
+
+    async def keep_spool_in(self, path: Path) -> int:
+        """Keep the writes the database cannot take in ``path`` (JSON lines) as well as in memory, so a
+        node killed during an outage writes them after its restart; returns how many a previous run of
+        this node left there (they are written, in order, before any new write)."""
+        left = await self.spool.attach(path)
+        if left and not await self.spool.flush(KEPT_REPLAY_S):  # the locks among them count at once
+            log.error(
+                "%d writes of the previous run are not written yet: they wait in %s", len(self.spool), path
+            )
+        return left
+
+    async def _kept(self, what: str, kind: str, data: dict[str, Any]) -> Any:
+        """Write now, or keep (``kind``, ``data``: JSON) until the database is back."""
+        write = functools.partial(self._apply_kept, kind, data)
+        return await self.spool.write(what, write, record=(kind, data))
+
+    async def _apply_kept(self, kind: str, data: dict[str, Any]) -> Any:
+        writer = self._kept_writers.get(kind)
+        if writer is None:
+            kinds = ", ".join(sorted(self._kept_writers))
+            raise ValueError(f"unknown kind of kept write {kind!r}; kinds: {kinds}")
+        return await writer(data)
+
+    @property
+    def is_open(self) -> bool:
+        return not self._closed
+
+    async def ping(self) -> bool:
+        """True when the database answers a trivial query."""
+        try:
+            async with self._sessions() as session:
+                await session.execute(select(1))
+            return True
+        except Exception:
+            log.exception("database ping failed")
+            return False
+
+
+def rowcount(result: object) -> int:
+    """Rows a DELETE/UPDATE touched (``Session.execute`` is typed as returning a plain ``Result``)."""
+    return int(result.rowcount or 0) if isinstance(result, CursorResult) else 0

@@ -1,0 +1,57 @@
+"""The store's tracked operations."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from sqlalchemy import select
+
+from gateway.registry.models import OperationRow
+from gateway.registry.records import OperationRecord
+from gateway.registry.store_audit import AuditTrail
+
+
+class OperationTable(AuditTrail):
+    """Tracked operations; one that has ended finishes the audit rows of the calls that left it running."""
+
+    async def save_operation(self, op: OperationRecord) -> OperationRecord:
+        """Insert or update; an operation that has ended also finishes the audit rows of the calls that
+        left it running (whichever node ends it: its owner, or the node that took the drone over)."""
+        await self._kept(f"operation {op.id} ({op.status})", "operation", {"op": op.model_dump(mode="json")})
+        return op
+
+    async def _write_operation(self, data: dict[str, Any]) -> None:
+        op = OperationRecord.model_validate(data["op"])
+        values = op.model_dump()
+        async with self._sessions.begin() as session:
+            row = await session.get(OperationRow, op.id)
+            if row is None:
+                session.add(OperationRow(**values))
+            else:
+                for key, value in values.items():
+                    if key != "id":
+                        setattr(row, key, value)
+        if op.status != "running":
+            await self._finish_audit_of(op.id, op.status, op.message)
+
+    async def get_operation(self, operation_id: str) -> OperationRecord | None:
+        async with self._sessions() as session:
+            row = await session.get(OperationRow, operation_id)
+            return None if row is None else OperationRecord.model_validate(row)
+
+    async def list_operations(
+        self, vehicle_id: str | None = None, status: str | Sequence[str] | None = None, limit: int = 50
+    ) -> list[OperationRecord]:
+        """Operations, newest first; ``status`` may be one status or several."""
+        query = select(OperationRow)
+        if vehicle_id is not None:
+            query = query.where(OperationRow.vehicle_id == vehicle_id)
+        if isinstance(status, str):
+            query = query.where(OperationRow.status == status)
+        elif status is not None:
+            query = query.where(OperationRow.status.in_(list(status)))
+        query = query.order_by(OperationRow.created_at.desc(), OperationRow.id).limit(limit)
+        async with self._sessions() as session:
+            rows = (await session.scalars(query)).all()
+            return [OperationRecord.model_validate(r) for r in rows]
