@@ -1,4 +1,5 @@
-"""What the Commander's parts share besides the pass: ``@routed`` (a verb runs where its drone is), the
+"""What the Commander's parts share besides the pass: ``@command`` (a verb is declared: callable by name,
+and offered as the MCP tool its `Tool` names), ``@routed`` (a verb runs where its drone is), the
 operation desk (views of operations and waiting on them, here or on the node that runs them) and the
 small flight rules the verbs judge a context with. The pass itself is `gateway.fleet.command_pass`; the
 verbs are `drone_verbs` (flight), `navigation_verbs`, `mission_verbs` and `fleet_verbs`;
@@ -7,10 +8,12 @@ verbs are `drone_verbs` (flight), `navigation_verbs`, `mission_verbs` and `fleet
 from __future__ import annotations
 
 import asyncio
+import dataclasses
 import functools
 import logging
-from collections.abc import Awaitable, Callable
-from typing import Any, Literal, Protocol, TypeVar, cast
+from collections.abc import Awaitable, Callable, Sequence
+from dataclasses import dataclass
+from typing import Any, Protocol, TypeVar, cast, overload
 
 from pydantic_core import to_jsonable_python
 
@@ -25,18 +28,18 @@ from gateway.errors import (
     VehicleNotReady,
 )
 from gateway.fleet import geo
+from gateway.fleet.arguments import AltFrame
 from gateway.fleet.caller import Caller
 from gateway.fleet.command_pass import CommandPass
 from gateway.fleet.operation_state import Operation
 from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.fleet.routing import FORWARDED, Verb
 from gateway.fleet.safety_inputs import VehicleContext
-from gateway.fleet.views import OperationView
+from gateway.fleet.views import ActionResult, OperationView
 from gateway.registry.store import Store
 
 log = logging.getLogger(__name__)
 
-AltFrame = Literal["home", "amsl"]
 OnProgress = Callable[[OperationView], Awaitable[None]]
 
 #: operations that fly to a point (their params: lat_deg, lon_deg, alt_m); a formation or fleet-climb leg
@@ -140,11 +143,65 @@ def routed(method: VerbMethod) -> VerbMethod:
     return cast(VerbMethod, run)
 
 
-def command(method: VerbMethod) -> VerbMethod:
+Says = str | Callable[[ActionResult], str]
+"""The one-line text of an instant command's tool result: a template (``str.format`` with the tool's
+arguments and the `ActionResult`'s fields, e.g. ``"{drone_id} armed"``) or a function of the result."""
+
+
+@dataclass(frozen=True)
+class Tool:
+    """How a verb is offered as an MCP tool; `gateway.mcp.declared` builds the tool from it (fleet/
+    never imports the MCP layer). The verb's parameters after ``caller`` are the tool's arguments (their
+    ``Annotated`` bounds and descriptions its inputSchema; ``label`` is filled with the tool's name,
+    ``notify`` with the client's progress notifications); a verb returning an `OperationView` also gets
+    ``wait`` (wait until done, capped). The description is ``description``, else the first paragraph
+    of the verb's docstring (the rest is for developers)."""
+
+    name: str
+    toolset: str
+    read_only: bool = False
+    destructive: bool = False
+    idempotent: bool = False
+    #: the text of an instant command's result (a verb returning `ActionResult`); see `Says`
+    says: Says | None = None
+    description: str | None = None
+    #: parameters of the verb the tool does not offer (they keep their defaults)
+    omit: tuple[str, ...] = ()
+    #: the verb the tool calls (filled by `command`)
+    verb: str = ""
+
+
+#: every tool a verb declares, by tool name (filled by `command`)
+TOOLS: dict[str, Tool] = {}
+
+
+@overload
+def command(method: VerbMethod, /) -> VerbMethod: ...
+
+
+@overload
+def command(*, tool: Tool | Sequence[Tool] = ()) -> Callable[[VerbMethod], VerbMethod]: ...
+
+
+def command(
+    method: VerbMethod | None = None, /, *, tool: Tool | Sequence[Tool] = ()
+) -> VerbMethod | Callable[[VerbMethod], VerbMethod]:
     """Declare a verb a door may call by name (`Commander.call`): registered here, in `VERBS`, from its
-    own signature; nothing else lists it. Put it above ``@routed``."""
-    VERBS[method.__name__] = Verb(method, wrapper=_by_name(method))
-    return method
+    own signature; nothing else lists it. ``@command(tool=Tool(...))`` also offers it as that MCP tool
+    (several tools: a sequence). Put it above ``@routed``."""
+    tools = (tool,) if isinstance(tool, Tool) else tuple(tool)
+
+    def declare(method: VerbMethod) -> VerbMethod:
+        name = method.__name__
+        VERBS[name] = Verb(method, wrapper=_by_name(method))
+        for declared in tools:
+            other = TOOLS.get(declared.name)
+            if other is not None and other.verb != name:
+                raise ValueError(f"tool {declared.name} is declared by both {other.verb} and {name}")
+            TOOLS[declared.name] = dataclasses.replace(declared, verb=name)
+        return method
+
+    return declare if method is None else declare(method)
 
 
 def _by_name(method: Callable[..., Any]) -> Callable[..., Awaitable[Any]]:

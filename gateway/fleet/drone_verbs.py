@@ -12,12 +12,16 @@ that owns the drone. Navigation is `navigation_verbs`, missions and parameters `
 from __future__ import annotations
 
 import contextlib
-from typing import Any
+from typing import Annotated, Any
+
+from pydantic import Field
 
 from gateway.errors import InvalidArgument
+from gateway.fleet.arguments import DroneId, FlightMode
 from gateway.fleet.caller import Caller
 from gateway.fleet.command_core import (
     OperationDesk,
+    Tool,
     arming_deadline,
     command,
     left,
@@ -34,6 +38,13 @@ from gateway.fleet.trackers import LandingTracker, TakeoffTracker
 from gateway.fleet.views import ActionResult, OperationView
 
 
+def _mode_text(result: ActionResult) -> str:
+    """The tool's line after a mode change: HOLD is the safe hold, which says where it holds."""
+    if "mode" not in result.facts:
+        return f"{result.drone_id} {result.message}"
+    return f"{result.drone_id} now in {result.facts['mode']}"
+
+
 class FlightVerbs:
     """The flight commands on one drone."""
 
@@ -41,10 +52,12 @@ class FlightVerbs:
         self.commands = commands
         self.desk = desk
 
-    @command
+    @command(tool=Tool("arm_drone", "flight", idempotent=True, says="{drone_id} armed"))
     @routed
-    async def arm(self, caller: Caller, drone_id: str, *, notify: Notify | None = None) -> ActionResult:
-        """Arm; a drone still initialising is waited for, within the wait cap (see `Vehicle.arm`)."""
+    async def arm(self, caller: Caller, drone_id: DroneId, *, notify: Notify | None = None) -> ActionResult:
+        """Arm the motors (switches to GUIDED first). takeoff arms by itself.
+
+        A drone still initialising is waited for, within the wait cap (see `Vehicle.arm`)."""
         deadline = arming_deadline(self.commands.settings)
 
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
@@ -61,9 +74,11 @@ class FlightVerbs:
         )
         return ActionResult(drone_id=drone_id, action="arm", message="armed")
 
-    @command
+    @command(tool=Tool("disarm_drone", "flight", idempotent=True, says="{drone_id} disarmed"))
     @routed
-    async def disarm(self, caller: Caller, drone_id: str, label: str = "disarm_drone") -> ActionResult:
+    async def disarm(self, caller: Caller, drone_id: DroneId, label: str = "disarm_drone") -> ActionResult:
+        """Disarm the motors; only on the ground."""
+
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             if ctx.in_air:
                 raise InvalidArgument(
@@ -77,12 +92,17 @@ class FlightVerbs:
             drone_id=drone_id, action="disarm", message="disarmed", superseded_operation=sent.ended_id
         )
 
-    @command
+    @command(tool=Tool("takeoff", "flight"))
     @routed
     async def takeoff(
-        self, caller: Caller, drone_id: str, alt_m: float, *, notify: Notify | None = None
+        self,
+        caller: Caller,
+        drone_id: DroneId,
+        alt_m: Annotated[float, Field(gt=0, le=10_000, allow_inf_nan=False, description="m above home")],
+        *,
+        notify: Notify | None = None,
     ) -> OperationView:
-        """Arm if needed and climb to ``alt_m`` above home; done when reached."""
+        """Arm if needed and climb to alt_m above home; done when reached."""
         deadline = arming_deadline(
             self.commands.settings
         )  # initialising and arming wait together, within the cap
@@ -109,9 +129,9 @@ class FlightVerbs:
         )
         return sent.view()
 
-    @command
+    @command(tool=Tool("land", "flight", idempotent=True))
     @routed
-    async def land(self, caller: Caller, drone_id: str) -> OperationView:
+    async def land(self, caller: Caller, drone_id: DroneId) -> OperationView:
         """Land where the drone is; done when landed and disarmed."""
 
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
@@ -128,10 +148,10 @@ class FlightVerbs:
         )
         return sent.view()
 
-    @command
+    @command(tool=Tool("return_to_launch", "flight", idempotent=True))
     @routed
-    async def return_to_launch(self, caller: Caller, drone_id: str) -> OperationView:
-        """Fly home and land; done when landed and disarmed."""
+    async def return_to_launch(self, caller: Caller, drone_id: DroneId) -> OperationView:
+        """Fly home (RTL) and land; done when landed and disarmed."""
 
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             if not caller.is_operator:
@@ -144,11 +164,23 @@ class FlightVerbs:
         )
         return sent.view()
 
-    @command
+    @command(
+        tool=(
+            Tool("hold_position", "flight", idempotent=True, says="{drone_id} {message}"),
+            Tool(
+                "hold_mission_position",
+                "mission",
+                idempotent=True,
+                says="{drone_id} {message}",
+                description="Hover in place (GUIDED) during a mission; resume_mission continues.",
+            ),
+        )
+    )
     @routed
-    async def hold(self, caller: Caller, drone_id: str, label: str = "hold_position") -> ActionResult:
-        """GUIDED reposition to the current position (never LOITER/ALT_HOLD, which sink without RC);
-        ends the drone's current operation."""
+    async def hold(self, caller: Caller, drone_id: DroneId, label: str = "hold_position") -> ActionResult:
+        """Stop and hover where the drone is (GUIDED); ends the current action.
+
+        A GUIDED reposition to the current position (never LOITER/ALT_HOLD, which sink without RC)."""
 
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             if not caller.is_operator:
@@ -214,11 +246,13 @@ class FlightVerbs:
             superseded_operation=None if sup is None else sup.id,
         )
 
-    @command
+    @command(tool=Tool("set_flight_mode", "flight", says=_mode_text))
     @routed
-    async def set_mode(self, caller: Caller, drone_id: str, mode: str) -> ActionResult:
-        """Flight mode by a common name (HOLD, RTL, LAND, MISSION...) or the autopilot's own. HOLD is the
-        gateway's safe hold."""
+    async def set_mode(self, caller: Caller, drone_id: DroneId, mode: FlightMode) -> ActionResult:
+        """Set the flight mode. HOLD = hover in place. Prefer land/return_to_launch (they track progress).
+
+        A common name (HOLD, RTL, LAND, MISSION...) or the autopilot's own; HOLD is the gateway's safe
+        hold (`hold`)."""
         vehicle = self.commands.registry.get(drone_id)
         vehicle.require_ready()
         choice = vehicle.resolve_mode(mode)

@@ -11,8 +11,9 @@ from collections.abc import Sequence
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import mission_files
+from gateway.fleet.arguments import DroneId, ItemIndex
 from gateway.fleet.caller import Caller
-from gateway.fleet.command_core import OperationDesk, command, routed
+from gateway.fleet.command_core import OperationDesk, Tool, command, routed
 from gateway.fleet.command_pass import CommandPass, Order
 from gateway.fleet.drone_verbs import FlightVerbs
 from gateway.fleet.mission import MissionItem
@@ -157,19 +158,29 @@ class MissionVerbs:
 
         return (await self.commands.run(caller, drone_id, label, decide)).view()
 
-    @command
-    @routed
-    async def resume_mission(self, caller: Caller, drone_id: str) -> OperationView:
-        """Continue the stored mission from its current item."""
-        return await self.start_mission(caller, drone_id, None, "resume_mission")
-
-    @command
+    @command(
+        tool=Tool(
+            "pause_mission",
+            "mission",
+            idempotent=True,
+            says="{drone_id} mission paused: holding position in GUIDED; resume_mission continues",
+        )
+    )
     @routed
     async def pause_mission(
-        self, caller: Caller, drone_id: str, label: str = "pause_mission"
+        self, caller: Caller, drone_id: DroneId, label: str = "pause_mission"
     ) -> ActionResult:
-        """Pause = the safe hold (GUIDED, not LOITER); resume_mission continues."""
-        return await self.flight.hold(caller, drone_id, label)
+        """Pause = safe hold: hover in GUIDED (not LOITER). resume_mission continues.
+
+        The flight's safe hold (`FlightVerbs.hold`, which also declares hold_mission_position)."""
+        held = await self.flight.hold(caller, drone_id, label)
+        return held.model_copy(update={"message": f"{held.message} (paused as a GUIDED hold)"})
+
+    @command(tool=Tool("resume_mission", "mission"))
+    @routed
+    async def resume_mission(self, caller: Caller, drone_id: DroneId) -> OperationView:
+        """Continue the mission from its current item; done when finished."""
+        return await self.start_mission(caller, drone_id, None, "resume_mission")
 
     @command
     @routed
@@ -178,9 +189,15 @@ class MissionVerbs:
         vehicle.require_ready()
         return MissionView(drone_id=drone_id, items=await vehicle.download_mission())
 
-    @command
+    @command(
+        tool=Tool(
+            "clear_mission", "mission", destructive=True, idempotent=True, says="{drone_id}: mission cleared"
+        )
+    )
     @routed
-    async def clear_mission(self, caller: Caller, drone_id: str) -> ActionResult:
+    async def clear_mission(self, caller: Caller, drone_id: DroneId) -> ActionResult:
+        """Delete the mission stored on the drone."""
+
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             self.commands.safety.check_actuation(ctx, caller.policy_via)
 
@@ -195,10 +212,17 @@ class MissionVerbs:
         await self.commands.run(caller, drone_id, "clear_mission", decide)
         return ActionResult(drone_id=drone_id, action="clear_mission", message="mission cleared")
 
-    @command
+    @command(
+        tool=Tool(
+            "set_current_waypoint",
+            "mission",
+            idempotent=True,
+            says="{drone_id}: next mission item is {index}",
+        )
+    )
     @routed
-    async def set_current_item(self, caller: Caller, drone_id: str, index: int) -> ActionResult:
-        """Make mission item ``index`` (1..N) the next target."""
+    async def set_current_item(self, caller: Caller, drone_id: DroneId, index: ItemIndex) -> ActionResult:
+        """Make mission item `index` the next target."""
 
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             prog = value(vehicle, "mission_progress")

@@ -9,15 +9,19 @@ from __future__ import annotations
 
 import time
 from collections.abc import Sequence
+from typing import Annotated
+
+from pydantic import Field
 
 from gateway.errors import InvalidArgument, NotFound, VehicleNotReady
 from gateway.fleet import geo
+from gateway.fleet.arguments import AltFrame, DroneId, Lat, Lon, Metres
 from gateway.fleet.caller import Caller
 from gateway.fleet.command_core import (
     NAV_KINDS,
-    AltFrame,
     OnProgress,
     OperationDesk,
+    Tool,
     arming_deadline,
     command,
     left,
@@ -71,20 +75,24 @@ class NavigationVerbs:
         tracker = GotoTracker(lat, lon, alt_rel, self.commands.settings.arrival_tolerance_m, kind=kind)
         return Order(lambda: vehicle.goto(lat, lon, alt_rel, yaw_deg), tracker, params)
 
-    @command
+    @command(tool=Tool("go_to_location", "navigation", idempotent=True, omit=("yaw_deg",)))
     @routed
     async def goto(
         self,
         caller: Caller,
-        drone_id: str,
-        lat_deg: float,
-        lon_deg: float,
-        alt_m: float,
+        drone_id: DroneId,
+        lat_deg: Lat,
+        lon_deg: Lon,
+        alt_m: Annotated[
+            float, Field(allow_inf_nan=False, description="m; above home unless alt_frame=amsl")
+        ],
         alt_frame: AltFrame = "home",
         yaw_deg: float | None = None,
         label: str = "go_to_location",
     ) -> OperationView:
-        """Fly to a position at ``alt_m`` (above home, or AMSL); done on arrival."""
+        """Fly to lat_deg/lon_deg at alt_m (m above home, or AMSL); done on arrival.
+
+        ``yaw_deg``: the heading to fly with (formations); the tool leaves it to the autopilot."""
 
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             alt_rel = relative_alt(ctx, alt_m, alt_frame)
@@ -96,18 +104,18 @@ class NavigationVerbs:
 
         return (await self.commands.run(caller, drone_id, label, decide)).view()
 
-    @command
+    @command(tool=Tool("reposition", "navigation", idempotent=True))
     @routed
     async def reposition(
         self,
         caller: Caller,
-        drone_id: str,
-        lat_deg: float,
-        lon_deg: float,
-        alt_m: float | None = None,
+        drone_id: DroneId,
+        lat_deg: Lat,
+        lon_deg: Lon,
+        alt_m: Annotated[float | None, Field(allow_inf_nan=False, description="m; default: current")] = None,
         alt_frame: AltFrame = "home",
     ) -> OperationView:
-        """Fly to a position and hover there, at the current altitude unless ``alt_m`` is given."""
+        """Fly to lat_deg/lon_deg and hover; alt_m above home, default: current."""
 
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             if alt_m is None:
@@ -121,23 +129,29 @@ class NavigationVerbs:
 
         return (await self.commands.run(caller, drone_id, "reposition", decide)).view()
 
-    @command
+    @command(tool=Tool("move_to_relative", "navigation"))
     @routed
     async def move_relative(
         self,
         caller: Caller,
-        drone_id: str,
-        north_m: float = 0.0,
-        east_m: float = 0.0,
-        up_m: float | None = None,
-        alt_m: float | None = None,
+        drone_id: DroneId,
+        north_m: Metres = 0.0,
+        east_m: Metres = 0.0,
+        up_m: Annotated[
+            float | None, Field(allow_inf_nan=False, ge=-1000, le=1000, description="+ climbs, - descends")
+        ] = None,
+        alt_m: Annotated[
+            float | None, Field(allow_inf_nan=False, description="m above home (not with up_m)")
+        ] = None,
         *,
         notify: Notify | None = None,
     ) -> OperationView:
-        """Move by metres north/east from the current position, climbing ``up_m`` (negative: down) or
-        to ``alt_m`` above home. From the ground the drone takes off to that altitude first, in the same
-        operation (`ClimbThenGoTracker`: the leg is sent only once the climb is done); every check of
-        the takeoff and of the leg is made before anything is sent."""
+        """Fly north_m/east_m metres from where it is, up_m or at alt_m; from the ground takes off first.
+
+        Metres north/east of the current position, climbing ``up_m`` (negative: down) or to ``alt_m``
+        above home. From the ground the drone takes off to that altitude first, in the same operation
+        (`ClimbThenGoTracker`: the leg is sent only once the climb is done); every check of the takeoff
+        and of the leg is made before anything is sent."""
         for name, metres in (("north_m", north_m), ("east_m", east_m), ("up_m", up_m), ("alt_m", alt_m)):
             if metres is not None:
                 geo.check_finite(name, metres)
@@ -209,10 +223,17 @@ class NavigationVerbs:
         params = {"lat_deg": lat, "lon_deg": lon, "alt_m": round(alt, 2), "takeoff_first": True}
         return Order(lambda: vehicle.takeoff(alt, left(deadline), notify), tracker, params)
 
-    @command
+    @command(tool=Tool("set_yaw", "navigation", idempotent=True))
     @routed
-    async def set_yaw(self, caller: Caller, drone_id: str, heading_deg: float) -> OperationView:
-        """Turn in place to a heading (degrees from true north, clockwise); done when facing it."""
+    async def set_yaw(
+        self,
+        caller: Caller,
+        drone_id: DroneId,
+        heading_deg: Annotated[
+            float, Field(ge=0, lt=360, allow_inf_nan=False, description="deg from north, cw")
+        ],
+    ) -> OperationView:
+        """Turn in place to heading_deg (true north, clockwise); done when facing it."""
 
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             require_airborne(ctx, "set_yaw")
@@ -223,10 +244,24 @@ class NavigationVerbs:
 
         return (await self.commands.run(caller, drone_id, "set_yaw", decide)).view()
 
-    @command
+    @command(
+        tool=Tool(
+            "set_max_speed",
+            "navigation",
+            idempotent=True,
+            says="{drone_id} max speed set to {speed_mps:g} m/s",
+        )
+    )
     @routed
-    async def set_speed(self, caller: Caller, drone_id: str, speed_mps: float) -> ActionResult:
-        """The horizontal speed of gotos, m/s (within the policy's limit)."""
+    async def set_speed(
+        self,
+        caller: Caller,
+        drone_id: DroneId,
+        speed_mps: Annotated[float, Field(gt=0, le=100, allow_inf_nan=False, description="m/s")],
+    ) -> ActionResult:
+        """Set the horizontal speed of gotos, m/s.
+
+        Within the policy's limit (rule speed: `SafetyPolicy.check_speed`)."""
 
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             self.commands.safety.check_speed(ctx, speed_mps, caller.policy_via)

@@ -76,6 +76,8 @@ class Verb:
     def __init__(self, method: Method, wrapper: Method | None = None) -> None:
         """``wrapper``: what to call instead of ``method`` (e.g. the routing in front of it)."""
         self.method = wrapper or method
+        #: the method as declared (its annotated signature: an MCP tool's schema, `gateway.mcp.declared`)
+        self.declared = method
         self.name = method.__name__
         self.signature = inspect.signature(method)
         hints = typing.get_type_hints(method)

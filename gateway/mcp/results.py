@@ -12,6 +12,7 @@ from typing import Any, Self
 from pydantic import BaseModel, PrivateAttr
 
 from gateway.fleet.vehicle_text import VEHICLE_TEXT_LABEL, clean_vehicle_text
+from gateway.fleet.views import ActionResult
 
 
 class Result(BaseModel):
@@ -48,6 +49,16 @@ class ActionOut(Result):
     action: str
     message: str
     superseded_operation: str | None = None
+
+
+def action_out(result: ActionResult, text: str) -> ActionOut:
+    """An instant command's result as a tool presents it, with its one line of text."""
+    return ActionOut(
+        drone_id=result.drone_id,
+        action=result.action,
+        message=result.message,
+        superseded_operation=result.superseded_operation,
+    ).say(text)
 
 
 class Fresh(Result):

@@ -34,6 +34,7 @@ from gateway.mcp import sdk_private
 from gateway.mcp.access import FleetState
 from gateway.mcp.arguments import advertise_policy_limits, install_argument_messages
 from gateway.mcp.auth import auth_options
+from gateway.mcp.declared import complete, declared
 from gateway.mcp.resources import ResourceNotifier, register_prompts, register_resources
 from gateway.mcp.session import SessionAudit
 from gateway.mcp.toolkit import (
@@ -57,16 +58,20 @@ INSTRUCTIONS = (
 
 
 def load_toolset(name: str) -> Toolset | None:
-    """The toolset module ``gateway.mcp.tools.<name>`` (a module-level ``toolset``), if it exists."""
+    """The toolset ``name``: the module ``gateway.mcp.tools.<name>`` (a module-level ``toolset``, its
+    hand-written tools) completed with the tools the verbs declare for it (`gateway.mcp.declared`);
+    None when there is neither."""
     try:
         module = importlib.import_module(f"gateway.mcp.tools.{name}")
     except ModuleNotFoundError as exc:
-        if exc.name == f"gateway.mcp.tools.{name}":
+        if exc.name != f"gateway.mcp.tools.{name}":
+            raise
+        if not declared(name):
             log.info("MCP toolset %r is not available in this build", name)
             return None
-        raise
+        return complete(Toolset(name))
     toolset: Toolset = module.toolset
-    return toolset
+    return complete(toolset)
 
 
 def build_mcp(gateway: Gateway) -> MCPServer[FleetState]:

@@ -1,7 +1,8 @@
 """How toolsets are declared and turned into MCP tools.
 
-A tool is a plain async function ``fn(call: ToolCall, drone_id, ...) -> SomeResult`` registered on a
-:class:`Toolset`. :func:`register_toolset` wraps it so that
+A tool is a plain async function ``fn(call: ToolCall, drone_id, ...) -> SomeResult``: written by hand
+and registered on a :class:`Toolset` (``@toolset.tool()``), or generated from a verb's declaration
+(``@command(tool=Tool(...))``, built by `gateway.mcp.declared`). :func:`register_toolset` wraps it so that
 
 - the SDK injects the request ``Context`` and the wrapper hands the tool a `ToolCall` built from the
   server's lifespan state (the Commander) and the caller (principal, session);
@@ -21,13 +22,18 @@ import logging
 import typing
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any
 
 from mcp.server.mcpserver import Context, MCPServer
 from mcp.types import CallToolResult, TextContent, ToolAnnotations
 from pydantic import Field, ValidationError
 
 from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal
+from gateway.fleet.arguments import AltFrame as AltFrame  # the shared types, re-exported for tools
+from gateway.fleet.arguments import DroneId as DroneId
+from gateway.fleet.arguments import Lat as Lat
+from gateway.fleet.arguments import Lon as Lon
+from gateway.fleet.arguments import Metres as Metres
 from gateway.fleet.ids import canonical_arguments
 from gateway.mcp import sdk_private
 from gateway.mcp.access import ToolCall, current_call
@@ -36,15 +42,10 @@ from gateway.mcp.results import Result
 log = logging.getLogger(__name__)
 
 # --- shared parameter types (short descriptions: the tool list's size is paid on every LLM turn) -----
+# DroneId, Lat, Lon, Metres, AltFrame: `gateway.fleet.arguments` (the verbs declare them too)
 
-DroneId = str
-"""Checked by the wrapper (length, then the registry names the known ids): keeps every schema small."""
 MAX_DRONE_ID = 64
 Wait = Annotated[bool, Field(description="Wait until done (capped)")]
-AltFrame = Literal["home", "amsl"]
-Lat = Annotated[float, Field(ge=-90, le=90, allow_inf_nan=False)]
-Lon = Annotated[float, Field(ge=-180, le=180, allow_inf_nan=False)]
-Metres = Annotated[float, Field(allow_inf_nan=False, ge=-10_000, le=10_000)]
 
 
 # --- toolsets ------------------------------------------------------------------------------------
@@ -65,10 +66,19 @@ class ToolSpec:
 
 @dataclass
 class Toolset:
-    """A named group of tools; GATEWAY_MCP_TOOLSETS selects which toolsets a server exposes."""
+    """A named group of tools; GATEWAY_MCP_TOOLSETS selects which toolsets a server exposes. A
+    module's ``toolset`` holds its hand-written tools; `load_toolset` gives it complete, with the tools
+    the verbs declare for it (`gateway.mcp.declared.complete`) where ``declared_here()`` was called."""
 
     name: str
     tools: list[ToolSpec] = field(default_factory=list)
+    #: where the declared tools go in ``tools`` (None: after the hand-written ones)
+    declared_at: int | None = None
+
+    def declared_here(self) -> None:
+        """Put the tools the verbs declare for this toolset here, in the order the verbs are declared
+        (the order of tools/list, which a model reads)."""
+        self.declared_at = len(self.tools)
 
     def tool(
         self,
@@ -83,12 +93,7 @@ class Toolset:
 
         ``advertise`` replaces the schema shown to clients for some parameters, e.g. to point at
         another tool's item schema instead of repeating it; arguments are still validated in full."""
-        if read_only:
-            annotations = ToolAnnotations(readOnlyHint=True, openWorldHint=False)
-        else:
-            annotations = ToolAnnotations(
-                readOnlyHint=False, destructiveHint=destructive, idempotentHint=idempotent, openWorldHint=True
-            )
+        annotations = annotations_of(read_only=read_only, destructive=destructive, idempotent=idempotent)
 
         def decorator(fn: ToolFn) -> ToolFn:
             self.tools.append(
@@ -99,6 +104,15 @@ class Toolset:
             return fn
 
         return decorator
+
+
+def annotations_of(*, read_only: bool, destructive: bool, idempotent: bool) -> ToolAnnotations:
+    """A tool's annotations: read-only tools change nothing (and touch only this gateway)."""
+    if read_only:
+        return ToolAnnotations(readOnlyHint=True, openWorldHint=False)
+    return ToolAnnotations(
+        readOnlyHint=False, destructiveHint=destructive, idempotentHint=idempotent, openWorldHint=True
+    )
 
 
 def check_drone_id(drone_id: str) -> None:

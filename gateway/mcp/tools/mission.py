@@ -1,4 +1,6 @@
-"""Mission toolset: waypoint missions (user waypoint 1 is the first item; the home slot is hidden)."""
+"""Mission toolset: waypoint missions (user waypoint 1 is the first item; the home slot is hidden). The
+tools here build or present missions; the thin ones (pause, resume, clear, next item) are declared with
+their verbs."""
 
 from __future__ import annotations
 
@@ -8,6 +10,7 @@ from pydantic import BaseModel, Field
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
+from gateway.fleet.arguments import MISSION_ITEMS
 from gateway.fleet.mission import MissionItem
 from gateway.mcp.access import ToolCall
 from gateway.mcp.results import (
@@ -17,13 +20,13 @@ from gateway.mcp.results import (
     MissionProgressOut,
     OperationOut,
     ValueOut,
+    action_out,
 )
 from gateway.mcp.toolkit import DroneId, Lat, Lon, Toolset, Wait
-from gateway.mcp.tools.flight import action_out
 
 toolset = Toolset("mission")
 
-MAX_ITEMS = 200
+MAX_ITEMS = MISSION_ITEMS
 
 
 class Waypoint(BaseModel):
@@ -136,45 +139,6 @@ async def is_mission_finished(call: ToolCall, drone_id: DroneId) -> ValueOut:
     )
 
 
-@toolset.tool(idempotent=True)
-async def pause_mission(call: ToolCall, drone_id: DroneId) -> ActionOut:
-    """Pause = safe hold: hover in GUIDED (not LOITER). resume_mission continues."""
-    result = await call.commander.pause_mission(call.caller, drone_id, "pause_mission")
-    result.message += " (paused as a GUIDED hold)"
-    return action_out(
-        result, f"{drone_id} mission paused: holding position in GUIDED; resume_mission continues"
-    )
-
-
-@toolset.tool(idempotent=True)
-async def hold_mission_position(call: ToolCall, drone_id: DroneId) -> ActionOut:
-    """Hover in place (GUIDED) during a mission; resume_mission continues."""
-    result = await call.commander.pause_mission(call.caller, drone_id, "hold_mission_position")
-    return action_out(result, f"{drone_id} {result.message}")
-
-
-@toolset.tool()
-async def resume_mission(call: ToolCall, drone_id: DroneId, wait: Wait = True) -> OperationOut:
-    """Continue the mission from its current item; done when finished."""
-    return await call.finish(
-        await call.commander.resume_mission(call.caller, drone_id), wait, "resume_mission"
-    )
-
-
-@toolset.tool(destructive=True, idempotent=True)
-async def clear_mission(call: ToolCall, drone_id: DroneId) -> ActionOut:
-    """Delete the mission stored on the drone."""
-    return action_out(
-        await call.commander.clear_mission(call.caller, drone_id), f"{drone_id}: mission cleared"
-    )
-
-
-@toolset.tool(idempotent=True)
-async def set_current_waypoint(
-    call: ToolCall,
-    drone_id: DroneId,
-    index: Annotated[int, Field(ge=1, le=MAX_ITEMS, description="Item 1..N")],
-) -> ActionOut:
-    """Make mission item `index` the next target."""
-    result = await call.commander.set_current_item(call.caller, drone_id, index)
-    return action_out(result, f"{drone_id}: next mission item is {index}")
+# here: the tools the verbs declare for this toolset (@command(tool=Tool(..., "mission")), mostly in
+# gateway/fleet/mission_verbs.py), built by gateway/mcp/declared.py (the hand-written: this module)
+toolset.declared_here()

@@ -9,9 +9,8 @@ from pydantic import Field
 from gateway.errors import VehicleNotReady
 from gateway.fleet.readings import age_s, is_stale, value
 from gateway.mcp.access import ToolCall, operation_out
-from gateway.mcp.results import ActionOut, ArrivalOut, OperationOut, PositionOut
-from gateway.mcp.toolkit import AltFrame, DroneId, Lat, Lon, Metres, Toolset, Wait
-from gateway.mcp.tools.flight import action_out
+from gateway.mcp.results import ArrivalOut, OperationOut, PositionOut
+from gateway.mcp.toolkit import DroneId, Toolset
 
 toolset = Toolset("navigation")
 
@@ -53,79 +52,9 @@ async def get_home_position(call: ToolCall, drone_id: DroneId) -> PositionOut:
     return position_out(call, drone_id, "home")
 
 
-@toolset.tool(idempotent=True)
-async def go_to_location(
-    call: ToolCall,
-    drone_id: DroneId,
-    lat_deg: Lat,
-    lon_deg: Lon,
-    alt_m: Annotated[float, Field(allow_inf_nan=False, description="m; above home unless alt_frame=amsl")],
-    alt_frame: AltFrame = "home",
-    wait: Wait = True,
-) -> OperationOut:
-    """Fly to lat_deg/lon_deg at alt_m (m above home, or AMSL); done on arrival."""
-    op = await call.commander.goto(call.caller, drone_id, lat_deg, lon_deg, alt_m, alt_frame)
-    return await call.finish(op, wait, "go_to_location")
-
-
-@toolset.tool(idempotent=True)
-async def reposition(
-    call: ToolCall,
-    drone_id: DroneId,
-    lat_deg: Lat,
-    lon_deg: Lon,
-    alt_m: Annotated[float | None, Field(allow_inf_nan=False, description="m; default: current")] = None,
-    alt_frame: AltFrame = "home",
-    wait: Wait = True,
-) -> OperationOut:
-    """Fly to lat_deg/lon_deg and hover; alt_m above home, default: current."""
-    op = await call.commander.reposition(call.caller, drone_id, lat_deg, lon_deg, alt_m, alt_frame)
-    return await call.finish(op, wait, "reposition")
-
-
-@toolset.tool()
-async def move_to_relative(
-    call: ToolCall,
-    drone_id: DroneId,
-    north_m: Metres = 0.0,
-    east_m: Metres = 0.0,
-    up_m: Annotated[
-        float | None, Field(allow_inf_nan=False, ge=-1000, le=1000, description="+ climbs, - descends")
-    ] = None,
-    alt_m: Annotated[
-        float | None, Field(allow_inf_nan=False, description="m above home (not with up_m)")
-    ] = None,
-    wait: Wait = True,
-) -> OperationOut:
-    """Fly north_m/east_m metres from where it is, up_m or at alt_m; from the ground takes off first."""
-    op = await call.commander.move_relative(
-        call.caller, drone_id, north_m, east_m, up_m, alt_m, notify=call.notify
-    )
-    return await call.finish(op, wait, "move_to_relative")
-
-
-@toolset.tool(idempotent=True)
-async def set_yaw(
-    call: ToolCall,
-    drone_id: DroneId,
-    heading_deg: Annotated[float, Field(ge=0, lt=360, allow_inf_nan=False, description="deg from north, cw")],
-    wait: Wait = True,
-) -> OperationOut:
-    """Turn in place to heading_deg (true north, clockwise); done when facing it."""
-    return await call.finish(
-        await call.commander.set_yaw(call.caller, drone_id, heading_deg), wait, "set_yaw"
-    )
-
-
-@toolset.tool(idempotent=True)
-async def set_max_speed(
-    call: ToolCall,
-    drone_id: DroneId,
-    speed_mps: Annotated[float, Field(gt=0, le=100, allow_inf_nan=False, description="m/s")],
-) -> ActionOut:
-    """Set the horizontal speed of gotos, m/s."""
-    result = await call.commander.set_speed(call.caller, drone_id, speed_mps)
-    return action_out(result, f"{drone_id} max speed set to {speed_mps:g} m/s")
+# here: the tools the verbs declare for this toolset (@command(tool=Tool(..., "navigation")), mostly in
+# gateway/fleet/navigation_verbs.py), built by gateway/mcp/declared.py (the hand-written: this module)
+toolset.declared_here()
 
 
 @toolset.tool(read_only=True)

@@ -1,0 +1,115 @@
+"""The MCP tools the verbs declare (``@command(tool=Tool(...))``, `gateway.fleet.command_core`).
+
+A declared tool is a thin pass-through: it calls its verb through the Commander with the caller and
+the tool's arguments, and presents the result. Its inputSchema is the verb's own signature after
+``caller`` (the ``Annotated`` bounds and descriptions, `gateway.fleet.arguments`), minus ``label``
+(filled with the tool's name) and the parameters the declaration omits; a verb returning an
+`OperationView` also takes ``wait`` and is presented by `ToolCall.finish`, one returning an
+`ActionResult` by `action_out` with the declared text. The tool is then registered like any other
+(`gateway.mcp.toolkit.register_toolset`: the SDK validates the arguments once, errors become tool
+errors, the audit row learns the outcome).
+
+Hand-written tools (`gateway.mcp.tools.<toolset>`) are the ones that are more than this: reads
+answered from the telemetry cache, the fleet tools, missions built from item lists, the kill with its
+human confirmation, waits that present progress their own way.
+"""
+
+from __future__ import annotations
+
+import inspect
+import typing
+from typing import Any
+
+from gateway.fleet.command_core import TOOLS, VERBS, Tool
+from gateway.fleet.commander import Commander  # noqa: F401  (imports every verb module: fills TOOLS)
+from gateway.fleet.views import ActionResult, OperationView
+from gateway.mcp.access import ToolCall
+from gateway.mcp.results import ActionOut, OperationOut, Result, action_out
+from gateway.mcp.toolkit import Toolset, ToolSpec, Wait, annotations_of
+
+#: verb parameters a tool fills itself, never offered to the client
+FILLED = ("label",)
+#: the verb's callbacks a tool can feed (``notify``: what a command waits for, as progress at 0)
+CALLBACKS = frozenset({"notify"})
+
+
+def complete(toolset: Toolset) -> Toolset:
+    """``toolset`` with the tools the verbs declare for it, where its module said (``declared_here``)
+    or after its hand-written tools: a new `Toolset` (the module's keeps its hand-written tools only). A
+    hand-written tool of the same name as a declared one is refused: one tool, one way."""
+    written = {spec.name for spec in toolset.tools}
+    generated = [tool_spec(tool) for tool in declared(toolset.name)]
+    twice = sorted(written & {spec.name for spec in generated})
+    if twice:
+        raise ValueError(
+            f"toolset {toolset.name}: {', '.join(twice)} is declared by a verb and written by hand too"
+        )
+    at = len(toolset.tools) if toolset.declared_at is None else toolset.declared_at
+    return Toolset(toolset.name, [*toolset.tools[:at], *generated, *toolset.tools[at:]])
+
+
+def declared(toolset: str) -> list[Tool]:
+    """The tools the verbs declare for ``toolset``, in the order the verbs were declared."""
+    return [tool for tool in TOOLS.values() if tool.toolset == toolset]
+
+
+def tool_spec(tool: Tool) -> ToolSpec:
+    """The MCP tool of one declaration (see the module's docstring)."""
+    verb = VERBS[tool.verb]
+    hints = typing.get_type_hints(verb.declared, include_extras=True)
+    operation = verb.result is OperationView
+    if not operation and verb.result is not ActionResult:
+        raise TypeError(f"tool {tool.name}: a declared tool presents an OperationView or an ActionResult")
+    if not operation and tool.says is None:
+        raise TypeError(f"tool {tool.name}: an instant command's tool needs says= (its result's text)")
+    unfed = verb.callbacks - CALLBACKS
+    if unfed:
+        raise TypeError(f"tool {tool.name}: no tool can feed the verb's callbacks {', '.join(sorted(unfed))}")
+    params = [inspect.Parameter("call", inspect.Parameter.POSITIONAL_OR_KEYWORD, annotation=ToolCall)]
+    for name, param in list(verb.signature.parameters.items())[2:]:  # after self, caller
+        if param.kind is not inspect.Parameter.POSITIONAL_OR_KEYWORD:
+            continue  # the callbacks (keyword-only)
+        if name in FILLED or name in tool.omit:
+            if param.default is inspect.Parameter.empty:
+                raise TypeError(f"tool {tool.name}: omitted parameter {name} of {verb.name} has no default")
+            continue
+        params.append(param.replace(annotation=hints[name]))
+    if operation:
+        params.append(
+            inspect.Parameter("wait", inspect.Parameter.POSITIONAL_OR_KEYWORD, default=True, annotation=Wait)
+        )
+    filled = {"label": tool.name} if "label" in verb.signature.parameters else {}
+    feeds_notify = "notify" in verb.callbacks
+
+    async def run(call: ToolCall, **arguments: Any) -> Result:
+        wait = bool(arguments.pop("wait", True)) if operation else False
+        extra: dict[str, Any] = {"notify": call.notify} if feeds_notify else {}
+        result = await verb.method(call.commander, call.caller, **arguments, **filled, **extra)
+        if isinstance(result, OperationView):
+            return await call.finish(result, wait, tool.name)
+        assert isinstance(result, ActionResult) and tool.says is not None
+        says = tool.says
+        text = says(result) if callable(says) else says.format_map(result.model_dump() | arguments)
+        return action_out(result, text)
+
+    returns = OperationOut if operation else ActionOut
+    run.__name__ = run.__qualname__ = tool.name
+    run.__doc__ = tool.description or _summary(verb.declared.__doc__)
+    run.__signature__ = inspect.Signature(params, return_annotation=returns)  # type: ignore[attr-defined]
+    run.__annotations__ = {p.name: p.annotation for p in params} | {"return": returns}
+    return ToolSpec(
+        fn=run,
+        name=tool.name,
+        title=None,
+        annotations=annotations_of(
+            read_only=tool.read_only, destructive=tool.destructive, idempotent=tool.idempotent
+        ),
+    )
+
+
+def _summary(doc: str | None) -> str:
+    """A docstring's first paragraph: the tool's description (the rest is for developers)."""
+    return inspect.cleandoc(doc or "").split("\n\n", 1)[0]
+
+
+__all__ = ["complete", "declared", "tool_spec"]
