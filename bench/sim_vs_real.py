@@ -40,8 +40,8 @@ sys.path.insert(0, str(ROOT / "bench"))
 import readiness  # noqa: E402
 
 from gateway.fleet import geo  # noqa: E402
-from gateway.fleet.registry import Registry  # noqa: E402
-from gateway.fleet.vehicle import ConnectionState, Vehicle  # noqa: E402
+from gateway.fleet.vehicles.registry import Registry  # noqa: E402
+from gateway.fleet.vehicles.vehicle import ConnectionState, Vehicle  # noqa: E402
 from gateway.registry.spec import VehicleSpec  # noqa: E402
 from gateway.registry.store import Store  # noqa: E402
 from tests.helpers import autopilots, sim_process  # noqa: E402

@@ -1,7 +1,7 @@
 """The running gateway: every long-lived part, built here and only here, with one start/stop.
 
 The HTTP app (:mod:`gateway.app`) and ``mcp-stdio`` create one :class:`Gateway` and start it. Starting
-opens the store, restores the operator locks and the takeover locks (`gateway.fleet.takeover`), builds
+opens the store, restores the operator locks and the takeover locks (`gateway.fleet.policy.takeover`), builds
 the safety policy (which reads them through a read-only view), the operation managers and the
 `Commander` every door sends its commands through (the operations tell it of takeovers), then restores
 and connects the vehicles. Stopping ends running operations (recorded as interrupted),
@@ -16,14 +16,14 @@ from typing import TYPE_CHECKING
 
 from gateway.config import Settings
 from gateway.errors import GatewayError
-from gateway.fleet.commander import Commander
-from gateway.fleet.fleet_operation import FleetOperation
-from gateway.fleet.fleet_ops import FleetOperations
-from gateway.fleet.operations import OperationManager
-from gateway.fleet.operator_locks import LockBook
-from gateway.fleet.protocols import VehicleActions, VehicleRegistry, flying
-from gateway.fleet.safety import SafetyPolicy
-from gateway.fleet.scopes import ScopedDirectory, scopes_by_principal
+from gateway.fleet.commands.commander import Commander
+from gateway.fleet.commands.scopes import ScopedDirectory, scopes_by_principal
+from gateway.fleet.operations.fleet_operation import FleetOperation
+from gateway.fleet.operations.fleet_ops import FleetOperations
+from gateway.fleet.operations.operations import OperationManager
+from gateway.fleet.policy.operator_locks import LockBook
+from gateway.fleet.policy.safety import SafetyPolicy
+from gateway.fleet.vehicles.protocols import VehicleActions, VehicleRegistry, flying
 from gateway.registry.store import Store
 
 if TYPE_CHECKING:
@@ -42,7 +42,7 @@ class GatewayNotRunning(GatewayError):
 
 
 def _default_registry(settings: Settings, store: Store) -> VehicleRegistry:
-    from gateway.fleet.registry import Registry
+    from gateway.fleet.vehicles.registry import Registry
 
     return Registry(settings, store)
 
@@ -90,7 +90,7 @@ class Gateway:
 
     @property
     def commander(self) -> Commander:
-        """The one command path (`gateway.fleet.commander`); GatewayNotRunning before start."""
+        """The one command path (`gateway.fleet.commands.commander`); GatewayNotRunning before start."""
         if self._commander is None or not self._registry_started:
             raise GatewayNotRunning("the gateway is not running (starting or stopping); retry shortly")
         return self._commander
@@ -190,7 +190,7 @@ class Gateway:
         """A registry whose vehicles start as views of other nodes' vehicles; this node's lease keeper
         adopts the ones it wins. The Commander's verbs for the others go to their owners."""
         from gateway.cluster.node import ClusterNode, remote_factory
-        from gateway.fleet.registry import Registry
+        from gateway.fleet.vehicles.registry import Registry
 
         node = self.cluster = ClusterNode(self)
         registry = node.registry = Registry(

@@ -23,12 +23,12 @@ from gateway.config import Settings
 from gateway.errors import CommandFailed, UnknownVehicle, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.dialects import ARDUPILOT
-from gateway.fleet.mission import MissionItem
-from gateway.fleet.modes import ModeChoice, require_mode
-from gateway.fleet.param_limits import ParamLimit
-from gateway.fleet.protocols import FlyingVehicle, Notify, VehicleRegistry
-from gateway.fleet.vehicle import ConnectionState
-from gateway.fleet.waits import wait_for_state
+from gateway.fleet.dialects.modes import ModeChoice, require_mode
+from gateway.fleet.missions.mission import MissionItem
+from gateway.fleet.policy.param_limits import ParamLimit
+from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleRegistry
+from gateway.fleet.vehicles.vehicle import ConnectionState
+from gateway.fleet.vehicles.waits import wait_for_state
 from gateway.link import refusals
 from gateway.link.telemetry import (
     AttitudeValue,

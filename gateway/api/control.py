@@ -16,11 +16,11 @@ from pydantic import BaseModel, ConfigDict, Field, StrictBool
 
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import CommanderDep, CommandVehicleId, GatewayDep, Principal, PrincipalDep
-from gateway.fleet.caller import Caller
-from gateway.fleet.geofence import FLEET
-from gateway.fleet.operator_locks import MAX_REASON_CHARS, Lock
-from gateway.fleet.operator_verbs import STOP_LOCK_REASON
-from gateway.fleet.views import LockResult, OperationView, StopOutcome
+from gateway.fleet.commands.operator_verbs import STOP_LOCK_REASON
+from gateway.fleet.operations.views import LockResult, OperationView, StopOutcome
+from gateway.fleet.policy.caller import Caller
+from gateway.fleet.policy.geofence import FLEET
+from gateway.fleet.policy.operator_locks import MAX_REASON_CHARS, Lock
 
 router = APIRouter(tags=["operator control"], route_class=AuditedRoute)
 

@@ -18,8 +18,8 @@ from typing import Annotated, Literal
 from fastapi import Depends, HTTPException, Request
 
 from gateway.config import Settings
-from gateway.fleet.commander import Commander
-from gateway.fleet.protocols import VehicleRegistry
+from gateway.fleet.commands.commander import Commander
+from gateway.fleet.vehicles.protocols import VehicleRegistry
 from gateway.hosts import foreign_request
 from gateway.registry.store import Store
 from gateway.runtime import Gateway
@@ -119,7 +119,7 @@ def get_store(request: Request) -> Store:
 
 
 def get_registry(request: Request) -> VehicleRegistry:
-    """The gateway's :class:`gateway.fleet.registry.Registry`."""
+    """The gateway's :class:`gateway.fleet.vehicles.registry.Registry`."""
     return get_gateway(request).require_registry()
 
 
@@ -136,7 +136,7 @@ PrincipalDep = Annotated[Principal, Depends(authorize)]
 
 
 def canonical_vehicle_id(vehicle_id: str, commander: CommanderDep) -> str:
-    """The path's vehicle id as registered, ignoring case ('Alpha' is alpha; `gateway.fleet.ids`)."""
+    """The path's vehicle id as registered, ignoring case ('Alpha' is alpha; `gateway.fleet.vehicles.ids`)."""
     return commander.canonical_id(vehicle_id)
 
 

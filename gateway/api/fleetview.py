@@ -17,7 +17,7 @@ from datetime import UTC, datetime
 from typing import Any
 
 from gateway.errors import GatewayError
-from gateway.fleet.geofence import FLEET
+from gateway.fleet.policy.geofence import FLEET
 
 STATUS_TEXTS_PER_DRONE = 5
 

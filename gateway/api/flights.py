@@ -1,5 +1,5 @@
 """/api/v1/flights: flown flights (arm to disarm) and their tracks as GeoJSON, KML and MAVLink telemetry
-logs (the formats: `gateway.fleet.flight_export`)."""
+logs (the formats: `gateway.fleet.missions.flight_export`)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from gateway.api.audit import AuditedRoute
 from gateway.api.deps import MAX_ROW, RegistryDep, StoreDep
 from gateway.api.schemas import FlightPage, IsoTime, StatusTextList, as_utc
 from gateway.errors import InvalidArgument, NotFound, UnknownVehicle
-from gateway.fleet.flight_export import track_feature, track_kml, track_tlog
+from gateway.fleet.missions.flight_export import track_feature, track_kml, track_tlog
 from gateway.registry.store import FlightRecord, Store
 
 FlightId = Annotated[int, Path(ge=1, le=MAX_ROW, description="Flight id.")]

@@ -1,6 +1,6 @@
 """Operator flight commands over REST: take off, fly to a position, kill the motors.
 
-Each is one Commander call with ``via="rest"`` (`gateway.fleet.commander`): the limits (altitude,
+Each is one Commander call with ``via="rest"`` (`gateway.fleet.commands.commander`): the limits (altitude,
 distance, geofences, battery) apply to operators as to agents; operator locks and the simulators-only
 switch do not, an operator may kill motors anywhere and may interrupt a takeoff. Takeoff and goto are
 tracked operations (``operation_id``; see ``GET /api/v1/operations``), which an agent's motion command

@@ -21,8 +21,8 @@ from pydantic import BaseModel, ConfigDict, Field
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import GatewayDep, PrincipalDep, RegistryDep
 from gateway.errors import GatewayError, InvalidArgument
-from gateway.fleet.geofence import FLEET, GeofenceSet, Zone
-from gateway.fleet.safety import SafetyPolicy
+from gateway.fleet.policy.geofence import FLEET, GeofenceSet, Zone
+from gateway.fleet.policy.safety import SafetyPolicy
 from gateway.runtime import Gateway
 
 log = logging.getLogger(__name__)

@@ -16,7 +16,7 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from gateway.api.deps import authorize
 from gateway.errors import SafetyRefusal
-from gateway.fleet.protocols import VehicleView
+from gateway.fleet.vehicles.protocols import VehicleView
 from gateway.registry.records import AuditRecord
 
 if TYPE_CHECKING:

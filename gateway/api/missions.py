@@ -2,7 +2,7 @@
 
 Both are one Commander call with the operator's caller (``via="rest"``): the upload goes through the same
 policy checks as ``upload_mission``, item by item, and a refusal names the item's number (the file's
-sequence number) and the rule. How the file's items are read: `gateway.fleet.mission_files`.
+sequence number) and the rule. How the file's items are read: `gateway.fleet.missions.mission_files`.
 """
 
 from __future__ import annotations

@@ -19,8 +19,8 @@ from gateway.api.schemas import (
     as_utc,
 )
 from gateway.errors import InvalidArgument, UnknownVehicle
-from gateway.fleet.operator_locks import LockView
-from gateway.fleet.protocols import VehicleRegistry, VehicleView
+from gateway.fleet.policy.operator_locks import LockView
+from gateway.fleet.vehicles.protocols import VehicleRegistry, VehicleView
 from gateway.registry.store import Store, VehicleRecord
 
 router = APIRouter(prefix="/vehicles", tags=["vehicles"], route_class=AuditedRoute)

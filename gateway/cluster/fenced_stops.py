@@ -20,8 +20,8 @@ from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, stop_subje
 from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget, send_stop
 from gateway.errors import CommandFailed, NoOwner, NotRun
-from gateway.fleet.caller import Caller
-from gateway.fleet.views import ActionResult, OperationView
+from gateway.fleet.operations.views import ActionResult, OperationView
+from gateway.fleet.policy.caller import Caller
 
 if TYPE_CHECKING:
     from gateway.cluster.node import ClusterNode

@@ -1,6 +1,6 @@
 """The Commander's router on a cluster node: verbs for drones another node owns go to that owner.
 
-Both ends of one mechanism (`gateway.fleet.routing` says what crosses):
+Both ends of one mechanism (`gateway.fleet.operations.routing` says what crosses):
 
 - :class:`ClusterRouter` is the router the runtime gives the Commander and the fleet operations: a verb
   for a drone this node does not own goes, with the caller of the door it came through and its JSON
@@ -16,12 +16,12 @@ import logging
 from typing import TYPE_CHECKING, Any
 
 from gateway.errors import InvalidArgument
-from gateway.fleet.caller import Caller
-from gateway.fleet.command_core import ROUTED
-from gateway.fleet.commander import Commander
-from gateway.fleet.routing import ACTING, FORWARDED, OnMessage
-from gateway.fleet.safety_inputs import RunningOperation
-from gateway.fleet.views import OperationView
+from gateway.fleet.commands.command_core import ROUTED
+from gateway.fleet.commands.commander import Commander
+from gateway.fleet.operations.routing import ACTING, FORWARDED, OnMessage
+from gateway.fleet.operations.views import OperationView
+from gateway.fleet.policy.caller import Caller
+from gateway.fleet.policy.safety_inputs import RunningOperation
 
 from .bus import ProgressSink
 from .remote import RemoteVehicle

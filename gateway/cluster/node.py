@@ -38,7 +38,7 @@ from gateway.errors import GatewayError, NoOwner
 from gateway.registry.spec import VehicleSpec
 
 if TYPE_CHECKING:
-    from gateway.fleet.registry import Registry
+    from gateway.fleet.vehicles.registry import Registry
     from gateway.runtime import Gateway
 
 log = logging.getLogger("gateway.cluster")

@@ -13,8 +13,8 @@ from gateway.cluster.forwarding import answer
 from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stoplink import STOP_COMMANDS
 from gateway.errors import NoOwner, NotRun
-from gateway.fleet.caller import Caller
-from gateway.fleet.routing import OnMessage
+from gateway.fleet.operations.routing import OnMessage
+from gateway.fleet.policy.caller import Caller
 
 if TYPE_CHECKING:
     from gateway.cluster.node import ClusterNode

@@ -1,6 +1,6 @@
 """A vehicle owned by another node, as this node sees it: the owner's telemetry snapshots.
 
-It is a `~gateway.fleet.protocols.VehicleView` (state, status, telemetry cache, its owner's dialect's
+It is a `~gateway.fleet.vehicles.protocols.VehicleView` (state, status, telemetry cache, its owner's dialect's
 answers) so ``list_drones``, ``fleet_status``, formation planning and separation checks see the whole
 fleet; it has no actions. The commands go to the owner before they reach a vehicle
 (`gateway.cluster.forwarding`); anything that asks this node's registry to fly it
@@ -19,11 +19,11 @@ from gateway.errors import OwnedElsewhere, VehicleNotReady
 from gateway.fleet.dialects import DialectReads, autopilot_number, dialect_named, flying_dialect
 from gateway.fleet.dialects import limit_params as every_limit_param
 from gateway.fleet.dialects import protected_params as every_protected_param
-from gateway.fleet.modes import ModeChoice, require_mode
-from gateway.fleet.param_limits import ParamLimit
-from gateway.fleet.protocols import Notify
-from gateway.fleet.vehicle import ConnectionState
-from gateway.fleet.waits import wait_for_state
+from gateway.fleet.dialects.modes import ModeChoice, require_mode
+from gateway.fleet.policy.param_limits import ParamLimit
+from gateway.fleet.vehicles.protocols import Notify
+from gateway.fleet.vehicles.vehicle import ConnectionState
+from gateway.fleet.vehicles.waits import wait_for_state
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 

@@ -12,9 +12,9 @@ from __future__ import annotations
 import logging
 from typing import Any
 
-from gateway.fleet.fleet_steps import FORMATION_TOLERANCE_M
-from gateway.fleet.operation_state import OpStatus
-from gateway.fleet.trackers import (
+from gateway.fleet.operations.fleet_steps import FORMATION_TOLERANCE_M
+from gateway.fleet.operations.operation_state import OpStatus
+from gateway.fleet.operations.trackers import (
     GotoTracker,
     LandingTracker,
     MissionTracker,

@@ -658,7 +658,7 @@ class Link:
         await feed.request_rates(lambda what, aw: self.call(what, aw, 5.0), skip)
         # MISSION_CURRENT is only in ArduPilot's EXT_STAT stream: ask for it by id (mission progress);
         # EKF_STATUS_REPORT says when the position estimate is ready (arming in GUIDED needs it);
-        # POSITION_TARGET_GLOBAL_INT (EXT_STAT too) is where it flies to (gateway.fleet.takeover)
+        # POSITION_TARGET_GLOBAL_INT (EXT_STAT too) is where it flies to (gateway.fleet.policy.takeover)
         for message_id, interval_us in (
             (MAVLINK_MSG_MISSION_CURRENT, 1e6),
             (MAVLINK_MSG_EKF_STATUS_REPORT, 1e6),

@@ -18,9 +18,9 @@ from mcp.server.mcpserver import Context
 
 from gateway.config import Settings
 from gateway.errors import GatewayError
-from gateway.fleet.caller import Caller
-from gateway.fleet.commander import Commander
-from gateway.fleet.views import OperationView
+from gateway.fleet.commands.commander import Commander
+from gateway.fleet.operations.views import OperationView
+from gateway.fleet.policy.caller import Caller
 from gateway.mcp.results import OperationOut
 from gateway.runtime import Gateway
 

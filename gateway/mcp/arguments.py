@@ -105,7 +105,7 @@ def advertise_policy_limits(tool: Tool, settings: Settings) -> None:
             target["maximum"] = min(float(target.get("maximum", limit)), limit)
     stagger = props.get("stagger_m")
     if isinstance(stagger, dict):  # its default follows the configured minimum separation
-        from gateway.fleet.fleet_steps import FORMATION_TOLERANCE_M
+        from gateway.fleet.operations.fleet_steps import FORMATION_TOLERANCE_M
 
         stagger["default"] = settings.min_separation_m + 2 * FORMATION_TOLERANCE_M
 

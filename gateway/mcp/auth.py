@@ -1,7 +1,7 @@
 """Bearer tokens for MCP agents (GATEWAY_AGENT_TOKENS): with tokens configured, /mcp requires one.
 
 The principal of an agent is ``agent-<first 8 hex of the token's SHA-256>``: stable, and never the token
-(`gateway.fleet.scopes.principal_of`, beside the agents' vehicle scopes keyed by it).
+(`gateway.fleet.commands.scopes.principal_of`, beside the agents' vehicle scopes keyed by it).
 Sessions of 2026-07-28 clients are keyed by it; the SDK binds 2025-era sessions to it.
 """
 

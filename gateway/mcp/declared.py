@@ -1,8 +1,8 @@
-"""The MCP tools the verbs declare (``@command(tool=Tool(...))``, `gateway.fleet.command_core`).
+"""The MCP tools the verbs declare (``@command(tool=Tool(...))``, `gateway.fleet.commands.command_core`).
 
 A declared tool is a thin pass-through: it calls its verb through the Commander with the caller and
 the tool's arguments, and presents the result. Its inputSchema is the verb's own signature after
-``caller`` (the ``Annotated`` bounds and descriptions, `gateway.fleet.arguments`), minus ``label``
+``caller`` (the ``Annotated`` bounds and descriptions, `gateway.fleet.commands.arguments`), minus ``label``
 (filled with the tool's name) and the parameters the declaration omits; a verb returning an
 `OperationView` also takes ``wait`` and is presented by `ToolCall.finish`, one returning an
 `ActionResult` by `action_out` with the declared text. The tool is then registered like any other
@@ -20,9 +20,9 @@ import inspect
 import typing
 from typing import Any
 
-from gateway.fleet.command_core import TOOLS, VERBS, Tool
-from gateway.fleet.commander import Commander  # noqa: F401  (imports every verb module: fills TOOLS)
-from gateway.fleet.views import ActionResult, OperationView
+from gateway.fleet.commands.command_core import TOOLS, VERBS, Tool
+from gateway.fleet.commands.commander import Commander  # noqa: F401  (imports every verb module: fills TOOLS)
+from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.mcp.access import ToolCall
 from gateway.mcp.results import ActionOut, OperationOut, Result, action_out
 from gateway.mcp.toolkit import Toolset, ToolSpec, Wait, annotations_of

@@ -22,9 +22,9 @@ from mcp.server.subscriptions import InMemorySubscriptionBus, ResourceUpdated
 from mcp.types import EmptyResult, SubscribeRequestParams, UnsubscribeRequestParams
 
 from gateway.errors import GatewayError, NotFound, UnknownVehicle
-from gateway.fleet.commander import Commander
-from gateway.fleet.fleet_operation import FleetOperation
-from gateway.fleet.readings import position, value
+from gateway.fleet.commands.commander import Commander
+from gateway.fleet.operations.fleet_operation import FleetOperation
+from gateway.fleet.vehicles.readings import position, value
 from gateway.mcp import sdk_private
 from gateway.mcp.results import plain, surface_telemetry
 from gateway.runtime import Gateway

@@ -11,8 +11,8 @@ from typing import Any, Self
 
 from pydantic import BaseModel, PrivateAttr
 
-from gateway.fleet.vehicle_text import VEHICLE_TEXT_LABEL, clean_vehicle_text
-from gateway.fleet.views import ActionResult
+from gateway.fleet.operations.views import ActionResult
+from gateway.fleet.vehicles.vehicle_text import VEHICLE_TEXT_LABEL, clean_vehicle_text
 
 
 class Result(BaseModel):

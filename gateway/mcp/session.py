@@ -9,7 +9,7 @@ Both are recorded through ``Store.touch_session``; every ``tools/call`` through 
 (its row and its session's touch, written off the request path in batches), from this one middleware,
 including calls rejected before the tool ran (unknown tool, invalid arguments). A call whose command
 starts an operation on a drone has its row written the moment the command pass sends it
-(`gateway.fleet.command_pass.AUDIT_SENT`: outcome running, naming the operation), and the store
+(`gateway.fleet.commands.command_pass.AUDIT_SENT`: outcome running, naming the operation), and the store
 completes the row when the operation ends; every other call's row is written when the call ends.
 """
 
@@ -24,9 +24,9 @@ from typing import Any
 import anyio
 from mcp.server.auth.middleware.auth_context import get_access_token
 
-from gateway.fleet.caller import Caller
-from gateway.fleet.command_pass import AUDIT_SENT
-from gateway.fleet.routing import ACTING
+from gateway.fleet.commands.command_pass import AUDIT_SENT
+from gateway.fleet.operations.routing import ACTING
+from gateway.fleet.policy.caller import Caller
 from gateway.mcp.access import CallInfo, FleetState, current_call
 from gateway.registry.records import AuditEntry, SessionKind
 from gateway.registry.store import Store

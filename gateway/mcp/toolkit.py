@@ -29,12 +29,12 @@ from mcp.types import CallToolResult, TextContent, ToolAnnotations
 from pydantic import Field, ValidationError
 
 from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal
-from gateway.fleet.arguments import AltFrame as AltFrame  # the shared types, re-exported for tools
-from gateway.fleet.arguments import DroneId as DroneId
-from gateway.fleet.arguments import Lat as Lat
-from gateway.fleet.arguments import Lon as Lon
-from gateway.fleet.arguments import Metres as Metres
-from gateway.fleet.ids import canonical_arguments
+from gateway.fleet.commands.arguments import AltFrame as AltFrame  # the shared types, re-exported for tools
+from gateway.fleet.commands.arguments import DroneId as DroneId
+from gateway.fleet.commands.arguments import Lat as Lat
+from gateway.fleet.commands.arguments import Lon as Lon
+from gateway.fleet.commands.arguments import Metres as Metres
+from gateway.fleet.vehicles.ids import canonical_arguments
 from gateway.mcp import sdk_private
 from gateway.mcp.access import ToolCall, current_call
 from gateway.mcp.results import Result
@@ -42,7 +42,7 @@ from gateway.mcp.results import Result
 log = logging.getLogger(__name__)
 
 # --- shared parameter types (short descriptions: the tool list's size is paid on every LLM turn) -----
-# DroneId, Lat, Lon, Metres, AltFrame: `gateway.fleet.arguments` (the verbs declare them too)
+# DroneId, Lat, Lon, Metres, AltFrame: `gateway.fleet.commands.arguments` (the verbs declare them too)
 
 MAX_DRONE_ID = 64
 Wait = Annotated[bool, Field(description="Wait until done (capped)")]
@@ -150,7 +150,7 @@ def _wrap(spec: ToolSpec) -> Callable[..., Any]:
             drone_id = kwargs.get("drone_id")
             if isinstance(drone_id, str):
                 check_drone_id(drone_id)
-            # 'Alpha' is alpha: operations and locks are keyed by the exact id (gateway.fleet.ids)
+            # 'Alpha' is alpha: operations and locks are keyed by the exact id (gateway.fleet.vehicles.ids)
             kwargs = canonical_arguments(tool_call.commander.registry, kwargs)
             if isinstance(kwargs.get("drone_id"), str) and call is not None:
                 call.vehicle_id = kwargs["drone_id"]

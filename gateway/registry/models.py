@@ -193,7 +193,7 @@ class LockRow(Base):
 
 
 class TakeoverRow(Base):
-    """A drone taken over by a pilot, another ground station or a failsafe (`gateway.fleet.takeover`):
+    """A drone taken over by a pilot, another ground station or a failsafe (`gateway.fleet.policy.takeover`):
     agents are refused until an operator releases it; survives restarts."""
 
     __tablename__ = "takeovers"

@@ -17,7 +17,7 @@ from gateway.registry.store_core import StoreCore, rowcount
 
 
 class LockTables(StoreCore):
-    """Operator locks and takeover locks (`gateway.fleet.operator_locks`), kept across restarts."""
+    """Operator locks and takeover locks (`gateway.fleet.policy.operator_locks`), kept across restarts."""
 
     async def save_lock(self, scope: str, reason: str, by: str, locked_at: datetime) -> LockRecord | None:
         """Store (or replace) the lock of ``scope``; None when the database is unreachable (it is
@@ -54,7 +54,7 @@ class LockTables(StoreCore):
                 for r in rows
             ]
 
-    # --- takeover locks (gateway.fleet.takeover) ----------------------------------------------------
+    # --- takeover locks (gateway.fleet.policy.takeover) ----------------------------------------------------
 
     async def save_takeover(
         self, vehicle_id: str, reason: str, by: str, locked_at: datetime

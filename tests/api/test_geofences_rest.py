@@ -12,7 +12,7 @@ import pytest
 from gateway.app import create_app
 from gateway.config import Settings
 from gateway.errors import SafetyRefusal
-from gateway.fleet.safety_inputs import Target, VehicleContext
+from gateway.fleet.policy.safety_inputs import Target, VehicleContext
 from tests.fakes import FakeRegistry
 
 from .live import lifespan_running

@@ -11,7 +11,7 @@ import httpx
 import pytest
 
 from gateway.app import create_app
-from gateway.fleet import mission_files
+from gateway.fleet.missions import mission_files
 from gateway.server_cli import main
 from tests.helpers import sim_process
 from tests.helpers.timing import scaled

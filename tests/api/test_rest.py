@@ -16,7 +16,7 @@ from fastapi import FastAPI
 
 from gateway.app import create_app
 from gateway.config import Settings
-from gateway.fleet.vehicle import ConnectionState
+from gateway.fleet.vehicles.vehicle import ConnectionState
 from gateway.registry.store import AuditEntry, StatusTextIn, Store, TrackSample
 from tests.fakes import FakeRegistry
 from tests.helpers.timing import scaled

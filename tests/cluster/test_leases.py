@@ -17,7 +17,7 @@ from gateway.cluster.keeper import Wanted, plan
 from gateway.cluster.leases import Lease, LeaseStore, NodeRecord
 from gateway.cluster.node import ClusterNode
 from gateway.config import Settings
-from gateway.fleet.operator_locks import LockBook
+from gateway.fleet.policy.operator_locks import LockBook
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from tests.helpers.timing import eventually

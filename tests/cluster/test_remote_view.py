@@ -14,9 +14,9 @@ from gateway.cluster.forwarding import ClusterRouter
 from gateway.cluster.remote import OwnedElsewhere, RemoteVehicle
 from gateway.config import Settings
 from gateway.errors import InvalidArgument
-from gateway.fleet.commander import Commander
-from gateway.fleet.operator_locks import LockBook
-from gateway.fleet.protocols import VehicleActions, flying
+from gateway.fleet.commands.commander import Commander
+from gateway.fleet.policy.operator_locks import LockBook
+from gateway.fleet.vehicles.protocols import VehicleActions, flying
 from gateway.registry.spec import VehicleSpec
 from tests.fakes import fake_gateway, unit_settings
 

@@ -13,7 +13,7 @@ import pytest
 
 from gateway.cluster.takeover import pick_up_operations
 from gateway.fleet import geo
-from gateway.fleet.caller import Caller
+from gateway.fleet.policy.caller import Caller
 from gateway.registry.records import OperationRecord, utcnow
 from gateway.runtime import Gateway
 from tests.fakes import HOME, fake, fake_gateway, position_value, spread, unit_settings

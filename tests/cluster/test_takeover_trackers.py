@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from gateway.cluster.takeover import tracker_for
-from gateway.fleet.trackers import GotoTracker, TakeoffTracker
+from gateway.fleet.operations.trackers import GotoTracker, TakeoffTracker
 
 LEG = {"lat_deg": 47.3978, "lon_deg": 8.5456, "alt_m": 15.0}
 

@@ -6,9 +6,9 @@ from typing import Any
 
 from gateway.config import Settings
 from gateway.fleet import geo
-from gateway.fleet.caller import Caller
-from gateway.fleet.safety import SafetyPolicy
-from gateway.fleet.safety_inputs import VehicleContext
+from gateway.fleet.policy.caller import Caller
+from gateway.fleet.policy.safety import SafetyPolicy
+from gateway.fleet.policy.safety_inputs import VehicleContext
 
 HOME = (47.397742, 8.545594, 488.0)  # lat, lon, alt AMSL
 

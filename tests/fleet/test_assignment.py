@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.optimize import linear_sum_assignment
 
-from gateway.fleet.assignment import min_cost_assignment
+from gateway.fleet.formation.assignment import min_cost_assignment
 
 
 def total(cost: list[list[float]], slot: list[int]) -> float:

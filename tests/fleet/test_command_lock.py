@@ -11,8 +11,8 @@ import asyncio
 import pytest
 
 from gateway.errors import SafetyRefusal
-from gateway.fleet.caller import Caller
-from gateway.fleet.mission import MissionItem
+from gateway.fleet.missions.mission import MissionItem
+from gateway.fleet.policy.caller import Caller
 from gateway.runtime import Gateway
 from tests.fakes import FakeVehicle, fake
 from tests.fleet._util import AGENT, OPERATOR

@@ -1,4 +1,5 @@
-"""The one pass (`gateway.fleet.command_pass`): a command resolves its drone once and is judged on one
+"""The one pass (`gateway.fleet.commands.command_pass`): a command resolves its drone once and is judged on
+one
 context, counted on the real Gateway over fake drones; fleet steps take the same pass."""
 
 from __future__ import annotations
@@ -9,8 +10,8 @@ import pytest
 
 from gateway.errors import SafetyRefusal
 from gateway.fleet import geo
-from gateway.fleet.command_pass import AUDIT_SENT
-from gateway.fleet.safety_inputs import VehicleContext
+from gateway.fleet.commands.command_pass import AUDIT_SENT
+from gateway.fleet.policy.safety_inputs import VehicleContext
 from gateway.runtime import Gateway
 from tests.fakes import HOME, fake
 from tests.fleet._util import AGENT, OPERATOR

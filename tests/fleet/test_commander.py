@@ -9,9 +9,9 @@ import pytest
 
 from gateway.errors import InvalidArgument, SafetyRefusal, VehicleNotReady
 from gateway.fleet import geo
-from gateway.fleet.caller import Caller
-from gateway.fleet.commander import VERBS, Commander
-from gateway.fleet.views import OperationView
+from gateway.fleet.commands.commander import VERBS, Commander
+from gateway.fleet.operations.views import OperationView
+from gateway.fleet.policy.caller import Caller
 from gateway.runtime import Gateway
 from tests.fakes import HOME, fake
 from tests.fleet._util import AGENT, OPERATOR

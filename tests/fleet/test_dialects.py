@@ -14,8 +14,8 @@ from gateway.errors import NoDialect
 from gateway.fleet import dialects
 from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT, dialect_for, dialect_named, flying_dialect
 from gateway.fleet.dialects.ardupilot import ArduPilot
-from gateway.fleet.protocols import VehicleActions
-from gateway.fleet.vehicle import Vehicle
+from gateway.fleet.vehicles.protocols import VehicleActions
+from gateway.fleet.vehicles.vehicle import Vehicle
 from gateway.link.rawlink import MAV_AUTOPILOT_ARDUPILOTMEGA, MAV_AUTOPILOT_PX4
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec

@@ -15,7 +15,7 @@ from scipy.optimize import minimize
 
 from gateway.errors import InvalidArgument, SafetyRefusal
 from gateway.fleet import geo
-from gateway.fleet.formation import (
+from gateway.fleet.formation.formation import (
     FORMATIONS,
     DroneStart,
     FormationPlan,
@@ -23,9 +23,9 @@ from gateway.fleet.formation import (
     rtl_altitudes,
     takeoff_altitudes,
 )
-from gateway.fleet.formation_geometry import segment_distance
-from gateway.fleet.safety import SafetyPolicy
-from gateway.fleet.safety_inputs import VehicleContext
+from gateway.fleet.formation.formation_geometry import segment_distance
+from gateway.fleet.policy.safety import SafetyPolicy
+from gateway.fleet.policy.safety_inputs import VehicleContext
 from tests.fleet._util import HOME
 from tests.fleet._util import settings as make_settings
 

@@ -10,9 +10,9 @@ from hypothesis import strategies as st
 
 from gateway.config import Settings
 from gateway.errors import InvalidArgument, SafetyRefusal
-from gateway.fleet.geofence import GeofenceSet, load_geofence_file
-from gateway.fleet.safety import SafetyPolicy
-from gateway.fleet.safety_inputs import Target
+from gateway.fleet.policy.geofence import GeofenceSet, load_geofence_file
+from gateway.fleet.policy.safety import SafetyPolicy
+from gateway.fleet.policy.safety_inputs import Target
 from tests.fleet._util import HOME, at, ctx, settings, square
 
 

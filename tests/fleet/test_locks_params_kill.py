@@ -9,9 +9,9 @@ import pytest
 from gateway.config import DEFAULT_PARAM_DENY_PATTERNS
 from gateway.errors import InvalidArgument, SafetyRefusal
 from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
-from gateway.fleet.operator_locks import LockBook, LockView, ReadOnlyLocks
-from gateway.fleet.safety import SafetyPolicy
-from gateway.fleet.safety_inputs import Target
+from gateway.fleet.policy.operator_locks import LockBook, LockView, ReadOnlyLocks
+from gateway.fleet.policy.safety import SafetyPolicy
+from gateway.fleet.policy.safety_inputs import Target
 from tests.fleet._util import at, ctx, ground, policy, settings
 
 

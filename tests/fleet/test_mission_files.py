@@ -10,9 +10,9 @@ from types import SimpleNamespace
 import pytest
 
 from gateway.errors import InvalidArgument, SafetyRefusal
-from gateway.fleet import mission, mission_files
-from gateway.fleet.safety import SafetyPolicy
-from gateway.fleet.safety_inputs import VehicleContext
+from gateway.fleet.missions import mission, mission_files
+from gateway.fleet.policy.safety import SafetyPolicy
+from gateway.fleet.policy.safety_inputs import VehicleContext
 from tests.fleet._util import settings
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "missions"

@@ -16,13 +16,13 @@ import pytest
 
 from gateway.cluster.forwarding import answer
 from gateway.errors import NoOwner, UnknownVehicle
-from gateway.fleet.caller import Caller
-from gateway.fleet.commander import Commander
-from gateway.fleet.mission import MissionItem
-from gateway.fleet.routing import ACTING, FORWARDED, OnMessage
-from gateway.fleet.safety_inputs import RunningOperation
-from gateway.fleet.scopes import ScopedDirectory, VehicleScope
-from gateway.fleet.views import ActionResult, OperationView
+from gateway.fleet.commands.commander import Commander
+from gateway.fleet.commands.scopes import ScopedDirectory, VehicleScope
+from gateway.fleet.missions.mission import MissionItem
+from gateway.fleet.operations.routing import ACTING, FORWARDED, OnMessage
+from gateway.fleet.operations.views import ActionResult, OperationView
+from gateway.fleet.policy.caller import Caller
+from gateway.fleet.policy.safety_inputs import RunningOperation
 from gateway.runtime import Gateway
 from tests.fakes import HOME, fake, fake_gateway, spread, unit_settings
 

@@ -6,8 +6,8 @@ import re
 from pathlib import Path
 
 from gateway.config import Settings
-from gateway.fleet.safety_rules import Rule
-from gateway.fleet.vehicle_limits import split_patterns
+from gateway.fleet.policy.safety_rules import Rule
+from gateway.fleet.policy.vehicle_limits import split_patterns
 
 DOC = (Path(__file__).resolve().parents[2] / "docs" / "safety.md").read_text()
 

@@ -10,8 +10,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from gateway.errors import InvalidArgument, SafetyRefusal
-from gateway.fleet.safety import SafetyPolicy
-from gateway.fleet.safety_inputs import RunningOperation, Target
+from gateway.fleet.policy.safety import SafetyPolicy
+from gateway.fleet.policy.safety_inputs import RunningOperation, Target
 from tests.fleet._util import at, ctx, ground, policy, settings
 
 

@@ -13,7 +13,7 @@ import pytest
 
 from gateway.errors import SafetyRefusal
 from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
-from gateway.fleet.takeover import likely_cause
+from gateway.fleet.policy.takeover import likely_cause
 from gateway.runtime import Gateway
 from tests.fakes import FakeVehicle, fake, fake_gateway, position_value, spread, unit_settings
 from tests.fleet._util import AGENT, OPERATOR, at

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from gateway.fleet.vehicle_text import MAX_VEHICLE_TEXT, clean_vehicle_text
+from gateway.fleet.vehicles.vehicle_text import MAX_VEHICLE_TEXT, clean_vehicle_text
 
 
 def test_control_characters_go_and_length_is_bounded() -> None:

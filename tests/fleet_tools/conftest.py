@@ -8,7 +8,7 @@ from collections.abc import AsyncIterator
 import pytest
 import pytest_asyncio
 
-from gateway.fleet.operator_locks import LockBook
+from gateway.fleet.policy.operator_locks import LockBook
 from tests.mcp.conftest import Stack, gateway_stack
 
 

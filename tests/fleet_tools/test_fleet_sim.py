@@ -12,7 +12,7 @@ from typing import Any
 import pytest
 
 from gateway.fleet import geo
-from gateway.fleet.operator_locks import LockBook
+from gateway.fleet.policy.operator_locks import LockBook
 from tests.helpers.timing import settled
 from tests.mcp.conftest import WAIT_S, Stack, distance_m, error_text, structured
 

@@ -13,8 +13,8 @@ import pytest
 from mcp import Client
 
 from gateway.fleet import geo
-from gateway.fleet.fleet_steps import rtl_order
-from gateway.fleet.vehicle import ConnectionState
+from gateway.fleet.operations.fleet_steps import rtl_order
+from gateway.fleet.vehicles.vehicle import ConnectionState
 from gateway.link.telemetry import BatteryValue
 from gateway.mcp.server import build_mcp
 from gateway.runtime import Gateway
@@ -251,7 +251,7 @@ def test_rtl_order_puts_the_drone_passing_over_a_home_above_its_owner() -> None:
     # d1's path from (100 N, 20 E) to (0, 0) passes ~2 m from d2's home (0, 10)? it passes at x=...
     # whichever crosses, the one passing over the other's home is later (higher) in the order
     def passes(a: str, b: str) -> bool:
-        from gateway.fleet.fleet_steps import _passes_near
+        from gateway.fleet.operations.fleet_steps import _passes_near
 
         pos = {"d1": p1, "d2": p2}[a]
         return _passes_near(pos[0], pos[1], {"d1": h1, "d2": h2}[a], {"d1": h1, "d2": h2}[b], 5.0)

@@ -16,10 +16,10 @@ from mcp import Client
 from pydantic import Field
 
 from gateway.config import ALL_TOOLSETS
-from gateway.fleet.arguments import DroneId
-from gateway.fleet.caller import Caller
-from gateway.fleet.command_core import TOOLS, VERBS, Tool, command
-from gateway.fleet.views import ActionResult, OperationView
+from gateway.fleet.commands.arguments import DroneId
+from gateway.fleet.commands.command_core import TOOLS, VERBS, Tool, command
+from gateway.fleet.operations.views import ActionResult, OperationView
+from gateway.fleet.policy.caller import Caller
 from gateway.mcp.declared import FILLED, complete
 from gateway.mcp.server import build_mcp, load_toolset
 from gateway.mcp.toolkit import Toolset
@@ -152,12 +152,12 @@ def test_contributing_shows_a_command_in_three_files_as_the_code_has_it() -> Non
     root = Path(__file__).resolve().parents[2]
     text = (root / "CONTRIBUTING.md").read_text()
     shown = re.findall(
-        r"\*\*[1-3]\. [^*]*?`(gateway/fleet/[a-z_]+\.py)`\*\*.*?```python\n(.*?)```", text, re.S
+        r"\*\*[1-3]\. [^*]*?`(gateway/fleet/[a-z_/]+\.py)`\*\*.*?```python\n(.*?)```", text, re.S
     )
     assert [path for path, _ in shown] == [
-        "gateway/fleet/navigation_verbs.py",
-        "gateway/fleet/protocols.py",
-        "gateway/fleet/vehicle.py",
+        "gateway/fleet/commands/navigation_verbs.py",
+        "gateway/fleet/vehicles/protocols.py",
+        "gateway/fleet/vehicles/vehicle.py",
     ]
     for path, code in shown:
         assert code in (root / path).read_text(), path

@@ -10,9 +10,15 @@ import pytest
 from gateway.config import Settings
 from gateway.errors import CommandFailed, NotFound
 from gateway.fleet import geo
-from gateway.fleet.operation_state import OpStatus
-from gateway.fleet.operations import OperationManager
-from gateway.fleet.trackers import GotoTracker, LandingTracker, MissionTracker, TakeoffTracker, YawTracker
+from gateway.fleet.operations.operation_state import OpStatus
+from gateway.fleet.operations.operations import OperationManager
+from gateway.fleet.operations.trackers import (
+    GotoTracker,
+    LandingTracker,
+    MissionTracker,
+    TakeoffTracker,
+    YawTracker,
+)
 from gateway.link.telemetry import MissionProgressValue
 from tests.fakes import HOME, FakeVehicle, position_value
 from tests.helpers.timing import eventually

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from gateway.fleet.registry import Registry
+from gateway.fleet.vehicles.registry import Registry
 from tests.helpers import autopilots
 from tests.helpers.autopilots import Autopilot
 from tests.registry.conftest import fast_settings

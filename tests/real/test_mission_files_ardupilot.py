@@ -10,7 +10,7 @@ from pathlib import Path
 import httpx
 import pytest
 
-from gateway.fleet import mission_files
+from gateway.fleet.missions import mission_files
 from tests.helpers.timing import scaled
 from tests.real.test_tour_ardupilot import ARDUCOPTER
 from tests.real.tour import gateway_over

@@ -9,7 +9,7 @@ from pathlib import Path
 import httpx
 import pytest
 
-from gateway.fleet import mission_files
+from gateway.fleet.missions import mission_files
 from tests.helpers.timing import scaled
 from tests.real.test_tour_px4 import PX4
 from tests.real.tour import gateway_over

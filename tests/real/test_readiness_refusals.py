@@ -8,8 +8,8 @@ from __future__ import annotations
 import pytest
 
 from gateway.errors import CommandFailed, InvalidArgument
-from gateway.fleet.fleet_steps import set_rtl_altitude_param
-from gateway.fleet.vehicle import ConnectionState, Vehicle
+from gateway.fleet.operations.fleet_steps import set_rtl_altitude_param
+from gateway.fleet.vehicles.vehicle import ConnectionState, Vehicle
 from gateway.registry.spec import VehicleSpec
 from tests.real.waits import until
 

@@ -25,7 +25,7 @@ from mcp.types import CallToolResult, Implementation
 from gateway.app import create_app
 from gateway.fleet import geo
 from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
-from gateway.fleet.modes import canonical
+from gateway.fleet.dialects.modes import canonical
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from tests.api.server import serve_in_thread

@@ -10,7 +10,7 @@ from typing import Any
 import httpx
 from pymavlink import mavutil
 
-from gateway.fleet.vehicle import Vehicle
+from gateway.fleet.vehicles.vehicle import Vehicle
 from tests.helpers.timing import scaled
 
 

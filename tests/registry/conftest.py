@@ -8,7 +8,7 @@ from collections.abc import AsyncIterator, Callable
 import pytest
 
 from gateway.config import Settings
-from gateway.fleet.registry import Registry
+from gateway.fleet.vehicles.registry import Registry
 from tests.helpers.timing import scaled
 from tests.registry.procs import mavsdk_servers_of
 

@@ -10,8 +10,8 @@ from collections.abc import AsyncIterator
 import pytest
 
 from gateway.errors import CommandFailed, InvalidArgument
-from gateway.fleet.registry import Registry
-from gateway.fleet.vehicle import ConnectionState, Vehicle
+from gateway.fleet.vehicles.registry import Registry
+from gateway.fleet.vehicles.vehicle import ConnectionState, Vehicle
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from tests.helpers.sim import sim_process

@@ -15,10 +15,10 @@ import pytest
 
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
 from gateway.fleet import geo
-from gateway.fleet.caller import Caller
-from gateway.fleet.mission import MissionItem
-from gateway.fleet.registry import Registry
-from gateway.fleet.vehicle import ConnectionState, Vehicle
+from gateway.fleet.missions.mission import MissionItem
+from gateway.fleet.policy.caller import Caller
+from gateway.fleet.vehicles.registry import Registry
+from gateway.fleet.vehicles.vehicle import ConnectionState, Vehicle
 from gateway.registry.spec import VehicleSpec
 from gateway.runtime import Gateway
 from tests.helpers.sim import sim_process

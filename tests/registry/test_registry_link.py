@@ -13,8 +13,8 @@ import signal
 import pytest
 
 from gateway.errors import CommandFailed, DuplicateVehicle, InvalidArgument, UnknownVehicle, VehicleNotReady
-from gateway.fleet.registry import Registry
-from gateway.fleet.vehicle import ConnectionState
+from gateway.fleet.vehicles.registry import Registry
+from gateway.fleet.vehicles.vehicle import ConnectionState
 from gateway.registry.spec import VehicleSpec
 from gateway.util.ports import free_udp_port
 from tests.helpers.timing import settled

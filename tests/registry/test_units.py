@@ -9,12 +9,12 @@ import pytest
 from pydantic import ValidationError
 
 from gateway.errors import InvalidArgument
-from gateway.fleet import mission
 from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
-from gateway.fleet.mission import MissionItem
-from gateway.fleet.modes import require_mode
-from gateway.fleet.params import param_aliases
-from gateway.fleet.trackers import LandingTracker
+from gateway.fleet.dialects.modes import require_mode
+from gateway.fleet.missions import mission
+from gateway.fleet.missions.mission import MissionItem
+from gateway.fleet.operations.trackers import LandingTracker
+from gateway.fleet.vehicles.params import param_aliases
 from gateway.link.telemetry import BatteryValue, MissionProgressValue, PositionValue, Sample, TelemetryCache
 from tests.fakes import FakeVehicle
 
@@ -160,8 +160,8 @@ def test_cache_snapshot_reports_ages_and_staleness() -> None:
 async def test_the_return_altitude_is_written_in_each_autopilots_parameter_and_units() -> None:
     from gateway.config import Settings
     from gateway.errors import CommandFailed
-    from gateway.fleet.fleet_steps import set_rtl_altitude_param
-    from gateway.fleet.vehicle import Vehicle
+    from gateway.fleet.operations.fleet_steps import set_rtl_altitude_param
+    from gateway.fleet.vehicles.vehicle import Vehicle
     from gateway.link.rawlink import MAV_AUTOPILOT_ARDUPILOTMEGA, MAV_AUTOPILOT_PX4
     from gateway.registry.spec import VehicleSpec
 
@@ -194,8 +194,8 @@ async def test_the_return_altitude_is_written_in_each_autopilots_parameter_and_u
 def test_each_dialect_protects_its_safety_parameters_whatever_the_deny_list_says() -> None:
     from gateway.config import DEFAULT_PARAM_DENY_PATTERNS, Settings
     from gateway.errors import SafetyRefusal
-    from gateway.fleet.safety import SafetyPolicy
-    from gateway.fleet.vehicle_limits import split_patterns
+    from gateway.fleet.policy.safety import SafetyPolicy
+    from gateway.fleet.policy.vehicle_limits import split_patterns
 
     for dialect in (ARDUPILOT, PX4_DIALECT):  # the default deny list names every dialect's patterns
         assert set(dialect.protected_params) <= set(split_patterns(DEFAULT_PARAM_DENY_PATTERNS)), dialect.name

@@ -8,7 +8,7 @@ import os
 from pathlib import Path
 
 from gateway.config import Settings
-from gateway.fleet.registry import Registry
+from gateway.fleet.vehicles.registry import Registry
 from gateway.link import confine
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store

@@ -16,7 +16,7 @@ from gateway.fleet.dialects.ardupilot import ArduPilot
 from gateway.fleet.dialects.base import Dialect, DialectReads, LinkOps
 from gateway.fleet.dialects.px4 import PX4
 from gateway.fleet.dialects.unsupported import Unsupported, autopilot_label
-from gateway.fleet.param_limits import ParamLimit
+from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.rawlink import MAV_AUTOPILOT_ARDUPILOTMEGA, MAV_AUTOPILOT_PX4, autopilot_name
 
 __all__ = [

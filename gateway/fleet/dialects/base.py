@@ -17,9 +17,9 @@ from typing import Protocol, TypeVar
 
 from mavsdk_grpc import System
 
-from gateway.fleet.mission import MissionItem, WirePlan
-from gateway.fleet.modes import ModeChoice
-from gateway.fleet.param_limits import ParamLimit
+from gateway.fleet.dialects.modes import ModeChoice
+from gateway.fleet.missions.mission import MissionItem, WirePlan
+from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 
 T = TypeVar("T")
@@ -81,7 +81,7 @@ class DialectReads(Protocol):
         operation of ``kind`` (takeoff, goto, reposition, move_to_relative, set_yaw, hold, land,
         return_to_launch, mission, formation, fleet_climb), or ``done`` once that operation succeeded
         (PX4 holds after a takeoff or a mission). Any other mode is one the gateway did not command: a
-        pilot, another ground station or a failsafe chose it (`gateway.fleet.takeover`). Empty for a
+        pilot, another ground station or a failsafe chose it (`gateway.fleet.policy.takeover`). Empty for a
         kind the dialect does not fly in a known mode (then nothing is judged)."""
         ...
 

@@ -20,11 +20,11 @@ from __future__ import annotations
 from collections.abc import Awaitable, Callable, Mapping
 
 from gateway.errors import CommandFailed
-from gateway.fleet import mission
 from gateway.fleet.dialects.base import LinkOps, matches_any, reader, user_progress
-from gateway.fleet.mission import MissionItem, WirePlan
-from gateway.fleet.modes import COMMON_MODES, ModeChoice, canonical
-from gateway.fleet.param_limits import ParamLimit
+from gateway.fleet.dialects.modes import COMMON_MODES, ModeChoice, canonical
+from gateway.fleet.missions import mission
+from gateway.fleet.missions.mission import MissionItem, WirePlan
+from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 
 #: PX4 main / sub modes (px4_custom_mode.h); DO_SET_MODE takes them as param2 / param3

@@ -12,9 +12,9 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from gateway.fleet.dialects.base import reader, user_progress
-from gateway.fleet.mission import WirePlan
-from gateway.fleet.modes import ModeChoice
-from gateway.fleet.param_limits import ParamLimit
+from gateway.fleet.dialects.modes import ModeChoice
+from gateway.fleet.missions.mission import WirePlan
+from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 
 

@@ -7,7 +7,7 @@ Who takes part (the same rule for every fleet tool, also in docs/fleet.md):
 - fleet_land, fleet_return_to_launch and fleet_hold bring drones down or stop them: they go to every
   drone that can take them, and the result lists the others (not_sent) with the reason.
 
-Who takes part in each is decided by the Commander (`gateway.fleet.fleet_verbs`); commands go out to
+Who takes part in each is decided by the Commander (`gateway.fleet.commands.fleet_verbs`); commands go out to
 all drones at once; long ones wait (capped) like the single-drone tools and answer 'running' with an
 operation id that monitor_fleet continues.
 """
@@ -18,10 +18,10 @@ from typing import Annotated, Any, Literal
 
 from pydantic import Field
 
-from gateway.fleet.fleet_verbs import Formation
-from gateway.fleet.protocols import VehicleView
-from gateway.fleet.readings import position, value
-from gateway.fleet.views import FleetHoldResult, FleetView
+from gateway.fleet.commands.fleet_verbs import Formation
+from gateway.fleet.operations.views import FleetHoldResult, FleetView
+from gateway.fleet.vehicles.protocols import VehicleView
+from gateway.fleet.vehicles.readings import position, value
 from gateway.mcp.access import ToolCall
 from gateway.mcp.results import Result, plain
 from gateway.mcp.toolkit import Metres, Toolset, Wait

@@ -18,7 +18,7 @@ from gateway.mcp.toolkit import DroneId, Toolset, check_drone_id
 toolset = Toolset("flight")
 
 # here: the tools the verbs declare for this toolset (@command(tool=Tool(..., "flight")), mostly in
-# gateway/fleet/drone_verbs.py), built by gateway/mcp/declared.py (the hand-written: this module)
+# gateway/fleet/commands/drone_verbs.py), built by gateway/mcp/declared.py (the hand-written: this module)
 toolset.declared_here()
 
 

@@ -10,8 +10,8 @@ from pydantic import BaseModel, Field
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
-from gateway.fleet.arguments import MISSION_ITEMS
-from gateway.fleet.mission import MissionItem
+from gateway.fleet.commands.arguments import MISSION_ITEMS
+from gateway.fleet.missions.mission import MissionItem
 from gateway.mcp.access import ToolCall
 from gateway.mcp.results import (
     ActionOut,
@@ -140,5 +140,5 @@ async def is_mission_finished(call: ToolCall, drone_id: DroneId) -> ValueOut:
 
 
 # here: the tools the verbs declare for this toolset (@command(tool=Tool(..., "mission")), mostly in
-# gateway/fleet/mission_verbs.py), built by gateway/mcp/declared.py (the hand-written: this module)
+# gateway/fleet/commands/mission_verbs.py), built by gateway/mcp/declared.py (the hand-written: this module)
 toolset.declared_here()

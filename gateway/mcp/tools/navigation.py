@@ -7,7 +7,7 @@ from typing import Annotated
 from pydantic import Field
 
 from gateway.errors import VehicleNotReady
-from gateway.fleet.readings import age_s, is_stale, value
+from gateway.fleet.vehicles.readings import age_s, is_stale, value
 from gateway.mcp.access import ToolCall, operation_out
 from gateway.mcp.results import ArrivalOut, OperationOut, PositionOut
 from gateway.mcp.toolkit import DroneId, Toolset
@@ -53,7 +53,8 @@ async def get_home_position(call: ToolCall, drone_id: DroneId) -> PositionOut:
 
 
 # here: the tools the verbs declare for this toolset (@command(tool=Tool(..., "navigation")), mostly in
-# gateway/fleet/navigation_verbs.py), built by gateway/mcp/declared.py (the hand-written: this module)
+# gateway/fleet/commands/navigation_verbs.py), built by gateway/mcp/declared.py (the hand-written: this
+# module)
 toolset.declared_here()
 
 

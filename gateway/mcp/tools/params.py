@@ -6,7 +6,7 @@ from typing import Annotated
 
 from pydantic import Field
 
-from gateway.fleet.vehicle_text import clean_vehicle_text
+from gateway.fleet.vehicles.vehicle_text import clean_vehicle_text
 from gateway.mcp.access import ToolCall
 from gateway.mcp.results import ParamListOut, ParamOut
 from gateway.mcp.toolkit import DroneId, Toolset

@@ -13,8 +13,8 @@ from typing import Annotated, Any
 from pydantic import Field
 
 from gateway.errors import VehicleNotReady
-from gateway.fleet.readings import is_stale
-from gateway.fleet.vehicle_text import VEHICLE_TEXT_LABEL, clean_vehicle_text
+from gateway.fleet.vehicles.readings import is_stale
+from gateway.fleet.vehicles.vehicle_text import VEHICLE_TEXT_LABEL, clean_vehicle_text
 from gateway.mcp.access import ToolCall
 from gateway.mcp.results import (
     AttitudeOut,

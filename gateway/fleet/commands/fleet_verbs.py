@@ -1,0 +1,514 @@
+"""The Commander's verbs on several drones: formation, fleet takeoff, land, return, hold (the
+operator's locks and emergency stop are `gateway.fleet.commands.operator_verbs`).
+
+Who takes part (the same rule for every fleet verb, also in docs/fleet.md):
+- formation_goto and fleet_takeoff change the fleet's geometry: every named drone is checked first and
+  if any cannot take part (unknown, not ready, locked, busy, low battery, on the ground...) nothing is
+  sent and the error names each such drone with the reason (rule and numbers).
+- fleet_land, fleet_return_to_launch and fleet_hold bring drones down or stop them: they go to every
+  drone that can take them, and the result lists the others (not_sent) with the reason.
+- stop_all (`operator_verbs`) is the operator's emergency stop, to every airborne drone.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import dataclasses
+import logging
+from collections.abc import Awaitable, Callable, Mapping, Sequence
+from typing import Any, Literal
+
+from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal, VehicleNotReady
+from gateway.fleet import geo
+from gateway.fleet.commands.command_core import (
+    OperationDesk,
+    arming_deadline,
+    command,
+    left,
+    require_airborne,
+    routed,
+)
+from gateway.fleet.commands.command_pass import CommandPass, Need, Order
+from gateway.fleet.commands.drone_verbs import FlightVerbs
+from gateway.fleet.formation.formation import DroneStart, plan_formation, rtl_altitudes, takeoff_altitudes
+from gateway.fleet.operations.fleet_operation import FleetOperation
+from gateway.fleet.operations.fleet_ops import FleetOperations
+from gateway.fleet.operations.fleet_refusals import Unable, check_drone_ids, collect_members, refuse_fleet
+from gateway.fleet.operations.fleet_steps import (
+    FORMATION_TOLERANCE_M,
+    build_step,
+    default_rtl_base_m,
+    formation_phases,
+    land_phase,
+    rtl_order,
+    rtl_phases,
+    slot_summaries,
+    takeoff_phase,
+)
+from gateway.fleet.operations.operation_state import Operation
+from gateway.fleet.operations.views import (
+    ActionResult,
+    FleetHoldResult,
+    FleetView,
+    OperationView,
+)
+from gateway.fleet.policy.caller import Caller
+from gateway.fleet.policy.safety_inputs import VehicleContext
+from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleView
+from gateway.fleet.vehicles.readings import home, is_landed_and_disarmed, position, vehicle_context
+from gateway.registry.store import Store
+
+log = logging.getLogger(__name__)
+
+Formation = Literal["line", "column", "wedge", "grid", "circle"]
+OnFleetProgress = Callable[[FleetView], Awaitable[None]]
+
+
+class FleetVerbs:
+    """Commands on several drones at once: fleet-level checks and plans, then the same pass per drone
+    (`CommandPass.run`, through `step_here` / `hold_here`, or the drone's owner in a cluster). The
+    operator's locks and emergency stop are `gateway.fleet.commands.operator_verbs`."""
+
+    def __init__(
+        self,
+        commands: CommandPass,
+        desk: OperationDesk,
+        flight: FlightVerbs,
+        fleet: FleetOperations,
+        store: Store | None,
+    ) -> None:
+        self.commands = commands
+        self.desk = desk
+        self.flight = flight
+        self.fleet = fleet
+        self.store = store
+        self.settings = commands.settings
+        self.registry = commands.registry
+        self.router = commands.router
+        self.safety = commands.safety
+        self.operations = commands.operations
+        fleet.run_steps_with(self.step_here, self.hold_here)
+
+    # ------------------------------------------------------------------------------------------------
+    # fleet operations: views and waiting
+    # ------------------------------------------------------------------------------------------------
+
+    def fleet_view(self, fop: FleetOperation, not_sent: Sequence[Unable] = ()) -> FleetView:
+        d = fop.to_dict()
+        plan = None
+        if fop.plan is not None:
+            plan = {
+                k: fop.plan[k] for k in ("formation", "spacing_m", "heading_deg", "alt_m", "min_clearance_m")
+            }
+            plan["conflicts_resolved"] = len(fop.plan.get("conflicts", []))
+        return FleetView(**d, not_sent=[u.to_dict() for u in not_sent], plan=plan)
+
+    def fleet_operation(self, operation_id: str | None = None) -> FleetView:
+        """A fleet operation by id, or the latest one."""
+        fop = self.fleet.get(operation_id) if operation_id else self.fleet.latest()
+        if fop is None:
+            raise InvalidArgument("no fleet operation has been started yet")
+        return self.fleet_view(fop)
+
+    async def wait_fleet(
+        self,
+        operation_id: str,
+        cap_s: float | None = None,
+        on_progress: OnFleetProgress | None = None,
+        not_sent: Sequence[dict[str, object]] = (),
+    ) -> FleetView:
+        """Wait until the fleet operation has finished or ``cap_s`` passed, reporting progress; the
+        drones that were not sent the command (``not_sent`` of the starting result) stay in the view."""
+        fop = self.fleet.get(operation_id)
+        cap = self.settings.mcp_wait_cap_s if cap_s is None else cap_s
+
+        async def report(f: FleetOperation) -> None:
+            if on_progress is not None:
+                await on_progress(self.fleet_view(f))
+
+        done = await self.fleet.wait(fop, cap, report if on_progress else None)
+        return self.fleet_view(done).model_copy(update={"not_sent": list(not_sent)})
+
+    # ------------------------------------------------------------------------------------------------
+    # checks shared by the fleet verbs
+    # ------------------------------------------------------------------------------------------------
+
+    def _all_ids(self, drone_ids: Sequence[str] | None) -> list[str]:
+        if drone_ids is None:
+            ids = [v.id for v in self.registry.all()]
+            if not ids:
+                raise InvalidArgument("no drones are registered")
+            return ids
+        return check_drone_ids(drone_ids)
+
+    def _busy(self, ctx: VehicleContext, action: str) -> None:
+        self.safety.check_not_busy(ctx, self.commands.running(ctx.vehicle_id), action)
+
+    def _stagger(self, stagger_m: float | None) -> float:
+        """Default: the minimum separation plus 1 m of altitude-holding error for each of two drones."""
+        return self.settings.min_separation_m + 2 * FORMATION_TOLERANCE_M if stagger_m is None else stagger_m
+
+    def _recovery_members(
+        self, drone_ids: Sequence[str] | None, action: str, check: Callable[[VehicleView], None]
+    ) -> tuple[list[str], dict[str, VehicleView], list[Unable]]:
+        ids = self._all_ids(drone_ids)
+        vehicles, unable = collect_members(ids, self.registry.get, check)
+        if not vehicles:
+            raise refuse_fleet(action, unable, len(ids))
+        return ids, vehicles, unable
+
+    async def _initialised(self, ids: Sequence[str], notify: Notify | None, deadline: float) -> None:
+        """Drones still initialising (connected, waiting for a position estimate) are waited for until
+        ``deadline``, all at once, ``notify`` hearing what each waits for; whatever they are then is
+        judged by the members' checks."""
+        waits = []
+        for drone_id in ids:
+            with contextlib.suppress(GatewayError):
+                waits.append(self.registry.get(drone_id).wait_initialised(left(deadline), notify))
+        await asyncio.gather(*waits, return_exceptions=True)
+
+    # ------------------------------------------------------------------------------------------------
+    # formation and fleet takeoff: all drones or none
+    # ------------------------------------------------------------------------------------------------
+
+    @command
+    async def formation_goto(
+        self,
+        caller: Caller,
+        drone_ids: list[str],
+        formation: Formation,
+        center_lat_deg: float | None,
+        center_lon_deg: float | None,
+        alt_m: float,
+        spacing_m: float = 10.0,
+        heading_deg: float | None = None,
+        north_m: float = 0.0,
+        east_m: float = 0.0,
+        *,
+        notify: Notify | None = None,
+    ) -> FleetView:
+        """Fly drones into a formation around a point, kept apart; all must join or nothing is sent. The
+        point: the centre given, else the drones' own centre (where they are), moved ``north_m`` and
+        ``east_m``. Drones on the ground take off first (a first phase, to staggered altitudes as in
+        `fleet_takeoff`); then the three phases with barriers of `gateway.fleet.formation.formation`."""
+        ids = check_drone_ids(drone_ids)
+        if (center_lat_deg is None) != (center_lon_deg is None):
+            raise InvalidArgument(
+                "give both center_lat_deg and center_lon_deg, or neither (the formation is then centred "
+                "where the drones are, moved north_m/east_m)"
+            )
+        for name, metres in (("north_m", north_m), ("east_m", east_m)):
+            geo.check_finite(name, metres)
+        policy = self.safety
+        via = caller.policy_via
+        deadline = arming_deadline(self.settings)
+        grounded = [d for d in ids if self._on_ground(d)]
+        if grounded:
+            await self._initialised(grounded, notify, deadline)
+        low, high = policy.altitude_band(ids)
+        climbs = takeoff_altitudes(grounded, alt_m, self._stagger(None), high) if grounded else {}
+
+        contexts: dict[str, VehicleContext] = {}
+
+        def check(v: VehicleView) -> None:
+            v.require_ready()
+            ctx = contexts[v.id] = vehicle_context(v)
+            self.commands.guard_takeoff(caller, ctx, "formation_goto")
+            if v.id in climbs:
+                policy.check_takeoff(ctx, climbs[v.id], via)
+            else:
+                require_airborne(ctx, "formation_goto")
+            self._busy(ctx, "formation_goto")
+            if ctx.position is None:
+                raise VehicleNotReady(f"no position received from {v.id} yet")
+            policy.check_actuation(ctx, via)
+
+        vehicles, unable = collect_members(ids, self.registry.get, check)
+        if unable:
+            raise refuse_fleet("formation_goto", unable, len(ids))
+        starts = [
+            DroneStart(d, pos[0], pos[1], climbs.get(d, pos[2]))
+            for d in ids
+            if (pos := contexts[d].position) is not None
+        ]
+        if center_lat_deg is None or center_lon_deg is None:
+            center_lat_deg = sum(s.lat for s in starts) / len(starts)
+            center_lon_deg = sum(s.lon for s in starts) / len(starts)
+        if north_m or east_m:
+            center_lat_deg, center_lon_deg = geo.offset_position(
+                center_lat_deg, center_lon_deg, north_m, east_m
+            )
+        if heading_deg is None:
+            heading_deg = _travel_heading(starts, center_lat_deg, center_lon_deg)
+        plan = plan_formation(
+            starts,
+            formation,
+            center_lat_deg,
+            center_lon_deg,
+            alt_m,
+            spacing_m,
+            heading_deg,
+            self.settings.min_separation_m,
+            max_altitude_m=high,
+            min_transit_alt_m=low,
+        )
+        for slot in plan.slots:  # per drone first, so every refused drone is named
+            try:
+                policy.check_formation(
+                    {slot.drone_id: contexts[slot.drone_id]}, dataclasses.replace(plan, slots=[slot]), via
+                )
+            except SafetyRefusal as exc:
+                unable.append(Unable.from_error(slot.drone_id, exc))
+        if unable:
+            raise refuse_fleet("formation_goto", unable, len(ids))
+        policy.check_formation(contexts, plan, via)
+        params: dict[str, Any] = {
+            "formation": formation,
+            "center_lat_deg": center_lat_deg,
+            "center_lon_deg": center_lon_deg,
+            "alt_m": alt_m,
+            "spacing_m": spacing_m,
+            "heading_deg": round(plan.heading_deg, 1),
+        }
+        phases = formation_phases(plan, vehicles, guard="formation_goto")
+        if climbs:
+            params["took_off_first"] = climbs
+            first = takeoff_phase({d: vehicles[d] for d in climbs}, climbs, "formation_goto", left(deadline))
+            phases = [
+                dataclasses.replace(first, name="take off the drones on the ground", abort_on_failure=True),
+                *phases,
+            ]
+        fop = await self.fleet.start(
+            "formation_goto",
+            ids,
+            phases,
+            params,
+            caller.session,
+            caller=caller,
+            plan=plan.to_dict(),
+            slots=slot_summaries(plan),
+            notes=plan.notes,
+        )
+        return self.fleet_view(fop)
+
+    def _on_ground(self, drone_id: str) -> bool:
+        """A drone known to be on the ground (an unknown one is left to the members' checks)."""
+        try:
+            vehicle = self.registry.get(drone_id)
+        except GatewayError:
+            return False
+        return vehicle.on_ground() is True
+
+    @command
+    async def fleet_takeoff(
+        self,
+        caller: Caller,
+        drone_ids: list[str],
+        alt_m: float,
+        stagger_m: float | None = None,
+        *,
+        notify: Notify | None = None,
+    ) -> FleetView:
+        """Take off drones at once to alt_m, alt_m + stagger, ... (in the order given); all must be able,
+        or none go. Drones still initialising are waited for first (``notify`` hears what each waits
+        for); that wait and the drones' arming share one deadline, the wait cap."""
+        ids = check_drone_ids(drone_ids)
+        policy = self.safety
+        _low, high = policy.altitude_band(ids)
+        altitudes = takeoff_altitudes(ids, alt_m, self._stagger(stagger_m), high)
+        deadline = arming_deadline(self.settings)
+        await self._initialised(ids, notify, deadline)
+
+        def check(v: VehicleView) -> None:
+            v.require_ready()
+            ctx = vehicle_context(v)
+            if ctx.in_air:
+                raise InvalidArgument(f"{v.id} is already flying; use formation_goto or go_to_location")
+            self._busy(ctx, "fleet_takeoff")
+            policy.check_takeoff(ctx, altitudes[v.id], caller.policy_via)
+
+        vehicles, unable = collect_members(ids, self.registry.get, check)
+        if unable:
+            raise refuse_fleet("fleet_takeoff", unable, len(ids))
+        fop = await self.fleet.start(
+            "fleet_takeoff",
+            ids,
+            [
+                takeoff_phase(
+                    vehicles,
+                    altitudes,
+                    "fleet_takeoff",
+                    arm_within_s=left(deadline),
+                )
+            ],
+            {"alt_m": alt_m, "altitudes_m": altitudes},
+            caller.session,
+            caller=caller,
+            slots={d: {"target_alt_m": a} for d, a in altitudes.items()},
+        )
+        return self.fleet_view(fop)
+
+    # ------------------------------------------------------------------------------------------------
+    # recovery: to every drone that can take it
+    # ------------------------------------------------------------------------------------------------
+
+    @command
+    async def fleet_land(self, caller: Caller, drone_ids: list[str] | None = None) -> FleetView:
+        """Land drones in place, all at once; done when disarmed. Those that cannot are in not_sent."""
+
+        def check(v: VehicleView) -> None:
+            v.require_ready()
+            if is_landed_and_disarmed(v):
+                raise InvalidArgument(f"{v.id} is already on the ground and disarmed")
+            self.safety.check_actuation(vehicle_context(v), caller.policy_via)
+
+        ids, vehicles, unable = self._recovery_members(drone_ids, "fleet_land", check)
+        fop = await self.fleet.start(
+            "fleet_land",
+            list(vehicles),
+            [land_phase(vehicles)],
+            {"drone_ids": ids},
+            caller.session,
+            caller=caller,
+        )
+        return self.fleet_view(fop, unable)
+
+    @command
+    async def fleet_return_to_launch(
+        self,
+        caller: Caller,
+        drone_ids: list[str] | None = None,
+        rtl_alt_m: float | None = None,
+        stagger_m: float | None = None,
+    ) -> FleetView:
+        """Fly drones home at separate altitudes (climbing or descending in place first) and land.
+        Those that cannot are in not_sent."""
+        stagger = self._stagger(stagger_m)
+        sep = self.settings.min_separation_m
+        self.safety.check_stagger(stagger)
+
+        def check(v: VehicleView) -> None:
+            v.require_ready()
+            ctx = vehicle_context(v)
+            require_airborne(ctx, "fleet_return_to_launch")
+            if ctx.position is None:
+                raise VehicleNotReady(f"no position received from {v.id} yet")
+            self.safety.check_actuation(ctx, caller.policy_via)
+            self.safety.check_param_write(
+                v.return_altitude_param()[0], via=caller.policy_via, vehicle_id=v.id, governed=v.limit_params
+            )
+
+        ids, vehicles, unable = self._recovery_members(drone_ids, "fleet_return_to_launch", check)
+        positions = {d: pos for d, v in vehicles.items() if (pos := position(v)) is not None}
+        homes = {d: (h[0], h[1]) for d, v in vehicles.items() if (h := home(v)) is not None}
+        order, notes = rtl_order(positions, homes, sep)
+        base = rtl_alt_m if rtl_alt_m is not None else default_rtl_base_m(positions.values())
+        _low, high = self.safety.altitude_band(order)
+        try:
+            altitudes = rtl_altitudes(order, base, stagger, high)
+        except SafetyRefusal:
+            if stagger_m is not None or stagger <= sep:
+                raise
+            # many drones: the default margin does not fit under the limit; the separation itself may
+            altitudes = rtl_altitudes(order, base, sep, high)
+            notes.append(
+                f"return altitudes {sep:g} m apart (the minimum separation): {stagger:g} m did not fit"
+            )
+        fop = await self.fleet.start(
+            "fleet_return_to_launch",
+            order,
+            rtl_phases(vehicles, altitudes, positions),
+            {"drone_ids": ids, "rtl_altitudes_m": altitudes},
+            caller.session,
+            caller=caller,
+            slots={d: {"rtl_alt_m": a} for d, a in altitudes.items()},
+            notes=notes,
+        )
+        return self.fleet_view(fop, unable)
+
+    @command
+    async def fleet_hold(self, caller: Caller, drone_ids: list[str] | None = None) -> FleetHoldResult:
+        """Stop drones where they are (GUIDED hover), ending their operations and any fleet operation
+        they are part of. Those that cannot are in not_sent."""
+
+        def check(v: VehicleView) -> None:
+            v.require_ready()
+            ctx = vehicle_context(v)
+            require_airborne(ctx, "fleet_hold")
+            self.safety.check_actuation(ctx, caller.policy_via)
+
+        _ids, vehicles, unable = self._recovery_members(drone_ids, "fleet_hold", check)
+        superseded = await self.fleet.supersede(vehicles, "fleet_hold")
+        failed: list[dict[str, object]] = []
+
+        async def hold(drone_id: str, v: VehicleView) -> None:
+            try:
+                await self.hold_step(caller, drone_id, "fleet_hold")  # on its owner, in a cluster
+            except GatewayError as exc:
+                failed.append({"drone_id": drone_id, "code": exc.code, "message": exc.message})
+
+        await asyncio.gather(*(hold(d, v) for d, v in vehicles.items()))
+        failed_ids = {f["drone_id"] for f in failed}
+        return FleetHoldResult(
+            held=[d for d in vehicles if d not in failed_ids],
+            failed=failed,
+            not_sent=[u.to_dict() for u in unable],
+            superseded_fleet_operations=[f.id for f in superseded],
+        )
+
+    # ------------------------------------------------------------------------------------------------
+    # one drone's step of a fleet operation coordinated by another cluster node
+    # ------------------------------------------------------------------------------------------------
+
+    async def step_here(self, caller: Caller, drone_id: str, spec: Mapping[str, Any]) -> Operation:
+        """One drone's step of a fleet operation (`gateway.fleet.operations.fleet_steps.build_step`), as one
+        run of
+        the pass on this node: the takeover lock, the takeoff guard (named by the step's ``guard``;
+        none for a recovery step) before and inside the command lock, then the step's operation."""
+        guard = spec.get("guard")
+        action = str(guard or spec.get("kind") or "fleet step")
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            step = build_step(vehicle, spec)
+            return Order(step.send, step.tracker, step.params)
+
+        sent = await self.commands.run(
+            caller, drone_id, action, decide, need=Need.ANY, safety_action=not guard, audited=False
+        )
+        assert sent.operation is not None
+        return sent.operation
+
+    async def hold_here(self, caller: Caller, drone_id: str, reason: str) -> Operation | None:
+        """Hold a drone whose fleet operation was stopped (one run of the pass); the operation it ended."""
+
+        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+            return Order(vehicle.hold, ends_operation=True, commands="hold")
+
+        sent = await self.commands.run(
+            caller, drone_id, reason, decide, need=Need.ANY, safety_action=True, audited=False
+        )
+        return sent.ended
+
+    @routed
+    async def run_step(self, caller: Caller, drone_id: str, spec: dict[str, Any]) -> OperationView:
+        """Start one drone's step here, for the node coordinating the fleet operation (`step_here`)."""
+        op = await self.step_here(caller, drone_id, spec)
+        return OperationView.of(op, self.registry.get(drone_id))
+
+    @routed
+    async def hold_step(self, caller: Caller, drone_id: str, reason: str) -> ActionResult:
+        """Hold a drone whose fleet operation (coordinated by another node) was stopped."""
+        sup = await self.hold_here(caller, drone_id, reason)
+        return ActionResult(
+            drone_id=drone_id, action="hold", message="held", superseded_operation=sup and sup.id
+        )
+
+
+def _travel_heading(starts: Sequence[DroneStart], lat: float, lon: float) -> float:
+    """Bearing from the drones' centroid to the formation centre (0 when already there)."""
+    c_lat = sum(s.lat for s in starts) / len(starts)
+    c_lon = sum(s.lon for s in starts) / len(starts)
+    if geo.horizontal_distance_m(c_lat, c_lon, lat, lon) < 1.0:
+        return 0.0
+    return round(geo.bearing_deg(c_lat, c_lon, lat, lon) % 360.0, 1)

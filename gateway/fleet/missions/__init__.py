@@ -1,0 +1,2 @@
+"""Missions and flights: mission items, mission files (QGC .plan, .waypoints), the flight log and its
+exports."""

@@ -1,0 +1,291 @@
+"""The mode watch: each vehicle's HEARTBEAT mode judged against what the gateway last commanded it.
+
+`expect` records what the gateway just commanded (an operation's kind, or an instant command's modes);
+while that holds, a mode the gateway did not send, or the autopilot's own target moved away from a
+running goto's, is a takeover (`gateway.fleet.policy.takeover`): the drone is locked through the manager's
+``on_takeover`` first, then its running operation ends as ``interrupted``. After a restart,
+`watch_found_flying` arms the watch again for every vehicle found flying."""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+import time
+from collections.abc import Iterable
+from datetime import UTC, datetime
+from typing import TYPE_CHECKING
+
+from gateway.fleet import geo
+from gateway.fleet.operations.operation_state import Operation, OpStatus
+from gateway.fleet.operations.trackers import POLL_S, GotoTracker
+from gateway.fleet.policy.takeover import CAUSE_WINDOW_S, ModeExpectation, Takeover, likely_cause
+from gateway.fleet.vehicles.protocols import FlyingVehicle
+from gateway.registry.records import OperationRecord
+
+if TYPE_CHECKING:
+    from gateway.fleet.operations.operations import OperationManager
+
+log = logging.getLogger(__name__)
+
+MISSION_END_GRACE_S = 0.8
+"""How long a mission that left its mode for one it settles in (PX4 holds at the end) may take to say
+it finished before the change counts as a takeover."""
+TARGET_SETTLE_S = 1.5
+"""How long after a goto was sent the autopilot's reported target may still be the one before it."""
+TARGET_MOVED_M = 10.0
+"""How far the autopilot's target may be from the goto's (at least 3 arrival tolerances) before another
+ground station is taken to have moved it."""
+TARGET_CONFIRM_S = 0.9
+"""How long the target must stay moved (two reports at 2 Hz) before it counts as a takeover."""
+FOUND_FLYING_WAIT_S = 120.0
+"""After a restart: how long the gateway waits for a vehicle's first HEARTBEAT and landed state before it
+gives up looking whether the vehicle is flying (its mode watch is then armed by its next command)."""
+
+
+class ModeWatch:
+    """The mode watch of an `OperationManager`'s vehicles (one per manager)."""
+
+    def __init__(self, ops: OperationManager) -> None:
+        self._ops = ops
+        self._expected: dict[str, ModeExpectation] = {}  # what the gateway last commanded, per vehicle
+        self._watches: dict[str, asyncio.Task[None]] = {}
+        self._finders: dict[str, asyncio.Task[None]] = {}  # after a restart: is the vehicle flying?
+        #: when an operation's latest command (its leg) was sent (the manager sets it)
+        self.sent_at: dict[str, float] = {}
+        #: the leg (its send time) whose target the autopilot has been seen flying to, per operation
+        self.adopted: dict[str, float] = {}
+
+    def expect(
+        self,
+        vehicle: FlyingVehicle,
+        kind: str | None,
+        operation_id: str | None = None,
+        modes: frozenset[str] | None = None,
+    ) -> None:
+        """Record what the gateway just commanded ``vehicle`` (called under its command lock, after the
+        command was accepted): an operation of ``kind``, or an instant command whose ``modes`` are
+        given (a mode change); None: nothing the mode can be judged by (kill, disarm). From then on a
+        change to a mode the gateway did not command ends the operation (`gateway.fleet.policy.takeover`)."""
+        wanted = modes if modes is not None else (vehicle.commanded_modes(kind) if kind else frozenset())
+        if not wanted or kind is None:
+            self._expected.pop(vehicle.id, None)
+            return
+        settled = modes if modes is not None else vehicle.commanded_modes(kind, done=True)
+        self._expected[vehicle.id] = ModeExpectation(kind, wanted, settled | wanted, operation_id)
+        watch = self._watches.get(vehicle.id)
+        if watch is None or watch.done():
+            self._watches[vehicle.id] = asyncio.create_task(self._watch(vehicle), name=f"watch-{vehicle.id}")
+
+    def expected(self, vehicle_id: str) -> ModeExpectation | None:
+        return self._expected.get(vehicle_id)
+
+    def forget(self, vehicle_id: str) -> None:
+        """The gateway commands nothing the mode shows (a takeover, kill): nothing more is judged."""
+        self._expected.pop(vehicle_id, None)
+
+    def watch_found_flying(self, vehicles: Iterable[FlyingVehicle]) -> None:
+        """After a restart: every vehicle found armed in the air gets its mode watch again, so a pilot's
+        later switch is a takeover as before. It is judged by what the gateway last commanded it (its
+        newest stored operation) while the vehicle is in one of that command's modes; in any other mode
+        (the process died before it commanded one, or someone switched meanwhile) by the mode it was
+        found in. Each vehicle is looked at once its HEARTBEAT and landed state are known."""
+        for vehicle in vehicles:
+            task = self._finders.get(vehicle.id)
+            if task is None or task.done():
+                self._finders[vehicle.id] = asyncio.create_task(
+                    self._found_flying(vehicle), name=f"found-flying-{vehicle.id}"
+                )
+
+    async def _found_flying(self, vehicle: FlyingVehicle) -> None:
+        try:
+            deadline = time.monotonic() + FOUND_FLYING_WAIT_S
+            while (heard := vehicle.heartbeat_mode()) is None or (
+                heard[1] and vehicle.on_ground(fresh=False) is None
+            ):
+                if time.monotonic() > deadline:
+                    log.info(
+                        "%s: no HEARTBEAT after the restart; its mode watch waits for a command", vehicle.id
+                    )
+                    return
+                await asyncio.sleep(POLL_S)
+            mode, armed = heard
+            if not armed or vehicle.on_ground(fresh=False) is not False:
+                return  # on the ground: its next arming and command start afresh
+            if not vehicle.commanded_modes("goto"):
+                return  # an autopilot the gateway has no dialect for: it commands it nothing
+            if vehicle.id in self._expected or self._ops.taken_over(vehicle.id) is not None:
+                return  # a command since the restart (its own watch), or a pilot has it already
+            record = await self._newest_record(vehicle.id)
+            kind = record.kind if record is not None else None
+            modes = (
+                (vehicle.commanded_modes(kind) | vehicle.commanded_modes(kind, done=True)) if kind else None
+            )
+            if vehicle.id in self._expected:
+                return
+            if kind is not None and modes and mode in modes:
+                exp = ModeExpectation(kind, modes, modes, seen=True, last_mode=mode)
+            else:
+                found = frozenset({mode})
+                exp = ModeExpectation(f"found flying in {mode}", found, found, seen=True, last_mode=mode)
+            self._expected[vehicle.id] = exp
+            log.info(
+                "%s: found flying in %s after the restart; its mode watch is on (%s)",
+                vehicle.id,
+                mode,
+                exp.kind,
+            )
+            watch = self._watches.get(vehicle.id)
+            if watch is None or watch.done():
+                self._watches[vehicle.id] = asyncio.create_task(
+                    self._watch(vehicle), name=f"watch-{vehicle.id}"
+                )
+        except asyncio.CancelledError:
+            raise
+        except Exception:  # a restart must go on whatever one vehicle's look does
+            log.exception("looking whether %s is flying after the restart failed", vehicle.id)
+        finally:
+            if self._finders.get(vehicle.id) is asyncio.current_task():
+                self._finders.pop(vehicle.id, None)
+
+    async def _newest_record(self, vehicle_id: str) -> OperationRecord | None:
+        store = self._ops.store
+        if store is None:
+            return None
+        records = await store.list_operations(vehicle_id=vehicle_id, limit=1)
+        return records[0] if records else None
+
+    async def _watch(self, vehicle: FlyingVehicle) -> None:
+        """Judge the vehicle's HEARTBEAT mode every POLL_S while the gateway expects something of it."""
+        while vehicle.id in self._expected:
+            await asyncio.sleep(POLL_S)
+            try:
+                await self._judge_mode(vehicle)
+            except asyncio.CancelledError:
+                raise
+            except Exception:  # the watch must never die silently
+                log.exception("mode watch of %s failed", vehicle.id)
+        self._watches.pop(vehicle.id, None)
+
+    async def _judge_mode(self, vehicle: FlyingVehicle) -> None:
+        exp = self._expected.get(vehicle.id)
+        if exp is None or self._ops.command_lock(vehicle.id).locked():
+            return  # the gateway is sending a command: the mode it brings is its own
+        heard = vehicle.heartbeat_mode()
+        if heard is None:
+            return
+        mode, armed = heard
+        if not armed:  # on the ground, disarmed: nothing flies; the next arming starts afresh
+            exp.seen, exp.outside_since, exp.target_off_since = False, None, None
+            return
+        op = self._ops.latest(vehicle.id)
+        mine = op if op is not None and op.id == exp.operation_id else None
+        done = mine is not None and mine.status is OpStatus.succeeded
+        running = mine if mine is not None and not mine.finished else None
+        if mode in exp.modes or (done and mode in exp.settled):
+            exp.seen, exp.outside_since, exp.last_mode = True, None, mode
+            moved = self._retargeted(vehicle, exp, running)
+            if moved is not None:
+                await self._taken(vehicle, exp, mode, running, moved)
+            return
+        if not exp.seen:
+            return  # the command's own mode has not shown yet
+        if exp.kind == "mission" and mode in exp.settled:  # the mission may just have ended
+            now = time.monotonic()
+            exp.outside_since = exp.outside_since or now
+            if await vehicle.is_mission_finished():
+                exp.modes, exp.last_mode = exp.settled, mode  # it ended: where it settles is commanded
+                return  # (a tracked mission's tracker ends it as succeeded)
+            if now - exp.outside_since < MISSION_END_GRACE_S:
+                return
+        await self._taken(vehicle, exp, mode, running)
+
+    def _retargeted(self, vehicle: FlyingVehicle, exp: ModeExpectation, op: Operation | None) -> float | None:
+        """How far (m) the autopilot's own target (POSITION_TARGET_GLOBAL_INT) is from the running goto's
+        once it has been off for TARGET_CONFIRM_S: another ground station repositioned or paused the
+        drone in the mode the gateway commanded (QGroundControl's Pause or "Go to location" on PX4,
+        whose gotos fly in Hold; Mission Planner's "Fly to here" in GUIDED). None while it is not."""
+        tracker = self._ops.tracker(op.id) if op is not None else None
+        if op is None or tracker is None or getattr(tracker, "climbing", False):
+            return None
+        leg = getattr(tracker, "leg", tracker)
+        target = vehicle.position_target()
+        if not isinstance(leg, GotoTracker) or target is None:
+            return None
+        lat, lon, heard_at = target
+        sent = self.sent_at.get(op.id, op.started_mono)
+        off = geo.horizontal_distance_m(lat, lon, leg.lat, leg.lon)
+        if off <= max(TARGET_MOVED_M, 3 * leg.tolerance_m):
+            exp.target_off_since = None
+            if heard_at >= sent:
+                self.adopted[op.id] = sent  # it flies this leg: from now on a move away is someone else's
+            return None
+        if heard_at < sent + TARGET_SETTLE_S:
+            exp.target_off_since = None  # said before the command could show in it
+            return None
+        if self.adopted.get(op.id) != sent:
+            # not yet seen flying this leg's target: a report from before it, which a loaded link or
+            # gateway can hand over long after it was said, never counts as a takeover
+            exp.target_off_since = None
+            return None
+        if exp.target_off_since is None:
+            exp.target_off_since = heard_at
+        return off if heard_at - exp.target_off_since >= TARGET_CONFIRM_S else None
+
+    async def _taken(
+        self,
+        vehicle: FlyingVehicle,
+        exp: ModeExpectation,
+        mode: str,
+        running: Operation | None,
+        moved_m: float | None = None,
+    ) -> None:
+        """A takeover: the drone is locked first (whoever hears the operation end finds it locked), then
+        the running operation ends as interrupted."""
+        if self._expected.get(vehicle.id) is not exp or self._ops.command_lock(vehicle.id).locked():
+            return  # a command went out meanwhile
+        said: str | None = None
+        if moved_m is not None:
+            cause = (
+                f"another ground station repositioned or paused it (its target is {moved_m:.0f} m from the "
+                "gateway's)"
+            )
+        else:
+            cause, said = likely_cause(mode, vehicle.recent_texts(CAUSE_WINDOW_S))
+        takeover = Takeover(
+            vehicle_id=vehicle.id,
+            from_mode=exp.last_mode or "?",
+            to_mode=mode,
+            cause=cause,
+            said=said,
+            at=datetime.now(UTC),
+            operation_id=running.id if running is not None else None,
+            operation_kind=running.kind if running is not None else exp.kind,
+            retargeted=moved_m is not None,
+        )
+        self._expected.pop(vehicle.id, None)
+        log.warning("%s: %s", vehicle.id, takeover.message())
+        if self._ops.on_takeover is not None:
+            try:
+                await self._ops.on_takeover(vehicle, takeover)
+            except Exception:
+                log.exception("recording the takeover of %s failed", vehicle.id)
+        if running is not None:
+            await self._ops.interrupt(running, takeover.message())
+
+    def drop(self, operation_id: str) -> None:
+        """The operation's monitor ended: forget its legs."""
+        self.sent_at.pop(operation_id, None)
+        self.adopted.pop(operation_id, None)
+
+    async def stop(self) -> None:
+        """Gateway shutdown: nothing more is judged; the watches end."""
+        self._expected.clear()
+        tasks = [*self._watches.values(), *self._finders.values()]
+        for task in tasks:
+            task.cancel()
+        for task in tasks:
+            with contextlib.suppress(asyncio.CancelledError, Exception):
+                await task
+        self._watches.clear()
+        self._finders.clear()

@@ -1,0 +1,72 @@
+"""One operation's state: its status (running until final), progress, message, estimate, and the events
+its waiters wait on; what the manager saves to the store and the tools show."""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from dataclasses import dataclass, field
+from datetime import datetime
+from enum import StrEnum
+from typing import Any
+
+from gateway.fleet.operations.trackers import Tracker
+
+
+class OpStatus(StrEnum):
+    running = "running"
+    succeeded = "succeeded"
+    failed = "failed"
+    superseded = "superseded"
+    interrupted = "interrupted"
+    cancelled = "cancelled"
+
+
+FINAL = frozenset(s for s in OpStatus if s is not OpStatus.running)
+
+
+def is_climbing(op: Operation, tracker: Tracker | None) -> bool:
+    """Whether the operation is a takeoff still climbing: a takeoff, or an operation that took off first
+    and has not reached its altitude yet (the takeoff guard holds other commands back meanwhile)."""
+    return op.kind == "takeoff" or bool(getattr(tracker, "climbing", False))
+
+
+@dataclass
+class Operation:
+    id: str
+    vehicle_id: str
+    kind: str
+    params: dict[str, Any]
+    session_key: str | None
+    created_at: datetime
+    status: OpStatus = OpStatus.running
+    progress: float = 0.0
+    message: str = "command sent"
+    #: what every later message keeps saying (e.g. that another node took the operation over)
+    note: str | None = None
+    eta_s: float | None = None
+    updated_at: datetime | None = None
+    finished_at: datetime | None = None
+    started_mono: float = field(default_factory=time.monotonic)
+    changed: asyncio.Event = field(default_factory=asyncio.Event, repr=False)
+    done: asyncio.Event = field(default_factory=asyncio.Event, repr=False)
+
+    @property
+    def finished(self) -> bool:
+        return self.status in FINAL
+
+    def elapsed_s(self) -> float:
+        return time.monotonic() - self.started_mono
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "operation_id": self.id,
+            "drone_id": self.vehicle_id,
+            "kind": self.kind,
+            "status": self.status.value,
+            "progress": round(self.progress, 3),
+            "message": self.message,
+            "eta_s": None if self.eta_s is None else round(self.eta_s, 1),
+            "elapsed_s": round(self.elapsed_s(), 1),
+            "params": self.params,
+        }

@@ -1,0 +1,63 @@
+"""A fleet step that another cluster node runs, seen here as a local mirror of the owner's operation:
+kept up to date by following it on its owner (waits of FOLLOW_WAIT_S, one after the other)."""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Mapping
+from datetime import UTC, datetime
+from typing import Any
+
+from gateway.errors import GatewayError
+from gateway.fleet.operations.fleet_operation import FLEET_CALLER
+from gateway.fleet.operations.operation_state import Operation, OpStatus
+from gateway.fleet.operations.routing import Router
+
+FOLLOW_WAIT_S = 30.0
+"""A step run on another node is followed by waits of this length, one after the other."""
+
+
+def mirror_view(mirror: Operation, view: Mapping[str, Any]) -> None:
+    """Bring a local mirror of an operation another node runs up to date with its view there."""
+    mirror.progress = float(view.get("progress", mirror.progress) or 0.0)
+    mirror.message = str(view.get("message") or mirror.message)
+    eta = view.get("eta_s")
+    mirror.eta_s = None if eta is None else float(eta)
+    status = OpStatus(str(view.get("status") or "running"))
+    if status is not OpStatus.running and not mirror.finished:
+        mirror.status = status
+        mirror.finished_at = datetime.now(UTC)
+        mirror.done.set()
+    mirror.changed.set()
+
+
+async def follow(router: Router, mirror: Operation) -> None:
+    """Wait on the owner, again and again, until the operation there has finished."""
+
+    async def message(body: dict[str, Any]) -> None:
+        if isinstance(body.get("view"), dict):
+            mirror_view(mirror, body["view"])
+
+    failures = 0
+    while not mirror.finished:
+        try:
+            view = await router.call(
+                mirror.vehicle_id,
+                "wait",
+                FLEET_CALLER,
+                {"operation_id": mirror.id, "cap_s": FOLLOW_WAIT_S},
+                message,
+                wait_s=FOLLOW_WAIT_S,
+            )
+            mirror_view(mirror, view)
+            failures = 0
+        except asyncio.CancelledError:
+            raise
+        except GatewayError as exc:  # the owner was lost: its successor picks the operation up
+            failures += 1
+            mirror.message = f"following {mirror.vehicle_id} on its owner failed: {exc.message}"
+            mirror.changed.set()
+            if failures >= 5:
+                mirror_view(mirror, {"status": OpStatus.interrupted.value, "message": mirror.message})
+                return
+            await asyncio.sleep(1.0)

@@ -1,0 +1,202 @@
+"""What the Commander returns: plain pydantic models, JSON-serialisable (``model_dump(mode="json")``)
+and rebuilt from JSON (``model_validate``), so a result can cross a process boundary unchanged."""
+
+from __future__ import annotations
+
+from datetime import UTC, datetime
+from typing import Any, Literal
+
+from pydantic import BaseModel, Field
+
+from gateway.fleet.missions.mission import MissionItem
+from gateway.fleet.operations.operation_state import Operation
+from gateway.fleet.vehicles.protocols import VehicleView
+from gateway.fleet.vehicles.readings import position
+from gateway.registry.records import OperationRecord
+
+
+class OperationView(BaseModel):
+    """A tracked operation at one moment, with where its drone is."""
+
+    operation_id: str
+    drone_id: str
+    kind: str
+    status: str
+    progress: float
+    message: str
+    eta_s: float | None = None
+    elapsed_s: float
+    params: dict[str, Any] = Field(default_factory=dict)
+    lat_deg: float | None = None
+    lon_deg: float | None = None
+    alt_m: float | None = None
+
+    @classmethod
+    def of(cls, op: Operation, vehicle: VehicleView | None) -> OperationView:
+        pos = None if vehicle is None else position(vehicle)
+        return cls(
+            operation_id=op.id,
+            drone_id=op.vehicle_id,
+            kind=op.kind,
+            status=op.status.value,
+            progress=round(op.progress, 3),
+            message=op.message,
+            eta_s=None if op.eta_s is None else round(op.eta_s, 1),
+            elapsed_s=round(op.elapsed_s(), 1),
+            params=dict(op.params),
+            lat_deg=None if pos is None else pos[0],
+            lon_deg=None if pos is None else pos[1],
+            alt_m=None if pos is None else round(pos[2], 2),
+        )
+
+    @classmethod
+    def of_record(cls, record: OperationRecord, message: str | None = None) -> OperationView:
+        """A stored operation (run by another process), as the database last had it."""
+        end = record.finished_at or datetime.now(UTC)
+        start = record.created_at
+        if start.tzinfo is None or end.tzinfo is None:  # SQLite gives naive UTC times
+            start, end = start.replace(tzinfo=UTC), end.replace(tzinfo=UTC)
+        return cls(
+            operation_id=record.id,
+            drone_id=record.vehicle_id,
+            kind=record.kind,
+            status=record.status,
+            progress=round(record.progress, 3),
+            message=message or record.message or record.status,
+            elapsed_s=round(max(0.0, (end - start).total_seconds()), 1),
+            params=dict(record.params),
+        )
+
+    @property
+    def running(self) -> bool:
+        return self.status == "running"
+
+
+class ActionResult(BaseModel):
+    """An instant command (arm, hold, mode, kill, speed, mission upload...): done when accepted.
+    ``facts`` holds what the command established (e.g. the mode's native name, the item count)."""
+
+    drone_id: str
+    action: str
+    message: str
+    superseded_operation: str | None = None
+    facts: dict[str, Any] = Field(default_factory=dict)
+
+
+class ArrivalView(BaseModel):
+    drone_id: str
+    arrived: bool
+    operation_id: str | None
+    kind: str | None
+    status: str | None
+    distance_m: float | None
+    vertical_m: float | None
+    message: str
+
+
+class MissionView(BaseModel):
+    drone_id: str
+    items: list[MissionItem]
+
+
+class MissionFileView(BaseModel):
+    """A drone's mission as a ground station's file (QGC .plan JSON or QGC WPL 110 text)."""
+
+    drone_id: str
+    format: str
+    items: int
+    content: str
+
+
+class MissionProgressView(BaseModel):
+    drone_id: str
+    current: int
+    total: int
+    finished: bool
+    operation_status: str | None
+
+
+class ParamValue(BaseModel):
+    drone_id: str
+    name: str
+    value: float
+    type: str
+
+
+class ParamPage(BaseModel):
+    drone_id: str
+    prefix: str
+    total: int
+    offset: int
+    params: dict[str, float]
+    next_offset: int | None
+
+
+class FleetView(BaseModel):
+    """A fleet operation at one moment: per-drone outcomes in ``drones``; drones that were not sent
+    the command (recovery commands go to those that can) in ``not_sent``."""
+
+    operation_id: str
+    kind: str
+    status: str
+    message: str
+    phase: int
+    phases: list[str]
+    progress: float
+    eta_s: float | None
+    elapsed_s: float
+    dispatch_s: list[float]
+    drones: list[dict[str, Any]]
+    not_sent: list[dict[str, Any]] = Field(default_factory=list)
+    notes: list[str] = Field(default_factory=list)
+    plan: dict[str, Any] | None = None
+
+    @property
+    def running(self) -> bool:
+        return self.status == "running"
+
+
+class FleetHoldResult(BaseModel):
+    held: list[str]
+    failed: list[dict[str, Any]]
+    not_sent: list[dict[str, Any]]
+    superseded_fleet_operations: list[str]
+
+
+class StopOutcome(BaseModel):
+    """One drone's part of a fleet stop."""
+
+    drone_id: str
+    action: str
+    outcome: Literal["sent", "skipped", "unreached", "failed"] = Field(
+        description="sent: the drone's node sent the command to the drone; skipped: on the ground or not "
+        "connected; unreached: nothing was sent (no node holds its link, or its node could not be reached "
+        "in time: it will not run it later); failed: the command was refused or its answer was lost."
+    )
+    message: str | None = None
+    superseded_operation: str | None = None
+    operation_id: str | None = None
+
+
+class LockResult(BaseModel):
+    scope: str = Field(description='A vehicle id, or "*" for the whole fleet.')
+    reason: str
+    by: str
+    locked_at: datetime
+    stored: bool = Field(
+        True,
+        description="False: the database was unreachable; the lock holds on this node (and every node "
+        "that heard of it) now and is stored when the database is back.",
+    )
+
+
+class UnlockResult(BaseModel):
+    scope: str
+    was_locked: bool
+
+
+class StopResult(BaseModel):
+    action: str
+    fleet_lock: LockResult | None
+    superseded_fleet_operations: list[str]
+    results: list[StopOutcome]

@@ -1,0 +1,448 @@
+"""Safety policy: pure checks run before anything is sent to a drone (no I/O, no clocks but lock times).
+
+Every check returns quietly when allowed, or raises `SafetyRefusal(rule, message, **numbers)` whose
+rule is a `Rule` member and whose message starts with the rule's name and states the numbers involved,
+e.g. ``max_altitude: target altitude 150 m exceeds the limit of 120 m above home``. The audit table
+records the refusal (rule, message, numbers) from the exception.
+
+Who calls what: the Commander (`gateway.fleet.commands.commander`), for every door, with the caller's ``via``:
+- agents (MCP, and a node's own cluster commands) are judged with ``via="mcp"`` (the default): operator
+  locks, `simulators_only`, the parameter deny list, pilot modes in the air, the kill restriction and
+  the takeoff guard apply;
+- operators (REST, the console) with ``via="rest"``: the limits still apply, those others do not.
+- Agents only ever reach a `LockView` (read-only); locking and unlocking are operator verbs.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import asdict
+from typing import Any
+
+from gateway.config import Settings
+from gateway.errors import InvalidArgument
+from gateway.fleet.policy import param_limits
+from gateway.fleet.policy.geofence import GeofenceSet, load_geofence_file
+from gateway.fleet.policy.operator_locks import LockBook, LockView, taken_over_text
+from gateway.fleet.policy.param_limits import ParamLimit
+from gateway.fleet.policy.safety_checks import (
+    check_altitude,
+    check_battery,
+    check_horizontal,
+    check_leg,
+    check_point,
+    require_finite,
+    start_of,
+)
+from gateway.fleet.policy.safety_inputs import (
+    MissionItemLike,
+    PlannedFormation,
+    RunningOperation,
+    Target,
+    VehicleContext,
+)
+from gateway.fleet.policy.safety_rules import (
+    DENIED_MISSION_COMMANDS,
+    POSITION_NAV_COMMANDS,
+    Rule,
+    Via,
+    fmt,
+    prefixed,
+    refuse,
+)
+from gateway.fleet.policy.vehicle_limits import Limits, split_patterns
+
+_PARAM_NAME_RE = re.compile(r"^[A-Z0-9_]{1,16}$")
+
+
+# ------------------------------------------------------------------------------------------------
+# the policy
+
+
+class SafetyPolicy:
+    """All rules, configured from `Settings`, per-vehicle overrides, geofences and the operator locks."""
+
+    def __init__(
+        self,
+        settings: Settings,
+        locks: LockView | None = None,
+        geofences: GeofenceSet | None = None,
+        vehicle_limits: Mapping[str, Mapping[str, float]] | None = None,
+    ) -> None:
+        self.settings = settings
+        self.locks: LockView = locks if locks is not None else LockBook().view()
+        self.geofences = geofences if geofences is not None else GeofenceSet()
+        self.fleet_limits = Limits.from_settings(settings)
+        self.param_deny_patterns = split_patterns(settings.param_deny_patterns)
+        self.param_allow_patterns = split_patterns(settings.agent_param_allow)
+        self.mode_deny_in_air = frozenset(split_patterns(settings.mode_deny_in_air))
+        self._overrides: dict[str, Limits] = {}
+        merged = {**settings.vehicle_limits, **(vehicle_limits or {})}
+        for vehicle_id, overrides in merged.items():
+            self.set_vehicle_limits(vehicle_id, overrides)
+
+    @classmethod
+    def from_settings(cls, settings: Settings, locks: LockView | None = None) -> SafetyPolicy:
+        """The policy with the geofence file named in settings loaded (the one file read here)."""
+        fences = load_geofence_file(settings.geofence_file) if settings.geofence_file else None
+        return cls(settings, locks=locks, geofences=fences)
+
+    # --- configuration ---------------------------------------------------------------------------
+
+    def set_vehicle_limits(self, vehicle_id: str, overrides: Mapping[str, float]) -> Limits:
+        """Replace one vehicle's overrides (an empty mapping removes them)."""
+        if not isinstance(vehicle_id, str) or not re.match(r"^[a-z0-9-]{1,32}$", vehicle_id):
+            raise InvalidArgument(f"vehicle limits need a vehicle id ([a-z0-9-]{{1,32}}); got {vehicle_id!r}")
+        if not overrides:
+            self._overrides.pop(vehicle_id, None)
+            return self.fleet_limits
+        limits = self.fleet_limits.with_overrides(overrides)
+        self._overrides[vehicle_id] = limits
+        return limits
+
+    def limits_for(self, vehicle_id: str) -> Limits:
+        return self._overrides.get(vehicle_id, self.fleet_limits)
+
+    def altitude_band(self, vehicle_ids: Iterable[str]) -> tuple[float, float]:
+        """(lowest, highest) altitude above home allowed for all these vehicles together: pass it to
+        `plan_formation(min_transit_alt_m=..., max_altitude_m=...)` so transit layers fit every drone."""
+        limits = [self.limits_for(v) for v in vehicle_ids] or [self.fleet_limits]
+        return max(lim.min_altitude_m for lim in limits), min(lim.max_altitude_m for lim in limits)
+
+    def summary(self, vehicle_id: str | None = None) -> dict[str, Any]:
+        """The rules in force (for a status tool or endpoint): limits, zones, deny lists, switches, locks."""
+        zones = self.geofences.for_vehicle(vehicle_id) if vehicle_id else list(self.geofences)
+        out: dict[str, Any] = {
+            "limits": asdict(self.limits_for(vehicle_id) if vehicle_id else self.fleet_limits),
+            "min_separation_m": self.settings.min_separation_m,
+            "agents_may_kill": self.settings.agents_may_kill,
+            "simulators_only": self.settings.simulators_only,
+            "param_deny_patterns": list(self.param_deny_patterns),
+            "agent_param_allow": list(self.param_allow_patterns),
+            "mode_deny_in_air": sorted(self.mode_deny_in_air),
+            "geofences": [{"name": z.name, "kind": z.kind, "scope": z.scope} for z in zones],
+        }
+        if vehicle_id:
+            out["locked"] = self.locks.reason_for(vehicle_id)
+        else:
+            out["locks"] = [lk.to_record() for lk in self.locks.all()]
+            out["vehicle_overrides"] = {v: asdict(lim) for v, lim in sorted(self._overrides.items())}
+        return out
+
+    # --- gates shared by every actuating check ---------------------------------------------------
+
+    def check_actuation(self, ctx: VehicleContext, via: Via = "mcp") -> None:
+        """Operator locks and the simulators-only switch: refuse any actuating command from an agent.
+        Operators (via="rest") are not held by either."""
+        _check_via(via)
+        if via == "mcp":
+            taken = self.locks.takeover_for(ctx.vehicle_id)
+            if taken is not None:
+                raise refuse(
+                    Rule.TAKEN_OVER, taken_over_text(ctx.vehicle_id, taken), vehicle_id=ctx.vehicle_id
+                )
+            reason = self.locks.reason_for(ctx.vehicle_id)
+            if reason is not None:
+                raise refuse(
+                    Rule.OPERATOR_LOCK,
+                    f"{reason}. Only an operator can unlock it; read-only tools still work.",
+                    vehicle_id=ctx.vehicle_id,
+                    reason=reason,
+                )
+            if self.settings.simulators_only and not ctx.is_simulator:
+                raise refuse(
+                    Rule.SIMULATORS_ONLY,
+                    f"drone {ctx.vehicle_id} is a real vehicle and this gateway lets agents command "
+                    "simulators only (GATEWAY_SIMULATORS_ONLY)",
+                    vehicle_id=ctx.vehicle_id,
+                )
+
+    def check_mode(self, ctx: VehicleContext, mode: str, via: Via = "mcp") -> None:
+        """Flight mode changes: locks, simulators-only, and no pilot-stick modes in the air."""
+        self.check_actuation(ctx, via)
+        if not isinstance(mode, str) or not mode.strip():
+            raise refuse(
+                Rule.INVALID_INPUT, f"flight mode must be a name; got {mode!r}", vehicle_id=ctx.vehicle_id
+            )
+        name = mode.strip().upper()
+        if via == "mcp" and ctx.airborne and name in self.mode_deny_in_air:
+            raise refuse(
+                Rule.MODE_IN_AIR,
+                f"mode {name} needs a pilot's sticks; in the air without RC input the drone may descend or "
+                "drift. Use hold (GUIDED), LAND or RTL instead",
+                vehicle_id=ctx.vehicle_id,
+                mode=name,
+            )
+
+    def check_arm(self, ctx: VehicleContext, via: Via = "mcp") -> None:
+        """Arming: locks, simulators-only and the takeoff battery minimum."""
+        self.check_actuation(ctx, via)
+        check_battery(ctx, self.limits_for(ctx.vehicle_id).min_battery_takeoff_pct, Rule.BATTERY_TAKEOFF)
+
+    # --- motion ----------------------------------------------------------------------------------
+
+    def check_takeoff(self, ctx: VehicleContext, alt_rel_m: float, via: Via = "mcp") -> None:
+        self.check_actuation(ctx, via)
+        limits = self.limits_for(ctx.vehicle_id)
+        require_finite(ctx, "takeoff altitude", alt_rel_m)
+        check_altitude(ctx, limits, "takeoff altitude", alt_rel_m)
+        if not ctx.airborne:
+            check_battery(ctx, limits.min_battery_takeoff_pct, Rule.BATTERY_TAKEOFF)
+
+    def check_motion(self, ctx: VehicleContext, target: Target, via: Via = "mcp") -> None:
+        """A goto, reposition or relative move to `target`: altitude band, distance from home, geofences
+        (the target and the straight leg from the current position) and the battery minimum for a leg."""
+        self.check_actuation(ctx, via)
+        limits = self.limits_for(ctx.vehicle_id)
+        check_point(self.geofences, ctx, limits, target, "target")
+        check_leg(self.geofences, ctx, start_of(ctx), target)
+        check_battery(ctx, limits.min_battery_leg_pct, Rule.BATTERY_LEG)
+
+    def check_speed(self, ctx: VehicleContext, mps: float, via: Via = "mcp") -> None:
+        self.check_actuation(ctx, via)
+        require_finite(ctx, "speed", mps)
+        limit = self.limits_for(ctx.vehicle_id).max_speed_mps
+        if mps <= 0:
+            raise refuse(
+                Rule.INVALID_INPUT,
+                f"speed must be above 0 m/s; got {fmt(mps)} m/s",
+                vehicle_id=ctx.vehicle_id,
+                speed_mps=mps,
+            )
+        if mps > limit:
+            raise refuse(
+                Rule.MAX_SPEED,
+                f"speed {fmt(mps)} m/s exceeds the limit of {fmt(limit)} m/s",
+                vehicle_id=ctx.vehicle_id,
+                speed_mps=mps,
+                limit_mps=limit,
+            )
+
+    def check_mission(self, ctx: VehicleContext, items: Sequence[MissionItemLike], via: Via = "mcp") -> None:
+        """A mission, item by item (user items numbered from 1), including each leg between positions.
+        Battery: the takeoff minimum when starting on the ground, else the leg minimum."""
+        self.check_actuation(ctx, via)
+        limits = self.limits_for(ctx.vehicle_id)
+        if not items:
+            raise refuse(Rule.INVALID_INPUT, "the mission has no items", vehicle_id=ctx.vehicle_id)
+        if ctx.airborne:
+            check_battery(ctx, limits.min_battery_leg_pct, Rule.BATTERY_LEG)
+        else:
+            check_battery(ctx, limits.min_battery_takeoff_pct, Rule.BATTERY_TAKEOFF)
+        previous = start_of(ctx)
+        for number, item in enumerate(items, start=1):
+            prefix = f"mission item {number}: "
+            kind = item.kind
+            speed = item.speed_mps
+            if speed is not None:
+                with prefixed(prefix, item=number):
+                    self.check_speed(ctx, speed, via)
+            if kind == "rtl":
+                previous = (ctx.home[0], ctx.home[1]) if ctx.home else None
+                continue
+            if kind == "other" and item.command not in POSITION_NAV_COMMANDS:
+                denied = DENIED_MISSION_COMMANDS.get(item.command or 0)
+                if denied is not None:
+                    raise refuse(
+                        Rule.MISSION_COMMAND,
+                        f"{prefix}{denied} ({item.command}) is not accepted in a mission: it would change "
+                        "what the safety layer relies on",
+                        vehicle_id=ctx.vehicle_id,
+                        item=number,
+                        command=item.command,
+                    )
+                continue  # not a position (DO_JUMP, CONDITION_YAW, DO_SET_ROI, ...): passes through
+            with prefixed(prefix, item=number):
+                if kind == "takeoff":
+                    require_finite(ctx, "takeoff altitude", item.alt_rel_m)
+                    check_altitude(ctx, limits, "takeoff altitude", item.alt_rel_m)
+                    continue
+                target = Target(item.lat, item.lon, item.alt_rel_m)
+                if kind == "land":  # altitude of a land item is not flown; only the place matters
+                    check_horizontal(self.geofences, ctx, limits, target, "landing point")
+                else:
+                    check_point(self.geofences, ctx, limits, target, "waypoint")
+                check_leg(self.geofences, ctx, previous, target)
+            previous = (item.lat, item.lon)
+
+    def check_formation(
+        self, contexts: Mapping[str, VehicleContext], plan: PlannedFormation, via: Via = "mcp"
+    ) -> None:
+        """Every drone's legs of a formation plan (transit and final), and the plan's separation."""
+        sep = self.settings.min_separation_m
+        if plan.min_separation_m < sep:
+            raise refuse(
+                Rule.MIN_SEPARATION,
+                f"the plan keeps {fmt(plan.min_separation_m)} m between drones, below the minimum "
+                f"separation of {fmt(sep)} m",
+                planned_m=plan.min_separation_m,
+                limit_m=sep,
+            )
+        for slot in plan.slots:
+            ctx = contexts.get(slot.drone_id)
+            if ctx is None:
+                raise refuse(
+                    Rule.INVALID_INPUT,
+                    f"no state for drone {slot.drone_id} in the formation",
+                    vehicle_id=slot.drone_id,
+                )
+            self.check_actuation(ctx, via)
+            limits = self.limits_for(ctx.vehicle_id)
+            check_battery(ctx, limits.min_battery_leg_pct, Rule.BATTERY_LEG)
+            previous = start_of(ctx)
+            for leg_no, wp in enumerate(slot.legs, start=1):
+                with prefixed(f"formation, drone {slot.drone_id}, leg {leg_no}: ", leg=leg_no):
+                    target = Target(wp.lat, wp.lon, wp.alt_rel_m)
+                    check_point(self.geofences, ctx, limits, target, "leg target")
+                    check_leg(self.geofences, ctx, previous, target)
+                previous = (wp.lat, wp.lon)
+
+    # --- sequencing: what is already running on the drone ------------------------------------------
+
+    def check_takeoff_finished(
+        self, ctx: VehicleContext, takeoff: RunningOperation | None, action: str, via: Via = "mcp"
+    ) -> None:
+        """No agent motion while a takeoff has not reached its altitude (the source paper's crash: goto
+        sent mid-climb). Operators may interrupt their own or an agent's takeoff."""
+        _check_via(via)
+        if takeoff is None or via == "rest":
+            return
+        alt = fmt(ctx.position[2]) if ctx.position is not None else "?"
+        target = "?" if takeoff.target_alt_m is None else fmt(takeoff.target_alt_m)
+        raise refuse(
+            Rule.TAKEOFF_IN_PROGRESS,
+            f"{ctx.vehicle_id} is still taking off ({alt} of {target} m above home); {action} was not "
+            f"sent. Wait for takeoff to finish: call monitor_flight(drone_id='{ctx.vehicle_id}'), then "
+            f"send {action} again.",
+            vehicle_id=ctx.vehicle_id,
+            operation_id=takeoff.operation_id,
+            alt_rel_m=None if ctx.position is None else round(ctx.position[2], 2),
+            target_alt_m=takeoff.target_alt_m,
+        )
+
+    def check_not_busy(self, ctx: VehicleContext, running: RunningOperation | None, action: str) -> None:
+        """A fleet command does not silently take over a drone still busy with its own operation."""
+        if running is None:
+            return
+        raise refuse(
+            Rule.DRONE_BUSY,
+            f"{ctx.vehicle_id} is still running {running.kind} (operation {running.operation_id}: "
+            f"{running.message}); wait for it (monitor_flight / monitor_fleet) or call fleet_hold before "
+            f"{action}",
+            vehicle_id=ctx.vehicle_id,
+            operation_id=running.operation_id,
+        )
+
+    def check_stagger(self, stagger_m: float) -> None:
+        """Drones returning home at altitudes closer than the minimum separation could meet."""
+        sep = self.settings.min_separation_m
+        if stagger_m < sep:
+            raise refuse(
+                Rule.MIN_SEPARATION,
+                f"return altitudes {stagger_m:g} m apart are closer than the minimum separation of {sep:g} m",
+                stagger_m=stagger_m,
+                limit_m=sep,
+            )
+
+    # --- kill and parameters ---------------------------------------------------------------------
+
+    def check_kill(self, ctx: VehicleContext, via: Via = "mcp") -> bool:
+        """Kill motors; returns whether a human must confirm first. Operators: allowed. Agents: on the
+        ground (= disarm) allowed; in the air refused unless `agents_may_kill`, and then allowed only
+        once a human confirmed (MCP elicitation; `check_kill_confirmed`). No argument widens this."""
+        _check_via(via)
+        if via == "rest":
+            return False
+        self.check_actuation(ctx, via)
+        if not ctx.airborne:
+            return False
+        if not self.settings.agents_may_kill:
+            raise refuse(
+                Rule.KILL_IN_AIR,
+                f"drone {ctx.vehicle_id} is in the air; killing the motors drops it. Only an operator may "
+                "do this (GATEWAY_AGENTS_MAY_KILL is off). Use land, hold or return_to_launch",
+                vehicle_id=ctx.vehicle_id,
+            )
+        return True
+
+    def check_kill_confirmed(self, ctx: VehicleContext, confirmed: bool, via: Via = "mcp") -> None:
+        """An agent's kill is sent only once its confirmation came back accepted (an operator's at once)."""
+        _check_via(via)
+        if via == "mcp" and not confirmed:
+            raise refuse(
+                Rule.KILL_NOT_CONFIRMED,
+                f"kill of {ctx.vehicle_id} was not confirmed; nothing sent",
+                vehicle_id=ctx.vehicle_id,
+            )
+
+    def check_param_write(
+        self,
+        name: str,
+        value: float | None = None,
+        via: Via = "mcp",
+        vehicle_id: str | None = None,
+        protected: Sequence[str] = (),
+        governed: Mapping[str, ParamLimit] | None = None,
+    ) -> None:
+        """An agent may write a parameter only when (1) it matches neither the deny list nor the
+        dialect's ``protected`` patterns, and (2) it is ``governed`` by a policy limit and ``value`` keeps
+        within it, or it matches the operator's allowlist (GATEWAY_AGENT_PARAM_ALLOW). Everything else
+        (sensors, estimator sources, serial ports, ...) is refused: an allowlist misses no dangerous name.
+        Operators (via="rest") may write any parameter."""
+        _check_via(via)
+        if not isinstance(name, str) or not _PARAM_NAME_RE.match(name.strip().upper()):
+            raise refuse(
+                Rule.INVALID_INPUT,
+                f"parameter name must be 1-16 characters of A-Z, 0-9 and _; got {name!r}",
+                vehicle_id=vehicle_id,
+            )
+        upper = name.strip().upper()
+        if via != "mcp":
+            return
+        denied = param_limits.matches(upper, [*self.param_deny_patterns, *protected])
+        if denied is not None:
+            raise refuse(
+                Rule.PARAM_DENY,
+                f"parameter {upper} matches the protected pattern {denied.upper()}: agents may not change "
+                "arming checks, fences, failsafes or system ids; ask an operator",
+                vehicle_id=vehicle_id,
+                param=upper,
+                pattern=denied.upper(),
+            )
+        rule = param_limits.governing(governed or {}, upper)
+        if rule is not None:
+            if value is None:
+                return
+            limits = self.limits_for(vehicle_id) if vehicle_id else self.fleet_limits
+            limit_value = getattr(limits, rule.limit)
+            why = param_limits.beyond_limit(upper, float(value), rule, limit_value)
+            if why is not None:
+                raise refuse(
+                    Rule.PARAM_LIMIT,
+                    f"{why}; nothing was written",
+                    vehicle_id=vehicle_id,
+                    param=upper,
+                    value=value,
+                    limit=rule.limit,
+                    limit_value=limit_value,
+                )
+            return
+        if param_limits.matches(upper, self.param_allow_patterns) is None:
+            raise refuse(
+                Rule.PARAM_NOT_ALLOWED,
+                f"agents may write only parameters that a limit governs ({', '.join(sorted(governed or {}))}"
+                f") or that GATEWAY_AGENT_PARAM_ALLOW names; {upper} is neither, so nothing was written. An "
+                "operator can write it over REST or add it to GATEWAY_AGENT_PARAM_ALLOW",
+                vehicle_id=vehicle_id,
+                param=upper,
+            )
+
+
+# ------------------------------------------------------------------------------------------------
+# helpers
+
+
+def _check_via(via: str) -> None:
+    if via not in ("mcp", "rest"):
+        raise InvalidArgument(f"via must be 'mcp' or 'rest'; got {via!r}")

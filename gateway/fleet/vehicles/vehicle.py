@@ -1,0 +1,478 @@
+"""One registered drone: what is read of it and the actions a caller flies it with, over its link
+(``gateway.link.session.Link``: sidecar, MAVSDK session, connection state, telemetry cache) and its
+autopilot's dialect (``gateway.fleet.dialects``: everything that differs between ArduPilot and PX4).
+
+`Vehicle` is a `FlyingVehicle` (`gateway.fleet.vehicles.protocols`): its read view and its actions. The
+actions
+are the same for every autopilot; where an autopilot does something its own way, the action asks the
+dialect, and every action first asks for it (`require_dialect`): an autopilot the gateway has no dialect
+for is refused in one line before anything is sent. Hold is a reposition to where the vehicle is (never
+a mode that sinks without RC); altitudes are metres above home, converted to AMSL with the cached home
+in one place (``goto``). Arming and mode switches live in ``vehicle_arming``, missions in
+``vehicle_missions``, parameters in ``params``.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import logging
+import time
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from typing import Any
+
+from mavsdk_grpc import System
+
+from gateway.config import Settings
+from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
+from gateway.fleet import geo
+from gateway.fleet.dialects import Dialect, DialectReads, dialect_for, flying_dialect
+from gateway.fleet.dialects import limit_params as every_limit_param
+from gateway.fleet.dialects import protected_params as every_protected_param
+from gateway.fleet.dialects.modes import ModeChoice, require_mode
+from gateway.fleet.missions.flightlog import FlightRecorder
+from gateway.fleet.missions.mission import MissionItem
+from gateway.fleet.policy.param_limits import ParamLimit
+from gateway.fleet.vehicles.params import Parameters
+from gateway.fleet.vehicles.vehicle_arming import Arming
+from gateway.fleet.vehicles.vehicle_missions import MissionControl
+from gateway.fleet.vehicles.waits import wait_for_state
+from gateway.link.session import ConnectionState, Link, OnWait, Peer
+from gateway.link.sidecar import Confine, Sidecar
+from gateway.link.telemetry import TelemetryCache
+from gateway.registry.spec import VehicleSpec
+from gateway.registry.store import Store
+
+log = logging.getLogger("gateway.vehicle")
+
+__all__ = ["ConnectionState", "MissionItem", "Vehicle"]
+
+ARMABLE_WAIT_S = 60.0
+#: closing the flight log never holds a link open longer than this (a database that hangs)
+RECORDER_STOP_S = 5.0
+POSITION_IGNORED = 0b111  # POSITION_TARGET_TYPEMASK: x, y, z ignored (a velocity or attitude target)
+
+StateListener = Callable[["Vehicle", ConnectionState, ConnectionState], None]
+
+
+class Vehicle:
+    """A registered drone. Created by the Registry; ``connect()`` starts its link."""
+
+    def __init__(
+        self,
+        spec: VehicleSpec,
+        settings: Settings,
+        *,
+        store: Store | None = None,
+        peers: Callable[[], Iterable[Peer]] | None = None,
+        confine: Confine | None = None,
+        on_state: StateListener | None = None,
+    ) -> None:
+        self.settings = settings
+        self.store = store
+        self._on_state = on_state
+        self.link = Link(
+            spec,
+            settings,
+            dialect_for,
+            peers=peers,
+            confine=confine,
+            on_state=self._state_changed,
+            mission_progress=lambda current, total: self.missions.wire_progress(current, total),
+            session_jobs=[
+                ("mission", lambda system: self.missions.follow(system)),
+                ("target", self._position_target),
+            ],
+        )
+        self.missions = MissionControl(self.link, self)
+        self.arming = Arming(self.link, self)
+        self.params = Parameters(spec.id, self.link.call, self.link.require_session)
+        self._recorder: FlightRecorder | None = None
+        self._return_alt_name: str | None = None  # the RTL altitude parameter this vehicle has
+        #: POSITION_TARGET_GLOBAL_INT: where the autopilot flies to (lat, lon, monotonic time heard)
+        self._target: tuple[float, float, float] | None = None
+
+    # --- identity, state and the link ----------------------------------------------------------------
+    @property
+    def id(self) -> str:
+        return self.link.id
+
+    @property
+    def spec(self) -> VehicleSpec:
+        return self.link.spec
+
+    @spec.setter
+    def spec(self, spec: VehicleSpec) -> None:
+        self.link.spec = spec
+
+    @property
+    def dialect(self) -> DialectReads:
+        """What is read through the autopilot's dialect (ArduPilot's until the first HEARTBEAT says
+        otherwise; `Unsupported`'s for an autopilot the gateway has no dialect for)."""
+        return dialect_for(self.link.facts.autopilot)
+
+    def require_dialect(self) -> Dialect:
+        """The dialect commands to this drone are sent through; NoDialect (saying which autopilot and
+        what to do) when the gateway has none for its autopilot. Every action asks it first."""
+        return flying_dialect(self.link.facts.autopilot, self.id)
+
+    @property
+    def telemetry(self) -> TelemetryCache:
+        return self.link.telemetry
+
+    @property
+    def sidecar(self) -> Sidecar | None:
+        return self.link.sidecar
+
+    @property
+    def system(self) -> System:
+        return self.link.system
+
+    @property
+    def sysid(self) -> int | None:
+        return self.link.sysid
+
+    @property
+    def autopilot(self) -> str | None:
+        return self.link.autopilot
+
+    @property
+    def autopilot_version(self) -> str | None:
+        return self.link.autopilot_version
+
+    @property
+    def is_simulator(self) -> bool:
+        return self.link.is_simulator
+
+    @property
+    def sessions(self) -> int:
+        return self.link.sessions
+
+    @property
+    def current_flight_id(self) -> int | None:
+        """The id of the flight being recorded (armed now), None on the ground or while not connected."""
+        recorder = self._recorder
+        return recorder.flight.id if recorder is not None and recorder.flight is not None else None
+
+    @property
+    def last_heartbeat_age_s(self) -> float | None:
+        return self.link.last_heartbeat_age_s
+
+    @property
+    def sysid_mismatch(self) -> bool:
+        return self.link.sysid_mismatch
+
+    @property
+    def duplicate_sysid(self) -> list[str]:
+        return self.link.duplicate_sysid
+
+    @property
+    def state(self) -> ConnectionState:
+        return self.link.state
+
+    @property
+    def last_error(self) -> str | None:
+        return self.link.last_error
+
+    def initialising(self) -> str | None:
+        return self.link.initialising()
+
+    def status(self) -> dict[str, Any]:
+        return self.link.status()
+
+    def require_ready(self) -> None:
+        self.link.require_ready()
+
+    async def wait_initialised(self, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None) -> bool:
+        """Wait up to ``within_s`` for a drone still initialising, ``notify`` hearing what it waits for;
+        True once ready, False when the time ran out while it still initialises and its autopilot can
+        judge an arming attempt. VehicleNotReady (naming why) in any other state."""
+        if await self.link.wait_ready(within_s, notify):
+            return True
+        if not (self.initialising() is not None and self.link.judges_arming()):
+            self.require_ready()
+        return False
+
+    async def wait_for_state(self, *states: ConnectionState | str, within_s: float = 60.0) -> ConnectionState:
+        return await wait_for_state(self, *states, within_s=within_s)
+
+    def on_ground(self, fresh: bool = True) -> bool | None:
+        """Whether the vehicle is on the ground, as its autopilot tells (its dialect decides from in_air or
+        the landed state); None when no fresh telemetry says (``fresh=False``: from cached values)."""
+        return self.dialect.on_ground(self.telemetry, fresh=fresh)
+
+    def _state_changed(self, old: ConnectionState, new: ConnectionState) -> None:
+        if self._on_state is not None:
+            self._on_state(self, old, new)
+
+    # --- lifecycle --------------------------------------------------------------------------------------
+    async def connect(self) -> None:
+        """Start the link (sidecar, session) and the flight recorder (idempotent, returns at once)."""
+        await self.link.connect()  # a failed sidecar starts afresh; a running one is left alone
+        if self.store is not None and self._recorder is None:
+            recorder = FlightRecorder(self, self.store, self.settings)
+            await recorder.start()  # a start that failed is tried again by the next connect
+            self._recorder = recorder
+
+    async def disconnect(self) -> None:
+        """Stop everything of this vehicle; no mavsdk_server process remains, whatever the flight log
+        could or could not write (what it could not is kept in the store's spool, or logged)."""
+        try:
+            if self._recorder is not None:
+                recorder, self._recorder = self._recorder, None
+                try:
+                    await asyncio.wait_for(recorder.stop(), RECORDER_STOP_S)
+                except Exception:
+                    log.exception("%s: the flight log could not be closed; stopping the link anyway", self.id)
+        finally:
+            await self.link.disconnect()
+
+    # --- modes ------------------------------------------------------------------------------------------
+    def mode_names(self) -> list[str]:
+        """The flight modes set_flight_mode takes on this drone."""
+        return self.dialect.mode_names()
+
+    def resolve_mode(self, name: str) -> ModeChoice:
+        """The requested mode on this drone's autopilot; InvalidArgument listing its modes otherwise."""
+        return require_mode(name, self.dialect, self.id)
+
+    def heartbeat_mode(self) -> tuple[str, bool] | None:
+        """The autopilot's own name of the mode its last HEARTBEAT shows, and whether it is armed; None
+        before the first HEARTBEAT of the session or while it is stale."""
+        facts = self.link.facts
+        age = self.link.last_heartbeat_age_s
+        if (
+            facts.custom_mode is None
+            or facts.autopilot is None
+            or age is None
+            or age > self.settings.link_lost_after_s
+        ):
+            return None
+        return self.dialect.native_mode(facts.custom_mode), bool(facts.armed)
+
+    def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
+        """The modes an operation of ``kind`` the gateway commanded may show (the dialect's)."""
+        return self.dialect.commanded_modes(kind, done=done)
+
+    def recent_texts(self, within_s: float) -> list[str]:
+        """What the autopilot said (notice or worse: what explains a failsafe, not its info chatter) in
+        the last ``within_s`` seconds, oldest first."""
+        return self.link.said_since(time.time() - within_s)
+
+    async def set_flight_mode(self, name: str) -> None:
+        """Switch flight mode by a common name (HOLD, RTL, LAND, MISSION, ...) or the autopilot's own;
+        done once the HEARTBEAT reports the new mode. HOLD in the air is the hold action."""
+        self.require_dialect()
+        choice = self.resolve_mode(name)
+        self.link.require_session()
+        if choice.is_hold and self.on_ground() is False:
+            await self.hold()
+            return
+        await self.arming.switch_mode(choice)
+
+    # --- actions ----------------------------------------------------------------------------------------
+    async def arm(self, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None) -> None:
+        """Arm (in the dialect's arming mode, switched to first: ArduPilot's GUIDED).
+
+        One deadline, ``within_s`` from now, bounds the whole wait: for a drone still initialising to
+        become ready (``notify`` hears what it waits for), then for the autopilot to stop refusing for
+        a reason it lifts by itself ("Need Position Estimate": SYS_STATUS's pre-arm bit lags a mode
+        change by up to a second), retried every ARM_RETRY_S. The arming attempt itself is the check:
+        when the time runs out while the drone still initialises, one attempt gets the autopilot's own
+        reason. Either way the refusal says in its words why it cannot arm yet and what to do; any
+        other refusal comes back at once."""
+        self.require_dialect()
+        deadline = asyncio.get_running_loop().time() + within_s
+        ready = await self.wait_initialised(within_s, notify)
+        await self.arming.arm_by(deadline, ready, notify)
+
+    async def disarm(self) -> None:
+        self.require_dialect()
+        await self.link.call("disarm", self.link.require_session().action.disarm())
+
+    async def kill(self) -> None:
+        """Stop the motors at once, even in the air (the policy decides who may call this)."""
+        self.require_dialect()
+        await self.link.call("kill", self.link.require_session().action.kill())
+
+    async def takeoff(
+        self, alt_rel_m: float, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None
+    ) -> None:
+        """Arm if needed (waiting for it as ``arm`` does, up to ``within_s`` in all), then take off to
+        ``alt_rel_m`` metres above home. Returns once accepted."""
+        self.require_dialect()
+        geo.check_finite("takeoff altitude", alt_rel_m)
+        if alt_rel_m <= 0:
+            raise InvalidArgument(f"takeoff altitude must be above 0 m; got {alt_rel_m:g}")
+        deadline = asyncio.get_running_loop().time() + within_s
+        ready = await self.wait_initialised(within_s, notify)
+        system = self.system
+        if self.on_ground() is False:
+            raise CommandFailed(f"drone '{self.id}' is already flying; use goto to change altitude")
+        # the altitude first: between arming and the takeoff command, ArduPilot's DISARM_DELAY runs
+        await self.link.call("set takeoff altitude", system.action.set_takeoff_altitude(float(alt_rel_m)))
+        sent_arm = await self.arming.arm_by(deadline, ready, notify)
+        try:
+            await self.link.call("takeoff", system.action.takeoff())
+        except CommandFailed:
+            if sent_arm or self.on_ground() is False:
+                raise
+            # "armed" came from the cache (the 1 Hz heartbeat), which can be a beat behind an autopilot
+            # that disarmed on the ground after a landing: arm for real, then try once more
+            log.info("%s: takeoff refused while the cache said armed; arming and trying again", self.id)
+            await self.arming.arm_by(deadline, ready, notify, trust_cache=False)
+            await self.link.call("takeoff", system.action.takeoff())
+
+    def home_amsl_m(self) -> float:
+        home = self.telemetry.home
+        if home is None:
+            raise VehicleNotReady(f"drone '{self.id}' has no home position yet", state=self.state.value)
+        return home.value.abs_alt_m
+
+    async def goto(self, lat: float, lon: float, alt_rel_m: float, yaw_deg: float | None = None) -> None:
+        """Fly to lat/lon at ``alt_rel_m`` above home (converted to AMSL with the cached home)."""
+        self.require_dialect()
+        geo.check_lat_lon(lat, lon)
+        geo.check_finite("altitude", alt_rel_m)
+        if yaw_deg is not None:
+            geo.check_finite("yaw", yaw_deg)
+        self.require_ready()
+        amsl = geo.relative_to_amsl(float(alt_rel_m), self.home_amsl_m())
+        yaw = float("nan") if yaw_deg is None else float(yaw_deg) % 360.0
+        await self.link.call("goto", self.system.action.goto_location(float(lat), float(lon), amsl, yaw))
+
+    async def hold(self) -> None:
+        """Hold position: a reposition to where the vehicle is now (never LOITER/ALT_HOLD, in which a
+        copter without RC throttle descends). On the ground there is nothing to hold."""
+        self.require_dialect()
+        system = self.link.require_session()
+        if self.on_ground() is not False:
+            return
+        pos = self.telemetry.fresh("position")
+        if pos is None:
+            raise CommandFailed(f"cannot hold drone '{self.id}': no current position", vehicle_id=self.id)
+        await self.link.call(
+            "hold", system.action.goto_location(pos.lat_deg, pos.lon_deg, pos.abs_alt_m, float("nan"))
+        )
+
+    async def land(self) -> None:
+        self.require_dialect()
+        await self.link.call("land", self.link.require_session().action.land())
+
+    async def return_to_launch(self) -> None:
+        self.require_dialect()
+        await self.link.call("return to launch", self.link.require_session().action.return_to_launch())
+
+    async def set_yaw(self, heading_deg: float) -> None:
+        """Turn to a heading (degrees from true north) in place."""
+        dialect = self.require_dialect()
+        geo.check_finite("heading", heading_deg)
+        self.require_ready()
+        await dialect.set_yaw(self.link, float(heading_deg) % 360.0)
+
+    async def set_max_speed(self, mps: float) -> None:
+        self.require_dialect()
+        geo.check_finite("speed", mps)
+        if mps <= 0:
+            raise InvalidArgument(f"speed must be above 0 m/s; got {mps:g}")
+        await self.link.call("set speed", self.link.require_session().action.set_current_speed(float(mps)))
+
+    # --- where the autopilot flies to ---------------------------------------------------------------------
+    def position_target(self) -> tuple[float, float, float] | None:
+        """Where the autopilot says it flies to (POSITION_TARGET_GLOBAL_INT): latitude, longitude and
+        when it said so (monotonic); None when it has not said (or not for this session)."""
+        return self._target
+
+    async def _position_target(self, system: System) -> None:
+        """POSITION_TARGET_GLOBAL_INT (the link asks for it at 2 Hz with the other rates): the target a
+        goto's takeover watch compares with the gateway's own."""
+        self._target = None
+        async for msg in system.mavlink_direct.message("POSITION_TARGET_GLOBAL_INT"):
+            fields = json.loads(msg.fields_json)
+            if int(fields.get("type_mask", 0)) & POSITION_IGNORED == POSITION_IGNORED:
+                continue  # no position in it
+            lat, lon = int(fields.get("lat_int", 0)) / 1e7, int(fields.get("lon_int", 0)) / 1e7
+            if lat or lon:
+                self._target = (lat, lon, time.monotonic())
+
+    # --- missions (gateway.fleet.vehicles.vehicle_missions) -------------------------------------------------
+    async def upload_mission(self, items: Sequence[MissionItem | dict[str, object]]) -> int:
+        return await self.missions.upload(items)
+
+    async def download_mission(self) -> list[MissionItem]:
+        return await self.missions.download()
+
+    async def clear_mission(self) -> None:
+        await self.missions.clear()
+
+    async def start_mission(self) -> None:
+        await self.missions.start()
+
+    async def set_current_mission_item(self, user_index: int) -> None:
+        await self.missions.set_current(user_index)
+
+    async def is_mission_finished(self) -> bool:
+        return await self.missions.is_finished()
+
+    # --- parameters (gateway.fleet.vehicles.params) ---------------------------------------------------------
+    def return_altitude_param(self) -> tuple[str, float]:
+        """The parameter that sets the altitude RTL flies home at, and its units per metre (ArduPilot
+        4.7: RTL_ALT_M in metres, before: RTL_ALT in centimetres; PX4: RTL_RETURN_ALT in metres)."""
+        candidates = self.require_dialect().return_altitude_params
+        return next((c for c in candidates if c[0] == self._return_alt_name), candidates[0])
+
+    async def set_return_altitude(self, alt_m: float) -> tuple[str, float | int]:
+        """Set the altitude RTL climbs to before flying home (metres above home) in the parameter and
+        units this autopilot has; returns (parameter, value written)."""
+        candidates = self.require_dialect().return_altitude_params
+        geo.check_finite("return altitude", alt_m)
+        if self._return_alt_name is not None:  # the one this vehicle is known to have first
+            candidates = tuple(sorted(candidates, key=lambda c: c[0] != self._return_alt_name))
+        for name, per_metre in candidates:
+            value = alt_m * per_metre
+            try:
+                stored, _kind = await self.set_param(
+                    name, round(value) if per_metre >= 100 else round(value, 2)
+                )
+            except CommandFailed as exc:
+                if exc.details.get("result") == "UNKNOWN_PARAMETER" and (name, per_metre) != candidates[-1]:
+                    continue
+                raise
+            self._return_alt_name = name
+            return name, stored
+        raise AssertionError("unreachable: the last candidate raises")
+
+    @property
+    def protected_params(self) -> tuple[str, ...]:
+        """Patterns of parameters agents may not write on this drone's autopilot (every dialect's while
+        the autopilot is not known yet)."""
+        if self.link.facts.autopilot is None:
+            return every_protected_param()
+        return self.dialect.protected_params
+
+    @property
+    def limit_params(self) -> Mapping[str, ParamLimit]:
+        """The parameters governed by a policy limit on this drone's autopilot (every dialect's while
+        the autopilot is not known yet)."""
+        if self.link.facts.autopilot is None:
+            return every_limit_param()
+        return self.dialect.limit_params
+
+    async def get_param(self, name: str) -> tuple[float | int, str]:
+        """Value and type ('int' | 'float'); tries the other ArduPilot name if the parameter was renamed."""
+        self.require_dialect()
+        return await self.params.get(name)
+
+    async def set_param(self, name: str, value: float | int) -> tuple[float | int, str]:
+        """Write a parameter with the vehicle's own type for it; returns (stored value, type)."""
+        self.require_dialect()
+        return await self.params.set(name, value)
+
+    async def list_params(self, max_age_s: float | None = None) -> dict[str, float | int]:
+        """All parameters, fetched once and cached; ``max_age_s`` forces a refetch of an older copy."""
+        self.require_dialect()
+        return await self.params.all(max_age_s)
+
+    @property
+    def params_fetched_age_s(self) -> float | None:
+        return self.params.list_age_s
