@@ -45,7 +45,8 @@ from gateway.link.rawlink import (
     autopilot_name,
 )
 from gateway.link.sidecar import Confine, Sidecar, SidecarState
-from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache, TelemetryFeed
+from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
+from gateway.link.telemetry_feed import TelemetryFeed
 from gateway.registry.spec import VehicleSpec
 
 if TYPE_CHECKING:
