@@ -37,7 +37,8 @@ from gateway.fleet.vehicles.params import Parameters
 from gateway.fleet.vehicles.vehicle_arming import Arming
 from gateway.fleet.vehicles.vehicle_missions import MissionControl
 from gateway.fleet.vehicles.waits import wait_for_state
-from gateway.link.session import ConnectionState, Link, OnWait, Peer
+from gateway.link.contract import ConnectionState, OnWait, Peer
+from gateway.link.session import Link
 from gateway.link.sidecar import Confine, Sidecar
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
