@@ -24,7 +24,7 @@ import asyncio
 import contextlib
 import logging
 import time
-from collections.abc import Awaitable, Callable, Iterable
+from collections.abc import Callable, Iterable
 from datetime import UTC, datetime
 from typing import TYPE_CHECKING, Any, TypeVar
 
@@ -32,16 +32,12 @@ import grpc
 from mavsdk_grpc import System
 
 from gateway.config import Settings
-from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
-from gateway.link import refusals
+from gateway.errors import VehicleNotReady
 from gateway.link.contract import ConnectionState, LinkRules, OnWait, Peer
+from gateway.link.mavsdk_calls import MavsdkCalls
 from gateway.link.mavsdk_session import MavsdkSession, SessionJob, close_system
 from gateway.link.rawlink import (
-    MAV_RESULT,
-    MAV_RESULT_ACCEPTED,
-    CommandChannel,
     LinkFacts,
-    NoAck,
     autopilot_name,
 )
 from gateway.link.sidecar import Confine, Sidecar, SidecarState
@@ -56,8 +52,7 @@ log = logging.getLogger("gateway.link")
 T = TypeVar("T")
 __all__ = ["Link"]
 
-# gRPC call timeouts (s): MAVSDK retries MAVLink commands itself; these bound a dead sidecar.
-CALL_TIMEOUT_S = 10.0
+# opening the gRPC session (s): bounds a dead sidecar
 CONNECT_TIMEOUT_S = 10.0
 READY_WAIT_S = 60.0
 #: the link monitor's period (s); it also wakes when the link-lost limit is reached, ``MONITOR_LATE_S``
@@ -102,7 +97,13 @@ class Link:
         self._mavsdk: MavsdkSession | None = None  # the current (or last) MAVSDK session
         self._feed: TelemetryFeed | None = None
         self._monitor_task: asyncio.Task[None] | None = None
-        self._commands = CommandChannel(settings.gcs_sysid)
+        self._calls = calls = MavsdkCalls(self, settings.gcs_sysid)
+        # calling the vehicle (gateway.link.mavsdk_calls), as the owner and the dialects call it
+        self.call = calls.call
+        self.command_long = calls.command_long
+        self.recent_complaint = calls.recent_complaint
+        self.said_since = calls.said_since
+        self.describe_facts = calls.describe_facts
         self._last_error: str | None = None
         self._state = ConnectionState.REGISTERED
         self._state_since = time.monotonic()
@@ -433,8 +434,8 @@ class Link:
             return
         self.telemetry.clear()
         self.facts = LinkFacts()
-        self._commands = CommandChannel(self.settings.gcs_sysid)
-        mavsdk = MavsdkSession(self, system, self._commands.pump, self._jobs, self._mission_progress)
+        commands = self._calls.new_channel()
+        mavsdk = MavsdkSession(self, system, commands.pump, self._jobs, self._mission_progress)
         self._system = system
         self._feed = mavsdk.feed
         self._mavsdk = mavsdk
@@ -452,7 +453,7 @@ class Link:
                 self._system = None
                 self._feed = None
                 self._session_started = None
-            self._commands.cancel_all()
+            self._calls.channel.cancel_all()
             await close_system(system)
 
     # --- telemetry rates ---------------------------------------------------------------------------------
@@ -519,97 +520,6 @@ class Link:
     def note_error(self, message: str) -> None:
         """The link's last error, as ``last_error`` and the status say it."""
         self._last_error = message
-
-    # --- calling MAVSDK ---------------------------------------------------------------------------------
-    async def call(self, what: str, aw: Awaitable[T], timeout_s: float = CALL_TIMEOUT_S) -> T:
-        """Await one gRPC call with a timeout; MAVSDK errors become CommandFailed with the result text
-        and what the autopilot said about it (its status text, which may come just after the ACK)."""
-        started = time.time()
-        try:
-            return await asyncio.wait_for(aw, timeout_s)
-        except TimeoutError:
-            raise CommandFailed(
-                f"{what} on drone '{self.id}': no answer from its mavsdk_server within {timeout_s:g} s",
-                vehicle_id=self.id,
-            ) from None
-        except grpc.aio.AioRpcError as exc:
-            raise CommandFailed(
-                f"{what} on drone '{self.id}': mavsdk_server unreachable ({exc.code().name}); "
-                f"the drone is {self.state.value}",
-                vehicle_id=self.id,
-            ) from None
-        except (CommandFailed, VehicleNotReady, InvalidArgument):
-            raise
-        except Exception as exc:
-            result = getattr(exc, "_result", None)
-            if result is None:
-                raise
-            name = getattr(result.result, "name", str(result.result))
-            said = await self._complaint_since(started)
-            raise CommandFailed(
-                f"{what} on drone '{self.id}' failed: {result.result_str} ({name})" + said,
-                vehicle_id=self.id,
-                result=name,
-            ) from None
-
-    async def command_long(
-        self, command: int, *params: float, what: str, attempts: int = 3, wait_s: float = 1.5
-    ) -> None:
-        """Send COMMAND_LONG through mavlink_direct and wait for its COMMAND_ACK (MAVSDK has no call)."""
-        system = self.require_session()
-        target = self.facts.sysid or self.spec.expected_sysid or 1
-        sent_at = time.time()
-        try:
-            result = await self._commands.send(
-                system,
-                lambda aw: self.call(what, aw, 5.0),
-                target,
-                command,
-                params,
-                attempts=attempts,
-                wait_s=wait_s,
-            )
-        except NoAck as exc:
-            raise CommandFailed(f"{what} on drone '{self.id}': {exc}", vehicle_id=self.id) from None
-        if result != MAV_RESULT_ACCEPTED:
-            name = MAV_RESULT.get(result, str(result))
-            raise CommandFailed(
-                f"{what} on drone '{self.id}' refused by the vehicle: {name}"
-                + await self._complaint_since(sent_at),
-                vehicle_id=self.id,
-                result=name,
-            )
-
-    def recent_complaint(self, within_s: float = 5.0, since: float | None = None) -> str:
-        """What the autopilot said (warning or worse) in the last few seconds, or since ``since`` (wall
-        clock), to explain a refusal: `` (autopilot says: 'A'; 'B')`` or "" when it said nothing."""
-        said = self.said_since(time.time() - within_s if since is None else since)
-        return f" (autopilot says: {refusals.quoted(said)})" if said else ""
-
-    def said_since(self, since: float) -> list[str]:
-        """The autopilot's distinct warning-or-worse texts since ``since`` (wall clock), oldest first."""
-        return refusals.said_since(self.telemetry.status_texts, since)
-
-    async def _complaint_since(self, since: float) -> str:
-        """Why the autopilot refused what was sent at ``since``: its texts (waiting briefly for them, as
-        they can follow the result), or what the vehicle was doing when it gave no reason."""
-        said = await refusals.wait_said(lambda: self.telemetry.status_texts, since)
-        return refusals.explain(said, self.describe_facts())
-
-    def describe_facts(self) -> str:
-        """The vehicle's state in a few words, for a refusal the autopilot did not explain."""
-        mode = self.telemetry.fresh("flight_mode")
-        armed = self.telemetry.fresh("armed")
-        on_ground = self.rules.on_ground(self.telemetry)
-        parts = [
-            f"mode {mode}" if mode else "mode unknown",
-            "armed" if armed else "disarmed" if armed is False else "armed state unknown",
-            "on the ground" if on_ground else "in the air" if on_ground is False else "",
-        ]
-        waiting = self.initialising()
-        if waiting:
-            parts.append(waiting)
-        return "it is " + ", ".join(p for p in parts if p)
 
 
 def _iso(epoch_s: float | None) -> str | None:
