@@ -1,5 +1,8 @@
-"""The link to one vehicle: its sidecar, its MAVSDK session, the connection state machine, the
-telemetry cache and the telemetry rates. One ``Link`` per registered vehicle, owned by its ``Vehicle``.
+"""The link to one vehicle: its sidecar, its MAVSDK sessions, the connection state machine and the
+telemetry cache. One ``Link`` per registered vehicle, owned by its ``Vehicle``. Its parts: each MAVSDK
+session with its loops and rate requests (``mavsdk_session``), calling the vehicle (``mavsdk_calls``),
+the link monitor (``link_monitor``), its status (``link_status``), the states and the owner's hooks
+(``contract``).
 
 The connection state is derived from facts, each time it is read:
 
@@ -25,8 +28,7 @@ import contextlib
 import logging
 import time
 from collections.abc import Callable, Iterable
-from datetime import UTC, datetime
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING
 
 import grpc
 from mavsdk_grpc import System
@@ -34,12 +36,10 @@ from mavsdk_grpc import System
 from gateway.config import Settings
 from gateway.errors import VehicleNotReady
 from gateway.link.contract import ConnectionState, LinkRules, OnWait, Peer
+from gateway.link.link_monitor import run_monitor
 from gateway.link.mavsdk_calls import MavsdkCalls
 from gateway.link.mavsdk_session import MavsdkSession, SessionJob, close_system
-from gateway.link.rawlink import (
-    LinkFacts,
-    autopilot_name,
-)
+from gateway.link.rawlink import LinkFacts, autopilot_name
 from gateway.link.sidecar import Confine, Sidecar, SidecarState
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 from gateway.link.telemetry_feed import TelemetryFeed
@@ -49,16 +49,11 @@ if TYPE_CHECKING:
     from gateway.link.relay import Relay
 
 log = logging.getLogger("gateway.link")
-T = TypeVar("T")
 __all__ = ["Link"]
 
 # opening the gRPC session (s): bounds a dead sidecar
 CONNECT_TIMEOUT_S = 10.0
 READY_WAIT_S = 60.0
-#: the link monitor's period (s); it also wakes when the link-lost limit is reached, ``MONITOR_LATE_S``
-#: after it (so the heartbeat is then older than the limit)
-MONITOR_PERIOD_S = 1.0
-MONITOR_LATE_S = 0.01
 
 
 class Link:
@@ -122,6 +117,11 @@ class Link:
         return self._sidecar
 
     @property
+    def relay(self) -> Relay | None:
+        """The relay to the ground stations that share the drone's MAVLink (None: none do)."""
+        return self._relay
+
+    @property
     def system(self) -> System:
         """The raw ``mavsdk_grpc.System`` of the current session (for what the wrapper does not cover)."""
         if self._system is None:
@@ -143,6 +143,11 @@ class Link:
     def last_heartbeat_age_s(self) -> float | None:
         hb = self.facts.last_heartbeat
         return None if hb is None else max(0.0, time.monotonic() - hb)
+
+    @property
+    def session_started(self) -> float | None:
+        """When the current MAVSDK session opened (monotonic clock); None without one."""
+        return self._session_started if self._system is not None else None
 
     @property
     def sysid_mismatch(self) -> bool:
@@ -302,42 +307,6 @@ class Link:
             self.require_ready()
         return self.system
 
-    def status(self) -> dict[str, Any]:
-        car = self._sidecar
-        age = self.last_heartbeat_age_s
-        return {
-            "id": self.id,
-            "name": self.spec.name,
-            "url": self.spec.url,
-            "tags": list(self.spec.tags),
-            "state": self.state.value,
-            "state_age_s": round(self.state_age_s, 3),
-            "last_heartbeat_age_s": None if age is None else round(age, 3),
-            "last_heartbeat_at": _iso(self.facts.last_heartbeat_wall),
-            "last_error": self.describe_error(),
-            "sysid": self.facts.sysid,
-            "expected_sysid": self.spec.expected_sysid,
-            "sysid_mismatch": self.sysid_mismatch,
-            "duplicate_sysid": self.duplicate_sysid,
-            # other autopilots heard on this vehicle's link (mavsdk_server follows only the first)
-            "other_sysids_on_link": sorted(self.facts.sysids_seen - {self.facts.sysid}),
-            "is_simulator": self.is_simulator,
-            "autopilot": self.autopilot,
-            "autopilot_version": self.autopilot_version,
-            "flight_mode": self.telemetry.fresh("flight_mode"),
-            "armed": self.telemetry.fresh("armed"),
-            "initialising": self.initialising(),
-            "unsupported_streams": self.unsupported_streams,
-            "sidecar": {
-                "state": car.state.value if car else "stopped",
-                "pid": car.pid if car else None,
-                "grpc_port": car.grpc_port if car else None,
-                "restarts": car.info.restarts if car else 0,
-            },
-            # each ground station endpoint the drone's MAVLink is relayed to, and what passed
-            "ground_stations": self._relay.status() if self._relay is not None else [],
-        }
-
     # --- lifecycle --------------------------------------------------------------------------------------
     async def connect(self) -> None:
         """Start the sidecar and everything that follows (idempotent, returns at once)."""
@@ -367,7 +336,7 @@ class Link:
             confine=self._confine,
         )
         self._sidecar.start()
-        self._monitor_task = asyncio.create_task(self._monitor(), name=f"monitor-{self.id}")
+        self._monitor_task = asyncio.create_task(run_monitor(self), name=f"monitor-{self.id}")
 
     def _sidecar_pid(self) -> int | None:
         return self._sidecar.pid if self._sidecar is not None else None
@@ -457,46 +426,15 @@ class Link:
             await close_system(system)
 
     # --- telemetry rates ---------------------------------------------------------------------------------
-    def _schedule_rates(self, why: str, force: bool = False) -> None:
+    def schedule_rates(self, why: str, force: bool = False) -> None:
+        """Request every telemetry rate of the current MAVSDK session (unless one was requested lately;
+        ``force``: regardless)."""
         if self._system is not None and self._mavsdk is not None:
             self._mavsdk.schedule_rates(why, force)
 
     def request_rates_again(self, why: str) -> None:
         """Ask for every telemetry stream again (after something that resets them)."""
-        self._schedule_rates(why, force=True)
-
-    async def _monitor(self) -> None:
-        """Log state changes and re-request rates when streams stopped while heartbeats go on.
-
-        Wakes once a second (``MONITOR_PERIOD_S``), and when the last heartbeat (or, before the first, the
-        session's start) reaches the link-lost limit: the one change that comes with nothing arriving.
-        Changes that come with data are noted as it arrives (the HEARTBEAT loop) or when ``state`` is
-        read; the health and the rate check can wait a second."""
-        while True:
-            self.note_state()
-            if self._system is not None:
-                hb = self.last_heartbeat_age_s
-                heartbeats_fresh = hb is not None and hb < self.settings.link_lost_after_s
-                limit = max(2.0, self.settings.link_lost_after_s * 0.66)
-                # both requested streams silent (a vehicle without GPS may never send a position)
-                streams_silent = all(
-                    sample is None or sample.age_s > limit
-                    for sample in (self.telemetry.position, self.telemetry.attitude)
-                )
-                if heartbeats_fresh and streams_silent:
-                    self._schedule_rates("telemetry streams silent while heartbeats continue (reboot?)")
-            await asyncio.sleep(self._monitor_wait_s())
-
-    def _monitor_wait_s(self) -> float:
-        """Until the next check: ``MONITOR_PERIOD_S``, or less when the link-lost limit comes first."""
-        wait = MONITOR_PERIOD_S
-        if self._system is not None and self._session_started is not None:
-            hb = self.facts.last_heartbeat
-            since = hb if hb is not None else self._session_started
-            until_lost = since + self.settings.link_lost_after_s - time.monotonic()
-            if until_lost >= 0.0:
-                wait = min(wait, until_lost + MONITOR_LATE_S)
-        return max(MONITOR_LATE_S, wait)
+        self.schedule_rates(why, force=True)
 
     def note_state(self) -> None:
         """Record a change of the connection state now (whoever sees it first: a reader, the HEARTBEAT
@@ -520,7 +458,3 @@ class Link:
     def note_error(self, message: str) -> None:
         """The link's last error, as ``last_error`` and the status say it."""
         self._last_error = message
-
-
-def _iso(epoch_s: float | None) -> str | None:
-    return None if epoch_s is None else datetime.fromtimestamp(epoch_s, UTC).isoformat()
