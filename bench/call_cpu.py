@@ -109,7 +109,7 @@ BUCKETS = [
     ("JSON encode / decode", ("json/", "orjson")),
     ("MCP SDK (session, routing, SSE)", ("mcp/server", "mcp/shared", "sse_starlette", "mcp/types")),
     ("HTTP server (uvicorn, starlette, h11)", ("uvicorn", "starlette", "h11", "httptools")),
-    (INGEST, ("grpc", "mavsdk_grpc", "link/telemetry.py")),
+    (INGEST, ("grpc", "mavsdk_grpc", "link/telemetry")),
     ("gateway code", ("gateway/",)),
     ("asyncio / anyio event loop", ("asyncio", "anyio")),
 ]

@@ -12,8 +12,9 @@ The system prompt and the tool list stay the same between steps (a local server 
 prompt prefix); what changes (the roster) goes at the end of the conversation.
 
 This module is the loop; the records of a turn are in turns.py, the model side in chat.py, the host's
-checks of a call in checks.py, the readings of what a small model meant in intent.py and repair.py, and
-what the host says to the model and the user in wording.py.
+checks of a call in checks.py, sending a call that passed them (and following it) in sending.py, the
+readings of what a small model meant in intent.py and repair.py, and what the host says to the model
+and the user in wording.py.
 """
 
 from __future__ import annotations
@@ -38,6 +39,7 @@ from gateway.agent.chat import (
 from gateway.agent.intent import Reading, read_call
 from gateway.agent.parsing import ArgumentsError, parse_arguments, strip_thinking
 from gateway.agent.roster import FleetView, Roster
+from gateway.agent.sending import ToolSender
 from gateway.agent.toolbox import Arguments, ToolInfo, ToolOutcome
 from gateway.agent.turns import (
     MAX_EMPTY_REPROMPTS,
@@ -46,7 +48,6 @@ from gateway.agent.turns import (
     ModelCall,
     ModelConfig,
     ModelReplyError,
-    Progress,
     ToolCaller,
     ToolCallRecord,
     TurnMemory,
@@ -57,10 +58,6 @@ from gateway.agent.wording import DEFAULT_SYSTEM_PROMPT
 
 # DEFAULT_SYSTEM_PROMPT (wording.py), AgentEvent, ModelConfig, ToolCallRecord and TurnResult (turns.py)
 # are imported from here too.
-
-# With ``follow_running``: how many capped waits the host itself adds to an action still running (each
-# monitor call waits up to the gateway's cap, 45 s by default) before it hands "running" to the model.
-MAX_FOLLOW_WAITS = 20
 
 
 class AgentHost:
@@ -87,11 +84,11 @@ class AgentHost:
         # answer_tool: offer the host's own answer_user tool, the way a small model ends a turn (answer.py)
         self.answer_tool = answer_tool
         base_tools = list(tools) + ([ANSWER_TOOL_INFO] if answer_tool else [])
-        # follow_running: an action whose capped wait ended while it still runs is waited for by the host
-        # (monitor_flight / monitor_fleet), so the model sees how it ended, as if the call had waited.
-        self.follow_running = follow_running
         self._truncated = False  # the model's last reply stopped at the token limit
         self.fleet = FleetView(caller, base_tools, roster, self._roster_read)
+        # follow_running: an action whose capped wait ended while it still runs is waited for by the host
+        # (monitor_flight / monitor_fleet), so the model sees how it ended, as if the call had waited.
+        self.sender = ToolSender(caller, self.fleet, self._emit, self._note, follow_running=follow_running)
         self.max_steps = max_steps
         self.system_prompt = system_prompt
         self.on_event = on_event or (lambda _e: None)
@@ -333,7 +330,7 @@ class AgentHost:
         )  # fmt: skip
         if outcome is None:
             assert tool is not None and args is not None
-            status, outcome = await self._send(step, call_id, tool, args, reading)
+            status, outcome = await self.sender.send(step, call_id, tool, args, reading)
         if status in ("invalid", "error") and checks.same_invalid_again(name, args, turn):
             outcome = ToolOutcome(
                 f"{outcome.text} This is the third time this same call was refused; it will not work. Stop "
@@ -367,72 +364,6 @@ class AgentHost:
             text=model_text,
             running=structured.get("status") == "running",
         )
-
-    async def _send(
-        self, step: int, call_id: str, tool: ToolInfo, args: Arguments, reading: Reading | None
-    ) -> tuple[str, ToolOutcome]:
-        """Send the call to the gateway (and, with ``follow_running``, wait for it to end)."""
-        name = tool.name
-
-        async def progress(p: float, total: float | None, message: str | None) -> None:
-            self._emit("progress", id=call_id, name=name, progress=p, total=total, message=message)
-
-        outcome = await self.caller.call_tool(name, args, progress)
-        if self.follow_running:
-            outcome = await self._follow(step, call_id, name, args, outcome, progress)
-        status = "error" if outcome.is_error else "ok"
-        if reading is not None:  # the model learns what its call was read as, after the result
-            # (measured: with the note first, the 1.5B model answered a refusal by copying the note)
-            outcome = ToolOutcome(
-                f"{outcome.text} (Host note: {reading.note}.)", outcome.is_error, outcome.structured
-            )
-        if outcome.is_error and "take off first" in outcome.text.lower().replace("takeoff", "take off"):
-            # only where the gateway says the drone must take off first: a relative move from the ground
-            # refused for its distance would otherwise be answered "take off first, then this call
-            # again" (the issue's grounded far leg: takeoff, then the same refusal)
-            note = await self._takeoff_first(name, args)
-            if note:
-                self._note(note)
-            outcome = ToolOutcome(outcome.text + note, True, outcome.structured)
-        return status, outcome
-
-    async def _takeoff_first(self, name: str, args: Arguments) -> str:
-        """After a refused move of a drone on the ground: the takeoff to call, with the altitude of the
-        refused call (the gateway's own text says "Call takeoff first" without numbers). The fleet is read
-        again first: measured, a roster read before the reply still showed bravo on the ground after the
-        reply's own takeoff, and the note sent the model to take off again instead of reporting the
-        gateway's distance refusal."""
-        drone, alt = args.get("drone_id"), args.get("alt_m")
-        if name == "takeoff" or not isinstance(alt, int | float):
-            return ""
-        entry = await self.fleet.fresh_entry(drone) if self.fleet.enabled else self.fleet.entry(drone)
-        if entry is None or entry.flying is not False:
-            return ""
-        return wording.takeoff_first(drone, alt)
-
-    async def _follow(
-        self, step: int, call_id: str, name: str, args: Arguments, outcome: ToolOutcome, progress: Progress
-    ) -> ToolOutcome:
-        """Wait for an action the gateway reported still running after its capped wait (not one the model
-        sent with ``wait: false``): monitor_fleet for a fleet operation, monitor_flight for one drone."""
-        if args.get("wait") is False:
-            return outcome
-        for _ in range(MAX_FOLLOW_WAITS):
-            data = outcome.structured if isinstance(outcome.structured, dict) else {}
-            if outcome.is_error or data.get("status") != "running":
-                return outcome
-            if isinstance(data.get("drones"), list) and isinstance(data.get("operation_id"), str):
-                tool, targs = "monitor_fleet", {"operation_id": data["operation_id"]}
-            elif isinstance(data.get("drone_id"), str):
-                tool, targs = "monitor_flight", {"drone_id": data["drone_id"]}
-            else:
-                return outcome
-            self._emit("following", step=step, id=call_id, name=name, tool=tool, arguments=targs)
-            followed = await self.caller.call_tool(tool, targs, progress)
-            if followed.is_error:  # e.g. a server that does not offer the monitor tool: keep "running"
-                return outcome
-            outcome = followed
-        return outcome
 
     def _skip(
         self, step: int, call: ModelCall, parsed: bool, why: str, status: str = "skipped"

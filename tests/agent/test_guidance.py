@@ -289,13 +289,14 @@ async def test_a_refused_move_of_a_grounded_drone_names_the_takeoff_with_its_alt
     host.fleet.roster = Roster(
         (DroneEntry("bravo", False, 0.0, 100.0), DroneEntry("alpha", True, 10.0, 90.0))
     )
-    note = await host._takeoff_first("go_to_location", {"drone_id": "bravo", "alt_m": 30})
+    note = await host.sender.takeoff_first("go_to_location", {"drone_id": "bravo", "alt_m": 30})
     assert note == (
         ' (Host note: bravo is on the ground. Call takeoff with drone_id "bravo" and alt_m 30 first, '
         "then this call again.)"
     )
-    assert await host._takeoff_first("go_to_location", {"drone_id": "alpha", "alt_m": 30}) == ""  # flying
-    assert await host._takeoff_first("takeoff", {"drone_id": "bravo", "alt_m": 500}) == ""
+    flying = await host.sender.takeoff_first("go_to_location", {"drone_id": "alpha", "alt_m": 30})
+    assert flying == ""  # alpha flies
+    assert await host.sender.takeoff_first("takeoff", {"drone_id": "bravo", "alt_m": 500}) == ""
 
 
 async def test_calls_skipped_after_a_failure_are_shown_as_still_to_do_until_they_run(toy, scripted) -> None:

@@ -272,7 +272,7 @@ async def test_a_booting_autopilots_zero_or_nan_position_is_never_cached() -> No
     import math
     from types import SimpleNamespace
 
-    from gateway.link.telemetry import TelemetryFeed
+    from gateway.link.telemetry_feed import TelemetryFeed
 
     def item(lat: float, lon: float) -> SimpleNamespace:
         return SimpleNamespace(
@@ -327,7 +327,7 @@ async def test_telemetry_rates_follow_the_drone_between_rest_and_active() -> Non
     import asyncio
     import enum
 
-    from gateway.link.telemetry import ACTIVE_RATES_HZ, STREAM_RATES_HZ, TelemetryFeed
+    from gateway.link.telemetry_feed import ACTIVE_RATES_HZ, STREAM_RATES_HZ, TelemetryFeed
 
     class Landed(enum.Enum):
         ON_GROUND = 1

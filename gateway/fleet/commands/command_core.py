@@ -1,10 +1,9 @@
 """What the Commander's parts share besides the pass: ``@command`` (a verb is declared: callable by name,
 and offered as the MCP tool its `Tool` names), ``@routed`` (a verb runs where its drone is), the
 operation desk (views of operations and waiting on them, here or on the node that runs them) and the
-small flight rules the verbs judge a context with. The pass itself is `gateway.fleet.commands.command_pass`;
-the
-verbs are `drone_verbs` (flight), `navigation_verbs`, `mission_verbs` and `fleet_verbs`;
-`gateway.fleet.commands.commander` composes them."""
+small flight rules the verbs judge a context with. The pass itself is
+`gateway.fleet.commands.command_pass`; the verbs are `drone_verbs` (flight), `navigation_verbs`,
+`mission_verbs`, `fleet_verbs` and `fleet_step_verbs`; `gateway.fleet.commands.commander` composes them."""
 
 from __future__ import annotations
 

@@ -12,8 +12,8 @@ and
   `mission_verbs`): each command on one drone, declared once (its arguments, checks, vehicle call and
   tracker) and run through the pass;
 - `FleetVerbs` (`gateway.fleet.commands.fleet_verbs`): the fleet commands, fleet-level checks and plans
-composed
-  of the same pass per drone;
+  composed of the same pass per drone, each drone's step run by `FleetStepVerbs`
+  (`gateway.fleet.commands.fleet_step_verbs`);
 - `OperationDesk` (`gateway.fleet.commands.command_core`): views of operations and waiting on them.
 
 MCP tools (`gateway.mcp.tools`) and REST routes (`gateway.api`) are one call to a verb plus presenting
@@ -46,6 +46,7 @@ from gateway.errors import InvalidArgument
 from gateway.fleet.commands.command_core import VERBS, OperationDesk
 from gateway.fleet.commands.command_pass import CommandPass
 from gateway.fleet.commands.drone_verbs import FlightVerbs
+from gateway.fleet.commands.fleet_step_verbs import FleetStepVerbs
 from gateway.fleet.commands.fleet_verbs import FleetVerbs
 from gateway.fleet.commands.mission_verbs import MissionVerbs
 from gateway.fleet.commands.navigation_verbs import NavigationVerbs
@@ -93,11 +94,13 @@ class Commander:
         self.flight = flight = FlightVerbs(self.commands, desk)
         self.navigation = navigation = NavigationVerbs(self.commands, desk)
         self.missions = missions = MissionVerbs(self.commands, desk, flight)
-        self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, flight, fleet, store)
+        self.fleet_steps = fleet_steps = FleetStepVerbs(self.commands, desk, fleet)
+        self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, flight, fleet, store, fleet_steps)
         self.operator = operator = OperatorVerbs(self.commands, flight, fleet, store)
         #: where a verb called by name runs (`gateway.fleet.commands.command_core.command`), by class name
         self.parts: dict[str, object] = {
-            type(part).__name__: part for part in (flight, navigation, missions, fleet_verbs, operator)
+            type(part).__name__: part
+            for part in (flight, navigation, missions, fleet_verbs, fleet_steps, operator)
         }
         # the verbs as the doors call them (typed); a verb called only by name needs no line here
         # operations
@@ -147,8 +150,8 @@ class Commander:
         self.fleet_land = fleet_verbs.fleet_land
         self.fleet_return_to_launch = fleet_verbs.fleet_return_to_launch
         self.fleet_hold = fleet_verbs.fleet_hold
-        self.run_step = fleet_verbs.run_step
-        self.hold_step = fleet_verbs.hold_step
+        self.run_step = fleet_steps.run_step
+        self.hold_step = fleet_steps.hold_step
         self.lock = operator.lock
         self.unlock = operator.unlock
         self.taken_over = operator.taken_over

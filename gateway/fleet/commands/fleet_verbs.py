@@ -16,7 +16,7 @@ import asyncio
 import contextlib
 import dataclasses
 import logging
-from collections.abc import Awaitable, Callable, Mapping, Sequence
+from collections.abc import Awaitable, Callable, Sequence
 from typing import Any, Literal
 
 from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal, VehicleNotReady
@@ -27,17 +27,16 @@ from gateway.fleet.commands.command_core import (
     command,
     left,
     require_airborne,
-    routed,
 )
-from gateway.fleet.commands.command_pass import CommandPass, Need, Order
+from gateway.fleet.commands.command_pass import CommandPass
 from gateway.fleet.commands.drone_verbs import FlightVerbs
+from gateway.fleet.commands.fleet_step_verbs import FleetStepVerbs
 from gateway.fleet.formation.formation import DroneStart, plan_formation, rtl_altitudes, takeoff_altitudes
 from gateway.fleet.operations.fleet_operation import FleetOperation
 from gateway.fleet.operations.fleet_ops import FleetOperations
 from gateway.fleet.operations.fleet_refusals import Unable, check_drone_ids, collect_members, refuse_fleet
 from gateway.fleet.operations.fleet_steps import (
     FORMATION_TOLERANCE_M,
-    build_step,
     default_rtl_base_m,
     formation_phases,
     land_phase,
@@ -46,16 +45,13 @@ from gateway.fleet.operations.fleet_steps import (
     slot_summaries,
     takeoff_phase,
 )
-from gateway.fleet.operations.operation_state import Operation
 from gateway.fleet.operations.views import (
-    ActionResult,
     FleetHoldResult,
     FleetView,
-    OperationView,
 )
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import VehicleContext
-from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleView
+from gateway.fleet.vehicles.protocols import Notify, VehicleView
 from gateway.fleet.vehicles.readings import home, is_landed_and_disarmed, position, vehicle_context
 from gateway.registry.store import Store
 
@@ -67,8 +63,9 @@ OnFleetProgress = Callable[[FleetView], Awaitable[None]]
 
 class FleetVerbs:
     """Commands on several drones at once: fleet-level checks and plans, then the same pass per drone
-    (`CommandPass.run`, through `step_here` / `hold_here`, or the drone's owner in a cluster). The
-    operator's locks and emergency stop are `gateway.fleet.commands.operator_verbs`."""
+    (`CommandPass.run`, through `FleetStepVerbs.step_here` / `hold_here` in
+    `gateway.fleet.commands.fleet_step_verbs`, or the drone's owner in a cluster). The operator's locks
+    and emergency stop are `gateway.fleet.commands.operator_verbs`."""
 
     def __init__(
         self,
@@ -77,8 +74,10 @@ class FleetVerbs:
         flight: FlightVerbs,
         fleet: FleetOperations,
         store: Store | None,
+        steps: FleetStepVerbs,
     ) -> None:
         self.commands = commands
+        self.steps = steps
         self.desk = desk
         self.flight = flight
         self.fleet = fleet
@@ -88,7 +87,6 @@ class FleetVerbs:
         self.router = commands.router
         self.safety = commands.safety
         self.operations = commands.operations
-        fleet.run_steps_with(self.step_here, self.hold_here)
 
     # ------------------------------------------------------------------------------------------------
     # fleet operations: views and waiting
@@ -444,7 +442,7 @@ class FleetVerbs:
 
         async def hold(drone_id: str, v: VehicleView) -> None:
             try:
-                await self.hold_step(caller, drone_id, "fleet_hold")  # on its owner, in a cluster
+                await self.steps.hold_step(caller, drone_id, "fleet_hold")  # on its owner, in a cluster
             except GatewayError as exc:
                 failed.append({"drone_id": drone_id, "code": exc.code, "message": exc.message})
 
@@ -455,53 +453,6 @@ class FleetVerbs:
             failed=failed,
             not_sent=[u.to_dict() for u in unable],
             superseded_fleet_operations=[f.id for f in superseded],
-        )
-
-    # ------------------------------------------------------------------------------------------------
-    # one drone's step of a fleet operation coordinated by another cluster node
-    # ------------------------------------------------------------------------------------------------
-
-    async def step_here(self, caller: Caller, drone_id: str, spec: Mapping[str, Any]) -> Operation:
-        """One drone's step of a fleet operation (`gateway.fleet.operations.fleet_steps.build_step`), as one
-        run of
-        the pass on this node: the takeover lock, the takeoff guard (named by the step's ``guard``;
-        none for a recovery step) before and inside the command lock, then the step's operation."""
-        guard = spec.get("guard")
-        action = str(guard or spec.get("kind") or "fleet step")
-
-        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
-            step = build_step(vehicle, spec)
-            return Order(step.send, step.tracker, step.params)
-
-        sent = await self.commands.run(
-            caller, drone_id, action, decide, need=Need.ANY, safety_action=not guard, audited=False
-        )
-        assert sent.operation is not None
-        return sent.operation
-
-    async def hold_here(self, caller: Caller, drone_id: str, reason: str) -> Operation | None:
-        """Hold a drone whose fleet operation was stopped (one run of the pass); the operation it ended."""
-
-        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
-            return Order(vehicle.hold, ends_operation=True, commands="hold")
-
-        sent = await self.commands.run(
-            caller, drone_id, reason, decide, need=Need.ANY, safety_action=True, audited=False
-        )
-        return sent.ended
-
-    @routed
-    async def run_step(self, caller: Caller, drone_id: str, spec: dict[str, Any]) -> OperationView:
-        """Start one drone's step here, for the node coordinating the fleet operation (`step_here`)."""
-        op = await self.step_here(caller, drone_id, spec)
-        return OperationView.of(op, self.registry.get(drone_id))
-
-    @routed
-    async def hold_step(self, caller: Caller, drone_id: str, reason: str) -> ActionResult:
-        """Hold a drone whose fleet operation (coordinated by another node) was stopped."""
-        sup = await self.hold_here(caller, drone_id, reason)
-        return ActionResult(
-            drone_id=drone_id, action="hold", message="held", superseded_operation=sup and sup.id
         )
 
 

@@ -52,7 +52,7 @@ class DialectReads(Protocol):
         """The autopilot as a person names it, for messages ("ArduCopter", "PX4")."""
         ...
 
-    # --- link facts (gateway.link.session.LinkRules) ---------------------------------------------------
+    # --- link facts (gateway.link.contract.LinkRules) --------------------------------------------------
     @property
     def skipped_streams(self) -> frozenset[str]: ...
 

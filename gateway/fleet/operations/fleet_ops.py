@@ -88,8 +88,8 @@ class FleetOperations:
         self._hold_here: HoldHere | None = None
 
     def run_steps_with(self, run_here: RunHere, hold_here: HoldHere) -> None:
-        """How a step on a drone this node owns is run: the Commander's pass (`FleetVerbs.step_here`,
-        `FleetVerbs.hold_here`), the same one every command on one drone takes."""
+        """How a step on a drone this node owns is run: the Commander's pass (`FleetStepVerbs.step_here`,
+        `FleetStepVerbs.hold_here`), the same one every command on one drone takes."""
         self._run_here, self._hold_here = run_here, hold_here
 
     # -- queries -------------------------------------------------------------------------------

@@ -34,7 +34,7 @@ from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 
 if TYPE_CHECKING:
-    from gateway.link.session import ConnectionState
+    from gateway.link.contract import ConnectionState
 
 Notify = Callable[[str], Awaitable[None]]
 """Told, in words, what a command waits for before it can be sent (e.g. a drone still initialising)."""

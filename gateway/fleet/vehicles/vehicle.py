@@ -37,7 +37,9 @@ from gateway.fleet.vehicles.params import Parameters
 from gateway.fleet.vehicles.vehicle_arming import Arming
 from gateway.fleet.vehicles.vehicle_missions import MissionControl
 from gateway.fleet.vehicles.waits import wait_for_state
-from gateway.link.session import ConnectionState, Link, OnWait, Peer
+from gateway.link.contract import ConnectionState, OnWait, Peer
+from gateway.link.link_status import link_status
+from gateway.link.session import Link
 from gateway.link.sidecar import Confine, Sidecar
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
@@ -178,7 +180,7 @@ class Vehicle:
         return self.link.initialising()
 
     def status(self) -> dict[str, Any]:
-        return self.link.status()
+        return link_status(self.link)
 
     def require_ready(self) -> None:
         self.link.require_ready()

@@ -14,7 +14,8 @@ from gateway.errors import CommandFailed, VehicleNotReady
 from gateway.fleet.dialects import Dialect
 from gateway.fleet.dialects.modes import ModeChoice
 from gateway.link import refusals
-from gateway.link.session import Link, OnWait
+from gateway.link.contract import OnWait
+from gateway.link.session import Link
 
 log = logging.getLogger("gateway.vehicle")
 

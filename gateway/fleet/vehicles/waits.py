@@ -7,7 +7,7 @@ import asyncio
 
 from gateway.errors import VehicleNotReady
 from gateway.fleet.vehicles.protocols import VehicleView
-from gateway.link.session import ConnectionState
+from gateway.link.contract import ConnectionState
 
 POLL_S = 0.1
 

@@ -1,0 +1,63 @@
+"""What a vehicle's link shows its owner and what the owner gives it: the connection states, the
+autopilot's rules (``LinkRules``, implemented by ``gateway.fleet.dialects``), the other links seen for
+duplicate system ids (``Peer``) and the notice of what a vehicle still initialising waits for
+(``OnWait``). The link itself is ``gateway.link.session.Link``."""
+
+from __future__ import annotations
+
+import enum
+from collections.abc import Awaitable, Callable
+from typing import Protocol
+
+from gateway.link.telemetry import HealthValue, TelemetryCache
+
+OnWait = Callable[[str], Awaitable[None]]
+"""Told, in words, what a vehicle still initialising is waiting for (each time that changes)."""
+
+
+class ConnectionState(enum.StrEnum):
+    REGISTERED = "registered"
+    CONNECTING = "connecting"
+    CONNECTED = "connected"
+    READY = "ready"
+    LINK_LOST = "link_lost"
+    FAILED = "failed"
+
+
+class LinkRules(Protocol):
+    """What the link needs to know about the vehicle's autopilot (``gateway.fleet.dialects`` has them)."""
+
+    @property
+    def skipped_streams(self) -> frozenset[str]:
+        """Telemetry streams not to request (the autopilot refuses them)."""
+        ...
+
+    @property
+    def follows_events(self) -> bool:
+        """Whether the autopilot explains refusals in EVENT messages (kept with the status texts)."""
+        ...
+
+    def mode_name(self, custom_mode: int, mav_type: int) -> str | None:
+        """The flight mode a HEARTBEAT reports, or None to use MAVSDK's name for it."""
+        ...
+
+    def position_estimate_ok(self, health: HealthValue, ekf_flags: int | None) -> bool:
+        """Whether the autopilot's position estimate is good enough to arm and fly."""
+        ...
+
+    def on_ground(self, telemetry: TelemetryCache) -> bool | None:
+        """Whether the vehicle is on the ground (None: no fresh telemetry says)."""
+        ...
+
+
+class Peer(Protocol):
+    """Another vehicle's link, as seen for duplicate system ids."""
+
+    @property
+    def id(self) -> str: ...
+
+    @property
+    def sysid(self) -> int | None: ...
+
+    @property
+    def state(self) -> ConnectionState: ...
