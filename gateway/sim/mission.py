@@ -250,3 +250,15 @@ class MissionStore:
 
 def with_home(item: Item, lat: float, lon: float, alt: float) -> Item:
     return replace(item, x=round(lat * 1e7), y=round(lon * 1e7), z=alt)
+
+
+@dataclass
+class AutoState:
+    """Mission execution state (the part MISSION_CURRENT reports)."""
+
+    current: int = 0
+    running: bool = False
+    started: bool = False
+    complete: bool = False
+    phase: str = "idle"  # idle | goto | hold | land | rtl | loiter_unlim
+    hold_until: float = 0.0
