@@ -76,7 +76,7 @@ router = APIRouter(tags=["console"])
 @router.get(
     "/console", response_model=ConsoleConfig, summary="The operator console's settings, and who you are"
 )
-async def console_config(request: Request, gateway: GatewayDep, who: PrincipalDep) -> Any:
+async def console_config(request: Request, gateway: GatewayDep, who: PrincipalDep) -> ConsoleConfig:
     settings = gateway.settings
     return ConsoleConfig(
         principal=who.name,

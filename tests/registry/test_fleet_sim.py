@@ -208,7 +208,7 @@ async def test_flight_through_vehicle_api_is_logged(store, registries) -> None:
 
 
 async def test_a_takeoff_behind_a_stale_armed_cache_arms_for_real(store, registries, monkeypatch) -> None:
-    """"armed" comes with the 1 Hz heartbeat, so the cache can say armed a beat after the autopilot
+    """ "armed" comes with the 1 Hz heartbeat, so the cache can say armed a beat after the autopilot
     disarmed on the ground (a landing, DISARM_DELAY). The takeoff that trusted it is refused by the
     autopilot; the gateway then arms for real and takes off, instead of failing the call."""
     async with sim_process(1, speedup=SPEEDUP) as sim:
