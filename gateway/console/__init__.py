@@ -11,7 +11,6 @@ console's buttons go through the same command path, checks and audit as ``curl``
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 from urllib.parse import urlsplit
 
 from fastapi import APIRouter, FastAPI, Request
