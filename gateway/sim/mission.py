@@ -7,6 +7,8 @@
   mission stays as it was.
 * Seq 0 is always HOME: whatever is uploaded there is replaced; downloads return the current home.
 * Download: MISSION_REQUEST_LIST -> MISSION_COUNT -> MISSION_REQUEST(_INT) -> MISSION_ITEM(_INT).
+
+`AutoState` is how far AUTO has got through the stored mission (run by `gateway.sim.auto`).
 """
 
 from __future__ import annotations
