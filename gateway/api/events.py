@@ -33,7 +33,9 @@ from sse_starlette import EventSourceResponse
 from gateway.api.deps import GatewayDep, PrincipalDep, StoreDep
 from gateway.api.fleetview import fleet_view
 from gateway.api.geofences import geofences_out
-from gateway.registry.store import AuditRecord
+from gateway.fleet.policy.geofence import GeofenceSet
+from gateway.registry.store import AuditRecord, Store
+from gateway.runtime import Gateway
 
 log = logging.getLogger(__name__)
 
@@ -73,14 +75,16 @@ class Subscriber:
 class EventHub:
     """Fans the gateway's live state out to every open event stream."""
 
-    def __init__(self, gateway: Any, period_s: float = FLEET_PERIOD_S) -> None:
+    def __init__(self, gateway: Gateway, period_s: float = FLEET_PERIOD_S) -> None:
         self.gateway = gateway
         self.period_s = period_s
         self._subscribers: set[Subscriber] = set()
         self._task: asyncio.Task[None] | None = None
-        self._listening_to: Any = None  # the Store whose audit rows are forwarded
+        self._listening_to: Store | None = None  # whose audit rows are forwarded
         self._stop_listening: Callable[[], None] | None = None
-        self._fences: Any = None  # the GeofenceSet last sent (kept, so its identity cannot be reused)
+        self._fences: GeofenceSet | None = (
+            None  # the GeofenceSet last sent (kept, so its identity cannot be reused)
+        )
 
     @property
     def subscriber_count(self) -> int:
@@ -155,7 +159,7 @@ def get_hub(request: Request) -> EventHub:
     return hub
 
 
-async def _stream(hub: EventHub, store: Any, hello: dict[str, Any]) -> AsyncIterator[dict[str, str]]:
+async def _stream(hub: EventHub, store: Store, hello: dict[str, Any]) -> AsyncIterator[dict[str, str]]:
     async with hub.subscribe() as sub:
         yield {"event": "hello", "data": _json(hello)}
         backlog = await store.list_audit(limit=AUDIT_BACKLOG)  # after subscribing: no row falls between
@@ -175,7 +179,9 @@ async def _stream(hub: EventHub, store: Any, hello: dict[str, Any]) -> AsyncIter
     response_class=EventSourceResponse,
     responses={200: {"content": {"text/event-stream": {}}, "description": "An endless event stream."}},
 )
-async def events(request: Request, gateway: GatewayDep, store: StoreDep, who: PrincipalDep) -> Any:
+async def events(
+    request: Request, gateway: GatewayDep, store: StoreDep, who: PrincipalDep
+) -> EventSourceResponse:
     hub = get_hub(request)
     gateway.require_registry()  # 503 while starting: the client retries
     hello = {"principal": who.name, "role": who.role, "fleet_period_s": hub.period_s}

@@ -18,6 +18,10 @@ from typing import Any
 
 from gateway.errors import GatewayError
 from gateway.fleet.policy.geofence import FLEET
+from gateway.fleet.policy.operator_locks import Lock, LockBook
+from gateway.fleet.vehicles.protocols import VehicleView
+from gateway.link.telemetry import TelemetryCache
+from gateway.runtime import Gateway
 
 STATUS_TEXTS_PER_DRONE = 5
 
@@ -29,7 +33,7 @@ def _num(value: Any, digits: int) -> float | None:
     return round(value, digits) if math.isfinite(value) else None
 
 
-def _sample(cache: Any, name: str) -> tuple[Any, float | None, bool]:
+def _sample(cache: TelemetryCache, name: str) -> tuple[Any, float | None, bool]:
     """(value, age_s, stale) of one cached stream; (None, None, True) when never received."""
     sample = getattr(cache, name, None)
     if sample is None:
@@ -38,7 +42,7 @@ def _sample(cache: Any, name: str) -> tuple[Any, float | None, bool]:
     return sample.value, round(age, 2), age > cache.stale_after_s or not cache.live
 
 
-def _position(cache: Any) -> dict[str, Any] | None:
+def _position(cache: TelemetryCache) -> dict[str, Any] | None:
     pos, age, stale = _sample(cache, "position")
     if pos is None:
         return None
@@ -52,7 +56,7 @@ def _position(cache: Any) -> dict[str, Any] | None:
     }
 
 
-def _home(cache: Any) -> dict[str, Any] | None:
+def _home(cache: TelemetryCache) -> dict[str, Any] | None:
     home, _age, _stale = _sample(cache, "home")
     if home is None:
         return None
@@ -66,7 +70,7 @@ def _no_operation(vehicle_id: str) -> None:
     return None
 
 
-def _operation_of(gateway: Any) -> OperationOf:
+def _operation_of(gateway: Gateway) -> OperationOf:
     """Each drone's latest operation: the Commander's (on a cluster node also the ones the owners of
     the other drones publish); none while the gateway starts or stops."""
     try:
@@ -76,7 +80,7 @@ def _operation_of(gateway: Any) -> OperationOf:
     return reader
 
 
-def vehicle_view(vehicle: Any, operation_of: OperationOf, locks: Any) -> dict[str, Any]:
+def vehicle_view(vehicle: VehicleView, operation_of: OperationOf, locks: LockBook) -> dict[str, Any]:
     cache = vehicle.telemetry
     value = cache.fresh
     battery, battery_age, battery_stale = _sample(cache, "battery")
@@ -122,13 +126,13 @@ def vehicle_view(vehicle: Any, operation_of: OperationOf, locks: Any) -> dict[st
     }
 
 
-def _lock_view(lock: Any) -> dict[str, Any] | None:
+def _lock_view(lock: Lock | None) -> dict[str, Any] | None:
     if lock is None:
         return None
     return {"reason": lock.reason, "by": lock.by, "locked_at": lock.locked_at.isoformat()}
 
 
-def fleet_view(gateway: Any) -> dict[str, Any]:
+def fleet_view(gateway: Gateway) -> dict[str, Any]:
     """The fleet now; ``vehicles`` sorted by id, ``origin`` the first known home (None before any)."""
     registry = gateway.registry
     vehicles = sorted(registry.all(), key=lambda v: v.id) if registry is not None else []

@@ -91,7 +91,7 @@ def _zones_of(body: FeatureCollectionIn, scope: str) -> list[Zone]:
     return zones
 
 
-def _save(gateway: Any, fences: GeofenceSet) -> None:
+def _save(gateway: Gateway, fences: GeofenceSet) -> None:
     path = gateway.settings.geofence_file
     if not path:
         return
@@ -107,7 +107,7 @@ def _save(gateway: Any, fences: GeofenceSet) -> None:
         raise
 
 
-def _replace(gateway: Any, scope: str, zones: list[Zone], who: str) -> GeofencesOut:
+def _replace(gateway: Gateway, scope: str, zones: list[Zone], who: str) -> GeofencesOut:
     """Swap in a new set: the other scopes' zones kept, this scope's replaced by ``zones``."""
     policy = _policy(gateway)
     kept = [z for z in policy.geofences if z.scope != scope]

@@ -13,7 +13,7 @@ Both ends of one mechanism (`gateway.fleet.operations.routing` says what crosses
 from __future__ import annotations
 
 import logging
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.commands.command_core import ROUTED
@@ -27,7 +27,7 @@ from .bus import ProgressSink
 from .remote import RemoteVehicle
 
 if TYPE_CHECKING:
-    from .node import ClusterNode
+    from gateway.fleet.vehicles.registry import Registry
 
 log = logging.getLogger("gateway.cluster.forwarding")
 
@@ -37,10 +37,36 @@ ENDED_KEPT = 2000
 """Operations of other nodes this node has seen end (newer than the owners' last snapshots)."""
 
 
+class Forwarder(Protocol):
+    """Sends a call to the drone's owner (`gateway.cluster.owner_calls.OwnerCalls`)."""
+
+    async def forward(
+        self,
+        drone_id: str,
+        verb: str,
+        caller: Caller,
+        arguments: dict[str, Any],
+        on_message: OnMessage | None,
+        wait_s: float,
+    ) -> Any: ...
+
+
+class RouterNode(Protocol):
+    """What the router reads of its node (`gateway.cluster.node.ClusterNode`, which passes itself)."""
+
+    @property
+    def registry(self) -> Registry | None: ...
+
+    @property
+    def calls(self) -> Forwarder: ...
+
+    async def announce(self, kind: str, body: dict[str, Any]) -> None: ...
+
+
 class ClusterRouter:
     """Where a drone's verbs run, seen from this node."""
 
-    def __init__(self, node: ClusterNode) -> None:
+    def __init__(self, node: RouterNode) -> None:
         self.node = node
         self._ended: dict[str, str] = {}  # operation id -> its final status, as the owner answered
 

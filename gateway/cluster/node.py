@@ -1,6 +1,7 @@
 """A gateway as one node of a cluster: leases, telemetry fan-out, operator locks and routed calls.
 
-The runtime (:class:`gateway.runtime.Gateway`) builds one when ``GATEWAY_CLUSTER_NATS_URL`` is set; the
+The runtime (:class:`gateway.runtime.Gateway`) builds one when ``GATEWAY_CLUSTER_NATS_URL`` is set and hands
+it itself, which the node reads as a `gateway.cluster.runtime_view.NodeRuntime`; the
 registry then holds a :class:`~gateway.cluster.remote.RemoteVehicle` for every vehicle this node does not
 own, and this node adopts and releases vehicles as its lease keeper wins and loses their leases.
 Beside it: `gateway.cluster.owner_calls` (calls routed to a drone's owner), `gateway.cluster.fenced_stops`
@@ -29,6 +30,7 @@ from gateway.cluster.keeper import LeasePlan, Wanted, plan
 from gateway.cluster.leases import Lease, LeaseStore, NodeRecord
 from gateway.cluster.owner_calls import OwnerCalls
 from gateway.cluster.remote import RemoteVehicle
+from gateway.cluster.runtime_view import NodeRuntime
 from gateway.cluster.stop_notify import StopRelay
 from gateway.cluster.stoplink import StopTarget
 from gateway.cluster.takeover import pick_up_operations
@@ -39,7 +41,6 @@ from gateway.registry.spec import VehicleSpec
 
 if TYPE_CHECKING:
     from gateway.fleet.vehicles.registry import Registry
-    from gateway.runtime import Gateway
 
 log = logging.getLogger("gateway.cluster")
 
@@ -72,7 +73,7 @@ def check_settings(settings: Settings) -> None:
 class ClusterNode:
     """This process as a cluster node. ``start`` after the registry has started, ``stop`` before it stops."""
 
-    def __init__(self, gateway: Gateway) -> None:
+    def __init__(self, gateway: NodeRuntime) -> None:
         self.gateway = gateway
         self.settings: Settings = gateway.settings
         self.registry: Registry | None = None  # set by the runtime: the registry of this node

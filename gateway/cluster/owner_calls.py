@@ -5,19 +5,23 @@ answers the calls for the drones it owns."""
 from __future__ import annotations
 
 import logging
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
-from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, stop_subject
-from gateway.cluster.fenced_stops import STOP_SEND_S
+from gateway.cluster.bus import Bus, CallCheck, CallHandler, ProgressSink, stop_subject
+from gateway.cluster.fenced_stops import STOP_SEND_S, FencedStops
 from gateway.cluster.forwarding import answer
+from gateway.cluster.leases import Lease
 from gateway.cluster.remote import RemoteVehicle
-from gateway.cluster.stoplink import STOP_COMMANDS
+from gateway.cluster.runtime_view import NodeRuntime
+from gateway.cluster.stop_notify import StopRelay
+from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget
+from gateway.config import Settings
 from gateway.errors import NoOwner, NotRun
 from gateway.fleet.operations.routing import OnMessage
 from gateway.fleet.policy.caller import Caller
 
 if TYPE_CHECKING:
-    from gateway.cluster.node import ClusterNode
+    from gateway.fleet.vehicles.registry import Registry
 
 log = logging.getLogger("gateway.cluster")
 
@@ -31,10 +35,44 @@ RELAY_S = 5.0
 STOP_ACCEPT_S = 0.5
 
 
+class CallsNode(Protocol):
+    """What the routed calls read of their node (`gateway.cluster.node.ClusterNode`, which passes itself)."""
+
+    @property
+    def gateway(self) -> NodeRuntime: ...
+
+    @property
+    def settings(self) -> Settings: ...
+
+    @property
+    def node_id(self) -> str: ...
+
+    @property
+    def started(self) -> bool: ...
+
+    @property
+    def registry(self) -> Registry | None: ...
+
+    @property
+    def held(self) -> dict[str, Lease]: ...
+
+    @property
+    def fenced(self) -> dict[str, StopTarget]: ...
+
+    @property
+    def stops(self) -> FencedStops: ...
+
+    @property
+    def relay(self) -> StopRelay | None: ...
+
+    @property
+    def bus(self) -> Bus: ...
+
+
 class OwnerCalls:
     """Forwards this node's calls on other nodes' drones; answers the calls on its own."""
 
-    def __init__(self, node: ClusterNode) -> None:
+    def __init__(self, node: CallsNode) -> None:
         self._node = node
 
     async def forward(

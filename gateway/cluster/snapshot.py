@@ -15,6 +15,7 @@ from collections import deque
 from dataclasses import asdict, fields, is_dataclass
 from typing import Any
 
+from gateway.fleet.vehicles.protocols import VehicleView
 from gateway.link.telemetry import (
     AttitudeValue,
     BatteryValue,
@@ -59,10 +60,10 @@ def _plain(value: Any) -> Any:
 
 
 def encode(
-    vehicle: Any, node_id: str, epoch: int, seq: int, operation: dict[str, Any] | None = None
+    vehicle: VehicleView, node_id: str, epoch: int, seq: int, operation: dict[str, Any] | None = None
 ) -> bytes:
     """The snapshot of a local vehicle, as JSON bytes."""
-    cache: TelemetryCache = vehicle.telemetry
+    cache = vehicle.telemetry
     tele: dict[str, Any] = {}
     for name in TelemetryCache.FIELDS:
         sample: Sample[Any] | None = getattr(cache, name)

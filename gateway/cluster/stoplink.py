@@ -15,6 +15,7 @@ from __future__ import annotations
 import asyncio
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 from urllib.parse import urlparse
@@ -95,7 +96,7 @@ def _send(target: StopTarget, command: int, within_s: float) -> str:
         conn.close()
 
 
-def _sender(conn: Any, sysid: int, command: int, deadline: float) -> Any:
+def _sender(conn: Any, sysid: int, command: int, deadline: float) -> Callable[[], object]:
     """How to send ``command``: a COMMAND_LONG, or for a hold a reposition to where the drone is now."""
     if command != STOP_COMMANDS["hold"]:
         return lambda: conn.mav.command_long_send(sysid, 1, command, 0, 0, 0, 0, 0, 0, 0, 0)

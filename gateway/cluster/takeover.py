@@ -12,6 +12,7 @@ from __future__ import annotations
 import logging
 from typing import Any
 
+from gateway.cluster.runtime_view import NodeRuntime
 from gateway.fleet.operations.fleet_steps import FORMATION_TOLERANCE_M
 from gateway.fleet.operations.operation_state import OpStatus
 from gateway.fleet.operations.trackers import (
@@ -22,6 +23,7 @@ from gateway.fleet.operations.trackers import (
     Tracker,
     YawTracker,
 )
+from gateway.fleet.vehicles.protocols import FlyingVehicle
 
 log = logging.getLogger("gateway.cluster.takeover")
 
@@ -55,7 +57,7 @@ def tracker_for(kind: str, params: dict[str, Any], arrival_tolerance_m: float) -
 
 
 async def pick_up_operations(
-    gateway: Any, node_id: str, vehicle: Any, epoch: int, previous: str | None
+    gateway: NodeRuntime, node_id: str, vehicle: FlyingVehicle, epoch: int, previous: str | None
 ) -> int:
     """Resume or close the running operations the previous owner left in the database; how many."""
     store = gateway.store

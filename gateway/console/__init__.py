@@ -11,7 +11,6 @@ console's buttons go through the same command path, checks and audit as ``curl``
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 from urllib.parse import urlsplit
 
 from fastapi import APIRouter, FastAPI, Request
@@ -76,7 +75,7 @@ router = APIRouter(tags=["console"])
 @router.get(
     "/console", response_model=ConsoleConfig, summary="The operator console's settings, and who you are"
 )
-async def console_config(request: Request, gateway: GatewayDep, who: PrincipalDep) -> Any:
+async def console_config(request: Request, gateway: GatewayDep, who: PrincipalDep) -> ConsoleConfig:
     settings = gateway.settings
     return ConsoleConfig(
         principal=who.name,

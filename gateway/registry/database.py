@@ -6,10 +6,16 @@ from __future__ import annotations
 import asyncio
 import weakref
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from sqlalchemy import event, text
+from sqlalchemy.engine import Connection
+from sqlalchemy.engine.interfaces import DBAPIConnection
 from sqlalchemy.ext.asyncio import AsyncEngine, create_async_engine
+from sqlalchemy.pool import ConnectionPoolEntry
+
+if TYPE_CHECKING:
+    from alembic.config import Config
 
 # The Alembic scripts ship inside the package (package data, ``gateway/migrations``), so they are found
 # wherever pip puts the package: a virtual environment, ``--user``, a distribution's system pip, a
@@ -35,7 +41,7 @@ def _is_sqlite(url: str) -> bool:
 
 def _install_sqlite_pragmas(engine: AsyncEngine) -> None:
     @event.listens_for(engine.sync_engine, "connect")
-    def _on_connect(dbapi_connection: Any, _record: Any) -> None:
+    def _on_connect(dbapi_connection: DBAPIConnection, _record: ConnectionPoolEntry) -> None:
         cursor = dbapi_connection.cursor()
         cursor.execute(f"PRAGMA busy_timeout={SQLITE_BUSY_TIMEOUT_MS}")
         cursor.execute("PRAGMA journal_mode=WAL")
@@ -55,7 +61,7 @@ def create_engine_for(url: str) -> AsyncEngine:
     return engine
 
 
-def alembic_config(url: str) -> Any:
+def alembic_config(url: str) -> Config:
     """An Alembic Config pointing at the project's migrations and ``url``."""
     from alembic.config import Config
 
@@ -84,7 +90,7 @@ async def upgrade_schema(engine: AsyncEngine, url: str, revision: str = "head") 
 
     cfg = alembic_config(url)
 
-    def _run(connection: Any) -> None:
+    def _run(connection: Connection) -> None:
         cfg.attributes["connection"] = connection
         command.upgrade(cfg, revision)
 
@@ -109,7 +115,7 @@ def head_revision() -> str:
 async def current_revision(engine: AsyncEngine) -> str | None:
     from alembic.runtime.migration import MigrationContext
 
-    def _get(connection: Any) -> str | None:
+    def _get(connection: Connection) -> str | None:
         return MigrationContext.configure(connection).get_current_revision()
 
     async with engine.connect() as conn:

@@ -27,7 +27,7 @@ import os
 from collections import deque
 from collections.abc import Awaitable, Callable
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, TextIO, TypeVar
 
 import sqlalchemy.exc
 
@@ -82,7 +82,7 @@ class Spool:
         self.written_late = 0
         self._closed = False
         self.path: Path | None = None
-        self._file: Any = None
+        self._file: TextIO | None = None
         self._next = 0
 
     async def attach(self, path: Path) -> int:
@@ -174,22 +174,17 @@ class Spool:
             if self._file is None:
                 self.path.parent.mkdir(parents=True, exist_ok=True)
                 self._file = self.path.open("a", encoding="utf-8")
-            self._line({"n": number, "what": what, "kind": kind, "data": data})
+            _line(self._file, {"n": number, "what": what, "kind": kind, "data": data})
         except (OSError, TypeError, ValueError) as exc:
             log.error("could not keep %s in %s (%r): it is kept in memory only", what, self.path, exc)
             return None
         return number
 
-    def _line(self, item: dict[str, Any]) -> None:
-        self._file.write(json.dumps(item, default=str) + "\n")
-        self._file.flush()
-        os.fsync(self._file.fileno())
-
     def _done(self, number: int | None) -> None:
         if number is None or self._file is None:
             return
         try:
-            self._line({"done": number})
+            _line(self._file, {"done": number})
         except OSError as exc:
             log.error("could not mark a kept write done in %s (%r): it may be written twice", self.path, exc)
 
@@ -250,6 +245,12 @@ class Spool:
 def _short(exc: BaseException) -> str:
     text = str(exc).strip().splitlines()
     return f"{type(exc).__name__}: {text[0][:120]}" if text else type(exc).__name__
+
+
+def _line(file: TextIO, item: dict[str, Any]) -> None:
+    file.write(json.dumps(item, default=str) + "\n")
+    file.flush()
+    os.fsync(file.fileno())
 
 
 def _bind(apply: Apply, kind: str, data: dict[str, Any]) -> Callable[[], Awaitable[Any]]:

@@ -15,7 +15,8 @@ from typing import Any, cast, get_args
 
 from sqlalchemy import func, insert, or_, select, update
 from sqlalchemy.exc import IntegrityError
-from sqlalchemy.ext.asyncio import AsyncEngine
+from sqlalchemy.ext.asyncio import AsyncEngine, AsyncSession
+from sqlalchemy.sql.elements import ColumnElement
 
 from gateway.errors import InvalidArgument
 from gateway.registry.models import (
@@ -280,7 +281,7 @@ class AuditTrail(StoreCore):
                 await self._finish_if_ended(entry.operation_id)
 
     @staticmethod
-    async def _touch_in(session: Any, key: str, s: SessionSeen, count: int) -> None:
+    async def _touch_in(session: AsyncSession, key: str, s: SessionSeen, count: int) -> None:
         """Last seen now and ``count`` more requests (the row is made when it is new)."""
         now = utcnow()
         changes: dict[str, Any] = {
@@ -344,8 +345,8 @@ class AuditTrail(StoreCore):
         since: datetime | None = None,
         until: datetime | None = None,
         include_fleet: bool = False,
-    ) -> list[Any]:
-        conditions: list[Any] = []
+    ) -> list[ColumnElement[bool]]:
+        conditions: list[ColumnElement[bool]] = []
         if vehicle_id is not None:
             same = AuditRow.vehicle_id == vehicle_id
             conditions.append(or_(same, AuditRow.vehicle_id.is_(None)) if include_fleet else same)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from pymavlink.dialects.v20 import ardupilotmega as mav
@@ -11,7 +10,7 @@ from gateway.sim.mission import Item
 from gateway.sim.modes import Mode
 
 if TYPE_CHECKING:
-    from gateway.sim.vehicle import SimVehicle
+    from gateway.sim.host import SimHost
 
 NAV_CMDS = {
     mav.MAV_CMD_NAV_WAYPOINT: "WP",
@@ -28,22 +27,10 @@ DO_CMDS = {
 }
 
 
-@dataclass
-class AutoState:
-    """Mission execution state (the part MISSION_CURRENT reports)."""
-
-    current: int = 0
-    running: bool = False
-    started: bool = False
-    complete: bool = False
-    phase: str = "idle"  # idle | goto | hold | land | rtl | loiter_unlim
-    hold_until: float = 0.0
-
-
 class AutoMixin:
     """Mission execution part of FlightController (shares its state and helpers)."""
 
-    v: SimVehicle
+    v: SimHost
 
     # ------------------------------------------------------------------------------------------------
     # missions

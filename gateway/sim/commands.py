@@ -15,8 +15,8 @@ from gateway.sim.modes import Mode
 from gateway.sim.params import ParamError
 
 if TYPE_CHECKING:
+    from gateway.sim.host import SimHost
     from gateway.sim.link import Link
-    from gateway.sim.vehicle import SimVehicle
 
 ACCEPTED = mav.MAV_RESULT_ACCEPTED
 DENIED = mav.MAV_RESULT_DENIED
@@ -31,7 +31,7 @@ BANNER = ("ArduCopter V4.7.0-dev (82f560b8)", "8d1219c7c4c5404aaa1f6d2a48adfda4"
 
 
 class CommandHandler:
-    def __init__(self, v: SimVehicle) -> None:
+    def __init__(self, v: SimHost) -> None:
         self.v = v
         self._param_tasks: set[asyncio.Task] = set()
 

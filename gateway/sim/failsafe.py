@@ -11,7 +11,7 @@ from pymavlink.dialects.v20 import ardupilotmega as mav
 from gateway.sim.modes import REQUIRES_POSITION, Mode
 
 if TYPE_CHECKING:
-    from gateway.sim.vehicle import SimVehicle
+    from gateway.sim.host import SimHost
 
 
 # Failsafe action numbers (FailsafeAction in ArduCopter / BATT_FS_*_ACT values).
@@ -35,7 +35,7 @@ _GCS_ACTIONS = {
 class FailsafeMixin:
     """Failsafe and fence part of FlightController (shares its state and helpers)."""
 
-    v: SimVehicle
+    v: SimHost
 
     # ------------------------------------------------------------------------------------------------
     # failsafes
@@ -172,7 +172,7 @@ class FailsafeMixin:
             self.set_mode(Mode.LAND)
 
 
-def check_failsafes(v: SimVehicle) -> None:
+def check_failsafes(v: SimHost) -> None:
     """What triggers the failsafes, judged at each step: GCS heartbeat loss, GPS loss, battery."""
     # GCS heartbeat loss: only heartbeats from MAV_GCS_SYSID count (ArduPilot's sysid_mygcs_seen).
     fs_gcs = int(v.params.get("FS_GCS_ENABLE"))

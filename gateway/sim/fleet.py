@@ -8,8 +8,8 @@ import logging
 import math
 from collections.abc import Sequence
 
-from gateway.sim.boot import Timeline
 from gateway.sim.physics import LocalFrame
+from gateway.sim.timeline import Timeline
 from gateway.sim.vehicle import SimVehicle
 
 log = logging.getLogger(__name__)

@@ -15,7 +15,7 @@ from gateway.sim.modes import PILOT_THROTTLE, REQUIRES_POSITION, SUPPORTED, Mode
 from gateway.sim.physics import Limits
 
 if TYPE_CHECKING:
-    from gateway.sim.vehicle import SimVehicle
+    from gateway.sim.host import SimHost
 
 #: ArduCopter's RTL climb leg ends this long after RTL starts even when already at RTL_ALT (an S-curve
 #: leg of no length; measured on SITL: the return starts 1.0-1.1 s after the mode change)
@@ -31,7 +31,7 @@ PILOT_DESCENT_FALLBACK = 2.5
 class FlightController(GuidedMixin, AutoMixin, FailsafeMixin):
     """Modes, navigation and the per-step flight logic of one simulated copter."""
 
-    def __init__(self, v: SimVehicle) -> None:
+    def __init__(self, v: SimHost) -> None:
         self.v = v
         self.target: tuple[float, float, float] | None = None  # north, east, up (m)
         self.vel_target: tuple[float, float, float, float] | None = None  # vn, ve, vu, expiry t
@@ -419,7 +419,7 @@ class FlightController(GuidedMixin, AutoMixin, FailsafeMixin):
             self._descend(dt)
 
 
-def _armable_modes(v: SimVehicle) -> frozenset[Mode]:
+def _armable_modes(v: SimHost) -> frozenset[Mode]:
     from gateway.sim.modes import ARMABLE_FROM_GCS
 
     if int(v.params.get("AUTO_OPTIONS")) & 1:

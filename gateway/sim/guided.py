@@ -12,7 +12,7 @@ from gateway.sim.mission import FRAME_ABS
 from gateway.sim.modes import Mode
 
 if TYPE_CHECKING:
-    from gateway.sim.vehicle import SimVehicle
+    from gateway.sim.host import SimHost
 
 SPOOL_UP_S = 3.5  # motors spool up before lift-off (measured: 0.2 m reached 4.1 s after NAV_TAKEOFF)
 YAW_RATE_DPS = 60.0  # ATC_SLEW_YAW default 6000 cdeg/s
@@ -22,7 +22,7 @@ GUIDED_VEL_TIMEOUT_S = 3.0
 class GuidedMixin:
     """GUIDED part of FlightController (shares its state and helpers)."""
 
-    v: SimVehicle
+    v: SimHost
 
     def takeoff(self, alt_rel: float) -> bool:
         v = self.v

@@ -7,6 +7,8 @@
   mission stays as it was.
 * Seq 0 is always HOME: whatever is uploaded there is replaced; downloads return the current home.
 * Download: MISSION_REQUEST_LIST -> MISSION_COUNT -> MISSION_REQUEST(_INT) -> MISSION_ITEM(_INT).
+
+`AutoState` is how far AUTO has got through the stored mission (run by `gateway.sim.auto`).
 """
 
 from __future__ import annotations
@@ -250,3 +252,15 @@ class MissionStore:
 
 def with_home(item: Item, lat: float, lon: float, alt: float) -> Item:
     return replace(item, x=round(lat * 1e7), y=round(lon * 1e7), z=alt)
+
+
+@dataclass
+class AutoState:
+    """Mission execution state (the part MISSION_CURRENT reports)."""
+
+    current: int = 0
+    running: bool = False
+    started: bool = False
+    complete: bool = False
+    phase: str = "idle"  # idle | goto | hold | land | rtl | loiter_unlim
+    hold_until: float = 0.0

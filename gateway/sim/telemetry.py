@@ -10,7 +10,7 @@ from pymavlink.dialects.v20 import ardupilotmega as mav
 from gateway.sim.mavlink import CAPABILITIES
 
 if TYPE_CHECKING:
-    from gateway.sim.vehicle import SimVehicle
+    from gateway.sim.host import SimHost
 
 S = mav  # MAV_SYS_STATUS_* bit names live in the dialect module
 
@@ -36,7 +36,7 @@ _ALWAYS_PRESENT = (
 _HEALTH_EXTRA = S.MAV_SYS_STATUS_GEOFENCE | S.MAV_SYS_STATUS_LOGGING | S.MAV_SYS_STATUS_SENSOR_PROXIMITY
 
 
-def sys_status(v: SimVehicle) -> mav.MAVLink_message:
+def sys_status(v: SimHost) -> mav.MAVLink_message:
     t = v.t
     present = _ALWAYS_PRESENT | S.MAV_SYS_STATUS_TERRAIN
     enabled = _BASE | S.MAV_SYS_STATUS_TERRAIN | S.MAV_SYS_STATUS_AHRS
@@ -70,7 +70,7 @@ def sys_status(v: SimVehicle) -> mav.MAVLink_message:
     )  # fmt: skip
 
 
-def gps_raw_int(v: SimVehicle) -> mav.MAVLink_message:
+def gps_raw_int(v: SimHost) -> mav.MAVLink_message:
     if not v.gps_has_fix:
         return mav.MAVLink_gps_raw_int_message(
             round(v.t * 1e6) if v.gps_detected else 0, 1 if v.gps_detected else 0, 0, 0, 0,
@@ -85,7 +85,7 @@ def gps_raw_int(v: SimVehicle) -> mav.MAVLink_message:
     )  # fmt: skip
 
 
-def global_position_int(v: SimVehicle) -> mav.MAVLink_message:
+def global_position_int(v: SimHost) -> mav.MAVLink_message:
     if not v.origin_set:
         return mav.MAVLink_global_position_int_message(v.time_boot_ms, 0, 0, 0, 0, 0, 0, 0, 0)
     lat, lon, alt = v.position()
@@ -97,14 +97,14 @@ def global_position_int(v: SimVehicle) -> mav.MAVLink_message:
     )  # fmt: skip
 
 
-def local_position_ned(v: SimVehicle) -> mav.MAVLink_message | None:
+def local_position_ned(v: SimHost) -> mav.MAVLink_message | None:
     if not v.origin_set:
         return None
     b = v.body
     return mav.MAVLink_local_position_ned_message(v.time_boot_ms, b.north, b.east, -b.up, b.vn, b.ve, -b.vu)
 
 
-def attitude(v: SimVehicle) -> mav.MAVLink_message:
+def attitude(v: SimHost) -> mav.MAVLink_message:
     roll, pitch = v.body.attitude()
     roll += v.noise(0.0005)
     pitch += v.noise(0.0005)
@@ -114,7 +114,7 @@ def attitude(v: SimVehicle) -> mav.MAVLink_message:
     )
 
 
-def vfr_hud(v: SimVehicle) -> mav.MAVLink_message:
+def vfr_hud(v: SimHost) -> mav.MAVLink_message:
     _, _, alt = v.position()
     throttle = 0 if not v.armed or v.landed else 39
     return mav.MAVLink_vfr_hud_message(
@@ -122,7 +122,7 @@ def vfr_hud(v: SimVehicle) -> mav.MAVLink_message:
     )
 
 
-def home_position(v: SimVehicle) -> mav.MAVLink_message | None:
+def home_position(v: SimHost) -> mav.MAVLink_message | None:
     if v.home is None:
         return None
     lat, lon, alt = v.home
@@ -133,7 +133,7 @@ def home_position(v: SimVehicle) -> mav.MAVLink_message | None:
     )  # fmt: skip
 
 
-def gps_global_origin(v: SimVehicle) -> mav.MAVLink_message | None:
+def gps_global_origin(v: SimHost) -> mav.MAVLink_message | None:
     if not v.origin_set:
         return None
     f = v.frame
@@ -142,11 +142,11 @@ def gps_global_origin(v: SimVehicle) -> mav.MAVLink_message | None:
     )
 
 
-def extended_sys_state(v: SimVehicle) -> mav.MAVLink_message:
+def extended_sys_state(v: SimHost) -> mav.MAVLink_message:
     return mav.MAVLink_extended_sys_state_message(mav.MAV_VTOL_STATE_MC, v.landed_state())
 
 
-def battery_status(v: SimVehicle) -> mav.MAVLink_message:
+def battery_status(v: SimHost) -> mav.MAVLink_message:
     b = v.battery
     cells = [round(b.voltage * 1000)] + [65535] * 9
     return mav.MAVLink_battery_status_message(
@@ -155,7 +155,7 @@ def battery_status(v: SimVehicle) -> mav.MAVLink_message:
     )  # fmt: skip
 
 
-def mission_current(v: SimVehicle) -> mav.MAVLink_message:
+def mission_current(v: SimHost) -> mav.MAVLink_message:
     total = max(0, v.mission.count() - 1)
     if total == 0:
         state = mav.MISSION_STATE_NO_MISSION
@@ -170,7 +170,7 @@ def mission_current(v: SimVehicle) -> mav.MAVLink_message:
     return mav.MAVLink_mission_current_message(v.auto.current, total, state, 1 if v.mode_is_auto else 0)
 
 
-def raw_imu(v: SimVehicle) -> mav.MAVLink_message:
+def raw_imu(v: SimHost) -> mav.MAVLink_message:
     n = v.noise
     acc = (round(n(3)), round(n(3)), round(-1000 + n(3)))
     gyro = (round(n(2)), round(n(2)), round(n(2)))
@@ -178,7 +178,7 @@ def raw_imu(v: SimVehicle) -> mav.MAVLink_message:
     return mav.MAVLink_raw_imu_message(round(v.t * 1e6), *acc, *gyro, *mag, 0, 0)
 
 
-def scaled_imu(v: SimVehicle, msg_id: int) -> mav.MAVLink_message:
+def scaled_imu(v: SimHost, msg_id: int) -> mav.MAVLink_message:
     n = v.noise
     cls = mav.MAVLink_scaled_imu2_message if msg_id == 116 else mav.MAVLink_scaled_imu3_message
     return cls(
@@ -187,25 +187,25 @@ def scaled_imu(v: SimVehicle, msg_id: int) -> mav.MAVLink_message:
     )  # fmt: skip
 
 
-def scaled_pressure(v: SimVehicle, msg_id: int) -> mav.MAVLink_message:
+def scaled_pressure(v: SimHost, msg_id: int) -> mav.MAVLink_message:
     _, _, alt = v.position()
     press = 1013.25 * (1 - 2.25577e-5 * alt) ** 5.25588
     cls = mav.MAVLink_scaled_pressure_message if msg_id == 29 else mav.MAVLink_scaled_pressure2_message
     return cls(v.time_boot_ms, press + v.noise(0.01), 0.0, 3100, 0)
 
 
-def rc_channels(v: SimVehicle) -> mav.MAVLink_message:
+def rc_channels(v: SimHost) -> mav.MAVLink_message:
     chans = [1500, 1500, 1000, 1500] + [1000] * 4 + [0] * 10
     return mav.MAVLink_rc_channels_message(v.time_boot_ms, 16, *chans, 255)
 
 
-def servo_output_raw(v: SimVehicle) -> mav.MAVLink_message:
+def servo_output_raw(v: SimHost) -> mav.MAVLink_message:
     pwm = 1000 if not v.armed else (1100 if v.landed else 1500)
     outs = [pwm] * 4 + [0] * 12
     return mav.MAVLink_servo_output_raw_message(round(v.t * 1e6) & 0xFFFFFFFF, 0, *outs)
 
 
-def simstate(v: SimVehicle) -> mav.MAVLink_message:
+def simstate(v: SimHost) -> mav.MAVLink_message:
     roll, pitch = v.body.attitude()
     lat, lon, _ = v.position()
     return mav.MAVLink_simstate_message(
@@ -214,22 +214,22 @@ def simstate(v: SimVehicle) -> mav.MAVLink_message:
     )  # fmt: skip
 
 
-def ahrs(v: SimVehicle) -> mav.MAVLink_message:
+def ahrs(v: SimHost) -> mav.MAVLink_message:
     return mav.MAVLink_ahrs_message(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
-def ahrs2(v: SimVehicle) -> mav.MAVLink_message:
+def ahrs2(v: SimHost) -> mav.MAVLink_message:
     roll, pitch = v.body.attitude()
     lat, lon, alt = v.position()
     yaw = math.radians(((v.body.yaw + 180) % 360) - 180)
     return mav.MAVLink_ahrs2_message(roll, pitch, yaw, alt, round(lat * 1e7), round(lon * 1e7))
 
 
-def system_time(v: SimVehicle) -> mav.MAVLink_message:
+def system_time(v: SimHost) -> mav.MAVLink_message:
     return mav.MAVLink_system_time_message(round(v.wall_epoch_us()), v.time_boot_ms)
 
 
-def ekf_status_report(v: SimVehicle) -> mav.MAVLink_message:
+def ekf_status_report(v: SimHost) -> mav.MAVLink_message:
     flags = 0
     if v.t >= v.timeline.ekf_init:
         flags |= mav.EKF_ATTITUDE | mav.EKF_VELOCITY_VERT | mav.EKF_POS_VERT_ABS | mav.EKF_POS_VERT_AGL
@@ -244,26 +244,26 @@ def ekf_status_report(v: SimVehicle) -> mav.MAVLink_message:
     return mav.MAVLink_ekf_status_report_message(flags, 0.01, 0.02, 0.01, 0.01, 0.0, 0.0)
 
 
-def vibration(v: SimVehicle) -> mav.MAVLink_message:
+def vibration(v: SimHost) -> mav.MAVLink_message:
     return mav.MAVLink_vibration_message(round(v.t * 1e6), 0.01, 0.01, 0.01, 0, 0, 0)
 
 
-def power_status(v: SimVehicle) -> mav.MAVLink_message:
+def power_status(v: SimHost) -> mav.MAVLink_message:
     return mav.MAVLink_power_status_message(5000, 0, 0)
 
 
-def meminfo(v: SimVehicle) -> mav.MAVLink_message:
+def meminfo(v: SimHost) -> mav.MAVLink_message:
     return mav.MAVLink_meminfo_message(65535, 65535, 131072)
 
 
-def nav_controller_output(v: SimVehicle) -> mav.MAVLink_message:
+def nav_controller_output(v: SimHost) -> mav.MAVLink_message:
     bearing, dist, alt_err = v.nav_output()
     return mav.MAVLink_nav_controller_output_message(
         0.0, 0.0, round(bearing), round(bearing), min(65535, round(dist)), alt_err, 0.0, 0.0
     )
 
 
-def autopilot_version(v: SimVehicle) -> mav.MAVLink_message:
+def autopilot_version(v: SimHost) -> mav.MAVLink_message:
     version = 0x04070000 if v.params.firmware == "4.7" else 0x04060000
     uid2 = list(v.uid2)
     return mav.MAVLink_autopilot_version_message(
@@ -271,7 +271,7 @@ def autopilot_version(v: SimVehicle) -> mav.MAVLink_message:
     )  # fmt: skip
 
 
-def attitude_quaternion(v: SimVehicle) -> mav.MAVLink_message:
+def attitude_quaternion(v: SimHost) -> mav.MAVLink_message:
     roll, pitch = v.body.attitude()
     yaw = math.radians(v.body.yaw)
     cr, sr = math.cos(roll / 2), math.sin(roll / 2)
@@ -284,7 +284,7 @@ def attitude_quaternion(v: SimVehicle) -> mav.MAVLink_message:
     )
 
 
-def scaled_imu1(v: SimVehicle) -> mav.MAVLink_message:
+def scaled_imu1(v: SimHost) -> mav.MAVLink_message:
     n = v.noise
     return mav.MAVLink_scaled_imu_message(
         v.time_boot_ms, round(n(3)), round(n(3)), round(-1000 + n(3)), round(n(2)), round(n(2)), round(n(2)),
@@ -292,7 +292,7 @@ def scaled_imu1(v: SimVehicle) -> mav.MAVLink_message:
     )  # fmt: skip
 
 
-def highres_imu(v: SimVehicle) -> mav.MAVLink_message:
+def highres_imu(v: SimHost) -> mav.MAVLink_message:
     n = v.noise
     _, _, alt = v.position()
     press = 1013.25 * (1 - 2.25577e-5 * alt) ** 5.25588
@@ -302,7 +302,7 @@ def highres_imu(v: SimVehicle) -> mav.MAVLink_message:
     )  # fmt: skip
 
 
-def position_target_global_int(v: SimVehicle) -> mav.MAVLink_message | None:
+def position_target_global_int(v: SimHost) -> mav.MAVLink_message | None:
     target = v.flight.target
     if v.mode != 4 or target is None or not v.flying:  # only while GUIDED has a position target
         return None
@@ -313,7 +313,7 @@ def position_target_global_int(v: SimVehicle) -> mav.MAVLink_message | None:
     )
 
 
-def fence_status(v: SimVehicle) -> mav.MAVLink_message | None:
+def fence_status(v: SimHost) -> mav.MAVLink_message | None:
     if v.params.get("FENCE_ENABLE") <= 0:
         return None
     breaches = v.flight.fence_breaches

@@ -15,18 +15,18 @@ import time
 from pymavlink.dialects.v20 import ardupilotmega as mav
 
 from gateway.sim import telemetry
-from gateway.sim.auto import AutoState
 from gateway.sim.battery import Battery
-from gateway.sim.boot import BootSequence, Timeline
+from gateway.sim.boot import BootSequence
 from gateway.sim.commands import CommandHandler
 from gateway.sim.failsafe import check_failsafes
 from gateway.sim.flight import FlightController
 from gateway.sim.link import Link, LinkFaults, TcpServerLink, UdpOutLink
-from gateway.sim.mission import MissionStore
+from gateway.sim.mission import AutoState, MissionStore
 from gateway.sim.modes import GUIDED_FLAG_MODES, Mode, mode_name
 from gateway.sim.params import Param, ParamTable
 from gateway.sim.physics import MAX_STEP_S, Body, LocalFrame
 from gateway.sim.streams import GROUP_PARAM
+from gateway.sim.timeline import Timeline
 
 log = logging.getLogger(__name__)
 

@@ -16,7 +16,6 @@ from scipy.optimize import minimize
 from gateway.errors import InvalidArgument, SafetyRefusal
 from gateway.fleet import geo
 from gateway.fleet.formation.formation import (
-    FORMATIONS,
     DroneStart,
     FormationPlan,
     plan_formation,
@@ -24,6 +23,7 @@ from gateway.fleet.formation.formation import (
     takeoff_altitudes,
 )
 from gateway.fleet.formation.formation_geometry import segment_distance
+from gateway.fleet.formation.shapes import FORMATIONS
 from gateway.fleet.policy.safety import SafetyPolicy
 from gateway.fleet.policy.safety_inputs import VehicleContext
 from tests.fleet._util import HOME

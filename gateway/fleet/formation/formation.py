@@ -31,13 +31,11 @@ from typing import TYPE_CHECKING, Any
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
 from gateway.fleet.formation.assignment import min_cost_assignment
+from gateway.fleet.formation.shapes import TOL_M
 from gateway.fleet.policy.safety_rules import Rule, fmt, refuse
 
 if TYPE_CHECKING:
     import numpy as np
-
-FORMATIONS = ("line", "column", "wedge", "grid", "circle")
-TOL_M = 1e-6
 
 
 @dataclass(frozen=True)

@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from gateway.errors import InvalidArgument
-from gateway.fleet.formation.formation import FORMATIONS, TOL_M
+from gateway.fleet.formation.shapes import FORMATIONS, TOL_M
 from gateway.fleet.policy.safety_rules import Rule, fmt, refuse
 
 # ------------------------------------------------------------------------------------------------

@@ -12,19 +12,18 @@ import asyncio
 import contextlib
 import logging
 import time
-from collections.abc import Iterable
+from collections.abc import Awaitable, Callable, Iterable
 from datetime import UTC, datetime
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 from gateway.fleet import geo
 from gateway.fleet.operations.operation_state import Operation, OpStatus
-from gateway.fleet.operations.trackers import POLL_S, GotoTracker
+from gateway.fleet.operations.trackers import POLL_S, GotoTracker, Tracker
+from gateway.fleet.policy.operator_locks import Lock
 from gateway.fleet.policy.takeover import CAUSE_WINDOW_S, ModeExpectation, Takeover, likely_cause
 from gateway.fleet.vehicles.protocols import FlyingVehicle
 from gateway.registry.records import OperationRecord
-
-if TYPE_CHECKING:
-    from gateway.fleet.operations.operations import OperationManager
+from gateway.registry.store import Store
 
 log = logging.getLogger(__name__)
 
@@ -43,10 +42,38 @@ FOUND_FLYING_WAIT_S = 120.0
 gives up looking whether the vehicle is flying (its mode watch is then armed by its next command)."""
 
 
-class ModeWatch:
-    """The mode watch of an `OperationManager`'s vehicles (one per manager)."""
+TakeoverHandler = Callable[[FlyingVehicle, Takeover], Awaitable[None]]
 
-    def __init__(self, ops: OperationManager) -> None:
+
+class WatchedOperations(Protocol):
+    """What the mode watch needs of the operations it watches over (the `OperationManager` that owns it)."""
+
+    @property
+    def store(self) -> Store | None: ...
+
+    @property
+    def on_takeover(self) -> TakeoverHandler | None:
+        """Told of every takeover before its operation ends."""
+        ...
+
+    @property
+    def taken_over(self) -> Callable[[str], Lock | None]:
+        """The drone's takeover lock, if it has one."""
+        ...
+
+    def command_lock(self, vehicle_id: str) -> asyncio.Lock: ...
+
+    def latest(self, vehicle_id: str) -> Operation | None: ...
+
+    def tracker(self, operation_id: str) -> Tracker | None: ...
+
+    async def interrupt(self, op: Operation, message: str) -> None: ...
+
+
+class ModeWatch:
+    """The mode watch of an `OperationManager`'s vehicles (one per manager, which passes itself)."""
+
+    def __init__(self, ops: WatchedOperations) -> None:
         self._ops = ops
         self._expected: dict[str, ModeExpectation] = {}  # what the gateway last commanded, per vehicle
         self._watches: dict[str, asyncio.Task[None]] = {}

@@ -28,12 +28,12 @@ from typing import Any
 from gateway.config import Settings
 from gateway.errors import InvalidArgument, NotFound
 from gateway.fleet import geo
-from gateway.fleet.operations.mode_watch import ModeWatch
+from gateway.fleet.operations.mode_watch import ModeWatch, TakeoverHandler
 from gateway.fleet.operations.operation_state import Operation, OpStatus, is_climbing
 from gateway.fleet.operations.trackers import POLL_S, Tracker
 from gateway.fleet.policy.operator_locks import Lock
 from gateway.fleet.policy.safety_inputs import RunningOperation
-from gateway.fleet.policy.takeover import ModeExpectation, Takeover
+from gateway.fleet.policy.takeover import ModeExpectation
 from gateway.fleet.vehicles.protocols import FlyingVehicle
 from gateway.fleet.vehicles.readings import age_s
 from gateway.registry.records import OperationRecord
@@ -46,7 +46,6 @@ SAVE_EVERY_S = 2.0
 
 
 ProgressCallback = Callable[[Operation], Awaitable[None]]
-TakeoverHandler = Callable[[FlyingVehicle, Takeover], Awaitable[None]]
 
 
 def _now() -> datetime:

@@ -67,6 +67,10 @@ class VehicleView(Protocol):
     def autopilot(self) -> str | None:
         """ "ardupilot", "px4" or "mav_autopilot_<n>" as its HEARTBEAT names it; None before one came."""
 
+    @property
+    def current_flight_id(self) -> int | None:
+        """The flight being recorded here (armed now); None on the ground, or when another node records it."""
+
     def status(self) -> dict[str, Any]: ...
 
     def require_ready(self) -> None:
