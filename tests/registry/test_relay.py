@@ -61,6 +61,10 @@ class Peer:
 
     def __init__(self, address: str, sysid: int) -> None:
         self.conn = mavutil.mavlink_connection(address, source_system=sysid, source_component=1)
+        # MAVLink 2 whichever wire version mavutil was first imported with (another test module collected
+        # earlier may have loaded it as MAVLink 1): COMMAND_ACK's target_system exists only in MAVLink 2
+        self.conn.mav = mavlink.MAVLink(self.conn, srcSystem=sysid, srcComponent=1)
+        self.conn.mav.robust_parsing = self.conn.robust_parsing
 
     def receive(self, kind: str, within_s: float, condition: Any = None) -> Any | None:
         deadline = time.monotonic() + scaled(within_s)
