@@ -2,7 +2,7 @@
 
 Importing and building the app (pydantic schemas, the tool list, the OpenAPI document) leaves freed
 blocks in the C heap that glibc keeps for reuse; once the gateway has started, ``malloc_trim`` returns
-the free pages to the system (about 1.5 MiB of RSS, measured with bench/memory.py). Elsewhere than
+the free pages to the system (about 1 MiB of RSS with one drone, bench/memory.py). Elsewhere than
 glibc (musl, macOS) there is no such call and nothing is done.
 """
 
