@@ -25,6 +25,7 @@ from gateway.config import Settings, get_settings
 from gateway.console import install_console
 from gateway.mcp.server import build_mcp, mcp_http_app
 from gateway.runtime import Gateway, RegistryFactory
+from gateway.util.heap import release_free_memory
 
 log = logging.getLogger(__name__)
 
@@ -45,6 +46,7 @@ def create_app(settings: Settings | None = None, registry_factory: RegistryFacto
             async with AsyncExitStack() as stack:
                 for hook in hooks:  # started after the gateway, stopped before it
                     await stack.enter_async_context(hook())
+                release_free_memory()  # what importing and building the app left free
                 yield
         finally:
             await gateway.stop()

@@ -16,12 +16,12 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import Field
+from pydantic import BaseModel, Field
 
 from gateway.fleet.commands.fleet_verbs import Formation
 from gateway.fleet.operations.views import FleetHoldResult, FleetView
 from gateway.fleet.vehicles.protocols import VehicleView
-from gateway.fleet.vehicles.readings import position, value
+from gateway.fleet.vehicles.readings import value
 from gateway.mcp.access import ToolCall
 from gateway.mcp.results import Result, plain
 from gateway.mcp.toolkit import Metres, Toolset, Wait
@@ -39,7 +39,9 @@ Alt = Annotated[float, Field(gt=0, le=10_000, allow_inf_nan=False, description="
 # --- results -----------------------------------------------------------------------------------------
 
 
-class DroneRow(Result):
+# a plain model, not a Result: a row has no text of its own, and without a private attribute pydantic-core
+# builds each row with no Python hook (no docstring either: it would go into the output schema)
+class DroneRow(BaseModel):
     drone_id: str
     name: str | None
     tags: list[str]
@@ -124,40 +126,45 @@ async def _finish(call: ToolCall, view: FleetView, wait: bool) -> FleetOut:
 # --- read tools ----------------------------------------------------------------------------------------
 
 
-def _row(call: ToolCall, v: VehicleView) -> DroneRow:
-    pos = position(v)
-    battery = value(v, "battery")
+def _row(call: ToolCall, v: VehicleView) -> dict[str, Any]:
+    """One drone's row, each value computed once (its state too), as the plain values of a ``DroneRow``:
+    the listing validates all rows at once when it builds its ``DronesOut`` (one pass in pydantic-core
+    instead of a model per row)."""
+    state = v.state
     sample = v.telemetry.position
-    stale = sample is None or float(sample.age_s) > call.settings.link_lost_after_s
+    pos = None if sample is None else sample.value
+    battery = value(v, "battery")
     op = call.commander.current_operation(v.id)  # on a cluster node also a drone owned elsewhere
     mode = value(v, "flight_mode")
-    return DroneRow(
-        drone_id=v.id,
-        name=v.spec.name,
-        tags=list(v.spec.tags),
-        state=str(plain(v.state)),
-        armed=value(v, "armed"),
-        in_air=None if (landed := v.on_ground(fresh=False)) is None else not landed,
-        battery_pct=None if battery is None else round(float(battery.remaining_pct), 1),
-        lat_deg=None if pos is None else round(pos[0], 7),
-        lon_deg=None if pos is None else round(pos[1], 7),
-        alt_m=None if pos is None else round(pos[2], 1),
-        flight_mode=None if mode is None else str(plain(mode)),
-        operation=None if op is None or op["status"] != "running" else f"{op['kind']} running",
-        locked=call.commander.locks.reason_for(v.id),
-        stale=stale,
-        initialising=v.initialising(),
-    )
+    landed = v.on_ground(fresh=False)
+    return {
+        "drone_id": v.id,
+        "name": v.spec.name,
+        "tags": list(v.spec.tags),
+        "state": str(plain(state)),
+        "armed": value(v, "armed"),
+        "in_air": None if landed is None else not landed,
+        "battery_pct": None if battery is None else round(float(battery.remaining_pct), 1),
+        "lat_deg": None if pos is None else round(float(pos.lat_deg), 7),
+        "lon_deg": None if pos is None else round(float(pos.lon_deg), 7),
+        "alt_m": None if pos is None else round(float(pos.rel_alt_m), 1),
+        "flight_mode": None if mode is None else str(plain(mode)),
+        "operation": None if op is None or op["status"] != "running" else f"{op['kind']} running",
+        "locked": call.commander.locks.reason_for(v.id),
+        "stale": sample is None or float(sample.age_s) > call.settings.link_lost_after_s,
+        # only a connected drone initialises (Link.initialising): the state is not computed again otherwise
+        "initialising": v.initialising() if state == "connected" else None,
+    }
 
 
-def _matches(row: DroneRow, state: str | None) -> bool:
+def _matches(row: dict[str, Any], state: str | None) -> bool:
     if state is None:
         return True
     if state == "flying":
-        return bool(row.in_air)
+        return bool(row["in_air"])
     if state == "landed":
-        return row.in_air is False
-    return row.state == state
+        return row["in_air"] is False
+    return bool(row["state"] == state)
 
 
 @toolset.tool(read_only=True)
@@ -167,18 +174,21 @@ async def list_drones(
     state: Annotated[StateFilter | None, Field(description="Only drones in this state")] = None,
 ) -> DronesOut:
     """All drones: id, name, tags, state, armed, in air, battery %, position (m above home), mode, action."""
-    rows = [_row(call, v) for v in call.commander.registry.all()]
-    rows = [r for r in rows if (tag is None or tag in r.tags) and _matches(r, state)]
+    vehicles = call.commander.registry.all()
+    if tag is not None:
+        vehicles = [v for v in vehicles if tag in v.spec.tags]
+    rows = [r for r in (_row(call, v) for v in vehicles) if _matches(r, state)]
     text = "; ".join(_row_text(r) for r in rows)
-    return DronesOut(count=len(rows), drones=rows).say(
+    return DronesOut.model_validate({"count": len(rows), "drones": rows}).say(
         f"{len(rows)} drone(s): {text}" if rows else "no drones"
     )
 
 
-def _row_text(r: DroneRow) -> str:
-    state = f"{r.state} ({r.initialising})" if r.initialising else r.state
-    text = f"{r.drone_id} {state}{' flying' if r.in_air else ''} bat {r.battery_pct}% alt {r.alt_m} m"
-    return text + (f" LOCKED: {r.locked}" if r.locked else "")
+def _row_text(r: dict[str, Any]) -> str:
+    state = f"{r['state']} ({r['initialising']})" if r["initialising"] else r["state"]
+    flying = " flying" if r["in_air"] else ""
+    text = f"{r['drone_id']} {state}{flying} bat {r['battery_pct']}% alt {r['alt_m']} m"
+    return text + (f" LOCKED: {r['locked']}" if r["locked"] else "")
 
 
 def _cell(x: Any, digits: int = 0) -> str:
@@ -197,27 +207,27 @@ async def fleet_status(call: ToolCall) -> FleetStatusOut:
     rows = [_row(call, v) for v in call.commander.registry.all()]
     lines = ["id state arm air bat% alt_m mode action lock"]
     for r in rows:
-        state = r.state + ("(stale)" if r.stale and r.state == "ready" else "")
-        state = "initialising" if r.initialising else state
-        op = (r.operation or "-").replace(" running", "").replace(" ", "_")
+        state = r["state"] + ("(stale)" if r["stale"] and r["state"] == "ready" else "")
+        state = "initialising" if r["initialising"] else state
+        op = (r["operation"] or "-").replace(" running", "").replace(" ", "_")
         lines.append(
             " ".join(
                 [
-                    r.drone_id,
+                    r["drone_id"],
                     state,
-                    _cell(r.armed),
-                    _cell(r.in_air),
-                    _cell(r.battery_pct),
-                    _cell(r.alt_m, 1),
-                    _cell(r.flight_mode),
+                    _cell(r["armed"]),
+                    _cell(r["in_air"]),
+                    _cell(r["battery_pct"]),
+                    _cell(r["alt_m"], 1),
+                    _cell(r["flight_mode"]),
                     op,
-                    "LOCKED" if r.locked else "-",
+                    "LOCKED" if r["locked"] else "-",
                 ]
             )
         )
     table = "\n".join(lines)
-    ready = sum(1 for r in rows if r.state == "ready")
-    flying = sum(1 for r in rows if r.in_air)
+    ready = sum(1 for r in rows if r["state"] == "ready")
+    flying = sum(1 for r in rows if r["in_air"])
     return FleetStatusOut(count=len(rows), ready=ready, flying=flying, table=table).say(table)
 
 
