@@ -23,6 +23,7 @@ from gateway.api.limits import BodyLimitMiddleware
 from gateway.api.openapi import install_openapi, operation_id
 from gateway.config import Settings, get_settings
 from gateway.console import install_console
+from gateway.console import router as console_router
 from gateway.mcp.server import build_mcp, mcp_http_app
 from gateway.runtime import Gateway, RegistryFactory
 from gateway.util.heap import release_free_memory
@@ -68,7 +69,7 @@ def create_app(settings: Settings | None = None, registry_factory: RegistryFacto
     metrics.install_metrics(app, gateway)
     app.include_router(health.router)
     app.include_router(metrics.router)
-    app.include_router(build_api_router())
+    app.include_router(build_api_router(console_router))
     install_console(app)
     mount_mcp(app, gateway, hooks)
     install_openapi(app)

@@ -4,15 +4,16 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Depends
 
-from gateway import console
 from gateway.api import activity, cluster, control, events, flights, flying, geofences, missions, vehicles
 from gateway.api.deps import authorize
 
 API_PREFIX = "/api/v1"
 
 
-def build_api_router() -> APIRouter:
-    """All /api/v1 routes behind one authorisation dependency (the single place auth plugs in)."""
+def build_api_router(*beside: APIRouter) -> APIRouter:
+    """All /api/v1 routes behind one authorisation dependency (the single place auth plugs in); ``beside``
+    are routes of other parts served under the same prefix and auth (the console's configuration), so
+    the API imports none of them."""
     api = APIRouter(prefix=API_PREFIX, dependencies=[Depends(authorize)])
     api.include_router(vehicles.router)
     api.include_router(flights.router)
@@ -23,5 +24,6 @@ def build_api_router() -> APIRouter:
     api.include_router(geofences.router)
     api.include_router(cluster.router)
     api.include_router(events.router)
-    api.include_router(console.router)
+    for router in beside:
+        api.include_router(router)
     return api
