@@ -12,12 +12,12 @@ import contextlib
 import logging
 import time
 import uuid
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any
 
 from nats.aio.subscription import Subscription
 
-from gateway.cluster.bus import Bus, CallCheck, CallHandler, ProgressSink, stop_subject
-from gateway.cluster.leases import Lease
+from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, stop_subject
+from gateway.cluster.node_parts import NodeCore
 from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget, send_stop
 from gateway.errors import CommandFailed, NoOwner, NotRun
@@ -25,7 +25,7 @@ from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
 
 if TYPE_CHECKING:
-    from gateway.fleet.vehicles.registry import Registry
+    pass
 
 log = logging.getLogger("gateway.cluster")
 
@@ -34,26 +34,10 @@ log = logging.getLogger("gateway.cluster")
 STOP_SEND_S = 4.0
 
 
-class StopsNode(Protocol):
-    """What the stop-only path reads of its node (`gateway.cluster.node.ClusterNode`, which passes itself)."""
-
-    @property
-    def node_id(self) -> str: ...
-
-    @property
-    def registry(self) -> Registry | None: ...
-
-    @property
-    def held(self) -> dict[str, Lease]: ...
-
-    @property
-    def bus(self) -> Bus: ...
-
-
 class FencedStops:
     """The drones this node owned when it fenced itself, and the stop-only path it keeps to each."""
 
-    def __init__(self, node: StopsNode) -> None:
+    def __init__(self, node: NodeCore) -> None:
         self._node = node
         # drones this node owned when it fenced itself (database unreachable): it keeps a stop-only path
         # to each (land, return, hold over the drone's own link) until a node holds a live lease of it

@@ -7,21 +7,19 @@ from __future__ import annotations
 import logging
 from typing import TYPE_CHECKING, Any, Protocol
 
-from gateway.cluster.bus import Bus, CallCheck, CallHandler, ProgressSink, stop_subject
+from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, stop_subject
 from gateway.cluster.fenced_stops import STOP_SEND_S, FencedStops
 from gateway.cluster.forwarding import answer
-from gateway.cluster.leases import Lease
+from gateway.cluster.node_parts import NodeWithRuntime
 from gateway.cluster.remote import RemoteVehicle
-from gateway.cluster.runtime_view import NodeRuntime
 from gateway.cluster.stop_notify import StopRelay
 from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget
-from gateway.config import Settings
 from gateway.errors import NoOwner, NotRun
 from gateway.fleet.operations.routing import OnMessage
 from gateway.fleet.policy.caller import Caller
 
 if TYPE_CHECKING:
-    from gateway.fleet.vehicles.registry import Registry
+    pass
 
 log = logging.getLogger("gateway.cluster")
 
@@ -35,26 +33,11 @@ RELAY_S = 5.0
 STOP_ACCEPT_S = 0.5
 
 
-class CallsNode(Protocol):
-    """What the routed calls read of their node (`gateway.cluster.node.ClusterNode`, which passes itself)."""
-
-    @property
-    def gateway(self) -> NodeRuntime: ...
-
-    @property
-    def settings(self) -> Settings: ...
-
-    @property
-    def node_id(self) -> str: ...
+class CallsNode(NodeWithRuntime, Protocol):
+    """What the routed calls read of their node beyond the core (`gateway.cluster.node_parts`)."""
 
     @property
     def started(self) -> bool: ...
-
-    @property
-    def registry(self) -> Registry | None: ...
-
-    @property
-    def held(self) -> dict[str, Lease]: ...
 
     @property
     def fenced(self) -> dict[str, StopTarget]: ...
@@ -64,9 +47,6 @@ class CallsNode(Protocol):
 
     @property
     def relay(self) -> StopRelay | None: ...
-
-    @property
-    def bus(self) -> Bus: ...
 
 
 class OwnerCalls:

@@ -12,39 +12,19 @@ from typing import TYPE_CHECKING, Any, Protocol
 from nats.aio.msg import Msg
 
 from gateway.cluster import snapshot
-from gateway.cluster.bus import Bus, tele_subject
-from gateway.cluster.leases import Lease
+from gateway.cluster.bus import tele_subject
+from gateway.cluster.node_parts import NodeWithRuntime
 from gateway.cluster.remote import RemoteVehicle
-from gateway.cluster.runtime_view import NodeRuntime
-from gateway.config import Settings
 from gateway.errors import GatewayError
 
 if TYPE_CHECKING:
-    from gateway.fleet.vehicles.registry import Registry
+    pass
 
 log = logging.getLogger("gateway.cluster")
 
 
-class FanoutNode(Protocol):
-    """What the fan-out reads of its node (`gateway.cluster.node.ClusterNode`, which passes itself)."""
-
-    @property
-    def gateway(self) -> NodeRuntime: ...
-
-    @property
-    def settings(self) -> Settings: ...
-
-    @property
-    def node_id(self) -> str: ...
-
-    @property
-    def registry(self) -> Registry | None: ...
-
-    @property
-    def held(self) -> dict[str, Lease]: ...
-
-    @property
-    def bus(self) -> Bus: ...
+class FanoutNode(NodeWithRuntime, Protocol):
+    """What the fan-out reads of its node beyond the core (`gateway.cluster.node_parts`)."""
 
     def kick(self) -> None:
         """Run the lease keeper now (a vehicle registered on another node)."""
