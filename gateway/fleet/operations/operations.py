@@ -147,18 +147,7 @@ class OperationManager:
                 session_key=session_key,
                 created_at=_now(),
             )
-            previous = self.running(vehicle.id)
-            if previous is not None:
-                await self._finish(previous, OpStatus.superseded, f"superseded by {op.kind} {op.id}")
-            self._ops[op.id] = op
-            self._current[vehicle.id] = op
-            self._trackers[op.id] = tracker
-            self.expect(vehicle, op.kind, op.id, _climb_modes(vehicle, op.kind, tracker))
-            await self._save(op, force=True)
-            self._monitors[op.id] = asyncio.create_task(
-                self._monitor(vehicle, op, tracker), name=f"op-{op.kind}-{op.id}"
-            )
-            return op
+            return await self._track(vehicle, op, tracker)
 
     # -- what the gateway commanded, and takeovers (`gateway.fleet.operations.mode_watch`) -------------------
     def expect(
@@ -281,6 +270,11 @@ class OperationManager:
             note=message,
             updated_at=_now(),
         )
+        return await self._track(vehicle, op, tracker)
+
+    async def _track(self, vehicle: FlyingVehicle, op: Operation, tracker: Tracker) -> Operation:
+        """Make ``op`` the drone's operation (superseding the one it replaces), save it and follow it with
+        its tracker."""
         previous = self.running(vehicle.id)
         if previous is not None:
             await self._finish(previous, OpStatus.superseded, f"superseded by {op.kind} {op.id}")
