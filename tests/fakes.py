@@ -84,6 +84,8 @@ class FakeVehicle:
         self.mission_done = False
         #: what the autopilot says it flies to (lat, lon, monotonic), set by a test; None: not said
         self.target: tuple[float, float, float] | None = None
+        # earlier reports a late watch may not have seen as the latest (`position_targets`)
+        self.target_history: list[tuple[float, float, float]] = []
         lat, lon = geo.offset_position(HOME[0], HOME[1], 0.0, east_m)
         self.home_ll = (lat, lon)
         self.telemetry = TelemetryCache(stale_after_s=stale_after_s)
@@ -163,6 +165,10 @@ class FakeVehicle:
 
     def position_target(self) -> tuple[float, float, float] | None:
         return self.target
+
+    def position_targets(self, since: float) -> list[tuple[float, float, float]]:
+        reports = [*self.target_history, *([self.target] if self.target is not None else [])]
+        return [t for t in reports if t[2] >= since]
 
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         return ARDUPILOT.commanded_modes(kind, done=done)

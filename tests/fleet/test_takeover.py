@@ -148,6 +148,31 @@ async def test_a_target_from_before_the_goto_handed_over_late_is_not_a_takeover(
     assert gateway.locks.takeover_for("d1") is None and not goto.finished
 
 
+async def test_a_goto_target_flown_only_between_two_watch_ticks_then_replaced_is_a_takeover(
+    gateway: Gateway,
+) -> None:
+    """Another ground station can replace the goto's target within a second of the send, before the
+    watch ever saw the autopilot report the goto's own target as its latest: a report of it among the
+    recent ones is enough to know the autopilot flew this leg, so the move away is a takeover."""
+    d1 = fake(gateway, "d1")
+    goto_id = await flying_goto(gateway)
+    ops = gateway.operations
+    assert ops is not None
+    goto = ops.get(goto_id)
+    d1.target_history.append((goto.params["lat_deg"], goto.params["lon_deg"], time.monotonic()))
+    waiter = asyncio.create_task(gateway.commander.wait(goto_id, 60))
+    here = d1.telemetry.position
+    assert here is not None
+
+    def replaced() -> bool:
+        d1.target = (here.value.lat_deg, here.value.lon_deg, time.monotonic())
+        return waiter.done()
+
+    await until(replaced, "the goto interrupted")
+    assert waiter.result().status == "interrupted", waiter.result()
+    assert gateway.locks.takeover_for("d1") is not None
+
+
 async def test_a_failsafe_is_named_in_the_autopilots_words(gateway: Gateway) -> None:
     d1 = fake(gateway, "d1")
     goto_id = await flying_goto(gateway)

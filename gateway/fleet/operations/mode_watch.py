@@ -241,8 +241,14 @@ class ModeWatch:
             return None
         lat, lon, heard_at = target
         sent = self.sent_at.get(op.id, op.started_mono)
+        near_m = max(TARGET_MOVED_M, 3 * leg.tolerance_m)
+        if self.adopted.get(op.id) != sent and any(
+            geo.horizontal_distance_m(t_lat, t_lon, leg.lat, leg.lon) <= near_m
+            for t_lat, t_lon, _ in vehicle.position_targets(sent)
+        ):
+            self.adopted[op.id] = sent  # reported flying this leg since it was sent, even if only briefly
         off = geo.horizontal_distance_m(lat, lon, leg.lat, leg.lon)
-        if off <= max(TARGET_MOVED_M, 3 * leg.tolerance_m):
+        if off <= near_m:
             exp.target_off_since = None
             if heard_at >= sent:
                 self.adopted[op.id] = sent  # it flies this leg: from now on a move away is someone else's

@@ -97,6 +97,10 @@ class VehicleView(Protocol):
         """Where the autopilot says it flies to (POSITION_TARGET_GLOBAL_INT): lat, lon and when it said
         so (monotonic); None when it has not said."""
 
+    def position_targets(self, since: float) -> list[tuple[float, float, float]]:
+        """The targets the autopilot reported at or after ``since`` (monotonic), oldest first, as far
+        back as the last few seconds: a target it flew only briefly still shows here."""
+
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         """The modes the autopilot may show while it does what the gateway commanded (an operation of
         ``kind``; ``done``: once it succeeded), in its own names (`Dialect.commanded_modes`)."""

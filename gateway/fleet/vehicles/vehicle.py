@@ -18,6 +18,7 @@ import asyncio
 import json
 import logging
 import time
+from collections import deque
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import Any
 
@@ -93,6 +94,9 @@ class Vehicle:
         self._return_alt_name: str | None = None  # the RTL altitude parameter this vehicle has
         #: POSITION_TARGET_GLOBAL_INT: where the autopilot flies to (lat, lon, monotonic time heard)
         self._target: tuple[float, float, float] | None = None
+        # the last reports (2 Hz: about 8 s), so a takeover watch that ticks late still sees a target
+        # the autopilot flew only briefly before another ground station replaced it
+        self._targets: deque[tuple[float, float, float]] = deque(maxlen=16)
 
     # --- identity, state and the link ----------------------------------------------------------------
     @property
@@ -385,10 +389,14 @@ class Vehicle:
         when it said so (monotonic); None when it has not said (or not for this session)."""
         return self._target
 
+    def position_targets(self, since: float) -> list[tuple[float, float, float]]:
+        return [t for t in self._targets if t[2] >= since]
+
     async def _position_target(self, system: System) -> None:
         """POSITION_TARGET_GLOBAL_INT (the link asks for it at 2 Hz with the other rates): the target a
         goto's takeover watch compares with the gateway's own."""
         self._target = None
+        self._targets.clear()
         async for msg in system.mavlink_direct.message("POSITION_TARGET_GLOBAL_INT"):
             fields = json.loads(msg.fields_json)
             if int(fields.get("type_mask", 0)) & POSITION_IGNORED == POSITION_IGNORED:
@@ -396,6 +404,7 @@ class Vehicle:
             lat, lon = int(fields.get("lat_int", 0)) / 1e7, int(fields.get("lon_int", 0)) / 1e7
             if lat or lon:
                 self._target = (lat, lon, time.monotonic())
+                self._targets.append(self._target)
 
     # --- missions (gateway.fleet.vehicles.vehicle_missions) -------------------------------------------------
     async def upload_mission(self, items: Sequence[MissionItem | dict[str, object]]) -> int:
