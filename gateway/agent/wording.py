@@ -154,6 +154,14 @@ def not_an_answer(text: str, stale: bool, result: TurnResult) -> str:
     )
 
 
+# An answer before any call ran (host.AgentHost._nothing_ran): what the model is told, once a turn.
+NOTHING_RAN = (
+    "Not sent to the user yet: no tool has run in this turn, so nothing was checked or done. Read what the "
+    "request depends on with a tool (fleet_status, get_battery, get_position), or call the tool for its "
+    "first step; if the request needs no tool at all, give the same answer again."
+)
+
+
 def invalid_last_call(name: str) -> str:
     """An answer held back because the last call was the model's own mistake. Measured: after the host's
     note on go_to_location(0, 0) the 1.5B model answered with the note itself; nothing had been done."""

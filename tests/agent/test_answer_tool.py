@@ -245,3 +245,48 @@ async def test_an_answer_after_an_invalid_call_whose_plan_was_skipped_is_sent_ba
     _, result = await _run(toy, model, "take off alpha to 10 m, then land it")
     assert _last_tool_text(model.requests[2]).startswith("Not finished yet: your takeoff call was not valid")
     assert result.final_text == "Alpha went up to 10 m and landed."
+
+
+async def test_an_answer_before_any_call_ran_is_sent_back_once(toy, scripted) -> None:
+    """Measured on the corpus's dev half (cond-above-forty-hop, ask-anyone-flying): the 1.5B model answered
+    at once, with no call, and the answer was a guess ("sending it up ..."; "all three are flying")."""
+    model = scripted(
+        [
+            call(ANSWER_TOOL, text="Alpha is above 40 percent, sending it up to 12 m."),
+            call("takeoff", drone_id="alpha", alt_m=12),
+            call(ANSWER_TOOL, text="Alpha climbed to 12 m."),
+        ]
+    )
+    _, result = await _run(toy, model, "only if alpha is above 40 percent, send it up to 12 m")
+    assert result.outcome == "answered" and result.final_text == "Alpha climbed to 12 m."
+    assert _last_tool_text(model.requests[1]).startswith("Not sent to the user yet: no tool has run")
+    assert toy.world.drones["alpha"].alt_m == 12.0
+
+
+async def test_the_same_answer_again_without_a_call_is_believed_in_prose_too(toy, scripted) -> None:
+    model = scripted([say("Hello! I fly your drones."), say("Hello! I fly your drones.")])
+    _, result = await _run(toy, model, "hi")
+    assert result.outcome == "answered" and result.final_text == "Hello! I fly your drones."
+    told = [m for m in model.requests[1]["messages"] if m["role"] == "user"][-1]["content"]
+    assert told.startswith("Not sent to the user yet: no tool has run")
+    assert len(model.requests) == 2 and toy.world.calls == []
+
+
+async def test_an_answer_whose_arguments_are_a_bare_string_is_that_text(toy, scripted) -> None:
+    """Measured on the dev half (cond-above-forty-hop): ``"arguments": "Charlie is above 40 percent ..."``."""
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=5),
+            ScriptedReply(tool_calls=[(ANSWER_TOOL, '"Alpha hovers at 5 m."')]),
+        ]
+    )
+    _, result = await _run(toy, model, "take off alpha to 5 m")
+    assert result.outcome == "answered" and result.final_text == "Alpha hovers at 5 m."
+
+
+def test_bare_answer_reads_a_string_and_nothing_else() -> None:
+    from gateway.agent.answer import bare_answer
+
+    assert bare_answer("Charlie is up.") == "Charlie is up."  # as read from text
+    assert bare_answer('"Charlie is up."') == "Charlie is up."  # a JSON string from the API
+    assert bare_answer('{"txt": 1') == "" and bare_answer(None) == "" and bare_answer(3) == ""
