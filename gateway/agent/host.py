@@ -448,6 +448,17 @@ class AgentHost:
         if last is not None and last.status in ("invalid", "unknown_tool") and "invalid" not in held:
             held.add("invalid")
             return wording.invalid_last_call(last.name)
+        # a gateway error that is no refusal by a rule is a mistake in the call, not an outcome to report
+        # (measured on the corpus's dev half, multi-two-heights: "alpha is on the ground; say how high to
+        # fly: ..." came back word for word as the answer, and nothing had flown)
+        if (
+            last is not None
+            and last.status == "error"
+            and not wording.refused(last)
+            and "invalid" not in held
+        ):
+            held.add("invalid")
+            return wording.failed_last_call(last.name)
         if not empty and (nothing := self._nothing_ran(result)) is not None:
             return nothing
         if "untouched" in held:

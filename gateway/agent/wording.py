@@ -171,6 +171,14 @@ def invalid_last_call(name: str) -> str:
     )
 
 
+def failed_last_call(name: str) -> str:
+    """An answer held back because the last call failed with an error that is no refusal by a rule."""
+    return (
+        f"Not finished yet: your {name} call failed and nothing was done; the error says how to fix it. Send "
+        "the corrected call, then the rest of the request. If it cannot be done, say why in your answer."
+    )
+
+
 def unfinished(untouched_facts: str) -> str:
     """An answer held back because the request names something no call has done yet."""
     return (

@@ -290,3 +290,22 @@ def test_bare_answer_reads_a_string_and_nothing_else() -> None:
     assert bare_answer("Charlie is up.") == "Charlie is up."  # as read from text
     assert bare_answer('"Charlie is up."') == "Charlie is up."  # a JSON string from the API
     assert bare_answer('{"txt": 1') == "" and bare_answer(None) == "" and bare_answer(3) == ""
+
+
+async def test_an_answer_after_a_correctable_gateway_error_is_sent_back_once(toy, scripted) -> None:
+    """Measured on the dev half (multi-two-heights): the gateway's "alpha is on the ground; say how high
+    to fly" came back as the answer; nothing had flown. A refusal by a rule is still taken at once (the
+    test above)."""
+    model = scripted(
+        [
+            call("move_north", drone_id="alpha", distance_m=10),
+            call(ANSWER_TOOL, text="Error: alpha is on the ground: take off first"),
+            call("takeoff", drone_id="alpha", alt_m=10),
+            call("move_north", drone_id="alpha", distance_m=10),
+            call(ANSWER_TOOL, text="Alpha flew 10 m north at 10 m."),
+        ]
+    )
+    _, result = await _run(toy, model, "take alpha 10 m north at 10 m")
+    assert _last_tool_text(model.requests[2]).startswith("Not finished yet: your move_north call failed")
+    assert result.outcome == "answered" and result.final_text == "Alpha flew 10 m north at 10 m."
+    assert toy.world.drones["alpha"].north_m == 10.0
