@@ -169,6 +169,17 @@ def unknown_arguments(base_tools: Sequence[ToolInfo], tool: ToolInfo, args: Argu
     return f"{tool.name} has no argument {names}; it takes {signature(tool)}. Nothing was executed."
 
 
+def twice_in_plan(tools: Mapping[str, ToolInfo], call: ModelCall, earlier: Sequence[ModelCall]) -> bool:
+    """The action ``call`` is written earlier in the same reply, with the same arguments: the plan has the
+    same step twice, so one of its steps is not the one the request asks for."""
+    args = call_arguments(call)
+    return (
+        args is not None
+        and acts(tools, call["name"])
+        and any(c["name"] == call["name"] and call_arguments(c) == args for c in earlier)
+    )
+
+
 def left_out(call: ModelCall, later: list[ModelCall], request: str) -> str | None:
     """Why this call of a plan is left out because the calls after it supersede it, or None."""
     args = call_arguments(call)

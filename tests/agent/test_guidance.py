@@ -207,6 +207,31 @@ async def test_a_call_identical_to_one_that_just_succeeded_is_not_sent_again(toy
     assert "The request: take off alpha to 15 m and land" in told and "next step" in told
 
 
+async def test_a_plan_with_the_same_action_twice_stops_at_the_second(toy, scripted) -> None:
+    """Measured on the corpus's dev half (compound-two-climbs): "up to 10 m, then another 10 m higher, then
+    land" was planned as takeoff(10), takeoff(10), land; the landing flew and the climb never did."""
+    takeoff = ("takeoff", {"drone_id": "alpha", "alt_m": 10})
+    model = scripted(
+        [
+            ScriptedReply(tool_calls=[takeoff, takeoff, ("land", {"drone_id": "alpha"})]),
+            call("move_north", drone_id="alpha", distance_m=10),
+            call("land", drone_id="alpha"),
+            say("alpha went up to 10 m, 10 m north, and landed"),
+        ]
+    )
+    result = await _turn(toy, model, "take alpha up to 10 m, then 10 m north, then land it")
+    assert [(c.name, c.status) for c in result.tool_calls][:3] == [
+        ("takeoff", "ok"),
+        ("takeoff", "repeat"),
+        ("land", "skipped"),
+    ]
+    assert _tool_texts(model.requests[1])[-1].startswith(
+        "Not executed: the earlier call takeoff in the same reply repeats a step it already did"
+    )
+    assert [name for name, _ in toy.world.calls] == ["takeoff", "move_north", "land"]
+    assert result.outcome == "answered"
+
+
 async def test_the_same_call_after_another_action_on_that_drone_is_sent(toy, scripted) -> None:
     model = scripted(
         [
