@@ -231,6 +231,10 @@ def reprompt_text(
     return "\n".join(parts)
 
 
+def _without_error_prefix(text: str) -> str:
+    return re.sub(r"^error:\s*", "", text, flags=re.IGNORECASE)
+
+
 def answer_from_results(result: TurnResult, request: str, roster: Roster | None) -> str:
     """The host's answer when the model gave none, marked as the host's: what each call did or why the
     gateway refused it, and where the drones named are now."""
@@ -239,9 +243,16 @@ def answer_from_results(result: TurnResult, request: str, roster: Roster | None)
     parts = []
     if done:
         parts.append("Done: " + "; ".join(f"{c.name} ({c.summary})" for c in done) + ".")
-    if errors:
-        why = "; ".join(f"{c.name}: {first_line(c.text)}" for c in errors[-3:])
+    # a rule's refusal is said as one; another error is a call that failed (measured on the corpus's dev
+    # half, multi-two-heights: "alpha is on the ground; say how high to fly" was called a refusal)
+    refusals = [c for c in errors if refused(c)]
+    failures = [c for c in errors if not refused(c)]
+    if refusals:
+        why = "; ".join(f"{c.name}: {_without_error_prefix(first_line(c.text))}" for c in refusals[-3:])
         parts.append(f"Not done, the gateway refused: {why}.")
+    if failures:
+        why = "; ".join(f"{c.name}: {_without_error_prefix(first_line(c.text))}" for c in failures[-3:])
+        parts.append(f"Not done, the call failed: {why}.")
     if not done and not errors:
         reason = result.error or f"the model gave no usable reply ({result.outcome})"
         parts.append(f"Nothing was done: {reason}.")

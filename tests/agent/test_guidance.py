@@ -439,3 +439,19 @@ async def test_a_drone_landed_as_the_request_ends_is_not_taken_up_again(toy, scr
         toy, scripted(plan[:5]), "alpha: up to 10 m, 20 m north, land, then take off to 12 m"
     )
     assert [c.status for c in ongoing.tool_calls][:4] == ["ok", "ok", "ok", "ok"], ongoing.tool_calls
+
+
+def test_the_hosts_answer_tells_a_refusal_from_a_call_that_failed() -> None:
+    """Measured on the dev half (multi-two-heights): "alpha is on the ground; say how high to fly" was
+    reported as something the gateway refused."""
+    from gateway.agent.turns import ToolCallRecord
+    from gateway.agent.wording import answer_from_results
+
+    mistake = "Error: alpha is on the ground; say how high to fly"
+    rule = "Error: Refused: max_altitude: 150 m exceeds the limit of 120 m"
+    failed = ToolCallRecord("1", "move_to_relative", {"drone_id": "alpha"}, "error", "s", text=mistake)
+    refused = ToolCallRecord("2", "takeoff", {"drone_id": "bravo"}, "error", "s", text=rule)
+    result = TurnResult(outcome="empty_answer", final_text=None, steps=3, tool_calls=[failed, refused])
+    text = answer_from_results(result, "alpha to 10 m, bravo to 150 m", None)
+    assert "Not done, the gateway refused: takeoff: Refused: max_altitude: 150 m exceeds" in text
+    assert "Not done, the call failed: move_to_relative: alpha is on the ground; say how high" in text
