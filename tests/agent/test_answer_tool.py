@@ -284,6 +284,18 @@ async def test_an_answer_whose_arguments_are_a_bare_string_is_that_text(toy, scr
     assert result.outcome == "answered" and result.final_text == "Alpha hovers at 5 m."
 
 
+async def test_an_answer_written_as_text_with_a_bare_string_is_that_text(toy, scripted) -> None:
+    """The measured form (cond-above-forty-hop), written as text the way the 1.5B model writes it."""
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=5),
+            say('{{"name": "answer_user", "arguments": "Alpha hovers at 5 m."}}'),
+        ]
+    )
+    _, result = await _run(toy, model, "take off alpha to 5 m")
+    assert result.outcome == "answered" and result.final_text == "Alpha hovers at 5 m."
+
+
 def test_bare_answer_reads_a_string_and_nothing_else() -> None:
     from gateway.agent.answer import bare_answer
 
