@@ -77,8 +77,7 @@ SMALL_MODEL_DESCRIPTIONS = {
     "takeoff": "Take off a drone that is on the ground and climb to alt_m metres above home. "
     "Waits until reached.",
     "land": "Land the drone where it is now. Waits until landed.",
-    "return_to_launch": "Fly the drone back home (its launch point) and land there; it may climb to the "
-    "return altitude first. To come down where it is, use land. Waits until landed.",
+    "return_to_launch": "Fly the drone back home (its launch point) and land there. Waits until landed.",
     "move_to_relative": "Fly a drone some metres from where it is: north_m (negative: south), east_m "
     "(negative: west), and either up_m (metres up, negative: down) or alt_m (metres above home). A drone on "
     "the ground takes off first. Waits until arrived.",
@@ -87,9 +86,8 @@ SMALL_MODEL_DESCRIPTIONS = {
     "get_position": "Where the drone is: lat_deg, lon_deg, alt_m metres above home.",
     "get_battery": "Battery of one drone: remaining percent and voltage.",
     "formation_goto": "Fly drones into a formation (line, column, wedge, grid or circle) at alt_m metres "
-    'above home, spacing_m metres apart ("15 m apart": spacing_m=15), centred where they are now. north_m/'
-    "east_m only to put it that many metres north/east of there; center_lat_deg, center_lon_deg only for "
-    "coordinates the user gave. Drones on the ground take off first.",
+    "above home, spacing_m metres apart, centred where they are now, moved north_m/east_m metres. "
+    "center_lat_deg, center_lon_deg only for coordinates the user gave. Drones on the ground take off first.",
 }
 
 # Arguments a small model is shown first, in this order (the rest follow in the gateway's order). A small
