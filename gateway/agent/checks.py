@@ -144,6 +144,23 @@ def same_invalid_again(name: str, args: Arguments | None, turn: TurnResult | Non
     return len(same) >= 2
 
 
+def _refusal_reason(text: str) -> str | None:
+    """A rule's refusal without the host's note after it ("Refused: max_altitude: target altitude 150 m
+    ..."), or None for any other text."""
+    reason = re.sub(r"^(?:error[^:]*:\s*)+", "", text.strip(), flags=re.IGNORECASE).split(" (Host note")[0]
+    return reason if reason.lower().startswith("refused") else None
+
+
+def same_refusal_again(text: str, turn: TurnResult | None) -> bool:
+    """The gateway refused this call with the same words twice before in this turn (another drone, or the
+    same target by another tool). Measured on the corpus's dev half (refuse-all-150m): the 1.5B model
+    asked for 150 m five times, for three drones and by two tools, after the first refusal."""
+    reason = _refusal_reason(text)
+    if turn is None or reason is None:
+        return False
+    return sum(1 for c in turn.tool_calls if c.status == "error" and _refusal_reason(c.text) == reason) >= 2
+
+
 def unknown_tool_text(tools: Mapping[str, ToolInfo], name: str, turn: TurnResult | None) -> str:
     """Unknown tool: the closest offered tool with its arguments, firmer when the name is repeated."""
     near = closest_tool(name, list(tools.values()))

@@ -356,6 +356,13 @@ class AgentHost:
                 f"calling it: {finish_hint(self.answer_tool)}, saying what was done and what was refused.",
                 is_error=True,
             )
+        elif status == "error" and checks.same_refusal_again(outcome.text, turn):
+            outcome = ToolOutcome(
+                f"{outcome.text} This is the third time the gateway refused this, for the same reason; it "
+                f"will not allow it. Stop asking: {finish_hint(self.answer_tool)}, saying what was done and "
+                "what was refused.",
+                is_error=True,
+            )
         model_text = outcome.text
         if status in ("invalid", "unknown_tool"):
             # the host's own refusals are instructions to the model, no answer for the user; a gateway

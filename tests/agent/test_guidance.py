@@ -306,6 +306,20 @@ async def test_the_third_identical_refused_call_is_told_to_stop(toy, scripted) -
     assert "Stop calling it: answer in words, saying what was done and what was refused." in texts[2]
 
 
+async def test_the_third_refusal_for_the_same_reason_is_told_to_stop(toy, scripted) -> None:
+    """Measured on the dev half (refuse-all-150m): 150 m asked five times, for three drones, after the
+    first refusal; the calls differ, the gateway's reason does not."""
+    model = scripted(
+        [call("takeoff", drone_id=d, alt_m=150) for d in ("alpha", "bravo", "alpha")]
+        + [say("The gateway refused 150 m: the limit is 120 m.")]
+    )
+    result = await _turn(toy, model, "send both up to 150 m")
+    assert [c.status for c in result.tool_calls] == ["error"] * 3
+    texts = [_tool_texts(model.requests[i])[-1] for i in (1, 2, 3)]
+    assert ["the gateway refused this, for the same reason" in t for t in texts] == [False, False, True]
+    assert "Stop asking: answer in words" in texts[2]
+
+
 async def test_a_refused_move_of_a_grounded_drone_names_the_takeoff_with_its_altitude() -> None:
     from gateway.agent.roster import DroneEntry, Roster
 
