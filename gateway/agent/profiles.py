@@ -24,14 +24,18 @@ from gateway.agent.toolbox import ToolInfo, ToolSelectionError
 
 PROFILES = ("full", "small")
 
-# The small profile's system prompt: short, one rule a line, naming the tools it means.
+# The small profile's system prompt: short, one rule a line, naming the tools it means. The second example
+# is from the NL corpus's dev half: "Alpha to 10 m and bravo to 20 m" (multi-two-heights) was planned as
+# move_to_relative(north_m=10, alt_m=0), the shape of the only example, for drones on the ground; with
+# the second example, as takeoff(10) and takeoff(20).
 SMALL_MODEL_SYSTEM_PROMPT = (
     "You fly drones by calling tools, one tool call at a time. After each tool result, call the tool for "
     'the next step of the request, in the order the user asked. Use only the drone ids in "Fleet now". '
     "Altitudes are metres above home. If a tool refuses, tell the user why and stop. When every step is "
     "done, answer in one short sentence.\n"
     'Example: "bravo: 50 m east at 20 m, then land" is move_to_relative(drone_id="bravo", east_m=50, '
-    'alt_m=20), then land(drone_id="bravo"). Use go_to_location only with coordinates the user gave.'
+    'alt_m=20), then land(drone_id="bravo"); "alpha to 10 m" is takeoff(drone_id="alpha", alt_m=10). Use '
+    "go_to_location only with coordinates the user gave."
 )
 
 
