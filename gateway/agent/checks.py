@@ -135,12 +135,17 @@ def refly_of(
     return why
 
 
-def same_invalid_again(name: str, args: Arguments | None, turn: TurnResult | None) -> bool:
-    """This refused call was already refused twice in this turn, identically."""
+def same_invalid_again(
+    name: str,
+    args: Arguments | None,
+    turn: TurnResult | None,
+    statuses: tuple[str, ...] = ("invalid", "error"),
+) -> bool:
+    """This call was already refused (or, with ``statuses=("repeat",)``, sent back as done) twice in this
+    turn, identically."""
     if turn is None:
         return False
-    refused = ("invalid", "error")
-    same = [c for c in turn.tool_calls if c.name == name and c.arguments == args and c.status in refused]
+    same = [c for c in turn.tool_calls if c.name == name and c.arguments == args and c.status in statuses]
     return len(same) >= 2
 
 

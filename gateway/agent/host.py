@@ -356,6 +356,15 @@ class AgentHost:
                 f"calling it: {finish_hint(self.answer_tool)}, saying what was done and what was refused.",
                 is_error=True,
             )
+        elif status == "repeat" and checks.same_invalid_again(name, args, turn, ("repeat",)):
+            # measured on the corpus's dev half (compound-two-climbs): the same move, already done, sent
+            # eight times in a row, each answered "not sent again", until the step limit
+            outcome = ToolOutcome(
+                f"{outcome.text} This is the third time this same call came back; it will not be sent. Stop "
+                f"calling it: send a different call for what the request still asks, or "
+                f"{finish_hint(self.answer_tool)}.",
+                is_error=False,
+            )
         elif status == "error" and checks.same_refusal_again(outcome.text, turn):
             outcome = ToolOutcome(
                 f"{outcome.text} This is the third time the gateway refused this, for the same reason; it "

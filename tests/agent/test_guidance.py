@@ -232,6 +232,16 @@ async def test_a_plan_with_the_same_action_twice_stops_at_the_second(toy, script
     assert result.outcome == "answered"
 
 
+async def test_the_third_time_a_done_call_comes_back_the_model_is_told_to_stop(toy, scripted) -> None:
+    """Measured on the dev half (compound-two-climbs): the same finished move sent eight times in a row."""
+    model = scripted([call("takeoff", drone_id="alpha", alt_m=10)] * 4 + [say("alpha is at 10 m")])
+    result = await _turn(toy, model, "take alpha up to 10 m")
+    assert [c.status for c in result.tool_calls] == ["ok", "repeat", "repeat", "repeat"]
+    texts = [_tool_texts(model.requests[i])[-1] for i in (2, 3, 4)]
+    assert ["third time this same call came back" in t for t in texts] == [False, False, True]
+    assert [name for name, _ in toy.world.calls] == ["takeoff"]
+
+
 async def test_the_same_call_after_another_action_on_that_drone_is_sent(toy, scripted) -> None:
     model = scripted(
         [
