@@ -110,6 +110,10 @@ def echoes_host(said: str, memory: TurnMemory) -> bool:
     ("alpha battery 73 %") is a fine answer."""
     text = norm(said)
     text = re.sub(r"^error(?: executing tool \w+)?:\s*", "", text)
+    if text.startswith("fleet now:"):
+        # the host's roster line, label and all (measured on the corpus's dev half, cond-above-forty-hop:
+        # sent back once as a guess, the 1.5B model answered with the roster line itself)
+        return True
     told = [*memory.host_notes, *memory.error_texts]
     if len(text) < 20:
         # a short reply that is a whole phrase of the host's note (measured: "Nothing yet.", from

@@ -424,6 +424,15 @@ async def test_a_short_echo_of_the_hosts_note_is_no_answer(toy, scripted) -> Non
     assert result.answered_by == "model" and result.empty_replies == 2
 
 
+async def test_the_roster_line_given_back_is_no_answer(toy, scripted) -> None:
+    """Measured on the dev half (cond-above-forty-hop): the host's "Fleet now: ..." line as the answer."""
+    roster = "Fleet now: alpha on the ground, battery 90%; bravo on the ground, battery 90%."
+    model = scripted([call("get_position", drone_id="alpha"), say(roster), say("alpha is on the ground.")])
+    result = await _turn(toy, model, "where is alpha?", None)
+    assert result.outcome == "answered" and result.final_text == "alpha is on the ground.", result
+    assert result.empty_replies == 1
+
+
 async def test_a_finished_step_is_not_flown_again_unless_the_request_asks(toy, scripted) -> None:
     """Out, back and landed, then the model starts over: the same takeoff is not sent again; with "again"
     in the request it is."""
