@@ -429,7 +429,7 @@ class AgentHost:
         empty = not text or stale or wording.echoes_host(text, self._memory)
         # An answer is held back first (once per reason): a model that gives up with an echo after its
         # own invalid call is told how to go on, not only that the echo is no answer.
-        held = await self._hold_answer(result, empty)
+        held = await self._hold_answer(result, empty, text)
         if held or empty:
             reply = held or wording.not_an_answer(text, stale, result)
             if empty:
@@ -465,7 +465,18 @@ class AgentHost:
         held.add("nothing_ran")
         return wording.NOTHING_RAN
 
-    async def _hold_answer(self, result: TurnResult, empty: bool = False) -> str | None:
+    def _refusal_unsaid(self, result: TurnResult, text: str) -> str | None:
+        """An answer that does not mention a refusal by the gateway's rules this turn is sent back once,
+        quoting the refusal: every turn ends with a true answer, and a refused part of a request is part of
+        it. Measured on the corpus's dev half (refuse-all-150m): refused 150 m, the 1.5B model flew alpha to
+        120 m and answered "Alpha ... is now flying at 120 m above home", with no word of the refusal."""
+        refusals = [c for c in result.tool_calls if wording.refused(c)]
+        if not refusals or "refusal" in self._memory.held or wording.says_refused(text):
+            return None
+        self._memory.held.add("refusal")
+        return wording.refusal_unsaid(refusals[-1])
+
+    async def _hold_answer(self, result: TurnResult, empty: bool = False, text: str = "") -> str | None:
         """Why an answer is sent back instead of ending the turn, or None; each reason at most once a turn,
         so a model that answers again is believed."""
         held = self._memory.held
@@ -487,6 +498,8 @@ class AgentHost:
             return wording.failed_last_call(last.name)
         if not empty and (nothing := self._nothing_ran(result)) is not None:
             return nothing
+        if not empty and (unsaid := self._refusal_unsaid(result, text)) is not None:
+            return unsaid
         if "untouched" in held:
             return None
         if self.fleet.enabled:

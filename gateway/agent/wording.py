@@ -175,6 +175,29 @@ def invalid_last_call(name: str) -> str:
     )
 
 
+# Words of an answer that tell the user something was refused or is not possible.
+_SAYS_REFUSED_RE = re.compile(
+    r"refus|limit|exceed|not allowed|cannot|can't|can not|unable|too (?:far|high|low)|beyond|denied|rejected|"
+    r"not possible|impossible|maximum|max_",
+    re.IGNORECASE,
+)
+
+
+def says_refused(text: str) -> bool:
+    """The answer tells the user that something was refused or is not possible."""
+    return bool(_SAYS_REFUSED_RE.search(text))
+
+
+def refusal_unsaid(record: ToolCallRecord) -> str:
+    """An answer held back because it does not mention the gateway's refusal."""
+    why = re.sub(r"^(?:error[^:]*:\s*)+", "", first_line(record.text), flags=re.IGNORECASE)
+    return (
+        f"Not sent to the user yet: the gateway refused part of the request ({record.name}: {why}), and "
+        "your answer does not say so. Answer again in one sentence with what was done and what was refused, "
+        "and why."
+    )
+
+
 def failed_last_call(name: str) -> str:
     """An answer held back because the last call failed with an error that is no refusal by a rule."""
     return (

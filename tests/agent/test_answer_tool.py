@@ -88,12 +88,13 @@ async def test_an_answer_written_before_a_refusal_is_not_believed_when_sent_agai
             (ANSWER_TOOL, '{"text": "Alpha is at 500 m."}'),
         ]
     )
-    model = scripted([plan, call(ANSWER_TOOL, text="Alpha is at 500 m."), call(ANSWER_TOOL, text="copied")])
+    refused = "500 m was refused: the limit is 120 m."
+    model = scripted([plan, call(ANSWER_TOOL, text="Alpha is at 500 m."), call(ANSWER_TOOL, text=refused)])
     _, result = await _run(toy, model, "climb alpha to 500 m")
     told = _last_tool_text(model.requests[2])
     assert told.startswith("Not an answer: you wrote it with your plan, before the results; it was not sent.")
     assert "refused: takeoff: Error executing tool takeoff: refused by rule max_altitude" in told
-    assert result.outcome == "answered" and result.final_text == "copied"
+    assert result.outcome == "answered" and result.final_text == refused
 
 
 async def test_an_answer_that_quotes_the_gateways_refusal_is_an_answer_even_inside_a_host_note(
@@ -321,3 +322,22 @@ async def test_an_answer_after_a_correctable_gateway_error_is_sent_back_once(toy
     assert _last_tool_text(model.requests[2]).startswith("Not finished yet: your move_north call failed")
     assert result.outcome == "answered" and result.final_text == "Alpha flew 10 m north at 10 m."
     assert toy.world.drones["alpha"].north_m == 10.0
+
+
+async def test_an_answer_silent_about_a_refusal_is_sent_back_once_quoting_it(toy, scripted) -> None:
+    """Measured on the dev half (refuse-all-150m): refused 150 m, the model flew to the limit and answered
+    "Alpha ... is now flying at 120 m", with no word of the refusal."""
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=150),
+            call("takeoff", drone_id="alpha", alt_m=120),
+            call(ANSWER_TOOL, text="Alpha is now flying at 120 m."),
+            call(ANSWER_TOOL, text="150 m was refused (limit 120 m); alpha flies at 120 m."),
+        ]
+    )
+    _, result = await _run(toy, model, "send alpha up to 150 m")
+    told = _last_tool_text(model.requests[3])
+    assert told.startswith(
+        "Not sent to the user yet: the gateway refused part of the request (takeoff: refused by rule"
+    )
+    assert result.outcome == "answered" and result.final_text.startswith("150 m was refused")
