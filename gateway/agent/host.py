@@ -177,7 +177,8 @@ class AgentHost:
                     self._emit("answer_held", step=result.steps, text=said, reason=held)
                     continue
                 if said and not echo and not self._truncated:
-                    result.outcome, result.final_text = "answered", content or ""
+                    result.outcome = "answered"
+                    result.final_text = wording.with_refusals(content or "", result)
                     self.messages.append({"role": "assistant", "content": content or ""})
                     self._emit("final", step=result.steps, text=content or "")
                     break
@@ -238,7 +239,7 @@ class AgentHost:
                         result.empty_streak = 0
                 result.tool_calls.append(record)
             if answer is not None:
-                result.outcome, result.final_text = "answered", answer
+                result.outcome, result.final_text = "answered", wording.with_refusals(answer, result)
                 self._emit("final", step=result.steps, text=answer, via=ANSWER_TOOL)
                 break
             if gave_up:

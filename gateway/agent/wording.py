@@ -188,9 +188,26 @@ def says_refused(text: str) -> bool:
     return bool(_SAYS_REFUSED_RE.search(text))
 
 
+def with_refusals(answer: str, result: TurnResult) -> str:
+    """The model's answer, followed by the host's marked line naming the gateway's refusals of this turn
+    when the answer says nothing of them: every turn ends with a true answer, refusals reported. Measured
+    on the corpus's dev half (refuse-all-150m): sent back once quoting the refusal, the 1.5B model gave the
+    same answer, silent about it, again."""
+    refusals = [c for c in result.tool_calls if refused(c)]
+    if not refusals or says_refused(answer):
+        return answer
+    why = "; ".join(f"{c.name}: {_reason(c)}" for c in refusals[-2:])
+    return f"{answer} (Host: the gateway refused {why}.)"
+
+
+def _reason(record: ToolCallRecord) -> str:
+    """The first line of a call's error, without the "Error ...:" prefixes."""
+    return re.sub(r"^(?:error[^:]*:\s*)+", "", first_line(record.text), flags=re.IGNORECASE)
+
+
 def refusal_unsaid(record: ToolCallRecord) -> str:
     """An answer held back because it does not mention the gateway's refusal."""
-    why = re.sub(r"^(?:error[^:]*:\s*)+", "", first_line(record.text), flags=re.IGNORECASE)
+    why = _reason(record)
     return (
         f"Not sent to the user yet: the gateway refused part of the request ({record.name}: {why}), and "
         "your answer does not say so. Answer again in one sentence with what was done and what was refused, "

@@ -324,6 +324,23 @@ async def test_an_answer_after_a_correctable_gateway_error_is_sent_back_once(toy
     assert toy.world.drones["alpha"].north_m == 10.0
 
 
+async def test_an_answer_still_silent_about_a_refusal_gets_the_hosts_line_naming_it(toy, scripted) -> None:
+    """Measured on the dev half (refuse-all-150m): sent back once, the same silent answer came again."""
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=150),
+            call("takeoff", drone_id="alpha", alt_m=120),
+            call(ANSWER_TOOL, text="Alpha is now flying at 120 m."),
+            call(ANSWER_TOOL, text="Alpha is now flying at 120 m."),
+        ]
+    )
+    _, result = await _run(toy, model, "send alpha up to 150 m")
+    assert result.outcome == "answered" and result.final_text.startswith(
+        "Alpha is now flying at 120 m. (Host: the gateway refused takeoff: refused by rule max_altitude: "
+        "target altitude 150 m exceeds"
+    ), result.final_text
+
+
 async def test_an_answer_silent_about_a_refusal_is_sent_back_once_quoting_it(toy, scripted) -> None:
     """Measured on the dev half (refuse-all-150m): refused 150 m, the model flew to the limit and answered
     "Alpha ... is now flying at 120 m", with no word of the refusal."""
