@@ -65,21 +65,34 @@ async def message_counts(gw: common.Gateway) -> dict[str, float]:
     return out
 
 
-async def idle_ingest(gw: common.Gateway, sidecars: list[int], n: int) -> dict[str, Any]:
+async def idle_ingest(
+    gw: common.Gateway, empty: common.Gateway, sidecars: list[int], n: int
+) -> dict[str, Any]:
     """With no call at all: the gateway's and the sidecars' CPU per drone (percent of one core) and the
-    telemetry updates per drone per second, by stream: what each drone costs at rest."""
-    gw_cpu, sc_cpu = common.CpuMeter([gw.pid]), common.CpuMeter(sidecars)
+    telemetry updates per drone per second, by stream: what each drone costs at rest.
+
+    ``empty`` is a gateway with no drone, measured over the same window (so under the same load): what
+    a gateway costs by itself (its event loop, the HTTP server, the database's writer). The gateway's CPU
+    per drone is given both ways: all of it shared by the drones, and what the drones add to that.
+    """
+    gw_cpu, sc_cpu, empty_cpu = (
+        common.CpuMeter([gw.pid]),
+        common.CpuMeter(sidecars),
+        common.CpuMeter([empty.pid]),
+    )
     c0 = await message_counts(gw)
-    gw_cpu.start()
-    sc_cpu.start()
+    for meter in (gw_cpu, sc_cpu, empty_cpu):
+        meter.start()
     t0 = time.monotonic()
     await asyncio.sleep(IDLE_WINDOW_S)
-    gw_pct, sc_pct = gw_cpu.percent(), sc_cpu.percent()
+    gw_pct, sc_pct, empty_pct = gw_cpu.percent(), sc_cpu.percent(), empty_cpu.percent()
     c1 = await message_counts(gw)
     elapsed = time.monotonic() - t0
     rates = {k: (v - c0.get(k, 0.0)) / elapsed / max(1, n) for k, v in c1.items()}
     return {
         "idle_gw_pct_per_drone": gw_pct / max(1, n),
+        "idle_empty_gw_pct": empty_pct,
+        "idle_gw_added_pct_per_drone": (gw_pct - empty_pct) / max(1, n),
         "idle_sc_pct_per_drone": sc_pct / max(1, len(sidecars)),
         "idle_msgs_per_drone": sum(rates.values()),
         "idle_rates": {k: round(v, 2) for k, v in sorted(rates.items()) if v > 0},
@@ -105,8 +118,12 @@ async def listing_cost(gw: common.Gateway, mcp: Any, have_list: bool, idle_pct: 
 
 
 async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[str, Any]:
-    with common.workdir(f"scale{n}") as wd:
-        async with common.sim(n, speedup=1.0, workdir=wd) as sim_, common.gateway(sim_, workdir=wd) as gw:
+    with common.workdir(f"scale{n}") as wd, common.workdir(f"scale{n}-empty") as wd_empty:
+        async with (
+            common.sim(n, speedup=1.0, workdir=wd) as sim_,
+            common.gateway(sim_, workdir=wd) as gw,
+            common.gateway(sim_, workdir=wd_empty, count=0) as empty,
+        ):
             t_ready, states = await common.wait_states(gw, "ready", ready_timeout_s)
             ready = sum(1 for s in states.values() if s == "ready")
             sidecars = await gw.sidecar_pids()
@@ -114,7 +131,7 @@ async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[
                 tools = {t.name for t in (await mcp.list_tools()).tools}
                 have_list = "list_drones" in tools
                 await asyncio.sleep(3.0)  # let start-up work settle
-                idle = await idle_ingest(gw, sidecars, n)
+                idle = await idle_ingest(gw, empty, sidecars, n)
                 gw_cpu, sc_cpu, sim_cpu = (
                     common.CpuMeter([gw.pid]),
                     common.CpuMeter(sidecars),
@@ -237,6 +254,8 @@ def render(results: list[dict[str, Any]], window_s: float) -> str:
         [
             r["n"],
             f"{r['idle_gw_pct_per_drone']:.3f}",
+            f"{r['idle_empty_gw_pct']:.2f}",
+            f"{r['idle_gw_added_pct_per_drone']:.3f}",
             f"{r['idle_sc_pct_per_drone']:.3f}",
             f"{r['idle_msgs_per_drone']:.1f}",
             ", ".join(f"{k} {v:g}" for k, v in r["idle_rates"].items()),
@@ -281,10 +300,20 @@ def render(results: list[dict[str, Any]], window_s: float) -> str:
         ),
         "",
         f"At rest (no call at all, {IDLE_WINDOW_S:g} s before the window above): what each drone costs, "
-        "CPU in percent of one core, and the telemetry updates the gateway receives from its sidecar.",
+        "CPU in percent of one core, and the telemetry updates the gateway receives from its sidecar. A "
+        "gateway with no drone runs beside it over the same window (same load): what each drone adds is "
+        "the difference, shared by the drones.",
         "",
         common.table(
-            ["drones", "gateway CPU per drone %", "CPU per sidecar %", "updates per drone per s", "streams"],
+            [
+                "drones",
+                "gateway CPU per drone % (all of it / drones)",
+                "a gateway with no drone, CPU %",
+                "gateway CPU each drone adds %",
+                "CPU per sidecar %",
+                "updates per drone per s",
+                "streams",
+            ],
             idle_rows,
         ),
         "",

@@ -13,13 +13,13 @@ from contextlib import AbstractAsyncContextManager, AsyncExitStack, asynccontext
 from typing import Any
 
 from fastapi import FastAPI
-from starlette.routing import Mount, Route
+from starlette.types import ASGIApp, Receive, Scope, Send
 
 from gateway import package_version
 from gateway.api import build_api_router, health, metrics
 from gateway.api.docs import install_docs
 from gateway.api.errors import install_error_handlers
-from gateway.api.limits import BodyLimitMiddleware
+from gateway.api.limits import BodyLimitMiddleware, McpBodyLimit
 from gateway.api.openapi import install_openapi, operation_id
 from gateway.config import Settings, get_settings
 from gateway.console import install_console
@@ -52,7 +52,7 @@ def create_app(settings: Settings | None = None, registry_factory: RegistryFacto
         finally:
             await gateway.stop()
 
-    app = FastAPI(
+    app = GatewayApp(
         title="fleet-gateway",
         version=package_version(),
         description="Operator REST API of the MCP gateway for a fleet of MAVLink drones.",
@@ -76,24 +76,46 @@ def create_app(settings: Settings | None = None, registry_factory: RegistryFacto
     return app
 
 
-def mount_mcp(app: FastAPI, gateway: Gateway, hooks: list[LifespanHook]) -> None:
-    """Serve the MCP server's Streamable HTTP app at /mcp.
+class GatewayApp(FastAPI):
+    """The FastAPI app, with the MCP endpoint served in front of the REST API's middleware stack.
+
+    A tool call needs none of that stack (REST error handlers, request metrics, routing) and paid for
+    every layer twice, on the way in and on each message sent back: about a tenth of a small call's
+    CPU. It keeps the request body limit, with its JSON-RPC 413.
+    """
+
+    mcp_door: ASGIApp | None = None
+
+    def build_middleware_stack(self) -> ASGIApp:
+        stack = super().build_middleware_stack()
+        return stack if self.mcp_door is None else McpFirst(stack, self.mcp_door)
+
+
+class McpFirst:
+    """ASGI: the MCP path to ``mcp``, everything else (and the lifespan) to ``app``."""
+
+    def __init__(self, app: ASGIApp, mcp: ASGIApp) -> None:
+        self.app, self.mcp = app, mcp
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] == "http" and scope["path"] == MCP_PATH:
+            await self.mcp(scope, receive, send)
+        else:
+            await self.app(scope, receive, send)
+
+
+def mount_mcp(app: GatewayApp, gateway: Gateway, hooks: list[LifespanHook]) -> None:
+    """Serve the MCP server's Streamable HTTP app at /mcp, in front of the REST API (`GatewayApp`).
 
     The session manager must run in this app's lifespan (mounted sub-app lifespans never run); it
-    enters the MCP server's own lifespan, after the gateway has started.
-
-    Rather than mounting the MCP app at "/" (which would answer every unknown path with its own
-    plain-text 404), each path it serves is routed to it, so other paths keep the API's JSON errors.
+    enters the MCP server's own lifespan, after the gateway has started. Only the path /mcp reaches
+    the MCP app, so every other path keeps the API's JSON errors.
     """
     mcp = build_mcp(gateway)
-    mcp_app = mcp_http_app(mcp, gateway.settings)
+    mcp_app = mcp_http_app(mcp, gateway.settings)  # creates the session manager
     hooks.append(mcp.session_manager.run)
     app.state.mcp = mcp
-    # first in the route list: every tool call is matched against it before the REST API's routes
-    # (about a tenth of the gateway's CPU for a small call went to trying those first)
-    mcp_routes = [
-        Route(route.path, endpoint=mcp_app, include_in_schema=False)
-        for route in mcp_app.routes
-        if isinstance(route, Route | Mount)
-    ]
-    app.router.routes[:0] = mcp_routes
+    app.mcp_door = McpBodyLimit(mcp_app, gateway.settings.max_request_body_bytes)
+
+
+MCP_PATH = "/mcp"

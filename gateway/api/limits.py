@@ -12,11 +12,13 @@ from gateway.api.errors import error_response
 INVALID_REQUEST = -32600  # JSON-RPC
 
 
-def mcp_body_too_large(size: int, limit: int) -> JSONResponse:
+def mcp_body_too_large(size: int | None, limit: int) -> JSONResponse:
     """413 with a JSON-RPC error body: MCP clients show its message (the tool call's arguments were too
-    big), where a plain 413 reaches the model as "Server returned an error response"."""
+    big), where a plain 413 reaches the model as "Server returned an error response". ``size`` is None
+    for a body without Content-Length, found too big while read."""
+    request = "request" if size is None else f"request of {size} bytes"
     message = (
-        f"request of {size} bytes is larger than the gateway's limit of {limit} bytes "
+        f"{request} is larger than the gateway's limit of {limit} bytes "
         "(GATEWAY_MAX_REQUEST_BODY_BYTES); nothing was done: send smaller arguments"
     )
     body = {"jsonrpc": "2.0", "id": None, "error": {"code": INVALID_REQUEST, "message": message}}
@@ -41,9 +43,6 @@ class BodyLimitMiddleware:
             return
         declared = Headers(scope=scope).get("content-length")
         if declared is not None and declared.isdigit() and int(declared) > self.max_bytes:
-            if str(scope.get("path", "")).startswith("/mcp"):
-                await mcp_body_too_large(int(declared), self.max_bytes)(scope, receive, send)
-                return
             response = error_response(
                 413,
                 "body_too_large",
@@ -64,3 +63,45 @@ class BodyLimitMiddleware:
             return message
 
         await self.app(scope, limited_receive, send)
+
+
+class McpBodyLimit:
+    """The body limit of the MCP endpoint, answered as a JSON-RPC 413 (which MCP clients show).
+
+    A body with a Content-Length within the limit passes untouched (the HTTP server delivers no more
+    than it declares); a body without one is read whole first, as the MCP transport reads it anyway,
+    and refused once it grows past the limit.
+    """
+
+    def __init__(self, app: ASGIApp, max_bytes: int) -> None:
+        self.app = app
+        self.max_bytes = max_bytes
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        declared = Headers(scope=scope).get("content-length")
+        if declared is not None and declared.isdigit():
+            if int(declared) > self.max_bytes:
+                await mcp_body_too_large(int(declared), self.max_bytes)(scope, receive, send)
+            else:
+                await self.app(scope, receive, send)
+            return
+        body = bytearray()
+        messages: list[Message] = []
+        while True:
+            message = await receive()
+            messages.append(message)
+            if message["type"] != "http.request":
+                break
+            body += message.get("body", b"")
+            if len(body) > self.max_bytes:
+                await mcp_body_too_large(None, self.max_bytes)(scope, receive, send)
+                return
+            if not message.get("more_body", False):
+                break
+        whole: list[Message] = [{"type": "http.request", "body": bytes(body), "more_body": False}]
+        whole += [m for m in messages if m["type"] != "http.request"]
+
+        async def replay() -> Message:
+            return whole.pop(0) if whole else await receive()
+
+        await self.app(scope, replay, send)

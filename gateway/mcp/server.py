@@ -3,7 +3,7 @@
 Mounting in the one ASGI app (``gateway/app.py``)::
 
     mcp = build_mcp(gateway)
-    app.add_route("/mcp", mcp_http_app(mcp, settings), include_in_schema=False)
+    app.mcp_door = mcp_http_app(mcp, settings)  # served ahead of the REST API (GatewayApp)
     # and inside the FastAPI lifespan, after gateway.start():
     async with mcp.session_manager.run(): ...
 
@@ -118,8 +118,8 @@ def build_mcp(gateway: Gateway) -> MCPServer[FleetState]:
 def mcp_http_app(server: MCPServer[Any], settings: Settings) -> Starlette:
     """The Streamable HTTP ASGI app serving the path ``/mcp``.
 
-    Add it as the route ``/mcp`` of the FastAPI app (``app.add_route("/mcp", it)``): mounted at "/" it
-    would also catch every unknown REST URL (plain-text 404s, and 404 instead of 405).
+    `gateway.app.GatewayApp` serves it for the path ``/mcp`` only: mounted at "/" it would also catch
+    every unknown REST URL (plain-text 404s, and 404 instead of 405).
     """
     hosts, origins = mcp_transport_lists(settings)
     return server.streamable_http_app(

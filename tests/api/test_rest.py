@@ -6,7 +6,9 @@ Live vehicles (real sidecars and simulated drones) are covered by test_integrati
 from __future__ import annotations
 
 import asyncio
+import json
 import re
+from collections.abc import AsyncIterator
 from datetime import UTC, datetime, timedelta
 from pathlib import Path
 
@@ -493,6 +495,20 @@ async def test_mcp_is_served_beside_the_api(client: httpx.AsyncClient) -> None:
     assert too_big.status_code == 413
     error = too_big.json()["error"]
     assert error["code"] == -32600 and "larger than the gateway's limit of" in error["message"], error
+
+    async def chunks() -> AsyncIterator[bytes]:  # no Content-Length: found too big while read
+        body = json.dumps(big).encode()
+        for i in range(0, len(body), 1000):
+            yield body[i : i + 1000]
+
+    streamed = await client.post(
+        "/mcp", content=chunks(), headers={"content-type": "application/json", "accept": "application/json"}
+    )
+    assert streamed.status_code == 413, streamed.text
+    error = streamed.json()["error"]
+    assert error["code"] == -32600 and "request is larger than the gateway's limit of" in error["message"], (
+        error
+    )
 
 
 # --- operator control --------------------------------------------------------------------------
