@@ -180,7 +180,7 @@ class AgentHost:
                     result.outcome = "answered"
                     result.final_text = wording.with_refusals(content or "", result)
                     self.messages.append({"role": "assistant", "content": content or ""})
-                    self._emit("final", step=result.steps, text=content or "")
+                    self._emit("final", step=result.steps, text=result.final_text)
                     break
                 # An empty reply is not an answer, nor is one that only repeats the request or the host's
                 # own words (measured: the 1.5B model answered with the "done so far" re-prompt, the
@@ -240,7 +240,7 @@ class AgentHost:
                 result.tool_calls.append(record)
             if answer is not None:
                 result.outcome, result.final_text = "answered", wording.with_refusals(answer, result)
-                self._emit("final", step=result.steps, text=answer, via=ANSWER_TOOL)
+                self._emit("final", step=result.steps, text=result.final_text, via=ANSWER_TOOL)
                 break
             if gave_up:
                 self._end_without_answer(result)

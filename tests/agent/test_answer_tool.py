@@ -334,11 +334,13 @@ async def test_an_answer_still_silent_about_a_refusal_gets_the_hosts_line_naming
             call(ANSWER_TOOL, text="Alpha is now flying at 120 m."),
         ]
     )
-    _, result = await _run(toy, model, "send alpha up to 150 m")
+    events: list[AgentEvent] = []
+    _, result = await _run(toy, model, "send alpha up to 150 m", events)
     assert result.outcome == "answered" and result.final_text.startswith(
         "Alpha is now flying at 120 m. (Host: the gateway refused takeoff: refused by rule max_altitude: "
         "target altitude 150 m exceeds"
     ), result.final_text
+    assert [e.data["text"] for e in events if e.kind == "final"] == [result.final_text]  # what is shown
 
 
 async def test_an_answer_silent_about_a_refusal_is_sent_back_once_quoting_it(toy, scripted) -> None:
