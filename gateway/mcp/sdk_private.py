@@ -8,7 +8,10 @@
   in wire form, and ``add_tool()`` returns nothing;
 - register a handler for ``resources/subscribe`` / ``resources/unsubscribe`` on an ``MCPServer``:
   2025-era clients subscribe that way, and the SDK's ``subscriptions`` bus serves only 2026-07-28
-  ``subscriptions/listen`` (see /work/shared/MCP-NOTES.md, resources).
+  ``subscriptions/listen`` (see /work/shared/MCP-NOTES.md, resources);
+- choose per request between a JSON and a streamed answer: the session manager's ``json_response``
+  holds for every request (``gateway/mcp/json_answers.py`` answers a request without a progress token
+  as JSON, through the SDK's own entry for single-exchange requests and the manager's own settings).
 
 Each use is one function here, so an SDK upgrade that adds a public way changes this file only.
 """
@@ -18,8 +21,11 @@ from __future__ import annotations
 from collections.abc import Awaitable, Callable
 from typing import Any
 
+from mcp.server._streamable_http_modern import handle_modern_request
 from mcp.server.mcpserver import MCPServer
 from mcp.server.mcpserver.tools import Tool
+from mcp.server.streamable_http_manager import StreamableHTTPSessionManager
+from starlette.types import Receive, Scope, Send
 
 
 def tools(server: MCPServer[Any]) -> list[Tool]:
@@ -45,3 +51,18 @@ def add_request_handler(
 ) -> None:
     """A handler for a request method the ``MCPServer`` layer does not expose."""
     server._lowlevel_server.add_request_handler(method, params_type, handler)
+
+
+async def answer_single_exchange_as_json(
+    manager: StreamableHTTPSessionManager, scope: Scope, receive: Receive, send: Send
+) -> None:
+    """A 2026-07-28 request answered as the manager answers it in JSON mode."""
+    state: Any = manager._lifespan_state
+    await handle_modern_request(manager.app, manager.security_settings, True, state, scope, receive, send)
+
+
+async def handle_request(
+    manager: StreamableHTTPSessionManager, scope: Scope, receive: Receive, send: Send
+) -> None:
+    """The manager's own dispatch, behind its body limit (which the caller keeps)."""
+    await manager._handle_request(scope, receive, send)

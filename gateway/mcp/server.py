@@ -35,6 +35,7 @@ from gateway.mcp.access import FleetState
 from gateway.mcp.arguments import advertise_policy_limits, install_argument_messages
 from gateway.mcp.auth import auth_options
 from gateway.mcp.declared import complete, declared
+from gateway.mcp.json_answers import answer_silent_requests_as_json
 from gateway.mcp.resources import ResourceNotifier, register_prompts, register_resources
 from gateway.mcp.session import SessionAudit
 from gateway.mcp.toolkit import (
@@ -122,7 +123,7 @@ def mcp_http_app(server: MCPServer[Any], settings: Settings) -> Starlette:
     every unknown REST URL (plain-text 404s, and 404 instead of 405).
     """
     hosts, origins = mcp_transport_lists(settings)
-    return server.streamable_http_app(
+    app = server.streamable_http_app(
         streamable_http_path="/mcp",
         json_response=False,  # SSE: progress notifications need it
         stateless_http=False,  # 2025-era clients get sessions (subscriptions, elicitation)
@@ -130,3 +131,5 @@ def mcp_http_app(server: MCPServer[Any], settings: Settings) -> Starlette:
             enable_dns_rebinding_protection=True, allowed_hosts=hosts, allowed_origins=origins
         ),
     )
+    answer_silent_requests_as_json(server.session_manager)  # a request without a progress token
+    return app
