@@ -135,13 +135,35 @@ def refly_of(
     return why
 
 
-def same_invalid_again(name: str, args: Arguments | None, turn: TurnResult | None) -> bool:
-    """This refused call was already refused twice in this turn, identically."""
+def same_invalid_again(
+    name: str,
+    args: Arguments | None,
+    turn: TurnResult | None,
+    statuses: tuple[str, ...] = ("invalid", "error"),
+) -> bool:
+    """This call was already refused (or, with ``statuses=("repeat",)``, sent back as done) twice in this
+    turn, identically."""
     if turn is None:
         return False
-    refused = ("invalid", "error")
-    same = [c for c in turn.tool_calls if c.name == name and c.arguments == args and c.status in refused]
+    same = [c for c in turn.tool_calls if c.name == name and c.arguments == args and c.status in statuses]
     return len(same) >= 2
+
+
+def _refusal_reason(text: str) -> str | None:
+    """A rule's refusal without the host's note after it ("Refused: max_altitude: target altitude 150 m
+    ..."), or None for any other text."""
+    reason = re.sub(r"^(?:error[^:]*:\s*)+", "", text.strip(), flags=re.IGNORECASE).split(" (Host note")[0]
+    return reason if reason.lower().startswith("refused") else None
+
+
+def same_refusal_again(text: str, turn: TurnResult | None) -> bool:
+    """The gateway refused this call with the same words twice before in this turn (another drone, or the
+    same target by another tool). Measured on the corpus's dev half (refuse-all-150m): the 1.5B model
+    asked for 150 m five times, for three drones and by two tools, after the first refusal."""
+    reason = _refusal_reason(text)
+    if turn is None or reason is None:
+        return False
+    return sum(1 for c in turn.tool_calls if c.status == "error" and _refusal_reason(c.text) == reason) >= 2
 
 
 def unknown_tool_text(tools: Mapping[str, ToolInfo], name: str, turn: TurnResult | None) -> str:
@@ -166,7 +188,30 @@ def unknown_arguments(base_tools: Sequence[ToolInfo], tool: ToolInfo, args: Argu
     if not known or not extra:
         return None
     names = ", ".join(extra)
-    return f"{tool.name} has no argument {names}; it takes {signature(tool)}. Nothing was executed."
+    # "40 m west" written as west_m=40 (measured on the corpus's dev half, multi-west-and-land: sent
+    # twice more unchanged after the plain refusal): say the argument it is, with its value
+    opposite = [
+        f"{n}={v:g} is {_OPPOSITES[n]}={-v:g}"
+        for n in extra
+        if n in _OPPOSITES and _OPPOSITES[n] in known and isinstance(v := args[n], int | float)
+    ]
+    hint = f" ({'; '.join(opposite)})" if opposite else ""
+    return f"{tool.name} has no argument {names}{hint}; it takes {signature(tool)}. Nothing was executed."
+
+
+# Arguments a model writes for the other direction of one the tool has.
+_OPPOSITES = {"west_m": "east_m", "south_m": "north_m", "down_m": "up_m"}
+
+
+def twice_in_plan(tools: Mapping[str, ToolInfo], call: ModelCall, earlier: Sequence[ModelCall]) -> bool:
+    """The action ``call`` is written earlier in the same reply, with the same arguments: the plan has the
+    same step twice, so one of its steps is not the one the request asks for."""
+    args = call_arguments(call)
+    return (
+        args is not None
+        and acts(tools, call["name"])
+        and any(c["name"] == call["name"] and call_arguments(c) == args for c in earlier)
+    )
 
 
 def left_out(call: ModelCall, later: list[ModelCall], request: str) -> str | None:

@@ -27,7 +27,7 @@ from typing import Any
 import openai
 
 from gateway.agent import checks, wording
-from gateway.agent.answer import ANSWER_TOOL, ANSWER_TOOL_INFO, answer_text, finish_hint
+from gateway.agent.answer import ANSWER_TOOL, ANSWER_TOOL_INFO, answer_text, bare_answer, finish_hint
 from gateway.agent.chat import (
     ChatModel,
     Message,
@@ -38,6 +38,7 @@ from gateway.agent.chat import (
 )
 from gateway.agent.intent import Reading, read_call
 from gateway.agent.parsing import ArgumentsError, parse_arguments, strip_thinking
+from gateway.agent.repair import unplaced_optional_point
 from gateway.agent.roster import FleetView, Roster
 from gateway.agent.sending import ToolSender
 from gateway.agent.toolbox import Arguments, ToolInfo, ToolOutcome
@@ -170,10 +171,16 @@ class AgentHost:
             if not calls:
                 said = strip_thinking(content or "").strip()
                 echo = bool(said) and wording.echoes_host(said, self._memory)
-                if said and not echo and not self._truncated:
-                    result.outcome, result.final_text = "answered", content or ""
+                if said and not echo and not self._truncated and (held := self._nothing_ran(result)):
                     self.messages.append({"role": "assistant", "content": content or ""})
-                    self._emit("final", step=result.steps, text=content or "")
+                    self.messages.append({"role": "user", "content": self._note(held)})
+                    self._emit("answer_held", step=result.steps, text=said, reason=held)
+                    continue
+                if said and not echo and not self._truncated:
+                    result.outcome = "answered"
+                    result.final_text = wording.with_refusals(content or "", result)
+                    self.messages.append({"role": "assistant", "content": content or ""})
+                    self._emit("final", step=result.steps, text=result.final_text)
                     break
                 # An empty reply is not an answer, nor is one that only repeats the request or the host's
                 # own words (measured: the 1.5B model answered with the "done so far" re-prompt, the
@@ -206,7 +213,12 @@ class AgentHost:
                 if left_out is not None:
                     record = self._skip(result.steps, call, parsed, left_out, status="left_out")
                 elif failed is not None:  # the calls of one reply are a plan: later steps need the earlier
-                    why = f"the earlier call {failed.name} in the same reply failed. Fix that first."
+                    why = (
+                        f"the earlier call {failed.name} in the same reply repeats a step it already did, so "
+                        "that step of your plan is wrong. Send the request's next step."
+                        if failed.status == "repeat"
+                        else f"the earlier call {failed.name} in the same reply failed. Fix that first."
+                    )
                     record = self._skip(result.steps, call, parsed, why)
                 elif answer is not None or gave_up:
                     record = self._skip(result.steps, call, parsed, "the turn ended with answer_user.")
@@ -217,13 +229,18 @@ class AgentHost:
                     record = await self._execute(result.steps, call, parsed, result)
                     if record.status in ("error", "invalid", "unknown_tool"):
                         failed = record
+                    elif record.status == "repeat" and checks.twice_in_plan(self.tools, call, calls[:i]):
+                        # measured on the corpus's dev half (compound-two-climbs): "up to 10 m, then
+                        # another 10 m higher, then land" planned as takeoff(10), takeoff(10), land; the
+                        # second takeoff was held back and the landing flew, the climb never did
+                        failed = record
                     elif record.ok and checks.acts(self.tools, record.name):
                         # the model acted again after being asked: a later empty reply starts a new count
                         result.empty_streak = 0
                 result.tool_calls.append(record)
             if answer is not None:
-                result.outcome, result.final_text = "answered", answer
-                self._emit("final", step=result.steps, text=answer, via=ANSWER_TOOL)
+                result.outcome, result.final_text = "answered", wording.with_refusals(answer, result)
+                self._emit("final", step=result.steps, text=result.final_text, via=ANSWER_TOOL)
                 break
             if gave_up:
                 self._end_without_answer(result)
@@ -313,6 +330,9 @@ class AgentHost:
             name, args, reading, notes = await read_call(
                 name, args, self._memory.request, self.fleet.ids, self.fleet.fresh_entry
             )
+            if (offered := self.tools.get(name)) is not None:
+                required = (offered.input_schema or {}).get("required") or []
+                notes += unplaced_optional_point(args, self._memory.request, required)
         self._emit(
             "tool_call",
             step=step,
@@ -335,6 +355,22 @@ class AgentHost:
             outcome = ToolOutcome(
                 f"{outcome.text} This is the third time this same call was refused; it will not work. Stop "
                 f"calling it: {finish_hint(self.answer_tool)}, saying what was done and what was refused.",
+                is_error=True,
+            )
+        elif status == "repeat" and checks.same_invalid_again(name, args, turn, ("repeat",)):
+            # measured on the corpus's dev half (compound-two-climbs): the same move, already done, sent
+            # eight times in a row, each answered "not sent again", until the step limit
+            outcome = ToolOutcome(
+                f"{outcome.text} This is the third time this same call came back; it will not be sent. Stop "
+                f"calling it: send a different call for what the request still asks, or "
+                f"{finish_hint(self.answer_tool)}.",
+                is_error=False,
+            )
+        elif status == "error" and checks.same_refusal_again(outcome.text, turn):
+            outcome = ToolOutcome(
+                f"{outcome.text} This is the third time the gateway refused this, for the same reason; it "
+                f"will not allow it. Stop asking: {finish_hint(self.answer_tool)}, saying what was done and "
+                "what was refused.",
                 is_error=True,
             )
         model_text = outcome.text
@@ -384,7 +420,7 @@ class AgentHost:
         """An ``answer_user`` call: the answer that ends the turn, or None when it is sent back (empty, an
         echo, or premature once); the flag says the model has now given no answer too often."""
         args = call_arguments(call)
-        text = answer_text(args)
+        text = answer_text(args) if args is not None else bare_answer(call["raw_args"])
         shown = args if args is not None else call["raw_args"]
         self._emit(
             "tool_call", step=step, id=call["id"], name=ANSWER_TOOL, arguments=shown, parsed_from_text=parsed
@@ -394,7 +430,7 @@ class AgentHost:
         empty = not text or stale or wording.echoes_host(text, self._memory)
         # An answer is held back first (once per reason): a model that gives up with an echo after its
         # own invalid call is told how to go on, not only that the echo is no answer.
-        held = await self._hold_answer(result)
+        held = await self._hold_answer(result, empty, text)
         if held or empty:
             reply = held or wording.not_an_answer(text, stale, result)
             if empty:
@@ -416,7 +452,32 @@ class AgentHost:
         )
         return answer, gave_up
 
-    async def _hold_answer(self, result: TurnResult) -> str | None:
+    def _nothing_ran(self, result: TurnResult) -> str | None:
+        """An answer given before any call reached the gateway in this turn is sent back once (a small
+        model's habit, so with the answer tool): nothing was read or done, so it is a guess. Measured on
+        the corpus's dev half with the 1.5B model: "only if charlie is above 40 percent, send it up to 12 m
+        and back down" answered "Charlie is above 40 percent, sending it up ..." with no call at all, and
+        "are any of the drones flying?" answered that all three flew (all three were on the ground). Once
+        a turn: a model that answers again is believed (a greeting, or a question the roster answers)."""
+        held = self._memory.held
+        ran = any(c.status in ("ok", "error") for c in result.tool_calls)
+        if not self.answer_tool or ran or "nothing_ran" in held:
+            return None
+        held.add("nothing_ran")
+        return wording.NOTHING_RAN
+
+    def _refusal_unsaid(self, result: TurnResult, text: str) -> str | None:
+        """An answer that does not mention a refusal by the gateway's rules this turn is sent back once,
+        quoting the refusal: every turn ends with a true answer, and a refused part of a request is part of
+        it. Measured on the corpus's dev half (refuse-all-150m): refused 150 m, the 1.5B model flew alpha to
+        120 m and answered "Alpha ... is now flying at 120 m above home", with no word of the refusal."""
+        refusals = [c for c in result.tool_calls if wording.refused(c)]
+        if not refusals or "refusal" in self._memory.held or wording.says_refused(text):
+            return None
+        self._memory.held.add("refusal")
+        return wording.refusal_unsaid(refusals[-1])
+
+    async def _hold_answer(self, result: TurnResult, empty: bool = False, text: str = "") -> str | None:
         """Why an answer is sent back instead of ending the turn, or None; each reason at most once a turn,
         so a model that answers again is believed."""
         held = self._memory.held
@@ -425,6 +486,21 @@ class AgentHost:
         if last is not None and last.status in ("invalid", "unknown_tool") and "invalid" not in held:
             held.add("invalid")
             return wording.invalid_last_call(last.name)
+        # a gateway error that is no refusal by a rule is a mistake in the call, not an outcome to report
+        # (measured on the corpus's dev half, multi-two-heights: "alpha is on the ground; say how high to
+        # fly: ..." came back word for word as the answer, and nothing had flown)
+        if (
+            last is not None
+            and last.status == "error"
+            and not wording.refused(last)
+            and "invalid" not in held
+        ):
+            held.add("invalid")
+            return wording.failed_last_call(last.name)
+        if not empty and (nothing := self._nothing_ran(result)) is not None:
+            return nothing
+        if not empty and (unsaid := self._refusal_unsaid(result, text)) is not None:
+            return unsaid
         if "untouched" in held:
             return None
         if self.fleet.enabled:

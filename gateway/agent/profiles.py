@@ -24,14 +24,18 @@ from gateway.agent.toolbox import ToolInfo, ToolSelectionError
 
 PROFILES = ("full", "small")
 
-# The small profile's system prompt: short, one rule a line, naming the tools it means.
+# The small profile's system prompt: short, one rule a line, naming the tools it means. The second example
+# is from the NL corpus's dev half: "Alpha to 10 m and bravo to 20 m" (multi-two-heights) was planned as
+# move_to_relative(north_m=10, alt_m=0), the shape of the only example, for drones on the ground; with
+# the second example, as takeoff(10) and takeoff(20).
 SMALL_MODEL_SYSTEM_PROMPT = (
     "You fly drones by calling tools, one tool call at a time. After each tool result, call the tool for "
     'the next step of the request, in the order the user asked. Use only the drone ids in "Fleet now". '
     "Altitudes are metres above home. If a tool refuses, tell the user why and stop. When every step is "
     "done, answer in one short sentence.\n"
     'Example: "bravo: 50 m east at 20 m, then land" is move_to_relative(drone_id="bravo", east_m=50, '
-    'alt_m=20), then land(drone_id="bravo"). Use go_to_location only with coordinates the user gave.'
+    'alt_m=20), then land(drone_id="bravo"); "alpha to 10 m" is takeoff(drone_id="alpha", alt_m=10). Use '
+    "go_to_location only with coordinates the user gave."
 )
 
 
@@ -90,6 +94,13 @@ SMALL_MODEL_DESCRIPTIONS = {
     "center_lat_deg, center_lon_deg only for coordinates the user gave. Drones on the ground take off first.",
 }
 
+# Arguments a small model is shown first, in this order (the rest follow in the gateway's order). A small
+# model fills arguments in the order it reads them: measured on the corpus's dev half with the 1.5B model,
+# "8 metres apart, right where they are" (form-line-here) and "15 m apart ... where they are now"
+# (form-pair-abreast) put the distance into north_m, the first metres argument after the centre, and left
+# spacing_m at its default, so the formation was flown off where it was asked.
+FIRST_ARGUMENTS = {"formation_goto": ("drone_ids", "formation", "alt_m", "spacing_m")}
+
 # Optional arguments left out of what a small model is shown (the gateway's defaults apply).
 ADVANCED_ARGUMENTS = frozenset(
     {"wait", "alt_frame", "heading_deg", "stagger_m", "land_on_arrival", "tag", "state"}
@@ -144,5 +155,9 @@ def _described(tool: ToolInfo) -> ToolInfo:
         for bound in BOUNDS_LEFT_TO_THE_GATEWAY:
             if not (name == "alt_m" and bound == "maximum"):  # the altitude limit is worth reading
                 prop.pop(bound, None)
+    first = [n for n in FIRST_ARGUMENTS.get(tool.name, ()) if n in (schema.get("properties") or {})]
+    if first:
+        props = schema["properties"]
+        schema["properties"] = {n: props[n] for n in [*first, *(n for n in props if n not in first)]}
     description = SMALL_MODEL_DESCRIPTIONS.get(tool.name, tool.description)
     return ToolInfo(tool.name, description, schema, tool.toolset, tool.read_only)

@@ -110,6 +110,10 @@ def echoes_host(said: str, memory: TurnMemory) -> bool:
     ("alpha battery 73 %") is a fine answer."""
     text = norm(said)
     text = re.sub(r"^error(?: executing tool \w+)?:\s*", "", text)
+    if text.startswith("fleet now:"):
+        # the host's roster line, label and all (measured on the corpus's dev half, cond-above-forty-hop:
+        # sent back once as a guess, the 1.5B model answered with the roster line itself)
+        return True
     told = [*memory.host_notes, *memory.error_texts]
     if len(text) < 20:
         # a short reply that is a whole phrase of the host's note (measured: "Nothing yet.", from
@@ -154,12 +158,68 @@ def not_an_answer(text: str, stale: bool, result: TurnResult) -> str:
     )
 
 
+# An answer before any call ran (host.AgentHost._nothing_ran): what the model is told, once a turn.
+NOTHING_RAN = (
+    "Not sent to the user yet: no tool has run in this turn, so nothing was checked or done. Read what the "
+    "request depends on with a tool (fleet_status, get_battery, get_position), or call the tool for its "
+    "first step; if the request needs no tool at all, give the same answer again."
+)
+
+
 def invalid_last_call(name: str) -> str:
     """An answer held back because the last call was the model's own mistake. Measured: after the host's
     note on go_to_location(0, 0) the 1.5B model answered with the note itself; nothing had been done."""
     return (
         f"Not finished yet: your {name} call was not valid, so nothing was sent; my note above says how to "
         "fix it. Send the corrected call, then the rest of the request."
+    )
+
+
+# Words of an answer that tell the user something was refused or is not possible.
+_SAYS_REFUSED_RE = re.compile(
+    r"refus|limit|exceed|not allowed|cannot|can't|can not|unable|too (?:far|high|low)|beyond|denied|rejected|"
+    r"not possible|impossible|maximum|max_",
+    re.IGNORECASE,
+)
+
+
+def says_refused(text: str) -> bool:
+    """The answer tells the user that something was refused or is not possible."""
+    return bool(_SAYS_REFUSED_RE.search(text))
+
+
+def with_refusals(answer: str, result: TurnResult) -> str:
+    """The model's answer, followed by the host's marked line naming the gateway's refusals of this turn
+    when the answer says nothing of them: every turn ends with a true answer, refusals reported. Measured
+    on the corpus's dev half (refuse-all-150m): sent back once quoting the refusal, the 1.5B model gave the
+    same answer, silent about it, again."""
+    refusals = [c for c in result.tool_calls if refused(c)]
+    if not refusals or says_refused(answer):
+        return answer
+    why = "; ".join(f"{c.name}: {_reason(c)}" for c in refusals[-2:])
+    return f"{answer} (Host: the gateway refused {why}.)"
+
+
+def _reason(record: ToolCallRecord) -> str:
+    """The first line of a call's error, without the "Error ...:" prefixes."""
+    return re.sub(r"^(?:error[^:]*:\s*)+", "", first_line(record.text), flags=re.IGNORECASE)
+
+
+def refusal_unsaid(record: ToolCallRecord) -> str:
+    """An answer held back because it does not mention the gateway's refusal."""
+    why = _reason(record)
+    return (
+        f"Not sent to the user yet: the gateway refused part of the request ({record.name}: {why}), and "
+        "your answer does not say so. Answer again in one sentence with what was done and what was refused, "
+        "and why."
+    )
+
+
+def failed_last_call(name: str) -> str:
+    """An answer held back because the last call failed with an error that is no refusal by a rule."""
+    return (
+        f"Not finished yet: your {name} call failed and nothing was done; the error says how to fix it. Send "
+        "the corrected call, then the rest of the request. If it cannot be done, say why in your answer."
     )
 
 
@@ -215,6 +275,10 @@ def reprompt_text(
     return "\n".join(parts)
 
 
+def _without_error_prefix(text: str) -> str:
+    return re.sub(r"^error:\s*", "", text, flags=re.IGNORECASE)
+
+
 def answer_from_results(result: TurnResult, request: str, roster: Roster | None) -> str:
     """The host's answer when the model gave none, marked as the host's: what each call did or why the
     gateway refused it, and where the drones named are now."""
@@ -223,9 +287,16 @@ def answer_from_results(result: TurnResult, request: str, roster: Roster | None)
     parts = []
     if done:
         parts.append("Done: " + "; ".join(f"{c.name} ({c.summary})" for c in done) + ".")
-    if errors:
-        why = "; ".join(f"{c.name}: {first_line(c.text)}" for c in errors[-3:])
+    # a rule's refusal is said as one; another error is a call that failed (measured on the corpus's dev
+    # half, multi-two-heights: "alpha is on the ground; say how high to fly" was called a refusal)
+    refusals = [c for c in errors if refused(c)]
+    failures = [c for c in errors if not refused(c)]
+    if refusals:
+        why = "; ".join(f"{c.name}: {_without_error_prefix(first_line(c.text))}" for c in refusals[-3:])
         parts.append(f"Not done, the gateway refused: {why}.")
+    if failures:
+        why = "; ".join(f"{c.name}: {_without_error_prefix(first_line(c.text))}" for c in failures[-3:])
+        parts.append(f"Not done, the call failed: {why}.")
     if not done and not errors:
         reason = result.error or f"the model gave no usable reply ({result.outcome})"
         parts.append(f"Nothing was done: {reason}.")

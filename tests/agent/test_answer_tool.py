@@ -88,12 +88,13 @@ async def test_an_answer_written_before_a_refusal_is_not_believed_when_sent_agai
             (ANSWER_TOOL, '{"text": "Alpha is at 500 m."}'),
         ]
     )
-    model = scripted([plan, call(ANSWER_TOOL, text="Alpha is at 500 m."), call(ANSWER_TOOL, text="copied")])
+    refused = "500 m was refused: the limit is 120 m."
+    model = scripted([plan, call(ANSWER_TOOL, text="Alpha is at 500 m."), call(ANSWER_TOOL, text=refused)])
     _, result = await _run(toy, model, "climb alpha to 500 m")
     told = _last_tool_text(model.requests[2])
     assert told.startswith("Not an answer: you wrote it with your plan, before the results; it was not sent.")
     assert "refused: takeoff: Error executing tool takeoff: refused by rule max_altitude" in told
-    assert result.outcome == "answered" and result.final_text == "copied"
+    assert result.outcome == "answered" and result.final_text == refused
 
 
 async def test_an_answer_that_quotes_the_gateways_refusal_is_an_answer_even_inside_a_host_note(
@@ -245,3 +246,117 @@ async def test_an_answer_after_an_invalid_call_whose_plan_was_skipped_is_sent_ba
     _, result = await _run(toy, model, "take off alpha to 10 m, then land it")
     assert _last_tool_text(model.requests[2]).startswith("Not finished yet: your takeoff call was not valid")
     assert result.final_text == "Alpha went up to 10 m and landed."
+
+
+async def test_an_answer_before_any_call_ran_is_sent_back_once(toy, scripted) -> None:
+    """Measured on the corpus's dev half (cond-above-forty-hop, ask-anyone-flying): the 1.5B model answered
+    at once, with no call, and the answer was a guess ("sending it up ..."; "all three are flying")."""
+    model = scripted(
+        [
+            call(ANSWER_TOOL, text="Alpha is above 40 percent, sending it up to 12 m."),
+            call("takeoff", drone_id="alpha", alt_m=12),
+            call(ANSWER_TOOL, text="Alpha climbed to 12 m."),
+        ]
+    )
+    _, result = await _run(toy, model, "only if alpha is above 40 percent, send it up to 12 m")
+    assert result.outcome == "answered" and result.final_text == "Alpha climbed to 12 m."
+    assert _last_tool_text(model.requests[1]).startswith("Not sent to the user yet: no tool has run")
+    assert toy.world.drones["alpha"].alt_m == 12.0
+
+
+async def test_the_same_answer_again_without_a_call_is_believed_in_prose_too(toy, scripted) -> None:
+    model = scripted([say("Hello! I fly your drones."), say("Hello! I fly your drones.")])
+    _, result = await _run(toy, model, "hi")
+    assert result.outcome == "answered" and result.final_text == "Hello! I fly your drones."
+    told = [m for m in model.requests[1]["messages"] if m["role"] == "user"][-1]["content"]
+    assert told.startswith("Not sent to the user yet: no tool has run")
+    assert len(model.requests) == 2 and toy.world.calls == []
+
+
+async def test_an_answer_whose_arguments_are_a_bare_string_is_that_text(toy, scripted) -> None:
+    """Measured on the dev half (cond-above-forty-hop): ``"arguments": "Charlie is above 40 percent ..."``."""
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=5),
+            ScriptedReply(tool_calls=[(ANSWER_TOOL, '"Alpha hovers at 5 m."')]),
+        ]
+    )
+    _, result = await _run(toy, model, "take off alpha to 5 m")
+    assert result.outcome == "answered" and result.final_text == "Alpha hovers at 5 m."
+
+
+async def test_an_answer_written_as_text_with_a_bare_string_is_that_text(toy, scripted) -> None:
+    """The measured form (cond-above-forty-hop), written as text the way the 1.5B model writes it."""
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=5),
+            say('{{"name": "answer_user", "arguments": "Alpha hovers at 5 m."}}'),
+        ]
+    )
+    _, result = await _run(toy, model, "take off alpha to 5 m")
+    assert result.outcome == "answered" and result.final_text == "Alpha hovers at 5 m."
+
+
+def test_bare_answer_reads_a_string_and_nothing_else() -> None:
+    from gateway.agent.answer import bare_answer
+
+    assert bare_answer("Charlie is up.") == "Charlie is up."  # as read from text
+    assert bare_answer('"Charlie is up."') == "Charlie is up."  # a JSON string from the API
+    assert bare_answer('{"txt": 1') == "" and bare_answer(None) == "" and bare_answer(3) == ""
+
+
+async def test_an_answer_after_a_correctable_gateway_error_is_sent_back_once(toy, scripted) -> None:
+    """Measured on the dev half (multi-two-heights): the gateway's "alpha is on the ground; say how high
+    to fly" came back as the answer; nothing had flown. A refusal by a rule is still taken at once (the
+    test above)."""
+    model = scripted(
+        [
+            call("move_north", drone_id="alpha", distance_m=10),
+            call(ANSWER_TOOL, text="Error: alpha is on the ground: take off first"),
+            call("takeoff", drone_id="alpha", alt_m=10),
+            call("move_north", drone_id="alpha", distance_m=10),
+            call(ANSWER_TOOL, text="Alpha flew 10 m north at 10 m."),
+        ]
+    )
+    _, result = await _run(toy, model, "take alpha 10 m north at 10 m")
+    assert _last_tool_text(model.requests[2]).startswith("Not finished yet: your move_north call failed")
+    assert result.outcome == "answered" and result.final_text == "Alpha flew 10 m north at 10 m."
+    assert toy.world.drones["alpha"].north_m == 10.0
+
+
+async def test_an_answer_still_silent_about_a_refusal_gets_the_hosts_line_naming_it(toy, scripted) -> None:
+    """Measured on the dev half (refuse-all-150m): sent back once, the same silent answer came again."""
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=150),
+            call("takeoff", drone_id="alpha", alt_m=120),
+            call(ANSWER_TOOL, text="Alpha is now flying at 120 m."),
+            call(ANSWER_TOOL, text="Alpha is now flying at 120 m."),
+        ]
+    )
+    events: list[AgentEvent] = []
+    _, result = await _run(toy, model, "send alpha up to 150 m", events)
+    assert result.outcome == "answered" and result.final_text.startswith(
+        "Alpha is now flying at 120 m. (Host: the gateway refused takeoff: refused by rule max_altitude: "
+        "target altitude 150 m exceeds"
+    ), result.final_text
+    assert [e.data["text"] for e in events if e.kind == "final"] == [result.final_text]  # what is shown
+
+
+async def test_an_answer_silent_about_a_refusal_is_sent_back_once_quoting_it(toy, scripted) -> None:
+    """Measured on the dev half (refuse-all-150m): refused 150 m, the model flew to the limit and answered
+    "Alpha ... is now flying at 120 m", with no word of the refusal."""
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=150),
+            call("takeoff", drone_id="alpha", alt_m=120),
+            call(ANSWER_TOOL, text="Alpha is now flying at 120 m."),
+            call(ANSWER_TOOL, text="150 m was refused (limit 120 m); alpha flies at 120 m."),
+        ]
+    )
+    _, result = await _run(toy, model, "send alpha up to 150 m")
+    told = _last_tool_text(model.requests[3])
+    assert told.startswith(
+        "Not sent to the user yet: the gateway refused part of the request (takeoff: refused by rule"
+    )
+    assert result.outcome == "answered" and result.final_text.startswith("150 m was refused")

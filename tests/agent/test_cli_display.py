@@ -251,7 +251,8 @@ async def test_legacy_mcp_mode(toy, scripted) -> None:
 async def test_small_profile_sends_its_tools_prompt_and_reply_cap(toy, scripted) -> None:
     from gateway.agent.profiles import SMALL_MODEL_SYSTEM_PROMPT
 
-    model = scripted([say("ok")])
+    # an answer before any call ran is sent back once with the small profile; the same answer again is taken
+    model = scripted([say("ok"), say("ok")])
     console, _ = _console()
     argv = ["--mcp-url", toy.url, "--token", TOKEN, "--endpoint", model.base_url, "--model", "m",
             "--profile", "small", "--max-tokens", "50", "hi"]  # fmt: skip

@@ -204,10 +204,21 @@ async def test_request_shaped_tools_take_one_or_two_model_calls(stack: LocalStac
 
     before = await truth.snapshot(["alpha", "bravo"])
     centre = (sum(d.lat for d in before.values()) / 2, sum(d.lon for d in before.values()) / 2)
+    # the shape the 1.5B model wrote on the corpus's dev half (form-line-here): a centre of 0, 0 for "here"
     formed, model = await turn(
         "alpha and bravo side by side, 12 m apart, at 20 m, right where they are",
         [
-            call("formation_goto", drone_ids=["alpha", "bravo"], formation="line", alt_m=20, spacing_m=12),
+            call(
+                "formation_goto",
+                drone_ids=["alpha", "bravo"],
+                formation="line",
+                alt_m=20,
+                center_lat_deg=0,
+                center_lon_deg=0,
+                north_m=0,
+                east_m=0,
+                spacing_m=12,
+            ),
             call(ANSWER_TOOL, text="alpha and bravo fly in a line 12 m apart at 20 m."),
         ],
     )

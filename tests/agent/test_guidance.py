@@ -109,6 +109,19 @@ async def test_an_argument_the_tool_does_not_have_is_refused(toy, scripted) -> N
     )
 
 
+def test_an_argument_for_the_other_direction_is_named_as_the_one_the_tool_has() -> None:
+    """Measured on the dev half (multi-west-and-land): "40 m west" written as west_m=40, three times."""
+    from gateway.agent.checks import unknown_arguments
+    from gateway.agent.toolbox import ToolInfo
+
+    props = {n: {"type": "number"} for n in ("north_m", "east_m", "up_m")}
+    move = ToolInfo("move_to_relative", "m", {"type": "object", "properties": {"drone_id": {}, **props}})
+    text = unknown_arguments([move], move, {"drone_id": "alpha", "west_m": 40, "south_m": 5})
+    assert text is not None and text.startswith(
+        "move_to_relative has no argument south_m, west_m (south_m=5 is north_m=-5; west_m=40 is east_m=-40);"
+    )
+
+
 # --- empty replies -----------------------------------------------------------------------------------
 
 
@@ -207,6 +220,41 @@ async def test_a_call_identical_to_one_that_just_succeeded_is_not_sent_again(toy
     assert "The request: take off alpha to 15 m and land" in told and "next step" in told
 
 
+async def test_a_plan_with_the_same_action_twice_stops_at_the_second(toy, scripted) -> None:
+    """Measured on the corpus's dev half (compound-two-climbs): "up to 10 m, then another 10 m higher, then
+    land" was planned as takeoff(10), takeoff(10), land; the landing flew and the climb never did."""
+    takeoff = ("takeoff", {"drone_id": "alpha", "alt_m": 10})
+    model = scripted(
+        [
+            ScriptedReply(tool_calls=[takeoff, takeoff, ("land", {"drone_id": "alpha"})]),
+            call("move_north", drone_id="alpha", distance_m=10),
+            call("land", drone_id="alpha"),
+            say("alpha went up to 10 m, 10 m north, and landed"),
+        ]
+    )
+    result = await _turn(toy, model, "take alpha up to 10 m, then 10 m north, then land it")
+    assert [(c.name, c.status) for c in result.tool_calls][:3] == [
+        ("takeoff", "ok"),
+        ("takeoff", "repeat"),
+        ("land", "skipped"),
+    ]
+    assert _tool_texts(model.requests[1])[-1].startswith(
+        "Not executed: the earlier call takeoff in the same reply repeats a step it already did"
+    )
+    assert [name for name, _ in toy.world.calls] == ["takeoff", "move_north", "land"]
+    assert result.outcome == "answered"
+
+
+async def test_the_third_time_a_done_call_comes_back_the_model_is_told_to_stop(toy, scripted) -> None:
+    """Measured on the dev half (compound-two-climbs): the same finished move sent eight times in a row."""
+    model = scripted([call("takeoff", drone_id="alpha", alt_m=10)] * 4 + [say("alpha is at 10 m")])
+    result = await _turn(toy, model, "take alpha up to 10 m")
+    assert [c.status for c in result.tool_calls] == ["ok", "repeat", "repeat", "repeat"]
+    texts = [_tool_texts(model.requests[i])[-1] for i in (2, 3, 4)]
+    assert ["third time this same call came back" in t for t in texts] == [False, False, True]
+    assert [name for name, _ in toy.world.calls] == ["takeoff"]
+
+
 async def test_the_same_call_after_another_action_on_that_drone_is_sent(toy, scripted) -> None:
     model = scripted(
         [
@@ -279,6 +327,20 @@ async def test_the_third_identical_refused_call_is_told_to_stop(toy, scripted) -
     texts = [_tool_texts(model.requests[i])[-1] for i in (1, 2, 3)]
     assert ["third time" in t for t in texts] == [False, False, True]
     assert "Stop calling it: answer in words, saying what was done and what was refused." in texts[2]
+
+
+async def test_the_third_refusal_for_the_same_reason_is_told_to_stop(toy, scripted) -> None:
+    """Measured on the dev half (refuse-all-150m): 150 m asked five times, for three drones, after the
+    first refusal; the calls differ, the gateway's reason does not."""
+    model = scripted(
+        [call("takeoff", drone_id=d, alt_m=150) for d in ("alpha", "bravo", "alpha")]
+        + [say("The gateway refused 150 m: the limit is 120 m.")]
+    )
+    result = await _turn(toy, model, "send both up to 150 m")
+    assert [c.status for c in result.tool_calls] == ["error"] * 3
+    texts = [_tool_texts(model.requests[i])[-1] for i in (1, 2, 3)]
+    assert ["the gateway refused this, for the same reason" in t for t in texts] == [False, False, True]
+    assert "Stop asking: answer in words" in texts[2]
 
 
 async def test_a_refused_move_of_a_grounded_drone_names_the_takeoff_with_its_altitude() -> None:
@@ -375,6 +437,15 @@ async def test_a_short_echo_of_the_hosts_note_is_no_answer(toy, scripted) -> Non
     assert result.answered_by == "model" and result.empty_replies == 2
 
 
+async def test_the_roster_line_given_back_is_no_answer(toy, scripted) -> None:
+    """Measured on the dev half (cond-above-forty-hop): the host's "Fleet now: ..." line as the answer."""
+    roster = "Fleet now: alpha on the ground, battery 90%; bravo on the ground, battery 90%."
+    model = scripted([call("get_position", drone_id="alpha"), say(roster), say("alpha is on the ground.")])
+    result = await _turn(toy, model, "where is alpha?", None)
+    assert result.outcome == "answered" and result.final_text == "alpha is on the ground.", result
+    assert result.empty_replies == 1
+
+
 async def test_a_finished_step_is_not_flown_again_unless_the_request_asks(toy, scripted) -> None:
     """Out, back and landed, then the model starts over: the same takeoff is not sent again; with "again"
     in the request it is."""
@@ -414,3 +485,19 @@ async def test_a_drone_landed_as_the_request_ends_is_not_taken_up_again(toy, scr
         toy, scripted(plan[:5]), "alpha: up to 10 m, 20 m north, land, then take off to 12 m"
     )
     assert [c.status for c in ongoing.tool_calls][:4] == ["ok", "ok", "ok", "ok"], ongoing.tool_calls
+
+
+def test_the_hosts_answer_tells_a_refusal_from_a_call_that_failed() -> None:
+    """Measured on the dev half (multi-two-heights): "alpha is on the ground; say how high to fly" was
+    reported as something the gateway refused."""
+    from gateway.agent.turns import ToolCallRecord
+    from gateway.agent.wording import answer_from_results
+
+    mistake = "Error: alpha is on the ground; say how high to fly"
+    rule = "Error: Refused: max_altitude: 150 m exceeds the limit of 120 m"
+    failed = ToolCallRecord("1", "move_to_relative", {"drone_id": "alpha"}, "error", "s", text=mistake)
+    refused = ToolCallRecord("2", "takeoff", {"drone_id": "bravo"}, "error", "s", text=rule)
+    result = TurnResult(outcome="empty_answer", final_text=None, steps=3, tool_calls=[failed, refused])
+    text = answer_from_results(result, "alpha to 10 m, bravo to 150 m", None)
+    assert "Not done, the gateway refused: takeoff: Refused: max_altitude: 150 m exceeds" in text
+    assert "Not done, the call failed: move_to_relative: alpha is on the ground; say how high" in text

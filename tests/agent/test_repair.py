@@ -11,6 +11,7 @@ from gateway.agent.repair import (
     restore_request_directions,
     restore_request_numbers,
     swap_hint,
+    unplaced_optional_point,
 )
 from gateway.agent.turns import AgentEvent, ModelConfig
 from tests.agent.toy_mcp import TOKEN
@@ -137,3 +138,21 @@ def test_an_unambiguous_misplaced_distance_is_moved_where_the_request_puts_it() 
     args = {"drone_id": "alpha", "north_m": 0, "east_m": 50}
     assert restore_request_directions(args, both) == [] and args["east_m"] == 50
     assert direction_mismatch(args, both) is not None
+
+
+def test_an_optional_point_at_zero_zero_the_request_never_gives_is_left_out() -> None:
+    """Measured on the dev half (form-line-here, form-circle-here, form-pair-abreast): formation_goto for
+    "right where they are" came with center_lat_deg=0, center_lon_deg=0."""
+    args = {"drone_ids": ["alpha"], "alt_m": 20, "center_lat_deg": 0, "center_lon_deg": 0, "north_m": 0}
+    request = "Line up alpha at 20 m, right where they are."
+    notes = unplaced_optional_point(args, request, ["drone_ids", "formation", "alt_m"])
+    assert args == {"drone_ids": ["alpha"], "alt_m": 20, "north_m": 0}
+    assert notes and notes[0].startswith("center_lat_deg=0, center_lon_deg=0 left out")
+    # a required pair stays (go_to_location: the host's own checks refuse or read it), a point 0, 0 the
+    # request gives stays, and so does any other point
+    kept = {"drone_id": "alpha", "lat_deg": 0, "lon_deg": 0, "alt_m": 20}
+    assert unplaced_optional_point(kept, request, ["drone_id", "lat_deg", "lon_deg", "alt_m"]) == []
+    named = {"center_lat_deg": 0, "center_lon_deg": 0}
+    assert unplaced_optional_point(named, "a line centred on 0, 0", []) == [] and len(named) == 2
+    other = {"center_lat_deg": 0, "center_lon_deg": 149.1}
+    assert unplaced_optional_point(other, request, []) == [] and len(other) == 2

@@ -202,6 +202,21 @@ def test_small_profile_keeps_its_tools_and_drops_advanced_optional_arguments() -
         apply_profile([other], "tiny")
 
 
+def test_small_profile_shows_formation_goto_spacing_before_the_centre_and_offsets() -> None:
+    """Measured on the dev half (form-line-here, form-pair-abreast): the "N m apart" went into north_m, the
+    first metres argument the 1.5B model read."""
+    from gateway.agent.profiles import apply_profile
+
+    names = ["drone_ids", "formation", "center_lat_deg", "center_lon_deg", "alt_m", "north_m", "east_m",
+             "spacing_m", "heading_deg", "wait"]  # fmt: skip
+    schema = {"type": "object", "properties": {n: {"type": "number"} for n in names}, "required": names[:2]}
+    (small,) = apply_profile([ToolInfo("formation_goto", "f", schema)], "small")
+    shown = ["drone_ids", "formation", "alt_m", "spacing_m", "center_lat_deg", "center_lon_deg", "north_m",
+             "east_m"]  # fmt: skip
+    assert list(small.input_schema["properties"]) == shown
+    assert list(schema["properties"]) == names  # the gateway's own schema is untouched
+
+
 def test_closest_tool_by_spelling_or_by_the_words_of_the_name() -> None:
     from gateway.agent.toolbox import closest_tool, signature
 

@@ -182,6 +182,27 @@ async def test_a_relative_move_of_a_drone_on_the_ground_needs_an_altitude_and_a_
     assert fake(gateway, "d1").sent == []
 
 
+async def test_an_altitude_of_zero_beside_a_climb_is_the_altitude_not_given(gateway: Gateway) -> None:
+    """Both filled in, as a small model does ("hop charlie up to 6 m": up_m=6, alt_m=0): from the ground the
+    climb is the takeoff's altitude, as up_m=0 beside alt_m is the climb not given."""
+    commander = gateway.commander
+    started = await commander.call("move_relative", AGENT, drone_id="d1", north_m=0, up_m=6, alt_m=0)
+    assert (await commander.wait(started["operation_id"], 10.0)).status == "succeeded"
+    assert fake(gateway, "d1").sent[0] == ("takeoff", 6.0)
+
+
+async def test_a_relative_move_that_goes_nowhere_is_said_not_flown(gateway: Gateway) -> None:
+    """ "Another 10 m higher" sent as alt_m=10 by a drone at 10 m: nothing to do, said with the argument
+    that climbs (it was reported as arrived, and the climb never flew)."""
+    commander = gateway.commander
+    started = await commander.call("takeoff", AGENT, drone_id="d1", alt_m=10)
+    assert (await commander.wait(started["operation_id"], 10.0)).status == "succeeded"
+    sent = list(fake(gateway, "d1").sent)
+    with pytest.raises(InvalidArgument, match=r"already flies at 10 m, the altitude asked for.*up_m is the"):
+        await commander.call("move_relative", AGENT, drone_id="d1", north_m=0, east_m=0, alt_m=10)
+    assert fake(gateway, "d1").sent == sent  # nothing was sent
+
+
 async def test_a_flying_drone_moves_to_an_altitude_above_home(gateway: Gateway) -> None:
     commander = gateway.commander
     started = await commander.call("takeoff", AGENT, drone_id="d1", alt_m=10)
