@@ -26,7 +26,7 @@ from typing import Any
 
 import openai
 
-from gateway.agent import checks, wording
+from gateway.agent import checks, held_answers, wording
 from gateway.agent.answer import ANSWER_TOOL, ANSWER_TOOL_INFO, answer_text, bare_answer, finish_hint
 from gateway.agent.chat import (
     ChatModel,
@@ -171,7 +171,12 @@ class AgentHost:
             if not calls:
                 said = strip_thinking(content or "").strip()
                 echo = bool(said) and wording.echoes_host(said, self._memory)
-                if said and not echo and not self._truncated and (held := self._nothing_ran(result)):
+                if (
+                    said
+                    and not echo
+                    and not self._truncated
+                    and (held := held_answers.nothing_ran(result, self._memory, self.answer_tool))
+                ):
                     self.messages.append({"role": "assistant", "content": content or ""})
                     self.messages.append({"role": "user", "content": self._note(held)})
                     self._emit("answer_held", step=result.steps, text=said, reason=held)
@@ -452,31 +457,6 @@ class AgentHost:
         )
         return answer, gave_up
 
-    def _nothing_ran(self, result: TurnResult) -> str | None:
-        """An answer given before any call reached the gateway in this turn is sent back once (a small
-        model's habit, so with the answer tool): nothing was read or done, so it is a guess. Measured on
-        the corpus's dev half with the 1.5B model: "only if charlie is above 40 percent, send it up to 12 m
-        and back down" answered "Charlie is above 40 percent, sending it up ..." with no call at all, and
-        "are any of the drones flying?" answered that all three flew (all three were on the ground). Once
-        a turn: a model that answers again is believed (a greeting, or a question the roster answers)."""
-        held = self._memory.held
-        ran = any(c.status in ("ok", "error") for c in result.tool_calls)
-        if not self.answer_tool or ran or "nothing_ran" in held:
-            return None
-        held.add("nothing_ran")
-        return wording.NOTHING_RAN
-
-    def _refusal_unsaid(self, result: TurnResult, text: str) -> str | None:
-        """An answer that does not mention a refusal by the gateway's rules this turn is sent back once,
-        quoting the refusal: every turn ends with a true answer, and a refused part of a request is part of
-        it. Measured on the corpus's dev half (refuse-all-150m): refused 150 m, the 1.5B model flew alpha to
-        120 m and answered "Alpha ... is now flying at 120 m above home", with no word of the refusal."""
-        refusals = [c for c in result.tool_calls if wording.refused(c)]
-        if not refusals or "refusal" in self._memory.held or wording.says_refused(text):
-            return None
-        self._memory.held.add("refusal")
-        return wording.refusal_unsaid(refusals[-1])
-
     async def _hold_answer(self, result: TurnResult, empty: bool = False, text: str = "") -> str | None:
         """Why an answer is sent back instead of ending the turn, or None; each reason at most once a turn,
         so a model that answers again is believed."""
@@ -497,9 +477,12 @@ class AgentHost:
         ):
             held.add("invalid")
             return wording.failed_last_call(last.name)
-        if not empty and (nothing := self._nothing_ran(result)) is not None:
+        if (
+            not empty
+            and (nothing := held_answers.nothing_ran(result, self._memory, self.answer_tool)) is not None
+        ):
             return nothing
-        if not empty and (unsaid := self._refusal_unsaid(result, text)) is not None:
+        if not empty and (unsaid := held_answers.refusal_unsaid(result, self._memory, text)) is not None:
             return unsaid
         if "untouched" in held:
             return None

@@ -158,7 +158,7 @@ def not_an_answer(text: str, stale: bool, result: TurnResult) -> str:
     )
 
 
-# An answer before any call ran (host.AgentHost._nothing_ran): what the model is told, once a turn.
+# An answer before any call ran (held_answers.nothing_ran): what the model is told, once a turn.
 NOTHING_RAN = (
     "Not sent to the user yet: no tool has run in this turn, so nothing was checked or done. Read what the "
     "request depends on with a tool (fleet_status, get_battery, get_position), or call the tool for its "

@@ -1,0 +1,34 @@
+"""Answers the host sends back once before it takes them: given before anything ran, or silent about
+a refusal. Each reason holds an answer back at most once a turn (``TurnMemory.held``)."""
+
+from __future__ import annotations
+
+from gateway.agent import wording
+from gateway.agent.turns import TurnMemory, TurnResult
+
+
+def nothing_ran(result: TurnResult, memory: TurnMemory, answer_tool: bool) -> str | None:
+    """An answer given before any call reached the gateway in this turn is sent back once (a small
+    model's habit, so with the answer tool): nothing was read or done, so it is a guess. Measured on
+    the corpus's dev half with the 1.5B model: "only if charlie is above 40 percent, send it up to 12 m
+    and back down" answered "Charlie is above 40 percent, sending it up ..." with no call at all, and
+    "are any of the drones flying?" answered that all three flew (all three were on the ground). Once
+    a turn: a model that answers again is believed (a greeting, or a question the roster answers)."""
+    held = memory.held
+    ran = any(c.status in ("ok", "error") for c in result.tool_calls)
+    if not answer_tool or ran or "nothing_ran" in held:
+        return None
+    held.add("nothing_ran")
+    return wording.NOTHING_RAN
+
+
+def refusal_unsaid(result: TurnResult, memory: TurnMemory, text: str) -> str | None:
+    """An answer that does not mention a refusal by the gateway's rules this turn is sent back once,
+    quoting the refusal: every turn ends with a true answer, and a refused part of a request is part of
+    it. Measured on the corpus's dev half (refuse-all-150m): refused 150 m, the 1.5B model flew alpha to
+    120 m and answered "Alpha ... is now flying at 120 m above home", with no word of the refusal."""
+    refusals = [c for c in result.tool_calls if wording.refused(c)]
+    if not refusals or "refusal" in memory.held or wording.says_refused(text):
+        return None
+    memory.held.add("refusal")
+    return wording.refusal_unsaid(refusals[-1])
