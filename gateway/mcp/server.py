@@ -3,7 +3,7 @@
 Mounting in the one ASGI app (``gateway/app.py``)::
 
     mcp = build_mcp(gateway)
-    app.mcp_door = mcp_http_app(mcp, settings)  # served ahead of the REST API (GatewayApp)
+    app.mcp_door = McpBodyLimit(mcp_http_app(mcp, settings), limit)  # ahead of the REST API (GatewayApp)
     # and inside the FastAPI lifespan, after gateway.start():
     async with mcp.session_manager.run(): ...
 
