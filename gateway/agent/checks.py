@@ -188,8 +188,8 @@ def unknown_arguments(base_tools: Sequence[ToolInfo], tool: ToolInfo, args: Argu
     if not known or not extra:
         return None
     names = ", ".join(extra)
-    # "40 m west" written as west_m=40 (measured on the corpus's dev half, multi-west-and-land: sent
-    # twice more unchanged after the plain refusal): say the argument it is, with its value
+    # "10 m lower" written as down_m=10: say the argument it is, with its value (the gateway takes
+    # west_m and south_m as said; down_m is retired, gateway/mcp/naming.py)
     opposite = [
         f"{n}={v:g} is {_OPPOSITES[n]}={-v:g}"
         for n in extra
@@ -200,7 +200,7 @@ def unknown_arguments(base_tools: Sequence[ToolInfo], tool: ToolInfo, args: Argu
 
 
 # Arguments a model writes for the other direction of one the tool has.
-_OPPOSITES = {"west_m": "east_m", "south_m": "north_m", "down_m": "up_m"}
+_OPPOSITES = {"down_m": "up_m"}
 
 
 def twice_in_plan(tools: Mapping[str, ToolInfo], call: ModelCall, earlier: Sequence[ModelCall]) -> bool:

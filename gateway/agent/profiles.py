@@ -101,9 +101,11 @@ SMALL_MODEL_DESCRIPTIONS = {
 # spacing_m at its default, so the formation was flown off where it was asked.
 FIRST_ARGUMENTS = {"formation_goto": ("drone_ids", "formation", "alt_m", "spacing_m")}
 
-# Optional arguments left out of what a small model is shown (the gateway's defaults apply).
+# Optional arguments left out of what a small model is shown (the gateway's defaults apply). south_m and
+# west_m are not shown either (north_m and east_m take negative values), but the gateway takes them when a
+# small model writes them, as it does for "40 m west".
 ADVANCED_ARGUMENTS = frozenset(
-    {"wait", "alt_frame", "heading_deg", "stagger_m", "land_on_arrival", "tag", "state"}
+    {"wait", "alt_frame", "heading_deg", "stagger_m", "land_on_arrival", "tag", "state", "south_m", "west_m"}
 )
 
 # Schema bounds a small model is not shown (the gateway checks them and its refusal names the limit): they

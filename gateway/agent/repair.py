@@ -137,14 +137,25 @@ def _moves(request: str) -> list[tuple[float, str, str, int]]:
 def _misplaced(arguments: Arguments, moves: list[tuple[float, str, str, int]]) -> tuple[str, float] | None:
     """The first relative-move argument whose value is a distance the request names, but on another axis
     or with the other sign; with the value it has."""
-    for name in ("north_m", "east_m", "up_m"):
+    for name, (own_axis, own_sign) in _ARGUMENT_AXES.items():
         value = arguments.get(name)
         if not isinstance(value, int | float) or isinstance(value, bool) or value == 0:
             continue
         same = [m for m in moves if m[0] == abs(value)]
-        if same and not any(axis == name and sign * abs(value) == value for _, _, axis, sign in same):
+        meant = own_sign * value  # the metres along own_axis this argument asks for
+        if same and not any(axis == own_axis and sign * abs(value) == meant for _, _, axis, sign in same):
             return name, float(value)
     return None
+
+
+# each relative-move argument: the axis it moves along and which way (west_m=40 is east_m=-40)
+_ARGUMENT_AXES = {
+    "north_m": ("north_m", 1),
+    "east_m": ("east_m", 1),
+    "up_m": ("up_m", 1),
+    "south_m": ("north_m", -1),
+    "west_m": ("east_m", -1),
+}
 
 
 def restore_request_directions(arguments: Arguments, request: str) -> list[str]:

@@ -16,7 +16,7 @@ NAMES: dict[str, str] = {
     "alt_amsl_m": 'altitude in metres above mean sea level (results; `alt_frame="amsl"` makes an `alt_m` '
     "argument mean this)",
     "north_m, east_m, up_m": "a relative move in metres from where the drone is (negative: south, west, "
-    "down)",
+    "down); `south_m`, `west_m` say it as a request does (`west_m=40` is `east_m=-40`)",
     "center_lat_deg, center_lon_deg": "the point a formation is centred on",
     "target_lat_deg, target_lon_deg, target_alt_m": "where one drone of a fleet operation is sent",
     "climb_mps": "vertical speed in m/s (negative: descending); `north_mps`, `east_mps` the horizontal parts",

@@ -109,17 +109,17 @@ async def test_an_argument_the_tool_does_not_have_is_refused(toy, scripted) -> N
     )
 
 
-def test_an_argument_for_the_other_direction_is_named_as_the_one_the_tool_has() -> None:
-    """Measured on the dev half (multi-west-and-land): "40 m west" written as west_m=40, three times."""
+def test_down_m_is_named_as_the_up_m_the_tool_has() -> None:
+    """down_m is retired (gateway/mcp/naming.py): "10 m lower" as down_m=10 is told it is up_m=-10."""
     from gateway.agent.checks import unknown_arguments
     from gateway.agent.toolbox import ToolInfo
 
-    props = {n: {"type": "number"} for n in ("north_m", "east_m", "up_m")}
+    props = {n: {"type": "number"} for n in ("north_m", "east_m", "up_m", "south_m", "west_m")}
     move = ToolInfo("move_to_relative", "m", {"type": "object", "properties": {"drone_id": {}, **props}})
-    text = unknown_arguments([move], move, {"drone_id": "alpha", "west_m": 40, "south_m": 5})
-    assert text is not None and text.startswith(
-        "move_to_relative has no argument south_m, west_m (south_m=5 is north_m=-5; west_m=40 is east_m=-40);"
-    )
+    assert unknown_arguments([move], move, {"drone_id": "alpha", "west_m": 40, "south_m": 5}) is None
+    text = unknown_arguments([move], move, {"drone_id": "alpha", "down_m": 10})
+    assert text is not None
+    assert text.startswith("move_to_relative has no argument down_m (down_m=10 is up_m=-10);")
 
 
 # --- empty replies -----------------------------------------------------------------------------------

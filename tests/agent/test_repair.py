@@ -140,6 +140,21 @@ def test_an_unambiguous_misplaced_distance_is_moved_where_the_request_puts_it() 
     assert direction_mismatch(args, both) is not None
 
 
+def test_west_m_and_south_m_are_judged_as_the_directions_they_name() -> None:
+    """The gateway takes west_m/south_m as a request says them; a sign against the request's direction
+    is repaired or refused like north_m/east_m."""
+    west = "Take alpha and charlie 40 m west at 15 m altitude and land them over there."
+    assert direction_mismatch({"drone_id": "alpha", "west_m": 40, "alt_m": 15}, west) is None
+    assert restore_request_directions({"drone_id": "alpha", "west_m": 40}, west) == []
+    args: dict[str, object] = {"drone_id": "alpha", "west_m": -40, "east_m": 0}
+    notes = restore_request_directions(args, west)
+    assert notes == ["west_m=-40 read as east_m=-40 ('40 m west' in the request)"]
+    assert args == {"drone_id": "alpha", "west_m": 0.0, "east_m": -40.0}
+    south = "Fly bravo 30 m south at 10 m."
+    assert direction_mismatch({"south_m": 30}, south) is None
+    assert direction_mismatch({"south_m": -30, "north_m": 5}, south) is not None
+
+
 def test_an_optional_point_at_zero_zero_the_request_never_gives_is_left_out() -> None:
     """Measured on the dev half (form-line-here, form-circle-here, form-pair-abreast): formation_goto for
     "right where they are" came with center_lat_deg=0, center_lon_deg=0."""

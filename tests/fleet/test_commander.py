@@ -211,3 +211,20 @@ async def test_a_flying_drone_moves_to_an_altitude_above_home(gateway: Gateway) 
     assert (await commander.wait(moved["operation_id"], 10.0)).status == "succeeded"
     lat, lon = geo.offset_position(HOME[0], HOME[1], 0.0, 20.0)
     assert fake(gateway, "d1").sent[-1] == ("goto", pytest.approx(lat), pytest.approx(lon), 25.0)
+
+
+async def test_west_m_and_south_m_fly_the_way_a_request_says_them(gateway: Gateway) -> None:
+    """ "40 m west and 25 m south at 12 m" as west_m=40, south_m=25 (a 1.5B model wrote west_m three
+    times after being refused for it); north_m beside south_m cannot be read and changes nothing."""
+    commander = gateway.commander
+    with pytest.raises(InvalidArgument) as both:
+        await commander.call("move_relative", AGENT, drone_id="d1", north_m=10, south_m=5, alt_m=12)
+    assert both.value.message == (
+        "give north_m or south_m, not both (here north_m=10, south_m=5): south_m=N is north_m=-N; "
+        "nothing was sent"
+    )
+    assert fake(gateway, "d1").sent == []
+    started = await commander.call("move_relative", AGENT, drone_id="d1", west_m=40, south_m=25, alt_m=12)
+    assert (await commander.wait(started["operation_id"], 20.0)).status == "succeeded"
+    lat, lon = geo.offset_position(HOME[0], HOME[1], -25.0, -40.0)
+    assert fake(gateway, "d1").sent[-1] == ("goto", pytest.approx(lat), pytest.approx(lon), 12.0)
