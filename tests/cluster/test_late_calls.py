@@ -72,9 +72,18 @@ async def test_a_call_reaching_the_owner_after_its_deadline_is_dropped(
         await answers.put(msg)
 
     await nc.subscribe(inbox, cb=collect)
+    await nc.flush()
     body = {"call": "goto", "args": {}, "caller": {"node": "node-x"}, "accept_by": 0.0, "epoch": 7}
-    await nc.publish(call_subject("d1"), json.dumps(body).encode(), reply=inbox)
-    msg = await asyncio.wait_for(answers.get(), 10.0)
+    loop = asyncio.get_running_loop()
+    deadline = loop.time() + 10.0
+    while True:
+        await nc.publish(call_subject("d1"), json.dumps(body).encode(), reply=inbox)
+        msg = await asyncio.wait_for(answers.get(), max(0.1, deadline - loop.time()))
+        # a 503 with no body is the server's "no responders": the owner never heard this copy (seen once
+        # in CI on a loaded machine, right after the owner's subscription was flushed): nothing ran; again
+        if msg.data or (msg.headers or {}).get("Status") != "503" or loop.time() > deadline:
+            break
+        await asyncio.sleep(0.1)
     assert msg.data, f"an empty message (headers {msg.headers}): the owner never heard the call"
     reply = json.loads(msg.data)
     assert (msg.headers or {}).get("Fleet-Kind") == "result" and reply["error"]["code"] == "not_run", reply
