@@ -183,7 +183,7 @@ def unknown_arguments(base_tools: Sequence[ToolInfo], tool: ToolInfo, args: Argu
     """Arguments the tool does not have (in the gateway's own schema, hidden ones included) are refused
     rather than silently dropped: a model that adds lat_deg to takeoff has misread the tool."""
     base = next((t for t in base_tools if t.name == tool.name), tool)
-    known = set((base.input_schema or {}).get("properties") or {})
+    known = set((base.input_schema or {}).get("properties") or {}) | base.hidden
     extra = sorted(set(args) - known)
     if not known or not extra:
         return None

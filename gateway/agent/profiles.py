@@ -16,6 +16,7 @@ only the host knows. ``GATEWAY_MCP_TOOLSETS`` stays the server-side switch for w
 from __future__ import annotations
 
 import copy
+import dataclasses
 import re
 from collections.abc import Sequence
 from typing import TypedDict
@@ -124,7 +125,7 @@ def without_arguments(tool: ToolInfo, names: frozenset[str]) -> ToolInfo:
     trimmed = copy.deepcopy(schema)
     for n in drop:
         del trimmed["properties"][n]
-    return ToolInfo(tool.name, tool.description, trimmed, tool.toolset, tool.read_only)
+    return dataclasses.replace(tool, input_schema=trimmed, hidden=tool.hidden | set(drop))
 
 
 def apply_profile(tools: Sequence[ToolInfo], profile: str, *, keep_selection: bool = False) -> list[ToolInfo]:
@@ -162,4 +163,4 @@ def _described(tool: ToolInfo) -> ToolInfo:
         props = schema["properties"]
         schema["properties"] = {n: props[n] for n in [*first, *(n for n in props if n not in first)]}
     description = SMALL_MODEL_DESCRIPTIONS.get(tool.name, tool.description)
-    return ToolInfo(tool.name, description, schema, tool.toolset, tool.read_only)
+    return dataclasses.replace(tool, description=description, input_schema=schema)

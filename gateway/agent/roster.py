@@ -9,6 +9,7 @@ validation refuses a wrong id before anything is sent.
 from __future__ import annotations
 
 import copy
+import dataclasses
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
@@ -170,7 +171,7 @@ def with_drone_enum(tool: ToolInfo, ids: Sequence[str]) -> ToolInfo:
             items = prop.setdefault("items", {})
             if isinstance(items, dict):
                 items["enum"] = list(ids)
-    return ToolInfo(tool.name, tool.description, schema, tool.toolset, tool.read_only)
+    return dataclasses.replace(tool, input_schema=schema)
 
 
 def normalise_drone_ids(arguments: Arguments, ids: Sequence[str]) -> list[str]:

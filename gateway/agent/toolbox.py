@@ -37,6 +37,9 @@ class ToolInfo:
     input_schema: JsonSchema
     toolset: str | None = None
     read_only: bool | None = None
+    # arguments the server's tool takes that the model is not shown (profiles.without_arguments): a call
+    # that names one anyway is sent, not refused as unknown
+    hidden: frozenset[str] = frozenset()
 
     def openai_spec(self) -> dict[str, Any]:
         """The Chat Completions ``tools`` entry for this tool."""

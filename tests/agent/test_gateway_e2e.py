@@ -94,6 +94,7 @@ async def test_model_flies_takeoff_goto_land_on_the_sim(stack: LocalStack, scrip
 
 
 async def test_small_profile_on_the_gateways_own_tools(stack: LocalStack) -> None:
+    from gateway.agent.checks import unknown_arguments
     from gateway.agent.profiles import ADVANCED_ARGUMENTS, SMALL_MODEL_TOOLS, apply_profile
     from gateway.agent.toolbox import tool_list_tokens
 
@@ -106,6 +107,12 @@ async def test_small_profile_on_the_gateways_own_tools(stack: LocalStack) -> Non
     small_tokens, _ = tool_list_tokens(small)
     every_tokens, _ = tool_list_tokens(every)
     assert small_tokens < every_tokens / 3, (small_tokens, every_tokens)
+    # what the small model is not shown it may still write: the host sends it, the gateway takes it
+    # (measured on the corpus's dev half, multi-west-and-land: west_m=40 was refused as unknown)
+    move = next(t for t in small if t.name == "move_to_relative")
+    assert {"south_m", "west_m"} <= move.hidden
+    assert unknown_arguments(small, move, {"drone_id": "alpha", "west_m": 40, "alt_m": 15}) is None
+    assert unknown_arguments(small, move, {"drone_id": "alpha", "lat_deg": 47.0}) is not None
 
 
 async def test_refusals_reach_the_model_and_bad_calls_never_fly(stack: LocalStack, scripted) -> None:
