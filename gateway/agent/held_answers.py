@@ -4,6 +4,7 @@ a refusal. Each reason holds an answer back at most once a turn (``TurnMemory.he
 from __future__ import annotations
 
 from gateway.agent import wording
+from gateway.agent.claims import Claim
 from gateway.agent.turns import TurnMemory, TurnResult
 
 
@@ -32,3 +33,13 @@ def refusal_unsaid(result: TurnResult, memory: TurnMemory, text: str) -> str | N
         return None
     memory.held.add("refusal")
     return wording.refusal_unsaid(refusals[-1])
+
+
+def claims_unbacked(memory: TurnMemory, claims: list[Claim], offered: set[str]) -> str | None:
+    """An answer that says a drone acted when no call this turn acted on it (claims.py) is sent back once,
+    naming the drone, the words and where it is now; a model that answers the same again is believed, and
+    the host adds what the gateway did (wording.with_unbacked)."""
+    if not claims or "claims" in memory.held:
+        return None
+    memory.held.add("claims")
+    return wording.claims_unbacked(claims, offered)

@@ -26,7 +26,7 @@ from typing import Any
 
 import openai
 
-from gateway.agent import checks, held_answers, wording
+from gateway.agent import checks, claims, held_answers, wording
 from gateway.agent.answer import ANSWER_TOOL, ANSWER_TOOL_INFO, answer_text, bare_answer, finish_hint
 from gateway.agent.chat import (
     ChatModel,
@@ -36,6 +36,7 @@ from gateway.agent.chat import (
     call_arguments,
     close_open_calls,
 )
+from gateway.agent.claims import Claim
 from gateway.agent.intent import Reading, read_call
 from gateway.agent.parsing import ArgumentsError, parse_arguments, strip_thinking
 from gateway.agent.repair import unplaced_optional_point
@@ -175,7 +176,12 @@ class AgentHost:
                     said
                     and not echo
                     and not self._truncated
-                    and (held := held_answers.nothing_ran(result, self._memory, self.answer_tool))
+                    and (
+                        held := held_answers.nothing_ran(result, self._memory, self.answer_tool)
+                        or held_answers.claims_unbacked(
+                            self._memory, self._unbacked(result, said), set(self.tools)
+                        )
+                    )
                 ):
                     self.messages.append({"role": "assistant", "content": content or ""})
                     self.messages.append({"role": "user", "content": self._note(held)})
@@ -183,7 +189,8 @@ class AgentHost:
                     continue
                 if said and not echo and not self._truncated:
                     result.outcome = "answered"
-                    result.final_text = wording.with_refusals(content or "", result)
+                    believed = wording.with_unbacked(content or "", self._unbacked(result, said))
+                    result.final_text = wording.with_refusals(believed, result)
                     self.messages.append({"role": "assistant", "content": content or ""})
                     self._emit("final", step=result.steps, text=result.final_text)
                     break
@@ -294,7 +301,12 @@ class AgentHost:
     async def _reprompt(self, result: TurnResult, echo: bool = False) -> str:
         """What the model is told after an empty reply (wording.reprompt_text), with the fleet read now."""
         roster = await self.fleet.refresh()
-        untouched = checks.untouched(result, self._memory.request, self.fleet.roster, self.tools)
+        # an empty reply is the model stopping, so a drone still flying that the request lands is said
+        # (measured on the corpus's dev half, compound-two-climbs: after the second climb the model
+        # replied with nothing twice, and the landing the request ends with was never sent)
+        untouched = checks.untouched(
+            result, self._memory.request, self.fleet.roster, self.tools, answering=True
+        )
         return wording.reprompt_text(result, self._memory.request, echo, untouched, roster, self.answer_tool)
 
     async def _ask_model(self, step: int, usage: Usage) -> ModelReply:
@@ -442,7 +454,8 @@ class AgentHost:
                 result.empty_replies += 1
                 result.empty_streak += 1
         else:
-            answer, reply = text, "Delivered to the user."
+            answer = wording.with_unbacked(text, self._unbacked(result, text))
+            reply = "Delivered to the user."
         gave_up = answer is None and result.empty_streak > MAX_EMPTY_REPROMPTS
         self.messages.append({"role": "tool", "tool_call_id": call["id"], "content": self._note(reply)})
         status = "ok" if answer is not None else "invalid"
@@ -456,6 +469,14 @@ class AgentHost:
             text=reply,
         )
         return answer, gave_up
+
+    def _unbacked(self, result: TurnResult, text: str) -> list[Claim]:
+        """The drones the answer says acted that no call of this turn acted on (claims.py), by the roster
+        read after the last step (none when the host keeps no roster)."""
+        if not self.fleet.enabled or not text:
+            return []
+        acting = lambda name: checks.acts(self.tools, name)  # noqa: E731
+        return claims.unbacked(text, self._memory.request, result, self.fleet.roster, acting)
 
     async def _hold_answer(self, result: TurnResult, empty: bool = False, text: str = "") -> str | None:
         """Why an answer is sent back instead of ending the turn, or None; each reason at most once a turn,
@@ -484,6 +505,12 @@ class AgentHost:
             return nothing
         if not empty and (unsaid := held_answers.refusal_unsaid(result, self._memory, text)) is not None:
             return unsaid
+        if not empty and (
+            claimed := held_answers.claims_unbacked(
+                self._memory, self._unbacked(result, text), set(self.tools)
+            )
+        ):
+            return claimed
         if "untouched" in held:
             return None
         if self.fleet.enabled:

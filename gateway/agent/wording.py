@@ -12,6 +12,7 @@ import re
 from collections.abc import Iterable
 
 from gateway.agent.answer import ANSWER_TOOL, answer_text
+from gateway.agent.claims import Claim
 from gateway.agent.roster import Roster, drones_named
 from gateway.agent.turns import ToolCallRecord, TurnMemory, TurnResult
 
@@ -198,6 +199,37 @@ def with_refusals(answer: str, result: TurnResult) -> str:
         return answer
     why = "; ".join(f"{c.name}: {_reason(c)}" for c in refusals[-2:])
     return f"{answer} (Host: the gateway refused {why}.)"
+
+
+def _next_tool(claim: Claim, offered: set[str]) -> str:
+    """The tool that would do what a claim says, for the note that sends the answer back."""
+    if claim.now is not None and claim.now.flying is False and "takeoff" in offered:
+        return f" ({claim.drone_id} is on the ground: takeoff first)"
+    return ""
+
+
+def claims_unbacked(claims: list[Claim], offered: set[str]) -> str:
+    """An answer held back because it says drones acted that no call of this turn moved."""
+    said = "; ".join(
+        f"{c.drone_id} '{c.words}', but no call has done anything with {c.drone_id} in this turn"
+        + (f" (now: {c.now.text()})" if c.now is not None else "")
+        for c in claims
+    )
+    tools = "".join(_next_tool(c, offered) for c in claims)
+    return (
+        f"Not sent to the user yet: your answer says {said}. If the request asks for it, call the tool for "
+        f"it now{tools}; if it must not be done, answer again saying that it was not done and why."
+    )
+
+
+def with_unbacked(answer: str, claims: list[Claim]) -> str:
+    """The model's answer, believed after it was sent back once, followed by the host's marked line on
+    the drones it claims acted with no call this turn: the user is not left with a false answer."""
+    if not claims:
+        return answer
+    now = "; ".join(c.now.text() for c in claims if c.now is not None)
+    who = ", ".join(c.drone_id for c in claims)
+    return f"{answer} (Host: no call in this turn acted on {who}" + (f"; now: {now}" if now else "") + ".)"
 
 
 def _reason(record: ToolCallRecord) -> str:

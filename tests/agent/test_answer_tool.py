@@ -360,3 +360,33 @@ async def test_an_answer_silent_about_a_refusal_is_sent_back_once_quoting_it(toy
         "Not sent to the user yet: the gateway refused part of the request (takeoff: refused by rule"
     )
     assert result.outcome == "answered" and result.final_text.startswith("150 m was refused")
+
+
+async def test_an_answer_saying_a_drone_acted_when_no_call_acted_on_it_is_sent_back(toy, scripted) -> None:
+    """Measured on the dev half (cond-above-forty-hop): the battery read, the plan said as the answer."""
+    model = scripted(
+        [
+            call("get_position", drone_id="alpha"),
+            call(ANSWER_TOOL, text="Alpha is above 40 percent, sending it up to 12 m."),
+            call("takeoff", drone_id="alpha", alt_m=12),
+            call(ANSWER_TOOL, text="Alpha climbed to 12 m."),
+        ]
+    )
+    _, result = await _run(toy, model, "only if alpha is above 40 percent, send it up to 12 m")
+    note = _last_tool_text(model.requests[2])
+    assert note.startswith("Not sent to the user yet: your answer says alpha 'sending'"), note
+    assert "alpha is on the ground: takeoff first" in note
+    assert result.outcome == "answered" and result.final_text == "Alpha climbed to 12 m."
+    assert toy.world.drones["alpha"].alt_m == 12.0
+
+
+async def test_the_same_unbacked_answer_again_is_passed_on_with_what_the_gateway_did(toy, scripted) -> None:
+    claim = "Alpha is above 40 percent, sending it up to 12 m."
+    model = scripted([call("get_position", drone_id="alpha"), call(ANSWER_TOOL, text=claim),
+                      call(ANSWER_TOOL, text=claim)])  # fmt: skip
+    _, result = await _run(toy, model, "only if alpha is above 40 percent, send it up to 12 m")
+    assert result.outcome == "answered"
+    assert result.final_text.startswith(
+        f"{claim} (Host: no call in this turn acted on alpha; now: alpha on the ground"
+    )
+    assert toy.world.drones["alpha"].alt_m == 0.0
