@@ -1,17 +1,20 @@
-"""The generalisation corpus of the agent benchmark: 40 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 56 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
 the track they flew), what the gateway refused, what the answer said. ``plan`` is the ideal call sequence,
 used only by the harness self-check (a scripted endpoint replays it), never as a model result.
 
-THE SPLIT IS FIXED HERE and stratified by class (each class has 5 requests: 3 in one half, 2 in the
-other, alternating between classes so that each half holds 20). The ``dev`` half may be looked at when
+THE SPLIT IS FIXED HERE and stratified by class (of the first 40, each class has 5 requests: 3 in one
+half, 2 in the other, alternating between classes so that each half holds 20; the 16 added later are dev). The ``dev`` half may be looked at when
 the host, its prompts or the tool texts change; the ``test`` half never: it measures how the host does on
 requests nobody tuned it for. Do not move entries between halves, and do not reword a test entry after
 seeing a model's result on it (add a new entry instead and say so in docs/benchmarks.md).
 
-The corpus was written in full before any model ran on it (2026-11-27).
+The first 40 entries were written in full before any model ran on them (2026-11-27). Sixteen more, two
+per class and all in the ``dev`` half (marked "added later"), were written later the same day, again
+before any model ran on them, after the dev half had been tuned on until 17 of its 20 passed: a tuning
+set the host passes tells nothing more. The test half is unchanged.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -212,6 +215,15 @@ def _single() -> list[CorpusEntry]:
                "Hop charlie up to 6 m, then set it back down on the spot.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 6), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 6), _land("charlie")], "Charlie hopped to 6 m and landed."),
+        # added later, development half only (see the module docstring)
+        _entry("single", "dev", "single-bravo-stay-up", ("bravo",),
+               "Bravo, take off and stay up at 25 m for now.",
+               lambda c, ev: airborne_at(ev, "bravo", 25),
+               [_takeoff("bravo", 25)], "Bravo hovers at 25 m."),
+        _entry("single", "dev", "single-charlie-nine", ("charlie",),
+               "Put charlie in the air at 9 m, please.",
+               lambda c, ev: airborne_at(ev, "charlie", 9),
+               [_takeoff("charlie", 9)], "Charlie hovers at 9 m."),
     ]  # fmt: skip
 
 
@@ -243,6 +255,18 @@ def _multi() -> list[CorpusEntry]:
                                   reached_alt(ev, "bravo", 10), landed_disarmed(ev, "bravo")),
                [_takeoff("charlie", 25), _takeoff("bravo", 10), _land("bravo")],
                "Charlie hovers at 25 m, bravo hopped to 10 m, alpha stayed down."),
+        # added later, development half only
+        _entry("multi", "dev", "multi-pair-eighteen", ("bravo", "charlie"),
+               "Bravo and charlie both up to 18 m please, and keep them there.",
+               lambda c, ev: _all(airborne_at(ev, "bravo", 18), airborne_at(ev, "charlie", 18)),
+               [_takeoff("bravo", 18), _takeoff("charlie", 18)], "Bravo and charlie hover at 18 m."),
+        _entry("multi", "dev", "multi-spread-out", ("alpha", "bravo"),
+               "Spread them out: alpha 25 m to the east and bravo 25 m to the north, both at 10 m.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 25), alt=10),
+                                  at(ev, "bravo", *c.point("bravo", 25, 0), alt=10),
+                                  airborne_at(ev, "alpha", 10), airborne_at(ev, "bravo", 10)),
+               [_move("alpha", 0, 25, alt=10), _move("bravo", 25, 0, alt=10)],
+               "Alpha is 25 m east and bravo 25 m north, both at 10 m."),
     ]  # fmt: skip
 
 
@@ -276,6 +300,19 @@ def _compound() -> list[CorpusEntry]:
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 18), _move("bravo", 25, 0), _rtl("bravo")],
                "Bravo went 25 m north and came home."),
+        # added later, development half only
+        _entry("compound", "dev", "compound-corner-home", ("charlie",),
+               "Take charlie to 15 m, go 20 m east, then 20 m south, then bring it home.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 20), c.point("charlie", -20, 20)]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 15), _move("charlie", 0, 20), _move("charlie", -20, 0), _rtl("charlie")],
+               "Charlie flew 20 m east, 20 m south and came home."),
+        _entry("compound", "dev", "compound-west-land", ("alpha",),
+               "Alpha: up to 12 m, over 35 m to the west, and land.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 12), at(ev, "alpha", *c.point("alpha", 0, -35)),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 12), _move("alpha", 0, -35), _land("alpha")],
+               "Alpha climbed to 12 m, flew 35 m west and landed."),
     ]  # fmt: skip
 
 
@@ -311,6 +348,17 @@ def _conditional() -> list[CorpusEntry]:
                [_battery("alpha"), _battery("bravo"), _takeoff("alpha", 10), _land("alpha")],
                "Alpha had less charge; it went up to 10 m and landed.",
                battery={"alpha": 55.0, "bravo": 95.0}),
+        # added later, development half only
+        _entry("conditional", "dev", "cond-bravo-seventy", ("bravo",),
+               "If bravo has at least 70 % battery, put it up at 20 m; otherwise tell me its charge.",
+               lambda c, ev: airborne_at(ev, "bravo", 20),
+               [_battery("bravo"), _takeoff("bravo", 20)], "Bravo has 85 %, so it hovers at 20 m.",
+               battery={"bravo": 85.0}),
+        _entry("conditional", "dev", "cond-charlie-sixty", ("charlie",),
+               "Charlie goes up to 15 m, but only if its battery is over 60 %. Tell me what you decided.",
+               lambda c, ev: _all(never_armed(ev, "charlie"), answer_mentions_number(ev, 30, 2)),
+               [_battery("charlie")], "Charlie has 30 %, below 60 %, so it stays on the ground.",
+               battery={"charlie": 30.0}),
     ]  # fmt: skip
 
 
@@ -338,6 +386,15 @@ def _formations() -> list[CorpusEntry]:
                "Alpha and charlie side by side, 15 m apart, at 20 m, where they are now.",
                lambda c, ev: formation_at(c, ev, ("alpha", "charlie"), 20, 15, 0, 0),
                [_formation(("alpha", "charlie"), "line", 20, 15)], "Alpha and charlie hold a line at 20 m."),
+        # added later, development half only
+        _entry("formation", "dev", "form-pair-column-here", ("bravo", "charlie"),
+               "Bravo and charlie in a column, 10 m apart, at 15 m, where they are.",
+               lambda c, ev: formation_at(c, ev, ("bravo", "charlie"), 15, 10, 0, 0),
+               [_formation(("bravo", "charlie"), "column", 15, 10)], "Bravo and charlie hold a column at 15 m."),
+        _entry("formation", "dev", "form-line-south", three,
+               "All three in a row, 12 m between each, at 20 m, 25 m south of where they are.",
+               lambda c, ev: formation_at(c, ev, three, 20, 12, -25, 0),
+               [_formation(three, "line", 20, 12, north=-25)], "The three hold a line 25 m south at 20 m."),
     ]  # fmt: skip
 
 
@@ -365,6 +422,16 @@ def _relative() -> list[CorpusEntry]:
                "Lift alpha to 10 m, then shift it 20 m to the south and 5 m higher while you're at it.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -20, 0), alt=15), airborne_at(ev, "alpha", 15)),
                [_takeoff("alpha", 10), _move("alpha", -20, 0, up=5)], "Alpha hovers 20 m south at 15 m."),
+        # added later, development half only
+        _entry("relative", "dev", "rel-alpha-north-up", ("alpha",),
+               "Move alpha 25 m north and 8 m up from where it is.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 25, 0), alt=8), airborne_at(ev, "alpha", 8)),
+               [_move("alpha", 25, 0, up=8)], "Alpha hovers 25 m north at 8 m."),
+        _entry("relative", "dev", "rel-charlie-east-hover", ("charlie",),
+               "Charlie: 35 metres to the east, at 14 m, and hover there.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 35), alt=14),
+                                  airborne_at(ev, "charlie", 14)),
+               [_move("charlie", 0, 35, alt=14)], "Charlie hovers 35 m east at 14 m."),
     ]  # fmt: skip
 
 
@@ -393,6 +460,18 @@ def _questions() -> list[CorpusEntry]:
                "How's alpha's charge holding up?",
                lambda c, ev: _all(answer_mentions_number(ev, 77, 2), never_armed(ev, "alpha")),
                [_battery("alpha")], "", battery={"alpha": 77.0}),
+        # added later, development half only
+        _entry("question", "dev", "ask-bravo-in-air", DRONES,
+               "Is bravo in the air right now?",
+               lambda c, ev: _all(answer_says(ev, r"\b(no|not|ground(ed)?|landed)\b", "that it is not"),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "No, bravo is on the ground."),
+        _entry("question", "dev", "ask-all-batteries", DRONES,
+               "Give me the battery levels of all the drones.",
+               lambda c, ev: _all(answer_mentions_number(ev, 83, 1), answer_mentions_number(ev, 58, 1),
+                                  answer_mentions_number(ev, 66, 1), nobody_armed(ev)),
+               [("fleet_status", {})], "Alpha 83 %, bravo 58 %, charlie 66 %.",
+               battery={"alpha": 83.0, "bravo": 58.0, "charlie": 66.0}),
     ]  # fmt: skip
 
 
@@ -424,6 +503,18 @@ def _refusals() -> list[CorpusEntry]:
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
                [_move("bravo", 1500, 0, alt=30)], "The gateway refused: 1500 m is beyond the distance limit."),
+        # added later, development half only
+        _entry("refusal", "dev", "refuse-charlie-200m", ("charlie",),
+               "Charlie to 200 m altitude.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "charlie", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("charlie", 200)], "The gateway refused: 200 m is above the 120 m altitude limit."),
+        _entry("refusal", "dev", "refuse-bravo-drained", ("bravo",),
+               "Fly bravo 20 m north at 10 m.",
+               lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "bravo"),
+                                  answer_reports_refusal(ev)),
+               [_move("bravo", 20, 0, alt=10)], "The gateway refused: bravo's battery is below the takeoff minimum.",
+               battery={"bravo": 15.0}),
     ]  # fmt: skip
 
 

@@ -52,7 +52,14 @@ from rich.table import Table
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))  # the repository root: bench.agent_harness
 
-from bench.agent_harness.missions import Evidence, Mission, MissionContext, all_missions
+from bench.agent_harness.missions import (
+    Evidence,
+    Mission,
+    MissionContext,
+    _all,
+    all_missions,
+    never_armed,
+)
 from bench.agent_harness.pilot import SELF_CHECK_MODEL, ScriptedPilot
 from bench.agent_harness.scripted import ScriptedModelServer
 from bench.agent_harness.stack import GatewayTruth, LocalStack, Sampler, SimTruth, reset_drones
@@ -308,7 +315,7 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
                 await reset_drones(
                     link, truth, drone_ids, battery_pct=mission.battery_pct, speedup=args.speedup
                 )
-                run = await run_one(mission, link, tools, truth, model, pilot, args, console)
+                run = await run_one(mission, link, tools, truth, model, pilot, args, console, drone_ids)
                 run.run = n
                 run.cls, run.half = where.get(mission.id, (None, None))
                 runs.append(run)
@@ -332,8 +339,12 @@ async def run_one(
     pilot: ScriptedPilot | None,
     args: argparse.Namespace,
     console: Console,
+    fleet: list[str] | None = None,
 ) -> MissionRun:
+    """One mission, judged from the drones' true state: its own check, and every drone of the fleet it
+    does not name never armed (a drone flown unasked fails the run)."""
     homes = await truth.homes(list(mission.drones))
+    watched = sorted(set(fleet or ()) | set(mission.drones))
     offered = {t.name: frozenset((t.input_schema or {}).get("properties", {})) for t in tools}
     ctx = MissionContext(homes=homes, tools=offered)
     prompt = mission.prompt(ctx)
@@ -360,14 +371,15 @@ async def run_one(
         **host_options_for(args.profile),
     )
     console.print(f"[bold]{mission.id}[/] {prompt} [dim](load {os.getloadavg()[0]:.1f})[/]")
-    sampler = Sampler(truth, list(mission.drones))
+    sampler = Sampler(truth, watched)
     async with sampler:
         started = time.monotonic()
         turn = await host.run_turn(prompt)
         wall = time.monotonic() - started
-    final = await truth.snapshot(list(mission.drones))
+    final = await truth.snapshot(watched)
     evidence = Evidence(final=final, track=sampler.tracks, tool_results=results, final_text=turn.final_text)
-    verdict = mission.check(ctx, evidence)
+    unasked = [never_armed(evidence, d) for d in watched if d not in mission.drones]
+    verdict = _all(mission.check(ctx, evidence), *(c for c in unasked if not c.ok))
     answered = turn.outcome == "answered" and bool((turn.final_text or "").strip())
     signals = classify(turn, results, mission, mission.plan(ctx), verdict.ok)
     run = MissionRun(
