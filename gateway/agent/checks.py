@@ -16,7 +16,15 @@ from gateway.agent import wording
 from gateway.agent.answer import ANSWER_TOOL, finish_hint
 from gateway.agent.chat import call_arguments
 from gateway.agent.intent import superseded
-from gateway.agent.repair import LAT_LON_PAIRS, direction_mismatch, null_island, request_points, swap_hint
+from gateway.agent.repair import (
+    AXIS_ARGUMENTS,
+    LAT_LON_PAIRS,
+    direction_mismatch,
+    horizontal_legs_left,
+    null_island,
+    request_points,
+    swap_hint,
+)
 from gateway.agent.roster import Roster, drones_named
 from gateway.agent.toolbox import (
     Arguments,
@@ -310,6 +318,13 @@ def untouched(
         # Measured: "take off alpha to 10 m, then land it" answered "climbed and landed" after the
         # takeoff alone.
         facts.append(f"The request asks to land or come home, and {', '.join(aloft)} is still flying.")
+    # measured on the corpus's dev half (form-line-south): "25 m south of where they are" formed up in
+    # place, north_m=0, and the answer said done
+    # (only where the calls speak in north_m/east_m: another server's tools may not)
+    attempted = [c.arguments for c in result.tool_calls if c.arguments and (c.ok or wording.refused(c))]
+    legs = horizontal_legs_left(request, [a for a in attempted if a is not None])
+    if legs and acted and any(set(a) & set(AXIS_ARGUMENTS) for a in attempted if a):
+        facts.append(f"Distances the request names that no call has flown yet: {', '.join(legs)}.")
     used = [
         (float(args[lat]), float(args[lon]))
         for args in ok

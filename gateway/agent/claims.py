@@ -24,7 +24,8 @@ _ACTION_WORDS = re.compile(
     r"\b(?:tak(?:e|es|ing)\s+(?:\w+\s+)?off|took\s+(?:\w+\s+)?off|launch(?:ed|es|ing)?|climb(?:ed|s|ing)?|"
     r"ascend(?:ed|s|ing)?|fl(?:y|ies|ew|own)|sen(?:d|ds|ding|t)|went|head(?:ed|ing)|"
     r"mov(?:e|ed|es|ing)|return(?:ed|s|ing)?|came back|coming back|brought|rais(?:ed|es|ing)|"
-    r"lift(?:ed|s|ing)?|land(?:s|ing)|touched down|set down|put down)\b",
+    r"lift(?:ed|s|ing)?|land(?:s|ing)|touched down|"
+    r"(?:set|put|putting|bring|bringing) (?:\w+ )?(?:back )?(?:up|down))\b",
     re.IGNORECASE,
 )
 # Words that say what state a drone is in now.

@@ -137,7 +137,7 @@ def _moves(request: str) -> list[tuple[float, str, str, int]]:
 def _misplaced(arguments: Arguments, moves: list[tuple[float, str, str, int]]) -> tuple[str, float] | None:
     """The first relative-move argument whose value is a distance the request names, but on another axis
     or with the other sign; with the value it has."""
-    for name, (own_axis, own_sign) in _ARGUMENT_AXES.items():
+    for name, (own_axis, own_sign) in AXIS_ARGUMENTS.items():
         value = arguments.get(name)
         if not isinstance(value, int | float) or isinstance(value, bool) or value == 0:
             continue
@@ -149,13 +149,33 @@ def _misplaced(arguments: Arguments, moves: list[tuple[float, str, str, int]]) -
 
 
 # each relative-move argument: the axis it moves along and which way (west_m=40 is east_m=-40)
-_ARGUMENT_AXES = {
+AXIS_ARGUMENTS = {
     "north_m": ("north_m", 1),
     "east_m": ("east_m", 1),
     "up_m": ("up_m", 1),
     "south_m": ("north_m", -1),
     "west_m": ("east_m", -1),
 }
+
+
+def horizontal_legs_left(request: str, attempted: list[Arguments]) -> list[str]:
+    """The "25 m south" phrases of the request that no attempted call's arguments carry on that axis
+    with that sign (north_m/south_m, east_m/west_m; each phrase on its own, so "30 m east, then 30 m
+    back west" needs both). Climbs are left out: "8 m up" from the ground may be an altitude."""
+
+    def carries(args: Arguments, distance: float, axis: str, sign: int) -> bool:
+        along = 0.0
+        for name, (own_axis, own_sign) in AXIS_ARGUMENTS.items():
+            value = args.get(name)
+            if own_axis == axis and isinstance(value, int | float) and not isinstance(value, bool):
+                along += own_sign * value
+        return abs(along - sign * distance) < 0.5
+
+    return [
+        phrase
+        for distance, phrase, axis, sign in _moves(request)
+        if axis != "up_m" and not any(carries(a, distance, axis, sign) for a in attempted)
+    ]
 
 
 def restore_request_directions(arguments: Arguments, request: str) -> list[str]:

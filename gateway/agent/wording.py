@@ -153,6 +153,14 @@ def not_an_answer(text: str, stale: bool, result: TurnResult) -> str:
             "Not an answer: you wrote it with your plan, before the results; it was not sent. Since then: "
             f"{outcomes_text(result)} Say in one sentence what really happened."
         )
+    if not any(c.status in ("ok", "error") for c in result.tool_calls):
+        # measured on the corpus's dev half (cond-bravo-seventy, cond-charlie-sixty): a conditional request
+        # restated as the answer; told to say "what was done", the model restated it again
+        return (
+            "Not an answer: that only repeats the request, and nothing has been read or done in this turn. "
+            "Call the tool for the request's first step now (get_battery, fleet_status or get_position "
+            "when it depends on a reading)."
+        )
     return (
         "Not an answer: that only repeats the request or my note. Say in one sentence what was done and "
         "where the drones are now."
