@@ -191,6 +191,25 @@ async def test_an_altitude_of_zero_beside_a_climb_is_the_altitude_not_given(gate
     assert fake(gateway, "d1").sent[0] == ("takeoff", 6.0)
 
 
+async def test_an_altitude_of_zero_beside_a_leg_keeps_the_altitude(gateway: Gateway) -> None:
+    """ "40 m west" of a flying drone as west_m=40, alt_m=0: the leg at the altitude it flies; alt_m=0 alone
+    is still refused, saying to land instead."""
+    commander = gateway.commander
+    started = await commander.call("takeoff", AGENT, drone_id="d1", alt_m=10)
+    assert (await commander.wait(started["operation_id"], 10.0)).status == "succeeded"
+    moved = await commander.call("move_relative", AGENT, drone_id="d1", west_m=40, alt_m=0)
+    assert (await commander.wait(moved["operation_id"], 20.0)).status == "succeeded"
+    lat, lon = geo.offset_position(HOME[0], HOME[1], 0.0, -40.0)
+    assert fake(gateway, "d1").sent[-1] == (
+        "goto",
+        pytest.approx(lat),
+        pytest.approx(lon),
+        pytest.approx(10.0),
+    )
+    with pytest.raises(InvalidArgument, match=r"alt_m 0 is not above home.*use land to come down"):
+        await commander.call("move_relative", AGENT, drone_id="d1", alt_m=0)
+
+
 async def test_a_relative_move_that_goes_nowhere_is_said_not_flown(gateway: Gateway) -> None:
     """ "Another 10 m higher" sent as alt_m=10 by a drone at 10 m: nothing to do, said with the argument
     that climbs (it was reported as arrived, and the climb never flew)."""

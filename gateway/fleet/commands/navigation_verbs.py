@@ -169,10 +169,11 @@ class NavigationVerbs:
                 geo.check_finite(name, metres)
         north_m = one_axis("north_m", north_m, "south_m", south_m)
         east_m = one_axis("east_m", east_m, "west_m", west_m)
-        if alt_m == 0.0 and up_m not in (None, 0.0):
-            # a 0 beside a climb is the altitude not given, as up_m=0 beside alt_m is the climb not given
-            # (measured on the NL corpus's dev half: "hop charlie up to 6 m" from the ground came as
-            # up_m=6, alt_m=0, refused three times in a row)
+        if alt_m == 0.0 and (up_m not in (None, 0.0) or north_m or east_m):
+            # a 0 beside a climb or a leg is the altitude not given (0 m above home is the ground, never a
+            # flying altitude), as up_m=0 beside alt_m is the climb not given. Measured on the NL corpus's
+            # dev half: "hop charlie up to 6 m" from the ground came as up_m=6, alt_m=0, refused three
+            # times in a row; "40 m west" of flying drones came as west_m=40, alt_m=0
             alt_m = None
         if alt_m is not None and up_m not in (None, 0.0):
             raise InvalidArgument(
