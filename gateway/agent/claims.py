@@ -33,11 +33,12 @@ _FLYING_WORDS = re.compile(
     r"\b(?:flying|hover(?:s|ing)?|airborne|in the air|aloft|holding at)\b", re.IGNORECASE
 )
 _GROUND_WORDS = re.compile(r"\b(?:landed|on the ground|grounded|parked)\b", re.IGNORECASE)
-# Words that turn a sentence into a report of what was not done, or a guess.
+# Words that turn a sentence into a report of what was not done (a refusal among them), or a guess.
 _NEGATION = re.compile(
     r"\b(?:not|no|never|none|nothing|neither|cannot|unable|instead|refus\w*|stay(?:s|ed|ing)?|"
     r"leave|left|kept|keep(?:s|ing)?|remain(?:s|ed|ing)?|would|could|should|if|may|might|perhaps|"
-    r"probably|possibly)\b|n't\b",
+    r"probably|possibly|too (?:low|high|far)|limit\w*|exceed\w*|beyond|maximum|minimum|denied|"
+    r"rejected)\b|n't\b",
     re.IGNORECASE,
 )
 

@@ -63,6 +63,8 @@ def test_what_was_not_done_is_no_claim() -> None:
     assert _claimed("Charlie stays on the ground: its battery is 45 %.", request) == []
     assert _claimed("The gateway refused to send charlie to 300 m.", request) == []
     assert _claimed("Alpha may still be climbing.", "what now?") == []
+    assert _claimed("Bravo's charge is too low to launch it.", "launch bravo") == []
+    assert _claimed("Charlie to 500 m would exceed the altitude limit.", "charlie to 500 m") == []
 
 
 def test_a_state_is_checked_against_the_roster() -> None:
