@@ -15,6 +15,7 @@ from typing import Any
 
 from bench.agent_harness.missions import PlannedCall
 from bench.agent_harness.scripted import ScriptedReply
+from gateway.agent.planning import PLAN_SYSTEM_PROMPT
 
 SELF_CHECK_MODEL = "harness-self-check (scripted, not a model)"
 
@@ -37,6 +38,10 @@ class ScriptedPilot:
 
     def __call__(self, request: dict[str, Any]) -> ScriptedReply:
         messages = request.get("messages", [])
+        if messages and messages[0].get("content") == PLAN_SYSTEM_PROMPT:
+            # the small profile's plan step (gateway/agent/planning.py): no steps, so the host's notes stay
+            # out of the conversation this pilot counts its calls in
+            return ScriptedReply(content="")
         last_user = max(i for i, m in enumerate(messages) if m.get("role") == "user")
         turn = messages[last_user + 1 :]
         calls_made = [

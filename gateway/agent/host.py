@@ -26,7 +26,7 @@ from typing import Any
 
 import openai
 
-from gateway.agent import checks, claims, held_answers, wording
+from gateway.agent import checks, claims, held_answers, planning, wording
 from gateway.agent.answer import ANSWER_TOOL, ANSWER_TOOL_INFO, answer_text, bare_answer, finish_hint
 from gateway.agent.chat import (
     ChatModel,
@@ -78,6 +78,7 @@ class AgentHost:
         roster: bool = True,
         answer_tool: bool = False,
         follow_running: bool = False,
+        plan_first: bool = False,
     ) -> None:
         if max_steps < 1:
             raise ValueError(f"max_steps must be at least 1, got {max_steps}")
@@ -92,6 +93,8 @@ class AgentHost:
         # (monitor_flight / monitor_fleet), so the model sees how it ended, as if the call had waited.
         self.sender = ToolSender(caller, self.fleet, self._emit, self._note, follow_running=follow_running)
         self.max_steps = max_steps
+        # plan_first: the model first writes the request as numbered steps, without tools (planning.py)
+        self.plan_first = plan_first
         self.system_prompt = system_prompt
         self.on_event = on_event or (lambda _e: None)
         self._chat = ChatModel(model, chat_client)
@@ -99,6 +102,7 @@ class AgentHost:
         self.total_usage = Usage()
         self.turns = 0
         self._memory = TurnMemory()  # what this turn has said and done, to judge the next reply
+        self._turn_start = 0
         self.reset()
 
     def reset(self) -> None:
@@ -131,9 +135,15 @@ class AgentHost:
         self._memory = TurnMemory(request=user_text)
         self._emit("turn_start", turn=self.turns, user=user_text)
         roster = await self.fleet.refresh()
-        content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
-        self.messages.append({"role": "user", "content": content})
         result = TurnResult(outcome="step_limit", final_text=None, steps=0)
+        content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
+        if self.plan_first and roster is not None:
+            steps = await self._plan(roster.ids, user_text, result.usage)
+            if steps:
+                content = f"{content}\n\n{self._note(planning.steps_text(steps))}"
+            self._memory.plan = planning.Plan(steps, roster.ids) if steps else None
+        self._turn_start = len(self.messages)  # where this turn's messages begin (a plan rewrites them)
+        self.messages.append({"role": "user", "content": content})
         try:
             await self._loop(result)
         except asyncio.CancelledError:
@@ -158,6 +168,16 @@ class AgentHost:
             wall_s=round(result.wall_s, 3),
         )
         return result
+
+    async def _plan(self, fleet_ids: list[str], request: str, usage: Usage) -> list[str]:
+        """The request as numbered steps (planning.py); none when the model gives none or fails."""
+        try:
+            steps = await planning.plan_steps(self._chat, fleet_ids, request, usage)
+        except (openai.OpenAIError, ModelReplyError) as exc:
+            self._emit("plan", steps=[], error=f"{type(exc).__name__}: {exc}")
+            return []
+        self._emit("plan", steps=steps)
+        return steps
 
     async def _loop(self, result: TurnResult) -> None:
         while result.steps < self.max_steps:
@@ -267,6 +287,15 @@ class AgentHost:
                 if roster is not None:
                     last = self.messages[-1]
                     last["content"] = f"{last['content']}\n\n{roster.text()}"
+            plan = self._memory.plan
+            sent = [c for c in result.tool_calls if c.status not in ("skipped", "left_out")]
+            if plan is not None and not pending and sent and sent[-1].status in ("ok", "repeat"):
+                # the turn so far, rewritten as one user message ending with the step whose turn it is:
+                # measured with the 1.5B model, after a tool result it often ends its reply at once (one
+                # token), whatever the result or a note after it says; a first reply never came back empty
+                roster_now = self.fleet.roster if self.fleet.enabled else None
+                prompt = plan.prompt(self._memory.request, result.tool_calls, roster_now)
+                self.messages[self._turn_start :] = [{"role": "user", "content": self._note(prompt)}]
         else:
             self._emit(
                 "step_limit",
@@ -307,6 +336,12 @@ class AgentHost:
         untouched = checks.untouched(
             result, self._memory.request, self.fleet.roster, self.tools, answering=True
         )
+        plan = self._memory.plan
+        if plan is not None:
+            # the step whose turn it is, short: measured with the 1.5B model, the long re-prompt below
+            # after a step-by-step turn got nothing again, the step alone its call
+            said = "Your reply only repeated my note." if echo else "Your reply was empty."
+            return f"{said} {plan.next_note(result.tool_calls)}"
         return wording.reprompt_text(result, self._memory.request, echo, untouched, roster, self.answer_tool)
 
     async def _ask_model(self, step: int, usage: Usage) -> ModelReply:

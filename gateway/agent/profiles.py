@@ -50,6 +50,7 @@ class HostOptions(TypedDict):
 
     answer_tool: bool
     follow_running: bool
+    plan_first: bool
 
 
 def host_options_for(profile: str) -> HostOptions:
@@ -58,9 +59,10 @@ def host_options_for(profile: str) -> HostOptions:
     ``answer_tool``: the host's answer_user tool (gateway/agent/answer.py); small models end a turn far
     more reliably with a tool call than with prose. ``follow_running``: the host waits for an action still
     running after the gateway's capped wait, so the model never needs monitor_flight (measured: the 1.5B
-    model called it after every finished action, and read an older operation's result as news)."""
+    model called it after every finished action, and read an older operation's result as news).
+    ``plan_first``: the model writes the request as numbered steps before it calls a tool (planning.py)."""
     small = profile == "small"
-    return HostOptions(answer_tool=small, follow_running=small)
+    return HostOptions(answer_tool=small, follow_running=small, plan_first=small)
 
 
 SMALL_MODEL_TOOLS = (

@@ -149,3 +149,4 @@ class TurnMemory:
     # happened, even when a host note quoted it first
     gateway_errors: list[str] = field(default_factory=list)
     refly_held: set[str] = field(default_factory=set)  # calls held back once as flying a finished step again
+    plan: Any = None  # planning.Plan: the request as numbered steps and where the turn is in them

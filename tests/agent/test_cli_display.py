@@ -249,15 +249,18 @@ async def test_legacy_mcp_mode(toy, scripted) -> None:
 
 
 async def test_small_profile_sends_its_tools_prompt_and_reply_cap(toy, scripted) -> None:
+    from gateway.agent.planning import PLAN_SYSTEM_PROMPT
     from gateway.agent.profiles import SMALL_MODEL_SYSTEM_PROMPT
 
     # an answer before any call ran is sent back once with the small profile; the same answer again is taken
-    model = scripted([say("ok"), say("ok")])
+    # the small profile first asks for the request's steps, without tools (planning.py): none here
+    model = scripted([say("no steps"), say("ok"), say("ok")])
     console, _ = _console()
     argv = ["--mcp-url", toy.url, "--token", TOKEN, "--endpoint", model.base_url, "--model", "m",
             "--profile", "small", "--max-tokens", "50", "hi"]  # fmt: skip
     assert await cli.run_async(_parse(argv), console=console) == cli.EXIT_OK
-    request = model.requests[0]
+    assert "tools" not in model.requests[0] and model.requests[0]["messages"][0]["content"] == PLAN_SYSTEM_PROMPT
+    request = model.requests[1]
     # The toy server offers three of the small profile's tools; move_north and list_drones are not in it.
     # The host adds its own answer_user, how a small model ends its turn.
     names = [t["function"]["name"] for t in request["tools"]]

@@ -174,7 +174,8 @@ async def test_request_shaped_tools_take_one_or_two_model_calls(stack: LocalStac
                 link,
                 apply_profile(await link.list_tools(), "small"),
                 system_prompt=SMALL_MODEL_SYSTEM_PROMPT,
-                **host_options_for("small"),
+                # the tools' shape alone: the plan step asks once more, without tools (test_planning.py)
+                **{**host_options_for("small"), "plan_first": False},
             )
             return await host.run_turn(request), model
 

@@ -1,0 +1,237 @@
+"""A small model's first step: the request split into numbered steps, one drone and one action each.
+
+Measured with the 1.5B model: a request's first tool-calling reply decides the run (at temperature 0 it
+repeats that plan after every note), and the plan goes wrong where one sentence carries several numbers
+("up to 12 m, over 35 m to the west" flew takeoff(alt_m=35)). Asked first, without tools and with a
+handful of examples, to write the request as steps ("alpha: take off to 12 m", "alpha: fly 35 m west"),
+it keeps each number with its action; the steps then go to the tool-calling conversation under the request.
+The request itself stays what the host's checks read: the steps only help the model, never the judge.
+
+The examples use drones that are not in the fleet (delta, echo, foxtrot) and requests that are not in the
+benchmark's corpus.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+from gateway.agent.answer import ANSWER_TOOL
+from gateway.agent.chat import ChatModel, Message
+from gateway.agent.roster import Roster
+from gateway.agent.turns import ToolCallRecord, Usage
+
+PLAN_SYSTEM_PROMPT = (
+    "Split the user's drone request into numbered steps: one drone and one action per step, in the order "
+    "asked, with the numbers from the request. Hovering or staying up is no step. Write only the steps."
+)
+
+_EXAMPLE_FLEET = "delta, echo, foxtrot"
+PLAN_EXAMPLES: tuple[tuple[str, str], ...] = (
+    (
+        "Could you send delta up to 14 metres, then 20 m south of there, and bring it down?",
+        "1. delta: take off to 14 m\n2. delta: fly 20 m south\n3. delta: land",
+    ),
+    (
+        "echo and delta 60 m north at 22 m, then home",
+        "1. echo: fly 60 m north at 22 m\n2. delta: fly 60 m north at 22 m\n3. echo: return home\n"
+        "4. delta: return home",
+    ),
+    (
+        "If delta's battery is over 55 percent, take it 5 m higher; if not, just say how much it has",
+        "1. delta: read battery\n2. if above 55 %: delta: climb 5 m\n3. otherwise: tell the battery",
+    ),
+    (
+        "Put all of them in a wedge 9 m apart at 16 m, 30 m west of where they are",
+        "1. delta, echo, foxtrot: wedge formation, 9 m apart, at 16 m, 30 m west",
+    ),
+    ("How high is echo?", "1. echo: read position"),
+)
+
+MAX_STEPS = 8
+
+
+def first_line(text: str) -> str:
+    return next((s.strip() for s in text.splitlines() if s.strip()), "")
+
+
+_STEP_RE = re.compile(r"^\s*(\d{1,2})[.)]\s+(\S.*)$")
+# "alpha: hover", "bravo: keep up at 18 m": nothing to call for a drone the steps before put in the air
+_NO_ACTION_RE = re.compile(r"^[\w ,]+:\s*(?:hover|stay|keep|remain|wait|leave)\b", re.IGNORECASE)
+_OTHERWISE_RE = re.compile(r"^(?:otherwise|else|if not)\b", re.IGNORECASE)
+
+
+def plan_request(fleet_ids: Sequence[str], request: str) -> str:
+    """The user message asking for the steps of one request."""
+    return f"Drones: {', '.join(fleet_ids)}\nRequest: {request}"
+
+
+def plan_messages(fleet_ids: Sequence[str], request: str) -> list[Message]:
+    """The whole conversation that asks for the steps (the same prefix every time: a server caches it)."""
+    messages: list[Message] = [{"role": "system", "content": PLAN_SYSTEM_PROMPT}]
+    for asked, steps in PLAN_EXAMPLES:
+        messages.append({"role": "user", "content": f"Drones: {_EXAMPLE_FLEET}\nRequest: {asked}"})
+        messages.append({"role": "assistant", "content": steps})
+    messages.append({"role": "user", "content": plan_request(fleet_ids, request)})
+    return messages
+
+
+def steps_from_reply(text: str | None, fleet_ids: Sequence[str]) -> list[str]:
+    """The numbered steps of a reply, at most MAX_STEPS; none when a step names a drone of the examples
+    that the fleet does not have (the model copied an example, so the steps would mislead)."""
+    steps: list[str] = []
+    for line in (text or "").splitlines():
+        m = _STEP_RE.match(line)
+        if m and not _NO_ACTION_RE.match(m.group(2).strip()):
+            steps.append(m.group(2).strip())
+    foreign = {d for d in _EXAMPLE_FLEET.split(", ") if d not in fleet_ids}
+    if any(re.search(rf"\b{d}\b", s, re.IGNORECASE) for s in steps for d in foreign):
+        return []
+    return steps[:MAX_STEPS]
+
+
+def steps_text(steps: Sequence[str]) -> str:
+    """The steps as the tool-calling conversation reads them, under the request."""
+    lines = "\n".join(f"{i}. {s}" for i, s in enumerate(steps, 1))
+    return f"Steps:\n{lines}\nCall one tool for each step, in this order."
+
+
+# The tools that carry out a step, by the words of the step (the examples' verbs); a step of none of these
+# kinds is done by any call that succeeds on its drones.
+_STEP_KINDS: tuple[tuple[re.Pattern[str], frozenset[str]], ...] = (
+    (re.compile(r"^(?:tell|say|answer|report)\b", re.I), frozenset({ANSWER_TOOL})),
+    (re.compile(r"\bformation\b", re.I), frozenset({"formation_goto"})),
+    (re.compile(r"\b(?:battery|charge)\b", re.I), frozenset({"get_battery", "fleet_status"})),
+    (
+        re.compile(r"\b(?:position|status|where|how high)\b", re.I),
+        frozenset({"get_position", "fleet_status"}),
+    ),
+    (re.compile(r"\btake off\b", re.I), frozenset({"takeoff", "move_to_relative"})),
+    (re.compile(r"\b(?:return|home)\b", re.I), frozenset({"return_to_launch"})),
+    (re.compile(r"\bland\b", re.I), frozenset({"land", "return_to_launch"})),
+    (
+        re.compile(r"\b(?:fly|climb|move|go|up|down|higher|lower|north|south|east|west)\b", re.I),
+        frozenset({"move_to_relative", "go_to_location"}),
+    ),
+)
+_KNOWN_TOOLS = frozenset().union(*(tools for _, tools in _STEP_KINDS))
+_CONDITION_RE = re.compile(
+    r"^if\b[^:%]*?\b(above|over|more than|at least|below|under|less than|at most)\s+(\d+(?:\.\d+)?)\s*%"
+    r"\s*:\s*(.*)$",
+    re.IGNORECASE,
+)
+_PERCENT_RE = re.compile(r"(\d+(?:\.\d+)?)\s*%")
+_ACTION_TOOLS_READ = frozenset({"get_battery"})
+
+
+def _holds(relation: str, reading: float, threshold: float) -> bool:
+    relation = relation.lower()
+    if relation in ("above", "over", "more than"):
+        return reading > threshold
+    if relation == "at least":
+        return reading >= threshold
+    if relation in ("below", "under", "less than"):
+        return reading < threshold
+    return reading <= threshold  # at most
+
+
+def _drones(step: str, fleet_ids: Sequence[str]) -> set[str]:
+    return {d for d in fleet_ids if re.search(rf"\b{re.escape(d)}\b", step, re.IGNORECASE)}
+
+
+def _call_drones(call: ToolCallRecord) -> set[str]:
+    args = call.arguments or {}
+    ids = args.get("drone_ids")
+    found = {str(i) for i in ids} if isinstance(ids, list) else set()
+    if isinstance(args.get("drone_id"), str):
+        found.add(args["drone_id"])
+    return found
+
+
+def step_done_by(step: str, call: ToolCallRecord, fleet_ids: Sequence[str]) -> bool:
+    """Whether a call that succeeded carries out this step: a tool of the step's kind, on its drones."""
+    tools = next((t for pattern, t in _STEP_KINDS if pattern.search(step)), None)
+    if tools is not None and call.name not in tools and call.name in _KNOWN_TOOLS:
+        return False  # a tool of another kind (takeoff for "fly 40 m west"); another server's tools count
+    named = _drones(step, fleet_ids)
+    return not named or bool(named & _call_drones(call)) or call.name == "fleet_status"
+
+
+def _last_reading(calls: Sequence[ToolCallRecord]) -> tuple[str, float] | None:
+    """The latest battery reading of the turn: which drone, what percent."""
+    for call in reversed(calls):
+        if call.ok and call.name in _ACTION_TOOLS_READ:
+            m = _PERCENT_RE.search(call.text or call.summary)
+            if m:
+                return str((call.arguments or {}).get("drone_id", "")), float(m.group(1))
+    return None
+
+
+@dataclass
+class Plan:
+    """The request's steps and where the turn is in them, judged from the calls that succeeded."""
+
+    steps: list[str]
+    fleet_ids: list[str] = field(default_factory=list)
+
+    def prompt(self, request: str, calls: Sequence[ToolCallRecord], roster: Roster | None) -> str:
+        """The turn so far as one user message: the fleet now, the request, its steps, the calls that ran
+        (written as the model writes a call, with what came of each) and the step whose turn it is."""
+        ran = [c for c in calls if c.status in ("ok", "error") and c.name != ANSWER_TOOL]
+        lines = [
+            f"- {json.dumps({'name': c.name, 'arguments': c.arguments})} -> "
+            f"{'' if c.ok else 'failed: '}{first_line(c.text) or c.summary}"
+            for c in ran
+        ]
+        parts = [roster.text()] if roster is not None else []
+        parts += [request, steps_text(self.steps)]
+        if lines:
+            parts.append("Done so far:\n" + "\n".join(lines))
+        parts.append(self.next_note(calls))
+        return "\n\n".join(parts)
+
+    def next_note(self, calls: Sequence[ToolCallRecord]) -> str:
+        """What the model is told after a call or an empty reply: the step whose turn it is. A condition
+        on a battery reading is read here (the 1.5B model called 45 % "below 40 %"), and the branch it
+        does not take is passed over."""
+        done = [c for c in calls if c.ok and c.name != ANSWER_TOOL]
+        i, used = 0, 0
+        while i < len(self.steps):
+            step = self.steps[i]
+            cond = _CONDITION_RE.match(step)
+            if cond:
+                reading = _last_reading(done)
+                if reading is None:
+                    return (
+                        f"Now step {i + 1} of {len(self.steps)}: {step}. Read the battery first: reply with "
+                        "the get_battery call."
+                    )
+                drone, percent = reading
+                relation, threshold = cond.group(1).lower(), float(cond.group(2))
+                if not _holds(relation, percent, threshold):
+                    fact = f"{drone} battery {percent:g} % is not {relation} {threshold:g} %"
+                    return (
+                        f"The condition does not hold ({fact}), so nothing is to be flown. Reply with the "
+                        "answer_user call saying so, with the reading."
+                    )
+                step = cond.group(3).strip()
+            elif _OTHERWISE_RE.match(step):
+                i += 1  # the branch not taken: the condition before it held
+                continue
+            while used < len(done) and not step_done_by(step, done[used], self.fleet_ids):
+                used += 1
+            if used >= len(done):
+                lead = f" (the battery is {cond.group(1).lower()} {cond.group(2)} %)" if cond else ""
+                where = f"Now step {i + 1} of {len(self.steps)}{lead}"
+                return f"{where}: {step}. Reply with only the tool call for it."
+            used += 1
+            i += 1
+        return "Every step is done. Reply with the answer_user call saying what was done."
+
+
+async def plan_steps(chat: ChatModel, fleet_ids: Sequence[str], request: str, usage: Usage) -> list[str]:
+    """Ask the model for the request's steps (no tools offered); an empty list when it gives none."""
+    reply = await chat.ask(plan_messages(fleet_ids, request), [], {}, usage)
+    return steps_from_reply(reply.content, fleet_ids)

@@ -1,0 +1,152 @@
+"""The small model's plan step: the request as numbered steps, and the step whose turn it is."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from bench.agent_harness.missions import MissionContext
+from bench.agent_harness.scripted import ScriptedModelServer, ScriptedReply, call, say
+from bench.nl_corpus import DRONES, corpus
+from gateway.agent.host import AgentHost, ModelConfig
+from gateway.agent.mcp_link import McpLink
+from gateway.agent.planning import (
+    MAX_STEPS,
+    PLAN_EXAMPLES,
+    PLAN_SYSTEM_PROMPT,
+    Plan,
+    plan_messages,
+    steps_from_reply,
+)
+from gateway.agent.turns import ToolCallRecord
+from tests.agent.toy_mcp import TOKEN, ToyServer
+
+FLEET = ["alpha", "bravo", "charlie"]
+
+
+def _ok(name: str, text: str = "", **arguments: Any) -> ToolCallRecord:
+    return ToolCallRecord(name, name, arguments, "ok", "", text=text)
+
+
+def test_the_steps_are_the_numbered_lines_without_the_ones_that_call_for_nothing() -> None:
+    reply = "Sure:\n1. alpha: take off to 12 m\n2) alpha: hover at 12 m\n3. alpha: fly 35 m west\nthanks"
+    assert steps_from_reply(reply, FLEET) == ["alpha: take off to 12 m", "alpha: fly 35 m west"]
+    many = "\n".join(f"{i}. alpha: climb 1 m" for i in range(1, 20))
+    assert len(steps_from_reply(many, FLEET)) == MAX_STEPS
+    assert steps_from_reply("", FLEET) == [] and steps_from_reply(None, FLEET) == []
+
+
+def test_steps_that_copy_the_examples_drones_are_not_used() -> None:
+    assert steps_from_reply("1. delta: take off to 14 m\n2. alpha: land", FLEET) == []
+    # a fleet that has a drone named like one of the examples' keeps it
+    assert steps_from_reply("1. delta: land", ["delta"]) == ["delta: land"]
+
+
+def test_the_examples_are_none_of_the_benchmarks_requests_nor_its_drones() -> None:
+    """The plan step may not be tuned on the corpus: its examples are other requests, other drones."""
+    ctx = MissionContext(homes={d: (47.397, 8.545 + 0.0001 * i, 488.0) for i, d in enumerate(DRONES)})
+    requests = {e.mission.prompt(ctx).lower() for e in corpus()}
+    for asked, steps in PLAN_EXAMPLES:
+        assert asked.lower() not in requests
+        assert not any(d in f"{asked} {steps}".lower() for d in DRONES), asked
+    messages = plan_messages(FLEET, "alpha to 10 m")
+    assert messages[0] == {"role": "system", "content": PLAN_SYSTEM_PROMPT}
+    assert messages[-1]["content"] == "Drones: alpha, bravo, charlie\nRequest: alpha to 10 m"
+    assert len(messages) == 2 + 2 * len(PLAN_EXAMPLES)
+
+
+def test_a_step_is_done_by_a_call_of_its_kind_on_its_drone() -> None:
+    """Measured on the dev half (multi-west-and-land): takeoff(alpha) for "alpha: fly 40 m west at 15 m"
+    was counted as that step, and alpha's leg was never flown."""
+    plan = Plan(["alpha: fly 40 m west at 15 m", "charlie: fly 40 m west at 15 m", "alpha: land"], FLEET)
+    took_off = _ok("takeoff", drone_id="alpha", alt_m=15)
+    assert plan.next_note([took_off]).startswith("Now step 1 of 3: alpha: fly 40 m west at 15 m.")
+    moved = _ok("move_to_relative", drone_id="alpha", west_m=40, alt_m=15)
+    assert plan.next_note([took_off, moved]).startswith("Now step 2 of 3: charlie:")
+    wrong_drone = _ok("move_to_relative", drone_id="bravo", west_m=40, alt_m=15)
+    assert plan.next_note([took_off, moved, wrong_drone]).startswith("Now step 2 of 3: charlie:")
+    charlie = _ok("move_to_relative", drone_id="charlie", west_m=40, alt_m=15)
+    landed = _ok("land", drone_id="alpha")
+    assert plan.next_note([moved, charlie, landed]).startswith("Every step is done.")
+    # another server's tool (not one of the gateway's) counts for a step of any kind
+    assert plan.next_note([_ok("move_north", drone_id="alpha")]).startswith("Now step 2 of 3")
+
+
+def test_a_condition_on_the_battery_is_read_from_the_reading() -> None:
+    """Measured on the dev half (cond-above-forty-hop): the 1.5B model read 45 % as "below 40 %"."""
+    plan = Plan(["charlie: read battery", "if above 40 %: charlie: climb 12 m", "charlie: land"], FLEET)
+    high = _ok("get_battery", "charlie battery 45%, 11.12 V", drone_id="charlie")
+    assert plan.next_note([high]) == (
+        "Now step 2 of 3 (the battery is above 40 %): charlie: climb 12 m. Reply with only the tool call for it."
+    )
+    climbed = _ok("move_to_relative", drone_id="charlie", up_m=12)
+    assert plan.next_note([high, climbed]).startswith("Now step 3 of 3: charlie: land.")
+    low = _ok("get_battery", "charlie battery 35%, 10.9 V", drone_id="charlie")
+    assert plan.next_note([low]) == (
+        "The condition does not hold (charlie battery 35 % is not above 40 %), so nothing is to be flown. "
+        "Reply with the answer_user call saying so, with the reading."
+    )
+    unread = Plan(["if at least 70 %: bravo: take off to 20 m"], FLEET)
+    assert "Read the battery first" in unread.next_note([])
+    at_least = Plan(["if at least 70 %: bravo: take off to 20 m", "otherwise: tell the battery"], FLEET)
+    exactly = _ok("get_battery", "bravo battery 70%, 11.9 V", drone_id="bravo")
+    took_off = _ok("takeoff", drone_id="bravo", alt_m=20)
+    assert at_least.next_note([exactly]).startswith("Now step 1 of 2 (the battery is at least 70 %)")
+    # the condition held and its step is done: the "otherwise" branch is passed over
+    assert at_least.next_note([exactly, took_off]).startswith("Every step is done.")
+
+
+def _plan_reply(body: dict[str, Any]) -> ScriptedReply:
+    assert "tools" not in body, "the plan is asked without tools"
+    return ScriptedReply(content="1. alpha: take off to 15 m\n2. alpha: fly 100 m north\n3. alpha: land")
+
+
+async def test_the_host_asks_for_the_steps_first_and_says_whose_turn_it_is(toy: ToyServer, scripted) -> None:
+    """On the toy server, with a real MCP client: the first request has no tools and the plan prompt; the
+    steps go under the request; after each call the turn is one user message again, with what ran and the
+    step whose turn it is."""
+    model: ScriptedModelServer = scripted(
+        [
+            _plan_reply,
+            call("takeoff", drone_id="alpha", alt_m=15),
+            call("move_north", drone_id="alpha", distance_m=100),
+            call("land", drone_id="alpha"),
+            say("alpha flew 100 m north and landed"),
+        ]
+    )
+    async with McpLink(toy.url, TOKEN) as link:
+        host = AgentHost(
+            ModelConfig(model.base_url, "scripted", max_retries=0), link, await link.list_tools(), plan_first=True
+        )
+        result = await host.run_turn("alpha up to 15 m, then 100 m north, then down")
+    assert result.outcome == "answered", result
+    assert [c.name for c in result.tool_calls] == ["takeoff", "move_north", "land"]
+    assert model.requests[0]["messages"][0]["content"] == PLAN_SYSTEM_PROMPT
+    first = model.requests[1]["messages"][-1]["content"]
+    assert "Steps:\n1. alpha: take off to 15 m\n2. alpha: fly 100 m north\n3. alpha: land" in first, first
+    second = model.requests[2]["messages"]
+    # the turn so far is one user message again (the conversation before the turn stays)
+    assert [m["role"] for m in second] == ["system", "user"], second
+    assert second[-1]["content"].startswith("Fleet now: ")
+    assert "\nalpha up to 15 m, then 100 m north, then down\n\nSteps:\n1. alpha: take off" in second[-1]["content"]
+    assert '\n\nDone so far:\n- {"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}} -> ' in (
+        second[-1]["content"]
+    )
+    assert second[-1]["content"].endswith(
+        "\n\nNow step 2 of 3: alpha: fly 100 m north. Reply with only the tool call for it."
+    )
+    told = model.requests[4]["messages"][-1]["content"]
+    assert told.endswith("Every step is done. Reply with the answer_user call saying what was done."), told
+    assert toy.world.calls[1] == ("move_north", {"drone_id": "alpha", "distance_m": 100})
+
+
+async def test_no_steps_no_plan(toy: ToyServer, scripted) -> None:
+    """A reply with no numbered steps (or a model that fails at it) leaves the turn as it was."""
+    model = scripted([say("I cannot split this."), call("takeoff", drone_id="bravo", alt_m=10), say("up")])
+    async with McpLink(toy.url, TOKEN) as link:
+        host = AgentHost(
+            ModelConfig(model.base_url, "scripted", max_retries=0), link, await link.list_tools(), plan_first=True
+        )
+        result = await host.run_turn("bravo to 10 m")
+    assert result.outcome == "answered" and result.final_text == "up", result
+    assert "Steps:" not in model.requests[1]["messages"][-1]["content"]
+    assert all(m["role"] != "user" or "Now step" not in m["content"] for m in model.requests[2]["messages"])
