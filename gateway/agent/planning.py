@@ -109,6 +109,13 @@ _STEP_KINDS: tuple[tuple[re.Pattern[str], frozenset[str]], ...] = (
         frozenset({"get_position", "fleet_status"}),
     ),
     (re.compile(r"\btake off\b", re.I), frozenset({"takeoff", "move_to_relative"})),
+    # "bravo: fly 18 m", "climb to 30 m": only a height, which a takeoff reaches from the ground
+    (
+        re.compile(
+            r"^[^:]*:\s*(?:fly|go|climb|move)\b(?!.*\b(?:north|south|east|west|higher|lower|up|down)\b)", re.I
+        ),
+        frozenset({"takeoff", "move_to_relative", "go_to_location"}),
+    ),
     (re.compile(r"\b(?:return|home)\b", re.I), frozenset({"return_to_launch"})),
     (re.compile(r"\bland\b", re.I), frozenset({"land", "return_to_launch"})),
     (

@@ -67,6 +67,11 @@ def test_a_step_is_done_by_a_call_of_its_kind_on_its_drone() -> None:
     charlie = _ok("move_to_relative", drone_id="charlie", west_m=40, alt_m=15)
     landed = _ok("land", drone_id="alpha")
     assert plan.next_note([moved, charlie, landed]).startswith("Every step is done.")
+    # a step that names only a height is done by a takeoff (dev half, compound-north-rtl: "bravo: fly 18 m")
+    height = Plan(["bravo: fly 18 m", "bravo: fly 25 m north"], FLEET)
+    assert height.next_note([_ok("takeoff", drone_id="bravo", alt_m=18)]).startswith("Now step 2 of 2")
+    climb = Plan(["bravo: climb 5 m higher"], FLEET)
+    assert climb.next_note([_ok("takeoff", drone_id="bravo", alt_m=5)]).startswith("Now step 1 of 1")
     # another server's tool (not one of the gateway's) counts for a step of any kind
     assert plan.next_note([_ok("move_north", drone_id="alpha")]).startswith("Now step 2 of 3")
 
@@ -76,7 +81,8 @@ def test_a_condition_on_the_battery_is_read_from_the_reading() -> None:
     plan = Plan(["charlie: read battery", "if above 40 %: charlie: climb 12 m", "charlie: land"], FLEET)
     high = _ok("get_battery", "charlie battery 45%, 11.12 V", drone_id="charlie")
     assert plan.next_note([high]) == (
-        "Now step 2 of 3 (the battery is above 40 %): charlie: climb 12 m. Reply with only the tool call for it."
+        "Now step 2 of 3 (the battery is above 40 %): charlie: climb 12 m. "
+        "Reply with only the tool call for it."
     )
     climbed = _ok("move_to_relative", drone_id="charlie", up_m=12)
     assert plan.next_note([high, climbed]).startswith("Now step 3 of 3: charlie: land.")
@@ -115,7 +121,10 @@ async def test_the_host_asks_for_the_steps_first_and_says_whose_turn_it_is(toy: 
     )
     async with McpLink(toy.url, TOKEN) as link:
         host = AgentHost(
-            ModelConfig(model.base_url, "scripted", max_retries=0), link, await link.list_tools(), plan_first=True
+            ModelConfig(model.base_url, "scripted", max_retries=0),
+            link,
+            await link.list_tools(),
+            plan_first=True,
         )
         result = await host.run_turn("alpha up to 15 m, then 100 m north, then down")
     assert result.outcome == "answered", result
@@ -127,9 +136,13 @@ async def test_the_host_asks_for_the_steps_first_and_says_whose_turn_it_is(toy: 
     # the turn so far is one user message again (the conversation before the turn stays)
     assert [m["role"] for m in second] == ["system", "user"], second
     assert second[-1]["content"].startswith("Fleet now: ")
-    assert "\nalpha up to 15 m, then 100 m north, then down\n\nSteps:\n1. alpha: take off" in second[-1]["content"]
-    assert '\n\nDone so far:\n- {"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}} -> ' in (
-        second[-1]["content"]
+    assert (
+        "\nalpha up to 15 m, then 100 m north, then down\n\nSteps:\n1. alpha: take off"
+        in second[-1]["content"]
+    )
+    assert (
+        '\n\nDone so far:\n- {"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}} -> '
+        in (second[-1]["content"])
     )
     assert second[-1]["content"].endswith(
         "\n\nNow step 2 of 3: alpha: fly 100 m north. Reply with only the tool call for it."
@@ -144,7 +157,10 @@ async def test_no_steps_no_plan(toy: ToyServer, scripted) -> None:
     model = scripted([say("I cannot split this."), call("takeoff", drone_id="bravo", alt_m=10), say("up")])
     async with McpLink(toy.url, TOKEN) as link:
         host = AgentHost(
-            ModelConfig(model.base_url, "scripted", max_retries=0), link, await link.list_tools(), plan_first=True
+            ModelConfig(model.base_url, "scripted", max_retries=0),
+            link,
+            await link.list_tools(),
+            plan_first=True,
         )
         result = await host.run_turn("bravo to 10 m")
     assert result.outcome == "answered" and result.final_text == "up", result
