@@ -22,6 +22,7 @@ from gateway.agent.answer import ANSWER_TOOL
 from gateway.agent.chat import ChatModel, Message
 from gateway.agent.roster import Roster
 from gateway.agent.turns import ToolCallRecord, Usage
+from gateway.agent.wording import first_line
 
 PLAN_SYSTEM_PROMPT = (
     "Split the user's drone request into numbered steps: one drone and one action per step, in the order "
@@ -51,10 +52,6 @@ PLAN_EXAMPLES: tuple[tuple[str, str], ...] = (
 )
 
 MAX_STEPS = 8
-
-
-def first_line(text: str) -> str:
-    return next((s.strip() for s in text.splitlines() if s.strip()), "")
 
 
 _STEP_RE = re.compile(r"^\s*(\d{1,2})[.)]\s+(\S.*)$")
