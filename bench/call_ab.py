@@ -77,9 +77,7 @@ def main() -> int:
     load0 = common.machine()["load average (1/5/15 min) at start"]
     rows = asyncio.run(measure(args.other.resolve(), args.n, args.swap))
     slot = "the other checkout first" if args.swap else "this checkout first"
-    print(
-        f"{args.n} calls of each kind to each gateway, interleaved ({slot}); load average {load0}"
-    )
+    print(f"{args.n} calls of each kind to each gateway, interleaved ({slot}); load average {load0}")
     print(common.table(["call", "this checkout, CPU ms per call", "the other, ms", "ratio"], rows))
     return 0
 

@@ -34,11 +34,16 @@ _FLYING_WORDS = re.compile(
 )
 _GROUND_WORDS = re.compile(r"\b(?:landed|on the ground|grounded|parked)\b", re.IGNORECASE)
 # Words that turn a sentence into a report of what was not done (a refusal among them), or a guess.
+# Words that report a refusal: a sentence with one claims nothing, and an answer with one tells the user
+# of a refusal (wording.says_refused)
+REFUSAL_WORDS = (
+    r"refus\w*|limit\w*|exceed\w*|not allowed|cannot|can't|can not|unable|too (?:far|high|low)|beyond|"
+    r"denied|rejected|not possible|impossible|maximum|minimum|max_\w*"
+)
 _NEGATION = re.compile(
-    r"\b(?:not|no|never|none|nothing|neither|cannot|unable|instead|refus\w*|stay(?:s|ed|ing)?|"
-    r"leave|left|kept|keep(?:s|ing)?|remain(?:s|ed|ing)?|would|could|should|if|may|might|perhaps|"
-    r"probably|possibly|too (?:low|high|far)|limit\w*|exceed\w*|beyond|maximum|minimum|denied|"
-    r"rejected)\b|n't\b",
+    r"\b(?:not|no|never|none|nothing|neither|instead|stay(?:s|ed|ing)?|leave|left|kept|keep(?:s|ing)?|"
+    r"remain(?:s|ed|ing)?|would|could|should|if|may|might|perhaps|probably|possibly|"
+    rf"{REFUSAL_WORDS})\b|n't\b",
     re.IGNORECASE,
 )
 

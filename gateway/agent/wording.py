@@ -12,7 +12,7 @@ import re
 from collections.abc import Iterable
 
 from gateway.agent.answer import ANSWER_TOOL, answer_text
-from gateway.agent.claims import Claim
+from gateway.agent.claims import REFUSAL_WORDS, Claim
 from gateway.agent.roster import Roster, drones_named
 from gateway.agent.turns import ToolCallRecord, TurnMemory, TurnResult
 
@@ -185,11 +185,7 @@ def invalid_last_call(name: str) -> str:
 
 
 # Words of an answer that tell the user something was refused or is not possible.
-_SAYS_REFUSED_RE = re.compile(
-    r"refus|limit|exceed|not allowed|cannot|can't|can not|unable|too (?:far|high|low)|beyond|denied|rejected|"
-    r"not possible|impossible|maximum|max_",
-    re.IGNORECASE,
-)
+_SAYS_REFUSED_RE = re.compile(REFUSAL_WORDS, re.IGNORECASE)
 
 
 def says_refused(text: str) -> bool:

@@ -259,7 +259,9 @@ async def test_small_profile_sends_its_tools_prompt_and_reply_cap(toy, scripted)
     argv = ["--mcp-url", toy.url, "--token", TOKEN, "--endpoint", model.base_url, "--model", "m",
             "--profile", "small", "--max-tokens", "50", "hi"]  # fmt: skip
     assert await cli.run_async(_parse(argv), console=console) == cli.EXIT_OK
-    assert "tools" not in model.requests[0] and model.requests[0]["messages"][0]["content"] == PLAN_SYSTEM_PROMPT
+    assert (
+        "tools" not in model.requests[0] and model.requests[0]["messages"][0]["content"] == PLAN_SYSTEM_PROMPT
+    )
     request = model.requests[1]
     # The toy server offers three of the small profile's tools; move_north and list_drones are not in it.
     # The host adds its own answer_user, how a small model ends its turn.
