@@ -49,6 +49,12 @@ PLAN_EXAMPLES: tuple[tuple[str, str], ...] = (
         "1. delta, echo, foxtrot: wedge formation, 9 m apart, at 16 m, 30 m west",
     ),
     ("How high is echo?", "1. echo: read position"),
+    # one move that goes several ways is one step, and a drone left where it is gets no landing (dev half:
+    # "25 m north and 8 m up" became two moves; "... and leave it there" got a landing)
+    (
+        "Take foxtrot 20 m east and 5 m up, then leave it hovering there",
+        "1. foxtrot: fly 20 m east and 5 m up",
+    ),
 )
 
 MAX_STEPS = 8
@@ -77,7 +83,8 @@ def plan_messages(fleet_ids: Sequence[str], request: str) -> list[Message]:
 
 def steps_from_reply(text: str | None, fleet_ids: Sequence[str]) -> list[str]:
     """The numbered steps of a reply, at most MAX_STEPS; none when a step names a drone of the examples
-    that the fleet does not have (the model copied an example, so the steps would mislead)."""
+    that the fleet does not have (the model copied an example, so the steps would mislead), or when there
+    is only one."""
     steps: list[str] = []
     for line in (text or "").splitlines():
         m = _STEP_RE.match(line)
@@ -85,6 +92,10 @@ def steps_from_reply(text: str | None, fleet_ids: Sequence[str]) -> list[str]:
             steps.append(m.group(2).strip())
     foreign = {d for d in _EXAMPLE_FLEET.split(", ") if d not in fleet_ids}
     if any(re.search(rf"\b{d}\b", s, re.IGNORECASE) for s in steps for d in foreign):
+        return []
+    if len(steps) < 2:
+        # one step is the request itself, with only the planner's errors added (dev half: "side by side,
+        # 15 m apart, at 20 m" for two drones became a step naming all three)
         return []
     return steps[:MAX_STEPS]
 

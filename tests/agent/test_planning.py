@@ -38,7 +38,16 @@ def test_the_steps_are_the_numbered_lines_without_the_ones_that_call_for_nothing
 def test_steps_that_copy_the_examples_drones_are_not_used() -> None:
     assert steps_from_reply("1. delta: take off to 14 m\n2. alpha: land", FLEET) == []
     # a fleet that has a drone named like one of the examples' keeps it
-    assert steps_from_reply("1. delta: land", ["delta"]) == ["delta: land"]
+    assert steps_from_reply("1. delta: up to 5 m\n2. delta: land", ["delta"]) == [
+        "delta: up to 5 m",
+        "delta: land",
+    ]
+
+
+def test_one_step_is_no_plan() -> None:
+    """A request of one action is its own step: rewritten, it only gains the planner's errors."""
+    assert steps_from_reply("1. alpha, bravo, charlie: line formation, 8 m apart, at 20 m", FLEET) == []
+    assert steps_from_reply("1. alpha: take off to 10 m\n2. alpha: hover", FLEET) == []
 
 
 def test_the_examples_are_none_of_the_benchmarks_requests_nor_its_drones() -> None:
