@@ -26,8 +26,10 @@ async def run_on_toy(
     max_steps: int = 12,
     events: list[AgentEvent] | None = None,
     answer_tool: bool = False,
+    plan_first: bool = False,
 ) -> tuple[AgentHost, Any]:
-    """One turn of a host over the toy server's tools (``answer_tool``: with the host's answer_user)."""
+    """One turn of a host over the toy server's tools (``answer_tool``: with the host's answer_user;
+    ``plan_first``: the request split into steps first)."""
     async with McpLink(toy.url, TOKEN) as link:
         host = AgentHost(
             ModelConfig(model.base_url, "scripted", max_retries=0),
@@ -36,6 +38,7 @@ async def run_on_toy(
             max_steps=max_steps,
             on_event=(events.append if events is not None else None),
             answer_tool=answer_tool,
+            plan_first=plan_first,
         )
         result = await host.run_turn(prompt)
     return host, result

@@ -7,8 +7,6 @@ from typing import Any
 from bench.agent_harness.missions import MissionContext
 from bench.agent_harness.scripted import ScriptedModelServer, ScriptedReply, call, say
 from bench.nl_corpus import DRONES, corpus
-from gateway.agent.host import AgentHost, ModelConfig
-from gateway.agent.mcp_link import McpLink
 from gateway.agent.planning import (
     MAX_STEPS,
     PLAN_EXAMPLES,
@@ -18,7 +16,8 @@ from gateway.agent.planning import (
     steps_from_reply,
 )
 from gateway.agent.turns import ToolCallRecord
-from tests.agent.toy_mcp import TOKEN, ToyServer
+from tests.agent.test_loop import run_on_toy
+from tests.agent.toy_mcp import ToyServer
 
 FLEET = ["alpha", "bravo", "charlie"]
 
@@ -128,14 +127,7 @@ async def test_the_host_asks_for_the_steps_first_and_says_whose_turn_it_is(toy: 
             say("alpha flew 100 m north and landed"),
         ]
     )
-    async with McpLink(toy.url, TOKEN) as link:
-        host = AgentHost(
-            ModelConfig(model.base_url, "scripted", max_retries=0),
-            link,
-            await link.list_tools(),
-            plan_first=True,
-        )
-        result = await host.run_turn("alpha up to 15 m, then 100 m north, then down")
+    _, result = await run_on_toy(toy, model, "alpha up to 15 m, then 100 m north, then down", plan_first=True)
     assert result.outcome == "answered", result
     assert [c.name for c in result.tool_calls] == ["takeoff", "move_north", "land"]
     assert model.requests[0]["messages"][0]["content"] == PLAN_SYSTEM_PROMPT
@@ -164,14 +156,7 @@ async def test_the_host_asks_for_the_steps_first_and_says_whose_turn_it_is(toy: 
 async def test_no_steps_no_plan(toy: ToyServer, scripted) -> None:
     """A reply with no numbered steps (or a model that fails at it) leaves the turn as it was."""
     model = scripted([say("I cannot split this."), call("takeoff", drone_id="bravo", alt_m=10), say("up")])
-    async with McpLink(toy.url, TOKEN) as link:
-        host = AgentHost(
-            ModelConfig(model.base_url, "scripted", max_retries=0),
-            link,
-            await link.list_tools(),
-            plan_first=True,
-        )
-        result = await host.run_turn("bravo to 10 m")
+    _, result = await run_on_toy(toy, model, "bravo to 10 m", plan_first=True)
     assert result.outcome == "answered" and result.final_text == "up", result
     assert "Steps:" not in model.requests[1]["messages"][-1]["content"]
     assert all(m["role"] != "user" or "Now step" not in m["content"] for m in model.requests[2]["messages"])
