@@ -437,8 +437,13 @@ async def test_link_loss_reads_say_stale_and_commands_name_the_state(stack: Stac
         finally:
             await stack.sim.control.link_up(index)
         await wait_state(stack, "d2", "ready")
-        r = await ok(stack, c, "get_position", {"drone_id": "d2"})
-        assert r["stale"] is False
+        # "ready" comes with the first heartbeat; a fresh position may come a little later (seen under
+        # load): wait for it with a deadline
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + scaled(30)
+        while (r := await ok(stack, c, "get_position", {"drone_id": "d2"}))["stale"] is not False:
+            assert loop.time() < deadline, f"d2 is ready again but its position stays stale: {r}"
+            await asyncio.sleep(0.2)
     await wait_audited(stack, "d2")
 
 
