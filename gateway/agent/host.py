@@ -330,18 +330,18 @@ class AgentHost:
     async def _reprompt(self, result: TurnResult, echo: bool = False) -> str:
         """What the model is told after an empty reply (wording.reprompt_text), with the fleet read now."""
         roster = await self.fleet.refresh()
-        # an empty reply is the model stopping, so a drone still flying that the request lands is said
-        # (measured on the corpus's dev half, compound-two-climbs: after the second climb the model
-        # replied with nothing twice, and the landing the request ends with was never sent)
-        untouched = checks.untouched(
-            result, self._memory.request, self.fleet.roster, self.tools, answering=True
-        )
         plan = self._memory.plan
         if plan is not None:
             # the step whose turn it is, short: measured with the 1.5B model, the long re-prompt below
             # after a step-by-step turn got nothing again, the step alone its call
             said = "Your reply only repeated my note." if echo else "Your reply was empty."
             return f"{said} {plan.next_note(result.tool_calls)}"
+        # an empty reply is the model stopping, so a drone still flying that the request lands is said
+        # (measured on the corpus's dev half, compound-two-climbs: after the second climb the model
+        # replied with nothing twice, and the landing the request ends with was never sent)
+        untouched = checks.untouched(
+            result, self._memory.request, self.fleet.roster, self.tools, answering=True
+        )
         return wording.reprompt_text(result, self._memory.request, echo, untouched, roster, self.answer_tool)
 
     async def _ask_model(self, step: int, usage: Usage) -> ModelReply:

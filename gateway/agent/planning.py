@@ -138,7 +138,7 @@ _CONDITION_RE = re.compile(
     re.IGNORECASE,
 )
 _PERCENT_RE = re.compile(r"(\d+(?:\.\d+)?)\s*%")
-_ACTION_TOOLS_READ = frozenset({"get_battery"})
+_BATTERY_TOOLS = frozenset({"get_battery"})
 
 
 def _holds(relation: str, reading: float, threshold: float) -> bool:
@@ -177,7 +177,7 @@ def step_done_by(step: str, call: ToolCallRecord, fleet_ids: Sequence[str]) -> b
 def _last_reading(calls: Sequence[ToolCallRecord]) -> tuple[str, float] | None:
     """The latest battery reading of the turn: which drone, what percent."""
     for call in reversed(calls):
-        if call.ok and call.name in _ACTION_TOOLS_READ:
+        if call.ok and call.name in _BATTERY_TOOLS:
             m = _PERCENT_RE.search(call.text or call.summary)
             if m:
                 return str((call.arguments or {}).get("drone_id", "")), float(m.group(1))
