@@ -3,9 +3,14 @@ a refusal. Each reason holds an answer back at most once a turn (``TurnMemory.he
 
 from __future__ import annotations
 
+import re
+from collections.abc import Sequence
+
 from gateway.agent import wording
 from gateway.agent.claims import Claim
-from gateway.agent.turns import TurnMemory, TurnResult
+from gateway.agent.turns import ToolCallRecord, TurnMemory, TurnResult
+
+_NUMBER_RE = re.compile(r"-?\d+(?:\.\d+)?")
 
 
 def nothing_ran(result: TurnResult, memory: TurnMemory, answer_tool: bool) -> str | None:
@@ -43,3 +48,19 @@ def claims_unbacked(memory: TurnMemory, claims: list[Claim], offered: set[str]) 
         return None
     memory.held.add("claims")
     return wording.claims_unbacked(claims, offered)
+
+
+def written_blind(memory: TurnMemory, reads: Sequence[ToolCallRecord], text: str) -> str | None:
+    """An answer written in the same reply as the reads it reports on, before their results came back, is
+    sent back once with the readings, unless it already states one of their numbers. Measured on the
+    corpus's dev half with the 1.5B model: "charlie up to 15 m, but only if its battery is over 60 %. Tell
+    me what you decided" was get_battery and, in the same reply, "Charlie's battery is below 60%"; the
+    reading (30 %) never reached the user."""
+    if not reads or "blind" in memory.held:
+        return None
+    said = {float(n) for n in _NUMBER_RE.findall(text)}
+    read = {float(n) for c in reads for n in _NUMBER_RE.findall(c.text or c.summary)}
+    if any(abs(a - b) < 0.5 for a in said for b in read):
+        return None
+    memory.held.add("blind")
+    return wording.written_blind(reads)

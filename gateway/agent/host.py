@@ -39,7 +39,7 @@ from gateway.agent.chat import (
 from gateway.agent.claims import Claim
 from gateway.agent.intent import Reading, read_call
 from gateway.agent.parsing import ArgumentsError, parse_arguments, strip_thinking
-from gateway.agent.repair import unplaced_optional_point
+from gateway.agent.repair import extras_of_a_drone_only_tool, unplaced_optional_point
 from gateway.agent.roster import FleetView, Roster
 from gateway.agent.sending import ToolSender
 from gateway.agent.toolbox import Arguments, ToolInfo, ToolOutcome
@@ -236,6 +236,7 @@ class AgentHost:
             failed: ToolCallRecord | None = None
             answer: str | None = None
             gave_up = False
+            reply_start = len(result.tool_calls)
             for i, call in enumerate(calls):
                 left_out = (
                     checks.left_out(call, calls[i + 1 :], self._memory.request)
@@ -255,7 +256,12 @@ class AgentHost:
                 elif answer is not None or gave_up:
                     record = self._skip(result.steps, call, parsed, "the turn ended with answer_user.")
                 elif call["name"] == ANSWER_TOOL and self.answer_tool:
-                    answer, gave_up = await self._answer_call(result.steps, call, parsed, result)
+                    reads = [
+                        c
+                        for c in result.tool_calls[reply_start:]
+                        if c.ok and not checks.acts(self.tools, c.name)
+                    ]
+                    answer, gave_up = await self._answer_call(result.steps, call, parsed, result, reads)
                     continue
                 else:
                     record = await self._execute(result.steps, call, parsed, result)
@@ -383,8 +389,9 @@ class AgentHost:
                 name, args, self._memory.request, self.fleet.ids, self.fleet.fresh_entry
             )
             if (offered := self.tools.get(name)) is not None:
-                required = (offered.input_schema or {}).get("required") or []
-                notes += unplaced_optional_point(args, self._memory.request, required)
+                schema = offered.input_schema or {}
+                notes += unplaced_optional_point(args, self._memory.request, schema.get("required") or [])
+                notes += extras_of_a_drone_only_tool(args, schema.get("properties") or {})
         self._emit(
             "tool_call",
             step=step,
@@ -476,10 +483,16 @@ class AgentHost:
     # --- the end of a turn: answer_user ----------------------------------------------------------
 
     async def _answer_call(
-        self, step: int, call: ModelCall, parsed: bool, result: TurnResult
+        self,
+        step: int,
+        call: ModelCall,
+        parsed: bool,
+        result: TurnResult,
+        reads: Sequence[ToolCallRecord] = (),
     ) -> tuple[str | None, bool]:
         """An ``answer_user`` call: the answer that ends the turn, or None when it is sent back (empty, an
-        echo, or premature once); the flag says the model has now given no answer too often."""
+        echo, or premature once); the flag says the model has now given no answer too often. ``reads``:
+        the reads of the same reply, whose results the answer was written without."""
         args = call_arguments(call)
         text = answer_text(args) if args is not None else bare_answer(call["raw_args"])
         shown = args if args is not None else call["raw_args"]
@@ -492,6 +505,8 @@ class AgentHost:
         # An answer is held back first (once per reason): a model that gives up with an echo after its
         # own invalid call is told how to go on, not only that the echo is no answer.
         held = await self._hold_answer(result, empty, text)
+        if not held and not empty:
+            held = held_answers.written_blind(self._memory, reads, text)
         if held or empty:
             reply = held or wording.not_an_answer(text, stale, result)
             if empty:

@@ -266,6 +266,12 @@ def _embedded_calls(text: str, known: set[str], *, explicit: bool) -> list[TextT
                     found = _calls_from_value(loads_lenient(span), span, known, explicit=explicit)
                 except ValueError:
                     found = []
+                if found and text[end + 1 :].lstrip().startswith("->"):
+                    # "{call} -> what came of it" is the host's record of a call that ran (the plan's "done
+                    # so far" lines), copied back: measured with the 1.5B model, read as calls it flew the
+                    # finished steps again
+                    i = end + 1
+                    continue
                 if found:
                     calls += found
                     i = end + 1

@@ -74,6 +74,25 @@ def unplaced_optional_point(arguments: Arguments, request: str, required: Iterab
     return notes
 
 
+_DRONE_ARGUMENTS = frozenset({"drone_id", "drone_ids"})
+
+
+def extras_of_a_drone_only_tool(arguments: Arguments, properties: Iterable[str]) -> list[str]:
+    """Drop, in place, the arguments a tool that takes only drone ids (land, return_to_launch, get_battery)
+    does not have: it can do nothing with them, so the call means the same without them. Measured on the
+    corpus's dev half with the 1.5B model: land(drone_id="alpha", alt_m=15), refused for the unknown
+    argument, sent three times unchanged; the drone was never landed. Returns a note when it dropped any."""
+    accepted = set(properties)
+    if not accepted or not accepted <= _DRONE_ARGUMENTS:
+        return []
+    extra = sorted(k for k in arguments if k not in accepted)
+    for key in extra:
+        del arguments[key]
+    return (
+        [f"{', '.join(extra)} left out: this tool takes only {', '.join(sorted(accepted))}"] if extra else []
+    )
+
+
 def null_island(arguments: Arguments, request: str, on_ground: bool = False) -> str | None:
     """A refusal for latitude 0, longitude 0 when the request gives no such point: a small model writes it
     for "go up to 15 m" or "fly 60 m north" (measured: every prompt variant tried with the 1.5B model).

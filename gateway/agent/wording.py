@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import json
 import re
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 
 from gateway.agent.answer import ANSWER_TOOL, answer_text
 from gateway.agent.claims import REFUSAL_WORDS, Claim
@@ -248,6 +248,15 @@ def refusal_unsaid(record: ToolCallRecord) -> str:
         f"Not sent to the user yet: the gateway refused part of the request ({record.name}: {why}), and "
         "your answer does not say so. Answer again in one sentence with what was done and what was refused, "
         "and why."
+    )
+
+
+def written_blind(reads: Sequence[ToolCallRecord]) -> str:
+    """An answer held back because it was written beside the reads it depends on, before their results."""
+    results = "; ".join(f"{c.name}: {first_line(c.text) or c.summary}" for c in reads)
+    return (
+        "Not sent to the user yet: you wrote the answer in the same reply as the reading, before it came "
+        f"back. It returned: {results}. Answer again from that, with the numbers."
     )
 
 

@@ -390,3 +390,29 @@ async def test_the_same_unbacked_answer_again_is_passed_on_with_what_the_gateway
         f"{claim} (Host: no call in this turn acted on alpha; now: alpha on the ground"
     )
     assert toy.world.drones["alpha"].alt_m == 0.0
+
+
+async def test_an_answer_written_beside_the_reading_it_reports_is_sent_back_once_with_the_reading(
+    toy, scripted
+) -> None:
+    """Measured on the dev half (cond-charlie-sixty): get_battery and, in the same reply, an answer that
+    guessed the level; the reading never reached the user."""
+    read_and_guess = say(
+        '{"name": "get_position", "arguments": {"drone_id": "alpha"}}\n'
+        '{"name": "answer_user", "arguments": {"text": "Alpha is high up."}}'
+    )
+    model = scripted([read_and_guess, call(ANSWER_TOOL, text="Alpha is on the ground, 0 m up.")])
+    _, result = await _run(toy, model, "how high is alpha?")
+    assert result.final_text == "Alpha is on the ground, 0 m up."
+    assert [c.name for c in result.tool_calls] == ["get_position"]
+    note = _last_tool_text(model.requests[1])
+    assert note.startswith("Not sent to the user yet: you wrote the answer in the same reply as the reading")
+    assert "alpha: 0 m north, 0 m up" in note
+    # an answer that states a number of the reading was written from it (or guessed right): taken at once
+    states = say(
+        '{"name": "get_position", "arguments": {"drone_id": "alpha"}}\n'
+        '{"name": "answer_user", "arguments": {"text": "Alpha is 0 m up."}}'
+    )
+    again = scripted([states])
+    _, result = await _run(toy, again, "how high is alpha?")
+    assert result.final_text == "Alpha is 0 m up." and len(again.requests) == 1

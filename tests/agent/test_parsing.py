@@ -289,3 +289,13 @@ def test_a_call_quoted_inside_an_answer_with_unescaped_quotes_is_the_answers_tex
     assert [(c.name, c.arguments) for c in calls] == [("answer_user", {"text": text})]
     # without the answer tool offered, nothing is read as an answer
     assert [c.name for c in extract_tool_calls(content, {"land": ["drone_id"]})] == ["land"]
+
+
+def test_a_call_followed_by_an_arrow_is_the_hosts_record_of_a_call_that_ran_not_a_call() -> None:
+    """Measured on the dev half (multi-west-and-land): the 1.5B model copied the plan's "done so far"
+    lines ("{call} -> what came of it"); read as calls, they flew finished steps again."""
+    params = {"takeoff": ["drone_id", "alt_m"], "land": ["drone_id"]}
+    done = '{"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}} -> takeoff succeeded - '
+    assert extract_tool_calls(done + "Now step 2 of 2: alpha: land.", params) == []
+    new = '{"name": "land", "arguments": {"drone_id": "alpha"}}'
+    assert [c.name for c in extract_tool_calls(done + new, params)] == ["land"]

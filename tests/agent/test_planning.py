@@ -29,8 +29,10 @@ def _ok(name: str, text: str = "", **arguments: Any) -> ToolCallRecord:
 def test_the_steps_are_the_numbered_lines_without_the_ones_that_call_for_nothing() -> None:
     reply = "Sure:\n1. alpha: take off to 12 m\n2) alpha: hover at 12 m\n3. alpha: fly 35 m west\nthanks"
     assert steps_from_reply(reply, FLEET) == ["alpha: take off to 12 m", "alpha: fly 35 m west"]
-    many = "\n".join(f"{i}. alpha: climb 1 m" for i in range(1, 20))
-    assert len(steps_from_reply(many, FLEET)) == MAX_STEPS
+    most = "\n".join(f"{i}. alpha: climb 1 m" for i in range(1, MAX_STEPS + 1))
+    assert len(steps_from_reply(most, FLEET)) == MAX_STEPS
+    # a plan cut short would end the turn before the request's last steps
+    assert steps_from_reply(f"{most}\n{MAX_STEPS + 1}. alpha: land", FLEET) == []
     assert steps_from_reply("", FLEET) == [] and steps_from_reply(None, FLEET) == []
 
 
@@ -80,6 +82,9 @@ def test_a_step_is_done_by_a_call_of_its_kind_on_its_drone() -> None:
     assert height.next_note([_ok("takeoff", drone_id="bravo", alt_m=18)]).startswith("Now step 2 of 2")
     climb = Plan(["bravo: climb 5 m higher"], FLEET)
     assert climb.next_note([_ok("takeoff", drone_id="bravo", alt_m=5)]).startswith("Now step 1 of 1")
+    # "fly 10 m up" is a height too (dev half, multi-two-heights: "alpha to 10 m" planned so)
+    up = Plan(["alpha: fly 10 m up", "bravo: fly 20 m up"], FLEET)
+    assert up.next_note([_ok("takeoff", drone_id="alpha", alt_m=10)]).startswith("Now step 2 of 2: bravo")
     # another server's tool (not one of the gateway's) counts for a step of any kind
     assert plan.next_note([_ok("move_north", drone_id="alpha")]).startswith("Now step 2 of 3")
 
@@ -160,3 +165,32 @@ async def test_no_steps_no_plan(toy: ToyServer, scripted) -> None:
     assert result.outcome == "answered" and result.final_text == "up", result
     assert "Steps:" not in model.requests[1]["messages"][-1]["content"]
     assert all(m["role"] != "user" or "Now step" not in m["content"] for m in model.requests[2]["messages"])
+
+
+def test_a_step_for_several_drones_becomes_one_step_per_drone_asked() -> None:
+    """Measured on the dev half (multi-west-and-land): "alpha, charlie: take off to 15 m" counted as done
+    after alpha's takeoff, and charlie never flew; (multi-spread-out) a step for a drone never asked."""
+    both = "Take alpha and charlie 40 m west at 15 m altitude and land them over there."
+    reply = (
+        "1. alpha, charlie: take off to 15 m\n2. alpha and charlie: fly 40 m west\n3. charlie, alpha: land"
+    )
+    assert steps_from_reply(reply, FLEET, both) == [
+        "alpha: take off to 15 m",
+        "charlie: take off to 15 m",
+        "alpha: fly 40 m west",
+        "charlie: fly 40 m west",
+        "charlie: land",
+        "alpha: land",
+    ]
+    spread = "Spread them out: alpha 25 m to the east and bravo 25 m to the north, both at 10 m."
+    reply = "1. alpha: fly 25 m east\n2. bravo: fly 25 m north\n3. charlie: fly 10 m"
+    assert steps_from_reply(reply, FLEET, spread) == ["alpha: fly 25 m east", "bravo: fly 25 m north"]
+    # a formation stays one step, for the drones the request names
+    pair = "alpha and charlie side by side, 15 m apart, then land alpha"
+    reply = "1. alpha, bravo, charlie: line formation, 15 m apart\n2. alpha: land"
+    formed = steps_from_reply(reply, FLEET, pair)
+    assert formed == ["alpha, charlie: line formation, 15 m apart", "alpha: land"]
+    # a request for the whole fleet may mean drones it does not name
+    every = "all of them up to 20 m, then land alpha"
+    reply = "1. alpha, bravo, charlie: take off to 20 m\n2. alpha: land"
+    assert len(steps_from_reply(reply, FLEET, every)) == 4

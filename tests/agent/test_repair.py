@@ -7,6 +7,7 @@ from gateway.agent.host import AgentHost
 from gateway.agent.mcp_link import McpLink
 from gateway.agent.repair import (
     direction_mismatch,
+    extras_of_a_drone_only_tool,
     null_island,
     restore_request_directions,
     restore_request_numbers,
@@ -171,3 +172,15 @@ def test_an_optional_point_at_zero_zero_the_request_never_gives_is_left_out() ->
     assert unplaced_optional_point(named, "a line centred on 0, 0", []) == [] and len(named) == 2
     other = {"center_lat_deg": 0, "center_lon_deg": 149.1}
     assert unplaced_optional_point(other, request, []) == [] and len(other) == 2
+
+
+def test_arguments_a_drone_only_tool_does_not_have_are_left_out() -> None:
+    """Measured on the dev half (multi-west-and-land): land(drone_id="alpha", alt_m=15), refused for the
+    unknown argument, sent three times unchanged."""
+    args = {"drone_id": "alpha", "alt_m": 15, "speed": 3}
+    notes = extras_of_a_drone_only_tool(args, {"drone_id": {"type": "string"}})
+    assert args == {"drone_id": "alpha"} and notes == ["alt_m, speed left out: this tool takes only drone_id"]
+    # a tool with arguments of its own keeps an unknown one, for the gateway's clear refusal
+    moved = {"drone_id": "alpha", "alt_m": 15, "height": 3}
+    assert extras_of_a_drone_only_tool(moved, {"drone_id": {}, "alt_m": {}}) == [] and "height" in moved
+    assert extras_of_a_drone_only_tool({"x": 1}, {}) == []
