@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 56 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 64 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -6,7 +6,7 @@ the track they flew), what the gateway refused, what the answer said. ``plan`` i
 used only by the harness self-check (a scripted endpoint replays it), never as a model result.
 
 THE SPLIT IS FIXED HERE and stratified by class (of the first 40, each class has 5 requests: 3 in one
-half, 2 in the other, alternating between classes so that each half holds 20; the 16 added later are dev). The ``dev`` half may be looked at when
+half, 2 in the other, alternating between classes so that each half holds 20; the 24 added later are dev). The ``dev`` half may be looked at when
 the host, its prompts or the tool texts change; the ``test`` half never: it measures how the host does on
 requests nobody tuned it for. Do not move entries between halves, and do not reword a test entry after
 seeing a model's result on it (add a new entry instead and say so in docs/benchmarks.md).
@@ -14,7 +14,7 @@ seeing a model's result on it (add a new entry instead and say so in docs/benchm
 The first 40 entries were written in full before any model ran on them (2026-11-27). Sixteen more, two
 per class and all in the ``dev`` half (marked "added later"), were written later the same day, again
 before any model ran on them, after the dev half had been tuned on until 17 of its 20 passed: a tuning
-set the host passes tells nothing more. The test half is unchanged.
+set the host passes tells nothing more. The test half is unchanged. Eight more (marked "added on the second day"), again dev only and written before any model ran on them (2026-11-28), where the test half measured weakest: compound, multi, conditional, question.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -267,6 +267,19 @@ def _multi() -> list[CorpusEntry]:
                                   airborne_at(ev, "alpha", 10), airborne_at(ev, "bravo", 10)),
                [_move("alpha", 0, 25, alt=10), _move("bravo", 25, 0, alt=10)],
                "Alpha is 25 m east and bravo 25 m north, both at 10 m."),
+        # added on the second day, development half only
+        _entry("multi", "dev", "multi-one-down-one-up", ("alpha", "bravo"),
+               "Get alpha and bravo both to 16 m, then bring alpha back down but keep bravo up.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 16), landed_disarmed(ev, "alpha"),
+                                  airborne_at(ev, "bravo", 16)),
+               [_takeoff("alpha", 16), _takeoff("bravo", 16), _land("alpha")],
+               "Alpha went to 16 m and landed; bravo hovers at 16 m."),
+        _entry("multi", "dev", "multi-opposite-ways", ("alpha", "charlie"),
+               "Send charlie 30 m north and alpha 30 m south, each at 12 m, then land both of them there.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 30, 0)), at(ev, "alpha", *c.point("alpha", -30, 0)),
+                                  landed_disarmed(ev, "charlie"), landed_disarmed(ev, "alpha")),
+               [_move("charlie", 30, 0, alt=12), _move("alpha", -30, 0, alt=12), _land("charlie"), _land("alpha")],
+               "Charlie landed 30 m north, alpha 30 m south."),
     ]  # fmt: skip
 
 
@@ -313,6 +326,25 @@ def _compound() -> list[CorpusEntry]:
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 12), _move("alpha", 0, -35), _land("alpha")],
                "Alpha climbed to 12 m, flew 35 m west and landed."),
+        # added on the second day, development half only
+        _entry("compound", "dev", "compound-east-lower-land", ("charlie",),
+               "Charlie: climb to 20 m, head 40 m east, drop down to 10 m there, then land.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 20), visited(ev, "charlie", [c.point("charlie", 0, 40)]),
+                                  at(ev, "charlie", *c.point("charlie", 0, 40)), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 20), _move("charlie", 0, 40), _move("charlie", up=-10), _land("charlie")],
+               "Charlie flew 40 m east, came down to 10 m and landed."),
+        _entry("compound", "dev", "compound-south-then-home", ("alpha",),
+               "Could you take alpha up to 14 m, then 25 m south, then have it return home?",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -25, 0)]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 14), _move("alpha", -25, 0), _rtl("alpha")],
+               "Alpha flew 25 m south and came home."),
+        _entry("compound", "dev", "compound-west-and-back", ("bravo",),
+               "Bravo: up 10 m, 20 m west, then 20 m back east, then put it down.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, -20)]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), _move("bravo", 0, -20), _move("bravo", 0, 20), _land("bravo")],
+               "Bravo went 20 m west and back, and landed."),
     ]  # fmt: skip
 
 
@@ -359,6 +391,16 @@ def _conditional() -> list[CorpusEntry]:
                lambda c, ev: _all(never_armed(ev, "charlie"), answer_mentions_number(ev, 30, 2)),
                [_battery("charlie")], "Charlie has 30 %, below 60 %, so it stays on the ground.",
                battery={"charlie": 30.0}),
+        # added on the second day, development half only
+        _entry("conditional", "dev", "cond-alpha-sixty-go", ("alpha",),
+               "Check alpha's battery; if it's at least 60 %, take it to 10 m, otherwise say how much is left.",
+               lambda c, ev: airborne_at(ev, "alpha", 10),
+               [_battery("alpha"), _takeoff("alpha", 10)], "Alpha has 72 %, so it hovers at 10 m.",
+               battery={"alpha": 72.0}),
+        _entry("conditional", "dev", "cond-charlie-under-thirty", ("charlie",),
+               "If charlie's charge is under 30 percent, don't launch it and tell me the number; otherwise put it up at 8 m.",
+               lambda c, ev: _all(never_armed(ev, "charlie"), answer_mentions_number(ev, 25, 2)),
+               [_battery("charlie")], "Charlie has 25 %, so it stays on the ground.", battery={"charlie": 25.0}),
     ]  # fmt: skip
 
 
@@ -472,6 +514,12 @@ def _questions() -> list[CorpusEntry]:
                                   answer_mentions_number(ev, 66, 1), nobody_armed(ev)),
                [("fleet_status", {})], "Alpha 83 %, bravo 58 %, charlie 66 %.",
                battery={"alpha": 83.0, "bravo": 58.0, "charlie": 66.0}),
+        # added on the second day, development half only
+        _entry("question", "dev", "ask-alpha-where-and-battery", ("alpha",),
+               "Where is alpha right now, and how much battery does it have?",
+               lambda c, ev: _all(answer_mentions_number(ev, 64, 2), never_armed(ev, "alpha")),
+               [("get_position", {"drone_id": "alpha"}), _battery("alpha")],
+               "Alpha is on the ground at home with 64 % battery.", battery={"alpha": 64.0}),
     ]  # fmt: skip
 
 

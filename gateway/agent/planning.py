@@ -256,6 +256,14 @@ class Plan:
         """What the model is told after a call or an empty reply: the step whose turn it is. A condition
         on a battery reading is read here (the 1.5B model called 45 % "below 40 %"), and the branch it
         does not take is passed over."""
+        return self._where(calls)[1]
+
+    def finished(self, calls: Sequence[ToolCallRecord]) -> bool:
+        """Every step is done, or a condition did not hold: only the answer is left."""
+        return self._where(calls)[0]
+
+    def _where(self, calls: Sequence[ToolCallRecord]) -> tuple[bool, str]:
+        """Whether only the answer is left, and the note for the step whose turn it is."""
         done = [c for c in calls if c.ok and c.name != ANSWER_TOOL]
         i, used = 0, 0
         while i < len(self.steps):
@@ -264,7 +272,7 @@ class Plan:
             if cond:
                 reading = _last_reading(done)
                 if reading is None:
-                    return (
+                    return False, (
                         f"Now step {i + 1} of {len(self.steps)}: {step}. Read the battery first: reply with "
                         "the get_battery call."
                     )
@@ -272,7 +280,7 @@ class Plan:
                 relation, threshold = cond.group(1).lower(), float(cond.group(2))
                 if not _holds(relation, percent, threshold):
                     fact = f"{drone} battery {percent:g} % is not {relation} {threshold:g} %"
-                    return (
+                    return True, (
                         f"The condition does not hold ({fact}), so nothing is to be flown. Reply with the "
                         "answer_user call saying so, with the reading."
                     )
@@ -285,10 +293,10 @@ class Plan:
             if used >= len(done):
                 lead = f" (the battery is {cond.group(1).lower()} {cond.group(2)} %)" if cond else ""
                 where = f"Now step {i + 1} of {len(self.steps)}{lead}"
-                return f"{where}: {step}. Reply with only the tool call for it."
+                return False, f"{where}: {step}. Reply with only the tool call for it."
             used += 1
             i += 1
-        return "Every step is done. Reply with the answer_user call saying what was done."
+        return True, "Every step is done. Reply with the answer_user call saying what was done."
 
 
 async def plan_steps(chat: ChatModel, fleet_ids: Sequence[str], request: str, usage: Usage) -> list[str]:

@@ -112,6 +112,9 @@ def test_a_condition_on_the_battery_is_read_from_the_reading() -> None:
     assert at_least.next_note([exactly]).startswith("Now step 1 of 2 (the battery is at least 70 %)")
     # the condition held and its step is done: the "otherwise" branch is passed over
     assert at_least.next_note([exactly, took_off]).startswith("Every step is done.")
+    # only the answer is left when every step is done or the condition does not hold
+    assert at_least.finished([exactly, took_off]) and plan.finished([low])
+    assert not at_least.finished([exactly]) and not unread.finished([])
 
 
 def _plan_reply(body: dict[str, Any]) -> ScriptedReply:
@@ -194,3 +197,16 @@ def test_a_step_for_several_drones_becomes_one_step_per_drone_asked() -> None:
     every = "all of them up to 20 m, then land alpha"
     reply = "1. alpha, bravo, charlie: take off to 20 m\n2. alpha: land"
     assert len(steps_from_reply(reply, FLEET, every)) == 4
+
+
+async def test_an_empty_reply_after_the_last_step_gets_the_hosts_answer_at_once(
+    toy: ToyServer, scripted
+) -> None:
+    """Measured with the 1.5B model: told "every step is done", it replied with nothing, twice more when
+    asked again; the host answers from the results after the first empty reply."""
+    model = scripted([_plan_reply, call("takeoff", drone_id="alpha", alt_m=15),
+                      call("move_north", drone_id="alpha", distance_m=100), call("land", drone_id="alpha"),
+                      say("")])  # fmt: skip
+    _, result = await run_on_toy(toy, model, "alpha up to 15 m, then 100 m north, then down", plan_first=True)
+    assert len(model.requests) == 5 and result.answered_by == "host", result
+    assert result.outcome == "answered" and result.final_text.startswith("(Answer from the host"), result
