@@ -112,6 +112,10 @@ def parse_arguments(raw: Any) -> Arguments:
     return value
 
 
+# The note on a call written with "-> result" after it (parsing's reading; the host drops copies).
+RESULT_FOLLOWS = "written with a result after it"
+
+
 def extract_tool_calls(content: str | None, known_tools: Collection[str] = ()) -> list[TextToolCall]:
     """Find the tool calls written in ``content``; an empty list when there are none.
 
@@ -267,11 +271,11 @@ def _embedded_calls(text: str, known: set[str], *, explicit: bool) -> list[TextT
                 except ValueError:
                     found = []
                 if found and text[end + 1 :].lstrip().startswith("->"):
-                    # "{call} -> what came of it" is the host's record of a call that ran (the plan's "done
-                    # so far" lines), copied back: measured with the 1.5B model, read as calls it flew the
-                    # finished steps again
-                    i = end + 1
-                    continue
+                    # "{call} -> what came of it": the host's record of a call that ran (the plan's "done so
+                    # far" lines) copied back, or a result the model made up for a new call; the host tells
+                    # which (a copy repeats a call that ran)
+                    for c in found:
+                        c.notes.append(RESULT_FOLLOWS)
                 if found:
                     calls += found
                     i = end + 1

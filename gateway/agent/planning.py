@@ -49,6 +49,9 @@ PLAN_EXAMPLES: tuple[tuple[str, str], ...] = (
         "1. delta, echo, foxtrot: wedge formation, 9 m apart, at 16 m, 30 m west",
     ),
     ("How high is echo?", "1. echo: read position"),
+    # "up and back down" is a takeoff and a landing (dev half: "send it up to 12 m and back down" became
+    # "climb 12 m and return", one move, and the drone was left flying)
+    ("Give echo a quick hop up to 7 m and back down", "1. echo: take off to 7 m\n2. echo: land"),
     # one move that goes several ways is one step, and a drone left where it is gets no landing (dev half:
     # "25 m north and 8 m up" became two moves; "... and leave it there" got a landing)
     (
@@ -107,6 +110,13 @@ def steps_from_reply(text: str | None, fleet_ids: Sequence[str], request: str = 
 
 # A request that speaks of the whole fleet may mean drones it does not name.
 _WHOLE_FLEET_RE = re.compile(r"\b(?:all|every\w*|each|fleet|whole|rest|others?)\b", re.IGNORECASE)
+# Words of drones placed together: such a step is one formation, not one move per drone (dev half: "alpha,
+# charlie: side by side, 15 m apart, at 20 m" split per drone flew each 15 m east)
+_FORMATION_WORDS_RE = re.compile(
+    r"\b(?:formation|side by side|abreast|in a (?:row|line|column|circle)|line up|wedge|grid|circle|column|"
+    r"apart|between)\b",
+    re.IGNORECASE,
+)
 _HEAD_RE = re.compile(r"^([\w ,&]+):\s*(\S.*)$")
 
 
@@ -136,7 +146,7 @@ def _per_drone(step: str, fleet_ids: Sequence[str], asked: Sequence[str]) -> lis
     kept = [d for d in written if d in asked]
     if not kept:
         return []
-    if re.search(r"\bformation\b", action, re.IGNORECASE):
+    if _FORMATION_WORDS_RE.search(action):
         return [f"{', '.join(kept)}: {action}"] if len(kept) > 1 else []
     return [f"{d}: {action}" for d in kept]
 

@@ -4,7 +4,13 @@ from __future__ import annotations
 
 import pytest
 
-from gateway.agent.parsing import ArgumentsError, extract_tool_calls, loads_lenient, parse_arguments
+from gateway.agent.parsing import (
+    RESULT_FOLLOWS,
+    ArgumentsError,
+    extract_tool_calls,
+    loads_lenient,
+    parse_arguments,
+)
 
 KNOWN = ["takeoff", "land", "go_to_location", "get_telemetry"]
 TAKEOFF = {"drone_id": "alpha", "alt_m": 15}
@@ -291,11 +297,11 @@ def test_a_call_quoted_inside_an_answer_with_unescaped_quotes_is_the_answers_tex
     assert [c.name for c in extract_tool_calls(content, {"land": ["drone_id"]})] == ["land"]
 
 
-def test_a_call_followed_by_an_arrow_is_the_hosts_record_of_a_call_that_ran_not_a_call() -> None:
+def test_a_call_followed_by_an_arrow_is_marked_as_written_with_a_result() -> None:
     """Measured on the dev half (multi-west-and-land): the 1.5B model copied the plan's "done so far"
-    lines ("{call} -> what came of it"); read as calls, they flew finished steps again."""
+    lines ("{call} -> what came of it"); the host drops the copies of calls that ran (test_planning)."""
     params = {"takeoff": ["drone_id", "alt_m"], "land": ["drone_id"]}
     done = '{"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}} -> takeoff succeeded - '
-    assert extract_tool_calls(done + "Now step 2 of 2: alpha: land.", params) == []
     new = '{"name": "land", "arguments": {"drone_id": "alpha"}}'
-    assert [c.name for c in extract_tool_calls(done + new, params)] == ["land"]
+    calls = extract_tool_calls(done + new, params)
+    assert [(c.name, c.notes) for c in calls] == [("takeoff", [RESULT_FOLLOWS]), ("land", [])]

@@ -15,7 +15,7 @@ from gateway.agent.planning import (
     plan_messages,
     steps_from_reply,
 )
-from gateway.agent.turns import ToolCallRecord
+from gateway.agent.turns import AgentEvent, ToolCallRecord
 from tests.agent.test_loop import run_on_toy
 from tests.agent.toy_mcp import ToyServer
 
@@ -193,6 +193,9 @@ def test_a_step_for_several_drones_becomes_one_step_per_drone_asked() -> None:
     reply = "1. alpha, bravo, charlie: line formation, 15 m apart\n2. alpha: land"
     formed = steps_from_reply(reply, FLEET, pair)
     assert formed == ["alpha, charlie: line formation, 15 m apart", "alpha: land"]
+    # words of drones placed together are a formation too, without the word (dev half, form-pair-abreast)
+    abreast = "Alpha and charlie side by side, 15 m apart, at 20 m, where they are now."
+    assert steps_from_reply("1. alpha, charlie: side by side, 15 m apart, at 20 m", FLEET, abreast) == []
     # a request for the whole fleet may mean drones it does not name
     every = "all of them up to 20 m, then land alpha"
     reply = "1. alpha, bravo, charlie: take off to 20 m\n2. alpha: land"
@@ -210,3 +213,25 @@ async def test_an_empty_reply_after_the_last_step_gets_the_hosts_answer_at_once(
     _, result = await run_on_toy(toy, model, "alpha up to 15 m, then 100 m north, then down", plan_first=True)
     assert len(model.requests) == 5 and result.answered_by == "host", result
     assert result.outcome == "answered" and result.final_text.startswith("(Answer from the host"), result
+
+
+async def test_a_copy_of_a_done_line_is_not_sent_again_but_a_new_call_with_a_made_up_result_is(
+    toy: ToyServer, scripted
+) -> None:
+    """Measured on the dev half (multi-west-and-land, form-pair-abreast): the 1.5B model copied the plan's
+    "{call} -> result" lines back (read as calls, they flew finished steps again), and wrote a new call
+    with a result it made up (that one is the step it means)."""
+    took_off = '{"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}}'
+    north = '{"name": "move_north", "arguments": {"drone_id": "alpha", "distance_m": 100}}'
+    model = scripted([_plan_reply, call("takeoff", drone_id="alpha", alt_m=15),
+                      say(f"{took_off} -> takeoff on alpha succeeded"),
+                      say(f"{north} -> move_north on alpha succeeded: arrived"),
+                      call("land", drone_id="alpha"), say("done")])  # fmt: skip
+    events: list[AgentEvent] = []
+    _, result = await run_on_toy(
+        toy, model, "alpha up to 15 m, then 100 m north, then down", plan_first=True, events=events
+    )
+    assert [c.name for c in result.tool_calls] == ["takeoff", "move_north", "land"], result
+    assert [e.data["name"] for e in events if e.kind == "copied_record"] == ["takeoff"]
+    assert [c[0] for c in toy.world.calls] == ["takeoff", "move_north", "land"]
+    assert "Your reply only repeated my note." in model.requests[3]["messages"][-1]["content"]
