@@ -305,6 +305,11 @@ class AgentHost:
                     last["content"] = f"{last['content']}\n\n{roster.text()}"
             plan = self._memory.plan
             sent = [c for c in result.tool_calls if c.status not in ("skipped", "left_out")]
+            if plan is not None and sent and sent[-1].status == "repeat" and plan.finished(result.tool_calls):
+                # only the answer is left and the model sent a finished call again: the host answers from
+                # the results (dev half: a battery read sent again 19 times, to the step limit)
+                self._end_without_answer(result)
+                break
             if plan is not None and not pending and sent and sent[-1].status in ("ok", "repeat"):
                 # the turn so far, rewritten as one user message ending with the step whose turn it is:
                 # measured with the 1.5B model, after a tool result it often ends its reply at once (one

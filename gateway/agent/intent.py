@@ -19,6 +19,8 @@ from dataclasses import dataclass
 from gateway.agent.repair import (
     LAT_LON_PAIRS,
     altitude_not_a_climb,
+    altitude_written_as_distance,
+    distance_written_as_altitude,
     names_zero_zero,
     request_points,
     restore_request_directions,
@@ -150,6 +152,8 @@ async def read_call(
         name, args = reading.name, reading.arguments
         notes.append(reading.note)
     if name in ("move_to_relative",):
+        notes += distance_written_as_altitude(args, request)
+        notes += altitude_written_as_distance(args, request)
         notes += restore_request_directions(args, request)
         if args.get("up_m"):  # the fleet is read only when there is a climb to judge
             drone = await fresh_entry(args.get("drone_id"))

@@ -12,6 +12,7 @@ from gateway.agent.planning import (
     PLAN_EXAMPLES,
     PLAN_SYSTEM_PROMPT,
     Plan,
+    carries_the_request,
     plan_messages,
     steps_from_reply,
 )
@@ -39,10 +40,8 @@ def test_the_steps_are_the_numbered_lines_without_the_ones_that_call_for_nothing
 def test_steps_that_copy_the_examples_drones_are_not_used() -> None:
     assert steps_from_reply("1. delta: take off to 14 m\n2. alpha: land", FLEET) == []
     # a fleet that has a drone named like one of the examples' keeps it
-    assert steps_from_reply("1. delta: up to 5 m\n2. delta: land", ["delta"]) == [
-        "delta: up to 5 m",
-        "delta: land",
-    ]
+    own = steps_from_reply("1. delta: up to 5 m\n2. delta: land", ["delta"], "delta up to 5 m, then land")
+    assert own == ["delta: up to 5 m", "delta: land"]
 
 
 def test_one_step_is_no_plan() -> None:
@@ -186,8 +185,9 @@ def test_a_step_for_several_drones_becomes_one_step_per_drone_asked() -> None:
         "alpha: land",
     ]
     spread = "Spread them out: alpha 25 m to the east and bravo 25 m to the north, both at 10 m."
-    reply = "1. alpha: fly 25 m east\n2. bravo: fly 25 m north\n3. charlie: fly 10 m"
-    assert steps_from_reply(reply, FLEET, spread) == ["alpha: fly 25 m east", "bravo: fly 25 m north"]
+    reply = "1. alpha: fly 25 m east at 10 m\n2. bravo: fly 25 m north at 10 m\n3. charlie: fly 10 m"
+    kept = ["alpha: fly 25 m east at 10 m", "bravo: fly 25 m north at 10 m"]
+    assert steps_from_reply(reply, FLEET, spread) == kept
     # a formation stays one step, for the drones the request names
     pair = "alpha and charlie side by side, 15 m apart, then land alpha"
     reply = "1. alpha, bravo, charlie: line formation, 15 m apart\n2. alpha: land"
@@ -235,3 +235,67 @@ async def test_a_copy_of_a_done_line_is_not_sent_again_but_a_new_call_with_a_mad
     assert [e.data["name"] for e in events if e.kind == "copied_record"] == ["takeoff"]
     assert [c[0] for c in toy.world.calls] == ["takeoff", "move_north", "land"]
     assert "Your reply only repeated my note." in model.requests[3]["messages"][-1]["content"]
+
+
+def test_steps_that_drop_or_add_part_of_the_request_are_no_plan() -> None:
+    """Measured on the dev half with the 1.5B model: "then bring it home" planned as a landing,
+    "keep bravo up" given a flight home from the ground, "leave it hovering" given a landing, "both at 10 m"
+    and "25 m south of where they are" dropped."""
+    corner = "Take charlie to 15 m, go 20 m east, then 20 m south, then bring it home."
+    legs = ["charlie: take off to 15 m", "charlie: fly 20 m east", "charlie: fly 20 m south"]
+    assert not carries_the_request([*legs, "charlie: land"], corner)
+    assert carries_the_request([*legs, "charlie: return home"], corner)
+    hover = "Please launch alpha, climb to thirty metres and leave it hovering there."
+    assert carries_the_request(["alpha: take off", "alpha: climb to 30 m"], hover)
+    assert not carries_the_request(["alpha: take off", "alpha: climb to 30 m", "alpha: land"], hover)
+    keep = "Get alpha and bravo both to 16 m, then bring alpha back down but keep bravo up."
+    ups = ["alpha: take off to 16 m", "bravo: take off to 16 m"]
+    assert carries_the_request([*ups, "alpha: land"], keep)
+    assert not carries_the_request([*ups, "alpha: land", "alpha: return home"], keep)
+    spread = "Spread them out: alpha 25 m to the east and bravo 25 m to the north, both at 10 m."
+    assert not carries_the_request(["alpha: fly 25 m east", "bravo: fly 25 m north"], spread)
+    south = "All three in a row, 12 m between each, at 20 m, 25 m south of where they are."
+    assert not carries_the_request([f"{d}: fly 12 m south" for d in FLEET], south)
+    # such steps are not used
+    reply = "\n".join(f"{i}. {step}" for i, step in enumerate([*legs, "charlie: land"], 1))
+    assert steps_from_reply(reply, FLEET, corner) == []
+
+
+def test_a_step_with_a_compass_direction_is_a_move_even_when_it_says_take_off() -> None:
+    """Dev half (multi-west-and-land): "alpha: take off to 40 m west at 15 m altitude" was done by the
+    takeoff, and the 40 m west never flown; a move takes off first from the ground."""
+    plan = Plan(["alpha: take off to 40 m west at 15 m altitude", "alpha: land over there"], FLEET)
+    assert plan.next_note([_ok("takeoff", drone_id="alpha", alt_m=15)]).startswith("Now step 1 of 2")
+    moved = _ok("move_to_relative", drone_id="alpha", east_m=-40, alt_m=15)
+    assert plan.next_note([moved]).startswith("Now step 2 of 2")
+
+
+def test_a_step_that_only_tells_leaves_only_the_answer() -> None:
+    """Dev half (cond-charlie-under-thirty): "if below 30 %: tell me the number" was answered with the
+    battery read again, 19 times."""
+    plan = Plan(
+        ["charlie: read charge", "if below 30 %: tell me the number", "otherwise: charlie: up at 8 m"], FLEET
+    )
+    read = _ok("get_battery", "charlie battery 25%, 10.6 V", drone_id="charlie")
+    assert plan.finished([read])
+    assert plan.next_note([read]) == (
+        "Now step 2 of 3 (the battery is below 30 %): tell me the number. Reply with the answer_user call, "
+        "with the numbers read."
+    )
+
+
+async def test_a_finished_call_sent_again_when_only_the_answer_is_left_gets_the_hosts_answer(
+    toy: ToyServer, scripted
+) -> None:
+    def steps(body: dict[str, Any]) -> ScriptedReply:
+        return ScriptedReply(content="1. alpha: take off to 15 m\n2. alpha: land")
+
+    takeoff = call("takeoff", drone_id="alpha", alt_m=15)
+    model = scripted([steps, takeoff, call("land", drone_id="alpha"), call("land", drone_id="alpha")])
+    _, result = await run_on_toy(toy, model, "alpha up to 15 m, then land", plan_first=True)
+    assert [(c.name, c.status) for c in result.tool_calls] == [
+        ("takeoff", "ok"),
+        ("land", "ok"),
+        ("land", "repeat"),
+    ]
+    assert result.answered_by == "host" and result.outcome == "answered" and len(model.requests) == 4

@@ -6,7 +6,9 @@ from bench.agent_harness.scripted import call, say
 from gateway.agent.host import AgentHost
 from gateway.agent.mcp_link import McpLink
 from gateway.agent.repair import (
+    altitude_written_as_distance,
     direction_mismatch,
+    distance_written_as_altitude,
     extras_of_a_drone_only_tool,
     null_island,
     restore_request_directions,
@@ -184,3 +186,30 @@ def test_arguments_a_drone_only_tool_does_not_have_are_left_out() -> None:
     moved = {"drone_id": "alpha", "alt_m": 15, "height": 3}
     assert extras_of_a_drone_only_tool(moved, {"drone_id": {}, "alt_m": {}}) == [] and "height" in moved
     assert extras_of_a_drone_only_tool({"x": 1}, {}) == []
+
+
+def test_a_leg_written_into_the_altitude_is_moved_onto_its_axis() -> None:
+    """Measured on the dev half (compound-south-then-home): "then 25 m south" was alt_m=-25, twice."""
+    request = "Could you take alpha up to 14 m, then 25 m south, then have it return home?"
+    args = {"drone_id": "alpha", "north_m": 0, "east_m": 0, "up_m": 0, "alt_m": -25}
+    assert distance_written_as_altitude(args, request) == [
+        "alt_m=-25 read as north_m=-25 ('25 m south' in the request)"
+    ]
+    assert args == {"drone_id": "alpha", "north_m": -25, "east_m": 0, "up_m": 0}
+    # left alone: a horizontal argument already used, no leg of that size, two legs of that size
+    used = {"north_m": -25, "alt_m": -25}
+    assert distance_written_as_altitude(used, request) == [] and used["alt_m"] == -25
+    assert distance_written_as_altitude({"alt_m": -7}, request) == []
+    assert distance_written_as_altitude({"alt_m": -20}, "20 m east, then 20 m south") == []
+
+
+def test_a_height_written_as_a_leg_is_the_altitude_when_the_request_names_no_direction() -> None:
+    """Measured on the dev half (cond-alpha-sixty-go): "take it to 10 m" was north_m=10, alt_m=0."""
+    request = "Check alpha's battery; if it's at least 60 %, take it to 10 m, otherwise say how much is left."
+    args = {"drone_id": "alpha", "north_m": 10, "alt_m": 0}
+    notes = altitude_written_as_distance(args, request)
+    assert args == {"drone_id": "alpha", "north_m": 0.0, "alt_m": 10} and len(notes) == 1
+    # left alone: a request with a direction, a number that is no asked altitude, a climb given
+    assert altitude_written_as_distance({"north_m": 10}, "alpha to 10 m, then 10 m north") == []
+    assert altitude_written_as_distance({"north_m": 12}, request) == []
+    assert altitude_written_as_distance({"north_m": 10, "up_m": 5}, request) == []
