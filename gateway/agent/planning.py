@@ -311,7 +311,11 @@ class Plan:
 
     def _where(self, calls: Sequence[ToolCallRecord]) -> tuple[bool, str]:
         """Whether only the answer is left, and the note for the step whose turn it is."""
-        done = [c for c in calls if c.ok and c.name != ANSWER_TOOL]
+        # a call held back as a repeat counts for the step whose turn it is: what it did still holds
+        # (nothing has acted on its drone since), and the model sent it as that step (dev half: "keep
+        # bravo up" planned as "bravo: fly up"; bravo already was, and the move that put it there was sent
+        # again twelve times, to the step limit)
+        done = [c for c in calls if (c.ok or c.status == "repeat") and c.name != ANSWER_TOOL]
         i, used = 0, 0
         while i < len(self.steps):
             step = self.steps[i]

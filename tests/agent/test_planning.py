@@ -299,3 +299,13 @@ async def test_a_finished_call_sent_again_when_only_the_answer_is_left_gets_the_
         ("land", "repeat"),
     ]
     assert result.answered_by == "host" and result.outcome == "answered" and len(model.requests) == 4
+
+
+def test_a_call_held_back_as_a_repeat_counts_for_the_step_whose_turn_it_is() -> None:
+    """Dev half (multi-one-down-one-up): "keep bravo up" planned as "bravo: fly up"; the move that had put
+    bravo there was sent again twelve times, to the step limit."""
+    plan = Plan(["bravo: fly 16 m", "bravo: fly up"], FLEET)
+    moved = _ok("move_to_relative", drone_id="bravo", alt_m=16)
+    again = ToolCallRecord("again", "move_to_relative", {"drone_id": "bravo", "alt_m": 16}, "repeat", "")
+    assert plan.next_note([moved]).startswith("Now step 2 of 2: bravo: fly up")
+    assert plan.finished([moved, again])
