@@ -81,7 +81,7 @@ def plan_messages(fleet_ids: Sequence[str], request: str) -> list[Message]:
     return messages
 
 
-def steps_from_reply(text: str | None, fleet_ids: Sequence[str], request: str = "") -> list[str]:
+def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -> list[str]:
     """The numbered steps of a reply, one drone each (a formation excepted); none when a step names a drone
     of the examples that the fleet does not have (the model copied an example, so the steps would mislead),
     when there is only one, or more than MAX_STEPS."""
@@ -102,9 +102,13 @@ def steps_from_reply(text: str | None, fleet_ids: Sequence[str], request: str = 
     if len(steps) > MAX_STEPS:
         # a plan cut short would call the request done before its end; without one the model reads it whole
         return []
-    if not carries_the_request(steps, request):
-        return []
     return steps
+
+
+def steps_from_reply(text: str | None, fleet_ids: Sequence[str], request: str = "") -> list[str]:
+    """The steps of a reply (split_steps) when they carry the request, else none."""
+    steps = split_steps(text, fleet_ids, request)
+    return steps if steps and carries_the_request(steps, request) else []
 
 
 _DIRECTION_RE = re.compile(r"\b(north|south|east|west)\b", re.IGNORECASE)
@@ -119,22 +123,34 @@ _LANDING_RE = re.compile(r"\b(?:land\w*|down|touch\w*|ground)\b", re.IGNORECASE)
 _LAND_STEP_RE = re.compile(r"\bland\b", re.IGNORECASE)
 
 
-def carries_the_request(steps: Sequence[str], request: str) -> bool:
-    """Whether the steps keep what the request says: each of its distances, heights and percentages, each
-    compass direction, a way home exactly when it asks for one, and a landing only when it speaks of one.
-    Steps that drop part of the request, or add a flight home or a landing, would walk the model past it,
-    so they are no plan. Measured on the corpus's dev half with the 1.5B model: "then bring it home"
-    planned as "charlie: land" (landed 28 m from home); "bring alpha back down but keep bravo up" got
-    "alpha: return home" from the ground; "launch alpha ... and leave it hovering there" got a landing."""
+def plan_gaps(steps: Sequence[str], request: str) -> list[str]:
+    """What the steps leave out of the request, or add to it: each of its distances, heights and
+    percentages, each compass direction, a way home exactly when it asks for one, and a landing only when
+    it speaks of one. Steps with a gap would walk the model past the request, so they are no plan.
+    Measured on the corpus's dev half with the 1.5B model: "then bring it home" planned as "charlie: land"
+    (landed 28 m from home); "bring alpha back down but keep bravo up" got "alpha: return home" from the
+    ground; "launch alpha ... and leave it hovering there" got a landing."""
     said = " ".join(steps)
+    gaps: list[str] = []
     amounts = {float(n) for n in _AMOUNT_RE.findall(said)}
-    if any(float(n) not in amounts for n in _AMOUNT_RE.findall(request)):
-        return False
-    if {d.lower() for d in _DIRECTION_RE.findall(request)} - {d.lower() for d in _DIRECTION_RE.findall(said)}:
-        return False
-    if bool(_HOME_RE.search(request)) != bool(_GO_HOME_RE.search(said)):
-        return False
-    return not _LAND_STEP_RE.search(said) or bool(_LANDING_RE.search(request))
+    left = [m.group(0) for m in _AMOUNT_RE.finditer(request) if float(m.group(1)) not in amounts]
+    left += sorted(
+        {d.lower() for d in _DIRECTION_RE.findall(request)} - {d.lower() for d in _DIRECTION_RE.findall(said)}
+    )
+    if _HOME_RE.search(request) and not _GO_HOME_RE.search(said):
+        left.append("the way home")
+    if left:
+        gaps.append(f"leave out {', '.join(left)}")
+    if _GO_HOME_RE.search(said) and not _HOME_RE.search(request):
+        gaps.append("add a flight home the request does not ask for")
+    if _LAND_STEP_RE.search(said) and not _LANDING_RE.search(request):
+        gaps.append("add a landing the request does not ask for")
+    return gaps
+
+
+def carries_the_request(steps: Sequence[str], request: str) -> bool:
+    """The steps leave nothing of the request out and add nothing to it (plan_gaps)."""
+    return not plan_gaps(steps, request)
 
 
 # A request that speaks of the whole fleet may mean drones it does not name.
@@ -356,6 +372,25 @@ class Plan:
 
 
 async def plan_steps(chat: ChatModel, fleet_ids: Sequence[str], request: str, usage: Usage) -> list[str]:
-    """Ask the model for the request's steps (no tools offered); an empty list when it gives none."""
-    reply = await chat.ask(plan_messages(fleet_ids, request), [], {}, usage)
-    return steps_from_reply(reply.content, fleet_ids, request)
+    """Ask the model for the request's steps (no tools offered); an empty list when it gives none. Steps
+    with a gap (plan_gaps) are sent back once, naming it; steps with a gap again are no plan."""
+    messages = plan_messages(fleet_ids, request)
+    reply = await chat.ask(messages, [], {}, usage)
+    steps = split_steps(reply.content, fleet_ids, request)
+    gaps = plan_gaps(steps, request) if steps else []
+    if not gaps:
+        return steps
+    messages += [
+        {"role": "assistant", "content": reply.content or ""},
+        {"role": "user", "content": gaps_note(gaps)},
+    ]
+    again = await chat.ask(messages, [], {}, usage)
+    return steps_from_reply(again.content, fleet_ids, request)
+
+
+def gaps_note(gaps: Sequence[str]) -> str:
+    """What the planner is told about steps with a gap."""
+    return (
+        f"Those steps {'; '.join(gaps)}. Write the steps again: every number and direction of the request, "
+        "and nothing it does not ask for."
+    )

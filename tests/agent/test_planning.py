@@ -13,6 +13,7 @@ from gateway.agent.planning import (
     PLAN_SYSTEM_PROMPT,
     Plan,
     carries_the_request,
+    gaps_note,
     plan_messages,
     steps_from_reply,
 )
@@ -309,3 +310,27 @@ def test_a_call_held_back_as_a_repeat_counts_for_the_step_whose_turn_it_is() -> 
     again = ToolCallRecord("again", "move_to_relative", {"drone_id": "bravo", "alt_m": 16}, "repeat", "")
     assert plan.next_note([moved]).startswith("Now step 2 of 2: bravo: fly up")
     assert plan.finished([moved, again])
+
+
+async def test_steps_with_a_gap_are_sent_back_once_naming_it(toy: ToyServer, scripted) -> None:
+    """Dev half (compound-corner-home): "then bring it home" planned as a landing; told what the steps
+    leave out and add, the planner may write them again."""
+
+    def gappy(body: dict[str, Any]) -> ScriptedReply:
+        return ScriptedReply(content="1. alpha: take off to 15 m\n2. alpha: land")
+
+    def fixed(body: dict[str, Any]) -> ScriptedReply:
+        told = body["messages"][-1]["content"]
+        assert told == gaps_note(["leave out the way home", "add a landing the request does not ask for"])
+        return ScriptedReply(content="1. alpha: take off to 15 m\n2. alpha: return home")
+
+    model = scripted([gappy, fixed, call("takeoff", drone_id="alpha", alt_m=15), say("")])
+    _, result = await run_on_toy(toy, model, "alpha up to 15 m, then bring it home", plan_first=True)
+    assert (
+        "Steps:\n1. alpha: take off to 15 m\n2. alpha: return home"
+        in model.requests[2]["messages"][-1]["content"]
+    )
+    # with a gap again, there is no plan
+    again = scripted([gappy, gappy, call("takeoff", drone_id="alpha", alt_m=15), say("up")])
+    _, result = await run_on_toy(toy, again, "alpha up to 15 m, then bring it home", plan_first=True)
+    assert "Steps:" not in again.requests[2]["messages"][-1]["content"] and result.final_text == "up"
