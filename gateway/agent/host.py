@@ -103,6 +103,7 @@ class AgentHost:
         self.turns = 0
         self._memory = TurnMemory()  # what this turn has said and done, to judge the next reply
         self._turn_start = 0
+        self._turn_plan: planning.Plan | None = None  # this turn's steps and where the turn is in them
         self.reset()
 
     def reset(self) -> None:
@@ -137,11 +138,12 @@ class AgentHost:
         roster = await self.fleet.refresh()
         result = TurnResult(outcome="step_limit", final_text=None, steps=0)
         content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
+        self._turn_plan = None
         if self.plan_first and roster is not None:
             steps = await self._plan(roster.ids, user_text, result.usage)
             if steps:
                 content = f"{content}\n\n{self._note(planning.steps_text(steps))}"
-            self._memory.plan = planning.Plan(steps, roster.ids) if steps else None
+                self._turn_plan = planning.Plan(steps, roster.ids)
         self._turn_start = len(self.messages)  # where this turn's messages begin (a plan rewrites them)
         self.messages.append({"role": "user", "content": content})
         try:
@@ -225,7 +227,7 @@ class AgentHost:
                 result.empty_streak += 1
                 if echo:
                     self._emit("echo_reply", step=result.steps, text=said)
-                plan = self._memory.plan
+                plan = self._turn_plan
                 if result.empty_streak > MAX_EMPTY_REPROMPTS or (
                     plan is not None and plan.finished(result.tool_calls)
                 ):
@@ -303,7 +305,7 @@ class AgentHost:
                 if roster is not None:
                     last = self.messages[-1]
                     last["content"] = f"{last['content']}\n\n{roster.text()}"
-            plan = self._memory.plan
+            plan = self._turn_plan
             sent = [c for c in result.tool_calls if c.status not in ("skipped", "left_out")]
             if plan is not None and sent and sent[-1].status == "repeat" and plan.finished(result.tool_calls):
                 # only the answer is left and the model sent a finished call again: the host answers from
@@ -365,7 +367,7 @@ class AgentHost:
     async def _reprompt(self, result: TurnResult, echo: bool = False) -> str:
         """What the model is told after an empty reply (wording.reprompt_text), with the fleet read now."""
         roster = await self.fleet.refresh()
-        plan = self._memory.plan
+        plan = self._turn_plan
         if plan is not None:
             # the step whose turn it is, short: measured with the 1.5B model, the long re-prompt below
             # after a step-by-step turn got nothing again, the step alone its call

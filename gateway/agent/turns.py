@@ -8,12 +8,9 @@ from __future__ import annotations
 
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, NotRequired, Protocol, TypedDict
+from typing import Any, NotRequired, Protocol, TypedDict
 
 from gateway.agent.toolbox import Arguments, ToolOutcome
-
-if TYPE_CHECKING:  # planning reads the turn's records, so the import only goes one way at run time
-    from gateway.agent.planning import Plan
 
 # An empty reply is asked again at most this many times before the turn ends as ``empty_answer``.
 MAX_EMPTY_REPROMPTS = 2
@@ -152,4 +149,3 @@ class TurnMemory:
     # happened, even when a host note quoted it first
     gateway_errors: list[str] = field(default_factory=list)
     refly_held: set[str] = field(default_factory=set)  # calls held back once as flying a finished step again
-    plan: Plan | None = None  # the request as numbered steps and where the turn is in them
