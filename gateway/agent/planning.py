@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 from gateway.agent.answer import ANSWER_TOOL
 from gateway.agent.chat import ChatModel, Message
-from gateway.agent.roster import Roster
+from gateway.agent.roster import Roster, drones_named
 from gateway.agent.turns import ToolCallRecord, Usage
 from gateway.agent.wording import first_line
 
@@ -165,10 +165,18 @@ _FORMATION_WORDS_RE = re.compile(
 _HEAD_RE = re.compile(r"^([\w ,&]+):\s*(\S.*)$")
 
 
+def _drones_in(text: str, fleet_ids: Sequence[str]) -> list[str]:
+    """The fleet's drones a text names, in the order it names them."""
+    found = [
+        (m.start(), d) for d in fleet_ids if (m := re.search(rf"\b{re.escape(d)}\b", text, re.IGNORECASE))
+    ]
+    return [d for _, d in sorted(found)]
+
+
 def _asked_drones(request: str, fleet_ids: Sequence[str]) -> list[str]:
     """The drones a step may name: those the request names, or every drone when it names none or speaks
     of the whole fleet."""
-    named = [d for d in fleet_ids if re.search(rf"\b{re.escape(d)}\b", request, re.IGNORECASE)]
+    named = _drones_in(request, fleet_ids)
     return list(fleet_ids) if not named or _WHOLE_FLEET_RE.search(request) else named
 
 
@@ -182,10 +190,7 @@ def _per_drone(step: str, fleet_ids: Sequence[str], asked: Sequence[str]) -> lis
     if m is None:
         return [step]
     head, action = m.group(1), m.group(2)
-    written = sorted(
-        (d for d in fleet_ids if re.search(rf"\b{re.escape(d)}\b", head, re.IGNORECASE)),
-        key=lambda d: head.lower().index(d.lower()),
-    )
+    written = _drones_in(head, fleet_ids)
     if not written:
         return [step]
     kept = [d for d in written if d in asked]
@@ -255,19 +260,6 @@ def _holds(relation: str, reading: float, threshold: float) -> bool:
     return reading <= threshold  # at most
 
 
-def _drones(step: str, fleet_ids: Sequence[str]) -> set[str]:
-    return {d for d in fleet_ids if re.search(rf"\b{re.escape(d)}\b", step, re.IGNORECASE)}
-
-
-def _call_drones(call: ToolCallRecord) -> set[str]:
-    args = call.arguments or {}
-    ids = args.get("drone_ids")
-    found = {str(i) for i in ids} if isinstance(ids, list) else set()
-    if isinstance(args.get("drone_id"), str):
-        found.add(args["drone_id"])
-    return found
-
-
 def _kind(step: str) -> frozenset[str] | None:
     """The tools that carry out a step of this wording; None for a step of no known kind."""
     return next((t for pattern, t in _STEP_KINDS if pattern.search(step)), None)
@@ -278,8 +270,8 @@ def step_done_by(step: str, call: ToolCallRecord, fleet_ids: Sequence[str]) -> b
     tools = _kind(step)
     if tools is not None and call.name not in tools and call.name in _KNOWN_TOOLS:
         return False  # a tool of another kind (takeoff for "fly 40 m west"); another server's tools count
-    named = _drones(step, fleet_ids)
-    return not named or bool(named & _call_drones(call)) or call.name == "fleet_status"
+    named = set(_drones_in(step, fleet_ids))
+    return not named or bool(named & (drones_named(call.arguments) or set())) or call.name == "fleet_status"
 
 
 def _last_reading(calls: Sequence[ToolCallRecord]) -> tuple[str, float] | None:
