@@ -10,6 +10,7 @@ from __future__ import annotations
 import asyncio
 import os
 from logging.config import fileConfig
+from typing import TYPE_CHECKING, Any, Literal
 
 from alembic import context
 from sqlalchemy import pool
@@ -17,6 +18,9 @@ from sqlalchemy.engine import Connection
 from sqlalchemy.ext.asyncio import async_engine_from_config
 
 from gateway.registry.models import Base, UTCDateTime
+
+if TYPE_CHECKING:
+    from alembic.autogenerate.api import AutogenContext
 
 config = context.config
 target_metadata = Base.metadata
@@ -29,7 +33,7 @@ def _url() -> str:
     return os.environ.get("GATEWAY_DATABASE_URL") or config.get_main_option("sqlalchemy.url") or ""
 
 
-def _render_item(type_: str, obj: object, autogen_context: object) -> str | bool:
+def _render_item(type_: str, obj: Any, autogen_context: AutogenContext) -> str | Literal[False]:
     """Render the store's UTCDateTime as a plain timezone-aware DateTime in migration files."""
     if type_ == "type" and isinstance(obj, UTCDateTime):
         return "sa.DateTime(timezone=True)"
