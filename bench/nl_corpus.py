@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 64 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 72 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -14,7 +14,7 @@ seeing a model's result on it (add a new entry instead and say so in docs/benchm
 The first 40 entries were written in full before any model ran on them (2026-11-27). Sixteen more, two
 per class and all in the ``dev`` half (marked "added later"), were written later the same day, again
 before any model ran on them, after the dev half had been tuned on until 17 of its 20 passed: a tuning
-set the host passes tells nothing more. The test half is unchanged. Eight more (marked "added on the second day"), again dev only and written before any model ran on them (2026-11-28), where the test half measured weakest: compound, multi, conditional, question.
+set the host passes tells nothing more. The test half is unchanged. Eight more (marked "added on the second day"), again dev only and written before any model ran on them (2026-11-28), where the test half measured weakest: compound, multi, conditional, question. Eight more (marked "added on the third day"), dev only, written before any model ran on them (2026-11-28), in the kinds of request the test half still failed: a choice between drones by their batteries (the dev half had none), a flight out and back, a move with a height from the ground, one drone told to stay while others fly.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -280,6 +280,13 @@ def _multi() -> list[CorpusEntry]:
                                   landed_disarmed(ev, "charlie"), landed_disarmed(ev, "alpha")),
                [_move("charlie", 30, 0, alt=12), _move("alpha", -30, 0, alt=12), _land("charlie"), _land("alpha")],
                "Charlie landed 30 m north, alpha 30 m south."),
+        # added on the third day, development half only
+        _entry("multi", "dev", "multi-bravo-waits", DRONES,
+               "Bravo stays down for now. Take alpha up to 14 m and land it, and send charlie to 22 m.",
+               lambda c, ev: _all(never_armed(ev, "bravo"), reached_alt(ev, "alpha", 14),
+                                  landed_disarmed(ev, "alpha"), airborne_at(ev, "charlie", 22)),
+               [_takeoff("alpha", 14), _land("alpha"), _takeoff("charlie", 22)],
+               "Alpha hopped to 14 m and landed, charlie hovers at 22 m, bravo stayed down."),
     ]  # fmt: skip
 
 
@@ -345,6 +352,18 @@ def _compound() -> list[CorpusEntry]:
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 10), _move("bravo", 0, -20), _move("bravo", 0, 20), _land("bravo")],
                "Bravo went 20 m west and back, and landed."),
+        # added on the third day, development half only
+        _entry("compound", "dev", "compound-north-launch-spot", ("charlie",),
+               "Charlie, head 35 m north at 10 m, then fly back to your launch spot and land.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 35, 0)]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_move("charlie", 35, 0, alt=10), _rtl("charlie")], "Charlie went 35 m north, came back and landed."),
+        _entry("compound", "dev", "compound-north-way-back", ("alpha",),
+               "Alpha: fly 30 m north at 15 m, come back the way you came, and land.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 30, 0)]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_move("alpha", 30, 0, alt=15), _move("alpha", -30, 0), _land("alpha")],
+               "Alpha went 30 m north and back, and landed."),
     ]  # fmt: skip
 
 
@@ -401,6 +420,27 @@ def _conditional() -> list[CorpusEntry]:
                "If charlie's charge is under 30 percent, don't launch it and tell me the number; otherwise put it up at 8 m.",
                lambda c, ev: _all(never_armed(ev, "charlie"), answer_mentions_number(ev, 25, 2)),
                [_battery("charlie")], "Charlie has 25 %, so it stays on the ground.", battery={"charlie": 25.0}),
+        # added on the third day, development half only: choices between drones by their readings
+        _entry("conditional", "dev", "cond-better-charged-pair", ("bravo", "charlie"),
+               "Of bravo and charlie, launch the better charged one to 14 m and leave the other on the pad.",
+               lambda c, ev: _all(airborne_at(ev, "charlie", 14), never_armed(ev, "bravo")),
+               [_battery("bravo"), _battery("charlie"), _takeoff("charlie", 14)],
+               "Charlie has more charge; it hovers at 14 m.", battery={"bravo": 50.0, "charlie": 80.0}),
+        _entry("conditional", "dev", "cond-lowest-hop", DRONES,
+               "Find the drone with the lowest battery of the three, take it up to 6 m and straight back down; "
+               "the rest don't move.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 6), landed_disarmed(ev, "bravo"),
+                                  never_armed(ev, "alpha"), never_armed(ev, "charlie")),
+               [("fleet_status", {}), _takeoff("bravo", 6), _land("bravo")],
+               "Bravo had the lowest battery; it hopped to 6 m and landed.",
+               battery={"alpha": 70.0, "bravo": 30.0, "charlie": 85.0}),
+        _entry("conditional", "dev", "cond-fuller-north", ("alpha", "charlie"),
+               "Compare alpha and charlie on battery and send the fuller one 20 m north at 12 m.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 20, 0), alt=12),
+                                  airborne_at(ev, "charlie", 12), never_armed(ev, "alpha")),
+               [_battery("alpha"), _battery("charlie"), _move("charlie", 20, 0, alt=12)],
+               "Charlie has the fuller battery; it hovers 20 m north at 12 m.",
+               battery={"alpha": 45.0, "charlie": 75.0}),
     ]  # fmt: skip
 
 
@@ -474,6 +514,17 @@ def _relative() -> list[CorpusEntry]:
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 35), alt=14),
                                   airborne_at(ev, "charlie", 14)),
                [_move("charlie", 0, 35, alt=14)], "Charlie hovers 35 m east at 14 m."),
+        # added on the third day, development half only
+        _entry("relative", "dev", "rel-bravo-west-up", ("bravo",),
+               "Move bravo 40 m west from where it is, 10 m up, and let it hover.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -40), alt=10),
+                                  airborne_at(ev, "bravo", 10)),
+               [_move("bravo", 0, -40, alt=10)], "Bravo hovers 40 m west at 10 m."),
+        _entry("relative", "dev", "rel-charlie-north-higher", ("charlie",),
+               "Put charlie up at 8 m, then move it 15 m north and 4 m higher.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 15, 0), alt=12),
+                                  airborne_at(ev, "charlie", 12)),
+               [_takeoff("charlie", 8), _move("charlie", 15, 0, up=4)], "Charlie hovers 15 m north at 12 m."),
     ]  # fmt: skip
 
 

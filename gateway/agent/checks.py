@@ -35,7 +35,7 @@ from gateway.agent.toolbox import (
     signature,
     validate_arguments,
 )
-from gateway.agent.turns import ModelCall, ToolCallRecord, TurnMemory, TurnResult
+from gateway.agent.turns import ModelCall, ToolCallRecord, TurnMemory, TurnResult, moves_of, relative_moves
 
 # Tools that only wait for or report on an action already running: calling one between two identical
 # calls does not make the second one new.
@@ -282,7 +282,9 @@ def held_back(
         unknown_arguments(base_tools, tool, args)
         or schema_problem
         or island
-        or direction_mismatch(args, request)
+        or direction_mismatch(
+            args, request, moves_of(relative_moves(turn.tool_calls) if turn else [], args.get("drone_id"))
+        )
     )
     if invalid is not None:
         hint = swap_hint(args)

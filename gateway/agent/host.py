@@ -55,6 +55,7 @@ from gateway.agent.turns import (
     TurnMemory,
     TurnResult,
     Usage,
+    relative_moves,
 )
 from gateway.agent.wording import DEFAULT_SYSTEM_PROMPT
 
@@ -416,8 +417,9 @@ class AgentHost:
                 problem = str(exc)
         reading: Reading | None = None
         if args is not None:
+            flown = relative_moves(turn.tool_calls) if turn is not None else []
             name, args, reading, notes = await read_call(
-                name, args, self._memory.request, self.fleet.ids, self.fleet.fresh_entry
+                name, args, self._memory.request, self.fleet.ids, self.fleet.fresh_entry, flown
             )
             if (offered := self.tools.get(name)) is not None:
                 schema = offered.input_schema or {}

@@ -28,6 +28,7 @@ from gateway.agent.repair import (
 )
 from gateway.agent.roster import DroneEntry, normalise_drone_ids
 from gateway.agent.toolbox import Arguments
+from gateway.agent.turns import moves_of
 
 # The drone as the gateway reports it now (the fleet read again), or None without a roster.
 FreshEntry = Callable[[object], Awaitable[DroneEntry | None]]
@@ -139,11 +140,17 @@ def superseded(name: str, args: Arguments, request: str, later: list[tuple[str, 
 
 
 async def read_call(
-    name: str, args: Arguments, request: str, ids: Sequence[str], fresh_entry: FreshEntry
+    name: str,
+    args: Arguments,
+    request: str,
+    ids: Sequence[str],
+    fresh_entry: FreshEntry,
+    flown: Sequence[Arguments] = (),
 ) -> tuple[str, Arguments, Reading | None, list[str]]:
     """The call as the model meant it: ids, numbers and directions put back as the request gives them
     (repair.py), a call written with the wrong tool read as the one meant; with the notes that say so.
-    ``args`` is corrected in place; the reading, when there is one, names the call to send instead."""
+    ``args`` is corrected in place; the reading, when there is one, names the call to send instead.
+    ``flown``: the relative moves that succeeded earlier in the turn (a leg flown back is no wrong sign)."""
     notes = normalise_drone_ids(args, ids) if ids else []
     notes += restore_request_numbers(args, request)
     notes += swapped_request_point(args, request)
@@ -154,7 +161,7 @@ async def read_call(
     if name in ("move_to_relative",):
         notes += distance_written_as_altitude(args, request)
         notes += altitude_written_as_distance(args, request)
-        notes += restore_request_directions(args, request)
+        notes += restore_request_directions(args, request, moves_of(flown, args.get("drone_id")))
         if args.get("up_m"):  # the fleet is read only when there is a climb to judge
             drone = await fresh_entry(args.get("drone_id"))
             alt_now = drone.alt_m if drone is not None and drone.flying else None

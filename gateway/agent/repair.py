@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import json
 import re
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 
 from gateway.agent.toolbox import Arguments
 
@@ -153,18 +153,31 @@ def _moves(request: str) -> list[tuple[float, str, str, int]]:
     ]
 
 
-def _misplaced(arguments: Arguments, moves: list[tuple[float, str, str, int]]) -> tuple[str, float] | None:
+def _misplaced(
+    arguments: Arguments, moves: list[tuple[float, str, str, int]], request: str, flown: Sequence[Arguments]
+) -> tuple[str, float] | None:
     """The first relative-move argument whose value is a distance the request names, but on another axis
-    or with the other sign; with the value it has."""
+    or with the other sign (not the way back: see _WAY_BACK_RE); with the value it has."""
     for name, (own_axis, own_sign) in AXIS_ARGUMENTS.items():
         value = arguments.get(name)
         if not isinstance(value, int | float) or isinstance(value, bool) or value == 0:
             continue
         same = [m for m in moves if m[0] == abs(value)]
         meant = own_sign * value  # the metres along own_axis this argument asks for
-        if same and not any(axis == own_axis and sign * abs(value) == meant for _, _, axis, sign in same):
-            return name, float(value)
+        if not same or any(axis == own_axis and sign * abs(value) == meant for _, _, axis, sign in same):
+            continue
+        if _WAY_BACK_RE.search(request) and any(
+            axis == own_axis and any(_carries(a, d, axis, sign) for a in flown) for d, _, axis, sign in same
+        ):
+            continue  # the leg flown back, after it was flown out
+        return name, float(value)
     return None
+
+
+# A request that speaks of coming back: a leg it names, flown the other way after it was flown out, is the
+# way back (dev half: "fly 30 m north ..., come back the way you came" had its north_m=-30 read as
+# north_m=30 and ended 60 m from home)
+_WAY_BACK_RE = re.compile(r"\b(?:back|return\w*|retrace\w*|reverse|the way (?:it|you|they) came)\b", re.I)
 
 
 # each relative-move argument: the axis it moves along and which way (west_m=40 is east_m=-40)
@@ -182,29 +195,34 @@ def horizontal_legs_left(request: str, attempted: list[Arguments]) -> list[str]:
     with that sign (north_m/south_m, east_m/west_m; each phrase on its own, so "30 m east, then 30 m
     back west" needs both). Climbs are left out: "8 m up" from the ground may be an altitude."""
 
-    def carries(args: Arguments, distance: float, axis: str, sign: int) -> bool:
-        along = 0.0
-        for name, (own_axis, own_sign) in AXIS_ARGUMENTS.items():
-            value = args.get(name)
-            if own_axis == axis and isinstance(value, int | float) and not isinstance(value, bool):
-                along += own_sign * value
-        return abs(along - sign * distance) < 0.5
-
     return [
         phrase
         for distance, phrase, axis, sign in _moves(request)
-        if axis != "up_m" and not any(carries(a, distance, axis, sign) for a in attempted)
+        if axis != "up_m" and not any(_carries(a, distance, axis, sign) for a in attempted)
     ]
 
 
-def restore_request_directions(arguments: Arguments, request: str) -> list[str]:
+def _carries(args: Arguments, distance: float, axis: str, sign: int) -> bool:
+    """Whether a relative move's arguments fly ``distance`` along ``axis`` the way ``sign`` says."""
+    along = 0.0
+    for name, (own_axis, own_sign) in AXIS_ARGUMENTS.items():
+        value = args.get(name)
+        if own_axis == axis and isinstance(value, int | float) and not isinstance(value, bool):
+            along += own_sign * value
+    return abs(along - sign * distance) < 0.5
+
+
+def restore_request_directions(
+    arguments: Arguments, request: str, flown: Sequence[Arguments] = ()
+) -> list[str]:
     """Move, in place, a distance the request names with a direction onto that direction's argument and
     sign (measured with the 1.5B model: "50 m south" sent as east_m=-50 three times after being told
     north_m=-50). Only when it is unambiguous: exactly one phrase names that distance and the argument it
-    belongs to is not already used. Returns a note per repair."""
+    belongs to is not already used. ``flown``: the drone's relative moves that succeeded earlier in the
+    turn. Returns a note per repair."""
     moves = _moves(request)
     notes: list[str] = []
-    while (wrong := _misplaced(arguments, moves)) is not None:
+    while (wrong := _misplaced(arguments, moves, request, flown)) is not None:
         name, value = wrong
         same = [m for m in moves if m[0] == abs(value)]
         distance, phrase, axis, sign = same[0]
@@ -287,11 +305,11 @@ def altitude_not_a_climb(arguments: Arguments, request: str, alt_now: float | No
     return [f"up_m={up:g} read as up_m=0: the drone is already at the {abs(up):g} m the request asks for"]
 
 
-def direction_mismatch(arguments: Arguments, request: str) -> str | None:
+def direction_mismatch(arguments: Arguments, request: str, flown: Sequence[Arguments] = ()) -> str | None:
     """A refusal when a relative move puts a distance the request names on the wrong axis or with the
     wrong sign and the host could not repair it (`restore_request_directions`)."""
     moves = _moves(request)
-    wrong = _misplaced(arguments, moves)
+    wrong = _misplaced(arguments, moves, request, flown)
     if wrong is None:
         return None
     name, value = wrong

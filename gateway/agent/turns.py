@@ -6,7 +6,7 @@ a call (checks.py) and its words to the model and the user (wording.py).
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any, NotRequired, Protocol, TypedDict
 
@@ -115,6 +115,16 @@ class Usage:
             self.completion_tokens = (self.completion_tokens or 0) + (other.completion_tokens or 0)
         self.model_calls += other.model_calls
         self.calls_without_usage += other.calls_without_usage
+
+
+def relative_moves(calls: Sequence[ToolCallRecord]) -> list[Arguments]:
+    """The arguments of the relative moves that succeeded, in order."""
+    return [c.arguments for c in calls if c.ok and c.name == "move_to_relative" and c.arguments is not None]
+
+
+def moves_of(moves: Sequence[Arguments], drone: object) -> list[Arguments]:
+    """The moves (arguments) of one drone."""
+    return [a for a in moves if a.get("drone_id") == drone]
 
 
 @dataclass

@@ -124,6 +124,23 @@ def test_a_way_back_named_with_back_or_further_is_a_direction_of_its_own() -> No
     assert restore_request_directions(moved, further) and moved["east_m"] == 15
 
 
+def test_a_leg_flown_back_after_it_was_flown_out_is_the_way_back() -> None:
+    """"Come back the way you came" names no direction: after the drone flew the leg out, the same leg
+    with the other sign is the way back, neither rewritten onto the outbound direction nor refused. Before
+    the leg was flown out, the other sign is still a wrong direction."""
+    request = "Alpha: fly 30 m north at 15 m, come back the way you came, and land."
+    out = {"drone_id": "alpha", "north_m": 30, "east_m": 0, "alt_m": 15}
+    back = {"drone_id": "alpha", "north_m": -30, "east_m": 0}
+    assert restore_request_directions(dict(back), request, [out]) == []
+    assert direction_mismatch(back, request, [out]) is None
+    first = dict(back)
+    assert restore_request_directions(first, request) == [
+        "north_m=-30 read as north_m=30 ('30 m north' in the request)"
+    ]
+    # a request with no way back: the other sign is wrong even after the leg was flown
+    assert direction_mismatch(back, "Alpha: fly 30 m north at 15 m and land.", [out]) is not None
+
+
 def test_an_unambiguous_misplaced_distance_is_moved_where_the_request_puts_it() -> None:
     south = "Bravo, take off to 15 m, head 50 m south, then return to launch."
     args = {"drone_id": "bravo", "north_m": 0, "east_m": -50}
