@@ -67,6 +67,49 @@ _AGAIN_WORDS = re.compile(
 )
 
 
+# A drone a request tells to stay ("Bravo stays down for now", "leave charlie on the ground") in a clause
+# with no number: nothing is to be done with it, and it is no part of the request left undone
+_STAY_RE = re.compile(
+    r"\b(?:stays?|remains?|waits?|should stay|(?:do not|don'?t) (?:fly|launch|move|touch)|"
+    r"leave \w+ (?:on the ground|on the pad|where|be|alone|down))\b",
+    re.IGNORECASE,
+)
+_CLAUSE_RE = re.compile(r"[.;!?]|\bbut\b", re.IGNORECASE)
+# a landing said of several drones at once ("land them", "land both")
+_PLURAL_RE = re.compile(r"\b(?:them|both|all|each|every\w*|pair|they|the two)\b", re.IGNORECASE)
+
+
+def _mentions(request: str, drone: str) -> list[re.Match[str]]:
+    return list(re.finditer(rf"\b{re.escape(drone)}\b", request, re.IGNORECASE))
+
+
+def told_to_stay(request: str, drone: str) -> bool:
+    """The request tells this drone to stay where it is (a clause naming it, with a stay word and no
+    number)."""
+    return any(
+        _mentions(clause, drone) and _STAY_RE.search(clause) and not re.search(r"\d", clause)
+        for clause in _CLAUSE_RE.split(request)
+    )
+
+
+def to_land(request: str, named: Sequence[str]) -> list[str]:
+    """The named drones the request asks to land or bring home: all of them when it names one or speaks
+    of the landing in the plural, else those whose own part of the request (from the drone's name to the
+    next drone's) speaks of it. Measured on the corpus's dev half: "Take alpha up to 14 m and land it, and
+    send charlie to 22 m" had the host ask for charlie's landing."""
+    if not LAND_WORDS.search(request):
+        return []
+    if len(named) <= 1 or _PLURAL_RE.search(request):
+        return list(named)
+    starts = sorted((m.start(), d) for d in named for m in _mentions(request, d))
+    landing = set()
+    for i, (start, drone) in enumerate(starts):
+        end = next((s for s, other in starts[i + 1 :] if other != drone), len(request))
+        if LAND_WORDS.search(request[start:end]):
+            landing.add(drone)
+    return [d for d in named if d in landing]
+
+
 def ends_landed(request: str) -> bool:
     """The request's last step brings the drones down: a landing or return, with no motion asked after it."""
     ends = [m.end() for m in _DOWN_WORDS.finditer(request)]
@@ -310,13 +353,13 @@ def untouched(
     # last, older operation) did nothing with it (measured: bravo was read, then forgotten).
     touched = {d for args in acted for d in drones_named(args) or ()}
     named = [i for i in ids if re.search(rf"\b{re.escape(i)}\b", request, re.IGNORECASE)]
-    idle = [i for i in named if i not in touched]
+    idle = [i for i in named if i not in touched and not told_to_stay(request, i)]
     if idle and touched:
         facts.append(f"The request names {', '.join(idle)}, and nothing has been done with it yet.")
     flying = [d.drone_id for d in (roster.drones if roster else ()) if d.flying]
-    aloft = [i for i in (named or sorted(touched)) if i in flying]
+    aloft = [i for i in to_land(request, named or sorted(touched)) if i in flying]
     # Only against an answer: in the middle of a plan a drone still flies before its last step.
-    if answering and aloft and LAND_WORDS.search(request):
+    if answering and aloft:
         # Measured: "take off alpha to 10 m, then land it" answered "climbed and landed" after the
         # takeoff alone.
         facts.append(f"The request asks to land or come home, and {', '.join(aloft)} is still flying.")

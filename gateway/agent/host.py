@@ -144,7 +144,8 @@ class AgentHost:
             steps = await self._plan(roster.ids, user_text, result.usage)
             if steps:
                 content = f"{content}\n\n{self._note(planning.steps_text(steps))}"
-                self._turn_plan = planning.Plan(steps, roster.ids)
+                asked = planning.asked_drones(user_text, roster.ids)
+                self._turn_plan = planning.Plan(steps, roster.ids, asked)
         self._turn_start = len(self.messages)  # where this turn's messages begin (a plan rewrites them)
         self.messages.append({"role": "user", "content": content})
         try:
@@ -313,12 +314,17 @@ class AgentHost:
                 # the results (dev half: a battery read sent again 19 times, to the step limit)
                 self._end_without_answer(result)
                 break
-            if plan is not None and not pending and sent and sent[-1].status in ("ok", "repeat"):
+            if (
+                plan is not None
+                and not pending
+                and sent
+                and (lead := self._plan_lead(plan, sent[-1], result))
+            ):
                 # the turn so far, rewritten as one user message ending with the step whose turn it is:
                 # measured with the 1.5B model, after a tool result it often ends its reply at once (one
                 # token), whatever the result or a note after it says; a first reply never came back empty
                 roster_now = self.fleet.roster if self.fleet.enabled else None
-                prompt = plan.prompt(self._memory.request, result.tool_calls, roster_now)
+                prompt = plan.prompt(self._memory.request, result.tool_calls, roster_now, lead.strip())
                 self.messages[self._turn_start :] = [{"role": "user", "content": self._note(prompt)}]
         else:
             self._emit(
@@ -326,6 +332,21 @@ class AgentHost:
                 max_steps=self.max_steps,
                 message=f"stopped after {self.max_steps} model steps without a final answer",
             )
+
+    @staticmethod
+    def _plan_lead(plan: planning.Plan, last: ToolCallRecord, result: TurnResult) -> str | None:
+        """What the plan's rewritten prompt says first about the model's last call, or None when the turn
+        is not rewritten (a failed call: its error says how to fix it). A repeat and an answer held back
+        with steps left are said, since the rewrite drops the note that came with them (dev half: after
+        two battery reads and an answer held back, the next reply read a third battery and landed the
+        drone that was to stay)."""
+        if last.status == "ok":
+            return " "
+        if last.status == "repeat":
+            return f"Your last {last.name} call was not sent again: it already ran in this request."
+        if last.name == ANSWER_TOOL and last.status == "invalid" and not plan.finished(result.tool_calls):
+            return "Not answered yet: a step of the request is left."
+        return None
 
     async def _answer_for_the_model(self, result: TurnResult) -> None:
         """The model gave no answer (empty replies, the step limit, a model error): the host answers from
@@ -586,6 +607,7 @@ class AgentHost:
             last is not None
             and last.status == "error"
             and not wording.refused(last)
+            and not wording.already_so(last)
             and "invalid" not in held
         ):
             held.add("invalid")

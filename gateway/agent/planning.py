@@ -22,7 +22,7 @@ from gateway.agent.answer import ANSWER_TOOL
 from gateway.agent.chat import ChatModel, Message
 from gateway.agent.roster import Roster, drones_named
 from gateway.agent.turns import ToolCallRecord, Usage
-from gateway.agent.wording import first_line
+from gateway.agent.wording import already_so, first_line
 
 PLAN_SYSTEM_PROMPT = (
     "Split the user's drone request into numbered steps: one drone and one action per step, in the order "
@@ -48,6 +48,13 @@ PLAN_EXAMPLES: tuple[tuple[str, str], ...] = (
         "Put all of them in a wedge 9 m apart at 16 m, 30 m west of where they are",
         "1. delta, echo, foxtrot: wedge formation, 9 m apart, at 16 m, 30 m west",
     ),
+    # a choice between drones by their readings: the host reads which one it is (dev half: "launch the
+    # better charged one" flew both, one after the other)
+    (
+        "Whichever of echo and foxtrot has less charge, send it up to 7 m and land it; the other stays down",
+        "1. echo: read battery\n2. foxtrot: read battery\n3. the one with less battery: take off to 7 m\n"
+        "4. the one with less battery: land",
+    ),
     ("How high is echo?", "1. echo: read position"),
     # one move that goes several ways is one step, and a drone left where it is gets no landing (dev half:
     # "25 m north and 8 m up" became two moves; "... and leave it there" got a landing)
@@ -62,7 +69,9 @@ MAX_STEPS = 8
 
 _STEP_RE = re.compile(r"^\s*(\d{1,2})[.)]\s+(\S.*)$")
 # "alpha: hover", "bravo: keep up at 18 m": nothing to call for a drone the steps before put in the air
-_NO_ACTION_RE = re.compile(r"^[\w ,]+:\s*(?:hover|stay|keep|remain|wait|leave)\b", re.IGNORECASE)
+_NO_ACTION_RE = re.compile(
+    r"^[\w ,]+:\s*(?:hover|stay|keep|remain|wait|leave|(?:on the )?(?:pad|ground)\b)", re.IGNORECASE
+)
 _OTHERWISE_RE = re.compile(r"^(?:otherwise|else|if not)\b", re.IGNORECASE)
 
 
@@ -93,7 +102,7 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
     foreign = {d for d in _EXAMPLE_FLEET.split(", ") if d not in fleet_ids}
     if any(re.search(rf"\b{d}\b", s, re.IGNORECASE) for s in lines for d in foreign):
         return []
-    asked = _asked_drones(request, fleet_ids)
+    asked = asked_drones(request, fleet_ids)
     steps = [one for line in lines for one in _per_drone(line, fleet_ids, asked)]
     if len(steps) < 2:
         # one step is the request itself, with only the planner's errors added (dev half: "side by side,
@@ -114,8 +123,9 @@ def steps_from_reply(text: str | None, fleet_ids: Sequence[str], request: str = 
 _DIRECTION_RE = re.compile(r"\b(north|south|east|west)\b", re.IGNORECASE)
 _AMOUNT_RE = re.compile(r"(\d+(?:\.\d+)?)\s*(?:m\b|metres?\b|meters?\b|%|percent\b)", re.IGNORECASE)
 _HOME_RE = re.compile(
-    r"\b(?:home|launch (?:point|site|spot|pad)|where (?:it|they) (?:took off|started|launched)|start(?:ing)? "
-    r"point)\b",
+    r"\b(?:home|launch (?:point|site|spot|pad)|where (?:it|they|you) (?:took off|started|launched)|"
+    r"start(?:ing)? point|the way (?:it|they|you) came|"
+    r"(?:come|fly|head|go|bring \w+) back\b(?!\s+(?:down|up|\d|north|south|east|west)))",
     re.IGNORECASE,
 )
 _GO_HOME_RE = re.compile(r"\b(?:home|return\w*)\b", re.IGNORECASE)
@@ -137,11 +147,12 @@ def plan_gaps(steps: Sequence[str], request: str) -> list[str]:
     left += sorted(
         {d.lower() for d in _DIRECTION_RE.findall(request)} - {d.lower() for d in _DIRECTION_RE.findall(said)}
     )
-    if _HOME_RE.search(request) and not _GO_HOME_RE.search(said):
+    home_said = _GO_HOME_RE.search(said) or _HOME_RE.search(said)
+    if _HOME_RE.search(request) and not home_said:
         left.append("the way home")
     if left:
         gaps.append(f"leave out {', '.join(left)}")
-    if _GO_HOME_RE.search(said) and not _HOME_RE.search(request):
+    if home_said and not _HOME_RE.search(request):
         gaps.append("add a flight home the request does not ask for")
     if _LAND_STEP_RE.search(said) and not _LANDING_RE.search(request):
         gaps.append("add a landing the request does not ask for")
@@ -173,7 +184,7 @@ def _drones_in(text: str, fleet_ids: Sequence[str]) -> list[str]:
     return [d for _, d in sorted(found)]
 
 
-def _asked_drones(request: str, fleet_ids: Sequence[str]) -> list[str]:
+def asked_drones(request: str, fleet_ids: Sequence[str]) -> list[str]:
     """The drones a step may name: those the request names, or every drone when it names none or speaks
     of the whole fleet."""
     named = _drones_in(request, fleet_ids)
@@ -207,6 +218,8 @@ def steps_text(steps: Sequence[str]) -> str:
     return f"Steps:\n{lines}\nCall one tool for each step, in this order."
 
 
+_LAND_KIND_RE = re.compile(r"\bland\b", re.I)
+_LAND_TOOLS = frozenset({"land", "return_to_launch"})
 # The tools that carry out a step, by the words of the step (the examples' verbs); a step of none of these
 # kinds is done by any call that succeeds on its drones.
 _STEP_KINDS: tuple[tuple[re.Pattern[str], frozenset[str]], ...] = (
@@ -220,7 +233,12 @@ _STEP_KINDS: tuple[tuple[re.Pattern[str], frozenset[str]], ...] = (
     # "alpha: take off to 40 m west at 15 m" is a move, which takes off first from the ground (dev half:
     # done by the takeoff, the 40 m west was never flown)
     (re.compile(r"\b(?:north|south|east|west)\b", re.I), frozenset({"move_to_relative", "go_to_location"})),
-    (re.compile(r"\btake off\b", re.I), frozenset({"takeoff", "move_to_relative"})),
+    (
+        re.compile(
+            r"\b(?:take off|lift|(?<!to )(?<!the )(?<!your )launch(?! (?:point|site|spot|pad)))\b", re.I
+        ),
+        frozenset({"takeoff", "move_to_relative"}),
+    ),
     # "bravo: fly 18 m", "climb to 30 m", "fly 10 m up": only a height, which a takeoff reaches from the
     # ground (dev half: "alpha to 10 m" planned as "alpha: fly 10 m up", and the takeoff that flew it did
     # not count, so the model was asked for the step again and flew alpha 10 m north)
@@ -232,8 +250,13 @@ _STEP_KINDS: tuple[tuple[re.Pattern[str], frozenset[str]], ...] = (
         ),
         frozenset({"takeoff", "move_to_relative", "go_to_location"}),
     ),
-    (re.compile(r"\b(?:return|home)\b", re.I), frozenset({"return_to_launch"})),
-    (re.compile(r"\bland\b", re.I), frozenset({"land", "return_to_launch"})),
+    # the way home, by a return to launch or a flight back (dev half: "charlie: fly back to launch spot" was
+    # not done by return_to_launch, so the model was asked for it again and flew 35 m on)
+    (
+        re.compile(r"\b(?:return|home|back to|launch (?:point|site|spot|pad)|the way \w+ came)\b", re.I),
+        frozenset({"return_to_launch", "move_to_relative", "go_to_location"}),
+    ),
+    (_LAND_KIND_RE, _LAND_TOOLS),
     (
         re.compile(r"\b(?:fly|climb|move|go|up|down|higher|lower|north|south|east|west)\b", re.I),
         frozenset({"move_to_relative", "go_to_location"}),
@@ -247,6 +270,22 @@ _CONDITION_RE = re.compile(
 )
 _PERCENT_RE = re.compile(r"(\d+(?:\.\d+)?)\s*%")
 _BATTERY_TOOLS = frozenset({"get_battery"})
+# "the one with less battery: take off to 7 m": a step for whichever drone the readings pick
+_PICK_RE = re.compile(
+    r"^(?:the (?:one|drone)|whichever(?: one| drone)?)\s+(?:with|that has|has)\s+(?:the\s+)?"
+    r"(more|most|higher|highest|fuller|fullest|better|best|stronger|strongest|"
+    r"less|least|lower|lowest|weaker|weakest)\s+(?:battery|charge)\b[^:]*:\s*(\S.*)$",
+    re.IGNORECASE,
+)
+# "if alpha > charlie: alpha: fly 20 m north", "if bravo has more battery than charlie: ...": a comparison of
+# two drones' readings
+_VERSUS_RE = re.compile(
+    r"^if\s+(\w+)(?:'s)?(?:\s+(?:battery|charge))?\s*"
+    r"(>=?|<=?|has (?:more|less)|is (?:higher|lower|more|less))"
+    r"(?:\s+(?:battery|charge))?(?:\s+than)?\s+(\w+)(?:'s)?\b[^:]*:\s*(\S.*)$",
+    re.IGNORECASE,
+)
+_FEWER_RE = re.compile(r"^(?:less|least|lower|lowest|weaker|weakest)$", re.IGNORECASE)
 
 
 def _holds(relation: str, reading: float, threshold: float) -> bool:
@@ -274,6 +313,36 @@ def step_done_by(step: str, call: ToolCallRecord, fleet_ids: Sequence[str]) -> b
     return not named or bool(named & (drones_named(call.arguments) or set())) or call.name == "fleet_status"
 
 
+def battery_readings(calls: Sequence[ToolCallRecord], fleet_ids: Sequence[str]) -> dict[str, float]:
+    """Each drone's latest battery percent read in the turn: from get_battery, or a fleet_status table
+    (``alpha ready n n 90 0.0 ...``: the fifth column)."""
+    found: dict[str, float] = {}
+    for call in calls:
+        if not call.ok:
+            continue
+        text = call.text or call.summary
+        if call.name in _BATTERY_TOOLS and (m := _PERCENT_RE.search(text)):
+            found[str((call.arguments or {}).get("drone_id", ""))] = float(m.group(1))
+        elif call.name == "fleet_status":
+            for d in fleet_ids:
+                row = re.search(rf"^{re.escape(d)}\s+\S+\s+\S+\s+\S+\s+(\d+(?:\.\d+)?)\b", text, re.M)
+                if row:
+                    found[d] = float(row.group(1))
+    return found
+
+
+def _pick(
+    relation: str, candidates: Sequence[str], readings: dict[str, float]
+) -> tuple[str | None, list[str]]:
+    """The drone the readings pick (most or least battery) among the candidates, or None with the
+    candidates not read yet."""
+    unread = [d for d in candidates if d not in readings]
+    if unread or not candidates:
+        return None, unread
+    fewer = bool(_FEWER_RE.match(relation))
+    return (min if fewer else max)(candidates, key=lambda d: readings[d]), []
+
+
 def _last_reading(calls: Sequence[ToolCallRecord]) -> tuple[str, float] | None:
     """The latest battery reading of the turn: which drone, what percent."""
     for call in reversed(calls):
@@ -290,10 +359,14 @@ class Plan:
 
     steps: list[str]
     fleet_ids: list[str] = field(default_factory=list)
+    candidates: list[str] = field(default_factory=list)  # the drones a "the one with more battery" is among
 
-    def prompt(self, request: str, calls: Sequence[ToolCallRecord], roster: Roster | None) -> str:
+    def prompt(
+        self, request: str, calls: Sequence[ToolCallRecord], roster: Roster | None, lead: str = ""
+    ) -> str:
         """The turn so far as one user message: the fleet now, the request, its steps, the calls that ran
-        (written as the model writes a call, with what came of each) and the step whose turn it is."""
+        (written as the model writes a call, with what came of each), ``lead`` and the step whose turn
+        it is."""
         ran = [c for c in calls if c.status in ("ok", "error") and c.name != ANSWER_TOOL]
         lines = [
             f"- {json.dumps({'name': c.name, 'arguments': c.arguments})} -> "
@@ -304,7 +377,7 @@ class Plan:
         parts += [request, steps_text(self.steps)]
         if lines:
             parts.append("Done so far:\n" + "\n".join(lines))
-        parts.append(self.next_note(calls))
+        parts.append(f"{lead} {self.next_note(calls)}".strip())
         return "\n\n".join(parts)
 
     def next_note(self, calls: Sequence[ToolCallRecord]) -> str:
@@ -323,11 +396,32 @@ class Plan:
         # (nothing has acted on its drone since), and the model sent it as that step (dev half: "keep
         # bravo up" planned as "bravo: fly up"; bravo already was, and the move that put it there was sent
         # again twelve times, to the step limit)
-        done = [c for c in calls if (c.ok or c.status == "repeat") and c.name != ANSWER_TOOL]
-        i, used = 0, 0
+        # a call refused because the drone already is as it asks ("already on the ground") did its step
+        done = [c for c in calls if (c.ok or c.status == "repeat" or already_so(c)) and c.name != ANSWER_TOOL]
+        i, used, held = 0, 0, False
         while i < len(self.steps):
             step = self.steps[i]
-            cond = _CONDITION_RE.match(step)
+            versus = _VERSUS_RE.match(step)
+            if versus and {versus.group(1).lower(), versus.group(3).lower()} <= set(self.fleet_ids):
+                first, relation, second = (
+                    versus.group(1).lower(),
+                    versus.group(2).lower(),
+                    versus.group(3).lower(),
+                )
+                readings = battery_readings(done, self.fleet_ids)
+                unread = [d for d in (first, second) if d not in readings]
+                if unread:
+                    return False, (
+                        f"Now step {i + 1} of {len(self.steps)}: {step}. Read the battery of "
+                        f"{', '.join(unread)} first: reply with the get_battery call."
+                    )
+                more = relation.startswith(">") or relation.endswith(("more", "higher"))
+                held = readings[first] > readings[second] if more else readings[first] < readings[second]
+                if not held:
+                    i += 1  # the branch not taken; an "otherwise" step after it is the one
+                    continue
+                step = versus.group(4).strip()
+            cond = None if versus else _CONDITION_RE.match(step)
             if cond:
                 reading = _last_reading(done)
                 if reading is None:
@@ -345,13 +439,33 @@ class Plan:
                     )
                 step = cond.group(3).strip()
             elif _OTHERWISE_RE.match(step):
-                i += 1  # the branch not taken: the condition before it held
-                continue
+                if held or not i or not _VERSUS_RE.match(self.steps[i - 1]):
+                    i += 1  # the branch not taken: the condition before it held
+                    continue
+                step = re.sub(r"^(?:otherwise|else|if not)\b[\s,:]*", "", step, flags=re.IGNORECASE)
+            pick = _PICK_RE.match(step)
+            if pick:
+                candidates = self.candidates or self.fleet_ids
+                chosen, unread = _pick(pick.group(1), candidates, battery_readings(done, self.fleet_ids))
+                if chosen is None:
+                    return False, (
+                        f"Now step {i + 1} of {len(self.steps)}: {step}. Read the battery of "
+                        f"{', '.join(unread)} first: reply with the get_battery call."
+                    )
+                step = f"{chosen}: {pick.group(2).strip()}"
             answer_only = _kind(step) == frozenset({ANSWER_TOOL})
+            if _kind(step) == _LAND_TOOLS and used and done[used - 1].name == "return_to_launch":
+                # a return to launch lands: the landing after "return home" is done by it (dev half:
+                # the land sent after it failed, "already on the ground", and was answered as an error)
+                if step_done_by(step, done[used - 1], self.fleet_ids):
+                    i += 1
+                    continue
             while not answer_only and used < len(done) and not step_done_by(step, done[used], self.fleet_ids):
                 used += 1
             if answer_only or used >= len(done):
                 lead = f" (the battery is {cond.group(1).lower()} {cond.group(2)} %)" if cond else ""
+                if pick:
+                    lead = f" ({step.split(':')[0]} has the {pick.group(1).lower()} battery)"
                 where = f"Now step {i + 1} of {len(self.steps)}{lead}"
                 if answer_only:
                     # only the answer is left (dev half: "if below 30 %: tell me the number" was answered

@@ -57,6 +57,15 @@ def refused(record: ToolCallRecord) -> bool:
     return record.status == "error" and bool(_REFUSAL_RE.match(record.text))
 
 
+_ALREADY_RE = re.compile(r"\balready\b[^.:]*: nothing to do\b", re.IGNORECASE)
+
+
+def already_so(record: ToolCallRecord) -> bool:
+    """The call failed because the drone already is as it asks ("charlie is already on the ground and
+    disarmed: nothing to do"): nothing to correct."""
+    return record.status == "error" and bool(_ALREADY_RE.search(record.text))
+
+
 def in_words(records: Iterable[ToolCallRecord]) -> str:
     """Calls and their results in words, never in call syntax."""
     return "; ".join(f"{c.name}: {c.summary}" for c in records)

@@ -334,3 +334,68 @@ async def test_steps_with_a_gap_are_sent_back_once_naming_it(toy: ToyServer, scr
     again = scripted([gappy, gappy, call("takeoff", drone_id="alpha", alt_m=15), say("up")])
     _, result = await run_on_toy(toy, again, "alpha up to 15 m, then bring it home", plan_first=True)
     assert "Steps:" not in again.requests[2]["messages"][-1]["content"] and result.final_text == "up"
+
+
+def test_a_step_for_the_drone_with_more_or_less_battery_is_read_from_the_readings() -> None:
+    """ "The one with less battery: take off to 7 m" waits for both readings, then is that drone's step;
+    a get_battery call or a fleet_status table counts as a reading."""
+    steps = ["bravo: read battery", "charlie: read battery", "the one with more battery: take off to 14 m"]
+    plan = Plan(steps, FLEET, ["bravo", "charlie"])
+    bravo = _ok("get_battery", "bravo battery 50%, 11.1 V", drone_id="bravo")
+    assert "step 2 of 3: charlie: read battery" in plan.next_note([bravo])
+    charlie = _ok("get_battery", "charlie battery 80%, 12.0 V", drone_id="charlie")
+    note = plan.next_note([bravo, charlie])
+    assert "step 3 of 3 (charlie has the more battery): charlie: take off to 14 m" in note
+    assert not plan.finished([bravo, charlie])
+    flown = _ok("takeoff", "takeoff on charlie succeeded", drone_id="charlie", alt_m=14)
+    assert plan.finished([bravo, charlie, flown])
+    # the wrong drone's takeoff does not carry the step out
+    assert not plan.finished([bravo, charlie, _ok("takeoff", "takeoff on bravo succeeded", drone_id="bravo")])
+    table = "id state arm air bat% alt_m mode action lock\nalpha ready n n 70 0.0 - - -"
+    table += "\nbravo ready n n 30 0.0 - - -\ncharlie ready n n 85 0.0 - - -"
+    least = Plan(
+        ["alpha, bravo, charlie: read battery", "the one with the lowest battery: take off to 6 m"], FLEET
+    )
+    status = _ok("fleet_status", table)
+    assert "bravo: take off to 6 m" in least.next_note([status])
+    unread = Plan(["the one with less battery: land"], FLEET, ["alpha", "charlie"])
+    assert "Read the battery of alpha, charlie first" in unread.next_note([])
+
+
+def test_a_comparison_of_two_drones_takes_its_branch_or_the_otherwise_step() -> None:
+    steps = [
+        "alpha: read battery",
+        "charlie: read battery",
+        "if alpha > charlie: alpha: fly 20 m north at 12 m",
+        "otherwise: charlie: fly 20 m north at 12 m",
+    ]
+    plan = Plan(steps, FLEET)
+    alpha = _ok("get_battery", "alpha battery 45%", drone_id="alpha")
+    charlie = _ok("get_battery", "charlie battery 75%", drone_id="charlie")
+    assert "Now step 2 of 4: charlie: read battery" in plan.next_note([alpha])
+    assert "Now step 4 of 4: charlie: fly 20 m north at 12 m" in plan.next_note([alpha, charlie])
+    fuller = _ok("get_battery", "alpha battery 90%", drone_id="alpha")
+    assert "Now step 3 of 4: alpha: fly 20 m north at 12 m" in plan.next_note([fuller, charlie])
+    moved = _ok("move_to_relative", "arrived", drone_id="alpha", north_m=20, alt_m=12)
+    assert plan.finished([fuller, charlie, moved])
+
+
+def test_a_return_to_launch_is_the_way_home_and_the_landing_after_it() -> None:
+    """ "Fly back to launch spot" is done by return_to_launch, and the landing step after it too (the drone
+    is down); a land refused as "already on the ground" did its step."""
+    plan = Plan(
+        ["charlie: head 35 m north at 10 m", "charlie: fly back to launch spot", "charlie: land"], FLEET
+    )
+    out = _ok("move_to_relative", "arrived", drone_id="charlie", north_m=35, alt_m=10)
+    home = _ok("return_to_launch", "landed and disarmed", drone_id="charlie")
+    assert "Now step 2 of 3: charlie: fly back to launch spot" in plan.next_note([out])
+    assert plan.finished([out, home])
+    landed = ToolCallRecord(
+        "land", "land", {"drone_id": "charlie"}, "error", "",
+        text="charlie is already on the ground and disarmed: nothing to do, it is landed as asked",
+    )  # fmt: skip
+    back = _ok("move_to_relative", "arrived", drone_id="charlie", north_m=-35)
+    assert "Now step 3 of 3: charlie: land" in plan.next_note([out, back])
+    assert plan.finished([out, back, landed])
+    failed = ToolCallRecord("land", "land", {"drone_id": "charlie"}, "error", "", text="charlie: no link")
+    assert not plan.finished([out, back, failed])

@@ -125,7 +125,7 @@ def test_a_way_back_named_with_back_or_further_is_a_direction_of_its_own() -> No
 
 
 def test_a_leg_flown_back_after_it_was_flown_out_is_the_way_back() -> None:
-    """"Come back the way you came" names no direction: after the drone flew the leg out, the same leg
+    """ "Come back the way you came" names no direction: after the drone flew the leg out, the same leg
     with the other sign is the way back, neither rewritten onto the outbound direction nor refused. Before
     the leg was flown out, the other sign is still a wrong direction."""
     request = "Alpha: fly 30 m north at 15 m, come back the way you came, and land."

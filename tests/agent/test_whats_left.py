@@ -7,7 +7,7 @@ from typing import Any
 
 from bench.agent_harness.scripted import ScriptedModelServer, call
 from gateway.agent.answer import ANSWER_TOOL
-from gateway.agent.checks import untouched
+from gateway.agent.checks import to_land, told_to_stay, untouched
 from gateway.agent.repair import horizontal_legs_left
 from gateway.agent.roster import DroneEntry, Roster
 from gateway.agent.toolbox import ToolInfo
@@ -92,3 +92,31 @@ async def test_a_repeated_step_is_told_what_is_left(toy: ToyServer, scripted: An
     assert told.startswith("Not sent again: this takeoff call already succeeded"), told
     assert "Still to do: The request asks to land or come home, and alpha is still flying." in told, told
     assert result.final_text == "Alpha went up to 10 m and landed."
+
+
+def test_a_drone_told_to_stay_is_not_left_and_only_the_drones_a_landing_is_said_of_must_land() -> None:
+    """Measured on the corpus's dev half: "Bravo stays down for now. Take alpha up to 14 m and land it,
+    and send charlie to 22 m" had its answer held back for bravo ("nothing has been done with it") and
+    for charlie ("still flying")."""
+    request = "Bravo stays down for now. Take alpha up to 14 m and land it, and send charlie to 22 m."
+    three = ("alpha", "bravo", "charlie")
+    assert [d for d in three if told_to_stay(request, d)] == ["bravo"]
+    assert to_land(request, list(three)) == ["alpha"]
+    roster = Roster(
+        tuple(DroneEntry(d, d == "charlie", 22.0 if d == "charlie" else 0.0, 90.0) for d in three)
+    )
+    done = _turn(
+        ("takeoff", {"drone_id": "alpha", "alt_m": 14}, "ok"),
+        ("land", {"drone_id": "alpha"}, "ok"),
+        ("takeoff", {"drone_id": "charlie", "alt_m": 22}, "ok"),
+    )
+    assert untouched(done, request, roster, TOOLS, answering=True) == ""
+    # a number in the clause: the drone has something to do ("alpha stays at 20 m" is no stay on the ground)
+    assert not told_to_stay("Alpha climbs to 20 m and stays there.", "alpha")
+    # a landing said of them all, or a request naming one drone: every named drone lands
+    assert to_land("Send charlie 30 m north and alpha 30 m south, then land both.", ["alpha", "charlie"]) == [
+        "alpha",
+        "charlie",
+    ]
+    assert to_land("Take alpha up to 14 m and bring it back down.", ["alpha"]) == []
+    assert to_land("Take alpha up to 14 m and land it.", ["alpha"]) == ["alpha"]
