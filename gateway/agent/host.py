@@ -186,6 +186,12 @@ class AgentHost:
     async def _loop(self, result: TurnResult) -> None:
         while result.steps < self.max_steps:
             result.steps += 1
+            if await self._plan_reads(result):
+                plan = self._turn_plan
+                assert plan is not None
+                roster_now = self.fleet.roster if self.fleet.enabled else None
+                prompt = plan.prompt(self._memory.request, result.tool_calls, roster_now)
+                self.messages[self._turn_start :] = [{"role": "user", "content": self._note(prompt)}]
             try:
                 reply = await self._ask_model(result.steps, result.usage)
             except (openai.OpenAIError, ModelReplyError) as exc:
@@ -332,6 +338,32 @@ class AgentHost:
                 max_steps=self.max_steps,
                 message=f"stopped after {self.max_steps} model steps without a final answer",
             )
+
+    async def _plan_reads(self, result: TurnResult) -> bool:
+        """Make the readings the plan's next steps need (a battery, a position), as the model would have,
+        and say whether any ran. They change nothing and their arguments are fixed by the steps, so the
+        host makes them instead of asking for them (dev half: asked for "alpha: read battery", the 1.5B
+        model answered that alpha had the lowest battery without a read; "read_battery" was called,
+        which does not exist). Stops at a read that fails: the model is then asked as before."""
+        plan, ran = self._turn_plan, False
+        for _ in range(len(plan.steps) + len(self.fleet.ids) if plan is not None else 0):
+            assert plan is not None
+            read = plan.read_due(result.tool_calls)
+            if read is None:
+                break
+            name, args = read
+            call: ModelCall = {
+                "id": f"call_plan_{len(result.tool_calls) + 1}",
+                "name": name,
+                "raw_args": args,
+            }
+            self._emit("plan_read", step=result.steps, name=name, arguments=args)
+            record = await self._execute(result.steps, call, False, result)
+            result.tool_calls.append(record)
+            ran = True
+            if not record.ok:
+                break
+        return ran
 
     @staticmethod
     def _plan_lead(plan: planning.Plan, last: ToolCallRecord, result: TurnResult) -> str | None:

@@ -218,6 +218,8 @@ def steps_text(steps: Sequence[str]) -> str:
     return f"Steps:\n{lines}\nCall one tool for each step, in this order."
 
 
+_READ_BATTERY_TOOLS = frozenset({"get_battery", "fleet_status"})
+_READ_POSITION_TOOLS = frozenset({"get_position", "fleet_status"})
 _LAND_KIND_RE = re.compile(r"\bland\b", re.I)
 _LAND_TOOLS = frozenset({"land", "return_to_launch"})
 # The tools that carry out a step, by the words of the step (the examples' verbs); a step of none of these
@@ -225,11 +227,8 @@ _LAND_TOOLS = frozenset({"land", "return_to_launch"})
 _STEP_KINDS: tuple[tuple[re.Pattern[str], frozenset[str]], ...] = (
     (re.compile(r"^(?:tell|say|answer|report)\b", re.I), frozenset({ANSWER_TOOL})),
     (re.compile(r"\bformation\b", re.I), frozenset({"formation_goto"})),
-    (re.compile(r"\b(?:battery|charge)\b", re.I), frozenset({"get_battery", "fleet_status"})),
-    (
-        re.compile(r"\b(?:position|status|where|how high)\b", re.I),
-        frozenset({"get_position", "fleet_status"}),
-    ),
+    (re.compile(r"\b(?:battery|charge)\b", re.I), _READ_BATTERY_TOOLS),
+    (re.compile(r"\b(?:position|status|where|how high)\b", re.I), _READ_POSITION_TOOLS),
     # "alpha: take off to 40 m west at 15 m" is a move, which takes off first from the ground (dev half:
     # done by the takeoff, the 40 m west was never flown)
     (re.compile(r"\b(?:north|south|east|west)\b", re.I), frozenset({"move_to_relative", "go_to_location"})),
@@ -353,6 +352,34 @@ def _last_reading(calls: Sequence[ToolCallRecord]) -> tuple[str, float] | None:
     return None
 
 
+Read = tuple[str, dict[str, object]]  # a read-only call: tool name, arguments
+
+
+@dataclass(frozen=True)
+class Where:
+    """Where a turn is in its plan: whether only the answer is left, the note for the step whose turn it
+    is, and the read that step needs (the host makes it), if any."""
+
+    finished: bool
+    note: str
+    read: Read | None = None
+
+
+def _battery_read(drones: Sequence[str]) -> Read:
+    return ("get_battery", {"drone_id": drones[0]}) if len(drones) == 1 else ("fleet_status", {})
+
+
+def _read_of(step: str, fleet_ids: Sequence[str]) -> Read | None:
+    """The read-only call a step of a reading kind is (battery, position), for the drones it names."""
+    kind = _kind(step)
+    drones = _drones_in(step.split(":")[0] if ":" in step else step, fleet_ids) or _drones_in(step, fleet_ids)
+    if kind == _READ_BATTERY_TOOLS:
+        return _battery_read(drones)
+    if kind == _READ_POSITION_TOOLS:
+        return ("get_position", {"drone_id": drones[0]}) if len(drones) == 1 else ("fleet_status", {})
+    return None
+
+
 @dataclass
 class Plan:
     """The request's steps and where the turn is in them, judged from the calls that succeeded."""
@@ -384,14 +411,18 @@ class Plan:
         """What the model is told after a call or an empty reply: the step whose turn it is. A condition
         on a battery reading is read here (the 1.5B model called 45 % "below 40 %"), and the branch it
         does not take is passed over."""
-        return self._where(calls)[1]
+        return self.where(calls).note
 
     def finished(self, calls: Sequence[ToolCallRecord]) -> bool:
         """Every step is done, or a condition did not hold: only the answer is left."""
-        return self._where(calls)[0]
+        return self.where(calls).finished
 
-    def _where(self, calls: Sequence[ToolCallRecord]) -> tuple[bool, str]:
-        """Whether only the answer is left, and the note for the step whose turn it is."""
+    def read_due(self, calls: Sequence[ToolCallRecord]) -> Read | None:
+        """The read-only call the step whose turn it is needs (a battery or position reading), or None."""
+        return self.where(calls).read
+
+    def where(self, calls: Sequence[ToolCallRecord]) -> Where:
+        """Where the turn is in the steps, judged from the calls so far."""
         # a call held back as a repeat counts for the step whose turn it is: what it did still holds
         # (nothing has acted on its drone since), and the model sent it as that step (dev half: "keep
         # bravo up" planned as "bravo: fly up"; bravo already was, and the move that put it there was sent
@@ -411,9 +442,11 @@ class Plan:
                 readings = battery_readings(done, self.fleet_ids)
                 unread = [d for d in (first, second) if d not in readings]
                 if unread:
-                    return False, (
+                    return Where(
+                        False,
                         f"Now step {i + 1} of {len(self.steps)}: {step}. Read the battery of "
-                        f"{', '.join(unread)} first: reply with the get_battery call."
+                        f"{', '.join(unread)} first: reply with the get_battery call.",
+                        _battery_read(unread[:1]),
                     )
                 more = relation.startswith(">") or relation.endswith(("more", "higher"))
                 held = readings[first] > readings[second] if more else readings[first] < readings[second]
@@ -425,17 +458,21 @@ class Plan:
             if cond:
                 reading = _last_reading(done)
                 if reading is None:
-                    return False, (
+                    named = _drones_in(step, self.fleet_ids) or self.candidates
+                    return Where(
+                        False,
                         f"Now step {i + 1} of {len(self.steps)}: {step}. Read the battery first: reply with "
-                        "the get_battery call."
+                        "the get_battery call.",
+                        _battery_read(named[:1]) if len(named) == 1 else None,
                     )
                 drone, percent = reading
                 relation, threshold = cond.group(1).lower(), float(cond.group(2))
                 if not _holds(relation, percent, threshold):
                     fact = f"{drone} battery {percent:g} % is not {relation} {threshold:g} %"
-                    return True, (
+                    return Where(
+                        True,
                         f"The condition does not hold ({fact}), so nothing is to be flown. Reply with the "
-                        "answer_user call saying so, with the reading."
+                        "answer_user call saying so, with the reading.",
                     )
                 step = cond.group(3).strip()
             elif _OTHERWISE_RE.match(step):
@@ -448,11 +485,16 @@ class Plan:
                 candidates = self.candidates or self.fleet_ids
                 chosen, unread = _pick(pick.group(1), candidates, battery_readings(done, self.fleet_ids))
                 if chosen is None:
-                    return False, (
+                    return Where(
+                        False,
                         f"Now step {i + 1} of {len(self.steps)}: {step}. Read the battery of "
-                        f"{', '.join(unread)} first: reply with the get_battery call."
+                        f"{', '.join(unread)} first: reply with the get_battery call.",
+                        _battery_read(unread[:1]),
                     )
                 step = f"{chosen}: {pick.group(2).strip()}"
+                readings = battery_readings(done, self.fleet_ids)
+                said = ", ".join(f"{d} {readings[d]:g} %" for d in candidates)
+                most = "least" if _FEWER_RE.match(pick.group(1)) else "most"
             answer_only = _kind(step) == frozenset({ANSWER_TOOL})
             if _kind(step) == _LAND_TOOLS and used and done[used - 1].name == "return_to_launch":
                 # a return to launch lands: the landing after "return home" is done by it (dev half:
@@ -465,16 +507,22 @@ class Plan:
             if answer_only or used >= len(done):
                 lead = f" (the battery is {cond.group(1).lower()} {cond.group(2)} %)" if cond else ""
                 if pick:
-                    lead = f" ({step.split(':')[0]} has the {pick.group(1).lower()} battery)"
+                    lead = f" ({chosen} has the {most} battery: {said})"
                 where = f"Now step {i + 1} of {len(self.steps)}{lead}"
                 if answer_only:
                     # only the answer is left (dev half: "if below 30 %: tell me the number" was answered
                     # with get_battery, sent again 19 times)
-                    return True, f"{where}: {step}. Reply with the answer_user call, with the numbers read."
-                return False, f"{where}: {step}. Reply with only the tool call for it."
+                    return Where(
+                        True, f"{where}: {step}. Reply with the answer_user call, with the numbers read."
+                    )
+                return Where(
+                    False,
+                    f"{where}: {step}. Reply with only the tool call for it.",
+                    _read_of(step, self.fleet_ids),
+                )
             used += 1
             i += 1
-        return True, "Every step is done. Reply with the answer_user call saying what was done."
+        return Where(True, "Every step is done. Reply with the answer_user call saying what was done.")
 
 
 async def plan_steps(chat: ChatModel, fleet_ids: Sequence[str], request: str, usage: Usage) -> list[str]:

@@ -345,7 +345,10 @@ def test_a_step_for_the_drone_with_more_or_less_battery_is_read_from_the_reading
     assert "step 2 of 3: charlie: read battery" in plan.next_note([bravo])
     charlie = _ok("get_battery", "charlie battery 80%, 12.0 V", drone_id="charlie")
     note = plan.next_note([bravo, charlie])
-    assert "step 3 of 3 (charlie has the more battery): charlie: take off to 14 m" in note
+    assert (
+        "step 3 of 3 (charlie has the most battery: bravo 50 %, charlie 80 %): charlie: take off to 14 m"
+        in note
+    )
     assert not plan.finished([bravo, charlie])
     flown = _ok("takeoff", "takeoff on charlie succeeded", drone_id="charlie", alt_m=14)
     assert plan.finished([bravo, charlie, flown])
@@ -360,6 +363,15 @@ def test_a_step_for_the_drone_with_more_or_less_battery_is_read_from_the_reading
     assert "bravo: take off to 6 m" in least.next_note([status])
     unread = Plan(["the one with less battery: land"], FLEET, ["alpha", "charlie"])
     assert "Read the battery of alpha, charlie first" in unread.next_note([])
+    # the reads a step needs are made by the host: one drone's battery, or the table for several
+    assert unread.read_due([]) == ("get_battery", {"drone_id": "alpha"})
+    assert plan.read_due([]) == ("get_battery", {"drone_id": "bravo"})
+    assert plan.read_due([bravo, charlie]) is None
+    assert least.read_due([]) == ("fleet_status", {})
+    assert Plan(["alpha: read position", "alpha: land"], FLEET).read_due([]) == (
+        "get_position",
+        {"drone_id": "alpha"},
+    )
 
 
 def test_a_comparison_of_two_drones_takes_its_branch_or_the_otherwise_step() -> None:
@@ -399,3 +411,19 @@ def test_a_return_to_launch_is_the_way_home_and_the_landing_after_it() -> None:
     assert plan.finished([out, back, landed])
     failed = ToolCallRecord("land", "land", {"drone_id": "charlie"}, "error", "", text="charlie: no link")
     assert not plan.finished([out, back, failed])
+
+
+async def test_the_reads_a_plan_needs_are_made_by_the_host(toy: ToyServer, scripted) -> None:
+    """A step that only reads ("alpha: read position") is the host's call: the model's first request
+    already shows its result, and the step after it is the one asked for."""
+    plan = ScriptedReply(content="1. alpha: read position\n2. alpha: take off to 15 m")
+    model = scripted([plan, call("takeoff", drone_id="alpha", alt_m=15), say("alpha is up at 15 m")])
+    events: list[AgentEvent] = []
+    _, result = await run_on_toy(
+        toy, model, "where is alpha? then take it up to 15 m", plan_first=True, events=events
+    )
+    assert [c.name for c in result.tool_calls] == ["get_position", "takeoff"], result.tool_calls
+    first = model.requests[1]["messages"][-1]["content"]
+    assert '- {"name": "get_position", "arguments": {"drone_id": "alpha"}} -> ' in first, first
+    assert first.endswith("Now step 2 of 2: alpha: take off to 15 m. Reply with only the tool call for it.")
+    assert [e.data["name"] for e in events if e.kind == "plan_read"] == ["get_position"]
