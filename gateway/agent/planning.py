@@ -90,6 +90,10 @@ def plan_messages(fleet_ids: Sequence[str], request: str) -> list[Message]:
     return messages
 
 
+# "bravo: launch to 14 m" in the words of the tools (dev half: the 1.5B model called a "launch" tool)
+_LAUNCH_RE = re.compile(r"(?<!to )(?<!the )(?<!your )\b(?:launch|lift)\b(?! (?:point|site|spot|pad))", re.I)
+
+
 def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -> list[str]:
     """The numbered steps of a reply, one drone each (a formation excepted); none when a step names a drone
     of the examples that the fleet does not have (the model copied an example, so the steps would mislead),
@@ -98,7 +102,7 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
     for line in (text or "").splitlines():
         m = _STEP_RE.match(line)
         if m and not _NO_ACTION_RE.match(m.group(2).strip()):
-            lines.append(m.group(2).strip())
+            lines.append(_LAUNCH_RE.sub("take off", m.group(2).strip()))
     foreign = {d for d in _EXAMPLE_FLEET.split(", ") if d not in fleet_ids}
     if any(re.search(rf"\b{d}\b", s, re.IGNORECASE) for s in lines for d in foreign):
         return []

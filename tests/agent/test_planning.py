@@ -15,6 +15,7 @@ from gateway.agent.planning import (
     carries_the_request,
     gaps_note,
     plan_messages,
+    split_steps,
     steps_from_reply,
 )
 from gateway.agent.turns import AgentEvent, ToolCallRecord
@@ -427,3 +428,12 @@ async def test_the_reads_a_plan_needs_are_made_by_the_host(toy: ToyServer, scrip
     assert '- {"name": "get_position", "arguments": {"drone_id": "alpha"}} -> ' in first, first
     assert first.endswith("Now step 2 of 2: alpha: take off to 15 m. Reply with only the tool call for it.")
     assert [e.data["name"] for e in events if e.kind == "plan_read"] == ["get_position"]
+
+
+def test_a_launch_step_is_written_in_the_words_of_the_tools() -> None:
+    steps = "1. bravo: read battery\n2. the one with more battery: launch to 14 m\n3. bravo: return to launch"
+    assert split_steps(steps, FLEET, "bravo") == [
+        "bravo: read battery",
+        "the one with more battery: take off to 14 m",
+        "bravo: return to launch",
+    ]
