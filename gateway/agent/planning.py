@@ -18,6 +18,7 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
+from gateway.agent import readings
 from gateway.agent.answer import ANSWER_TOOL
 from gateway.agent.chat import ChatModel, Message
 from gateway.agent.roster import Roster, drones_named
@@ -266,40 +267,6 @@ _STEP_KINDS: tuple[tuple[re.Pattern[str], frozenset[str]], ...] = (
     ),
 )
 _KNOWN_TOOLS = frozenset().union(*(tools for _, tools in _STEP_KINDS))
-_CONDITION_RE = re.compile(
-    r"^if\b[^:%]*?\b(above|over|more than|at least|below|under|less than|at most)\s+(\d+(?:\.\d+)?)\s*%"
-    r"\s*:\s*(.*)$",
-    re.IGNORECASE,
-)
-_PERCENT_RE = re.compile(r"(\d+(?:\.\d+)?)\s*%")
-_BATTERY_TOOLS = frozenset({"get_battery"})
-# "the one with less battery: take off to 7 m": a step for whichever drone the readings pick
-_PICK_RE = re.compile(
-    r"^(?:the (?:one|drone)|whichever(?: one| drone)?)\s+(?:with|that has|has)\s+(?:the\s+)?"
-    r"(more|most|higher|highest|fuller|fullest|better|best|stronger|strongest|"
-    r"less|least|lower|lowest|weaker|weakest)\s+(?:battery|charge)\b[^:]*:\s*(\S.*)$",
-    re.IGNORECASE,
-)
-# "if alpha > charlie: alpha: fly 20 m north", "if bravo has more battery than charlie: ...": a comparison of
-# two drones' readings
-_VERSUS_RE = re.compile(
-    r"^if\s+(\w+)(?:'s)?(?:\s+(?:battery|charge))?\s*"
-    r"(>=?|<=?|has (?:more|less)|is (?:higher|lower|more|less))"
-    r"(?:\s+(?:battery|charge))?(?:\s+than)?\s+(\w+)(?:'s)?\b[^:]*:\s*(\S.*)$",
-    re.IGNORECASE,
-)
-_FEWER_RE = re.compile(r"^(?:less|least|lower|lowest|weaker|weakest)$", re.IGNORECASE)
-
-
-def _holds(relation: str, reading: float, threshold: float) -> bool:
-    relation = relation.lower()
-    if relation in ("above", "over", "more than"):
-        return reading > threshold
-    if relation == "at least":
-        return reading >= threshold
-    if relation in ("below", "under", "less than"):
-        return reading < threshold
-    return reading <= threshold  # at most
 
 
 def _kind(step: str) -> frozenset[str] | None:
@@ -314,46 +281,6 @@ def step_done_by(step: str, call: ToolCallRecord, fleet_ids: Sequence[str]) -> b
         return False  # a tool of another kind (takeoff for "fly 40 m west"); another server's tools count
     named = set(_drones_in(step, fleet_ids))
     return not named or bool(named & (drones_named(call.arguments) or set())) or call.name == "fleet_status"
-
-
-def battery_readings(calls: Sequence[ToolCallRecord], fleet_ids: Sequence[str]) -> dict[str, float]:
-    """Each drone's latest battery percent read in the turn: from get_battery, or a fleet_status table
-    (``alpha ready n n 90 0.0 ...``: the fifth column)."""
-    found: dict[str, float] = {}
-    for call in calls:
-        if not call.ok:
-            continue
-        text = call.text or call.summary
-        if call.name in _BATTERY_TOOLS and (m := _PERCENT_RE.search(text)):
-            found[str((call.arguments or {}).get("drone_id", ""))] = float(m.group(1))
-        elif call.name == "fleet_status":
-            for d in fleet_ids:
-                row = re.search(rf"^{re.escape(d)}\s+\S+\s+\S+\s+\S+\s+(\d+(?:\.\d+)?)\b", text, re.M)
-                if row:
-                    found[d] = float(row.group(1))
-    return found
-
-
-def _pick(
-    relation: str, candidates: Sequence[str], readings: dict[str, float]
-) -> tuple[str | None, list[str]]:
-    """The drone the readings pick (most or least battery) among the candidates, or None with the
-    candidates not read yet."""
-    unread = [d for d in candidates if d not in readings]
-    if unread or not candidates:
-        return None, unread
-    fewer = bool(_FEWER_RE.match(relation))
-    return (min if fewer else max)(candidates, key=lambda d: readings[d]), []
-
-
-def _last_reading(calls: Sequence[ToolCallRecord]) -> tuple[str, float] | None:
-    """The latest battery reading of the turn: which drone, what percent."""
-    for call in reversed(calls):
-        if call.ok and call.name in _BATTERY_TOOLS:
-            m = _PERCENT_RE.search(call.text or call.summary)
-            if m:
-                return str((call.arguments or {}).get("drone_id", "")), float(m.group(1))
-    return None
 
 
 Read = tuple[str, dict[str, object]]  # a read-only call: tool name, arguments
@@ -436,15 +363,15 @@ class Plan:
         i, used, held = 0, 0, False
         while i < len(self.steps):
             step = self.steps[i]
-            versus = _VERSUS_RE.match(step)
+            versus = readings.VERSUS_RE.match(step)
             if versus and {versus.group(1).lower(), versus.group(3).lower()} <= set(self.fleet_ids):
                 first, relation, second = (
                     versus.group(1).lower(),
                     versus.group(2).lower(),
                     versus.group(3).lower(),
                 )
-                readings = battery_readings(done, self.fleet_ids)
-                unread = [d for d in (first, second) if d not in readings]
+                levels = readings.battery_readings(done, self.fleet_ids)
+                unread = [d for d in (first, second) if d not in levels]
                 if unread:
                     return Where(
                         False,
@@ -452,15 +379,14 @@ class Plan:
                         f"{', '.join(unread)} first: reply with the get_battery call.",
                         _battery_read(unread[:1]),
                     )
-                more = relation.startswith(">") or relation.endswith(("more", "higher"))
-                held = readings[first] > readings[second] if more else readings[first] < readings[second]
+                held = readings.first_leads(relation, levels[first], levels[second])
                 if not held:
                     i += 1  # the branch not taken; an "otherwise" step after it is the one
                     continue
                 step = versus.group(4).strip()
-            cond = None if versus else _CONDITION_RE.match(step)
+            cond = None if versus else readings.CONDITION_RE.match(step)
             if cond:
-                reading = _last_reading(done)
+                reading = readings.last_reading(done)
                 if reading is None:
                     named = _drones_in(step, self.fleet_ids) or self.candidates
                     return Where(
@@ -471,7 +397,7 @@ class Plan:
                     )
                 drone, percent = reading
                 relation, threshold = cond.group(1).lower(), float(cond.group(2))
-                if not _holds(relation, percent, threshold):
+                if not readings.holds(relation, percent, threshold):
                     fact = f"{drone} battery {percent:g} % is not {relation} {threshold:g} %"
                     return Where(
                         True,
@@ -480,14 +406,15 @@ class Plan:
                     )
                 step = cond.group(3).strip()
             elif _OTHERWISE_RE.match(step):
-                if held or not i or not _VERSUS_RE.match(self.steps[i - 1]):
+                if held or not i or not readings.VERSUS_RE.match(self.steps[i - 1]):
                     i += 1  # the branch not taken: the condition before it held
                     continue
                 step = re.sub(r"^(?:otherwise|else|if not)\b[\s,:]*", "", step, flags=re.IGNORECASE)
-            pick = _PICK_RE.match(step)
+            pick = readings.PICK_RE.match(step)
             if pick:
                 candidates = self.candidates or self.fleet_ids
-                chosen, unread = _pick(pick.group(1), candidates, battery_readings(done, self.fleet_ids))
+                levels = readings.battery_readings(done, self.fleet_ids)
+                chosen, unread = readings.pick(pick.group(1), candidates, levels)
                 if chosen is None:
                     return Where(
                         False,
@@ -496,9 +423,8 @@ class Plan:
                         _battery_read(unread[:1]),
                     )
                 step = f"{chosen}: {pick.group(2).strip()}"
-                readings = battery_readings(done, self.fleet_ids)
-                said = ", ".join(f"{d} {readings[d]:g} %" for d in candidates)
-                most = "least" if _FEWER_RE.match(pick.group(1)) else "most"
+                said = ", ".join(f"{d} {levels[d]:g} %" for d in candidates)
+                most = "least" if readings.fewer(pick.group(1)) else "most"
             answer_only = _kind(step) == frozenset({ANSWER_TOOL})
             if _kind(step) == _LAND_TOOLS and used and done[used - 1].name == "return_to_launch":
                 # a return to launch lands: the landing after "return home" is done by it (dev half:

@@ -1,0 +1,98 @@
+"""Conditions a request puts on readings, as a plan's steps write them: a battery threshold ("if above
+40 %: ..."), a choice between drones ("the one with less battery: ..."), a comparison of two drones ("if
+alpha > charlie: ..."); and the battery readings of a turn they are judged on. The host judges them, not the
+model: measured with the 1.5B model, it called 45 % "below 40 %" and picked a drone by a battery it never
+read."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+
+from gateway.agent.turns import ToolCallRecord
+
+CONDITION_RE = re.compile(
+    r"^if\b[^:%]*?\b(above|over|more than|at least|below|under|less than|at most)\s+(\d+(?:\.\d+)?)\s*%"
+    r"\s*:\s*(.*)$",
+    re.IGNORECASE,
+)
+_PERCENT_RE = re.compile(r"(\d+(?:\.\d+)?)\s*%")
+_BATTERY_TOOLS = frozenset({"get_battery"})
+# "the one with less battery: take off to 7 m": a step for whichever drone the readings pick
+PICK_RE = re.compile(
+    r"^(?:the (?:one|drone)|whichever(?: one| drone)?)\s+(?:with|that has|has)\s+(?:the\s+)?"
+    r"(more|most|higher|highest|fuller|fullest|better|best|stronger|strongest|"
+    r"less|least|lower|lowest|weaker|weakest)\s+(?:battery|charge)\b[^:]*:\s*(\S.*)$",
+    re.IGNORECASE,
+)
+# "if alpha > charlie: alpha: fly 20 m north", "if bravo has more battery than charlie: ...": a comparison of
+# two drones' readings
+VERSUS_RE = re.compile(
+    r"^if\s+(\w+)(?:'s)?(?:\s+(?:battery|charge))?\s*"
+    r"(>=?|<=?|has (?:more|less)|is (?:higher|lower|more|less))"
+    r"(?:\s+(?:battery|charge))?(?:\s+than)?\s+(\w+)(?:'s)?\b[^:]*:\s*(\S.*)$",
+    re.IGNORECASE,
+)
+_FEWER_RE = re.compile(r"^(?:less|least|lower|lowest|weaker|weakest)$", re.IGNORECASE)
+
+
+def holds(relation: str, reading: float, threshold: float) -> bool:
+    """Whether a reading meets a threshold condition ("above", "at least", ...)."""
+    relation = relation.lower()
+    if relation in ("above", "over", "more than"):
+        return reading > threshold
+    if relation == "at least":
+        return reading >= threshold
+    if relation in ("below", "under", "less than"):
+        return reading < threshold
+    return reading <= threshold  # at most
+
+
+def battery_readings(calls: Sequence[ToolCallRecord], fleet_ids: Sequence[str]) -> dict[str, float]:
+    """Each drone's latest battery percent read in the turn: from get_battery, or a fleet_status table
+    (``alpha ready n n 90 0.0 ...``: the fifth column)."""
+    found: dict[str, float] = {}
+    for call in calls:
+        if not call.ok:
+            continue
+        text = call.text or call.summary
+        if call.name in _BATTERY_TOOLS and (m := _PERCENT_RE.search(text)):
+            found[str((call.arguments or {}).get("drone_id", ""))] = float(m.group(1))
+        elif call.name == "fleet_status":
+            for d in fleet_ids:
+                row = re.search(rf"^{re.escape(d)}\s+\S+\s+\S+\s+\S+\s+(\d+(?:\.\d+)?)\b", text, re.M)
+                if row:
+                    found[d] = float(row.group(1))
+    return found
+
+
+def pick(
+    relation: str, candidates: Sequence[str], readings: dict[str, float]
+) -> tuple[str | None, list[str]]:
+    """The drone the readings pick (most or least battery) among the candidates, or None with the
+    candidates not read yet."""
+    unread = [d for d in candidates if d not in readings]
+    if unread or not candidates:
+        return None, unread
+    return (min if fewer(relation) else max)(candidates, key=lambda d: readings[d]), []
+
+
+def fewer(relation: str) -> bool:
+    """The choice is of the drone with the least battery ("less", "lowest", "weaker")."""
+    return bool(_FEWER_RE.match(relation))
+
+
+def first_leads(relation: str, first: float, second: float) -> bool:
+    """Whether a comparison of two readings ("alpha > charlie", "has less") holds."""
+    more = relation.startswith(">") or relation.lower().endswith(("more", "higher"))
+    return first > second if more else first < second
+
+
+def last_reading(calls: Sequence[ToolCallRecord]) -> tuple[str, float] | None:
+    """The latest battery reading of the turn: which drone, what percent."""
+    for call in reversed(calls):
+        if call.ok and call.name in _BATTERY_TOOLS:
+            m = _PERCENT_RE.search(call.text or call.summary)
+            if m:
+                return str((call.arguments or {}).get("drone_id", "")), float(m.group(1))
+    return None
