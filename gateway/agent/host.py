@@ -344,13 +344,13 @@ class AgentHost:
         and say whether any ran. They change nothing and their arguments are fixed by the steps, so the
         host makes them instead of asking for them (dev half: asked for "alpha: read battery", the 1.5B
         model answered that alpha had the lowest battery without a read; "read_battery" was called,
-        which does not exist). Stops at a read that fails: the model is then asked as before."""
+        which does not exist). A read that failed is not made again: the model is asked as before."""
         plan, ran = self._turn_plan, False
         for _ in range(len(plan.steps) + len(self.fleet.ids) if plan is not None else 0):
             assert plan is not None
             read = plan.read_due(result.tool_calls)
-            if read is None:
-                break
+            if read is None or any(c.name == read[0] and c.arguments == read[1] for c in result.tool_calls):
+                break  # nothing to read, or the read already failed: the model is asked
             name, args = read
             call: ModelCall = {
                 "id": f"call_plan_{len(result.tool_calls) + 1}",
