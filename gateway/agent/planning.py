@@ -121,7 +121,7 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
 
 def steps_from_reply(text: str | None, fleet_ids: Sequence[str], request: str = "") -> list[str]:
     """The steps of a reply (split_steps) when they carry the request, else none."""
-    steps = split_steps(text, fleet_ids, request)
+    steps = home_for_landing(split_steps(text, fleet_ids, request), request)
     return steps if steps and carries_the_request(steps, request) else []
 
 
@@ -162,6 +162,16 @@ def plan_gaps(steps: Sequence[str], request: str) -> list[str]:
     if _LAND_STEP_RE.search(said) and not _LANDING_RE.search(request):
         gaps.append("add a landing the request does not ask for")
     return gaps
+
+
+def home_for_landing(steps: Sequence[str], request: str) -> list[str]:
+    """The steps with a landing read as the way home when the request asks for home and speaks of no
+    landing ("then bring it home" planned as "charlie: land"; dev half, twice in a row, so the plan was
+    dropped and the model flew without one)."""
+    said = " ".join(steps)
+    if not _HOME_RE.search(request) or _LANDING_RE.search(request) or _GO_HOME_RE.search(said):
+        return list(steps)
+    return [_LAND_STEP_RE.sub("return home", s) if _LAND_STEP_RE.search(s) else s for s in steps]
 
 
 def carries_the_request(steps: Sequence[str], request: str) -> bool:
@@ -460,7 +470,7 @@ async def plan_steps(chat: ChatModel, fleet_ids: Sequence[str], request: str, us
     with a gap (plan_gaps) are sent back once, naming it; steps with a gap again are no plan."""
     messages = plan_messages(fleet_ids, request)
     reply = await chat.ask(messages, [], {}, usage)
-    steps = split_steps(reply.content, fleet_ids, request)
+    steps = home_for_landing(split_steps(reply.content, fleet_ids, request), request)
     gaps = plan_gaps(steps, request) if steps else []
     if not gaps:
         return steps

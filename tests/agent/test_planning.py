@@ -14,6 +14,7 @@ from gateway.agent.planning import (
     Plan,
     carries_the_request,
     gaps_note,
+    home_for_landing,
     plan_messages,
     split_steps,
     steps_from_reply,
@@ -437,3 +438,18 @@ def test_a_launch_step_is_written_in_the_words_of_the_tools() -> None:
         "the one with more battery: take off to 14 m",
         "bravo: return to launch",
     ]
+
+
+def test_a_landing_planned_for_bring_it_home_is_the_way_home() -> None:
+    request = "Take charlie to 15 m, go 20 m east, then 20 m south, then bring it home."
+    planned = [
+        "charlie: take off to 15 m",
+        "charlie: fly 20 m east",
+        "charlie: fly 20 m south",
+        "charlie: land",
+    ]
+    steps = home_for_landing(planned, request)
+    assert steps[-1] == "charlie: return home" and carries_the_request(steps, request)
+    # a request that speaks of a landing keeps it
+    landing = "Take charlie to 15 m, go 20 m east, then land it."
+    assert home_for_landing(planned, landing) == planned
