@@ -259,9 +259,13 @@ def test_steps_that_drop_or_add_part_of_the_request_are_no_plan() -> None:
     assert not carries_the_request(["alpha: fly 25 m east", "bravo: fly 25 m north"], spread)
     south = "All three in a row, 12 m between each, at 20 m, 25 m south of where they are."
     assert not carries_the_request([f"{d}: fly 12 m south" for d in FLEET], south)
-    # such steps are not used
+    # such steps are not used (a landing for "bring it home" is read as the way home: home_for_landing)
+    reply = "\n".join(
+        f"{i}. {step}" for i, step in enumerate(["alpha: take off", "alpha: climb to 30 m", "alpha: land"], 1)
+    )
+    assert steps_from_reply(reply, FLEET, hover) == []
     reply = "\n".join(f"{i}. {step}" for i, step in enumerate([*legs, "charlie: land"], 1))
-    assert steps_from_reply(reply, FLEET, corner) == []
+    assert steps_from_reply(reply, FLEET, corner) == [*legs, "charlie: return home"]
 
 
 def test_a_step_with_a_compass_direction_is_a_move_even_when_it_says_take_off() -> None:
@@ -315,15 +319,15 @@ def test_a_call_held_back_as_a_repeat_counts_for_the_step_whose_turn_it_is() -> 
 
 
 async def test_steps_with_a_gap_are_sent_back_once_naming_it(toy: ToyServer, scripted) -> None:
-    """Dev half (compound-corner-home): "then bring it home" planned as a landing; told what the steps
-    leave out and add, the planner may write them again."""
+    """Dev half (compound-corner-home): "then bring it home" planned without the way home; told what the
+    steps leave out, the planner may write them again."""
 
     def gappy(body: dict[str, Any]) -> ScriptedReply:
-        return ScriptedReply(content="1. alpha: take off to 15 m\n2. alpha: land")
+        return ScriptedReply(content="1. alpha: take off to 15 m\n2. alpha: fly 15 m north")
 
     def fixed(body: dict[str, Any]) -> ScriptedReply:
         told = body["messages"][-1]["content"]
-        assert told == gaps_note(["leave out the way home", "add a landing the request does not ask for"])
+        assert told == gaps_note(["leave out the way home"]), told
         return ScriptedReply(content="1. alpha: take off to 15 m\n2. alpha: return home")
 
     model = scripted([gappy, fixed, call("takeoff", drone_id="alpha", alt_m=15), say("")])
