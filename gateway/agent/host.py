@@ -40,7 +40,7 @@ from gateway.agent.claims import Claim
 from gateway.agent.intent import Reading, read_call
 from gateway.agent.parsing import RESULT_FOLLOWS, ArgumentsError, parse_arguments, strip_thinking
 from gateway.agent.repair import extras_of_a_drone_only_tool, unplaced_optional_point
-from gateway.agent.roster import FleetView, Roster
+from gateway.agent.roster import FleetView, Roster, drones_named
 from gateway.agent.sending import ToolSender
 from gateway.agent.toolbox import Arguments, ToolInfo, ToolOutcome
 from gateway.agent.turns import (
@@ -365,6 +365,29 @@ class AgentHost:
                 break
         return ran
 
+    def _off_request(self, name: str, args: Arguments, turn: TurnResult | None) -> str | None:
+        """Why an acting call is not sent because its drone is not the request's: one the request does not
+        name (when it names some and does not speak of the whole fleet), or, in a plan, one a choice
+        between drones passed over. Measured on the corpus's dev half with the 1.5B model: "of bravo and
+        charlie, launch the better charged one" took off alpha, the only drone at 100 %."""
+        if not checks.acts(self.tools, name) or not self.fleet.ids:
+            return None
+        drones: frozenset[str] = drones_named(args) or frozenset()
+        asked = planning.asked_drones(self._memory.request, self.fleet.ids)
+        plan = self._turn_plan
+        if off := sorted(d for d in drones if d not in asked):
+            return (
+                f"Not sent: the request does not name {', '.join(off)}; it names {', '.join(asked)}. Nothing "
+                "was executed. Call the tool for the request's next step."
+            )
+        where = plan.where(turn.tool_calls if turn is not None else []) if plan is not None else None
+        if where is not None and (passed := sorted(drones & set(where.passed_over))):
+            return (
+                f"Not sent: {', '.join(passed)} is not the drone this step is for. Nothing was executed. "
+                f"{where.note}"
+            )
+        return None
+
     @staticmethod
     def _plan_lead(plan: planning.Plan, last: ToolCallRecord, result: TurnResult) -> str | None:
         """What the plan's rewritten prompt says first about the model's last call, or None when the turn
@@ -493,6 +516,8 @@ class AgentHost:
             name, tool, args, problem, turn, self._memory, tools=self.tools, base_tools=self.fleet.base_tools,
             answer_tool=self.answer_tool, on_ground=self.fleet.on_ground,
         )  # fmt: skip
+        if outcome is None and args is not None and (off := self._off_request(name, args, turn)) is not None:
+            status, outcome = "invalid", ToolOutcome(text=self._note(off), is_error=True)
         if outcome is None:
             assert tool is not None and args is not None
             status, outcome = await self.sender.send(step, call_id, tool, args, reading)

@@ -304,6 +304,20 @@ class Where:
     finished: bool
     note: str
     read: Read | None = None
+    passed_over: tuple[str, ...] = ()  # drones a choice between drones did not pick, for this step
+
+
+_HEIGHT_KIND = frozenset({"takeoff", "move_to_relative", "go_to_location"})
+_METRES_RE = re.compile(r"(\d+(?:\.\d+)?)\s*(?:m\b|metres?\b|meters?\b)", re.IGNORECASE)
+
+
+def _height_flown(step: str, last: ToolCallRecord, fleet_ids: Sequence[str]) -> bool:
+    """A step that asks only for a height the call before it already flew its drone to."""
+    if _kind(step) != _HEIGHT_KIND or not step_done_by(step, last, fleet_ids):
+        return False
+    heights = {float(m) for m in _METRES_RE.findall(step)}
+    alt = (last.arguments or {}).get("alt_m")
+    return len(heights) == 1 and isinstance(alt, int | float) and float(alt) in heights
 
 
 def _battery_read(drones: Sequence[str]) -> Read:
@@ -371,6 +385,7 @@ class Plan:
         # a call refused because the drone already is as it asks ("already on the ground") did its step
         done = [c for c in calls if (c.ok or c.status == "repeat" or already_so(c)) and c.name != ANSWER_TOOL]
         i, used, held = 0, 0, False
+        passed_over: tuple[str, ...] = ()
         while i < len(self.steps):
             step = self.steps[i]
             versus = readings.VERSUS_RE.match(step)
@@ -433,6 +448,7 @@ class Plan:
                         _battery_read(unread[:1]),
                     )
                 step = f"{chosen}: {pick.group(2).strip()}"
+                passed_over = tuple(d for d in candidates if d != chosen)
                 said = ", ".join(f"{d} {levels[d]:g} %" for d in candidates)
                 most = "least" if readings.fewer(pick.group(1)) else "most"
             answer_only = _kind(step) == frozenset({ANSWER_TOOL})
@@ -442,6 +458,11 @@ class Plan:
                 if step_done_by(step, done[used - 1], self.fleet_ids):
                     i += 1
                     continue
+            if used and _height_flown(step, done[used - 1], self.fleet_ids):
+                # "bravo: fly 10 m above the ground" after a move that flew bravo at 10 m (dev half: the
+                # planner split "50 m east, 10 m above the ground" in two, and the height was asked again)
+                i += 1
+                continue
             while not answer_only and used < len(done) and not step_done_by(step, done[used], self.fleet_ids):
                 used += 1
             if answer_only or used >= len(done):
@@ -459,6 +480,7 @@ class Plan:
                     False,
                     f"{where}: {step}. Reply with only the tool call for it.",
                     _read_of(step, self.fleet_ids),
+                    passed_over,
                 )
             used += 1
             i += 1

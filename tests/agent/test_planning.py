@@ -457,3 +457,42 @@ def test_a_landing_planned_for_bring_it_home_is_the_way_home() -> None:
     # a request that speaks of a landing keeps it
     landing = "Take charlie to 15 m, go 20 m east, then land it."
     assert home_for_landing(planned, landing) == planned
+
+
+def test_a_height_step_already_flown_by_the_move_before_is_done() -> None:
+    """Dev half (rel-east-land-there): "50 m east, 10 m above the ground" planned as two steps; the move
+    that flew east at 10 m did both."""
+    plan = Plan(["bravo: fly 50 m east", "bravo: fly 10 m above the ground", "bravo: land"], FLEET)
+    moved = _ok("move_to_relative", "arrived", drone_id="bravo", east_m=50, alt_m=10)
+    assert plan.next_note([moved]).startswith("Now step 3 of 3: bravo: land")
+    lower = _ok("move_to_relative", "arrived", drone_id="bravo", east_m=50, alt_m=20)
+    assert plan.next_note([lower]).startswith("Now step 2 of 3")
+
+
+def test_a_choice_between_drones_names_the_drones_it_passed_over() -> None:
+    steps = ["bravo: read battery", "charlie: read battery", "the one with more battery: take off to 14 m"]
+    plan = Plan(steps, FLEET, ["bravo", "charlie"])
+    reads = [
+        _ok("get_battery", "bravo battery 50%", drone_id="bravo"),
+        _ok("get_battery", "charlie battery 80%", drone_id="charlie"),
+    ]
+    assert plan.where(reads).passed_over == ("bravo",)
+    assert plan.where(reads[:1]).passed_over == ()
+
+
+async def test_a_call_on_a_drone_the_request_does_not_name_is_not_sent(toy: ToyServer, scripted) -> None:
+    """Dev half (cond-better-charged-pair): "of bravo and charlie, launch the better charged one" took off
+    alpha. An acting call on a drone the request does not name is held back, naming the ones it does."""
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=14),
+            call("takeoff", drone_id="bravo", alt_m=14),
+            say("bravo up"),
+        ]
+    )
+    _, result = await run_on_toy(toy, model, "Take bravo up to 14 m, please")
+    held, sent = result.tool_calls
+    assert held.status == "invalid" and held.text.startswith(
+        "Error: Not sent: the request does not name alpha; it names bravo. Nothing was executed."
+    ), held
+    assert sent.ok and [c[0] for c in toy.world.calls] == ["takeoff"]
