@@ -165,13 +165,21 @@ def plan_gaps(steps: Sequence[str], request: str) -> list[str]:
 
 
 def home_for_landing(steps: Sequence[str], request: str) -> list[str]:
-    """The steps with a landing read as the way home when the request asks for home and speaks of no
-    landing ("then bring it home" planned as "charlie: land"; dev half, twice in a row, so the plan was
-    dropped and the model flew without one)."""
+    """The steps with a landing the request does not speak of read as it meant: the way home when it asks
+    for home ("then bring it home" planned as "charlie: land"), else left out ("send the fuller one 20 m
+    north at 12 m" planned with a landing after it). Dev half: both twice in a row, so the plan was
+    dropped and the model flew without one."""
     said = " ".join(steps)
-    if not _HOME_RE.search(request) or _LANDING_RE.search(request) or _GO_HOME_RE.search(said):
+    if _LANDING_RE.search(request) or not _LAND_STEP_RE.search(said):
+        return list(steps)
+    if not _HOME_RE.search(request):
+        return [s for s in steps if not _LAND_ONLY_RE.match(s)]
+    if _GO_HOME_RE.search(said):
         return list(steps)
     return [_LAND_STEP_RE.sub("return home", s) if _LAND_STEP_RE.search(s) else s for s in steps]
+
+
+_LAND_ONLY_RE = re.compile(r"^[^:]*:\s*land\b(?:\s+(?:it|there|here|now))?\s*\.?$", re.IGNORECASE)
 
 
 def carries_the_request(steps: Sequence[str], request: str) -> bool:
@@ -312,12 +320,23 @@ _METRES_RE = re.compile(r"(\d+(?:\.\d+)?)\s*(?:m\b|metres?\b|meters?\b)", re.IGN
 
 
 def _height_flown(step: str, last: ToolCallRecord, fleet_ids: Sequence[str]) -> bool:
-    """A step that asks only for a height the call before it already flew its drone to."""
-    if _kind(step) != _HEIGHT_KIND or not step_done_by(step, last, fleet_ids):
+    """A step that asks only for a height (an altitude or a climb) that the move before it, a leg flown
+    with that height, already flew its drone to."""
+    if (
+        _kind(step) != _HEIGHT_KIND
+        or last.name != "move_to_relative"
+        or not step_done_by(step, last, fleet_ids)
+    ):
         return False
+    args = last.arguments or {}
+    if not any(
+        isinstance(args.get(a), int | float) and args.get(a)
+        for a in ("north_m", "east_m", "south_m", "west_m")
+    ):
+        return False  # not a leg: the step may be a climb after it
     heights = {float(m) for m in _METRES_RE.findall(step)}
-    alt = (last.arguments or {}).get("alt_m")
-    return len(heights) == 1 and isinstance(alt, int | float) and float(alt) in heights
+    flown = {float(v) for a in ("alt_m", "up_m") if isinstance(v := args.get(a), int | float) and v}
+    return len(heights) == 1 and bool(heights & flown)
 
 
 def _battery_read(drones: Sequence[str]) -> Read:

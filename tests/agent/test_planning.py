@@ -259,11 +259,14 @@ def test_steps_that_drop_or_add_part_of_the_request_are_no_plan() -> None:
     assert not carries_the_request(["alpha: fly 25 m east", "bravo: fly 25 m north"], spread)
     south = "All three in a row, 12 m between each, at 20 m, 25 m south of where they are."
     assert not carries_the_request([f"{d}: fly 12 m south" for d in FLEET], south)
-    # such steps are not used (a landing for "bring it home" is read as the way home: home_for_landing)
-    reply = "\n".join(
-        f"{i}. {step}" for i, step in enumerate(["alpha: take off", "alpha: climb to 30 m", "alpha: land"], 1)
+    # such steps are not used; a landing the request does not speak of is read as it meant first
+    # (home_for_landing): the way home for "bring it home", else left out
+    keep_reply = (
+        "1. alpha: take off to 16 m\n2. bravo: take off to 16 m\n3. alpha: land\n4. alpha: return home"
     )
-    assert steps_from_reply(reply, FLEET, hover) == []
+    assert steps_from_reply(keep_reply, FLEET, keep) == []
+    reply = "1. alpha: take off\n2. alpha: climb to 30 m\n3. alpha: land"
+    assert steps_from_reply(reply, FLEET, hover) == ["alpha: take off", "alpha: climb to 30 m"]
     reply = "\n".join(f"{i}. {step}" for i, step in enumerate([*legs, "charlie: land"], 1))
     assert steps_from_reply(reply, FLEET, corner) == [*legs, "charlie: return home"]
 
@@ -467,6 +470,12 @@ def test_a_height_step_already_flown_by_the_move_before_is_done() -> None:
     assert plan.next_note([moved]).startswith("Now step 3 of 3: bravo: land")
     lower = _ok("move_to_relative", "arrived", drone_id="bravo", east_m=50, alt_m=20)
     assert plan.next_note([lower]).startswith("Now step 2 of 3")
+    # a climb flown with the leg (dev half, rel-bravo-west-up: "40 m west ..., 10 m up" as two steps)
+    west = Plan(["bravo: move 40 m west", "bravo: move 10 m up"], FLEET)
+    assert west.finished([_ok("move_to_relative", "arrived", drone_id="bravo", east_m=-40, up_m=10)])
+    # after a takeoff, a climb of the same size is a step of its own
+    climb = Plan(["charlie: take off to 10 m", "charlie: fly 10 m up"], FLEET)
+    assert not climb.finished([_ok("takeoff", "reached 10 m", drone_id="charlie", alt_m=10)])
 
 
 def test_a_choice_between_drones_names_the_drones_it_passed_over() -> None:
