@@ -187,8 +187,10 @@ def carries_the_request(steps: Sequence[str], request: str) -> bool:
     return not plan_gaps(steps, request)
 
 
-# A request that speaks of the whole fleet may mean drones it does not name.
-_WHOLE_FLEET_RE = re.compile(r"\b(?:all|every\w*|each|fleet|whole|rest|others?)\b", re.IGNORECASE)
+# A request that speaks of the whole fleet may mean drones it does not name ("each" and "the other" speak
+# of drones it names: dev half, "of bravo and charlie, ... leave the other on the pad" had alpha read and
+# flown)
+_WHOLE_FLEET_RE = re.compile(r"\b(?:all|every\w*|fleet|whole|rest|others)\b", re.IGNORECASE)
 # Words of drones placed together: such a step is one formation, not one move per drone (dev half: "alpha,
 # charlie: side by side, 15 m apart, at 20 m" split per drone flew each 15 m east)
 _FORMATION_WORDS_RE = re.compile(

@@ -12,6 +12,7 @@ from gateway.agent.planning import (
     PLAN_EXAMPLES,
     PLAN_SYSTEM_PROMPT,
     Plan,
+    asked_drones,
     carries_the_request,
     gaps_note,
     home_for_landing,
@@ -505,3 +506,16 @@ async def test_a_call_on_a_drone_the_request_does_not_name_is_not_sent(toy: ToyS
         "Error: Not sent: the request does not name alpha; it names bravo. Nothing was executed."
     ), held
     assert sent.ok and [c[0] for c in toy.world.calls] == ["takeoff"]
+
+
+def test_the_drones_asked_are_the_named_ones_unless_the_request_speaks_of_the_fleet() -> None:
+    assert asked_drones("Of bravo and charlie, launch the better one and leave the other down", FLEET) == [
+        "bravo",
+        "charlie",
+    ]
+    assert asked_drones("Send charlie 30 m north and alpha 30 m south, each at 12 m", FLEET) == [
+        "charlie",
+        "alpha",
+    ]
+    assert asked_drones("Alpha to 10 m, the others to 20 m", FLEET) == FLEET
+    assert asked_drones("Everyone up to 15 m", FLEET) == FLEET
