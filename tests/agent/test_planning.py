@@ -440,6 +440,12 @@ async def test_the_reads_a_plan_needs_are_made_by_the_host(toy: ToyServer, scrip
 
 
 def test_a_launch_step_is_written_in_the_words_of_the_tools() -> None:
+    """ "Launch" is a takeoff; a takeoff with a compass direction is a flight (dev half, cond-fuller-north:
+    "take off to 20 m north at 12 m" had the takeoff sent 17 times)."""
+    assert split_steps("1. alpha: read battery\n2. charlie: take off to 20 m north at 12 m", FLEET, "x") == [
+        "alpha: read battery",
+        "charlie: fly 20 m north at 12 m",
+    ]
     steps = "1. bravo: read battery\n2. the one with more battery: launch to 14 m\n3. bravo: return to launch"
     assert split_steps(steps, FLEET, "bravo") == [
         "bravo: read battery",
