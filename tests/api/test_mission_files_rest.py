@@ -40,12 +40,17 @@ async def test_mission_files_in_and_out(tmp_path: Path, capsys: pytest.CaptureFi
                 assert created.status_code == 201, created.text
                 await _ready(http, "alpha")
 
-                cli = await asyncio.to_thread(
-                    main, ["drones", "mission", "put", "alpha", str(MISSION_FILE), "--api", base]
-                )
-                assert (
-                    cli == 0 and "alpha: 12 items uploaded from the mission file" in capsys.readouterr().out
-                )
+                for _ in range(3):
+                    cli = await asyncio.to_thread(
+                        main, ["drones", "mission", "put", "alpha", str(MISSION_FILE), "--api", base]
+                    )
+                    said = capsys.readouterr()
+                    if cli == 0 or "(vehicle_not_ready)" not in said.err:
+                        break
+                    # under load the simulator's estimate can lapse for a moment after "ready" (seen once
+                    # in CI beside a benchmark): the gateway refuses, rightly; once ready again, the upload
+                    await _ready(http, "alpha")
+                assert cli == 0 and "alpha: 12 items uploaded from the mission file" in said.out, said
                 out = tmp_path / "back.waypoints"
                 cli = await asyncio.to_thread(
                     main,
