@@ -268,12 +268,8 @@ _STEP_KINDS: tuple[tuple[re.Pattern[str], frozenset[str]], ...] = (
     # "alpha: take off to 40 m west at 15 m" is a move, which takes off first from the ground (dev half:
     # done by the takeoff, the 40 m west was never flown)
     (re.compile(r"\b(?:north|south|east|west)\b", re.I), frozenset({"move_to_relative", "go_to_location"})),
-    (
-        re.compile(
-            r"\b(?:take off|lift|(?<!to )(?<!the )(?<!your )launch(?! (?:point|site|spot|pad)))\b", re.I
-        ),
-        frozenset({"takeoff", "move_to_relative"}),
-    ),
+    # "launch" and "lift" are written "take off" when the steps are read (_in_tool_words)
+    (re.compile(r"\btake off\b", re.I), frozenset({"takeoff", "move_to_relative"})),
     # "bravo: fly 18 m", "climb to 30 m", "fly 10 m up": only a height, which a takeoff reaches from the
     # ground (dev half: "alpha to 10 m" planned as "alpha: fly 10 m up", and the takeoff that flew it did
     # not count, so the model was asked for the step again and flew alpha 10 m north)
@@ -408,6 +404,15 @@ class Plan:
         """The read-only call the step whose turn it is needs (a battery or position reading), or None."""
         return self.where(calls).read
 
+    def _read_first(self, i: int, step: str, unread: Sequence[str]) -> Where:
+        """Step ``i`` waits for the battery of these drones: the host reads the first (``Where.read``)."""
+        return Where(
+            False,
+            f"Now step {i + 1} of {len(self.steps)}: {step}. Read the battery of {', '.join(unread)} first: "
+            "reply with the get_battery call.",
+            _battery_read(unread[:1]),
+        )
+
     def where(self, calls: Sequence[ToolCallRecord]) -> Where:
         """Where the turn is in the steps, judged from the calls so far."""
         # a call held back as a repeat counts for the step whose turn it is: what it did still holds
@@ -430,12 +435,7 @@ class Plan:
                 levels = readings.battery_readings(done, self.fleet_ids)
                 unread = [d for d in (first, second) if d not in levels]
                 if unread:
-                    return Where(
-                        False,
-                        f"Now step {i + 1} of {len(self.steps)}: {step}. Read the battery of "
-                        f"{', '.join(unread)} first: reply with the get_battery call.",
-                        _battery_read(unread[:1]),
-                    )
+                    return self._read_first(i, step, unread)
                 held = readings.first_leads(relation, levels[first], levels[second])
                 if not held:
                     i += 1  # the branch not taken; an "otherwise" step after it is the one
@@ -473,12 +473,7 @@ class Plan:
                 levels = readings.battery_readings(done, self.fleet_ids)
                 chosen, unread = readings.pick(pick.group(1), candidates, levels)
                 if chosen is None:
-                    return Where(
-                        False,
-                        f"Now step {i + 1} of {len(self.steps)}: {step}. Read the battery of "
-                        f"{', '.join(unread)} first: reply with the get_battery call.",
-                        _battery_read(unread[:1]),
-                    )
+                    return self._read_first(i, step, unread)
                 step = f"{chosen}: {pick.group(2).strip()}"
                 passed_over = tuple(d for d in candidates if d != chosen)
                 said = ", ".join(f"{d} {levels[d]:g} %" for d in candidates)
