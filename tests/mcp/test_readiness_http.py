@@ -59,11 +59,20 @@ async def test_list_drones_and_rest_say_initialising_until_the_drone_can_arm(tmp
                         assert f"d1 connected ({row['initialising']})" in listed.content[0].text
                     return row["state"] == "ready" and rest["state"] == "ready"
 
+                async def ready_or_estimating() -> bool:
+                    await ready()
+                    return seen[-1] == ("connected", ESTIMATE, "connected", ESTIMATE)
+
                 await eventually(ready, "d1 ready", within_s=60)
-                # the simulator booted while the gateway started: boot it again from zero, watched
+                # the simulator booted while the gateway started: boot it again from zero, watched; the
+                # estimate is held back until the gateway has seen the boot (under load the sidecar's
+                # reconnect can otherwise take longer than the simulator's sped-up boot)
+                await sim.control.hold_estimate(0, True)
                 await sim.control.reboot(0)
-                await eventually(lambda: _state(http, "connected"), "d1 rebooting", within_s=30)
+                await eventually(lambda: _state(http, "connected"), "d1 rebooting", within_s=60)
                 seen.clear()
+                await eventually(ready_or_estimating, "d1 waiting for its estimate", within_s=60)
+                await sim.control.hold_estimate(0, False)
                 await eventually(ready, "d1 ready after the reboot", within_s=60)
                 assert ("connected", ESTIMATE, "connected", ESTIMATE) in seen, seen
                 assert seen[-1] == ("ready", None, "ready", None), seen
