@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 72 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 80 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -14,7 +14,7 @@ seeing a model's result on it (add a new entry instead and say so in docs/benchm
 The first 40 entries were written in full before any model ran on them (2026-11-27). Sixteen more, two
 per class and all in the ``dev`` half (marked "added later"), were written later the same day, again
 before any model ran on them, after the dev half had been tuned on until 17 of its 20 passed: a tuning
-set the host passes tells nothing more. The test half is unchanged. Eight more (marked "added on the second day"), again dev only and written before any model ran on them (2026-11-28), where the test half measured weakest: compound, multi, conditional, question. Eight more (marked "added on the third day"), dev only, written before any model ran on them (2026-11-28), in the kinds of request the test half still failed: a choice between drones by their batteries (the dev half had none), a flight out and back, a move with a height from the ground, one drone told to stay while others fly.
+set the host passes tells nothing more. The test half is unchanged. Eight more (marked "added on the second day"), again dev only and written before any model ran on them (2026-11-28), where the test half measured weakest: compound, multi, conditional, question. Eight more (marked "added on the third day"), dev only, written before any model ran on them (2026-11-28), in the kinds of request the test half still failed: a choice between drones by their batteries (the dev half had none), a flight out and back, a move with a height from the ground, one drone told to stay while others fly. Eight more (marked "added on the fourth day"), dev only, written before any model ran on them (2026-11-28): a question that picks a drone, out and back, one drone hopping while another flies, a height change after a leg.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -287,6 +287,20 @@ def _multi() -> list[CorpusEntry]:
                                   landed_disarmed(ev, "alpha"), airborne_at(ev, "charlie", 22)),
                [_takeoff("alpha", 14), _land("alpha"), _takeoff("charlie", 22)],
                "Alpha hopped to 14 m and landed, charlie hovers at 22 m, bravo stayed down."),
+        # added on the fourth day, development half only
+        _entry("multi", "dev", "multi-hop-and-hover", DRONES,
+               "Have charlie do a quick hop to 6 m and come straight back down, and get alpha hovering at 15 m.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 6), landed_disarmed(ev, "charlie"),
+                                  airborne_at(ev, "alpha", 15), never_armed(ev, "bravo")),
+               [_takeoff("charlie", 6), _land("charlie"), _takeoff("alpha", 15)],
+               "Charlie hopped to 6 m and landed; alpha hovers at 15 m."),
+        _entry("multi", "dev", "multi-south-and-hop", DRONES,
+               "Send bravo 30 m south at 12 m and leave it there; alpha just goes up to 8 m and lands again.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", -30, 0), alt=12), airborne_at(ev, "bravo", 12),
+                                  reached_alt(ev, "alpha", 8), landed_disarmed(ev, "alpha"),
+                                  never_armed(ev, "charlie")),
+               [_move("bravo", -30, 0, alt=12), _takeoff("alpha", 8), _land("alpha")],
+               "Bravo hovers 30 m south at 12 m; alpha hopped to 8 m and landed."),
     ]  # fmt: skip
 
 
@@ -364,6 +378,18 @@ def _compound() -> list[CorpusEntry]:
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_move("alpha", 30, 0, alt=15), _move("alpha", -30, 0), _land("alpha")],
                "Alpha went 30 m north and back, and landed."),
+        # added on the fourth day, development half only
+        _entry("compound", "dev", "compound-west-takeoff-point", ("bravo",),
+               "Bravo, fly 30 m west at 20 m, then return to your take-off point and land there.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, -30)]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_move("bravo", 0, -30, alt=20), _rtl("bravo")], "Bravo went 30 m west, came back and landed."),
+        _entry("compound", "dev", "compound-east-back-west", ("charlie",),
+               "Charlie, take off to 10 m, go 25 m east, come 25 m back west and land.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 25)]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), _move("charlie", 0, 25), _move("charlie", 0, -25), _land("charlie")],
+               "Charlie went 25 m east and back, and landed."),
     ]  # fmt: skip
 
 
@@ -525,6 +551,15 @@ def _relative() -> list[CorpusEntry]:
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 15, 0), alt=12),
                                   airborne_at(ev, "charlie", 12)),
                [_takeoff("charlie", 8), _move("charlie", 15, 0, up=4)], "Charlie hovers 15 m north at 12 m."),
+        # added on the fourth day, development half only
+        _entry("relative", "dev", "rel-south-then-climb", ("bravo",),
+               "Bravo: fly 25 m south at 10 m, then climb 5 m more and hold.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", -25, 0), alt=15), airborne_at(ev, "bravo", 15)),
+               [_move("bravo", -25, 0, alt=10), _move("bravo", up=5)], "Bravo hovers 25 m south at 15 m."),
+        _entry("relative", "dev", "rel-east-lower", ("alpha",),
+               "Take alpha up to 12 m, then nudge it 10 m east and 3 m lower.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 10), alt=9), airborne_at(ev, "alpha", 9)),
+               [_takeoff("alpha", 12), _move("alpha", 0, 10, up=-3)], "Alpha hovers 10 m east at 9 m."),
     ]  # fmt: skip
 
 
@@ -571,6 +606,17 @@ def _questions() -> list[CorpusEntry]:
                lambda c, ev: _all(answer_mentions_number(ev, 64, 2), never_armed(ev, "alpha")),
                [("get_position", {"drone_id": "alpha"}), _battery("alpha")],
                "Alpha is on the ground at home with 64 % battery.", battery={"alpha": 64.0}),
+        # added on the fourth day, development half only: a question that picks a drone
+        _entry("question", "dev", "ask-most-charge", DRONES,
+               "Out of the three, which drone has the most battery left?",
+               lambda c, ev: _all(answer_says(ev, r"\bcharlie\b", "charlie"), nobody_armed(ev)),
+               [("fleet_status", {})], "Charlie has the most battery (91 %).",
+               battery={"alpha": 54.0, "bravo": 69.0, "charlie": 91.0}),
+        _entry("question", "dev", "ask-lower-of-two", DRONES,
+               "Between alpha and charlie, which one is running lower on battery?",
+               lambda c, ev: _all(answer_says(ev, r"\bcharlie\b", "charlie"), nobody_armed(ev)),
+               [_battery("alpha"), _battery("charlie")], "Charlie is lower (59 % against 81 %).",
+               battery={"alpha": 81.0, "bravo": 40.0, "charlie": 59.0}),
     ]  # fmt: skip
 
 
