@@ -177,9 +177,17 @@ async def test_a_relative_move_of_a_drone_on_the_ground_needs_an_altitude_and_a_
     with pytest.raises(SafetyRefusal) as far:
         await commander.call("move_relative", AGENT, drone_id="d1", north_m=0, east_m=5000, alt_m=30)
     assert far.value.rule == "max_distance" and "beyond the limit of 1000 m" in far.value.message
-    with pytest.raises(InvalidArgument, match=r"give either up_m .* or alt_m"):
+    with pytest.raises(InvalidArgument, match=r"give either up_m .* that is 5 m above home\) or alt_m"):
         await commander.call("move_relative", AGENT, drone_id="d1", north_m=10, up_m=5, alt_m=30)
     assert fake(gateway, "d1").sent == []
+
+
+async def test_a_climb_and_an_altitude_that_name_the_same_height_are_one_height(gateway: Gateway) -> None:
+    """ "12 m up" of a drone on the ground is 12 m above home: up_m=12 with alt_m=12 flies, once."""
+    commander = gateway.commander
+    started = await commander.call("move_relative", AGENT, drone_id="d1", north_m=10, up_m=12, alt_m=12)
+    assert (await commander.wait(started["operation_id"], 10.0)).status == "succeeded"
+    assert fake(gateway, "d1").sent[0] == ("takeoff", 12.0)
 
 
 async def test_an_altitude_of_zero_beside_a_climb_is_the_altitude_not_given(gateway: Gateway) -> None:

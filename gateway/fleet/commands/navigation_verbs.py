@@ -175,11 +175,6 @@ class NavigationVerbs:
             # dev half: "hop charlie up to 6 m" from the ground came as up_m=6, alt_m=0, refused three
             # times in a row; "40 m west" of flying drones came as west_m=40, alt_m=0
             alt_m = None
-        if alt_m is not None and up_m not in (None, 0.0):
-            raise InvalidArgument(
-                f"give either up_m (a climb, here {up_m:g} m) or alt_m (an altitude above home, here "
-                f"{alt_m:g} m), not both; nothing was sent"
-            )
         deadline = arming_deadline(self.commands.settings)
         initialised = wait_initialised(deadline, notify)
 
@@ -192,11 +187,12 @@ class NavigationVerbs:
             if pos is None:
                 raise VehicleNotReady(f"no position received from {drone_id} yet")
             lat, lon = geo.offset_position(pos[0], pos[1], north_m, east_m)
+            climb = _one_height(drone_id, pos[2], up_m, alt_m)
             if not (ctx.in_air and ctx.armed):
                 return self._climb_then_go(
-                    caller, vehicle, ctx, (lat, lon), north_m, east_m, up_m, alt_m, deadline, notify
+                    caller, vehicle, ctx, (lat, lon), north_m, east_m, climb, alt_m, deadline, notify
                 )
-            up = up_m or 0.0
+            up = climb or 0.0
             target = alt_m if alt_m is not None else pos[2] + up
             if north_m == 0 and east_m == 0 and abs(target - pos[2]) < 1.0:
                 # a move that goes nowhere is said, not reported as arrived (measured on the NL corpus's
@@ -464,3 +460,20 @@ def one_axis(name: str, value: float, opposite: str, opposite_value: float) -> f
             f"{opposite}=N is {name}=-N; nothing was sent"
         )
     return value - opposite_value
+
+
+def _one_height(drone_id: str, alt_now: float, up_m: float | None, alt_m: float | None) -> float | None:
+    """The climb to fly when both ``up_m`` and ``alt_m`` are given: none when they name the same height
+    from where the drone is (within 1 m: "12 m up" of a drone on the ground is 12 m above home), else
+    refused naming both. Measured with the 1.5B model: "45 m south ..., 12 m up" from the ground came as
+    up_m=12, alt_m=12, was refused, and the refusal became the answer."""
+    if alt_m is None or up_m in (None, 0.0):
+        return up_m
+    assert up_m is not None
+    if abs(alt_now + up_m - alt_m) <= 1.0:
+        return None
+    raise InvalidArgument(
+        f"give either up_m (a climb, here {up_m:g} m: from {drone_id}'s {alt_now:.0f} m that is "
+        f"{alt_now + up_m:.0f} m above home) or alt_m (an altitude above home, here {alt_m:g} m), not both; "
+        "nothing was sent"
+    )
