@@ -6,7 +6,7 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
-from gateway.agent import wording
+from gateway.agent import readings, wording
 from gateway.agent.claims import Claim
 from gateway.agent.turns import ToolCallRecord, TurnMemory, TurnResult
 
@@ -64,3 +64,16 @@ def written_blind(memory: TurnMemory, reads: Sequence[ToolCallRecord], text: str
         return None
     memory.held.add("blind")
     return wording.written_blind(reads)
+
+
+def pick_unsaid(memory: TurnMemory, result: TurnResult, fleet_ids: Sequence[str], text: str) -> str | None:
+    """An answer to a question that picks a drone ("which has the most battery?") that does not name the
+    drone the readings pick is sent back once with the readings (readings.pick_unsaid); a model that
+    answers the same again is believed, and the host adds the pick (wording.with_pick)."""
+    if "pick" in memory.held:
+        return None
+    pick = readings.pick_unsaid(memory.request, result.tool_calls, fleet_ids, text)
+    if pick is None:
+        return None
+    memory.held.add("pick")
+    return wording.pick_unsaid(pick)

@@ -26,7 +26,7 @@ from typing import Any
 
 import openai
 
-from gateway.agent import checks, claims, held_answers, planning, wording
+from gateway.agent import checks, claims, held_answers, planning, readings, wording
 from gateway.agent.answer import ANSWER_TOOL, ANSWER_TOOL_INFO, answer_text, bare_answer, finish_hint
 from gateway.agent.chat import (
     ChatModel,
@@ -215,6 +215,7 @@ class AgentHost:
                         or held_answers.claims_unbacked(
                             self._memory, self._unbacked(result, said), set(self.tools)
                         )
+                        or held_answers.pick_unsaid(self._memory, result, self._fleet_ids(), said)
                     )
                 ):
                     self.messages.append({"role": "assistant", "content": content or ""})
@@ -223,7 +224,7 @@ class AgentHost:
                     continue
                 if said and not echo and not self._truncated:
                     result.outcome = "answered"
-                    believed = wording.with_unbacked(content or "", self._unbacked(result, said))
+                    believed = self._believed(result, content or "")
                     result.final_text = wording.with_refusals(believed, result)
                     self.messages.append({"role": "assistant", "content": content or ""})
                     self._emit("final", step=result.steps, text=result.final_text)
@@ -624,7 +625,7 @@ class AgentHost:
                 result.empty_replies += 1
                 result.empty_streak += 1
         else:
-            answer = wording.with_unbacked(text, self._unbacked(result, text))
+            answer = self._believed(result, text)
             reply = "Delivered to the user."
         gave_up = answer is None and result.empty_streak > MAX_EMPTY_REPROMPTS
         self.messages.append({"role": "tool", "tool_call_id": call["id"], "content": self._note(reply)})
@@ -639,6 +640,16 @@ class AgentHost:
             text=reply,
         )
         return answer, gave_up
+
+    def _believed(self, result: TurnResult, text: str) -> str:
+        """An answer taken after the host sent it back once, with the host's marked lines on what it gets
+        wrong: drones it says acted that no call moved, a drone it picks that the readings do not."""
+        pick = readings.pick_unsaid(self._memory.request, result.tool_calls, self._fleet_ids(), text)
+        return wording.with_pick(wording.with_unbacked(text, self._unbacked(result, text)), pick)
+
+    def _fleet_ids(self) -> list[str]:
+        roster = self.fleet.roster if self.fleet.enabled else None
+        return list(roster.ids) if roster is not None else []
 
     def _unbacked(self, result: TurnResult, text: str) -> list[Claim]:
         """The drones the answer says acted that no call of this turn acted on (claims.py), by the roster
@@ -682,6 +693,8 @@ class AgentHost:
             )
         ):
             return claimed
+        if not empty and (picked := held_answers.pick_unsaid(self._memory, result, self._fleet_ids(), text)):
+            return picked
         if "untouched" in held:
             return None
         if self.fleet.enabled:

@@ -34,6 +34,17 @@ VERSUS_RE = re.compile(
     re.IGNORECASE,
 )
 _FEWER_RE = re.compile(r"^(?:less|least|lower|lowest|weaker|weakest)$", re.IGNORECASE)
+_RELATION = (
+    r"(more|most|higher|highest|fuller|fullest|better|best|stronger|strongest|"
+    r"less|least|lower|lowest|weaker|weakest)"
+)
+# "which drone has the most battery left?", "between alpha and charlie, which one is running lower on
+# battery?", "which drone's charge is the lowest?": a question that picks a drone by its battery
+ASKED_PICK_RE = re.compile(
+    rf"\bwhich\b[^?.]*?(?:\b{_RELATION}\b[^?.]*?\b(?:battery|charge|charged)\b|"
+    rf"\b(?:battery|charge)\b[^?.]*?\b{_RELATION}\b)",
+    re.IGNORECASE,
+)
 
 
 def holds(relation: str, reading: float, threshold: float) -> bool:
@@ -75,6 +86,36 @@ def pick(
     if unread or not candidates:
         return None, unread
     return (min if fewer(relation) else max)(candidates, key=lambda d: readings[d]), []
+
+
+def asked_pick(request: str, fleet_ids: Sequence[str]) -> tuple[str, list[str]] | None:
+    """The relation and the candidates of a question that picks a drone by its battery ("which has the
+    least charge?"): the drones the request names when it names two or more, else the whole fleet."""
+    m = ASKED_PICK_RE.search(request)
+    if m is None:
+        return None
+    named = [d for d in fleet_ids if re.search(rf"\b{re.escape(d)}\b", request, re.IGNORECASE)]
+    return (m.group(1) or m.group(2)), (named if len(named) >= 2 else list(fleet_ids))
+
+
+def pick_unsaid(
+    request: str, calls: Sequence[ToolCallRecord], fleet_ids: Sequence[str], answer: str
+) -> str | None:
+    """For a question that picks a drone, the host's line on the pick when the answer does not name the
+    drone this turn's readings pick (None when it does, or when not every candidate was read). Measured on
+    the corpus's dev half with the 1.5B model: the three batteries read (54, 69, 91 %), "which drone has the
+    most battery left?" was answered "alpha has the most battery left with 54%"."""
+    asked = asked_pick(request, fleet_ids)
+    if asked is None:
+        return None
+    relation, candidates = asked
+    found = battery_readings(calls, fleet_ids)
+    chosen, _unread = pick(relation, candidates, found)
+    if chosen is None or re.search(rf"\b{re.escape(chosen)}\b", answer, re.IGNORECASE):
+        return None
+    which = "least" if fewer(relation) else "most"
+    read = ", ".join(f"{d} {found[d]:g} %" for d in candidates)
+    return f"{chosen} has the {which} battery ({read})"
 
 
 def fewer(relation: str) -> bool:

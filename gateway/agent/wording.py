@@ -245,6 +245,19 @@ def with_unbacked(answer: str, claims: list[Claim]) -> str:
     return f"{answer} (Host: no call in this turn acted on {who}" + (f"; now: {now}" if now else "") + ".)"
 
 
+def pick_unsaid(pick: str) -> str:
+    """An answer held back because it does not name the drone the readings pick."""
+    return (
+        f"Not sent to the user yet: by this turn's readings {pick}, and your answer does not name it. "
+        "Answer again in one sentence from the readings."
+    )
+
+
+def with_pick(answer: str, pick: str | None) -> str:
+    """The model's answer, believed after it was sent back once, followed by the host's marked pick."""
+    return answer if pick is None else f"{answer} (Host: by this turn's readings {pick}.)"
+
+
 def _reason(record: ToolCallRecord) -> str:
     """The first line of a call's error, without the "Error ...:" prefixes."""
     return re.sub(r"^(?:error[^:]*:\s*)+", "", first_line(record.text), flags=re.IGNORECASE)

@@ -416,3 +416,34 @@ async def test_an_answer_written_beside_the_reading_it_reports_is_sent_back_once
     again = scripted([states])
     _, result = await _run(toy, again, "how high is alpha?")
     assert result.final_text == "Alpha is 0 m up." and len(again.requests) == 1
+
+
+async def test_an_answer_that_picks_a_drone_the_readings_do_not_pick_is_sent_back(toy, scripted) -> None:
+    """Measured on the dev half (ask-most-charge): 54, 69 and 91 % read, "which drone has the most battery
+    left?" answered "alpha has the most battery left with 54%". Sent back once with the readings; the same
+    answer again is believed, with the host's pick added."""
+    toy.world.drones["alpha"].battery_pct, toy.world.drones["bravo"].battery_pct = 54.0, 91.0
+    wrong = "Alpha has the most battery left with 54%."
+    model = scripted(
+        [
+            call("get_battery", drone_id="alpha"),
+            call("get_battery", drone_id="bravo"),
+            call(ANSWER_TOOL, text=wrong),
+            call(ANSWER_TOOL, text="Bravo has the most battery left, 91 %."),
+        ]
+    )
+    _, result = await _run(toy, model, "Which drone has the most battery left?")
+    assert _last_tool_text(model.requests[3]).startswith(
+        "Not sent to the user yet: by this turn's readings bravo has the most battery "
+        "(alpha 54 %, bravo 91 %)"
+    )
+    assert result.final_text == "Bravo has the most battery left, 91 %."
+    reads = [call("get_battery", drone_id="alpha"), call("get_battery", drone_id="bravo")]
+    lower = scripted([*reads, call(ANSWER_TOOL, text=wrong)])
+    _, result = await _run(toy, lower, "Between alpha and bravo, which one is running lower on battery?")
+    assert result.final_text == wrong  # it names alpha, the lower one: nothing held, nothing added
+    again = scripted([*reads, call(ANSWER_TOOL, text=wrong), call(ANSWER_TOOL, text=wrong)])
+    _, result = await _run(toy, again, "Which drone has the most battery left?")
+    assert result.final_text == (
+        f"{wrong} (Host: by this turn's readings bravo has the most battery (alpha 54 %, bravo 91 %).)"
+    )

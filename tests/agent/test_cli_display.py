@@ -190,7 +190,7 @@ async def test_list_tools(toy) -> None:
     args = _parse(["--mcp-url", toy.url, "--token", TOKEN, "--list-tools", "--json"])
     assert await cli.run_async(args, console=console) == cli.EXIT_OK
     names = {json.loads(line)["name"] for line in buf.getvalue().splitlines()}
-    assert names == {"takeoff", "move_north", "land", "get_position", "list_drones"}
+    assert names == {"takeoff", "move_north", "land", "get_position", "get_battery", "list_drones"}
 
 
 @pytest.mark.parametrize(
@@ -266,7 +266,7 @@ async def test_small_profile_sends_its_tools_prompt_and_reply_cap(toy, scripted)
     # The toy server offers three of the small profile's tools; move_north and list_drones are not in it.
     # The host adds its own answer_user, how a small model ends its turn.
     names = [t["function"]["name"] for t in request["tools"]]
-    assert names == ["takeoff", "land", "get_position", "answer_user"]
+    assert names == ["takeoff", "land", "get_position", "get_battery", "answer_user"]
     assert request["messages"][0]["content"] == SMALL_MODEL_SYSTEM_PROMPT
     assert request["max_tokens"] == 50
 

@@ -70,6 +70,7 @@ async def test_structured_calls_run_and_results_reach_the_model(toy, scripted) -
         "move_north",
         "land",
         "get_position",
+        "get_battery",
         "list_drones",
     }
     assert first["messages"][0]["role"] == "system" and first["messages"][-1]["content"].endswith(
@@ -239,6 +240,7 @@ async def test_tool_selection_by_toolset_uses_meta(toy) -> None:
         "move_north": "navigation",
         "land": "flight",
         "get_position": "telemetry",
+        "get_battery": "telemetry",
         "list_drones": "fleet",
     }
     assert {t.name for t in select_tools(tools, toolsets=["flight"])} == {"takeoff", "land"}

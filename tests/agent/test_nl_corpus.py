@@ -73,7 +73,9 @@ def test_halves_are_disjoint_and_stratified_by_class() -> None:
     fourth_day = Counter({"question": 2, "compound": 2, "multi": 2, "relative": 2})
     for cls in CLASSES:
         assert per_test[cls] >= 2, cls
-        assert abs((per_dev[cls] - 2 - second_day[cls] - third_day[cls] - fourth_day[cls]) - per_test[cls]) <= 1, cls
+        assert (
+            abs((per_dev[cls] - 2 - second_day[cls] - third_day[cls] - fourth_day[cls]) - per_test[cls]) <= 1
+        ), cls
 
 
 def test_select_refuses_an_unknown_half() -> None:

@@ -31,6 +31,7 @@ class ToyDrone:
     alt_m: float = 0.0
     north_m: float = 0.0
     armed: bool = False
+    battery_pct: float = 90.0
 
 
 @dataclass
@@ -118,7 +119,13 @@ def build_toy_server(world: ToyWorld, url: str) -> MCPServer:
     def list_drones() -> dict[str, Any]:
         """All drones (the gateway's shape: drone_id, state, in_air, alt_m, battery_pct)."""
         rows = [
-            {"drone_id": i, "state": "ready", "in_air": d.alt_m > 0, "alt_m": d.alt_m, "battery_pct": 90.0}
+            {
+                "drone_id": i,
+                "state": "ready",
+                "in_air": d.alt_m > 0,
+                "alt_m": d.alt_m,
+                "battery_pct": d.battery_pct,
+            }
             for i, d in world.drones.items()
         ]
         return {"count": len(rows), "drones": rows}
@@ -128,6 +135,11 @@ def build_toy_server(world: ToyWorld, url: str) -> MCPServer:
         """Where a drone is, in metres north of home and above home."""
         d = drone(drone_id)
         return f"{drone_id}: {d.north_m:g} m north, {d.alt_m:g} m up, armed={d.armed}"
+
+    @mcp.tool(meta={"fleet-gateway/toolset": "telemetry"}, annotations=ToolAnnotations(readOnlyHint=True))
+    def get_battery(drone_id: str) -> str:
+        """A drone's battery, as the gateway words it."""
+        return f"{drone_id} battery {drone(drone_id).battery_pct:g}%, 11.8 V"
 
     return mcp
 

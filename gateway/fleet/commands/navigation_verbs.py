@@ -465,8 +465,8 @@ def one_axis(name: str, value: float, opposite: str, opposite_value: float) -> f
 def _one_height(drone_id: str, alt_now: float, up_m: float | None, alt_m: float | None) -> float | None:
     """The climb to fly when both ``up_m`` and ``alt_m`` are given: none when they name the same height
     from where the drone is (within 1 m: "12 m up" of a drone on the ground is 12 m above home), else
-    refused naming both. Measured with the 1.5B model: "45 m south ..., 12 m up" from the ground came as
-    up_m=12, alt_m=12, was refused, and the refusal became the answer."""
+    refused naming both. Measured with the 1.5B model on the dev half: "fly 25 m south at 10 m, then climb
+    5 m more" came as up_m=5, alt_m=15 at 10 m, was refused, and the refusal became the answer."""
     if alt_m is None or up_m in (None, 0.0):
         return up_m
     assert up_m is not None
