@@ -92,7 +92,10 @@ def plan_messages(fleet_ids: Sequence[str], request: str) -> list[Message]:
 
 
 # "bravo: launch to 14 m" in the words of the tools (dev half: the 1.5B model called a "launch" tool)
-_LAUNCH_RE = re.compile(r"(?<!to )(?<!the )(?<!your )\b(?:launch|lift)\b(?! (?:point|site|spot|pad))", re.I)
+# "charlie: hop to 6 m" too (dev half: "do a quick hop to 6 m" planned so, flown by a formation)
+_LAUNCH_RE = re.compile(
+    r"(?<!to )(?<!the )(?<!your )\b(?:launch|lift|hop)\b(?! (?:point|site|spot|pad))", re.I
+)
 
 
 # "charlie: take off to 20 m north at 12 m" is a move (which takes off first): said as one (dev half: the
@@ -113,8 +116,13 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
     lines: list[str] = []
     for line in (text or "").splitlines():
         m = _STEP_RE.match(line)
-        if m and not _NO_ACTION_RE.match(m.group(2).strip()):
-            lines.append(_in_tool_words(m.group(2).strip()))
+        if not m:
+            continue
+        step = m.group(2).strip()
+        if _NO_ACTION_RE.match(step):
+            step = _hover_from_the_ground(step, lines, fleet_ids) or ""
+        if step:
+            lines.append(_in_tool_words(step))
     foreign = {d for d in _EXAMPLE_FLEET.split(", ") if d not in fleet_ids}
     if any(re.search(rf"\b{d}\b", s, re.IGNORECASE) for s in lines for d in foreign):
         return []
@@ -130,9 +138,23 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
     return steps
 
 
+def _hover_from_the_ground(step: str, before: Sequence[str], fleet_ids: Sequence[str]) -> str | None:
+    """A step of hovering at a height ("alpha: hover at 15 m") for drones no step before names: a takeoff
+    to that height, since nothing put them in the air (dev half: "get alpha hovering at 15 m" was dropped
+    as no action, and alpha flew to another drone's 6 m)."""
+    heights = _METRES_RE.findall(step)
+    head = _HEAD_RE.match(step)
+    drones = _drones_in(step, fleet_ids)
+    if len(heights) != 1 or head is None or not drones:
+        return None
+    if any(d in _drones_in(earlier, fleet_ids) for earlier in before for d in drones):
+        return None
+    return f"{head.group(1)}: take off to {heights[0]} m"
+
+
 def steps_from_reply(text: str | None, fleet_ids: Sequence[str], request: str = "") -> list[str]:
     """The steps of a reply (split_steps) when they carry the request, else none."""
-    steps = home_for_landing(split_steps(text, fleet_ids, request), request)
+    steps = landing_for_home(home_for_landing(split_steps(text, fleet_ids, request), request), request)
     return steps if steps and carries_the_request(steps, request) else []
 
 
@@ -190,6 +212,21 @@ def home_for_landing(steps: Sequence[str], request: str) -> list[str]:
     return [_LAND_STEP_RE.sub("return home", s) if _LAND_STEP_RE.search(s) else s for s in steps]
 
 
+def landing_for_home(steps: Sequence[str], request: str) -> list[str]:
+    """The steps with a way home the request does not ask for read as the landing it speaks of: dev half,
+    "do a quick hop to 6 m and come straight back down" planned as "charlie: return home", so the plan was
+    dropped for a flight home nobody asked for."""
+    if _HOME_RE.search(request) or not _LANDING_RE.search(request):
+        return list(steps)
+    read: list[str] = []
+    for step in steps:
+        landing = _RETURN_HOME_RE.sub(r"\1land", step)
+        if landing == step or landing not in read:  # a drone landed by a step already lands once
+            read.append(landing)
+    return read
+
+
+_RETURN_HOME_RE = re.compile(r"^([^:]*:\s*)(?:return|go|fly|come)(?: back)? home\s*\.?$", re.IGNORECASE)
 _LAND_ONLY_RE = re.compile(r"^[^:]*:\s*land\b(?:\s+(?:it|there|here|now))?\s*\.?$", re.IGNORECASE)
 
 

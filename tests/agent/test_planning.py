@@ -261,11 +261,12 @@ def test_steps_that_drop_or_add_part_of_the_request_are_no_plan() -> None:
     south = "All three in a row, 12 m between each, at 20 m, 25 m south of where they are."
     assert not carries_the_request([f"{d}: fly 12 m south" for d in FLEET], south)
     # such steps are not used; a landing the request does not speak of is read as it meant first
-    # (home_for_landing): the way home for "bring it home", else left out
+    # (home_for_landing): the way home for "bring it home", else left out; and a way home it does not ask
+    # for is the landing it speaks of (landing_for_home)
     keep_reply = (
         "1. alpha: take off to 16 m\n2. bravo: take off to 16 m\n3. alpha: land\n4. alpha: return home"
     )
-    assert steps_from_reply(keep_reply, FLEET, keep) == []
+    assert steps_from_reply(keep_reply, FLEET, keep) == [*ups, "alpha: land"]  # landed once, not sent home
     reply = "1. alpha: take off\n2. alpha: climb to 30 m\n3. alpha: land"
     assert steps_from_reply(reply, FLEET, hover) == ["alpha: take off", "alpha: climb to 30 m"]
     reply = "\n".join(f"{i}. {step}" for i, step in enumerate([*legs, "charlie: land"], 1))
@@ -452,6 +453,28 @@ def test_a_launch_step_is_written_in_the_words_of_the_tools() -> None:
         "the one with more battery: take off to 14 m",
         "bravo: return to launch",
     ]
+
+
+def test_a_hop_and_a_hover_from_the_ground_are_takeoffs_and_coming_down_is_a_landing() -> None:
+    """Dev half (multi-hop-and-hover): the plan "charlie: hop to 6 m, charlie: return home, alpha: hover at
+    15 m" lost alpha's step as no action and was dropped for a flight home nobody asked for; a formation
+    then flew both drones to 6 m."""
+    request = (
+        "Have charlie do a quick hop to 6 m and come straight back down, and get alpha hovering at 15 m."
+    )
+    reply = "1. charlie: hop to 6 m\n2. charlie: return home\n3. alpha: hover at 15 m"
+    assert steps_from_reply(reply, FLEET, request) == [
+        "charlie: take off to 6 m",
+        "charlie: land",
+        "alpha: take off to 15 m",
+    ]
+    # hovering after a step that put the drone up is still no step, and a request for home keeps its way home
+    up = "1. bravo: take off to 18 m\n2. bravo: hover at 18 m\n3. bravo: fly 10 m north"
+    assert split_steps(up, FLEET, "x") == ["bravo: take off to 18 m", "bravo: fly 10 m north"]
+    home = "Take bravo up to 10 m, then bring it back home and land"
+    assert steps_from_reply("1. bravo: take off to 10 m\n2. bravo: return home", FLEET, home)[-1] == (
+        "bravo: return home"
+    )
 
 
 def test_a_landing_planned_for_bring_it_home_is_the_way_home() -> None:
