@@ -154,8 +154,14 @@ def _hover_from_the_ground(step: str, before: Sequence[str], fleet_ids: Sequence
 
 def steps_from_reply(text: str | None, fleet_ids: Sequence[str], request: str = "") -> list[str]:
     """The steps of a reply (split_steps) when they carry the request, else none."""
-    steps = landing_for_home(home_for_landing(split_steps(text, fleet_ids, request), request), request)
+    steps = steps_as_meant(text, fleet_ids, request)
     return steps if steps and carries_the_request(steps, request) else []
+
+
+def steps_as_meant(text: str | None, fleet_ids: Sequence[str], request: str) -> list[str]:
+    """The steps of a reply (split_steps), a landing or a way home the request does not speak of read as
+    it meant (home_for_landing, landing_for_home)."""
+    return landing_for_home(home_for_landing(split_steps(text, fleet_ids, request), request), request)
 
 
 _DIRECTION_RE = re.compile(r"\b(north|south|east|west)\b", re.IGNORECASE)
@@ -556,7 +562,7 @@ async def plan_steps(chat: ChatModel, fleet_ids: Sequence[str], request: str, us
     with a gap (plan_gaps) are sent back once, naming it; steps with a gap again are no plan."""
     messages = plan_messages(fleet_ids, request)
     reply = await chat.ask(messages, [], {}, usage)
-    steps = home_for_landing(split_steps(reply.content, fleet_ids, request), request)
+    steps = steps_as_meant(reply.content, fleet_ids, request)
     gaps = plan_gaps(steps, request) if steps else []
     if not gaps:
         return steps

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
-from typing import Any
+import asyncio
+from typing import Any, cast
 
 from bench.agent_harness.missions import MissionContext
 from bench.agent_harness.scripted import ScriptedModelServer, ScriptedReply, call, say
 from bench.nl_corpus import DRONES, corpus
+from gateway.agent.chat import ChatModel, ModelReply
 from gateway.agent.planning import (
     MAX_STEPS,
     PLAN_EXAMPLES,
@@ -17,10 +19,11 @@ from gateway.agent.planning import (
     gaps_note,
     home_for_landing,
     plan_messages,
+    plan_steps,
     split_steps,
     steps_from_reply,
 )
-from gateway.agent.turns import AgentEvent, ToolCallRecord
+from gateway.agent.turns import AgentEvent, ToolCallRecord, Usage
 from tests.agent.test_loop import run_on_toy
 from tests.agent.toy_mcp import ToyServer
 
@@ -468,6 +471,17 @@ def test_a_hop_and_a_hover_from_the_ground_are_takeoffs_and_coming_down_is_a_lan
         "charlie: land",
         "alpha: take off to 15 m",
     ]
+    asked: list[int] = []
+
+    class _Planner:
+        async def ask(self, messages: Any, specs: Any, parameters: Any, usage: Usage) -> ModelReply:
+            asked.append(len(messages))
+            return ModelReply(content=reply)
+
+    # the first reply is read so too, not sent back for its way home (as it was: "return home" was a gap)
+    planned = asyncio.run(plan_steps(cast(ChatModel, _Planner()), FLEET, request, Usage()))
+    assert planned == ["charlie: take off to 6 m", "charlie: land", "alpha: take off to 15 m"]
+    assert len(asked) == 1
     # hovering after a step that put the drone up is still no step, and a request for home keeps its way home
     up = "1. bravo: take off to 18 m\n2. bravo: hover at 18 m\n3. bravo: fly 10 m north"
     assert split_steps(up, FLEET, "x") == ["bravo: take off to 18 m", "bravo: fly 10 m north"]
