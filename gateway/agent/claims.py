@@ -48,13 +48,24 @@ _NEGATION = re.compile(
 )
 
 
+# "alpha is hovering at 15 m": a height the roster can check, for a drone that did act too
+_HEIGHT_CLAIM_RE = re.compile(
+    r"\b(?:flying|hover(?:s|ing)?|airborne|in the air|aloft|holding)\s+(?:at\s+)?(?:about\s+|around\s+)?"
+    r"(\d+(?:\.\d+)?)\s*(?:m|metres|meters)\b",
+    re.IGNORECASE,
+)
+HEIGHT_TOLERANCE_M = 3.0
+
+
 @dataclass(frozen=True)
 class Claim:
-    """A drone the answer says acted (or is in a state), with the words that say so and the drone now."""
+    """A drone the answer says acted (or is in a state), with the words that say so and the drone now;
+    ``acted``: a call did act on it this turn, but it is not where the answer says."""
 
     drone_id: str
     words: str
     now: DroneEntry | None
+    acted: bool = False
 
 
 def _sentences(text: str) -> list[str]:
@@ -87,9 +98,13 @@ def unbacked(
         action = _ACTION_WORDS.search(sentence)
         flying, ground = _FLYING_WORDS.search(sentence), _GROUND_WORDS.search(sentence)
         for drone in drones:
-            if drone in acted or drone in out:
+            if drone in out:
                 continue
             now = next((d for d in roster.drones if d.drone_id == drone), None)
+            if drone in acted:
+                if len(drones) == 1 and (wrong := _height_unbacked(sentence, drone, now)) is not None:
+                    out[drone] = wrong
+                continue
             if action is not None:
                 out[drone] = Claim(drone, action.group(0), now)
             elif flying is not None and now is not None and now.flying is False:
@@ -97,3 +112,16 @@ def unbacked(
             elif ground is not None and now is not None and now.flying:
                 out[drone] = Claim(drone, ground.group(0), now)
     return list(out.values())
+
+
+def _height_unbacked(sentence: str, drone: str, now: DroneEntry | None) -> Claim | None:
+    """A sentence about one drone that acted, saying it hovers at a height the roster does not show (more
+    than HEIGHT_TOLERANCE_M off, or on the ground). Measured on the dev half (multi-hop-and-hover): both
+    drones flown to 6 m by one formation, the answer said "alpha is hovering at 15 m"."""
+    m = _HEIGHT_CLAIM_RE.search(sentence)
+    if m is None or now is None or now.flying is None:
+        return None
+    said = float(m.group(1))
+    if now.flying and (now.alt_m is None or abs(now.alt_m - said) <= HEIGHT_TOLERANCE_M):
+        return None
+    return Claim(drone, m.group(0), now, acted=True)

@@ -687,6 +687,10 @@ class AgentHost:
             return nothing
         if not empty and (unsaid := held_answers.refusal_unsaid(result, self._memory, text)) is not None:
             return unsaid
+        if self.fleet.enabled and not empty:
+            # where the drones are is read now, not a step ago: the answer may share a reply with the call
+            # that flew them, and whether a drone still flies decides what is left (checks.untouched)
+            await self.fleet.refresh()
         if not empty and (
             claimed := held_answers.claims_unbacked(
                 self._memory, self._unbacked(result, text), set(self.tools)
@@ -697,8 +701,8 @@ class AgentHost:
             return picked
         if "untouched" in held:
             return None
-        if self.fleet.enabled:
-            await self.fleet.refresh()  # whether a drone still flies is read now, not a step ago
+        if self.fleet.enabled and empty:
+            await self.fleet.refresh()
         untouched = checks.untouched(
             result, self._memory.request, self.fleet.roster, self.tools, answering=True
         )

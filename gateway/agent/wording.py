@@ -224,7 +224,12 @@ def _next_tool(claim: Claim, offered: set[str]) -> str:
 def claims_unbacked(claims: list[Claim], offered: set[str]) -> str:
     """An answer held back because it says drones acted that no call of this turn moved."""
     said = "; ".join(
-        f"{c.drone_id} '{c.words}', but no call has done anything with {c.drone_id} in this turn"
+        f"{c.drone_id} '{c.words}', but "
+        + (
+            f"{c.drone_id} is not there"
+            if c.acted
+            else f"no call has done anything with {c.drone_id} in this turn"
+        )
         + (f" (now: {c.now.text()})" if c.now is not None else "")
         for c in claims
     )
@@ -241,8 +246,9 @@ def with_unbacked(answer: str, claims: list[Claim]) -> str:
     if not claims:
         return answer
     now = "; ".join(c.now.text() for c in claims if c.now is not None)
-    who = ", ".join(c.drone_id for c in claims)
-    return f"{answer} (Host: no call in this turn acted on {who}" + (f"; now: {now}" if now else "") + ".)"
+    idle = ", ".join(c.drone_id for c in claims if not c.acted)
+    said = f"no call in this turn acted on {idle}; " if idle else ""
+    return f"{answer} (Host: {said}now: {now}.)" if now else f"{answer} (Host: {said.rstrip('; ')}.)"
 
 
 def pick_unsaid(pick: str) -> str:

@@ -447,3 +447,21 @@ async def test_an_answer_that_picks_a_drone_the_readings_do_not_pick_is_sent_bac
     assert result.final_text == (
         f"{wrong} (Host: by this turn's readings bravo has the most battery (alpha 54 %, bravo 91 %).)"
     )
+
+
+async def test_an_answer_with_a_height_the_drone_is_not_at_is_sent_back(toy, scripted) -> None:
+    """Dev half (multi-hop-and-hover): the answer said a drone hovers at 15 m when it flew to 6 m."""
+    model = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=6),
+            call(ANSWER_TOOL, text="Alpha is hovering at 15 m."),
+            call("takeoff", drone_id="alpha", alt_m=15),
+            call(ANSWER_TOOL, text="Alpha is hovering at 15 m."),
+        ]
+    )
+    _, result = await _run(toy, model, "take alpha up to 15 m")
+    note = _last_tool_text(model.requests[2])
+    assert note.startswith(
+        "Not sent to the user yet: your answer says alpha 'hovering at 15 m', but alpha is not there"
+    ), note
+    assert result.final_text == "Alpha is hovering at 15 m." and toy.world.drones["alpha"].alt_m == 15.0

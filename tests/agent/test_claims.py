@@ -84,5 +84,20 @@ def test_each_drone_is_claimed_once_with_the_first_words() -> None:
     assert [(c.drone_id, c.words) for c in claims] == [("charlie", "took off")]
 
 
+def test_a_height_said_of_a_drone_that_acted_is_checked_against_the_roster() -> None:
+    """Dev half (multi-hop-and-hover): one formation flew both drones to 6 m, and the answer said "alpha is
+    hovering at 15 m". The roster has alpha flying at 15 m: 15 (or within 3 m) is backed; 6 m, or on the
+    ground, is not; a sentence naming two drones gives no one height to check."""
+    flown = _turn(
+        ("takeoff", {"drone_id": "alpha", "alt_m": 15}, "ok"), ("land", {"drone_id": "bravo"}, "ok")
+    )
+    assert _claimed("Alpha is hovering at 15 m.", "alpha to 15 m", flown) == []
+    assert _claimed("Alpha is hovering at about 13 metres.", "alpha to 15 m", flown) == []
+    wrong = unbacked("Alpha is hovering at 6 m.", "alpha to 6 m", flown, ROSTER, _acts)
+    assert [(c.drone_id, c.words, c.acted) for c in wrong] == [("alpha", "hovering at 6 m", True)]
+    assert _claimed("Bravo is flying at 10 m.", "bravo up and down", flown) == ["bravo"]  # bravo is down
+    assert _claimed("Alpha and bravo are flying at 6 m.", "both up", flown) == []
+
+
 def test_no_roster_no_claims() -> None:
     assert unbacked("Charlie took off.", "charlie up", _turn(), None, _acts) == []
