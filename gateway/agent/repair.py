@@ -153,6 +153,11 @@ def _moves(request: str) -> list[tuple[float, str, str, int]]:
     ]
 
 
+def request_distances(request: str) -> set[float]:
+    """The horizontal distances the request names ("50 m south": 50), whatever their direction."""
+    return {d for d, _, axis, _ in _moves(request) if axis != "up_m"}
+
+
 def _misplaced(
     arguments: Arguments, moves: list[tuple[float, str, str, int]], request: str, flown: Sequence[Arguments]
 ) -> tuple[str, float] | None:

@@ -3,7 +3,14 @@ real gateway is in test_gateway_e2e.py."""
 
 from __future__ import annotations
 
-from gateway.agent.intent import coordinates_as_metres, superseded, swapped_request_point, zero_zero_as_here
+from gateway.agent.intent import (
+    coordinates_as_metres,
+    metres_as_coordinates,
+    read_call,
+    superseded,
+    swapped_request_point,
+    zero_zero_as_here,
+)
 from gateway.agent.repair import altitude_not_a_climb
 from gateway.agent.roster import DroneEntry
 
@@ -59,6 +66,33 @@ def test_coordinates_given_as_metres_are_a_flight_to_that_point_at_the_altitude_
     # swapped, or a digit short: still that point
     swapped = {"drone_id": "bravo", "north_m": 149.16529, "east_m": -35.31819, "up_m": 0}
     assert coordinates_as_metres("move_to_relative", swapped, FAR, bravo) is not None
+
+
+async def test_metres_given_as_coordinates_are_a_relative_move() -> None:
+    """Dev half (compound-corner-home): "go 20 m east" came as go_to_location(lat 0, lon 20), refused by the
+    distance rule 5,476 km from home."""
+    corner = "Take charlie to 15 m, go 20 m east, then 20 m south, then bring it home."
+    args = {"drone_id": "charlie", "lat_deg": 0, "lon_deg": 20, "alt_m": 15}
+    reading = metres_as_coordinates("go_to_location", args, corner)
+    assert reading is not None and reading.name == "move_to_relative"
+    assert reading.arguments == {"drone_id": "charlie", "north_m": 0.0, "east_m": 20.0, "alt_m": 15}
+    assert reading.note.startswith(
+        "go_to_location(lat 0, lon 20) read as move_to_relative(north_m=0, east_m=20)"
+    )
+
+    async def nobody(_drone_id: object) -> None:
+        return None
+
+    # on the request's own axis, by the direction repair the relative move goes through
+    south = {"drone_id": "charlie", "lat_deg": 0, "lon_deg": 20, "alt_m": 15}
+    name, sent, _, notes = await read_call("go_to_location", south, "charlie: 20 m south at 15 m", [], nobody)
+    assert (name, sent["north_m"], sent["east_m"]) == ("move_to_relative", -20.0, 0.0), notes
+    # numbers that are not the request's metres, a point the request gives, and 0, 0 are left to the others
+    assert metres_as_coordinates("go_to_location", {**args, "lon_deg": 35}, corner) is None
+    assert (
+        metres_as_coordinates("go_to_location", {**args, "lat_deg": -35.318194, "lon_deg": 20}, FAR) is None
+    )
+    assert metres_as_coordinates("go_to_location", {**args, "lon_deg": 0}, corner) is None
 
 
 def test_ordinary_metres_are_not_read_as_coordinates() -> None:
