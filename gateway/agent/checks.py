@@ -200,6 +200,22 @@ def same_invalid_again(
     return len(same) >= 2
 
 
+MAX_SAME_REPEATS = 5
+
+
+def stuck_on_a_repeat(turn: TurnResult) -> bool:
+    """The same call, already done, came back MAX_SAME_REPEATS times in this turn, the last call among
+    them: the model is told at the third that it will not be sent, and a model that still sends it will not
+    get out (measured on the corpus's dev half, cond-fuller-north: a takeoff sent back 19 times, to the
+    step limit, about 500 s)."""
+    sent = [c for c in turn.tool_calls if c.status not in ("skipped", "left_out")]
+    if not sent or sent[-1].status != "repeat":
+        return False
+    last = sent[-1]
+    same = [c for c in sent if c.status == "repeat" and c.name == last.name and c.arguments == last.arguments]
+    return len(same) >= MAX_SAME_REPEATS
+
+
 def _refusal_reason(text: str) -> str | None:
     """A rule's refusal without the host's note after it ("Refused: max_altitude: target altitude 150 m
     ..."), or None for any other text."""

@@ -321,6 +321,13 @@ class AgentHost:
                 # the results (dev half: a battery read sent again 19 times, to the step limit)
                 self._end_without_answer(result)
                 break
+            if checks.stuck_on_a_repeat(result):
+                self._emit(
+                    "step_limit",
+                    max_steps=self.max_steps,
+                    message=f"stopped: the same call came back {checks.MAX_SAME_REPEATS} times, already done",
+                )
+                break
             if (
                 plan is not None
                 and not pending

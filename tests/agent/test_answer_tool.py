@@ -465,3 +465,19 @@ async def test_an_answer_with_a_height_the_drone_is_not_at_is_sent_back(toy, scr
         "Not sent to the user yet: your answer says alpha 'hovering at 15 m', but alpha is not there"
     ), note
     assert result.final_text == "Alpha is hovering at 15 m." and toy.world.drones["alpha"].alt_m == 15.0
+
+
+async def test_a_turn_stuck_sending_a_finished_call_again_stops_and_the_host_answers(toy, scripted) -> None:
+    """Dev half (cond-fuller-north): a takeoff already done sent back 19 times, to the step limit. The
+    fifth time it comes back the turn ends, with the host's answer from the results."""
+    model = scripted([call("takeoff", drone_id="alpha", alt_m=10)], repeat_last=True)
+    events: list[AgentEvent] = []
+    _, result = await run_on_toy(
+        toy, model, "alpha up to 10 m and then 20 m north", max_steps=20, events=events
+    )
+    assert [c.status for c in result.tool_calls] == ["ok"] + ["repeat"] * 5
+    assert result.outcome == "step_limit" and result.answered_by == "host"
+    assert "the same call came back 5 times" in next(
+        e.data["message"] for e in events if e.kind == "step_limit"
+    )
+    assert len(model.requests) == 6  # not 20
