@@ -33,6 +33,11 @@ _FLYING_WORDS = re.compile(
     r"\b(?:flying|hover(?:s|ing)?|airborne|in the air|aloft|holding at)\b", re.IGNORECASE
 )
 _GROUND_WORDS = re.compile(r"\b(?:landed|on the ground|grounded|parked)\b", re.IGNORECASE)
+# a drone that did act said to be down again ("came straight back down"), checked against the roster
+_DOWN_AGAIN_WORDS = re.compile(
+    r"\b(?:landed|on the ground|grounded|touched down|(?:came|come|coming|went|back) (?:\w+ )?down)\b",
+    re.IGNORECASE,
+)
 # Words that turn a sentence into a report of what was not done (a refusal among them), or a guess.
 # Words that report a refusal: a sentence with one claims nothing, and an answer with one tells the user
 # of a refusal (wording.says_refused)
@@ -116,10 +121,16 @@ def unbacked(
 
 def _height_unbacked(sentence: str, drone: str, now: DroneEntry | None) -> Claim | None:
     """A sentence about one drone that acted, saying it hovers at a height the roster does not show (more
-    than HEIGHT_TOLERANCE_M off, or on the ground). Measured on the dev half (multi-hop-and-hover): both
-    drones flown to 6 m by one formation, the answer said "alpha is hovering at 15 m"."""
+    than HEIGHT_TOLERANCE_M off, or on the ground), or that it is down again while it flies. Measured on
+    the dev half (multi-hop-and-hover): both drones flown to 6 m by one formation, the answer said "charlie
+    has done a quick hop to 6 m and come straight back down, and alpha is hovering at 15 m"."""
+    if now is None or now.flying is None:
+        return None
+    down = _DOWN_AGAIN_WORDS.search(sentence)
+    if down is not None and now.flying:
+        return Claim(drone, down.group(0), now, acted=True)
     m = _HEIGHT_CLAIM_RE.search(sentence)
-    if m is None or now is None or now.flying is None:
+    if m is None:
         return None
     said = float(m.group(1))
     if now.flying and (now.alt_m is None or abs(now.alt_m - said) <= HEIGHT_TOLERANCE_M):

@@ -185,7 +185,22 @@ async def test_an_answer_that_leaves_a_drone_flying_the_request_lands_is_sent_ba
     )
     _, result = await _run(toy, model, "take off alpha to 10 m, then land it again")
     held = _last_tool_text(model.requests[2])
+    # said to have landed while it flies: the claim is sent back first (what is left would be next)
     assert held.startswith(
+        "Not sent to the user yet: your answer says alpha 'landed', but alpha is not there "
+        "(now: alpha flying at 10 m"
+    ), held
+    assert result.outcome == "answered" and not toy.world.drones["alpha"].armed
+    quiet = scripted(
+        [
+            call("takeoff", drone_id="alpha", alt_m=10),
+            call(ANSWER_TOOL, text="Alpha climbed to 10 m."),
+            call("land", drone_id="alpha"),
+            call(ANSWER_TOOL, text="Alpha climbed to 10 m and landed."),
+        ]
+    )
+    _, result = await _run(toy, quiet, "take off alpha to 10 m, then land it again")
+    assert _last_tool_text(quiet.requests[2]).startswith(
         "Not finished yet: The request asks to land or come home, and alpha is still flying. Call the tool "
         "for the next step; call answer_user when every part is done, or to say why it cannot be done."
     )

@@ -97,6 +97,12 @@ def test_a_height_said_of_a_drone_that_acted_is_checked_against_the_roster() -> 
     assert [(c.drone_id, c.words, c.acted) for c in wrong] == [("alpha", "hovering at 6 m", True)]
     assert _claimed("Bravo is flying at 10 m.", "bravo up and down", flown) == ["bravo"]  # bravo is down
     assert _claimed("Alpha and bravo are flying at 6 m.", "both up", flown) == []
+    # down again, said of a drone that flies (alpha), or of one that is down (bravo)
+    hop = unbacked(
+        "Alpha did a quick hop to 6 m and came straight back down.", "hop alpha", flown, ROSTER, _acts
+    )
+    assert [(c.drone_id, c.words) for c in hop] == [("alpha", "back down")]
+    assert _claimed("Bravo went up to 10 m and landed.", "bravo up and down", flown) == []
 
 
 def test_no_roster_no_claims() -> None:
