@@ -21,6 +21,7 @@ from gateway.agent.repair import (
     altitude_not_a_climb,
     altitude_written_as_distance,
     distance_written_as_altitude,
+    formation_offset_from_request,
     names_zero_zero,
     request_distances,
     request_points,
@@ -185,6 +186,8 @@ async def read_call(
     if reading is not None:
         name, args = reading.name, reading.arguments
         notes.append(reading.note)
+    if name == "formation_goto":
+        notes += formation_offset_from_request(args, request)
     if name in ("move_to_relative",):
         notes += distance_written_as_altitude(args, request)
         notes += altitude_written_as_distance(args, request)

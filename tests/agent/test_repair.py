@@ -10,6 +10,7 @@ from gateway.agent.repair import (
     direction_mismatch,
     distance_written_as_altitude,
     extras_of_a_drone_only_tool,
+    formation_offset_from_request,
     null_island,
     restore_request_directions,
     restore_request_numbers,
@@ -230,3 +231,21 @@ def test_a_height_written_as_a_leg_is_the_altitude_when_the_request_names_no_dir
     assert altitude_written_as_distance({"north_m": 10}, "alpha to 10 m, then 10 m north") == []
     assert altitude_written_as_distance({"north_m": 12}, request) == []
     assert altitude_written_as_distance({"north_m": 10, "up_m": 5}, request) == []
+
+
+def test_a_formation_formed_in_place_gets_the_requests_compass_distances() -> None:
+    """Dev half (form-line-south): "25 m south of where they are" came as north_m=0, formed in place."""
+    south = "All three in a row, 12 m between each, at 20 m, 25 m south of where they are."
+    args = {"drone_ids": ["alpha", "bravo", "charlie"], "formation": "line", "spacing_m": 12, "north_m": 0}
+    assert formation_offset_from_request(args, south) == [
+        "north_m=-25 from the request's '25 m south' (from where the drones are)"
+    ]
+    assert args["north_m"] == -25
+    both = {"drone_ids": ["alpha", "bravo"], "formation": "line"}
+    assert len(formation_offset_from_request(both, "a line 30 m north and 10 m west of here")) == 2
+    assert (both["north_m"], both["east_m"]) == (30, -10)
+    # placed already, a centre given, no compass distance, or one axis named twice: left as it is
+    assert formation_offset_from_request({"north_m": 10}, south) == []
+    assert formation_offset_from_request({"center_lat_deg": -35.3, "center_lon_deg": 149.1}, south) == []
+    assert formation_offset_from_request({}, "a line 12 m apart at 20 m") == []
+    assert formation_offset_from_request({}, "30 m north, then 20 m south, in a line") == []
