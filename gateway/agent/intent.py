@@ -27,6 +27,7 @@ from gateway.agent.repair import (
     request_points,
     restore_request_directions,
     restore_request_numbers,
+    shifted_request_moves,
 )
 from gateway.agent.roster import DroneEntry, normalise_drone_ids
 from gateway.agent.toolbox import Arguments
@@ -189,6 +190,7 @@ async def read_call(
     if name == "formation_goto":
         notes += formation_offset_from_request(args, request)
     if name in ("move_to_relative",):
+        notes += shifted_request_moves(args, request)
         notes += distance_written_as_altitude(args, request)
         notes += altitude_written_as_distance(args, request)
         notes += restore_request_directions(args, request, moves_of(flown, args.get("drone_id")))

@@ -14,6 +14,7 @@ from gateway.agent.repair import (
     null_island,
     restore_request_directions,
     restore_request_numbers,
+    shifted_request_moves,
     swap_hint,
     unplaced_optional_point,
 )
@@ -249,3 +250,22 @@ def test_a_formation_formed_in_place_gets_the_requests_compass_distances() -> No
     assert formation_offset_from_request({"center_lat_deg": -35.3, "center_lon_deg": 149.1}, south) == []
     assert formation_offset_from_request({}, "a line 12 m apart at 20 m") == []
     assert formation_offset_from_request({}, "30 m north, then 20 m south, in a line") == []
+
+
+def test_the_requests_distances_shifted_one_slot_along_are_put_back() -> None:
+    """Dev half (rel-east-lower): "nudge it 10 m east and 3 m lower" as north_m=10, east_m=3, alt_m=-3."""
+    request = "Take alpha up to 12 m, then nudge it 10 m east and 3 m lower."
+    args = {"drone_id": "alpha", "north_m": 10, "east_m": 3, "alt_m": -3}
+    assert shifted_request_moves(args, request) == [
+        "north_m=10, east_m=3, alt_m=-3 read as east_m=10, up_m=-3 ('10 m east', '3 m lower' in the request)"
+    ]
+    assert args == {"drone_id": "alpha", "east_m": 10, "up_m": -3}
+    # right already, another number, one move only, or two moves of one size: left as it is
+    for kept, asked in (
+        ({"east_m": 10, "up_m": -3}, request),
+        ({"north_m": 10, "east_m": 4}, request),
+        ({"north_m": 10}, "fly alpha 10 m east"),
+        ({"north_m": 30, "east_m": -30}, "30 m east, then 30 m back west"),
+    ):
+        before = dict(kept)
+        assert shifted_request_moves(kept, asked) == [] and kept == before
