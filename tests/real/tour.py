@@ -183,12 +183,15 @@ async def boot(t: Tour) -> str:
         assert rows[-1] == ("ready", None, "ready", None), (d, rows)
         waits = {w for _s, w, _r, rw in rows for w in (w, rw) if w}
         assert all(w.startswith("waiting for ") for w in waits), (d, rows)
-    if p.boot_wait is not None:  # seen on a drone (all three may boot before the first look), at both doors
-        # not necessarily in one look: under load the wait can end between the MCP read and the REST read
-        # (seen in CI: ap2 "waiting for the position estimate" in list_drones, "ready" in REST)
-        listed = {w for rows in seen.values() for _s, w, _r, _rw in rows}
-        rest_said = {rw for rows in seen.values() for _s, _w, _r, rw in rows}
-        assert p.boot_wait in listed and p.boot_wait in rest_said, seen
+    if p.boot_wait is not None:
+        # the estimate wait, where a look caught it, is worded as the profile says at both doors. Whether
+        # a look catches it is timing: under load in CI the three autopilots had their estimate before the
+        # gateway's first look, or it ended between the MCP read and the REST read. That each door says
+        # it is shown deterministically on the simulator, whose estimate is held (test_readiness_http.py).
+        estimates = {
+            w for rows in seen.values() for _s, w, _r, rw in rows for w in (w, rw) if w and "estimate" in w
+        }
+        assert estimates <= {p.boot_wait}, seen
     return order[-1]
 
 
