@@ -215,7 +215,7 @@ class AgentHost:
                         or held_answers.claims_unbacked(
                             self._memory, self._unbacked(result, said), set(self.tools)
                         )
-                        or held_answers.pick_unsaid(self._memory, result, self._fleet_ids(), said)
+                        or held_answers.pick_unsaid(self._memory, result, self.fleet.ids, said)
                     )
                 ):
                     self.messages.append({"role": "assistant", "content": content or ""})
@@ -651,12 +651,8 @@ class AgentHost:
     def _believed(self, result: TurnResult, text: str) -> str:
         """An answer taken after the host sent it back once, with the host's marked lines on what it gets
         wrong: drones it says acted that no call moved, a drone it picks that the readings do not."""
-        pick = readings.pick_unsaid(self._memory.request, result.tool_calls, self._fleet_ids(), text)
+        pick = readings.pick_unsaid(self._memory.request, result.tool_calls, self.fleet.ids, text)
         return wording.with_pick(wording.with_unbacked(text, self._unbacked(result, text)), pick)
-
-    def _fleet_ids(self) -> list[str]:
-        roster = self.fleet.roster if self.fleet.enabled else None
-        return list(roster.ids) if roster is not None else []
 
     def _unbacked(self, result: TurnResult, text: str) -> list[Claim]:
         """The drones the answer says acted that no call of this turn acted on (claims.py), by the roster
@@ -694,7 +690,7 @@ class AgentHost:
             return nothing
         if not empty and (unsaid := held_answers.refusal_unsaid(result, self._memory, text)) is not None:
             return unsaid
-        if self.fleet.enabled and not empty:
+        if self.fleet.enabled:
             # where the drones are is read now, not a step ago: the answer may share a reply with the call
             # that flew them, and whether a drone still flies decides what is left (checks.untouched)
             await self.fleet.refresh()
@@ -704,12 +700,10 @@ class AgentHost:
             )
         ):
             return claimed
-        if not empty and (picked := held_answers.pick_unsaid(self._memory, result, self._fleet_ids(), text)):
+        if not empty and (picked := held_answers.pick_unsaid(self._memory, result, self.fleet.ids, text)):
             return picked
         if "untouched" in held:
             return None
-        if self.fleet.enabled and empty:
-            await self.fleet.refresh()
         untouched = checks.untouched(
             result, self._memory.request, self.fleet.roster, self.tools, answering=True
         )
