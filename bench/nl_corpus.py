@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 80 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 88 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -14,7 +14,7 @@ seeing a model's result on it (add a new entry instead and say so in docs/benchm
 The first 40 entries were written in full before any model ran on them (2026-11-27). Sixteen more, two
 per class and all in the ``dev`` half (marked "added later"), were written later the same day, again
 before any model ran on them, after the dev half had been tuned on until 17 of its 20 passed: a tuning
-set the host passes tells nothing more. The test half is unchanged. Eight more (marked "added on the second day"), again dev only and written before any model ran on them (2026-11-28), where the test half measured weakest: compound, multi, conditional, question. Eight more (marked "added on the third day"), dev only, written before any model ran on them (2026-11-28), in the kinds of request the test half still failed: a choice between drones by their batteries (the dev half had none), a flight out and back, a move with a height from the ground, one drone told to stay while others fly. Eight more (marked "added on the fourth day"), dev only, written before any model ran on them (2026-11-28): a question that picks a drone, out and back, one drone hopping while another flies, a height change after a leg.
+set the host passes tells nothing more. The test half is unchanged. Eight more (marked "added on the second day"), again dev only and written before any model ran on them (2026-11-28), where the test half measured weakest: compound, multi, conditional, question. Eight more (marked "added on the third day"), dev only, written before any model ran on them (2026-11-28), in the kinds of request the test half still failed: a choice between drones by their batteries (the dev half had none), a flight out and back, a move with a height from the ground, one drone told to stay while others fly. Eight more (marked "added on the fourth day"), dev only, written before any model ran on them (2026-11-28): a question that picks a drone, out and back, one drone hopping while another flies, a height change after a leg. Eight more (marked "added on the fifth day"), dev only, written before any model ran on them (2026-11-28, a new session): two drones with different orders, out and back by the same distance, a climb during a leg, a hop, a line placed off to one side.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -224,6 +224,11 @@ def _single() -> list[CorpusEntry]:
                "Put charlie in the air at 9 m, please.",
                lambda c, ev: airborne_at(ev, "charlie", 9),
                [_takeoff("charlie", 9)], "Charlie hovers at 9 m."),
+        # added on the fifth day, development half only
+        _entry("single", "dev", "single-up-and-straight-down", ("alpha",),
+               "Bring alpha up to 9 m and then land it right away.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 9), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 9), _land("alpha")], "Alpha went up to 9 m and landed."),
     ]  # fmt: skip
 
 
@@ -301,6 +306,21 @@ def _multi() -> list[CorpusEntry]:
                                   never_armed(ev, "charlie")),
                [_move("bravo", -30, 0, alt=12), _takeoff("alpha", 8), _land("alpha")],
                "Bravo hovers 30 m south at 12 m; alpha hopped to 8 m and landed."),
+        # added on the fifth day, development half only
+        _entry("multi", "dev", "multi-both-up-then-split", DRONES,
+               "Alpha and charlie up to 10 m. Once they're both up, land alpha and send charlie 20 m north.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 10), landed_disarmed(ev, "alpha"),
+                                  at(ev, "charlie", *c.point("charlie", 20, 0), alt=10), airborne_at(ev, "charlie", 10),
+                                  never_armed(ev, "bravo")),
+               [_takeoff("alpha", 10), _takeoff("charlie", 10), _land("alpha"), _move("charlie", 20, 0)],
+               "Alpha went up to 10 m and landed; charlie hovers 20 m north at 10 m."),
+        _entry("multi", "dev", "multi-rise-and-settle", DRONES,
+               "Bravo rises to 12 m and then settles back on the ground. Charlie goes 15 m east at 10 m and stays put.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 12), landed_disarmed(ev, "bravo"),
+                                  at(ev, "charlie", *c.point("charlie", 0, 15), alt=10), airborne_at(ev, "charlie", 10),
+                                  never_armed(ev, "alpha")),
+               [_takeoff("bravo", 12), _land("bravo"), _move("charlie", 0, 15, alt=10)],
+               "Bravo went up to 12 m and landed; charlie hovers 15 m east at 10 m."),
     ]  # fmt: skip
 
 
@@ -390,6 +410,19 @@ def _compound() -> list[CorpusEntry]:
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 10), _move("charlie", 0, 25), _move("charlie", 0, -25), _land("charlie")],
                "Charlie went 25 m east and back, and landed."),
+        # added on the fifth day, development half only
+        _entry("compound", "dev", "compound-north-same-back", ("alpha",),
+               "Alpha: 20 m north at 10 m, then the same 20 m back south, then land.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 20, 0)]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_move("alpha", 20, 0, alt=10), _move("alpha", -20, 0), _land("alpha")],
+               "Alpha went 20 m north and back, and landed."),
+        _entry("compound", "dev", "compound-west-back-east", ("charlie",),
+               "Take charlie up to 15 m, 40 m west, then back 40 m east, and set it down.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 15), visited(ev, "charlie", [c.point("charlie", 0, -40)]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 15), _move("charlie", 0, -40), _move("charlie", 0, 40), _land("charlie")],
+               "Charlie went 40 m west and back, and landed."),
     ]  # fmt: skip
 
 
@@ -503,6 +536,11 @@ def _formations() -> list[CorpusEntry]:
                "All three in a row, 12 m between each, at 20 m, 25 m south of where they are.",
                lambda c, ev: formation_at(c, ev, three, 20, 12, -25, 0),
                [_formation(three, "line", 20, 12, north=-25)], "The three hold a line 25 m south at 20 m."),
+        # added on the fifth day, development half only
+        _entry("formation", "dev", "form-line-east", three,
+               "Put alpha, bravo and charlie in a line 10 m apart at 12 m, 20 m east of where they are.",
+               lambda c, ev: formation_at(c, ev, three, 12, 10, 0, 20),
+               [_formation(three, "line", 12, 10, east=20)], "The three hold a line 20 m east at 12 m."),
     ]  # fmt: skip
 
 
@@ -560,6 +598,15 @@ def _relative() -> list[CorpusEntry]:
                "Take alpha up to 12 m, then nudge it 10 m east and 3 m lower.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 10), alt=9), airborne_at(ev, "alpha", 9)),
                [_takeoff("alpha", 12), _move("alpha", 0, 10, up=-3)], "Alpha hovers 10 m east at 9 m."),
+        # added on the fifth day, development half only
+        _entry("relative", "dev", "rel-west-and-up", ("bravo",),
+               "Raise bravo to 10 m, then move it 15 m west and 5 m up.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -15), alt=15), airborne_at(ev, "bravo", 15)),
+               [_takeoff("bravo", 10), _move("bravo", 0, -15, up=5)], "Bravo hovers 15 m west at 15 m."),
+        _entry("relative", "dev", "rel-north-climbing", ("charlie",),
+               "Charlie: up to 6 m first, then over 20 m north while climbing another 6 m.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 20, 0), alt=12), airborne_at(ev, "charlie", 12)),
+               [_takeoff("charlie", 6), _move("charlie", 20, 0, up=6)], "Charlie hovers 20 m north at 12 m."),
     ]  # fmt: skip
 
 

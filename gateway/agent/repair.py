@@ -146,11 +146,28 @@ _AXIS = {
 }
 
 
+# "climbing another 6 m", "climb 5 m", "drop a further 3 m": a distance up or down named by its verb
+_CLIMB_RE = re.compile(
+    r"\b(climb(?:s|ing)?|ris(?:e|es|ing)|ascend(?:s|ing)?|descend(?:s|ing)?|drop(?:s|ping)?|sink(?:s|ing)?)\s+"
+    r"(?:(?:another|a\s+further|an\s+extra)\s+)?(\d+(?:\.\d+)?)\s*(?:m|metres?|meters?)\b",
+    re.IGNORECASE,
+)
+
+
 def _moves(request: str) -> list[tuple[float, str, str, int]]:
-    """(distance, phrase, axis argument, sign) of each "50 m south" in the request."""
-    return [
-        (float(m.group(1)), m.group(0), *_AXIS[m.group(2).lower()]) for m in _MOVE_RE.finditer(request or "")
+    """(distance, phrase, axis argument, sign) of each "50 m south" or "climbing another 6 m" in the
+    request, in the request's order."""
+    found = [
+        (m.start(), (float(m.group(1)), m.group(0), *_AXIS[m.group(2).lower()]))
+        for m in _MOVE_RE.finditer(request or "")
     ]
+    taken = [m.span() for m in _MOVE_RE.finditer(request or "")]
+    for m in _CLIMB_RE.finditer(request or ""):
+        if any(start <= m.start(2) < end for start, end in taken):
+            continue  # "climb 10 m higher": the distance is already read with its direction
+        sign = 1 if m.group(1).lower().startswith(("climb", "ris", "ascend")) else -1
+        found.append((m.start(), (float(m.group(2)), m.group(0), "up_m", sign)))
+    return [move for _, move in sorted(found, key=lambda f: f[0])]
 
 
 def request_distances(request: str) -> set[float]:

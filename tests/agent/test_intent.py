@@ -145,3 +145,16 @@ def test_an_altitude_written_as_a_climb_is_no_climb_once_the_drone_is_there() ->
     climb = {"north_m": 0, "east_m": 30, "up_m": 10}
     assert altitude_not_a_climb(climb, "bravo to 10 m, then 30 m east and 10 m higher", alt_now=10.0) == []
     assert altitude_not_a_climb({"up_m": -15}, south, alt_now=None) == []
+
+
+def test_a_climb_named_by_its_verb_is_a_distance_up_not_the_altitude() -> None:
+    """Seen on a fifth-day dev request with the self-check's ideal plan: "up to 6 m first, then over 20 m
+    north while climbing another 6 m" had its up_m=6 zeroed as if 6 m were only the altitude."""
+    request = "Charlie: up to 6 m first, then over 20 m north while climbing another 6 m."
+    args = {"drone_id": "charlie", "north_m": 20, "east_m": 0, "up_m": 6}
+    assert altitude_not_a_climb(args, request, alt_now=5.8) == [] and args["up_m"] == 6
+    for said in ("climb 5 m", "then descend a further 3 m", "rising an extra 4 m"):
+        assert altitude_not_a_climb({"up_m": 5}, f"take it up to 5 m, {said}", alt_now=5.0) == [], said
+    # "climb to 6 m" names the altitude, not a distance up
+    to = {"north_m": 20, "east_m": 0, "up_m": 6}
+    assert altitude_not_a_climb(to, "climb to 6 m, then 20 m north", alt_now=5.9) != [] and to["up_m"] == 0
