@@ -20,6 +20,7 @@ and the user in wording.py.
 from __future__ import annotations
 
 import asyncio
+import json
 import time
 from collections.abc import Sequence
 from typing import Any
@@ -140,6 +141,7 @@ class AgentHost:
         result = TurnResult(outcome="step_limit", final_text=None, steps=0)
         content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
         self._turn_plan = None
+        self._plan_made: set[str] = set()  # the calls the host made for this turn's steps
         if self.plan_first and roster is not None:
             steps = await self._plan(roster.ids, user_text, result.usage)
             if steps:
@@ -186,10 +188,11 @@ class AgentHost:
     async def _loop(self, result: TurnResult) -> None:
         while result.steps < self.max_steps:
             result.steps += 1
-            if await self._plan_reads(result):
+            if await self._plan_calls(result):
                 plan = self._turn_plan
                 assert plan is not None
-                roster_now = self.fleet.roster if self.fleet.enabled else None
+                # read again: the host's calls moved drones, and the answer's checks read this roster
+                roster_now = await self.fleet.refresh() if self.fleet.enabled else None
                 prompt = plan.prompt(self._memory.request, result.tool_calls, roster_now)
                 self.messages[self._turn_start :] = [{"role": "user", "content": self._note(prompt)}]
             try:
@@ -347,25 +350,29 @@ class AgentHost:
                 message=f"stopped after {self.max_steps} model steps without a final answer",
             )
 
-    async def _plan_reads(self, result: TurnResult) -> bool:
-        """Make the readings the plan's next steps need (a battery, a position), as the model would have,
-        and say whether any ran. They change nothing and their arguments are fixed by the steps, so the
-        host makes them instead of asking for them (dev half: asked for "alpha: read battery", the 1.5B
-        model answered that alpha had the lowest battery without a read; "read_battery" was called,
-        which does not exist). A read that failed is not made again: the model is asked as before."""
+    async def _plan_calls(self, result: TurnResult) -> bool:
+        """Make the calls the plan's next steps are, as the model would have, and say whether any ran:
+        the readings a step needs, and a step whose words say its call exactly (step_calls.py). Their
+        arguments are fixed by the steps, so the host makes them instead of asking for them, through the
+        same checks as the model's calls (dev half: asked for "alpha: read battery", the 1.5B model
+        answered that alpha had the lowest battery without a read; "fly over 20 m north while climbing
+        another 6 m" was called with alt_m=6). A call that failed is not made again: the model is asked,
+        with the failure in what it reads."""
         plan, ran = self._turn_plan, False
         for _ in range(len(plan.steps) + len(self.fleet.ids) if plan is not None else 0):
             assert plan is not None
-            read = plan.read_due(result.tool_calls)
-            if read is None or any(c.name == read[0] and c.arguments == read[1] for c in result.tool_calls):
-                break  # nothing to read, or the read already failed: the model is asked
-            name, args = read
+            due = plan.call_due(result.tool_calls)
+            made = json.dumps(due, sort_keys=True)
+            if due is None or due[0] not in self.tools or made in self._plan_made:
+                break  # nothing the host can make (a tool not offered), or made already: the model is asked
+            self._plan_made.add(made)
+            name, args = due
             call: ModelCall = {
                 "id": f"call_plan_{len(result.tool_calls) + 1}",
                 "name": name,
                 "raw_args": args,
             }
-            self._emit("plan_read", step=result.steps, name=name, arguments=args)
+            self._emit("plan_call", step=result.steps, name=name, arguments=args)
             record = await self._execute(result.steps, call, False, result)
             result.tool_calls.append(record)
             ran = True

@@ -20,6 +20,7 @@ from gateway.agent.repair import (
     LAT_LON_PAIRS,
     altitude_not_a_climb,
     altitude_written_as_distance,
+    climb_written_as_altitude,
     distance_written_as_altitude,
     formation_offset_from_request,
     names_zero_zero,
@@ -194,9 +195,10 @@ async def read_call(
         notes += distance_written_as_altitude(args, request)
         notes += altitude_written_as_distance(args, request)
         notes += restore_request_directions(args, request, moves_of(flown, args.get("drone_id")))
-        if args.get("up_m"):  # the fleet is read only when there is a climb to judge
+        if args.get("up_m") or args.get("alt_m"):  # the fleet is read only when there is a height to judge
             drone = await fresh_entry(args.get("drone_id"))
             alt_now = drone.alt_m if drone is not None and drone.flying else None
+            notes += climb_written_as_altitude(args, request, alt_now)
             notes += altitude_not_a_climb(args, request, alt_now)
     return name, args, reading, notes
 

@@ -22,6 +22,7 @@ from gateway.agent import readings
 from gateway.agent.answer import ANSWER_TOOL
 from gateway.agent.chat import ChatModel, Message
 from gateway.agent.roster import Roster, drones_named
+from gateway.agent.step_calls import call_of_step
 from gateway.agent.turns import ToolCallRecord, Usage
 from gateway.agent.wording import already_so, first_line
 
@@ -359,7 +360,7 @@ Read = tuple[str, dict[str, object]]  # a read-only call: tool name, arguments
 @dataclass(frozen=True)
 class Where:
     """Where a turn is in its plan: whether only the answer is left, the note for the step whose turn it
-    is, and the read that step needs (the host makes it), if any."""
+    is, and the call the host makes for that step (a reading it needs, or the call its words say), if any."""
 
     finished: bool
     note: str
@@ -393,6 +394,12 @@ def _height_flown(step: str, last: ToolCallRecord, fleet_ids: Sequence[str]) -> 
 
 def _battery_read(drones: Sequence[str]) -> Read:
     return ("get_battery", {"drone_id": drones[0]}) if len(drones) == 1 else ("fleet_status", {})
+
+
+def _call_of(step: str, fleet_ids: Sequence[str]) -> Read | None:
+    """The call the host makes for a step: a reading it needs, or the one call its words say exactly
+    (step_calls.py); None when the model is to write it."""
+    return _read_of(step, fleet_ids) or call_of_step(step, fleet_ids)
 
 
 def _read_of(step: str, fleet_ids: Sequence[str]) -> Read | None:
@@ -443,8 +450,9 @@ class Plan:
         """Every step is done, or a condition did not hold: only the answer is left."""
         return self.where(calls).finished
 
-    def read_due(self, calls: Sequence[ToolCallRecord]) -> Read | None:
-        """The read-only call the step whose turn it is needs (a battery or position reading), or None."""
+    def call_due(self, calls: Sequence[ToolCallRecord]) -> Read | None:
+        """The call the host makes for the step whose turn it is (a reading it needs, or the call its words
+        say exactly), or None."""
         return self.where(calls).read
 
     def _read_first(self, i: int, step: str, unread: Sequence[str]) -> Where:
@@ -549,7 +557,7 @@ class Plan:
                 return Where(
                     False,
                     f"{where}: {step}. Reply with only the tool call for it.",
-                    _read_of(step, self.fleet_ids),
+                    _call_of(step, self.fleet_ids),
                     passed_over,
                 )
             used += 1

@@ -377,6 +377,26 @@ def altitude_not_a_climb(arguments: Arguments, request: str, alt_now: float | No
     return [f"up_m={up:g} read as up_m=0: the drone is already at the {abs(up):g} m the request asks for"]
 
 
+def climb_written_as_altitude(arguments: Arguments, request: str, alt_now: float | None) -> list[str]:
+    """Read, in place, an ``alt_m`` the size of the one climb (or descent) the request names as that climb
+    (``up_m``), for a drone in the air whose altitude it is not already the sum of. Measured on a fifth-day
+    dev request with the 1.5B model: "up to 6 m first, then over 20 m north while climbing another 6 m"
+    came as move_to_relative(north_m=20, alt_m=6) at 6 m, a leg with no climb. Returns a note."""
+    alt = _number(arguments.get("alt_m"))
+    if alt is None or alt <= 0 or _number(arguments.get("up_m")) or alt_now is None:
+        return []
+    climbs = [m for m in _moves(request) if m[2] == "up_m"]
+    if len(climbs) != 1 or climbs[0][0] != alt:
+        return []
+    distance, phrase, _, sign = climbs[0]
+    if abs(alt_now + sign * distance - alt) <= 3.0 or alt_now + sign * distance <= 0:
+        return []
+    del arguments["alt_m"]
+    arguments["up_m"] = sign * distance
+    at = f"the drone is at {alt_now:.0f} m"
+    return [f"alt_m={alt:g} read as up_m={sign * distance:g} ('{phrase}' in the request; {at})"]
+
+
 def direction_mismatch(arguments: Arguments, request: str, flown: Sequence[Arguments] = ()) -> str | None:
     """A refusal when a relative move puts a distance the request names on the wrong axis or with the
     wrong sign and the host could not repair it (`restore_request_directions`)."""

@@ -11,7 +11,7 @@ from gateway.agent.intent import (
     swapped_request_point,
     zero_zero_as_here,
 )
-from gateway.agent.repair import altitude_not_a_climb
+from gateway.agent.repair import altitude_not_a_climb, climb_written_as_altitude
 from gateway.agent.roster import DroneEntry
 
 UP_AND_NORTH = "Alpha: go up to 15 m, fly 60 metres north, and land there."
@@ -158,3 +158,21 @@ def test_a_climb_named_by_its_verb_is_a_distance_up_not_the_altitude() -> None:
     # "climb to 6 m" names the altitude, not a distance up
     to = {"north_m": 20, "east_m": 0, "up_m": 6}
     assert altitude_not_a_climb(to, "climb to 6 m, then 20 m north", alt_now=5.9) != [] and to["up_m"] == 0
+
+
+def test_an_altitude_the_size_of_the_requests_climb_is_that_climb() -> None:
+    """Measured on a fifth-day dev request with the 1.5B model: the climb came as alt_m=6 at 6 m."""
+    request = "Charlie: up to 6 m first, then over 20 m north while climbing another 6 m."
+    args = {"drone_id": "charlie", "north_m": 20, "alt_m": 6}
+    assert climb_written_as_altitude(args, request, alt_now=5.9) == [
+        "alt_m=6 read as up_m=6 ('climbing another 6 m' in the request; the drone is at 6 m)"
+    ]
+    assert args == {"drone_id": "charlie", "north_m": 20, "up_m": 6}
+    lower = {"north_m": 10, "alt_m": 3}
+    assert climb_written_as_altitude(lower, "at 12 m go 10 m north and 3 m lower", alt_now=12.0) != []
+    assert lower == {"north_m": 10, "up_m": -3}
+    # left alone: the sum already, on the ground, no climb named, or an up_m given
+    assert climb_written_as_altitude({"alt_m": 12}, request, alt_now=6.0) == []
+    assert climb_written_as_altitude({"alt_m": 6}, request, alt_now=None) == []
+    assert climb_written_as_altitude({"alt_m": 6}, "then 20 m north at 6 m", alt_now=6.0) == []
+    assert climb_written_as_altitude({"alt_m": 6, "up_m": 6}, request, alt_now=6.0) == []

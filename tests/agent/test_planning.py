@@ -129,42 +129,44 @@ def _plan_reply(body: dict[str, Any]) -> ScriptedReply:
 
 
 async def test_the_host_asks_for_the_steps_first_and_says_whose_turn_it_is(toy: ToyServer, scripted) -> None:
-    """On the toy server, with a real MCP client: the first request has no tools and the plan prompt; the
-    steps go under the request; after each call the turn is one user message again, with what ran and the
-    step whose turn it is."""
+    """On the toy server, with a real MCP client: the first request has no tools and the plan prompt; a
+    step whose words say its call is made by the host (the takeoff, the landing), a step whose call is not
+    offered (the toy server has no move_to_relative) is asked of the model as one user message, with what
+    ran and the step whose turn it is."""
     model: ScriptedModelServer = scripted(
         [
             _plan_reply,
-            call("takeoff", drone_id="alpha", alt_m=15),
             call("move_north", drone_id="alpha", distance_m=100),
-            call("land", drone_id="alpha"),
             say("alpha flew 100 m north and landed"),
         ]
     )
-    _, result = await run_on_toy(toy, model, "alpha up to 15 m, then 100 m north, then down", plan_first=True)
+    events: list[AgentEvent] = []
+    _, result = await run_on_toy(
+        toy, model, "alpha up to 15 m, then 100 m north, then down", plan_first=True, events=events
+    )
     assert result.outcome == "answered", result
     assert [c.name for c in result.tool_calls] == ["takeoff", "move_north", "land"]
+    assert [e.data["name"] for e in events if e.kind == "plan_call"] == ["takeoff", "land"]
     assert model.requests[0]["messages"][0]["content"] == PLAN_SYSTEM_PROMPT
-    first = model.requests[1]["messages"][-1]["content"]
-    assert "Steps:\n1. alpha: take off to 15 m\n2. alpha: fly 100 m north\n3. alpha: land" in first, first
-    second = model.requests[2]["messages"]
-    # the turn so far is one user message again (the conversation before the turn stays)
+    second = model.requests[1]["messages"]
+    # the turn so far is one user message (the conversation before the turn stays)
     assert [m["role"] for m in second] == ["system", "user"], second
     assert second[-1]["content"].startswith("Fleet now: ")
     assert (
-        "\nalpha up to 15 m, then 100 m north, then down\n\nSteps:\n1. alpha: take off"
-        in second[-1]["content"]
+        "\nalpha up to 15 m, then 100 m north, then down\n\nSteps:\n1. alpha: take off to 15 m\n"
+        "2. alpha: fly 100 m north\n3. alpha: land" in second[-1]["content"]
     )
     assert (
-        '\n\nDone so far:\n- {"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}} -> '
+        '\n\nDone so far:\n- {"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15.0}} -> '
         in (second[-1]["content"])
     )
     assert second[-1]["content"].endswith(
         "\n\nNow step 2 of 3: alpha: fly 100 m north. Reply with only the tool call for it."
     )
-    told = model.requests[4]["messages"][-1]["content"]
+    told = model.requests[2]["messages"][-1]["content"]
     assert told.endswith("Every step is done. Reply with the answer_user call saying what was done."), told
     assert toy.world.calls[1] == ("move_north", {"drone_id": "alpha", "distance_m": 100})
+    assert len(model.requests) == 3
 
 
 async def test_no_steps_no_plan(toy: ToyServer, scripted) -> None:
@@ -214,11 +216,9 @@ async def test_an_empty_reply_after_the_last_step_gets_the_hosts_answer_at_once(
 ) -> None:
     """Measured with the 1.5B model: told "every step is done", it replied with nothing, twice more when
     asked again; the host answers from the results after the first empty reply."""
-    model = scripted([_plan_reply, call("takeoff", drone_id="alpha", alt_m=15),
-                      call("move_north", drone_id="alpha", distance_m=100), call("land", drone_id="alpha"),
-                      say("")])  # fmt: skip
+    model = scripted([_plan_reply, call("move_north", drone_id="alpha", distance_m=100), say("")])
     _, result = await run_on_toy(toy, model, "alpha up to 15 m, then 100 m north, then down", plan_first=True)
-    assert len(model.requests) == 5 and result.answered_by == "host", result
+    assert len(model.requests) == 3 and result.answered_by == "host", result
     assert result.outcome == "answered" and result.final_text.startswith("(Answer from the host"), result
 
 
@@ -228,12 +228,10 @@ async def test_a_copy_of_a_done_line_is_not_sent_again_but_a_new_call_with_a_mad
     """Measured on the dev half (multi-west-and-land, form-pair-abreast): the 1.5B model copied the plan's
     "{call} -> result" lines back (read as calls, they flew finished steps again), and wrote a new call
     with a result it made up (that one is the step it means)."""
-    took_off = '{"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15}}'
+    took_off = '{"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 15.0}}'
     north = '{"name": "move_north", "arguments": {"drone_id": "alpha", "distance_m": 100}}'
-    model = scripted([_plan_reply, call("takeoff", drone_id="alpha", alt_m=15),
-                      say(f"{took_off} -> takeoff on alpha succeeded"),
-                      say(f"{north} -> move_north on alpha succeeded: arrived"),
-                      call("land", drone_id="alpha"), say("done")])  # fmt: skip
+    model = scripted([_plan_reply, say(f"{took_off} -> takeoff on alpha succeeded"),
+                      say(f"{north} -> move_north on alpha succeeded: arrived"), say("done")])  # fmt: skip
     events: list[AgentEvent] = []
     _, result = await run_on_toy(
         toy, model, "alpha up to 15 m, then 100 m north, then down", plan_first=True, events=events
@@ -241,7 +239,7 @@ async def test_a_copy_of_a_done_line_is_not_sent_again_but_a_new_call_with_a_mad
     assert [c.name for c in result.tool_calls] == ["takeoff", "move_north", "land"], result
     assert [e.data["name"] for e in events if e.kind == "copied_record"] == ["takeoff"]
     assert [c[0] for c in toy.world.calls] == ["takeoff", "move_north", "land"]
-    assert "Your reply only repeated my note." in model.requests[3]["messages"][-1]["content"]
+    assert "Your reply only repeated my note." in model.requests[2]["messages"][-1]["content"]
 
 
 def test_steps_that_drop_or_add_part_of_the_request_are_no_plan() -> None:
@@ -305,15 +303,14 @@ async def test_a_finished_call_sent_again_when_only_the_answer_is_left_gets_the_
     def steps(body: dict[str, Any]) -> ScriptedReply:
         return ScriptedReply(content="1. alpha: take off to 15 m\n2. alpha: land")
 
-    takeoff = call("takeoff", drone_id="alpha", alt_m=15)
-    model = scripted([steps, takeoff, call("land", drone_id="alpha"), call("land", drone_id="alpha")])
+    model = scripted([steps, call("land", drone_id="alpha")])
     _, result = await run_on_toy(toy, model, "alpha up to 15 m, then land", plan_first=True)
     assert [(c.name, c.status) for c in result.tool_calls] == [
         ("takeoff", "ok"),
         ("land", "ok"),
         ("land", "repeat"),
     ]
-    assert result.answered_by == "host" and result.outcome == "answered" and len(model.requests) == 4
+    assert result.answered_by == "host" and result.outcome == "answered" and len(model.requests) == 2
 
 
 def test_a_call_held_back_as_a_repeat_counts_for_the_step_whose_turn_it_is() -> None:
@@ -378,14 +375,16 @@ def test_a_step_for_the_drone_with_more_or_less_battery_is_read_from_the_reading
     unread = Plan(["the one with less battery: land"], FLEET, ["alpha", "charlie"])
     assert "Read the battery of alpha, charlie first" in unread.next_note([])
     # the reads a step needs are made by the host: one drone's battery, or the table for several
-    assert unread.read_due([]) == ("get_battery", {"drone_id": "alpha"})
-    assert plan.read_due([]) == ("get_battery", {"drone_id": "bravo"})
-    assert plan.read_due([bravo, charlie]) is None
-    assert least.read_due([]) == ("fleet_status", {})
-    assert Plan(["alpha: read position", "alpha: land"], FLEET).read_due([]) == (
+    assert unread.call_due([]) == ("get_battery", {"drone_id": "alpha"})
+    assert plan.call_due([]) == ("get_battery", {"drone_id": "bravo"})
+    assert least.call_due([]) == ("fleet_status", {})
+    assert Plan(["alpha: read position", "alpha: land"], FLEET).call_due([]) == (
         "get_position",
         {"drone_id": "alpha"},
     )
+    # and the step the readings pick is the picked drone's call
+    assert plan.call_due([bravo, charlie]) == ("takeoff", {"drone_id": "charlie", "alt_m": 14.0})
+    assert plan.call_due([bravo, charlie, flown]) is None
 
 
 def test_a_comparison_of_two_drones_takes_its_branch_or_the_otherwise_step() -> None:
@@ -427,20 +426,40 @@ def test_a_return_to_launch_is_the_way_home_and_the_landing_after_it() -> None:
     assert not plan.finished([out, back, failed])
 
 
-async def test_the_reads_a_plan_needs_are_made_by_the_host(toy: ToyServer, scripted) -> None:
-    """A step that only reads ("alpha: read position") is the host's call: the model's first request
-    already shows its result, and the step after it is the one asked for."""
+async def test_the_reads_a_plan_needs_and_the_calls_its_steps_say_are_made_by_the_host(
+    toy: ToyServer, scripted
+) -> None:
+    """A step that only reads ("alpha: read position") is the host's call, and so is a step whose words
+    say its call ("alpha: take off to 15 m"): the model's first request after the plan already shows both
+    results, and only the answer is asked for."""
     plan = ScriptedReply(content="1. alpha: read position\n2. alpha: take off to 15 m")
-    model = scripted([plan, call("takeoff", drone_id="alpha", alt_m=15), say("alpha is up at 15 m")])
+    model = scripted([plan, say("alpha is up at 15 m")])
     events: list[AgentEvent] = []
     _, result = await run_on_toy(
         toy, model, "where is alpha? then take it up to 15 m", plan_first=True, events=events
     )
     assert [c.name for c in result.tool_calls] == ["get_position", "takeoff"], result.tool_calls
+    assert result.outcome == "answered" and result.final_text == "alpha is up at 15 m", result
     first = model.requests[1]["messages"][-1]["content"]
     assert '- {"name": "get_position", "arguments": {"drone_id": "alpha"}} -> ' in first, first
-    assert first.endswith("Now step 2 of 2: alpha: take off to 15 m. Reply with only the tool call for it.")
-    assert [e.data["name"] for e in events if e.kind == "plan_read"] == ["get_position"]
+    assert "alpha flying at 15 m" in first, first  # the fleet as it is after the host's calls
+    assert first.endswith("Every step is done. Reply with the answer_user call saying what was done.")
+    assert [e.data["name"] for e in events if e.kind == "plan_call"] == ["get_position", "takeoff"]
+    assert len(model.requests) == 2
+
+
+async def test_a_call_the_host_made_for_a_step_is_not_made_again_when_it_failed(
+    toy: ToyServer, scripted
+) -> None:
+    """A step's call that the gateway refused is not the host's again: the model is asked, with the
+    refusal in what it reads."""
+    plan = ScriptedReply(content="1. alpha: take off to 500 m\n2. alpha: land")
+    model = scripted([plan, say("alpha cannot go to 500 m")])
+    _, result = await run_on_toy(toy, model, "alpha up to 500 m then land", plan_first=True)
+    assert [(c.name, c.status) for c in result.tool_calls][:1] == [("takeoff", "error")], result.tool_calls
+    assert sum(c.name == "takeoff" for c in result.tool_calls) == 1
+    asked = model.requests[1]["messages"][-1]["content"]
+    assert '- {"name": "takeoff", "arguments": {"drone_id": "alpha", "alt_m": 500.0}} -> failed: ' in asked
 
 
 def test_a_launch_step_is_written_in_the_words_of_the_tools() -> None:

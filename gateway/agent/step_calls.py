@@ -1,0 +1,163 @@
+"""The call a plan step is, when the step's words say it exactly: the host makes it instead of asking.
+
+A small model's plan step ("alpha: take off to 12 m", "bravo: fly 30 m south at 10 m", "charlie: land")
+already holds every argument of the call that carries it out; what goes wrong is the second writing, as
+a JSON tool call (measured with the 1.5B model on the corpus's dev half: "fly over 20 m north while
+climbing another 6 m" planned right, then called with alt_m=6; the 0.5B model writes ``drone_ids`` lists
+into one-drone tools). So a step in one of the few shapes below is read here into its call, and the host
+sends it through the same checks as a call the model wrote (host.py ``_plan_calls``). A step in any
+other words (a condition, a choice, "fly 10 m above the ground") returns None and the model is asked.
+
+Nothing is guessed: every word of the step must be read, or it is not a call.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+
+StepCall = tuple[str, dict[str, object]]  # tool name, arguments
+
+_N = r"(\d+(?:\.\d+)?)"
+_M = r"\s*(?:m|metres?|meters?)\b"
+_HEAD_RE = re.compile(r"^\s*([\w ,&]+?)\s*:\s*(\S.*?)\s*\.?\s*$")
+_JOINERS_RE = re.compile(r"^(?:,|and|&|\s)+$", re.IGNORECASE)
+
+_TAKEOFF_RE = re.compile(rf"^take ?off(?: to)? {_N}{_M}(?: and hover(?: there)?)?$", re.IGNORECASE)
+_LAND_RE = re.compile(r"^land(?: (?:it|there|here|now|on the spot))?$", re.IGNORECASE)
+_HOME_RE = re.compile(
+    r"^(?:return (?:to launch|home)|(?:fly|go|come|head|return)(?: back)? (?:home|to (?:the )?(?:launch|home|"
+    r"(?:launch|take-?off) (?:point|spot|site|pad))))$",
+    re.IGNORECASE,
+)
+_MOVE_VERB_RE = re.compile(
+    r"^(?:(?:fly|go|move|head|shift|nudge|travel)\s+)?(?:(?:over|out|on)\s+)?", re.IGNORECASE
+)
+_LEG_RE = re.compile(rf"{_N}{_M}\s+(north|south|east|west|higher|up|lower|down)\b", re.IGNORECASE)
+_CLIMB_RE = re.compile(
+    rf"\b(climb(?:ing)?|descend(?:ing)?)\s+(?:(?:another|a further|an extra)\s+)?{_N}{_M}", re.IGNORECASE
+)
+_AT_RE = re.compile(rf"\bat {_N}{_M}(?:\s+(?:altitude|high|up))?", re.IGNORECASE)
+_MOVE_GLUE_RE = re.compile(r"^(?:,|and|while|then\s+climb|\s)*$", re.IGNORECASE)
+_AXES = {
+    "north": ("north_m", 1),
+    "south": ("north_m", -1),
+    "east": ("east_m", 1),
+    "west": ("east_m", -1),
+    "higher": ("up_m", 1),
+    "up": ("up_m", 1),
+    "lower": ("up_m", -1),
+    "down": ("up_m", -1),
+}
+
+_SHAPES = {"line": "line", "row": "line", "column": "column", "wedge": "wedge", "v": "wedge"}
+_SHAPES |= {"circle": "circle", "grid": "grid"}
+_SHAPE_RE = re.compile(
+    r"^(?:(?:in|into) an? )?(line|row|column|wedge|v|circle|grid)(?:[ -](?:formation|shape))?$", re.IGNORECASE
+)
+_APART_RE = re.compile(rf"^{_N}{_M} apart$", re.IGNORECASE)
+_FORMATION_AT_RE = re.compile(rf"^at {_N}{_M}(?: altitude)?$", re.IGNORECASE)
+_OFFSET_RE = re.compile(
+    rf"^{_N}{_M}\s+(?:to the )?(north|south|east|west)(?: of (?:where they are|here|them))?$", re.IGNORECASE
+)
+
+
+def call_of_step(step: str, fleet_ids: Sequence[str]) -> StepCall | None:
+    """The one call this step says exactly, or None (the model is asked for it)."""
+    head = _HEAD_RE.match(step)
+    if head is None:
+        return None
+    drones = _drones_of_head(head.group(1), fleet_ids)
+    action = re.sub(r"\s+", " ", head.group(2)).strip()
+    if not drones:
+        return None
+    if len(drones) > 1:
+        return _formation(drones, action)
+    drone = drones[0]
+    if m := _TAKEOFF_RE.match(action):
+        return ("takeoff", {"drone_id": drone, "alt_m": float(m.group(1))})
+    if _LAND_RE.match(action):
+        return ("land", {"drone_id": drone})
+    if _HOME_RE.match(action):
+        return ("return_to_launch", {"drone_id": drone})
+    move = _move(action)
+    return ("move_to_relative", {"drone_id": drone, **move}) if move is not None else None
+
+
+def _drones_of_head(head: str, fleet_ids: Sequence[str]) -> list[str]:
+    """The drones a step's head names, when it names nothing else ("alpha, bravo and charlie")."""
+    known = {d.lower(): d for d in fleet_ids}
+    drones: list[str] = []
+    rest = head
+    for word in re.findall(r"[\w-]+", head):
+        if word.lower() in known:
+            drones.append(known[word.lower()])
+            rest = rest.replace(word, " ", 1)
+    if not _JOINERS_RE.match(rest or " ") or len(set(drones)) != len(drones):
+        return []
+    return drones
+
+
+def _move(action: str) -> dict[str, object] | None:
+    """``fly 30 m south and 5 m up at 10 m``, ``climb another 6 m``: a relative move, every word read."""
+    text = _MOVE_VERB_RE.sub("", action, count=1)
+    args: dict[str, float] = {}
+    spans: list[tuple[int, int]] = []
+
+    def put(axis: str, value: float) -> bool:
+        if axis in args:
+            return False  # the same axis twice: two moves, not one
+        args[axis] = value
+        return True
+
+    for m in _LEG_RE.finditer(text):
+        axis, sign = _AXES[m.group(2).lower()]
+        if not put(axis, sign * float(m.group(1))):
+            return None
+        spans.append(m.span())
+    for m in _CLIMB_RE.finditer(text):
+        if any(s <= m.start(2) < e for s, e in spans):
+            continue  # "climb 10 m higher": read with its direction already
+        sign = 1 if m.group(1).lower().startswith("climb") else -1
+        if not put("up_m", sign * float(m.group(2))):
+            return None
+        spans.append(m.span())
+    for m in _AT_RE.finditer(text):
+        if not put("alt_m", float(m.group(1))):
+            return None
+        spans.append(m.span())
+    if not args or ("up_m" in args and "alt_m" in args):
+        return None
+    left = text
+    for start, end in sorted(spans, reverse=True):
+        left = left[:start] + " " + left[end:]
+    if "up_m" in args:
+        left = re.sub(r"\b(?:climb|descend)\b", " ", left, flags=re.IGNORECASE)
+    if not _MOVE_GLUE_RE.match(left):
+        return None  # a word not read: the step may mean more than these numbers
+    moved = {"north_m": args.get("north_m", 0.0), "east_m": args.get("east_m", 0.0)}
+    if not (moved["north_m"] or moved["east_m"] or args.get("up_m")):
+        return None  # only an altitude: a takeoff or a climb to it, which the model tells apart
+    return {**moved, **{k: v for k, v in args.items() if k in ("up_m", "alt_m")}}
+
+
+def _formation(drones: list[str], action: str) -> StepCall | None:
+    """``line formation, 8 m apart, at 20 m, 25 m south``: every part read, or no call."""
+    args: dict[str, object] = {"drone_ids": drones}
+    for part in (p.strip() for p in re.split(r",|\band\b", action) if p.strip()):
+        if (m := _SHAPE_RE.match(part)) and "formation" not in args:
+            args["formation"] = _SHAPES[m.group(1).lower()]
+        elif (m := _APART_RE.match(part)) and "spacing_m" not in args:
+            args["spacing_m"] = float(m.group(1))
+        elif (m := _FORMATION_AT_RE.match(part)) and "alt_m" not in args:
+            args["alt_m"] = float(m.group(1))
+        elif m := _OFFSET_RE.match(part):
+            axis, sign = _AXES[m.group(2).lower()]
+            if axis in args:
+                return None
+            args[axis] = sign * float(m.group(1))
+        else:
+            return None
+    if not {"formation", "spacing_m", "alt_m"} <= set(args):
+        return None
+    return ("formation_goto", args)

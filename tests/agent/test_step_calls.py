@@ -1,0 +1,68 @@
+"""A plan step read into the one call its words say, or into none (the model is then asked)."""
+# ruff: noqa: E501  (one step and its call a line)
+
+from __future__ import annotations
+
+import pytest
+
+from gateway.agent.step_calls import call_of_step
+
+FLEET = ["alpha", "bravo", "charlie"]
+
+
+@pytest.mark.parametrize(
+    ("step", "call"),
+    [
+        ("alpha: take off to 20 m", ("takeoff", {"drone_id": "alpha", "alt_m": 20.0})),
+        ("Bravo: land.", ("land", {"drone_id": "bravo"})),
+        ("alpha: return home", ("return_to_launch", {"drone_id": "alpha"})),
+        ("charlie: fly back to launch spot", ("return_to_launch", {"drone_id": "charlie"})),
+        ("alpha: fly 50 m north", ("move_to_relative", {"drone_id": "alpha", "north_m": 50.0, "east_m": 0.0})),
+        (
+            "bravo: fly 30 m south and 40 m west at 12 m",
+            ("move_to_relative", {"drone_id": "bravo", "north_m": -30.0, "east_m": -40.0, "alt_m": 12.0}),
+        ),
+        (
+            "charlie: fly over 20 m north while climbing another 6 m",
+            ("move_to_relative", {"drone_id": "charlie", "north_m": 20.0, "east_m": 0.0, "up_m": 6.0}),
+        ),
+        (
+            "alpha: fly 10 m east and 3 m lower",
+            ("move_to_relative", {"drone_id": "alpha", "north_m": 0.0, "east_m": 10.0, "up_m": -3.0}),
+        ),
+        ("charlie: climb 10 m higher", ("move_to_relative", {"drone_id": "charlie", "north_m": 0.0, "east_m": 0.0, "up_m": 10.0})),
+        (
+            "alpha, bravo and charlie: wedge formation, 10 m apart, at 18 m, 30 m east",
+            (
+                "formation_goto",
+                {"drone_ids": ["alpha", "bravo", "charlie"], "formation": "wedge", "spacing_m": 10.0,
+                 "alt_m": 18.0, "east_m": 30.0},
+            ),
+        ),
+    ],
+)  # fmt: skip
+def test_a_step_in_the_words_of_one_call_is_that_call(step: str, call: tuple[str, dict[str, object]]) -> None:
+    assert call_of_step(step, FLEET) == call
+
+
+@pytest.mark.parametrize(
+    "step",
+    [
+        "alpha: fly 20 m",  # no direction: a height or a leg, the model tells
+        "alpha: climb to 30 m",  # a takeoff from the ground, a climb in the air
+        "bravo: fly 10 m above the ground",
+        "bravo: fly up to 10 m and land",  # two actions
+        "bravo: fly 20 m north, then 20 m south",  # the same axis twice: two moves
+        "bravo: fly 20 m north and 5 m up at 15 m",  # a climb and an altitude that may disagree
+        "the one with less battery: take off to 7 m",  # a choice the plan reads first
+        "if above 55 %: alpha: climb 5 m",  # a condition the plan reads first
+        "delta: land",  # not in the fleet
+        "alpha: read battery",  # a reading: the plan's own
+        "alpha, bravo: take off to 10 m",  # several drones and no formation
+        "alpha, bravo: line formation, at 15 m",  # no spacing
+        "alpha, bravo: line formation, 10 m apart, at 15 m, by the tower",  # a place not read
+        "alpha: fly 30 m north to the tower",  # a word not read
+    ],
+)
+def test_a_step_with_any_word_not_read_is_no_call(step: str) -> None:
+    assert call_of_step(step, FLEET) is None
