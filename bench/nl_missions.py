@@ -12,7 +12,7 @@ hosted providers).
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the corpus's test half, per class
   python bench/nl_missions.py --half dev --sitl      # the dev half on three ArduCopter SITL drones
 
---half dev|test|all runs the generalisation corpus (bench/nl_corpus.py: 40 requests in 8 classes, a fixed
+--half dev|test|all runs the generalisation corpus (bench/nl_corpus.py: 88 requests in 8 classes, a fixed
 development/test split) instead of the 12 missions, and reports per half and per class. --sitl flies on
 three real ArduCopter SITL instances (``eval "$(/work/shared/sitl/install)"``) instead of the simulator;
 the truth is then the gateway's telemetry, and requests that set a battery level are left out (SITL's

@@ -134,7 +134,8 @@ _MOVE_RE = re.compile(
     r"(north|south|east|west|higher|up|lower|down)\b",
     re.IGNORECASE,
 )
-_AXIS = {
+# the relative-move argument and sign a direction word names
+DIRECTION_AXES: dict[str, tuple[str, int]] = {
     "north": ("north_m", 1),
     "south": ("north_m", -1),
     "east": ("east_m", 1),
@@ -158,7 +159,7 @@ def _moves(request: str) -> list[tuple[float, str, str, int]]:
     """(distance, phrase, axis argument, sign) of each "50 m south" or "climbing another 6 m" in the
     request, in the request's order."""
     found = [
-        (m.start(), (float(m.group(1)), m.group(0), *_AXIS[m.group(2).lower()]))
+        (m.start(), (float(m.group(1)), m.group(0), *DIRECTION_AXES[m.group(2).lower()]))
         for m in _MOVE_RE.finditer(request or "")
     ]
     taken = [m.span() for m in _MOVE_RE.finditer(request or "")]

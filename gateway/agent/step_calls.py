@@ -16,6 +16,8 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
+from gateway.agent.repair import DIRECTION_AXES
+
 StepCall = tuple[str, dict[str, object]]  # tool name, arguments
 
 _N = r"(\d+(?:\.\d+)?)"
@@ -39,16 +41,6 @@ _CLIMB_RE = re.compile(
 )
 _AT_RE = re.compile(rf"\bat {_N}{_M}(?:\s+(?:altitude|high|up))?", re.IGNORECASE)
 _MOVE_GLUE_RE = re.compile(r"^(?:,|and|while|then\s+climb|\s)*$", re.IGNORECASE)
-_AXES = {
-    "north": ("north_m", 1),
-    "south": ("north_m", -1),
-    "east": ("east_m", 1),
-    "west": ("east_m", -1),
-    "higher": ("up_m", 1),
-    "up": ("up_m", 1),
-    "lower": ("up_m", -1),
-    "down": ("up_m", -1),
-}
 
 _SHAPES = {"line": "line", "row": "line", "column": "column", "wedge": "wedge", "v": "wedge"}
 _SHAPES |= {"circle": "circle", "grid": "grid"}
@@ -111,7 +103,7 @@ def _move(action: str) -> dict[str, object] | None:
         return True
 
     for m in _LEG_RE.finditer(text):
-        axis, sign = _AXES[m.group(2).lower()]
+        axis, sign = DIRECTION_AXES[m.group(2).lower()]
         if not put(axis, sign * float(m.group(1))):
             return None
         spans.append(m.span())
@@ -152,7 +144,7 @@ def _formation(drones: list[str], action: str) -> StepCall | None:
         elif (m := _FORMATION_AT_RE.match(part)) and "alt_m" not in args:
             args["alt_m"] = float(m.group(1))
         elif m := _OFFSET_RE.match(part):
-            axis, sign = _AXES[m.group(2).lower()]
+            axis, sign = DIRECTION_AXES[m.group(2).lower()]
             if axis in args:
                 return None
             args[axis] = sign * float(m.group(1))
