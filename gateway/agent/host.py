@@ -147,7 +147,7 @@ class AgentHost:
             if steps:
                 content = f"{content}\n\n{self._note(planning.steps_text(steps))}"
                 asked = planning.asked_drones(user_text, roster.ids)
-                self._turn_plan = planning.Plan(steps, roster.ids, asked)
+                self._turn_plan = planning.Plan(steps, roster.ids, asked, user_text)
         self._turn_start = len(self.messages)  # where this turn's messages begin (a plan rewrites them)
         self.messages.append({"role": "user", "content": content})
         try:

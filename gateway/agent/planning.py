@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from gateway.agent import readings
 from gateway.agent.answer import ANSWER_TOOL
 from gateway.agent.chat import ChatModel, Message
+from gateway.agent.repair import request_climbs
 from gateway.agent.roster import Roster, drones_named
 from gateway.agent.step_calls import call_of_step
 from gateway.agent.turns import ToolCallRecord, Usage
@@ -129,6 +130,8 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
         return []
     asked = asked_drones(request, fleet_ids)
     steps = [one for line in lines for one in _per_drone(line, fleet_ids, asked)]
+    if len(steps) == 1 and _call_of(steps[0], fleet_ids, request) is not None:
+        return steps  # the one call the request is, read from its step (step_calls.py)
     if len(steps) < 2:
         # one step is the request itself, with only the planner's errors added (dev half: "side by side,
         # 15 m apart, at 20 m" for two drones became a step naming all three)
@@ -348,6 +351,9 @@ def _kind(step: str) -> frozenset[str] | None:
 def step_done_by(step: str, call: ToolCallRecord, fleet_ids: Sequence[str]) -> bool:
     """Whether a call that succeeded carries out this step: a tool of the step's kind, on its drones."""
     tools = _kind(step)
+    said = call_of_step(step, fleet_ids)
+    if said is not None and tools is not None:
+        tools = tools | {said[0]}  # the call the step's words say too ("charlie: set back down": land)
     if tools is not None and call.name not in tools and call.name in _KNOWN_TOOLS:
         return False  # a tool of another kind (takeoff for "fly 40 m west"); another server's tools count
     named = set(_drones_in(step, fleet_ids))
@@ -396,10 +402,21 @@ def _battery_read(drones: Sequence[str]) -> Read:
     return ("get_battery", {"drone_id": drones[0]}) if len(drones) == 1 else ("fleet_status", {})
 
 
-def _call_of(step: str, fleet_ids: Sequence[str]) -> Read | None:
+def _call_of(step: str, fleet_ids: Sequence[str], request: str) -> Read | None:
     """The call the host makes for a step: a reading it needs, or the one call its words say exactly
-    (step_calls.py); None when the model is to write it."""
-    return _read_of(step, fleet_ids) or call_of_step(step, fleet_ids)
+    (step_calls.py); None when the model is to write it. A climb or descent the request does not name is
+    not made (dev half with the 0.5B model: "climb to thirty metres" planned as "alpha: climb 30 m", after
+    a takeoff to 30 m): the model is asked, and the request's checks read its call."""
+    read = _read_of(step, fleet_ids)
+    if read is not None:
+        return read
+    call = call_of_step(step, fleet_ids)
+    if call is None:
+        return None
+    up = call[1].get("up_m")
+    if isinstance(up, float) and up not in request_climbs(request):
+        return None
+    return call
 
 
 def _read_of(step: str, fleet_ids: Sequence[str]) -> Read | None:
@@ -420,6 +437,7 @@ class Plan:
     steps: list[str]
     fleet_ids: list[str] = field(default_factory=list)
     candidates: list[str] = field(default_factory=list)  # the drones a "the one with more battery" is among
+    request: str = ""  # the request the steps were written for (a climb the host makes must be in it)
 
     def prompt(
         self, request: str, calls: Sequence[ToolCallRecord], roster: Roster | None, lead: str = ""
@@ -557,7 +575,7 @@ class Plan:
                 return Where(
                     False,
                     f"{where}: {step}. Reply with only the tool call for it.",
-                    _call_of(step, self.fleet_ids),
+                    _call_of(step, self.fleet_ids, self.request),
                     passed_over,
                 )
             used += 1

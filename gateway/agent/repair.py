@@ -171,6 +171,11 @@ def _moves(request: str) -> list[tuple[float, str, str, int]]:
     return [move for _, move in sorted(found, key=lambda f: f[0])]
 
 
+def request_climbs(request: str) -> set[float]:
+    """The distances up or down the request names ("10 m higher", "climbing another 6 m"), signed."""
+    return {sign * d for d, _, axis, sign in _moves(request) if axis == "up_m"}
+
+
 def request_distances(request: str) -> set[float]:
     """The horizontal distances the request names ("50 m south": 50), whatever their direction."""
     return {d for d, _, axis, _ in _moves(request) if axis != "up_m"}

@@ -26,7 +26,11 @@ _HEAD_RE = re.compile(r"^\s*([\w ,&]+?)\s*:\s*(\S.*?)\s*\.?\s*$")
 _JOINERS_RE = re.compile(r"^(?:,|and|&|\s)+$", re.IGNORECASE)
 
 _TAKEOFF_RE = re.compile(rf"^take ?off(?: to)? {_N}{_M}(?: and hover(?: there)?)?$", re.IGNORECASE)
-_LAND_RE = re.compile(r"^land(?: (?:it|there|here|now|on the spot))?$", re.IGNORECASE)
+_LAND_RE = re.compile(
+    r"^(?:land|(?:set|put|bring|come|touch)(?: it)?(?: straight)?(?: back)? down)(?: (?:it|there|here|now|"
+    r"on the spot|again))?$",
+    re.IGNORECASE,
+)
 _HOME_RE = re.compile(
     r"^(?:return (?:to launch|home)|(?:fly|go|come|head|return)(?: back)? (?:home|to (?:the )?(?:launch|home|"
     r"(?:launch|take-?off) (?:point|spot|site|pad))))$",

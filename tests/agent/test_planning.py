@@ -51,10 +51,20 @@ def test_steps_that_copy_the_examples_drones_are_not_used() -> None:
     assert own == ["delta: up to 5 m", "delta: land"]
 
 
-def test_one_step_is_no_plan() -> None:
-    """A request of one action is its own step: rewritten, it only gains the planner's errors."""
-    assert steps_from_reply("1. alpha, bravo, charlie: line formation, 8 m apart, at 20 m", FLEET) == []
-    assert steps_from_reply("1. alpha: take off to 10 m\n2. alpha: hover", FLEET) == []
+def test_one_step_is_no_plan_unless_its_words_say_its_call() -> None:
+    """A request of one action is its own step: rewritten for the model, it only gains the planner's
+    errors; a step that says its call exactly (or a reading) is the host's call, so the model only answers."""
+    assert steps_from_reply("1. alpha, bravo: side by side, 8 m apart, at 20 m", FLEET) == []
+    assert steps_from_reply("1. alpha: climb to 10 m\n2. alpha: hover", FLEET) == []
+    line = "Line up alpha, bravo and charlie at 20 m, 8 m apart, where they are."
+    assert steps_from_reply("1. alpha, bravo, charlie: line formation, 8 m apart, at 20 m", FLEET, line) == [
+        "alpha, bravo, charlie: line formation, 8 m apart, at 20 m"
+    ]
+    up = "Put alpha up at 10 m and keep it there"
+    assert steps_from_reply("1. alpha: take off to 10 m\n2. alpha: hover", FLEET, up) == [
+        "alpha: take off to 10 m"
+    ]
+    assert steps_from_reply("1. echo: read position", ["echo"], "where is echo?") == ["echo: read position"]
 
 
 def test_the_examples_are_none_of_the_benchmarks_requests_nor_its_drones() -> None:
@@ -581,3 +591,21 @@ def test_the_drones_asked_are_the_named_ones_unless_the_request_speaks_of_the_fl
     ]
     assert asked_drones("Alpha to 10 m, the others to 20 m", FLEET) == FLEET
     assert asked_drones("Everyone up to 15 m", FLEET) == FLEET
+
+
+def test_a_climb_the_request_does_not_name_is_not_the_hosts_call() -> None:
+    """Dev half with the 0.5B model: "launch alpha, climb to thirty metres" planned as a takeoff and
+    "alpha: climb 30 m"; made as written it flew alpha to 60 m. The host makes a climb only when the request
+    names it; else the model is asked, and the request's checks read its call."""
+    request = "Please launch alpha, climb to thirty metres and leave it hovering there."
+    plan = Plan(["alpha: take off to 30 m", "alpha: climb 30 m"], FLEET, request=request)
+    took_off = _ok("takeoff", drone_id="alpha", alt_m=30)
+    assert plan.call_due([]) == ("takeoff", {"drone_id": "alpha", "alt_m": 30.0})
+    assert plan.call_due([took_off]) is None
+    named = Plan(
+        ["alpha: take off to 10 m", "alpha: climb 5 m"], FLEET, request="alpha to 10 m, then climb 5 m"
+    )
+    assert named.call_due([took_off]) == (
+        "move_to_relative",
+        {"drone_id": "alpha", "north_m": 0.0, "east_m": 0.0, "up_m": 5.0},
+    )

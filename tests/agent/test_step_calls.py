@@ -16,6 +16,8 @@ FLEET = ["alpha", "bravo", "charlie"]
         ("alpha: take off to 20 m", ("takeoff", {"drone_id": "alpha", "alt_m": 20.0})),
         ("Bravo: land.", ("land", {"drone_id": "bravo"})),
         ("alpha: return home", ("return_to_launch", {"drone_id": "alpha"})),
+        ("charlie: set back down", ("land", {"drone_id": "charlie"})),  # 0.5B's plan, dev half
+        ("charlie: come straight back down", ("land", {"drone_id": "charlie"})),
         ("charlie: fly back to launch spot", ("return_to_launch", {"drone_id": "charlie"})),
         ("alpha: fly 50 m north", ("move_to_relative", {"drone_id": "alpha", "north_m": 50.0, "east_m": 0.0})),
         (
