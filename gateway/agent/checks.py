@@ -401,3 +401,12 @@ def untouched(
         points = "; ".join(f"{a:g}, {b:g}" for a, b in left)
         facts.append(f"Points in the request not flown to yet: {points}.")
     return " ".join(facts)
+
+
+def beside_a_finished_plan(last: ToolCallRecord) -> bool:
+    """A call that does nothing more once every step of the plan is done: a finished call sent again, a
+    call the host refused (an unknown tool, a drone the request does not name), or arguments the tool does
+    not take. The host then answers from the results instead of asking again."""
+    if last.status in ("repeat", "invalid", "unknown_tool"):
+        return True
+    return last.status == "error" and "invalid arguments for" in (last.text or "")

@@ -319,9 +319,15 @@ class AgentHost:
                     last["content"] = f"{last['content']}\n\n{roster.text()}"
             plan = self._turn_plan
             sent = [c for c in result.tool_calls if c.status not in ("skipped", "left_out")]
-            if plan is not None and sent and sent[-1].status == "repeat" and plan.finished(result.tool_calls):
-                # only the answer is left and the model sent a finished call again: the host answers from
-                # the results (dev half: a battery read sent again 19 times, to the step limit)
+            if (
+                plan is not None
+                and sent
+                and checks.beside_a_finished_plan(sent[-1])
+                and plan.finished(result.tool_calls)
+            ):
+                # only the answer is left and the model sent a finished call again, or a call that is no
+                # call: the host answers from the results (dev half: a battery read sent again 19 times, to
+                # the step limit; with the 0.5B model, fleet_status with made-up arguments, 9 times)
                 self._end_without_answer(result)
                 break
             if checks.stuck_on_a_repeat(result):

@@ -122,6 +122,8 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
             continue
         step = m.group(2).strip()
         if _NO_ACTION_RE.match(step):
+            if _height_for_a_bare_takeoff(step, lines):
+                continue
             step = _hover_from_the_ground(step, lines, fleet_ids) or ""
         if step:
             lines.append(_in_tool_words(step))
@@ -140,6 +142,22 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
         # a plan cut short would call the request done before its end; without one the model reads it whole
         return []
     return steps
+
+
+_BARE_TAKEOFF_RE = re.compile(r"^([\w ,&]+):\s*take off\s*\.?$", re.IGNORECASE)
+
+
+def _height_for_a_bare_takeoff(step: str, before: list[str]) -> bool:
+    """Give the height of a hover step ("bravo: stay up at 25 m") to the takeoff just before it that has
+    none ("bravo: take off"), in place; whether it did (dev half with the 0.5B model: "take off and stay
+    up at 25 m" planned so, the hover dropped as no action, and a bare takeoff is no plan)."""
+    heights = _METRES_RE.findall(step)
+    head = _HEAD_RE.match(step)
+    bare = _BARE_TAKEOFF_RE.match(before[-1]) if before else None
+    if len(heights) != 1 or head is None or bare is None or bare.group(1).strip() != head.group(1).strip():
+        return False
+    before[-1] = f"{bare.group(1).strip()}: take off to {heights[0]} m"
+    return True
 
 
 def _hover_from_the_ground(step: str, before: Sequence[str], fleet_ids: Sequence[str]) -> str | None:
@@ -288,6 +306,11 @@ def _per_drone(step: str, fleet_ids: Sequence[str], asked: Sequence[str]) -> lis
     if not written:
         return [step]
     kept = [d for d in written if d in asked]
+    if not kept and len(written) == 1 and len(asked) == 1:
+        # the request speaks of one drone only: a step for another one is that drone's, its name copied
+        # from the fleet list (dev half with the 0.5B model: "get charlie airborne" planned as "alpha:
+        # hover at around 12 metres")
+        kept = list(asked)
     if not kept:
         return []
     if _FORMATION_WORDS_RE.search(action):
@@ -378,16 +401,25 @@ _HEIGHT_KIND = frozenset({"takeoff", "move_to_relative", "go_to_location"})
 _METRES_RE = re.compile(r"(\d+(?:\.\d+)?)\s*(?:m\b|metres?\b|meters?\b)", re.IGNORECASE)
 
 
-def _height_flown(step: str, last: ToolCallRecord, fleet_ids: Sequence[str]) -> bool:
+def _height_flown(step: str, last: ToolCallRecord, fleet_ids: Sequence[str], request: str = "") -> bool:
     """A step that asks only for a height (an altitude or a climb) that the move before it, a leg flown
-    with that height, already flew its drone to."""
-    if (
-        _kind(step) != _HEIGHT_KIND
-        or last.name != "move_to_relative"
-        or not step_done_by(step, last, fleet_ids)
-    ):
+    with that height, already flew its drone to; or the takeoff before it, when the request names no climb
+    of that size (dev half with the 0.5B model: "both up to 18 m" planned as "bravo: take off to 18 m",
+    "bravo: fly 18 m up")."""
+    if _kind(step) != _HEIGHT_KIND or not step_done_by(step, last, fleet_ids):
         return False
     args = last.arguments or {}
+    if last.name == "takeoff":
+        heights = {float(m) for m in _METRES_RE.findall(step)}
+        alt = args.get("alt_m")
+        return (
+            len(heights) == 1
+            and isinstance(alt, int | float)
+            and float(alt) in heights
+            and not {float(alt), -float(alt)} & request_climbs(request)
+        )
+    if last.name != "move_to_relative":
+        return False
     if not any(
         isinstance(args.get(a), int | float) and args.get(a)
         for a in ("north_m", "east_m", "south_m", "west_m")
@@ -554,7 +586,7 @@ class Plan:
                 if step_done_by(step, done[used - 1], self.fleet_ids):
                     i += 1
                     continue
-            if used and _height_flown(step, done[used - 1], self.fleet_ids):
+            if used and _height_flown(step, done[used - 1], self.fleet_ids, self.request):
                 # "bravo: fly 10 m above the ground" after a move that flew bravo at 10 m (dev half: the
                 # planner split "50 m east, 10 m above the ground" in two, and the height was asked again)
                 i += 1

@@ -546,8 +546,10 @@ def test_a_height_step_already_flown_by_the_move_before_is_done() -> None:
     # a climb flown with the leg (dev half, rel-bravo-west-up: "40 m west ..., 10 m up" as two steps)
     west = Plan(["bravo: move 40 m west", "bravo: move 10 m up"], FLEET)
     assert west.finished([_ok("move_to_relative", "arrived", drone_id="bravo", east_m=-40, up_m=10)])
-    # after a takeoff, a climb of the same size is a step of its own
-    climb = Plan(["charlie: take off to 10 m", "charlie: fly 10 m up"], FLEET)
+    # after a takeoff, a climb of the same size that the request names is a step of its own
+    climb = Plan(
+        ["charlie: take off to 10 m", "charlie: fly 10 m up"], FLEET, request="to 10 m, then 10 m up"
+    )
     assert not climb.finished([_ok("takeoff", "reached 10 m", drone_id="charlie", alt_m=10)])
 
 
@@ -609,3 +611,59 @@ def test_a_climb_the_request_does_not_name_is_not_the_hosts_call() -> None:
         "move_to_relative",
         {"drone_id": "alpha", "north_m": 0.0, "east_m": 0.0, "up_m": 5.0},
     )
+
+
+def test_a_step_for_another_drone_is_the_one_drone_the_request_speaks_of() -> None:
+    """Dev half with the 0.5B model: "get charlie airborne, hover it at around 12 metres" planned as
+    "alpha: hover at around 12 metres" (the first name of the fleet list)."""
+    request = "Can you get charlie airborne? Hover it at around 12 metres."
+    assert steps_from_reply("1. alpha: hover at around 12 metres", FLEET, request) == [
+        "charlie: take off to 12 m"
+    ]
+    # a request naming two drones keeps its own: a step for a third is dropped
+    two = "Take alpha and charlie up to 10 m and land them."
+    reply = "1. alpha: take off to 10 m\n2. bravo: take off to 10 m\n3. alpha: land"
+    assert steps_from_reply(reply, FLEET, two) == ["alpha: take off to 10 m", "alpha: land"]
+
+
+def test_a_hover_height_after_a_bare_takeoff_is_the_takeoffs_height() -> None:
+    """Dev half with the 0.5B model: "take off and stay up at 25 m" planned as "bravo: take off" and
+    "bravo: stay up at 25 m"; the hover was dropped as no action and one bare takeoff was no plan."""
+    request = "Bravo, take off and stay up at 25 m for now."
+    reply = "1. bravo: take off\n2. bravo: stay up at 25 m"
+    assert steps_from_reply(reply, FLEET, request) == ["bravo: take off to 25 m"]
+    other = "1. bravo: take off\n2. alpha: stay up at 25 m"  # another drone's hover is its own takeoff
+    assert split_steps(other, FLEET, "bravo up, and alpha at 25 m") == [
+        "bravo: take off",
+        "alpha: take off to 25 m",
+    ]
+
+
+def test_a_height_step_after_a_takeoff_to_it_is_done_unless_the_request_names_that_climb() -> None:
+    """Dev half with the 0.5B model: "bravo and charlie both up to 18 m" planned as "bravo: take off to
+    18 m", "bravo: fly 18 m up"; the second step is the same height again (a climb the request names is
+    a step of its own)."""
+    request = "Bravo and charlie both up to 18 m please, and keep them there."
+    steps = ["bravo: take off to 18 m", "bravo: fly 18 m up", "charlie: take off to 18 m"]
+    plan = Plan(steps, FLEET, request=request)
+    took_off = _ok("takeoff", drone_id="bravo", alt_m=18)
+    assert plan.call_due([took_off]) == ("takeoff", {"drone_id": "charlie", "alt_m": 18.0})
+    climb = Plan(
+        ["charlie: take off to 10 m", "charlie: fly 10 m up"], FLEET, request="charlie to 10 m, then 10 m up"
+    )
+    assert climb.next_note([_ok("takeoff", drone_id="charlie", alt_m=10)]).startswith("Now step 2 of 2")
+
+
+async def test_a_call_that_is_no_call_after_the_last_step_gets_the_hosts_answer(
+    toy: ToyServer, scripted
+) -> None:
+    """Dev half with the 0.5B model: every step done by the host, the model sent fleet_status with made-up
+    arguments nine times instead of answering; the host answers from the results at the first."""
+    plan = ScriptedReply(content="1. alpha: take off to 15 m")
+    model = scripted([plan, call("hover_here", drone_id="alpha")])
+    _, result = await run_on_toy(toy, model, "alpha up to 15 m and keep it there", plan_first=True)
+    assert [(c.name, c.status) for c in result.tool_calls] == [
+        ("takeoff", "ok"),
+        ("hover_here", "unknown_tool"),
+    ]
+    assert result.answered_by == "host" and result.outcome == "answered" and len(model.requests) == 2
