@@ -451,8 +451,19 @@ def _call_of(step: str, fleet_ids: Sequence[str], request: str) -> Read | None:
     return call
 
 
+# a step that acts or gives metres is no reading, whatever else it says ("line up ..., right where they
+# are" is no position read: dev half, read so as a one-step plan, the formation was never flown)
+_NO_READ_RE = re.compile(
+    r"\b(?:fly|go|move|take off|land|climb|descend|line|formation|apart|hover|return|head|up|down)\b|"
+    r"\d+(?:\.\d+)?\s*(?:m|metres?|meters?)\b",
+    re.IGNORECASE,
+)
+
+
 def _read_of(step: str, fleet_ids: Sequence[str]) -> Read | None:
     """The read-only call a step of a reading kind is (battery, position), for the drones it names."""
+    if _NO_READ_RE.search(step.split(":", 1)[-1]):
+        return None
     kind = _kind(step)
     drones = _drones_in(step.split(":")[0] if ":" in step else step, fleet_ids) or _drones_in(step, fleet_ids)
     if kind == _READ_BATTERY_TOOLS:

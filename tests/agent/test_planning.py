@@ -667,3 +667,17 @@ async def test_a_call_that_is_no_call_after_the_last_step_gets_the_hosts_answer(
         ("hover_here", "unknown_tool"),
     ]
     assert result.answered_by == "host" and result.outcome == "answered" and len(model.requests) == 2
+
+
+def test_a_step_that_acts_is_no_reading_whatever_else_it_says() -> None:
+    """Dev half with the 1.5B model: the one step "alpha, bravo, charlie: line up at 20 m, 8 metres apart,
+    right where they are" was read as a position read ("where"), made by the host, and the formation
+    never flew."""
+    request = "Line up alpha, bravo and charlie at 20 m, 8 metres apart, right where they are."
+    step = "alpha, bravo, charlie: line up at 20 m, 8 metres apart, right where they are"
+    assert steps_from_reply(f"1. {step}", FLEET, request) == []
+    assert Plan([step, "alpha: land"], FLEET, request=request).call_due([]) is None
+    assert Plan(["alpha: where is it now", "alpha: land"], FLEET).call_due([]) == (
+        "get_position",
+        {"drone_id": "alpha"},
+    )
