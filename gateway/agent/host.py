@@ -43,6 +43,7 @@ from gateway.agent.parsing import RESULT_FOLLOWS, ArgumentsError, parse_argument
 from gateway.agent.repair import extras_of_a_drone_only_tool, unplaced_optional_point
 from gateway.agent.roster import FleetView, Roster, drones_named
 from gateway.agent.sending import ToolSender
+from gateway.agent.step_calls import leg_without_height
 from gateway.agent.toolbox import Arguments, ToolInfo, ToolOutcome
 from gateway.agent.turns import (
     MAX_EMPTY_REPROMPTS,
@@ -372,6 +373,8 @@ class AgentHost:
             if due is None or due[0] not in self.tools or made in self._plan_made:
                 break  # nothing the host can make (a tool not offered), or made already: the model is asked
             self._plan_made.add(made)
+            if leg_without_height(due) and await self._on_the_ground(due[1].get("drone_id")):
+                break  # the gateway refuses a leg from the ground with no height: the model is asked
             name, args = due
             call: ModelCall = {
                 "id": f"call_plan_{len(result.tool_calls) + 1}",
@@ -385,6 +388,10 @@ class AgentHost:
             if not record.ok:
                 break
         return ran
+
+    async def _on_the_ground(self, drone_id: object) -> bool:
+        drone = await self.fleet.fresh_entry(drone_id)
+        return drone is not None and drone.flying is False
 
     def _off_request(self, name: str, args: Arguments, turn: TurnResult | None) -> str | None:
         """Why an acting call is not sent because its drone is not the request's: one the request does not

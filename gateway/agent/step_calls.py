@@ -157,3 +157,12 @@ def _formation(drones: list[str], action: str) -> StepCall | None:
     if not {"formation", "spacing_m", "alt_m"} <= set(args):
         return None
     return ("formation_goto", args)
+
+
+def leg_without_height(call: StepCall) -> bool:
+    """A relative move with neither ``alt_m`` nor ``up_m``: from the ground the gateway refuses it (it must
+    know how high to fly), so the host does not make it for a drone on the ground. Seen with the 0.5B
+    model's plan on the dev half ("bravo: fly 50 m east", then "bravo: fly 10 m above the ground") and on
+    the test half with the 1.5B model, where the model, asked after the refusal, sent alt_m=0."""
+    name, args = call
+    return name == "move_to_relative" and "alt_m" not in args and "up_m" not in args

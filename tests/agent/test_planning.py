@@ -681,3 +681,19 @@ def test_a_step_that_acts_is_no_reading_whatever_else_it_says() -> None:
         "get_position",
         {"drone_id": "alpha"},
     )
+
+
+async def test_a_leg_with_no_height_for_a_drone_on_the_ground_is_asked_of_the_model(
+    toy: ToyServer, scripted
+) -> None:
+    """The gateway refuses a leg from the ground with no height; the host does not make it, and the model
+    (which reads the whole request) is asked for the step."""
+    plan = ScriptedReply(content="1. alpha: fly 45 m south\n2. alpha: fly 12 m up")
+    model = scripted([plan, say("alpha cannot fly that way")])
+    events: list[AgentEvent] = []
+    await run_on_toy(toy, model, "alpha 45 m south, 12 m up", plan_first=True, events=events)
+    assert [e for e in events if e.kind == "plan_call"] == []
+    asked = model.requests[1]["messages"][-1]["content"]
+    assert asked.endswith(
+        "Steps:\n1. alpha: fly 45 m south\n2. alpha: fly 12 m up\nCall one tool for each step, in this order."
+    )

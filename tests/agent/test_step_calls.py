@@ -68,3 +68,13 @@ def test_a_step_in_the_words_of_one_call_is_that_call(step: str, call: tuple[str
 )
 def test_a_step_with_any_word_not_read_is_no_call(step: str) -> None:
     assert call_of_step(step, FLEET) is None
+
+
+def test_a_leg_without_a_height_is_told_apart() -> None:
+    from gateway.agent.step_calls import leg_without_height
+
+    south = call_of_step("alpha: fly 45 m south", FLEET)
+    assert south is not None and leg_without_height(south)
+    for step in ("alpha: fly 45 m south at 12 m", "alpha: fly 45 m south and 12 m up", "alpha: land"):
+        call = call_of_step(step, FLEET)
+        assert call is not None and not leg_without_height(call), step
