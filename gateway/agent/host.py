@@ -107,6 +107,7 @@ class AgentHost:
         self._memory = TurnMemory()  # what this turn has said and done, to judge the next reply
         self._turn_start = 0
         self._turn_plan: planning.Plan | None = None  # this turn's steps and where the turn is in them
+        self._plan_made: set[str] = set()  # the calls the host made for this turn's steps
         self.reset()
 
     def reset(self) -> None:
@@ -142,7 +143,7 @@ class AgentHost:
         result = TurnResult(outcome="step_limit", final_text=None, steps=0)
         content = f"{roster.text()}\n\n{user_text}" if roster is not None else user_text
         self._turn_plan = None
-        self._plan_made: set[str] = set()  # the calls the host made for this turn's steps
+        self._plan_made = set()
         if self.plan_first and roster is not None:
             steps = await self._plan(roster.ids, user_text, result.usage)
             if steps:

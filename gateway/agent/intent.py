@@ -198,12 +198,8 @@ async def read_call(
         if args.get("up_m") or args.get("alt_m"):  # the fleet is read only when there is a height to judge
             drone = await fresh_entry(args.get("drone_id"))
             alt_now = drone.alt_m if drone is not None and drone.flying else None
-            sent_before = any(
-                {k: v for k, v in m.items() if k != "drone_id"}
-                == {k: v for k, v in args.items() if k != "drone_id"}
-                for m in moves_of(flown, args.get("drone_id"))
-            )  # the same call again is a repeat, held back as one, never a new climb
-            if not sent_before:
+            # the same call again is a repeat, held back as one, never a new climb
+            if args not in moves_of(flown, args.get("drone_id")):
                 notes += climb_written_as_altitude(args, request, alt_now)
             notes += altitude_not_a_climb(args, request, alt_now)
     return name, args, reading, notes

@@ -23,7 +23,7 @@ from gateway.agent.answer import ANSWER_TOOL
 from gateway.agent.chat import ChatModel, Message
 from gateway.agent.repair import request_climbs
 from gateway.agent.roster import Roster, drones_named
-from gateway.agent.step_calls import call_of_step
+from gateway.agent.step_calls import StepCall, call_of_step
 from gateway.agent.turns import ToolCallRecord, Usage
 from gateway.agent.wording import already_so, first_line
 
@@ -383,9 +383,6 @@ def step_done_by(step: str, call: ToolCallRecord, fleet_ids: Sequence[str]) -> b
     return not named or bool(named & (drones_named(call.arguments) or set())) or call.name == "fleet_status"
 
 
-Read = tuple[str, dict[str, object]]  # a read-only call: tool name, arguments
-
-
 @dataclass(frozen=True)
 class Where:
     """Where a turn is in its plan: whether only the answer is left, the note for the step whose turn it
@@ -393,7 +390,7 @@ class Where:
 
     finished: bool
     note: str
-    read: Read | None = None
+    call: StepCall | None = None
     passed_over: tuple[str, ...] = ()  # drones a choice between drones did not pick, for this step
 
 
@@ -430,11 +427,11 @@ def _height_flown(step: str, last: ToolCallRecord, fleet_ids: Sequence[str], req
     return len(heights) == 1 and bool(heights & flown)
 
 
-def _battery_read(drones: Sequence[str]) -> Read:
+def _battery_read(drones: Sequence[str]) -> StepCall:
     return ("get_battery", {"drone_id": drones[0]}) if len(drones) == 1 else ("fleet_status", {})
 
 
-def _call_of(step: str, fleet_ids: Sequence[str], request: str) -> Read | None:
+def _call_of(step: str, fleet_ids: Sequence[str], request: str) -> StepCall | None:
     """The call the host makes for a step: a reading it needs, or the one call its words say exactly
     (step_calls.py); None when the model is to write it. A climb or descent the request does not name is
     not made (dev half with the 0.5B model: "climb to thirty metres" planned as "alpha: climb 30 m", after
@@ -460,7 +457,7 @@ _NO_READ_RE = re.compile(
 )
 
 
-def _read_of(step: str, fleet_ids: Sequence[str]) -> Read | None:
+def _read_of(step: str, fleet_ids: Sequence[str]) -> StepCall | None:
     """The read-only call a step of a reading kind is (battery, position), for the drones it names."""
     if _NO_READ_RE.search(step.split(":", 1)[-1]):
         return None
@@ -511,13 +508,13 @@ class Plan:
         """Every step is done, or a condition did not hold: only the answer is left."""
         return self.where(calls).finished
 
-    def call_due(self, calls: Sequence[ToolCallRecord]) -> Read | None:
+    def call_due(self, calls: Sequence[ToolCallRecord]) -> StepCall | None:
         """The call the host makes for the step whose turn it is (a reading it needs, or the call its words
         say exactly), or None."""
-        return self.where(calls).read
+        return self.where(calls).call
 
     def _read_first(self, i: int, step: str, unread: Sequence[str]) -> Where:
-        """Step ``i`` waits for the battery of these drones: the host reads the first (``Where.read``)."""
+        """Step ``i`` waits for the battery of these drones: the host reads the first (``Where.call``)."""
         return Where(
             False,
             f"Now step {i + 1} of {len(self.steps)}: {step}. Read the battery of {', '.join(unread)} first: "
