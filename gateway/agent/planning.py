@@ -76,6 +76,15 @@ _NO_ACTION_RE = re.compile(
     r"^[\w ,]+:\s*(?:hover|stay|keep|remain|wait|leave|(?:on the )?(?:pad|ground)\b)", re.IGNORECASE
 )
 _OTHERWISE_RE = re.compile(r"^(?:otherwise|else|if not)\b", re.IGNORECASE)
+# "the rest don't move", "the others stay on the ground", "charlie: does not fly": a step of drones that do
+# nothing, with no condition before it (dev half with the 0.5B model: "the rest don't move" was asked for
+# as a step, and the model flew charlie for it until the step limit)
+_STAND_STILL_RE = re.compile(
+    r"^(?!\s*(?:if|otherwise|else|when|unless)\b)(?!.*\d)(?:[^:]*:\s*)?"
+    r"(?:(?:the )?(?:rest|others?|other \w+)\b.*\b(?:stay|remain|wait|keep|don'?t|do not)\b|"
+    r"(?:[\w ,]*\b)?(?:don'?t|do(?:es)? not)\s+(?:move|fly|take off))",
+    re.IGNORECASE,
+)
 
 
 def plan_request(fleet_ids: Sequence[str], request: str) -> str:
@@ -121,6 +130,8 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
         if not m:
             continue
         step = m.group(2).strip()
+        if _STAND_STILL_RE.match(step):
+            continue
         if _NO_ACTION_RE.match(step):
             if _height_for_a_bare_takeoff(step, lines):
                 continue
@@ -197,6 +208,12 @@ _HOME_RE = re.compile(
 _GO_HOME_RE = re.compile(r"\b(?:home|return\w*)\b", re.IGNORECASE)
 _LANDING_RE = re.compile(r"\b(?:land\w*|down|touch\w*|ground)\b", re.IGNORECASE)
 _LAND_STEP_RE = re.compile(r"\bland\b", re.IGNORECASE)
+# a landing said outright ("land it", "put it down", "straight back down"), not a descent ("down to 5 m")
+_ASKS_TO_LAND_RE = re.compile(
+    r"\b(?:land(?:s|ing|ed)?|touch(?:es|ing)? down|(?:set|put|bring|come|straight|back)(?: \w+)? down)\b"
+    r"(?!\s+(?:to|by|\d))",
+    re.IGNORECASE,
+)
 
 
 def plan_gaps(steps: Sequence[str], request: str) -> list[str]:
@@ -222,6 +239,8 @@ def plan_gaps(steps: Sequence[str], request: str) -> list[str]:
         gaps.append("add a flight home the request does not ask for")
     if _LAND_STEP_RE.search(said) and not _LANDING_RE.search(request):
         gaps.append("add a landing the request does not ask for")
+    if _ASKS_TO_LAND_RE.search(request) and not (_LAND_STEP_RE.search(said) or home_said):
+        gaps.append("leave out the landing")
     return gaps
 
 
@@ -231,7 +250,13 @@ def home_for_landing(steps: Sequence[str], request: str) -> list[str]:
     north at 12 m" planned with a landing after it). Dev half: both twice in a row, so the plan was
     dropped and the model flew without one."""
     said = " ".join(steps)
-    if _LANDING_RE.search(request) or not _LAND_STEP_RE.search(said):
+    if not _LAND_STEP_RE.search(said):
+        return list(steps)
+    if _LANDING_RE.search(request):
+        if _HOME_RE.search(request) and not (_GO_HOME_RE.search(said) or _HOME_RE.search(said)):
+            # "send it home to land" planned as "bravo: land": a return home, which lands (dev half with
+            # the 0.5B model: the plan had no way home, so it was dropped and the model flew without one)
+            return [_LAND_STEP_RE.sub("return home", s) if _LAND_ONLY_RE.match(s) else s for s in steps]
         return list(steps)
     if not _HOME_RE.search(request):
         return [s for s in steps if not _LAND_ONLY_RE.match(s)]
@@ -347,6 +372,16 @@ _STEP_KINDS: tuple[tuple[re.Pattern[str], frozenset[str]], ...] = (
         re.compile(
             r"^[^:]*:\s*(?:fly|go|climb|move)\b"
             r"(?!.*\b(?:north|south|east|west|higher|lower|back|home|land)\b)",
+            re.I,
+        ),
+        frozenset({"takeoff", "move_to_relative", "go_to_location"}),
+    ),
+    # "bravo: take up at 20 m", "alpha: up 10 m": a height and no verb of another kind (dev half with the
+    # 0.5B model: the takeoff to 20 m did not carry "take up at 20 m", so it was sent again to the step limit)
+    (
+        re.compile(
+            r"^[^:]*:(?!.*\b(?:north|south|east|west|higher|lower|back|home|land|down|apart|formation)\b)"
+            r".*\d+(?:\.\d+)?\s*(?:m|metres?|meters?)\b",
             re.I,
         ),
         frozenset({"takeoff", "move_to_relative", "go_to_location"}),

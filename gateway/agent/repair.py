@@ -147,9 +147,11 @@ DIRECTION_AXES: dict[str, tuple[str, int]] = {
 }
 
 
-# "climbing another 6 m", "climb 5 m", "drop a further 3 m": a distance up or down named by its verb
+# "climbing another 6 m", "climb 5 m", "drop a further 3 m", "up 10 m": a distance up or down named by its
+# verb ("up to 10 m" is an altitude, not read here)
 _CLIMB_RE = re.compile(
-    r"\b(climb(?:s|ing)?|ris(?:e|es|ing)|ascend(?:s|ing)?|descend(?:s|ing)?|drop(?:s|ping)?|sink(?:s|ing)?)\s+"
+    r"\b(climb(?:s|ing)?|ris(?:e|es|ing)|ascend(?:s|ing)?|up|descend(?:s|ing)?|drop(?:s|ping)?|sink(?:s|ing)?|"
+    r"down)\s+"
     r"(?:(?:another|a\s+further|an\s+extra)\s+)?(\d+(?:\.\d+)?)\s*(?:m|metres?|meters?)\b",
     re.IGNORECASE,
 )
@@ -166,7 +168,7 @@ def _moves(request: str) -> list[tuple[float, str, str, int]]:
     for m in _CLIMB_RE.finditer(request or ""):
         if any(start <= m.start(2) < end for start, end in taken):
             continue  # "climb 10 m higher": the distance is already read with its direction
-        sign = 1 if m.group(1).lower().startswith(("climb", "ris", "ascend")) else -1
+        sign = 1 if m.group(1).lower().startswith(("climb", "ris", "ascend", "up")) else -1
         found.append((m.start(), (float(m.group(2)), m.group(0), "up_m", sign)))
     return [move for _, move in sorted(found, key=lambda f: f[0])]
 

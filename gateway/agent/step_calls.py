@@ -25,7 +25,11 @@ _M = r"\s*(?:m|metres?|meters?)\b"
 _HEAD_RE = re.compile(r"^\s*([\w ,&]+?)\s*:\s*(\S.*?)\s*\.?\s*$")
 _JOINERS_RE = re.compile(r"^(?:,|and|&|\s)+$", re.IGNORECASE)
 
-_TAKEOFF_RE = re.compile(rf"^take ?off(?: to)? {_N}{_M}(?: and hover(?: there)?)?$", re.IGNORECASE)
+# "take off to 12 m and hover there", "take off and stay up at 25 m" (the 0.5B model's plan, dev half)
+_STAY = r"(?:hover|stay|hold|wait|remain)(?: up)?(?: there)?"
+_TAKEOFF_RE = re.compile(
+    rf"^take ?off(?:(?: to)? {_N}{_M}(?: and {_STAY})?| and {_STAY} at {_N}{_M})$", re.IGNORECASE
+)
 _LAND_RE = re.compile(
     r"^(?:land|(?:set|put|bring|come|touch)(?: it)?(?: straight)?(?: back)? down)(?: (?:it|there|here|now|"
     r"on the spot|again))?$",
@@ -39,7 +43,12 @@ _HOME_RE = re.compile(
 _MOVE_VERB_RE = re.compile(
     r"^(?:(?:fly|go|move|head|shift|nudge|travel)\s+)?(?:(?:over|out|on)\s+)?", re.IGNORECASE
 )
-_LEG_RE = re.compile(rf"{_N}{_M}\s+(north|south|east|west|higher|up|lower|down)\b", re.IGNORECASE)
+# "20 m west", "20 m back east" (the way back, said as its direction), "up 10 m" (dev half, 0.5B's plan)
+_LEG_RE = re.compile(
+    rf"{_N}{_M}\s+(?:back\s+)?(north|south|east|west|higher|up|lower|down)\b|"
+    rf"\b(north|south|east|west|up|down)\s+{_N}{_M}",
+    re.IGNORECASE,
+)
 _CLIMB_RE = re.compile(
     rf"\b(climb(?:ing)?|descend(?:ing)?)\s+(?:(?:another|a further|an extra)\s+)?{_N}{_M}", re.IGNORECASE
 )
@@ -71,7 +80,7 @@ def call_of_step(step: str, fleet_ids: Sequence[str]) -> StepCall | None:
         return _formation(drones, action)
     drone = drones[0]
     if m := _TAKEOFF_RE.match(action):
-        return ("takeoff", {"drone_id": drone, "alt_m": float(m.group(1))})
+        return ("takeoff", {"drone_id": drone, "alt_m": float(m.group(1) or m.group(2))})
     if _LAND_RE.match(action):
         return ("land", {"drone_id": drone})
     if _HOME_RE.match(action):
@@ -107,8 +116,9 @@ def _move(action: str) -> dict[str, object] | None:
         return True
 
     for m in _LEG_RE.finditer(text):
-        axis, sign = DIRECTION_AXES[m.group(2).lower()]
-        if not put(axis, sign * float(m.group(1))):
+        direction, metres = (m.group(2), m.group(1)) if m.group(2) else (m.group(3), m.group(4))
+        axis, sign = DIRECTION_AXES[direction.lower()]
+        if not put(axis, sign * float(metres)):
             return None
         spans.append(m.span())
     for m in _CLIMB_RE.finditer(text):

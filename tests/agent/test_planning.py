@@ -697,3 +697,32 @@ async def test_a_leg_with_no_height_for_a_drone_on_the_ground_is_asked_of_the_mo
     assert asked.endswith(
         "Steps:\n1. alpha: fly 45 m south\n2. alpha: fly 12 m up\nCall one tool for each step, in this order."
     )
+
+
+def test_the_0_5b_models_plan_shapes_from_the_dev_half() -> None:
+    """Dev half with the 0.5B model: "the rest don't move" asked for as a step (charlie flown for it to the
+    step limit); "straight back down" left out of the plan; "send it home to land" planned as a landing;
+    "take up at 20 m" not carried by the takeoff to 20 m, which was sent again to the step limit."""
+    hop = "Take the one lower on battery up to 6 m and straight back down; the rest don't move."
+    lowest = "the one with the lowest battery"
+    reply = f"1. alpha: read battery\n2. {lowest}: take off to 6 m\n3. the rest don't move"
+    assert split_steps(reply, FLEET, hop) == ["alpha: read battery", f"{lowest}: take off to 6 m"]
+    assert not carries_the_request(split_steps(reply, FLEET, hop), hop)  # the landing is left out
+    assert carries_the_request([*split_steps(reply, FLEET, hop), f"{lowest}: land"], hop)
+    # a condition's branch that does nothing stays: the plan reads it
+    cond = "1. bravo: read battery\n2. if above 50 %: bravo: fly 30 m north at 15 m\n3. otherwise: don't fly"
+    assert split_steps(cond, FLEET, "")[-1] == "otherwise: don't fly"
+    home = "Get bravo to 18 m, move it 25 m north, and after that send it home to land."
+    planned = "1. bravo: take off to 18 m\n2. bravo: fly 25 m north\n3. bravo: land"
+    assert steps_from_reply(planned, FLEET, home) == [
+        "bravo: take off to 18 m",
+        "bravo: fly 25 m north",
+        "bravo: return home",
+    ]
+    # a request that lands where it is keeps its landing
+    there = "Get bravo to 18 m, move it 25 m north, and land it there."
+    assert steps_from_reply(planned, FLEET, there)[-1] == "bravo: land"
+    plan = Plan(["bravo: read battery", "if at least 70 %: bravo: take up at 20 m"], FLEET)
+    read = _ok("get_battery", "bravo battery 85%, 12.20 V", drone_id="bravo")
+    assert not plan.finished([read])
+    assert plan.finished([read, _ok("takeoff", drone_id="bravo", alt_m=20)])

@@ -269,3 +269,12 @@ def test_the_requests_distances_shifted_one_slot_along_are_put_back() -> None:
     ):
         before = dict(kept)
         assert shifted_request_moves(kept, asked) == [] and kept == before
+
+
+def test_up_and_down_before_a_distance_are_climbs_and_up_to_is_an_altitude() -> None:
+    """Dev half (compound-west-and-back): "Bravo: up 10 m, 20 m west, ..." names a climb of 10 m."""
+    from gateway.agent.repair import request_climbs
+
+    assert request_climbs("Bravo: up 10 m, 20 m west, then 20 m back east, then put it down.") == {10.0}
+    assert request_climbs("Take it down 4 m, then land.") == {-4.0}
+    assert request_climbs("Take bravo up to 10 m and hold it there.") == set()

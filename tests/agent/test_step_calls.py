@@ -78,3 +78,17 @@ def test_a_leg_without_a_height_is_told_apart() -> None:
     for step in ("alpha: fly 45 m south at 12 m", "alpha: fly 45 m south and 12 m up", "alpha: land"):
         call = call_of_step(step, FLEET)
         assert call is not None and not leg_without_height(call), step
+
+
+@pytest.mark.parametrize(
+    ("step", "call"),
+    [
+        ("bravo: take off and stay up at 25 m", ("takeoff", {"drone_id": "bravo", "alt_m": 25.0})),
+        ("bravo: take off to 12 m and hover there", ("takeoff", {"drone_id": "bravo", "alt_m": 12.0})),
+        ("bravo: up 10 m", ("move_to_relative", {"drone_id": "bravo", "north_m": 0.0, "east_m": 0.0, "up_m": 10.0})),
+        ("bravo: fly 20 m back east", ("move_to_relative", {"drone_id": "bravo", "north_m": 0.0, "east_m": 20.0})),
+        ("bravo: go north 20 m at 10 m", ("move_to_relative", {"drone_id": "bravo", "north_m": 20.0, "east_m": 0.0, "alt_m": 10.0})),
+    ],
+)  # fmt: skip
+def test_the_0_5b_models_step_words_from_the_dev_half(step: str, call: tuple[str, dict[str, object]]) -> None:
+    assert call_of_step(step, FLEET) == call
