@@ -23,7 +23,7 @@ from gateway.agent.answer import ANSWER_TOOL
 from gateway.agent.chat import ChatModel, Message
 from gateway.agent.repair import request_climbs
 from gateway.agent.roster import Roster, drones_named
-from gateway.agent.step_calls import StepCall, call_of_step
+from gateway.agent.step_calls import StepCall, call_of_step, leg_without_height
 from gateway.agent.turns import ToolCallRecord, Usage
 from gateway.agent.wording import already_so, first_line
 
@@ -142,6 +142,7 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
     if any(re.search(rf"\b{d}\b", s, re.IGNORECASE) for s in lines for d in foreign):
         return []
     asked = asked_drones(request, fleet_ids)
+    lines = formation_for_drones(lines, request, fleet_ids)
     steps = [one for line in lines for one in _per_drone(line, fleet_ids, asked)]
     if len(steps) == 1 and _call_of(steps[0], fleet_ids, request) is not None:
         return steps  # the one call the request is, read from its step (step_calls.py)
@@ -156,6 +157,71 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
 
 
 _BARE_TAKEOFF_RE = re.compile(r"^([\w ,&]+):\s*take off\s*\.?$", re.IGNORECASE)
+
+
+# the formation a request's words name; one only, or the steps are left as written
+_REQUEST_SHAPES: tuple[tuple[str, re.Pattern[str]], ...] = (
+    (
+        "line",
+        re.compile(r"\b(?:line(?:d)? up|in a (?:line|row)|side by side|abreast|line formation)\b", re.I),
+    ),
+    ("column", re.compile(r"\b(?:column|single file|one behind the other)\b", re.I)),
+    ("wedge", re.compile(r"\b(?:wedge|v(?:-| )?(?:shape|formation))\b", re.I)),
+    ("circle", re.compile(r"\b(?:circle|ring)\b", re.I)),
+    ("grid", re.compile(r"\bgrid\b", re.I)),
+)
+_SHAPE_WORD_RE = re.compile(r"\b(?:line|row|column|wedge|v|circle|grid)\b", re.I)
+_FLY_VERB_RE = re.compile(r"^(?:fly|move|go|get|spread(?: out)?|form(?: up)?)\s+", re.I)
+_TAKEOFF_STEP_RE = re.compile(
+    r"^([\w ,&]+):\s*take off(?: to)? (\d+(?:\.\d+)?)\s*(?:m|metres?|meters?)\s*\.?$", re.I
+)
+
+
+def formation_for_drones(lines: Sequence[str], request: str, fleet_ids: Sequence[str]) -> list[str]:
+    """One formation step for the same formation words written once per drone ("alpha: fly 8 metres
+    apart", "bravo: fly 8 metres apart"), with the request's shape when the words give none and the
+    height of the takeoffs before it (the formation takes grounded drones off itself, so those steps go).
+    Dev half with the 0.5B model: "line up alpha, bravo and charlie at 20 m, 8 metres apart" planned as a
+    takeoff and "fly 8 metres apart" for each drone; the steps were dropped and no formation flew."""
+    groups: dict[str, list[str]] = {}
+    for line in lines:
+        head = _HEAD_RE.match(line)
+        drones = _drones_in(head.group(1), fleet_ids) if head else []
+        if head and len(drones) == 1 and _FORMATION_WORDS_RE.search(head.group(2)):
+            action = _FLY_VERB_RE.sub("", re.sub(r"\s+", " ", head.group(2)).strip().rstrip("."))
+            if drones[0] not in groups.setdefault(action.lower(), []):
+                groups[action.lower()].append(drones[0])
+    formed = {a: ds for a, ds in groups.items() if len(ds) > 1}
+    if len(formed) != 1:
+        return list(lines)
+    action, drones = next(iter(formed.items()))
+    heights = {
+        float(m.group(2))
+        for line in lines
+        if (m := _TAKEOFF_STEP_RE.match(line)) and set(_drones_in(m.group(1), fleet_ids)) <= set(drones)
+    }
+    if not _SHAPE_WORD_RE.search(action):
+        shapes = [shape for shape, words in _REQUEST_SHAPES if words.search(request)]
+        if len(shapes) != 1:
+            return list(lines)
+        action = f"{shapes[0]} formation, {action}"
+    if not _METRES_AT_RE.search(action) and len(heights) == 1:
+        action = f"{action}, at {heights.pop():g} m"
+    step = f"{', '.join(drones)}: {action}"
+    read: list[str] = []
+    for line in lines:
+        head = _HEAD_RE.match(line)
+        mine = head is not None and set(_drones_in(head.group(1), fleet_ids)) <= set(drones)
+        takeoff = _TAKEOFF_STEP_RE.match(line)
+        if mine and (takeoff or (head and _FORMATION_WORDS_RE.search(head.group(2)))):
+            if step not in read:
+                read.append(step)
+            continue
+        read.append(line)
+    return read
+
+
+_METRES_AT_RE = re.compile(r"\bat \d+(?:\.\d+)?\s*(?:m|metres?|meters?)\b", re.I)
 
 
 def _height_for_a_bare_takeoff(step: str, before: list[str]) -> bool:
@@ -193,8 +259,40 @@ def steps_from_reply(text: str | None, fleet_ids: Sequence[str], request: str = 
 
 def steps_as_meant(text: str | None, fleet_ids: Sequence[str], request: str) -> list[str]:
     """The steps of a reply (split_steps), a landing or a way home the request does not speak of read as
-    it meant (home_for_landing, landing_for_home)."""
-    return landing_for_home(home_for_landing(split_steps(text, fleet_ids, request), request), request)
+    it meant (home_for_landing, landing_for_home), an altitude the steps leave out given to the legs it is
+    for (height_for_legs)."""
+    steps = landing_for_home(home_for_landing(split_steps(text, fleet_ids, request), request), request)
+    return height_for_legs(steps, request, fleet_ids)
+
+
+# "at 15 m", "at 20 metres altitude", "10 m above the ground": an altitude the request names
+_ALTITUDE_RE = re.compile(
+    r"\bat (\d+(?:\.\d+)?)\s*(?:m|metres?|meters?)\b|"
+    r"(\d+(?:\.\d+)?)\s*(?:m|metres?|meters?)\s+(?:above the ground|altitude|high)\b",
+    re.IGNORECASE,
+)
+
+
+def height_for_legs(steps: Sequence[str], request: str, fleet_ids: Sequence[str]) -> list[str]:
+    """The steps with an altitude of the request that none of them gives, given to each drone's first leg
+    flown without a height ("bravo: fly 30 m north and 30 m west" for "... at 15 m"). Dev half with the
+    0.5B model: the height was left out, the plan dropped for it, and the model flew without one; from the
+    ground such a leg is refused."""
+    said = {float(n) for n in _AMOUNT_RE.findall(" ".join(steps))}
+    heights = {float(a or b) for a, b in _ALTITUDE_RE.findall(request)} - said
+    if len(heights) != 1:
+        return list(steps)
+    height = heights.pop()
+    given: set[str] = set()
+    read: list[str] = []
+    for step in steps:
+        call = call_of_step(step, fleet_ids)
+        drone = call[1].get("drone_id") if call is not None else None
+        if call is not None and isinstance(drone, str) and leg_without_height(call) and drone not in given:
+            given.add(drone)
+            step = f"{step.rstrip(' .')} at {height:g} m"
+        read.append(step)
+    return read
 
 
 _DIRECTION_RE = re.compile(r"\b(north|south|east|west)\b", re.IGNORECASE)

@@ -56,11 +56,13 @@ _AT_RE = re.compile(rf"\bat {_N}{_M}(?:\s+(?:altitude|high|up))?", re.IGNORECASE
 _MOVE_GLUE_RE = re.compile(r"^(?:,|and|while|then\s+climb|\s)*$", re.IGNORECASE)
 
 _SHAPES = {"line": "line", "row": "line", "column": "column", "wedge": "wedge", "v": "wedge"}
-_SHAPES |= {"circle": "circle", "grid": "grid"}
+_SHAPES |= {"circle": "circle", "grid": "grid", "side by side": "line", "abreast": "line"}
 _SHAPE_RE = re.compile(
-    r"^(?:(?:in|into) an? )?(line|row|column|wedge|v|circle|grid)(?:[ -](?:formation|shape))?$", re.IGNORECASE
+    r"^(?:(?:in|into) an? )?(line|row|column|wedge|v|circle|grid|side by side|abreast)"
+    r"(?:[ -](?:formation|shape))?$",
+    re.IGNORECASE,
 )
-_APART_RE = re.compile(rf"^{_N}{_M} apart$", re.IGNORECASE)
+_APART_RE = re.compile(rf"^(?:(?:fly|spread(?: out)?)\s+)?{_N}{_M} apart$", re.IGNORECASE)
 _FORMATION_AT_RE = re.compile(rf"^at {_N}{_M}(?: altitude)?$", re.IGNORECASE)
 _OFFSET_RE = re.compile(
     rf"^{_N}{_M}\s+(?:to the )?(north|south|east|west)(?: of (?:where they are|here|them))?$", re.IGNORECASE

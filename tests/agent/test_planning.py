@@ -16,7 +16,9 @@ from gateway.agent.planning import (
     Plan,
     asked_drones,
     carries_the_request,
+    formation_for_drones,
     gaps_note,
+    height_for_legs,
     home_for_landing,
     plan_messages,
     plan_steps,
@@ -54,7 +56,7 @@ def test_steps_that_copy_the_examples_drones_are_not_used() -> None:
 def test_one_step_is_no_plan_unless_its_words_say_its_call() -> None:
     """A request of one action is its own step: rewritten for the model, it only gains the planner's
     errors; a step that says its call exactly (or a reading) is the host's call, so the model only answers."""
-    assert steps_from_reply("1. alpha, bravo: side by side, 8 m apart, at 20 m", FLEET) == []
+    assert steps_from_reply("1. alpha, bravo: side by side, 8 m apart, above the tower", FLEET) == []
     assert steps_from_reply("1. alpha: climb to 10 m\n2. alpha: hover", FLEET) == []
     line = "Line up alpha, bravo and charlie at 20 m, 8 m apart, where they are."
     assert steps_from_reply("1. alpha, bravo, charlie: line formation, 8 m apart, at 20 m", FLEET, line) == [
@@ -212,9 +214,11 @@ def test_a_step_for_several_drones_becomes_one_step_per_drone_asked() -> None:
     reply = "1. alpha, bravo, charlie: line formation, 15 m apart\n2. alpha: land"
     formed = steps_from_reply(reply, FLEET, pair)
     assert formed == ["alpha, charlie: line formation, 15 m apart", "alpha: land"]
-    # words of drones placed together are a formation too, without the word (dev half, form-pair-abreast)
+    # words of drones placed together are a formation too, without the word (dev half, form-pair-abreast):
+    # side by side is a line, so the one step is the host's formation call
     abreast = "Alpha and charlie side by side, 15 m apart, at 20 m, where they are now."
-    assert steps_from_reply("1. alpha, charlie: side by side, 15 m apart, at 20 m", FLEET, abreast) == []
+    side = ["alpha, charlie: side by side, 15 m apart, at 20 m"]
+    assert steps_from_reply(f"1. {side[0]}", FLEET, abreast) == side
     # a request for the whole fleet may mean drones it does not name
     every = "all of them up to 20 m, then land alpha"
     reply = "1. alpha, bravo, charlie: take off to 20 m\n2. alpha: land"
@@ -726,3 +730,43 @@ def test_the_0_5b_models_plan_shapes_from_the_dev_half() -> None:
     read = _ok("get_battery", "bravo battery 85%, 12.20 V", drone_id="bravo")
     assert not plan.finished([read])
     assert plan.finished([read, _ok("takeoff", drone_id="bravo", alt_m=20)])
+
+
+def test_an_altitude_the_steps_leave_out_goes_to_each_drones_first_leg() -> None:
+    """Dev half with the 0.5B model: "30 metres north and 30 metres west at 15 m" planned without the
+    15 m, so the plan was dropped and the model flew without one."""
+    hold = "Fly bravo 30 metres north and 30 metres west at 15 m and leave it there."
+    reply = "1. bravo: fly 30 metres north and 30 metres west\n2. charlie: leave it there"
+    assert steps_from_reply(reply, FLEET, hold) == ["bravo: fly 30 metres north and 30 metres west at 15 m"]
+    both = "Alpha 25 m to the east and bravo 25 m to the north, both at 10 m."
+    reply = "1. alpha: fly 25 m east\n2. bravo: fly 25 m north\n3. alpha: fly 5 m west"
+    assert steps_from_reply(reply, FLEET, both)[:2] == [
+        "alpha: fly 25 m east at 10 m",
+        "bravo: fly 25 m north at 10 m",
+    ]
+    # steps that give the altitude, or a request with two, are left as written
+    given = ["bravo: take off to 15 m", "bravo: fly 30 m north"]
+    assert height_for_legs(given, "Bravo 30 m north at 15 m.", FLEET) == given
+    two = ["alpha: fly 25 m east", "bravo: fly 25 m north"]
+    assert height_for_legs(two, "Alpha 25 m east at 10 m, bravo 25 m north at 12 m.", FLEET) == two
+
+
+def test_the_same_formation_words_for_each_drone_are_one_formation_step() -> None:
+    """Dev half with the 0.5B model: a takeoff and "fly 8 metres apart" per drone, and "fly 15 m apart, at
+    20 m" per drone written twice; both plans were dropped and no formation flew."""
+    here = "Line up alpha, bravo and charlie at 20 m, 8 metres apart, right where they are."
+    per_drone = [f"{d}: {a}" for d in FLEET for a in ("take off to 20 m", "fly 8 metres apart")]
+    reply = "\n".join(f"{i}. {s}" for i, s in enumerate(per_drone, 1))
+    assert steps_from_reply(reply, FLEET, here) == [
+        "alpha, bravo, charlie: line formation, 8 metres apart, at 20 m"
+    ]
+    pair = "Alpha and charlie side by side, 15 m apart, at 20 m, where they are now."
+    reply = "\n".join(f"{i}. {d}: fly 15 m apart, at 20 m" for i, d in enumerate(["alpha", "charlie"] * 2, 1))
+    assert steps_from_reply(reply, FLEET, pair) == ["alpha, charlie: line formation, 15 m apart, at 20 m"]
+    # no shape in the steps nor one in the request: left as written (then no plan)
+    assert formation_for_drones(
+        ["alpha: 5 m apart", "bravo: 5 m apart"], "Alpha and bravo 5 m apart.", FLEET
+    ) == [
+        "alpha: 5 m apart",
+        "bravo: 5 m apart",
+    ]

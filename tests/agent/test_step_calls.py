@@ -92,3 +92,11 @@ def test_a_leg_without_a_height_is_told_apart() -> None:
 )  # fmt: skip
 def test_the_0_5b_models_step_words_from_the_dev_half(step: str, call: tuple[str, dict[str, object]]) -> None:
     assert call_of_step(step, FLEET) == call
+
+
+def test_side_by_side_is_a_line() -> None:
+    call = call_of_step("alpha, charlie: side by side, 15 m apart, at 20 m", FLEET)
+    assert call == (
+        "formation_goto",
+        {"drone_ids": ["alpha", "charlie"], "formation": "line", "spacing_m": 15.0, "alt_m": 20.0},
+    )
