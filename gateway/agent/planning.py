@@ -262,7 +262,7 @@ def steps_as_meant(text: str | None, fleet_ids: Sequence[str], request: str) -> 
     it meant (home_for_landing, landing_for_home), an altitude the steps leave out given to the legs it is
     for (height_for_legs)."""
     steps = landing_for_home(home_for_landing(split_steps(text, fleet_ids, request), request), request)
-    return height_for_legs(steps, request, fleet_ids)
+    return height_for_legs(height_steps_into_legs(steps, request, fleet_ids), request, fleet_ids)
 
 
 # "at 15 m", "at 20 metres altitude", "10 m above the ground": an altitude the request names
@@ -271,6 +271,37 @@ _ALTITUDE_RE = re.compile(
     r"(\d+(?:\.\d+)?)\s*(?:m|metres?|meters?)\s+(?:above the ground|altitude|high)\b",
     re.IGNORECASE,
 )
+
+
+def _height_only(step: str, drone: str, altitudes: set[float], fleet_ids: Sequence[str]) -> float | None:
+    """The altitude of the request a step for this drone asks for and nothing else ("charlie: fly 14 m",
+    "bravo: fly 10 m above the ground"), or None."""
+    heights = {float(n) for n in _METRES_RE.findall(step)}
+    if _kind(step) != _HEIGHT_KIND or _drones_in(step, fleet_ids) != [drone] or len(heights) != 1:
+        return None
+    height = heights.pop()
+    return height if height in altitudes and call_of_step(step, fleet_ids) is None else None
+
+
+def height_steps_into_legs(steps: Sequence[str], request: str, fleet_ids: Sequence[str]) -> list[str]:
+    """A leg flown without a height and, next to it, a step of that drone asking only for an altitude the
+    request names, as one leg at that altitude ("charlie: fly 35 metres to the east", "charlie: fly 14 m"
+    for "35 metres to the east, at 14 m"). Dev half with the 0.5B model: from the ground the leg without
+    a height was the model's to write, and it never wrote it right."""
+    altitudes = {float(a or b) for a, b in _ALTITUDE_RE.findall(request)}
+    read = list(steps)
+    i = 0
+    while i < len(read):
+        call = call_of_step(read[i], fleet_ids)
+        drone = call[1].get("drone_id") if call is not None else None
+        if call is not None and isinstance(drone, str) and leg_without_height(call):
+            for j in (i + 1, i - 1):
+                if 0 <= j < len(read) and (height := _height_only(read[j], drone, altitudes, fleet_ids)):
+                    read[i] = f"{read[i].rstrip(' .')} at {height:g} m"
+                    del read[j]
+                    break
+        i += 1
+    return read
 
 
 def height_for_legs(steps: Sequence[str], request: str, fleet_ids: Sequence[str]) -> list[str]:

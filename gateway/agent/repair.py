@@ -157,9 +157,19 @@ _CLIMB_RE = re.compile(
 )
 
 
+_KILOMETRES_RE = re.compile(r"(\d+(?:\.\d+)?)\s*(?:km|kilomet(?:re|er)s?)\b", re.IGNORECASE)
+
+
+def in_metres(text: str) -> str:
+    """The text with each distance in kilometres written in metres ("2 kilometres east": "2000 m east"),
+    the unit the tools take (dev half: "fly alpha 2 kilometres east" was flown 2 m north)."""
+    return _KILOMETRES_RE.sub(lambda m: f"{float(m.group(1)) * 1000:g} m", text)
+
+
 def _moves(request: str) -> list[tuple[float, str, str, int]]:
     """(distance, phrase, axis argument, sign) of each "50 m south" or "climbing another 6 m" in the
     request, in the request's order."""
+    request = in_metres(request or "")
     found = [
         (m.start(), (float(m.group(1)), m.group(0), *DIRECTION_AXES[m.group(2).lower()]))
         for m in _MOVE_RE.finditer(request or "")

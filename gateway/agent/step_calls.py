@@ -16,7 +16,7 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
-from gateway.agent.repair import DIRECTION_AXES
+from gateway.agent.repair import DIRECTION_AXES, in_metres
 
 StepCall = tuple[str, dict[str, object]]  # tool name, arguments
 
@@ -45,7 +45,7 @@ _MOVE_VERB_RE = re.compile(
 )
 # "20 m west", "20 m back east" (the way back, said as its direction), "up 10 m" (dev half, 0.5B's plan)
 _LEG_RE = re.compile(
-    rf"{_N}{_M}\s+(?:back\s+)?(north|south|east|west|higher|up|lower|down)\b|"
+    rf"{_N}{_M}\s+(?:back\s+|to the\s+)?(north|south|east|west|higher|up|lower|down)\b|"
     rf"\b(north|south|east|west|up|down)\s+{_N}{_M}",
     re.IGNORECASE,
 )
@@ -71,7 +71,7 @@ _OFFSET_RE = re.compile(
 
 def call_of_step(step: str, fleet_ids: Sequence[str]) -> StepCall | None:
     """The one call this step says exactly, or None (the model is asked for it)."""
-    head = _HEAD_RE.match(step)
+    head = _HEAD_RE.match(in_metres(step))
     if head is None:
         return None
     drones = _drones_of_head(head.group(1), fleet_ids)

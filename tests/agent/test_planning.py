@@ -19,6 +19,7 @@ from gateway.agent.planning import (
     formation_for_drones,
     gaps_note,
     height_for_legs,
+    height_steps_into_legs,
     home_for_landing,
     plan_messages,
     plan_steps,
@@ -770,3 +771,26 @@ def test_the_same_formation_words_for_each_drone_are_one_formation_step() -> Non
         "alpha: 5 m apart",
         "bravo: 5 m apart",
     ]
+
+
+def test_a_height_step_next_to_a_leg_without_one_is_that_legs_altitude() -> None:
+    """Dev half with the 0.5B model: "35 metres to the east, at 14 m" planned as a leg and "fly 14 m";
+    "50 m east, 10 m above the ground" as a leg and "fly 10 m above the ground"."""
+    hover = "Charlie: 35 metres to the east, at 14 m, and hover there."
+    reply = "1. charlie: take off to 35 metres to the east\n2. charlie: fly 14 m\n3. charlie: hover there"
+    assert steps_from_reply(reply, FLEET, hover) == ["charlie: fly 35 metres to the east at 14 m"]
+    there = "Bravo should go 50 m east, 10 m above the ground, and then come down there."
+    reply = "1. bravo: fly 10 m above the ground\n2. bravo: fly 50 m east\n3. bravo: land"
+    assert steps_from_reply(reply, FLEET, there) == ["bravo: fly 50 m east at 10 m", "bravo: land"]
+    # a height the request names as a climb, or another drone's, stays its own step
+    climb = ["bravo: fly 50 m east", "bravo: fly 10 m"]
+    assert height_steps_into_legs(climb, "Bravo 50 m east, then climb 10 m.", FLEET) == climb
+    other = ["bravo: fly 50 m east", "alpha: fly 10 m"]
+    assert height_steps_into_legs(other, "Bravo 50 m east at 10 m, alpha to 10 m.", FLEET) == other
+
+
+def test_kilometres_are_read_as_metres() -> None:
+    """Dev half with the 0.5B model: "2 kilometres east" flown 2 m north; the step is the host's call,
+    refused by the distance rule."""
+    plan = "1. alpha: fly 2 kilometres east at 20 m"
+    assert steps_from_reply(plan, FLEET, "Fly alpha 2 kilometres east at 20 m.") == [plan[3:]]

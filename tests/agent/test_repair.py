@@ -278,3 +278,14 @@ def test_up_and_down_before_a_distance_are_climbs_and_up_to_is_an_altitude() -> 
     assert request_climbs("Bravo: up 10 m, 20 m west, then 20 m back east, then put it down.") == {10.0}
     assert request_climbs("Take it down 4 m, then land.") == {-4.0}
     assert request_climbs("Take bravo up to 10 m and hold it there.") == set()
+
+
+def test_a_distance_in_kilometres_is_read_in_metres() -> None:
+    from gateway.agent.repair import in_metres, request_distances
+
+    assert (
+        in_metres("Fly alpha 2 kilometres east, then 1.5 km north")
+        == "Fly alpha 2000 m east, then 1500 m north"
+    )
+    assert request_distances("Fly alpha 2 kilometres east at 20 m.") == {2000.0}
+    assert direction_mismatch({"north_m": 2000, "east_m": 0}, "Fly alpha 2 kilometres east at 20 m.") is not None

@@ -100,3 +100,15 @@ def test_side_by_side_is_a_line() -> None:
         "formation_goto",
         {"drone_ids": ["alpha", "charlie"], "formation": "line", "spacing_m": 15.0, "alt_m": 20.0},
     )
+
+
+def test_kilometres_are_metres() -> None:
+    call = call_of_step("alpha: fly 2 kilometres east at 20 m", FLEET)
+    assert call == (
+        "move_to_relative",
+        {"drone_id": "alpha", "north_m": 0.0, "east_m": 2000.0, "alt_m": 20.0},
+    )
+    assert call_of_step("alpha: fly 1.5 km to the north", FLEET) == (
+        "move_to_relative",
+        {"drone_id": "alpha", "north_m": 1500.0, "east_m": 0.0},
+    )
