@@ -216,6 +216,23 @@ def stuck_on_a_repeat(turn: TurnResult) -> bool:
     return len(same) >= MAX_SAME_REPEATS
 
 
+def stuck_on_a_refusal(turn: TurnResult) -> bool:
+    """The same call was refused MAX_SAME_REPEATS times in this turn, the last call among them: the model is
+    told at the third that it will not work, and a model that still sends it will not get out (dev half
+    with the 0.5B model: a leg 20 m north for a drained drone refused 31 times, about 220 s, before the
+    step limit; a move with north and east swapped, 11 times)."""
+    sent = [c for c in turn.tool_calls if c.status not in ("skipped", "left_out")]
+    if not sent or sent[-1].status not in ("invalid", "error"):
+        return False
+    last = sent[-1]
+    same = [
+        c
+        for c in sent
+        if c.status in ("invalid", "error") and c.name == last.name and c.arguments == last.arguments
+    ]
+    return len(same) >= MAX_SAME_REPEATS
+
+
 def _refusal_reason(text: str) -> str | None:
     """A rule's refusal without the host's note after it ("Refused: max_altitude: target altitude 150 m
     ..."), or None for any other text."""

@@ -332,6 +332,12 @@ class AgentHost:
                 # the step limit; with the 0.5B model, fleet_status with made-up arguments, 9 times)
                 self._end_without_answer(result)
                 break
+            if checks.stuck_on_a_refusal(result):
+                # the host answers with what was done and what was refused, and why
+                self._end_without_answer(
+                    result, f"the same call was refused {checks.MAX_SAME_REPEATS} times; the host answers"
+                )
+                break
             if checks.stuck_on_a_repeat(result):
                 self._emit(
                     "step_limit",
@@ -461,13 +467,13 @@ class AgentHost:
             kept.append(call)
         return kept
 
-    def _end_without_answer(self, result: TurnResult) -> None:
-        """The turn ends as ``empty_answer``: the model gave no answer too many times."""
+    def _end_without_answer(self, result: TurnResult, why: str = "") -> None:
+        """The turn ends as ``empty_answer``: the model gave no answer too many times (or ``why``)."""
         result.outcome = "empty_answer"
         self._emit(
             "empty_answer",
             step=result.steps,
-            message=f"no answer {result.empty_streak} times in a row; the request may be unfinished",
+            message=why or f"no answer {result.empty_streak} times in a row; the request may be unfinished",
         )
 
     async def _reprompt(self, result: TurnResult, echo: bool = False) -> str:

@@ -496,3 +496,17 @@ async def test_a_turn_stuck_sending_a_finished_call_again_stops_and_the_host_ans
         e.data["message"] for e in events if e.kind == "step_limit"
     )
     assert len(model.requests) == 6  # not 20
+
+
+async def test_a_turn_stuck_sending_a_refused_call_again_stops_and_the_host_answers(toy, scripted) -> None:
+    """Dev half with the 0.5B model (refuse-bravo-drained): a refused leg sent 31 times, about 220 s, to
+    the step limit. The fifth time the same call is refused the turn ends, with the host's answer, which
+    says what was refused and why."""
+    model = scripted([call("takeoff", drone_id="alpha", alt_m=500)], repeat_last=True)
+    events: list[AgentEvent] = []
+    _, result = await run_on_toy(toy, model, "alpha up to 500 m", max_steps=20, events=events)
+    assert [c.status for c in result.tool_calls] == ["error"] * 5
+    assert result.answered_by == "host" and result.outcome == "answered"
+    assert "max_altitude" in (result.final_text or "")
+    assert "refused 5 times" in next(e.data["message"] for e in events if e.kind == "empty_answer")
+    assert len(model.requests) == 5  # not 20

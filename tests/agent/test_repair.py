@@ -288,4 +288,6 @@ def test_a_distance_in_kilometres_is_read_in_metres() -> None:
         == "Fly alpha 2000 m east, then 1500 m north"
     )
     assert request_distances("Fly alpha 2 kilometres east at 20 m.") == {2000.0}
-    assert direction_mismatch({"north_m": 2000, "east_m": 0}, "Fly alpha 2 kilometres east at 20 m.") is not None
+    assert (
+        direction_mismatch({"north_m": 2000, "east_m": 0}, "Fly alpha 2 kilometres east at 20 m.") is not None
+    )
