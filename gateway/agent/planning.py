@@ -368,7 +368,7 @@ def plan_gaps(steps: Sequence[str], request: str) -> list[str]:
         gaps.append("add a flight home the request does not ask for")
     if _LAND_STEP_RE.search(said) and not _LANDING_RE.search(request):
         gaps.append("add a landing the request does not ask for")
-    if _ASKS_TO_LAND_RE.search(request) and not (_LAND_STEP_RE.search(said) or home_said):
+    if _ASKS_TO_LAND_RE.search(request) and not (_LANDING_RE.search(said) or home_said):
         gaps.append("leave out the landing")
     return gaps
 

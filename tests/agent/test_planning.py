@@ -727,6 +727,8 @@ def test_the_0_5b_models_plan_shapes_from_the_dev_half() -> None:
     # a request that lands where it is keeps its landing
     there = "Get bravo to 18 m, move it 25 m north, and land it there."
     assert steps_from_reply(planned, FLEET, there)[-1] == "bravo: land"
+    hop_down = "Hop charlie up to 6 m, then set it back down on the spot."
+    assert carries_the_request(["charlie: take off 6 m", "charlie: set back down"], hop_down)
     plan = Plan(["bravo: read battery", "if at least 70 %: bravo: take up at 20 m"], FLEET)
     read = _ok("get_battery", "bravo battery 85%, 12.20 V", drone_id="bravo")
     assert not plan.finished([read])
