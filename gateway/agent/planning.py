@@ -262,7 +262,32 @@ def steps_as_meant(text: str | None, fleet_ids: Sequence[str], request: str) -> 
     it meant (home_for_landing, landing_for_home), an altitude the steps leave out given to the legs it is
     for (height_for_legs)."""
     steps = landing_for_home(home_for_landing(split_steps(text, fleet_ids, request), request), request)
+    steps = landings_for_each(steps, request, fleet_ids)
     return height_for_legs(height_steps_into_legs(steps, request, fleet_ids), request, fleet_ids)
+
+
+# "land them", "land both of them", "land the pair", "then both land": a landing for every drone named
+_LAND_THEM_RE = re.compile(
+    r"\bland (?:them|both|all|each|the (?:pair|two|three|lot))\b|\b(?:they|both|all) (?:\w+ )?land\b", re.I
+)
+
+
+def landings_for_each(steps: Sequence[str], request: str, fleet_ids: Sequence[str]) -> list[str]:
+    """The steps with a landing for each drone the request names when it lands them all and the steps fly
+    it but land only some, added after the last landing (dev half with the 0.5B model: "take alpha and
+    charlie 40 m west ... and land them over there" planned with "alpha: land" only; charlie was left in
+    the air)."""
+    if not _LAND_THEM_RE.search(request):
+        return list(steps)
+    named = _drones_in(request, fleet_ids)
+    landing = [i for i, s in enumerate(steps) if (c := call_of_step(s, fleet_ids)) and c[0] == "land"]
+    if len(named) < 2 or not landing:
+        return list(steps)
+    landed = {d for i in landing for d in _drones_in(steps[i].split(":")[0], fleet_ids)}
+    flown = {d for s in steps[: landing[-1]] for d in _drones_in(s.split(":")[0], fleet_ids)}
+    action = steps[landing[-1]].split(":", 1)[1].strip()
+    added = [f"{d}: {action}" for d in named if d in flown and d not in landed]
+    return [*steps[: landing[-1] + 1], *added, *steps[landing[-1] + 1 :]]
 
 
 # "at 15 m", "at 20 metres altitude", "10 m above the ground": an altitude the request names

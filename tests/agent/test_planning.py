@@ -796,3 +796,14 @@ def test_kilometres_are_read_as_metres() -> None:
     refused by the distance rule."""
     plan = "1. alpha: fly 2 kilometres east at 20 m"
     assert steps_from_reply(plan, FLEET, "Fly alpha 2 kilometres east at 20 m.") == [plan[3:]]
+
+
+def test_landing_them_is_a_landing_for_each_drone_named() -> None:
+    """Dev half with the 0.5B model: "... and land them over there" planned with alpha's landing only."""
+    west = "Take alpha and charlie 40 m west at 15 m altitude and land them over there."
+    legs = [f"{d}: fly 40 m west at 15 m altitude" for d in ("alpha", "charlie")]
+    reply = "\n".join(f"{i}. {s}" for i, s in enumerate([*legs, "alpha: land"], 1))
+    assert steps_from_reply(reply, FLEET, west) == [*legs, "alpha: land", "charlie: land"]
+    # one drone landed by name stays the only landing
+    one = "Take alpha and charlie 40 m west at 15 m altitude and land alpha there."
+    assert steps_from_reply(reply, FLEET, one) == [*legs, "alpha: land"]
