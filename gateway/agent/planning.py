@@ -329,13 +329,27 @@ def height_steps_into_legs(steps: Sequence[str], request: str, fleet_ids: Sequen
     return read
 
 
+_BARE_HEIGHT_RE = re.compile(r",\s*(\d+(?:\.\d+)?)\s*(?:m|metres?|meters?)\s*\.?$", re.IGNORECASE)
+
+
+def _bare_altitude(step: str, altitudes: set[float]) -> str:
+    """A step ending in a bare height the request names as an altitude, with its "at" ("alpha: spread out,
+    25 m to the east, 10 m" for "... both at 10 m": the 0.5B model's plan, dev half)."""
+    m = _BARE_HEIGHT_RE.search(step)
+    if m is None or float(m.group(1)) not in altitudes:
+        return step
+    return f"{step[: m.start()]} at {m.group(1)} m"
+
+
 def height_for_legs(steps: Sequence[str], request: str, fleet_ids: Sequence[str]) -> list[str]:
     """The steps with an altitude of the request that none of them gives, given to each drone's first leg
     flown without a height ("bravo: fly 30 m north and 30 m west" for "... at 15 m"). Dev half with the
     0.5B model: the height was left out, the plan dropped for it, and the model flew without one; from the
     ground such a leg is refused."""
+    altitudes = {float(a or b) for a, b in _ALTITUDE_RE.findall(request)}
+    steps = [_bare_altitude(step, altitudes) for step in steps]
     said = {float(n) for n in _AMOUNT_RE.findall(" ".join(steps))}
-    heights = {float(a or b) for a, b in _ALTITUDE_RE.findall(request)} - said
+    heights = altitudes - said
     if len(heights) != 1:
         return list(steps)
     height = heights.pop()

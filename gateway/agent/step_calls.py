@@ -41,7 +41,7 @@ _HOME_RE = re.compile(
     re.IGNORECASE,
 )
 _MOVE_VERB_RE = re.compile(
-    r"^(?:(?:fly|go|move|head|shift|nudge|travel)\s+)?(?:(?:over|out|on)\s+)?", re.IGNORECASE
+    r"^(?:(?:fly|go|move|head|shift|nudge|travel|spread)\s+)?(?:(?:over|out|on)\b\s*)?", re.IGNORECASE
 )
 # "20 m west", "20 m back east" (the way back, said as its direction), "up 10 m" (dev half, 0.5B's plan)
 _LEG_RE = re.compile(

@@ -807,3 +807,19 @@ def test_landing_them_is_a_landing_for_each_drone_named() -> None:
     # one drone landed by name stays the only landing
     one = "Take alpha and charlie 40 m west at 15 m altitude and land alpha there."
     assert steps_from_reply(reply, FLEET, one) == [*legs, "alpha: land"]
+
+
+def test_a_bare_height_the_request_names_as_an_altitude_is_that_altitude() -> None:
+    """Dev half with the 0.5B model: "both at 10 m" planned as "alpha: spread out, 25 m to the east, 10 m"."""
+    spread = "Spread them out: alpha 25 m to the east and bravo 25 m to the north, both at 10 m."
+    reply = "1. alpha: spread out, 25 m to the east, 10 m\n2. bravo: spread out, 25 m to the north, 10 m"
+    steps = steps_from_reply(reply, FLEET, spread)
+    assert steps == [
+        "alpha: spread out, 25 m to the east at 10 m",
+        "bravo: spread out, 25 m to the north at 10 m",
+    ]
+    # a bare height the request does not name as an altitude stays as written
+    assert steps_from_reply(reply, FLEET, "Alpha 25 m east and bravo 25 m north, then climb 10 m.") == [
+        "alpha: spread out, 25 m to the east, 10 m",
+        "bravo: spread out, 25 m to the north, 10 m",
+    ]
