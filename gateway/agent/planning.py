@@ -262,8 +262,27 @@ def steps_as_meant(text: str | None, fleet_ids: Sequence[str], request: str) -> 
     it meant (home_for_landing, landing_for_home), an altitude the steps leave out given to the legs it is
     for (height_for_legs)."""
     steps = landing_for_home(home_for_landing(split_steps(text, fleet_ids, request), request), request)
-    steps = landings_for_each(steps, request, fleet_ids)
+    steps = landings_for_each(_only_under_the_condition(steps, fleet_ids), request, fleet_ids)
     return height_for_legs(height_steps_into_legs(steps, request, fleet_ids), request, fleet_ids)
+
+
+def _only_under_the_condition(steps: Sequence[str], fleet_ids: Sequence[str]) -> list[str]:
+    """The steps without an unconditional step that a condition's step later does again (the same drone,
+    the same metres): the request asks for it only if the condition holds. Dev half with the 0.5B model:
+    "charlie goes up to 15 m, but only if its battery is over 60 %" planned as "charlie: fly 15 m",
+    "charlie: read battery", "if over 60 %: charlie: take off to 15 m"; charlie flew at 30 %."""
+    conditional = [
+        (_drones_in(m.group(3), fleet_ids), set(_METRES_RE.findall(m.group(3))))
+        for s in steps
+        if (m := readings.CONDITION_RE.match(s))
+    ]
+
+    def again(step: str) -> bool:
+        metres = set(_METRES_RE.findall(step))
+        drones = _drones_in(step.split(":")[0], fleet_ids)
+        return bool(metres) and any(drones == d and metres == m for d, m in conditional)
+
+    return [s for s in steps if readings.CONDITION_RE.match(s) or not again(s)]
 
 
 # "land them", "land both of them", "land the pair", "then both land": a landing for every drone named

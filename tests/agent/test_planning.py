@@ -823,3 +823,13 @@ def test_a_bare_height_the_request_names_as_an_altitude_is_that_altitude() -> No
         "alpha: spread out, 25 m to the east, 10 m",
         "bravo: spread out, 25 m to the north, 10 m",
     ]
+
+
+def test_a_step_a_condition_does_again_is_only_under_the_condition() -> None:
+    """Dev half with the 0.5B model: charlie flew at 30 % for "... but only if its battery is over 60 %"."""
+    only_if = "Charlie goes up to 15 m, but only if its battery is over 60 %. Tell me what you decided."
+    reply = "1. charlie: fly 15 m\n2. charlie: read battery\n3. if over 60 %: charlie: take off to 15 m"
+    assert steps_from_reply(reply, FLEET, only_if) == [
+        "charlie: read battery",
+        "if over 60 %: charlie: take off to 15 m",
+    ]
