@@ -400,10 +400,13 @@ async def navigation(t: Tour, d: str, home: dict[str, Any]) -> None:
     at_hold = await t.position(d)
     held = await t.ok("hold_position", drone_id=d)
     assert held["superseded_operation"] == op["operation_id"], held
+    held_at = await t.position(d)
     await t.until("get_speed", lambda r: r["ground_speed_mps"] < 0.3, 20, "stopped", drone_id=d)
     stopped = await t.position(d)
-    # braking from 5 m/s, plus the call's latency (five times longer in vehicle time at speed-up 5)
-    assert distance(stopped, at_hold["lat_deg"], at_hold["lon_deg"]) < 25, (at_hold, stopped)
+    # braking from 5 m/s after the hold, plus one read's latency (five times longer in vehicle time at
+    # speed-up 5); measured from where the drone was once the hold was acknowledged, not from before the
+    # call, whose latency grows with the machine's load (a loaded CI run flew 29 m during it)
+    assert distance(stopped, held_at["lat_deg"], held_at["lon_deg"]) < 25, (held_at, stopped)
     assert abs(stopped["alt_m"] - at_hold["alt_m"]) < 1.5 and distance(stopped, *far) > 30, (at_hold, stopped)
     await t.until("get_flight_mode", lambda r: r["value"] == t.profile.hold_mode, 10, "hold mode", drone_id=d)
 
