@@ -203,17 +203,23 @@ def same_invalid_again(
 MAX_SAME_REPEATS = 5
 
 
+def _stuck_on(turn: TurnResult, statuses: tuple[str, ...]) -> bool:
+    """The last call sent came back with one of ``statuses``, as the same call did MAX_SAME_REPEATS times in
+    this turn in all."""
+    sent = [c for c in turn.tool_calls if c.status not in ("skipped", "left_out")]
+    if not sent or sent[-1].status not in statuses:
+        return False
+    last = sent[-1]
+    same = [c for c in sent if c.status in statuses and c.name == last.name and c.arguments == last.arguments]
+    return len(same) >= MAX_SAME_REPEATS
+
+
 def stuck_on_a_repeat(turn: TurnResult) -> bool:
     """The same call, already done, came back MAX_SAME_REPEATS times in this turn, the last call among
     them: the model is told at the third that it will not be sent, and a model that still sends it will not
     get out (measured on the corpus's dev half, cond-fuller-north: a takeoff sent back 19 times, to the
     step limit, about 500 s)."""
-    sent = [c for c in turn.tool_calls if c.status not in ("skipped", "left_out")]
-    if not sent or sent[-1].status != "repeat":
-        return False
-    last = sent[-1]
-    same = [c for c in sent if c.status == "repeat" and c.name == last.name and c.arguments == last.arguments]
-    return len(same) >= MAX_SAME_REPEATS
+    return _stuck_on(turn, ("repeat",))
 
 
 def stuck_on_a_refusal(turn: TurnResult) -> bool:
@@ -221,16 +227,7 @@ def stuck_on_a_refusal(turn: TurnResult) -> bool:
     told at the third that it will not work, and a model that still sends it will not get out (dev half
     with the 0.5B model: a leg 20 m north for a drained drone refused 31 times, about 220 s, before the
     step limit; a move with north and east swapped, 11 times)."""
-    sent = [c for c in turn.tool_calls if c.status not in ("skipped", "left_out")]
-    if not sent or sent[-1].status not in ("invalid", "error"):
-        return False
-    last = sent[-1]
-    same = [
-        c
-        for c in sent
-        if c.status in ("invalid", "error") and c.name == last.name and c.arguments == last.arguments
-    ]
-    return len(same) >= MAX_SAME_REPEATS
+    return _stuck_on(turn, ("invalid", "error"))
 
 
 def _refusal_reason(text: str) -> str | None:
