@@ -198,7 +198,7 @@ class AgentHost:
                 prompt = plan.prompt(self._memory.request, result.tool_calls, roster_now)
                 self.messages[self._turn_start :] = [{"role": "user", "content": self._note(prompt)}]
             try:
-                reply = await self._ask_model(result.steps, result.usage)
+                reply = await self._ask_model(result.steps, result.usage, result)
             except (openai.OpenAIError, ModelReplyError) as exc:
                 result.outcome, result.error = "model_error", f"{type(exc).__name__}: {exc}"
                 self._emit("model_error", step=result.steps, error=result.error)
@@ -338,6 +338,16 @@ class AgentHost:
                     result, f"the same call was refused {checks.MAX_SAME_REPEATS} times; the host answers"
                 )
                 break
+            if checks.stuck_on_a_repeat(result) and self._request_done(result):
+                # every part of the request is done and the model only sends a done call again: the host
+                # answers from the results (dev half with the 0.5B model, without a plan: "arrange all
+                # three drones in a circle ... here" flown right, then the formation sent again to the limit)
+                self._end_without_answer(
+                    result,
+                    f"the same call came back {checks.MAX_SAME_REPEATS} times, already done, the request "
+                    "done; the host answers",
+                )
+                break
             if checks.stuck_on_a_repeat(result):
                 self._emit(
                     "step_limit",
@@ -407,6 +417,11 @@ class AgentHost:
         charlie, launch the better charged one" took off alpha, the only drone at 100 %."""
         if not checks.acts(self.tools, name) or not self.fleet.ids:
             return None
+        if turn is not None and self._only_the_answer_left(turn):
+            return (
+                "Not sent: every step of the request is done, and the request asks for nothing more. Nothing "
+                "was executed. Call answer_user with one sentence saying what was done."
+            )
         drones: frozenset[str] = drones_named(args) or frozenset()
         asked = planning.asked_drones(self._memory.request, self.fleet.ids)
         plan = self._turn_plan
@@ -493,8 +508,38 @@ class AgentHost:
         )
         return wording.reprompt_text(result, self._memory.request, echo, untouched, roster, self.answer_tool)
 
-    async def _ask_model(self, step: int, usage: Usage) -> ModelReply:
-        reply = await self._chat.ask(self.messages, self.fleet.specs, self.fleet.parameters, usage)
+    def _request_done(self, result: TurnResult) -> bool:
+        """The request's own checks find nothing left: every drone it names acted on, every distance it
+        names flown, every drone it lands down (checks.untouched)."""
+        return any(
+            c.ok and checks.acts(self.tools, c.name) for c in result.tool_calls
+        ) and not checks.untouched(
+            result, self._memory.request, self.fleet.roster, self.tools, answering=True
+        )
+
+    def _only_the_answer_left(self, result: TurnResult) -> bool:
+        """Every step of the plan is done and the request's own checks find nothing left: the next reply
+        can only be the answer (dev half with the 0.5B model: "alpha just goes up to 8 m and lands again",
+        every step made by the host, then alpha flown 30 m south by the model's next call)."""
+        plan = self._turn_plan
+        return (
+            plan is not None
+            and bool(self.answer_tool)
+            and plan.finished(result.tool_calls)
+            and self._request_done(result)
+        )
+
+    def _offered(self, result: TurnResult) -> list[dict[str, Any]]:
+        """The tool specs of the next reply: only the answer's when nothing else is left (fewer tokens to
+        read, and no call to make again); the names for reading calls written as text stay all the tools',
+        so such a call is refused (``_off_request``), not taken for an answer."""
+        specs = self.fleet.specs
+        if not self._only_the_answer_left(result):
+            return specs
+        return [s for s in specs if s.get("function", {}).get("name") == ANSWER_TOOL] or specs
+
+    async def _ask_model(self, step: int, usage: Usage, result: TurnResult) -> ModelReply:
+        reply = await self._chat.ask(self.messages, self._offered(result), self.fleet.parameters, usage)
         self._truncated = reply.truncated
         self._emit(
             "model_reply",

@@ -125,11 +125,8 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
     of the examples that the fleet does not have (the model copied an example, so the steps would mislead),
     when there is only one, or more than MAX_STEPS."""
     lines: list[str] = []
-    for line in (text or "").splitlines():
-        m = _STEP_RE.match(line)
-        if not m:
-            continue
-        step = m.group(2).strip()
+    written = [m.group(2).strip() for line in (text or "").splitlines() if (m := _STEP_RE.match(line))]
+    for step in (one for both in written for one in _landing_apart(both, fleet_ids)):
         if _STAND_STILL_RE.match(step):
             continue
         if _NO_ACTION_RE.match(step):
@@ -154,6 +151,28 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
         # a plan cut short would call the request done before its end; without one the model reads it whole
         return []
     return steps
+
+
+# "bravo: fly up to 10 m and land", "alpha: go 20 m east, then land it": two actions of one drone in one
+# step (dev half with the 0.5B model: "charlie: fly back to your launch spot and land" was flown as neither)
+_AND_LAND_RE = re.compile(
+    r"^([^:]+:\s*)(\S.*?),?\s+(?:and|then)(?: then)?\s+"
+    r"(land(?: (?:it|there|here))?|(?:set|put|bring) (?:it )?(?:back )?down)\s*\.?$",
+    re.IGNORECASE,
+)
+
+
+def _landing_apart(step: str, fleet_ids: Sequence[str]) -> list[str]:
+    """A step that acts and then lands, as two steps; one when its first action is the way home, which
+    return_to_launch ends with a landing."""
+    m = _AND_LAND_RE.match(step)
+    if m is None:
+        return [step]
+    first = m.group(1) + m.group(2)
+    said = call_of_step(first, fleet_ids)
+    if said is not None and said[0] == "return_to_launch":
+        return [first]
+    return [first, m.group(1) + "land"]
 
 
 _BARE_TAKEOFF_RE = re.compile(r"^([\w ,&]+):\s*take off\s*\.?$", re.IGNORECASE)
@@ -262,8 +281,69 @@ def steps_as_meant(text: str | None, fleet_ids: Sequence[str], request: str) -> 
     it meant (home_for_landing, landing_for_home), an altitude the steps leave out given to the legs it is
     for (height_for_legs)."""
     steps = landing_for_home(home_for_landing(split_steps(text, fleet_ids, request), request), request)
-    steps = landings_for_each(_only_under_the_condition(steps, fleet_ids), request, fleet_ids)
+    steps = conditions_of_the_request(_only_under_the_condition(steps, fleet_ids), request, fleet_ids)
+    steps = landings_for_each(steps, request, fleet_ids)
     return height_for_legs(height_steps_into_legs(steps, request, fleet_ids), request, fleet_ids)
+
+
+def _conditional(step: str) -> bool:
+    return bool(
+        readings.CONDITION_RE.match(step)
+        or readings.PICK_RE.match(step)
+        or readings.VERSUS_RE.match(step)
+        or _OTHERWISE_RE.match(step)
+    )
+
+
+# the request says what is done when the condition does not hold, or that nothing is: the steps are left as
+# written ("if under 30 %, don't launch it; otherwise put it up at 8 m")
+_NEGATED_RE = re.compile(
+    r"\b(?:don'?t|do not|never|unless)\b|\botherwise,?\s+(?:put|take|send|fly|launch|bring|move|go|lift)\b",
+    re.IGNORECASE,
+)
+
+
+def conditions_of_the_request(steps: Sequence[str], request: str, fleet_ids: Sequence[str]) -> list[str]:
+    """The steps of a request conditional on a battery reading, written as the condition's steps when the
+    planner left the condition out: a choice of a drone ("the better charged one") is each candidate's read
+    and the actions for "the one with more battery"; a threshold on one drone ("only if charlie is above 40
+    percent") is its read and each of its actions under "if above 40 %". Dev half with the 0.5B model: "of
+    bravo and charlie, launch the better charged one to 14 m" planned as a takeoff of each; "only if charlie
+    is above 40 percent, send it up to 12 m and back down" with the takeoff first and the read after it."""
+    pick = readings.request_pick(request)
+    threshold = None if pick else readings.REQUEST_THRESHOLD_RE.search(request)
+    if not steps or (pick is None and threshold is None) or _NEGATED_RE.search(request):
+        return list(steps)
+    acting = [s for s in steps if _read_of(s, fleet_ids) is None and not _OTHERWISE_RE.match(s)]
+    if pick is not None:
+        if any(_conditional(s) for s in steps):
+            return list(steps)
+        candidates = asked_drones(request, fleet_ids)
+        actions: list[str] = []
+        for step in acting:
+            head = _HEAD_RE.match(step)
+            if head is None or not set(_drones_in(head.group(1), fleet_ids)) <= set(candidates):
+                return list(steps)
+            if head.group(2).strip() not in actions:
+                actions.append(head.group(2).strip())
+        if len(candidates) < 2 or not actions:
+            return list(steps)
+        which = "less" if readings.fewer(pick) else "more"
+        return [f"{d}: read battery" for d in candidates] + [
+            f"the one with {which} battery: {a}" for a in actions
+        ]
+    assert threshold is not None
+    named = _drones_in(request, fleet_ids)
+    if len(named) != 1 or all(readings.CONDITION_RE.match(s) for s in acting):
+        return list(steps)
+    inner = [m.group(3).strip() if (m := readings.CONDITION_RE.match(s)) else s for s in acting]
+    if any(_conditional(s) for s in inner):
+        return list(steps)
+    kept = [s for s in inner if _drones_in(s.split(":")[0], fleet_ids) == named]
+    if not kept:
+        return list(steps)
+    condition = f"if {threshold.group(1).lower()} {threshold.group(2)} %"
+    return [f"{named[0]}: read battery"] + [f"{condition}: {s}" for s in kept]
 
 
 def _only_under_the_condition(steps: Sequence[str], fleet_ids: Sequence[str]) -> list[str]:
@@ -387,7 +467,8 @@ def height_for_legs(steps: Sequence[str], request: str, fleet_ids: Sequence[str]
 _DIRECTION_RE = re.compile(r"\b(north|south|east|west)\b", re.IGNORECASE)
 _AMOUNT_RE = re.compile(r"(\d+(?:\.\d+)?)\s*(?:m\b|metres?\b|meters?\b|%|percent\b)", re.IGNORECASE)
 _HOME_RE = re.compile(
-    r"\b(?:home|launch (?:point|site|spot|pad)|where (?:it|they|you) (?:took off|started|launched)|"
+    r"\b(?:home|(?:launch|take-?off) (?:point|site|spot|pad)|"
+    r"where (?:it|they|you) (?:took off|started|launched)|"
     r"start(?:ing)? point|the way (?:it|they|you) came|"
     r"(?:come|fly|head|go|bring \w+) back\b(?!\s+(?:down|up|\d|north|south|east|west)))",
     re.IGNORECASE,

@@ -12,7 +12,8 @@ from collections.abc import Sequence
 from gateway.agent.turns import ToolCallRecord
 
 CONDITION_RE = re.compile(
-    r"^if\b[^:%]*?\b(above|over|more than|at least|below|under|less than|at most)\s+(\d+(?:\.\d+)?)\s*%"
+    r"^if\b[^:%]*?\b(above|over|more than|at least|below|under|less than|at most)\s+(\d+(?:\.\d+)?)\s*"
+    r"(?:%|percent\b|per cent\b)"
     r"\s*:\s*(.*)$",
     re.IGNORECASE,
 )
@@ -38,6 +39,13 @@ _RELATION = (
     r"(more|most|higher|highest|fuller|fullest|better|best|stronger|strongest|"
     r"less|least|lower|lowest|weaker|weakest)"
 )
+# "only if charlie is above 40 percent", "if bravo has at least 70 % battery": a request's threshold on a
+# battery reading
+REQUEST_THRESHOLD_RE = re.compile(
+    r"\b(?:if|when|provided|as long as)\b[^.;:]*?\b(above|over|more than|at least|below|under|less than|"
+    r"at most)\s+(\d+(?:\.\d+)?)\s*(?:%|percent\b|per cent\b)",
+    re.IGNORECASE,
+)
 # "which drone has the most battery left?", "between alpha and charlie, which one is running lower on
 # battery?", "which drone's charge is the lowest?": a question that picks a drone by its battery
 ASKED_PICK_RE = re.compile(
@@ -45,6 +53,25 @@ ASKED_PICK_RE = re.compile(
     rf"\b(?:battery|charge)\b[^?.]*?\b{_RELATION}\b)",
     re.IGNORECASE,
 )
+
+
+# "the better charged one", "the one with less charge", "whichever drone has the most battery", "compare
+# them on battery and send the fuller one": a request's choice of a drone by its battery
+_REQUEST_PICK_RE = re.compile(
+    rf"\b{_RELATION}(?:[- ]charged\b|\s+(?:battery|charge)\b)|"
+    rf"\b(?:the|whichever)\s+{_RELATION}\s+(?:one|drone)\b",
+    re.IGNORECASE,
+)
+_BATTERY_WORD_RE = re.compile(r"\b(?:battery|charge|charged)\b", re.IGNORECASE)
+
+
+def request_pick(request: str) -> str | None:
+    """The relation of a request's choice of a drone by its battery ("more", "less", ...), or None; a
+    question that picks a drone (ASKED_PICK_RE) is no choice to fly."""
+    if ASKED_PICK_RE.search(request) or not _BATTERY_WORD_RE.search(request):
+        return None
+    m = _REQUEST_PICK_RE.search(request)
+    return (m.group(1) or m.group(2)) if m else None
 
 
 def holds(relation: str, reading: float, threshold: float) -> bool:

@@ -35,13 +35,27 @@ _LAND_RE = re.compile(
     r"on the spot|again))?$",
     re.IGNORECASE,
 )
+# the way home, which return_to_launch flies and ends with a landing ("and land there" is part of it): dev
+# half with the 0.5B model, "return to your take-off point and land there", "come back the way you came"
 _HOME_RE = re.compile(
-    r"^(?:return (?:to launch|home)|(?:fly|go|come|head|return)(?: back)? (?:home|to (?:the )?(?:launch|home|"
-    r"(?:launch|take-?off) (?:point|spot|site|pad))))$",
+    r"^(?:return (?:to launch|home)|(?:fly|go|come|head|return)(?: back)? "
+    r"(?:home|the way (?:it|you|they) came|"
+    r"to (?:the |your |its |their )?(?:launch|home|(?:launch|take-?off) (?:point|spot|site|pad)|"
+    r"start(?:ing)? point|where (?:it|you|they) (?:took off|started))))"
+    r"(?:,? (?:and|then)(?: then)? land(?: (?:it|there))?)?$",
     re.IGNORECASE,
 )
 _MOVE_VERB_RE = re.compile(
-    r"^(?:(?:fly|go|move|head|shift|nudge|travel|spread)\s+)?(?:(?:over|out|on)\b\s*)?", re.IGNORECASE
+    r"^(?:(?:fly|go|come|move|head|shift|nudge|travel|spread)\s+)?(?:(?:over|out|on)\b\s*)?", re.IGNORECASE
+)
+# "rise to 12 m", "drop down to 10 m there", "climb to 20 m": an altitude and nothing else, which
+# move_to_relative flies both from the ground (it takes off first) and in the air (dev half with the 0.5B
+# model: "bravo: rise to 12 m" was called with alt_m=120, "charlie: drop down to 10 m there" with down_m)
+_TO_HEIGHT_RE = re.compile(
+    rf"^(?:climb|rise|ascend|descend|drop|sink|(?:go|come|get|move|fly|head|drop|bring it|take it)"
+    rf"(?: back)? (?:up|down))(?: back)? to {_N}{_M}"
+    r"(?: (?:there|here|altitude|above (?:the )?(?:ground|home)))?$",
+    re.IGNORECASE,
 )
 # "20 m west", "20 m back east" (the way back, said as its direction), "up 10 m" (dev half, 0.5B's plan)
 _LEG_RE = re.compile(
@@ -87,6 +101,11 @@ def call_of_step(step: str, fleet_ids: Sequence[str]) -> StepCall | None:
         return ("land", {"drone_id": drone})
     if _HOME_RE.match(action):
         return ("return_to_launch", {"drone_id": drone})
+    if m := _TO_HEIGHT_RE.match(action):
+        return (
+            "move_to_relative",
+            {"drone_id": drone, "north_m": 0.0, "east_m": 0.0, "alt_m": float(m.group(1))},
+        )
     move = _move(action)
     return ("move_to_relative", {"drone_id": drone, **move}) if move is not None else None
 

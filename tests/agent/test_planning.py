@@ -24,6 +24,7 @@ from gateway.agent.planning import (
     plan_messages,
     plan_steps,
     split_steps,
+    steps_as_meant,
     steps_from_reply,
 )
 from gateway.agent.turns import AgentEvent, ToolCallRecord, Usage
@@ -58,7 +59,9 @@ def test_one_step_is_no_plan_unless_its_words_say_its_call() -> None:
     """A request of one action is its own step: rewritten for the model, it only gains the planner's
     errors; a step that says its call exactly (or a reading) is the host's call, so the model only answers."""
     assert steps_from_reply("1. alpha, bravo: side by side, 8 m apart, above the tower", FLEET) == []
-    assert steps_from_reply("1. alpha: climb to 10 m\n2. alpha: hover", FLEET) == []
+    assert steps_from_reply("1. alpha: climb over the tower\n2. alpha: hover", FLEET) == []
+    # "climb to 10 m" says its call: an altitude, flown by move_to_relative from the ground or in the air
+    assert steps_from_reply("1. alpha: climb to 10 m\n2. alpha: hover", FLEET) == ["alpha: climb to 10 m"]
     line = "Line up alpha, bravo and charlie at 20 m, 8 m apart, where they are."
     assert steps_from_reply("1. alpha, bravo, charlie: line formation, 8 m apart, at 20 m", FLEET, line) == [
         "alpha, bravo, charlie: line formation, 8 m apart, at 20 m"
@@ -833,3 +836,91 @@ def test_a_step_a_condition_does_again_is_only_under_the_condition() -> None:
         "charlie: read battery",
         "if over 60 %: charlie: take off to 15 m",
     ]
+
+
+async def test_only_the_answer_is_offered_once_every_step_is_done(toy: ToyServer, scripted) -> None:
+    """Dev half with the 0.5B model: "alpha just goes up to 8 m and lands again", every step made by the
+    host, then alpha flown out again by the model's next call. Once the steps are done and the request
+    asks for nothing more, the next reply is offered only answer_user; a call written anyway is not sent
+    and the host answers."""
+    plan = ScriptedReply(content="1. alpha: take off to 8 m\n2. alpha: land")
+    model = scripted([plan, call("move_north", drone_id="alpha", distance_m=30)])
+    request = "alpha just goes up to 8 m and lands again"
+    _, result = await run_on_toy(toy, model, request, plan_first=True, answer_tool=True)
+    offered = [t["function"]["name"] for t in model.requests[1]["tools"]]
+    assert offered == ["answer_user"]
+    assert [(c.name, c.status) for c in result.tool_calls] == [
+        ("takeoff", "ok"),
+        ("land", "ok"),
+        ("move_north", "invalid"),
+    ]
+    assert "every step of the request is done" in result.tool_calls[-1].text
+    assert result.answered_by == "host" and result.outcome == "answered"
+
+
+async def test_all_the_tools_are_offered_while_the_request_asks_for_more(toy: ToyServer, scripted) -> None:
+    """Steps done, but the request names bravo and no step flew it: the model keeps every tool."""
+    plan = ScriptedReply(content="1. alpha: take off to 8 m")
+    model = scripted(
+        [plan, call("takeoff", drone_id="bravo", alt_m=8), call("answer_user", text="both at 8 m")]
+    )
+    request = "alpha up to 8 m, and bravo too"
+    _, result = await run_on_toy(toy, model, request, plan_first=True, answer_tool=True)
+    offered = {t["function"]["name"] for t in model.requests[1]["tools"]}
+    assert {"takeoff", "land", "answer_user"} <= offered
+    assert [(c.name, c.status) for c in result.tool_calls] == [("takeoff", "ok"), ("takeoff", "ok")]
+
+
+def test_a_step_that_acts_and_lands_is_two_steps_and_the_way_home_lands_itself() -> None:
+    """Dev half with the 0.5B model: "charlie: fly back to your launch spot and land" was flown as
+    neither; a step of two actions is two steps, and the way home is one (return_to_launch lands)."""
+    home = "Charlie, head 35 m north at 10 m, then fly back to your launch spot and land."
+    assert steps_from_reply(
+        "1. charlie: head 35 m north at 10 m\n2. charlie: fly back to your launch spot and land", FLEET, home
+    ) == ["charlie: head 35 m north at 10 m", "charlie: fly back to your launch spot"]
+    hop = "Bravo up to 10 m and land it; alpha to 5 m."
+    assert steps_from_reply("1. bravo: fly up to 10 m and land\n2. alpha: take off to 5 m", FLEET, hop) == [
+        "bravo: fly up to 10 m",
+        "bravo: land",
+        "alpha: take off to 5 m",
+    ]
+    # a take-off point is home, in the request as in the steps
+    back = "Bravo, fly 30 m west at 20 m, then return to your take-off point and land there."
+    steps = "1. bravo: fly 30 m west at 20 m\n2. bravo: return to your take-off point and land there"
+    assert steps_from_reply(steps, FLEET, back) == [
+        "bravo: fly 30 m west at 20 m",
+        "bravo: return to your take-off point",
+    ]
+
+
+def test_a_condition_the_planner_left_out_is_read_from_the_request() -> None:
+    """Dev half with the 0.5B model: "the better charged one" planned as a takeoff of each drone; "only if
+    charlie is above 40 percent" planned with the takeoff first, the read after it, and the condition on
+    another drone."""
+    pair = "Of bravo and charlie, launch the better charged one to 14 m and leave the other on the pad."
+    assert steps_from_reply("1. bravo: take off to 14 m\n2. charlie: take off to 14 m", FLEET, pair) == [
+        "bravo: read battery",
+        "charlie: read battery",
+        "the one with more battery: take off to 14 m",
+    ]
+    only_if = "Only if charlie is above 40 percent, send it up to 12 m and land it. Otherwise leave it be."
+    reply = (
+        "1. charlie: take off to 12 m\n2. charlie: land\n3. charlie: read battery\n"
+        "4. if above 40 percent: alpha: land"
+    )
+    assert steps_as_meant(reply, FLEET, only_if) == [
+        "charlie: read battery",
+        "if above 40 %: charlie: take off to 12 m",
+        "if above 40 %: charlie: land",
+    ]
+    # the request says what to fly when the condition does not hold: left as the planner wrote it
+    inverse = "If charlie's charge is under 30 percent, don't launch it; otherwise put it up at 8 m."
+    assert steps_as_meant("1. charlie: read battery\n2. charlie: take off to 8 m", FLEET, inverse) == [
+        "charlie: read battery",
+        "charlie: take off to 8 m",
+    ]
+    # a question that picks a drone is no choice to fly
+    asked = "Which of alpha and bravo has more battery? Then land alpha."
+    assert steps_as_meant("1. alpha: read battery\n2. bravo: read battery\n3. alpha: land", FLEET, asked)[
+        -1
+    ] == ("alpha: land")

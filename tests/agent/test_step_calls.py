@@ -32,6 +32,15 @@ FLEET = ["alpha", "bravo", "charlie"]
             "alpha: fly 10 m east and 3 m lower",
             ("move_to_relative", {"drone_id": "alpha", "north_m": 0.0, "east_m": 10.0, "up_m": -3.0}),
         ),
+        # an altitude and nothing else: move_to_relative flies it from the ground (taking off first) and
+        # in the air (0.5B's plans, dev half)
+        ("alpha: climb to 30 m", ("move_to_relative", {"drone_id": "alpha", "north_m": 0.0, "east_m": 0.0, "alt_m": 30.0})),
+        ("bravo: rise to 12 m", ("move_to_relative", {"drone_id": "bravo", "north_m": 0.0, "east_m": 0.0, "alt_m": 12.0})),
+        ("charlie: drop down to 10 m there", ("move_to_relative", {"drone_id": "charlie", "north_m": 0.0, "east_m": 0.0, "alt_m": 10.0})),
+        # the way home ends with a landing (return_to_launch lands)
+        ("bravo: return to your take-off point and land there", ("return_to_launch", {"drone_id": "bravo"})),
+        ("alpha: come back the way you came", ("return_to_launch", {"drone_id": "alpha"})),
+        ("charlie: come 25 m back west", ("move_to_relative", {"drone_id": "charlie", "north_m": 0.0, "east_m": -25.0})),
         ("charlie: climb 10 m higher", ("move_to_relative", {"drone_id": "charlie", "north_m": 0.0, "east_m": 0.0, "up_m": 10.0})),
         (
             "alpha, bravo and charlie: wedge formation, 10 m apart, at 18 m, 30 m east",
@@ -51,7 +60,8 @@ def test_a_step_in_the_words_of_one_call_is_that_call(step: str, call: tuple[str
     "step",
     [
         "alpha: fly 20 m",  # no direction: a height or a leg, the model tells
-        "alpha: climb to 30 m",  # a takeoff from the ground, a climb in the air
+        "alpha: fly to 30 m",  # a height or a place 30 m away
+        "alpha: climb to 30 m and hold there for a minute",  # a wait not read
         "bravo: fly 10 m above the ground",
         "bravo: fly up to 10 m and land",  # two actions
         "bravo: fly 20 m north, then 20 m south",  # the same axis twice: two moves
