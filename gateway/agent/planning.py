@@ -139,7 +139,7 @@ def split_steps(text: str | None, fleet_ids: Sequence[str], request: str = "") -
     if any(re.search(rf"\b{d}\b", s, re.IGNORECASE) for s in lines for d in foreign):
         return []
     asked = asked_drones(request, fleet_ids)
-    lines = formation_for_drones(lines, request, fleet_ids)
+    lines = _within_the_formation(formation_for_drones(lines, request, fleet_ids), fleet_ids)
     steps = [one for line in lines for one in _per_drone(line, fleet_ids, asked)]
     if len(steps) == 1 and _call_of(steps[0], fleet_ids, request) is not None:
         return steps  # the one call the request is, read from its step (step_calls.py)
@@ -238,6 +238,35 @@ def formation_for_drones(lines: Sequence[str], request: str, fleet_ids: Sequence
             continue
         read.append(line)
     return read
+
+
+def _within_the_formation(lines: Sequence[str], fleet_ids: Sequence[str]) -> list[str]:
+    """The steps without a move of one drone, before the formation step, that only repeats the formation's
+    numbers: the formation flies each drone there itself (dev half with the 0.5B model: "alpha: fly 12 m,
+    20 m east" before "alpha, bravo, charlie: line formation, 10 m apart, at 12 m, 20 m east" flew alpha
+    alone, and the formation never)."""
+    formations = [
+        (i, head)
+        for i, line in enumerate(lines)
+        if (head := _HEAD_RE.match(line))
+        and len(_drones_in(head.group(1), fleet_ids)) > 1
+        and _FORMATION_WORDS_RE.search(head.group(2))
+    ]
+    if len(formations) != 1:
+        return list(lines)
+    at, formation = formations[0]
+    drones = set(_drones_in(formation.group(1), fleet_ids))
+    numbers = set(_METRES_RE.findall(formation.group(2)))
+
+    def repeats(line: str) -> bool:
+        head = _HEAD_RE.match(line)
+        if head is None or _TAKEOFF_STEP_RE.match(line) or _read_of(line, fleet_ids) is not None:
+            return False
+        mine = _drones_in(head.group(1), fleet_ids)
+        said = set(_METRES_RE.findall(head.group(2)))
+        return len(mine) == 1 and mine[0] in drones and bool(said) and said <= numbers
+
+    return [line for i, line in enumerate(lines) if i >= at or not repeats(line)]
 
 
 _METRES_AT_RE = re.compile(r"\bat \d+(?:\.\d+)?\s*(?:m|metres?|meters?)\b", re.I)

@@ -52,9 +52,9 @@ _MOVE_VERB_RE = re.compile(
 # move_to_relative flies both from the ground (it takes off first) and in the air (dev half with the 0.5B
 # model: "bravo: rise to 12 m" was called with alt_m=120, "charlie: drop down to 10 m there" with down_m)
 _TO_HEIGHT_RE = re.compile(
-    rf"^(?:climb|rise|ascend|descend|drop|sink|(?:go|come|get|move|fly|head|drop|bring it|take it)"
-    rf"(?: back)? (?:up|down))(?: back)? to {_N}{_M}"
-    r"(?: (?:there|here|altitude|above (?:the )?(?:ground|home)))?$",
+    rf"^(?:climb|rise|raise|ascend|descend|drop|sink|up|down|"
+    rf"(?:go|come|get|move|fly|head|drop|bring it|take it)(?: back)? (?:up|down))(?: back)? to {_N}{_M}"
+    r"(?: (?:there|here|altitude|above (?:the )?(?:ground|home)))?(?: (?:first|now|then))?$",
     re.IGNORECASE,
 )
 # "20 m west", "20 m back east" (the way back, said as its direction), "up 10 m" (dev half, 0.5B's plan)

@@ -924,3 +924,16 @@ def test_a_condition_the_planner_left_out_is_read_from_the_request() -> None:
     assert steps_as_meant("1. alpha: read battery\n2. bravo: read battery\n3. alpha: land", FLEET, asked)[
         -1
     ] == ("alpha: land")
+
+
+def test_a_move_of_one_drone_that_repeats_the_formation_before_it_is_no_step() -> None:
+    """Dev half with the 0.5B model: "alpha: fly 12 m, 20 m east" before the line formation at 12 m, 20 m
+    east flew alpha alone and the formation never."""
+    line = "Put alpha, bravo and charlie in a line 10 m apart at 12 m, 20 m east of where they are."
+    formation = "alpha, bravo, charlie: line formation, 10 m apart, at 12 m, 20 m east"
+    assert steps_from_reply(f"1. alpha: fly 12 m, 20 m east\n2. {formation}", FLEET, line) == [formation]
+    # a step with a number of its own, or after the formation, stays
+    then = f"1. {formation}\n2. alpha: fly 20 m east"
+    assert split_steps(then, FLEET) == [formation, "alpha: fly 20 m east"]
+    own = f"1. alpha: fly 30 m north\n2. {formation}"
+    assert split_steps(own, FLEET) == ["alpha: fly 30 m north", formation]

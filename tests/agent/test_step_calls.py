@@ -37,6 +37,8 @@ FLEET = ["alpha", "bravo", "charlie"]
         ("alpha: climb to 30 m", ("move_to_relative", {"drone_id": "alpha", "north_m": 0.0, "east_m": 0.0, "alt_m": 30.0})),
         ("bravo: rise to 12 m", ("move_to_relative", {"drone_id": "bravo", "north_m": 0.0, "east_m": 0.0, "alt_m": 12.0})),
         ("charlie: drop down to 10 m there", ("move_to_relative", {"drone_id": "charlie", "north_m": 0.0, "east_m": 0.0, "alt_m": 10.0})),
+        ("bravo: raise to 10 m", ("move_to_relative", {"drone_id": "bravo", "north_m": 0.0, "east_m": 0.0, "alt_m": 10.0})),
+        ("charlie: up to 6 m first", ("move_to_relative", {"drone_id": "charlie", "north_m": 0.0, "east_m": 0.0, "alt_m": 6.0})),
         # the way home ends with a landing (return_to_launch lands)
         ("bravo: return to your take-off point and land there", ("return_to_launch", {"drone_id": "bravo"})),
         ("alpha: come back the way you came", ("return_to_launch", {"drone_id": "alpha"})),
