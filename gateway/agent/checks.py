@@ -44,7 +44,8 @@ WAIT_TOOLS = frozenset({"monitor_flight", "monitor_fleet", "check_arrival"})
 # Words of a request that ask for a landing or a return home.
 LAND_WORDS = re.compile(
     r"\b(?:land|lands|landing|rtl|return(?:s|ing)? (?:to (?:launch|home)|home)|(?:bring|come|go|fly|get) "
-    r"(?:\w+ )?(?:back )?home)\b",
+    r"(?:\w+ )?(?:back )?home|settl(?:e|es|ing)(?: back)? (?:on|onto|to) the ground|"
+    r"back (?:on|onto) the ground|back down(?! to| by| \d))\b",
     re.IGNORECASE,
 )
 # Tools that bring drones down or stop them.

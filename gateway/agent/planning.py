@@ -507,7 +507,8 @@ _LANDING_RE = re.compile(r"\b(?:land\w*|down|touch\w*|ground)\b", re.IGNORECASE)
 _LAND_STEP_RE = re.compile(r"\bland\b", re.IGNORECASE)
 # a landing said outright ("land it", "put it down", "straight back down"), not a descent ("down to 5 m")
 _ASKS_TO_LAND_RE = re.compile(
-    r"\b(?:land(?:s|ing|ed)?|touch(?:es|ing)? down|(?:set|put|bring|come|straight|back)(?: \w+)? down)\b"
+    r"\b(?:land(?:s|ing|ed)?|touch(?:es|ing)? down|(?:set|put|bring|come|straight|back)(?: \w+)? down|"
+    r"settl(?:e|es|ing)(?: back)? (?:on|onto|to) the ground|back (?:on|onto) the ground)\b"
     r"(?!\s+(?:to|by|\d))",
     re.IGNORECASE,
 )

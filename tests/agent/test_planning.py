@@ -21,6 +21,7 @@ from gateway.agent.planning import (
     height_for_legs,
     height_steps_into_legs,
     home_for_landing,
+    plan_gaps,
     plan_messages,
     plan_steps,
     split_steps,
@@ -937,3 +938,20 @@ def test_a_move_of_one_drone_that_repeats_the_formation_before_it_is_no_step() -
     assert split_steps(then, FLEET) == [formation, "alpha: fly 20 m east"]
     own = f"1. alpha: fly 30 m north\n2. {formation}"
     assert split_steps(own, FLEET) == ["alpha: fly 30 m north", formation]
+
+
+def test_settling_back_on_the_ground_and_back_down_are_landings() -> None:
+    """Dev half with the 0.5B model: "bravo rises to 12 m and then settles back on the ground" planned
+    without a landing and answered as done; "send it up to 12 m and back down" left charlie at 12 m, its
+    plan's descent refused and the request read as finished."""
+    from gateway.agent.checks import to_land
+
+    settle = "Bravo rises to 12 m and then settles back on the ground. Charlie goes 15 m east at 10 m."
+    assert plan_gaps(["bravo: rise to 12 m", "charlie: go 15 m east at 10 m"], settle) == [
+        "leave out the landing"
+    ]
+    assert to_land(settle, ["bravo", "charlie"]) == ["bravo"]
+    assert to_land("Only if charlie is above 40 percent, send it up to 12 m and back down.", ["charlie"]) == [
+        "charlie"
+    ]
+    assert to_land("bring charlie back down to 5 m", ["charlie"]) == []

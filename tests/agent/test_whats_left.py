@@ -118,5 +118,8 @@ def test_a_drone_told_to_stay_is_not_left_and_only_the_drones_a_landing_is_said_
         "alpha",
         "charlie",
     ]
-    assert to_land("Take alpha up to 14 m and bring it back down.", ["alpha"]) == []
+    # "back down" is a landing (as the plan's landing gap reads it), "back down to 5 m" a descent
+    assert to_land("Take alpha up to 14 m and bring it back down.", ["alpha"]) == ["alpha"]
+    assert to_land("Take alpha up to 14 m and bring it back down to 5 m.", ["alpha"]) == []
+    assert to_land("Take alpha up to 14 m and fly it 20 m north.", ["alpha"]) == []
     assert to_land("Take alpha up to 14 m and land it.", ["alpha"]) == ["alpha"]
