@@ -224,6 +224,10 @@ def formation_for_drones(lines: Sequence[str], request: str, fleet_ids: Sequence
         if len(shapes) != 1:
             return list(lines)
         action = f"{shapes[0]} formation, {action}"
+    if not heights:
+        # the request's altitude when the steps give none (dev half with the 0.5B model: "in a circle with
+        # 10 m between neighbours, at 25 m" planned as "fly 10 m between neighbours" for each drone)
+        heights = {float(a or b) for a, b in _ALTITUDE_RE.findall(request)}
     if not _METRES_AT_RE.search(action) and len(heights) == 1:
         action = f"{action}, at {heights.pop():g} m"
     step = f"{', '.join(drones)}: {action}"

@@ -76,7 +76,11 @@ _SHAPE_RE = re.compile(
     r"(?:[ -](?:formation|shape))?$",
     re.IGNORECASE,
 )
-_APART_RE = re.compile(rf"^(?:(?:fly|spread(?: out)?)\s+)?{_N}{_M} apart$", re.IGNORECASE)
+# "10 m apart", "10 m between neighbours" (dev half, the 0.5B model's plan)
+_APART_RE = re.compile(
+    rf"^(?:(?:fly|spread(?: out)?)\s+)?{_N}{_M} (?:apart|between (?:neighbou?rs|drones|them|each other))$",
+    re.IGNORECASE,
+)
 _FORMATION_AT_RE = re.compile(rf"^at {_N}{_M}(?: altitude)?$", re.IGNORECASE)
 _OFFSET_RE = re.compile(
     rf"^{_N}{_M}\s+(?:to the )?(north|south|east|west)(?: of (?:where they are|here|them))?$", re.IGNORECASE

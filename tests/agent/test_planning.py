@@ -955,3 +955,16 @@ def test_settling_back_on_the_ground_and_back_down_are_landings() -> None:
         "charlie"
     ]
     assert to_land("bring charlie back down to 5 m", ["charlie"]) == []
+
+
+def test_formation_words_for_each_drone_take_the_requests_altitude_and_neighbour_spacing() -> None:
+    """Dev half with the 0.5B model: "in a circle with 10 m between neighbours, at 25 m, here" planned as
+    "fly 10 m between neighbours" for each drone, with no height; no plan was kept."""
+    circle = "Arrange all three drones in a circle with 10 m between neighbours, at 25 m, here."
+    each = "\n".join(f"{i}. {d}: fly 10 m between neighbours" for i, d in enumerate(FLEET, 1))
+    step = "alpha, bravo, charlie: circle formation, 10 m between neighbours, at 25 m"
+    assert steps_from_reply(each, FLEET, circle) == [step]
+    assert Plan([step], FLEET, request=circle).call_due([]) == (
+        "formation_goto",
+        {"drone_ids": FLEET, "formation": "circle", "spacing_m": 10.0, "alt_m": 25.0},
+    )
