@@ -41,11 +41,12 @@ from gateway.agent.turns import ModelCall, ToolCallRecord, TurnMemory, TurnResul
 # calls does not make the second one new.
 WAIT_TOOLS = frozenset({"monitor_flight", "monitor_fleet", "check_arrival"})
 
+# "settles back on the ground", "back on the ground": a landing in other words
+BACK_ON_THE_GROUND = r"settl(?:e|es|ing)(?: back)? (?:on|onto|to) the ground|back (?:on|onto) the ground"
 # Words of a request that ask for a landing or a return home.
 LAND_WORDS = re.compile(
     r"\b(?:land|lands|landing|rtl|return(?:s|ing)? (?:to (?:launch|home)|home)|(?:bring|come|go|fly|get) "
-    r"(?:\w+ )?(?:back )?home|settl(?:e|es|ing)(?: back)? (?:on|onto|to) the ground|"
-    r"back (?:on|onto) the ground|back down(?! to| by| \d))\b",
+    rf"(?:\w+ )?(?:back )?home|{BACK_ON_THE_GROUND}|back down(?! to| by| \d))\b",
     re.IGNORECASE,
 )
 # Tools that bring drones down or stop them.

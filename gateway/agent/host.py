@@ -338,17 +338,17 @@ class AgentHost:
                     result, f"the same call was refused {checks.MAX_SAME_REPEATS} times; the host answers"
                 )
                 break
-            if checks.stuck_on_a_repeat(result) and self._request_done(result):
-                # every part of the request is done and the model only sends a done call again: the host
-                # answers from the results (dev half with the 0.5B model, without a plan: "arrange all
-                # three drones in a circle ... here" flown right, then the formation sent again to the limit)
-                self._end_without_answer(
-                    result,
-                    f"the same call came back {checks.MAX_SAME_REPEATS} times, already done, the request "
-                    "done; the host answers",
-                )
-                break
             if checks.stuck_on_a_repeat(result):
+                if self._request_done(result):
+                    # every part of the request is done and the model only sends a done call again: the
+                    # host answers from the results (dev half with the 0.5B model, without a plan: "arrange
+                    # all three drones in a circle ... here" flown right, then sent again to the limit)
+                    self._end_without_answer(
+                        result,
+                        f"the same call came back {checks.MAX_SAME_REPEATS} times, already done, the request "
+                        "done; the host answers",
+                    )
+                    break
                 self._emit(
                     "step_limit",
                     max_steps=self.max_steps,

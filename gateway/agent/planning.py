@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from gateway.agent import readings
 from gateway.agent.answer import ANSWER_TOOL
 from gateway.agent.chat import ChatModel, Message
+from gateway.agent.checks import BACK_ON_THE_GROUND
 from gateway.agent.repair import request_climbs
 from gateway.agent.roster import Roster, drones_named
 from gateway.agent.step_calls import StepCall, call_of_step, leg_without_height
@@ -512,7 +513,7 @@ _LAND_STEP_RE = re.compile(r"\bland\b", re.IGNORECASE)
 # a landing said outright ("land it", "put it down", "straight back down"), not a descent ("down to 5 m")
 _ASKS_TO_LAND_RE = re.compile(
     r"\b(?:land(?:s|ing|ed)?|touch(?:es|ing)? down|(?:set|put|bring|come|straight|back)(?: \w+)? down|"
-    r"settl(?:e|es|ing)(?: back)? (?:on|onto|to) the ground|back (?:on|onto) the ground)\b"
+    rf"{BACK_ON_THE_GROUND})\b"
     r"(?!\s+(?:to|by|\d))",
     re.IGNORECASE,
 )

@@ -11,12 +11,12 @@ from collections.abc import Sequence
 
 from gateway.agent.turns import ToolCallRecord
 
-CONDITION_RE = re.compile(
-    r"^if\b[^:%]*?\b(above|over|more than|at least|below|under|less than|at most)\s+(\d+(?:\.\d+)?)\s*"
+# "above 40 %", "at least 70 percent": a relation and a threshold on a battery reading
+_THRESHOLD = (
+    r"\b(above|over|more than|at least|below|under|less than|at most)\s+(\d+(?:\.\d+)?)\s*"
     r"(?:%|percent\b|per cent\b)"
-    r"\s*:\s*(.*)$",
-    re.IGNORECASE,
 )
+CONDITION_RE = re.compile(rf"^if\b[^:%]*?{_THRESHOLD}\s*:\s*(.*)$", re.IGNORECASE)
 _PERCENT_RE = re.compile(r"(\d+(?:\.\d+)?)\s*%")
 _BATTERY_TOOLS = frozenset({"get_battery"})
 # "the one with less battery: take off to 7 m": a step for whichever drone the readings pick
@@ -41,11 +41,7 @@ _RELATION = (
 )
 # "only if charlie is above 40 percent", "if bravo has at least 70 % battery": a request's threshold on a
 # battery reading
-REQUEST_THRESHOLD_RE = re.compile(
-    r"\b(?:if|when|provided|as long as)\b[^.;:]*?\b(above|over|more than|at least|below|under|less than|"
-    r"at most)\s+(\d+(?:\.\d+)?)\s*(?:%|percent\b|per cent\b)",
-    re.IGNORECASE,
-)
+REQUEST_THRESHOLD_RE = re.compile(rf"\b(?:if|when|provided|as long as)\b[^.;:]*?{_THRESHOLD}", re.IGNORECASE)
 # "which drone has the most battery left?", "between alpha and charlie, which one is running lower on
 # battery?", "which drone's charge is the lowest?": a question that picks a drone by its battery
 ASKED_PICK_RE = re.compile(
