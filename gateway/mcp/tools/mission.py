@@ -91,7 +91,7 @@ async def initiate_mission(
     wait: Wait = True,
 ) -> OperationOut:
     """Upload (if waypoints given) and start the mission; done when finished."""
-    items = mission_items(waypoints) if waypoints else None
+    items = None if waypoints is None else mission_items(waypoints)  # [] is refused, never "what is stored"
     op = await call.commander.start_mission(call.caller, drone_id, items, "initiate_mission")
     return await call.finish(op, wait, "initiate_mission")
 
