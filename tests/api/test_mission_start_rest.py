@@ -74,7 +74,7 @@ async def test_an_operator_stores_and_starts_an_unchecked_mission_marked_so(tmp_
                     assert "DO_AUX_FUNCTION" in str(rows[action]["arguments"]["unchecked"])
 
 
-async def test_malformed_plan_files_get_a_4xx_naming_the_problem_and_an_audit_row(tmp_path: Path) -> None:
+async def test_malformed_input_gets_a_4xx_naming_the_problem_and_an_audit_row(tmp_path: Path) -> None:
     async with sim_process(count=1, speedup=10) as sim:
         app = create_app(live_settings(tmp_path / "gateway.db"))
         with serve_in_thread(app) as base:
@@ -97,6 +97,10 @@ async def test_malformed_plan_files_get_a_4xx_naming_the_problem_and_an_audit_ro
                 assert "nests its JSON too deeply" in nested.json()["error"]["message"]
                 told = await _put(http, "alpha", "[" * 100_000)  # not JSON-looking: read as a WPL file
                 assert told.status_code == 422 and "begins with 'QGC WPL 110'" in told.text
+                for loose in ("10", True):  # numbers are JSON numbers at this door too
+                    took = await http.post("/api/v1/vehicles/alpha/takeoff", json={"alt_rel_m": loose})
+                    assert took.status_code == 422 and "alt_rel_m" in took.text, took.text
+                assert not (await sim.control.state(0))["armed"]
                 audit = (await http.get("/api/v1/audit", params={"vehicle_id": "alpha"})).json()["items"]
                 puts = [a for a in audit if a["action"] == "rest.put_mission_file"]
                 assert len(puts) == 3 and all(a["outcome"] == "error" for a in puts), puts

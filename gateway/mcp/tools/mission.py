@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
@@ -31,7 +31,9 @@ MAX_ITEMS = MISSION_ITEMS
 
 class Waypoint(BaseModel):
     """One mission item as a model writes it (``alt_m`` above home); becomes a fleet `MissionItem`.
-    (The name is the schema's ``$defs`` key clients see.)"""
+    (The name is the schema's ``$defs`` key clients see.) A field it does not have is refused."""
+
+    model_config = ConfigDict(extra="forbid")
 
     lat_deg: Lat
     lon_deg: Lon
