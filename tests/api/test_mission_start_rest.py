@@ -74,6 +74,57 @@ async def test_an_operator_stores_and_starts_an_unchecked_mission_marked_so(tmp_
                     assert "DO_AUX_FUNCTION" in str(rows[action]["arguments"]["unchecked"])
 
 
+def _wpl(home: tuple[float, float], rows: list[tuple[int, int, float, float, float, float, float]]) -> str:
+    """A WPL file over the simulator's home: (frame, command, p1, p2, north m, east m, alt) rows."""
+    from gateway.fleet import geo
+
+    lines = [f"QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t{home[0]}\t{home[1]}\t584\t1\n"]
+    for seq, (frame, command, p1, p2, north, east, alt) in enumerate(rows, start=1):
+        lat, lon = geo.offset_position(home[0], home[1], north, east) if (north, east) != (0, 0) else (0, 0)
+        lines.append(f"{seq}\t0\t{frame}\t{command}\t{p1}\t{p2}\t0\t0\t{lat}\t{lon}\t{alt}\t1\n")
+    return "".join(lines)
+
+
+async def test_a_mission_whose_motors_stop_in_the_air_ends_failed(tmp_path: Path) -> None:
+    """A motor emergency stop from inside the mission (the operator's unchecked DO_AUX_FUNCTION 31):
+    the drone falls; the operation ends failed, never "succeeded: mission finished"."""
+    async with sim_process(count=1, speedup=10) as sim:
+        app = create_app(live_settings(tmp_path / "gateway.db"))
+        with serve_in_thread(app) as base:
+            async with httpx.AsyncClient(base_url=base, timeout=scaled(60)) as http:
+                created = await http.post("/api/v1/vehicles", json={"id": "alpha", "url": sim.urls[0]})
+                assert created.status_code == 201, created.text
+                await _ready(http, "alpha")
+                state = await sim.control.state(0)
+                text = _wpl(
+                    (state["lat"], state["lon"]),
+                    # the stop is the last item: the mission "finishes" as the drone falls
+                    [(3, 22, 0, 0, 0, 0, 20), (3, 16, 0, 0, 30, 0, 20), (2, 218, 31, 2, 0, 0, 0)],
+                )  # fmt: skip
+                stored = await _put(http, "alpha", text)
+                assert stored.status_code == 200, stored.text
+                started = await http.post("/api/v1/vehicles/alpha/mission/start")
+                assert started.status_code == 200, started.text
+                op_id = started.json()["operation_id"]
+                loop = asyncio.get_running_loop()
+                deadline = loop.time() + scaled(120)
+                while True:
+                    ops = (await http.get("/api/v1/operations", params={"vehicle_id": "alpha"})).json()[
+                        "items"
+                    ]
+                    op = next(o for o in ops if o["id"] == op_id)
+                    if op["status"] != "running":
+                        break
+                    assert loop.time() < deadline, op
+                    await asyncio.sleep(0.3)
+                assert op["status"] == "failed", op
+                assert "falling" in op["message"] or "came down" in op["message"], op["message"]
+                assert "item 3 of 3" in op["message"], op["message"]
+                print(f"\nFIGURE motor stop in a mission, the operation's end: {op['message']}")
+                fallen = await sim.control.state(0)
+                assert fallen["landed"], fallen
+
+
 async def test_malformed_input_gets_a_4xx_naming_the_problem_and_an_audit_row(tmp_path: Path) -> None:
     async with sim_process(count=1, speedup=10) as sim:
         app = create_app(live_settings(tmp_path / "gateway.db"))

@@ -176,7 +176,8 @@ class MissionVerbs:
                     )
                 self.commands.safety.check_takeoff(ctx, held[0].alt_rel_m, caller.policy_via)
             params = {"unchecked": [u.text() for u in found]} if found else {}
-            return Order(vehicle.start_mission, MissionTracker(), params=params)
+            lands = any(item.kind in ("land", "rtl") for item in held)  # it may end on the ground
+            return Order(vehicle.start_mission, MissionTracker(lands=lands), params=params)
 
         view = (await self.commands.run(caller, drone_id, label, decide)).view()
         if unchecked:
