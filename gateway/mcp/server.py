@@ -125,8 +125,10 @@ def mcp_http_app(server: MCPServer[Any], settings: Settings) -> Starlette:
         streamable_http_path="/mcp",
         json_response=False,  # SSE: progress notifications need it
         stateless_http=False,  # 2025-era clients get sessions (subscriptions, elicitation)
+        session_idle_timeout=settings.mcp_session_idle_s,
         # Host and Origin: checked in front of /mcp by the REST API's rule (gateway.api.limits.McpHostGuard)
         transport_security=TransportSecuritySettings(enable_dns_rebinding_protection=False),
     )
+    sdk_private.cap_sessions_per_caller(server.session_manager, settings.mcp_sessions_per_caller)
     answer_silent_requests_as_json(server.session_manager)  # a request without a progress token
     return app
