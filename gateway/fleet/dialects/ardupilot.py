@@ -91,11 +91,30 @@ LIMIT_PARAMS: dict[str, ParamLimit] = {
     "RTL_ALT_M": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 3000.0),
     "RTL_ALT_FINAL": ParamLimit("max_altitude_m", "cm", 100.0, 0.0, 1000.0),
     "RTL_ALT_FINAL_M": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 10.0),
-    "RTL_CLIMB_MIN": ParamLimit("max_altitude_m", "cm", 100.0, 0.0, 3000.0),
-    "RTL_CLIMB_MIN_M": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 30.0),
+    # mode_rtl.cpp compute_return_target: target = max(RTL_ALT, current altitude + RTL_CLIMB_MIN)
+    "RTL_CLIMB_MIN": ParamLimit("max_altitude_m", "cm", 100.0, 0.0, 3000.0, "added"),
+    "RTL_CLIMB_MIN_M": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 30.0, "added"),
     "PILOT_TKOFF_ALT": ParamLimit("max_altitude_m", "cm", 100.0, 0.0, 1000.0),
-    "CIRCLE_RADIUS": ParamLimit("max_distance_m", "cm", 100.0, 0.0, 200000.0),
-    "CIRCLE_RADIUS_M": ParamLimit("max_distance_m", "m", 1.0, 0.0, 2000.0),
+    # AC_Circle: the centre lies one radius ahead of where CIRCLE starts, so the far side is two away
+    "CIRCLE_RADIUS": ParamLimit("max_distance_m", "cm", 100.0, 0.0, 200000.0, "diameter"),
+    "CIRCLE_RADIUS_M": ParamLimit("max_distance_m", "m", 1.0, 0.0, 2000.0, "diameter"),
+    # governing no limit, written by agents only when GATEWAY_AGENT_PARAM_ALLOW names them, and then
+    # only within the @Range of ArduPilot's parameter docs (AC_WPNav.cpp, AC_Loiter.cpp, AC_Circle.cpp,
+    # Parameters.cpp; the 4.7 metre names are the centimetre ranges / 100)
+    "WPNAV_ACCEL": ParamLimit(None, "cm/s/s", 1.0, 50.0, 500.0),
+    "WPNAV_ACCEL_Z": ParamLimit(None, "cm/s/s", 1.0, 50.0, 500.0),
+    "WPNAV_ACCEL_C": ParamLimit(None, "cm/s/s", 1.0, 0.0, 500.0),
+    "WPNAV_JERK": ParamLimit(None, "m/s/s/s", 1.0, 1.0, 20.0),
+    "WPNAV_RADIUS": ParamLimit(None, "cm", 1.0, 5.0, 1000.0),
+    "WP_YAW_BEHAVIOR": ParamLimit(None, "", 1.0, 0.0, 3.0),
+    "LOIT_ACC_MAX": ParamLimit(None, "cm/s/s", 1.0, 100.0, 981.0),
+    "LOIT_ACC_MAX_M": ParamLimit(None, "m/s/s", 1.0, 1.0, 9.81),
+    "LOIT_BRK_ACCEL": ParamLimit(None, "cm/s/s", 1.0, 25.0, 250.0),
+    "LOIT_BRK_ACC_M": ParamLimit(None, "m/s/s", 1.0, 0.25, 2.5),
+    "LOIT_BRK_JERK": ParamLimit(None, "cm/s/s/s", 1.0, 500.0, 5000.0),
+    "LOIT_BRK_JRK_M": ParamLimit(None, "m/s/s/s", 1.0, 5.0, 50.0),
+    "LOIT_BRK_DELAY": ParamLimit(None, "s", 1.0, 0.0, 2.0),
+    "CIRCLE_RATE": ParamLimit(None, "deg/s", 1.0, -90.0, 90.0),
 }
 
 

@@ -99,6 +99,16 @@ LIMIT_PARAMS: dict[str, ParamLimit] = {
     "RTL_RETURN_ALT": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 150.0),
     "RTL_DESCEND_ALT": ParamLimit("max_altitude_m", "m", 1.0, 2.0, 500.0),
     "MIS_TAKEOFF_ALT": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 80.0),
+    # governing no limit, written by agents only when GATEWAY_AGENT_PARAM_ALLOW names them, and then only
+    # within PX4's own metadata (min/max of parameters.json that the PX4 build ships, PX4 1.16)
+    "MPC_ACC_HOR": ParamLimit(None, "m/s^2", 1.0, 2.0, 15.0),
+    "MPC_ACC_HOR_MAX": ParamLimit(None, "m/s^2", 1.0, 2.0, 15.0),
+    "MPC_ACC_UP_MAX": ParamLimit(None, "m/s^2", 1.0, 2.0, 15.0),
+    "MPC_ACC_DOWN_MAX": ParamLimit(None, "m/s^2", 1.0, 2.0, 15.0),
+    "MPC_JERK_AUTO": ParamLimit(None, "m/s^3", 1.0, 1.0, 80.0),
+    "MPC_JERK_MAX": ParamLimit(None, "m/s^3", 1.0, 0.5, 500.0),
+    "NAV_ACC_RAD": ParamLimit(None, "m", 1.0, 0.05, 200.0),
+    "MPC_YAWRAUTO_MAX": ParamLimit(None, "deg/s", 1.0, 5.0, 360.0),
 }
 
 

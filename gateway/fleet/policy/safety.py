@@ -411,7 +411,7 @@ class SafetyPolicy:
                 pattern=denied.upper(),
             )
         rule = param_limits.governing(governed or {}, upper)
-        if rule is not None:
+        if rule is not None and rule.limit is not None:
             if value is None:
                 return
             limits = self.limits_for(vehicle_id) if vehicle_id else self.fleet_limits
@@ -431,12 +431,21 @@ class SafetyPolicy:
         if param_limits.matches(upper, self.param_allow_patterns) is None:
             raise refuse(
                 Rule.PARAM_NOT_ALLOWED,
-                f"agents may write only parameters that a limit governs ({', '.join(sorted(governed or {}))}"
+                f"agents may write only parameters that a limit governs "
+                f"({', '.join(param_limits.governed_names(governed or {}))}"
                 f") or that GATEWAY_AGENT_PARAM_ALLOW names; {upper} is neither, so nothing was written. An "
                 "operator can write it over REST or add it to GATEWAY_AGENT_PARAM_ALLOW",
                 vehicle_id=vehicle_id,
                 param=upper,
             )
+        documented = param_limits.documented(governed or {}, upper)
+        if documented is not None and value is not None:
+            why = param_limits.outside_range(upper, float(value), documented)
+            if why is not None:
+                raise refuse(
+                    Rule.PARAM_RANGE, f"{why}; nothing was written", vehicle_id=vehicle_id, param=upper,
+                    value=value, low=documented.low, high=documented.high,
+                )  # fmt: skip
 
 
 # ------------------------------------------------------------------------------------------------

@@ -38,6 +38,7 @@ class Rule(StrEnum):
     PARAM_DENY = "param_deny"
     PARAM_LIMIT = "param_limit"
     PARAM_NOT_ALLOWED = "param_not_allowed"
+    PARAM_RANGE = "param_range"
     MODE_IN_AIR = "mode_deny_in_air"
     KILL_IN_AIR = "kill_in_air"
     MIN_SEPARATION = "min_separation"
