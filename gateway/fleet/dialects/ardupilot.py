@@ -19,7 +19,7 @@ from __future__ import annotations
 from collections.abc import Awaitable, Callable, Mapping
 
 from gateway.fleet.dialects.base import LinkOps, matches_any, reader, user_progress
-from gateway.fleet.dialects.modes import COMMON_MODES, ModeChoice, canonical
+from gateway.fleet.dialects.modes import COMMON_MODES, NOT_MODELLED, AirUse, ModeChoice, canonical
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem, WirePlan
 from gateway.fleet.policy.param_limits import ParamLimit
@@ -46,6 +46,29 @@ COMMON_TO_NATIVE: dict[str, str] = {
 #: GATEWAY_MODE_DENY_IN_AIR). Modes that need sticks or special frames (ACRO, FLIP, THROW, TURTLE,
 #: AUTOROTATE, ...) are left out.
 OFFERED_NATIVE = ("BRAKE", "SMART_RTL", "CIRCLE", "STABILIZE", "ALT_HOLD", "POSHOLD")
+#: whether an agent may select each offered mode in the air, and why. ArduCopter's pilot modes read the
+#: throttle stick even under a GCS: without RC (SITL, a companion link) the throttle reads low and the
+#: copter sinks to the ground and stays there armed (measured on SITL for LOITER, ALT_HOLD and CIRCLE:
+#: 30 m to the ground 515 m from home). Mode::has_manual_throttle / ModeCircle::run use
+#: get_pilot_desired_climb_rate.
+_STICKS = "reads the pilot's throttle and sticks: without RC input it sinks to the ground and stays armed"
+AIR_MODES: dict[str, AirUse] = {
+    "GUIDED": AirUse(True, "holds where it is and flies only the targets the gateway checked"),
+    "RTL": AirUse(True, "climbs to the return altitude (a governed parameter), flies home and lands"),
+    "LAND": AirUse(True, "descends and lands where it is"),
+    "AUTO": AirUse(True, "flies the mission the autopilot holds, checked when it starts"),
+    "BRAKE": AirUse(True, "stops and holds position and altitude without RC input"),
+    "SMART_RTL": AirUse(True, "retraces the path it flew, within the limits, back home"),
+    "CIRCLE": AirUse(False, f"{_STICKS} (like LOITER); its circle's centre lies one CIRCLE_RADIUS ahead"),
+    "STABILIZE": AirUse(False, _STICKS),
+    "ALT_HOLD": AirUse(False, _STICKS),
+    "POSHOLD": AirUse(False, _STICKS),
+    "LOITER": AirUse(False, _STICKS),
+}
+#: ArduCopter's CIRCLE: AC_Circle puts the centre one radius ahead of the stopping point (the far side is
+#: two radii away); CIRCLE_RADIUS in cm up to 4.6, CIRCLE_RADIUS_M in m from 4.7 (which answers the old
+#: name with "does not exist" at once: the old name is tried first)
+CIRCLE_RADIUS_PARAMS = (("CIRCLE_RADIUS", 100.0), ("CIRCLE_RADIUS_M", 1.0))
 #: MAV_TYPE values flown by ArduCopter (quad, coaxial, heli, hexa, octo, tri, dodeca, deca)
 COPTER_TYPES = frozenset({2, 3, 4, 13, 14, 15, 29, 35})
 #: the modes the gateway's own commands put ArduCopter in, per operation kind (`commanded_modes`): every
@@ -156,7 +179,16 @@ class ArduPilot:
                 return None
             native = wanted
         number = ARDUCOPTER_MODES[native]
-        return ModeChoice(wanted, native, number, (1.0, float(number)))
+        pattern = CIRCLE_RADIUS_PARAMS if native == "CIRCLE" else ()
+        return ModeChoice(
+            wanted,
+            native,
+            number,
+            (1.0, float(number)),
+            in_air=AIR_MODES.get(native, NOT_MODELLED),
+            pattern_radius=pattern,
+            pattern_reach=2.0 if pattern else 0.0,
+        )
 
     def native_mode(self, custom_mode: int) -> str:
         return ARDUCOPTER_MODE_NAMES.get(custom_mode, f"MODE_{custom_mode}")

@@ -40,6 +40,7 @@ class Rule(StrEnum):
     PARAM_NOT_ALLOWED = "param_not_allowed"
     PARAM_RANGE = "param_range"
     MODE_IN_AIR = "mode_deny_in_air"
+    PATTERN_EXTENT = "pattern_extent"
     KILL_IN_AIR = "kill_in_air"
     MIN_SEPARATION = "min_separation"
     TAKEOFF_IN_PROGRESS = "takeoff_in_progress"
