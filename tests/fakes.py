@@ -86,6 +86,8 @@ class FakeVehicle:
         self.target: tuple[float, float, float] | None = None
         # earlier reports a late watch may not have seen as the latest (`position_targets`)
         self.target_history: list[tuple[float, float, float]] = []
+        #: the last position target the gateway sent (goto, hold): lat, lon, monotonic
+        self.commanded: tuple[float, float, float] | None = None
         lat, lon = geo.offset_position(HOME[0], HOME[1], 0.0, east_m)
         self.home_ll = (lat, lon)
         self.telemetry = TelemetryCache(stale_after_s=stale_after_s)
@@ -169,6 +171,9 @@ class FakeVehicle:
     def position_targets(self, since: float) -> list[tuple[float, float, float]]:
         reports = [*self.target_history, *([self.target] if self.target is not None else [])]
         return [t for t in reports if t[2] >= since]
+
+    def commanded_target(self) -> tuple[float, float, float] | None:
+        return self.commanded
 
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         return ARDUPILOT.commanded_modes(kind, done=done)
@@ -288,10 +293,14 @@ class FakeVehicle:
         self._fly(*self.pos()[:2], alt_rel_m)
 
     async def goto(self, lat: float, lon: float, alt_rel_m: float, yaw_deg: float | None = None) -> None:
+        self.commanded = (lat, lon, time.monotonic())
         await self._command("goto", lat, lon, alt_rel_m)
         self._fly(lat, lon, alt_rel_m)
 
     async def hold(self) -> None:
+        lat, lon, _ = self.pos()
+        flying = self.telemetry.in_air is not None and self.telemetry.in_air.value
+        self.commanded = (lat, lon, time.monotonic()) if flying else None
         await self._command("hold")
         if self._flight is not None:
             self._flight.cancel()

@@ -231,6 +231,9 @@ class RemoteVehicle:
     def position_targets(self, since: float) -> list[tuple[float, float, float]]:
         return []  # its owner compares them
 
+    def commanded_target(self) -> tuple[float, float, float] | None:
+        return None  # its owner sent it
+
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         return self.dialect.commanded_modes(kind, done=done)
 

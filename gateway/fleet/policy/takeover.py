@@ -55,7 +55,14 @@ class ModeExpectation:
     #: that may have just finished), monotonic
     outside_since: float | None = None
     last_mode: str | None = None
-    #: when the autopilot's reported target was first seen away from the running goto's (monotonic)
+    #: the gateway's target the autopilot should report (lat, lon, monotonic time sent): the running
+    #: goto's leg, or where a hold or a goto that arrived left the drone; None: nothing to compare
+    target: tuple[float, float, float] | None = None
+    #: the autopilot has reported ``target`` since it was sent: from then on a move away is someone else's
+    target_adopted: bool = False
+    #: how far (m) the reported target may be from ``target``
+    target_near_m: float = 10.0
+    #: when the autopilot's reported target was first seen away from ``target`` (monotonic)
     target_off_since: float | None = None
 
 

@@ -101,6 +101,10 @@ class VehicleView(Protocol):
         """The targets the autopilot reported at or after ``since`` (monotonic), oldest first, as far
         back as the last few seconds: a target it flew only briefly still shows here."""
 
+    def commanded_target(self) -> tuple[float, float, float] | None:
+        """The last position target the gateway sent this drone (a goto or a hold): lat, lon and when
+        it was sent (monotonic); None when it sent none (or a hold on the ground sent nothing)."""
+
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         """The modes the autopilot may show while it does what the gateway commanded (an operation of
         ``kind``; ``done``: once it succeeded), in its own names (`Dialect.commanded_modes`)."""
