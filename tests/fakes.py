@@ -30,6 +30,7 @@ from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleRegis
 from gateway.fleet.vehicles.vehicle import ConnectionState
 from gateway.fleet.vehicles.waits import wait_for_state
 from gateway.link import refusals
+from gateway.link.contract import GroundCommand
 from gateway.link.telemetry import (
     AttitudeValue,
     BatteryValue,
@@ -88,6 +89,8 @@ class FakeVehicle:
         self.target_history: list[tuple[float, float, float]] = []
         #: the last position target the gateway sent (goto, hold): lat, lon, monotonic
         self.commanded: tuple[float, float, float] | None = None
+        #: what a ground station on the relay sent that acts on the drone (set by a test)
+        self.ground_commands: list[GroundCommand] = []
         lat, lon = geo.offset_position(HOME[0], HOME[1], 0.0, east_m)
         self.home_ll = (lat, lon)
         self.telemetry = TelemetryCache(stale_after_s=stale_after_s)
@@ -174,6 +177,9 @@ class FakeVehicle:
 
     def commanded_target(self) -> tuple[float, float, float] | None:
         return self.commanded
+
+    def ground_station_commands(self, since: float) -> list[GroundCommand]:
+        return [c for c in self.ground_commands if c.at >= since]
 
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         return ARDUPILOT.commanded_modes(kind, done=done)

@@ -14,6 +14,7 @@ import pytest
 from gateway.errors import SafetyRefusal
 from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
 from gateway.fleet.policy.takeover import likely_cause
+from gateway.link.contract import GroundCommand
 from gateway.runtime import Gateway
 from tests.fakes import FakeVehicle, fake, fake_gateway, position_value, spread, unit_settings
 from tests.fleet._util import AGENT, OPERATOR, at
@@ -238,6 +239,24 @@ async def test_the_target_of_a_hold_before_its_report_is_not_a_takeover(gateway:
     await gateway.commander.hold(AGENT, "d1")
     await reports_for(d1, goto.params["lat_deg"], goto.params["lon_deg"], 2.5)
     assert gateway.locks.takeover_for("d1") is None
+
+
+async def test_a_ground_stations_command_on_the_relay_is_a_takeover_one_before_the_gateways_is_not(
+    gateway: Gateway,
+) -> None:
+    d1 = fake(gateway, "d1")
+    before = time.monotonic()
+    goto_id = await flying_goto(gateway)
+    d1.ground_commands.append(GroundCommand(250, "MISSION_SET_CURRENT", before))  # before the goto
+    await asyncio.sleep(0.6)  # several polls of the watch
+    assert gateway.locks.takeover_for("d1") is None
+    waiter = asyncio.create_task(gateway.commander.wait(goto_id, 60))
+    d1.ground_commands.append(GroundCommand(250, "COMMAND_LONG MAV_CMD_DO_CHANGE_SPEED", time.monotonic()))
+    view = await asyncio.wait_for(waiter, scaled(5))
+    assert view.status == "interrupted", view
+    assert "ground station system 250 sent COMMAND_LONG MAV_CMD_DO_CHANGE_SPEED" in view.message, view.message
+    taken = gateway.locks.takeover_for("d1")
+    assert taken is not None and "taken over in GUIDED" in taken.reason
 
 
 async def test_a_failsafe_is_named_in_the_autopilots_words(gateway: Gateway) -> None:

@@ -102,7 +102,7 @@ class ModeWatch:
             self._expected.pop(vehicle.id, None)
             return
         settled = modes if modes is not None else vehicle.commanded_modes(kind, done=True)
-        exp = ModeExpectation(kind, wanted, settled | wanted, operation_id)
+        exp = ModeExpectation(kind, wanted, settled | wanted, operation_id, since=time.monotonic())
         if kind in HOLD_KINDS:  # the target it holds to: a move away from it is someone else's
             exp.target = vehicle.commanded_target()
         self._expected[vehicle.id] = exp
@@ -156,11 +156,14 @@ class ModeWatch:
             )
             if vehicle.id in self._expected:
                 return
+            now = time.monotonic()
             if kind is not None and modes and mode in modes:
-                exp = ModeExpectation(kind, modes, modes, seen=True, last_mode=mode)
+                exp = ModeExpectation(kind, modes, modes, seen=True, last_mode=mode, since=now)
             else:
                 found = frozenset({mode})
-                exp = ModeExpectation(f"found flying in {mode}", found, found, seen=True, last_mode=mode)
+                exp = ModeExpectation(
+                    f"found flying in {mode}", found, found, seen=True, last_mode=mode, since=now
+                )
             self._expected[vehicle.id] = exp
             log.info(
                 "%s: found flying in %s after the restart; its mode watch is on (%s)",
@@ -215,6 +218,11 @@ class ModeWatch:
         mine = op if op is not None and op.id == exp.operation_id else None
         done = mine is not None and mine.status is OpStatus.succeeded
         running = mine if mine is not None and not mine.finished else None
+        commanded = vehicle.ground_station_commands(exp.since)
+        if commanded:  # a ground station on the relay commanded the drone: whatever the mode shows
+            first = commanded[0]
+            await self._taken(vehicle, exp, mode, running, command=(first.sysid, first.what))
+            return
         if mode in exp.modes or (done and mode in exp.settled):
             exp.seen, exp.outside_since, exp.last_mode = True, None, mode
             moved = self._retargeted(vehicle, exp, running)
@@ -293,13 +301,16 @@ class ModeWatch:
         mode: str,
         running: Operation | None,
         moved_m: float | None = None,
+        command: tuple[int, str] | None = None,
     ) -> None:
         """A takeover: the drone is locked first (whoever hears the operation end finds it locked), then
         the running operation ends as interrupted."""
         if self._expected.get(vehicle.id) is not exp or self._ops.command_lock(vehicle.id).locked():
             return  # a command went out meanwhile
         said: str | None = None
-        if moved_m is not None:
+        if command is not None:
+            cause = f"ground station system {command[0]} sent {command[1]} through the gateway's relay"
+        elif moved_m is not None:
             cause = (
                 f"another ground station repositioned or paused it (its target is {moved_m:.0f} m from the "
                 "gateway's)"
@@ -316,6 +327,7 @@ class ModeWatch:
             operation_id=running.id if running is not None else None,
             operation_kind=running.kind if running is not None else exp.kind,
             retargeted=moved_m is not None,
+            command=command[1] if command is not None else None,
         )
         self._expected.pop(vehicle.id, None)
         log.warning("%s: %s", vehicle.id, takeover.message())

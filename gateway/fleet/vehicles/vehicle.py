@@ -38,7 +38,7 @@ from gateway.fleet.vehicles.params import Parameters
 from gateway.fleet.vehicles.vehicle_arming import Arming
 from gateway.fleet.vehicles.vehicle_missions import MissionControl
 from gateway.fleet.vehicles.waits import wait_for_state
-from gateway.link.contract import ConnectionState, OnWait, Peer
+from gateway.link.contract import ConnectionState, GroundCommand, OnWait, Peer
 from gateway.link.link_status import link_status
 from gateway.link.session import Link
 from gateway.link.sidecar import Confine, Sidecar
@@ -396,6 +396,10 @@ class Vehicle:
 
     def position_targets(self, since: float) -> list[tuple[float, float, float]]:
         return [t for t in self._targets if t[2] >= since]
+
+    def ground_station_commands(self, since: float) -> list[GroundCommand]:
+        relay = self.link.relay
+        return [] if relay is None else relay.commands_since(since)
 
     def commanded_target(self) -> tuple[float, float, float] | None:
         """The last position target the gateway sent (a goto or a hold): latitude, longitude and when it
