@@ -9,12 +9,14 @@ the gateway adds is the policy's reading of them, with the autopilot's own seman
 * ArduPilot reads latitude and longitude 0 of a position item as "where the vehicle is" and altitude 0
   as "the altitude of the previous item": the policy checks the position and altitude so resolved;
 * frames: global (AMSL) altitudes are taken above home with the vehicle's home altitude; relative ones
-  as they are; terrain ones as if above home (the gateway knows no terrain: a terrain item is checked
-  against the altitude limit as a height above home);
-* items that are not positions (DO_JUMP, CONDITION_YAW, DO_SET_ROI, DO_CHANGE_SPEED with its speed
-  checked, ...) pass through unchanged; a few that would undo the safety layer from inside a mission
-  (DO_SET_PARAMETER, DO_FENCE_ENABLE, DO_FLIGHTTERMINATION, DO_SET_HOME, DO_MOTOR_TEST) are refused
-  by the policy (`gateway.fleet.policy.safety`).
+  as they are; terrain ones are read as if above home here, and the policy treats them as unchecked
+  (the gateway knows no terrain);
+* what each command does is judged by the policy with the autopilot's semantics
+  (`gateway.fleet.policy.mission_check`, the dialect's table in
+  `gateway.fleet.dialects.mission_semantics`): positions, loiter radii, speed changes by speed type,
+  jumps, harmless yaw/ROI/camera items; any other item is unchecked (refused for agents); a few that
+  would undo the safety layer from inside a mission (DO_SET_PARAMETER, DO_FENCE_ENABLE,
+  DO_FLIGHTTERMINATION, DO_SET_HOME, DO_MOTOR_TEST) are refused for everyone.
 
 Complex ``.plan`` items (surveys, corridor scans, structure scans) carry no MAVLink items of their own in
 every version; they are refused by name: export them from QGroundControl as a WPL file (File > Save As
