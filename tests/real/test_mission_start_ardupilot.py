@@ -8,6 +8,7 @@ cannot check, by name."""
 from __future__ import annotations
 
 import asyncio
+import time
 from pathlib import Path
 
 import pytest
@@ -49,7 +50,12 @@ async def test_a_stored_mission_is_checked_at_every_start_on_arducopter(launch, 
         ]
         await asyncio.to_thread(upload, gcs, items)
 
+        began = time.monotonic()
         await t.refused("initiate_mission", ALTITUDE, drone_id=d, wait=False)
+        # printed, never asserted: the refusal includes reading the mission back from the autopilot
+        print(
+            f"\nFIGURE initiate_mission refused after reading back 3 items: {time.monotonic() - began:.2f} s"
+        )
         await t.refused("initiate_mission", "waypoints is an empty list", drone_id=d, waypoints=[])
         await t.refused("resume_mission", ALTITUDE, drone_id=d)
         for name in ("AUTO", "MISSION"):

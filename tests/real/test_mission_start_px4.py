@@ -8,6 +8,7 @@ is refused by name as unchecked (PX4 itself refuses to store a NAV_LOITER_TURNS:
 from __future__ import annotations
 
 import asyncio
+import time
 from pathlib import Path
 
 import pytest
@@ -49,7 +50,12 @@ async def test_a_stored_mission_is_checked_at_every_start_on_px4(launch, tmp_pat
         ]
         await asyncio.to_thread(upload, gcs, items, home_slot=False)
 
+        began = time.monotonic()
         await t.refused("initiate_mission", ALTITUDE, drone_id=d, wait=False)
+        # printed, never asserted: the refusal includes reading the mission back from the autopilot
+        print(
+            f"\nFIGURE initiate_mission refused after reading back 3 items: {time.monotonic() - began:.2f} s"
+        )
         await t.refused("initiate_mission", "waypoints is an empty list", drone_id=d, waypoints=[])
         await t.refused("resume_mission", ALTITUDE, drone_id=d)
         await t.refused("set_flight_mode", ALTITUDE, drone_id=d, mode="MISSION")
