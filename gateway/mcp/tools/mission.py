@@ -80,7 +80,7 @@ async def upload_mission(call: ToolCall, drone_id: DroneId, waypoints: Waypoints
         "waypoints": {
             "type": "array",
             "items": {"type": "object"},
-            "description": "Items as upload_mission's; omit to start the uploaded mission",
+            "description": "Items as upload_mission's; omit to start the drone's mission (checked first)",
         }
     }
 )
