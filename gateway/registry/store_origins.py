@@ -1,4 +1,4 @@
-"""The store's vehicle origins (`gateway.fleet.policy.origin`): the first home each vehicle reported,
+"""The store's vehicle origins: the first home each vehicle reported,
 or where an operator moved it; kept across restarts."""
 
 from __future__ import annotations
@@ -7,8 +7,8 @@ from typing import cast
 
 from sqlalchemy import select
 
-from gateway.fleet.policy.origin import Origin, OriginSource
 from gateway.registry.models import OriginRow
+from gateway.registry.records import Origin, OriginSource
 from gateway.registry.store_core import StoreCore
 
 

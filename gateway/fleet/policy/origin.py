@@ -13,43 +13,11 @@ Altitudes stay metres above the autopilot's home, the frame every command is sen
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from datetime import datetime
-from typing import Literal
-
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
+from gateway.registry.records import ORIGIN_SOURCES, Origin, OriginSource
 
-OriginSource = Literal["first_home", "operator"]
-ORIGIN_SOURCES: tuple[OriginSource, ...] = ("first_home", "operator")
-
-
-@dataclass(frozen=True)
-class Origin:
-    """Where a vehicle's distance limit and zones count from, who set it and when."""
-
-    vehicle_id: str
-    lat: float
-    lon: float
-    alt_amsl_m: float
-    source: OriginSource
-    set_by: str
-    set_at: datetime
-
-    @property
-    def point(self) -> tuple[float, float, float]:
-        return (self.lat, self.lon, self.alt_amsl_m)
-
-    def to_record(self) -> dict[str, object]:
-        return {
-            "vehicle_id": self.vehicle_id,
-            "lat": self.lat,
-            "lon": self.lon,
-            "alt_amsl_m": self.alt_amsl_m,
-            "source": self.source,
-            "set_by": self.set_by,
-            "set_at": self.set_at.isoformat(),
-        }
+__all__ = ["ORIGIN_SOURCES", "Origin", "OriginSource", "checked_point"]
 
 
 def checked_point(lat: object, lon: object, alt_amsl_m: object) -> tuple[float, float, float]:
