@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import re
 import socket
 from functools import lru_cache
@@ -102,6 +103,19 @@ class Settings(BaseSettings):
     )
     mcp_wait_cap_s: float = Field(
         45.0, gt=0, le=600, description="Longest a tool waits for its operation before answering 'running'."
+    )
+    mcp_sessions_per_caller: int = Field(
+        64,
+        ge=1,
+        le=10_000,
+        description="Most 2025-era MCP sessions (Mcp-Session-Id) one token keeps open; a new one beyond "
+        "this closes that token's session idle the longest.",
+    )
+    mcp_session_idle_s: float = Field(
+        1800.0,
+        gt=0,
+        le=86_400,
+        description="A 2025-era MCP session with no request for this long is closed.",
     )
     allowed_hosts: str = Field(
         "",
@@ -271,6 +285,15 @@ class Settings(BaseSettings):
                 f"e.g. https://tile.example.org/{{z}}/{{x}}/{{y}}.png; got {value!r}"
             )
         return value.strip()
+
+    @model_validator(mode="after")
+    def _numbers_are_finite(self) -> Settings:
+        """A limit of inf or nan would hold nothing (every comparison with nan is false): refused at
+        start, naming the variable."""
+        for name, value in self:
+            if isinstance(value, float) and not math.isfinite(value):
+                raise ValueError(f"GATEWAY_{name.upper()} must be a finite number; got {value}")
+        return self
 
     @model_validator(mode="after")
     def _scopes_name_configured_agents(self) -> Settings:

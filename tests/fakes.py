@@ -25,11 +25,13 @@ from gateway.fleet import geo
 from gateway.fleet.dialects import ARDUPILOT
 from gateway.fleet.dialects.modes import ModeChoice, require_mode
 from gateway.fleet.missions.mission import MissionItem
+from gateway.fleet.policy.origin import Origin, checked_point
 from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleRegistry
 from gateway.fleet.vehicles.vehicle import ConnectionState
 from gateway.fleet.vehicles.waits import wait_for_state
 from gateway.link import refusals
+from gateway.link.contract import GroundCommand
 from gateway.link.telemetry import (
     AttitudeValue,
     BatteryValue,
@@ -41,6 +43,7 @@ from gateway.link.telemetry import (
     TelemetryCache,
     VelocityNedValue,
 )
+from gateway.registry.records import utcnow
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from gateway.runtime import Gateway
@@ -71,6 +74,8 @@ class FakeVehicle:
         self._spec = spec or VehicleSpec(id=vid, url="tcpout://127.0.0.1:5760", name=vid.upper())
         self.state = state
         self.is_simulator = True
+        #: the origin the distance limit counts from (None: the home stands in)
+        self.fixed_origin: tuple[float, float, float] | None = None
         self.speed = speed
         self.sent: list[tuple[Any, ...]] = []
         self.log: list[tuple[float, str, tuple[Any, ...]]] = []
@@ -86,6 +91,10 @@ class FakeVehicle:
         self.target: tuple[float, float, float] | None = None
         # earlier reports a late watch may not have seen as the latest (`position_targets`)
         self.target_history: list[tuple[float, float, float]] = []
+        #: the last position target the gateway sent (goto, hold): lat, lon, monotonic
+        self.commanded: tuple[float, float, float] | None = None
+        #: what a ground station on the relay sent that acts on the drone (set by a test)
+        self.ground_commands: list[GroundCommand] = []
         lat, lon = geo.offset_position(HOME[0], HOME[1], 0.0, east_m)
         self.home_ll = (lat, lon)
         self.telemetry = TelemetryCache(stale_after_s=stale_after_s)
@@ -170,6 +179,12 @@ class FakeVehicle:
         reports = [*self.target_history, *([self.target] if self.target is not None else [])]
         return [t for t in reports if t[2] >= since]
 
+    def commanded_target(self) -> tuple[float, float, float] | None:
+        return self.commanded
+
+    def ground_station_commands(self, since: float) -> list[GroundCommand]:
+        return [c for c in self.ground_commands if c.at >= since]
+
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         return ARDUPILOT.commanded_modes(kind, done=done)
 
@@ -189,6 +204,10 @@ class FakeVehicle:
     @property
     def protected_params(self) -> tuple[str, ...]:
         return ARDUPILOT.protected_params
+
+    @property
+    def origin(self) -> tuple[float, float, float] | None:
+        return self.fixed_origin
 
     @property
     def limit_params(self) -> Mapping[str, ParamLimit]:
@@ -288,10 +307,14 @@ class FakeVehicle:
         self._fly(*self.pos()[:2], alt_rel_m)
 
     async def goto(self, lat: float, lon: float, alt_rel_m: float, yaw_deg: float | None = None) -> None:
+        self.commanded = (lat, lon, time.monotonic())
         await self._command("goto", lat, lon, alt_rel_m)
         self._fly(lat, lon, alt_rel_m)
 
     async def hold(self) -> None:
+        lat, lon, _ = self.pos()
+        flying = self.telemetry.in_air is not None and self.telemetry.in_air.value
+        self.commanded = (lat, lon, time.monotonic()) if flying else None
         await self._command("hold")
         if self._flight is not None:
             self._flight.cancel()
@@ -355,6 +378,12 @@ class FakeVehicle:
         return self.mission_done
 
     async def get_param(self, name: str) -> tuple[float | int, str]:
+        if name not in self.params:
+            raise CommandFailed(
+                f"unknown parameter '{name}' on drone '{self.id}'",
+                vehicle_id=self.id,
+                result="UNKNOWN_PARAMETER",
+            )
         return self.params[name], "float"
 
     async def set_param(self, name: str, value: float | int) -> tuple[float | int, str]:
@@ -386,6 +415,14 @@ class FakeRegistry:
     async def stop(self) -> None:
         for vehicle in self.vehicles.values():
             await vehicle.stop_streaming()
+
+    async def move_origin(
+        self, vehicle_id: str, lat: object, lon: object, alt_amsl_m: object, by: str
+    ) -> Origin:
+        vehicle = self.get(vehicle_id)
+        origin = Origin(vehicle_id, *checked_point(lat, lon, alt_amsl_m), "operator", by, utcnow())
+        vehicle.fixed_origin = origin.point
+        return await self.store.save_origin(origin)
 
     async def add(self, spec: VehicleSpec, connect: bool = True) -> FakeVehicle:
         await self.store.add_vehicle(spec, auto_connect=connect)

@@ -24,6 +24,7 @@ from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.fleet.vehicles.protocols import Notify
 from gateway.fleet.vehicles.vehicle import ConnectionState
 from gateway.fleet.vehicles.waits import wait_for_state
+from gateway.link.contract import GroundCommand
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 
@@ -231,6 +232,12 @@ class RemoteVehicle:
     def position_targets(self, since: float) -> list[tuple[float, float, float]]:
         return []  # its owner compares them
 
+    def commanded_target(self) -> tuple[float, float, float] | None:
+        return None  # its owner sent it
+
+    def ground_station_commands(self, since: float) -> list[GroundCommand]:
+        return []  # its owner relays them
+
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         return self.dialect.commanded_modes(kind, done=done)
 
@@ -244,6 +251,10 @@ class RemoteVehicle:
     @property
     def protected_params(self) -> tuple[str, ...]:
         return every_protected_param() if self.autopilot is None else self.dialect.protected_params
+
+    @property
+    def origin(self) -> tuple[float, float, float] | None:
+        return None  # kept by the node that flies it, where every command is decided
 
     @property
     def limit_params(self) -> Mapping[str, ParamLimit]:

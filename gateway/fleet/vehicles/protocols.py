@@ -29,7 +29,9 @@ from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 from gateway.errors import OwnedElsewhere
 from gateway.fleet.dialects.modes import ModeChoice
 from gateway.fleet.missions.mission import MissionItem
+from gateway.fleet.policy.origin import Origin
 from gateway.fleet.policy.param_limits import ParamLimit
+from gateway.link.contract import GroundCommand
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 
@@ -101,6 +103,14 @@ class VehicleView(Protocol):
         """The targets the autopilot reported at or after ``since`` (monotonic), oldest first, as far
         back as the last few seconds: a target it flew only briefly still shows here."""
 
+    def ground_station_commands(self, since: float) -> list[GroundCommand]:
+        """What ground stations on the gateway's relay sent that acts on the drone, at or after ``since``
+        (monotonic), oldest first (`gateway.link.ground_commands`); none without a relay."""
+
+    def commanded_target(self) -> tuple[float, float, float] | None:
+        """The last position target the gateway sent this drone (a goto or a hold): lat, lon and when
+        it was sent (monotonic); None when it sent none (or a hold on the ground sent nothing)."""
+
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         """The modes the autopilot may show while it does what the gateway commanded (an operation of
         ``kind``; ``done``: once it succeeded), in its own names (`Dialect.commanded_modes`)."""
@@ -122,6 +132,11 @@ class VehicleView(Protocol):
     @property
     def limit_params(self) -> Mapping[str, ParamLimit]:
         """The parameters that could walk around a policy limit, each with the limit it governs."""
+
+    @property
+    def origin(self) -> tuple[float, float, float] | None:
+        """(lat, lon, alt_amsl_m) the distance limit and the zones count from: the first home the vehicle
+        reported or where an operator moved it (None: not known here; its home stands in)."""
 
 
 @runtime_checkable
@@ -210,6 +225,12 @@ class VehicleRegistry(VehicleDirectory, Protocol):
     async def start(self) -> None: ...
 
     async def stop(self) -> None: ...
+
+    async def move_origin(
+        self, vehicle_id: str, lat: object, lon: object, alt_amsl_m: object, by: str
+    ) -> Origin:
+        """An operator's new origin for the vehicle's distance limit and zones (checked, stored), on the
+        node that flies it (OwnedElsewhere otherwise)."""
 
     async def add(self, spec: VehicleSpec, connect: bool = True) -> VehicleView: ...
 

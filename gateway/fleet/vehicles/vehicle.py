@@ -33,12 +33,14 @@ from gateway.fleet.dialects import protected_params as every_protected_param
 from gateway.fleet.dialects.modes import ModeChoice, require_mode
 from gateway.fleet.missions.flightlog import FlightRecorder
 from gateway.fleet.missions.mission import MissionItem
+from gateway.fleet.policy.origin import Origin
 from gateway.fleet.policy.param_limits import ParamLimit
+from gateway.fleet.vehicles.origin_keeper import OriginKeeper
 from gateway.fleet.vehicles.params import Parameters
 from gateway.fleet.vehicles.vehicle_arming import Arming
 from gateway.fleet.vehicles.vehicle_missions import MissionControl
 from gateway.fleet.vehicles.waits import wait_for_state
-from gateway.link.contract import ConnectionState, OnWait, Peer
+from gateway.link.contract import ConnectionState, GroundCommand, OnWait, Peer
 from gateway.link.link_status import link_status
 from gateway.link.session import Link
 from gateway.link.sidecar import Confine, Sidecar
@@ -91,12 +93,15 @@ class Vehicle:
         self.arming = Arming(self.link, self)
         self.params = Parameters(spec.id, self.link.call, self.link.require_session)
         self._recorder: FlightRecorder | None = None
+        self.origins = OriginKeeper(spec.id, self.link.telemetry, store)
         self._return_alt_name: str | None = None  # the RTL altitude parameter this vehicle has
         #: POSITION_TARGET_GLOBAL_INT: where the autopilot flies to (lat, lon, monotonic time heard)
         self._target: tuple[float, float, float] | None = None
-        # the last reports (2 Hz: about 8 s), so a takeover watch that ticks late still sees a target
+        # the last reports (5 Hz: about 3 s), so a takeover watch that ticks late still sees a target
         # the autopilot flew only briefly before another ground station replaced it
         self._targets: deque[tuple[float, float, float]] = deque(maxlen=16)
+        #: the last position target the gateway sent (goto, hold): lat, lon, monotonic time sent
+        self._commanded: tuple[float, float, float] | None = None
 
     # --- identity, state and the link ----------------------------------------------------------------
     @property
@@ -110,6 +115,15 @@ class Vehicle:
     @spec.setter
     def spec(self, spec: VehicleSpec) -> None:
         self.link.spec = spec
+
+    async def move_origin(self, lat: object, lon: object, alt_amsl_m: object, by: str) -> Origin:
+        return await self.origins.move(lat, lon, alt_amsl_m, by)
+
+    @property
+    def origin(self) -> tuple[float, float, float] | None:
+        """Where the distance limit and the zones count from (`gateway.fleet.policy.origin`)."""
+        found = self.origins.current()
+        return None if found is None else found.point
 
     @property
     def dialect(self) -> DialectReads:
@@ -214,6 +228,7 @@ class Vehicle:
     # --- lifecycle --------------------------------------------------------------------------------------
     async def connect(self) -> None:
         """Start the link (sidecar, session) and the flight recorder (idempotent, returns at once)."""
+        await self.origins.start()  # the stored origin is known before the first home arrives
         await self.link.connect()  # a failed sidecar starts afresh; a running one is left alone
         if self.store is not None and self._recorder is None:
             recorder = FlightRecorder(self, self.store, self.settings)
@@ -231,6 +246,7 @@ class Vehicle:
                 except Exception:
                     log.exception("%s: the flight log could not be closed; stopping the link anyway", self.id)
         finally:
+            await self.origins.stop()
             await self.link.disconnect()
 
     # --- modes ------------------------------------------------------------------------------------------
@@ -345,6 +361,7 @@ class Vehicle:
         self.require_ready()
         amsl = geo.relative_to_amsl(float(alt_rel_m), self.home_amsl_m())
         yaw = float("nan") if yaw_deg is None else float(yaw_deg) % 360.0
+        self._commanded = (float(lat), float(lon), time.monotonic())
         await self.link.call("goto", self.system.action.goto_location(float(lat), float(lon), amsl, yaw))
 
     async def hold(self) -> None:
@@ -353,10 +370,12 @@ class Vehicle:
         self.require_dialect()
         system = self.link.require_session()
         if self.on_ground() is not False:
+            self._commanded = None  # nothing sent: no target of the gateway's to hold to
             return
         pos = self.telemetry.fresh("position")
         if pos is None:
             raise CommandFailed(f"cannot hold drone '{self.id}': no current position", vehicle_id=self.id)
+        self._commanded = (pos.lat_deg, pos.lon_deg, time.monotonic())
         await self.link.call(
             "hold", system.action.goto_location(pos.lat_deg, pos.lon_deg, pos.abs_alt_m, float("nan"))
         )
@@ -392,8 +411,17 @@ class Vehicle:
     def position_targets(self, since: float) -> list[tuple[float, float, float]]:
         return [t for t in self._targets if t[2] >= since]
 
+    def ground_station_commands(self, since: float) -> list[GroundCommand]:
+        relay = self.link.relay
+        return [] if relay is None else relay.commands_since(since)
+
+    def commanded_target(self) -> tuple[float, float, float] | None:
+        """The last position target the gateway sent (a goto or a hold): latitude, longitude and when it
+        was sent (monotonic, just before); None when the last hold sent nothing (on the ground)."""
+        return self._commanded
+
     async def _position_target(self, system: System) -> None:
-        """POSITION_TARGET_GLOBAL_INT (the link asks for it at 2 Hz with the other rates): the target a
+        """POSITION_TARGET_GLOBAL_INT (the link asks for it at 5 Hz with the other rates): the target a
         goto's takeover watch compares with the gateway's own."""
         self._target = None
         self._targets.clear()
