@@ -256,6 +256,17 @@ class Vehicle:
             return None
         return self.dialect.native_mode(facts.custom_mode), bool(facts.armed)
 
+    def heartbeat_state(self) -> tuple[int, int] | None:
+        """(MAV_TYPE, custom mode) of the autopilot's last HEARTBEAT (the flight recorder keeps them for
+        the .tlog); None before the first HEARTBEAT of the session or while it is stale."""
+        facts = self.link.facts
+        age = self.link.last_heartbeat_age_s
+        if facts.custom_mode is None or facts.mav_type is None or age is None:
+            return None
+        if age > self.settings.link_lost_after_s:
+            return None
+        return facts.mav_type, facts.custom_mode
+
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         """The modes an operation of ``kind`` the gateway commanded may show (the dialect's)."""
         return self.dialect.commanded_modes(kind, done=done)
