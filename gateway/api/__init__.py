@@ -13,6 +13,7 @@ from gateway.api import (
     flying,
     geofences,
     missions,
+    origins,
     params,
     vehicles,
 )
@@ -34,6 +35,7 @@ def build_api_router(*beside: APIRouter) -> APIRouter:
     api.include_router(missions.router)
     api.include_router(params.router)
     api.include_router(geofences.router)
+    api.include_router(origins.router)
     api.include_router(cluster.router)
     api.include_router(events.router)
     for router in beside:
