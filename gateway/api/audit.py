@@ -19,6 +19,7 @@ from fastapi.routing import APIRoute
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from gateway.errors import GatewayError, SafetyRefusal
+from gateway.registry.spec import redacted
 from gateway.registry.store import AuditEntry
 
 log = logging.getLogger(__name__)
@@ -41,8 +42,19 @@ async def _arguments(request: Request) -> dict[str, Any]:
             body = json.loads(raw)
         except ValueError:
             body = raw[:500].decode("utf-8", errors="replace")
-        args["body"] = body
+        args["body"] = _without_credentials(body)
     return args
+
+
+def _without_credentials(value: Any) -> Any:
+    """The body as the audit keeps it: any URL's credentials (``user:pw@``, refused anyway) replaced."""
+    if isinstance(value, str):
+        return redacted(value)
+    if isinstance(value, list):
+        return [_without_credentials(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _without_credentials(v) for k, v in value.items()}
+    return value
 
 
 def _vehicle_id(request: Request, args: dict[str, Any]) -> str | None:

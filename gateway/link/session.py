@@ -70,6 +70,7 @@ class Link:
         on_state: Callable[[ConnectionState, ConnectionState], None] | None = None,
         mission_progress: Callable[[int, int], MissionProgressValue] | None = None,
         session_jobs: Iterable[tuple[str, SessionJob]] = (),
+        on_relay_refused: Callable[[str, str], None] | None = None,
     ) -> None:
         self.spec = spec
         self.settings = settings
@@ -82,6 +83,7 @@ class Link:
         self._peers = peers
         self._confine = confine
         self._on_state = on_state
+        self._on_relay_refused = on_relay_refused
         self._mission_progress = mission_progress
         self._jobs = list(session_jobs)
         self._sidecar: Sidecar | None = None
@@ -322,7 +324,11 @@ class Link:
             from gateway.link.relay import Relay
 
             relay = Relay(
-                self.id, self.spec.url, list(self.spec.gcs_endpoints), sidecar_pid=self._sidecar_pid
+                self.id,
+                self.spec.url,
+                list(self.spec.gcs_endpoints),
+                sidecar_pid=self._sidecar_pid,
+                on_refused=self._on_relay_refused,
             )
             await relay.start()
             self._relay = relay
