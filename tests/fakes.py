@@ -370,6 +370,12 @@ class FakeVehicle:
         return self.mission_done
 
     async def get_param(self, name: str) -> tuple[float | int, str]:
+        if name not in self.params:
+            raise CommandFailed(
+                f"unknown parameter '{name}' on drone '{self.id}'",
+                vehicle_id=self.id,
+                result="UNKNOWN_PARAMETER",
+            )
         return self.params[name], "float"
 
     async def set_param(self, name: str, value: float | int) -> tuple[float | int, str]:

@@ -271,7 +271,7 @@ async def test_a_failsafe_is_named_in_the_autopilots_words(gateway: Gateway) -> 
 async def test_the_gateways_own_commands_are_never_a_takeover(gateway: Gateway) -> None:
     c = gateway.commander
     goto_id = await flying_goto(gateway)
-    mode = await c.set_mode(AGENT, "d1", "CIRCLE")  # the gateway's own mode change supersedes the goto
+    mode = await c.set_mode(AGENT, "d1", "BRAKE")  # the gateway's own mode change supersedes the goto
     assert mode.superseded_operation == goto_id
     await asyncio.sleep(0.6)  # several polls of the watch
     landing = await c.land(AGENT, "d1")
