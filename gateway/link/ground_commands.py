@@ -37,25 +37,22 @@ ACTING_MESSAGES = frozenset(
 )
 #: messages whose ``command`` field says whether they act
 COMMAND_MESSAGES = frozenset({mavlink.MAVLINK_MSG_ID_COMMAND_LONG, mavlink.MAVLINK_MSG_ID_COMMAND_INT})
-#: commands that only ask for data, or switch the mode (judged through the HEARTBEAT instead)
+#: MAV_CMD names by number, for the words of a takeover
+_COMMAND_NAMES = {number: entry.name for number, entry in mavlink.enums["MAV_CMD"].items()}
+#: commands that only ask for data (every MAV_CMD_REQUEST_* and MAV_CMD_GET_*, the message rates, the
+#: pre-arm checks), or switch the mode (judged through the HEARTBEAT instead)
 NOT_ACTING_COMMANDS = frozenset(
     {
-        mavlink.MAV_CMD_REQUEST_MESSAGE,
+        number
+        for number, name in _COMMAND_NAMES.items()
+        if name.startswith(("MAV_CMD_REQUEST_", "MAV_CMD_GET_"))
+    }
+    | {
         mavlink.MAV_CMD_SET_MESSAGE_INTERVAL,
-        mavlink.MAV_CMD_REQUEST_AUTOPILOT_CAPABILITIES,
-        mavlink.MAV_CMD_REQUEST_PROTOCOL_VERSION,
-        mavlink.MAV_CMD_GET_HOME_POSITION,
-        mavlink.MAV_CMD_GET_MESSAGE_INTERVAL,
-        mavlink.MAV_CMD_REQUEST_CAMERA_INFORMATION,
-        mavlink.MAV_CMD_REQUEST_CAMERA_SETTINGS,
-        mavlink.MAV_CMD_REQUEST_STORAGE_INFORMATION,
-        mavlink.MAV_CMD_REQUEST_CAMERA_CAPTURE_STATUS,
-        mavlink.MAV_CMD_REQUEST_FLIGHT_INFORMATION,
+        mavlink.MAV_CMD_RUN_PREARM_CHECKS,
         mavlink.MAV_CMD_DO_SET_MODE,
     }
 )
-#: MAV_CMD names by number, for the words of a takeover
-_COMMAND_NAMES = {number: entry.name for number, entry in mavlink.enums["MAV_CMD"].items()}
 
 
 def acting(frame: Frame, vehicle_sysids: set[int]) -> str | None:
