@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import logging
+import re
 import time
 from collections.abc import Callable, Coroutine
 from typing import Any
@@ -40,10 +41,19 @@ async def _arguments(request: Request) -> dict[str, Any]:
     if raw:
         try:
             body = json.loads(raw)
-        except ValueError:
+        except (ValueError, RecursionError):  # not JSON, or nested too deeply to read: kept as text
             body = raw[:500].decode("utf-8", errors="replace")
-        args["body"] = _without_credentials(body)
+        try:
+            args["body"] = _without_credentials(body)
+        except RecursionError:  # nested too deeply to walk: kept as text, credentials cut out
+            args["body"] = _CREDENTIALS.sub("://***@", raw[:500].decode("utf-8", errors="replace"))
+    note = getattr(request.state, "audit_note", None)
+    if isinstance(note, dict):
+        args.update(note)
     return args
+
+
+_CREDENTIALS = re.compile(r"://[^/@\s\"']*@")
 
 
 def _without_credentials(value: Any) -> Any:
