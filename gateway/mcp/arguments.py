@@ -22,7 +22,8 @@ ALTITUDE_ARGUMENTS = ("alt_m", "rtl_alt_m")
 def install_argument_messages(tool: Tool) -> None:
     """Answer a tool's bad arguments with a ToolError the model can act on. The arguments are validated
     once, by the SDK's own run (`Tool.run`): its validation error is re-worded here, one line per
-    argument; an argument the tool does not have (which the SDK would drop) is refused first."""
+    argument; an argument the tool does not have (which the SDK would drop) is refused first. A ToolError
+    the tool raises itself keeps its own words."""
     run = tool.run
     schema = tool.parameters
     known = frozenset(schema.get("properties", {}))
@@ -38,6 +39,10 @@ def install_argument_messages(tool: Tool) -> None:
             # own failures arrive otherwise (a ToolError caused by a ToolError, or UnexpectedToolError)
             if isinstance(exc.__cause__, ValidationError):
                 raise ToolError(describe_invalid(tool.name, exc.__cause__, schema)) from None
+            if type(exc) is ToolError and type(exc.__cause__) is ToolError:
+                # raised on purpose by the tool or a resolver (a refusal, a failure in its words): the
+                # model reads those words, not the SDK's "Error executing tool <name>:" in front of them
+                raise ToolError(str(exc.__cause__)) from None
             raise
 
     sdk_private.replace_run(tool, run_checked)
