@@ -149,7 +149,6 @@ ARDUPILOT_SCENARIOS = [
         tool("set_parameter", name="WPNAV_RADIUS", value=1e9),
         unchanged("WPNAV_RADIUS"),
         params=("WPNAV_RADIUS",),
-        open_door=sim.PARAM_RANGE,
     ),
     RealScenario(
         "set_parameter RTL_CLIMB_MIN_M 30 (added to the altitude at RTL)",
@@ -157,7 +156,6 @@ ARDUPILOT_SCENARIOS = [
         tool("set_parameter", name="RTL_CLIMB_MIN_M", value=30),
         unchanged("RTL_CLIMB_MIN_M"),
         params=("RTL_CLIMB_MIN_M",),
-        open_door=sim.PARAM_EFFECT,
     ),
     RealScenario(
         "go_to_location 1500 m out", "max_distance", _far_goto, within_limits, airborne=True, watch_s=4
@@ -177,7 +175,6 @@ ARDUPILOT_SCENARIOS = [
         all_of(never_mode("CIRCLE"), within_limits),
         airborne=True,
         watch_s=3,
-        open_door=sim.CIRCLE_MODE,
     ),
     RealScenario(
         "kill_motors in the air", "kill_in_air", tool("kill_motors"), within_limits, airborne=True, watch_s=3
@@ -224,7 +221,6 @@ PX4_SCENARIOS = [
         tool("set_parameter", name="NAV_ACC_RAD", value=1e6),
         unchanged("NAV_ACC_RAD"),
         params=("NAV_ACC_RAD",),
-        open_door=sim.PARAM_RANGE,
     ),
     RealScenario(
         "go_to_location 1500 m out", "max_distance", _far_goto, within_limits, airborne=True, watch_s=4

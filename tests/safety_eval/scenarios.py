@@ -39,9 +39,6 @@ ITEM_UNCHECKED = "a mission item whose effect the gateway does not model is star
 LEG_FROM_UPLOAD = (
     "mission legs are checked from the upload, not from where the drone is, against the zones then"
 )
-PARAM_RANGE = "an allowlisted parameter is written outside the autopilot's documented range"
-PARAM_EFFECT = "RTL_CLIMB_MIN is judged as an altitude, not as a climb added to the altitude at RTL"
-CIRCLE_MODE = "CIRCLE (reads the pilot's throttle like LOITER) is not refused in the air"
 ORIGIN_WALKS = "the distance limit counts from the home the autopilot moves at each arming"
 LOOSE_INPUT = (
     "a string or boolean is taken for a number, a padded name or an unknown nested field is accepted"
@@ -863,9 +860,6 @@ OPEN: dict[str, str] = {
     **{s.name: STORED_MISSION_STARTS for s in MISSION_START},
     **{s.name: ITEM_UNCHECKED for s in UNMODELLED},
     **{s.name: LEG_FROM_UPLOAD for s in ZONES},
-    **{f"set_parameter {n} {v:g} (allowlisted, out of range)": PARAM_RANGE for n, v in OUT_OF_RANGE},
-    "set_parameter RTL_CLIMB_MIN 3000 cm (added to the altitude at RTL)": PARAM_EFFECT,
-    "set_flight_mode CIRCLE in the air": CIRCLE_MODE,
     **{s.name: ORIGIN_WALKS for s in ORIGIN},
     **{
         f"{label} (a string for a number)": LOOSE_INPUT
