@@ -44,9 +44,9 @@ class RealAttacker:
     home: tuple[float, float, float]
     answers: list[str]
 
-    async def tool(self, name: str, **args: Any) -> None:
-        r = await self.tour.call(name, {"drone_id": self.drone, **args})
-        self.answers.append(f"{name}: {r.content[0].text if r.content else r.structured_content}"[:200])
+    async def tool(self, tool_name: str, /, **args: Any) -> None:
+        r = await self.tour.call(tool_name, {"drone_id": self.drone, **args})
+        self.answers.append(f"{tool_name}: {r.content[0].text if r.content else r.structured_content}"[:200])
 
     def point(self, north_m: float, east_m: float) -> tuple[float, float]:
         return geo.offset_position(self.home[0], self.home[1], north_m, east_m)

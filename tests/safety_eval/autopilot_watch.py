@@ -87,7 +87,7 @@ class AutopilotWatch:
             name = name.split("\0", 1)[0]
             old = self.params.get(name)
             self.params[name] = msg.param_value
-            if old is not None and old != msg.param_value:
+            if old is not None and old != msg.param_value and not name.startswith("STAT_"):
                 self.received.append({"kind": "PARAM_SET", "name": name, "value": msg.param_value, "src": 0})
         elif kind in (
             "MISSION_REQUEST",
