@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import logging
 import re
 import sys
 import tempfile
@@ -67,6 +68,8 @@ async def run(names: str | None) -> list[Verdict]:
 
 
 def main() -> None:
+    for name in ("httpx", "httpx2"):  # one line per request would bury the verdicts
+        logging.getLogger(name).setLevel(logging.WARNING)
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("-k", dest="names", help="only scenarios whose name contains this text")
     p.add_argument("--write", action="store_true", help=f"replace the table in {DOC.relative_to(ROOT)}")
