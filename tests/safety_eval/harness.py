@@ -139,6 +139,23 @@ class Attacker:
         if r.status_code >= 500:
             self.door_failures.append(f"HTTP {r.status_code} from {r.request.method} {r.request.url.path}")
 
+    async def audit_total(self) -> int:
+        page = await self.arena.operator("GET", "/audit", params={"vehicle_id": self.drone, "limit": 1})
+        return int(page["total"])
+
+    async def audited(self, before: int, action: str) -> None:
+        """The request left its audit row (``action``) after ``before`` rows (the rows are written behind)."""
+        deadline = asyncio.get_running_loop().time() + scaled(10)
+        while True:
+            page = await self.arena.operator("GET", "/audit", params={"vehicle_id": self.drone, "limit": 20})
+            new = page["items"][: max(0, int(page["total"]) - before)]
+            if any(row.get("action") == action for row in new):
+                return
+            if asyncio.get_running_loop().time() > deadline:
+                self.door_failures.append(f"no audit row {action} for the request")
+                return
+            await asyncio.sleep(0.2)
+
     @property
     def index(self) -> int:
         return self.arena.stack.index(self.drone)
@@ -241,8 +258,8 @@ class Arena:
             await self.watch(index, scenario.watch_s)
         await self.settle(index)
         raw = await control.record(index)
-        zones = await attacker.rest("GET", "/geofences")
-        record = Record(raw, drone, dict(LIMITS), zones.json().get("features", []))
+        zones = await self.operator("GET", "/geofences")
+        record = Record(raw, drone, dict(LIMITS), zones.get("features", []))
         if drone == "d4":
             record.limits["max_distance_m"] = SHORT_DISTANCE_M
         found = [f for f in (scenario.judge(record), *attacker.door_failures) if f]

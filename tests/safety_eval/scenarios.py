@@ -43,7 +43,7 @@ ORIGIN_WALKS = "the distance limit counts from the home the autopilot moves at e
 LOOSE_INPUT = (
     "a string or boolean is taken for a number, a padded name or an unknown nested field is accepted"
 )
-PLAN_500 = "a malformed .plan file gets HTTP 500"
+PLAN_500 = "a malformed .plan file gets HTTP 500 and leaves no audit row"
 GROUND = Setup("d1")
 HOVER = Setup("d2", alt_m=20.0)
 
@@ -806,11 +806,14 @@ async def _plan_bool_command(a: Attacker) -> None:
         "Altitude": 20,
         "AltitudeMode": 1,
     }
+    before = await a.audit_total()
     r = await a.rest("PUT", f"/vehicles/{a.drone}/mission", json=_plan([item]))
     a.no_server_error(r)
+    await a.audited(before, "rest.put_mission_file")
 
 
 async def _plan_nested(a: Attacker) -> None:
+    before = await a.audit_total()
     r = await a.rest(
         "PUT",
         f"/vehicles/{a.drone}/mission",
@@ -818,6 +821,7 @@ async def _plan_nested(a: Attacker) -> None:
         headers={"content-type": "application/json"},
     )
     a.no_server_error(r)
+    await a.audited(before, "rest.put_mission_file")
 
 
 STRICT += [
@@ -876,5 +880,6 @@ OPEN: dict[str, str] = {
     "upload_mission waypoint with an unknown field 'command'": LOOSE_INPUT,
     "REST takeoff alt_rel_m '10' (a string for a number)": LOOSE_INPUT,
     '.plan with "command": true': PLAN_500,
+    ".plan of 100,000 nested '['": PLAN_500,
 }
 ALL: list[Scenario] = [replace(s, open_door=OPEN.get(s.name)) for s in _PLAYED]
