@@ -51,9 +51,32 @@ async def put_mission_file(
     except UnicodeDecodeError:
         raise InvalidArgument("the mission file is not UTF-8 text") from None
     result = await commander.upload_mission_file(operator(who), vehicle_id, content, file_format)
+    _mark_unchecked(request, result.facts.get("unchecked"))
     return CommandOut(
         vehicle_id=vehicle_id, action="upload_mission_file", outcome="sent", message=result.message
     )
+
+
+@router.post(
+    "/vehicles/{vehicle_id}/mission/start",
+    response_model=CommandOut,
+    summary="Start the mission the vehicle holds, read back and checked whole from where it is now",
+)
+async def start_mission(
+    vehicle_id: CommandVehicleId, request: Request, commander: CommanderDep, who: PrincipalDep
+) -> CommandOut:
+    """The limits and zones hold the operator too; items the gateway cannot check are allowed and the
+    mission is marked unchecked (in the answer, the operation's parameters and the audit row)."""
+    op = await commander.start_mission(operator(who), vehicle_id, None, "start_mission")
+    _mark_unchecked(request, op.params.get("unchecked"))
+    out = CommandOut.of_operation(op, "start_mission")
+    return out.model_copy(update={"message": op.message})
+
+
+def _mark_unchecked(request: Request, unchecked: object) -> None:
+    """An operator's mission with items the gateway cannot check: said in the call's audit row."""
+    if isinstance(unchecked, list) and unchecked:
+        request.state.audit_note = {"unchecked": [str(u) for u in unchecked]}
 
 
 @router.get(

@@ -14,6 +14,7 @@ from pydantic import ValidationError
 
 from gateway.config import Settings
 from gateway.mcp import sdk_private
+from gateway.mcp.strict_json import strict_problems
 
 #: argument names that are altitudes above home, bounded by the policy's max_altitude_m
 ALTITUDE_ARGUMENTS = ("alt_m", "rtl_alt_m")
@@ -22,8 +23,9 @@ ALTITUDE_ARGUMENTS = ("alt_m", "rtl_alt_m")
 def install_argument_messages(tool: Tool) -> None:
     """Answer a tool's bad arguments with a ToolError the model can act on. The arguments are validated
     once, by the SDK's own run (`Tool.run`): its validation error is re-worded here, one line per
-    argument; an argument the tool does not have (which the SDK would drop) is refused first. A ToolError
-    the tool raises itself keeps its own words."""
+    argument; an argument the tool does not have (which the SDK would drop) is refused first, and so is
+    one whose JSON type is not its schema's (`gateway.mcp.strict_json`: no "10" for a number). A
+    ToolError the tool raises itself keeps its own words."""
     run = tool.run
     schema = tool.parameters
     known = frozenset(schema.get("properties", {}))
@@ -32,6 +34,11 @@ def install_argument_messages(tool: Tool) -> None:
         unknown = [name for name in arguments if name not in known]
         if unknown:
             raise ToolError(describe_unknown(tool.name, unknown, schema))
+        problems = strict_problems(arguments, schema, _accepted)
+        if problems:  # before the SDK's lax validation turns "10" into 10 or true into 1
+            raise ToolError(
+                f"invalid arguments for {tool.name}: " + "; ".join(problems) + "; nothing was sent"
+            )
         try:
             return await run(arguments, context, convert_result=convert_result)
         except ToolError as exc:

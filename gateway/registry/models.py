@@ -232,3 +232,20 @@ class VehicleLeaseRow(Base):
     acquired_at: Mapped[datetime] = mapped_column(UTCDateTime())
     renewed_at: Mapped[datetime] = mapped_column(UTCDateTime())
     expires_at: Mapped[datetime] = mapped_column(UTCDateTime())
+
+
+class OriginRow(Base):
+    """The point a vehicle's distance limit and geofence checks count from: the first home it reported,
+    or where an operator moved it (`gateway.fleet.policy.origin`). The autopilot cannot move it."""
+
+    __tablename__ = "vehicle_origins"
+
+    vehicle_id: Mapped[str] = mapped_column(
+        String(32), ForeignKey("vehicles.id", ondelete="CASCADE"), primary_key=True
+    )
+    lat: Mapped[float] = mapped_column(Float)
+    lon: Mapped[float] = mapped_column(Float)
+    alt_amsl_m: Mapped[float] = mapped_column(Float)
+    source: Mapped[str] = mapped_column(String(16))  # first_home | operator
+    set_by: Mapped[str] = mapped_column(String(200))
+    set_at: Mapped[datetime] = mapped_column(UTCDateTime())

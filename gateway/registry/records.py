@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import dataclass
 from datetime import UTC, datetime
 from typing import Any, Literal
 
@@ -216,3 +217,36 @@ def bound_arguments(
     if len(text) > max_json:
         return {"_truncated": True, "_size": len(text), "_preview": text[: max_json // 2]}
     return bounded
+
+
+OriginSource = Literal["first_home", "operator"]
+ORIGIN_SOURCES: tuple[OriginSource, ...] = ("first_home", "operator")
+
+
+@dataclass(frozen=True)
+class Origin:
+    """The point a vehicle's distance limit and zones count from (`gateway.fleet.policy.origin`), who
+    set it and when."""
+
+    vehicle_id: str
+    lat: float
+    lon: float
+    alt_amsl_m: float
+    source: OriginSource
+    set_by: str
+    set_at: datetime
+
+    @property
+    def point(self) -> tuple[float, float, float]:
+        return (self.lat, self.lon, self.alt_amsl_m)
+
+    def to_record(self) -> dict[str, object]:
+        return {
+            "vehicle_id": self.vehicle_id,
+            "lat": self.lat,
+            "lon": self.lon,
+            "alt_amsl_m": self.alt_amsl_m,
+            "source": self.source,
+            "set_by": self.set_by,
+            "set_at": self.set_at.isoformat(),
+        }
