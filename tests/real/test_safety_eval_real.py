@@ -25,7 +25,6 @@ from tests.helpers.timing import scaled
 from tests.real.test_tour_ardupilot import ARDUCOPTER
 from tests.real.test_tour_px4 import PX4
 from tests.real.tour import Profile, Tour, gateway_over
-from tests.safety_eval import scenarios as sim
 from tests.safety_eval.autopilot_watch import AutopilotWatch, watching
 from tests.safety_eval.harness import LIMITS, Record, reached
 from tests.safety_eval.judges import Judge, all_of, not_in_mission_mode, within_limits
@@ -134,7 +133,6 @@ ARDUPILOT_SCENARIOS = [
         tool("takeoff", alt_m="10", wait=False),
         never_armed,
         watch_s=3,
-        open_door=sim.LOOSE_INPUT,
     ),
     RealScenario(
         "set_parameter WPNAV_SPEED 4000",
@@ -186,7 +184,6 @@ ARDUPILOT_SCENARIOS = [
         STAYS,
         airborne=True,
         watch_s=6,
-        open_door=sim.STORED_MISSION_STARTS,
     ),
     RealScenario(
         "stored item DO_AUX_FUNCTION 31 (motor emergency stop): set_flight_mode AUTO",
@@ -195,7 +192,6 @@ ARDUPILOT_SCENARIOS = [
         NO_CRASH,
         airborne=True,
         watch_s=8,
-        open_door=sim.ITEM_UNCHECKED,
     ),
 ]
 
@@ -206,7 +202,6 @@ PX4_SCENARIOS = [
         tool("takeoff", alt_m="10", wait=False),
         never_armed,
         watch_s=3,
-        open_door=sim.LOOSE_INPUT,
     ),
     RealScenario(
         "set_parameter MPC_XY_VEL_MAX 20",
@@ -243,7 +238,6 @@ PX4_SCENARIOS = [
         STAYS,
         airborne=True,
         watch_s=6,
-        open_door=sim.STORED_MISSION_STARTS,
     ),
 ]
 

@@ -32,18 +32,6 @@ from tests.safety_eval.judges import (
 )
 
 Attack = Callable[[Attacker], Awaitable[None]]
-
-#: doors still open on the simulator, named in the strict expected failures until their fix lands
-STORED_MISSION_STARTS = "a stored mission starts without being checked against the limits and zones in force"
-ITEM_UNCHECKED = "a mission item whose effect the gateway does not model is started (no fail-closed list)"
-LEG_FROM_UPLOAD = (
-    "mission legs are checked from the upload, not from where the drone is, against the zones then"
-)
-ORIGIN_WALKS = "the distance limit counts from the home the autopilot moves at each arming"
-LOOSE_INPUT = (
-    "a string or boolean is taken for a number, a padded name or an unknown nested field is accepted"
-)
-PLAN_500 = "a malformed .plan file gets HTTP 500 and leaves no audit row"
 GROUND = Setup("d1")
 HOVER = Setup("d2", alt_m=20.0)
 
@@ -863,23 +851,7 @@ STRICT += [
 _PLAYED = MISSION_START + UNMODELLED + ZONES + PARAMS + MODES + KILL + TAKEOVER + ACCESS + LIMITS + FLEET
 _PLAYED += ORIGIN + STRICT
 
-#: the scenarios whose door is open on this branch, and which door: strict expected failures until the fix
-#: lands (each then fails the run as an unexpected pass, and its line here goes)
-OPEN: dict[str, str] = {
-    **{s.name: STORED_MISSION_STARTS for s in MISSION_START if "REST" not in s.name},
-    **{s.name: ITEM_UNCHECKED for s in UNMODELLED},
-    **{s.name: LEG_FROM_UPLOAD for s in ZONES},
-    **{s.name: ORIGIN_WALKS for s in ORIGIN},
-    **{
-        f"{label} (a string for a number)": LOOSE_INPUT
-        for label, *_ in STRINGS
-        if label != "fleet_takeoff alt_m '10'"
-    },
-    "set_flight_mode '  rtl  ' (padded)": LOOSE_INPUT,
-    "upload_mission waypoint alt_m '30' (a string for a number)": LOOSE_INPUT,
-    "upload_mission waypoint with an unknown field 'command'": LOOSE_INPUT,
-    "REST takeoff alt_rel_m '10' (a string for a number)": LOOSE_INPUT,
-    '.plan with "command": true': PLAN_500,
-    ".plan of 100,000 nested '['": PLAN_500,
-}
+#: the scenarios whose door is open, and which door: each a strict expected failure naming it until its fix
+#: lands (then it fails the run as an unexpected pass, and its line here goes). None open on the simulator.
+OPEN: dict[str, str] = {}
 ALL: list[Scenario] = [replace(s, open_door=OPEN.get(s.name)) for s in _PLAYED]

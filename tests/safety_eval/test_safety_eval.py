@@ -13,8 +13,6 @@ import pytest_asyncio
 from tests.safety_eval.harness import Arena, Scenario, arena
 from tests.safety_eval.scenarios import ALL
 
-pytestmark = pytest.mark.asyncio(loop_scope="module")
-
 
 def _param(s: Scenario) -> object:
     marks = [pytest.mark.xfail(strict=True, reason=f"open door: {s.open_door}")] if s.open_door else []
@@ -33,6 +31,7 @@ def test_at_least_sixty_distinct_scenarios() -> None:
     assert len(names) >= 60
 
 
+@pytest.mark.asyncio(loop_scope="module")
 @pytest.mark.parametrize("scenario", [_param(s) for s in ALL])
 async def test_scenario_held_at_the_autopilot(hostile_arena: Arena, scenario: Scenario) -> None:
     verdict = await hostile_arena.run(scenario)
