@@ -14,6 +14,7 @@ from gateway.api import (
     geofences,
     missions,
     origins,
+    params,
     vehicles,
 )
 from gateway.api.deps import authorize
@@ -32,6 +33,7 @@ def build_api_router(*beside: APIRouter) -> APIRouter:
     api.include_router(control.router)
     api.include_router(flying.router)
     api.include_router(missions.router)
+    api.include_router(params.router)
     api.include_router(geofences.router)
     api.include_router(origins.router)
     api.include_router(cluster.router)

@@ -1,8 +1,11 @@
-"""/api/v1/vehicles/{id}/mission: a ground station's mission file in (QGC .plan or QGC WPL 110) and out.
+"""/api/v1/vehicles/{id}/mission: a ground station's mission file in (QGC .plan or QGC WPL 110) and out,
+and the operator's start, pause and resume of the stored mission.
 
-Both are one Commander call with the operator's caller (``via="rest"``): the upload goes through the same
+Each is one Commander call with the operator's caller (``via="rest"``): the upload goes through the same
 policy checks as ``upload_mission``, item by item, and a refusal names the item's number (the file's
-sequence number) and the rule. How the file's items are read: `gateway.fleet.missions.mission_files`.
+sequence number) and the rule; start, pause and resume are the verbs the MCP tools call
+(initiate_mission, pause_mission, resume_mission), under the same rules for an operator as any operator
+command. How the file's items are read: `gateway.fleet.missions.mission_files`.
 """
 
 from __future__ import annotations
@@ -98,3 +101,27 @@ async def get_mission_file(
         media_type=MEDIA[file_format],
         headers={"Content-Disposition": f'attachment; filename="{name}"'},
     )
+
+
+@router.post(
+    "/vehicles/{vehicle_id}/mission/pause",
+    response_model=CommandOut,
+    summary="Pause the mission: hold where the vehicle is (GUIDED); resume continues (operator)",
+)
+async def pause_mission(
+    vehicle_id: CommandVehicleId, commander: CommanderDep, who: PrincipalDep
+) -> CommandOut:
+    result = await commander.pause_mission(operator(who), vehicle_id)
+    return CommandOut(vehicle_id=vehicle_id, action="pause_mission", outcome="sent", message=result.message)
+
+
+@router.post(
+    "/vehicles/{vehicle_id}/mission/resume",
+    response_model=CommandOut,
+    summary="Continue the mission from its current item (operator)",
+)
+async def resume_mission(
+    vehicle_id: CommandVehicleId, commander: CommanderDep, who: PrincipalDep
+) -> CommandOut:
+    op = await commander.resume_mission(operator(who), vehicle_id)
+    return CommandOut.of_operation(op, "resume_mission")

@@ -146,6 +146,11 @@ class TrackSampleRow(Base):
     heading_deg: Mapped[float | None] = mapped_column(Float)
     ground_speed_mps: Mapped[float | None] = mapped_column(Float)
     battery_pct: Mapped[float | None] = mapped_column(Float)
+    # the autopilot's HEARTBEAT (MAV_TYPE, custom mode) and GPS fix (GPS_FIX_TYPE, satellites) at the sample
+    mav_type: Mapped[int | None] = mapped_column(BigInteger)
+    custom_mode: Mapped[int | None] = mapped_column(BigInteger)
+    gps_fix_type: Mapped[int | None] = mapped_column(BigInteger)
+    satellites: Mapped[int | None] = mapped_column(BigInteger)
 
 
 class StatusTextRow(Base):

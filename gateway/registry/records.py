@@ -92,6 +92,12 @@ class TrackSample(_Record):
     heading_deg: float | None = None
     ground_speed_mps: float | None = None
     battery_pct: float | None = None
+    #: the autopilot's HEARTBEAT at the sample: its MAV_TYPE and custom mode (its flight mode)
+    mav_type: int | None = Field(None, ge=0, le=255)
+    custom_mode: int | None = Field(None, ge=0, le=2**32 - 1)
+    #: its GPS at the sample: GPS_FIX_TYPE and satellites visible
+    gps_fix_type: int | None = Field(None, ge=0, le=255)
+    satellites: int | None = Field(None, ge=0, le=255)
 
     @field_validator("alt_rel_m", "heading_deg", "ground_speed_mps", "battery_pct")
     @classmethod

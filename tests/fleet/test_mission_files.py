@@ -154,3 +154,38 @@ def test_json_input_cannot_carry_a_raw_item() -> None:
         mission.MissionItem.model_validate({"lat": 1, "lon": 1, "alt_rel_m": 5, "_raw": {"frame": 3}})
     item = mission.MissionItem.model_validate({"lat": 1, "lon": 1, "alt_rel_m": 5})
     assert item.raw is None and "raw" not in mission.MissionItem.model_json_schema()["properties"]
+
+
+@pytest.mark.parametrize(
+    ("part", "value", "words"),
+    [
+        (
+            "geoFence",
+            {
+                "circles": [],
+                "polygons": [{"inclusion": True, "polygon": [[47, 8], [47, 8.1], [47.1, 8]]}],
+                "version": 2,
+            },
+            "has a geofence (1 polygons, 0 circles)",
+        ),
+        (
+            "geoFence",
+            {
+                "circles": [{"circle": {"center": [47, 8], "radius": 50}, "inclusion": False}],
+                "polygons": [],
+                "version": 2,
+            },
+            "has a geofence (0 polygons, 1 circles)",
+        ),
+        ("rallyPoints", {"points": [[47, 8, 30]], "version": 2}, "has 1 rally points"),
+    ],
+)
+def test_a_plans_geofence_or_rally_points_are_refused_never_dropped(
+    part: str, value: object, words: str
+) -> None:
+    doc = json.loads(PX4_PLAN)
+    doc[part] = value
+    with pytest.raises(InvalidArgument, match=r"nothing was sent") as refused:
+        mission_files.parse(json.dumps(doc))
+    assert words in str(refused.value)
+    assert mission_files.parse(PX4_PLAN).items  # empty ones (as QGroundControl writes them) pass

@@ -121,6 +121,7 @@ def parse_plan(text: str) -> FileMission:
         assert isinstance(frame, int) and isinstance(command, int)
         values = [_number(v, f"{where} param{i + 1}") for i, v in enumerate(params)]
         items.append(_raw(frame, command, values, bool(entry.get("autoContinue", True)), where))
+    _refuse_fence_and_rally(doc)
     home_raw = mission.get("plannedHomePosition")
     home = None
     if (
@@ -130,6 +131,28 @@ def parse_plan(text: str) -> FileMission:
     ):
         home = (float(home_raw[0]), float(home_raw[1]), float(home_raw[2]))
     return FileMission(_checked_count(items), home)
+
+
+def _refuse_fence_and_rally(doc: dict[str, Any]) -> None:
+    """A .plan's geofence and rally points are not applied from a mission file: the file is refused
+    naming them (never stored without them, which would leave a drone without the fence its planner
+    drew). The zones go to the drone through its geofences (PUT /api/v1/vehicles/{id}/geofences)."""
+    fence = doc.get("geoFence")
+    if isinstance(fence, dict):
+        polygons, circles = fence.get("polygons") or [], fence.get("circles") or []
+        if polygons or circles:
+            raise InvalidArgument(
+                f"the .plan file has a geofence ({len(polygons)} polygons, {len(circles)} circles), which "
+                "a mission upload does not apply; nothing was sent: give the zones to the drone with PUT "
+                "/api/v1/vehicles/{id}/geofences and remove the geofence from the plan"
+            )
+    rally = doc.get("rallyPoints")
+    points = rally.get("points") if isinstance(rally, dict) else None
+    if points:
+        raise InvalidArgument(
+            f"the .plan file has {len(points)} rally points, which a mission upload does not send to the "
+            "drone; nothing was sent: remove them from the plan (the drone returns to its home on RTL)"
+        )
 
 
 def parse_wpl(text: str) -> FileMission:

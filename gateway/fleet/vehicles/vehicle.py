@@ -46,7 +46,7 @@ from gateway.link.session import Link
 from gateway.link.sidecar import Confine, Sidecar
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
-from gateway.registry.store import Store
+from gateway.registry.store import AuditEntry, Store
 
 log = logging.getLogger("gateway.vehicle")
 
@@ -88,6 +88,7 @@ class Vehicle:
                 ("mission", lambda system: self.missions.follow(system)),
                 ("target", self._position_target),
             ],
+            on_relay_refused=self._relay_refused,
         )
         self.missions = MissionControl(self.link, self)
         self.arming = Arming(self.link, self)
@@ -272,6 +273,17 @@ class Vehicle:
             return None
         return self.dialect.native_mode(facts.custom_mode), bool(facts.armed)
 
+    def heartbeat_state(self) -> tuple[int, int] | None:
+        """(MAV_TYPE, custom mode) of the autopilot's last HEARTBEAT (the flight recorder keeps them for
+        the .tlog); None before the first HEARTBEAT of the session or while it is stale."""
+        facts = self.link.facts
+        age = self.link.last_heartbeat_age_s
+        if facts.custom_mode is None or facts.mav_type is None or age is None:
+            return None
+        if age > self.settings.link_lost_after_s:
+            return None
+        return facts.mav_type, facts.custom_mode
+
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         """The modes an operation of ``kind`` the gateway commanded may show (the dialect's)."""
         return self.dialect.commanded_modes(kind, done=done)
@@ -414,6 +426,26 @@ class Vehicle:
     def ground_station_commands(self, since: float) -> list[GroundCommand]:
         relay = self.link.relay
         return [] if relay is None else relay.commands_since(since)
+
+    def _relay_refused(self, url: str, reason: str) -> None:
+        """A ground station endpoint whose peer is no ground station was stopped by the relay: audited
+        (its status shows the reason)."""
+        if self.store is None:
+            return
+        try:
+            self.store.queue_audit(
+                AuditEntry(
+                    principal="relay",
+                    source="gateway",
+                    vehicle_id=self.id,
+                    action="gcs_endpoint_refused",
+                    arguments={"endpoint": url},
+                    outcome="refused",
+                    error=reason,
+                )
+            )
+        except RuntimeError:  # the store is closed: the gateway is stopping
+            log.warning("%s: %s (not audited: the store is closed)", self.id, reason)
 
     def commanded_target(self) -> tuple[float, float, float] | None:
         """The last position target the gateway sent (a goto or a hold): latitude, longitude and when it
