@@ -285,6 +285,17 @@ async def test_a_flight_that_ends_in_a_crash_is_a_failure_in_the_autopilots_word
     await streaming_until_done(v, mission)
     assert mission.status is OpStatus.succeeded, mission.message
 
+    v = drone()  # a landing's own disarm heard before its landed state is no disarm in the air
+    at(v, HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    land = await mgr.start(v, LandingTracker(kind="land"), _noop, {})
+    await eventually(lambda: _true("above home" in land.message), "the landing runs")
+    at(v, HOME[0], HOME[1], 0.4, armed=False, in_air=True)
+    await eventually(lambda: _true("0.4 m above home" in land.message), "a poll after the disarm")
+    assert not land.finished, land.message  # that poll saw the disarm before the landed state
+    at(v, HOME[0], HOME[1], 0.0, armed=False, in_air=False)
+    await streaming_until_done(v, land)
+    assert land.status is OpStatus.succeeded, land.message
+
     v = drone()  # a crash the autopilot reports during a landing
     at(v, HOME[0], HOME[1], 10.0, armed=True, in_air=True)
     land = await mgr.start(v, LandingTracker(kind="return_to_launch"), _noop, {})

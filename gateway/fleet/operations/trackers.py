@@ -61,6 +61,10 @@ FALLING_MPS = 10.0
 LAND_SPEED_HIGH and WPNAV_SPEED_DN stop at 5 m/s, PX4's MPC_Z_VEL_MAX_DN at 4 m/s)."""
 CRASH_WORDS = ("crash", "thrust loss", "emergency stop", "estop", "parachute", "terminat")
 """Words of the autopilot's texts (notice or worse) that say a flight ended badly."""
+DISARMED_IN_AIR_ABOVE_M = 2.5
+"""A disarm this far above home is one in the air. Lower, it is a landing's own disarm whose landed
+state has not arrived yet (the armed flag and the landed state come in different messages, and a loaded
+link delivers the disarm first)."""
 FAILSAFE_WORDS = ("failsafe",)
 """... and that a failsafe took over (a failure for a mission; what a landing already does)."""
 
@@ -94,7 +98,7 @@ class FlightEnd:
             why = "the autopilot reported a crash or failsafe"
         elif not self._airborne:
             return None
-        elif armed is False and not landed:
+        elif armed is False and not landed and pos is not None and pos[2] > DISARMED_IN_AIR_ABOVE_M:
             why = f"the motors were disarmed in the air{at}"
         elif rate is not None and rate < -FALLING_MPS:
             why = f"the drone is falling at {-rate:.1f} m/s{at}"
