@@ -43,7 +43,7 @@ def _mcp_cli() -> ModuleType:
 
 def _agent_cli() -> ModuleType:
     try:
-        from gateway.agent import cli
+        from fleet_agent import cli
     except ModuleNotFoundError as exc:  # the gateway's image leaves the agent host's model client out
         if exc.name != "openai":
             raise

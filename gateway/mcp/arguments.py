@@ -13,16 +13,19 @@ from mcp.server.mcpserver.tools import Tool
 from pydantic import ValidationError
 
 from gateway.config import Settings
+from gateway.errors import InvalidArgument
 from gateway.mcp import sdk_private
+from gateway.mcp.refusals import refusal_result
 
 #: argument names that are altitudes above home, bounded by the policy's max_altitude_m
 ALTITUDE_ARGUMENTS = ("alt_m", "rtl_alt_m")
 
 
 def install_argument_messages(tool: Tool) -> None:
-    """Answer a tool's bad arguments with a ToolError the model can act on. The arguments are validated
-    once, by the SDK's own run (`Tool.run`): its validation error is re-worded here, one line per
-    argument; an argument the tool does not have (which the SDK would drop) is refused first."""
+    """Answer a tool's bad arguments with an error result the model can act on (its text) and any client
+    can read (code ``invalid_argument`` and the arguments at fault, as structured content). The arguments
+    are validated once, by the SDK's own run (`Tool.run`): its validation error is re-worded here, one
+    line per argument; an argument the tool does not have (which the SDK would drop) is refused first."""
     run = tool.run
     schema = tool.parameters
     known = frozenset(schema.get("properties", {}))
@@ -30,17 +33,24 @@ def install_argument_messages(tool: Tool) -> None:
     async def run_checked(arguments: dict[str, Any], context: Any, convert_result: bool = False) -> Any:
         unknown = [name for name in arguments if name not in known]
         if unknown:
-            raise ToolError(describe_unknown(tool.name, unknown, schema))
+            return _invalid(describe_unknown(tool.name, unknown, schema), unknown)
         try:
             return await run(arguments, context, convert_result=convert_result)
         except ToolError as exc:
             # the SDK raises its argument validation's error as a ToolError caused by it; a tool body's
             # own failures arrive otherwise (a ToolError caused by a ToolError, or UnexpectedToolError)
             if isinstance(exc.__cause__, ValidationError):
-                raise ToolError(describe_invalid(tool.name, exc.__cause__, schema)) from None
+                wrong = sorted(
+                    {_path([p for p in e.get("loc", ()) if p != "arguments"]) for e in exc.__cause__.errors()}
+                )
+                return _invalid(describe_invalid(tool.name, exc.__cause__, schema), wrong)
             raise
 
     sdk_private.replace_run(tool, run_checked)
+
+
+def _invalid(message: str, arguments: list[str]) -> Any:
+    return refusal_result(message, InvalidArgument.code, message, details={"arguments": arguments})
 
 
 def describe_unknown(tool_name: str, unknown: list[str], schema: dict[str, Any]) -> str:
