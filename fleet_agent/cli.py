@@ -15,7 +15,7 @@ from fleet_agent.mcp_link import McpLink, McpLinkError
 from fleet_agent.records import AgentEvent, ModelConfig
 from fleet_agent.settings import AgentSettings
 
-HELP = "let a chat model plan a flight and the host fly it through the gateway's MCP tools"
+HELP = "let a chat model plan a flight and the host fly it through the gateway's MCP tools"  # as cli_help
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 
 _EPILOG = """\
