@@ -19,7 +19,7 @@ from gateway import package_version
 from gateway.api import build_api_router, health, metrics
 from gateway.api.docs import install_docs
 from gateway.api.errors import install_error_handlers
-from gateway.api.limits import BodyLimitMiddleware, McpBodyLimit
+from gateway.api.limits import BodyLimitMiddleware, McpBodyLimit, McpHostGuard
 from gateway.api.openapi import install_openapi, operation_id
 from gateway.config import Settings, get_settings
 from gateway.console import install_console
@@ -115,7 +115,9 @@ def mount_mcp(app: GatewayApp, gateway: Gateway, hooks: list[LifespanHook]) -> N
     mcp_app = mcp_http_app(mcp, gateway.settings)  # creates the session manager
     hooks.append(mcp.session_manager.run)
     app.state.mcp = mcp
-    app.mcp_door = McpBodyLimit(mcp_app, gateway.settings.max_request_body_bytes)
+    app.mcp_door = McpHostGuard(
+        McpBodyLimit(mcp_app, gateway.settings.max_request_body_bytes), gateway.settings
+    )
 
 
 MCP_PATH = "/mcp"

@@ -103,6 +103,19 @@ class Settings(BaseSettings):
     mcp_wait_cap_s: float = Field(
         45.0, gt=0, le=600, description="Longest a tool waits for its operation before answering 'running'."
     )
+    mcp_sessions_per_caller: int = Field(
+        64,
+        ge=1,
+        le=10_000,
+        description="Most 2025-era MCP sessions (Mcp-Session-Id) one token keeps open; a new one beyond "
+        "this closes that token's session idle the longest.",
+    )
+    mcp_session_idle_s: float = Field(
+        1800.0,
+        gt=0,
+        le=86_400,
+        description="A 2025-era MCP session with no request for this long is closed.",
+    )
     allowed_hosts: str = Field(
         "",
         description="Comma-separated extra Host names (and browser Origin hosts) that /mcp and the REST "

@@ -125,6 +125,14 @@ class NotRun(GatewayError):
     http_status = 503
 
 
+class StopPending(GatewayError):
+    """Cluster: an operator's stop no owner acknowledged in time and that the drone's own link did not
+    take yet: the node that took it keeps trying (its message says how, and for how long)."""
+
+    code = "stop_pending"
+    http_status = 202
+
+
 class OwnerTimeout(GatewayError):
     """Cluster: the node owning the drone did not answer in time; the call may or may not have run."""
 

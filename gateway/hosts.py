@@ -9,6 +9,7 @@ a proxy names its own in GATEWAY_ALLOWED_HOSTS ('*': any, when the proxy checks 
 
 from __future__ import annotations
 
+import re
 from urllib.parse import urlsplit
 
 from gateway.config import Settings
@@ -24,20 +25,32 @@ def extra_hosts(settings: Settings) -> list[str]:
     return list(dict.fromkeys(h.strip().lower() for h in text.split(",") if h.strip()))
 
 
-def _hostname(host_header: str) -> str:
-    """The name of a Host header value without its port ('[::1]:8765' -> '::1')."""
-    value = host_header.strip().lower()
-    if value.startswith("["):
-        return value[1 : value.find("]")] if "]" in value else value
-    return value.rsplit(":", 1)[0] if value.count(":") == 1 else value
+#: a Host header as RFC 9110 has it: a name, an IPv4 address or a bracketed IPv6 address, then an optional
+#: port; nothing else ('127.0.0.1:8765@evil.example' is no host)
+_HOST_HEADER = re.compile(r"^(?:\[(?P<ipv6>[0-9a-f:.]+)\]|(?P<name>[a-z0-9_.-]+))(?::(?P<port>[0-9]{1,5}))?$")
+
+
+def _hostname(host_header: str) -> str | None:
+    """The name of a Host header value without its port, lower-case ('[::1]:8765' -> '::1',
+    'LOCALHOST:8765' -> 'localhost'); None for a value that is not a host."""
+    found = _HOST_HEADER.match(host_header.strip().lower())
+    if found is None:
+        return None
+    return found["ipv6"] or found["name"]
 
 
 def host_allowed(host_header: str | None, settings: Settings) -> bool:
+    """The one Host rule of REST and /mcp: a well-formed Host whose name (any case, any port) is a
+    loopback name or one GATEWAY_ALLOWED_HOSTS gives (with its port, or any)."""
     if not host_header:
         return False
     extras = extra_hosts(settings)
+    if "*" in extras:
+        return True
     name = _hostname(host_header)
-    return "*" in extras or name in LOOPBACK_NAMES or name in extras or host_header.strip().lower() in extras
+    if name is None:
+        return False
+    return name in LOOPBACK_NAMES or name in extras or host_header.strip().lower() in extras
 
 
 def origin_allowed(origin: str | None, settings: Settings) -> bool:
@@ -48,16 +61,6 @@ def origin_allowed(origin: str | None, settings: Settings) -> bool:
     if parts.scheme not in ("http", "https") or not parts.netloc:
         return False
     return host_allowed(parts.netloc, settings)
-
-
-def mcp_transport_lists(settings: Settings) -> tuple[list[str], list[str]]:
-    """(allowed hosts, allowed origins) in the MCP SDK's pattern syntax ('name:*' = any port)."""
-    hosts = ["127.0.0.1:*", "localhost:*", "[::1]:*"]
-    origins = ["http://127.0.0.1:*", "http://localhost:*", "http://[::1]:*"]
-    for host in extra_hosts(settings):
-        hosts += [host, f"{host}:*"]
-        origins += [f"http://{host}", f"https://{host}", f"http://{host}:*", f"https://{host}:*"]
-    return hosts, origins
 
 
 def foreign_request(
@@ -88,4 +91,15 @@ def foreign_request(
             403,
             f"a {fetch_site.strip()[:20]} browser request may not change anything here; nothing was done",
         )
+    return None
+
+
+def mcp_foreign_request(host: str | None, origin: str | None, settings: Settings) -> tuple[int, str] | None:
+    """(status, message) refusing an /mcp request from elsewhere, or None: the REST rule for the Host,
+    and a browser's Origin (when it sends one) must be allowed (every MCP request can change state; an
+    MCP client that is no browser sends no Origin)."""
+    if not host_allowed(host, settings):
+        return foreign_request(False, host, None, None, settings)
+    if origin is not None and not origin_allowed(origin, settings):
+        return foreign_request(True, host, origin, None, settings)
     return None

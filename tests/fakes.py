@@ -30,6 +30,7 @@ from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleRegis
 from gateway.fleet.vehicles.vehicle import ConnectionState
 from gateway.fleet.vehicles.waits import wait_for_state
 from gateway.link import refusals
+from gateway.link.contract import GroundCommand
 from gateway.link.telemetry import (
     AttitudeValue,
     BatteryValue,
@@ -86,6 +87,10 @@ class FakeVehicle:
         self.target: tuple[float, float, float] | None = None
         # earlier reports a late watch may not have seen as the latest (`position_targets`)
         self.target_history: list[tuple[float, float, float]] = []
+        #: the last position target the gateway sent (goto, hold): lat, lon, monotonic
+        self.commanded: tuple[float, float, float] | None = None
+        #: what a ground station on the relay sent that acts on the drone (set by a test)
+        self.ground_commands: list[GroundCommand] = []
         lat, lon = geo.offset_position(HOME[0], HOME[1], 0.0, east_m)
         self.home_ll = (lat, lon)
         self.telemetry = TelemetryCache(stale_after_s=stale_after_s)
@@ -169,6 +174,12 @@ class FakeVehicle:
     def position_targets(self, since: float) -> list[tuple[float, float, float]]:
         reports = [*self.target_history, *([self.target] if self.target is not None else [])]
         return [t for t in reports if t[2] >= since]
+
+    def commanded_target(self) -> tuple[float, float, float] | None:
+        return self.commanded
+
+    def ground_station_commands(self, since: float) -> list[GroundCommand]:
+        return [c for c in self.ground_commands if c.at >= since]
 
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         return ARDUPILOT.commanded_modes(kind, done=done)
@@ -288,10 +299,14 @@ class FakeVehicle:
         self._fly(*self.pos()[:2], alt_rel_m)
 
     async def goto(self, lat: float, lon: float, alt_rel_m: float, yaw_deg: float | None = None) -> None:
+        self.commanded = (lat, lon, time.monotonic())
         await self._command("goto", lat, lon, alt_rel_m)
         self._fly(lat, lon, alt_rel_m)
 
     async def hold(self) -> None:
+        lat, lon, _ = self.pos()
+        flying = self.telemetry.in_air is not None and self.telemetry.in_air.value
+        self.commanded = (lat, lon, time.monotonic()) if flying else None
         await self._command("hold")
         if self._flight is not None:
             self._flight.cancel()
@@ -355,6 +370,12 @@ class FakeVehicle:
         return self.mission_done
 
     async def get_param(self, name: str) -> tuple[float | int, str]:
+        if name not in self.params:
+            raise CommandFailed(
+                f"unknown parameter '{name}' on drone '{self.id}'",
+                vehicle_id=self.id,
+                result="UNKNOWN_PARAMETER",
+            )
         return self.params[name], "float"
 
     async def set_param(self, name: str, value: float | int) -> tuple[float | int, str]:

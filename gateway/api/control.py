@@ -17,7 +17,13 @@ from pydantic import BaseModel, ConfigDict, Field, StrictBool
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import CommanderDep, CommandVehicleId, GatewayDep, Principal, PrincipalDep
 from gateway.fleet.commands.operator_verbs import STOP_LOCK_REASON
-from gateway.fleet.operations.views import LockResult, OperationView, StopOutcome
+from gateway.fleet.operations.views import (
+    STOP_OUTCOME_DOC,
+    LockResult,
+    OperationView,
+    StopOutcome,
+    StopOutcomeKind,
+)
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.geofence import FLEET
 from gateway.fleet.policy.operator_locks import MAX_REASON_CHARS, Lock
@@ -67,17 +73,12 @@ class LockList(BaseModel):
 
 
 class CommandOut(BaseModel):
-    """What an operator command did: sent (and, for tracked ones, its operation), skipped, unreached
-    (nothing was sent) or failed."""
+    """What an operator command did to one drone (`StopOutcome`, with the REST API's ``vehicle_id``)."""
 
     vehicle_id: str
     action: str
-    outcome: Literal["sent", "skipped", "unreached", "failed"] = Field(
-        description="sent: the drone's node sent the command to the drone; skipped: on the ground or not "
-        "connected; unreached: nothing was sent (no node holds its link, or its node could not be reached "
-        "in time, and it will not run it later); failed: refused, or its answer was lost."
-    )
-    message: str | None = None
+    outcome: StopOutcomeKind = Field(description=STOP_OUTCOME_DOC)
+    message: str | None = Field(None, description="Why, and for taking_over what is being done about it.")
     superseded_operation: str | None = None
     operation_id: str | None = Field(None, description="The tracked operation (GET /api/v1/operations).")
 
@@ -87,14 +88,7 @@ class CommandOut(BaseModel):
 
     @classmethod
     def of_outcome(cls, r: StopOutcome) -> CommandOut:
-        return cls(
-            vehicle_id=r.drone_id,
-            action=r.action,
-            outcome=r.outcome,
-            message=r.message,
-            superseded_operation=r.superseded_operation,
-            operation_id=r.operation_id,
-        )
+        return cls(vehicle_id=r.drone_id, **r.model_dump(exclude={"drone_id"}))
 
 
 class StopIn(BaseModel):

@@ -1,4 +1,5 @@
-"""Request body size limit with the API's JSON error body (Starlette's own limiter answers plain text)."""
+"""Request body size limit with the API's JSON error body (Starlette's own limiter answers plain text),
+and the door of /mcp: its body limit and its Host/Origin rule, answered as JSON-RPC errors."""
 
 from __future__ import annotations
 
@@ -8,6 +9,8 @@ from starlette.responses import JSONResponse
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from gateway.api.errors import error_response
+from gateway.config import Settings
+from gateway.hosts import mcp_foreign_request
 
 INVALID_REQUEST = -32600  # JSON-RPC
 
@@ -105,3 +108,26 @@ class McpBodyLimit:
             return whole.pop(0) if whole else await receive()
 
         await self.app(scope, replay, send)
+
+
+class McpHostGuard:
+    """The REST API's Host rule (and a browser's Origin) on /mcp, answered as a JSON-RPC error: one
+    rule for both doors (`gateway.hosts`), where the MCP SDK's own check matched case and prefixes.
+    Header values go on without the whitespace around them."""
+
+    def __init__(self, app: ASGIApp, settings: Settings) -> None:
+        self.app = app
+        self.settings = settings
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        # RFC 9110 5.5: a field value is read without the whitespace around it (an Mcp-Name of
+        # "  takeoff  " names takeoff); the HTTP server may hand it over with that whitespace
+        scope = {**scope, "headers": [(k, v.strip(b" \t")) for k, v in scope["headers"]]}
+        headers = Headers(scope=scope)
+        refused = mcp_foreign_request(headers.get("host"), headers.get("origin"), self.settings)
+        if refused is None:
+            await self.app(scope, receive, send)
+            return
+        status, message = refused
+        body = {"jsonrpc": "2.0", "id": None, "error": {"code": INVALID_REQUEST, "message": message}}
+        await JSONResponse(body, status_code=status)(scope, receive, send)

@@ -32,11 +32,13 @@ from gateway.cluster.owner_calls import OwnerCalls
 from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.runtime_view import NodeRuntime
 from gateway.cluster.stop_notify import StopRelay
+from gateway.cluster.stop_takeover import StopTakeover
 from gateway.cluster.stoplink import StopTarget
 from gateway.cluster.takeover import pick_up_operations
 from gateway.cluster.telemetry_fanout import TelemetryFanout
 from gateway.config import Settings
 from gateway.errors import GatewayError, NoOwner
+from gateway.fleet.policy.caller import Caller
 from gateway.registry.spec import VehicleSpec
 
 if TYPE_CHECKING:
@@ -97,6 +99,7 @@ class ClusterNode:
         self.fanout = TelemetryFanout(self)
         self.calls = OwnerCalls(self)  # calls routed to a drone's owner, and answered for this node's
         self.relay: StopRelay | None = None  # stops through PostgreSQL when the bus does not carry them
+        self.takeover = StopTakeover(self)  # stops no owner acknowledged: this node commands the drone
         self.nodes: list[NodeRecord] = []
         self.all_leases: dict[str, Lease] = {}
         self.last_plan = LeasePlan()
@@ -148,6 +151,7 @@ class ClusterNode:
         self._tasks = []
         if self._adoptions:  # let an adoption under way finish first: then its sidecar is stopped below
             await asyncio.wait(set(self._adoptions), timeout=LEAVE_TIMEOUT_S * 3)
+        await self.takeover.close()
         if self.relay is not None:
             relay, self.relay = self.relay, None
             await relay.close()
@@ -278,15 +282,23 @@ class ClusterNode:
                     was = previous.node_id if previous is not None else None
                     if was == self.node_id:  # our own lease of an adoption that failed: who had it before
                         was = self._adopting_from.get(vid, was)
-                    # the tick's time limit is for a database that hangs, not for starting a sidecar: an
-                    # adoption under way finishes (or undoes itself) even when the tick is cut short
-                    adoption = asyncio.create_task(self._adopt(vid, lease, was), name=f"adopt-{vid}")
-                    self._adoptions.add(adoption)
-                    adoption.add_done_callback(self._adoptions.discard)
-                    await asyncio.shield(adoption)
+                    await self.take_over(vid, lease, was)
             if result.release:
                 await self.bus.broadcast("leases", {"node": self.node_id, "released": result.release})
             return result
+
+    async def take_over(self, vehicle_id: str, lease: Lease, previous: str | None) -> None:
+        """Adopt a vehicle whose lease this node has just taken: its own sidecar, the calls on its subject,
+        the operations ``previous`` left running. The caller's time limit (a tick's, for a database that
+        hangs) does not cut an adoption short: it finishes, or undoes itself."""
+        adoption = asyncio.create_task(self._adopt(vehicle_id, lease, previous), name=f"adopt-{vehicle_id}")
+        self._adoptions.add(adoption)
+        adoption.add_done_callback(self._adoptions.discard)
+        await asyncio.shield(adoption)
+
+    async def forward_stop(self, drone_id: str, verb: str, caller: Caller) -> Any:
+        """An operator's stop to the drone's current owner (`OwnerCalls.forward_stop`)."""
+        return await self.calls.forward_stop(drone_id, verb, caller)
 
     def _note_owners(self) -> None:
         registry = self._require_registry()

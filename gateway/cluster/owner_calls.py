@@ -5,6 +5,8 @@ answers the calls for the drones it owns."""
 from __future__ import annotations
 
 import logging
+import time
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Protocol
 
 from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, stop_subject
@@ -13,6 +15,7 @@ from gateway.cluster.forwarding import answer
 from gateway.cluster.node_parts import NodeWithRuntime
 from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stop_notify import StopRelay
+from gateway.cluster.stop_takeover import OWNER_ACK_S, StopTakeover
 from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget
 from gateway.errors import NoOwner, NotRun
 from gateway.fleet.operations.routing import OnMessage
@@ -26,10 +29,8 @@ log = logging.getLogger("gateway.cluster")
 #: forwarded verbs that only read the drone: they get a short timeout, not the MCP wait cap
 READS = frozenset({"arrival", "mission_progress", "get_param", "list_params", "download_mission"})
 READ_TIMEOUT_S = 5.0
-#: a stop the bus did not carry, relayed through PostgreSQL notifications: its owner's answer within this
-RELAY_S = 5.0
 #: an operator's stop its owner has not accepted over the bus by then goes through PostgreSQL instead (the
-#: owner refuses the bus copy if it arrives later, so it runs once); the stop reaches the drone within 1 s
+#: owner refuses the bus copy if it arrives later, so it runs once), until OWNER_ACK_S after the stop
 STOP_ACCEPT_S = 0.5
 
 
@@ -47,6 +48,9 @@ class CallsNode(NodeWithRuntime, Protocol):
 
     @property
     def relay(self) -> StopRelay | None: ...
+
+    @property
+    def takeover(self) -> StopTakeover: ...
 
 
 class OwnerCalls:
@@ -88,43 +92,83 @@ class OwnerCalls:
                     return f"node {owner} lost drone {drone_id}'s lease"
                 return f"drone {drone_id} changed owner (node {owner} -> node {view.owner})"
 
-        stop = verb in STOP_COMMANDS and caller.is_operator
-        if stop and drone_id in self._node.fenced:  # no bus needed: this node sends it over the drone's link
+        if verb in STOP_COMMANDS and caller.is_operator:
+            return await self._stop(drone_id, verb, caller, arguments, on_message, timeout, accept_s,
+                                    epoch, owner_gone)  # fmt: skip
+        return await self._node.bus.call(
+            drone_id, verb, arguments, body, timeout, on_message, accept_s=accept_s, epoch=epoch,
+            owner_gone=owner_gone,
+        )  # fmt: skip
+
+    async def forward_stop(self, drone_id: str, verb: str, caller: Caller) -> Any:
+        """An operator's stop to the drone's owner as it is now (bus, then PostgreSQL), without this
+        node commanding the drone itself when no owner acknowledges it: NotRun or NoOwner then."""
+        registry = self._node.registry
+        vehicle = None if registry is None else registry.find(drone_id)
+        epoch = vehicle.epoch if isinstance(vehicle, RemoteVehicle) and vehicle.epoch > 0 else None
+        accept_s = self._node.settings.cluster_accept_timeout_s
+        return await self._stop(drone_id, verb, caller, {}, None, accept_s + STOP_SEND_S, accept_s, epoch,
+                                None, take_over=False)  # fmt: skip
+
+    async def _stop(
+        self, drone_id: str, verb: str, caller: Caller, arguments: dict[str, Any],
+        on_message: OnMessage | None, call_s: float, accept_s: float, epoch: int | None,
+        owner_gone: Callable[[], str | None] | None, take_over: bool = True,
+    ) -> Any:  # fmt: skip
+        """An operator's stop (land, return, hold) on a drone another node owns: over the bus, through
+        PostgreSQL when the bus does not carry it (each sent again until its owner answers), to a fenced
+        node's stop-only path when nobody holds the drone's link; and when no owner acknowledged it
+        within OWNER_ACK_S, commanded by this node itself (`gateway.cluster.stop_takeover`)."""
+        if drone_id in self._node.fenced:  # no bus needed: this node sends it over the drone's link
             return await self._node.stops.stop_directly(drone_id, verb, caller)
-        # a stop gets a short accept time on the bus only where PostgreSQL can carry it instead
-        relay = self._node.relay if stop else None
+        deadline = time.monotonic() + OWNER_ACK_S
+        body = {**caller.to_dict(), "node": self._node.node_id}
+        registry = self._node.registry
+        vehicle = None if registry is None else registry.find(drone_id)
+        owner = vehicle.owner if isinstance(vehicle, RemoteVehicle) else None
+        relay = self._node.relay
+        # a stop gets a short accept time on the bus where PostgreSQL can carry it instead
         short = relay is not None and relay.listening
+        bus = self._node.bus
+        why: list[str] = []
         try:
-            return await self._node.bus.call(
-                drone_id, verb, arguments, body, timeout, on_message,
-                accept_s=min(accept_s, STOP_ACCEPT_S) if short else accept_s, epoch=epoch,
+            return await bus.call(
+                drone_id, verb, arguments, body, call_s, on_message,
+                accept_s=min(accept_s, STOP_ACCEPT_S if short else OWNER_ACK_S), epoch=epoch,
                 owner_gone=owner_gone,
             )  # fmt: skip
         except NotRun as exc:
-            # the bus did not carry it (this node cut off, or no answer in the accept time): a stop goes
-            # through PostgreSQL notifications to the owner (`gateway.cluster.stop_notify`)
-            if relay is None or exc.details.get("bus") not in ("down", "no answer"):
+            # the bus did not carry it (this node cut off, or no answer in the accept time): through
+            # PostgreSQL notifications to the owner (`gateway.cluster.stop_notify`)
+            if exc.details.get("bus") not in ("down", "no answer"):
                 raise
+            why.append(f"bus: {exc.details.get('bus')}")
+            left = deadline - time.monotonic()
+            if relay is not None and left > 0.1:
+                try:
+                    return await relay.send(drone_id, verb, arguments, epoch, body, left)
+                except NotRun:
+                    why.append("PostgreSQL: no answer")
+            elif relay is None:
+                why.append("PostgreSQL: not listening")
+        except NoOwner as exc:
+            # nobody holds the drone's link on the bus: the node that last did may have fenced itself,
+            # and keep a stop-only path to it (a land sent twice is still a land)
+            why.append(f"bus: {exc.message}")
+            left = max(0.2, deadline - time.monotonic())
             try:
-                return await relay.send(drone_id, verb, arguments, epoch, body, RELAY_S)
-            except NotRun:
-                if not (short and exc.details.get("bus") == "no answer"):
+                return await bus.call(
+                    drone_id, verb, arguments, body, left + STOP_SEND_S + 1.0, on_message,
+                    accept_s=left, epoch=epoch, subject=stop_subject(drone_id),
+                )  # fmt: skip
+            except (NotRun, NoOwner) as again:
+                why.append(f"stop-only path: {again.message}")
+                if not take_over:
                     raise
-            # PostgreSQL did not carry it either while the bus is up: the bus once more, with the whole
-            # accept time, for an owner slow to answer
-            return await self._node.bus.call(
-                drone_id, verb, arguments, body, timeout, on_message, accept_s=accept_s, epoch=epoch,
-                owner_gone=owner_gone,
-            )  # fmt: skip
-        except NoOwner:
-            if not stop:
-                raise
-        # nobody holds the drone's link: the node that last did may have fenced itself, and keep a
-        # stop-only path to it (a land sent twice is still a land)
-        return await self._node.bus.call(
-            drone_id, verb, arguments, body, accept_s + STOP_SEND_S + 1.0, on_message, accept_s=accept_s,
-            epoch=epoch, subject=stop_subject(drone_id),
-        )  # fmt: skip
+        if not take_over:
+            raise NotRun(f"no owner acknowledged {verb} for {drone_id} ({'; '.join(why)})",
+                         vehicle_id=drone_id)  # fmt: skip
+        return await self._node.takeover.stop(drone_id, verb, caller, epoch, owner, "; ".join(why))
 
     async def relayed_stop(self, stop: dict[str, Any]) -> Any:
         """A stop another node relayed through PostgreSQL: run it when this node owns the drone under

@@ -24,6 +24,7 @@ from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.fleet.vehicles.protocols import Notify
 from gateway.fleet.vehicles.vehicle import ConnectionState
 from gateway.fleet.vehicles.waits import wait_for_state
+from gateway.link.contract import GroundCommand
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 
@@ -230,6 +231,12 @@ class RemoteVehicle:
 
     def position_targets(self, since: float) -> list[tuple[float, float, float]]:
         return []  # its owner compares them
+
+    def commanded_target(self) -> tuple[float, float, float] | None:
+        return None  # its owner sent it
+
+    def ground_station_commands(self, since: float) -> list[GroundCommand]:
+        return []  # its owner relays them
 
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         return self.dialect.commanded_modes(kind, done=done)

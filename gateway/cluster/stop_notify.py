@@ -10,6 +10,12 @@ the stop through the same path as a stop that came over the bus, and answers on 
 ``{id, node, ok, result | error}``. Only the three stops cross this way; anything else is refused, and a
 stop that arrives after its ``accept_by`` is dropped (its caller has been told "unreached"). Without an
 answer in time the stopping node says "no path": nothing is known to have been sent.
+
+The listening connection only listens: every notification is sent on a connection of a small pool, one
+per send at a time, so stops relayed at once (a fleet stop relays each drone's) never share a connection
+(asyncpg runs one statement per connection at a time). The stopping node sends a stop again, under the
+same id, until its owner answers or its time is up (a notification sent while the owner's listener was
+reconnecting is lost); the owner runs each id once and answers a repeat with the first answer.
 """
 
 from __future__ import annotations
@@ -38,6 +44,12 @@ ACK_CHANNEL = "fleet_stop_ack"
 RELAYED = frozenset({"land", "return_to_launch", "hold"})
 #: how long the listener waits before opening its connection again
 RECONNECT_S = 1.0
+#: connections of the pool notifications are sent on (each send takes one for its statement)
+SEND_POOL_SIZE = 4
+#: a stop not answered this long after it was sent is sent again (same id), until its time is up
+RESEND_S = 0.4
+#: stop ids an owner remembers (each runs once; a repeat gets the first answer)
+SEEN_KEPT = 1000
 #: ``handler(stop)`` -> the stop's JSON result when this node ran it, None when the drone is not this
 #: node's (it stays silent); raises a GatewayError when it is this node's and it refused it
 StopHandler = Callable[[dict[str, Any]], Awaitable[Any]]
@@ -56,12 +68,18 @@ class StopRelay:
         self.node_id = node_id
         self.handler = handler
         self.conn: asyncpg.Connection | None = None
+        self._pool: asyncpg.Pool | None = None
         self._pending: dict[str, asyncio.Future[dict[str, Any]]] = {}
+        # stop ids this node ran (or is running) -> its answer once there is one
+        self._seen: dict[str, dict[str, Any] | None] = {}
         self._task: asyncio.Task[None] | None = None
         self._tasks: set[asyncio.Task[None]] = set()
         self._ready = asyncio.Event()
 
     async def start(self) -> None:
+        # min_size 0: made without a server; a connection is opened when a send needs one
+        self._pool = asyncpg.create_pool(self.dsn, min_size=0, max_size=SEND_POOL_SIZE, timeout=5.0)
+        await self._pool
         self._task = asyncio.create_task(self._listen(), name="cluster-stop-relay")
 
     @property
@@ -78,6 +96,12 @@ class StopRelay:
         if conn is not None:
             with contextlib.suppress(Exception):
                 await asyncio.wait_for(conn.close(), 3.0)
+        pool, self._pool = self._pool, None
+        if pool is not None:
+            try:
+                await asyncio.wait_for(pool.close(), 3.0)
+            except Exception:
+                pool.terminate()
 
     async def _listen(self) -> None:
         lost = False
@@ -125,7 +149,25 @@ class StopRelay:
             return
         if body.get("node") == self.node_id:  # its own stop: this node did not reach the owner
             return
-        task = asyncio.create_task(self._run(body), name=f"relayed-stop-{body.get('vehicle')}")
+        stop_id = str(body.get("id"))
+        if stop_id in self._seen:  # sent again: run once; a repeat after the answer gets it again
+            answer = self._seen[stop_id]
+            if answer is not None:
+                self._spawn(self._notify(ACK_CHANNEL, answer), f"relayed-stop-ack-{body.get('vehicle')}")
+            return
+        self._seen[stop_id] = None
+        while len(self._seen) > SEEN_KEPT:
+            del self._seen[next(iter(self._seen))]
+        self._spawn(self._run(body), f"relayed-stop-{body.get('vehicle')}")
+
+    def _spawn(self, work: Awaitable[None], name: str) -> None:
+        async def run() -> None:
+            try:
+                await work
+            except Exception as exc:
+                log.warning("stop relay: %s failed (%r)", name, exc)
+
+        task = asyncio.create_task(run(), name=name)
         self._tasks.add(task)
         task.add_done_callback(self._tasks.discard)
 
@@ -153,13 +195,19 @@ class StopRelay:
             log.exception("stop relay: %s for %s failed", command, body.get("vehicle"))
             failed = {"code": "gateway_error", "message": f"{command} failed: {exc!r}"}
             answer = {"ok": False, "error": failed}
-        await self._notify(ACK_CHANNEL, {"id": body.get("id"), "node": self.node_id, **answer})
+        ack = {"id": body.get("id"), "node": self.node_id, **answer}
+        stop_id = str(body.get("id"))
+        if stop_id in self._seen:
+            self._seen[stop_id] = ack
+        await self._notify(ACK_CHANNEL, ack)
 
-    async def _notify(self, channel: str, body: dict[str, Any]) -> None:
-        conn = self.conn
-        if conn is None:
-            raise ConnectionError("not connected to PostgreSQL")
-        await conn.execute("SELECT pg_notify($1, $2)", channel, json.dumps(body, default=str))
+    async def _notify(self, channel: str, body: dict[str, Any], within_s: float = 5.0) -> None:
+        """One notification on a pool connection of its own (never the listener's, never shared)."""
+        pool = self._pool
+        if pool is None:
+            raise ConnectionError("the stop relay is closed")
+        async with asyncio.timeout(within_s), pool.acquire() as conn:
+            await conn.execute("SELECT pg_notify($1, $2)", channel, json.dumps(body, default=str))
 
     async def send(
         self, vehicle_id: str, command: str, arguments: dict[str, Any], epoch: int | None,
@@ -171,28 +219,44 @@ class StopRelay:
             raise NotRun(f"only land, return_to_launch and hold cross PostgreSQL; {command} was not sent")
         stop_id = uuid.uuid4().hex
         started = time.monotonic()
+        deadline = started + within_s
         future: asyncio.Future[dict[str, Any]] = asyncio.get_running_loop().create_future()
         self._pending[stop_id] = future
+        body = {"id": stop_id, "vehicle": vehicle_id, "command": command, "args": arguments,
+                "epoch": epoch, "by": caller, "node": self.node_id, "at": time.time(),
+                "accept_by": time.time() + within_s}  # fmt: skip
+        sends, last_error = 0, "no node answered"
         try:
-            with contextlib.suppress(TimeoutError):  # the listener may be reconnecting
+            with contextlib.suppress(TimeoutError):  # answers come to the listener: it may be reconnecting
                 await asyncio.wait_for(self._ready.wait(), within_s / 2)
-            body = {"id": stop_id, "vehicle": vehicle_id, "command": command, "args": arguments,
-                    "epoch": epoch, "by": caller, "node": self.node_id, "at": time.time(),
-                    "accept_by": time.time() + within_s}  # fmt: skip
-            try:
-                await asyncio.wait_for(self._notify(STOP_CHANNEL, body), within_s / 2)
-                answer = await asyncio.wait_for(future, max(0.1, within_s - (time.monotonic() - started)))
-            except (TimeoutError, ConnectionError, OSError, asyncpg.PostgresError) as exc:
+            while not future.done() and time.monotonic() < deadline:
+                left = deadline - time.monotonic()
+                try:
+                    await self._notify(STOP_CHANNEL, body, left)
+                    sends += 1
+                except (TimeoutError, ConnectionError, OSError, asyncpg.PostgresError,
+                        asyncpg.InterfaceError) as exc:  # fmt: skip
+                    last_error = f"{type(exc).__name__}: {exc}"
+                    log.warning("%s: relaying %s through PostgreSQL failed (%s): sending it again",
+                                vehicle_id, command, last_error)  # fmt: skip
+                    await asyncio.sleep(min(RESEND_S / 4, max(0.0, deadline - time.monotonic())))
+                    continue
+                with contextlib.suppress(TimeoutError):
+                    await asyncio.wait_for(asyncio.shield(future), min(RESEND_S, deadline - time.monotonic()))
+            if not future.done():
                 raise NotRun(
                     f"no path to {vehicle_id}'s owner: the bus did not carry {command}, and no node answered "
-                    f"it through PostgreSQL notifications within {within_s:g} s ({type(exc).__name__}): "
-                    "nothing is known to have been sent",
+                    f"it through PostgreSQL notifications within {within_s:g} s ({sends} sent; {last_error}):"
+                    " "
+                    "nothing is known to have been run",
                     vehicle_id=vehicle_id,
-                ) from None
+                )
+            answer = future.result()
         finally:
             self._pending.pop(stop_id, None)
-        log.warning("%s: %s relayed through PostgreSQL to node %s (answered after %.0f ms)", vehicle_id,
-                    command, answer.get("node"), (time.monotonic() - started) * 1000)  # fmt: skip
+        log.warning("%s: %s relayed through PostgreSQL to node %s (answered after %.0f ms, %d sent)",
+                    vehicle_id, command, answer.get("node"), (time.monotonic() - started) * 1000,
+                    sends)  # fmt: skip
         if answer.get("ok"):
             return answer.get("result")
         raise rebuild_error(answer.get("error") or {})

@@ -68,7 +68,21 @@ def pymavlink_device(url: str) -> tuple[str, dict[str, Any], bool]:
     raise ValueError(f"url: the scheme must be one of serial, tcpout, tcpin, udpin, udpout; got '{url}'")
 
 
-def _send(target: StopTarget, command: int, within_s: float) -> str:
+def _heard(conn: Any, sysid: int | None, deadline: float) -> int | None:
+    """The drone's system id once any of its messages arrives (None: nothing before the deadline). A
+    link that serves one ground station at a time (a TCP port) has not served this one until it hears
+    the drone: until then anything sent would wait in the connection and run whenever it is served."""
+    while time.monotonic() < deadline:
+        msg = conn.recv_match(blocking=True, timeout=max(0.05, deadline - time.monotonic()))
+        if msg is None or msg.get_type() == "BAD_DATA":
+            continue
+        heard = msg.get_type() == "HEARTBEAT" if sysid is None else msg.get_srcSystem() == sysid
+        if heard:
+            return int(msg.get_srcSystem())
+    return None
+
+
+def _send(target: StopTarget, command: int, within_s: float, hear_first: bool = False) -> str:
     device, options, listen_first = pymavlink_device(target.url)
     deadline = time.monotonic() + within_s
     conn = mavutil.mavlink_connection(
@@ -76,11 +90,10 @@ def _send(target: StopTarget, command: int, within_s: float) -> str:
     )
     try:
         sysid = target.sysid
-        if listen_first or sysid is None:
-            beat = conn.wait_heartbeat(blocking=True, timeout=max(0.1, deadline - time.monotonic()))
-            if beat is None:
-                raise TimeoutError(f"no HEARTBEAT from {target.vehicle_id} within {within_s:g} s")
-            sysid = sysid or beat.get_srcSystem()
+        if listen_first or hear_first or sysid is None:
+            sysid = _heard(conn, sysid, deadline)
+            if sysid is None:
+                raise TimeoutError(f"nothing heard from {target.vehicle_id} within {within_s:g} s")
         send = _sender(conn, sysid, command, deadline)
         sent = 0
         while time.monotonic() < deadline:
@@ -115,8 +128,9 @@ def _sender(conn: Any, sysid: int, command: int, deadline: float) -> Callable[[]
     )  # fmt: skip
 
 
-async def send_stop(target: StopTarget, verb: str, within_s: float = 1.5) -> str:
+async def send_stop(target: StopTarget, verb: str, within_s: float = 1.5, hear_first: bool = False) -> str:
     """Send the stop ``verb`` (land, return_to_launch, hold) straight to the drone; the autopilot's answer
     (``ACCEPTED``...) or ``no COMMAND_ACK ...``. Raises OSError/TimeoutError when the link cannot be
-    opened (another process holds it, the drone is silent)."""
-    return await asyncio.to_thread(_send, target, STOP_COMMANDS[verb], within_s)
+    opened (another process holds it, the drone is silent). ``hear_first``: send nothing before the
+    drone is heard on this connection (its link may be held by another process)."""
+    return await asyncio.to_thread(_send, target, STOP_COMMANDS[verb], within_s, hear_first)

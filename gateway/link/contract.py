@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import enum
 from collections.abc import Awaitable, Callable
+from dataclasses import dataclass
 from typing import Protocol
 
 from gateway.link.telemetry import HealthValue, TelemetryCache
@@ -61,3 +62,13 @@ class Peer(Protocol):
 
     @property
     def state(self) -> ConnectionState: ...
+
+
+@dataclass(frozen=True)
+class GroundCommand:
+    """A frame from a ground station on the gateway's relay that acts on the drone
+    (`gateway.link.ground_commands`)."""
+
+    sysid: int
+    what: str  # "SET_POSITION_TARGET_GLOBAL_INT", "COMMAND_LONG MAV_CMD_DO_REPOSITION"...
+    at: float  # monotonic, when the relay passed it on

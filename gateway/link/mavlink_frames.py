@@ -89,3 +89,14 @@ def target_system(frame: Frame) -> int:
     except Exception:  # a frame the dialect cannot unpack (another version of the message): broadcast
         return 0
     return int(getattr(msg, "target_system", 0) or 0)
+
+
+def decoded(frame: Frame) -> mavlink.MAVLink_message | None:
+    """The frame's message as pymavlink reads it; None when the dialect cannot unpack it."""
+    if frame.msgid not in mavlink.mavlink_map:
+        return None
+    try:
+        msg: mavlink.MAVLink_message = _DECODER.decode(bytearray(frame.data))
+        return msg
+    except Exception:  # another version of the message
+        return None

@@ -157,7 +157,7 @@ class MavsdkSession:
         for message_id, interval_us in (
             (MAVLINK_MSG_MISSION_CURRENT, 1e6),
             (MAVLINK_MSG_EKF_STATUS_REPORT, 1e6),
-            (MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT, 5e5),
+            (MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT, 2e5),
         ):
             with contextlib.suppress(CommandFailed):
                 await self._link.command_long(

@@ -11,7 +11,9 @@ MAVLink router does it:
   COMMAND_ACK reaches the one that asked;
 * every frame from the sidecar or a ground station goes to the vehicle only, byte for byte: each keeps
   its own system id, and the sidecar never sees a ground station's traffic (only what the vehicle
-  does about it: a mode change in its HEARTBEAT is the takeover watch's business).
+  does about it: a mode change in its HEARTBEAT is the takeover watch's business). A ground station's
+  frame that acts on the drone (a target, a mission change, a command: `gateway.link.ground_commands`)
+  is noted in ``ground_commands``, which the takeover watch reads.
 
 Frames are split by their MAVLink v1/v2 framing and checked by CRC where the message is known (an
 unknown message id is relayed as framed); bytes that are no frame are dropped. The relay runs as long
@@ -26,9 +28,13 @@ import contextlib
 import ipaddress
 import logging
 import os
+import time
+from collections import deque
 from collections.abc import Callable
 from typing import Any
 
+from gateway.link.contract import GroundCommand
+from gateway.link.ground_commands import acting
 from gateway.link.mavlink_frames import Frame, target_system
 from gateway.link.proc_sockets import proc_net_rows, socket_inodes
 from gateway.link.relay_endpoints import REOPEN_S, Endpoint, UdpEndpoint, open_endpoint
@@ -59,6 +65,8 @@ class Relay:
         self._started: list[Endpoint] = []
         self._retries: list[asyncio.Task[None]] = []
         self._log = logging.getLogger(f"gateway.relay.{vehicle_id}")
+        #: the ground stations' frames that acted on the drone, newest last
+        self.ground_commands: deque[GroundCommand] = deque(maxlen=32)
 
     @property
     def sidecar_url(self) -> str:
@@ -144,8 +152,17 @@ class Relay:
         for endpoint in outputs:
             endpoint.send(frame.data)
 
-    def _to_vehicle(self, _source: Endpoint, frame: Frame) -> None:
+    def _to_vehicle(self, source: Endpoint, frame: Frame) -> None:
+        if source is not self.sidecar:
+            what = acting(frame, self.vehicle.sysids)
+            if what is not None:
+                self.ground_commands.append(GroundCommand(frame.sysid, what, time.monotonic()))
+                self._log.info("%s: ground station %d sent %s", self.vehicle_id, frame.sysid, what)
         self.vehicle.send(frame.data)
+
+    def commands_since(self, since: float) -> list[GroundCommand]:
+        """The ground stations' frames that acted on the drone at or after ``since`` (monotonic)."""
+        return [c for c in self.ground_commands if c.at >= since]
 
 
 def _udp_socket_of(pid: int | None, peer: tuple[str, int]) -> bool:

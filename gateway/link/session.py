@@ -449,6 +449,12 @@ class Link:
                 self._last_error = self._sidecar.info.last_error
             if state == ConnectionState.LINK_LOST:
                 self._last_error = f"no heartbeat for more than {self.settings.link_lost_after_s:g} s"
+            if (
+                state in (ConnectionState.CONNECTED, ConnectionState.READY)
+                and old in (ConnectionState.LINK_LOST, ConnectionState.CONNECTING)
+                and not self.sysid_mismatch
+            ):
+                self._last_error = None  # the link is back: what broke it is over
             if self._on_state is not None:
                 try:
                     self._on_state(old, state)

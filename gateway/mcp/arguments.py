@@ -25,7 +25,8 @@ def install_argument_messages(tool: Tool) -> None:
     """Answer a tool's bad arguments with an error result the model can act on (its text) and any client
     can read (code ``invalid_argument`` and the arguments at fault, as structured content). The arguments
     are validated once, by the SDK's own run (`Tool.run`): its validation error is re-worded here, one
-    line per argument; an argument the tool does not have (which the SDK would drop) is refused first."""
+    line per argument; an argument the tool does not have (which the SDK would drop) is refused first. A
+    ToolError the tool raises itself keeps its own words."""
     run = tool.run
     schema = tool.parameters
     known = frozenset(schema.get("properties", {}))
@@ -44,6 +45,10 @@ def install_argument_messages(tool: Tool) -> None:
                     {_path([p for p in e.get("loc", ()) if p != "arguments"]) for e in exc.__cause__.errors()}
                 )
                 return _invalid(describe_invalid(tool.name, exc.__cause__, schema), wrong)
+            if type(exc) is ToolError and type(exc.__cause__) is ToolError:
+                # raised on purpose by the tool or a resolver (a refusal, a failure in its words): the
+                # model reads those words, not the SDK's "Error executing tool <name>:" in front of them
+                raise ToolError(str(exc.__cause__)) from None
             raise
 
     sdk_private.replace_run(tool, run_checked)

@@ -23,6 +23,14 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 
 def run(args: argparse.Namespace) -> int:
+    from gateway.cli_support import fail
+    from gateway.config import get_settings
+    from gateway.startup import StartupError, prepare_database_location
+
+    try:  # as `serve` does: a missing SQLite directory is created, anything else is one line
+        prepare_database_location(get_settings().database_url)
+    except StartupError as exc:
+        return fail(str(exc), 2)
     asyncio.run(serve_stdio())
     return 0
 

@@ -9,6 +9,8 @@
 - register a handler for ``resources/subscribe`` / ``resources/unsubscribe`` on an ``MCPServer``:
   2025-era clients subscribe that way, and the SDK's ``subscriptions`` bus serves only 2026-07-28
   ``subscriptions/listen`` (see /work/shared/MCP-NOTES.md, resources);
+- limit the stateful sessions per caller: the session manager has one limit for all callers together
+  (``max_sessions``), so one token that never closes its sessions would hold them all;
 - choose per request between a JSON and a streamed answer: the session manager's ``json_response``
   holds for every request (``gateway/mcp/json_answers.py`` answers a request without a progress token
   as JSON, through the SDK's own entry for single-exchange requests and the manager's own settings).
@@ -18,6 +20,7 @@ Each use is one function here, so an SDK upgrade that adds a public way changes 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Awaitable, Callable
 from typing import Any
 
@@ -66,3 +69,36 @@ async def handle_request(
 ) -> None:
     """The manager's own dispatch, behind its body limit (which the caller keeps)."""
     await manager._handle_request(scope, receive, send)
+
+
+def cap_sessions_per_caller(manager: StreamableHTTPSessionManager, cap: int) -> None:
+    """Before a new stateful session is admitted: when its caller (the token the manager records as the
+    session's owner; None without tokens) already holds ``cap``, the caller's session idle the longest
+    is ended (its idle countdown cancelled, so the manager discards it as on an idle timeout). A caller
+    whose ``cap`` sessions are all busy is refused as at the manager's own limit."""
+    admit = manager._admit_session
+
+    def admit_capped(requestor: Any) -> Any:
+        owners = manager._session_owners
+        mine = [
+            transport
+            for session_id, transport in manager._server_instances.items()
+            if owners.get(session_id) == requestor and not transport.is_terminated
+        ]
+        if len(mine) >= cap:
+            idle = [
+                (scope.deadline, session_id, scope)
+                for session_id, transport in manager._server_instances.items()
+                if transport in mine
+                and (scope := transport.idle_scope) is not None
+                and scope.deadline != math.inf
+            ]
+            if not idle:
+                return None
+            _deadline, session_id, scope = min(idle, key=lambda entry: entry[0])
+            scope.cancel()  # its server task ends and terminates it, as on an idle timeout
+            manager._server_instances.pop(session_id, None)  # forgotten now: its id answers 404
+            owners.pop(session_id, None)
+        return admit(requestor)
+
+    manager._admit_session = admit_capped  # type: ignore[method-assign]

@@ -29,7 +29,6 @@ from starlette.applications import Starlette
 
 from gateway import package_version
 from gateway.config import Settings
-from gateway.hosts import mcp_transport_lists
 from gateway.mcp import sdk_private
 from gateway.mcp.access import FleetState
 from gateway.mcp.arguments import advertise_policy_limits, install_argument_messages
@@ -122,14 +121,14 @@ def mcp_http_app(server: MCPServer[Any], settings: Settings) -> Starlette:
     `gateway.app.GatewayApp` serves it for the path ``/mcp`` only: mounted at "/" it would also catch
     every unknown REST URL (plain-text 404s, and 404 instead of 405).
     """
-    hosts, origins = mcp_transport_lists(settings)
     app = server.streamable_http_app(
         streamable_http_path="/mcp",
         json_response=False,  # SSE: progress notifications need it
         stateless_http=False,  # 2025-era clients get sessions (subscriptions, elicitation)
-        transport_security=TransportSecuritySettings(
-            enable_dns_rebinding_protection=True, allowed_hosts=hosts, allowed_origins=origins
-        ),
+        session_idle_timeout=settings.mcp_session_idle_s,
+        # Host and Origin: checked in front of /mcp by the REST API's rule (gateway.api.limits.McpHostGuard)
+        transport_security=TransportSecuritySettings(enable_dns_rebinding_protection=False),
     )
+    sdk_private.cap_sessions_per_caller(server.session_manager, settings.mcp_sessions_per_caller)
     answer_silent_requests_as_json(server.session_manager)  # a request without a progress token
     return app

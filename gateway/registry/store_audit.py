@@ -10,7 +10,7 @@ import dataclasses
 import logging
 from collections.abc import Callable
 from dataclasses import dataclass
-from datetime import datetime
+from datetime import UTC, datetime
 from typing import Any, cast, get_args
 
 from sqlalchemy import func, insert, or_, select, update
@@ -68,7 +68,7 @@ class AuditTrail(StoreCore):
         super().__init__(engine, url)
         self._audit_listeners: list[AuditListener] = []
         # operation id -> (status, message) of ended operations this store does not keep (fleet ones)
-        self._ended_elsewhere: dict[str, tuple[str, str | None]] = {}
+        self._ended_elsewhere: dict[str, tuple[str, str | None, datetime]] = {}
         # audit rows (with the session each call touched) waiting for the writer task (queue_audit)
         self._audit_queue: list[tuple[AuditEntry, SessionSeen | None]] = []
         self._audit_writer: asyncio.Task[None] | None = None
@@ -336,7 +336,9 @@ class AuditTrail(StoreCore):
         async with self._sessions() as session:
             op = await session.get(OperationRow, operation_id)
         if op is not None and op.status != "running":
-            await self._finish_audit_rows(operation_id, op.status, op.message)
+            await self._finish_audit_rows(
+                operation_id, op.status, op.message, op.finished_at or op.updated_at
+            )
 
     def _audit_conditions(
         self,
@@ -403,20 +405,34 @@ class AuditTrail(StoreCore):
         """An operation this store does not keep (a fleet operation, held in memory by its node) ended:
         finish the audit rows of the calls that left it running, and remember how it ended so that a
         row written after this (the call's row is written once its answer is sent) is finished too."""
-        self._ended_elsewhere[operation_id] = (status, message)
+        ended_at = utcnow()
+        self._ended_elsewhere[operation_id] = (status, message, ended_at)
         while len(self._ended_elsewhere) > ENDED_ELSEWHERE_KEPT:
             del self._ended_elsewhere[next(iter(self._ended_elsewhere))]
-        data = {"operation_id": operation_id, "status": status, "message": message}
+        data = {
+            "operation_id": operation_id,
+            "status": status,
+            "message": message,
+            "ended_at": ended_at.isoformat(),
+        }
         await self._kept(f"the end of operation {operation_id}", "operation_end", data)
 
     async def _write_operation_end(self, data: dict[str, Any]) -> None:
-        await self._finish_audit_of(data["operation_id"], data["status"], data["message"])
+        ended = data.get("ended_at")  # a kept write of an older version has none: now is the nearest
+        ended_at = datetime.fromisoformat(ended) if isinstance(ended, str) else utcnow()
+        await self._finish_audit_of(data["operation_id"], data["status"], data["message"], ended_at)
 
-    async def _finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
+    async def _finish_audit_of(
+        self, operation_id: str, status: str, message: str | None, ended_at: datetime
+    ) -> None:
         await self.flush_audit()  # a row still queued is finished too
-        await self._finish_audit_rows(operation_id, status, message)
+        await self._finish_audit_rows(operation_id, status, message, ended_at)
 
-    async def _finish_audit_rows(self, operation_id: str, status: str, message: str | None) -> None:
+    async def _finish_audit_rows(
+        self, operation_id: str, status: str, message: str | None, ended_at: datetime
+    ) -> None:
+        """The rows of the calls that left ``operation_id`` running take its outcome, and its whole
+        duration (from the call to the operation's end) rather than the time the call took to answer."""
         outcome = AUDIT_OUTCOME_OF_OPERATION.get(status, "error")
         async with self._sessions.begin() as session:
             query = select(AuditRow).where(
@@ -426,5 +442,12 @@ class AuditTrail(StoreCore):
             for row in rows:
                 row.outcome = outcome
                 row.error = None if outcome == "ok" else (message or status)[:AUDIT_MAX_ERROR]
+                took_ms = (_aware(ended_at) - _aware(row.t)).total_seconds() * 1000.0
+                row.duration_ms = max(took_ms, row.duration_ms or 0.0)
         for row in rows:  # the console's audit stream shows the row again, finished
             self._audit_written(row)
+
+
+def _aware(t: datetime) -> datetime:
+    """SQLite gives back naive datetimes; the store writes UTC."""
+    return t if t.tzinfo is not None else t.replace(tzinfo=UTC)

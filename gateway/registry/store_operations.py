@@ -33,7 +33,7 @@ class OperationTable(AuditTrail):
                     if key != "id":
                         setattr(row, key, value)
         if op.status != "running":
-            await self._finish_audit_of(op.id, op.status, op.message)
+            await self._finish_audit_of(op.id, op.status, op.message, op.finished_at or op.updated_at)
 
     async def get_operation(self, operation_id: str) -> OperationRecord | None:
         async with self._sessions() as session:

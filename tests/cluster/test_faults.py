@@ -35,6 +35,7 @@ from gateway.registry.store import Store
 from tests.cluster.harness import (
     Node,
     cluster,
+    frozen,
     missing_engines,
     start_node,
     stop_node,
@@ -359,3 +360,29 @@ async def _rows(url: str, sql: str) -> list[Any]:
             return list((await conn.execute(text(sql))).all())
     finally:
         await store.close()
+
+
+@pytest.mark.parametrize("via", ["node-a", "node-b"])
+async def test_a_stop_lands_every_drone_while_nats_is_frozen(tmp_path: Path, via: str) -> None:
+    """NATS frozen (SIGSTOP: connections stay open, nothing answers) under four drones in the air, two
+    owned by each node: an emergency stop (land) through either node reaches every drone, the other
+    node's two relayed through PostgreSQL at once, and the simulator has all four in LAND."""
+    async with cluster(tmp_path, drones=4, nodes=2, speedup=5.0) as c:
+        owners = await wait_spread(c)
+        assert sorted(owners.values()) == ["node-a", "node-a", "node-b", "node-b"], owners
+        await take_off(c.node("node-a"), c.drone_ids)
+        with frozen(c.nats.proc):
+            stop = asyncio.create_task(c.node(via).post("/fleet/stop", {"action": "land"}))
+
+            async def all_landing() -> dict[str, str] | None:
+                modes = {d: (await c.true_state(d))["mode"] for d in c.drone_ids}
+                return modes if set(modes.values()) == {"LAND"} else None
+
+            try:  # the deadline runs from the moment the stop is sent, not from its answer
+                await eventually(all_landing, f"every drone in LAND after a stop through {via}", within_s=3)
+            finally:
+                response = await stop
+            assert response.status_code == 200, response.text
+            outcomes = {r["vehicle_id"]: r for r in response.json()["results"]}
+            assert all(outcomes[d]["outcome"] == "sent" for d in c.drone_ids), outcomes
+

@@ -14,6 +14,7 @@ import pytest
 from gateway.errors import SafetyRefusal
 from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
 from gateway.fleet.policy.takeover import likely_cause
+from gateway.link.contract import GroundCommand
 from gateway.runtime import Gateway
 from tests.fakes import FakeVehicle, fake, fake_gateway, position_value, spread, unit_settings
 from tests.fleet._util import AGENT, OPERATOR, at
@@ -173,6 +174,91 @@ async def test_a_goto_target_flown_only_between_two_watch_ticks_then_replaced_is
     assert gateway.locks.takeover_for("d1") is not None
 
 
+async def reports_for(d: FakeVehicle, lat: float, lon: float, seconds: float) -> None:
+    """The autopilot reports (lat, lon) as its target at 5 Hz for ``seconds``."""
+    loop = asyncio.get_running_loop()
+    until_s = loop.time() + seconds
+    while loop.time() < until_s:
+        d.target = (lat, lon, time.monotonic())
+        await asyncio.sleep(0.2)
+
+
+async def test_a_pilot_moving_the_target_of_a_hold_in_the_same_mode_is_a_takeover(gateway: Gateway) -> None:
+    """The agent held the drone (GUIDED): the autopilot reports the hold's own target and nothing
+    happens; a pilot's SET_POSITION_TARGET_GLOBAL_INT elsewhere, still in GUIDED, is a takeover and the
+    agent's next move is refused."""
+    c = gateway.commander
+    d1 = fake(gateway, "d1")
+    took = await c.takeoff(AGENT, "d1", 10.0)
+    assert (await c.wait(took.operation_id, 10)).status == "succeeded"
+    await c.hold(AGENT, "d1")
+    held = d1.commanded
+    assert held is not None
+    await reports_for(d1, held[0], held[1], 2.5)  # its own target, well after the command: no takeover
+    assert gateway.locks.takeover_for("d1") is None
+    elsewhere = at(250, 0, held[:2])
+    await until(lambda: _reported(d1, *elsewhere) and gateway.locks.takeover_for("d1") is not None,
+                "the hold taken over")  # fmt: skip
+    taken = gateway.locks.takeover_for("d1")
+    assert taken is not None and "the autopilot left the gateway's target" in taken.reason
+    with pytest.raises(SafetyRefusal) as refused:
+        await c.move_relative(AGENT, "d1", 10.0, 0.0)
+    assert refused.value.rule == "taken_over"
+
+
+def _reported(d: FakeVehicle, lat: float, lon: float) -> bool:
+    d.target = (lat, lon, time.monotonic())
+    return True
+
+
+async def test_a_pilot_moving_the_target_after_a_goto_arrived_is_a_takeover(gateway: Gateway) -> None:
+    """A goto that arrived leaves the drone at its target in GUIDED: a move of the autopilot's target
+    away from it is a takeover as during the goto."""
+    c = gateway.commander
+    d1 = fake(gateway, "d1")
+    took = await c.takeoff(AGENT, "d1", 10.0)
+    assert (await c.wait(took.operation_id, 10)).status == "succeeded"
+    lat, lon = at(30, 0, d1.home_ll)
+    op = await c.goto(AGENT, "d1", lat, lon, 10.0)
+    await reports_for(d1, lat, lon, 0.4)
+    assert (await c.wait(op.operation_id, 10)).status == "succeeded"
+    await reports_for(d1, lat, lon, 2.0)
+    assert gateway.locks.takeover_for("d1") is None
+    elsewhere = at(200, 100, d1.home_ll)
+    await until(lambda: _reported(d1, *elsewhere) and gateway.locks.takeover_for("d1") is not None,
+                "the arrived goto taken over")  # fmt: skip
+
+
+async def test_the_target_of_a_hold_before_its_report_is_not_a_takeover(gateway: Gateway) -> None:
+    """Right after a hold the autopilot can still report the goto it replaced: never a takeover, however
+    long that report is handed over late, until it has reported the hold's own target."""
+    d1 = fake(gateway, "d1")
+    goto_id = await flying_goto(gateway)
+    goto = gateway.operations.get(goto_id) if gateway.operations else None
+    assert goto is not None
+    await gateway.commander.hold(AGENT, "d1")
+    await reports_for(d1, goto.params["lat_deg"], goto.params["lon_deg"], 2.5)
+    assert gateway.locks.takeover_for("d1") is None
+
+
+async def test_a_ground_stations_command_on_the_relay_is_a_takeover_one_before_the_gateways_is_not(
+    gateway: Gateway,
+) -> None:
+    d1 = fake(gateway, "d1")
+    before = time.monotonic()
+    goto_id = await flying_goto(gateway)
+    d1.ground_commands.append(GroundCommand(250, "MISSION_SET_CURRENT", before))  # before the goto
+    await asyncio.sleep(0.6)  # several polls of the watch
+    assert gateway.locks.takeover_for("d1") is None
+    waiter = asyncio.create_task(gateway.commander.wait(goto_id, 60))
+    d1.ground_commands.append(GroundCommand(250, "COMMAND_LONG MAV_CMD_DO_CHANGE_SPEED", time.monotonic()))
+    view = await asyncio.wait_for(waiter, scaled(5))
+    assert view.status == "interrupted", view
+    assert "ground station system 250 sent COMMAND_LONG MAV_CMD_DO_CHANGE_SPEED" in view.message, view.message
+    taken = gateway.locks.takeover_for("d1")
+    assert taken is not None and "taken over in GUIDED" in taken.reason
+
+
 async def test_a_failsafe_is_named_in_the_autopilots_words(gateway: Gateway) -> None:
     d1 = fake(gateway, "d1")
     goto_id = await flying_goto(gateway)
@@ -185,7 +271,7 @@ async def test_a_failsafe_is_named_in_the_autopilots_words(gateway: Gateway) -> 
 async def test_the_gateways_own_commands_are_never_a_takeover(gateway: Gateway) -> None:
     c = gateway.commander
     goto_id = await flying_goto(gateway)
-    mode = await c.set_mode(AGENT, "d1", "CIRCLE")  # the gateway's own mode change supersedes the goto
+    mode = await c.set_mode(AGENT, "d1", "BRAKE")  # the gateway's own mode change supersedes the goto
     assert mode.superseded_operation == goto_id
     await asyncio.sleep(0.6)  # several polls of the watch
     landing = await c.land(AGENT, "d1")

@@ -211,3 +211,59 @@ async def test_a_vehicle_port_the_relay_cannot_open_is_named_and_registered_with
                 assert next(x for x in listed if x["id"] == "d9")["gcs_endpoints"] == [gcs]
             finally:
                 assert (await http.delete("/api/v1/vehicles/d9")).status_code == 204
+
+
+async def test_a_ground_stations_new_target_through_the_relay_is_a_takeover_its_reads_are_not(
+    stack: Stack,
+) -> None:
+    """The agent holds the drone; the ground station on the relay reads (heartbeats, parameter list,
+    REQUEST_MESSAGE): nothing happens. Its SET_POSITION_TARGET_GLOBAL_INT, still in GUIDED, is a takeover
+    naming the ground station and the message, and the agent's next move is refused."""
+    gcs = GroundStation()
+    try:
+        endpoint = f"udpout://127.0.0.1:{gcs.port}"
+        r = await patch(stack, "d1", {"gcs_endpoints": [endpoint]})
+        assert r.status_code == 200, r.text
+        await wait_ready(stack)
+        sysid = stack.sim.sysids[0]
+        await asyncio.to_thread(gcs.wait, "HEARTBEAT", scaled(20), lambda m: m.get_srcSystem() == sysid)
+        async with httpx.AsyncClient(base_url=stack.base_url, timeout=scaled(30)) as http:
+            await http.delete("/api/v1/vehicles/d1/takeover")  # an earlier test's takeover, if any
+        async with stack.client("auto", name="agent") as c:
+            if (await stack.true_state("d1"))["armed"]:
+                structured(await stack.call(c, "land", {"drone_id": "d1"}))
+            took = structured(await stack.call(c, "takeoff", {"drone_id": "d1", "alt_m": 10}))
+            assert took["status"] == "succeeded", took
+            structured(await stack.call(c, "hold_position", {"drone_id": "d1"}))
+            here = await stack.true_state("d1")
+
+            def reads() -> None:
+                gcs.conn.mav.heartbeat_send(
+                    mavutil.mavlink.MAV_TYPE_GCS, mavutil.mavlink.MAV_AUTOPILOT_INVALID, 0, 0, 0
+                )
+                gcs.conn.mav.param_request_list_send(sysid, 1)
+                gcs.conn.mav.command_long_send(
+                    sysid, 1, mavutil.mavlink.MAV_CMD_REQUEST_MESSAGE, 0,
+                    mavutil.mavlink.MAVLINK_MSG_ID_AUTOPILOT_VERSION, 0, 0, 0, 0, 0, 0,
+                )  # fmt: skip
+
+            await asyncio.to_thread(reads)
+            await asyncio.to_thread(gcs.wait, "PARAM_VALUE", scaled(10))  # the reads went through
+            assert (await stack.rest("/vehicles/d1"))["taken_over"] is None
+            lat, lon = point_from(here, 250.0, 0.0)
+            gcs.conn.mav.set_position_target_global_int_send(
+                0, sysid, 1, mavutil.mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, 0xDF8,
+                round(lat * 1e7), round(lon * 1e7), 40.0, 0, 0, 0, 0, 0, 0, 0, 0,
+            )  # fmt: skip
+            sent = time.monotonic()
+            deadline = sent + scaled(30)
+            while not (taken := (await stack.rest("/vehicles/d1"))["taken_over"]):
+                assert time.monotonic() < deadline, "no takeover after the ground station's new target"
+                await asyncio.sleep(0.05)
+            print(f"\nFIGURE relay: hold taken over {time.monotonic() - sent:.2f} s after the relayed target")
+            reason = taken["reason"]
+            assert f"ground station system {GCS_SYSID} sent SET_POSITION_TARGET_GLOBAL_INT" in reason, reason
+            refused = await stack.call(c, "move_to_relative", {"drone_id": "d1", "north_m": 5})
+            assert refused.is_error and "taken_over" in refused.content[0].text, refused
+    finally:
+        gcs.close()

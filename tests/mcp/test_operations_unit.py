@@ -219,3 +219,24 @@ async def test_recover_marks_operations_of_a_previous_process_interrupted(tmp_pa
 
 async def _true(condition: bool) -> bool:
     return condition
+
+
+async def test_an_answer_that_waited_through_interruptions_says_so(settings: Settings) -> None:
+    """The sidecar restarted twice during a goto: the final answer says so (it explains the wait)."""
+    from gateway.link.contract import ConnectionState
+
+    v = drone()
+    at(v, HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    mgr = OperationManager(settings)
+    lat, lon = geo.offset_position(HOME[0], HOME[1], 60.0, 0.0)
+    op = await mgr.start(v, GotoTracker(lat, lon, 10.0, 2.0, kind="goto"), _noop, {})
+    for _ in range(2):
+        v.state = ConnectionState.CONNECTING
+        await eventually(lambda: _true(op.message.startswith("connection interrupted")), "interrupted")
+        v.state = ConnectionState.READY
+        await eventually(lambda: _true(not op.message.startswith("connection interrupted")), "resumed")
+    at(v, lat, lon, 10.0)
+    await mgr.wait(op, cap_s=5.0)
+    assert op.status is OpStatus.succeeded
+    assert "interrupted twice while it ran: connecting; connecting" in op.message, op.message
+    await mgr.stop()

@@ -37,3 +37,37 @@ async def test_stdio_server_lists_tools_answers_and_records_the_session(tmp_path
     kind = "mcp-2026" if mode == "auto" else "mcp-2025"
     assert [(s.kind, s.client_name, s.principal) for s in sessions] == [(kind, "stdio-host", "local")]
     assert [(a.action, a.outcome, a.vehicle_id) for a in audit] == [("get_battery", "error", "d1")]
+
+
+async def test_stdio_server_creates_a_missing_database_directory(tmp_path: Path) -> None:
+    """As `serve` does: the SQLite file's directory is created, and the client gets its tools."""
+    database = tmp_path / "not" / "yet" / "gateway.db"
+    env = {**os.environ, "GATEWAY_DATABASE_URL": f"sqlite+aiosqlite:///{database}"}
+    params = StdioServerParameters(
+        command=sys.executable, args=["-m", "gateway.cli", "mcp-stdio"], env=env, cwd=ROOT
+    )
+    async with Client(params, client_info=Implementation(name="stdio-host", version="2.0")) as c:
+        assert "takeoff" in {t.name for t in (await c.list_tools()).tools}
+    assert database.is_file()
+
+
+def test_stdio_server_with_an_unwritable_database_place_says_so_in_one_line(tmp_path: Path) -> None:
+    import subprocess
+
+    blocker = tmp_path / "a-file"
+    blocker.write_text("")
+    env = {**os.environ, "GATEWAY_DATABASE_URL": f"sqlite+aiosqlite:///{blocker / 'sub' / 'gateway.db'}"}
+    done = subprocess.run(
+        [sys.executable, "-m", "gateway.cli", "mcp-stdio"],
+        env=env,
+        cwd=ROOT,
+        stdin=subprocess.DEVNULL,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.returncode == 2 and done.stdout == ""
+    assert (
+        done.stderr.startswith("error: cannot create the database directory")
+        and "Traceback" not in done.stderr
+    )

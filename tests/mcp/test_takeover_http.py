@@ -175,9 +175,9 @@ async def test_the_gateways_own_commands_never_count_as_a_takeover(stack: Stack)
     assert (await stack.rest("/vehicles/d1"))["taken_over"] is None
 
 
-def gcs_fly_to(url: str, lat: float, lon: float, alt_m: float) -> None:
+def gcs_fly_to(url: str, lat: float, lon: float, alt_m: float) -> float:
     """Another ground station sends the drone elsewhere in GUIDED (SET_POSITION_TARGET_GLOBAL_INT, a
-    ground station's "fly to here"): the mode stays GUIDED."""
+    ground station's "fly to here"): the mode stays GUIDED. Returns when it was sent (monotonic)."""
     address = url.removeprefix("tcpout://")
     conn = mavutil.mavlink_connection(f"tcp:{address}", source_system=250, source_component=190)
     try:
@@ -187,6 +187,7 @@ def gcs_fly_to(url: str, lat: float, lon: float, alt_m: float) -> None:
             0, conn.target_system, 1, mavutil.mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, 0xDF8,
             round(lat * 1e7), round(lon * 1e7), alt_m, 0, 0, 0, 0, 0, 0, 0, 0,
         )  # fmt: skip
+        return time.monotonic()
     finally:
         conn.close()
 
@@ -203,13 +204,54 @@ async def test_a_second_ground_station_sending_the_drone_elsewhere_in_guided_is_
         waiting = asyncio.create_task(stack.call(c, "go_to_location", goto))
         await wait_until_true(stack, "d1", lambda s: s["ground_speed_mps"] > 2.0, "d1 on its way")
         elsewhere = point_from(here, 0.0, 150.0)
-        await asyncio.to_thread(gcs_fly_to, stack.sim.gcs_urls[0], *elsewhere, 10.0)
-        sent = time.monotonic()
+        sent = await asyncio.to_thread(gcs_fly_to, stack.sim.gcs_urls[0], *elsewhere, 10.0)
         r = structured(await asyncio.wait_for(waiting, scaled(30)))
         stack.figures["goto returned after another GCS's new target, s"] = round(time.monotonic() - sent, 2)
         assert r["status"] == "interrupted", r
         assert "the autopilot left the gateway's target while staying in GUIDED" in r["message"], r
         text = error_text(await stack.call(c, "move_to_relative", {"drone_id": "d1", "north_m": 5}))
+        assert "taken_over" in text, text
+        assert (await stack.true_state("d1"))["mode"] == "GUIDED"
+        assert (await release(stack, "d1"))["was_locked"] is True
+        assert structured(await stack.call(c, "land", {"drone_id": "d1"}))["status"] == "succeeded"
+
+
+async def taken_over_after(stack: Stack, drone_id: str, sent: float) -> float:
+    """Seconds from ``sent`` until REST shows ``drone_id`` taken over (polled every 50 ms)."""
+    deadline = time.monotonic() + scaled(30)
+    while not (await stack.rest(f"/vehicles/{drone_id}"))["taken_over"]:
+        if time.monotonic() > deadline:
+            raise AssertionError(f"{drone_id} not taken over 30 s after the pilot's new target")
+        await asyncio.sleep(0.05)
+    return time.monotonic() - sent
+
+
+async def test_a_pilots_new_target_during_a_hold_in_the_same_mode_is_a_takeover(stack: Stack) -> None:
+    """The agent held the drone in GUIDED; a pilot on the second port sends it 250 m away at 40 m,
+    still in GUIDED (SET_POSITION_TARGET_GLOBAL_INT): a takeover, and the agent's next move is refused."""
+    async with stack.client("auto", name="agent") as c:
+        took = structured(await stack.call(c, "takeoff", {"drone_id": "d1", "alt_m": 10}))
+        assert took["status"] == "succeeded", took
+        structured(await stack.call(c, "hold_position", {"drone_id": "d1"}))
+        held = await stack.true_state("d1")
+
+        async def still_held() -> bool:  # its own target reported for 2 s: no takeover
+            return (await stack.rest("/vehicles/d1"))["taken_over"] is None
+
+        loop = asyncio.get_running_loop()
+        until = loop.time() + 2.0
+        while loop.time() < until:
+            assert await still_held()
+            await asyncio.sleep(0.2)
+        elsewhere = point_from(held, 250.0, 0.0)
+        sent = await asyncio.to_thread(gcs_fly_to, stack.sim.gcs_urls[0], *elsewhere, 40.0)
+        stack.figures["hold taken over after another GCS's new target, s"] = round(
+            await taken_over_after(stack, "d1", sent), 2
+        )
+        taken = (await stack.rest("/vehicles/d1"))["taken_over"]
+        assert "the autopilot left the gateway's target" in taken["reason"], taken
+        back = {"drone_id": "d1", "lat_deg": held["lat"], "lon_deg": held["lon"], "alt_m": 10}
+        text = error_text(await stack.call(c, "go_to_location", back))
         assert "taken_over" in text, text
         assert (await stack.true_state("d1"))["mode"] == "GUIDED"
         assert (await release(stack, "d1"))["was_locked"] is True

@@ -49,3 +49,15 @@ async def test_arguments_are_validated_once_and_refused_in_one_line(
         r = await c.call_tool("set_max_speed", {"drone_id": "d1", "speed": 5})
         assert r.is_error and '"speed" is not an argument of set_max_speed' in r.content[0].text
     assert fake(gateway, "d1").sent == [("speed", 5.0)]  # only the valid call reached the drone
+
+
+async def test_a_refusal_from_a_tool_is_its_own_words(gateway: Gateway) -> None:
+    """A ToolError the gateway raises on purpose (here the kill's policy check) reaches the model as
+    written, without the SDK's "Error executing tool kill_motors:" in front."""
+    drone = fake(gateway, "d1")
+    drone.set(armed=True, in_air=True)
+    async with Client(build_mcp(gateway)) as c:
+        r = await c.call_tool("kill_motors", {"drone_id": "d1"})
+    assert r.is_error
+    text = r.content[0].text
+    assert text.startswith("Refused: ") and "kill_in_air" in text, text

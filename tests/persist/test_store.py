@@ -457,6 +457,40 @@ async def test_a_queued_running_row_of_an_operation_that_already_ended_is_finish
     assert row.outcome == "ok" and row.operation_id == "op-q"
 
 
+async def test_a_finished_row_took_as_long_as_its_operation(store: Store) -> None:
+    """The call answered in 7 ms; the landing it started took 20 s: the row says 20 s."""
+    op = OperationRecord(id="op-t", vehicle_id="alpha", kind="land", status="running", created_at=T0)
+    await store.save_operation(op)
+    await store.add_audit(
+        AuditEntry(
+            source="rest", action="land", outcome="running", operation_id="op-t", t=T0, duration_ms=7.0
+        )
+    )
+    ended = T0 + timedelta(seconds=20)
+    await store.save_operation(
+        op.model_copy(update={"status": "succeeded", "finished_at": ended, "updated_at": ended})
+    )
+    [row] = await store.list_audit()
+    assert row.outcome == "ok" and row.duration_ms == pytest.approx(20_000.0)
+
+
+async def test_a_row_finished_by_another_node_took_until_that_end(store: Store) -> None:
+    started = datetime.now(UTC) - timedelta(seconds=12)
+    await store.add_audit(
+        AuditEntry(
+            source="mcp",
+            action="fleet_land",
+            outcome="running",
+            operation_id="f-1",
+            t=started,
+            duration_ms=5.0,
+        )
+    )
+    await store.finish_audit_of("f-1", "succeeded", None)
+    [row] = await store.list_audit()
+    assert row.outcome == "ok" and row.duration_ms is not None and row.duration_ms >= 12_000.0
+
+
 async def test_close_writes_what_is_queued(db_url: str) -> None:
     store = await Store.open(db_url)
     store.queue_audit(AuditEntry(source="mcp", action="takeoff", outcome="ok"))

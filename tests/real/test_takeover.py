@@ -232,6 +232,61 @@ async def arducopter_sent_elsewhere_by_a_second_gcs_mid_goto(t: Tour, ap: Autopi
     assert landed["status"] == "succeeded", landed
 
 
+def second_gcs_repositions(address: str, lat: float, lon: float, alt_amsl_m: float) -> float:
+    """Another ground station sends the drone elsewhere as QGroundControl's "Go to location" does on PX4:
+    a DO_REPOSITION (COMMAND_INT, global frame) with a position; the mode stays Hold. Returns when it was
+    sent (monotonic)."""
+    conn, target = second_gcs(address)
+    conn.mav.command_int_send(
+        target, 1, mavutil.mavlink.MAV_FRAME_GLOBAL, MAV_CMD_DO_REPOSITION, 0, 0,
+        -1, mavutil.mavlink.MAV_DO_REPOSITION_FLAGS_CHANGE_MODE, 0, math.nan,
+        int(lat * 1e7), int(lon * 1e7), alt_amsl_m,
+    )  # fmt: skip
+    sent = time.monotonic()
+    ack = conn.recv_match(type="COMMAND_ACK", blocking=True, timeout=3.0)
+    assert ack is not None and ack.result == 0, ack
+    return sent
+
+
+async def pilot_target_during_a_hold(t: Tour, ap: Autopilot) -> None:
+    """The agent held the drone; a second ground station sends it 250 m away at 40 m in the mode the
+    hold flies in (ArduCopter: SET_POSITION_TARGET_GLOBAL_INT in GUIDED; PX4: QGroundControl's "Go to
+    location", a DO_REPOSITION, in Hold): a takeover (seen in REST), the agent's next move is refused;
+    after an operator's release the agent lands it."""
+    d = t.ids[0]
+    assert ap.gcs is not None
+    op = await t.finish(await t.ok("takeoff", drone_id=d, alt_m=12), 90)
+    assert op["status"] == "succeeded", op
+    await t.ok("hold_position", drone_id=d)
+    here = await t.position(d)
+    await asyncio.to_thread(second_gcs, ap.gcs)
+    loop = asyncio.get_running_loop()
+    until = loop.time() + 3.0
+    while loop.time() < until:  # the hold's own target, reported for 3 s: nobody took it
+        assert (await t.rest("GET", f"/vehicles/{d}"))["taken_over"] is None
+        await asyncio.sleep(0.25)
+    elsewhere = geo.offset_position(here["lat_deg"], here["lon_deg"], 250, 0)
+    if t.profile.autopilot == "px4":
+        home = await t.ok("get_home_position", drone_id=d)
+        amsl = home["alt_amsl_m"] + 40
+        sent = await asyncio.to_thread(second_gcs_repositions, ap.gcs, *elsewhere, amsl)
+    else:
+        sent = await asyncio.to_thread(second_gcs_flies_to, ap.gcs, *elsewhere, 40)
+    deadline = time.monotonic() + scaled(30)
+    while not (taken := (await t.rest("GET", f"/vehicles/{d}"))["taken_over"]):
+        assert time.monotonic() < deadline, "no takeover 30 s after the new target"
+        await asyncio.sleep(0.05)
+    print(f"\nFIGURE {t.profile.autopilot}: hold taken over {time.monotonic() - sent:.2f} s after the new "
+          "target was sent")  # fmt: skip
+    assert "the autopilot left the gateway's target" in taken["reason"], taken
+    await t.refused("go_to_location", "taken_over", drone_id=d, lat_deg=here["lat_deg"],
+                    lon_deg=here["lon_deg"], alt_m=12)  # fmt: skip
+    assert (await t.ok("get_flight_mode", drone_id=d))["value"] == t.profile.hold_mode
+    assert (await t.rest("DELETE", f"/vehicles/{d}/takeover"))["was_locked"] is True
+    landed = await t.finish(await t.ok("land", drone_id=d), 180)
+    assert landed["status"] == "succeeded", landed
+
+
 async def interrupted_by_second_gcs(
     t: Tour, ap: Autopilot, waiting: asyncio.Task[Any], switch: dict[str, Any], what: str
 ) -> dict[str, Any]:
@@ -309,6 +364,12 @@ async def test_a_second_ground_station_sends_an_arducopter_elsewhere_in_guided(
     await run(tmp_path, ARDUCOPTER, arducopter, arducopter_sent_elsewhere_by_a_second_gcs_mid_goto)
 
 
+async def test_a_second_ground_station_sends_a_holding_arducopter_elsewhere_in_guided(
+    arducopter, tmp_path: Path
+) -> None:
+    await run(tmp_path, ARDUCOPTER, arducopter, pilot_target_during_a_hold)
+
+
 async def test_a_second_ground_station_takes_arducopter_mid_takeoff_and_mid_mission(
     arducopter, tmp_path: Path
 ) -> None:
@@ -327,6 +388,10 @@ async def test_a_second_ground_station_switches_px4_to_return_mid_goto(px4, tmp_
 
 async def test_a_second_ground_station_pauses_a_px4_goto_in_hold(px4, tmp_path: Path) -> None:
     await run(tmp_path, PX4, px4, px4_paused_by_a_second_gcs_mid_goto)
+
+
+async def test_a_second_ground_station_repositions_a_holding_px4_in_hold(px4, tmp_path: Path) -> None:
+    await run(tmp_path, PX4, px4, pilot_target_during_a_hold)
 
 
 async def test_a_second_ground_station_takes_px4_mid_takeoff_and_mid_mission(px4, tmp_path: Path) -> None:

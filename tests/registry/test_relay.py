@@ -20,6 +20,7 @@ from pymavlink import mavutil
 from pymavlink.dialects.v10 import ardupilotmega as mavlink1
 from pymavlink.dialects.v20 import ardupilotmega as mavlink
 
+from gateway.link.ground_commands import acting
 from gateway.link.mavlink_frames import FrameSplitter, target_system
 from gateway.link.relay import Relay
 from gateway.util.ports import free_tcp_port, free_udp_port
@@ -258,3 +259,38 @@ async def test_only_the_sidecar_process_is_taken_as_the_sidecar() -> None:
         sidecar.close()
         drone.close()
         await relay.close()
+
+
+def test_a_ground_stations_frames_that_act_on_the_drone_are_told_from_its_reads() -> None:
+    """What a ground station sends that acts on the drone (targets, commands, mission changes, parameter
+    writes) is named; its reads, mode switches (the HEARTBEAT tells those) and frames to another system
+    are not."""
+
+    def said(msg: Any) -> str | None:
+        [one] = FrameSplitter().feed(frame(msg, GCS_A))
+        return acting(one, {DRONE})
+
+    nan = float("nan")
+    target = mavlink.MAVLink_set_position_target_global_int_message(
+        0, DRONE, 1, 6, 0xDF8, 1, 1, 10.0, 0, 0, 0, 0, 0, 0, 0, 0
+    )
+    assert said(target) == "SET_POSITION_TARGET_GLOBAL_INT"
+    reposition = mavlink.MAVLink_command_long_message(DRONE, 1, 192, 0, -1, 1, 0, nan, nan, nan, nan)
+    assert said(reposition) == "COMMAND_LONG MAV_CMD_DO_REPOSITION"
+    assert said(mavlink.MAVLink_mission_set_current_message(DRONE, 1, 3)) == "MISSION_SET_CURRENT"
+    assert said(mavlink.MAVLink_param_set_message(DRONE, 1, b"WPNAV_SPEED", 4000, 9)) == "PARAM_SET"
+    speed = mavlink.MAVLink_command_long_message(DRONE, 1, 178, 0, 1, 12, -1, 0, 0, 0, 0)
+    assert said(speed) == "COMMAND_LONG MAV_CMD_DO_CHANGE_SPEED"
+    yaw = mavlink.MAVLink_command_int_message(DRONE, 1, 0, 115, 0, 0, 90, 0, 0, 0, 0, 0, 0)
+    assert said(yaw) == "COMMAND_INT MAV_CMD_CONDITION_YAW"
+    for read in (
+        heartbeat(),
+        mavlink.MAVLink_param_request_list_message(DRONE, 1),
+        mavlink.MAVLink_mission_request_list_message(DRONE, 1, 0),
+        mavlink.MAVLink_command_long_message(DRONE, 1, 512, 0, 148, 0, 0, 0, 0, 0, 0),
+        mavlink.MAVLink_command_long_message(DRONE, 1, 511, 0, 33, 1e5, 0, 0, 0, 0, 0),
+        mavlink.MAVLink_command_long_message(DRONE, 1, 176, 0, 1, 5, 0, 0, 0, 0, 0),  # DO_SET_MODE
+        mavlink.MAVLink_set_mode_message(DRONE, 1, 5),
+        mavlink.MAVLink_command_long_message(7, 1, 192, 0, -1, 1, 0, nan, nan, nan, nan),  # to system 7
+    ):
+        assert said(read) is None, read

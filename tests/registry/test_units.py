@@ -393,3 +393,34 @@ async def test_telemetry_rates_follow_the_drone_between_rest_and_active() -> Non
         assert not feed.active and "flight_mode" not in subscribed
     finally:
         await feed.stop()
+
+
+async def test_an_unknown_parameter_is_refused_from_the_listed_names_without_asking() -> None:
+    """Older ArduPilot never answers a read of a name it lacks (MAVSDK waits ~3 s): once the autopilot's
+    list is in hand, such a name is refused without a read; a listed name is still read afresh."""
+    from gateway.errors import CommandFailed
+    from gateway.fleet.vehicles.params import Parameters
+
+    reads: list[str] = []
+
+    async def get_param_int(name: str) -> int:
+        reads.append(name)
+        return 3
+
+    async def get_all_params() -> SimpleNamespace:
+        return SimpleNamespace(int_params=[SimpleNamespace(name="FENCE_ENABLE", value=1)], float_params=[])
+
+    system = SimpleNamespace(
+        param=SimpleNamespace(get_param_int=get_param_int, get_all_params=get_all_params)
+    )
+
+    async def call(what: str, awaitable: object, timeout_s: float) -> object:
+        return await awaitable  # type: ignore[misc]
+
+    params = Parameters("d1", call, lambda: system)  # type: ignore[arg-type,return-value]
+    with pytest.raises(
+        CommandFailed, match="unknown parameter 'NO_SUCH_PARAM' on drone 'd1': not among the 1"
+    ):
+        await params.get("NO_SUCH_PARAM")
+    assert reads == []  # refused from the list: the autopilot was not asked
+    assert await params.get("FENCE_ENABLE") == (3, "int") and reads == ["FENCE_ENABLE"]

@@ -17,7 +17,7 @@ from typing import Annotated, Any
 
 from pydantic import Field
 
-from gateway.errors import InvalidArgument
+from gateway.errors import CommandFailed, InvalidArgument
 from gateway.fleet.commands.arguments import DroneId, FlightMode
 from gateway.fleet.commands.command_core import (
     OperationDesk,
@@ -260,10 +260,12 @@ class FlightVerbs:
         if choice.requested == "HOLD":
             return await self.hold(caller, drone_id, "set_flight_mode HOLD")
         label = f"set_flight_mode {choice.requested}"
+        radius_m = await _pattern_radius(self.commands.registry.flown(drone_id), choice)
 
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             self.commands.safety.check_mode(ctx, choice.requested, caller.policy_via)
             self.commands.safety.check_mode(ctx, choice.native, caller.policy_via)
+            self.commands.safety.check_mode_choice(ctx, choice, caller.policy_via, radius_m)
             return Order(
                 lambda: vehicle.set_flight_mode(mode), ends_operation=True, **_commanded(vehicle, choice)
             )
@@ -281,6 +283,18 @@ class FlightVerbs:
             superseded_operation=sent.ended_id,
             facts={"mode": named},
         )
+
+
+async def _pattern_radius(vehicle: FlyingVehicle, choice: ModeChoice) -> float | None:
+    """The radius in metres a pattern mode would fly (the first of its radius parameters the vehicle
+    has), or None: not a pattern mode, or none could be read (the policy then refuses it in the air)."""
+    for name, per_metre in choice.pattern_radius:
+        try:
+            value, _kind = await vehicle.get_param(name)
+        except CommandFailed:
+            continue
+        return float(value) / per_metre
+    return None
 
 
 def _commanded(vehicle: VehicleView, choice: ModeChoice) -> dict[str, Any]:

@@ -16,7 +16,7 @@ import logging
 from datetime import UTC, datetime
 from typing import Literal
 
-from gateway.errors import GatewayError, NoOwner, NotRun
+from gateway.errors import GatewayError, NoOwner, NotRun, StopPending
 from gateway.fleet.commands.command_core import command
 from gateway.fleet.commands.command_pass import CommandPass
 from gateway.fleet.commands.drone_verbs import FlightVerbs
@@ -171,15 +171,10 @@ class OperatorVerbs:
 
         async def one(vehicle: VehicleView) -> StopOutcome:
             state = str(vehicle.state)
-            if getattr(vehicle, "remote", False) and getattr(vehicle, "owner", None) is None:
-                return StopOutcome(
-                    drone_id=vehicle.id,
-                    action=action,
-                    outcome="unreached",
-                    message="no node holds its link right now (its node was lost or could not renew its "
-                    "lease): nothing was sent",
-                )
-            if state in ("registered", "failed"):
+            # a drone owned elsewhere goes to its node's router whatever it reads here: with no owner
+            # (its node lost, or fenced) the router still finds a path to it, or says what it does next
+            remote = getattr(vehicle, "remote", False)
+            if state in ("registered", "failed") and not remote:
                 return StopOutcome(
                     drone_id=vehicle.id, action=action, outcome="skipped", message=f"not connected ({state})"
                 )
@@ -189,6 +184,10 @@ class OperatorVerbs:
                 )
             try:
                 return await self.stop_one(caller, vehicle.id, action)
+            except StopPending as exc:
+                return StopOutcome(
+                    drone_id=vehicle.id, action=action, outcome="taking_over", message=exc.message
+                )
             except (NotRun, NoOwner) as exc:
                 return StopOutcome(
                     drone_id=vehicle.id, action=action, outcome="unreached", message=exc.message

@@ -19,7 +19,7 @@ from __future__ import annotations
 from collections.abc import Awaitable, Callable, Mapping
 
 from gateway.fleet.dialects.base import LinkOps, matches_any, reader, user_progress
-from gateway.fleet.dialects.modes import COMMON_MODES, ModeChoice, canonical
+from gateway.fleet.dialects.modes import COMMON_MODES, NOT_MODELLED, AirUse, ModeChoice, canonical
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem, WirePlan
 from gateway.fleet.policy.param_limits import ParamLimit
@@ -46,6 +46,29 @@ COMMON_TO_NATIVE: dict[str, str] = {
 #: GATEWAY_MODE_DENY_IN_AIR). Modes that need sticks or special frames (ACRO, FLIP, THROW, TURTLE,
 #: AUTOROTATE, ...) are left out.
 OFFERED_NATIVE = ("BRAKE", "SMART_RTL", "CIRCLE", "STABILIZE", "ALT_HOLD", "POSHOLD")
+#: whether an agent may select each offered mode in the air, and why. ArduCopter's pilot modes read the
+#: throttle stick even under a GCS: without RC (SITL, a companion link) the throttle reads low and the
+#: copter sinks to the ground and stays there armed (measured on SITL for LOITER, ALT_HOLD and CIRCLE:
+#: 30 m to the ground 515 m from home). Mode::has_manual_throttle / ModeCircle::run use
+#: get_pilot_desired_climb_rate.
+_STICKS = "reads the pilot's throttle and sticks: without RC input it sinks to the ground and stays armed"
+AIR_MODES: dict[str, AirUse] = {
+    "GUIDED": AirUse(True, "holds where it is and flies only the targets the gateway checked"),
+    "RTL": AirUse(True, "climbs to the return altitude (a governed parameter), flies home and lands"),
+    "LAND": AirUse(True, "descends and lands where it is"),
+    "AUTO": AirUse(True, "flies the mission the autopilot holds, checked when it starts"),
+    "BRAKE": AirUse(True, "stops and holds position and altitude without RC input"),
+    "SMART_RTL": AirUse(True, "retraces the path it flew, within the limits, back home"),
+    "CIRCLE": AirUse(False, f"{_STICKS} (like LOITER); its circle's centre lies one CIRCLE_RADIUS ahead"),
+    "STABILIZE": AirUse(False, _STICKS),
+    "ALT_HOLD": AirUse(False, _STICKS),
+    "POSHOLD": AirUse(False, _STICKS),
+    "LOITER": AirUse(False, _STICKS),
+}
+#: ArduCopter's CIRCLE: AC_Circle puts the centre one radius ahead of the stopping point (the far side is
+#: two radii away); CIRCLE_RADIUS in cm up to 4.6, CIRCLE_RADIUS_M in m from 4.7 (which answers the old
+#: name with "does not exist" at once: the old name is tried first)
+CIRCLE_RADIUS_PARAMS = (("CIRCLE_RADIUS", 100.0), ("CIRCLE_RADIUS_M", 1.0))
 #: MAV_TYPE values flown by ArduCopter (quad, coaxial, heli, hexa, octo, tri, dodeca, deca)
 COPTER_TYPES = frozenset({2, 3, 4, 13, 14, 15, 29, 35})
 #: the modes the gateway's own commands put ArduCopter in, per operation kind (`commanded_modes`): every
@@ -91,11 +114,30 @@ LIMIT_PARAMS: dict[str, ParamLimit] = {
     "RTL_ALT_M": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 3000.0),
     "RTL_ALT_FINAL": ParamLimit("max_altitude_m", "cm", 100.0, 0.0, 1000.0),
     "RTL_ALT_FINAL_M": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 10.0),
-    "RTL_CLIMB_MIN": ParamLimit("max_altitude_m", "cm", 100.0, 0.0, 3000.0),
-    "RTL_CLIMB_MIN_M": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 30.0),
+    # mode_rtl.cpp compute_return_target: target = max(RTL_ALT, current altitude + RTL_CLIMB_MIN)
+    "RTL_CLIMB_MIN": ParamLimit("max_altitude_m", "cm", 100.0, 0.0, 3000.0, "added"),
+    "RTL_CLIMB_MIN_M": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 30.0, "added"),
     "PILOT_TKOFF_ALT": ParamLimit("max_altitude_m", "cm", 100.0, 0.0, 1000.0),
-    "CIRCLE_RADIUS": ParamLimit("max_distance_m", "cm", 100.0, 0.0, 200000.0),
-    "CIRCLE_RADIUS_M": ParamLimit("max_distance_m", "m", 1.0, 0.0, 2000.0),
+    # AC_Circle: the centre lies one radius ahead of where CIRCLE starts, so the far side is two away
+    "CIRCLE_RADIUS": ParamLimit("max_distance_m", "cm", 100.0, 0.0, 200000.0, "diameter"),
+    "CIRCLE_RADIUS_M": ParamLimit("max_distance_m", "m", 1.0, 0.0, 2000.0, "diameter"),
+    # governing no limit, written by agents only when GATEWAY_AGENT_PARAM_ALLOW names them, and then
+    # only within the @Range of ArduPilot's parameter docs (AC_WPNav.cpp, AC_Loiter.cpp, AC_Circle.cpp,
+    # Parameters.cpp; the 4.7 metre names are the centimetre ranges / 100)
+    "WPNAV_ACCEL": ParamLimit(None, "cm/s/s", 1.0, 50.0, 500.0),
+    "WPNAV_ACCEL_Z": ParamLimit(None, "cm/s/s", 1.0, 50.0, 500.0),
+    "WPNAV_ACCEL_C": ParamLimit(None, "cm/s/s", 1.0, 0.0, 500.0),
+    "WPNAV_JERK": ParamLimit(None, "m/s/s/s", 1.0, 1.0, 20.0),
+    "WPNAV_RADIUS": ParamLimit(None, "cm", 1.0, 5.0, 1000.0),
+    "WP_YAW_BEHAVIOR": ParamLimit(None, "", 1.0, 0.0, 3.0),
+    "LOIT_ACC_MAX": ParamLimit(None, "cm/s/s", 1.0, 100.0, 981.0),
+    "LOIT_ACC_MAX_M": ParamLimit(None, "m/s/s", 1.0, 1.0, 9.81),
+    "LOIT_BRK_ACCEL": ParamLimit(None, "cm/s/s", 1.0, 25.0, 250.0),
+    "LOIT_BRK_ACC_M": ParamLimit(None, "m/s/s", 1.0, 0.25, 2.5),
+    "LOIT_BRK_JERK": ParamLimit(None, "cm/s/s/s", 1.0, 500.0, 5000.0),
+    "LOIT_BRK_JRK_M": ParamLimit(None, "m/s/s/s", 1.0, 5.0, 50.0),
+    "LOIT_BRK_DELAY": ParamLimit(None, "s", 1.0, 0.0, 2.0),
+    "CIRCLE_RATE": ParamLimit(None, "deg/s", 1.0, -90.0, 90.0),
 }
 
 
@@ -137,7 +179,16 @@ class ArduPilot:
                 return None
             native = wanted
         number = ARDUCOPTER_MODES[native]
-        return ModeChoice(wanted, native, number, (1.0, float(number)))
+        pattern = CIRCLE_RADIUS_PARAMS if native == "CIRCLE" else ()
+        return ModeChoice(
+            wanted,
+            native,
+            number,
+            (1.0, float(number)),
+            in_air=AIR_MODES.get(native, NOT_MODELLED),
+            pattern_radius=pattern,
+            pattern_reach=2.0 if pattern else 0.0,
+        )
 
     def native_mode(self, custom_mode: int) -> str:
         return ARDUCOPTER_MODE_NAMES.get(custom_mode, f"MODE_{custom_mode}")

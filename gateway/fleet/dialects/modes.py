@@ -4,7 +4,7 @@ the common names onto its own modes and lists the modes it offers."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Protocol
 
 from gateway.errors import InvalidArgument
@@ -24,6 +24,19 @@ COMMON_SYNONYMS = {alias: name for name, aliases in COMMON_MODES.items() for ali
 
 
 @dataclass(frozen=True)
+class AirUse:
+    """Whether an agent may select a mode in the air, and why: what the mode needs (a pilot's throttle
+    or sticks, a checked mission, nothing) and what it flies."""
+
+    allowed: bool
+    why: str
+
+
+#: a mode the dialect does not list: the gateway does not know what it flies without a pilot
+NOT_MODELLED = AirUse(False, "the gateway does not model what it flies without a pilot")
+
+
+@dataclass(frozen=True)
 class ModeChoice:
     """A requested mode resolved for one autopilot: ``requested`` is the common name when the request
     was one (or a synonym of one), else the autopilot's own; ``native`` is the autopilot's name."""
@@ -32,6 +45,12 @@ class ModeChoice:
     native: str
     custom_mode: int  # HEARTBEAT.custom_mode once the vehicle is in it
     params: tuple[float, ...]  # MAV_CMD_DO_SET_MODE params 1..3
+    #: whether an agent may select it in the air, and why (the dialect's `AIR_MODES`)
+    in_air: AirUse = field(default_factory=lambda: NOT_MODELLED)
+    #: a mode that flies a pattern: the parameters that set its radius (name, units per metre; the
+    #: first one the vehicle has), and how many radii its far side lies from where it starts
+    pattern_radius: tuple[tuple[str, float], ...] = ()
+    pattern_reach: float = 0.0
 
     @property
     def is_hold(self) -> bool:

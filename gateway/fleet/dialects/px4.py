@@ -21,7 +21,7 @@ from collections.abc import Awaitable, Callable, Mapping
 
 from gateway.errors import CommandFailed
 from gateway.fleet.dialects.base import LinkOps, matches_any, reader, user_progress
-from gateway.fleet.dialects.modes import COMMON_MODES, ModeChoice, canonical
+from gateway.fleet.dialects.modes import COMMON_MODES, NOT_MODELLED, AirUse, ModeChoice, canonical
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem, WirePlan
 from gateway.fleet.policy.param_limits import ParamLimit
@@ -68,6 +68,15 @@ SETTLED_MODES: dict[str, frozenset[str]] = {
 }
 #: PX4's own names set_flight_mode offers: the autonomous modes (the others need a pilot or offboard)
 OFFERED_NATIVE = ("AUTO.LOITER", "AUTO.RTL", "AUTO.LAND", "AUTO.MISSION", "AUTO.TAKEOFF")
+#: whether an agent may select each offered mode in the air, and why (PX4's pilot modes MANUAL, ALTCTL,
+#: POSCTL, STABILIZED and ACRO need manual control input and are not offered at all)
+AIR_MODES: dict[str, AirUse] = {
+    "AUTO.LOITER": AirUse(True, "holds where it is and flies only the targets the gateway checked"),
+    "AUTO.RTL": AirUse(True, "climbs to RTL_RETURN_ALT (a governed parameter), flies home and lands"),
+    "AUTO.LAND": AirUse(True, "descends and lands where it is"),
+    "AUTO.MISSION": AirUse(True, "flies the mission the autopilot holds, checked when it starts"),
+    "AUTO.TAKEOFF": AirUse(True, "climbs to MIS_TAKEOFF_ALT (a governed parameter) and holds"),
+}
 #: how PX4's mission feasibility checks begin their text when they reject a mission
 MISSION_REJECTIONS = ("mission rejected", "geofence violation for waypoint", "geofence breach on path",
                       "waypoint above maximum", "first waypoint too far")  # fmt: skip
@@ -99,6 +108,16 @@ LIMIT_PARAMS: dict[str, ParamLimit] = {
     "RTL_RETURN_ALT": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 150.0),
     "RTL_DESCEND_ALT": ParamLimit("max_altitude_m", "m", 1.0, 2.0, 500.0),
     "MIS_TAKEOFF_ALT": ParamLimit("max_altitude_m", "m", 1.0, 0.0, 80.0),
+    # governing no limit, written by agents only when GATEWAY_AGENT_PARAM_ALLOW names them, and then only
+    # within PX4's own metadata (min/max of parameters.json that the PX4 build ships, PX4 1.16)
+    "MPC_ACC_HOR": ParamLimit(None, "m/s^2", 1.0, 2.0, 15.0),
+    "MPC_ACC_HOR_MAX": ParamLimit(None, "m/s^2", 1.0, 2.0, 15.0),
+    "MPC_ACC_UP_MAX": ParamLimit(None, "m/s^2", 1.0, 2.0, 15.0),
+    "MPC_ACC_DOWN_MAX": ParamLimit(None, "m/s^2", 1.0, 2.0, 15.0),
+    "MPC_JERK_AUTO": ParamLimit(None, "m/s^3", 1.0, 1.0, 80.0),
+    "MPC_JERK_MAX": ParamLimit(None, "m/s^3", 1.0, 0.5, 500.0),
+    "NAV_ACC_RAD": ParamLimit(None, "m", 1.0, 0.05, 200.0),
+    "MPC_YAWRAUTO_MAX": ParamLimit(None, "deg/s", 1.0, 5.0, 360.0),
 }
 
 
@@ -133,7 +152,13 @@ class PX4:
                 return None
             native = wanted
         main, sub = PX4_MODES[native]
-        return ModeChoice(wanted, native, (main << 16) | (sub << 24), (1.0, float(main), float(sub)))
+        return ModeChoice(
+            wanted,
+            native,
+            (main << 16) | (sub << 24),
+            (1.0, float(main), float(sub)),
+            in_air=AIR_MODES.get(native, NOT_MODELLED),
+        )
 
     def native_mode(self, custom_mode: int) -> str:
         main, sub = (custom_mode >> 16) & 0xFF, (custom_mode >> 24) & 0xFF

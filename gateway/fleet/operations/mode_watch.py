@@ -30,13 +30,18 @@ log = logging.getLogger(__name__)
 MISSION_END_GRACE_S = 0.8
 """How long a mission that left its mode for one it settles in (PX4 holds at the end) may take to say
 it finished before the change counts as a takeover."""
-TARGET_SETTLE_S = 1.5
-"""How long after a goto was sent the autopilot's reported target may still be the one before it."""
+TARGET_SETTLE_S = 0.5
+"""How long after a goto or hold was sent a reported target away from it is not judged even when one
+near it was reported (the autopilot may report the new target and then, once more, one it had queued):
+well beyond the autopilot's answer to the command."""
 TARGET_MOVED_M = 10.0
-"""How far the autopilot's target may be from the goto's (at least 3 arrival tolerances) before another
-ground station is taken to have moved it."""
-TARGET_CONFIRM_S = 0.9
-"""How long the target must stay moved (two reports at 2 Hz) before it counts as a takeover."""
+"""How far the autopilot's target may be from the gateway's (for a goto at least 3 arrival tolerances)
+before another ground station is taken to have moved it."""
+TARGET_CONFIRM_S = 0.1
+"""How long the target must stay moved before it counts as a takeover: two reports in a row (the link
+asks for POSITION_TARGET_GLOBAL_INT at 5 Hz), so one report cannot end an operation."""
+HOLD_KINDS = frozenset({"hold"})
+"""Instant commands that leave the drone at a target of the gateway's (`FlyingVehicle.commanded_target`)."""
 FOUND_FLYING_WAIT_S = 120.0
 """After a restart: how long the gateway waits for a vehicle's first HEARTBEAT and landed state before it
 gives up looking whether the vehicle is flying (its mode watch is then armed by its next command)."""
@@ -80,8 +85,6 @@ class ModeWatch:
         self._finders: dict[str, asyncio.Task[None]] = {}  # after a restart: is the vehicle flying?
         #: when an operation's latest command (its leg) was sent (the manager sets it)
         self.sent_at: dict[str, float] = {}
-        #: the leg (its send time) whose target the autopilot has been seen flying to, per operation
-        self.adopted: dict[str, float] = {}
 
     def expect(
         self,
@@ -99,7 +102,10 @@ class ModeWatch:
             self._expected.pop(vehicle.id, None)
             return
         settled = modes if modes is not None else vehicle.commanded_modes(kind, done=True)
-        self._expected[vehicle.id] = ModeExpectation(kind, wanted, settled | wanted, operation_id)
+        exp = ModeExpectation(kind, wanted, settled | wanted, operation_id, since=time.monotonic())
+        if kind in HOLD_KINDS:  # the target it holds to: a move away from it is someone else's
+            exp.target = vehicle.commanded_target()
+        self._expected[vehicle.id] = exp
         watch = self._watches.get(vehicle.id)
         if watch is None or watch.done():
             self._watches[vehicle.id] = asyncio.create_task(self._watch(vehicle), name=f"watch-{vehicle.id}")
@@ -150,11 +156,14 @@ class ModeWatch:
             )
             if vehicle.id in self._expected:
                 return
+            now = time.monotonic()
             if kind is not None and modes and mode in modes:
-                exp = ModeExpectation(kind, modes, modes, seen=True, last_mode=mode)
+                exp = ModeExpectation(kind, modes, modes, seen=True, last_mode=mode, since=now)
             else:
                 found = frozenset({mode})
-                exp = ModeExpectation(f"found flying in {mode}", found, found, seen=True, last_mode=mode)
+                exp = ModeExpectation(
+                    f"found flying in {mode}", found, found, seen=True, last_mode=mode, since=now
+                )
             self._expected[vehicle.id] = exp
             log.info(
                 "%s: found flying in %s after the restart; its mode watch is on (%s)",
@@ -209,6 +218,11 @@ class ModeWatch:
         mine = op if op is not None and op.id == exp.operation_id else None
         done = mine is not None and mine.status is OpStatus.succeeded
         running = mine if mine is not None and not mine.finished else None
+        commanded = vehicle.ground_station_commands(exp.since)
+        if commanded:  # a ground station on the relay commanded the drone: whatever the mode shows
+            first = commanded[0]
+            await self._taken(vehicle, exp, mode, running, command=(first.sysid, first.what))
+            return
         if mode in exp.modes or (done and mode in exp.settled):
             exp.seen, exp.outside_since, exp.last_mode = True, None, mode
             moved = self._retargeted(vehicle, exp, running)
@@ -228,37 +242,52 @@ class ModeWatch:
         await self._taken(vehicle, exp, mode, running)
 
     def _retargeted(self, vehicle: FlyingVehicle, exp: ModeExpectation, op: Operation | None) -> float | None:
-        """How far (m) the autopilot's own target (POSITION_TARGET_GLOBAL_INT) is from the running goto's
-        once it has been off for TARGET_CONFIRM_S: another ground station repositioned or paused the
-        drone in the mode the gateway commanded (QGroundControl's Pause or "Go to location" on PX4,
-        whose gotos fly in Hold; Mission Planner's "Fly to here" in GUIDED). None while it is not."""
+        """How far (m) the autopilot's own target (POSITION_TARGET_GLOBAL_INT) is from the gateway's once
+        it has been off for TARGET_CONFIRM_S: another ground station or a pilot repositioned or paused
+        the drone in the mode the gateway commanded (QGroundControl's Pause or "Go to location" on PX4,
+        whose gotos and holds fly in Hold; a ground station's "Fly to here" or
+        SET_POSITION_TARGET_GLOBAL_INT in GUIDED on ArduCopter). The gateway's target is the running
+        goto's leg, else the one its hold, or its goto that arrived, left the drone at. None while the
+        autopilot flies the gateway's target, or while that cannot be told."""
         tracker = self._ops.tracker(op.id) if op is not None else None
-        if op is None or tracker is None or getattr(tracker, "climbing", False):
+        if op is not None and tracker is not None:
+            if getattr(tracker, "climbing", False):
+                return None  # a climb first: its leg is not sent yet
+            leg = getattr(tracker, "leg", tracker)
+            if not isinstance(leg, GotoTracker):
+                return None
+            sent = self.sent_at.get(op.id, op.started_mono)
+            if exp.target is None or exp.target != (leg.lat, leg.lon, sent):
+                exp.target, exp.target_adopted, exp.target_off_since = (leg.lat, leg.lon, sent), False, None
+            exp.target_near_m = max(TARGET_MOVED_M, 3 * leg.tolerance_m)
+        elif op is not None or exp.target is None:
+            return None  # an operation without a tracker here (another node follows it), or no target
+        return self._off_target(vehicle, exp)
+
+    @staticmethod
+    def _off_target(vehicle: FlyingVehicle, exp: ModeExpectation) -> float | None:
+        assert exp.target is not None
+        reported = vehicle.position_target()
+        if reported is None:
             return None
-        leg = getattr(tracker, "leg", tracker)
-        target = vehicle.position_target()
-        if not isinstance(leg, GotoTracker) or target is None:
-            return None
-        lat, lon, heard_at = target
-        sent = self.sent_at.get(op.id, op.started_mono)
-        near_m = max(TARGET_MOVED_M, 3 * leg.tolerance_m)
-        if self.adopted.get(op.id) != sent and any(
-            geo.horizontal_distance_m(t_lat, t_lon, leg.lat, leg.lon) <= near_m
+        goal_lat, goal_lon, sent = exp.target
+        near_m = exp.target_near_m
+        if not exp.target_adopted and any(
+            geo.horizontal_distance_m(t_lat, t_lon, goal_lat, goal_lon) <= near_m
             for t_lat, t_lon, _ in vehicle.position_targets(sent)
         ):
-            self.adopted[op.id] = sent  # reported flying this leg since it was sent, even if only briefly
-        off = geo.horizontal_distance_m(lat, lon, leg.lat, leg.lon)
+            exp.target_adopted = True  # reported flying it since it was sent, even if only briefly
+        lat, lon, heard_at = reported
+        off = geo.horizontal_distance_m(lat, lon, goal_lat, goal_lon)
         if off <= near_m:
             exp.target_off_since = None
             if heard_at >= sent:
-                self.adopted[op.id] = sent  # it flies this leg: from now on a move away is someone else's
+                exp.target_adopted = True  # it flies this target: from now on a move away is someone else's
             return None
-        if heard_at < sent + TARGET_SETTLE_S:
-            exp.target_off_since = None  # said before the command could show in it
-            return None
-        if self.adopted.get(op.id) != sent:
-            # not yet seen flying this leg's target: a report from before it, which a loaded link or
-            # gateway can hand over long after it was said, never counts as a takeover
+        if heard_at < sent + TARGET_SETTLE_S or not exp.target_adopted:
+            # said before the command could show in it, or not yet seen flying the gateway's target: a
+            # report from before it, which a loaded link or gateway can hand over long after it was
+            # said, never counts as a takeover
             exp.target_off_since = None
             return None
         if exp.target_off_since is None:
@@ -272,13 +301,16 @@ class ModeWatch:
         mode: str,
         running: Operation | None,
         moved_m: float | None = None,
+        command: tuple[int, str] | None = None,
     ) -> None:
         """A takeover: the drone is locked first (whoever hears the operation end finds it locked), then
         the running operation ends as interrupted."""
         if self._expected.get(vehicle.id) is not exp or self._ops.command_lock(vehicle.id).locked():
             return  # a command went out meanwhile
         said: str | None = None
-        if moved_m is not None:
+        if command is not None:
+            cause = f"ground station system {command[0]} sent {command[1]} through the gateway's relay"
+        elif moved_m is not None:
             cause = (
                 f"another ground station repositioned or paused it (its target is {moved_m:.0f} m from the "
                 "gateway's)"
@@ -295,6 +327,7 @@ class ModeWatch:
             operation_id=running.id if running is not None else None,
             operation_kind=running.kind if running is not None else exp.kind,
             retargeted=moved_m is not None,
+            command=command[1] if command is not None else None,
         )
         self._expected.pop(vehicle.id, None)
         log.warning("%s: %s", vehicle.id, takeover.message())
@@ -309,7 +342,6 @@ class ModeWatch:
     def drop(self, operation_id: str) -> None:
         """The operation's monitor ended: forget its legs."""
         self.sent_at.pop(operation_id, None)
-        self.adopted.pop(operation_id, None)
 
     async def stop(self) -> None:
         """Gateway shutdown: nothing more is judged; the watches end."""

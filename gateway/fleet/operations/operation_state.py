@@ -44,6 +44,8 @@ class Operation:
     message: str = "command sent"
     #: what every later message keeps saying (e.g. that another node took the operation over)
     note: str | None = None
+    #: why tracking was interrupted, once per interruption (sidecar restart, link lost): the answer says so
+    interruptions: list[str] = field(default_factory=list)
     eta_s: float | None = None
     updated_at: datetime | None = None
     finished_at: datetime | None = None

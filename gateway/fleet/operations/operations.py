@@ -291,10 +291,14 @@ class OperationManager:
     # -- internals -------------------------------------------------------------------------------
     async def _monitor(self, vehicle: FlyingVehicle, op: Operation, tracker: Tracker) -> None:
         stale_after = float(getattr(self.settings, "link_lost_after_s", 3.0))
+        interrupted = False
         try:
             while not op.finished:
                 pos_age = age_s(vehicle, "position")
                 interruption = _interruption(vehicle)
+                if interruption is not None and not interrupted:
+                    op.interruptions.append(_interruption_cause(vehicle))
+                interrupted = interruption is not None
                 if interruption is not None:
                     self._update(op, op.progress, interruption, op.eta_s)
                 elif pos_age is not None and pos_age > stale_after:
@@ -356,7 +360,7 @@ class OperationManager:
         if op.finished:
             return
         op.status = status
-        op.message = _noted(op, message)
+        op.message = _noted(op, message + _interrupted_meanwhile(op))
         op.finished_at = op.updated_at = _now()
         if status is not OpStatus.succeeded:
             op.eta_s = None
@@ -426,6 +430,28 @@ def _interruption(vehicle: FlyingVehicle) -> str | None:
     return (
         f"connection interrupted: {vehicle.id} is {name}{why}; the drone keeps flying its last command "
         "on its own, and tracking resumes when it is ready again"
+    )
+
+
+def _interruption_cause(vehicle: FlyingVehicle) -> str:
+    """One interruption in a few words: the state and the link's last error."""
+    try:
+        error = vehicle.status().get("last_error")
+    except Exception:
+        error = None
+    return f"{vehicle.state}: {error}" if error else str(vehicle.state)
+
+
+def _interrupted_meanwhile(op: Operation) -> str:
+    """What the final answer adds when the gateway lost the drone while the operation ran (the drone
+    flew on alone; e.g. the sidecar restarted): how often and why, so a long answer is explained."""
+    if not op.interruptions:
+        return ""
+    times = len(op.interruptions)
+    count = "once" if times == 1 else "twice" if times == 2 else f"{times} times"
+    return (
+        f" (the connection was interrupted {count} while it ran: {'; '.join(op.interruptions)}; "
+        "the drone flew on and tracking resumed)"
     )
 
 

@@ -163,19 +163,27 @@ class FleetHoldResult(BaseModel):
     superseded_fleet_operations: list[str]
 
 
+#: what became of one drone's stop (the REST answer and the Commander's say the same)
+StopOutcomeKind = Literal["sent", "skipped", "taking_over", "unreached", "failed"]
+STOP_OUTCOME_DOC = (
+    "sent: the command was sent to the drone (by its node, or over the drone's own link by the node that "
+    "took the stop when its node did not answer); skipped: on the ground or not connected; taking_over: "
+    "not confirmed yet: no node acknowledged it in time and the drone's link is held elsewhere, so the node "
+    "that took the stop keeps trying and sends it itself as soon as it reaches the drone (the message says "
+    "how and for how long); unreached: nothing was sent and nothing more is being tried; failed: the command "
+    "was refused or its answer was lost."
+)
+
+
 class StopOutcome(BaseModel):
-    """One drone's part of a fleet stop."""
+    """One drone's part of a stop (the fleet stop, or an operator's hold, land or RTL of one drone)."""
 
     drone_id: str
     action: str
-    outcome: Literal["sent", "skipped", "unreached", "failed"] = Field(
-        description="sent: the drone's node sent the command to the drone; skipped: on the ground or not "
-        "connected; unreached: nothing was sent (no node holds its link, or its node could not be reached "
-        "in time: it will not run it later); failed: the command was refused or its answer was lost."
-    )
-    message: str | None = None
+    outcome: StopOutcomeKind = Field(description=STOP_OUTCOME_DOC)
+    message: str | None = Field(None, description="Why, and for taking_over what is being done about it.")
     superseded_operation: str | None = None
-    operation_id: str | None = None
+    operation_id: str | None = Field(None, description="The tracked operation (GET /api/v1/operations).")
 
 
 class LockResult(BaseModel):

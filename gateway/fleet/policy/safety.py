@@ -18,11 +18,11 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import asdict
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from gateway.config import Settings
 from gateway.errors import InvalidArgument
-from gateway.fleet.policy import param_limits
+from gateway.fleet.policy import param_limits, patterns
 from gateway.fleet.policy.geofence import GeofenceSet, load_geofence_file
 from gateway.fleet.policy.operator_locks import LockBook, LockView, taken_over_text
 from gateway.fleet.policy.param_limits import ParamLimit
@@ -52,6 +52,9 @@ from gateway.fleet.policy.safety_rules import (
     refuse,
 )
 from gateway.fleet.policy.vehicle_limits import Limits, split_patterns
+
+if TYPE_CHECKING:
+    from gateway.fleet.dialects.modes import ModeChoice
 
 _PARAM_NAME_RE = re.compile(r"^[A-Z0-9_]{1,16}$")
 
@@ -174,6 +177,14 @@ class SafetyPolicy:
                 vehicle_id=ctx.vehicle_id,
                 mode=name,
             )
+
+    def check_mode_choice(
+        self, ctx: VehicleContext, choice: ModeChoice, via: Via = "mcp", pattern_radius_m: float | None = None
+    ) -> None:
+        """A mode by what it needs (agents: only the modes the dialect lists as flyable without a pilot,
+        in the air) and what it flies (a pattern's extent, for everyone): `gateway.fleet.policy.patterns`."""
+        patterns.check_air_mode(ctx, choice, via)
+        patterns.check_pattern(self.geofences, ctx, self.limits_for(ctx.vehicle_id), choice, pattern_radius_m)
 
     def check_arm(self, ctx: VehicleContext, via: Via = "mcp") -> None:
         """Arming: locks, simulators-only and the takeoff battery minimum."""
@@ -411,7 +422,7 @@ class SafetyPolicy:
                 pattern=denied.upper(),
             )
         rule = param_limits.governing(governed or {}, upper)
-        if rule is not None:
+        if rule is not None and rule.limit is not None:
             if value is None:
                 return
             limits = self.limits_for(vehicle_id) if vehicle_id else self.fleet_limits
@@ -431,12 +442,21 @@ class SafetyPolicy:
         if param_limits.matches(upper, self.param_allow_patterns) is None:
             raise refuse(
                 Rule.PARAM_NOT_ALLOWED,
-                f"agents may write only parameters that a limit governs ({', '.join(sorted(governed or {}))}"
+                f"agents may write only parameters that a limit governs "
+                f"({', '.join(param_limits.governed_names(governed or {}))}"
                 f") or that GATEWAY_AGENT_PARAM_ALLOW names; {upper} is neither, so nothing was written. An "
                 "operator can write it over REST or add it to GATEWAY_AGENT_PARAM_ALLOW",
                 vehicle_id=vehicle_id,
                 param=upper,
             )
+        documented = param_limits.documented(governed or {}, upper)
+        if documented is not None and value is not None:
+            why = param_limits.outside_range(upper, float(value), documented)
+            if why is not None:
+                raise refuse(
+                    Rule.PARAM_RANGE, f"{why}; nothing was written", vehicle_id=vehicle_id, param=upper,
+                    value=value, low=documented.low, high=documented.high,
+                )  # fmt: skip
 
 
 # ------------------------------------------------------------------------------------------------

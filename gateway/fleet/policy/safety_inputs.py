@@ -54,6 +54,14 @@ class VehicleContext:
     battery_pct: float | None
     home: tuple[float, float, float] | None
     position: tuple[float, float, float] | None
+    #: (lat, lon, alt_amsl_m) the distance limit and the zones count from: fixed per vehicle (the first
+    #: home it reported, moved only by an operator); None until known, then the home stands in
+    origin: tuple[float, float, float] | None = None
+
+    @property
+    def distance_origin(self) -> tuple[float, float, float] | None:
+        """Where the distance limit counts from: the vehicle's origin, else (not yet known) its home."""
+        return self.origin if self.origin is not None else self.home
 
     @property
     def airborne(self) -> bool:

@@ -10,7 +10,9 @@ switch, another ground station, or the autopilot's own failsafe. The running ope
 ``interrupted`` with `Takeover.message`, and the drone is locked for agents (`Takeover.lock_reason`,
 `gateway.fleet.policy.operator_locks.LockBook.take_over`) until an operator releases it. The gateway sends
 that drone
-nothing on its own meanwhile.
+nothing on its own meanwhile. The same holds when the mode stays but the autopilot's own target leaves
+the gateway's (`ModeExpectation.target`), and when a ground station on the gateway's relay sends the
+drone a command (`gateway.link.ground_commands`).
 
 Pure logic: no I/O, no clocks but the times handed in.
 """
@@ -55,8 +57,18 @@ class ModeExpectation:
     #: that may have just finished), monotonic
     outside_since: float | None = None
     last_mode: str | None = None
-    #: when the autopilot's reported target was first seen away from the running goto's (monotonic)
+    #: the gateway's target the autopilot should report (lat, lon, monotonic time sent): the running
+    #: goto's leg, or where a hold or a goto that arrived left the drone; None: nothing to compare
+    target: tuple[float, float, float] | None = None
+    #: the autopilot has reported ``target`` since it was sent: from then on a move away is someone else's
+    target_adopted: bool = False
+    #: how far (m) the reported target may be from ``target``
+    target_near_m: float = 10.0
+    #: when the autopilot's reported target was first seen away from ``target`` (monotonic)
     target_off_since: float | None = None
+    #: when the gateway commanded it (monotonic): a ground station's command on the relay after that is
+    #: a takeover
+    since: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -73,6 +85,8 @@ class Takeover:
     operation_kind: str | None = None
     #: the mode stayed; the autopilot's target moved away from the gateway's (another ground station)
     retargeted: bool = False
+    #: a ground station on the gateway's relay sent the drone a command ("COMMAND_LONG MAV_CMD_...")
+    command: str | None = None
 
     @property
     def failsafe(self) -> bool:
@@ -81,6 +95,11 @@ class Takeover:
     def message(self) -> str:
         """How the operation ended, for the caller waiting on it."""
         said = f" (autopilot says: '{self.said}')" if self.said else ""
+        if self.command is not None:
+            return (
+                f"a ground station commanded the drone in {self.to_mode}: {self.cause}. The ground station "
+                f"has control now; drone {self.vehicle_id} is locked for agents until an operator releases it"
+            )
         if self.retargeted:
             return (
                 f"the autopilot left the gateway's target while staying in {self.to_mode}: {self.cause}. "
@@ -96,6 +115,8 @@ class Takeover:
     def lock_reason(self) -> str:
         """The takeover lock's reason, shown to agents, operators, list_drones and REST."""
         said = f" (autopilot says: '{self.said}')" if self.said else ""
+        if self.command is not None:
+            return f"taken over in {self.to_mode} at {self.at.strftime('%H:%M:%S')} UTC: {self.cause}"
         if self.retargeted:
             return (
                 f"taken over in {self.to_mode} at {self.at.strftime('%H:%M:%S')} UTC: the autopilot left "
@@ -117,6 +138,7 @@ class Takeover:
             "operation_id": self.operation_id,
             "operation_kind": self.operation_kind,
             "retargeted": "yes" if self.retargeted else None,
+            "command": self.command,
         }
 
 

@@ -6,7 +6,8 @@
   SYSID_MYGCS -> MAV_GCS_SYSID, SRn_* -> MAV(n+1)_*).
 * Each parameter has its own type; reading with the wrong getter gives WRONG_TYPE, so the type is
   detected once and remembered, and writes use it.
-* The full list (~1000+ names) is fetched once and cached with its time.
+* The full list (~1000+ names) is fetched once (on the first read) and cached with its time; a name
+  not in it is refused without asking the autopilot.
 * Neither autopilot refuses a value outside a parameter's range: ArduPilot clamps an integer to its
   type (FENCE_ENABLE is 8-bit: 1000 is stored as 127; through MAVSDK, which casts to the type it
   learnt, as -24) and says nothing. Integers are read back after a
@@ -27,6 +28,7 @@ from gateway.errors import CommandFailed, InvalidArgument
 
 PARAM_TIMEOUT_S = 6.0  # MAVSDK gives up on a param after ~3 s
 PARAM_LIST_TIMEOUT_S = 60.0
+LIST_RETRY_AFTER_S = 60.0  # a vehicle that did not give its list is not asked again before this
 
 INT32_RANGE = (-(2**31), 2**31 - 1)  # MAVSDK's set_param_int carries an int32
 #: what the autopilot answers for a name it does not have: nothing (ArduPilot up to 4.6, MAVSDK times
@@ -71,6 +73,7 @@ class Parameters:
         self._system = system
         self._cache: dict[str, Value] | None = None
         self._cached_at: float | None = None
+        self._list_failed_at: float | None = None
         self._types: dict[str, str] = {}
         self._names: dict[str, str] = {}  # requested name -> the name the vehicle knows
 
@@ -99,22 +102,43 @@ class Parameters:
     async def get(self, name: str) -> tuple[Value, str]:
         """Value and type ('int' | 'float'); the other ArduPilot spelling is tried when there is one."""
         name = check_param_name(name)
-        system = self._system()
         candidates = [self._names.get(name, name), *param_aliases(name)]
-        if self._cache is not None:  # names known to be on the vehicle first
-            candidates.sort(key=lambda c: c not in self._cache)  # type: ignore[operator]
+        listed = await self._listed()
+        if listed is not None:
+            if not any(c in listed for c in candidates):  # the autopilot's own list: no need to ask it
+                raise self._unknown(name, f"not among the {len(listed)} parameters it lists")
+            candidates.sort(key=lambda c: c not in listed)  # names known to be on the vehicle first
+        system = self._system()
         for candidate in dict.fromkeys(candidates):
             got = await self._read(system, candidate)
             if got is not None:
                 self._names[name] = candidate
                 return got
+        raise self._unknown(name, "the vehicle did not answer or said it does not exist")
+
+    def _unknown(self, name: str, why: str) -> CommandFailed:
         alias = param_aliases(name)
-        raise CommandFailed(
-            f"unknown parameter '{name}' on drone '{self.vehicle_id}': the vehicle did not answer "
-            "or said it does not exist" + (f"; also tried {', '.join(alias)}" if alias else ""),
+        return CommandFailed(
+            f"unknown parameter '{name}' on drone '{self.vehicle_id}': {why}"
+            + (f"; also tried {', '.join(alias)}" if alias else ""),
             vehicle_id=self.vehicle_id,
             result="UNKNOWN_PARAMETER",
         )
+
+    async def _listed(self) -> dict[str, Value] | None:
+        """The autopilot's parameter list, fetched on the first read and kept (an unknown name is then
+        refused at once: older ArduPilot does not answer one, and MAVSDK waits ~3 s for nothing); None
+        when the list cannot be had (the name is then asked for itself)."""
+        if self._cache is None:
+            failed = self._list_failed_at
+            if failed is not None and time.monotonic() - failed < LIST_RETRY_AFTER_S:
+                return None
+            try:
+                await self.all()
+            except CommandFailed:
+                self._list_failed_at = time.monotonic()
+                return None
+        return self._cache
 
     async def set(self, name: str, value: Value) -> tuple[Value, str]:
         """Write with the vehicle's own type for the parameter; returns (stored value, type)."""

@@ -30,6 +30,7 @@ from gateway.errors import OwnedElsewhere
 from gateway.fleet.dialects.modes import ModeChoice
 from gateway.fleet.missions.mission import MissionItem
 from gateway.fleet.policy.param_limits import ParamLimit
+from gateway.link.contract import GroundCommand
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 
@@ -100,6 +101,14 @@ class VehicleView(Protocol):
     def position_targets(self, since: float) -> list[tuple[float, float, float]]:
         """The targets the autopilot reported at or after ``since`` (monotonic), oldest first, as far
         back as the last few seconds: a target it flew only briefly still shows here."""
+
+    def ground_station_commands(self, since: float) -> list[GroundCommand]:
+        """What ground stations on the gateway's relay sent that acts on the drone, at or after ``since``
+        (monotonic), oldest first (`gateway.link.ground_commands`); none without a relay."""
+
+    def commanded_target(self) -> tuple[float, float, float] | None:
+        """The last position target the gateway sent this drone (a goto or a hold): lat, lon and when
+        it was sent (monotonic); None when it sent none (or a hold on the ground sent nothing)."""
 
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         """The modes the autopilot may show while it does what the gateway commanded (an operation of

@@ -38,7 +38,7 @@ from gateway.fleet.vehicles.params import Parameters
 from gateway.fleet.vehicles.vehicle_arming import Arming
 from gateway.fleet.vehicles.vehicle_missions import MissionControl
 from gateway.fleet.vehicles.waits import wait_for_state
-from gateway.link.contract import ConnectionState, OnWait, Peer
+from gateway.link.contract import ConnectionState, GroundCommand, OnWait, Peer
 from gateway.link.link_status import link_status
 from gateway.link.session import Link
 from gateway.link.sidecar import Confine, Sidecar
@@ -94,9 +94,11 @@ class Vehicle:
         self._return_alt_name: str | None = None  # the RTL altitude parameter this vehicle has
         #: POSITION_TARGET_GLOBAL_INT: where the autopilot flies to (lat, lon, monotonic time heard)
         self._target: tuple[float, float, float] | None = None
-        # the last reports (2 Hz: about 8 s), so a takeover watch that ticks late still sees a target
+        # the last reports (5 Hz: about 3 s), so a takeover watch that ticks late still sees a target
         # the autopilot flew only briefly before another ground station replaced it
         self._targets: deque[tuple[float, float, float]] = deque(maxlen=16)
+        #: the last position target the gateway sent (goto, hold): lat, lon, monotonic time sent
+        self._commanded: tuple[float, float, float] | None = None
 
     # --- identity, state and the link ----------------------------------------------------------------
     @property
@@ -345,6 +347,7 @@ class Vehicle:
         self.require_ready()
         amsl = geo.relative_to_amsl(float(alt_rel_m), self.home_amsl_m())
         yaw = float("nan") if yaw_deg is None else float(yaw_deg) % 360.0
+        self._commanded = (float(lat), float(lon), time.monotonic())
         await self.link.call("goto", self.system.action.goto_location(float(lat), float(lon), amsl, yaw))
 
     async def hold(self) -> None:
@@ -353,10 +356,12 @@ class Vehicle:
         self.require_dialect()
         system = self.link.require_session()
         if self.on_ground() is not False:
+            self._commanded = None  # nothing sent: no target of the gateway's to hold to
             return
         pos = self.telemetry.fresh("position")
         if pos is None:
             raise CommandFailed(f"cannot hold drone '{self.id}': no current position", vehicle_id=self.id)
+        self._commanded = (pos.lat_deg, pos.lon_deg, time.monotonic())
         await self.link.call(
             "hold", system.action.goto_location(pos.lat_deg, pos.lon_deg, pos.abs_alt_m, float("nan"))
         )
@@ -392,8 +397,17 @@ class Vehicle:
     def position_targets(self, since: float) -> list[tuple[float, float, float]]:
         return [t for t in self._targets if t[2] >= since]
 
+    def ground_station_commands(self, since: float) -> list[GroundCommand]:
+        relay = self.link.relay
+        return [] if relay is None else relay.commands_since(since)
+
+    def commanded_target(self) -> tuple[float, float, float] | None:
+        """The last position target the gateway sent (a goto or a hold): latitude, longitude and when it
+        was sent (monotonic, just before); None when the last hold sent nothing (on the ground)."""
+        return self._commanded
+
     async def _position_target(self, system: System) -> None:
-        """POSITION_TARGET_GLOBAL_INT (the link asks for it at 2 Hz with the other rates): the target a
+        """POSITION_TARGET_GLOBAL_INT (the link asks for it at 5 Hz with the other rates): the target a
         goto's takeover watch compares with the gateway's own."""
         self._target = None
         self._targets.clear()

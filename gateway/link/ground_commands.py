@@ -1,0 +1,78 @@
+"""What a ground station on the relay sends that commands the drone, as opposed to what only reads it.
+
+A ground station sharing the drone's MAVLink through the relay (`gateway.link.relay`) asks for data all
+the time (heartbeats, parameter and mission downloads, message rates, REQUEST_MESSAGE); a few messages
+act on the drone: a new target, a mission change, a parameter write, a command. The relay notes each of
+those (`gateway.link.contract.GroundCommand`), and the takeover watch reads them: while the gateway
+flies the drone, any is a takeover (`gateway.fleet.policy.takeover`). Mode switches (SET_MODE,
+MAV_CMD_DO_SET_MODE) are left to the HEARTBEAT the watch already judges, which names both modes.
+"""
+
+from __future__ import annotations
+
+from pymavlink.dialects.v20 import ardupilotmega as mavlink
+
+from gateway.link.contract import GroundCommand
+from gateway.link.mavlink_frames import Frame, decoded
+
+__all__ = ["GroundCommand", "acting"]
+
+#: messages that act on the drone whatever their fields say
+ACTING_MESSAGES = frozenset(
+    {
+        mavlink.MAVLINK_MSG_ID_SET_POSITION_TARGET_GLOBAL_INT,
+        mavlink.MAVLINK_MSG_ID_SET_POSITION_TARGET_LOCAL_NED,
+        mavlink.MAVLINK_MSG_ID_SET_ATTITUDE_TARGET,
+        mavlink.MAVLINK_MSG_ID_MANUAL_CONTROL,
+        mavlink.MAVLINK_MSG_ID_RC_CHANNELS_OVERRIDE,
+        mavlink.MAVLINK_MSG_ID_MISSION_SET_CURRENT,
+        mavlink.MAVLINK_MSG_ID_MISSION_COUNT,  # a mission upload starts
+        mavlink.MAVLINK_MSG_ID_MISSION_CLEAR_ALL,
+        mavlink.MAVLINK_MSG_ID_MISSION_ITEM,
+        mavlink.MAVLINK_MSG_ID_MISSION_ITEM_INT,
+        mavlink.MAVLINK_MSG_ID_PARAM_SET,
+        mavlink.MAVLINK_MSG_ID_SET_HOME_POSITION,
+        mavlink.MAVLINK_MSG_ID_SET_GPS_GLOBAL_ORIGIN,
+    }
+)
+#: messages whose ``command`` field says whether they act
+COMMAND_MESSAGES = frozenset({mavlink.MAVLINK_MSG_ID_COMMAND_LONG, mavlink.MAVLINK_MSG_ID_COMMAND_INT})
+#: commands that only ask for data, or switch the mode (judged through the HEARTBEAT instead)
+NOT_ACTING_COMMANDS = frozenset(
+    {
+        mavlink.MAV_CMD_REQUEST_MESSAGE,
+        mavlink.MAV_CMD_SET_MESSAGE_INTERVAL,
+        mavlink.MAV_CMD_REQUEST_AUTOPILOT_CAPABILITIES,
+        mavlink.MAV_CMD_REQUEST_PROTOCOL_VERSION,
+        mavlink.MAV_CMD_GET_HOME_POSITION,
+        mavlink.MAV_CMD_GET_MESSAGE_INTERVAL,
+        mavlink.MAV_CMD_REQUEST_CAMERA_INFORMATION,
+        mavlink.MAV_CMD_REQUEST_CAMERA_SETTINGS,
+        mavlink.MAV_CMD_REQUEST_STORAGE_INFORMATION,
+        mavlink.MAV_CMD_REQUEST_CAMERA_CAPTURE_STATUS,
+        mavlink.MAV_CMD_REQUEST_FLIGHT_INFORMATION,
+        mavlink.MAV_CMD_DO_SET_MODE,
+    }
+)
+#: MAV_CMD names by number, for the words of a takeover
+_COMMAND_NAMES = {number: entry.name for number, entry in mavlink.enums["MAV_CMD"].items()}
+
+
+def acting(frame: Frame, vehicle_sysids: set[int]) -> str | None:
+    """What ``frame`` (from a ground station) does to the drone, in words; None when it only reads, is
+    addressed to another system, or switches the mode."""
+    if frame.msgid not in ACTING_MESSAGES and frame.msgid not in COMMAND_MESSAGES:
+        return None
+    msg = decoded(frame)
+    if msg is None:
+        return None
+    target = int(getattr(msg, "target_system", 0) or 0)
+    if target and vehicle_sysids and target not in vehicle_sysids:
+        return None  # to another system (a camera, a gimbal, another drone): not this drone
+    name = str(msg.get_type())
+    if frame.msgid in COMMAND_MESSAGES:
+        command = int(getattr(msg, "command", 0))
+        if command in NOT_ACTING_COMMANDS:
+            return None
+        return f"{name} {_COMMAND_NAMES.get(command, str(command))}"
+    return name
