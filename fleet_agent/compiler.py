@@ -13,6 +13,7 @@ from typing import Any, Protocol
 
 from fleet_agent import geometry
 from fleet_agent.plan import (
+    POLYGON_SIDES,
     Altitude,
     Ask,
     Choose,
@@ -246,8 +247,9 @@ def pattern_legs(step: Pattern) -> list[geometry.Offset]:
     """A pattern's legs from where the drone is."""
     heading = 0.0 if step.heading in ("up", "down") else geometry.compass_heading(step.heading)
     clockwise = step.turn == "right"
-    if step.shape == "polygon":
-        return geometry.polygon_legs(step.sides or 4, step.size.metres, heading, clockwise)
+    if step.shape in POLYGON_SIDES or step.shape == "polygon":
+        sides = POLYGON_SIDES.get(step.shape) or step.sides or 4
+        return geometry.polygon_legs(sides, step.size.metres, heading, clockwise)
     if step.shape == "orbit":
         return geometry.orbit_legs(step.size.metres, clockwise=clockwise)
     spacing = step.spacing.metres if step.spacing is not None else step.size.metres / 4

@@ -103,12 +103,17 @@ class Move(DroneStep):
     origin: Reference
 
 
+#: the polygons a shape's name says the sides of
+POLYGON_SIDES = {"triangle": 3, "square": 4, "pentagon": 5, "hexagon": 6, "octagon": 8}
+
+
 class Pattern(DroneStep):
-    """polygon: ``sides`` sides of ``size``; orbit: a circle of radius ``size``; survey: ``lines`` lines of
-    ``size``, ``spacing`` apart. Flown from where the drone is, first leg towards ``heading``."""
+    """A polygon (named, or ``polygon`` with ``sides``) with sides of ``size``; an orbit, a circle of radius
+    ``size``; a survey, ``lines`` lines of ``size``, ``spacing`` apart. Flown by one drone from where it is,
+    the first leg towards ``heading``."""
 
     action: Literal["pattern"]
-    shape: Literal["polygon", "orbit", "survey"]
+    shape: Literal["triangle", "square", "pentagon", "hexagon", "octagon", "polygon", "orbit", "survey"]
     size: Length
     sides: int | None = Field(default=None, ge=3, le=12)
     lines: int | None = Field(default=None, ge=1, le=20)

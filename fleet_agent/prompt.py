@@ -17,10 +17,11 @@ the request gives them. Write only the JSON. Each step has an "action":
   northwest, southeast, southwest, up, down); altitude is the height to fly at or null; origin says where
   the legs start: {"kind": "here"} the drone itself, "home", {"kind": "drone", "drone": id} another
   drone, {"kind": "place", "place": name} a named place, {"kind": "point", "lat_deg", "lon_deg"} coordinates
-- pattern {drone, shape, size, ...}: polygon (sides, size = side length), orbit (size = radius),
-  survey (lines, size = line length, spacing); optional heading, turn, altitude
+- pattern {drone, shape, size, ...}: ONE drone flies a shape: triangle, square, pentagon, hexagon,
+  octagon or polygon (sides) with size = side length; orbit (a circle, size = radius); survey (lines,
+  size = line length, spacing); optional heading (first leg), turn (right, left), altitude
 - formation {drones, shape (line, column, wedge, grid, circle), spacing, altitude, legs (the centre's move),
-  origin (optional: the centre, as for a move)}
+  origin (optional: the centre, as for a move)}: SEVERAL drones placed together
 - report {drones, readings (battery, altitude, position, flying, mode), pick (none, highest, lowest)}:
   a question; nothing flies
 - if {drone, reading (battery or altitude), compare (above, below, at_least, at_most), value, then,
@@ -49,7 +50,7 @@ EXAMPLES: list[tuple[str, dict[str, Any]]] = [
      {"steps": [{"action": "takeoff", "drone": "delta", "altitude": _m(40, "ft")},
                 {"action": "land", "drone": "delta"}]}),
     ("Fly echo in a triangle with 30 m sides at 15 m.",
-     {"steps": [{"action": "pattern", "drone": "echo", "shape": "polygon", "sides": 3, "size": _m(30),
+     {"steps": [{"action": "pattern", "drone": "echo", "shape": "triangle", "size": _m(30),
                  "altitude": _m(15)}]}),
     ("Send delta to a spot 20 m east of echo, at 12 m, and leave it there.",
      {"steps": [{"action": "move", "drone": "delta", "legs": [_leg(20, "east")], "altitude": _m(12),

@@ -143,8 +143,13 @@ async def test_a_named_place_and_home_are_origins() -> None:
 
 
 async def test_a_square_for_one_drone_is_four_legs_not_a_formation() -> None:
-    step = {"action": "pattern", "drone": "charlie", "shape": "polygon", "sides": 4, "size": m(66, "ft"),
-            "altitude": m(10)}  # fmt: skip
+    step = {
+        "action": "pattern",
+        "drone": "charlie",
+        "shape": "square",
+        "size": m(66, "ft"),
+        "altitude": m(10),
+    }
     calls = await compiled(step)
     assert calls[0] == Call("takeoff", {"drone_id": "charlie", "alt_m": 10.0}, "charlie")
     legs = [(c.args["north_m"], c.args["east_m"]) for c in calls[1:]]
@@ -157,6 +162,16 @@ async def test_a_formation_carries_its_spacing_and_centre_move() -> None:
     args = {"drone_ids": ["alpha", "bravo"], "formation": "column", "alt_m": 15.0, "spacing_m": 12.0,
             "north_m": 40.0}  # fmt: skip
     assert await compiled(step) == [Call("formation_goto", args)]
+
+
+async def test_a_named_polygon_has_its_sides_and_a_polygon_its_count() -> None:
+    hexagon = await compiled({"action": "pattern", "drone": "alpha", "shape": "hexagon", "size": m(12)})
+    assert len(hexagon) == 7 and hexagon[1].args["north_m"] == 12.0  # a takeoff, then six legs
+    five = {"action": "pattern", "drone": "alpha", "shape": "polygon", "sides": 5, "size": m(12)}
+    assert len(await compiled(five, FakeSensors({"alpha": flying()}))) == 5
+    orbit = {"action": "pattern", "drone": "alpha", "shape": "orbit", "size": m(25), "turn": "left"}
+    legs = await compiled(orbit, FakeSensors({"alpha": flying()}))
+    assert len(legs) == 14 and legs[1].args["east_m"] < 0  # round to the left (west) first
 
 
 async def test_a_formation_centred_on_a_point() -> None:
