@@ -61,9 +61,10 @@ class Reference(Strict):
 
 
 class DroneStep(Strict):
-    drone: str
+    """A step of one drone. Each step declares its ``action`` first and then its ``drone``: a schema-guided
+    decoder writes the properties in the schema's order, and the examples start a step with its action."""
 
-    @field_validator("drone")
+    @field_validator("drone", check_fields=False)
     @classmethod
     def _known_drone(cls, value: str, info: ValidationInfo) -> str:
         return known_drone(value, info)
@@ -71,25 +72,30 @@ class DroneStep(Strict):
 
 class Takeoff(DroneStep):
     action: Literal["takeoff"]
+    drone: str
     altitude: Length
 
 
 class Land(DroneStep):
     action: Literal["land"]
+    drone: str
 
 
 class ReturnHome(DroneStep):
     action: Literal["return_home"]
+    drone: str
 
 
 class Hold(DroneStep):
     action: Literal["hold"]
+    drone: str
 
 
 class Altitude(DroneStep):
     """Climb or descend to an altitude above home (taking off first when on the ground)."""
 
     action: Literal["altitude"]
+    drone: str
     altitude: Length
 
 
@@ -98,6 +104,7 @@ class Move(DroneStep):
     above home when given."""
 
     action: Literal["move"]
+    drone: str
     legs: list[Leg]
     altitude: Length | None
     origin: Reference
@@ -113,6 +120,7 @@ class Pattern(DroneStep):
     the first leg towards ``heading``."""
 
     action: Literal["pattern"]
+    drone: str
     shape: Literal["triangle", "square", "pentagon", "hexagon", "octagon", "polygon", "orbit", "survey"]
     size: Length
     sides: int | None = Field(default=None, ge=3, le=12)
@@ -175,6 +183,7 @@ class Condition(DroneStep):
     """``then`` when the drone's reading compares true to ``value`` (% or m), else ``otherwise``."""
 
     action: Literal["if"]
+    drone: str
     reading: Literal["battery", "altitude"]
     compare: Literal["above", "below", "at_least", "at_most"]
     value: float
