@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import re
 import socket
 from functools import lru_cache
@@ -284,6 +285,15 @@ class Settings(BaseSettings):
                 f"e.g. https://tile.example.org/{{z}}/{{x}}/{{y}}.png; got {value!r}"
             )
         return value.strip()
+
+    @model_validator(mode="after")
+    def _numbers_are_finite(self) -> Settings:
+        """A limit of inf or nan would hold nothing (every comparison with nan is false): refused at
+        start, naming the variable."""
+        for name, value in self:
+            if isinstance(value, float) and not math.isfinite(value):
+                raise ValueError(f"GATEWAY_{name.upper()} must be a finite number; got {value}")
+        return self
 
     @model_validator(mode="after")
     def _scopes_name_configured_agents(self) -> Settings:

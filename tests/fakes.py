@@ -25,6 +25,7 @@ from gateway.fleet import geo
 from gateway.fleet.dialects import ARDUPILOT
 from gateway.fleet.dialects.modes import ModeChoice, require_mode
 from gateway.fleet.missions.mission import MissionItem
+from gateway.fleet.policy.origin import Origin, checked_point
 from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleRegistry
 from gateway.fleet.vehicles.vehicle import ConnectionState
@@ -42,6 +43,7 @@ from gateway.link.telemetry import (
     TelemetryCache,
     VelocityNedValue,
 )
+from gateway.registry.records import utcnow
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from gateway.runtime import Gateway
@@ -72,6 +74,8 @@ class FakeVehicle:
         self._spec = spec or VehicleSpec(id=vid, url="tcpout://127.0.0.1:5760", name=vid.upper())
         self.state = state
         self.is_simulator = True
+        #: the origin the distance limit counts from (None: the home stands in)
+        self.fixed_origin: tuple[float, float, float] | None = None
         self.speed = speed
         self.sent: list[tuple[Any, ...]] = []
         self.log: list[tuple[float, str, tuple[Any, ...]]] = []
@@ -200,6 +204,10 @@ class FakeVehicle:
     @property
     def protected_params(self) -> tuple[str, ...]:
         return ARDUPILOT.protected_params
+
+    @property
+    def origin(self) -> tuple[float, float, float] | None:
+        return self.fixed_origin
 
     @property
     def limit_params(self) -> Mapping[str, ParamLimit]:
@@ -407,6 +415,14 @@ class FakeRegistry:
     async def stop(self) -> None:
         for vehicle in self.vehicles.values():
             await vehicle.stop_streaming()
+
+    async def move_origin(
+        self, vehicle_id: str, lat: object, lon: object, alt_amsl_m: object, by: str
+    ) -> Origin:
+        vehicle = self.get(vehicle_id)
+        origin = Origin(vehicle_id, *checked_point(lat, lon, alt_amsl_m), "operator", by, utcnow())
+        vehicle.fixed_origin = origin.point
+        return await self.store.save_origin(origin)
 
     async def add(self, spec: VehicleSpec, connect: bool = True) -> FakeVehicle:
         await self.store.add_vehicle(spec, auto_connect=connect)

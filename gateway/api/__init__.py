@@ -4,7 +4,19 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Depends
 
-from gateway.api import activity, cluster, control, events, flights, flying, geofences, missions, vehicles
+from gateway.api import (
+    activity,
+    cluster,
+    control,
+    events,
+    flights,
+    flying,
+    geofences,
+    missions,
+    origins,
+    params,
+    vehicles,
+)
 from gateway.api.deps import authorize
 
 API_PREFIX = "/api/v1"
@@ -21,7 +33,9 @@ def build_api_router(*beside: APIRouter) -> APIRouter:
     api.include_router(control.router)
     api.include_router(flying.router)
     api.include_router(missions.router)
+    api.include_router(params.router)
     api.include_router(geofences.router)
+    api.include_router(origins.router)
     api.include_router(cluster.router)
     api.include_router(events.router)
     for router in beside:

@@ -39,9 +39,12 @@ async def _arguments(request: Request) -> dict[str, Any]:
     if raw:
         try:
             body = json.loads(raw)
-        except ValueError:
+        except (ValueError, RecursionError):  # not JSON, or nested too deeply to read: kept as text
             body = raw[:500].decode("utf-8", errors="replace")
         args["body"] = body
+    note = getattr(request.state, "audit_note", None)
+    if isinstance(note, dict):
+        args.update(note)
     return args
 
 

@@ -20,13 +20,13 @@ router = APIRouter(tags=["operator control"], route_class=AuditedRoute)
 
 
 class TakeoffIn(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", strict=True)  # JSON numbers only: no "10", no true
 
     alt_rel_m: float = Field(gt=0, le=10_000, allow_inf_nan=False, description="Metres above home.")
 
 
 class GotoIn(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", strict=True)  # JSON numbers only: no "10", no true
 
     lat: float = Field(ge=-90, le=90, allow_inf_nan=False, description="Latitude, degrees.")
     lon: float = Field(ge=-180, le=180, allow_inf_nan=False, description="Longitude, degrees.")

@@ -8,6 +8,7 @@ the stop over the drone's own link (`gateway.cluster.stoplink`), opened for that
 
 from __future__ import annotations
 
+import asyncio
 import contextlib
 import logging
 import time
@@ -32,6 +33,8 @@ log = logging.getLogger("gateway.cluster")
 #: a stop sent over a drone's own link by its fenced node: its whole answer (open, for a hold ask where
 #: the drone is, send, ack) within this (a land is sent at once; this bounds waiting for its answer)
 STOP_SEND_S = 4.0
+#: one try at the drone's own link within that (its sidecar may still be letting go of it)
+LINK_TRY_S = 1.0
 
 
 class FencedStops:
@@ -43,6 +46,8 @@ class FencedStops:
         # to each (land, return, hold over the drone's own link) until a node holds a live lease of it
         self.fenced: dict[str, StopTarget] = {}
         self._paths: dict[str, Subscription] = {}
+        # the vehicles whose sidecars are being stopped as this node fences itself, while they are
+        self._leaving: dict[str, Any] = {}
 
     def targets(self) -> list[StopTarget]:
         registry = self._node.registry
@@ -53,7 +58,13 @@ class FencedStops:
                 continue
             sysid = getattr(vehicle, "sysid", None) or vehicle.spec.expected_sysid
             targets.append(StopTarget(vid, vehicle.spec.url, sysid, lease.epoch))
+            if not isinstance(vehicle, RemoteVehicle):
+                self._leaving[vid] = vehicle
         return targets
+
+    def left(self) -> None:
+        """Its sidecars are stopped: a stop goes over the drones' own links only."""
+        self._leaving.clear()
 
     async def keep(self, targets: list[StopTarget]) -> None:
         registry = self._node.registry
@@ -122,14 +133,32 @@ class FencedStops:
                 f"drone's own link; {verb} was not run"
             )
         started = time.monotonic()
-        try:
-            answer_ = await send_stop(target, verb, STOP_SEND_S)
-        except Exception as exc:
-            log.error("%s: %s over its own link failed (%r): nothing sent", vehicle_id, verb, exc)
-            raise NotRun(
-                f"node {self._node.node_id} (fenced) could not open {vehicle_id}'s link ({exc}): "
-                f"{verb} was not sent"
-            ) from None
+        deadline = started + STOP_SEND_S
+        answer_: str | None = None
+        while answer_ is None:
+            leaving = self._leaving.get(vehicle_id)
+            if leaving is not None and str(leaving.state) == "ready":
+                # its sidecar is still being stopped (its flight log closing): while its link is up, the
+                # stop goes through it
+                try:
+                    await getattr(leaving, verb)()
+                except Exception as exc:
+                    log.info("%s: %s through its stopping sidecar failed (%r)", vehicle_id, verb, exc)
+                else:
+                    answer_ = "ACCEPTED (through its sidecar, still being stopped)"
+                    break
+            try:
+                left = max(0.3, deadline - time.monotonic())
+                answer_ = await send_stop(target, verb, min(left, LINK_TRY_S), hear_first=True)
+            except Exception as exc:
+                if time.monotonic() < deadline - 0.3:  # the link may be freed any moment (sidecar stopping)
+                    await asyncio.sleep(0.1)
+                    continue
+                log.error("%s: %s over its own link failed (%r): nothing sent", vehicle_id, verb, exc)
+                raise NotRun(
+                    f"node {self._node.node_id} (fenced) could not open {vehicle_id}'s link ({exc}): "
+                    f"{verb} was not sent"
+                ) from None
         log.warning("%s: %s sent over its own link by fenced node %s for %s (autopilot: %s, after %.0f ms)",
                     vehicle_id, verb, self._node.node_id, caller.principal, answer_,
                     (time.monotonic() - started) * 1000)  # fmt: skip

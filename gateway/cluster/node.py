@@ -222,7 +222,13 @@ class ClusterNode:
                         "node %s could not renew its leases in time: stopping its sidecars", self.node_id
                     )
                     targets = self.stops.targets()
-                    await self._drop_all(list(self.held), "leases could not be renewed")
+                    # the stop-only path listens before the sidecars are stopped: stopping one can take
+                    # seconds (its flight log closing), and a stop meanwhile goes through it
+                    await self.stops.keep(targets)
+                    try:
+                        await self._drop_all(list(self.held), "leases could not be renewed")
+                    finally:
+                        self.stops.left()
                     await self.stops.keep(targets)
                 with contextlib.suppress(Exception):
                     await self._stop_strays()

@@ -253,5 +253,9 @@ class RemoteVehicle:
         return every_protected_param() if self.autopilot is None else self.dialect.protected_params
 
     @property
+    def origin(self) -> tuple[float, float, float] | None:
+        return None  # kept by the node that flies it, where every command is decided
+
+    @property
     def limit_params(self) -> Mapping[str, ParamLimit]:
         return every_limit_param() if self.autopilot is None else self.dialect.limit_params

@@ -16,6 +16,7 @@ from gateway.config import Settings
 from gateway.errors import InvalidArgument
 from gateway.mcp import sdk_private
 from gateway.mcp.refusals import refusal_result
+from gateway.mcp.strict_json import strict_problems
 
 #: argument names that are altitudes above home, bounded by the policy's max_altitude_m
 ALTITUDE_ARGUMENTS = ("alt_m", "rtl_alt_m")
@@ -25,7 +26,8 @@ def install_argument_messages(tool: Tool) -> None:
     """Answer a tool's bad arguments with an error result the model can act on (its text) and any client
     can read (code ``invalid_argument`` and the arguments at fault, as structured content). The arguments
     are validated once, by the SDK's own run (`Tool.run`): its validation error is re-worded here, one
-    line per argument; an argument the tool does not have (which the SDK would drop) is refused first. A
+    line per argument; an argument the tool does not have (which the SDK would drop) is refused first, and
+    so is one whose JSON type is not its schema's (`gateway.mcp.strict_json`: no "10" for a number). A
     ToolError the tool raises itself keeps its own words."""
     run = tool.run
     schema = tool.parameters
@@ -35,6 +37,11 @@ def install_argument_messages(tool: Tool) -> None:
         unknown = [name for name in arguments if name not in known]
         if unknown:
             return _invalid(describe_unknown(tool.name, unknown, schema), unknown)
+        problems = strict_problems(arguments, schema, _accepted)
+        if problems:  # before the SDK's lax validation turns "10" into 10 or true into 1
+            wrong = [name for name, value in arguments.items() if strict_problems({name: value}, schema)]
+            message = f"invalid arguments for {tool.name}: " + "; ".join(problems) + "; nothing was sent"
+            return _invalid(message, wrong)
         try:
             return await run(arguments, context, convert_result=convert_result)
         except ToolError as exc:

@@ -53,7 +53,8 @@ INSTRUCTIONS = (
     "Flies MAVLink drones; drone tools take drone_id, fleet tools drone_ids (list: fleet://drones). "
     "Altitudes are metres above "
     "home unless alt_frame='amsl'. Long actions (takeoff, goto, land, missions) wait until done, up to "
-    "{cap:g} s; status 'running' means still in progress: call monitor_flight before the next move."
+    "{cap:g} s (wait=false: answer at once); status 'running' means still in progress: call "
+    "monitor_flight before the next move."
 )
 
 

@@ -47,7 +47,8 @@ log = logging.getLogger(__name__)
 # DroneId, Lat, Lon, Metres, AltFrame: `gateway.fleet.commands.arguments` (the verbs declare them too)
 
 MAX_DRONE_ID = 64
-Wait = Annotated[bool, Field(description="Wait until done (capped)")]
+#: what it means is said once, in the server's instructions (gateway/mcp/server.py), not in every tool
+Wait = Annotated[bool, Field()]
 
 
 # --- toolsets ------------------------------------------------------------------------------------

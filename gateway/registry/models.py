@@ -146,6 +146,11 @@ class TrackSampleRow(Base):
     heading_deg: Mapped[float | None] = mapped_column(Float)
     ground_speed_mps: Mapped[float | None] = mapped_column(Float)
     battery_pct: Mapped[float | None] = mapped_column(Float)
+    # the autopilot's HEARTBEAT (MAV_TYPE, custom mode) and GPS fix (GPS_FIX_TYPE, satellites) at the sample
+    mav_type: Mapped[int | None] = mapped_column(BigInteger)
+    custom_mode: Mapped[int | None] = mapped_column(BigInteger)
+    gps_fix_type: Mapped[int | None] = mapped_column(BigInteger)
+    satellites: Mapped[int | None] = mapped_column(BigInteger)
 
 
 class StatusTextRow(Base):
@@ -232,3 +237,20 @@ class VehicleLeaseRow(Base):
     acquired_at: Mapped[datetime] = mapped_column(UTCDateTime())
     renewed_at: Mapped[datetime] = mapped_column(UTCDateTime())
     expires_at: Mapped[datetime] = mapped_column(UTCDateTime())
+
+
+class OriginRow(Base):
+    """The point a vehicle's distance limit and geofence checks count from: the first home it reported,
+    or where an operator moved it (`gateway.fleet.policy.origin`). The autopilot cannot move it."""
+
+    __tablename__ = "vehicle_origins"
+
+    vehicle_id: Mapped[str] = mapped_column(
+        String(32), ForeignKey("vehicles.id", ondelete="CASCADE"), primary_key=True
+    )
+    lat: Mapped[float] = mapped_column(Float)
+    lon: Mapped[float] = mapped_column(Float)
+    alt_amsl_m: Mapped[float] = mapped_column(Float)
+    source: Mapped[str] = mapped_column(String(16))  # first_home | operator
+    set_by: Mapped[str] = mapped_column(String(200))
+    set_at: Mapped[datetime] = mapped_column(UTCDateTime())

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import dataclass
 from datetime import UTC, datetime
 from typing import Any, Literal
 
@@ -91,6 +92,12 @@ class TrackSample(_Record):
     heading_deg: float | None = None
     ground_speed_mps: float | None = None
     battery_pct: float | None = None
+    #: the autopilot's HEARTBEAT at the sample: its MAV_TYPE and custom mode (its flight mode)
+    mav_type: int | None = Field(None, ge=0, le=255)
+    custom_mode: int | None = Field(None, ge=0, le=2**32 - 1)
+    #: its GPS at the sample: GPS_FIX_TYPE and satellites visible
+    gps_fix_type: int | None = Field(None, ge=0, le=255)
+    satellites: int | None = Field(None, ge=0, le=255)
 
     @field_validator("alt_rel_m", "heading_deg", "ground_speed_mps", "battery_pct")
     @classmethod
@@ -216,3 +223,36 @@ def bound_arguments(
     if len(text) > max_json:
         return {"_truncated": True, "_size": len(text), "_preview": text[: max_json // 2]}
     return bounded
+
+
+OriginSource = Literal["first_home", "operator"]
+ORIGIN_SOURCES: tuple[OriginSource, ...] = ("first_home", "operator")
+
+
+@dataclass(frozen=True)
+class Origin:
+    """The point a vehicle's distance limit and zones count from (`gateway.fleet.policy.origin`), who
+    set it and when."""
+
+    vehicle_id: str
+    lat: float
+    lon: float
+    alt_amsl_m: float
+    source: OriginSource
+    set_by: str
+    set_at: datetime
+
+    @property
+    def point(self) -> tuple[float, float, float]:
+        return (self.lat, self.lon, self.alt_amsl_m)
+
+    def to_record(self) -> dict[str, object]:
+        return {
+            "vehicle_id": self.vehicle_id,
+            "lat": self.lat,
+            "lon": self.lon,
+            "alt_amsl_m": self.alt_amsl_m,
+            "source": self.source,
+            "set_by": self.set_by,
+            "set_at": self.set_at.isoformat(),
+        }

@@ -24,13 +24,19 @@ DO_CMDS = {
     mav.MAV_CMD_DO_CHANGE_SPEED: "ChangeSpeed",
     mav.MAV_CMD_CONDITION_YAW: "CondYaw",
     mav.MAV_CMD_DO_SET_HOME: "SetHome",
+    mav.MAV_CMD_DO_AUX_FUNCTION: "AuxFunction",
 }
+AUX_MOTOR_ESTOP = 31
+"""RC auxiliary function 31, the motor emergency stop: switch position 2 (high) stops the motors while
+the vehicle stays armed (it falls), 0 (low) releases it (ArduPilot's RC_Channel aux functions)."""
 
 
 class AutoMixin:
     """Mission execution part of FlightController (shares its state and helpers)."""
 
     v: SimHost
+    #: the motor emergency stop is on: the motors give no thrust, armed or not
+    motors_stopped: bool = False
 
     # ------------------------------------------------------------------------------------------------
     # missions
@@ -98,6 +104,8 @@ class AutoMixin:
             self.condition_yaw(item.param1, item.param2, item.param3, bool(item.param4))
         elif item.command == mav.MAV_CMD_DO_SET_HOME and item.param1 == 1:
             self.v.set_home_here()
+        elif item.command == mav.MAV_CMD_DO_AUX_FUNCTION and int(item.param1) == AUX_MOTOR_ESTOP:
+            self.motors_stopped = int(item.param2) == 2
 
     def _start_nav(self, item: Item) -> None:
         v = self.v

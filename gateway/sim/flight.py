@@ -241,8 +241,8 @@ class FlightController(GuidedMixin, AutoMixin, FailsafeMixin):
     def step(self, dt: float) -> None:
         v = self.v
         b = v.body
-        if not v.armed:
-            if not v.landed:  # disarmed in the air: motors stopped, it falls
+        if not v.armed or self.motors_stopped:
+            if not v.landed:  # disarmed (or motors emergency-stopped) in the air: it falls
                 b.vn *= 0.99
                 b.ve *= 0.99
                 b.vu = max(-30.0, b.vu - 9.80665 * dt)

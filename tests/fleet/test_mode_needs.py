@@ -94,3 +94,31 @@ def test_the_pattern_counts_from_the_origin_not_from_a_moved_home() -> None:
     flown = replace(here, home=moved_home, origin=ctx().home)
     err = refusal(policy().check_mode_choice, flown, circle, "rest", 100.0)
     assert "up to 1100 m from the origin" in err.message
+
+
+async def test_set_flight_mode_reads_the_circle_radius_and_refuses_a_circle_past_the_limit(tmp_path) -> None:
+    from tests.fakes import fake, fake_gateway, spread, unit_settings
+    from tests.fleet._util import AGENT, OPERATOR
+
+    async with fake_gateway(unit_settings(tmp_path, max_distance_m=300), spread(1)) as gateway:
+        d1 = fake(gateway, "d1")
+        c = gateway.commander
+        took = await c.takeoff(AGENT, "d1", 10.0)
+        assert (await c.wait(took.operation_id, 10)).status == "succeeded"
+        agent = await _refused(c.set_mode(AGENT, "d1", "CIRCLE"))
+        assert agent.rule == "mode_deny_in_air"
+        d1.params["CIRCLE_RADIUS"] = 20000.0  # 200 m: its far side lies 400 m away
+        operator = await _refused(c.set_mode(OPERATOR, "d1", "CIRCLE"))
+        assert operator.rule == "pattern_extent" and "flies up to 400 m" in operator.message
+        assert not [e for e in d1.log if e[1] == "mode"], d1.log  # nothing was sent
+        d1.params["CIRCLE_RADIUS"] = 5000.0  # 50 m: 100 m from where it starts, within 300 m
+        assert (await c.set_mode(OPERATOR, "d1", "CIRCLE")).facts["mode"] == "CIRCLE"
+        d1.params.pop("CIRCLE_RADIUS")
+        d1.params["CIRCLE_RADIUS_M"] = 200.0  # the 4.7 name, in metres
+        assert "flies up to 400 m" in (await _refused(c.set_mode(OPERATOR, "d1", "CIRCLE"))).message
+
+
+async def _refused(call) -> SafetyRefusal:
+    with pytest.raises(SafetyRefusal) as info:
+        await call
+    return info.value

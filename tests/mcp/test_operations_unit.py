@@ -10,7 +10,7 @@ import pytest
 from gateway.config import Settings
 from gateway.errors import CommandFailed, NotFound
 from gateway.fleet import geo
-from gateway.fleet.operations.operation_state import OpStatus
+from gateway.fleet.operations.operation_state import Operation, OpStatus
 from gateway.fleet.operations.operations import OperationManager
 from gateway.fleet.operations.trackers import (
     GotoTracker,
@@ -19,7 +19,7 @@ from gateway.fleet.operations.trackers import (
     TakeoffTracker,
     YawTracker,
 )
-from gateway.link.telemetry import MissionProgressValue
+from gateway.link.telemetry import MissionProgressValue, VelocityNedValue
 from tests.fakes import HOME, FakeVehicle, position_value
 from tests.helpers.timing import eventually
 
@@ -172,7 +172,7 @@ async def test_land_yaw_and_mission_trackers(settings: Settings) -> None:
     await eventually(lambda: _true(mission.message == "item 2 of 4"), "mission progress item 2 of 4")
     assert mission.status is OpStatus.running
     v.mission_done = True
-    await mgr.wait(mission, cap_s=5)
+    await streaming_until_done(v, mission)
     assert mission.status is OpStatus.succeeded
     await mgr.stop()
 
@@ -219,6 +219,80 @@ async def test_recover_marks_operations_of_a_previous_process_interrupted(tmp_pa
 
 async def _true(condition: bool) -> bool:
     return condition
+
+
+async def streaming_until_done(v: FakeVehicle, op: Operation) -> None:
+    """Keep the fake's telemetry fresh (a stream would) until the operation ends (a finished mission is
+    watched for FINISH_SETTLE_S before it counts as done)."""
+    await eventually(lambda: _fresh(v, op), "the operation ends", within_s=20.0)
+
+
+async def _fresh(v: FakeVehicle, op: Operation) -> bool:
+    for name in ("position", "armed", "in_air", "velocity_ned"):
+        sample = getattr(v.telemetry, name)
+        if sample is not None:
+            v.set(**{name: sample.value})
+    return op.finished
+
+
+async def test_a_flight_that_ends_in_a_crash_is_a_failure_in_the_autopilots_words(settings: Settings) -> None:
+    """A disarm in the air, a fall, a landing the mission did not plan, a crash or failsafe the autopilot
+    reported: the operation fails saying so, even when the autopilot calls the mission finished."""
+    mgr = OperationManager(settings)
+
+    v = drone()  # disarmed in the air
+    at(v, HOME[0], HOME[1], 30.0, armed=True, in_air=True)
+    v.set(mission_progress=MissionProgressValue(3, 4))
+    mission = await mgr.start(v, MissionTracker(), _noop, {})
+    await eventually(lambda: _true(mission.message == "item 3 of 4"), "the mission runs")
+    v.telemetry.add_status_text("critical", "Disarming: motors stopped")
+    at(v, HOME[0], HOME[1], 25.0, armed=False)
+    v.mission_done = True
+    await mgr.wait(mission, cap_s=5)
+    assert mission.status is OpStatus.failed
+    assert mission.message.startswith("the motors were disarmed in the air (last seen 30.0 m above home)")
+    assert "the autopilot said: Disarming: motors stopped" in mission.message
+
+    v = drone()  # finished, then falls: never "succeeded"
+    at(v, HOME[0], HOME[1], 30.0, armed=True, in_air=True)
+    v.set(mission_progress=MissionProgressValue(4, 4))
+    mission = await mgr.start(v, MissionTracker(), _noop, {})
+    await eventually(lambda: _true(mission.message == "item 4 of 4"), "the mission runs")
+    v.mission_done = True
+    await eventually(lambda: _true("checking the drone flies on" in mission.message), "finished, watched")
+    v.set(velocity_ned=VelocityNedValue(0.0, 0.0, 14.0))
+    await streaming_until_done(v, mission)
+    assert mission.status is OpStatus.failed and mission.message.startswith(
+        "the drone is falling at 14.0 m/s"
+    )
+
+    v = drone()  # came down without a landing item
+    at(v, HOME[0], HOME[1], 30.0, armed=True, in_air=True)
+    mission = await mgr.start(v, MissionTracker(lands=False), _noop, {})
+    await eventually(lambda: _true(mission.message.startswith("item")), "the mission runs")
+    at(v, HOME[0], HOME[1], 0.0, armed=True, in_air=False)
+    await mgr.wait(mission, cap_s=5)
+    assert (
+        mission.status is OpStatus.failed and "came down, which the operation did not plan" in mission.message
+    )
+
+    v = drone()  # a mission that lands lands; a finished one that flies on succeeds
+    at(v, HOME[0], HOME[1], 30.0, armed=True, in_air=True)
+    mission = await mgr.start(v, MissionTracker(lands=True), _noop, {})
+    await eventually(lambda: _true(mission.message.startswith("item")), "the mission runs")
+    at(v, HOME[0], HOME[1], 0.0, armed=False, in_air=False)
+    v.mission_done = True
+    await streaming_until_done(v, mission)
+    assert mission.status is OpStatus.succeeded, mission.message
+
+    v = drone()  # a crash the autopilot reports during a landing
+    at(v, HOME[0], HOME[1], 10.0, armed=True, in_air=True)
+    land = await mgr.start(v, LandingTracker(kind="return_to_launch"), _noop, {})
+    await eventually(lambda: _true("above home" in land.message), "the return runs")
+    v.telemetry.add_status_text("critical", "Crash: Disarming")
+    await mgr.wait(land, cap_s=5)
+    assert land.status is OpStatus.failed
+    assert land.message == "the autopilot reported a crash or failsafe; the autopilot said: Crash: Disarming"
 
 
 async def test_an_answer_that_waited_through_interruptions_says_so(settings: Settings) -> None:

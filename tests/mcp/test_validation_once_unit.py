@@ -61,3 +61,21 @@ async def test_a_refusal_from_a_tool_is_its_own_words(gateway: Gateway) -> None:
     assert r.is_error
     text = r.content[0].text
     assert text.startswith("Refused: ") and "kill_in_air" in text, text
+
+
+async def test_a_stored_mission_with_items_at_latitude_and_longitude_0_downloads(gateway: Gateway) -> None:
+    """A mission another planner stored (ArduPilot reads lat/lon 0 as where the drone is) is reported as
+    the drone holds it, not refused as if it were new input."""
+    from gateway.fleet.missions.mission import MissionItem
+
+    fake(gateway, "d1").mission = [
+        MissionItem.model_construct(
+            lat=0.0, lon=0.0, alt_rel_m=10.0, kind="loiter_time", hold_s=5.0, speed_mps=None, command=None
+        )
+    ]
+    async with Client(build_mcp(gateway)) as c:
+        r = await c.call_tool("download_mission", {"drone_id": "d1"})
+    assert not r.is_error, r.content[0].text
+    assert r.structured_content is not None
+    [item] = r.structured_content["items"]
+    assert (item["kind"], item["lat_deg"], item["lon_deg"], item["hold_s"]) == ("loiter_time", 0.0, 0.0, 5.0)

@@ -28,7 +28,6 @@ ARDUCOPTER = Profile(
     ),
     air_modes=(
         ("BRAKE", "BRAKE"),
-        ("CIRCLE", "CIRCLE"),
         ("LAND", "LAND"),
         ("RTL", "RTL"),
         ("SMART_RTL", "SMART_RTL"),
@@ -36,7 +35,7 @@ ARDUCOPTER = Profile(
         ("GUIDED", "GUIDED"),
     ),
     mission_modes=("MISSION", "AUTO"),
-    air_refused=("STABILIZE", "ALT_HOLD"),
+    air_refused=("STABILIZE", "ALT_HOLD", "CIRCLE"),  # CIRCLE reads the throttle: sinks without RC
     lacks="TAKEOFF",
     speed_param=("WPNAV_SPEED", 750.0),
     protected="ARMING_CHECK",
@@ -44,6 +43,11 @@ ARDUCOPTER = Profile(
         ("WPNAV_SPEED", 4000.0, "param_limit: WPNAV_SPEED 4000 cm/s (40 m/s)"),
         ("RTL_ALT_M", 300.0, "exceed the max_altitude_m limit"),  # 4.7's name (RTL_ALT before)
         ("LAND_SPD_MS", 5.0, "above the autopilot's range"),  # 4.7's name (LAND_SPEED before)
+        ("RTL_CLIMB_MIN_M", 30.0, "is added by the autopilot to where the vehicle is"),
+        ("CIRCLE_RADIUS_M", 1000.0, "a radius whose pattern reaches two radii (2000 m)"),
+        ("WPNAV_RADIUS", 1e9, "param_range: WPNAV_RADIUS"),
+        ("WPNAV_ACCEL", 1e7, "param_range: WPNAV_ACCEL"),
+        ("LOIT_BRK_DELAY", 1e6, "param_range: LOIT_BRK_DELAY"),
         ("GPS1_TYPE", 0.0, "param_not_allowed"),
         ("EK3_SRC1_POSXY", 0.0, "param_not_allowed"),
         ("SERIAL0_PROTOCOL", 0.0, "param_not_allowed"),

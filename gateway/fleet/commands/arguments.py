@@ -21,6 +21,7 @@ FlightMode = Annotated[
         "or one of its own modes",
         examples=["HOLD", "RTL", "LAND", "MISSION"],
         max_length=32,
+        pattern=r"^[A-Za-z][A-Za-z0-9_.]*$",  # as given: no spaces around it, nothing to strip
     ),
 ]
 MISSION_ITEMS = 200

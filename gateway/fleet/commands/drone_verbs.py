@@ -30,6 +30,7 @@ from gateway.fleet.commands.command_core import (
     wait_initialised,
 )
 from gateway.fleet.commands.command_pass import CommandPass, Need, Order
+from gateway.fleet.commands.mission_start import resume_item, verify_held
 from gateway.fleet.dialects.modes import ModeChoice
 from gateway.fleet.operations.trackers import LandingTracker, TakeoffTracker
 from gateway.fleet.operations.views import ActionResult, OperationView
@@ -262,10 +263,13 @@ class FlightVerbs:
         label = f"set_flight_mode {choice.requested}"
         radius_m = await _pattern_radius(self.commands.registry.flown(drone_id), choice)
 
-        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+        async def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             self.commands.safety.check_mode(ctx, choice.requested, caller.policy_via)
             self.commands.safety.check_mode(ctx, choice.native, caller.policy_via)
             self.commands.safety.check_mode_choice(ctx, choice, caller.policy_via, radius_m)
+            if _is_mode(vehicle, choice, "MISSION"):  # the autopilot flies the mission it holds
+                starts = [1, resume_item(vehicle)] if ctx.airborne else [1]
+                await verify_held(self.commands.safety, caller, vehicle, ctx, starts)
             return Order(
                 lambda: vehicle.set_flight_mode(mode), ends_operation=True, **_commanded(vehicle, choice)
             )
@@ -311,6 +315,13 @@ def _commanded(vehicle: VehicleView, choice: ModeChoice) -> dict[str, Any]:
             if vehicle.resolve_mode(common).native == choice.native:
                 return {"commands": kind}
     return {"commands": f"set_flight_mode {choice.native}", "modes": frozenset({choice.native})}
+
+
+def _is_mode(vehicle: VehicleView, choice: ModeChoice, common: str) -> bool:
+    """Whether ``choice`` is the drone's ``common`` mode (e.g. MISSION: AUTO, AUTO.MISSION)."""
+    with contextlib.suppress(InvalidArgument):
+        return vehicle.resolve_mode(common).native == choice.native
+    return False
 
 
 def _is_landing_mode(vehicle: VehicleView, choice: ModeChoice) -> bool:

@@ -14,6 +14,7 @@ from gateway.fleet.commands.arguments import DroneId, ItemIndex
 from gateway.fleet.commands.command_core import OperationDesk, Tool, command, routed
 from gateway.fleet.commands.command_pass import CommandPass, Order
 from gateway.fleet.commands.drone_verbs import FlightVerbs
+from gateway.fleet.commands.mission_start import resume_item, semantics_of, unchecked_text, verify_held
 from gateway.fleet.missions import mission_files
 from gateway.fleet.missions.mission import MissionItem
 from gateway.fleet.operations.trackers import MissionTracker
@@ -27,6 +28,7 @@ from gateway.fleet.operations.views import (
     ParamValue,
 )
 from gateway.fleet.policy.caller import Caller
+from gateway.fleet.policy.mission_check import Unchecked
 from gateway.fleet.policy.safety_inputs import VehicleContext
 from gateway.fleet.vehicles.protocols import FlyingVehicle
 from gateway.fleet.vehicles.readings import value, vehicle_context
@@ -41,10 +43,18 @@ class MissionVerbs:
         self.flight = flight
 
     def _upload(
-        self, caller: Caller, vehicle: FlyingVehicle, ctx: VehicleContext, items: Sequence[MissionItem]
+        self,
+        caller: Caller,
+        vehicle: FlyingVehicle,
+        ctx: VehicleContext,
+        items: Sequence[MissionItem],
+        unchecked: list[Unchecked] | None = None,
     ) -> Order:
-        """The order that stores ``items`` on the drone, after the policy's mission checks."""
-        self.commands.safety.check_mission(ctx, items, caller.policy_via)
+        """The order that stores ``items`` on the drone, after the policy's mission checks (an operator's
+        items the gateway cannot check are added to ``unchecked``; an agent's are refused)."""
+        found = self.commands.safety.check_mission(ctx, items, caller.policy_via, semantics_of(vehicle))
+        if unchecked is not None:
+            unchecked.extend(found)
 
         async def send() -> int:
             running = self.commands.operations.running(vehicle.id)
@@ -87,20 +97,22 @@ class MissionVerbs:
                 f"file_format {file_format!r} is not one of {', '.join(mission_files.FORMATS)}"
             )
         counted: list[int] = []
+        unchecked: list[Unchecked] = []
 
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             parsed = mission_files.parse(content, file_format)
-            items = mission_files.mission_items(parsed, ctx.home, ctx.position)
+            zero_is_here = semantics_of(vehicle).zero_position_is_here
+            items = mission_files.mission_items(parsed, ctx.home, ctx.position, zero_is_here=zero_is_here)
             counted.append(len(items))
-            return self._upload(caller, vehicle, ctx, items)
+            return self._upload(caller, vehicle, ctx, items, unchecked)
 
         await self.commands.run(caller, drone_id, "upload_mission_file", decide)
-        return ActionResult(
-            drone_id=drone_id,
-            action="upload_mission_file",
-            message=f"{counted[0]} items uploaded from the mission file",
-            facts={"items": counted[0]},
-        )
+        message = f"{counted[0]} items uploaded from the mission file"
+        facts: dict[str, object] = {"items": counted[0]}
+        if unchecked:
+            message = f"{message}; {unchecked_text(unchecked)}"
+            facts["unchecked"] = [u.text() for u in unchecked]
+        return ActionResult(drone_id=drone_id, action="upload_mission_file", message=message, facts=facts)
 
     @command
     @routed
@@ -134,30 +146,43 @@ class MissionVerbs:
         items: list[MissionItem] | None = None,
         label: str = "initiate_mission",
     ) -> OperationView:
-        """Upload ``items`` first if given, then fly the stored mission; done when it is finished. On the
-        ground the mission must begin with a takeoff item."""
-        if items:
+        """Upload ``items`` first if given, then fly the mission the drone holds; done when it is
+        finished. On the ground the mission must begin with a takeoff item. Whatever was uploaded, the
+        mission is read back and checked whole from where the drone is now (`verify_held`): another
+        ground station may have replaced it, the drone moved, the zones changed."""
+        if items is not None:
+            if not items:
+                raise InvalidArgument(
+                    "waypoints is an empty list; give at least one item, or omit waypoints to start the "
+                    "mission the drone holds"
+                )
 
             def upload(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
                 return self._upload(caller, vehicle, ctx, items)
 
             await self.commands.run(caller, drone_id, label, upload)
+        unchecked: list[Unchecked] = []
 
         async def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             self.commands.safety.check_actuation(ctx, caller.policy_via)
+            starts = [1] if not ctx.airborne else [1, resume_item(vehicle)]
+            held, found = await verify_held(self.commands.safety, caller, vehicle, ctx, starts)
+            unchecked.extend(found)
             if not ctx.in_air:
-                stored = await vehicle.download_mission()
-                if not stored:
-                    raise InvalidArgument(f"{drone_id} has no mission; give waypoints to initiate_mission")
-                if stored[0].kind != "takeoff":
+                if held[0].kind != "takeoff":
                     raise InvalidArgument(
                         f"{drone_id} is on the ground and the mission does not start with a takeoff item; "
                         "call takeoff first or make item 1 kind='takeoff'"
                     )
-                self.commands.safety.check_takeoff(ctx, stored[0].alt_rel_m, caller.policy_via)
-            return Order(vehicle.start_mission, MissionTracker())
+                self.commands.safety.check_takeoff(ctx, held[0].alt_rel_m, caller.policy_via)
+            params = {"unchecked": [u.text() for u in found]} if found else {}
+            lands = any(item.kind in ("land", "rtl") for item in held)  # it may end on the ground
+            return Order(vehicle.start_mission, MissionTracker(lands=lands), params=params)
 
-        return (await self.commands.run(caller, drone_id, label, decide)).view()
+        view = (await self.commands.run(caller, drone_id, label, decide)).view()
+        if unchecked:
+            view = view.model_copy(update={"message": f"{view.message}; {unchecked_text(unchecked)}"})
+        return view
 
     @command(
         tool=Tool(
@@ -225,7 +250,7 @@ class MissionVerbs:
     async def set_current_item(self, caller: Caller, drone_id: DroneId, index: ItemIndex) -> ActionResult:
         """Make mission item `index` the next target."""
 
-        def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
+        async def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             prog = value(vehicle, "mission_progress")
             total = int(prog.total) if prog is not None else None
             if total is not None and total > 0 and index > total:
@@ -233,6 +258,9 @@ class MissionVerbs:
                     f"index {index} is beyond the mission's {total} items (valid: 1..{total})"
                 )
             self.commands.safety.check_actuation(ctx, caller.policy_via)
+            # the drone flies to item `index` next (at once in its mission mode): the held mission is
+            # checked with the leg from where the drone is to that item
+            await verify_held(self.commands.safety, caller, vehicle, ctx, [index])
             return Order(lambda: vehicle.set_current_mission_item(index))
 
         await self.commands.run(caller, drone_id, "set_current_waypoint", decide)

@@ -16,7 +16,7 @@ import logging
 from datetime import UTC, datetime
 from typing import Literal
 
-from gateway.errors import GatewayError, NoOwner, NotRun, StopPending
+from gateway.errors import GatewayError, NoOwner, NotRun, StopPending, VehicleNotReady
 from gateway.fleet.commands.command_core import command
 from gateway.fleet.commands.command_pass import CommandPass
 from gateway.fleet.commands.drone_verbs import FlightVerbs
@@ -37,6 +37,11 @@ STOP_LOCK_REASON = "emergency stop"
 #: the stop's answer says whether its lock is stored if the database answers within this (else: later)
 STORE_LOCK_WAIT_S = 1.0
 _STORING: set[asyncio.Task[bool]] = set()
+#: a drone whose link is being established when the stop comes gets it once ready, within this
+STOP_WHEN_READY_S = 60.0
+#: the link states in which that wait is worth it (not registered, not failed)
+LINK_COMING = frozenset({"connecting", "connected", "link_lost"})
+_WAITING: set[asyncio.Task[None]] = set()
 
 
 class OperatorVerbs:
@@ -188,6 +193,22 @@ class OperatorVerbs:
                 return StopOutcome(
                     drone_id=vehicle.id, action=action, outcome="taking_over", message=exc.message
                 )
+            except VehicleNotReady as exc:
+                if state not in LINK_COMING:
+                    return StopOutcome(
+                        drone_id=vehicle.id, action=action, outcome="failed", message=exc.message
+                    )
+                # this node's own link to it is being established (a drone it has just taken over, a
+                # sidecar restarting): the stop goes as soon as the link is ready
+                self._stop_when_ready(caller, vehicle.id, action)
+                return StopOutcome(
+                    drone_id=vehicle.id,
+                    action=action,
+                    outcome="taking_over",
+                    message=f"{exc.message}: this node sends the {action} as soon as its link is ready "
+                    f"(it keeps trying for {STOP_WHEN_READY_S:g} s; the log and the audit say when it is "
+                    "sent)",
+                )
             except (NotRun, NoOwner) as exc:
                 return StopOutcome(
                     drone_id=vehicle.id, action=action, outcome="unreached", message=exc.message
@@ -208,6 +229,33 @@ class OperatorVerbs:
             superseded_fleet_operations=[f.id for f in superseded],
             results=list(results),
         )
+
+    def _stop_when_ready(self, caller: Caller, drone_id: str, action: StopAction) -> None:
+        """The stop of a drone whose link is being established, sent once it is ready (in the background,
+        for at most STOP_WHEN_READY_S)."""
+
+        async def wait_and_stop() -> None:
+            deadline = asyncio.get_running_loop().time() + STOP_WHEN_READY_S
+            while asyncio.get_running_loop().time() < deadline:
+                try:
+                    ready = str(self.registry.get(drone_id).state) == "ready"
+                except GatewayError:  # no longer registered
+                    return
+                if ready:
+                    try:
+                        await self.stop_one(caller, drone_id, action)
+                    except GatewayError as exc:
+                        log.error("%s: %s once its link was ready failed: %s", drone_id, action, exc.message)
+                    else:
+                        log.warning("%s: %s sent once its link was ready", drone_id, action)
+                    return
+                await asyncio.sleep(0.2)
+            log.error("%s: its link was not ready within %.0f s: %s not sent", drone_id,
+                      STOP_WHEN_READY_S, action)  # fmt: skip
+
+        task = asyncio.create_task(wait_and_stop(), name=f"stop-when-ready-{drone_id}")
+        _WAITING.add(task)
+        task.add_done_callback(_WAITING.discard)
 
     async def stop_one(self, caller: Caller, drone_id: str, action: StopAction) -> StopOutcome:
         """One drone's part of a stop: hold (ends its operation), land or RTL (tracked operations that

@@ -19,6 +19,7 @@ from __future__ import annotations
 from collections.abc import Awaitable, Callable, Mapping
 
 from gateway.fleet.dialects.base import LinkOps, matches_any, reader, user_progress
+from gateway.fleet.dialects.mission_semantics import ARDUCOPTER_MISSION
 from gateway.fleet.dialects.modes import COMMON_MODES, NOT_MODELLED, AirUse, ModeChoice, canonical
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem, WirePlan
@@ -154,6 +155,7 @@ class ArduPilot:
     return_altitude_params = (("RTL_ALT", 100.0), ("RTL_ALT_M", 1.0))
     protected_params = PROTECTED_PARAMS
     limit_params: Mapping[str, ParamLimit] = LIMIT_PARAMS
+    mission_semantics = ARDUCOPTER_MISSION
 
     # --- link facts ----------------------------------------------------------------------------------
     def mode_name(self, custom_mode: int, mav_type: int) -> str | None:

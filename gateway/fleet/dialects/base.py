@@ -19,6 +19,7 @@ from mavsdk_grpc import System
 
 from gateway.fleet.dialects.modes import ModeChoice
 from gateway.fleet.missions.mission import MissionItem, WirePlan
+from gateway.fleet.policy.mission_check import MissionSemantics
 from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 
@@ -116,6 +117,12 @@ class DialectReads(Protocol):
     @property
     def protected_params(self) -> tuple[str, ...]:
         """Glob patterns of parameters agents may not write (arming checks, fences, failsafes, ids)."""
+        ...
+
+    @property
+    def mission_semantics(self) -> MissionSemantics:
+        """The mission commands and frames whose effect the gateway models on this autopilot
+        (`gateway.fleet.dialects.mission_semantics`); any other item is unchecked."""
         ...
 
     @property

@@ -14,6 +14,7 @@ from collections.abc import Mapping
 from gateway.fleet.dialects.base import reader, user_progress
 from gateway.fleet.dialects.modes import ModeChoice
 from gateway.fleet.missions.mission import WirePlan
+from gateway.fleet.policy.mission_check import MissionSemantics
 from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 
@@ -37,6 +38,8 @@ class Unsupported:
     return_altitude_params: tuple[tuple[str, float], ...] = ()
     protected_params: tuple[str, ...] = ()
     limit_params: Mapping[str, ParamLimit] = {}
+    #: no mission command is modelled for an autopilot without a dialect: every file item is unchecked
+    mission_semantics = MissionSemantics("this autopilot", {}, frozenset(), frozenset())
 
     def __init__(self, mav_autopilot: int) -> None:
         self.mav_autopilot = mav_autopilot

@@ -10,9 +10,13 @@
   above sea level), and a ``gx:Track`` with the time of each point (Google Earth's time slider).
 * MAVLink telemetry log (``.tlog``, what QGroundControl, Mission Planner and MAVExplorer open): each
   record an 8-byte big-endian Unix time in microseconds and one MAVLink 2 packet. The gateway does
-  not see its drones' raw MAVLink (each sidecar does), so the log is written from the recording:
-  per sample a HEARTBEAT (armed, the vehicle's autopilot), GLOBAL_POSITION_INT, VFR_HUD and
-  SYS_STATUS (battery), and the flight's STATUSTEXTs at their times, from the vehicle's system id.
+  not see its drones' raw MAVLink (each sidecar does), so the log is written from the recording (1 Hz):
+  per sample a HEARTBEAT as the autopilot sent it (its MAV_TYPE, its custom mode, armed), GPS_RAW_INT
+  (its fix type and satellites, the position, ground speed and course), GLOBAL_POSITION_INT, VFR_HUD
+  and SYS_STATUS (battery), and the flight's STATUSTEXTs at their times, from the vehicle's system id.
+  So MAVExplorer, ``mavflightmodes`` and ``mavflighttime`` read the flight's modes, time in the air and
+  distance. A sample recorded before the gateway kept the HEARTBEAT and GPS fix says the vehicle type
+  of the autopilot's usual airframe, custom mode 0, and a 3D fix (it has a position).
 """
 
 from __future__ import annotations
@@ -156,8 +160,15 @@ def track_tlog(
         ms = max(0, round((t - boot) * 1000)) & 0xFFFFFFFF
         vx = round(speed * math.cos(math.radians(heading)) * 100)
         vy = round(speed * math.sin(math.radians(heading)) * 100)
+        mav_type = s.mav_type if s.mav_type is not None else mavlink2.MAV_TYPE_QUADROTOR
         emit(t, 0, mavlink2.MAVLink_heartbeat_message(
-            mavlink2.MAV_TYPE_QUADROTOR, ap, armed, 0, mavlink2.MAV_STATE_ACTIVE, 3
+            mav_type, ap, armed, s.custom_mode or 0, mavlink2.MAV_STATE_ACTIVE, 3
+        ))  # fmt: skip
+        fix = s.gps_fix_type if s.gps_fix_type is not None else mavlink2.GPS_FIX_TYPE_3D_FIX
+        emit(t, 1, mavlink2.MAVLink_gps_raw_int_message(
+            round(t * 1e6), fix, round(s.lat * 1e7), round(s.lon * 1e7), home_mm + round(rel * 1000),
+            65535, 65535, round(speed * 100), round(heading * 100) % 36000,
+            s.satellites if s.satellites is not None else 255,
         ))  # fmt: skip
         emit(t, 1, mavlink2.MAVLink_global_position_int_message(
             ms, round(s.lat * 1e7), round(s.lon * 1e7), home_mm + round(rel * 1000), round(rel * 1000),

@@ -53,6 +53,18 @@ class _Flight:
         return max(0.0, self.battery_start - self.battery_last)
 
 
+#: MAVSDK's GpsInfo.FixType names -> MAVLink GPS_FIX_TYPE (what GPS_RAW_INT carries)
+GPS_FIX_TYPES = {
+    "NO_GPS": 0,
+    "NO_FIX": 1,
+    "FIX_2D": 2,
+    "FIX_3D": 3,
+    "FIX_DGPS": 4,
+    "RTK_FLOAT": 5,
+    "RTK_FIXED": 6,
+}
+
+
 class Recorded(Protocol):
     """What the recorder reads of a vehicle: its id and its telemetry cache."""
 
@@ -61,6 +73,10 @@ class Recorded(Protocol):
 
     @property
     def telemetry(self) -> TelemetryCache: ...
+
+    def heartbeat_state(self) -> tuple[int, int] | None:
+        """(MAV_TYPE, custom mode) of the autopilot's last HEARTBEAT; None while there is none fresh."""
+        ...
 
 
 class FlightRecorder:
@@ -169,6 +185,8 @@ class FlightRecorder:
             return
         velocity = cache.fresh("velocity_ned")
         heading = cache.fresh("heading_deg")
+        heartbeat = self.vehicle.heartbeat_state()
+        gps = cache.fresh("gps_info")
         self.flight.add(pos.lat_deg, pos.lon_deg, pos.rel_alt_m, battery_pct)
         self._track.append(
             TrackSample(
@@ -180,6 +198,10 @@ class FlightRecorder:
                 heading_deg=heading,
                 ground_speed_mps=velocity.ground_speed_mps if velocity is not None else None,
                 battery_pct=battery_pct,
+                mav_type=heartbeat[0] if heartbeat is not None else None,
+                custom_mode=heartbeat[1] if heartbeat is not None else None,
+                gps_fix_type=GPS_FIX_TYPES.get(gps.fix_type) if gps is not None else None,
+                satellites=min(255, max(0, gps.num_satellites)) if gps is not None else None,
             )
         )
 

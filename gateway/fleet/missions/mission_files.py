@@ -9,12 +9,14 @@ the gateway adds is the policy's reading of them, with the autopilot's own seman
 * ArduPilot reads latitude and longitude 0 of a position item as "where the vehicle is" and altitude 0
   as "the altitude of the previous item": the policy checks the position and altitude so resolved;
 * frames: global (AMSL) altitudes are taken above home with the vehicle's home altitude; relative ones
-  as they are; terrain ones as if above home (the gateway knows no terrain: a terrain item is checked
-  against the altitude limit as a height above home);
-* items that are not positions (DO_JUMP, CONDITION_YAW, DO_SET_ROI, DO_CHANGE_SPEED with its speed
-  checked, ...) pass through unchanged; a few that would undo the safety layer from inside a mission
-  (DO_SET_PARAMETER, DO_FENCE_ENABLE, DO_FLIGHTTERMINATION, DO_SET_HOME, DO_MOTOR_TEST) are refused
-  by the policy (`gateway.fleet.policy.safety`).
+  as they are; terrain ones are read as if above home here, and the policy treats them as unchecked
+  (the gateway knows no terrain);
+* what each command does is judged by the policy with the autopilot's semantics
+  (`gateway.fleet.policy.mission_check`, the dialect's table in
+  `gateway.fleet.dialects.mission_semantics`): positions, loiter radii, speed changes by speed type,
+  jumps, harmless yaw/ROI/camera items; any other item is unchecked (refused for agents); a few that
+  would undo the safety layer from inside a mission (DO_SET_PARAMETER, DO_FENCE_ENABLE,
+  DO_FLIGHTTERMINATION, DO_SET_HOME, DO_MOTOR_TEST) are refused for everyone.
 
 Complex ``.plan`` items (surveys, corridor scans, structure scans) carry no MAVLink items of their own in
 every version; they are refused by name: export them from QGroundControl as a WPL file (File > Save As
@@ -73,6 +75,8 @@ def _number(value: Any, where: str) -> float:
 def _raw(frame: int, command: int, params: Sequence[float], autocontinue: bool, where: str) -> RawItem:
     if not 0 <= command <= 65535:
         raise InvalidArgument(f"{where}: command {command} is not a MAV_CMD (0..65535)")
+    if not 0 <= frame <= 255:
+        raise InvalidArgument(f"{where}: frame {frame} is not a MAV_FRAME (0..255)")
     p = [float(v) for v in params]
     if frame in POSITION_FRAMES:
         lat, lon = p[4], p[5]
@@ -87,6 +91,8 @@ def parse_plan(text: str) -> FileMission:
         doc = json.loads(text)
     except json.JSONDecodeError as exc:
         raise InvalidArgument(f"the .plan file is not valid JSON: {exc}") from None
+    except RecursionError:
+        raise InvalidArgument("the .plan file nests its JSON too deeply to be a mission") from None
     if not isinstance(doc, dict) or doc.get("fileType") != "Plan":
         raise InvalidArgument('the .plan file must be a JSON object with "fileType": "Plan"')
     mission = doc.get("mission")
@@ -109,10 +115,13 @@ def parse_plan(text: str) -> FileMission:
         if not isinstance(params, list) or len(params) != 7:
             raise InvalidArgument(f"{where}: params must be a list of 7 numbers (null for none)")
         command, frame = entry.get("command"), entry.get("frame")
-        if not isinstance(command, int) or not isinstance(frame, int):
-            raise InvalidArgument(f"{where}: command and frame must be integers")
+        for name, number in (("command", command), ("frame", frame)):
+            if isinstance(number, bool) or not isinstance(number, int):
+                raise InvalidArgument(f"{where}: {name} must be an integer; got {json.dumps(number)[:40]}")
+        assert isinstance(frame, int) and isinstance(command, int)
         values = [_number(v, f"{where} param{i + 1}") for i, v in enumerate(params)]
         items.append(_raw(frame, command, values, bool(entry.get("autoContinue", True)), where))
+    _refuse_fence_and_rally(doc)
     home_raw = mission.get("plannedHomePosition")
     home = None
     if (
@@ -122,6 +131,28 @@ def parse_plan(text: str) -> FileMission:
     ):
         home = (float(home_raw[0]), float(home_raw[1]), float(home_raw[2]))
     return FileMission(_checked_count(items), home)
+
+
+def _refuse_fence_and_rally(doc: dict[str, Any]) -> None:
+    """A .plan's geofence and rally points are not applied from a mission file: the file is refused
+    naming them (never stored without them, which would leave a drone without the fence its planner
+    drew). The zones go to the drone through its geofences (PUT /api/v1/vehicles/{id}/geofences)."""
+    fence = doc.get("geoFence")
+    if isinstance(fence, dict):
+        polygons, circles = fence.get("polygons") or [], fence.get("circles") or []
+        if polygons or circles:
+            raise InvalidArgument(
+                f"the .plan file has a geofence ({len(polygons)} polygons, {len(circles)} circles), which "
+                "a mission upload does not apply; nothing was sent: give the zones to the drone with PUT "
+                "/api/v1/vehicles/{id}/geofences and remove the geofence from the plan"
+            )
+    rally = doc.get("rallyPoints")
+    points = rally.get("points") if isinstance(rally, dict) else None
+    if points:
+        raise InvalidArgument(
+            f"the .plan file has {len(points)} rally points, which a mission upload does not send to the "
+            "drone; nothing was sent: remove them from the plan (the drone returns to its home on RTL)"
+        )
 
 
 def parse_wpl(text: str) -> FileMission:
@@ -176,10 +207,15 @@ def parse(text: str, fmt: FileFormat | None = None) -> FileMission:
 
 
 def mission_items(
-    mission: FileMission, home: tuple[float, float, float] | None, position: tuple[float, float, float] | None
+    mission: FileMission,
+    home: tuple[float, float, float] | None,
+    position: tuple[float, float, float] | None,
+    *,
+    zero_is_here: bool = True,
 ) -> list[MissionItem]:
     """The file's items as the gateway's mission items: each carries the file's item unchanged (sent as
-    is), and the position, altitude above home and kind the policy checks, read as ArduPilot reads them.
+    is), and the position, altitude above home and kind the policy checks, read as ArduPilot reads them
+    (``zero_is_here`` False: latitude/longitude 0 are taken as written, as PX4 does).
 
     ``home`` is the vehicle's (lat, lon, alt AMSL) and ``position`` its (lat, lon, alt above home), for
     items at 0, 0 or altitude 0 and for global frames; unknown ones leave such items unresolvable.
@@ -194,7 +230,7 @@ def mission_items(
         elif kind is not None and raw.frame in POSITION_FRAMES:
             lat, lon = (
                 (raw.x, raw.y)
-                if (raw.x, raw.y) != (0.0, 0.0)
+                if (raw.x, raw.y) != (0.0, 0.0) or not zero_is_here
                 else ((last[0], last[1]) if last else (0.0, 0.0))
             )
             if raw.frame in GLOBAL_FRAMES and raw.z != 0.0:
@@ -208,7 +244,7 @@ def mission_items(
                 alt = last[2] if last else 0.0
             else:
                 alt = raw.z
-            if kind in ("waypoint", "loiter_time") and (lat, lon) == (0.0, 0.0):
+            if kind in ("waypoint", "loiter_time") and (lat, lon) == (0.0, 0.0) and zero_is_here:
                 raise InvalidArgument(
                     f"mission item {k}: at latitude/longitude 0 it flies where the vehicle is, which is not "
                     "known yet (no position)"
@@ -232,6 +268,22 @@ def mission_items(
         item.attach_raw(raw)
         out.append(item)
     return out
+
+
+def held_items(
+    items: Sequence[MissionItem],
+    home: tuple[float, float, float] | None,
+    position: tuple[float, float, float] | None,
+    *,
+    zero_is_here: bool = True,
+) -> list[MissionItem]:
+    """The mission an autopilot holds (downloaded, each item carrying its MAVLink items) as the policy
+    reads it: every MAVLink item one user item, numbered as the autopilot numbers them (ArduPilot: its
+    sequence number), positions and altitudes resolved as `mission_items` does. Items without MAVLink
+    items (a simulator's, a test's) are returned as they are."""
+    if not items or not all(item.raw_items for item in items):
+        return list(items)
+    return mission_items(FileMission(raw_items(items)), home, position, zero_is_here=zero_is_here)
 
 
 def raw_items(items: Sequence[MissionItem]) -> list[RawItem]:

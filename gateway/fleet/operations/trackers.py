@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Awaitable, Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from gateway.fleet import geo
@@ -51,6 +51,58 @@ class Tracker(Protocol):
     kind: str
 
     async def poll(self, vehicle: FlyingVehicle) -> Poll: ...
+
+
+FINISH_SETTLE_S = 2.0
+"""How long a finished mission's drone is watched before the mission counts as done: a motor stop or
+a disarm in its last item shows as a fall within this time (free fall passes FALLING_MPS in 1 s)."""
+FALLING_MPS = 10.0
+"""A descent faster than this is a fall: no autopilot descends this fast on its own (ArduCopter's
+LAND_SPEED_HIGH and WPNAV_SPEED_DN stop at 5 m/s, PX4's MPC_Z_VEL_MAX_DN at 4 m/s)."""
+CRASH_WORDS = ("crash", "thrust loss", "emergency stop", "estop", "parachute", "terminat")
+"""Words of the autopilot's texts (notice or worse) that say a flight ended badly."""
+FAILSAFE_WORDS = ("failsafe",)
+"""... and that a failsafe took over (a failure for a mission; what a landing already does)."""
+
+
+@dataclass
+class FlightEnd:
+    """What ends a flying operation as failed, whatever else the autopilot reports (a mission's
+    "finished" included): a crash or failsafe in the autopilot's own words, a disarm or motor stop in
+    the air, a fall, or a landing the operation did not plan (``lands``: it ends on the ground). The
+    failure carries what the autopilot said (STATUSTEXT) since the operation began."""
+
+    lands: bool = False
+    #: a failsafe's words end it too (not for a landing: landing is what a failsafe does)
+    failsafe_ends: bool = True
+    _started: float = field(default_factory=time.time)
+    _airborne: bool = False
+    _alt: float | None = None
+
+    def failure(self, vehicle: VehicleView) -> str | None:
+        armed = value(vehicle, "armed")
+        pos = position(vehicle)
+        landed = is_landed(vehicle)
+        if not landed and armed and pos is not None and pos[2] > 1.0:
+            self._airborne, self._alt = True, pos[2]
+        said = vehicle.recent_texts(max(0.0, time.time() - self._started))
+        words = CRASH_WORDS + (FAILSAFE_WORDS if self.failsafe_ends else ())
+        crash = [t for t in said if any(w in t.lower() for w in words) and "clear" not in t.lower()]
+        rate = climb_rate(vehicle)
+        at = "" if self._alt is None else f" (last seen {self._alt:.1f} m above home)"
+        if crash:
+            why = "the autopilot reported a crash or failsafe"
+        elif not self._airborne:
+            return None
+        elif armed is False and not landed:
+            why = f"the motors were disarmed in the air{at}"
+        elif rate is not None and rate < -FALLING_MPS:
+            why = f"the drone is falling at {-rate:.1f} m/s{at}"
+        elif landed and not self.lands:
+            why = f"the drone came down, which the operation did not plan{at}"
+        else:
+            return None
+        return why + (f"; the autopilot said: {' | '.join(said)}" if said else "")
 
 
 def takeoff_tolerance_m(target_alt_m: float) -> float:
@@ -167,12 +219,17 @@ class YawTracker:
 
 @dataclass
 class LandingTracker:
-    """Land and RTL: done once landed and disarmed (ArduPilot disarms itself after touchdown)."""
+    """Land and RTL: done once landed and disarmed (ArduPilot disarms itself after touchdown); failed
+    on a crash, a failsafe or a disarm in the air (`FlightEnd`)."""
 
     kind: str = "land"
     _start: tuple[float, float] | None = None  # (altitude, horizontal distance to home) at start
+    _end: FlightEnd = field(default_factory=lambda: FlightEnd(lands=True, failsafe_ends=False))
 
     async def poll(self, vehicle: FlyingVehicle) -> Poll:
+        failed = self._end.failure(vehicle)
+        if failed is not None:
+            return Poll(0.0, failed, failed=failed)
         if is_landed_and_disarmed(vehicle):
             return Poll(1.0, "landed and disarmed", done=True, eta_s=0.0)
         pos = position(vehicle)
@@ -197,28 +254,47 @@ class LandingTracker:
 
 @dataclass
 class MissionTracker:
-    """Done when the autopilot says the mission is finished (asked at most once a second)."""
+    """Done when the autopilot says the mission is finished (asked at most once a second) and the drone
+    flies on or landed as the mission planned; failed when the flight ended otherwise (`FlightEnd`: a
+    crash, a failsafe, a disarm or motor stop in the air, a landing the mission has no item for) or the
+    autopilot left AUTO. ``lands``: the mission has a land or return item."""
 
     kind: str = "mission"
+    lands: bool = False
     _asked_at: float = 0.0
     _seen_auto: bool = False
     _left_auto_at: float | None = None
+    _end: FlightEnd = field(default_factory=FlightEnd)
+    _finished_at: float | None = None
+
+    def __post_init__(self) -> None:
+        self._end.lands = self.lands
 
     async def poll(self, vehicle: FlyingVehicle) -> Poll:
         prog = value(vehicle, "mission_progress")
         current, total = (int(prog.current), int(prog.total)) if prog is not None else (0, 0)
+        ended = self._end.failure(vehicle)
+        if ended is not None:
+            return Poll(0.0, ended, failed=f"{ended} (at item {current} of {total})")
         left = self._left_auto(vehicle)
         if left is not None:
+            said = vehicle.recent_texts(LEFT_AUTO_GRACE_S + 5.0)
+            words = f"; the autopilot said: {' | '.join(said)}" if said else ""
             return Poll(
                 0.0,
                 left,
-                failed=f"{left} at item {current} of {total}; the mission is no longer being flown",
+                failed=f"{left} at item {current} of {total}; the mission is no longer being flown{words}",
             )
         now = time.monotonic()
+        if self._finished_at is not None:
+            if now - self._finished_at >= FINISH_SETTLE_S:
+                return Poll(1.0, f"mission finished ({total} items)", done=True, eta_s=0.0)
+            return Poll(0.99, f"mission finished ({total} items); checking the drone flies on", eta_s=1.0)
         if now - self._asked_at >= 1.0:
             self._asked_at = now
             if await vehicle.is_mission_finished():
-                return Poll(1.0, f"mission finished ({total} items)", done=True, eta_s=0.0)
+                self._finished_at = now
+                return Poll(0.99, f"mission finished ({total} items); checking the drone flies on", eta_s=1.0)
         progress = max(0.0, min(0.99, (current - 1) / total)) if total else 0.0
         return Poll(progress, f"item {current} of {total}")
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 from datetime import UTC, datetime
 from typing import Any, Literal
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, Field, SkipValidation, field_validator
 
 from gateway.fleet.missions.mission import MissionItem
 from gateway.fleet.operations.operation_state import Operation
@@ -96,7 +96,17 @@ class ArrivalView(BaseModel):
 
 class MissionView(BaseModel):
     drone_id: str
-    items: list[MissionItem]
+    items: list[SkipValidation[MissionItem]]
+
+    @field_validator("items", mode="before")
+    @classmethod
+    def _as_the_drone_holds_them(cls, value: Any) -> Any:
+        """A downloaded mission is reported as the drone holds it, not checked again as new input: a
+        mission another planner wrote may have items at latitude and longitude 0 (ArduPilot: where the
+        drone is), which an upload would refuse (the view crosses to the caller as JSON and back)."""
+        if not isinstance(value, list):
+            return value
+        return [MissionItem.model_construct(**v) if isinstance(v, dict) else v for v in value]
 
 
 class MissionFileView(BaseModel):

@@ -183,34 +183,43 @@ class GeofenceSet:
     def for_vehicle(self, vehicle_id: str) -> list[Zone]:
         return [z for z in self._zones.values() if z.scope in (FLEET, vehicle_id)]
 
-    def check_target(self, vehicle_id: str, lat: float, lon: float) -> list[Violation]:
+    def check_target(self, vehicle_id: str, lat: float, lon: float, radius_m: float = 0.0) -> list[Violation]:
+        """Violations of a target, or with ``radius_m`` of the circle of that radius around it (a
+        mission's loiter): inside every keep-in zone, clear of every keep-out zone."""
         out: list[Violation] = []
         for zone in self.for_vehicle(vehicle_id):
             if zone.kind == "keep_in" and not zone.contains(lat, lon):
-                out.append(Violation(zone.name, "keep_in", "target", zone.distance_m(lat, lon)))
+                out.append(Violation(zone.name, "keep_in", "target", zone.distance_m(lat, lon) + radius_m))
+            elif zone.kind == "keep_in" and radius_m > 0 and zone.depth_m(lat, lon) < radius_m:
+                out.append(Violation(zone.name, "keep_in", "target", radius_m - zone.depth_m(lat, lon)))
             elif zone.kind == "keep_out" and zone.contains(lat, lon):
-                out.append(Violation(zone.name, "keep_out", "target", zone.depth_m(lat, lon)))
+                out.append(Violation(zone.name, "keep_out", "target", zone.depth_m(lat, lon) + radius_m))
+            elif zone.kind == "keep_out" and radius_m > 0 and zone.distance_m(lat, lon) <= radius_m:
+                out.append(Violation(zone.name, "keep_out", "target", radius_m - zone.distance_m(lat, lon)))
         return out
 
     def check_leg(
-        self, vehicle_id: str, start: tuple[float, float], end: tuple[float, float]
+        self, vehicle_id: str, start: tuple[float, float], end: tuple[float, float], width_m: float = 0.0
     ) -> list[Violation]:
         """Violations of the straight leg start -> end (lat, lon pairs); the end point itself is
-        checked by `check_target`."""
+        checked by `check_target`. ``width_m``: every point within that distance of the leg counts (a
+        leg from or to a loiter's circle of that radius)."""
         out: list[Violation] = []
         for zone in self.for_vehicle(vehicle_id):
             leg = zone.leg(start, end)
+            if width_m > 0:
+                leg = leg.buffer(width_m)
             if zone.kind == "keep_in":
                 if zone.contains(*start) and not zone.local.covers(leg):
                     outside = leg.difference(zone.local)
-                    out.append(Violation(zone.name, "keep_in", "path", float(outside.length)))
+                    out.append(Violation(zone.name, "keep_in", "path", _metres_along(outside, width_m)))
             else:
                 inside = leg.intersection(zone.local)
                 if inside.is_empty:
                     continue
-                if zone.contains(*start) and _single_piece_from_start(inside, zone, start):
+                if width_m <= 0 and zone.contains(*start) and _single_piece_from_start(inside, zone, start):
                     continue  # leaving a zone we are already in is allowed
-                out.append(Violation(zone.name, "keep_out", "path", float(inside.length)))
+                out.append(Violation(zone.name, "keep_out", "path", _metres_along(inside, width_m)))
         return out
 
     def to_records(self) -> list[dict[str, Any]]:
@@ -245,6 +254,11 @@ class GeofenceSet:
                 Zone.from_geojson(name, kind, feature.get("geometry"), props.get("vehicle_id") or FLEET)
             )
         return cls(zones)
+
+
+def _metres_along(part: BaseGeometry, width_m: float) -> float:
+    """How long a piece of a leg is: its length, or for a widened leg its area over the width."""
+    return float(part.length) if width_m <= 0 else float(part.area) / (2.0 * width_m)
 
 
 def load_geofence_file(path: str | Path) -> GeofenceSet:

@@ -24,12 +24,13 @@ from gateway.config import Settings
 from gateway.errors import InvalidArgument
 from gateway.fleet.policy import param_limits, patterns
 from gateway.fleet.policy.geofence import GeofenceSet, load_geofence_file
+from gateway.fleet.policy.mission_check import MissionSemantics, Unchecked
+from gateway.fleet.policy.mission_rules import check_items
 from gateway.fleet.policy.operator_locks import LockBook, LockView, taken_over_text
 from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.fleet.policy.safety_checks import (
     check_altitude,
     check_battery,
-    check_horizontal,
     check_leg,
     check_point,
     require_finite,
@@ -43,8 +44,6 @@ from gateway.fleet.policy.safety_inputs import (
     VehicleContext,
 )
 from gateway.fleet.policy.safety_rules import (
-    DENIED_MISSION_COMMANDS,
-    POSITION_NAV_COMMANDS,
     Rule,
     Via,
     fmt,
@@ -230,9 +229,19 @@ class SafetyPolicy:
                 limit_mps=limit,
             )
 
-    def check_mission(self, ctx: VehicleContext, items: Sequence[MissionItemLike], via: Via = "mcp") -> None:
-        """A mission, item by item (user items numbered from 1), including each leg between positions.
-        Battery: the takeoff minimum when starting on the ground, else the leg minimum."""
+    def check_mission(
+        self,
+        ctx: VehicleContext,
+        items: Sequence[MissionItemLike],
+        via: Via = "mcp",
+        semantics: MissionSemantics | None = None,
+        starts: Iterable[int] = (1,),
+    ) -> list[Unchecked]:
+        """A mission, item by item (user items numbered from 1), including each leg between positions
+        and the leg from where the drone is to each item it may start from (``starts``), with the
+        autopilot's ``semantics`` for items a file or the autopilot holds (`mission_rules.check_items`).
+        Battery: the takeoff minimum when starting on the ground, else the leg minimum. Returns the items
+        the gateway cannot check (refused for agents; an operator's mission is then marked unchecked)."""
         self.check_actuation(ctx, via)
         limits = self.limits_for(ctx.vehicle_id)
         if not items:
@@ -241,41 +250,11 @@ class SafetyPolicy:
             check_battery(ctx, limits.min_battery_leg_pct, Rule.BATTERY_LEG)
         else:
             check_battery(ctx, limits.min_battery_takeoff_pct, Rule.BATTERY_TAKEOFF)
-        previous = start_of(ctx)
         for number, item in enumerate(items, start=1):
-            prefix = f"mission item {number}: "
-            kind = item.kind
-            speed = item.speed_mps
-            if speed is not None:
-                with prefixed(prefix, item=number):
-                    self.check_speed(ctx, speed, via)
-            if kind == "rtl":
-                previous = (ctx.home[0], ctx.home[1]) if ctx.home else None
-                continue
-            if kind == "other" and item.command not in POSITION_NAV_COMMANDS:
-                denied = DENIED_MISSION_COMMANDS.get(item.command or 0)
-                if denied is not None:
-                    raise refuse(
-                        Rule.MISSION_COMMAND,
-                        f"{prefix}{denied} ({item.command}) is not accepted in a mission: it would change "
-                        "what the safety layer relies on",
-                        vehicle_id=ctx.vehicle_id,
-                        item=number,
-                        command=item.command,
-                    )
-                continue  # not a position (DO_JUMP, CONDITION_YAW, DO_SET_ROI, ...): passes through
-            with prefixed(prefix, item=number):
-                if kind == "takeoff":
-                    require_finite(ctx, "takeoff altitude", item.alt_rel_m)
-                    check_altitude(ctx, limits, "takeoff altitude", item.alt_rel_m)
-                    continue
-                target = Target(item.lat, item.lon, item.alt_rel_m)
-                if kind == "land":  # altitude of a land item is not flown; only the place matters
-                    check_horizontal(self.geofences, ctx, limits, target, "landing point")
-                else:
-                    check_point(self.geofences, ctx, limits, target, "waypoint")
-                check_leg(self.geofences, ctx, previous, target)
-            previous = (item.lat, item.lon)
+            if getattr(item, "raw", None) is None and item.speed_mps is not None:
+                with prefixed(f"mission item {number}: ", item=number):
+                    self.check_speed(ctx, item.speed_mps, via)
+        return check_items(self.geofences, ctx, limits, items, via, semantics, starts)
 
     def check_formation(
         self, contexts: Mapping[str, VehicleContext], plan: PlannedFormation, via: Via = "mcp"

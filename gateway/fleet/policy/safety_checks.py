@@ -58,7 +58,8 @@ def check_horizontal(
     require_finite(ctx, f"{what} latitude", target.lat)
     require_finite(ctx, f"{what} longitude", target.lon)
     require_lat_lon(ctx, target.lat, target.lon)
-    if ctx.home is None:
+    origin = ctx.distance_origin
+    if origin is None:
         raise refuse(
             Rule.HOME_UNKNOWN,
             f"drone {ctx.vehicle_id} has no home position yet, so the distance limit of "
@@ -66,19 +67,34 @@ def check_horizontal(
             vehicle_id=ctx.vehicle_id,
             limit_m=limits.max_distance_m,
         )
-    distance = geo.horizontal_distance_m(ctx.home[0], ctx.home[1], target.lat, target.lon)
+    distance = geo.horizontal_distance_m(origin[0], origin[1], target.lat, target.lon)
     if distance > limits.max_distance_m:
+        where = origin_words(ctx)
         raise refuse(
             Rule.MAX_DISTANCE,
-            f"{what} is {fmt(distance)} m from home, beyond the limit of {fmt(limits.max_distance_m)} m; "
+            f"{what} is {fmt(distance)} m from {where}, beyond the limit of {fmt(limits.max_distance_m)} m; "
             f"nothing was sent: tell the user it cannot be flown, or choose a point within "
-            f"{fmt(limits.max_distance_m)} m of home",
+            f"{fmt(limits.max_distance_m)} m of {where.split(' (')[0]}",
             vehicle_id=ctx.vehicle_id,
             distance_m=round(distance, 2),
             limit_m=limits.max_distance_m,
         )
     for v in fences.check_target(ctx.vehicle_id, target.lat, target.lon):
         raise geofence_refusal(ctx, v, what)
+
+
+def origin_words(ctx: VehicleContext) -> str:
+    """How a refusal names the point the distance limit counts from: "home" while the vehicle's origin
+    is its home, else the origin, with how far the autopilot's home has moved from it."""
+    if ctx.origin is None or ctx.home is None:
+        return "home"
+    moved = geo.horizontal_distance_m(ctx.origin[0], ctx.origin[1], ctx.home[0], ctx.home[1])
+    if moved < 1.0:
+        return "home"
+    return (
+        f"its origin (the first home it reported; the distance limit counts from there, not from the "
+        f"home the autopilot set {fmt(moved)} m away when it last armed)"
+    )
 
 
 def check_leg(

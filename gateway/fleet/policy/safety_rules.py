@@ -47,14 +47,13 @@ class Rule(StrEnum):
     DRONE_BUSY = "drone_busy"
     KILL_NOT_CONFIRMED = "kill_not_confirmed"
     MISSION_COMMAND = "mission_command_deny"
+    MISSION_UNCHECKED = "mission_unchecked"
 
 
 #: mission commands that would undo the safety layer from inside a mission: DO_SET_HOME (179),
 #: DO_SET_PARAMETER (180), DO_FLIGHTTERMINATION (185), DO_FENCE_ENABLE (207), DO_MOTOR_TEST (209)
 DENIED_MISSION_COMMANDS = {179: "DO_SET_HOME", 180: "DO_SET_PARAMETER", 185: "DO_FLIGHTTERMINATION",
                            207: "DO_FENCE_ENABLE", 209: "DO_MOTOR_TEST"}  # fmt: skip
-#: NAV commands that fly to a position: a mission item of kind "other" with one is checked as a waypoint
-POSITION_NAV_COMMANDS = frozenset({16, 17, 18, 19, 21, 22, 31, 82, 84, 85, 94})
 
 
 def refuse(rule: Rule | str, text: str, **numbers: Any) -> SafetyRefusal:

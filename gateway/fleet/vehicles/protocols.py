@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 from gateway.errors import OwnedElsewhere
 from gateway.fleet.dialects.modes import ModeChoice
 from gateway.fleet.missions.mission import MissionItem
+from gateway.fleet.policy.origin import Origin
 from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.contract import GroundCommand
 from gateway.link.telemetry import TelemetryCache
@@ -132,6 +133,11 @@ class VehicleView(Protocol):
     def limit_params(self) -> Mapping[str, ParamLimit]:
         """The parameters that could walk around a policy limit, each with the limit it governs."""
 
+    @property
+    def origin(self) -> tuple[float, float, float] | None:
+        """(lat, lon, alt_amsl_m) the distance limit and the zones count from: the first home the vehicle
+        reported or where an operator moved it (None: not known here; its home stands in)."""
+
 
 @runtime_checkable
 class VehicleActions(Protocol):
@@ -219,6 +225,12 @@ class VehicleRegistry(VehicleDirectory, Protocol):
     async def start(self) -> None: ...
 
     async def stop(self) -> None: ...
+
+    async def move_origin(
+        self, vehicle_id: str, lat: object, lon: object, alt_amsl_m: object, by: str
+    ) -> Origin:
+        """An operator's new origin for the vehicle's distance limit and zones (checked, stored), on the
+        node that flies it (OwnedElsewhere otherwise)."""
 
     async def add(self, spec: VehicleSpec, connect: bool = True) -> VehicleView: ...
 

@@ -97,4 +97,5 @@ def vehicle_context(vehicle: VehicleView) -> VehicleContext:
         battery_pct=None if battery is None else battery.remaining_pct,
         home=None if h is None else (float(h.lat_deg), float(h.lon_deg), float(h.abs_alt_m)),
         position=None if pos is None else (float(pos.lat_deg), float(pos.lon_deg), float(pos.rel_alt_m)),
+        origin=vehicle.origin,
     )

@@ -24,6 +24,7 @@ from pydantic import ValidationError
 
 from gateway.config import Settings
 from gateway.errors import InvalidArgument, UnknownVehicle
+from gateway.fleet.policy.origin import Origin
 from gateway.fleet.vehicles.protocols import FlyingVehicle, VehicleView, flying
 from gateway.fleet.vehicles.vehicle import ConnectionState, Vehicle
 from gateway.link.sidecar import Confine
@@ -166,6 +167,17 @@ class Registry:
         if isinstance(vehicle, Vehicle):
             vehicle.require_dialect()
         return flying(vehicle)
+
+    async def move_origin(
+        self, vehicle_id: str, lat: object, lon: object, alt_amsl_m: object, by: str
+    ) -> Origin:
+        """An operator's new origin for the vehicle (`gateway.fleet.policy.origin`), kept by the node that
+        flies it."""
+        vehicle = self.get(vehicle_id)
+        if not isinstance(vehicle, Vehicle):
+            flying(vehicle)  # OwnedElsewhere, naming the node that flies it
+            raise AssertionError("unreachable: a remote vehicle is not flown here")
+        return await vehicle.move_origin(lat, lon, alt_amsl_m, by)
 
     def all(self) -> list[RegisteredVehicle]:
         return [self._vehicles[k] for k in sorted(self._vehicles)]

@@ -33,7 +33,9 @@ from gateway.fleet.dialects import protected_params as every_protected_param
 from gateway.fleet.dialects.modes import ModeChoice, require_mode
 from gateway.fleet.missions.flightlog import FlightRecorder
 from gateway.fleet.missions.mission import MissionItem
+from gateway.fleet.policy.origin import Origin
 from gateway.fleet.policy.param_limits import ParamLimit
+from gateway.fleet.vehicles.origin_keeper import OriginKeeper
 from gateway.fleet.vehicles.params import Parameters
 from gateway.fleet.vehicles.vehicle_arming import Arming
 from gateway.fleet.vehicles.vehicle_missions import MissionControl
@@ -91,6 +93,7 @@ class Vehicle:
         self.arming = Arming(self.link, self)
         self.params = Parameters(spec.id, self.link.call, self.link.require_session)
         self._recorder: FlightRecorder | None = None
+        self.origins = OriginKeeper(spec.id, self.link.telemetry, store)
         self._return_alt_name: str | None = None  # the RTL altitude parameter this vehicle has
         #: POSITION_TARGET_GLOBAL_INT: where the autopilot flies to (lat, lon, monotonic time heard)
         self._target: tuple[float, float, float] | None = None
@@ -112,6 +115,15 @@ class Vehicle:
     @spec.setter
     def spec(self, spec: VehicleSpec) -> None:
         self.link.spec = spec
+
+    async def move_origin(self, lat: object, lon: object, alt_amsl_m: object, by: str) -> Origin:
+        return await self.origins.move(lat, lon, alt_amsl_m, by)
+
+    @property
+    def origin(self) -> tuple[float, float, float] | None:
+        """Where the distance limit and the zones count from (`gateway.fleet.policy.origin`)."""
+        found = self.origins.current()
+        return None if found is None else found.point
 
     @property
     def dialect(self) -> DialectReads:
@@ -216,6 +228,7 @@ class Vehicle:
     # --- lifecycle --------------------------------------------------------------------------------------
     async def connect(self) -> None:
         """Start the link (sidecar, session) and the flight recorder (idempotent, returns at once)."""
+        await self.origins.start()  # the stored origin is known before the first home arrives
         await self.link.connect()  # a failed sidecar starts afresh; a running one is left alone
         if self.store is not None and self._recorder is None:
             recorder = FlightRecorder(self, self.store, self.settings)
@@ -233,6 +246,7 @@ class Vehicle:
                 except Exception:
                     log.exception("%s: the flight log could not be closed; stopping the link anyway", self.id)
         finally:
+            await self.origins.stop()
             await self.link.disconnect()
 
     # --- modes ------------------------------------------------------------------------------------------
@@ -257,6 +271,17 @@ class Vehicle:
         ):
             return None
         return self.dialect.native_mode(facts.custom_mode), bool(facts.armed)
+
+    def heartbeat_state(self) -> tuple[int, int] | None:
+        """(MAV_TYPE, custom mode) of the autopilot's last HEARTBEAT (the flight recorder keeps them for
+        the .tlog); None before the first HEARTBEAT of the session or while it is stale."""
+        facts = self.link.facts
+        age = self.link.last_heartbeat_age_s
+        if facts.custom_mode is None or facts.mav_type is None or age is None:
+            return None
+        if age > self.settings.link_lost_after_s:
+            return None
+        return facts.mav_type, facts.custom_mode
 
     def commanded_modes(self, kind: str, *, done: bool = False) -> frozenset[str]:
         """The modes an operation of ``kind`` the gateway commanded may show (the dialect's)."""

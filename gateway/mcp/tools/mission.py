@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
@@ -31,7 +31,9 @@ MAX_ITEMS = MISSION_ITEMS
 
 class Waypoint(BaseModel):
     """One mission item as a model writes it (``alt_m`` above home); becomes a fleet `MissionItem`.
-    (The name is the schema's ``$defs`` key clients see.)"""
+    (The name is the schema's ``$defs`` key clients see.) A field it does not have is refused."""
+
+    model_config = ConfigDict(extra="forbid")
 
     lat_deg: Lat
     lon_deg: Lon
@@ -78,7 +80,7 @@ async def upload_mission(call: ToolCall, drone_id: DroneId, waypoints: Waypoints
         "waypoints": {
             "type": "array",
             "items": {"type": "object"},
-            "description": "Items as upload_mission's; omit to start the uploaded mission",
+            "description": "Items as upload_mission's; omit to start the drone's mission (checked first)",
         }
     }
 )
@@ -91,7 +93,7 @@ async def initiate_mission(
     wait: Wait = True,
 ) -> OperationOut:
     """Upload (if waypoints given) and start the mission; done when finished."""
-    items = mission_items(waypoints) if waypoints else None
+    items = None if waypoints is None else mission_items(waypoints)  # [] is refused, never "what is stored"
     op = await call.commander.start_mission(call.caller, drone_id, items, "initiate_mission")
     return await call.finish(op, wait, "initiate_mission")
 

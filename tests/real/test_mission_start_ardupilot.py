@@ -1,0 +1,88 @@
+"""A mission is verified when it starts, on real ArduCopter SITL: another ground station (pymavlink on
+SERIAL1) stores a mission with a waypoint 200 m up (limit 120); initiate_mission without waypoints,
+resume_mission, set_flight_mode AUTO/MISSION and set_current_waypoint are all refused naming item 3 and
+the rule, on the ground and in the air, and the autopilot (its own telemetry) stays where it was. Then
+it stores a mission with DO_AUX_FUNCTION 31 (motor emergency stop): refused as an item the gateway
+cannot check, by name."""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from pathlib import Path
+
+import pytest
+from pymavlink import mavutil
+
+from gateway.fleet import geo
+from tests.helpers.gcs_mission import GcsItem, upload
+from tests.helpers.timing import scaled
+from tests.real.test_tour_ardupilot import ARDUCOPTER
+from tests.real.tour import Tour, gateway_over
+
+pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(600))]
+
+mav = mavutil.mavlink
+ALTITUDE = "max_altitude: mission item 3: waypoint altitude 200 m exceeds the limit of 120 m"
+
+
+async def where(t: Tour, d: str) -> tuple[str, bool, float, tuple[float, float]]:
+    """The autopilot's own mode, armed state, altitude above home and position."""
+    mode = (await t.ok("get_flight_mode", drone_id=d))["value"]
+    armed = (await t.ok("get_armed", drone_id=d))["value"]
+    pos = await t.ok("get_position", drone_id=d)
+    return str(mode), bool(armed), float(pos["alt_m"]), (pos["lat_deg"], pos["lon_deg"])
+
+
+async def test_a_stored_mission_is_checked_at_every_start_on_arducopter(launch, tmp_path: Path) -> None:
+    autopilots = launch("ardupilot", 1)
+    gcs = autopilots[0].gcs
+    assert gcs is not None
+    async with gateway_over(tmp_path, ARDUCOPTER, autopilots) as (t, _settings):
+        d = t.ids[0]
+        mode, armed, _alt, here = await where(t, d)
+        near = geo.offset_position(*here, 50.0, 0.0)
+        far = geo.offset_position(*here, 100.0, 0.0)
+        items = [
+            GcsItem(mav.MAV_CMD_NAV_TAKEOFF, alt=10),
+            GcsItem(mav.MAV_CMD_NAV_WAYPOINT, *near, 30),
+            GcsItem(mav.MAV_CMD_NAV_WAYPOINT, *far, 200),
+        ]
+        await asyncio.to_thread(upload, gcs, items)
+
+        began = time.monotonic()
+        await t.refused("initiate_mission", ALTITUDE, drone_id=d, wait=False)
+        # printed, never asserted: the refusal includes reading the mission back from the autopilot
+        print(
+            f"\nFIGURE initiate_mission refused after reading back 3 items: {time.monotonic() - began:.2f} s"
+        )
+        await t.refused("initiate_mission", "waypoints is an empty list", drone_id=d, waypoints=[])
+        await t.refused("resume_mission", ALTITUDE, drone_id=d)
+        for name in ("AUTO", "MISSION"):
+            await t.refused("set_flight_mode", ALTITUDE, drone_id=d, mode=name)
+        assert (await where(t, d))[:2] == (mode, armed) == (mode, False)
+
+        took = await t.ok("takeoff", drone_id=d, alt_m=10)
+        took = await t.finish(took, 120)
+        assert took["status"] == "succeeded", took
+        await t.refused("resume_mission", ALTITUDE, drone_id=d)
+        await t.refused("set_flight_mode", ALTITUDE, drone_id=d, mode="AUTO")
+        await t.refused("set_current_waypoint", ALTITUDE, drone_id=d, index=2)
+        mode, armed, alt, _ = await where(t, d)
+        assert mode == "GUIDED" and armed and alt < 15.0, (mode, armed, alt)
+
+        # an item whose effect the gateway cannot check: the motor emergency stop
+        stop = [
+            GcsItem(mav.MAV_CMD_NAV_WAYPOINT, *near, 20),
+            GcsItem(mav.MAV_CMD_DO_AUX_FUNCTION, frame=mav.MAV_FRAME_MISSION, params=(31, 2, 0, 0)),
+        ]
+        await asyncio.to_thread(upload, gcs, stop)
+        text = await t.refused(
+            "resume_mission", "mission_unchecked: mission item 2: DO_AUX_FUNCTION (218) is a", drone_id=d
+        )
+        assert "altitude" not in text
+        await t.refused("set_flight_mode", "mission_unchecked: mission item 2", drone_id=d, mode="AUTO")
+        mode, armed, alt, _ = await where(t, d)
+        assert mode == "GUIDED" and armed and alt > 5.0, (mode, armed, alt)
+        landed = await t.finish(await t.ok("land", drone_id=d), 120)
+        assert landed["status"] == "succeeded", landed
