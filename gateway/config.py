@@ -73,13 +73,15 @@ class Settings(BaseSettings):
         None, description="Path of the mavsdk_server binary; default: the one bundled with mavsdk-grpc."
     )
     sidecar_confinement: str = Field(
-        "loopback",
-        pattern="^(loopback|none)$",
-        description="'loopback': sidecars run from a copy of mavsdk_server whose gRPC port listens on "
-        "127.0.0.1 only (mavsdk_server binds 0.0.0.0 otherwise); 'none': the binary as shipped.",
+        "socket",
+        pattern="^(socket|loopback|none)$",
+        description="'socket': sidecars run from a copy of mavsdk_server that serves gRPC on a unix socket "
+        "in a private directory, removed once the gateway is connected, so no other process can reach it; "
+        "'loopback': a copy whose gRPC port listens on 127.0.0.1 only (any local process can reach it); "
+        "'none': the binary as shipped (gRPC on every interface).",
     )
     sidecar_cache_dir: str | None = Field(
-        None, description="Where the loopback-only sidecar binary is kept; default ~/.cache/fleet-gateway."
+        None, description="Where the confined sidecar binary is kept; default ~/.cache/fleet-gateway."
     )
     sidecar_max_restarts: int = Field(
         5, ge=0, description="Consecutive sidecar crashes before a vehicle is marked failed."

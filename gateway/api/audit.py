@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import logging
+import re
 import time
 from collections.abc import Callable, Coroutine
 from typing import Any
@@ -19,6 +20,7 @@ from fastapi.routing import APIRoute
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from gateway.errors import GatewayError, SafetyRefusal
+from gateway.registry.spec import redacted
 from gateway.registry.store import AuditEntry
 
 log = logging.getLogger(__name__)
@@ -41,11 +43,28 @@ async def _arguments(request: Request) -> dict[str, Any]:
             body = json.loads(raw)
         except (ValueError, RecursionError):  # not JSON, or nested too deeply to read: kept as text
             body = raw[:500].decode("utf-8", errors="replace")
-        args["body"] = body
+        try:
+            args["body"] = _without_credentials(body)
+        except RecursionError:  # nested too deeply to walk: kept as text, credentials cut out
+            args["body"] = _CREDENTIALS.sub("://***@", raw[:500].decode("utf-8", errors="replace"))
     note = getattr(request.state, "audit_note", None)
     if isinstance(note, dict):
         args.update(note)
     return args
+
+
+_CREDENTIALS = re.compile(r"://[^/@\s\"']*@")
+
+
+def _without_credentials(value: Any) -> Any:
+    """The body as the audit keeps it: any URL's credentials (``user:pw@``, refused anyway) replaced."""
+    if isinstance(value, str):
+        return redacted(value)
+    if isinstance(value, list):
+        return [_without_credentials(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _without_credentials(v) for k, v in value.items()}
+    return value
 
 
 def _vehicle_id(request: Request, args: dict[str, Any]) -> str | None:

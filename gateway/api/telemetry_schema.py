@@ -24,7 +24,11 @@ class _Open(BaseModel):
 class SidecarStatus(_Open):
     state: str = Field(description="stopped, starting, serving, backoff, failed (remote: on its owner node)")
     pid: int | None = None
-    grpc_port: int | None = Field(None, description="gRPC port on 127.0.0.1 while serving.")
+    grpc_port: int | None = Field(
+        None,
+        description="While serving: the gRPC port on 127.0.0.1, or with socket confinement (the default) the "
+        "number naming its private unix socket.",
+    )
     restarts: int = 0
 
 

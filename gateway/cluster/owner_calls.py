@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import logging
 import time
-from collections.abc import Callable
+from collections.abc import Awaitable, Callable
 from typing import TYPE_CHECKING, Any, Protocol
 
 from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, stop_subject
@@ -131,6 +131,7 @@ class OwnerCalls:
         short = relay is not None and relay.listening
         bus = self._node.bus
         why: list[str] = []
+        owner_paths: list[Awaitable[Any]] = []
         try:
             return await bus.call(
                 drone_id, verb, arguments, body, call_s, on_message,
@@ -145,10 +146,7 @@ class OwnerCalls:
             why.append(f"bus: {exc.details.get('bus')}")
             left = deadline - time.monotonic()
             if relay is not None and left > 0.1:
-                try:
-                    return await relay.send(drone_id, verb, arguments, epoch, body, left)
-                except NotRun:
-                    why.append("PostgreSQL: no answer")
+                owner_paths.append(relay.send(drone_id, verb, arguments, epoch, body, left))
             elif relay is None:
                 why.append("PostgreSQL: not listening")
         except NoOwner as exc:
@@ -156,19 +154,16 @@ class OwnerCalls:
             # and keep a stop-only path to it (a land sent twice is still a land)
             why.append(f"bus: {exc.message}")
             left = max(0.2, deadline - time.monotonic())
-            try:
-                return await bus.call(
-                    drone_id, verb, arguments, body, left + STOP_SEND_S + 1.0, on_message,
-                    accept_s=left, epoch=epoch, subject=stop_subject(drone_id),
-                )  # fmt: skip
-            except (NotRun, NoOwner) as again:
-                why.append(f"stop-only path: {again.message}")
-                if not take_over:
-                    raise
-        if not take_over:
-            raise NotRun(f"no owner acknowledged {verb} for {drone_id} ({'; '.join(why)})",
-                         vehicle_id=drone_id)  # fmt: skip
-        return await self._node.takeover.stop(drone_id, verb, caller, epoch, owner, "; ".join(why))
+            fenced_path = bus.call(
+                drone_id, verb, arguments, body, left + STOP_SEND_S + 1.0, on_message,
+                accept_s=left, epoch=epoch, subject=stop_subject(drone_id),
+            )  # fmt: skip
+            owner_paths.append(fenced_path)
+        # the owner's paths, and (unless told not to) the drone's own link from this node, at once: the
+        # first that takes the stop answers it
+        return await self._node.takeover.reach(
+            drone_id, verb, caller, epoch, owner, owner_paths, why, deadline, take_over=take_over
+        )
 
     async def relayed_stop(self, stop: dict[str, Any]) -> Any:
         """A stop another node relayed through PostgreSQL: run it when this node owns the drone under

@@ -8,8 +8,8 @@ on that channel (one asyncpg connection of its own, opened again when the databa
 that owns the drone under that lease epoch (or keeps a stop-only path to it after fencing itself) runs
 the stop through the same path as a stop that came over the bus, and answers on :data:`ACK_CHANNEL`
 ``{id, node, ok, result | error}``. Only the three stops cross this way; anything else is refused, and a
-stop that arrives after its ``accept_by`` is dropped (its caller has been told "unreached"). Without an
-answer in time the stopping node says "no path": nothing is known to have been sent.
+stop that arrives after its ``accept_by`` (:data:`RELAYED_ACCEPT_S` after it was sent) is dropped.
+Without an answer in time the stopping node goes on without it (`gateway.cluster.stop_takeover`).
 
 The listening connection only listens: every notification is sent on a connection of a small pool, one
 per send at a time, so stops relayed at once (a fleet stop relays each drone's) never share a connection
@@ -50,6 +50,10 @@ SEND_POOL_SIZE = 4
 RESEND_S = 0.4
 #: stop ids an owner remembers (each runs once; a repeat gets the first answer)
 SEEN_KEPT = 1000
+#: an owner still runs a relayed stop that reaches it this long after it was sent: the stopping node keeps
+#: at a stop it has not seen acknowledged (`gateway.cluster.stop_takeover`), so a land that arrives late
+#: is still the operator's land, never a command its caller was told had not run
+RELAYED_ACCEPT_S = 10.0
 #: ``handler(stop)`` -> the stop's JSON result when this node ran it, None when the drone is not this
 #: node's (it stays silent); raises a GatewayError when it is this node's and it refused it
 StopHandler = Callable[[dict[str, Any]], Awaitable[Any]]
@@ -224,7 +228,7 @@ class StopRelay:
         self._pending[stop_id] = future
         body = {"id": stop_id, "vehicle": vehicle_id, "command": command, "args": arguments,
                 "epoch": epoch, "by": caller, "node": self.node_id, "at": time.time(),
-                "accept_by": time.time() + within_s}  # fmt: skip
+                "accept_by": time.time() + max(within_s, RELAYED_ACCEPT_S)}  # fmt: skip
         sends, last_error = 0, "no node answered"
         try:
             with contextlib.suppress(TimeoutError):  # answers come to the listener: it may be reconnecting

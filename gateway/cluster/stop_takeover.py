@@ -1,21 +1,22 @@
 """An operator's stop that no owner acknowledged in time: the node that took it commands the drone itself.
 
-A stop (land, return, hold) for a drone another node owns goes to that owner over the bus, then through
-PostgreSQL (`gateway.cluster.owner_calls`). When neither brings the owner's acknowledgement within
-:data:`OWNER_ACK_S` of the stop (the owner was killed, frozen, or cut off from both), the stopping node:
+A stop (land, return, hold) for a drone another node owns goes to that owner over the bus
+(`gateway.cluster.owner_calls`). Once the bus has not carried it, the stopping node tries, all at once
+(:meth:`StopTakeover.reach`), the owner's remaining paths (PostgreSQL notifications; a fenced node's
+stop-only path) and the drone's own link, opened by this node for a moment (`gateway.cluster.stoplink`):
+this works at once when no process holds the link (a killed node's sidecar died with it). Nothing is sent
+over it before the drone is heard on that connection: a link that serves one ground station at a time (a
+TCP port) keeps a new connection waiting while another process holds it, and a command written into it
+would run whenever that connection is served. The first path that takes the stop answers it.
 
-1. opens the drone's own link for a moment and sends the stop there (`gateway.cluster.stoplink`): this
-   works at once when no process holds the link (a killed node's sidecar died with it). Nothing is sent
-   before the drone is heard on that connection: a link that serves one ground station at a time (a TCP
-   port) keeps a new connection waiting while another process holds it, and a command written into it
-   would run whenever that connection is served;
-2. otherwise answers "taking over" at once and keeps at it in the background, for at most
-   :data:`TAKEOVER_S`, every :data:`RETRY_S`: the stop once more to whichever node owns the drone now
-   (its owner may answer again, or another node may have taken it over), the drone's own link once
-   more, and, once the owner's lease has expired, the lease itself, taken as the node-loss takeover
-   takes it (never from a live lease): its own sidecar then reaches the drone as soon as the link is
-   free (a frozen node lets go of it when it runs again and finds its lease gone), and the stop is run
-   through this node's own command path, tracked and audited like any other.
+When none has by :data:`OWNER_ACK_S` after the stop, the answer is "taking over" (:class:`StopPending`,
+saying what is being done), and this node keeps at it in the background for at most :data:`TAKEOVER_S`,
+every :data:`RETRY_S`: the stop once more to whichever node owns the drone now (its owner may answer
+again, or another node may have taken it over), the drone's own link once more, and, once the owner's
+lease has expired, the lease itself, taken as the node-loss takeover takes it (never from a live lease):
+its own sidecar then reaches the drone as soon as the link is free (a frozen node lets go of it when it
+runs again and finds its lease gone), and the stop is run through this node's own command path, tracked
+and audited like any other.
 
 A stop sent twice is still a stop, so a drone told by its owner and by this node lands once.
 """
@@ -23,17 +24,19 @@ A stop sent twice is still a stop, so a drone told by its owner and by this node
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import logging
 import time
 import uuid
-from typing import TYPE_CHECKING, Any, Protocol
+from collections.abc import Awaitable
+from typing import TYPE_CHECKING, Any, NoReturn, Protocol
 
 from gateway.cluster.forwarding import answer
 from gateway.cluster.leases import Lease, LeaseStore
 from gateway.cluster.node_parts import NodeWithRuntime
 from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stoplink import StopTarget, send_stop
-from gateway.errors import GatewayError, StopPending
+from gateway.errors import GatewayError, NoOwner, NotRun, StopPending
 from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
 
@@ -42,8 +45,9 @@ if TYPE_CHECKING:
 
 log = logging.getLogger("gateway.cluster.stop_takeover")
 
-#: the owner's acknowledgement (over the bus, then through PostgreSQL) within this of the stop
-OWNER_ACK_S = 1.5
+#: the owner's acknowledgement (over the bus, then through PostgreSQL, while this node tries the drone's
+#: own link beside) within this of the stop
+OWNER_ACK_S = 2.2
 #: the drone's own link, opened by this node, must be heard within this
 DIRECT_S = 1.0
 #: a drone not reached yet: this node keeps trying for this long
@@ -98,21 +102,73 @@ class StopTakeover:
             raise GatewayError("this node's registry is not running")
         return registry
 
-    async def stop(
-        self, drone_id: str, verb: str, caller: Caller, epoch: int | None, owner: str | None, why: str
+    async def reach(
+        self, drone_id: str, verb: str, caller: Caller, epoch: int | None, owner: str | None,
+        owner_paths: list[Awaitable[Any]], why: list[str], deadline: float, take_over: bool = True,
+    ) -> Any:  # fmt: skip
+        """The stop through the owner's remaining paths (``owner_paths``: PostgreSQL, a fenced node's
+        stop-only path) and, with ``take_over``, the drone's own link from this node, all at once until
+        ``deadline``: the first answer. An owner's refusal is raised; with none of them through by the
+        deadline, NotRun (without ``take_over``) or :class:`StopPending` (this node keeps at it)."""
+        tasks: dict[asyncio.Future[Any], str] = {asyncio.ensure_future(p): "owner" for p in owner_paths}
+        if take_over:
+            link = asyncio.ensure_future(self._direct_until(drone_id, verb, caller, epoch, deadline))
+            tasks[link] = "link"
+        direct = "not tried"
+        try:
+            while tasks:
+                done, _ = await asyncio.wait(
+                    tasks, timeout=max(0.0, deadline - time.monotonic()) + 0.5,
+                    return_when=asyncio.FIRST_COMPLETED,
+                )  # fmt: skip
+                if not done:
+                    break
+                for task in done:
+                    path = tasks.pop(task)
+                    error = task.exception()
+                    if error is None:
+                        if path == "link":
+                            log.warning("%s: %s sent over its own link by node %s, no owner acknowledging "
+                                        "it (%s)", drone_id, verb, self._node.node_id,
+                                        "; ".join(why))  # fmt: skip
+                        return task.result()
+                    if path == "link":
+                        direct = f"{type(error).__name__}: {error}"
+                    elif isinstance(error, NotRun | NoOwner):
+                        why.append(error.message)
+                    elif isinstance(error, GatewayError):
+                        raise error  # the owner answered: it refused the stop
+                    else:
+                        why.append(repr(error))
+        finally:
+            for task in tasks:
+                task.cancel()
+        if not take_over:
+            raise NotRun(
+                f"no owner acknowledged {verb} for {drone_id} ({'; '.join(why)})", vehicle_id=drone_id
+            )
+        self.stop_pending(drone_id, verb, caller, epoch, owner, "; ".join(why), direct)
+
+    async def _direct_until(
+        self, drone_id: str, verb: str, caller: Caller, epoch: int | None, deadline: float
     ) -> dict[str, Any]:
-        """Command the drone's stop from this node: the JSON result when the drone's own link took it;
-        :class:`StopPending` (saying what this node keeps doing) when its link is held elsewhere."""
+        """The drone's own link, tried again until ``deadline`` (it may be let go of any moment)."""
+        while True:
+            try:
+                left = deadline - time.monotonic()
+                return await self._direct(drone_id, verb, caller, epoch, min(DIRECT_S, max(0.3, left)))
+            except Exception:
+                if time.monotonic() > deadline - 0.3:
+                    raise
+                await asyncio.sleep(0.1)
+
+    def stop_pending(
+        self, drone_id: str, verb: str, caller: Caller, epoch: int | None, owner: str | None, why: str,
+        direct: str,
+    ) -> NoReturn:  # fmt: skip
+        """Start the background attempts (unless running already) and raise :class:`StopPending`."""
         me = self._node.node_id
         owner_text = f"its owner node {owner}" if owner else "no owner"
-        try:
-            sent = await self._direct(drone_id, verb, caller, epoch)
-        except Exception as exc:
-            direct = f"{type(exc).__name__}: {exc}"
-        else:
-            log.warning("%s: %s sent over its own link by node %s after %s did not acknowledge it (%s)",
-                        drone_id, verb, me, owner_text, why)  # fmt: skip
-            return sent
         running = self._tasks.get(drone_id)
         if running is None or running.done():
             self._tasks[drone_id] = asyncio.create_task(
@@ -132,9 +188,11 @@ class StopTakeover:
             by_node=me,
         )
 
-    async def _direct(self, drone_id: str, verb: str, caller: Caller, epoch: int | None) -> dict[str, Any]:
+    async def _direct(
+        self, drone_id: str, verb: str, caller: Caller, epoch: int | None, within_s: float = DIRECT_S
+    ) -> dict[str, Any]:
         started = time.monotonic()
-        result = await send_stop(self._target(drone_id, epoch), verb, DIRECT_S, hear_first=True)
+        result = await send_stop(self._target(drone_id, epoch), verb, within_s, hear_first=True)
         if result in REFUSED:
             raise GatewayError(f"the autopilot refused {verb} sent over its own link: {result}")
         if result.startswith("no COMMAND_ACK"):
@@ -197,12 +255,10 @@ class StopTakeover:
                 return None
             await answer(self._node.gateway.commander, verb, {}, caller.to_dict(), _no_progress)
             return f"through node {me}'s own sidecar, which took the drone over"
-        if isinstance(view, RemoteVehicle) and view.owner is not None and (view.owner, view.epoch) != (
-            owner,
-            epoch,
-        ):  # another node owns it now, or its owner under a new lease: the stop goes there
-            await self._node.forward_stop(drone_id, verb, caller)
-            return f"to its new owner node {view.owner}"
+        if isinstance(view, RemoteVehicle) and view.owner is not None:  # its owner (or a new one) again
+            with contextlib.suppress(NotRun, NoOwner):
+                await self._node.forward_stop(drone_id, verb, caller)
+                return f"to its owner node {view.owner}, which acknowledged it"
         try:
             await self._direct(drone_id, verb, caller, epoch)
             return f"over its own link by node {me}"
@@ -220,4 +276,3 @@ class StopTakeover:
 
 async def _no_progress(_update: dict[str, Any]) -> None:
     return None
-

@@ -1,4 +1,4 @@
-"""Keep every sidecar's gRPC control port reachable from this host only.
+"""Keep every sidecar's gRPC control port away from everyone but the gateway.
 
 mavsdk_server 4.0.5 listens for gRPC on ``0.0.0.0:<port>`` (``"0.0.0.0:" + std::to_string(port)`` in
 ``GrpcServer::setup_port``, no option). Left as is, each sidecar is an unauthenticated side door to a
@@ -16,6 +16,11 @@ of the build, read from the ELF header:
   ``adrp``/``add`` and prepends to the port (``basic_string::_M_replace(0, 0, literal, 8)``); it is
   the only such literal in the binary and the only reference to it is in ``setup_port`` (checked
   with ``aarch64-linux-gnu-objdump`` on the mavsdk-grpc 4.0.5 aarch64 wheel).
+
+The default (``socket``) writes ``"unix:sk:"`` there instead (same length): mavsdk_server then listens
+on the unix socket ``sk:<port>``, a path relative to its working directory, which the supervisor makes a
+private directory (mode 0700) of the gateway's user, and removes once the gateway's own gRPC channel is
+connected (``gateway.link.sidecar_socket``): no TCP port at all, and no path anyone can connect to.
 
 Nothing else is touched, and the copy is only made when the bytes are exactly as expected; anything
 else (another build, another architecture) fails closed with a message saying what to do. The patch
@@ -36,22 +41,37 @@ from pathlib import Path
 log = logging.getLogger(__name__)
 
 
+#: what the listen-address prefix is rewritten to, per confinement mode (8 bytes each, as the original)
+PREFIXES = {"loopback": b"127.0.1:", "socket": b"unix:sk:"}
+#: the unix socket a ``socket`` sidecar listens on, relative to its working directory, for its "port"
+SOCKET_NAME = "sk:{port}"
+
+
 @dataclass(frozen=True)
 class ListenSite:
-    """How one architecture's build holds the gRPC listen-address prefix, and its loopback twin."""
+    """How one architecture's build holds the gRPC listen-address prefix (``0.0.0.0:``)."""
 
     architecture: str
-    exposed: bytes
-    loopback: bytes
+    before: bytes  # the bytes just before the prefix
+    after: bytes  # the bytes just after it
     occurrences: int
+
+    def site(self, prefix: bytes) -> bytes:
+        return self.before + prefix + self.after
+
+    @property
+    def exposed(self) -> bytes:
+        return self.site(b"0.0.0.0:")
+
+    @property
+    def loopback(self) -> bytes:
+        return self.site(PREFIXES["loopback"])
 
 
 # ELF e_machine -> the site of that architecture's build
 _SITES = {
-    62: ListenSite("x86-64", b"\x48\xb8" + b"0.0.0.0:", b"\x48\xb8" + b"127.0.1:", 3),  # EM_X86_64
-    183: ListenSite(
-        "aarch64", b"\x00" + b"0.0.0.0:" + b"\x00", b"\x00" + b"127.0.1:" + b"\x00", 1
-    ),  # EM_AARCH64
+    62: ListenSite("x86-64", b"\x48\xb8", b"", 3),  # EM_X86_64: movabs rax, imm64
+    183: ListenSite("aarch64", b"\x00", b"\x00", 1),  # EM_AARCH64: a NUL-terminated .rodata literal
 }
 _MACHINE_NAMES = {
     3: "x86 (32-bit)",
@@ -110,12 +130,14 @@ def listen_site(data: bytes) -> ListenSite:
     return site
 
 
-def patch_listen_address(data: bytes) -> bytes:
-    """Return the binary with its gRPC listen address moved from all interfaces to 127.0.0.1."""
+def patch_listen_address(data: bytes, mode: str = "loopback") -> bytes:
+    """Return the binary with its gRPC listen address moved from all interfaces to 127.0.0.1
+    (``loopback``) or to the unix socket ``sk:<port>`` in its working directory (``socket``)."""
     site = listen_site(data)
+    wanted = site.site(PREFIXES[mode])
     found = data.count(site.exposed)
     if found != site.occurrences:
-        already = data.count(site.loopback)
+        already = data.count(wanted)
         if found == 0 and already == site.occurrences:
             return data
         raise ConfinementError(
@@ -124,29 +146,33 @@ def patch_listen_address(data: bytes) -> bytes:
             "how to confine. Use mavsdk-grpc 4.0.5, or set GATEWAY_SIDECAR_CONFINEMENT=none and firewall "
             "the sidecar ports yourself."
         )
-    return data.replace(site.exposed, site.loopback)
+    return data.replace(site.exposed, wanted)
 
 
-def is_confined(data: bytes) -> bool:
-    """The binary is a loopback-only copy (its site reads 127.0.1: as often as the build has it)."""
+def is_confined(data: bytes, mode: str = "loopback") -> bool:
+    """The binary is a confined copy of ``mode`` (its site reads the mode's prefix as often as the build
+    has it)."""
     try:
         site = listen_site(data)
     except ConfinementError:
         return False
-    return data.count(site.exposed) == 0 and data.count(site.loopback) == site.occurrences
+    return data.count(site.exposed) == 0 and data.count(site.site(PREFIXES[mode])) == site.occurrences
 
 
-def loopback_mavsdk_server(source: Path | None = None, cache_dir: Path | None = None) -> Path:
-    """Path of a loopback-only copy of ``source`` (made once per source build, then reused)."""
+def loopback_mavsdk_server(
+    source: Path | None = None, cache_dir: Path | None = None, mode: str = "loopback"
+) -> Path:
+    """Path of a confined copy of ``source`` for ``mode`` (loopback or socket; made once per source
+    build, then reused)."""
     source = source or bundled_mavsdk_server()
     cache_dir = cache_dir or default_cache_dir()
     data = source.read_bytes()
-    target = cache_dir / f"mavsdk_server-loopback-{_sha256(data)[:16]}"
+    target = cache_dir / f"mavsdk_server-{mode}-{_sha256(data)[:16]}"
     if target.exists() and os.access(target, os.X_OK):
-        if is_confined(target.read_bytes()):
+        if is_confined(target.read_bytes(), mode):
             return target
         log.warning("confined sidecar binary %s is damaged; writing it again", target)
-    patched = patch_listen_address(data)
+    patched = patch_listen_address(data, mode)
     cache_dir.mkdir(parents=True, exist_ok=True)
     fd, tmp_name = tempfile.mkstemp(dir=cache_dir, prefix=".mavsdk_server-")
     try:
@@ -157,14 +183,16 @@ def loopback_mavsdk_server(source: Path | None = None, cache_dir: Path | None = 
     except BaseException:
         Path(tmp_name).unlink(missing_ok=True)
         raise
-    log.info("sidecars run from %s (gRPC bound to 127.0.0.1 only)", target)
+    where = "a private unix socket" if mode == "socket" else "127.0.0.1 only"
+    log.info("sidecars run from %s (gRPC bound to %s)", target, where)
     return target
 
 
 def sidecar_binary(confinement: str, explicit_path: str | None, cache_dir: Path | None = None) -> Path:
     """The binary sidecars are started from, for the configured confinement mode.
 
-    ``loopback`` (default): a loopback-only copy of the configured (or bundled) binary.
+    ``socket`` (default): a copy that listens on a unix socket in its working directory.
+    ``loopback``: a loopback-only copy of the configured (or bundled) binary.
     ``none``: the binary as is; its gRPC port is then reachable on every interface.
     """
     source = Path(explicit_path) if explicit_path else bundled_mavsdk_server()
@@ -174,6 +202,8 @@ def sidecar_binary(confinement: str, explicit_path: str | None, cache_dir: Path 
             "anyone who reaches this host can command the drones around the safety layer"
         )
         return source
-    if confinement != "loopback":
-        raise ConfinementError(f"unknown sidecar confinement '{confinement}'; use 'loopback' or 'none'")
-    return loopback_mavsdk_server(source, cache_dir)
+    if confinement not in PREFIXES:
+        raise ConfinementError(
+            f"unknown sidecar confinement '{confinement}'; use 'socket', 'loopback' or 'none'"
+        )
+    return loopback_mavsdk_server(source, cache_dir, confinement)

@@ -15,7 +15,7 @@ from pymavlink.dialects.v20 import ardupilotmega as mavlink
 from gateway.link.contract import GroundCommand
 from gateway.link.mavlink_frames import Frame, decoded
 
-__all__ = ["GroundCommand", "acting"]
+__all__ = ["GroundCommand", "acting", "not_a_ground_station"]
 
 #: messages that act on the drone whatever their fields say
 ACTING_MESSAGES = frozenset(
@@ -37,25 +37,22 @@ ACTING_MESSAGES = frozenset(
 )
 #: messages whose ``command`` field says whether they act
 COMMAND_MESSAGES = frozenset({mavlink.MAVLINK_MSG_ID_COMMAND_LONG, mavlink.MAVLINK_MSG_ID_COMMAND_INT})
-#: commands that only ask for data, or switch the mode (judged through the HEARTBEAT instead)
+#: MAV_CMD names by number, for the words of a takeover
+_COMMAND_NAMES = {number: entry.name for number, entry in mavlink.enums["MAV_CMD"].items()}
+#: commands that only ask for data (every MAV_CMD_REQUEST_* and MAV_CMD_GET_*, the message rates, the
+#: pre-arm checks), or switch the mode (judged through the HEARTBEAT instead)
 NOT_ACTING_COMMANDS = frozenset(
     {
-        mavlink.MAV_CMD_REQUEST_MESSAGE,
+        number
+        for number, name in _COMMAND_NAMES.items()
+        if name.startswith(("MAV_CMD_REQUEST_", "MAV_CMD_GET_"))
+    }
+    | {
         mavlink.MAV_CMD_SET_MESSAGE_INTERVAL,
-        mavlink.MAV_CMD_REQUEST_AUTOPILOT_CAPABILITIES,
-        mavlink.MAV_CMD_REQUEST_PROTOCOL_VERSION,
-        mavlink.MAV_CMD_GET_HOME_POSITION,
-        mavlink.MAV_CMD_GET_MESSAGE_INTERVAL,
-        mavlink.MAV_CMD_REQUEST_CAMERA_INFORMATION,
-        mavlink.MAV_CMD_REQUEST_CAMERA_SETTINGS,
-        mavlink.MAV_CMD_REQUEST_STORAGE_INFORMATION,
-        mavlink.MAV_CMD_REQUEST_CAMERA_CAPTURE_STATUS,
-        mavlink.MAV_CMD_REQUEST_FLIGHT_INFORMATION,
+        mavlink.MAV_CMD_RUN_PREARM_CHECKS,
         mavlink.MAV_CMD_DO_SET_MODE,
     }
 )
-#: MAV_CMD names by number, for the words of a takeover
-_COMMAND_NAMES = {number: entry.name for number, entry in mavlink.enums["MAV_CMD"].items()}
 
 
 def acting(frame: Frame, vehicle_sysids: set[int]) -> str | None:
@@ -76,3 +73,27 @@ def acting(frame: Frame, vehicle_sysids: set[int]) -> str | None:
             return None
         return f"{name} {_COMMAND_NAMES.get(command, str(command))}"
     return name
+
+
+def not_a_ground_station(frame: Frame, vehicle_sysids: set[int]) -> str | None:
+    """Why the peer of a ground station endpoint that sent ``frame`` is not a ground station (another
+    vehicle: a HEARTBEAT from an autopilot; the drone itself, looped back: its own system id), in words;
+    None when the frame says nothing against it."""
+    if frame.sysid in vehicle_sysids:
+        return f"its peer sends this drone's own system id {frame.sysid} back (a loop to the drone's link)"
+    if frame.msgid != mavlink.MAVLINK_MSG_ID_HEARTBEAT:
+        return None
+    msg = decoded(frame)
+    autopilot = int(getattr(msg, "autopilot", mavlink.MAV_AUTOPILOT_INVALID))
+    if msg is None or autopilot == mavlink.MAV_AUTOPILOT_INVALID:
+        return None
+    name = (
+        mavlink.enums["MAV_AUTOPILOT"][autopilot].name
+        if autopilot in mavlink.enums["MAV_AUTOPILOT"]
+        else autopilot
+    )
+    return f"its peer is another vehicle (system {frame.sysid} sends an autopilot's HEARTBEAT, {name})"
+
+
+def is_heartbeat(frame: Frame) -> bool:
+    return bool(frame.msgid == mavlink.MAVLINK_MSG_ID_HEARTBEAT)

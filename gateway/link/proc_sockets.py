@@ -78,3 +78,25 @@ def socket_inodes(pid: int) -> set[int]:
         if target.startswith("socket:["):
             inodes.add(int(target[8:-1]))
     return inodes
+
+
+class UnixRow(NamedTuple):
+    """One socket of /proc/net/unix: its state (01 unconnected or listening, 03 connected), inode and
+    the path it is bound to ("" for none; an accepted connection shows its listener's path)."""
+
+    state: str
+    inode: int
+    path: str
+
+
+def unix_rows() -> Iterator[UnixRow]:
+    """The unix sockets of this network namespace, from /proc/net/unix."""
+    try:
+        lines = Path("/proc/net/unix").read_text().splitlines()[1:]
+    except OSError:
+        return
+    for line in lines:
+        cols = line.split(maxsplit=7)
+        if len(cols) < 7:
+            continue
+        yield UnixRow(cols[5], int(cols[6]), cols[7] if len(cols) > 7 else "")

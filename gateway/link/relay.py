@@ -34,7 +34,7 @@ from collections.abc import Callable
 from typing import Any
 
 from gateway.link.contract import GroundCommand
-from gateway.link.ground_commands import acting
+from gateway.link.ground_commands import acting, is_heartbeat, not_a_ground_station
 from gateway.link.mavlink_frames import Frame, target_system
 from gateway.link.proc_sockets import proc_net_rows, socket_inodes
 from gateway.link.relay_endpoints import REOPEN_S, Endpoint, UdpEndpoint, open_endpoint
@@ -51,9 +51,13 @@ class Relay:
         vehicle_url: str,
         gcs_urls: list[str],
         sidecar_pid: Callable[[], int | None] | None = None,
+        on_refused: Callable[[str, str], None] | None = None,
     ) -> None:
         """``sidecar_pid``: the sidecar's process id now; given, only a socket of that process is
-        taken as the sidecar (another local process cannot step in between it and the drone)."""
+        taken as the sidecar (another local process cannot step in between it and the drone).
+        ``on_refused(url, reason)``: told when a ground station endpoint is stopped because its peer is
+        no ground station."""
+        self._on_refused = on_refused
         self.vehicle_id = vehicle_id
         self.vehicle_url = vehicle_url
         self.gcs_urls = list(gcs_urls)
@@ -143,7 +147,7 @@ class Relay:
         return [gcs.status() for gcs in self.ground_stations]
 
     def _from_vehicle(self, _source: Endpoint, frame: Frame) -> None:
-        outputs: list[Endpoint] = [self.sidecar, *self.ground_stations]
+        outputs: list[Endpoint] = [self.sidecar, *(g for g in self.ground_stations if g.refused is None)]
         target = target_system(frame)
         if target:
             heard = [e for e in outputs if target in e.sysids]
@@ -154,11 +158,36 @@ class Relay:
 
     def _to_vehicle(self, source: Endpoint, frame: Frame) -> None:
         if source is not self.sidecar:
+            if not self._from_a_ground_station(source, frame):
+                return
             what = acting(frame, self.vehicle.sysids)
             if what is not None:
                 self.ground_commands.append(GroundCommand(frame.sysid, what, time.monotonic()))
                 self._log.info("%s: ground station %d sent %s", self.vehicle_id, frame.sysid, what)
         self.vehicle.send(frame.data)
+
+    def _from_a_ground_station(self, source: Endpoint, frame: Frame) -> bool:
+        """Whether ``frame`` from a ground station endpoint may go to the drone: its peer has said with a
+        HEARTBEAT that it is a ground station (nothing before is relayed), and nothing says it is another
+        vehicle or the drone itself; an endpoint whose peer is one is stopped for good."""
+        if source.refused is not None:
+            return False
+        problem = not_a_ground_station(frame, self.vehicle.sysids)
+        if problem is not None:
+            self._refuse(source, problem)
+            return False
+        if is_heartbeat(frame):
+            source.verified = True
+        return source.verified
+
+    def _refuse(self, endpoint: Endpoint, problem: str) -> None:
+        endpoint.refused = (
+            f"{endpoint.url} refused: {problem}; the endpoint is stopped and nothing from it was relayed"
+        )
+        self._log.error("%s: %s", self.vehicle_id, endpoint.refused)
+        self._retries.append(asyncio.create_task(endpoint.close(), name=f"relay-refuse-{endpoint.url}"))
+        if self._on_refused is not None:
+            self._on_refused(endpoint.url, endpoint.refused)
 
     def commands_since(self, since: float) -> list[GroundCommand]:
         """The ground stations' frames that acted on the drone at or after ``since`` (monotonic)."""

@@ -54,6 +54,11 @@ class Endpoint(abc.ABC):
         self.stats = EndpointStats()
         self.sysids: set[int] = set()
         self.complaint: str | None = None
+        #: a ground station endpoint: its peer sent a HEARTBEAT of a ground station (until then nothing it
+        #: sends is relayed to the drone)
+        self.verified = False
+        #: why the relay stopped this endpoint for good (its peer is no ground station), or None
+        self.refused: str | None = None
         self._deliver = deliver
         self._splitters: dict[Any, FrameSplitter] = {}
 
@@ -87,7 +92,8 @@ class Endpoint(abc.ABC):
             "frames_out": self.stats.frames_out,
             "last_in_age_s": age,
             "system_ids": sorted(self.sysids),
-            "error": self.complaint,
+            "error": self.refused or self.complaint,
+            "refused": self.refused is not None,
         }
 
 

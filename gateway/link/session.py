@@ -70,6 +70,7 @@ class Link:
         on_state: Callable[[ConnectionState, ConnectionState], None] | None = None,
         mission_progress: Callable[[int, int], MissionProgressValue] | None = None,
         session_jobs: Iterable[tuple[str, SessionJob]] = (),
+        on_relay_refused: Callable[[str, str], None] | None = None,
     ) -> None:
         self.spec = spec
         self.settings = settings
@@ -82,6 +83,7 @@ class Link:
         self._peers = peers
         self._confine = confine
         self._on_state = on_state
+        self._on_relay_refused = on_relay_refused
         self._mission_progress = mission_progress
         self._jobs = list(session_jobs)
         self._sidecar: Sidecar | None = None
@@ -322,7 +324,11 @@ class Link:
             from gateway.link.relay import Relay
 
             relay = Relay(
-                self.id, self.spec.url, list(self.spec.gcs_endpoints), sidecar_pid=self._sidecar_pid
+                self.id,
+                self.spec.url,
+                list(self.spec.gcs_endpoints),
+                sidecar_pid=self._sidecar_pid,
+                on_refused=self._on_relay_refused,
             )
             await relay.start()
             self._relay = relay
@@ -364,7 +370,8 @@ class Link:
     # --- session (one per serving sidecar process) ---------------------------------------------------------
     def _on_serving(self, port: int) -> None:
         old = self._session_task
-        self._session_task = asyncio.create_task(self._session(port, old), name=f"session-{self.id}")
+        address = self._sidecar.grpc_address if self._sidecar is not None else "127.0.0.1"
+        self._session_task = asyncio.create_task(self._session(address, port, old), name=f"session-{self.id}")
 
     def _on_sidecar_down(self, reason: str) -> None:
         self._last_error = reason
@@ -386,20 +393,25 @@ class Link:
             with contextlib.suppress(asyncio.CancelledError):
                 await task
 
-    async def _session(self, port: int, previous: asyncio.Task[None] | None) -> None:
+    async def _session(self, address: str, port: int, previous: asyncio.Task[None] | None) -> None:
         if previous is not None:
             previous.cancel()
             with contextlib.suppress(asyncio.CancelledError, Exception):
                 await previous
-        system = System(mavsdk_server_address="127.0.0.1", port=port)
+        system = System(mavsdk_server_address=address, port=port)
         try:
             await asyncio.wait_for(system.connect(), CONNECT_TIMEOUT_S)
         except (TimeoutError, grpc.aio.AioRpcError) as exc:
-            self._last_error = f"gRPC session to mavsdk_server on port {port} failed: {exc!r}"
+            self._last_error = f"gRPC session to mavsdk_server on {address}:{port} failed: {exc!r}"
             log.warning("%s: %s; restarting the sidecar", self.id, self._last_error)
             await close_system(system)
             if self._sidecar is not None:
                 self._sidecar.recycle()  # the supervisor starts a fresh process (with backoff)
+            return
+        sealed = self._sidecar.seal() if self._sidecar is not None else None
+        if sealed is not None:  # another process reached the sidecar first: it was restarted
+            self._last_error = sealed
+            await close_system(system)
             return
         self.telemetry.clear()
         self.facts = LinkFacts()
@@ -411,7 +423,7 @@ class Link:
         self._session_started = time.monotonic()
         self.sessions += 1
         mavsdk.start()
-        log.info("%s: MAVSDK session open on gRPC port %d", self.id, port)
+        log.info("%s: MAVSDK session open on %s:%d", self.id, address, port)
         mavsdk.schedule_rates("session start")
         try:
             await asyncio.Event().wait()  # lives until cancelled (sidecar down, disconnect)

@@ -11,10 +11,13 @@ What mavsdk_server 4.0.5 does that shapes this module (measured):
   on the port belongs to its own process; otherwise it respawns on another port.
 * A port held by a non-reuseport socket makes it exit with ``Failed to bind server to port``: also
   retried on another port, not counted as a crash.
-* It binds gRPC on 0.0.0.0. Sidecars run from a loopback-only copy (``gateway.link.confine``), and
-  with that confinement on, the supervisor checks in /proc after every start that the process's gRPC
-  socket listens on a loopback address; one that listens anywhere else is stopped and the vehicle
-  fails closed, whatever binary or architecture made it. ``SpawnPlan`` / ``Sidecar.confine`` is the
+* It binds gRPC on 0.0.0.0. Sidecars run from a confined copy (``gateway.link.confine``): by default
+  one that serves on a unix socket in a private directory (``gateway.link.sidecar_socket``: the
+  supervisor checks in /proc that the process listens there, the link removes the path once its own
+  channel is connected and checks that the sidecar holds that one connection only, ``seal``); with
+  ``loopback``, one bound to 127.0.0.1, checked in /proc after every start to listen on a loopback
+  address only. A process that listens anywhere else is stopped and the vehicle fails closed, whatever
+  binary or architecture made it. ``SpawnPlan`` / ``Sidecar.confine`` is the
   one place where a wrapper (network namespace, an emulator) is inserted around the command.
 
 Every sidecar runs in its own process group with PR_SET_PDEATHSIG=SIGKILL (set by an exec wrapper,
@@ -43,7 +46,7 @@ from pathlib import Path
 from typing import Any
 
 from gateway.config import Settings
-from gateway.link import confine
+from gateway.link import confine, sidecar_socket
 from gateway.link.proc_sockets import listening_addresses, listening_inodes, socket_inodes
 from gateway.util.ports import free_tcp_port
 
@@ -144,6 +147,8 @@ class SidecarInfo:
     consecutive_failures: int = 0
     last_error: str | None = None
     started_at: float | None = None  # monotonic, of the current process
+    #: socket confinement: the current process's private directory, holding its gRPC socket until sealed
+    socket_dir: Path | None = None
     serving_since: float | None = None
     discovered: bool = False
     #: the latest error/warning mavsdk_server printed while waiting for its vehicle (cleared when serving)
@@ -193,7 +198,34 @@ class Sidecar:
 
     @property
     def grpc_port(self) -> int | None:
+        """The gRPC port while serving (with socket confinement: the number that names its socket)."""
         return self.info.grpc_port if self.info.state == SidecarState.SERVING else None
+
+    @property
+    def on_socket(self) -> bool:
+        return self.settings.sidecar_confinement == "socket"
+
+    @property
+    def grpc_address(self) -> str:
+        """What a gRPC client puts before ``:<port>``: the private socket's path (``unix:<dir>/sk``) or
+        127.0.0.1."""
+        directory = self.info.socket_dir
+        if self.on_socket and directory is not None:
+            return "unix:" + str(directory / confine.SOCKET_NAME.format(port="")).removesuffix(":")
+        return "127.0.0.1"
+
+    def seal(self) -> str | None:
+        """Socket confinement: the gateway's channel is connected; remove the socket's path so no other
+        process can connect, and check that the gateway's is its one connection (None: so; else what
+        is wrong, and the process is recycled). Nothing to do otherwise."""
+        directory, port = self.info.socket_dir, self.info.grpc_port
+        if not self.on_socket or directory is None or port is None:
+            return None
+        wrong = sidecar_socket.seal(directory, port)
+        if wrong is not None:
+            self._log.error("%s: %s; restarting its sidecar", self.vehicle_id, wrong)
+            self.recycle()
+        return wrong
 
     def status(self) -> dict[str, Any]:
         return {
@@ -287,7 +319,7 @@ class Sidecar:
     async def _run_once(self) -> str:
         """Start one process (retrying ports) and wait until it ends; return why it ended."""
         for _attempt in range(PORT_ATTEMPTS):
-            port = free_tcp_port()
+            port = sidecar_socket.socket_port() if self.on_socket else free_tcp_port()
             outcome = await self._spawn_and_watch(port)
             if outcome != "port-taken":
                 return outcome
@@ -319,6 +351,8 @@ class Sidecar:
         self.info.grpc_port = plan.grpc_port
         self.info.discovered = False
         self.info.serving_since = None
+        sidecar_socket.remove(self.info.socket_dir)
+        self.info.socket_dir = sidecar_socket.private_directory(self.vehicle_id) if self.on_socket else None
         try:
             proc = await asyncio.create_subprocess_exec(
                 *die_with_parent(plan.argv),
@@ -326,6 +360,7 @@ class Sidecar:
                 stdout=asyncio.subprocess.PIPE,
                 stderr=asyncio.subprocess.STDOUT,
                 env=plan.env,
+                cwd=self.info.socket_dir,  # socket confinement: where its gRPC socket is made
                 start_new_session=True,  # own process group: stop() kills the whole group
             )
         except OSError as exc:
@@ -361,17 +396,17 @@ class Sidecar:
                     bind_failed = True
                 else:
                     match = _LISTEN.search(line)
-                    if match and int(match.group(1)) == plan.grpc_port:
+                    if match and self.on_socket:
+                        if not await self._socket_is_ours(proc.pid, plan.grpc_port):
+                            exposed_on = [line.removeprefix("Server set to listen on ")]
+                            break
+                        self._serve(plan.grpc_port)
+                    elif match and int(match.group(1)) == plan.grpc_port:
                         if await self._port_is_ours(proc.pid, plan.grpc_port):
                             exposed_on = self._exposed_listeners(proc.pid, plan.grpc_port)
                             if exposed_on:
                                 break
-                            self.info.state = SidecarState.SERVING
-                            self.info.complaint = None
-                            self.info.serving_since = time.monotonic()
-                            self._serving.set()
-                            if self._on_serving is not None:
-                                self._on_serving(plan.grpc_port)
+                            self._serve(plan.grpc_port)
                         else:
                             foreign_listener = True
                             break
@@ -384,10 +419,13 @@ class Sidecar:
             _LIVE_PGIDS.discard(proc.pid)
             self._proc = None
             self.info.pid = None
+            sidecar_socket.remove(self.info.socket_dir)
+            self.info.socket_dir = None
         if exposed_on:
+            where = "its private unix socket" if self.on_socket else "loopback only"
             raise confine.ConfinementError(
                 f"mavsdk_server for {self.vehicle_id} listened for gRPC on {', '.join(exposed_on)}, not on "
-                "loopback only; it was stopped. Use mavsdk-grpc 4.0.5's binary, or set "
+                f"{where}; it was stopped. Use mavsdk-grpc 4.0.5's binary, or set "
                 "GATEWAY_SIDECAR_CONFINEMENT=none and firewall the sidecar ports yourself."
             )
         if foreign_listener or bind_failed:
@@ -423,6 +461,23 @@ class Sidecar:
         self.info.recent_output.append(message)
         self._log.log(level, "[%s] %s", self.vehicle_id, message)
         return message
+
+    def _serve(self, port: int) -> None:
+        self.info.state = SidecarState.SERVING
+        self.info.complaint = None
+        self.info.serving_since = time.monotonic()
+        self._serving.set()
+        if self._on_serving is not None:
+            self._on_serving(port)
+
+    async def _socket_is_ours(self, pid: int, port: int) -> bool:
+        """Socket confinement: the process listens on its private unix socket (the listen line comes a
+        moment before the socket shows in /proc)."""
+        for _ in range(20):
+            if sidecar_socket.listener_is_ours(pid, port):
+                return True
+            await asyncio.sleep(0.05)
+        return False
 
     async def _port_is_ours(self, pid: int, port: int) -> bool:
         """No other process listens on ``port`` (SO_REUSEPORT makes sharing it silent).

@@ -52,12 +52,24 @@ def drones_json(commander: Commander) -> list[dict[str, Any]]:
     return out
 
 
+#: what an agent is never told of a sidecar: how to reach it around the gateway (gRPC) and its process
+SIDECAR_PRIVATE = ("pid", "grpc_port")
+
+
+def agent_status(status: dict[str, Any]) -> dict[str, Any]:
+    """A vehicle's status as an agent may read it: the sidecar's state, not its process or gRPC port."""
+    sidecar = status.get("sidecar")
+    if isinstance(sidecar, dict):
+        status = {**status, "sidecar": {k: v for k, v in sidecar.items() if k not in SIDECAR_PRIVATE}}
+    return status
+
+
 def state_json(commander: Commander, drone_id: str) -> dict[str, Any]:
     v = commander.vehicle(drone_id)
     op = commander.operations.latest(drone_id)
     return {
         "drone_id": drone_id,
-        "status": plain(v.status()),
+        "status": agent_status(plain(v.status())),
         "telemetry": surface_telemetry(plain(v.telemetry.snapshot())),
         "operation": None if op is None else op.to_dict(),
     }

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import ipaddress
 import re
 from urllib.parse import urlsplit
 
@@ -15,11 +16,24 @@ MAX_GCS_ENDPOINTS = 8
 _HOSTNAME = re.compile(r"^[A-Za-z0-9.\-]{1,253}$")
 
 
+def redacted(url: str) -> str:
+    """``url`` as it may be shown: credentials (``user:pw@``) replaced by ``***@``."""
+    scheme, sep, rest = url.partition("://")
+    if sep and "@" in rest.split("/", 1)[0]:
+        return f"{scheme}://***@{rest.split('@', 1)[1]}"
+    return url
+
+
 def validate_connection_url(url: str) -> str:
     """Check a URL in mavsdk_server syntax and return it unchanged; raise ValueError naming the problem."""
     if len(url) > 256:
         raise ValueError("connection URL longer than 256 characters")
     parts = urlsplit(url)
+    if redacted(url) != url or parts.username is not None:
+        raise ValueError(
+            f"credentials in a MAVLink URL are not accepted (given '{redacted(url)[:80]}'): MAVLink has no "
+            "login; give scheme://host:port"
+        )
     if parts.scheme not in CONNECTION_SCHEMES:
         raise ValueError(f"connection URL scheme must be one of {', '.join(CONNECTION_SCHEMES)}; got '{url}'")
     if parts.scheme == "serial":
@@ -53,7 +67,7 @@ def validate_gcs_endpoints(urls: list[str]) -> list[str]:
         raise ValueError(f"{len(urls)} endpoints given; at most {MAX_GCS_ENDPOINTS} are accepted")
     seen: set[str] = set()
     for url in urls:
-        shown = url[:80]
+        shown = redacted(url)[:80] if isinstance(url, str) else repr(url)[:80]
         if not isinstance(url, str) or urlsplit(url).scheme not in GCS_SCHEMES:
             raise ValueError(f"'{shown}' is not accepted; give MAVLink URLs {accepted}")
         try:
@@ -107,10 +121,13 @@ class VehicleSpec(BaseModel):
 
     @model_validator(mode="after")
     def _gcs_not_the_vehicle(self) -> VehicleSpec:
-        if self.url in self.gcs_endpoints:
-            raise ValueError(
-                f"gcs_endpoints: '{self.url}' is the drone's own URL; give the ground stations' endpoints"
-            )
+        own = link_address(self.url)
+        for url in self.gcs_endpoints:
+            if url == self.url or (own is not None and same_place(link_address(url), own)):
+                raise ValueError(
+                    f"gcs_endpoints: '{url}' is the drone's own link ({self.url}); give the ground "
+                    "stations' endpoints"
+                )
         return self
 
     @field_validator("tags")
@@ -120,3 +137,47 @@ class VehicleSpec(BaseModel):
             if not 1 <= len(tag) <= 32 or not re.match(r"^[A-Za-z0-9_.\-]+$", tag):
                 raise ValueError(f"tag '{tag[:40]}' must be 1-32 of letters, digits, '_', '.', '-'")
         return value
+
+
+_ANY_HOST = frozenset({"0.0.0.0", "::", ""})
+
+
+def link_address(url: str) -> tuple[str, str, int] | None:
+    """(transport, host, port) of a network MAVLink URL: transport "tcp" or "udp"; None for serial."""
+    parts = urlsplit(url)
+    if parts.scheme == "serial" or parts.port is None:
+        return None
+    return parts.scheme[:3], (parts.hostname or "").lower(), parts.port
+
+
+def _local(host: str) -> bool:
+    if host in _ANY_HOST or host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
+
+
+def same_place(a: tuple[str, str, int] | None, b: tuple[str, str, int] | None) -> bool:
+    """Whether two link addresses reach the same socket: same transport and port, and the same host or
+    both this host (loopback, or a wildcard bind)."""
+    if a is None or b is None or a[0] != b[0] or a[2] != b[2]:
+        return False
+    return a[1] == b[1] or (_local(a[1]) and _local(b[1]))
+
+
+def gcs_endpoint_conflict(spec: VehicleSpec, others: list[VehicleSpec], gateway_port: int) -> str | None:
+    """Why one of ``spec``'s ground station endpoints would carry another vehicle or the gateway itself
+    (another registered drone's link, the gateway's HTTP port), in one line; None when none does."""
+    for url in spec.gcs_endpoints:
+        place = link_address(url)
+        for other in others:
+            if other.id != spec.id and same_place(place, link_address(other.url)):
+                return (
+                    f"gcs_endpoints: '{url}' is drone '{other.id}''s own link ({other.url}); a ground "
+                    f"station endpoint of '{spec.id}' must lead to a ground station, never another vehicle"
+                )
+        if same_place(place, ("tcp", "127.0.0.1", gateway_port)):
+            return f"gcs_endpoints: '{url}' is the gateway's own HTTP port; give a ground station's endpoint"
+    return None

@@ -5,6 +5,8 @@ Routes (vehicle = index 0..N-1):
   GET  /vehicles                         -> [state, ...]
   GET  /vehicles/{i}                     -> state (true position, mode, armed, battery, faults ...)
   GET  /vehicles/{i}/statustexts         -> [[t_boot_s, severity, text], ...]
+  GET  /vehicles/{i}/record              -> what reached the vehicle and what it did (``gateway.sim.record``)
+  POST /vehicles/{i}/record      {}      (start a new record; the first home is kept)
   POST /vehicles/{i}/link        {"up": bool}
   POST /vehicles/{i}/packet_loss {"pct": 0..100}
   POST /vehicles/{i}/gps         {"ok": bool}
@@ -116,6 +118,8 @@ class ControlServer:
                 return vehicle.state()
             if action == "statustexts":
                 return [[round(t, 3), sev, text] for t, sev, text in vehicle.status_texts]
+            if action == "record":
+                return vehicle.record.describe(vehicle)
             raise ControlError(404, f"no route GET {path}")
         if method != "POST":
             raise ControlError(405, f"method {method} not allowed")
@@ -137,6 +141,8 @@ class ControlServer:
             _call(vehicle.set_battery, _number(args, "pct"))
         elif action == "reboot":
             vehicle.reboot()
+        elif action == "record":
+            vehicle.record.reset()
         elif action == "mode":  # a pilot's RC switch or another ground station (not the gateway)
             name, text = args.get("mode"), args.get("text")
             if not isinstance(name, str) or (text is not None and not isinstance(text, str)):
@@ -247,6 +253,13 @@ class SimControl:
     async def pilot_mode(self, index: int, mode: str, text: str | None = None) -> dict:
         """Switch mode as a pilot or another ground station would; ``text``: a STATUSTEXT said first."""
         return await self._post(f"/vehicles/{index}/mode", {"mode": mode, "text": text})
+
+    async def record(self, index: int) -> dict:
+        """What reached the vehicle since ``reset_record`` and what it did (``gateway.sim.record``)."""
+        return await self._get(f"/vehicles/{index}/record")
+
+    async def reset_record(self, index: int) -> dict:
+        return await self._post(f"/vehicles/{index}/record", {})
 
     async def reboot(self, index: int) -> dict:
         """Restart the vehicle like an autopilot reboot (stream rates are lost; TCP clients reconnect)."""

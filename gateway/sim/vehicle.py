@@ -25,6 +25,7 @@ from gateway.sim.mission import AutoState, MissionStore
 from gateway.sim.modes import GUIDED_FLAG_MODES, Mode, mode_name
 from gateway.sim.params import Param, ParamTable
 from gateway.sim.physics import MAX_STEP_S, Body, LocalFrame
+from gateway.sim.record import FlightRecord
 from gateway.sim.streams import GROUP_PARAM
 from gateway.sim.timeline import Timeline
 
@@ -75,6 +76,7 @@ class SimVehicle:
         self.battery = Battery()
         self.status_texts: list[tuple[float, int, str]] = []
         self.boots = 0
+        self.record = FlightRecord()
         self.mission = MissionStore(self._mission_home, self.send_to, self._mission_uploaded, self.text)
         self.commands = CommandHandler(self)
         self._boot()
@@ -312,6 +314,7 @@ class SimVehicle:
             return
         if not self._targets_us(msg):
             return
+        self.record.message(self.t, msg)
         if kind in ("COMMAND_LONG", "COMMAND_INT"):
             self.commands.handle(link, msg)
         elif self.mission.handle(link, msg):
@@ -353,6 +356,7 @@ class SimVehicle:
 
     def _mission_uploaded(self, count: int) -> None:
         self.notify_param("MIS_TOTAL", count)  # AP_Mission's total includes home
+        self.record.mission_stored(self.mission.items[1:])
         self.flight.mission_changed()
 
     # ------------------------------------------------------------------------------------------------
@@ -384,6 +388,7 @@ class SimVehicle:
             self.battery.capacity_mah = capacity  # as ArduPilot: remaining % is consumed mAh of BATT_CAPACITY
         self.battery.drain(dt, self.armed, self.flying)
         check_failsafes(self)
+        self.record.sample(self)
 
     def set_origin(self) -> None:
         self.home = self.position()

@@ -22,36 +22,31 @@ import re
 import signal
 import subprocess
 from collections.abc import AsyncIterator, Iterator
-from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 from urllib.parse import urlparse
 
 import pytest
+import pytest_asyncio
 from mcp.types import CallToolResult
 from sqlalchemy import text
 
 from gateway.registry.store import Store
+from tests.cluster.fault_matrix import MATRIX, Rig, rig, run_case
 from tests.cluster.harness import (
-    Cluster,
     Node,
-    SlowProxy,
     cluster,
-    freeze,
     frozen,
-    kill_nats,
     missing_engines,
-    restart_nats,
     start_node,
     stop_node,
-    thaw,
     wait_node_ready,
     wait_spread,
 )
 from tests.helpers.tcpproxy import TcpProxy
 from tests.helpers.timing import eventually, scaled
-from tests.persist.pg import PostgresServer, create_database, find_pg_bin, restartable_postgres
+from tests.persist.pg import create_database, find_pg_bin, restartable_postgres
 from tests.registry.procs import alive, mavsdk_servers_of
 
 pytestmark = [
@@ -394,226 +389,29 @@ async def test_a_stop_lands_every_drone_while_nats_is_frozen(tmp_path: Path, via
             assert all(outcomes[d]["outcome"] == "sent" for d in c.drone_ids), outcomes
 
 
-# --- the fault matrix ---------------------------------------------------------------------------------
-# Two nodes, four drones in the air (two owned by each), every node's NATS and PostgreSQL connections
-# through proxies the test controls. One case per fault: the fault, an agent's move forwarded to the
-# other node's drone, the emergency stop (land) through a surviving node (the deadline on every drone in
-# LAND, as the simulator has it, runs from the moment the stop is sent), recovery, then every drone ready
-# under exactly one sidecar, and the audit. bench/cluster_matrix.py measures the same cases.
-
-#: fault -> the node the stop is sent through
-MATRIX = {
-    "nats-killed": "node-b",
-    "nats-frozen": "node-a",
-    "postgresql-killed": "node-b",
-    "postgresql-frozen": "node-a",
-    "slow-database": "node-b",
-    "node-a-frozen": "node-b",
-    "node-a-killed": "node-b",
-    "node-a-cut-from-nats": "node-a",
-    "node-a-cut-from-postgresql": "node-b",
-}
-SLOW_DATABASE_S = 1.0
+@pytest_asyncio.fixture(scope="module", loop_scope="module")
+async def matrix_rig(tmp_path_factory: pytest.TempPathFactory) -> AsyncIterator[Rig]:
+    """One cluster for every case of the matrix: each case leaves it recovered, and the next one starts
+    by starting a killed node again, unlocking the fleet and waiting until the drones are on the ground
+    and spread two and two."""
+    async with rig(tmp_path_factory.mktemp("matrix")) as r:
+        yield r
 
 
-@dataclass
-class Rig:
-    c: Cluster
-    pg: PostgresServer
-    nats_proxies: dict[str, TcpProxy]
-    db_proxies: dict[str, SlowProxy]
-
-    def inject(self, fault: str) -> None:
-        c, pg = self.c, self.pg
-        if fault == "nats-killed":
-            kill_nats(c.nats)
-        elif fault == "nats-frozen":
-            freeze(c.nats.proc)
-        elif fault == "postgresql-killed":
-            assert pg.proc is not None
-            os.killpg(pg.proc.pid, signal.SIGKILL)
-            pg.proc.wait(timeout=scaled(10))
-        elif fault == "postgresql-frozen":
-            assert pg.proc is not None
-            freeze(pg.proc)
-        elif fault == "slow-database":
-            for proxy in self.db_proxies.values():
-                proxy.delay_s = SLOW_DATABASE_S
-        elif fault == "node-a-frozen":
-            freeze(c.node("node-a").proc)
-        elif fault == "node-a-killed":
-            c.node("node-a").kill9()
-        elif fault == "node-a-cut-from-nats":
-            self.nats_proxies["node-a"].cut()
-        elif fault == "node-a-cut-from-postgresql":
-            self.db_proxies["node-a"].cut()
-        else:
-            raise ValueError(fault)
-
-    def recover(self, fault: str) -> None:
-        c, pg = self.c, self.pg
-        if fault == "nats-killed":
-            restart_nats(c.nats, c.workdir)
-        elif fault == "nats-frozen":
-            thaw(c.nats.proc)
-        elif fault == "postgresql-killed":
-            pg.proc = None
-            pg.start()
-        elif fault == "postgresql-frozen":
-            assert pg.proc is not None
-            thaw(pg.proc)
-        elif fault == "slow-database":
-            for proxy in self.db_proxies.values():
-                proxy.delay_s = 0.0
-        elif fault == "node-a-frozen":
-            thaw(c.node("node-a").proc)
-        elif fault == "node-a-cut-from-nats":
-            self.nats_proxies["node-a"].heal()
-        elif fault == "node-a-cut-from-postgresql":
-            self.db_proxies["node-a"].heal()
+#: run on a cluster of its own: after the other cases on the shared one it did not pass (not understood yet)
+ALONE = ("node-a-cut-from-postgresql",)
 
 
-@contextlib.asynccontextmanager
-async def rig(workdir: Path) -> AsyncIterator[Rig]:
-    with restartable_postgres() as pg, proxies() as made:
-        nats_proxies: dict[str, TcpProxy] = {}
-        db_proxies: dict[str, SlowProxy] = {}
-
-        def nats_via(name: str, url: str) -> str:
-            target = urlparse(url)
-            nats_proxies[name] = made[f"nats-{name}"] = TcpProxy("127.0.0.1", target.port or 4222)
-            return f"nats://127.0.0.1:{nats_proxies[name].port}"
-
-        def database_via(name: str, url: str) -> str:
-            target = urlparse(url.replace("postgresql+asyncpg", "postgresql"))
-            db_proxies[name] = proxy = SlowProxy("127.0.0.1", target.port or 5432)
-            made[f"db-{name}"] = proxy
-            return url.replace(f":{target.port}/", f":{proxy.port}/")
-
-        async with cluster(
-            workdir, drones=4, nodes=2, speedup=5.0, database_server=pg.url, nats_via=nats_via,
-            database_via=database_via,
-        ) as c:  # fmt: skip
-            yield Rig(c, pg, nats_proxies, db_proxies)
+@pytest.mark.asyncio(loop_scope="module")
+@pytest.mark.parametrize("fault", [f for f in MATRIX if f not in ALONE])
+async def test_the_emergency_stop_under_each_fault(matrix_rig: Rig, fault: str) -> None:
+    """tests/cluster/fault_matrix.py: the case, its checks, and what it measures (printed)."""
+    figures = await run_case(matrix_rig, fault)
+    print(f"{fault}: " + ", ".join(f"{k} {v}" for k, v in figures.items()))
 
 
-async def one_sidecar_each(c: Cluster) -> dict[str, Any] | None:
-    """Each drone held by one live node, which runs one sidecar per drone it holds, and every drone
-    ready as every live node sees it."""
-    held = {n.name: (await n.get("/cluster"))["held"] for n in c.live_nodes}
-    found = sidecars(c.live_nodes)
-    every = sorted(d for drones in held.values() for d in drones)
-    states = [await c.states(n) for n in c.live_nodes]
-    if (
-        every == sorted(c.drone_ids)
-        and all(len(found[name]) == len(drones) for name, drones in held.items())
-        and all(s.get(d) == "ready" for s in states for d in c.drone_ids)
-    ):
-        return {"held": held, "sidecars": found}
-    return None
-
-
-@pytest.mark.parametrize("fault", list(MATRIX))
-async def test_the_emergency_stop_under_each_fault(tmp_path: Path, fault: str) -> None:
-    via = MATRIX[fault]
-    clock = asyncio.get_running_loop().time
-    began = clock()
-
-    def phase(what: str) -> None:
-        print(f"{fault}: {what} at {clock() - began:.1f} s")
-
+@pytest.mark.parametrize("fault", ALONE)
+async def test_the_emergency_stop_under_a_fault_on_a_cluster_of_its_own(tmp_path: Path, fault: str) -> None:
     async with rig(tmp_path) as r:
-        c = r.c
-        owners = await wait_spread(c)
-        assert sorted(owners.values()) == ["node-a", "node-a", "node-b", "node-b"], owners
-        phase("cluster ready")
-        await take_off(c.node("node-a"), c.drone_ids)
-        phase("four drones in the air")
-        stopper = c.node(via)
-        other = c.node("node-b" if via == "node-a" else "node-a")
-        foreign = sorted(d for d, n in owners.items() if n == other.name)
-        on_a = sorted(d for d, n in owners.items() if n == "node-a")
-        frozen_drones = on_a if fault == "node-a-frozen" else []
-
-        r.inject(fault)
-        if fault == "node-a-cut-from-postgresql":  # once it fenced itself: its drones' links are free
-            await eventually(
-                lambda: _true(log_has(c.node("node-a"), "could not renew its leases in time")),
-                "node-a fenced itself", within_s=30,
-            )  # fmt: skip
-        try:
-            # an agent's move through the stopping node for a drone the other node owns: answered in
-            # time (run, or "not run"), never run later
-            async with stopper.client(name="mover") as mcp:
-                move = await asyncio.wait_for(
-                    mcp.call_tool("move_to_relative", {"drone_id": foreign[0], "north_m": 30, "east_m": 0}),
-                    scaled(20),
-                )
-            phase(f"the forwarded move answered ({'an error' if move.is_error else 'done'})")
-            sent_at = datetime.now(UTC)
-            stop = asyncio.create_task(stopper.post("/fleet/stop", {"action": "land"}))
-            landing = [d for d in c.drone_ids if d not in frozen_drones]
-            if frozen_drones:  # those whose stop is sent at once (their link free) are held to the deadline
-                answer = await stop
-                stop = asyncio.create_task(_done(answer))
-                sent = {x["vehicle_id"] for x in answer.json()["results"] if x["outcome"] == "sent"}
-                landing = [d for d in c.drone_ids if d in sent]
-                frozen_drones = [d for d in c.drone_ids if d not in sent]
-
-            seen: dict[str, str] = {}
-
-            async def all_landing() -> dict[str, str] | None:
-                seen.update({d: (await c.true_state(d))["mode"] for d in landing})
-                if set(seen.values()) != {"LAND"}:
-                    return None
-                phase("every drone in LAND")
-                return seen
-
-            try:
-                await eventually(all_landing, f"every drone in LAND, {fault}, stop through {via}", within_s=3)
-            except AssertionError as exc:
-                raise AssertionError(f"{exc}; modes {seen}") from None
-            finally:
-                response = await stop
-            assert response.status_code == 200, response.text
-            outcomes = {x["vehicle_id"]: x for x in response.json()["results"]}
-            phase(f"the stop answered {sorted((d, x['outcome']) for d, x in outcomes.items())}")
-            for d in landing:
-                assert outcomes[d]["outcome"] == "sent", outcomes
-            for d in frozen_drones:  # sent, or (its link held) node-b keeps at it and says so
-                assert outcomes[d]["outcome"] in ("sent", "taking_over"), outcomes
-                if outcomes[d]["outcome"] == "taking_over":
-                    assert "keeps trying" in outcomes[d]["message"], outcomes
-        finally:
-            r.recover(fault)
-        if frozen_drones:  # node-a runs again, finds its leases gone, lets go of the links: node-b lands them
-
-            async def frozen_landing() -> dict[str, str] | None:
-                modes = {d: (await c.true_state(d))["mode"] for d in frozen_drones}
-                return modes if set(modes.values()) == {"LAND"} else None
-
-            await eventually(frozen_landing, "the frozen node's drones in LAND once it runs", within_s=60)
-
-        await eventually(lambda: one_sidecar_each(c), f"every drone ready under one sidecar after {fault}",
-                         within_s=90)  # fmt: skip
-        phase("every drone ready under one sidecar")
-
-        async def audited() -> list[Any] | None:
-            rows = await c.rows("SELECT outcome FROM audit WHERE action = 'rest.fleet_stop'")
-            return rows or None
-
-        assert [x[0] for x in await eventually(audited, "the stop's audit row", within_s=30)] == ["ok"]
-        late = await c.rows(
-            "SELECT kind, created_at FROM operations WHERE vehicle_id = :d AND created_at > :t "
-            "AND kind NOT IN ('land', 'return_to_launch')",
-            d=foreign[0], t=sent_at,
-        )  # fmt: skip
-        assert not late, late  # the move never ran after the stop
-
-
-async def _true(value: bool) -> bool:
-    return value
-
-
-async def _done(value: Any) -> Any:
-    return value
+        figures = await run_case(r, fault)
+    print(f"{fault}: " + ", ".join(f"{k} {v}" for k, v in figures.items()))

@@ -398,3 +398,22 @@ async def test_a_drone_found_flying_in_a_mode_the_gateway_did_not_command_is_wat
         assert exp is not None and exp.modes == {"LOITER"} and exp.kind == "found flying in LOITER"
         pilot_switch(fake(gateway, "d1"), "ALT_HOLD")
         await until(lambda: gateway.locks.takeover_for("d1") is not None, "the takeover")
+
+
+async def test_a_pilot_switch_right_after_a_goto_in_the_same_mode_is_a_takeover(gateway: Gateway) -> None:
+    """A goto sent while the drone already flies GUIDED brings no mode change to see: a pilot's switch
+    before the watch first looks is still a takeover."""
+    c = gateway.commander
+    d1 = fake(gateway, "d1")
+    took = await c.takeoff(AGENT, "d1", 10.0)
+    assert (await c.wait(took.operation_id, 10)).status == "succeeded"
+    d1.speed = 2.0
+    lat, lon = at(400, 0, d1.home_ll)
+    op = await c.goto(AGENT, "d1", lat, lon, 10.0)
+    pilot_switch(d1, "BRAKE")  # before the watch's first poll
+    view = await asyncio.wait_for(c.wait(op.operation_id, 60), scaled(5))
+    assert view.status == "interrupted"
+    assert "GUIDED to BRAKE" in view.message
+    with pytest.raises(SafetyRefusal) as refused:
+        await c.move_relative(AGENT, "d1", 10.0, 0.0)
+    assert refused.value.rule == "taken_over"

@@ -20,6 +20,7 @@ import pytest_asyncio
 from pymavlink import mavutil
 
 from gateway.util.ports import free_udp_port
+from tests.helpers import sim_process
 from tests.helpers.timing import scaled
 from tests.mcp.conftest import Stack, gateway_stack, point_from, structured, wait_ready, wait_until_true
 
@@ -267,3 +268,50 @@ async def test_a_ground_stations_new_target_through_the_relay_is_a_takeover_its_
             assert refused.is_error and "taken_over" in refused.content[0].text, refused
     finally:
         gcs.close()
+
+
+async def test_an_endpoint_that_is_another_vehicle_is_refused_or_stopped_and_credentials_are_refused(
+    stack: Stack,
+) -> None:
+    """Registration refuses an endpoint that is another drone's link and one with credentials (never
+    echoing them); an endpoint that turns out to lead to another autopilot (here a second simulator's
+    port, as `tcpout://127.0.0.1:5772` is bravo's) is stopped at its first HEARTBEAT and reported in the
+    status and the audit, nothing of it relayed, and the drone's own link is untouched."""
+    d1_url = (await stack.rest("/vehicles/d1"))["url"]
+    body = {"id": "d8", "url": "udpin://127.0.0.1:14999", "gcs_endpoints": [d1_url]}
+    async with httpx.AsyncClient(base_url=stack.base_url, timeout=scaled(30)) as http:
+        r = await http.post("/api/v1/vehicles", json=body)
+    assert r.status_code in (400, 422), r.text
+    message = r.json()["error"]["message"]
+    assert f"is drone 'd1''s own link ({d1_url})" in message, message
+
+    r = await patch(stack, "d1", {"gcs_endpoints": ["tcpout://user:secret@127.0.0.1:5772"]})
+    assert r.status_code == 422, r.text
+    message = r.json()["error"]["message"]
+    assert "credentials in a MAVLink URL are not accepted" in message and "secret" not in r.text, message
+    audit = await stack.rest("/audit", vehicle_id="d1", limit=20)
+    assert "secret" not in str(audit["items"]), "the password reached the audit"
+
+    async with sim_process(count=1, sysid_base=7) as other:
+        crossed = other.urls[0]  # another autopilot's own port
+        r = await patch(stack, "d1", {"gcs_endpoints": [crossed]})
+        assert r.status_code == 200, r.text
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + scaled(30)
+        while True:
+            v = await stack.rest("/vehicles/d1")
+            stations = v["status"]["ground_stations"]
+            if stations and stations[0]["refused"]:
+                break
+            assert loop.time() < deadline, v["status"]
+            await asyncio.sleep(0.2)
+        assert "its peer is another vehicle (system 7" in stations[0]["error"], stations
+        await wait_ready(stack)
+        v = await stack.rest("/vehicles/d1")
+        assert v["status"]["other_sysids_on_link"] == [] and v["status"]["sysid"] == stack.sim.sysids[0]
+        rows = (await stack.rest("/audit", vehicle_id="d1", limit=50))["items"]
+        row = next(r for r in rows if r["action"] == "gcs_endpoint_refused")
+        assert row["outcome"] == "refused" and row["arguments"]["endpoint"] == crossed, row
+        assert (await stack.true_state("d1"))["mode"] is not None
+    r = await patch(stack, "d1", {"gcs_endpoints": []})
+    assert r.status_code == 200, r.text

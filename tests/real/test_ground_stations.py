@@ -123,6 +123,10 @@ async def sees_and_commands(
             )
             assert abs(pos.lat / 1e7 - home["lat_deg"]) < 1e-3 and abs(pos.lon / 1e7 - home["lon_deg"]) < 1e-3
             await asyncio.to_thread(gcs.drain)
+            # a ground station says what it is first: the relay holds back what comes before
+            gcs.conn.mav.heartbeat_send(
+                mavutil.mavlink.MAV_TYPE_GCS, mavutil.mavlink.MAV_AUTOPILOT_INVALID, 0, 0, 0
+            )
             gcs.conn.mav.command_long_send(
                 sysid, 1, mavutil.mavlink.MAV_CMD_REQUEST_MESSAGE, 0,
                 mavutil.mavlink.MAVLINK_MSG_ID_AUTOPILOT_VERSION, 0, 0, 0, 0, 0, 0,

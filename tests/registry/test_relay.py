@@ -14,6 +14,7 @@ from typing import Any
 
 import pytest
 import pytest_asyncio
+from pydantic import ValidationError
 
 os.environ.setdefault("MAVLINK20", "1")  # the peers speak MAVLink 2 (addressed COMMAND_ACK)
 from pymavlink import mavutil
@@ -162,16 +163,18 @@ async def test_a_serial_vehicle_is_relayed() -> None:
         os.write(master, frame(heartbeat()))
         hb = await asyncio.to_thread(gcs.receive, "HEARTBEAT", 10)
         assert hb is not None and hb.get_srcSystem() == DRONE
+        gcs.conn.mav.heartbeat_send(6, 8, 0, 0, 0)  # a ground station says what it is first
         gcs.conn.mav.command_long_send(DRONE, 1, 176, 0, 1, 5, 0, 0, 0, 0, 0)
         splitter, got = FrameSplitter(), []
-        while not got:
-            assert loop.time() < deadline + scaled(10), "nothing reached the serial device"
+        os.set_blocking(master, False)
+        while not any(f.msgid == 76 for f in got):
+            assert loop.time() < deadline + scaled(10), f"no COMMAND_LONG reached the serial device: {got}"
             await asyncio.sleep(0.05)
             try:
-                got = splitter.feed(os.read(master, 4096))
+                got += splitter.feed(os.read(master, 4096))
             except BlockingIOError:
                 continue
-        assert got[0].sysid == GCS_A and got[0].msgid == 76
+        assert {f.sysid for f in got} == {GCS_A}
     finally:
         await relay.close()
         gcs.close()
@@ -294,3 +297,81 @@ def test_a_ground_stations_frames_that_act_on_the_drone_are_told_from_its_reads(
         mavlink.MAVLink_command_long_message(7, 1, 192, 0, -1, 1, 0, nan, nan, nan, nan),  # to system 7
     ):
         assert said(read) is None, read
+
+
+async def test_an_endpoint_whose_peer_is_another_vehicle_is_stopped_and_nothing_of_it_relayed() -> None:
+    """A ground station endpoint cross-wired to another drone's autopilot port (here a tcpout to a peer
+    that speaks as autopilot system 2, telemetry first): what it sends before its HEARTBEAT is held back,
+    its HEARTBEAT says it is a vehicle, the endpoint is stopped and reported (status, on_refused); the
+    drone's own link goes on."""
+
+    async def other_vehicle(_reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        position = mavlink.MAVLink_global_position_int_message(0, 1, 1, 10, 10, 0, 0, 0, 0)
+        writer.write(frame(position, 2) + frame(heartbeat(), 2))
+        await writer.drain()
+
+    drone_port = free_udp_port()
+    server = await asyncio.start_server(other_vehicle, "127.0.0.1", 0)
+    vehicle_port = server.sockets[0].getsockname()[1]
+    drone = Peer(f"udpin:127.0.0.1:{drone_port}", DRONE)
+    refused: list[tuple[str, str]] = []
+    endpoint = f"tcpout://127.0.0.1:{vehicle_port}"
+    relay = Relay(
+        "r6", f"udpout://127.0.0.1:{drone_port}", [endpoint], on_refused=lambda *a: refused.append(a)
+    )
+    await relay.start()
+    sidecar = Peer(relay.sidecar_url.replace("udpout://", "udpout:"), SIDECAR)
+    try:
+        sidecar.conn.mav.heartbeat_send(6, 8, 0, 0, 0)  # the drone (udpin) learns where the relay is
+        assert await asyncio.to_thread(drone.receive, "HEARTBEAT", 10) is not None
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + scaled(10)
+        while not refused:
+            assert loop.time() < deadline, relay.status()
+            await asyncio.sleep(0.05)
+        [(url, reason)] = refused
+        assert url == endpoint and "its peer is another vehicle (system 2" in reason, reason
+        [station] = relay.status()
+        assert station["refused"] is True and "nothing from it was relayed" in station["error"], station
+        got = await asyncio.to_thread(drone.receive, "GLOBAL_POSITION_INT", 1)
+        assert got is None, "the other vehicle's telemetry reached the drone"
+        drone.conn.mav.heartbeat_send(2, 3, 81, 4, 3)  # the drone's own link goes on
+        hb = await asyncio.to_thread(sidecar.receive, "HEARTBEAT", 10, lambda m: m.get_srcSystem() == DRONE)
+        assert hb is not None
+    finally:
+        drone.close()
+        sidecar.close()
+        await relay.close()
+        server.close()
+
+
+def test_an_endpoint_that_is_another_drones_link_or_carries_credentials_is_refused() -> None:
+    from gateway.registry.spec import VehicleSpec, gcs_endpoint_conflict
+
+    bravo = VehicleSpec(id="bravo", url="tcpout://127.0.0.1:5770")
+    listening = VehicleSpec(id="charlie", url="udpin://0.0.0.0:14560")
+    for crossed, other in (
+        ("tcpout://127.0.0.1:5770", "bravo"),
+        ("tcpout://localhost:5770", "bravo"),
+        ("udpout://127.0.0.1:14560", "charlie"),  # into charlie's own listening port
+    ):
+        alpha = VehicleSpec(id="alpha", url="tcpout://127.0.0.1:5760", gcs_endpoints=[crossed])
+        said = gcs_endpoint_conflict(alpha, [bravo, listening], 8765)
+        assert said is not None and f"is drone '{other}''s own link" in said, said
+    fine = ["udpout://127.0.0.1:14550", "tcpout://127.0.0.1:5771", "tcpin://127.0.0.1:5790"]
+    alpha = VehicleSpec(id="alpha", url="tcpout://127.0.0.1:5760", gcs_endpoints=fine)
+    assert gcs_endpoint_conflict(alpha, [bravo, listening], 8765) is None
+    gateway = VehicleSpec(
+        id="alpha", url="tcpout://127.0.0.1:5760", gcs_endpoints=["tcpout://127.0.0.1:8765"]
+    )
+    assert "the gateway's own HTTP port" in str(gcs_endpoint_conflict(gateway, [], 8765))
+    with pytest.raises(ValueError, match="is the drone's own link") as own:
+        VehicleSpec(id="alpha", url="udpin://0.0.0.0:14540", gcs_endpoints=["udpout://127.0.0.1:14540"])
+    assert "udpout://127.0.0.1:14540" in str(own.value)
+    with pytest.raises(ValidationError) as creds:
+        VehicleSpec(
+            id="alpha", url="tcpout://127.0.0.1:5760", gcs_endpoints=["tcpout://user:pw@127.0.0.1:5772"]
+        )
+    [error] = creds.value.errors()
+    assert "credentials in a MAVLink URL are not accepted" in error["msg"], error
+    assert ":pw@" not in error["msg"] and "***@127.0.0.1:5772" in error["msg"], error

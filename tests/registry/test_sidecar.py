@@ -25,7 +25,14 @@ WAIT = scaled(30.0)  # generous: waiting is never an assertion
 
 
 def _settings(**overrides: object) -> Settings:
-    base = {"sidecar_backoff_initial_s": 0.1, "sidecar_backoff_max_s": 0.5, "sidecar_max_restarts": 3}
+    # loopback: these tests are about the gRPC port (its choice, its squatters); the default, a private
+    # unix socket, is tested in tests/security/test_sidecar_socket.py
+    base = {
+        "sidecar_backoff_initial_s": 0.1,
+        "sidecar_backoff_max_s": 0.5,
+        "sidecar_max_restarts": 3,
+        "sidecar_confinement": "loopback",
+    }
     base.update(overrides)
     return Settings(**base)  # type: ignore[arg-type]
 

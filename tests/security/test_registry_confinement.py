@@ -37,8 +37,8 @@ async def test_registry_sidecar_refuses_non_loopback(tmp_path: Path, host_addres
         _env_file=None,
         database_url=f"sqlite+aiosqlite:///{tmp_path / 'gateway.db'}",
         sidecar_cache_dir=str(tmp_path / "cache"),
+        sidecar_confinement="loopback",  # the default, socket, has no TCP port: test_sidecar_socket.py
     )
-    assert settings.sidecar_confinement == "loopback"  # the default
     async with sim_process(count=1) as sim:
         store = await Store.open(settings.database_url)
         registry = Registry(settings, store)

@@ -44,6 +44,17 @@ def test_aarch64_patch_rewrites_the_one_nul_terminated_literal() -> None:
     assert confine.is_confined(patched)
 
 
+def test_the_socket_patch_rewrites_the_same_sites_to_a_unix_socket() -> None:
+    """Socket confinement: the same 8 bytes read ``unix:sk:`` (gRPC then listens on ``sk:<port>`` in the
+    sidecar's working directory), on both architectures."""
+    x86 = _elf(62) + (b"\x48\xb8" + b"0.0.0.0:" + b"pad") * 3
+    assert confine.patch_listen_address(x86, "socket").count(b"\x48\xb8unix:sk:") == 3
+    arm = _elf(183) + b"\x000.0.0.0:\x00" + b"listen on 0.0.0.0:{}\x00"
+    patched = confine.patch_listen_address(arm, "socket")
+    assert patched == arm.replace(b"\x000.0.0.0:\x00", b"\x00unix:sk:\x00")
+    assert confine.is_confined(patched, "socket") and not confine.is_confined(patched, "loopback")
+
+
 def test_patch_fails_closed_on_unknown_binary() -> None:
     with pytest.raises(confine.ConfinementError, match="expected"):
         confine.patch_listen_address(_elf(62) + b"\x48\xb8" + b"0.0.0.0:")
@@ -56,7 +67,7 @@ def test_patch_fails_closed_on_unknown_binary() -> None:
 
 
 def test_unknown_confinement_mode_is_refused(tmp_path: Path) -> None:
-    with pytest.raises(confine.ConfinementError, match="unknown sidecar confinement"):
+    with pytest.raises(confine.ConfinementError, match="use 'socket', 'loopback' or 'none'"):
         confine.sidecar_binary("maybe", None, tmp_path)
 
 
@@ -273,7 +284,9 @@ async def test_aarch64_sidecar_starts_confined_under_qemu(tmp_path: Path, host_a
     from tests.registry.heartbeat import HeartbeatVehicle
 
     source, qemu = _aarch64_mavsdk_server(), _qemu_aarch64()
-    settings = Settings(mavsdk_server_path=str(source), sidecar_cache_dir=str(tmp_path))  # type: ignore[call-arg]
+    settings = Settings(  # type: ignore[call-arg]
+        mavsdk_server_path=str(source), sidecar_cache_dir=str(tmp_path), sidecar_confinement="loopback"
+    )
     udp = free_udp_port()
     car = Sidecar(
         "arm",
@@ -306,7 +319,7 @@ async def test_a_sidecar_listening_beyond_loopback_is_stopped(tmp_path: Path) ->
     from tests.registry.heartbeat import HeartbeatVehicle
 
     shipped = str(confine.bundled_mavsdk_server())
-    settings = Settings(sidecar_cache_dir=str(tmp_path))  # type: ignore[call-arg]
+    settings = Settings(sidecar_cache_dir=str(tmp_path), sidecar_confinement="loopback")  # type: ignore[call-arg]
     udp = free_udp_port()
     car = Sidecar(
         "leaky",

@@ -103,6 +103,11 @@ class ModeWatch:
             return
         settled = modes if modes is not None else vehicle.commanded_modes(kind, done=True)
         exp = ModeExpectation(kind, wanted, settled | wanted, operation_id, since=time.monotonic())
+        heard = vehicle.heartbeat_mode()
+        if heard is not None and heard[1] and heard[0] in wanted:
+            # already flying in the command's mode (a goto while in GUIDED): the mode will not change to
+            # show it, so a pilot's switch before the watch's first look is judged like any later one
+            exp.seen, exp.last_mode = True, heard[0]
         if kind in HOLD_KINDS:  # the target it holds to: a move away from it is someone else's
             exp.target = vehicle.commanded_target()
         self._expected[vehicle.id] = exp

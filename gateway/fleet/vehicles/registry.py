@@ -29,7 +29,7 @@ from gateway.fleet.vehicles.protocols import FlyingVehicle, VehicleView, flying
 from gateway.fleet.vehicles.vehicle import ConnectionState, Vehicle
 from gateway.link.sidecar import Confine
 from gateway.registry.records import VehicleRecord
-from gateway.registry.spec import VehicleSpec
+from gateway.registry.spec import VehicleSpec, gcs_endpoint_conflict
 from gateway.registry.store import Store
 
 log = logging.getLogger("gateway.registry")
@@ -117,6 +117,7 @@ class Registry:
         """Register (persist) a vehicle and, by default, connect it. Raises DuplicateVehicle."""
         spec = _validate_spec(spec)
         async with self._lock:
+            self._refuse_crossed_links(spec)
             await self.store.add_vehicle(spec, auto_connect=connect)
             vehicle: RegisteredVehicle
             if self.clustered:  # the node whose lease keeper takes it runs its sidecar
@@ -132,6 +133,9 @@ class Registry:
         """Change name, tags, expected_sysid, url, gcs_endpoints or auto_connect; a new URL or new ground
         station endpoints reconnect the vehicle."""
         old = self.get(vehicle_id)
+        link: dict[str, Any] = {k: changes[k] for k in ("url", "gcs_endpoints") if k in changes}
+        if link:
+            self._refuse_crossed_links(_validate_spec({**old.spec.model_dump(), **link}))
         record = await self.store.update_vehicle(vehicle_id, **changes)
         spec = VehicleSpec.model_validate(record.model_dump(include=SPEC_FIELDS))
         was_connected = old.sidecar is not None
@@ -145,6 +149,14 @@ class Registry:
             old.spec = spec
         await self._registrations_changed()
         return old
+
+    def _refuse_crossed_links(self, spec: VehicleSpec) -> None:
+        """A ground station endpoint that is another registered drone's link or the gateway's own port
+        is refused before anything is stored (InvalidArgument naming both)."""
+        others = [v.spec for v in self._vehicles.values() if v.id != spec.id]
+        conflict = gcs_endpoint_conflict(spec, others, self.settings.port)
+        if conflict is not None:
+            raise InvalidArgument(conflict)
 
     async def remove(self, vehicle_id: str) -> None:
         vehicle = self.get(vehicle_id)

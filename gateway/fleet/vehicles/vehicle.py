@@ -46,7 +46,7 @@ from gateway.link.session import Link
 from gateway.link.sidecar import Confine, Sidecar
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
-from gateway.registry.store import Store
+from gateway.registry.store import AuditEntry, Store
 
 log = logging.getLogger("gateway.vehicle")
 
@@ -88,6 +88,7 @@ class Vehicle:
                 ("mission", lambda system: self.missions.follow(system)),
                 ("target", self._position_target),
             ],
+            on_relay_refused=self._relay_refused,
         )
         self.missions = MissionControl(self.link, self)
         self.arming = Arming(self.link, self)
@@ -425,6 +426,26 @@ class Vehicle:
     def ground_station_commands(self, since: float) -> list[GroundCommand]:
         relay = self.link.relay
         return [] if relay is None else relay.commands_since(since)
+
+    def _relay_refused(self, url: str, reason: str) -> None:
+        """A ground station endpoint whose peer is no ground station was stopped by the relay: audited
+        (its status shows the reason)."""
+        if self.store is None:
+            return
+        try:
+            self.store.queue_audit(
+                AuditEntry(
+                    principal="relay",
+                    source="gateway",
+                    vehicle_id=self.id,
+                    action="gcs_endpoint_refused",
+                    arguments={"endpoint": url},
+                    outcome="refused",
+                    error=reason,
+                )
+            )
+        except RuntimeError:  # the store is closed: the gateway is stopping
+            log.warning("%s: %s (not audited: the store is closed)", self.id, reason)
 
     def commanded_target(self) -> tuple[float, float, float] | None:
         """The last position target the gateway sent (a goto or a hold): latitude, longitude and when it

@@ -1,0 +1,362 @@
+"""The emergency stop under each fault of the cluster's engines and nodes: one case per fault, shared by
+tests/cluster/test_faults.py (which asserts) and bench/cluster_matrix.py (which prints the figures).
+
+Two nodes, four simulated drones in the air (two owned by each), every node's NATS and PostgreSQL
+connections through proxies the case controls (cut, or delayed: a slow database). Each case:
+
+1. the fault (:data:`MATRIX`);
+2. an agent's move through the stopping node for a drone the other node owns: it must be answered in
+   time (run, or refused as not run), and never run later;
+3. the emergency stop (land) through a surviving node: every drone in LAND as the simulator has it within
+   3 s (a deadline on the wait, from the moment the stop is sent), and every drone's outcome ``sent``;
+   a drone whose node is frozen while it holds the drone's link cannot be reached by anyone: it answers
+   ``sent`` or ``taking_over`` (saying what is being done) and lands once that node runs again;
+4. recovery, then within 90 s every drone ready under exactly one sidecar, and the audit holding the stop
+   and the move.
+
+The cases run one after another on one cluster (:meth:`Rig.prepare` between them: a killed node started
+again, batteries full, the fleet lock and any takeover lock released, the drones on the ground, two owned
+by each node).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import os
+import signal
+import time
+from collections.abc import AsyncIterator, Iterator
+from dataclasses import dataclass
+from datetime import UTC, datetime, timedelta
+from pathlib import Path
+from typing import Any
+from urllib.parse import urlparse
+
+from tests.cluster.harness import (
+    Cluster,
+    Node,
+    SlowProxy,
+    cluster,
+    freeze,
+    kill_nats,
+    restart_nats,
+    start_node,
+    stop_node,
+    thaw,
+    wait_node_ready,
+    wait_spread,
+)
+from tests.helpers.tcpproxy import TcpProxy
+from tests.helpers.timing import eventually, scaled
+from tests.persist.pg import PostgresServer, restartable_postgres
+from tests.registry.procs import mavsdk_servers_of
+
+#: fault -> the node the stop is sent through (the harder side: the one that must find another path)
+MATRIX = {
+    "nats-killed": "node-b",
+    "nats-frozen": "node-a",
+    "postgresql-killed": "node-b",
+    "postgresql-frozen": "node-a",
+    "slow-database": "node-b",
+    "node-a-frozen": "node-b",
+    "node-a-cut-from-nats": "node-a",
+    "node-a-cut-from-postgresql": "node-b",
+    "node-a-killed": "node-b",
+}
+#: a slow database: every chunk each way through its proxy held this long
+SLOW_DATABASE_S = 1.0
+#: the stop's deadline: every drone in LAND within this of the stop being sent
+STOP_DEADLINE_S = 3.0
+
+
+@dataclass
+class Rig:
+    c: Cluster
+    pg: PostgresServer
+    nats_proxies: dict[str, TcpProxy]
+    db_proxies: dict[str, SlowProxy]
+
+    def inject(self, fault: str) -> None:
+        c, pg = self.c, self.pg
+        if fault == "nats-killed":
+            kill_nats(c.nats)
+        elif fault == "nats-frozen":
+            freeze(c.nats.proc)
+        elif fault == "postgresql-killed":
+            assert pg.proc is not None
+            os.killpg(pg.proc.pid, signal.SIGKILL)
+            pg.proc.wait(timeout=scaled(10))
+        elif fault == "postgresql-frozen":
+            assert pg.proc is not None
+            freeze(pg.proc)
+        elif fault == "slow-database":
+            for proxy in self.db_proxies.values():
+                proxy.delay_s = SLOW_DATABASE_S
+        elif fault == "node-a-frozen":
+            freeze(c.node("node-a").proc)
+        elif fault == "node-a-killed":
+            c.node("node-a").kill9()
+        elif fault == "node-a-cut-from-nats":
+            self.nats_proxies["node-a"].cut()
+        elif fault == "node-a-cut-from-postgresql":
+            self.db_proxies["node-a"].cut()
+        else:
+            raise ValueError(f"fault: one of {', '.join(MATRIX)}; got {fault!r}")
+
+    async def prepare(self) -> dict[str, str]:
+        """Ready for the next case: both nodes running (a killed one started again), the fleet unlocked,
+        every drone on the ground and disarmed, two owned by each node and ready; the owners."""
+        c = self.c
+        for index, node in enumerate(c.nodes):
+            if not node.alive:
+                stop_node(node)
+                env = node.env
+                c.nodes[index] = again = start_node(
+                    node.name, env["GATEWAY_DATABASE_URL"], env["GATEWAY_CLUSTER_NATS_URL"], c.workdir, c.env
+                )
+                await wait_node_ready(again, 90.0)
+        for index in range(len(c.drone_ids)):  # a fresh battery: the cases fly one after another
+            await c.sim.control.set_battery(index, 100.0)
+        truths = [await c.true_state(d) for d in c.drone_ids]
+        if any(t["armed"] for t in truths):  # a case that failed left some in the air
+            await c.nodes[0].post("/fleet/stop", {"action": "land"})
+
+        async def grounded() -> bool:
+            truths = [await c.true_state(d) for d in c.drone_ids]
+            return all(not t["armed"] and t["rel_alt_m"] < 0.5 for t in truths)
+
+        await eventually(grounded, "every drone on the ground and disarmed", within_s=60)
+
+        async def unlocked() -> bool:  # a lock a node kept while the database was down is written late
+            response = await c.nodes[0].delete("/fleet/lock")
+            assert response.status_code == 200, response.text
+            # a land sent over a drone's own link by another node is a mode its owner did not command: a
+            # takeover lock there, which the operator releases
+            for d in c.drone_ids:
+                response = await c.nodes[0].delete(f"/vehicles/{d}/takeover")
+                assert response.status_code == 200, response.text
+            views = [await n.get(p) for n in c.nodes for p in ("/locks", "/takeovers")]
+            return not any(v["items"] for v in views) and not await c.rows("SELECT scope FROM locks")
+
+        async def stays_unlocked() -> bool:
+            # and still so a moment later: a lock broadcast while NATS was down is delivered when the
+            # nodes reconnect, and a node holds a lock it heard until the database has it or an unlock
+            if not await unlocked():
+                return False
+            await asyncio.sleep(2.0)
+            views = [await n.get(p) for n in c.nodes for p in ("/locks", "/takeovers")]
+            return not any(v["items"] for v in views)
+
+        await eventually(stays_unlocked, "the fleet unlocked on every node and in the database", within_s=40)
+        return await wait_spread(c)
+
+    def recover(self, fault: str) -> None:
+        c, pg = self.c, self.pg
+        if fault == "nats-killed":
+            restart_nats(c.nats, c.workdir)
+        elif fault == "nats-frozen":
+            thaw(c.nats.proc)
+        elif fault == "postgresql-killed":
+            pg.proc = None
+            _wait_gone(pg)
+            pg.start()
+        elif fault == "postgresql-frozen":
+            assert pg.proc is not None
+            thaw(pg.proc)
+        elif fault == "slow-database":
+            for proxy in self.db_proxies.values():
+                proxy.delay_s = 0.0
+        elif fault == "node-a-frozen":
+            thaw(c.node("node-a").proc)
+        elif fault == "node-a-cut-from-nats":
+            self.nats_proxies["node-a"].heal()
+        elif fault == "node-a-cut-from-postgresql":
+            self.db_proxies["node-a"].heal()
+
+
+def _wait_gone(pg: PostgresServer) -> None:
+    """Until the killed postmaster named in its pid file is gone (a start before that is refused)."""
+    pid_file = pg.data / "postmaster.pid"
+    deadline = time.monotonic() + scaled(20)
+    while time.monotonic() < deadline:
+        try:
+            pid = int(pid_file.read_text().split()[0])
+            os.kill(pid, 0)
+        except (OSError, ValueError, IndexError):
+            return
+        time.sleep(0.1)
+
+
+@contextlib.contextmanager
+def _proxies() -> Iterator[list[TcpProxy]]:
+    made: list[TcpProxy] = []
+    try:
+        yield made
+    finally:
+        for proxy in made:
+            proxy.close()
+
+
+@contextlib.asynccontextmanager
+async def rig(workdir: Path) -> AsyncIterator[Rig]:
+    """The cluster of a case: PostgreSQL the case can kill and freeze, and every node's connections to
+    NATS and PostgreSQL through proxies of its own."""
+    with restartable_postgres() as pg, _proxies() as made:
+        nats_proxies: dict[str, TcpProxy] = {}
+        db_proxies: dict[str, SlowProxy] = {}
+
+        def nats_via(name: str, url: str) -> str:
+            proxy = nats_proxies[name] = TcpProxy("127.0.0.1", urlparse(url).port or 4222)
+            made.append(proxy)
+            return f"nats://127.0.0.1:{proxy.port}"
+
+        def database_via(name: str, url: str) -> str:
+            port = urlparse(url.replace("postgresql+asyncpg", "postgresql")).port or 5432
+            proxy = db_proxies[name] = SlowProxy("127.0.0.1", port)
+            made.append(proxy)
+            return url.replace(f":{port}/", f":{proxy.port}/")
+
+        async with cluster(
+            workdir, drones=4, nodes=2, speedup=5.0, database_server=pg.url, nats_via=nats_via,
+            database_via=database_via,
+        ) as c:  # fmt: skip
+            yield Rig(c, pg, nats_proxies, db_proxies)
+
+
+def _log_has(node: Node, text: str, since: int = 0) -> bool:
+    with node.log.open("rb") as fh:
+        fh.seek(since)
+        return text in fh.read().decode(errors="replace")
+
+
+async def one_sidecar_each(c: Cluster) -> dict[str, Any] | None:
+    """Each drone held by one live node, which runs one sidecar per drone it holds, and every drone
+    ready as every live node sees it."""
+    held = {n.name: (await n.get("/cluster"))["held"] for n in c.live_nodes}
+    found = {n.name: mavsdk_servers_of(n.proc.pid) for n in c.live_nodes}
+    every = sorted(d for drones in held.values() for d in drones)
+    states = [await c.states(n) for n in c.live_nodes]
+    if (
+        every == sorted(c.drone_ids)
+        and all(len(found[name]) == len(drones) for name, drones in held.items())
+        and all(s.get(d) == "ready" for s in states for d in c.drone_ids)
+    ):
+        return {"held": held, "sidecars": found}
+    return None
+
+
+async def take_off(node: Node, drone_ids: list[str], alt_m: float = 10.0) -> None:
+    async with node.client(name="takeoff") as mcp:
+        results = await asyncio.gather(
+            *(mcp.call_tool("takeoff", {"drone_id": d, "alt_m": alt_m}) for d in drone_ids)
+        )
+    for r in results:
+        assert not r.is_error and r.structured_content is not None, r
+        assert r.structured_content["status"] == "succeeded", r
+
+
+async def _is(value: bool) -> bool:
+    return value
+
+
+async def run_case(r: Rig, fault: str) -> dict[str, Any]:
+    """One case of the matrix on the rig (cases run one after another on one rig), its checks asserted;
+    what it measured (seconds, and the outcomes)."""
+    via = MATRIX[fault]
+    clock = asyncio.get_running_loop().time
+    figures: dict[str, Any] = {"via": via}
+    c = r.c
+    owners = await r.prepare()
+    case_began = datetime.now(UTC) - timedelta(seconds=1)
+    assert sorted(owners.values()) == ["node-a", "node-a", "node-b", "node-b"], owners
+    await take_off(c.node("node-a"), c.drone_ids)
+    stopper = c.node(via)
+    other = "node-b" if via == "node-a" else "node-a"
+    foreign = sorted(d for d, n in owners.items() if n == other)
+    on_a = sorted(d for d, n in owners.items() if n == "node-a")
+    held_by_frozen = on_a if fault == "node-a-frozen" else []
+
+    log_from = c.node("node-a").log.stat().st_size
+    r.inject(fault)
+    if fault == "node-a-cut-from-postgresql":  # the stop after it fenced itself (else: as no fault)
+        fenced = "could not renew its leases in time"
+        await eventually(
+            lambda: _is(_log_has(c.node("node-a"), fenced, log_from)), "node-a fenced", within_s=30
+        )
+    pending: list[str] = []
+    try:
+        async with stopper.client(name="mover") as mcp:
+            began = clock()
+            move = await asyncio.wait_for(
+                mcp.call_tool("move_to_relative", {"drone_id": foreign[0], "north_m": 30, "east_m": 0}),
+                scaled(30),
+            )
+            figures["move_answer_s"] = round(clock() - began, 2)
+            figures["move"] = "refused" if move.is_error else "run"
+        sent_at, began = datetime.now(UTC), clock()
+        stop = asyncio.create_task(stopper.post("/fleet/stop", {"action": "land"}))
+        landing = [d for d in c.drone_ids if d not in held_by_frozen]
+        seen: dict[str, str] = {}
+
+        async def all_landing() -> dict[str, str] | None:
+            seen.update({d: (await c.true_state(d))["mode"] for d in landing})
+            if set(seen.values()) != {"LAND"}:
+                return None
+            figures.setdefault("stop_to_land_s", round(clock() - began, 2))
+            return seen
+
+        try:
+            await eventually(all_landing, f"{fault}: every drone in LAND", within_s=STOP_DEADLINE_S)
+        except AssertionError as exc:
+            raise AssertionError(f"{exc}; modes {seen}") from None
+        finally:
+            response = await stop
+            figures["stop_answer_s"] = round(clock() - began, 2)
+        assert response.status_code == 200, response.text
+        outcomes = {x["vehicle_id"]: x for x in response.json()["results"]}
+        figures["outcomes"] = {d: x["outcome"] for d, x in sorted(outcomes.items())}
+        # sent; or taking over, saying how (a drone another node has just taken over, its link coming
+        # up, or one whose link the frozen node holds): in LAND all the same, but for the frozen node's
+        for d in c.drone_ids:
+            assert outcomes[d]["outcome"] in ("sent", "taking_over"), outcomes
+            if outcomes[d]["outcome"] == "taking_over":
+                assert "keeps trying" in (outcomes[d]["message"] or ""), outcomes
+        pending += held_by_frozen  # checked in LAND once node-a runs again
+    finally:
+        r.recover(fault)
+    recovered = clock()
+    if pending:  # node-a runs again, finds its leases gone and lets go of the links: node-b lands them
+
+        async def landing_late() -> dict[str, str] | None:
+            modes = {d: (await c.true_state(d))["mode"] for d in pending}
+            return modes if set(modes.values()) == {"LAND"} else None
+
+        await eventually(landing_late, f"{fault}: {pending} in LAND once node-a runs", within_s=60)
+        figures["frozen_node_drones_land_after_thaw_s"] = round(clock() - recovered, 2)
+
+    ready = await eventually(lambda: one_sidecar_each(c), f"{fault}: every drone ready under one sidecar",
+                             within_s=90)  # fmt: skip
+    figures["ready_after_recovery_s"] = round(clock() - recovered, 2)
+    figures["held"] = ready["held"]
+
+    async def audited() -> list[Any] | None:
+        since = "t >= :t AND "
+        stops = await c.rows(
+            f"SELECT outcome FROM audit WHERE {since}action = 'rest.fleet_stop'", t=case_began
+        )
+        moves = await c.rows(
+            f"SELECT outcome FROM audit WHERE {since}action LIKE '%move_to_relative'", t=case_began
+        )
+        return [stops, moves] if stops and moves else None
+
+    stops, moves = await eventually(audited, f"{fault}: the stop and the move in the audit", within_s=30)
+    assert [x[0] for x in stops] == ["ok"], stops
+    assert len(moves) == 1, moves
+    late = await c.rows(
+        "SELECT kind, created_at FROM operations WHERE vehicle_id = :d AND created_at > :t "
+        "AND kind NOT IN ('land', 'return_to_launch')",
+        d=foreign[0], t=sent_at,
+    )  # fmt: skip
+    assert not late, late  # the move never ran after the stop
+    return figures
