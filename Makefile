@@ -42,7 +42,7 @@ bench: $(STAMP)
 LLM ?= 1.5b
 PROFILE ?= small
 bench-nl: $(STAMP)
-	$(BIN)/python bench/nl_missions.py --profile $(PROFILE) \
+	$(BIN)/python bench/nl_missions.py \
 	  $(if $(ENDPOINT),--endpoint $(ENDPOINT) --model $(MODEL),--serve-local $(LLM)) $(BENCH_NL_ARGS)
 
 # deploy/docker-compose.yml run for real with podman (installed from Debian when missing; as root): the

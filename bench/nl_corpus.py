@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 88 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 112 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -15,6 +15,11 @@ The first 40 entries were written in full before any model ran on them (2026-11-
 per class and all in the ``dev`` half (marked "added later"), were written later the same day, again
 before any model ran on them, after the dev half had been tuned on until 17 of its 20 passed: a tuning
 set the host passes tells nothing more. The test half is unchanged. Eight more (marked "added on the second day"), again dev only and written before any model ran on them (2026-11-28), where the test half measured weakest: compound, multi, conditional, question. Eight more (marked "added on the third day"), dev only, written before any model ran on them (2026-11-28), in the kinds of request the test half still failed: a choice between drones by their batteries (the dev half had none), a flight out and back, a move with a height from the ground, one drone told to stay while others fly. Eight more (marked "added on the fourth day"), dev only, written before any model ran on them (2026-11-28): a question that picks a drone, out and back, one drone hopping while another flies, a height change after a leg. Eight more (marked "added on the fifth day"), dev only, written before any model ran on them (2026-11-28, a new session): two drones with different orders, out and back by the same distance, a climb during a leg, a hop, a line placed off to one side.
+
+Twenty-four more (2026-11-29, with the typed plan host), in four new classes of six, 3 dev and 3 test each,
+written before any model ran on them: distances and heights in other units (feet, yards, kilometres), a
+shape one drone flies (square, triangle, hexagon, circle, survey lines), a drone placed relative to another
+drone or its home, and requests in French, Spanish and German.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -60,6 +65,10 @@ CLASSES = (
     "relative",  # metres north/east/up from where the drone is, in varied phrasings
     "question",  # questions only: nothing may fly
     "refusal",  # requests beyond the gateway's limits: refused, and the user told
+    "units",  # distances and heights in feet, yards, kilometres
+    "pattern",  # a shape flown by one drone: polygon, circle, survey lines
+    "placement",  # a drone placed relative to another drone or to its home
+    "language",  # requests in French, Spanish, German
 )
 HALVES = ("dev", "test")
 DRONES = ("alpha", "bravo", "charlie")
@@ -167,7 +176,7 @@ def _entry(
     drones: tuple[str, ...],
     request: str,
     check: Any,
-    plan: list[PlannedCall],
+    plan: list[PlannedCall] | Any,
     answer: str = "Done.",
     battery: dict[str, float] | None = None,
 ) -> CorpusEntry:
@@ -177,7 +186,7 @@ def _entry(
         drones=drones,
         prompt=lambda c: request,
         check=check,
-        plan=lambda c: list(plan),
+        plan=plan if callable(plan) else lambda c: list(plan),
         answer=answer,
         tags=tags,
         battery_pct=dict(battery or {}),
@@ -710,6 +719,161 @@ def _refusals() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
+def _go(d: str, point: tuple[float, float], alt: float) -> PlannedCall:
+    return ("go_to_location", {"drone_id": d, "lat_deg": point[0], "lon_deg": point[1], "alt_m": alt})
+
+
+def _legs(d: str, legs: list[tuple[float, float]]) -> list[PlannedCall]:
+    return [_move(d, n, e) for n, e in legs]
+
+
+FT, YD = 0.3048, 0.9144
+_HEXAGON = [(12.0, 0.0), (6.0, 10.39), (-6.0, 10.39), (-12.0, 0.0), (-6.0, -10.39), (6.0, -10.39)]
+_TRIANGLE_EAST = [(0.0, 30.0), (-25.98, -15.0), (25.98, -15.0)]
+
+
+def _corners(legs: list[tuple[float, float]]) -> list[tuple[float, float]]:
+    """The points a drone flying ``legs`` from its home passes, in order."""
+    out, north, east = [], 0.0, 0.0
+    for n, e in legs:
+        north, east = north + n, east + e
+        out.append((north, east))
+    return out
+
+
+def _units() -> list[CorpusEntry]:
+    return [
+        _entry("units", "dev", "units-bravo-fifty-feet", ("bravo",),
+               "Take bravo up to 50 feet and keep it there.",
+               lambda c, ev: airborne_at(ev, "bravo", 50 * FT),
+               [_takeoff("bravo", 50 * FT)], "Bravo hovers at 50 ft (15 m)."),
+        _entry("units", "test", "units-alpha-eighty-feet", ("alpha",),
+               "Get alpha hovering at 80 ft.",
+               lambda c, ev: airborne_at(ev, "alpha", 80 * FT),
+               [_takeoff("alpha", 80 * FT)], "Alpha hovers at 80 ft."),
+        _entry("units", "dev", "units-alpha-km-east", ("alpha",),
+               "Alpha: climb to 30 ft, fly 0.05 km east, then land.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 50)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 30 * FT), _move("alpha", 0, 50), _land("alpha")], "Alpha flew 50 m east and landed."),
+        _entry("units", "test", "units-bravo-feet-south", ("bravo",),
+               "Bravo: take off to 10 m and move 150 feet south, then land it.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", -150 * FT, 0)), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), _move("bravo", -150 * FT, 0), _land("bravo")], "Bravo flew 150 ft south and landed."),
+        _entry("units", "dev", "units-charlie-yards", ("charlie",),
+               "Send charlie 100 yards north at 12 m and leave it hovering.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 100 * YD, 0), alt=12), airborne_at(ev, "charlie", 12)),
+               [_move("charlie", 100 * YD, 0, alt=12)], "Charlie hovers 100 yards north at 12 m."),
+        _entry("units", "test", "units-charlie-feet-km", ("charlie",),
+               "Charlie to 40 ft, then 0.03 km west and hold there.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -30), alt=40 * FT),
+                                  airborne_at(ev, "charlie", 40 * FT)),
+               [_takeoff("charlie", 40 * FT), _move("charlie", 0, -30)], "Charlie hovers 30 m west at 40 ft."),
+    ]  # fmt: skip
+
+
+def _patterns() -> list[CorpusEntry]:
+    square20, square15 = [(20.0, 0.0), (0.0, 20.0), (-20.0, 0.0), (0.0, -20.0)], [(15.0, 0.0), (0.0, 15.0), (-15.0, 0.0), (0.0, -15.0)]
+    survey = [(40.0, 0.0), (0.0, 10.0), (-40.0, 0.0), (0.0, 10.0), (40.0, 0.0)]
+    orbit = [(25.0, 0.0), (0.0, 25.0), (-25.0, 0.0), (0.0, -25.0)]
+    return [
+        _entry("pattern", "dev", "pattern-alpha-square", ("alpha",),
+               "Fly alpha in a square with 20 m sides at 10 m, then land.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(square20)[:3]]),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), *_legs("alpha", square20), _land("alpha")], "Alpha flew the square and landed."),
+        _entry("pattern", "test", "pattern-alpha-small-square", ("alpha",),
+               "Alpha should fly a 15 m square at 8 m altitude and land where it started.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(square15)[:3]]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 8), *_legs("alpha", square15), _land("alpha")], "Alpha flew the square and landed."),
+        _entry("pattern", "dev", "pattern-bravo-triangle", ("bravo",),
+               "Bravo: a triangle with 30 m sides at 12 m, starting towards the east, and stay up afterwards.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(_TRIANGLE_EAST)[:2]]),
+                                  airborne_at(ev, "bravo", 12)),
+               [_takeoff("bravo", 12), *_legs("bravo", _TRIANGLE_EAST)], "Bravo flew the triangle and hovers."),
+        _entry("pattern", "test", "pattern-bravo-hexagon", ("bravo",),
+               "Take bravo up to 10 m and fly a hexagon with 12 m sides, then hover.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(_HEXAGON)[:3]]),
+                                  airborne_at(ev, "bravo", 10)),
+               [_takeoff("bravo", 10), *_legs("bravo", _HEXAGON)], "Bravo flew the hexagon and hovers."),
+        _entry("pattern", "dev", "pattern-charlie-orbit", ("charlie",),
+               "Circle charlie around where it takes off, 25 m radius, at 15 m, then bring it home.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in orbit]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 15), *_legs("charlie", [(25.0, 0.0), (-25.0, 25.0), (-25.0, -25.0), (25.0, -25.0),
+                                                            (25.0, 25.0), (-25.0, 0.0)]), _rtl("charlie")],
+               "Charlie circled and came home."),
+        _entry("pattern", "test", "pattern-charlie-survey", ("charlie",),
+               "Survey with charlie at 15 m: three lines 40 m long, 10 m apart, going north first, then land.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(survey)]),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 15), *_legs("charlie", survey), _land("charlie")], "Charlie flew the survey and landed."),
+    ]  # fmt: skip
+
+
+def _placements() -> list[CorpusEntry]:
+    return [
+        _entry("placement", "dev", "place-alpha-north-of-bravo", DRONES,
+               "Put alpha 25 m north of bravo, at 15 m.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("bravo", 25, 0), alt=15), airborne_at(ev, "alpha", 15),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_go("alpha", c.point("bravo", 25, 0), 15)], "Alpha hovers 25 m north of bravo."),
+        _entry("placement", "test", "place-charlie-south-of-alpha", DRONES,
+               "Station charlie 25 m south of alpha at 20 m.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", -25, 0), alt=20), airborne_at(ev, "charlie", 20),
+                                  never_armed(ev, "alpha")),
+               lambda c: [_go("charlie", c.point("alpha", -25, 0), 20)], "Charlie hovers 25 m south of alpha."),
+        _entry("placement", "dev", "place-alpha-east-of-flying-charlie", DRONES,
+               "Charlie goes up to 10 m; then send alpha to 30 m east of charlie at the same height.",
+               lambda c, ev: _all(airborne_at(ev, "charlie", 10), at(ev, "alpha", *c.point("charlie", 0, 30), alt=10)),
+               lambda c: [_takeoff("charlie", 10), _go("alpha", c.point("charlie", 0, 30), 10)],
+               "Charlie hovers at 10 m, alpha 30 m east of it."),
+        _entry("placement", "test", "place-alpha-west-of-flying-bravo", DRONES,
+               "Launch bravo to 12 m, then place alpha 30 m west of bravo at 12 m.",
+               lambda c, ev: _all(airborne_at(ev, "bravo", 12), at(ev, "alpha", *c.point("bravo", 0, -30), alt=12)),
+               lambda c: [_takeoff("bravo", 12), _go("alpha", c.point("bravo", 0, -30), 12)],
+               "Bravo hovers at 12 m, alpha 30 m west of it."),
+        _entry("placement", "dev", "place-bravo-west-of-home", ("bravo",),
+               "Fly bravo to 30 m west of its home at 12 m and land it there.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -30)), landed_disarmed(ev, "bravo")),
+               lambda c: [_go("bravo", c.point("bravo", 0, -30), 12), _land("bravo")], "Bravo landed 30 m west of home."),
+        _entry("placement", "test", "place-alpha-northeast-of-charlie", DRONES,
+               "Alpha: go to a spot 40 m northeast of charlie at 15 m and hover.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("charlie", 28.28, 28.28), alt=15),
+                                  airborne_at(ev, "alpha", 15), never_armed(ev, "charlie")),
+               lambda c: [_go("alpha", c.point("charlie", 28.28, 28.28), 15)], "Alpha hovers 40 m northeast of charlie."),
+    ]  # fmt: skip
+
+
+def _languages() -> list[CorpusEntry]:
+    return [
+        _entry("language", "dev", "lang-fr-bravo-hop", ("bravo",),
+               "Fais décoller bravo à 12 mètres puis fais-le atterrir.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 12), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), _land("bravo")], "Bravo est monté à 12 m et a atterri."),
+        _entry("language", "test", "lang-fr-alpha-east-land", ("alpha",),
+               "Alpha : monte à 15 m, avance de 25 m vers l'est, puis atterris.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 25)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 15), _move("alpha", 0, 25), _land("alpha")], "Alpha a volé 25 m à l'est et a atterri."),
+        _entry("language", "dev", "lang-es-charlie-north", ("charlie",),
+               "Lleva a charlie 30 metros al norte a 10 metros de altura y déjalo ahí.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 30, 0), alt=10), airborne_at(ev, "charlie", 10)),
+               [_move("charlie", 30, 0, alt=10)], "Charlie está 30 m al norte a 10 m."),
+        _entry("language", "test", "lang-es-bravo-hover", ("bravo",),
+               "Sube a bravo a 18 metros y mantenlo allí.",
+               lambda c, ev: airborne_at(ev, "bravo", 18),
+               [_takeoff("bravo", 18)], "Bravo está a 18 m."),
+        _entry("language", "dev", "lang-de-alpha-hover", ("alpha",),
+               "Alpha soll auf 20 Meter steigen und dort schweben.",
+               lambda c, ev: airborne_at(ev, "alpha", 20),
+               [_takeoff("alpha", 20)], "Alpha schwebt auf 20 m."),
+        _entry("language", "test", "lang-de-charlie-south-land", ("charlie",),
+               "Charlie auf 10 m starten, 20 m nach Süden fliegen und dann landen.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -20, 0)), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), _move("charlie", -20, 0), _land("charlie")], "Charlie ist 20 m südlich gelandet."),
+    ]  # fmt: skip
+
+
 def corpus() -> list[CorpusEntry]:
     return [
         *_single(),
@@ -720,6 +884,10 @@ def corpus() -> list[CorpusEntry]:
         *_relative(),
         *_questions(),
         *_refusals(),
+        *_units(),
+        *_patterns(),
+        *_placements(),
+        *_languages(),
     ]
 
 

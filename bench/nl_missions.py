@@ -6,8 +6,8 @@ tokens in / out, wall time. Any OpenAI-compatible endpoint works (Ollama, LM Stu
 hosted providers).
 
   python bench/nl_missions.py --endpoint http://127.0.0.1:11434/v1 --model qwen2.5:7b [--write]
-  python bench/nl_missions.py --endpoint ... --model ... --toolsets flight,navigation,fleet
-  python bench/nl_missions.py --serve-local 1.5b --profile small --runs 3 --write   # make bench-nl
+  python bench/nl_missions.py --endpoint http://127.0.0.1:11434/v1 --model qwen2.5:7b --decoding ollama
+  python bench/nl_missions.py --serve-local 1.5b --runs 3 --write   # make bench-nl
   python bench/nl_missions.py --self-check          # no model: checks the harness itself
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the corpus's test half, per class
   python bench/nl_missions.py --half dev --sitl      # the dev half on three ArduCopter SITL drones
@@ -65,15 +65,12 @@ from bench.agent_harness.scripted import ScriptedModelServer
 from bench.agent_harness.stack import GatewayTruth, LocalStack, Sampler, SimTruth, reset_drones
 from bench.agent_harness.tokens import cl100k_tokens, model_tokens
 from bench.common import machine, write_section
-from gateway.agent.answer import ANSWER_TOOL_INFO
-from gateway.agent.autoprofile import ProfileChoice
-from gateway.agent.autoprofile import resolve as resolve_profile
-from gateway.agent.host import DEFAULT_SYSTEM_PROMPT, AgentEvent, AgentHost, ModelConfig, TurnResult
-from gateway.agent.mcp_link import McpLink
-from gateway.agent.profiles import PROFILES, apply_profile, host_options_for, system_prompt_for
-from gateway.agent.roster import with_drone_enum
-from gateway.agent.settings import AgentSettings, split_list
-from gateway.agent.toolbox import select_tools
+from fleet_agent.decoding import DECODINGS
+from fleet_agent.host import AgentHost
+from fleet_agent.mcp_link import McpLink
+from fleet_agent.prompt import system_prompt
+from fleet_agent.records import AgentEvent, ModelConfig, TurnResult
+from fleet_agent.settings import AgentSettings
 
 VERBOSE_EVENTS = frozenset(
     {
@@ -95,6 +92,7 @@ LOCAL_MODEL_SCRIPT = (
 )  # --shared-dir / FLEET_SHARED_DIR override
 # Failure classes, most telling first: a run is labelled with the first one its transcript shows.
 FAILURE_CLASSES = (
+    "invalid_plan",
     "empty_answer",
     "step_limit",
     "model_error",
@@ -146,13 +144,11 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         help="with --gateway-url: the sim's control API for true state (else gateway telemetry); "
         "drone alpha is sim vehicle 0, bravo vehicle 1",
     )
-    p.add_argument("--toolsets", default=None, help="comma-separated toolsets offered to the model")
-    p.add_argument("--tools", default=None, help="comma-separated tool names offered to the model")
     p.add_argument(
-        "--profile",
-        default="auto",
-        choices=[*PROFILES, "auto"],
-        help="small: the small-model toolset; full; auto (default): as `fleet-gateway agent` chooses",
+        "--decoding",
+        default=env.decoding,
+        choices=DECODINGS,
+        help="how the endpoint decodes the plan under its schema (default json_schema: llama.cpp, OpenAI)",
     )
     p.add_argument("--missions", default=None, help="comma-separated mission ids (default: all)")
     p.add_argument(
@@ -175,7 +171,6 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     p.add_argument(
         "--runs", type=int, default=None, help="runs of each mission (default 3; the self-check: 1)"
     )
-    p.add_argument("--max-steps", type=int, default=20, help="model requests per mission (default 20)")
     p.add_argument(
         "--model-timeout",
         type=float,
@@ -188,7 +183,7 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         default=None,
         help=f"start {LOCAL_MODEL_SCRIPT} with this model for the run and stop it afterwards",
     )
-    p.add_argument("--max-tokens", type=int, default=400, help="longest model reply in tokens (default 400)")
+    p.add_argument("--max-tokens", type=int, default=1024, help="longest plan in tokens (default 1024)")
     p.add_argument("--threads", type=int, default=2, help="threads of the --serve-local model (default 2)")
     p.add_argument("--speedup", type=float, default=5.0, help="simulator speed-up of the own sim (default 5)")
     p.add_argument("--write", action="store_true", help="add the results table to docs/benchmarks.md")
@@ -207,8 +202,6 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         args.self_check = True
     if args.self_check and args.write:
         p.error("--write is refused for the harness self-check: its figures are not a model result")
-    if args.max_steps < 1:
-        p.error("--max-steps must be at least 1")
     if args.runs is None:
         args.runs = 1 if args.self_check else 3
     if args.runs < 1:
@@ -241,7 +234,7 @@ def chosen_missions(args: argparse.Namespace) -> tuple[list[Mission], dict[str, 
 async def run_missions(args: argparse.Namespace, console: Console) -> list[MissionRun]:
     missions, where = chosen_missions(args)
     if args.missions:
-        wanted = split_list(args.missions)
+        wanted = [m.strip() for m in args.missions.split(",") if m.strip()]
         unknown = sorted(set(wanted) - {m.id for m in missions})
         if unknown:
             raise SystemExit(f"unknown mission(s) {unknown}; known: {[m.id for m in missions]}")
@@ -271,9 +264,7 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
             mcp_url, token, truth_from_sim = local.mcp_url, local.token, local.sim_control_url
         link = await stack.enter_async_context(McpLink(mcp_url, token))
         all_tools = await link.list_tools()
-        chosen = split_list(args.toolsets), split_list(args.tools)
-        tools = select_tools(all_tools, toolsets=chosen[0], names=chosen[1])
-        tools = apply_profile(tools, args.profile, keep_selection=bool(chosen[0] or chosen[1]))
+        tools = all_tools
         if local is not None:
             truth: Any = local.truth()
         elif truth_from_sim:
@@ -281,24 +272,21 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
             stack.push_async_callback(truth.aclose)
         else:
             truth = GatewayTruth(link)
-        shown = [with_drone_enum(t, drone_ids) for t in tools]
-        if host_options_for(args.profile)["answer_tool"]:
-            shown.append(ANSWER_TOOL_INFO)  # the host's own tool is part of what the model reads
-        args.system_prompt = system_prompt_for(args.profile, DEFAULT_SYSTEM_PROMPT)
-        own = None if args.self_check else await model_tokens(args.endpoint, shown, args.system_prompt)
-        cl100k = cl100k_tokens(shown, args.system_prompt)
-        own_text = "n/a" if own is None else f"{own[0]} (tool list alone {own[1]})"
+        args.system_prompt = system_prompt()
+        own = None if args.self_check else await model_tokens(args.endpoint, args.system_prompt)
+        cl100k = cl100k_tokens(args.system_prompt)
         args.tool_list = (
-            f"{len(tools)} of {len(all_tools)} tools; first request (system prompt, tool list, template) "
-            f"{own_text} tokens in the model's own tokenizer, {'n/a' if cl100k is None else cl100k} in cl100k"
+            f"plan decoding {args.decoding}; system prompt (template included) "
+            f"{'n/a' if own is None else own} tokens in the model's own tokenizer, "
+            f"{'n/a' if cl100k is None else cl100k} in cl100k"
         )
         console.print(f"[dim]tool list: {args.tool_list}; truth from {truth.source}[/]")
 
         pilot: ScriptedPilot | None = None
         if args.self_check:
-            pilot = ScriptedPilot(wait_tool=_wait_tool(all_tools), text_every=2)
+            pilot = ScriptedPilot()
             scripted = stack.enter_context(ScriptedModelServer([pilot], repeat_last=True))
-            model = ModelConfig(scripted.base_url, SELF_CHECK_MODEL, max_retries=0)
+            model = ModelConfig(scripted.base_url, SELF_CHECK_MODEL, max_retries=0, decoding="none")
         else:
             model = ModelConfig(
                 args.endpoint,
@@ -307,6 +295,7 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
                 timeout_s=args.model_timeout,
                 max_retries=0,
                 max_tokens=args.max_tokens,
+                decoding=args.decoding,
             )
 
         runs: list[MissionRun] = args.completed  # kept by main: an interrupted bench reports what finished
@@ -320,14 +309,6 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
                 run.cls, run.half = where.get(mission.id, (None, None))
                 runs.append(run)
         return runs
-
-
-def _wait_tool(tools: list[Any]) -> str | None:
-    names = {t.name for t in tools}
-    for candidate in ("wait_operation", "monitor_flight", "check_arrival"):
-        if candidate in names:
-            return candidate
-    return None
 
 
 async def run_one(
@@ -361,15 +342,7 @@ async def run_one(
         if args.verbose and e.kind in VERBOSE_EVENTS:
             console.print(f"[dim]  {mission.id} {e.kind}: {json.dumps(e.data, default=str)[:200]}[/]")
 
-    host = AgentHost(
-        model,
-        link,
-        tools,
-        max_steps=args.max_steps,
-        on_event=on_event,
-        system_prompt=args.system_prompt,
-        **host_options_for(args.profile),
-    )
+    host = AgentHost(model, link, tools, on_event=on_event)
     console.print(f"[bold]{mission.id}[/] {prompt} [dim](load {os.getloadavg()[0]:.1f})[/]")
     sampler = Sampler(truth, watched)
     async with sampler:
@@ -422,12 +395,12 @@ def classify(
 ) -> list[str]:
     """Every failure class the run shows, in FAILURE_CLASSES order (empty when nothing went wrong).
 
-    invented_id: a drone id outside the roster; wrong_tool: an unknown tool, or an action tool the
-    ideal plan does not use; wrong_argument: arguments the schema refused, or the right tools with the
-    drones ending in the wrong state; repeat: a call the host did not send again; gateway_refusal: a
-    refusal in a mission that expects none."""
+    invalid_plan: no plan validated, even after the repair round; wrong_tool: an unknown tool, or an
+    action tool the ideal plan does not use; wrong_argument: a call the host's checks held back, or the
+    right tools with the drones ending in the wrong state; gateway_refusal: a refusal in a mission that
+    expects none."""
     seen: set[str] = set()
-    if turn.outcome in ("empty_answer", "step_limit", "model_error"):
+    if turn.outcome in ("invalid_plan", "empty_answer", "step_limit", "model_error"):
         seen.add(turn.outcome)
     elif not (turn.final_text or "").strip():
         seen.add("empty_answer")
@@ -438,8 +411,8 @@ def classify(
         elif c.status == "invalid":
             text = next((r.get("text") or "" for r in results if r.get("id") == c.id), "")
             seen.add("invented_id" if "is not one of" in text and "drone_id" in text else "wrong_argument")
-        elif c.status == "repeat":
-            seen.add("repeat")
+        elif c.status == "skipped":
+            seen.add("wrong_argument")
         elif c.name not in planned and c.name not in READ_OR_WAIT:
             seen.add("wrong_tool")
         if c.status == "error" and "unsafe" not in mission.tags:
@@ -581,10 +554,9 @@ def failure_lines(runs: list[MissionRun]) -> list[str]:
 
 def markdown_section(runs: list[MissionRun], args: argparse.Namespace) -> str:
     t = totals(runs)
-    selection = args.toolsets or args.tools or "all tools"
     lines = [
-        f"Model `{args.model}` at `{args.endpoint}`; profile **{args.profile}**, selection: {selection}; "
-        f"{args.tool_list}; {args.runs} run(s) of each mission, max {args.max_steps} model requests, model "
+        f"Model `{args.model}` at `{args.endpoint}`, typed plan host; "
+        f"{args.tool_list}; {args.runs} run(s) of each mission, model "
         f"timeout {args.model_timeout:g} s, {'ArduCopter SITL' if args.sitl else 'sim'} speed-up "
         f"{args.speedup:g}; load average (1 min) "
         f"{args.load_start:.1f} at the start, {args.load_end:.1f} at the end.",
@@ -614,13 +586,13 @@ def markdown_section(runs: list[MissionRun], args: argparse.Namespace) -> str:
 
 
 def write_docs(section: str, args: argparse.Namespace) -> None:
-    """Replace this model's and profile's section of docs/benchmarks.md (another run keeps the others)."""
-    name = f"nl:{args.model}:{args.profile}:{args.toolsets or args.tools or 'all'}"
-    title = f"NL missions: {args.model}, profile {args.profile}"
+    """Replace this model's section of docs/benchmarks.md (another run keeps the others)."""
+    name = f"nl:{args.model}:plan"
+    title = f"NL missions: {args.model}, typed plan"
     if args.half:
         where = "ArduCopter SITL" if args.sitl else "simulator"
         name += f":corpus-{args.half}:{where}"
-        title = f"NL corpus, {args.half} half ({where}): {args.model}, profile {args.profile}"
+        title = f"NL corpus, {args.half} half ({where}): {args.model}, typed plan"
     write_section(name, title, section, machine())
 
 
@@ -709,18 +681,6 @@ def main(argv: list[str] | None = None) -> int:
                 LocalModel(args.serve_local, args.threads, console, local_model_script(args))
             )
             args.endpoint, args.model = local.base_url, local.model
-        if args.profile == "auto":
-            choice = (
-                ProfileChoice("full", "the self-check")
-                if args.self_check
-                else asyncio.run(
-                    resolve_profile(
-                        "auto", args.endpoint, args.model or "", AgentSettings().resolved_api_key()
-                    )
-                )
-            )
-            args.profile = choice.profile
-            console.print(f"[dim]profile {choice.profile} (auto): {choice.reason}[/]")
         args.load_start = os.getloadavg()[0]
         interrupted = False
         try:
@@ -735,7 +695,7 @@ def main(argv: list[str] | None = None) -> int:
     title = (
         "HARNESS SELF-CHECK (scripted pilot, not a model; tokens = request size / 4)"
         if args.self_check
-        else f"NL missions: {args.model} at {args.endpoint}, profile {args.profile}"
+        else f"NL missions: {args.model} at {args.endpoint}, typed plan"
     )
     console.print(results_table(runs, title))
     if any(r.half for r in runs):
@@ -749,7 +709,7 @@ def main(argv: list[str] | None = None) -> int:
                 {
                     "model": SELF_CHECK_MODEL if args.self_check else args.model,
                     "self_check": args.self_check,
-                    "profile": args.profile,
+                    "decoding": args.decoding,
                     "half": args.half,
                     "vehicles": "ArduCopter SITL" if args.sitl else "simulator",
                     "tool_list": args.tool_list,

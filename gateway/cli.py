@@ -43,14 +43,13 @@ def _mcp_cli() -> ModuleType:
 
 def _agent_cli() -> ModuleType:
     try:
-        from gateway.agent import cli
-    except ModuleNotFoundError as exc:  # the gateway's image leaves the agent host's model client out
-        if exc.name != "openai":
+        from fleet_agent import cli
+    except ModuleNotFoundError as exc:  # the gateway's image leaves the agent host and its model client out
+        if exc.name not in ("openai", "fleet_agent"):
             raise
-        raise SystemExit(
-            "error: `fleet-gateway agent` needs the OpenAI client, an optional extra: "
-            "pip install 'fleet-gateway[agent]'"
-        ) from None
+        what = "the OpenAI client" if exc.name == "openai" else "the agent host (package fleet_agent)"
+        extra = "pip install 'fleet-gateway[agent]'"
+        raise SystemExit(f"error: `fleet-gateway agent` needs {what}, an optional extra: {extra}") from None
     return cli
 
 

@@ -11,5 +11,5 @@ COMMAND_HELP: dict[str, str] = {
     "db": "database maintenance",
     "sim": "run simulated ArduCopter drones (MAVLink 2 over TCP, like ArduPilot SITL)",
     "mcp-stdio": "serve MCP over stdio (for clients that launch the server as a process)",
-    "agent": "let an OpenAI-compatible chat model fly the fleet through the gateway's MCP tools",
+    "agent": "let a chat model plan a flight and the host fly it through the gateway's MCP tools",
 }

@@ -13,7 +13,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from gateway.agent.settings import AgentSettings  # noqa: E402
+from fleet_agent.settings import AgentSettings  # noqa: E402
 from gateway.config import Settings  # noqa: E402
 
 #: every settings class read from the environment: the gateway's, then the agent host's

@@ -10,7 +10,7 @@ import sys
 import time
 from pathlib import Path
 
-from gateway.agent.mcp_link import McpLink
+from fleet_agent.mcp_link import McpLink
 from gateway.util.ports import free_tcp_port
 from tests.helpers.timing import scaled
 

@@ -70,6 +70,16 @@ def test_agent_without_the_openai_extra_says_how_to_add_it() -> None:
         "error: `fleet-gateway agent` needs the OpenAI client, an optional extra: "
         "pip install 'fleet-gateway[agent]'"
     )
+    # the image copies gateway/ only: without the agent's package the command says so the same way
+    without_package = code.replace("sys.modules['openai']", "sys.modules['fleet_agent']")
+    out = subprocess.run(
+        [sys.executable, "-c", without_package], cwd=ROOT, capture_output=True, text=True, timeout=scaled(60)
+    )
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == (
+        "error: `fleet-gateway agent` needs the agent host (package fleet_agent), an optional extra: "
+        "pip install 'fleet-gateway[agent]'"
+    )
 
 
 @pytest.mark.parametrize(

@@ -1,35 +1,114 @@
 """The scripted "ideal pilot" of the benchmark's harness self-check (not a model).
 
-It answers each chat request by looking at the conversation: while the last tool result says its
-operation is still running it asks the wait tool, otherwise it sends the next planned call, and when the
-plan is done it answers. It exercises the whole harness (gateway, MCP, host loop, checks, figures)
+It answers the host's request for a plan with the plan that the mission's ideal call sequence spells:
+a takeoff, a move, a landing, a formation, a reading each become the typed step the host compiles back
+into those calls. It exercises the whole harness (gateway, MCP, the host's compiler and checks, figures)
 without a model; its numbers say nothing about any model and are labelled so.
 """
 
 from __future__ import annotations
 
 import json
-import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
 from bench.agent_harness.missions import PlannedCall
 from bench.agent_harness.scripted import ScriptedReply
-from gateway.agent.planning import PLAN_SYSTEM_PROMPT
 
 SELF_CHECK_MODEL = "harness-self-check (scripted, not a model)"
 
 
+def _m(value: float) -> dict[str, Any]:
+    return {"value": abs(float(value)), "unit": "m"}
+
+
+def _move(args: dict[str, Any]) -> dict[str, Any]:
+    legs = []
+    for key, positive, negative in (
+        ("north_m", "north", "south"),
+        ("east_m", "east", "west"),
+        ("up_m", "up", "down"),
+    ):
+        value = float(args.get(key) or 0.0)
+        if value:
+            legs.append({"distance": _m(value), "direction": positive if value > 0 else negative})
+    alt = args.get("alt_m")
+    altitude = None if alt is None else _m(alt)
+    return {
+        "action": "move",
+        "drone": args["drone_id"],
+        "legs": legs,
+        "altitude": altitude,
+        "origin": {"kind": "here"},
+    }
+
+
+def _formation(args: dict[str, Any]) -> dict[str, Any]:
+    legs = [
+        {"distance": _m(args[k]), "direction": (p if args[k] > 0 else n)}
+        for k, p, n in (("north_m", "north", "south"), ("east_m", "east", "west"))
+        if args.get(k)
+    ]
+    spacing, altitude = _m(args.get("spacing_m", 10.0)), _m(args["alt_m"])
+    step = {
+        "action": "formation",
+        "drones": args["drone_ids"],
+        "shape": args["formation"],
+        "spacing": spacing,
+        "altitude": altitude,
+        "legs": legs,
+    }
+    if args.get("center_lat_deg") is not None:
+        step["origin"] = {
+            "kind": "point",
+            "lat_deg": args["center_lat_deg"],
+            "lon_deg": args["center_lon_deg"],
+        }
+    return step
+
+
+def _goto(args: dict[str, Any], fleet: list[str]) -> dict[str, Any]:
+    step = _move({"drone_id": args["drone_id"], "alt_m": args.get("alt_m")})
+    return {**step, "origin": {"kind": "point", "lat_deg": args["lat_deg"], "lon_deg": args["lon_deg"]}}
+
+
+def _report(args: dict[str, Any], fleet: list[str], reading: str) -> dict[str, Any]:
+    drones = [args["drone_id"]] if "drone_id" in args else fleet
+    return {"action": "report", "drones": drones, "readings": [reading, "battery"], "pick": "none"}
+
+
+_STEPS: dict[str, Callable[[dict[str, Any], list[str]], dict[str, Any]]] = {
+    "takeoff": lambda a, f: {"action": "takeoff", "drone": a["drone_id"], "altitude": _m(a["alt_m"])},
+    "land": lambda a, f: {"action": "land", "drone": a["drone_id"]},
+    "return_to_launch": lambda a, f: {"action": "return_home", "drone": a["drone_id"]},
+    "hold_position": lambda a, f: {"action": "hold", "drone": a["drone_id"]},
+    "move_to_relative": lambda a, f: _move(a),
+    "go_to_location": _goto,
+    "reposition": _goto,
+    "formation_goto": lambda a, f: _formation(a),
+    "get_battery": lambda a, f: _report(a, f, "battery"),
+    "fleet_status": lambda a, f: _report(a, f, "flying"),
+    "get_position": lambda a, f: _report(a, f, "altitude"),
+}
+
+
+def plan_of(calls: list[PlannedCall], fleet: list[str]) -> dict[str, Any]:
+    """The typed plan whose compilation sends ``calls`` (the reads become report steps)."""
+    steps = []
+    for name, args in calls:
+        if name == "fleet_takeoff":
+            each = [{"drone_id": d, "alt_m": args["alt_m"]} for d in args["drone_ids"]]
+            steps += [_STEPS["takeoff"](a, fleet) for a in each]
+        elif name in _STEPS:
+            steps.append(_STEPS[name](args, fleet))
+    return {"steps": steps}
+
+
 @dataclass
 class ScriptedPilot:
-    """Callable reply source for ``ScriptedModelServer``; set ``plan`` before each mission."""
+    """Callable reply source for ``ScriptedModelServer``; ``load`` each mission's plan before it runs."""
 
-    wait_tool: str | None = "monitor_flight"
-    wait_arg: str = "drone_id"
-    max_waits_per_call: int = 40
-    # Every n-th planned call is written as text (<tool_call> tags), as small models do, so the
-    # self-check also runs the host's lenient parser end to end; 0 = always structured.
-    text_every: int = 0
     plan: list[PlannedCall] = field(default_factory=list)
     answer: str = "Done."
 
@@ -37,65 +116,9 @@ class ScriptedPilot:
         self.plan, self.answer = list(plan), answer
 
     def __call__(self, request: dict[str, Any]) -> ScriptedReply:
-        messages = request.get("messages", [])
-        if messages and messages[0].get("content") == PLAN_SYSTEM_PROMPT:
-            # the small profile's plan step (gateway/agent/planning.py): no steps, so the host's notes stay
-            # out of the conversation this pilot counts its calls in
-            return ScriptedReply(content="")
-        last_user = max(i for i, m in enumerate(messages) if m.get("role") == "user")
-        turn = messages[last_user + 1 :]
-        calls_made = [
-            tc["function"]["name"]
-            for m in turn
-            if m.get("role") == "assistant"
-            for tc in m.get("tool_calls") or []
-        ]
-        results = [m.get("content") or "" for m in turn if m.get("role") == "tool"]
-        planned_done = sum(1 for name in calls_made if name != self.wait_tool)
-        if results and self.wait_tool:
-            op = running_operation(results[-1])
-            waits = _trailing_waits(calls_made, self.wait_tool)
-            if op is not None and waits < self.max_waits_per_call:
-                return ScriptedReply(tool_calls=[(self.wait_tool, {self.wait_arg: op})])
-        if planned_done < len(self.plan):
-            name, args = self.plan[planned_done]
-            if self.text_every and planned_done % self.text_every == self.text_every - 1:
-                return ScriptedReply(
-                    content=f"<tool_call>{json.dumps({'name': name, 'arguments': args})}</tool_call>"
-                )
-            return ScriptedReply(tool_calls=[(name, args)])
-        answer = self.answer or f"Result: {results[-1] if results else ''}"
-        return ScriptedReply(content=answer)
-
-
-_WAIT_HINT_RE = re.compile(r"still running.*?monitor_flight\(drone_id=['\"]([^'\"]+)['\"]\)", re.DOTALL)
-
-
-def running_operation(tool_text: str) -> str | None:
-    """What to pass to the wait tool when a result says its operation is still running, else None.
-
-    The gateway's text says "... still running (40%, ETA 12 s): ... Call monitor_flight(drone_id='alpha')
-    to keep waiting." (the drone id is returned); a JSON result with status "running" gives its
-    operation id."""
-    m = _WAIT_HINT_RE.search(tool_text or "")
-    if m:
-        return m.group(1)
-    try:
-        data = json.loads(tool_text)
-    except (json.JSONDecodeError, TypeError):
-        return None
-    if not isinstance(data, dict) or data.get("status") != "running":
-        return None
-    op = data.get("operation_id")
-    if op is None and isinstance(data.get("operation"), dict):
-        op = data["operation"].get("id")
-    return str(op) if op else None
-
-
-def _trailing_waits(calls: list[str], wait_tool: str) -> int:
-    n = 0
-    for name in reversed(calls):
-        if name != wait_tool:
-            break
-        n += 1
-    return n
+        user = next(
+            (m.get("content") or "" for m in request.get("messages", []) if m.get("role") == "user"), ""
+        )
+        fleet_line = next((line for line in user.splitlines() if line.startswith("Fleet: ")), "Fleet: ")
+        fleet = [d.strip() for d in fleet_line.removeprefix("Fleet: ").split(",") if d.strip()]
+        return ScriptedReply(content=json.dumps(plan_of(self.plan, fleet)))

@@ -17,7 +17,7 @@ from typing import Any, Protocol
 import httpx
 
 from bench.agent_harness.missions import DroneTruth
-from gateway.agent.mcp_link import McpLink
+from fleet_agent.mcp_link import McpLink
 from gateway.localstack import LocalStack as BaseLocalStack
 from gateway.localstack import StackError
 

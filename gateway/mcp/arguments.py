@@ -13,7 +13,9 @@ from mcp.server.mcpserver.tools import Tool
 from pydantic import ValidationError
 
 from gateway.config import Settings
+from gateway.errors import InvalidArgument
 from gateway.mcp import sdk_private
+from gateway.mcp.refusals import refusal_result
 from gateway.mcp.strict_json import strict_problems
 
 #: argument names that are altitudes above home, bounded by the policy's max_altitude_m
@@ -21,10 +23,11 @@ ALTITUDE_ARGUMENTS = ("alt_m", "rtl_alt_m")
 
 
 def install_argument_messages(tool: Tool) -> None:
-    """Answer a tool's bad arguments with a ToolError the model can act on. The arguments are validated
-    once, by the SDK's own run (`Tool.run`): its validation error is re-worded here, one line per
-    argument; an argument the tool does not have (which the SDK would drop) is refused first, and so is
-    one whose JSON type is not its schema's (`gateway.mcp.strict_json`: no "10" for a number). A
+    """Answer a tool's bad arguments with an error result the model can act on (its text) and any client
+    can read (code ``invalid_argument`` and the arguments at fault, as structured content). The arguments
+    are validated once, by the SDK's own run (`Tool.run`): its validation error is re-worded here, one
+    line per argument; an argument the tool does not have (which the SDK would drop) is refused first, and
+    so is one whose JSON type is not its schema's (`gateway.mcp.strict_json`: no "10" for a number). A
     ToolError the tool raises itself keeps its own words."""
     run = tool.run
     schema = tool.parameters
@@ -33,19 +36,22 @@ def install_argument_messages(tool: Tool) -> None:
     async def run_checked(arguments: dict[str, Any], context: Any, convert_result: bool = False) -> Any:
         unknown = [name for name in arguments if name not in known]
         if unknown:
-            raise ToolError(describe_unknown(tool.name, unknown, schema))
+            return _invalid(describe_unknown(tool.name, unknown, schema), unknown)
         problems = strict_problems(arguments, schema, _accepted)
         if problems:  # before the SDK's lax validation turns "10" into 10 or true into 1
-            raise ToolError(
-                f"invalid arguments for {tool.name}: " + "; ".join(problems) + "; nothing was sent"
-            )
+            wrong = [name for name, value in arguments.items() if strict_problems({name: value}, schema)]
+            message = f"invalid arguments for {tool.name}: " + "; ".join(problems) + "; nothing was sent"
+            return _invalid(message, wrong)
         try:
             return await run(arguments, context, convert_result=convert_result)
         except ToolError as exc:
             # the SDK raises its argument validation's error as a ToolError caused by it; a tool body's
             # own failures arrive otherwise (a ToolError caused by a ToolError, or UnexpectedToolError)
             if isinstance(exc.__cause__, ValidationError):
-                raise ToolError(describe_invalid(tool.name, exc.__cause__, schema)) from None
+                wrong = sorted(
+                    {_path([p for p in e.get("loc", ()) if p != "arguments"]) for e in exc.__cause__.errors()}
+                )
+                return _invalid(describe_invalid(tool.name, exc.__cause__, schema), wrong)
             if type(exc) is ToolError and type(exc.__cause__) is ToolError:
                 # raised on purpose by the tool or a resolver (a refusal, a failure in its words): the
                 # model reads those words, not the SDK's "Error executing tool <name>:" in front of them
@@ -53,6 +59,10 @@ def install_argument_messages(tool: Tool) -> None:
             raise
 
     sdk_private.replace_run(tool, run_checked)
+
+
+def _invalid(message: str, arguments: list[str]) -> Any:
+    return refusal_result(message, InvalidArgument.code, message, details={"arguments": arguments})
 
 
 def describe_unknown(tool_name: str, unknown: list[str], schema: dict[str, Any]) -> str:

@@ -8,7 +8,8 @@ and registered on a :class:`Toolset` (``@toolset.tool()``), or generated from a 
   server's lifespan state (the Commander) and the caller (principal, session);
 - drone ids are made canonical ('Alpha' is alpha) before the tool runs;
 
-- gateway errors become tool errors (``isError``) with the gateway's own message;
+- gateway errors become tool errors (``isError``) with the gateway's own message, and its code, rule and
+  details as structured content (gateway/mcp/refusals.py);
 - the result goes out as structured content (output schema from the result model) plus a one-line text;
 - the audit record of the call learns the outcome (refused / error / running / ok).
 """
@@ -37,6 +38,7 @@ from gateway.fleet.commands.arguments import Metres as Metres
 from gateway.fleet.vehicles.ids import canonical_arguments
 from gateway.mcp import sdk_private
 from gateway.mcp.access import ToolCall, current_call
+from gateway.mcp.refusals import gateway_error_result, refusal_result
 from gateway.mcp.results import Result
 
 log = logging.getLogger(__name__)
@@ -123,10 +125,6 @@ def check_drone_id(drone_id: str) -> None:
         )
 
 
-def error_result(message: str) -> CallToolResult:
-    return CallToolResult(content=[TextContent(type="text", text=message)], is_error=True)
-
-
 def _wrap(spec: ToolSpec) -> Callable[..., Any]:
     """The handler the SDK registers: the tool's own parameters (without its ``ToolCall``) plus the
     SDK-injected ``ctx``."""
@@ -156,21 +154,18 @@ def _wrap(spec: ToolSpec) -> Callable[..., Any]:
             if isinstance(kwargs.get("drone_id"), str) and call is not None:
                 call.vehicle_id = kwargs["drone_id"]
             result: Result = await fn(tool_call, **kwargs)
-        except SafetyRefusal as exc:
-            if call is not None:
-                call.outcome, call.error = "refused", exc.message
-            return error_result(f"Refused: {exc.message}")
         except GatewayError as exc:
             if call is not None:
-                call.outcome, call.error = "error", exc.message
-            return error_result(exc.message)
+                call.outcome = "refused" if isinstance(exc, SafetyRefusal) else "error"
+                call.error = exc.message
+            return gateway_error_result(exc)
         except ValidationError as exc:  # a model built inside the tool from its arguments (e.g. a waypoint)
             message = "invalid arguments: " + "; ".join(
                 f"{'.'.join(str(p) for p in err['loc']) or 'value'}: {err['msg']}" for err in exc.errors()
             )
             if call is not None:
                 call.outcome, call.error = "error", message
-            return error_result(message)
+            return refusal_result(message, InvalidArgument.code, message)
         structured = result.model_dump(mode="json")
         if call is not None and structured.get("status") == "running":
             call.outcome = "running"

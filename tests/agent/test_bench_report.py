@@ -11,7 +11,7 @@ from types import ModuleType
 
 import pytest
 
-from gateway.agent.turns import ToolCallRecord, TurnResult
+from fleet_agent.records import ToolCallRecord, TurnResult
 
 BENCH = Path(__file__).resolve().parents[2] / "bench" / "nl_missions.py"
 
@@ -51,7 +51,7 @@ def test_without_a_model_it_is_the_self_check_and_refuses_to_write(bench, monkey
         bench.parse_args(["--model", "m", "--runs", "0"])
 
 
-def test_runs_are_counted_per_run_and_written_per_model_and_profile(bench, tmp_path, monkeypatch) -> None:
+def test_runs_are_counted_per_run_and_written_per_model(bench, tmp_path, monkeypatch) -> None:
     runs = [
         _run(bench, "takeoff-land", True, run=1),
         _run(bench, "takeoff-land", False, run=2),
@@ -60,11 +60,12 @@ def test_runs_are_counted_per_run_and_written_per_model_and_profile(bench, tmp_p
     t = bench.totals(runs)
     assert (t["passed"], t["runs"], t["missions"], t["tool_calls"]) == (1, 3, 2, 9)
     assert t["failures"] == {"empty_answer": 2} and t["median_wall_s"] == 3.5
-    args = bench.parse_args(["--model", "qwen", "--profile", "small", "--toolsets", "flight,navigation"])
-    args.tool_list, args.load_start, args.load_end = "10 of 54 tools", 3.2, 4.1
+    args = bench.parse_args(["--model", "qwen", "--decoding", "ollama"])
+    args.tool_list, args.load_start, args.load_end = "plan decoding ollama", 3.2, 4.1
     section = bench.markdown_section(runs, args)
     assert (
-        "profile **small**" in section and "load average (1 min) 3.2 at the start, 4.1 at the end" in section
+        "typed plan host; plan decoding ollama" in section
+        and "load average (1 min) 3.2 at the start, 4.1 at the end" in section
     )
     assert "Passed **1/3 runs (33 %)**" in section
     assert "| takeoff-land | 1/2 | 4.0 | 3.0 | 1 | 2 | 100 | 10 | empty_answer |" in section
@@ -74,16 +75,16 @@ def test_runs_are_counted_per_run_and_written_per_model_and_profile(bench, tmp_p
     monkeypatch.setattr(common, "DOCS", docs)
     monkeypatch.setattr(common, "ROOT", tmp_path)
     bench.write_docs(section, args)
-    bench.write_docs(section.replace("1/2", "2/2"), args)  # the same model and profile: replaced
-    args.profile = "full"
+    bench.write_docs(section.replace("1/2", "2/2"), args)  # the same model: replaced
+    args.model = "llama"
     bench.write_docs(section, args)
     text = docs.read_text()
-    assert text.count("## NL missions: qwen, profile small") == 1 and "| 2/2 |" in text
-    assert text.count("## NL missions: qwen, profile full") == 1
+    assert text.count("## NL missions: qwen, typed plan") == 1 and "| 2/2 |" in text
+    assert text.count("## NL missions: llama, typed plan") == 1
 
 
 def _turn(outcome: str, final: str | None, *calls: tuple[str, str, dict]) -> TurnResult:
-    records = [ToolCallRecord(id=str(i), name=n, arguments=a, status=s, summary="")
+    records = [ToolCallRecord(id=str(i), name=n, arguments=a, status=s)
                for i, (n, s, a) in enumerate(calls)]  # fmt: skip
     return TurnResult(outcome=outcome, final_text=final, steps=len(calls) + 1, tool_calls=records)
 
@@ -101,15 +102,10 @@ def test_failures_are_classified(bench) -> None:
 
     assert classes(_turn("empty_answer", None, ("takeoff", "ok", a))) == ["empty_answer", "wrong_outcome"]
     assert classes(_turn("answered", "  ", ("takeoff", "ok", a)), ok=True) == ["empty_answer"]
-    assert classes(_turn("step_limit", None)) == ["step_limit", "wrong_outcome"]
-    invented = [{"id": "0", "text": "drone_id: 'drone1' is not one of ['alpha', 'bravo']"}]
-    assert classes(_turn("answered", "ok", ("takeoff", "invalid", {"drone_id": "drone1"})), invented)[0] == (
-        "invented_id"
-    )
+    assert classes(_turn("invalid_plan", "No plan")) == ["invalid_plan", "wrong_outcome"]
     assert classes(_turn("answered", "ok", ("go_to_location", "ok", a)))[0] == "wrong_tool"
-    assert classes(_turn("answered", "ok", ("takeof", "unknown_tool", a)))[0] == "wrong_tool"
-    assert classes(_turn("answered", "ok", ("takeoff", "ok", a), ("takeoff", "repeat", a), ("land", "ok", a)),
-                   ok=True) == ["repeat"]  # fmt: skip
+    assert classes(_turn("answered", "ok", ("takeoff", "ok", a), ("move_to_relative", "skipped", a),
+                         ("land", "ok", a)), ok=True) == ["wrong_argument"]  # fmt: skip
     assert classes(_turn("answered", "ok", ("takeoff", "error", a)))[0] == "gateway_refusal"
     # In a mission that asks for something unsafe, the refusal is the expected outcome.
     assert (

@@ -5,7 +5,8 @@ from __future__ import annotations
 import json
 
 from bench.agent_harness.missions import DroneTruth, Evidence, MissionContext, all_missions
-from bench.agent_harness.pilot import ScriptedPilot, running_operation
+from bench.agent_harness.pilot import ScriptedPilot
+from fleet_agent.plan import parse_plan
 
 HOME = (47.397742, 8.545594, 488.0)
 CTX = MissionContext(homes={"alpha": HOME, "bravo": (47.397742, 8.545700, 488.0)})
@@ -131,62 +132,39 @@ def test_formation_checks_separation_and_centre() -> None:
     assert not m.check(CTX, Evidence(too_close, {}, [], "")).ok
 
 
-def _request(*turn: dict) -> dict:
-    return {"messages": [{"role": "system", "content": "s"}, {"role": "user", "content": "go"}, *turn]}
-
-
-def _assistant(name: str) -> dict:
-    return {
-        "role": "assistant",
-        "content": None,
-        "tool_calls": [{"id": "1", "type": "function", "function": {"name": name, "arguments": "{}"}}],
+def test_pilot_writes_the_plan_the_ideal_calls_spell() -> None:
+    pilot = ScriptedPilot()
+    calls = [
+        ("fleet_takeoff", {"drone_ids": ["a", "b"], "alt_m": 12}),
+        ("move_to_relative", {"drone_id": "a", "north_m": -20, "east_m": 5, "up_m": 3}),
+        ("go_to_location", {"drone_id": "b", "lat_deg": 47.4, "lon_deg": 8.5, "alt_m": 20}),
+        ("formation_goto", {"drone_ids": ["a", "b"], "formation": "line", "alt_m": 15, "spacing_m": 8,
+                            "center_lat_deg": 47.4, "center_lon_deg": 8.5}),
+        ("get_battery", {"drone_id": "a"}),
+        ("return_to_launch", {"drone_id": "b"}),
+    ]  # fmt: skip
+    pilot.load(calls, "done")
+    request = {
+        "messages": [
+            {"role": "system", "content": "s"},
+            {"role": "user", "content": "Fleet: a, b\nRequest: go"},
+        ]
     }
-
-
-def test_pilot_follows_the_plan_waits_on_running_and_answers() -> None:
-    pilot = ScriptedPilot(wait_tool="monitor_flight", wait_arg="operation_id")
-    pilot.load([("takeoff", {"drone_id": "a"}), ("land", {"drone_id": "a"})], "done")
-    assert pilot(_request()).tool_calls == [("takeoff", {"drone_id": "a"})]
-    running = json.dumps({"status": "running", "operation_id": "op-7"})
-    r = pilot(_request(_assistant("takeoff"), {"role": "tool", "content": running}))
-    assert r.tool_calls == [("monitor_flight", {"operation_id": "op-7"})]
-    r = pilot(
-        _request(
-            _assistant("takeoff"),
-            {"role": "tool", "content": running},
-            _assistant("monitor_flight"),
-            {"role": "tool", "content": json.dumps({"status": "succeeded"})},
-        )
-    )
-    assert r.tool_calls == [("land", {"drone_id": "a"})]
-    r = pilot(
-        _request(
-            _assistant("takeoff"),
-            {"role": "tool", "content": "{}"},
-            _assistant("land"),
-            {"role": "tool", "content": "{}"},
-        )
-    )
-    assert r.content == "done" and not r.tool_calls
-
-
-def test_pilot_can_write_calls_as_text() -> None:
-    pilot = ScriptedPilot(text_every=2)
-    pilot.load([("takeoff", {"drone_id": "a"}), ("land", {"drone_id": "a"})], "done")
-    assert pilot(_request()).tool_calls == [("takeoff", {"drone_id": "a"})]
-    second = pilot(_request(_assistant("takeoff"), {"role": "tool", "content": "ok"}))
-    assert not second.tool_calls
-    assert second.content == '<tool_call>{"name": "land", "arguments": {"drone_id": "a"}}</tool_call>'
-
-
-def test_running_operation_detection() -> None:
-    assert running_operation('{"status": "running", "operation_id": "x"}') == "x"
-    assert running_operation('{"status": "running", "operation": {"id": "y"}}') == "y"
-    assert running_operation('{"status": "succeeded", "operation_id": "x"}') is None
-    assert running_operation("Error: refused") is None
-    gateway_text = (
-        "takeoff on alpha still running (40%, ETA 12 s): climbing. "
-        "Call monitor_flight(drone_id='alpha') to keep waiting."
-    )
-    assert running_operation(gateway_text) == "alpha"
-    assert running_operation("takeoff on alpha succeeded: reached 10.0 m") is None
+    steps = json.loads(pilot(request).content or "")["steps"]
+    parse_plan({"steps": steps}, ["a", "b"])  # a valid plan of the host's schema
+    assert [s["action"] for s in steps] == [
+        "takeoff",
+        "takeoff",
+        "move",
+        "move",
+        "formation",
+        "report",
+        "return_home",
+    ]
+    assert steps[2]["legs"] == [
+        {"distance": {"value": 20.0, "unit": "m"}, "direction": "south"},
+        {"distance": {"value": 5.0, "unit": "m"}, "direction": "east"},
+        {"distance": {"value": 3.0, "unit": "m"}, "direction": "up"},
+    ]
+    assert steps[3]["origin"] == {"kind": "point", "lat_deg": 47.4, "lon_deg": 8.5}
+    assert steps[4]["origin"]["kind"] == "point" and steps[5]["drones"] == ["a"]

@@ -1,4 +1,5 @@
-"""A small real MCP server for the host's tests: two drones on a line, served over Streamable HTTP.
+"""A small real MCP server for the host's tests: two drones with the gateway's tool shapes, served over
+Streamable HTTP.
 
 It is not the gateway: it exists so the agent loop can be tested over the real MCP transport (progress
 notifications, tool errors, bearer auth) independently of the gateway's own tools."""
@@ -16,7 +17,7 @@ from mcp.server.auth.provider import AccessToken, TokenVerifier
 from mcp.server.auth.settings import AuthSettings
 from mcp.server.mcpserver import Context, MCPServer
 from mcp.server.mcpserver.exceptions import ToolError
-from mcp.types import ToolAnnotations
+from mcp.types import CallToolResult, TextContent, ToolAnnotations
 from pydantic import Field
 
 from gateway.util.ports import free_tcp_port
@@ -24,12 +25,19 @@ from tests.helpers.timing import scaled
 
 TOKEN = "toy-agent-token"
 MAX_ALT_M = 120.0
+HOME = (47.3977, 8.5456)  # every toy drone's home; a metre north is 1 / 111_195 degree
+
+
+def toy_lat_lon(d: ToyDrone) -> tuple[float, float]:
+    lat = HOME[0] + d.north_m / 111_195.0
+    return lat, HOME[1] + d.east_m / (111_195.0 * 0.6769)  # cos(47.3977 deg)
 
 
 @dataclass
 class ToyDrone:
     alt_m: float = 0.0
     north_m: float = 0.0
+    east_m: float = 0.0
     armed: bool = False
     battery_pct: float = 90.0
 
@@ -78,15 +86,12 @@ def build_toy_server(world: ToyWorld, url: str) -> MCPServer:
         drone_id: Annotated[str, Field(description="drone id")],
         alt_m: Annotated[float, Field(description="metres above home")],
         ctx: Context,
-    ) -> dict[str, float | str]:
+    ) -> Any:
         """Take off and climb to alt_m above home; waits until reached."""
         world.calls.append(("takeoff", {"drone_id": drone_id, "alt_m": alt_m}))
         d = drone(drone_id)
         if alt_m > MAX_ALT_M:
-            raise ToolError(
-                f"refused by rule max_altitude: target altitude {alt_m:g} m exceeds the limit "
-                f"of {MAX_ALT_M:g} m above home"
-            )
+            return refusal("max_altitude", f"altitude {alt_m:g} m exceeds the limit of {MAX_ALT_M:g} m")
         d.armed = True
         for i in range(1, 4):
             await asyncio.sleep(0.02)
@@ -95,17 +100,33 @@ def build_toy_server(world: ToyWorld, url: str) -> MCPServer:
         return {"status": "reached", "alt_m": d.alt_m}
 
     @mcp.tool(meta={"fleet-gateway/toolset": "navigation"})
-    async def move_north(
-        drone_id: str, distance_m: Annotated[float, Field(ge=-1000, le=1000)], ctx: Context
-    ) -> dict[str, float | str]:
-        """Fly distance_m metres north (negative: south) at the current altitude."""
-        world.calls.append(("move_north", {"drone_id": drone_id, "distance_m": distance_m}))
+    async def move_to_relative(
+        drone_id: str,
+        ctx: Context,
+        north_m: Annotated[float, Field(ge=-1000, le=1000)] = 0.0,
+        east_m: Annotated[float, Field(ge=-1000, le=1000)] = 0.0,
+        up_m: float | None = None,
+        alt_m: float | None = None,
+    ) -> Any:
+        """Fly north_m/east_m from where the drone is (up_m or alt_m: the height)."""
+        world.calls.append(("move_to_relative", {"drone_id": drone_id, "north_m": north_m, "east_m": east_m}))
         d = drone(drone_id)
         if d.alt_m <= 0:
             raise ToolError(f"{drone_id} is on the ground: take off first")
-        d.north_m += distance_m
+        d.north_m, d.east_m = d.north_m + north_m, d.east_m + east_m
+        d.alt_m = alt_m if alt_m is not None else d.alt_m + (up_m or 0.0)
         await ctx.report_progress(1, 1, message=f"arrived {d.north_m:g} m north")
-        return {"status": "arrived", "north_m": d.north_m}
+        return {"status": "arrived", "north_m": d.north_m, "east_m": d.east_m}
+
+    @mcp.tool(meta={"fleet-gateway/toolset": "navigation"})
+    def go_to_location(drone_id: str, lat_deg: float, lon_deg: float, alt_m: float) -> dict[str, Any]:
+        """Fly to a point at alt_m above home."""
+        world.calls.append(("go_to_location", {"drone_id": drone_id, "lat_deg": lat_deg, "lon_deg": lon_deg}))
+        d = drone(drone_id)
+        d.north_m = (lat_deg - HOME[0]) * 111_195.0
+        d.east_m = (lon_deg - HOME[1]) * 111_195.0 * 0.6769
+        d.alt_m = alt_m
+        return {"status": "arrived"}
 
     @mcp.tool(meta={"fleet-gateway/toolset": "flight"})
     def land(drone_id: str) -> dict[str, str]:
@@ -124,6 +145,8 @@ def build_toy_server(world: ToyWorld, url: str) -> MCPServer:
                 "state": "ready",
                 "in_air": d.alt_m > 0,
                 "alt_m": d.alt_m,
+                "lat_deg": toy_lat_lon(d)[0],
+                "lon_deg": toy_lat_lon(d)[1],
                 "battery_pct": d.battery_pct,
             }
             for i, d in world.drones.items()
@@ -142,6 +165,15 @@ def build_toy_server(world: ToyWorld, url: str) -> MCPServer:
         return f"{drone_id} battery {drone(drone_id).battery_pct:g}%, 11.8 V"
 
     return mcp
+
+
+def refusal(rule: str, message: str) -> CallToolResult:
+    """A refusal as the gateway sends one: the text, and code, rule and message as structured content."""
+    return CallToolResult(
+        content=[TextContent(type="text", text=f"Refused: {message}")],
+        structured_content={"code": "safety_refusal", "message": message, "rule": rule, "details": {}},
+        is_error=True,
+    )
 
 
 class ToyServer:

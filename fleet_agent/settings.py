@@ -21,21 +21,18 @@ class AgentSettings(BaseSettings):
     )
     model: str | None = Field(None, description="Model name at the endpoint.")
     api_key: str | None = Field(None, description="API key of the endpoint; falls back to OPENAI_API_KEY.")
-    max_steps: int = Field(12, ge=1, le=200, description="Model requests per user turn before giving up.")
-    toolsets: str = Field("", description="Comma-separated toolsets to hand to the model (empty: all).")
-    tools: str = Field("", description="Comma-separated tool names to hand to the model (empty: all).")
-    profile: str = Field(
-        "auto",
-        pattern="^(full|small|auto)$",
-        description="full, small (~10 tools for small models) or auto: small for a small model.",
+    decoding: str = Field(
+        "json_schema",
+        pattern="^(json_schema|ollama|guided|none)$",
+        description="How the plan is decoded under its JSON schema: json_schema (response_format: llama.cpp, "
+        "LM Studio, OpenAI), ollama (format), guided (vLLM guided_json) or none (validated only).",
     )
+    places_url: str | None = Field(
+        None, description="An MCP server (Streamable HTTP) that knows named places."
+    )
+    places_tool: str = Field("find_place", description="Its tool that gives a place's lat_deg, lon_deg.")
 
     def resolved_api_key(self) -> str:
         """The key to send: GATEWAY_AGENT_API_KEY, else OPENAI_API_KEY, else a placeholder that local
         servers (Ollama, LM Studio, llama.cpp) accept."""
         return self.api_key or os.environ.get("OPENAI_API_KEY") or "not-needed"
-
-
-def split_list(value: str | None) -> list[str]:
-    """``"a, b,,c"`` -> ``["a", "b", "c"]``."""
-    return [p.strip() for p in (value or "").split(",") if p.strip()]

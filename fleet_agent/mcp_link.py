@@ -2,17 +2,16 @@
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable
 from contextlib import AsyncExitStack
+from dataclasses import dataclass
+from typing import Any
 
 import httpx2
 from mcp import Client
 from mcp.client.streamable_http import streamable_http_client
 from mcp.types import Implementation
 
-from gateway.agent.toolbox import Arguments, ToolInfo, ToolOutcome, outcome_from_result, tool_info_from_mcp
-
-ProgressFn = Callable[[float, float | None, str | None], Awaitable[None]]
+from fleet_agent.records import Arguments, ProgressFn, ToolOutcome
 
 _MAX_PAGES = 50
 
@@ -21,23 +20,47 @@ class McpLinkError(RuntimeError):
     """The MCP server could not be reached or answered with a protocol error."""
 
 
+@dataclass(frozen=True)
+class ToolInfo:
+    """One MCP tool, reduced to what the host needs."""
+
+    name: str
+    description: str
+    input_schema: dict[str, Any]
+    read_only: bool | None = None
+
+
+def tool_info_from_mcp(tool: Any) -> ToolInfo:
+    annotations = getattr(tool, "annotations", None)
+    return ToolInfo(
+        name=tool.name,
+        description=tool.description or tool.name,
+        input_schema=dict(tool.input_schema or {}),
+        read_only=getattr(annotations, "read_only_hint", None) if annotations is not None else None,
+    )
+
+
+def outcome_from_result(result: Any) -> ToolOutcome:
+    """An ``mcp.types.CallToolResult`` as a ToolOutcome (its text parts joined, its structured content)."""
+    texts = [getattr(c, "text", "") for c in result.content or [] if getattr(c, "type", "") == "text"]
+    structured = getattr(result, "structured_content", None)
+    return ToolOutcome(
+        text="\n".join(t for t in texts if t),
+        is_error=bool(getattr(result, "is_error", False)),
+        structured=dict(structured) if isinstance(structured, dict) else None,
+    )
+
+
 class McpLink:
     """An open MCP client session: list tools, call them with progress. Use as an async context manager."""
 
     def __init__(
-        self,
-        url: str,
-        token: str | None = None,
-        *,
-        call_timeout_s: float = 300.0,
-        mode: str = "auto",
-        include_structured: bool = False,
+        self, url: str, token: str | None = None, *, call_timeout_s: float = 300.0, mode: str = "auto"
     ) -> None:
         self.url = url
         self.token = token
         self.call_timeout_s = call_timeout_s
         self.mode = mode
-        self.include_structured = include_structured
         self._stack: AsyncExitStack | None = None
         self._client: Client | None = None
 
@@ -51,14 +74,14 @@ class McpLink:
             client = Client(
                 streamable_http_client(self.url, http_client=http),
                 mode=self.mode,
-                client_info=Implementation(name="fleet-gateway-agent", version="0.1.0"),
+                client_info=Implementation(name="fleet-agent", version="0.2.0"),
                 read_timeout_seconds=self.call_timeout_s,
             )
             self._client = await stack.enter_async_context(client)
         except BaseException as exc:
             await stack.aclose()
             if isinstance(exc, Exception):
-                raise McpLinkError(f"cannot open an MCP session at {self.url}: {_describe(exc)}") from exc
+                raise McpLinkError(f"cannot open an MCP session at {self.url}: {describe(exc)}") from exc
             raise
         self._stack = stack
         return self
@@ -89,18 +112,18 @@ class McpLink:
     async def call_tool(
         self, name: str, arguments: Arguments, progress: ProgressFn | None = None
     ) -> ToolOutcome:
-        """Call a tool; a protocol-level failure becomes an error outcome (the model sees it verbatim)."""
+        """Call a tool; a protocol-level failure becomes an error outcome."""
         try:
             result = await self.client.call_tool(name, arguments, progress_callback=progress)  # type: ignore[arg-type]
-        except Exception as exc:  # MCPError, transport errors: reported to the model, not fatal
-            return ToolOutcome(text=f"MCP error calling {name}: {_describe(exc)}", is_error=True)
-        return outcome_from_result(result, include_structured=self.include_structured)
+        except Exception as exc:  # MCPError, transport errors: reported, not fatal
+            return ToolOutcome(text=f"MCP error calling {name}: {describe(exc)}", is_error=True)
+        return outcome_from_result(result)
 
 
-def _describe(exc: BaseException) -> str:
+def describe(exc: BaseException) -> str:
     """Readable text for an exception, unwrapping exception groups from task groups."""
     inner = getattr(exc, "exceptions", None)
     if inner:
-        return "; ".join(_describe(e) for e in inner)
+        return "; ".join(describe(e) for e in inner)
     text = str(exc) or type(exc).__name__
     return f"{type(exc).__name__}: {text}" if text != type(exc).__name__ else text

@@ -1,0 +1,305 @@
+"""Plan steps to gateway tool calls, deterministically: units converted, geometry computed, order kept.
+
+The compiler reads the fleet through ``Sensors`` (the host answers from the gateway's telemetry over MCP)
+when a step depends on where a drone is or what it reads; it never guesses a number the plan lacks
+except the one documented default, the height a drone on the ground takes off to before a move.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Coroutine, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+from fleet_agent import geometry
+from fleet_agent.plan import (
+    POLYGON_SIDES,
+    Altitude,
+    Ask,
+    Choose,
+    Condition,
+    Formation,
+    Hold,
+    Land,
+    Leg,
+    Move,
+    Pattern,
+    Reference,
+    Report,
+    ReturnHome,
+    Takeoff,
+)
+
+#: the height (m above home) a drone on the ground takes off to before a move that names none
+DEFAULT_TAKEOFF_M = 10.0
+
+
+@dataclass(frozen=True)
+class Call:
+    tool: str
+    args: dict[str, Any]
+    drone: str | None = None
+
+
+@dataclass(frozen=True)
+class Said:
+    """A line of the answer: a reading, a decision, a question back."""
+
+    text: str
+
+
+Compiled = list[Call | Said]
+
+
+@dataclass(frozen=True)
+class DroneState:
+    lat: float | None
+    lon: float | None
+    alt_m: float | None
+    flying: bool
+    battery_pct: float | None
+    mode: str | None = None
+
+
+class Sensors(Protocol):
+    async def state(self, drone: str) -> DroneState: ...
+
+    async def home(self, drone: str) -> tuple[float, float]: ...
+
+    async def place(self, name: str) -> tuple[float, float]: ...
+
+
+class CompileError(ValueError):
+    """A step the host cannot turn into calls (e.g. a reference without its drone); told in the answer."""
+
+
+@dataclass
+class Compiler:
+    sensors: Sensors
+    default_takeoff_m: float = DEFAULT_TAKEOFF_M
+    _handlers: dict[type, Callable[[Any], Coroutine[Any, Any, Compiled]]] = field(init=False)
+
+    def __post_init__(self) -> None:
+        self._handlers = {
+            Takeoff: self._height, Altitude: self._height, Land: self._simple, ReturnHome: self._simple,
+            Hold: self._simple, Move: self._move, Pattern: self._pattern, Formation: self._formation,
+            Report: self._report, Condition: self._condition, Choose: self._choose, Ask: self._ask,
+        }  # fmt: skip
+
+    async def compile(self, step: Any) -> Compiled:
+        return await self._handlers[type(step)](step)
+
+    async def _simple(self, step: Land | ReturnHome | Hold) -> Compiled:
+        tool = {"land": "land", "return_home": "return_to_launch", "hold": "hold_position"}[step.action]
+        return [Call(tool, {"drone_id": step.drone}, step.drone)]
+
+    async def _height(self, step: Takeoff | Altitude) -> Compiled:
+        state = await self.sensors.state(step.drone)
+        alt = step.altitude.metres
+        if state.flying:
+            return [Call("move_to_relative", {"drone_id": step.drone, "alt_m": alt}, step.drone)]
+        return [Call("takeoff", {"drone_id": step.drone, "alt_m": alt}, step.drone)]
+
+    async def _lift(self, drone: str, alt: float | None, up: float) -> tuple[Compiled, bool]:
+        """A takeoff first when the drone is on the ground; whether the takeoff used the climb ``up``."""
+        state = await self.sensors.state(drone)
+        if state.flying:
+            return [], False
+        height = alt if alt is not None else (up if up > 0 else self.default_takeoff_m)
+        return [Call("takeoff", {"drone_id": drone, "alt_m": height}, drone)], alt is None and up > 0
+
+    async def _move(self, step: Move) -> Compiled:
+        north, east, up = sum_legs(step.legs)
+        alt = step.altitude.metres if step.altitude is not None else None
+        if step.origin.kind != "here":
+            return await self._move_from(step, north, east, up, alt)
+        calls, climbed = await self._lift(step.drone, alt, up)
+        args: dict[str, Any] = {"drone_id": step.drone, "north_m": north, "east_m": east}
+        if alt is not None and not calls:
+            args["alt_m"] = alt
+        elif up and not climbed:
+            args["up_m"] = up
+        return [*calls, Call("move_to_relative", args, step.drone)]
+
+    async def _move_from(
+        self, step: Move, north: float, east: float, up: float, alt: float | None
+    ) -> Compiled:
+        lat, lon = await self.origin(step.origin, step.drone)
+        target = geometry.offset_position(lat, lon, north, east)
+        state = await self.sensors.state(step.drone)
+        if alt is None:
+            alt = (state.alt_m or 0.0) + up if state.flying else (up or self.default_takeoff_m)
+        calls, _ = await self._lift(step.drone, alt, 0.0)
+        args = {
+            "drone_id": step.drone,
+            "lat_deg": round(target[0], 7),
+            "lon_deg": round(target[1], 7),
+            "alt_m": alt,
+        }
+        return [*calls, Call("go_to_location", args, step.drone)]
+
+    async def origin(self, ref: Reference, drone: str) -> tuple[float, float]:
+        """Where a reference is: a drone's position (read now), a home, a named place."""
+        if ref.kind == "home":
+            return await self.sensors.home(drone)
+        if ref.kind == "point":
+            if ref.lat_deg is None or ref.lon_deg is None:
+                raise CompileError("a point needs lat_deg and lon_deg")
+            return ref.lat_deg, ref.lon_deg
+        if ref.kind == "place":
+            if not ref.place:
+                raise CompileError("a move from a place names no place")
+            return await self.sensors.place(ref.place)
+        other = ref.drone if ref.kind == "drone" else drone
+        if not other:
+            raise CompileError("a move from another drone names no drone")
+        state = await self.sensors.state(other)
+        if state.lat is None or state.lon is None:
+            raise CompileError(f"{other} reports no position")
+        return state.lat, state.lon
+
+    async def _pattern(self, step: Pattern) -> Compiled:
+        legs = pattern_legs(step)
+        alt = step.altitude.metres if step.altitude is not None else None
+        calls, _ = await self._lift(step.drone, alt, 0.0)
+        if alt is not None and not calls:
+            calls.append(Call("move_to_relative", {"drone_id": step.drone, "alt_m": alt}, step.drone))
+        moves = [
+            Call("move_to_relative", {"drone_id": step.drone, "north_m": n, "east_m": e}, step.drone)
+            for n, e in legs
+        ]
+        return [*calls, *moves]
+
+    async def _formation(self, step: Formation) -> Compiled:
+        north, east, _ = sum_legs(step.legs)
+        args: dict[str, Any] = {
+            "drone_ids": list(step.drones), "formation": step.shape, "alt_m": step.altitude.metres,
+            "spacing_m": step.spacing.metres,
+        }  # fmt: skip
+        if step.origin is not None and step.origin.kind != "here":
+            lat, lon = await self.origin(step.origin, step.drones[0])
+            centre = geometry.offset_position(lat, lon, north, east)
+            args["center_lat_deg"], args["center_lon_deg"] = round(centre[0], 7), round(centre[1], 7)
+            return [Call("formation_goto", args)]
+        if north:
+            args["north_m"] = north
+        if east:
+            args["east_m"] = east
+        return [Call("formation_goto", args)]
+
+    async def _report(self, step: Report) -> Compiled:
+        states = {d: await self.sensors.state(d) for d in step.drones}
+        lines: Compiled = [Said(describe_state(d, s, step.readings)) for d, s in states.items()]
+        if step.pick != "none":
+            chosen, value = pick(states, step.readings[0], step.pick)
+            if chosen is not None:
+                lines.append(Said(f"{chosen} has the {step.pick} {step.readings[0]} ({value:g})."))
+        return lines
+
+    async def _condition(self, step: Condition) -> Compiled:
+        state = await self.sensors.state(step.drone)
+        value = reading_value(state, step.reading)
+        if value is None:
+            return [Said(f"{step.drone} reports no {step.reading}: nothing was done.")]
+        holds = compare(value, step.compare, step.value)
+        branch = step.then if holds else step.otherwise
+        verdict = "so" if holds else "not"
+        said = Said(f"{step.drone}: {step.reading} {value:g} {_UNITS[step.reading]}, "
+                    f"{step.compare.replace('_', ' ')} {step.value:g}: {verdict}.")  # fmt: skip
+        return [said, *await self._each(branch)]
+
+    async def _choose(self, step: Choose) -> Compiled:
+        states = {d: await self.sensors.state(d) for d in step.among}
+        chosen, value = pick(states, step.reading, step.pick)
+        if chosen is None:
+            return [Said(f"none of {', '.join(step.among)} reports its {step.reading}: nothing was done.")]
+        said = Said(f"{chosen} has the {step.pick} {step.reading} ({value:g} {_UNITS[step.reading]}).")
+        steps = [with_drone(s, chosen) for s in step.then]
+        return [said, *await self._each(steps)]
+
+    async def _ask(self, step: Ask) -> Compiled:
+        return [Said(step.text)]
+
+    async def _each(self, steps: list[Any]) -> Compiled:
+        out: Compiled = []
+        for s in steps:
+            out += await self.compile(s)
+        return out
+
+
+_UNITS = {"battery": "%", "altitude": "m"}
+
+
+def sum_legs(legs: list[Leg]) -> tuple[float, float, float]:
+    """(north_m, east_m, up_m) of legs flown one after the other."""
+    north = east = up = 0.0
+    for leg in legs:
+        metres = leg.distance.metres
+        if leg.direction in ("up", "down"):
+            up += metres if leg.direction == "up" else -metres
+            continue
+        n, e = geometry.COMPASS[leg.direction]
+        north, east = north + n * metres, east + e * metres
+    return round(north, 2) + 0.0, round(east, 2) + 0.0, round(up, 2) + 0.0
+
+
+def pattern_legs(step: Pattern) -> list[geometry.Offset]:
+    """A pattern's legs from where the drone is."""
+    heading = 0.0 if step.heading in ("up", "down") else geometry.compass_heading(step.heading)
+    clockwise = step.turn == "right"
+    if step.shape in POLYGON_SIDES or step.shape == "polygon":
+        sides = POLYGON_SIDES.get(step.shape) or step.sides or 4
+        return geometry.polygon_legs(sides, step.size.metres, heading, clockwise)
+    if step.shape == "orbit":
+        return geometry.orbit_legs(step.size.metres, clockwise=clockwise)
+    spacing = step.spacing.metres if step.spacing is not None else step.size.metres / 4
+    return geometry.survey_legs(step.lines or 2, step.size.metres, spacing, heading)
+
+
+def reading_value(state: DroneState, reading: str) -> float | None:
+    if reading == "battery":
+        return state.battery_pct
+    if reading == "altitude":
+        return state.alt_m
+    return None
+
+
+def compare(value: float, how: str, threshold: float) -> bool:
+    return {
+        "above": value > threshold, "below": value < threshold,
+        "at_least": value >= threshold, "at_most": value <= threshold,
+    }[how]  # fmt: skip
+
+
+def pick(states: dict[str, DroneState], reading: str, how: str) -> tuple[str | None, float]:
+    """The drone with the highest or lowest reading (None when none reports it)."""
+    known = {d: v for d, s in states.items() if (v := reading_value(s, reading)) is not None}
+    if not known:
+        return None, 0.0
+    chosen = max(known, key=known.__getitem__) if how == "highest" else min(known, key=known.__getitem__)
+    return chosen, known[chosen]
+
+
+def with_drone(step: Any, drone: str) -> Any:
+    """The step flown by ``drone`` (a formation's or a report's drones are left as written)."""
+    if hasattr(step, "drone"):
+        return step.model_copy(update={"drone": drone})
+    return step
+
+
+def describe_state(drone: str, state: DroneState, readings: Sequence[str]) -> str:
+    """One line of readings: battery %, altitude, position, whether it flies."""
+    parts = []
+    for reading in readings:
+        if reading == "battery":
+            parts.append(
+                "battery unknown" if state.battery_pct is None else f"battery {state.battery_pct:g} %"
+            )
+        elif reading == "altitude" or (reading == "flying" and state.alt_m is not None):
+            parts.append(f"altitude {state.alt_m or 0.0:.1f} m")
+        elif reading == "position" and state.lat is not None and state.lon is not None:
+            parts.append(f"at {state.lat:.6f}, {state.lon:.6f}")
+        elif reading == "mode":
+            parts.append(f"mode {state.mode or 'unknown'}")
+    parts.append("flying" if state.flying else "on the ground")
+    return f"{drone}: {', '.join(dict.fromkeys(parts))}."

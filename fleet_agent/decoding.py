@@ -1,0 +1,122 @@
+"""Asking the model for a plan: decoded under the plan's JSON schema where the endpoint offers it, always
+validated with pydantic, and repaired once with the validation errors when it does not validate."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from typing import Any
+
+import openai
+from pydantic import ValidationError
+
+from fleet_agent.plan import Plan, parse_plan, plan_schema
+from fleet_agent.prompt import system_prompt, user_message
+from fleet_agent.records import ModelConfig, Usage
+
+DECODINGS = ("json_schema", "ollama", "guided", "none")
+MAX_ERRORS_SHOWN = 6
+
+
+@dataclass
+class PlanAttempt:
+    """What one request for a plan gave: the plan (None when even the repair did not validate)."""
+
+    plan: Plan | None
+    replies: list[str] = field(default_factory=list)
+    errors: list[str] = field(default_factory=list)
+    usage: Usage = field(default_factory=Usage)
+    model_error: str | None = None
+
+
+def decoding_options(decoding: str, schema: dict[str, Any]) -> dict[str, Any]:
+    """The request options that make the endpoint decode under ``schema``."""
+    if decoding == "json_schema":
+        return {"response_format": {"type": "json_schema", "json_schema": {"name": "plan", "schema": schema}}}
+    if decoding == "ollama":
+        return {"extra_body": {"format": schema}}
+    if decoding == "guided":
+        return {"extra_body": {"guided_json": schema}}
+    if decoding == "none":
+        return {}
+    raise ValueError(f"decoding must be one of {', '.join(DECODINGS)}; got {decoding!r}")
+
+
+def describe_errors(exc: ValidationError | ValueError) -> str:
+    """A validation error as short lines: where in the plan, and what is wrong."""
+    if not isinstance(exc, ValidationError):
+        return str(exc)
+    lines = []
+    for err in exc.errors()[:MAX_ERRORS_SHOWN]:
+        where = ".".join(str(p) for p in err["loc"]) or "plan"
+        lines.append(f"{where}: {err['msg']}")
+    return "; ".join(lines)
+
+
+class Planner:
+    """One model endpoint, asked for plans."""
+
+    def __init__(self, model: ModelConfig, client: openai.AsyncOpenAI | None = None) -> None:
+        self.model = model
+        self.client = client or openai.AsyncOpenAI(
+            base_url=model.base_url,
+            api_key=model.api_key,
+            timeout=model.timeout_s,
+            max_retries=model.max_retries,
+        )
+        self.system = system_prompt()
+
+    async def plan(self, request: str, fleet: list[str], places: list[str] | None = None) -> PlanAttempt:
+        """A plan for ``request``: one request to the model, and one repair round if it does not validate."""
+        messages: list[dict[str, Any]] = [
+            {"role": "system", "content": self.system},
+            {"role": "user", "content": user_message(request, fleet, places)},
+        ]
+        attempt = PlanAttempt(plan=None)
+        options = decoding_options(self.model.decoding, plan_schema(fleet))
+        for round_ in range(2):
+            try:
+                reply = await self._complete(messages, options, attempt.usage)
+            except openai.OpenAIError as exc:
+                attempt.model_error = f"{type(exc).__name__}: {exc}"
+                return attempt
+            attempt.replies.append(reply)
+            try:
+                attempt.plan = parse_plan(_json_part(reply), fleet)
+                return attempt
+            except (ValidationError, ValueError) as exc:
+                attempt.errors.append(describe_errors(exc))
+            if round_ == 0:
+                messages += [
+                    {"role": "assistant", "content": reply},
+                    {
+                        "role": "user",
+                        "content": f"That plan is not valid: {attempt.errors[-1]}. "
+                        "Write the whole plan again, corrected. Plan:",
+                    },
+                ]
+        return attempt
+
+    async def _complete(self, messages: list[dict[str, Any]], options: dict[str, Any], usage: Usage) -> str:
+        response = await self.client.chat.completions.create(
+            model=self.model.model,
+            messages=messages,  # type: ignore[arg-type]
+            temperature=self.model.temperature,
+            max_tokens=self.model.max_tokens,
+            **options,
+        )
+        if response.usage is not None:
+            usage.add(response.usage.prompt_tokens, response.usage.completion_tokens)
+        if not response.choices:
+            return ""
+        return response.choices[0].message.content or ""
+
+
+def _json_part(reply: str) -> str:
+    """The JSON object in a reply (a model without constrained decoding may wrap it in a code fence)."""
+    start, end = reply.find("{"), reply.rfind("}")
+    if start < 0 or end < start:
+        raise ValueError("the reply holds no JSON object")
+    text = reply[start : end + 1]
+    json.loads(text)  # a JSON error is reported as such, before pydantic's
+    return text

@@ -1,0 +1,280 @@
+"""The plan a model writes: request-shaped steps, typed. Its JSON schema is what the model decodes under.
+
+The drone fields are plain strings here; ``plan_schema(ids)`` turns them into an ``enum`` of the fleet's
+ids at run time and ``parse_plan(data, ids)`` refuses an id outside the fleet. Every length carries its
+unit; the host converts (`fleet_agent.units`) and computes geometry (`fleet_agent.compiler`).
+"""
+
+from __future__ import annotations
+
+import copy
+from enum import StrEnum
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator
+
+from fleet_agent.units import Unit, to_metres
+
+
+class Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class Length(Strict):
+    """A distance or an altitude as the request gave it."""
+
+    value: float = Field(ge=0)
+    unit: Unit
+
+    @property
+    def metres(self) -> float:
+        return to_metres(self.value, self.unit)
+
+
+class Direction(StrEnum):
+    north = "north"
+    south = "south"
+    east = "east"
+    west = "west"
+    northeast = "northeast"
+    northwest = "northwest"
+    southeast = "southeast"
+    southwest = "southwest"
+    up = "up"
+    down = "down"
+
+
+class Leg(Strict):
+    distance: Length
+    direction: Direction
+
+
+class Reference(Strict):
+    """Where a move is measured from: the drone itself (here), its home, another drone, a named place, a
+    point given by its coordinates."""
+
+    kind: Literal["here", "home", "drone", "place", "point"]
+    drone: str | None = None
+    place: str | None = None
+    lat_deg: float | None = Field(default=None, ge=-90, le=90)
+    lon_deg: float | None = Field(default=None, ge=-180, le=180)
+
+
+class DroneStep(Strict):
+    """A step of one drone. Each step declares its ``action`` first and then its ``drone``: a schema-guided
+    decoder writes the properties in the schema's order, and the examples start a step with its action."""
+
+    @field_validator("drone", check_fields=False)
+    @classmethod
+    def _known_drone(cls, value: str, info: ValidationInfo) -> str:
+        return known_drone(value, info)
+
+
+class Takeoff(DroneStep):
+    action: Literal["takeoff"]
+    drone: str
+    altitude: Length
+
+
+class Land(DroneStep):
+    action: Literal["land"]
+    drone: str
+
+
+class ReturnHome(DroneStep):
+    action: Literal["return_home"]
+    drone: str
+
+
+class Hold(DroneStep):
+    action: Literal["hold"]
+    drone: str
+
+
+class Altitude(DroneStep):
+    """Climb or descend to an altitude above home (taking off first when on the ground)."""
+
+    action: Literal["altitude"]
+    drone: str
+    altitude: Length
+
+
+class Move(DroneStep):
+    """Legs from ``origin`` (horizontal legs add up; up/down legs change the height), at ``altitude``
+    above home when given."""
+
+    action: Literal["move"]
+    drone: str
+    legs: list[Leg]
+    altitude: Length | None
+    origin: Reference
+
+
+#: the polygons a shape's name says the sides of
+POLYGON_SIDES = {"triangle": 3, "square": 4, "pentagon": 5, "hexagon": 6, "octagon": 8}
+
+
+class Pattern(DroneStep):
+    """A polygon (named, or ``polygon`` with ``sides``) with sides of ``size``; an orbit, a circle of radius
+    ``size``; a survey, ``lines`` lines of ``size``, ``spacing`` apart. Flown by one drone from where it is,
+    the first leg towards ``heading``."""
+
+    action: Literal["pattern"]
+    drone: str
+    shape: Literal["triangle", "square", "pentagon", "hexagon", "octagon", "polygon", "orbit", "survey"]
+    size: Length
+    sides: int | None = Field(default=None, ge=3, le=12)
+    lines: int | None = Field(default=None, ge=1, le=20)
+    spacing: Length | None = None
+    heading: Direction = Direction.north
+    turn: Literal["right", "left"] = "right"
+    altitude: Length | None = None
+
+
+class Formation(Strict):
+    """The drones in a shape ``spacing`` apart, centred where they are (or on ``origin``), then ``legs``."""
+
+    action: Literal["formation"]
+    drones: list[str] = Field(min_length=1)
+    shape: Literal["line", "column", "wedge", "grid", "circle"]
+    spacing: Length
+    altitude: Length
+    legs: list[Leg] = Field(default_factory=list)
+    origin: Reference | None = None
+
+    @field_validator("drones")
+    @classmethod
+    def _known_drones(cls, value: list[str], info: ValidationInfo) -> list[str]:
+        return [known_drone(v, info) for v in value]
+
+
+Reading = Literal["battery", "altitude", "position", "flying", "mode"]
+
+
+class Report(Strict):
+    """A question: the host reads ``readings`` of ``drones`` and answers with them; ``pick`` names the
+    drone with the highest or lowest first reading."""
+
+    action: Literal["report"]
+    drones: list[str] = Field(min_length=1)
+    readings: list[Reading] = Field(min_length=1)
+    pick: Literal["none", "highest", "lowest"] = "none"
+
+    @field_validator("drones")
+    @classmethod
+    def _known_drones(cls, value: list[str], info: ValidationInfo) -> list[str]:
+        return [known_drone(v, info) for v in value]
+
+
+class Ask(Strict):
+    """A question back to the user when the request cannot be planned (nothing flies)."""
+
+    action: Literal["ask"]
+    text: str = Field(min_length=1, max_length=300)
+
+
+SimpleStep = Annotated[
+    Takeoff | Land | ReturnHome | Hold | Altitude | Move | Pattern | Formation | Report,
+    Field(discriminator="action"),
+]
+
+
+class Condition(DroneStep):
+    """``then`` when the drone's reading compares true to ``value`` (% or m), else ``otherwise``."""
+
+    action: Literal["if"]
+    drone: str
+    reading: Literal["battery", "altitude"]
+    compare: Literal["above", "below", "at_least", "at_most"]
+    value: float
+    then: list[SimpleStep]
+    otherwise: list[SimpleStep] = Field(default_factory=list)
+
+
+class Choose(Strict):
+    """The drone of ``among`` with the highest or lowest reading does ``then`` (the drone named in those
+    steps is replaced by the one chosen); the others do nothing."""
+
+    action: Literal["choose"]
+    among: list[str] = Field(min_length=2)
+    reading: Literal["battery", "altitude"]
+    pick: Literal["highest", "lowest"]
+    then: list[SimpleStep] = Field(min_length=1)
+
+    @field_validator("among")
+    @classmethod
+    def _known_drones(cls, value: list[str], info: ValidationInfo) -> list[str]:
+        return [known_drone(v, info) for v in value]
+
+
+Step = Annotated[
+    Takeoff
+    | Land
+    | ReturnHome
+    | Hold
+    | Altitude
+    | Move
+    | Pattern
+    | Formation
+    | Report
+    | Condition
+    | Choose
+    | Ask,
+    Field(discriminator="action"),
+]
+
+
+class Plan(Strict):
+    steps: list[Step] = Field(max_length=40)
+
+
+def known_drone(value: str, info: ValidationInfo) -> str:
+    """The id as the fleet spells it; an id outside the fleet (given as validation context) is refused."""
+    fleet: list[str] = (info.context or {}).get("fleet") or []
+    if not fleet:
+        return value
+    by_lower = {d.lower(): d for d in fleet}
+    if value.lower() not in by_lower:
+        raise ValueError(f"drone {value!r} is not in the fleet; the fleet: {', '.join(fleet)}")
+    return by_lower[value.lower()]
+
+
+def parse_plan(data: Any, fleet: list[str]) -> Plan:
+    """The plan in ``data`` (a JSON string or decoded JSON), its drone ids checked against ``fleet``."""
+    if isinstance(data, str | bytes):
+        return Plan.model_validate_json(data, context={"fleet": fleet})
+    return Plan.model_validate(data, context={"fleet": fleet})
+
+
+_DRONE_FIELDS = ("drone", "drones", "among")
+
+
+def plan_schema(fleet: list[str]) -> dict[str, Any]:
+    """The plan's JSON schema with every drone field an ``enum`` of the fleet's ids."""
+    schema = copy.deepcopy(_BASE_SCHEMA)
+    for definition in schema.get("$defs", {}).values():
+        for name, prop in definition.get("properties", {}).items():
+            if name in _DRONE_FIELDS:
+                _enum_of_strings(prop, fleet)
+    return schema
+
+
+def _enum_of_strings(prop: dict[str, Any], fleet: list[str]) -> None:
+    """Make the string part of ``prop`` (itself, its items, or its non-null alternative) an enum."""
+    if prop.get("type") == "array":
+        prop["items"]["enum"] = list(fleet)
+    elif prop.get("type") == "string":
+        prop["enum"] = list(fleet)
+    for option in prop.get("anyOf", []):
+        if option.get("type") == "string":
+            option["enum"] = list(fleet)
+
+
+def _base_schema() -> dict[str, Any]:
+    schema = Plan.model_json_schema()
+    for definition in schema.get("$defs", {}).values():
+        definition.pop("description", None)
+    return schema
+
+
+_BASE_SCHEMA = _base_schema()

@@ -1,0 +1,104 @@
+"""What the model reads before a request: the plan's steps in short, and worked examples.
+
+The text stays the same from request to request (a local server then reuses its cached prefix); the
+fleet's ids come with the request. The examples are written for this prompt, in several languages."""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+_STEPS = """\
+You turn a drone operator's request, in any language, into a JSON plan: {"steps": [...]}, steps in the order
+the request gives them. Write only the JSON. Each step has an "action":
+- takeoff {drone, altitude}; land {drone}; return_home {drone}; hold {drone}
+- altitude {drone, altitude}: climb or descend to that height above home
+- move {drone, legs, altitude, origin}: legs are [{distance, direction}] (north, south, east, west, northeast,
+  northwest, southeast, southwest, up, down); altitude is the height to fly at or null; origin says where
+  the legs start: {"kind": "here"} the drone itself, "home", {"kind": "drone", "drone": id} another
+  drone, {"kind": "place", "place": name} a named place, {"kind": "point", "lat_deg", "lon_deg"} coordinates
+- pattern {drone, shape, size, ...}: ONE drone flies a shape: triangle, square, pentagon, hexagon,
+  octagon or polygon (sides) with size = side length; orbit (a circle, size = radius); survey (lines,
+  size = line length, spacing); optional heading (first leg), turn (right, left), altitude
+- formation {drones, shape (line, column, wedge, grid, circle), spacing, altitude, legs (the centre's move),
+  origin (optional: the centre, as for a move)}: SEVERAL drones placed together
+- report {drones, readings (battery, altitude, position, flying, mode), pick (none, highest, lowest)}:
+  a question; nothing flies
+- if {drone, reading (battery or altitude), compare (above, below, at_least, at_most), value, then,
+  otherwise}: steps that depend on a reading
+- choose {among, reading, pick (highest or lowest), then}: the chosen drone does the steps
+- ask {text}: only when the request cannot be planned
+Every distance and altitude is {"value": number, "unit": "m" | "ft" | "km" | "mi" | "yd" | "nmi"}, in the
+unit the request used. Never compute: the host converts units and works out the geometry. A drone on the
+ground takes off by itself before a move. Plan only what is asked: no step for a drone the request leaves
+alone, and every landing or return the request asks for.
+"""
+
+
+def _m(value: float, unit: str = "m") -> dict[str, Any]:
+    return {"value": value, "unit": unit}
+
+
+def _leg(value: float, direction: str, unit: str = "m") -> dict[str, Any]:
+    return {"distance": _m(value, unit), "direction": direction}
+
+
+_HERE = {"kind": "here"}
+
+EXAMPLES: list[tuple[str, dict[str, Any]]] = [
+    ("delta: go up 40 feet, then come back down",
+     {"steps": [{"action": "takeoff", "drone": "delta", "altitude": _m(40, "ft")},
+                {"action": "land", "drone": "delta"}]}),
+    ("Fly echo in a triangle with 30 m sides at 15 m.",
+     {"steps": [{"action": "pattern", "drone": "echo", "shape": "triangle", "size": _m(30),
+                 "altitude": _m(15)}]}),
+    ("Send delta to a spot 20 m east of echo, at 12 m, and leave it there.",
+     {"steps": [{"action": "move", "drone": "delta", "legs": [_leg(20, "east")], "altitude": _m(12),
+                 "origin": {"kind": "drone", "drone": "echo"}}]}),
+    ("echo : décolle à 8 m, avance de 25 m vers l'ouest puis atterris.",
+     {"steps": [{"action": "takeoff", "drone": "echo", "altitude": _m(8)},
+                {"action": "move", "drone": "echo", "legs": [_leg(25, "west")], "altitude": None,
+                 "origin": _HERE},
+                {"action": "land", "drone": "echo"}]}),
+    ("Delta soll auf 14 m steigen und dort bleiben.",
+     {"steps": [{"action": "altitude", "drone": "delta", "altitude": _m(14)}]}),
+    ("echo, 0.1 km al sur y 5 m más alto, luego vuelve a casa",
+     {"steps": [{"action": "move", "drone": "echo", "legs": [_leg(0.1, "south", "km"), _leg(5, "up")],
+                 "altitude": None, "origin": _HERE},
+                {"action": "return_home", "drone": "echo"}]}),
+    ("If delta has under 25 % battery keep it down, otherwise lift it to 9 m and land it again.",
+     {"steps": [{"action": "if", "drone": "delta", "reading": "battery", "compare": "below", "value": 25,
+                 "then": [{"action": "report", "drones": ["delta"], "readings": ["battery"], "pick": "none"}],
+                 "otherwise": [{"action": "takeoff", "drone": "delta", "altitude": _m(9)},
+                               {"action": "land", "drone": "delta"}]}]}),
+    ("The emptier of delta and echo flies a 50 m circle around where it is.",
+     {"steps": [{"action": "choose", "among": ["delta", "echo"], "reading": "battery", "pick": "lowest",
+                 "then": [{"action": "pattern", "drone": "delta", "shape": "orbit", "size": _m(50)}]}]}),
+    ("delta and echo side by side, 6 m apart, at 10 m, 15 m north of here",
+     {"steps": [{"action": "formation", "drones": ["delta", "echo"], "shape": "line", "spacing": _m(6),
+                 "altitude": _m(10), "legs": [_leg(15, "north")]}]}),
+    ("Which drone is highest up, and how full are their batteries?",
+     {"steps": [{"action": "report", "drones": ["delta", "echo"], "readings": ["altitude", "battery"],
+                 "pick": "highest"}]}),
+]  # fmt: skip
+
+
+def system_prompt() -> str:
+    """The system prompt: the steps, then each example as a request and its plan (the examples' fleet is
+    delta and echo, so that the model reads the ids from the request's own fleet)."""
+    shown = "\n".join(
+        f"Fleet: delta, echo\nRequest: {text}\nPlan: {_compact(plan)}" for text, plan in EXAMPLES
+    )
+    return f"{_STEPS}\nExamples:\n{shown}"
+
+
+def _compact(plan: dict[str, Any]) -> str:
+    return json.dumps(plan, separators=(",", ":"), ensure_ascii=False)
+
+
+def user_message(request: str, fleet: list[str], places: list[str] | None = None) -> str:
+    lines = [f"Fleet: {', '.join(fleet)}"]
+    if places:
+        lines.append(f"Named places: {', '.join(places)}")
+    lines.append(f"Request: {request}")
+    return "\n".join(lines) + "\nPlan:"

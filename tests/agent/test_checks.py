@@ -1,0 +1,84 @@
+"""The registered checks of a compiled call and their typed outcomes."""
+
+from __future__ import annotations
+
+from fleet_agent.checks import (
+    AfterRefusal,
+    Allow,
+    LinkLost,
+    NothingToFly,
+    OfferedTool,
+    Reject,
+    Replace,
+    Stop,
+    TakeoffOfFleetAsOne,
+    TurnState,
+    default_checks,
+    run_checks,
+)
+from fleet_agent.compiler import Call
+from fleet_agent.mcp_link import ToolInfo
+from fleet_agent.records import Refusal
+
+TAKEOFF_SCHEMA = {
+    "type": "object",
+    "properties": {"drone_id": {"type": "string"}, "alt_m": {"type": "number", "exclusiveMinimum": 0}},
+    "required": ["drone_id", "alt_m"],
+    "additionalProperties": False,
+}
+TOOLS = {
+    "takeoff": ToolInfo("takeoff", "", TAKEOFF_SCHEMA),
+    "move_to_relative": ToolInfo("move_to_relative", "", {}),
+    "formation_goto": ToolInfo("formation_goto", "", {}),
+}
+
+
+def _turn() -> TurnState:
+    return TurnState(tools=dict(TOOLS))
+
+
+def test_each_check_gives_its_outcome() -> None:
+    turn = _turn()
+    takeoff = Call("takeoff", {"drone_id": "alpha", "alt_m": 10.0}, "alpha")
+    assert OfferedTool()(takeoff, turn) == Allow()
+    assert OfferedTool()(Call("kill_motors", {}), turn) == Reject(
+        "the gateway offers no kill_motors here, so it was not sent"
+    )
+    still = Call("move_to_relative", {"drone_id": "alpha", "north_m": 0.0, "east_m": 0.0}, "alpha")
+    assert NothingToFly()(still, turn) == Reject("alpha: a move of 0 m was not sent")
+    assert NothingToFly()(Call("move_to_relative", {"drone_id": "a", "alt_m": 5.0}, "a"), turn) == Allow()
+    turn.refused["alpha"] = Refusal("safety_refusal", "max_altitude", "too high", {})
+    assert isinstance(AfterRefusal()(takeoff, turn), Reject)
+    assert AfterRefusal()(Call("land", {"drone_id": "bravo"}, "bravo"), turn) == Allow()
+    assert (
+        AfterRefusal()(Call("land", {"drone_id": "alpha"}, "alpha"), turn) == Allow()
+    )  # landing: still sent
+    assert LinkLost()(takeoff, turn) == Allow()
+    turn.link_failed = True
+    assert isinstance(LinkLost()(takeoff, turn), Stop)
+
+
+def test_a_formation_of_one_is_replaced_by_a_move() -> None:
+    one = Call("formation_goto", {"drone_ids": ["bravo"], "formation": "line", "alt_m": 12.0, "north_m": 5.0})
+    verdict = TakeoffOfFleetAsOne()(one, _turn())
+    assert verdict == Replace(
+        Call(
+            "move_to_relative", {"drone_id": "bravo", "north_m": 5.0, "east_m": 0.0, "alt_m": 12.0}, "bravo"
+        ),
+        "a formation of one drone flown as a move",
+    )
+    sent, notes, stop = run_checks(default_checks(), one, _turn())
+    assert sent is not None and sent.tool == "move_to_relative" and notes and not stop
+
+
+def test_checks_run_in_order_and_the_first_reject_or_stop_wins() -> None:
+    turn = _turn()
+    turn.link_failed = True
+    sent, notes, stop = run_checks(
+        default_checks(), Call("takeoff", {"drone_id": "a", "alt_m": -1}, "a"), turn
+    )
+    assert sent is None and stop and notes == ["the link to the gateway failed; nothing more was sent"]
+    sent, notes, stop = run_checks(
+        default_checks(), Call("takeoff", {"drone_id": "a", "alt_m": 4.0}, "a"), _turn()
+    )
+    assert sent == Call("takeoff", {"drone_id": "a", "alt_m": 4.0}, "a") and notes == [] and not stop

@@ -1,0 +1,240 @@
+"""The typed plan: its schema, its validation, and its compilation to gateway calls."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import pytest
+from pydantic import ValidationError
+
+from fleet_agent import geometry
+from fleet_agent.compiler import Call, CompileError, Compiler, DroneState, Said
+from fleet_agent.plan import parse_plan, plan_schema
+from fleet_agent.prompt import EXAMPLES, system_prompt, user_message
+
+FLEET = ["alpha", "bravo", "charlie"]
+HOME = (47.3977, 8.5456)
+
+
+@dataclass
+class FakeSensors:
+    states: dict[str, DroneState] = field(default_factory=dict)
+    places: dict[str, tuple[float, float]] = field(default_factory=dict)
+
+    async def state(self, drone: str) -> DroneState:
+        return self.states.get(drone, DroneState(HOME[0], HOME[1], 0.0, False, 80.0))
+
+    async def home(self, drone: str) -> tuple[float, float]:
+        return HOME
+
+    async def place(self, name: str) -> tuple[float, float]:
+        if name not in self.places:
+            raise CompileError(f"unknown place {name!r}")
+        return self.places[name]
+
+
+def m(value: float, unit: str = "m") -> dict:
+    return {"value": value, "unit": unit}
+
+
+def leg(value: float, direction: str, unit: str = "m") -> dict:
+    return {"distance": m(value, unit), "direction": direction}
+
+
+async def compiled(step: dict, sensors: FakeSensors | None = None) -> list:
+    plan = parse_plan({"steps": [step]}, FLEET)
+    compiler = Compiler(sensors or FakeSensors())
+    return await compiler.compile(plan.steps[0])
+
+
+def flying(
+    lat: float = HOME[0], lon: float = HOME[1], alt: float = 10.0, battery: float = 80.0
+) -> DroneState:
+    return DroneState(lat, lon, alt, True, battery)
+
+
+def test_the_schema_names_the_fleet_in_every_drone_field() -> None:
+    schema = plan_schema(FLEET)
+    defs = schema["$defs"]
+    assert defs["Takeoff"]["properties"]["drone"]["enum"] == FLEET
+    assert defs["Formation"]["properties"]["drones"]["items"]["enum"] == FLEET
+    assert defs["Choose"]["properties"]["among"]["items"]["enum"] == FLEET
+    ref_drone = defs["Reference"]["properties"]["drone"]["anyOf"]
+    assert {"type": "string", "enum": FLEET} in ref_drone
+    assert defs["Length"]["required"] == ["value", "unit"]
+    assert set(defs["Length"]["properties"]["unit"]["$ref"].split("/")[-1:]) == {"Unit"}
+
+
+def test_every_step_starts_with_its_action() -> None:
+    """A schema-guided decoder writes properties in the schema's order: a step whose first property were
+    its drone would be a different first token from the examples' (measured with the 0.5B model: every
+    step came out as a formation, the steps whose action came first)."""
+    for name, definition in plan_schema(FLEET)["$defs"].items():
+        if "action" in definition.get("properties", {}):
+            assert next(iter(definition["properties"])) == "action", name
+            assert definition["required"][0] == "action", name
+
+
+def test_a_drone_outside_the_fleet_or_a_length_without_unit_does_not_validate() -> None:
+    with pytest.raises(ValidationError, match="drone 'delta' is not in the fleet"):
+        parse_plan({"steps": [{"action": "land", "drone": "delta"}]}, FLEET)
+    with pytest.raises(ValidationError, match="unit"):
+        parse_plan({"steps": [{"action": "takeoff", "drone": "alpha", "altitude": {"value": 5}}]}, FLEET)
+    assert parse_plan('{"steps": [{"action": "land", "drone": "Alpha"}]}', FLEET).steps[0].drone == "alpha"
+
+
+def test_the_prompt_examples_are_valid_plans_of_their_own_fleet() -> None:
+    for _, plan in EXAMPLES:
+        parse_plan(plan, ["delta", "echo"])
+    assert "Request:" in system_prompt() and user_message("x", FLEET).startswith(
+        "Fleet: alpha, bravo, charlie"
+    )
+
+
+async def test_feet_are_converted_and_a_landing_kept() -> None:
+    plan = parse_plan({"steps": [{"action": "takeoff", "drone": "bravo", "altitude": m(50, "ft")},
+                                 {"action": "land", "drone": "bravo"}]}, FLEET)  # fmt: skip
+    compiler = Compiler(FakeSensors())
+    calls = [c for s in plan.steps for c in await compiler.compile(s)]
+    assert calls == [Call("takeoff", {"drone_id": "bravo", "alt_m": 15.24}, "bravo"),
+                     Call("land", {"drone_id": "bravo"}, "bravo")]  # fmt: skip
+
+
+async def test_a_move_from_the_ground_takes_off_first() -> None:
+    step = {"action": "move", "drone": "alpha", "legs": [leg(30, "north"), leg(0.02, "west", "km")],
+            "altitude": m(15), "origin": {"kind": "here"}}  # fmt: skip
+    assert await compiled(step) == [
+        Call("takeoff", {"drone_id": "alpha", "alt_m": 15.0}, "alpha"),
+        Call("move_to_relative", {"drone_id": "alpha", "north_m": 30.0, "east_m": -20.0}, "alpha"),
+    ]
+    up_only = {"action": "move", "drone": "alpha", "legs": [leg(25, "north"), leg(8, "up")], "altitude": None,
+               "origin": {"kind": "here"}}  # fmt: skip
+    assert (await compiled(up_only))[0] == Call("takeoff", {"drone_id": "alpha", "alt_m": 8.0}, "alpha")
+
+
+async def test_a_move_in_the_air_climbs_by_its_up_legs() -> None:
+    sensors = FakeSensors({"alpha": flying()})
+    step = {"action": "move", "drone": "alpha", "legs": [leg(20, "south"), leg(5, "up")], "altitude": None,
+            "origin": {"kind": "here"}}  # fmt: skip
+    assert await compiled(step, sensors) == [
+        Call("move_to_relative", {"drone_id": "alpha", "north_m": -20.0, "east_m": 0.0, "up_m": 5.0}, "alpha")
+    ]
+    diagonal = {"action": "move", "drone": "alpha", "legs": [leg(10, "northeast")], "altitude": m(12),
+                "origin": {"kind": "here"}}  # fmt: skip
+    (call,) = await compiled(diagonal, sensors)
+    assert call.args == {"drone_id": "alpha", "north_m": 7.07, "east_m": 7.07, "alt_m": 12.0}
+
+
+async def test_a_point_north_of_another_drone_is_read_from_its_position() -> None:
+    bravo_at = geometry.offset_position(*HOME, 100.0, 50.0)
+    sensors = FakeSensors({"bravo": flying(*bravo_at, alt=20.0)})
+    step = {"action": "move", "drone": "alpha", "legs": [leg(30, "north")], "altitude": m(12),
+            "origin": {"kind": "drone", "drone": "bravo"}}  # fmt: skip
+    takeoff, goto = await compiled(step, sensors)
+    assert takeoff == Call("takeoff", {"drone_id": "alpha", "alt_m": 12.0}, "alpha")
+    assert goto.tool == "go_to_location" and goto.args["alt_m"] == 12.0
+    north, east = geometry.offset_between(*HOME, goto.args["lat_deg"], goto.args["lon_deg"])
+    assert abs(north - 130.0) < 0.05 and abs(east - 50.0) < 0.05
+
+
+async def test_a_named_place_and_home_are_origins() -> None:
+    tower = geometry.offset_position(*HOME, 40.0, 0.0)
+    sensors = FakeSensors({"alpha": flying(alt=15.0)}, {"water tower": tower})
+    step = {"action": "move", "drone": "alpha", "legs": [], "altitude": None,
+            "origin": {"kind": "place", "place": "water tower"}}  # fmt: skip
+    (goto,) = await compiled(step, sensors)
+    assert (goto.args["lat_deg"], goto.args["lon_deg"], goto.args["alt_m"]) == (
+        round(tower[0], 7), round(tower[1], 7), 15.0)  # fmt: skip
+    with pytest.raises(CompileError, match="unknown place 'mill'"):
+        await compiled({**step, "origin": {"kind": "place", "place": "mill"}}, sensors)
+    home = {**step, "legs": [leg(10, "east")], "origin": {"kind": "home"}}
+    (goto,) = await compiled(home, sensors)
+    assert abs(geometry.offset_between(*HOME, goto.args["lat_deg"], goto.args["lon_deg"])[1] - 10.0) < 0.05
+
+
+async def test_a_square_for_one_drone_is_four_legs_not_a_formation() -> None:
+    step = {
+        "action": "pattern",
+        "drone": "charlie",
+        "shape": "square",
+        "size": m(66, "ft"),
+        "altitude": m(10),
+    }
+    calls = await compiled(step)
+    assert calls[0] == Call("takeoff", {"drone_id": "charlie", "alt_m": 10.0}, "charlie")
+    legs = [(c.args["north_m"], c.args["east_m"]) for c in calls[1:]]
+    assert legs == [(20.12, 0.0), (0.0, 20.12), (-20.12, 0.0), (0.0, -20.12)]
+
+
+async def test_a_formation_carries_its_spacing_and_centre_move() -> None:
+    step = {"action": "formation", "drones": ["alpha", "bravo"], "shape": "column", "spacing": m(12),
+            "altitude": m(15), "legs": [leg(40, "north")]}  # fmt: skip
+    args = {"drone_ids": ["alpha", "bravo"], "formation": "column", "alt_m": 15.0, "spacing_m": 12.0,
+            "north_m": 40.0}  # fmt: skip
+    assert await compiled(step) == [Call("formation_goto", args)]
+
+
+async def test_a_named_polygon_has_its_sides_and_a_polygon_its_count() -> None:
+    hexagon = await compiled({"action": "pattern", "drone": "alpha", "shape": "hexagon", "size": m(12)})
+    assert len(hexagon) == 7 and hexagon[1].args["north_m"] == 12.0  # a takeoff, then six legs
+    five = {"action": "pattern", "drone": "alpha", "shape": "polygon", "sides": 5, "size": m(12)}
+    assert len(await compiled(five, FakeSensors({"alpha": flying()}))) == 5
+    orbit = {"action": "pattern", "drone": "alpha", "shape": "orbit", "size": m(25), "turn": "left"}
+    legs = await compiled(orbit, FakeSensors({"alpha": flying()}))
+    assert len(legs) == 14 and legs[1].args["east_m"] < 0  # round to the left (west) first
+
+
+async def test_a_formation_centred_on_a_point() -> None:
+    step = {"action": "formation", "drones": ["alpha", "bravo"], "shape": "line", "spacing": m(10),
+            "altitude": m(25), "legs": [{"distance": m(10), "direction": "north"}],
+            "origin": {"kind": "point", "lat_deg": HOME[0], "lon_deg": HOME[1]}}  # fmt: skip
+    (call,) = await compiled(step)
+    north, east = geometry.offset_between(*HOME, call.args["center_lat_deg"], call.args["center_lon_deg"])
+    assert abs(north - 10.0) < 0.05 and abs(east) < 0.05 and "north_m" not in call.args
+
+
+async def test_a_condition_takes_its_branch_from_the_reading() -> None:
+    step = {"action": "if", "drone": "bravo", "reading": "battery", "compare": "above", "value": 50,
+            "then": [{"action": "takeoff", "drone": "bravo", "altitude": m(15)}],
+            "otherwise": [{"action": "report", "drones": ["bravo"], "readings": ["battery"]}]}  # fmt: skip
+    low = FakeSensors({"bravo": DroneState(*HOME, 0.0, False, 35.0)})
+    said, report = await compiled(step, low)
+    assert (
+        isinstance(said, Said) and "35" in said.text and report == Said("bravo: battery 35 %, on the ground.")
+    )
+    high = FakeSensors({"bravo": DroneState(*HOME, 0.0, False, 70.0)})
+    assert (await compiled(step, high))[1] == Call("takeoff", {"drone_id": "bravo", "alt_m": 15.0}, "bravo")
+
+
+async def test_choose_flies_the_chosen_drone_whatever_the_steps_name() -> None:
+    states = {
+        d: DroneState(*HOME, 0.0, False, b) for d, b in (("alpha", 90.0), ("bravo", 40.0), ("charlie", 60.0))
+    }
+    step = {"action": "choose", "among": FLEET, "reading": "battery", "pick": "lowest",
+            "then": [{"action": "takeoff", "drone": "alpha", "altitude": m(6)},
+                     {"action": "land", "drone": "alpha"}]}  # fmt: skip
+    said, takeoff, land = await compiled(step, FakeSensors(states))
+    assert said == Said("bravo has the lowest battery (40 %).")
+    assert takeoff.args == {"drone_id": "bravo", "alt_m": 6.0} and land.drone == "bravo"
+
+
+async def test_a_report_answers_with_readings_and_a_pick() -> None:
+    states = {"alpha": DroneState(*HOME, 0.0, False, 88.0), "bravo": flying(alt=12.3, battery=47.0)}
+    step = {"action": "report", "drones": ["alpha", "bravo"], "readings": ["battery", "altitude"],
+            "pick": "lowest"}  # fmt: skip
+    lines = [s.text for s in await compiled(step, FakeSensors(states))]
+    assert lines == [
+        "alpha: battery 88 %, altitude 0.0 m, on the ground.",
+        "bravo: battery 47 %, altitude 12.3 m, flying.",
+        "bravo has the lowest battery (47).",
+    ]
+
+
+async def test_a_takeoff_of_a_flying_drone_changes_its_height() -> None:
+    sensors = FakeSensors({"alpha": flying()})
+    assert await compiled({"action": "altitude", "drone": "alpha", "altitude": m(30)}, sensors) == [
+        Call("move_to_relative", {"drone_id": "alpha", "alt_m": 30.0}, "alpha")
+    ]
+    assert await compiled({"action": "return_home", "drone": "alpha"}) == [
+        Call("return_to_launch", {"drone_id": "alpha"}, "alpha")
+    ]
