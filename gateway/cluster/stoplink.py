@@ -14,12 +14,17 @@ from __future__ import annotations
 
 import asyncio
 import math
+import os
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 from urllib.parse import urlparse
 
+# mavutil loads a dialect at import: its default ("all") is a second, larger module than the one the
+# gateway uses, and the container image ships ardupilotmega alone (a missing one makes pymavlink try to
+# generate it from XML, and the node dies at start). An operator's own choice is kept.
+os.environ.setdefault("MAVLINK_DIALECT", "ardupilotmega")
 from pymavlink import mavutil
 
 #: the stops a fenced node can send without its sidecar: the verb -> MAV_CMD
