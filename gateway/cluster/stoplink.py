@@ -21,10 +21,11 @@ from dataclasses import dataclass
 from typing import Any
 from urllib.parse import urlparse
 
-# mavutil loads a dialect at import: its default ("all") is a second, larger module than the one the
-# gateway uses, and the container image ships ardupilotmega alone (a missing one makes pymavlink try to
+# mavutil loads a dialect at import: by default "all" for MAVLink 1, while the gateway speaks MAVLink 2
+# with ardupilotmega, the one dialect the container image ships (a missing one makes pymavlink try to
 # generate it from XML, and the node dies at start). An operator's own choice is kept.
 os.environ.setdefault("MAVLINK_DIALECT", "ardupilotmega")
+os.environ.setdefault("MAVLINK20", "1")
 from pymavlink import mavutil
 
 #: the stops a fenced node can send without its sidecar: the verb -> MAV_CMD

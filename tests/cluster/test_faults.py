@@ -124,9 +124,13 @@ async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
             assert response.status_code == 200, response.text
             held = {r["vehicle_id"]: r["outcome"] for r in response.json()["results"]}
             assert held == {d: "sent" for d in c.drone_ids}, response.json()
-            logs = "".join(n.log.read_text(errors="replace") for n in c.nodes)
-            for d in c.drone_ids:  # the autopilot took it
-                assert re.search(rf"{d}: hold sent over its own link by fenced node .*ACCEPTED", logs), d
+            async def accepted_by_every_autopilot() -> bool | None:  # the other node's send logs later
+                logs = "".join(n.log.read_text(errors="replace") for n in c.nodes)
+                said = (rf"{d}: hold sent over its own link by .*ACCEPTED" for d in c.drone_ids)
+                took = (re.search(pattern, logs) for pattern in said)
+                return all(took) or None
+
+            await eventually(accepted_by_every_autopilot, "every autopilot accepting the hold", within_s=10)
             response = await c.node("node-b").post("/fleet/stop", {"action": "land"})
             assert response.status_code == 200, response.text
             stop = response.json()

@@ -483,7 +483,8 @@ async def mission(t: Tour, d: str, home: dict[str, Any]) -> None:
             break
         assert loop.time() < deadline, f"mission not finished: {prog}, {track[-3:]}"
         await asyncio.sleep(0.25)
-    assert (await t.finish(op, 30))["status"] == "succeeded"
+    ended = await t.finish(op, 30)
+    assert ended["status"] == "succeeded", ended
     assert (await t.ok("is_mission_finished", drone_id=d))["value"] is True
     assert {k for k, *_ in track} <= {1, 2, 3} and {2, 3} <= {k for k, *_ in track}, track
     reach = 4.0  # the flown track passes each waypoint within the autopilot's acceptance radius
