@@ -285,6 +285,16 @@ async def test_a_flight_that_ends_in_a_crash_is_a_failure_in_the_autopilots_word
     await streaming_until_done(v, mission)
     assert mission.status is OpStatus.succeeded, mission.message
 
+    v = drone()  # a finished mission the autopilot then holds (PX4 switches to Hold) succeeds
+    at(v, HOME[0], HOME[1], 30.0, armed=True, in_air=True)
+    v.set(flight_mode="AUTO.MISSION", mission_progress=MissionProgressValue(3, 3))
+    mission = await mgr.start(v, MissionTracker(), _noop, {})
+    await eventually(lambda: _true(mission.message == "item 3 of 3"), "the mission runs")
+    v.set(flight_mode="AUTO.LOITER")
+    v.mission_done = True
+    await streaming_until_done(v, mission)
+    assert mission.status is OpStatus.succeeded, mission.message
+
     v = drone()  # a landing's own disarm heard before its landed state is no disarm in the air
     at(v, HOME[0], HOME[1], 10.0, armed=True, in_air=True)
     land = await mgr.start(v, LandingTracker(kind="land"), _noop, {})

@@ -280,7 +280,9 @@ class MissionTracker:
         ended = self._end.failure(vehicle)
         if ended is not None:
             return Poll(0.0, ended, failed=f"{ended} (at item {current} of {total})")
-        left = self._left_auto(vehicle)
+        left = self._left_auto(vehicle) if self._finished_at is None else None
+        if left is not None and await vehicle.is_mission_finished():
+            left, self._finished_at = None, time.monotonic()  # PX4 holds once its mission is done
         if left is not None:
             said = vehicle.recent_texts(LEFT_AUTO_GRACE_S + 5.0)
             words = f"; the autopilot said: {' | '.join(said)}" if said else ""
