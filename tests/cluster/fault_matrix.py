@@ -251,20 +251,28 @@ async def take_off(c: Cluster, node: Node, drone_ids: list[str], alt_m: float = 
     after the rig was unlocked (a known defect, docs/cluster.md): unlocked again and tried again, within a
     deadline."""
     deadline = asyncio.get_running_loop().time() + scaled(30)
-    while True:
+    answers: dict[str, Any] = {}
+    pending = list(drone_ids)
+    while pending:
         async with node.client(name="takeoff") as mcp:
             results = await asyncio.gather(
-                *(mcp.call_tool("takeoff", {"drone_id": d, "alt_m": alt_m}) for d in drone_ids)
+                *(mcp.call_tool("takeoff", {"drone_id": d, "alt_m": alt_m}) for d in pending)
             )
-        locked = [r for r in results if r.is_error and "operator_lock" in str(r.content)]
-        if not locked or asyncio.get_running_loop().time() > deadline:
+        answers.update(zip(pending, results, strict=True))
+        pending = [d for d, r in zip(pending, results, strict=True) if _refused_by_a_lock(r)]
+        if asyncio.get_running_loop().time() > deadline:
             break
         for n in c.live_nodes:
             await n.delete("/fleet/lock")
-        await asyncio.sleep(0.5)
-    for r in results:
+        if pending:
+            await asyncio.sleep(0.2)  # paces the retries until the late lock is gone
+    for r in answers.values():
         assert not r.is_error and r.structured_content is not None, r
         assert r.structured_content["status"] == "succeeded", r
+
+
+def _refused_by_a_lock(result: Any) -> bool:
+    return bool(result.is_error) and "operator_lock" in str(result.content)
 
 
 async def _is(value: bool) -> bool:
