@@ -36,7 +36,7 @@ from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import VehicleContext
 from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleView
-from gateway.registry.store import Store
+from gateway.registry.store import OperationRecord, Store
 
 log = logging.getLogger(__name__)
 
@@ -204,11 +204,17 @@ def command(
     return declare if method is None else declare(method)
 
 
+class VerbParts(Protocol):
+    """The Commander as a verb called by name sees it: its parts, by class name."""
+
+    parts: dict[str, object]
+
+
 def _by_name(method: Callable[..., Any]) -> Callable[..., Awaitable[Any]]:
     """Call the verb on the Commander's part that holds it (``commander.parts``, by class name)."""
     part, name = method.__qualname__.split(".")[-2:]
 
-    async def call(commander: Any, *args: Any, **kwargs: Any) -> Any:
+    async def call(commander: VerbParts, *args: Any, **kwargs: Any) -> Any:
         return await getattr(commander.parts[part], name)(*args, **kwargs)
 
     return call
@@ -366,7 +372,7 @@ class OperationDesk:
         record = await self.store.get_operation(operation_id)
         return None if record is None else record.vehicle_id
 
-    async def _record_of(self, operation_id: str) -> Any:
+    async def _record_of(self, operation_id: str) -> OperationRecord | None:
         """The operation as the database holds it; None when unknown or the database is unreachable."""
         if self.store is None:
             return None
