@@ -104,7 +104,7 @@ class ControlServer:
         finally:
             writer.close()
 
-    def _route(self, method: str, path: str, body: bytes) -> Any:
+    def _route(self, method: str, path: str, body: bytes) -> object:
         parts = [p for p in path.split("/") if p]
         if parts == ["vehicles"] and method == "GET":
             return self.fleet.describe()
@@ -127,7 +127,7 @@ class ControlServer:
         return vehicle.state()
 
 
-def _get(vehicle: SimVehicle, action: str | None, path: str) -> Any:
+def _get(vehicle: SimVehicle, action: str | None, path: str) -> object:
     if action is None:
         return vehicle.state()
     if action == "statustexts":
@@ -231,7 +231,7 @@ class SimControl:
     async def __aexit__(self, *exc) -> None:
         await self.aclose()
 
-    async def _get(self, path: str) -> Any:
+    async def _get(self, path: str) -> Any:  # httpx types the decoded JSON Any
         response = await self._client.get(path)
         response.raise_for_status()
         return response.json()

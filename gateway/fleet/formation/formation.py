@@ -298,7 +298,7 @@ def _describe(drone_id: str, transit: float | None) -> str:
     return f"{drone_id} direct" if transit is None else f"{drone_id} transits at {fmt(transit)} m"
 
 
-def _normalise_drones(drones: Iterable[Any]) -> list[DroneStart]:
+def _normalise_drones(drones: Iterable[DroneStart | tuple[str, float, float, float]]) -> list[DroneStart]:
     out: list[DroneStart] = []
     for item in drones:
         if isinstance(item, DroneStart):

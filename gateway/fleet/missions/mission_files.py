@@ -64,7 +64,7 @@ class FileMission:
     home: tuple[float, float, float] | None = None
 
 
-def _number(value: Any, where: str) -> float:
+def _number(value: object, where: str) -> float:
     if value is None:
         return math.nan  # QGC writes NaN parameters as null
     if isinstance(value, bool) or not isinstance(value, int | float):

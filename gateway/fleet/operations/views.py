@@ -100,7 +100,7 @@ class MissionView(BaseModel):
 
     @field_validator("items", mode="before")
     @classmethod
-    def _as_the_drone_holds_them(cls, value: Any) -> Any:
+    def _as_the_drone_holds_them(cls, value: object) -> object:
         """A downloaded mission is reported as the drone holds it, not checked again as new input: a
         mission another planner wrote may have items at latitude and longitude 0 (ArduPilot: where the
         drone is), which an upload would refuse (the view crosses to the caller as JSON and back)."""
