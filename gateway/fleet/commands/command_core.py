@@ -31,7 +31,7 @@ from gateway.fleet import geo
 from gateway.fleet.commands.arguments import AltFrame
 from gateway.fleet.commands.command_pass import CommandPass
 from gateway.fleet.operations.operation_state import Operation
-from gateway.fleet.operations.routing import FORWARDED, Verb
+from gateway.fleet.operations.routing import FORWARDED, OnMessage, ProgressMessage, Verb
 from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import VehicleContext
@@ -111,10 +111,11 @@ def routed(method: VerbMethod) -> VerbMethod:
         relay = _relay(callbacks)
         seen: dict[str, str] = {}  # the operation the owner reported (its progress), to follow it
 
-        async def watch(body: dict[str, Any]) -> None:
+        async def watch(body: ProgressMessage) -> None:
             view = body.get("view")
-            if isinstance(view, dict) and isinstance(view.get("operation_id"), str):
-                seen["operation_id"] = view["operation_id"]
+            operation_id = view.get("operation_id") if isinstance(view, dict) else None
+            if isinstance(operation_id, str):
+                seen["operation_id"] = operation_id
             if relay is not None:
                 await relay(body)
 
@@ -220,12 +221,12 @@ def _by_name(method: Callable[..., Any]) -> Callable[..., Awaitable[Any]]:
     return call
 
 
-def _relay(callbacks: dict[str, Any]) -> Callable[[dict[str, Any]], Awaitable[None]] | None:
+def _relay(callbacks: dict[str, Any]) -> OnMessage | None:
     """The owner's progress messages to the verb's own callbacks (``notify``, ``on_progress``)."""
     if not callbacks:
         return None
 
-    async def relay(body: dict[str, Any]) -> None:
+    async def relay(body: ProgressMessage) -> None:
         if "notice" in body and "notify" in callbacks:
             await callbacks["notify"](str(body["notice"]))
         elif "view" in body and "on_progress" in callbacks:
