@@ -129,7 +129,7 @@ class OperationManager:
         self,
         vehicle: FlyingVehicle,
         tracker: Tracker,
-        send: Callable[[], Awaitable[Any]],
+        send: Callable[[], Awaitable[object]],
         params: dict[str, Any],
         session_key: str | None = None,
         precheck: Callable[[], None] | None = None,
@@ -337,7 +337,7 @@ class OperationManager:
             self.mode_watch.drop(op.id)
 
     async def _send_next(
-        self, vehicle: FlyingVehicle, op: Operation, send: Callable[[], Awaitable[Any]]
+        self, vehicle: FlyingVehicle, op: Operation, send: Callable[[], Awaitable[object]]
     ) -> bool:
         """Send the operation's next command under the drone's command lock, unless another command
         ended the operation meanwhile; False when it is not (any more) to be followed."""
