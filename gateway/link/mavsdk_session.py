@@ -15,11 +15,10 @@ import time
 from collections.abc import Awaitable, Callable, Iterable
 from typing import Protocol, TypeVar
 
-from mavsdk_grpc import System
-
 from gateway.config import Settings
 from gateway.errors import CommandFailed
 from gateway.link.contract import LinkRules
+from gateway.link.mavsdk_system import System
 from gateway.link.rawlink import LinkFacts
 from gateway.link.telemetry import MissionProgressValue, TelemetryCache
 from gateway.link.telemetry_feed import TelemetryFeed
@@ -271,10 +270,6 @@ async def keep(vehicle_id: str, name: str, subscribe: SessionJob, system: System
 
 
 async def close_system(system: System) -> None:
-    """Close the gRPC channel of a System (mavsdk_grpc keeps it private: reach it through a stub)."""
-    try:
-        stub = system._plugins["core"]._stub
-        channel = stub.SubscribeConnectionState._references[0]
-        await channel.close(grace=None)
-    except Exception:  # best effort; the channel is also closed when collected
-        pass
+    """Close the gRPC channel of a System (best effort: a channel not closed is closed when collected)."""
+    with contextlib.suppress(Exception):
+        await system.close()
