@@ -28,6 +28,7 @@ from gateway.cluster.fenced_stops import FencedStops
 from gateway.cluster.forwarding import ClusterRouter
 from gateway.cluster.keeper import LeasePlan, Wanted, plan
 from gateway.cluster.leases import Lease, LeaseStore, NodeRecord
+from gateway.cluster.lock_versions import FAMILIES, LockVersions
 from gateway.cluster.owner_calls import OwnerCalls
 from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.runtime_view import NodeRuntime
@@ -93,6 +94,7 @@ class ClusterNode:
         self._valid_until = 0.0
         self._tick_lock = asyncio.Lock()
         self._heard_locks: dict[str, float] = {}  # scope -> when a lock of it was heard on the bus
+        self.lock_versions = LockVersions()  # a lock broadcast older than what this node knows is dropped
         self._adopting_from: dict[str, str] = {}  # vehicle -> the node it was taken from, while adopting
         self._adoptions: set[asyncio.Task[None]] = set()
         self.stops = FencedStops(self)  # the stop-only path of this node once it fenced itself
@@ -372,7 +374,12 @@ class ClusterNode:
 
     # --- broadcasts -----------------------------------------------------------------------------------
     async def announce(self, kind: str, body: dict[str, Any]) -> None:
-        """Tell every node (locks, registrations); a node that misses it catches up at its next tick."""
+        """Tell every node (locks, registrations); a node that misses it catches up at its next tick. A
+        lock, an unlock, a takeover lock and its release carry their version
+        (`gateway.cluster.lock_versions`)."""
+        body = self.lock_versions.stamp(kind, body)
+        if kind == "unlock":
+            self._heard_locks.pop(str(body.get("scope")), None)
         try:
             await self.bus.broadcast(kind, {**body, "node": self.node_id})
         except Exception:
@@ -385,6 +392,11 @@ class ClusterNode:
         except ValueError:
             return
         if body.get("node") == self.node_id:
+            return
+        if not self.lock_versions.fresh(kind, body):  # sent before a change this node already knows
+            log.warning("dropped a late %s broadcast of %s from node %s (version %s; this node knows "
+                        "version %d)", kind, body.get("scope"), body.get("node"), body.get("version"),
+                        self.lock_versions.newest(FAMILIES[kind], str(body.get("scope"))))  # fmt: skip
             return
         if kind == "lock":
             at = body.get("at") or body.get("locked_at")
@@ -430,6 +442,7 @@ class ClusterNode:
             if lock.scope not in stored and lock.scope not in self._heard_locks:
                 book.unlock(lock.scope)
         for scope, lk in stored.items():
+            self.lock_versions.saw("lock", scope, lk.locked_at)
             current = {x.scope: x for x in book.all()}.get(scope)
             if current is None or current.reason != lk.reason or current.by != lk.by:
                 book.lock(scope, lk.reason, lk.by, at=lk.locked_at)

@@ -124,6 +124,7 @@ async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
             assert response.status_code == 200, response.text
             held = {r["vehicle_id"]: r["outcome"] for r in response.json()["results"]}
             assert held == {d: "sent" for d in c.drone_ids}, response.json()
+
             async def accepted_by_every_autopilot() -> bool | None:  # the other node's send logs later
                 logs = "".join(n.log.read_text(errors="replace") for n in c.nodes)
                 said = (rf"{d}: hold sent over its own link by .*ACCEPTED" for d in c.drone_ids)
