@@ -51,6 +51,8 @@ log = logging.getLogger("gateway.cluster")
 #: else may take them over at the full lease time)
 SELF_FENCE_SHARE = 0.8
 CONNECT_TIMEOUT_S = 15.0
+#: a tick started when the leases are about to need the fence still gets this long
+MIN_TICK_S = 0.1
 #: a stopping node gives the database and the bus this long each to hear it leave
 LEAVE_TIMEOUT_S = 3.0
 #: a lock heard on the bus holds this long at most while the database does not have it (its node keeps it
@@ -213,8 +215,8 @@ class ClusterNode:
         first = True
         while True:
             try:
-                # a database that hangs counts as one that fails: the fence below must still act
-                await asyncio.wait_for(self.tick(acquire=not first), self.settings.cluster_lease_ttl_s / 2)
+                # a database that hangs counts as one that fails: the fence below must still act, on time
+                await asyncio.wait_for(self.tick(acquire=not first), self._tick_limit_s())
             except asyncio.CancelledError:
                 raise
             except Exception:
@@ -223,6 +225,9 @@ class ClusterNode:
                     log.error(
                         "node %s could not renew its leases in time: stopping its sidecars", self.node_id
                     )
+                    # nothing it writes now (a flight log closing) waits on the database: the sidecars
+                    # let go of the drones' links at once, for the node that takes them over
+                    self.gateway.require_store().spool.unreachable_now()
                     targets = self.stops.targets()
                     # the stop-only path listens before the sidecars are stopped: stopping one can take
                     # seconds (its flight log closing), and a stop meanwhile goes through it
@@ -237,7 +242,23 @@ class ClusterNode:
             first = False
             self._kick.clear()
             with contextlib.suppress(TimeoutError):
-                await asyncio.wait_for(self._kick.wait(), self.interval_s)
+                await asyncio.wait_for(self._kick.wait(), self._next_tick_s())
+
+    def _tick_limit_s(self) -> float:
+        """How long a tick may take: half the lease time, and while this node holds leases, no later than
+        the moment it must fence itself (a tick that renews in time moves that moment on)."""
+        limit = self.settings.cluster_lease_ttl_s / 2
+        if self.held:
+            limit = min(limit, max(MIN_TICK_S, self._valid_until - time.monotonic()))
+        return limit
+
+    def _next_tick_s(self) -> float:
+        """Until the next tick: ``ttl/3``, or less when this node's leases are valid for less (after a tick
+        that failed), so that it fences itself when they are no longer valid, not up to a tick later."""
+        wait = self.interval_s
+        if self.held:
+            wait = min(wait, max(0.0, self._valid_until - time.monotonic()))
+        return wait
 
     async def tick(self, acquire: bool = True) -> LeasePlan:
         """One round: heartbeat, renew, follow registrations, then take or give up leases."""
