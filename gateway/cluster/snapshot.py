@@ -16,38 +16,10 @@ from dataclasses import asdict, fields, is_dataclass
 from typing import Any
 
 from gateway.fleet.vehicles.protocols import VehicleView
-from gateway.link.telemetry import (
-    AttitudeValue,
-    BatteryValue,
-    GpsInfoValue,
-    HealthValue,
-    ImuValue,
-    MissionProgressValue,
-    OdometryValue,
-    PositionValue,
-    RcStatusValue,
-    Sample,
-    StatusTextValue,
-    TelemetryCache,
-    VelocityNedValue,
-)
+from gateway.link.telemetry import VALUE_TYPES, Sample, StatusTextValue, TelemetryCache
 
 SNAPSHOT_VERSION = 1
 
-#: the dataclass of each structured stream; the others carry a plain value (bool, float, str)
-VALUE_TYPES: dict[str, type] = {
-    "position": PositionValue,
-    "home": PositionValue,
-    "attitude": AttitudeValue,
-    "velocity_ned": VelocityNedValue,
-    "battery": BatteryValue,
-    "gps_info": GpsInfoValue,
-    "health": HealthValue,
-    "rc_status": RcStatusValue,
-    "imu": ImuValue,
-    "odometry": OdometryValue,
-    "mission_progress": MissionProgressValue,
-}
 STATUS_TEXTS_SENT = 10
 
 

@@ -116,6 +116,22 @@ class StatusTextValue:
     text: str
 
 
+#: the dataclass of each structured stream; the others carry a plain value (bool, float, str)
+VALUE_TYPES: dict[str, type] = {
+    "position": PositionValue,
+    "home": PositionValue,
+    "attitude": AttitudeValue,
+    "velocity_ned": VelocityNedValue,
+    "battery": BatteryValue,
+    "gps_info": GpsInfoValue,
+    "health": HealthValue,
+    "rc_status": RcStatusValue,
+    "imu": ImuValue,
+    "odometry": OdometryValue,
+    "mission_progress": MissionProgressValue,
+}
+
+
 @dataclass
 class TelemetryCache:
     """Latest value of every stream, each with its arrival time; None until first received."""
