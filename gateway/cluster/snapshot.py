@@ -23,7 +23,7 @@ SNAPSHOT_VERSION = 1
 STATUS_TEXTS_SENT = 10
 
 
-def _plain(value: Any) -> Any:
+def _plain(value: object) -> object:
     if is_dataclass(value) and not isinstance(value, type):
         return asdict(value)
     if isinstance(value, enum.Enum):
@@ -38,7 +38,7 @@ def encode(
     cache = vehicle.telemetry
     tele: dict[str, Any] = {}
     for name in TelemetryCache.FIELDS:
-        sample: Sample[Any] | None = getattr(cache, name)
+        sample: Sample[object] | None = getattr(cache, name)
         if sample is not None:
             tele[name] = [_plain(sample.value), round(sample.age_s, 3)]
     body = {
@@ -57,7 +57,7 @@ def encode(
     return json.dumps(body, default=str, separators=(",", ":")).encode()
 
 
-def _rebuild(name: str, raw: Any) -> Any:
+def _rebuild(name: str, raw: object) -> object:
     kind = VALUE_TYPES.get(name)
     if kind is None or not isinstance(raw, dict):
         return raw
