@@ -15,8 +15,7 @@ import time
 from collections.abc import Awaitable, Callable
 from typing import Any
 
-from mavsdk_grpc import System
-from mavsdk_grpc.mavlink_direct import MavlinkMessage
+from gateway.link.mavsdk_system import System, mavlink_direct_plugin
 
 MAV_TYPE_GCS = 6
 MAV_AUTOPILOT_INVALID = 8
@@ -141,7 +140,9 @@ class CommandChannel:
             fields["confirmation"] = attempt
             fut: asyncio.Future[int] = loop.create_future()
             self._waiting.setdefault(command, []).append(fut)
-            msg = MavlinkMessage("COMMAND_LONG", self.gcs_sysid, GCS_COMPID, target, 1, json.dumps(fields))
+            msg = mavlink_direct_plugin.MavlinkMessage(
+                "COMMAND_LONG", self.gcs_sysid, GCS_COMPID, target, 1, json.dumps(fields)
+            )
             try:
                 await call(system.mavlink_direct.send_message(msg))
                 deadline = loop.time() + wait_s

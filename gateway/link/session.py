@@ -31,7 +31,6 @@ from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING
 
 import grpc
-from mavsdk_grpc import System
 
 from gateway.config import Settings
 from gateway.errors import VehicleNotReady
@@ -39,6 +38,7 @@ from gateway.link.contract import ConnectionState, LinkRules, OnWait, Peer
 from gateway.link.link_monitor import run_monitor
 from gateway.link.mavsdk_calls import MavsdkCalls
 from gateway.link.mavsdk_session import MavsdkSession, SessionJob, close_system
+from gateway.link.mavsdk_system import System
 from gateway.link.rawlink import LinkFacts, autopilot_name
 from gateway.link.sidecar import Confine, Sidecar, SidecarState
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
@@ -126,7 +126,7 @@ class Link:
 
     @property
     def system(self) -> System:
-        """The raw ``mavsdk_grpc.System`` of the current session (for what the wrapper does not cover)."""
+        """The MAVSDK System of the current session (for what the wrapper does not cover)."""
         if self._system is None:
             raise VehicleNotReady(
                 f"drone '{self.id}' has no MAVSDK session (state {self.state.value})", state=self.state.value

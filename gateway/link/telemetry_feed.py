@@ -35,28 +35,31 @@ log = logging.getLogger("gateway.telemetry")
 Item = TypeVar("Item")
 
 #: Streams and the rate (Hz) the gateway requests for each while the drone rests (disarmed on the
-#: ground); MAVSDK's set_rate_<name>. Each message costs the sidecar its parsing and the gateway one gRPC
-#: stream item (the most of a drone's CPU at rest), so a stream gets the rate its readers need: the read
-#: tools and the cache's staleness limit (3 s), which a 1 Hz stream keeps well inside, and the flight
-#: log's 1 Hz track. A drone that is armed or in the air gets ``ACTIVE_RATES_HZ`` on top (the
+#: ground); MAVSDK's set_rate_<name>, which sends MAV_CMD_SET_MESSAGE_INTERVAL for the stream's message.
+#: Each message costs the sidecar its parsing and the gateway one gRPC stream item (the most of a drone's
+#: CPU at rest), so a stream gets the rate its readers need and no more. The position at 1 Hz: the read
+#: tools and the flight log's 1 Hz track. SYS_STATUS (health) at 1 Hz: the link is ready only while its
+#: health is younger than the staleness limit (3 s), which a busy machine must not tip over. The rest
+#: change slowly on the ground and are read by their tools and the policy: every 2 s keeps them inside
+#: the 3 s staleness limit. A drone that is armed or in the air gets ``ACTIVE_RATES_HZ`` on top (the
 #: operations' trackers: arrival within tolerance, the climb, the landing, the yaw).
 #: Not requested and not subscribed: a heading stream (MAVSDK repeats GLOBAL_POSITION_INT's at the
 #: position rate; the heading is the attitude's yaw), in_air (the same EXTENDED_SYS_STATE as the landed
 #: state, from which it is taken), armed (the link reads it from the HEARTBEAT it follows anyway) and
 #: LOCAL_POSITION_NED (MAVSDK's velocity stream follows GLOBAL_POSITION_INT, so the velocity comes at
-#: the position rate without it).
+#: the position rate without it). No rc_status rate either: MAVSDK takes the RC status from SYS_STATUS
+#: and RC_CHANNELS and answers its set_rate_rc_status with Unsupported.
 STREAM_RATES_HZ: dict[str, float] = {
     "position": 1.0,  # GLOBAL_POSITION_INT: position and velocity
-    "home": 1.0,
-    "attitude_euler": 1.0,  # ATTITUDE: attitude, and the heading (its yaw)
-    "landed_state": 1.0,  # EXTENDED_SYS_STATE: landed state and in_air
-    "gps_info": 1.0,
-    "battery": 1.0,
-    "rc_status": 1.0,
+    "home": 0.5,  # HOME_POSITION
+    "attitude_euler": 0.5,  # ATTITUDE: attitude, and the heading (its yaw)
+    "landed_state": 0.5,  # EXTENDED_SYS_STATE: landed state and in_air
+    "gps_info": 0.5,  # GPS_RAW_INT
+    "battery": 0.5,  # BATTERY_STATUS
     "health": 1.0,  # SYS_STATUS
-    "imu": 1.0,  # HIGHRES_IMU (PX4)
-    "raw_imu": 1.0,  # RAW_IMU (ArduPilot has no HIGHRES_IMU)
-    "odometry": 1.0,  # ODOMETRY (PX4; ArduPilot answers "No ap_message for mavlink id (331)")
+    "imu": 0.5,  # HIGHRES_IMU (PX4)
+    "raw_imu": 0.5,  # RAW_IMU (ArduPilot has no HIGHRES_IMU)
+    "odometry": 0.5,  # ODOMETRY (PX4; ArduPilot answers "No ap_message for mavlink id (331)")
 }
 
 #: The rates of a drone that is armed or in the air, where they differ from the rest rates: the

@@ -19,7 +19,7 @@ from __future__ import annotations
 from collections.abc import Awaitable, Callable, Mapping
 
 from gateway.fleet.dialects.base import LinkOps, UserNumbering, matches_any, reader
-from gateway.fleet.dialects.mission_semantics import ARDUCOPTER_MISSION
+from gateway.fleet.dialects.mission_semantics import arducopter_mission
 from gateway.fleet.dialects.modes import (
     COMMON_MODES,
     NOT_MODELLED,
@@ -29,6 +29,7 @@ from gateway.fleet.dialects.modes import (
 )
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem, WirePlan
+from gateway.fleet.policy.mission_check import MissionSemantics
 from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.telemetry import HealthValue, TelemetryCache
 
@@ -162,7 +163,10 @@ class ArduPilot(UserNumbering):
     return_altitude_params = (("RTL_ALT", 100.0), ("RTL_ALT_M", 1.0))
     protected_params = PROTECTED_PARAMS
     limit_params: Mapping[str, ParamLimit] = LIMIT_PARAMS
-    mission_semantics = ARDUCOPTER_MISSION
+
+    @property
+    def mission_semantics(self) -> MissionSemantics:
+        return arducopter_mission()
 
     # --- link facts ----------------------------------------------------------------------------------
     def mode_name(self, custom_mode: int, mav_type: int) -> str | None:

@@ -15,12 +15,11 @@ from __future__ import annotations
 from collections.abc import Awaitable, Callable, Mapping
 from typing import Protocol, TypeVar
 
-from mavsdk_grpc import System
-
 from gateway.fleet.dialects.modes import ModeChoice
 from gateway.fleet.missions.mission import MissionItem, WirePlan
 from gateway.fleet.policy.mission_check import MissionSemantics
 from gateway.fleet.policy.param_limits import ParamLimit
+from gateway.link.mavsdk_system import System
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 
 T = TypeVar("T")

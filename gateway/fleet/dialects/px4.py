@@ -21,7 +21,7 @@ from collections.abc import Awaitable, Callable, Mapping
 
 from gateway.errors import CommandFailed
 from gateway.fleet.dialects.base import LinkOps, UserNumbering, matches_any, reader
-from gateway.fleet.dialects.mission_semantics import PX4_MISSION
+from gateway.fleet.dialects.mission_semantics import px4_mission
 from gateway.fleet.dialects.modes import (
     COMMON_MODES,
     NOT_MODELLED,
@@ -31,6 +31,7 @@ from gateway.fleet.dialects.modes import (
 )
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem, WirePlan
+from gateway.fleet.policy.mission_check import MissionSemantics
 from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.telemetry import HealthValue, TelemetryCache
 
@@ -139,7 +140,10 @@ class PX4(UserNumbering):
     return_altitude_params = (("RTL_RETURN_ALT", 1.0),)
     protected_params = PROTECTED_PARAMS
     limit_params: Mapping[str, ParamLimit] = LIMIT_PARAMS
-    mission_semantics = PX4_MISSION
+
+    @property
+    def mission_semantics(self) -> MissionSemantics:
+        return px4_mission()
 
     # --- link facts ----------------------------------------------------------------------------------
     def mode_name(self, custom_mode: int, mav_type: int) -> str | None:

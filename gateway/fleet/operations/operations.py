@@ -29,7 +29,7 @@ from gateway.config import Settings
 from gateway.errors import InvalidArgument, NotFound
 from gateway.fleet import geo
 from gateway.fleet.operations.mode_watch import ModeWatch, TakeoverHandler
-from gateway.fleet.operations.operation_state import Operation, OpStatus, is_climbing
+from gateway.fleet.operations.operation_state import Operation, OpStatus
 from gateway.fleet.operations.trackers import POLL_S, Tracker
 from gateway.fleet.policy.operator_locks import Lock
 from gateway.fleet.policy.safety_inputs import RunningOperation
@@ -46,6 +46,12 @@ SAVE_EVERY_S = 2.0
 
 
 ProgressCallback = Callable[[Operation], Awaitable[None]]
+
+
+def is_climbing(op: Operation, tracker: Tracker | None) -> bool:
+    """Whether the operation is a takeoff still climbing: a takeoff, or an operation that took off first
+    and has not reached its altitude yet (the takeoff guard holds other commands back meanwhile)."""
+    return op.kind == "takeoff" or bool(getattr(tracker, "climbing", False))
 
 
 def _now() -> datetime:

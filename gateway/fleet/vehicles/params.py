@@ -22,9 +22,8 @@ import time
 from collections.abc import Awaitable, Callable
 from typing import Protocol, TypeVar
 
-from mavsdk_grpc import System
-
 from gateway.errors import CommandFailed, InvalidArgument
+from gateway.link.mavsdk_system import System
 
 PARAM_TIMEOUT_S = 6.0  # MAVSDK gives up on a param after ~3 s
 PARAM_LIST_TIMEOUT_S = 60.0
