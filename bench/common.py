@@ -385,7 +385,8 @@ async def gateway(
     base = f"http://127.0.0.1:{port}"
     http = httpx.AsyncClient(base_url=base, timeout=30)
     try:
-        deadline = time.monotonic() + 60
+        # every sidecar is started with the gateway: hundreds of them keep it busy before it answers
+        deadline = time.monotonic() + 60 + 0.5 * count
         while True:
             if proc.returncode is not None:
                 raise RuntimeError(f"gateway exited:\n{_tail(log)}")
