@@ -44,6 +44,7 @@ from gateway.link.sidecar import Confine, Sidecar, SidecarState
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 from gateway.link.telemetry_feed import TelemetryFeed
 from gateway.registry.spec import VehicleSpec
+from gateway.util.tasks import cancel_and_wait
 
 if TYPE_CHECKING:
     from gateway.link.relay import Relay
@@ -349,11 +350,8 @@ class Link:
 
     async def disconnect(self) -> None:
         """Stop everything of this link; no mavsdk_server process remains."""
-        if self._monitor_task is not None:
-            self._monitor_task.cancel()
-            with contextlib.suppress(asyncio.CancelledError):
-                await self._monitor_task
-            self._monitor_task = None
+        await cancel_and_wait(self._monitor_task)
+        self._monitor_task = None
         try:
             await self._end_session()
         finally:  # the sidecar stops whatever ending the session raised
@@ -388,10 +386,7 @@ class Link:
 
     async def _end_session(self) -> None:
         task, self._session_task = self._session_task, None
-        if task is not None:
-            task.cancel()
-            with contextlib.suppress(asyncio.CancelledError):
-                await task
+        await cancel_and_wait(task)
 
     async def _session(self, address: str, port: int, previous: asyncio.Task[None] | None) -> None:
         if previous is not None:

@@ -60,7 +60,8 @@ def test_file_items_go_to_the_autopilot_as_written() -> None:
 
 
 def _downloaded(plan: mission.WirePlan) -> list[SimpleNamespace]:
-    return [SimpleNamespace(**vars(w), autocontinue=1) for w in plan.items]
+    """The items as a download returns them (MAVSDK's MissionItem: the same fields, autocontinue too)."""
+    return [SimpleNamespace(**vars(w)) for w in plan.items]
 
 
 @pytest.mark.parametrize("fmt", ["waypoints", "plan"])

@@ -173,6 +173,26 @@ class Dialect(DialectReads, Protocol):
         ...
 
 
+class UserNumbering:
+    """``mission_progress`` of a dialect whose user item 1 is wire seq ``first_user_seq`` (1 behind
+    ArduPilot's home slot, else 0)."""
+
+    first_user_seq: int = 0
+
+    def mission_progress(
+        self,
+        current_seq: int,
+        total: int,
+        plan: WirePlan | None,
+        finished: bool,
+        *,
+        from_mission_current: bool,
+    ) -> MissionProgressValue:
+        # MISSION_CURRENT.total leaves a home slot out
+        wire_total = total + self.first_user_seq if from_mission_current else total
+        return user_progress(current_seq, wire_total, plan, finished, first_user_seq=self.first_user_seq)
+
+
 def user_progress(
     current_seq: int, wire_total: int, plan: WirePlan | None, finished: bool, first_user_seq: int
 ) -> MissionProgressValue:
