@@ -14,8 +14,7 @@ import math
 from collections.abc import AsyncIterator, Awaitable, Callable
 from typing import Protocol, TypeVar
 
-from mavsdk_grpc import System
-
+from gateway.link.mavsdk_system import System
 from gateway.link.telemetry import (
     AttitudeValue,
     BatteryValue,
