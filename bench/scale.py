@@ -309,7 +309,12 @@ async def measure_size(
                 await asyncio.gather(reader(), lister())
                 busy1, total1 = machine_cpu()
                 listing = await listing_cost(gw, mcp, have_list, idle["idle_gw_pct_per_drone"] * n)
-                stop = await emergency_stop(gw, sims, mcp, n) if with_estop and have_list else {}
+                stop: dict[str, Any] = {}
+                if with_estop and have_list:
+                    try:  # the figures above are kept when the stop's phase breaks
+                        stop = await emergency_stop(gw, sims, mcp, n)
+                    except Exception as exc:
+                        stop = {"estop_error": f"{type(exc).__name__}: {str(exc)[:200]}"}
                 sc_rss = [common.rss_kb(p) for p in sidecars]
                 used = resources(gw.pid, sidecars)
                 sc_mem = [common.smaps_kb(p) for p in sidecars]
@@ -365,7 +370,9 @@ def overload_signs(r: dict[str, Any]) -> list[str]:
         signs.append(f"gateway at {r['gw_cpu']:.0f}% of a core")
     if r["machine_cpu"] > MACHINE_CPU_LIMIT:
         signs.append(f"machine CPU {r['machine_cpu']:.0f}%")
-    if r.get("estop_all_s") is None and "estop_airborne" in r:
+    if "estop_error" in r:
+        signs.append(f"the emergency stop's phase failed: {r['estop_error']}")
+    elif r.get("estop_all_s") is None and "estop_airborne" in r:
         signs.append("the emergency stop did not reach every drone within 30 s")
     elif r.get("estop_all_s", 0.0) > ESTOP_LIMIT_S:
         signs.append(f"emergency stop {r['estop_all_s']:.1f} s (> {ESTOP_LIMIT_S:g} s)")
