@@ -58,13 +58,14 @@ def serving():
         except OSError:
             return False
         return True
-    return "mcp.server.stdio" in sys.modules and "gateway.mcp.server" in sys.modules
+    # the gateway is built before the stdio server starts reading: both modules are loaded by then
+    return "mcp.server.stdio" in sys.modules and "gateway.runtime" in sys.modules
 
 def watch():
     deadline = time.monotonic() + float(os.environ["LEAN_START_DEADLINE"])
     while time.monotonic() < deadline and not serving():
         time.sleep(0.1)
-    time.sleep(1.0 if command == "mcp-stdio" else 0.0)  # the stdio server reads its first line
+    time.sleep(3.0 if command == "mcp-stdio" else 0.0)  # the gateway starts, the stdio server reads
     with open(out + ".tmp", "w") as fh:
         json.dump({"serving": serving(), "modules": sorted(sys.modules)}, fh)
     os.replace(out + ".tmp", out)
@@ -83,7 +84,7 @@ def environment(database_url: str) -> dict[str, str]:
     env.update(
         PYTHONPATH=str(ROOT),
         GATEWAY_DATABASE_URL=database_url,
-        LEAN_START_DEADLINE=str(scaled(90)),
+        LEAN_START_DEADLINE=str(scaled(240)),
     )
     return env
 
@@ -102,7 +103,7 @@ def loaded_at_start(command: str, tmp_path: Path) -> list[str]:
         cwd=tmp_path, env=env, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
     )  # fmt: skip
     try:
-        deadline = time.monotonic() + scaled(120)
+        deadline = time.monotonic() + scaled(300)
         while not out.exists() and proc.poll() is None and time.monotonic() < deadline:
             time.sleep(0.1)
         assert out.exists(), f"{command} wrote no module list (exit {proc.poll()})"
@@ -152,3 +153,13 @@ def test_no_gateway_module_imports_mavsdk_grpc_but_the_one_that_loads_it_lean() 
             ):
                 offenders.append(f"{path.relative_to(ROOT)}:{number}: {line.strip()}")
     assert offenders == []
+
+
+def test_the_mission_items_default_frame_is_pymavlinks() -> None:
+    """``gateway.util.mission_item`` names its default frame by number to keep pymavlink out of the start."""
+    from pymavlink.dialects.v20 import common
+
+    from gateway.util import mission_item
+
+    assert mission_item.MAV_FRAME_GLOBAL_RELATIVE_ALT == common.MAV_FRAME_GLOBAL_RELATIVE_ALT
+    assert mission_item.ItemInt(command=16).frame == common.MAV_FRAME_GLOBAL_RELATIVE_ALT
