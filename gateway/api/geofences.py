@@ -32,14 +32,66 @@ router = APIRouter(tags=["geofences"], route_class=AuditedRoute)
 MAX_ZONES = 200
 
 
+_POSITION = {
+    "type": "array",
+    "description": "[longitude, latitude]",
+    "prefixItems": [
+        {"type": "number", "minimum": -180, "maximum": 180},
+        {"type": "number", "minimum": -90, "maximum": 90},
+    ],
+    "minItems": 2,
+    "maxItems": 3,
+}
+_RING = {"type": "array", "items": _POSITION, "minItems": 4, "description": "A closed ring: first = last"}
+_POLYGON = {"type": "array", "items": _RING, "minItems": 1}
+#: what `Zone.from_geojson` accepts, as far as a schema can say it (a ring must also be closed, simple
+#: and enclose an area: checked there, answered 422 with the zone's name)
+GEOMETRY_SCHEMA: dict[str, Any] = {
+    "description": "A GeoJSON Polygon or MultiPolygon ([lon, lat] pairs).",
+    "oneOf": [
+        {
+            "type": "object",
+            "required": ["type", "coordinates"],
+            "properties": {"type": {"const": "Polygon"}, "coordinates": _POLYGON},
+        },
+        {
+            "type": "object",
+            "required": ["type", "coordinates"],
+            "properties": {
+                "type": {"const": "MultiPolygon"},
+                "coordinates": {"type": "array", "items": _POLYGON, "minItems": 1},
+            },
+        },
+    ],
+}
+PROPERTIES_SCHEMA: dict[str, Any] = {
+    "type": "object",
+    "description": "kind: keep_in | keep_out (required); name (unique); vehicle_id (fleet file only).",
+    "required": ["kind"],
+    "properties": {
+        "kind": {"type": "string", "enum": ["keep_in", "keep_out"]},
+        "name": {"type": "string", "minLength": 1, "pattern": r"\S"},
+        "vehicle_id": {"type": "string"},
+    },
+}
+
+
+def _schema(schema: dict[str, Any]) -> Any:
+    def replace(generated: dict[str, Any]) -> None:
+        generated.clear()
+        generated.update(schema)
+
+    return replace
+
+
 class FeatureIn(BaseModel):
-    model_config = ConfigDict(extra="allow")
+    model_config = ConfigDict(
+        extra="allow", json_schema_extra={"required": ["type", "properties", "geometry"]}
+    )
 
     type: Literal["Feature"]
-    properties: dict[str, Any] | None = Field(
-        None, description="kind: keep_in | keep_out (required); name (unique); vehicle_id (fleet file only)."
-    )
-    geometry: dict[str, Any] = Field(description="A GeoJSON Polygon or MultiPolygon ([lon, lat] pairs).")
+    properties: dict[str, Any] | None = Field(None, json_schema_extra=_schema(PROPERTIES_SCHEMA))
+    geometry: dict[str, Any] = Field(json_schema_extra=_schema(GEOMETRY_SCHEMA))
 
 
 class FeatureCollectionIn(BaseModel):

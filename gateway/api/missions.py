@@ -18,17 +18,61 @@ from gateway.api.audit import AuditedRoute
 from gateway.api.control import CommandOut, operator
 from gateway.api.deps import CommanderDep, CommandVehicleId, PrincipalDep
 from gateway.errors import InvalidArgument
+from gateway.fleet.missions.mission import MAX_ITEMS
 
 router = APIRouter(tags=["operator control"], route_class=AuditedRoute)
 
 FileFormat = Literal["plan", "waypoints"]
 MEDIA = {"plan": "application/json", "waypoints": "text/plain"}
 SUFFIX = {"plan": "plan", "waypoints": "waypoints"}
+_NUMBER_OR_NULL = {"type": ["number", "null"]}
+_SIMPLE_ITEM = {
+    "type": "object",
+    "required": ["type", "command", "frame", "params"],
+    "properties": {
+        "type": {"const": "SimpleItem"},
+        "command": {"type": "integer", "minimum": 0, "maximum": 65535, "description": "A MAV_CMD."},
+        "frame": {"type": "integer", "minimum": 0, "maximum": 255, "description": "A MAV_FRAME."},
+        "params": {"type": "array", "items": _NUMBER_OR_NULL, "minItems": 7, "maxItems": 7},
+        "autoContinue": {"type": "boolean"},
+    },
+}
+#: what `gateway.fleet.missions.mission_files.parse_plan` reads, as far as a schema says it (the items'
+#: meaning is the policy's: a refusal there names the item)
+PLAN_SCHEMA = {
+    "type": "object",
+    "description": "A QGroundControl .plan file (simple items; complex items are refused by name).",
+    "required": ["fileType", "mission"],
+    "properties": {
+        "fileType": {"const": "Plan"},
+        "mission": {
+            "type": "object",
+            "required": ["items"],
+            "properties": {
+                "items": {"type": "array", "items": _SIMPLE_ITEM, "minItems": 1, "maxItems": MAX_ITEMS},
+                "plannedHomePosition": {
+                    "type": "array",
+                    "items": {"type": "number"},
+                    "minItems": 3,
+                    "maxItems": 3,
+                },
+            },
+        },
+        "geoFence": {"type": "object"},
+        "rallyPoints": {"type": "object"},
+    },
+}
 _FILE_BODY = {
     "required": True,
     "content": {
-        "application/json": {"schema": {"type": "object", "description": "A QGroundControl .plan file."}},
-        "text/plain": {"schema": {"type": "string", "description": "A QGC WPL 110 waypoint file."}},
+        "application/json": {"schema": PLAN_SCHEMA},
+        "text/plain": {
+            "schema": {
+                "type": "string",
+                "description": "A QGC WPL 110 waypoint file: line 0 home, then one item a line.",
+                "pattern": r"^\s*QGC WPL 110\s*\n",
+            }
+        },
     },
 }
 
