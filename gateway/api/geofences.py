@@ -159,7 +159,7 @@ def _save(gateway: Gateway, fences: GeofenceSet) -> None:
         raise
 
 
-def _replace(gateway: Gateway, scope: str, zones: list[Zone], who: str) -> GeofencesOut:
+def replace_zones(gateway: Gateway, scope: str, zones: list[Zone], who: str) -> GeofencesOut:
     """Swap in a new set: the other scopes' zones kept, this scope's replaced by ``zones``."""
     policy = _policy(gateway)
     kept = [z for z in policy.geofences if z.scope != scope]
@@ -183,14 +183,14 @@ async def list_geofences(gateway: GatewayDep) -> GeofencesOut:
 async def put_fleet_geofences(
     body: FeatureCollectionIn, gateway: GatewayDep, who: PrincipalDep
 ) -> GeofencesOut:
-    return _replace(gateway, FLEET, _zones_of(body, FLEET), who.name)
+    return replace_zones(gateway, FLEET, _zones_of(body, FLEET), who.name)
 
 
 @router.delete(
     "/fleet/geofences", response_model=GeofencesOut, summary="Remove the fleet-wide geofence zones"
 )
 async def delete_fleet_geofences(gateway: GatewayDep, who: PrincipalDep) -> GeofencesOut:
-    return _replace(gateway, FLEET, [], who.name)
+    return replace_zones(gateway, FLEET, [], who.name)
 
 
 @router.put(
@@ -202,7 +202,7 @@ async def put_vehicle_geofences(
     vehicle_id: str, body: FeatureCollectionIn, gateway: GatewayDep, registry: RegistryDep, who: PrincipalDep
 ) -> GeofencesOut:
     registry.get(vehicle_id)  # UnknownVehicle names the known ids
-    return _replace(gateway, vehicle_id, _zones_of(body, vehicle_id), who.name)
+    return replace_zones(gateway, vehicle_id, _zones_of(body, vehicle_id), who.name)
 
 
 @router.delete(
@@ -214,4 +214,4 @@ async def delete_vehicle_geofences(
     vehicle_id: str, gateway: GatewayDep, registry: RegistryDep, who: PrincipalDep
 ) -> GeofencesOut:
     registry.get(vehicle_id)
-    return _replace(gateway, vehicle_id, [], who.name)
+    return replace_zones(gateway, vehicle_id, [], who.name)
