@@ -12,7 +12,11 @@ from gateway.errors import NotFound
 router = APIRouter(prefix="/cluster", tags=["cluster"])
 
 
-@router.get("", summary="Cluster nodes and the vehicles each one owns")
+@router.get(
+    "",
+    summary="Cluster nodes and the vehicles each one owns",
+    responses={404: {"description": "This gateway is not a cluster node (GATEWAY_CLUSTER_NATS_URL unset)."}},
+)
 async def cluster_view(gateway: GatewayDep) -> dict[str, Any]:
     node = gateway.cluster
     if node is None:

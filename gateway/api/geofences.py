@@ -32,14 +32,66 @@ router = APIRouter(tags=["geofences"], route_class=AuditedRoute)
 MAX_ZONES = 200
 
 
+_POSITION = {
+    "type": "array",
+    "description": "[longitude, latitude]",
+    "prefixItems": [
+        {"type": "number", "minimum": -180, "maximum": 180},
+        {"type": "number", "minimum": -90, "maximum": 90},
+    ],
+    "minItems": 2,
+    "maxItems": 3,
+}
+_RING = {"type": "array", "items": _POSITION, "minItems": 4, "description": "A closed ring: first = last"}
+_POLYGON = {"type": "array", "items": _RING, "minItems": 1}
+#: what `Zone.from_geojson` accepts, as far as a schema can say it (a ring must also be closed, simple
+#: and enclose an area: checked there, answered 422 with the zone's name)
+GEOMETRY_SCHEMA: dict[str, Any] = {
+    "description": "A GeoJSON Polygon or MultiPolygon ([lon, lat] pairs).",
+    "oneOf": [
+        {
+            "type": "object",
+            "required": ["type", "coordinates"],
+            "properties": {"type": {"const": "Polygon"}, "coordinates": _POLYGON},
+        },
+        {
+            "type": "object",
+            "required": ["type", "coordinates"],
+            "properties": {
+                "type": {"const": "MultiPolygon"},
+                "coordinates": {"type": "array", "items": _POLYGON, "minItems": 1},
+            },
+        },
+    ],
+}
+PROPERTIES_SCHEMA: dict[str, Any] = {
+    "type": "object",
+    "description": "kind: keep_in | keep_out (required); name (unique); vehicle_id (fleet file only).",
+    "required": ["kind"],
+    "properties": {
+        "kind": {"type": "string", "enum": ["keep_in", "keep_out"]},
+        "name": {"type": "string", "minLength": 1, "pattern": r"\S"},
+        "vehicle_id": {"type": "string"},
+    },
+}
+
+
+def _schema(schema: dict[str, Any]) -> Any:
+    def replace(generated: dict[str, Any]) -> None:
+        generated.clear()
+        generated.update(schema)
+
+    return replace
+
+
 class FeatureIn(BaseModel):
-    model_config = ConfigDict(extra="allow")
+    model_config = ConfigDict(
+        extra="allow", json_schema_extra={"required": ["type", "properties", "geometry"]}
+    )
 
     type: Literal["Feature"]
-    properties: dict[str, Any] | None = Field(
-        None, description="kind: keep_in | keep_out (required); name (unique); vehicle_id (fleet file only)."
-    )
-    geometry: dict[str, Any] = Field(description="A GeoJSON Polygon or MultiPolygon ([lon, lat] pairs).")
+    properties: dict[str, Any] | None = Field(None, json_schema_extra=_schema(PROPERTIES_SCHEMA))
+    geometry: dict[str, Any] = Field(json_schema_extra=_schema(GEOMETRY_SCHEMA))
 
 
 class FeatureCollectionIn(BaseModel):
@@ -107,7 +159,7 @@ def _save(gateway: Gateway, fences: GeofenceSet) -> None:
         raise
 
 
-def _replace(gateway: Gateway, scope: str, zones: list[Zone], who: str) -> GeofencesOut:
+def replace_zones(gateway: Gateway, scope: str, zones: list[Zone], who: str) -> GeofencesOut:
     """Swap in a new set: the other scopes' zones kept, this scope's replaced by ``zones``."""
     policy = _policy(gateway)
     kept = [z for z in policy.geofences if z.scope != scope]
@@ -131,14 +183,14 @@ async def list_geofences(gateway: GatewayDep) -> GeofencesOut:
 async def put_fleet_geofences(
     body: FeatureCollectionIn, gateway: GatewayDep, who: PrincipalDep
 ) -> GeofencesOut:
-    return _replace(gateway, FLEET, _zones_of(body, FLEET), who.name)
+    return replace_zones(gateway, FLEET, _zones_of(body, FLEET), who.name)
 
 
 @router.delete(
     "/fleet/geofences", response_model=GeofencesOut, summary="Remove the fleet-wide geofence zones"
 )
 async def delete_fleet_geofences(gateway: GatewayDep, who: PrincipalDep) -> GeofencesOut:
-    return _replace(gateway, FLEET, [], who.name)
+    return replace_zones(gateway, FLEET, [], who.name)
 
 
 @router.put(
@@ -150,7 +202,7 @@ async def put_vehicle_geofences(
     vehicle_id: str, body: FeatureCollectionIn, gateway: GatewayDep, registry: RegistryDep, who: PrincipalDep
 ) -> GeofencesOut:
     registry.get(vehicle_id)  # UnknownVehicle names the known ids
-    return _replace(gateway, vehicle_id, _zones_of(body, vehicle_id), who.name)
+    return replace_zones(gateway, vehicle_id, _zones_of(body, vehicle_id), who.name)
 
 
 @router.delete(
@@ -162,4 +214,4 @@ async def delete_vehicle_geofences(
     vehicle_id: str, gateway: GatewayDep, registry: RegistryDep, who: PrincipalDep
 ) -> GeofencesOut:
     registry.get(vehicle_id)
-    return _replace(gateway, vehicle_id, [], who.name)
+    return replace_zones(gateway, vehicle_id, [], who.name)

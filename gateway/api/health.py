@@ -7,13 +7,34 @@ from fastapi.responses import JSONResponse
 
 router = APIRouter(tags=["health"])
 
+_READINESS = {
+    "type": "object",
+    "required": ["status", "checks"],
+    "properties": {
+        "status": {"type": "string", "enum": ["ready", "not_ready"]},
+        "checks": {
+            "type": "object",
+            "properties": {"database": {"type": "boolean"}, "registry": {"type": "boolean"}},
+            "additionalProperties": {"type": "boolean"},
+        },
+    },
+}
+_READINESS_BODY = {"application/json": {"schema": _READINESS}}
+
 
 @router.get("/healthz", summary="Liveness: the process answers")
 async def healthz() -> dict[str, str]:
     return {"status": "ok"}
 
 
-@router.get("/readyz", summary="Readiness: database open and vehicle registry started")
+@router.get(
+    "/readyz",
+    summary="Readiness: database open and vehicle registry started",
+    responses={
+        200: {"content": _READINESS_BODY},
+        503: {"description": "Not ready: the checks say which part is not", "content": _READINESS_BODY},
+    },
+)
 async def readyz(request: Request) -> JSONResponse:
     gateway = request.app.state.gateway
     checks = {

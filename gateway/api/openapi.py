@@ -34,16 +34,20 @@ ERROR_SCHEMA: dict[str, Any] = {
                     "type": "string",
                     "description": "One line saying what was wrong and what is accepted.",
                 },
-                "details": {"description": "Structured details (fields, rule, numbers), when there are any."},
+                "details": {
+                    "type": "object",
+                    "description": "Structured details (fields, rule, numbers), when there are any.",
+                },
             },
         }
     },
 }
 
 _WHY = {
+    "400": "The body is not valid JSON (or not readable as the declared content type).",
     "401": "No token, or an unknown one, while operator or viewer tokens are configured.",
     "403": "A viewer token on a route that changes something.",
-    "404": "No such vehicle, flight, operation or zone.",
+    "404": "No such vehicle, flight, operation, zone or parameter.",
     "409": "The vehicle's state or an existing registration conflicts with the request.",
     "422": "An argument is invalid: the message names it, what was given and what is accepted.",
     "502": "The autopilot refused the command (its own words are in the message).",
@@ -63,6 +67,8 @@ def operation_id(route: APIRoute) -> str:
 
 def _responses(method: str, path: str, operation: dict[str, Any]) -> dict[str, str]:
     codes = {"401": _WHY["401"], "422": _WHY["422"], "503": _WHY["503"]}
+    if "requestBody" in operation:
+        codes["400"] = _WHY["400"]
     if method not in ("get", "head", "options"):
         codes["403"] = _WHY["403"]
     if "{" in path:
@@ -101,9 +107,33 @@ def build_openapi(app: FastAPI) -> dict[str, Any]:
             )
             for code, why in codes.items():
                 responses[code] = {"description": why, "content": error_ref}
+    for item in schema.get("paths", {}).values():
+        for operation in item.values():
+            _type_responses(operation.get("responses", {}), error_ref)
     components["schemas"].pop("HTTPValidationError", None)
     components["schemas"].pop("ValidationError", None)
     return schema
+
+
+#: the body schema of a media type a route declares without one (a file, a stream, a free JSON object)
+_MEDIA_SCHEMAS: dict[str, dict[str, Any]] = {
+    "application/json": {"type": "object"},
+    "application/geo+json": {"type": "object"},
+    "application/octet-stream": {"type": "string", "format": "binary"},
+}
+_TEXT_SCHEMA: dict[str, Any] = {"type": "string"}
+
+
+def _type_responses(responses: dict[str, Any], error_ref: dict[str, Any]) -> None:
+    """Every response body typed: an error status a route declares (``responses={404: ...}``) gets the
+    one error body; a file or stream without a schema gets its media type's."""
+    for code, response in responses.items():
+        if code[:1] in "45" and "content" not in response:
+            response["content"] = error_ref
+        for media, content in response.get("content", {}).items():
+            body = content.get("schema")
+            if not body or not set(body) & {"type", "$ref", "anyOf", "oneOf", "allOf"}:
+                content["schema"] = {**(body or {}), **_MEDIA_SCHEMAS.get(media, _TEXT_SCHEMA)}
 
 
 def install_openapi(app: FastAPI) -> None:

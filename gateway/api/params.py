@@ -8,6 +8,8 @@ operator, and is audited; a read is not (reads change nothing). The name is the 
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Annotated
 
 from fastapi import APIRouter, Path
@@ -16,6 +18,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from gateway.api.audit import AuditedRoute
 from gateway.api.control import operator
 from gateway.api.deps import CommanderDep, CommandVehicleId, PrincipalDep
+from gateway.errors import CommandFailed, NotFound
 from gateway.fleet.operations.views import ParamValue
 
 router = APIRouter(tags=["operator control"], route_class=AuditedRoute)
@@ -49,13 +52,26 @@ class ParamOut(BaseModel):
         return cls(vehicle_id=found.drone_id, name=found.name, value=found.value, type=found.type)
 
 
+@contextmanager
+def _unknown_is_not_found() -> Iterator[None]:
+    """A name the autopilot does not list is the request's resource missing (404), not the autopilot
+    failing (502): the message, the autopilot's words, stays as it is."""
+    try:
+        yield
+    except CommandFailed as exc:
+        if exc.details.get("result") != "UNKNOWN_PARAMETER":
+            raise
+        raise NotFound(exc.message, **exc.details) from None
+
+
 @router.get(
     "/vehicles/{vehicle_id}/params/{name}", response_model=ParamOut, summary="Read one autopilot parameter"
 )
 async def read_param(
     vehicle_id: CommandVehicleId, name: ParamName, commander: CommanderDep, who: PrincipalDep
 ) -> ParamOut:
-    return ParamOut.of(await commander.get_param(operator(who), vehicle_id, name))
+    with _unknown_is_not_found():
+        return ParamOut.of(await commander.get_param(operator(who), vehicle_id, name))
 
 
 @router.put(
@@ -66,4 +82,5 @@ async def read_param(
 async def write_param(
     vehicle_id: CommandVehicleId, name: ParamName, body: ParamIn, commander: CommanderDep, who: PrincipalDep
 ) -> ParamOut:
-    return ParamOut.of(await commander.set_param(operator(who), vehicle_id, name, body.value))
+    with _unknown_is_not_found():
+        return ParamOut.of(await commander.set_param(operator(who), vehicle_id, name, body.value))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from datetime import UTC, datetime
 from typing import Annotated, Any
 
@@ -10,6 +11,7 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, 
 
 from gateway.api.telemetry_schema import TelemetrySnapshot, VehicleStatus
 from gateway.registry.spec import (
+    MAX_GCS_ENDPOINTS,
     NODE_TAG_PATTERN,
     VehicleSpec,
     validate_connection_url,
@@ -38,9 +40,45 @@ def _iso_time_only(value: Any) -> Any:
 IsoTime = Annotated[datetime, BeforeValidator(_iso_time_only)]
 
 
+_PORT = r"([1-9][0-9]{0,3}|[1-5][0-9]{4}|6[0-4][0-9]{3}|65[0-4][0-9]{2}|655[0-2][0-9]|6553[0-5])"
+_NETWORK_URL = rf"(udpin|udpout|tcpin|tcpout)://[A-Za-z0-9.\-]{{1,253}}:{_PORT}"
+#: what `validate_connection_url` accepts, said in the OpenAPI document (the validator's line stays the
+#: answer to a URL outside it)
+URL_SCHEMA: dict[str, Any] = {
+    "type": "string",
+    "maxLength": 256,
+    "pattern": rf"^({_NETWORK_URL}|serial:///[^:?#@]*(:[0-9]*)?)$",
+}
+GCS_ENDPOINTS_SCHEMA: dict[str, Any] = {
+    "type": "array",
+    "items": {"type": "string", "maxLength": 256, "pattern": rf"^{_NETWORK_URL}$"},
+    "maxItems": MAX_GCS_ENDPOINTS,
+    "uniqueItems": True,
+}
+TAGS_SCHEMA: dict[str, Any] = {
+    "type": "array",
+    "items": {"type": "string", "pattern": r"^[A-Za-z0-9_.\-]{1,32}$"},
+    "maxItems": 20,
+}
+
+
 class VehicleCreate(VehicleSpec):
     """A registration: the vehicle spec, and whether to connect now (and on every start)."""
 
+    url: str = Field(
+        description="MAVLink connection URL in mavsdk_server syntax, e.g. tcpout://127.0.0.1:5760",
+        json_schema_extra=URL_SCHEMA,
+    )
+    tags: list[str] = Field(
+        default_factory=list,
+        description="Free tags, e.g. ['survey'].",
+        json_schema_extra=TAGS_SCHEMA,
+    )
+    gcs_endpoints: list[str] = Field(
+        default_factory=list,
+        description=VehicleSpec.model_fields["gcs_endpoints"].description,
+        json_schema_extra=GCS_ENDPOINTS_SCHEMA,
+    )
     connect: StrictBool = Field(
         True, description="Start the vehicle's sidecar now and whenever the gateway starts."
     )
@@ -49,14 +87,30 @@ class VehicleCreate(VehicleSpec):
         return VehicleSpec.model_validate(self.model_dump(exclude={"connect"}))
 
 
+def _not_nullable(schema: dict[str, Any]) -> Callable[[dict[str, Any]], None]:
+    """The field's OpenAPI schema is ``schema`` (it may be omitted, never null), with its description."""
+
+    def replace(generated: dict[str, Any]) -> None:
+        described: dict[str, Any] = {k: generated[k] for k in ("title", "description") if k in generated}
+        generated.clear()
+        generated.update({**schema, **described})
+
+    return replace
+
+
 class VehicleUpdate(BaseModel):
-    """Fields to change; omitted fields stay as they are. ``null`` clears name / expected_sysid."""
+    """Fields to change; omitted fields stay as they are. ``null`` clears name / expected_sysid /
+    node_tag; at least one field is given."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", json_schema_extra={"minProperties": 1})
 
-    url: str | None = Field(None, description="New MAVLink connection URL (mavsdk_server syntax).")
+    url: str | None = Field(
+        None,
+        description="New MAVLink connection URL (mavsdk_server syntax).",
+        json_schema_extra=_not_nullable(URL_SCHEMA),
+    )
     name: str | None = Field(None, max_length=100)
-    tags: list[str] | None = Field(None, max_length=20)
+    tags: list[str] | None = Field(None, max_length=20, json_schema_extra=_not_nullable(TAGS_SCHEMA))
     expected_sysid: int | None = Field(None, ge=1, le=255)
     node_tag: str | None = Field(
         None, pattern=NODE_TAG_PATTERN, description="Cluster: only nodes with this tag own it; null: any."
@@ -65,9 +119,12 @@ class VehicleUpdate(BaseModel):
         None,
         description="The ground station endpoints, replacing the registered ones ([] removes them all); "
         "changing them reconnects a connected vehicle.",
+        json_schema_extra=_not_nullable(GCS_ENDPOINTS_SCHEMA),
     )
     auto_connect: StrictBool | None = Field(
-        None, description="Connect this vehicle whenever the gateway starts."
+        None,
+        description="Connect this vehicle whenever the gateway starts.",
+        json_schema_extra=_not_nullable({"type": "boolean"}),
     )
 
     @field_validator("url")

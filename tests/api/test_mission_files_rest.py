@@ -5,6 +5,7 @@ mission it had), a broken file named by line."""
 from __future__ import annotations
 
 import asyncio
+import json
 from pathlib import Path
 
 import httpx
@@ -103,3 +104,122 @@ async def test_mission_files_in_and_out(tmp_path: Path, capsys: pytest.CaptureFi
 
     assert main(["drones", "mission", "get", "alpha"]) == 2
     assert "drones mission needs --api URL" in capsys.readouterr().err
+
+
+HOME_LAT, HOME_LON = -35.363261, 149.165230  # the simulator's first drone (ArduPilot SITL's CMAC)
+
+
+def _plan(fence: dict[str, object], rally: list[list[float]], north_deg: float = 0.0003) -> str:
+    items = [
+        {"type": "SimpleItem", "command": 22, "frame": 3, "params": [0, 0, 0, None, 0, 0, 15]},
+        {
+            "type": "SimpleItem",
+            "command": 16,
+            "frame": 3,
+            "params": [0, 0, 0, None, HOME_LAT + north_deg, HOME_LON, 15],
+        },
+        {"type": "SimpleItem", "command": 20, "frame": 2, "params": [0, 0, 0, 0, 0, 0, 0]},
+    ]
+    return json.dumps(
+        {
+            "fileType": "Plan",
+            "version": 1,
+            "groundStation": "QGroundControl",
+            "mission": {"version": 2, "items": items, "plannedHomePosition": [HOME_LAT, HOME_LON, 584]},
+            "geoFence": {"version": 2, **fence},
+            "rallyPoints": {"version": 2, "points": rally},
+        }
+    )
+
+
+SQUARE = [[HOME_LAT - 0.002, HOME_LON - 0.002], [HOME_LAT - 0.002, HOME_LON + 0.002],
+          [HOME_LAT + 0.002, HOME_LON + 0.002], [HOME_LAT + 0.002, HOME_LON - 0.002]]  # fmt: skip
+AWAY = {"circle": {"center": [HOME_LAT - 0.0015, HOME_LON], "radius": 40.0}, "inclusion": False, "version": 1}
+RALLY = [[HOME_LAT + 0.001, HOME_LON + 0.001, 30.0], [HOME_LAT - 0.001, HOME_LON, 25.0]]
+
+
+async def test_a_plans_geofence_becomes_the_drones_zones_and_its_rally_points_come_back(
+    tmp_path: Path,
+) -> None:
+    """The plan's inclusion polygon and exclusion circle become alpha's zones through the geofences' own
+    path, the rally points are kept, and the exported .plan carries both back; a plan whose own fence
+    forbids its waypoint is refused and leaves the zones as they were; a broken fence changes nothing."""
+    async with sim_process(count=1, speedup=10) as sim:
+        app = create_app(live_settings(tmp_path / "gateway.db"))
+        with serve_in_thread(app) as base:
+            async with httpx.AsyncClient(base_url=base, timeout=scaled(60)) as http:
+                created = await http.post("/api/v1/vehicles", json={"id": "alpha", "url": sim.urls[0]})
+                assert created.status_code == 201, created.text
+                await _ready(http, "alpha")
+                fence = {
+                    "polygons": [{"polygon": SQUARE, "inclusion": True, "version": 1}],
+                    "circles": [AWAY],
+                }
+                put = await http.put(
+                    "/api/v1/vehicles/alpha/mission",
+                    content=_plan(fence, RALLY),
+                    headers={"content-type": "application/json"},
+                )
+                assert put.status_code == 200, put.text
+                said = put.json()["message"]
+                assert "3 items uploaded" in said and "geofence (2 zones) is now the drone's" in said, said
+                assert "2 rally points kept" in said and "not uploaded to the autopilot" in said, said
+
+                zones = {
+                    f["properties"]["name"]: f
+                    for f in (await http.get("/api/v1/geofences")).json()["features"]
+                }
+                assert set(zones) == {"alpha-plan-polygon-1", "alpha-plan-circle-1"}, zones
+                assert zones["alpha-plan-polygon-1"]["properties"]["kind"] == "keep_in"
+                assert zones["alpha-plan-circle-1"]["properties"]["kind"] == "keep_out"
+                assert all(z["properties"]["vehicle_id"] == "alpha" for z in zones.values())
+
+                back = json.loads((await http.get("/api/v1/vehicles/alpha/mission?format=plan")).text)
+                assert len(back["mission"]["items"]) == 3
+                assert back["geoFence"]["circles"] == [
+                    {
+                        "circle": {"center": AWAY["circle"]["center"], "radius": 40.0},
+                        "inclusion": False,
+                        "version": 1,
+                    }  # type: ignore[index]
+                ]
+                [polygon] = back["geoFence"]["polygons"]
+                assert polygon["inclusion"] is True and polygon["polygon"] == SQUARE
+                assert back["rallyPoints"]["points"] == RALLY
+                # the exported plan is one the gateway takes again whole
+                again = await http.put(
+                    "/api/v1/vehicles/alpha/mission",
+                    content=json.dumps(back),
+                    headers={"content-type": "application/json"},
+                )
+                assert again.status_code == 200, again.text
+
+                # the plan's own keep-out circle on its waypoint: refused, the zones as they were
+                on_wp = {
+                    "circle": {"center": [HOME_LAT + 0.0003, HOME_LON], "radius": 20.0},
+                    "inclusion": False,
+                }
+                refused = await http.put(
+                    "/api/v1/vehicles/alpha/mission",
+                    content=_plan({"polygons": [], "circles": [on_wp]}, []),
+                    headers={"content-type": "application/json"},
+                )
+                assert refused.status_code == 403, refused.text
+                after = {
+                    f["properties"]["name"] for f in (await http.get("/api/v1/geofences")).json()["features"]
+                }
+                assert after == set(zones)
+
+                broken = await http.put(
+                    "/api/v1/vehicles/alpha/mission",
+                    content=_plan(
+                        {"polygons": [{"polygon": SQUARE[:2], "inclusion": True}], "circles": []}, []
+                    ),
+                    headers={"content-type": "application/json"},
+                )
+                assert broken.status_code == 422, broken.text
+                assert "geofence polygon 1: 2 vertices; a polygon needs at least 3" in broken.text
+                after = {
+                    f["properties"]["name"] for f in (await http.get("/api/v1/geofences")).json()["features"]
+                }
+                assert after == set(zones)

@@ -38,12 +38,14 @@ def gateway_env(db: Path) -> dict[str, str]:
 
 
 @contextlib.contextmanager
-def gateway_process(db: Path, log: Path) -> Iterator[tuple[subprocess.Popen[bytes], str]]:
+def gateway_process(
+    db: Path, log: Path, extra_env: dict[str, str] | None = None
+) -> Iterator[tuple[subprocess.Popen[bytes], str]]:
     port = free_tcp_port()
     with log.open("ab") as out:
         proc = subprocess.Popen(
             [sys.executable, "-m", "gateway.cli", "serve", "--host", "127.0.0.1", "--port", str(port)],
-            env=gateway_env(db),
+            env={**gateway_env(db), **(extra_env or {})},
             stdout=out,
             stderr=subprocess.STDOUT,
             stdin=subprocess.DEVNULL,

@@ -65,7 +65,8 @@ async def test_an_operator_flies_the_stored_mission_and_sets_a_parameter(stack: 
         again = await _post(http, "/vehicles/d1/params/WPNAV_SPEED", method="GET")
         assert again["value"] == 600, again
         unknown = await http.get("/api/v1/vehicles/d1/params/NO_SUCH_PARAM")
-        assert unknown.status_code >= 400 and "unknown parameter 'NO_SUCH_PARAM'" in unknown.text, (
+        # a name the autopilot does not list is a missing resource, in the autopilot's words
+        assert unknown.status_code == 404 and "unknown parameter 'NO_SUCH_PARAM'" in unknown.text, (
             unknown.text
         )
         bad = await http.put("/api/v1/vehicles/d1/params/WPNAV_SPEED", json={"value": "fast"})

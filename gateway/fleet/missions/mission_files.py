@@ -136,24 +136,25 @@ def _plan_item(entry: object, where: str) -> RawItem:
 
 
 def _refuse_fence_and_rally(doc: dict[str, Any]) -> None:
-    """A .plan's geofence and rally points are not applied from a mission file: the file is refused
-    naming them (never stored without them, which would leave a drone without the fence its planner
-    drew). The zones go to the drone through its geofences (PUT /api/v1/vehicles/{id}/geofences)."""
+    """The items are all this parser reads: a .plan that still has a geofence or rally points is refused
+    naming them, never stored without them (which would leave a drone without the fence its planner
+    drew). The REST upload takes them out first (`gateway.fleet.missions.plan_extras.split_plan`): the
+    geofence becomes the drone's zones, the rally points are kept."""
     fence = doc.get("geoFence")
     if isinstance(fence, dict):
         polygons, circles = fence.get("polygons") or [], fence.get("circles") or []
         if polygons or circles:
             raise InvalidArgument(
                 f"the .plan file has a geofence ({len(polygons)} polygons, {len(circles)} circles), which "
-                "a mission upload does not apply; nothing was sent: give the zones to the drone with PUT "
-                "/api/v1/vehicles/{id}/geofences and remove the geofence from the plan"
+                "this upload does not apply; nothing was sent: upload the plan with PUT "
+                "/api/v1/vehicles/{id}/mission, which makes it the drone's geofences"
             )
     rally = doc.get("rallyPoints")
     points = rally.get("points") if isinstance(rally, dict) else None
     if points:
         raise InvalidArgument(
-            f"the .plan file has {len(points)} rally points, which a mission upload does not send to the "
-            "drone; nothing was sent: remove them from the plan (the drone returns to its home on RTL)"
+            f"the .plan file has {len(points)} rally points, which this upload does not keep; nothing was "
+            "sent: upload the plan with PUT /api/v1/vehicles/{id}/mission, which keeps them"
         )
 
 
