@@ -223,10 +223,12 @@ class ClusterNode:
     async def _keep(self) -> None:
         first = True
         ticking: asyncio.Task[LeasePlan] | None = None
+        began = time.monotonic()
         while True:
             try:
                 if ticking is None or ticking.done():
                     ticking = asyncio.create_task(self.tick(acquire=not first), name="cluster-tick")
+                    began = time.monotonic()
                 await self._tick_done(ticking)
             except asyncio.CancelledError:
                 if ticking is not None:
@@ -255,7 +257,7 @@ class ClusterNode:
             first = False
             self._kick.clear()
             with contextlib.suppress(TimeoutError):
-                await asyncio.wait_for(self._kick.wait(), self._next_tick_s())
+                await asyncio.wait_for(self._kick.wait(), self._next_tick_s(began))
 
     async def _tick_done(self, ticking: asyncio.Task[LeasePlan]) -> None:
         """Wait for a tick within its limit; its failure raised, or TimeoutError. A database that hangs
@@ -279,10 +281,11 @@ class ClusterNode:
             limit = min(limit, max(0.0, self._valid_until - time.monotonic()) + ttl * TICK_GRACE_SHARE)
         return limit
 
-    def _next_tick_s(self) -> float:
-        """Until the next tick: ``ttl/3``, or less when this node's leases are valid for less (after a tick
+    def _next_tick_s(self, began: float) -> float:
+        """Until the next tick: ``ttl/3`` after the last one began (a slow tick does not push the next
+        renewal towards the fence), or less when this node's leases are valid for less (after a tick
         that failed), so that it fences itself when they are no longer valid, not up to a tick later."""
-        wait = self.interval_s
+        wait = max(0.0, began + self.interval_s - time.monotonic())
         if self.held:
             wait = min(wait, max(0.0, self._valid_until - time.monotonic()))
         return wait
