@@ -260,26 +260,28 @@ class ClusterNode:
                 await asyncio.wait_for(self._kick.wait(), self._next_tick_s(began))
 
     async def _tick_done(self, ticking: asyncio.Task[LeasePlan]) -> None:
-        """Wait for a tick within its limit; its failure raised, or TimeoutError. A database that hangs
-        counts as one that fails, and the fence must act on time: a tick past its limit is cancelled
-        but not waited for (a statement on a connection that hangs can hold its cancellation, a
-        rollback that never answers), and the next round waits for it again rather than start another."""
-        done, _ = await asyncio.wait({ticking}, timeout=self._tick_limit_s())
-        if not done:
-            ticking.cancel()
-            raise TimeoutError("the lease tick did not finish in time (the database does not answer)")
+        """Wait for a tick within its limit (half the lease time); its failure raised, or TimeoutError.
+        While this node holds leases, a tick that has not renewed them shortly after the moment it must
+        fence itself is cut then (a database that hangs counts as one that fails, and the fence must act
+        on time); one that renewed them goes on (adopting a drone can take a while). A tick cut short is
+        cancelled but not waited for (a statement on a connection that hangs can hold its cancellation,
+        a rollback that never answers); the next round waits for it again rather than start another."""
+        ttl = self.settings.cluster_lease_ttl_s
+        limit_at = time.monotonic() + ttl / 2
+        while True:
+            fence_at = self._valid_until + ttl * TICK_GRACE_SHARE if self.held else limit_at
+            done, _ = await asyncio.wait(
+                {ticking}, timeout=max(0.0, min(limit_at, fence_at) - time.monotonic())
+            )
+            if done:
+                break
+            now = time.monotonic()
+            if now >= limit_at or (self.held and now >= self._valid_until + ttl * TICK_GRACE_SHARE):
+                ticking.cancel()
+                raise TimeoutError("the lease tick did not finish in time (the database does not answer)")
         if ticking.cancelled():
             raise TimeoutError("the lease tick was cut short (the database did not answer)")
         ticking.result()
-
-    def _tick_limit_s(self) -> float:
-        """How long a tick may take: half the lease time, and while this node holds leases, not much later
-        than the moment it must fence itself (a tick that renews in time moves that moment on)."""
-        ttl = self.settings.cluster_lease_ttl_s
-        limit = ttl / 2
-        if self.held:
-            limit = min(limit, max(0.0, self._valid_until - time.monotonic()) + ttl * TICK_GRACE_SHARE)
-        return limit
 
     def _next_tick_s(self, began: float) -> float:
         """Until the next tick: ``ttl/3`` after the last one began (a slow tick does not push the next
