@@ -142,8 +142,7 @@ class StopTakeover:
                     else:
                         why.append(repr(error))
         finally:
-            for task in tasks:
-                task.cancel()
+            _cancel_all(tasks)
         if not take_over:
             raise NotRun(
                 f"no owner acknowledged {verb} for {drone_id} ({'; '.join(why)})", vehicle_id=drone_id
@@ -274,3 +273,11 @@ class StopTakeover:
                             lease.epoch, verb)  # fmt: skip
                 await self._node.take_over(drone_id, lease, owner, asked)
         return None
+
+
+def _cancel_all(tasks: dict[asyncio.Future[Any], str]) -> None:
+    """The paths still under way once one answered; a path that failed meanwhile has nothing to add."""
+    for task in tasks:
+        task.cancel()
+        if task.done() and not task.cancelled():
+            task.exception()
