@@ -70,7 +70,7 @@ class OwnerCalls:
         arguments: dict[str, Any],
         on_message: OnMessage | None,
         wait_s: float,
-    ) -> Any:
+    ) -> object:
         """Run ``verb`` on the drone's owner (over NATS); its result, or its error raised here."""
         if not self._node.started:
             raise NoOwner(f"this node is not part of the cluster yet; cannot reach {drone_id}'s owner")
@@ -103,7 +103,7 @@ class OwnerCalls:
             owner_gone=owner_gone,
         )  # fmt: skip
 
-    async def forward_stop(self, drone_id: str, verb: str, caller: Caller) -> Any:
+    async def forward_stop(self, drone_id: str, verb: str, caller: Caller) -> object:
         """An operator's stop to the drone's owner as it is now (bus, then PostgreSQL), without this
         node commanding the drone itself when no owner acknowledges it: NotRun or NoOwner then."""
         registry = self._node.registry
@@ -117,7 +117,7 @@ class OwnerCalls:
         self, drone_id: str, verb: str, caller: Caller, arguments: dict[str, Any],
         on_message: OnMessage | None, call_s: float, accept_s: float, epoch: int | None,
         owner_gone: Callable[[], str | None] | None, take_over: bool = True,
-    ) -> Any:  # fmt: skip
+    ) -> object:  # fmt: skip
         """An operator's stop (land, return, hold) on a drone another node owns: over the bus, through
         PostgreSQL when the bus does not carry it (each sent again until its owner answers), to a fenced
         node's stop-only path when nobody holds the drone's link; and when no owner acknowledged it
@@ -151,7 +151,7 @@ class OwnerCalls:
         short = relay is not None and relay.listening
         bus = self._node.bus
         why: list[str] = []
-        owner_paths: list[Awaitable[Any]] = []
+        owner_paths: list[Awaitable[object]] = []
         try:
             return await bus.call(
                 drone_id, verb, arguments, body, call_s, on_message,
@@ -188,7 +188,7 @@ class OwnerCalls:
     async def _to_new_owner(
         self, drone_id: str, verb: str, arguments: dict[str, Any], body: dict[str, Any], call_s: float,
         accept_s: float, until: float,
-    ) -> Any:  # fmt: skip
+    ) -> object:  # fmt: skip
         """A fenced node's stop to whichever node serves the drone's calls, asked again until ``until``
         while none does (a node taking the drone over serves them once its link is up)."""
         while True:
@@ -201,7 +201,7 @@ class OwnerCalls:
                     raise
                 await asyncio.sleep(NEW_OWNER_RETRY_S)
 
-    async def relayed_stop(self, stop: dict[str, Any]) -> Any:
+    async def relayed_stop(self, stop: dict[str, Any]) -> object:
         """A stop another node relayed through PostgreSQL: run it when this node owns the drone under
         that epoch (the same path as a stop over the bus), or keeps a stop-only path to it; None (silent)
         when the drone is not this node's."""
@@ -239,7 +239,7 @@ class OwnerCalls:
     def answer(self, vehicle_id: str) -> CallHandler:
         async def handle(
             name: str, arguments: dict[str, Any], caller: Mapping[str, object], progress: ProgressSink
-        ) -> Any:
+        ) -> object:
             registry = self._node.registry
             if registry is None or not registry.is_local(vehicle_id):
                 raise NoOwner(
