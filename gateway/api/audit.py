@@ -88,8 +88,11 @@ async def record_rest_call(
     try:
         args = await _arguments(request)
         session_key = principal.session_key if principal else None
-        if principal is not None:
-            try:  # the session's last-seen time is a courtesy; the audit row is not
+        # the session's last-seen time is a courtesy, written without the spool: skipped while the
+        # database is known not to answer (no answer, an emergency stop's least, waits on it); the audit
+        # row below is kept until the database is back
+        if principal is not None and not store.spool.unreachable:
+            try:
                 await store.touch_session(session_key, principal.door, principal=principal.name)
             except Exception:
                 log.warning("could not record the REST session of %s", principal.name)

@@ -51,8 +51,9 @@ log = logging.getLogger("gateway.cluster")
 #: else may take them over at the full lease time)
 SELF_FENCE_SHARE = 0.8
 CONNECT_TIMEOUT_S = 15.0
-#: a tick started when the leases are about to need the fence still gets this long
-MIN_TICK_S = 0.1
+#: a tick may run past the moment the fence is due by this share of the lease time (half the time
+#: between that moment and the leases' expiry), so that a renewal under way can still finish
+TICK_GRACE_SHARE = 0.1
 #: a stopping node gives the database and the bus this long each to hear it leave
 LEAVE_TIMEOUT_S = 3.0
 #: a lock heard on the bus holds this long at most while the database does not have it (its node keeps it
@@ -93,7 +94,8 @@ class ClusterNode:
         self._subs: list[Subscription] = []
         self._tasks: list[asyncio.Task[None]] = []
         self._kick = asyncio.Event()
-        self._valid_until = 0.0
+        # vehicle -> when its lease was last renewed or taken (monotonic, before the statement)
+        self._renewed_at: dict[str, float] = {}
         self._tick_lock = asyncio.Lock()
         self._heard_locks: dict[str, float] = {}  # scope -> when a lock of it was heard on the bus
         self.lock_versions = LockVersions()  # a lock broadcast older than what this node knows is dropped
@@ -118,6 +120,13 @@ class ClusterNode:
         if self.registry is None or not self.gateway.ready:
             raise NoOwner("this node's registry is not running (starting or stopping)")
         return self.registry
+
+    @property
+    def _valid_until(self) -> float:
+        """The moment this node must fence itself unless it renews: the share of the lease time after the
+        oldest renewal (or taking) of a lease it holds."""
+        oldest = min((self._renewed_at.get(vid, 0.0) for vid in self.held), default=time.monotonic())
+        return oldest + self.settings.cluster_lease_ttl_s * SELF_FENCE_SHARE
 
     @property
     def interval_s(self) -> float:
@@ -213,11 +222,17 @@ class ClusterNode:
 
     async def _keep(self) -> None:
         first = True
+        ticking: asyncio.Task[LeasePlan] | None = None
+        began = time.monotonic()
         while True:
             try:
-                # a database that hangs counts as one that fails: the fence below must still act, on time
-                await asyncio.wait_for(self.tick(acquire=not first), self._tick_limit_s())
+                if ticking is None or ticking.done():
+                    ticking = asyncio.create_task(self.tick(acquire=not first), name="cluster-tick")
+                    began = time.monotonic()
+                await self._tick_done(ticking)
             except asyncio.CancelledError:
+                if ticking is not None:
+                    ticking.cancel()
                 raise
             except Exception:
                 log.exception("lease keeping failed")
@@ -242,20 +257,37 @@ class ClusterNode:
             first = False
             self._kick.clear()
             with contextlib.suppress(TimeoutError):
-                await asyncio.wait_for(self._kick.wait(), self._next_tick_s())
+                await asyncio.wait_for(self._kick.wait(), self._next_tick_s(began))
 
-    def _tick_limit_s(self) -> float:
-        """How long a tick may take: half the lease time, and while this node holds leases, no later than
-        the moment it must fence itself (a tick that renews in time moves that moment on)."""
-        limit = self.settings.cluster_lease_ttl_s / 2
-        if self.held:
-            limit = min(limit, max(MIN_TICK_S, self._valid_until - time.monotonic()))
-        return limit
+    async def _tick_done(self, ticking: asyncio.Task[LeasePlan]) -> None:
+        """Wait for a tick within its limit (half the lease time); its failure raised, or TimeoutError.
+        While this node holds leases, a tick that has not renewed them shortly after the moment it must
+        fence itself is cut then (a database that hangs counts as one that fails, and the fence must act
+        on time); one that renewed them goes on (adopting a drone can take a while). A tick cut short is
+        cancelled but not waited for (a statement on a connection that hangs can hold its cancellation,
+        a rollback that never answers); the next round waits for it again rather than start another."""
+        ttl = self.settings.cluster_lease_ttl_s
+        limit_at = time.monotonic() + ttl / 2
+        while True:
+            fence_at = self._valid_until + ttl * TICK_GRACE_SHARE if self.held else limit_at
+            done, _ = await asyncio.wait(
+                {ticking}, timeout=max(0.0, min(limit_at, fence_at) - time.monotonic())
+            )
+            if done:
+                break
+            now = time.monotonic()
+            if now >= limit_at or (self.held and now >= self._valid_until + ttl * TICK_GRACE_SHARE):
+                ticking.cancel()
+                raise TimeoutError("the lease tick did not finish in time (the database does not answer)")
+        if ticking.cancelled():
+            raise TimeoutError("the lease tick was cut short (the database did not answer)")
+        ticking.result()
 
-    def _next_tick_s(self) -> float:
-        """Until the next tick: ``ttl/3``, or less when this node's leases are valid for less (after a tick
+    def _next_tick_s(self, began: float) -> float:
+        """Until the next tick: ``ttl/3`` after the last one began (a slow tick does not push the next
+        renewal towards the fence), or less when this node's leases are valid for less (after a tick
         that failed), so that it fences itself when they are no longer valid, not up to a tick later."""
-        wait = self.interval_s
+        wait = max(0.0, began + self.interval_s - time.monotonic())
         if self.held:
             wait = min(wait, max(0.0, self._valid_until - time.monotonic()))
         return wait
@@ -267,13 +299,13 @@ class ClusterNode:
             started = time.monotonic()
             await self.leases.heartbeat(self.tags, self.api_url)
             renewed = await self.leases.renew(list(self.held))
-            self._valid_until = started + self.settings.cluster_lease_ttl_s * SELF_FENCE_SHARE
             for vid in list(self.held):
                 if vid not in renewed or renewed[vid].epoch != self.held[vid].epoch:
                     log.warning("%s: lease lost (taken over or expired): stopping its sidecar", vid)
                     await self._drop(vid, "lease lost")
                 else:
                     self.held[vid] = renewed[vid]
+                    self._renewed_at[vid] = started
             await self._stop_strays()
             store = self.gateway.require_store()
             records = await store.list_vehicles()
@@ -304,6 +336,7 @@ class ClusterNode:
                     if taken >= result.room:
                         break
                     previous = self.all_leases.get(vid)
+                    asked = time.monotonic()
                     lease = await self.leases.acquire(vid)
                     if lease is None:
                         continue
@@ -311,15 +344,17 @@ class ClusterNode:
                     was = previous.node_id if previous is not None else None
                     if was == self.node_id:  # our own lease of an adoption that failed: who had it before
                         was = self._adopting_from.get(vid, was)
-                    await self.take_over(vid, lease, was)
+                    await self.take_over(vid, lease, was, asked)
             if result.release:
                 await self.bus.broadcast("leases", {"node": self.node_id, "released": result.release})
             return result
 
-    async def take_over(self, vehicle_id: str, lease: Lease, previous: str | None) -> None:
-        """Adopt a vehicle whose lease this node has just taken: its own sidecar, the calls on its subject,
-        the operations ``previous`` left running. The caller's time limit (a tick's, for a database that
-        hangs) does not cut an adoption short: it finishes, or undoes itself."""
+    async def take_over(self, vehicle_id: str, lease: Lease, previous: str | None, asked: float) -> None:
+        """Adopt a vehicle whose lease this node has just taken (the statement sent at ``asked``,
+        monotonic): its own sidecar, the calls on its subject, the operations ``previous`` left running.
+        The caller's time limit (a tick's, for a database that hangs) does not cut an adoption short: it
+        finishes, or undoes itself."""
+        self._renewed_at[vehicle_id] = asked
         adoption = asyncio.create_task(self._adopt(vehicle_id, lease, previous), name=f"adopt-{vehicle_id}")
         self._adoptions.add(adoption)
         adoption.add_done_callback(self._adoptions.discard)
@@ -384,6 +419,7 @@ class ClusterNode:
 
     async def _drop(self, vehicle_id: str, why: str) -> None:
         self.held.pop(vehicle_id, None)
+        self._renewed_at.pop(vehicle_id, None)
         sub = self._served.pop(vehicle_id, None)
         if sub is not None:
             with contextlib.suppress(Exception):

@@ -4,6 +4,7 @@ answers the calls for the drones it owns."""
 
 from __future__ import annotations
 
+import asyncio
 import logging
 import time
 from collections.abc import Awaitable, Callable, Mapping
@@ -32,6 +33,8 @@ READ_TIMEOUT_S = 5.0
 #: an operator's stop its owner has not accepted over the bus by then goes through PostgreSQL instead (the
 #: owner refuses the bus copy if it arrives later, so it runs once), until OWNER_ACK_S after the stop
 STOP_ACCEPT_S = 0.5
+#: a fenced node asks again this often for a node serving the drone's calls (one taking it over)
+NEW_OWNER_RETRY_S = 0.2
 
 
 class CallsNode(NodeWithRuntime, Protocol):
@@ -119,10 +122,27 @@ class OwnerCalls:
         PostgreSQL when the bus does not carry it (each sent again until its owner answers), to a fenced
         node's stop-only path when nobody holds the drone's link; and when no owner acknowledged it
         within OWNER_ACK_S, commanded by this node itself (`gateway.cluster.stop_takeover`)."""
-        if drone_id in self._node.fenced:  # no bus needed: this node sends it over the drone's link
-            return await self._node.stops.stop_directly(drone_id, verb, caller)
-        deadline = time.monotonic() + OWNER_ACK_S
         body = {**caller.to_dict(), "node": self._node.node_id}
+        if drone_id in self._node.fenced:
+            # no bus needed: this node sends it over the drone's link; but this node cannot read the
+            # leases, and another node may have taken the drone over meanwhile (its sidecar holding the
+            # link): the stop goes to whoever serves the drone's calls too, and the first to take it answers
+            until = time.monotonic() + STOP_SEND_S
+            direct = self._node.stops.stop_directly(drone_id, verb, caller)
+            new_owner = self._to_new_owner(drone_id, verb, arguments, body, call_s, accept_s, until)
+            try:
+                return await self._node.takeover.reach(
+                    drone_id, verb, caller, epoch, None, [direct, new_owner], ["this node fenced itself"],
+                    until, take_over=False,
+                )  # fmt: skip
+            except NotRun as exc:
+                if not take_over:
+                    raise
+                # the node that took the drone over is still bringing its link up: keep at it
+                self._node.takeover.stop_pending(
+                    drone_id, verb, caller, epoch, None, exc.message, "held by another process"
+                )
+        deadline = time.monotonic() + OWNER_ACK_S
         registry = self._node.registry
         vehicle = None if registry is None else registry.find(drone_id)
         owner = vehicle.owner if isinstance(vehicle, RemoteVehicle) else None
@@ -164,6 +184,22 @@ class OwnerCalls:
         return await self._node.takeover.reach(
             drone_id, verb, caller, epoch, owner, owner_paths, why, deadline, take_over=take_over
         )
+
+    async def _to_new_owner(
+        self, drone_id: str, verb: str, arguments: dict[str, Any], body: dict[str, Any], call_s: float,
+        accept_s: float, until: float,
+    ) -> object:  # fmt: skip
+        """A fenced node's stop to whichever node serves the drone's calls, asked again until ``until``
+        while none does (a node taking the drone over serves them once its link is up)."""
+        while True:
+            try:
+                return await self._node.bus.call(
+                    drone_id, verb, arguments, body, call_s, None, accept_s=min(accept_s, OWNER_ACK_S)
+                )
+            except NoOwner:
+                if time.monotonic() > until - NEW_OWNER_RETRY_S:
+                    raise
+                await asyncio.sleep(NEW_OWNER_RETRY_S)
 
     async def relayed_stop(self, stop: dict[str, Any]) -> object:
         """A stop another node relayed through PostgreSQL: run it when this node owns the drone under

@@ -67,7 +67,7 @@ class TakeoverNode(NodeWithRuntime, Protocol):
     @property
     def leases(self) -> LeaseStore | None: ...
 
-    async def take_over(self, vehicle_id: str, lease: Lease, previous: str | None) -> None: ...
+    async def take_over(self, vehicle_id: str, lease: Lease, previous: str | None, asked: float) -> None: ...
 
     async def forward_stop(self, drone_id: str, verb: str, caller: Caller) -> object: ...
 
@@ -142,8 +142,7 @@ class StopTakeover:
                     else:
                         why.append(repr(error))
         finally:
-            for task in tasks:
-                task.cancel()
+            _cancel_all(tasks)
         if not take_over:
             raise NotRun(
                 f"no owner acknowledged {verb} for {drone_id} ({'; '.join(why)})", vehicle_id=drone_id
@@ -267,9 +266,18 @@ class StopTakeover:
             log.debug("%s: its own link did not answer (%r)", drone_id, exc)
         leases = self._node.leases
         if leases is not None:
+            asked = time.monotonic()
             lease = await asyncio.wait_for(leases.acquire(drone_id), LEASE_STATEMENT_S)
             if lease is not None:  # the owner's lease expired: the node-loss takeover, by this node
                 log.warning("%s: node %s took its lease (epoch %d) to send the %s itself", drone_id, me,
                             lease.epoch, verb)  # fmt: skip
-                await self._node.take_over(drone_id, lease, owner)
+                await self._node.take_over(drone_id, lease, owner, asked)
         return None
+
+
+def _cancel_all(tasks: dict[asyncio.Future[Any], str]) -> None:
+    """The paths still under way once one answered; a path that failed meanwhile has nothing to add."""
+    for task in tasks:
+        task.cancel()
+        if task.done() and not task.cancelled():
+            task.exception()

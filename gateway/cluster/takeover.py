@@ -35,7 +35,9 @@ def tracker_for(kind: str, params: dict[str, Any], arrival_tolerance_m: float) -
     """A tracker that follows an operation of ``kind`` again from its stored params, or None."""
     try:
         if kind == "takeoff":
-            return TakeoffTracker(float(params["alt_m"]))
+            # a takeoff is an operation once the drone took the command, armed: disarmed now, it ended
+            # (else a drone found on the ground, disarmed, would be "still taking off" for ever)
+            return TakeoffTracker(float(params["alt_m"]), _seen_armed=True)
         if params.get("takeoff_first"):
             # a relative move that took off first: whether its leg was sent before the node was lost is
             # not recorded, so it is closed as interrupted (the message says to check the drone) rather

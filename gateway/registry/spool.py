@@ -137,6 +137,11 @@ class Spool:
     def waiting(self) -> bool:
         return bool(self._queue)
 
+    @property
+    def unreachable(self) -> bool:
+        """Whether the database is known not to answer now: writes wait here, or its node fenced itself."""
+        return self._down or bool(self._queue)
+
     def unreachable_now(self) -> None:
         """The database is known to be unreachable (a cluster node could not renew its leases): every
         write is kept at once, without waiting for the database first, until a kept one is written."""

@@ -377,14 +377,16 @@ async def cluster(
 
 
 async def wait_spread(c: Cluster, within_s: float = 90.0) -> dict[str, str]:
-    """Until every drone has one owner, every live node owns some and none more than its fair share, and
-    every node sees every drone ready; the owners."""
+    """Until every drone has one owner, the same in every live node's view (a node sends a drone's
+    commands to the owner its view names), every live node owns some and none more than its fair share,
+    and every node sees every drone ready; the owners."""
     loop = asyncio.get_running_loop()
     deadline = loop.time() + scaled(within_s)
     last: Any = None
     while True:
         try:
             owners = await c.owners()
+            seen = [await c.owners(via=n) for n in c.live_nodes]
             states = [await c.states(n) for n in c.live_nodes]
             last = (owners, states)
             spread = {n.name for n in c.live_nodes} <= set(owners.values())
@@ -394,6 +396,7 @@ async def wait_spread(c: Cluster, within_s: float = 90.0) -> dict[str, str]:
             spread = spread and all(len(v["held"]) <= math.ceil(v["share"] - 1e-9) for v in views)
             if (
                 len(owners) == len(c.drone_ids)
+                and all(view == owners for view in seen)
                 and spread
                 and all(all(s.get(d) == "ready" for d in c.drone_ids) for s in states)
             ):
