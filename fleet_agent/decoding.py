@@ -77,7 +77,10 @@ class Planner:
             try:
                 reply = await self._complete(messages, options, attempt.usage)
             except openai.OpenAIError as exc:
-                attempt.model_error = f"{type(exc).__name__}: {exc}"
+                attempt.model_error = (
+                    f"the model endpoint {self.model.base_url} (model {self.model.model}) did not answer: "
+                    f"{type(exc).__name__}: {exc}"
+                )
                 return attempt
             attempt.replies.append(reply)
             problem = self._read(reply, request, fleet, attempt)

@@ -72,6 +72,7 @@ async def test_an_unreachable_endpoint_is_a_model_error() -> None:
     planner = Planner(ModelConfig("http://127.0.0.1:9/v1", "none", max_retries=0, timeout_s=5))
     attempt = await planner.plan("x", FLEET)
     assert attempt.plan is None and attempt.model_error and "Connection" in attempt.model_error
+    assert "the model endpoint http://127.0.0.1:9/v1 (model none) did not answer" in attempt.model_error
 
 
 def _move(drone: str, origin: dict[str, str]) -> dict[str, object]:
