@@ -392,7 +392,9 @@ async def gateway(
     base = f"http://127.0.0.1:{port}"
     http = httpx.AsyncClient(base_url=base, timeout=30)
     try:
-        deadline = time.monotonic() + 60
+        # every sidecar is started with its gateway: hundreds of them keep the machine busy before a gateway
+        # (this one, or another started beside it, as bench/scale.py's gateway with no drone) answers
+        deadline = time.monotonic() + 60 + 0.5 * len(sim_.urls)
         while True:
             if proc.returncode is not None:
                 raise RuntimeError(f"gateway exited:\n{_tail(log)}")

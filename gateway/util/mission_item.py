@@ -6,8 +6,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-#: MAV_FRAME_GLOBAL_RELATIVE_ALT (pymavlink's name): a number here so that a start loads no MAVLink dialect
-FRAME_GLOBAL_RELATIVE_ALT = 3
+#: pymavlink's MAV_FRAME_GLOBAL_RELATIVE_ALT, as a number here: its dialect module costs the gateway about
+#: 10 MiB and is loaded only when a mission is judged or relayed (tests/test_lean_start.py checks both)
+MAV_FRAME_GLOBAL_RELATIVE_ALT = 3
 
 
 @dataclass(frozen=True)
@@ -15,7 +16,7 @@ class ItemInt:
     """x/y in degE7 (plain numbers in MAV_FRAME_MISSION), z in metres."""
 
     command: int
-    frame: int = FRAME_GLOBAL_RELATIVE_ALT
+    frame: int = MAV_FRAME_GLOBAL_RELATIVE_ALT
     param1: float = 0.0
     param2: float = 0.0
     param3: float = 0.0
