@@ -10,8 +10,9 @@ from typing import Any
 import openai
 from pydantic import ValidationError
 
+from fleet_agent.consistency import gaps
 from fleet_agent.plan import Plan, parse_plan, plan_schema
-from fleet_agent.prompt import system_prompt, user_message
+from fleet_agent.prompt import messages_for
 from fleet_agent.records import ModelConfig, Usage
 
 DECODINGS = ("json_schema", "ollama", "guided", "none")
@@ -27,6 +28,7 @@ class PlanAttempt:
     errors: list[str] = field(default_factory=list)
     usage: Usage = field(default_factory=Usage)
     model_error: str | None = None
+    gaps: int = 0  # what the plan taken leaves out of the request (`fleet_agent.consistency`)
 
 
 def decoding_options(decoding: str, schema: dict[str, Any]) -> dict[str, Any]:
@@ -64,38 +66,48 @@ class Planner:
             timeout=model.timeout_s,
             max_retries=model.max_retries,
         )
-        self.system = system_prompt()
 
     async def plan(self, request: str, fleet: list[str], places: list[str] | None = None) -> PlanAttempt:
-        """A plan for ``request``: one request to the model, and one repair round if it does not validate."""
-        messages: list[dict[str, Any]] = [
-            {"role": "system", "content": self.system},
-            {"role": "user", "content": user_message(request, fleet, places)},
-        ]
+        """A plan for ``request``: one request to the model, and one repair round when the plan does not
+        validate or leaves out a drone or a number of the request (`fleet_agent.consistency`)."""
+        messages: list[dict[str, Any]] = list(messages_for(request, fleet, places))
         attempt = PlanAttempt(plan=None)
         options = decoding_options(self.model.decoding, plan_schema(fleet))
         for round_ in range(2):
             try:
                 reply = await self._complete(messages, options, attempt.usage)
             except openai.OpenAIError as exc:
-                attempt.model_error = f"{type(exc).__name__}: {exc}"
+                attempt.model_error = (
+                    f"the model endpoint {self.model.base_url} (model {self.model.model}) did not answer: "
+                    f"{type(exc).__name__}: {exc}"
+                )
                 return attempt
             attempt.replies.append(reply)
-            try:
-                attempt.plan = parse_plan(_json_part(reply), fleet)
+            problem = self._read(reply, request, fleet, attempt)
+            if problem is None or round_ == 1:
                 return attempt
-            except (ValidationError, ValueError) as exc:
-                attempt.errors.append(describe_errors(exc))
-            if round_ == 0:
-                messages += [
-                    {"role": "assistant", "content": reply},
-                    {
-                        "role": "user",
-                        "content": f"That plan is not valid: {attempt.errors[-1]}. "
-                        "Write the whole plan again, corrected. Plan:",
-                    },
-                ]
+            messages += [
+                {"role": "assistant", "content": reply},
+                {"role": "user", "content": f"{problem}. Write the whole plan again, corrected."},
+            ]
         return attempt
+
+    @staticmethod
+    def _read(reply: str, request: str, fleet: list[str], attempt: PlanAttempt) -> str | None:
+        """Take the reply's plan into ``attempt`` when it validates and leaves out less of the request than
+        the plan already there (a repair that does worse is not taken); what is wrong with it, or None."""
+        try:
+            plan = parse_plan(_json_part(reply), fleet)
+        except (ValidationError, ValueError) as exc:
+            attempt.errors.append(describe_errors(exc))
+            return f"That plan is not valid: {attempt.errors[-1]}"
+        notes = gaps(request, fleet, plan)
+        if attempt.plan is None or len(notes) < attempt.gaps:
+            attempt.plan, attempt.gaps = plan, len(notes)
+        if not notes:
+            return None
+        attempt.errors.append("; ".join(notes))
+        return f"Check the plan against the request: {attempt.errors[-1]}"
 
     async def _complete(self, messages: list[dict[str, Any]], options: dict[str, Any], usage: Usage) -> str:
         response = await self.client.chat.completions.create(

@@ -1,7 +1,10 @@
 """What the model reads before a request: the plan's steps in short, and worked examples.
 
-The text stays the same from request to request (a local server then reuses its cached prefix); the
-fleet's ids come with the request. The examples are written for this prompt, in several languages."""
+The examples are earlier turns of the conversation (a request, then the plan as the assistant's reply, on
+one line): a small model copies the shape of a reply it has seen more faithfully than a described one, and
+a one-line plan costs about half the tokens of an indented one. Everything before the request stays the
+same from request to request (a local server then reuses its cached prefix); the fleet's ids come with the
+request. The examples are written for this prompt, in several languages."""
 
 from __future__ import annotations
 
@@ -9,8 +12,9 @@ import json
 from typing import Any
 
 _STEPS = """\
-You turn a drone operator's request, in any language, into a JSON plan: {"steps": [...]}, steps in the order
-the request gives them. Write only the JSON. Each step has an "action":
+You turn a drone operator's request, in any language, into a JSON plan: {"steps": [...]}, one step for
+each thing the request asks, in the order it gives them. Write only the JSON, on one line.
+Each step has an "action":
 - takeoff {drone, altitude}; land {drone}; return_home {drone}; hold {drone}
 - altitude {drone, altitude}: climb or descend to that height above home
 - move {drone, legs, altitude, origin}: legs are [{distance, direction}] (north, south, east, west, northeast,
@@ -49,9 +53,9 @@ EXAMPLES: list[tuple[str, dict[str, Any]]] = [
     ("delta: go up 40 feet, then come back down",
      {"steps": [{"action": "takeoff", "drone": "delta", "altitude": _m(40, "ft")},
                 {"action": "land", "drone": "delta"}]}),
-    ("Fly echo in a triangle with 30 m sides at 15 m.",
+    ("Fly echo in a triangle with 30 m sides at 15 m, the first side towards the west.",
      {"steps": [{"action": "pattern", "drone": "echo", "shape": "triangle", "size": _m(30),
-                 "altitude": _m(15)}]}),
+                 "heading": "west", "altitude": _m(15)}]}),
     ("Send delta to a spot 20 m east of echo, at 12 m, and leave it there.",
      {"steps": [{"action": "move", "drone": "delta", "legs": [_leg(20, "east")], "altitude": _m(12),
                  "origin": {"kind": "drone", "drone": "echo"}}]}),
@@ -83,13 +87,41 @@ EXAMPLES: list[tuple[str, dict[str, Any]]] = [
 ]  # fmt: skip
 
 
-def system_prompt() -> str:
-    """The system prompt: the steps, then each example as a request and its plan (the examples' fleet is
-    delta and echo, so that the model reads the ids from the request's own fleet)."""
-    shown = "\n".join(
-        f"Fleet: delta, echo\nRequest: {text}\nPlan: {_compact(plan)}" for text, plan in EXAMPLES
-    )
-    return f"{_STEPS}\nExamples:\n{shown}"
+EXAMPLE_FLEET = ["delta", "echo"]
+
+
+def prefix_messages(fleet: list[str] | None = None) -> list[dict[str, str]]:
+    """The system prompt, then each example as a user turn and the assistant's plan. The examples are
+    written for a fleet of delta and echo; they are shown with the fleet's own first two ids instead (a
+    decoder held to the fleet's ids cannot write an example's id, and a small model that wanted to then
+    writes whichever id the grammar lets through). The prefix stays the same while the fleet does."""
+    names = _renaming(fleet or EXAMPLE_FLEET)
+    messages = [{"role": "system", "content": _STEPS}]
+    for text, plan in EXAMPLES:
+        messages.append({"role": "user", "content": _renamed(user_message(text, EXAMPLE_FLEET), names)})
+        messages.append({"role": "assistant", "content": _renamed(_compact(plan), names)})
+    return messages
+
+
+def _renaming(fleet: list[str]) -> dict[str, str]:
+    ids = (list(fleet) * 2)[:2] if fleet else EXAMPLE_FLEET
+    return dict(zip(EXAMPLE_FLEET, ids, strict=True))
+
+
+def _renamed(text: str, names: dict[str, str]) -> str:
+    for old, new in names.items():
+        text = text.replace(old, f"\0{new}").replace(old.capitalize(), f"\0{new.capitalize()}")
+    return text.replace("\0", "")
+
+
+def messages_for(request: str, fleet: list[str], places: list[str] | None = None) -> list[dict[str, str]]:
+    """What the model is sent for a request: the fixed prefix, then the request."""
+    return [*prefix_messages(fleet), {"role": "user", "content": user_message(request, fleet, places)}]
+
+
+def system_prompt(fleet: list[str] | None = None) -> str:
+    """The fixed prefix as one text (its size is what a request costs before its own words)."""
+    return "\n".join(m["content"] for m in prefix_messages(fleet))
 
 
 def _compact(plan: dict[str, Any]) -> str:
@@ -101,4 +133,4 @@ def user_message(request: str, fleet: list[str], places: list[str] | None = None
     if places:
         lines.append(f"Named places: {', '.join(places)}")
     lines.append(f"Request: {request}")
-    return "\n".join(lines) + "\nPlan:"
+    return "\n".join(lines)

@@ -116,9 +116,8 @@ class ScriptedPilot:
         self.plan, self.answer = list(plan), answer
 
     def __call__(self, request: dict[str, Any]) -> ScriptedReply:
-        user = next(
-            (m.get("content") or "" for m in request.get("messages", []) if m.get("role") == "user"), ""
-        )
+        users = [m.get("content") or "" for m in request.get("messages", []) if m.get("role") == "user"]
+        user = users[-1] if users else ""  # the request (the earlier user turns are the examples)
         fleet_line = next((line for line in user.splitlines() if line.startswith("Fleet: ")), "Fleet: ")
         fleet = [d.strip() for d in fleet_line.removeprefix("Fleet: ").split(",") if d.strip()]
         return ScriptedReply(content=json.dumps(plan_of(self.plan, fleet)))

@@ -29,7 +29,7 @@ async def test_the_plan_is_asked_under_the_schema_and_validated(scripted) -> Non
     assert request["response_format"]["type"] == "json_schema"
     assert schema["$defs"]["Takeoff"]["properties"]["drone"]["enum"] == FLEET
     assert request["temperature"] == 0 and request["messages"][-1]["content"].endswith(
-        "Request: alpha up 30 feet\nPlan:"
+        "Request: alpha up 30 feet"
     )
     assert attempt.usage.prompt_tokens is not None and len(attempt.replies) == 1
 
@@ -72,3 +72,29 @@ async def test_an_unreachable_endpoint_is_a_model_error() -> None:
     planner = Planner(ModelConfig("http://127.0.0.1:9/v1", "none", max_retries=0, timeout_s=5))
     attempt = await planner.plan("x", FLEET)
     assert attempt.plan is None and attempt.model_error and "Connection" in attempt.model_error
+    assert "the model endpoint http://127.0.0.1:9/v1 (model none) did not answer" in attempt.model_error
+
+
+def _move(drone: str, origin: dict[str, str]) -> dict[str, object]:
+    return {"action": "move", "drone": drone, "altitude": {"value": 15, "unit": "m"}, "origin": origin,
+            "legs": [{"distance": {"value": 25, "unit": "m"}, "direction": "north"}]}  # fmt: skip
+
+
+async def test_a_plan_that_leaves_out_a_named_drone_is_asked_again_once(scripted) -> None:
+    itself = {"steps": [_move("alpha", {"kind": "here"})]}
+    other = {"steps": [_move("alpha", {"kind": "drone", "drone": "bravo"})]}
+    server = scripted([say(json.dumps(itself)), say(json.dumps(other))])
+    attempt = await _planner(server).plan("alpha 25 m north of bravo at 15 m", FLEET)
+    assert len(server.requests) == 2 and attempt.plan is not None
+    assert attempt.plan.steps[0].origin.drone == "bravo"  # type: ignore[union-attr]
+    repair = server.requests[1]["messages"][-1]["content"]
+    assert "the request names bravo, which no step of the plan does" in repair, repair
+
+
+async def test_a_repair_that_leaves_out_more_is_not_taken(scripted) -> None:
+    first = {"steps": [_move("alpha", {"kind": "here"})]}
+    worse = {"steps": [{"action": "land", "drone": "alpha"}]}
+    server = scripted([say(json.dumps(first)), say(json.dumps(worse))])
+    attempt = await _planner(server).plan("alpha 25 m north of bravo at 15 m", FLEET)
+    assert len(server.requests) == 2 and attempt.plan is not None
+    assert attempt.plan.steps[0].action == "move" and attempt.gaps == 1

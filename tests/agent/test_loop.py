@@ -96,3 +96,14 @@ async def test_no_valid_plan_flies_nothing_and_says_why(toy, scripted) -> None:
     result, _, server = await _turn(toy, scripted, "zulu up", bad, bad)
     assert result.outcome == "invalid_plan" and len(server.requests) == 2 and toy.world.calls == []
     assert "drone 'zulu' is not in the fleet" in (result.final_text or "")
+
+
+async def test_no_answer_from_the_model_endpoint_names_it_and_flies_nothing(toy) -> None:
+    async with McpLink(toy.url, TOKEN) as link:
+        model = ModelConfig("http://127.0.0.1:9/v1", "qwen-test", max_retries=0, timeout_s=5)
+        result = await AgentHost(model, link, await link.list_tools()).run_turn("alpha up 10 m")
+    assert result.outcome == "model_error" and result.final_text is not None
+    assert result.final_text.startswith(
+        "No plan could be made: the model endpoint http://127.0.0.1:9/v1 (model qwen-test) did not answer"
+    ), result.final_text
+    assert [n for n, _ in toy.world.calls if n != "list_drones"] == []

@@ -75,3 +75,10 @@ async def test_the_command_runs_one_turn(toy, scripted, monkeypatch) -> None:
     monkeypatch.delenv("GATEWAY_AGENT_MODEL", raising=False)
     no_model = parser.parse_args(["--mcp-url", toy.url, "x"])
     assert await run_async(no_model, out=out) == 2
+
+
+def test_the_image_ships_the_agent_with_its_extra() -> None:
+    """deploy/Dockerfile copies the package, installs the [agent] extra and checks the command starts."""
+    text = (PACKAGE.parent / "deploy" / "Dockerfile").read_text()
+    assert "COPY fleet_agent ./fleet_agent" in text and "pip install .[agent]" in text
+    assert "fleet-gateway agent --help" in text

@@ -1,0 +1,45 @@
+"""A valid plan read against its request by the fleet's ids and the numbers, never by words."""
+
+from __future__ import annotations
+
+from fleet_agent.consistency import gaps
+from fleet_agent.plan import parse_plan
+from fleet_agent.prompt import messages_for, prefix_messages
+
+FLEET = ["alpha", "bravo", "charlie"]
+
+
+def _plan(*steps: dict[str, object]):
+    return parse_plan({"steps": list(steps)}, FLEET)
+
+
+def _up(drone: str, value: float, unit: str = "m") -> dict[str, object]:
+    return {"action": "takeoff", "drone": drone, "altitude": {"value": value, "unit": unit}}
+
+
+def test_a_plan_that_carries_the_request_has_no_gaps() -> None:
+    plan = _plan(_up("charlie", 0.05, "km"), {"action": "land", "drone": "charlie"})
+    assert gaps("Charlie sube a 0,05 km y aterriza.", FLEET, plan) == []
+
+
+def test_a_drone_left_out_or_added_and_a_number_dropped_are_told() -> None:
+    plan = _plan(_up("alpha", 25))
+    assert gaps("Put bravo 25 m north of charlie at 15 m", FLEET, plan) == [
+        "the request names bravo, which no step of the plan does",
+        "the request names charlie, which no step of the plan does",
+        "the plan has alpha, which the request does not name",
+        "the request gives 15, which no step of the plan has",
+    ]
+
+
+def test_a_request_that_names_no_drone_is_not_read_for_ids() -> None:
+    plan = _plan(_up("alpha", 150), _up("bravo", 150), _up("charlie", 150))
+    assert gaps("Send all three up to 150 m.", FLEET, plan) == []
+
+
+def test_the_examples_are_shown_with_the_fleets_own_ids_and_the_prefix_stays_put() -> None:
+    shown = " ".join(m["content"] for m in prefix_messages(["hawk", "kite", "owl"]))
+    assert "delta" not in shown.lower() and "echo" not in shown.lower()
+    assert "Hawk" in shown and '"drone":"kite"' in shown
+    first, second = messages_for("a", FLEET), messages_for("b", FLEET)
+    assert first[:-1] == second[:-1] and first[-1]["content"].endswith("Request: a")
