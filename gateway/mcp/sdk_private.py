@@ -25,18 +25,19 @@ from collections.abc import Awaitable, Callable
 from typing import Any
 
 from mcp.server._streamable_http_modern import handle_modern_request
-from mcp.server.mcpserver import MCPServer
 from mcp.server.mcpserver.tools import Tool
 from mcp.server.streamable_http_manager import StreamableHTTPSessionManager
 from starlette.types import Receive, Scope, Send
 
+from gateway.mcp.sdk_types import AnyServer
 
-def tools(server: MCPServer[Any]) -> list[Tool]:
+
+def tools(server: AnyServer) -> list[Tool]:
     """The registered tools, as the server keeps them (mutable)."""
     return list(server._tool_manager.list_tools())
 
 
-def tool(server: MCPServer[Any], name: str) -> Tool:
+def tool(server: AnyServer, name: str) -> Tool:
     found = server._tool_manager.get_tool(name)
     if found is None:
         raise KeyError(f"no tool named {name!r} is registered")
@@ -50,7 +51,7 @@ def replace_run(tool: Tool, run: Callable[..., Awaitable[Any]]) -> None:
 
 
 def add_request_handler(
-    server: MCPServer[Any], method: str, params_type: type[Any], handler: Callable[..., Awaitable[Any]]
+    server: AnyServer, method: str, params_type: type[Any], handler: Callable[..., Awaitable[Any]]
 ) -> None:
     """A handler for a request method the ``MCPServer`` layer does not expose."""
     server._lowlevel_server.add_request_handler(method, params_type, handler)
