@@ -17,18 +17,25 @@ from sqlalchemy.pool import ConnectionPoolEntry
 if TYPE_CHECKING:
     from alembic.config import Config
 
-# The Alembic scripts ship inside the package (package data, ``gateway/migrations``), so they are found
-# wherever pip puts the package: a virtual environment, ``--user``, a distribution's system pip, a
-# ``--target`` directory or an editable checkout.
-MIGRATIONS_DIR = Path(__file__).resolve().parents[1] / "migrations"
+# The Alembic scripts: ``migrations/`` at the top of a checkout, installed as the package
+# ``gateway.migrations`` (setup.py maps it), so a wheel carries them inside ``gateway`` wherever pip puts
+# it: a virtual environment, ``--user``, a distribution's system pip, a ``--target`` directory, the image.
+# A checkout (editable install, or run from its root) has them beside the package.
+PACKAGE_DIR = Path(__file__).resolve().parents[1]
+INSTALLED_MIGRATIONS = PACKAGE_DIR / "migrations"
+CHECKOUT_MIGRATIONS = PACKAGE_DIR.parent / "migrations"
 
 
 def migrations_dir() -> Path:
-    if (MIGRATIONS_DIR / "env.py").is_file():
-        return MIGRATIONS_DIR
+    """The directory of the Alembic scripts (``env.py``, ``versions/``) this package runs with."""
+    if (INSTALLED_MIGRATIONS / "env.py").is_file():
+        return INSTALLED_MIGRATIONS
+    # beside the package only in a checkout: a site-packages may hold another project's migrations/
+    if (PACKAGE_DIR.parent / "pyproject.toml").is_file() and (CHECKOUT_MIGRATIONS / "env.py").is_file():
+        return CHECKOUT_MIGRATIONS
     raise RuntimeError(
-        f"the database migrations are missing: {MIGRATIONS_DIR} has no env.py (a damaged install? "
-        "reinstall fleet-gateway)"
+        f"the database migrations are missing: neither {INSTALLED_MIGRATIONS} (an installed package) nor "
+        f"{CHECKOUT_MIGRATIONS} (a checkout) has env.py (a damaged install? reinstall fleet-gateway)"
     )
 
 

@@ -1,8 +1,9 @@
 """SQLAlchemy 2.x ORM tables of the gateway.
 
-Alembic owns the schema (``gateway/migrations/``); these classes describe it for the store's queries and
-for ``alembic revision --autogenerate``. Types are portable (SQLite and PostgreSQL): JSON through
-``sqlalchemy.JSON``, datetimes always timezone-aware UTC through :class:`UTCDateTime`.
+Alembic owns the schema (``migrations/``, installed as ``gateway.migrations``); these classes describe it
+for the store's queries and for ``alembic revision --autogenerate``. Types are portable (SQLite and
+PostgreSQL): JSON through ``sqlalchemy.JSON``, datetimes always timezone-aware UTC through
+:class:`UTCDateTime`.
 """
 
 from __future__ import annotations
