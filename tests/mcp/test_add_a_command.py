@@ -15,8 +15,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-COPIED = ("gateway", "tests", "scripts", "docs", "fleet_agent", "bench", "deploy")
-COPIED_FILES = ("pyproject.toml", "CONTRIBUTING.md", "README.md", "alembic.ini")
+COPIED = ("gateway", "migrations", "tests", "scripts", "docs", "fleet_agent", "bench", "deploy")
+COPIED_FILES = ("pyproject.toml", "setup.py", "CONTRIBUTING.md", "README.md", "alembic.ini")
 
 VERB = '''
     @command(tool=Tool("set_light", "navigation", idempotent=True, says="{drone_id}: {message}"))
