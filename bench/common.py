@@ -107,9 +107,13 @@ def machine_line(info: dict[str, str]) -> str:
 
 DOC_HEADER = """# Benchmarks
 
-Figures printed by the scripts in `bench/` (run them all with `make bench`; each has `--full` for the long
-version and `--write` to update its section here). They are measurements on one machine at one time, not
-guarantees: the machine description is given with each section. Tests never assert timings.
+The current figures: for each measured thing its latest figure, the command that prints it, the machine
+and the date. Earlier measurements are in this file's git history (`git log -p docs/benchmarks.md`).
+
+## Current figures
+
+| what | figure | target | command | machine, date (load) |
+|---|---|---|---|---|
 """
 
 
@@ -124,7 +128,10 @@ def write_section(name: str, title: str, body: str, info: dict[str, str]) -> Non
     else:
         text = text.rstrip() + "\n\n" + block + "\n"
     DOCS.write_text(text if text.endswith("\n") else text + "\n")
-    print(f"wrote section {name!r} of {DOCS.relative_to(ROOT)}")
+    print(
+        f"wrote section {name!r} of {DOCS.relative_to(ROOT)}; its row in the table of current figures is "
+        "changed by hand (the page keeps only the newest figure of each thing)"
+    )
 
 
 def table(headers: Sequence[str], rows: Iterable[Sequence[Any]]) -> str:

@@ -7,7 +7,11 @@ gateway's CPU (percent of one core) and RSS, the RSS of each sidecar and their C
 simulator's CPU, the whole machine's CPU use, telemetry freshness (``age_s`` of the cached position
 that ``get_position`` returns, sampled round robin over the drones at a fixed call rate, p50/p99, and how
 many answers were flagged stale) and the latency of listing the fleet (``list_drones`` when the fleet
-toolset exists, else a read of the ``fleet://drones`` resource).
+toolset exists, else a read of the ``fleet://drones`` resource). Then what could run out (the gateway's
+open files against its limit, the gateway's and the sidecars' threads, the sidecars' private memory, the
+machine's available memory) and, unless ``--no-estop``, the emergency stop: every drone takes off, then
+one ``POST /api/v1/fleet/stop`` (action land); how long until it answers and until every autopilot is in
+LAND, as the simulator (a process of its own) says.
 
 The simulator runs at real time (speed-up 1), so stream rates are what a real vehicle sends. Default: 10
 drones; ``--full``: 10, 25 and 50; ``--sizes`` picks others. This is the heavy benchmark: on a shared
@@ -18,7 +22,9 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import os
 import time
+from pathlib import Path
 from typing import Any
 
 import common
@@ -35,6 +41,10 @@ AGE_LIMIT_S = 1.0
 GW_CPU_LIMIT = 80.0
 MACHINE_CPU_LIMIT = 90.0
 READ_LIMIT_S = 0.25
+#: the emergency stop: every drone takes off to this height first, then the fleet stop (action land)
+ESTOP_ALT_M = 5.0
+ESTOP_LIMIT_S = 3.0
+ESTOP_POLL_S = 0.05
 
 
 def machine_cpu() -> tuple[float, float]:
@@ -117,7 +127,99 @@ async def listing_cost(gw: common.Gateway, mcp: Any, have_list: bool, idle_pct: 
     }
 
 
-async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[str, Any]:
+async def sim_vehicles(http: Any, control_url: str) -> list[dict[str, Any]]:
+    """Every simulated vehicle's true state, from the simulator's control API."""
+    r = await http.get(f"{control_url}/vehicles")
+    r.raise_for_status()
+    vehicles: list[dict[str, Any]] = r.json()
+    return vehicles
+
+
+async def emergency_stop(gw: common.Gateway, sim_: common.Sim, mcp: Any, n: int) -> dict[str, Any]:
+    """Every drone takes off (REST, one takeoff each, all at once) to ``ESTOP_ALT_M``; once the gateway
+    sees every one of them in the air, the fleet stop (``POST /api/v1/fleet/stop``, action land, the
+    fleet locked first): the time until it answers and, read from the simulator itself (its control
+    API, polled every ``ESTOP_POLL_S``), until every autopilot is in LAND."""
+    import httpx
+
+    out: dict[str, Any] = {"estop_airborne": 0, "estop_answer_s": None, "estop_all_s": None}
+    sem = asyncio.Semaphore(25)
+
+    async def take_off(drone: str) -> bool:
+        async with sem:
+            r = await gw.http.post(f"/api/v1/vehicles/{drone}/takeoff", json={"alt_rel_m": ESTOP_ALT_M})
+            return r.status_code == 200
+
+    accepted = await asyncio.gather(*(take_off(d) for d in gw.drone_ids))
+    out["estop_takeoffs_accepted"] = sum(accepted)
+    async with httpx.AsyncClient(timeout=30) as sim_http:
+        deadline = time.monotonic() + 60.0 + 0.5 * n
+        while time.monotonic() < deadline:
+            up = [v for v in await sim_vehicles(sim_http, sim_.control_url) if v["rel_alt_m"] > 1.0]
+            out["estop_airborne"] = len(up)
+            if len(up) == n:
+                break
+            await asyncio.sleep(1.0)
+        # the gateway skips a drone it reads as on the ground: wait until it sees them all in the air
+        while time.monotonic() < deadline:
+            rows = common.structured(await mcp.call_tool("list_drones", {})).get("drones", [])
+            if sum(1 for row in rows if row.get("in_air")) >= out["estop_airborne"]:
+                break
+            await asyncio.sleep(0.5)
+        t0 = time.perf_counter()
+        r = await gw.http.post("/api/v1/fleet/stop", json={"action": "land"}, timeout=120)
+        out["estop_answer_s"] = time.perf_counter() - t0
+        body = r.json() if r.status_code == 200 else {"results": []}
+        outcomes: dict[str, int] = {}
+        for item in body.get("results", []):
+            outcomes[item["outcome"]] = outcomes.get(item["outcome"], 0) + 1
+        out["estop_outcomes"] = outcomes
+        landing = 0
+        while time.perf_counter() - t0 < 30.0:
+            modes = [v["mode"] for v in await sim_vehicles(sim_http, sim_.control_url)]
+            landing = sum(1 for m in modes if m == "LAND")
+            if landing >= out["estop_airborne"]:
+                out["estop_all_s"] = time.perf_counter() - t0
+                break
+            await asyncio.sleep(ESTOP_POLL_S)
+        out["estop_landing"] = landing
+    return out
+
+
+def resources(gw_pid: int, sidecars: list[int]) -> dict[str, Any]:
+    """What the size uses of what can run out: the gateway's file descriptors (and its limit), threads
+    (the gateway's, all sidecars'), the sidecars' private memory and the machine's available memory."""
+
+    def count(path: str) -> int:
+        try:
+            return len(os.listdir(path))
+        except OSError:
+            return 0
+
+    def fd_limit(pid: int) -> str:
+        with contextlib.suppress(OSError):
+            for line in Path(f"/proc/{pid}/limits").read_text().splitlines():
+                if line.startswith("Max open files"):
+                    return line.split()[3]
+        return "?"
+
+    mem_available = 0
+    with contextlib.suppress(OSError, IndexError, ValueError):
+        for line in Path("/proc/meminfo").read_text().splitlines():
+            if line.startswith("MemAvailable:"):
+                mem_available = int(line.split()[1]) // 1024
+    return {
+        "gw_fds": count(f"/proc/{gw_pid}/fd"),
+        "gw_fd_limit": fd_limit(gw_pid),
+        "gw_threads": count(f"/proc/{gw_pid}/task"),
+        "sc_threads": sum(count(f"/proc/{p}/task") for p in sidecars),
+        "mem_available_mib": mem_available,
+    }
+
+
+async def measure_size(
+    n: int, window_s: float, ready_timeout_s: float, with_estop: bool = True
+) -> dict[str, Any]:
     with common.workdir(f"scale{n}") as wd, common.workdir(f"scale{n}-empty") as wd_empty:
         async with (
             common.sim(n, speedup=1.0, workdir=wd) as sim_,
@@ -172,7 +274,9 @@ async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[
                 await asyncio.gather(reader(), lister())
                 busy1, total1 = machine_cpu()
                 listing = await listing_cost(gw, mcp, have_list, idle["idle_gw_pct_per_drone"] * n)
+                stop = await emergency_stop(gw, sim_, mcp, n) if with_estop and have_list else {}
                 sc_rss = [common.rss_kb(p) for p in sidecars]
+                used = resources(gw.pid, sidecars)
                 sc_mem = [common.smaps_kb(p) for p in sidecars]
                 result = {
                     "n": n,
@@ -200,6 +304,8 @@ async def measure_size(n: int, window_s: float, ready_timeout_s: float) -> dict[
                     "list_kind": "list_drones" if have_list else "fleet://drones resource",
                     **idle,
                     **listing,
+                    **used,
+                    **stop,
                     "load": _load(),
                 }
     return result
@@ -224,6 +330,10 @@ def overload_signs(r: dict[str, Any]) -> list[str]:
         signs.append(f"gateway at {r['gw_cpu']:.0f}% of a core")
     if r["machine_cpu"] > MACHINE_CPU_LIMIT:
         signs.append(f"machine CPU {r['machine_cpu']:.0f}%")
+    if r.get("estop_all_s") is None and "estop_airborne" in r:
+        signs.append("the emergency stop did not reach every drone within 30 s")
+    elif r.get("estop_all_s", 0.0) > ESTOP_LIMIT_S:
+        signs.append(f"emergency stop {r['estop_all_s']:.1f} s (> {ESTOP_LIMIT_S:g} s)")
     if common.percentile(r["read_lat"], 99) > READ_LIMIT_S:
         signs.append(f"get_position p99 {common.ms(common.percentile(r['read_lat'], 99))} ms")
     return signs
@@ -272,6 +382,30 @@ def render(results: list[dict[str, Any]], window_s: float) -> str:
             r["load"],
         ]
         for r in results
+    ]
+    used_rows = [
+        [
+            r["n"],
+            f"{r['gw_fds']} / {r['gw_fd_limit']}",
+            r["gw_threads"],
+            r["sc_threads"],
+            f"{r['sc_private_mb'] * r['n']:.0f}",
+            r["mem_available_mib"],
+        ]
+        for r in results
+        if "gw_fds" in r
+    ]
+    stop_rows = [
+        [
+            r["n"],
+            f"{r['estop_airborne']}/{r['n']} ({r['estop_takeoffs_accepted']} takeoffs accepted)",
+            "-" if r["estop_answer_s"] is None else f"{r['estop_answer_s']:.2f}",
+            "-" if r["estop_all_s"] is None else f"{r['estop_all_s']:.2f}",
+            f"{r['estop_landing']}/{r['estop_airborne']}",
+            ", ".join(f"{k} {v}" for k, v in sorted(r["estop_outcomes"].items())) or "-",
+        ]
+        for r in results
+        if "estop_airborne" in r
     ]
     kinds = {r["list_kind"] for r in results}
     lines = [
@@ -333,6 +467,45 @@ def render(results: list[dict[str, Any]], window_s: float) -> str:
             list_rows,
         ),
     ]
+    if used_rows:
+        lines += [
+            "",
+            "What can run out, after the window: the gateway's open files and their limit, its threads, the "
+            "sidecars' threads and private memory, and the machine's available memory.",
+            "",
+            common.table(
+                [
+                    "drones",
+                    "gateway open files / limit",
+                    "gateway threads",
+                    "all sidecars' threads",
+                    "all sidecars' private memory MiB",
+                    "machine memory available MiB",
+                ],
+                used_rows,
+            ),
+        ]
+    if stop_rows:
+        lines += [
+            "",
+            f"The emergency stop: every drone takes off to {ESTOP_ALT_M:g} m (one REST takeoff each, all at "
+            "once); once the gateway reads every one in the air, `POST /api/v1/fleet/stop` with action land "
+            "(the fleet is locked first). The time until the call answers, and until every autopilot is in "
+            f"LAND as the simulator itself says (its control API polled every {ESTOP_POLL_S * 1000:.0f} ms; "
+            f"target: all within {ESTOP_LIMIT_S:g} s).",
+            "",
+            common.table(
+                [
+                    "drones",
+                    "airborne before the stop",
+                    "fleet stop answered, s",
+                    "every autopilot in LAND, s",
+                    "in LAND / airborne",
+                    "outcomes of the stop",
+                ],
+                stop_rows,
+            ),
+        ]
     return "\n".join(lines)
 
 
@@ -340,6 +513,9 @@ def main() -> int:
     p = common.parser(__doc__.splitlines()[0])
     p.add_argument("--sizes", default=None, help="comma-separated fleet sizes (default 10; --full 10,25,50)")
     p.add_argument("--window", type=float, default=None, help="measuring window per size, s")
+    p.add_argument(
+        "--no-estop", action="store_true", help="leave out the emergency stop (the drones stay on the ground)"
+    )
     args = p.parse_args()
     sizes = [int(x) for x in (args.sizes or ("10,25,50" if args.full else "10")).split(",")]
     window = args.window or (FULL_WINDOW_S if args.full else WINDOW_S)
@@ -349,7 +525,9 @@ def main() -> int:
     for n in sizes:
         print(f"-- {n} drones", flush=True)
         try:
-            r = asyncio.run(measure_size(n, window, ready_timeout_s=90.0 + 3.0 * n))
+            r = asyncio.run(
+                measure_size(n, window, ready_timeout_s=90.0 + 3.0 * n, with_estop=not args.no_estop)
+            )
         except Exception as exc:  # a size that breaks the setup is a result too
             print(f"{n} drones: failed: {type(exc).__name__}: {exc}", flush=True)
             failed.append(f"{n} drones: {type(exc).__name__}: {str(exc)[:300]}")

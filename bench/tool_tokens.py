@@ -154,7 +154,9 @@ def verdict(value: int, target: int) -> str:
     return f"under the target by {target - value}" if value < target else f"**over by {value - target}**"
 
 
-def render(m: dict[str, Any]) -> str:
+def render(m: dict[str, Any], per_tool: bool = True) -> str:
+    """The figures as markdown; ``per_tool=False`` leaves out the table of every tool (printed, never
+    written to docs/benchmarks.md, which keeps only the current figures)."""
     lines = [
         f"Tokenizer: tiktoken `{ENCODING}` (cl100k_base). A tool = compact JSON of name, description and "
         "inputSchema; outputSchema counted apart. Source: the server's own `tools/list`.",
@@ -206,6 +208,8 @@ def render(m: dict[str, Any]) -> str:
         f"bounds from the schemas would save {saved_bounds} tokens; collapsing `anyOf: [X, null]` of "
         f"optional parameters to X would save {saved_null}.",
     ]
+    if not per_tool:
+        return "\n".join(lines)
     lines += [
         "",
         "Per tool, most expensive first:",
@@ -232,10 +236,9 @@ def main() -> int:
     logging.disable(logging.INFO)
     with contextlib.redirect_stderr(io.StringIO()):
         m = asyncio.run(measure())
-    text = render(m)
-    print(text)
+    print(render(m))
     if args.write:
-        common.write_section("tokens", "Context cost of the tool list", text, info)
+        common.write_section("tokens", "Context cost of the tool list", render(m, per_tool=False), info)
     return 0
 
 

@@ -6,8 +6,6 @@ who has to act on it. REST maps them to JSON error bodies, MCP to tool errors.
 
 from __future__ import annotations
 
-from typing import Any
-
 from gateway.util.text import printable
 
 
@@ -15,13 +13,13 @@ class GatewayError(Exception):
     code = "gateway_error"
     http_status = 500
 
-    def __init__(self, message: str, **details: Any) -> None:
+    def __init__(self, message: str, **details: object) -> None:
         super().__init__(message)
         self.message = message
         self.details = details
 
-    def to_dict(self) -> dict[str, Any]:
-        body: dict[str, Any] = {"code": self.code, "message": self.message}
+    def to_dict(self) -> dict[str, object]:
+        body: dict[str, object] = {"code": self.code, "message": self.message}
         if self.details:
             body["details"] = self.details
         return body
@@ -95,7 +93,7 @@ class SafetyRefusal(GatewayError):
     code = "safety_refusal"
     http_status = 403
 
-    def __init__(self, rule: str, message: str, **details: Any) -> None:
+    def __init__(self, rule: str, message: str, **details: object) -> None:
         super().__init__(message, rule=rule, **details)
         self.rule = rule
 

@@ -17,7 +17,7 @@ import tempfile
 import time
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, BinaryIO
 
 import httpx
 
@@ -205,7 +205,7 @@ class LocalStack:
             self._tmp.cleanup()
 
 
-def _open_log(path: Path) -> Any:
+def _open_log(path: Path) -> BinaryIO:
     """The child's log file (a quick local open; the child inherits it and this side closes it)."""
     return open(path, "wb")
 

@@ -1,9 +1,11 @@
-"""List the import cycles among gateway's modules.
+"""List the import cycles among gateway's modules, and with --longest its longest import chain.
 
 Every `import`/`from` statement counts: top level, under `if TYPE_CHECKING:` and inside functions.
-A cycle is a strongly connected group of two or more modules (or one that imports itself).
+A cycle is a strongly connected group of two or more modules (or one that imports itself). A chain is
+a path of imports, each module importing the next; without cycles the longest one is well defined.
 
-    python scripts/import_cycles.py [package_dir]     # prints each cycle, then "cycles: N"
+    python scripts/import_cycles.py [package_dir]              # prints each cycle, then "cycles: N"
+    python scripts/import_cycles.py --longest [package_dir]    # then the longest chain, one module a line
 """
 
 from __future__ import annotations
@@ -88,8 +90,25 @@ def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
     return sorted(groups)
 
 
+def longest_chain(graph: dict[str, set[str]]) -> list[str]:
+    """The longest path of imports (the graph must have no cycle); ties go to the first in name order."""
+    memo: dict[str, list[str]] = {}
+
+    def from_(v: str) -> list[str]:
+        if v not in memo:
+            tails = [from_(w) for w in sorted(graph[v])]
+            memo[v] = [v, *max(tails, key=len, default=[])]
+        return memo[v]
+
+    sys.setrecursionlimit(10_000)
+    return max((from_(v) for v in sorted(graph)), key=len, default=[])
+
+
 def main() -> int:
-    root = Path(sys.argv[1] if len(sys.argv) > 1 else "gateway").resolve()
+    args = sys.argv[1:]
+    longest = "--longest" in args
+    args = [a for a in args if a != "--longest"]
+    root = Path(args[0] if args else "gateway").resolve()
     files = {module_name(p, root): p for p in root.rglob("*.py")}
     modules = set(files)
     graph = {name: imports_of(path, name, modules) for name, path in files.items()}
@@ -100,6 +119,11 @@ def main() -> int:
         for name in group:
             print(f"  {name} -> {', '.join(sorted(graph[name] & members))}")
     print(f"cycles: {len(found)}")
+    if longest and not found:
+        chain = longest_chain(graph)
+        print(f"longest import chain: {len(chain)} modules")
+        for name in chain:
+            print(f"  {name}")
     return 1 if found else 0
 
 

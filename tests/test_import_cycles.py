@@ -10,9 +10,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 
 
-def run(package: Path) -> subprocess.CompletedProcess[str]:
+def run(package: Path, *options: str) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
-        [sys.executable, "scripts/import_cycles.py", str(package)],
+        [sys.executable, "scripts/import_cycles.py", *options, str(package)],
         cwd=ROOT,
         capture_output=True,
         text=True,
@@ -44,3 +44,20 @@ def test_the_script_sees_cycles_through_type_checking_and_function_imports(tmp_p
     assert "pkg.a -> pkg.b" in result.stdout and "pkg.b -> pkg.a" in result.stdout
     assert "pkg.alone" not in result.stdout
     assert result.stdout.strip().endswith("cycles: 2")
+
+
+def test_the_script_prints_the_longest_chain(tmp_path: Path) -> None:
+    pkg = tmp_path / "pkg"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text("")
+    (pkg / "top.py").write_text("from pkg import mid\nfrom pkg import low\n")
+    (pkg / "mid.py").write_text(
+        "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from pkg.low import f\n"
+    )
+    (pkg / "low.py").write_text("def f():\n    from pkg import base\n")
+    (pkg / "base.py").write_text("")
+    (pkg / "side.py").write_text("import pkg.base\n")
+    result = run(pkg, "--longest")
+    assert result.returncode == 0, result.stdout + result.stderr
+    chain = result.stdout.split("longest import chain: 4 modules\n")[1].split()
+    assert chain == ["pkg.top", "pkg.mid", "pkg.low", "pkg.base"]

@@ -79,7 +79,10 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> Path:
     (tmp / "dist").mkdir()
     sdist = _build(python, "build_sdist", source, tmp / "dist")
     with tarfile.open(sdist) as archive:
-        archive.extractall(tmp / "unpacked", filter="data")
+        if hasattr(tarfile, "data_filter"):  # Python >= 3.11.4
+            archive.extractall(tmp / "unpacked", filter="data")
+        else:
+            archive.extractall(tmp / "unpacked")  # our own sdist, just built
     (unpacked,) = (tmp / "unpacked").iterdir()
     wheel = _build(python, "build_wheel", unpacked, tmp / "dist")
     _checked([str(python), "-m", "pip", "install", "--quiet", "--no-deps", "--no-index", str(wheel)], tmp)

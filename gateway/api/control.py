@@ -17,13 +17,7 @@ from pydantic import BaseModel, ConfigDict, Field, StrictBool
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import CommanderDep, CommandVehicleId, GatewayDep, Principal, PrincipalDep
 from gateway.fleet.commands.operator_verbs import STOP_LOCK_REASON
-from gateway.fleet.operations.views import (
-    STOP_OUTCOME_DOC,
-    LockResult,
-    OperationView,
-    StopOutcome,
-    StopOutcomeKind,
-)
+from gateway.fleet.operations.views import LockResult, OperationView, StopOutcome, StopReport
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.geofence import FLEET
 from gateway.fleet.policy.operator_locks import MAX_REASON_CHARS, Lock
@@ -72,15 +66,10 @@ class LockList(BaseModel):
     items: list[LockOut]
 
 
-class CommandOut(BaseModel):
+class CommandOut(StopReport):
     """What an operator command did to one drone (`StopOutcome`, with the REST API's ``vehicle_id``)."""
 
     vehicle_id: str
-    action: str
-    outcome: StopOutcomeKind = Field(description=STOP_OUTCOME_DOC)
-    message: str | None = Field(None, description="Why, and for taking_over what is being done about it.")
-    superseded_operation: str | None = None
-    operation_id: str | None = Field(None, description="The tracked operation (GET /api/v1/operations).")
 
     @classmethod
     def of_operation(cls, op: OperationView, action: str) -> CommandOut:

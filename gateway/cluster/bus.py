@@ -26,8 +26,8 @@ import contextlib
 import json
 import logging
 import time
-from collections.abc import Awaitable, Callable
-from typing import Any
+from collections.abc import Awaitable, Callable, Mapping
+from typing import Any, TypedDict
 
 import nats
 from nats.aio.client import Client
@@ -35,6 +35,7 @@ from nats.aio.msg import Msg
 from nats.aio.subscription import Subscription
 
 from gateway.errors import GatewayError, NoOwner, NotRun, OwnerLost, OwnerTimeout
+from gateway.fleet.operations.routing import ProgressMessage
 
 log = logging.getLogger("gateway.cluster.bus")
 
@@ -45,9 +46,26 @@ KIND = "Fleet-Kind"
 CLOCK_MARGIN_S = 0.5
 #: how often a caller waiting on an accepted call checks that its node still owns the vehicle
 OWNER_CHECK_S = 0.5
-ProgressSink = Callable[[dict[str, Any]], Awaitable[None]]
-#: ``handler(call name, arguments, caller, progress)`` -> JSON-serialisable result
-CallHandler = Callable[[str, dict[str, Any], dict[str, Any], ProgressSink], Awaitable[Any]]
+ProgressSink = Callable[[ProgressMessage], Awaitable[None]]
+#: ``handler(call name, arguments, caller (a Caller's JSON), progress)`` -> JSON-serialisable result
+CallHandler = Callable[[str, dict[str, Any], Mapping[str, object], ProgressSink], Awaitable[Any]]
+
+
+class ErrorBody(TypedDict, total=False):
+    """A GatewayError as a call's answer carries it (`error_body`; `rebuild_error` takes whatever of it
+    came)."""
+
+    code: str
+    message: str
+    details: dict[str, object]
+    status: int
+
+
+async def no_progress(_update: ProgressMessage) -> None:
+    """The progress sink of a call run for no one who follows it."""
+    return None
+
+
 #: ``check(epoch the caller saw)`` raises when the call must not run here (a stale epoch)
 CallCheck = Callable[[int | None], None]
 
@@ -80,7 +98,7 @@ def _error_classes() -> dict[str, type[GatewayError]]:
     return found
 
 
-def error_body(exc: GatewayError) -> dict[str, Any]:
+def error_body(exc: GatewayError) -> ErrorBody:
     return {
         "code": exc.code,
         "message": exc.message,
@@ -89,13 +107,13 @@ def error_body(exc: GatewayError) -> dict[str, Any]:
     }
 
 
-def rebuild_error(body: dict[str, Any]) -> GatewayError:
+def rebuild_error(body: ErrorBody) -> GatewayError:
     """The error a remote node raised, as the same class here (a plain GatewayError if unknown)."""
     code = str(body.get("code") or "gateway_error")
     cls = _error_classes().get(code, GatewayError)
     exc = cls.__new__(cls)
     raw = body.get("details")
-    details: dict[str, Any] = raw if isinstance(raw, dict) else {}
+    details: dict[str, object] = raw if isinstance(raw, dict) else {}
     GatewayError.__init__(exc, str(body.get("message") or code), **details)
     if "rule" in details:
         exc.rule = details["rule"]  # type: ignore[attr-defined]
@@ -223,7 +241,7 @@ class Bus:
         vehicle_id: str,
         name: str,
         arguments: dict[str, Any],
-        caller: dict[str, Any],
+        caller: Mapping[str, object],
         timeout_s: float,
         on_progress: ProgressSink | None = None,
         *,
@@ -290,30 +308,38 @@ class Bus:
                     msg = await asyncio.wait_for(replies.get(), wait_s)
                 except TimeoutError:
                     continue
-                headers = msg.headers or {}
-                if headers.get("Status") == "503":
-                    raise NoOwner(
-                        f"no node owns drone '{vehicle_id}' right now (its node was lost and a takeover is "
-                        f"under way, or no live node may own it): {name} was not run; retry in a few seconds",
-                        vehicle_id=vehicle_id,
-                    )
-                kind = headers.get(KIND)
-                if kind == "accepted":
-                    accepted = True
-                    continue
-                reply = json.loads(msg.data) if msg.data else {}
-                if kind == "progress":
-                    accepted = True
-                    if on_progress is not None:
-                        with contextlib.suppress(Exception):  # progress is a courtesy
-                            await on_progress(reply)
-                    continue
-                if reply.get("ok"):
-                    return reply.get("result")
-                raise rebuild_error(reply.get("error") or {})
+                answer = await self._call_reply(msg, vehicle_id, name, on_progress)
+                accepted = True
+                if answer is not None:
+                    return answer[0]
         finally:
             with contextlib.suppress(Exception):
                 await sub.unsubscribe()
+
+    async def _call_reply(
+        self, msg: Msg, vehicle_id: str, name: str, on_progress: ProgressSink | None
+    ) -> tuple[Any] | None:
+        """One message on a call's inbox: None when it says the owner accepted the call or reports its
+        progress; else the owner's result (in a 1-tuple), or its error raised here."""
+        headers = msg.headers or {}
+        if headers.get("Status") == "503":
+            raise NoOwner(
+                f"no node owns drone '{vehicle_id}' right now (its node was lost and a takeover is "
+                f"under way, or no live node may own it): {name} was not run; retry in a few seconds",
+                vehicle_id=vehicle_id,
+            )
+        kind = headers.get(KIND)
+        if kind == "accepted":
+            return None
+        reply = json.loads(msg.data or b"{}")
+        if kind == "progress":
+            if on_progress is not None:
+                with contextlib.suppress(Exception):  # progress is a courtesy
+                    await on_progress(reply)
+            return None
+        if reply.get("ok"):
+            return (reply.get("result"),)
+        raise rebuild_error(reply.get("error") or ErrorBody())
 
     async def serve_calls(
         self,
@@ -333,7 +359,7 @@ class Bus:
 
         return await self.subscribe(subject or call_subject(vehicle_id), on_message, queue="owner")
 
-    async def _reply(self, reply_to: str | None, kind: str, body: dict[str, Any]) -> None:
+    async def _reply(self, reply_to: str | None, kind: str, body: Mapping[str, object]) -> None:
         if reply_to:
             await self.publish(reply_to, json.dumps(body, default=str).encode(), headers={KIND: kind})
 
@@ -368,7 +394,7 @@ class Bus:
             else:
                 await self._reply(reply_to, "accepted", {})
 
-                async def progress(update: dict[str, Any]) -> None:
+                async def progress(update: ProgressMessage) -> None:
                     await self._reply(reply_to, "progress", update)
 
                 try:

@@ -13,6 +13,7 @@ import contextlib
 import logging
 import time
 import uuid
+from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from nats.aio.subscription import Subscription
@@ -113,7 +114,7 @@ class FencedStops:
 
     def _answer(self, vehicle_id: str) -> CallHandler:
         async def handle(
-            name: str, arguments: dict[str, Any], caller: dict[str, Any], progress: ProgressSink
+            name: str, arguments: dict[str, Any], caller: Mapping[str, object], progress: ProgressSink
         ) -> Any:
             return await self.stop_directly(vehicle_id, name, Caller.from_dict(caller))
 

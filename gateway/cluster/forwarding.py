@@ -13,12 +13,13 @@ Both ends of one mechanism (`gateway.fleet.operations.routing` says what crosses
 from __future__ import annotations
 
 import logging
+from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any, Protocol
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.commands.command_core import ROUTED
 from gateway.fleet.commands.commander import Commander
-from gateway.fleet.operations.routing import ACTING, FORWARDED, OnMessage
+from gateway.fleet.operations.routing import ACTING, FORWARDED, OnMessage, ProgressMessage
 from gateway.fleet.operations.views import OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import RunningOperation
@@ -121,7 +122,7 @@ class ClusterRouter:
         on_message: OnMessage | None = None,
         wait_s: float = 0.0,
     ) -> Any:
-        async def observe(body: dict[str, Any]) -> None:
+        async def observe(body: ProgressMessage) -> None:
             self._note(body.get("view"))
             if on_message is not None:
                 await on_message(body)
@@ -138,7 +139,7 @@ async def answer(
     commander: Commander,
     name: str,
     arguments: dict[str, Any],
-    caller_body: dict[str, Any],
+    caller_body: Mapping[str, object],
     progress: ProgressSink,
 ) -> Any:
     """Run a call another node forwarded (this node owns its drone); the JSON result."""

@@ -28,6 +28,7 @@ from gateway.cluster.fenced_stops import FencedStops
 from gateway.cluster.forwarding import ClusterRouter
 from gateway.cluster.keeper import LeasePlan, Wanted, plan
 from gateway.cluster.leases import Lease, LeaseStore, NodeRecord
+from gateway.cluster.lock_versions import FAMILIES, LockVersions
 from gateway.cluster.owner_calls import OwnerCalls
 from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.runtime_view import NodeRuntime
@@ -50,6 +51,8 @@ log = logging.getLogger("gateway.cluster")
 #: else may take them over at the full lease time)
 SELF_FENCE_SHARE = 0.8
 CONNECT_TIMEOUT_S = 15.0
+#: a tick started when the leases are about to need the fence still gets this long
+MIN_TICK_S = 0.1
 #: a stopping node gives the database and the bus this long each to hear it leave
 LEAVE_TIMEOUT_S = 3.0
 #: a lock heard on the bus holds this long at most while the database does not have it (its node keeps it
@@ -93,6 +96,7 @@ class ClusterNode:
         self._valid_until = 0.0
         self._tick_lock = asyncio.Lock()
         self._heard_locks: dict[str, float] = {}  # scope -> when a lock of it was heard on the bus
+        self.lock_versions = LockVersions()  # a lock broadcast older than what this node knows is dropped
         self._adopting_from: dict[str, str] = {}  # vehicle -> the node it was taken from, while adopting
         self._adoptions: set[asyncio.Task[None]] = set()
         self.stops = FencedStops(self)  # the stop-only path of this node once it fenced itself
@@ -211,8 +215,8 @@ class ClusterNode:
         first = True
         while True:
             try:
-                # a database that hangs counts as one that fails: the fence below must still act
-                await asyncio.wait_for(self.tick(acquire=not first), self.settings.cluster_lease_ttl_s / 2)
+                # a database that hangs counts as one that fails: the fence below must still act, on time
+                await asyncio.wait_for(self.tick(acquire=not first), self._tick_limit_s())
             except asyncio.CancelledError:
                 raise
             except Exception:
@@ -221,6 +225,9 @@ class ClusterNode:
                     log.error(
                         "node %s could not renew its leases in time: stopping its sidecars", self.node_id
                     )
+                    # nothing it writes now (a flight log closing) waits on the database: the sidecars
+                    # let go of the drones' links at once, for the node that takes them over
+                    self.gateway.require_store().spool.unreachable_now()
                     targets = self.stops.targets()
                     # the stop-only path listens before the sidecars are stopped: stopping one can take
                     # seconds (its flight log closing), and a stop meanwhile goes through it
@@ -235,7 +242,23 @@ class ClusterNode:
             first = False
             self._kick.clear()
             with contextlib.suppress(TimeoutError):
-                await asyncio.wait_for(self._kick.wait(), self.interval_s)
+                await asyncio.wait_for(self._kick.wait(), self._next_tick_s())
+
+    def _tick_limit_s(self) -> float:
+        """How long a tick may take: half the lease time, and while this node holds leases, no later than
+        the moment it must fence itself (a tick that renews in time moves that moment on)."""
+        limit = self.settings.cluster_lease_ttl_s / 2
+        if self.held:
+            limit = min(limit, max(MIN_TICK_S, self._valid_until - time.monotonic()))
+        return limit
+
+    def _next_tick_s(self) -> float:
+        """Until the next tick: ``ttl/3``, or less when this node's leases are valid for less (after a tick
+        that failed), so that it fences itself when they are no longer valid, not up to a tick later."""
+        wait = self.interval_s
+        if self.held:
+            wait = min(wait, max(0.0, self._valid_until - time.monotonic()))
+        return wait
 
     async def tick(self, acquire: bool = True) -> LeasePlan:
         """One round: heartbeat, renew, follow registrations, then take or give up leases."""
@@ -372,7 +395,12 @@ class ClusterNode:
 
     # --- broadcasts -----------------------------------------------------------------------------------
     async def announce(self, kind: str, body: dict[str, Any]) -> None:
-        """Tell every node (locks, registrations); a node that misses it catches up at its next tick."""
+        """Tell every node (locks, registrations); a node that misses it catches up at its next tick. A
+        lock, an unlock, a takeover lock and its release carry their version
+        (`gateway.cluster.lock_versions`)."""
+        body = self.lock_versions.stamp(kind, body)
+        if kind == "unlock":
+            self._heard_locks.pop(str(body.get("scope")), None)
         try:
             await self.bus.broadcast(kind, {**body, "node": self.node_id})
         except Exception:
@@ -385,6 +413,11 @@ class ClusterNode:
         except ValueError:
             return
         if body.get("node") == self.node_id:
+            return
+        if not self.lock_versions.fresh(kind, body):  # sent before a change this node already knows
+            log.warning("dropped a late %s broadcast of %s from node %s (version %s; this node knows "
+                        "version %d)", kind, body.get("scope"), body.get("node"), body.get("version"),
+                        self.lock_versions.newest(FAMILIES[kind], str(body.get("scope"))))  # fmt: skip
             return
         if kind == "lock":
             at = body.get("at") or body.get("locked_at")
@@ -430,6 +463,7 @@ class ClusterNode:
             if lock.scope not in stored and lock.scope not in self._heard_locks:
                 book.unlock(lock.scope)
         for scope, lk in stored.items():
+            self.lock_versions.saw("lock", scope, lk.locked_at)
             current = {x.scope: x for x in book.all()}.get(scope)
             if current is None or current.reason != lk.reason or current.by != lk.by:
                 book.lock(scope, lk.reason, lk.by, at=lk.locked_at)

@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import logging
 import time
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable, Callable, Mapping
 from typing import TYPE_CHECKING, Any, Protocol
 
-from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, stop_subject
+from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, no_progress, stop_subject
 from gateway.cluster.fenced_stops import STOP_SEND_S, FencedStops
 from gateway.cluster.forwarding import answer
 from gateway.cluster.node_parts import NodeWithRuntime
@@ -178,7 +178,7 @@ class OwnerCalls:
                 raise NotRun(f"only an operator's land, return_to_launch or hold crosses PostgreSQL: {verb} "
                              "was not run")  # fmt: skip
             log.warning("%s: %s relayed through PostgreSQL from node %s", vid, verb, stop.get("node"))
-            return await self.answer(vid)(verb, dict(stop.get("args") or {}), caller, _no_progress)
+            return await self.answer(vid)(verb, dict(stop.get("args") or {}), caller, no_progress)
         if vid in self._node.fenced:
             self._node.stops.check(vid)(epoch)
             return await self._node.stops.stop_directly(vid, verb, Caller.from_dict(caller))
@@ -202,7 +202,7 @@ class OwnerCalls:
 
     def answer(self, vehicle_id: str) -> CallHandler:
         async def handle(
-            name: str, arguments: dict[str, Any], caller: dict[str, Any], progress: ProgressSink
+            name: str, arguments: dict[str, Any], caller: Mapping[str, object], progress: ProgressSink
         ) -> Any:
             registry = self._node.registry
             if registry is None or not registry.is_local(vehicle_id):
@@ -212,7 +212,3 @@ class OwnerCalls:
             return await answer(self._node.gateway.commander, name, arguments, caller, progress)
 
         return handle
-
-
-async def _no_progress(_update: dict[str, Any]) -> None:
-    return None

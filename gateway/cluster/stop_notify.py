@@ -26,7 +26,7 @@ import json
 import logging
 import time
 import uuid
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable, Callable, Mapping
 from typing import Any
 
 import asyncpg  # type: ignore[import-untyped]
@@ -34,7 +34,7 @@ from sqlalchemy.engine import make_url
 
 from gateway.errors import GatewayError, NotRun
 
-from .bus import error_body, rebuild_error
+from .bus import ErrorBody, error_body, rebuild_error
 
 log = logging.getLogger("gateway.cluster.stop_notify")
 
@@ -215,7 +215,7 @@ class StopRelay:
 
     async def send(
         self, vehicle_id: str, command: str, arguments: dict[str, Any], epoch: int | None,
-        caller: dict[str, Any], within_s: float,
+        caller: Mapping[str, object], within_s: float,
     ) -> Any:  # fmt: skip
         """Relay the stop ``command`` for ``vehicle_id`` to its owner; the owner's result, or its error
         raised again here; :class:`NotRun` ("no path") when no node answered within ``within_s``."""
@@ -263,4 +263,4 @@ class StopRelay:
                     sends)  # fmt: skip
         if answer.get("ok"):
             return answer.get("result")
-        raise rebuild_error(answer.get("error") or {})
+        raise rebuild_error(answer.get("error") or ErrorBody())

@@ -31,6 +31,7 @@ import uuid
 from collections.abc import Awaitable
 from typing import TYPE_CHECKING, Any, NoReturn, Protocol
 
+from gateway.cluster.bus import no_progress
 from gateway.cluster.forwarding import answer
 from gateway.cluster.leases import Lease, LeaseStore
 from gateway.cluster.node_parts import NodeWithRuntime
@@ -253,7 +254,7 @@ class StopTakeover:
         if view is not None and registry.is_local(drone_id):  # taken over by this node: its own sidecar
             if str(view.state) != "ready":
                 return None
-            await answer(self._node.gateway.commander, verb, {}, caller.to_dict(), _no_progress)
+            await answer(self._node.gateway.commander, verb, {}, caller.to_dict(), no_progress)
             return f"through node {me}'s own sidecar, which took the drone over"
         if isinstance(view, RemoteVehicle) and view.owner is not None:  # its owner (or a new one) again
             with contextlib.suppress(NotRun, NoOwner):
@@ -272,7 +273,3 @@ class StopTakeover:
                             lease.epoch, verb)  # fmt: skip
                 await self._node.take_over(drone_id, lease, owner)
         return None
-
-
-async def _no_progress(_update: dict[str, Any]) -> None:
-    return None

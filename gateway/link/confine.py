@@ -90,9 +90,9 @@ class ConfinementError(RuntimeError):
 
 def bundled_mavsdk_server() -> Path:
     """The mavsdk_server binary shipped with the mavsdk-grpc package."""
-    import mavsdk_grpc.bin as bin_pkg
+    from gateway.link.mavsdk_system import bundled_binary
 
-    return Path(bin_pkg.__file__).parent / "mavsdk_server"
+    return bundled_binary()
 
 
 def default_cache_dir() -> Path:

@@ -11,11 +11,11 @@ from collections.abc import Awaitable
 from typing import Protocol, TypeVar
 
 import grpc
-from mavsdk_grpc import System
 
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
 from gateway.link import refusals
 from gateway.link.contract import ConnectionState, LinkRules
+from gateway.link.mavsdk_system import System
 from gateway.link.rawlink import MAV_RESULT, MAV_RESULT_ACCEPTED, CommandChannel, LinkFacts, NoAck
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec

@@ -15,11 +15,10 @@ import time
 from collections.abc import Awaitable, Callable, Iterable
 from typing import Protocol, TypeVar
 
-from mavsdk_grpc import System
-
 from gateway.config import Settings
 from gateway.errors import CommandFailed
 from gateway.link.contract import LinkRules
+from gateway.link.mavsdk_system import System
 from gateway.link.rawlink import LinkFacts
 from gateway.link.telemetry import MissionProgressValue, TelemetryCache
 from gateway.link.telemetry_feed import TelemetryFeed
@@ -152,11 +151,12 @@ class MavsdkSession:
         skip = self._link.rules.skipped_streams if self._link.facts.autopilot is not None else frozenset()
         await feed.request_rates(lambda what, aw: self._link.call(what, aw, 5.0), skip)
         # MISSION_CURRENT is only in ArduPilot's EXT_STAT stream: ask for it by id (mission progress);
-        # EKF_STATUS_REPORT says when the position estimate is ready (arming in GUIDED needs it);
+        # EKF_STATUS_REPORT says when the position estimate is ready (arming in GUIDED needs it; every 2 s:
+        # it changes once, at boot, and an arming waits for it);
         # POSITION_TARGET_GLOBAL_INT (EXT_STAT too) is where it flies to (gateway.fleet.policy.takeover)
         for message_id, interval_us in (
             (MAVLINK_MSG_MISSION_CURRENT, 1e6),
-            (MAVLINK_MSG_EKF_STATUS_REPORT, 1e6),
+            (MAVLINK_MSG_EKF_STATUS_REPORT, 2e6),
             (MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT, 2e5),
         ):
             with contextlib.suppress(CommandFailed):
@@ -271,10 +271,6 @@ async def keep(vehicle_id: str, name: str, subscribe: SessionJob, system: System
 
 
 async def close_system(system: System) -> None:
-    """Close the gRPC channel of a System (mavsdk_grpc keeps it private: reach it through a stub)."""
-    try:
-        stub = system._plugins["core"]._stub
-        channel = stub.SubscribeConnectionState._references[0]
-        await channel.close(grace=None)
-    except Exception:  # best effort; the channel is also closed when collected
-        pass
+    """Close the gRPC channel of a System (best effort: a channel not closed is closed when collected)."""
+    with contextlib.suppress(Exception):
+        await system.close()

@@ -15,7 +15,7 @@ import time
 from collections.abc import Awaitable, Callable
 from typing import Any
 
-from mavsdk_grpc.mavlink_direct import MavlinkMessage
+from gateway.link.mavsdk_system import System, mavlink_direct_plugin
 
 MAV_TYPE_GCS = 6
 MAV_AUTOPILOT_INVALID = 8
@@ -59,7 +59,7 @@ class LinkFacts:
         self.armed: bool | None = None
         self.mode_changed_at: float = 0.0
 
-    def heartbeat(self, system_id: int, fields: dict[str, Any]) -> bool:
+    def heartbeat(self, system_id: int, fields: dict[str, Any]) -> bool:  # json.loads of mavlink_direct
         """Record one HEARTBEAT; False (ignored) when it comes from another ground station.
 
         Sets ``sysid_changed`` when the sender's system id differs from the previous one."""
@@ -97,7 +97,7 @@ class CommandChannel:
         self.gcs_sysid = gcs_sysid
         self._waiting: dict[int, list[asyncio.Future[int]]] = {}
 
-    async def pump(self, system: Any) -> None:
+    async def pump(self, system: System) -> None:
         async for msg in system.mavlink_direct.message("COMMAND_ACK"):
             fields = json.loads(msg.fields_json)
             waiters = self._waiting.get(int(fields.get("command", -1)))
@@ -115,8 +115,8 @@ class CommandChannel:
 
     async def send(
         self,
-        system: Any,
-        call: Callable[[Awaitable[Any]], Awaitable[Any]],
+        system: System,
+        call: Callable[[Awaitable[object]], Awaitable[object]],
         target: int,
         command: int,
         params: tuple[float, ...],
@@ -128,7 +128,7 @@ class CommandChannel:
 
         ``call`` wraps the gRPC send (timeout, error mapping). IN_PROGRESS waits for the final ACK."""
         p = [float(x) for x in params] + [0.0] * (7 - len(params))
-        fields: dict[str, Any] = {
+        fields: dict[str, object] = {
             "target_system": target,
             "target_component": 1,
             "command": command,
@@ -140,7 +140,9 @@ class CommandChannel:
             fields["confirmation"] = attempt
             fut: asyncio.Future[int] = loop.create_future()
             self._waiting.setdefault(command, []).append(fut)
-            msg = MavlinkMessage("COMMAND_LONG", self.gcs_sysid, GCS_COMPID, target, 1, json.dumps(fields))
+            msg = mavlink_direct_plugin.MavlinkMessage(
+                "COMMAND_LONG", self.gcs_sysid, GCS_COMPID, target, 1, json.dumps(fields)
+            )
             try:
                 await call(system.mavlink_direct.send_message(msg))
                 deadline = loop.time() + wait_s

@@ -10,12 +10,13 @@ import contextlib
 import os
 import termios
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Hashable
 from dataclasses import dataclass
 from typing import Any
 from urllib.parse import urlsplit
 
 from gateway.link.mavlink_frames import MAX_BUFFER, Frame, FrameSplitter
+from gateway.util.tasks import cancel_and_wait
 
 RECONNECT_INITIAL_S = 0.5
 RECONNECT_MAX_S = 5.0
@@ -60,7 +61,7 @@ class Endpoint(abc.ABC):
         #: why the relay stopped this endpoint for good (its peer is no ground station), or None
         self.refused: str | None = None
         self._deliver = deliver
-        self._splitters: dict[Any, FrameSplitter] = {}
+        self._splitters: dict[Hashable, FrameSplitter] = {}
 
     @abc.abstractmethod
     async def start(self) -> None: ...
@@ -75,7 +76,7 @@ class Endpoint(abc.ABC):
     def peer(self) -> str | None:
         return None
 
-    def received(self, data: bytes, source: Any = None) -> None:
+    def received(self, data: bytes, source: Hashable = None) -> None:
         splitter = self._splitters.setdefault(source, FrameSplitter())
         for frame in splitter.feed(data):
             self.stats.frames_in += 1
@@ -101,7 +102,7 @@ class _Datagrams(asyncio.DatagramProtocol):
     def __init__(self, owner: UdpEndpoint) -> None:
         self.owner = owner
 
-    def datagram_received(self, data: bytes, addr: Any) -> None:
+    def datagram_received(self, data: bytes, addr: tuple[str, int]) -> None:
         self.owner.datagram(data, addr)
 
     def error_received(self, exc: Exception) -> None:  # e.g. ICMP port unreachable: nobody listens yet
@@ -143,7 +144,7 @@ class UdpEndpoint(Endpoint):
             )
         self._transport = transport
 
-    def datagram(self, data: bytes, addr: Any) -> None:
+    def datagram(self, data: bytes, addr: tuple[str, int]) -> None:
         if self.scheme == "udpin":
             peer = (str(addr[0]), int(addr[1]))
             if peer != self._peer and self.accept is not None and not self.accept(peer):
@@ -342,11 +343,8 @@ class SerialEndpoint(Endpoint):
             self.complaint = f"{self.device}: {exc.strerror or exc}"
 
     async def close(self) -> None:
-        if self._task is not None:
-            self._task.cancel()
-            with contextlib.suppress(asyncio.CancelledError):
-                await self._task
-            self._task = None
+        await cancel_and_wait(self._task)
+        self._task = None
 
 
 def open_endpoint(url: str, deliver: Deliver) -> Endpoint:

@@ -31,7 +31,6 @@ from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING
 
 import grpc
-from mavsdk_grpc import System
 
 from gateway.config import Settings
 from gateway.errors import VehicleNotReady
@@ -39,11 +38,13 @@ from gateway.link.contract import ConnectionState, LinkRules, OnWait, Peer
 from gateway.link.link_monitor import run_monitor
 from gateway.link.mavsdk_calls import MavsdkCalls
 from gateway.link.mavsdk_session import MavsdkSession, SessionJob, close_system
+from gateway.link.mavsdk_system import System
 from gateway.link.rawlink import LinkFacts, autopilot_name
 from gateway.link.sidecar import Confine, Sidecar, SidecarState
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 from gateway.link.telemetry_feed import TelemetryFeed
 from gateway.registry.spec import VehicleSpec
+from gateway.util.tasks import cancel_and_wait
 
 if TYPE_CHECKING:
     from gateway.link.relay import Relay
@@ -125,7 +126,7 @@ class Link:
 
     @property
     def system(self) -> System:
-        """The raw ``mavsdk_grpc.System`` of the current session (for what the wrapper does not cover)."""
+        """The MAVSDK System of the current session (for what the wrapper does not cover)."""
         if self._system is None:
             raise VehicleNotReady(
                 f"drone '{self.id}' has no MAVSDK session (state {self.state.value})", state=self.state.value
@@ -349,11 +350,8 @@ class Link:
 
     async def disconnect(self) -> None:
         """Stop everything of this link; no mavsdk_server process remains."""
-        if self._monitor_task is not None:
-            self._monitor_task.cancel()
-            with contextlib.suppress(asyncio.CancelledError):
-                await self._monitor_task
-            self._monitor_task = None
+        await cancel_and_wait(self._monitor_task)
+        self._monitor_task = None
         try:
             await self._end_session()
         finally:  # the sidecar stops whatever ending the session raised
@@ -388,10 +386,7 @@ class Link:
 
     async def _end_session(self) -> None:
         task, self._session_task = self._session_task, None
-        if task is not None:
-            task.cancel()
-            with contextlib.suppress(asyncio.CancelledError):
-                await task
+        await cancel_and_wait(task)
 
     async def _session(self, address: str, port: int, previous: asyncio.Task[None] | None) -> None:
         if previous is not None:

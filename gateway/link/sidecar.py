@@ -156,6 +156,20 @@ class SidecarInfo:
     recent_output: deque[str] = field(default_factory=lambda: deque(maxlen=20))
 
 
+@dataclass
+class _Watch:
+    """What the sidecar's output showed before it ended or was ended."""
+
+    bind_failed: bool = False
+    foreign_listener: bool = False
+    exposed_on: list[str] = field(default_factory=list)
+    link_failed: str | None = None
+
+    @property
+    def fatal(self) -> bool:
+        return self.foreign_listener or self.bind_failed or bool(self.link_failed) or bool(self.exposed_on)
+
+
 class Sidecar:
     """Supervises the mavsdk_server of one vehicle.
 
@@ -376,44 +390,13 @@ class Sidecar:
             port,
             self.url,
         )
-        bind_failed = False
-        foreign_listener = False
-        exposed_on: list[str] = []
-        link_failed: str | None = None
-        assert proc.stdout is not None
+        watch = _Watch()
         try:
-            async for raw in proc.stdout:
-                line = self._log_line(raw)
-                if line is None:
-                    continue
-                if _DISCOVERED in line:
-                    self.info.discovered = True
-                elif _LINK_FAILED in line and not self.info.discovered:
-                    earlier = [m for m in list(self.info.recent_output)[:-1] if m != line]
-                    link_failed = f"{earlier[-1]}; {line}" if earlier else line
-                    break
-                elif _BIND_FAILED in line:
-                    bind_failed = True
-                else:
-                    match = _LISTEN.search(line)
-                    if match and self.on_socket:
-                        if not await self._socket_is_ours(proc.pid, plan.grpc_port):
-                            exposed_on = [line.removeprefix("Server set to listen on ")]
-                            break
-                        self._serve(plan.grpc_port)
-                    elif match and int(match.group(1)) == plan.grpc_port:
-                        if await self._port_is_ours(proc.pid, plan.grpc_port):
-                            exposed_on = self._exposed_listeners(proc.pid, plan.grpc_port)
-                            if exposed_on:
-                                break
-                            self._serve(plan.grpc_port)
-                        else:
-                            foreign_listener = True
-                            break
+            await self._watch_output(proc, plan.grpc_port, watch)
         finally:
             was_serving = self.info.state == SidecarState.SERVING
             self._serving.clear()
-            if foreign_listener or bind_failed or link_failed or exposed_on or self._stopping:
+            if watch.fatal or self._stopping:
                 await self._terminate()
             code = await proc.wait()
             _LIVE_PGIDS.discard(proc.pid)
@@ -421,17 +404,57 @@ class Sidecar:
             self.info.pid = None
             sidecar_socket.remove(self.info.socket_dir)
             self.info.socket_dir = None
-        if exposed_on:
+        return self._exit_reason(watch, code, was_serving)
+
+    async def _watch_output(self, proc: asyncio.subprocess.Process, port: int, watch: _Watch) -> None:
+        """Read the sidecar's output until it ends or shows a fault that ends the sidecar."""
+        assert proc.stdout is not None
+        async for raw in proc.stdout:
+            line = self._log_line(raw)
+            if line is None:
+                continue
+            if _DISCOVERED in line:
+                self.info.discovered = True
+            elif _LINK_FAILED in line and not self.info.discovered:
+                earlier = [m for m in list(self.info.recent_output)[:-1] if m != line]
+                watch.link_failed = f"{earlier[-1]}; {line}" if earlier else line
+                return
+            elif _BIND_FAILED in line:
+                watch.bind_failed = True
+            elif await self._on_listen_line(proc.pid, port, line, watch):
+                return
+
+    async def _on_listen_line(self, pid: int, port: int, line: str, watch: _Watch) -> bool:
+        """Serve once the sidecar listens where it should; True when it listens elsewhere or the port
+        belongs to another process (the watch ends)."""
+        match = _LISTEN.search(line)
+        if match and self.on_socket:
+            if not await self._socket_is_ours(pid, port):
+                watch.exposed_on = [line.removeprefix("Server set to listen on ")]
+                return True
+            self._serve(port)
+        elif match and int(match.group(1)) == port:
+            if not await self._port_is_ours(pid, port):
+                watch.foreign_listener = True
+                return True
+            watch.exposed_on = self._exposed_listeners(pid, port)
+            if watch.exposed_on:
+                return True
+            self._serve(port)
+        return False
+
+    def _exit_reason(self, watch: _Watch, code: int, was_serving: bool) -> str:
+        if watch.exposed_on:
             where = "its private unix socket" if self.on_socket else "loopback only"
             raise confine.ConfinementError(
-                f"mavsdk_server for {self.vehicle_id} listened for gRPC on {', '.join(exposed_on)}, not on "
-                f"{where}; it was stopped. Use mavsdk-grpc 4.0.5's binary, or set "
+                f"mavsdk_server for {self.vehicle_id} listened for gRPC on {', '.join(watch.exposed_on)}, "
+                f"not on {where}; it was stopped. Use mavsdk-grpc 4.0.5's binary, or set "
                 "GATEWAY_SIDECAR_CONFINEMENT=none and firewall the sidecar ports yourself."
             )
-        if foreign_listener or bind_failed:
+        if watch.foreign_listener or watch.bind_failed:
             return "port-taken"
-        if link_failed:
-            return f"mavsdk_server could not open {self.url}: {link_failed}"
+        if watch.link_failed:
+            return f"mavsdk_server could not open {self.url}: {watch.link_failed}"
         last = self.info.recent_output[-1] if self.info.recent_output else "no output"
         where = "while serving" if was_serving else "before serving"
         return f"mavsdk_server exited {where} with code {code} (last output: {last})"

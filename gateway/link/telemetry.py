@@ -164,7 +164,7 @@ class TelemetryCache:
         "mission_progress",
     )
 
-    def put(self, name: str, value: Any) -> None:
+    def put(self, name: str, value: object) -> None:
         if name not in self.FIELDS:
             raise KeyError(name)
         setattr(self, name, Sample(value, time.monotonic()))

@@ -12,7 +12,9 @@ import asyncio
 import logging
 import math
 from collections.abc import AsyncIterator, Awaitable, Callable
-from typing import Any
+from typing import Protocol, TypeVar
+
+from mavsdk_grpc import System
 
 from gateway.link.telemetry import (
     AttitudeValue,
@@ -30,29 +32,34 @@ from gateway.link.telemetry import (
 
 log = logging.getLogger("gateway.telemetry")
 
+Item = TypeVar("Item")
+
 #: Streams and the rate (Hz) the gateway requests for each while the drone rests (disarmed on the
-#: ground); MAVSDK's set_rate_<name>. Each message costs the sidecar its parsing and the gateway one gRPC
-#: stream item (the most of a drone's CPU at rest), so a stream gets the rate its readers need: the read
-#: tools and the cache's staleness limit (3 s), which a 1 Hz stream keeps well inside, and the flight
-#: log's 1 Hz track. A drone that is armed or in the air gets ``ACTIVE_RATES_HZ`` on top (the
+#: ground); MAVSDK's set_rate_<name>, which sends MAV_CMD_SET_MESSAGE_INTERVAL for the stream's message.
+#: Each message costs the sidecar its parsing and the gateway one gRPC stream item (the most of a drone's
+#: CPU at rest), so a stream gets the rate its readers need and no more. The position at 1 Hz: the read
+#: tools and the flight log's 1 Hz track. SYS_STATUS (health) at 1 Hz: the link is ready only while its
+#: health is younger than the staleness limit (3 s), which a busy machine must not tip over. The rest
+#: change slowly on the ground and are read by their tools and the policy: every 2 s keeps them inside
+#: the 3 s staleness limit. A drone that is armed or in the air gets ``ACTIVE_RATES_HZ`` on top (the
 #: operations' trackers: arrival within tolerance, the climb, the landing, the yaw).
 #: Not requested and not subscribed: a heading stream (MAVSDK repeats GLOBAL_POSITION_INT's at the
 #: position rate; the heading is the attitude's yaw), in_air (the same EXTENDED_SYS_STATE as the landed
 #: state, from which it is taken), armed (the link reads it from the HEARTBEAT it follows anyway) and
 #: LOCAL_POSITION_NED (MAVSDK's velocity stream follows GLOBAL_POSITION_INT, so the velocity comes at
-#: the position rate without it).
+#: the position rate without it). No rc_status rate either: MAVSDK takes the RC status from SYS_STATUS
+#: and RC_CHANNELS and answers its set_rate_rc_status with Unsupported.
 STREAM_RATES_HZ: dict[str, float] = {
     "position": 1.0,  # GLOBAL_POSITION_INT: position and velocity
-    "home": 1.0,
-    "attitude_euler": 1.0,  # ATTITUDE: attitude, and the heading (its yaw)
-    "landed_state": 1.0,  # EXTENDED_SYS_STATE: landed state and in_air
-    "gps_info": 1.0,
-    "battery": 1.0,
-    "rc_status": 1.0,
+    "home": 0.5,  # HOME_POSITION
+    "attitude_euler": 0.5,  # ATTITUDE: attitude, and the heading (its yaw)
+    "landed_state": 0.5,  # EXTENDED_SYS_STATE: landed state and in_air
+    "gps_info": 0.5,  # GPS_RAW_INT
+    "battery": 0.5,  # BATTERY_STATUS
     "health": 1.0,  # SYS_STATUS
-    "imu": 1.0,  # HIGHRES_IMU (PX4)
-    "raw_imu": 1.0,  # RAW_IMU (ArduPilot has no HIGHRES_IMU)
-    "odometry": 1.0,  # ODOMETRY (PX4; ArduPilot answers "No ap_message for mavlink id (331)")
+    "imu": 0.5,  # HIGHRES_IMU (PX4)
+    "raw_imu": 0.5,  # RAW_IMU (ArduPilot has no HIGHRES_IMU)
+    "odometry": 0.5,  # ODOMETRY (PX4; ArduPilot answers "No ap_message for mavlink id (331)")
 }
 
 #: The rates of a drone that is armed or in the air, where they differ from the rest rates: the
@@ -68,6 +75,88 @@ ACTIVE_RATES_HZ: dict[str, float] = {
 _IN_AIR_BY_LANDED_STATE = {"ON_GROUND": False, "IN_AIR": True, "TAKING_OFF": True, "LANDING": True}
 
 
+# --- what the gateway reads of MAVSDK's stream items (mavsdk_grpc ships no type hints) ------------
+
+
+class _Named(Protocol):
+    """An enum value of MAVSDK's (landed state, flight mode, GPS fix type, status text type)."""
+
+    name: str
+
+
+class _GeoPoint(Protocol):
+    latitude_deg: float
+    longitude_deg: float
+    absolute_altitude_m: float
+    relative_altitude_m: float
+
+
+class _Battery(Protocol):
+    remaining_percent: float | None
+    voltage_v: float | None
+
+
+class _Frd(Protocol):
+    forward_m_s2: float
+    right_m_s2: float
+    down_m_s2: float
+
+
+class _AngularFrd(Protocol):
+    forward_rad_s: float
+    right_rad_s: float
+    down_rad_s: float
+
+
+class _Imu(Protocol):
+    acceleration_frd: _Frd
+    angular_velocity_frd: _AngularFrd
+    temperature_degc: float | None
+
+
+class _Xyz(Protocol):
+    x_m: float
+    y_m: float
+    z_m: float
+
+
+class _XyzRate(Protocol):
+    x_m_s: float
+    y_m_s: float
+    z_m_s: float
+
+
+class _Odometry(Protocol):
+    position_body: _Xyz
+    velocity_body: _XyzRate
+
+
+class _Health(Protocol):
+    is_gyrometer_calibration_ok: bool
+    is_accelerometer_calibration_ok: bool
+    is_magnetometer_calibration_ok: bool
+    is_local_position_ok: bool
+    is_global_position_ok: bool
+    is_home_position_ok: bool
+    is_armable: bool
+
+
+class _Attitude(Protocol):
+    roll_deg: float
+    pitch_deg: float
+    yaw_deg: float
+
+
+class _StatusText(Protocol):
+    type: _Named
+    text: str
+
+
+class _MissionProgress(Protocol):
+    current: int
+    total: int
+
+
 def _finite(value: float | None) -> float | None:
     if value is None:
         return None
@@ -78,7 +167,7 @@ def _finite(value: float | None) -> float | None:
 # --- converting MAVSDK stream items ----------------------------------------------------------------
 
 
-def _position(p: Any) -> PositionValue:
+def _position(p: _GeoPoint) -> PositionValue:
     return PositionValue(
         float(p.latitude_deg),
         float(p.longitude_deg),
@@ -87,21 +176,21 @@ def _position(p: Any) -> PositionValue:
     )
 
 
-def has_global_position(p: Any) -> bool:
+def has_global_position(p: _GeoPoint) -> bool:
     """Whether a position (or home) item is a real fix: while an autopilot boots it streams latitude and
     longitude 0, 0 (ArduPilot before its EKF origin) or NaN, which must never be reported as fresh."""
     lat, lon = float(p.latitude_deg), float(p.longitude_deg)
     return math.isfinite(lat) and math.isfinite(lon) and not (lat == 0.0 and lon == 0.0)
 
 
-def _battery(b: Any) -> BatteryValue:
+def _battery(b: _Battery) -> BatteryValue:
     remaining = _finite(b.remaining_percent)
     if remaining is not None and remaining < 0:  # -1 / NaN: the autopilot does not know
         remaining = None
     return BatteryValue(remaining, _finite(b.voltage_v))
 
 
-def _imu(i: Any) -> ImuValue:
+def _imu(i: _Imu) -> ImuValue:
     a, g = i.acceleration_frd, i.angular_velocity_frd
     return ImuValue(
         (a.forward_m_s2, a.right_m_s2, a.down_m_s2),
@@ -113,7 +202,7 @@ def _imu(i: Any) -> ImuValue:
 MILLI_G_TO_MPS2 = 9.80665 / 1000.0
 
 
-def _raw_imu(i: Any) -> ImuValue:
+def _raw_imu(i: _Imu) -> ImuValue:
     """RAW_IMU (ArduPilot's IMU stream) carries its raw units, milli-g and milli-rad/s, which MAVSDK
     passes through unconverted; the cache holds m/s^2 and rad/s like HIGHRES_IMU's."""
     a, g = i.acceleration_frd, i.angular_velocity_frd
@@ -124,12 +213,12 @@ def _raw_imu(i: Any) -> ImuValue:
     )
 
 
-def _odometry(o: Any) -> OdometryValue:
+def _odometry(o: _Odometry) -> OdometryValue:
     p, v = o.position_body, o.velocity_body
     return OdometryValue((p.x_m, p.y_m, p.z_m), (v.x_m_s, v.y_m_s, v.z_m_s))
 
 
-def _health(h: Any) -> HealthValue:
+def _health(h: _Health) -> HealthValue:
     return HealthValue(
         bool(h.is_gyrometer_calibration_ok),
         bool(h.is_accelerometer_calibration_ok),
@@ -157,7 +246,7 @@ class TelemetryFeed:
     def __init__(
         self,
         vehicle_id: str,
-        system: Any,
+        system: System,
         cache: TelemetryCache,
         *,
         mission_progress_map: Callable[[int, int], MissionProgressValue] | None = None,
@@ -170,55 +259,59 @@ class TelemetryFeed:
         self._use_mavsdk_mode = use_mavsdk_flight_mode
         self._tasks: list[asyncio.Task[None]] = []
         self.unsupported_rates: dict[str, str] = {}
-        self._call: Callable[[str, Awaitable[Any]], Awaitable[Any]] | None = None
+        self._call: Callable[[str, Awaitable[object]], Awaitable[object]] | None = None
         self._skip: frozenset[str] = frozenset()
         self._active = False  # armed or in the air: ACTIVE_RATES_HZ wanted
         self._rates_active: bool | None = None  # what the vehicle was last asked for (None: nothing yet)
         self._switch: asyncio.Task[None] | None = None
         self._in_air: bool | None = None
 
-    def _put_fixed(self, name: str, item: Any) -> None:
+    def _put_fixed(self, name: str, item: _GeoPoint) -> None:
         if has_global_position(item):
             self.cache.put(name, _position(item))
 
     def start(self) -> None:
         t = self.system.telemetry
         put = self.cache.put
-        streams: dict[str, tuple[Callable[[], AsyncIterator[Any]], Callable[[Any], None]]] = {
-            "position": (t.position, self._position),
-            "home": (t.home, lambda p: self._put_fixed("home", p)),
-            # the heading is the attitude's yaw: no stream of its own (MAVSDK's heading stream repeats
-            # GLOBAL_POSITION_INT's at the position rate, one more gRPC item per position)
-            "attitude": (t.attitude_euler, self._attitude),
-            "velocity_ned": (
-                t.velocity_ned,
-                lambda v: put("velocity_ned", VelocityNedValue(v.north_m_s, v.east_m_s, v.down_m_s)),
+        self._subscribe("position", t.position, self._position)
+        self._subscribe("home", t.home, lambda p: self._put_fixed("home", p))
+        # the heading is the attitude's yaw: no stream of its own (MAVSDK's heading stream repeats
+        # GLOBAL_POSITION_INT's at the position rate, one more gRPC item per position)
+        self._subscribe("attitude", t.attitude_euler, self._attitude)
+        self._subscribe(
+            "velocity_ned",
+            t.velocity_ned,
+            lambda v: put("velocity_ned", VelocityNedValue(v.north_m_s, v.east_m_s, v.down_m_s)),
+        )
+        self._subscribe("battery", t.battery, lambda b: put("battery", _battery(b)))
+        self._subscribe(
+            "gps_info",
+            t.gps_info,
+            lambda g: put("gps_info", GpsInfoValue(int(g.num_satellites), g.fix_type.name)),
+        )
+        self._subscribe("flight_mode", self._flight_modes, self._flight_mode)
+        self._subscribe("landed_state", t.landed_state, self._landed_state)
+        self._subscribe("health", t.health, lambda h: put("health", _health(h)))
+        self._subscribe(
+            "rc_status",
+            t.rc_status,
+            lambda r: put(
+                "rc_status",
+                RcStatusValue(r.was_available_once, r.is_available, _finite(r.signal_strength_percent)),
             ),
-            "battery": (t.battery, lambda b: put("battery", _battery(b))),
-            "gps_info": (
-                t.gps_info,
-                lambda g: put("gps_info", GpsInfoValue(int(g.num_satellites), g.fix_type.name)),
-            ),
-            "flight_mode": (self._flight_modes, self._flight_mode),
-            "landed_state": (t.landed_state, self._landed_state),
-            "health": (t.health, lambda h: put("health", _health(h))),
-            "rc_status": (
-                t.rc_status,
-                lambda r: put(
-                    "rc_status",
-                    RcStatusValue(r.was_available_once, r.is_available, _finite(r.signal_strength_percent)),
-                ),
-            ),
-            "imu": (t.imu, lambda i: put("imu", _imu(i))),
-            "raw_imu": (t.raw_imu, lambda i: put("imu", _raw_imu(i))),
-            "odometry": (t.odometry, lambda o: put("odometry", _odometry(o))),
-            "status_text": (t.status_text, self._status_text),
-            "mission_progress": (self.system.mission_raw.mission_progress, self._mission_progress),
-        }
-        for name, (subscribe, handle) in streams.items():
-            self._tasks.append(
-                asyncio.create_task(self._pump(name, subscribe, handle), name=f"tm-{self.vehicle_id}-{name}")
-            )
+        )
+        self._subscribe("imu", t.imu, lambda i: put("imu", _imu(i)))
+        self._subscribe("raw_imu", t.raw_imu, lambda i: put("imu", _raw_imu(i)))
+        self._subscribe("odometry", t.odometry, lambda o: put("odometry", _odometry(o)))
+        self._subscribe("status_text", t.status_text, self._status_text)
+        self._subscribe("mission_progress", self.system.mission_raw.mission_progress, self._mission_progress)
+
+    def _subscribe(
+        self, name: str, subscribe: Callable[[], AsyncIterator[Item]], handle: Callable[[Item], None]
+    ) -> None:
+        self._tasks.append(
+            asyncio.create_task(self._pump(name, subscribe, handle), name=f"tm-{self.vehicle_id}-{name}")
+        )
 
     async def stop(self) -> None:
         tasks, self._tasks = self._tasks, []
@@ -230,7 +323,7 @@ class TelemetryFeed:
         await asyncio.gather(*tasks, return_exceptions=True)
 
     async def request_rates(
-        self, call: Callable[[str, Awaitable[Any]], Awaitable[Any]], skip: frozenset[str] = frozenset()
+        self, call: Callable[[str, Awaitable[object]], Awaitable[object]], skip: frozenset[str] = frozenset()
     ) -> dict[str, str]:
         """Set every stream rate but ``skip`` (the rest or the active rates, whichever the drone is at);
         ``call(what, coro)`` adds the timeout and error mapping. Returns the streams the vehicle refused,
@@ -290,11 +383,11 @@ class TelemetryFeed:
             log.debug("%s: %s telemetry rates", self.vehicle_id, "active" if active else "rest")
 
     # --- stream items ---------------------------------------------------------------------------------
-    def _position(self, p: Any) -> None:
+    def _position(self, p: _GeoPoint) -> None:
         self._put_fixed("position", p)
         self._follow_activity()
 
-    def _landed_state(self, state: Any) -> None:
+    def _landed_state(self, state: _Named) -> None:
         name = state.name
         self.cache.put("landed_state", name)
         in_air = _IN_AIR_BY_LANDED_STATE.get(name, self._in_air)
@@ -303,7 +396,7 @@ class TelemetryFeed:
             self.cache.put("in_air", in_air)
         self._follow_activity()
 
-    async def _flight_modes(self) -> AsyncIterator[Any]:
+    async def _flight_modes(self) -> AsyncIterator[_Named]:
         """MAVSDK's flight mode stream, once the first HEARTBEAT has shown the link needs it."""
         while (wanted := self._use_mavsdk_mode()) is None:  # noqa: ASYNC110 - set by the HEARTBEAT loop
             await asyncio.sleep(0.2)
@@ -312,20 +405,20 @@ class TelemetryFeed:
         async for mode in self.system.telemetry.flight_mode():
             yield mode
 
-    def _attitude(self, a: Any) -> None:
+    def _attitude(self, a: _Attitude) -> None:
         self.cache.put("attitude", AttitudeValue(a.roll_deg, a.pitch_deg, a.yaw_deg))
         yaw = float(a.yaw_deg)
         if math.isfinite(yaw):
             self.cache.put("heading_deg", yaw % 360.0)
 
-    def _status_text(self, text: Any) -> None:
+    def _status_text(self, text: _StatusText) -> None:
         self.cache.add_status_text(text.type.name.lower(), str(text.text))
 
-    def _flight_mode(self, mode: Any) -> None:
+    def _flight_mode(self, mode: _Named) -> None:
         if self._use_mavsdk_mode():
             self.cache.put("flight_mode", mode.name)
 
-    def _mission_progress(self, progress: Any) -> None:
+    def _mission_progress(self, progress: _MissionProgress) -> None:
         current, total = int(progress.current), int(progress.total)
         value = (
             self._map_progress(current, total)
@@ -335,7 +428,7 @@ class TelemetryFeed:
         self.cache.put("mission_progress", value)
 
     async def _pump(
-        self, name: str, subscribe: Callable[[], AsyncIterator[Any]], handle: Callable[[Any], None]
+        self, name: str, subscribe: Callable[[], AsyncIterator[Item]], handle: Callable[[Item], None]
     ) -> None:
         """Keep one stream flowing into the cache; resubscribe after errors (the channel may blip)."""
         delay = 0.5

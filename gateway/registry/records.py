@@ -117,7 +117,7 @@ class StatusTextIn(_Record):
 
     @field_validator("severity", mode="before")
     @classmethod
-    def _severity(cls, value: Any) -> str:
+    def _severity(cls, value: object) -> str:
         if isinstance(value, int) and 0 <= value < len(SEVERITY_NAMES):
             return SEVERITY_NAMES[value]
         name = getattr(value, "name", value)  # enums (e.g. MAVSDK's StatusTextType)

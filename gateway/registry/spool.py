@@ -84,6 +84,8 @@ class Spool:
         self.path: Path | None = None
         self._file: TextIO | None = None
         self._next = 0
+        # the database is known to be unreachable (its node fenced itself): writes are kept at once
+        self._down = False
 
     async def attach(self, path: Path) -> int:
         """Keep the writes in ``path`` too; the writes a previous run left there are queued first (and
@@ -135,12 +137,17 @@ class Spool:
     def waiting(self) -> bool:
         return bool(self._queue)
 
+    def unreachable_now(self) -> None:
+        """The database is known to be unreachable (a cluster node could not renew its leases): every
+        write is kept at once, without waiting for the database first, until a kept one is written."""
+        self._down = True
+
     async def write(
         self, what: str, write: Callable[[], Awaitable[T]], record: Record | None = None
     ) -> T | None:
         """``write()`` now, or (database unreachable, or earlier writes waiting) later: then None.
         ``record``: what to keep in the file, to write it after a restart."""
-        if not self._queue:
+        if not self._queue and not self._down:
             try:
                 return await asyncio.wait_for(write(), WRITE_TIMEOUT_S)
             except Exception as exc:
@@ -212,6 +219,7 @@ class Spool:
                 self.dropped += 1
             else:
                 self.written_late += 1
+                self._down = False
             self._queue.popleft()
             self._done(number)
             if not self._queue:

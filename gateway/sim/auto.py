@@ -160,6 +160,28 @@ class AutoMixin:
         if v.flying:
             self.target = self.stopping_point()  # hover at the last waypoint, still in AUTO
 
+    def _run_goto(self, dt: float, item: Item) -> None:
+        """Fly to the current item's target; on reaching it, hold there or go on to the next item."""
+        v = self.v
+        auto = v.auto
+        if self.takeoff_alt is not None:
+            if self._run_takeoff(dt):
+                self._item_reached(announce=False)
+            return
+        remaining = self._fly_to_target(dt)
+        radius = max(0.5, self._p("WPNAV_RADIUS") / 100.0)
+        if remaining <= radius:
+            hold = (
+                item.param1 if item.command in (mav.MAV_CMD_NAV_WAYPOINT, mav.MAV_CMD_NAV_LOITER_TIME) else 0
+            )
+            if item.command == mav.MAV_CMD_NAV_TAKEOFF:
+                self._item_reached(announce=False)
+            elif hold > 0:
+                auto.phase = "hold"
+                auto.hold_until = v.t + hold
+            else:
+                self._item_reached(announce=True)
+
     def _run_auto(self, dt: float) -> None:
         v = self.v
         auto = v.auto
@@ -168,25 +190,7 @@ class AutoMixin:
             return
         item = v.mission.item(auto.current)
         if auto.phase == "goto":
-            if self.takeoff_alt is not None:
-                if self._run_takeoff(dt):
-                    self._item_reached(announce=False)
-                return
-            remaining = self._fly_to_target(dt)
-            radius = max(0.5, self._p("WPNAV_RADIUS") / 100.0)
-            if remaining <= radius:
-                hold = (
-                    item.param1
-                    if item.command in (mav.MAV_CMD_NAV_WAYPOINT, mav.MAV_CMD_NAV_LOITER_TIME)
-                    else 0
-                )
-                if item.command == mav.MAV_CMD_NAV_TAKEOFF:
-                    self._item_reached(announce=False)
-                elif hold > 0:
-                    auto.phase = "hold"
-                    auto.hold_until = v.t + hold
-                else:
-                    self._item_reached(announce=True)
+            self._run_goto(dt, item)
         elif auto.phase == "hold":
             self._fly_to_target(dt)
             if v.t >= auto.hold_until:

@@ -104,9 +104,25 @@ class BootSequence:
         reports them on an arming attempt (one "Arm: ..." text each; measured on SITL, see Timeline)."""
         v = self.v
         mode = v.mode if mode is None else mode
-        tl = v.timeline
-        t = v.t
         checks = v.params.get("ARMING_CHECK") != 0
+        failures = self._sensor_failures(checks)
+        position = self._position_failure(checks, mode)
+        if position:
+            failures.append(position)
+        if checks and v.t < v.timeline.mag_ok:
+            failures.append("Battery 1 unhealthy")
+        if checks:
+            battery = self._battery_arming_failure()
+            if battery:
+                failures.append(f"Battery 1 {battery}")
+            if v.failsafe_gcs:
+                failures.append("GCS failsafe on")
+        return failures
+
+    def _sensor_failures(self, checks: bool) -> list[str]:
+        """The inertial, attitude and compass checks, in ArduCopter's order."""
+        tl = self.v.timeline
+        t = self.v.t
         failures: list[str] = []
         if t < tl.tilt:
             failures.append("Need Alt Estimate")
@@ -118,21 +134,19 @@ class BootSequence:
             failures.append("EKF attitude is bad")
         if checks and t < tl.mag_ok:
             failures.append("Compass 1 not healthy")
-        if checks and tl.gps_detect <= t < tl.gps_fix:
-            failures.append("GPS 1: Bad fix")
-        elif not v.origin_set:
-            failures.append("AHRS: waiting for home")
-        elif mode in REQUIRES_POSITION and not v.position_ok:
-            failures.append("Need Position Estimate")
-        if checks and t < tl.mag_ok:
-            failures.append("Battery 1 unhealthy")
-        if checks:
-            battery = self._battery_arming_failure()
-            if battery:
-                failures.append(f"Battery 1 {battery}")
-            if v.failsafe_gcs:
-                failures.append("GCS failsafe on")
         return failures
+
+    def _position_failure(self, checks: bool, mode: Mode) -> str | None:
+        """The first of the GPS fix, home and position-estimate checks that fails."""
+        v = self.v
+        tl = v.timeline
+        if checks and tl.gps_detect <= v.t < tl.gps_fix:
+            return "GPS 1: Bad fix"
+        if not v.origin_set:
+            return "AHRS: waiting for home"
+        if mode in REQUIRES_POSITION and not v.position_ok:
+            return "Need Position Estimate"
+        return None
 
     def _battery_arming_failure(self) -> str | None:
         """AP_BattMonitor_Backend::arming_checks: thresholds compared with the present state, no timer."""

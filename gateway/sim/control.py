@@ -24,12 +24,14 @@ import asyncio
 import contextlib
 import json
 import math
+from collections.abc import Callable
 from typing import Any
 
 import httpx
 
 from gateway.sim.fleet import SimFleet
 from gateway.sim.params import ParamError
+from gateway.sim.vehicle import SimVehicle
 
 _MAX_BODY = 65536
 
@@ -102,7 +104,7 @@ class ControlServer:
         finally:
             writer.close()
 
-    def _route(self, method: str, path: str, body: bytes) -> Any:
+    def _route(self, method: str, path: str, body: bytes) -> object:
         parts = [p for p in path.split("/") if p]
         if parts == ["vehicles"] and method == "GET":
             return self.fleet.describe()
@@ -114,60 +116,78 @@ class ControlServer:
             raise ControlError(404, str(exc.args[0])) from None
         action = parts[2] if len(parts) > 2 else None
         if method == "GET":
-            if action is None:
-                return vehicle.state()
-            if action == "statustexts":
-                return [[round(t, 3), sev, text] for t, sev, text in vehicle.status_texts]
-            if action == "record":
-                return vehicle.record.describe(vehicle)
-            raise ControlError(404, f"no route GET {path}")
+            return _get(vehicle, action, path)
         if method != "POST":
             raise ControlError(405, f"method {method} not allowed")
-        try:
-            args = json.loads(body or b"{}")
-        except json.JSONDecodeError as exc:
-            raise ControlError(400, f"body is not JSON: {exc}") from None
-        if not isinstance(args, dict):
-            raise ControlError(400, "body must be a JSON object")
-        if action == "link":
-            vehicle.set_link(_bool(args, "up"))
-        elif action == "packet_loss":
-            _call(vehicle.set_packet_loss, _number(args, "pct"))
-        elif action == "gps":
-            vehicle.set_gps(_bool(args, "ok"))
-        elif action == "estimate":
-            vehicle.hold_estimate(_bool(args, "held"))
-        elif action == "battery":
-            _call(vehicle.set_battery, _number(args, "pct"))
-        elif action == "reboot":
-            vehicle.reboot()
-        elif action == "record":
-            vehicle.record.reset()
-        elif action == "mode":  # a pilot's RC switch or another ground station (not the gateway)
-            name, text = args.get("mode"), args.get("text")
-            if not isinstance(name, str) or (text is not None and not isinstance(text, str)):
-                raise ControlError(400, "'mode' must be a mode name and 'text' (optional) a string")
-            try:
-                vehicle.pilot_mode(name, text)
-            except ValueError as exc:
-                raise ControlError(400, str(exc)) from None
-        elif action == "mission_capacity":
-            items = args.get("items")
-            if items is not None and (isinstance(items, bool) or not isinstance(items, int)):
-                raise ControlError(400, "'items' must be a whole number of mission items or null")
-            _call(vehicle.set_mission_capacity, items)
-        elif action == "param":
-            name = args.get("name")
-            if not isinstance(name, str):
-                raise ControlError(400, "'name' must be a parameter name string")
-            try:
-                param = vehicle.params.set(name, _number(args, "value"))
-            except ParamError as exc:
-                raise ControlError(400, str(exc)) from None
-            vehicle.broadcast(vehicle.param_value(param))
-        else:
+        args = _json_object(body)
+        setter = _POSTS.get(action or "")
+        if setter is None:
             raise ControlError(404, f"no route POST {path}")
+        setter(vehicle, args)
         return vehicle.state()
+
+
+def _get(vehicle: SimVehicle, action: str | None, path: str) -> object:
+    if action is None:
+        return vehicle.state()
+    if action == "statustexts":
+        return [[round(t, 3), sev, text] for t, sev, text in vehicle.status_texts]
+    if action == "record":
+        return vehicle.record.describe(vehicle)
+    raise ControlError(404, f"no route GET {path}")
+
+
+def _json_object(body: bytes) -> dict:
+    try:
+        args = json.loads(body or b"{}")
+    except json.JSONDecodeError as exc:
+        raise ControlError(400, f"body is not JSON: {exc}") from None
+    if not isinstance(args, dict):
+        raise ControlError(400, "body must be a JSON object")
+    return args
+
+
+def _post_mode(vehicle: SimVehicle, args: dict) -> None:
+    """A pilot's RC switch or another ground station (not the gateway)."""
+    name, text = args.get("mode"), args.get("text")
+    if not isinstance(name, str) or (text is not None and not isinstance(text, str)):
+        raise ControlError(400, "'mode' must be a mode name and 'text' (optional) a string")
+    try:
+        vehicle.pilot_mode(name, text)
+    except ValueError as exc:
+        raise ControlError(400, str(exc)) from None
+
+
+def _post_mission_capacity(vehicle: SimVehicle, args: dict) -> None:
+    items = args.get("items")
+    if items is not None and (isinstance(items, bool) or not isinstance(items, int)):
+        raise ControlError(400, "'items' must be a whole number of mission items or null")
+    _call(vehicle.set_mission_capacity, items)
+
+
+def _post_param(vehicle: SimVehicle, args: dict) -> None:
+    name = args.get("name")
+    if not isinstance(name, str):
+        raise ControlError(400, "'name' must be a parameter name string")
+    try:
+        param = vehicle.params.set(name, _number(args, "value"))
+    except ParamError as exc:
+        raise ControlError(400, str(exc)) from None
+    vehicle.broadcast(vehicle.param_value(param))
+
+
+_POSTS: dict[str, Callable[[SimVehicle, dict], None]] = {
+    "link": lambda vehicle, args: vehicle.set_link(_bool(args, "up")),
+    "packet_loss": lambda vehicle, args: _call(vehicle.set_packet_loss, _number(args, "pct")),
+    "gps": lambda vehicle, args: vehicle.set_gps(_bool(args, "ok")),
+    "estimate": lambda vehicle, args: vehicle.hold_estimate(_bool(args, "held")),
+    "battery": lambda vehicle, args: _call(vehicle.set_battery, _number(args, "pct")),
+    "reboot": lambda vehicle, args: vehicle.reboot(),
+    "record": lambda vehicle, args: vehicle.record.reset(),
+    "mode": _post_mode,
+    "mission_capacity": _post_mission_capacity,
+    "param": _post_param,
+}
 
 
 def _bool(args: dict, key: str) -> bool:
@@ -211,7 +231,7 @@ class SimControl:
     async def __aexit__(self, *exc) -> None:
         await self.aclose()
 
-    async def _get(self, path: str) -> Any:
+    async def _get(self, path: str) -> Any:  # httpx types the decoded JSON Any
         response = await self._client.get(path)
         response.raise_for_status()
         return response.json()

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import logging
 import math
 from collections.abc import Sequence
@@ -11,6 +10,7 @@ from collections.abc import Sequence
 from gateway.sim.physics import LocalFrame
 from gateway.sim.timeline import Timeline
 from gateway.sim.vehicle import SimVehicle
+from gateway.util.tasks import cancel_and_wait
 
 log = logging.getLogger(__name__)
 
@@ -109,11 +109,8 @@ class SimFleet:
         self._task = asyncio.create_task(self._run(), name="sim-clock")
 
     async def stop(self) -> None:
-        if self._task is not None:
-            self._task.cancel()
-            with contextlib.suppress(asyncio.CancelledError):
-                await self._task
-            self._task = None
+        await cancel_and_wait(self._task)
+        self._task = None
         for v in self.vehicles:
             await v.stop()
 

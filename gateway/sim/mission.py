@@ -18,6 +18,8 @@ from dataclasses import dataclass, replace
 
 from pymavlink.dialects.v20 import ardupilotmega as mav
 
+from gateway.util.mission_item import ItemInt
+
 # Accepted frames for items: absolute, relative to home, terrain (treated as relative).
 FRAME_ABS = {mav.MAV_FRAME_GLOBAL, mav.MAV_FRAME_GLOBAL_INT}
 FRAME_REL = {
@@ -30,19 +32,8 @@ TYPE_MISSION = mav.MAV_MISSION_TYPE_MISSION
 
 
 @dataclass(frozen=True)
-class Item:
+class Item(ItemInt):
     """One stored mission item, in MISSION_ITEM_INT terms (x/y in degE7)."""
-
-    command: int
-    frame: int = mav.MAV_FRAME_GLOBAL_RELATIVE_ALT
-    param1: float = 0.0
-    param2: float = 0.0
-    param3: float = 0.0
-    param4: float = 0.0
-    x: int = 0
-    y: int = 0
-    z: float = 0.0
-    autocontinue: int = 1
 
     @property
     def lat(self) -> float:

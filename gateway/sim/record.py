@@ -12,12 +12,15 @@ first, which a later arming moves on ArduCopter. Read through the control API (`
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from pymavlink.dialects.v20 import ardupilotmega as mav
 
 from gateway.sim.modes import mode_name
 
 if TYPE_CHECKING:
     from gateway.sim.host import SimHost
+    from gateway.sim.mission import Item
 
 #: messages that only read or keep the link alive: not recorded
 _READS = frozenset(
@@ -40,8 +43,8 @@ class FlightRecord:
         self.reset()
 
     def reset(self) -> None:
-        self.received: list[dict[str, Any]] = []
-        self.missions_stored: list[list[dict[str, Any]]] = []
+        self.received: list[dict[str, object]] = []
+        self.missions_stored: list[list[dict[str, object]]] = []
         self.modes: list[tuple[float, str]] = []
         self.track: list[tuple[float, float, float, float]] = []
         self.disarmed_in_air: list[dict[str, float]] = []
@@ -57,20 +60,21 @@ class FlightRecord:
         self._was: tuple[bool, bool, str] | None = None
 
     # -- input ----------------------------------------------------------------------------------------
-    def message(self, t: float, msg: Any) -> None:
+    def message(self, t: float, msg: mav.MAVLink_message) -> None:
         kind = msg.get_type()
         if kind in _READS or len(self.received) >= MAX_ENTRIES:
             return
-        entry: dict[str, Any] = {"t": round(t, 3), "kind": kind, "src": msg.get_srcSystem()}
+        entry: dict[str, object] = {"t": round(t, 3), "kind": kind, "src": msg.get_srcSystem()}
         if kind in ("COMMAND_LONG", "COMMAND_INT"):
             if msg.command in _READ_COMMANDS:
                 return
             entry["command"] = msg.command
-            entry["params"] = [_num(getattr(msg, f"param{i}")) for i in range(1, 5)]
+            params = [_num(getattr(msg, f"param{i}")) for i in range(1, 5)]
             if kind == "COMMAND_INT":
-                entry["params"] += [msg.x, msg.y, _num(msg.z)]
+                params += [msg.x, msg.y, _num(msg.z)]
             else:
-                entry["params"] += [_num(msg.param5), _num(msg.param6), _num(msg.param7)]
+                params += [_num(msg.param5), _num(msg.param6), _num(msg.param7)]
+            entry["params"] = params
         elif kind == "PARAM_SET":
             raw = msg.param_id
             name = raw.decode("ascii", "replace") if isinstance(raw, bytes) else raw
@@ -83,7 +87,7 @@ class FlightRecord:
             entry["custom_mode"] = msg.custom_mode
         self.received.append(entry)
 
-    def mission_stored(self, items: list[Any]) -> None:
+    def mission_stored(self, items: list[Item]) -> None:
         """The mission the vehicle now holds (home excluded), as stored."""
         self.missions_stored.append([_item(i) for i in items])
 
@@ -124,7 +128,7 @@ class FlightRecord:
             self.track.append((round(v.t, 3), lat, lon, round(v.rel_alt(), 2)))
 
     # -- output ---------------------------------------------------------------------------------------
-    def describe(self, v: SimHost) -> dict[str, Any]:
+    def describe(self, v: SimHost) -> dict[str, object]:
         home = self.first_home
         return {
             "first_home": None if home is None else {"lat": home[0], "lon": home[1], "alt": home[2]},
@@ -144,7 +148,7 @@ class FlightRecord:
         }
 
 
-def _item(item: Any) -> dict[str, Any]:
+def _item(item: Item) -> dict[str, object]:
     return {
         "command": item.command,
         "frame": item.frame,

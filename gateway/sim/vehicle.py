@@ -317,9 +317,12 @@ class SimVehicle:
         self.record.message(self.t, msg)
         if kind in ("COMMAND_LONG", "COMMAND_INT"):
             self.commands.handle(link, msg)
-        elif self.mission.handle(link, msg):
-            pass
-        elif kind == "PARAM_REQUEST_LIST":
+        elif not self.mission.handle(link, msg) and not self._dispatch_params(link, kind, msg):
+            self._dispatch_control(link, kind, msg)
+
+    def _dispatch_params(self, link: Link, kind: str, msg: mav.MAVLink_message) -> bool:
+        """Parameter and stream-rate requests; False when ``kind`` is none of them."""
+        if kind == "PARAM_REQUEST_LIST":
             self.commands.param_request_list(link)
         elif kind == "PARAM_REQUEST_READ":
             self.commands.param_request_read(link, msg)
@@ -327,7 +330,12 @@ class SimVehicle:
             self.commands.param_set(link, msg)
         elif kind == "REQUEST_DATA_STREAM":
             self._request_data_stream(link, msg)
-        elif kind == "SET_MODE":
+        else:
+            return False
+        return True
+
+    def _dispatch_control(self, link: Link, kind: str, msg: mav.MAVLink_message) -> None:
+        if kind == "SET_MODE":
             if msg.base_mode & mav.MAV_MODE_FLAG_CUSTOM_MODE_ENABLED:
                 self.flight.set_mode(msg.custom_mode)
         elif kind == "MISSION_SET_CURRENT":

@@ -11,7 +11,6 @@ import math
 import os
 import shutil
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -436,30 +435,6 @@ def frozen(proc: subprocess.Popen, group: bool = True) -> Iterator[None]:
         thaw(proc, group)
 
 
-class SlowProxy(TcpProxy):
-    """A TCP proxy that can hold every chunk ``delay_s`` before passing it on: a slow database as its
-    clients see it (each statement's round trip takes seconds; nothing is lost)."""
-
-    def __init__(self, target_host: str, target_port: int) -> None:
-        self.delay_s = 0.0
-        super().__init__(target_host, target_port)
-
-    def _pump(self, src: socket.socket, dst: socket.socket) -> None:
-        try:
-            while not self._closed.is_set():
-                self._open.wait()
-                data = src.recv(65536)
-                if not data:
-                    break
-                self._open.wait()
-                if self.delay_s:
-                    time.sleep(self.delay_s)
-                if self._closed.is_set():
-                    break
-                dst.sendall(data)
-        except OSError:
-            pass
-        finally:
-            for sock in (src, dst):
-                with contextlib.suppress(OSError):
-                    sock.shutdown(socket.SHUT_RDWR)
+#: a TCP proxy whose ``delay_s`` holds every chunk before passing it on: a slow database as its clients
+#: see it (each statement's round trip takes seconds; nothing is lost)
+SlowProxy = TcpProxy

@@ -124,6 +124,7 @@ async def test_postgresql_down_under_drones_in_the_air(tmp_path: Path) -> None:
             assert response.status_code == 200, response.text
             held = {r["vehicle_id"]: r["outcome"] for r in response.json()["results"]}
             assert held == {d: "sent" for d in c.drone_ids}, response.json()
+
             async def accepted_by_every_autopilot() -> bool | None:  # the other node's send logs later
                 logs = "".join(n.log.read_text(errors="replace") for n in c.nodes)
                 said = (rf"{d}: hold sent over its own link by .*ACCEPTED" for d in c.drone_ids)
@@ -414,12 +415,6 @@ async def test_the_emergency_stop_under_each_fault(matrix_rig: Rig, fault: str) 
     print(f"{fault}: " + ", ".join(f"{k} {v}" for k, v in figures.items()))
 
 
-@pytest.mark.xfail(
-    strict=False,
-    reason="open: with one node cut from PostgreSQL the other takes its drones over, and a stop while their "
-    "links are still coming up can miss the deadline on a loaded machine (measured 5.7 s; docs/cluster.md, "
-    "Not done yet)",
-)
 @pytest.mark.parametrize("fault", ALONE)
 async def test_the_emergency_stop_under_a_fault_on_a_cluster_of_its_own(tmp_path: Path, fault: str) -> None:
     async with rig(tmp_path) as r:

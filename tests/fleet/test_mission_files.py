@@ -10,7 +10,7 @@ from types import SimpleNamespace
 import pytest
 
 from gateway.errors import InvalidArgument, SafetyRefusal
-from gateway.fleet.dialects.mission_semantics import ARDUCOPTER_MISSION, PX4_MISSION
+from gateway.fleet.dialects.mission_semantics import arducopter_mission, px4_mission
 from gateway.fleet.missions import mission, mission_files
 from gateway.fleet.policy.safety import SafetyPolicy
 from gateway.fleet.policy.safety_inputs import VehicleContext
@@ -40,7 +40,7 @@ def test_the_ardupilot_autotest_mission_is_read_as_ardupilot_reads_it() -> None:
     assert (items[3].lat, items[3].lon, items[3].alt_rel_m) == (-35.364652, 149.163501, 20.0)  # 0, 0: here
     assert (items[10].lat, items[10].lon, items[10].alt_rel_m) == (-35.364652, 149.163995, 20.0)
     assert items[2].command == 115 and items[9].command == 177  # CONDITION_YAW, DO_JUMP pass through
-    SafetyPolicy(settings()).check_mission(cmac_ctx(), items, "rest", ARDUCOPTER_MISSION)
+    SafetyPolicy(settings()).check_mission(cmac_ctx(), items, "rest", arducopter_mission())
 
 
 def test_file_items_go_to_the_autopilot_as_written() -> None:
@@ -60,7 +60,8 @@ def test_file_items_go_to_the_autopilot_as_written() -> None:
 
 
 def _downloaded(plan: mission.WirePlan) -> list[SimpleNamespace]:
-    return [SimpleNamespace(**vars(w), autocontinue=1) for w in plan.items]
+    """The items as a download returns them (MAVSDK's MissionItem: the same fields, autocontinue too)."""
+    return [SimpleNamespace(**vars(w)) for w in plan.items]
 
 
 @pytest.mark.parametrize("fmt", ["waypoints", "plan"])
@@ -90,9 +91,9 @@ def test_px4_plan_speed_and_roi_are_checked_and_passed() -> None:
     assert [i.kind for i in items] == ["takeoff", "other", "waypoint", "other", "waypoint", "waypoint", "rtl"]
     assert items[1].speed_mps == 4.0 and items[3].command == 195
     ctx = cmac_ctx(home=home, position=(home[0], home[1], 0.0))
-    SafetyPolicy(settings()).check_mission(ctx, items, "rest", PX4_MISSION)
+    SafetyPolicy(settings()).check_mission(ctx, items, "rest", px4_mission())
     with pytest.raises(SafetyRefusal, match=r"max_speed: mission item 2:") as refused:
-        SafetyPolicy(settings(max_speed_mps=3.0)).check_mission(ctx, items, "rest", PX4_MISSION)
+        SafetyPolicy(settings(max_speed_mps=3.0)).check_mission(ctx, items, "rest", px4_mission())
     assert refused.value.details.get("item") == 2
 
 
@@ -100,18 +101,18 @@ def test_a_refused_item_is_named_with_its_sequence_number_and_rule() -> None:
     far = CANGPS.replace("-35.365361\t149.164563", "-35.465361\t149.164563")  # item 7, 11 km south
     items = mission_files.mission_items(mission_files.parse(far), CMAC, None)
     with pytest.raises(SafetyRefusal, match=r"^max_distance: mission item 7: ") as refused:
-        SafetyPolicy(settings()).check_mission(cmac_ctx(), items, "rest", ARDUCOPTER_MISSION)
+        SafetyPolicy(settings()).check_mission(cmac_ctx(), items, "rest", arducopter_mission())
     assert refused.value.details["item"] == 7
     row6 = "\t16\t1.000000\t0.000000\t0.000000\t0.000000\t-35.365361\t149.163995\t"
     global_alt = CANGPS.replace(f"6\t0\t3{row6}40.0", f"6\t0\t0{row6}800.0")  # frame 0: AMSL
     items = mission_files.mission_items(mission_files.parse(global_alt), CMAC, None)
     assert items[5].alt_rel_m == pytest.approx(218.0)  # 800 m AMSL above a home at 582 m
     with pytest.raises(SafetyRefusal, match=r"^max_altitude: mission item 6: "):
-        SafetyPolicy(settings()).check_mission(cmac_ctx(), items, "rest", ARDUCOPTER_MISSION)
+        SafetyPolicy(settings()).check_mission(cmac_ctx(), items, "rest", arducopter_mission())
     set_param = CANGPS.replace("3\t0\t3\t115\t640.000000", "3\t0\t3\t180\t640.000000")
     items = mission_files.mission_items(mission_files.parse(set_param), CMAC, None)
     with pytest.raises(SafetyRefusal, match=r"^mission_command_deny: mission item 3: DO_SET_PARAMETER"):
-        SafetyPolicy(settings()).check_mission(cmac_ctx(), items, "rest", ARDUCOPTER_MISSION)
+        SafetyPolicy(settings()).check_mission(cmac_ctx(), items, "rest", arducopter_mission())
 
 
 @pytest.mark.parametrize(

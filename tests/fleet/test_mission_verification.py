@@ -8,7 +8,7 @@ from __future__ import annotations
 import pytest
 
 from gateway.errors import InvalidArgument, SafetyRefusal
-from gateway.fleet.dialects.mission_semantics import ARDUCOPTER_MISSION, PX4_MISSION
+from gateway.fleet.dialects.mission_semantics import arducopter_mission, px4_mission
 from gateway.fleet.missions import mission_files
 from gateway.fleet.missions.mission import MissionItem
 from gateway.fleet.policy.mission_check import MissionSemantics
@@ -30,13 +30,14 @@ def wpl(*rows: tuple[int, int, float, float, float, float, float, float, float])
     return "".join(lines)
 
 
-def items_of(text: str, semantics: MissionSemantics = ARDUCOPTER_MISSION) -> list[MissionItem]:
-    zero = semantics.zero_position_is_here
+def items_of(text: str, semantics: MissionSemantics | None = None) -> list[MissionItem]:
+    zero = (semantics or arducopter_mission()).zero_position_is_here
     parsed = mission_files.parse(text)
     return mission_files.mission_items(parsed, HOME, (HOME[0], HOME[1], 0.0), zero_is_here=zero)
 
 
-def refused(text: str, semantics: MissionSemantics = ARDUCOPTER_MISSION, **limits: float) -> SafetyRefusal:
+def refused(text: str, semantics: MissionSemantics | None = None, **limits: float) -> SafetyRefusal:
+    semantics = semantics or arducopter_mission()
     with pytest.raises(SafetyRefusal) as err:
         SafetyPolicy(settings(**limits)).check_mission(ctx(), items_of(text, semantics), "mcp", semantics)
     return err.value
@@ -68,7 +69,7 @@ def test_items_the_gateway_does_not_model_are_refused_for_agents_by_name(row: tu
 
 def test_an_operator_may_store_an_unchecked_item_and_learns_which() -> None:
     items = items_of(wpl((3, 218, 31, 2, 0, 0, 0, 0, 0), (3, 16, 0, 0, 0, 0, 50, 0, 20)))
-    unchecked = SafetyPolicy(settings()).check_mission(ctx(), items, "rest", ARDUCOPTER_MISSION)
+    unchecked = SafetyPolicy(settings()).check_mission(ctx(), items, "rest", arducopter_mission())
     assert [u.text() for u in unchecked] == [
         "mission item 2: DO_AUX_FUNCTION (218) is a command whose effect the gateway cannot check on "
         "ArduCopter"
@@ -76,7 +77,7 @@ def test_an_operator_may_store_an_unchecked_item_and_learns_which() -> None:
     # the limits still hold for operators on every item the gateway reads
     high = items_of(wpl((3, 218, 31, 2, 0, 0, 0, 0, 0), (3, 16, 0, 0, 0, 0, 50, 0, 200)))
     with pytest.raises(SafetyRefusal, match=r"^max_altitude: mission item 3: "):
-        SafetyPolicy(settings()).check_mission(ctx(), high, "rest", ARDUCOPTER_MISSION)
+        SafetyPolicy(settings()).check_mission(ctx(), high, "rest", arducopter_mission())
 
 
 def test_a_frame_the_gateway_does_not_model_is_named() -> None:
@@ -93,7 +94,7 @@ def test_loiter_radii_count_in_the_distance_limit_and_the_zones() -> None:
     err = refused(wpl((3, 19, 10, 0, 950, 0, 100, 0, 30)))  # LOITER_TIME
     assert err.rule == "max_distance"
     ok = items_of(wpl((3, 18, 3, 0, 50, 0, 100, 0, 30)))
-    SafetyPolicy(settings()).check_mission(ctx(), ok, "mcp", ARDUCOPTER_MISSION)
+    SafetyPolicy(settings()).check_mission(ctx(), ok, "mcp", arducopter_mission())
 
 
 def test_a_loiter_circle_may_not_reach_a_keep_out_zone() -> None:
@@ -103,8 +104,8 @@ def test_a_loiter_circle_may_not_reach_a_keep_out_zone() -> None:
     p = fenced(("school", "keep_out", square(300, 0, 50), "*"))
     near = items_of(wpl((3, 18, 3, 0, 200, 0, 100, 0, 30)))  # centre 200 m from the zone: radius 200
     with pytest.raises(SafetyRefusal, match=r"^geofence_keep_out: mission item 2: the loiter circle"):
-        p.check_mission(ctx(), near, "mcp", ARDUCOPTER_MISSION)
-    p.check_mission(ctx(), items_of(wpl((3, 18, 3, 0, 20, 0, 100, 0, 30))), "mcp", ARDUCOPTER_MISSION)
+        p.check_mission(ctx(), near, "mcp", arducopter_mission())
+    p.check_mission(ctx(), items_of(wpl((3, 18, 3, 0, 20, 0, 100, 0, 30))), "mcp", arducopter_mission())
 
 
 def test_change_speed_is_judged_by_its_speed_type() -> None:
@@ -116,11 +117,11 @@ def test_change_speed_is_judged_by_its_speed_type() -> None:
     assert err.rule == "max_speed" and "speed 20 m/s exceeds the limit of 15 m/s" in err.message
     assert refused(wpl((2, 178, 7, 3, -1, 0, 0, 0, 0))).rule == "mission_unchecked"  # no such type
     ok = items_of(wpl((2, 178, 1, 12, -1, 0, 0, 0, 0), (2, 178, 2, 2, -1, 0, 0, 0, 0)))
-    SafetyPolicy(settings()).check_mission(ctx(), ok, "mcp", ARDUCOPTER_MISSION)
+    SafetyPolicy(settings()).check_mission(ctx(), ok, "mcp", arducopter_mission())
     # PX4 flies any speed type as its cruise (horizontal) speed
-    px4 = items_of(wpl((2, 178, 2, 14, -1, 0, 0, 0, 0)), PX4_MISSION)
-    SafetyPolicy(settings()).check_mission(ctx(), px4, "mcp", PX4_MISSION)
-    assert refused(wpl((2, 178, 2, 16, -1, 0, 0, 0, 0)), PX4_MISSION).rule == "max_speed"
+    px4 = items_of(wpl((2, 178, 2, 14, -1, 0, 0, 0, 0)), px4_mission())
+    SafetyPolicy(settings()).check_mission(ctx(), px4, "mcp", px4_mission())
+    assert refused(wpl((2, 178, 2, 16, -1, 0, 0, 0, 0)), px4_mission()).rule == "max_speed"
 
 
 def test_jumps_are_bounded_and_the_leg_back_is_checked() -> None:
@@ -131,17 +132,17 @@ def test_jumps_are_bounded_and_the_leg_back_is_checked() -> None:
     assert "repeats -1 times" in refused(wpl(*base, (2, 177, 2, -1, 0, 0, 0, 0, 0))).message
     assert "DO_JUMP to item 9" in refused(wpl(*base, (2, 177, 9, 1, 0, 0, 0, 0, 0))).message
     text = wpl(*base, (3, 16, 0, 0, 0, 0, 300, 100, 20), (2, 177, 2, 3, 0, 0, 0, 0, 0))
-    SafetyPolicy(settings()).check_mission(ctx(), items_of(text), "mcp", ARDUCOPTER_MISSION)
+    SafetyPolicy(settings()).check_mission(ctx(), items_of(text), "mcp", arducopter_mission())
     # a zone between item 4 and item 2: only the jump flies that leg
     p = fenced(("school", "keep_out", square(200, 50, 20), "*"))
     with pytest.raises(SafetyRefusal, match=r"mission item 5: the jump back to item 2: the straight path"):
-        p.check_mission(ctx(), items_of(text), "mcp", ARDUCOPTER_MISSION)
+        p.check_mission(ctx(), items_of(text), "mcp", arducopter_mission())
 
 
 def test_px4_has_its_own_commands_and_reads_zero_as_written() -> None:
-    err = refused(wpl((3, 18, 3, 0, 10, 0, 100, 0, 30)), PX4_MISSION)  # no LOITER_TURNS on a PX4 copter
+    err = refused(wpl((3, 18, 3, 0, 10, 0, 100, 0, 30)), px4_mission())  # no LOITER_TURNS on a PX4 copter
     assert err.rule == "mission_unchecked" and "cannot check on PX4" in err.message
-    err = refused(wpl((3, 16, 0, 0, 0, 0, 0, 0, 20)), PX4_MISSION)  # 0, 0 is 0, 0 on PX4
+    err = refused(wpl((3, 16, 0, 0, 0, 0, 0, 0, 20)), px4_mission())  # 0, 0 is 0, 0 on PX4
     assert err.rule == "max_distance" and err.details["item"] == 2
 
 

@@ -1,19 +1,23 @@
 """A TCP proxy on loopback that a test can cut and heal: a network partition between one process and a
 server, as both sides see it. While cut, connections stay open and nothing passes either way (bytes wait
 in the proxy and the kernel, as in a partition that TCP rides out); on heal everything held is delivered,
-late. Threads, so it runs beside any event loop."""
+late. ``delay_s`` (0 by default) holds every chunk that long before passing it on: a slow server as its
+clients see it (each round trip takes that much longer; nothing is lost). Threads, so it runs beside any
+event loop."""
 
 from __future__ import annotations
 
 import contextlib
 import socket
 import threading
+import time
 from collections.abc import Iterator
 
 
 class TcpProxy:
-    def __init__(self, target_host: str, target_port: int) -> None:
+    def __init__(self, target_host: str, target_port: int, delay_s: float = 0.0) -> None:
         self.target = (target_host, target_port)
+        self.delay_s = delay_s
         self._listener = socket.create_server(("127.0.0.1", 0))
         self.port = self._listener.getsockname()[1]
         self._open = threading.Event()
@@ -62,6 +66,8 @@ class TcpProxy:
                 if not data:
                     break
                 self._open.wait()  # read just before a cut: held until the heal, like the rest
+                if self.delay_s:
+                    time.sleep(self.delay_s)
                 if self._closed.is_set():
                     break
                 dst.sendall(data)

@@ -31,12 +31,12 @@ from gateway.fleet import geo
 from gateway.fleet.commands.arguments import AltFrame
 from gateway.fleet.commands.command_pass import CommandPass
 from gateway.fleet.operations.operation_state import Operation
-from gateway.fleet.operations.routing import FORWARDED, Verb
+from gateway.fleet.operations.routing import FORWARDED, OnMessage, ProgressMessage, Verb
 from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import VehicleContext
 from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleView
-from gateway.registry.store import Store
+from gateway.registry.store import OperationRecord, Store
 
 log = logging.getLogger(__name__)
 
@@ -111,10 +111,11 @@ def routed(method: VerbMethod) -> VerbMethod:
         relay = _relay(callbacks)
         seen: dict[str, str] = {}  # the operation the owner reported (its progress), to follow it
 
-        async def watch(body: dict[str, Any]) -> None:
+        async def watch(body: ProgressMessage) -> None:
             view = body.get("view")
-            if isinstance(view, dict) and isinstance(view.get("operation_id"), str):
-                seen["operation_id"] = view["operation_id"]
+            operation_id = view.get("operation_id") if isinstance(view, dict) else None
+            if isinstance(operation_id, str):
+                seen["operation_id"] = operation_id
             if relay is not None:
                 await relay(body)
 
@@ -232,22 +233,28 @@ def command(
     return declare if method is None else declare(method)
 
 
+class VerbParts(Protocol):
+    """The Commander as a verb called by name sees it: its parts, by class name."""
+
+    parts: dict[str, object]
+
+
 def _by_name(method: Callable[..., Any]) -> Callable[..., Awaitable[Any]]:
     """Call the verb on the Commander's part that holds it (``commander.parts``, by class name)."""
     part, name = method.__qualname__.split(".")[-2:]
 
-    async def call(commander: Any, *args: Any, **kwargs: Any) -> Any:
+    async def call(commander: VerbParts, *args: Any, **kwargs: Any) -> Any:
         return await getattr(commander.parts[part], name)(*args, **kwargs)
 
     return call
 
 
-def _relay(callbacks: dict[str, Any]) -> Callable[[dict[str, Any]], Awaitable[None]] | None:
+def _relay(callbacks: dict[str, Any]) -> OnMessage | None:
     """The owner's progress messages to the verb's own callbacks (``notify``, ``on_progress``)."""
     if not callbacks:
         return None
 
-    async def relay(body: dict[str, Any]) -> None:
+    async def relay(body: ProgressMessage) -> None:
         if "notice" in body and "notify" in callbacks:
             await callbacks["notify"](str(body["notice"]))
         elif "view" in body and "on_progress" in callbacks:
@@ -394,7 +401,7 @@ class OperationDesk:
         record = await self.store.get_operation(operation_id)
         return None if record is None else record.vehicle_id
 
-    async def _record_of(self, operation_id: str) -> Any:
+    async def _record_of(self, operation_id: str) -> OperationRecord | None:
         """The operation as the database holds it; None when unknown or the database is unreachable."""
         if self.store is None:
             return None

@@ -72,7 +72,7 @@ class Need(Enum):
 class Order:
     """What a command sends, decided by its checks from the one context."""
 
-    send: Callable[[], Awaitable[Any]]
+    send: Callable[[], Awaitable[object]]
     tracker: Tracker | None = None
     """A tracked operation (an `OperationView` to wait on); None: an instant command."""
     params: dict[str, Any] = field(default_factory=dict)

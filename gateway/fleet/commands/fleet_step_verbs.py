@@ -4,13 +4,10 @@ a cluster through the routed verbs ``run_step`` / ``hold_step``."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from typing import Any
-
 from gateway.fleet.commands.command_core import OperationDesk, routed
 from gateway.fleet.commands.command_pass import CommandPass, Need, Order
 from gateway.fleet.operations.fleet_ops import FleetOperations
-from gateway.fleet.operations.fleet_steps import build_step
+from gateway.fleet.operations.fleet_steps import StepSpec, build_step
 from gateway.fleet.operations.operation_state import Operation
 from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
@@ -27,7 +24,7 @@ class FleetStepVerbs:
         self.registry = commands.registry
         fleet.run_steps_with(self.step_here, self.hold_here)
 
-    async def step_here(self, caller: Caller, drone_id: str, spec: Mapping[str, Any]) -> Operation:
+    async def step_here(self, caller: Caller, drone_id: str, spec: StepSpec) -> Operation:
         """One drone's step of a fleet operation (`gateway.fleet.operations.fleet_steps.build_step`), as
         one run of the pass on this node: the takeover lock, the takeoff guard (named by the step's ``guard``;
         none for a recovery step) before and inside the command lock, then the step's operation."""
@@ -56,7 +53,7 @@ class FleetStepVerbs:
         return sent.ended
 
     @routed
-    async def run_step(self, caller: Caller, drone_id: str, spec: dict[str, Any]) -> OperationView:
+    async def run_step(self, caller: Caller, drone_id: str, spec: StepSpec) -> OperationView:
         """Start one drone's step here, for the node coordinating the fleet operation (`step_here`)."""
         op = await self.step_here(caller, drone_id, spec)
         return OperationView.of(op, self.registry.get(drone_id))

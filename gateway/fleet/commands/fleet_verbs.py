@@ -206,13 +206,7 @@ class FleetVerbs:
         ``east_m``. Drones on the ground take off first (a first phase, to staggered altitudes as in
         `fleet_takeoff`); then the three phases with barriers of `gateway.fleet.formation.formation`."""
         ids = check_drone_ids(drone_ids)
-        if (center_lat_deg is None) != (center_lon_deg is None):
-            raise InvalidArgument(
-                "give both center_lat_deg and center_lon_deg, or neither (the formation is then centred "
-                "where the drones are, moved north_m/east_m)"
-            )
-        for name, metres in (("north_m", north_m), ("east_m", east_m)):
-            geo.check_finite(name, metres)
+        _check_centre_args(center_lat_deg, center_lon_deg, north_m, east_m)
         policy = self.safety
         via = caller.policy_via
         deadline = arming_deadline(self.settings)
@@ -245,13 +239,9 @@ class FleetVerbs:
             for d in ids
             if (pos := contexts[d].position) is not None
         ]
-        if center_lat_deg is None or center_lon_deg is None:
-            center_lat_deg = sum(s.lat for s in starts) / len(starts)
-            center_lon_deg = sum(s.lon for s in starts) / len(starts)
-        if north_m or east_m:
-            center_lat_deg, center_lon_deg = geo.offset_position(
-                center_lat_deg, center_lon_deg, north_m, east_m
-            )
+        center_lat_deg, center_lon_deg = _formation_centre(
+            starts, center_lat_deg, center_lon_deg, north_m, east_m
+        )
         if heading_deg is None:
             heading_deg = _travel_heading(starts, center_lat_deg, center_lon_deg)
         plan = plan_formation(
@@ -478,6 +468,28 @@ class FleetVerbs:
             not_sent=[u.to_dict() for u in unable],
             superseded_fleet_operations=[f.id for f in superseded],
         )
+
+
+def _check_centre_args(lat: float | None, lon: float | None, north_m: float, east_m: float) -> None:
+    if (lat is None) != (lon is None):
+        raise InvalidArgument(
+            "give both center_lat_deg and center_lon_deg, or neither (the formation is then centred "
+            "where the drones are, moved north_m/east_m)"
+        )
+    for name, metres in (("north_m", north_m), ("east_m", east_m)):
+        geo.check_finite(name, metres)
+
+
+def _formation_centre(
+    starts: Sequence[DroneStart], lat: float | None, lon: float | None, north_m: float, east_m: float
+) -> tuple[float, float]:
+    """The centre given, else the drones' own centre, moved ``north_m`` and ``east_m``."""
+    if lat is None or lon is None:
+        lat = sum(s.lat for s in starts) / len(starts)
+        lon = sum(s.lon for s in starts) / len(starts)
+    if north_m or east_m:
+        lat, lon = geo.offset_position(lat, lon, north_m, east_m)
+    return lat, lon
 
 
 def _travel_heading(starts: Sequence[DroneStart], lat: float, lon: float) -> float:

@@ -174,52 +174,7 @@ class OperatorVerbs:
         if self.router is not None:  # fleet operations coordinated by other nodes end there too
             await self.router.announce("stop", {"action": action, "by": caller.principal})
 
-        async def one(vehicle: VehicleView) -> StopOutcome:
-            state = str(vehicle.state)
-            # a drone owned elsewhere goes to its node's router whatever it reads here: with no owner
-            # (its node lost, or fenced) the router still finds a path to it, or says what it does next
-            remote = getattr(vehicle, "remote", False)
-            if state in ("registered", "failed") and not remote:
-                return StopOutcome(
-                    drone_id=vehicle.id, action=action, outcome="skipped", message=f"not connected ({state})"
-                )
-            if vehicle.on_ground() is True:
-                return StopOutcome(
-                    drone_id=vehicle.id, action=action, outcome="skipped", message="on the ground"
-                )
-            try:
-                return await self.stop_one(caller, vehicle.id, action)
-            except StopPending as exc:
-                return StopOutcome(
-                    drone_id=vehicle.id, action=action, outcome="taking_over", message=exc.message
-                )
-            except VehicleNotReady as exc:
-                if state not in LINK_COMING:
-                    return StopOutcome(
-                        drone_id=vehicle.id, action=action, outcome="failed", message=exc.message
-                    )
-                # this node's own link to it is being established (a drone it has just taken over, a
-                # sidecar restarting): the stop goes as soon as the link is ready
-                self._stop_when_ready(caller, vehicle.id, action)
-                return StopOutcome(
-                    drone_id=vehicle.id,
-                    action=action,
-                    outcome="taking_over",
-                    message=f"{exc.message}: this node sends the {action} as soon as its link is ready "
-                    f"(it keeps trying for {STOP_WHEN_READY_S:g} s; the log and the audit say when it is "
-                    "sent)",
-                )
-            except (NotRun, NoOwner) as exc:
-                return StopOutcome(
-                    drone_id=vehicle.id, action=action, outcome="unreached", message=exc.message
-                )
-            except GatewayError as exc:
-                return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=exc.message)
-            except Exception as exc:  # one drone's failure must not stop the others
-                log.exception("fleet stop: %s failed on %s", action, vehicle.id)
-                return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=repr(exc))
-
-        results = await asyncio.gather(*(one(v) for v in vehicles))
+        results = await asyncio.gather(*(self._stop_member(caller, v, action) for v in vehicles))
         if fleet_lock is not None and storing is not None:
             done, _ = await asyncio.wait({storing}, timeout=STORE_LOCK_WAIT_S)
             fleet_lock.stored = bool(done and not storing.exception() and storing.result())
@@ -229,6 +184,44 @@ class OperatorVerbs:
             superseded_fleet_operations=[f.id for f in superseded],
             results=list(results),
         )
+
+    async def _stop_member(self, caller: Caller, vehicle: VehicleView, action: StopAction) -> StopOutcome:
+        """One drone of a fleet stop: its outcome, never an exception."""
+        state = str(vehicle.state)
+        # a drone owned elsewhere goes to its node's router whatever it reads here: with no owner
+        # (its node lost, or fenced) the router still finds a path to it, or says what it does next
+        remote = getattr(vehicle, "remote", False)
+        if state in ("registered", "failed") and not remote:
+            return StopOutcome(
+                drone_id=vehicle.id, action=action, outcome="skipped", message=f"not connected ({state})"
+            )
+        if vehicle.on_ground() is True:
+            return StopOutcome(drone_id=vehicle.id, action=action, outcome="skipped", message="on the ground")
+        try:
+            return await self.stop_one(caller, vehicle.id, action)
+        except StopPending as exc:
+            return StopOutcome(drone_id=vehicle.id, action=action, outcome="taking_over", message=exc.message)
+        except VehicleNotReady as exc:
+            if state not in LINK_COMING:
+                return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=exc.message)
+            # this node's own link to it is being established (a drone it has just taken over, a
+            # sidecar restarting): the stop goes as soon as the link is ready
+            self._stop_when_ready(caller, vehicle.id, action)
+            return StopOutcome(
+                drone_id=vehicle.id,
+                action=action,
+                outcome="taking_over",
+                message=f"{exc.message}: this node sends the {action} as soon as its link is ready "
+                f"(it keeps trying for {STOP_WHEN_READY_S:g} s; the log and the audit say when it is "
+                "sent)",
+            )
+        except (NotRun, NoOwner) as exc:
+            return StopOutcome(drone_id=vehicle.id, action=action, outcome="unreached", message=exc.message)
+        except GatewayError as exc:
+            return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=exc.message)
+        except Exception as exc:  # one drone's failure must not stop the others
+            log.exception("fleet stop: %s failed on %s", action, vehicle.id)
+            return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=repr(exc))
 
     def _stop_when_ready(self, caller: Caller, drone_id: str, action: StopAction) -> None:
         """The stop of a drone whose link is being established, sent once it is ready (in the background,

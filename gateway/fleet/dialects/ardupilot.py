@@ -18,13 +18,14 @@ from __future__ import annotations
 
 from collections.abc import Awaitable, Callable, Mapping
 
-from gateway.fleet.dialects.base import LinkOps, matches_any, reader, user_progress
-from gateway.fleet.dialects.mission_semantics import ARDUCOPTER_MISSION
+from gateway.fleet.dialects.base import LinkOps, UserNumbering, matches_any, reader
+from gateway.fleet.dialects.mission_semantics import arducopter_mission
 from gateway.fleet.dialects.modes import COMMON_MODES, NOT_MODELLED, AirUse, ModeChoice, canonical
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem, WirePlan
+from gateway.fleet.policy.mission_check import MissionSemantics
 from gateway.fleet.policy.param_limits import ParamLimit
-from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
+from gateway.link.telemetry import HealthValue, TelemetryCache
 
 #: every ArduCopter mode, by HEARTBEAT custom_mode number (for naming what the vehicle reports)
 ARDUCOPTER_MODES: dict[str, int] = {
@@ -142,10 +143,11 @@ LIMIT_PARAMS: dict[str, ParamLimit] = {
 }
 
 
-class ArduPilot:
+class ArduPilot(UserNumbering):
     """The ArduCopter dialect (also used for a link whose autopilot is not known yet)."""
 
     name = "ArduCopter"
+    first_user_seq = 1  # home holds seq 0
     skipped_streams = frozenset({"imu", "odometry"})
     follows_events = False
     arming_mode: str | None = "GUIDED"
@@ -155,7 +157,10 @@ class ArduPilot:
     return_altitude_params = (("RTL_ALT", 100.0), ("RTL_ALT_M", 1.0))
     protected_params = PROTECTED_PARAMS
     limit_params: Mapping[str, ParamLimit] = LIMIT_PARAMS
-    mission_semantics = ARDUCOPTER_MISSION
+
+    @property
+    def mission_semantics(self) -> MissionSemantics:
+        return arducopter_mission()
 
     # --- link facts ----------------------------------------------------------------------------------
     def mode_name(self, custom_mode: int, mav_type: int) -> str | None:
@@ -219,18 +224,6 @@ class ArduPilot:
 
     def mission_rejection(self, text: str) -> bool:
         return False  # ArduPilot refuses in the MISSION_ACK: the upload itself fails
-
-    def mission_progress(
-        self,
-        current_seq: int,
-        total: int,
-        plan: WirePlan | None,
-        finished: bool,
-        *,
-        from_mission_current: bool,
-    ) -> MissionProgressValue:
-        wire_total = total + 1 if from_mission_current else total  # MISSION_CURRENT.total leaves home out
-        return user_progress(current_seq, wire_total, plan, finished, first_user_seq=1)
 
     async def start_mission_on_ground(self, link: LinkOps, arm: Callable[[], Awaitable[None]]) -> None:
         await arm()  # in GUIDED

@@ -15,12 +15,11 @@ from __future__ import annotations
 from collections.abc import Awaitable, Callable, Mapping
 from typing import Protocol, TypeVar
 
-from mavsdk_grpc import System
-
 from gateway.fleet.dialects.modes import ModeChoice
 from gateway.fleet.missions.mission import MissionItem, WirePlan
 from gateway.fleet.policy.mission_check import MissionSemantics
 from gateway.fleet.policy.param_limits import ParamLimit
+from gateway.link.mavsdk_system import System
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 
 T = TypeVar("T")
@@ -172,6 +171,26 @@ class Dialect(DialectReads, Protocol):
     async def start_mission_on_ground(self, link: LinkOps, arm: Callable[[], Awaitable[None]]) -> None:
         """Arm and start the uploaded (accepted) mission from the ground; the vehicle takes off."""
         ...
+
+
+class UserNumbering:
+    """``mission_progress`` of a dialect whose user item 1 is wire seq ``first_user_seq`` (1 behind
+    ArduPilot's home slot, else 0)."""
+
+    first_user_seq: int = 0
+
+    def mission_progress(
+        self,
+        current_seq: int,
+        total: int,
+        plan: WirePlan | None,
+        finished: bool,
+        *,
+        from_mission_current: bool,
+    ) -> MissionProgressValue:
+        # MISSION_CURRENT.total leaves a home slot out
+        wire_total = total + self.first_user_seq if from_mission_current else total
+        return user_progress(current_seq, wire_total, plan, finished, first_user_seq=self.first_user_seq)
 
 
 def user_progress(

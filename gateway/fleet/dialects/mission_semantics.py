@@ -18,46 +18,81 @@ param1 + 1). NAV_LOITER_TURNS is not flown by a PX4 multicopter: unchecked.
 
 from __future__ import annotations
 
-from pymavlink.dialects.v20 import ardupilotmega as mav
+import functools
 
-from gateway.fleet.policy.mission_check import (
-    GLOBAL_FRAMES,
-    HARMLESS,
-    RELATIVE_FRAMES,
-    MissionSemantics,
-    Position,
-)
+from gateway.fleet.policy.mission_check import MissionSemantics, Position
 
 RADIUS = 3  # the loiters' radius parameter
 
-ARDUCOPTER_MISSION = MissionSemantics(
-    autopilot="ArduCopter",
-    positions={
-        mav.MAV_CMD_NAV_WAYPOINT: Position("waypoint"),
-        mav.MAV_CMD_NAV_LOITER_UNLIM: Position("waypoint", RADIUS),
-        mav.MAV_CMD_NAV_LOITER_TURNS: Position("waypoint", RADIUS),
-        mav.MAV_CMD_NAV_LOITER_TIME: Position("loiter_time", RADIUS),
-        mav.MAV_CMD_NAV_LAND: Position("land"),
-        mav.MAV_CMD_NAV_TAKEOFF: Position("takeoff"),
-    },
-    harmless=HARMLESS,
-    position_frames=GLOBAL_FRAMES | RELATIVE_FRAMES,
-    speed_types={0: "horizontal", 1: "horizontal", 2: "climb", 3: "descent"},
-    jump_offset=0,
-)
+# The tables are built when a mission is first judged: pymavlink's dialect, which names the commands
+# and frames, is a large module (about 10 MiB) that a gateway flying no mission never needs.
 
-PX4_MISSION = MissionSemantics(
-    autopilot="PX4",
-    positions={
-        mav.MAV_CMD_NAV_WAYPOINT: Position("waypoint"),
-        mav.MAV_CMD_NAV_LOITER_UNLIM: Position("waypoint", RADIUS),
-        mav.MAV_CMD_NAV_LOITER_TIME: Position("loiter_time", RADIUS),
-        mav.MAV_CMD_NAV_LAND: Position("land"),
-        mav.MAV_CMD_NAV_TAKEOFF: Position("takeoff"),
-    },
-    harmless=HARMLESS,
-    position_frames=GLOBAL_FRAMES | RELATIVE_FRAMES,
-    speed_any_type="horizontal",
-    jump_offset=1,
-    zero_position_is_here=False,
-)
+
+@functools.cache
+def harmless() -> frozenset[int]:
+    """Harmless on both autopilots: yaw, waits, region of interest, camera and gimbal items."""
+    from pymavlink.dialects.v20 import ardupilotmega as mav
+
+    return frozenset({
+        mav.MAV_CMD_CONDITION_YAW, mav.MAV_CMD_CONDITION_DELAY, mav.MAV_CMD_CONDITION_DISTANCE,
+        mav.MAV_CMD_NAV_DELAY, mav.MAV_CMD_DO_SET_ROI, mav.MAV_CMD_DO_SET_ROI_LOCATION,
+        mav.MAV_CMD_DO_SET_ROI_NONE, mav.MAV_CMD_DO_SET_ROI_WPNEXT_OFFSET, mav.MAV_CMD_DO_DIGICAM_CONFIGURE,
+        mav.MAV_CMD_DO_DIGICAM_CONTROL, mav.MAV_CMD_DO_MOUNT_CONFIGURE, mav.MAV_CMD_DO_MOUNT_CONTROL,
+        mav.MAV_CMD_DO_SET_CAM_TRIGG_DIST, mav.MAV_CMD_DO_SET_CAM_TRIGG_INTERVAL,
+        mav.MAV_CMD_DO_GIMBAL_MANAGER_PITCHYAW, mav.MAV_CMD_IMAGE_START_CAPTURE,
+        mav.MAV_CMD_IMAGE_STOP_CAPTURE,
+        mav.MAV_CMD_VIDEO_START_CAPTURE, mav.MAV_CMD_VIDEO_STOP_CAPTURE, mav.MAV_CMD_DO_CONTROL_VIDEO,
+    })  # fmt: skip
+
+
+@functools.cache
+def position_frames() -> frozenset[int]:
+    """Frames of position items: altitude above mean sea level or above home (plain and _INT)."""
+    from pymavlink.dialects.v20 import ardupilotmega as mav
+
+    return frozenset({
+        mav.MAV_FRAME_GLOBAL, mav.MAV_FRAME_GLOBAL_INT,
+        mav.MAV_FRAME_GLOBAL_RELATIVE_ALT, mav.MAV_FRAME_GLOBAL_RELATIVE_ALT_INT,
+    })  # fmt: skip
+
+
+@functools.cache
+def arducopter_mission() -> MissionSemantics:
+    from pymavlink.dialects.v20 import ardupilotmega as mav
+
+    return MissionSemantics(
+        autopilot="ArduCopter",
+        positions={
+            mav.MAV_CMD_NAV_WAYPOINT: Position("waypoint"),
+            mav.MAV_CMD_NAV_LOITER_UNLIM: Position("waypoint", RADIUS),
+            mav.MAV_CMD_NAV_LOITER_TURNS: Position("waypoint", RADIUS),
+            mav.MAV_CMD_NAV_LOITER_TIME: Position("loiter_time", RADIUS),
+            mav.MAV_CMD_NAV_LAND: Position("land"),
+            mav.MAV_CMD_NAV_TAKEOFF: Position("takeoff"),
+        },
+        harmless=harmless(),
+        position_frames=position_frames(),
+        speed_types={0: "horizontal", 1: "horizontal", 2: "climb", 3: "descent"},
+        jump_offset=0,
+    )
+
+
+@functools.cache
+def px4_mission() -> MissionSemantics:
+    from pymavlink.dialects.v20 import ardupilotmega as mav
+
+    return MissionSemantics(
+        autopilot="PX4",
+        positions={
+            mav.MAV_CMD_NAV_WAYPOINT: Position("waypoint"),
+            mav.MAV_CMD_NAV_LOITER_UNLIM: Position("waypoint", RADIUS),
+            mav.MAV_CMD_NAV_LOITER_TIME: Position("loiter_time", RADIUS),
+            mav.MAV_CMD_NAV_LAND: Position("land"),
+            mav.MAV_CMD_NAV_TAKEOFF: Position("takeoff"),
+        },
+        harmless=harmless(),
+        position_frames=position_frames(),
+        speed_any_type="horizontal",
+        jump_offset=1,
+        zero_position_is_here=False,
+    )

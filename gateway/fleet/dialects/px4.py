@@ -20,13 +20,14 @@ from __future__ import annotations
 from collections.abc import Awaitable, Callable, Mapping
 
 from gateway.errors import CommandFailed
-from gateway.fleet.dialects.base import LinkOps, matches_any, reader, user_progress
-from gateway.fleet.dialects.mission_semantics import PX4_MISSION
+from gateway.fleet.dialects.base import LinkOps, UserNumbering, matches_any, reader
+from gateway.fleet.dialects.mission_semantics import px4_mission
 from gateway.fleet.dialects.modes import COMMON_MODES, NOT_MODELLED, AirUse, ModeChoice, canonical
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem, WirePlan
+from gateway.fleet.policy.mission_check import MissionSemantics
 from gateway.fleet.policy.param_limits import ParamLimit
-from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
+from gateway.link.telemetry import HealthValue, TelemetryCache
 
 #: PX4 main / sub modes (px4_custom_mode.h); DO_SET_MODE takes them as param2 / param3
 PX4_MODES: dict[str, tuple[int, int]] = {
@@ -122,7 +123,7 @@ LIMIT_PARAMS: dict[str, ParamLimit] = {
 }
 
 
-class PX4:
+class PX4(UserNumbering):
     """The PX4 dialect."""
 
     name = "PX4"
@@ -133,7 +134,10 @@ class PX4:
     return_altitude_params = (("RTL_RETURN_ALT", 1.0),)
     protected_params = PROTECTED_PARAMS
     limit_params: Mapping[str, ParamLimit] = LIMIT_PARAMS
-    mission_semantics = PX4_MISSION
+
+    @property
+    def mission_semantics(self) -> MissionSemantics:
+        return px4_mission()
 
     # --- link facts ----------------------------------------------------------------------------------
     def mode_name(self, custom_mode: int, mav_type: int) -> str | None:
@@ -203,17 +207,6 @@ class PX4:
 
     def mission_rejection(self, text: str) -> bool:
         return text.strip().lower().startswith(MISSION_REJECTIONS)
-
-    def mission_progress(
-        self,
-        current_seq: int,
-        total: int,
-        plan: WirePlan | None,
-        finished: bool,
-        *,
-        from_mission_current: bool,
-    ) -> MissionProgressValue:
-        return user_progress(current_seq, total, plan, finished, first_user_seq=0)
 
     async def start_mission_on_ground(self, link: LinkOps, arm: Callable[[], Awaitable[None]]) -> None:
         # MISSION first: PX4 refuses the mode for a mission it rejected, before any motor turns

@@ -11,12 +11,11 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from gateway.fleet.dialects.base import reader, user_progress
+from gateway.fleet.dialects.base import UserNumbering, reader
 from gateway.fleet.dialects.modes import ModeChoice
-from gateway.fleet.missions.mission import WirePlan
 from gateway.fleet.policy.mission_check import MissionSemantics
 from gateway.fleet.policy.param_limits import ParamLimit
-from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
+from gateway.link.telemetry import HealthValue, TelemetryCache
 
 
 def autopilot_label(mav_autopilot: int) -> str:
@@ -30,7 +29,7 @@ def autopilot_label(mav_autopilot: int) -> str:
     return f"{entry.name} ({mav_autopilot})"
 
 
-class Unsupported:
+class Unsupported(UserNumbering):
     """The reads of an autopilot no dialect is registered for; it implements ``DialectReads`` only."""
 
     skipped_streams: frozenset[str] = frozenset()
@@ -66,14 +65,3 @@ class Unsupported:
     def on_ground(self, telemetry: TelemetryCache, *, fresh: bool = True) -> bool | None:
         in_air = reader(telemetry, fresh)("in_air")
         return None if in_air is None else not in_air
-
-    def mission_progress(
-        self,
-        current_seq: int,
-        total: int,
-        plan: WirePlan | None,
-        finished: bool,
-        *,
-        from_mission_current: bool,
-    ) -> MissionProgressValue:
-        return user_progress(current_seq, total, plan, finished, first_user_seq=0)

@@ -35,18 +35,7 @@ def min_cost_assignment(cost: Sequence[Sequence[float]]) -> list[int]:
         while True:
             used[j0] = True
             i0 = row_of[j0]
-            delta = math.inf
-            j1 = 0
-            for j in range(1, n + 1):
-                if used[j]:
-                    continue
-                reduced = cost[i0 - 1][j - 1] - u[i0] - v[j]
-                if reduced < min_to[j]:
-                    min_to[j] = reduced
-                    way[j] = j0
-                if min_to[j] < delta:
-                    delta = min_to[j]
-                    j1 = j
+            delta, j1 = _nearest_column(cost[i0 - 1], u[i0], v, used, min_to, way, j0)
             if not math.isfinite(delta):
                 raise ValueError("cost must be finite")
             for j in range(n + 1):
@@ -66,3 +55,29 @@ def min_cost_assignment(cost: Sequence[Sequence[float]]) -> list[int]:
     for j in range(1, n + 1):
         slot[row_of[j] - 1] = j - 1
     return slot
+
+
+def _nearest_column(
+    cost_row: Sequence[float],
+    u_row: float,
+    v: list[float],
+    used: list[bool],
+    min_to: list[float],
+    way: list[int],
+    j0: int,
+) -> tuple[float, int]:
+    """Relax the reduced costs from column ``j0``'s row; the smallest reduced cost to an unused
+    column, and that column (0 when none is finite)."""
+    delta = math.inf
+    j1 = 0
+    for j in range(1, len(v)):
+        if used[j]:
+            continue
+        reduced = cost_row[j - 1] - u_row - v[j]
+        if reduced < min_to[j]:
+            min_to[j] = reduced
+            way[j] = j0
+        if min_to[j] < delta:
+            delta = min_to[j]
+            j1 = j
+    return delta, j1

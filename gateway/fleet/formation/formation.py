@@ -110,6 +110,34 @@ class FormationPlan:
 # planning
 
 
+def _check_numbers(
+    *,
+    alt_m: float,
+    spacing_m: float,
+    heading_deg: float,
+    min_separation_m: float,
+    max_altitude_m: float,
+    min_transit_alt_m: float,
+) -> None:
+    """Every number finite, spacing and separation positive, the altitude within the ceiling."""
+    for name, value in (
+        ("alt_m", alt_m),
+        ("spacing_m", spacing_m),
+        ("heading_deg", heading_deg),
+        ("min_separation_m", min_separation_m),
+        ("max_altitude_m", max_altitude_m),
+        ("min_transit_alt_m", min_transit_alt_m),
+    ):
+        geo.check_finite(name, value)
+    if spacing_m <= 0 or min_separation_m <= 0:
+        raise InvalidArgument("spacing_m and min_separation_m must be above 0 m")
+    if not 0 < alt_m <= max_altitude_m:
+        raise InvalidArgument(
+            f"formation altitude {fmt(alt_m)} m must be above 0 and at most "
+            f"{fmt(max_altitude_m)} m above home"
+        )
+
+
 def plan_formation(
     drones: Sequence[DroneStart | tuple[str, float, float, float]],
     formation: str,
@@ -128,22 +156,14 @@ def plan_formation(
     (rule ``min_separation``) when the formation or the paths to it cannot keep the separation."""
     starts = _normalise_drones(drones)
     geo.check_lat_lon(center_lat, center_lon)
-    for name, value in (
-        ("alt_m", alt_m),
-        ("spacing_m", spacing_m),
-        ("heading_deg", heading_deg),
-        ("min_separation_m", min_separation_m),
-        ("max_altitude_m", max_altitude_m),
-        ("min_transit_alt_m", min_transit_alt_m),
-    ):
-        geo.check_finite(name, value)
-    if spacing_m <= 0 or min_separation_m <= 0:
-        raise InvalidArgument("spacing_m and min_separation_m must be above 0 m")
-    if not 0 < alt_m <= max_altitude_m:
-        raise InvalidArgument(
-            f"formation altitude {fmt(alt_m)} m must be above 0 and at most "
-            f"{fmt(max_altitude_m)} m above home"
-        )
+    _check_numbers(
+        alt_m=alt_m,
+        spacing_m=spacing_m,
+        heading_deg=heading_deg,
+        min_separation_m=min_separation_m,
+        max_altitude_m=max_altitude_m,
+        min_transit_alt_m=min_transit_alt_m,
+    )
     if spacing_m < min_separation_m:
         raise refuse(
             Rule.MIN_SEPARATION,
@@ -278,7 +298,7 @@ def _describe(drone_id: str, transit: float | None) -> str:
     return f"{drone_id} direct" if transit is None else f"{drone_id} transits at {fmt(transit)} m"
 
 
-def _normalise_drones(drones: Iterable[Any]) -> list[DroneStart]:
+def _normalise_drones(drones: Iterable[DroneStart | tuple[str, float, float, float]]) -> list[DroneStart]:
     out: list[DroneStart] = []
     for item in drones:
         if isinstance(item, DroneStart):

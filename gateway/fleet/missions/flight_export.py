@@ -143,7 +143,7 @@ def track_tlog(
     mav = mavlink2.MAVLink(sink, srcSystem=sysid, srcComponent=mavlink2.MAV_COMP_ID_AUTOPILOT1)
     records: list[tuple[float, int, bytes]] = []  # (time, order, packet): sorted into time order
 
-    def emit(t: float, order: int, message: Any) -> None:
+    def emit(t: float, order: int, message: mavlink2.MAVLink_message) -> None:
         sink.packets.clear()
         mav.send(message)
         records.append((t, order, b"".join(sink.packets)))

@@ -8,7 +8,6 @@ next start from its recorded track.
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import itertools
 import logging
 from datetime import UTC, datetime
@@ -18,6 +17,7 @@ from gateway.config import Settings
 from gateway.fleet import geo
 from gateway.link.telemetry import StatusTextValue, TelemetryCache
 from gateway.registry.store import StatusTextIn, Store, TrackSample
+from gateway.util.tasks import cancel_and_wait
 
 log = logging.getLogger("gateway.flightlog")
 
@@ -99,11 +99,8 @@ class FlightRecorder:
     async def stop(self) -> None:
         """Stop recording: close a flight in progress (the gateway no longer watches it) and flush."""
         self.vehicle.telemetry.remove_status_listener(self._on_status_text)
-        if self._task is not None:
-            self._task.cancel()
-            with contextlib.suppress(asyncio.CancelledError):
-                await self._task
-            self._task = None
+        await cancel_and_wait(self._task)
+        self._task = None
         if self.flight is not None:
             await self._close(_utc(), "recording stopped")
         await self.flush()

@@ -11,13 +11,14 @@ False). An item with ``speed_mps`` is preceded by a DO_CHANGE_SPEED wire item; t
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.geo import check_lat_lon
+from gateway.util.mission_item import ItemInt
 
 # MAVLink ids
 MAV_FRAME_GLOBAL = 0
@@ -114,18 +115,11 @@ class MissionItem(BaseModel):
         return self
 
 
-@dataclass
-class WireItem:
-    seq: int
-    frame: int
-    command: int
-    param1: float = 0.0
-    param2: float = 0.0
-    param3: float = 0.0
-    param4: float = 0.0
-    x: int = 0
-    y: int = 0
-    z: float = 0.0
+@dataclass(frozen=True)
+class WireItem(ItemInt):
+    """One item of the mission as sent to the autopilot, at wire sequence ``seq``."""
+
+    seq: int = field(kw_only=True)
 
 
 @dataclass
@@ -156,7 +150,9 @@ def encode(
     wire: list[WireItem] = []
     if home_slot:
         hlat, hlon, halt = home if home is not None else (0.0, 0.0, 0.0)
-        wire.append(WireItem(0, MAV_FRAME_GLOBAL, MAV_CMD_NAV_WAYPOINT, x=_deg7(hlat), y=_deg7(hlon), z=halt))
+        wire.append(
+            WireItem(MAV_CMD_NAV_WAYPOINT, MAV_FRAME_GLOBAL, x=_deg7(hlat), y=_deg7(hlon), z=halt, seq=0)
+        )
     user_to_wire: list[int] = []
     for item in items:
         if item.raw is not None:
@@ -165,17 +161,22 @@ def encode(
             continue
         if item.speed_mps is not None:
             wire.append(
-                WireItem(len(wire), MAV_FRAME_MISSION, MAV_CMD_DO_CHANGE_SPEED, 1.0, item.speed_mps, -1.0)
+                WireItem(MAV_CMD_DO_CHANGE_SPEED, MAV_FRAME_MISSION, 1.0, item.speed_mps, -1.0, seq=len(wire))
             )
         seq = len(wire)
         cmd = item.command if item.kind == "other" else _KIND_TO_CMD[item.kind]
         assert cmd is not None
-        w = WireItem(
-            seq, MAV_FRAME_GLOBAL_RELATIVE_ALT, cmd, x=_deg7(item.lat), y=_deg7(item.lon), z=item.alt_rel_m
+        wire.append(
+            WireItem(
+                cmd,
+                MAV_FRAME_GLOBAL_RELATIVE_ALT,
+                param1=item.hold_s if item.kind in ("waypoint", "loiter_time") else 0.0,
+                x=_deg7(item.lat),
+                y=_deg7(item.lon),
+                z=item.alt_rel_m,
+                seq=seq,
+            )
         )
-        if item.kind in ("waypoint", "loiter_time"):
-            w.param1 = item.hold_s
-        wire.append(w)
         user_to_wire.append(seq)
     return WirePlan(wire, user_to_wire)
 
@@ -186,7 +187,9 @@ def _scaled(frame: int) -> bool:
 
 def _wire_of(seq: int, raw: RawItem) -> WireItem:
     x, y = (_deg7(raw.x), _deg7(raw.y)) if _scaled(raw.frame) else (round(raw.x), round(raw.y))
-    return WireItem(seq, raw.frame, raw.command, raw.param1, raw.param2, raw.param3, raw.param4, x, y, raw.z)
+    return WireItem(
+        raw.command, raw.frame, raw.param1, raw.param2, raw.param3, raw.param4, x, y, raw.z, seq=seq
+    )
 
 
 def _raw_of(w: WireItem, autocontinue: bool) -> RawItem:
@@ -203,9 +206,8 @@ def decode(wire: list[Any], *, home_slot: bool = True) -> tuple[list[MissionItem
     lead: list[RawItem] = []
     for raw in sorted(wire, key=lambda w: w.seq):
         w = WireItem(
-            int(raw.seq),
-            int(raw.frame),
             int(raw.command),
+            int(raw.frame),
             float(raw.param1),
             float(raw.param2),
             float(raw.param3),
@@ -213,6 +215,7 @@ def decode(wire: list[Any], *, home_slot: bool = True) -> tuple[list[MissionItem
             int(raw.x),
             int(raw.y),
             float(raw.z),
+            seq=int(raw.seq),
         )
         kept.append(w)
         if home_slot and w.seq == 0:

@@ -64,7 +64,7 @@ class FileMission:
     home: tuple[float, float, float] | None = None
 
 
-def _number(value: Any, where: str) -> float:
+def _number(value: object, where: str) -> float:
     if value is None:
         return math.nan  # QGC writes NaN parameters as null
     if isinstance(value, bool) or not isinstance(value, int | float):
@@ -98,29 +98,7 @@ def parse_plan(text: str) -> FileMission:
     mission = doc.get("mission")
     if not isinstance(mission, dict) or not isinstance(mission.get("items"), list):
         raise InvalidArgument('the .plan file has no "mission" with an "items" list')
-    items: list[RawItem] = []
-    for k, entry in enumerate(mission["items"], start=1):
-        where = f"mission item {k}"
-        if not isinstance(entry, dict):
-            raise InvalidArgument(f"{where}: expected an object, got {entry!r}")
-        kind = entry.get("type")
-        if kind == "ComplexItem":
-            raise InvalidArgument(
-                f"{where} is a {entry.get('complexItemType', 'complex')} item, which the gateway does not "
-                "expand: save the mission from QGroundControl as waypoints (WPL) and upload that"
-            )
-        if kind != "SimpleItem":
-            raise InvalidArgument(f"{where}: type {kind!r} is neither SimpleItem nor ComplexItem")
-        params = entry.get("params")
-        if not isinstance(params, list) or len(params) != 7:
-            raise InvalidArgument(f"{where}: params must be a list of 7 numbers (null for none)")
-        command, frame = entry.get("command"), entry.get("frame")
-        for name, number in (("command", command), ("frame", frame)):
-            if isinstance(number, bool) or not isinstance(number, int):
-                raise InvalidArgument(f"{where}: {name} must be an integer; got {json.dumps(number)[:40]}")
-        assert isinstance(frame, int) and isinstance(command, int)
-        values = [_number(v, f"{where} param{i + 1}") for i, v in enumerate(params)]
-        items.append(_raw(frame, command, values, bool(entry.get("autoContinue", True)), where))
+    items = [_plan_item(entry, f"mission item {k}") for k, entry in enumerate(mission["items"], start=1)]
     _refuse_fence_and_rally(doc)
     home_raw = mission.get("plannedHomePosition")
     home = None
@@ -131,6 +109,30 @@ def parse_plan(text: str) -> FileMission:
     ):
         home = (float(home_raw[0]), float(home_raw[1]), float(home_raw[2]))
     return FileMission(_checked_count(items), home)
+
+
+def _plan_item(entry: object, where: str) -> RawItem:
+    """One SimpleItem of a .plan's mission."""
+    if not isinstance(entry, dict):
+        raise InvalidArgument(f"{where}: expected an object, got {entry!r}")
+    kind = entry.get("type")
+    if kind == "ComplexItem":
+        raise InvalidArgument(
+            f"{where} is a {entry.get('complexItemType', 'complex')} item, which the gateway does not "
+            "expand: save the mission from QGroundControl as waypoints (WPL) and upload that"
+        )
+    if kind != "SimpleItem":
+        raise InvalidArgument(f"{where}: type {kind!r} is neither SimpleItem nor ComplexItem")
+    params = entry.get("params")
+    if not isinstance(params, list) or len(params) != 7:
+        raise InvalidArgument(f"{where}: params must be a list of 7 numbers (null for none)")
+    command, frame = entry.get("command"), entry.get("frame")
+    for name, number in (("command", command), ("frame", frame)):
+        if isinstance(number, bool) or not isinstance(number, int):
+            raise InvalidArgument(f"{where}: {name} must be an integer; got {json.dumps(number)[:40]}")
+    assert isinstance(frame, int) and isinstance(command, int)
+    values = [_number(v, f"{where} param{i + 1}") for i, v in enumerate(params)]
+    return _raw(frame, command, values, bool(entry.get("autoContinue", True)), where)
 
 
 def _refuse_fence_and_rally(doc: dict[str, Any]) -> None:

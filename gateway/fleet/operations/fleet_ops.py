@@ -30,7 +30,7 @@ from typing import Any
 
 from gateway.errors import GatewayError, NotFound
 from gateway.fleet.operations.fleet_operation import FLEET_CALLER, FleetOperation, Member
-from gateway.fleet.operations.fleet_steps import Phase, Step
+from gateway.fleet.operations.fleet_steps import Phase, Step, StepSpec
 from gateway.fleet.operations.operation_state import Operation, OpStatus
 from gateway.fleet.operations.operations import OperationManager
 from gateway.fleet.operations.routing import Router
@@ -54,7 +54,7 @@ def _now() -> datetime:
 # ------------------------------------------------------------------------------------------------
 
 Listener = Callable[["FleetOperation"], None]
-RunHere = Callable[[Caller, str, Mapping[str, Any]], Awaitable[Operation]]
+RunHere = Callable[[Caller, str, StepSpec], Awaitable[Operation]]
 """Runs one drone's step (its JSON spec) on this node, as the drone's operation."""
 HoldHere = Callable[[Caller, str, str], Awaitable[Operation | None]]
 """Holds one drone (the reason names the fleet operation); the operation it ended."""

@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Awaitable, Callable, Iterable, Mapping
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Required
+
+from typing_extensions import TypedDict
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
@@ -23,6 +25,22 @@ Send = Callable[[], Awaitable[None]]
 """Sends one command to a drone (returns once the drone accepted it)."""
 
 
+class StepSpec(TypedDict, total=False):
+    """One drone's step as JSON (see `build_step`): what the node owning the drone rebuilds it from.
+    ``typing_extensions``' TypedDict: pydantic validates it (as a routed verb's argument) on Python 3.11."""
+
+    send: Required[str]  # goto, takeoff, land or rtl
+    lat: float
+    lon: float
+    alt_m: float
+    tolerance_m: float
+    kind: str
+    phase: int | None
+    timeout_s: float | None
+    guard: str | None
+    arm_within_s: float | None
+
+
 @dataclass
 class Step:
     """One drone's part of a phase: send a command, then track it as the drone's current operation.
@@ -32,8 +50,8 @@ class Step:
     tracker: Tracker
     send: Send
     params: dict[str, Any]
-    timeout_s: float | None = None  # the step fails if not finished by then (the vehicle keeps going)
-    spec: dict[str, Any] = field(default_factory=dict)
+    timeout_s: float | None  # the step fails if not finished by then (the vehicle keeps going)
+    spec: StepSpec
 
 
 @dataclass
@@ -119,7 +137,7 @@ def step_timeout_s(distance_m: float, slowest_mps: float = 1.0, margin_s: float 
     return margin_s + max(0.0, distance_m) / slowest_mps
 
 
-def build_step(vehicle: VehicleView, spec: Mapping[str, Any]) -> Step:
+def build_step(vehicle: VehicleView, spec: StepSpec) -> Step:
     """One drone's step from its JSON description (the node owning the drone rebuilds it from the same):
 
     - ``{"send": "goto", "lat", "lon", "alt_m", "tolerance_m", "kind", "phase"?}``: a tracked goto;
@@ -134,11 +152,12 @@ def build_step(vehicle: VehicleView, spec: Mapping[str, Any]) -> Step:
     if send == "goto":
         lat, lon, alt = float(spec["lat"]), float(spec["lon"]), float(spec["alt_m"])
         params: dict[str, Any] = {"lat_deg": lat, "lon_deg": lon, "alt_m": alt}
-        if spec.get("phase") is not None:
-            params["phase"] = int(spec["phase"])
+        phase = spec.get("phase")
+        if phase is not None:
+            params["phase"] = int(phase)
         tolerance = float(spec.get("tolerance_m", FORMATION_TOLERANCE_M))
         tracker: Tracker = GotoTracker(lat, lon, alt, tolerance, kind=str(spec.get("kind", "formation")))
-        return Step(vehicle, tracker, _goto(vehicle, lat, lon, alt), params, timeout_s, dict(spec))
+        return Step(vehicle, tracker, _goto(vehicle, lat, lon, alt), params, timeout_s, spec.copy())
     if send == "takeoff":
         alt = float(spec["alt_m"])
         arm_within = spec.get("arm_within_s")
@@ -148,11 +167,11 @@ def build_step(vehicle: VehicleView, spec: Mapping[str, Any]) -> Step:
             _takeoff(vehicle, alt, None if arm_within is None else float(arm_within)),
             {"alt_m": alt},
             timeout_s,
-            dict(spec),
+            spec.copy(),
         )
     if send == "land":
         land = lambda: flying(vehicle).land()  # noqa: E731
-        return Step(vehicle, LandingTracker(kind="land"), land, {}, timeout_s, dict(spec))
+        return Step(vehicle, LandingTracker(kind="land"), land, {}, timeout_s, spec.copy())
     if send == "rtl":
         alt = float(spec["alt_m"])
         return Step(
@@ -161,7 +180,7 @@ def build_step(vehicle: VehicleView, spec: Mapping[str, Any]) -> Step:
             _rtl(vehicle, alt, set_rtl_altitude_param),
             {"rtl_alt_m": alt},
             timeout_s,
-            dict(spec),
+            spec.copy(),
         )
     raise InvalidArgument(f"unknown fleet step {send!r}; steps: goto, takeoff, land, rtl")
 
@@ -176,7 +195,7 @@ def formation_phases(
         steps: dict[str, Step] = {}
         for drone_id, wp in plan.phases[index].items():
             slot = plan.slot_for(drone_id)
-            spec = {
+            spec: StepSpec = {
                 "send": "goto",
                 "lat": wp.lat,
                 "lon": wp.lon,

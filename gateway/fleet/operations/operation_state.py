@@ -10,8 +10,6 @@ from datetime import datetime
 from enum import StrEnum
 from typing import Any
 
-from gateway.fleet.operations.trackers import Tracker
-
 
 class OpStatus(StrEnum):
     running = "running"
@@ -23,12 +21,6 @@ class OpStatus(StrEnum):
 
 
 FINAL = frozenset(s for s in OpStatus if s is not OpStatus.running)
-
-
-def is_climbing(op: Operation, tracker: Tracker | None) -> bool:
-    """Whether the operation is a takeoff still climbing: a takeoff, or an operation that took off first
-    and has not reached its altitude yet (the takeoff guard holds other commands back meanwhile)."""
-    return op.kind == "takeoff" or bool(getattr(tracker, "climbing", False))
 
 
 @dataclass

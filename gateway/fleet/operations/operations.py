@@ -29,7 +29,7 @@ from gateway.config import Settings
 from gateway.errors import InvalidArgument, NotFound
 from gateway.fleet import geo
 from gateway.fleet.operations.mode_watch import ModeWatch, TakeoverHandler
-from gateway.fleet.operations.operation_state import Operation, OpStatus, is_climbing
+from gateway.fleet.operations.operation_state import Operation, OpStatus
 from gateway.fleet.operations.trackers import POLL_S, Tracker
 from gateway.fleet.policy.operator_locks import Lock
 from gateway.fleet.policy.safety_inputs import RunningOperation
@@ -46,6 +46,12 @@ SAVE_EVERY_S = 2.0
 
 
 ProgressCallback = Callable[[Operation], Awaitable[None]]
+
+
+def is_climbing(op: Operation, tracker: Tracker | None) -> bool:
+    """Whether the operation is a takeoff still climbing: a takeoff, or an operation that took off first
+    and has not reached its altitude yet (the takeoff guard holds other commands back meanwhile)."""
+    return op.kind == "takeoff" or bool(getattr(tracker, "climbing", False))
 
 
 def _now() -> datetime:
@@ -123,7 +129,7 @@ class OperationManager:
         self,
         vehicle: FlyingVehicle,
         tracker: Tracker,
-        send: Callable[[], Awaitable[Any]],
+        send: Callable[[], Awaitable[object]],
         params: dict[str, Any],
         session_key: str | None = None,
         precheck: Callable[[], None] | None = None,
@@ -331,7 +337,7 @@ class OperationManager:
             self.mode_watch.drop(op.id)
 
     async def _send_next(
-        self, vehicle: FlyingVehicle, op: Operation, send: Callable[[], Awaitable[Any]]
+        self, vehicle: FlyingVehicle, op: Operation, send: Callable[[], Awaitable[object]]
     ) -> bool:
         """Send the operation's next command under the drone's command lock, unless another command
         ended the operation meanwhile; False when it is not (any more) to be followed."""

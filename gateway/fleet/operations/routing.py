@@ -18,7 +18,7 @@ import inspect
 import typing
 from collections.abc import Awaitable, Callable
 from contextvars import ContextVar
-from typing import Any, Protocol
+from typing import Any, Protocol, TypedDict
 
 from pydantic import BaseModel, ConfigDict, ValidationError, create_model
 
@@ -26,7 +26,16 @@ from gateway.errors import InvalidArgument
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import RunningOperation
 
-OnMessage = Callable[[dict[str, Any]], Awaitable[None]]
+
+class ProgressMessage(TypedDict, total=False):
+    """What a verb run on the drone's owner reports while it runs: a notice (for its ``notify``) or its
+    operation's view as JSON (for its ``on_progress``)."""
+
+    notice: str
+    view: dict[str, object]
+
+
+OnMessage = Callable[[ProgressMessage], Awaitable[None]]
 
 #: set while a node runs a call another node forwarded to it: such a call is never forwarded again
 #: (during a handover the drone's new owner is found by the first node, not by a chain of them)

@@ -11,7 +11,7 @@ from typing import Any
 from gateway.errors import GatewayError
 from gateway.fleet.operations.fleet_operation import FLEET_CALLER
 from gateway.fleet.operations.operation_state import Operation, OpStatus
-from gateway.fleet.operations.routing import Router
+from gateway.fleet.operations.routing import ProgressMessage, Router
 
 FOLLOW_WAIT_S = 30.0
 """A step run on another node is followed by waits of this length, one after the other."""
@@ -34,9 +34,10 @@ def mirror_view(mirror: Operation, view: Mapping[str, Any]) -> None:
 async def follow(router: Router, mirror: Operation) -> None:
     """Wait on the owner, again and again, until the operation there has finished."""
 
-    async def message(body: dict[str, Any]) -> None:
-        if isinstance(body.get("view"), dict):
-            mirror_view(mirror, body["view"])
+    async def message(body: ProgressMessage) -> None:
+        view = body.get("view")
+        if isinstance(view, dict):
+            mirror_view(mirror, view)
 
     failures = 0
     while not mirror.finished:

@@ -10,7 +10,7 @@ import math
 import time
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import Protocol
 
 from gateway.fleet import geo
 from gateway.fleet.vehicles.protocols import FlyingVehicle, VehicleView
@@ -40,7 +40,7 @@ class Poll:
     done: bool = False
     failed: str | None = None
     eta_s: float | None = None
-    then: Callable[[], Awaitable[Any]] | None = None
+    then: Callable[[], Awaitable[object]] | None = None
     """The operation's next command, for the manager to send (under the drone's command lock, only while
     the operation still runs): the leg of a `ClimbThenGoTracker` once its climb is done."""
 
@@ -188,7 +188,7 @@ class ClimbThenGoTracker:
 
     takeoff: TakeoffTracker
     leg: GotoTracker
-    send_leg: Callable[[], Awaitable[Any]]
+    send_leg: Callable[[], Awaitable[object]]
     kind: str = "move_to_relative"
     climbing: bool = True
 

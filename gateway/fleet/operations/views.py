@@ -100,7 +100,7 @@ class MissionView(BaseModel):
 
     @field_validator("items", mode="before")
     @classmethod
-    def _as_the_drone_holds_them(cls, value: Any) -> Any:
+    def _as_the_drone_holds_them(cls, value: object) -> object:
         """A downloaded mission is reported as the drone holds it, not checked again as new input: a
         mission another planner wrote may have items at latitude and longitude 0 (ArduPilot: where the
         drone is), which an upload would refuse (the view crosses to the caller as JSON and back)."""
@@ -185,15 +185,21 @@ STOP_OUTCOME_DOC = (
 )
 
 
-class StopOutcome(BaseModel):
-    """One drone's part of a stop (the fleet stop, or an operator's hold, land or RTL of one drone)."""
+class StopReport(BaseModel):
+    """What a stop did to one drone, without the drone's name (`StopOutcome` names it ``drone_id``, the
+    REST API's answer ``vehicle_id``)."""
 
-    drone_id: str
     action: str
     outcome: StopOutcomeKind = Field(description=STOP_OUTCOME_DOC)
     message: str | None = Field(None, description="Why, and for taking_over what is being done about it.")
     superseded_operation: str | None = None
     operation_id: str | None = Field(None, description="The tracked operation (GET /api/v1/operations).")
+
+
+class StopOutcome(StopReport):
+    """One drone's part of a stop (the fleet stop, or an operator's hold, land or RTL of one drone)."""
+
+    drone_id: str
 
 
 class LockResult(BaseModel):

@@ -8,15 +8,24 @@ through; ``via="cluster"`` is for commands a node originates itself and is judge
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
-from typing import Any, Literal, get_args
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Literal, TypedDict, get_args
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.policy.safety_rules import Via
 
 Door = Literal["mcp", "rest", "console", "cluster"]
-DOORS: tuple[str, ...] = get_args(Door)
+DOORS: tuple[Door, ...] = get_args(Door)
 OPERATOR_DOORS = frozenset({"rest", "console"})
+
+
+class CallerBody(TypedDict):
+    """A `Caller` as JSON (a call forwarded to another cluster node carries it)."""
+
+    via: Door
+    principal: str
+    session: str | None
 
 
 @dataclass(frozen=True)
@@ -38,12 +47,17 @@ class Caller:
         """How the safety policy judges this caller: as an operator ("rest") or as an agent ("mcp")."""
         return "rest" if self.is_operator else "mcp"
 
-    def to_dict(self) -> dict[str, Any]:
-        return asdict(self)
+    def to_dict(self) -> CallerBody:
+        return CallerBody(via=self.via, principal=self.principal, session=self.session)
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> Caller:
+    def from_dict(cls, data: Mapping[str, object]) -> Caller:
+        """The caller of a forwarded call, from its JSON (`to_dict`, perhaps with more keys)."""
         try:
-            return cls(via=data["via"], principal=str(data["principal"]), session=data.get("session"))
+            via, principal, session = data["via"], str(data["principal"]), data.get("session")
         except KeyError as exc:
             raise InvalidArgument(f"a caller needs '{exc.args[0]}' (via, principal, session)") from None
+        door = next((d for d in DOORS if d == via), None)
+        if door is None:
+            raise InvalidArgument(f"via must be one of {', '.join(DOORS)}; got {via!r}")
+        return cls(via=door, principal=principal, session=None if session is None else str(session))

@@ -18,14 +18,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Literal, Protocol
 
-from pymavlink.dialects.v20 import ardupilotmega as mav
-
 #: the most times a DO_JUMP may repeat (-1, "for ever" on ArduPilot, is refused as well)
 MAX_JUMP_REPEATS = 100
-
-#: frames of position items: altitude above mean sea level / above home (plain and _INT)
-GLOBAL_FRAMES = frozenset({mav.MAV_FRAME_GLOBAL, mav.MAV_FRAME_GLOBAL_INT})
-RELATIVE_FRAMES = frozenset({mav.MAV_FRAME_GLOBAL_RELATIVE_ALT, mav.MAV_FRAME_GLOBAL_RELATIVE_ALT_INT})
 
 EffectKind = Literal["position", "rtl", "speed", "jump", "harmless"]
 SpeedAxis = Literal["horizontal", "climb", "descent"]
@@ -103,6 +97,8 @@ class MissionSemantics:
 
     def judge(self, raw: RawLike) -> Effect | str:
         """The item's effect, or why the gateway cannot check it (a phrase after the command's name)."""
+        from pymavlink.dialects.v20 import ardupilotmega as mav  # loaded with the first mission judged
+
         cmd = raw.command
         if cmd in self.harmless:
             return Effect("harmless")
@@ -134,22 +130,14 @@ class MissionSemantics:
 
 
 def command_name(command: int) -> str:
+    from pymavlink.dialects.v20 import ardupilotmega as mav
+
     entry = mav.enums["MAV_CMD"].get(command)
     return entry.name.removeprefix("MAV_CMD_") if entry is not None else f"command {command}"
 
 
 def frame_name(frame: int) -> str:
+    from pymavlink.dialects.v20 import ardupilotmega as mav
+
     entry = mav.enums["MAV_FRAME"].get(frame)
     return entry.name.removeprefix("MAV_FRAME_") if entry is not None else "unknown"
-
-
-#: harmless on both autopilots: yaw, waits, region of interest, camera and gimbal items
-HARMLESS = frozenset({
-    mav.MAV_CMD_CONDITION_YAW, mav.MAV_CMD_CONDITION_DELAY, mav.MAV_CMD_CONDITION_DISTANCE,
-    mav.MAV_CMD_NAV_DELAY, mav.MAV_CMD_DO_SET_ROI, mav.MAV_CMD_DO_SET_ROI_LOCATION,
-    mav.MAV_CMD_DO_SET_ROI_NONE, mav.MAV_CMD_DO_SET_ROI_WPNEXT_OFFSET, mav.MAV_CMD_DO_DIGICAM_CONFIGURE,
-    mav.MAV_CMD_DO_DIGICAM_CONTROL, mav.MAV_CMD_DO_MOUNT_CONFIGURE, mav.MAV_CMD_DO_MOUNT_CONTROL,
-    mav.MAV_CMD_DO_SET_CAM_TRIGG_DIST, mav.MAV_CMD_DO_SET_CAM_TRIGG_INTERVAL,
-    mav.MAV_CMD_DO_GIMBAL_MANAGER_PITCHYAW, mav.MAV_CMD_IMAGE_START_CAPTURE, mav.MAV_CMD_IMAGE_STOP_CAPTURE,
-    mav.MAV_CMD_VIDEO_START_CAPTURE, mav.MAV_CMD_VIDEO_STOP_CAPTURE, mav.MAV_CMD_DO_CONTROL_VIDEO,
-})  # fmt: skip

@@ -5,7 +5,6 @@ a battery minimum. `SafetyPolicy` composes them for each command."""
 from __future__ import annotations
 
 import math
-from typing import Any
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
@@ -23,7 +22,7 @@ from gateway.fleet.policy.safety_rules import (
 from gateway.fleet.policy.vehicle_limits import Limits
 
 
-def require_finite(ctx: VehicleContext, name: str, value: Any) -> None:
+def require_finite(ctx: VehicleContext, name: str, value: object) -> None:
     if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
         raise refuse(
             Rule.INVALID_INPUT, f"{name} must be a finite number; got {value!r}", vehicle_id=ctx.vehicle_id

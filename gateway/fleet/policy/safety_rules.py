@@ -8,7 +8,8 @@ or a formation leg."""
 from __future__ import annotations
 
 from enum import StrEnum
-from typing import Any, Literal
+from types import TracebackType
+from typing import Literal
 
 from gateway.errors import SafetyRefusal
 from gateway.fleet.policy.geofence import Violation
@@ -56,7 +57,7 @@ DENIED_MISSION_COMMANDS = {179: "DO_SET_HOME", 180: "DO_SET_PARAMETER", 185: "DO
                            207: "DO_FENCE_ENABLE", 209: "DO_MOTOR_TEST"}  # fmt: skip
 
 
-def refuse(rule: Rule | str, text: str, **numbers: Any) -> SafetyRefusal:
+def refuse(rule: Rule | str, text: str, **numbers: object) -> SafetyRefusal:
     """A refusal whose message starts with the rule name."""
     return SafetyRefusal(str(rule), f"{rule}: {text}", **numbers)
 
@@ -95,14 +96,16 @@ def geofence_refusal(ctx: VehicleContext, v: Violation, what: str) -> SafetyRefu
 class prefixed:
     """Re-raise a refusal with a prefix after the rule name (e.g. the mission item) and extra numbers."""
 
-    def __init__(self, prefix: str, **numbers: Any) -> None:
+    def __init__(self, prefix: str, **numbers: object) -> None:
         self.prefix = prefix
         self.numbers = numbers
 
     def __enter__(self) -> None:
         return None
 
-    def __exit__(self, exc_type: Any, exc: BaseException | None, tb: Any) -> None:
+    def __exit__(
+        self, exc_type: type[BaseException] | None, exc: BaseException | None, tb: TracebackType | None
+    ) -> None:
         if isinstance(exc, SafetyRefusal):
             head = f"{exc.rule}: "
             body = exc.message[len(head) :] if exc.message.startswith(head) else exc.message

@@ -5,13 +5,13 @@ says so. The autopilot's later homes (ArduPilot sets one at every arming) never 
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import logging
 
 from gateway.fleet.policy.origin import Origin, checked_point
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.records import utcnow
 from gateway.registry.store import Store
+from gateway.util.tasks import cancel_and_wait
 
 log = logging.getLogger(__name__)
 
@@ -37,11 +37,8 @@ class OriginKeeper:
             self._task = asyncio.create_task(self._watch(), name=f"origin-{self.vehicle_id}")
 
     async def stop(self) -> None:
-        if self._task is not None:
-            self._task.cancel()
-            with contextlib.suppress(asyncio.CancelledError):
-                await self._task
-            self._task = None
+        await cancel_and_wait(self._task)
+        self._task = None
 
     def current(self) -> Origin | None:
         """The origin; the vehicle's first fresh home becomes it when it has none yet (recorded in the

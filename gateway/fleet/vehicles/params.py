@@ -20,11 +20,10 @@ import math
 import re
 import time
 from collections.abc import Awaitable, Callable
-from typing import Any
-
-from mavsdk_grpc import System
+from typing import Protocol, TypeVar
 
 from gateway.errors import CommandFailed, InvalidArgument
+from gateway.link.mavsdk_system import System
 
 PARAM_TIMEOUT_S = 6.0  # MAVSDK gives up on a param after ~3 s
 PARAM_LIST_TIMEOUT_S = 60.0
@@ -40,7 +39,13 @@ _RENAMES = {"SYSID_THISMAV": "MAV_SYSID", "SYSID_MYGCS": "MAV_GCS_SYSID"}
 _RENAMES.update({new: old for old, new in _RENAMES.items()})
 
 Value = float | int
-Call = Callable[[str, Awaitable[Any], float], Awaitable[Any]]
+T = TypeVar("T")
+
+
+class Call(Protocol):
+    """The link's call: ``aw`` awaited within ``timeout_s``, its errors mapped (``what`` names it)."""
+
+    def __call__(self, what: str, aw: Awaitable[T], timeout_s: float, /) -> Awaitable[T]: ...
 
 
 def param_aliases(name: str) -> list[str]:

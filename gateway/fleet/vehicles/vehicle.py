@@ -22,8 +22,6 @@ from collections import deque
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import Any
 
-from mavsdk_grpc import System
-
 from gateway.config import Settings
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
 from gateway.fleet import geo
@@ -43,6 +41,7 @@ from gateway.fleet.vehicles.vehicle_missions import MissionControl
 from gateway.fleet.vehicles.waits import wait_for_state
 from gateway.link.contract import ConnectionState, GroundCommand, OnWait, Peer
 from gateway.link.link_status import link_status
+from gateway.link.mavsdk_system import System
 from gateway.link.session import Link
 from gateway.link.sidecar import Confine, Sidecar
 from gateway.link.telemetry import TelemetryCache

@@ -15,13 +15,12 @@ import json
 from collections.abc import Sequence
 from typing import Protocol
 
-from mavsdk_grpc import System
-from mavsdk_grpc import mission_raw as mavsdk_mission_raw
-
 from gateway.errors import CommandFailed, InvalidArgument
 from gateway.fleet.dialects import Dialect, DialectReads
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem, WirePlan
+from gateway.link.mavsdk_system import System
+from gateway.link.mavsdk_system import mission_raw_plugin as mavsdk_mission_raw
 from gateway.link.session import Link
 from gateway.link.telemetry import MissionProgressValue, StatusTextValue
 

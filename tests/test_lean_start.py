@@ -1,0 +1,154 @@
+"""A plain start imports only what its configuration uses: `serve` and `mcp-stdio` with one SQLite
+database, no cluster, no drone flying a mission, no ground-station relay, no agent. Each runs as its own
+process; once it serves, it writes the names in its ``sys.modules`` and is stopped. Memory is what these
+imports cost (docs/benchmarks.md, "Memory per drone"), so a module that slips back into the start shows
+here rather than as a few MiB more in a benchmark nobody runs."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from gateway.util.ports import free_tcp_port
+from tests.helpers.timing import scaled
+
+ROOT = Path(__file__).resolve().parents[1]
+
+#: what a plain start must not import, each with the configuration or the moment that needs it
+NOT_AT_START = {
+    "alembic": "a database whose schema is older than the code (Store.open)",
+    "mako": "Alembic's templates",
+    "pymavlink": "a mission judged, a ground-station relay, a flight exported",
+    "numpy": "a formation planned",
+    "scipy": "a formation's slot assignment",
+    "shapely": "a geofence",
+    "fleet_agent": "`fleet-gateway agent`",
+    "openai": "`fleet-gateway agent`",
+    "nats": "a cluster",
+    "asyncpg": "PostgreSQL or a cluster",
+    "sqlalchemy.dialects.postgresql": "PostgreSQL",
+    "gateway.cluster": "a cluster",
+    "gateway.sim": "`fleet-gateway sim`",
+    "gateway.demo": "`fleet-gateway demo`",
+    "httpx": "the drones commands that call the API",
+    "jwt": "nothing of the gateway",
+    "mavsdk_grpc.system": "nothing: gateway.link.mavsdk_system loads only the plugins the gateway uses",
+    "mavsdk_grpc.camera": "nothing: a plugin the gateway does not use",
+}
+
+# The child: start the command in the main thread; a watcher thread waits until it serves, writes the
+# loaded modules and stops it (SIGINT for serve, the end of stdin for mcp-stdio).
+CHILD = r"""
+import json, os, signal, sys, threading, time, urllib.error, urllib.request
+
+command, out, port = sys.argv[1], sys.argv[2], sys.argv[3]
+
+def serving():
+    if command == "serve":
+        try:
+            urllib.request.urlopen(f"http://127.0.0.1:{port}/healthz", timeout=2)
+        except urllib.error.HTTPError:
+            pass  # it answers: it serves
+        except OSError:
+            return False
+        return True
+    return "mcp.server.stdio" in sys.modules and "gateway.mcp.server" in sys.modules
+
+def watch():
+    deadline = time.monotonic() + float(os.environ["LEAN_START_DEADLINE"])
+    while time.monotonic() < deadline and not serving():
+        time.sleep(0.1)
+    time.sleep(1.0 if command == "mcp-stdio" else 0.0)  # the stdio server reads its first line
+    with open(out + ".tmp", "w") as fh:
+        json.dump({"serving": serving(), "modules": sorted(sys.modules)}, fh)
+    os.replace(out + ".tmp", out)
+    if command == "serve":
+        os.kill(os.getpid(), signal.SIGINT)
+
+threading.Thread(target=watch, daemon=True).start()
+from gateway.cli import main
+args = ["serve", "--port", port] if command == "serve" else ["mcp-stdio"]
+sys.exit(main(args))
+"""
+
+
+def environment(database_url: str) -> dict[str, str]:
+    env = {k: v for k, v in os.environ.items() if not k.startswith("GATEWAY_")}
+    env.update(
+        PYTHONPATH=str(ROOT),
+        GATEWAY_DATABASE_URL=database_url,
+        LEAN_START_DEADLINE=str(scaled(90)),
+    )
+    return env
+
+
+def loaded_at_start(command: str, tmp_path: Path) -> list[str]:
+    database_url = f"sqlite+aiosqlite:///{tmp_path / 'fleet.db'}"
+    env = environment(database_url)
+    # a database at the current schema, as every start after the first finds it
+    subprocess.run(
+        [sys.executable, "-m", "gateway.cli", "db", "upgrade"],
+        cwd=tmp_path, env=env, check=True, capture_output=True, timeout=scaled(120),
+    )  # fmt: skip
+    out = tmp_path / f"{command}.json"
+    proc = subprocess.Popen(
+        [sys.executable, "-c", CHILD, command, str(out), str(free_tcp_port())],
+        cwd=tmp_path, env=env, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+    )  # fmt: skip
+    try:
+        deadline = time.monotonic() + scaled(120)
+        while not out.exists() and proc.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert out.exists(), f"{command} wrote no module list (exit {proc.poll()})"
+    finally:
+        if proc.stdin is not None:
+            proc.stdin.close()  # mcp-stdio ends with its input
+        try:
+            proc.wait(timeout=scaled(30))
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+        stderr = proc.stderr.read().decode(errors="replace") if proc.stderr is not None else ""
+        if proc.stderr is not None:
+            proc.stderr.close()
+    report = json.loads(out.read_text())
+    assert report["serving"], f"{command} did not start serving: {stderr[-2000:]}"
+    modules: list[str] = report["modules"]
+    return modules
+
+
+def unexpected(modules: list[str]) -> dict[str, str]:
+    return {
+        name: why
+        for name, why in NOT_AT_START.items()
+        if any(m == name or m.startswith(name + ".") for m in modules)
+    }
+
+
+@pytest.mark.parametrize("command", ["serve", "mcp-stdio"])
+def test_a_plain_start_imports_only_what_its_configuration_uses(command: str, tmp_path: Path) -> None:
+    modules = loaded_at_start(command, tmp_path)
+    assert "gateway.runtime" in modules and "mavsdk_grpc.telemetry" in modules  # it did start a gateway
+    assert unexpected(modules) == {}, f"{command} imported at start what only these need"
+
+
+def test_no_gateway_module_imports_mavsdk_grpc_but_the_one_that_loads_it_lean() -> None:
+    """Importing ``mavsdk_grpc`` (or one of its modules) first anywhere else would run the package's
+    ``__init__``, which imports all 40 plugins: the gateway reaches it through gateway.link.mavsdk_system."""
+    offenders = []
+    for path in sorted((ROOT / "gateway").rglob("*.py")):
+        if path.name == "mavsdk_system.py":
+            continue
+        for number, line in enumerate(path.read_text().splitlines(), 1):
+            words = line.split()
+            if words[:2] in (["import", "mavsdk_grpc"], ["from", "mavsdk_grpc"]) or (
+                len(words) >= 2 and words[0] in ("import", "from") and words[1].startswith("mavsdk_grpc.")
+            ):
+                offenders.append(f"{path.relative_to(ROOT)}:{number}: {line.strip()}")
+    assert offenders == []
