@@ -33,7 +33,7 @@ def _num(value: SupportsFloat | None, digits: int) -> float | None:
     return round(number, digits) if math.isfinite(number) else None
 
 
-# Any: a part read by name, whichever of the cache's value types it holds
+# a part read by name, whichever of the cache's value types it holds
 def _sample(cache: TelemetryCache, name: str) -> tuple[Any, float | None, bool]:
     """(value, age_s, stale) of one cached stream; (None, None, True) when never received."""
     sample = getattr(cache, name, None)

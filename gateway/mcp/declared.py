@@ -24,9 +24,10 @@ from typing import Any
 
 from gateway.fleet.commands.command_core import TOOLS, VERBS, Tool
 from gateway.fleet.commands.commander import Commander  # noqa: F401  (imports every verb module: fills TOOLS)
+from gateway.fleet.operations.routing import Verb
 from gateway.mcp.access import ToolCall
 from gateway.mcp.confirmation import ANSWER, answer_parameter, confirmed
-from gateway.mcp.presenters import PRESENTERS
+from gateway.mcp.presenters import PRESENTERS, Presenter
 from gateway.mcp.results import Result
 from gateway.mcp.toolkit import Toolset, ToolSpec, Wait, annotations_of
 
@@ -59,43 +60,13 @@ def declared(toolset: str) -> list[Tool]:
 def tool_spec(tool: Tool) -> ToolSpec:
     """The MCP tool of one declaration (see the module's docstring)."""
     verb = VERBS[tool.verb]
-    hints = typing.get_type_hints(verb.declared, include_extras=True)
-    presenter = PRESENTERS.get(verb.result)
-    if presenter is None:
-        known = ", ".join(sorted(t.__name__ for t in PRESENTERS))
-        raise TypeError(
-            f"tool {tool.name}: a declared tool presents one of {known}, not {verb.result.__name__}"
-        )
-    if presenter.needs_says and tool.says is None:
-        raise TypeError(f"tool {tool.name}: an instant command's tool needs says= (its result's text)")
-    unfed = verb.callbacks - CALLBACKS
-    if unfed:
-        raise TypeError(f"tool {tool.name}: no tool can feed the verb's callbacks {', '.join(sorted(unfed))}")
+    presenter = _presenter(tool, verb)
+    params = _parameters(tool, verb, presenter)
     confirm = tool.confirm
-    answered = () if confirm is None else (confirm.into,)
-    params = [inspect.Parameter("call", inspect.Parameter.POSITIONAL_OR_KEYWORD, annotation=ToolCall)]
-    for name, param in list(verb.signature.parameters.items())[2:]:  # after self, caller
-        if param.kind is not inspect.Parameter.POSITIONAL_OR_KEYWORD:
-            continue  # the callbacks (keyword-only)
-        if name in FILLED or name in tool.omit or name in answered:
-            if param.default is inspect.Parameter.empty:
-                raise TypeError(f"tool {tool.name}: omitted parameter {name} of {verb.name} has no default")
-            continue
-        takes = tool.takes.get(name)
-        if takes is None:
-            params.append(param.replace(annotation=hints[name]))
-        else:
-            params.append(param.replace(name=takes.name, annotation=takes.annotation))
-    if presenter.waits:
-        params.append(
-            inspect.Parameter("wait", inspect.Parameter.POSITIONAL_OR_KEYWORD, default=True, annotation=Wait)
-        )
-    if confirm is not None:  # no default: first, after the ToolCall
-        params.insert(1, answer_parameter(verb, confirm))
     filled = {"label": tool.name} if "label" in verb.signature.parameters else {}
     feeds_notify = "notify" in verb.callbacks
 
-    async def run(call: ToolCall, **arguments: Any) -> Result:  # Any: the SDK's validated JSON arguments
+    async def run(call: ToolCall, **arguments: Any) -> Result:  # mcp SDK: its validated JSON
         wait = bool(arguments.pop("wait", True)) if presenter.waits else False
         extra: dict[str, object] = {"notify": call.notify} if feeds_notify else {}
         if confirm is not None:
@@ -119,6 +90,49 @@ def tool_spec(tool: Tool) -> ToolSpec:
         ),
         advertise={name: dict(schema) for name, schema in tool.advertise.items()},
     )
+
+
+def _presenter(tool: Tool, verb: Verb) -> Presenter:
+    """How the tool presents its verb's result; a declaration no tool can present is refused here."""
+    presenter = PRESENTERS.get(verb.result)
+    if presenter is None:
+        known = ", ".join(sorted(t.__name__ for t in PRESENTERS))
+        raise TypeError(
+            f"tool {tool.name}: a declared tool presents one of {known}, not {verb.result.__name__}"
+        )
+    if presenter.needs_says and tool.says is None:
+        raise TypeError(f"tool {tool.name}: an instant command's tool needs says= (its result's text)")
+    unfed = verb.callbacks - CALLBACKS
+    if unfed:
+        raise TypeError(f"tool {tool.name}: no tool can feed the verb's callbacks {', '.join(sorted(unfed))}")
+    return presenter
+
+
+def _parameters(tool: Tool, verb: Verb, presenter: Presenter) -> list[inspect.Parameter]:
+    """The tool's parameters: its ``ToolCall``, a human's answer (``confirm``), the verb's own after
+    ``caller`` (in the form ``takes`` says; minus those filled, omitted or answered), then ``wait``."""
+    hints = typing.get_type_hints(verb.declared, include_extras=True)
+    answered = () if tool.confirm is None else (tool.confirm.into,)
+    params = [inspect.Parameter("call", inspect.Parameter.POSITIONAL_OR_KEYWORD, annotation=ToolCall)]
+    if tool.confirm is not None:  # no default: first, after the ToolCall
+        params.append(answer_parameter(verb, tool.confirm))
+    for name, param in list(verb.signature.parameters.items())[2:]:  # after self, caller
+        if param.kind is not inspect.Parameter.POSITIONAL_OR_KEYWORD:
+            continue  # the callbacks (keyword-only)
+        if name in FILLED or name in tool.omit or name in answered:
+            if param.default is inspect.Parameter.empty:
+                raise TypeError(f"tool {tool.name}: omitted parameter {name} of {verb.name} has no default")
+            continue
+        takes = tool.takes.get(name)
+        if takes is None:
+            params.append(param.replace(annotation=hints[name]))
+        else:
+            params.append(param.replace(name=takes.name, annotation=takes.annotation))
+    if presenter.waits:
+        params.append(
+            inspect.Parameter("wait", inspect.Parameter.POSITIONAL_OR_KEYWORD, default=True, annotation=Wait)
+        )
+    return params
 
 
 def _summary(doc: str | None) -> str:

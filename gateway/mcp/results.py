@@ -99,7 +99,7 @@ class GpsOut(Fresh):
     fix_type: str
 
 
-# Any in these results: a telemetry value as `plain` makes it (any JSON); pydantic gives it an open
+# Open JSON in these results: a telemetry value as `plain` makes it (any JSON); pydantic gives it an open
 # outputSchema, which clients validate against (a JsonLike union would spell out every JSON type)
 class ValueOut(Fresh):
     """A single telemetry value (flight mode, armed, in air, landed state, heading)."""

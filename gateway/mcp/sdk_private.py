@@ -44,7 +44,7 @@ def tool(server: AnyServer, name: str) -> Tool:
     return found
 
 
-def replace_run(tool: Tool, run: Callable[..., Awaitable[Any]]) -> None:  # Any: mcp SDK Tool.run
+def replace_run(tool: Tool, run: Callable[..., Awaitable[Any]]) -> None:  # mcp SDK: Tool.run
     """Put a wrapper in place of a tool's ``run`` (``Tool`` is a pydantic model that refuses new values
     for its methods through ``__setattr__``)."""
     object.__setattr__(tool, "run", run)
@@ -61,7 +61,7 @@ async def answer_single_exchange_as_json(
     manager: StreamableHTTPSessionManager, scope: Scope, receive: Receive, send: Send
 ) -> None:
     """A 2026-07-28 request answered as the manager answers it in JSON mode."""
-    state: Any = manager._lifespan_state  # Any: the mcp SDK types its private state so
+    state: Any = manager._lifespan_state  # mcp SDK: its private state, untyped
     await handle_modern_request(manager.app, manager.security_settings, True, state, scope, receive, send)
 
 
@@ -79,7 +79,7 @@ def cap_sessions_per_caller(manager: StreamableHTTPSessionManager, cap: int) -> 
     whose ``cap`` sessions are all busy is refused as at the manager's own limit."""
     admit = manager._admit_session
 
-    def admit_capped(requestor: Any) -> Any:  # Any: the mcp SDK's private _admit_session, untyped
+    def admit_capped(requestor: Any) -> Any:  # mcp SDK: private _admit_session, untyped
         owners = manager._session_owners
         mine = [
             transport

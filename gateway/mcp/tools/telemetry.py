@@ -35,7 +35,7 @@ from gateway.mcp.toolkit import DroneId, Toolset
 toolset = Toolset("telemetry")
 
 
-# Any: a part read by name, whichever of the cache's value types it holds (each tool reads its own fields)
+# a part read by name, whichever of the cache's value types it holds (each tool reads its own fields)
 def read(call: ToolCall, drone_id: str, name: str) -> tuple[Any, float, bool, str]:
     """(value, age_s, stale, note) of one cached telemetry part."""
     v = call.commander.vehicle(drone_id)
