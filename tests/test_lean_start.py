@@ -58,13 +58,14 @@ def serving():
         except OSError:
             return False
         return True
-    return "mcp.server.stdio" in sys.modules and "gateway.mcp.server" in sys.modules
+    # the stdio server has started its gateway (the runtime and a MAVSDK plugin are loaded by then)
+    started = ("mcp.server.stdio", "gateway.mcp.server", "gateway.runtime", "mavsdk_grpc.telemetry")
+    return all(name in sys.modules for name in started)
 
 def watch():
     deadline = time.monotonic() + float(os.environ["LEAN_START_DEADLINE"])
     while time.monotonic() < deadline and not serving():
         time.sleep(0.1)
-    time.sleep(1.0 if command == "mcp-stdio" else 0.0)  # the stdio server reads its first line
     with open(out + ".tmp", "w") as fh:
         json.dump({"serving": serving(), "modules": sorted(sys.modules)}, fh)
     os.replace(out + ".tmp", out)

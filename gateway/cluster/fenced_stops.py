@@ -115,7 +115,7 @@ class FencedStops:
     def _answer(self, vehicle_id: str) -> CallHandler:
         async def handle(
             name: str, arguments: dict[str, Any], caller: Mapping[str, object], progress: ProgressSink
-        ) -> Any:
+        ) -> object:
             return await self.stop_directly(vehicle_id, name, Caller.from_dict(caller))
 
         return handle

@@ -49,7 +49,7 @@ class Forwarder(Protocol):
         arguments: dict[str, Any],
         on_message: OnMessage | None,
         wait_s: float,
-    ) -> Any: ...
+    ) -> object: ...
 
 
 class RouterNode(Protocol):
@@ -71,7 +71,7 @@ class ClusterRouter:
         self.node = node
         self._ended: dict[str, str] = {}  # operation id -> its final status, as the owner answered
 
-    def _note(self, body: Any) -> None:
+    def _note(self, body: object) -> None:
         """Remember an operation the owner reported as ended: its snapshots may still say running for a
         snapshot period, and a check here must not refuse a drone for an operation that is over."""
         if isinstance(body, dict) and isinstance(body.get("operation_id"), str):
@@ -141,7 +141,7 @@ async def answer(
     arguments: dict[str, Any],
     caller_body: Mapping[str, object],
     progress: ProgressSink,
-) -> Any:
+) -> object:
     """Run a call another node forwarded (this node owns its drone); the JSON result."""
     caller = Caller.from_dict(caller_body)
     forwarded = FORWARDED.set(True)

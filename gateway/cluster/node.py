@@ -325,7 +325,7 @@ class ClusterNode:
         adoption.add_done_callback(self._adoptions.discard)
         await asyncio.shield(adoption)
 
-    async def forward_stop(self, drone_id: str, verb: str, caller: Caller) -> Any:
+    async def forward_stop(self, drone_id: str, verb: str, caller: Caller) -> object:
         """An operator's stop to the drone's current owner (`OwnerCalls.forward_stop`)."""
         return await self.calls.forward_stop(drone_id, verb, caller)
 

@@ -67,7 +67,7 @@ class OwnerCalls:
         arguments: dict[str, Any],
         on_message: OnMessage | None,
         wait_s: float,
-    ) -> Any:
+    ) -> object:
         """Run ``verb`` on the drone's owner (over NATS); its result, or its error raised here."""
         if not self._node.started:
             raise NoOwner(f"this node is not part of the cluster yet; cannot reach {drone_id}'s owner")
@@ -100,7 +100,7 @@ class OwnerCalls:
             owner_gone=owner_gone,
         )  # fmt: skip
 
-    async def forward_stop(self, drone_id: str, verb: str, caller: Caller) -> Any:
+    async def forward_stop(self, drone_id: str, verb: str, caller: Caller) -> object:
         """An operator's stop to the drone's owner as it is now (bus, then PostgreSQL), without this
         node commanding the drone itself when no owner acknowledges it: NotRun or NoOwner then."""
         registry = self._node.registry
@@ -114,7 +114,7 @@ class OwnerCalls:
         self, drone_id: str, verb: str, caller: Caller, arguments: dict[str, Any],
         on_message: OnMessage | None, call_s: float, accept_s: float, epoch: int | None,
         owner_gone: Callable[[], str | None] | None, take_over: bool = True,
-    ) -> Any:  # fmt: skip
+    ) -> object:  # fmt: skip
         """An operator's stop (land, return, hold) on a drone another node owns: over the bus, through
         PostgreSQL when the bus does not carry it (each sent again until its owner answers), to a fenced
         node's stop-only path when nobody holds the drone's link; and when no owner acknowledged it
@@ -131,7 +131,7 @@ class OwnerCalls:
         short = relay is not None and relay.listening
         bus = self._node.bus
         why: list[str] = []
-        owner_paths: list[Awaitable[Any]] = []
+        owner_paths: list[Awaitable[object]] = []
         try:
             return await bus.call(
                 drone_id, verb, arguments, body, call_s, on_message,
@@ -165,7 +165,7 @@ class OwnerCalls:
             drone_id, verb, caller, epoch, owner, owner_paths, why, deadline, take_over=take_over
         )
 
-    async def relayed_stop(self, stop: dict[str, Any]) -> Any:
+    async def relayed_stop(self, stop: dict[str, Any]) -> object:
         """A stop another node relayed through PostgreSQL: run it when this node owns the drone under
         that epoch (the same path as a stop over the bus), or keeps a stop-only path to it; None (silent)
         when the drone is not this node's."""
@@ -203,7 +203,7 @@ class OwnerCalls:
     def answer(self, vehicle_id: str) -> CallHandler:
         async def handle(
             name: str, arguments: dict[str, Any], caller: Mapping[str, object], progress: ProgressSink
-        ) -> Any:
+        ) -> object:
             registry = self._node.registry
             if registry is None or not registry.is_local(vehicle_id):
                 raise NoOwner(

@@ -16,42 +16,14 @@ from dataclasses import asdict, fields, is_dataclass
 from typing import Any
 
 from gateway.fleet.vehicles.protocols import VehicleView
-from gateway.link.telemetry import (
-    AttitudeValue,
-    BatteryValue,
-    GpsInfoValue,
-    HealthValue,
-    ImuValue,
-    MissionProgressValue,
-    OdometryValue,
-    PositionValue,
-    RcStatusValue,
-    Sample,
-    StatusTextValue,
-    TelemetryCache,
-    VelocityNedValue,
-)
+from gateway.link.telemetry import VALUE_TYPES, Sample, StatusTextValue, TelemetryCache
 
 SNAPSHOT_VERSION = 1
 
-#: the dataclass of each structured stream; the others carry a plain value (bool, float, str)
-VALUE_TYPES: dict[str, type] = {
-    "position": PositionValue,
-    "home": PositionValue,
-    "attitude": AttitudeValue,
-    "velocity_ned": VelocityNedValue,
-    "battery": BatteryValue,
-    "gps_info": GpsInfoValue,
-    "health": HealthValue,
-    "rc_status": RcStatusValue,
-    "imu": ImuValue,
-    "odometry": OdometryValue,
-    "mission_progress": MissionProgressValue,
-}
 STATUS_TEXTS_SENT = 10
 
 
-def _plain(value: Any) -> Any:
+def _plain(value: object) -> object:
     if is_dataclass(value) and not isinstance(value, type):
         return asdict(value)
     if isinstance(value, enum.Enum):
@@ -66,7 +38,7 @@ def encode(
     cache = vehicle.telemetry
     tele: dict[str, Any] = {}
     for name in TelemetryCache.FIELDS:
-        sample: Sample[Any] | None = getattr(cache, name)
+        sample: Sample[object] | None = getattr(cache, name)
         if sample is not None:
             tele[name] = [_plain(sample.value), round(sample.age_s, 3)]
     body = {
@@ -85,7 +57,7 @@ def encode(
     return json.dumps(body, default=str, separators=(",", ":")).encode()
 
 
-def _rebuild(name: str, raw: Any) -> Any:
+def _rebuild(name: str, raw: object) -> object:
     kind = VALUE_TYPES.get(name)
     if kind is None or not isinstance(raw, dict):
         return raw

@@ -56,7 +56,7 @@ SEEN_KEPT = 1000
 RELAYED_ACCEPT_S = 10.0
 #: ``handler(stop)`` -> the stop's JSON result when this node ran it, None when the drone is not this
 #: node's (it stays silent); raises a GatewayError when it is this node's and it refused it
-StopHandler = Callable[[dict[str, Any]], Awaitable[Any]]
+StopHandler = Callable[[dict[str, Any]], Awaitable[object]]
 
 
 def asyncpg_dsn(database_url: str) -> str:
@@ -138,7 +138,7 @@ class StopRelay:
                 conn_.terminate()
             await asyncio.sleep(RECONNECT_S)
 
-    def _on_notify(self, _conn: Any, _pid: int, channel: str, payload: str) -> None:
+    def _on_notify(self, _conn: object, _pid: int, channel: str, payload: str) -> None:
         try:
             body = json.loads(payload)
         except ValueError:
@@ -216,7 +216,7 @@ class StopRelay:
     async def send(
         self, vehicle_id: str, command: str, arguments: dict[str, Any], epoch: int | None,
         caller: Mapping[str, object], within_s: float,
-    ) -> Any:  # fmt: skip
+    ) -> object:  # fmt: skip
         """Relay the stop ``command`` for ``vehicle_id`` to its owner; the owner's result, or its error
         raised again here; :class:`NotRun` ("no path") when no node answered within ``within_s``."""
         if command not in RELAYED:

@@ -69,7 +69,7 @@ class TakeoverNode(NodeWithRuntime, Protocol):
 
     async def take_over(self, vehicle_id: str, lease: Lease, previous: str | None) -> None: ...
 
-    async def forward_stop(self, drone_id: str, verb: str, caller: Caller) -> Any: ...
+    async def forward_stop(self, drone_id: str, verb: str, caller: Caller) -> object: ...
 
 
 class StopTakeover:
@@ -105,8 +105,8 @@ class StopTakeover:
 
     async def reach(
         self, drone_id: str, verb: str, caller: Caller, epoch: int | None, owner: str | None,
-        owner_paths: list[Awaitable[Any]], why: list[str], deadline: float, take_over: bool = True,
-    ) -> Any:  # fmt: skip
+        owner_paths: list[Awaitable[object]], why: list[str], deadline: float, take_over: bool = True,
+    ) -> object:  # fmt: skip
         """The stop through the owner's remaining paths (``owner_paths``: PostgreSQL, a fenced node's
         stop-only path) and, with ``take_over``, the drone's own link from this node, all at once until
         ``deadline``: the first answer. An owner's refusal is raised; with none of them through by the

@@ -151,12 +151,12 @@ class MavsdkSession:
         skip = self._link.rules.skipped_streams if self._link.facts.autopilot is not None else frozenset()
         await feed.request_rates(lambda what, aw: self._link.call(what, aw, 5.0), skip)
         # MISSION_CURRENT is only in ArduPilot's EXT_STAT stream: ask for it by id (mission progress);
-        # EKF_STATUS_REPORT says when the position estimate is ready (arming in GUIDED needs it; every 2 s:
-        # it changes once, at boot, and an arming waits for it);
+        # EKF_STATUS_REPORT says when the position estimate is ready (arming in GUIDED needs it, read
+        # fresh: 1 Hz keeps it inside the staleness limit when a message is lost);
         # POSITION_TARGET_GLOBAL_INT (EXT_STAT too) is where it flies to (gateway.fleet.policy.takeover)
         for message_id, interval_us in (
             (MAVLINK_MSG_MISSION_CURRENT, 1e6),
-            (MAVLINK_MSG_EKF_STATUS_REPORT, 2e6),
+            (MAVLINK_MSG_EKF_STATUS_REPORT, 1e6),
             (MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT, 2e5),
         ):
             with contextlib.suppress(CommandFailed):

@@ -116,6 +116,22 @@ class StatusTextValue:
     text: str
 
 
+#: the dataclass of each structured stream; the others carry a plain value (bool, float, str)
+VALUE_TYPES: dict[str, type] = {
+    "position": PositionValue,
+    "home": PositionValue,
+    "attitude": AttitudeValue,
+    "velocity_ned": VelocityNedValue,
+    "battery": BatteryValue,
+    "gps_info": GpsInfoValue,
+    "health": HealthValue,
+    "rc_status": RcStatusValue,
+    "imu": ImuValue,
+    "odometry": OdometryValue,
+    "mission_progress": MissionProgressValue,
+}
+
+
 @dataclass
 class TelemetryCache:
     """Latest value of every stream, each with its arrival time; None until first received."""
@@ -190,7 +206,7 @@ class TelemetryCache:
 
     def fresh(self, name: str, max_age_s: float | None = None) -> Any | None:
         """The value of ``name`` if it is younger than ``max_age_s`` (default: stale limit), else None."""
-        sample: Sample[Any] | None = getattr(self, name)
+        sample: Sample[object] | None = getattr(self, name)
         limit = self.stale_after_s if max_age_s is None else max_age_s
         if sample is None or sample.age_s > limit or not self.live:
             return None
@@ -207,7 +223,7 @@ class TelemetryCache:
         ``stale`` is true for a part older than ``stale_after_s`` and for every part while not ``live``."""
         out: dict[str, Any] = {}
         for name in self.FIELDS:
-            sample: Sample[Any] | None = getattr(self, name)
+            sample: Sample[object] | None = getattr(self, name)
             if sample is None:
                 out[name] = None
                 continue

@@ -14,8 +14,7 @@ import math
 from collections.abc import AsyncIterator, Awaitable, Callable
 from typing import Protocol, TypeVar
 
-from mavsdk_grpc import System
-
+from gateway.link.mavsdk_system import System
 from gateway.link.telemetry import (
     AttitudeValue,
     BatteryValue,
@@ -39,9 +38,11 @@ Item = TypeVar("Item")
 #: Each message costs the sidecar its parsing and the gateway one gRPC stream item (the most of a drone's
 #: CPU at rest), so a stream gets the rate its readers need and no more. The position at 1 Hz: the read
 #: tools and the flight log's 1 Hz track. SYS_STATUS (health) at 1 Hz: the link is ready only while its
-#: health is younger than the staleness limit (3 s), which a busy machine must not tip over. The rest
-#: change slowly on the ground and are read by their tools and the policy: every 2 s keeps them inside
-#: the 3 s staleness limit. A drone that is armed or in the air gets ``ACTIVE_RATES_HZ`` on top (the
+#: health is younger than the staleness limit (3 s). Every stream the policy or a readiness check reads
+#: fresh (home, attitude, landed state, GPS, battery) stays at 1 Hz too: at one message every 2 s, one
+#: message lost on the radio or late on a busy machine makes the reading older than the 3 s limit, and a
+#: takeoff is refused for an "unknown" battery. Only what no check reads fresh (the IMU and odometry)
+#: comes every 2 s. A drone that is armed or in the air gets ``ACTIVE_RATES_HZ`` on top (the
 #: operations' trackers: arrival within tolerance, the climb, the landing, the yaw).
 #: Not requested and not subscribed: a heading stream (MAVSDK repeats GLOBAL_POSITION_INT's at the
 #: position rate; the heading is the attitude's yaw), in_air (the same EXTENDED_SYS_STATE as the landed
@@ -51,11 +52,11 @@ Item = TypeVar("Item")
 #: and RC_CHANNELS and answers its set_rate_rc_status with Unsupported.
 STREAM_RATES_HZ: dict[str, float] = {
     "position": 1.0,  # GLOBAL_POSITION_INT: position and velocity
-    "home": 0.5,  # HOME_POSITION
-    "attitude_euler": 0.5,  # ATTITUDE: attitude, and the heading (its yaw)
-    "landed_state": 0.5,  # EXTENDED_SYS_STATE: landed state and in_air
-    "gps_info": 0.5,  # GPS_RAW_INT
-    "battery": 0.5,  # BATTERY_STATUS
+    "home": 1.0,  # HOME_POSITION
+    "attitude_euler": 1.0,  # ATTITUDE: attitude, and the heading (its yaw)
+    "landed_state": 1.0,  # EXTENDED_SYS_STATE: landed state and in_air
+    "gps_info": 1.0,  # GPS_RAW_INT
+    "battery": 1.0,  # BATTERY_STATUS
     "health": 1.0,  # SYS_STATUS
     "imu": 0.5,  # HIGHRES_IMU (PX4)
     "raw_imu": 0.5,  # RAW_IMU (ArduPilot has no HIGHRES_IMU)

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from pymavlink.dialects.v20 import common as mavlink
+#: MAV_FRAME_GLOBAL_RELATIVE_ALT (pymavlink's name): a number here so that a start loads no MAVLink dialect
+FRAME_GLOBAL_RELATIVE_ALT = 3
 
 
 @dataclass(frozen=True)
@@ -14,7 +15,7 @@ class ItemInt:
     """x/y in degE7 (plain numbers in MAV_FRAME_MISSION), z in metres."""
 
     command: int
-    frame: int = mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT
+    frame: int = FRAME_GLOBAL_RELATIVE_ALT
     param1: float = 0.0
     param2: float = 0.0
     param3: float = 0.0

@@ -101,7 +101,7 @@ async def sim_process(
                     return
 
         await asyncio.wait_for(read_banner(), scaled(start_timeout_s))
-        control = SimControl(control_url)
+        control = SimControl(control_url, timeout=scaled(10))  # the simulator answers late on a busy machine
         yield SimProcess(urls, sysids, control, control_url, proc.pid, log.name, udp_urls, gcs_urls)
     finally:
         if control is not None:

@@ -287,6 +287,7 @@ class Arena:
         await self.stack.sim.control.set_battery(
             index, 100.0
         )  # a fresh pack: limits, not the battery, are judged
+        await self.fresh_pack_seen(drone)
         await self.operator("DELETE", f"/vehicles/{drone}/takeover", ok=(200, 404, 409))
         await self.operator("DELETE", f"/vehicles/{drone}/lock", ok=(200, 404, 409))
         await self.operator("DELETE", "/fleet/lock", ok=(200, 404, 409))
@@ -359,6 +360,20 @@ class Arena:
             if asyncio.get_running_loop().time() > deadline:
                 raise AssertionError(f"the gateway did not see the takeover of {drone}: {body}")
             await asyncio.sleep(0.1)
+
+    async def fresh_pack_seen(self, drone: str) -> None:
+        """Until the gateway's own battery reading shows the fresh pack: the simulator's clock runs ahead
+        of a loaded machine's, so a long run drains the pack between scenarios, and the battery streams
+        come at their rest rate; a leg judged on the old reading would be refused for the battery."""
+        deadline = asyncio.get_running_loop().time() + scaled(60)
+        while True:
+            body = await self.operator("GET", f"/vehicles/{drone}")
+            battery = (body.get("telemetry") or {}).get("battery")
+            if battery and not battery.get("stale") and (battery.get("remaining_pct") or 0) >= 90:
+                return
+            if asyncio.get_running_loop().time() > deadline:
+                raise AssertionError(f"{drone}: the gateway never read the fresh pack: {battery}")
+            await asyncio.sleep(0.2)
 
     async def wait_ready(self, drone: str) -> None:
         deadline = asyncio.get_running_loop().time() + scaled(60)

@@ -40,7 +40,7 @@ from gateway.fleet.operations.operation_state import Operation
 from gateway.fleet.operations.operations import OperationManager
 from gateway.fleet.operations.routing import Router
 from gateway.fleet.operations.trackers import Tracker
-from gateway.fleet.operations.views import OperationView
+from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.operator_locks import LockBook, taken_over_text
 from gateway.fleet.policy.safety import SafetyPolicy
@@ -122,6 +122,19 @@ class CommandPass:
     locks: LockBook
     router: Router | None = None
 
+    async def instant(
+        self,
+        caller: Caller,
+        drone_id: str,
+        action: str,
+        decide: Decide,
+        message: str,
+        facts: dict[str, Any] | None = None,
+    ) -> ActionResult:
+        """`run` an instant command (done when the drone accepts it) and say what it did."""
+        await self.run(caller, drone_id, action, decide)
+        return ActionResult(drone_id=drone_id, action=action, message=message, facts=facts or {})
+
     async def run(
         self,
         caller: Caller,
@@ -169,7 +182,7 @@ class CommandPass:
             sent.result = await order.send()
             if order.ends_operation:
                 sent.ended = await self.operations.supersede(vehicle.id, action)
-                self.operations.expect(vehicle, order.commands, modes=order.modes)
+                self.operations.mode_watch.expect(vehicle, order.commands, modes=order.modes)
         return sent
 
     async def _track(

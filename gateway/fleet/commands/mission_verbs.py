@@ -119,13 +119,9 @@ class MissionVerbs:
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             return self._upload(caller, vehicle, ctx, items)
 
-        await self.commands.run(caller, drone_id, "upload_mission", decide)
         count = len(items)
-        return ActionResult(
-            drone_id=drone_id,
-            action="upload_mission",
-            message=f"{count} items uploaded",
-            facts={"items": count},
+        return await self.commands.instant(
+            caller, drone_id, "upload_mission", decide, f"{count} items uploaded", {"items": count}
         )
 
     @command
@@ -297,8 +293,7 @@ class MissionVerbs:
 
             return Order(send)
 
-        await self.commands.run(caller, drone_id, "clear_mission", decide)
-        return ActionResult(drone_id=drone_id, action="clear_mission", message="mission cleared")
+        return await self.commands.instant(caller, drone_id, "clear_mission", decide, "mission cleared")
 
     @command(
         tool=Tool(
@@ -325,12 +320,8 @@ class MissionVerbs:
             await verify_held(self.commands.safety, caller, vehicle, ctx, [index])
             return Order(lambda: vehicle.set_current_mission_item(index))
 
-        await self.commands.run(caller, drone_id, "set_current_waypoint", decide)
-        return ActionResult(
-            drone_id=drone_id,
-            action="set_current_waypoint",
-            message=f"next item {index}",
-            facts={"index": index},
+        return await self.commands.instant(
+            caller, drone_id, "set_current_waypoint", decide, f"next item {index}", {"index": index}
         )
 
     @command

@@ -292,12 +292,13 @@ class NavigationVerbs:
             self.commands.safety.check_speed(ctx, speed_mps, caller.policy_via)
             return Order(lambda: vehicle.set_max_speed(speed_mps))
 
-        await self.commands.run(caller, drone_id, "set_max_speed", decide)
-        return ActionResult(
-            drone_id=drone_id,
-            action="set_max_speed",
-            message=f"max speed {speed_mps:g} m/s",
-            facts={"speed_mps": speed_mps},
+        return await self.commands.instant(
+            caller,
+            drone_id,
+            "set_max_speed",
+            decide,
+            f"max speed {speed_mps:g} m/s",
+            {"speed_mps": speed_mps},
         )
 
     @command

@@ -20,7 +20,13 @@ from collections.abc import Awaitable, Callable, Mapping
 
 from gateway.fleet.dialects.base import LinkOps, UserNumbering, matches_any, reader
 from gateway.fleet.dialects.mission_semantics import arducopter_mission
-from gateway.fleet.dialects.modes import COMMON_MODES, NOT_MODELLED, AirUse, ModeChoice, canonical
+from gateway.fleet.dialects.modes import (
+    COMMON_MODES,
+    NOT_MODELLED,
+    AirUse,
+    ModeChoice,
+    native_name,
+)
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem, WirePlan
 from gateway.fleet.policy.mission_check import MissionSemantics
@@ -179,12 +185,10 @@ class ArduPilot(UserNumbering):
         return common + [name for name in OFFERED_NATIVE if name not in common]
 
     def resolve_mode(self, name: str) -> ModeChoice | None:
-        wanted = canonical(name)
-        native = COMMON_TO_NATIVE.get(wanted)
-        if native is None:
-            if wanted not in OFFERED_NATIVE:
-                return None
-            native = wanted
+        names = native_name(name, COMMON_TO_NATIVE, OFFERED_NATIVE)
+        if names is None:
+            return None
+        wanted, native = names
         number = ARDUCOPTER_MODES[native]
         pattern = CIRCLE_RADIUS_PARAMS if native == "CIRCLE" else ()
         return ModeChoice(

@@ -4,6 +4,7 @@ the common names onto its own modes and lists the modes it offers."""
 
 from __future__ import annotations
 
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass, field
 from typing import Protocol
 
@@ -73,6 +74,20 @@ def canonical(name: str) -> str:
     """``name`` upper-cased, a synonym replaced by its common name."""
     wanted = name.strip().upper()
     return COMMON_SYNONYMS.get(wanted, wanted)
+
+
+def native_name(
+    name: str, common_to_native: Mapping[str, str], offered_native: Collection[str]
+) -> tuple[str, str] | None:
+    """``name`` as asked (`canonical`) and the autopilot's own name of that mode: a common mode it has,
+    or one of its own it offers; None when it has no such mode."""
+    wanted = canonical(name)
+    native = common_to_native.get(wanted)
+    if native is None:
+        if wanted not in offered_native:
+            return None
+        native = wanted
+    return wanted, native
 
 
 def require_mode(name: object, table: ModeTable, vehicle_id: str) -> ModeChoice:

@@ -22,7 +22,13 @@ from collections.abc import Awaitable, Callable, Mapping
 from gateway.errors import CommandFailed
 from gateway.fleet.dialects.base import LinkOps, UserNumbering, matches_any, reader
 from gateway.fleet.dialects.mission_semantics import px4_mission
-from gateway.fleet.dialects.modes import COMMON_MODES, NOT_MODELLED, AirUse, ModeChoice, canonical
+from gateway.fleet.dialects.modes import (
+    COMMON_MODES,
+    NOT_MODELLED,
+    AirUse,
+    ModeChoice,
+    native_name,
+)
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem, WirePlan
 from gateway.fleet.policy.mission_check import MissionSemantics
@@ -151,12 +157,10 @@ class PX4(UserNumbering):
         return [name for name in COMMON_MODES if name in COMMON_TO_NATIVE] + list(OFFERED_NATIVE)
 
     def resolve_mode(self, name: str) -> ModeChoice | None:
-        wanted = canonical(name)
-        native = COMMON_TO_NATIVE.get(wanted)
-        if native is None:
-            if wanted not in OFFERED_NATIVE:
-                return None
-            native = wanted
+        names = native_name(name, COMMON_TO_NATIVE, OFFERED_NATIVE)
+        if names is None:
+            return None
+        wanted, native = names
         main, sub = PX4_MODES[native]
         return ModeChoice(
             wanted,

@@ -7,13 +7,25 @@ import asyncio
 import time
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
-from typing import Any
+from typing import Any, TypedDict
 
 from gateway.fleet.operations.operation_state import Operation, OpStatus
 from gateway.fleet.policy.caller import Caller
 
 FLEET_CALLER = Caller(via="cluster", principal="fleet")
 """The caller of a fleet operation started without one (judged as an agent)."""
+
+
+class SlotSummary(TypedDict, total=False):
+    """A drone's own figures in a fleet operation's result: its formation slot (target, transit altitude,
+    distance to fly), its takeoff altitude (``target_alt_m`` alone) or its return altitude."""
+
+    target_lat_deg: float
+    target_lon_deg: float
+    target_alt_m: float
+    transit_alt_m: float | None
+    distance_m: float
+    rtl_alt_m: float
 
 
 @dataclass
@@ -26,10 +38,10 @@ class Member:
     operation_id: str | None = None
     sent_after_s: float | None = None  # since the fleet operation started: its latest command went out
     accepted_after_s: float | None = None  # ... and was accepted by the vehicle
-    slot: dict[str, Any] | None = None
+    slot: SlotSummary | None = None
 
-    def to_dict(self) -> dict[str, Any]:
-        out: dict[str, Any] = {
+    def to_dict(self) -> dict[str, object]:
+        out: dict[str, object] = {
             "drone_id": self.drone_id,
             "status": self.status,
             "message": self.message,

@@ -29,7 +29,7 @@ from datetime import UTC, datetime
 from typing import Any
 
 from gateway.errors import GatewayError, NotFound
-from gateway.fleet.operations.fleet_operation import FLEET_CALLER, FleetOperation, Member
+from gateway.fleet.operations.fleet_operation import FLEET_CALLER, FleetOperation, Member, SlotSummary
 from gateway.fleet.operations.fleet_steps import Phase, Step, StepSpec
 from gateway.fleet.operations.operation_state import Operation, OpStatus
 from gateway.fleet.operations.operations import OperationManager
@@ -118,7 +118,7 @@ class FleetOperations:
         params: dict[str, Any],
         session_key: str | None = None,
         plan: dict[str, Any] | None = None,
-        slots: Mapping[str, dict[str, Any]] | None = None,
+        slots: Mapping[str, SlotSummary] | None = None,
         notes: Sequence[str] = (),
         caller: Caller | None = None,
     ) -> FleetOperation:

@@ -15,6 +15,7 @@ from typing_extensions import TypedDict
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
+from gateway.fleet.operations.fleet_operation import SlotSummary
 from gateway.fleet.operations.trackers import GotoTracker, LandingTracker, TakeoffTracker, Tracker
 from gateway.fleet.vehicles.protocols import VehicleView, flying
 
@@ -211,7 +212,7 @@ def formation_phases(
     return phases
 
 
-def slot_summaries(plan: FormationPlan) -> dict[str, dict[str, Any]]:
+def slot_summaries(plan: FormationPlan) -> dict[str, SlotSummary]:
     """Per drone: its slot's target, transit altitude and distance to fly (for results)."""
     return {
         s.drone_id: {

@@ -156,16 +156,6 @@ class OperationManager:
             return await self._track(vehicle, op, tracker)
 
     # -- what the gateway commanded, and takeovers (`gateway.fleet.operations.mode_watch`) -------------------
-    def expect(
-        self,
-        vehicle: FlyingVehicle,
-        kind: str | None,
-        operation_id: str | None = None,
-        modes: frozenset[str] | None = None,
-    ) -> None:
-        """Record what the gateway just commanded ``vehicle`` (`ModeWatch.expect`)."""
-        self.mode_watch.expect(vehicle, kind, operation_id, modes)
-
     def expected(self, vehicle_id: str) -> ModeExpectation | None:
         return self.mode_watch.expected(vehicle_id)
 
@@ -287,7 +277,7 @@ class OperationManager:
         self._ops[op.id] = op
         self._current[vehicle.id] = op
         self._trackers[op.id] = tracker
-        self.expect(vehicle, op.kind, op.id, _climb_modes(vehicle, op.kind, tracker))
+        self.mode_watch.expect(vehicle, op.kind, op.id, _climb_modes(vehicle, op.kind, tracker))
         await self._save(op, force=True)
         self._monitors[op.id] = asyncio.create_task(
             self._monitor(vehicle, op, tracker), name=f"op-{op.kind}-{op.id}"
