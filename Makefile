@@ -8,7 +8,7 @@ STAMP := $(VENV)/.installed
 # Files stay whole on one worker (--dist loadfile), so a module's shared sim + gateway is built once.
 TEST_WORKERS ?= 2
 
-.PHONY: install demo test lint bench bench-nl swarm-test cluster-test clean
+.PHONY: install demo test lint docs bench bench-nl swarm-test cluster-test clean
 
 $(STAMP): pyproject.toml
 	@echo "Installing fleet-gateway and its dependencies into $(VENV) (about a minute on a fresh machine)..."
@@ -32,6 +32,12 @@ test: $(STAMP)
 lint: $(STAMP)
 	$(BIN)/ruff check .
 	$(BIN)/mypy
+
+# the generated docs: docs/tools.md from the tools the server lists (the verbs' declarations and the
+# hand-written reads), the README's settings table and deploy/.env.example from Settings; tests check both
+docs: $(STAMP)
+	$(BIN)/python scripts/gen_tools_doc.py
+	$(BIN)/python scripts/gen_config_doc.py
 
 bench: $(STAMP)
 	@for b in bench/*.py; do [ "$$b" = bench/common.py ] && continue; echo "== $$b"; $(BIN)/python $$b || exit 1; done

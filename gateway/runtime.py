@@ -23,7 +23,7 @@ from gateway.fleet.operations.fleet_ops import FleetOperations
 from gateway.fleet.operations.operations import OperationManager
 from gateway.fleet.policy.operator_locks import LockBook
 from gateway.fleet.policy.safety import SafetyPolicy
-from gateway.fleet.vehicles.protocols import VehicleActions, VehicleRegistry, flying
+from gateway.fleet.vehicles.protocols import VehicleRegistry
 from gateway.registry.store import Store
 
 if TYPE_CHECKING:
@@ -150,7 +150,7 @@ class Gateway:
             if not self.settings.clustered:  # a drone found flying keeps its mode watch (a cluster
                 # node arms it only for the running operations it resumes: gateway.cluster.takeover)
                 self.operations.watch_found_flying(
-                    flying(v) for v in self.registry.all() if isinstance(v, VehicleActions)
+                    vehicle for v in self.registry.all() if (vehicle := v.flown_here()) is not None
                 )
             if self.cluster is not None:
                 await self.cluster.start()

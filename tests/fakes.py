@@ -15,7 +15,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import time
-from collections.abc import AsyncIterator, Callable, Mapping, Sequence
+from collections.abc import AsyncIterator, Callable, Coroutine, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -27,7 +27,7 @@ from gateway.fleet.dialects.modes import ModeChoice, require_mode
 from gateway.fleet.missions.mission import MissionItem
 from gateway.fleet.policy.origin import Origin, checked_point
 from gateway.fleet.policy.param_limits import ParamLimit
-from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleRegistry
+from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleActions, VehicleRegistry
 from gateway.fleet.vehicles.vehicle import ConnectionState
 from gateway.fleet.vehicles.waits import wait_for_state
 from gateway.link import refusals
@@ -56,6 +56,10 @@ NO_SESSION = (ConnectionState.REGISTERED, ConnectionState.CONNECTING, Connection
 
 def position_value(lat: float, lon: float, alt: float) -> PositionValue:
     return PositionValue(lat_deg=lat, lon_deg=lon, abs_alt_m=HOME[2] + alt, rel_alt_m=alt)
+
+
+#: the actions a flying vehicle has (`VehicleActions`' members)
+ACTIONS = frozenset(name for name in dir(VehicleActions) if not name.startswith("_"))
 
 
 class FakeVehicle:
@@ -210,6 +214,13 @@ class FakeVehicle:
         return self.fixed_origin
 
     @property
+    def current_flight_id(self) -> int | None:
+        return None  # the fake records no flights
+
+    def flown_here(self) -> FlyingVehicle:
+        return self  # every fake drone is flown here (mypy checks the fake against FlyingVehicle here)
+
+    @property
     def limit_params(self) -> Mapping[str, ParamLimit]:
         return ARDUPILOT.limit_params
 
@@ -286,6 +297,20 @@ class FakeVehicle:
         self.sent.append((name, *args))
 
     # --- actions (FlyingVehicle) -------------------------------------------------------------------------
+
+    def __getattr__(self, name: str) -> Callable[..., Coroutine[Any, Any, None]]:
+        """An action of `VehicleActions` the fake does not model itself (a new command's, which returns
+        nothing): sent like any command (recorded in ``sent`` and ``log`` under its own name, with its
+        arguments; ``fail``, ``latency_s`` and ``barrier`` apply). A new action that returns something
+        must be modelled here: mypy names it (the fake is checked against `FlyingVehicle`)."""
+        if name not in ACTIONS:
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+        async def send(*args: Any, **kwargs: Any) -> None:
+            await self._command(name, *args, *kwargs.values())
+
+        return send
+
     async def arm(self, within_s: float = 60.0, notify: Notify | None = None) -> None:
         await self._command("arm")
         self.set(armed=True, flight_mode="GUIDED")

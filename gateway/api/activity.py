@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Any
+from typing import Annotated
 
 from fastapi import APIRouter, Query
 
@@ -44,9 +44,12 @@ async def list_audit(
     since, until = as_utc(since), as_utc(until)
     if since is not None and until is not None and since > until:
         raise InvalidArgument(f"since ({since.isoformat()}) is after until ({until.isoformat()})")
-    where: dict[str, Any] = {"since": since, "until": until, "include_fleet": include_fleet}
-    items = await store.list_audit(vehicle_id, session_key, limit, offset, **where)
-    total = await store.count_audit(vehicle_id, session_key, **where)
+    items = await store.list_audit(
+        vehicle_id, session_key, limit, offset, since=since, until=until, include_fleet=include_fleet
+    )
+    total = await store.count_audit(
+        vehicle_id, session_key, since=since, until=until, include_fleet=include_fleet
+    )
     return AuditPage(items=items, total=total, limit=limit, offset=offset)
 
 

@@ -27,11 +27,11 @@ log = logging.getLogger(__name__)
 
 AUDITED_METHODS = frozenset({"POST", "PUT", "PATCH", "DELETE"})
 
-Handler = Callable[[Request], Coroutine[Any, Any, Response]]
+Handler = Callable[[Request], Coroutine[Any, Any, Response]]  # FastAPI: get_route_handler
 
 
-async def _arguments(request: Request) -> dict[str, Any]:
-    args: dict[str, Any] = dict(request.path_params)
+async def _arguments(request: Request) -> dict[str, object]:
+    args: dict[str, object] = dict(request.path_params)
     if request.query_params:
         args["query"] = dict(request.query_params)
     try:
@@ -56,7 +56,7 @@ async def _arguments(request: Request) -> dict[str, Any]:
 _CREDENTIALS = re.compile(r"://[^/@\s\"']*@")
 
 
-def _without_credentials(value: Any) -> Any:
+def _without_credentials(value: object) -> object:
     """The body as the audit keeps it: any URL's credentials (``user:pw@``, refused anyway) replaced."""
     if isinstance(value, str):
         return redacted(value)
@@ -67,10 +67,11 @@ def _without_credentials(value: Any) -> Any:
     return value
 
 
-def _vehicle_id(request: Request, args: dict[str, Any]) -> str | None:
+def _vehicle_id(request: Request, args: dict[str, object]) -> str | None:
     vid = request.path_params.get("vehicle_id")
-    if vid is None and isinstance(args.get("body"), dict):
-        body_id = args["body"].get("id")
+    body = args.get("body")
+    if vid is None and isinstance(body, dict):
+        body_id = body.get("id")
         vid = body_id if isinstance(body_id, str) else None
     return vid[:32] if isinstance(vid, str) else None
 

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 from fastapi import APIRouter
 
 from gateway.api.deps import GatewayDep
@@ -17,7 +15,7 @@ router = APIRouter(prefix="/cluster", tags=["cluster"])
     summary="Cluster nodes and the vehicles each one owns",
     responses={404: {"description": "This gateway is not a cluster node (GATEWAY_CLUSTER_NATS_URL unset)."}},
 )
-async def cluster_view(gateway: GatewayDep) -> dict[str, Any]:
+async def cluster_view(gateway: GatewayDep) -> dict[str, object]:
     node = gateway.cluster
     if node is None:
         raise NotFound("this gateway is not a cluster node (GATEWAY_CLUSTER_NATS_URL is not set)")

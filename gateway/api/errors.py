@@ -10,7 +10,6 @@ from __future__ import annotations
 import logging
 import re
 from collections.abc import Sequence
-from typing import Any
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
@@ -35,15 +34,15 @@ _HTTP_CODES = {
 
 
 def error_response(
-    status: int, code: str, message: str, details: Any = None, headers: dict[str, str] | None = None
+    status: int, code: str, message: str, details: object = None, headers: dict[str, str] | None = None
 ) -> JSONResponse:
-    body: dict[str, Any] = {"code": code, "message": message}
+    body: dict[str, object] = {"code": code, "message": message}
     if details:
         body["details"] = details
     return JSONResponse({"error": body}, status_code=status, headers=headers)
 
 
-def _field_name(loc: Sequence[Any]) -> str:
+def _field_name(loc: Sequence[int | str]) -> str:
     """``("body", "tags", 0)`` -> ``tags[0]``; the leading body/query/path marker is dropped."""
     parts = list(loc)
     if parts and parts[0] in ("body", "query", "path", "header", "cookie"):
@@ -57,7 +56,7 @@ def _field_name(loc: Sequence[Any]) -> str:
     return name or "body"
 
 
-def _validation_message(err: dict[str, Any]) -> str:
+def _validation_message(err: dict[str, object]) -> str:
     msg = str(err.get("msg", "invalid value"))
     if msg.startswith("Value error, "):
         msg = msg[len("Value error, ") :]

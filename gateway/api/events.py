@@ -25,7 +25,6 @@ import json
 import logging
 from collections.abc import AsyncIterator, Callable
 from dataclasses import dataclass, field
-from typing import Any
 
 from fastapi import APIRouter, Request
 from sse_starlette import EventSourceResponse
@@ -49,7 +48,7 @@ PING_S = 15
 _OVERFLOW = ("", "")
 
 
-def _json(body: Any) -> str:
+def _json(body: object) -> str:
     return json.dumps(body, separators=(",", ":"), allow_nan=False, default=str)
 
 
@@ -159,7 +158,7 @@ def get_hub(request: Request) -> EventHub:
     return hub
 
 
-async def _stream(hub: EventHub, store: Store, hello: dict[str, Any]) -> AsyncIterator[dict[str, str]]:
+async def _stream(hub: EventHub, store: Store, hello: dict[str, object]) -> AsyncIterator[dict[str, str]]:
     async with hub.subscribe() as sub:
         yield {"event": "hello", "data": _json(hello)}
         backlog = await store.list_audit(limit=AUDIT_BACKLOG)  # after subscribing: no row falls between

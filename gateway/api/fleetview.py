@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from datetime import UTC, datetime
-from typing import Any
+from typing import Any, SupportsFloat
 
 from gateway.errors import GatewayError
 from gateway.fleet.policy.geofence import FLEET
@@ -26,13 +26,14 @@ from gateway.runtime import Gateway
 STATUS_TEXTS_PER_DRONE = 5
 
 
-def _num(value: Any, digits: int) -> float | None:
+def _num(value: SupportsFloat | None, digits: int) -> float | None:
     if value is None:
         return None
-    value = float(value)
-    return round(value, digits) if math.isfinite(value) else None
+    number = float(value)
+    return round(number, digits) if math.isfinite(number) else None
 
 
+# a part read by name, whichever of the cache's value types it holds
 def _sample(cache: TelemetryCache, name: str) -> tuple[Any, float | None, bool]:
     """(value, age_s, stale) of one cached stream; (None, None, True) when never received."""
     sample = getattr(cache, name, None)
@@ -42,7 +43,7 @@ def _sample(cache: TelemetryCache, name: str) -> tuple[Any, float | None, bool]:
     return sample.value, round(age, 2), age > cache.stale_after_s or not cache.live
 
 
-def _position(cache: TelemetryCache) -> dict[str, Any] | None:
+def _position(cache: TelemetryCache) -> dict[str, object] | None:
     pos, age, stale = _sample(cache, "position")
     if pos is None:
         return None
@@ -56,14 +57,14 @@ def _position(cache: TelemetryCache) -> dict[str, Any] | None:
     }
 
 
-def _home(cache: TelemetryCache) -> dict[str, Any] | None:
+def _home(cache: TelemetryCache) -> dict[str, object] | None:
     home, _age, _stale = _sample(cache, "home")
     if home is None:
         return None
     return {"lat": home.lat_deg, "lon": home.lon_deg, "alt_amsl_m": _num(home.abs_alt_m, 2)}
 
 
-OperationOf = Callable[[str], dict[str, Any] | None]
+OperationOf = Callable[[str], dict[str, object] | None]
 
 
 def _no_operation(vehicle_id: str) -> None:
@@ -80,7 +81,7 @@ def _operation_of(gateway: Gateway) -> OperationOf:
     return reader
 
 
-def vehicle_view(vehicle: VehicleView, operation_of: OperationOf, locks: LockBook) -> dict[str, Any]:
+def vehicle_view(vehicle: VehicleView, operation_of: OperationOf, locks: LockBook) -> dict[str, object]:
     cache = vehicle.telemetry
     value = cache.fresh
     battery, battery_age, battery_stale = _sample(cache, "battery")
@@ -126,19 +127,20 @@ def vehicle_view(vehicle: VehicleView, operation_of: OperationOf, locks: LockBoo
     }
 
 
-def _lock_view(lock: Lock | None) -> dict[str, Any] | None:
+def _lock_view(lock: Lock | None) -> dict[str, object] | None:
     if lock is None:
         return None
     return {"reason": lock.reason, "by": lock.by, "locked_at": lock.locked_at.isoformat()}
 
 
-def fleet_view(gateway: Gateway) -> dict[str, Any]:
+def fleet_view(gateway: Gateway) -> dict[str, object]:
     """The fleet now; ``vehicles`` sorted by id, ``origin`` the first known home (None before any)."""
     registry = gateway.registry
     vehicles = sorted(registry.all(), key=lambda v: v.id) if registry is not None else []
     operation_of = _operation_of(gateway)
     views = [vehicle_view(v, operation_of, gateway.locks) for v in vehicles]
-    origin = next(({"lat": v["home"]["lat"], "lon": v["home"]["lon"]} for v in views if v["home"]), None)
+    homes = [v["home"] for v in views if isinstance(v["home"], dict)]
+    origin = next(({"lat": home["lat"], "lon": home["lon"]} for home in homes), None)
     return {
         "t": datetime.now(UTC).isoformat(),
         "fleet_lock": _lock_view(gateway.locks.get(FLEET)),

@@ -107,8 +107,8 @@ class GeofencesOut(BaseModel):
     persisted: bool = Field(description="Whether the zones are saved to GATEWAY_GEOFENCE_FILE.")
 
 
-def _feature(zone: Zone) -> dict[str, Any]:
-    props: dict[str, Any] = {"kind": zone.kind, "name": zone.name}
+def _feature(zone: Zone) -> dict[str, object]:
+    props: dict[str, object] = {"kind": zone.kind, "name": zone.name}
     if zone.scope != FLEET:
         props["vehicle_id"] = zone.scope
     return {"type": "Feature", "properties": props, "geometry": zone.geojson}

@@ -11,13 +11,13 @@ while the gateway starts or stops. Operation ids are the route functions' names 
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any  # FastAPI's OpenAPI document is plain JSON: get_openapi returns dict[str, Any]
 
 from fastapi import FastAPI
 from fastapi.openapi.utils import get_openapi
 from fastapi.routing import APIRoute
 
-ERROR_SCHEMA: dict[str, Any] = {
+ERROR_SCHEMA: dict[str, object] = {
     "title": "Error",
     "type": "object",
     "required": ["error"],
@@ -65,7 +65,7 @@ def operation_id(route: APIRoute) -> str:
     return route.name
 
 
-def _responses(method: str, path: str, operation: dict[str, Any]) -> dict[str, str]:
+def _responses(method: str, path: str, operation: dict[str, object]) -> dict[str, str]:
     codes = {"401": _WHY["401"], "422": _WHY["422"], "503": _WHY["503"]}
     if "requestBody" in operation:
         codes["400"] = _WHY["400"]
@@ -75,14 +75,15 @@ def _responses(method: str, path: str, operation: dict[str, Any]) -> dict[str, s
         codes["404"] = _WHY["404"]
     if (method, path) in _CONFLICTS:
         codes["409"] = "A vehicle with this id is already registered."
-    if _COMMAND_TAGS & set(operation.get("tags", ())):
+    tags = operation.get("tags")
+    if isinstance(tags, list) and _COMMAND_TAGS & set(tags):
         codes["403"] = "A safety rule refused the command (details.rule names it), or a viewer token."
         codes["409"] = "The vehicle is not ready (the message says its state and why)."
         codes["502"] = _WHY["502"]
     return codes
 
 
-def build_openapi(app: FastAPI) -> dict[str, Any]:
+def build_openapi(app: FastAPI) -> dict[str, object]:
     schema = get_openapi(title=app.title, version=app.version, description=app.description, routes=app.routes)
     components = schema.setdefault("components", {})
     components.setdefault("schemas", {})["Error"] = ERROR_SCHEMA
@@ -139,7 +140,7 @@ def _type_responses(responses: dict[str, Any], error_ref: dict[str, Any]) -> Non
 def install_openapi(app: FastAPI) -> None:
     """Serve :func:`build_openapi`'s document (built once, on first request)."""
 
-    def openapi() -> dict[str, Any]:
+    def openapi() -> dict[str, object]:
         if app.openapi_schema is None:
             app.openapi_schema = build_openapi(app)
         return app.openapi_schema

@@ -29,7 +29,7 @@ from gateway.registry.store import (
 _NUMBER = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
 
 
-def _iso_time_only(value: Any) -> Any:
+def _iso_time_only(value: object) -> object:
     """A time in a query is ISO 8601: a bare number ('0.5') would be read as seconds since 1970."""
     if isinstance(value, int | float) or (isinstance(value, str) and _NUMBER.match(value)):
         raise ValueError(f"must be an ISO 8601 time such as 2026-11-27T10:00:00Z; got {str(value)[:40]!r}")
@@ -143,12 +143,12 @@ class VehicleUpdate(BaseModel):
 
     @field_validator("tags", "auto_connect")
     @classmethod
-    def _not_null(cls, value: Any) -> Any:
+    def _not_null(cls, value: object) -> object:
         if value is None:
             raise ValueError("cannot be null")
         return value
 
-    def changes(self) -> dict[str, Any]:
+    def changes(self) -> dict[str, object]:
         return {name: getattr(self, name) for name in self.model_fields_set}
 
 

@@ -80,12 +80,12 @@ class StatusTextItem(_Open):
     text: str
 
 
-def _optional(tp: Any) -> Any:
+def _optional(tp: Any) -> Any:  # pydantic: a type expression for create_model
     return tp | None
 
 
 def _part_model(name: str, value_type: Any) -> type[BaseModel]:
-    fields: dict[str, Any] = {}
+    fields: dict[str, Any] = {}  # pydantic: create_model's field definitions
     if dataclasses.is_dataclass(value_type):
         hints = typing.get_type_hints(value_type)
         for f in dataclasses.fields(value_type):

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Any
+from typing import Annotated
 
 from fastapi import APIRouter, Query, Response
 from fastapi.encoders import jsonable_encoder
@@ -40,7 +40,7 @@ def vehicle_view(
     with_telemetry: bool = False,
     locks: LockView | None = None,
 ) -> VehicleOut:
-    data: dict[str, Any] = record.model_dump()
+    data: dict[str, object] = record.model_dump()
     if locks is not None:
         data["locked"] = locks.reason_for(record.id)
         taken = locks.takeover_for(record.id)

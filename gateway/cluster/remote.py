@@ -256,6 +256,10 @@ class RemoteVehicle:
     def origin(self) -> tuple[float, float, float] | None:
         return None  # kept by the node that flies it, where every command is decided
 
+    def flown_here(self) -> None:
+        """Another node flies it: a view only (`VehicleView.flown_here`)."""
+        return None
+
     @property
     def limit_params(self) -> Mapping[str, ParamLimit]:
         return every_limit_param() if self.autopilot is None else self.dialect.limit_params

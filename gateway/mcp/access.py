@@ -12,9 +12,7 @@ from __future__ import annotations
 import contextlib
 from contextvars import ContextVar
 from dataclasses import dataclass
-from typing import Any, Literal
-
-from mcp.server.mcpserver import Context
+from typing import Literal
 
 from gateway.config import Settings
 from gateway.errors import GatewayError
@@ -22,6 +20,7 @@ from gateway.fleet.commands.commander import Commander
 from gateway.fleet.operations.views import OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.mcp.results import OperationOut
+from gateway.mcp.sdk_types import ToolContext
 from gateway.runtime import Gateway
 
 # --- per-call audit information, set by the session middleware, filled in by the tool wrapper --------
@@ -59,7 +58,7 @@ class FleetState:
 class ToolCall:
     """One tool call: the Commander, who asks, and how to present what came back."""
 
-    def __init__(self, state: FleetState, ctx: Context[Any, Any]) -> None:
+    def __init__(self, state: FleetState, ctx: ToolContext) -> None:
         self.commander = state.commander
         self.settings = state.settings
         self.ctx = ctx
@@ -70,7 +69,7 @@ class ToolCall:
         )
 
     @classmethod
-    def of(cls, ctx: Context[Any, Any]) -> ToolCall:
+    def of(cls, ctx: ToolContext) -> ToolCall:
         state = ctx.request_context.lifespan_context
         if not isinstance(state, FleetState):
             raise GatewayError("the MCP server runs without a gateway (its lifespan did not start)")

@@ -6,16 +6,19 @@ from __future__ import annotations
 
 import difflib
 import json
+from collections.abc import Sequence
 from typing import Any
 
 from mcp.server.mcpserver.exceptions import ToolError
 from mcp.server.mcpserver.tools import Tool
+from mcp.types import CallToolResult
 from pydantic import ValidationError
 
 from gateway.config import Settings
 from gateway.errors import InvalidArgument
 from gateway.mcp import sdk_private
 from gateway.mcp.refusals import refusal_result
+from gateway.mcp.sdk_types import SdkArguments, SdkSchema
 from gateway.mcp.strict_json import strict_problems
 
 #: argument names that are altitudes above home, bounded by the policy's max_altitude_m
@@ -33,7 +36,7 @@ def install_argument_messages(tool: Tool) -> None:
     schema = tool.parameters
     known = frozenset(schema.get("properties", {}))
 
-    async def run_checked(arguments: dict[str, Any], context: Any, convert_result: bool = False) -> Any:
+    async def run_checked(arguments: SdkArguments, context: Any, convert_result: bool = False) -> Any:
         unknown = [name for name in arguments if name not in known]
         if unknown:
             return _invalid(describe_unknown(tool.name, unknown, schema), unknown)
@@ -61,11 +64,11 @@ def install_argument_messages(tool: Tool) -> None:
     sdk_private.replace_run(tool, run_checked)
 
 
-def _invalid(message: str, arguments: list[str]) -> Any:
+def _invalid(message: str, arguments: list[str]) -> CallToolResult:
     return refusal_result(message, InvalidArgument.code, message, details={"arguments": arguments})
 
 
-def describe_unknown(tool_name: str, unknown: list[str], schema: dict[str, Any]) -> str:
+def describe_unknown(tool_name: str, unknown: list[str], schema: SdkSchema) -> str:
     """One line naming each argument the tool does not have, its closest real name, and the tool's
     arguments: nothing is sent (a silently dropped argument let a model believe it set something)."""
     known = list(schema.get("properties", {}))
@@ -83,7 +86,7 @@ def describe_unknown(tool_name: str, unknown: list[str], schema: dict[str, Any])
     )
 
 
-def describe_invalid(tool_name: str, exc: ValidationError, schema: dict[str, Any]) -> str:
+def describe_invalid(tool_name: str, exc: ValidationError, schema: SdkSchema) -> str:
     lines: list[str] = []
     seen: set[str] = set()
     for err in exc.errors():
@@ -132,7 +135,7 @@ def advertise_policy_limits(tool: Tool, settings: Settings) -> None:
         stagger["default"] = settings.min_separation_m + 2 * FORMATION_TOLERANCE_M
 
 
-def _number_schema(prop: dict[str, Any]) -> dict[str, Any] | None:
+def _number_schema(prop: SdkSchema) -> SdkSchema | None:
     if prop.get("type") in ("number", "integer"):
         return prop
     for option in prop.get("anyOf", []):
@@ -141,16 +144,16 @@ def _number_schema(prop: dict[str, Any]) -> dict[str, Any] | None:
     return None
 
 
-def _path(loc: list[Any]) -> str:
+def _path(loc: Sequence[int | str]) -> str:
     out = ""
     for part in loc:
         out += f"[{part}]" if isinstance(part, int) else (f".{part}" if out else str(part))
     return out
 
 
-def _property(schema: dict[str, Any], loc: list[Any]) -> dict[str, Any] | None:
+def _property(schema: SdkSchema, loc: Sequence[int | str]) -> SdkSchema | None:
     """The JSON schema of the argument at ``loc`` (following arrays, objects and $refs)."""
-    node: Any = schema
+    node: object = schema
     for part in loc:
         node = _resolve(schema, node)
         if isinstance(part, int):
@@ -159,10 +162,11 @@ def _property(schema: dict[str, Any], loc: list[Any]) -> dict[str, Any] | None:
             node = node.get("properties", {}).get(part) if isinstance(node, dict) else None
         if node is None:
             return None
-    return _resolve(schema, node) if isinstance(node, dict) else None
+    resolved = _resolve(schema, node) if isinstance(node, dict) else None
+    return resolved if isinstance(resolved, dict) else None
 
 
-def _resolve(schema: dict[str, Any], node: Any) -> Any:
+def _resolve(schema: SdkSchema, node: object) -> object:
     if isinstance(node, dict) and isinstance(node.get("$ref"), str):
         key = node["$ref"].rsplit("/", 1)[-1]
         return schema.get("$defs", {}).get(key, node)
@@ -170,11 +174,12 @@ def _resolve(schema: dict[str, Any], node: Any) -> Any:
         options = [o for o in node["anyOf"] if not (isinstance(o, dict) and o.get("type") == "null")]
         if len(options) == 1:
             merged = {k: v for k, v in node.items() if k != "anyOf"}
-            return {**_resolve(schema, options[0]), **merged}
+            inner = _resolve(schema, options[0])
+            return {**inner, **merged} if isinstance(inner, dict) else merged
     return node
 
 
-def _accepted(name: str, prop: dict[str, Any]) -> str | None:
+def _accepted(name: str, prop: SdkSchema) -> str | None:
     if "enum" in prop:
         return "one of " + ", ".join(str(v) for v in prop["enum"])
     if "const" in prop:
@@ -200,7 +205,7 @@ def _accepted(name: str, prop: dict[str, Any]) -> str | None:
     return None
 
 
-def _bounds(name: str, prop: dict[str, Any]) -> str:
+def _bounds(name: str, prop: SdkSchema) -> str:
     low = (
         f"{_num(prop['exclusiveMinimum'])} < " if "exclusiveMinimum" in prop
         else f"{_num(prop['minimum'])} <= " if "minimum" in prop else ""
@@ -212,11 +217,11 @@ def _bounds(name: str, prop: dict[str, Any]) -> str:
     return f"{low}{name}{high}" if low or high else ""
 
 
-def _num(value: Any) -> str:
+def _num(value: object) -> str:
     return f"{value:g}" if isinstance(value, float) else str(value)
 
 
-def _given(value: Any) -> str:
+def _given(value: object) -> str:
     try:
         text = json.dumps(value)
     except (TypeError, ValueError):

@@ -8,11 +8,12 @@ Sessions of 2026-07-28 clients are keyed by it; the SDK binds 2025-era sessions 
 from __future__ import annotations
 
 import hmac
-from typing import Any
+from typing import TypedDict
 
 from mcp.server.auth.provider import AccessToken, TokenVerifier
 from mcp.server.auth.settings import AuthSettings
 
+from gateway.config import Settings
 from gateway.principals import principal_of
 
 __all__ = ["SCOPE", "AgentTokens", "auth_options", "principal_of"]
@@ -32,9 +33,16 @@ class AgentTokens(TokenVerifier):
         return None
 
 
-def auth_options(settings: Any) -> dict[str, Any]:
+class AuthOptions(TypedDict, total=False):
+    """The keyword arguments of `MCPServer` that enable bearer auth."""
+
+    token_verifier: TokenVerifier
+    auth: AuthSettings
+
+
+def auth_options(settings: Settings) -> AuthOptions:
     """MCPServer keyword arguments enabling bearer auth, or none when no agent token is configured."""
-    tokens = [t.strip() for t in getattr(settings, "agent_tokens", "").split(",") if t.strip()]
+    tokens = [t.strip() for t in settings.agent_tokens.split(",") if t.strip()]
     if not tokens:
         return {}
     base = f"http://{settings.host}:{settings.port}"

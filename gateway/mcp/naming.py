@@ -7,8 +7,6 @@ name per quantity, the unit in the name, and relative moves counted up, as peopl
 
 from __future__ import annotations
 
-from typing import Any
-
 #: name -> what it means; rendered into docs/tools.md by scripts/gen_tools_doc.py
 NAMES: dict[str, str] = {
     "lat_deg, lon_deg": "latitude and longitude in degrees (WGS84); every position, in arguments and results",
@@ -46,7 +44,7 @@ RETIRED: dict[str, str] = {
 }
 
 
-def retired_names(schema: Any, path: str = "") -> list[str]:
+def retired_names(schema: object, path: str = "") -> list[str]:
     """Every property name in a JSON schema (nested objects, arrays, $defs) that the scheme retired, as
     'path: name -> use instead'."""
     found: list[str] = []
@@ -65,7 +63,7 @@ def retired_names(schema: Any, path: str = "") -> list[str]:
     return found
 
 
-def retired_keys(data: Any, path: str = "") -> list[str]:
+def retired_keys(data: object, path: str = "") -> list[str]:
     """The same check over a result's data (dict keys at any depth)."""
     found: list[str] = []
     if isinstance(data, dict):

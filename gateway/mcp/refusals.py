@@ -4,15 +4,13 @@ any MCP client can act on the rule instead of the wording."""
 
 from __future__ import annotations
 
-from typing import Any
-
 from mcp.types import CallToolResult, TextContent
 
 from gateway.errors import GatewayError, SafetyRefusal
 
 
 def refusal_result(
-    text: str, code: str, message: str, *, rule: str | None = None, details: dict[str, Any] | None = None
+    text: str, code: str, message: str, *, rule: str | None = None, details: dict[str, object] | None = None
 ) -> CallToolResult:
     """An error result whose structured content is ``{code, message, rule, details}``."""
     structured = {"code": code, "message": message, "rule": rule, "details": _plain(details or {})}
@@ -31,7 +29,7 @@ def gateway_error_result(exc: GatewayError) -> CallToolResult:
     return refusal_result(exc.message, exc.code, exc.message, details=details)
 
 
-def _plain(value: Any) -> Any:
+def _plain(value: object) -> object:
     """Details as JSON values (a detail that is not one is given as its text)."""
     if value is None or isinstance(value, bool | int | float | str):
         return value

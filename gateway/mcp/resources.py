@@ -14,10 +14,11 @@ import contextlib
 import json
 import logging
 from collections.abc import AsyncIterator, Callable
-from typing import Any
+from typing import TypeVar
 
-from mcp.server.mcpserver import AssistantMessage, MCPServer, UserMessage
+from mcp.server.mcpserver import AssistantMessage, UserMessage
 from mcp.server.mcpserver.exceptions import ResourceError, ResourceNotFoundError
+from mcp.server.session import ServerSession
 from mcp.server.subscriptions import InMemorySubscriptionBus, ResourceUpdated
 from mcp.types import EmptyResult, SubscribeRequestParams, UnsubscribeRequestParams
 
@@ -26,16 +27,18 @@ from gateway.fleet.commands.commander import Commander
 from gateway.fleet.operations.fleet_operation import FleetOperation
 from gateway.fleet.vehicles.readings import position, value
 from gateway.mcp import sdk_private
-from gateway.mcp.results import plain, surface_telemetry
+from gateway.mcp.results import JsonLike, plain, plain_object, surface_telemetry
+from gateway.mcp.sdk_types import AnyServer, RequestContext
 from gateway.runtime import Gateway
 
 log = logging.getLogger(__name__)
+T = TypeVar("T")
 
 NOTIFY_PERIOD_S = 1.0
 FORMATION_URI = "fleet://formation"
 
 
-def drones_json(commander: Commander) -> list[dict[str, Any]]:
+def drones_json(commander: Commander) -> list[dict[str, object]]:
     out = []
     for v in commander.registry.all():
         op = commander.operations.running(v.id)
@@ -56,7 +59,7 @@ def drones_json(commander: Commander) -> list[dict[str, Any]]:
 SIDECAR_PRIVATE = ("pid", "grpc_port")
 
 
-def agent_status(status: dict[str, Any]) -> dict[str, Any]:
+def agent_status(status: dict[str, JsonLike]) -> dict[str, JsonLike]:
     """A vehicle's status as an agent may read it: the sidecar's state, not its process or gRPC port."""
     sidecar = status.get("sidecar")
     if isinstance(sidecar, dict):
@@ -64,18 +67,18 @@ def agent_status(status: dict[str, Any]) -> dict[str, Any]:
     return status
 
 
-def state_json(commander: Commander, drone_id: str) -> dict[str, Any]:
+def state_json(commander: Commander, drone_id: str) -> dict[str, object]:
     v = commander.vehicle(drone_id)
     op = commander.operations.latest(drone_id)
     return {
         "drone_id": drone_id,
-        "status": agent_status(plain(v.status())),
-        "telemetry": surface_telemetry(plain(v.telemetry.snapshot())),
+        "status": agent_status(plain_object(v.status())),
+        "telemetry": surface_telemetry(plain_object(v.telemetry.snapshot())),
         "operation": None if op is None else op.to_dict(),
     }
 
 
-async def mission_json(commander: Commander, drone_id: str) -> dict[str, Any]:
+async def mission_json(commander: Commander, drone_id: str) -> dict[str, object]:
     v = commander.ready(drone_id)
     items = await v.download_mission()
     prog = value(v, "mission_progress")
@@ -97,7 +100,7 @@ async def mission_json(commander: Commander, drone_id: str) -> dict[str, Any]:
     }
 
 
-def formation_json(commander: Commander) -> dict[str, Any]:
+def formation_json(commander: Commander) -> dict[str, object]:
     """The last formation: its plan and progress (per drone), or a note that none was flown."""
     fop = commander.fleet.latest("formation_goto")
     if fop is None:
@@ -113,18 +116,18 @@ class ResourceNotifier:
         self.gateway = gateway
         self.bus = bus
         self.formation = formation
-        self.legacy: dict[str, set[Any]] = {}
-        self._last: dict[str, Any] = {}
+        self.legacy: dict[str, set[ServerSession]] = {}
+        self._last: dict[str, object] = {}
         self._pending: set[asyncio.Task[None]] = set()
 
-    def install(self, server: MCPServer[Any]) -> None:
+    def install(self, server: AnyServer) -> None:
         """Serve 2025-era ``resources/subscribe`` (the SDK's bus serves only 2026-07-28 listeners)."""
 
-        async def on_subscribe(ctx: Any, p: SubscribeRequestParams) -> EmptyResult:
+        async def on_subscribe(ctx: RequestContext, p: SubscribeRequestParams) -> EmptyResult:
             self.legacy.setdefault(str(p.uri), set()).add(ctx.session)
             return EmptyResult()
 
-        async def on_unsubscribe(ctx: Any, p: UnsubscribeRequestParams) -> EmptyResult:
+        async def on_unsubscribe(ctx: RequestContext, p: UnsubscribeRequestParams) -> EmptyResult:
             self.legacy.get(str(p.uri), set()).discard(ctx.session)
             return EmptyResult()
 
@@ -133,8 +136,8 @@ class ResourceNotifier:
             server, "resources/unsubscribe", UnsubscribeRequestParams, on_unsubscribe
         )
 
-    def fingerprints(self, commander: Commander) -> dict[str, Any]:
-        prints: dict[str, Any] = {}
+    def fingerprints(self, commander: Commander) -> dict[str, object]:
+        prints: dict[str, object] = {}
         vehicles = list(commander.registry.all())
         prints["fleet://drones"] = json.dumps(drones_json(commander), sort_keys=True, default=str)
         for v in vehicles:
@@ -219,14 +222,14 @@ def _resource_error(exc: GatewayError) -> ResourceError:
     return ResourceError(exc.message)
 
 
-def _guard(fn: Callable[[], Any]) -> Any:
+def _guard(fn: Callable[[], T]) -> T:
     try:
         return fn()
     except GatewayError as exc:
         raise _resource_error(exc) from None
 
 
-def register_resources(server: MCPServer[Any], gateway: Gateway, formation: bool) -> None:
+def register_resources(server: AnyServer, gateway: Gateway, formation: bool) -> None:
     if formation:
 
         @server.resource(
@@ -253,7 +256,7 @@ def register_resources(server: MCPServer[Any], gateway: Gateway, formation: bool
             raise _resource_error(exc) from None
 
 
-def register_prompts(server: MCPServer[Any]) -> None:
+def register_prompts(server: AnyServer) -> None:
     @server.prompt(title="Preflight check")
     def preflight_check(drone_id: str) -> list[UserMessage | AssistantMessage]:
         """Check a drone is fit to fly before takeoff."""

@@ -99,6 +99,8 @@ class GpsOut(Fresh):
     fix_type: str
 
 
+# Open JSON in these results: a telemetry value as `plain` makes it (any JSON); pydantic gives it an open
+# outputSchema, which clients validate against (a JsonLike union would spell out every JSON type)
 class ValueOut(Fresh):
     """A single telemetry value (flight mode, armed, in air, landed state, heading)."""
 
@@ -174,7 +176,17 @@ class ParamListOut(Result):
     names_note: str = ""
 
 
-def plain(value: Any, depth: int = 0) -> Any:
+#: what `plain` makes of a value: JSON's values (the SDK and pydantic serialise them as they are)
+JsonLike = None | bool | int | float | str | list["JsonLike"] | dict[str, "JsonLike"]
+
+
+def plain_object(value: object) -> dict[str, JsonLike]:
+    """`plain` of a record (a status, a snapshot): its fields; anything else is no record (empty)."""
+    out = plain(value)
+    return out if isinstance(out, dict) else {}
+
+
+def plain(value: object, depth: int = 0) -> JsonLike:
     """MAVSDK objects, dataclasses, enums -> JSON-friendly values (NaN -> None)."""
     if depth > 6:
         return str(value)
@@ -204,15 +216,15 @@ def plain(value: Any, depth: int = 0) -> Any:
 _SURFACE_NAMES = {"rel_alt_m": "alt_m", "abs_alt_m": "alt_amsl_m"}
 
 
-def surface_telemetry(snapshot: dict[str, Any]) -> dict[str, Any]:
+def surface_telemetry(snapshot: dict[str, JsonLike]) -> dict[str, JsonLike]:
     """A telemetry snapshot in the tools' own names, its status texts as data from the vehicle."""
-    out: dict[str, Any] = {}
+    out: dict[str, JsonLike] = {}
     for part, body in snapshot.items():
         if isinstance(body, dict):
             body = {_SURFACE_NAMES.get(k, k): v for k, v in body.items()}
             if "down_mps" in body:
                 down = body.pop("down_mps")
-                body["climb_mps"] = None if down is None else -down + 0.0
+                body["climb_mps"] = -down + 0.0 if isinstance(down, int | float) else None
         elif part == "status_texts" and isinstance(body, list):
             body = [
                 {**item, "text": clean_vehicle_text(str(item.get("text", "")))}

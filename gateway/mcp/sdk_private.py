@@ -25,32 +25,33 @@ from collections.abc import Awaitable, Callable
 from typing import Any
 
 from mcp.server._streamable_http_modern import handle_modern_request
-from mcp.server.mcpserver import MCPServer
 from mcp.server.mcpserver.tools import Tool
 from mcp.server.streamable_http_manager import StreamableHTTPSessionManager
 from starlette.types import Receive, Scope, Send
 
+from gateway.mcp.sdk_types import AnyServer
 
-def tools(server: MCPServer[Any]) -> list[Tool]:
+
+def tools(server: AnyServer) -> list[Tool]:
     """The registered tools, as the server keeps them (mutable)."""
     return list(server._tool_manager.list_tools())
 
 
-def tool(server: MCPServer[Any], name: str) -> Tool:
+def tool(server: AnyServer, name: str) -> Tool:
     found = server._tool_manager.get_tool(name)
     if found is None:
         raise KeyError(f"no tool named {name!r} is registered")
     return found
 
 
-def replace_run(tool: Tool, run: Callable[..., Awaitable[Any]]) -> None:
+def replace_run(tool: Tool, run: Callable[..., Awaitable[Any]]) -> None:  # mcp SDK: Tool.run
     """Put a wrapper in place of a tool's ``run`` (``Tool`` is a pydantic model that refuses new values
     for its methods through ``__setattr__``)."""
     object.__setattr__(tool, "run", run)
 
 
 def add_request_handler(
-    server: MCPServer[Any], method: str, params_type: type[Any], handler: Callable[..., Awaitable[Any]]
+    server: AnyServer, method: str, params_type: type[Any], handler: Callable[..., Awaitable[Any]]
 ) -> None:
     """A handler for a request method the ``MCPServer`` layer does not expose."""
     server._lowlevel_server.add_request_handler(method, params_type, handler)
@@ -60,7 +61,7 @@ async def answer_single_exchange_as_json(
     manager: StreamableHTTPSessionManager, scope: Scope, receive: Receive, send: Send
 ) -> None:
     """A 2026-07-28 request answered as the manager answers it in JSON mode."""
-    state: Any = manager._lifespan_state
+    state: Any = manager._lifespan_state  # mcp SDK: its private state, untyped
     await handle_modern_request(manager.app, manager.security_settings, True, state, scope, receive, send)
 
 
@@ -78,7 +79,7 @@ def cap_sessions_per_caller(manager: StreamableHTTPSessionManager, cap: int) -> 
     whose ``cap`` sessions are all busy is refused as at the manager's own limit."""
     admit = manager._admit_session
 
-    def admit_capped(requestor: Any) -> Any:
+    def admit_capped(requestor: Any) -> Any:  # mcp SDK: private _admit_session, untyped
         owners = manager._session_owners
         mine = [
             transport

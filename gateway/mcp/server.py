@@ -19,8 +19,7 @@ from __future__ import annotations
 import contextlib
 import importlib
 import logging
-from collections.abc import AsyncIterator
-from typing import Any
+from collections.abc import AsyncIterator, Sequence
 
 from mcp.server.mcpserver import MCPServer
 from mcp.server.subscriptions import InMemorySubscriptionBus
@@ -36,6 +35,7 @@ from gateway.mcp.auth import auth_options
 from gateway.mcp.declared import complete, declared
 from gateway.mcp.json_answers import answer_silent_requests_as_json
 from gateway.mcp.resources import ResourceNotifier, register_prompts, register_resources
+from gateway.mcp.sdk_types import AnyServer
 from gateway.mcp.session import SessionAudit
 from gateway.mcp.toolkit import (
     Toolset,
@@ -75,6 +75,18 @@ def load_toolset(name: str) -> Toolset | None:
     return complete(toolset)
 
 
+def tool_names(toolsets: Sequence[str]) -> list[str]:
+    """The names of the tools a server with these toolsets lists, in its order: the hand-written tools
+    of each toolset's module and the tools the verbs declare for it. Derived from the declarations, so
+    what counts tools (tests, docs) needs no number changed when a command is added."""
+    names: list[str] = []
+    for name in toolsets:
+        toolset = load_toolset(name)
+        if toolset is not None:
+            names.extend(spec.name for spec in toolset.tools)
+    return names
+
+
 def build_mcp(gateway: Gateway) -> MCPServer[FleetState]:
     """The MCP server over a runtime ``Gateway`` (which need not be started yet: its Commander is taken
     when the server's lifespan starts)."""
@@ -108,6 +120,7 @@ def build_mcp(gateway: Gateway) -> MCPServer[FleetState]:
         if tool.output_schema is not None:
             strip_schema_titles(tool.output_schema)
             compact = nullable_type_lists(tool.output_schema)
+            assert isinstance(compact, dict)  # a dict stays a dict
             tool.output_schema.clear()
             tool.output_schema.update(compact)
     notifier.install(server)
@@ -116,7 +129,7 @@ def build_mcp(gateway: Gateway) -> MCPServer[FleetState]:
     return server
 
 
-def mcp_http_app(server: MCPServer[Any], settings: Settings) -> Starlette:
+def mcp_http_app(server: AnyServer, settings: Settings) -> Starlette:
     """The Streamable HTTP ASGI app serving the path ``/mcp``.
 
     `gateway.app.GatewayApp` serves it for the path ``/mcp`` only: mounted at "/" it would also catch

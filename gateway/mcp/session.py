@@ -19,15 +19,16 @@ import logging
 import os
 import time
 from dataclasses import dataclass
-from typing import Any
 
 import anyio
 from mcp.server.auth.middleware.auth_context import get_access_token
+from pydantic import BaseModel
 
 from gateway.fleet.commands.command_pass import AUDIT_SENT
 from gateway.fleet.operations.routing import ACTING
 from gateway.fleet.policy.caller import Caller
 from gateway.mcp.access import CallInfo, FleetState, current_call
+from gateway.mcp.sdk_types import CallNext, HandlerResult, RequestContext
 from gateway.registry.records import AuditEntry, SessionKind
 from gateway.registry.store import Store
 from gateway.registry.store_audit import SessionSeen
@@ -55,7 +56,7 @@ def _principal(is_http: bool) -> str:
     return "anonymous" if is_http else "local"
 
 
-def session_info(ctx: Any) -> SessionInfo:
+def session_info(ctx: RequestContext) -> SessionInfo:
     """The session of one inbound MCP message (``ServerRequestContext``)."""
     request = getattr(ctx, "request", None)
     headers = getattr(request, "headers", None)
@@ -84,7 +85,7 @@ class SessionAudit:
     def __init__(self) -> None:
         self._touched: dict[str, tuple[float, str | None]] = {}
 
-    async def __call__(self, ctx: Any, call_next: Any) -> Any:
+    async def __call__(self, ctx: RequestContext, call_next: CallNext) -> HandlerResult:
         if ctx.method == "initialize":
             return await call_next(ctx)  # no session id yet; recorded from the next message on
         state = ctx.lifespan_context
@@ -105,11 +106,11 @@ class SessionAudit:
 
     async def _call(
         self,
-        ctx: Any,
-        call_next: Any,
+        ctx: RequestContext,
+        call_next: CallNext,
         info: SessionInfo,
         store: Store | None,
-    ) -> Any:
+    ) -> HandlerResult:
         params = ctx.params or {}
         arguments = params.get("arguments") or {}
         call = CallInfo(session_key=info.key, principal=info.principal, vehicle_id=_drone_id(arguments))
@@ -126,7 +127,7 @@ class SessionAudit:
                 self._audit(store, info, call, tool, arguments, "running", None, started, operation_id)
 
         audit_sent = AUDIT_SENT.set(sent)
-        result: Any = None
+        result: HandlerResult = None
         failure: BaseException | None = None
         try:
             result = await call_next(ctx)
@@ -146,8 +147,8 @@ class SessionAudit:
         info: SessionInfo,
         call: CallInfo,
         tool: str,
-        arguments: Any,
-        result: Any,
+        arguments: object,
+        result: HandlerResult,
         failure: BaseException | None,
         started: float,
     ) -> None:
@@ -188,7 +189,7 @@ class SessionAudit:
         info: SessionInfo,
         call: CallInfo,
         tool: str,
-        arguments: Any,
+        arguments: object,
         outcome: str,
         error: str | None,
         started: float,
@@ -219,7 +220,7 @@ class SessionAudit:
             log.exception("could not queue the audit row of %s", tool)
 
 
-def _operation_id(result: Any) -> str | None:
+def _operation_id(result: HandlerResult) -> str | None:
     structured = getattr(result, "structured_content", None)
     if structured is None and isinstance(result, dict):
         structured = result.get("structuredContent")
@@ -227,19 +228,19 @@ def _operation_id(result: Any) -> str | None:
     return value if isinstance(value, str) else None
 
 
-def _drone_id(arguments: Any) -> str | None:
+def _drone_id(arguments: object) -> str | None:
     value = arguments.get("drone_id") if isinstance(arguments, dict) else None
     return value[:64] if isinstance(value, str) else None
 
 
-def _outcome(call: CallInfo, result: Any, failure: BaseException | None) -> tuple[str, str | None]:
+def _outcome(call: CallInfo, result: HandlerResult, failure: BaseException | None) -> tuple[str, str | None]:
     if failure is not None:
         if isinstance(failure, anyio.get_cancelled_exc_class()):
             return "error", "call cancelled by the client (the vehicle's action continues)"
         return "error", f"{type(failure).__name__}: {failure}"
     if call.outcome is not None:
         return call.outcome, call.error
-    body = result.model_dump(by_alias=True) if hasattr(result, "model_dump") else result
+    body = result.model_dump(by_alias=True) if isinstance(result, BaseModel) else result
     if not isinstance(body, dict):
         return "ok", None
     if body.get("resultType") == "input_required" or "inputRequests" in body:

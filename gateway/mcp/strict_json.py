@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable
-from typing import Any
+
+from gateway.mcp.sdk_types import SdkArguments, SdkSchema
 
 _KIND_NAMES = {
     "number": "a JSON number",
@@ -25,7 +26,7 @@ _KIND_NAMES = {
 }
 
 
-Describe = Callable[[str, dict[str, Any]], str | None]
+Describe = Callable[[str, SdkSchema], str | None]
 """What an argument's schema accepts, in words (`gateway.mcp.arguments`' wording), or None."""
 
 
@@ -42,7 +43,7 @@ _GIVEN_NAMES = {
 
 
 def strict_problems(
-    arguments: dict[str, Any], schema: dict[str, Any], describe: Describe | None = None
+    arguments: SdkArguments, schema: SdkSchema, describe: Describe | None = None
 ) -> list[str]:
     """One line per argument (or nested field) whose JSON type is not its schema's."""
     problems: list[str] = []
@@ -55,7 +56,7 @@ def strict_problems(
     return problems
 
 
-def _kind(value: Any) -> str:
+def _kind(value: object) -> str:
     if value is None:
         return "null"
     if isinstance(value, bool):
@@ -83,7 +84,7 @@ def _fits(wanted: str, kind: str) -> bool:
     return kind == wanted
 
 
-def _resolve(schema: dict[str, Any], node: dict[str, Any]) -> dict[str, Any]:
+def _resolve(schema: SdkSchema, node: SdkSchema) -> SdkSchema:
     ref = node.get("$ref")
     if isinstance(ref, str):
         found = schema.get("$defs", {}).get(ref.rsplit("/", 1)[-1])
@@ -92,7 +93,7 @@ def _resolve(schema: dict[str, Any], node: dict[str, Any]) -> dict[str, Any]:
 
 
 def _walk(
-    schema: dict[str, Any], node: dict[str, Any], value: Any, path: str, problems: list[str], say: Describe
+    schema: SdkSchema, node: SdkSchema, value: object, path: str, problems: list[str], say: Describe
 ) -> None:
     node = _resolve(schema, node)
     options = [_resolve(schema, o) for o in node.get("anyOf", []) if isinstance(o, dict)] or [node]
@@ -103,7 +104,8 @@ def _walk(
     matching = [o for o in typed if _fits(o["type"], kind)]
     if not matching:
         described = [say(path.rsplit(".", 1)[-1], {**node, **o}) for o in typed if o["type"] != "null"]
-        words = [d for d in described if d] or [_KIND_NAMES.get(o["type"], o["type"]) for o in typed]
+        kinds = [str(o["type"]) for o in typed]
+        words = [d for d in described if d] or [_KIND_NAMES.get(k, k) for k in kinds]
         wanted = " or ".join(dict.fromkeys(words))
         given = _GIVEN_NAMES.get(kind, kind)
         problems.append(
@@ -132,12 +134,12 @@ def _walk(
                 _walk(schema, sub, element, f"{path}.{key}", problems, say)
 
 
-def _json_word(typed: list[dict[str, Any]]) -> str:
+def _json_word(typed: list[SdkSchema]) -> str:
     kinds = [o["type"] for o in typed if o["type"] != "null"]
     return {"integer": "number"}.get(kinds[0], kinds[0]) if kinds else "value"
 
 
-def _given(value: Any) -> str:
+def _given(value: object) -> str:
     try:
         text = json.dumps(value)
     except (TypeError, ValueError):

@@ -25,7 +25,7 @@ from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
 from typing import Annotated, Any
 
-from mcp.server.mcpserver import Context, MCPServer
+from mcp.server.mcpserver import Context
 from mcp.types import CallToolResult, TextContent, ToolAnnotations
 from pydantic import Field, ValidationError
 
@@ -40,6 +40,7 @@ from gateway.mcp import sdk_private
 from gateway.mcp.access import ToolCall, current_call
 from gateway.mcp.refusals import gateway_error_result, refusal_result
 from gateway.mcp.results import Result
+from gateway.mcp.sdk_types import AnyServer, ToolContext
 
 log = logging.getLogger(__name__)
 
@@ -55,6 +56,8 @@ Wait = Annotated[bool, Field()]
 
 
 ToolFn = Callable[..., Awaitable[Result]]
+#: a JSON schema (or a part of one), as the SDK's tools carry them
+JsonSchema = dict[str, object]
 
 
 @dataclass
@@ -64,7 +67,7 @@ class ToolSpec:
     title: str | None
     annotations: ToolAnnotations
     # parameter -> the schema advertised for it, where a shorter one says enough (validation is unchanged)
-    advertise: dict[str, dict[str, Any]] = field(default_factory=dict)
+    advertise: dict[str, JsonSchema] = field(default_factory=dict)
 
 
 @dataclass
@@ -90,7 +93,7 @@ class Toolset:
         destructive: bool = False,
         idempotent: bool = False,
         title: str | None = None,
-        advertise: dict[str, dict[str, Any]] | None = None,
+        advertise: dict[str, JsonSchema] | None = None,
     ) -> Callable[[ToolFn], ToolFn]:
         """Declare a tool. Annotations must tell the truth: read-only tools change nothing.
 
@@ -125,7 +128,7 @@ def check_drone_id(drone_id: str) -> None:
         )
 
 
-def _wrap(spec: ToolSpec) -> Callable[..., Any]:
+def _wrap(spec: ToolSpec) -> Callable[..., Any]:  # mcp SDK: add_tool takes any function
     """The handler the SDK registers: the tool's own parameters (without its ``ToolCall``) plus the
     SDK-injected ``ctx``."""
     fn = spec.fn
@@ -142,7 +145,7 @@ def _wrap(spec: ToolSpec) -> Callable[..., Any]:
     return_annotation = Annotated[CallToolResult, result_model]
 
     @functools.wraps(fn)
-    async def handler(ctx: Context[Any, Any], **kwargs: Any) -> CallToolResult:
+    async def handler(ctx: ToolContext, **kwargs: Any) -> CallToolResult:  # mcp SDK: its JSON arguments
         call = current_call.get()
         try:
             tool_call = ToolCall.of(ctx)
@@ -182,7 +185,7 @@ def _wrap(spec: ToolSpec) -> Callable[..., Any]:
 TOOLSET_META_KEY = "fleet-gateway/toolset"
 
 
-def register_toolset(server: MCPServer[Any], toolset: Toolset) -> list[str]:
+def register_toolset(server: AnyServer, toolset: Toolset) -> list[str]:
     names = []
     for spec in toolset.tools:
         description = inspect.cleandoc(spec.fn.__doc__ or "")
@@ -201,8 +204,10 @@ def register_toolset(server: MCPServer[Any], toolset: Toolset) -> list[str]:
     return names
 
 
-def _advertise(schema: dict[str, Any], overrides: dict[str, dict[str, Any]]) -> None:
-    props = schema.get("properties", {})
+def _advertise(schema: JsonSchema, overrides: dict[str, JsonSchema]) -> None:
+    props = schema.get("properties")
+    if not isinstance(props, dict):
+        raise ValueError("advertise: the tool's schema has no properties")
     for name, advertised in overrides.items():
         if name not in props:
             raise ValueError(f"advertise names an unknown parameter '{name}'")
@@ -217,7 +222,7 @@ def _advertise(schema: dict[str, Any], overrides: dict[str, dict[str, Any]]) -> 
             del schema["$defs"]
 
 
-def strip_schema_titles(schema: Any) -> None:
+def strip_schema_titles(schema: object) -> None:
     """Remove pydantic's auto-generated 'title' keys: they repeat the property names and cost tokens."""
     if isinstance(schema, dict):
         props = schema.get("properties")
@@ -233,7 +238,7 @@ def strip_schema_titles(schema: Any) -> None:
             strip_schema_titles(item)
 
 
-def collapse_optional_nulls(schema: Any) -> None:
+def collapse_optional_nulls(schema: object) -> None:
     """Advertise an optional argument ``X | None = None`` as plain ``X`` (not ``anyOf [X, null]``).
 
     A model leaves such an argument out to mean "none"; the long form only costs tokens. The server
@@ -254,7 +259,7 @@ def collapse_optional_nulls(schema: Any) -> None:
             collapse_optional_nulls(item)
 
 
-def _collapsed(prop: Any) -> Any:
+def _collapsed(prop: object) -> object:
     if not isinstance(prop, dict) or prop.get("default", ...) is not None:
         return prop
     variants = prop.get("anyOf")
@@ -265,7 +270,7 @@ def _collapsed(prop: Any) -> Any:
     return {**kept, **merged}
 
 
-def nullable_type_lists(schema: Any) -> Any:
+def nullable_type_lists(schema: object) -> object:
     """``anyOf: [{"type": X}, {"type": "null"}]`` written as ``"type": [X, "null"]`` (the same values).
 
     For output schemas, which every client that checks structured results validates each result

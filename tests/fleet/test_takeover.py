@@ -308,7 +308,7 @@ async def test_a_formation_with_a_taken_over_drone_stops_and_holds_the_others(tm
         for d in drones:
             d.speed = 2.0
         lat, lon = at(300, 0)
-        formed = await c.formation_goto(AGENT, ["d1", "d2", "d3"], "line", lat, lon, 15.0)
+        formed = await c.formation_goto(AGENT, ["d1", "d2", "d3"], "line", 15.0, lat, lon)
         ops = gateway.operations
         assert ops is not None
         await until(

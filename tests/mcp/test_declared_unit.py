@@ -18,9 +18,11 @@ from pydantic import Field
 from gateway.config import ALL_TOOLSETS
 from gateway.fleet.commands.arguments import DroneId
 from gateway.fleet.commands.command_core import TOOLS, VERBS, Tool, command
-from gateway.fleet.operations.views import ActionResult, OperationView
+from gateway.fleet.operations.views import ActionResult
 from gateway.fleet.policy.caller import Caller
+from gateway.mcp.confirmation import ANSWER
 from gateway.mcp.declared import FILLED, complete
+from gateway.mcp.presenters import PRESENTERS
 from gateway.mcp.server import build_mcp, load_toolset
 from gateway.mcp.toolkit import Toolset
 from gateway.runtime import Gateway
@@ -121,13 +123,17 @@ def test_every_declared_tool_offers_its_verbs_parameters() -> None:
         assert toolset is not None
         [spec] = [s for s in toolset.tools if s.name == name]
         verb = VERBS[tool.verb]
+        answered = () if tool.confirm is None else (tool.confirm.into,)
         wanted = [
-            p.name
+            tool.takes[p.name].name if p.name in tool.takes else p.name
             for p in list(verb.signature.parameters.values())[2:]
-            if p.kind is inspect.Parameter.POSITIONAL_OR_KEYWORD and p.name not in (*FILLED, *tool.omit)
+            if p.kind is inspect.Parameter.POSITIONAL_OR_KEYWORD
+            and p.name not in (*FILLED, *tool.omit, *answered)
         ]
-        if verb.result is OperationView:
+        if PRESENTERS[verb.result].waits:
             wanted.append("wait")
+        if tool.confirm is not None:
+            wanted.insert(0, ANSWER)  # filled by a human's answer, never offered to the model
         assert list(inspect.signature(spec.fn).parameters)[1:] == wanted, name
 
 

@@ -10,7 +10,8 @@ from pathlib import Path
 import pytest
 from mcp import Client
 
-from gateway.mcp.server import build_mcp
+from gateway.config import ALL_TOOLSETS
+from gateway.mcp.server import build_mcp, tool_names
 from gateway.runtime import Gateway
 from tests.fakes import FakeVehicle, fake, fake_gateway, unit_settings
 
@@ -31,8 +32,9 @@ async def test_takeoff_goto_land_and_refusals(gateway: Gateway, mode: str) -> No
     server = build_mcp(gateway)
     async with Client(server, mode=mode) as c:
         listed = (await c.list_tools()).tools
-        tools = {t.name for t in listed}
-        assert len(tools) == 46 + 8  # table B2 + get_telemetry, and the fleet toolset (8 tools)
+        # every toolset's tools (the default enables all), derived from the declarations: a new command
+        # changes no number here
+        assert [t.name for t in listed] == tool_names(ALL_TOOLSETS)
         # every tool names its toolset in _meta, so clients can offer a model only some toolsets
         toolset_of = {t.name: (t.meta or {}).get("fleet-gateway/toolset") for t in listed}
         assert toolset_of["takeoff"] == "flight" and toolset_of["go_to_location"] == "navigation"

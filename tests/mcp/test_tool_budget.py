@@ -12,7 +12,7 @@ import tiktoken
 from mcp import Client
 
 from gateway.config import Settings
-from gateway.mcp.server import build_mcp
+from gateway.mcp.server import build_mcp, tool_names
 from gateway.runtime import Gateway
 
 BUDGET_TOKENS = 2500
@@ -32,7 +32,8 @@ async def _tools(toolsets: str) -> list:
 
 async def test_core_toolsets_fit_the_token_budget() -> None:
     tools = await _tools("flight,navigation,telemetry")
-    assert len(tools) == 33
+    # the tools listed are the ones the toolsets hold (hand-written and declared), whatever their number
+    assert [t.name for t in tools] == tool_names(["flight", "navigation", "telemetry"])
     text = json.dumps(
         [{"name": t.name, "description": t.description, "inputSchema": t.input_schema} for t in tools],
         separators=(",", ":"),

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import Field
+from pydantic import BaseModel, ConfigDict, Field
 
 DroneId = str
 """Checked by the MCP wrapper (length, then the registry names the known ids): keeps every schema small."""
@@ -28,3 +28,27 @@ MISSION_ITEMS = 200
 """The most mission items a tool call carries (the autopilot may hold more:
 `gateway.fleet.missions.mission`)."""
 ItemIndex = Annotated[int, Field(ge=1, le=MISSION_ITEMS, description="Item 1..N")]
+ParamName = Annotated[str, Field(pattern=r"^[A-Za-z0-9_]{1,16}$", description="e.g. WPNAV_SPEED")]
+DroneIds = Annotated[list[str], Field(min_length=1, max_length=64, description="Drone ids")]
+SomeDrones = Annotated[list[str] | None, Field(description="Drone ids; default: all")]
+FleetAlt = Annotated[float, Field(gt=0, le=10_000, allow_inf_nan=False, description="m above home")]
+
+
+class Waypoint(BaseModel):
+    """One mission item as a caller writes it (``alt_m`` above home); the verb makes it a `MissionItem`.
+    (The name is the schema's ``$defs`` key clients see.) A field it does not have is refused."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    lat_deg: Lat
+    lon_deg: Lon
+    alt_m: Annotated[float, Field(ge=0, le=10_000, allow_inf_nan=False, description="m above home")]
+    kind: Literal["waypoint", "takeoff", "land", "rtl", "loiter_time"] = "waypoint"
+    hold_s: Annotated[float, Field(ge=0, le=3600, allow_inf_nan=False)] = 0.0
+    speed_mps: Annotated[float | None, Field(gt=0, le=50, allow_inf_nan=False)] = None
+
+
+Waypoints = Annotated[list[Waypoint], Field(min_length=1, max_length=MISSION_ITEMS, description="Items 1..N")]
+OptionalWaypoints = Annotated[
+    list[Waypoint] | None, Field(max_length=MISSION_ITEMS, description="Upload first")
+]

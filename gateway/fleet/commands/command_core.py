@@ -11,7 +11,7 @@ import asyncio
 import dataclasses
 import functools
 import logging
-from collections.abc import Awaitable, Callable, Sequence
+from collections.abc import Awaitable, Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol, TypeVar, cast, overload
 
@@ -150,6 +150,28 @@ arguments and the `ActionResult`'s fields, e.g. ``"{drone_id} armed"``) or a fun
 
 
 @dataclass(frozen=True)
+class Confirm:
+    """A human confirms the command before it runs (MCP: by elicitation, before the verb is called).
+    ``question`` names a method of the verb's part, ``(caller, drone_id) -> str | None``: the question
+    to ask, None when no confirmation is needed; it judges only (a refusal raises, nothing is sent).
+    The answer (True only when the human accepted) fills the verb's boolean parameter ``into``."""
+
+    question: str
+    into: str = "confirmed"
+
+
+@dataclass(frozen=True)
+class Takes:
+    """The tool offers a parameter of the verb in the form a model writes: as ``name`` of type
+    ``annotation`` (its schema), made the verb's value by ``convert`` (None stays None). E.g. a
+    mission's items as `Waypoint`s, checked and converted by the verb's module."""
+
+    name: str
+    annotation: object
+    convert: Callable[..., object]
+
+
+@dataclass(frozen=True)
 class Tool:
     """How a verb is offered as an MCP tool; `gateway.mcp.declared` builds the tool from it (fleet/
     never imports the MCP layer). The verb's parameters after ``caller`` are the tool's arguments (their
@@ -168,6 +190,12 @@ class Tool:
     description: str | None = None
     #: parameters of the verb the tool does not offer (they keep their defaults)
     omit: tuple[str, ...] = ()
+    #: parameter -> the JSON schema shown for it where a shorter one says enough (validation unchanged)
+    advertise: Mapping[str, Mapping[str, object]] = dataclasses.field(default_factory=dict)
+    #: a human confirms the command first (`Confirm`)
+    confirm: Confirm | None = None
+    #: verb parameter -> the form the tool takes it in (`Takes`)
+    takes: Mapping[str, Takes] = dataclasses.field(default_factory=dict)
     #: the verb the tool calls (filled by `command`)
     verb: str = ""
 

@@ -20,6 +20,7 @@ from pydantic import Field
 from gateway.errors import CommandFailed, InvalidArgument
 from gateway.fleet.commands.arguments import DroneId, FlightMode
 from gateway.fleet.commands.command_core import (
+    Confirm,
     OperationDesk,
     Tool,
     arming_deadline,
@@ -212,10 +213,29 @@ class FlightVerbs:
             vehicle.require_ready()
         return self.commands.safety.check_kill(vehicle_context(vehicle), caller.policy_via)
 
-    @command
+    def kill_question(self, caller: Caller, drone_id: str) -> str | None:
+        """What a human is asked before this caller's kill (None: no question, as on the ground, where
+        it only disarms). Judges only; a kill the policy refuses raises here, before anyone is asked."""
+        if not self.kill_needs_confirmation(caller, drone_id):
+            return None
+        position = self.commands.registry.get(drone_id).telemetry.fresh("position")
+        where = f" at {position.rel_alt_m:.0f} m" if position is not None else ""
+        return f"Cut the motors of {drone_id} in flight{where}? It will fall."
+
+    @command(
+        tool=Tool(
+            "kill_motors",
+            "flight",
+            destructive=True,
+            says="{drone_id}: {message}",
+            confirm=Confirm(question="kill_question", into="confirmed"),
+        )
+    )
     @routed
-    async def kill(self, caller: Caller, drone_id: str, confirmed: bool = False) -> ActionResult:
-        """Cut the motors. An agent's: only with ``confirmed`` (a human said yes), and on the ground it
+    async def kill(self, caller: Caller, drone_id: DroneId, confirmed: bool = False) -> ActionResult:
+        """EMERGENCY: cut motors at once (falls if flying). In flight needs policy + human confirmation.
+
+        An agent's: only with ``confirmed`` (a human said yes), and on the ground it
         only disarms. An operator's: at once, wherever the drone is.
 
         The one command sent without the drone's command lock: the lock is held while a command is

@@ -17,12 +17,16 @@ import contextlib
 import dataclasses
 import logging
 from collections.abc import Awaitable, Callable, Sequence
-from typing import Any, Literal
+from typing import Annotated, Any, Literal
+
+from pydantic import Field
 
 from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal, VehicleNotReady
 from gateway.fleet import geo
+from gateway.fleet.commands.arguments import DroneIds, FleetAlt, Metres, SomeDrones
 from gateway.fleet.commands.command_core import (
     OperationDesk,
+    Tool,
     arming_deadline,
     command,
     left,
@@ -170,19 +174,30 @@ class FleetVerbs:
     # formation and fleet takeoff: all drones or none
     # ------------------------------------------------------------------------------------------------
 
-    @command
+    @command(
+        tool=Tool(
+            "formation_goto",
+            "fleet",
+            description="Fly drones into a formation at a centre (default: theirs), kept apart; grounded "
+            "ones take off first.",
+        )
+    )
     async def formation_goto(
         self,
         caller: Caller,
-        drone_ids: list[str],
+        drone_ids: DroneIds,
         formation: Formation,
-        center_lat_deg: float | None,
-        center_lon_deg: float | None,
-        alt_m: float,
-        spacing_m: float = 10.0,
-        heading_deg: float | None = None,
-        north_m: float = 0.0,
-        east_m: float = 0.0,
+        alt_m: FleetAlt,
+        center_lat_deg: Annotated[float | None, Field(ge=-90, le=90, allow_inf_nan=False)] = None,
+        center_lon_deg: Annotated[float | None, Field(ge=-180, le=180, allow_inf_nan=False)] = None,
+        north_m: Annotated[Metres, Field(description="Centre moved north; default: where they are")] = 0.0,
+        east_m: Annotated[Metres, Field(description="Centre moved east")] = 0.0,
+        spacing_m: Annotated[
+            float, Field(gt=0, le=1000, allow_inf_nan=False, description="m between slots")
+        ] = 10.0,
+        heading_deg: Annotated[
+            float | None, Field(ge=0, lt=360, allow_inf_nan=False, description="Facing; default: travel")
+        ] = None,
         *,
         notify: Notify | None = None,
     ) -> FleetView:
@@ -288,18 +303,21 @@ class FleetVerbs:
             return False
         return vehicle.on_ground() is True
 
-    @command
+    @command(tool=Tool("fleet_takeoff", "fleet"))
     async def fleet_takeoff(
         self,
         caller: Caller,
-        drone_ids: list[str],
-        alt_m: float,
-        stagger_m: float | None = None,
+        drone_ids: DroneIds,
+        alt_m: FleetAlt,
+        stagger_m: Annotated[
+            float | None, Field(ge=0, le=100, allow_inf_nan=False, description="m between drones' altitudes")
+        ] = None,
         *,
         notify: Notify | None = None,
     ) -> FleetView:
-        """Take off drones at once to alt_m, alt_m + stagger, ... (in the order given); all must be able,
-        or none go. Drones still initialising are waited for first (``notify`` hears what each waits
+        """Take off drones at once to alt_m, alt_m+stagger, ... (given order). All must be able, or none go.
+
+        Drones still initialising are waited for first (``notify`` hears what each waits
         for); that wait and the drones' arming share one deadline, the wait cap."""
         ids = check_drone_ids(drone_ids)
         policy = self.safety
@@ -341,9 +359,9 @@ class FleetVerbs:
     # recovery: to every drone that can take it
     # ------------------------------------------------------------------------------------------------
 
-    @command
-    async def fleet_land(self, caller: Caller, drone_ids: list[str] | None = None) -> FleetView:
-        """Land drones in place, all at once; done when disarmed. Those that cannot are in not_sent."""
+    @command(tool=Tool("fleet_land", "fleet", idempotent=True))
+    async def fleet_land(self, caller: Caller, drone_ids: SomeDrones = None) -> FleetView:
+        """Land drones in place, all at once; done when disarmed. Those that cannot are listed in not_sent."""
 
         def check(v: VehicleView) -> None:
             v.require_ready()
@@ -362,16 +380,21 @@ class FleetVerbs:
         )
         return self.fleet_view(fop, unable)
 
-    @command
+    @command(tool=Tool("fleet_return_to_launch", "fleet", idempotent=True))
     async def fleet_return_to_launch(
         self,
         caller: Caller,
-        drone_ids: list[str] | None = None,
-        rtl_alt_m: float | None = None,
-        stagger_m: float | None = None,
+        drone_ids: SomeDrones = None,
+        rtl_alt_m: Annotated[
+            float | None, Field(gt=0, le=10_000, allow_inf_nan=False, description="Lowest return alt, m")
+        ] = None,
+        stagger_m: Annotated[
+            float | None, Field(ge=0, le=100, allow_inf_nan=False, description="m between return altitudes")
+        ] = None,
     ) -> FleetView:
-        """Fly drones home at separate altitudes (climbing or descending in place first) and land.
-        Those that cannot are in not_sent."""
+        """Fly drones home at separate altitudes and land. Those that cannot are listed in not_sent.
+
+        Each climbs or descends in place to its altitude first."""
         stagger = self._stagger(stagger_m)
         sep = self.settings.min_separation_m
         self.safety.check_stagger(stagger)
@@ -415,10 +438,11 @@ class FleetVerbs:
         )
         return self.fleet_view(fop, unable)
 
-    @command
-    async def fleet_hold(self, caller: Caller, drone_ids: list[str] | None = None) -> FleetHoldResult:
-        """Stop drones where they are (GUIDED hover), ending their operations and any fleet operation
-        they are part of. Those that cannot are in not_sent."""
+    @command(tool=Tool("fleet_hold", "fleet", idempotent=True))
+    async def fleet_hold(self, caller: Caller, drone_ids: SomeDrones = None) -> FleetHoldResult:
+        """Stop drones where they are (GUIDED hover), ending their actions. Those that cannot: not_sent.
+
+        Ends their operations and any fleet operation they are part of."""
 
         def check(v: VehicleView) -> None:
             v.require_ready()

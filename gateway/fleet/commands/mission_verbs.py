@@ -8,10 +8,21 @@ Each command that acts on the drone is a declaration run by the one pass
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Annotated
+
+from pydantic import Field
 
 from gateway.errors import InvalidArgument
-from gateway.fleet.commands.arguments import DroneId, ItemIndex
-from gateway.fleet.commands.command_core import OperationDesk, Tool, command, routed
+from gateway.fleet import geo
+from gateway.fleet.commands.arguments import (
+    DroneId,
+    ItemIndex,
+    OptionalWaypoints,
+    ParamName,
+    Waypoint,
+    Waypoints,
+)
+from gateway.fleet.commands.command_core import OperationDesk, Takes, Tool, command, routed
 from gateway.fleet.commands.command_pass import CommandPass, Order
 from gateway.fleet.commands.drone_verbs import FlightVerbs
 from gateway.fleet.commands.mission_start import resume_item, semantics_of, unchecked_text, verify_held
@@ -32,6 +43,26 @@ from gateway.fleet.policy.mission_check import Unchecked
 from gateway.fleet.policy.safety_inputs import VehicleContext
 from gateway.fleet.vehicles.protocols import FlyingVehicle
 from gateway.fleet.vehicles.readings import value, vehicle_context
+
+
+def mission_items(waypoints: Sequence[Waypoint]) -> list[MissionItem]:
+    """A caller's waypoints as mission items (1..N); a point off the globe or a waypoint at or below
+    home is refused naming its number."""
+    for n, w in enumerate(waypoints, 1):
+        geo.check_lat_lon(w.lat_deg, w.lon_deg)
+        if w.kind in ("waypoint", "loiter_time") and w.alt_m <= 0:
+            raise InvalidArgument(f"waypoint {n}: alt_m must be above 0 m above home")
+    return [
+        MissionItem(
+            lat=w.lat_deg,
+            lon=w.lon_deg,
+            alt_rel_m=w.alt_m,
+            kind=w.kind,
+            hold_s=w.hold_s,
+            speed_mps=w.speed_mps,
+        )
+        for w in waypoints
+    ]
 
 
 class MissionVerbs:
@@ -66,10 +97,24 @@ class MissionVerbs:
 
         return Order(send)
 
-    @command
+    @command(
+        tool=Tool(
+            "upload_mission",
+            "mission",
+            idempotent=True,
+            says="{drone_id}: mission of {facts[items]} items uploaded; start it with initiate_mission or "
+            "resume_mission",
+            takes={"items": Takes("waypoints", Waypoints, mission_items)},
+        )
+    )
     @routed
-    async def upload_mission(self, caller: Caller, drone_id: str, items: list[MissionItem]) -> ActionResult:
-        """Store a mission on the drone (items numbered 1..N, altitudes above home) without starting it."""
+    async def upload_mission(
+        self, caller: Caller, drone_id: DroneId, items: list[MissionItem]
+    ) -> ActionResult:
+        """Upload waypoints (alt_m above home) without starting them.
+
+        Stored on the drone as items numbered 1..N after the policy's mission checks; the tool takes
+        them as `Waypoint`s (``waypoints``)."""
 
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             return self._upload(caller, vehicle, ctx, items)
@@ -133,19 +178,36 @@ class MissionVerbs:
         )
         return MissionFileView(drone_id=drone_id, format=file_format, items=len(raws), content=content)
 
-    @command
+    @command(
+        tool=Tool(
+            "initiate_mission",
+            "mission",
+            advertise={
+                "waypoints": {
+                    "type": "array",
+                    "items": {"type": "object"},
+                    "description": "Items as upload_mission's; omit to start the drone's mission "
+                    "(checked first)",
+                }
+            },
+            takes={"items": Takes("waypoints", OptionalWaypoints, mission_items)},
+        )
+    )
     @routed
     async def start_mission(
         self,
         caller: Caller,
-        drone_id: str,
+        drone_id: DroneId,
         items: list[MissionItem] | None = None,
         label: str = "initiate_mission",
     ) -> OperationView:
-        """Upload ``items`` first if given, then fly the mission the drone holds; done when it is
-        finished. On the ground the mission must begin with a takeoff item. Whatever was uploaded, the
-        mission is read back and checked whole from where the drone is now (`verify_held`): another
-        ground station may have replaced it, the drone moved, the zones changed."""
+        """Upload (if waypoints given) and start the mission; done when finished.
+
+        ``items`` are uploaded first if given (an empty list is refused, never "what is stored"),
+        then the drone flies the mission it holds; done when it is finished. On the ground the mission
+        must begin with a takeoff item. Whatever was uploaded, the mission is read back and checked
+        whole from where the drone is now (`verify_held`): another ground station may have replaced
+        it, the drone moved, the zones changed."""
         if items is not None:
             if not items:
                 raise InvalidArgument(
@@ -290,10 +352,18 @@ class MissionVerbs:
         val, kind = await vehicle.get_param(name)
         return ParamValue(drone_id=drone_id, name=name, value=val, type=kind)
 
-    @command
+    @command(tool=Tool("set_parameter", "params", idempotent=True, says="{drone_id} {name} set to {value:g}"))
     @routed
-    async def set_param(self, caller: Caller, drone_id: str, name: str, value: float) -> ParamValue:
-        """Write a parameter with the drone's own type for it; agents may write only parameters a limit
+    async def set_param(
+        self,
+        caller: Caller,
+        drone_id: DroneId,
+        name: ParamName,
+        value: Annotated[float, Field(allow_inf_nan=False)],
+    ) -> ParamValue:
+        """Write one parameter (type from the drone): speeds and altitudes within the limits, or allowlisted.
+
+        With the drone's own type for it; agents may write only parameters a limit
         governs (within it) or the allowlist names (rules param_limit, param_not_allowed:
         `SafetyPolicy.check_param_write`)."""
         name = name.upper()

@@ -250,6 +250,7 @@ class OperatorVerbs:
         _WAITING.add(task)
         task.add_done_callback(_WAITING.discard)
 
+    @command
     async def stop_one(self, caller: Caller, drone_id: str, action: StopAction) -> StopOutcome:
         """One drone's part of a stop: hold (ends its operation), land or RTL (tracked operations that
         supersede it). The REST hold/land/RTL routes are this too."""

@@ -24,7 +24,7 @@ no actions to stub, and the registry hands out whatever `FlyingVehicle` has.
 from __future__ import annotations
 
 from collections.abc import Awaitable, Callable, Mapping, Sequence
-from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
+from typing import TYPE_CHECKING, Any, Protocol
 
 from gateway.errors import OwnedElsewhere
 from gateway.fleet.dialects.modes import ModeChoice
@@ -138,8 +138,13 @@ class VehicleView(Protocol):
         """(lat, lon, alt_amsl_m) the distance limit and the zones count from: the first home the vehicle
         reported or where an operator moved it (None: not known here; its home stands in)."""
 
+    def flown_here(self) -> FlyingVehicle | None:
+        """The drone with its actions when this node flies it (the vehicle itself), None when another
+        cluster node flies it. Who flies a drone is this explicit fact of the vehicle, never read from
+        the shape of the object: a class that flies drones returns ``self`` here, which mypy checks
+        against `FlyingVehicle` member by member."""
 
-@runtime_checkable
+
 class VehicleActions(Protocol):
     """What only the node that flies a drone can do: the commands its autopilot's dialect sends. Each
     refuses (naming the autopilot) when the gateway has no dialect for the drone's autopilot."""
@@ -198,8 +203,9 @@ class FlyingVehicle(VehicleView, VehicleActions, Protocol):
 def flying(view: VehicleView) -> FlyingVehicle:
     """``view`` as a drone this node flies, to send it a command; OwnedElsewhere (naming the node that
     flies it, as its view reports) for a view of a drone another cluster node flies."""
-    if isinstance(view, VehicleActions):
-        return view
+    vehicle = view.flown_here()
+    if vehicle is not None:
+        return vehicle
     owner = view.status().get("owner_node")
     raise OwnedElsewhere.of(view.id, owner if isinstance(owner, str) else None)
 

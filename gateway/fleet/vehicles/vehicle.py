@@ -35,6 +35,7 @@ from gateway.fleet.policy.origin import Origin
 from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.fleet.vehicles.origin_keeper import OriginKeeper
 from gateway.fleet.vehicles.params import Parameters
+from gateway.fleet.vehicles.protocols import FlyingVehicle
 from gateway.fleet.vehicles.vehicle_arming import Arming
 from gateway.fleet.vehicles.vehicle_missions import MissionControl
 from gateway.fleet.vehicles.waits import wait_for_state
@@ -124,6 +125,10 @@ class Vehicle:
         """Where the distance limit and the zones count from (`gateway.fleet.policy.origin`)."""
         found = self.origins.current()
         return None if found is None else found.point
+
+    def flown_here(self) -> FlyingVehicle:
+        """This node flies it (`VehicleView.flown_here`)."""
+        return self
 
     @property
     def dialect(self) -> DialectReads:

@@ -21,11 +21,13 @@ from gateway.mcp.results import (
     BatteryOut,
     DataOut,
     GpsOut,
+    JsonLike,
     SnapshotOut,
     SpeedOut,
     StatusTextOut,
     ValueOut,
     plain,
+    plain_object,
     surface_telemetry,
 )
 from gateway.mcp.toolkit import DroneId, Toolset
@@ -33,6 +35,7 @@ from gateway.mcp.toolkit import DroneId, Toolset
 toolset = Toolset("telemetry")
 
 
+# a part read by name, whichever of the cache's value types it holds (each tool reads its own fields)
 def read(call: ToolCall, drone_id: str, name: str) -> tuple[Any, float, bool, str]:
     """(value, age_s, stale, note) of one cached telemetry part."""
     v = call.commander.vehicle(drone_id)
@@ -64,7 +67,7 @@ def _data_tool(call: ToolCall, drone_id: str, name: str) -> DataOut:
     )
 
 
-def _short(v: Any) -> str:
+def _short(v: object) -> str:
     if isinstance(v, float):
         return f"{v:.3g}"
     if isinstance(v, dict):
@@ -213,7 +216,7 @@ async def print_status_text(
     )
 
 
-def _status_text(item: Any) -> dict[str, Any]:
+def _status_text(item: object) -> dict[str, JsonLike]:
     if isinstance(item, tuple | list) and len(item) == 3:
         t, severity, text = item
     else:
@@ -230,7 +233,7 @@ def _status_text(item: Any) -> dict[str, Any]:
 async def get_telemetry(call: ToolCall, drone_id: DroneId) -> SnapshotOut:
     """Everything at once: all telemetry with each part's age_s, plus the current action."""
     v = call.commander.vehicle(drone_id)
-    snap = surface_telemetry(plain(v.telemetry.snapshot()))
+    snap = surface_telemetry(plain_object(v.telemetry.snapshot()))
     op = call.commander.current_operation(drone_id)  # on a cluster node also a drone owned elsewhere
     state = str(plain(v.state))
     pos = snap.get("position") if isinstance(snap, dict) else None
