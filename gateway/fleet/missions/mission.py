@@ -18,12 +18,11 @@ from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.geo import check_lat_lon
-from gateway.util.mission_item import ItemInt
+from gateway.util.mission_item import MAV_FRAME_GLOBAL_RELATIVE_ALT, ItemInt
 
 # MAVLink ids
 MAV_FRAME_GLOBAL = 0
 MAV_FRAME_MISSION = 2
-MAV_FRAME_GLOBAL_RELATIVE_ALT = 3
 MAV_CMD_NAV_WAYPOINT = 16
 MAV_CMD_NAV_LOITER_TIME = 19
 MAV_CMD_NAV_RETURN_TO_LAUNCH = 20

@@ -32,15 +32,18 @@ from dataclasses import dataclass
 from typing import Any, Literal
 
 from gateway.errors import InvalidArgument
-from gateway.fleet.missions.mission import MAX_ITEMS, Kind, MissionItem, RawItem
+from gateway.fleet.missions.mission import (
+    MAV_FRAME_GLOBAL,
+    MAX_ITEMS,
+    Kind,
+    MissionItem,
+    RawItem,
+)
 
 FileFormat = Literal["plan", "waypoints"]
 FORMATS: tuple[FileFormat, ...] = ("plan", "waypoints")
 WPL_HEADER = "QGC WPL 110"
 
-MAV_FRAME_GLOBAL = 0
-MAV_FRAME_MISSION = 2
-MAV_FRAME_GLOBAL_RELATIVE_ALT = 3
 GLOBAL_FRAMES = {0, 5}  # GLOBAL, GLOBAL_INT: altitude above mean sea level
 RELATIVE_FRAMES = {3, 6}  # GLOBAL_RELATIVE_ALT(_INT): above home
 TERRAIN_FRAMES = {10, 11}  # GLOBAL_TERRAIN_ALT(_INT): above terrain
