@@ -81,7 +81,7 @@ class OperatorVerbs:
         log.warning(
             "operator %s locked %s: %s", lock.by, "the fleet" if scope == FLEET else scope, lock.reason
         )
-        result = LockResult(scope=lock.scope, reason=lock.reason, by=lock.by, locked_at=lock.locked_at)
+        result = LockResult.of(lock)
         if self.router is not None:  # every node refuses agents from now on
             await self.router.announce("lock", result.model_dump(mode="json", exclude={"stored"}))
         return result

@@ -10,6 +10,7 @@ from pydantic import BaseModel, Field, SkipValidation, field_validator
 
 from gateway.fleet.missions.mission import MissionItem
 from gateway.fleet.operations.operation_state import Operation
+from gateway.fleet.policy.operator_locks import Lock
 from gateway.fleet.vehicles.protocols import VehicleView
 from gateway.fleet.vehicles.readings import position
 from gateway.registry.records import OperationRecord
@@ -212,6 +213,11 @@ class LockResult(BaseModel):
         description="False: the database was unreachable; the lock holds on this node (and every node "
         "that heard of it) now and is stored when the database is back.",
     )
+
+    @classmethod
+    def of(cls, lock: Lock) -> LockResult:
+        """A lock in force (an operator's lock or a takeover lock), as stored."""
+        return cls(scope=lock.scope, reason=lock.reason, by=lock.by, locked_at=lock.locked_at)
 
 
 class UnlockResult(BaseModel):
