@@ -18,7 +18,7 @@ from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.geo import check_lat_lon
-from gateway.util.mission_item import MAV_FRAME_GLOBAL_RELATIVE_ALT, ItemInt
+from gateway.util.mission_item import MAV_FRAME_GLOBAL_RELATIVE_ALT, ItemCommand, ItemInt
 
 # MAVLink ids
 MAV_FRAME_GLOBAL = 0
@@ -43,16 +43,10 @@ MAX_ITEMS = 700
 
 
 @dataclass(frozen=True)
-class RawItem:
+class RawItem(ItemCommand):
     """One MAVLink mission item as a mission file or the autopilot holds it (x, y in degrees, except in
     MAV_FRAME_MISSION where they are plain numbers)."""
 
-    frame: int
-    command: int
-    param1: float = 0.0
-    param2: float = 0.0
-    param3: float = 0.0
-    param4: float = 0.0
     x: float = 0.0
     y: float = 0.0
     z: float = 0.0
@@ -193,7 +187,7 @@ def _wire_of(seq: int, raw: RawItem) -> WireItem:
 
 def _raw_of(w: WireItem, autocontinue: bool) -> RawItem:
     x, y = (w.x / 1e7, w.y / 1e7) if _scaled(w.frame) else (float(w.x), float(w.y))
-    return RawItem(w.frame, w.command, w.param1, w.param2, w.param3, w.param4, x, y, w.z, autocontinue)
+    return RawItem(w.command, w.frame, w.param1, w.param2, w.param3, w.param4, x, y, w.z, autocontinue)
 
 
 def decode(wire: list[Any], *, home_slot: bool = True) -> tuple[list[MissionItem], WirePlan]:

@@ -85,7 +85,7 @@ def _raw(frame: int, command: int, params: Sequence[float], autocontinue: bool, 
         lat, lon = p[4], p[5]
         if not (math.isfinite(lat) and math.isfinite(lon) and -90 <= lat <= 90 and -180 <= lon <= 180):
             raise InvalidArgument(f"{where}: latitude/longitude {lat}, {lon} out of range")
-    return RawItem(frame, command, p[0], p[1], p[2], p[3], p[4], p[5], p[6], autocontinue)
+    return RawItem(command, frame, p[0], p[1], p[2], p[3], p[4], p[5], p[6], autocontinue)
 
 
 def parse_plan(text: str) -> FileMission:
