@@ -65,15 +65,7 @@ async def check_arrival(call: ToolCall, drone_id: DroneId) -> ArrivalOut:
     text = (
         f"{drone_id}: no goto sent yet" if a.kind is None else f"{drone_id} {a.kind} {a.status}: {a.message}"
     )
-    return ArrivalOut(
-        drone_id=drone_id,
-        arrived=a.arrived,
-        operation_id=a.operation_id,
-        status=a.status,
-        distance_m=a.distance_m,
-        vertical_m=a.vertical_m,
-        message=a.message,
-    ).say(text)
+    return ArrivalOut.model_validate(a, from_attributes=True).say(text)
 
 
 @toolset.tool()
