@@ -11,7 +11,13 @@ from typing import Any, Self
 
 from pydantic import BaseModel, PrivateAttr
 
-from gateway.fleet.operations.views import ActionResult
+from gateway.fleet.operations.views import (
+    ActionResult,
+    MissionProgressView,
+    OperationFacts,
+    ParamPage,
+    ParamValue,
+)
 from gateway.fleet.vehicles.vehicle_text import VEHICLE_TEXT_LABEL, clean_vehicle_text
 
 
@@ -28,17 +34,9 @@ class Result(BaseModel):
         return self._text or json.dumps(self.model_dump(mode="json"), separators=(",", ":"))
 
 
-class OperationOut(Result):
+class OperationOut(Result, OperationFacts):
     """A long-running action: 'running' means it continues on the vehicle; call monitor_flight."""
 
-    drone_id: str
-    operation_id: str
-    kind: str
-    status: str
-    progress: float
-    message: str
-    eta_s: float | None = None
-    elapsed_s: float
     lat_deg: float | None = None
     lon_deg: float | None = None
     alt_m: float | None = None
@@ -151,28 +149,15 @@ class MissionOut(Result):
     items: list[MissionItemOut]
 
 
-class MissionProgressOut(Result):
-    drone_id: str
-    current: int
-    total: int
-    finished: bool
-    operation_status: str | None
+class MissionProgressOut(Result, MissionProgressView):
+    pass
 
 
-class ParamOut(Result):
-    drone_id: str
-    name: str
-    value: float
-    type: str
+class ParamOut(Result, ParamValue):
+    pass
 
 
-class ParamListOut(Result):
-    drone_id: str
-    prefix: str
-    total: int
-    offset: int
-    params: dict[str, float]
-    next_offset: int | None
+class ParamListOut(Result, ParamPage):
     names_note: str = ""
 
 

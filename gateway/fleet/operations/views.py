@@ -16,17 +16,22 @@ from gateway.fleet.vehicles.readings import position
 from gateway.registry.records import OperationRecord
 
 
-class OperationView(BaseModel):
-    """A tracked operation at one moment, with where its drone is."""
+class OperationFacts(BaseModel):
+    """What every answer about a tracked operation says (the REST view, the MCP tools' result)."""
 
-    operation_id: str
     drone_id: str
+    operation_id: str
     kind: str
     status: str
     progress: float
     message: str
     eta_s: float | None = None
     elapsed_s: float
+
+
+class OperationView(OperationFacts):
+    """A tracked operation at one moment, with where its drone is."""
+
     params: dict[str, Any] = Field(default_factory=dict)
     lat_deg: float | None = None
     lon_deg: float | None = None
