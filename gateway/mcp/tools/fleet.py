@@ -15,9 +15,10 @@ operation id that monitor_fleet continues (`gateway.mcp.presenters` presents the
 
 from __future__ import annotations
 
-from typing import Annotated, Literal, TypedDict
+from typing import Annotated, Literal, NotRequired
 
-from pydantic import BaseModel, Field
+from pydantic import Field
+from typing_extensions import TypedDict  # pydantic takes typing's TypedDict from Python 3.12 on
 
 from gateway.fleet.vehicles.protocols import VehicleView
 from gateway.fleet.vehicles.readings import value
@@ -36,9 +37,10 @@ StateFilter = Literal[
 # --- results -----------------------------------------------------------------------------------------
 
 
-# a plain model, not a Result: a row has no text of its own, and without a private attribute pydantic-core
-# builds each row with no Python hook (no docstring either: it would go into the output schema)
-class DroneRow(BaseModel):
+# a plain TypedDict, not a Result: a row has no text of its own; the listing builds each row as a dict and
+# validates all rows at once (one pass in pydantic-core, no Python hook per row; no docstring either: it
+# would go into the output schema)
+class DroneRow(TypedDict):
     drone_id: str
     name: str | None
     tags: list[str]
@@ -53,27 +55,7 @@ class DroneRow(BaseModel):
     operation: str | None
     locked: str | None
     stale: bool
-    initialising: str | None = None  # while connected, what the drone still waits for before it can fly
-
-
-class RowValues(TypedDict):
-    """A `DroneRow`'s values, before the listing validates all rows at once."""
-
-    drone_id: str
-    name: str | None
-    tags: list[str]
-    state: str
-    armed: bool | None
-    in_air: bool | None
-    battery_pct: float | None
-    lat_deg: float | None
-    lon_deg: float | None
-    alt_m: float | None
-    flight_mode: str | None
-    operation: str | None
-    locked: str | None
-    stale: bool
-    initialising: str | None
+    initialising: NotRequired[str | None]  # while connected, what the drone still waits for before it can fly
 
 
 class DronesOut(Result):
@@ -91,7 +73,7 @@ class FleetStatusOut(Result):
 # --- read tools ----------------------------------------------------------------------------------------
 
 
-def _row(call: ToolCall, v: VehicleView) -> RowValues:
+def _row(call: ToolCall, v: VehicleView) -> DroneRow:
     """One drone's row, each value computed once (its state too), as the plain values of a ``DroneRow``:
     the listing validates all rows at once when it builds its ``DronesOut`` (one pass in pydantic-core
     instead of a model per row)."""
@@ -122,7 +104,7 @@ def _row(call: ToolCall, v: VehicleView) -> RowValues:
     }
 
 
-def _matches(row: RowValues, state: str | None) -> bool:
+def _matches(row: DroneRow, state: str | None) -> bool:
     if state is None:
         return True
     if state == "flying":
@@ -149,7 +131,7 @@ async def list_drones(
     )
 
 
-def _row_text(r: RowValues) -> str:
+def _row_text(r: DroneRow) -> str:
     state = f"{r['state']} ({r['initialising']})" if r["initialising"] else r["state"]
     flying = " flying" if r["in_air"] else ""
     text = f"{r['drone_id']} {state}{flying} bat {r['battery_pct']}% alt {r['alt_m']} m"
