@@ -67,6 +67,28 @@ def _data_tool(call: ToolCall, drone_id: str, name: str) -> DataOut:
     )
 
 
+def _value_reader(name: str, part: str, label: str, doc: str) -> None:
+    """Declare the read tool ``name``: the cached telemetry part ``part`` as one value, said as ``label``."""
+
+    async def read_value(call: ToolCall, drone_id: DroneId) -> ValueOut:
+        return _value_tool(call, drone_id, part, label)
+
+    read_value.__name__ = read_value.__qualname__ = name
+    read_value.__doc__ = doc
+    toolset.tool(read_only=True)(read_value)
+
+
+def _data_reader(name: str, part: str, doc: str) -> None:
+    """Declare the read tool ``name``: the fields of the cached telemetry part ``part``."""
+
+    async def read_data(call: ToolCall, drone_id: DroneId) -> DataOut:
+        return _data_tool(call, drone_id, part)
+
+    read_data.__name__ = read_data.__qualname__ = name
+    read_data.__doc__ = doc
+    toolset.tool(read_only=True)(read_data)
+
+
 def _short(v: object) -> str:
     if isinstance(v, float):
         return f"{v:.3g}"
@@ -88,16 +110,14 @@ async def get_battery(call: ToolCall, drone_id: DroneId) -> BatteryOut:
     )
 
 
-@toolset.tool(read_only=True)
-async def get_flight_mode(call: ToolCall, drone_id: DroneId) -> ValueOut:
-    """Current flight mode name (e.g. GUIDED, AUTO, RTL, LAND)."""
-    return _value_tool(call, drone_id, "flight_mode", "flight mode")
+_value_reader(
+    "get_flight_mode",
+    "flight_mode",
+    "flight mode",
+    "Current flight mode name (e.g. GUIDED, AUTO, RTL, LAND).",
+)
 
-
-@toolset.tool(read_only=True)
-async def get_health(call: ToolCall, drone_id: DroneId) -> DataOut:
-    """Sensor/arming health flags."""
-    return _data_tool(call, drone_id, "health")
+_data_reader("get_health", "health", "Sensor/arming health flags.")
 
 
 @toolset.tool(read_only=True)
@@ -158,46 +178,21 @@ async def get_gps_info(call: ToolCall, drone_id: DroneId) -> GpsOut:
     ).say(f"{drone_id} GPS {fix}, {g.num_satellites} satellites{note}")
 
 
-@toolset.tool(read_only=True)
-async def get_in_air(call: ToolCall, drone_id: DroneId) -> ValueOut:
-    """true when flying."""
-    return _value_tool(call, drone_id, "in_air", "in air")
+_value_reader("get_in_air", "in_air", "in air", "true when flying.")
 
+_value_reader("get_armed", "armed", "armed", "true when the motors are armed.")
 
-@toolset.tool(read_only=True)
-async def get_armed(call: ToolCall, drone_id: DroneId) -> ValueOut:
-    """true when the motors are armed."""
-    return _value_tool(call, drone_id, "armed", "armed")
+_value_reader(
+    "get_landed_state", "landed_state", "landed state", "ON_GROUND, TAKING_OFF, IN_AIR, LANDING or UNKNOWN."
+)
 
+_data_reader("get_rc_status", "rc_status", "RC link: available, signal strength %.")
 
-@toolset.tool(read_only=True)
-async def get_landed_state(call: ToolCall, drone_id: DroneId) -> ValueOut:
-    """ON_GROUND, TAKING_OFF, IN_AIR, LANDING or UNKNOWN."""
-    return _value_tool(call, drone_id, "landed_state", "landed state")
+_value_reader("get_heading", "heading_deg", "heading deg", "Compass heading, degrees from north.")
 
+_data_reader("get_imu", "imu", "IMU: acceleration m/s², angular rate rad/s, temperature °C.")
 
-@toolset.tool(read_only=True)
-async def get_rc_status(call: ToolCall, drone_id: DroneId) -> DataOut:
-    """RC link: available, signal strength %."""
-    return _data_tool(call, drone_id, "rc_status")
-
-
-@toolset.tool(read_only=True)
-async def get_heading(call: ToolCall, drone_id: DroneId) -> ValueOut:
-    """Compass heading, degrees from north."""
-    return _value_tool(call, drone_id, "heading_deg", "heading deg")
-
-
-@toolset.tool(read_only=True)
-async def get_imu(call: ToolCall, drone_id: DroneId) -> DataOut:
-    """IMU: acceleration m/s², angular rate rad/s, temperature °C."""
-    return _data_tool(call, drone_id, "imu")
-
-
-@toolset.tool(read_only=True)
-async def get_odometry(call: ToolCall, drone_id: DroneId) -> DataOut:
-    """Odometry: body-frame position m, velocity m/s, orientation."""
-    return _data_tool(call, drone_id, "odometry")
+_data_reader("get_odometry", "odometry", "Odometry: body-frame position m, velocity m/s, orientation.")
 
 
 @toolset.tool(read_only=True)
