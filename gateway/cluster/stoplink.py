@@ -16,6 +16,7 @@ import asyncio
 import math
 import os
 import time
+import uuid
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -27,6 +28,8 @@ from urllib.parse import urlparse
 os.environ.setdefault("MAVLINK_DIALECT", "ardupilotmega")
 os.environ.setdefault("MAVLINK20", "1")
 from pymavlink import mavutil
+
+from gateway.fleet.operations.views import ActionResult, OperationView
 
 #: the stops a fenced node can send without its sidecar: the verb -> MAV_CMD
 STOP_COMMANDS = {
@@ -140,3 +143,29 @@ async def send_stop(target: StopTarget, verb: str, within_s: float = 1.5, hear_f
     opened (another process holds it, the drone is silent). ``hear_first``: send nothing before the
     drone is heard on this connection (its link may be held by another process)."""
     return await asyncio.to_thread(_send, target, STOP_COMMANDS[verb], within_s, hear_first)
+
+
+def direct_stop_answer(
+    drone_id: str, verb: str, node_id: str, why: str, facts: dict[str, Any]
+) -> dict[str, Any]:
+    """What a stop sent over the drone's own link by node ``node_id`` answers (``why``: why the node sent
+    it itself, with the autopilot's answer): a hold's action, or a land or return's operation, which no
+    node tracks (its id ``direct-...``; the drone's state shows when it lands)."""
+    said = f"sent over the drone's own link by node {node_id}, {why}"
+    if verb == "hold":
+        return ActionResult(
+            drone_id=drone_id,
+            action="hold",
+            message=f"hold (a reposition to where it is) {said}",
+            facts=facts,
+        ).model_dump(mode="json")
+    return OperationView(
+        operation_id=f"direct-{uuid.uuid4().hex[:12]}",
+        drone_id=drone_id,
+        kind=verb,
+        status="sent",
+        progress=0.0,
+        message=f"{verb} {said}; not tracked: its state shows when it lands",
+        elapsed_s=0.0,
+        params=facts,
+    ).model_dump(mode="json")
