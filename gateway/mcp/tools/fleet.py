@@ -1,16 +1,10 @@
 """Fleet toolset: several drones as one group. Listing, status and monitoring here; formations, fleet
 takeoff, landing, RTL and hold are commands, declared with their verbs.
 
-Who takes part (the same rule for every fleet tool, also in docs/fleet.md):
-- formation_goto and fleet_takeoff change the fleet's geometry: every named drone is checked first and
-  if any cannot take part (unknown, not ready, locked, busy, low battery, on the ground...) nothing is
-  sent and the error names each such drone with the reason (rule and numbers).
-- fleet_land, fleet_return_to_launch and fleet_hold bring drones down or stop them: they go to every
-  drone that can take them, and the result lists the others (not_sent) with the reason.
-
-Who takes part in each is decided by the Commander (`gateway.fleet.commands.fleet_verbs`); commands go out to
-all drones at once; long ones wait (capped) like the single-drone tools and answer 'running' with an
-operation id that monitor_fleet continues (`gateway.mcp.presenters` presents them).
+Who takes part in each is decided by the Commander (`gateway.fleet.commands.fleet_verbs`, whose docstring
+and docs/fleet.md state the rule); commands go out to all drones at once; long ones wait (capped) like the
+single-drone tools and answer 'running' with an operation id that monitor_fleet continues
+(`gateway.mcp.presenters` presents them).
 """
 
 from __future__ import annotations
