@@ -10,6 +10,7 @@ from typing import Annotated, Any
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, field_validator
 
 from gateway.api.telemetry_schema import TelemetrySnapshot, VehicleStatus
+from gateway.errors import InvalidArgument
 from gateway.registry.spec import (
     MAX_GCS_ENDPOINTS,
     NODE_TAG_PATTERN,
@@ -211,6 +212,14 @@ def as_utc(value: datetime | None) -> datetime | None:
     return value.replace(tzinfo=UTC) if value.tzinfo is None else value.astimezone(UTC)
 
 
+def time_window(since: datetime | None, until: datetime | None) -> tuple[datetime | None, datetime | None]:
+    """A query's ``since`` and ``until`` in UTC; refused when since is after until."""
+    since, until = as_utc(since), as_utc(until)
+    if since is not None and until is not None and since > until:
+        raise InvalidArgument(f"since ({since.isoformat()}) is after until ({until.isoformat()})")
+    return since, until
+
+
 __all__ = [
     "AuditPage",
     "FlightPage",
@@ -222,4 +231,5 @@ __all__ = [
     "VehicleOut",
     "VehicleUpdate",
     "as_utc",
+    "time_window",
 ]
