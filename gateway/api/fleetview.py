@@ -22,6 +22,7 @@ from gateway.fleet.policy.operator_locks import Lock, LockBook
 from gateway.fleet.vehicles.protocols import VehicleView
 from gateway.link.telemetry import TelemetryCache
 from gateway.runtime import Gateway
+from gateway.util.json_types import JsonObject
 
 STATUS_TEXTS_PER_DRONE = 5
 
@@ -64,7 +65,7 @@ def _home(cache: TelemetryCache) -> dict[str, object] | None:
     return {"lat": home.lat_deg, "lon": home.lon_deg, "alt_amsl_m": _num(home.abs_alt_m, 2)}
 
 
-OperationOf = Callable[[str], dict[str, object] | None]
+OperationOf = Callable[[str], JsonObject | None]
 
 
 def _no_operation(vehicle_id: str) -> None:

@@ -118,7 +118,7 @@ class ClusterRouter:
         drone_id: str,
         verb: str,
         caller: Caller,
-        arguments: dict[str, Any],
+        arguments: Mapping[str, object],
         on_message: OnMessage | None = None,
         wait_s: float = 0.0,
     ) -> Any:
@@ -127,7 +127,7 @@ class ClusterRouter:
             if on_message is not None:
                 await on_message(body)
 
-        result = await self.node.calls.forward(drone_id, verb, caller, arguments, observe, wait_s)
+        result = await self.node.calls.forward(drone_id, verb, caller, dict(arguments), observe, wait_s)
         self._note(result)
         return result
 

@@ -154,8 +154,9 @@ def _wrap(spec: ToolSpec) -> Callable[..., Any]:  # mcp SDK: add_tool takes any 
                 check_drone_id(drone_id)
             # 'Alpha' is alpha: operations and locks are keyed by the exact id (gateway.fleet.vehicles.ids)
             kwargs = canonical_arguments(tool_call.commander.registry, kwargs)
-            if isinstance(kwargs.get("drone_id"), str) and call is not None:
-                call.vehicle_id = kwargs["drone_id"]
+            canonical_id = kwargs.get("drone_id")
+            if isinstance(canonical_id, str) and call is not None:
+                call.vehicle_id = canonical_id
             result: Result = await fn(tool_call, **kwargs)
         except GatewayError as exc:
             if call is not None:

@@ -49,6 +49,7 @@ from gateway.fleet.policy.safety_rules import Rule as SafetyRule
 from gateway.fleet.policy.safety_rules import refuse
 from gateway.fleet.vehicles.protocols import FlyingVehicle, VehicleDirectory
 from gateway.fleet.vehicles.readings import vehicle_context
+from gateway.util.json_types import JsonMapping, JsonObject
 
 RECOVERY_KINDS = ("land", "return_to_launch")
 
@@ -75,7 +76,7 @@ class Order:
     send: Callable[[], Awaitable[object]]
     tracker: Tracker | None = None
     """A tracked operation (an `OperationView` to wait on); None: an instant command."""
-    params: dict[str, Any] = field(default_factory=dict)
+    params: JsonMapping = field(default_factory=dict)
     """The operation's parameters (stored with it)."""
     ends_operation: bool = False
     """An instant command that supersedes the drone's running operation (hold, mode, disarm)."""
@@ -129,7 +130,7 @@ class CommandPass:
         action: str,
         decide: Decide,
         message: str,
-        facts: dict[str, Any] | None = None,
+        facts: JsonObject | None = None,
     ) -> ActionResult:
         """`run` an instant command (done when the drone accepts it) and say what it did."""
         await self.run(caller, drone_id, action, decide)

@@ -60,6 +60,7 @@ from gateway.fleet.policy.safety import SafetyPolicy
 from gateway.fleet.vehicles.ids import canonical_arguments, canonical_drone_id
 from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleDirectory, VehicleView
 from gateway.registry.store import Store
+from gateway.util.json_types import JsonObject
 
 
 class Commander:
@@ -176,7 +177,7 @@ class Commander:
 
     async def call(
         self, verb: str, caller: Caller, /, *, notify: Notify | None = None, **arguments: Any
-    ) -> dict[str, Any]:
+    ) -> JsonObject:
         """Run ``verb`` with JSON-serialisable ``arguments``; the result as JSON-serialisable data.
         Unknown verbs and bad arguments raise InvalidArgument naming them; nothing is sent then.
         ``notify`` hears what a verb waits for before it can send (arm, takeoff). Drone ids are made

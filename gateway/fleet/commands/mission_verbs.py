@@ -43,6 +43,7 @@ from gateway.fleet.policy.mission_check import Unchecked
 from gateway.fleet.policy.safety_inputs import VehicleContext
 from gateway.fleet.vehicles.protocols import FlyingVehicle
 from gateway.fleet.vehicles.readings import value, vehicle_context
+from gateway.util.json_types import JsonObject
 
 
 def mission_items(waypoints: Sequence[Waypoint]) -> list[MissionItem]:
@@ -233,7 +234,7 @@ class MissionVerbs:
                         "call takeoff first or make item 1 kind='takeoff'"
                     )
                 self.commands.safety.check_takeoff(ctx, held[0].alt_rel_m, caller.policy_via)
-            params = {"unchecked": [u.text() for u in found]} if found else {}
+            params: JsonObject = {"unchecked": [u.text() for u in found]} if found else {}
             lands = any(item.kind in ("land", "rtl") for item in held)  # it may end on the ground
             return Order(vehicle.start_mission, MissionTracker(lands=lands), params=params)
 

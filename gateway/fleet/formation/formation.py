@@ -26,13 +26,14 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import asdict, dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
 from gateway.fleet.formation.assignment import min_cost_assignment
 from gateway.fleet.formation.shapes import TOL_M
 from gateway.fleet.policy.safety_rules import Rule, fmt, refuse
+from gateway.util.json_types import JsonObject
 
 if TYPE_CHECKING:
     import numpy as np
@@ -102,7 +103,7 @@ class FormationPlan:
                 return slot
         raise KeyError(drone_id)
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JsonObject:
         return asdict(self)
 
 

@@ -34,6 +34,7 @@ from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.contract import GroundCommand
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
+from gateway.util.json_types import JsonObject
 
 if TYPE_CHECKING:
     from gateway.link.contract import ConnectionState
@@ -73,7 +74,7 @@ class VehicleView(Protocol):
     def current_flight_id(self) -> int | None:
         """The flight being recorded here (armed now); None on the ground, or when another node records it."""
 
-    def status(self) -> dict[str, Any]: ...
+    def status(self) -> JsonObject: ...
 
     def require_ready(self) -> None:
         """Raise VehicleNotReady (naming the state and why) unless the vehicle can fly."""

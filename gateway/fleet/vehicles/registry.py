@@ -31,6 +31,7 @@ from gateway.link.sidecar import Confine
 from gateway.registry.records import VehicleRecord
 from gateway.registry.spec import VehicleSpec, gcs_endpoint_conflict
 from gateway.registry.store import Store
+from gateway.util.json_types import JsonObject
 
 log = logging.getLogger("gateway.registry")
 
@@ -113,7 +114,7 @@ class Registry:
             self._started = False
 
     # --- registrations ----------------------------------------------------------------------------------
-    async def add(self, spec: VehicleSpec | dict[str, Any], connect: bool = True) -> RegisteredVehicle:
+    async def add(self, spec: VehicleSpec | JsonObject, connect: bool = True) -> RegisteredVehicle:
         """Register (persist) a vehicle and, by default, connect it. Raises DuplicateVehicle."""
         spec = _validate_spec(spec)
         async with self._lock:
@@ -133,7 +134,7 @@ class Registry:
         """Change name, tags, expected_sysid, url, gcs_endpoints or auto_connect; a new URL or new ground
         station endpoints reconnect the vehicle."""
         old = self.get(vehicle_id)
-        link: dict[str, Any] = {k: changes[k] for k in ("url", "gcs_endpoints") if k in changes}
+        link: JsonObject = {k: changes[k] for k in ("url", "gcs_endpoints") if k in changes}
         if link:
             self._refuse_crossed_links(_validate_spec({**old.spec.model_dump(), **link}))
         record = await self.store.update_vehicle(vehicle_id, **changes)
@@ -312,7 +313,7 @@ class Registry:
                 log.exception("state listener failed")
 
 
-def _validate_spec(spec: VehicleSpec | dict[str, Any]) -> VehicleSpec:
+def _validate_spec(spec: VehicleSpec | JsonObject) -> VehicleSpec:
     try:
         return VehicleSpec.model_validate(spec.model_dump() if isinstance(spec, VehicleSpec) else spec)
     except ValidationError as exc:
