@@ -13,6 +13,7 @@ from gateway.api.telemetry_schema import TelemetrySnapshot, VehicleStatus
 from gateway.registry.spec import (
     MAX_GCS_ENDPOINTS,
     NODE_TAG_PATTERN,
+    VehicleChanges,
     VehicleSpec,
     validate_connection_url,
     validate_gcs_endpoints,
@@ -148,8 +149,25 @@ class VehicleUpdate(BaseModel):
             raise ValueError("cannot be null")
         return value
 
-    def changes(self) -> dict[str, object]:
-        return {name: getattr(self, name) for name in self.model_fields_set}
+    def changes(self) -> VehicleChanges:
+        """The fields the request set (a null where one is refused was refused by the validators)."""
+        changes = VehicleChanges()
+        given = self.model_fields_set
+        if "name" in given:
+            changes["name"] = self.name
+        if "tags" in given and self.tags is not None:
+            changes["tags"] = self.tags
+        if "expected_sysid" in given:
+            changes["expected_sysid"] = self.expected_sysid
+        if "node_tag" in given:
+            changes["node_tag"] = self.node_tag
+        if "url" in given and self.url is not None:
+            changes["url"] = self.url
+        if "gcs_endpoints" in given and self.gcs_endpoints is not None:
+            changes["gcs_endpoints"] = self.gcs_endpoints
+        if "auto_connect" in given and self.auto_connect is not None:
+            changes["auto_connect"] = self.auto_connect
+        return changes
 
 
 class VehicleOut(VehicleRecord):

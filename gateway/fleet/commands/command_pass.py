@@ -33,7 +33,6 @@ from collections.abc import Awaitable, Callable
 from contextvars import ContextVar
 from dataclasses import dataclass, field
 from enum import Enum
-from typing import Any
 
 from gateway.config import Settings
 from gateway.fleet.operations.operation_state import Operation
@@ -93,7 +92,7 @@ class Sent:
     context: VehicleContext
     operation: Operation | None = None
     """The tracked operation started."""
-    result: Any = None
+    result: object = None
     """What an instant command's send returned."""
     ended: Operation | None = None
     """The operation an instant command superseded."""

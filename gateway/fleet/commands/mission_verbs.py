@@ -379,10 +379,15 @@ class MissionVerbs:
                 governed=vehicle.limit_params,
             )
             self.commands.safety.check_actuation(ctx, caller.policy_via)
-            return Order(lambda: vehicle.set_param(name, value))
 
-        sent = await self.commands.run(caller, drone_id, f"set_parameter {name}", decide)
-        val, kind = sent.result
+            async def write() -> None:
+                written.append(await vehicle.set_param(name, value))
+
+            return Order(write)
+
+        written: list[tuple[float | int, str]] = []  # the value as the autopilot stored it, its type
+        await self.commands.run(caller, drone_id, f"set_parameter {name}", decide)
+        val, kind = written[0]
         return ParamValue(drone_id=drone_id, name=name, value=val, type=kind)
 
     @command
