@@ -437,12 +437,9 @@ def _restart_truth(vehicle: VehicleView, record: OperationRecord) -> str:
     target = ""
     params = record.params or {}
     pos = position(vehicle)
-    if (
-        pos is not None
-        and isinstance(params.get("lat_deg"), int | float)
-        and isinstance(params.get("lon_deg"), int | float)
-    ):
-        far = geo.horizontal_distance_m(pos[0], pos[1], float(params["lat_deg"]), float(params["lon_deg"]))
+    lat, lon = params.get("lat_deg"), params.get("lon_deg")
+    if pos is not None and isinstance(lat, int | float) and isinstance(lon, int | float):
+        far = geo.horizontal_distance_m(pos[0], pos[1], float(lat), float(lon))
         target = f", {far:.0f} m from the {record.kind}'s target"
     return f"{said}; now: {_now_doing(vehicle)}{target}"
 
