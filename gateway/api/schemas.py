@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 from datetime import UTC, datetime
-from typing import Annotated, Any
+from typing import Annotated
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, field_validator
 
@@ -26,6 +26,7 @@ from gateway.registry.store import (
     StatusTextRecord,
     VehicleRecord,
 )
+from gateway.util.json_types import DocumentedJsonObject, JsonObject
 
 _NUMBER = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
 
@@ -45,18 +46,18 @@ _PORT = r"([1-9][0-9]{0,3}|[1-5][0-9]{4}|6[0-4][0-9]{3}|65[0-4][0-9]{2}|655[0-2]
 _NETWORK_URL = rf"(udpin|udpout|tcpin|tcpout)://[A-Za-z0-9.\-]{{1,253}}:{_PORT}"
 #: what `validate_connection_url` accepts, said in the OpenAPI document (the validator's line stays the
 #: answer to a URL outside it)
-URL_SCHEMA: dict[str, Any] = {
+URL_SCHEMA: JsonObject = {
     "type": "string",
     "maxLength": 256,
     "pattern": rf"^({_NETWORK_URL}|serial:///[^:?#@]*(:[0-9]*)?)$",
 }
-GCS_ENDPOINTS_SCHEMA: dict[str, Any] = {
+GCS_ENDPOINTS_SCHEMA: JsonObject = {
     "type": "array",
     "items": {"type": "string", "maxLength": 256, "pattern": rf"^{_NETWORK_URL}$"},
     "maxItems": MAX_GCS_ENDPOINTS,
     "uniqueItems": True,
 }
-TAGS_SCHEMA: dict[str, Any] = {
+TAGS_SCHEMA: JsonObject = {
     "type": "array",
     "items": {"type": "string", "pattern": r"^[A-Za-z0-9_.\-]{1,32}$"},
     "maxItems": 20,
@@ -88,11 +89,11 @@ class VehicleCreate(VehicleSpec):
         return VehicleSpec.model_validate(self.model_dump(exclude={"connect"}))
 
 
-def _not_nullable(schema: dict[str, Any]) -> Callable[[dict[str, Any]], None]:
+def _not_nullable(schema: JsonObject) -> Callable[[JsonObject], None]:
     """The field's OpenAPI schema is ``schema`` (it may be omitted, never null), with its description."""
 
-    def replace(generated: dict[str, Any]) -> None:
-        described: dict[str, Any] = {k: generated[k] for k in ("title", "description") if k in generated}
+    def replace(generated: JsonObject) -> None:
+        described: JsonObject = {k: generated[k] for k in ("title", "description") if k in generated}
         generated.clear()
         generated.update({**schema, **described})
 
@@ -180,7 +181,7 @@ class VehicleOut(VehicleRecord):
     locked: str | None = Field(
         None, description="Why agents may not command this drone (its takeover lock, operator locks)."
     )
-    taken_over: dict[str, Any] | None = Field(
+    taken_over: DocumentedJsonObject | None = Field(
         None,
         description="Its takeover lock: a pilot, another ground station or a failsafe changed its mode "
         "while the gateway flew it (reason, by, locked_at); DELETE /vehicles/{id}/takeover releases it.",

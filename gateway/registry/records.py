@@ -12,7 +12,7 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
 from gateway.registry.spec import VehicleSpec
-from gateway.util.json_types import JsonObject, JsonValue
+from gateway.util.json_types import DocumentedJsonObject, JsonObject, JsonValue
 
 AUDIT_MAX_STRING = 500
 AUDIT_MAX_JSON = 8_000
@@ -173,11 +173,11 @@ class OperationRecord(_Record):
     id: str = Field(min_length=1, max_length=64)
     vehicle_id: str
     kind: str
-    params: JsonObject = Field(default_factory=dict)
+    params: DocumentedJsonObject = Field(default_factory=dict)
     status: OperationStatus
     progress: float = Field(0.0, ge=0.0, le=1.0)
     message: str | None = None
-    result: JsonObject | None = None
+    result: DocumentedJsonObject | None = None
     session_key: str | None = None
     created_at: datetime = Field(default_factory=utcnow)
     updated_at: datetime = Field(default_factory=utcnow)

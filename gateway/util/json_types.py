@@ -9,13 +9,25 @@ reads one takes `JsonMapping` (a ``dict[str, float]`` is one too).
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
+from typing import Annotated
 
-from pydantic import JsonValue
+from pydantic import JsonValue, WithJsonSchema
 
-__all__ = ["JsonMapping", "JsonObject", "JsonValue", "json_float", "json_list", "json_object"]
+__all__ = [
+    "DocumentedJsonObject",
+    "JsonMapping",
+    "JsonObject",
+    "JsonValue",
+    "json_float",
+    "json_list",
+    "json_object",
+]
 
 JsonObject = dict[str, JsonValue]
 JsonMapping = Mapping[str, JsonValue]
+#: a JsonObject field of a model the REST API documents: its schema an object with any members (JsonValue's
+#: own schema says no type, which the OpenAPI document must)
+DocumentedJsonObject = Annotated[JsonObject, WithJsonSchema({"type": "object", "additionalProperties": True})]
 
 
 def json_list(items: Iterable[JsonValue]) -> list[JsonValue]:

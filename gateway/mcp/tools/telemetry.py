@@ -21,7 +21,6 @@ from gateway.mcp.results import (
     BatteryOut,
     DataOut,
     GpsOut,
-    JsonLike,
     SnapshotOut,
     SpeedOut,
     StatusTextOut,
@@ -31,6 +30,7 @@ from gateway.mcp.results import (
     surface_telemetry,
 )
 from gateway.mcp.toolkit import DroneId, Toolset
+from gateway.util.json_types import JsonValue
 
 toolset = Toolset("telemetry")
 
@@ -216,7 +216,7 @@ async def print_status_text(
     )
 
 
-def _status_text(item: object) -> dict[str, JsonLike]:
+def _status_text(item: object) -> dict[str, JsonValue]:
     if isinstance(item, tuple | list) and len(item) == 3:
         t, severity, text = item
     else:
