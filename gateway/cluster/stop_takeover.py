@@ -40,6 +40,7 @@ from gateway.cluster.stoplink import StopTarget, send_stop
 from gateway.errors import GatewayError, NoOwner, NotRun, StopPending
 from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
+from gateway.util.json_types import JsonObject
 
 if TYPE_CHECKING:
     from gateway.fleet.vehicles.registry import Registry
@@ -151,7 +152,7 @@ class StopTakeover:
 
     async def _direct_until(
         self, drone_id: str, verb: str, caller: Caller, epoch: int | None, deadline: float
-    ) -> dict[str, Any]:
+    ) -> JsonObject:
         """The drone's own link, tried again until ``deadline`` (it may be let go of any moment)."""
         while True:
             try:
@@ -190,7 +191,7 @@ class StopTakeover:
 
     async def _direct(
         self, drone_id: str, verb: str, caller: Caller, epoch: int | None, within_s: float = DIRECT_S
-    ) -> dict[str, Any]:
+    ) -> JsonObject:
         started = time.monotonic()
         result = await send_stop(self._target(drone_id, epoch), verb, within_s, hear_first=True)
         if result in REFUSED:

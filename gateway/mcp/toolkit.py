@@ -128,7 +128,7 @@ def check_drone_id(drone_id: str) -> None:
         )
 
 
-def _wrap(spec: ToolSpec) -> Callable[..., Any]:  # mcp SDK: add_tool takes any function
+def _wrap(spec: ToolSpec) -> Callable[..., Any]:  # Any: mcp SDK, add_tool takes any function
     """The handler the SDK registers: the tool's own parameters (without its ``ToolCall``) plus the
     SDK-injected ``ctx``."""
     fn = spec.fn
@@ -145,7 +145,7 @@ def _wrap(spec: ToolSpec) -> Callable[..., Any]:  # mcp SDK: add_tool takes any 
     return_annotation = Annotated[CallToolResult, result_model]
 
     @functools.wraps(fn)
-    async def handler(ctx: ToolContext, **kwargs: Any) -> CallToolResult:  # mcp SDK: its JSON arguments
+    async def handler(ctx: ToolContext, **kwargs: Any) -> CallToolResult:  # Any: mcp SDK, its JSON arguments
         call = current_call.get()
         try:
             tool_call = ToolCall.of(ctx)

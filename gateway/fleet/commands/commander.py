@@ -37,8 +37,6 @@ way. Callbacks (progress, "still initialising" notices) are never part of a verb
 
 from __future__ import annotations
 
-from typing import Any
-
 from pydantic import BaseModel
 
 from gateway.config import Settings
@@ -176,7 +174,7 @@ class Commander:
         return canonical_drone_id(self.registry, drone_id)
 
     async def call(
-        self, verb: str, caller: Caller, /, *, notify: Notify | None = None, **arguments: Any
+        self, verb: str, caller: Caller, /, *, notify: Notify | None = None, **arguments: object
     ) -> JsonObject:
         """Run ``verb`` with JSON-serialisable ``arguments``; the result as JSON-serialisable data.
         Unknown verbs and bad arguments raise InvalidArgument naming them; nothing is sent then.
