@@ -15,7 +15,7 @@ from pathlib import Path
 GATEWAY = Path(__file__).resolve().parents[1] / "gateway"
 
 #: the most ``Any`` gateway/ may hold (lower it when you type one away)
-MAX_ANY = 123
+MAX_ANY = 122
 
 #: modules whose ``Any`` are not typed or commented yet (see the module docstring)
 UNCOMMENTED = frozenset(
@@ -33,7 +33,6 @@ UNCOMMENTED = frozenset(
         "fleet/commands/command_core.py",
         "fleet/vehicles/readings.py",
         "link/telemetry.py",
-        "mcp/tools/telemetry.py",
         "registry/spool.py",
         "registry/store_audit.py",
         "registry/store_core.py",
