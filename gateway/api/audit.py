@@ -27,7 +27,7 @@ log = logging.getLogger(__name__)
 
 AUDITED_METHODS = frozenset({"POST", "PUT", "PATCH", "DELETE"})
 
-Handler = Callable[[Request], Coroutine[Any, Any, Response]]  # FastAPI: get_route_handler
+Handler = Callable[[Request], Coroutine[Any, Any, Response]]  # Any: FastAPI, get_route_handler's
 
 
 async def _arguments(request: Request) -> dict[str, object]:

@@ -100,8 +100,9 @@ async def flight_tlog(flight_id: FlightId, store: StoreDep, registry: RegistryDe
     sysid, autopilot = (vehicle.expected_sysid if vehicle else None) or 1, None
     try:
         status = registry.get(flight.vehicle_id).status()
-        sysid = status.get("sysid") or sysid
-        autopilot = status.get("autopilot")
+        heard, named = status.get("sysid"), status.get("autopilot")
+        sysid = heard if isinstance(heard, int) and heard else sysid
+        autopilot = named if isinstance(named, str) else None
     except UnknownVehicle:
         pass
     data = track_tlog(flight, track, texts, sysid=sysid, autopilot=autopilot)

@@ -38,6 +38,7 @@ from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stoplink import StopTarget, direct_stop_answer, send_stop
 from gateway.errors import GatewayError, NoOwner, NotRun, StopPending
 from gateway.fleet.policy.caller import Caller
+from gateway.util.json_types import JsonObject
 
 if TYPE_CHECKING:
     from gateway.fleet.vehicles.registry import Registry
@@ -149,7 +150,7 @@ class StopTakeover:
 
     async def _direct_until(
         self, drone_id: str, verb: str, caller: Caller, epoch: int | None, deadline: float
-    ) -> dict[str, Any]:
+    ) -> JsonObject:
         """The drone's own link, tried again until ``deadline`` (it may be let go of any moment)."""
         while True:
             try:
@@ -188,7 +189,7 @@ class StopTakeover:
 
     async def _direct(
         self, drone_id: str, verb: str, caller: Caller, epoch: int | None, within_s: float = DIRECT_S
-    ) -> dict[str, Any]:
+    ) -> JsonObject:
         started = time.monotonic()
         result = await send_stop(self._target(drone_id, epoch), verb, within_s, hear_first=True)
         if result in REFUSED:

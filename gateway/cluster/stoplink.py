@@ -58,6 +58,7 @@ class StopTarget:
     epoch: int
 
 
+# Any: pymavlink, the options of mavlink_connection
 def pymavlink_device(url: str) -> tuple[str, dict[str, Any], bool]:
     """The drone's URL (mavsdk_server syntax) as pymavlink's device, its options, and whether the link
     must first hear the drone to know where to send (we listen: ``udpin``, ``tcpin``)."""
@@ -77,7 +78,7 @@ def pymavlink_device(url: str) -> tuple[str, dict[str, Any], bool]:
     raise ValueError(f"url: the scheme must be one of serial, tcpout, tcpin, udpin, udpout; got '{url}'")
 
 
-def _heard(conn: Any, sysid: int | None, deadline: float) -> int | None:
+def _heard(conn: Any, sysid: int | None, deadline: float) -> int | None:  # Any: pymavlink, untyped
     """The drone's system id once any of its messages arrives (None: nothing before the deadline). A
     link that serves one ground station at a time (a TCP port) has not served this one until it hears
     the drone: until then anything sent would wait in the connection and run whenever it is served."""
@@ -118,6 +119,7 @@ def _send(target: StopTarget, command: int, within_s: float, hear_first: bool = 
         conn.close()
 
 
+# Any: pymavlink, its connection untyped
 def _sender(conn: Any, sysid: int, command: int, deadline: float) -> Callable[[], object]:
     """How to send ``command``: a COMMAND_LONG, or for a hold a reposition to where the drone is now."""
     if command != STOP_COMMANDS["hold"]:

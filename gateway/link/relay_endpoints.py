@@ -12,10 +12,11 @@ import termios
 import time
 from collections.abc import Awaitable, Callable, Hashable
 from dataclasses import dataclass
-from typing import Any, TypeVar
+from typing import TypeVar
 from urllib.parse import urlsplit
 
 from gateway.link.mavlink_frames import MAX_BUFFER, Frame, FrameSplitter
+from gateway.util.json_types import JsonObject, json_list
 from gateway.util.tasks import cancel_and_wait
 
 RECONNECT_INITIAL_S = 0.5
@@ -109,7 +110,7 @@ class Endpoint(abc.ABC):
             await serve(opened)
             await asyncio.sleep(delay)
 
-    def status(self) -> dict[str, Any]:
+    def status(self) -> JsonObject:
         age = None if self.stats.last_in is None else round(time.monotonic() - self.stats.last_in, 3)
         return {
             "url": self.url,
@@ -117,7 +118,7 @@ class Endpoint(abc.ABC):
             "frames_in": self.stats.frames_in,
             "frames_out": self.stats.frames_out,
             "last_in_age_s": age,
-            "system_ids": sorted(self.sysids),
+            "system_ids": json_list(sorted(self.sysids)),
             "error": self.refused or self.complaint,
             "refused": self.refused is not None,
         }

@@ -35,6 +35,7 @@ def install_argument_messages(tool: Tool) -> None:
     schema = tool.parameters
     known = frozenset(schema.get("properties", {}))
 
+    # Any: mcp SDK, Tool.run's context and result
     async def run_checked(arguments: SdkArguments, context: Any, convert_result: bool = False) -> Any:
         unknown = [name for name in arguments if name not in known]
         if unknown:

@@ -66,7 +66,7 @@ def tool_spec(tool: Tool) -> ToolSpec:
     filled = {"label": tool.name} if "label" in verb.signature.parameters else {}
     feeds_notify = "notify" in verb.callbacks
 
-    async def run(call: ToolCall, **arguments: Any) -> Result:  # mcp SDK: its validated JSON
+    async def run(call: ToolCall, **arguments: Any) -> Result:  # Any: mcp SDK, its validated JSON
         wait = bool(arguments.pop("wait", True)) if presenter.waits else False
         extra: dict[str, object] = {"notify": call.notify} if feeds_notify else {}
         if confirm is not None:

@@ -37,8 +37,6 @@ way. Callbacks (progress, "still initialising" notices) are never part of a verb
 
 from __future__ import annotations
 
-from typing import Any
-
 from pydantic import BaseModel
 
 from gateway.config import Settings
@@ -60,6 +58,7 @@ from gateway.fleet.policy.safety import SafetyPolicy
 from gateway.fleet.vehicles.ids import canonical_arguments, canonical_drone_id
 from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleDirectory, VehicleView
 from gateway.registry.store import Store
+from gateway.util.json_types import JsonObject
 
 
 class Commander:
@@ -175,8 +174,8 @@ class Commander:
         return canonical_drone_id(self.registry, drone_id)
 
     async def call(
-        self, verb: str, caller: Caller, /, *, notify: Notify | None = None, **arguments: Any
-    ) -> dict[str, Any]:
+        self, verb: str, caller: Caller, /, *, notify: Notify | None = None, **arguments: object
+    ) -> JsonObject:
         """Run ``verb`` with JSON-serialisable ``arguments``; the result as JSON-serialisable data.
         Unknown verbs and bad arguments raise InvalidArgument naming them; nothing is sent then.
         ``notify`` hears what a verb waits for before it can send (arm, takeoff). Drone ids are made

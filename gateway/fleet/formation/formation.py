@@ -26,7 +26,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import asdict, dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
@@ -34,6 +34,7 @@ from gateway.fleet.formation.assignment import min_cost_assignment
 from gateway.fleet.formation.shapes import TOL_M
 from gateway.fleet.policy.safety_inputs import Target
 from gateway.fleet.policy.safety_rules import Rule, fmt, refuse
+from gateway.util.json_types import JsonObject
 
 if TYPE_CHECKING:
     import numpy as np
@@ -96,7 +97,7 @@ class FormationPlan:
                 return slot
         raise KeyError(drone_id)
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JsonObject:
         return asdict(self)
 
 

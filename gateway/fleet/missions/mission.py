@@ -11,8 +11,9 @@ False). An item with ``speed_mps`` is preceded by a DO_CHANGE_SPEED wire item; t
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Literal, Protocol
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
@@ -115,6 +116,32 @@ class WireItem(ItemInt):
     seq: int = field(kw_only=True)
 
 
+class DownloadedItem(Protocol):
+    """A mission item as MAVSDK's mission_raw downloads it (its ``MissionItem``; x and y scaled by 1e7 in
+    the global frames)."""
+
+    @property
+    def seq(self) -> int: ...
+    @property
+    def frame(self) -> int: ...
+    @property
+    def command(self) -> int: ...
+    @property
+    def param1(self) -> float: ...
+    @property
+    def param2(self) -> float: ...
+    @property
+    def param3(self) -> float: ...
+    @property
+    def param4(self) -> float: ...
+    @property
+    def x(self) -> int: ...
+    @property
+    def y(self) -> int: ...
+    @property
+    def z(self) -> float: ...
+
+
 @dataclass
 class WirePlan:
     items: list[WireItem]
@@ -190,7 +217,7 @@ def _raw_of(w: WireItem, autocontinue: bool) -> RawItem:
     return RawItem(w.command, w.frame, w.param1, w.param2, w.param3, w.param4, x, y, w.z, autocontinue)
 
 
-def decode(wire: list[Any], *, home_slot: bool = True) -> tuple[list[MissionItem], WirePlan]:
+def decode(wire: Sequence[DownloadedItem], *, home_slot: bool = True) -> tuple[list[MissionItem], WirePlan]:
     """User items from a downloaded mission_raw list (with ``home_slot``, seq 0, home, is dropped)."""
     items: list[MissionItem] = []
     user_to_wire: list[int] = []

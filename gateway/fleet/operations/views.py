@@ -4,7 +4,7 @@ and rebuilt from JSON (``model_validate``), so a result can cross a process boun
 from __future__ import annotations
 
 from datetime import UTC, datetime
-from typing import Any, Literal
+from typing import Literal
 
 from pydantic import BaseModel, Field, SkipValidation, field_validator
 
@@ -14,6 +14,7 @@ from gateway.fleet.policy.operator_locks import Lock
 from gateway.fleet.vehicles.protocols import VehicleView
 from gateway.fleet.vehicles.readings import position
 from gateway.registry.records import OperationRecord
+from gateway.util.json_types import JsonObject
 
 
 class OperationFacts(BaseModel):
@@ -32,7 +33,7 @@ class OperationFacts(BaseModel):
 class OperationView(OperationFacts):
     """A tracked operation at one moment, with where its drone is."""
 
-    params: dict[str, Any] = Field(default_factory=dict)
+    params: JsonObject = Field(default_factory=dict)
     lat_deg: float | None = None
     lon_deg: float | None = None
     alt_m: float | None = None
@@ -86,7 +87,7 @@ class ActionResult(BaseModel):
     action: str
     message: str
     superseded_operation: str | None = None
-    facts: dict[str, Any] = Field(default_factory=dict)
+    facts: JsonObject = Field(default_factory=dict)
 
 
 class ArrivalView(BaseModel):
@@ -162,10 +163,10 @@ class FleetView(BaseModel):
     eta_s: float | None
     elapsed_s: float
     dispatch_s: list[float]
-    drones: list[dict[str, Any]]
-    not_sent: list[dict[str, Any]] = Field(default_factory=list)
+    drones: list[JsonObject]
+    not_sent: list[dict[str, object]] = Field(default_factory=list)  # `Unable.to_dict`: error details
     notes: list[str] = Field(default_factory=list)
-    plan: dict[str, Any] | None = None
+    plan: JsonObject | None = None
 
     @property
     def running(self) -> bool:
@@ -174,8 +175,8 @@ class FleetView(BaseModel):
 
 class FleetHoldResult(BaseModel):
     held: list[str]
-    failed: list[dict[str, Any]]
-    not_sent: list[dict[str, Any]]
+    failed: list[dict[str, object]]  # `Unable.to_dict`: error details
+    not_sent: list[dict[str, object]]
     superseded_fleet_operations: list[str]
 
 
