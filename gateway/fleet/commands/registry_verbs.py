@@ -8,8 +8,6 @@ operators change registrations. A registration's verb answers with the registrat
 
 from __future__ import annotations
 
-from typing import Any
-
 from gateway.errors import GatewayError, InvalidArgument, UnknownVehicle
 from gateway.fleet.commands.command_core import OperationDesk, command, operator_only, routed
 from gateway.fleet.commands.command_pass import CommandPass
@@ -63,7 +61,7 @@ class RegistryVerbs:
         return await self._record(spec.id)
 
     @command
-    async def update_drone(self, caller: Caller, drone_id: str, changes: dict[str, Any]) -> VehicleRecord:
+    async def update_drone(self, caller: Caller, drone_id: str, changes: dict[str, object]) -> VehicleRecord:
         """Change a registration (``changes``: some of `CHANGEABLE`; a new URL or new ground station
         endpoints reconnect a connected drone)."""
         operator_only(caller, "change registrations")
