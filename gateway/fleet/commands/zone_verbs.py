@@ -53,6 +53,7 @@ class ZoneVerbs:
         ``file_format`` is None). A .plan's geofence replaces the drone's zones before its items are
         checked, and is put back if they are refused; its rally points are kept for `export_plan`."""
         operator_only(caller, "upload a mission file (its geofence replaces the drone's zones)")
+        self.commands.registry.get(drone_id)  # UnknownVehicle before any zone is touched
         extras = PlanExtras()
         if file_format == "plan" or (file_format is None and content.lstrip().startswith("{")):
             content, extras = plan_extras.split_plan(content, prefix=f"{drone_id}-plan")
