@@ -6,13 +6,20 @@ Commander that is not a verb (an undeclared command, reaching around the declara
 from __future__ import annotations
 
 import ast
+import importlib
+import inspect
+import textwrap
 from pathlib import Path
 from typing import TypeGuard
+
+from fastapi import APIRouter
+from fastapi.routing import APIRoute
 
 from gateway.fleet.commands.command_core import READ_VERBS, TOOLS, VERBS
 from gateway.mcp.declared import declared  # noqa: F401  (imports every verb module: fills VERBS)
 
 ROOT = Path(__file__).resolve().parents[2]
+API_MODULES = sorted((ROOT / "gateway" / "api").glob("*.py"))
 #: what the doors read of the Commander that is no command (nothing is sent, nothing is audited)
 READS = frozenset(
     {
@@ -30,18 +37,20 @@ READS = frozenset(
         "geofences",
     }
 )
+#: the HTTP methods of a route that changes something (the audited ones)
+CHANGING = frozenset({"POST", "PUT", "PATCH", "DELETE"})
 #: what changes the registrations or the zones: the verbs' to do (`registry_verbs`, `zone_verbs`), never a
 #: route's
 CHANGES = frozenset({"add", "update", "remove", "connect", "disconnect", "move_origin", "replace"})
 
 
-def commander_uses(path: Path) -> set[str]:
+def commander_uses(path: Path | str) -> set[str]:
     """The attributes of a Commander a module uses: ``commander.X`` and ``<anything>.commander.X``; a
     verb called by name, ``commander.call("X", ...)``, counts as X (a name that is no literal as
     ``call``, which is no verb)."""
     used = set()
     by_name = set()
-    tree = ast.parse(path.read_text())
+    tree = ast.parse(path if isinstance(path, str) else path.read_text())
     for node in ast.walk(tree):
         if isinstance(node, ast.Call) and _of_commander(node.func) and node.func.attr == "call":
             first = node.args[0] if node.args else None
@@ -110,6 +119,26 @@ def test_rest_routes_change_registrations_and_zones_through_verbs() -> None:
     ) | changes_made(ROOT / "gateway" / "fleet" / "commands" / "zone_verbs.py") | changes_made(
         ROOT / "gateway" / "fleet" / "policy" / "zones.py"
     ), "the scan sees what the verbs change"
+
+
+def test_every_rest_route_that_changes_something_runs_a_verb() -> None:
+    """Each POST, PUT, PATCH and DELETE route of /api/v1 (decorated or added with add_api_route) calls
+    at least one declared verb: no change is made beside the one command path."""
+    routers = [getattr(importlib.import_module(f"gateway.api.{p.stem}"), "router", None) for p in API_MODULES]
+    routes = [
+        r
+        for router in routers
+        if isinstance(router, APIRouter)
+        for r in router.routes
+        if isinstance(r, APIRoute) and r.methods & CHANGING
+    ]
+    assert len(routes) > 20  # the scan sees the routes
+    without = sorted(
+        f"{sorted(r.methods & CHANGING)} {r.path}"
+        for r in routes
+        if not commander_uses(textwrap.dedent(inspect.getsource(r.endpoint))) & set(VERBS)
+    )
+    assert without == []
 
 
 def test_hand_written_tools_run_no_command() -> None:
