@@ -35,6 +35,7 @@ from gateway.fleet.operations.routing import FORWARDED, OnMessage, ProgressMessa
 from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import VehicleContext
+from gateway.fleet.policy.safety_rules import Rule, refuse
 from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.registry.store import OperationRecord, Store
 from gateway.util.json_types import JsonObject
@@ -262,6 +263,13 @@ def _relay(callbacks: Mapping[str, Callable[..., Awaitable[object]]]) -> OnMessa
             await callbacks["on_progress"](OperationView.model_validate(body["view"]))
 
     return relay
+
+
+def operator_only(caller: Caller, what: str) -> None:
+    """Refused (rule operator_lock) unless an operator asks (REST, the console): ``what`` says what
+    only an operator may do, and why agents may not."""
+    if not caller.is_operator:
+        raise refuse(Rule.OPERATOR_LOCK, f"only an operator may {what}", via=caller.via)
 
 
 def require_airborne(ctx: VehicleContext, action: str) -> None:

@@ -350,18 +350,22 @@ class NavigationVerbs:
             message=op.message,
         )
 
+    @command(tool=Tool("monitor_flight", "navigation", omit=("cap_s",)))
     @routed
     async def monitor(
         self,
         caller: Caller,
-        drone_id: str,
-        land_on_arrival: bool = False,
+        drone_id: DroneId,
+        land_on_arrival: Annotated[bool, Field(description="Land once the goto arrives")] = False,
         cap_s: float | None = None,
         *,
         on_progress: OnProgress | None = None,
     ) -> OperationView:
-        """Wait (capped) for the drone's current operation; with ``land_on_arrival``, a goto that
-        arrived is followed by a landing, waited for within the same cap."""
+        """Wait (capped) for the drone's current action to finish and report it; call again if still running.
+
+        Waits itself (``on_progress`` hears each change; the tool offers no ``wait``), at most ``cap_s``
+        (default: the MCP wait cap). With ``land_on_arrival``, a goto that arrived is followed by a
+        landing through the pass, waited for within the same cap."""
         vehicle = self.commands.registry.get(drone_id)
         op = self.commands.operations.latest(drone_id)
         if op is None:
