@@ -101,13 +101,14 @@ class Altitude(DroneStep):
 
 class Move(DroneStep):
     """Legs from ``origin`` (horizontal legs add up; up/down legs change the height), at ``altitude``
-    above home when given."""
+    above home when given. The origin comes before the legs: a decoder writes properties in the schema's
+    order, and a model that has written the legs and the altitude first falls back on ``here``."""
 
     action: Literal["move"]
     drone: str
+    origin: Reference
     legs: list[Leg]
     altitude: Length | None
-    origin: Reference
 
 
 #: the polygons a shape's name says the sides of
@@ -132,10 +133,12 @@ class Pattern(DroneStep):
 
 
 class Formation(Strict):
-    """The drones in a shape ``spacing`` apart, centred where they are (or on ``origin``), then ``legs``."""
+    """The drones in a shape ``spacing`` apart, centred where they are (or on ``origin``), then ``legs``.
+    At least two drones: under the schema a model cannot write one drone's circle as a formation (it is an
+    orbit, a pattern)."""
 
     action: Literal["formation"]
-    drones: list[str] = Field(min_length=1)
+    drones: list[str] = Field(min_length=2)
     shape: Literal["line", "column", "wedge", "grid", "circle"]
     spacing: Length
     altitude: Length

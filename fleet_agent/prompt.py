@@ -17,10 +17,11 @@ each thing the request asks, in the order it gives them. Write only the JSON, on
 Each step has an "action":
 - takeoff {drone, altitude}; land {drone}; return_home {drone}; hold {drone}
 - altitude {drone, altitude}: climb or descend to that height above home
-- move {drone, legs, altitude, origin}: legs are [{distance, direction}] (north, south, east, west, northeast,
-  northwest, southeast, southwest, up, down); altitude is the height to fly at or null; origin says where
-  the legs start: {"kind": "here"} the drone itself, "home", {"kind": "drone", "drone": id} another
-  drone, {"kind": "place", "place": name} a named place, {"kind": "point", "lat_deg", "lon_deg"} coordinates
+- move {drone, origin, legs, altitude}: origin says where the legs start: {"kind": "here"} the drone
+  itself, {"kind": "home"} its home, {"kind": "drone", "drone": id} another drone (a spot north of another
+  drone), {"kind": "place", "place": name} a named place, {"kind": "point", "lat_deg", "lon_deg"}
+  coordinates; legs are [{distance, direction}] (north, south, east, west, northeast, northwest,
+  southeast, southwest, up, down); altitude is the height to fly at or null
 - pattern {drone, shape, size, ...}: ONE drone flies a shape: triangle, square, pentagon, hexagon,
   octagon or polygon (sides) with size = side length; orbit (a circle, size = radius); survey (lines,
   size = line length, spacing); optional heading (first leg), turn (right, left), altitude
@@ -29,13 +30,16 @@ Each step has an "action":
 - report {drones, readings (battery, altitude, position, flying, mode), pick (none, highest, lowest)}:
   a question; nothing flies
 - if {drone, reading (battery or altitude), compare (above, below, at_least, at_most), value, then,
-  otherwise}: steps that depend on a reading
-- choose {among, reading, pick (highest or lowest), then}: the chosen drone does the steps
+  otherwise}: ONE drone's steps depend on its reading against a threshold the request gives
+- choose {among, reading, pick (highest or lowest), then}: SEVERAL drones are compared with each other
+  (the one with more or less battery, the higher or lower one); the chosen drone does the steps, the
+  others get no step
 - ask {text}: only when the request cannot be planned
 Every distance and altitude is {"value": number, "unit": "m" | "ft" | "km" | "mi" | "yd" | "nmi"}, in the
 unit the request used. Never compute: the host converts units and works out the geometry. A drone on the
-ground takes off by itself before a move. Plan only what is asked: no step for a drone the request leaves
-alone, and every landing or return the request asks for.
+ground takes off by itself before a move or a pattern. Plan only what is asked: no step for a drone the
+request leaves alone, no landing when the drone is to stay up, and every landing or return the request
+asks for, also after a pattern.
 """
 
 
@@ -53,31 +57,36 @@ EXAMPLES: list[tuple[str, dict[str, Any]]] = [
     ("delta: go up 40 feet, then come back down",
      {"steps": [{"action": "takeoff", "drone": "delta", "altitude": _m(40, "ft")},
                 {"action": "land", "drone": "delta"}]}),
-    ("Fly echo in a triangle with 30 m sides at 15 m, the first side towards the west.",
+    ("Fly echo in a triangle with 30 m sides at 15 m, first side west, and set it down after.",
      {"steps": [{"action": "pattern", "drone": "echo", "shape": "triangle", "size": _m(30),
-                 "heading": "west", "altitude": _m(15)}]}),
+                 "heading": "west", "altitude": _m(15)},
+                {"action": "land", "drone": "echo"}]}),
     ("Send delta to a spot 20 m east of echo, at 12 m, and leave it there.",
-     {"steps": [{"action": "move", "drone": "delta", "legs": [_leg(20, "east")], "altitude": _m(12),
-                 "origin": {"kind": "drone", "drone": "echo"}}]}),
+     {"steps": [{"action": "move", "drone": "delta", "origin": {"kind": "drone", "drone": "echo"},
+                 "legs": [_leg(20, "east")], "altitude": _m(12)}]}),
     ("echo : décolle à 8 m, avance de 25 m vers l'ouest puis atterris.",
      {"steps": [{"action": "takeoff", "drone": "echo", "altitude": _m(8)},
-                {"action": "move", "drone": "echo", "legs": [_leg(25, "west")], "altitude": None,
-                 "origin": _HERE},
+                {"action": "move", "drone": "echo", "origin": _HERE, "legs": [_leg(25, "west")],
+                 "altitude": None},
                 {"action": "land", "drone": "echo"}]}),
     ("Delta soll auf 14 m steigen und dort bleiben.",
      {"steps": [{"action": "altitude", "drone": "delta", "altitude": _m(14)}]}),
     ("echo, 0.1 km al sur y 5 m más alto, luego vuelve a casa",
-     {"steps": [{"action": "move", "drone": "echo", "legs": [_leg(0.1, "south", "km"), _leg(5, "up")],
-                 "altitude": None, "origin": _HERE},
+     {"steps": [{"action": "move", "drone": "echo", "origin": _HERE,
+                 "legs": [_leg(0.1, "south", "km"), _leg(5, "up")], "altitude": None},
                 {"action": "return_home", "drone": "echo"}]}),
     ("If delta has under 25 % battery keep it down, otherwise lift it to 9 m and land it again.",
      {"steps": [{"action": "if", "drone": "delta", "reading": "battery", "compare": "below", "value": 25,
                  "then": [{"action": "report", "drones": ["delta"], "readings": ["battery"], "pick": "none"}],
                  "otherwise": [{"action": "takeoff", "drone": "delta", "altitude": _m(9)},
                                {"action": "land", "drone": "delta"}]}]}),
-    ("The emptier of delta and echo flies a 50 m circle around where it is.",
-     {"steps": [{"action": "choose", "among": ["delta", "echo"], "reading": "battery", "pick": "lowest",
-                 "then": [{"action": "pattern", "drone": "delta", "shape": "orbit", "size": _m(50)}]}]}),
+    ("Of delta and echo, the one with more charge goes 40 m west at 10 m; the other one stays where it is.",
+     {"steps": [{"action": "choose", "among": ["delta", "echo"], "reading": "battery", "pick": "highest",
+                 "then": [{"action": "move", "drone": "delta", "origin": _HERE, "legs": [_leg(40, "west")],
+                           "altitude": _m(10)}]}]}),
+    ("Have echo circle its current spot at 20 m, 15 m out, and keep it up there afterwards.",
+     {"steps": [{"action": "pattern", "drone": "echo", "shape": "orbit", "size": _m(15),
+                 "altitude": _m(20)}]}),
     ("delta and echo side by side, 6 m apart, at 10 m, 15 m north of here",
      {"steps": [{"action": "formation", "drones": ["delta", "echo"], "shape": "line", "spacing": _m(6),
                  "altitude": _m(10), "legs": [_leg(15, "north")]}]}),

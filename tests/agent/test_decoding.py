@@ -89,6 +89,7 @@ async def test_a_plan_that_leaves_out_a_named_drone_is_asked_again_once(scripted
     assert attempt.plan.steps[0].origin.drone == "bravo"  # type: ignore[union-attr]
     repair = server.requests[1]["messages"][-1]["content"]
     assert "the request names bravo, which no step of the plan does" in repair, repair
+    assert "Request: alpha 25 m north of bravo at 15 m" in repair, repair
 
 
 async def test_a_repair_that_leaves_out_more_is_not_taken(scripted) -> None:

@@ -83,6 +83,17 @@ def test_a_drone_outside_the_fleet_or_a_length_without_unit_does_not_validate() 
     assert parse_plan('{"steps": [{"action": "land", "drone": "Alpha"}]}', FLEET).steps[0].drone == "alpha"
 
 
+def test_a_formation_has_two_drones_and_a_move_its_origin_before_its_legs() -> None:
+    """One drone's circle is an orbit: the schema a decoder follows has no formation of one drone. A move
+    names where it starts before its legs (a model that wrote the legs first fell back on ``here``)."""
+    defs = plan_schema(FLEET)["$defs"]
+    assert defs["Formation"]["properties"]["drones"]["minItems"] == 2
+    assert list(defs["Move"]["properties"])[:4] == ["action", "drone", "origin", "legs"]
+    one = {"action": "formation", "drones": ["alpha"], "shape": "circle", "spacing": m(25), "altitude": m(15)}
+    with pytest.raises(ValidationError, match="at least 2 items"):
+        parse_plan({"steps": [one]}, FLEET)
+
+
 def test_the_prompt_examples_are_valid_plans_of_their_own_fleet() -> None:
     for _, plan in EXAMPLES:
         parse_plan(plan, ["delta", "echo"])
