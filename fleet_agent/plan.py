@@ -11,7 +11,7 @@ import copy
 from enum import StrEnum
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
 from fleet_agent.units import Unit, to_metres
 
@@ -99,6 +99,11 @@ class Altitude(DroneStep):
     altitude: Length
 
 
+#: what a drone does once a move or a pattern is flown: a required choice, so that a model decides it
+#: where it writes the step (a landing the request asks for at the end was dropped as a separate step)
+Ending = Literal["stay", "land", "return_home"]
+
+
 class Move(DroneStep):
     """Legs from ``origin`` (horizontal legs add up; up/down legs change the height), at ``altitude``
     above home when given. The origin comes before the legs: a decoder writes properties in the schema's
@@ -109,6 +114,7 @@ class Move(DroneStep):
     origin: Reference
     legs: list[Leg]
     altitude: Length | None
+    after: Ending
 
 
 #: the polygons a shape's name says the sides of
@@ -130,6 +136,7 @@ class Pattern(DroneStep):
     heading: Direction = Direction.north
     turn: Literal["right", "left"] = "right"
     altitude: Length | None = None
+    after: Ending
 
 
 class Formation(Strict):
@@ -229,6 +236,23 @@ Step = Annotated[
 
 class Plan(Strict):
     steps: list[Step] = Field(max_length=40)
+
+    @model_validator(mode="after")
+    def _one_ending(self) -> Plan:
+        """A landing or return written both as a step's ``after`` and as the next step is flown once."""
+        kept: list[Any] = []
+        for step in self.steps:
+            previous = kept[-1] if kept else None
+            if (
+                isinstance(step, Land | ReturnHome)
+                and isinstance(previous, Move | Pattern)
+                and previous.drone == step.drone
+                and previous.after == step.action
+            ):
+                continue
+            kept.append(step)
+        self.steps = kept
+        return self
 
 
 def known_drone(value: str, info: ValidationInfo) -> str:

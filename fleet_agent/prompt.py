@@ -17,14 +17,16 @@ each thing the request asks, in the order it gives them. Write only the JSON, on
 Each step has an "action":
 - takeoff {drone, altitude}; land {drone}; return_home {drone}; hold {drone}
 - altitude {drone, altitude}: climb or descend to that height above home
-- move {drone, origin, legs, altitude}: origin says where the legs start: {"kind": "here"} the drone
+- move {drone, origin, legs, altitude, after}: origin says where the legs start: {"kind": "here"} the drone
   itself, {"kind": "home"} its home, {"kind": "drone", "drone": id} another drone (a spot north of another
   drone), {"kind": "place", "place": name} a named place, {"kind": "point", "lat_deg", "lon_deg"}
   coordinates; legs are [{distance, direction}] (north, south, east, west, northeast, northwest,
-  southeast, southwest, up, down); altitude is the height to fly at or null
+  southeast, southwest, up, down); altitude is the height to fly at or null; after is what the drone
+  does once there: "stay", "land" (there) or "return_home"
 - pattern {drone, shape, size, ...}: ONE drone flies a shape: triangle, square, pentagon, hexagon,
   octagon or polygon (sides) with size = side length; orbit (a circle, size = radius); survey (lines,
-  size = line length, spacing); optional heading (first leg), turn (right, left), altitude
+  size = line length, spacing); optional heading (first leg), turn (right, left), altitude; after
+  ("stay", "land", "return_home") as for a move
 - formation {drones, shape (line, column, wedge, grid, circle), spacing, altitude, legs (the centre's move),
   origin (optional: the centre, as for a move)}: SEVERAL drones placed together
 - report {drones, readings (battery, altitude, position, flying, mode), pick (none, highest, lowest)}:
@@ -38,8 +40,7 @@ Each step has an "action":
 Every distance and altitude is {"value": number, "unit": "m" | "ft" | "km" | "mi" | "yd" | "nmi"}, in the
 unit the request used. Never compute: the host converts units and works out the geometry. A drone on the
 ground takes off by itself before a move or a pattern. Plan only what is asked: no step for a drone the
-request leaves alone, no landing when the drone is to stay up, and every landing or return the request
-asks for, also after a pattern.
+request leaves alone, and every landing or return the request asks for ("after" of a move or a pattern).
 """
 
 
@@ -59,22 +60,25 @@ EXAMPLES: list[tuple[str, dict[str, Any]]] = [
                 {"action": "land", "drone": "delta"}]}),
     ("Fly echo in a triangle with 30 m sides at 15 m, first side west, and set it down after.",
      {"steps": [{"action": "pattern", "drone": "echo", "shape": "triangle", "size": _m(30),
-                 "heading": "west", "altitude": _m(15)},
-                {"action": "land", "drone": "echo"}]}),
+                 "heading": "west", "altitude": _m(15), "after": "land"}]}),
     ("Send delta to a spot 20 m east of echo, at 12 m, and leave it there.",
      {"steps": [{"action": "move", "drone": "delta", "origin": {"kind": "drone", "drone": "echo"},
-                 "legs": [_leg(20, "east")], "altitude": _m(12)}]}),
+                 "legs": [_leg(20, "east")], "altitude": _m(12), "after": "stay"}]}),
     ("echo : décolle à 8 m, avance de 25 m vers l'ouest puis atterris.",
      {"steps": [{"action": "takeoff", "drone": "echo", "altitude": _m(8)},
                 {"action": "move", "drone": "echo", "origin": _HERE, "legs": [_leg(25, "west")],
-                 "altitude": None},
-                {"action": "land", "drone": "echo"}]}),
+                 "altitude": None, "after": "land"}]}),
+    ("echo 20 m south at 15 m, and delta just up to 10 m and back down",
+     {"steps": [{"action": "move", "drone": "echo", "origin": _HERE, "legs": [_leg(20, "south")],
+                 "altitude": _m(15), "after": "stay"},
+                {"action": "takeoff", "drone": "delta", "altitude": _m(10)},
+                {"action": "land", "drone": "delta"}]}),
     ("Delta soll auf 14 m steigen und dort bleiben.",
      {"steps": [{"action": "altitude", "drone": "delta", "altitude": _m(14)}]}),
     ("echo, 0.1 km al sur y 5 m más alto, luego vuelve a casa",
      {"steps": [{"action": "move", "drone": "echo", "origin": _HERE,
-                 "legs": [_leg(0.1, "south", "km"), _leg(5, "up")], "altitude": None},
-                {"action": "return_home", "drone": "echo"}]}),
+                 "legs": [_leg(0.1, "south", "km"), _leg(5, "up")], "altitude": None,
+                 "after": "return_home"}]}),
     ("If delta has under 25 % battery keep it down, otherwise lift it to 9 m and land it again.",
      {"steps": [{"action": "if", "drone": "delta", "reading": "battery", "compare": "below", "value": 25,
                  "then": [{"action": "report", "drones": ["delta"], "readings": ["battery"], "pick": "none"}],
@@ -83,10 +87,10 @@ EXAMPLES: list[tuple[str, dict[str, Any]]] = [
     ("Of delta and echo, the one with more charge goes 40 m west at 10 m; the other one stays where it is.",
      {"steps": [{"action": "choose", "among": ["delta", "echo"], "reading": "battery", "pick": "highest",
                  "then": [{"action": "move", "drone": "delta", "origin": _HERE, "legs": [_leg(40, "west")],
-                           "altitude": _m(10)}]}]}),
+                           "altitude": _m(10), "after": "stay"}]}]}),
     ("Have echo circle its current spot at 20 m, 15 m out, and keep it up there afterwards.",
      {"steps": [{"action": "pattern", "drone": "echo", "shape": "orbit", "size": _m(15),
-                 "altitude": _m(20)}]}),
+                 "altitude": _m(20), "after": "stay"}]}),
     ("delta and echo side by side, 6 m apart, at 10 m, 15 m north of here",
      {"steps": [{"action": "formation", "drones": ["delta", "echo"], "shape": "line", "spacing": _m(6),
                  "altitude": _m(10), "legs": [_leg(15, "north")]}]}),

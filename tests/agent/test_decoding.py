@@ -77,6 +77,7 @@ async def test_an_unreachable_endpoint_is_a_model_error() -> None:
 
 def _move(drone: str, origin: dict[str, str]) -> dict[str, object]:
     return {"action": "move", "drone": drone, "altitude": {"value": 15, "unit": "m"}, "origin": origin,
+            "after": "stay",
             "legs": [{"distance": {"value": 25, "unit": "m"}, "direction": "north"}]}  # fmt: skip
 
 
