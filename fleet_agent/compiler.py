@@ -275,8 +275,8 @@ def sum_legs(legs: list[Leg]) -> tuple[float, float, float]:
 
 def pattern_legs(step: Pattern) -> list[geometry.Offset]:
     """A pattern's legs from where the drone is."""
-    heading = 0.0 if step.heading in ("up", "down") else geometry.compass_heading(step.heading)
-    clockwise = step.turn == "right"
+    heading = 0.0 if step.heading in (None, "up", "down") else geometry.compass_heading(step.heading)
+    clockwise = step.turn != "left"
     if step.shape in POLYGON_SIDES or step.shape == "polygon":
         sides = POLYGON_SIDES.get(step.shape) or step.sides or 4
         return geometry.polygon_legs(sides, step.size.metres, heading, clockwise)

@@ -124,18 +124,22 @@ POLYGON_SIDES = {"triangle": 3, "square": 4, "pentagon": 5, "hexagon": 6, "octag
 class Pattern(DroneStep):
     """A polygon (named, or ``polygon`` with ``sides``) with sides of ``size``; an orbit, a circle of radius
     ``size``; a survey, ``lines`` lines of ``size``, ``spacing`` apart. Flown by one drone from where it is,
-    the first leg towards ``heading``."""
+    the first leg towards ``heading`` (null: north), turning ``turn`` (null: right).
+
+    Every property is required (null where the request gives none): a schema-guided decoder writes the
+    required properties first and may stop before the optional ones, so an optional altitude or heading
+    placed before the required ``after`` was left out."""
 
     action: Literal["pattern"]
     drone: str
     shape: Literal["triangle", "square", "pentagon", "hexagon", "octagon", "polygon", "orbit", "survey"]
     size: Length
-    sides: int | None = Field(default=None, ge=3, le=12)
-    lines: int | None = Field(default=None, ge=1, le=20)
-    spacing: Length | None = None
-    heading: Direction = Direction.north
-    turn: Literal["right", "left"] = "right"
-    altitude: Length | None = None
+    sides: int | None = Field(ge=3, le=12)
+    lines: int | None = Field(ge=1, le=20)
+    spacing: Length | None
+    heading: Direction | None
+    turn: Literal["right", "left"] | None
+    altitude: Length | None
     after: Ending
 
 

@@ -25,8 +25,8 @@ Each step has an "action":
   does once there: "stay", "land" (there) or "return_home"
 - pattern {drone, shape, size, ...}: ONE drone flies a shape: triangle, square, pentagon, hexagon,
   octagon or polygon (sides) with size = side length; orbit (a circle, size = radius); survey (lines,
-  size = line length, spacing); optional heading (first leg), turn (right, left), altitude; after
-  ("stay", "land", "return_home") as for a move
+  size = line length, spacing); sides, lines, spacing, heading (the first leg), turn (right, left) and
+  altitude are null when the request gives none; after ("stay", "land", "return_home") as for a move
 - formation {drones, shape (line, column, wedge, grid, circle), spacing, altitude, legs (the centre's move),
   origin (optional: the centre, as for a move)}: SEVERAL drones placed together
 - report {drones, readings (battery, altitude, position, flying, mode), pick (none, highest, lowest)}:
@@ -53,14 +53,15 @@ def _leg(value: float, direction: str, unit: str = "m") -> dict[str, Any]:
 
 
 _HERE = {"kind": "here"}
+_NO_COUNTS = {"sides": None, "lines": None, "spacing": None}
 
 EXAMPLES: list[tuple[str, dict[str, Any]]] = [
     ("delta: go up 40 feet, then come back down",
      {"steps": [{"action": "takeoff", "drone": "delta", "altitude": _m(40, "ft")},
                 {"action": "land", "drone": "delta"}]}),
     ("Fly echo in a triangle with 30 m sides at 15 m, first side west, and set it down after.",
-     {"steps": [{"action": "pattern", "drone": "echo", "shape": "triangle", "size": _m(30),
-                 "heading": "west", "altitude": _m(15), "after": "land"}]}),
+     {"steps": [{"action": "pattern", "drone": "echo", "shape": "triangle", "size": _m(30), **_NO_COUNTS,
+                 "heading": "west", "turn": None, "altitude": _m(15), "after": "land"}]}),
     ("Send delta to a spot 20 m east of echo, at 12 m, and leave it there.",
      {"steps": [{"action": "move", "drone": "delta", "origin": {"kind": "drone", "drone": "echo"},
                  "legs": [_leg(20, "east")], "altitude": _m(12), "after": "stay"}]}),
@@ -89,8 +90,8 @@ EXAMPLES: list[tuple[str, dict[str, Any]]] = [
                  "then": [{"action": "move", "drone": "delta", "origin": _HERE, "legs": [_leg(40, "west")],
                            "altitude": _m(10), "after": "stay"}]}]}),
     ("Have echo circle its current spot at 20 m, 15 m out, and keep it up there afterwards.",
-     {"steps": [{"action": "pattern", "drone": "echo", "shape": "orbit", "size": _m(15),
-                 "altitude": _m(20), "after": "stay"}]}),
+     {"steps": [{"action": "pattern", "drone": "echo", "shape": "orbit", "size": _m(15), **_NO_COUNTS,
+                 "heading": None, "turn": None, "altitude": _m(20), "after": "stay"}]}),
     ("delta and echo side by side, 6 m apart, at 10 m, 15 m north of here",
      {"steps": [{"action": "formation", "drones": ["delta", "echo"], "shape": "line", "spacing": _m(6),
                  "altitude": _m(10), "legs": [_leg(15, "north")]}]}),

@@ -89,6 +89,8 @@ def test_a_formation_has_two_drones_and_a_move_its_origin_before_its_legs() -> N
     defs = plan_schema(FLEET)["$defs"]
     assert defs["Formation"]["properties"]["drones"]["minItems"] == 2
     assert list(defs["Move"]["properties"])[:4] == ["action", "drone", "origin", "legs"]
+    for step in ("Move", "Pattern"):  # a decoder writes required properties first: all are, in order
+        assert defs[step]["required"] == list(defs[step]["properties"]), step
     one = {"action": "formation", "drones": ["alpha"], "shape": "circle", "spacing": m(25), "altitude": m(15)}
     with pytest.raises(ValidationError, match="at least 2 items"):
         parse_plan({"steps": [one]}, FLEET)
@@ -170,8 +172,13 @@ async def test_a_named_place_and_home_are_origins() -> None:
     assert abs(geometry.offset_between(*HOME, goto.args["lat_deg"], goto.args["lon_deg"])[1] - 10.0) < 0.05
 
 
+#: a pattern's properties the request may leave out (required, null)
+NULLS = dict.fromkeys(("sides", "lines", "spacing", "heading", "turn", "altitude"))
+
+
 async def test_a_square_for_one_drone_is_four_legs_not_a_formation() -> None:
     step = {
+        **NULLS,
         "action": "pattern",
         "after": "stay",
         "drone": "charlie",
@@ -201,7 +208,8 @@ async def test_a_move_or_pattern_ends_as_its_after_says_and_a_repeated_ending_is
             "altitude": None, "after": "land"}  # fmt: skip
     sensors = FakeSensors({"alpha": flying()})
     assert (await compiled(step, sensors))[-1] == Call("land", {"drone_id": "alpha"}, "alpha")
-    square = {"action": "pattern", "drone": "alpha", "shape": "square", "size": m(10), "after": "return_home"}
+    square = {**NULLS,
+              "action": "pattern", "drone": "alpha", "shape": "square", "size": m(10), "after": "return_home"}
     assert (await compiled(square, sensors))[-1] == Call("return_to_launch", {"drone_id": "alpha"}, "alpha")
     lands = [{"action": "land", "drone": "alpha"}, {"action": "land", "drone": "bravo"}]
     plan = parse_plan({"steps": [step, *lands]}, FLEET)
@@ -209,12 +217,15 @@ async def test_a_move_or_pattern_ends_as_its_after_says_and_a_repeated_ending_is
 
 
 async def test_a_named_polygon_has_its_sides_and_a_polygon_its_count() -> None:
-    hexagon = await compiled({"action": "pattern", "drone": "alpha", "shape": "hexagon", "size": m(12),
+    hexagon = await compiled({**NULLS,
+                              "action": "pattern", "drone": "alpha", "shape": "hexagon", "size": m(12),
                               **STAY})
     assert len(hexagon) == 7 and hexagon[1].args["north_m"] == 12.0  # a takeoff, then six legs
-    five = {"action": "pattern", **STAY, "drone": "alpha", "shape": "polygon", "sides": 5, "size": m(12)}
+    five = {**NULLS,
+            **STAY, "action": "pattern", "drone": "alpha", "shape": "polygon", "sides": 5, "size": m(12)}
     assert len(await compiled(five, FakeSensors({"alpha": flying()}))) == 5
-    orbit = {"action": "pattern", **STAY, "drone": "alpha", "shape": "orbit", "size": m(25), "turn": "left"}
+    orbit = {**NULLS,
+             **STAY, "action": "pattern", "drone": "alpha", "shape": "orbit", "size": m(25), "turn": "left"}
     legs = await compiled(orbit, FakeSensors({"alpha": flying()}))
     assert len(legs) == 14 and legs[1].args["east_m"] < 0  # round to the left (west) first
 
