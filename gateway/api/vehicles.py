@@ -50,7 +50,11 @@ def vehicle_view(
         data["locked"] = locks.reason_for(record.id)
         taken = locks.takeover_for(record.id)
         if taken is not None:
-            data["taken_over"] = {"reason": taken.reason, "by": taken.by, "locked_at": taken.locked_at}
+            data["taken_over"] = {
+                "reason": taken.reason,
+                "by": taken.by,
+                "locked_at": taken.locked_at.isoformat(),
+            }
     if vehicle is not None:
         status = jsonable_encoder(vehicle.status())
         data["status"] = status

@@ -22,6 +22,8 @@ from dataclasses import dataclass
 from typing import Any
 from urllib.parse import urlparse
 
+from gateway.util.json_types import JsonMapping, JsonObject
+
 # mavutil loads a dialect at import: by default "all" for MAVLink 1, while the gateway speaks MAVLink 2
 # with ardupilotmega, the one dialect the container image ships (a missing one makes pymavlink try to
 # generate it from XML, and the node dies at start). An operator's own choice is kept.
@@ -147,9 +149,7 @@ async def send_stop(target: StopTarget, verb: str, within_s: float = 1.5, hear_f
     return await asyncio.to_thread(_send, target, STOP_COMMANDS[verb], within_s, hear_first)
 
 
-def direct_stop_answer(
-    drone_id: str, verb: str, node_id: str, why: str, facts: dict[str, Any]
-) -> dict[str, Any]:
+def direct_stop_answer(drone_id: str, verb: str, node_id: str, why: str, facts: JsonMapping) -> JsonObject:
     """What a stop sent over the drone's own link by node ``node_id`` answers (``why``: why the node sent
     it itself, with the autopilot's answer): a hold's action, or a land or return's operation, which no
     node tracks (its id ``direct-...``; the drone's state shows when it lands)."""

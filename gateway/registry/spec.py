@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import ipaddress
 import re
-from typing import TypedDict
 from urllib.parse import urlsplit
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from typing_extensions import TypedDict  # pydantic validates it (update_drone's changes) on Python 3.11
 
 VEHICLE_ID_PATTERN = r"^[a-z0-9-]{1,32}$"
 NODE_TAG_PATTERN = r"^[A-Za-z0-9_.\-]{1,32}$"

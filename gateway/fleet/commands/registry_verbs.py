@@ -8,6 +8,10 @@ operators change registrations. A registration's verb answers with the registrat
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
+from pydantic import TypeAdapter, ValidationError
+
 from gateway.errors import GatewayError, InvalidArgument, UnknownVehicle
 from gateway.fleet.commands.command_core import OperationDesk, command, operator_only, routed
 from gateway.fleet.commands.command_pass import CommandPass
@@ -16,11 +20,24 @@ from gateway.fleet.policy.origin import OriginView, origin_view
 from gateway.fleet.vehicles.protocols import VehicleRegistry
 from gateway.fleet.vehicles.readings import home
 from gateway.registry.records import VehicleRecord
-from gateway.registry.spec import VehicleSpec
+from gateway.registry.spec import VehicleChanges, VehicleSpec
 from gateway.registry.store import Store
 
 #: what a registration's change may name (`VehicleRegistry.update`)
 CHANGEABLE = ("url", "name", "tags", "expected_sysid", "node_tag", "gcs_endpoints", "auto_connect")
+
+
+_CHANGES = TypeAdapter(VehicleChanges)
+
+
+def _typed_changes(changes: Mapping[str, object]) -> VehicleChanges:
+    """``changes`` (names already checked against `CHANGEABLE`) with their values' types checked."""
+    try:
+        return _CHANGES.validate_python(dict(changes))
+    except ValidationError as exc:
+        first = exc.errors()[0]
+        where = ".".join(str(part) for part in first["loc"])
+        raise InvalidArgument(f"changes.{where}: {first['msg']} (given {first.get('input')!r})") from None
 
 
 class RegistryVerbs:
@@ -61,7 +78,9 @@ class RegistryVerbs:
         return await self._record(spec.id)
 
     @command
-    async def update_drone(self, caller: Caller, drone_id: str, changes: dict[str, object]) -> VehicleRecord:
+    async def update_drone(
+        self, caller: Caller, drone_id: str, changes: Mapping[str, object]
+    ) -> VehicleRecord:
         """Change a registration (``changes``: some of `CHANGEABLE`; a new URL or new ground station
         endpoints reconnect a connected drone)."""
         operator_only(caller, "change registrations")
@@ -72,8 +91,9 @@ class RegistryVerbs:
             raise InvalidArgument(
                 f"changes: {', '.join(unknown)} cannot be changed; changeable: {', '.join(CHANGEABLE)}"
             )
+        typed = _typed_changes(changes)
         await self._record(drone_id)
-        await self._registry().update(drone_id, **changes)
+        await self._registry().update(drone_id, **typed)
         return await self._record(drone_id)
 
     @command

@@ -17,13 +17,14 @@ import os
 import tempfile
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, Literal
+from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
 from gateway.errors import GatewayError, InvalidArgument
 from gateway.fleet.policy.geofence import FLEET, GeofenceSet, Zone
 from gateway.fleet.policy.safety import SafetyPolicy
+from gateway.util.json_types import DocumentedJsonObject
 
 log = logging.getLogger(__name__)
 
@@ -38,15 +39,15 @@ class ZoneFeature(BaseModel):
 
     type: Literal["Feature"]
     # GeoJSON objects: checked by `Zone.from_geojson`, which names the zone and what is wrong
-    properties: dict[str, Any] | None = None
-    geometry: dict[str, Any]
+    properties: DocumentedJsonObject | None = None
+    geometry: DocumentedJsonObject
 
 
 class GeofencesView(BaseModel):
     """Every zone in force (the fleet's first, then each drone's), as a GeoJSON FeatureCollection."""
 
     type: Literal["FeatureCollection"] = "FeatureCollection"
-    features: list[dict[str, Any]]  # GeoJSON Features (`feature`)
+    features: list[DocumentedJsonObject]  # GeoJSON Features (`feature`)
     persisted: bool = Field(description="Whether the zones are saved to GATEWAY_GEOFENCE_FILE.")
 
 
