@@ -19,6 +19,7 @@ from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.geo import check_lat_lon
+from gateway.fleet.policy.mission_check import RawLike
 from gateway.util.mission_item import MAV_FRAME_GLOBAL_RELATIVE_ALT, ItemCommand, ItemInt
 
 # MAVLink ids
@@ -116,22 +117,12 @@ class WireItem(ItemInt):
     seq: int = field(kw_only=True)
 
 
-class DownloadedItem(Protocol):
+class DownloadedItem(RawLike, Protocol):
     """A mission item as MAVSDK's mission_raw downloads it (its ``MissionItem``; x and y scaled by 1e7 in
-    the global frames)."""
+    the global frames): the fields the checks read, and these."""
 
     @property
     def seq(self) -> int: ...
-    @property
-    def frame(self) -> int: ...
-    @property
-    def command(self) -> int: ...
-    @property
-    def param1(self) -> float: ...
-    @property
-    def param2(self) -> float: ...
-    @property
-    def param3(self) -> float: ...
     @property
     def param4(self) -> float: ...
     @property
