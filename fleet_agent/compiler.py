@@ -112,10 +112,14 @@ class Compiler:
         return [*await self._move_only(step), *ending(step)]
 
     async def _move_only(self, step: Move) -> Compiled:
+        """The move's calls. A move that goes nowhere sideways and gives its height flies to that height:
+        its up/down legs are the climb to it, not a climb added on top."""
         north, east, up = sum_legs(step.legs)
         alt = step.altitude.metres if step.altitude is not None else None
         if step.origin.kind != "here":
             return await self._move_from(step, north, east, up, alt)
+        if step.altitude is not None and all(leg.direction in ("up", "down") for leg in step.legs):
+            return await self._height(Altitude(action="altitude", drone=step.drone, altitude=step.altitude))
         calls, climbed = await self._lift(step.drone, alt, up)
         for i, (n, e, u) in enumerate(flown_segments(step.legs)):
             args: dict[str, Any] = {"drone_id": step.drone, "north_m": n, "east_m": e}
@@ -178,7 +182,8 @@ class Compiler:
     async def _formation(self, step: Formation) -> Compiled:
         north, east, _ = sum_legs(step.legs)
         args: dict[str, Any] = {
-            "drone_ids": list(step.drones), "formation": step.shape, "alt_m": step.altitude.metres,
+            "drone_ids": list(step.drones), "formation": gateway_formation(step.shape, len(step.drones)),
+            "alt_m": step.altitude.metres,
             "spacing_m": step.spacing.metres,
         }  # fmt: skip
         if step.origin is not None and step.origin.kind != "here":
@@ -233,6 +238,19 @@ class Compiler:
 
 
 _UNITS = {"battery": "%", "altitude": "m"}
+
+
+#: a polygon of drones: the gateway's circle when the polygon has as many corners as there are drones
+#: (neighbours ``spacing`` apart on a circle are its sides), else the nearest of its shapes
+_POLYGON_FORMATIONS = {"triangle": (3, "wedge"), "square": (4, "grid")}
+
+
+def gateway_formation(shape: str, count: int) -> str:
+    """The gateway's formation for a plan's shape flown by ``count`` drones."""
+    if shape not in _POLYGON_FORMATIONS:
+        return shape
+    corners, otherwise = _POLYGON_FORMATIONS[shape]
+    return "circle" if count == corners else otherwise
 
 
 def ending(step: Move | Pattern) -> Compiled:

@@ -145,12 +145,13 @@ class Pattern(DroneStep):
 
 class Formation(Strict):
     """The drones in a shape ``spacing`` apart, centred where they are (or on ``origin``), then ``legs``.
+    A triangle or a square is a polygon of the drones (the host picks the gateway's formation for it).
     At least two drones: under the schema a model cannot write one drone's circle as a formation (it is an
     orbit, a pattern)."""
 
     action: Literal["formation"]
     drones: list[str] = Field(min_length=2)
-    shape: Literal["line", "column", "wedge", "grid", "circle"]
+    shape: Literal["line", "column", "wedge", "grid", "circle", "triangle", "square"]
     spacing: Length
     altitude: Length
     legs: list[Leg] = Field(default_factory=list)
@@ -194,7 +195,9 @@ SimpleStep = Annotated[
 
 
 class Condition(DroneStep):
-    """``then`` when the drone's reading compares true to ``value`` (% or m), else ``otherwise``."""
+    """``then`` when the drone's reading compares true to ``value`` (% or m), else ``otherwise``. Both
+    branches are required (``[]`` when the request gives none): a schema-guided decoder that may stop
+    before an optional property left out the branch the request gave second, or wrote it into ``then``."""
 
     action: Literal["if"]
     drone: str
@@ -202,7 +205,7 @@ class Condition(DroneStep):
     compare: Literal["above", "below", "at_least", "at_most"]
     value: float
     then: list[SimpleStep]
-    otherwise: list[SimpleStep] = Field(default_factory=list)
+    otherwise: list[SimpleStep]
 
 
 class Choose(Strict):

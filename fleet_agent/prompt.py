@@ -27,8 +27,9 @@ Each step has an "action":
   octagon or polygon (sides) with size = side length; orbit (a circle, size = radius); survey (lines,
   size = line length, spacing); sides, lines, spacing, heading (the first leg), turn (right, left) and
   altitude are null when the request gives none; after ("stay", "land", "return_home") as for a move
-- formation {drones, shape (line, column, wedge, grid, circle), spacing, altitude, legs (the centre's move),
-  origin (optional: the centre, as for a move)}: SEVERAL drones placed together
+- formation {drones, shape (line, column, wedge, grid, circle, triangle, square), spacing, altitude,
+  legs (the centre's move), origin (optional: the centre, as for a move)}: SEVERAL drones placed
+  together in one shape (drones sent different ways are one move each)
 - report {drones, readings (battery, altitude, position, flying, mode), pick (none, highest, lowest)}:
   a question; nothing flies
 - if {drone, reading (battery or altitude), compare (above, below, at_least, at_most), value, then,
@@ -74,6 +75,9 @@ EXAMPLES: list[tuple[str, dict[str, Any]]] = [
                  "altitude": _m(15), "after": "stay"},
                 {"action": "takeoff", "drone": "delta", "altitude": _m(10)},
                 {"action": "land", "drone": "delta"}]}),
+    ("Get delta hovering at 12 m and echo up to 30 m.",
+     {"steps": [{"action": "altitude", "drone": "delta", "altitude": _m(12)},
+                {"action": "altitude", "drone": "echo", "altitude": _m(30)}]}),
     ("Delta soll auf 14 m steigen und dort bleiben.",
      {"steps": [{"action": "altitude", "drone": "delta", "altitude": _m(14)}]}),
     ("echo, 0.1 km al sur y 5 m más alto, luego vuelve a casa",

@@ -200,6 +200,15 @@ async def test_a_formation_carries_its_spacing_and_centre_move() -> None:
     assert await compiled(step) == [Call("formation_goto", args)]
 
 
+async def test_a_triangle_or_square_of_drones_is_the_gateways_circle_when_the_corners_match() -> None:
+    step = {"action": "formation", "drones": FLEET, "shape": "triangle", "spacing": m(10), "altitude": m(20)}
+    assert (await compiled(step))[0].args["formation"] == "circle"
+    pair = {**step, "drones": ["alpha", "bravo"]}
+    assert (await compiled(pair))[0].args["formation"] == "wedge"
+    square = {**step, "shape": "square"}
+    assert (await compiled(square))[0].args["formation"] == "grid"
+
+
 STAY = {"after": "stay"}
 
 
@@ -284,3 +293,26 @@ async def test_a_takeoff_of_a_flying_drone_changes_its_height() -> None:
     assert await compiled({"action": "return_home", "drone": "alpha"}) == [
         Call("return_to_launch", {"drone_id": "alpha"}, "alpha")
     ]
+
+
+async def test_a_move_that_only_climbs_to_its_given_height_flies_to_that_height() -> None:
+    step = {"action": "move", "drone": "bravo", "legs": [leg(12, "up")], "altitude": m(12), "after": "land",
+            "origin": {"kind": "here"}}  # fmt: skip
+    assert await compiled(step) == [
+        Call("takeoff", {"drone_id": "bravo", "alt_m": 12.0}, "bravo"),
+        Call("land", {"drone_id": "bravo"}, "bravo"),
+    ]
+    in_air = FakeSensors({"bravo": flying(alt=5.0)})
+    assert (await compiled({**step, "after": "stay"}, in_air)) == [
+        Call("move_to_relative", {"drone_id": "bravo", "alt_m": 12.0}, "bravo")
+    ]
+
+
+def test_a_condition_names_both_branches() -> None:
+    step = {"action": "if", "drone": "bravo", "reading": "battery", "compare": "above", "value": 50,
+            "then": [{"action": "land", "drone": "bravo"}]}  # fmt: skip
+    with pytest.raises(ValidationError, match="otherwise"):
+        parse_plan({"steps": [step]}, FLEET)
+    assert parse_plan({"steps": [{**step, "otherwise": []}]}, FLEET).steps[0].otherwise == []  # type: ignore[union-attr]
+    condition = plan_schema(FLEET)["$defs"]["Condition"]
+    assert {"then", "otherwise"} <= set(condition["required"])
