@@ -34,7 +34,7 @@ def _drone_gaps(request: str, fleet: list[str], data: Any) -> list[str]:
     planned = _plan_drones(data)
     notes = [
         f"the request names {d}, which no step of the plan does (as the drone that acts, or as a move's "
-        f'origin {{"kind": "drone", "drone": "{d}"}})'
+        f'origin "{d}")'
         for d in sorted(named - planned)
     ]
     notes += [f"the plan has {d}, which the request does not name" for d in sorted(planned - named)]

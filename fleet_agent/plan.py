@@ -107,7 +107,11 @@ Ending = Literal["stay", "land", "return_home"]
 class Move(DroneStep):
     """Legs from ``origin`` (horizontal legs add up; up/down legs change the height), at ``altitude``
     above home when given. The origin comes before the legs: a decoder writes properties in the schema's
-    order, and a model that has written the legs and the altitude first falls back on ``here``."""
+    order, and a model that has written the legs and the altitude first falls back on ``here``.
+
+    The origin may be written as one word: ``here``, ``home`` or a drone's id (the schema offers these as
+    an enum beside the object form): a small model chose ``here`` over ``{"kind": "drone", ...}`` for a
+    spot north of another drone, where the other drone's id is the word it has just read."""
 
     action: Literal["move"]
     drone: str
@@ -115,6 +119,15 @@ class Move(DroneStep):
     legs: list[Leg]
     altitude: Length | None
     after: Ending
+
+    @field_validator("origin", mode="before")
+    @classmethod
+    def _origin_word(cls, value: Any, info: ValidationInfo) -> Any:
+        if not isinstance(value, str):
+            return value
+        if value in ORIGIN_WORDS:
+            return {"kind": value}
+        return {"kind": "drone", "drone": known_drone(value, info)}
 
 
 #: the polygons a shape's name says the sides of
@@ -194,6 +207,10 @@ SimpleStep = Annotated[
 ]
 
 
+#: the most steps a branch holds: a bound the decoder keeps, so that a reply that repeats a step ends
+MAX_BRANCH_STEPS = 10
+
+
 class Condition(DroneStep):
     """``then`` when the drone's reading compares true to ``value`` (% or m), else ``otherwise``. Both
     branches are required (``[]`` when the request gives none): a schema-guided decoder that may stop
@@ -204,8 +221,8 @@ class Condition(DroneStep):
     reading: Literal["battery", "altitude"]
     compare: Literal["above", "below", "at_least", "at_most"]
     value: float
-    then: list[SimpleStep]
-    otherwise: list[SimpleStep]
+    then: list[SimpleStep] = Field(max_length=MAX_BRANCH_STEPS)
+    otherwise: list[SimpleStep] = Field(max_length=MAX_BRANCH_STEPS)
 
 
 class Choose(Strict):
@@ -216,7 +233,7 @@ class Choose(Strict):
     among: list[str] = Field(min_length=2)
     reading: Literal["battery", "altitude"]
     pick: Literal["highest", "lowest"]
-    then: list[SimpleStep] = Field(min_length=1)
+    then: list[SimpleStep] = Field(min_length=1, max_length=MAX_BRANCH_STEPS)
 
     @field_validator("among")
     @classmethod
@@ -283,6 +300,10 @@ def parse_plan(data: Any, fleet: list[str]) -> Plan:
 _DRONE_FIELDS = ("drone", "drones", "among")
 
 
+#: the one-word origins of a move besides the fleet's ids
+ORIGIN_WORDS = ["here", "home"]
+
+
 def plan_schema(fleet: list[str]) -> dict[str, Any]:
     """The plan's JSON schema with every drone field an ``enum`` of the fleet's ids."""
     schema = copy.deepcopy(_BASE_SCHEMA)
@@ -290,6 +311,7 @@ def plan_schema(fleet: list[str]) -> dict[str, Any]:
         for name, prop in definition.get("properties", {}).items():
             if name in _DRONE_FIELDS:
                 _enum_of_strings(prop, fleet)
+    schema["$defs"]["Move"]["properties"]["origin"]["anyOf"][0]["enum"] = [*ORIGIN_WORDS, *fleet]
     return schema
 
 
@@ -308,6 +330,9 @@ def _base_schema() -> dict[str, Any]:
     schema = Plan.model_json_schema()
     for definition in schema.get("$defs", {}).values():
         definition.pop("description", None)
+    schema["$defs"]["Move"]["properties"]["origin"] = {
+        "anyOf": [{"type": "string"}, {"$ref": "#/$defs/Reference"}]
+    }
     return schema
 
 

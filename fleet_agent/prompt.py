@@ -16,12 +16,13 @@ You turn a drone operator's request, in any language, into a JSON plan: {"steps"
 each thing the request asks, in the order it gives them. Write only the JSON, on one line.
 Each step has an "action":
 - takeoff {drone, altitude}; land {drone}; return_home {drone}; hold {drone}
-- altitude {drone, altitude}: climb or descend to that height above home
-- move {drone, origin, legs, altitude, after}: origin says where the legs start: {"kind": "here"} the drone
-  itself, {"kind": "home"} its home, {"kind": "drone", "drone": id} another drone (a spot north of another
-  drone), {"kind": "place", "place": name} a named place, {"kind": "point", "lat_deg", "lon_deg"}
-  coordinates; legs are [{distance, direction}] (north, south, east, west, northeast, northwest,
-  southeast, southwest, up, down); altitude is the height to fly at or null; after is what the drone
+- altitude {drone, altitude}: climb or descend to that height above home (a drone sent "to 20 m" or
+  "hovering at 20 m" goes up, not 20 m away)
+- move {drone, origin, legs, altitude, after}: origin says where the legs start: "here" the drone
+  itself, "home" its home, another drone's id (a spot north of another drone), {"kind": "place",
+  "place": name} a named place, {"kind": "point", "lat_deg", "lon_deg"} coordinates; legs are
+  [{distance, direction}] (north, south, east, west, northeast, northwest, southeast, southwest, up,
+  down); altitude is the height to fly at or null; after is what the drone
   does once there: "stay", "land" (there) or "return_home"
 - pattern {drone, shape, size, ...}: ONE drone flies a shape: triangle, square, pentagon, hexagon,
   octagon or polygon (sides) with size = side length; orbit (a circle, size = radius); survey (lines,
@@ -53,7 +54,7 @@ def _leg(value: float, direction: str, unit: str = "m") -> dict[str, Any]:
     return {"distance": _m(value, unit), "direction": direction}
 
 
-_HERE = {"kind": "here"}
+_HERE = "here"
 _NO_COUNTS = {"sides": None, "lines": None, "spacing": None}
 
 EXAMPLES: list[tuple[str, dict[str, Any]]] = [
@@ -64,7 +65,7 @@ EXAMPLES: list[tuple[str, dict[str, Any]]] = [
      {"steps": [{"action": "pattern", "drone": "echo", "shape": "triangle", "size": _m(30), **_NO_COUNTS,
                  "heading": "west", "turn": None, "altitude": _m(15), "after": "land"}]}),
     ("Send delta to a spot 20 m east of echo, at 12 m, and leave it there.",
-     {"steps": [{"action": "move", "drone": "delta", "origin": {"kind": "drone", "drone": "echo"},
+     {"steps": [{"action": "move", "drone": "delta", "origin": "echo",
                  "legs": [_leg(20, "east")], "altitude": _m(12), "after": "stay"}]}),
     ("echo : décolle à 8 m, avance de 25 m vers l'ouest puis atterris.",
      {"steps": [{"action": "takeoff", "drone": "echo", "altitude": _m(8)},

@@ -316,3 +316,15 @@ def test_a_condition_names_both_branches() -> None:
     assert parse_plan({"steps": [{**step, "otherwise": []}]}, FLEET).steps[0].otherwise == []  # type: ignore[union-attr]
     condition = plan_schema(FLEET)["$defs"]["Condition"]
     assert {"then", "otherwise"} <= set(condition["required"])
+
+
+def test_a_moves_origin_is_one_word_here_home_or_a_drones_id() -> None:
+    step = {"action": "move", "drone": "alpha", "legs": [leg(25, "north")], "altitude": m(15),
+            "after": "stay"}  # fmt: skip
+    plan = parse_plan({"steps": [{**step, "origin": "Bravo"}, {**step, "origin": "home"}]}, FLEET)
+    assert [s.origin.model_dump(exclude_none=True) for s in plan.steps] == [  # type: ignore[union-attr]
+        {"kind": "drone", "drone": "bravo"}, {"kind": "home"}]  # fmt: skip
+    with pytest.raises(ValidationError, match="not in the fleet"):
+        parse_plan({"steps": [{**step, "origin": "zulu"}]}, FLEET)
+    origin = plan_schema(FLEET)["$defs"]["Move"]["properties"]["origin"]
+    assert origin["anyOf"][0]["enum"] == ["here", "home", *FLEET]
