@@ -90,10 +90,10 @@ EXAMPLES: list[tuple[str, dict[str, Any]]] = [
                  "then": [{"action": "report", "drones": ["delta"], "readings": ["battery"], "pick": "none"}],
                  "otherwise": [{"action": "takeoff", "drone": "delta", "altitude": _m(9)},
                                {"action": "land", "drone": "delta"}]}]}),
-    ("Of delta and echo, the one with more charge goes 40 m west at 10 m; the other one stays where it is.",
+    ("Of delta and echo, the one with more charge goes up to 12 m and stays there; the other one stays on "
+     "the ground.",
      {"steps": [{"action": "choose", "among": ["delta", "echo"], "reading": "battery", "pick": "highest",
-                 "then": [{"action": "move", "drone": "delta", "origin": _HERE, "legs": [_leg(40, "west")],
-                           "altitude": _m(10), "after": "stay"}]}]}),
+                 "then": [{"action": "altitude", "drone": "delta", "altitude": _m(12)}]}]}),
     ("Have echo circle its current spot at 20 m, 15 m out, and keep it up there afterwards.",
      {"steps": [{"action": "pattern", "drone": "echo", "shape": "orbit", "size": _m(15), **_NO_COUNTS,
                  "heading": None, "turn": None, "altitude": _m(20), "after": "stay"}]}),
