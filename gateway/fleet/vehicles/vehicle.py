@@ -47,6 +47,7 @@ from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import AuditEntry, Store
 from gateway.util.json_types import JsonObject
+from gateway.util.read_through import ReadThrough
 
 log = logging.getLogger("gateway.vehicle")
 
@@ -141,63 +142,26 @@ class Vehicle:
         what to do) when the gateway has none for its autopilot. Every action asks it first."""
         return flying_dialect(self.link.facts.autopilot, self.id)
 
-    @property
-    def telemetry(self) -> TelemetryCache:
-        return self.link.telemetry
-
-    @property
-    def sidecar(self) -> Sidecar | None:
-        return self.link.sidecar
-
-    @property
-    def system(self) -> System:
-        return self.link.system
-
-    @property
-    def sysid(self) -> int | None:
-        return self.link.sysid
-
-    @property
-    def autopilot(self) -> str | None:
-        return self.link.autopilot
-
-    @property
-    def autopilot_version(self) -> str | None:
-        return self.link.autopilot_version
-
-    @property
-    def is_simulator(self) -> bool:
-        return self.link.is_simulator
-
-    @property
-    def sessions(self) -> int:
-        return self.link.sessions
+    # read of the link as it is
+    telemetry = ReadThrough[TelemetryCache]("link")
+    sidecar = ReadThrough[Sidecar | None]("link")
+    system = ReadThrough[System]("link")
+    sysid = ReadThrough[int | None]("link")
+    autopilot = ReadThrough[str | None]("link")
+    autopilot_version = ReadThrough[str | None]("link")
+    is_simulator = ReadThrough[bool]("link")
+    sessions = ReadThrough[int]("link")
+    last_heartbeat_age_s = ReadThrough[float | None]("link")
+    sysid_mismatch = ReadThrough[bool]("link")
+    duplicate_sysid = ReadThrough[list[str]]("link")
+    state = ReadThrough[ConnectionState]("link")
+    last_error = ReadThrough[str | None]("link")
 
     @property
     def current_flight_id(self) -> int | None:
         """The id of the flight being recorded (armed now), None on the ground or while not connected."""
         recorder = self._recorder
         return recorder.flight.id if recorder is not None and recorder.flight is not None else None
-
-    @property
-    def last_heartbeat_age_s(self) -> float | None:
-        return self.link.last_heartbeat_age_s
-
-    @property
-    def sysid_mismatch(self) -> bool:
-        return self.link.sysid_mismatch
-
-    @property
-    def duplicate_sysid(self) -> list[str]:
-        return self.link.duplicate_sysid
-
-    @property
-    def state(self) -> ConnectionState:
-        return self.link.state
-
-    @property
-    def last_error(self) -> str | None:
-        return self.link.last_error
 
     def initialising(self) -> str | None:
         return self.link.initialising()
