@@ -1,4 +1,6 @@
-"""Telemetry toolset: answers at once from the telemetry cache, with each value's age.
+"""Telemetry toolset: answers at once from the telemetry cache, with each value's age. Every tool here
+only reads (nothing is sent to the drone and no state changes), so none is a command: commands are
+declared with their verbs (gateway/fleet/commands).
 
 A value older than ``link_lost_after_s`` is flagged ``stale`` (and said so in the text), never passed off
 as current.
