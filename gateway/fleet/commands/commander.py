@@ -111,7 +111,7 @@ class Commander:
         self.navigation = navigation = NavigationVerbs(self.commands, desk)
         self.missions = missions = MissionVerbs(self.commands, desk, flight)
         self.fleet_steps = fleet_steps = FleetStepVerbs(self.commands, desk, fleet)
-        self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, flight, fleet, store, fleet_steps)
+        self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, flight, fleet, fleet_steps)
         self.operator = operator = OperatorVerbs(self.commands, flight, fleet, store)
         self.zones = zones = ZoneVerbs(self.commands, Zones(safety, settings.geofence_file), missions)
         self.registrations = registrations_ = RegistryVerbs(self.commands, desk, registrations, store)

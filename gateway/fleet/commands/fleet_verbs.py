@@ -77,6 +77,7 @@ class FleetVerbs:
     `gateway.fleet.commands.fleet_step_verbs`, or the drone's owner in a cluster). The operator's locks
     and emergency stop are `gateway.fleet.commands.operator_verbs`."""
 
+    store = ReadThrough[Store | None]("desk")  # the one the desk keeps the operations in
     # the pass's collaborators, read of it
     settings = ReadThrough[Settings]("commands")
     registry = ReadThrough[VehicleDirectory]("commands")
@@ -90,7 +91,6 @@ class FleetVerbs:
         desk: OperationDesk,
         flight: FlightVerbs,
         fleet: FleetOperations,
-        store: Store | None,
         steps: FleetStepVerbs,
     ) -> None:
         self.commands = commands
@@ -98,7 +98,6 @@ class FleetVerbs:
         self.desk = desk
         self.flight = flight
         self.fleet = fleet
-        self.store = store
 
     # ------------------------------------------------------------------------------------------------
     # fleet operations: views and waiting
