@@ -19,7 +19,9 @@ import json
 import logging
 import time
 from collections import deque
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Awaitable, Callable, Iterable, Mapping, Sequence
+
+from mavsdk_grpc.action import Action
 
 from gateway.config import Settings
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
@@ -289,13 +291,17 @@ class Vehicle:
         await self.arming.arm_by(deadline, ready, notify)
 
     async def disarm(self) -> None:
-        self.require_dialect()
-        await self.link.call("disarm", self.link.require_session().action.disarm())
+        await self._act("disarm", lambda action: action.disarm())
 
     async def kill(self) -> None:
         """Stop the motors at once, even in the air (the policy decides who may call this)."""
+        await self._act("kill", lambda action: action.kill())
+
+    async def _act(self, what: str, order: Callable[[Action], Awaitable[None]]) -> None:
+        """One MAVSDK action the autopilot runs as it is (``order`` picks it of the session's Action
+        plugin), sent once the dialect check passed."""
         self.require_dialect()
-        await self.link.call("kill", self.link.require_session().action.kill())
+        await self.link.call(what, order(self.link.require_session().action))
 
     async def takeoff(
         self, alt_rel_m: float, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None
@@ -361,12 +367,10 @@ class Vehicle:
         )
 
     async def land(self) -> None:
-        self.require_dialect()
-        await self.link.call("land", self.link.require_session().action.land())
+        await self._act("land", lambda action: action.land())
 
     async def return_to_launch(self) -> None:
-        self.require_dialect()
-        await self.link.call("return to launch", self.link.require_session().action.return_to_launch())
+        await self._act("return to launch", lambda action: action.return_to_launch())
 
     async def set_yaw(self, heading_deg: float) -> None:
         """Turn to a heading (degrees from true north) in place."""
