@@ -21,8 +21,6 @@ import time
 from collections import deque
 from collections.abc import Awaitable, Callable, Iterable, Mapping, Sequence
 
-from mavsdk_grpc.action import Action
-
 from gateway.config import Settings
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
 from gateway.fleet import geo
@@ -291,17 +289,17 @@ class Vehicle:
         await self.arming.arm_by(deadline, ready, notify)
 
     async def disarm(self) -> None:
-        await self._act("disarm", lambda action: action.disarm())
+        await self._act("disarm", lambda system: system.action.disarm())
 
     async def kill(self) -> None:
         """Stop the motors at once, even in the air (the policy decides who may call this)."""
-        await self._act("kill", lambda action: action.kill())
+        await self._act("kill", lambda system: system.action.kill())
 
-    async def _act(self, what: str, order: Callable[[Action], Awaitable[None]]) -> None:
-        """One MAVSDK action the autopilot runs as it is (``order`` picks it of the session's Action
-        plugin), sent once the dialect check passed."""
+    async def _act(self, what: str, order: Callable[[System], Awaitable[None]]) -> None:
+        """One MAVSDK action the autopilot runs as it is (``order`` picks it of the session), sent once
+        the dialect check passed."""
         self.require_dialect()
-        await self.link.call(what, order(self.link.require_session().action))
+        await self.link.call(what, order(self.link.require_session()))
 
     async def takeoff(
         self, alt_rel_m: float, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None
@@ -367,10 +365,10 @@ class Vehicle:
         )
 
     async def land(self) -> None:
-        await self._act("land", lambda action: action.land())
+        await self._act("land", lambda system: system.action.land())
 
     async def return_to_launch(self) -> None:
-        await self._act("return to launch", lambda action: action.return_to_launch())
+        await self._act("return to launch", lambda system: system.action.return_to_launch())
 
     async def set_yaw(self, heading_deg: float) -> None:
         """Turn to a heading (degrees from true north) in place."""
