@@ -31,14 +31,16 @@ from gateway.fleet import geo
 from gateway.fleet.commands.arguments import AltFrame
 from gateway.fleet.commands.command_pass import CommandPass
 from gateway.fleet.operations.operation_state import Operation
-from gateway.fleet.operations.routing import FORWARDED, OnMessage, ProgressMessage, Verb
+from gateway.fleet.operations.operations import OperationManager
+from gateway.fleet.operations.routing import FORWARDED, OnMessage, ProgressMessage, Router, Verb
 from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import VehicleContext
 from gateway.fleet.policy.safety_rules import Rule, refuse
-from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleView
+from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleDirectory, VehicleView
 from gateway.registry.store import OperationRecord, Store
 from gateway.util.json_types import JsonObject
+from gateway.util.read_through import ReadThrough
 
 log = logging.getLogger(__name__)
 
@@ -322,13 +324,15 @@ class OperationDesk:
     """Operations as the doors see them: views, the latest, waiting (here, or forwarded to the node
     that runs the operation, following it when that node is lost). One per Commander."""
 
+    settings = ReadThrough[Settings]("commands")
+    registry = ReadThrough[VehicleDirectory]("commands")
+    operations = ReadThrough[OperationManager]("commands")
+    router = ReadThrough[Router | None]("commands")
+
     def __init__(self, commands: CommandPass, store: Store | None) -> None:
-        """The pass's collaborators (settings, registry, operations, router); ``store``: the operations
-        of a process that restarted, and of drones other nodes run."""
-        self.settings = commands.settings
-        self.registry = commands.registry
-        self.operations = commands.operations
-        self.router = commands.router
+        """``commands``: the pass, whose collaborators (settings, registry, operations, router) the desk
+        reads; ``store``: the operations of a process that restarted, and of drones other nodes run."""
+        self.commands = commands
         self.store = store
         self._elsewhere: dict[str, str] = {}  # operation id -> drone id, of operations run elsewhere
 
