@@ -36,7 +36,7 @@ from nats.aio.subscription import Subscription
 
 from gateway.errors import GatewayError, NoOwner, NotRun, OwnerLost, OwnerTimeout
 from gateway.fleet.operations.routing import ProgressMessage
-from gateway.util.json_types import JsonObject
+from gateway.util.json_types import JsonObject, JsonValue
 
 log = logging.getLogger("gateway.cluster.bus")
 
@@ -49,7 +49,7 @@ CLOCK_MARGIN_S = 0.5
 OWNER_CHECK_S = 0.5
 ProgressSink = Callable[[ProgressMessage], Awaitable[None]]
 #: ``handler(call name, arguments, caller (a Caller's JSON), progress)`` -> JSON-serialisable result
-CallHandler = Callable[[str, JsonObject, Mapping[str, object], ProgressSink], Awaitable[Any]]
+CallHandler = Callable[[str, JsonObject, Mapping[str, object], ProgressSink], Awaitable[object]]
 
 
 class ErrorBody(TypedDict, total=False):
@@ -100,15 +100,16 @@ def _error_classes() -> dict[str, type[GatewayError]]:
 
 
 def error_body(exc: GatewayError) -> ErrorBody:
+    details = _jsonable(exc.details)  # a JSON object: the details are keyword arguments
     return {
         "code": exc.code,
         "message": exc.message,
-        "details": _jsonable(exc.details),
+        "details": dict(details) if isinstance(details, dict) else {},
         "status": exc.http_status,
     }
 
 
-def rebuild_error(body: ErrorBody) -> GatewayError:
+def rebuild_error(body: Mapping[str, object]) -> GatewayError:
     """The error a remote node raised, as the same class here (a plain GatewayError if unknown)."""
     code = str(body.get("code") or "gateway_error")
     cls = _error_classes().get(code, GatewayError)
@@ -120,12 +121,15 @@ def rebuild_error(body: ErrorBody) -> GatewayError:
         exc.rule = details["rule"]  # type: ignore[attr-defined]
     if cls is GatewayError:
         exc.code = code
-        exc.http_status = int(body.get("status") or 500)
+        status = body.get("status")
+        exc.http_status = status if isinstance(status, int) else 500
     return exc
 
 
-def _jsonable(value: Any) -> Any:
-    return json.loads(json.dumps(value, default=str))
+def _jsonable(value: object) -> JsonValue:
+    """``value`` as the JSON its answer carries (what JSON cannot hold, as its text)."""
+    carried: JsonValue = json.loads(json.dumps(value, default=str))
+    return carried
 
 
 async def probe(url: str, timeout_s: float) -> None:
@@ -251,7 +255,7 @@ class Bus:
         epoch: int | None = None,
         owner_gone: Callable[[], str | None] | None = None,
         subject: str | None = None,
-    ) -> Any:
+    ) -> JsonValue:
         """Run ``name`` on the vehicle's owner; its result, or its error raised again here. The owner
         must accept it within ``accept_s`` (else :class:`NotRun`, and the owner will not run it later);
         then its answer may take ``timeout_s`` in all (else :class:`OwnerTimeout`: it was running).
@@ -320,7 +324,7 @@ class Bus:
 
     async def _call_reply(
         self, msg: Msg, vehicle_id: str, name: str, on_progress: ProgressSink | None
-    ) -> tuple[Any] | None:
+    ) -> tuple[JsonValue] | None:
         """One message on a call's inbox: None when it says the owner accepted the call or reports its
         progress; else the owner's result (in a 1-tuple), or its error raised here."""
         headers = msg.headers or {}
