@@ -27,12 +27,14 @@ import json
 import logging
 import time
 from collections.abc import Awaitable, Callable, Mapping
-from typing import Any, TypedDict
+from typing import Any, Required
 
 import nats
 from nats.aio.client import Client
 from nats.aio.msg import Msg
 from nats.aio.subscription import Subscription
+from pydantic import TypeAdapter, ValidationError
+from typing_extensions import TypedDict  # pydantic validates CallRequest with it on Python 3.11
 
 from gateway.errors import GatewayError, NoOwner, NotRun, OwnerLost, OwnerTimeout
 from gateway.fleet.operations.routing import ProgressMessage
@@ -60,6 +62,27 @@ class ErrorBody(TypedDict, total=False):
     message: str
     details: dict[str, object]
     status: int
+
+
+class CallRequest(TypedDict, total=False):
+    """A call for a vehicle's owner as it crosses the bus (`Bus.call` sends it, the owner validates it)."""
+
+    call: Required[str]  # the verb (or ``wait``)
+    args: JsonObject  # its JSON arguments
+    caller: JsonObject  # a Caller's JSON
+    accept_by: float | None  # wall-clock time after which the owner must not run it
+    epoch: int | None  # the lease epoch the caller saw
+
+
+_CALL_REQUEST = TypeAdapter(CallRequest)
+
+
+def _problems(exc: ValidationError) -> str:
+    """What is wrong with a body, on one line (each member with what it holds and what it must be)."""
+    return "; ".join(
+        f"{'.'.join(str(p) for p in err['loc']) or 'body'}: {err['msg']} (got {str(err['input'])[:60]})"
+        for err in exc.errors()
+    )
 
 
 async def no_progress(_update: ProgressMessage) -> None:
@@ -372,29 +395,23 @@ class Bus:
     async def _answer(self, msg: Msg, handler: CallHandler, check: CallCheck | None = None) -> None:
         reply_to = msg.reply
         try:
-            body = json.loads(msg.data)
-            name, arguments, caller = (
-                str(body["call"]),
-                dict(body.get("args") or {}),
-                dict(body.get("caller") or {}),
-            )
-            accept_by = body.get("accept_by")
-            epoch = body.get("epoch")
-        except Exception as exc:
+            request = _CALL_REQUEST.validate_json(msg.data)
+            name, arguments, caller = request["call"], request.get("args", {}), request.get("caller", {})
+            accept_by, epoch = request.get("accept_by"), request.get("epoch")
+        except ValidationError as exc:  # not JSON, or not a call
             answer: dict[str, object] = {  # an ErrorBody, or the result as JSON
                 "ok": False,
-                "error": {"code": "invalid_argument", "message": f"bad call: {exc}"},
+                "error": {"code": "invalid_argument", "message": f"bad call: {_problems(exc)}"},
             }
         else:
-            late = isinstance(accept_by, int | float) and time.time() > accept_by
             try:
-                if late:  # its caller has been told it did not run: it must not
-                    late_s = time.time() - float(accept_by)
+                if accept_by is not None and time.time() > accept_by:  # its caller was told it did not run
+                    late_s = time.time() - accept_by
                     log.warning("dropped %s from %s: it arrived %.1f s after its deadline", name,
                                 caller.get("node", "?"), late_s)  # fmt: skip
                     raise NotRun(f"{name} reached the owner {late_s:.1f} s after its deadline: not run")
                 if check is not None:
-                    check(epoch if isinstance(epoch, int) else None)
+                    check(epoch)
             except GatewayError as exc:
                 answer = {"ok": False, "error": error_body(exc)}
             else:
