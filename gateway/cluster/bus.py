@@ -77,6 +77,18 @@ class CallRequest(TypedDict, total=False):
 _CALL_REQUEST = TypeAdapter(CallRequest)
 
 
+class CallAnswer(TypedDict, total=False):
+    """The owner's last message on a call's inbox: its result as JSON, or its error."""
+
+    ok: Required[bool]
+    result: JsonValue
+    error: ErrorBody
+
+
+_CALL_ANSWER = TypeAdapter(CallAnswer)
+_PROGRESS = TypeAdapter(ProgressMessage)
+
+
 def _problems(exc: ValidationError) -> str:
     """What is wrong with a body, on one line (each member with what it holds and what it must be)."""
     return "; ".join(
@@ -360,13 +372,18 @@ class Bus:
         kind = headers.get(KIND)
         if kind == "accepted":
             return None
-        reply = json.loads(msg.data or b"{}")
         if kind == "progress":
             if on_progress is not None:
                 with contextlib.suppress(Exception):  # progress is a courtesy
-                    await on_progress(reply)
+                    await on_progress(_PROGRESS.validate_json(msg.data or b"{}"))
             return None
-        if reply.get("ok"):
+        try:
+            reply = _CALL_ANSWER.validate_json(msg.data or b"{}")
+        except ValidationError as exc:
+            raise GatewayError(
+                f"the answer to {name} for {vehicle_id} is not a call's answer: {_problems(exc)}"
+            ) from None
+        if reply["ok"]:
             return (reply.get("result"),)
         raise rebuild_error(reply.get("error") or ErrorBody())
 
@@ -399,7 +416,7 @@ class Bus:
             name, arguments, caller = request["call"], request.get("args", {}), request.get("caller", {})
             accept_by, epoch = request.get("accept_by"), request.get("epoch")
         except ValidationError as exc:  # not JSON, or not a call
-            answer: dict[str, object] = {  # an ErrorBody, or the result as JSON
+            answer: CallAnswer = {
                 "ok": False,
                 "error": {"code": "invalid_argument", "message": f"bad call: {_problems(exc)}"},
             }
