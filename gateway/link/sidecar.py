@@ -20,6 +20,12 @@ What mavsdk_server 4.0.5 does that shapes this module (measured):
   binary or architecture made it. ``SpawnPlan`` / ``Sidecar.confine`` is the
   one place where a wrapper (network namespace, an emulator) is inserted around the command.
 
+Sidecars start a few at a time (``START_SLOTS`` per event loop): a start holds its slot from the spawn
+until it serves, at most ``START_SLOT_S``. A gateway restoring hundreds of vehicles would otherwise
+start hundreds of mavsdk_server processes in the same second, each loading its binary, discovering its
+vehicle and then being asked for a gRPC session, and the gateway (its /healthz too) waits behind them
+all; paced, the first vehicles are ready while the last start.
+
 Every sidecar runs in its own process group with PR_SET_PDEATHSIG=SIGKILL (set by an exec wrapper,
 see ``die_with_parent``), so it dies with the gateway even when the gateway is SIGKILLed; ``stop()``
 terminates the group, then kills it; an atexit hook kills what is left at interpreter exit.
@@ -39,6 +45,7 @@ import shutil
 import signal
 import sys
 import time
+import weakref
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -69,6 +76,38 @@ PORT_ATTEMPTS = 5
 REPEAT_WINDOW_S = 30.0
 #: grace between SIGTERM and SIGKILL when stopping
 TERM_GRACE_S = 3.0
+
+#: sidecars starting at once (spawned, not yet serving), per event loop
+START_SLOTS = 8
+#: a start holds its slot until its sidecar serves or this long (a vehicle that never answers frees it)
+START_SLOT_S = 5.0
+_START_SLOTS: weakref.WeakKeyDictionary[asyncio.AbstractEventLoop, asyncio.Semaphore] = (
+    weakref.WeakKeyDictionary()
+)
+
+
+class _StartSlot:
+    """One of the ``START_SLOTS``, held by one start; ``release`` may be called any number of times."""
+
+    def __init__(self, slots: asyncio.Semaphore) -> None:
+        self._slots: asyncio.Semaphore | None = slots
+        self._timer = asyncio.get_running_loop().call_later(START_SLOT_S, self.release)
+
+    def release(self) -> None:
+        slots, self._slots = self._slots, None
+        if slots is not None:
+            self._timer.cancel()
+            slots.release()
+
+
+async def _start_slot() -> _StartSlot:
+    loop = asyncio.get_running_loop()
+    slots = _START_SLOTS.get(loop)
+    if slots is None:
+        slots = _START_SLOTS[loop] = asyncio.Semaphore(START_SLOTS)
+    await slots.acquire()
+    return _StartSlot(slots)
+
 
 # Every live sidecar process group, so the interpreter's exit path can still kill them.
 _LIVE_PGIDS: set[int] = set()
@@ -198,6 +237,7 @@ class Sidecar:
         self._task: asyncio.Task[None] | None = None
         self._serving = asyncio.Event()
         self._stopping = False
+        self._start_slot: _StartSlot | None = None
         self._log = logging.getLogger(f"gateway.sidecar.{vehicle_id}")
         self._repeat: tuple[str, int, float] = ("", 0, 0.0)  # last line, times repeated, first seen
 
@@ -332,13 +372,18 @@ class Sidecar:
 
     async def _run_once(self) -> str:
         """Start one process (retrying ports) and wait until it ends; return why it ended."""
-        for _attempt in range(PORT_ATTEMPTS):
-            port = sidecar_socket.socket_port() if self.on_socket else free_tcp_port()
-            outcome = await self._spawn_and_watch(port)
-            if outcome != "port-taken":
-                return outcome
-            self._log.info("gRPC port %d of %s was taken; retrying on another port", port, self.vehicle_id)
-        return f"no free gRPC port after {PORT_ATTEMPTS} attempts"
+        self.info.state = SidecarState.STARTING
+        slot = self._start_slot = await _start_slot()  # released once serving (``_serve``) at the latest
+        try:
+            for _attempt in range(PORT_ATTEMPTS):
+                port = sidecar_socket.socket_port() if self.on_socket else free_tcp_port()
+                outcome = await self._spawn_and_watch(port)
+                if outcome != "port-taken":
+                    return outcome
+                self._log.info("gRPC port %d of %s taken; retrying on another port", port, self.vehicle_id)
+            return f"no free gRPC port after {PORT_ATTEMPTS} attempts"
+        finally:
+            slot.release()
 
     def plan(self, port: int) -> SpawnPlan:
         """The command line for one start; the confinement wrapper is applied here and only here."""
@@ -486,6 +531,8 @@ class Sidecar:
         return message
 
     def _serve(self, port: int) -> None:
+        if self._start_slot is not None:
+            self._start_slot.release()  # the next sidecar may start
         self.info.state = SidecarState.SERVING
         self.info.complaint = None
         self.info.serving_since = time.monotonic()
