@@ -20,11 +20,8 @@ What mavsdk_server 4.0.5 does that shapes this module (measured):
   binary or architecture made it. ``SpawnPlan`` / ``Sidecar.confine`` is the
   one place where a wrapper (network namespace, an emulator) is inserted around the command.
 
-Sidecars start a few at a time (``START_SLOTS`` per event loop): a start holds its slot from the spawn
-until it serves, at most ``START_SLOT_S``. A gateway restoring hundreds of vehicles would otherwise
-start hundreds of mavsdk_server processes in the same second, each loading its binary, discovering its
-vehicle and then being asked for a gRPC session, and the gateway (its /healthz too) waits behind them
-all; paced, the first vehicles are ready while the last start.
+Sidecars start a few at a time (``STARTS``, ``gateway.link.pacing``): a start holds its slot from the
+spawn until it serves, at most 5 s.
 
 Every sidecar runs in its own process group with PR_SET_PDEATHSIG=SIGKILL (set by an exec wrapper,
 see ``die_with_parent``), so it dies with the gateway even when the gateway is SIGKILLed; ``stop()``
@@ -45,7 +42,6 @@ import shutil
 import signal
 import sys
 import time
-import weakref
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -53,7 +49,7 @@ from pathlib import Path
 from typing import Any
 
 from gateway.config import Settings
-from gateway.link import confine, sidecar_socket
+from gateway.link import confine, pacing, sidecar_socket
 from gateway.link.proc_sockets import listening_addresses, listening_inodes, socket_inodes
 from gateway.util.ports import free_tcp_port
 
@@ -77,36 +73,9 @@ REPEAT_WINDOW_S = 30.0
 #: grace between SIGTERM and SIGKILL when stopping
 TERM_GRACE_S = 3.0
 
-#: sidecars starting at once (spawned, not yet serving), per event loop
-START_SLOTS = 8
-#: a start holds its slot until its sidecar serves or this long (a vehicle that never answers frees it)
-START_SLOT_S = 5.0
-_START_SLOTS: weakref.WeakKeyDictionary[asyncio.AbstractEventLoop, asyncio.Semaphore] = (
-    weakref.WeakKeyDictionary()
-)
-
-
-class _StartSlot:
-    """One of the ``START_SLOTS``, held by one start; ``release`` may be called any number of times."""
-
-    def __init__(self, slots: asyncio.Semaphore) -> None:
-        self._slots: asyncio.Semaphore | None = slots
-        self._timer = asyncio.get_running_loop().call_later(START_SLOT_S, self.release)
-
-    def release(self) -> None:
-        slots, self._slots = self._slots, None
-        if slots is not None:
-            self._timer.cancel()
-            slots.release()
-
-
-async def _start_slot() -> _StartSlot:
-    loop = asyncio.get_running_loop()
-    slots = _START_SLOTS.get(loop)
-    if slots is None:
-        slots = _START_SLOTS[loop] = asyncio.Semaphore(START_SLOTS)
-    await slots.acquire()
-    return _StartSlot(slots)
+#: sidecars starting at once (spawned, not yet serving), per event loop; a start holds its slot until
+#: its sidecar serves, at most ``hold_at_most_s`` (a vehicle that never answers frees it)
+STARTS = pacing.Pace(slots=8, hold_at_most_s=5.0)
 
 
 # Every live sidecar process group, so the interpreter's exit path can still kill them.
@@ -237,7 +206,7 @@ class Sidecar:
         self._task: asyncio.Task[None] | None = None
         self._serving = asyncio.Event()
         self._stopping = False
-        self._start_slot: _StartSlot | None = None
+        self._start_slot: pacing.Slot | None = None
         self._log = logging.getLogger(f"gateway.sidecar.{vehicle_id}")
         self._repeat: tuple[str, int, float] = ("", 0, 0.0)  # last line, times repeated, first seen
 
@@ -373,7 +342,7 @@ class Sidecar:
     async def _run_once(self) -> str:
         """Start one process (retrying ports) and wait until it ends; return why it ended."""
         self.info.state = SidecarState.STARTING
-        slot = self._start_slot = await _start_slot()  # released once serving (``_serve``) at the latest
+        slot = self._start_slot = await STARTS.take()  # released once serving (``_serve``) at the latest
         try:
             for _attempt in range(PORT_ATTEMPTS):
                 port = sidecar_socket.socket_port() if self.on_socket else free_tcp_port()

@@ -253,9 +253,9 @@ async def test_link_that_cannot_open_is_restarted_then_failed(stopper: list[Side
 
 async def test_sidecars_start_a_few_at_a_time(stopper: list[Sidecar], monkeypatch) -> None:
     """With one start slot, a second sidecar is spawned only once the first serves; a start whose
-    vehicle never answers frees its slot after ``START_SLOT_S``."""
-    monkeypatch.setattr(sidecar_mod, "START_SLOTS", 1)
-    monkeypatch.setattr(sidecar_mod, "START_SLOT_S", 600.0)
+    vehicle never answers frees its slot after the slot's time (``STARTS.hold_at_most_s``)."""
+    monkeypatch.setattr(sidecar_mod.STARTS, "slots", 1)
+    monkeypatch.setattr(sidecar_mod.STARTS, "hold_at_most_s", 600.0)
     udp_a, udp_b = free_udp_port(), free_udp_port()
     first = Sidecar("first", f"udpin://127.0.0.1:{udp_a}", _settings())
     second = Sidecar("second", f"udpin://127.0.0.1:{udp_b}", _settings())
@@ -275,8 +275,8 @@ async def test_sidecars_start_a_few_at_a_time(stopper: list[Sidecar], monkeypatc
 
 
 async def test_a_start_that_never_serves_frees_its_slot(stopper: list[Sidecar], monkeypatch) -> None:
-    monkeypatch.setattr(sidecar_mod, "START_SLOTS", 1)
-    monkeypatch.setattr(sidecar_mod, "START_SLOT_S", 0.5)
+    monkeypatch.setattr(sidecar_mod.STARTS, "slots", 1)
+    monkeypatch.setattr(sidecar_mod.STARTS, "hold_at_most_s", 0.5)
     udp_a, udp_b = free_udp_port(), free_udp_port()
     silent = Sidecar("silent", f"udpin://127.0.0.1:{udp_a}", _settings())  # no vehicle ever answers
     other = Sidecar("other", f"udpin://127.0.0.1:{udp_b}", _settings())
