@@ -56,8 +56,8 @@ __all__ = ["Link"]
 # opening the gRPC session (s): bounds a dead sidecar
 CONNECT_TIMEOUT_S = 10.0
 #: gRPC sessions opening at once, per event loop (``gateway.link.pacing``): a session holds its slot from
-#: before it connects until its loops run, at most 30 s; the connection's timeout counts from the slot
-SESSIONS = pacing.Pace(slots=8, hold_at_most_s=30.0)
+#: before it connects until its rates are requested, at most 10 s; the connection's timeout counts from the slot
+SESSIONS = pacing.Pace(slots=8, hold_at_most_s=10.0)
 READY_WAIT_S = 60.0
 
 
@@ -417,12 +417,14 @@ class Link:
                 await previous
         system = System(mavsdk_server_address=address, port=port)
         slot = await SESSIONS.take()  # released once the session's rates are requested
+        opened = False
         try:
-            if not await self._open(system, address, port):
-                return
-        except BaseException:
-            slot.release()
-            raise
+            opened = await self._open(system, address, port)
+        finally:
+            if not opened:
+                slot.release()
+        if not opened:
+            return
         self.telemetry.clear()
         self.facts = LinkFacts()
         commands = self._calls.new_channel()
