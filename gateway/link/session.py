@@ -56,7 +56,8 @@ __all__ = ["Link"]
 # opening the gRPC session (s): bounds a dead sidecar
 CONNECT_TIMEOUT_S = 10.0
 #: gRPC sessions opening at once, per event loop (``gateway.link.pacing``): a session holds its slot from
-#: before it connects until its rates are requested, at most 10 s; the connection's timeout counts from the slot
+#: before it connects until its rates are requested, at most 10 s; the connection's timeout counts from
+#: the slot
 SESSIONS = pacing.Pace(slots=8, hold_at_most_s=10.0)
 READY_WAIT_S = 60.0
 
