@@ -34,6 +34,7 @@ import grpc
 
 from gateway.config import Settings
 from gateway.errors import VehicleNotReady
+from gateway.link import pacing
 from gateway.link.contract import ConnectionState, LinkRules, OnWait, Peer
 from gateway.link.link_monitor import run_monitor
 from gateway.link.mavsdk_calls import MavsdkCalls
@@ -54,6 +55,10 @@ __all__ = ["Link"]
 
 # opening the gRPC session (s): bounds a dead sidecar
 CONNECT_TIMEOUT_S = 10.0
+#: gRPC sessions opening at once, per event loop (``gateway.link.pacing``): a session holds its slot from
+#: before it connects until its rates are requested, at most 10 s; the connection's timeout counts from
+#: the slot
+SESSIONS = pacing.Pace(slots=8, hold_at_most_s=10.0)
 READY_WAIT_S = 60.0
 
 
@@ -384,6 +389,24 @@ class Link:
         self._session_started = None
         self.note_state()
 
+    async def _open(self, system: System, address: str, port: int) -> bool:
+        """Connect the gRPC session and seal the sidecar's socket; False (the sidecar restarted) if not."""
+        try:
+            await asyncio.wait_for(system.connect(), CONNECT_TIMEOUT_S)
+        except (TimeoutError, grpc.aio.AioRpcError) as exc:
+            self._last_error = f"gRPC session to mavsdk_server on {address}:{port} failed: {exc!r}"
+            log.warning("%s: %s; restarting the sidecar", self.id, self._last_error)
+            await close_system(system)
+            if self._sidecar is not None:
+                self._sidecar.recycle()  # the supervisor starts a fresh process (with backoff)
+            return False
+        sealed = self._sidecar.seal() if self._sidecar is not None else None
+        if sealed is not None:  # another process reached the sidecar first: it was restarted
+            self._last_error = sealed
+            await close_system(system)
+            return False
+        return True
+
     async def _end_session(self) -> None:
         task, self._session_task = self._session_task, None
         await cancel_and_wait(task)
@@ -394,19 +417,14 @@ class Link:
             with contextlib.suppress(asyncio.CancelledError, Exception):
                 await previous
         system = System(mavsdk_server_address=address, port=port)
+        slot = await SESSIONS.take()  # released once the session's rates are requested
+        opened = False
         try:
-            await asyncio.wait_for(system.connect(), CONNECT_TIMEOUT_S)
-        except (TimeoutError, grpc.aio.AioRpcError) as exc:
-            self._last_error = f"gRPC session to mavsdk_server on {address}:{port} failed: {exc!r}"
-            log.warning("%s: %s; restarting the sidecar", self.id, self._last_error)
-            await close_system(system)
-            if self._sidecar is not None:
-                self._sidecar.recycle()  # the supervisor starts a fresh process (with backoff)
-            return
-        sealed = self._sidecar.seal() if self._sidecar is not None else None
-        if sealed is not None:  # another process reached the sidecar first: it was restarted
-            self._last_error = sealed
-            await close_system(system)
+            opened = await self._open(system, address, port)
+        finally:
+            if not opened:
+                slot.release()
+        if not opened:
             return
         self.telemetry.clear()
         self.facts = LinkFacts()
@@ -419,10 +437,11 @@ class Link:
         self.sessions += 1
         mavsdk.start()
         log.info("%s: MAVSDK session open on %s:%d", self.id, address, port)
-        mavsdk.schedule_rates("session start")
+        mavsdk.schedule_rates("session start", then=slot.release)
         try:
             await asyncio.Event().wait()  # lives until cancelled (sidecar down, disconnect)
         finally:
+            slot.release()
             await mavsdk.stop()
             mavsdk.open = False
             if self._system is system:
