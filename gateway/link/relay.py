@@ -19,6 +19,10 @@ Frames are split by their MAVLink v1/v2 framing and checked by CRC where the mes
 unknown message id is relayed as framed); bytes that are no frame are dropped. The relay runs as long
 as the vehicle's link is wanted, across sidecar restarts, so ground stations keep the drone while
 the gateway's own session comes and goes.
+
+A drone without ground stations is relayed too while the gateway records its flights' raw MAVLink
+(``flight_tlog_dir``): the relay is then the one place the drone's frames pass whole, and each is
+handed as received to ``on_vehicle_frame`` (`gateway.fleet.missions.raw_tlog`).
 """
 
 from __future__ import annotations
@@ -52,12 +56,15 @@ class Relay:
         gcs_urls: list[str],
         sidecar_pid: Callable[[], int | None] | None = None,
         on_refused: Callable[[str, str], None] | None = None,
+        on_vehicle_frame: Callable[[bytes], None] | None = None,
     ) -> None:
         """``sidecar_pid``: the sidecar's process id now; given, only a socket of that process is
         taken as the sidecar (another local process cannot step in between it and the drone).
         ``on_refused(url, reason)``: told when a ground station endpoint is stopped because its peer is
-        no ground station."""
+        no ground station. ``on_vehicle_frame(data)``: given every frame from the vehicle as received
+        (the bytes the relay forwards, not copied), before it is forwarded."""
         self._on_refused = on_refused
+        self._on_vehicle_frame = on_vehicle_frame
         self.vehicle_id = vehicle_id
         self.vehicle_url = vehicle_url
         self.gcs_urls = list(gcs_urls)
@@ -147,6 +154,8 @@ class Relay:
         return [gcs.status() for gcs in self.ground_stations]
 
     def _from_vehicle(self, _source: Endpoint, frame: Frame) -> None:
+        if self._on_vehicle_frame is not None:
+            self._on_vehicle_frame(frame.data)
         outputs: list[Endpoint] = [self.sidecar, *(g for g in self.ground_stations if g.refused is None)]
         target = target_system(frame)
         if target:
