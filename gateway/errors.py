@@ -30,6 +30,14 @@ class InvalidArgument(GatewayError):
     http_status = 422
 
 
+class StateConflict(InvalidArgument):
+    """The request is well formed, but the drone's state makes it moot (a land for a drone already landed
+    and disarmed): REST answers 409 Conflict; MCP reports it as an invalid argument, as before."""
+
+    code = "state_conflict"
+    http_status = 409
+
+
 class UnknownVehicle(GatewayError):
     code = "unknown_vehicle"
     http_status = 404
