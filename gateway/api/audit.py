@@ -27,7 +27,7 @@ log = logging.getLogger(__name__)
 
 AUDITED_METHODS = frozenset({"POST", "PUT", "PATCH", "DELETE"})
 
-Handler = Callable[[Request], Coroutine[Any, Any, Response]]  # FastAPI: get_route_handler
+Handler = Callable[[Request], Coroutine[Any, Any, Response]]  # Any: FastAPI, get_route_handler's
 
 
 async def _arguments(request: Request) -> dict[str, object]:
@@ -114,6 +114,20 @@ async def record_rest_call(
         log.exception("could not write the audit entry of %s %s", request.method, request.url.path)
 
 
+def _failure(exc: Exception) -> tuple[str, str]:
+    """The audit outcome and error of a call that raised ``exc``."""
+    if isinstance(exc, SafetyRefusal):
+        return "refused", f"{exc.code}: {exc.message}"
+    if isinstance(exc, GatewayError):
+        return "error", f"{exc.code}: {exc.message}"
+    if isinstance(exc, RequestValidationError):
+        summary = "; ".join(str(e.get("msg")) for e in list(exc.errors())[:3])
+        return "error", f"validation_error: {summary}"
+    if isinstance(exc, StarletteHTTPException):
+        return "error", f"http_{exc.status_code}"
+    return "error", f"internal_error: {exc!r}"[:500]
+
+
 class AuditedRoute(APIRoute):
     """An APIRoute that audits its state-changing calls; the action is the route's name."""
 
@@ -127,21 +141,8 @@ class AuditedRoute(APIRoute):
             started = time.perf_counter()
             try:
                 response = await handler(request)
-            except SafetyRefusal as exc:
-                await record_rest_call(request, action, "refused", f"{exc.code}: {exc.message}", started)
-                raise
-            except GatewayError as exc:
-                await record_rest_call(request, action, "error", f"{exc.code}: {exc.message}", started)
-                raise
-            except RequestValidationError as exc:
-                summary = "; ".join(str(e.get("msg")) for e in list(exc.errors())[:3])
-                await record_rest_call(request, action, "error", f"validation_error: {summary}", started)
-                raise
-            except StarletteHTTPException as exc:
-                await record_rest_call(request, action, "error", f"http_{exc.status_code}", started)
-                raise
             except Exception as exc:
-                await record_rest_call(request, action, "error", f"internal_error: {exc!r}"[:500], started)
+                await record_rest_call(request, action, *_failure(exc), started)
                 raise
             outcome = "ok" if response.status_code < 400 else "error"
             error = None if outcome == "ok" else f"http_{response.status_code}"

@@ -116,7 +116,7 @@ class SessionAudit:
         call = CallInfo(session_key=info.key, principal=info.principal, vehicle_id=_drone_id(arguments))
         token = current_call.set(call)
         tool = str(params.get("name", "?"))
-        started = time.perf_counter()
+        audited = _AuditedCall(store, info, call, tool, arguments, started=time.perf_counter())
         written: list[str] = []
 
         def sent(operation_id: str) -> None:
@@ -124,7 +124,7 @@ class SessionAudit:
             when the operation ends (a crash while it flies loses no call)."""
             if not written:
                 written.append(operation_id)
-                self._audit(store, info, call, tool, arguments, "running", None, started, operation_id)
+                self._audit(audited, "running", None, operation_id)
 
         audit_sent = AUDIT_SENT.set(sent)
         result: HandlerResult = None
@@ -139,26 +139,16 @@ class SessionAudit:
             AUDIT_SENT.reset(audit_sent)
             current_call.reset(token)
             if not written:
-                self._audit_end(store, info, call, tool, arguments, result, failure, started)
+                self._audit_end(audited, result, failure)
 
-    def _audit_end(
-        self,
-        store: Store | None,
-        info: SessionInfo,
-        call: CallInfo,
-        tool: str,
-        arguments: object,
-        result: HandlerResult,
-        failure: BaseException | None,
-        started: float,
-    ) -> None:
+    def _audit_end(self, audited: _AuditedCall, result: HandlerResult, failure: BaseException | None) -> None:
         """The row of a call that sent no operation (a read, a refusal, an instant command, a fleet
         command: its operation is started by the fleet engine), written when it ends. A call that
         returns while an operation runs (wait:false) names it: when the operation ends, on whichever
         node runs it then, the store finishes the row (Store.save_operation)."""
-        outcome, error = _outcome(call, result, failure)
+        outcome, error = _outcome(audited.call, result, failure)
         operation_id = _operation_id(result) if outcome == "running" else None
-        self._audit(store, info, call, tool, arguments, outcome, error, started, operation_id)
+        self._audit(audited, outcome, error, operation_id)
 
     def _note_touched(self, info: SessionInfo) -> None:
         if len(self._touched) > 10_000:
@@ -184,40 +174,45 @@ class SessionAudit:
             log.exception("could not record MCP session %s", info.key)
 
     def _audit(
-        self,
-        store: Store | None,
-        info: SessionInfo,
-        call: CallInfo,
-        tool: str,
-        arguments: object,
-        outcome: str,
-        error: str | None,
-        started: float,
-        operation_id: str | None = None,
+        self, audited: _AuditedCall, outcome: str, error: str | None, operation_id: str | None = None
     ) -> None:
         """Queue the call's audit row with the touch of its session (written off the request path, in
         batches: `Store.queue_audit`)."""
-        if store is None:
+        if audited.store is None:
             return
+        info, vehicle_id, arguments = audited.info, audited.call.vehicle_id, audited.arguments
         self._note_touched(info)
         try:
-            store.queue_audit(
+            audited.store.queue_audit(
                 AuditEntry(
                     session_key=info.key,
                     principal=info.principal,
                     source="mcp",
-                    vehicle_id=call.vehicle_id if isinstance(call.vehicle_id, str) else None,
-                    action=tool[:64],
+                    vehicle_id=vehicle_id if isinstance(vehicle_id, str) else None,
+                    action=audited.tool[:64],
                     arguments=arguments if isinstance(arguments, dict) else {"arguments": str(arguments)},
                     outcome=outcome,
                     error=None if error is None else error[:1000],
-                    duration_ms=round((time.perf_counter() - started) * 1000.0, 1),
+                    duration_ms=round((time.perf_counter() - audited.started) * 1000.0, 1),
                     operation_id=operation_id,
                 ),
                 SessionSeen(info.key, info.kind, info.principal, info.client_name, info.client_version),
             )
         except Exception:
-            log.exception("could not queue the audit row of %s", tool)
+            log.exception("could not queue the audit row of %s", audited.tool)
+
+
+@dataclass(frozen=True)
+class _AuditedCall:
+    """One tool call as its audit row names it: the session, the call, the tool and its arguments, and
+    when it started (``time.perf_counter``)."""
+
+    store: Store | None
+    info: SessionInfo
+    call: CallInfo
+    tool: str
+    arguments: object
+    started: float
 
 
 def _operation_id(result: HandlerResult) -> str | None:
