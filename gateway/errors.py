@@ -35,6 +35,11 @@ class GatewayError(Exception):
 class InvalidArgument(GatewayError, code="invalid_argument", http_status=422): ...
 
 
+class StateConflict(InvalidArgument, code="state_conflict", http_status=409):
+    """The request is well formed, but the drone's state makes it moot (a land for a drone already landed
+    and disarmed): REST answers 409 Conflict; MCP reports it as an invalid argument, as before."""
+
+
 class UnknownVehicle(GatewayError, code="unknown_vehicle", http_status=404):
     def __init__(self, vehicle_id: str, known: list[str]) -> None:
         known_text = ", ".join(sorted(known)) if known else "none registered"

@@ -1,6 +1,11 @@
 """Audit of REST calls: every state-changing request (POST, PUT, PATCH, DELETE) is written to the
 audit table with source 'rest', the caller, the vehicle, the arguments, the outcome and the duration.
 
+A call that starts an operation (a land, a goto...: the command pass names it through ``AUDIT_SENT``)
+is written running, naming the operation and timed from the call; the store finishes the row when the
+operation ends, with its outcome and the whole time to that end (not the few milliseconds the request
+took to send it), as it does for the MCP door's calls.
+
 Reads are not audited: dashboards poll them and they change nothing. Routers opt in by using
 :class:`AuditedRoute` as their ``route_class``.
 """
@@ -12,6 +17,7 @@ import logging
 import re
 import time
 from collections.abc import Callable, Coroutine
+from datetime import datetime
 from typing import Any
 
 from fastapi import Request, Response
@@ -20,8 +26,9 @@ from fastapi.routing import APIRoute
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from gateway.errors import GatewayError, SafetyRefusal
+from gateway.fleet.commands.command_pass import AUDIT_SENT
 from gateway.registry.spec import redacted
-from gateway.registry.store import AuditEntry
+from gateway.registry.store import AuditEntry, utcnow
 
 log = logging.getLogger(__name__)
 
@@ -77,9 +84,16 @@ def _vehicle_id(request: Request, args: dict[str, object]) -> str | None:
 
 
 async def record_rest_call(
-    request: Request, action: str, outcome: str, error: str | None, started: float
+    request: Request,
+    action: str,
+    outcome: str,
+    error: str | None,
+    started: float,
+    operation: tuple[str, datetime] | None = None,
 ) -> None:
-    """Write one audit row (and touch the caller's REST session); never fails the request."""
+    """Write one audit row (and touch the caller's REST session); never fails the request.
+    ``operation``: the id of the operation the call started and when the call came (the row is then
+    written running, from that time, for the store to finish when the operation ends)."""
     duration_ms = (time.perf_counter() - started) * 1000.0
     gateway = request.app.state.gateway
     store = gateway.store
@@ -108,6 +122,8 @@ async def record_rest_call(
                 outcome=outcome,
                 error=error,
                 duration_ms=duration_ms,
+                operation_id=None if operation is None else operation[0],
+                t=None if operation is None else operation[1],
             )
         )
     except Exception:
@@ -138,12 +154,24 @@ class AuditedRoute(APIRoute):
         async def audited(request: Request) -> Response:
             if request.method not in AUDITED_METHODS:
                 return await handler(request)
-            started = time.perf_counter()
+            started, called_at = time.perf_counter(), utcnow()
+            operations: list[str] = []
+
+            def sent(operation_id: str) -> None:
+                operations.append(operation_id)
+
+            noting = AUDIT_SENT.set(sent)
             try:
                 response = await handler(request)
             except Exception as exc:
                 await record_rest_call(request, action, *_failure(exc), started)
                 raise
+            finally:
+                AUDIT_SENT.reset(noting)
+            if response.status_code < 400 and operations:
+                started_op = (operations[0], called_at)
+                await record_rest_call(request, action, "running", None, started, started_op)
+                return response
             outcome = "ok" if response.status_code < 400 else "error"
             error = None if outcome == "ok" else f"http_{response.status_code}"
             await record_rest_call(request, action, outcome, error, started)

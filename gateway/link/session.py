@@ -26,9 +26,11 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import logging
+import os
 import time
 from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING
+from urllib.parse import urlsplit
 
 import grpc
 
@@ -93,7 +95,9 @@ class Link:
         self._mission_progress = mission_progress
         self._jobs = list(session_jobs)
         self._sidecar: Sidecar | None = None
-        self._relay: Relay | None = None  # when ground stations share the drone's MAVLink
+        self._relay: Relay | None = None  # when ground stations share the drone's MAVLink or it is recorded
+        #: given each frame from the drone as received while the link is relayed (the flight's raw log)
+        self.vehicle_frames: Callable[[bytes], None] | None = None
         self._system: System | None = None
         self._session_task: asyncio.Task[None] | None = None
         self._session_started: float | None = None
@@ -126,7 +130,8 @@ class Link:
 
     @property
     def relay(self) -> Relay | None:
-        """The relay to the ground stations that share the drone's MAVLink (None: none do)."""
+        """The relay of the drone's MAVLink to the sidecar, the ground stations and the flight's raw log
+        (None: the sidecar holds the drone's link itself)."""
         return self._relay
 
     @property
@@ -324,9 +329,12 @@ class Link:
             await self.disconnect()  # connecting a failed vehicle again starts afresh
         self._last_error = None
         url = self.spec.url
-        if self.spec.gcs_endpoints:
-            # the gateway holds the drone's link and relays it to the sidecar and the ground stations
-            # (the relay's MAVLink dialect, about 7 MiB, is loaded only for a drone that has some)
+        if self.spec.gcs_endpoints or (
+            self.settings.records_flight_frames and _device_present(self.spec.url)
+        ):
+            # the gateway holds the drone's link and relays it to the sidecar and the ground stations,
+            # and hands each frame from the drone to the flight's raw log (the relay's MAVLink dialect,
+            # about 7 MiB, is loaded only when a drone is relayed)
             from gateway.link.relay import Relay
 
             relay = Relay(
@@ -335,10 +343,22 @@ class Link:
                 list(self.spec.gcs_endpoints),
                 sidecar_pid=self._sidecar_pid,
                 on_refused=self._on_relay_refused,
+                on_vehicle_frame=self._vehicle_frame,
             )
             await relay.start()
-            self._relay = relay
-            url = relay.sidecar_url
+            if relay.complaint is not None and not self.spec.gcs_endpoints:
+                # relayed only for the flight's raw log, and the gateway cannot open the drone's link
+                # (no such device, port taken): the sidecar opens it as without the log, and fails or
+                # retries as it does then
+                log.warning(
+                    "%s: %s; connecting without the raw flight log (the sidecar opens the link)",
+                    self.id,
+                    relay.complaint,
+                )
+                await relay.close()
+            else:
+                self._relay = relay
+                url = relay.sidecar_url
         self._sidecar = Sidecar(
             self.id,
             url,
@@ -349,6 +369,11 @@ class Link:
         )
         self._sidecar.start()
         self._monitor_task = asyncio.create_task(run_monitor(self), name=f"monitor-{self.id}")
+
+    def _vehicle_frame(self, data: bytes) -> None:
+        sink = self.vehicle_frames
+        if sink is not None:
+            sink(data)
 
     def _sidecar_pid(self) -> int | None:
         return self._sidecar.pid if self._sidecar is not None else None
@@ -490,3 +515,10 @@ class Link:
     def note_error(self, message: str) -> None:
         """The link's last error, as ``last_error`` and the status say it."""
         self._last_error = message
+
+
+def _device_present(url: str) -> bool:
+    """False for a serial URL whose device does not exist now (the sidecar opens it and fails, as it
+    does without the raw flight log); True for every other URL."""
+    parts = urlsplit(url)
+    return parts.scheme != "serial" or os.path.exists(parts.path.partition(":")[0])

@@ -256,3 +256,21 @@ class OriginRow(Base):
     source: Mapped[str] = mapped_column(String(16))  # first_home | operator
     set_by: Mapped[str] = mapped_column(String(200))
     set_at: Mapped[datetime] = mapped_column(UTCDateTime())
+
+
+class PlanExtrasRow(Base):
+    """What a drone's last ``.plan`` carried beside its items and its zones
+    (`gateway.fleet.missions.plan_extras`): its rally points, and the circles its geofence was drawn as
+    (the zones themselves are polygons), written back when the drone's mission is exported as a .plan."""
+
+    __tablename__ = "vehicle_plan_extras"
+
+    vehicle_id: Mapped[str] = mapped_column(
+        String(32), ForeignKey("vehicles.id", ondelete="CASCADE"), primary_key=True
+    )
+    #: [[lat, lon, alt above home], ...]
+    rally: Mapped[list[list[float]]] = mapped_column(JSON, default=list)
+    #: {zone name: [centre lat, centre lon, radius m], ...}
+    circles: Mapped[dict[str, list[float]]] = mapped_column(JSON, default=dict)
+    set_by: Mapped[str] = mapped_column(String(200))
+    set_at: Mapped[datetime] = mapped_column(UTCDateTime())

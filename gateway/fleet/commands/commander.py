@@ -113,7 +113,7 @@ class Commander:
         self.fleet_steps = fleet_steps = FleetStepVerbs(self.commands, desk, fleet)
         self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, flight, fleet, fleet_steps)
         self.operator = operator = OperatorVerbs(self.commands, flight, fleet, store)
-        self.zones = zones = ZoneVerbs(self.commands, Zones(safety, settings.geofence_file), missions)
+        self.zones = zones = ZoneVerbs(self.commands, Zones(safety, settings.geofence_file), missions, store)
         self.registrations = registrations_ = RegistryVerbs(self.commands, desk, registrations, store)
         #: where a verb called by name runs (`gateway.fleet.commands.command_core.command`), by class name
         self.parts: dict[str, object] = {

@@ -88,6 +88,7 @@ class Vehicle:
             session_jobs=[
                 ("mission", lambda system: self.missions.follow(system)),
                 ("target", self._position_target),
+                ("params", self._parameter_list),
             ],
             on_relay_refused=self._relay_refused,
         )
@@ -104,6 +105,12 @@ class Vehicle:
         self._targets: deque[tuple[float, float, float]] = deque(maxlen=16)
         #: the last position target the gateway sent (goto, hold): lat, lon, monotonic time sent
         self._commanded: tuple[float, float, float] | None = None
+
+    async def _parameter_list(self, _system: System) -> None:
+        """A session's job: the autopilot's parameter list, fetched once per vehicle as its first session
+        starts (an unknown name is then refused from it at once); nothing more to do after."""
+        await self.params.prefetch()
+        await asyncio.Event().wait()
 
     # --- identity, state and the link ----------------------------------------------------------------
     @property
