@@ -93,6 +93,7 @@ class Store(VehicleTable, FlightTables, LockTables, OperationTable, OriginTable)
                 "status_texts": self._write_status_texts,
                 "audit": self._write_audit,
                 "audit_batch": self._write_audit_batch_of,
+                "audit_call_end": self._write_call_end,
                 "operation": self._write_operation,
                 "operation_end": self._write_operation_end,
                 "lock": self._write_lock,

@@ -29,7 +29,7 @@ from gateway.errors import (
 )
 from gateway.fleet import geo
 from gateway.fleet.commands.arguments import AltFrame
-from gateway.fleet.commands.command_pass import CommandPass
+from gateway.fleet.commands.command_pass import AUDIT_SENT, CommandPass
 from gateway.fleet.operations.operation_state import Operation
 from gateway.fleet.operations.routing import FORWARDED, OnMessage, ProgressMessage, Verb
 from gateway.fleet.operations.views import ActionResult, OperationView
@@ -115,6 +115,8 @@ def routed(method: VerbMethod) -> VerbMethod:
             view = body.get("view")
             operation_id = view.get("operation_id") if isinstance(view, dict) else None
             if isinstance(operation_id, str):
+                if seen.get("operation_id") != operation_id and (note := AUDIT_SENT.get()) is not None:
+                    note(operation_id)  # the call's audit row names it: its end finishes the row
                 seen["operation_id"] = operation_id
             if relay is not None:
                 await relay(body)
