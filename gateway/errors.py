@@ -114,6 +114,15 @@ class OwnerLost(NoOwner):
     http_status = 503
 
 
+class OwnerFenced(GatewayError):
+    """Cluster: the node running a forwarded call fenced itself (it could not renew its leases) or lost
+    the drone's lease while it ran: the call was not finished there, and that node does not command the
+    drone any further (the drone flies its last command on its own)."""
+
+    code = "owner_fenced"
+    http_status = 503
+
+
 class NotRun(GatewayError):
     """Cluster: a forwarded call was not run: the bus is unreachable from this node, or the owner did not
     accept it before its deadline (the owner refuses it if it arrives later), or it was sent for a lease

@@ -3,6 +3,8 @@ database is unreachable counts once it is back)."""
 
 from __future__ import annotations
 
+import logging
+from collections.abc import Callable
 from datetime import datetime
 from typing import Any, cast
 
@@ -15,9 +17,28 @@ from gateway.registry.models import (
 from gateway.registry.records import LockRecord
 from gateway.registry.store_core import StoreCore, rowcount
 
+log = logging.getLogger(__name__)
+
+
+#: ``superseded(family, scope, locked_at)``: whether a lock was undone since it was made (an unlock
+#: newer than it is known: `gateway.cluster.lock_versions.LockVersions.superseded`); family "lock" or
+#: "takeover"
+Superseded = Callable[[str, str, datetime], bool]
+
 
 class LockTables(StoreCore):
-    """Operator locks and takeover locks (`gateway.fleet.policy.operator_locks`), kept across restarts."""
+    """Operator locks and takeover locks (`gateway.fleet.policy.operator_locks`), kept across restarts.
+    A lock written late (kept while the database was down) that was undone meanwhile is not written
+    (``lock_superseded``, set by a cluster node)."""
+
+    lock_superseded: Superseded | None = None
+
+    def _undone(self, family: str, scope: str, locked_at: datetime) -> bool:
+        if self.lock_superseded is None or not self.lock_superseded(family, scope, locked_at):
+            return False
+        log.warning("the %s of %s made at %s is not written: it was undone since (a newer unlock is known)",
+                    family, scope, locked_at.isoformat())  # fmt: skip
+        return True
 
     async def save_lock(self, scope: str, reason: str, by: str, locked_at: datetime) -> LockRecord | None:
         """Store (or replace) the lock of ``scope``; None when the database is unreachable (it is
@@ -25,9 +46,11 @@ class LockTables(StoreCore):
         data = {"scope": scope, "reason": reason, "by": by[:200], "locked_at": locked_at.isoformat()}
         return cast(LockRecord | None, await self._kept(f"the lock of {scope}", "lock", data))
 
-    async def _write_lock(self, data: dict[str, Any]) -> LockRecord:
+    async def _write_lock(self, data: dict[str, Any]) -> LockRecord | None:
         scope, reason, by = data["scope"], data["reason"], data["by"]
         locked_at = datetime.fromisoformat(data["locked_at"])
+        if self._undone("lock", scope, locked_at):
+            return None
         async with self._sessions.begin() as session:
             row = await session.get(LockRow, scope)
             if row is None:
@@ -67,9 +90,11 @@ class LockTables(StoreCore):
         kept = await self._kept(f"the takeover lock of {vehicle_id}", "takeover", data)
         return cast(LockRecord | None, kept)
 
-    async def _write_takeover(self, data: dict[str, Any]) -> LockRecord:
+    async def _write_takeover(self, data: dict[str, Any]) -> LockRecord | None:
         vehicle_id, reason, by = data["vehicle_id"], data["reason"], data["by"]
         locked_at = datetime.fromisoformat(data["locked_at"])
+        if self._undone("takeover", vehicle_id, locked_at):
+            return None
         async with self._sessions.begin() as session:
             row = await session.get(TakeoverRow, vehicle_id)
             if row is None:
