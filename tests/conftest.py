@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from gateway.registry.store import Store
+from tests.helpers.file_order import longest_files_first, seconds_per_file
 from tests.helpers.timing import TIME_SCALE, scaled
 
 
@@ -20,6 +21,13 @@ def pytest_report_header(config: pytest.Config) -> str:
 
 
 @pytest.hookimpl(trylast=True)
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Longest test files first (tests/helpers/file_order.py), so the workers of ``make test`` finish
+    together; the order is all it changes."""
+    order = longest_files_first(items, seconds_per_file())
+    items[:] = [items[i] for i in order]
+
+
 def pytest_configure(config: pytest.Config) -> None:
     """FLEET_TEST_TIME_SCALE stretches pytest-timeout's per-test bound like every other deadline."""
     timeout = getattr(config, "_env_timeout", None)

@@ -1,4 +1,6 @@
-"""A pilot or ground station always wins, on the real autopilots: an agent's go_to_location is flying
+"""The takeover scenarios that tests/real/test_takeover_ardupilot.py and test_takeover_px4.py fly.
+
+A pilot or ground station always wins, on the real autopilots: an agent's go_to_location is flying
 (through MCP over HTTP, the gateway with its SQLite store and a mavsdk_server), when a second ground
 station (pymavlink, on the autopilot's other port: ArduCopter SITL's SERIAL1 TCP port, PX4's GCS MAVLink
 instance) switches the mode, as a pilot's RC switch or QGroundControl does. The waiting call returns
@@ -15,18 +17,13 @@ import time
 from pathlib import Path
 from typing import Any
 
-import pytest
 from pymavlink import mavutil
 
 from gateway.fleet import geo
 from tests.helpers.autopilots import Autopilot
 from tests.helpers.timing import scaled
 from tests.mcp.conftest import structured
-from tests.real.test_tour_ardupilot import ARDUCOPTER
-from tests.real.test_tour_px4 import PX4
 from tests.real.tour import Profile, Tour, distance, fleet_finish, gateway_over
-
-pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(600))]
 
 MAV_CMD_DO_SET_MODE = 176
 MAV_CMD_DO_REPOSITION = 192
@@ -351,61 +348,6 @@ async def run(tmp: Path, profile: Profile, ap: Autopilot, scenario: Any, **kw: A
                 conn.close()
 
 
-async def test_a_second_ground_station_switches_arducopter_to_loiter_mid_goto(
-    arducopter, tmp_path: Path
-) -> None:
-    loiter = {"switch": {"custom_mode": 5}, "from_mode": "GUIDED", "to_mode": "LOITER", "reported": "LOITER"}
-    await run(tmp_path, ARDUCOPTER, arducopter, takeover_mid_goto, **loiter)
-
-
-async def test_a_second_ground_station_sends_an_arducopter_elsewhere_in_guided(
-    arducopter, tmp_path: Path
-) -> None:
-    await run(tmp_path, ARDUCOPTER, arducopter, arducopter_sent_elsewhere_by_a_second_gcs_mid_goto)
-
-
-async def test_a_second_ground_station_sends_a_holding_arducopter_elsewhere_in_guided(
-    arducopter, tmp_path: Path
-) -> None:
-    await run(tmp_path, ARDUCOPTER, arducopter, pilot_target_during_a_hold)
-
-
-async def test_a_second_ground_station_takes_arducopter_mid_takeoff_and_mid_mission(
-    arducopter, tmp_path: Path
-) -> None:
-    takeoff = ({"custom_mode": 5}, "the autopilot switched from GUIDED to LOITER")
-    mission = ({"custom_mode": 6}, "the autopilot switched from AUTO to RTL")
-    await run(
-        tmp_path, ARDUCOPTER, arducopter, takeover_mid_takeoff_and_mission, takeoff=takeoff, mission=mission
-    )
-
-
-async def test_a_second_ground_station_switches_px4_to_return_mid_goto(px4, tmp_path: Path) -> None:
-    rtl = {"custom_mode": 0, "px4_modes": (4, 5)}
-    kw = {"switch": rtl, "from_mode": "AUTO.LOITER", "to_mode": "AUTO.RTL", "reported": "RETURN_TO_LAUNCH"}
-    await run(tmp_path, PX4, px4, takeover_mid_goto, **kw)
-
-
-async def test_a_second_ground_station_pauses_a_px4_goto_in_hold(px4, tmp_path: Path) -> None:
-    await run(tmp_path, PX4, px4, px4_paused_by_a_second_gcs_mid_goto)
-
-
-async def test_a_second_ground_station_repositions_a_holding_px4_in_hold(px4, tmp_path: Path) -> None:
-    await run(tmp_path, PX4, px4, pilot_target_during_a_hold)
-
-
-async def test_a_second_ground_station_takes_px4_mid_takeoff_and_mid_mission(px4, tmp_path: Path) -> None:
-    takeoff = (
-        {"custom_mode": 0, "px4_modes": (4, 6)},
-        "the autopilot switched from AUTO.TAKEOFF to AUTO.LAND",
-    )
-    mission = (
-        {"custom_mode": 0, "px4_modes": (4, 3)},
-        "the autopilot switched from AUTO.MISSION to AUTO.LOITER",
-    )
-    await run(tmp_path, PX4, px4, takeover_mid_takeoff_and_mission, takeoff=takeoff, mission=mission)
-
-
 async def takeover_mid_formation(
     t: Tour, aps: list[Autopilot], *, switch: dict[str, Any], from_mode: str, to_mode: str, reported: str
 ) -> None:
@@ -469,14 +411,3 @@ async def run_formation(tmp: Path, profile: Profile, aps: list[Autopilot], **kw:
             conn = _GCS.pop(aps[1].gcs or "", None)
             if conn is not None:
                 conn.close()
-
-
-async def test_a_second_ground_station_takes_an_arducopter_mid_formation(launch, tmp_path: Path) -> None:
-    kw = {"switch": {"custom_mode": 5}, "from_mode": "GUIDED", "to_mode": "LOITER", "reported": "LOITER"}
-    await run_formation(tmp_path, ARDUCOPTER, launch("ardupilot", 2), **kw)
-
-
-async def test_a_second_ground_station_takes_a_px4_mid_formation(launch, tmp_path: Path) -> None:
-    rtl = {"custom_mode": 0, "px4_modes": (4, 5)}
-    kw = {"switch": rtl, "from_mode": "AUTO.LOITER", "to_mode": "AUTO.RTL", "reported": "RETURN_TO_LAUNCH"}
-    await run_formation(tmp_path, PX4, launch("px4", 2), **kw)

@@ -1,0 +1,55 @@
+"""A pilot or ground station always wins on ArduCopter SITL: the scenarios of tests/real/takeover.py (an
+agent's call flying through MCP over HTTP while a second ground station switches the mode)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from tests.helpers.timing import scaled
+from tests.real.takeover import (
+    arducopter_sent_elsewhere_by_a_second_gcs_mid_goto,
+    pilot_target_during_a_hold,
+    run,
+    run_formation,
+    takeover_mid_goto,
+    takeover_mid_takeoff_and_mission,
+)
+from tests.real.test_tour_ardupilot import ARDUCOPTER
+
+pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(600))]
+
+
+async def test_a_second_ground_station_switches_arducopter_to_loiter_mid_goto(
+    arducopter, tmp_path: Path
+) -> None:
+    loiter = {"switch": {"custom_mode": 5}, "from_mode": "GUIDED", "to_mode": "LOITER", "reported": "LOITER"}
+    await run(tmp_path, ARDUCOPTER, arducopter, takeover_mid_goto, **loiter)
+
+
+async def test_a_second_ground_station_sends_an_arducopter_elsewhere_in_guided(
+    arducopter, tmp_path: Path
+) -> None:
+    await run(tmp_path, ARDUCOPTER, arducopter, arducopter_sent_elsewhere_by_a_second_gcs_mid_goto)
+
+
+async def test_a_second_ground_station_sends_a_holding_arducopter_elsewhere_in_guided(
+    arducopter, tmp_path: Path
+) -> None:
+    await run(tmp_path, ARDUCOPTER, arducopter, pilot_target_during_a_hold)
+
+
+async def test_a_second_ground_station_takes_arducopter_mid_takeoff_and_mid_mission(
+    arducopter, tmp_path: Path
+) -> None:
+    takeoff = ({"custom_mode": 5}, "the autopilot switched from GUIDED to LOITER")
+    mission = ({"custom_mode": 6}, "the autopilot switched from AUTO to RTL")
+    await run(
+        tmp_path, ARDUCOPTER, arducopter, takeover_mid_takeoff_and_mission, takeoff=takeoff, mission=mission
+    )
+
+
+async def test_a_second_ground_station_takes_an_arducopter_mid_formation(launch, tmp_path: Path) -> None:
+    kw = {"switch": {"custom_mode": 5}, "from_mode": "GUIDED", "to_mode": "LOITER", "reported": "LOITER"}
+    await run_formation(tmp_path, ARDUCOPTER, launch("ardupilot", 2), **kw)
