@@ -7,6 +7,7 @@ Reads are not audited: dashboards poll them and they change nothing. Routers opt
 
 from __future__ import annotations
 
+import asyncio
 import json
 import logging
 import re
@@ -114,6 +115,25 @@ async def record_rest_call(
         log.exception("could not write the audit entry of %s %s", request.method, request.url.path)
 
 
+#: the routes whose answer never waits long on its audit row: the emergency stop (its drones are told
+#: before it is recorded; a database that hangs must not hold the operator's answer either)
+STOP_ACTIONS = frozenset({"rest.fleet_stop"})
+#: how long the emergency stop's answer waits for its audit row (the write goes on beside it)
+STOP_AUDIT_WAIT_S = 0.5
+_RECORDING: set[asyncio.Task[None]] = set()
+
+
+async def _recorded(action: str, record: Coroutine[Any, Any, None]) -> None:
+    """Record a call; the emergency stop's answer waits STOP_AUDIT_WAIT_S for it at most."""
+    if action not in STOP_ACTIONS:
+        await record
+        return
+    task = asyncio.create_task(record, name=f"audit-{action}")
+    _RECORDING.add(task)  # it may outlive the request (a database that hangs)
+    task.add_done_callback(_RECORDING.discard)
+    await asyncio.wait({task}, timeout=STOP_AUDIT_WAIT_S)
+
+
 class AuditedRoute(APIRoute):
     """An APIRoute that audits its state-changing calls; the action is the route's name."""
 
@@ -125,27 +145,31 @@ class AuditedRoute(APIRoute):
             if request.method not in AUDITED_METHODS:
                 return await handler(request)
             started = time.perf_counter()
+
+            async def record(outcome: str, error: str | None) -> None:
+                await _recorded(action, record_rest_call(request, action, outcome, error, started))
+
             try:
                 response = await handler(request)
             except SafetyRefusal as exc:
-                await record_rest_call(request, action, "refused", f"{exc.code}: {exc.message}", started)
+                await record("refused", f"{exc.code}: {exc.message}")
                 raise
             except GatewayError as exc:
-                await record_rest_call(request, action, "error", f"{exc.code}: {exc.message}", started)
+                await record("error", f"{exc.code}: {exc.message}")
                 raise
             except RequestValidationError as exc:
                 summary = "; ".join(str(e.get("msg")) for e in list(exc.errors())[:3])
-                await record_rest_call(request, action, "error", f"validation_error: {summary}", started)
+                await record("error", f"validation_error: {summary}")
                 raise
             except StarletteHTTPException as exc:
-                await record_rest_call(request, action, "error", f"http_{exc.status_code}", started)
+                await record("error", f"http_{exc.status_code}")
                 raise
             except Exception as exc:
-                await record_rest_call(request, action, "error", f"internal_error: {exc!r}"[:500], started)
+                await record("error", f"internal_error: {exc!r}"[:500])
                 raise
             outcome = "ok" if response.status_code < 400 else "error"
             error = None if outcome == "ok" else f"http_{response.status_code}"
-            await record_rest_call(request, action, outcome, error, started)
+            await record(outcome, error)
             return response
 
         return audited

@@ -16,8 +16,8 @@ A call of a tool that commands a drone (a verb's tool) has its row written befor
 (`Store.audit_call`: outcome running), waited for up to `CALL_ROW_WAIT_S` (a database that hangs does not
 hold the command longer; the write goes on), except for the stops (land, return, hold, kill, disarm and
 their fleet forms), which are sent at once with their row written beside them; the call's end (or the
-operation it started) is written before the call is answered, within the same wait. So a node killed
-while or just after it ran the call keeps its row.
+operation it started) is written before the call is answered (`CALL_END_WAIT_S`: in the database, or in
+the spool file). So a node killed while or just after it ran the call keeps its row.
 """
 
 from __future__ import annotations
@@ -38,6 +38,7 @@ from gateway.fleet.policy.caller import Caller
 from gateway.mcp.access import CallInfo, FleetState, current_call
 from gateway.mcp.sdk_types import CallNext, HandlerResult, RequestContext
 from gateway.registry.records import AUDIT_OUTCOME_OF_OPERATION, AuditEntry, SessionKind
+from gateway.registry.spool import WRITE_TIMEOUT_S
 from gateway.registry.store import Store
 from gateway.registry.store_audit import AuditCall, SessionSeen
 
@@ -47,8 +48,12 @@ CLIENT_INFO_META = "io.modelcontextprotocol/clientInfo"
 TOUCH_EVERY_S = 5.0
 """A session's last_seen is refreshed at most this often (and on every tool call)."""
 CALL_ROW_WAIT_S = 1.0
-"""A call that commands a drone waits this long at most for its audit row before the command is sent, and
-for its end before it is answered."""
+"""A call that commands a drone waits this long at most for its audit row before the command is sent (a
+database that hangs does not hold the command longer; the write goes on)."""
+CALL_END_WAIT_S = WRITE_TIMEOUT_S + 1.0
+"""...and this long at most for its end (and its row) before it is answered: until both are in the
+database, or kept in the node's spool file once the database has not answered within the spool's time, so
+a node killed just after answering keeps the call's row and outcome."""
 #: the verbs whose tools stop drones: sent without waiting for their audit row (it is written beside them)
 STOP_VERBS = frozenset(
     {"land", "return_to_launch", "hold", "kill", "disarm"}
@@ -199,7 +204,7 @@ class SessionAudit:
         written: list[str],
     ) -> None:
         """The end of a call whose row was written before it ran: its outcome; or, when it started an
-        operation, that operation (whose end finishes the row). Waited for up to CALL_ROW_WAIT_S."""
+        operation, that operation (whose end finishes the row). Waited for up to CALL_END_WAIT_S."""
         took_ms = round((time.perf_counter() - started) * 1000.0, 1)
         operation_id: str | None
         error: str | None
@@ -217,7 +222,7 @@ class SessionAudit:
             outcome, error = _outcome(call, result, failure)
             operation_id = _operation_id(result) if outcome == "running" else None
         try:
-            await row.end(outcome, error and error[:1000], took_ms, CALL_ROW_WAIT_S, operation_id)
+            await row.end(outcome, error and error[:1000], took_ms, CALL_END_WAIT_S, operation_id)
         except Exception:
             log.exception("could not finish the audit row of call %s", row.id)
 
