@@ -109,17 +109,22 @@ class Compiler:
         return [Call("takeoff", {"drone_id": drone, "alt_m": height}, drone)], alt is None and up > 0
 
     async def _move(self, step: Move) -> Compiled:
+        return [*await self._move_only(step), *ending(step)]
+
+    async def _move_only(self, step: Move) -> Compiled:
         north, east, up = sum_legs(step.legs)
         alt = step.altitude.metres if step.altitude is not None else None
         if step.origin.kind != "here":
             return await self._move_from(step, north, east, up, alt)
         calls, climbed = await self._lift(step.drone, alt, up)
-        args: dict[str, Any] = {"drone_id": step.drone, "north_m": north, "east_m": east}
-        if alt is not None and not calls:
-            args["alt_m"] = alt
-        elif up and not climbed:
-            args["up_m"] = up
-        return [*calls, Call("move_to_relative", args, step.drone)]
+        for i, (n, e, u) in enumerate(flown_segments(step.legs)):
+            args: dict[str, Any] = {"drone_id": step.drone, "north_m": n, "east_m": e}
+            if i == 0 and alt is not None and not calls:
+                args["alt_m"] = alt
+            elif u and not climbed:
+                args["up_m"] = u
+            calls.append(Call("move_to_relative", args, step.drone))
+        return calls
 
     async def _move_from(
         self, step: Move, north: float, east: float, up: float, alt: float | None
@@ -168,7 +173,7 @@ class Compiler:
             Call("move_to_relative", {"drone_id": step.drone, "north_m": n, "east_m": e}, step.drone)
             for n, e in legs
         ]
-        return [*calls, *moves]
+        return [*calls, *moves, *ending(step)]
 
     async def _formation(self, step: Formation) -> Compiled:
         north, east, _ = sum_legs(step.legs)
@@ -230,6 +235,31 @@ class Compiler:
 _UNITS = {"battery": "%", "altitude": "m"}
 
 
+def ending(step: Move | Pattern) -> Compiled:
+    """The landing or return a move or a pattern ends with (none when the drone stays)."""
+    tool = {"land": "land", "return_home": "return_to_launch"}.get(step.after)
+    return [] if tool is None else [Call(tool, {"drone_id": step.drone}, step.drone)]
+
+
+def flown_segments(legs: list[Leg]) -> list[tuple[float, float, float]]:
+    """(north_m, east_m, up_m) of each move a drone flies from where it is, in the legs' order: each
+    horizontal leg is one move (a dogleg passes its corner, an out-and-back goes out); a climb or descent
+    goes with the horizontal leg before it (with the first, when it comes first)."""
+    segments: list[tuple[float, float, float]] = []
+    climb_first = 0.0
+    for leg in legs:
+        north, east, up = sum_legs([leg])
+        if north or east:
+            segments.append((north, east, climb_first))
+            climb_first = 0.0
+        elif segments:
+            n, e, u = segments[-1]
+            segments[-1] = (n, e, round(u + up, 2) + 0.0)
+        else:
+            climb_first = round(climb_first + up, 2) + 0.0
+    return segments or [(0.0, 0.0, climb_first)]
+
+
 def sum_legs(legs: list[Leg]) -> tuple[float, float, float]:
     """(north_m, east_m, up_m) of legs flown one after the other."""
     north = east = up = 0.0
@@ -245,8 +275,8 @@ def sum_legs(legs: list[Leg]) -> tuple[float, float, float]:
 
 def pattern_legs(step: Pattern) -> list[geometry.Offset]:
     """A pattern's legs from where the drone is."""
-    heading = 0.0 if step.heading in ("up", "down") else geometry.compass_heading(step.heading)
-    clockwise = step.turn == "right"
+    heading = 0.0 if step.heading in (None, "up", "down") else geometry.compass_heading(step.heading)
+    clockwise = step.turn != "left"
     if step.shape in POLYGON_SIDES or step.shape == "polygon":
         sides = POLYGON_SIDES.get(step.shape) or step.sides or 4
         return geometry.polygon_legs(sides, step.size.metres, heading, clockwise)

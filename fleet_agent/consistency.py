@@ -32,7 +32,11 @@ def _drone_gaps(request: str, fleet: list[str], data: Any) -> list[str]:
     if not named:
         return []
     planned = _plan_drones(data)
-    notes = [f"the request names {d}, which no step of the plan does" for d in sorted(named - planned)]
+    notes = [
+        f"the request names {d}, which no step of the plan does (as the drone that acts, or as a move's "
+        f'origin {{"kind": "drone", "drone": "{d}"}})'
+        for d in sorted(named - planned)
+    ]
     notes += [f"the plan has {d}, which the request does not name" for d in sorted(planned - named)]
     return notes
 

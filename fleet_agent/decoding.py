@@ -88,7 +88,7 @@ class Planner:
                 return attempt
             messages += [
                 {"role": "assistant", "content": reply},
-                {"role": "user", "content": f"{problem}. Write the whole plan again, corrected."},
+                {"role": "user", "content": repair_message(problem, request)},
             ]
         return attempt
 
@@ -122,6 +122,12 @@ class Planner:
         if not response.choices:
             return ""
         return response.choices[0].message.content or ""
+
+
+def repair_message(problem: str, request: str) -> str:
+    """What goes back with a plan that needs correcting: what is wrong, then the request again (a small
+    model that reads the correction alone writes a plan for an earlier example instead)."""
+    return f"{problem}.\nRequest: {request}\nWrite the whole plan for this request again, corrected."
 
 
 def _json_part(reply: str) -> str:

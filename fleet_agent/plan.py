@@ -11,7 +11,7 @@ import copy
 from enum import StrEnum
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
 from fleet_agent.units import Unit, to_metres
 
@@ -99,15 +99,22 @@ class Altitude(DroneStep):
     altitude: Length
 
 
+#: what a drone does once a move or a pattern is flown: a required choice, so that a model decides it
+#: where it writes the step (a landing the request asks for at the end was dropped as a separate step)
+Ending = Literal["stay", "land", "return_home"]
+
+
 class Move(DroneStep):
     """Legs from ``origin`` (horizontal legs add up; up/down legs change the height), at ``altitude``
-    above home when given."""
+    above home when given. The origin comes before the legs: a decoder writes properties in the schema's
+    order, and a model that has written the legs and the altitude first falls back on ``here``."""
 
     action: Literal["move"]
     drone: str
+    origin: Reference
     legs: list[Leg]
     altitude: Length | None
-    origin: Reference
+    after: Ending
 
 
 #: the polygons a shape's name says the sides of
@@ -117,25 +124,32 @@ POLYGON_SIDES = {"triangle": 3, "square": 4, "pentagon": 5, "hexagon": 6, "octag
 class Pattern(DroneStep):
     """A polygon (named, or ``polygon`` with ``sides``) with sides of ``size``; an orbit, a circle of radius
     ``size``; a survey, ``lines`` lines of ``size``, ``spacing`` apart. Flown by one drone from where it is,
-    the first leg towards ``heading``."""
+    the first leg towards ``heading`` (null: north), turning ``turn`` (null: right).
+
+    Every property is required (null where the request gives none): a schema-guided decoder writes the
+    required properties first and may stop before the optional ones, so an optional altitude or heading
+    placed before the required ``after`` was left out."""
 
     action: Literal["pattern"]
     drone: str
     shape: Literal["triangle", "square", "pentagon", "hexagon", "octagon", "polygon", "orbit", "survey"]
     size: Length
-    sides: int | None = Field(default=None, ge=3, le=12)
-    lines: int | None = Field(default=None, ge=1, le=20)
-    spacing: Length | None = None
-    heading: Direction = Direction.north
-    turn: Literal["right", "left"] = "right"
-    altitude: Length | None = None
+    sides: int | None = Field(ge=3, le=12)
+    lines: int | None = Field(ge=1, le=20)
+    spacing: Length | None
+    heading: Direction | None
+    turn: Literal["right", "left"] | None
+    altitude: Length | None
+    after: Ending
 
 
 class Formation(Strict):
-    """The drones in a shape ``spacing`` apart, centred where they are (or on ``origin``), then ``legs``."""
+    """The drones in a shape ``spacing`` apart, centred where they are (or on ``origin``), then ``legs``.
+    At least two drones: under the schema a model cannot write one drone's circle as a formation (it is an
+    orbit, a pattern)."""
 
     action: Literal["formation"]
-    drones: list[str] = Field(min_length=1)
+    drones: list[str] = Field(min_length=2)
     shape: Literal["line", "column", "wedge", "grid", "circle"]
     spacing: Length
     altitude: Length
@@ -226,6 +240,23 @@ Step = Annotated[
 
 class Plan(Strict):
     steps: list[Step] = Field(max_length=40)
+
+    @model_validator(mode="after")
+    def _one_ending(self) -> Plan:
+        """A landing or return written both as a step's ``after`` and as the next step is flown once."""
+        kept: list[Any] = []
+        for step in self.steps:
+            previous = kept[-1] if kept else None
+            if (
+                isinstance(step, Land | ReturnHome)
+                and isinstance(previous, Move | Pattern)
+                and previous.drone == step.drone
+                and previous.after == step.action
+            ):
+                continue
+            kept.append(step)
+        self.steps = kept
+        return self
 
 
 def known_drone(value: str, info: ValidationInfo) -> str:

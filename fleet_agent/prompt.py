@@ -17,25 +17,30 @@ each thing the request asks, in the order it gives them. Write only the JSON, on
 Each step has an "action":
 - takeoff {drone, altitude}; land {drone}; return_home {drone}; hold {drone}
 - altitude {drone, altitude}: climb or descend to that height above home
-- move {drone, legs, altitude, origin}: legs are [{distance, direction}] (north, south, east, west, northeast,
-  northwest, southeast, southwest, up, down); altitude is the height to fly at or null; origin says where
-  the legs start: {"kind": "here"} the drone itself, "home", {"kind": "drone", "drone": id} another
-  drone, {"kind": "place", "place": name} a named place, {"kind": "point", "lat_deg", "lon_deg"} coordinates
+- move {drone, origin, legs, altitude, after}: origin says where the legs start: {"kind": "here"} the drone
+  itself, {"kind": "home"} its home, {"kind": "drone", "drone": id} another drone (a spot north of another
+  drone), {"kind": "place", "place": name} a named place, {"kind": "point", "lat_deg", "lon_deg"}
+  coordinates; legs are [{distance, direction}] (north, south, east, west, northeast, northwest,
+  southeast, southwest, up, down); altitude is the height to fly at or null; after is what the drone
+  does once there: "stay", "land" (there) or "return_home"
 - pattern {drone, shape, size, ...}: ONE drone flies a shape: triangle, square, pentagon, hexagon,
   octagon or polygon (sides) with size = side length; orbit (a circle, size = radius); survey (lines,
-  size = line length, spacing); optional heading (first leg), turn (right, left), altitude
+  size = line length, spacing); sides, lines, spacing, heading (the first leg), turn (right, left) and
+  altitude are null when the request gives none; after ("stay", "land", "return_home") as for a move
 - formation {drones, shape (line, column, wedge, grid, circle), spacing, altitude, legs (the centre's move),
   origin (optional: the centre, as for a move)}: SEVERAL drones placed together
 - report {drones, readings (battery, altitude, position, flying, mode), pick (none, highest, lowest)}:
   a question; nothing flies
 - if {drone, reading (battery or altitude), compare (above, below, at_least, at_most), value, then,
-  otherwise}: steps that depend on a reading
-- choose {among, reading, pick (highest or lowest), then}: the chosen drone does the steps
+  otherwise}: ONE drone's steps depend on its reading against a threshold the request gives
+- choose {among, reading, pick (highest or lowest), then}: SEVERAL drones are compared with each other
+  (the one with more or less battery, the higher or lower one); the chosen drone does the steps, the
+  others get no step
 - ask {text}: only when the request cannot be planned
 Every distance and altitude is {"value": number, "unit": "m" | "ft" | "km" | "mi" | "yd" | "nmi"}, in the
 unit the request used. Never compute: the host converts units and works out the geometry. A drone on the
-ground takes off by itself before a move. Plan only what is asked: no step for a drone the request leaves
-alone, and every landing or return the request asks for.
+ground takes off by itself before a move or a pattern. Plan only what is asked: no step for a drone the
+request leaves alone, and every landing or return the request asks for ("after" of a move or a pattern).
 """
 
 
@@ -48,36 +53,45 @@ def _leg(value: float, direction: str, unit: str = "m") -> dict[str, Any]:
 
 
 _HERE = {"kind": "here"}
+_NO_COUNTS = {"sides": None, "lines": None, "spacing": None}
 
 EXAMPLES: list[tuple[str, dict[str, Any]]] = [
     ("delta: go up 40 feet, then come back down",
      {"steps": [{"action": "takeoff", "drone": "delta", "altitude": _m(40, "ft")},
                 {"action": "land", "drone": "delta"}]}),
-    ("Fly echo in a triangle with 30 m sides at 15 m, the first side towards the west.",
-     {"steps": [{"action": "pattern", "drone": "echo", "shape": "triangle", "size": _m(30),
-                 "heading": "west", "altitude": _m(15)}]}),
+    ("Fly echo in a triangle with 30 m sides at 15 m, first side west, and set it down after.",
+     {"steps": [{"action": "pattern", "drone": "echo", "shape": "triangle", "size": _m(30), **_NO_COUNTS,
+                 "heading": "west", "turn": None, "altitude": _m(15), "after": "land"}]}),
     ("Send delta to a spot 20 m east of echo, at 12 m, and leave it there.",
-     {"steps": [{"action": "move", "drone": "delta", "legs": [_leg(20, "east")], "altitude": _m(12),
-                 "origin": {"kind": "drone", "drone": "echo"}}]}),
+     {"steps": [{"action": "move", "drone": "delta", "origin": {"kind": "drone", "drone": "echo"},
+                 "legs": [_leg(20, "east")], "altitude": _m(12), "after": "stay"}]}),
     ("echo : décolle à 8 m, avance de 25 m vers l'ouest puis atterris.",
      {"steps": [{"action": "takeoff", "drone": "echo", "altitude": _m(8)},
-                {"action": "move", "drone": "echo", "legs": [_leg(25, "west")], "altitude": None,
-                 "origin": _HERE},
-                {"action": "land", "drone": "echo"}]}),
+                {"action": "move", "drone": "echo", "origin": _HERE, "legs": [_leg(25, "west")],
+                 "altitude": None, "after": "land"}]}),
+    ("echo 20 m south at 15 m, and delta just up to 10 m and back down",
+     {"steps": [{"action": "move", "drone": "echo", "origin": _HERE, "legs": [_leg(20, "south")],
+                 "altitude": _m(15), "after": "stay"},
+                {"action": "takeoff", "drone": "delta", "altitude": _m(10)},
+                {"action": "land", "drone": "delta"}]}),
     ("Delta soll auf 14 m steigen und dort bleiben.",
      {"steps": [{"action": "altitude", "drone": "delta", "altitude": _m(14)}]}),
     ("echo, 0.1 km al sur y 5 m más alto, luego vuelve a casa",
-     {"steps": [{"action": "move", "drone": "echo", "legs": [_leg(0.1, "south", "km"), _leg(5, "up")],
-                 "altitude": None, "origin": _HERE},
-                {"action": "return_home", "drone": "echo"}]}),
+     {"steps": [{"action": "move", "drone": "echo", "origin": _HERE,
+                 "legs": [_leg(0.1, "south", "km"), _leg(5, "up")], "altitude": None,
+                 "after": "return_home"}]}),
     ("If delta has under 25 % battery keep it down, otherwise lift it to 9 m and land it again.",
      {"steps": [{"action": "if", "drone": "delta", "reading": "battery", "compare": "below", "value": 25,
                  "then": [{"action": "report", "drones": ["delta"], "readings": ["battery"], "pick": "none"}],
                  "otherwise": [{"action": "takeoff", "drone": "delta", "altitude": _m(9)},
                                {"action": "land", "drone": "delta"}]}]}),
-    ("The emptier of delta and echo flies a 50 m circle around where it is.",
-     {"steps": [{"action": "choose", "among": ["delta", "echo"], "reading": "battery", "pick": "lowest",
-                 "then": [{"action": "pattern", "drone": "delta", "shape": "orbit", "size": _m(50)}]}]}),
+    ("Of delta and echo, the one with more charge goes 40 m west at 10 m; the other one stays where it is.",
+     {"steps": [{"action": "choose", "among": ["delta", "echo"], "reading": "battery", "pick": "highest",
+                 "then": [{"action": "move", "drone": "delta", "origin": _HERE, "legs": [_leg(40, "west")],
+                           "altitude": _m(10), "after": "stay"}]}]}),
+    ("Have echo circle its current spot at 20 m, 15 m out, and keep it up there afterwards.",
+     {"steps": [{"action": "pattern", "drone": "echo", "shape": "orbit", "size": _m(15), **_NO_COUNTS,
+                 "heading": None, "turn": None, "altitude": _m(20), "after": "stay"}]}),
     ("delta and echo side by side, 6 m apart, at 10 m, 15 m north of here",
      {"steps": [{"action": "formation", "drones": ["delta", "echo"], "shape": "line", "spacing": _m(6),
                  "altitude": _m(10), "legs": [_leg(15, "north")]}]}),

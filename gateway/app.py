@@ -10,7 +10,6 @@ from __future__ import annotations
 import logging
 from collections.abc import AsyncIterator, Callable
 from contextlib import AbstractAsyncContextManager, AsyncExitStack, asynccontextmanager
-from typing import Any
 
 from fastapi import FastAPI
 from starlette.types import ASGIApp, Receive, Scope, Send
@@ -31,7 +30,7 @@ from gateway.util.heap import release_free_memory
 log = logging.getLogger(__name__)
 
 
-LifespanHook = Callable[[], AbstractAsyncContextManager[Any]]
+LifespanHook = Callable[[], AbstractAsyncContextManager[object]]
 
 
 def create_app(settings: Settings | None = None, registry_factory: RegistryFactory | None = None) -> FastAPI:

@@ -23,9 +23,9 @@ def database_option(parser: argparse.ArgumentParser) -> None:
     )
 
 
+# Any: pydantic-settings, which types the keyword arguments of Settings by its own fields
 def settings_from(args: argparse.Namespace, **overrides: Any) -> Settings:
-    """Settings from the environment, with the options given on the command line (None: not given).
-    ``Any``: pydantic-settings types the keyword arguments of ``Settings`` by its own fields."""
+    """Settings from the environment, with the options given on the command line (None: not given)."""
     values = {k: v for k, v in overrides.items() if v is not None}
     if getattr(args, "database_url", None):
         values["database_url"] = args.database_url

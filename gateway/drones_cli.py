@@ -22,6 +22,7 @@ from gateway.config import Settings
 from gateway.errors import DuplicateVehicle
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
+from gateway.util.json_types import JsonObject, JsonValue
 
 if TYPE_CHECKING:  # httpx (and its CLI extras rich, pygments) is imported by the commands that call the API
     import httpx
@@ -267,23 +268,24 @@ def cmd_drones_release(args: argparse.Namespace) -> int:
     return with_store(args, run)
 
 
-def _table(items: list[dict[str, Any]], as_json: bool) -> str:  # JSON rows, as REST sends them
+def _table(items: list[JsonObject], as_json: bool) -> str:  # JSON rows, as REST sends them
     if as_json:
         return json.dumps(items, indent=2)
     if not items:
         return "no drones registered"
     columns = ["id", "url", "name", "tags", "expected_sysid", "auto_connect", "state"]
-    rows = [
-        [
-            ",".join(item.get(c) or []) if c == "tags" else ("" if item.get(c) is None else str(item.get(c)))
-            for c in columns
-        ]
-        for item in items
-    ]
+    rows = [[_cell(item.get(c)) for c in columns] for item in items]
     widths = [max(len(c), *(len(r[i]) for r in rows)) for i, c in enumerate(columns)]
     lines = ["  ".join(c.upper().ljust(w) for c, w in zip(columns, widths, strict=True))]
     lines += ["  ".join(v.ljust(w) for v, w in zip(row, widths, strict=True)) for row in rows]
     return "\n".join(line.rstrip() for line in lines)
+
+
+def _cell(value: JsonValue) -> str:
+    """A table cell: a list (the tags) comma-separated, nothing for null."""
+    if isinstance(value, list):
+        return ",".join(str(v) for v in value)
+    return "" if value is None else str(value)
 
 
 def _api_token(args: argparse.Namespace) -> str | None:
@@ -303,7 +305,7 @@ def _api_call(
     method: str,
     path: str,
     body: Mapping[str, object] | None,
-    render: Callable[[Any], str],  # given the decoded JSON answer (httpx types it Any)
+    render: Callable[[Any], str],  # Any: httpx, the decoded JSON answer
     ok_codes: dict[str, str] | None = None,
 ) -> int:
     """Call the gateway's REST API; an error whose code is in ``ok_codes`` prints its text and succeeds."""

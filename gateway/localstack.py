@@ -17,10 +17,11 @@ import tempfile
 import time
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, BinaryIO
+from typing import BinaryIO
 
 import httpx
 
+from gateway.util.json_types import JsonMapping
 from gateway.util.ports import free_tcp_port
 from gateway.util.procs import stop_process_group
 
@@ -210,8 +211,8 @@ def _open_log(path: Path) -> BinaryIO:
     return open(path, "wb")
 
 
-def _state_of(view: dict[str, Any]) -> str | None:
+def _state_of(view: JsonMapping) -> str | None:
     state = view.get("state")
     if isinstance(state, dict):
         state = state.get("state")
-    return state
+    return state if isinstance(state, str) else None

@@ -142,6 +142,7 @@ class Gateway:
                 self.safety,
                 self.locks,
                 router=router,
+                registrations=self.registry,
             )
             self.operations.on_takeover = self._commander.taken_over
             self.operations.taken_over = self.locks.takeover_for

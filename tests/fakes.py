@@ -17,7 +17,7 @@ import contextlib
 import time
 from collections.abc import AsyncIterator, Callable, Coroutine, Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, Unpack
 
 from gateway.config import Settings
 from gateway.errors import CommandFailed, UnknownVehicle, VehicleNotReady
@@ -44,7 +44,7 @@ from gateway.link.telemetry import (
     VelocityNedValue,
 )
 from gateway.registry.records import utcnow
-from gateway.registry.spec import VehicleSpec
+from gateway.registry.spec import VehicleChanges, VehicleSpec
 from gateway.registry.store import Store
 from gateway.runtime import Gateway
 from tests.helpers.timing import scaled
@@ -457,7 +457,7 @@ class FakeRegistry:
         vehicle.start_streaming()
         return vehicle
 
-    async def update(self, vehicle_id: str, **changes: Any) -> FakeVehicle:
+    async def update(self, vehicle_id: str, **changes: Unpack[VehicleChanges]) -> FakeVehicle:
         vehicle = self.get(vehicle_id)
         record = await self.store.update_vehicle(vehicle_id, **changes)
         vehicle.spec = record.spec

@@ -41,6 +41,7 @@ def _move(args: dict[str, Any]) -> dict[str, Any]:
         "legs": legs,
         "altitude": altitude,
         "origin": {"kind": "here"},
+        "after": "stay",
     }
 
 

@@ -80,8 +80,19 @@ class SimTruth:
         "fly both 100 m north", below the gateway's 25 % needed for a new leg)."""
         index = self.index_of[drone_id]
         capacity = {"name": "BATT_CAPACITY", "value": BATTERY_MAH * max(1.0, speedup)}
+        before = (await self.state(drone_id))["t_boot_s"]
         (await self._http.post(f"/vehicles/{index}/param", json=capacity)).raise_for_status()
+        await self._until_stepped(drone_id, before)
         (await self._http.post(f"/vehicles/{index}/battery", json={"pct": pct})).raise_for_status()
+
+    async def _until_stepped(self, drone_id: str, after_t_s: float, timeout_s: float = 30.0) -> None:
+        """Wait until the vehicle has stepped past ``after_t_s`` (its clock): it takes a new BATT_CAPACITY
+        on its next step, and a level set before that would be a share of the old capacity."""
+        deadline = time.monotonic() + timeout_s
+        while (await self.state(drone_id))["t_boot_s"] <= after_t_s:
+            if time.monotonic() > deadline:
+                raise StackError(f"{drone_id}: the simulator did not step within {timeout_s:g} s")
+            await asyncio.sleep(0.05)
 
 
 class GatewayTruth:

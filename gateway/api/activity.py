@@ -8,8 +8,7 @@ from fastapi import APIRouter, Query
 
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import MAX_ROW, StoreDep
-from gateway.api.schemas import AuditPage, IsoTime, OperationList, SessionList, as_utc
-from gateway.errors import InvalidArgument
+from gateway.api.schemas import AuditPage, IsoTime, OperationList, SessionList, time_window
 from gateway.registry.store import OperationStatus, SessionKind
 
 router = APIRouter(route_class=AuditedRoute)
@@ -41,9 +40,7 @@ async def list_audit(
     limit: Annotated[int, Query(ge=1, le=1000)] = 100,
     offset: Annotated[int, Query(ge=0, le=MAX_ROW)] = 0,
 ) -> AuditPage:
-    since, until = as_utc(since), as_utc(until)
-    if since is not None and until is not None and since > until:
-        raise InvalidArgument(f"since ({since.isoformat()}) is after until ({until.isoformat()})")
+    since, until = time_window(since, until)
     items = await store.list_audit(
         vehicle_id, session_key, limit, offset, since=since, until=until, include_fleet=include_fleet
     )

@@ -28,7 +28,7 @@ log = logging.getLogger(__name__)
 
 AUDITED_METHODS = frozenset({"POST", "PUT", "PATCH", "DELETE"})
 
-Handler = Callable[[Request], Coroutine[Any, Any, Response]]  # FastAPI: get_route_handler
+Handler = Callable[[Request], Coroutine[Any, Any, Response]]  # Any: FastAPI, get_route_handler's
 
 
 async def _arguments(request: Request) -> dict[str, object]:
@@ -134,6 +134,20 @@ async def _recorded(action: str, record: Coroutine[Any, Any, None]) -> None:
     await asyncio.wait({task}, timeout=STOP_AUDIT_WAIT_S)
 
 
+def _failure(exc: Exception) -> tuple[str, str]:
+    """The audit outcome and error of a call that raised ``exc``."""
+    if isinstance(exc, SafetyRefusal):
+        return "refused", f"{exc.code}: {exc.message}"
+    if isinstance(exc, GatewayError):
+        return "error", f"{exc.code}: {exc.message}"
+    if isinstance(exc, RequestValidationError):
+        summary = "; ".join(str(e.get("msg")) for e in list(exc.errors())[:3])
+        return "error", f"validation_error: {summary}"
+    if isinstance(exc, StarletteHTTPException):
+        return "error", f"http_{exc.status_code}"
+    return "error", f"internal_error: {exc!r}"[:500]
+
+
 class AuditedRoute(APIRoute):
     """An APIRoute that audits its state-changing calls; the action is the route's name."""
 
@@ -151,21 +165,8 @@ class AuditedRoute(APIRoute):
 
             try:
                 response = await handler(request)
-            except SafetyRefusal as exc:
-                await record("refused", f"{exc.code}: {exc.message}")
-                raise
-            except GatewayError as exc:
-                await record("error", f"{exc.code}: {exc.message}")
-                raise
-            except RequestValidationError as exc:
-                summary = "; ".join(str(e.get("msg")) for e in list(exc.errors())[:3])
-                await record("error", f"validation_error: {summary}")
-                raise
-            except StarletteHTTPException as exc:
-                await record("error", f"http_{exc.status_code}")
-                raise
             except Exception as exc:
-                await record("error", f"internal_error: {exc!r}"[:500])
+                await record(*_failure(exc))
                 raise
             outcome = "ok" if response.status_code < 400 else "error"
             error = None if outcome == "ok" else f"http_{response.status_code}"

@@ -8,7 +8,6 @@ running fleet operation before it tells the drones anything.
 
 from __future__ import annotations
 
-from datetime import datetime
 from typing import Literal
 
 from fastapi import APIRouter
@@ -17,10 +16,10 @@ from pydantic import BaseModel, ConfigDict, Field, StrictBool
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import CommanderDep, CommandVehicleId, GatewayDep, Principal, PrincipalDep
 from gateway.fleet.commands.operator_verbs import STOP_LOCK_REASON
-from gateway.fleet.operations.views import LockResult, OperationView, StopOutcome, StopReport
+from gateway.fleet.operations.views import LockResult, OperationView, StopOutcome, StopReport, UnlockResult
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.geofence import FLEET
-from gateway.fleet.policy.operator_locks import MAX_REASON_CHARS, Lock
+from gateway.fleet.policy.operator_locks import MAX_REASON_CHARS
 
 router = APIRouter(tags=["operator control"], route_class=AuditedRoute)
 
@@ -40,30 +39,8 @@ class LockIn(BaseModel):
     )
 
 
-class LockOut(BaseModel):
-    scope: str = Field(description='A vehicle id, or "*" for the whole fleet.')
-    reason: str
-    by: str
-    locked_at: datetime
-    stored: bool = Field(
-        True,
-        description="False: the database was unreachable; the lock holds on the nodes now and is stored "
-        "when the database is back.",
-    )
-
-    @classmethod
-    def of(cls, lock: Lock | LockResult) -> LockOut:
-        stored = lock.stored if isinstance(lock, LockResult) else True
-        return cls(scope=lock.scope, reason=lock.reason, by=lock.by, locked_at=lock.locked_at, stored=stored)
-
-
-class UnlockOut(BaseModel):
-    scope: str
-    was_locked: bool
-
-
 class LockList(BaseModel):
-    items: list[LockOut]
+    items: list[LockResult]
 
 
 class CommandOut(StopReport):
@@ -101,7 +78,7 @@ class StopIn(BaseModel):
 
 class StopOut(BaseModel):
     action: str
-    fleet_lock: LockOut | None
+    fleet_lock: LockResult | None
     superseded_fleet_operations: list[str] = Field(
         default_factory=list, description="Fleet operations (formations...) ended before the stop."
     )
@@ -113,33 +90,31 @@ class StopOut(BaseModel):
 
 @router.get("/locks", response_model=LockList, summary="Operator locks in force")
 async def list_locks(gateway: GatewayDep) -> LockList:
-    return LockList(items=[LockOut.of(lk) for lk in gateway.locks.all()])
+    return LockList(items=[LockResult.of(lk) for lk in gateway.locks.all()])
 
 
-@router.post("/vehicles/{vehicle_id}/lock", response_model=LockOut, summary="Lock a drone against agents")
+@router.post("/vehicles/{vehicle_id}/lock", response_model=LockResult, summary="Lock a drone against agents")
 async def lock_vehicle(
     vehicle_id: CommandVehicleId, body: LockIn, commander: CommanderDep, who: PrincipalDep
-) -> LockOut:
-    return LockOut.of(await commander.lock(operator(who), vehicle_id, body.reason))
+) -> LockResult:
+    return await commander.lock(operator(who), vehicle_id, body.reason)
 
 
-@router.delete("/vehicles/{vehicle_id}/lock", response_model=UnlockOut, summary="Unlock a drone")
+@router.delete("/vehicles/{vehicle_id}/lock", response_model=UnlockResult, summary="Unlock a drone")
 async def unlock_vehicle(
     vehicle_id: CommandVehicleId, commander: CommanderDep, who: PrincipalDep
-) -> UnlockOut:
-    result = await commander.unlock(operator(who), vehicle_id)
-    return UnlockOut(scope=result.scope, was_locked=result.was_locked)
+) -> UnlockResult:
+    return await commander.unlock(operator(who), vehicle_id)
 
 
-@router.post("/fleet/lock", response_model=LockOut, summary="Lock the whole fleet against agents")
-async def lock_fleet(body: LockIn, commander: CommanderDep, who: PrincipalDep) -> LockOut:
-    return LockOut.of(await commander.lock(operator(who), FLEET, body.reason))
+@router.post("/fleet/lock", response_model=LockResult, summary="Lock the whole fleet against agents")
+async def lock_fleet(body: LockIn, commander: CommanderDep, who: PrincipalDep) -> LockResult:
+    return await commander.lock(operator(who), FLEET, body.reason)
 
 
-@router.delete("/fleet/lock", response_model=UnlockOut, summary="Remove the fleet lock")
-async def unlock_fleet(commander: CommanderDep, who: PrincipalDep) -> UnlockOut:
-    result = await commander.unlock(operator(who), FLEET)
-    return UnlockOut(scope=result.scope, was_locked=result.was_locked)
+@router.delete("/fleet/lock", response_model=UnlockResult, summary="Remove the fleet lock")
+async def unlock_fleet(commander: CommanderDep, who: PrincipalDep) -> UnlockResult:
+    return await commander.unlock(operator(who), FLEET)
 
 
 # --- takeover locks (a pilot, another ground station or a failsafe took the drone) ----------------
@@ -149,20 +124,19 @@ async def unlock_fleet(commander: CommanderDep, who: PrincipalDep) -> UnlockOut:
 async def list_takeovers(gateway: GatewayDep) -> LockList:
     """Drones whose mode a pilot, another ground station or a failsafe changed while the gateway flew
     them: agents are refused until an operator releases them (docs/safety.md)."""
-    return LockList(items=[LockOut.of(lk) for lk in gateway.locks.takeovers()])
+    return LockList(items=[LockResult.of(lk) for lk in gateway.locks.takeovers()])
 
 
 @router.delete(
     "/vehicles/{vehicle_id}/takeover",
-    response_model=UnlockOut,
+    response_model=UnlockResult,
     summary="Release a drone taken over by a pilot or ground station",
 )
 async def release_takeover(
     vehicle_id: CommandVehicleId, commander: CommanderDep, who: PrincipalDep
-) -> UnlockOut:
+) -> UnlockResult:
     """Agents may command the drone again (the pilot or ground station is done with it)."""
-    result = await commander.release(operator(who), vehicle_id)
-    return UnlockOut(scope=result.scope, was_locked=result.was_locked)
+    return await commander.release(operator(who), vehicle_id)
 
 
 # --- actions -------------------------------------------------------------------------------------
@@ -202,7 +176,7 @@ async def fleet_stop(commander: CommanderDep, who: PrincipalDep, body: StopIn | 
     result = await commander.stop_all(operator(who), body.action, body.lock, body.lock_reason)
     return StopOut(
         action=result.action,
-        fleet_lock=None if result.fleet_lock is None else LockOut.of(result.fleet_lock),
+        fleet_lock=result.fleet_lock,
         superseded_fleet_operations=result.superseded_fleet_operations,
         results=[CommandOut.of_outcome(r) for r in result.results],
     )

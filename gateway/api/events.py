@@ -31,8 +31,8 @@ from sse_starlette import EventSourceResponse
 
 from gateway.api.deps import GatewayDep, PrincipalDep, StoreDep
 from gateway.api.fleetview import fleet_view
-from gateway.api.geofences import geofences_out
 from gateway.fleet.policy.geofence import GeofenceSet
+from gateway.fleet.policy.zones import Zones
 from gateway.registry.store import AuditRecord, Store
 from gateway.runtime import Gateway
 
@@ -134,7 +134,8 @@ class EventHub:
         if self.gateway.safety is None:
             return _json({"type": "FeatureCollection", "features": [], "persisted": False})
         self._fences = self.gateway.safety.geofences
-        return _json(geofences_out(self.gateway).model_dump(mode="json"))
+        view = Zones(self.gateway.safety, self.gateway.settings.geofence_file).view()
+        return _json(view.model_dump(mode="json"))
 
     async def _run(self) -> None:
         while True:

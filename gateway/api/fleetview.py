@@ -14,16 +14,19 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from datetime import UTC, datetime
-from typing import Any, SupportsFloat
+from typing import SupportsFloat, TypeVar
 
 from gateway.errors import GatewayError
 from gateway.fleet.policy.geofence import FLEET
 from gateway.fleet.policy.operator_locks import Lock, LockBook
 from gateway.fleet.vehicles.protocols import VehicleView
-from gateway.link.telemetry import TelemetryCache
+from gateway.link.telemetry import Sample, TelemetryCache
 from gateway.runtime import Gateway
+from gateway.util.json_types import JsonObject
 
 STATUS_TEXTS_PER_DRONE = 5
+
+T = TypeVar("T")
 
 
 def _num(value: SupportsFloat | None, digits: int) -> float | None:
@@ -33,10 +36,10 @@ def _num(value: SupportsFloat | None, digits: int) -> float | None:
     return round(number, digits) if math.isfinite(number) else None
 
 
-# a part read by name, whichever of the cache's value types it holds
-def _sample(cache: TelemetryCache, name: str) -> tuple[Any, float | None, bool]:
+def _sample(
+    cache: TelemetryCache, sample: Sample[T] | None
+) -> tuple[T, float, bool] | tuple[None, None, bool]:
     """(value, age_s, stale) of one cached stream; (None, None, True) when never received."""
-    sample = getattr(cache, name, None)
     if sample is None:
         return None, None, True
     age = sample.age_s
@@ -44,7 +47,7 @@ def _sample(cache: TelemetryCache, name: str) -> tuple[Any, float | None, bool]:
 
 
 def _position(cache: TelemetryCache) -> dict[str, object] | None:
-    pos, age, stale = _sample(cache, "position")
+    pos, age, stale = _sample(cache, cache.position)
     if pos is None:
         return None
     return {
@@ -58,13 +61,13 @@ def _position(cache: TelemetryCache) -> dict[str, object] | None:
 
 
 def _home(cache: TelemetryCache) -> dict[str, object] | None:
-    home, _age, _stale = _sample(cache, "home")
+    home, _age, _stale = _sample(cache, cache.home)
     if home is None:
         return None
     return {"lat": home.lat_deg, "lon": home.lon_deg, "alt_amsl_m": _num(home.abs_alt_m, 2)}
 
 
-OperationOf = Callable[[str], dict[str, object] | None]
+OperationOf = Callable[[str], JsonObject | None]
 
 
 def _no_operation(vehicle_id: str) -> None:
@@ -84,7 +87,7 @@ def _operation_of(gateway: Gateway) -> OperationOf:
 def vehicle_view(vehicle: VehicleView, operation_of: OperationOf, locks: LockBook) -> dict[str, object]:
     cache = vehicle.telemetry
     value = cache.fresh
-    battery, battery_age, battery_stale = _sample(cache, "battery")
+    battery, battery_age, battery_stale = _sample(cache, cache.battery)
     velocity = value("velocity_ned")
     gps = value("gps_info")
     progress = value("mission_progress")

@@ -10,8 +10,8 @@ from fastapi.responses import JSONResponse, Response
 
 from gateway.api.audit import AuditedRoute
 from gateway.api.deps import MAX_ROW, RegistryDep, StoreDep
-from gateway.api.schemas import FlightPage, IsoTime, StatusTextList, as_utc
-from gateway.errors import InvalidArgument, NotFound, UnknownVehicle
+from gateway.api.schemas import FlightPage, IsoTime, StatusTextList, time_window
+from gateway.errors import NotFound, UnknownVehicle
 from gateway.fleet.missions.flight_export import track_feature, track_kml, track_tlog
 from gateway.registry.store import FlightRecord, Store
 
@@ -35,9 +35,7 @@ async def list_flights(
     limit: Annotated[int, Query(ge=1, le=500)] = 50,
     offset: Annotated[int, Query(ge=0, le=MAX_ROW)] = 0,
 ) -> FlightPage:
-    since, until = as_utc(since), as_utc(until)
-    if since is not None and until is not None and since > until:
-        raise InvalidArgument(f"since ({since.isoformat()}) is after until ({until.isoformat()})")
+    since, until = time_window(since, until)
     items, total = await store.list_flights(vehicle_id, since, until, limit=limit, offset=offset)
     return FlightPage(items=items, total=total, limit=limit, offset=offset)
 
@@ -102,8 +100,9 @@ async def flight_tlog(flight_id: FlightId, store: StoreDep, registry: RegistryDe
     sysid, autopilot = (vehicle.expected_sysid if vehicle else None) or 1, None
     try:
         status = registry.get(flight.vehicle_id).status()
-        sysid = status.get("sysid") or sysid
-        autopilot = status.get("autopilot")
+        heard, named = status.get("sysid"), status.get("autopilot")
+        sysid = heard if isinstance(heard, int) and heard else sysid
+        autopilot = named if isinstance(named, str) else None
     except UnknownVehicle:
         pass
     data = track_tlog(flight, track, texts, sysid=sysid, autopilot=autopilot)

@@ -72,10 +72,12 @@ class FleetCollector(Collector):
         )
         for vehicle in vehicles:
             status = vehicle.status()
-            sidecar = status.get("sidecar") or {}
-            restarts.add_metric([vehicle.id], float(sidecar.get("restarts") or 0))
-            if status.get("last_heartbeat_age_s") is not None:
-                heartbeat.add_metric([vehicle.id], float(status["last_heartbeat_age_s"]))
+            sidecar = status.get("sidecar")
+            count = sidecar.get("restarts") if isinstance(sidecar, dict) else None
+            restarts.add_metric([vehicle.id], float(count) if isinstance(count, int) else 0.0)
+            age = status.get("last_heartbeat_age_s")
+            if isinstance(age, int | float):
+                heartbeat.add_metric([vehicle.id], float(age))
             for stream, count in _message_counts(vehicle).items():
                 messages.add_metric([vehicle.id, stream], float(count))
             for stream, age in _sample_ages(vehicle).items():

@@ -16,14 +16,9 @@ from fastapi import APIRouter, Query, Request, Response
 
 from gateway.api.audit import AuditedRoute
 from gateway.api.control import CommandOut, operator
-from gateway.api.deps import CommanderDep, CommandVehicleId, GatewayDep, PrincipalDep
-from gateway.api.geofences import replace_zones
+from gateway.api.deps import CommanderDep, CommandVehicleId, PrincipalDep
 from gateway.errors import InvalidArgument
-from gateway.fleet.missions import plan_extras
 from gateway.fleet.missions.mission import MAX_ITEMS
-from gateway.fleet.missions.plan_extras import FenceZone, PlanExtras
-from gateway.fleet.policy.geofence import Zone
-from gateway.runtime import Gateway
 
 router = APIRouter(tags=["operator control"], route_class=AuditedRoute)
 
@@ -92,7 +87,6 @@ async def put_mission_file(
     vehicle_id: CommandVehicleId,
     request: Request,
     commander: CommanderDep,
-    gateway: GatewayDep,
     who: PrincipalDep,
     file_format: Annotated[
         FileFormat | None,
@@ -102,69 +96,20 @@ async def put_mission_file(
     """A .plan's geofence becomes the drone's zones (replacing its own, through the geofences' own
     path: all valid or nothing changes) and its rally points are kept beside the mission and written back
     by GET; the mission items are checked against the new zones, and if they are refused the zones are
-    put back as they were."""
+    put back as they were (the verb `upload_plan`)."""
     try:
         content = (await request.body()).decode("utf-8-sig")
     except UnicodeDecodeError:
         raise InvalidArgument("the mission file is not UTF-8 text") from None
-    extras = PlanExtras()
-    if file_format == "plan" or (file_format is None and content.lstrip().startswith("{")):
-        content, extras = plan_extras.split_plan(content, prefix=f"{vehicle_id}-plan")
-    zones = [Zone.from_geojson(z.name, z.kind, z.geometry, vehicle_id) for z in extras.fence]
-    before = [z for z in gateway.require_safety().geofences if z.scope == vehicle_id]
-    if zones:
-        replace_zones(gateway, vehicle_id, zones, who.name)
-    try:
-        result = await commander.upload_mission_file(operator(who), vehicle_id, content, file_format)
-    except BaseException:
-        if zones:
-            replace_zones(gateway, vehicle_id, before, who.name)
-        raise
-    message = result.message
-    if extras:
-        message += "; " + _keep(request, vehicle_id, extras)
+    result = await commander.upload_plan(operator(who), vehicle_id, content, file_format)
+    plan = result.facts.get("plan")
+    if plan:
+        note = getattr(request.state, "audit_note", None) or {}
+        request.state.audit_note = {**note, "plan": str(plan)}
     _mark_unchecked(request, result.facts.get("unchecked"))
-    return CommandOut(vehicle_id=vehicle_id, action="upload_mission_file", outcome="sent", message=message)
-
-
-def _kept(request: Request) -> dict[str, PlanExtras]:
-    """Per drone, the plan geofence's circles and the rally points of its last .plan (this process)."""
-    kept: dict[str, PlanExtras] | None = getattr(request.app.state, "plan_extras", None)
-    if kept is None:
-        kept = request.app.state.plan_extras = {}
-    return kept
-
-
-def _keep(request: Request, vehicle_id: str, extras: PlanExtras) -> str:
-    kept = _kept(request)
-    previous = kept.get(vehicle_id, PlanExtras())
-    kept[vehicle_id] = PlanExtras(
-        extras.fence if extras.fence else previous.fence, extras.rally if extras.rally else previous.rally
+    return CommandOut(
+        vehicle_id=vehicle_id, action="upload_mission_file", outcome="sent", message=result.message
     )
-    said = []
-    if extras.fence:
-        said.append(
-            f"the plan's geofence ({len(extras.fence)} zones) is now the drone's geofences, replacing its "
-            "own (the gateway's policy holds it; the autopilot's own fence is not written)"
-        )
-    if extras.rally:
-        said.append(
-            f"{len(extras.rally)} rally points kept by the gateway and written back in the exported .plan; "
-            "not uploaded to the autopilot (the gateway has no rally upload), so its RTL returns home"
-        )
-    note = getattr(request.state, "audit_note", None) or {}
-    request.state.audit_note = {**note, "plan": "; ".join(said)}
-    return "; ".join(said)
-
-
-def _exported_fence(gateway: Gateway, vehicle_id: str, kept: PlanExtras) -> list[FenceZone]:
-    """The drone's own zones as a plan's geofence (a zone that came from a circle, as that circle)."""
-    circles = {z.name: z.circle for z in kept.fence if z.circle is not None}
-    return [
-        FenceZone(z.name, z.kind, z.geojson, circles.get(z.name))
-        for z in gateway.require_safety().geofences
-        if z.scope == vehicle_id
-    ]
 
 
 @router.post(
@@ -198,21 +143,15 @@ def _mark_unchecked(request: Request, unchecked: object) -> None:
 )
 async def get_mission_file(
     vehicle_id: CommandVehicleId,
-    request: Request,
     commander: CommanderDep,
-    gateway: GatewayDep,
     who: PrincipalDep,
     file_format: Annotated[FileFormat, Query(alias="format", description="plan or waypoints.")] = "plan",
 ) -> Response:
     """A .plan carries the drone's geofence zones and the rally points kept from its last .plan."""
-    view = await commander.export_mission(operator(who), vehicle_id, file_format)
-    content = view.content
-    if file_format == "plan":
-        kept = _kept(request).get(vehicle_id, PlanExtras())
-        content = plan_extras.with_extras(content, _exported_fence(gateway, vehicle_id, kept), kept.rally)
+    view = await commander.export_plan(operator(who), vehicle_id, file_format)
     name = f"{vehicle_id}.{SUFFIX[file_format]}"
     return Response(
-        content,
+        view.content,
         media_type=MEDIA[file_format],
         headers={"Content-Disposition": f'attachment; filename="{name}"'},
     )

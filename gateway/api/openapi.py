@@ -11,11 +11,14 @@ while the gateway starts or stops. Operation ids are the route functions' names 
 
 from __future__ import annotations
 
+import json
 from typing import Any  # FastAPI's OpenAPI document is plain JSON: get_openapi returns dict[str, Any]
 
 from fastapi import FastAPI
 from fastapi.openapi.utils import get_openapi
 from fastapi.routing import APIRoute
+
+from gateway.util.json_types import JsonObject
 
 ERROR_SCHEMA: dict[str, object] = {
     "title": "Error",
@@ -113,18 +116,22 @@ def build_openapi(app: FastAPI) -> dict[str, object]:
             _type_responses(operation.get("responses", {}), error_ref)
     components["schemas"].pop("HTTPValidationError", None)
     components["schemas"].pop("ValidationError", None)
+    # pydantic keeps JsonValue's (untyped) definition where every use of it is a DocumentedJsonObject
+    if '"#/components/schemas/JsonValue"' not in json.dumps(schema):
+        components["schemas"].pop("JsonValue", None)
     return schema
 
 
 #: the body schema of a media type a route declares without one (a file, a stream, a free JSON object)
-_MEDIA_SCHEMAS: dict[str, dict[str, Any]] = {
+_MEDIA_SCHEMAS: dict[str, JsonObject] = {
     "application/json": {"type": "object"},
     "application/geo+json": {"type": "object"},
     "application/octet-stream": {"type": "string", "format": "binary"},
 }
-_TEXT_SCHEMA: dict[str, Any] = {"type": "string"}
+_TEXT_SCHEMA: JsonObject = {"type": "string"}
 
 
+# Any: FastAPI, the OpenAPI document as get_openapi builds it
 def _type_responses(responses: dict[str, Any], error_ref: dict[str, Any]) -> None:
     """Every response body typed: an error status a route declares (``responses={404: ...}``) gets the
     one error body; a file or stream without a schema gets its media type's."""
@@ -134,7 +141,9 @@ def _type_responses(responses: dict[str, Any], error_ref: dict[str, Any]) -> Non
         for media, content in response.get("content", {}).items():
             body = content.get("schema")
             if not body or not set(body) & {"type", "$ref", "anyOf", "oneOf", "allOf"}:
-                content["schema"] = {**(body or {}), **_MEDIA_SCHEMAS.get(media, _TEXT_SCHEMA)}
+                typed: JsonObject = dict(body) if body else {}
+                typed.update(_MEDIA_SCHEMAS.get(media, _TEXT_SCHEMA))
+                content["schema"] = typed
 
 
 def install_openapi(app: FastAPI) -> None:

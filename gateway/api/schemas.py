@@ -5,14 +5,16 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 from datetime import UTC, datetime
-from typing import Annotated, Any
+from typing import Annotated
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, field_validator
 
 from gateway.api.telemetry_schema import TelemetrySnapshot, VehicleStatus
+from gateway.errors import InvalidArgument
 from gateway.registry.spec import (
     MAX_GCS_ENDPOINTS,
     NODE_TAG_PATTERN,
+    VehicleChanges,
     VehicleSpec,
     validate_connection_url,
     validate_gcs_endpoints,
@@ -25,6 +27,7 @@ from gateway.registry.store import (
     StatusTextRecord,
     VehicleRecord,
 )
+from gateway.util.json_types import DocumentedJsonObject, JsonObject
 
 _NUMBER = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
 
@@ -44,18 +47,18 @@ _PORT = r"([1-9][0-9]{0,3}|[1-5][0-9]{4}|6[0-4][0-9]{3}|65[0-4][0-9]{2}|655[0-2]
 _NETWORK_URL = rf"(udpin|udpout|tcpin|tcpout)://[A-Za-z0-9.\-]{{1,253}}:{_PORT}"
 #: what `validate_connection_url` accepts, said in the OpenAPI document (the validator's line stays the
 #: answer to a URL outside it)
-URL_SCHEMA: dict[str, Any] = {
+URL_SCHEMA: JsonObject = {
     "type": "string",
     "maxLength": 256,
     "pattern": rf"^({_NETWORK_URL}|serial:///[^:?#@]*(:[0-9]*)?)$",
 }
-GCS_ENDPOINTS_SCHEMA: dict[str, Any] = {
+GCS_ENDPOINTS_SCHEMA: JsonObject = {
     "type": "array",
     "items": {"type": "string", "maxLength": 256, "pattern": rf"^{_NETWORK_URL}$"},
     "maxItems": MAX_GCS_ENDPOINTS,
     "uniqueItems": True,
 }
-TAGS_SCHEMA: dict[str, Any] = {
+TAGS_SCHEMA: JsonObject = {
     "type": "array",
     "items": {"type": "string", "pattern": r"^[A-Za-z0-9_.\-]{1,32}$"},
     "maxItems": 20,
@@ -87,11 +90,11 @@ class VehicleCreate(VehicleSpec):
         return VehicleSpec.model_validate(self.model_dump(exclude={"connect"}))
 
 
-def _not_nullable(schema: dict[str, Any]) -> Callable[[dict[str, Any]], None]:
+def _not_nullable(schema: JsonObject) -> Callable[[JsonObject], None]:
     """The field's OpenAPI schema is ``schema`` (it may be omitted, never null), with its description."""
 
-    def replace(generated: dict[str, Any]) -> None:
-        described: dict[str, Any] = {k: generated[k] for k in ("title", "description") if k in generated}
+    def replace(generated: JsonObject) -> None:
+        described: JsonObject = {k: generated[k] for k in ("title", "description") if k in generated}
         generated.clear()
         generated.update({**schema, **described})
 
@@ -148,8 +151,25 @@ class VehicleUpdate(BaseModel):
             raise ValueError("cannot be null")
         return value
 
-    def changes(self) -> dict[str, object]:
-        return {name: getattr(self, name) for name in self.model_fields_set}
+    def changes(self) -> VehicleChanges:
+        """The fields the request set (a null where one is refused was refused by the validators)."""
+        changes = VehicleChanges()
+        given = self.model_fields_set
+        if "name" in given:
+            changes["name"] = self.name
+        if "tags" in given and self.tags is not None:
+            changes["tags"] = self.tags
+        if "expected_sysid" in given:
+            changes["expected_sysid"] = self.expected_sysid
+        if "node_tag" in given:
+            changes["node_tag"] = self.node_tag
+        if "url" in given and self.url is not None:
+            changes["url"] = self.url
+        if "gcs_endpoints" in given and self.gcs_endpoints is not None:
+            changes["gcs_endpoints"] = self.gcs_endpoints
+        if "auto_connect" in given and self.auto_connect is not None:
+            changes["auto_connect"] = self.auto_connect
+        return changes
 
 
 class VehicleOut(VehicleRecord):
@@ -162,7 +182,7 @@ class VehicleOut(VehicleRecord):
     locked: str | None = Field(
         None, description="Why agents may not command this drone (its takeover lock, operator locks)."
     )
-    taken_over: dict[str, Any] | None = Field(
+    taken_over: DocumentedJsonObject | None = Field(
         None,
         description="Its takeover lock: a pilot, another ground station or a failsafe changed its mode "
         "while the gateway flew it (reason, by, locked_at); DELETE /vehicles/{id}/takeover releases it.",
@@ -211,6 +231,14 @@ def as_utc(value: datetime | None) -> datetime | None:
     return value.replace(tzinfo=UTC) if value.tzinfo is None else value.astimezone(UTC)
 
 
+def time_window(since: datetime | None, until: datetime | None) -> tuple[datetime | None, datetime | None]:
+    """A query's ``since`` and ``until`` in UTC; refused when since is after until."""
+    since, until = as_utc(since), as_utc(until)
+    if since is not None and until is not None and since > until:
+        raise InvalidArgument(f"since ({since.isoformat()}) is after until ({until.isoformat()})")
+    return since, until
+
+
 __all__ = [
     "AuditPage",
     "FlightPage",
@@ -222,4 +250,5 @@ __all__ = [
     "VehicleOut",
     "VehicleUpdate",
     "as_utc",
+    "time_window",
 ]

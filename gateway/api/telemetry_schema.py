@@ -80,18 +80,15 @@ class StatusTextItem(_Open):
     text: str
 
 
-def _optional(tp: Any) -> Any:  # pydantic: a type expression for create_model
-    return tp | None
-
-
+# Any: pydantic, a type expression (typing.get_args) and create_model's field definitions
 def _part_model(name: str, value_type: Any) -> type[BaseModel]:
-    fields: dict[str, Any] = {}  # pydantic: create_model's field definitions
+    fields: dict[str, Any] = {}  # Any: pydantic, create_model's field definitions
     if dataclasses.is_dataclass(value_type):
         hints = typing.get_type_hints(value_type)
         for f in dataclasses.fields(value_type):
-            fields[f.name] = (_optional(hints[f.name]), None)
+            fields[f.name] = (hints[f.name] | None, None)
     else:
-        fields["value"] = (_optional(value_type), None)
+        fields["value"] = (value_type | None, None)
     fields["age_s"] = (float, Field(description="Seconds since the value arrived."))
     fields["stale"] = (bool, Field(description="Older than the stale limit, or the link is down."))
     title = "".join(part.capitalize() for part in name.split("_")) + "Part"
@@ -101,7 +98,7 @@ def _part_model(name: str, value_type: Any) -> type[BaseModel]:
 
 def _telemetry_model() -> type[BaseModel]:
     hints = typing.get_type_hints(TelemetryCache)
-    fields: dict[str, Any] = {}
+    fields: dict[str, Any] = {}  # Any: pydantic, create_model's field definitions
     for name in TelemetryCache.FIELDS:
         sample_type = next(a for a in typing.get_args(hints[name]) if a is not type(None))
         (value_type,) = typing.get_args(sample_type)

@@ -1,4 +1,8 @@
-"""/api/v1/vehicles: register, list, inspect, change, remove, connect and disconnect drones."""
+"""/api/v1/vehicles: register, list, inspect, change, remove, connect and disconnect drones.
+
+Each change is one call of its verb with the operator's caller (`gateway.fleet.commands.registry_verbs`:
+`register_drone`, `update_drone`, `remove_drone`, `connect_drone`, `disconnect_drone`); the answer is
+the stored registration with the live vehicle's state."""
 
 from __future__ import annotations
 
@@ -8,7 +12,8 @@ from fastapi import APIRouter, Query, Response
 from fastapi.encoders import jsonable_encoder
 
 from gateway.api.audit import AuditedRoute
-from gateway.api.deps import GatewayDep, RegistryDep, StoreDep
+from gateway.api.control import operator
+from gateway.api.deps import CommanderDep, GatewayDep, PrincipalDep, RegistryDep, StoreDep
 from gateway.api.schemas import (
     IsoTime,
     StatusTextList,
@@ -18,7 +23,7 @@ from gateway.api.schemas import (
     VehicleUpdate,
     as_utc,
 )
-from gateway.errors import InvalidArgument, UnknownVehicle
+from gateway.errors import UnknownVehicle
 from gateway.fleet.policy.operator_locks import LockView
 from gateway.fleet.vehicles.protocols import VehicleRegistry, VehicleView
 from gateway.registry.store import Store, VehicleRecord
@@ -45,7 +50,11 @@ def vehicle_view(
         data["locked"] = locks.reason_for(record.id)
         taken = locks.takeover_for(record.id)
         if taken is not None:
-            data["taken_over"] = {"reason": taken.reason, "by": taken.by, "locked_at": taken.locked_at}
+            data["taken_over"] = {
+                "reason": taken.reason,
+                "by": taken.by,
+                "locked_at": taken.locked_at.isoformat(),
+            }
     if vehicle is not None:
         status = jsonable_encoder(vehicle.status())
         data["status"] = status
@@ -72,11 +81,14 @@ async def list_vehicles(store: StoreDep, registry: RegistryDep, gateway: Gateway
 
 @router.post("", status_code=201, response_model=VehicleOut, summary="Register a vehicle")
 async def register_vehicle(
-    body: VehicleCreate, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+    body: VehicleCreate,
+    registry: RegistryDep,
+    commander: CommanderDep,
+    who: PrincipalDep,
+    gateway: GatewayDep,
 ) -> VehicleOut:
-    vehicle = await registry.add(body.to_spec(), connect=body.connect)
-    record = await _record(store, registry, body.id)
-    return vehicle_view(record, vehicle, locks=gateway.locks)
+    record = await commander.register_drone(operator(who), body.to_spec(), body.connect)
+    return vehicle_view(record, _live(registry, record.id), locks=gateway.locks)
 
 
 @router.get("/{vehicle_id}", response_model=VehicleOut, summary="A vehicle with state and latest telemetry")
@@ -89,44 +101,36 @@ async def get_vehicle(
 
 @router.patch("/{vehicle_id}", response_model=VehicleOut, summary="Change a vehicle's registration")
 async def update_vehicle(
-    vehicle_id: str, body: VehicleUpdate, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+    vehicle_id: str,
+    body: VehicleUpdate,
+    registry: RegistryDep,
+    commander: CommanderDep,
+    who: PrincipalDep,
+    gateway: GatewayDep,
 ) -> VehicleOut:
-    changes = body.changes()
-    if not changes:
-        raise InvalidArgument(
-            "nothing to update: give at least one of url, name, tags, expected_sysid, node_tag, "
-            "gcs_endpoints, auto_connect"
-        )
-    await _record(store, registry, vehicle_id)
-    await registry.update(vehicle_id, **changes)
-    record = await _record(store, registry, vehicle_id)
+    record = await commander.update_drone(operator(who), vehicle_id, body.changes())
     return vehicle_view(record, _live(registry, vehicle_id), locks=gateway.locks)
 
 
 @router.delete("/{vehicle_id}", status_code=204, summary="Remove a vehicle (stops its sidecar)")
-async def remove_vehicle(
-    vehicle_id: str, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
-) -> Response:
-    await _record(store, registry, vehicle_id)
-    await registry.remove(vehicle_id)
+async def remove_vehicle(vehicle_id: str, commander: CommanderDep, who: PrincipalDep) -> Response:
+    await commander.remove_drone(operator(who), vehicle_id)
     return Response(status_code=204)
 
 
 @router.post("/{vehicle_id}/connect", response_model=VehicleOut, summary="Start the vehicle's sidecar")
 async def connect_vehicle(
-    vehicle_id: str, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+    vehicle_id: str, registry: RegistryDep, commander: CommanderDep, who: PrincipalDep, gateway: GatewayDep
 ) -> VehicleOut:
-    record = await _record(store, registry, vehicle_id)
-    await registry.connect(vehicle_id)
+    record = await commander.connect_drone(operator(who), vehicle_id)
     return vehicle_view(record, _live(registry, vehicle_id), locks=gateway.locks)
 
 
 @router.post("/{vehicle_id}/disconnect", response_model=VehicleOut, summary="Stop the vehicle's sidecar")
 async def disconnect_vehicle(
-    vehicle_id: str, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+    vehicle_id: str, registry: RegistryDep, commander: CommanderDep, who: PrincipalDep, gateway: GatewayDep
 ) -> VehicleOut:
-    record = await _record(store, registry, vehicle_id)
-    await registry.disconnect(vehicle_id)
+    record = await commander.disconnect_drone(operator(who), vehicle_id)
     return vehicle_view(record, _live(registry, vehicle_id), locks=gateway.locks)
 
 

@@ -36,6 +36,7 @@ from nats.aio.subscription import Subscription
 
 from gateway.errors import GatewayError, NoOwner, NotRun, OwnerLost, OwnerTimeout
 from gateway.fleet.operations.routing import ProgressMessage
+from gateway.util.json_types import JsonObject
 
 log = logging.getLogger("gateway.cluster.bus")
 
@@ -48,7 +49,7 @@ CLOCK_MARGIN_S = 0.5
 OWNER_CHECK_S = 0.5
 ProgressSink = Callable[[ProgressMessage], Awaitable[None]]
 #: ``handler(call name, arguments, caller (a Caller's JSON), progress)`` -> JSON-serialisable result
-CallHandler = Callable[[str, dict[str, Any], Mapping[str, object], ProgressSink], Awaitable[Any]]
+CallHandler = Callable[[str, JsonObject, Mapping[str, object], ProgressSink], Awaitable[Any]]
 
 
 class ErrorBody(TypedDict, total=False):
@@ -212,11 +213,12 @@ class Bus:
         tally[0] += 1
         tally[1] += size
 
+    # Any: nats-py, the options of its publish
     async def publish(self, subject: str, payload: bytes, **kw: Any) -> None:
         self._count(subject, len(payload))
         await self.client.publish(subject, payload, **kw)
 
-    async def broadcast(self, kind: str, body: dict[str, Any]) -> None:
+    async def broadcast(self, kind: str, body: Mapping[str, object]) -> None:
         await self.publish(event_subject(kind), json.dumps(body, default=str).encode())
 
     async def subscribe(
@@ -240,7 +242,7 @@ class Bus:
         self,
         vehicle_id: str,
         name: str,
-        arguments: dict[str, Any],
+        arguments: JsonObject,
         caller: Mapping[str, object],
         timeout_s: float,
         on_progress: ProgressSink | None = None,
@@ -375,7 +377,7 @@ class Bus:
             accept_by = body.get("accept_by")
             epoch = body.get("epoch")
         except Exception as exc:
-            answer: dict[str, Any] = {
+            answer: dict[str, object] = {  # an ErrorBody, or the result as JSON
                 "ok": False,
                 "error": {"code": "invalid_argument", "message": f"bad call: {exc}"},
             }

@@ -12,7 +12,6 @@ import asyncio
 import contextlib
 import logging
 import time
-import uuid
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
@@ -21,9 +20,8 @@ from nats.aio.subscription import Subscription
 from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, stop_subject
 from gateway.cluster.node_parts import NodeCore
 from gateway.cluster.remote import RemoteVehicle
-from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget, send_stop
+from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget, direct_stop_answer, send_stop
 from gateway.errors import CommandFailed, NoOwner, NotRun
-from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
 
 if TYPE_CHECKING:
@@ -165,22 +163,6 @@ class FencedStops:
                     (time.monotonic() - started) * 1000)  # fmt: skip
         if answer_ in ("DENIED", "UNSUPPORTED", "FAILED", "TEMPORARILY_REJECTED", "CANCELLED"):
             raise CommandFailed(f"{vehicle_id} refused {verb} sent over its own link: {answer_}")
-        if verb == "hold":
-            return ActionResult(
-                drone_id=vehicle_id,
-                action="hold",
-                message=f"hold (a reposition to where it is) sent over the drone's own link by node "
-                f"{self._node.node_id}, fenced while the database was unreachable (autopilot: {answer_})",
-                facts={"via": "direct link", "node": self._node.node_id},
-            ).model_dump(mode="json")
-        return OperationView(
-            operation_id=f"direct-{uuid.uuid4().hex[:12]}",
-            drone_id=vehicle_id,
-            kind=verb,
-            status="sent",
-            progress=0.0,
-            message=f"{verb} sent over the drone's own link by node {self._node.node_id}, fenced while the "
-            f"database was unreachable (autopilot: {answer_}); not tracked: its state shows when it lands",
-            elapsed_s=0.0,
-            params={"via": "direct link", "node": self._node.node_id},
-        ).model_dump(mode="json")
+        facts = {"via": "direct link", "node": self._node.node_id}
+        why = f"fenced while the database was unreachable (autopilot: {answer_})"
+        return direct_stop_answer(vehicle_id, verb, self._node.node_id, why, facts)

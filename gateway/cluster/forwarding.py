@@ -13,7 +13,7 @@ Both ends of one mechanism (`gateway.fleet.operations.routing` says what crosses
 from __future__ import annotations
 
 import logging
-from collections.abc import Mapping
+from collections.abc import Awaitable, Callable, Mapping
 from typing import TYPE_CHECKING, Any, Protocol
 
 from gateway.errors import InvalidArgument
@@ -23,6 +23,7 @@ from gateway.fleet.operations.routing import ACTING, FORWARDED, OnMessage, Progr
 from gateway.fleet.operations.views import OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import RunningOperation
+from gateway.util.json_types import JsonObject
 
 from .bus import ProgressSink
 from .remote import RemoteVehicle
@@ -46,7 +47,7 @@ class Forwarder(Protocol):
         drone_id: str,
         verb: str,
         caller: Caller,
-        arguments: dict[str, Any],
+        arguments: dict[str, object],
         on_message: OnMessage | None,
         wait_s: float,
     ) -> object: ...
@@ -61,7 +62,7 @@ class RouterNode(Protocol):
     @property
     def calls(self) -> Forwarder: ...
 
-    async def announce(self, kind: str, body: dict[str, Any]) -> None: ...
+    async def announce(self, kind: str, body: JsonObject) -> None: ...
 
 
 class ClusterRouter:
@@ -85,7 +86,7 @@ class ClusterRouter:
         registry = self.node.registry
         return registry is not None and registry.is_local(drone_id)
 
-    def published(self, drone_id: str) -> dict[str, Any] | None:
+    def published(self, drone_id: str) -> JsonObject | None:
         """The latest operation of a drone owned elsewhere as its owner published it with its last
         snapshot, aged by that snapshot's age; ended if this node has seen it end since."""
         registry = self.node.registry
@@ -118,7 +119,7 @@ class ClusterRouter:
         drone_id: str,
         verb: str,
         caller: Caller,
-        arguments: dict[str, Any],
+        arguments: Mapping[str, object],
         on_message: OnMessage | None = None,
         wait_s: float = 0.0,
     ) -> Any:
@@ -127,18 +128,18 @@ class ClusterRouter:
             if on_message is not None:
                 await on_message(body)
 
-        result = await self.node.calls.forward(drone_id, verb, caller, arguments, observe, wait_s)
+        result = await self.node.calls.forward(drone_id, verb, caller, dict(arguments), observe, wait_s)
         self._note(result)
         return result
 
-    async def announce(self, kind: str, body: dict[str, Any]) -> None:
+    async def announce(self, kind: str, body: JsonObject) -> None:
         await self.node.announce(kind, body)
 
 
 async def answer(
     commander: Commander,
     name: str,
-    arguments: dict[str, Any],
+    arguments: JsonObject,
     caller_body: Mapping[str, object],
     progress: ProgressSink,
 ) -> object:
@@ -168,7 +169,10 @@ async def answer(
                 f"unknown forwarded call {name!r}; calls: {', '.join(sorted([*ROUTED, WAIT]))}"
             )
         parsed = verb.parse(arguments)
-        callbacks: dict[str, Any] = {"notify": notice, "on_progress": view_progress}
+        callbacks: dict[str, Callable[..., Awaitable[None]]] = {
+            "notify": notice,
+            "on_progress": view_progress,
+        }
         parsed.update({k: v for k, v in callbacks.items() if k in verb.callbacks})
         result = await verb.method(commander, caller, **parsed)
         return result.model_dump(mode="json")

@@ -111,7 +111,7 @@ _NODES = text(
 _LEAVE = text("UPDATE cluster_nodes SET expires_at = now() WHERE node_id = CAST(:node AS varchar)")
 
 
-def _lease(row: Any) -> Lease:
+def _lease(row: Any) -> Lease:  # Any: SQLAlchemy, a text() query's untyped Row
     return Lease(row.vehicle_id, row.node_id, int(row.epoch), row.expires_at, float(row.remaining_s))
 
 

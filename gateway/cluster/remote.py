@@ -12,7 +12,6 @@ from __future__ import annotations
 import contextlib
 import time
 from collections.abc import Mapping
-from typing import Any
 
 from gateway.config import Settings
 from gateway.errors import OwnedElsewhere, VehicleNotReady
@@ -27,6 +26,7 @@ from gateway.fleet.vehicles.waits import wait_for_state
 from gateway.link.contract import GroundCommand
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
+from gateway.util.json_types import JsonObject, JsonValue
 
 from . import snapshot
 
@@ -44,11 +44,11 @@ class RemoteVehicle:
         self.settings = settings
         self.telemetry = TelemetryCache(stale_after_s=settings.link_lost_after_s)
         self.telemetry.live = False
-        self._status: dict[str, object] = {}  # the owner's Vehicle.status(), as JSON
+        self._status: JsonObject = {}  # the owner's Vehicle.status(), as JSON
         self._received_at: float | None = None
         self.owner: str | None = None  # node id from the lease table (None: nobody holds a live lease)
         self.epoch: int = 0
-        self.operation: dict[str, Any] | None = None  # the owner's current operation, as it published it
+        self.operation: JsonObject | None = None  # the owner's current operation, as it published it
         self._seq = -1
 
     # --- identity and state ------------------------------------------------------------------------
@@ -62,9 +62,9 @@ class RemoteVehicle:
         self.owner = node_id
         self.epoch = max(self.epoch, epoch) if node_id is not None else self.epoch
 
-    def apply(self, body: dict[str, Any]) -> bool:
+    def apply(self, body: JsonObject) -> bool:
         """Take a snapshot in; False when it is older than one already applied (a previous owner)."""
-        epoch, seq = int(body.get("epoch") or 0), int(body.get("seq") or 0)
+        epoch, seq = _count(body.get("epoch")), _count(body.get("seq"))
         if epoch < self.epoch or (
             epoch == self.epoch and body.get("node") == self.owner and seq <= self._seq
         ):
@@ -149,9 +149,9 @@ class RemoteVehicle:
             return None
         return self._text("initialising")
 
-    def status(self) -> dict[str, Any]:
+    def status(self) -> JsonObject:
         state = self.state
-        base: dict[str, Any] = dict(self._status)
+        base: JsonObject = dict(self._status)
         base.update(
             {
                 "id": self.id,
@@ -169,12 +169,12 @@ class RemoteVehicle:
             }
         )
         raw = base.get("sidecar")
-        owners: dict[str, Any] = raw if isinstance(raw, dict) else {}
+        owners: JsonObject = raw if isinstance(raw, dict) else {}
         base["sidecar"] = {  # it runs on the owner: no process or port of it here
             "state": "remote",
             "pid": None,
             "grpc_port": None,
-            "restarts": int(owners.get("restarts") or 0),
+            "restarts": _count(owners.get("restarts")),
             "owner_state": owners.get("state"),
         }
         return base
@@ -263,3 +263,8 @@ class RemoteVehicle:
     @property
     def limit_params(self) -> Mapping[str, ParamLimit]:
         return every_limit_param() if self.autopilot is None else self.dialect.limit_params
+
+
+def _count(value: JsonValue) -> int:
+    """A whole number of a snapshot (an epoch, a sequence number, restarts); 0 when missing."""
+    return int(value) if isinstance(value, int | float) else 0

@@ -27,7 +27,6 @@ import asyncio
 import contextlib
 import logging
 import time
-import uuid
 from collections.abc import Awaitable
 from typing import TYPE_CHECKING, Any, NoReturn, Protocol
 
@@ -36,10 +35,10 @@ from gateway.cluster.forwarding import answer
 from gateway.cluster.leases import Lease, LeaseStore
 from gateway.cluster.node_parts import NodeWithRuntime
 from gateway.cluster.remote import RemoteVehicle
-from gateway.cluster.stoplink import StopTarget, send_stop
+from gateway.cluster.stoplink import StopTarget, direct_stop_answer, send_stop
 from gateway.errors import GatewayError, NoOwner, NotRun, StopPending
-from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
+from gateway.util.json_types import JsonObject
 
 if TYPE_CHECKING:
     from gateway.fleet.vehicles.registry import Registry
@@ -151,7 +150,7 @@ class StopTakeover:
 
     async def _direct_until(
         self, drone_id: str, verb: str, caller: Caller, epoch: int | None, deadline: float
-    ) -> dict[str, Any]:
+    ) -> JsonObject:
         """The drone's own link, tried again until ``deadline`` (it may be let go of any moment)."""
         while True:
             try:
@@ -190,7 +189,7 @@ class StopTakeover:
 
     async def _direct(
         self, drone_id: str, verb: str, caller: Caller, epoch: int | None, within_s: float = DIRECT_S
-    ) -> dict[str, Any]:
+    ) -> JsonObject:
         started = time.monotonic()
         result = await send_stop(self._target(drone_id, epoch), verb, within_s, hear_first=True)
         if result in REFUSED:
@@ -200,25 +199,8 @@ class StopTakeover:
         me = self._node.node_id
         took_ms = (time.monotonic() - started) * 1000
         facts = {"via": "direct link", "node": me, "autopilot": result}
-        if verb == "hold":
-            return ActionResult(
-                drone_id=drone_id,
-                action="hold",
-                message=f"hold (a reposition to where it is) sent over the drone's own link by node {me}, "
-                f"its owner not answering (autopilot: {result}, after {took_ms:.0f} ms)",
-                facts=facts,
-            ).model_dump(mode="json")
-        return OperationView(
-            operation_id=f"direct-{uuid.uuid4().hex[:12]}",
-            drone_id=drone_id,
-            kind=verb,
-            status="sent",
-            progress=0.0,
-            message=f"{verb} sent over the drone's own link by node {me}, its owner not answering "
-            f"(autopilot: {result}, after {took_ms:.0f} ms); not tracked here: its state shows when it lands",
-            elapsed_s=0.0,
-            params=facts,
-        ).model_dump(mode="json")
+        why = f"its owner not answering (autopilot: {result}, after {took_ms:.0f} ms)"
+        return direct_stop_answer(drone_id, verb, me, why, facts)
 
     async def _keep_trying(
         self, drone_id: str, verb: str, caller: Caller, epoch: int | None, owner: str | None

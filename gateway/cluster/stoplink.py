@@ -16,10 +16,13 @@ import asyncio
 import math
 import os
 import time
+import uuid
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 from urllib.parse import urlparse
+
+from gateway.util.json_types import JsonMapping, JsonObject
 
 # mavutil loads a dialect at import: by default "all" for MAVLink 1, while the gateway speaks MAVLink 2
 # with ardupilotmega, the one dialect the container image ships (a missing one makes pymavlink try to
@@ -27,6 +30,8 @@ from urllib.parse import urlparse
 os.environ.setdefault("MAVLINK_DIALECT", "ardupilotmega")
 os.environ.setdefault("MAVLINK20", "1")
 from pymavlink import mavutil
+
+from gateway.fleet.operations.views import ActionResult, OperationView
 
 #: the stops a fenced node can send without its sidecar: the verb -> MAV_CMD
 STOP_COMMANDS = {
@@ -55,6 +60,7 @@ class StopTarget:
     epoch: int
 
 
+# Any: pymavlink, the options of mavlink_connection
 def pymavlink_device(url: str) -> tuple[str, dict[str, Any], bool]:
     """The drone's URL (mavsdk_server syntax) as pymavlink's device, its options, and whether the link
     must first hear the drone to know where to send (we listen: ``udpin``, ``tcpin``)."""
@@ -74,7 +80,7 @@ def pymavlink_device(url: str) -> tuple[str, dict[str, Any], bool]:
     raise ValueError(f"url: the scheme must be one of serial, tcpout, tcpin, udpin, udpout; got '{url}'")
 
 
-def _heard(conn: Any, sysid: int | None, deadline: float) -> int | None:
+def _heard(conn: Any, sysid: int | None, deadline: float) -> int | None:  # Any: pymavlink, untyped
     """The drone's system id once any of its messages arrives (None: nothing before the deadline). A
     link that serves one ground station at a time (a TCP port) has not served this one until it hears
     the drone: until then anything sent would wait in the connection and run whenever it is served."""
@@ -115,6 +121,7 @@ def _send(target: StopTarget, command: int, within_s: float, hear_first: bool = 
         conn.close()
 
 
+# Any: pymavlink, its connection untyped
 def _sender(conn: Any, sysid: int, command: int, deadline: float) -> Callable[[], object]:
     """How to send ``command``: a COMMAND_LONG, or for a hold a reposition to where the drone is now."""
     if command != STOP_COMMANDS["hold"]:
@@ -140,3 +147,27 @@ async def send_stop(target: StopTarget, verb: str, within_s: float = 1.5, hear_f
     opened (another process holds it, the drone is silent). ``hear_first``: send nothing before the
     drone is heard on this connection (its link may be held by another process)."""
     return await asyncio.to_thread(_send, target, STOP_COMMANDS[verb], within_s, hear_first)
+
+
+def direct_stop_answer(drone_id: str, verb: str, node_id: str, why: str, facts: JsonMapping) -> JsonObject:
+    """What a stop sent over the drone's own link by node ``node_id`` answers (``why``: why the node sent
+    it itself, with the autopilot's answer): a hold's action, or a land or return's operation, which no
+    node tracks (its id ``direct-...``; the drone's state shows when it lands)."""
+    said = f"sent over the drone's own link by node {node_id}, {why}"
+    if verb == "hold":
+        return ActionResult(
+            drone_id=drone_id,
+            action="hold",
+            message=f"hold (a reposition to where it is) {said}",
+            facts=facts,
+        ).model_dump(mode="json")
+    return OperationView(
+        operation_id=f"direct-{uuid.uuid4().hex[:12]}",
+        drone_id=drone_id,
+        kind=verb,
+        status="sent",
+        progress=0.0,
+        message=f"{verb} {said}; not tracked: its state shows when it lands",
+        elapsed_s=0.0,
+        params=facts,
+    ).model_dump(mode="json")

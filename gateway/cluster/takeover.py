@@ -10,7 +10,6 @@ get_operation, the audit) reads the truth.
 from __future__ import annotations
 
 import logging
-from typing import Any
 
 from gateway.cluster.runtime_view import NodeRuntime
 from gateway.fleet.operations.fleet_steps import FORMATION_TOLERANCE_M
@@ -24,6 +23,7 @@ from gateway.fleet.operations.trackers import (
     YawTracker,
 )
 from gateway.fleet.vehicles.protocols import FlyingVehicle
+from gateway.util.json_types import JsonObject, json_float
 
 log = logging.getLogger("gateway.cluster.takeover")
 
@@ -31,13 +31,13 @@ log = logging.getLogger("gateway.cluster.takeover")
 FORMATION_KINDS = frozenset({"formation", "fleet_climb"})
 
 
-def tracker_for(kind: str, params: dict[str, Any], arrival_tolerance_m: float) -> Tracker | None:
+def tracker_for(kind: str, params: JsonObject, arrival_tolerance_m: float) -> Tracker | None:
     """A tracker that follows an operation of ``kind`` again from its stored params, or None."""
     try:
         if kind == "takeoff":
             # a takeoff is an operation once the drone took the command, armed: disarmed now, it ended
             # (else a drone found on the ground, disarmed, would be "still taking off" for ever)
-            return TakeoffTracker(float(params["alt_m"]), _seen_armed=True)
+            return TakeoffTracker(json_float(params["alt_m"], "alt_m"), _seen_armed=True)
         if params.get("takeoff_first"):
             # a relative move that took off first: whether its leg was sent before the node was lost is
             # not recorded, so it is closed as interrupted (the message says to check the drone) rather
@@ -46,12 +46,12 @@ def tracker_for(kind: str, params: dict[str, Any], arrival_tolerance_m: float) -
         if kind in ("land", "return_to_launch"):
             return LandingTracker(kind=kind)
         if kind == "set_yaw":
-            return YawTracker(float(params["heading_deg"]))
+            return YawTracker(json_float(params["heading_deg"], "heading_deg"))
         if kind == "mission":
             return MissionTracker()
         if {"lat_deg", "lon_deg", "alt_m"} <= set(params):
             tolerance = FORMATION_TOLERANCE_M if kind in FORMATION_KINDS else arrival_tolerance_m
-            lat, lon, alt = float(params["lat_deg"]), float(params["lon_deg"]), float(params["alt_m"])
+            lat, lon, alt = (json_float(params[key], key) for key in ("lat_deg", "lon_deg", "alt_m"))
             return GotoTracker(lat, lon, alt, tolerance, kind=kind)
     except (KeyError, TypeError, ValueError):
         return None

@@ -7,7 +7,7 @@ from __future__ import annotations
 import asyncio
 import logging
 import time
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Protocol
 
 from nats.aio.msg import Msg
 
@@ -16,6 +16,7 @@ from gateway.cluster.bus import tele_subject
 from gateway.cluster.node_parts import NodeWithRuntime
 from gateway.cluster.remote import RemoteVehicle
 from gateway.errors import GatewayError
+from gateway.util.json_types import JsonObject
 
 if TYPE_CHECKING:
     pass
@@ -66,7 +67,7 @@ class TelemetryFanout:
             count += 1
         return count
 
-    def _operation(self, vehicle_id: str) -> dict[str, Any] | None:
+    def _operation(self, vehicle_id: str) -> JsonObject | None:
         ops = self._node.gateway.operations
         op = None if ops is None else ops.latest(vehicle_id)
         if op is None:
@@ -95,7 +96,7 @@ class TelemetryFanout:
         if registry is None:
             return
         try:
-            vehicle = registry.get(body["id"])
+            vehicle = registry.get(str(body["id"]))
         except GatewayError:
             self._node.kick()  # a vehicle registered on another node: pick the registration up
             return

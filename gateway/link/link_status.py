@@ -4,12 +4,12 @@ status, as the REST API, the console and the MCP tools show it)."""
 from __future__ import annotations
 
 from datetime import UTC, datetime
-from typing import Any
 
 from gateway.link.session import Link
+from gateway.util.json_types import JsonObject, json_list
 
 
-def link_status(link: Link) -> dict[str, Any]:
+def link_status(link: Link) -> JsonObject:
     """The link's state and what it knows of the vehicle (the vehicle's status)."""
     car = link.sidecar
     age = link.last_heartbeat_age_s
@@ -17,7 +17,7 @@ def link_status(link: Link) -> dict[str, Any]:
         "id": link.id,
         "name": link.spec.name,
         "url": link.spec.url,
-        "tags": list(link.spec.tags),
+        "tags": json_list(link.spec.tags),
         "state": link.state.value,
         "state_age_s": round(link.state_age_s, 3),
         "last_heartbeat_age_s": None if age is None else round(age, 3),
@@ -26,16 +26,16 @@ def link_status(link: Link) -> dict[str, Any]:
         "sysid": link.facts.sysid,
         "expected_sysid": link.spec.expected_sysid,
         "sysid_mismatch": link.sysid_mismatch,
-        "duplicate_sysid": link.duplicate_sysid,
+        "duplicate_sysid": json_list(link.duplicate_sysid),
         # other autopilots heard on this vehicle's link (mavsdk_server follows only the first)
-        "other_sysids_on_link": sorted(link.facts.sysids_seen - {link.facts.sysid}),
+        "other_sysids_on_link": json_list(sorted(link.facts.sysids_seen - {link.facts.sysid})),
         "is_simulator": link.is_simulator,
         "autopilot": link.autopilot,
         "autopilot_version": link.autopilot_version,
         "flight_mode": link.telemetry.fresh("flight_mode"),
         "armed": link.telemetry.fresh("armed"),
         "initialising": link.initialising(),
-        "unsupported_streams": link.unsupported_streams,
+        "unsupported_streams": json_list(link.unsupported_streams),
         "sidecar": {
             "state": car.state.value if car else "stopped",
             "pid": car.pid if car else None,

@@ -35,7 +35,7 @@ def _install_bare_package() -> None:
     package.__path__ = list(spec.submodule_search_locations)
     package.__package__ = "mavsdk_grpc"
 
-    def whole_package_name(name: str) -> Any:
+    def whole_package_name(name: str) -> Any:  # Any: mavsdk_grpc, untyped
         if name == "System":  # the library's own System, with all its plugins
             from mavsdk_grpc.system import System as LibrarySystem
 
@@ -94,7 +94,7 @@ class System:
     def __init__(self, mavsdk_server_address: str, port: int) -> None:
         self._address = mavsdk_server_address
         self._port = port
-        self._manager: Any = None
+        self._manager: Any = None  # Any: mavsdk_grpc, its untyped channel manager
         self._action: action_plugin.Action | None = None
         self._core: core_plugin.Core | None = None
         self._events: events_plugin.Events | None = None
@@ -126,7 +126,7 @@ class System:
             await manager.channel.close(grace=None)
 
     @staticmethod
-    def _ready(plugin: Any, name: str) -> Any:
+    def _ready(plugin: Any, name: str) -> Any:  # Any: mavsdk_grpc, its untyped plugins
         if plugin is None:
             raise RuntimeError(f"the MAVSDK {name} plugin is not ready: System.connect() has not run")
         return plugin

@@ -13,9 +13,9 @@ import asyncio
 import json
 import time
 from collections.abc import Awaitable, Callable
-from typing import Any
 
 from gateway.link.mavsdk_system import System, mavlink_direct_plugin
+from gateway.util.json_types import JsonObject
 
 MAV_TYPE_GCS = 6
 MAV_AUTOPILOT_INVALID = 8
@@ -59,7 +59,7 @@ class LinkFacts:
         self.armed: bool | None = None
         self.mode_changed_at: float = 0.0
 
-    def heartbeat(self, system_id: int, fields: dict[str, Any]) -> bool:  # json.loads of mavlink_direct
+    def heartbeat(self, system_id: int, fields: JsonObject) -> bool:  # json.loads of mavlink_direct
         """Record one HEARTBEAT; False (ignored) when it comes from another ground station.
 
         Sets ``sysid_changed`` when the sender's system id differs from the previous one."""
@@ -71,13 +71,13 @@ class LinkFacts:
         self.sysids_seen.add(system_id)
         self.sysid_changed = self.sysid != system_id
         self.sysid = system_id
-        self.autopilot = int(fields.get("autopilot", 0))
-        self.mav_type = int(fields.get("type", 0))
-        custom_mode = int(fields.get("custom_mode", 0))
+        self.autopilot = _number(fields, "autopilot")
+        self.mav_type = _number(fields, "type")
+        custom_mode = _number(fields, "custom_mode")
         if custom_mode != self.custom_mode:
             self.custom_mode = custom_mode
             self.mode_changed_at = now
-        self.armed = bool(int(fields.get("base_mode", 0)) & MAV_MODE_FLAG_SAFETY_ARMED)
+        self.armed = bool(_number(fields, "base_mode") & MAV_MODE_FLAG_SAFETY_ARMED)
         return True
 
     sysid_changed = False
@@ -160,3 +160,9 @@ class CommandChannel:
                 if fut in waiting:
                     waiting.remove(fut)
         raise NoAck(f"no COMMAND_ACK after {attempts} attempts")
+
+
+def _number(fields: JsonObject, name: str) -> int:
+    """A HEARTBEAT field as mavlink_direct's JSON gives it (0 when it is missing or no number)."""
+    value = fields.get(name, 0)
+    return int(value) if isinstance(value, int | float) else 0

@@ -31,13 +31,13 @@ import os
 import time
 from collections import deque
 from collections.abc import Callable
-from typing import Any
 
 from gateway.link.contract import GroundCommand
 from gateway.link.ground_commands import acting, is_heartbeat, not_a_ground_station
 from gateway.link.mavlink_frames import Frame, target_system
 from gateway.link.proc_sockets import proc_net_rows, socket_inodes
 from gateway.link.relay_endpoints import REOPEN_S, Endpoint, UdpEndpoint, open_endpoint
+from gateway.util.json_types import JsonValue
 
 log = logging.getLogger("gateway.relay")
 
@@ -143,7 +143,7 @@ class Relay:
         """Why the vehicle's side of the link is not up (refused, no device...), else None."""
         return self.vehicle.complaint
 
-    def status(self) -> list[dict[str, Any]]:
+    def status(self) -> list[JsonValue]:
         return [gcs.status() for gcs in self.ground_stations]
 
     def _from_vehicle(self, _source: Endpoint, frame: Frame) -> None:

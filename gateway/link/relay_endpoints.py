@@ -10,16 +10,19 @@ import contextlib
 import os
 import termios
 import time
-from collections.abc import Callable, Hashable
+from collections.abc import Awaitable, Callable, Hashable
 from dataclasses import dataclass
-from typing import Any
+from typing import TypeVar
 from urllib.parse import urlsplit
 
 from gateway.link.mavlink_frames import MAX_BUFFER, Frame, FrameSplitter
+from gateway.util.json_types import JsonObject, json_list
 from gateway.util.tasks import cancel_and_wait
 
 RECONNECT_INITIAL_S = 0.5
 RECONNECT_MAX_S = 5.0
+
+_Opened = TypeVar("_Opened")  # what an endpoint's open gives: a socket's streams, a device's fd
 #: how often an endpoint that could not be opened (port taken...) is tried again
 REOPEN_S = 3.0
 #: a UDP send error (nobody listening) is forgotten after this long without another
@@ -84,7 +87,30 @@ class Endpoint(abc.ABC):
             self.sysids.add(frame.sysid)
             self._deliver(self, frame)
 
-    def status(self) -> dict[str, Any]:
+    async def _reopen_forever(
+        self,
+        open_: Callable[[], Awaitable[_Opened]],
+        failure: Callable[[OSError], str],
+        serve: Callable[[_Opened], Awaitable[None]],
+    ) -> None:
+        """Open, serve until the connection ends, and again: an open that fails sets the complaint to
+        ``failure``'s words and is retried after RECONNECT_INITIAL_S, doubling up to RECONNECT_MAX_S; an
+        ended connection is opened again after RECONNECT_INITIAL_S."""
+        delay = RECONNECT_INITIAL_S
+        while True:
+            try:
+                opened = await open_()
+            except OSError as exc:  # TimeoutError too
+                self.complaint = failure(exc)
+                await asyncio.sleep(delay)
+                delay = min(delay * 2, RECONNECT_MAX_S)
+                continue
+            self.complaint = None
+            delay = RECONNECT_INITIAL_S
+            await serve(opened)
+            await asyncio.sleep(delay)
+
+    def status(self) -> JsonObject:
         age = None if self.stats.last_in is None else round(time.monotonic() - self.stats.last_in, 3)
         return {
             "url": self.url,
@@ -92,7 +118,7 @@ class Endpoint(abc.ABC):
             "frames_in": self.stats.frames_in,
             "frames_out": self.stats.frames_out,
             "last_in_age_s": age,
-            "system_ids": sorted(self.sysids),
+            "system_ids": json_list(sorted(self.sysids)),
             "error": self.refused or self.complaint,
             "refused": self.refused is not None,
         }
@@ -193,21 +219,18 @@ class TcpEndpoint(Endpoint):
             self._task = asyncio.create_task(self._connect_loop(), name=f"relay-{self.url}")
 
     async def _connect_loop(self) -> None:
-        delay = RECONNECT_INITIAL_S
-        while True:
-            try:
-                reader, writer = await asyncio.wait_for(asyncio.open_connection(self.host, self.port), 10.0)
-            except (OSError, TimeoutError) as exc:
-                reason = os.strerror(exc.errno) if exc.errno else "no answer within 10 s"
-                self.complaint = f"cannot connect to {self.host}:{self.port}: {reason}"
-                await asyncio.sleep(delay)
-                delay = min(delay * 2, RECONNECT_MAX_S)
-                continue
-            self.complaint = None
-            delay = RECONNECT_INITIAL_S
-            await self._serve(reader, writer)
+        async def connect() -> tuple[asyncio.StreamReader, asyncio.StreamWriter]:
+            return await asyncio.wait_for(asyncio.open_connection(self.host, self.port), 10.0)
+
+        def failure(exc: OSError) -> str:
+            reason = os.strerror(exc.errno) if exc.errno else "no answer within 10 s"
+            return f"cannot connect to {self.host}:{self.port}: {reason}"
+
+        async def serve(streams: tuple[asyncio.StreamReader, asyncio.StreamWriter]) -> None:
+            await self._serve(*streams)
             self.complaint = f"{self.host}:{self.port} closed the connection"
-            await asyncio.sleep(delay)
+
+        await self._reopen_forever(connect, failure, serve)
 
     async def _client(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
         task = asyncio.current_task()
@@ -294,42 +317,40 @@ class SerialEndpoint(Endpoint):
         return fd
 
     async def _open_loop(self) -> None:
+        async def open_device() -> int:
+            return self._open()
+
+        def failure(exc: OSError) -> str:
+            return f"cannot open {self.device}: {exc.strerror or exc}"
+
+        await self._reopen_forever(open_device, failure, self._serve_device)
+
+    async def _serve_device(self, fd: int) -> None:
+        """Relay what the device sends until it goes away (read error or end of file), then close it."""
         loop = asyncio.get_running_loop()
-        delay = RECONNECT_INITIAL_S
-        while True:
+        gone = asyncio.Event()
+        self._fd = fd
+
+        def readable() -> None:
             try:
-                fd = self._open()
+                data = os.read(fd, 4096)
+            except BlockingIOError:
+                return
             except OSError as exc:
-                self.complaint = f"cannot open {self.device}: {exc.strerror or exc}"
-                await asyncio.sleep(delay)
-                delay = min(delay * 2, RECONNECT_MAX_S)
-                continue
-            self.complaint = None
-            delay = RECONNECT_INITIAL_S
-            gone = asyncio.Event()
-            self._fd = fd
+                self.complaint = f"{self.device}: {exc.strerror or exc}"
+                data = b""
+            if not data:
+                gone.set()
+                return
+            self.received(data)
 
-            def readable(fd: int = fd, gone: asyncio.Event = gone) -> None:
-                try:
-                    data = os.read(fd, 4096)
-                except BlockingIOError:
-                    return
-                except OSError as exc:
-                    self.complaint = f"{self.device}: {exc.strerror or exc}"
-                    data = b""
-                if not data:
-                    gone.set()
-                    return
-                self.received(data)
-
-            loop.add_reader(fd, readable)
-            try:
-                await gone.wait()
-            finally:
-                loop.remove_reader(fd)
-                self._fd = None
-                os.close(fd)
-            await asyncio.sleep(delay)
+        loop.add_reader(fd, readable)
+        try:
+            await gone.wait()
+        finally:
+            loop.remove_reader(fd)
+            self._fd = None
+            os.close(fd)
 
     def send(self, data: bytes) -> None:
         if self._fd is None:

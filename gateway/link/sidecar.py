@@ -43,11 +43,11 @@ from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
 
 from gateway.config import Settings
 from gateway.link import confine, sidecar_socket
 from gateway.link.proc_sockets import listening_addresses, listening_inodes, socket_inodes
+from gateway.util.json_types import JsonObject
 from gateway.util.ports import free_tcp_port
 
 log = logging.getLogger("gateway.sidecar")
@@ -241,7 +241,7 @@ class Sidecar:
             self.recycle()
         return wrong
 
-    def status(self) -> dict[str, Any]:
+    def status(self) -> JsonObject:
         return {
             "state": self.info.state.value,
             "pid": self.info.pid,

@@ -16,6 +16,8 @@ from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, is_dataclass
 from typing import Any, Generic, TypeVar
 
+from gateway.util.json_types import JsonObject, JsonValue
+
 log = logging.getLogger("gateway.telemetry")
 
 T = TypeVar("T")
@@ -217,11 +219,11 @@ class TelemetryCache:
         for name in self.FIELDS:
             setattr(self, name, None)
 
-    def snapshot(self) -> dict[str, Any]:
+    def snapshot(self) -> JsonObject:
         """Everything, each part with ``age_s`` and ``stale``; never-received parts are None.
 
         ``stale`` is true for a part older than ``stale_after_s`` and for every part while not ``live``."""
-        out: dict[str, Any] = {}
+        out: JsonObject = {}
         for name in self.FIELDS:
             sample: Sample[object] | None = getattr(self, name)
             if sample is None:
@@ -229,7 +231,7 @@ class TelemetryCache:
                 continue
             value = sample.value
             plain = asdict(value) if is_dataclass(value) and not isinstance(value, type) else {"value": value}
-            body: dict[str, Any] = _json_safe(plain)
+            body = {key: _json_safe(part) for key, part in plain.items()}
             age = round(sample.age_s, 3)
             body["age_s"] = age
             body["stale"] = age > self.stale_after_s or not self.live
@@ -238,12 +240,15 @@ class TelemetryCache:
         return out
 
 
-def _json_safe(value: Any) -> Any:
-    """NaN / inf (MAVSDK's "unknown") become None: results must be strict JSON."""
+def _json_safe(value: object) -> JsonValue:
+    """NaN / inf (MAVSDK's "unknown") become None: results must be strict JSON; a value of no JSON type
+    (an enum) its text."""
     if isinstance(value, float):
         return value if math.isfinite(value) else None
     if isinstance(value, dict):
         return {k: _json_safe(v) for k, v in value.items()}
     if isinstance(value, list | tuple):
         return [_json_safe(v) for v in value]
-    return value
+    if value is None or isinstance(value, str | int):
+        return value
+    return str(value)

@@ -100,16 +100,4 @@ def operation_out(view: OperationView, action: str | None = None) -> OperationOu
         )
     else:
         text = f"{name} on {view.drone_id} {view.status}: {view.message}"
-    return OperationOut(
-        drone_id=view.drone_id,
-        operation_id=view.operation_id,
-        kind=view.kind,
-        status=view.status,
-        progress=view.progress,
-        message=view.message,
-        eta_s=view.eta_s,
-        elapsed_s=view.elapsed_s,
-        lat_deg=view.lat_deg,
-        lon_deg=view.lon_deg,
-        alt_m=view.alt_m,
-    ).say(text)
+    return OperationOut.model_validate(view, from_attributes=True).say(text)

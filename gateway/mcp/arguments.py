@@ -5,7 +5,6 @@ class names and URLs. Also puts the limits the safety policy enforces into the a
 from __future__ import annotations
 
 import difflib
-import json
 from collections.abc import Sequence
 from typing import Any
 
@@ -19,7 +18,7 @@ from gateway.errors import InvalidArgument
 from gateway.mcp import sdk_private
 from gateway.mcp.refusals import refusal_result
 from gateway.mcp.sdk_types import SdkArguments, SdkSchema
-from gateway.mcp.strict_json import strict_problems
+from gateway.mcp.strict_json import shown_value, strict_problems
 
 #: argument names that are altitudes above home, bounded by the policy's max_altitude_m
 ALTITUDE_ARGUMENTS = ("alt_m", "rtl_alt_m")
@@ -36,6 +35,7 @@ def install_argument_messages(tool: Tool) -> None:
     schema = tool.parameters
     known = frozenset(schema.get("properties", {}))
 
+    # Any: mcp SDK, Tool.run's context and result
     async def run_checked(arguments: SdkArguments, context: Any, convert_result: bool = False) -> Any:
         unknown = [name for name in arguments if name not in known]
         if unknown:
@@ -74,7 +74,7 @@ def describe_unknown(tool_name: str, unknown: list[str], schema: SdkSchema) -> s
     known = list(schema.get("properties", {}))
     parts = []
     for name in unknown:
-        shown = _given(name)
+        shown = shown_value(name)
         close = difflib.get_close_matches(str(name), known, n=1, cutoff=0.6)
         parts.append(
             f"{shown} is not an argument of {tool_name}" + (f" (did you mean {close[0]}?)" if close else "")
@@ -103,10 +103,10 @@ def describe_invalid(tool_name: str, exc: ValidationError, schema: SdkSchema) ->
             known = ", ".join(schema.get("properties", {})) or "none"
             lines.append(f"{name} is not an argument of {tool_name}; its arguments: {known}")
         elif accepted:
-            lines.append(f"{name} must be {accepted} (got {_given(err.get('input'))})")
+            lines.append(f"{name} must be {accepted} (got {shown_value(err.get('input'))})")
         else:
             message = str(err.get("msg", "is not valid")).removeprefix("Value error, ")
-            lines.append(f"{name}: {message} (got {_given(err.get('input'))})")
+            lines.append(f"{name}: {message} (got {shown_value(err.get('input'))})")
     return f"invalid arguments for {tool_name}: " + "; ".join(lines)
 
 
@@ -219,11 +219,3 @@ def _bounds(name: str, prop: SdkSchema) -> str:
 
 def _num(value: object) -> str:
     return f"{value:g}" if isinstance(value, float) else str(value)
-
-
-def _given(value: object) -> str:
-    try:
-        text = json.dumps(value)
-    except (TypeError, ValueError):
-        text = repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."

@@ -27,14 +27,15 @@ from gateway.fleet.commands.commander import Commander  # noqa: F401  (imports e
 from gateway.fleet.operations.routing import Verb
 from gateway.mcp.access import ToolCall
 from gateway.mcp.confirmation import ANSWER, answer_parameter, confirmed
-from gateway.mcp.presenters import PRESENTERS, Presenter
+from gateway.mcp.presenters import PRESENTERS, Presenter, waits_itself
 from gateway.mcp.results import Result
 from gateway.mcp.toolkit import Toolset, ToolSpec, Wait, annotations_of
 
 #: verb parameters a tool fills itself, never offered to the client
 FILLED = ("label",)
-#: the verb's callbacks a tool can feed (``notify``: what a command waits for, as progress at 0)
-CALLBACKS = frozenset({"notify"})
+#: the verb's callbacks a tool can feed (``notify``: what a command waits for, as progress at 0;
+#: ``on_progress``: an operation the verb waits for itself, as progress)
+CALLBACKS = frozenset({"notify", "on_progress"})
 
 
 def complete(toolset: Toolset) -> Toolset:
@@ -65,10 +66,14 @@ def tool_spec(tool: Tool) -> ToolSpec:
     confirm = tool.confirm
     filled = {"label": tool.name} if "label" in verb.signature.parameters else {}
     feeds_notify = "notify" in verb.callbacks
+    feeds_progress = waits_itself(verb)
+    waits = presenter.waits and not feeds_progress
 
-    async def run(call: ToolCall, **arguments: Any) -> Result:  # mcp SDK: its validated JSON
-        wait = bool(arguments.pop("wait", True)) if presenter.waits else False
+    async def run(call: ToolCall, **arguments: Any) -> Result:  # Any: mcp SDK, its validated JSON
+        wait = bool(arguments.pop("wait", True)) if waits else False
         extra: dict[str, object] = {"notify": call.notify} if feeds_notify else {}
+        if feeds_progress:
+            extra["on_progress"] = call.progress
         if confirm is not None:
             extra[confirm.into] = confirmed(arguments.pop(ANSWER, None))
         for name, takes in tool.takes.items():
@@ -102,6 +107,8 @@ def _presenter(tool: Tool, verb: Verb) -> Presenter:
         )
     if presenter.needs_says and tool.says is None:
         raise TypeError(f"tool {tool.name}: an instant command's tool needs says= (its result's text)")
+    if waits_itself(verb) and not presenter.waits:
+        raise TypeError(f"tool {tool.name}: a verb that waits itself (on_progress) returns an operation")
     unfed = verb.callbacks - CALLBACKS
     if unfed:
         raise TypeError(f"tool {tool.name}: no tool can feed the verb's callbacks {', '.join(sorted(unfed))}")
@@ -128,7 +135,7 @@ def _parameters(tool: Tool, verb: Verb, presenter: Presenter) -> list[inspect.Pa
             params.append(param.replace(annotation=hints[name]))
         else:
             params.append(param.replace(name=takes.name, annotation=takes.annotation))
-    if presenter.waits:
+    if presenter.waits and not waits_itself(verb):
         params.append(
             inspect.Parameter("wait", inspect.Parameter.POSITIONAL_OR_KEYWORD, default=True, annotation=Wait)
         )

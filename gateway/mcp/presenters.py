@@ -2,7 +2,8 @@
 the outputSchema) and the one line of text. A verb whose result model has no presenter here cannot
 declare a tool (`gateway.mcp.declared.tool_spec` says so at import).
 
-- `OperationView`: an `OperationOut`, after waiting (capped, with progress) when the caller asked;
+- `OperationView`: an `OperationOut`, after waiting (capped, with progress) when the caller asked (a
+  verb that waits itself, taking ``on_progress``, is fed the progress instead: `waits_itself`);
 - `FleetView`: a `FleetOut` the same way (`monitor_fleet` continues it);
 - `ActionResult`: an `ActionOut` whose text is the declaration's ``says``;
 - `FleetHoldResult`: a `FleetHoldOut` naming who holds, who failed, who was not sent the hold;
@@ -16,7 +17,8 @@ from dataclasses import dataclass
 
 from pydantic import BaseModel
 
-from gateway.fleet.commands.command_core import Tool
+from gateway.fleet.commands.command_core import VERBS, Tool
+from gateway.fleet.operations.routing import Verb
 from gateway.fleet.operations.views import ActionResult, FleetHoldResult, FleetView, OperationView, ParamValue
 from gateway.fleet.vehicles.vehicle_text import clean_vehicle_text
 from gateway.mcp.access import ToolCall
@@ -118,11 +120,18 @@ def _text(tool: Tool, fields: Mapping[str, object], result: ActionResult | None 
     return says.format_map(dict(fields))
 
 
+def waits_itself(verb: Verb) -> bool:
+    """A verb that waits for its operation itself (it takes ``on_progress``, as ``monitor`` does): its
+    tool offers no ``wait``, feeds the client's progress to the verb, and names the operation by its
+    own kind (the tool reports an operation it did not start)."""
+    return "on_progress" in verb.callbacks
+
+
 async def _operation(
     call: ToolCall, result: BaseModel, tool: Tool, arguments: Mapping[str, object], wait: bool
 ) -> Result:
     assert isinstance(result, OperationView)
-    return await call.finish(result, wait, tool.name)
+    return await call.finish(result, wait, None if waits_itself(VERBS[tool.verb]) else tool.name)
 
 
 async def _action(
@@ -173,4 +182,5 @@ __all__ = [
     "fleet_hold_out",
     "fleet_out",
     "vehicle_param_name",
+    "waits_itself",
 ]

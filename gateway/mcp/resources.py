@@ -27,9 +27,10 @@ from gateway.fleet.commands.commander import Commander
 from gateway.fleet.operations.fleet_operation import FleetOperation
 from gateway.fleet.vehicles.readings import position, value
 from gateway.mcp import sdk_private
-from gateway.mcp.results import JsonLike, plain, plain_object, surface_telemetry
+from gateway.mcp.results import plain, plain_object, surface_telemetry
 from gateway.mcp.sdk_types import AnyServer, RequestContext
 from gateway.runtime import Gateway
+from gateway.util.json_types import JsonValue
 
 log = logging.getLogger(__name__)
 T = TypeVar("T")
@@ -59,7 +60,7 @@ def drones_json(commander: Commander) -> list[dict[str, object]]:
 SIDECAR_PRIVATE = ("pid", "grpc_port")
 
 
-def agent_status(status: dict[str, JsonLike]) -> dict[str, JsonLike]:
+def agent_status(status: dict[str, JsonValue]) -> dict[str, JsonValue]:
     """A vehicle's status as an agent may read it: the sidecar's state, not its process or gRPC port."""
     sidecar = status.get("sidecar")
     if isinstance(sidecar, dict):

@@ -7,12 +7,19 @@ import dataclasses
 import enum
 import json
 import math
-from typing import Any, Self
+from typing import Self
 
 from pydantic import BaseModel, PrivateAttr
 
-from gateway.fleet.operations.views import ActionResult
+from gateway.fleet.operations.views import (
+    ActionResult,
+    MissionProgressView,
+    OperationFacts,
+    ParamPage,
+    ParamValue,
+)
 from gateway.fleet.vehicles.vehicle_text import VEHICLE_TEXT_LABEL, clean_vehicle_text
+from gateway.util.json_types import JsonValue
 
 
 class Result(BaseModel):
@@ -28,17 +35,9 @@ class Result(BaseModel):
         return self._text or json.dumps(self.model_dump(mode="json"), separators=(",", ":"))
 
 
-class OperationOut(Result):
+class OperationOut(Result, OperationFacts):
     """A long-running action: 'running' means it continues on the vehicle; call monitor_flight."""
 
-    drone_id: str
-    operation_id: str
-    kind: str
-    status: str
-    progress: float
-    message: str
-    eta_s: float | None = None
-    elapsed_s: float
     lat_deg: float | None = None
     lon_deg: float | None = None
     alt_m: float | None = None
@@ -99,30 +98,30 @@ class GpsOut(Fresh):
     fix_type: str
 
 
-# Open JSON in these results: a telemetry value as `plain` makes it (any JSON); pydantic gives it an open
-# outputSchema, which clients validate against (a JsonLike union would spell out every JSON type)
+# Open JSON in these results: a telemetry value as `plain` makes it (a JsonValue), typed ``object`` so that
+# pydantic gives it an open outputSchema, which clients validate against (JsonValue adds a $defs entry)
 class ValueOut(Fresh):
     """A single telemetry value (flight mode, armed, in air, landed state, heading)."""
 
-    value: Any
+    value: object
 
 
 class DataOut(Fresh):
     """A telemetry record with many fields (health, RC, IMU, odometry)."""
 
-    data: dict[str, Any]
+    data: dict[str, object]
 
 
 class SnapshotOut(Result):
     drone_id: str
     state: str
-    telemetry: dict[str, Any]
-    operation: dict[str, Any] | None
+    telemetry: dict[str, object]
+    operation: dict[str, object] | None
 
 
 class StatusTextOut(Result):
     drone_id: str
-    messages: list[dict[str, Any]]
+    messages: list[dict[str, object]]
 
 
 class ArrivalOut(Result):
@@ -151,42 +150,25 @@ class MissionOut(Result):
     items: list[MissionItemOut]
 
 
-class MissionProgressOut(Result):
-    drone_id: str
-    current: int
-    total: int
-    finished: bool
-    operation_status: str | None
+class MissionProgressOut(Result, MissionProgressView):
+    pass
 
 
-class ParamOut(Result):
-    drone_id: str
-    name: str
-    value: float
-    type: str
+class ParamOut(Result, ParamValue):
+    pass
 
 
-class ParamListOut(Result):
-    drone_id: str
-    prefix: str
-    total: int
-    offset: int
-    params: dict[str, float]
-    next_offset: int | None
+class ParamListOut(Result, ParamPage):
     names_note: str = ""
 
 
-#: what `plain` makes of a value: JSON's values (the SDK and pydantic serialise them as they are)
-JsonLike = None | bool | int | float | str | list["JsonLike"] | dict[str, "JsonLike"]
-
-
-def plain_object(value: object) -> dict[str, JsonLike]:
+def plain_object(value: object) -> dict[str, JsonValue]:
     """`plain` of a record (a status, a snapshot): its fields; anything else is no record (empty)."""
     out = plain(value)
     return out if isinstance(out, dict) else {}
 
 
-def plain(value: object, depth: int = 0) -> JsonLike:
+def plain(value: object, depth: int = 0) -> JsonValue:
     """MAVSDK objects, dataclasses, enums -> JSON-friendly values (NaN -> None)."""
     if depth > 6:
         return str(value)
@@ -216,9 +198,9 @@ def plain(value: object, depth: int = 0) -> JsonLike:
 _SURFACE_NAMES = {"rel_alt_m": "alt_m", "abs_alt_m": "alt_amsl_m"}
 
 
-def surface_telemetry(snapshot: dict[str, JsonLike]) -> dict[str, JsonLike]:
+def surface_telemetry(snapshot: dict[str, JsonValue]) -> dict[str, JsonValue]:
     """A telemetry snapshot in the tools' own names, its status texts as data from the vehicle."""
-    out: dict[str, JsonLike] = {}
+    out: dict[str, JsonValue] = {}
     for part, body in snapshot.items():
         if isinstance(body, dict):
             body = {_SURFACE_NAMES.get(k, k): v for k, v in body.items()}

@@ -44,14 +44,17 @@ def tool(server: AnyServer, name: str) -> Tool:
     return found
 
 
-def replace_run(tool: Tool, run: Callable[..., Awaitable[Any]]) -> None:  # mcp SDK: Tool.run
+def replace_run(tool: Tool, run: Callable[..., Awaitable[Any]]) -> None:  # Any: mcp SDK, Tool.run
     """Put a wrapper in place of a tool's ``run`` (``Tool`` is a pydantic model that refuses new values
     for its methods through ``__setattr__``)."""
     object.__setattr__(tool, "run", run)
 
 
 def add_request_handler(
-    server: AnyServer, method: str, params_type: type[Any], handler: Callable[..., Awaitable[Any]]
+    server: AnyServer,
+    method: str,
+    params_type: type[Any],  # Any: mcp SDK, its request handlers' table
+    handler: Callable[..., Awaitable[Any]],  # Any: mcp SDK, its request handlers' table
 ) -> None:
     """A handler for a request method the ``MCPServer`` layer does not expose."""
     server._lowlevel_server.add_request_handler(method, params_type, handler)
@@ -61,7 +64,7 @@ async def answer_single_exchange_as_json(
     manager: StreamableHTTPSessionManager, scope: Scope, receive: Receive, send: Send
 ) -> None:
     """A 2026-07-28 request answered as the manager answers it in JSON mode."""
-    state: Any = manager._lifespan_state  # mcp SDK: its private state, untyped
+    state: Any = manager._lifespan_state  # Any: mcp SDK, its private state, untyped
     await handle_modern_request(manager.app, manager.security_settings, True, state, scope, receive, send)
 
 
@@ -79,7 +82,7 @@ def cap_sessions_per_caller(manager: StreamableHTTPSessionManager, cap: int) -> 
     whose ``cap`` sessions are all busy is refused as at the manager's own limit."""
     admit = manager._admit_session
 
-    def admit_capped(requestor: Any) -> Any:  # mcp SDK: private _admit_session, untyped
+    def admit_capped(requestor: Any) -> Any:  # Any: mcp SDK, private _admit_session, untyped
         owners = manager._session_owners
         mine = [
             transport

@@ -137,9 +137,9 @@ class SessionAudit:
         call = CallInfo(session_key=info.key, principal=info.principal, vehicle_id=_drone_id(arguments))
         token = current_call.set(call)
         tool = str(params.get("name", "?"))
-        started = time.perf_counter()
+        audited = _AuditedCall(store, info, call, tool, arguments, started=time.perf_counter())
         written: list[str] = []
-        row = self._begin(store, info, call, tool, arguments)
+        row = self._begin(audited)
         if row is not None and TOOLS[tool].verb not in STOP_VERBS:
             await row.written(CALL_ROW_WAIT_S)
 
@@ -151,7 +151,7 @@ class SessionAudit:
                 row.operation(operation_id)
             elif not written:
                 written.append(operation_id)
-                self._audit(store, info, call, tool, arguments, "running", None, started, operation_id)
+                self._audit(audited, "running", None, operation_id)
 
         audit_sent = AUDIT_SENT.set(sent)
         result: HandlerResult = None
@@ -166,15 +166,15 @@ class SessionAudit:
             AUDIT_SENT.reset(audit_sent)
             current_call.reset(token)
             if row is not None:
-                await self._end(row, call, result, failure, started, written)
+                await self._end(row, audited, result, failure, written)
             elif not written:
-                self._audit_end(store, info, call, tool, arguments, result, failure, started)
+                self._audit_end(audited, result, failure)
 
-    def _begin(
-        self, store: Store | None, info: SessionInfo, call: CallInfo, tool: str, arguments: object
-    ) -> AuditCall | None:
+    def _begin(self, audited: _AuditedCall) -> AuditCall | None:
         """The row of a call of a tool that commands a drone, started before anything is sent."""
-        if store is None or tool not in TOOLS:
+        store, info, arguments = audited.store, audited.info, audited.arguments
+        vehicle_id = audited.call.vehicle_id
+        if store is None or audited.tool not in TOOLS:
             return None
         self._note_touched(info)
         try:
@@ -183,29 +183,29 @@ class SessionAudit:
                     session_key=info.key,
                     principal=info.principal,
                     source="mcp",
-                    vehicle_id=call.vehicle_id if isinstance(call.vehicle_id, str) else None,
-                    action=tool[:64],
+                    vehicle_id=vehicle_id if isinstance(vehicle_id, str) else None,
+                    action=audited.tool[:64],
                     arguments=arguments if isinstance(arguments, dict) else {"arguments": str(arguments)},
                     outcome="running",
                 ),
                 SessionSeen(info.key, info.kind, info.principal, info.client_name, info.client_version),
             )
         except Exception:
-            log.exception("could not start the audit row of %s", tool)
+            log.exception("could not start the audit row of %s", audited.tool)
             return None
 
     @staticmethod
     async def _end(
         row: AuditCall,
-        call: CallInfo,
+        audited: _AuditedCall,
         result: HandlerResult,
         failure: BaseException | None,
-        started: float,
         written: list[str],
     ) -> None:
         """The end of a call whose row was written before it ran: its outcome; or, when it started an
         operation, that operation (whose end finishes the row). Waited for up to CALL_END_WAIT_S."""
-        took_ms = round((time.perf_counter() - started) * 1000.0, 1)
+        call = audited.call
+        took_ms = round((time.perf_counter() - audited.started) * 1000.0, 1)
         operation_id: str | None
         error: str | None
         ended = _ended_operation(result) if written and failure is None else None
@@ -226,24 +226,14 @@ class SessionAudit:
         except Exception:
             log.exception("could not finish the audit row of call %s", row.id)
 
-    def _audit_end(
-        self,
-        store: Store | None,
-        info: SessionInfo,
-        call: CallInfo,
-        tool: str,
-        arguments: object,
-        result: HandlerResult,
-        failure: BaseException | None,
-        started: float,
-    ) -> None:
+    def _audit_end(self, audited: _AuditedCall, result: HandlerResult, failure: BaseException | None) -> None:
         """The row of a call that sent no operation (a read, a refusal, an instant command, a fleet
         command: its operation is started by the fleet engine), written when it ends. A call that
         returns while an operation runs (wait:false) names it: when the operation ends, on whichever
         node runs it then, the store finishes the row (Store.save_operation)."""
-        outcome, error = _outcome(call, result, failure)
+        outcome, error = _outcome(audited.call, result, failure)
         operation_id = _operation_id(result) if outcome == "running" else None
-        self._audit(store, info, call, tool, arguments, outcome, error, started, operation_id)
+        self._audit(audited, outcome, error, operation_id)
 
     def _note_touched(self, info: SessionInfo) -> None:
         if len(self._touched) > 10_000:
@@ -269,40 +259,45 @@ class SessionAudit:
             log.exception("could not record MCP session %s", info.key)
 
     def _audit(
-        self,
-        store: Store | None,
-        info: SessionInfo,
-        call: CallInfo,
-        tool: str,
-        arguments: object,
-        outcome: str,
-        error: str | None,
-        started: float,
-        operation_id: str | None = None,
+        self, audited: _AuditedCall, outcome: str, error: str | None, operation_id: str | None = None
     ) -> None:
         """Queue the call's audit row with the touch of its session (written off the request path, in
         batches: `Store.queue_audit`)."""
-        if store is None:
+        if audited.store is None:
             return
+        info, vehicle_id, arguments = audited.info, audited.call.vehicle_id, audited.arguments
         self._note_touched(info)
         try:
-            store.queue_audit(
+            audited.store.queue_audit(
                 AuditEntry(
                     session_key=info.key,
                     principal=info.principal,
                     source="mcp",
-                    vehicle_id=call.vehicle_id if isinstance(call.vehicle_id, str) else None,
-                    action=tool[:64],
+                    vehicle_id=vehicle_id if isinstance(vehicle_id, str) else None,
+                    action=audited.tool[:64],
                     arguments=arguments if isinstance(arguments, dict) else {"arguments": str(arguments)},
                     outcome=outcome,
                     error=None if error is None else error[:1000],
-                    duration_ms=round((time.perf_counter() - started) * 1000.0, 1),
+                    duration_ms=round((time.perf_counter() - audited.started) * 1000.0, 1),
                     operation_id=operation_id,
                 ),
                 SessionSeen(info.key, info.kind, info.principal, info.client_name, info.client_version),
             )
         except Exception:
-            log.exception("could not queue the audit row of %s", tool)
+            log.exception("could not queue the audit row of %s", audited.tool)
+
+
+@dataclass(frozen=True)
+class _AuditedCall:
+    """One tool call as its audit row names it: the session, the call, the tool and its arguments, and
+    when it started (``time.perf_counter``)."""
+
+    store: Store | None
+    info: SessionInfo
+    call: CallInfo
+    tool: str
+    arguments: object
+    started: float
 
 
 def _operation_id(result: HandlerResult) -> str | None:

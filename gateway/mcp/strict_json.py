@@ -109,7 +109,8 @@ def _walk(
         wanted = " or ".join(dict.fromkeys(words))
         given = _GIVEN_NAMES.get(kind, kind)
         problems.append(
-            f"{path} must be {wanted} (got {_given(value)}): send a JSON {_json_word(typed)}, not {given}"
+            f"{path} must be {wanted} (got {shown_value(value)}): "
+            f"send a JSON {_json_word(typed)}, not {given}"
         )
         return
     chosen = next((o for o in matching if o["type"] not in ("array", "object") or kind != "string"), None)
@@ -139,7 +140,8 @@ def _json_word(typed: list[SdkSchema]) -> str:
     return {"integer": "number"}.get(kinds[0], kinds[0]) if kinds else "value"
 
 
-def _given(value: object) -> str:
+def shown_value(value: object) -> str:
+    """A value a client sent, as JSON (its repr when it is not JSON), cut to 60 characters to echo."""
     try:
         text = json.dumps(value)
     except (TypeError, ValueError):

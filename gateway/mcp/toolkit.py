@@ -128,7 +128,7 @@ def check_drone_id(drone_id: str) -> None:
         )
 
 
-def _wrap(spec: ToolSpec) -> Callable[..., Any]:  # mcp SDK: add_tool takes any function
+def _wrap(spec: ToolSpec) -> Callable[..., Any]:  # Any: mcp SDK, add_tool takes any function
     """The handler the SDK registers: the tool's own parameters (without its ``ToolCall``) plus the
     SDK-injected ``ctx``."""
     fn = spec.fn
@@ -145,7 +145,7 @@ def _wrap(spec: ToolSpec) -> Callable[..., Any]:  # mcp SDK: add_tool takes any 
     return_annotation = Annotated[CallToolResult, result_model]
 
     @functools.wraps(fn)
-    async def handler(ctx: ToolContext, **kwargs: Any) -> CallToolResult:  # mcp SDK: its JSON arguments
+    async def handler(ctx: ToolContext, **kwargs: Any) -> CallToolResult:  # Any: mcp SDK, its JSON arguments
         call = current_call.get()
         try:
             tool_call = ToolCall.of(ctx)
@@ -154,8 +154,9 @@ def _wrap(spec: ToolSpec) -> Callable[..., Any]:  # mcp SDK: add_tool takes any 
                 check_drone_id(drone_id)
             # 'Alpha' is alpha: operations and locks are keyed by the exact id (gateway.fleet.vehicles.ids)
             kwargs = canonical_arguments(tool_call.commander.registry, kwargs)
-            if isinstance(kwargs.get("drone_id"), str) and call is not None:
-                call.vehicle_id = kwargs["drone_id"]
+            canonical_id = kwargs.get("drone_id")
+            if isinstance(canonical_id, str) and call is not None:
+                call.vehicle_id = canonical_id
             result: Result = await fn(tool_call, **kwargs)
         except GatewayError as exc:
             if call is not None:

@@ -6,7 +6,7 @@ from __future__ import annotations
 import asyncio
 import weakref
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from sqlalchemy import event, text
 from sqlalchemy.engine import Connection
@@ -59,12 +59,12 @@ def _install_sqlite_pragmas(engine: AsyncEngine) -> None:
 
 def create_engine_for(url: str) -> AsyncEngine:
     """An async engine for ``url``, with SQLite's pragmas installed when it is SQLite."""
-    kwargs: dict[str, Any] = {"pool_pre_ping": not _is_sqlite(url)}
-    if _is_sqlite(url):
-        kwargs["connect_args"] = {"timeout": SQLITE_BUSY_TIMEOUT_MS / 1000}
-    engine = create_async_engine(url, **kwargs)
-    if _is_sqlite(url):
-        _install_sqlite_pragmas(engine)
+    if not _is_sqlite(url):
+        return create_async_engine(url, pool_pre_ping=True)
+    engine = create_async_engine(
+        url, pool_pre_ping=False, connect_args={"timeout": SQLITE_BUSY_TIMEOUT_MS / 1000}
+    )
+    _install_sqlite_pragmas(engine)
     return engine
 
 

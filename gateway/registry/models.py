@@ -9,7 +9,6 @@ PostgreSQL): JSON through ``sqlalchemy.JSON``, datetimes always timezone-aware U
 from __future__ import annotations
 
 from datetime import UTC, datetime
-from typing import Any
 
 from sqlalchemy import (
     JSON,
@@ -27,6 +26,8 @@ from sqlalchemy import (
 from sqlalchemy.engine import Dialect
 from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column
 from sqlalchemy.types import TypeDecorator
+
+from gateway.util.json_types import JsonObject
 
 # Constraint names are fixed so later migrations can alter them on every backend.
 NAMING_CONVENTION = {
@@ -105,7 +106,7 @@ class AuditRow(Base):
     source: Mapped[str] = mapped_column(String(8))
     vehicle_id: Mapped[str | None] = mapped_column(String(32))
     action: Mapped[str] = mapped_column(String(100))
-    arguments: Mapped[dict[str, Any]] = mapped_column(JSON, default=dict)
+    arguments: Mapped[JsonObject] = mapped_column(JSON, default=dict)
     outcome: Mapped[str] = mapped_column(String(16))
     error: Mapped[str | None] = mapped_column(Text)
     duration_ms: Mapped[float | None] = mapped_column(Float)
@@ -179,11 +180,11 @@ class OperationRow(Base):
     id: Mapped[str] = mapped_column(String(64), primary_key=True)
     vehicle_id: Mapped[str] = mapped_column(String(32))
     kind: Mapped[str] = mapped_column(String(64))
-    params: Mapped[dict[str, Any]] = mapped_column(JSON, default=dict)
+    params: Mapped[JsonObject] = mapped_column(JSON, default=dict)
     status: Mapped[str] = mapped_column(String(16), index=True)
     progress: Mapped[float] = mapped_column(Float, default=0.0)
     message: Mapped[str | None] = mapped_column(Text)
-    result: Mapped[dict[str, Any] | None] = mapped_column(JSON)
+    result: Mapped[JsonObject | None] = mapped_column(JSON)
     session_key: Mapped[str | None] = mapped_column(String(200))
     created_at: Mapped[datetime] = mapped_column(UTCDateTime())
     updated_at: Mapped[datetime] = mapped_column(UTCDateTime())

@@ -4,13 +4,15 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from datetime import UTC, datetime
-from typing import Any, Literal
+from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
 from gateway.registry.spec import VehicleSpec
+from gateway.util.json_types import DocumentedJsonObject, JsonObject, JsonValue
 
 AUDIT_MAX_STRING = 500
 AUDIT_MAX_JSON = 8_000
@@ -152,7 +154,7 @@ class AuditEntry(_Record):
     source: AuditSource
     vehicle_id: str | None = None
     action: str
-    arguments: dict[str, Any] = Field(default_factory=dict)
+    arguments: dict[str, object] = Field(default_factory=dict)  # as the caller gave them: bounded when stored
     outcome: AuditOutcome
     error: str | None = None
     duration_ms: float | None = None
@@ -171,11 +173,11 @@ class OperationRecord(_Record):
     id: str = Field(min_length=1, max_length=64)
     vehicle_id: str
     kind: str
-    params: dict[str, Any] = Field(default_factory=dict)
+    params: DocumentedJsonObject = Field(default_factory=dict)
     status: OperationStatus
     progress: float = Field(0.0, ge=0.0, le=1.0)
     message: str | None = None
-    result: dict[str, Any] | None = None
+    result: DocumentedJsonObject | None = None
     session_key: str | None = None
     created_at: datetime = Field(default_factory=utcnow)
     updated_at: datetime = Field(default_factory=utcnow)
@@ -195,11 +197,11 @@ class LockRecord(_Record):
 
 
 def bound_arguments(
-    arguments: dict[str, Any], max_string: int = AUDIT_MAX_STRING, max_json: int = AUDIT_MAX_JSON
-) -> dict[str, Any]:
+    arguments: Mapping[str, object], max_string: int = AUDIT_MAX_STRING, max_json: int = AUDIT_MAX_JSON
+) -> JsonObject:
     """Make audit arguments JSON-safe and bounded: long strings cut, whole object capped in size."""
 
-    def walk(value: Any, depth: int) -> Any:
+    def walk(value: object, depth: int) -> JsonValue:
         if depth > 8:
             return "<nested too deep>"
         if value is None or isinstance(value, bool | int):
@@ -218,7 +220,7 @@ def bound_arguments(
             return walk(value.model_dump(mode="json"), depth + 1)
         return walk(str(value), depth + 1)
 
-    bounded: dict[str, Any] = walk(dict(arguments), 0)
+    bounded = {str(k)[:max_string]: walk(v, 1) for k, v in arguments.items()}
     text = json.dumps(bounded, ensure_ascii=False)
     if len(text) > max_json:
         return {"_truncated": True, "_size": len(text), "_preview": text[: max_json // 2]}

@@ -7,6 +7,7 @@ import re
 from urllib.parse import urlsplit
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from typing_extensions import TypedDict  # pydantic validates it (update_drone's changes) on Python 3.11
 
 VEHICLE_ID_PATTERN = r"^[a-z0-9-]{1,32}$"
 NODE_TAG_PATTERN = r"^[A-Za-z0-9_.\-]{1,32}$"
@@ -181,3 +182,16 @@ def gcs_endpoint_conflict(spec: VehicleSpec, others: list[VehicleSpec], gateway_
         if same_place(place, ("tcp", "127.0.0.1", gateway_port)):
             return f"gcs_endpoints: '{url}' is the gateway's own HTTP port; give a ground station's endpoint"
     return None
+
+
+class VehicleChanges(TypedDict, total=False):
+    """What a registration update may change (`Store.update_vehicle`, the registry's ``update``): the
+    fields given are set, the others kept."""
+
+    name: str | None
+    tags: list[str]
+    expected_sysid: int | None
+    node_tag: str | None
+    url: str
+    gcs_endpoints: list[str]
+    auto_connect: bool

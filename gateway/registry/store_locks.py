@@ -6,7 +6,7 @@ from __future__ import annotations
 import logging
 from collections.abc import Callable
 from datetime import datetime
-from typing import Any, cast
+from typing import Any, TypeVar, cast
 
 from sqlalchemy import delete, select
 
@@ -24,6 +24,10 @@ log = logging.getLogger(__name__)
 #: newer than it is known: `gateway.cluster.lock_versions.LockVersions.superseded`); family "lock" or
 #: "takeover"
 Superseded = Callable[[str, str, datetime], bool]
+
+#: the two tables of locks, which differ only in the name of their key (the scope, or the drone's id)
+_Row = TypeVar("_Row", LockRow, TakeoverRow)
+_KEY: dict[type[LockRow] | type[TakeoverRow], str] = {LockRow: "scope", TakeoverRow: "vehicle_id"}
 
 
 class LockTables(StoreCore):
@@ -47,17 +51,7 @@ class LockTables(StoreCore):
         return cast(LockRecord | None, await self._kept(f"the lock of {scope}", "lock", data))
 
     async def _write_lock(self, data: dict[str, Any]) -> LockRecord | None:
-        scope, reason, by = data["scope"], data["reason"], data["by"]
-        locked_at = datetime.fromisoformat(data["locked_at"])
-        if self._undone("lock", scope, locked_at):
-            return None
-        async with self._sessions.begin() as session:
-            row = await session.get(LockRow, scope)
-            if row is None:
-                session.add(LockRow(scope=scope, reason=reason, locked_by=by, locked_at=locked_at))
-            else:
-                row.reason, row.locked_by, row.locked_at = reason, by, locked_at
-        return LockRecord(scope=scope, reason=reason, by=by, locked_at=locked_at)
+        return await self._put(LockRow, "lock", data)
 
     async def delete_lock(self, scope: str) -> bool:
         """Remove the lock of ``scope``; False when there was none (or the database is unreachable:
@@ -65,17 +59,10 @@ class LockTables(StoreCore):
         return bool(await self._kept(f"the unlock of {scope}", "unlock", {"scope": scope}))
 
     async def _write_unlock(self, data: dict[str, Any]) -> bool:
-        async with self._sessions.begin() as session:
-            result = await session.execute(delete(LockRow).where(LockRow.scope == data["scope"]))
-            return bool(rowcount(result))
+        return await self._remove(LockRow, data)
 
     async def list_locks(self) -> list[LockRecord]:
-        async with self._sessions() as session:
-            rows = (await session.scalars(select(LockRow).order_by(LockRow.scope))).all()
-            return [
-                LockRecord(scope=r.scope, reason=r.reason, by=r.locked_by, locked_at=r.locked_at)
-                for r in rows
-            ]
+        return await self._all(LockRow)
 
     # --- takeover locks (gateway.fleet.policy.takeover) ----------------------------------------------------
 
@@ -91,19 +78,7 @@ class LockTables(StoreCore):
         return cast(LockRecord | None, kept)
 
     async def _write_takeover(self, data: dict[str, Any]) -> LockRecord | None:
-        vehicle_id, reason, by = data["vehicle_id"], data["reason"], data["by"]
-        locked_at = datetime.fromisoformat(data["locked_at"])
-        if self._undone("takeover", vehicle_id, locked_at):
-            return None
-        async with self._sessions.begin() as session:
-            row = await session.get(TakeoverRow, vehicle_id)
-            if row is None:
-                session.add(
-                    TakeoverRow(vehicle_id=vehicle_id, reason=reason, locked_by=by, locked_at=locked_at)
-                )
-            else:
-                row.reason, row.locked_by, row.locked_at = reason, by, locked_at
-        return LockRecord(scope=vehicle_id, reason=reason, by=by, locked_at=locked_at)
+        return await self._put(TakeoverRow, "takeover", data)
 
     async def delete_takeover(self, vehicle_id: str) -> bool:
         """Remove a drone's takeover lock; False when there was none (or the database is unreachable:
@@ -112,16 +87,40 @@ class LockTables(StoreCore):
         return bool(await self._kept(f"the release of {vehicle_id}", "takeover_release", data))
 
     async def _write_takeover_release(self, data: dict[str, Any]) -> bool:
-        async with self._sessions.begin() as session:
-            result = await session.execute(
-                delete(TakeoverRow).where(TakeoverRow.vehicle_id == data["vehicle_id"])
-            )
-            return bool(rowcount(result))
+        return await self._remove(TakeoverRow, data)
 
     async def list_takeovers(self) -> list[LockRecord]:
+        return await self._all(TakeoverRow)
+
+    # --- either table ----------------------------------------------------------------------------------
+
+    async def _put(self, table: type[_Row], family: str, data: dict[str, Any]) -> LockRecord | None:
+        """Insert or replace the lock ``data`` (as spooled: its key, reason, by, ISO locked_at); None
+        when it was undone since it was made (not written)."""
+        key_name = _KEY[table]
+        key, reason, by = data[key_name], data["reason"], data["by"]
+        locked_at = datetime.fromisoformat(data["locked_at"])
+        if self._undone(family, key, locked_at):
+            return None
+        async with self._sessions.begin() as session:
+            row = await session.get(table, key)
+            if row is None:
+                session.add(table(**{key_name: key}, reason=reason, locked_by=by, locked_at=locked_at))
+            else:
+                row.reason, row.locked_by, row.locked_at = reason, by, locked_at
+        return LockRecord(scope=key, reason=reason, by=by, locked_at=locked_at)
+
+    async def _remove(self, table: type[_Row], data: dict[str, Any]) -> bool:
+        key_name = _KEY[table]
+        async with self._sessions.begin() as session:
+            result = await session.execute(delete(table).where(getattr(table, key_name) == data[key_name]))
+            return bool(rowcount(result))
+
+    async def _all(self, table: type[_Row]) -> list[LockRecord]:
+        key_name = _KEY[table]
         async with self._sessions() as session:
-            rows = (await session.scalars(select(TakeoverRow).order_by(TakeoverRow.vehicle_id))).all()
+            rows = (await session.scalars(select(table).order_by(getattr(table, key_name)))).all()
             return [
-                LockRecord(scope=r.vehicle_id, reason=r.reason, by=r.locked_by, locked_at=r.locked_at)
+                LockRecord(scope=getattr(r, key_name), reason=r.reason, by=r.locked_by, locked_at=r.locked_at)
                 for r in rows
             ]

@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
 
 from sqlalchemy import select
 
 from gateway.registry.models import OperationRow
 from gateway.registry.records import OperationRecord
 from gateway.registry.store_audit import AuditTrail
+from gateway.util.json_types import JsonObject
 
 
 class OperationTable(AuditTrail):
@@ -21,7 +21,7 @@ class OperationTable(AuditTrail):
         await self._kept(f"operation {op.id} ({op.status})", "operation", {"op": op.model_dump(mode="json")})
         return op
 
-    async def _write_operation(self, data: dict[str, Any]) -> None:
+    async def _write_operation(self, data: JsonObject) -> None:
         op = OperationRecord.model_validate(data["op"])
         values = op.model_dump()
         async with self._sessions.begin() as session:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Unpack
 
 from sqlalchemy import delete, select
 from sqlalchemy.exc import IntegrityError
@@ -13,7 +13,7 @@ from gateway.registry.records import (
     VehicleRecord,
     utcnow,
 )
-from gateway.registry.spec import VehicleSpec
+from gateway.registry.spec import VehicleChanges, VehicleSpec
 from gateway.registry.store_core import StoreCore, rowcount
 
 
@@ -48,7 +48,7 @@ class VehicleTable(StoreCore):
         {"name", "tags", "expected_sysid", "node_tag", "url", "gcs_endpoints", "auto_connect"}
     )
 
-    async def update_vehicle(self, vehicle_id: str, **changes: Any) -> VehicleRecord:
+    async def update_vehicle(self, vehicle_id: str, **changes: Unpack[VehicleChanges]) -> VehicleRecord:
         unknown = sorted(set(changes) - self._UPDATABLE)
         if unknown:
             raise InvalidArgument(

@@ -231,7 +231,7 @@ class SimControl:
     async def __aexit__(self, *exc) -> None:
         await self.aclose()
 
-    async def _get(self, path: str) -> Any:  # httpx types the decoded JSON Any
+    async def _get(self, path: str) -> Any:  # Any: httpx, the decoded JSON answer
         response = await self._client.get(path)
         response.raise_for_status()
         return response.json()

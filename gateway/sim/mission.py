@@ -14,11 +14,11 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 
 from pymavlink.dialects.v20 import ardupilotmega as mav
 
-from gateway.util.mission_item import ItemInt
+from gateway.util.mission_item import ItemCommand, ItemInt
 
 # Accepted frames for items: absolute, relative to home, terrain (treated as relative).
 FRAME_ABS = {mav.MAV_FRAME_GLOBAL, mav.MAV_FRAME_GLOBAL_INT}
@@ -49,18 +49,9 @@ class Item(ItemInt):
             x, y = round(msg.x * 1e7), round(msg.y * 1e7)
         else:
             x, y = int(msg.x), int(msg.y)
-        return cls(
-            command=msg.command,
-            frame=msg.frame,
-            param1=msg.param1,
-            param2=msg.param2,
-            param3=msg.param3,
-            param4=msg.param4,
-            x=x,
-            y=y,
-            z=msg.z,
-            autocontinue=msg.autocontinue,
-        )
+        # the command part's fields are named as MAVLink names them in both messages
+        command = {f.name: getattr(msg, f.name) for f in fields(ItemCommand)}
+        return cls(**command, x=x, y=y, z=msg.z, autocontinue=msg.autocontinue)
 
 
 @dataclass

@@ -58,22 +58,7 @@ REQUIRES_POSITION = frozenset(
 )
 
 # Heartbeat base_mode carries MAV_MODE_FLAG_GUIDED_ENABLED in these modes (measured: 89 vs 81).
-GUIDED_FLAG_MODES = frozenset(
-    {
-        Mode.AUTO,
-        Mode.GUIDED,
-        Mode.LOITER,
-        Mode.RTL,
-        Mode.CIRCLE,
-        Mode.LAND,
-        Mode.POSHOLD,
-        Mode.BRAKE,
-        Mode.SMART_RTL,
-        Mode.AVOID_ADSB,
-        Mode.FOLLOW,
-        Mode.AUTO_RTL,
-    }
-)
+GUIDED_FLAG_MODES = REQUIRES_POSITION | {Mode.LAND, Mode.AVOID_ADSB, Mode.FOLLOW, Mode.AUTO_RTL}
 
 # Modes a GCS may arm in (Mode::allows_arming(GCS)): not AUTO (unless AUTO_OPTIONS allows), RTL, LAND,
 # SMART_RTL or BRAKE.

@@ -77,6 +77,7 @@ async def test_an_unreachable_endpoint_is_a_model_error() -> None:
 
 def _move(drone: str, origin: dict[str, str]) -> dict[str, object]:
     return {"action": "move", "drone": drone, "altitude": {"value": 15, "unit": "m"}, "origin": origin,
+            "after": "stay",
             "legs": [{"distance": {"value": 25, "unit": "m"}, "direction": "north"}]}  # fmt: skip
 
 
@@ -89,6 +90,7 @@ async def test_a_plan_that_leaves_out_a_named_drone_is_asked_again_once(scripted
     assert attempt.plan.steps[0].origin.drone == "bravo"  # type: ignore[union-attr]
     repair = server.requests[1]["messages"][-1]["content"]
     assert "the request names bravo, which no step of the plan does" in repair, repair
+    assert "Request: alpha 25 m north of bravo at 15 m" in repair, repair
 
 
 async def test_a_repair_that_leaves_out_more_is_not_taken(scripted) -> None:

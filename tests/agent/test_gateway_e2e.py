@@ -55,6 +55,7 @@ async def test_feet_a_leg_and_a_placement_beside_another_drone_fly_on_the_sim(
             {"action": "takeoff", "drone": "alpha", "altitude": m(40, "ft")},
             {
                 "action": "move",
+                "after": "stay",
                 "drone": "alpha",
                 "legs": [{"distance": m(30), "direction": "north"}],
                 "altitude": None,
@@ -62,6 +63,7 @@ async def test_feet_a_leg_and_a_placement_beside_another_drone_fly_on_the_sim(
             },
             {
                 "action": "move",
+                "after": "stay",
                 "drone": "bravo",
                 "legs": [{"distance": m(20), "direction": "east"}],
                 "altitude": m(18),
@@ -102,6 +104,7 @@ async def test_the_gateways_refusal_is_read_by_its_rule_and_nothing_flies(
             {"action": "takeoff", "drone": "bravo", "altitude": m(500)},
             {
                 "action": "move",
+                "after": "stay",
                 "drone": "bravo",
                 "legs": [{"distance": m(20), "direction": "north"}],
                 "altitude": None,

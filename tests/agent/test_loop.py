@@ -33,7 +33,7 @@ async def test_a_plan_is_compiled_sent_and_answered(toy, scripted) -> None:
     plan = {"steps": [
         {"action": "takeoff", "drone": "alpha", "altitude": m(40, "ft")},
         {"action": "move", "drone": "alpha", "legs": [{"distance": m(20), "direction": "north"}],
-         "altitude": None, "origin": {"kind": "here"}},
+         "after": "stay", "altitude": None, "origin": {"kind": "here"}},
         {"action": "land", "drone": "alpha"},
     ]}  # fmt: skip
     result, events, server = await _turn(toy, scripted, "alpha: up 40 ft, 20 m north, land", plan)
@@ -57,7 +57,7 @@ async def test_a_refusal_is_read_as_data_and_the_drone_left_alone(toy, scripted)
     plan = {"steps": [
         {"action": "takeoff", "drone": "bravo", "altitude": m(500)},
         {"action": "move", "drone": "bravo", "legs": [{"distance": m(9), "direction": "east"}],
-         "altitude": None, "origin": {"kind": "here"}},
+         "after": "stay", "altitude": None, "origin": {"kind": "here"}},
         {"action": "land", "drone": "bravo"},
         {"action": "takeoff", "drone": "alpha", "altitude": m(5)},
     ]}  # fmt: skip

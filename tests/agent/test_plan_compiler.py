@@ -83,6 +83,19 @@ def test_a_drone_outside_the_fleet_or_a_length_without_unit_does_not_validate() 
     assert parse_plan('{"steps": [{"action": "land", "drone": "Alpha"}]}', FLEET).steps[0].drone == "alpha"
 
 
+def test_a_formation_has_two_drones_and_a_move_its_origin_before_its_legs() -> None:
+    """One drone's circle is an orbit: the schema a decoder follows has no formation of one drone. A move
+    names where it starts before its legs (a model that wrote the legs first fell back on ``here``)."""
+    defs = plan_schema(FLEET)["$defs"]
+    assert defs["Formation"]["properties"]["drones"]["minItems"] == 2
+    assert list(defs["Move"]["properties"])[:4] == ["action", "drone", "origin", "legs"]
+    for step in ("Move", "Pattern"):  # a decoder writes required properties first: all are, in order
+        assert defs[step]["required"] == list(defs[step]["properties"]), step
+    one = {"action": "formation", "drones": ["alpha"], "shape": "circle", "spacing": m(25), "altitude": m(15)}
+    with pytest.raises(ValidationError, match="at least 2 items"):
+        parse_plan({"steps": [one]}, FLEET)
+
+
 def test_the_prompt_examples_are_valid_plans_of_their_own_fleet() -> None:
     for _, plan in EXAMPLES:
         parse_plan(plan, ["delta", "echo"])
@@ -100,27 +113,34 @@ async def test_feet_are_converted_and_a_landing_kept() -> None:
                      Call("land", {"drone_id": "bravo"}, "bravo")]  # fmt: skip
 
 
-async def test_a_move_from_the_ground_takes_off_first() -> None:
+async def test_a_move_from_the_ground_takes_off_first_and_flies_its_legs_in_order() -> None:
     step = {"action": "move", "drone": "alpha", "legs": [leg(30, "north"), leg(0.02, "west", "km")],
-            "altitude": m(15), "origin": {"kind": "here"}}  # fmt: skip
+            "after": "stay", "altitude": m(15), "origin": {"kind": "here"}}  # fmt: skip
     assert await compiled(step) == [
         Call("takeoff", {"drone_id": "alpha", "alt_m": 15.0}, "alpha"),
-        Call("move_to_relative", {"drone_id": "alpha", "north_m": 30.0, "east_m": -20.0}, "alpha"),
+        Call("move_to_relative", {"drone_id": "alpha", "north_m": 30.0, "east_m": 0.0}, "alpha"),
+        Call("move_to_relative", {"drone_id": "alpha", "north_m": 0.0, "east_m": -20.0}, "alpha"),
+    ]
+    out_and_back = {**step, "legs": [leg(20, "west"), leg(3, "down"), leg(20, "east")]}
+    flown = await compiled(out_and_back, FakeSensors({"alpha": flying()}))
+    assert [c.args for c in flown] == [
+        {"drone_id": "alpha", "north_m": 0.0, "east_m": -20.0, "alt_m": 15.0},
+        {"drone_id": "alpha", "north_m": 0.0, "east_m": 20.0},
     ]
     up_only = {"action": "move", "drone": "alpha", "legs": [leg(25, "north"), leg(8, "up")], "altitude": None,
-               "origin": {"kind": "here"}}  # fmt: skip
+               "after": "stay", "origin": {"kind": "here"}}  # fmt: skip
     assert (await compiled(up_only))[0] == Call("takeoff", {"drone_id": "alpha", "alt_m": 8.0}, "alpha")
 
 
 async def test_a_move_in_the_air_climbs_by_its_up_legs() -> None:
     sensors = FakeSensors({"alpha": flying()})
     step = {"action": "move", "drone": "alpha", "legs": [leg(20, "south"), leg(5, "up")], "altitude": None,
-            "origin": {"kind": "here"}}  # fmt: skip
+            "after": "stay", "origin": {"kind": "here"}}  # fmt: skip
     assert await compiled(step, sensors) == [
         Call("move_to_relative", {"drone_id": "alpha", "north_m": -20.0, "east_m": 0.0, "up_m": 5.0}, "alpha")
     ]
     diagonal = {"action": "move", "drone": "alpha", "legs": [leg(10, "northeast")], "altitude": m(12),
-                "origin": {"kind": "here"}}  # fmt: skip
+                "after": "stay", "origin": {"kind": "here"}}  # fmt: skip
     (call,) = await compiled(diagonal, sensors)
     assert call.args == {"drone_id": "alpha", "north_m": 7.07, "east_m": 7.07, "alt_m": 12.0}
 
@@ -129,7 +149,7 @@ async def test_a_point_north_of_another_drone_is_read_from_its_position() -> Non
     bravo_at = geometry.offset_position(*HOME, 100.0, 50.0)
     sensors = FakeSensors({"bravo": flying(*bravo_at, alt=20.0)})
     step = {"action": "move", "drone": "alpha", "legs": [leg(30, "north")], "altitude": m(12),
-            "origin": {"kind": "drone", "drone": "bravo"}}  # fmt: skip
+            "after": "stay", "origin": {"kind": "drone", "drone": "bravo"}}  # fmt: skip
     takeoff, goto = await compiled(step, sensors)
     assert takeoff == Call("takeoff", {"drone_id": "alpha", "alt_m": 12.0}, "alpha")
     assert goto.tool == "go_to_location" and goto.args["alt_m"] == 12.0
@@ -140,7 +160,7 @@ async def test_a_point_north_of_another_drone_is_read_from_its_position() -> Non
 async def test_a_named_place_and_home_are_origins() -> None:
     tower = geometry.offset_position(*HOME, 40.0, 0.0)
     sensors = FakeSensors({"alpha": flying(alt=15.0)}, {"water tower": tower})
-    step = {"action": "move", "drone": "alpha", "legs": [], "altitude": None,
+    step = {"action": "move", "after": "stay", "drone": "alpha", "legs": [], "altitude": None,
             "origin": {"kind": "place", "place": "water tower"}}  # fmt: skip
     (goto,) = await compiled(step, sensors)
     assert (goto.args["lat_deg"], goto.args["lon_deg"], goto.args["alt_m"]) == (
@@ -152,9 +172,15 @@ async def test_a_named_place_and_home_are_origins() -> None:
     assert abs(geometry.offset_between(*HOME, goto.args["lat_deg"], goto.args["lon_deg"])[1] - 10.0) < 0.05
 
 
+#: a pattern's properties the request may leave out (required, null)
+NULLS = dict.fromkeys(("sides", "lines", "spacing", "heading", "turn", "altitude"))
+
+
 async def test_a_square_for_one_drone_is_four_legs_not_a_formation() -> None:
     step = {
+        **NULLS,
         "action": "pattern",
+        "after": "stay",
         "drone": "charlie",
         "shape": "square",
         "size": m(66, "ft"),
@@ -174,12 +200,32 @@ async def test_a_formation_carries_its_spacing_and_centre_move() -> None:
     assert await compiled(step) == [Call("formation_goto", args)]
 
 
+STAY = {"after": "stay"}
+
+
+async def test_a_move_or_pattern_ends_as_its_after_says_and_a_repeated_ending_is_flown_once() -> None:
+    step = {"action": "move", "drone": "alpha", "origin": {"kind": "here"}, "legs": [leg(20, "east")],
+            "altitude": None, "after": "land"}  # fmt: skip
+    sensors = FakeSensors({"alpha": flying()})
+    assert (await compiled(step, sensors))[-1] == Call("land", {"drone_id": "alpha"}, "alpha")
+    square = {**NULLS,
+              "action": "pattern", "drone": "alpha", "shape": "square", "size": m(10), "after": "return_home"}
+    assert (await compiled(square, sensors))[-1] == Call("return_to_launch", {"drone_id": "alpha"}, "alpha")
+    lands = [{"action": "land", "drone": "alpha"}, {"action": "land", "drone": "bravo"}]
+    plan = parse_plan({"steps": [step, *lands]}, FLEET)
+    assert [s.action for s in plan.steps] == ["move", "land"] and plan.steps[1].drone == "bravo"
+
+
 async def test_a_named_polygon_has_its_sides_and_a_polygon_its_count() -> None:
-    hexagon = await compiled({"action": "pattern", "drone": "alpha", "shape": "hexagon", "size": m(12)})
+    hexagon = await compiled({**NULLS,
+                              "action": "pattern", "drone": "alpha", "shape": "hexagon", "size": m(12),
+                              **STAY})
     assert len(hexagon) == 7 and hexagon[1].args["north_m"] == 12.0  # a takeoff, then six legs
-    five = {"action": "pattern", "drone": "alpha", "shape": "polygon", "sides": 5, "size": m(12)}
+    five = {**NULLS,
+            **STAY, "action": "pattern", "drone": "alpha", "shape": "polygon", "sides": 5, "size": m(12)}
     assert len(await compiled(five, FakeSensors({"alpha": flying()}))) == 5
-    orbit = {"action": "pattern", "drone": "alpha", "shape": "orbit", "size": m(25), "turn": "left"}
+    orbit = {**NULLS,
+             **STAY, "action": "pattern", "drone": "alpha", "shape": "orbit", "size": m(25), "turn": "left"}
     legs = await compiled(orbit, FakeSensors({"alpha": flying()}))
     assert len(legs) == 14 and legs[1].args["east_m"] < 0  # round to the left (west) first
 

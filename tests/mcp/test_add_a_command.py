@@ -1,8 +1,10 @@
-"""A new command, added as CONTRIBUTING.md's "Adding a command and its tool" shows, changes its three
-source files and its own test only: in a copy of the project, a toy command (``set_light``: a verb
-with its tool, a `VehicleActions` member, its body) is added; docs/tools.md is regenerated
-(`make docs`); then the tests that count the tools, the docs check, the declared-tool checks, mypy (the
-fake vehicle against `FlyingVehicle`) and the command's own test pass, and no other file changed."""
+"""A new command, added as CONTRIBUTING.md's "Adding a command and its tool" shows, changes its source
+files and its own test only: in a copy of the project, a toy command (``set_light``: a verb with its
+tool, a `VehicleActions` member, its body, and an operator's REST route calling the verb by name) is
+added; docs/tools.md is regenerated (`make docs`); then the tests that count the tools, the docs check,
+the declared-tool checks, the doors' check (the route runs a declared verb), the REST document's checks,
+mypy (the fake vehicle against `FlyingVehicle`) and the command's own test (MCP and REST) pass, and no
+other file changed."""
 
 from __future__ import annotations
 
@@ -13,6 +15,8 @@ import sys
 from pathlib import Path
 
 import pytest
+
+from tests.helpers.timing import scaled
 
 ROOT = Path(__file__).resolve().parents[2]
 COPIED = ("gateway", "migrations", "tests", "scripts", "docs", "fleet_agent", "bench", "deploy")
@@ -38,14 +42,34 @@ BODY = """    async def set_light(self, on: bool) -> None:
         await self.link.call("light", self.link.require_session().action.set_actuator(1, 1.0 if on else -1.0))
 
 """
-OWN_TEST = '''"""The light command through the MCP tool, over the fake drones."""
+ROUTE = """
+
+class LightIn(BaseModel):
+    model_config = ConfigDict(extra="forbid", strict=True)
+
+    on: bool = Field(description="True: on.")
+
+
+@router.post("/vehicles/{vehicle_id}/light", response_model=CommandOut, summary="Switch the light (operator)")
+async def light_vehicle(
+    vehicle_id: CommandVehicleId, body: LightIn, commander: CommanderDep, who: PrincipalDep
+) -> CommandOut:
+    result = await commander.call("set_light", operator(who), drone_id=vehicle_id, on=body.on)
+    return CommandOut(vehicle_id=vehicle_id, action="set_light", outcome="sent", message=result["message"])
+"""
+OWN_TEST = '''"""The light command through its MCP tool and its REST route, over the fake drones."""
 
 from pathlib import Path
 
+import httpx
 from mcp import Client
 
+from gateway.app import create_app
+from gateway.config import Settings
 from gateway.mcp.server import build_mcp
-from tests.fakes import FakeVehicle, fake, fake_gateway, unit_settings
+from gateway.registry.store import Store
+from tests.api.live import lifespan_running
+from tests.fakes import FakeRegistry, FakeVehicle, fake, fake_gateway, unit_settings
 
 
 async def test_the_light_goes_on(tmp_path: Path) -> None:
@@ -55,6 +79,24 @@ async def test_the_light_goes_on(tmp_path: Path) -> None:
         assert not result.is_error, result.content
         assert result.content[0].text == "d1: light on"
         assert fake(gateway, "d1").sent[-1] == ("set_light", True)
+
+
+async def test_an_operator_switches_it_off_over_rest(tmp_path: Path) -> None:
+    drone = FakeVehicle("d1")
+
+    def registry(settings: Settings, store: Store) -> FakeRegistry:
+        return FakeRegistry(settings, store, [drone])
+
+    async with lifespan_running(create_app(unit_settings(tmp_path), registry_factory=registry)) as app:
+        transport = httpx.ASGITransport(app=app)
+        async with httpx.AsyncClient(transport=transport, base_url="http://127.0.0.1:8765") as http:
+            answer = await http.post("/api/v1/vehicles/d1/light", json={"on": False})
+            refused = await http.post("/api/v1/vehicles/d1/light", json={"on": "off"})
+    assert answer.status_code == 200, answer.text
+    assert answer.json()["message"] == "light off"
+    assert drone.sent[-1] == ("set_light", False)
+    assert refused.status_code == 422 and "on" in refused.text  # bad input changes nothing
+    assert [s for s in drone.sent if s[0] == "set_light"] == [("set_light", False)]
 '''
 #: the tests a new command used to have to edit (tool counts, docs, declared tools), and its own
 CHECKS = [
@@ -65,6 +107,7 @@ CHECKS = [
     "tests/mcp/test_declared_unit.py",
     "tests/mcp/test_command_doors_unit.py",
     "tests/mcp/test_set_light.py",
+    "tests/api/test_openapi.py",
 ]
 
 
@@ -99,7 +142,8 @@ def copy(tmp_path: Path) -> Path:
     return root
 
 
-def test_a_command_is_its_three_source_files_and_its_own_test(copy: Path) -> None:
+@pytest.mark.timeout(scaled(900))  # a sub-suite and mypy in a copy: minutes on a loaded machine
+def test_a_command_is_its_source_files_and_its_own_test(copy: Path) -> None:
     where = _run(copy, "-c", "import gateway; print(gateway.__file__)")
     assert where.stdout.strip().startswith(str(copy)), where.stdout + where.stderr
     before = _snapshot(copy)
@@ -114,6 +158,9 @@ def test_a_command_is_its_three_source_files_and_its_own_test(copy: Path) -> Non
         copy / "gateway/fleet/vehicles/protocols.py", "    async def set_flight_mode(self, name: str)", MEMBER
     )
     _insert(copy / "gateway/fleet/vehicles/vehicle.py", "    # --- where the autopilot flies to", BODY)
+    # and, for operators, its REST route: one call of the verb, by name, with the operator's caller
+    flying = copy / "gateway/api/flying.py"
+    flying.write_text(flying.read_text() + ROUTE)
     # its own test
     (copy / "tests/mcp/test_set_light.py").write_text(OWN_TEST)
     # then: `make docs` (docs/tools.md is generated from the declarations)
@@ -125,6 +172,7 @@ def test_a_command_is_its_three_source_files_and_its_own_test(copy: Path) -> Non
         "gateway/fleet/commands/navigation_verbs.py",
         "gateway/fleet/vehicles/protocols.py",
         "gateway/fleet/vehicles/vehicle.py",
+        "gateway/api/flying.py",
         "tests/mcp/test_set_light.py",
         "docs/tools.md",
     }

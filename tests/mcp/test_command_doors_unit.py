@@ -6,12 +6,20 @@ Commander that is not a verb (an undeclared command, reaching around the declara
 from __future__ import annotations
 
 import ast
+import importlib
+import inspect
+import textwrap
 from pathlib import Path
+from typing import TypeGuard
+
+from fastapi import APIRouter
+from fastapi.routing import APIRoute
 
 from gateway.fleet.commands.command_core import READ_VERBS, TOOLS, VERBS
 from gateway.mcp.declared import declared  # noqa: F401  (imports every verb module: fills VERBS)
 
 ROOT = Path(__file__).resolve().parents[2]
+API_MODULES = sorted((ROOT / "gateway" / "api").glob("*.py"))
 #: what the doors read of the Commander that is no command (nothing is sent, nothing is audited)
 READS = frozenset(
     {
@@ -26,22 +34,42 @@ READS = frozenset(
         "operation",
         "registry",
         "locks",
+        "geofences",
     }
 )
+#: the HTTP methods of a route that changes something (the audited ones)
+CHANGING = frozenset({"POST", "PUT", "PATCH", "DELETE"})
+#: what changes the registrations or the zones: the verbs' to do (`registry_verbs`, `zone_verbs`), never a
+#: route's
+CHANGES = frozenset({"add", "update", "remove", "connect", "disconnect", "move_origin", "replace"})
 
 
-def commander_uses(path: Path) -> set[str]:
-    """The attributes of a Commander a module uses: ``commander.X`` and ``<anything>.commander.X``."""
+def commander_uses(path: Path | str) -> set[str]:
+    """The attributes of a Commander a module uses: ``commander.X`` and ``<anything>.commander.X``; a
+    verb called by name, ``commander.call("X", ...)``, counts as X (a name that is no literal as
+    ``call``, which is no verb)."""
     used = set()
-    for node in ast.walk(ast.parse(path.read_text())):
-        if not isinstance(node, ast.Attribute):
-            continue
-        owner = node.value
-        if (isinstance(owner, ast.Name) and owner.id == "commander") or (
-            isinstance(owner, ast.Attribute) and owner.attr == "commander"
-        ):
+    by_name = set()
+    tree = ast.parse(path if isinstance(path, str) else path.read_text())
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and _of_commander(node.func) and node.func.attr == "call":
+            first = node.args[0] if node.args else None
+            if isinstance(first, ast.Constant) and isinstance(first.value, str):
+                used.add(first.value)
+                by_name.add(id(node.func))
+    for node in ast.walk(tree):
+        if _of_commander(node) and id(node) not in by_name:
             used.add(node.attr)
     return used
+
+
+def _of_commander(node: ast.AST) -> TypeGuard[ast.Attribute]:
+    if not isinstance(node, ast.Attribute):
+        return False
+    owner = node.value
+    return (isinstance(owner, ast.Name) and owner.id == "commander") or (
+        isinstance(owner, ast.Attribute) and owner.attr == "commander"
+    )
 
 
 def test_reads_are_no_verbs() -> None:
@@ -58,8 +86,62 @@ def test_every_rest_route_runs_a_declared_verb_or_reads() -> None:
     assert found == set()
 
 
+def changes_made(path: Path) -> set[str]:
+    """What a module changes itself: ``registry.X(...)`` / ``zones.X(...)`` calls of `CHANGES`, and
+    assignments to ``.geofences``."""
+    made = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in CHANGES:
+            owner = node.func.value
+            if isinstance(owner, ast.Call):  # self._registry().add(...)
+                owner = owner.func
+            name = owner.id if isinstance(owner, ast.Name) else getattr(owner, "attr", "")
+            name = name.lstrip("_").removeprefix("require_")
+            if name in ("registry", "zones"):
+                made.add(f"{name}.{node.func.attr}")
+        if isinstance(node, ast.Assign | ast.AugAssign):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            made |= {"geofences =" for t in targets if isinstance(t, ast.Attribute) and t.attr == "geofences"}
+    return made
+
+
+def test_rest_routes_change_registrations_and_zones_through_verbs() -> None:
+    """Registering, changing, removing, connecting drones, moving an origin and swapping zones are
+    verbs (`register_drone`, `set_geofences`, `upload_plan`...): no route does it itself."""
+    found = {
+        f"{path.name}: {made}"
+        for path in sorted((ROOT / "gateway" / "api").glob("*.py"))
+        for made in changes_made(path)
+    }
+    assert found == set()
+    assert {"registry.add", "zones.replace", "geofences ="} <= changes_made(
+        ROOT / "gateway" / "fleet" / "commands" / "registry_verbs.py"
+    ) | changes_made(ROOT / "gateway" / "fleet" / "commands" / "zone_verbs.py") | changes_made(
+        ROOT / "gateway" / "fleet" / "policy" / "zones.py"
+    ), "the scan sees what the verbs change"
+
+
+def test_every_rest_route_that_changes_something_runs_a_verb() -> None:
+    """Each POST, PUT, PATCH and DELETE route of /api/v1 (decorated or added with add_api_route) calls
+    at least one declared verb: no change is made beside the one command path."""
+    routers = [getattr(importlib.import_module(f"gateway.api.{p.stem}"), "router", None) for p in API_MODULES]
+    routes = [
+        r
+        for router in routers
+        if isinstance(router, APIRouter)
+        for r in router.routes
+        if isinstance(r, APIRoute) and r.methods & CHANGING
+    ]
+    assert len(routes) > 20  # the scan sees the routes
+    without = sorted(
+        f"{sorted(r.methods & CHANGING)} {r.path}"
+        for r in routes
+        if not commander_uses(textwrap.dedent(inspect.getsource(r.endpoint))) & set(VERBS)
+    )
+    assert without == []
+
+
 def test_hand_written_tools_run_no_command() -> None:
-    """(``monitor`` is a wait, a read verb; its ``land_on_arrival`` lands through the pass.)"""
     commands = set(VERBS) - READ_VERBS
     found = {
         f"{path.name}: {name}"
@@ -68,6 +150,16 @@ def test_hand_written_tools_run_no_command() -> None:
         if name in commands or (name not in VERBS and name not in READS | READ_VERBS)
     }
     assert found == set()
+
+
+def test_a_verb_called_by_name_is_scanned_by_its_name(tmp_path: Path) -> None:
+    door = tmp_path / "door.py"
+    door.write_text(
+        "async def route(commander, verb):\n"
+        "    await commander.call('goto', caller, drone_id='d1')\n"
+        "    await commander.call(verb, caller)\n"
+    )
+    assert commander_uses(door) == {"goto", "call"}
 
 
 def test_the_scan_sees_the_doors() -> None:

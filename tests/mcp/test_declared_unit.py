@@ -22,7 +22,7 @@ from gateway.fleet.operations.views import ActionResult
 from gateway.fleet.policy.caller import Caller
 from gateway.mcp.confirmation import ANSWER
 from gateway.mcp.declared import FILLED, complete
-from gateway.mcp.presenters import PRESENTERS
+from gateway.mcp.presenters import PRESENTERS, waits_itself
 from gateway.mcp.server import build_mcp, load_toolset
 from gateway.mcp.toolkit import Toolset
 from gateway.runtime import Gateway
@@ -130,7 +130,7 @@ def test_every_declared_tool_offers_its_verbs_parameters() -> None:
             if p.kind is inspect.Parameter.POSITIONAL_OR_KEYWORD
             and p.name not in (*FILLED, *tool.omit, *answered)
         ]
-        if PRESENTERS[verb.result].waits:
+        if PRESENTERS[verb.result].waits and not waits_itself(verb):  # monitor waits itself
             wanted.append("wait")
         if tool.confirm is not None:
             wanted.insert(0, ANSWER)  # filled by a human's answer, never offered to the model

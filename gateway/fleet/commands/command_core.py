@@ -35,8 +35,10 @@ from gateway.fleet.operations.routing import FORWARDED, OnMessage, ProgressMessa
 from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import VehicleContext
+from gateway.fleet.policy.safety_rules import Rule, refuse
 from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.registry.store import OperationRecord, Store
+from gateway.util.json_types import JsonObject
 
 log = logging.getLogger(__name__)
 
@@ -251,7 +253,7 @@ def _by_name(method: Callable[..., Any]) -> Callable[..., Awaitable[Any]]:
     return call
 
 
-def _relay(callbacks: dict[str, Any]) -> OnMessage | None:
+def _relay(callbacks: Mapping[str, Callable[..., Awaitable[object]]]) -> OnMessage | None:
     """The owner's progress messages to the verb's own callbacks (``notify``, ``on_progress``)."""
     if not callbacks:
         return None
@@ -263,6 +265,13 @@ def _relay(callbacks: dict[str, Any]) -> OnMessage | None:
             await callbacks["on_progress"](OperationView.model_validate(body["view"]))
 
     return relay
+
+
+def operator_only(caller: Caller, what: str) -> None:
+    """Refused (rule operator_lock) unless an operator asks (REST, the console): ``what`` says what
+    only an operator may do, and why agents may not."""
+    if not caller.is_operator:
+        raise refuse(Rule.OPERATOR_LOCK, f"only an operator may {what}", via=caller.via)
 
 
 def require_airborne(ctx: VehicleContext, action: str) -> None:
@@ -339,7 +348,7 @@ class OperationDesk:
     def operation(self, operation_id: str) -> OperationView:
         return self.view(self.operations.get(operation_id))
 
-    def current_operation(self, drone_id: str) -> dict[str, Any] | None:
+    def current_operation(self, drone_id: str) -> JsonObject | None:
         """The drone's latest operation (running or finished) as ``Operation.to_dict`` gives it: this
         node's own, or for a drone owned by another cluster node the one its owner published."""
         if self.router is not None and not self.router.owns(drone_id):

@@ -33,7 +33,6 @@ from collections.abc import Awaitable, Callable
 from contextvars import ContextVar
 from dataclasses import dataclass, field
 from enum import Enum
-from typing import Any
 
 from gateway.config import Settings
 from gateway.fleet.operations.operation_state import Operation
@@ -49,6 +48,7 @@ from gateway.fleet.policy.safety_rules import Rule as SafetyRule
 from gateway.fleet.policy.safety_rules import refuse
 from gateway.fleet.vehicles.protocols import FlyingVehicle, VehicleDirectory
 from gateway.fleet.vehicles.readings import vehicle_context
+from gateway.util.json_types import JsonMapping, JsonObject
 
 RECOVERY_KINDS = ("land", "return_to_launch")
 
@@ -75,7 +75,7 @@ class Order:
     send: Callable[[], Awaitable[object]]
     tracker: Tracker | None = None
     """A tracked operation (an `OperationView` to wait on); None: an instant command."""
-    params: dict[str, Any] = field(default_factory=dict)
+    params: JsonMapping = field(default_factory=dict)
     """The operation's parameters (stored with it)."""
     ends_operation: bool = False
     """An instant command that supersedes the drone's running operation (hold, mode, disarm)."""
@@ -92,7 +92,7 @@ class Sent:
     context: VehicleContext
     operation: Operation | None = None
     """The tracked operation started."""
-    result: Any = None
+    result: object = None
     """What an instant command's send returned."""
     ended: Operation | None = None
     """The operation an instant command superseded."""
@@ -129,7 +129,7 @@ class CommandPass:
         action: str,
         decide: Decide,
         message: str,
-        facts: dict[str, Any] | None = None,
+        facts: JsonObject | None = None,
     ) -> ActionResult:
         """`run` an instant command (done when the drone accepts it) and say what it did."""
         await self.run(caller, drone_id, action, decide)

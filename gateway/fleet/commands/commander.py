@@ -1,6 +1,6 @@
 """The Commander: the one path every command takes, whichever door it came through.
 
-It is composed of four parts, each with one job:
+It is composed of parts, each with one job:
 
 - `CommandPass` (`gateway.fleet.commands.command_pass`): the one pass every command on one drone takes, here
 and
@@ -14,6 +14,8 @@ and
 - `FleetVerbs` (`gateway.fleet.commands.fleet_verbs`): the fleet commands, fleet-level checks and plans
   composed of the same pass per drone, each drone's step run by `FleetStepVerbs`
   (`gateway.fleet.commands.fleet_step_verbs`);
+- `OperatorVerbs`, `ZoneVerbs`, `RegistryVerbs` (`operator_verbs`, `zone_verbs`, `registry_verbs`): the
+  operator's locks and stop, geofence zones and ``.plan`` files, registrations and origins;
 - `OperationDesk` (`gateway.fleet.commands.command_core`): views of operations and waiting on them.
 
 MCP tools (`gateway.mcp.tools`) and REST routes (`gateway.api`) are one call to a verb plus presenting
@@ -37,8 +39,6 @@ way. Callbacks (progress, "still initialising" notices) are never part of a verb
 
 from __future__ import annotations
 
-from typing import Any
-
 from pydantic import BaseModel
 
 from gateway.config import Settings
@@ -51,15 +51,25 @@ from gateway.fleet.commands.fleet_verbs import FleetVerbs
 from gateway.fleet.commands.mission_verbs import MissionVerbs
 from gateway.fleet.commands.navigation_verbs import NavigationVerbs
 from gateway.fleet.commands.operator_verbs import OperatorVerbs
+from gateway.fleet.commands.registry_verbs import RegistryVerbs
+from gateway.fleet.commands.zone_verbs import ZoneVerbs
 from gateway.fleet.operations.fleet_ops import FleetOperations
 from gateway.fleet.operations.operations import OperationManager
 from gateway.fleet.operations.routing import Router
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.operator_locks import LockBook
 from gateway.fleet.policy.safety import SafetyPolicy
+from gateway.fleet.policy.zones import Zones
 from gateway.fleet.vehicles.ids import canonical_arguments, canonical_drone_id
-from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleDirectory, VehicleView
+from gateway.fleet.vehicles.protocols import (
+    FlyingVehicle,
+    Notify,
+    VehicleDirectory,
+    VehicleRegistry,
+    VehicleView,
+)
 from gateway.registry.store import Store
+from gateway.util.json_types import JsonObject
 
 
 class Commander:
@@ -79,8 +89,11 @@ class Commander:
         safety: SafetyPolicy,
         locks: LockBook,
         router: Router | None = None,
+        registrations: VehicleRegistry | None = None,
     ) -> None:
-        """``router``: on a cluster node, where the drones this node does not own are run."""
+        """``router``: on a cluster node, where the drones this node does not own are run;
+        ``registrations``: the registry itself, for the operator's registrations (``registry`` is what
+        the verbs see of it: the agents' scopes)."""
         self.settings = settings
         self.registry = registry
         self.store = store
@@ -97,10 +110,21 @@ class Commander:
         self.fleet_steps = fleet_steps = FleetStepVerbs(self.commands, desk, fleet)
         self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, flight, fleet, store, fleet_steps)
         self.operator = operator = OperatorVerbs(self.commands, flight, fleet, store)
+        self.zones = zones = ZoneVerbs(self.commands, Zones(safety, settings.geofence_file), missions)
+        self.registrations = registrations_ = RegistryVerbs(self.commands, desk, registrations, store)
         #: where a verb called by name runs (`gateway.fleet.commands.command_core.command`), by class name
         self.parts: dict[str, object] = {
             type(part).__name__: part
-            for part in (flight, navigation, missions, fleet_verbs, fleet_steps, operator)
+            for part in (
+                flight,
+                navigation,
+                missions,
+                fleet_verbs,
+                fleet_steps,
+                operator,
+                zones,
+                registrations_,
+            )
         }
         # the verbs as the doors call them (typed); a verb called only by name needs no line here
         # operations
@@ -158,6 +182,18 @@ class Commander:
         self.release = operator.release
         self.stop_all = operator.stop_all
         self.stop_one = operator.stop_one
+        # zones and .plan files
+        self.geofences = zones.geofences
+        self.set_geofences = zones.set_geofences
+        self.upload_plan = zones.upload_plan
+        self.export_plan = zones.export_plan
+        # registrations
+        self.register_drone = registrations_.register_drone
+        self.update_drone = registrations_.update_drone
+        self.remove_drone = registrations_.remove_drone
+        self.connect_drone = registrations_.connect_drone
+        self.disconnect_drone = registrations_.disconnect_drone
+        self.move_origin = registrations_.move_origin
 
     def vehicle(self, drone_id: str) -> VehicleView:
         """The registered drone, in whatever state (for reads); UnknownVehicle lists the known ids."""
@@ -175,8 +211,8 @@ class Commander:
         return canonical_drone_id(self.registry, drone_id)
 
     async def call(
-        self, verb: str, caller: Caller, /, *, notify: Notify | None = None, **arguments: Any
-    ) -> dict[str, Any]:
+        self, verb: str, caller: Caller, /, *, notify: Notify | None = None, **arguments: object
+    ) -> JsonObject:
         """Run ``verb`` with JSON-serialisable ``arguments``; the result as JSON-serialisable data.
         Unknown verbs and bad arguments raise InvalidArgument naming them; nothing is sent then.
         ``notify`` hears what a verb waits for before it can send (arm, takeoff). Drone ids are made

@@ -13,7 +13,7 @@ that owns the drone. Navigation is `navigation_verbs`, missions and parameters `
 from __future__ import annotations
 
 import contextlib
-from typing import Annotated, Any
+from typing import Annotated
 
 from pydantic import Field
 
@@ -290,8 +290,9 @@ class FlightVerbs:
             if _is_mode(vehicle, choice, "MISSION"):  # the autopilot flies the mission it holds
                 starts = [1, resume_item(vehicle)] if ctx.airborne else [1]
                 await verify_held(self.commands.safety, caller, vehicle, ctx, starts)
+            commands, modes = _commanded(vehicle, choice)
             return Order(
-                lambda: vehicle.set_flight_mode(mode), ends_operation=True, **_commanded(vehicle, choice)
+                lambda: vehicle.set_flight_mode(mode), ends_operation=True, commands=commands, modes=modes
             )
 
         sent = await self.commands.run(
@@ -321,7 +322,7 @@ async def _pattern_radius(vehicle: FlyingVehicle, choice: ModeChoice) -> float |
     return None
 
 
-def _commanded(vehicle: VehicleView, choice: ModeChoice) -> dict[str, Any]:
+def _commanded(vehicle: VehicleView, choice: ModeChoice) -> tuple[str, frozenset[str] | None]:
     """What a mode change commands, for the takeover watch: the mission, return, landing or takeoff
     mode is judged as that operation is (the autopilot's own next modes included: PX4 holds after a
     mission), any other mode as itself."""
@@ -333,8 +334,8 @@ def _commanded(vehicle: VehicleView, choice: ModeChoice) -> dict[str, Any]:
     ):
         with contextlib.suppress(InvalidArgument):
             if vehicle.resolve_mode(common).native == choice.native:
-                return {"commands": kind}
-    return {"commands": f"set_flight_mode {choice.native}", "modes": frozenset({choice.native})}
+                return kind, None
+    return f"set_flight_mode {choice.native}", frozenset({choice.native})
 
 
 def _is_mode(vehicle: VehicleView, choice: ModeChoice, common: str) -> bool:

@@ -17,7 +17,7 @@ import contextlib
 import dataclasses
 import logging
 from collections.abc import Awaitable, Callable, Sequence
-from typing import Annotated, Any, Literal
+from typing import Annotated, Literal
 
 from pydantic import Field
 
@@ -58,6 +58,7 @@ from gateway.fleet.policy.safety_inputs import VehicleContext
 from gateway.fleet.vehicles.protocols import Notify, VehicleView
 from gateway.fleet.vehicles.readings import home, is_landed_and_disarmed, position, vehicle_context
 from gateway.registry.store import Store
+from gateway.util.json_types import JsonObject, json_list, json_object
 
 log = logging.getLogger(__name__)
 
@@ -103,7 +104,8 @@ class FleetVerbs:
             plan = {
                 k: fop.plan[k] for k in ("formation", "spacing_m", "heading_deg", "alt_m", "min_clearance_m")
             }
-            plan["conflicts_resolved"] = len(fop.plan.get("conflicts", []))
+            conflicts = fop.plan.get("conflicts")
+            plan["conflicts_resolved"] = len(conflicts) if isinstance(conflicts, list) else 0
         return FleetView(**d, not_sent=[u.to_dict() for u in not_sent], plan=plan)
 
     def fleet_operation(self, operation_id: str | None = None) -> FleetView:
@@ -266,7 +268,7 @@ class FleetVerbs:
         if unable:
             raise refuse_fleet("formation_goto", unable, len(ids))
         policy.check_formation(contexts, plan, via)
-        params: dict[str, Any] = {
+        params: JsonObject = {
             "formation": formation,
             "center_lat_deg": center_lat_deg,
             "center_lon_deg": center_lon_deg,
@@ -276,7 +278,7 @@ class FleetVerbs:
         }
         phases = formation_phases(plan, vehicles, guard="formation_goto")
         if climbs:
-            params["took_off_first"] = climbs
+            params["took_off_first"] = json_object(climbs)
             first = takeoff_phase({d: vehicles[d] for d in climbs}, climbs, "formation_goto", left(deadline))
             phases = [
                 dataclasses.replace(first, name="take off the drones on the ground", abort_on_failure=True),
@@ -348,7 +350,7 @@ class FleetVerbs:
                     arm_within_s=left(deadline),
                 )
             ],
-            {"alt_m": alt_m, "altitudes_m": altitudes},
+            {"alt_m": alt_m, "altitudes_m": json_object(altitudes)},
             caller.session,
             caller=caller,
             slots={d: {"target_alt_m": a} for d, a in altitudes.items()},
@@ -374,7 +376,7 @@ class FleetVerbs:
             "fleet_land",
             list(vehicles),
             [land_phase(vehicles)],
-            {"drone_ids": ids},
+            {"drone_ids": json_list(ids)},
             caller.session,
             caller=caller,
         )
@@ -430,7 +432,7 @@ class FleetVerbs:
             "fleet_return_to_launch",
             order,
             rtl_phases(vehicles, altitudes, positions),
-            {"drone_ids": ids, "rtl_altitudes_m": altitudes},
+            {"drone_ids": json_list(ids), "rtl_altitudes_m": json_object(altitudes)},
             caller.session,
             caller=caller,
             slots={d: {"rtl_alt_m": a} for d, a in altitudes.items()},

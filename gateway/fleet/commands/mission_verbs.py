@@ -43,6 +43,7 @@ from gateway.fleet.policy.mission_check import Unchecked
 from gateway.fleet.policy.safety_inputs import VehicleContext
 from gateway.fleet.vehicles.protocols import FlyingVehicle
 from gateway.fleet.vehicles.readings import value, vehicle_context
+from gateway.util.json_types import JsonObject
 
 
 def mission_items(waypoints: Sequence[Waypoint]) -> list[MissionItem]:
@@ -233,7 +234,7 @@ class MissionVerbs:
                         "call takeoff first or make item 1 kind='takeoff'"
                     )
                 self.commands.safety.check_takeoff(ctx, held[0].alt_rel_m, caller.policy_via)
-            params = {"unchecked": [u.text() for u in found]} if found else {}
+            params: JsonObject = {"unchecked": [u.text() for u in found]} if found else {}
             lands = any(item.kind in ("land", "rtl") for item in held)  # it may end on the ground
             return Order(vehicle.start_mission, MissionTracker(lands=lands), params=params)
 
@@ -378,10 +379,15 @@ class MissionVerbs:
                 governed=vehicle.limit_params,
             )
             self.commands.safety.check_actuation(ctx, caller.policy_via)
-            return Order(lambda: vehicle.set_param(name, value))
 
-        sent = await self.commands.run(caller, drone_id, f"set_parameter {name}", decide)
-        val, kind = sent.result
+            async def write() -> None:
+                written.append(await vehicle.set_param(name, value))
+
+            return Order(write)
+
+        written: list[tuple[float | int, str]] = []  # the value as the autopilot stored it, its type
+        await self.commands.run(caller, drone_id, f"set_parameter {name}", decide)
+        val, kind = written[0]
         return ParamValue(drone_id=drone_id, name=name, value=val, type=kind)
 
     @command

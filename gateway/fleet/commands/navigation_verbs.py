@@ -45,6 +45,7 @@ from gateway.fleet.policy.safety_inputs import Target, VehicleContext
 from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleView
 from gateway.fleet.vehicles.readings import is_airborne, position, value
 from gateway.registry.records import OperationRecord
+from gateway.util.json_types import JsonMapping, json_float
 
 TARGET_FRESH_S = 5.0
 """How old the autopilot's reported target may be to say where a drone is heading."""
@@ -310,9 +311,7 @@ class NavigationVerbs:
         if op is None:
             record = await self._stored_latest(drone_id, NAV_KINDS)
             if record is not None:  # sent by the process before a restart: the truth as it is now
-                d = GotoTracker(
-                    record.params["lat_deg"], record.params["lon_deg"], record.params["alt_m"], 1.0
-                ).distance(vehicle)
+                d = GotoTracker(*_goto_target(record.params), 1.0).distance(vehicle)
                 return ArrivalView(
                     drone_id=drone_id,
                     arrived=record.status == OpStatus.succeeded.value,
@@ -336,9 +335,7 @@ class NavigationVerbs:
                 message=f"no goto sent to this drone yet{flying}",
             )
         tracker = GotoTracker(
-            op.params["lat_deg"],
-            op.params["lon_deg"],
-            op.params["alt_m"],
+            *_goto_target(op.params),
             self.commands.settings.arrival_tolerance_m,
         )
         d = tracker.distance(vehicle)
@@ -353,18 +350,22 @@ class NavigationVerbs:
             message=op.message,
         )
 
+    @command(tool=Tool("monitor_flight", "navigation", omit=("cap_s",)))
     @routed
     async def monitor(
         self,
         caller: Caller,
-        drone_id: str,
-        land_on_arrival: bool = False,
+        drone_id: DroneId,
+        land_on_arrival: Annotated[bool, Field(description="Land once the goto arrives")] = False,
         cap_s: float | None = None,
         *,
         on_progress: OnProgress | None = None,
     ) -> OperationView:
-        """Wait (capped) for the drone's current operation; with ``land_on_arrival``, a goto that
-        arrived is followed by a landing, waited for within the same cap."""
+        """Wait (capped) for the drone's current action to finish and report it; call again if still running.
+
+        Waits itself (``on_progress`` hears each change; the tool offers no ``wait``), at most ``cap_s``
+        (default: the MCP wait cap). With ``land_on_arrival``, a goto that arrived is followed by a
+        landing through the pass, waited for within the same cap."""
         vehicle = self.commands.registry.get(drone_id)
         op = self.commands.operations.latest(drone_id)
         if op is None:
@@ -440,12 +441,9 @@ def _restart_truth(vehicle: VehicleView, record: OperationRecord) -> str:
     target = ""
     params = record.params or {}
     pos = position(vehicle)
-    if (
-        pos is not None
-        and isinstance(params.get("lat_deg"), int | float)
-        and isinstance(params.get("lon_deg"), int | float)
-    ):
-        far = geo.horizontal_distance_m(pos[0], pos[1], float(params["lat_deg"]), float(params["lon_deg"]))
+    lat, lon = params.get("lat_deg"), params.get("lon_deg")
+    if pos is not None and isinstance(lat, int | float) and isinstance(lon, int | float):
+        far = geo.horizontal_distance_m(pos[0], pos[1], float(lat), float(lon))
         target = f", {far:.0f} m from the {record.kind}'s target"
     return f"{said}; now: {_now_doing(vehicle)}{target}"
 
@@ -478,3 +476,9 @@ def _one_height(drone_id: str, alt_now: float, up_m: float | None, alt_m: float 
         f"{alt_now + up_m:.0f} m above home) or alt_m (an altitude above home, here {alt_m:g} m), not both; "
         "nothing was sent"
     )
+
+
+def _goto_target(params: JsonMapping) -> tuple[float, float, float]:
+    """Where a goto operation flies (its params: lat_deg, lon_deg, alt_m above home)."""
+    lat, lon, alt = (json_float(params.get(key), key) for key in ("lat_deg", "lon_deg", "alt_m"))
+    return lat, lon, alt

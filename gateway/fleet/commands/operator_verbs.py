@@ -17,14 +17,13 @@ from datetime import UTC, datetime
 from typing import Literal
 
 from gateway.errors import GatewayError, NoOwner, NotRun, StopPending, VehicleNotReady
-from gateway.fleet.commands.command_core import command
+from gateway.fleet.commands.command_core import command, operator_only
 from gateway.fleet.commands.command_pass import CommandPass
 from gateway.fleet.commands.drone_verbs import FlightVerbs
 from gateway.fleet.operations.fleet_ops import FleetOperations
 from gateway.fleet.operations.views import LockResult, StopOutcome, StopResult, UnlockResult
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.geofence import FLEET
-from gateway.fleet.policy.safety_rules import Rule, refuse
 from gateway.fleet.policy.takeover import Takeover
 from gateway.fleet.vehicles.protocols import VehicleView
 from gateway.registry.records import AuditEntry
@@ -57,12 +56,7 @@ class OperatorVerbs:
         self.registry, self.router, self.locks = commands.registry, commands.router, commands.locks
 
     def _operator_only(self, caller: Caller, what: str) -> None:
-        if not caller.is_operator:
-            raise refuse(
-                Rule.OPERATOR_LOCK,
-                f"only an operator may {what}; agents cannot change locks or stop the fleet",
-                via=caller.via,
-            )
+        operator_only(caller, f"{what}; agents cannot change locks or stop the fleet")
 
     @command
     async def lock(self, caller: Caller, scope: str, reason: str) -> LockResult:
@@ -81,7 +75,7 @@ class OperatorVerbs:
         log.warning(
             "operator %s locked %s: %s", lock.by, "the fleet" if scope == FLEET else scope, lock.reason
         )
-        result = LockResult(scope=lock.scope, reason=lock.reason, by=lock.by, locked_at=lock.locked_at)
+        result = LockResult.of(lock)
         if self.router is not None:  # every node refuses agents from now on
             await self.router.announce("lock", result.model_dump(mode="json", exclude={"stored"}))
         return result

@@ -16,7 +16,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable, Mapping
+from collections.abc import Awaitable, Callable, Mapping, Sequence
 
 from gateway.fleet.dialects.base import LinkOps, UserNumbering, matches_any, reader
 from gateway.fleet.dialects.mission_semantics import arducopter_mission
@@ -28,7 +28,7 @@ from gateway.fleet.dialects.modes import (
     native_name,
 )
 from gateway.fleet.missions import mission
-from gateway.fleet.missions.mission import MissionItem, WirePlan
+from gateway.fleet.missions.mission import DownloadedItem, MissionItem, WirePlan
 from gateway.fleet.policy.mission_check import MissionSemantics
 from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.telemetry import HealthValue, TelemetryCache
@@ -223,7 +223,7 @@ class ArduPilot(UserNumbering):
     def encode_mission(self, items: list[MissionItem], home: tuple[float, float, float] | None) -> WirePlan:
         return mission.encode(items, home, home_slot=True)
 
-    def decode_mission(self, wire: list[object]) -> tuple[list[MissionItem], WirePlan]:
+    def decode_mission(self, wire: Sequence[DownloadedItem]) -> tuple[list[MissionItem], WirePlan]:
         return mission.decode(wire, home_slot=True)
 
     def mission_rejection(self, text: str) -> bool:

@@ -12,11 +12,11 @@ Everything else (the verbs, the operations, the policy) is the same for every au
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable, Mapping
+from collections.abc import Awaitable, Callable, Mapping, Sequence
 from typing import Protocol, TypeVar
 
 from gateway.fleet.dialects.modes import ModeChoice
-from gateway.fleet.missions.mission import MissionItem, WirePlan
+from gateway.fleet.missions.mission import DownloadedItem, MissionItem, WirePlan
 from gateway.fleet.policy.mission_check import MissionSemantics
 from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.mavsdk_system import System
@@ -80,7 +80,7 @@ class DialectReads(Protocol):
         """The native modes the vehicle may be in while it does what the gateway commanded: an
         operation of ``kind`` (takeoff, goto, reposition, move_to_relative, set_yaw, hold, land,
         return_to_launch, mission, formation, fleet_climb), or ``done`` once that operation succeeded
-        (PX4 holds after a takeoff or a mission). Any other mode is one the gateway did not command: a
+        (PX4 holds after a takeoff or a mission). Every other mode is one the gateway did not command: a
         pilot, another ground station or a failsafe chose it (`gateway.fleet.policy.takeover`). Empty for a
         kind the dialect does not fly in a known mode (then nothing is judged)."""
         ...
@@ -155,7 +155,7 @@ class Dialect(DialectReads, Protocol):
         """The wire mission for the user's items (1..N)."""
         ...
 
-    def decode_mission(self, wire: list[object]) -> tuple[list[MissionItem], WirePlan]:
+    def decode_mission(self, wire: Sequence[DownloadedItem]) -> tuple[list[MissionItem], WirePlan]:
         """The user's items from a downloaded wire mission."""
         ...
 

@@ -57,19 +57,26 @@ def position_frames() -> frozenset[int]:
 
 
 @functools.cache
+def shared_positions() -> dict[int, Position]:
+    """Position items both autopilots fly the same way (ArduCopter adds NAV_LOITER_TURNS)."""
+    from pymavlink.dialects.v20 import ardupilotmega as mav
+
+    return {
+        mav.MAV_CMD_NAV_WAYPOINT: Position("waypoint"),
+        mav.MAV_CMD_NAV_LOITER_UNLIM: Position("waypoint", RADIUS),
+        mav.MAV_CMD_NAV_LOITER_TIME: Position("loiter_time", RADIUS),
+        mav.MAV_CMD_NAV_LAND: Position("land"),
+        mav.MAV_CMD_NAV_TAKEOFF: Position("takeoff"),
+    }
+
+
+@functools.cache
 def arducopter_mission() -> MissionSemantics:
     from pymavlink.dialects.v20 import ardupilotmega as mav
 
     return MissionSemantics(
         autopilot="ArduCopter",
-        positions={
-            mav.MAV_CMD_NAV_WAYPOINT: Position("waypoint"),
-            mav.MAV_CMD_NAV_LOITER_UNLIM: Position("waypoint", RADIUS),
-            mav.MAV_CMD_NAV_LOITER_TURNS: Position("waypoint", RADIUS),
-            mav.MAV_CMD_NAV_LOITER_TIME: Position("loiter_time", RADIUS),
-            mav.MAV_CMD_NAV_LAND: Position("land"),
-            mav.MAV_CMD_NAV_TAKEOFF: Position("takeoff"),
-        },
+        positions=shared_positions() | {mav.MAV_CMD_NAV_LOITER_TURNS: Position("waypoint", RADIUS)},
         harmless=harmless(),
         position_frames=position_frames(),
         speed_types={0: "horizontal", 1: "horizontal", 2: "climb", 3: "descent"},
@@ -79,17 +86,9 @@ def arducopter_mission() -> MissionSemantics:
 
 @functools.cache
 def px4_mission() -> MissionSemantics:
-    from pymavlink.dialects.v20 import ardupilotmega as mav
-
     return MissionSemantics(
         autopilot="PX4",
-        positions={
-            mav.MAV_CMD_NAV_WAYPOINT: Position("waypoint"),
-            mav.MAV_CMD_NAV_LOITER_UNLIM: Position("waypoint", RADIUS),
-            mav.MAV_CMD_NAV_LOITER_TIME: Position("loiter_time", RADIUS),
-            mav.MAV_CMD_NAV_LAND: Position("land"),
-            mav.MAV_CMD_NAV_TAKEOFF: Position("takeoff"),
-        },
+        positions=shared_positions(),
         harmless=harmless(),
         position_frames=position_frames(),
         speed_any_type="horizontal",

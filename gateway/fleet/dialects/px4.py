@@ -17,7 +17,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable, Mapping
+from collections.abc import Awaitable, Callable, Mapping, Sequence
 
 from gateway.errors import CommandFailed
 from gateway.fleet.dialects.base import LinkOps, UserNumbering, matches_any, reader
@@ -30,7 +30,7 @@ from gateway.fleet.dialects.modes import (
     native_name,
 )
 from gateway.fleet.missions import mission
-from gateway.fleet.missions.mission import MissionItem, WirePlan
+from gateway.fleet.missions.mission import DownloadedItem, MissionItem, WirePlan
 from gateway.fleet.policy.mission_check import MissionSemantics
 from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.telemetry import HealthValue, TelemetryCache
@@ -206,7 +206,7 @@ class PX4(UserNumbering):
     def encode_mission(self, items: list[MissionItem], home: tuple[float, float, float] | None) -> WirePlan:
         return mission.encode(items, home, home_slot=False)
 
-    def decode_mission(self, wire: list[object]) -> tuple[list[MissionItem], WirePlan]:
+    def decode_mission(self, wire: Sequence[DownloadedItem]) -> tuple[list[MissionItem], WirePlan]:
         return mission.decode(wire, home_slot=False)
 
     def mission_rejection(self, text: str) -> bool:

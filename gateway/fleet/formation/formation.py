@@ -26,13 +26,15 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import asdict, dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
 from gateway.fleet.formation.assignment import min_cost_assignment
 from gateway.fleet.formation.shapes import TOL_M
+from gateway.fleet.policy.safety_inputs import Target
 from gateway.fleet.policy.safety_rules import Rule, fmt, refuse
+from gateway.util.json_types import JsonObject
 
 if TYPE_CHECKING:
     import numpy as np
@@ -43,13 +45,6 @@ class DroneStart:
     """Where a drone is now: id, latitude, longitude, altitude above home (m)."""
 
     id: str
-    lat: float
-    lon: float
-    alt_rel_m: float
-
-
-@dataclass(frozen=True)
-class LegPoint:
     lat: float
     lon: float
     alt_rel_m: float
@@ -76,7 +71,7 @@ class SlotAssignment:
     east_m: float
     transit_alt_m: float | None  # None: flies directly (no conflict needed resolving)
     distance_m: float  # length of the drone's path, all legs
-    legs: list[LegPoint]
+    legs: list[Target]
     conflicts_resolved: list[str] = field(default_factory=list)
 
 
@@ -91,7 +86,7 @@ class FormationPlan:
     min_separation_m: float
     slots: list[SlotAssignment]
     conflicts: list[Conflict]
-    phases: list[dict[str, LegPoint]]  # per phase: drone id -> waypoint; absent = stays put
+    phases: list[dict[str, Target]]  # per phase: drone id -> waypoint; absent = stays put
     total_distance_m: float
     min_clearance_m: float | None  # smallest distance between two drones' segments in a phase; None: 1 drone
     notes: list[str] = field(default_factory=list)
@@ -102,7 +97,7 @@ class FormationPlan:
                 return slot
         raise KeyError(drone_id)
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JsonObject:
         return asdict(self)
 
 
@@ -243,14 +238,14 @@ def plan_formation(
         per_drone[i].append(f"with {starts[j].id}: direct paths {fmt(closest, 2)} m apart; {resolution}")
         per_drone[j].append(f"with {starts[i].id}: direct paths {fmt(closest, 2)} m apart; {resolution}")
 
-    def to_wp(p: np.ndarray) -> LegPoint:
+    def to_wp(p: np.ndarray) -> Target:
         lat, lon = geo.offset_position(center_lat, center_lon, float(p[0]), float(p[1]))
-        return LegPoint(lat, lon, round(float(p[2]), 3))
+        return Target(lat, lon, round(float(p[2]), 3))
 
-    phases: list[dict[str, LegPoint]] = [{}, {}, {}]
+    phases: list[dict[str, Target]] = [{}, {}, {}]
     slots: list[SlotAssignment] = []
     for i, d in enumerate(starts):
-        legs: list[LegPoint] = []
+        legs: list[Target] = []
         length = 0.0
         for k in range(3):
             a, b = phases_xyz[k][i]

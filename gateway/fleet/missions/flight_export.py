@@ -24,10 +24,10 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from datetime import datetime
-from typing import Any
 from xml.sax.saxutils import escape
 
 from gateway.registry.records import FlightRecord, StatusTextRecord, TrackSample
+from gateway.util.json_types import JsonObject, JsonValue
 
 ALTITUDE_REFERENCE = "metres above mean sea level (home altitude AMSL + height above home)"
 
@@ -39,24 +39,24 @@ def amsl(flight: FlightRecord, sample: TrackSample) -> float | None:
     return flight.home_alt_amsl + sample.alt_rel_m
 
 
-def track_feature(flight: FlightRecord, track: Sequence[TrackSample]) -> dict[str, Any]:
+def track_feature(flight: FlightRecord, track: Sequence[TrackSample]) -> JsonObject:
     """A GeoJSON Feature: LineString ``[lon, lat, alt AMSL]`` with per-point arrays in the properties.
 
     The per-point arrays run parallel to the coordinates (``times`` as ISO 8601, like the common
     ``coordTimes`` convention; ``alt_rel_m``, the height above home). A track of one point is a Point,
     an empty one has no geometry; without a known home altitude the coordinates have no altitude.
     """
-    coordinates = []
+    coordinates: list[JsonValue] = []
     for s in track:
         alt = amsl(flight, s)
         coordinates.append([s.lon, s.lat, round(alt, 3)] if alt is not None else [s.lon, s.lat])
     if len(coordinates) >= 2:
-        geometry: dict[str, Any] | None = {"type": "LineString", "coordinates": coordinates}
+        geometry: JsonObject | None = {"type": "LineString", "coordinates": coordinates}
     elif coordinates:
         geometry = {"type": "Point", "coordinates": coordinates[0]}
     else:
         geometry = None
-    properties: dict[str, Any] = flight.model_dump(mode="json")
+    properties: JsonObject = flight.model_dump(mode="json")
     properties["flight_id"] = properties.pop("id")
     properties["sample_count"] = len(track)
     properties["altitude_reference"] = ALTITUDE_REFERENCE if flight.home_alt_amsl is not None else None

@@ -11,14 +11,16 @@ False). An item with ``speed_mps`` is preceded by a DO_CHANGE_SPEED wire item; t
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Literal, Protocol
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.geo import check_lat_lon
-from gateway.util.mission_item import MAV_FRAME_GLOBAL_RELATIVE_ALT, ItemInt
+from gateway.fleet.policy.mission_check import RawLike
+from gateway.util.mission_item import MAV_FRAME_GLOBAL_RELATIVE_ALT, ItemCommand, ItemInt
 
 # MAVLink ids
 MAV_FRAME_GLOBAL = 0
@@ -43,16 +45,10 @@ MAX_ITEMS = 700
 
 
 @dataclass(frozen=True)
-class RawItem:
+class RawItem(ItemCommand):
     """One MAVLink mission item as a mission file or the autopilot holds it (x, y in degrees, except in
     MAV_FRAME_MISSION where they are plain numbers)."""
 
-    frame: int
-    command: int
-    param1: float = 0.0
-    param2: float = 0.0
-    param3: float = 0.0
-    param4: float = 0.0
     x: float = 0.0
     y: float = 0.0
     z: float = 0.0
@@ -119,6 +115,22 @@ class WireItem(ItemInt):
     """One item of the mission as sent to the autopilot, at wire sequence ``seq``."""
 
     seq: int = field(kw_only=True)
+
+
+class DownloadedItem(RawLike, Protocol):
+    """A mission item as MAVSDK's mission_raw downloads it (its ``MissionItem``; x and y scaled by 1e7 in
+    the global frames): the fields the checks read, and these."""
+
+    @property
+    def seq(self) -> int: ...
+    @property
+    def param4(self) -> float: ...
+    @property
+    def x(self) -> int: ...
+    @property
+    def y(self) -> int: ...
+    @property
+    def z(self) -> float: ...
 
 
 @dataclass
@@ -193,10 +205,10 @@ def _wire_of(seq: int, raw: RawItem) -> WireItem:
 
 def _raw_of(w: WireItem, autocontinue: bool) -> RawItem:
     x, y = (w.x / 1e7, w.y / 1e7) if _scaled(w.frame) else (float(w.x), float(w.y))
-    return RawItem(w.frame, w.command, w.param1, w.param2, w.param3, w.param4, x, y, w.z, autocontinue)
+    return RawItem(w.command, w.frame, w.param1, w.param2, w.param3, w.param4, x, y, w.z, autocontinue)
 
 
-def decode(wire: list[Any], *, home_slot: bool = True) -> tuple[list[MissionItem], WirePlan]:
+def decode(wire: Sequence[DownloadedItem], *, home_slot: bool = True) -> tuple[list[MissionItem], WirePlan]:
     """User items from a downloaded mission_raw list (with ``home_slot``, seq 0, home, is dropped)."""
     items: list[MissionItem] = []
     user_to_wire: list[int] = []

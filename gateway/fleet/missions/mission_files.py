@@ -29,7 +29,7 @@ import json
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Literal
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.missions.mission import (
@@ -39,6 +39,7 @@ from gateway.fleet.missions.mission import (
     MissionItem,
     RawItem,
 )
+from gateway.util.json_types import JsonMapping, JsonObject, JsonValue
 
 FileFormat = Literal["plan", "waypoints"]
 FORMATS: tuple[FileFormat, ...] = ("plan", "waypoints")
@@ -85,7 +86,7 @@ def _raw(frame: int, command: int, params: Sequence[float], autocontinue: bool, 
         lat, lon = p[4], p[5]
         if not (math.isfinite(lat) and math.isfinite(lon) and -90 <= lat <= 90 and -180 <= lon <= 180):
             raise InvalidArgument(f"{where}: latitude/longitude {lat}, {lon} out of range")
-    return RawItem(frame, command, p[0], p[1], p[2], p[3], p[4], p[5], p[6], autocontinue)
+    return RawItem(command, frame, p[0], p[1], p[2], p[3], p[4], p[5], p[6], autocontinue)
 
 
 def parse_plan(text: str) -> FileMission:
@@ -138,27 +139,32 @@ def _plan_item(entry: object, where: str) -> RawItem:
     return _raw(frame, command, values, bool(entry.get("autoContinue", True)), where)
 
 
-def _refuse_fence_and_rally(doc: dict[str, Any]) -> None:
+def _refuse_fence_and_rally(doc: JsonMapping) -> None:
     """The items are all this parser reads: a .plan that still has a geofence or rally points is refused
     naming them, never stored without them (which would leave a drone without the fence its planner
     drew). The REST upload takes them out first (`gateway.fleet.missions.plan_extras.split_plan`): the
     geofence becomes the drone's zones, the rally points are kept."""
     fence = doc.get("geoFence")
     if isinstance(fence, dict):
-        polygons, circles = fence.get("polygons") or [], fence.get("circles") or []
+        polygons, circles = _entries(fence.get("polygons")), _entries(fence.get("circles"))
         if polygons or circles:
             raise InvalidArgument(
-                f"the .plan file has a geofence ({len(polygons)} polygons, {len(circles)} circles), which "
+                f"the .plan file has a geofence ({polygons} polygons, {circles} circles), which "
                 "this upload does not apply; nothing was sent: upload the plan with PUT "
                 "/api/v1/vehicles/{id}/mission, which makes it the drone's geofences"
             )
     rally = doc.get("rallyPoints")
-    points = rally.get("points") if isinstance(rally, dict) else None
+    points = _entries(rally.get("points")) if isinstance(rally, dict) else 0
     if points:
         raise InvalidArgument(
-            f"the .plan file has {len(points)} rally points, which this upload does not keep; nothing was "
+            f"the .plan file has {points} rally points, which this upload does not keep; nothing was "
             "sent: upload the plan with PUT /api/v1/vehicles/{id}/mission, which keeps them"
         )
+
+
+def _entries(value: JsonValue) -> int:
+    """How many entries a .plan's list has (a value that is no list: 1 when it is there at all)."""
+    return len(value) if isinstance(value, list | dict) else int(bool(value))
 
 
 def parse_wpl(text: str) -> FileMission:
@@ -312,10 +318,10 @@ def write_plan(
     items: Sequence[RawItem], home: tuple[float, float, float] | None, autopilot: str | None = None
 ) -> str:
     """A QGroundControl ``.plan`` holding ``items`` as simple items."""
-    simple = []
+    simple: list[JsonValue] = []
     for k, raw in enumerate(items, start=1):
         params = [raw.param1, raw.param2, raw.param3, raw.param4, raw.x, raw.y, raw.z]
-        entry: dict[str, Any] = {
+        entry: JsonObject = {
             "autoContinue": raw.autocontinue,
             "command": raw.command,
             "doJumpId": k,

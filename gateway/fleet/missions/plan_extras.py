@@ -16,10 +16,10 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, field
-from typing import Any
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
+from gateway.util.json_types import JsonMapping, JsonObject, JsonValue
 
 CIRCLE_SIDES = 64
 MAX_FENCE_ZONES = 50
@@ -32,7 +32,7 @@ class FenceZone:
 
     name: str
     kind: str  # keep_in | keep_out
-    geometry: dict[str, Any]
+    geometry: JsonObject
     circle: tuple[float, float, float] | None = None  # centre lat, lon and radius (m) it was drawn as
 
 
@@ -45,13 +45,13 @@ class PlanExtras:
         return bool(self.fence or self.rally)
 
 
-def _number(value: Any, where: str) -> float:
+def _number(value: JsonValue, where: str) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
         raise InvalidArgument(f"{where}: expected a number, got {json.dumps(value)[:40]}")
     return float(value)
 
 
-def _lat_lon(pair: Any, where: str) -> tuple[float, float]:
+def _lat_lon(pair: JsonValue, where: str) -> tuple[float, float]:
     if not isinstance(pair, list) or len(pair) < 2:
         raise InvalidArgument(f"{where}: expected [latitude, longitude], got {json.dumps(pair)[:60]}")
     lat, lon = _number(pair[0], f"{where} latitude"), _number(pair[1], f"{where} longitude")
@@ -62,16 +62,16 @@ def _lat_lon(pair: Any, where: str) -> tuple[float, float]:
     return lat, lon
 
 
-def _kind(entry: dict[str, Any], where: str) -> str:
+def _kind(entry: JsonMapping, where: str) -> str:
     inclusion = entry.get("inclusion", True)
     if not isinstance(inclusion, bool):
         raise InvalidArgument(f"{where}: inclusion must be true or false; got {json.dumps(inclusion)[:20]}")
     return "keep_in" if inclusion else "keep_out"
 
 
-def circle_ring(lat: float, lon: float, radius_m: float) -> list[list[float]]:
+def circle_ring(lat: float, lon: float, radius_m: float) -> list[JsonValue]:
     """A closed GeoJSON ring ([lon, lat]) of CIRCLE_SIDES vertices on the circle."""
-    ring = []
+    ring: list[JsonValue] = []
     for k in range(CIRCLE_SIDES):
         angle = 2 * math.pi * k / CIRCLE_SIDES
         plat, plon = geo.offset_position(lat, lon, radius_m * math.cos(angle), radius_m * math.sin(angle))
@@ -79,7 +79,7 @@ def circle_ring(lat: float, lon: float, radius_m: float) -> list[list[float]]:
     return [*ring, ring[0]]
 
 
-def _fence(doc: dict[str, Any], prefix: str) -> list[FenceZone]:
+def _fence(doc: JsonMapping, prefix: str) -> list[FenceZone]:
     fence = doc.get("geoFence")
     if fence is None:
         return []
@@ -95,20 +95,21 @@ def _fence(doc: dict[str, Any], prefix: str) -> list[FenceZone]:
     zones = []
     for k, entry in enumerate(polygons, start=1):
         where = f"geofence polygon {k}"
-        if not isinstance(entry, dict) or not isinstance(entry.get("polygon"), list):
+        polygon = entry.get("polygon") if isinstance(entry, dict) else None
+        if not isinstance(entry, dict) or not isinstance(polygon, list):
             raise InvalidArgument(f'{where}: expected an object with a "polygon" list of [lat, lon]')
-        vertices = [_lat_lon(v, f"{where} vertex {i}") for i, v in enumerate(entry["polygon"], start=1)]
+        vertices = [_lat_lon(v, f"{where} vertex {i}") for i, v in enumerate(polygon, start=1)]
         if len(vertices) < 3:
             raise InvalidArgument(f"{where}: {len(vertices)} vertices; a polygon needs at least 3")
-        ring = [[lon, lat] for lat, lon in vertices]
+        ring: list[JsonValue] = [[lon, lat] for lat, lon in vertices]
         if ring[0] != ring[-1]:
             ring.append(ring[0])
-        geometry = {"type": "Polygon", "coordinates": [ring]}
+        geometry: JsonObject = {"type": "Polygon", "coordinates": [ring]}
         zones.append(FenceZone(f"{prefix}-polygon-{k}", _kind(entry, where), geometry))
     for k, entry in enumerate(circles, start=1):
         where = f"geofence circle {k}"
         circle = entry.get("circle") if isinstance(entry, dict) else None
-        if not isinstance(circle, dict):
+        if not isinstance(entry, dict) or not isinstance(circle, dict):
             raise InvalidArgument(f'{where}: expected an object with a "circle": {{center, radius}}')
         lat, lon = _lat_lon(circle.get("center"), f"{where} center")
         radius = _number(circle.get("radius"), f"{where} radius")
@@ -119,7 +120,7 @@ def _fence(doc: dict[str, Any], prefix: str) -> list[FenceZone]:
     return zones
 
 
-def _rally(doc: dict[str, Any]) -> list[tuple[float, float, float]]:
+def _rally(doc: JsonMapping) -> list[tuple[float, float, float]]:
     rally = doc.get("rallyPoints")
     if rally is None:
         return []
@@ -136,6 +137,26 @@ def _rally(doc: dict[str, Any]) -> list[tuple[float, float, float]]:
         lat, lon = _lat_lon(point, where)
         kept.append((lat, lon, _number(point[2], f"{where} altitude")))
     return kept
+
+
+def _outer_rings(geometry: JsonMapping) -> list[JsonValue]:
+    """The outer ring of a GeoJSON Polygon, or of each polygon of a MultiPolygon."""
+    coordinates = geometry.get("coordinates")
+    if not isinstance(coordinates, list):
+        return []
+    if geometry.get("type") == "Polygon":
+        return coordinates[:1]
+    return [polygon[0] for polygon in coordinates if isinstance(polygon, list) and polygon]
+
+
+def _lon_lat(ring: JsonValue, where: str) -> list[tuple[float, float]]:
+    """A GeoJSON ring's vertices, (longitude, latitude), an altitude dropped."""
+    vertices = ring if isinstance(ring, list) else []
+    return [
+        (_number(point[0], f"{where} longitude"), _number(point[1], f"{where} latitude"))
+        for point in vertices
+        if isinstance(point, list) and len(point) >= 2
+    ]
 
 
 def split_plan(text: str, prefix: str) -> tuple[str, PlanExtras]:
@@ -167,14 +188,8 @@ def with_extras(plan: str, fence: list[FenceZone], rally: list[tuple[float, floa
                 {"circle": {"center": [lat, lon], "radius": radius}, "inclusion": inclusion, "version": 1}
             )
             continue
-        rings = (
-            zone.geometry["coordinates"]
-            if zone.geometry.get("type") == "Polygon"
-            else [poly[0] for poly in zone.geometry.get("coordinates", [])]
-        )
-        outer = rings[:1] if zone.geometry.get("type") == "Polygon" else rings
-        for ring in outer:
-            vertices = [[lat, lon] for lon, lat, *_ in ring]
+        for ring in _outer_rings(zone.geometry):
+            vertices = [[lat, lon] for lon, lat in _lon_lat(ring, zone.name)]
             if len(vertices) > 1 and vertices[0] == vertices[-1]:
                 vertices.pop()
             polygons.append({"inclusion": inclusion, "polygon": vertices, "version": 1})

@@ -7,10 +7,11 @@ import asyncio
 import time
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
-from typing import Any, TypedDict
+from typing import TypedDict
 
 from gateway.fleet.operations.operation_state import Operation, OpStatus
 from gateway.fleet.policy.caller import Caller
+from gateway.util.json_types import JsonObject
 
 FLEET_CALLER = Caller(via="cluster", principal="fleet")
 """The caller of a fleet operation started without one (judged as an agent)."""
@@ -40,8 +41,8 @@ class Member:
     accepted_after_s: float | None = None  # ... and was accepted by the vehicle
     slot: SlotSummary | None = None
 
-    def to_dict(self) -> dict[str, object]:
-        out: dict[str, object] = {
+    def to_dict(self) -> JsonObject:
+        out: JsonObject = {
             "drone_id": self.drone_id,
             "status": self.status,
             "message": self.message,
@@ -50,7 +51,7 @@ class Member:
             "accepted_after_s": self.accepted_after_s,
         }
         if self.slot is not None:
-            out.update(self.slot)
+            out.update(**self.slot)
         return out
 
 
@@ -66,11 +67,11 @@ class FleetOperation:
     id: str
     kind: str
     drone_ids: list[str]
-    params: dict[str, Any]
+    params: JsonObject
     members: dict[str, Member]
     phase_names: list[str]
     session_key: str | None = None
-    plan: dict[str, Any] | None = None
+    plan: JsonObject | None = None
     notes: list[str] = field(default_factory=list)
     caller: Caller = FLEET_CALLER  # who asked: a step run on another node is judged as theirs
     status: str = "running"
@@ -108,7 +109,7 @@ class FleetOperation:
         etas = [op.eta_s for op in self.ops.values() if not op.finished and op.eta_s is not None]
         return max(etas) if etas else None
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JsonObject:
         eta = self.eta_s()
         return {
             "operation_id": self.id,

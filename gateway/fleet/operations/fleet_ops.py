@@ -26,7 +26,6 @@ import time
 import uuid
 from collections.abc import Awaitable, Callable, Iterable, Mapping, Sequence
 from datetime import UTC, datetime
-from typing import Any
 
 from gateway.errors import GatewayError, NotFound
 from gateway.fleet.operations.fleet_operation import FLEET_CALLER, FleetOperation, Member, SlotSummary
@@ -35,7 +34,9 @@ from gateway.fleet.operations.operation_state import Operation, OpStatus
 from gateway.fleet.operations.operations import OperationManager
 from gateway.fleet.operations.routing import Router
 from gateway.fleet.operations.step_mirror import follow, mirror_view
+from gateway.fleet.operations.views import OperationView
 from gateway.fleet.policy.caller import Caller
+from gateway.util.json_types import JsonObject
 
 log = logging.getLogger(__name__)
 
@@ -115,9 +116,9 @@ class FleetOperations:
         kind: str,
         drone_ids: Sequence[str],
         phases: Sequence[Phase],
-        params: dict[str, Any],
+        params: JsonObject,
         session_key: str | None = None,
-        plan: dict[str, Any] | None = None,
+        plan: JsonObject | None = None,
         slots: Mapping[str, SlotSummary] | None = None,
         notes: Sequence[str] = (),
         caller: Caller | None = None,
@@ -209,14 +210,14 @@ class FleetOperations:
             if self._run_here is None:
                 raise RuntimeError("fleet steps are not bound to a command pass (run_steps_with)")
             return await self._run_here(fop.caller, drone_id, step.spec)
-        started = await router.call(
-            drone_id, "run_step", fop.caller, {"drone_id": drone_id, "spec": step.spec}
+        started = OperationView.model_validate(
+            await router.call(drone_id, "run_step", fop.caller, {"drone_id": drone_id, "spec": step.spec})
         )
         mirror = Operation(
-            id=str(started["operation_id"]),
+            id=started.operation_id,
             vehicle_id=drone_id,
-            kind=str(started["kind"]),
-            params=dict(started.get("params") or {}),
+            kind=started.kind,
+            params=dict(started.params),
             session_key=fop.session_key,
             created_at=_now(),
         )

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
 
 from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal
 from gateway.fleet.vehicles.protocols import VehicleView
@@ -19,7 +18,7 @@ class Unable:
     drone_id: str
     code: str
     message: str
-    details: dict[str, Any] = field(default_factory=dict)
+    details: dict[str, object] = field(default_factory=dict)  # the error's details
     safety: bool = False  # refused by a safety rule (not an input or state error)
 
     @classmethod
@@ -28,7 +27,7 @@ class Unable:
         rule = exc.details.get("rule") if isinstance(exc, SafetyRefusal) else None
         return cls(drone_id, str(rule or exc.code), exc.message, details, safety=rule is not None)
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, object]:
         return {"drone_id": self.drone_id, "code": self.code, "message": self.message, **self.details}
 
 

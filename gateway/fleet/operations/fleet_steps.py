@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from collections.abc import Awaitable, Callable, Iterable, Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Required
+from typing import TYPE_CHECKING, Required
 
 from typing_extensions import TypedDict
 
@@ -18,6 +18,7 @@ from gateway.fleet import geo
 from gateway.fleet.operations.fleet_operation import SlotSummary
 from gateway.fleet.operations.trackers import GotoTracker, LandingTracker, TakeoffTracker, Tracker
 from gateway.fleet.vehicles.protocols import VehicleView, flying
+from gateway.util.json_types import JsonObject
 
 if TYPE_CHECKING:
     from gateway.fleet.formation.formation import FormationPlan
@@ -50,7 +51,7 @@ class Step:
     vehicle: VehicleView
     tracker: Tracker
     send: Send
-    params: dict[str, Any]
+    params: JsonObject
     timeout_s: float | None  # the step fails if not finished by then (the vehicle keeps going)
     spec: StepSpec
 
@@ -152,7 +153,7 @@ def build_step(vehicle: VehicleView, spec: StepSpec) -> Step:
     timeout_s = None if timeout is None else float(timeout)
     if send == "goto":
         lat, lon, alt = float(spec["lat"]), float(spec["lon"]), float(spec["alt_m"])
-        params: dict[str, Any] = {"lat_deg": lat, "lon_deg": lon, "alt_m": alt}
+        params: JsonObject = {"lat_deg": lat, "lon_deg": lon, "alt_m": alt}
         phase = spec.get("phase")
         if phase is not None:
             params["phase"] = int(phase)

@@ -8,7 +8,8 @@ import time
 from dataclasses import dataclass, field
 from datetime import datetime
 from enum import StrEnum
-from typing import Any
+
+from gateway.util.json_types import JsonObject
 
 
 class OpStatus(StrEnum):
@@ -28,7 +29,7 @@ class Operation:
     id: str
     vehicle_id: str
     kind: str
-    params: dict[str, Any]
+    params: JsonObject
     session_key: str | None
     created_at: datetime
     status: OpStatus = OpStatus.running
@@ -52,7 +53,7 @@ class Operation:
     def elapsed_s(self) -> float:
         return time.monotonic() - self.started_mono
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JsonObject:
         return {
             "operation_id": self.id,
             "drone_id": self.vehicle_id,

@@ -23,7 +23,6 @@ import time
 import uuid
 from collections.abc import Awaitable, Callable, Iterable
 from datetime import UTC, datetime
-from typing import Any
 
 from gateway.config import Settings
 from gateway.errors import InvalidArgument, NotFound
@@ -38,6 +37,7 @@ from gateway.fleet.vehicles.protocols import FlyingVehicle
 from gateway.fleet.vehicles.readings import age_s
 from gateway.registry.records import OperationRecord
 from gateway.registry.store import Store
+from gateway.util.json_types import JsonMapping
 
 log = logging.getLogger(__name__)
 
@@ -130,7 +130,7 @@ class OperationManager:
         vehicle: FlyingVehicle,
         tracker: Tracker,
         send: Callable[[], Awaitable[object]],
-        params: dict[str, Any],
+        params: JsonMapping,
         session_key: str | None = None,
         precheck: Callable[[], None] | None = None,
     ) -> Operation:
@@ -149,7 +149,7 @@ class OperationManager:
                 id=uuid.uuid4().hex[:12],
                 vehicle_id=vehicle.id,
                 kind=tracker.kind,
-                params=params,
+                params=dict(params),
                 session_key=session_key,
                 created_at=_now(),
             )

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import inspect
 import typing
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable, Callable, Mapping
 from contextvars import ContextVar
 from typing import Any, Protocol, TypedDict
 
@@ -25,6 +25,7 @@ from pydantic import BaseModel, ConfigDict, ValidationError, create_model
 from gateway.errors import InvalidArgument
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import RunningOperation
+from gateway.util.json_types import JsonObject, JsonValue
 
 
 class ProgressMessage(TypedDict, total=False):
@@ -54,7 +55,7 @@ class Router(Protocol):
     def running(self, drone_id: str) -> RunningOperation | None:
         """The running operation of a drone owned elsewhere, as its owner last published it."""
 
-    def published(self, drone_id: str) -> dict[str, Any] | None:
+    def published(self, drone_id: str) -> JsonObject | None:
         """The latest operation of a drone owned elsewhere, as its owner last published it (keys:
         id, kind, status, progress, message, eta_s, elapsed_s, params); None when there is none."""
 
@@ -63,14 +64,15 @@ class Router(Protocol):
         drone_id: str,
         verb: str,
         caller: Caller,
-        arguments: dict[str, Any],
+        arguments: Mapping[str, object],
         on_message: OnMessage | None = None,
         wait_s: float = 0.0,
-    ) -> Any:
-        """Run ``verb`` on the drone's owner; its JSON result, or its error raised here as the same
-        class. ``wait_s``: how long the verb itself may wait (added to the forwarding timeout)."""
+    ) -> JsonValue:
+        """Run ``verb`` on the drone's owner (``arguments``: what JSON encodes); its JSON result, or its
+        error raised here as the same class. ``wait_s``: how long the verb itself may wait (added to the
+        forwarding timeout)."""
 
-    async def announce(self, kind: str, body: dict[str, Any]) -> None:
+    async def announce(self, kind: str, body: JsonObject) -> None:
         """Tell every other node (operator locks, the emergency stop)."""
 
 
@@ -90,7 +92,7 @@ class Verb:
         self.name = method.__name__
         self.signature = inspect.signature(method)
         hints = typing.get_type_hints(method)
-        fields: dict[str, Any] = {}
+        fields: dict[str, Any] = {}  # Any: pydantic, create_model's field definitions
         self.callbacks: frozenset[str] = frozenset()
         for name, param in list(self.signature.parameters.items())[2:]:
             if param.kind is inspect.Parameter.KEYWORD_ONLY:
@@ -108,7 +110,7 @@ class Verb:
             raise TypeError(f"verb {self.name} must return a pydantic model; it returns {result!r}")
         self.result: type[BaseModel] = result
 
-    def parse(self, arguments: dict[str, Any]) -> dict[str, Any]:
+    def parse(self, arguments: Mapping[str, object]) -> dict[str, object]:
         """The JSON arguments as the method's keyword arguments; InvalidArgument names what is wrong."""
         try:
             parsed = self.arguments.model_validate(arguments)

@@ -4,26 +4,24 @@ kept up to date by following it on its owner (waits of FOLLOW_WAIT_S, one after 
 from __future__ import annotations
 
 import asyncio
-from collections.abc import Mapping
 from datetime import UTC, datetime
-from typing import Any
 
 from gateway.errors import GatewayError
 from gateway.fleet.operations.fleet_operation import FLEET_CALLER
 from gateway.fleet.operations.operation_state import Operation, OpStatus
 from gateway.fleet.operations.routing import ProgressMessage, Router
+from gateway.fleet.operations.views import OperationView
 
 FOLLOW_WAIT_S = 30.0
 """A step run on another node is followed by waits of this length, one after the other."""
 
 
-def mirror_view(mirror: Operation, view: Mapping[str, Any]) -> None:
+def mirror_view(mirror: Operation, view: OperationView) -> None:
     """Bring a local mirror of an operation another node runs up to date with its view there."""
-    mirror.progress = float(view.get("progress", mirror.progress) or 0.0)
-    mirror.message = str(view.get("message") or mirror.message)
-    eta = view.get("eta_s")
-    mirror.eta_s = None if eta is None else float(eta)
-    status = OpStatus(str(view.get("status") or "running"))
+    mirror.progress = view.progress
+    mirror.message = view.message or mirror.message
+    mirror.eta_s = view.eta_s
+    status = OpStatus(view.status)
     if status is not OpStatus.running and not mirror.finished:
         mirror.status = status
         mirror.finished_at = datetime.now(UTC)
@@ -36,8 +34,8 @@ async def follow(router: Router, mirror: Operation) -> None:
 
     async def message(body: ProgressMessage) -> None:
         view = body.get("view")
-        if isinstance(view, dict):
-            mirror_view(mirror, view)
+        if view is not None:
+            mirror_view(mirror, OperationView.model_validate(view))
 
     failures = 0
     while not mirror.finished:
@@ -50,7 +48,7 @@ async def follow(router: Router, mirror: Operation) -> None:
                 message,
                 wait_s=FOLLOW_WAIT_S,
             )
-            mirror_view(mirror, view)
+            mirror_view(mirror, OperationView.model_validate(view))
             failures = 0
         except asyncio.CancelledError:
             raise
@@ -59,6 +57,9 @@ async def follow(router: Router, mirror: Operation) -> None:
             mirror.message = f"following {mirror.vehicle_id} on its owner failed: {exc.message}"
             mirror.changed.set()
             if failures >= 5:
-                mirror_view(mirror, {"status": OpStatus.interrupted.value, "message": mirror.message})
+                mirror.status = OpStatus.interrupted
+                mirror.finished_at = datetime.now(UTC)
+                mirror.done.set()
+                mirror.changed.set()
                 return
             await asyncio.sleep(1.0)

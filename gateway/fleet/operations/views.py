@@ -4,29 +4,36 @@ and rebuilt from JSON (``model_validate``), so a result can cross a process boun
 from __future__ import annotations
 
 from datetime import UTC, datetime
-from typing import Any, Literal
+from typing import Literal
 
 from pydantic import BaseModel, Field, SkipValidation, field_validator
 
 from gateway.fleet.missions.mission import MissionItem
 from gateway.fleet.operations.operation_state import Operation
+from gateway.fleet.policy.operator_locks import Lock
 from gateway.fleet.vehicles.protocols import VehicleView
 from gateway.fleet.vehicles.readings import position
 from gateway.registry.records import OperationRecord
+from gateway.util.json_types import JsonObject
 
 
-class OperationView(BaseModel):
-    """A tracked operation at one moment, with where its drone is."""
+class OperationFacts(BaseModel):
+    """What every answer about a tracked operation says (the REST view, the MCP tools' result)."""
 
-    operation_id: str
     drone_id: str
+    operation_id: str
     kind: str
     status: str
     progress: float
     message: str
     eta_s: float | None = None
     elapsed_s: float
-    params: dict[str, Any] = Field(default_factory=dict)
+
+
+class OperationView(OperationFacts):
+    """A tracked operation at one moment, with where its drone is."""
+
+    params: JsonObject = Field(default_factory=dict)
     lat_deg: float | None = None
     lon_deg: float | None = None
     alt_m: float | None = None
@@ -80,7 +87,7 @@ class ActionResult(BaseModel):
     action: str
     message: str
     superseded_operation: str | None = None
-    facts: dict[str, Any] = Field(default_factory=dict)
+    facts: JsonObject = Field(default_factory=dict)
 
 
 class ArrivalView(BaseModel):
@@ -156,10 +163,10 @@ class FleetView(BaseModel):
     eta_s: float | None
     elapsed_s: float
     dispatch_s: list[float]
-    drones: list[dict[str, Any]]
-    not_sent: list[dict[str, Any]] = Field(default_factory=list)
+    drones: list[JsonObject]
+    not_sent: list[dict[str, object]] = Field(default_factory=list)  # `Unable.to_dict`: error details
     notes: list[str] = Field(default_factory=list)
-    plan: dict[str, Any] | None = None
+    plan: JsonObject | None = None
 
     @property
     def running(self) -> bool:
@@ -168,8 +175,8 @@ class FleetView(BaseModel):
 
 class FleetHoldResult(BaseModel):
     held: list[str]
-    failed: list[dict[str, Any]]
-    not_sent: list[dict[str, Any]]
+    failed: list[dict[str, object]]  # `Unable.to_dict`: error details
+    not_sent: list[dict[str, object]]
     superseded_fleet_operations: list[str]
 
 
@@ -212,6 +219,11 @@ class LockResult(BaseModel):
         description="False: the database was unreachable; the lock holds on this node (and every node "
         "that heard of it) now and is stored when the database is back.",
     )
+
+    @classmethod
+    def of(cls, lock: Lock) -> LockResult:
+        """A lock in force (an operator's lock or a takeover lock), as stored."""
+        return cls(scope=lock.scope, reason=lock.reason, by=lock.by, locked_at=lock.locked_at)
 
 
 class UnlockResult(BaseModel):

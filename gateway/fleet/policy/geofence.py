@@ -18,13 +18,14 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Literal
 
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
+from gateway.util.json_types import JsonMapping, JsonObject, JsonValue
 
 if TYPE_CHECKING:  # shapely (and numpy under it, about 18 MiB) is imported when a zone is first made
     from shapely.geometry import Point, Polygon
@@ -52,20 +53,20 @@ class Zone:
     name: str
     kind: ZoneKind
     scope: str
-    geojson: dict[str, Any]
+    geojson: JsonObject
     origin: tuple[float, float] = field(repr=False)
     local: BaseGeometry = field(repr=False)
 
     @classmethod
-    def from_geojson(cls, name: str, kind: str, geometry: Mapping[str, Any], scope: str = FLEET) -> Zone:
+    def from_geojson(cls, name: str, kind: str, geometry: JsonValue, scope: str = FLEET) -> Zone:
         if kind not in ZONE_KINDS:
             raise InvalidArgument(f"geofence kind must be one of {list(ZONE_KINDS)}; got {kind!r}")
         if not isinstance(name, str) or not name.strip():
             raise InvalidArgument("geofence zone needs a non-empty name")
         if not isinstance(scope, str) or not scope:
             raise InvalidArgument("geofence scope must be a vehicle id or '*'")
-        if not isinstance(geometry, Mapping) or geometry.get("type") not in ("Polygon", "MultiPolygon"):
-            got = geometry.get("type") if isinstance(geometry, Mapping) else type(geometry).__name__
+        if not isinstance(geometry, dict) or geometry.get("type") not in ("Polygon", "MultiPolygon"):
+            got = geometry.get("type") if isinstance(geometry, dict) else type(geometry).__name__
             raise InvalidArgument(
                 f"geofence '{name}' must be a GeoJSON Polygon or MultiPolygon geometry; got {got!r}"
             )
@@ -125,7 +126,7 @@ class Zone:
             return a
         return LineString([a, b])
 
-    def to_record(self) -> dict[str, Any]:
+    def to_record(self) -> JsonObject:
         return {"name": self.name, "kind": self.kind, "scope": self.scope, "geometry": self.geojson}
 
 
@@ -161,7 +162,7 @@ class GeofenceSet:
             raise InvalidArgument(f"a geofence zone named '{zone.name}' already exists")
         self._zones[zone.name] = zone
 
-    def add(self, name: str, kind: str, geometry: Mapping[str, Any], scope: str = FLEET) -> Zone:
+    def add(self, name: str, kind: str, geometry: JsonValue, scope: str = FLEET) -> Zone:
         """Add a zone; names are unique across the set."""
         zone = Zone.from_geojson(name, kind, geometry, scope)
         self._put(zone)
@@ -222,38 +223,53 @@ class GeofenceSet:
                 out.append(Violation(zone.name, "keep_out", "path", _metres_along(inside, width_m)))
         return out
 
-    def to_records(self) -> list[dict[str, Any]]:
+    def to_records(self) -> list[JsonObject]:
         return [z.to_record() for z in self._zones.values()]
 
     @classmethod
-    def from_records(cls, records: Iterable[Mapping[str, Any]]) -> GeofenceSet:
+    def from_records(cls, records: Iterable[JsonMapping]) -> GeofenceSet:
         zones = []
         for rec in records:
             try:
-                zones.append(
-                    Zone.from_geojson(rec["name"], rec["kind"], rec["geometry"], rec.get("scope", FLEET))
-                )
+                name, kind = (_text(rec[key], f"geofence record {key}") for key in ("name", "kind"))
+                scope = _text(rec.get("scope", FLEET), "geofence record scope")
+                zones.append(Zone.from_geojson(name, kind, rec["geometry"], scope))
             except KeyError as exc:
                 raise InvalidArgument(f"geofence record lacks {exc.args[0]!r}: {dict(rec)!r}") from None
         return cls(zones)
 
     @classmethod
-    def from_geojson(cls, document: Mapping[str, Any]) -> GeofenceSet:
+    def from_geojson(cls, document: JsonValue) -> GeofenceSet:
         """A GeoJSON FeatureCollection: each feature a Polygon/MultiPolygon with properties
         ``kind`` ("keep_in"/"keep_out"), optional ``name`` and optional ``vehicle_id`` (default: fleet)."""
-        if not isinstance(document, Mapping) or document.get("type") != "FeatureCollection":
+        if not isinstance(document, dict) or document.get("type") != "FeatureCollection":
             raise InvalidArgument("geofence document must be a GeoJSON FeatureCollection")
+        features = document.get("features") or []
+        if not isinstance(features, list):
+            raise InvalidArgument("geofence document's features must be a list of GeoJSON Features")
         zones = []
-        for index, feature in enumerate(document.get("features") or []):
+        for index, feature in enumerate(features):
+            if not isinstance(feature, dict):
+                raise InvalidArgument(f"geofence feature {index + 1} must be a GeoJSON Feature object")
             props = feature.get("properties") or {}
-            name = props.get("name") or f"zone-{index + 1}"
+            if not isinstance(props, dict):
+                raise InvalidArgument(f"geofence feature {index + 1}'s properties must be an object")
+            name = _text(props.get("name") or f"zone-{index + 1}", "geofence feature name")
             kind = props.get("kind")
             if kind is None:
                 raise InvalidArgument(f"geofence feature '{name}' needs properties.kind: keep_in or keep_out")
+            scope = _text(props.get("vehicle_id") or FLEET, f"geofence feature '{name}' vehicle_id")
             zones.append(
-                Zone.from_geojson(name, kind, feature.get("geometry"), props.get("vehicle_id") or FLEET)
+                Zone.from_geojson(name, _text(kind, "geofence kind"), feature.get("geometry"), scope)
             )
         return cls(zones)
+
+
+def _text(value: JsonValue, what: str) -> str:
+    """A text field of a stored or given geofence; InvalidArgument naming it otherwise."""
+    if not isinstance(value, str):
+        raise InvalidArgument(f"{what} must be text; got {value!r}")
+    return value
 
 
 def _metres_along(part: BaseGeometry, width_m: float) -> float:

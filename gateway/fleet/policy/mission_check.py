@@ -4,7 +4,7 @@ Each dialect lists the mission commands and frames whose effect the gateway mode
 built in `gateway.fleet.dialects.mission_semantics`): a position item (its point, the leg to it and, for
 the loiters, the circle of its radius, counted in the distance limit and against the zones), a return,
 a speed change (by its speed type, against the horizontal or the vertical limit), a jump (its repeats
-bounded, the leg back checked) and harmless items (yaw, region of interest, camera, gimbal, waits). Any
+bounded, the leg back checked) and harmless items (yaw, region of interest, camera, gimbal, waits). Every
 other command, or a position item in a frame the gateway does not model, is *unchecked*: refused for
 agents, naming the item and the command, and allowed for operators (REST) only as an unchecked mission.
 

@@ -9,10 +9,11 @@ import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from datetime import UTC, datetime
-from typing import Any, Protocol
+from typing import Protocol
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.policy.geofence import FLEET
+from gateway.util.json_types import JsonObject
 
 _SCOPE_RE = re.compile(r"^(\*|[a-z0-9-]{1,32})$")
 MAX_REASON_CHARS = 500
@@ -25,7 +26,7 @@ class Lock:
     by: str
     locked_at: datetime
 
-    def to_record(self) -> dict[str, Any]:
+    def to_record(self) -> JsonObject:
         return {
             "scope": self.scope,
             "reason": self.reason,
@@ -118,17 +119,17 @@ class LockBook:
     def view(self) -> ReadOnlyLocks:
         return ReadOnlyLocks(self)
 
-    def to_records(self) -> list[dict[str, Any]]:
+    def to_records(self) -> list[JsonObject]:
         return [lk.to_record() for lk in self.all()]
 
     @classmethod
-    def from_records(cls, records: Iterable[Mapping[str, Any]]) -> LockBook:
+    def from_records(cls, records: Iterable[Mapping[str, object]]) -> LockBook:
         book = cls()
         for rec in records:
             try:
                 at = rec["locked_at"]
                 when = at if isinstance(at, datetime) else datetime.fromisoformat(str(at))
-                book.lock(rec["scope"], rec["reason"], rec["by"], at=when)
+                book.lock(str(rec["scope"]), str(rec["reason"]), str(rec["by"]), at=when)
             except KeyError as exc:
                 raise InvalidArgument(f"lock record lacks {exc.args[0]!r}: {dict(rec)!r}") from None
             except ValueError as exc:

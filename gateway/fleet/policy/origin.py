@@ -13,11 +13,53 @@ Altitudes stay metres above the autopilot's home, the frame every command is sen
 
 from __future__ import annotations
 
+from datetime import datetime
+
+from pydantic import BaseModel, Field
+
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
 from gateway.registry.records import ORIGIN_SOURCES, Origin, OriginSource
 
-__all__ = ["ORIGIN_SOURCES", "Origin", "OriginSource", "checked_point"]
+__all__ = ["ORIGIN_SOURCES", "Origin", "OriginSource", "OriginView", "checked_point", "origin_view"]
+
+Point = tuple[float, float, float]
+
+
+class OriginView(BaseModel):
+    """A vehicle's origin as the doors show it, beside the autopilot's current home."""
+
+    vehicle_id: str
+    origin: dict[str, float] | None = Field(description="lat, lon, alt_amsl_m; null until a home came.")
+    source: OriginSource | None = None
+    set_by: str | None = None
+    set_at: datetime | None = None
+    home: dict[str, float] | None = Field(None, description="The autopilot's current home.")
+    home_from_origin_m: float | None = Field(None, description="How far the autopilot's home is from it.")
+
+
+def _point(lat: float, lon: float, alt: float) -> dict[str, float]:
+    return {"lat": lat, "lon": lon, "alt_amsl_m": alt}
+
+
+def origin_view(vehicle_id: str, origin: Origin | Point | None, home: Point | None) -> OriginView:
+    """The origin (stored, with who set it; or the point in force) and how far the home is from it."""
+    current = None
+    out = OriginView(vehicle_id=vehicle_id, origin=None)
+    if isinstance(origin, Origin):
+        current = origin.point
+        out.source, out.set_by, out.set_at = origin.source, origin.set_by, origin.set_at
+    elif origin is not None:
+        current = origin
+    if current is not None:
+        out.origin = _point(*current)
+    if home is not None:
+        out.home = _point(*home)
+        if current is not None:
+            out.home_from_origin_m = round(
+                geo.horizontal_distance_m(current[0], current[1], home[0], home[1]), 2
+            )
+    return out
 
 
 def checked_point(lat: object, lon: object, alt_amsl_m: object) -> tuple[float, float, float]:

@@ -18,7 +18,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import asdict
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from gateway.config import Settings
 from gateway.errors import InvalidArgument
@@ -51,6 +51,7 @@ from gateway.fleet.policy.safety_rules import (
     refuse,
 )
 from gateway.fleet.policy.vehicle_limits import Limits, split_patterns
+from gateway.util.json_types import JsonObject, json_list
 
 if TYPE_CHECKING:
     from gateway.fleet.dialects.modes import ModeChoice
@@ -112,17 +113,17 @@ class SafetyPolicy:
         limits = [self.limits_for(v) for v in vehicle_ids] or [self.fleet_limits]
         return max(lim.min_altitude_m for lim in limits), min(lim.max_altitude_m for lim in limits)
 
-    def summary(self, vehicle_id: str | None = None) -> dict[str, Any]:
+    def summary(self, vehicle_id: str | None = None) -> JsonObject:
         """The rules in force (for a status tool or endpoint): limits, zones, deny lists, switches, locks."""
         zones = self.geofences.for_vehicle(vehicle_id) if vehicle_id else list(self.geofences)
-        out: dict[str, Any] = {
+        out: JsonObject = {
             "limits": asdict(self.limits_for(vehicle_id) if vehicle_id else self.fleet_limits),
             "min_separation_m": self.settings.min_separation_m,
             "agents_may_kill": self.settings.agents_may_kill,
             "simulators_only": self.settings.simulators_only,
-            "param_deny_patterns": list(self.param_deny_patterns),
-            "agent_param_allow": list(self.param_allow_patterns),
-            "mode_deny_in_air": sorted(self.mode_deny_in_air),
+            "param_deny_patterns": json_list(self.param_deny_patterns),
+            "agent_param_allow": json_list(self.param_allow_patterns),
+            "mode_deny_in_air": json_list(sorted(self.mode_deny_in_air)),
             "geofences": [{"name": z.name, "kind": z.kind, "scope": z.scope} for z in zones],
         }
         if vehicle_id:

@@ -8,24 +8,13 @@ from dataclasses import dataclass
 from typing import Protocol
 
 
-class PlannedPoint(Protocol):
-    """A point of a formation leg as the policy judges it (`gateway.fleet.formation.formation.LegPoint`)."""
-
-    @property
-    def lat(self) -> float: ...
-    @property
-    def lon(self) -> float: ...
-    @property
-    def alt_rel_m(self) -> float: ...
-
-
 class PlannedSlot(Protocol):
     """One drone's part of a formation plan (`gateway.fleet.formation.formation.SlotAssignment`)."""
 
     @property
     def drone_id(self) -> str: ...
     @property
-    def legs(self) -> Sequence[PlannedPoint]: ...
+    def legs(self) -> Sequence[Target]: ...
 
 
 class PlannedFormation(Protocol):

@@ -6,7 +6,7 @@ registry lookup: two spellings of one drone must never reach the fleet layer as 
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Mapping
 
 from gateway.fleet.vehicles.protocols import VehicleDirectory
 
@@ -22,7 +22,7 @@ def canonical_drone_id(directory: VehicleDirectory, drone_id: str) -> str:
     return matches[0] if len(matches) == 1 else drone_id
 
 
-def canonical_arguments(directory: VehicleDirectory, arguments: dict[str, Any]) -> dict[str, Any]:
+def canonical_arguments(directory: VehicleDirectory, arguments: Mapping[str, object]) -> dict[str, object]:
     """A verb's or a tool's arguments with ``drone_id`` and each of ``drone_ids`` made canonical."""
     out = dict(arguments)
     drone_id = out.get("drone_id")

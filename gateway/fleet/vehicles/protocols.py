@@ -24,7 +24,7 @@ no actions to stub, and the registry hands out whatever `FlyingVehicle` has.
 from __future__ import annotations
 
 from collections.abc import Awaitable, Callable, Mapping, Sequence
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Protocol, Unpack
 
 from gateway.errors import OwnedElsewhere
 from gateway.fleet.dialects.modes import ModeChoice
@@ -33,7 +33,8 @@ from gateway.fleet.policy.origin import Origin
 from gateway.fleet.policy.param_limits import ParamLimit
 from gateway.link.contract import GroundCommand
 from gateway.link.telemetry import TelemetryCache
-from gateway.registry.spec import VehicleSpec
+from gateway.registry.spec import VehicleChanges, VehicleSpec
+from gateway.util.json_types import JsonObject
 
 if TYPE_CHECKING:
     from gateway.link.contract import ConnectionState
@@ -73,7 +74,7 @@ class VehicleView(Protocol):
     def current_flight_id(self) -> int | None:
         """The flight being recorded here (armed now); None on the ground, or when another node records it."""
 
-    def status(self) -> dict[str, Any]: ...
+    def status(self) -> JsonObject: ...
 
     def require_ready(self) -> None:
         """Raise VehicleNotReady (naming the state and why) unless the vehicle can fly."""
@@ -240,7 +241,7 @@ class VehicleRegistry(VehicleDirectory, Protocol):
 
     async def add(self, spec: VehicleSpec, connect: bool = True) -> VehicleView: ...
 
-    async def update(self, vehicle_id: str, **changes: Any) -> VehicleView: ...
+    async def update(self, vehicle_id: str, **changes: Unpack[VehicleChanges]) -> VehicleView: ...
 
     async def remove(self, vehicle_id: str) -> None: ...
 

@@ -17,8 +17,8 @@ from __future__ import annotations
 
 import asyncio
 import logging
-from collections.abc import Awaitable, Callable, Iterable
-from typing import Any, Protocol
+from collections.abc import Awaitable, Callable, Iterable, Mapping
+from typing import Protocol, Unpack
 
 from pydantic import ValidationError
 
@@ -29,7 +29,7 @@ from gateway.fleet.vehicles.protocols import FlyingVehicle, VehicleView, flying
 from gateway.fleet.vehicles.vehicle import ConnectionState, Vehicle
 from gateway.link.sidecar import Confine
 from gateway.registry.records import VehicleRecord
-from gateway.registry.spec import VehicleSpec, gcs_endpoint_conflict
+from gateway.registry.spec import VehicleChanges, VehicleSpec, gcs_endpoint_conflict
 from gateway.registry.store import Store
 
 log = logging.getLogger("gateway.registry")
@@ -113,7 +113,7 @@ class Registry:
             self._started = False
 
     # --- registrations ----------------------------------------------------------------------------------
-    async def add(self, spec: VehicleSpec | dict[str, Any], connect: bool = True) -> RegisteredVehicle:
+    async def add(self, spec: VehicleSpec | Mapping[str, object], connect: bool = True) -> RegisteredVehicle:
         """Register (persist) a vehicle and, by default, connect it. Raises DuplicateVehicle."""
         spec = _validate_spec(spec)
         async with self._lock:
@@ -129,11 +129,11 @@ class Registry:
         await self._registrations_changed()
         return vehicle
 
-    async def update(self, vehicle_id: str, **changes: Any) -> RegisteredVehicle:
+    async def update(self, vehicle_id: str, **changes: Unpack[VehicleChanges]) -> RegisteredVehicle:
         """Change name, tags, expected_sysid, url, gcs_endpoints or auto_connect; a new URL or new ground
         station endpoints reconnect the vehicle."""
         old = self.get(vehicle_id)
-        link: dict[str, Any] = {k: changes[k] for k in ("url", "gcs_endpoints") if k in changes}
+        link = {k: v for k, v in changes.items() if k in ("url", "gcs_endpoints")}
         if link:
             self._refuse_crossed_links(_validate_spec({**old.spec.model_dump(), **link}))
         record = await self.store.update_vehicle(vehicle_id, **changes)
@@ -312,7 +312,7 @@ class Registry:
                 log.exception("state listener failed")
 
 
-def _validate_spec(spec: VehicleSpec | dict[str, Any]) -> VehicleSpec:
+def _validate_spec(spec: VehicleSpec | Mapping[str, object]) -> VehicleSpec:
     try:
         return VehicleSpec.model_validate(spec.model_dump() if isinstance(spec, VehicleSpec) else spec)
     except ValidationError as exc:

@@ -20,7 +20,6 @@ import logging
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from typing import Any
 
 from gateway.config import Settings
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
@@ -47,6 +46,7 @@ from gateway.link.sidecar import Confine, Sidecar
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import AuditEntry, Store
+from gateway.util.json_types import JsonObject
 
 log = logging.getLogger("gateway.vehicle")
 
@@ -202,7 +202,7 @@ class Vehicle:
     def initialising(self) -> str | None:
         return self.link.initialising()
 
-    def status(self) -> dict[str, Any]:
+    def status(self) -> JsonObject:
         return link_status(self.link)
 
     def require_ready(self) -> None:

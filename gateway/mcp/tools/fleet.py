@@ -1,23 +1,18 @@
 """Fleet toolset: several drones as one group. Listing, status and monitoring here; formations, fleet
 takeoff, landing, RTL and hold are commands, declared with their verbs.
 
-Who takes part (the same rule for every fleet tool, also in docs/fleet.md):
-- formation_goto and fleet_takeoff change the fleet's geometry: every named drone is checked first and
-  if any cannot take part (unknown, not ready, locked, busy, low battery, on the ground...) nothing is
-  sent and the error names each such drone with the reason (rule and numbers).
-- fleet_land, fleet_return_to_launch and fleet_hold bring drones down or stop them: they go to every
-  drone that can take them, and the result lists the others (not_sent) with the reason.
-
-Who takes part in each is decided by the Commander (`gateway.fleet.commands.fleet_verbs`); commands go out to
-all drones at once; long ones wait (capped) like the single-drone tools and answer 'running' with an
-operation id that monitor_fleet continues (`gateway.mcp.presenters` presents them).
+Who takes part in each is decided by the Commander (`gateway.fleet.commands.fleet_verbs`, whose docstring
+and docs/fleet.md state the rule); commands go out to all drones at once; long ones wait (capped) like the
+single-drone tools and answer 'running' with an operation id that monitor_fleet continues
+(`gateway.mcp.presenters` presents them).
 """
 
 from __future__ import annotations
 
-from typing import Annotated, Literal, TypedDict
+from typing import Annotated, Literal, NotRequired
 
-from pydantic import BaseModel, Field
+from pydantic import Field
+from typing_extensions import TypedDict  # pydantic takes typing's TypedDict from Python 3.12 on
 
 from gateway.fleet.vehicles.protocols import VehicleView
 from gateway.fleet.vehicles.readings import value
@@ -36,9 +31,10 @@ StateFilter = Literal[
 # --- results -----------------------------------------------------------------------------------------
 
 
-# a plain model, not a Result: a row has no text of its own, and without a private attribute pydantic-core
-# builds each row with no Python hook (no docstring either: it would go into the output schema)
-class DroneRow(BaseModel):
+# a plain TypedDict, not a Result: a row has no text of its own; the listing builds each row as a dict and
+# validates all rows at once (one pass in pydantic-core, no Python hook per row; no docstring either: it
+# would go into the output schema)
+class DroneRow(TypedDict):
     drone_id: str
     name: str | None
     tags: list[str]
@@ -53,27 +49,7 @@ class DroneRow(BaseModel):
     operation: str | None
     locked: str | None
     stale: bool
-    initialising: str | None = None  # while connected, what the drone still waits for before it can fly
-
-
-class RowValues(TypedDict):
-    """A `DroneRow`'s values, before the listing validates all rows at once."""
-
-    drone_id: str
-    name: str | None
-    tags: list[str]
-    state: str
-    armed: bool | None
-    in_air: bool | None
-    battery_pct: float | None
-    lat_deg: float | None
-    lon_deg: float | None
-    alt_m: float | None
-    flight_mode: str | None
-    operation: str | None
-    locked: str | None
-    stale: bool
-    initialising: str | None
+    initialising: NotRequired[str | None]  # while connected, what the drone still waits for before it can fly
 
 
 class DronesOut(Result):
@@ -91,7 +67,7 @@ class FleetStatusOut(Result):
 # --- read tools ----------------------------------------------------------------------------------------
 
 
-def _row(call: ToolCall, v: VehicleView) -> RowValues:
+def _row(call: ToolCall, v: VehicleView) -> DroneRow:
     """One drone's row, each value computed once (its state too), as the plain values of a ``DroneRow``:
     the listing validates all rows at once when it builds its ``DronesOut`` (one pass in pydantic-core
     instead of a model per row)."""
@@ -122,7 +98,7 @@ def _row(call: ToolCall, v: VehicleView) -> RowValues:
     }
 
 
-def _matches(row: RowValues, state: str | None) -> bool:
+def _matches(row: DroneRow, state: str | None) -> bool:
     if state is None:
         return True
     if state == "flying":
@@ -149,7 +125,7 @@ async def list_drones(
     )
 
 
-def _row_text(r: RowValues) -> str:
+def _row_text(r: DroneRow) -> str:
     state = f"{r['state']} ({r['initialising']})" if r["initialising"] else r["state"]
     flying = " flying" if r["in_air"] else ""
     text = f"{r['drone_id']} {state}{flying} bat {r['battery_pct']}% alt {r['alt_m']} m"

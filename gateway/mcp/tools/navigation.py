@@ -1,15 +1,12 @@
-"""Navigation toolset: where the drone is, where it goes, and waiting for it to get there."""
+"""Navigation toolset: where the drone is and whether it got there (reads); where it goes and waiting
+for it (monitor_flight) are commands, declared with their verbs."""
 
 from __future__ import annotations
 
-from typing import Annotated
-
-from pydantic import Field
-
 from gateway.errors import VehicleNotReady
 from gateway.fleet.vehicles.readings import age_s, is_stale, value
-from gateway.mcp.access import ToolCall, operation_out
-from gateway.mcp.results import ArrivalOut, OperationOut, PositionOut
+from gateway.mcp.access import ToolCall
+from gateway.mcp.results import ArrivalOut, PositionOut
 from gateway.mcp.toolkit import DroneId, Toolset
 
 toolset = Toolset("navigation")
@@ -65,23 +62,4 @@ async def check_arrival(call: ToolCall, drone_id: DroneId) -> ArrivalOut:
     text = (
         f"{drone_id}: no goto sent yet" if a.kind is None else f"{drone_id} {a.kind} {a.status}: {a.message}"
     )
-    return ArrivalOut(
-        drone_id=drone_id,
-        arrived=a.arrived,
-        operation_id=a.operation_id,
-        status=a.status,
-        distance_m=a.distance_m,
-        vertical_m=a.vertical_m,
-        message=a.message,
-    ).say(text)
-
-
-@toolset.tool()
-async def monitor_flight(
-    call: ToolCall,
-    drone_id: DroneId,
-    land_on_arrival: Annotated[bool, Field(description="Land once the goto arrives")] = False,
-) -> OperationOut:
-    """Wait (capped) for the drone's current action to finish and report it; call again if still running."""
-    op = await call.commander.monitor(call.caller, drone_id, land_on_arrival, on_progress=call.progress)
-    return operation_out(op)
+    return ArrivalOut.model_validate(a, from_attributes=True).say(text)

@@ -8,20 +8,21 @@ from __future__ import annotations
 
 import json
 import math
-from typing import Annotated, Any
+from collections.abc import Callable
+from typing import Annotated, TypeVar
 
 from pydantic import Field
 
 from gateway.errors import VehicleNotReady
 from gateway.fleet.vehicles.readings import is_stale
 from gateway.fleet.vehicles.vehicle_text import VEHICLE_TEXT_LABEL, clean_vehicle_text
+from gateway.link.telemetry import Sample, TelemetryCache
 from gateway.mcp.access import ToolCall
 from gateway.mcp.results import (
     AttitudeOut,
     BatteryOut,
     DataOut,
     GpsOut,
-    JsonLike,
     SnapshotOut,
     SpeedOut,
     StatusTextOut,
@@ -31,15 +32,19 @@ from gateway.mcp.results import (
     surface_telemetry,
 )
 from gateway.mcp.toolkit import DroneId, Toolset
+from gateway.util.json_types import JsonValue
 
 toolset = Toolset("telemetry")
 
+T = TypeVar("T")
 
-# a part read by name, whichever of the cache's value types it holds (each tool reads its own fields)
-def read(call: ToolCall, drone_id: str, name: str) -> tuple[Any, float, bool, str]:
-    """(value, age_s, stale, note) of one cached telemetry part."""
+
+def read(
+    call: ToolCall, drone_id: str, name: str, pick: Callable[[TelemetryCache], Sample[T] | None]
+) -> tuple[T, float, bool, str]:
+    """(value, age_s, stale, note) of one cached telemetry part (``pick`` reads it of the cache)."""
     v = call.commander.vehicle(drone_id)
-    s = getattr(v.telemetry, name, None)
+    s = pick(v.telemetry)
     if s is None:
         raise VehicleNotReady(f"no {name.replace('_', ' ')} received from {drone_id} yet (state: {v.state})")
     age = float(s.age_s)
@@ -48,23 +53,55 @@ def read(call: ToolCall, drone_id: str, name: str) -> tuple[Any, float, bool, st
     return s.value, round(age, 2), stale, note
 
 
+def _named(name: str) -> Callable[[TelemetryCache], Sample[object] | None]:
+    """Read the part called ``name`` (the value and data tools present any part alike)."""
+
+    def pick(cache: TelemetryCache) -> Sample[object] | None:
+        found: Sample[object] | None = getattr(cache, name, None)
+        return found
+
+    return pick
+
+
 def _value_tool(call: ToolCall, drone_id: str, name: str, label: str) -> ValueOut:
-    val, age, stale, note = read(call, drone_id, name)
-    val = plain(val)
+    got, age, stale, note = read(call, drone_id, name, _named(name))
+    val = plain(got)
     return ValueOut(drone_id=drone_id, age_s=age, stale=stale, value=val).say(
         f"{drone_id} {label}: {val}{note}"
     )
 
 
 def _data_tool(call: ToolCall, drone_id: str, name: str) -> DataOut:
-    val, age, stale, note = read(call, drone_id, name)
-    data = plain(val)
+    got, age, stale, note = read(call, drone_id, name, _named(name))
+    data = plain(got)
     if not isinstance(data, dict):
         data = {"value": data}
     text = ", ".join(f"{k}={_short(v)}" for k, v in data.items())
     return DataOut(drone_id=drone_id, age_s=age, stale=stale, data=data).say(
         f"{drone_id} {name}: {text}{note}"
     )
+
+
+def _value_reader(name: str, part: str, label: str, doc: str) -> None:
+    """Declare the read tool ``name``: the cached telemetry part ``part`` as one value, said as ``label``."""
+
+    async def read_value(call: ToolCall, drone_id: DroneId) -> ValueOut:
+        return _value_tool(call, drone_id, part, label)
+
+    read_value.__name__ = read_value.__qualname__ = name
+    read_value.__doc__ = doc
+    toolset.tool(read_only=True)(read_value)
+
+
+def _data_reader(name: str, part: str, doc: str) -> None:
+    """Declare the read tool ``name``: the fields of the cached telemetry part ``part``."""
+
+    async def read_data(call: ToolCall, drone_id: DroneId) -> DataOut:
+        return _data_tool(call, drone_id, part)
+
+    read_data.__name__ = read_data.__qualname__ = name
+    read_data.__doc__ = doc
+    toolset.tool(read_only=True)(read_data)
 
 
 def _short(v: object) -> str:
@@ -78,7 +115,7 @@ def _short(v: object) -> str:
 @toolset.tool(read_only=True)
 async def get_battery(call: ToolCall, drone_id: DroneId) -> BatteryOut:
     """Battery remaining_pct (0-100) and voltage_v."""
-    b, age, stale, note = read(call, drone_id, "battery")
+    b, age, stale, note = read(call, drone_id, "battery", lambda t: t.battery)
     pct = plain(b.remaining_pct)
     volts = plain(b.voltage_v)
     pct_text = "unknown" if pct is None else f"{pct:.0f}%"
@@ -88,22 +125,20 @@ async def get_battery(call: ToolCall, drone_id: DroneId) -> BatteryOut:
     )
 
 
-@toolset.tool(read_only=True)
-async def get_flight_mode(call: ToolCall, drone_id: DroneId) -> ValueOut:
-    """Current flight mode name (e.g. GUIDED, AUTO, RTL, LAND)."""
-    return _value_tool(call, drone_id, "flight_mode", "flight mode")
+_value_reader(
+    "get_flight_mode",
+    "flight_mode",
+    "flight mode",
+    "Current flight mode name (e.g. GUIDED, AUTO, RTL, LAND).",
+)
 
-
-@toolset.tool(read_only=True)
-async def get_health(call: ToolCall, drone_id: DroneId) -> DataOut:
-    """Sensor/arming health flags."""
-    return _data_tool(call, drone_id, "health")
+_data_reader("get_health", "health", "Sensor/arming health flags.")
 
 
 @toolset.tool(read_only=True)
 async def get_health_all_ok(call: ToolCall, drone_id: DroneId) -> ValueOut:
     """true when every health check passes and the drone is armable."""
-    h, age, stale, note = read(call, drone_id, "health")
+    h, age, stale, note = read(call, drone_id, "health", lambda t: t.health)
     flags = plain(h)
     if isinstance(flags, dict):
         failing = sorted(k for k, x in flags.items() if x is False)
@@ -119,7 +154,7 @@ async def get_health_all_ok(call: ToolCall, drone_id: DroneId) -> ValueOut:
 @toolset.tool(read_only=True)
 async def get_speed(call: ToolCall, drone_id: DroneId) -> SpeedOut:
     """Velocity m/s north/east, climb (negative: descending) and ground speed."""
-    vel, age, stale, note = read(call, drone_id, "velocity_ned")
+    vel, age, stale, note = read(call, drone_id, "velocity_ned", lambda t: t.velocity_ned)
     n, e, d = float(vel.north_mps), float(vel.east_mps), float(vel.down_mps)
     gs = math.hypot(n, e)
     return SpeedOut(
@@ -136,7 +171,7 @@ async def get_speed(call: ToolCall, drone_id: DroneId) -> SpeedOut:
 @toolset.tool(read_only=True)
 async def get_attitude(call: ToolCall, drone_id: DroneId) -> AttitudeOut:
     """Roll, pitch, yaw in degrees."""
-    a, age, stale, note = read(call, drone_id, "attitude")
+    a, age, stale, note = read(call, drone_id, "attitude", lambda t: t.attitude)
     r, p, y = float(a.roll_deg), float(a.pitch_deg), float(a.yaw_deg)
     return AttitudeOut(
         drone_id=drone_id,
@@ -151,53 +186,28 @@ async def get_attitude(call: ToolCall, drone_id: DroneId) -> AttitudeOut:
 @toolset.tool(read_only=True)
 async def get_gps_info(call: ToolCall, drone_id: DroneId) -> GpsOut:
     """GPS satellites and fix type."""
-    g, age, stale, note = read(call, drone_id, "gps_info")
+    g, age, stale, note = read(call, drone_id, "gps_info", lambda t: t.gps_info)
     fix = plain(g.fix_type)
     return GpsOut(
         drone_id=drone_id, age_s=age, stale=stale, num_satellites=int(g.num_satellites), fix_type=str(fix)
     ).say(f"{drone_id} GPS {fix}, {g.num_satellites} satellites{note}")
 
 
-@toolset.tool(read_only=True)
-async def get_in_air(call: ToolCall, drone_id: DroneId) -> ValueOut:
-    """true when flying."""
-    return _value_tool(call, drone_id, "in_air", "in air")
+_value_reader("get_in_air", "in_air", "in air", "true when flying.")
 
+_value_reader("get_armed", "armed", "armed", "true when the motors are armed.")
 
-@toolset.tool(read_only=True)
-async def get_armed(call: ToolCall, drone_id: DroneId) -> ValueOut:
-    """true when the motors are armed."""
-    return _value_tool(call, drone_id, "armed", "armed")
+_value_reader(
+    "get_landed_state", "landed_state", "landed state", "ON_GROUND, TAKING_OFF, IN_AIR, LANDING or UNKNOWN."
+)
 
+_data_reader("get_rc_status", "rc_status", "RC link: available, signal strength %.")
 
-@toolset.tool(read_only=True)
-async def get_landed_state(call: ToolCall, drone_id: DroneId) -> ValueOut:
-    """ON_GROUND, TAKING_OFF, IN_AIR, LANDING or UNKNOWN."""
-    return _value_tool(call, drone_id, "landed_state", "landed state")
+_value_reader("get_heading", "heading_deg", "heading deg", "Compass heading, degrees from north.")
 
+_data_reader("get_imu", "imu", "IMU: acceleration m/s², angular rate rad/s, temperature °C.")
 
-@toolset.tool(read_only=True)
-async def get_rc_status(call: ToolCall, drone_id: DroneId) -> DataOut:
-    """RC link: available, signal strength %."""
-    return _data_tool(call, drone_id, "rc_status")
-
-
-@toolset.tool(read_only=True)
-async def get_heading(call: ToolCall, drone_id: DroneId) -> ValueOut:
-    """Compass heading, degrees from north."""
-    return _value_tool(call, drone_id, "heading_deg", "heading deg")
-
-
-@toolset.tool(read_only=True)
-async def get_imu(call: ToolCall, drone_id: DroneId) -> DataOut:
-    """IMU: acceleration m/s², angular rate rad/s, temperature °C."""
-    return _data_tool(call, drone_id, "imu")
-
-
-@toolset.tool(read_only=True)
-async def get_odometry(call: ToolCall, drone_id: DroneId) -> DataOut:
-    """Odometry: body-frame position m, velocity m/s, orientation."""
-    return _data_tool(call, drone_id, "odometry")
+_data_reader("get_odometry", "odometry", "Odometry: body-frame position m, velocity m/s, orientation.")
 
 
 @toolset.tool(read_only=True)
@@ -216,7 +226,7 @@ async def print_status_text(
     )
 
 
-def _status_text(item: object) -> dict[str, JsonLike]:
+def _status_text(item: object) -> dict[str, JsonValue]:
     if isinstance(item, tuple | list) and len(item) == 3:
         t, severity, text = item
     else:
