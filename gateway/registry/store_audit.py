@@ -16,7 +16,8 @@ from dataclasses import dataclass
 from datetime import UTC, datetime
 from typing import Any, cast, get_args
 
-from sqlalchemy import func, insert, or_, select, update
+from sqlalchemy import Insert, func, insert, or_, select, update
+from sqlalchemy.dialects import postgresql, sqlite
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.ext.asyncio import AsyncEngine, AsyncSession
 from sqlalchemy.sql.elements import ColumnElement
@@ -199,20 +200,33 @@ class AuditTrail(StoreCore):
         )
 
         t = values["t"]
-        data = {"values": {**values, "t": t.isoformat() if isinstance(t, datetime) else t}}
+        data: dict[str, Any] = {"values": {**values, "t": t.isoformat() if isinstance(t, datetime) else t}}
+        data["call_id"] = uuid.uuid4().hex  # written once, however often the write is tried
         return cast(int | None, await self._kept(f"the audit row of {values['action']}", "audit", data))
 
     async def _write_audit(self, data: dict[str, Any]) -> int:
         values = {**data["values"], "t": datetime.fromisoformat(data["values"]["t"])}
-        row = AuditRow(**values)  # a fresh row for each attempt
+        call_id = data.get("call_id") or uuid.uuid4().hex  # (a write kept by an older version has none)
+        statement = self._insert_once().returning(AuditRow.id)
         async with self._sessions.begin() as session:
-            session.add(row)
-            await session.flush()
-            row_id = int(row.id)
-        self._audit_written(row)
+            row_id = (await session.scalars(statement, [{**values, "call_id": call_id}])).first()
+            if row_id is None:  # written by an earlier try (its answer lost): that row, not a second one
+                query = select(AuditRow.id).where(AuditRow.call_id == call_id)
+                return int((await session.scalars(query)).one())
+        self._audit_written(AuditRecord.model_validate({**values, "id": row_id}))
         if values["outcome"] == "running" and values["operation_id"] is not None:
             await self._finish_if_ended(values["operation_id"])
-        return row_id
+        return int(row_id)
+
+    def _insert_once(self) -> Insert:
+        """An insert of audit rows that skips a row whose call id is already stored: a write tried again
+        (its first try timed out after its commit, or the spool wrote it again) adds no row."""
+        if self.engine.dialect.name == "postgresql":
+            return postgresql.insert(AuditRow).on_conflict_do_nothing(index_elements=[AuditRow.call_id])
+        if self.engine.dialect.name == "sqlite":
+            return sqlite.insert(AuditRow).on_conflict_do_nothing(index_elements=[AuditRow.call_id])
+        name = self.engine.dialect.name
+        raise ValueError(f"the audit trail needs PostgreSQL or SQLite; the database is {name}")
 
     def queue_audit(self, entry: AuditEntry, seen: SessionSeen | None = None) -> None:
         """Record one call without waiting for the database (the MCP door's path, per tool call).
@@ -313,17 +327,23 @@ class AuditTrail(StoreCore):
                 await self._kept(f"{len(batch)} audit rows", "audit_batch", data)
             except Exception:
                 log.exception("could not write %d audit rows at once; writing them one by one", len(batch))
-                for item in batch:
+                for (entry, _seen), row in zip(batch, data["rows"], strict=True):
                     try:
-                        await self._write_audit_batch([item])
+                        await self._write_audit_batch_of({"rows": [row]})
                     except Exception:
-                        log.exception("could not write the audit row of %s", item[0].action)
+                        log.exception("could not write the audit row of %s", entry.action)
 
     @staticmethod
     def _batch_data(batch: list[tuple[AuditEntry, SessionSeen | None]]) -> dict[str, Any]:
+        """The rows as the spool keeps them, each with its call's id (its row is written once, however
+        often the write is tried)."""
         return {
             "rows": [
-                {"entry": e.model_dump(mode="json"), "seen": None if s is None else dataclasses.asdict(s)}
+                {
+                    "entry": e.model_dump(mode="json"),
+                    "seen": None if s is None else dataclasses.asdict(s),
+                    "call_id": uuid.uuid4().hex,
+                }
                 for e, s in batch
             ]
         }
@@ -333,32 +353,30 @@ class AuditTrail(StoreCore):
             (AuditEntry.model_validate(r["entry"]), SessionSeen(**r["seen"]) if r["seen"] else None)
             for r in data["rows"]
         ]
-        call_ids = [r.get("call_id") for r in data["rows"]]
-        if any(call_ids):  # the rows of calls written before their command was sent (`AuditCall`)
-            await self._write_audit_batch(batch, call_ids=call_ids)
-        else:
-            await self._write_audit_batch(batch)
+        # a write kept by an older version names no call: a fresh id for each of its rows
+        call_ids = [r.get("call_id") or uuid.uuid4().hex for r in data["rows"]]
+        await self._write_audit_batch(batch, call_ids)
 
     async def _write_audit_batch(
-        self, batch: list[tuple[AuditEntry, SessionSeen | None]], *, call_ids: list[str | None] | None = None
+        self, batch: list[tuple[AuditEntry, SessionSeen | None]], call_ids: list[str]
     ) -> None:
-        seen: dict[str, tuple[SessionSeen, int]] = {}
-        for _entry, s in batch:
-            if s is not None:
-                seen[s.key[:200]] = (s, seen.get(s.key[:200], (s, 0))[1] + 1)
+        """Insert the rows whose call id is not stored yet, and touch their sessions, in one transaction.
+        A row already stored (an earlier try of this write committed, and its answer was lost to a
+        timeout, or the spool wrote it again) is neither inserted nor counted again."""
         values = [self._audit_values(entry) for entry, _ in batch]
-        rows = [
-            {**v, "call_id": call_id} if call_id else v
-            for v, call_id in zip(values, call_ids or [None] * len(values), strict=True)
-        ]
+        rows = [{**v, "call_id": call_id} for v, call_id in zip(values, call_ids, strict=True)]
+        statement = self._insert_once().returning(AuditRow.id, AuditRow.call_id)
         async with self._sessions.begin() as session:
+            inserted = {c: i for i, c in (await session.execute(statement, rows)).all()}
+            seen: dict[str, tuple[SessionSeen, int]] = {}
+            for (_entry, s), call_id in zip(batch, call_ids, strict=True):
+                if s is not None and call_id in inserted:
+                    seen[s.key[:200]] = (s, seen.get(s.key[:200], (s, 0))[1] + 1)
             for key, (s, count) in seen.items():
                 await self._touch_in(session, key, s, count)
-            statement = insert(AuditRow).returning(AuditRow.id, sort_by_parameter_order=True)
-            ids = (await session.scalars(statement, rows)).all()
-        for (entry, _s), row, row_id in zip(batch, values, ids, strict=True):
-            if self._audit_listeners:
-                self._audit_written(AuditRecord.model_validate({**row, "id": row_id}))
+        for (entry, _s), row, call_id in zip(batch, values, call_ids, strict=True):
+            if self._audit_listeners and call_id in inserted:
+                self._audit_written(AuditRecord.model_validate({**row, "id": inserted[call_id]}))
             if entry.outcome == "running" and entry.operation_id is not None:
                 await self._finish_if_ended(entry.operation_id)
 
