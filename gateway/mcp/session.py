@@ -12,12 +12,13 @@ starts an operation on a drone has its row written the moment the command pass s
 (`gateway.fleet.commands.command_pass.AUDIT_SENT`: outcome running, naming the operation), and the store
 completes the row when the operation ends; every other call's row is written when the call ends.
 
-A call of a tool that commands a drone (a verb's tool) has its row written before anything is sent
-(`Store.audit_call`: outcome running), waited for up to `CALL_ROW_WAIT_S` (a database that hangs does not
-hold the command longer; the write goes on), except for the stops (land, return, hold, kill, disarm and
-their fleet forms), which are sent at once with their row written beside them; the call's end (or the
-operation it started) is written before the call is answered (`CALL_END_WAIT_S`: in the database, or in
-the spool file). So a node killed while or just after it ran the call keeps its row.
+A call of a tool that commands a drone (a verb's tool; not a read: monitor_flight) has its row written
+before anything is sent (`Store.audit_call`: outcome running), waited for up to `CALL_ROW_WAIT_S` (a
+database that hangs does not hold the command longer; the write goes on), except for the stops (land,
+return, hold, kill, disarm and their fleet forms), which are sent at once with their row written beside
+them; the call's end (or the operation it started) is written before the call is answered
+(`CALL_END_WAIT_S`: in the database, or in the spool file). So a node killed while or just after it ran
+the call keeps its row.
 """
 
 from __future__ import annotations
@@ -31,7 +32,7 @@ import anyio
 from mcp.server.auth.middleware.auth_context import get_access_token
 from pydantic import BaseModel
 
-from gateway.fleet.commands.command_core import TOOLS
+from gateway.fleet.commands.command_core import READ_VERBS, TOOLS
 from gateway.fleet.commands.command_pass import AUDIT_SENT
 from gateway.fleet.operations.routing import ACTING
 from gateway.fleet.policy.caller import Caller
@@ -174,8 +175,8 @@ class SessionAudit:
         """The row of a call of a tool that commands a drone, started before anything is sent."""
         store, info, arguments = audited.store, audited.info, audited.arguments
         vehicle_id = audited.call.vehicle_id
-        if store is None or audited.tool not in TOOLS:
-            return None
+        if store is None or audited.tool not in TOOLS or TOOLS[audited.tool].verb in READ_VERBS:
+            return None  # (a read commands nothing: its row is written when it ends)
         self._note_touched(info)
         try:
             return store.audit_call(

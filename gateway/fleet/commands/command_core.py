@@ -112,12 +112,13 @@ def routed(method: VerbMethod) -> VerbMethod:
         wait_s = float(arguments.get("cap_s") or self.commands.settings.mcp_wait_cap_s)
         relay = _relay(callbacks)
         seen: dict[str, str] = {}  # the operation the owner reported (its progress), to follow it
+        starts = name not in READ_VERBS  # a read (a wait on a running operation) starts none of its own
 
         async def watch(body: ProgressMessage) -> None:
             view = body.get("view")
             operation_id = view.get("operation_id") if isinstance(view, dict) else None
             if isinstance(operation_id, str):
-                if seen.get("operation_id") != operation_id and (note := AUDIT_SENT.get()) is not None:
+                if starts and seen.get("operation_id") != operation_id and (note := AUDIT_SENT.get()):
                     note(operation_id)  # the call's audit row names it: its end finishes the row
                 seen["operation_id"] = operation_id
             if relay is not None:
