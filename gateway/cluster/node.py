@@ -31,6 +31,7 @@ from gateway.cluster.leases import Lease, LeaseStore, NodeRecord
 from gateway.cluster.lock_versions import FAMILIES, LockVersions
 from gateway.cluster.owner_calls import OwnerCalls
 from gateway.cluster.remote import RemoteVehicle
+from gateway.cluster.renewal import SELF_FENCE_SHARE, LeaseRenewal
 from gateway.cluster.runtime_view import NodeRuntime
 from gateway.cluster.stop_notify import StopRelay
 from gateway.cluster.stop_takeover import StopTakeover
@@ -49,8 +50,7 @@ if TYPE_CHECKING:
 log = logging.getLogger("gateway.cluster")
 
 #: a node stops its sidecars when it could not renew for this share of the lease time (before anyone
-#: else may take them over at the full lease time)
-SELF_FENCE_SHARE = 0.8
+#: else may take them over at the full lease time): `gateway.cluster.renewal.SELF_FENCE_SHARE`
 CONNECT_TIMEOUT_S = 15.0
 #: a tick may run past the moment the fence is due by this share of the lease time (half the time
 #: between that moment and the leases' expiry), so that a renewal under way can still finish
@@ -110,6 +110,7 @@ class ClusterNode:
         self.fanout = TelemetryFanout(self)
         self.calls = OwnerCalls(self)  # calls routed to a drone's owner, and answered for this node's
         self.relay: StopRelay | None = None  # stops through PostgreSQL when the bus does not carry them
+        self.renewal: LeaseRenewal | None = None  # the leases renewed apart from the keeper's other work
         self.takeover = StopTakeover(self)  # stops no owner acknowledged: this node commands the drone
         self.nodes: list[NodeRecord] = []
         self.all_leases: dict[str, Lease] = {}
@@ -155,6 +156,8 @@ class ClusterNode:
         store.lock_superseded = self.lock_versions.superseded
         self.relay = StopRelay(store.url, self.node_id, self.calls.relayed_stop)
         await self.relay.start()
+        self.renewal = LeaseRenewal(self, store.url)
+        self.renewal.start()
         self.started = True
         log.info("cluster node %s (tags %s) joined; lease %.0f s", self.node_id, self.tags or "none",
                  self.settings.cluster_lease_ttl_s)  # fmt: skip
@@ -170,6 +173,8 @@ class ClusterNode:
             task.cancel()
         await asyncio.gather(*self._tasks, return_exceptions=True)
         self._tasks = []
+        if self.renewal is not None:
+            await self.renewal.stop()
         if self._adoptions:  # let an adoption under way finish first: then its sidecar is stopped below
             await asyncio.wait(set(self._adoptions), timeout=LEAVE_TIMEOUT_S * 3)
         await self.takeover.close()
