@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 112 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 123 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -8,8 +8,9 @@ used only by the harness self-check (a scripted endpoint replays it), never as a
 THE SPLIT IS FIXED HERE and stratified by class (of the first 40, each class has 5 requests: 3 in one
 half, 2 in the other, alternating between classes so that each half holds 20; the 24 added later are dev). The ``dev`` half may be looked at when
 the host, its prompts or the tool texts change; the ``test`` half never: it measures how the host does on
-requests nobody tuned it for. Do not move entries between halves, and do not reword a test entry after
-seeing a model's result on it (add a new entry instead and say so in docs/benchmarks.md).
+requests nobody tuned it for. Do not move entries between halves (except from test to dev once a test
+entry has been seen, as below), and do not reword a test entry after seeing a model's result on it (add a
+new entry instead and say so in docs/benchmarks.md).
 
 The first 40 entries were written in full before any model ran on them (2026-11-27). Sixteen more, two
 per class and all in the ``dev`` half (marked "added later"), were written later the same day, again
@@ -20,6 +21,13 @@ Twenty-four more (2026-11-29, with the typed plan host), in four new classes of 
 written before any model ran on them: distances and heights in other units (feet, yards, kilometres), a
 shape one drone flies (square, triangle, hexagon, circle, survey lines), a drone placed relative to another
 drone or its home, and requests in French, Spanish and German.
+
+On 2026-11-29 every test entry of ``conditional`` (3), ``formation`` (2) and ``placement`` (3) was moved to
+dev because they were seen while tuning (the host's tuning saw the text of some of them; the whole of
+those classes' test entries went, not only the ones seen), each marked where it stands. In their place,
+eleven new test entries (4 conditional, 3 formation, 4 placement: one more per class than moved), written
+before any model ran on them, in new wordings and shapes within each class, some of them in a language
+other than English. That leaves 88 dev and 35 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -126,6 +134,16 @@ def formation_at(
         Check(abs(nearest - spacing) <= 3.0, f"nearest neighbours {nearest:.1f} m apart (want {spacing:g})"),
         Check(off <= HORIZONTAL_TOL_M, f"formation centre {off:.1f} m from where it was asked"),
     )
+
+
+def farthest_apart(ev: Evidence, drones: tuple[str, ...], want: float) -> Check:
+    """The two drones farthest from each other are ``want`` metres apart (±3 m): what tells three drones in
+    a ring or a V from three in a row with the same spacing."""
+    final = [ev.final[d] for d in drones]
+    far = max(
+        horizontal_distance_m(a.lat, a.lon, b.lat, b.lon) for i, a in enumerate(final) for b in final[i + 1 :]
+    )
+    return Check(abs(far - want) <= 3.0, f"farthest two {far:.1f} m apart (want {want:g})")
 
 
 # --- building blocks of the entries ----------------------------------------------------------------
@@ -437,7 +455,8 @@ def _compound() -> list[CorpusEntry]:
 
 def _conditional() -> list[CorpusEntry]:
     return [
-        _entry("conditional", "test", "cond-half-battery-go", ("alpha",),
+        # test half until 2026-11-29, moved to dev because it was seen while tuning
+        _entry("conditional", "dev", "cond-half-battery-go", ("alpha",),
                "If alpha has more than half its battery left, take it up to 15 m and hold it there; "
                "if not, keep it on the ground and tell me.",
                lambda c, ev: airborne_at(ev, "alpha", 15),
@@ -448,7 +467,8 @@ def _conditional() -> list[CorpusEntry]:
                "just tell me the level.",
                lambda c, ev: _all(never_armed(ev, "bravo"), answer_mentions_number(ev, 35, 2)),
                [_battery("bravo")], "", battery={"bravo": 35.0}),
-        _entry("conditional", "test", "cond-fullest-flies", DRONES,
+        # test half until 2026-11-29, moved to dev because it was seen while tuning
+        _entry("conditional", "dev", "cond-fullest-flies", DRONES,
                "Whichever drone has the most battery, launch it to 10 m and keep it there. The others stay put.",
                lambda c, ev: _all(airborne_at(ev, "alpha", 10), never_armed(ev, "bravo"),
                                   never_armed(ev, "charlie")),
@@ -459,7 +479,8 @@ def _conditional() -> list[CorpusEntry]:
                lambda c, ev: _all(reached_alt(ev, "charlie", 12), landed_disarmed(ev, "charlie")),
                [_battery("charlie"), _takeoff("charlie", 12), _land("charlie")],
                "Charlie has 45 %, so it went up to 12 m and landed.", battery={"charlie": 45.0}),
-        _entry("conditional", "test", "cond-weaker-flies", ("alpha", "bravo"),
+        # test half until 2026-11-29, moved to dev because it was seen while tuning
+        _entry("conditional", "dev", "cond-weaker-flies", ("alpha", "bravo"),
                "Between alpha and bravo, fly the one with less charge up to 10 metres and land it; don't touch "
                "the other.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 10), landed_disarmed(ev, "alpha"),
@@ -509,6 +530,32 @@ def _conditional() -> list[CorpusEntry]:
                [_battery("alpha"), _battery("charlie"), _move("charlie", 20, 0, alt=12)],
                "Charlie has the fuller battery; it hovers 20 m north at 12 m.",
                battery={"alpha": 45.0, "charlie": 75.0}),
+        # added to the test half on 2026-11-29 (written before any model ran on them), in place of the three moved to dev
+        _entry("conditional", "test", "cond-bravo-below-bar-reports", ("bravo",),
+               "Bravo should take off to 16 m and head 20 m east only if its charge is 55 % or more. Below that, "
+               "leave it on the ground and tell me the reading.",
+               lambda c, ev: _all(never_armed(ev, "bravo"), answer_mentions_number(ev, 42, 2)),
+               [_battery("bravo")], "Bravo reads 42 %, under 55 %, so it stays on the ground.",
+               battery={"bravo": 42.0}),
+        _entry("conditional", "test", "cond-charlie-up-or-down", ("charlie",),
+               "Is charlie up in the air already? If so, bring it down; if it's still sitting on the ground, "
+               "send it up to 14 m and leave it there.",
+               lambda c, ev: airborne_at(ev, "charlie", 14),
+               [("get_position", {"drone_id": "charlie"}), _takeoff("charlie", 14)],
+               "Charlie was on the ground, so it now hovers at 14 m."),
+        _entry("conditional", "test", "cond-de-alpha-west", ("alpha",),
+               "Wenn alpha noch mehr als 65 % Akku hat, lass ihn auf 12 m steigen, 25 m nach Westen fliegen und "
+               "dort schweben; sonst bleibt er am Boden und du nennst mir den Ladestand.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -25), alt=12), airborne_at(ev, "alpha", 12)),
+               [_battery("alpha"), _move("alpha", 0, -25, alt=12)],
+               "Alpha hat 78 %, also schwebt er 25 m westlich auf 12 m.", battery={"alpha": 78.0}),
+        _entry("conditional", "test", "cond-charlie-decides-in-flight", ("charlie",),
+               "Lift charlie to 18 m. Once it's up, look at its battery: under 50 % means bring it straight back "
+               "home; 50 % or more means carry on 30 m north and hover there.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 18), at(ev, "charlie", *_home(c, "charlie")),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 18), _battery("charlie"), _rtl("charlie")],
+               "Charlie read 40 %, under 50 %, so it came home and landed.", battery={"charlie": 40.0}),
     ]  # fmt: skip
 
 
@@ -519,7 +566,8 @@ def _formations() -> list[CorpusEntry]:
                "Line up alpha, bravo and charlie at 20 m, 8 metres apart, right where they are.",
                lambda c, ev: formation_at(c, ev, three, 20, 8, 0, 0),
                [_formation(three, "line", 20, 8)], "The three hold a line 8 m apart at 20 m."),
-        _entry("formation", "test", "form-column-north", ("alpha", "bravo"),
+        # test half until 2026-11-29, moved to dev because it was seen while tuning
+        _entry("formation", "dev", "form-column-north", ("alpha", "bravo"),
                "Get alpha and bravo into a column, 12 m apart at 15 m, 40 m north of where they are now.",
                lambda c, ev: formation_at(c, ev, ("alpha", "bravo"), 15, 12, 40, 0),
                [_formation(("alpha", "bravo"), "column", 15, 12, north=40)],
@@ -528,7 +576,8 @@ def _formations() -> list[CorpusEntry]:
                "Arrange all three drones in a circle with 10 m between neighbours, at 25 m, here.",
                lambda c, ev: formation_at(c, ev, three, 25, 10, 0, 0),
                [_formation(three, "circle", 25, 10)], "The three hold a circle at 25 m."),
-        _entry("formation", "test", "form-wedge-east", three,
+        # test half until 2026-11-29, moved to dev because it was seen while tuning
+        _entry("formation", "dev", "form-wedge-east", three,
                "Make a V shape with the three drones at 18 m, 10 m between them, 30 m east of where they stand.",
                lambda c, ev: formation_at(c, ev, three, 18, 10, 0, 30),
                [_formation(three, "wedge", 18, 10, east=30)], "The three hold a wedge 30 m east at 18 m."),
@@ -550,6 +599,26 @@ def _formations() -> list[CorpusEntry]:
                "Put alpha, bravo and charlie in a line 10 m apart at 12 m, 20 m east of where they are.",
                lambda c, ev: formation_at(c, ev, three, 12, 10, 0, 20),
                [_formation(three, "line", 12, 10, east=20)], "The three hold a line 20 m east at 12 m."),
+        # added to the test half on 2026-11-29 (written before any model ran on them), in place of the two moved to dev
+        # (three in a ring stand at the corners of a triangle with sides of the spacing; the gateway's V has its
+        # arms 45 degrees off its axis, so that its two wings stand 2 x 11 x sin 45 = 15.56 m apart)
+        _entry("formation", "test", "form-ring-northwest", three,
+               "Form the three drones up in a ring, 14 m from each to its neighbours, at 16 m, 20 m north and "
+               "20 m west of where they are now.",
+               lambda c, ev: _all(formation_at(c, ev, three, 16, 14, 20, -20), farthest_apart(ev, three, 14)),
+               [_formation(three, "circle", 16, 14, north=20, east=-20)],
+               "The three hold a circle 20 m north-west at 16 m."),
+        _entry("formation", "test", "form-es-column-south", ("alpha", "charlie"),
+               "Pon a alpha y charlie uno detrás del otro, separados 16 metros, a 14 metros de altura y 35 metros "
+               "al sur de donde están.",
+               lambda c, ev: formation_at(c, ev, ("alpha", "charlie"), 14, 16, -35, 0),
+               [_formation(("alpha", "charlie"), "column", 14, 16, north=-35)],
+               "Alpha y charlie están en columna 35 m al sur a 14 m."),
+        _entry("formation", "test", "form-arrowhead-east", three,
+               "Fly all three out 25 m to the east and hold them there as an arrowhead at 22 m, 11 m between "
+               "neighbours.",
+               lambda c, ev: _all(formation_at(c, ev, three, 22, 11, 0, 25), farthest_apart(ev, three, 15.56)),
+               [_formation(three, "wedge", 22, 11, east=25)], "The three hold a wedge 25 m east at 22 m."),
     ]  # fmt: skip
 
 
@@ -818,7 +887,8 @@ def _placements() -> list[CorpusEntry]:
                lambda c, ev: _all(at(ev, "alpha", *c.point("bravo", 25, 0), alt=15), airborne_at(ev, "alpha", 15),
                                   never_armed(ev, "bravo")),
                lambda c: [_go("alpha", c.point("bravo", 25, 0), 15)], "Alpha hovers 25 m north of bravo."),
-        _entry("placement", "test", "place-charlie-south-of-alpha", DRONES,
+        # test half until 2026-11-29, moved to dev because it was seen while tuning
+        _entry("placement", "dev", "place-charlie-south-of-alpha", DRONES,
                "Station charlie 25 m south of alpha at 20 m.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", -25, 0), alt=20), airborne_at(ev, "charlie", 20),
                                   never_armed(ev, "alpha")),
@@ -828,7 +898,8 @@ def _placements() -> list[CorpusEntry]:
                lambda c, ev: _all(airborne_at(ev, "charlie", 10), at(ev, "alpha", *c.point("charlie", 0, 30), alt=10)),
                lambda c: [_takeoff("charlie", 10), _go("alpha", c.point("charlie", 0, 30), 10)],
                "Charlie hovers at 10 m, alpha 30 m east of it."),
-        _entry("placement", "test", "place-alpha-west-of-flying-bravo", DRONES,
+        # test half until 2026-11-29, moved to dev because it was seen while tuning
+        _entry("placement", "dev", "place-alpha-west-of-flying-bravo", DRONES,
                "Launch bravo to 12 m, then place alpha 30 m west of bravo at 12 m.",
                lambda c, ev: _all(airborne_at(ev, "bravo", 12), at(ev, "alpha", *c.point("bravo", 0, -30), alt=12)),
                lambda c: [_takeoff("bravo", 12), _go("alpha", c.point("bravo", 0, -30), 12)],
@@ -837,11 +908,40 @@ def _placements() -> list[CorpusEntry]:
                "Fly bravo to 30 m west of its home at 12 m and land it there.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -30)), landed_disarmed(ev, "bravo")),
                lambda c: [_go("bravo", c.point("bravo", 0, -30), 12), _land("bravo")], "Bravo landed 30 m west of home."),
-        _entry("placement", "test", "place-alpha-northeast-of-charlie", DRONES,
+        # test half until 2026-11-29, moved to dev because it was seen while tuning
+        _entry("placement", "dev", "place-alpha-northeast-of-charlie", DRONES,
                "Alpha: go to a spot 40 m northeast of charlie at 15 m and hover.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("charlie", 28.28, 28.28), alt=15),
                                   airborne_at(ev, "alpha", 15), never_armed(ev, "charlie")),
                lambda c: [_go("alpha", c.point("charlie", 28.28, 28.28), 15)], "Alpha hovers 40 m northeast of charlie."),
+        # added to the test half on 2026-11-29 (written before any model ran on them), in place of the three
+        # moved to dev; the sim's homes stand 5 m apart: a drone placed from itself instead of from the drone
+        # named must miss by more than the 6 m tolerance
+        _entry("placement", "test", "place-bravo-land-east-of-home", ("bravo",),
+               "Bravo: take off to 10 m and fly 40 m north, then come down to land at a spot 15 m east of your home.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 40, 0)]), at(ev, "bravo", *c.point("bravo", 0, 15)),
+                                  landed_disarmed(ev, "bravo")),
+               lambda c: [_takeoff("bravo", 10), _move("bravo", 40, 0), _go("bravo", c.point("bravo", 0, 15), 10),
+                          _land("bravo")], "Bravo flew 40 m north and landed 15 m east of home."),
+        _entry("placement", "test", "place-charlie-beside-moved-alpha", DRONES,
+               "Alpha flies 30 m north at 12 m and waits there. Then put charlie 10 m east of wherever alpha "
+               "ended up, at the same height.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 30, 0), alt=12), airborne_at(ev, "alpha", 12),
+                                  at(ev, "charlie", *c.point("alpha", 30, 10), alt=12), airborne_at(ev, "charlie", 12),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_move("alpha", 30, 0, alt=12), _go("charlie", c.point("alpha", 30, 10), 12)],
+               "Alpha hovers 30 m north at 12 m, charlie 10 m east of it."),
+        _entry("placement", "test", "place-fr-charlie-west-of-alpha", DRONES,
+               "Place charlie à 20 m à l'ouest d'alpha, à 18 m de hauteur, et garde-le en vol stationnaire là-bas.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 0, -20), alt=18), airborne_at(ev, "charlie", 18),
+                                  never_armed(ev, "alpha")),
+               lambda c: [_go("charlie", c.point("alpha", 0, -20), 18)], "Charlie est à 20 m à l'ouest d'alpha, à 18 m."),
+        _entry("placement", "test", "place-alpha-land-north-of-charlie", DRONES,
+               "Alpha: go up to 15 m, then set it down 12 m north of where charlie is parked.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 15), at(ev, "alpha", *c.point("charlie", 12, 0)),
+                                  landed_disarmed(ev, "alpha"), never_armed(ev, "charlie")),
+               lambda c: [_takeoff("alpha", 15), _go("alpha", c.point("charlie", 12, 0), 15), _land("alpha")],
+               "Alpha landed 12 m north of charlie."),
     ]  # fmt: skip
 
 

@@ -12,7 +12,7 @@ from types import ModuleType
 import pytest
 
 from bench.agent_harness.missions import DroneTruth, Evidence, MissionContext
-from bench.nl_corpus import CLASSES, DRONES, HALVES, corpus, formation_at, select
+from bench.nl_corpus import CLASSES, DRONES, HALVES, corpus, farthest_apart, formation_at, select
 
 BENCH = Path(__file__).resolve().parents[2] / "bench" / "nl_missions.py"
 HOMES = {
@@ -63,14 +63,17 @@ def test_halves_are_disjoint_and_stratified_by_class() -> None:
     """The first 40 entries are split evenly by class (2 or 3 a class in each half); the 48 added later
     are all dev (two a class, then eight more in the four classes the test half measured weakest, then
     eight more in the kinds of request the test half still failed, twice, then eight more in varied kinds);
-    the four classes added with the typed plan (units, pattern, placement, language) have 3 + 3."""
+    the four classes added with the typed plan (units, pattern, placement, language) have 3 + 3. The test
+    entries of conditional, formation and placement, seen while tuning, moved to dev, and new test entries
+    took their place, one more a class."""
     dev, test = select("dev"), select("test")
     assert not {e.id for e in dev} & {e.id for e in test}
     assert len(dev) + len(test) == len(corpus()) == len(select("all"))
-    assert len(test) == 32 and len(dev) == 80
-    for cls in ("units", "pattern", "placement", "language"):
-        assert sum(e.cls == cls for e in dev) == 3 and sum(e.cls == cls for e in test) == 3, cls
+    assert len(test) == 35 and len(dev) == 88
     per_dev, per_test = Counter(e.cls for e in dev), Counter(e.cls for e in test)
+    moved = Counter({"conditional": 3, "formation": 2, "placement": 3})  # test to dev
+    for cls in ("units", "pattern", "placement", "language"):
+        assert per_dev[cls] - moved[cls] == 3, cls
     second_day = Counter({"compound": 3, "multi": 2, "conditional": 2, "question": 1})
     third_day = Counter({"compound": 2, "multi": 1, "conditional": 3, "relative": 2})
     fourth_day = Counter({"question": 2, "compound": 2, "multi": 2, "relative": 2})
@@ -78,7 +81,28 @@ def test_halves_are_disjoint_and_stratified_by_class() -> None:
     for cls in CLASSES[:8]:
         assert per_test[cls] >= 2, cls
         added = second_day[cls] + third_day[cls] + fourth_day[cls] + fifth_day[cls]
-        assert abs((per_dev[cls] - 2 - added) - per_test[cls]) <= 1, cls
+        first_test = moved[cls] or per_test[cls]  # the first 40's test entries of the class
+        assert abs((per_dev[cls] - moved[cls] - 2 - added) - first_test) <= 1, cls
+    for cls in CLASSES[8:]:
+        assert per_test[cls] == (4 if cls == "placement" else 3), cls
+
+
+def test_the_test_entries_seen_while_tuning_are_dev_and_replaced_by_new_ones() -> None:
+    seen = {
+        "cond-half-battery-go",
+        "cond-fullest-flies",
+        "cond-weaker-flies",
+        "form-column-north",
+        "form-wedge-east",
+        "place-charlie-south-of-alpha",
+        "place-alpha-west-of-flying-bravo",
+        "place-alpha-northeast-of-charlie",
+    }
+    by_id = {e.id: e for e in corpus()}
+    assert all(by_id[i].half == "dev" for i in seen)
+    renewed = [e for e in select("test") if e.cls in ("conditional", "formation", "placement")]
+    assert Counter(e.cls for e in renewed) == Counter({"conditional": 4, "formation": 3, "placement": 4})
+    assert not {e.id for e in renewed} & seen
 
 
 def test_select_refuses_an_unknown_half() -> None:
@@ -151,6 +175,26 @@ def test_formation_check_reads_spacing_centre_and_altitude() -> None:
     assert not formation_at(CTX, ev, DRONES, 20, 15, 0, 0).ok, "15 m spacing was asked"
     low = {d: _hovering("bravo", 0, east, 5) for d, east in zip(DRONES, (-8, 0, 8), strict=True)}
     assert not formation_at(CTX, Evidence(low, {}, [], "done"), DRONES, 20, 8, 0, 0).ok
+
+
+def test_farthest_apart_tells_three_in_a_ring_from_three_in_a_row() -> None:
+    row = {d: _hovering("bravo", 0, east, 20) for d, east in zip(DRONES, (-10, 0, 10), strict=True)}
+    ring = {
+        d: _hovering("bravo", n, e, 20)
+        for d, (n, e) in zip(DRONES, ((5.77, 0), (-2.89, 5), (-2.89, -5)), strict=True)
+    }
+    assert farthest_apart(Evidence(ring, {}, [], "done"), DRONES, 10).ok
+    assert not farthest_apart(Evidence(row, {}, [], "done"), DRONES, 10).ok, (
+        "a row 10 m apart has its ends 20 m apart"
+    )
+    assert farthest_apart(Evidence(row, {}, [], "done"), DRONES, 20).ok
+
+
+def test_every_check_fails_when_nothing_happened() -> None:
+    """No drone moved, nothing was refused, the answer says nothing: no request is done by that."""
+    idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
+    ev = Evidence(final=idle, track={d: [t] for d, t in idle.items()}, tool_results=[], final_text="Done.")
+    assert [e.id for e in corpus() if e.mission.check(CTX, ev).ok] == []
 
 
 def test_an_interrupted_bench_still_reports_the_runs_that_finished(

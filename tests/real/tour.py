@@ -161,28 +161,34 @@ async def boot(t: Tour) -> str:
     order: list[str] = []
 
     async def all_ready() -> bool:
+        """True once every drone reads ready through both doors in one round (a drone may leave ready
+        again for a moment while its estimate settles: the two reads are not at the same instant)."""
         listed = await t.client.call_tool("list_drones", {})
         rest = {v["id"]: v for v in (await t.rest("GET", "/vehicles"))["items"]}
+        ready_now = 0
         for row in structured(listed)["drones"]:
             d, waiting = row["drone_id"], row["initialising"]
             rest_waiting = (rest[d].get("status") or {}).get("initialising")
             seen[d].append((row["state"], waiting, rest[d]["state"], rest_waiting))
             if waiting:
                 assert f"{d} connected ({waiting})" in listed.content[0].text, listed.content[0].text
-            if row["state"] == "ready" and d not in order:
-                order.append(d)
-        return len(order) == len(t.ids)
+            if row["state"] == "ready" and rest[d]["state"] == "ready":
+                ready_now += 1
+                if d not in order:
+                    order.append(d)
+        return ready_now == len(t.ids)
 
     loop = asyncio.get_running_loop()
     deadline = loop.time() + scaled(p.boot_s)
     while not await all_ready():
         if loop.time() > deadline:
-            raise AssertionError(f"not every drone ready within {scaled(p.boot_s):g} s: {seen}")
+            last = {d: rows[-3:] for d, rows in seen.items()}
+            raise AssertionError(f"not every drone ready within {scaled(p.boot_s):g} s; last reads {last}")
         await asyncio.sleep(0.3)
     for d, rows in seen.items():
-        assert rows[-1] == ("ready", None, "ready", None), (d, rows)
+        assert rows[-1] == ("ready", None, "ready", None), (d, rows[-3:])
         waits = {w for _s, w, _r, rw in rows for w in (w, rw) if w}
-        assert all(w.startswith("waiting for ") for w in waits), (d, rows)
+        assert all(w.startswith("waiting for ") for w in waits), (d, waits)
     if p.boot_wait is not None:
         # the estimate wait, where a look caught it, is worded as the profile says at both doors. Whether
         # a look catches it is timing: under load in CI the three autopilots had their estimate before the
