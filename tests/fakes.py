@@ -248,13 +248,15 @@ class FakeVehicle:
         self._stream = self._flight = None
 
     async def _streaming(self) -> None:
+        """Re-send every reading each STREAM_S, the first time at once: a gateway set up slowly on a busy
+        machine (longer than the cache's staleness) must not find the readings of __init__ stale."""
         while True:
-            await asyncio.sleep(STREAM_S)
             if self.telemetry.live:
                 for name in TelemetryCache.FIELDS:
                     sample = getattr(self.telemetry, name)
                     if sample is not None:
                         self.telemetry.put(name, sample.value)
+            await asyncio.sleep(STREAM_S)
 
     def _fly(self, lat: float, lon: float, alt: float, then: Callable[[], None] | None = None) -> None:
         if self._flight is not None:

@@ -97,6 +97,20 @@ def test_loiter_radii_count_in_the_distance_limit_and_the_zones() -> None:
     SafetyPolicy(settings()).check_mission(ctx(), ok, "mcp", arducopter_mission())
 
 
+def test_a_loiter_circle_counts_from_the_origin_when_the_autopilot_moved_its_home() -> None:
+    import dataclasses
+
+    from gateway.fleet import geo
+
+    # the autopilot re-armed 400 m north: its home walked, the vehicle's origin stayed where it was
+    walked = (*geo.offset_position(HOME[0], HOME[1], 400, 0), HOME[2])
+    moved = dataclasses.replace(ctx(), home=walked, origin=HOME)
+    circle = items_of(wpl((3, 18, 3, 0, 300, 0, 750, 0, 30)))  # 750 m north of the origin, radius 300 m
+    with pytest.raises(SafetyRefusal) as err:  # 1,050 m from the origin; 650 m from the walked home
+        SafetyPolicy(settings()).check_mission(moved, circle, "mcp", arducopter_mission())
+    assert err.value.rule == "max_distance" and "reaches 1050 m from its origin" in err.value.message
+
+
 def test_a_loiter_circle_may_not_reach_a_keep_out_zone() -> None:
     from tests.fleet._util import square
     from tests.fleet.test_geofence import fenced

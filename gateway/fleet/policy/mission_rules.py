@@ -29,6 +29,7 @@ from gateway.fleet.policy.safety_checks import (
     check_altitude,
     check_horizontal,
     check_point,
+    origin_words,
     require_finite,
     start_of,
 )
@@ -216,14 +217,16 @@ def _check_position(
 
 
 def _check_circle(fences: GeofenceSet, ctx: VehicleContext, limits: Limits, point: _Point) -> None:
-    """A loiter's circle: its far edge within the distance limit, all of it clear of the zones."""
-    assert ctx.home is not None  # check_point refused an unknown home
-    reach = geo.horizontal_distance_m(ctx.home[0], ctx.home[1], point.lat, point.lon) + point.radius_m
+    """A loiter's circle: its far edge within the distance limit (counted from the vehicle's origin, as
+    every other point is, not from a home the autopilot may have moved), all of it clear of the zones."""
+    origin = ctx.distance_origin
+    assert origin is not None  # check_point refused an unknown home
+    reach = geo.horizontal_distance_m(origin[0], origin[1], point.lat, point.lon) + point.radius_m
     if reach > limits.max_distance_m:
         raise refuse(
             Rule.MAX_DISTANCE,
-            f"the loiter circle of radius {fmt(point.radius_m)} m reaches {fmt(reach)} m from home, beyond "
-            f"the limit of {fmt(limits.max_distance_m)} m; nothing was sent",
+            f"the loiter circle of radius {fmt(point.radius_m)} m reaches {fmt(reach)} m from "
+            f"{origin_words(ctx)}, beyond the limit of {fmt(limits.max_distance_m)} m; nothing was sent",
             vehicle_id=ctx.vehicle_id,
             distance_m=round(reach, 2),
             limit_m=limits.max_distance_m,
