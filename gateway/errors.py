@@ -97,6 +97,12 @@ class OwnerLost(NoOwner, code="owner_lost", http_status=503):
     lost, or fenced itself); the call had been accepted there, so it may have run."""
 
 
+class OwnerFenced(GatewayError, code="owner_fenced", http_status=503):
+    """Cluster: the node running a forwarded call fenced itself (it could not renew its leases) or lost
+    the drone's lease while it ran: the call was not finished there, and that node does not command the
+    drone any further (the drone flies its last command on its own)."""
+
+
 class NotRun(GatewayError, code="not_run", http_status=503):
     """Cluster: a forwarded call was not run: the bus is unreachable from this node, or the owner did not
     accept it before its deadline (the owner refuses it if it arrives later), or it was sent for a lease

@@ -12,6 +12,7 @@ Reads are not audited: dashboards poll them and they change nothing. Routers opt
 
 from __future__ import annotations
 
+import asyncio
 import json
 import logging
 import re
@@ -130,6 +131,25 @@ async def record_rest_call(
         log.exception("could not write the audit entry of %s %s", request.method, request.url.path)
 
 
+#: the routes whose answer never waits long on its audit row: the emergency stop (its drones are told
+#: before it is recorded; a database that hangs must not hold the operator's answer either)
+STOP_ACTIONS = frozenset({"rest.fleet_stop"})
+#: how long the emergency stop's answer waits for its audit row (the write goes on beside it)
+STOP_AUDIT_WAIT_S = 0.5
+_RECORDING: set[asyncio.Task[None]] = set()
+
+
+async def _recorded(action: str, record: Coroutine[Any, Any, None]) -> None:
+    """Record a call; the emergency stop's answer waits STOP_AUDIT_WAIT_S for it at most."""
+    if action not in STOP_ACTIONS:
+        await record
+        return
+    task = asyncio.create_task(record, name=f"audit-{action}")
+    _RECORDING.add(task)  # it may outlive the request (a database that hangs)
+    task.add_done_callback(_RECORDING.discard)
+    await asyncio.wait({task}, timeout=STOP_AUDIT_WAIT_S)
+
+
 def _failure(exc: Exception) -> tuple[str, str]:
     """The audit outcome and error of a call that raised ``exc``."""
     if isinstance(exc, SafetyRefusal):
@@ -160,21 +180,26 @@ class AuditedRoute(APIRoute):
             def sent(operation_id: str) -> None:
                 operations.append(operation_id)
 
+            async def record(outcome: str, error: str | None) -> None:
+                await _recorded(action, record_rest_call(request, action, outcome, error, started))
+
             noting = AUDIT_SENT.set(sent)
             try:
                 response = await handler(request)
             except Exception as exc:
-                await record_rest_call(request, action, *_failure(exc), started)
+                await record(*_failure(exc))
                 raise
             finally:
                 AUDIT_SENT.reset(noting)
             if response.status_code < 400 and operations:
                 started_op = (operations[0], called_at)
-                await record_rest_call(request, action, "running", None, started, started_op)
+                await _recorded(
+                    action, record_rest_call(request, action, "running", None, started, started_op)
+                )
                 return response
             outcome = "ok" if response.status_code < 400 else "error"
             error = None if outcome == "ok" else f"http_{response.status_code}"
-            await record_rest_call(request, action, outcome, error, started)
+            await record(outcome, error)
             return response
 
         return audited

@@ -112,6 +112,8 @@ class AuditRow(Base):
     duration_ms: Mapped[float | None] = mapped_column(Float)
     # the operation a call left running (wait:false): its end finishes the row, on whichever node
     operation_id: Mapped[str | None] = mapped_column(String(64), index=True)
+    # a row written before its call's command was sent (outcome running): the call finishes it by this
+    call_id: Mapped[str | None] = mapped_column(String(32), index=True, unique=True)
 
 
 class FlightRow(Base):

@@ -31,7 +31,7 @@ from gateway.errors import (
 )
 from gateway.fleet import geo
 from gateway.fleet.commands.arguments import AltFrame
-from gateway.fleet.commands.command_pass import CommandPass
+from gateway.fleet.commands.command_pass import AUDIT_SENT, CommandPass
 from gateway.fleet.operations.operation_state import Operation
 from gateway.fleet.operations.operations import OperationManager
 from gateway.fleet.operations.routing import FORWARDED, Method, OnMessage, ProgressMessage, Router, Verb
@@ -124,11 +124,14 @@ def routed(
         wait_s = float(arguments.get("cap_s") or self.commands.settings.mcp_wait_cap_s)
         relay = _relay(callbacks)
         seen: dict[str, str] = {}  # the operation the owner reported (its progress), to follow it
+        starts = name not in READ_VERBS  # a read (a wait on a running operation) starts none of its own
 
         async def watch(body: ProgressMessage) -> None:
             view = body.get("view")
             operation_id = view.get("operation_id") if isinstance(view, dict) else None
             if isinstance(operation_id, str):
+                if starts and seen.get("operation_id") != operation_id and (note := AUDIT_SENT.get()):
+                    note(operation_id)  # the call's audit row names it: its end finishes the row
                 seen["operation_id"] = operation_id
             if relay is not None:
                 await relay(body)

@@ -151,9 +151,12 @@ class FleetOperations:
         await fop.dispatched.wait()  # set after the first phase's dispatch, or when it ended early
         return fop
 
-    async def supersede(self, drone_ids: Iterable[str], by: str) -> list[FleetOperation]:
-        """A direct command (hold, a single-drone move) took over some drones of running fleet ops."""
-        ended = self.running_for(drone_ids)
+    async def supersede(
+        self, drone_ids: Iterable[str], by: str, before: datetime | None = None
+    ) -> list[FleetOperation]:
+        """A direct command (hold, a single-drone move) took over some drones of running fleet ops;
+        ``before``: only those started before it (a stop heard from another node, made then)."""
+        ended = [f for f in self.running_for(drone_ids) if before is None or f.created_at < before]
         for fop in ended:
             self._finish(fop, "superseded", f"superseded by {by}")
         return ended
