@@ -358,10 +358,15 @@ async def register(db_url: str, drones: Sequence[tuple[str, str, int]]) -> None:
 
 @contextlib.asynccontextmanager
 async def gateway(
-    sim_: Sim, *, workdir: Path, count: int | None = None, env: dict[str, str] | None = None
+    sim_: Sim,
+    *,
+    workdir: Path,
+    count: int | None = None,
+    env: dict[str, str] | None = None,
+    start_s: float | None = None,
 ) -> AsyncIterator[Gateway]:
     """A gateway over the first ``count`` drones of ``sim_`` (ids d1..dN); stopped (with every sidecar)
-    on exit."""
+    on exit. ``start_s``: how long it may take to answer ``/healthz`` (default: 60 s and 0.5 s a drone)."""
     from gateway.util.ports import free_tcp_port
 
     count = len(sim_.urls) if count is None else count
@@ -394,7 +399,7 @@ async def gateway(
     try:
         # every sidecar is started with its gateway: hundreds of them keep the machine busy before a gateway
         # (this one, or another started beside it, as bench/scale.py's gateway with no drone) answers
-        deadline = time.monotonic() + 60 + 0.5 * len(sim_.urls)
+        deadline = time.monotonic() + (60 + 0.5 * len(sim_.urls) if start_s is None else start_s)
         while True:
             if proc.returncode is not None:
                 raise RuntimeError(f"gateway exited:\n{_tail(log)}")

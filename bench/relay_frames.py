@@ -1,6 +1,8 @@
 """What the ground station relay (gateway/link/relay.py) costs per MAVLink frame: cutting a stream into
 frames, checking each CRC and reading the target system of the addressed ones, as the relay does for
-every frame from a drone. A drone streams about 100-200 frames a second at the gateway's rates.
+every frame from a drone; then what writing each frame to a flight's raw log costs on top
+(gateway/fleet/missions/raw_tlog.py, into a temporary folder). A drone streams about 100-200 frames a
+second at the gateway's rates.
 
     .venv/bin/python -m bench.relay_frames [--frames 20000]
 
@@ -10,10 +12,13 @@ Prints CPU microseconds per frame (process time, so a busy machine does not infl
 from __future__ import annotations
 
 import argparse
+import tempfile
 import time
+from pathlib import Path
 
 from pymavlink.dialects.v20 import ardupilotmega as mavlink
 
+from gateway.fleet.missions.raw_tlog import RawTlog
 from gateway.link.mavlink_frames import FrameSplitter, target_system
 
 
@@ -40,6 +45,19 @@ def main() -> None:
     cpu = time.process_time() - started
     print(f"relay: {frames} frames, {cpu / frames * 1e6:.1f} CPU us per frame (split, CRC, target)")
     print(f"relay: at 200 frames/s per drone, {cpu / frames * 200 * 100:.2f} % of one core per drone")
+
+    with tempfile.TemporaryDirectory() as folder:
+        raw = RawTlog(Path(folder), "bench", 1 << 40)
+        raw.open(1)
+        datas = [f.data for f in FrameSplitter().feed(stream)]
+        started = time.process_time()
+        for data in datas:
+            raw.frame(data)
+        raw.close()
+        cpu = time.process_time() - started
+        size = (Path(folder) / "bench-flight-1.tlog").stat().st_size
+    print(f"flight raw log: {len(datas)} frames, {cpu / len(datas) * 1e6:.2f} CPU us per frame written")
+    print(f"flight raw log: {size / len(datas):.1f} bytes per frame on disk with its time stamp")
 
 
 if __name__ == "__main__":

@@ -8,6 +8,11 @@ gateway's cache received per stream are counted over a window (``/metrics``,
 set_rate_*), with the CPU of the gateway and of the drone's sidecar over the same window. Streams the
 gateway takes from another (heading from the attitude, in_air from the landed state, armed and the
 flight mode from the HEARTBEAT) are listed with the stream they come with.
+
+What the sidecar parses is counted on the wire: the drone's MAVLink link runs through a counting proxy
+(``LinkCounter``, the gateway's sidecar connects to it and it to the autopilot), and every message the
+autopilot sends is listed by name with its rate over the same window, asked for or not: a simulator
+that streamed more than ArduPilot (defaults it does not have, a rate it ignores) shows here.
 """
 
 from __future__ import annotations
@@ -43,11 +48,92 @@ FOLLOWS = {
 }
 
 
+class LinkCounter:
+    """A TCP proxy between the sidecar and the autopilot that counts the MAVLink messages the autopilot
+    sends, by message id (MAVLink 1 and 2 frames; bytes between frames are skipped)."""
+
+    def __init__(self, url: str) -> None:
+        host_port = url.split("://", 1)[1]
+        self.host, _, port = host_port.rpartition(":")
+        self.port = int(port)
+        self.counts: dict[int, int] = {}
+        self._server: asyncio.Server | None = None
+        self._tasks: set[asyncio.Task[None]] = set()
+
+    async def start(self) -> str:
+        self._server = await asyncio.start_server(self._client, "127.0.0.1", 0)
+        port = self._server.sockets[0].getsockname()[1]
+        return f"tcpout://127.0.0.1:{port}"
+
+    async def stop(self) -> None:
+        if self._server is not None:
+            self._server.close()
+        for task in list(self._tasks):
+            task.cancel()
+        await asyncio.gather(*self._tasks, return_exceptions=True)
+
+    async def _client(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        up_reader, up_writer = await asyncio.open_connection(self.host, self.port)
+        for coro in (self._pipe(reader, up_writer, False), self._pipe(up_reader, writer, True)):
+            task = asyncio.create_task(coro)
+            self._tasks.add(task)
+            task.add_done_callback(self._tasks.discard)
+
+    async def _pipe(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter, count: bool) -> None:
+        buf = b""
+        with contextlib.suppress(ConnectionError, asyncio.CancelledError):
+            while data := await reader.read(65536):
+                writer.write(data)
+                if count:
+                    buf = self._count(buf + data)
+        writer.close()
+
+    def _count(self, buf: bytes) -> bytes:
+        i = 0
+        while i < len(buf):
+            magic = buf[i]
+            if magic == 0xFD and i + 10 <= len(buf):  # MAVLink 2: 10-byte header, CRC, optional signature
+                size = 10 + buf[i + 1] + 2 + (13 if buf[i + 2] & 1 else 0)
+                msg_id = buf[i + 7] | buf[i + 8] << 8 | buf[i + 9] << 16
+            elif magic == 0xFE and i + 6 <= len(buf):  # MAVLink 1: 6-byte header, CRC
+                size = 6 + buf[i + 1] + 2
+                msg_id = buf[i + 5]
+            elif magic in (0xFD, 0xFE):
+                break  # a header not all here yet
+            else:
+                i += 1
+                continue
+            if i + size > len(buf):
+                break
+            self.counts[msg_id] = self.counts.get(msg_id, 0) + 1
+            i += size
+        return buf[i:]
+
+
+def message_name(msg_id: int) -> str:
+    from pymavlink.dialects.v20 import ardupilotmega
+
+    cls = ardupilotmega.mavlink_map.get(msg_id)
+    return cls.msgname if cls is not None else f"id {msg_id}"
+
+
 @contextlib.asynccontextmanager
-async def one_drone(use_sim: bool, wd: Path) -> AsyncIterator[common.Gateway]:
+async def counted(sim_: common.Sim, counter: LinkCounter) -> AsyncIterator[common.Sim]:
+    """``sim_`` with its one drone reached through ``counter``."""
+    url = await counter.start()
+    try:
+        yield common.Sim(sim_.proc, [url], sim_.sysids, sim_.udp_urls, sim_.control_url, sim_.log)
+    finally:
+        await counter.stop()
+
+
+@contextlib.asynccontextmanager
+async def one_drone(use_sim: bool, wd: Path, counter: list[LinkCounter]) -> AsyncIterator[common.Gateway]:
     if use_sim:
-        async with common.sim(1, speedup=1.0, workdir=wd) as sim_, common.gateway(sim_, workdir=wd) as gw:
-            yield gw
+        async with common.sim(1, speedup=1.0, workdir=wd) as sim_:
+            counter.append(LinkCounter(sim_.urls[0]))
+            async with counted(sim_, counter[0]) as through, common.gateway(through, workdir=wd) as gw:
+                yield gw
         return
     from tests.helpers.autopilots import arducopter, ardupilot_missing
 
@@ -58,7 +144,8 @@ async def one_drone(use_sim: bool, wd: Path) -> AsyncIterator[common.Gateway]:
         sim_ = common.Sim(
             proc=None, urls=[ap.url], sysids=[1], udp_urls=[None], control_url="", log=wd / "none"
         )  # type: ignore[arg-type]
-        async with common.gateway(sim_, workdir=wd) as gw:
+        counter.append(LinkCounter(ap.url))
+        async with counted(sim_, counter[0]) as through, common.gateway(through, workdir=wd) as gw:
             yield gw
 
 
@@ -66,7 +153,8 @@ async def measure(use_sim: bool) -> dict[str, Any]:
     with tempfile.TemporaryDirectory(prefix="stream-rates-") as tmp:
         wd = Path(tmp)
         (wd / "sitl").mkdir()
-        async with one_drone(use_sim, wd) as gw:
+        counter: list[LinkCounter] = []
+        async with one_drone(use_sim, wd, counter) as gw:
             waited, states = await common.wait_states(gw, "ready", 240.0)
             if states.get(gw.drone_ids[0]) != "ready":
                 raise SystemExit(f"the drone was not ready after {waited:.0f} s: {states}\n{gw.log_tail()}")
@@ -74,17 +162,24 @@ async def measure(use_sim: bool) -> dict[str, Any]:
             sidecars = await gw.sidecar_pids()
             gw_cpu, sc_cpu = common.CpuMeter([gw.pid]), common.CpuMeter(sidecars)
             c0 = await scale.message_counts(gw)
+            wire0 = dict(counter[0].counts)
             gw_cpu.start()
             sc_cpu.start()
             t0 = time.monotonic()
             await asyncio.sleep(WINDOW_S)
             c1 = await scale.message_counts(gw)
+            wire1 = dict(counter[0].counts)
             elapsed = time.monotonic() - t0
             return {
                 "source": "simulator" if use_sim else "ArduCopter SITL",
                 "rates": {k: (v - c0.get(k, 0.0)) / elapsed for k, v in sorted(c1.items())},
                 "gw_cpu": gw_cpu.percent(),
                 "sc_cpu": sc_cpu.percent(),
+                "wire": {
+                    message_name(k): (v - wire0.get(k, 0)) / elapsed
+                    for k, v in sorted(wire1.items())
+                    if v > wire0.get(k, 0)
+                },
             }
 
 
@@ -105,6 +200,14 @@ def render(r: dict[str, Any]) -> str:
             f"costs), sidecar {r['sc_cpu']:.2f} %.",
             "",
             common.table(["cache stream", "asked, Hz", "received per s", "set by"], rows),
+            "",
+            f"On the wire, what the sidecar parses: {sum(r['wire'].values()):.2f} MAVLink messages a second "
+            "from the autopilot.",
+            "",
+            common.table(
+                ["message", "per s"],
+                sorted(([k, f"{v:.2f}"] for k, v in r["wire"].items()), key=lambda row: -float(row[1])),
+            ),
         ]
     )
 

@@ -210,6 +210,21 @@ class Settings(BaseSettings):
         1.0, gt=0, le=10, description="Track samples recorded per second in flight."
     )
     track_flush_s: float = Field(2.0, gt=0, description="Seconds between batched track writes.")
+    flight_tlog_dir: str = Field(
+        "",
+        description="Folder where each flight's raw MAVLink from the drone is written as it is received "
+        "(its .tlog export); default: '<database file>-tlogs' next to a SQLite database, "
+        "fleet-gateway-tlogs in the working directory for PostgreSQL; 'none': not recorded (the .tlog "
+        "is then reconstructed from the 1 Hz track). While recorded, every drone's link runs through "
+        "the gateway's relay (as one with gcs_endpoints does).",
+    )
+    flight_tlog_max_mib: int = Field(
+        64,
+        ge=1,
+        le=4096,
+        description="Largest raw MAVLink log kept per flight, in MiB; the frames after it are not "
+        "written (the export says the log was cut).",
+    )
     spool_path: str = Field(
         "",
         description="File (JSON lines) where the history writes the database could not take wait until "
@@ -329,6 +344,11 @@ class Settings(BaseSettings):
             return self.cluster_node_id
         host = re.sub(r"[^a-z0-9-]+", "-", socket.gethostname().lower()).strip("-") or "node"
         return f"{host[:26]}-{self.port}"[:32]
+
+    @property
+    def records_flight_frames(self) -> bool:
+        """Whether each flight's raw MAVLink is written (``flight_tlog_dir`` is not 'none')."""
+        return self.flight_tlog_dir.strip().lower() != "none"
 
     @property
     def spool_file(self) -> Path | None:

@@ -6,6 +6,7 @@ import argparse
 import asyncio
 import contextlib
 import logging
+import os
 import signal
 import sys
 from pathlib import Path
@@ -37,6 +38,9 @@ Ctrl-C stops the gateway, its sidecars and the simulator.
 """
 
 
+DEFAULT_PORT = 8765
+
+
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "demo",
@@ -45,7 +49,9 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
         "and print how to connect an MCP client. Ctrl-C stops everything.",
     )
     parser.add_argument("--count", type=int, default=3, help="simulated drones (1-9, default 3)")
-    parser.add_argument("--port", type=int, default=8765, help="HTTP port of REST and /mcp (default 8765)")
+    parser.add_argument(
+        "--port", type=int, default=None, help="HTTP port of REST and /mcp (default: GATEWAY_PORT, else 8765)"
+    )
     parser.add_argument(
         "--speedup", type=float, default=1.0, help="simulator time factor (default 1: real time)"
     )
@@ -59,8 +65,17 @@ def run(args: argparse.Namespace) -> int:
     if not 1 <= args.count <= len(DRONE_NAMES):
         print(f"fleet-gateway demo: error: --count must be 1-{len(DRONE_NAMES)}", file=sys.stderr)
         return 2
+    if args.port is None:
+        given = os.environ.get("GATEWAY_PORT", "").strip()
+        if given and not given.isdigit():
+            print(
+                f"fleet-gateway demo: error: GATEWAY_PORT must be a port number 1-65535; got '{given[:40]}'",
+                file=sys.stderr,
+            )
+            return 2
+        args.port = int(given) if given else DEFAULT_PORT
     if not 1 <= args.port <= 65535:
-        print("fleet-gateway demo: error: --port must be 1-65535", file=sys.stderr)
+        print(f"fleet-gateway demo: error: --port must be 1-65535; got {args.port}", file=sys.stderr)
         return 2
     if not 0.1 <= args.speedup <= 100:
         print("fleet-gateway demo: error: --speedup must be 0.1-100", file=sys.stderr)

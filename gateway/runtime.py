@@ -34,11 +34,8 @@ log = logging.getLogger(__name__)
 RegistryFactory = Callable[[Settings, Store], VehicleRegistry]
 
 
-class GatewayNotRunning(GatewayError):
+class GatewayNotRunning(GatewayError, code="not_ready", http_status=503):
     """The gateway is starting or stopping; retry shortly."""
-
-    code = "not_ready"
-    http_status = 503
 
 
 def _default_registry(settings: Settings, store: Store) -> VehicleRegistry:

@@ -1,17 +1,24 @@
 """Audit of REST calls: every state-changing request (POST, PUT, PATCH, DELETE) is written to the
 audit table with source 'rest', the caller, the vehicle, the arguments, the outcome and the duration.
 
+A call that starts an operation (a land, a goto...: the command pass names it through ``AUDIT_SENT``)
+is written running, naming the operation and timed from the call; the store finishes the row when the
+operation ends, with its outcome and the whole time to that end (not the few milliseconds the request
+took to send it), as it does for the MCP door's calls.
+
 Reads are not audited: dashboards poll them and they change nothing. Routers opt in by using
 :class:`AuditedRoute` as their ``route_class``.
 """
 
 from __future__ import annotations
 
+import asyncio
 import json
 import logging
 import re
 import time
 from collections.abc import Callable, Coroutine
+from datetime import datetime
 from typing import Any
 
 from fastapi import Request, Response
@@ -20,8 +27,9 @@ from fastapi.routing import APIRoute
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from gateway.errors import GatewayError, SafetyRefusal
+from gateway.fleet.commands.command_pass import AUDIT_SENT
 from gateway.registry.spec import redacted
-from gateway.registry.store import AuditEntry
+from gateway.registry.store import AuditEntry, utcnow
 
 log = logging.getLogger(__name__)
 
@@ -77,9 +85,16 @@ def _vehicle_id(request: Request, args: dict[str, object]) -> str | None:
 
 
 async def record_rest_call(
-    request: Request, action: str, outcome: str, error: str | None, started: float
+    request: Request,
+    action: str,
+    outcome: str,
+    error: str | None,
+    started: float,
+    operation: tuple[str, datetime] | None = None,
 ) -> None:
-    """Write one audit row (and touch the caller's REST session); never fails the request."""
+    """Write one audit row (and touch the caller's REST session); never fails the request.
+    ``operation``: the id of the operation the call started and when the call came (the row is then
+    written running, from that time, for the store to finish when the operation ends)."""
     duration_ms = (time.perf_counter() - started) * 1000.0
     gateway = request.app.state.gateway
     store = gateway.store
@@ -108,10 +123,31 @@ async def record_rest_call(
                 outcome=outcome,
                 error=error,
                 duration_ms=duration_ms,
+                operation_id=None if operation is None else operation[0],
+                t=None if operation is None else operation[1],
             )
         )
     except Exception:
         log.exception("could not write the audit entry of %s %s", request.method, request.url.path)
+
+
+#: the routes whose answer never waits long on its audit row: the emergency stop (its drones are told
+#: before it is recorded; a database that hangs must not hold the operator's answer either)
+STOP_ACTIONS = frozenset({"rest.fleet_stop"})
+#: how long the emergency stop's answer waits for its audit row (the write goes on beside it)
+STOP_AUDIT_WAIT_S = 0.5
+_RECORDING: set[asyncio.Task[None]] = set()
+
+
+async def _recorded(action: str, record: Coroutine[Any, Any, None]) -> None:
+    """Record a call; the emergency stop's answer waits STOP_AUDIT_WAIT_S for it at most."""
+    if action not in STOP_ACTIONS:
+        await record
+        return
+    task = asyncio.create_task(record, name=f"audit-{action}")
+    _RECORDING.add(task)  # it may outlive the request (a database that hangs)
+    task.add_done_callback(_RECORDING.discard)
+    await asyncio.wait({task}, timeout=STOP_AUDIT_WAIT_S)
 
 
 def _failure(exc: Exception) -> tuple[str, str]:
@@ -138,15 +174,32 @@ class AuditedRoute(APIRoute):
         async def audited(request: Request) -> Response:
             if request.method not in AUDITED_METHODS:
                 return await handler(request)
-            started = time.perf_counter()
+            started, called_at = time.perf_counter(), utcnow()
+            operations: list[str] = []
+
+            def sent(operation_id: str) -> None:
+                operations.append(operation_id)
+
+            async def record(outcome: str, error: str | None) -> None:
+                await _recorded(action, record_rest_call(request, action, outcome, error, started))
+
+            noting = AUDIT_SENT.set(sent)
             try:
                 response = await handler(request)
             except Exception as exc:
-                await record_rest_call(request, action, *_failure(exc), started)
+                await record(*_failure(exc))
                 raise
+            finally:
+                AUDIT_SENT.reset(noting)
+            if response.status_code < 400 and operations:
+                started_op = (operations[0], called_at)
+                await _recorded(
+                    action, record_rest_call(request, action, "running", None, started, started_op)
+                )
+                return response
             outcome = "ok" if response.status_code < 400 else "error"
             error = None if outcome == "ok" else f"http_{response.status_code}"
-            await record_rest_call(request, action, outcome, error, started)
+            await record(outcome, error)
             return response
 
         return audited

@@ -3,16 +3,19 @@ logs (the formats: `gateway.fleet.missions.flight_export`)."""
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from pathlib import Path as FilePath
 from typing import Annotated
 
 from fastapi import APIRouter, Path, Query
-from fastapi.responses import JSONResponse, Response
+from fastapi.responses import JSONResponse, Response, StreamingResponse
 
 from gateway.api.audit import AuditedRoute
-from gateway.api.deps import MAX_ROW, RegistryDep, StoreDep
+from gateway.api.deps import MAX_ROW, GatewayDep, RegistryDep, StoreDep
 from gateway.api.schemas import FlightPage, IsoTime, StatusTextList, time_window
 from gateway.errors import NotFound, UnknownVehicle
 from gateway.fleet.missions.flight_export import track_feature, track_kml, track_tlog
+from gateway.fleet.missions.raw_tlog import tlog_file, tlog_folder, was_cut
 from gateway.registry.store import FlightRecord, Store
 
 FlightId = Annotated[int, Path(ge=1, le=MAX_ROW, description="Flight id.")]
@@ -64,6 +67,18 @@ async def flight_track(flight_id: FlightId, store: StoreDep) -> JSONResponse:
     return JSONResponse(track_feature(flight, track), media_type=GEOJSON_MEDIA_TYPE)
 
 
+def _file_part(path: FilePath, size: int) -> Iterator[bytes]:
+    """The first ``size`` bytes of ``path`` in 64 KiB chunks (run in a worker thread)."""
+    with path.open("rb") as file:
+        left = size
+        while left > 0:
+            chunk = file.read(min(left, 65536))
+            if not chunk:
+                return
+            left -= len(chunk)
+            yield chunk
+
+
 def _attachment(name: str) -> dict[str, str]:
     return {"Content-Disposition": f'attachment; filename="{name}"'}
 
@@ -84,16 +99,52 @@ async def flight_kml(flight_id: FlightId, store: StoreDep) -> Response:
     )
 
 
+TLOG_SOURCE_HEADER = "X-Tlog-Source"
+TLOG_CUT_HEADER = "X-Tlog-Cut"
+
+
 @router.get(
     "/{flight_id}/tlog",
     summary="The flight as a MAVLink telemetry log (.tlog: QGroundControl, Mission Planner, MAVExplorer)",
-    description="Written from the recorded 1 Hz track and status texts, from the vehicle's system id: "
-    "HEARTBEAT, GLOBAL_POSITION_INT, VFR_HUD and SYS_STATUS per sample, STATUSTEXT at its time.",
+    description="The frames the drone sent during the flight, as received, each after its 8-byte "
+    "big-endian receive time in microseconds (header X-Tlog-Source: autopilot; X-Tlog-Cut: true when "
+    "the log reached flight_tlog_max_mib). A flight without a raw log on this node (recorded before, "
+    "with flight_tlog_dir none, or on another node) is written from its 1 Hz track and status texts "
+    "instead (X-Tlog-Source: reconstructed): HEARTBEAT, GPS_RAW_INT, GLOBAL_POSITION_INT, VFR_HUD and "
+    "SYS_STATUS per sample, STATUSTEXT at its time.",
     response_class=Response,
-    responses={200: {"content": {TLOG_MEDIA_TYPE: {}}}},
+    responses={
+        200: {
+            "content": {TLOG_MEDIA_TYPE: {}},
+            "headers": {
+                TLOG_SOURCE_HEADER: {
+                    "description": "autopilot: the drone's own frames; reconstructed: from the 1 Hz track",
+                    "schema": {"type": "string", "enum": ["autopilot", "reconstructed"]},
+                },
+                TLOG_CUT_HEADER: {
+                    "description": "true: the raw log reached its cap and later frames are missing",
+                    "schema": {"type": "string", "enum": ["true", "false"]},
+                },
+            },
+        }
+    },
 )
-async def flight_tlog(flight_id: FlightId, store: StoreDep, registry: RegistryDep) -> Response:
+async def flight_tlog(
+    flight_id: FlightId, store: StoreDep, registry: RegistryDep, gateway: GatewayDep
+) -> Response:
     flight = await _flight(store, flight_id)
+    name = f"{flight.vehicle_id}-flight-{flight_id}.tlog"
+    folder = tlog_folder(gateway.settings, store.url)
+    raw = tlog_file(folder, flight.vehicle_id, flight_id) if folder is not None else None
+    if raw is not None and raw.is_file():
+        size = raw.stat().st_size  # a flight in progress: what is written now
+        headers = {
+            **_attachment(name),
+            "Content-Length": str(size),
+            TLOG_SOURCE_HEADER: "autopilot",
+            TLOG_CUT_HEADER: "true" if was_cut(raw, gateway.settings) else "false",
+        }
+        return StreamingResponse(_file_part(raw, size), media_type=TLOG_MEDIA_TYPE, headers=headers)
     track = await store.get_track(flight_id)
     texts = await store.list_flight_status_texts(flight_id, limit=1000)
     vehicle = await store.get_vehicle(flight.vehicle_id)
@@ -106,9 +157,8 @@ async def flight_tlog(flight_id: FlightId, store: StoreDep, registry: RegistryDe
     except UnknownVehicle:
         pass
     data = track_tlog(flight, track, texts, sysid=sysid, autopilot=autopilot)
-    return Response(
-        data, media_type=TLOG_MEDIA_TYPE, headers=_attachment(f"{flight.vehicle_id}-flight-{flight_id}.tlog")
-    )
+    headers = {**_attachment(name), TLOG_SOURCE_HEADER: "reconstructed", TLOG_CUT_HEADER: "false"}
+    return Response(data, media_type=TLOG_MEDIA_TYPE, headers=headers)
 
 
 @router.get(

@@ -8,7 +8,8 @@ here is the request's schema and the routes.
 
 from __future__ import annotations
 
-from typing import Any, Literal
+from collections.abc import Callable
+from typing import Literal
 
 from fastapi import APIRouter
 from pydantic import BaseModel, ConfigDict, Field
@@ -18,10 +19,11 @@ from gateway.api.control import operator
 from gateway.api.deps import CommanderDep, PrincipalDep
 from gateway.fleet.policy.geofence import FLEET
 from gateway.fleet.policy.zones import MAX_ZONES, GeofencesView, ZoneFeature
+from gateway.util.json_types import JsonObject
 
 router = APIRouter(tags=["geofences"], route_class=AuditedRoute)
 
-_POSITION = {
+_POSITION: JsonObject = {
     "type": "array",
     "description": "[longitude, latitude]",
     "prefixItems": [
@@ -31,11 +33,16 @@ _POSITION = {
     "minItems": 2,
     "maxItems": 3,
 }
-_RING = {"type": "array", "items": _POSITION, "minItems": 4, "description": "A closed ring: first = last"}
-_POLYGON = {"type": "array", "items": _RING, "minItems": 1}
+_RING: JsonObject = {
+    "type": "array",
+    "items": _POSITION,
+    "minItems": 4,
+    "description": "A closed ring: first = last",
+}
+_POLYGON: JsonObject = {"type": "array", "items": _RING, "minItems": 1}
 #: what `Zone.from_geojson` accepts, as far as a schema can say it (a ring must also be closed, simple
 #: and enclose an area: checked there, answered 422 with the zone's name)
-GEOMETRY_SCHEMA: dict[str, Any] = {
+GEOMETRY_SCHEMA: JsonObject = {
     "description": "A GeoJSON Polygon or MultiPolygon ([lon, lat] pairs).",
     "oneOf": [
         {
@@ -53,7 +60,7 @@ GEOMETRY_SCHEMA: dict[str, Any] = {
         },
     ],
 }
-PROPERTIES_SCHEMA: dict[str, Any] = {
+PROPERTIES_SCHEMA: JsonObject = {
     "type": "object",
     "description": "kind: keep_in | keep_out (required); name (unique); vehicle_id (fleet file only).",
     "required": ["kind"],
@@ -65,8 +72,10 @@ PROPERTIES_SCHEMA: dict[str, Any] = {
 }
 
 
-def _schema(schema: dict[str, Any]) -> Any:
-    def replace(generated: dict[str, Any]) -> None:
+def _schema(schema: JsonObject) -> Callable[[JsonObject], None]:
+    """A field's ``json_schema_extra`` that puts ``schema`` in place of the one pydantic generates."""
+
+    def replace(generated: JsonObject) -> None:
         generated.clear()
         generated.update(schema)
 
@@ -80,8 +89,8 @@ class FeatureIn(ZoneFeature):
         extra="allow", json_schema_extra={"required": ["type", "properties", "geometry"]}
     )
 
-    properties: dict[str, Any] | None = Field(None, json_schema_extra=_schema(PROPERTIES_SCHEMA))
-    geometry: dict[str, Any] = Field(json_schema_extra=_schema(GEOMETRY_SCHEMA))
+    properties: JsonObject | None = Field(None, json_schema_extra=_schema(PROPERTIES_SCHEMA))
+    geometry: JsonObject = Field(json_schema_extra=_schema(GEOMETRY_SCHEMA))
 
 
 class FeatureCollectionIn(BaseModel):

@@ -81,7 +81,10 @@ def _responses(method: str, path: str, operation: dict[str, object]) -> dict[str
     tags = operation.get("tags")
     if isinstance(tags, list) and _COMMAND_TAGS & set(tags):
         codes["403"] = "A safety rule refused the command (details.rule names it), or a viewer token."
-        codes["409"] = "The vehicle is not ready (the message says its state and why)."
+        codes["409"] = (
+            "The vehicle is not ready, or its state makes the command moot (a land for a drone on the "
+            "ground): the message says its state."
+        )
         codes["502"] = _WHY["502"]
     return codes
 

@@ -27,16 +27,18 @@ import json
 import logging
 import time
 from collections.abc import Awaitable, Callable, Mapping
-from typing import Any, TypedDict
+from typing import Any, Required
 
 import nats
 from nats.aio.client import Client
 from nats.aio.msg import Msg
 from nats.aio.subscription import Subscription
+from pydantic import TypeAdapter, ValidationError
+from typing_extensions import TypedDict  # pydantic validates CallRequest with it on Python 3.11
 
 from gateway.errors import GatewayError, NoOwner, NotRun, OwnerLost, OwnerTimeout
 from gateway.fleet.operations.routing import ProgressMessage
-from gateway.util.json_types import JsonObject
+from gateway.util.json_types import JsonObject, JsonValue
 
 log = logging.getLogger("gateway.cluster.bus")
 
@@ -49,7 +51,7 @@ CLOCK_MARGIN_S = 0.5
 OWNER_CHECK_S = 0.5
 ProgressSink = Callable[[ProgressMessage], Awaitable[None]]
 #: ``handler(call name, arguments, caller (a Caller's JSON), progress)`` -> JSON-serialisable result
-CallHandler = Callable[[str, JsonObject, Mapping[str, object], ProgressSink], Awaitable[Any]]
+CallHandler = Callable[[str, JsonObject, Mapping[str, object], ProgressSink], Awaitable[object]]
 
 
 class ErrorBody(TypedDict, total=False):
@@ -60,6 +62,39 @@ class ErrorBody(TypedDict, total=False):
     message: str
     details: dict[str, object]
     status: int
+
+
+class CallRequest(TypedDict, total=False):
+    """A call for a vehicle's owner as it crosses the bus (`Bus.call` sends it, the owner validates it)."""
+
+    call: Required[str]  # the verb (or ``wait``)
+    args: JsonObject  # its JSON arguments
+    caller: JsonObject  # a Caller's JSON
+    accept_by: float | None  # wall-clock time after which the owner must not run it
+    epoch: int | None  # the lease epoch the caller saw
+
+
+_CALL_REQUEST = TypeAdapter(CallRequest)
+
+
+class CallAnswer(TypedDict, total=False):
+    """The owner's last message on a call's inbox: its result as JSON, or its error."""
+
+    ok: Required[bool]
+    result: JsonValue
+    error: ErrorBody
+
+
+_CALL_ANSWER = TypeAdapter(CallAnswer)
+_PROGRESS = TypeAdapter(ProgressMessage)
+
+
+def _problems(exc: ValidationError) -> str:
+    """What is wrong with a body, on one line (each member with what it holds and what it must be)."""
+    return "; ".join(
+        f"{'.'.join(str(p) for p in err['loc']) or 'body'}: {err['msg']} (got {str(err['input'])[:60]})"
+        for err in exc.errors()
+    )
 
 
 async def no_progress(_update: ProgressMessage) -> None:
@@ -100,15 +135,16 @@ def _error_classes() -> dict[str, type[GatewayError]]:
 
 
 def error_body(exc: GatewayError) -> ErrorBody:
+    details = _jsonable(exc.details)  # a JSON object: the details are keyword arguments
     return {
         "code": exc.code,
         "message": exc.message,
-        "details": _jsonable(exc.details),
+        "details": dict(details) if isinstance(details, dict) else {},
         "status": exc.http_status,
     }
 
 
-def rebuild_error(body: ErrorBody) -> GatewayError:
+def rebuild_error(body: Mapping[str, object]) -> GatewayError:
     """The error a remote node raised, as the same class here (a plain GatewayError if unknown)."""
     code = str(body.get("code") or "gateway_error")
     cls = _error_classes().get(code, GatewayError)
@@ -120,12 +156,15 @@ def rebuild_error(body: ErrorBody) -> GatewayError:
         exc.rule = details["rule"]  # type: ignore[attr-defined]
     if cls is GatewayError:
         exc.code = code
-        exc.http_status = int(body.get("status") or 500)
+        status = body.get("status")
+        exc.http_status = status if isinstance(status, int) else 500
     return exc
 
 
-def _jsonable(value: Any) -> Any:
-    return json.loads(json.dumps(value, default=str))
+def _jsonable(value: object) -> JsonValue:
+    """``value`` as the JSON its answer carries (what JSON cannot hold, as its text)."""
+    carried: JsonValue = json.loads(json.dumps(value, default=str))
+    return carried
 
 
 async def probe(url: str, timeout_s: float) -> None:
@@ -251,7 +290,7 @@ class Bus:
         epoch: int | None = None,
         owner_gone: Callable[[], str | None] | None = None,
         subject: str | None = None,
-    ) -> Any:
+    ) -> JsonValue:
         """Run ``name`` on the vehicle's owner; its result, or its error raised again here. The owner
         must accept it within ``accept_s`` (else :class:`NotRun`, and the owner will not run it later);
         then its answer may take ``timeout_s`` in all (else :class:`OwnerTimeout`: it was running).
@@ -320,7 +359,7 @@ class Bus:
 
     async def _call_reply(
         self, msg: Msg, vehicle_id: str, name: str, on_progress: ProgressSink | None
-    ) -> tuple[Any] | None:
+    ) -> tuple[JsonValue] | None:
         """One message on a call's inbox: None when it says the owner accepted the call or reports its
         progress; else the owner's result (in a 1-tuple), or its error raised here."""
         headers = msg.headers or {}
@@ -333,13 +372,18 @@ class Bus:
         kind = headers.get(KIND)
         if kind == "accepted":
             return None
-        reply = json.loads(msg.data or b"{}")
         if kind == "progress":
             if on_progress is not None:
                 with contextlib.suppress(Exception):  # progress is a courtesy
-                    await on_progress(reply)
+                    await on_progress(_PROGRESS.validate_json(msg.data or b"{}"))
             return None
-        if reply.get("ok"):
+        try:
+            reply = _CALL_ANSWER.validate_json(msg.data or b"{}")
+        except ValidationError as exc:
+            raise GatewayError(
+                f"the answer to {name} for {vehicle_id} is not a call's answer: {_problems(exc)}"
+            ) from None
+        if reply["ok"]:
             return (reply.get("result"),)
         raise rebuild_error(reply.get("error") or ErrorBody())
 
@@ -368,29 +412,23 @@ class Bus:
     async def _answer(self, msg: Msg, handler: CallHandler, check: CallCheck | None = None) -> None:
         reply_to = msg.reply
         try:
-            body = json.loads(msg.data)
-            name, arguments, caller = (
-                str(body["call"]),
-                dict(body.get("args") or {}),
-                dict(body.get("caller") or {}),
-            )
-            accept_by = body.get("accept_by")
-            epoch = body.get("epoch")
-        except Exception as exc:
-            answer: dict[str, object] = {  # an ErrorBody, or the result as JSON
+            request = _CALL_REQUEST.validate_json(msg.data)
+            name, arguments, caller = request["call"], request.get("args", {}), request.get("caller", {})
+            accept_by, epoch = request.get("accept_by"), request.get("epoch")
+        except ValidationError as exc:  # not JSON, or not a call
+            answer: CallAnswer = {
                 "ok": False,
-                "error": {"code": "invalid_argument", "message": f"bad call: {exc}"},
+                "error": {"code": "invalid_argument", "message": f"bad call: {_problems(exc)}"},
             }
         else:
-            late = isinstance(accept_by, int | float) and time.time() > accept_by
             try:
-                if late:  # its caller has been told it did not run: it must not
-                    late_s = time.time() - float(accept_by)
+                if accept_by is not None and time.time() > accept_by:  # its caller was told it did not run
+                    late_s = time.time() - accept_by
                     log.warning("dropped %s from %s: it arrived %.1f s after its deadline", name,
                                 caller.get("node", "?"), late_s)  # fmt: skip
                     raise NotRun(f"{name} reached the owner {late_s:.1f} s after its deadline: not run")
                 if check is not None:
-                    check(epoch if isinstance(epoch, int) else None)
+                    check(epoch)
             except GatewayError as exc:
                 answer = {"ok": False, "error": error_body(exc)}
             else:

@@ -13,7 +13,6 @@ import contextlib
 import logging
 import time
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any
 
 from nats.aio.subscription import Subscription
 
@@ -23,9 +22,8 @@ from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget, direct_stop_answer, send_stop
 from gateway.errors import CommandFailed, NoOwner, NotRun
 from gateway.fleet.policy.caller import Caller
-
-if TYPE_CHECKING:
-    pass
+from gateway.fleet.vehicles.protocols import FlyingVehicle
+from gateway.util.json_types import JsonObject
 
 log = logging.getLogger("gateway.cluster")
 
@@ -46,7 +44,7 @@ class FencedStops:
         self.fenced: dict[str, StopTarget] = {}
         self._paths: dict[str, Subscription] = {}
         # the vehicles whose sidecars are being stopped as this node fences itself, while they are
-        self._leaving: dict[str, Any] = {}
+        self._leaving: dict[str, FlyingVehicle] = {}
 
     def targets(self) -> list[StopTarget]:
         registry = self._node.registry
@@ -57,8 +55,9 @@ class FencedStops:
                 continue
             sysid = getattr(vehicle, "sysid", None) or vehicle.spec.expected_sysid
             targets.append(StopTarget(vid, vehicle.spec.url, sysid, lease.epoch))
-            if not isinstance(vehicle, RemoteVehicle):
-                self._leaving[vid] = vehicle
+            flown = vehicle.flown_here()  # None: a view of a drone another node flew
+            if flown is not None:
+                self._leaving[vid] = flown
         return targets
 
     def left(self) -> None:
@@ -112,13 +111,13 @@ class FencedStops:
 
     def _answer(self, vehicle_id: str) -> CallHandler:
         async def handle(
-            name: str, arguments: dict[str, Any], caller: Mapping[str, object], progress: ProgressSink
+            name: str, arguments: JsonObject, caller: Mapping[str, object], progress: ProgressSink
         ) -> object:
             return await self.stop_directly(vehicle_id, name, Caller.from_dict(caller))
 
         return handle
 
-    async def stop_directly(self, vehicle_id: str, verb: str, caller: Caller) -> dict[str, Any]:
+    async def stop_directly(self, vehicle_id: str, verb: str, caller: Caller) -> JsonObject:
         """An operator's land, return or hold, sent over the drone's own link by this fenced node."""
         target = self.fenced.get(vehicle_id)
         if target is None:
@@ -140,7 +139,9 @@ class FencedStops:
                 # its sidecar is still being stopped (its flight log closing): while its link is up, the
                 # stop goes through it
                 try:
-                    await getattr(leaving, verb)()
+                    stops = {"land": leaving.land, "return_to_launch": leaving.return_to_launch,
+                             "hold": leaving.hold}  # fmt: skip
+                    await stops[verb]()
                 except Exception as exc:
                     log.info("%s: %s through its stopping sidecar failed (%r)", vehicle_id, verb, exc)
                 else:

@@ -31,6 +31,7 @@ from gateway.cluster.leases import Lease, LeaseStore, NodeRecord
 from gateway.cluster.lock_versions import FAMILIES, LockVersions
 from gateway.cluster.owner_calls import OwnerCalls
 from gateway.cluster.remote import RemoteVehicle
+from gateway.cluster.renewal import SELF_FENCE_SHARE, LeaseRenewal
 from gateway.cluster.runtime_view import NodeRuntime
 from gateway.cluster.stop_notify import StopRelay
 from gateway.cluster.stop_takeover import StopTakeover
@@ -40,6 +41,7 @@ from gateway.cluster.telemetry_fanout import TelemetryFanout
 from gateway.config import Settings
 from gateway.errors import GatewayError, NoOwner
 from gateway.fleet.policy.caller import Caller
+from gateway.fleet.policy.geofence import FLEET
 from gateway.registry.spec import VehicleSpec
 
 if TYPE_CHECKING:
@@ -48,8 +50,7 @@ if TYPE_CHECKING:
 log = logging.getLogger("gateway.cluster")
 
 #: a node stops its sidecars when it could not renew for this share of the lease time (before anyone
-#: else may take them over at the full lease time)
-SELF_FENCE_SHARE = 0.8
+#: else may take them over at the full lease time): `gateway.cluster.renewal.SELF_FENCE_SHARE`
 CONNECT_TIMEOUT_S = 15.0
 #: a tick may run past the moment the fence is due by this share of the lease time (half the time
 #: between that moment and the leases' expiry), so that a renewal under way can still finish
@@ -59,6 +60,10 @@ LEAVE_TIMEOUT_S = 3.0
 #: a lock heard on the bus holds this long at most while the database does not have it (its node keeps it
 #: until the database is back); an unlock heard on the bus, or the lock seen stored, ends the wait
 HEARD_LOCK_KEPT_S = 600.0
+
+
+#: why a fenced node gives its drones up
+FENCED_WHY = "leases could not be renewed"
 
 
 class ClusterSetupError(GatewayError):
@@ -105,6 +110,7 @@ class ClusterNode:
         self.fanout = TelemetryFanout(self)
         self.calls = OwnerCalls(self)  # calls routed to a drone's owner, and answered for this node's
         self.relay: StopRelay | None = None  # stops through PostgreSQL when the bus does not carry them
+        self.renewal: LeaseRenewal | None = None  # the leases renewed apart from the keeper's other work
         self.takeover = StopTakeover(self)  # stops no owner acknowledged: this node commands the drone
         self.nodes: list[NodeRecord] = []
         self.all_leases: dict[str, Lease] = {}
@@ -145,8 +151,13 @@ class ClusterNode:
         self._subs.append(await self.bus.subscribe(tele_subject("*"), self.fanout.on_snapshot))
         self._subs.append(await self.bus.subscribe("fleet.event.>", self._on_event))
         await self.leases.heartbeat(self.tags, self.api_url)
+        # a lock this node kept while the database was down is not written once it is back if an unlock
+        # newer than it is known by then (made through another node meanwhile)
+        store.lock_superseded = self.lock_versions.superseded
         self.relay = StopRelay(store.url, self.node_id, self.calls.relayed_stop)
         await self.relay.start()
+        self.renewal = LeaseRenewal(self, store.url)
+        self.renewal.start()
         self.started = True
         log.info("cluster node %s (tags %s) joined; lease %.0f s", self.node_id, self.tags or "none",
                  self.settings.cluster_lease_ttl_s)  # fmt: skip
@@ -162,6 +173,8 @@ class ClusterNode:
             task.cancel()
         await asyncio.gather(*self._tasks, return_exceptions=True)
         self._tasks = []
+        if self.renewal is not None:
+            await self.renewal.stop()
         if self._adoptions:  # let an adoption under way finish first: then its sidecar is stopped below
             await asyncio.wait(set(self._adoptions), timeout=LEAVE_TIMEOUT_S * 3)
         await self.takeover.close()
@@ -202,9 +215,11 @@ class ClusterNode:
             log.error("%s: its sidecar ran without this node holding its lease: stopping it", vid)
         await self._drop_all(strays, "no lease held")
 
-    async def _drop_all(self, vehicle_ids: list[str], why: str) -> None:
+    async def _drop_all(self, vehicle_ids: list[str], why: str, fenced: bool = False) -> None:
         """Stop the sidecars of these vehicles, all at once (none waits behind another's flight log)."""
-        results = await asyncio.gather(*(self._drop(v, why) for v in vehicle_ids), return_exceptions=True)
+        results = await asyncio.gather(
+            *(self._drop(v, why, fenced) for v in vehicle_ids), return_exceptions=True
+        )
         for vid, result in zip(vehicle_ids, results, strict=True):
             if isinstance(result, BaseException):
                 log.error("%s: stopping it raised %r", vid, result)
@@ -248,7 +263,7 @@ class ClusterNode:
                     # seconds (its flight log closing), and a stop meanwhile goes through it
                     await self.stops.keep(targets)
                     try:
-                        await self._drop_all(list(self.held), "leases could not be renewed")
+                        await self._drop_all(list(self.held), FENCED_WHY, fenced=True)
                     finally:
                         self.stops.left()
                     await self.stops.keep(targets)
@@ -302,6 +317,7 @@ class ClusterNode:
             for vid in list(self.held):
                 if vid not in renewed or renewed[vid].epoch != self.held[vid].epoch:
                     log.warning("%s: lease lost (taken over or expired): stopping its sidecar", vid)
+                    self.calls.cut_short(vid, "its lease was lost")
                     await self._drop(vid, "lease lost")
                 else:
                     self.held[vid] = renewed[vid]
@@ -417,7 +433,12 @@ class ClusterNode:
         except Exception:
             log.exception("takeover of %s: picking up its operations failed", vehicle_id)
 
-    async def _drop(self, vehicle_id: str, why: str) -> None:
+    async def _drop(self, vehicle_id: str, why: str, fenced: bool = False) -> None:
+        """Stop the vehicle's sidecar; ``fenced``: this node fenced itself, so the forwarded calls it runs
+        for the vehicle are answered at once (their operations are left to the node that takes the drone
+        over next, which follows them under the same ids, as after a node loss)."""
+        if fenced:
+            self.calls.cut_short(vehicle_id, why)
         self.held.pop(vehicle_id, None)
         self._renewed_at.pop(vehicle_id, None)
         sub = self._served.pop(vehicle_id, None)
@@ -434,7 +455,7 @@ class ClusterNode:
         """Tell every node (locks, registrations); a node that misses it catches up at its next tick. A
         lock, an unlock, a takeover lock and its release carry their version
         (`gateway.cluster.lock_versions`)."""
-        body = self.lock_versions.stamp(kind, body)
+        body = self.lock_versions.stop_stamp(body) if kind == "stop" else self.lock_versions.stamp(kind, body)
         if kind == "unlock":
             self._heard_locks.pop(str(body.get("scope")), None)
         try:
@@ -474,9 +495,15 @@ class ClusterNode:
         elif kind == "stop":  # an operator's emergency stop on another node: end the fleet operations
             fleet = self.gateway.fleet_operations  # this node coordinates (it stops its own drones)
             registry = self.registry
-            if fleet is not None and registry is not None:
+            if self.lock_versions.stop_is_late(body):
+                log.warning("dropped a late stop broadcast from node %s (fleet lock version %s; this node "
+                            "knows version %d)", body.get("node"), body.get("version"),
+                            self.lock_versions.newest("lock", FLEET))  # fmt: skip
+            elif fleet is not None and registry is not None:
                 by = f"operator stop ({body.get('action')}) on node {body.get('node')}"
-                await fleet.supersede([v.id for v in registry.all()], by)
+                made = body.get("at")  # only the fleet operations started before the stop was made
+                before = datetime.fromisoformat(made) if isinstance(made, str) else None
+                await fleet.supersede([v.id for v in registry.all()], by, before=before)
         elif kind in ("registry", "leases"):
             self.kick()
 

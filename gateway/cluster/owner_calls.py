@@ -18,7 +18,7 @@ from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stop_notify import StopRelay
 from gateway.cluster.stop_takeover import OWNER_ACK_S, StopTakeover
 from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget
-from gateway.errors import NoOwner, NotRun
+from gateway.errors import NoOwner, NotRun, OwnerFenced
 from gateway.fleet.operations.routing import OnMessage
 from gateway.fleet.policy.caller import Caller
 
@@ -61,6 +61,22 @@ class OwnerCalls:
 
     def __init__(self, node: CallsNode) -> None:
         self._node = node
+        # vehicle -> the forwarded calls this node runs for it now (each its verb's task)
+        self._running: dict[str, set[asyncio.Task[object]]] = {}
+        # a call cut short -> why (`cut_short`)
+        self._cut: dict[asyncio.Task[object], str] = {}
+
+    def cut_short(self, vehicle_id: str, why: str) -> int:
+        """This node gives the drone up without handing it over (it fenced itself, or its lease was
+        lost): every forwarded call it runs for the drone ends now, its caller answered at once that it
+        was not finished (`OwnerFenced`) rather than when its wait runs out; how many."""
+        running = self._running.pop(vehicle_id, set())
+        for task in running:
+            self._cut[task] = why
+            task.cancel()
+        if running:
+            log.warning("%s: %d forwarded call(s) cut short (%s)", vehicle_id, len(running), why)
+        return len(running)
 
     async def forward(
         self,
@@ -245,6 +261,24 @@ class OwnerCalls:
                 raise NoOwner(
                     f"node {self._node.node_id} no longer owns drone '{vehicle_id}': retry in a few seconds"
                 )
-            return await answer(self._node.gateway.commander, name, arguments, caller, progress)
+            commander = self._node.gateway.commander
+            run = asyncio.ensure_future(answer(commander, name, arguments, caller, progress))
+            self._running.setdefault(vehicle_id, set()).add(run)
+            try:
+                await asyncio.wait({run})  # this handler cancelled: the verb is cancelled with it
+            except asyncio.CancelledError:
+                run.cancel()
+                raise
+            finally:
+                self._running.get(vehicle_id, set()).discard(run)
+                why = self._cut.pop(run, None)
+            if why is not None and run.cancelled():
+                raise OwnerFenced(
+                    f"not finished: node {self._node.node_id} gave drone '{vehicle_id}' up while it ran "
+                    f"{name} ({why}) and does not command it any further; the drone flies its last command "
+                    "on its own: check get_telemetry before the next command",
+                    vehicle_id=vehicle_id,
+                )
+            return run.result()
 
         return handle

@@ -62,7 +62,7 @@ class RemoteVehicle:
         self.owner = node_id
         self.epoch = max(self.epoch, epoch) if node_id is not None else self.epoch
 
-    def apply(self, body: JsonObject) -> bool:
+    def apply(self, body: snapshot.Snapshot) -> bool:
         """Take a snapshot in; False when it is older than one already applied (a previous owner)."""
         epoch, seq = _count(body.get("epoch")), _count(body.get("seq"))
         if epoch < self.epoch or (

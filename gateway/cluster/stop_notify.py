@@ -27,14 +27,14 @@ import logging
 import time
 import uuid
 from collections.abc import Awaitable, Callable, Mapping
-from typing import Any
 
 import asyncpg  # type: ignore[import-untyped]
 from sqlalchemy.engine import make_url
 
 from gateway.errors import GatewayError, NotRun
+from gateway.util.json_types import JsonObject, JsonValue
 
-from .bus import ErrorBody, error_body, rebuild_error
+from .bus import error_body, rebuild_error
 
 log = logging.getLogger("gateway.cluster.stop_notify")
 
@@ -56,7 +56,7 @@ SEEN_KEPT = 1000
 RELAYED_ACCEPT_S = 10.0
 #: ``handler(stop)`` -> the stop's JSON result when this node ran it, None when the drone is not this
 #: node's (it stays silent); raises a GatewayError when it is this node's and it refused it
-StopHandler = Callable[[dict[str, Any]], Awaitable[object]]
+StopHandler = Callable[[JsonObject], Awaitable[object]]
 
 
 def asyncpg_dsn(database_url: str) -> str:
@@ -73,9 +73,9 @@ class StopRelay:
         self.handler = handler
         self.conn: asyncpg.Connection | None = None
         self._pool: asyncpg.Pool | None = None
-        self._pending: dict[str, asyncio.Future[dict[str, Any]]] = {}
+        self._pending: dict[str, asyncio.Future[JsonObject]] = {}
         # stop ids this node ran (or is running) -> its answer once there is one
-        self._seen: dict[str, dict[str, Any] | None] = {}
+        self._seen: dict[str, Mapping[str, object] | None] = {}
         self._task: asyncio.Task[None] | None = None
         self._tasks: set[asyncio.Task[None]] = set()
         self._ready = asyncio.Event()
@@ -140,7 +140,7 @@ class StopRelay:
 
     def _on_notify(self, _conn: object, _pid: int, channel: str, payload: str) -> None:
         try:
-            body = json.loads(payload)
+            body: JsonValue = json.loads(payload)
         except ValueError:
             log.warning("stop relay: unreadable notification on %s: %.200s", channel, payload)
             return
@@ -175,7 +175,7 @@ class StopRelay:
         self._tasks.add(task)
         task.add_done_callback(self._tasks.discard)
 
-    async def _run(self, body: dict[str, Any]) -> None:
+    async def _run(self, body: JsonObject) -> None:
         command = body.get("command")
         try:
             if command not in RELAYED:  # never accepted this way, whoever owns the drone
@@ -192,7 +192,7 @@ class StopRelay:
             result = await self.handler(body)
             if result is None:
                 return
-            answer: dict[str, Any] = {"ok": True, "result": result}
+            answer: dict[str, object] = {"ok": True, "result": result}
         except GatewayError as exc:
             answer = {"ok": False, "error": error_body(exc)}
         except Exception as exc:
@@ -205,7 +205,7 @@ class StopRelay:
             self._seen[stop_id] = ack
         await self._notify(ACK_CHANNEL, ack)
 
-    async def _notify(self, channel: str, body: dict[str, Any], within_s: float = 5.0) -> None:
+    async def _notify(self, channel: str, body: Mapping[str, object], within_s: float = 5.0) -> None:
         """One notification on a pool connection of its own (never the listener's, never shared)."""
         pool = self._pool
         if pool is None:
@@ -214,7 +214,7 @@ class StopRelay:
             await conn.execute("SELECT pg_notify($1, $2)", channel, json.dumps(body, default=str))
 
     async def send(
-        self, vehicle_id: str, command: str, arguments: dict[str, Any], epoch: int | None,
+        self, vehicle_id: str, command: str, arguments: JsonObject, epoch: int | None,
         caller: Mapping[str, object], within_s: float,
     ) -> object:  # fmt: skip
         """Relay the stop ``command`` for ``vehicle_id`` to its owner; the owner's result, or its error
@@ -224,7 +224,7 @@ class StopRelay:
         stop_id = uuid.uuid4().hex
         started = time.monotonic()
         deadline = started + within_s
-        future: asyncio.Future[dict[str, Any]] = asyncio.get_running_loop().create_future()
+        future: asyncio.Future[JsonObject] = asyncio.get_running_loop().create_future()
         self._pending[stop_id] = future
         body = {"id": stop_id, "vehicle": vehicle_id, "command": command, "args": arguments,
                 "epoch": epoch, "by": caller, "node": self.node_id, "at": time.time(),
@@ -263,4 +263,5 @@ class StopRelay:
                     sends)  # fmt: skip
         if answer.get("ok"):
             return answer.get("result")
-        raise rebuild_error(answer.get("error") or ErrorBody())
+        error = answer.get("error")
+        raise rebuild_error(error if isinstance(error, dict) else {})

@@ -28,7 +28,7 @@ import contextlib
 import logging
 import time
 from collections.abc import Awaitable
-from typing import TYPE_CHECKING, Any, NoReturn, Protocol
+from typing import TYPE_CHECKING, NoReturn, Protocol
 
 from gateway.cluster.bus import no_progress
 from gateway.cluster.forwarding import answer
@@ -110,9 +110,11 @@ class StopTakeover:
         stop-only path) and, with ``take_over``, the drone's own link from this node, all at once until
         ``deadline``: the first answer. An owner's refusal is raised; with none of them through by the
         deadline, NotRun (without ``take_over``) or :class:`StopPending` (this node keeps at it)."""
-        tasks: dict[asyncio.Future[Any], str] = {asyncio.ensure_future(p): "owner" for p in owner_paths}
+        tasks: dict[asyncio.Future[object], str] = {asyncio.ensure_future(p): "owner" for p in owner_paths}
         if take_over:
-            link = asyncio.ensure_future(self._direct_until(drone_id, verb, caller, epoch, deadline))
+            link: asyncio.Future[object] = asyncio.ensure_future(
+                self._direct_until(drone_id, verb, caller, epoch, deadline)
+            )
             tasks[link] = "link"
         direct = "not tried"
         try:
@@ -257,7 +259,7 @@ class StopTakeover:
         return None
 
 
-def _cancel_all(tasks: dict[asyncio.Future[Any], str]) -> None:
+def _cancel_all(tasks: dict[asyncio.Future[object], str]) -> None:
     """The paths still under way once one answered; a path that failed meanwhile has nothing to add."""
     for task in tasks:
         task.cancel()

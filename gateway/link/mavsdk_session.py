@@ -131,16 +131,23 @@ class MavsdkSession:
         await self.feed.stop()
 
     # --- telemetry rates ---------------------------------------------------------------------------------
-    def schedule_rates(self, why: str, force: bool = False) -> None:
+    def schedule_rates(self, why: str, force: bool = False, then: Callable[[], None] | None = None) -> None:
         """Request every telemetry rate (again), unless a request runs or one was made less than
-        ``RATE_RETRY_S`` ago (``force``: regardless of when)."""
+        ``RATE_RETRY_S`` ago (``force``: regardless of when); ``then`` is called once the request has
+        ended, or at once when none was made."""
         if not self.open or (self._rates_task is not None and not self._rates_task.done()):
+            if then is not None:
+                then()
             return
         if not force and time.monotonic() - self._rates_requested_at < RATE_RETRY_S:
+            if then is not None:
+                then()
             return
         self._rates_requested_at = time.monotonic()
         log.info("%s: requesting telemetry rates (%s)", self.id, why)
         self._rates_task = asyncio.create_task(self._request_rates(), name=f"rates-{self.id}")
+        if then is not None:
+            self._rates_task.add_done_callback(lambda _task: then())
 
     async def _request_rates(self) -> None:
         feed = self.feed

@@ -1,9 +1,12 @@
 """A vehicle's MAVLink shared with ground stations: the gateway holds the drone's link and relays it.
 
 When a registration lists ``gcs_endpoints``, the vehicle's URL is opened here instead of by its
-``mavsdk_server``; the sidecar talks to this relay over a loopback UDP socket (``udpout://127.0.0.1:P``,
-P chosen by the kernel), and every ground station endpoint is opened as its URL says. Routing, as a
-MAVLink router does it:
+``mavsdk_server``; the sidecar talks to this relay over a loopback TCP connection
+(``tcpout://127.0.0.1:P``, P chosen by the kernel), and every ground station endpoint is opened as its
+URL says. TCP, not UDP: the drone's frames reach the sidecar one by one, and a burst of them (the
+parameter list, ~1,300 PARAM_VALUE at once) as as many loopback datagrams overflows the sidecar's
+socket buffer whenever mavsdk_server is not scheduled for a moment; TCP holds them until it reads
+(up to ``SIDECAR_BUFFER`` bytes). Routing, as a MAVLink router does it:
 
 * every frame from the vehicle goes to the sidecar and to every ground station; a frame addressed to
   one system (``target_system`` set) goes only to the endpoints that system was heard on (the
@@ -19,6 +22,10 @@ Frames are split by their MAVLink v1/v2 framing and checked by CRC where the mes
 unknown message id is relayed as framed); bytes that are no frame are dropped. The relay runs as long
 as the vehicle's link is wanted, across sidecar restarts, so ground stations keep the drone while
 the gateway's own session comes and goes.
+
+A drone without ground stations is relayed too while the gateway records its flights' raw MAVLink
+(``flight_tlog_dir``): the relay is then the one place the drone's frames pass whole, and each is
+handed as received to ``on_vehicle_frame`` (`gateway.fleet.missions.raw_tlog`).
 """
 
 from __future__ import annotations
@@ -36,10 +43,14 @@ from gateway.link.contract import GroundCommand
 from gateway.link.ground_commands import acting, is_heartbeat, not_a_ground_station
 from gateway.link.mavlink_frames import Frame, target_system
 from gateway.link.proc_sockets import proc_net_rows, socket_inodes
-from gateway.link.relay_endpoints import REOPEN_S, Endpoint, UdpEndpoint, open_endpoint
+from gateway.link.relay_endpoints import REOPEN_S, Endpoint, TcpEndpoint, open_endpoint
 from gateway.util.json_types import JsonValue
 
 log = logging.getLogger("gateway.relay")
+
+#: what the drone may send while its sidecar does not read, before frames to it are dropped (a stalled
+#: mavsdk_server holds a few seconds of a fast link; one that is gone holds no more than this)
+SIDECAR_BUFFER = 16 * 1024 * 1024
 
 
 class Relay:
@@ -52,19 +63,22 @@ class Relay:
         gcs_urls: list[str],
         sidecar_pid: Callable[[], int | None] | None = None,
         on_refused: Callable[[str, str], None] | None = None,
+        on_vehicle_frame: Callable[[bytes], None] | None = None,
     ) -> None:
         """``sidecar_pid``: the sidecar's process id now; given, only a socket of that process is
         taken as the sidecar (another local process cannot step in between it and the drone).
         ``on_refused(url, reason)``: told when a ground station endpoint is stopped because its peer is
-        no ground station."""
+        no ground station. ``on_vehicle_frame(data)``: given every frame from the vehicle as received
+        (the bytes the relay forwards, not copied), before it is forwarded."""
         self._on_refused = on_refused
+        self._on_vehicle_frame = on_vehicle_frame
         self.vehicle_id = vehicle_id
         self.vehicle_url = vehicle_url
         self.gcs_urls = list(gcs_urls)
         self.vehicle = open_endpoint(vehicle_url, self._from_vehicle)
-        self.sidecar = UdpEndpoint("udpin://127.0.0.1:0", self._to_vehicle)
+        self.sidecar = TcpEndpoint("tcpin://127.0.0.1:0", self._to_vehicle, max_buffer=SIDECAR_BUFFER)
         if sidecar_pid is not None:
-            self.sidecar.accept = lambda peer: _udp_socket_of(sidecar_pid(), peer)
+            self.sidecar.accept = lambda peer: _tcp_socket_of(sidecar_pid(), peer)
         self.ground_stations = [open_endpoint(url, self._to_vehicle) for url in self.gcs_urls]
         self._started: list[Endpoint] = []
         self._retries: list[asyncio.Task[None]] = []
@@ -75,7 +89,7 @@ class Relay:
     @property
     def sidecar_url(self) -> str:
         """What the sidecar is started with instead of the vehicle's URL."""
-        return f"udpout://127.0.0.1:{self.sidecar.bound_port}"
+        return f"tcpout://127.0.0.1:{self.sidecar.bound_port}"
 
     async def start(self) -> None:
         """Open every endpoint. One that cannot be opened now (its port is taken, its address is not
@@ -147,6 +161,8 @@ class Relay:
         return [gcs.status() for gcs in self.ground_stations]
 
     def _from_vehicle(self, _source: Endpoint, frame: Frame) -> None:
+        if self._on_vehicle_frame is not None:
+            self._on_vehicle_frame(frame.data)
         outputs: list[Endpoint] = [self.sidecar, *(g for g in self.ground_stations if g.refused is None)]
         target = target_system(frame)
         if target:
@@ -194,11 +210,12 @@ class Relay:
         return [c for c in self.ground_commands if c.at >= since]
 
 
-def _udp_socket_of(pid: int | None, peer: tuple[str, int]) -> bool:
-    """Whether the UDP socket bound to ``peer`` (a loopback address and port) belongs to process ``pid``."""
+def _tcp_socket_of(pid: int | None, peer: tuple[str, int]) -> bool:
+    """Whether the TCP socket connecting from ``peer`` (a loopback address and port) belongs to process
+    ``pid``."""
     if pid is None:
         return False
-    inodes = {row.inode for row in proc_net_rows("udp") if row.port == peer[1]}
+    inodes = {row.inode for row in proc_net_rows("tcp") if row.port == peer[1]}
     return bool(inodes & socket_inodes(pid))
 
 

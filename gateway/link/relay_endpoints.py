@@ -200,12 +200,22 @@ class TcpEndpoint(Endpoint):
     """``tcpout``: connect to host:port (again and again while it fails or drops); ``tcpin``: listen on
     host:port, every client connected gets every frame."""
 
-    def __init__(self, url: str, deliver: Deliver) -> None:
+    def __init__(self, url: str, deliver: Deliver, max_buffer: int = MAX_BUFFER) -> None:
+        """``max_buffer``: the bytes a connection may have waiting to be sent; a frame beyond is dropped
+        for that connection (a stalled reader does not hold memory without bound)."""
         super().__init__(url, deliver)
+        self.max_buffer = max_buffer
         self._writers: list[asyncio.StreamWriter] = []
         self._server: asyncio.Server | None = None
         self._task: asyncio.Task[None] | None = None
         self._readers: set[asyncio.Task[None]] = set()
+        #: tcpin: whether a client connecting from (host, port) is served (None: every client)
+        self.accept: Callable[[tuple[str, int]], bool] | None = None
+
+    @property
+    def bound_port(self) -> int:
+        assert self._server is not None and self._server.sockets
+        return int(self._server.sockets[0].getsockname()[1])
 
     @property
     def peer(self) -> str | None:
@@ -233,6 +243,10 @@ class TcpEndpoint(Endpoint):
         await self._reopen_forever(connect, failure, serve)
 
     async def _client(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        peer = writer.get_extra_info("peername")
+        if self.accept is not None and not (peer and self.accept((str(peer[0]), int(peer[1])))):
+            writer.close()  # not who this endpoint is for (the sidecar's socket: another local process)
+            return
         task = asyncio.current_task()
         if task is not None:
             self._readers.add(task)
@@ -260,7 +274,7 @@ class TcpEndpoint(Endpoint):
         for writer in list(self._writers):
             if writer.is_closing():
                 continue
-            if writer.transport.get_write_buffer_size() > MAX_BUFFER:
+            if writer.transport.get_write_buffer_size() > self.max_buffer:
                 continue  # a stalled reader: drop rather than buffer without bound (MAVLink is lossy)
             writer.write(data)
             self.stats.frames_out += 1

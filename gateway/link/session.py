@@ -26,14 +26,17 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import logging
+import os
 import time
 from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING
+from urllib.parse import urlsplit
 
 import grpc
 
 from gateway.config import Settings
 from gateway.errors import VehicleNotReady
+from gateway.link import pacing
 from gateway.link.contract import ConnectionState, LinkRules, OnWait, Peer
 from gateway.link.link_monitor import run_monitor
 from gateway.link.mavsdk_calls import MavsdkCalls
@@ -54,6 +57,10 @@ __all__ = ["Link"]
 
 # opening the gRPC session (s): bounds a dead sidecar
 CONNECT_TIMEOUT_S = 10.0
+#: gRPC sessions opening at once, per event loop (``gateway.link.pacing``): a session holds its slot from
+#: before it connects until its rates are requested, at most 10 s; the connection's timeout counts from
+#: the slot
+SESSIONS = pacing.Pace(slots=8, hold_at_most_s=10.0)
 READY_WAIT_S = 60.0
 
 
@@ -88,7 +95,9 @@ class Link:
         self._mission_progress = mission_progress
         self._jobs = list(session_jobs)
         self._sidecar: Sidecar | None = None
-        self._relay: Relay | None = None  # when ground stations share the drone's MAVLink
+        self._relay: Relay | None = None  # when ground stations share the drone's MAVLink or it is recorded
+        #: given each frame from the drone as received while the link is relayed (the flight's raw log)
+        self.vehicle_frames: Callable[[bytes], None] | None = None
         self._system: System | None = None
         self._session_task: asyncio.Task[None] | None = None
         self._session_started: float | None = None
@@ -121,7 +130,8 @@ class Link:
 
     @property
     def relay(self) -> Relay | None:
-        """The relay to the ground stations that share the drone's MAVLink (None: none do)."""
+        """The relay of the drone's MAVLink to the sidecar, the ground stations and the flight's raw log
+        (None: the sidecar holds the drone's link itself)."""
         return self._relay
 
     @property
@@ -319,9 +329,12 @@ class Link:
             await self.disconnect()  # connecting a failed vehicle again starts afresh
         self._last_error = None
         url = self.spec.url
-        if self.spec.gcs_endpoints:
-            # the gateway holds the drone's link and relays it to the sidecar and the ground stations
-            # (the relay's MAVLink dialect, about 7 MiB, is loaded only for a drone that has some)
+        if self.spec.gcs_endpoints or (
+            self.settings.records_flight_frames and _device_present(self.spec.url)
+        ):
+            # the gateway holds the drone's link and relays it to the sidecar and the ground stations,
+            # and hands each frame from the drone to the flight's raw log (the relay's MAVLink dialect,
+            # about 7 MiB, is loaded only when a drone is relayed)
             from gateway.link.relay import Relay
 
             relay = Relay(
@@ -330,10 +343,22 @@ class Link:
                 list(self.spec.gcs_endpoints),
                 sidecar_pid=self._sidecar_pid,
                 on_refused=self._on_relay_refused,
+                on_vehicle_frame=self._vehicle_frame,
             )
             await relay.start()
-            self._relay = relay
-            url = relay.sidecar_url
+            if relay.complaint is not None and not self.spec.gcs_endpoints:
+                # relayed only for the flight's raw log, and the gateway cannot open the drone's link
+                # (no such device, port taken): the sidecar opens it as without the log, and fails or
+                # retries as it does then
+                log.warning(
+                    "%s: %s; connecting without the raw flight log (the sidecar opens the link)",
+                    self.id,
+                    relay.complaint,
+                )
+                await relay.close()
+            else:
+                self._relay = relay
+                url = relay.sidecar_url
         self._sidecar = Sidecar(
             self.id,
             url,
@@ -344,6 +369,11 @@ class Link:
         )
         self._sidecar.start()
         self._monitor_task = asyncio.create_task(run_monitor(self), name=f"monitor-{self.id}")
+
+    def _vehicle_frame(self, data: bytes) -> None:
+        sink = self.vehicle_frames
+        if sink is not None:
+            sink(data)
 
     def _sidecar_pid(self) -> int | None:
         return self._sidecar.pid if self._sidecar is not None else None
@@ -384,6 +414,24 @@ class Link:
         self._session_started = None
         self.note_state()
 
+    async def _open(self, system: System, address: str, port: int) -> bool:
+        """Connect the gRPC session and seal the sidecar's socket; False (the sidecar restarted) if not."""
+        try:
+            await asyncio.wait_for(system.connect(), CONNECT_TIMEOUT_S)
+        except (TimeoutError, grpc.aio.AioRpcError) as exc:
+            self._last_error = f"gRPC session to mavsdk_server on {address}:{port} failed: {exc!r}"
+            log.warning("%s: %s; restarting the sidecar", self.id, self._last_error)
+            await close_system(system)
+            if self._sidecar is not None:
+                self._sidecar.recycle()  # the supervisor starts a fresh process (with backoff)
+            return False
+        sealed = self._sidecar.seal() if self._sidecar is not None else None
+        if sealed is not None:  # another process reached the sidecar first: it was restarted
+            self._last_error = sealed
+            await close_system(system)
+            return False
+        return True
+
     async def _end_session(self) -> None:
         task, self._session_task = self._session_task, None
         await cancel_and_wait(task)
@@ -394,19 +442,14 @@ class Link:
             with contextlib.suppress(asyncio.CancelledError, Exception):
                 await previous
         system = System(mavsdk_server_address=address, port=port)
+        slot = await SESSIONS.take()  # released once the session's rates are requested
+        opened = False
         try:
-            await asyncio.wait_for(system.connect(), CONNECT_TIMEOUT_S)
-        except (TimeoutError, grpc.aio.AioRpcError) as exc:
-            self._last_error = f"gRPC session to mavsdk_server on {address}:{port} failed: {exc!r}"
-            log.warning("%s: %s; restarting the sidecar", self.id, self._last_error)
-            await close_system(system)
-            if self._sidecar is not None:
-                self._sidecar.recycle()  # the supervisor starts a fresh process (with backoff)
-            return
-        sealed = self._sidecar.seal() if self._sidecar is not None else None
-        if sealed is not None:  # another process reached the sidecar first: it was restarted
-            self._last_error = sealed
-            await close_system(system)
+            opened = await self._open(system, address, port)
+        finally:
+            if not opened:
+                slot.release()
+        if not opened:
             return
         self.telemetry.clear()
         self.facts = LinkFacts()
@@ -419,10 +462,11 @@ class Link:
         self.sessions += 1
         mavsdk.start()
         log.info("%s: MAVSDK session open on %s:%d", self.id, address, port)
-        mavsdk.schedule_rates("session start")
+        mavsdk.schedule_rates("session start", then=slot.release)
         try:
             await asyncio.Event().wait()  # lives until cancelled (sidecar down, disconnect)
         finally:
+            slot.release()
             await mavsdk.stop()
             mavsdk.open = False
             if self._system is system:
@@ -471,3 +515,10 @@ class Link:
     def note_error(self, message: str) -> None:
         """The link's last error, as ``last_error`` and the status say it."""
         self._last_error = message
+
+
+def _device_present(url: str) -> bool:
+    """False for a serial URL whose device does not exist now (the sidecar opens it and fails, as it
+    does without the raw flight log); True for every other URL."""
+    parts = urlsplit(url)
+    return parts.scheme != "serial" or os.path.exists(parts.path.partition(":")[0])

@@ -20,6 +20,9 @@ What mavsdk_server 4.0.5 does that shapes this module (measured):
   binary or architecture made it. ``SpawnPlan`` / ``Sidecar.confine`` is the
   one place where a wrapper (network namespace, an emulator) is inserted around the command.
 
+Sidecars start a few at a time (``STARTS``, ``gateway.link.pacing``): a start holds its slot from the
+spawn until it serves, at most 5 s.
+
 Every sidecar runs in its own process group with PR_SET_PDEATHSIG=SIGKILL (set by an exec wrapper,
 see ``die_with_parent``), so it dies with the gateway even when the gateway is SIGKILLed; ``stop()``
 terminates the group, then kills it; an atexit hook kills what is left at interpreter exit.
@@ -45,7 +48,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from gateway.config import Settings
-from gateway.link import confine, sidecar_socket
+from gateway.link import confine, pacing, sidecar_socket
 from gateway.link.proc_sockets import listening_addresses, listening_inodes, socket_inodes
 from gateway.util.json_types import JsonObject
 from gateway.util.ports import free_tcp_port
@@ -69,6 +72,11 @@ PORT_ATTEMPTS = 5
 REPEAT_WINDOW_S = 30.0
 #: grace between SIGTERM and SIGKILL when stopping
 TERM_GRACE_S = 3.0
+
+#: sidecars starting at once (spawned, not yet serving), per event loop; a start holds its slot until
+#: its sidecar serves, at most ``hold_at_most_s`` (a vehicle that never answers frees it)
+STARTS = pacing.Pace(slots=8, hold_at_most_s=5.0)
+
 
 # Every live sidecar process group, so the interpreter's exit path can still kill them.
 _LIVE_PGIDS: set[int] = set()
@@ -198,6 +206,7 @@ class Sidecar:
         self._task: asyncio.Task[None] | None = None
         self._serving = asyncio.Event()
         self._stopping = False
+        self._start_slot: pacing.Slot | None = None
         self._log = logging.getLogger(f"gateway.sidecar.{vehicle_id}")
         self._repeat: tuple[str, int, float] = ("", 0, 0.0)  # last line, times repeated, first seen
 
@@ -332,13 +341,18 @@ class Sidecar:
 
     async def _run_once(self) -> str:
         """Start one process (retrying ports) and wait until it ends; return why it ended."""
-        for _attempt in range(PORT_ATTEMPTS):
-            port = sidecar_socket.socket_port() if self.on_socket else free_tcp_port()
-            outcome = await self._spawn_and_watch(port)
-            if outcome != "port-taken":
-                return outcome
-            self._log.info("gRPC port %d of %s was taken; retrying on another port", port, self.vehicle_id)
-        return f"no free gRPC port after {PORT_ATTEMPTS} attempts"
+        self.info.state = SidecarState.STARTING
+        slot = self._start_slot = await STARTS.take()  # released once serving (``_serve``) at the latest
+        try:
+            for _attempt in range(PORT_ATTEMPTS):
+                port = sidecar_socket.socket_port() if self.on_socket else free_tcp_port()
+                outcome = await self._spawn_and_watch(port)
+                if outcome != "port-taken":
+                    return outcome
+                self._log.info("gRPC port %d of %s taken; retrying on another port", port, self.vehicle_id)
+            return f"no free gRPC port after {PORT_ATTEMPTS} attempts"
+        finally:
+            slot.release()
 
     def plan(self, port: int) -> SpawnPlan:
         """The command line for one start; the confinement wrapper is applied here and only here."""
@@ -486,6 +500,8 @@ class Sidecar:
         return message
 
     def _serve(self, port: int) -> None:
+        if self._start_slot is not None:
+            self._start_slot.release()  # the next sidecar may start
         self.info.state = SidecarState.SERVING
         self.info.complaint = None
         self.info.serving_since = time.monotonic()

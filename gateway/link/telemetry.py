@@ -14,7 +14,7 @@ import time
 from collections import deque
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, is_dataclass
-from typing import Any, Generic, TypeVar
+from typing import Generic, Literal, TypeVar, overload
 
 from gateway.util.json_types import JsonObject, JsonValue
 
@@ -206,8 +206,46 @@ class TelemetryCache:
         with contextlib.suppress(ValueError):
             self._status_listeners.remove(listener)
 
-    def fresh(self, name: str, max_age_s: float | None = None) -> Any | None:
-        """The value of ``name`` if it is younger than ``max_age_s`` (default: stale limit), else None."""
+    @overload
+    def fresh(
+        self, name: Literal["position", "home"], max_age_s: float | None = None
+    ) -> PositionValue | None: ...
+    @overload
+    def fresh(self, name: Literal["attitude"], max_age_s: float | None = None) -> AttitudeValue | None: ...
+    @overload
+    def fresh(
+        self, name: Literal["velocity_ned"], max_age_s: float | None = None
+    ) -> VelocityNedValue | None: ...
+    @overload
+    def fresh(self, name: Literal["heading_deg"], max_age_s: float | None = None) -> float | None: ...
+    @overload
+    def fresh(self, name: Literal["battery"], max_age_s: float | None = None) -> BatteryValue | None: ...
+    @overload
+    def fresh(self, name: Literal["gps_info"], max_age_s: float | None = None) -> GpsInfoValue | None: ...
+    @overload
+    def fresh(
+        self, name: Literal["flight_mode", "landed_state"], max_age_s: float | None = None
+    ) -> str | None: ...
+    @overload
+    def fresh(self, name: Literal["armed", "in_air"], max_age_s: float | None = None) -> bool | None: ...
+    @overload
+    def fresh(self, name: Literal["health"], max_age_s: float | None = None) -> HealthValue | None: ...
+    @overload
+    def fresh(self, name: Literal["rc_status"], max_age_s: float | None = None) -> RcStatusValue | None: ...
+    @overload
+    def fresh(self, name: Literal["imu"], max_age_s: float | None = None) -> ImuValue | None: ...
+    @overload
+    def fresh(self, name: Literal["odometry"], max_age_s: float | None = None) -> OdometryValue | None: ...
+    @overload
+    def fresh(
+        self, name: Literal["mission_progress"], max_age_s: float | None = None
+    ) -> MissionProgressValue | None: ...
+    @overload
+    def fresh(self, name: str, max_age_s: float | None = None) -> object: ...
+    def fresh(self, name: str, max_age_s: float | None = None) -> object:
+        """The value of ``name`` if it is younger than ``max_age_s`` (default: stale limit), else None
+        (typed by the stream's name, one overload per type of value; a name not known until run time
+        reads as an object)."""
         sample: Sample[object] | None = getattr(self, name)
         limit = self.stale_after_s if max_age_s is None else max_age_s
         if sample is None or sample.age_s > limit or not self.live:

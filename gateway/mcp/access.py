@@ -22,6 +22,7 @@ from gateway.fleet.policy.caller import Caller
 from gateway.mcp.results import OperationOut
 from gateway.mcp.sdk_types import ToolContext
 from gateway.runtime import Gateway
+from gateway.util.read_through import ReadThrough
 
 # --- per-call audit information, set by the session middleware, filled in by the tool wrapper --------
 
@@ -45,14 +46,8 @@ class FleetState:
     running (listing tools for the docs) answers calls with "not running" instead of failing to start."""
 
     gateway: Gateway
-
-    @property
-    def commander(self) -> Commander:
-        return self.gateway.commander
-
-    @property
-    def settings(self) -> Settings:
-        return self.gateway.settings
+    commander = ReadThrough[Commander]("gateway")
+    settings = ReadThrough[Settings]("gateway")
 
 
 class ToolCall:

@@ -40,7 +40,7 @@ FORMATION_URI = "fleet://formation"
 
 
 def drones_json(commander: Commander) -> list[dict[str, object]]:
-    out = []
+    out: list[dict[str, object]] = []
     for v in commander.registry.all():
         op = commander.operations.running(v.id)
         out.append(

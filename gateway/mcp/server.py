@@ -21,9 +21,11 @@ import importlib
 import logging
 from collections.abc import AsyncIterator, Sequence
 
-from mcp.server.mcpserver import MCPServer
+from mcp.server.mcpserver import Context, MCPServer
 from mcp.server.subscriptions import InMemorySubscriptionBus
 from mcp.server.transport_security import TransportSecuritySettings
+from mcp.shared.exceptions import MCPError
+from mcp.types import INVALID_PARAMS, GetPromptResult
 from starlette.applications import Starlette
 
 from gateway import package_version
@@ -87,6 +89,30 @@ def tool_names(toolsets: Sequence[str]) -> list[str]:
     return names
 
 
+class GatewayMCPServer(MCPServer[FleetState]):
+    """The SDK's server, with one answer it gets wrong: a prompt that does not exist, or asked for
+    without its arguments, is the client's bad parameters (JSON-RPC -32602, naming the prompts there
+    are), not an error with code 0 (the SDK turns the ValueError it raises into that)."""
+
+    async def get_prompt(
+        self,
+        name: str,
+        arguments: dict[str, object] | None = None,
+        context: Context[FleetState, object] | None = None,
+    ) -> GetPromptResult:
+        known = sorted(p.name for p in await self.list_prompts())
+        if name not in known:
+            raise MCPError(INVALID_PARAMS, f"unknown prompt {name!r}; the prompts: {', '.join(known)}")
+        try:
+            result = await super().get_prompt(name, arguments, context)
+        except MCPError:
+            raise
+        except ValueError as exc:  # the SDK's words for missing or bad arguments
+            raise MCPError(INVALID_PARAMS, f"prompt {name!r}: {exc}") from None
+        assert isinstance(result, GetPromptResult)
+        return result
+
+
 def build_mcp(gateway: Gateway) -> MCPServer[FleetState]:
     """The MCP server over a runtime ``Gateway`` (which need not be started yet: its Commander is taken
     when the server's lifespan starts)."""
@@ -99,7 +125,7 @@ def build_mcp(gateway: Gateway) -> MCPServer[FleetState]:
         async with notifier.running():
             yield FleetState(gateway)
 
-    server: MCPServer[FleetState] = MCPServer(
+    server: MCPServer[FleetState] = GatewayMCPServer(
         SERVER_NAME,
         version=package_version(),
         instructions=INSTRUCTIONS.format(cap=settings.mcp_wait_cap_s),

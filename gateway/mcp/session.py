@@ -11,6 +11,14 @@ including calls rejected before the tool ran (unknown tool, invalid arguments). 
 starts an operation on a drone has its row written the moment the command pass sends it
 (`gateway.fleet.commands.command_pass.AUDIT_SENT`: outcome running, naming the operation), and the store
 completes the row when the operation ends; every other call's row is written when the call ends.
+
+A call of a tool that commands a drone (a verb's tool; not a read: monitor_flight) has its row written
+before anything is sent (`Store.audit_call`: outcome running), waited for up to `CALL_ROW_WAIT_S` (a
+database that hangs does not hold the command longer; the write goes on), except for the stops (land,
+return, hold, kill, disarm and their fleet forms), which are sent at once with their row written beside
+them; the call's end (or the operation it started) is written before the call is answered
+(`CALL_END_WAIT_S`: in the database, or in the spool file). So a node killed while or just after it ran
+the call keeps its row.
 """
 
 from __future__ import annotations
@@ -24,20 +32,34 @@ import anyio
 from mcp.server.auth.middleware.auth_context import get_access_token
 from pydantic import BaseModel
 
+from gateway.fleet.commands.command_core import READ_VERBS, TOOLS
 from gateway.fleet.commands.command_pass import AUDIT_SENT
 from gateway.fleet.operations.routing import ACTING
 from gateway.fleet.policy.caller import Caller
 from gateway.mcp.access import CallInfo, FleetState, current_call
 from gateway.mcp.sdk_types import CallNext, HandlerResult, RequestContext
-from gateway.registry.records import AuditEntry, SessionKind
+from gateway.registry.records import AUDIT_OUTCOME_OF_OPERATION, AuditEntry, SessionKind
+from gateway.registry.spool import WRITE_TIMEOUT_S
 from gateway.registry.store import Store
-from gateway.registry.store_audit import SessionSeen
+from gateway.registry.store_audit import AuditCall, SessionSeen
 
 log = logging.getLogger(__name__)
 
 CLIENT_INFO_META = "io.modelcontextprotocol/clientInfo"
 TOUCH_EVERY_S = 5.0
 """A session's last_seen is refreshed at most this often (and on every tool call)."""
+CALL_ROW_WAIT_S = 1.0
+"""A call that commands a drone waits this long at most for its audit row before the command is sent (a
+database that hangs does not hold the command longer; the write goes on)."""
+CALL_END_WAIT_S = WRITE_TIMEOUT_S + 1.0
+"""...and this long at most for its end (and its row) before it is answered: until both are in the
+database, or kept in the node's spool file once the database has not answered within the spool's time, so
+a node killed just after answering keeps the call's row and outcome."""
+#: the verbs whose tools stop drones: sent without waiting for their audit row (it is written beside them)
+STOP_VERBS = frozenset(
+    {"land", "return_to_launch", "hold", "kill", "disarm"}
+    | {"fleet_hold", "fleet_land", "fleet_return_to_launch"}
+)
 
 
 @dataclass(frozen=True)
@@ -118,11 +140,17 @@ class SessionAudit:
         tool = str(params.get("name", "?"))
         audited = _AuditedCall(store, info, call, tool, arguments, started=time.perf_counter())
         written: list[str] = []
+        row = self._begin(audited)
+        if row is not None and TOOLS[tool].verb not in STOP_VERBS:
+            await row.written(CALL_ROW_WAIT_S)
 
         def sent(operation_id: str) -> None:
             """The command pass sent the call's operation: its row now, running; the store completes it
             when the operation ends (a crash while it flies loses no call)."""
-            if not written:
+            if row is not None:
+                written.append(operation_id)
+                row.operation(operation_id)
+            elif not written:
                 written.append(operation_id)
                 self._audit(audited, "running", None, operation_id)
 
@@ -138,8 +166,66 @@ class SessionAudit:
         finally:
             AUDIT_SENT.reset(audit_sent)
             current_call.reset(token)
-            if not written:
+            if row is not None:
+                await self._end(row, audited, result, failure, written)
+            elif not written:
                 self._audit_end(audited, result, failure)
+
+    def _begin(self, audited: _AuditedCall) -> AuditCall | None:
+        """The row of a call of a tool that commands a drone, started before anything is sent."""
+        store, info, arguments = audited.store, audited.info, audited.arguments
+        vehicle_id = audited.call.vehicle_id
+        if store is None or audited.tool not in TOOLS or TOOLS[audited.tool].verb in READ_VERBS:
+            return None  # (a read commands nothing: its row is written when it ends)
+        self._note_touched(info)
+        try:
+            return store.audit_call(
+                AuditEntry(
+                    session_key=info.key,
+                    principal=info.principal,
+                    source="mcp",
+                    vehicle_id=vehicle_id if isinstance(vehicle_id, str) else None,
+                    action=audited.tool[:64],
+                    arguments=arguments if isinstance(arguments, dict) else {"arguments": str(arguments)},
+                    outcome="running",
+                ),
+                SessionSeen(info.key, info.kind, info.principal, info.client_name, info.client_version),
+            )
+        except Exception:
+            log.exception("could not start the audit row of %s", audited.tool)
+            return None
+
+    @staticmethod
+    async def _end(
+        row: AuditCall,
+        audited: _AuditedCall,
+        result: HandlerResult,
+        failure: BaseException | None,
+        written: list[str],
+    ) -> None:
+        """The end of a call whose row was written before it ran: its outcome; or, when it started an
+        operation, that operation (whose end finishes the row). Waited for up to CALL_END_WAIT_S."""
+        call = audited.call
+        took_ms = round((time.perf_counter() - audited.started) * 1000.0, 1)
+        operation_id: str | None
+        error: str | None
+        ended = _ended_operation(result) if written and failure is None else None
+        if ended is not None:  # the call waited for its operation's end: recorded now, not left to it
+            outcome, error, operation_id = (*ended, written[0])
+        elif written and failure is None and _outcome(call, result, None)[0] == "error":
+            # answered as an error after its operation was sent (its owner gave the drone up while it
+            # ran): the call's end is that answer, whatever becomes of the operation
+            outcome, error = _outcome(call, result, None)
+            operation_id = written[0]
+        elif written:
+            outcome, error, operation_id = "running", None, written[0]
+        else:
+            outcome, error = _outcome(call, result, failure)
+            operation_id = _operation_id(result) if outcome == "running" else None
+        try:
+            await row.end(outcome, error and error[:1000], took_ms, CALL_END_WAIT_S, operation_id)
+        except Exception:
+            log.exception("could not finish the audit row of call %s", row.id)
 
     def _audit_end(self, audited: _AuditedCall, result: HandlerResult, failure: BaseException | None) -> None:
         """The row of a call that sent no operation (a read, a refusal, an instant command, a fleet
@@ -221,6 +307,19 @@ def _operation_id(result: HandlerResult) -> str | None:
         structured = result.get("structuredContent")
     value = structured.get("operation_id") if isinstance(structured, dict) else None
     return value if isinstance(value, str) else None
+
+
+def _ended_operation(result: HandlerResult) -> tuple[str, str | None] | None:
+    """The audit outcome (and error) of the operation a call's result shows ended; None while it runs."""
+    structured = getattr(result, "structured_content", None)
+    if structured is None and isinstance(result, dict):
+        structured = result.get("structuredContent")
+    status = structured.get("status") if isinstance(structured, dict) else None
+    if not isinstance(status, str) or status not in AUDIT_OUTCOME_OF_OPERATION:
+        return None
+    outcome = AUDIT_OUTCOME_OF_OPERATION[status]
+    message = structured.get("message") if isinstance(structured, dict) else None
+    return outcome, None if outcome == "ok" else str(message or status)[:1000]
 
 
 def _drone_id(arguments: object) -> str | None:

@@ -112,6 +112,8 @@ class AuditRow(Base):
     duration_ms: Mapped[float | None] = mapped_column(Float)
     # the operation a call left running (wait:false): its end finishes the row, on whichever node
     operation_id: Mapped[str | None] = mapped_column(String(64), index=True)
+    # a row written before its call's command was sent (outcome running): the call finishes it by this
+    call_id: Mapped[str | None] = mapped_column(String(32), index=True, unique=True)
 
 
 class FlightRow(Base):
@@ -254,5 +256,23 @@ class OriginRow(Base):
     lon: Mapped[float] = mapped_column(Float)
     alt_amsl_m: Mapped[float] = mapped_column(Float)
     source: Mapped[str] = mapped_column(String(16))  # first_home | operator
+    set_by: Mapped[str] = mapped_column(String(200))
+    set_at: Mapped[datetime] = mapped_column(UTCDateTime())
+
+
+class PlanExtrasRow(Base):
+    """What a drone's last ``.plan`` carried beside its items and its zones
+    (`gateway.fleet.missions.plan_extras`): its rally points, and the circles its geofence was drawn as
+    (the zones themselves are polygons), written back when the drone's mission is exported as a .plan."""
+
+    __tablename__ = "vehicle_plan_extras"
+
+    vehicle_id: Mapped[str] = mapped_column(
+        String(32), ForeignKey("vehicles.id", ondelete="CASCADE"), primary_key=True
+    )
+    #: [[lat, lon, alt above home], ...]
+    rally: Mapped[list[list[float]]] = mapped_column(JSON, default=list)
+    #: {zone name: [centre lat, centre lon, radius m], ...}
+    circles: Mapped[dict[str, list[float]]] = mapped_column(JSON, default=dict)
     set_by: Mapped[str] = mapped_column(String(200))
     set_at: Mapped[datetime] = mapped_column(UTCDateTime())

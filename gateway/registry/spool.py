@@ -15,12 +15,20 @@ and each one written (or dropped) is marked done by another line; the file is em
 waits. A node killed while writes wait finds them there when it starts again and writes them first, in
 order, with their own times. A write made for the file carries a ``record`` (kind, JSON data) that the
 spool's ``apply`` writes again after a restart.
+
+The file belongs to one database and one running spool: its first line names the database (``owner``, a
+digest of its URL), and a spool holds an exclusive lock on it while it has it open. A file kept for
+another database, or in use by another running gateway (two started in one directory with one node id),
+is left as it is, and this spool keeps its writes in memory only (logged): writes are never given to a
+database they were not made for, nor written twice by two spools.
 """
 
 from __future__ import annotations
 
 import asyncio
 import contextlib
+import fcntl
+import hashlib
 import json
 import logging
 import os
@@ -72,9 +80,11 @@ def unreachable(exc: BaseException) -> bool:
 class Spool:
     """The writes that wait for the database, in order."""
 
-    def __init__(self, limit: int = LIMIT, apply: Apply | None = None) -> None:
+    def __init__(self, limit: int = LIMIT, apply: Apply | None = None, owner: str | None = None) -> None:
         self.limit = limit
         self.apply = apply
+        #: the database the kept writes are for (`database_tag`), named in the file's first line
+        self.owner = owner
         # (what, write, its number in the file or None)
         self._queue: deque[tuple[str, Callable[[], Awaitable[Any]], int | None]] = deque()
         self._task: asyncio.Task[None] | None = None
@@ -94,13 +104,31 @@ class Spool:
             raise ValueError("a spool kept in a file needs apply (how to write a kept record again)")
         self.path = path
         try:
-            left = self._read(path)
+            path.parent.mkdir(parents=True, exist_ok=True)
+            self._file = _open_locked(path)
+            owner, left = self._read(self._file.read().splitlines(), path)
+            if owner is not None and self.owner is not None and owner != self.owner:
+                log.error(
+                    "%s keeps writes for another database (%s, this one is %s): it is left as it is, and "
+                    "this run keeps its writes in memory only", path, owner, self.owner,
+                )  # fmt: skip
+                self._close_file(unlink=False)
+                self.path = None
+                return 0
             if not left:
                 self._close_file(unlink=True)
                 return 0
-            self._file = path.open("w", encoding="utf-8")  # the file again, with the pending ones only
+            self._file.truncate(0)  # the file again, with the pending ones only
+            self._header()
+        except BlockingIOError:
+            log.error("%s is in use by another running gateway (same directory and node id): this run keeps "
+                      "its writes in memory only", path)  # fmt: skip
+            self._close_file(unlink=False)
+            self.path = None
+            return 0
         except OSError as exc:
             log.error("cannot keep writes in %s (%r): they are kept in memory only", path, exc)
+            self._close_file(unlink=False)
             self.path = None
             return 0
         apply = self.apply
@@ -111,24 +139,29 @@ class Spool:
         return len(left)
 
     @staticmethod
-    def _read(path: Path) -> list[tuple[int, str, str, dict[str, Any]]]:
-        """The writes in the file not marked done, in order."""
-        try:
-            lines = path.read_text(encoding="utf-8").splitlines()
-        except FileNotFoundError:
-            return []
+    def _read(lines: list[str], path: Path) -> tuple[str | None, list[tuple[int, str, str, dict[str, Any]]]]:
+        """The database the file's writes are for (None: not named), and its writes not marked done, in
+        order."""
+        owner: str | None = None
         kept: dict[int, tuple[int, str, str, dict[str, Any]]] = {}
         for number, line in enumerate(lines, 1):
             try:
                 item = json.loads(line)
-                if "done" in item:
+                if "database" in item:
+                    owner = str(item["database"])
+                elif "done" in item:
                     kept.pop(int(item["done"]), None)
                 else:
                     n = int(item["n"])
                     kept[n] = (n, str(item["what"]), str(item["kind"]), dict(item["data"]))
             except (ValueError, KeyError, TypeError):  # a line cut short when the node was killed
                 log.error("%s line %d is not a kept write (cut short?): skipped", path, number)
-        return [kept[n] for n in sorted(kept)]
+        return owner, [kept[n] for n in sorted(kept)]
+
+    def _header(self) -> None:
+        """The first line of a new file: the database its writes are for."""
+        if self._file is not None and self.owner is not None:
+            _line(self._file, {"database": self.owner})
 
     def __len__(self) -> int:
         return len(self._queue)
@@ -185,8 +218,16 @@ class Spool:
         try:
             if self._file is None:
                 self.path.parent.mkdir(parents=True, exist_ok=True)
-                self._file = self.path.open("a", encoding="utf-8")
+                self._file = _open_locked(self.path)
+                if os.fstat(self._file.fileno()).st_size == 0:
+                    self._header()
             _line(self._file, {"n": number, "what": what, "kind": kind, "data": data})
+        except BlockingIOError:
+            log.error("%s is in use by another running gateway (same directory and node id): %s and the "
+                      "writes after it are kept in memory only", self.path, what)  # fmt: skip
+            self._close_file(unlink=False)
+            self.path = None
+            return None
         except (OSError, TypeError, ValueError) as exc:
             log.error("could not keep %s in %s (%r): it is kept in memory only", what, self.path, exc)
             return None
@@ -201,16 +242,19 @@ class Spool:
             log.error("could not mark a kept write done in %s (%r): it may be written twice", self.path, exc)
 
     def _close_file(self, unlink: bool) -> None:
+        """Close the file (its lock goes with it); ``unlink``: removed first, while it is still locked."""
+        if unlink and self.path is not None and self._file is not None:
+            with contextlib.suppress(OSError):
+                self.path.unlink()
         if self._file is not None:
             with contextlib.suppress(OSError):
                 self._file.close()
             self._file = None
-        if unlink and self.path is not None:
-            with contextlib.suppress(OSError):
-                self.path.unlink()
 
     async def _drain(self) -> None:
-        while self._queue:
+        # closed: stop even when the cancel of this task was lost (asyncio.wait_for can drop a cancel that
+        # lands as the write it waits for ends)
+        while self._queue and not self._closed:
             what, write, number = self._queue[0]
             try:
                 await asyncio.wait_for(write(), WRITE_TIMEOUT_S)
@@ -253,6 +297,8 @@ class Spool:
         elif self._queue:
             log.error("%d writes kept while the database was unreachable are lost: the gateway stopped "
                       "before it came back (first: %s)", len(self._queue), self._queue[0][0])  # fmt: skip
+        else:
+            self._close_file(unlink=True)
 
 
 def _short(exc: BaseException) -> str:
@@ -264,6 +310,24 @@ def _line(file: TextIO, item: dict[str, Any]) -> None:
     file.write(json.dumps(item, default=str) + "\n")
     file.flush()
     os.fsync(file.fileno())
+
+
+def database_tag(url: str) -> str:
+    """What a spool file names its database by: a digest of its URL (which may hold a password)."""
+    return hashlib.sha256(url.encode()).hexdigest()[:16]
+
+
+def _open_locked(path: Path) -> TextIO:
+    """``path`` opened to read and append (made when missing), locked for this spool alone;
+    BlockingIOError when another spool (this process or another) holds it."""
+    file = path.open("a+", encoding="utf-8")
+    try:
+        fcntl.flock(file.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        file.close()
+        raise
+    file.seek(0)
+    return file
 
 
 def _bind(apply: Apply, kind: str, data: dict[str, Any]) -> Callable[[], Awaitable[Any]]:

@@ -49,6 +49,7 @@ from gateway.registry.store_flights import FlightTables
 from gateway.registry.store_locks import LockTables
 from gateway.registry.store_operations import OperationTable
 from gateway.registry.store_origins import OriginTable
+from gateway.registry.store_plans import PlanExtrasTable
 from gateway.registry.store_vehicles import VehicleTable
 
 # The records are part of the store's API: import them from here or from gateway.registry.records.
@@ -77,11 +78,11 @@ __all__ = [
 ]
 
 
-class Store(VehicleTable, FlightTables, LockTables, OperationTable, OriginTable):
+class Store(VehicleTable, FlightTables, LockTables, OperationTable, OriginTable, PlanExtrasTable):
     """Async persistence API over SQLAlchemy. Create with ``await Store.open(url)``.
 
-    Its tables: `VehicleTable`, `FlightTables`, `LockTables`, `OperationTable`, `OriginTable` and the
-    `AuditTrail` under
+    Its tables: `VehicleTable`, `FlightTables`, `LockTables`, `OperationTable`, `OriginTable`,
+    `PlanExtrasTable` and the `AuditTrail` under
     it (the audit rows and sessions), all over `StoreCore` (sessions and the spool)."""
 
     def __init__(self, engine: AsyncEngine, url: str) -> None:
@@ -93,6 +94,7 @@ class Store(VehicleTable, FlightTables, LockTables, OperationTable, OriginTable)
                 "status_texts": self._write_status_texts,
                 "audit": self._write_audit,
                 "audit_batch": self._write_audit_batch_of,
+                "audit_call_end": self._write_call_end,
                 "operation": self._write_operation,
                 "operation_end": self._write_operation_end,
                 "lock": self._write_lock,

@@ -1,6 +1,8 @@
 """The store's audit trail: every call's audit row (written at once, or queued by the MCP door and
-written in batches by a writer task within AUDIT_BATCH_S), the sessions the calls came in, the live
-listeners of written rows, and the finishing of rows left running once their operation ends."""
+written in batches by a writer task within AUDIT_BATCH_S, or, for a call that commands a drone, written
+before the command is sent and finished when the call ends: `AuditCall`), the sessions the calls came
+in, the live listeners of written rows, and the finishing of rows left running once their operation
+ends."""
 
 from __future__ import annotations
 
@@ -8,12 +10,14 @@ import asyncio
 import contextlib
 import dataclasses
 import logging
-from collections.abc import Callable
+import uuid
+from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from typing import Any, cast, get_args
 
-from sqlalchemy import func, insert, or_, select, update
+from sqlalchemy import Insert, func, insert, or_, select, update
+from sqlalchemy.dialects import postgresql, sqlite
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.ext.asyncio import AsyncEngine, AsyncSession
 from sqlalchemy.sql.elements import ColumnElement
@@ -45,6 +49,9 @@ AUDIT_BATCH_S = 0.05
 """The longest a queued audit row waits for others to share its transaction (`Store.queue_audit`);
 readers and `close` cut it short."""
 
+#: what a call's later writes may change of the row `AuditCall` wrote before its command was sent
+CALL_ROW_CHANGES = frozenset({"outcome", "error", "duration_ms", "operation_id"})
+
 ENDED_ELSEWHERE_KEPT = 500
 """Outcomes of operations kept only in memory (fleet operations) remembered for audit rows written late."""
 
@@ -73,6 +80,8 @@ class AuditTrail(StoreCore):
         self._audit_queue: list[tuple[AuditEntry, SessionSeen | None]] = []
         self._audit_writer: asyncio.Task[None] | None = None
         self._audit_flush: asyncio.Event | None = None
+        # the writes of calls' rows under way (`AuditCall`): readers and `close` wait for them too
+        self._call_writes: set[asyncio.Task[None]] = set()
 
     # --- sessions --------------------------------------------------------------------------------
 
@@ -191,20 +200,33 @@ class AuditTrail(StoreCore):
         )
 
         t = values["t"]
-        data = {"values": {**values, "t": t.isoformat() if isinstance(t, datetime) else t}}
+        data: dict[str, Any] = {"values": {**values, "t": t.isoformat() if isinstance(t, datetime) else t}}
+        data["call_id"] = uuid.uuid4().hex  # written once, however often the write is tried
         return cast(int | None, await self._kept(f"the audit row of {values['action']}", "audit", data))
 
     async def _write_audit(self, data: dict[str, Any]) -> int:
         values = {**data["values"], "t": datetime.fromisoformat(data["values"]["t"])}
-        row = AuditRow(**values)  # a fresh row for each attempt
+        call_id = data.get("call_id") or uuid.uuid4().hex  # (a write kept by an older version has none)
+        statement = self._insert_once().returning(AuditRow.id)
         async with self._sessions.begin() as session:
-            session.add(row)
-            await session.flush()
-            row_id = int(row.id)
-        self._audit_written(row)
+            row_id = (await session.scalars(statement, [{**values, "call_id": call_id}])).first()
+            if row_id is None:  # written by an earlier try (its answer lost): that row, not a second one
+                query = select(AuditRow.id).where(AuditRow.call_id == call_id)
+                return int((await session.scalars(query)).one())
+        self._audit_written(AuditRecord.model_validate({**values, "id": row_id}))
         if values["outcome"] == "running" and values["operation_id"] is not None:
             await self._finish_if_ended(values["operation_id"])
-        return row_id
+        return int(row_id)
+
+    def _insert_once(self) -> Insert:
+        """An insert of audit rows that skips a row whose call id is already stored: a write tried again
+        (its first try timed out after its commit, or the spool wrote it again) adds no row."""
+        if self.engine.dialect.name == "postgresql":
+            return postgresql.insert(AuditRow).on_conflict_do_nothing(index_elements=[AuditRow.call_id])
+        if self.engine.dialect.name == "sqlite":
+            return sqlite.insert(AuditRow).on_conflict_do_nothing(index_elements=[AuditRow.call_id])
+        name = self.engine.dialect.name
+        raise ValueError(f"the audit trail needs PostgreSQL or SQLite; the database is {name}")
 
     def queue_audit(self, entry: AuditEntry, seen: SessionSeen | None = None) -> None:
         """Record one call without waiting for the database (the MCP door's path, per tool call).
@@ -227,11 +249,72 @@ class AuditTrail(StoreCore):
             )
 
     async def flush_audit(self) -> None:
-        """Wait until every queued audit row is written (at once: the batching pause is cut short)."""
+        """Wait until every queued audit row is written (at once: the batching pause is cut short), and
+        every call row's write under way (`AuditCall`) has ended."""
         while self._audit_writer is not None and not self._audit_writer.done():
             if self._audit_flush is not None:
                 self._audit_flush.set()
             await asyncio.shield(self._audit_writer)
+        current = asyncio.current_task()
+        pending = [t for t in self._call_writes if t is not current and not t.done()]
+        if pending:
+            await asyncio.wait(pending)
+
+    def audit_call(self, entry: AuditEntry, seen: SessionSeen | None = None) -> AuditCall:
+        """Start writing the row of a call that is about to command a drone (outcome running), with the
+        touch of its session; the call's handle, to wait for that write and to finish the row."""
+        if self._closed:
+            raise RuntimeError("the store is closed")
+        if entry.t is None:  # the row's time is the moment the call was taken
+            entry = entry.model_copy(update={"t": utcnow()})
+        return AuditCall(self, entry, seen)
+
+    def _call_write(self, write: Awaitable[None], after: asyncio.Task[None] | None) -> asyncio.Task[None]:
+        """A call row's write, run after the one before it (``after``) has ended."""
+
+        async def ordered() -> None:
+            if after is not None:
+                await asyncio.wait({after})
+            await write
+
+        task = asyncio.get_running_loop().create_task(ordered(), name="audit-call")
+        self._call_writes.add(task)
+        task.add_done_callback(self._call_writes.discard)
+        return task
+
+    async def _begin_call_row(self, call_id: str, entry: AuditEntry, seen: SessionSeen | None) -> None:
+        data = self._batch_data([(entry, seen)])
+        data["rows"][0]["call_id"] = call_id
+        try:  # the database unreachable: kept in the spool (on disk too), in order, with its time
+            await self._kept(f"the audit row of {entry.action}", "audit_batch", data)
+        except Exception:
+            log.exception("could not write the audit row of %s", entry.action)
+
+    async def _change_call_row(self, call_id: str, what: str, changes: dict[str, Any]) -> None:
+        data = {"call_id": call_id, "changes": changes}
+        try:
+            await self._kept(f"the audit row's end of {what}", "audit_call_end", data)
+        except Exception:
+            log.exception("could not finish the audit row of %s", what)
+
+    async def _write_call_end(self, data: dict[str, Any]) -> None:
+        """A call row's later write: its outcome, error, duration and operation; a row left running with
+        an operation that has already ended takes that operation's outcome."""
+        changes = {k: v for k, v in dict(data["changes"]).items() if k in CALL_ROW_CHANGES}
+        if isinstance(changes.get("error"), str):
+            changes["error"] = changes["error"][:AUDIT_MAX_ERROR]
+        async with self._sessions.begin() as session:
+            rows = (await session.scalars(select(AuditRow).where(AuditRow.call_id == data["call_id"]))).all()
+            for row in rows:
+                finished = row.outcome != "running" and changes.get("outcome") == "running"
+                for key, value in changes.items():  # one its operation's end finished keeps that outcome
+                    if not (finished and key in ("outcome", "error")):
+                        setattr(row, key, value)
+        for row in rows:
+            self._audit_written(row)
+        operation_id = changes.get("operation_id")
+        if rows and isinstance(operation_id, str) and rows[0].outcome == "running":
+            await self._finish_if_ended(operation_id)
 
     async def _write_queued(self, flush: asyncio.Event) -> None:
         while self._audit_queue:
@@ -239,44 +322,61 @@ class AuditTrail(StoreCore):
                 with contextlib.suppress(TimeoutError):
                     await asyncio.wait_for(flush.wait(), AUDIT_BATCH_S)
             batch, self._audit_queue = self._audit_queue, []
-            data = {
-                "rows": [
-                    {"entry": e.model_dump(mode="json"), "seen": None if s is None else dataclasses.asdict(s)}
-                    for e, s in batch
-                ]
-            }
+            data = self._batch_data(batch)
             try:  # the database unreachable: kept in the spool, in order, with their times
                 await self._kept(f"{len(batch)} audit rows", "audit_batch", data)
             except Exception:
                 log.exception("could not write %d audit rows at once; writing them one by one", len(batch))
-                for item in batch:
+                for (entry, _seen), row in zip(batch, data["rows"], strict=True):
                     try:
-                        await self._write_audit_batch([item])
+                        await self._write_audit_batch_of({"rows": [row]})
                     except Exception:
-                        log.exception("could not write the audit row of %s", item[0].action)
+                        log.exception("could not write the audit row of %s", entry.action)
+
+    @staticmethod
+    def _batch_data(batch: list[tuple[AuditEntry, SessionSeen | None]]) -> dict[str, Any]:
+        """The rows as the spool keeps them, each with its call's id (its row is written once, however
+        often the write is tried)."""
+        return {
+            "rows": [
+                {
+                    "entry": e.model_dump(mode="json"),
+                    "seen": None if s is None else dataclasses.asdict(s),
+                    "call_id": uuid.uuid4().hex,
+                }
+                for e, s in batch
+            ]
+        }
 
     async def _write_audit_batch_of(self, data: dict[str, Any]) -> None:
-        await self._write_audit_batch(
-            [
-                (AuditEntry.model_validate(r["entry"]), SessionSeen(**r["seen"]) if r["seen"] else None)
-                for r in data["rows"]
-            ]
-        )
+        batch = [
+            (AuditEntry.model_validate(r["entry"]), SessionSeen(**r["seen"]) if r["seen"] else None)
+            for r in data["rows"]
+        ]
+        # a write kept by an older version names no call: a fresh id for each of its rows
+        call_ids = [r.get("call_id") or uuid.uuid4().hex for r in data["rows"]]
+        await self._write_audit_batch(batch, call_ids)
 
-    async def _write_audit_batch(self, batch: list[tuple[AuditEntry, SessionSeen | None]]) -> None:
-        seen: dict[str, tuple[SessionSeen, int]] = {}
-        for _entry, s in batch:
-            if s is not None:
-                seen[s.key[:200]] = (s, seen.get(s.key[:200], (s, 0))[1] + 1)
+    async def _write_audit_batch(
+        self, batch: list[tuple[AuditEntry, SessionSeen | None]], call_ids: list[str]
+    ) -> None:
+        """Insert the rows whose call id is not stored yet, and touch their sessions, in one transaction.
+        A row already stored (an earlier try of this write committed, and its answer was lost to a
+        timeout, or the spool wrote it again) is neither inserted nor counted again."""
         values = [self._audit_values(entry) for entry, _ in batch]
+        rows = [{**v, "call_id": call_id} for v, call_id in zip(values, call_ids, strict=True)]
+        statement = self._insert_once().returning(AuditRow.id, AuditRow.call_id)
         async with self._sessions.begin() as session:
+            inserted = {c: i for i, c in (await session.execute(statement, rows)).all()}
+            seen: dict[str, tuple[SessionSeen, int]] = {}
+            for (_entry, s), call_id in zip(batch, call_ids, strict=True):
+                if s is not None and call_id in inserted:
+                    seen[s.key[:200]] = (s, seen.get(s.key[:200], (s, 0))[1] + 1)
             for key, (s, count) in seen.items():
                 await self._touch_in(session, key, s, count)
-            statement = insert(AuditRow).returning(AuditRow.id, sort_by_parameter_order=True)
-            ids = (await session.scalars(statement, values)).all()
-        for (entry, _s), row, row_id in zip(batch, values, ids, strict=True):
-            if self._audit_listeners:
-                self._audit_written(AuditRecord.model_validate({**row, "id": row_id}))
+        for (entry, _s), row, call_id in zip(batch, values, call_ids, strict=True):
+            if self._audit_listeners and call_id in inserted:
+                self._audit_written(AuditRecord.model_validate({**row, "id": inserted[call_id]}))
             if entry.outcome == "running" and entry.operation_id is not None:
                 await self._finish_if_ended(entry.operation_id)
 
@@ -446,6 +546,47 @@ class AuditTrail(StoreCore):
                 row.duration_ms = max(took_ms, row.duration_ms or 0.0)
         for row in rows:  # the console's audit stream shows the row again, finished
             self._audit_written(row)
+
+
+class AuditCall:
+    """The audit row of one call that commands a drone: written before the command is sent (outcome
+    running), so a node killed while the call runs keeps it (the database has it, or the node's spool file
+    until the database does); then the operation the call started, and the call's end, each written after
+    the write before it. A row whose operation is named stays running until that operation ends, on
+    whichever node, and takes its outcome (`AuditTrail.finish_audit_of`, `Store.save_operation`)."""
+
+    def __init__(self, trail: AuditTrail, entry: AuditEntry, seen: SessionSeen | None) -> None:
+        self.id = uuid.uuid4().hex
+        self._trail = trail
+        self._what = entry.action
+        self._last = trail._call_write(trail._begin_call_row(self.id, entry, seen), None)
+        self._operation: str | None = None
+
+    async def written(self, within_s: float) -> bool:
+        """Wait up to ``within_s`` for the row (in the database, or kept on this node's disk); True when
+        it is. The write goes on past that (a database that hangs is waited on for the spool's time)."""
+        done, _ = await asyncio.wait({self._last}, timeout=within_s)
+        return bool(done)
+
+    def operation(self, operation_id: str) -> None:
+        """The call started ``operation_id``: the row names it (its end finishes the row), at once."""
+        if operation_id == self._operation:
+            return
+        self._operation = operation_id
+        change = self._trail._change_call_row(self.id, self._what, {"operation_id": operation_id})
+        self._last = self._trail._call_write(change, self._last)
+
+    async def end(
+        self, outcome: str, error: str | None, duration_ms: float, within_s: float, operation_id: str | None
+    ) -> bool:
+        """The call ended: its outcome (running, naming its operation, while that still runs), error and
+        duration; waited for up to ``within_s`` (True when written)."""
+        changes: dict[str, Any] = {"outcome": outcome, "error": error, "duration_ms": duration_ms}
+        if operation_id is not None:
+            changes["operation_id"] = self._operation = operation_id
+        change = self._trail._change_call_row(self.id, self._what, changes)
+        self._last = self._trail._call_write(change, self._last)
+        return await self.written(within_s)
 
 
 def _aware(t: datetime) -> datetime:

@@ -12,7 +12,7 @@ from typing import Any
 from sqlalchemy import CursorResult, select
 from sqlalchemy.ext.asyncio import AsyncEngine, async_sessionmaker
 
-from gateway.registry.spool import Spool
+from gateway.registry.spool import Spool, database_tag
 
 log = logging.getLogger(__name__)
 
@@ -29,7 +29,7 @@ class StoreCore:
         self._sessions = async_sessionmaker(engine, expire_on_commit=False)
         self._closed = False
         #: history writes the database could not take (it was unreachable), written when it is back
-        self.spool = Spool(apply=self._apply_kept)
+        self.spool = Spool(apply=self._apply_kept, owner=database_tag(url))
         #: how each kind of kept write is written (the Store names its tables' writers)
         self._kept_writers: dict[str, Callable[[dict[str, Any]], Awaitable[Any]]] = {}
 

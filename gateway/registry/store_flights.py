@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from datetime import datetime
-from typing import Any, cast
+from typing import cast
 
+from pydantic import BaseModel
 from sqlalchemy import func, insert, or_, select
 
 from gateway.errors import NotFound
@@ -21,6 +22,26 @@ from gateway.registry.records import (
     TrackSample,
 )
 from gateway.registry.store_core import StoreCore
+from gateway.util.json_types import JsonObject, JsonValue
+
+
+class FlightEnd(BaseModel):
+    """The end of a flight as a kept write holds it (JSON, read again after a restart)."""
+
+    flight_id: int
+    ended_at: datetime
+    duration_s: float | None = None
+    distance_m: float | None = None
+    max_alt_rel_m: float | None = None
+    battery_used_pct: float | None = None
+
+
+def _rows(data: JsonObject) -> list[JsonValue]:
+    """The rows of a kept batch (``{"rows": [...]}``); ValueError when it holds none."""
+    rows = data.get("rows")
+    if not isinstance(rows, list):
+        raise ValueError(f"a kept batch holds its rows as a list under 'rows'; got {str(rows)[:80]!r}")
+    return rows
 
 
 class FlightTables(StoreCore):
@@ -56,24 +77,24 @@ class FlightTables(StoreCore):
         battery_used_pct: float | None = None,
     ) -> FlightRecord | None:
         """End a flight; None when the database is unreachable (the end is written when it is back)."""
-        data = {
-            "flight_id": flight_id, "ended_at": ended_at.isoformat(), "duration_s": duration_s,
-            "distance_m": distance_m, "max_alt_rel_m": max_alt_rel_m, "battery_used_pct": battery_used_pct,
-        }  # fmt: skip
+        data = FlightEnd(
+            flight_id=flight_id, ended_at=ended_at, duration_s=duration_s, distance_m=distance_m,
+            max_alt_rel_m=max_alt_rel_m, battery_used_pct=battery_used_pct,
+        ).model_dump(mode="json")  # fmt: skip
         kept = await self._kept(f"the end of flight {flight_id}", "flight_end", data)
         return cast(FlightRecord | None, kept)
 
-    async def _write_flight_end(self, data: dict[str, Any]) -> FlightRecord:
-        flight_id = int(data["flight_id"])
+    async def _write_flight_end(self, data: JsonObject) -> FlightRecord:
+        end = FlightEnd.model_validate(data)
         async with self._sessions.begin() as session:
-            row = await session.get(FlightRow, flight_id)
+            row = await session.get(FlightRow, end.flight_id)
             if row is None:
-                raise NotFound(f"no flight with id {flight_id}", id=flight_id)
-            row.ended_at = datetime.fromisoformat(data["ended_at"])
-            row.duration_s = data["duration_s"]
-            row.distance_m = data["distance_m"]
-            row.max_alt_rel_m = data["max_alt_rel_m"]
-            row.battery_used_pct = data["battery_used_pct"]
+                raise NotFound(f"no flight with id {end.flight_id}", id=end.flight_id)
+            row.ended_at = end.ended_at
+            row.duration_s = end.duration_s
+            row.distance_m = end.distance_m
+            row.max_alt_rel_m = end.max_alt_rel_m
+            row.battery_used_pct = end.battery_used_pct
         return FlightRecord.model_validate(row)
 
     async def list_open_flights(self, vehicle_id: str | None = None) -> list[FlightRecord]:
@@ -92,8 +113,8 @@ class FlightTables(StoreCore):
         data = {"rows": [s.model_dump(mode="json") for s in samples]}
         return await self._kept(f"{len(samples)} track samples", "track_samples", data) or 0
 
-    async def _write_track_samples(self, data: dict[str, Any]) -> int:
-        rows = [TrackSample.model_validate(r).model_dump() for r in data["rows"]]
+    async def _write_track_samples(self, data: JsonObject) -> int:
+        rows = [TrackSample.model_validate(r).model_dump() for r in _rows(data)]
         async with self._sessions.begin() as session:
             await session.execute(insert(TrackSampleRow), rows)
         return len(rows)
@@ -104,8 +125,8 @@ class FlightTables(StoreCore):
         data = {"rows": [i.model_dump(mode="json") for i in items]}
         return await self._kept(f"{len(items)} status texts", "status_texts", data) or 0
 
-    async def _write_status_texts(self, data: dict[str, Any]) -> int:
-        rows = [StatusTextIn.model_validate(r).model_dump() for r in data["rows"]]
+    async def _write_status_texts(self, data: JsonObject) -> int:
+        rows = [StatusTextIn.model_validate(r).model_dump() for r in _rows(data)]
         async with self._sessions.begin() as session:
             await session.execute(insert(StatusTextRow), rows)
         return len(rows)

@@ -3,6 +3,8 @@ database is unreachable counts once it is back)."""
 
 from __future__ import annotations
 
+import logging
+from collections.abc import Callable
 from datetime import datetime
 from typing import Any, TypeVar, cast
 
@@ -15,13 +17,32 @@ from gateway.registry.models import (
 from gateway.registry.records import LockRecord
 from gateway.registry.store_core import StoreCore, rowcount
 
+log = logging.getLogger(__name__)
+
+
+#: ``superseded(family, scope, locked_at)``: whether a lock was undone since it was made (an unlock
+#: newer than it is known: `gateway.cluster.lock_versions.LockVersions.superseded`); family "lock" or
+#: "takeover"
+Superseded = Callable[[str, str, datetime], bool]
+
 #: the two tables of locks, which differ only in the name of their key (the scope, or the drone's id)
 _Row = TypeVar("_Row", LockRow, TakeoverRow)
 _KEY: dict[type[LockRow] | type[TakeoverRow], str] = {LockRow: "scope", TakeoverRow: "vehicle_id"}
 
 
 class LockTables(StoreCore):
-    """Operator locks and takeover locks (`gateway.fleet.policy.operator_locks`), kept across restarts."""
+    """Operator locks and takeover locks (`gateway.fleet.policy.operator_locks`), kept across restarts.
+    A lock written late (kept while the database was down) that was undone meanwhile is not written
+    (``lock_superseded``, set by a cluster node)."""
+
+    lock_superseded: Superseded | None = None
+
+    def _undone(self, family: str, scope: str, locked_at: datetime) -> bool:
+        if self.lock_superseded is None or not self.lock_superseded(family, scope, locked_at):
+            return False
+        log.warning("the %s of %s made at %s is not written: it was undone since (a newer unlock is known)",
+                    family, scope, locked_at.isoformat())  # fmt: skip
+        return True
 
     async def save_lock(self, scope: str, reason: str, by: str, locked_at: datetime) -> LockRecord | None:
         """Store (or replace) the lock of ``scope``; None when the database is unreachable (it is
@@ -29,8 +50,8 @@ class LockTables(StoreCore):
         data = {"scope": scope, "reason": reason, "by": by[:200], "locked_at": locked_at.isoformat()}
         return cast(LockRecord | None, await self._kept(f"the lock of {scope}", "lock", data))
 
-    async def _write_lock(self, data: dict[str, Any]) -> LockRecord:
-        return await self._put(LockRow, data)
+    async def _write_lock(self, data: dict[str, Any]) -> LockRecord | None:
+        return await self._put(LockRow, "lock", data)
 
     async def delete_lock(self, scope: str) -> bool:
         """Remove the lock of ``scope``; False when there was none (or the database is unreachable:
@@ -56,8 +77,8 @@ class LockTables(StoreCore):
         kept = await self._kept(f"the takeover lock of {vehicle_id}", "takeover", data)
         return cast(LockRecord | None, kept)
 
-    async def _write_takeover(self, data: dict[str, Any]) -> LockRecord:
-        return await self._put(TakeoverRow, data)
+    async def _write_takeover(self, data: dict[str, Any]) -> LockRecord | None:
+        return await self._put(TakeoverRow, "takeover", data)
 
     async def delete_takeover(self, vehicle_id: str) -> bool:
         """Remove a drone's takeover lock; False when there was none (or the database is unreachable:
@@ -73,11 +94,14 @@ class LockTables(StoreCore):
 
     # --- either table ----------------------------------------------------------------------------------
 
-    async def _put(self, table: type[_Row], data: dict[str, Any]) -> LockRecord:
-        """Insert or replace the lock ``data`` (as spooled: its key, reason, by, ISO locked_at)."""
+    async def _put(self, table: type[_Row], family: str, data: dict[str, Any]) -> LockRecord | None:
+        """Insert or replace the lock ``data`` (as spooled: its key, reason, by, ISO locked_at); None
+        when it was undone since it was made (not written)."""
         key_name = _KEY[table]
         key, reason, by = data[key_name], data["reason"], data["by"]
         locked_at = datetime.fromisoformat(data["locked_at"])
+        if self._undone(family, key, locked_at):
+            return None
         async with self._sessions.begin() as session:
             row = await session.get(table, key)
             if row is None:

@@ -223,3 +223,31 @@ async def test_a_plans_geofence_becomes_the_drones_zones_and_its_rally_points_co
                     f["properties"]["name"] for f in (await http.get("/api/v1/geofences")).json()["features"]
                 }
                 assert after == set(zones)
+
+
+async def test_a_plans_rally_points_and_circles_outlive_a_gateway_restart(tmp_path: Path) -> None:
+    """The rally points and the geofence circle of alpha's last .plan are in the database, not in the
+    gateway's memory: a new gateway over the same database (and geofence file) exports them again."""
+    zones_file = tmp_path / "zones.geojson"
+    zones_file.write_text('{"type": "FeatureCollection", "features": []}')
+    settings = live_settings(tmp_path / "gateway.db", geofence_file=str(zones_file))
+    async with sim_process(count=1, speedup=10) as sim:
+        with serve_in_thread(create_app(settings)) as base:
+            async with httpx.AsyncClient(base_url=base, timeout=scaled(60)) as http:
+                created = await http.post("/api/v1/vehicles", json={"id": "alpha", "url": sim.urls[0]})
+                assert created.status_code == 201, created.text
+                await _ready(http, "alpha")
+                put = await http.put(
+                    "/api/v1/vehicles/alpha/mission",
+                    content=_plan({"polygons": [], "circles": [AWAY]}, RALLY),
+                    headers={"content-type": "application/json"},
+                )
+                assert put.status_code == 200, put.text
+        with serve_in_thread(create_app(settings)) as base:  # the restart
+            async with httpx.AsyncClient(base_url=base, timeout=scaled(60)) as http:
+                await _ready(http, "alpha")
+                back = json.loads((await http.get("/api/v1/vehicles/alpha/mission?format=plan")).text)
+                assert back["rallyPoints"]["points"] == RALLY
+                [circle] = back["geoFence"]["circles"]
+                assert circle["circle"] == {"center": AWAY["circle"]["center"], "radius": 40.0}  # type: ignore[index]
+                assert circle["inclusion"] is False

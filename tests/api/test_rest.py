@@ -355,6 +355,7 @@ async def test_flight_as_kml_and_tlog(client: httpx.AsyncClient, app: FastAPI, t
 
     tlog = await client.get(f"/api/v1/flights/{ids[0]}/tlog")
     assert tlog.status_code == 200 and 'filename="alpha-flight-' in tlog.headers["content-disposition"]
+    assert tlog.headers["x-tlog-source"] == "reconstructed"  # no raw log of a seeded flight
     path = tmp_path / "flight.tlog"
     path.write_bytes(tlog.content)
     log = mavutil.mavlink_connection(str(path), dialect="common")

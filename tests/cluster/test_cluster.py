@@ -178,13 +178,19 @@ async def test_an_agent_on_node_a_flies_a_drone_owned_by_node_c(cl: Cluster) -> 
             monitored
         )
 
+        seen: list[Any] = []
+
         async def row_finished() -> bool:
-            rows = await cl.rows("SELECT outcome FROM audit WHERE operation_id = :i", i=leg["operation_id"])
+            rows = await cl.rows("SELECT action, outcome, error FROM audit WHERE operation_id = :i",
+                                 i=leg["operation_id"])  # fmt: skip
+            seen[:] = [tuple(r) for r in rows]
             return len(rows) == 1 and rows[0].outcome == "ok"
 
-        await eventually(
-            row_finished, "the audit row of the wait:false call finished by the owner", within_s=10
-        )
+        try:
+            await eventually(row_finished, "the audit row of the wait:false call finished by the owner",
+                             within_s=10)  # fmt: skip
+        except AssertionError as exc:
+            raise AssertionError(f"{exc}; its rows: {seen}") from None
         down = ok(await calls.tool(mcp, "land", {"drone_id": drone}))
         assert down["status"] in ("succeeded", "running"), down
     await eventually(lambda: landed(cl, [drone]), "the drone owned by node C landed", within_s=60)

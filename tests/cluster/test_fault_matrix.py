@@ -32,20 +32,7 @@ async def matrix_rig(tmp_path_factory: pytest.TempPathFactory) -> AsyncIterator[
         yield r
 
 
-#: a case that still fails one of its checks, with what fails (docs/cluster.md, "Not done yet")
-KNOWN_GAPS = {
-    ("node-a-killed", "node-b"): "the killed node's audit rows for calls it had taken may be lost (two of "
-    "four takeoffs had no row in one run): the stop itself is checked before the audit",
-}
-
-
-def _case(fault: str, via: str) -> object:
-    gap = KNOWN_GAPS.get((fault, via))
-    marks = [pytest.mark.xfail(strict=False, reason=gap)] if gap else []
-    return pytest.param(fault, via, id=f"{fault}-via-{via}", marks=marks)
-
-
-@pytest.mark.parametrize(("fault", "via"), [_case(f, v) for f, v in CASES])
+@pytest.mark.parametrize(("fault", "via"), [pytest.param(f, v, id=f"{f}-via-{v}") for f, v in CASES])
 async def test_the_emergency_stop_under_each_fault(matrix_rig: Rig, fault: str, via: str) -> None:
     figures = await run_case(matrix_rig, fault, via)
     print(f"{fault} via {via}: " + ", ".join(f"{k} {v}" for k, v in figures.items()))

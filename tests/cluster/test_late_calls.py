@@ -115,3 +115,18 @@ async def test_a_caller_cut_off_from_the_bus_sends_nothing(buses: tuple[Bus, Bus
     with pytest.raises(NotRun, match=r"cut off from the cluster's bus.*not sent and did not run"):
         await caller.call("d1", "land", {}, {}, 10.0)
     assert ran == []
+
+
+async def test_a_message_that_is_not_a_call_is_answered_and_not_run(
+    buses: tuple[Bus, Bus, list[str]],
+) -> None:
+    """The owner validates a call's body (`CallRequest`): arguments that are not a JSON object, or no verb,
+    are answered invalid_argument, naming what is wrong; nothing runs."""
+    _, caller, ran = buses
+    nc = caller.client
+    for body, wrong in (({"call": "land", "args": [1, 2]}, "args"), ({"args": {}}, "call")):
+        msg = await nc.request(call_subject("d1"), json.dumps(body).encode(), timeout=10.0)
+        reply = json.loads(msg.data)
+        assert (msg.headers or {}).get("Fleet-Kind") == "result", msg.headers
+        assert reply["error"]["code"] == "invalid_argument" and wrong in reply["error"]["message"], reply
+    assert ran == []

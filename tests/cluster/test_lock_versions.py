@@ -9,6 +9,7 @@ node reconnects. No node may be locked by it. A lock made after the unlock still
 from __future__ import annotations
 
 import json
+from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
@@ -16,16 +17,18 @@ import nats
 import pytest
 from nats.aio.msg import Msg
 
+from gateway.cluster.lock_versions import LockVersions
+from gateway.registry.store import Store
 from tests.cluster.harness import Cluster, cluster, missing_engines
 from tests.helpers.timing import eventually
-
-pytestmark = pytest.mark.skipif(missing_engines() is not None, reason=str(missing_engines()))
+from tests.persist.pg import create_database, find_pg_bin, restartable_postgres
 
 
 async def _scopes(c: Cluster, name: str) -> set[str]:
     return {x["scope"] for x in (await c.node(name).get("/locks"))["items"]}
 
 
+@pytest.mark.skipif(missing_engines() is not None, reason=str(missing_engines()))
 async def test_a_late_lock_broadcast_does_not_lock_the_fleet_again(tmp_path: Path) -> None:
     async with cluster(tmp_path, drones=1, nodes=2, speedup=5.0) as c:
         bus = await nats.connect(c.nats.url)
@@ -81,3 +84,38 @@ async def test_a_late_lock_broadcast_does_not_lock_the_fleet_again(tmp_path: Pat
             await eventually(locked_everywhere, "a new fleet lock on both nodes")
         finally:
             await bus.close()
+
+
+@pytest.mark.skipif(
+    not (find_pg_bin("initdb") and find_pg_bin("postgres")),
+    reason="PostgreSQL server binaries are not installed (apt-get install postgresql)",
+)
+async def test_a_lock_kept_while_the_database_was_down_does_not_override_a_newer_unlock() -> None:
+    """A node's store, its PostgreSQL stopped: the node's stop locks the fleet (kept in its spool); the
+    operator unlocks the fleet through another node, whose unlock broadcast this node hears; the database
+    returns and the spool is written: the kept lock is not, since a newer unlock is known. A lock kept
+    with no unlock after it is written as before."""
+    with restartable_postgres() as server:
+        store = await Store.open(await create_database(server.url))
+        try:
+            versions = LockVersions()  # this node's, as its cluster node gives them to its store
+            store.lock_superseded = versions.superseded
+            other = LockVersions()  # the other node's
+            server.stop()
+            stopped_at = datetime.now(UTC)
+            versions.stamp("lock", {"scope": "*", "locked_at": stopped_at.isoformat()})  # announced
+            assert await store.save_lock("*", "emergency stop", "ops", stopped_at) is None  # kept
+            other.fresh("lock", versions.stamp("lock", {"scope": "*", "locked_at": stopped_at.isoformat()}))
+            unlock = other.stamp("unlock", {"scope": "*"})  # through the other node, after it heard the lock
+            assert versions.fresh("unlock", unlock)  # heard here
+            drone_at = datetime.now(UTC)  # and a lock of a drone, never unlocked
+            versions.stamp("lock", {"scope": "d1", "locked_at": drone_at.isoformat()})
+            assert await store.save_lock("d1", "check", "ops", drone_at) is None
+
+            server.start()
+            assert await store.spool.flush(60.0), f"{len(store.spool)} writes still kept"
+            assert [lk.scope for lk in await store.list_locks()] == ["d1"]
+        finally:
+            if not server.running:
+                server.start()
+            await store.close()

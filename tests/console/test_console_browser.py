@@ -7,8 +7,10 @@ The module shares one gateway and one browser; each test opens its own page. A t
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import AsyncIterator
+from datetime import datetime
 from typing import Any
 
 import pytest
@@ -381,7 +383,9 @@ async def test_hold_and_land_buttons_act_on_their_drone_and_are_audited_as_the_c
         op = await newest_operation(stack, "d1", "land")
         return op if op and op["status"] == "succeeded" else None
 
-    await eventually(landed_and_disarmed, "d1's landing succeeded (landed and disarmed)", within_s=90)
+    landing = await eventually(
+        landed_and_disarmed, "d1's landing succeeded (landed and disarmed)", within_s=90
+    )
     telemetry = (await stack.rest("/vehicles/d1"))["telemetry"]
     assert telemetry["armed"]["value"] is False and telemetry["position"]["rel_alt_m"] < 1.0, telemetry
     assert apart_m(telemetry["position"], above) < 3.0, (above, telemetry["position"])
@@ -392,7 +396,20 @@ async def test_hold_and_land_buttons_act_on_their_drone_and_are_audited_as_the_c
         assert len(rows) == 1 and rows[0]["outcome"] == "ok", rows
         assert rows[0]["source"] == "console" and rows[0]["principal"], rows
         assert OPERATOR_TOKEN not in str(rows[0])
-    await expect(audit_row(page, "rest.land_vehicle", "ok").first).to_contain_text("console")
+    # the land's row names its operation and took until the drone had landed, not the time to send it
+    [land_row] = [
+        r
+        for r in (await stack.rest("/audit", vehicle_id="d1"))["items"]
+        if r["action"] == "rest.land_vehicle"
+    ]
+    assert land_row["operation_id"] == landing["id"], (land_row, landing)
+    landing_ms = (
+        datetime.fromisoformat(landing["finished_at"]) - datetime.fromisoformat(landing["created_at"])
+    ).total_seconds() * 1000
+    assert land_row["duration_ms"] >= landing_ms, (land_row, landing)
+    shown = audit_row(page, "rest.land_vehicle", "ok").first
+    await expect(shown).to_contain_text("console")
+    await expect(shown.locator("td.num")).to_have_text(f"{math.floor(land_row['duration_ms'] + 0.5)} ms")
 
 
 async def test_emergency_stop_lands_the_fleet(console_stack: Stack, context: Any) -> None:

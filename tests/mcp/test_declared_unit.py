@@ -167,3 +167,19 @@ def test_contributing_shows_a_command_in_three_files_as_the_code_has_it() -> Non
     ]
     for path, code in shown:
         assert code in (root / path).read_text(), path
+
+
+def test_the_hand_written_tools_only_read() -> None:
+    """gateway/mcp/tools/ holds only what is not a command: every tool written there is read-only (a
+    command, anything that changes a drone or its state, is declared with its verb)."""
+    modules = sorted(p.stem for p in TOOLS_DIR.glob("*.py") if p.stem != "__init__")
+    assert modules, TOOLS_DIR
+    written = {
+        spec.name: spec.annotations.read_only_hint
+        for name in modules
+        for spec in importlib.import_module(f"gateway.mcp.tools.{name}").toolset.tools
+    }
+    assert written and all(written.values()), {n: r for n, r in written.items() if not r}
+
+
+TOOLS_DIR = Path(__file__).resolve().parents[2] / "gateway" / "mcp" / "tools"

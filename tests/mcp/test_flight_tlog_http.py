@@ -1,6 +1,8 @@
 """A flight's .tlog read by the field's own tools: pymavlink's `mavflightmodes` finds the modes the
 autopilot flew (GUIDED, RTL: from the HEARTBEATs' custom mode) and `mavflighttime` the time in the air and
-the distance (from GPS_RAW_INT). Flown on the simulator through MCP, the log fetched over REST."""
+the distance (from GPS_RAW_INT). Flown on the simulator through MCP, the log fetched over REST: it is the
+simulator's own frames as the relay received them (messages the 1 Hz reconstruction never writes, such
+as ATTITUDE, at the simulator's rate), starting a few seconds before the arming."""
 
 from __future__ import annotations
 
@@ -13,6 +15,7 @@ from typing import Any
 
 import httpx
 import pytest
+from pymavlink import mavutil
 
 from tests.helpers.timing import scaled
 from tests.mcp.conftest import Stack, point_from, structured, wait_until_true
@@ -29,6 +32,21 @@ def _run(tool: str, log: Path) -> str:
     )
     assert done.returncode == 0, done.stderr
     return done.stdout
+
+
+def _read(path: Path) -> tuple[list[tuple[str, bool]], int, set[int]]:
+    """(mode, armed) of each HEARTBEAT, the number of ATTITUDEs and the system ids of every message."""
+    log = mavutil.mavlink_connection(str(path), dialect="ardupilotmega")
+    heartbeats, attitudes, senders = [], 0, set()
+    while (msg := log.recv_match()) is not None:
+        senders.add(msg.get_srcSystem())
+        if msg.get_type() == "HEARTBEAT":
+            heartbeats.append(
+                (log.flightmode, bool(msg.base_mode & mavutil.mavlink.MAV_MODE_FLAG_SAFETY_ARMED))
+            )
+        elif msg.get_type() == "ATTITUDE":
+            attitudes += 1
+    return heartbeats, attitudes, senders
 
 
 async def _flight(stack: Stack) -> dict[str, Any]:
@@ -58,13 +76,19 @@ async def test_mavflightmodes_and_mavflighttime_read_the_flight(stack: Stack, tm
     async with httpx.AsyncClient(base_url=stack.base_url, timeout=scaled(30)) as http:
         tlog = await http.get(f"/api/v1/flights/{flight['id']}/tlog")
     assert tlog.status_code == 200, tlog.text
+    assert tlog.headers["x-tlog-source"] == "autopilot"
     log = tmp_path / "flight.tlog"
     log.write_bytes(tlog.content)
 
     modes = _run("mavflightmodes.py", log)
     seen = re.findall(r"MAV\.flightmode=(\S+)", modes)
-    assert "GUIDED" in seen and "RTL" in seen, modes
-    assert "STABILIZE" not in seen, modes  # the autopilot never flew it
+    # the mode it stood in before the takeoff (the log starts before the arming), GUIDED, RTL
+    assert seen[-2:] == ["GUIDED", "RTL"] and len(seen) <= 3, modes
+    heartbeats, attitudes, senders = _read(log)
+    assert all(not armed for mode, armed in heartbeats if mode not in ("GUIDED", "RTL")), heartbeats
+    # the simulator's attitude rate (the reconstruction writes none)
+    assert attitudes >= 2 * flight["duration_s"], (attitudes, flight["duration_s"])
+    assert senders == {(await stack.rest("/vehicles/d1"))["status"]["sysid"]}, senders
 
     times = _run("mavflighttime.py", log)
     minutes, seconds = map(int, re.search(r"Total time in air: (\d+):(\d+)", times).groups())  # type: ignore[union-attr]

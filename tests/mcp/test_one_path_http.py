@@ -58,9 +58,15 @@ async def test_operator_takeoff_over_rest_then_agent_goto_mid_climb_is_refused(s
         # the operator keeps the last word: its hold ends the takeoff at once
         held = await http.post("/api/v1/vehicles/d1/hold")
         assert held.status_code == 200 and held.json()["superseded_operation"] == sent["operation_id"]
-        audit = (await http.get("/api/v1/audit", params={"vehicle_id": "d1"})).json()["items"]
-    rows = {(a["source"], a["action"], a["outcome"]) for a in audit}
-    assert {("rest", "rest.takeoff_vehicle", "ok"), ("mcp", "go_to_location", "refused")} <= rows, rows
+
+        # the operator's takeoff row names its operation and ends as it did: superseded by the hold
+        async def audited() -> set[tuple[str, str, str]] | None:
+            audit = (await http.get("/api/v1/audit", params={"vehicle_id": "d1"})).json()["items"]
+            rows = {(a["source"], a["action"], a["outcome"]) for a in audit}
+            takeoff = ("rest", "rest.takeoff_vehicle", "superseded")
+            return rows if {takeoff, ("mcp", "go_to_location", "refused")} <= rows else None
+
+        await eventually(audited, "the takeoff's row superseded and the agent's goto refused")
 
 
 async def test_an_operator_fleet_stop_over_rest_supersedes_an_agents_fleet_takeoff_and_lands_its_drones(

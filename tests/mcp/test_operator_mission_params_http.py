@@ -9,7 +9,7 @@ from typing import Any
 import httpx
 import pytest
 
-from tests.helpers.timing import scaled
+from tests.helpers.timing import eventually, scaled
 from tests.mcp.conftest import Stack, point_from, structured, wait_until_true
 
 pytestmark = pytest.mark.asyncio(loop_scope="module")
@@ -32,6 +32,22 @@ async def _operation_ends(stack: Stack, operation_id: str) -> dict[str, Any]:
             return dict(op)
         assert loop.time() < deadline, op
         await asyncio.sleep(0.3)
+
+
+async def test_an_unknown_parameter_is_refused_from_the_list_fetched_at_connect(stack: Stack) -> None:
+    """The gateway fetches the autopilot's parameter list as the drone connects (before any read, as a
+    ground station does), so the first read of a name the autopilot does not have is refused from that
+    list without asking the autopilot (older ArduPilot does not answer one: ~3 s for nothing)."""
+    vehicle = stack.app.state.gateway.registry.get("d1").flown_here()
+
+    async def list_held() -> bool:
+        return vehicle.params_fetched_age_s is not None
+
+    await eventually(list_held, "d1's parameter list fetched at connect, with no read asked for")
+    async with httpx.AsyncClient(base_url=stack.base_url, timeout=scaled(30)) as http:
+        unknown = await http.get("/api/v1/vehicles/d1/params/NO_SUCH_PARAM")
+    assert unknown.status_code == 404, unknown.text
+    assert "unknown parameter 'NO_SUCH_PARAM' on drone 'd1': not among the" in unknown.text, unknown.text
 
 
 async def test_an_operator_flies_the_stored_mission_and_sets_a_parameter(stack: Stack) -> None:

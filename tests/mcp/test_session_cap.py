@@ -61,3 +61,30 @@ def test_the_settings_bound_the_cap_and_the_idle_time() -> None:
     for bad in ({"mcp_sessions_per_caller": 0}, {"mcp_session_idle_s": 0}):
         with pytest.raises(ValidationError):
             Settings(_env_file=None, **bad)
+
+
+def test_a_session_idle_past_its_time_is_closed(tmp_path: Path) -> None:
+    """GATEWAY_MCP_SESSION_IDLE_S: a session nobody sends a request on is closed after it (a client that
+    opens one session and goes away does not hold it until the cap makes room)."""
+    import time
+
+    settings = Settings(
+        _env_file=None,
+        database_url=f"sqlite+aiosqlite:///{tmp_path / 'gateway.db'}",
+        mcp_session_idle_s=1.0,
+    )
+    app = create_app(settings, registry_factory=FakeRegistry)
+    with serve_in_thread(app) as url, httpx.Client(base_url=url, timeout=scaled(30)) as http:
+        r = http.post("/mcp", json=OPENING, headers=HEADERS)
+        assert r.status_code == 200, r.text
+        session = {
+            **HEADERS,
+            "mcp-session-id": r.headers["mcp-session-id"],
+            "mcp-protocol-version": "2025-06-18",
+        }
+        manager = app.state.mcp.session_manager
+        deadline = time.monotonic() + scaled(30)
+        while manager._server_instances:  # closed by the manager once idle for a second
+            assert time.monotonic() < deadline, "the idle session was never closed"
+            time.sleep(0.1)
+        assert http.post("/mcp", json=PING, headers=session).status_code == 404

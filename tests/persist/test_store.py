@@ -39,7 +39,7 @@ def spec(vid: str = "alpha", port: int = 5760, **kw) -> VehicleSpec:
 
 
 async def test_open_upgrades_to_head(store: Store) -> None:
-    assert await current_revision(store.engine) == head_revision() == "0008"
+    assert await current_revision(store.engine) == head_revision() == "0010"
     assert await store.ping()
 
 

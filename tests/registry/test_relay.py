@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 import os
+import socket
 import sys
 import time
 import tty
@@ -80,6 +81,12 @@ class Peer:
         self.conn.close()
 
 
+async def sidecar_peer(relay: Relay) -> Peer:
+    """pymavlink connected to the relay as the drone's sidecar is (its URL in pymavlink's words)."""
+    assert relay.sidecar_url.startswith("tcpout://")
+    return await asyncio.to_thread(Peer, relay.sidecar_url.replace("tcpout://", "tcp:"), SIDECAR)
+
+
 @pytest_asyncio.fixture
 async def relay_with_peers() -> AsyncIterator[tuple[Relay, dict[str, Peer]]]:
     """Drone at udpin (the relay sends to it), ground station A at a tcpin endpoint, B at udpout."""
@@ -92,7 +99,7 @@ async def relay_with_peers() -> AsyncIterator[tuple[Relay, dict[str, Peer]]]:
         [f"tcpin://127.0.0.1:{tcp_port}", f"udpout://127.0.0.1:{udp_port}"],
     )
     await relay.start()
-    sidecar = Peer(relay.sidecar_url.replace("udpout://", "udpout:"), SIDECAR)
+    sidecar = await sidecar_peer(relay)
     gcs_a = await asyncio.to_thread(Peer, f"tcp:127.0.0.1:{tcp_port}", GCS_A)
     peers = {"drone": drone, "sidecar": sidecar, "a": gcs_a, "b": gcs_b}
     try:
@@ -205,7 +212,7 @@ async def test_a_ground_station_port_already_taken_is_reported_and_opened_once_f
         await relay.start()
         [status] = relay.status()
         assert status["error"] == f"cannot open tcpin://127.0.0.1:{port}: Address already in use", status
-        assert relay.sidecar_url.startswith("udpout://127.0.0.1:")
+        assert relay.sidecar_url.startswith("tcpout://127.0.0.1:")
         blocker.close()
         await blocker.wait_closed()
         loop = asyncio.get_running_loop()
@@ -234,7 +241,7 @@ def test_bad_endpoints_are_refused_in_one_line(bad: str) -> None:
 
 
 async def test_only_the_sidecar_process_is_taken_as_the_sidecar() -> None:
-    """Another local process writing to the relay's sidecar port does not get between the sidecar and
+    """Another local process connecting to the relay's sidecar port does not get between the sidecar and
     the drone: its frames are dropped, and the drone's still go to the sidecar."""
     drone_port = free_udp_port()
     drone = Peer(f"udpin:127.0.0.1:{drone_port}", DRONE)
@@ -242,14 +249,14 @@ async def test_only_the_sidecar_process_is_taken_as_the_sidecar() -> None:
     await relay.start()
     port = relay.sidecar.bound_port
     intruder = frame(mavlink.MAVLink_heartbeat_message(6, 8, 0, 0, 0, 3), sysid=66).hex()
-    script = (
-        "import socket,sys;s=socket.socket(socket.AF_INET,socket.SOCK_DGRAM);"
-        f"s.sendto(bytes.fromhex('{intruder}'),('127.0.0.1',{port}))"
+    script = (  # connects, sends a HEARTBEAT and waits for the relay to close the connection
+        f"import contextlib,socket\ns=socket.create_connection(('127.0.0.1',{port}))\n"
+        f"s.sendall(bytes.fromhex('{intruder}'))\nwith contextlib.suppress(OSError):\n    s.recv(1)"
     )
-    sidecar = Peer(relay.sidecar_url.replace("udpout://", "udpout:"), SIDECAR)
+    sidecar = await sidecar_peer(relay)
     try:
         proc = await asyncio.create_subprocess_exec(sys.executable, "-c", script)
-        assert await proc.wait() == 0
+        assert await asyncio.wait_for(proc.wait(), scaled(20)) == 0
         sidecar.conn.mav.heartbeat_send(6, 8, 0, 0, 0)
         hb = await asyncio.to_thread(drone.receive, "HEARTBEAT", 10)
         assert hb is not None and hb.get_srcSystem() == SIDECAR
@@ -320,7 +327,7 @@ async def test_an_endpoint_whose_peer_is_another_vehicle_is_stopped_and_nothing_
         "r6", f"udpout://127.0.0.1:{drone_port}", [endpoint], on_refused=lambda *a: refused.append(a)
     )
     await relay.start()
-    sidecar = Peer(relay.sidecar_url.replace("udpout://", "udpout:"), SIDECAR)
+    sidecar = await sidecar_peer(relay)
     try:
         sidecar.conn.mav.heartbeat_send(6, 8, 0, 0, 0)  # the drone (udpin) learns where the relay is
         assert await asyncio.to_thread(drone.receive, "HEARTBEAT", 10) is not None
@@ -375,3 +382,56 @@ def test_an_endpoint_that_is_another_drones_link_or_carries_credentials_is_refus
     [error] = creds.value.errors()
     assert "credentials in a MAVLink URL are not accepted" in error["msg"], error
     assert ":pw@" not in error["msg"] and "***@127.0.0.1:5772" in error["msg"], error
+
+
+async def test_a_burst_from_the_drone_reaches_a_sidecar_that_is_not_reading_without_loss() -> None:
+    """The drone's parameter list comes as a burst (~1,300 PARAM_VALUE at once on ArduPilot); a
+    mavsdk_server that is not scheduled for a moment must still get every frame of it once it reads, or
+    its parameter reads time out. The sidecar here reads nothing until the relay has passed the whole
+    burst on, then counts what it gets."""
+    count = 4000
+    mav = mavlink.MAVLink(None, srcSystem=DRONE, srcComponent=1)
+    burst = b"".join(
+        bytes(mavlink.MAVLink_param_value_message(f"P{i:05d}".encode(), float(i), 9, count, i).pack(mav))
+        for i in range(count)
+    )
+
+    async def drone(_reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        writer.write(burst)
+        await writer.drain()
+        await _reader.read()  # held open until the relay closes
+
+    server = await asyncio.start_server(drone, "127.0.0.1", 0)
+    relay = Relay("r7", f"tcpout://127.0.0.1:{server.sockets[0].getsockname()[1]}", [])
+    await relay.start()
+    scheme, _, address = relay.sidecar_url.partition("://")
+    host, _, port = address.rpartition(":")
+    if scheme == "tcpout":
+        sidecar = socket.create_connection((host, int(port)))
+    else:  # a udpin relay answers the latest sender
+        sidecar = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        sidecar.connect((host, int(port)))
+        sidecar.send(frame(heartbeat(), SIDECAR))
+    try:
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + scaled(30)
+        while relay.vehicle.stats.frames_in < count:
+            assert loop.time() < deadline, f"the relay got {relay.vehicle.stats.frames_in} of {count}"
+            await asyncio.sleep(0.05)
+        sidecar.settimeout(scaled(2))
+        got: list[int] = []
+        splitter = FrameSplitter()
+        while len(got) < count:
+            try:
+                data = await asyncio.to_thread(sidecar.recv, 65536)
+            except TimeoutError:
+                break
+            if not data:
+                break
+            got += [f.msgid for f in splitter.feed(data)]
+        params = [m for m in got if m == mavlink.MAVLINK_MSG_ID_PARAM_VALUE]
+        assert len(params) == count, f"the sidecar got {len(params)} of the {count} PARAM_VALUE"
+    finally:
+        sidecar.close()
+        await relay.close()
+        server.close()

@@ -249,3 +249,41 @@ async def test_link_that_cannot_open_is_restarted_then_failed(stopper: list[Side
     assert car.info.restarts == 3
     assert "could not open serial:///dev/fleet-gateway-no-such-device:57600" in (car.info.last_error or "")
     assert "No such file or directory" in (car.info.last_error or "")
+
+
+async def test_sidecars_start_a_few_at_a_time(stopper: list[Sidecar], monkeypatch) -> None:
+    """With one start slot, a second sidecar is spawned only once the first serves; a start whose
+    vehicle never answers frees its slot after the slot's time (``STARTS.hold_at_most_s``)."""
+    monkeypatch.setattr(sidecar_mod.STARTS, "slots", 1)
+    monkeypatch.setattr(sidecar_mod.STARTS, "hold_at_most_s", 600.0)
+    udp_a, udp_b = free_udp_port(), free_udp_port()
+    first = Sidecar("first", f"udpin://127.0.0.1:{udp_a}", _settings())
+    second = Sidecar("second", f"udpin://127.0.0.1:{udp_b}", _settings())
+    stopper += [first, second]
+    first.start()
+    await _wait_for(lambda: first.pid is not None)
+    second.start()
+    async with HeartbeatVehicle(udp_b, sysid=4):
+        # the second's vehicle answers, but its sidecar waits for the first's slot
+        assert await second.wait_serving(1.5) is False
+        assert second.pid is None and second.state == SidecarState.STARTING
+        async with HeartbeatVehicle(udp_a, sysid=3):
+            assert await first.wait_serving(WAIT)
+            assert await second.wait_serving(WAIT)
+    assert first.info.serving_since is not None and second.info.started_at is not None
+    assert second.info.started_at >= first.info.serving_since
+
+
+async def test_a_start_that_never_serves_frees_its_slot(stopper: list[Sidecar], monkeypatch) -> None:
+    monkeypatch.setattr(sidecar_mod.STARTS, "slots", 1)
+    monkeypatch.setattr(sidecar_mod.STARTS, "hold_at_most_s", 0.5)
+    udp_a, udp_b = free_udp_port(), free_udp_port()
+    silent = Sidecar("silent", f"udpin://127.0.0.1:{udp_a}", _settings())  # no vehicle ever answers
+    other = Sidecar("other", f"udpin://127.0.0.1:{udp_b}", _settings())
+    stopper += [silent, other]
+    silent.start()
+    await _wait_for(lambda: silent.pid is not None)
+    other.start()
+    async with HeartbeatVehicle(udp_b, sysid=4):
+        assert await other.wait_serving(WAIT)
+    assert silent.state == SidecarState.STARTING

@@ -11,10 +11,12 @@ import asyncio
 import dataclasses
 import functools
 import logging
+import typing
 from collections.abc import Awaitable, Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Protocol, TypeVar, cast, overload
+from typing import Concatenate, ParamSpec, Protocol, TypeVar, overload
 
+from pydantic import BaseModel
 from pydantic_core import to_jsonable_python
 
 from gateway.config import Settings
@@ -29,16 +31,18 @@ from gateway.errors import (
 )
 from gateway.fleet import geo
 from gateway.fleet.commands.arguments import AltFrame
-from gateway.fleet.commands.command_pass import CommandPass
+from gateway.fleet.commands.command_pass import AUDIT_SENT, CommandPass
 from gateway.fleet.operations.operation_state import Operation
-from gateway.fleet.operations.routing import FORWARDED, OnMessage, ProgressMessage, Verb
+from gateway.fleet.operations.operations import OperationManager
+from gateway.fleet.operations.routing import FORWARDED, Method, OnMessage, ProgressMessage, Router, Verb
 from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import VehicleContext
 from gateway.fleet.policy.safety_rules import Rule, refuse
-from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleView
+from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleDirectory, VehicleView
 from gateway.registry.store import OperationRecord, Store
 from gateway.util.json_types import JsonObject
+from gateway.util.read_through import ReadThrough
 
 log = logging.getLogger(__name__)
 
@@ -54,7 +58,9 @@ FOLLOW_RETRY_S = 0.5
 WAITER = Caller(via="cluster", principal="waiter")
 """Who forwards a wait: waiting changes nothing, whoever started the operation."""
 
-VerbMethod = TypeVar("VerbMethod", bound=Callable[..., Awaitable[Any]])
+VerbMethod = TypeVar("VerbMethod", bound=Method)
+Params = ParamSpec("Params")
+Result = TypeVar("Result", bound=BaseModel)
 
 #: every verb on one drone that runs on the drone's owner, by name (filled by `routed`)
 ROUTED: dict[str, Verb] = {}
@@ -82,16 +88,22 @@ class RoutedVerbs(Protocol):
     commands: CommandPass
 
 
-def routed(method: VerbMethod) -> VerbMethod:
+Part = TypeVar("Part", bound="RoutedVerbs")
+
+
+def routed(
+    method: Callable[Concatenate[Part, Params], Awaitable[Result]],
+) -> Callable[Concatenate[Part, Params], Awaitable[Result]]:
     """Run the verb where its drone is: here when this node owns it (or there is no cluster), else on
     its owner through the router, with the same arguments, callbacks (as progress messages) and result
     model. Before forwarding, an agent's actuating verb on a drone a pilot took over is refused (rule
     taken_over, as the owner's pass would) and the drone is looked up, so an unknown drone (or one
     outside the agent's scope) is named by this node exactly as by the owner."""
     name = method.__name__
+    result_model = _result_model(method)
 
     @functools.wraps(method)
-    async def run(self: RoutedVerbs, *args: Any, **kwargs: Any) -> Any:
+    async def run(self: Part, /, *args: Params.args, **kwargs: Params.kwargs) -> Result:
         bound = verb.signature.bind(self, *args, **kwargs)
         caller: Caller = bound.arguments["caller"]
         drone_id: str = bound.arguments["drone_id"]
@@ -112,11 +124,14 @@ def routed(method: VerbMethod) -> VerbMethod:
         wait_s = float(arguments.get("cap_s") or self.commands.settings.mcp_wait_cap_s)
         relay = _relay(callbacks)
         seen: dict[str, str] = {}  # the operation the owner reported (its progress), to follow it
+        starts = name not in READ_VERBS  # a read (a wait on a running operation) starts none of its own
 
         async def watch(body: ProgressMessage) -> None:
             view = body.get("view")
             operation_id = view.get("operation_id") if isinstance(view, dict) else None
             if isinstance(operation_id, str):
+                if starts and seen.get("operation_id") != operation_id and (note := AUDIT_SENT.get()):
+                    note(operation_id)  # the call's audit row names it: its end finishes the row
                 seen["operation_id"] = operation_id
             if relay is not None:
                 await relay(body)
@@ -129,21 +144,29 @@ def routed(method: VerbMethod) -> VerbMethod:
             # the owner was lost while the verb waited on its operation: follow the operation to the
             # node that takes the drone over (same id), for what is left of the wait
             operation_id = seen.get("operation_id")
-            if operation_id is None or verb.result is not OperationView:
+            if operation_id is None or result_model is not OperationView:
                 raise
             remaining = wait_s - (asyncio.get_running_loop().time() - started)
             desk.remember_elsewhere(operation_id, drone_id)
-            return await desk.wait_elsewhere(
+            followed = await desk.wait_elsewhere(
                 drone_id, operation_id, max(0.0, remaining), callbacks.get("on_progress")
             )
-        answer = verb.result.model_validate(result)
+            return result_model.model_validate(followed)  # the OperationView itself
+        answer = result_model.model_validate(result)
         if isinstance(answer, OperationView):
             desk.remember_elsewhere(answer.operation_id, drone_id)
         return answer
 
     # forwarded calls reach the verb by name on the Commander, which holds every verb
     verb = ROUTED[name] = Verb(method, wrapper=_by_name(method))
-    return cast(VerbMethod, run)
+    return run
+
+
+def _result_model(method: Callable[..., Awaitable[Result]]) -> type[Result]:
+    """The pydantic model a verb returns, read from its annotation at run time (`Verb` refuses a verb
+    that returns anything else)."""
+    model: type[Result] = typing.get_type_hints(method)["return"]
+    return model
 
 
 Says = str | Callable[[ActionResult], str]
@@ -241,12 +264,13 @@ class VerbParts(Protocol):
     parts: dict[str, object]
 
 
-def _by_name(method: Callable[..., Any]) -> Callable[..., Awaitable[Any]]:
+def _by_name(method: Method) -> Method:
     """Call the verb on the Commander's part that holds it (``commander.parts``, by class name)."""
     part, name = method.__qualname__.split(".")[-2:]
 
-    async def call(commander: VerbParts, *args: Any, **kwargs: Any) -> Any:
-        return await getattr(commander.parts[part], name)(*args, **kwargs)
+    async def call(commander: VerbParts, *args: object, **kwargs: object) -> BaseModel:
+        verb: Method = getattr(commander.parts[part], name)  # the part's method as it is now
+        return await verb(*args, **kwargs)
 
     return call
 
@@ -322,13 +346,15 @@ class OperationDesk:
     """Operations as the doors see them: views, the latest, waiting (here, or forwarded to the node
     that runs the operation, following it when that node is lost). One per Commander."""
 
+    settings = ReadThrough[Settings]("commands")
+    registry = ReadThrough[VehicleDirectory]("commands")
+    operations = ReadThrough[OperationManager]("commands")
+    router = ReadThrough[Router | None]("commands")
+
     def __init__(self, commands: CommandPass, store: Store | None) -> None:
-        """The pass's collaborators (settings, registry, operations, router); ``store``: the operations
-        of a process that restarted, and of drones other nodes run."""
-        self.settings = commands.settings
-        self.registry = commands.registry
-        self.operations = commands.operations
-        self.router = commands.router
+        """``commands``: the pass, whose collaborators (settings, registry, operations, router) the desk
+        reads; ``store``: the operations of a process that restarted, and of drones other nodes run."""
+        self.commands = commands
         self.store = store
         self._elsewhere: dict[str, str] = {}  # operation id -> drone id, of operations run elsewhere
 

@@ -70,6 +70,7 @@ from gateway.fleet.vehicles.protocols import (
 )
 from gateway.registry.store import Store
 from gateway.util.json_types import JsonObject
+from gateway.util.read_through import ReadThrough
 
 
 class Commander:
@@ -78,6 +79,14 @@ class Commander:
     Composed, not inherited: the pass (`CommandPass`), the operation desk (views and waits), the verbs
     on one drone (flight, navigation, missions) and on the fleet; the verbs are its attributes, so a
     door calls ``commander.goto(...)`` and a name calls ``commander.call("goto", ...)``."""
+
+    # the pass's collaborators, read of it
+    settings = ReadThrough[Settings]("commands")
+    registry = ReadThrough[VehicleDirectory]("commands")
+    operations = ReadThrough[OperationManager]("commands")
+    safety = ReadThrough[SafetyPolicy]("commands")
+    locks = ReadThrough[LockBook]("commands")
+    router = ReadThrough[Router | None]("commands")
 
     def __init__(
         self,
@@ -94,23 +103,17 @@ class Commander:
         """``router``: on a cluster node, where the drones this node does not own are run;
         ``registrations``: the registry itself, for the operator's registrations (``registry`` is what
         the verbs see of it: the agents' scopes)."""
-        self.settings = settings
-        self.registry = registry
         self.store = store
-        self.operations = operations
         self.fleet = fleet
-        self.safety = safety
-        self.locks = locks
-        self.router = router
         self.commands = CommandPass(settings, registry, operations, safety, locks, router)
         self.desk = desk = OperationDesk(self.commands, store)
         self.flight = flight = FlightVerbs(self.commands, desk)
         self.navigation = navigation = NavigationVerbs(self.commands, desk)
         self.missions = missions = MissionVerbs(self.commands, desk, flight)
         self.fleet_steps = fleet_steps = FleetStepVerbs(self.commands, desk, fleet)
-        self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, flight, fleet, store, fleet_steps)
+        self.fleet_verbs = fleet_verbs = FleetVerbs(self.commands, desk, flight, fleet, fleet_steps)
         self.operator = operator = OperatorVerbs(self.commands, flight, fleet, store)
-        self.zones = zones = ZoneVerbs(self.commands, Zones(safety, settings.geofence_file), missions)
+        self.zones = zones = ZoneVerbs(self.commands, Zones(safety, settings.geofence_file), missions, store)
         self.registrations = registrations_ = RegistryVerbs(self.commands, desk, registrations, store)
         #: where a verb called by name runs (`gateway.fleet.commands.command_core.command`), by class name
         self.parts: dict[str, object] = {

@@ -17,7 +17,7 @@ from typing import Annotated
 
 from pydantic import Field
 
-from gateway.errors import CommandFailed, InvalidArgument
+from gateway.errors import CommandFailed, InvalidArgument, StateConflict
 from gateway.fleet.commands.arguments import DroneId, FlightMode
 from gateway.fleet.commands.command_core import (
     Confirm,
@@ -139,7 +139,7 @@ class FlightVerbs:
 
         def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
             if is_landed_and_disarmed(vehicle):
-                raise InvalidArgument(
+                raise StateConflict(
                     f"{drone_id} is already on the ground and disarmed: nothing to do, it is landed as "
                     "asked (do not take it off again unless the request says so)"
                 )

@@ -21,6 +21,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field
 
+from gateway.config import Settings
 from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.commands.arguments import DroneIds, FleetAlt, Metres, SomeDrones
@@ -49,16 +50,20 @@ from gateway.fleet.operations.fleet_steps import (
     slot_summaries,
     takeoff_phase,
 )
+from gateway.fleet.operations.operations import OperationManager
+from gateway.fleet.operations.routing import Router
 from gateway.fleet.operations.views import (
     FleetHoldResult,
     FleetView,
 )
 from gateway.fleet.policy.caller import Caller
+from gateway.fleet.policy.safety import SafetyPolicy
 from gateway.fleet.policy.safety_inputs import VehicleContext
-from gateway.fleet.vehicles.protocols import Notify, VehicleView
+from gateway.fleet.vehicles.protocols import Notify, VehicleDirectory, VehicleView
 from gateway.fleet.vehicles.readings import home, is_landed_and_disarmed, position, vehicle_context
 from gateway.registry.store import Store
 from gateway.util.json_types import JsonObject, json_list, json_object
+from gateway.util.read_through import ReadThrough
 
 log = logging.getLogger(__name__)
 
@@ -72,13 +77,20 @@ class FleetVerbs:
     `gateway.fleet.commands.fleet_step_verbs`, or the drone's owner in a cluster). The operator's locks
     and emergency stop are `gateway.fleet.commands.operator_verbs`."""
 
+    store = ReadThrough[Store | None]("desk")  # the one the desk keeps the operations in
+    # the pass's collaborators, read of it
+    settings = ReadThrough[Settings]("commands")
+    registry = ReadThrough[VehicleDirectory]("commands")
+    router = ReadThrough[Router | None]("commands")
+    safety = ReadThrough[SafetyPolicy]("commands")
+    operations = ReadThrough[OperationManager]("commands")
+
     def __init__(
         self,
         commands: CommandPass,
         desk: OperationDesk,
         flight: FlightVerbs,
         fleet: FleetOperations,
-        store: Store | None,
         steps: FleetStepVerbs,
     ) -> None:
         self.commands = commands
@@ -86,12 +98,6 @@ class FleetVerbs:
         self.desk = desk
         self.flight = flight
         self.fleet = fleet
-        self.store = store
-        self.settings = commands.settings
-        self.registry = commands.registry
-        self.router = commands.router
-        self.safety = commands.safety
-        self.operations = commands.operations
 
     # ------------------------------------------------------------------------------------------------
     # fleet operations: views and waiting

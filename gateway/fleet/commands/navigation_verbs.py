@@ -324,16 +324,8 @@ class NavigationVerbs:
                 )
         if op is None or op.kind not in NAV_KINDS:
             flying = f"; it is flying: {_now_doing(vehicle)}" if op is None and is_airborne(vehicle) else ""
-            return ArrivalView(
-                drone_id=drone_id,
-                arrived=False,
-                operation_id=None,
-                kind=None,
-                status=None,
-                distance_m=None,
-                vertical_m=None,
-                message=f"no goto sent to this drone yet{flying}",
-            )
+            message = f"no goto sent to this drone yet{flying}"
+            return ArrivalView(drone_id=drone_id, arrived=False, message=message)
         tracker = GotoTracker(
             *_goto_target(op.params),
             self.commands.settings.arrival_tolerance_m,

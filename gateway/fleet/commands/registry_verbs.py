@@ -108,16 +108,19 @@ class RegistryVerbs:
     async def connect_drone(self, caller: Caller, drone_id: str) -> VehicleRecord:
         """Start the drone's sidecar (now and at every start)."""
         operator_only(caller, "connect drones")
-        await self._record(drone_id)
-        await self._registry().connect(drone_id)
-        return await self._record(drone_id)
+        return await self._switched(drone_id, connected=True)
 
     @command
     async def disconnect_drone(self, caller: Caller, drone_id: str) -> VehicleRecord:
         """Stop the drone's sidecar (and no longer connect it at start)."""
         operator_only(caller, "disconnect drones")
+        return await self._switched(drone_id, connected=False)
+
+    async def _switched(self, drone_id: str, *, connected: bool) -> VehicleRecord:
+        """The registration after a registered drone was connected or disconnected."""
         await self._record(drone_id)
-        await self._registry().disconnect(drone_id)
+        registry = self._registry()
+        await (registry.connect(drone_id) if connected else registry.disconnect(drone_id))
         return await self._record(drone_id)
 
     @command

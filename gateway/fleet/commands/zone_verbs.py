@@ -5,11 +5,15 @@ zones.
 service (`gateway.fleet.policy.zones`: all valid or nothing changes). `upload_plan` stores a mission file
 on the drone: a ``.plan``'s geofence first becomes the drone's zones (the same swap), the mission items
 are then checked against them (`MissionVerbs.upload_mission_file`), and if they are refused the zones are
-put back as they were; the plan's circles and rally points are kept beside the mission and written back
-by `export_plan`. Only operators change zones.
+put back as they were; the plan's circles and rally points are kept in the store (with the drone, so a
+restart or another node keeps them) and written back by `export_plan`. Only operators change zones.
 """
 
 from __future__ import annotations
+
+import logging
+
+from sqlalchemy.exc import SQLAlchemyError
 
 from gateway.fleet.commands.command_core import command, operator_only
 from gateway.fleet.commands.command_pass import CommandPass
@@ -20,17 +24,35 @@ from gateway.fleet.operations.views import ActionResult, MissionFileView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.geofence import FLEET, Zone
 from gateway.fleet.policy.zones import GeofencesView, ZoneFeature, Zones, zones_of
+from gateway.registry.store import Store
+from gateway.registry.store_plans import KeptPlanExtras
+
+log = logging.getLogger(__name__)
 
 
 class ZoneVerbs:
     """Geofence zones, and the ``.plan`` files that carry them."""
 
-    def __init__(self, commands: CommandPass, zones: Zones, missions: MissionVerbs) -> None:
+    def __init__(
+        self, commands: CommandPass, zones: Zones, missions: MissionVerbs, store: Store | None
+    ) -> None:
+        """``store``: where each drone's last .plan extras are kept (None: in this process only)."""
         self.commands = commands
         self.zones = zones
         self.missions = missions
-        #: per drone, the geofence circles and rally points of its last .plan (this process only)
-        self._plans: dict[str, PlanExtras] = {}
+        self.store = store
+        self._unstored: dict[str, KeptPlanExtras] = {}
+
+    async def _kept(self, drone_id: str) -> KeptPlanExtras:
+        if self.store is None:
+            return self._unstored.get(drone_id, KeptPlanExtras())
+        return await self.store.get_plan_extras(drone_id) or KeptPlanExtras()
+
+    async def _store(self, drone_id: str, kept: KeptPlanExtras, who: str) -> None:
+        if self.store is None:
+            self._unstored[drone_id] = kept
+        else:
+            await self.store.save_plan_extras(drone_id, kept, who)
 
     def geofences(self) -> GeofencesView:
         """Every zone in force (a read)."""
@@ -69,18 +91,29 @@ class ZoneVerbs:
             raise
         if not extras:
             return result
-        said = self._keep(drone_id, extras)
+        said = await self._keep(drone_id, extras, caller.principal)
         return result.model_copy(
             update={"message": f"{result.message}; {said}", "facts": {**result.facts, "plan": said}}
         )
 
-    def _keep(self, drone_id: str, extras: PlanExtras) -> str:
-        """Keep the plan's fence and rally points (each only when it has some); what became of them."""
-        previous = self._plans.get(drone_id, PlanExtras())
-        self._plans[drone_id] = PlanExtras(
-            extras.fence if extras.fence else previous.fence, extras.rally if extras.rally else previous.rally
-        )
+    async def _keep(self, drone_id: str, extras: PlanExtras, who: str) -> str:
+        """Keep the plan's fence circles and rally points (each only when it has some) in the store; what
+        became of them."""
         said = []
+        try:
+            previous = await self._kept(drone_id)
+            circles = {z.name: z.circle for z in extras.fence if z.circle is not None}
+            kept = KeptPlanExtras(
+                extras.rally if extras.rally else previous.rally,
+                circles if extras.fence else previous.circles,
+            )
+            await self._store(drone_id, kept, who)
+        except (SQLAlchemyError, OSError) as exc:
+            log.error("%s: the .plan's rally points and circles could not be stored: %s", drone_id, exc)
+            said.append(
+                f"the plan's rally points and geofence circles could not be stored ({type(exc).__name__}): "
+                "an exported .plan will not carry them"
+            )
         if extras.fence:
             said.append(
                 f"the plan's geofence ({len(extras.fence)} zones) is now the drone's geofences, replacing "
@@ -101,7 +134,8 @@ class ZoneVerbs:
         view = await self.missions.export_mission(caller, drone_id, file_format)
         if file_format != "plan":
             return view
-        kept = self._plans.get(drone_id, PlanExtras())
-        circles = {z.name: z.circle for z in kept.fence if z.circle is not None}
-        fence = [FenceZone(z.name, z.kind, z.geojson, circles.get(z.name)) for z in self.zones.of(drone_id)]
+        kept = await self._kept(drone_id)
+        fence = [
+            FenceZone(z.name, z.kind, z.geojson, kept.circles.get(z.name)) for z in self.zones.of(drone_id)
+        ]
         return view.model_copy(update={"content": plan_extras.with_extras(view.content, fence, kept.rally)})

@@ -9,8 +9,10 @@
 * KML 2.2: a Placemark with the track as a LineString, ``altitudeMode`` absolute (KML's absolute is
   above sea level), and a ``gx:Track`` with the time of each point (Google Earth's time slider).
 * MAVLink telemetry log (``.tlog``, what QGroundControl, Mission Planner and MAVExplorer open): each
-  record an 8-byte big-endian Unix time in microseconds and one MAVLink 2 packet. The gateway does
-  not see its drones' raw MAVLink (each sidecar does), so the log is written from the recording (1 Hz):
+  record an 8-byte big-endian Unix time in microseconds and one MAVLink 2 packet. A flight whose raw
+  frames were recorded (`gateway.fleet.missions.raw_tlog`) is exported as those; for one without (recorded
+  before the gateway kept them, with ``flight_tlog_dir`` none, or on another cluster node) the log is
+  reconstructed here from the recording (1 Hz):
   per sample a HEARTBEAT as the autopilot sent it (its MAV_TYPE, its custom mode, armed), GPS_RAW_INT
   (its fix type and satellites, the position, ground speed and course), GLOBAL_POSITION_INT, VFR_HUD
   and SYS_STATUS (battery), and the flight's STATUSTEXTs at their times, from the vehicle's system id.

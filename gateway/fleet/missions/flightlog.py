@@ -2,7 +2,8 @@
 
 Everything is read from the vehicle's telemetry cache (no extra subscriptions) and written through the
 Store in batches every ``track_flush_s``. A flight left open by a gateway that died is closed at the
-next start from its recorded track.
+next start from its recorded track. While the vehicle's link is relayed, the frames it sends during a
+flight are written as received to the flight's raw log (`gateway.fleet.missions.raw_tlog`).
 """
 
 from __future__ import annotations
@@ -10,11 +11,13 @@ from __future__ import annotations
 import asyncio
 import itertools
 import logging
+from collections.abc import Callable
 from datetime import UTC, datetime
 from typing import Protocol
 
 from gateway.config import Settings
 from gateway.fleet import geo
+from gateway.fleet.missions.raw_tlog import RawTlog, tlog_folder
 from gateway.link.telemetry import StatusTextValue, TelemetryCache
 from gateway.registry.store import StatusTextIn, Store, TrackSample
 from gateway.util.tasks import cancel_and_wait
@@ -65,8 +68,17 @@ GPS_FIX_TYPES = {
 }
 
 
+class FrameSource(Protocol):
+    """The vehicle's link: given a callable, it hands it each frame the drone sends while relayed."""
+
+    vehicle_frames: Callable[[bytes], None] | None
+
+
 class Recorded(Protocol):
-    """What the recorder reads of a vehicle: its id and its telemetry cache."""
+    """What the recorder reads of a vehicle: its id, its telemetry cache, its link's frames."""
+
+    @property
+    def link(self) -> FrameSource: ...
 
     @property
     def id(self) -> str: ...
@@ -90,15 +102,23 @@ class FlightRecorder:
         self._track: list[TrackSample] = []
         self._texts: list[StatusTextIn] = []
         self._task: asyncio.Task[None] | None = None
+        folder = tlog_folder(settings, store.url)
+        self.raw: RawTlog | None = None
+        if folder is not None:
+            self.raw = RawTlog(folder, vehicle.id, settings.flight_tlog_max_mib * 1024 * 1024)
 
     async def start(self) -> None:
         await self._close_leftovers()
         self.vehicle.telemetry.on_status_text(self._on_status_text)
+        if self.raw is not None:
+            self.vehicle.link.vehicle_frames = self.raw.frame
         self._task = asyncio.create_task(self._run(), name=f"flightlog-{self.vehicle.id}")
 
     async def stop(self) -> None:
         """Stop recording: close a flight in progress (the gateway no longer watches it) and flush."""
         self.vehicle.telemetry.remove_status_listener(self._on_status_text)
+        if self.raw is not None and self.vehicle.link.vehicle_frames == self.raw.frame:
+            self.vehicle.link.vehicle_frames = None
         await cancel_and_wait(self._task)
         self._task = None
         if self.flight is not None:
@@ -171,6 +191,11 @@ class FlightRecorder:
                 home.abs_alt_m if home else None,
             )
             self.flight = _Flight(flight_id, started, battery_pct)
+            if self.raw is not None:
+                try:
+                    self.raw.open(flight_id)
+                except OSError as exc:
+                    log.error("%s: the raw MAVLink log cannot be written: %s", self.vehicle.id, exc)
             log.info("%s: armed, flight %d started", self.vehicle.id, flight_id)
         elif armed is False and self.flight is not None:
             await self._close(_utc(), "disarmed")
@@ -206,6 +231,8 @@ class FlightRecorder:
         flight, self.flight = self.flight, None
         if flight is None:
             return
+        if self.raw is not None:
+            self.raw.close()
         await self.flush()
         await self.store.close_flight(
             flight.id,
@@ -226,6 +253,8 @@ class FlightRecorder:
 
     async def flush(self) -> None:
         """Write the pending track samples and status texts, one transaction each."""
+        if self.raw is not None:
+            self.raw.flush()
         track, self._track = self._track, []
         texts, self._texts = self._texts, []
         if track:

@@ -30,7 +30,7 @@ from datetime import UTC, datetime
 from gateway.errors import GatewayError, NotFound
 from gateway.fleet.operations.fleet_operation import FLEET_CALLER, FleetOperation, Member, SlotSummary
 from gateway.fleet.operations.fleet_steps import Phase, Step, StepSpec
-from gateway.fleet.operations.operation_state import Operation, OpStatus
+from gateway.fleet.operations.operation_state import Operation, OpStatus, wait_reporting
 from gateway.fleet.operations.operations import OperationManager
 from gateway.fleet.operations.routing import Router
 from gateway.fleet.operations.step_mirror import follow, mirror_view
@@ -151,9 +151,12 @@ class FleetOperations:
         await fop.dispatched.wait()  # set after the first phase's dispatch, or when it ended early
         return fop
 
-    async def supersede(self, drone_ids: Iterable[str], by: str) -> list[FleetOperation]:
-        """A direct command (hold, a single-drone move) took over some drones of running fleet ops."""
-        ended = self.running_for(drone_ids)
+    async def supersede(
+        self, drone_ids: Iterable[str], by: str, before: datetime | None = None
+    ) -> list[FleetOperation]:
+        """A direct command (hold, a single-drone move) took over some drones of running fleet ops;
+        ``before``: only those started before it (a stop heard from another node, made then)."""
+        ended = [f for f in self.running_for(drone_ids) if before is None or f.created_at < before]
         for fop in ended:
             self._finish(fop, "superseded", f"superseded by {by}")
         return ended
@@ -165,20 +168,7 @@ class FleetOperations:
         on_progress: Callable[[FleetOperation], Awaitable[None]] | None = None,
     ) -> FleetOperation:
         """Wait until ``fop`` has finished or ``cap_s`` passed; cancelling the waiter stops nothing."""
-        deadline = time.monotonic() + max(0.0, cap_s)
-        last: tuple[float, str] | None = None
-        while not fop.finished:
-            remaining = deadline - time.monotonic()
-            if remaining <= 0:
-                break
-            fop.changed.clear()
-            with contextlib.suppress(TimeoutError):
-                await asyncio.wait_for(fop.changed.wait(), timeout=min(remaining, 1.0))
-            now = (round(fop.progress, 3), fop.message)
-            if on_progress is not None and now != last:
-                last = now
-                await on_progress(fop)
-        return fop
+        return await wait_reporting(fop, cap_s, lambda f: (round(f.progress, 3), f.message), on_progress)
 
     async def stop(self) -> None:
         for fop in list(self._ops.values()):

@@ -56,12 +56,9 @@ class FleetRefused(SafetyRefusal):
         self.unable = list(unable)
 
 
-class FleetUnavailable(GatewayError):
+class FleetUnavailable(GatewayError, code="fleet_unavailable", http_status=409):
     """A fleet command of which nothing was sent because some drones are unknown or not in a state to
     take part (no safety rule involved)."""
-
-    code = "fleet_unavailable"
-    http_status = 409
 
     def __init__(self, action: str, unable: Sequence[Unable], total: int) -> None:
         super().__init__(

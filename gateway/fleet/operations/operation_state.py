@@ -4,10 +4,13 @@ its waiters wait on; what the manager saves to the store and the tools show."""
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import time
+from collections.abc import Awaitable, Callable, Hashable
 from dataclasses import dataclass, field
 from datetime import datetime
 from enum import StrEnum
+from typing import Protocol, TypeVar
 
 from gateway.util.json_types import JsonObject
 
@@ -65,3 +68,41 @@ class Operation:
             "elapsed_s": round(self.elapsed_s(), 1),
             "params": self.params,
         }
+
+
+class Watched(Protocol):
+    """What a waiter reads of an operation, one drone's or a fleet's: whether it finished and the event
+    set on each change."""
+
+    @property
+    def finished(self) -> bool: ...
+
+    @property
+    def changed(self) -> asyncio.Event: ...
+
+
+W = TypeVar("W", bound=Watched)
+
+
+async def wait_reporting(
+    watched: W,
+    cap_s: float,
+    mark: Callable[[W], Hashable],
+    report: Callable[[W], Awaitable[None]] | None,
+) -> W:
+    """Wait until ``watched`` has finished or ``cap_s`` passed, calling ``report`` after each change
+    whose ``mark`` differs from the last reported; cancelling the waiter stops nothing."""
+    deadline = time.monotonic() + max(0.0, cap_s)
+    last: Hashable = None
+    while not watched.finished:
+        remaining = deadline - time.monotonic()
+        if remaining <= 0:
+            break
+        watched.changed.clear()
+        with contextlib.suppress(TimeoutError):
+            await asyncio.wait_for(watched.changed.wait(), timeout=min(remaining, 1.0))
+        now = mark(watched)
+        if report is not None and now != last:
+            last = now
+            await report(watched)
+    return watched

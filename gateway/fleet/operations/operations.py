@@ -28,7 +28,7 @@ from gateway.config import Settings
 from gateway.errors import InvalidArgument, NotFound
 from gateway.fleet import geo
 from gateway.fleet.operations.mode_watch import ModeWatch, TakeoverHandler
-from gateway.fleet.operations.operation_state import Operation, OpStatus
+from gateway.fleet.operations.operation_state import Operation, OpStatus, wait_reporting
 from gateway.fleet.operations.trackers import POLL_S, Tracker
 from gateway.fleet.policy.operator_locks import Lock
 from gateway.fleet.policy.safety_inputs import RunningOperation
@@ -193,22 +193,16 @@ class OperationManager:
         Cancelling the waiter only ends the wait: the monitor (and the vehicle) carry on.
         """
         cap = self.settings.mcp_wait_cap_s if cap_s is None else cap_s
-        deadline = time.monotonic() + max(0.0, cap)
-        last_reported: tuple[float, str] | None = None
-        while not op.finished:
-            remaining = deadline - time.monotonic()
-            if remaining <= 0:
-                break
-            op.changed.clear()
-            with contextlib.suppress(TimeoutError):
-                await asyncio.wait_for(op.changed.wait(), timeout=min(remaining, 1.0))
-            if on_progress is not None and (op.progress, op.message) != last_reported:
-                last_reported = (op.progress, op.message)
-                try:
-                    await on_progress(op)
-                except Exception:  # a client that cannot take progress still gets its answer
-                    log.debug("progress report for %s failed", op.id, exc_info=True)
-        return op
+
+        async def report(changed: Operation) -> None:
+            if on_progress is None:
+                return
+            try:
+                await on_progress(changed)
+            except Exception:  # a client that cannot take progress still gets its answer
+                log.debug("progress report for %s failed", changed.id, exc_info=True)
+
+        return await wait_reporting(op, cap, lambda o: (o.progress, o.message), report)
 
     async def recover(self) -> int:
         """At start: operations a previous gateway process left 'running' are recorded as interrupted

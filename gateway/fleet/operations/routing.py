@@ -18,9 +18,10 @@ import inspect
 import typing
 from collections.abc import Awaitable, Callable, Mapping
 from contextvars import ContextVar
-from typing import Any, Protocol, TypedDict
+from typing import Any, Protocol
 
 from pydantic import BaseModel, ConfigDict, ValidationError, create_model
+from typing_extensions import TypedDict  # pydantic validates ProgressMessage on Python 3.11
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.policy.caller import Caller

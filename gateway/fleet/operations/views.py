@@ -91,13 +91,15 @@ class ActionResult(BaseModel):
 
 
 class ArrivalView(BaseModel):
+    """Whether the last goto arrived; with no goto sent, only the drone, ``arrived`` false and why."""
+
     drone_id: str
     arrived: bool
-    operation_id: str | None
-    kind: str | None
-    status: str | None
-    distance_m: float | None
-    vertical_m: float | None
+    operation_id: str | None = None
+    kind: str | None = None
+    status: str | None = None
+    distance_m: float | None = None
+    vertical_m: float | None = None
     message: str
 
 

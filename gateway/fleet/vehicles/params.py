@@ -6,8 +6,10 @@
   SYSID_MYGCS -> MAV_GCS_SYSID, SRn_* -> MAV(n+1)_*).
 * Each parameter has its own type; reading with the wrong getter gives WRONG_TYPE, so the type is
   detected once and remembered, and writes use it.
-* The full list (~1000+ names) is fetched once (on the first read) and cached with its time; a name
-  not in it is refused without asking the autopilot.
+* The full list (~1000+ names) is fetched once, as the vehicle's first session starts (`prefetch`, as a
+  ground station does when it connects; else on the first read), and cached with its time; a name not
+  in it is refused at once, without asking the autopilot (older ArduPilot does not answer an unknown
+  name: MAVSDK would wait ~3 s for nothing). One fetch at a time: a read during the fetch waits for it.
 * Neither autopilot refuses a value outside a parameter's range: ArduPilot clamps an integer to its
   type (FENCE_ENABLE is 8-bit: 1000 is stored as 127; through MAVSDK, which casts to the type it
   learnt, as -24) and says nothing. Integers are read back after a
@@ -16,6 +18,8 @@
 
 from __future__ import annotations
 
+import asyncio
+import logging
 import math
 import re
 import time
@@ -24,6 +28,8 @@ from typing import Protocol, TypeVar
 
 from gateway.errors import CommandFailed, InvalidArgument
 from gateway.link.mavsdk_system import System
+
+log = logging.getLogger(__name__)
 
 PARAM_TIMEOUT_S = 6.0  # MAVSDK gives up on a param after ~3 s
 PARAM_LIST_TIMEOUT_S = 60.0
@@ -81,6 +87,7 @@ class Parameters:
         self._list_failed_at: float | None = None
         self._types: dict[str, str] = {}
         self._names: dict[str, str] = {}  # requested name -> the name the vehicle knows
+        self._fetching = asyncio.Lock()
 
     @property
     def list_age_s(self) -> float | None:
@@ -181,8 +188,20 @@ class Parameters:
     async def _write_int(self, system: System, name: str, value: int) -> None:
         await self._call(f"write parameter {name}", system.param.set_param_int(name, value), PARAM_TIMEOUT_S)
 
+    async def prefetch(self) -> None:
+        """Fetch the list now if it is not held yet (a vehicle's session starting): a failure is left
+        for the first read to meet again."""
+        try:
+            await self.all()
+        except CommandFailed as exc:
+            log.info("%s: the parameter list was not fetched at connect: %s", self.vehicle_id, exc.message)
+
     async def all(self, max_age_s: float | None = None) -> dict[str, Value]:
         """Every parameter, fetched once and cached; ``max_age_s`` refetches an older copy."""
+        async with self._fetching:
+            return await self._all(max_age_s)
+
+    async def _all(self, max_age_s: float | None) -> dict[str, Value]:
         age = self.list_age_s
         if self._cache is not None and (max_age_s is None or (age is not None and age <= max_age_s)):
             return dict(self._cache)

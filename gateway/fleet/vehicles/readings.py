@@ -8,20 +8,59 @@ judge staleness themselves), ``fresh`` only a value younger than the stale limit
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Literal, overload
 
 from gateway.fleet.policy.safety_inputs import VehicleContext
 from gateway.fleet.vehicles.protocols import VehicleView
-from gateway.link.telemetry import Sample
+from gateway.link.telemetry import (
+    AttitudeValue,
+    BatteryValue,
+    GpsInfoValue,
+    HealthValue,
+    ImuValue,
+    MissionProgressValue,
+    OdometryValue,
+    PositionValue,
+    RcStatusValue,
+    Sample,
+    VelocityNedValue,
+)
 
 
-def sample(vehicle: VehicleView, name: str) -> Sample[Any] | None:
-    found: Sample[Any] | None = getattr(vehicle.telemetry, name)
+def sample(vehicle: VehicleView, name: str) -> Sample[object] | None:
+    found: Sample[object] | None = getattr(vehicle.telemetry, name)
     return found
 
 
-def value(vehicle: VehicleView, name: str) -> Any:
-    """The cached value of stream ``name`` (None when never received), however old."""
+@overload
+def value(vehicle: VehicleView, name: Literal["position", "home"]) -> PositionValue | None: ...
+@overload
+def value(vehicle: VehicleView, name: Literal["attitude"]) -> AttitudeValue | None: ...
+@overload
+def value(vehicle: VehicleView, name: Literal["velocity_ned"]) -> VelocityNedValue | None: ...
+@overload
+def value(vehicle: VehicleView, name: Literal["heading_deg"]) -> float | None: ...
+@overload
+def value(vehicle: VehicleView, name: Literal["battery"]) -> BatteryValue | None: ...
+@overload
+def value(vehicle: VehicleView, name: Literal["gps_info"]) -> GpsInfoValue | None: ...
+@overload
+def value(vehicle: VehicleView, name: Literal["flight_mode", "landed_state"]) -> str | None: ...
+@overload
+def value(vehicle: VehicleView, name: Literal["armed", "in_air"]) -> bool | None: ...
+@overload
+def value(vehicle: VehicleView, name: Literal["health"]) -> HealthValue | None: ...
+@overload
+def value(vehicle: VehicleView, name: Literal["rc_status"]) -> RcStatusValue | None: ...
+@overload
+def value(vehicle: VehicleView, name: Literal["imu"]) -> ImuValue | None: ...
+@overload
+def value(vehicle: VehicleView, name: Literal["odometry"]) -> OdometryValue | None: ...
+@overload
+def value(vehicle: VehicleView, name: Literal["mission_progress"]) -> MissionProgressValue | None: ...
+def value(vehicle: VehicleView, name: str) -> object:
+    """The cached value of stream ``name`` (None when never received), however old (typed by the
+    stream's name, as `TelemetryCache.fresh`)."""
     found = sample(vehicle, name)
     return None if found is None else found.value
 

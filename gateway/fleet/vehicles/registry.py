@@ -196,16 +196,16 @@ class Registry:
 
     async def connect(self, vehicle_id: str) -> RegisteredVehicle:
         """Connect (and keep connecting at every start). On a cluster node the owner connects it."""
-        vehicle = self.get(vehicle_id)
-        await vehicle.connect()
-        await self.store.update_vehicle(vehicle_id, auto_connect=True)
-        await self._registrations_changed()
-        return vehicle
+        return await self._switch(vehicle_id, connected=True)
 
     async def disconnect(self, vehicle_id: str) -> RegisteredVehicle:
+        """Disconnect (and no longer connect at start)."""
+        return await self._switch(vehicle_id, connected=False)
+
+    async def _switch(self, vehicle_id: str, *, connected: bool) -> RegisteredVehicle:
         vehicle = self.get(vehicle_id)
-        await vehicle.disconnect()
-        await self.store.update_vehicle(vehicle_id, auto_connect=False)
+        await (vehicle.connect() if connected else vehicle.disconnect())
+        await self.store.update_vehicle(vehicle_id, auto_connect=connected)
         await self._registrations_changed()
         return vehicle
 

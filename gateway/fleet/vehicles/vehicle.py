@@ -19,7 +19,7 @@ import json
 import logging
 import time
 from collections import deque
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Awaitable, Callable, Iterable, Mapping, Sequence
 
 from gateway.config import Settings
 from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
@@ -47,6 +47,7 @@ from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import AuditEntry, Store
 from gateway.util.json_types import JsonObject
+from gateway.util.read_through import ReadThrough
 
 log = logging.getLogger("gateway.vehicle")
 
@@ -87,6 +88,7 @@ class Vehicle:
             session_jobs=[
                 ("mission", lambda system: self.missions.follow(system)),
                 ("target", self._position_target),
+                ("params", self._parameter_list),
             ],
             on_relay_refused=self._relay_refused,
         )
@@ -103,6 +105,12 @@ class Vehicle:
         self._targets: deque[tuple[float, float, float]] = deque(maxlen=16)
         #: the last position target the gateway sent (goto, hold): lat, lon, monotonic time sent
         self._commanded: tuple[float, float, float] | None = None
+
+    async def _parameter_list(self, _system: System) -> None:
+        """A session's job: the autopilot's parameter list, fetched once per vehicle as its first session
+        starts (an unknown name is then refused from it at once); nothing more to do after."""
+        await self.params.prefetch()
+        await asyncio.Event().wait()
 
     # --- identity, state and the link ----------------------------------------------------------------
     @property
@@ -141,63 +149,26 @@ class Vehicle:
         what to do) when the gateway has none for its autopilot. Every action asks it first."""
         return flying_dialect(self.link.facts.autopilot, self.id)
 
-    @property
-    def telemetry(self) -> TelemetryCache:
-        return self.link.telemetry
-
-    @property
-    def sidecar(self) -> Sidecar | None:
-        return self.link.sidecar
-
-    @property
-    def system(self) -> System:
-        return self.link.system
-
-    @property
-    def sysid(self) -> int | None:
-        return self.link.sysid
-
-    @property
-    def autopilot(self) -> str | None:
-        return self.link.autopilot
-
-    @property
-    def autopilot_version(self) -> str | None:
-        return self.link.autopilot_version
-
-    @property
-    def is_simulator(self) -> bool:
-        return self.link.is_simulator
-
-    @property
-    def sessions(self) -> int:
-        return self.link.sessions
+    # read of the link as it is
+    telemetry = ReadThrough[TelemetryCache]("link")
+    sidecar = ReadThrough[Sidecar | None]("link")
+    system = ReadThrough[System]("link")
+    sysid = ReadThrough[int | None]("link")
+    autopilot = ReadThrough[str | None]("link")
+    autopilot_version = ReadThrough[str | None]("link")
+    is_simulator = ReadThrough[bool]("link")
+    sessions = ReadThrough[int]("link")
+    last_heartbeat_age_s = ReadThrough[float | None]("link")
+    sysid_mismatch = ReadThrough[bool]("link")
+    duplicate_sysid = ReadThrough[list[str]]("link")
+    state = ReadThrough[ConnectionState]("link")
+    last_error = ReadThrough[str | None]("link")
 
     @property
     def current_flight_id(self) -> int | None:
         """The id of the flight being recorded (armed now), None on the ground or while not connected."""
         recorder = self._recorder
         return recorder.flight.id if recorder is not None and recorder.flight is not None else None
-
-    @property
-    def last_heartbeat_age_s(self) -> float | None:
-        return self.link.last_heartbeat_age_s
-
-    @property
-    def sysid_mismatch(self) -> bool:
-        return self.link.sysid_mismatch
-
-    @property
-    def duplicate_sysid(self) -> list[str]:
-        return self.link.duplicate_sysid
-
-    @property
-    def state(self) -> ConnectionState:
-        return self.link.state
-
-    @property
-    def last_error(self) -> str | None:
-        return self.link.last_error
 
     def initialising(self) -> str | None:
         return self.link.initialising()
@@ -325,13 +296,17 @@ class Vehicle:
         await self.arming.arm_by(deadline, ready, notify)
 
     async def disarm(self) -> None:
-        self.require_dialect()
-        await self.link.call("disarm", self.link.require_session().action.disarm())
+        await self._act("disarm", lambda system: system.action.disarm())
 
     async def kill(self) -> None:
         """Stop the motors at once, even in the air (the policy decides who may call this)."""
+        await self._act("kill", lambda system: system.action.kill())
+
+    async def _act(self, what: str, order: Callable[[System], Awaitable[None]]) -> None:
+        """One MAVSDK action the autopilot runs as it is (``order`` picks it of the session), sent once
+        the dialect check passed."""
         self.require_dialect()
-        await self.link.call("kill", self.link.require_session().action.kill())
+        await self.link.call(what, order(self.link.require_session()))
 
     async def takeoff(
         self, alt_rel_m: float, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None
@@ -397,12 +372,10 @@ class Vehicle:
         )
 
     async def land(self) -> None:
-        self.require_dialect()
-        await self.link.call("land", self.link.require_session().action.land())
+        await self._act("land", lambda system: system.action.land())
 
     async def return_to_launch(self) -> None:
-        self.require_dialect()
-        await self.link.call("return to launch", self.link.require_session().action.return_to_launch())
+        await self._act("return to launch", lambda system: system.action.return_to_launch())
 
     async def set_yaw(self, heading_deg: float) -> None:
         """Turn to a heading (degrees from true north) in place."""

@@ -75,6 +75,7 @@ def _row(call: ToolCall, v: VehicleView) -> DroneRow:
     sample = v.telemetry.position
     pos = None if sample is None else sample.value
     battery = value(v, "battery")
+    battery_pct = None if battery is None else battery.remaining_pct  # None: the autopilot does not know
     op = call.commander.current_operation(v.id)  # on a cluster node also a drone owned elsewhere
     mode = value(v, "flight_mode")
     landed = v.on_ground(fresh=False)
@@ -85,7 +86,7 @@ def _row(call: ToolCall, v: VehicleView) -> DroneRow:
         "state": str(plain(state)),
         "armed": value(v, "armed"),
         "in_air": None if landed is None else not landed,
-        "battery_pct": None if battery is None else round(float(battery.remaining_pct), 1),
+        "battery_pct": None if battery_pct is None else round(battery_pct, 1),
         "lat_deg": None if pos is None else round(float(pos.lat_deg), 7),
         "lon_deg": None if pos is None else round(float(pos.lon_deg), 7),
         "alt_m": None if pos is None else round(float(pos.rel_alt_m), 1),

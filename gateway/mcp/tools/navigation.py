@@ -3,6 +3,8 @@ for it (monitor_flight) are commands, declared with their verbs."""
 
 from __future__ import annotations
 
+from typing import Literal
+
 from gateway.errors import VehicleNotReady
 from gateway.fleet.vehicles.readings import age_s, is_stale, value
 from gateway.mcp.access import ToolCall
@@ -12,7 +14,7 @@ from gateway.mcp.toolkit import DroneId, Toolset
 toolset = Toolset("navigation")
 
 
-def position_out(call: ToolCall, drone_id: str, which: str) -> PositionOut:
+def position_out(call: ToolCall, drone_id: str, which: Literal["position", "home"]) -> PositionOut:
     v = call.commander.vehicle(drone_id)
     p = value(v, which)
     if p is None:

@@ -1,4 +1,6 @@
-"""Telemetry toolset: answers at once from the telemetry cache, with each value's age.
+"""Telemetry toolset: answers at once from the telemetry cache, with each value's age. Every tool here
+only reads (nothing is sent to the drone and no state changes), so none is a command: commands are
+declared with their verbs (gateway/fleet/commands).
 
 A value older than ``link_lost_after_s`` is flagged ``stale`` (and said so in the text), never passed off
 as current.
@@ -9,7 +11,7 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Callable
-from typing import Annotated, TypeVar
+from typing import Annotated, TypedDict, TypeVar
 
 from pydantic import Field
 
@@ -39,10 +41,18 @@ toolset = Toolset("telemetry")
 T = TypeVar("T")
 
 
+class Freshness(TypedDict):
+    """The fields every telemetry answer starts with (`Fresh`): whose value, how old, whether stale."""
+
+    drone_id: str
+    age_s: float
+    stale: bool
+
+
 def read(
     call: ToolCall, drone_id: str, name: str, pick: Callable[[TelemetryCache], Sample[T] | None]
-) -> tuple[T, float, bool, str]:
-    """(value, age_s, stale, note) of one cached telemetry part (``pick`` reads it of the cache)."""
+) -> tuple[T, Freshness, str]:
+    """(value, freshness, note) of one cached telemetry part (``pick`` reads it of the cache)."""
     v = call.commander.vehicle(drone_id)
     s = pick(v.telemetry)
     if s is None:
@@ -50,7 +60,7 @@ def read(
     age = float(s.age_s)
     stale = is_stale(v, age, call.settings.link_lost_after_s)
     note = f" [STALE: {age:.0f} s old, link lost?]" if stale else ""
-    return s.value, round(age, 2), stale, note
+    return s.value, Freshness(drone_id=drone_id, age_s=round(age, 2), stale=stale), note
 
 
 def _named(name: str) -> Callable[[TelemetryCache], Sample[object] | None]:
@@ -64,22 +74,18 @@ def _named(name: str) -> Callable[[TelemetryCache], Sample[object] | None]:
 
 
 def _value_tool(call: ToolCall, drone_id: str, name: str, label: str) -> ValueOut:
-    got, age, stale, note = read(call, drone_id, name, _named(name))
+    got, fresh, note = read(call, drone_id, name, _named(name))
     val = plain(got)
-    return ValueOut(drone_id=drone_id, age_s=age, stale=stale, value=val).say(
-        f"{drone_id} {label}: {val}{note}"
-    )
+    return ValueOut(**fresh, value=val).say(f"{drone_id} {label}: {val}{note}")
 
 
 def _data_tool(call: ToolCall, drone_id: str, name: str) -> DataOut:
-    got, age, stale, note = read(call, drone_id, name, _named(name))
+    got, fresh, note = read(call, drone_id, name, _named(name))
     data = plain(got)
     if not isinstance(data, dict):
         data = {"value": data}
     text = ", ".join(f"{k}={_short(v)}" for k, v in data.items())
-    return DataOut(drone_id=drone_id, age_s=age, stale=stale, data=data).say(
-        f"{drone_id} {name}: {text}{note}"
-    )
+    return DataOut(**fresh, data=data).say(f"{drone_id} {name}: {text}{note}")
 
 
 def _value_reader(name: str, part: str, label: str, doc: str) -> None:
@@ -115,12 +121,12 @@ def _short(v: object) -> str:
 @toolset.tool(read_only=True)
 async def get_battery(call: ToolCall, drone_id: DroneId) -> BatteryOut:
     """Battery remaining_pct (0-100) and voltage_v."""
-    b, age, stale, note = read(call, drone_id, "battery", lambda t: t.battery)
+    b, fresh, note = read(call, drone_id, "battery", lambda t: t.battery)
     pct = plain(b.remaining_pct)
     volts = plain(b.voltage_v)
     pct_text = "unknown" if pct is None else f"{pct:.0f}%"
     volt_text = "" if volts is None else f", {volts:.2f} V"
-    return BatteryOut(drone_id=drone_id, age_s=age, stale=stale, remaining_pct=pct, voltage_v=volts).say(
+    return BatteryOut(**fresh, remaining_pct=pct, voltage_v=volts).say(
         f"{drone_id} battery {pct_text}{volt_text}{note}"
     )
 
@@ -138,7 +144,7 @@ _data_reader("get_health", "health", "Sensor/arming health flags.")
 @toolset.tool(read_only=True)
 async def get_health_all_ok(call: ToolCall, drone_id: DroneId) -> ValueOut:
     """true when every health check passes and the drone is armable."""
-    h, age, stale, note = read(call, drone_id, "health", lambda t: t.health)
+    h, fresh, note = read(call, drone_id, "health", lambda t: t.health)
     flags = plain(h)
     if isinstance(flags, dict):
         failing = sorted(k for k, x in flags.items() if x is False)
@@ -146,21 +152,17 @@ async def get_health_all_ok(call: ToolCall, drone_id: DroneId) -> ValueOut:
     else:
         failing, ok = [], bool(flags)
     why = f" (failing: {', '.join(failing)})" if failing else ""
-    return ValueOut(drone_id=drone_id, age_s=age, stale=stale, value=ok).say(
-        f"{drone_id} health {'all ok' if ok else 'NOT ok'}{why}{note}"
-    )
+    return ValueOut(**fresh, value=ok).say(f"{drone_id} health {'all ok' if ok else 'NOT ok'}{why}{note}")
 
 
 @toolset.tool(read_only=True)
 async def get_speed(call: ToolCall, drone_id: DroneId) -> SpeedOut:
     """Velocity m/s north/east, climb (negative: descending) and ground speed."""
-    vel, age, stale, note = read(call, drone_id, "velocity_ned", lambda t: t.velocity_ned)
+    vel, fresh, note = read(call, drone_id, "velocity_ned", lambda t: t.velocity_ned)
     n, e, d = float(vel.north_mps), float(vel.east_mps), float(vel.down_mps)
     gs = math.hypot(n, e)
     return SpeedOut(
-        drone_id=drone_id,
-        age_s=age,
-        stale=stale,
+        **fresh,
         north_mps=round(n, 2),
         east_mps=round(e, 2),
         climb_mps=round(-d, 2) + 0.0,  # never -0.0
@@ -171,12 +173,10 @@ async def get_speed(call: ToolCall, drone_id: DroneId) -> SpeedOut:
 @toolset.tool(read_only=True)
 async def get_attitude(call: ToolCall, drone_id: DroneId) -> AttitudeOut:
     """Roll, pitch, yaw in degrees."""
-    a, age, stale, note = read(call, drone_id, "attitude", lambda t: t.attitude)
+    a, fresh, note = read(call, drone_id, "attitude", lambda t: t.attitude)
     r, p, y = float(a.roll_deg), float(a.pitch_deg), float(a.yaw_deg)
     return AttitudeOut(
-        drone_id=drone_id,
-        age_s=age,
-        stale=stale,
+        **fresh,
         roll_deg=round(r, 1),
         pitch_deg=round(p, 1),
         yaw_deg=round(y, 1),
@@ -186,11 +186,11 @@ async def get_attitude(call: ToolCall, drone_id: DroneId) -> AttitudeOut:
 @toolset.tool(read_only=True)
 async def get_gps_info(call: ToolCall, drone_id: DroneId) -> GpsOut:
     """GPS satellites and fix type."""
-    g, age, stale, note = read(call, drone_id, "gps_info", lambda t: t.gps_info)
+    g, fresh, note = read(call, drone_id, "gps_info", lambda t: t.gps_info)
     fix = plain(g.fix_type)
-    return GpsOut(
-        drone_id=drone_id, age_s=age, stale=stale, num_satellites=int(g.num_satellites), fix_type=str(fix)
-    ).say(f"{drone_id} GPS {fix}, {g.num_satellites} satellites{note}")
+    return GpsOut(**fresh, num_satellites=int(g.num_satellites), fix_type=str(fix)).say(
+        f"{drone_id} GPS {fix}, {g.num_satellites} satellites{note}"
+    )
 
 
 _value_reader("get_in_air", "in_air", "in air", "true when flying.")
