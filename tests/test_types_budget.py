@@ -21,7 +21,6 @@ MAX_ANY = 78
 UNCOMMENTED = frozenset(
     {
         "cluster/forwarding.py",
-        "cluster/lock_versions.py",
         "cluster/node.py",
         "cluster/owner_calls.py",
         "registry/spool.py",

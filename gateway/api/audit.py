@@ -139,7 +139,7 @@ STOP_AUDIT_WAIT_S = 0.5
 _RECORDING: set[asyncio.Task[None]] = set()
 
 
-async def _recorded(action: str, record: Coroutine[Any, Any, None]) -> None:
+async def _recorded(action: str, record: Coroutine[object, object, None]) -> None:
     """Record a call; the emergency stop's answer waits STOP_AUDIT_WAIT_S for it at most."""
     if action not in STOP_ACTIONS:
         await record

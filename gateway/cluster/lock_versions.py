@@ -32,9 +32,9 @@ Two more users of these versions:
 from __future__ import annotations
 
 from datetime import UTC, datetime, timedelta
-from typing import Any
 
 from gateway.fleet.policy.geofence import FLEET
+from gateway.util.json_types import JsonObject
 
 #: broadcast kind -> the family of state it changes (a lock and its unlock share one version per scope)
 FAMILIES = {"lock": "lock", "unlock": "lock", "takeover": "takeover", "release": "takeover"}
@@ -54,7 +54,7 @@ def micros(at: datetime) -> int:
     return (at - EPOCH) // timedelta(microseconds=1)
 
 
-def _time_of(kind: str, body: dict[str, Any]) -> datetime | None:
+def _time_of(kind: str, body: JsonObject) -> datetime | None:
     value = body.get(TIME_FIELDS.get(kind, ""))
     if isinstance(value, datetime):
         return value
@@ -88,7 +88,7 @@ class LockVersions:
     def newest(self, family: str, scope: str) -> int:
         return self._newest.get((family, scope), 0)
 
-    def stamp(self, kind: str, body: dict[str, Any]) -> dict[str, Any]:
+    def stamp(self, kind: str, body: JsonObject) -> JsonObject:
         """A broadcast this node makes, with its version (other kinds: unchanged)."""
         family = FAMILIES.get(kind)
         scope = body.get("scope")
@@ -100,7 +100,7 @@ class LockVersions:
         self._note(kind, family, scope, version, made)
         return {**body, "version": version}
 
-    def fresh(self, kind: str, body: dict[str, Any]) -> bool:
+    def fresh(self, kind: str, body: JsonObject) -> bool:
         """Whether a broadcast heard from another node is to be applied: newer than anything this node
         knows of its scope (then it is the newest from now on), or without a version."""
         family = FAMILIES.get(kind)
@@ -120,12 +120,12 @@ class LockVersions:
         version = self._stamped.get((family, scope, made), made)
         return self._unlocked.get((family, scope), 0) > version
 
-    def stop_stamp(self, body: dict[str, Any]) -> dict[str, Any]:
+    def stop_stamp(self, body: JsonObject) -> JsonObject:
         """The emergency stop's broadcast, with the fleet lock's version as this node knows it and the time
         the stop was made."""
         return {**body, "version": self.newest("lock", FLEET), "at": datetime.now(UTC).isoformat()}
 
-    def stop_is_late(self, body: dict[str, Any]) -> bool:
+    def stop_is_late(self, body: JsonObject) -> bool:
         """Whether a stop broadcast is older than a change of the fleet lock this node knows (an unlock
         made after it): then it is dropped. A stop without a version is applied."""
         version = body.get("version")

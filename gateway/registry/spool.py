@@ -39,6 +39,8 @@ from typing import Any, TextIO, TypeVar
 
 import sqlalchemy.exc
 
+from gateway.util.json_types import JsonObject
+
 log = logging.getLogger("gateway.spool")
 
 T = TypeVar("T")
@@ -47,8 +49,8 @@ RETRY_S = 1.0
 WRITE_TIMEOUT_S = 5.0
 LIMIT = 100_000
 #: (kind, JSON data) of a write that can be made again after a restart
-Record = tuple[str, dict[str, Any]]
-Apply = Callable[[str, dict[str, Any]], Awaitable[Any]]
+Record = tuple[str, JsonObject]
+Apply = Callable[[str, JsonObject], Awaitable[Any]]
 
 
 def unreachable(exc: BaseException) -> bool:
@@ -139,11 +141,11 @@ class Spool:
         return len(left)
 
     @staticmethod
-    def _read(lines: list[str], path: Path) -> tuple[str | None, list[tuple[int, str, str, dict[str, Any]]]]:
+    def _read(lines: list[str], path: Path) -> tuple[str | None, list[tuple[int, str, str, JsonObject]]]:
         """The database the file's writes are for (None: not named), and its writes not marked done, in
         order."""
         owner: str | None = None
-        kept: dict[int, tuple[int, str, str, dict[str, Any]]] = {}
+        kept: dict[int, tuple[int, str, str, JsonObject]] = {}
         for number, line in enumerate(lines, 1):
             try:
                 item = json.loads(line)
@@ -306,7 +308,7 @@ def _short(exc: BaseException) -> str:
     return f"{type(exc).__name__}: {text[0][:120]}" if text else type(exc).__name__
 
 
-def _line(file: TextIO, item: dict[str, Any]) -> None:
+def _line(file: TextIO, item: JsonObject) -> None:
     file.write(json.dumps(item, default=str) + "\n")
     file.flush()
     os.fsync(file.fileno())
@@ -330,5 +332,5 @@ def _open_locked(path: Path) -> TextIO:
     return file
 
 
-def _bind(apply: Apply, kind: str, data: dict[str, Any]) -> Callable[[], Awaitable[Any]]:
+def _bind(apply: Apply, kind: str, data: JsonObject) -> Callable[[], Awaitable[Any]]:
     return lambda: apply(kind, data)
