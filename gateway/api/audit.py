@@ -191,11 +191,11 @@ class AuditedRoute(APIRoute):
                 raise
             finally:
                 AUDIT_SENT.reset(noting)
-            if response.status_code < 400 and operations:
+            # one drone's operation: the row runs until it ends. A fleet call (the emergency stop among
+            # them) starts one per drone, some on other nodes: its row says it was sent, as its answer does
+            if response.status_code < 400 and len(operations) == 1 and action not in STOP_ACTIONS:
                 started_op = (operations[0], called_at)
-                await _recorded(
-                    action, record_rest_call(request, action, "running", None, started, started_op)
-                )
+                await record_rest_call(request, action, "running", None, started, started_op)
                 return response
             outcome = "ok" if response.status_code < 400 else "error"
             error = None if outcome == "ok" else f"http_{response.status_code}"
