@@ -422,9 +422,9 @@ async def test_queued_audit_rows_are_written_in_batches_and_seen_by_every_reader
     batches: list[int] = []
     writes = store._write_audit_batch
 
-    async def counted(batch: list) -> None:  # type: ignore[type-arg]
+    async def counted(batch: list, call_ids: list[str]) -> None:  # type: ignore[type-arg]
         batches.append(len(batch))
-        await writes(batch)
+        await writes(batch, call_ids)
 
     store._write_audit_batch = counted  # type: ignore[method-assign]
     who = SessionSeen("s1", "mcp-2026", principal="agent", client_name="bench", client_version="1")
