@@ -21,14 +21,12 @@ import asyncio
 import logging
 import threading
 import time
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 from sqlalchemy.ext.asyncio import AsyncEngine, create_async_engine
 
-from gateway.cluster.leases import LeaseStore
-
-if TYPE_CHECKING:
-    from gateway.cluster.node import ClusterNode
+from gateway.cluster.leases import Lease, LeaseStore
+from gateway.config import Settings
 
 log = logging.getLogger("gateway.cluster")
 
@@ -40,10 +38,21 @@ RENEW_SHARE = 0.2
 LEAST_ATTEMPT_SHARE = 0.1
 
 
+class RenewedNode(Protocol):
+    """What the renewal reads and moves of its node (`gateway.cluster.node.ClusterNode`)."""
+
+    node_id: str
+    settings: Settings
+    held: dict[str, Lease]
+    _renewed_at: dict[str, float]
+
+    def kick(self) -> None: ...
+
+
 class LeaseRenewal:
     """Renews a node's leases from a thread of its own (`start`, `stop`)."""
 
-    def __init__(self, node: ClusterNode, database_url: str) -> None:
+    def __init__(self, node: RenewedNode, database_url: str) -> None:
         self._node = node
         self._url = database_url
         self._ttl = node.settings.cluster_lease_ttl_s

@@ -17,7 +17,6 @@ from datetime import UTC, datetime
 from typing import Any, cast, get_args
 
 from sqlalchemy import Insert, func, insert, or_, select, update
-from sqlalchemy.dialects import postgresql, sqlite
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.ext.asyncio import AsyncEngine, AsyncSession
 from sqlalchemy.sql.elements import ColumnElement
@@ -221,9 +220,15 @@ class AuditTrail(StoreCore):
     def _insert_once(self) -> Insert:
         """An insert of audit rows that skips a row whose call id is already stored: a write tried again
         (its first try timed out after its commit, or the spool wrote it again) adds no row."""
+        # each dialect's insert is imported for the database in use only (a SQLite gateway never loads
+        # PostgreSQL's: tests/test_lean_start.py)
         if self.engine.dialect.name == "postgresql":
+            from sqlalchemy.dialects import postgresql
+
             return postgresql.insert(AuditRow).on_conflict_do_nothing(index_elements=[AuditRow.call_id])
         if self.engine.dialect.name == "sqlite":
+            from sqlalchemy.dialects import sqlite
+
             return sqlite.insert(AuditRow).on_conflict_do_nothing(index_elements=[AuditRow.call_id])
         name = self.engine.dialect.name
         raise ValueError(f"the audit trail needs PostgreSQL or SQLite; the database is {name}")
