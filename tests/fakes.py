@@ -499,7 +499,13 @@ def spread(n: int, spacing_m: float = 10.0, speed: float = 150.0) -> list[FakeVe
 
 
 def unit_settings(tmp: Path, **overrides: Any) -> Settings:
-    return Settings(_env_file=None, database_url=f"sqlite+aiosqlite:///{tmp / 'gateway.db'}", **overrides)
+    """A gateway's settings with its database and its spool file in ``tmp`` (the spool's default is the
+    working directory: a slow write under load would leave its file in the checkout)."""
+    base: dict[str, Any] = {
+        "database_url": f"sqlite+aiosqlite:///{tmp / 'gateway.db'}",
+        "spool_path": str(tmp / "spool.jsonl"),
+    }
+    return Settings(_env_file=None, **{**base, **overrides})
 
 
 @contextlib.asynccontextmanager

@@ -79,6 +79,7 @@ class Stack:
 def integration_settings(tmp: Path, **overrides: Any) -> Settings:
     base: dict[str, Any] = {
         "database_url": f"sqlite+aiosqlite:///{tmp / 'gateway.db'}",
+        "spool_path": str(tmp / "spool.jsonl"),  # not the working directory's default: the checkout
         "sidecar_backoff_initial_s": 0.2,
         "sidecar_backoff_max_s": 1.0,
         "link_lost_after_s": 3.0,
