@@ -173,24 +173,12 @@ class SessionAudit:
 
     def _begin(self, audited: _AuditedCall) -> AuditCall | None:
         """The row of a call of a tool that commands a drone, started before anything is sent."""
-        store, info, arguments = audited.store, audited.info, audited.arguments
-        vehicle_id = audited.call.vehicle_id
+        store = audited.store
         if store is None or audited.tool not in TOOLS or TOOLS[audited.tool].verb in READ_VERBS:
             return None  # (a read commands nothing: its row is written when it ends)
-        self._note_touched(info)
+        self._note_touched(audited.info)
         try:
-            return store.audit_call(
-                AuditEntry(
-                    session_key=info.key,
-                    principal=info.principal,
-                    source="mcp",
-                    vehicle_id=vehicle_id if isinstance(vehicle_id, str) else None,
-                    action=audited.tool[:64],
-                    arguments=arguments if isinstance(arguments, dict) else {"arguments": str(arguments)},
-                    outcome="running",
-                ),
-                SessionSeen(info.key, info.kind, info.principal, info.client_name, info.client_version),
-            )
+            return store.audit_call(audited.entry("running"), audited.seen())
         except Exception:
             log.exception("could not start the audit row of %s", audited.tool)
             return None
@@ -266,24 +254,15 @@ class SessionAudit:
         batches: `Store.queue_audit`)."""
         if audited.store is None:
             return
-        info, vehicle_id, arguments = audited.info, audited.call.vehicle_id, audited.arguments
-        self._note_touched(info)
+        self._note_touched(audited.info)
         try:
-            audited.store.queue_audit(
-                AuditEntry(
-                    session_key=info.key,
-                    principal=info.principal,
-                    source="mcp",
-                    vehicle_id=vehicle_id if isinstance(vehicle_id, str) else None,
-                    action=audited.tool[:64],
-                    arguments=arguments if isinstance(arguments, dict) else {"arguments": str(arguments)},
-                    outcome=outcome,
-                    error=None if error is None else error[:1000],
-                    duration_ms=round((time.perf_counter() - audited.started) * 1000.0, 1),
-                    operation_id=operation_id,
-                ),
-                SessionSeen(info.key, info.kind, info.principal, info.client_name, info.client_version),
+            entry = audited.entry(
+                outcome,
+                error=None if error is None else error[:1000],
+                duration_ms=round((time.perf_counter() - audited.started) * 1000.0, 1),
+                operation_id=operation_id,
             )
+            audited.store.queue_audit(entry, audited.seen())
         except Exception:
             log.exception("could not queue the audit row of %s", audited.tool)
 
@@ -299,6 +278,30 @@ class _AuditedCall:
     tool: str
     arguments: object
     started: float
+
+    def entry(
+        self, outcome: str, *, error: str | None = None, duration_ms: float | None = None,
+        operation_id: str | None = None,
+    ) -> AuditEntry:  # fmt: skip
+        """The call's audit row with ``outcome`` (and its end, once it has one)."""
+        vehicle_id, arguments = self.call.vehicle_id, self.arguments
+        return AuditEntry(
+            session_key=self.info.key,
+            principal=self.info.principal,
+            source="mcp",
+            vehicle_id=vehicle_id if isinstance(vehicle_id, str) else None,
+            action=self.tool[:64],
+            arguments=arguments if isinstance(arguments, dict) else {"arguments": str(arguments)},
+            outcome=outcome,
+            error=error,
+            duration_ms=duration_ms,
+            operation_id=operation_id,
+        )
+
+    def seen(self) -> SessionSeen:
+        """The touch of the call's session that goes with its row."""
+        info = self.info
+        return SessionSeen(info.key, info.kind, info.principal, info.client_name, info.client_version)
 
 
 def _operation_id(result: HandlerResult) -> str | None:
