@@ -20,7 +20,9 @@ The file belongs to one database and one running spool: its first line names the
 digest of its URL), and a spool holds an exclusive lock on it while it has it open. A file kept for
 another database, or in use by another running gateway (two started in one directory with one node id),
 is left as it is, and this spool keeps its writes in memory only (logged): writes are never given to a
-database they were not made for, nor written twice by two spools.
+database they were not made for, nor written twice by two spools. A file of an older version, with kept
+writes but no first line naming their database, is moved aside (``<name>.no-database-<time>``, logged at
+ERROR) and none of its writes is made: nothing tells which database they were for.
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ import hashlib
 import json
 import logging
 import os
+import time
 from collections import deque
 from collections.abc import Awaitable, Callable
 from pathlib import Path
@@ -117,6 +120,15 @@ class Spool:
                 self._close_file(unlink=False)
                 self.path = None
                 return 0
+            if owner is None and left and self.owner is not None:
+                # a file of an older version: nothing says which database its writes were made for
+                aside = self._set_aside(path)
+                log.error(
+                    "%s holds %d kept writes but does not name their database (a file of an older version): "
+                    "moved to %s, not written; this run keeps its own writes in %s", path, len(left), aside,
+                    path,
+                )  # fmt: skip
+                return 0
             if not left:
                 self._close_file(unlink=True)
                 return 0
@@ -139,6 +151,16 @@ class Spool:
         log.warning("%d writes kept by this node's previous run while the database was unreachable (%s) "
                     "are written first", len(left), path)  # fmt: skip
         return len(left)
+
+    def _set_aside(self, path: Path) -> Path:
+        """Rename the open file beside itself (its writes kept for whoever can tell their database) and
+        let go of it; the path is free for this spool's own writes. The new name."""
+        aside = path.with_name(f"{path.name}.no-database-{int(time.time())}")
+        try:
+            path.rename(aside)  # under this spool's lock: no other spool reads it meanwhile
+        finally:
+            self._close_file(unlink=False)
+        return aside
 
     @staticmethod
     def _read(lines: list[str], path: Path) -> tuple[str | None, list[tuple[int, str, str, JsonObject]]]:
