@@ -5,6 +5,7 @@ answers the calls for the drones it owns."""
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import logging
 import time
 from collections.abc import Awaitable, Callable, Mapping
@@ -21,6 +22,7 @@ from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget
 from gateway.errors import NoOwner, NotRun, OwnerFenced
 from gateway.fleet.operations.routing import OnMessage
 from gateway.fleet.policy.caller import Caller
+from gateway.util.json_types import JsonValue
 
 if TYPE_CHECKING:
     pass
@@ -30,9 +32,13 @@ log = logging.getLogger("gateway.cluster")
 #: forwarded verbs that only read the drone: they get a short timeout, not the MCP wait cap
 READS = frozenset({"arrival", "mission_progress", "get_param", "list_params", "download_mission"})
 READ_TIMEOUT_S = 5.0
-#: an operator's stop its owner has not accepted over the bus by then goes through PostgreSQL instead (the
-#: owner refuses the bus copy if it arrives later, so it runs once), until OWNER_ACK_S after the stop
+#: an operator's stop its owner has not accepted over the bus by then is refused by the owner if it arrives
+#: later (the caller knows it as not run once the bus's clock margin has passed too)
 STOP_ACCEPT_S = 0.5
+#: an operator's stop its owner has not accepted over the bus by then also goes through PostgreSQL, beside
+#: the bus (a stop that runs twice is still a stop): a bus that does not answer (a frozen server) costs this,
+#: not the accept time and its clock margin (1 s), of the 3 s in which every drone must be told
+STOP_BUS_HEAD_START_S = 0.3
 #: a fenced node asks again this often for a node serving the drone's calls (one taking it over)
 NEW_OWNER_RETRY_S = 0.2
 
@@ -168,23 +174,32 @@ class OwnerCalls:
         bus = self._node.bus
         why: list[str] = []
         owner_paths: list[Awaitable[object]] = []
+        heard = asyncio.Event()
+        over_bus = asyncio.ensure_future(bus.call(
+            drone_id, verb, arguments, body, call_s, on_message,
+            accept_s=min(accept_s, STOP_ACCEPT_S if short else OWNER_ACK_S), epoch=epoch,
+            owner_gone=owner_gone, accepted_event=heard,
+        ))  # fmt: skip
+        if short:
+            await _head_start(over_bus, heard)
         try:
-            return await bus.call(
-                drone_id, verb, arguments, body, call_s, on_message,
-                accept_s=min(accept_s, STOP_ACCEPT_S if short else OWNER_ACK_S), epoch=epoch,
-                owner_gone=owner_gone,
-            )  # fmt: skip
+            if short and not heard.is_set():
+                # the owner has not taken it over the bus yet: the bus stays one of its paths, and
+                # PostgreSQL notifications carry it beside (`gateway.cluster.stop_notify`)
+                why.append(f"bus: not accepted within {STOP_BUS_HEAD_START_S:g} s")
+                log.info("%s: %s not accepted over the bus within %.1f s: through PostgreSQL beside it",
+                         drone_id, verb, STOP_BUS_HEAD_START_S)  # fmt: skip
+                owner_paths.append(over_bus)
+                self._relay(relay, drone_id, verb, arguments, epoch, body, deadline, owner_paths, why)
+            else:
+                return await over_bus
         except NotRun as exc:
             # the bus did not carry it (this node cut off, or no answer in the accept time): through
-            # PostgreSQL notifications to the owner (`gateway.cluster.stop_notify`)
+            # PostgreSQL notifications to the owner
             if exc.details.get("bus") not in ("down", "no answer"):
                 raise
             why.append(f"bus: {exc.details.get('bus')}")
-            left = deadline - time.monotonic()
-            if relay is not None and left > 0.1:
-                owner_paths.append(relay.send(drone_id, verb, arguments, epoch, body, left))
-            elif relay is None:
-                why.append("PostgreSQL: not listening")
+            self._relay(relay, drone_id, verb, arguments, epoch, body, deadline, owner_paths, why)
         except NoOwner as exc:
             # nobody holds the drone's link on the bus: the node that last did may have fenced itself,
             # and keep a stop-only path to it (a land sent twice is still a land)
@@ -200,6 +215,19 @@ class OwnerCalls:
         return await self._node.takeover.reach(
             drone_id, verb, caller, epoch, owner, owner_paths, why, deadline, take_over=take_over
         )
+
+    @staticmethod
+    def _relay(
+        relay: StopRelay | None, drone_id: str, verb: str, arguments: dict[str, Any], epoch: int | None,
+        body: dict[str, Any], deadline: float, owner_paths: list[Awaitable[object]], why: list[str],
+    ) -> None:  # fmt: skip
+        """The stop through PostgreSQL notifications, as one more of the owner's paths (until
+        ``deadline``), or why not."""
+        left = deadline - time.monotonic()
+        if relay is None:
+            why.append("PostgreSQL: not listening")
+        elif left > 0.1:
+            owner_paths.append(relay.send(drone_id, verb, arguments, epoch, body, left))
 
     async def _to_new_owner(
         self, drone_id: str, verb: str, arguments: dict[str, Any], body: dict[str, Any], call_s: float,
@@ -282,3 +310,11 @@ class OwnerCalls:
             return run.result()
 
         return handle
+
+
+async def _head_start(over_bus: asyncio.Future[JsonValue], heard: asyncio.Event) -> None:
+    """Until the stop's bus call has ended or its owner accepted it (``heard`` is set then), at most
+    STOP_BUS_HEAD_START_S."""
+    over_bus.add_done_callback(lambda _call: heard.set())
+    with contextlib.suppress(TimeoutError):
+        await asyncio.wait_for(heard.wait(), STOP_BUS_HEAD_START_S)

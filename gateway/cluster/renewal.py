@@ -63,6 +63,8 @@ class LeaseRenewal:
         #: renewals made, and attempts that failed or timed out (read by tests and benches)
         self.renewals = 0
         self.failures = 0
+        #: the longest a renewal took, answered or not (seconds, from its statement sent to its end)
+        self.slowest_s = 0.0
 
     def start(self) -> None:
         self._loop = asyncio.get_running_loop()  # the node's loop: a lost lease wakes its keeper there
@@ -107,14 +109,19 @@ class LeaseRenewal:
             renewed = await asyncio.wait_for(leases.renew(list(held)), budget)
         except Exception as exc:
             self.failures += 1
+            took = self._took(asked)
             if not self._failing:
-                log.warning("renewing the leases of node %s failed (%r): tried again in %.1f s",
-                            node.node_id, exc, self._ttl * RENEW_SHARE)  # fmt: skip
+                log.warning("renewing the leases of node %s failed after %.2f s (%r): tried again in %.1f s",
+                            node.node_id, took, exc, self._ttl * RENEW_SHARE)  # fmt: skip
             self._failing = True
             await engine.dispose(close=False)  # a connection left hanging is not used again
             return
         self._failing = False
         self.renewals += 1
+        took = self._took(asked)
+        if took > self._ttl * RENEW_SHARE:  # slower than the renewals come: the fence is getting near
+            log.warning("renewing the leases of node %s took %.2f s (%.2f s were left before the fence)",
+                        node.node_id, took, fence_at - asked)  # fmt: skip
         lost = False
         for vid, epoch in held.items():
             lease = renewed.get(vid)
@@ -126,3 +133,8 @@ class LeaseRenewal:
                 node._renewed_at[vid] = max(last, asked)
         if lost and self._loop is not None:
             self._loop.call_soon_threadsafe(node.kick)
+
+    def _took(self, asked: float) -> float:
+        took = time.monotonic() - asked
+        self.slowest_s = max(self.slowest_s, took)
+        return took
