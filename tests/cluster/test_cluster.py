@@ -87,11 +87,23 @@ def by_owner(owners: dict[str, str]) -> dict[str, list[str]]:
 
 
 async def take_off(c: Cluster, node: Node, drone_ids: list[str], alt_m: float = 10.0) -> None:
+    """Every drone up, each takeoff succeeded. The module's drones fly test after test: each gets a full
+    battery first (a run slowed by load drained one to 25 %, below the takeoff minimum), and a takeoff
+    refused because its owner has not heard the new battery yet (nothing was sent) is asked again."""
     calls: Calls = c.calls  # type: ignore[attr-defined]
+    for d in drone_ids:
+        await c.sim.control.set_battery(c.drone_ids.index(d), 100.0)
     async with node.client(name=f"takeoff-{node.name}") as mcp:
-        results = await asyncio.gather(
-            *(calls.tool(mcp, "takeoff", {"drone_id": d, "alt_m": alt_m}) for d in drone_ids)
-        )
+
+        async def takeoff(drone_id: str) -> CallToolResult:
+            async def attempt() -> CallToolResult | None:
+                r = await calls.tool(mcp, "takeoff", {"drone_id": drone_id, "alt_m": alt_m})
+                text = r.content[0].text if r.is_error and r.content else ""  # type: ignore[union-attr]
+                return None if "min_battery_takeoff" in text else r
+
+            return await eventually(attempt, f"{drone_id}: a takeoff past the battery check", within_s=20)
+
+        results = await asyncio.gather(*(takeoff(d) for d in drone_ids))
     for r in results:
         assert ok(r)["status"] == "succeeded", r
 
