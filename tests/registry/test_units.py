@@ -320,6 +320,25 @@ async def test_a_booting_autopilots_zero_or_nan_position_is_never_cached() -> No
         await feed.stop()
 
 
+def test_mavsdk_health_fields_land_in_health_value_by_their_meaning() -> None:
+    """Each of MAVSDK's Health flags fills the HealthValue field of the same meaning (the conversion is
+    one table in field order)."""
+    from dataclasses import fields
+    from types import SimpleNamespace
+
+    from gateway.link.telemetry import HealthValue
+    from gateway.link.telemetry_feed import HEALTH_FIELDS, _health
+
+    assert len(HEALTH_FIELDS) == len(fields(HealthValue))
+    for n, name in enumerate(HEALTH_FIELDS):
+        item = SimpleNamespace(**{other: other == name for other in HEALTH_FIELDS})
+        value = _health(item)
+        ours = fields(HealthValue)[n].name
+        assert [f.name for f in fields(HealthValue) if getattr(value, f.name)] == [ours]
+        words = ours.removesuffix("_ok").removeprefix("is_").split("_")
+        assert all(w[:3] in name for w in words), (name, ours)
+
+
 async def test_telemetry_rates_follow_the_drone_between_rest_and_active() -> None:
     """At rest the streams are asked for at their rest rates; the first landed state that shows the drone
     in the air (or an armed HEARTBEAT) switches position to 5 Hz for the trackers, and back to 1 Hz once
