@@ -28,6 +28,7 @@ from gateway.fleet.policy.mission_check import (
 from gateway.fleet.policy.safety_checks import (
     check_altitude,
     check_horizontal,
+    check_leg,
     check_point,
     origin_words,
     require_finite,
@@ -236,18 +237,9 @@ def _check_leg(
     before it), checked from the drone's position once per possible start instead."""
     if end is None or first:
         return
-    zones = fences.for_vehicle(ctx.vehicle_id)
-    if not zones:
-        return
-    if start is None:
-        raise ctx.refuse(
-            Rule.POSITION_UNKNOWN,
-            f"the position of drone {ctx.vehicle_id} is unknown, so the path to the item cannot be "
-            f"checked against {len(zones)} geofence zone(s)",
-        )
-    width = max(start.radius_m, end.radius_m)
-    for v in fences.check_leg(ctx.vehicle_id, (start.lat, start.lon), (end.lat, end.lon), width):
-        raise geofence_refusal(ctx, v, "path")
+    width = end.radius_m if start is None else max(start.radius_m, end.radius_m)
+    begin = None if start is None else (start.lat, start.lon)
+    check_leg(fences, ctx, begin, (end.lat, end.lon), "item", width)
 
 
 def _first_point(points: dict[int, _Point], first: int, count: int) -> tuple[int, _Point | None]:

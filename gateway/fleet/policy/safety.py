@@ -200,7 +200,7 @@ class SafetyPolicy:
         self.check_actuation(ctx, via)
         limits = self.limits_for(ctx.vehicle_id)
         check_point(self.geofences, ctx, limits, target, "target")
-        check_leg(self.geofences, ctx, start_of(ctx), target)
+        check_leg(self.geofences, ctx, start_of(ctx), (target.lat, target.lon))
         check_battery(ctx, limits.min_battery_leg_pct, Rule.BATTERY_LEG)
 
     def check_speed(self, ctx: VehicleContext, mps: float, via: Via = "mcp") -> None:
@@ -277,7 +277,7 @@ class SafetyPolicy:
                 with prefixed(f"formation, drone {slot.drone_id}, leg {leg_no}: ", leg=leg_no):
                     target = Target(wp.lat, wp.lon, wp.alt_rel_m)
                     check_point(self.geofences, ctx, limits, target, "leg target")
-                    check_leg(self.geofences, ctx, previous, target)
+                    check_leg(self.geofences, ctx, previous, (target.lat, target.lon))
                 previous = (wp.lat, wp.lon)
 
     # --- sequencing: what is already running on the drone ------------------------------------------

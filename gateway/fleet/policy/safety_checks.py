@@ -92,18 +92,25 @@ def origin_words(ctx: VehicleContext) -> str:
 
 
 def check_leg(
-    fences: GeofenceSet, ctx: VehicleContext, start: tuple[float, float] | None, target: Target
+    fences: GeofenceSet,
+    ctx: VehicleContext,
+    start: tuple[float, float] | None,
+    end: tuple[float, float],
+    what: str = "target",
+    width_m: float = 0.0,
 ) -> None:
+    """The straight leg start -> end (lat, lon) against the drone's zones (``width_m``: a loiter circle
+    at either end); with zones in force, an unknown start is refused (``what``: the end, in words)."""
     zones = fences.for_vehicle(ctx.vehicle_id)
     if not zones:
         return
     if start is None:
         raise ctx.refuse(
             Rule.POSITION_UNKNOWN,
-            f"the position of drone {ctx.vehicle_id} is unknown, so the path to the target cannot be "
+            f"the position of drone {ctx.vehicle_id} is unknown, so the path to the {what} cannot be "
             f"checked against {len(zones)} geofence zone(s)",
         )
-    for v in fences.check_leg(ctx.vehicle_id, start, (target.lat, target.lon)):
+    for v in fences.check_leg(ctx.vehicle_id, start, end, width_m):
         raise geofence_refusal(ctx, v, "path")
 
 
