@@ -11,7 +11,14 @@ import time
 from collections.abc import Awaitable, Callable, Mapping
 from typing import TYPE_CHECKING, Any, Protocol
 
-from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, no_progress, stop_subject
+from gateway.cluster.bus import (
+    CallCheck,
+    CallHandler,
+    ProgressSink,
+    epoch_check,
+    no_progress,
+    stop_subject,
+)
 from gateway.cluster.fenced_stops import STOP_SEND_S, FencedStops
 from gateway.cluster.forwarding import answer
 from gateway.cluster.node_parts import NodeWithRuntime
@@ -60,6 +67,15 @@ class CallsNode(NodeWithRuntime, Protocol):
 
     @property
     def takeover(self) -> StopTakeover: ...
+
+
+#: what a call's check says when this node no longer owns the drone, or the call was sent for another
+#: lease epoch
+LEASE_WORDS = (
+    "node {node} no longer owns drone '{vehicle}': not run; retry",
+    "a call for drone '{vehicle}' sent for lease epoch {sent} reached node {node}, which holds epoch "
+    "{held}: not run (the caller's view of its owner was out of date); retry",
+)
 
 
 class OwnerCalls:
@@ -265,20 +281,7 @@ class OwnerCalls:
         return None
 
     def check_epoch(self, vehicle_id: str) -> CallCheck:
-        def check(epoch: int | None) -> None:
-            lease = self._node.held.get(vehicle_id)
-            if lease is None:
-                raise NoOwner(
-                    f"node {self._node.node_id} no longer owns drone '{vehicle_id}': not run; retry"
-                )
-            if epoch is not None and epoch != lease.epoch:
-                raise NotRun(
-                    f"a call for drone '{vehicle_id}' sent for lease epoch {epoch} reached node "
-                    f"{self._node.node_id}, which holds epoch {lease.epoch}: not run (the caller's view of "
-                    "its owner was out of date); retry"
-                )
-
-        return check
+        return epoch_check(self._node.held, vehicle_id, self._node.node_id, LEASE_WORDS)
 
     def answer(self, vehicle_id: str) -> CallHandler:
         async def handle(
