@@ -95,10 +95,9 @@ class Compiler:
 
     async def _height(self, step: Takeoff | Altitude) -> Compiled:
         state = await self.sensors.state(step.drone)
-        alt = step.altitude.metres
-        if state.flying:
-            return [Call("move_to_relative", {"drone_id": step.drone, "alt_m": alt}, step.drone)]
-        return [Call("takeoff", {"drone_id": step.drone, "alt_m": alt}, step.drone)]
+        tool = "move_to_relative" if state.flying else "takeoff"
+        args = {"drone_id": step.drone, "alt_m": step.altitude.metres}
+        return [Call(tool, args, step.drone), *ending(step)]
 
     async def _lift(self, drone: str, alt: float | None, up: float) -> tuple[Compiled, bool]:
         """A takeoff first when the drone is on the ground; whether the takeoff used the climb ``up``."""
@@ -135,9 +134,8 @@ class Compiler:
     ) -> Compiled:
         lat, lon = await self.origin(step.origin, step.drone)
         target = geometry.offset_position(lat, lon, north, east)
-        state = await self.sensors.state(step.drone)
         if alt is None:
-            alt = (state.alt_m or 0.0) + up if state.flying else (up or self.default_takeoff_m)
+            alt = await self._height_from(step, up)
         calls, _ = await self._lift(step.drone, alt, 0.0)
         args = {
             "drone_id": step.drone,
@@ -146,6 +144,17 @@ class Compiler:
             "alt_m": alt,
         }
         return [*calls, Call("go_to_location", args, step.drone)]
+
+    async def _height_from(self, step: Move, up: float) -> float:
+        """The height of a move from an origin that gives none: the other drone's height when the origin
+        is a flying drone (a spot "above" or "beside" it), else the moving drone's own; plus the up/down
+        legs. A drone on the ground with neither takes off to the climb, or to the default height."""
+        other = step.origin.drone if step.origin.kind == "drone" else None
+        for drone in (other, step.drone):
+            state = await self.sensors.state(drone) if drone else None
+            if state is not None and state.flying:
+                return (state.alt_m or 0.0) + up
+        return up or self.default_takeoff_m
 
     async def origin(self, ref: Reference, drone: str) -> tuple[float, float]:
         """Where a reference is: a drone's position (read now), a home, a named place."""
@@ -253,8 +262,8 @@ def gateway_formation(shape: str, count: int) -> str:
     return "circle" if count == corners else otherwise
 
 
-def ending(step: Move | Pattern) -> Compiled:
-    """The landing or return a move or a pattern ends with (none when the drone stays)."""
+def ending(step: Takeoff | Altitude | Move | Pattern) -> Compiled:
+    """The landing or return a step ends with (none when the drone stays)."""
     tool = {"land": "land", "return_home": "return_to_launch"}.get(step.after)
     return [] if tool is None else [Call(tool, {"drone_id": step.drone}, step.drone)]
 
