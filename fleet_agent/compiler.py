@@ -233,8 +233,7 @@ class Compiler:
         if chosen is None:
             return [Said(f"none of {', '.join(step.among)} reports its {step.reading}: nothing was done.")]
         said = Said(f"{chosen} has the {step.pick} {step.reading} ({value:g} {_UNITS[step.reading]}).")
-        steps = [with_drone(s, chosen) for s in step.then]
-        return [said, *await self._each(steps)]
+        return [said, *await self._each(chosen_steps(step, chosen))]
 
     async def _ask(self, step: Ask) -> Compiled:
         return [Said(step.text)]
@@ -335,6 +334,15 @@ def pick(states: dict[str, DroneState], reading: str, how: str) -> tuple[str | N
         return None, 0.0
     chosen = max(known, key=known.__getitem__) if how == "highest" else min(known, key=known.__getitem__)
     return chosen, known[chosen]
+
+
+def chosen_steps(step: Choose, chosen: str) -> list[Any]:
+    """The steps of a choice flown by the drone chosen. Steps written once for each drone of ``among``
+    (the same climb for every candidate) are one set of steps: those of the first candidate named."""
+    drones = [getattr(s, "drone", None) for s in step.then]
+    first = next((d for d in drones if d in step.among), None)
+    kept = [s for s, d in zip(step.then, drones, strict=True) if d == first or d not in step.among]
+    return [with_drone(s, chosen) for s in kept]
 
 
 def with_drone(step: Any, drone: str) -> Any:

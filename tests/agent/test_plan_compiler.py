@@ -363,3 +363,15 @@ def test_a_plan_and_a_branch_are_bounded_in_the_schema() -> None:
     defs = plan_schema(FLEET)
     assert defs["properties"]["steps"]["maxItems"] == 12
     assert defs["$defs"]["Condition"]["properties"]["otherwise"]["maxItems"] == 4
+
+
+async def test_a_choice_written_once_for_each_candidate_is_flown_once_by_the_chosen_drone() -> None:
+    hop = {"action": "takeoff", "altitude": m(6), "after": "land"}
+    step = {"action": "choose", "among": FLEET, "reading": "battery", "pick": "lowest",
+            "then": [{**hop, "drone": d} for d in FLEET]}  # fmt: skip
+    low = FakeSensors({"bravo": DroneState(HOME[0], HOME[1], 0.0, False, 30.0)})
+    said, *calls = await compiled(step, low)
+    assert isinstance(said, Said) and calls == [
+        Call("takeoff", {"drone_id": "bravo", "alt_m": 6.0}, "bravo"),
+        Call("land", {"drone_id": "bravo"}, "bravo"),
+    ]
