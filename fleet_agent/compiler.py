@@ -100,12 +100,14 @@ class Compiler:
         return [Call(tool, args, step.drone), *ending(step)]
 
     async def _lift(self, drone: str, alt: float | None, up: float) -> tuple[Compiled, bool]:
-        """A takeoff first when the drone is on the ground; whether the takeoff used the climb ``up``."""
+        """A takeoff first when the drone is on the ground; whether the takeoff used the climb ``up`` (it
+        did when it took off to it, or to a height as high as the climb: from the ground, "10 m up" and
+        "at 10 m" are one climb)."""
         state = await self.sensors.state(drone)
         if state.flying:
             return [], False
         height = alt if alt is not None else (up if up > 0 else self.default_takeoff_m)
-        return [Call("takeoff", {"drone_id": drone, "alt_m": height}, drone)], alt is None and up > 0
+        return [Call("takeoff", {"drone_id": drone, "alt_m": height}, drone)], up > 0 and height == up
 
     async def _move(self, step: Move) -> Compiled:
         return [*await self._move_only(step), *ending(step)]

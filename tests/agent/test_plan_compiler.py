@@ -375,3 +375,14 @@ async def test_a_choice_written_once_for_each_candidate_is_flown_once_by_the_cho
         Call("takeoff", {"drone_id": "bravo", "alt_m": 6.0}, "bravo"),
         Call("land", {"drone_id": "bravo"}, "bravo"),
     ]
+
+
+async def test_from_the_ground_a_climb_as_high_as_the_height_given_is_that_height() -> None:
+    step = {"action": "move", "drone": "bravo", "legs": [leg(40, "west"), leg(10, "up")], "altitude": m(10),
+            "after": "stay", "origin": "here"}  # fmt: skip
+    assert [c.args for c in await compiled(step)] == [
+        {"drone_id": "bravo", "alt_m": 10.0},
+        {"drone_id": "bravo", "north_m": 0.0, "east_m": -40.0},
+    ]
+    more = {**step, "legs": [leg(40, "west"), leg(5, "up")]}  # at 10 m, then 5 m more
+    assert (await compiled(more))[1].args["up_m"] == 5.0
