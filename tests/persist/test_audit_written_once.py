@@ -9,9 +9,9 @@ from typing import Any
 
 import pytest_asyncio
 
+from gateway.registry.audit_kept import SessionSeen
 from gateway.registry.records import AuditEntry
 from gateway.registry.store import Store
-from gateway.registry.store_audit import SessionSeen
 
 SEEN = SessionSeen("s1", "mcp-2025", "agent", "client", "1.0")
 
@@ -43,7 +43,8 @@ def answer_lost_once(store: Store, kind: str) -> list[str]:
             raise TimeoutError("the commit's answer came too late")
         return result
 
-    store._kept_writers[kind] = late
+    store._kept_writers[kind] = late  # the spool's later tries
+    setattr(store, writer.__name__, late)  # the first try (the store names its writer for each kept write)
     return tries
 
 
