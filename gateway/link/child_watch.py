@@ -16,7 +16,7 @@ import logging
 import os
 import sys
 from collections.abc import Callable
-from typing import Any, TypeVarTuple, Unpack
+from typing import TypeVarTuple, Unpack
 
 Args = TypeVarTuple("Args")
 
@@ -35,7 +35,8 @@ class LoopPidfdWatcher(asyncio.AbstractChildWatcher):
 
     @staticmethod
     def _reap(
-        loop: asyncio.AbstractEventLoop, pid: int, pidfd: int, callback: Callable[..., object], args: Any
+        loop: asyncio.AbstractEventLoop, pid: int, pidfd: int, callback: Callable[..., object],
+        args: tuple[object, ...],
     ) -> None:
         loop.remove_reader(pidfd)
         try:
