@@ -38,7 +38,7 @@ import time
 from collections import deque
 from collections.abc import Awaitable, Callable
 from pathlib import Path
-from typing import Any, TextIO, TypeVar
+from typing import TextIO, TypeVar
 
 import sqlalchemy.exc
 
@@ -53,7 +53,10 @@ WRITE_TIMEOUT_S = 5.0
 LIMIT = 100_000
 #: (kind, JSON data) of a write that can be made again after a restart
 Record = tuple[str, JsonObject]
-Apply = Callable[[str, JsonObject], Awaitable[Any]]
+#: writes a kept record again (its result is not read: nobody waits for a write kept for later)
+Apply = Callable[[str, JsonObject], Awaitable[object]]
+#: a write as it waits in the queue
+Write = Callable[[], Awaitable[object]]
 
 
 def unreachable(exc: BaseException) -> bool:
@@ -91,7 +94,7 @@ class Spool:
         #: the database the kept writes are for (`database_tag`), named in the file's first line
         self.owner = owner
         # (what, write, its number in the file or None)
-        self._queue: deque[tuple[str, Callable[[], Awaitable[Any]], int | None]] = deque()
+        self._queue: deque[tuple[str, Write, int | None]] = deque()
         self._task: asyncio.Task[None] | None = None
         self.dropped = 0
         self.written_late = 0
@@ -221,7 +224,7 @@ class Spool:
         self._keep(what, write, record)
         return None
 
-    def _keep(self, what: str, write: Callable[[], Awaitable[Any]], record: Record | None = None) -> None:
+    def _keep(self, what: str, write: Write, record: Record | None = None) -> None:
         number = self._journal(what, record)
         self._queue.append((what, write, number))
         while len(self._queue) > self.limit:
@@ -354,5 +357,5 @@ def _open_locked(path: Path) -> TextIO:
     return file
 
 
-def _bind(apply: Apply, kind: str, data: JsonObject) -> Callable[[], Awaitable[Any]]:
+def _bind(apply: Apply, kind: str, data: JsonObject) -> Write:
     return lambda: apply(kind, data)
