@@ -314,13 +314,14 @@ class Bus:
         epoch: int | None = None,
         owner_gone: Callable[[], str | None] | None = None,
         subject: str | None = None,
+        accepted_event: asyncio.Event | None = None,
     ) -> JsonValue:
         """Run ``name`` on the vehicle's owner; its result, or its error raised again here. The owner
         must accept it within ``accept_s`` (else :class:`NotRun`, and the owner will not run it later);
         then its answer may take ``timeout_s`` in all (else :class:`OwnerTimeout`: it was running).
         ``owner_gone()`` says why the node that accepted it no longer owns the vehicle (None while it
         does): then :class:`OwnerLost` at once, not at the timeout. ``subject``: another than the
-        vehicle's call subject (its stop subject)."""
+        vehicle's call subject (its stop subject). ``accepted_event`` is set once the owner accepted it."""
         if not self.connected:
             raise self.cut_off(f"{name} for {vehicle_id}")
         nc = self.client
@@ -375,6 +376,8 @@ class Bus:
                     continue
                 answer = await self._call_reply(msg, vehicle_id, name, on_progress)
                 accepted = True
+                if accepted_event is not None:
+                    accepted_event.set()
                 if answer is not None:
                     return answer[0]
         finally:
