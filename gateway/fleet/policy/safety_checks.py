@@ -115,19 +115,16 @@ def check_leg(
 
 
 def check_altitude(ctx: VehicleContext, limits: Limits, what: str, alt: float) -> None:
-    if alt < 0:
-        raise ctx.refuse(
-            Rule.MIN_ALTITUDE,
-            f"{what} {fmt(alt)} m is below home; altitudes are metres above home and must be at least "
-            f"{fmt(limits.min_altitude_m)} m (use land to descend)",
-            alt_rel_m=alt,
-            limit_m=limits.min_altitude_m,
+    if alt < limits.min_altitude_m:  # never below 0: a target below home always is
+        floor = fmt(limits.min_altitude_m)
+        said = (
+            f"below home; altitudes are metres above home and must be at least {floor} m"
+            if alt < 0
+            else f"below the minimum of {floor} m above home"
         )
-    if alt < limits.min_altitude_m:
         raise ctx.refuse(
             Rule.MIN_ALTITUDE,
-            f"{what} {fmt(alt)} m is below the minimum of {fmt(limits.min_altitude_m)} m above home "
-            "(use land to descend)",
+            f"{what} {fmt(alt)} m is {said} (use land to descend)",
             alt_rel_m=alt,
             limit_m=limits.min_altitude_m,
         )
