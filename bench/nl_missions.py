@@ -158,6 +158,11 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         help="run the generalisation corpus (bench/nl_corpus.py): its dev half, test half, or all",
     )
     p.add_argument(
+        "--classes",
+        default=None,
+        help="with --half: comma-separated corpus classes to run (default: all)",
+    )
+    p.add_argument(
         "--sitl",
         action="store_true",
         help="fly three real ArduCopter SITL drones (alpha, bravo, charlie) instead of the simulator",
@@ -226,6 +231,11 @@ def chosen_missions(args: argparse.Namespace) -> tuple[list[Mission], dict[str, 
     from bench.nl_corpus import select
 
     entries = select(args.half)
+    if getattr(args, "classes", None):
+        wanted = {c.strip() for c in args.classes.split(",") if c.strip()}
+        entries = [e for e in entries if e.cls in wanted]
+        if not entries:
+            raise SystemExit(f"--classes {args.classes!r} selects no request of the {args.half} half")
     if args.sitl:  # SITL's battery cannot be set by the harness: requests that need a level are left out
         entries = [e for e in entries if not e.mission.battery_pct]
     return [e.mission for e in entries], {e.id: (e.cls, e.half) for e in entries}

@@ -95,18 +95,19 @@ class Compiler:
 
     async def _height(self, step: Takeoff | Altitude) -> Compiled:
         state = await self.sensors.state(step.drone)
-        alt = step.altitude.metres
-        if state.flying:
-            return [Call("move_to_relative", {"drone_id": step.drone, "alt_m": alt}, step.drone)]
-        return [Call("takeoff", {"drone_id": step.drone, "alt_m": alt}, step.drone)]
+        tool = "move_to_relative" if state.flying else "takeoff"
+        args = {"drone_id": step.drone, "alt_m": step.altitude.metres}
+        return [Call(tool, args, step.drone), *ending(step)]
 
     async def _lift(self, drone: str, alt: float | None, up: float) -> tuple[Compiled, bool]:
-        """A takeoff first when the drone is on the ground; whether the takeoff used the climb ``up``."""
+        """A takeoff first when the drone is on the ground; whether the takeoff used the climb ``up`` (it
+        did when it took off to it, or to a height as high as the climb: from the ground, "10 m up" and
+        "at 10 m" are one climb)."""
         state = await self.sensors.state(drone)
         if state.flying:
             return [], False
         height = alt if alt is not None else (up if up > 0 else self.default_takeoff_m)
-        return [Call("takeoff", {"drone_id": drone, "alt_m": height}, drone)], alt is None and up > 0
+        return [Call("takeoff", {"drone_id": drone, "alt_m": height}, drone)], up > 0 and height == up
 
     async def _move(self, step: Move) -> Compiled:
         return [*await self._move_only(step), *ending(step)]
@@ -135,9 +136,8 @@ class Compiler:
     ) -> Compiled:
         lat, lon = await self.origin(step.origin, step.drone)
         target = geometry.offset_position(lat, lon, north, east)
-        state = await self.sensors.state(step.drone)
         if alt is None:
-            alt = (state.alt_m or 0.0) + up if state.flying else (up or self.default_takeoff_m)
+            alt = await self._height_from(step, up)
         calls, _ = await self._lift(step.drone, alt, 0.0)
         args = {
             "drone_id": step.drone,
@@ -146,6 +146,17 @@ class Compiler:
             "alt_m": alt,
         }
         return [*calls, Call("go_to_location", args, step.drone)]
+
+    async def _height_from(self, step: Move, up: float) -> float:
+        """The height of a move from an origin that gives none: the other drone's height when the origin
+        is a flying drone (a spot "above" or "beside" it), else the moving drone's own; plus the up/down
+        legs. A drone on the ground with neither takes off to the climb, or to the default height."""
+        other = step.origin.drone if step.origin.kind == "drone" else None
+        for drone in (other, step.drone):
+            state = await self.sensors.state(drone) if drone else None
+            if state is not None and state.flying:
+                return (state.alt_m or 0.0) + up
+        return up or self.default_takeoff_m
 
     async def origin(self, ref: Reference, drone: str) -> tuple[float, float]:
         """Where a reference is: a drone's position (read now), a home, a named place."""
@@ -224,8 +235,7 @@ class Compiler:
         if chosen is None:
             return [Said(f"none of {', '.join(step.among)} reports its {step.reading}: nothing was done.")]
         said = Said(f"{chosen} has the {step.pick} {step.reading} ({value:g} {_UNITS[step.reading]}).")
-        steps = [with_drone(s, chosen) for s in step.then]
-        return [said, *await self._each(steps)]
+        return [said, *await self._each(chosen_steps(step, chosen))]
 
     async def _ask(self, step: Ask) -> Compiled:
         return [Said(step.text)]
@@ -253,8 +263,8 @@ def gateway_formation(shape: str, count: int) -> str:
     return "circle" if count == corners else otherwise
 
 
-def ending(step: Move | Pattern) -> Compiled:
-    """The landing or return a move or a pattern ends with (none when the drone stays)."""
+def ending(step: Takeoff | Altitude | Move | Pattern) -> Compiled:
+    """The landing or return a step ends with (none when the drone stays)."""
     tool = {"land": "land", "return_home": "return_to_launch"}.get(step.after)
     return [] if tool is None else [Call(tool, {"drone_id": step.drone}, step.drone)]
 
@@ -326,6 +336,15 @@ def pick(states: dict[str, DroneState], reading: str, how: str) -> tuple[str | N
         return None, 0.0
     chosen = max(known, key=known.__getitem__) if how == "highest" else min(known, key=known.__getitem__)
     return chosen, known[chosen]
+
+
+def chosen_steps(step: Choose, chosen: str) -> list[Any]:
+    """The steps of a choice flown by the drone chosen. Steps written once for each drone of ``among``
+    (the same climb for every candidate) are one set of steps: those of the first candidate named."""
+    drones = [getattr(s, "drone", None) for s in step.then]
+    first = next((d for d in drones if d in step.among), None)
+    kept = [s for s, d in zip(step.then, drones, strict=True) if d == first or d not in step.among]
+    return [with_drone(s, chosen) for s in kept]
 
 
 def with_drone(step: Any, drone: str) -> Any:

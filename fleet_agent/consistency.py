@@ -26,9 +26,23 @@ def gaps(request: str, fleet: list[str], plan: Plan) -> list[str]:
     return notes
 
 
-def _drone_gaps(request: str, fleet: list[str], data: Any) -> list[str]:
+def without_unasked(request: str, fleet: list[str], plan: Plan) -> Plan:
+    """The plan without its steps for a drone the request does not name, when it names any: the model
+    added a step for a drone it had seen in an example (a repair asked for it wrote the same plan)."""
+    named = _named(request, fleet)
+    if not named:
+        return plan
+    kept = [s for s in plan.steps if getattr(s, "drone", None) in (None, *named)]
+    return plan if len(kept) == len(plan.steps) else plan.model_copy(update={"steps": kept})
+
+
+def _named(request: str, fleet: list[str]) -> set[str]:
     by_lower = {d.lower(): d for d in fleet}
-    named = {by_lower[w] for w in _words(request.lower()) if w in by_lower}
+    return {by_lower[w] for w in _words(request.lower()) if w in by_lower}
+
+
+def _drone_gaps(request: str, fleet: list[str], data: Any) -> list[str]:
+    named = _named(request, fleet)
     if not named:
         return []
     planned = _plan_drones(data)

@@ -10,7 +10,7 @@ from typing import Any
 import openai
 from pydantic import ValidationError
 
-from fleet_agent.consistency import gaps
+from fleet_agent.consistency import gaps, without_unasked
 from fleet_agent.plan import Plan, parse_plan, plan_schema
 from fleet_agent.prompt import messages_for
 from fleet_agent.records import ModelConfig, Usage
@@ -97,7 +97,7 @@ class Planner:
         """Take the reply's plan into ``attempt`` when it validates and leaves out less of the request than
         the plan already there (a repair that does worse is not taken); what is wrong with it, or None."""
         try:
-            plan = parse_plan(_json_part(reply), fleet)
+            plan = without_unasked(request, fleet, parse_plan(_json_part(reply), fleet))
         except (ValidationError, ValueError) as exc:
             attempt.errors.append(describe_errors(exc))
             return f"That plan is not valid: {attempt.errors[-1]}"

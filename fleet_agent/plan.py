@@ -70,10 +70,20 @@ class DroneStep(Strict):
         return known_drone(value, info)
 
 
+#: what a drone does once a climb, a move or a pattern is flown: a choice the schema requires, so that a
+#: model decides it where it writes the step (a landing the request asks for at the end was dropped as a
+#: separate step, and one it did not ask for was added after a takeoff)
+Ending = Literal["stay", "land", "return_home"]
+
+
 class Takeoff(DroneStep):
+    """Up to ``altitude``, then ``after``. ``after`` defaults to ``stay`` when read, and is required in
+    the schema the model decodes under (`plan_schema`)."""
+
     action: Literal["takeoff"]
     drone: str
     altitude: Length
+    after: Ending = "stay"
 
 
 class Land(DroneStep):
@@ -97,11 +107,7 @@ class Altitude(DroneStep):
     action: Literal["altitude"]
     drone: str
     altitude: Length
-
-
-#: what a drone does once a move or a pattern is flown: a required choice, so that a model decides it
-#: where it writes the step (a landing the request asks for at the end was dropped as a separate step)
-Ending = Literal["stay", "land", "return_home"]
+    after: Ending = "stay"
 
 
 class Move(DroneStep):
@@ -207,8 +213,10 @@ SimpleStep = Annotated[
 ]
 
 
-#: the most steps a branch holds: a bound the decoder keeps, so that a reply that repeats a step ends
-MAX_BRANCH_STEPS = 10
+#: the most steps a branch, and a plan, hold: bounds the decoder keeps, so that a reply that repeats a
+#: step ends soon (a small model at temperature 0 repeated a report step until its token limit)
+MAX_BRANCH_STEPS = 4
+MAX_PLAN_STEPS = 12
 
 
 class Condition(DroneStep):
@@ -259,7 +267,7 @@ Step = Annotated[
 
 
 class Plan(Strict):
-    steps: list[Step] = Field(max_length=40)
+    steps: list[Step] = Field(max_length=MAX_PLAN_STEPS)
 
     @model_validator(mode="after")
     def _one_ending(self) -> Plan:
@@ -269,7 +277,7 @@ class Plan(Strict):
             previous = kept[-1] if kept else None
             if (
                 isinstance(step, Land | ReturnHome)
-                and isinstance(previous, Move | Pattern)
+                and isinstance(previous, Takeoff | Altitude | Move | Pattern)
                 and previous.drone == step.drone
                 and previous.after == step.action
             ):
@@ -333,6 +341,9 @@ def _base_schema() -> dict[str, Any]:
     schema["$defs"]["Move"]["properties"]["origin"] = {
         "anyOf": [{"type": "string"}, {"$ref": "#/$defs/Reference"}]
     }
+    for name in ("Takeoff", "Altitude"):
+        schema["$defs"][name]["required"].append("after")
+        schema["$defs"][name]["properties"]["after"].pop("default", None)
     return schema
 
 

@@ -15,26 +15,27 @@ _STEPS = """\
 You turn a drone operator's request, in any language, into a JSON plan: {"steps": [...]}, one step for
 each thing the request asks, in the order it gives them. Write only the JSON, on one line.
 Each step has an "action":
-- takeoff {drone, altitude}; land {drone}; return_home {drone}; hold {drone}
-- altitude {drone, altitude}: climb or descend to that height above home (a drone sent "to 20 m" or
-  "hovering at 20 m" goes up, not 20 m away)
+- takeoff {drone, altitude, after}; land {drone}; return_home {drone}; hold {drone}
+- altitude {drone, altitude, after}: climb or descend TO that height above home (a drone sent "to 20 m"
+  or "hovering at 20 m" goes up, not 20 m away); a climb or descent BY some metres ("another 10 m",
+  "5 m higher", "3 m lower") is a move with an up or down leg
 - move {drone, origin, legs, altitude, after}: origin says where the legs start: "here" the drone
   itself, "home" its home, another drone's id (a spot north of another drone), {"kind": "place",
   "place": name} a named place, {"kind": "point", "lat_deg", "lon_deg"} coordinates; legs are
   [{distance, direction}] (north, south, east, west, northeast, northwest, southeast, southwest, up,
-  down); altitude is the height to fly at or null; after is what the drone
-  does once there: "stay", "land" (there) or "return_home"
+  down); altitude is the height to fly at or null
 - pattern {drone, shape, size, ...}: ONE drone flies a shape: triangle, square, pentagon, hexagon,
   octagon or polygon (sides) with size = side length; orbit (a circle, size = radius); survey (lines,
   size = line length, spacing); sides, lines, spacing, heading (the first leg), turn (right, left) and
-  altitude are null when the request gives none; after ("stay", "land", "return_home") as for a move
+  altitude are null when the request gives none
 - formation {drones, shape (line, column, wedge, grid, circle, triangle, square), spacing, altitude,
   legs (the centre's move), origin (optional: the centre, as for a move)}: SEVERAL drones placed
   together in one shape (drones sent different ways are one move each)
 - report {drones, readings (battery, altitude, position, flying, mode), pick (none, highest, lowest)}:
   a question; nothing flies
 - if {drone, reading (battery or altitude), compare (above, below, at_least, at_most), value, then,
-  otherwise}: ONE drone's steps depend on its reading against a threshold the request gives
+  otherwise}: ONE drone's steps depend on its reading against a threshold the request gives; the host
+  tells the reading and the outcome itself, so a branch that only tells or stays is []
 - choose {among, reading, pick (highest or lowest), then}: SEVERAL drones are compared with each other
   (the one with more or less battery, the higher or lower one); the chosen drone does the steps, the
   others get no step
@@ -42,7 +43,8 @@ Each step has an "action":
 Every distance and altitude is {"value": number, "unit": "m" | "ft" | "km" | "mi" | "yd" | "nmi"}, in the
 unit the request used. Never compute: the host converts units and works out the geometry. A drone on the
 ground takes off by itself before a move or a pattern. Plan only what is asked: no step for a drone the
-request leaves alone, and every landing or return the request asks for ("after" of a move or a pattern).
+request leaves alone. "after" is what the drone does once the step is flown: "stay" (in the air, also
+before a next step), "land" (there) or "return_home", as the request says.
 """
 
 
@@ -59,8 +61,7 @@ _NO_COUNTS = {"sides": None, "lines": None, "spacing": None}
 
 EXAMPLES: list[tuple[str, dict[str, Any]]] = [
     ("delta: go up 40 feet, then come back down",
-     {"steps": [{"action": "takeoff", "drone": "delta", "altitude": _m(40, "ft")},
-                {"action": "land", "drone": "delta"}]}),
+     {"steps": [{"action": "takeoff", "drone": "delta", "altitude": _m(40, "ft"), "after": "land"}]}),
     ("Fly echo in a triangle with 30 m sides at 15 m, first side west, and set it down after.",
      {"steps": [{"action": "pattern", "drone": "echo", "shape": "triangle", "size": _m(30), **_NO_COUNTS,
                  "heading": "west", "turn": None, "altitude": _m(15), "after": "land"}]}),
@@ -68,32 +69,31 @@ EXAMPLES: list[tuple[str, dict[str, Any]]] = [
      {"steps": [{"action": "move", "drone": "delta", "origin": "echo",
                  "legs": [_leg(20, "east")], "altitude": _m(12), "after": "stay"}]}),
     ("echo : décolle à 8 m, avance de 25 m vers l'ouest puis atterris.",
-     {"steps": [{"action": "takeoff", "drone": "echo", "altitude": _m(8)},
+     {"steps": [{"action": "takeoff", "drone": "echo", "altitude": _m(8), "after": "stay"},
                 {"action": "move", "drone": "echo", "origin": _HERE, "legs": [_leg(25, "west")],
                  "altitude": None, "after": "land"}]}),
     ("echo 20 m south at 15 m, and delta just up to 10 m and back down",
      {"steps": [{"action": "move", "drone": "echo", "origin": _HERE, "legs": [_leg(20, "south")],
                  "altitude": _m(15), "after": "stay"},
-                {"action": "takeoff", "drone": "delta", "altitude": _m(10)},
-                {"action": "land", "drone": "delta"}]}),
+                {"action": "takeoff", "drone": "delta", "altitude": _m(10), "after": "land"}]}),
     ("Get delta hovering at 12 m and echo up to 30 m.",
-     {"steps": [{"action": "altitude", "drone": "delta", "altitude": _m(12)},
-                {"action": "altitude", "drone": "echo", "altitude": _m(30)}]}),
+     {"steps": [{"action": "altitude", "drone": "delta", "altitude": _m(12), "after": "stay"},
+                {"action": "altitude", "drone": "echo", "altitude": _m(30), "after": "stay"}]}),
     ("Delta soll auf 14 m steigen und dort bleiben.",
-     {"steps": [{"action": "altitude", "drone": "delta", "altitude": _m(14)}]}),
-    ("echo, 0.1 km al sur y 5 m más alto, luego vuelve a casa",
+     {"steps": [{"action": "altitude", "drone": "delta", "altitude": _m(14), "after": "stay"}]}),
+    ("echo, 0.1 km al sur y 5 m más alto, y quédate allí; delta, vuelve a casa",
      {"steps": [{"action": "move", "drone": "echo", "origin": _HERE,
-                 "legs": [_leg(0.1, "south", "km"), _leg(5, "up")], "altitude": None,
-                 "after": "return_home"}]}),
+                 "legs": [_leg(0.1, "south", "km"), _leg(5, "up")], "altitude": None, "after": "stay"},
+                {"action": "return_home", "drone": "delta"}]}),
     ("If delta has under 25 % battery keep it down, otherwise lift it to 9 m and land it again.",
      {"steps": [{"action": "if", "drone": "delta", "reading": "battery", "compare": "below", "value": 25,
-                 "then": [{"action": "report", "drones": ["delta"], "readings": ["battery"], "pick": "none"}],
-                 "otherwise": [{"action": "takeoff", "drone": "delta", "altitude": _m(9)},
-                               {"action": "land", "drone": "delta"}]}]}),
+                 "then": [],
+                 "otherwise": [{"action": "takeoff", "drone": "delta", "altitude": _m(9),
+                                "after": "land"}]}]}),
     ("Of delta and echo, the one with more charge goes up to 12 m and stays there; the other one stays on "
      "the ground.",
      {"steps": [{"action": "choose", "among": ["delta", "echo"], "reading": "battery", "pick": "highest",
-                 "then": [{"action": "altitude", "drone": "delta", "altitude": _m(12)}]}]}),
+                 "then": [{"action": "altitude", "drone": "delta", "altitude": _m(12), "after": "stay"}]}]}),
     ("Have echo circle its current spot at 20 m, 15 m out, and keep it up there afterwards.",
      {"steps": [{"action": "pattern", "drone": "echo", "shape": "orbit", "size": _m(15), **_NO_COUNTS,
                  "heading": None, "turn": None, "altitude": _m(20), "after": "stay"}]}),

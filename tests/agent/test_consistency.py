@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from fleet_agent.consistency import gaps
+from fleet_agent.consistency import gaps, without_unasked
 from fleet_agent.plan import parse_plan
 from fleet_agent.prompt import messages_for, prefix_messages
 
@@ -45,3 +45,10 @@ def test_the_examples_are_shown_with_the_fleets_own_ids_and_the_prefix_stays_put
     assert "Hawk" in shown and '"drone":"kite"' in shown
     first, second = messages_for("a", FLEET), messages_for("b", FLEET)
     assert first[:-1] == second[:-1] and first[-1]["content"].endswith("Request: a")
+
+
+def test_a_step_for_a_drone_the_request_does_not_name_is_dropped() -> None:
+    plan = _plan(_up("bravo", 12), _up("charlie", 12), {"action": "land", "drone": "bravo"})
+    kept = without_unasked("Bravo: up to 12 m and back down.", FLEET, plan)
+    assert [s.drone for s in kept.steps] == ["bravo", "bravo"]  # type: ignore[union-attr]
+    assert without_unasked("All three up to 12 m.", FLEET, plan) is plan

@@ -328,3 +328,61 @@ def test_a_moves_origin_is_one_word_here_home_or_a_drones_id() -> None:
         parse_plan({"steps": [{**step, "origin": "zulu"}]}, FLEET)
     origin = plan_schema(FLEET)["$defs"]["Move"]["properties"]["origin"]
     assert origin["anyOf"][0]["enum"] == ["here", "home", *FLEET]
+
+
+async def test_a_climb_ends_as_its_after_says_and_the_schema_requires_it() -> None:
+    hop = {"action": "takeoff", "drone": "bravo", "altitude": m(12), "after": "land"}
+    assert await compiled(hop) == [
+        Call("takeoff", {"drone_id": "bravo", "alt_m": 12.0}, "bravo"),
+        Call("land", {"drone_id": "bravo"}, "bravo"),
+    ]
+    plan = parse_plan({"steps": [hop, {"action": "land", "drone": "bravo"}]}, FLEET)
+    assert len(plan.steps) == 1  # the landing written twice is flown once
+    in_air = FakeSensors({"bravo": flying(alt=5.0)})
+    assert await compiled({**hop, "action": "altitude", "after": "return_home"}, in_air) == [
+        Call("move_to_relative", {"drone_id": "bravo", "alt_m": 12.0}, "bravo"),
+        Call("return_to_launch", {"drone_id": "bravo"}, "bravo"),
+    ]
+    defs = plan_schema(FLEET)["$defs"]
+    for name in ("Takeoff", "Altitude"):
+        assert "after" in defs[name]["required"] and "default" not in defs[name]["properties"]["after"]
+
+
+async def test_a_spot_by_a_flying_drone_without_a_height_takes_that_drones_height() -> None:
+    bravo = flying(*geometry.offset_position(*HOME, 15.0, 0.0), alt=18.0)
+    step = {"action": "move", "drone": "alpha", "origin": "bravo", "legs": [leg(30, "east"), leg(4, "up")],
+            "altitude": None, "after": "stay"}  # fmt: skip
+    takeoff, goto = await compiled(step, FakeSensors({"bravo": bravo}))
+    assert takeoff.args["alt_m"] == goto.args["alt_m"] == 22.0
+    (goto,) = await compiled(step, FakeSensors({"alpha": flying(alt=9.0)}))  # bravo on the ground
+    assert goto.args["alt_m"] == 13.0
+
+
+def test_a_plan_and_a_branch_are_bounded_in_the_schema() -> None:
+    """A reply that repeats a step ends at the bound instead of running on to the token limit."""
+    defs = plan_schema(FLEET)
+    assert defs["properties"]["steps"]["maxItems"] == 12
+    assert defs["$defs"]["Condition"]["properties"]["otherwise"]["maxItems"] == 4
+
+
+async def test_a_choice_written_once_for_each_candidate_is_flown_once_by_the_chosen_drone() -> None:
+    hop = {"action": "takeoff", "altitude": m(6), "after": "land"}
+    step = {"action": "choose", "among": FLEET, "reading": "battery", "pick": "lowest",
+            "then": [{**hop, "drone": d} for d in FLEET]}  # fmt: skip
+    low = FakeSensors({"bravo": DroneState(HOME[0], HOME[1], 0.0, False, 30.0)})
+    said, *calls = await compiled(step, low)
+    assert isinstance(said, Said) and calls == [
+        Call("takeoff", {"drone_id": "bravo", "alt_m": 6.0}, "bravo"),
+        Call("land", {"drone_id": "bravo"}, "bravo"),
+    ]
+
+
+async def test_from_the_ground_a_climb_as_high_as_the_height_given_is_that_height() -> None:
+    step = {"action": "move", "drone": "bravo", "legs": [leg(40, "west"), leg(10, "up")], "altitude": m(10),
+            "after": "stay", "origin": "here"}  # fmt: skip
+    assert [c.args for c in await compiled(step)] == [
+        {"drone_id": "bravo", "alt_m": 10.0},
+        {"drone_id": "bravo", "north_m": 0.0, "east_m": -40.0},
+    ]
+    more = {**step, "legs": [leg(40, "west"), leg(5, "up")]}  # at 10 m, then 5 m more
+    assert (await compiled(more))[1].args["up_m"] == 5.0

@@ -137,16 +137,10 @@ class ModeWatch:
 
     async def _found_flying(self, vehicle: FlyingVehicle) -> None:
         try:
-            deadline = time.monotonic() + FOUND_FLYING_WAIT_S
-            while (heard := vehicle.heartbeat_mode()) is None or (
-                heard[1] and vehicle.on_ground(fresh=False) is None
-            ):
-                if time.monotonic() > deadline:
-                    log.info(
-                        "%s: no HEARTBEAT after the restart; its mode watch waits for a command", vehicle.id
-                    )
-                    return
-                await asyncio.sleep(POLL_S)
+            heard = await _heard_after_restart(vehicle)
+            if heard is None:
+                log.info("%s: no HEARTBEAT after the restart; its mode watch waits for a command", vehicle.id)
+                return
             mode, armed = heard
             if not armed or vehicle.on_ground(fresh=False) is not False:
                 return  # on the ground: its next arming and command start afresh
@@ -155,20 +149,9 @@ class ModeWatch:
             if vehicle.id in self._expected or self._ops.taken_over(vehicle.id) is not None:
                 return  # a command since the restart (its own watch), or a pilot has it already
             record = await self._newest_record(vehicle.id)
-            kind = record.kind if record is not None else None
-            modes = (
-                (vehicle.commanded_modes(kind) | vehicle.commanded_modes(kind, done=True)) if kind else None
-            )
             if vehicle.id in self._expected:
                 return
-            now = time.monotonic()
-            if kind is not None and modes and mode in modes:
-                exp = ModeExpectation(kind, modes, modes, seen=True, last_mode=mode, since=now)
-            else:
-                found = frozenset({mode})
-                exp = ModeExpectation(
-                    f"found flying in {mode}", found, found, seen=True, last_mode=mode, since=now
-                )
+            exp = _found_expectation(vehicle, mode, record.kind if record is not None else None)
             self._expected[vehicle.id] = exp
             log.info(
                 "%s: found flying in %s after the restart; its mode watch is on (%s)",
@@ -359,3 +342,27 @@ class ModeWatch:
                 await task
         self._watches.clear()
         self._finders.clear()
+
+
+async def _heard_after_restart(vehicle: FlyingVehicle) -> tuple[str, bool] | None:
+    """The vehicle's HEARTBEAT mode and armed state once they are known (and, armed, whether it is on the
+    ground); None when they are not within FOUND_FLYING_WAIT_S."""
+    deadline = time.monotonic() + FOUND_FLYING_WAIT_S
+    while (heard := vehicle.heartbeat_mode()) is None or (
+        heard[1] and vehicle.on_ground(fresh=False) is None
+    ):
+        if time.monotonic() > deadline:
+            return None
+        await asyncio.sleep(POLL_S)
+    return heard
+
+
+def _found_expectation(vehicle: FlyingVehicle, mode: str, kind: str | None) -> ModeExpectation:
+    """What the watch expects of a vehicle found flying in ``mode`` after a restart: the modes of its last
+    stored operation (``kind``) when it flies one of them, else the mode it was found in."""
+    modes = (vehicle.commanded_modes(kind) | vehicle.commanded_modes(kind, done=True)) if kind else None
+    now = time.monotonic()
+    if kind is not None and modes and mode in modes:
+        return ModeExpectation(kind, modes, modes, seen=True, last_mode=mode, since=now)
+    found = frozenset({mode})
+    return ModeExpectation(f"found flying in {mode}", found, found, seen=True, last_mode=mode, since=now)
