@@ -22,6 +22,22 @@ from tests.helpers.timing import scaled
 
 HOME = (-35.363261, 149.165230, 584.0, 353.0)  # lat, lon, alt AMSL, heading: ArduPilot's CMAC
 
+#: PX4 SIH runs in real time only, so the test equipment climbs, descends and lands faster than PX4's
+#: defaults (set at boot through PX4_PARAM_<name>, which etc/init.d-posix/rcS applies after the airframe;
+#: never by the gateway). Each stays within PX4's range (parameters.json of the build) and the gateway's
+#: max_vertical_speed_mps (5 m/s). What each does, from PX4's mc_pos_control and navigator sources. Return
+#: descends to RTL_DESCEND_ALT (30 m) before it lands: kept, so a pilot's Return keeps the drone in the air
+#: for the takeover tests' 10 s of the agent trying (at 10 m the drone was down within them).
+PX4_TEST_PARAMS: dict[str, float] = {
+    "MPC_TKO_SPEED": 3.0,  # takeoff climb rate (1.5 m/s; range 1-5)
+    "MPC_Z_V_AUTO_DN": 3.0,  # descent in autonomous modes: RTL, Land above MPC_LAND_ALT1 (1.5; 0.5-4)
+    "MPC_Z_VEL_MAX_DN": 3.0,  # the cap of every descent, MPC_Z_V_AUTO_DN included (1.5; 0.5-4)
+    "MPC_LAND_SPEED": 1.5,  # the last metres of a landing, below MPC_LAND_ALT2 (0.7; min 0.6)
+    "MPC_LAND_ALT1": 5.0,  # from here down the descent slows towards MPC_LAND_SPEED (10 m)
+    "MPC_LAND_ALT2": 2.0,  # from here down it is MPC_LAND_SPEED (5 m)
+    "RTL_RETURN_ALT": 30.0,  # Return climbs to at most this (RTL_CONE_ANG lowers it near home; 60 m)
+}
+
 
 class Unavailable(RuntimeError):
     """The autopilot cannot be started here (variables unset, no free instance); the text says why."""
@@ -156,7 +172,8 @@ def arducopter(
 @contextlib.contextmanager
 def px4(folder: Path, taken: set[int] | None = None) -> Iterator[Autopilot]:
     """PX4 SIH (physics inside the autopilot; real time only), MAVLink UDP 14540 + instance, system id
-    instance + 1. Each instance runs in its own subfolder (PX4 keeps its parameters and logs there)."""
+    instance + 1, with PX4_TEST_PARAMS. Each instance runs in its own subfolder (PX4 keeps its parameters
+    and logs there)."""
     why = px4_missing()
     if why:
         raise Unavailable(why)
@@ -168,6 +185,7 @@ def px4(folder: Path, taken: set[int] | None = None) -> Iterator[Autopilot]:
         taken,
     )  # PX4 sends to 14540 + instance only for instances 0-9
     sih = {"PX4_SIM_MODEL": "sihsim_quadx", "PX4_SIMULATOR": "sihsim", "PX4_SYS_AUTOSTART": "10040"}
+    sih |= {f"PX4_PARAM_{name}": f"{value:g}" for name, value in PX4_TEST_PARAMS.items()}
     argv = [str(build / "bin" / "px4"), "-d", "-i", str(instance), str(build / "etc")]
     home = folder / f"px4-{instance}"
     home.mkdir(exist_ok=True)

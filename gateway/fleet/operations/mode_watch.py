@@ -85,8 +85,6 @@ class ModeWatch:
         self._finders: dict[str, asyncio.Task[None]] = {}  # after a restart: is the vehicle flying?
         #: when an operation's latest command (its leg) was sent (the manager sets it)
         self.sent_at: dict[str, float] = {}
-        #: operations whose takeover is being recorded: they end interrupted once the lock is stored
-        self._taking: set[str] = set()
 
     def expect(
         self,
@@ -119,17 +117,6 @@ class ModeWatch:
 
     def expected(self, vehicle_id: str) -> ModeExpectation | None:
         return self._expected.get(vehicle_id)
-
-    def taking(self, operation_id: str) -> bool:
-        """A takeover of the operation is being recorded (the drone is locked; the operation ends as
-        interrupted once the lock is stored): nothing else may end it meanwhile."""
-        return operation_id in self._taking
-
-    async def judge(self, vehicle: FlyingVehicle) -> None:
-        """Judge the vehicle's mode now (the watch does it every POLL_S): called before an operation
-        ends as failed, since a pilot's switch (LOITER without throttle sinks and lands) explains the
-        failure and is what the caller must hear."""
-        await self._judge_mode(vehicle)
 
     def forget(self, vehicle_id: str) -> None:
         """The gateway commands nothing the mode shows (a takeover, kill): nothing more is judged."""
@@ -332,19 +319,13 @@ class ModeWatch:
         )
         self._expected.pop(vehicle.id, None)
         log.warning("%s: %s", vehicle.id, takeover.message())
+        if self._ops.on_takeover is not None:
+            try:
+                await self._ops.on_takeover(vehicle, takeover)
+            except Exception:
+                log.exception("recording the takeover of %s failed", vehicle.id)
         if running is not None:
-            self._taking.add(running.id)  # the tracker may see the drone land before the lock is stored
-        try:
-            if self._ops.on_takeover is not None:
-                try:
-                    await self._ops.on_takeover(vehicle, takeover)
-                except Exception:
-                    log.exception("recording the takeover of %s failed", vehicle.id)
-            if running is not None:
-                await self._ops.interrupt(running, takeover.message())
-        finally:
-            if running is not None:
-                self._taking.discard(running.id)
+            await self._ops.interrupt(running, takeover.message())
 
     def drop(self, operation_id: str) -> None:
         """The operation's monitor ended: forget its legs."""
