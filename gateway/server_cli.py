@@ -17,7 +17,16 @@ from pydantic import ValidationError
 from gateway import drones_cli
 from gateway.cli_help import COMMAND_HELP
 from gateway.cli_support import database_option, fail, settings_from, validation_text, with_store
-from gateway.registry.database import create_engine_for, current_revision, upgrade_schema
+from gateway.registry.database import (
+    SchemaUpgradeFailed,
+    create_engine_for,
+    current_revision,
+    in_memory,
+    migrations_dir,
+    upgrade_in_child_process,
+    upgrade_schema,
+)
+from gateway.registry.schema_check import schema_is_current
 from gateway.registry.store import Store
 from gateway.startup import (
     StartupError,
@@ -120,9 +129,22 @@ def cmd_serve(args: argparse.Namespace) -> int:
 
 
 async def _open_database(url: str) -> None:
-    """Open the database and bring its schema up to date; StartupError in one line if it cannot."""
+    """Open the database and bring its schema up to date; StartupError in one line if it cannot.
+
+    A schema behind the code is upgraded by a child process, so that Alembic and Mako are not left
+    in the serving process (an in-memory database, which no other process can reach, is upgraded by
+    the gateway's own start, in this process)."""
     try:
+        engine = create_engine_for(url)
+        try:
+            current = await schema_is_current(engine, migrations_dir())
+        finally:
+            await engine.dispose()
+        if not current and not in_memory(url):
+            await upgrade_in_child_process(url)
         store = await Store.open(url)
+    except SchemaUpgradeFailed as exc:
+        raise StartupError(str(exc)) from None
     except Exception as exc:
         raise StartupError(describe_database_error(url, exc)) from None
     await store.close()

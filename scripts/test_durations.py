@@ -6,7 +6,10 @@ that no long file starts last while the other worker idles. Refresh it after a f
     .venv/bin/python -m pytest -n 2 --dist loadfile --junitxml=/tmp/junit.xml
     .venv/bin/python scripts/test_durations.py /tmp/junit.xml
 
-A stale table only makes the order less good; files it does not name run after the ones it does.
+A stale table only makes the order less good; files it does not name run after the ones it does. After
+running some files only, ``--merge`` replaces their entries and keeps every other file's::
+
+    .venv/bin/python scripts/test_durations.py --merge /tmp/junit-some-files.xml
 """
 
 from __future__ import annotations
@@ -34,12 +37,17 @@ def seconds_per_file(report: Path) -> dict[str, float]:
 
 
 def main(argv: list[str]) -> int:
-    if len(argv) != 2:
-        print("usage: scripts/test_durations.py JUNIT_XML", file=sys.stderr)
+    args = argv[1:]
+    merge = "--merge" in args
+    reports = [a for a in args if a != "--merge"]
+    if len(reports) != 1:
+        print("usage: scripts/test_durations.py [--merge] JUNIT_XML", file=sys.stderr)
         return 2
-    table = seconds_per_file(Path(argv[1]))
+    measured = seconds_per_file(Path(reports[0]))
+    table = json.loads(TABLE.read_text()) if merge and TABLE.exists() else {}
+    table = dict(sorted({**table, **measured}.items()))
     TABLE.write_text(json.dumps(table, indent=1) + "\n")
-    print(f"{TABLE}: {len(table)} files, {sum(table.values()):.0f} s in all")
+    print(f"{TABLE}: {len(table)} files ({len(measured)} measured), {sum(table.values()):.0f} s in all")
     return 0
 
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import os
+import sqlite3
 import subprocess
 import sys
 import time
@@ -15,6 +16,7 @@ from pathlib import Path
 
 import pytest
 
+from gateway.registry.schema_check import head_from_files
 from gateway.util.ports import free_tcp_port
 from tests.helpers.timing import scaled
 
@@ -38,6 +40,7 @@ NOT_AT_START = {
     "gateway.demo": "`fleet-gateway demo`",
     "httpx": "the drones commands that call the API",
     "jwt": "nothing of the gateway",
+    "rich": "nothing of a server (the MCP SDK's logging handler: gateway.mcp.sdk_private)",
     "mavsdk_grpc.system": "nothing: gateway.link.mavsdk_system loads only the plugins the gateway uses",
     "mavsdk_grpc.camera": "nothing: a plugin the gateway does not use",
 }
@@ -89,14 +92,14 @@ def environment(database_url: str) -> dict[str, str]:
     return env
 
 
-def loaded_at_start(command: str, tmp_path: Path) -> list[str]:
+def loaded_at_start(command: str, tmp_path: Path, upgraded_first: bool = True) -> list[str]:
     database_url = f"sqlite+aiosqlite:///{tmp_path / 'fleet.db'}"
     env = environment(database_url)
-    # a database at the current schema, as every start after the first finds it
-    subprocess.run(
-        [sys.executable, "-m", "gateway.cli", "db", "upgrade"],
-        cwd=tmp_path, env=env, check=True, capture_output=True, timeout=scaled(120),
-    )  # fmt: skip
+    if upgraded_first:  # a database at the current schema, as every start after the first finds it
+        subprocess.run(
+            [sys.executable, "-m", "gateway.cli", "db", "upgrade"],
+            cwd=tmp_path, env=env, check=True, capture_output=True, timeout=scaled(120),
+        )  # fmt: skip
     out = tmp_path / f"{command}.json"
     proc = subprocess.Popen(
         [sys.executable, "-c", CHILD, command, str(out), str(free_tcp_port())],
@@ -137,6 +140,18 @@ def test_a_plain_start_imports_only_what_its_configuration_uses(command: str, tm
     modules = loaded_at_start(command, tmp_path)
     assert "gateway.runtime" in modules and "mavsdk_grpc.telemetry" in modules  # it did start a gateway
     assert unexpected(modules) == {}, f"{command} imported at start what only these need"
+
+
+def test_a_first_start_upgrades_the_new_database_without_keeping_alembic(tmp_path: Path) -> None:
+    """``serve`` on a database that does not exist yet: the schema upgrade runs in a child process,
+    which takes Alembic and Mako with it, and the database is at the newest revision afterwards."""
+    modules = loaded_at_start("serve", tmp_path, upgraded_first=False)
+    assert "gateway.runtime" in modules
+    assert unexpected(modules) == {}, "serve kept the schema upgrade's modules"
+    versions = ROOT / "migrations" / "versions"
+    with sqlite3.connect(tmp_path / "fleet.db") as db:
+        rows = db.execute("SELECT version_num FROM alembic_version").fetchall()
+    assert rows == [(head_from_files(versions),)]
 
 
 def test_no_gateway_module_imports_mavsdk_grpc_but_the_one_that_loads_it_lean() -> None:

@@ -118,20 +118,29 @@ async def remove_vehicle(vehicle_id: str, commander: CommanderDep, who: Principa
     return Response(status_code=204)
 
 
-@router.post("/{vehicle_id}/connect", response_model=VehicleOut, summary="Start the vehicle's sidecar")
-async def connect_vehicle(
-    vehicle_id: str, registry: RegistryDep, commander: CommanderDep, who: PrincipalDep, gateway: GatewayDep
-) -> VehicleOut:
-    record = await commander.connect_drone(operator(who), vehicle_id)
-    return vehicle_view(record, _live(registry, vehicle_id), locks=gateway.locks)
+def _sidecar_route(action: str, summary: str) -> None:
+    """POST /vehicles/{vehicle_id}/connect or /disconnect: its verb with the operator's caller; the
+    registration after it."""
+
+    async def endpoint(
+        vehicle_id: str,
+        registry: RegistryDep,
+        commander: CommanderDep,
+        who: PrincipalDep,
+        gateway: GatewayDep,
+    ) -> VehicleOut:
+        verb = commander.connect_drone if action == "connect" else commander.disconnect_drone
+        record = await verb(operator(who), vehicle_id)
+        return vehicle_view(record, _live(registry, vehicle_id), locks=gateway.locks)
+
+    endpoint.__name__ = f"{action}_vehicle"
+    router.add_api_route(
+        f"/{{vehicle_id}}/{action}", endpoint, methods=["POST"], response_model=VehicleOut, summary=summary
+    )
 
 
-@router.post("/{vehicle_id}/disconnect", response_model=VehicleOut, summary="Stop the vehicle's sidecar")
-async def disconnect_vehicle(
-    vehicle_id: str, registry: RegistryDep, commander: CommanderDep, who: PrincipalDep, gateway: GatewayDep
-) -> VehicleOut:
-    record = await commander.disconnect_drone(operator(who), vehicle_id)
-    return vehicle_view(record, _live(registry, vehicle_id), locks=gateway.locks)
+_sidecar_route("connect", "Start the vehicle's sidecar")
+_sidecar_route("disconnect", "Stop the vehicle's sidecar")
 
 
 @router.get("/{vehicle_id}/statustexts", response_model=StatusTextList, summary="Recent STATUSTEXT messages")

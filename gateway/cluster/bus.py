@@ -27,7 +27,7 @@ import json
 import logging
 import time
 from collections.abc import Awaitable, Callable, Mapping
-from typing import Any, Required
+from typing import Any, Protocol, Required
 
 import nats
 from nats.aio.client import Client
@@ -104,6 +104,30 @@ async def no_progress(_update: ProgressMessage) -> None:
 
 #: ``check(epoch the caller saw)`` raises when the call must not run here (a stale epoch)
 CallCheck = Callable[[int | None], None]
+
+
+class Leased(Protocol):
+    """What a node holds of a drone for its calls: a lease, or a fenced node's stop path."""
+
+    @property
+    def epoch(self) -> int: ...
+
+
+def epoch_check(
+    held: Mapping[str, Leased], vehicle_id: str, node_id: str, words: tuple[str, str]
+) -> CallCheck:
+    """The check of a call against the lease epoch this node holds for the drone (in ``held``): the first
+    of ``words`` when it holds none, the second when the call was sent for another epoch (then it is not
+    run); formatted with ``node``, ``vehicle``, ``sent`` and ``held``."""
+
+    def check(epoch: int | None) -> None:
+        now = held.get(vehicle_id)
+        if now is None:
+            raise NoOwner(words[0].format(node=node_id, vehicle=vehicle_id))
+        if epoch is not None and epoch != now.epoch:
+            raise NotRun(words[1].format(node=node_id, vehicle=vehicle_id, sent=epoch, held=now.epoch))
+
+    return check
 
 
 def tele_subject(vehicle_id: str) -> str:
@@ -290,13 +314,14 @@ class Bus:
         epoch: int | None = None,
         owner_gone: Callable[[], str | None] | None = None,
         subject: str | None = None,
+        accepted_event: asyncio.Event | None = None,
     ) -> JsonValue:
         """Run ``name`` on the vehicle's owner; its result, or its error raised again here. The owner
         must accept it within ``accept_s`` (else :class:`NotRun`, and the owner will not run it later);
         then its answer may take ``timeout_s`` in all (else :class:`OwnerTimeout`: it was running).
         ``owner_gone()`` says why the node that accepted it no longer owns the vehicle (None while it
         does): then :class:`OwnerLost` at once, not at the timeout. ``subject``: another than the
-        vehicle's call subject (its stop subject)."""
+        vehicle's call subject (its stop subject). ``accepted_event`` is set once the owner accepted it."""
         if not self.connected:
             raise self.cut_off(f"{name} for {vehicle_id}")
         nc = self.client
@@ -351,6 +376,8 @@ class Bus:
                     continue
                 answer = await self._call_reply(msg, vehicle_id, name, on_progress)
                 accepted = True
+                if accepted_event is not None:
+                    accepted_event.set()
                 if answer is not None:
                     return answer[0]
         finally:

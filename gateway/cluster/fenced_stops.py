@@ -16,7 +16,7 @@ from collections.abc import Mapping
 
 from nats.aio.subscription import Subscription
 
-from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, stop_subject
+from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, epoch_check, stop_subject
 from gateway.cluster.node_parts import NodeCore
 from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget, direct_stop_answer, send_stop
@@ -32,6 +32,15 @@ log = logging.getLogger("gateway.cluster")
 STOP_SEND_S = 4.0
 #: one try at the drone's own link within that (its sidecar may still be letting go of it)
 LINK_TRY_S = 1.0
+
+
+#: what a stop's check says when this node has no stop path to the drone, or the stop was sent for
+#: another lease epoch
+STOP_PATH_WORDS = (
+    "node {node} has no stop path to drone '{vehicle}' any more: retry",
+    "a stop for drone '{vehicle}' sent for lease epoch {sent} reached node {node}, which last held epoch "
+    "{held}: not run; retry",
+)
 
 
 class FencedStops:
@@ -95,19 +104,7 @@ class FencedStops:
             log.info("%s: node %s ends its stop-only path (%s)", vid, self._node.node_id, why)
 
     def check(self, vehicle_id: str) -> CallCheck:
-        def check(epoch: int | None) -> None:
-            target = self.fenced.get(vehicle_id)
-            if target is None:
-                raise NoOwner(
-                    f"node {self._node.node_id} has no stop path to drone '{vehicle_id}' any more: retry"
-                )
-            if epoch is not None and epoch != target.epoch:
-                raise NotRun(
-                    f"a stop for drone '{vehicle_id}' sent for lease epoch {epoch} reached node "
-                    f"{self._node.node_id}, which last held epoch {target.epoch}: not run; retry"
-                )
-
-        return check
+        return epoch_check(self.fenced, vehicle_id, self._node.node_id, STOP_PATH_WORDS)
 
     def _answer(self, vehicle_id: str) -> CallHandler:
         async def handle(

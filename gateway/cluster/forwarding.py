@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Awaitable, Callable, Mapping
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Protocol
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.commands.command_core import ROUTED
@@ -23,7 +23,7 @@ from gateway.fleet.operations.routing import ACTING, FORWARDED, OnMessage, Progr
 from gateway.fleet.operations.views import OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import RunningOperation
-from gateway.util.json_types import JsonObject
+from gateway.util.json_types import JsonMapping, JsonObject, JsonValue
 
 from .bus import ProgressSink
 from .remote import RemoteVehicle
@@ -47,10 +47,10 @@ class Forwarder(Protocol):
         drone_id: str,
         verb: str,
         caller: Caller,
-        arguments: dict[str, object],
+        arguments: JsonObject,
         on_message: OnMessage | None,
         wait_s: float,
-    ) -> object: ...
+    ) -> JsonValue: ...
 
 
 class RouterNode(Protocol):
@@ -119,10 +119,10 @@ class ClusterRouter:
         drone_id: str,
         verb: str,
         caller: Caller,
-        arguments: Mapping[str, object],
+        arguments: JsonMapping,
         on_message: OnMessage | None = None,
         wait_s: float = 0.0,
-    ) -> Any:
+    ) -> JsonValue:
         async def observe(body: ProgressMessage) -> None:
             self._note(body.get("view"))
             if on_message is not None:

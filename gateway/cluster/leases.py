@@ -5,20 +5,27 @@ whether a lease has expired. Each statement is one atomic ``INSERT ... ON CONFLI
 or ``UPDATE ... WHERE``: PostgreSQL locks the row and re-checks the condition on its latest version, so
 two nodes racing for one expired lease cannot both win, and a renewal that comes after a takeover fails.
 
+Each statement runs on its own, committed as it ends (no ``BEGIN`` and ``COMMIT`` around it): the rows it
+changes are locked only while it runs, never until a ``COMMIT`` sent by a node whose event loop is slow
+to send it. The renewal thread (`gateway.cluster.renewal`) and the keeper's tick renew the same rows, and
+a renewal that waited on a tick's open transaction waited on the starved loop it was made to escape; one
+statement is also one round trip instead of three.
+
 ``epoch`` grows at every change of owner (a fencing number): a message stamped with an older epoch comes
 from a previous owner.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import contextlib
+from collections.abc import AsyncIterator, Sequence
 from dataclasses import dataclass
 from datetime import datetime
 from typing import Any
 
 from sqlalchemy import text
 from sqlalchemy.exc import IntegrityError
-from sqlalchemy.ext.asyncio import AsyncEngine
+from sqlalchemy.ext.asyncio import AsyncConnection, AsyncEngine
 
 
 @dataclass(frozen=True)
@@ -128,11 +135,17 @@ class LeaseStore:
         self.node_id = node_id
         self.ttl_s = float(ttl_s)
 
+    @contextlib.asynccontextmanager
+    async def _statement(self) -> AsyncIterator[AsyncConnection]:
+        """A connection whose each statement commits as it ends (autocommit)."""
+        async with self.engine.connect() as conn:
+            yield await conn.execution_options(isolation_level="AUTOCOMMIT")
+
     async def acquire(self, vehicle_id: str) -> Lease | None:
         """Take the vehicle's lease if nobody holds a live one; None when another node does (or the
         vehicle is not registered)."""
         try:
-            async with self.engine.begin() as conn:
+            async with self._statement() as conn:
                 row = (
                     await conn.execute(_ACQUIRE, {"vid": vehicle_id, "node": self.node_id, "ttl": self.ttl_s})
                 ).first()
@@ -144,7 +157,7 @@ class LeaseStore:
         """Extend this node's live leases on ``vehicle_ids``; the ones returned are still held."""
         if not vehicle_ids:
             return {}
-        async with self.engine.begin() as conn:
+        async with self._statement() as conn:
             rows = (
                 await conn.execute(
                     _RENEW, {"ids": list(vehicle_ids), "node": self.node_id, "ttl": self.ttl_s}
@@ -156,7 +169,7 @@ class LeaseStore:
         """Give up this node's leases at once (clean stop, rebalancing); returns those released."""
         if not vehicle_ids:
             return []
-        async with self.engine.begin() as conn:
+        async with self._statement() as conn:
             rows = (await conn.execute(_RELEASE, {"ids": list(vehicle_ids), "node": self.node_id})).all()
         return [r.vehicle_id for r in rows]
 
@@ -171,7 +184,7 @@ class LeaseStore:
         import json
 
         params = {"node": self.node_id, "tags": json.dumps(list(tags)), "api": api_url, "ttl": self.ttl_s}
-        async with self.engine.begin() as conn:
+        async with self._statement() as conn:
             await conn.execute(_HEARTBEAT, params)
 
     async def nodes(self) -> list[NodeRecord]:
@@ -186,5 +199,5 @@ class LeaseStore:
 
     async def leave(self) -> None:
         """A clean stop: this node is no longer counted as alive (its leases are released separately)."""
-        async with self.engine.begin() as conn:
+        async with self._statement() as conn:
             await conn.execute(_LEAVE, {"node": self.node_id})

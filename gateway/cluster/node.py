@@ -18,7 +18,7 @@ import random
 import time
 from collections.abc import Callable
 from datetime import datetime
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from nats.aio.msg import Msg
 from nats.aio.subscription import Subscription
@@ -43,6 +43,7 @@ from gateway.errors import GatewayError, NoOwner
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.geofence import FLEET
 from gateway.registry.spec import VehicleSpec
+from gateway.util.json_types import JsonObject
 
 if TYPE_CHECKING:
     from gateway.fleet.vehicles.registry import Registry
@@ -451,7 +452,7 @@ class ClusterNode:
         log.info("%s: released by node %s (%s)", vehicle_id, self.node_id, why)
 
     # --- broadcasts -----------------------------------------------------------------------------------
-    async def announce(self, kind: str, body: dict[str, Any]) -> None:
+    async def announce(self, kind: str, body: JsonObject) -> None:
         """Tell every node (locks, registrations); a node that misses it catches up at its next tick. A
         lock, an unlock, a takeover lock and its release carry their version
         (`gateway.cluster.lock_versions`)."""
@@ -532,7 +533,8 @@ class ClusterNode:
                 book.lock(scope, lk.reason, lk.by, at=lk.locked_at)
 
     # --- views ----------------------------------------------------------------------------------------
-    def describe(self) -> dict[str, Any]:
+    def describe(self) -> dict[str, object]:
+        """This node, the live nodes and the drones each holds (the REST API's cluster view)."""
         return {
             "node_id": self.node_id,
             "tags": self.tags,

@@ -5,12 +5,20 @@ answers the calls for the drones it owns."""
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import logging
 import time
 from collections.abc import Awaitable, Callable, Mapping
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Protocol
 
-from gateway.cluster.bus import CallCheck, CallHandler, ProgressSink, no_progress, stop_subject
+from gateway.cluster.bus import (
+    CallCheck,
+    CallHandler,
+    ProgressSink,
+    epoch_check,
+    no_progress,
+    stop_subject,
+)
 from gateway.cluster.fenced_stops import STOP_SEND_S, FencedStops
 from gateway.cluster.forwarding import answer
 from gateway.cluster.node_parts import NodeWithRuntime
@@ -21,6 +29,7 @@ from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget
 from gateway.errors import NoOwner, NotRun, OwnerFenced
 from gateway.fleet.operations.routing import OnMessage
 from gateway.fleet.policy.caller import Caller
+from gateway.util.json_types import JsonObject, JsonValue
 
 if TYPE_CHECKING:
     pass
@@ -30,9 +39,13 @@ log = logging.getLogger("gateway.cluster")
 #: forwarded verbs that only read the drone: they get a short timeout, not the MCP wait cap
 READS = frozenset({"arrival", "mission_progress", "get_param", "list_params", "download_mission"})
 READ_TIMEOUT_S = 5.0
-#: an operator's stop its owner has not accepted over the bus by then goes through PostgreSQL instead (the
-#: owner refuses the bus copy if it arrives later, so it runs once), until OWNER_ACK_S after the stop
+#: an operator's stop its owner has not accepted over the bus by then is refused by the owner if it arrives
+#: later (the caller knows it as not run once the bus's clock margin has passed too)
 STOP_ACCEPT_S = 0.5
+#: an operator's stop its owner has not accepted over the bus by then also goes through PostgreSQL, beside
+#: the bus (a stop that runs twice is still a stop): a bus that does not answer (a frozen server) costs this,
+#: not the accept time and its clock margin (1 s), of the 3 s in which every drone must be told
+STOP_BUS_HEAD_START_S = 0.3
 #: a fenced node asks again this often for a node serving the drone's calls (one taking it over)
 NEW_OWNER_RETRY_S = 0.2
 
@@ -54,6 +67,15 @@ class CallsNode(NodeWithRuntime, Protocol):
 
     @property
     def takeover(self) -> StopTakeover: ...
+
+
+#: what a call's check says when this node no longer owns the drone, or the call was sent for another
+#: lease epoch
+LEASE_WORDS = (
+    "node {node} no longer owns drone '{vehicle}': not run; retry",
+    "a call for drone '{vehicle}' sent for lease epoch {sent} reached node {node}, which holds epoch "
+    "{held}: not run (the caller's view of its owner was out of date); retry",
+)
 
 
 class OwnerCalls:
@@ -83,10 +105,10 @@ class OwnerCalls:
         drone_id: str,
         verb: str,
         caller: Caller,
-        arguments: dict[str, Any],
+        arguments: JsonObject,
         on_message: OnMessage | None,
         wait_s: float,
-    ) -> object:
+    ) -> JsonValue:
         """Run ``verb`` on the drone's owner (over NATS); its result, or its error raised here."""
         if not self._node.started:
             raise NoOwner(f"this node is not part of the cluster yet; cannot reach {drone_id}'s owner")
@@ -130,10 +152,10 @@ class OwnerCalls:
                                 None, take_over=False)  # fmt: skip
 
     async def _stop(
-        self, drone_id: str, verb: str, caller: Caller, arguments: dict[str, Any],
+        self, drone_id: str, verb: str, caller: Caller, arguments: JsonObject,
         on_message: OnMessage | None, call_s: float, accept_s: float, epoch: int | None,
         owner_gone: Callable[[], str | None] | None, take_over: bool = True,
-    ) -> object:  # fmt: skip
+    ) -> JsonValue:  # fmt: skip
         """An operator's stop (land, return, hold) on a drone another node owns: over the bus, through
         PostgreSQL when the bus does not carry it (each sent again until its owner answers), to a fenced
         node's stop-only path when nobody holds the drone's link; and when no owner acknowledged it
@@ -167,24 +189,33 @@ class OwnerCalls:
         short = relay is not None and relay.listening
         bus = self._node.bus
         why: list[str] = []
-        owner_paths: list[Awaitable[object]] = []
+        owner_paths: list[Awaitable[JsonValue]] = []
+        heard = asyncio.Event()
+        over_bus = asyncio.ensure_future(bus.call(
+            drone_id, verb, arguments, body, call_s, on_message,
+            accept_s=min(accept_s, STOP_ACCEPT_S if short else OWNER_ACK_S), epoch=epoch,
+            owner_gone=owner_gone, accepted_event=heard,
+        ))  # fmt: skip
+        if short:
+            await _head_start(over_bus, heard)
         try:
-            return await bus.call(
-                drone_id, verb, arguments, body, call_s, on_message,
-                accept_s=min(accept_s, STOP_ACCEPT_S if short else OWNER_ACK_S), epoch=epoch,
-                owner_gone=owner_gone,
-            )  # fmt: skip
+            if short and not heard.is_set():
+                # the owner has not taken it over the bus yet: the bus stays one of its paths, and
+                # PostgreSQL notifications carry it beside (`gateway.cluster.stop_notify`)
+                why.append(f"bus: not accepted within {STOP_BUS_HEAD_START_S:g} s")
+                log.info("%s: %s not accepted over the bus within %.1f s: through PostgreSQL beside it",
+                         drone_id, verb, STOP_BUS_HEAD_START_S)  # fmt: skip
+                owner_paths.append(over_bus)
+                self._relay(relay, drone_id, verb, arguments, epoch, body, deadline, owner_paths, why)
+            else:
+                return await over_bus
         except NotRun as exc:
             # the bus did not carry it (this node cut off, or no answer in the accept time): through
-            # PostgreSQL notifications to the owner (`gateway.cluster.stop_notify`)
+            # PostgreSQL notifications to the owner
             if exc.details.get("bus") not in ("down", "no answer"):
                 raise
             why.append(f"bus: {exc.details.get('bus')}")
-            left = deadline - time.monotonic()
-            if relay is not None and left > 0.1:
-                owner_paths.append(relay.send(drone_id, verb, arguments, epoch, body, left))
-            elif relay is None:
-                why.append("PostgreSQL: not listening")
+            self._relay(relay, drone_id, verb, arguments, epoch, body, deadline, owner_paths, why)
         except NoOwner as exc:
             # nobody holds the drone's link on the bus: the node that last did may have fenced itself,
             # and keep a stop-only path to it (a land sent twice is still a land)
@@ -201,10 +232,23 @@ class OwnerCalls:
             drone_id, verb, caller, epoch, owner, owner_paths, why, deadline, take_over=take_over
         )
 
+    @staticmethod
+    def _relay(
+        relay: StopRelay | None, drone_id: str, verb: str, arguments: JsonObject, epoch: int | None,
+        body: Mapping[str, object], deadline: float, owner_paths: list[Awaitable[JsonValue]], why: list[str],
+    ) -> None:  # fmt: skip
+        """The stop through PostgreSQL notifications, as one more of the owner's paths (until
+        ``deadline``), or why not."""
+        left = deadline - time.monotonic()
+        if relay is None:
+            why.append("PostgreSQL: not listening")
+        elif left > 0.1:
+            owner_paths.append(relay.send(drone_id, verb, arguments, epoch, body, left))
+
     async def _to_new_owner(
-        self, drone_id: str, verb: str, arguments: dict[str, Any], body: dict[str, Any], call_s: float,
+        self, drone_id: str, verb: str, arguments: JsonObject, body: Mapping[str, object], call_s: float,
         accept_s: float, until: float,
-    ) -> object:  # fmt: skip
+    ) -> JsonValue:  # fmt: skip
         """A fenced node's stop to whichever node serves the drone's calls, asked again until ``until``
         while none does (a node taking the drone over serves them once its link is up)."""
         while True:
@@ -217,44 +261,33 @@ class OwnerCalls:
                     raise
                 await asyncio.sleep(NEW_OWNER_RETRY_S)
 
-    async def relayed_stop(self, stop: dict[str, Any]) -> object:
+    async def relayed_stop(self, stop: JsonObject) -> object:
         """A stop another node relayed through PostgreSQL: run it when this node owns the drone under
         that epoch (the same path as a stop over the bus), or keeps a stop-only path to it; None (silent)
         when the drone is not this node's."""
         vid, verb, epoch = str(stop.get("vehicle")), str(stop.get("command")), stop.get("epoch")
         epoch = epoch if isinstance(epoch, int) else None
-        caller = dict(stop.get("by") or {})
+        by, args = stop.get("by"), stop.get("args")
+        caller = dict(by) if isinstance(by, dict) else {}
         if vid in self._node.held:
             self.check_epoch(vid)(epoch)
             if verb not in STOP_COMMANDS or not Caller.from_dict(caller).is_operator:
                 raise NotRun(f"only an operator's land, return_to_launch or hold crosses PostgreSQL: {verb} "
                              "was not run")  # fmt: skip
             log.warning("%s: %s relayed through PostgreSQL from node %s", vid, verb, stop.get("node"))
-            return await self.answer(vid)(verb, dict(stop.get("args") or {}), caller, no_progress)
+            arguments = dict(args) if isinstance(args, dict) else {}
+            return await self.answer(vid)(verb, arguments, caller, no_progress)
         if vid in self._node.fenced:
             self._node.stops.check(vid)(epoch)
             return await self._node.stops.stop_directly(vid, verb, Caller.from_dict(caller))
         return None
 
     def check_epoch(self, vehicle_id: str) -> CallCheck:
-        def check(epoch: int | None) -> None:
-            lease = self._node.held.get(vehicle_id)
-            if lease is None:
-                raise NoOwner(
-                    f"node {self._node.node_id} no longer owns drone '{vehicle_id}': not run; retry"
-                )
-            if epoch is not None and epoch != lease.epoch:
-                raise NotRun(
-                    f"a call for drone '{vehicle_id}' sent for lease epoch {epoch} reached node "
-                    f"{self._node.node_id}, which holds epoch {lease.epoch}: not run (the caller's view of "
-                    "its owner was out of date); retry"
-                )
-
-        return check
+        return epoch_check(self._node.held, vehicle_id, self._node.node_id, LEASE_WORDS)
 
     def answer(self, vehicle_id: str) -> CallHandler:
         async def handle(
-            name: str, arguments: dict[str, Any], caller: Mapping[str, object], progress: ProgressSink
+            name: str, arguments: JsonObject, caller: Mapping[str, object], progress: ProgressSink
         ) -> object:
             registry = self._node.registry
             if registry is None or not registry.is_local(vehicle_id):
@@ -282,3 +315,11 @@ class OwnerCalls:
             return run.result()
 
         return handle
+
+
+async def _head_start(over_bus: asyncio.Future[JsonValue], heard: asyncio.Event) -> None:
+    """Until the stop's bus call has ended or its owner accepted it (``heard`` is set then), at most
+    STOP_BUS_HEAD_START_S."""
+    over_bus.add_done_callback(lambda _call: heard.set())
+    with contextlib.suppress(TimeoutError):
+        await asyncio.wait_for(heard.wait(), STOP_BUS_HEAD_START_S)

@@ -7,7 +7,11 @@ the store's connection pool. On a starved machine a tick ran past the moment the
 themselves. So the leases are also renewed here: in a thread of their own, with their own event loop and
 their own database connection, every `RENEW_SHARE` of the lease time, each attempt bounded by the time
 left before the fence. Neither the loop's other work nor the pool's other statements wait in front of a
-renewal (the thread takes the interpreter from the loop within its switch interval, 5 ms).
+renewal (the thread takes the interpreter from the loop within its switch interval, 5 ms). An attempt
+ends at its bound even when the statement it cancels does not (its rollback on a connection that does not
+answer): the next one goes on a new connection, and does not wait for it. The lease statements commit as
+they run (`gateway.cluster.leases`), so a renewal never waits on a row lock of the keeper's own renewal.
+An attempt slower than the renewal period is logged with the time it took and the time that was left.
 
 A renewal only moves the moment the node must fence itself (``_renewed_at``) for a lease it still holds
 under the same epoch; a lease it finds lost (not renewed, or held under a newer epoch) wakes the keeper,
@@ -21,7 +25,8 @@ import asyncio
 import logging
 import threading
 import time
-from typing import Protocol
+from collections.abc import Awaitable
+from typing import Protocol, TypeVar
 
 from sqlalchemy.ext.asyncio import AsyncEngine, create_async_engine
 
@@ -29,6 +34,7 @@ from gateway.cluster.leases import Lease, LeaseStore
 from gateway.config import Settings
 
 log = logging.getLogger("gateway.cluster")
+T = TypeVar("T")
 
 #: a node fences itself this share of the lease time after its oldest renewal (`gateway.cluster.node`)
 SELF_FENCE_SHARE = 0.8
@@ -63,6 +69,8 @@ class LeaseRenewal:
         #: renewals made, and attempts that failed or timed out (read by tests and benches)
         self.renewals = 0
         self.failures = 0
+        #: the longest a renewal took, answered or not (seconds, from its statement sent to its end)
+        self.slowest_s = 0.0
 
     def start(self) -> None:
         self._loop = asyncio.get_running_loop()  # the node's loop: a lost lease wakes its keeper there
@@ -104,17 +112,22 @@ class LeaseRenewal:
         fence_at = min(node._renewed_at.get(vid, 0.0) for vid in held) + self._ttl * SELF_FENCE_SHARE
         budget = max(self._ttl * LEAST_ATTEMPT_SHARE, fence_at - asked)
         try:
-            renewed = await asyncio.wait_for(leases.renew(list(held)), budget)
+            renewed = await _within(leases.renew(list(held)), budget)
         except Exception as exc:
             self.failures += 1
+            took = self._took(asked)
             if not self._failing:
-                log.warning("renewing the leases of node %s failed (%r): tried again in %.1f s",
-                            node.node_id, exc, self._ttl * RENEW_SHARE)  # fmt: skip
+                log.warning("renewing the leases of node %s failed after %.2f s (%r): tried again in %.1f s",
+                            node.node_id, took, exc, self._ttl * RENEW_SHARE)  # fmt: skip
             self._failing = True
             await engine.dispose(close=False)  # a connection left hanging is not used again
             return
         self._failing = False
         self.renewals += 1
+        took = self._took(asked)
+        if took > self._ttl * RENEW_SHARE:  # slower than the renewals come: the fence is getting near
+            log.warning("renewing the leases of node %s took %.2f s (%.2f s were left before the fence)",
+                        node.node_id, took, fence_at - asked)  # fmt: skip
         lost = False
         for vid, epoch in held.items():
             lease = renewed.get(vid)
@@ -126,3 +139,21 @@ class LeaseRenewal:
                 node._renewed_at[vid] = max(last, asked)
         if lost and self._loop is not None:
             self._loop.call_soon_threadsafe(node.kick)
+
+    def _took(self, asked: float) -> float:
+        took = time.monotonic() - asked
+        self.slowest_s = max(self.slowest_s, took)
+        return took
+
+
+async def _within(work: Awaitable[T], seconds: float) -> T:
+    """``work``'s result within ``seconds``, else TimeoutError then, not later: a statement cancelled on a
+    connection that does not answer can take as long again to end (its rollback), and the next attempt
+    (on a new connection) must not wait for that. The cancelled attempt ends on its own."""
+    task = asyncio.ensure_future(work)
+    done, _ = await asyncio.wait({task}, timeout=seconds)
+    if not done:
+        task.cancel()
+        task.add_done_callback(lambda t: t.cancelled() or t.exception())
+        raise TimeoutError(f"no answer within {seconds:.2f} s")
+    return task.result()

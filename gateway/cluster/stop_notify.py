@@ -216,7 +216,7 @@ class StopRelay:
     async def send(
         self, vehicle_id: str, command: str, arguments: JsonObject, epoch: int | None,
         caller: Mapping[str, object], within_s: float,
-    ) -> object:  # fmt: skip
+    ) -> JsonValue:  # fmt: skip
         """Relay the stop ``command`` for ``vehicle_id`` to its owner; the owner's result, or its error
         raised again here; :class:`NotRun` ("no path") when no node answered within ``within_s``."""
         if command not in RELAYED:

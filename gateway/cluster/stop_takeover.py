@@ -38,7 +38,7 @@ from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stoplink import StopTarget, direct_stop_answer, send_stop
 from gateway.errors import GatewayError, NoOwner, NotRun, StopPending
 from gateway.fleet.policy.caller import Caller
-from gateway.util.json_types import JsonObject
+from gateway.util.json_types import JsonObject, JsonValue
 
 if TYPE_CHECKING:
     from gateway.fleet.vehicles.registry import Registry
@@ -104,15 +104,15 @@ class StopTakeover:
 
     async def reach(
         self, drone_id: str, verb: str, caller: Caller, epoch: int | None, owner: str | None,
-        owner_paths: list[Awaitable[object]], why: list[str], deadline: float, take_over: bool = True,
-    ) -> object:  # fmt: skip
+        owner_paths: list[Awaitable[JsonValue]], why: list[str], deadline: float, take_over: bool = True,
+    ) -> JsonValue:  # fmt: skip
         """The stop through the owner's remaining paths (``owner_paths``: PostgreSQL, a fenced node's
         stop-only path) and, with ``take_over``, the drone's own link from this node, all at once until
         ``deadline``: the first answer. An owner's refusal is raised; with none of them through by the
         deadline, NotRun (without ``take_over``) or :class:`StopPending` (this node keeps at it)."""
-        tasks: dict[asyncio.Future[object], str] = {asyncio.ensure_future(p): "owner" for p in owner_paths}
+        tasks: dict[asyncio.Future[JsonValue], str] = {asyncio.ensure_future(p): "owner" for p in owner_paths}
         if take_over:
-            link: asyncio.Future[object] = asyncio.ensure_future(
+            link: asyncio.Future[JsonValue] = asyncio.ensure_future(
                 self._direct_until(drone_id, verb, caller, epoch, deadline)
             )
             tasks[link] = "link"
@@ -259,7 +259,7 @@ class StopTakeover:
         return None
 
 
-def _cancel_all(tasks: dict[asyncio.Future[object], str]) -> None:
+def _cancel_all(tasks: dict[asyncio.Future[JsonValue], str]) -> None:
     """The paths still under way once one answered; a path that failed meanwhile has nothing to add."""
     for task in tasks:
         task.cancel()

@@ -19,7 +19,7 @@ import time
 import uuid
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypedDict
 from urllib.parse import urlparse
 
 from gateway.util.json_types import JsonMapping, JsonObject
@@ -33,16 +33,13 @@ from pymavlink import mavutil
 
 from gateway.fleet.operations.views import ActionResult, OperationView
 
+_MAVLINK = mavutil.mavlink
 #: the stops a fenced node can send without its sidecar: the verb -> MAV_CMD
 STOP_COMMANDS = {
-    "land": 21,
-    "return_to_launch": 20,
-    "hold": 192,
-}  # NAV_LAND, NAV_RETURN_TO_LAUNCH, DO_REPOSITION
-MAV_CMD_REQUEST_MESSAGE = 512
-GLOBAL_POSITION_INT = 33
-MAV_FRAME_GLOBAL_RELATIVE_ALT_INT = 6
-MAV_DO_REPOSITION_FLAGS_CHANGE_MODE = 1
+    "land": _MAVLINK.MAV_CMD_NAV_LAND,
+    "return_to_launch": _MAVLINK.MAV_CMD_NAV_RETURN_TO_LAUNCH,
+    "hold": _MAVLINK.MAV_CMD_DO_REPOSITION,
+}
 SOURCE_SYSTEM = 245  # a ground station's id, as mavsdk_server uses
 SOURCE_COMPONENT = 191  # not mavsdk_server's 190: the autopilot's log tells the two apart
 RESEND_S = 0.3
@@ -60,8 +57,14 @@ class StopTarget:
     epoch: int
 
 
-# Any: pymavlink, the options of mavlink_connection
-def pymavlink_device(url: str) -> tuple[str, dict[str, Any], bool]:
+class DeviceOptions(TypedDict, total=False):
+    """The options of pymavlink's ``mavlink_connection`` a drone's URL sets."""
+
+    baud: int  # a serial link's
+    retries: int  # a TCP link's: how often it tries to connect
+
+
+def pymavlink_device(url: str) -> tuple[str, DeviceOptions, bool]:
     """The drone's URL (mavsdk_server syntax) as pymavlink's device, its options, and whether the link
     must first hear the drone to know where to send (we listen: ``udpin``, ``tcpin``)."""
     parts = urlparse(url)
@@ -129,15 +132,16 @@ def _sender(conn: Any, sysid: int, command: int, deadline: float) -> Callable[[]
     where = None
     while where is None and time.monotonic() < deadline:
         conn.mav.command_long_send(
-            sysid, 1, MAV_CMD_REQUEST_MESSAGE, 0, GLOBAL_POSITION_INT, 0, 0, 0, 0, 0, 0
-        )
+            sysid, 1, _MAVLINK.MAV_CMD_REQUEST_MESSAGE, 0, _MAVLINK.MAVLINK_MSG_ID_GLOBAL_POSITION_INT,
+            0, 0, 0, 0, 0, 0,
+        )  # fmt: skip
         where = conn.recv_match(type="GLOBAL_POSITION_INT", blocking=True, timeout=RESEND_S)
     if where is None:
         raise TimeoutError("the drone did not say where it is (GLOBAL_POSITION_INT): nothing sent")
     lat, lon, alt_m = where.lat, where.lon, where.relative_alt / 1000.0
     return lambda: conn.mav.command_int_send(
-        sysid, 1, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, command, 0, 0,
-        -1, MAV_DO_REPOSITION_FLAGS_CHANGE_MODE, 0, math.nan, lat, lon, alt_m,
+        sysid, 1, _MAVLINK.MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, command, 0, 0,
+        -1, _MAVLINK.MAV_DO_REPOSITION_FLAGS_CHANGE_MODE, 0, math.nan, lat, lon, alt_m,
     )  # fmt: skip
 
 

@@ -27,8 +27,9 @@ import importlib.util
 import os
 import sys
 import types
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import Any, Generic, TypeVar, overload
 
 #: gRPC experiments turned off in the gateway's process (its sidecars inherit them; measured without
 #: effect there): the EventEngine client and what rides on it, so a stream item wakes one thread less
@@ -81,20 +82,33 @@ def bundled_binary() -> Path:
     return Path(bin_pkg.__file__).parent / "mavsdk_server"
 
 
-#: the plugins the gateway uses, by the name MAVSDK gives them
-PLUGINS = (
-    "action",
-    "core",
-    "events",
-    "info",
-    "mavlink_direct",
-    "mission",
-    "mission_raw",
-    "param",
-    "telemetry",
-)
-
 __all__ = ["PLUGINS", "System", "mavlink_direct_plugin", "mission_raw_plugin"]
+
+P = TypeVar("P")
+
+
+class _Plugin(Generic[P]):
+    """A plugin of the `System`, by the name MAVSDK gives it: its stub, made by ``make`` in
+    ``System.connect()``; read before that, it raises."""
+
+    def __init__(self, make: Callable[[Any], P]) -> None:  # Any: mavsdk_grpc, its untyped plugin manager
+        self.make = make
+        self.name = ""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = name
+
+    @overload
+    def __get__(self, system: None, owner: type) -> _Plugin[P]: ...
+    @overload
+    def __get__(self, system: System, owner: type) -> P: ...
+    def __get__(self, system: System | None, owner: type) -> _Plugin[P] | P:
+        if system is None:
+            return self
+        stub: P | None = getattr(system, f"_{self.name}_stub", None)
+        if stub is None:
+            raise RuntimeError(f"the MAVSDK {self.name} plugin is not ready: System.connect() has not run")
+        return stub
 
 
 class System:
@@ -104,33 +118,27 @@ class System:
     then ``system.telemetry`` and so on); it never starts a mavsdk_server of its own (the gateway's
     sidecar does), and ``close()`` closes its gRPC channel."""
 
+    action = _Plugin(action_plugin.Action)
+    core = _Plugin(core_plugin.Core)
+    events = _Plugin(events_plugin.Events)
+    info = _Plugin(info_plugin.Info)
+    mavlink_direct = _Plugin(mavlink_direct_plugin.MavlinkDirect)
+    mission = _Plugin(mission_plugin.Mission)
+    mission_raw = _Plugin(mission_raw_plugin.MissionRaw)
+    param = _Plugin(param_plugin.Param)
+    telemetry = _Plugin(telemetry_plugin.Telemetry)
+
     def __init__(self, mavsdk_server_address: str, port: int) -> None:
         self._address = mavsdk_server_address
         self._port = port
         self._manager: Any = None  # Any: mavsdk_grpc, its untyped channel manager
-        self._action: action_plugin.Action | None = None
-        self._core: core_plugin.Core | None = None
-        self._events: events_plugin.Events | None = None
-        self._info: info_plugin.Info | None = None
-        self._mavlink_direct: mavlink_direct_plugin.MavlinkDirect | None = None
-        self._mission: mission_plugin.Mission | None = None
-        self._mission_raw: mission_raw_plugin.MissionRaw | None = None
-        self._param: param_plugin.Param | None = None
-        self._telemetry: telemetry_plugin.Telemetry | None = None
 
     async def connect(self) -> None:
         """Open the gRPC channel (waits until mavsdk_server answers) and make the plugins' stubs."""
         manager = await AsyncPluginManager.create(host=self._address, port=self._port)
         self._manager = manager
-        self._action = action_plugin.Action(manager)
-        self._core = core_plugin.Core(manager)
-        self._events = events_plugin.Events(manager)
-        self._info = info_plugin.Info(manager)
-        self._mavlink_direct = mavlink_direct_plugin.MavlinkDirect(manager)
-        self._mission = mission_plugin.Mission(manager)
-        self._mission_raw = mission_raw_plugin.MissionRaw(manager)
-        self._param = param_plugin.Param(manager)
-        self._telemetry = telemetry_plugin.Telemetry(manager)
+        for name, plugin in _PLUGINS.items():
+            setattr(self, f"_{name}_stub", plugin.make(manager))
 
     async def close(self) -> None:
         """Close the gRPC channel (its streams end); nothing to do before ``connect``."""
@@ -138,44 +146,7 @@ class System:
         if manager is not None:
             await manager.channel.close(grace=None)
 
-    @staticmethod
-    def _ready(plugin: Any, name: str) -> Any:  # Any: mavsdk_grpc, its untyped plugins
-        if plugin is None:
-            raise RuntimeError(f"the MAVSDK {name} plugin is not ready: System.connect() has not run")
-        return plugin
 
-    @property
-    def action(self) -> action_plugin.Action:
-        return self._ready(self._action, "action")
-
-    @property
-    def core(self) -> core_plugin.Core:
-        return self._ready(self._core, "core")
-
-    @property
-    def events(self) -> events_plugin.Events:
-        return self._ready(self._events, "events")
-
-    @property
-    def info(self) -> info_plugin.Info:
-        return self._ready(self._info, "info")
-
-    @property
-    def mavlink_direct(self) -> mavlink_direct_plugin.MavlinkDirect:
-        return self._ready(self._mavlink_direct, "mavlink_direct")
-
-    @property
-    def mission(self) -> mission_plugin.Mission:
-        return self._ready(self._mission, "mission")
-
-    @property
-    def mission_raw(self) -> mission_raw_plugin.MissionRaw:
-        return self._ready(self._mission_raw, "mission_raw")
-
-    @property
-    def param(self) -> param_plugin.Param:
-        return self._ready(self._param, "param")
-
-    @property
-    def telemetry(self) -> telemetry_plugin.Telemetry:
-        return self._ready(self._telemetry, "telemetry")
+_PLUGINS = {name: plugin for name, plugin in vars(System).items() if isinstance(plugin, _Plugin)}
+#: the plugins the gateway uses, by the name MAVSDK gives them
+PLUGINS = tuple(_PLUGINS)

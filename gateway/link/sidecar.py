@@ -49,6 +49,7 @@ from pathlib import Path
 
 from gateway.config import Settings
 from gateway.link import confine, pacing, sidecar_socket
+from gateway.link.child_watch import wait_for_children_on_the_loop
 from gateway.link.proc_sockets import listening_addresses, listening_inodes, socket_inodes
 from gateway.util.json_types import JsonObject
 from gateway.util.ports import free_tcp_port
@@ -381,6 +382,7 @@ class Sidecar:
         self.info.serving_since = None
         sidecar_socket.remove(self.info.socket_dir)
         self.info.socket_dir = sidecar_socket.private_directory(self.vehicle_id) if self.on_socket else None
+        wait_for_children_on_the_loop()
         try:
             proc = await asyncio.create_subprocess_exec(
                 *die_with_parent(plan.argv),

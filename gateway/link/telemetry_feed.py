@@ -132,16 +132,6 @@ class _Odometry(Protocol):
     velocity_body: _XyzRate
 
 
-class _Health(Protocol):
-    is_gyrometer_calibration_ok: bool
-    is_accelerometer_calibration_ok: bool
-    is_magnetometer_calibration_ok: bool
-    is_local_position_ok: bool
-    is_global_position_ok: bool
-    is_home_position_ok: bool
-    is_armable: bool
-
-
 class _Attitude(Protocol):
     roll_deg: float
     pitch_deg: float
@@ -219,16 +209,20 @@ def _odometry(o: _Odometry) -> OdometryValue:
     return OdometryValue((p.x_m, p.y_m, p.z_m), (v.x_m_s, v.y_m_s, v.z_m_s))
 
 
-def _health(h: _Health) -> HealthValue:
-    return HealthValue(
-        bool(h.is_gyrometer_calibration_ok),
-        bool(h.is_accelerometer_calibration_ok),
-        bool(h.is_magnetometer_calibration_ok),
-        bool(h.is_local_position_ok),
-        bool(h.is_global_position_ok),
-        bool(h.is_home_position_ok),
-        bool(h.is_armable),
-    )
+#: MAVSDK's Health fields, in the order of `HealthValue`'s (gyro_ok, accel_ok, mag_ok, ...)
+HEALTH_FIELDS = (
+    "is_gyrometer_calibration_ok",
+    "is_accelerometer_calibration_ok",
+    "is_magnetometer_calibration_ok",
+    "is_local_position_ok",
+    "is_global_position_ok",
+    "is_home_position_ok",
+    "is_armable",
+)
+
+
+def _health(h: object) -> HealthValue:
+    return HealthValue(*(bool(getattr(h, name)) for name in HEALTH_FIELDS))
 
 
 class TelemetryFeed:

@@ -13,13 +13,18 @@
   (``max_sessions``), so one token that never closes its sessions would hold them all;
 - choose per request between a JSON and a streamed answer: the session manager's ``json_response``
   holds for every request (``gateway/mcp/json_answers.py`` answers a request without a progress token
-  as JSON, through the SDK's own entry for single-exchange requests and the manager's own settings).
+  as JSON, through the SDK's own entry for single-exchange requests and the manager's own settings);
+- configure logging without ``rich``: ``MCPServer.__init__`` calls ``configure_logging``, which imports
+  rich's console and logging handler whenever rich is installed (1 MiB of a gateway's memory) and then
+  calls ``logging.basicConfig``, which changes nothing where logging is configured already (the
+  gateway's commands configure it first).
 
 Each use is one function here, so an SDK upgrade that adds a public way changes this file only.
 """
 
 from __future__ import annotations
 
+import logging
 import math
 from collections.abc import Awaitable, Callable
 from typing import Any
@@ -30,6 +35,18 @@ from mcp.server.streamable_http_manager import StreamableHTTPSessionManager
 from starlette.types import Receive, Scope, Send
 
 from gateway.mcp.sdk_types import AnyServer
+
+
+def _configure_plain_logging(level: str = "INFO") -> None:
+    """The SDK's ``configure_logging`` as it is without rich installed: a plain handler on stderr."""
+    logging.basicConfig(level=level, format="%(message)s")
+
+
+def configure_logging_without_rich() -> None:
+    """Servers made after this call configure logging without importing rich."""
+    import mcp.server.mcpserver.server as sdk_server
+
+    sdk_server.configure_logging = _configure_plain_logging  # type: ignore[attr-defined]
 
 
 def tools(server: AnyServer) -> list[Tool]:

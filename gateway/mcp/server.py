@@ -125,6 +125,7 @@ def build_mcp(gateway: Gateway) -> MCPServer[FleetState]:
         async with notifier.running():
             yield FleetState(gateway)
 
+    sdk_private.configure_logging_without_rich()
     server: MCPServer[FleetState] = GatewayMCPServer(
         SERVER_NAME,
         version=package_version(),

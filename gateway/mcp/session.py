@@ -38,10 +38,11 @@ from gateway.fleet.operations.routing import ACTING
 from gateway.fleet.policy.caller import Caller
 from gateway.mcp.access import CallInfo, FleetState, current_call
 from gateway.mcp.sdk_types import CallNext, HandlerResult, RequestContext
+from gateway.registry.audit_kept import SessionSeen
 from gateway.registry.records import AUDIT_OUTCOME_OF_OPERATION, AuditEntry, SessionKind
 from gateway.registry.spool import WRITE_TIMEOUT_S
 from gateway.registry.store import Store
-from gateway.registry.store_audit import AuditCall, SessionSeen
+from gateway.registry.store_audit import AuditCall
 
 log = logging.getLogger(__name__)
 

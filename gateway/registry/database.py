@@ -4,6 +4,8 @@ schema's Alembic migrations (upgrade to head, one upgrade at a time; the head an
 from __future__ import annotations
 
 import asyncio
+import os
+import sys
 import weakref
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -108,6 +110,45 @@ async def upgrade_schema(engine: AsyncEngine, url: str, revision: str = "head") 
         elif conn.dialect.name == "postgresql":  # held until this transaction ends
             await conn.execute(text("SELECT pg_advisory_xact_lock(:key)"), {"key": MIGRATION_LOCK_KEY})
         await conn.run_sync(_run)
+
+
+def in_memory(url: str) -> bool:
+    """True for an SQLite database that lives in its process (nothing another process could open)."""
+    from sqlalchemy.engine import make_url
+
+    parsed = make_url(url)
+    return parsed.drivername.startswith("sqlite") and (
+        parsed.database in (None, "", ":memory:") or "mode=memory" in url
+    )
+
+
+class SchemaUpgradeFailed(RuntimeError):
+    """The child process's upgrade failed; the message is its own one-line error."""
+
+
+async def upgrade_in_child_process(url: str) -> None:
+    """Upgrade the schema at ``url`` to head in a process of its own (``fleet-gateway db upgrade``).
+
+    A process that upgrades in itself keeps Alembic, Mako and their modules loaded for the rest of its
+    life (about 11 MiB of a serving gateway); a child takes them with it when it ends. The URL goes to
+    the child in its environment (``GATEWAY_DATABASE_URL``), never on its command line. Raises
+    SchemaUpgradeFailed with the child's own one-line error when the upgrade fails.
+    """
+    env = dict(os.environ, GATEWAY_DATABASE_URL=url)
+    package_parent = str(PACKAGE_DIR.parent)  # the child imports this very gateway package
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [package_parent, env.get("PYTHONPATH")]))
+    child = await asyncio.create_subprocess_exec(
+        sys.executable, "-m", "gateway.cli", "db", "upgrade",
+        stdin=asyncio.subprocess.DEVNULL,
+        stdout=asyncio.subprocess.DEVNULL,
+        stderr=asyncio.subprocess.PIPE,
+        env=env,
+    )  # fmt: skip
+    _, stderr = await child.communicate()
+    if child.returncode != 0:
+        lines = [line for line in stderr.decode(errors="replace").splitlines() if line.strip()]
+        last = lines[-1].removeprefix("error: ") if lines else f"exit status {child.returncode}"
+        raise SchemaUpgradeFailed(last)
 
 
 def head_revision() -> str:

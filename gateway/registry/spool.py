@@ -20,7 +20,9 @@ The file belongs to one database and one running spool: its first line names the
 digest of its URL), and a spool holds an exclusive lock on it while it has it open. A file kept for
 another database, or in use by another running gateway (two started in one directory with one node id),
 is left as it is, and this spool keeps its writes in memory only (logged): writes are never given to a
-database they were not made for, nor written twice by two spools.
+database they were not made for, nor written twice by two spools. A file of an older version, with kept
+writes but no first line naming their database, is moved aside (``<name>.no-database-<time>``, logged at
+ERROR) and none of its writes is made: nothing tells which database they were for.
 """
 
 from __future__ import annotations
@@ -32,10 +34,11 @@ import hashlib
 import json
 import logging
 import os
+import time
 from collections import deque
 from collections.abc import Awaitable, Callable
 from pathlib import Path
-from typing import Any, TextIO, TypeVar
+from typing import TextIO, TypeVar
 
 import sqlalchemy.exc
 
@@ -50,7 +53,10 @@ WRITE_TIMEOUT_S = 5.0
 LIMIT = 100_000
 #: (kind, JSON data) of a write that can be made again after a restart
 Record = tuple[str, JsonObject]
-Apply = Callable[[str, JsonObject], Awaitable[Any]]
+#: writes a kept record again (its result is not read: nobody waits for a write kept for later)
+Apply = Callable[[str, JsonObject], Awaitable[object]]
+#: a write as it waits in the queue
+Write = Callable[[], Awaitable[object]]
 
 
 def unreachable(exc: BaseException) -> bool:
@@ -88,7 +94,7 @@ class Spool:
         #: the database the kept writes are for (`database_tag`), named in the file's first line
         self.owner = owner
         # (what, write, its number in the file or None)
-        self._queue: deque[tuple[str, Callable[[], Awaitable[Any]], int | None]] = deque()
+        self._queue: deque[tuple[str, Write, int | None]] = deque()
         self._task: asyncio.Task[None] | None = None
         self.dropped = 0
         self.written_late = 0
@@ -117,6 +123,15 @@ class Spool:
                 self._close_file(unlink=False)
                 self.path = None
                 return 0
+            if owner is None and left and self.owner is not None:
+                # a file of an older version: nothing says which database its writes were made for
+                aside = self._set_aside(path)
+                log.error(
+                    "%s holds %d kept writes but does not name their database (a file of an older version): "
+                    "moved to %s, not written; this run keeps its own writes in %s", path, len(left), aside,
+                    path,
+                )  # fmt: skip
+                return 0
             if not left:
                 self._close_file(unlink=True)
                 return 0
@@ -139,6 +154,16 @@ class Spool:
         log.warning("%d writes kept by this node's previous run while the database was unreachable (%s) "
                     "are written first", len(left), path)  # fmt: skip
         return len(left)
+
+    def _set_aside(self, path: Path) -> Path:
+        """Rename the open file beside itself (its writes kept for whoever can tell their database) and
+        let go of it; the path is free for this spool's own writes. The new name."""
+        aside = path.with_name(f"{path.name}.no-database-{int(time.time())}")
+        try:
+            path.rename(aside)  # under this spool's lock: no other spool reads it meanwhile
+        finally:
+            self._close_file(unlink=False)
+        return aside
 
     @staticmethod
     def _read(lines: list[str], path: Path) -> tuple[str | None, list[tuple[int, str, str, JsonObject]]]:
@@ -199,7 +224,7 @@ class Spool:
         self._keep(what, write, record)
         return None
 
-    def _keep(self, what: str, write: Callable[[], Awaitable[Any]], record: Record | None = None) -> None:
+    def _keep(self, what: str, write: Write, record: Record | None = None) -> None:
         number = self._journal(what, record)
         self._queue.append((what, write, number))
         while len(self._queue) > self.limit:
@@ -332,5 +357,5 @@ def _open_locked(path: Path) -> TextIO:
     return file
 
 
-def _bind(apply: Apply, kind: str, data: JsonObject) -> Callable[[], Awaitable[Any]]:
+def _bind(apply: Apply, kind: str, data: JsonObject) -> Write:
     return lambda: apply(kind, data)

@@ -8,13 +8,11 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import dataclasses
 import logging
 import uuid
 from collections.abc import Awaitable, Callable
-from dataclasses import dataclass
 from datetime import UTC, datetime
-from typing import Any, cast, get_args
+from typing import get_args
 
 from sqlalchemy import Insert, func, insert, or_, select, update
 from sqlalchemy.exc import IntegrityError
@@ -22,6 +20,15 @@ from sqlalchemy.ext.asyncio import AsyncEngine, AsyncSession
 from sqlalchemy.sql.elements import ColumnElement
 
 from gateway.errors import InvalidArgument
+from gateway.registry.audit_kept import (
+    CallRowChanges,
+    KeptAudit,
+    KeptAuditBatch,
+    KeptCallEnd,
+    KeptCallRow,
+    KeptOperationEnd,
+    SessionSeen,
+)
 from gateway.registry.models import (
     AuditRow,
     OperationRow,
@@ -38,6 +45,7 @@ from gateway.registry.records import (
     utcnow,
 )
 from gateway.registry.store_core import StoreCore, rowcount
+from gateway.util.json_types import JsonObject
 from gateway.util.text import printable
 
 log = logging.getLogger(__name__)
@@ -48,22 +56,8 @@ AUDIT_BATCH_S = 0.05
 """The longest a queued audit row waits for others to share its transaction (`Store.queue_audit`);
 readers and `close` cut it short."""
 
-#: what a call's later writes may change of the row `AuditCall` wrote before its command was sent
-CALL_ROW_CHANGES = frozenset({"outcome", "error", "duration_ms", "operation_id"})
-
 ENDED_ELSEWHERE_KEPT = 500
 """Outcomes of operations kept only in memory (fleet operations) remembered for audit rows written late."""
-
-
-@dataclass(frozen=True)
-class SessionSeen:
-    """A session seen by one audited call: written with the call's audit row (`Store.queue_audit`)."""
-
-    key: str
-    kind: SessionKind
-    principal: str | None = None
-    client_name: str | None = None
-    client_version: str | None = None
 
 
 class AuditTrail(StoreCore):
@@ -184,7 +178,7 @@ class AuditTrail(StoreCore):
     async def add_audit(self, entry: AuditEntry) -> int | None:
         """Write an audit row; its id, or None when the database is unreachable: the row is kept on this
         node, with its time, and written in order when the database is back."""
-        values = dict(
+        bounded = AuditEntry(
             t=entry.t or utcnow(),
             session_key=entry.session_key and printable(entry.session_key, 200),
             principal=entry.principal and printable(entry.principal, 200),
@@ -197,15 +191,12 @@ class AuditTrail(StoreCore):
             duration_ms=entry.duration_ms,
             operation_id=entry.operation_id,
         )
+        data = KeptAudit(values=bounded).model_dump(mode="json")
+        return await self._kept(f"the audit row of {bounded.action}", "audit", data, self._write_audit)
 
-        t = values["t"]
-        data: dict[str, Any] = {"values": {**values, "t": t.isoformat() if isinstance(t, datetime) else t}}
-        data["call_id"] = uuid.uuid4().hex  # written once, however often the write is tried
-        return cast(int | None, await self._kept(f"the audit row of {values['action']}", "audit", data))
-
-    async def _write_audit(self, data: dict[str, Any]) -> int:
-        values = {**data["values"], "t": datetime.fromisoformat(data["values"]["t"])}
-        call_id = data.get("call_id") or uuid.uuid4().hex  # (a write kept by an older version has none)
+    async def _write_audit(self, data: JsonObject) -> int:
+        kept = KeptAudit.model_validate(data)
+        values, call_id = kept.values.model_dump(), kept.call_id
         statement = self._insert_once().returning(AuditRow.id)
         async with self._sessions.begin() as session:
             row_id = (await session.scalars(statement, [{**values, "call_id": call_id}])).first()
@@ -213,8 +204,8 @@ class AuditTrail(StoreCore):
                 query = select(AuditRow.id).where(AuditRow.call_id == call_id)
                 return int((await session.scalars(query)).one())
         self._audit_written(AuditRecord.model_validate({**values, "id": row_id}))
-        if values["outcome"] == "running" and values["operation_id"] is not None:
-            await self._finish_if_ended(values["operation_id"])
+        if kept.values.outcome == "running" and kept.values.operation_id is not None:
+            await self._finish_if_ended(kept.values.operation_id)
         return int(row_id)
 
     def _insert_once(self) -> Insert:
@@ -288,28 +279,28 @@ class AuditTrail(StoreCore):
         return task
 
     async def _begin_call_row(self, call_id: str, entry: AuditEntry, seen: SessionSeen | None) -> None:
-        data = self._batch_data([(entry, seen)])
-        data["rows"][0]["call_id"] = call_id
+        data = KeptAuditBatch(rows=[KeptCallRow(entry=entry, seen=seen, call_id=call_id)])
         try:  # the database unreachable: kept in the spool (on disk too), in order, with its time
-            await self._kept(f"the audit row of {entry.action}", "audit_batch", data)
+            await self._kept_batch(f"the audit row of {entry.action}", data)
         except Exception:
             log.exception("could not write the audit row of %s", entry.action)
 
-    async def _change_call_row(self, call_id: str, what: str, changes: dict[str, Any]) -> None:
-        data = {"call_id": call_id, "changes": changes}
+    async def _change_call_row(self, call_id: str, what: str, changes: CallRowChanges) -> None:
+        data = KeptCallEnd(call_id=call_id, changes=changes).model_dump(mode="json", exclude_unset=True)
         try:
-            await self._kept(f"the audit row's end of {what}", "audit_call_end", data)
+            await self._kept(f"the audit row's end of {what}", "audit_call_end", data, self._write_call_end)
         except Exception:
             log.exception("could not finish the audit row of %s", what)
 
-    async def _write_call_end(self, data: dict[str, Any]) -> None:
+    async def _write_call_end(self, data: JsonObject) -> None:
         """A call row's later write: its outcome, error, duration and operation; a row left running with
         an operation that has already ended takes that operation's outcome."""
-        changes = {k: v for k, v in dict(data["changes"]).items() if k in CALL_ROW_CHANGES}
+        kept = KeptCallEnd.model_validate(data)
+        changes = kept.changes.model_dump(exclude_unset=True)
         if isinstance(changes.get("error"), str):
             changes["error"] = changes["error"][:AUDIT_MAX_ERROR]
         async with self._sessions.begin() as session:
-            rows = (await session.scalars(select(AuditRow).where(AuditRow.call_id == data["call_id"]))).all()
+            rows = (await session.scalars(select(AuditRow).where(AuditRow.call_id == kept.call_id))).all()
             for row in rows:
                 finished = row.outcome != "running" and changes.get("outcome") == "running"
                 for key, value in changes.items():  # one its operation's end finished keeps that outcome
@@ -329,38 +320,31 @@ class AuditTrail(StoreCore):
             batch, self._audit_queue = self._audit_queue, []
             data = self._batch_data(batch)
             try:  # the database unreachable: kept in the spool, in order, with their times
-                await self._kept(f"{len(batch)} audit rows", "audit_batch", data)
+                await self._kept_batch(f"{len(batch)} audit rows", data)
             except Exception:
                 log.exception("could not write %d audit rows at once; writing them one by one", len(batch))
-                for (entry, _seen), row in zip(batch, data["rows"], strict=True):
+                for (entry, _seen), row in zip(batch, data.rows, strict=True):
                     try:
-                        await self._write_audit_batch_of({"rows": [row]})
+                        await self._write_kept_batch(KeptAuditBatch(rows=[row]))
                     except Exception:
                         log.exception("could not write the audit row of %s", entry.action)
 
     @staticmethod
-    def _batch_data(batch: list[tuple[AuditEntry, SessionSeen | None]]) -> dict[str, Any]:
-        """The rows as the spool keeps them, each with its call's id (its row is written once, however
+    def _batch_data(batch: list[tuple[AuditEntry, SessionSeen | None]]) -> KeptAuditBatch:
+        """The rows as the spool keeps them, each with a fresh call id (its row is written once, however
         often the write is tried)."""
-        return {
-            "rows": [
-                {
-                    "entry": e.model_dump(mode="json"),
-                    "seen": None if s is None else dataclasses.asdict(s),
-                    "call_id": uuid.uuid4().hex,
-                }
-                for e, s in batch
-            ]
-        }
+        return KeptAuditBatch(rows=[KeptCallRow(entry=e, seen=s) for e, s in batch])
 
-    async def _write_audit_batch_of(self, data: dict[str, Any]) -> None:
-        batch = [
-            (AuditEntry.model_validate(r["entry"]), SessionSeen(**r["seen"]) if r["seen"] else None)
-            for r in data["rows"]
-        ]
-        # a write kept by an older version names no call: a fresh id for each of its rows
-        call_ids = [r.get("call_id") or uuid.uuid4().hex for r in data["rows"]]
-        await self._write_audit_batch(batch, call_ids)
+    async def _kept_batch(self, what: str, batch: KeptAuditBatch) -> None:
+        data = batch.model_dump(mode="json")
+        await self._kept(what, "audit_batch", data, self._write_audit_batch_of)
+
+    async def _write_audit_batch_of(self, data: JsonObject) -> None:
+        await self._write_kept_batch(KeptAuditBatch.model_validate(data))
+
+    async def _write_kept_batch(self, kept: KeptAuditBatch) -> None:
+        batch = [(r.entry, r.seen) for r in kept.rows]
+        await self._write_audit_batch(batch, [r.call_id for r in kept.rows])
 
     async def _write_audit_batch(
         self, batch: list[tuple[AuditEntry, SessionSeen | None]], call_ids: list[str]
@@ -389,7 +373,7 @@ class AuditTrail(StoreCore):
     async def _touch_in(session: AsyncSession, key: str, s: SessionSeen, count: int) -> None:
         """Last seen now and ``count`` more requests (the row is made when it is new)."""
         now = utcnow()
-        changes: dict[str, Any] = {
+        changes: dict[str, object] = {
             "last_seen": now,
             "request_count": func.coalesce(SessionRow.request_count, 0) + count,
             "kind": s.kind,
@@ -416,7 +400,7 @@ class AuditTrail(StoreCore):
             )
 
     @staticmethod
-    def _audit_values(entry: AuditEntry) -> dict[str, Any]:
+    def _audit_values(entry: AuditEntry) -> dict[str, object]:
         return {
             "t": entry.t or utcnow(),
             "session_key": entry.session_key and entry.session_key[:200],
@@ -514,18 +498,16 @@ class AuditTrail(StoreCore):
         self._ended_elsewhere[operation_id] = (status, message, ended_at)
         while len(self._ended_elsewhere) > ENDED_ELSEWHERE_KEPT:
             del self._ended_elsewhere[next(iter(self._ended_elsewhere))]
-        data = {
-            "operation_id": operation_id,
-            "status": status,
-            "message": message,
-            "ended_at": ended_at.isoformat(),
-        }
-        await self._kept(f"the end of operation {operation_id}", "operation_end", data)
+        end = KeptOperationEnd(operation_id=operation_id, status=status, message=message, ended_at=ended_at)
+        data = end.model_dump(mode="json")
+        await self._kept(
+            f"the end of operation {operation_id}", "operation_end", data, self._write_operation_end
+        )
 
-    async def _write_operation_end(self, data: dict[str, Any]) -> None:
-        ended = data.get("ended_at")  # a kept write of an older version has none: now is the nearest
-        ended_at = datetime.fromisoformat(ended) if isinstance(ended, str) else utcnow()
-        await self._finish_audit_of(data["operation_id"], data["status"], data["message"], ended_at)
+    async def _write_operation_end(self, data: JsonObject) -> None:
+        end = KeptOperationEnd.model_validate(data)
+        ended_at = end.ended_at or utcnow()  # a kept write of an older version has none: now is the nearest
+        await self._finish_audit_of(end.operation_id, end.status, end.message, ended_at)
 
     async def _finish_audit_of(
         self, operation_id: str, status: str, message: str | None, ended_at: datetime
@@ -578,7 +560,7 @@ class AuditCall:
         if operation_id == self._operation:
             return
         self._operation = operation_id
-        change = self._trail._change_call_row(self.id, self._what, {"operation_id": operation_id})
+        change = self._trail._change_call_row(self.id, self._what, CallRowChanges(operation_id=operation_id))
         self._last = self._trail._call_write(change, self._last)
 
     async def end(
@@ -586,9 +568,9 @@ class AuditCall:
     ) -> bool:
         """The call ended: its outcome (running, naming its operation, while that still runs), error and
         duration; waited for up to ``within_s`` (True when written)."""
-        changes: dict[str, Any] = {"outcome": outcome, "error": error, "duration_ms": duration_ms}
+        changes = CallRowChanges(outcome=outcome, error=error, duration_ms=duration_ms)
         if operation_id is not None:
-            changes["operation_id"] = self._operation = operation_id
+            changes.operation_id = self._operation = operation_id
         change = self._trail._change_call_row(self.id, self._what, changes)
         self._last = self._trail._call_write(change, self._last)
         return await self.written(within_s)

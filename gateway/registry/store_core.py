@@ -7,17 +7,23 @@ import functools
 import logging
 from collections.abc import Awaitable, Callable
 from pathlib import Path
-from typing import Any
+from typing import TypeVar
 
 from sqlalchemy import CursorResult, select
 from sqlalchemy.ext.asyncio import AsyncEngine, async_sessionmaker
 
 from gateway.registry.spool import Spool, database_tag
+from gateway.util.json_types import JsonObject
 
 log = logging.getLogger(__name__)
 
 #: how long a start waits for the writes its previous run kept to reach the database
 KEPT_REPLAY_S = 30.0
+
+T = TypeVar("T")
+#: writes one kind of kept write from its JSON data; what it returns reaches the call that made the write
+#: when it is written at once (a write kept for later returns nothing to anyone)
+KeptWriter = Callable[[JsonObject], Awaitable[object]]
 
 
 class StoreCore:
@@ -31,7 +37,7 @@ class StoreCore:
         #: history writes the database could not take (it was unreachable), written when it is back
         self.spool = Spool(apply=self._apply_kept, owner=database_tag(url))
         #: how each kind of kept write is written (the Store names its tables' writers)
-        self._kept_writers: dict[str, Callable[[dict[str, Any]], Awaitable[Any]]] = {}
+        self._kept_writers: dict[str, KeptWriter] = {}
 
     async def keep_spool_in(self, path: Path) -> int:
         """Keep the writes the database cannot take in ``path`` (JSON lines) as well as in memory, so a
@@ -44,12 +50,17 @@ class StoreCore:
             )
         return left
 
-    async def _kept(self, what: str, kind: str, data: dict[str, Any]) -> Any:
-        """Write now, or keep (``kind``, ``data``: JSON) until the database is back."""
-        write = functools.partial(self._apply_kept, kind, data)
-        return await self.spool.write(what, write, record=(kind, data))
+    async def _kept(
+        self, what: str, kind: str, data: JsonObject, write: Callable[[JsonObject], Awaitable[T]]
+    ) -> T | None:
+        """Write now (``write``, the writer of ``kind``), or keep (``kind``, ``data``: JSON) until the
+        database is back: then None."""
+        if self._kept_writers.get(kind) != write:  # a restart writes it again through the writer of kind
+            raise ValueError(f"a kept write of kind {kind!r} is written by {self._kept_writers.get(kind)!r}, "
+                             f"not by {write!r}")  # fmt: skip
+        return await self.spool.write(what, functools.partial(write, data), record=(kind, data))
 
-    async def _apply_kept(self, kind: str, data: dict[str, Any]) -> Any:
+    async def _apply_kept(self, kind: str, data: JsonObject) -> object:
         writer = self._kept_writers.get(kind)
         if writer is None:
             kinds = ", ".join(sorted(self._kept_writers))

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from datetime import datetime
-from typing import cast
 
 from pydantic import BaseModel
 from sqlalchemy import func, insert, or_, select
@@ -81,8 +80,7 @@ class FlightTables(StoreCore):
             flight_id=flight_id, ended_at=ended_at, duration_s=duration_s, distance_m=distance_m,
             max_alt_rel_m=max_alt_rel_m, battery_used_pct=battery_used_pct,
         ).model_dump(mode="json")  # fmt: skip
-        kept = await self._kept(f"the end of flight {flight_id}", "flight_end", data)
-        return cast(FlightRecord | None, kept)
+        return await self._kept(f"the end of flight {flight_id}", "flight_end", data, self._write_flight_end)
 
     async def _write_flight_end(self, data: JsonObject) -> FlightRecord:
         end = FlightEnd.model_validate(data)
@@ -110,8 +108,11 @@ class FlightTables(StoreCore):
         until the database is back)."""
         if not samples:
             return 0
-        data = {"rows": [s.model_dump(mode="json") for s in samples]}
-        return await self._kept(f"{len(samples)} track samples", "track_samples", data) or 0
+        data: JsonObject = {"rows": [s.model_dump(mode="json") for s in samples]}
+        kept = await self._kept(
+            f"{len(samples)} track samples", "track_samples", data, self._write_track_samples
+        )
+        return kept or 0
 
     async def _write_track_samples(self, data: JsonObject) -> int:
         rows = [TrackSample.model_validate(r).model_dump() for r in _rows(data)]
@@ -122,8 +123,9 @@ class FlightTables(StoreCore):
     async def add_status_texts(self, items: Sequence[StatusTextIn]) -> int:
         if not items:
             return 0
-        data = {"rows": [i.model_dump(mode="json") for i in items]}
-        return await self._kept(f"{len(items)} status texts", "status_texts", data) or 0
+        data: JsonObject = {"rows": [i.model_dump(mode="json") for i in items]}
+        kept = await self._kept(f"{len(items)} status texts", "status_texts", data, self._write_status_texts)
+        return kept or 0
 
     async def _write_status_texts(self, data: JsonObject) -> int:
         rows = [StatusTextIn.model_validate(r).model_dump() for r in _rows(data)]

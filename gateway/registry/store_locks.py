@@ -6,7 +6,7 @@ from __future__ import annotations
 import logging
 from collections.abc import Callable
 from datetime import datetime
-from typing import Any, TypeVar, cast
+from typing import TypeVar
 
 from sqlalchemy import delete, select
 
@@ -16,6 +16,7 @@ from gateway.registry.models import (
 )
 from gateway.registry.records import LockRecord
 from gateway.registry.store_core import StoreCore, rowcount
+from gateway.util.json_types import JsonObject
 
 log = logging.getLogger(__name__)
 
@@ -47,18 +48,25 @@ class LockTables(StoreCore):
     async def save_lock(self, scope: str, reason: str, by: str, locked_at: datetime) -> LockRecord | None:
         """Store (or replace) the lock of ``scope``; None when the database is unreachable (it is
         stored, in order, when the database is back)."""
-        data = {"scope": scope, "reason": reason, "by": by[:200], "locked_at": locked_at.isoformat()}
-        return cast(LockRecord | None, await self._kept(f"the lock of {scope}", "lock", data))
+        data: JsonObject = {
+            "scope": scope,
+            "reason": reason,
+            "by": by[:200],
+            "locked_at": locked_at.isoformat(),
+        }
+        return await self._kept(f"the lock of {scope}", "lock", data, self._write_lock)
 
-    async def _write_lock(self, data: dict[str, Any]) -> LockRecord | None:
+    async def _write_lock(self, data: JsonObject) -> LockRecord | None:
         return await self._put(LockRow, "lock", data)
 
     async def delete_lock(self, scope: str) -> bool:
         """Remove the lock of ``scope``; False when there was none (or the database is unreachable:
         then it is removed when the database is back)."""
-        return bool(await self._kept(f"the unlock of {scope}", "unlock", {"scope": scope}))
+        return bool(
+            await self._kept(f"the unlock of {scope}", "unlock", {"scope": scope}, self._write_unlock)
+        )
 
-    async def _write_unlock(self, data: dict[str, Any]) -> bool:
+    async def _write_unlock(self, data: JsonObject) -> bool:
         return await self._remove(LockRow, data)
 
     async def list_locks(self) -> list[LockRecord]:
@@ -71,22 +79,27 @@ class LockTables(StoreCore):
     ) -> LockRecord | None:
         """Store (or replace) the takeover lock of a drone; None when the database is unreachable (it is
         stored, in order, when the database is back)."""
-        data = {"vehicle_id": vehicle_id, "reason": reason, "by": by[:200]} | {
-            "locked_at": locked_at.isoformat()
+        data: JsonObject = {
+            "vehicle_id": vehicle_id,
+            "reason": reason,
+            "by": by[:200],
+            "locked_at": locked_at.isoformat(),
         }
-        kept = await self._kept(f"the takeover lock of {vehicle_id}", "takeover", data)
-        return cast(LockRecord | None, kept)
+        return await self._kept(f"the takeover lock of {vehicle_id}", "takeover", data, self._write_takeover)
 
-    async def _write_takeover(self, data: dict[str, Any]) -> LockRecord | None:
+    async def _write_takeover(self, data: JsonObject) -> LockRecord | None:
         return await self._put(TakeoverRow, "takeover", data)
 
     async def delete_takeover(self, vehicle_id: str) -> bool:
         """Remove a drone's takeover lock; False when there was none (or the database is unreachable:
         then it is removed when the database is back)."""
-        data = {"vehicle_id": vehicle_id}
-        return bool(await self._kept(f"the release of {vehicle_id}", "takeover_release", data))
+        data: JsonObject = {"vehicle_id": vehicle_id}
+        kept = await self._kept(
+            f"the release of {vehicle_id}", "takeover_release", data, self._write_takeover_release
+        )
+        return bool(kept)
 
-    async def _write_takeover_release(self, data: dict[str, Any]) -> bool:
+    async def _write_takeover_release(self, data: JsonObject) -> bool:
         return await self._remove(TakeoverRow, data)
 
     async def list_takeovers(self) -> list[LockRecord]:
@@ -94,12 +107,11 @@ class LockTables(StoreCore):
 
     # --- either table ----------------------------------------------------------------------------------
 
-    async def _put(self, table: type[_Row], family: str, data: dict[str, Any]) -> LockRecord | None:
+    async def _put(self, table: type[_Row], family: str, data: JsonObject) -> LockRecord | None:
         """Insert or replace the lock ``data`` (as spooled: its key, reason, by, ISO locked_at); None
         when it was undone since it was made (not written)."""
-        key_name = _KEY[table]
-        key, reason, by = data[key_name], data["reason"], data["by"]
-        locked_at = datetime.fromisoformat(data["locked_at"])
+        key, reason, by, at = (_text(data, name) for name in (_KEY[table], "reason", "by", "locked_at"))
+        key_name, locked_at = _KEY[table], datetime.fromisoformat(at)
         if self._undone(family, key, locked_at):
             return None
         async with self._sessions.begin() as session:
@@ -110,10 +122,11 @@ class LockTables(StoreCore):
                 row.reason, row.locked_by, row.locked_at = reason, by, locked_at
         return LockRecord(scope=key, reason=reason, by=by, locked_at=locked_at)
 
-    async def _remove(self, table: type[_Row], data: dict[str, Any]) -> bool:
+    async def _remove(self, table: type[_Row], data: JsonObject) -> bool:
         key_name = _KEY[table]
+        key = _text(data, key_name)
         async with self._sessions.begin() as session:
-            result = await session.execute(delete(table).where(getattr(table, key_name) == data[key_name]))
+            result = await session.execute(delete(table).where(getattr(table, key_name) == key))
             return bool(rowcount(result))
 
     async def _all(self, table: type[_Row]) -> list[LockRecord]:
@@ -124,3 +137,11 @@ class LockTables(StoreCore):
                 LockRecord(scope=getattr(r, key_name), reason=r.reason, by=r.locked_by, locked_at=r.locked_at)
                 for r in rows
             ]
+
+
+def _text(data: JsonObject, name: str) -> str:
+    """The text ``name`` of a kept lock's data; ValueError (the write is refused) when it holds none."""
+    value = data.get(name)
+    if not isinstance(value, str):
+        raise ValueError(f"a kept lock holds {name} as text; got {value!r}")
+    return value

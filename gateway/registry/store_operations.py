@@ -18,7 +18,8 @@ class OperationTable(AuditTrail):
     async def save_operation(self, op: OperationRecord) -> OperationRecord:
         """Insert or update; an operation that has ended also finishes the audit rows of the calls that
         left it running (whichever node ends it: its owner, or the node that took the drone over)."""
-        await self._kept(f"operation {op.id} ({op.status})", "operation", {"op": op.model_dump(mode="json")})
+        data: JsonObject = {"op": op.model_dump(mode="json")}
+        await self._kept(f"operation {op.id} ({op.status})", "operation", data, self._write_operation)
         return op
 
     async def _write_operation(self, data: JsonObject) -> None:

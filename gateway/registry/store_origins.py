@@ -3,12 +3,10 @@ or where an operator moved it; kept across restarts."""
 
 from __future__ import annotations
 
-from typing import cast
-
 from sqlalchemy import select
 
 from gateway.registry.models import OriginRow
-from gateway.registry.records import Origin, OriginSource
+from gateway.registry.records import ORIGIN_SOURCES, Origin, OriginSource
 from gateway.registry.store_core import StoreCore
 
 
@@ -18,10 +16,18 @@ def _origin(row: OriginRow) -> Origin:
         lat=row.lat,
         lon=row.lon,
         alt_amsl_m=row.alt_amsl_m,
-        source=cast(OriginSource, row.source),
+        source=_source(row.source),
         set_by=row.set_by,
         set_at=row.set_at,
     )
+
+
+def _source(stored: str) -> OriginSource:
+    """A row's source as the model names it; ValueError for one no version of the gateway writes."""
+    for source in ORIGIN_SOURCES:
+        if stored == source:
+            return source
+    raise ValueError(f"vehicle_origins.source: {stored!r} is not one of {', '.join(ORIGIN_SOURCES)}")
 
 
 class OriginTable(StoreCore):

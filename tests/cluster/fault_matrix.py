@@ -3,7 +3,8 @@ stop is sent through (every node that survives the fault), shared by tests/clust
 (which asserts) and bench/cluster_matrix.py (which prints the figures).
 
 Two nodes, four simulated drones in the air (two owned by each), every node's NATS and PostgreSQL
-connections through proxies the case controls (cut, or delayed: a slow database). Each case:
+connections through proxies the case controls (cut, or delayed: a slow database), which run in a process
+of their own (`tests.cluster.proxies`). Each case:
 
 1. the fault (:data:`MATRIX`);
 2. an agent's move through the stopping node for a drone the other node owns: it must be answered in
@@ -28,7 +29,7 @@ import contextlib
 import os
 import signal
 import time
-from collections.abc import AsyncIterator, Iterator
+from collections.abc import AsyncIterator
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
@@ -38,7 +39,6 @@ from urllib.parse import urlparse
 from tests.cluster.harness import (
     Cluster,
     Node,
-    SlowProxy,
     cluster,
     freeze,
     kill_nats,
@@ -49,7 +49,7 @@ from tests.cluster.harness import (
     wait_node_ready,
     wait_spread,
 )
-from tests.helpers.tcpproxy import TcpProxy
+from tests.cluster.proxies import RemoteProxy, proxy_process
 from tests.helpers.timing import eventually, scaled
 from tests.persist.pg import PostgresServer, restartable_postgres
 from tests.registry.procs import mavsdk_servers_of
@@ -88,8 +88,8 @@ CUT_SHORT = "not finished: node"
 class Rig:
     c: Cluster
     pg: PostgresServer
-    nats_proxies: dict[str, TcpProxy]
-    db_proxies: dict[str, SlowProxy]
+    nats_proxies: dict[str, RemoteProxy]
+    db_proxies: dict[str, RemoteProxy]
 
     def inject(self, fault: str) -> None:
         c, pg = self.c, self.pg
@@ -195,33 +195,21 @@ def _wait_gone(pg: PostgresServer) -> None:
         time.sleep(0.1)
 
 
-@contextlib.contextmanager
-def _proxies() -> Iterator[list[TcpProxy]]:
-    made: list[TcpProxy] = []
-    try:
-        yield made
-    finally:
-        for proxy in made:
-            proxy.close()
-
-
 @contextlib.asynccontextmanager
 async def rig(workdir: Path) -> AsyncIterator[Rig]:
     """The cluster of a case: PostgreSQL the case can kill and freeze, and every node's connections to
     NATS and PostgreSQL through proxies of its own."""
-    with restartable_postgres() as pg, _proxies() as made:
-        nats_proxies: dict[str, TcpProxy] = {}
-        db_proxies: dict[str, SlowProxy] = {}
+    with restartable_postgres() as pg, proxy_process() as proxies:
+        nats_proxies: dict[str, RemoteProxy] = {}
+        db_proxies: dict[str, RemoteProxy] = {}
 
         def nats_via(name: str, url: str) -> str:
-            proxy = nats_proxies[name] = TcpProxy("127.0.0.1", urlparse(url).port or 4222)
-            made.append(proxy)
+            proxy = nats_proxies[name] = proxies.open("127.0.0.1", urlparse(url).port or 4222)
             return f"nats://127.0.0.1:{proxy.port}"
 
         def database_via(name: str, url: str) -> str:
             port = urlparse(url.replace("postgresql+asyncpg", "postgresql")).port or 5432
-            proxy = db_proxies[name] = SlowProxy("127.0.0.1", port)
-            made.append(proxy)
+            proxy = db_proxies[name] = proxies.open("127.0.0.1", port)
             return url.replace(f":{port}/", f":{proxy.port}/")
 
         async with cluster(

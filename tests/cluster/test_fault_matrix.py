@@ -14,10 +14,16 @@ import pytest_asyncio
 
 from tests.cluster.fault_matrix import CASES, Rig, rig, run_case
 from tests.cluster.harness import missing_engines
+from tests.helpers.timing import scaled
 from tests.persist.pg import find_pg_bin
+
+#: one case's bound: the cluster's start (the first case), the preparation (the drones on the ground, the
+#: fleet unlocked, spread two and two), the case and the recovery each wait on deadlines of their own
+CASE_LIMIT_S = 480
 
 pytestmark = [
     pytest.mark.asyncio(loop_scope="module"),
+    pytest.mark.timeout(scaled(CASE_LIMIT_S)),
     pytest.mark.skipif(missing_engines() is not None, reason=str(missing_engines())),
     pytest.mark.skipif(
         not (find_pg_bin("initdb") and find_pg_bin("postgres")),

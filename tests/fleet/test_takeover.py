@@ -417,3 +417,48 @@ async def test_a_pilot_switch_right_after_a_goto_in_the_same_mode_is_a_takeover(
     with pytest.raises(SafetyRefusal) as refused:
         await c.move_relative(AGENT, "d1", 10.0, 0.0)
     assert refused.value.rule == "taken_over"
+
+
+async def test_a_drone_landing_while_its_takeover_is_stored_ends_the_goto_interrupted(
+    gateway: Gateway, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """ArduCopter's LOITER without RC throttle sinks: after a pilot's switch the drone may be down before
+    the takeover's lock is in the database (a busy disk). The goto still ends `interrupted` naming the
+    switch, never `failed` for the landing the switch caused."""
+    d1 = fake(gateway, "d1")
+    goto_id = await flying_goto(gateway)
+    store = gateway.require_store()
+    storing, stored = asyncio.Event(), asyncio.Event()
+    save_takeover = store.save_takeover
+
+    async def slow_save_takeover(*args: object, **kwargs: object) -> None:
+        storing.set()
+        await stored.wait()
+        await save_takeover(*args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(store, "save_takeover", slow_save_takeover)
+    ops = gateway.operations
+    assert ops is not None
+    tracker = ops.tracker(goto_id)
+    assert tracker is not None
+    polls = 0
+    poll = tracker.poll
+
+    async def counted(vehicle: object) -> object:
+        nonlocal polls
+        polls += 1
+        return await poll(vehicle)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(tracker, "poll", counted)
+    waiter = asyncio.create_task(gateway.commander.wait(goto_id, 60))
+    pilot_switch(d1, "LOITER")
+    await asyncio.wait_for(storing.wait(), scaled(5))
+    d1.set(in_air=False, landed_state="ON_GROUND")  # down, still armed, the lock not yet stored
+    landed_at = polls
+    await until(lambda: polls >= landed_at + 3 or waiter.done(), "the goto's monitor seeing it landed")
+    assert not waiter.done(), waiter.result()  # ended before its takeover was stored: as failed
+    stored.set()
+    view = await asyncio.wait_for(waiter, scaled(5))
+    assert view.status == "interrupted", view
+    assert "from GUIDED to LOITER: a pilot or another ground station took control" in view.message
+    assert [t.scope for t in await store.list_takeovers()] == ["d1"]

@@ -1,13 +1,18 @@
 """A spool file belongs to one database and one running spool: a file kept for another database is left
 as it is (never written into this one), and a file another running spool holds is not shared (two
-gateways started in one directory with one node id); either way this spool keeps its writes in memory."""
+gateways started in one directory with one node id); either way this spool keeps its writes in memory.
+A file of an older version, which does not name its database, is moved aside with none of its writes
+made."""
 
 from __future__ import annotations
 
 import functools
 import json
+import logging
 from pathlib import Path
 from typing import Any
+
+import pytest
 
 from gateway.registry.spool import Spool
 
@@ -30,6 +35,10 @@ async def keep(spool: Spool, db: Database, count: int) -> None:
         data = {"i": i}
         write = functools.partial(db.apply, "row", data)
         assert await spool.write(f"row {i}", write, record=("row", data)) is None
+
+
+def listing(folder: Path) -> list[Path]:
+    return sorted(folder.iterdir())
 
 
 def kept_lines(path: Path) -> list[dict[str, Any]]:
@@ -96,3 +105,47 @@ async def test_a_file_a_spool_opens_for_its_first_kept_write_is_locked_too(tmp_p
     assert [x.get("n") for x in kept_lines(path)] == [None, 0]
     await first.close()
     await second.close()
+
+
+async def test_a_file_that_does_not_name_its_database_is_set_aside_unwritten(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    """A file of an older version (kept writes, no first line naming their database): none of its writes
+    is made, the file is moved aside whole, and this spool keeps its own writes at the path."""
+    path = tmp_path / "spool.jsonl"
+    old = [{"n": 0, "what": "row 0", "kind": "row", "data": {"i": 100}},
+           {"n": 1, "what": "row 1", "kind": "row", "data": {"i": 101}}, {"done": 0}]  # fmt: skip
+    path.write_text("".join(json.dumps(x) + "\n" for x in old))
+    before = path.read_text()
+    db = Database()
+    db.down = False
+    spool = Spool(apply=db.apply, owner="db")
+    with caplog.at_level(logging.ERROR, logger="gateway.spool"):
+        assert await spool.attach(path) == 0
+    assert db.written == []
+    aside = [p for p in listing(tmp_path) if p.name.startswith("spool.jsonl.no-database-")]
+    assert len(aside) == 1 and aside[0].read_text() == before
+    assert not path.exists()
+    lines = [r.getMessage() for r in caplog.records if r.name == "gateway.spool"]
+    assert len(lines) == 1 and "does not name their database" in lines[0] and str(aside[0]) in lines[0]
+
+    db.down = True
+    await keep(spool, db, 1)  # its own write, in a file of its own at the path, named for its database
+    assert spool.path == path and kept_lines(path) == [
+        {"database": "db"},
+        {"n": 0, "what": "row 0", "kind": "row", "data": {"i": 0}},
+    ]
+    db.down = False
+    assert await spool.flush(10.0)
+    assert db.written == [("row", {"i": 0})]
+    await spool.close()
+    assert not path.exists() and aside[0].read_text() == before
+
+
+async def test_an_older_file_with_nothing_left_to_write_is_removed(tmp_path: Path) -> None:
+    path = tmp_path / "spool.jsonl"
+    path.write_text(json.dumps({"n": 0, "what": "row 0", "kind": "row", "data": {}}) + "\n" + '{"done": 0}\n')
+    spool = Spool(apply=Database().apply, owner="db")
+    assert await spool.attach(path) == 0
+    assert listing(tmp_path) == []
+    await spool.close()

@@ -8,6 +8,7 @@ import signal
 import socket
 import subprocess
 import sys
+import threading
 import time
 
 import pytest
@@ -94,6 +95,38 @@ async def test_kill_9_is_restarted(stopper: list[Sidecar]) -> None:
         assert car.info.restarts == 1
         assert down and "code -9" in down[0]
         assert not alive(first)
+
+
+def _pidfd_works() -> bool:
+    try:
+        os.close(os.pidfd_open(os.getpid()))
+    except (AttributeError, OSError):
+        return False
+    return True
+
+
+def _waiter_threads() -> int:
+    """asyncio's ThreadedChildWatcher names each thread that waits for a child ``asyncio-waitpid-N``."""
+    return sum(1 for thread in threading.enumerate() if "waitpid-" in thread.name)
+
+
+@pytest.mark.skipif(not _pidfd_works(), reason="no pidfd_open on this kernel")
+async def test_a_sidecar_is_waited_for_on_the_event_loop_not_by_a_thread(stopper: list[Sidecar]) -> None:
+    udp = free_udp_port()
+    down: list[str] = []
+    car = Sidecar("delta", f"udpin://127.0.0.1:{udp}", _settings(), on_down=down.append)
+    stopper.append(car)
+    threads_before = _waiter_threads()
+    async with HeartbeatVehicle(udp):
+        car.start()
+        assert await car.wait_serving(WAIT)
+        assert _waiter_threads() <= threads_before  # no thread of its own waits for this sidecar
+        first = car.pid
+        assert first is not None
+        os.kill(first, signal.SIGKILL)  # and its end is still seen: it is restarted
+        await _wait_for(lambda: car.pid not in (None, first) and car.state == SidecarState.SERVING)
+        assert down and "code -9" in down[0]
+        assert _waiter_threads() <= threads_before
 
 
 async def test_stop_right_after_start_leaves_nothing() -> None:

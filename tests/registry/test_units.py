@@ -10,6 +10,7 @@ from pydantic import ValidationError
 
 from gateway.errors import InvalidArgument
 from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
+from gateway.fleet.dialects.base import mission_progress
 from gateway.fleet.dialects.modes import require_mode
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem
@@ -250,16 +251,16 @@ def test_mission_progress_is_counted_in_user_items_per_dialect() -> None:
     ap = ARDUPILOT.encode_mission(items, HOME)
     px = PX4_DIALECT.encode_mission(items, HOME)
     # MISSION_CURRENT on ArduPilot: seq 2 of total 2 (home left out) is the second user item
-    assert ARDUPILOT.mission_progress(2, 2, ap, False, from_mission_current=True) == MissionProgressValue(
+    assert mission_progress(ARDUPILOT, 2, 2, ap, False, from_mission_current=True) == MissionProgressValue(
         2, 2
     )
-    assert ARDUPILOT.mission_progress(1, 3, ap, False, from_mission_current=False).current == 1
-    assert PX4_DIALECT.mission_progress(0, 2, px, False, from_mission_current=True) == MissionProgressValue(
+    assert mission_progress(ARDUPILOT, 1, 3, ap, False, from_mission_current=False).current == 1
+    assert mission_progress(PX4_DIALECT, 0, 2, px, False, from_mission_current=True) == MissionProgressValue(
         1, 2
     )
-    assert PX4_DIALECT.mission_progress(1, 2, None, True, from_mission_current=False) == MissionProgressValue(
-        2, 2, True
-    )
+    assert mission_progress(
+        PX4_DIALECT, 1, 2, None, True, from_mission_current=False
+    ) == MissionProgressValue(2, 2, True)
     assert PX4_DIALECT.mission_rejection("Mission rejected: takeoff not first waypoint item")
     assert not ARDUPILOT.mission_rejection("Mission rejected: whatever")  # ArduPilot says it in the ACK
 
@@ -317,6 +318,25 @@ async def test_a_booting_autopilots_zero_or_nan_position_is_never_cached() -> No
         )
     finally:
         await feed.stop()
+
+
+def test_mavsdk_health_fields_land_in_health_value_by_their_meaning() -> None:
+    """Each of MAVSDK's Health flags fills the HealthValue field of the same meaning (the conversion is
+    one table in field order)."""
+    from dataclasses import fields
+    from types import SimpleNamespace
+
+    from gateway.link.telemetry import HealthValue
+    from gateway.link.telemetry_feed import HEALTH_FIELDS, _health
+
+    assert len(HEALTH_FIELDS) == len(fields(HealthValue))
+    for n, name in enumerate(HEALTH_FIELDS):
+        item = SimpleNamespace(**{other: other == name for other in HEALTH_FIELDS})
+        value = _health(item)
+        ours = fields(HealthValue)[n].name
+        assert [f.name for f in fields(HealthValue) if getattr(value, f.name)] == [ours]
+        words = ours.removesuffix("_ok").removeprefix("is_").split("_")
+        assert all(w[:3] in name for w in words), (name, ours)
 
 
 async def test_telemetry_rates_follow_the_drone_between_rest_and_active() -> None:

@@ -48,6 +48,23 @@ class Waypoint(BaseModel):
     speed_mps: Annotated[float | None, Field(gt=0, le=50, allow_inf_nan=False)] = None
 
 
+#: each field of a `Waypoint` (a mission item in a caller's words, the units in the names) and the
+#: `MissionItem` field it is; the mission tools present a drone's items in the same words
+ITEM_FIELDS = {
+    "lat_deg": "lat",
+    "lon_deg": "lon",
+    "alt_m": "alt_rel_m",
+    "kind": "kind",
+    "hold_s": "hold_s",
+    "speed_mps": "speed_mps",
+}
+
+
+def in_caller_words(item: object) -> dict[str, object]:
+    """A `MissionItem`'s fields under a caller's names (those of `Waypoint`)."""
+    return {name: getattr(item, field) for name, field in ITEM_FIELDS.items()}
+
+
 Waypoints = Annotated[list[Waypoint], Field(min_length=1, max_length=MISSION_ITEMS, description="Items 1..N")]
 OptionalWaypoints = Annotated[
     list[Waypoint] | None, Field(max_length=MISSION_ITEMS, description="Upload first")

@@ -15,6 +15,7 @@ from pydantic import Field
 from gateway.errors import InvalidArgument
 from gateway.fleet import geo
 from gateway.fleet.commands.arguments import (
+    ITEM_FIELDS,
     DroneId,
     ItemIndex,
     OptionalWaypoints,
@@ -54,14 +55,7 @@ def mission_items(waypoints: Sequence[Waypoint]) -> list[MissionItem]:
         if w.kind in ("waypoint", "loiter_time") and w.alt_m <= 0:
             raise InvalidArgument(f"waypoint {n}: alt_m must be above 0 m above home")
     return [
-        MissionItem(
-            lat=w.lat_deg,
-            lon=w.lon_deg,
-            alt_rel_m=w.alt_m,
-            kind=w.kind,
-            hold_s=w.hold_s,
-            speed_mps=w.speed_mps,
-        )
+        MissionItem.model_validate({ITEM_FIELDS[name]: given for name, given in w.model_dump().items()})
         for w in waypoints
     ]
 

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Awaitable, Callable, Mapping, Sequence
 
-from gateway.fleet.dialects.base import LinkOps, UserNumbering, matches_any, reader
+from gateway.fleet.dialects.base import LinkOps, matches_any, reader
 from gateway.fleet.dialects.mission_semantics import arducopter_mission
 from gateway.fleet.dialects.modes import (
     COMMON_MODES,
@@ -149,7 +149,7 @@ LIMIT_PARAMS: dict[str, ParamLimit] = {
 }
 
 
-class ArduPilot(UserNumbering):
+class ArduPilot:
     """The ArduCopter dialect (also used for a link whose autopilot is not known yet)."""
 
     name = "ArduCopter"

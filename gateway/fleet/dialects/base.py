@@ -92,17 +92,10 @@ class DialectReads(Protocol):
         ...
 
     # --- missions ------------------------------------------------------------------------------------
-    def mission_progress(
-        self,
-        current_seq: int,
-        total: int,
-        plan: WirePlan | None,
-        finished: bool,
-        *,
-        from_mission_current: bool,
-    ) -> MissionProgressValue:
-        """Wire progress in user item numbers. ``total`` is MAVSDK's wire count or, with
-        ``from_mission_current``, MISSION_CURRENT.total (which leaves ArduPilot's home out)."""
+    @property
+    def first_user_seq(self) -> int:
+        """The wire seq of the user's item 1: 1 behind ArduPilot's home slot, else 0 (progress is
+        counted from it: `mission_progress`)."""
         ...
 
     # --- parameters ----------------------------------------------------------------------------------
@@ -173,31 +166,20 @@ class Dialect(DialectReads, Protocol):
         ...
 
 
-class UserNumbering:
-    """``mission_progress`` of a dialect whose user item 1 is wire seq ``first_user_seq`` (1 behind
-    ArduPilot's home slot, else 0)."""
-
-    first_user_seq: int = 0
-
-    def mission_progress(
-        self,
-        current_seq: int,
-        total: int,
-        plan: WirePlan | None,
-        finished: bool,
-        *,
-        from_mission_current: bool,
-    ) -> MissionProgressValue:
-        # MISSION_CURRENT.total leaves a home slot out
-        wire_total = total + self.first_user_seq if from_mission_current else total
-        return user_progress(current_seq, wire_total, plan, finished, first_user_seq=self.first_user_seq)
-
-
-def user_progress(
-    current_seq: int, wire_total: int, plan: WirePlan | None, finished: bool, first_user_seq: int
+def mission_progress(
+    dialect: DialectReads,
+    current_seq: int,
+    total: int,
+    plan: WirePlan | None,
+    finished: bool,
+    *,
+    from_mission_current: bool,
 ) -> MissionProgressValue:
-    """Progress in user numbers: ``first_user_seq`` is the wire seq of user item 1 (1 behind a home
-    slot, else 0); ``plan`` (when known) maps DO_CHANGE_SPEED items to the item they belong to."""
+    """Wire progress in the user's item numbers. ``total`` is MAVSDK's wire count or, with
+    ``from_mission_current``, MISSION_CURRENT.total (which leaves ArduPilot's home out); ``plan`` (when
+    known) maps DO_CHANGE_SPEED items to the item they belong to."""
+    first_user_seq = dialect.first_user_seq
+    wire_total = total + first_user_seq if from_mission_current else total
     if plan is None:
         user_total = max(0, wire_total - first_user_seq)
         user = min(max(0, current_seq - first_user_seq + 1), user_total)

@@ -20,7 +20,7 @@ from __future__ import annotations
 from collections.abc import Awaitable, Callable, Mapping, Sequence
 
 from gateway.errors import CommandFailed
-from gateway.fleet.dialects.base import LinkOps, UserNumbering, matches_any, reader
+from gateway.fleet.dialects.base import LinkOps, matches_any, reader
 from gateway.fleet.dialects.mission_semantics import px4_mission
 from gateway.fleet.dialects.modes import (
     COMMON_MODES,
@@ -129,10 +129,11 @@ LIMIT_PARAMS: dict[str, ParamLimit] = {
 }
 
 
-class PX4(UserNumbering):
+class PX4:
     """The PX4 dialect."""
 
     name = "PX4"
+    first_user_seq = 0  # no home slot: the user's item 1 is seq 0
     skipped_streams = frozenset({"raw_imu"})
     follows_events = True
     arming_mode: str | None = None

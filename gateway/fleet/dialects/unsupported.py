@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from gateway.fleet.dialects.base import UserNumbering, reader
+from gateway.fleet.dialects.base import reader
 from gateway.fleet.dialects.modes import ModeChoice
 from gateway.fleet.policy.mission_check import MissionSemantics
 from gateway.fleet.policy.param_limits import ParamLimit
@@ -29,9 +29,10 @@ def autopilot_label(mav_autopilot: int) -> str:
     return f"{entry.name} ({mav_autopilot})"
 
 
-class Unsupported(UserNumbering):
+class Unsupported:
     """The reads of an autopilot no dialect is registered for; it implements ``DialectReads`` only."""
 
+    first_user_seq = 0
     skipped_streams: frozenset[str] = frozenset()
     follows_events = False
     return_altitude_params: tuple[tuple[str, float], ...] = ()

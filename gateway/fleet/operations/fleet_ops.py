@@ -27,6 +27,8 @@ import uuid
 from collections.abc import Awaitable, Callable, Iterable, Mapping, Sequence
 from datetime import UTC, datetime
 
+from pydantic import TypeAdapter
+
 from gateway.errors import GatewayError, NotFound
 from gateway.fleet.operations.fleet_operation import FLEET_CALLER, FleetOperation, Member, SlotSummary
 from gateway.fleet.operations.fleet_steps import Phase, Step, StepSpec
@@ -36,9 +38,11 @@ from gateway.fleet.operations.routing import Router
 from gateway.fleet.operations.step_mirror import follow, mirror_view
 from gateway.fleet.operations.views import OperationView
 from gateway.fleet.policy.caller import Caller
-from gateway.util.json_types import JsonObject
+from gateway.util.json_types import JsonObject, JsonValue
 
 log = logging.getLogger(__name__)
+
+_STEP_SPEC = TypeAdapter(StepSpec)
 
 POLL_S = 0.2
 """How often a running fleet operation looks at its drones' operations."""
@@ -198,7 +202,9 @@ class FleetOperations:
                 raise RuntimeError("fleet steps are not bound to a command pass (run_steps_with)")
             return await self._run_here(fop.caller, drone_id, step.spec)
         started = OperationView.model_validate(
-            await router.call(drone_id, "run_step", fop.caller, {"drone_id": drone_id, "spec": step.spec})
+            await router.call(
+                drone_id, "run_step", fop.caller, {"drone_id": drone_id, "spec": _json_spec(step.spec)}
+            )
         )
         mirror = Operation(
             id=started.operation_id,
@@ -411,3 +417,9 @@ class FleetOperations:
         finished = [k for k, f in self._ops.items() if f.finished]
         for key in finished[: max(0, len(finished) - MAX_FINISHED_KEPT)]:
             del self._ops[key]
+
+
+def _json_spec(spec: StepSpec) -> JsonValue:
+    """A step's spec as the JSON a routed call carries to the drone's owner."""
+    json_spec: JsonValue = _STEP_SPEC.dump_python(spec, mode="json")
+    return json_spec

@@ -85,6 +85,8 @@ class ModeWatch:
         self._finders: dict[str, asyncio.Task[None]] = {}  # after a restart: is the vehicle flying?
         #: when an operation's latest command (its leg) was sent (the manager sets it)
         self.sent_at: dict[str, float] = {}
+        #: operations whose takeover is being recorded: they end interrupted once the lock is stored
+        self._taking: set[str] = set()
 
     def expect(
         self,
@@ -118,6 +120,17 @@ class ModeWatch:
     def expected(self, vehicle_id: str) -> ModeExpectation | None:
         return self._expected.get(vehicle_id)
 
+    def taking(self, operation_id: str) -> bool:
+        """A takeover of the operation is being recorded (the drone is locked; the operation ends as
+        interrupted once the lock is stored): nothing else may end it meanwhile."""
+        return operation_id in self._taking
+
+    async def judge(self, vehicle: FlyingVehicle) -> None:
+        """Judge the vehicle's mode now (the watch does it every POLL_S): called before an operation
+        ends as failed, since a pilot's switch (LOITER without throttle sinks and lands) explains the
+        failure and is what the caller must hear."""
+        await self._judge_mode(vehicle)
+
     def forget(self, vehicle_id: str) -> None:
         """The gateway commands nothing the mode shows (a takeover, kill): nothing more is judged."""
         self._expected.pop(vehicle_id, None)
@@ -137,16 +150,10 @@ class ModeWatch:
 
     async def _found_flying(self, vehicle: FlyingVehicle) -> None:
         try:
-            deadline = time.monotonic() + FOUND_FLYING_WAIT_S
-            while (heard := vehicle.heartbeat_mode()) is None or (
-                heard[1] and vehicle.on_ground(fresh=False) is None
-            ):
-                if time.monotonic() > deadline:
-                    log.info(
-                        "%s: no HEARTBEAT after the restart; its mode watch waits for a command", vehicle.id
-                    )
-                    return
-                await asyncio.sleep(POLL_S)
+            heard = await _heard_after_restart(vehicle)
+            if heard is None:
+                log.info("%s: no HEARTBEAT after the restart; its mode watch waits for a command", vehicle.id)
+                return
             mode, armed = heard
             if not armed or vehicle.on_ground(fresh=False) is not False:
                 return  # on the ground: its next arming and command start afresh
@@ -155,20 +162,9 @@ class ModeWatch:
             if vehicle.id in self._expected or self._ops.taken_over(vehicle.id) is not None:
                 return  # a command since the restart (its own watch), or a pilot has it already
             record = await self._newest_record(vehicle.id)
-            kind = record.kind if record is not None else None
-            modes = (
-                (vehicle.commanded_modes(kind) | vehicle.commanded_modes(kind, done=True)) if kind else None
-            )
             if vehicle.id in self._expected:
                 return
-            now = time.monotonic()
-            if kind is not None and modes and mode in modes:
-                exp = ModeExpectation(kind, modes, modes, seen=True, last_mode=mode, since=now)
-            else:
-                found = frozenset({mode})
-                exp = ModeExpectation(
-                    f"found flying in {mode}", found, found, seen=True, last_mode=mode, since=now
-                )
+            exp = _found_expectation(vehicle, mode, record.kind if record is not None else None)
             self._expected[vehicle.id] = exp
             log.info(
                 "%s: found flying in %s after the restart; its mode watch is on (%s)",
@@ -336,13 +332,19 @@ class ModeWatch:
         )
         self._expected.pop(vehicle.id, None)
         log.warning("%s: %s", vehicle.id, takeover.message())
-        if self._ops.on_takeover is not None:
-            try:
-                await self._ops.on_takeover(vehicle, takeover)
-            except Exception:
-                log.exception("recording the takeover of %s failed", vehicle.id)
         if running is not None:
-            await self._ops.interrupt(running, takeover.message())
+            self._taking.add(running.id)  # the tracker may see the drone land before the lock is stored
+        try:
+            if self._ops.on_takeover is not None:
+                try:
+                    await self._ops.on_takeover(vehicle, takeover)
+                except Exception:
+                    log.exception("recording the takeover of %s failed", vehicle.id)
+            if running is not None:
+                await self._ops.interrupt(running, takeover.message())
+        finally:
+            if running is not None:
+                self._taking.discard(running.id)
 
     def drop(self, operation_id: str) -> None:
         """The operation's monitor ended: forget its legs."""
@@ -359,3 +361,27 @@ class ModeWatch:
                 await task
         self._watches.clear()
         self._finders.clear()
+
+
+async def _heard_after_restart(vehicle: FlyingVehicle) -> tuple[str, bool] | None:
+    """The vehicle's HEARTBEAT mode and armed state once they are known (and, armed, whether it is on the
+    ground); None when they are not within FOUND_FLYING_WAIT_S."""
+    deadline = time.monotonic() + FOUND_FLYING_WAIT_S
+    while (heard := vehicle.heartbeat_mode()) is None or (
+        heard[1] and vehicle.on_ground(fresh=False) is None
+    ):
+        if time.monotonic() > deadline:
+            return None
+        await asyncio.sleep(POLL_S)
+    return heard
+
+
+def _found_expectation(vehicle: FlyingVehicle, mode: str, kind: str | None) -> ModeExpectation:
+    """What the watch expects of a vehicle found flying in ``mode`` after a restart: the modes of its last
+    stored operation (``kind``) when it flies one of them, else the mode it was found in."""
+    modes = (vehicle.commanded_modes(kind) | vehicle.commanded_modes(kind, done=True)) if kind else None
+    now = time.monotonic()
+    if kind is not None and modes and mode in modes:
+        return ModeExpectation(kind, modes, modes, seen=True, last_mode=mode, since=now)
+    found = frozenset({mode})
+    return ModeExpectation(f"found flying in {mode}", found, found, seen=True, last_mode=mode, since=now)

@@ -29,7 +29,7 @@ from gateway.errors import InvalidArgument, NotFound
 from gateway.fleet import geo
 from gateway.fleet.operations.mode_watch import ModeWatch, TakeoverHandler
 from gateway.fleet.operations.operation_state import Operation, OpStatus, wait_reporting
-from gateway.fleet.operations.trackers import POLL_S, Tracker
+from gateway.fleet.operations.trackers import POLL_S, Poll, Tracker
 from gateway.fleet.policy.operator_locks import Lock
 from gateway.fleet.policy.safety_inputs import RunningOperation
 from gateway.fleet.policy.takeover import ModeExpectation
@@ -294,7 +294,7 @@ class OperationManager:
                 elif pos_age is not None and pos_age > stale_after:
                     self._update(op, op.progress, f"no telemetry for {pos_age:.0f} s (link lost?)", op.eta_s)
                 else:
-                    poll = await tracker.poll(vehicle)
+                    poll = await self._poll(vehicle, op, tracker)
                     if op.finished:
                         break
                     if poll.failed:
@@ -319,6 +319,18 @@ class OperationManager:
             self._monitors.pop(op.id, None)
             self._trackers.pop(op.id, None)
             self.mode_watch.drop(op.id)
+
+    async def _poll(self, vehicle: FlyingVehicle, op: Operation, tracker: Tracker) -> Poll:
+        """The tracker's look. A failure that a pilot's switch explains (ArduCopter's LOITER without RC
+        throttle sinks and lands) is left to the takeover, which ends the operation as interrupted once
+        its lock is stored: the caller hears of the switch, not of what it caused."""
+        poll = await tracker.poll(vehicle)
+        if poll.failed is None or op.finished:
+            return poll
+        await self.mode_watch.judge(vehicle)
+        if self.mode_watch.taking(op.id):
+            return Poll(op.progress, op.message, eta_s=op.eta_s)
+        return poll
 
     async def _send_next(
         self, vehicle: FlyingVehicle, op: Operation, send: Callable[[], Awaitable[object]]

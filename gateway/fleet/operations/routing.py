@@ -26,7 +26,7 @@ from typing_extensions import TypedDict  # pydantic validates ProgressMessage on
 from gateway.errors import InvalidArgument
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import RunningOperation
-from gateway.util.json_types import JsonObject, JsonValue
+from gateway.util.json_types import JsonMapping, JsonObject, JsonValue
 
 
 class ProgressMessage(TypedDict, total=False):
@@ -65,7 +65,7 @@ class Router(Protocol):
         drone_id: str,
         verb: str,
         caller: Caller,
-        arguments: Mapping[str, object],
+        arguments: JsonMapping,
         on_message: OnMessage | None = None,
         wait_s: float = 0.0,
     ) -> JsonValue:

@@ -28,6 +28,7 @@ from gateway.fleet.policy.mission_check import (
 from gateway.fleet.policy.safety_checks import (
     check_altitude,
     check_horizontal,
+    check_leg,
     check_point,
     origin_words,
     require_finite,
@@ -41,7 +42,6 @@ from gateway.fleet.policy.safety_rules import (
     fmt,
     geofence_refusal,
     prefixed,
-    refuse,
 )
 from gateway.fleet.policy.vehicle_limits import Limits
 
@@ -120,11 +120,10 @@ def _effect(
         command = raw.command
         denied = DENIED_MISSION_COMMANDS.get(command)
         if denied is not None:
-            raise refuse(
+            raise ctx.refuse(
                 Rule.MISSION_COMMAND,
                 f"mission item {number}: {denied} ({command}) is not accepted in a mission: it would "
                 "change what the safety layer relies on",
-                vehicle_id=ctx.vehicle_id,
                 item=number,
                 command=command,
             )
@@ -136,12 +135,11 @@ def _effect(
         return judged
     found = Unchecked(number, command, judged)
     if via == "mcp":
-        raise refuse(
+        raise ctx.refuse(
             Rule.MISSION_UNCHECKED,
             f"{found.text()}, so nothing was sent: agents may store and start only missions whose every "
             "item the gateway checks. Remove the item, or ask an operator (who may store and start it "
             "over REST, marked unchecked)",
-            vehicle_id=ctx.vehicle_id,
             item=number,
             command=command,
             command_name=command_name(command),
@@ -160,10 +158,9 @@ def _check_speed(ctx: VehicleContext, limits: Limits, effect: Effect) -> None:
         limit, what = limits.max_vertical_speed_mps, f"{effect.axis} rate"
     if speed > limit:
         kind = "" if effect.axis == "horizontal" else "vertical "
-        raise refuse(
+        raise ctx.refuse(
             Rule.MAX_SPEED,
             f"{what} {fmt(speed)} m/s exceeds the {kind}limit of {fmt(limit)} m/s",
-            vehicle_id=ctx.vehicle_id,
             speed_mps=speed,
             limit_mps=limit,
             axis=effect.axis,
@@ -172,18 +169,16 @@ def _check_speed(ctx: VehicleContext, limits: Limits, effect: Effect) -> None:
 
 def _check_jump(ctx: VehicleContext, effect: Effect, count: int) -> None:
     if not 0 <= effect.repeats <= MAX_JUMP_REPEATS:
-        raise refuse(
+        raise ctx.refuse(
             Rule.MISSION_UNCHECKED,
             f"DO_JUMP repeats {effect.repeats} times; the gateway accepts 0..{MAX_JUMP_REPEATS} repeats "
             "(-1, for ever, is refused)",
-            vehicle_id=ctx.vehicle_id,
             repeats=effect.repeats,
         )
     if effect.target is None or not 1 <= effect.target <= count:
-        raise refuse(
+        raise ctx.refuse(
             Rule.MISSION_UNCHECKED,
             f"DO_JUMP to item {effect.target}, which the mission does not have (items 1..{count})",
-            vehicle_id=ctx.vehicle_id,
             target=effect.target,
         )
 
@@ -223,11 +218,10 @@ def _check_circle(fences: GeofenceSet, ctx: VehicleContext, limits: Limits, poin
     assert origin is not None  # check_point refused an unknown home
     reach = geo.horizontal_distance_m(origin[0], origin[1], point.lat, point.lon) + point.radius_m
     if reach > limits.max_distance_m:
-        raise refuse(
+        raise ctx.refuse(
             Rule.MAX_DISTANCE,
             f"the loiter circle of radius {fmt(point.radius_m)} m reaches {fmt(reach)} m from "
             f"{origin_words(ctx)}, beyond the limit of {fmt(limits.max_distance_m)} m; nothing was sent",
-            vehicle_id=ctx.vehicle_id,
             distance_m=round(reach, 2),
             limit_m=limits.max_distance_m,
             radius_m=point.radius_m,
@@ -243,19 +237,9 @@ def _check_leg(
     before it), checked from the drone's position once per possible start instead."""
     if end is None or first:
         return
-    zones = fences.for_vehicle(ctx.vehicle_id)
-    if not zones:
-        return
-    if start is None:
-        raise refuse(
-            Rule.POSITION_UNKNOWN,
-            f"the position of drone {ctx.vehicle_id} is unknown, so the path to the item cannot be "
-            f"checked against {len(zones)} geofence zone(s)",
-            vehicle_id=ctx.vehicle_id,
-        )
-    width = max(start.radius_m, end.radius_m)
-    for v in fences.check_leg(ctx.vehicle_id, (start.lat, start.lon), (end.lat, end.lon), width):
-        raise geofence_refusal(ctx, v, "path")
+    width = end.radius_m if start is None else max(start.radius_m, end.radius_m)
+    begin = None if start is None else (start.lat, start.lon)
+    check_leg(fences, ctx, begin, (end.lat, end.lon), "item", width)
 
 
 def _first_point(points: dict[int, _Point], first: int, count: int) -> tuple[int, _Point | None]:

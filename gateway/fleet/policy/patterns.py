@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 from gateway.fleet import geo
 from gateway.fleet.policy.geofence import GeofenceSet
 from gateway.fleet.policy.safety_inputs import VehicleContext
-from gateway.fleet.policy.safety_rules import Rule, Via, fmt, refuse
+from gateway.fleet.policy.safety_rules import Rule, Via, fmt
 from gateway.fleet.policy.vehicle_limits import Limits
 
 if TYPE_CHECKING:
@@ -28,11 +28,10 @@ def check_air_mode(ctx: VehicleContext, choice: ModeChoice, via: Via) -> None:
     """An agent may select in the air only the modes its dialect lists as flyable without a pilot."""
     if via != "mcp" or not ctx.airborne or choice.in_air.allowed:
         return
-    raise refuse(
+    raise ctx.refuse(
         Rule.MODE_IN_AIR,
         f"mode {choice.native} {choice.in_air.why}, so agents may not select it in the air; nothing was "
         "sent. Use hold (GUIDED), LAND or RTL instead",
-        vehicle_id=ctx.vehicle_id,
         mode=choice.native,
     )
 
@@ -46,21 +45,19 @@ def check_pattern(
         return
     names = "/".join(name for name, _ in choice.pattern_radius)
     if radius_m is None:
-        raise refuse(
+        raise ctx.refuse(
             Rule.PATTERN_EXTENT,
             f"mode {choice.native} flies a circle whose radius ({names}) could not be read, so its extent "
             "cannot be checked; nothing was sent",
-            vehicle_id=ctx.vehicle_id,
             mode=choice.native,
         )
     reach = max(0.0, radius_m) * choice.pattern_reach
     reference = ctx.distance_origin
     if ctx.position is None or reference is None:
-        raise refuse(
+        raise ctx.refuse(
             Rule.POSITION_UNKNOWN,
             f"the position or origin of drone {ctx.vehicle_id} is unknown, so the extent of mode "
             f"{choice.native} cannot be checked; nothing was sent",
-            vehicle_id=ctx.vehicle_id,
         )
     lat, lon = ctx.position[0], ctx.position[1]
     from_origin = geo.horizontal_distance_m(reference[0], reference[1], lat, lon)
@@ -69,11 +66,10 @@ def check_pattern(
         "starts (its centre lies one radius ahead)"
     )
     if from_origin + reach > limits.max_distance_m:
-        raise refuse(
+        raise ctx.refuse(
             Rule.PATTERN_EXTENT,
             f"{what}: up to {fmt(from_origin + reach)} m from the origin, beyond the distance limit of "
             f"{fmt(limits.max_distance_m)} m; nothing was sent",
-            vehicle_id=ctx.vehicle_id,
             mode=choice.native,
             reach_m=round(reach, 2),
             distance_m=round(from_origin + reach, 2),
@@ -81,20 +77,18 @@ def check_pattern(
         )
     for zone in fences.for_vehicle(ctx.vehicle_id):
         if zone.kind == "keep_out" and zone.distance_m(lat, lon) <= reach:
-            raise refuse(
+            raise ctx.refuse(
                 Rule.PATTERN_EXTENT,
                 f"{what}: within {fmt(reach)} m lies keep-out zone '{zone.name}' "
                 f"({fmt(zone.distance_m(lat, lon))} m away); nothing was sent",
-                vehicle_id=ctx.vehicle_id,
                 mode=choice.native,
                 zone=zone.name,
             )
         if zone.kind == "keep_in" and zone.depth_m(lat, lon) < reach:
-            raise refuse(
+            raise ctx.refuse(
                 Rule.PATTERN_EXTENT,
                 f"{what}: keep-in zone '{zone.name}' ends {fmt(zone.depth_m(lat, lon))} m away; nothing "
                 "was sent",
-                vehicle_id=ctx.vehicle_id,
                 mode=choice.native,
                 zone=zone.name,
             )

@@ -142,39 +142,32 @@ class SafetyPolicy:
         if via == "mcp":
             taken = self.locks.takeover_for(ctx.vehicle_id)
             if taken is not None:
-                raise refuse(
-                    Rule.TAKEN_OVER, taken_over_text(ctx.vehicle_id, taken), vehicle_id=ctx.vehicle_id
-                )
+                raise ctx.refuse(Rule.TAKEN_OVER, taken_over_text(ctx.vehicle_id, taken))
             reason = self.locks.reason_for(ctx.vehicle_id)
             if reason is not None:
-                raise refuse(
+                raise ctx.refuse(
                     Rule.OPERATOR_LOCK,
                     f"{reason}. Only an operator can unlock it; read-only tools still work.",
-                    vehicle_id=ctx.vehicle_id,
                     reason=reason,
                 )
             if self.settings.simulators_only and not ctx.is_simulator:
-                raise refuse(
+                raise ctx.refuse(
                     Rule.SIMULATORS_ONLY,
                     f"drone {ctx.vehicle_id} is a real vehicle and this gateway lets agents command "
                     "simulators only (GATEWAY_SIMULATORS_ONLY)",
-                    vehicle_id=ctx.vehicle_id,
                 )
 
     def check_mode(self, ctx: VehicleContext, mode: str, via: Via = "mcp") -> None:
         """Flight mode changes: locks, simulators-only, and no pilot-stick modes in the air."""
         self.check_actuation(ctx, via)
         if not isinstance(mode, str) or not mode.strip():
-            raise refuse(
-                Rule.INVALID_INPUT, f"flight mode must be a name; got {mode!r}", vehicle_id=ctx.vehicle_id
-            )
+            raise ctx.refuse(Rule.INVALID_INPUT, f"flight mode must be a name; got {mode!r}")
         name = mode.strip().upper()
         if via == "mcp" and ctx.airborne and name in self.mode_deny_in_air:
-            raise refuse(
+            raise ctx.refuse(
                 Rule.MODE_IN_AIR,
                 f"mode {name} needs a pilot's sticks; in the air without RC input the drone may descend or "
                 "drift. Use hold (GUIDED), LAND or RTL instead",
-                vehicle_id=ctx.vehicle_id,
                 mode=name,
             )
 
@@ -207,7 +200,7 @@ class SafetyPolicy:
         self.check_actuation(ctx, via)
         limits = self.limits_for(ctx.vehicle_id)
         check_point(self.geofences, ctx, limits, target, "target")
-        check_leg(self.geofences, ctx, start_of(ctx), target)
+        check_leg(self.geofences, ctx, start_of(ctx), (target.lat, target.lon))
         check_battery(ctx, limits.min_battery_leg_pct, Rule.BATTERY_LEG)
 
     def check_speed(self, ctx: VehicleContext, mps: float, via: Via = "mcp") -> None:
@@ -215,17 +208,15 @@ class SafetyPolicy:
         require_finite(ctx, "speed", mps)
         limit = self.limits_for(ctx.vehicle_id).max_speed_mps
         if mps <= 0:
-            raise refuse(
+            raise ctx.refuse(
                 Rule.INVALID_INPUT,
                 f"speed must be above 0 m/s; got {fmt(mps)} m/s",
-                vehicle_id=ctx.vehicle_id,
                 speed_mps=mps,
             )
         if mps > limit:
-            raise refuse(
+            raise ctx.refuse(
                 Rule.MAX_SPEED,
                 f"speed {fmt(mps)} m/s exceeds the limit of {fmt(limit)} m/s",
-                vehicle_id=ctx.vehicle_id,
                 speed_mps=mps,
                 limit_mps=limit,
             )
@@ -246,7 +237,7 @@ class SafetyPolicy:
         self.check_actuation(ctx, via)
         limits = self.limits_for(ctx.vehicle_id)
         if not items:
-            raise refuse(Rule.INVALID_INPUT, "the mission has no items", vehicle_id=ctx.vehicle_id)
+            raise ctx.refuse(Rule.INVALID_INPUT, "the mission has no items")
         if ctx.airborne:
             check_battery(ctx, limits.min_battery_leg_pct, Rule.BATTERY_LEG)
         else:
@@ -286,7 +277,7 @@ class SafetyPolicy:
                 with prefixed(f"formation, drone {slot.drone_id}, leg {leg_no}: ", leg=leg_no):
                     target = Target(wp.lat, wp.lon, wp.alt_rel_m)
                     check_point(self.geofences, ctx, limits, target, "leg target")
-                    check_leg(self.geofences, ctx, previous, target)
+                    check_leg(self.geofences, ctx, previous, (target.lat, target.lon))
                 previous = (wp.lat, wp.lon)
 
     # --- sequencing: what is already running on the drone ------------------------------------------
@@ -301,12 +292,11 @@ class SafetyPolicy:
             return
         alt = fmt(ctx.position[2]) if ctx.position is not None else "?"
         target = "?" if takeoff.target_alt_m is None else fmt(takeoff.target_alt_m)
-        raise refuse(
+        raise ctx.refuse(
             Rule.TAKEOFF_IN_PROGRESS,
             f"{ctx.vehicle_id} is still taking off ({alt} of {target} m above home); {action} was not "
             f"sent. Wait for takeoff to finish: call monitor_flight(drone_id='{ctx.vehicle_id}'), then "
             f"send {action} again.",
-            vehicle_id=ctx.vehicle_id,
             operation_id=takeoff.operation_id,
             alt_rel_m=None if ctx.position is None else round(ctx.position[2], 2),
             target_alt_m=takeoff.target_alt_m,
@@ -316,12 +306,11 @@ class SafetyPolicy:
         """A fleet command does not silently take over a drone still busy with its own operation."""
         if running is None:
             return
-        raise refuse(
+        raise ctx.refuse(
             Rule.DRONE_BUSY,
             f"{ctx.vehicle_id} is still running {running.kind} (operation {running.operation_id}: "
             f"{running.message}); wait for it (monitor_flight / monitor_fleet) or call fleet_hold before "
             f"{action}",
-            vehicle_id=ctx.vehicle_id,
             operation_id=running.operation_id,
         )
 
@@ -349,11 +338,10 @@ class SafetyPolicy:
         if not ctx.airborne:
             return False
         if not self.settings.agents_may_kill:
-            raise refuse(
+            raise ctx.refuse(
                 Rule.KILL_IN_AIR,
                 f"drone {ctx.vehicle_id} is in the air; killing the motors drops it. Only an operator may "
                 "do this (GATEWAY_AGENTS_MAY_KILL is off). Use land, hold or return_to_launch",
-                vehicle_id=ctx.vehicle_id,
             )
         return True
 
@@ -361,10 +349,9 @@ class SafetyPolicy:
         """An agent's kill is sent only once its confirmation came back accepted (an operator's at once)."""
         _check_via(via)
         if via == "mcp" and not confirmed:
-            raise refuse(
+            raise ctx.refuse(
                 Rule.KILL_NOT_CONFIRMED,
                 f"kill of {ctx.vehicle_id} was not confirmed; nothing sent",
-                vehicle_id=ctx.vehicle_id,
             )
 
     def check_param_write(

@@ -17,23 +17,20 @@ from gateway.fleet.policy.safety_rules import (
     Rule,
     fmt,
     geofence_refusal,
-    refuse,
 )
 from gateway.fleet.policy.vehicle_limits import Limits
 
 
 def require_finite(ctx: VehicleContext, name: str, value: object) -> None:
     if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-        raise refuse(
-            Rule.INVALID_INPUT, f"{name} must be a finite number; got {value!r}", vehicle_id=ctx.vehicle_id
-        )
+        raise ctx.refuse(Rule.INVALID_INPUT, f"{name} must be a finite number; got {value!r}")
 
 
 def require_lat_lon(ctx: VehicleContext, lat: float, lon: float) -> None:
     try:
         geo.check_lat_lon(lat, lon)
     except InvalidArgument as exc:
-        raise refuse(Rule.INVALID_INPUT, exc.message, vehicle_id=ctx.vehicle_id) from None
+        raise ctx.refuse(Rule.INVALID_INPUT, exc.message) from None
 
 
 def start_of(ctx: VehicleContext) -> tuple[float, float] | None:
@@ -59,22 +56,20 @@ def check_horizontal(
     require_lat_lon(ctx, target.lat, target.lon)
     origin = ctx.distance_origin
     if origin is None:
-        raise refuse(
+        raise ctx.refuse(
             Rule.HOME_UNKNOWN,
             f"drone {ctx.vehicle_id} has no home position yet, so the distance limit of "
             f"{fmt(limits.max_distance_m)} m from home cannot be checked; wait for a GPS fix and home",
-            vehicle_id=ctx.vehicle_id,
             limit_m=limits.max_distance_m,
         )
     distance = geo.horizontal_distance_m(origin[0], origin[1], target.lat, target.lon)
     if distance > limits.max_distance_m:
         where = origin_words(ctx)
-        raise refuse(
+        raise ctx.refuse(
             Rule.MAX_DISTANCE,
             f"{what} is {fmt(distance)} m from {where}, beyond the limit of {fmt(limits.max_distance_m)} m; "
             f"nothing was sent: tell the user it cannot be flown, or choose a point within "
             f"{fmt(limits.max_distance_m)} m of {where.split(' (')[0]}",
-            vehicle_id=ctx.vehicle_id,
             distance_m=round(distance, 2),
             limit_m=limits.max_distance_m,
         )
@@ -97,47 +92,50 @@ def origin_words(ctx: VehicleContext) -> str:
 
 
 def check_leg(
-    fences: GeofenceSet, ctx: VehicleContext, start: tuple[float, float] | None, target: Target
+    fences: GeofenceSet,
+    ctx: VehicleContext,
+    start: tuple[float, float] | None,
+    end: tuple[float, float],
+    what: str = "target",
+    width_m: float = 0.0,
 ) -> None:
+    """The straight leg start -> end (lat, lon) against the drone's zones (``width_m``: a loiter circle
+    at either end); with zones in force, an unknown start is refused (``what``: the end, in words)."""
     zones = fences.for_vehicle(ctx.vehicle_id)
     if not zones:
         return
     if start is None:
-        raise refuse(
+        raise ctx.refuse(
             Rule.POSITION_UNKNOWN,
-            f"the position of drone {ctx.vehicle_id} is unknown, so the path to the target cannot be "
+            f"the position of drone {ctx.vehicle_id} is unknown, so the path to the {what} cannot be "
             f"checked against {len(zones)} geofence zone(s)",
-            vehicle_id=ctx.vehicle_id,
         )
-    for v in fences.check_leg(ctx.vehicle_id, start, (target.lat, target.lon)):
+    for v in fences.check_leg(ctx.vehicle_id, start, end, width_m):
         raise geofence_refusal(ctx, v, "path")
 
 
 def check_altitude(ctx: VehicleContext, limits: Limits, what: str, alt: float) -> None:
     if alt < 0:
-        raise refuse(
+        raise ctx.refuse(
             Rule.MIN_ALTITUDE,
             f"{what} {fmt(alt)} m is below home; altitudes are metres above home and must be at least "
             f"{fmt(limits.min_altitude_m)} m (use land to descend)",
-            vehicle_id=ctx.vehicle_id,
             alt_rel_m=alt,
             limit_m=limits.min_altitude_m,
         )
     if alt < limits.min_altitude_m:
-        raise refuse(
+        raise ctx.refuse(
             Rule.MIN_ALTITUDE,
             f"{what} {fmt(alt)} m is below the minimum of {fmt(limits.min_altitude_m)} m above home "
             "(use land to descend)",
-            vehicle_id=ctx.vehicle_id,
             alt_rel_m=alt,
             limit_m=limits.min_altitude_m,
         )
     if alt > limits.max_altitude_m:
-        raise refuse(
+        raise ctx.refuse(
             Rule.MAX_ALTITUDE,
             f"{what} {fmt(alt)} m exceeds the limit of {fmt(limits.max_altitude_m)} m above home; "
             f"nothing was sent: fly at most {fmt(limits.max_altitude_m)} m, or tell the user the limit",
-            vehicle_id=ctx.vehicle_id,
             alt_rel_m=alt,
             limit_m=limits.max_altitude_m,
         )
@@ -149,18 +147,16 @@ def check_battery(ctx: VehicleContext, minimum: float, rule: Rule) -> None:
         return
     pct = ctx.battery_pct
     if pct is None or not math.isfinite(pct):
-        raise refuse(
+        raise ctx.refuse(
             Rule.BATTERY_UNKNOWN,
             f"battery level of drone {ctx.vehicle_id} is unknown; {fmt(minimum)} % is needed to {purpose}",
-            vehicle_id=ctx.vehicle_id,
             minimum_pct=minimum,
         )
     if pct < minimum:
-        raise refuse(
+        raise ctx.refuse(
             rule,
             f"battery {fmt(pct)} % is below the {fmt(minimum)} % needed to {purpose}; nothing was "
             + ("sent: tell the user" if not ctx.airborne else "sent: bring it home (return_to_launch)"),
-            vehicle_id=ctx.vehicle_id,
             battery_pct=pct,
             minimum_pct=minimum,
         )

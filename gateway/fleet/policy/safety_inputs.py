@@ -7,6 +7,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Protocol
 
+from gateway.errors import SafetyRefusal
+
 
 class PlannedSlot(Protocol):
     """One drone's part of a formation plan (`gateway.fleet.formation.formation.SlotAssignment`)."""
@@ -46,6 +48,11 @@ class VehicleContext:
     #: (lat, lon, alt_amsl_m) the distance limit and the zones count from: fixed per vehicle (the first
     #: home it reported, moved only by an operator); None until known, then the home stands in
     origin: tuple[float, float, float] | None = None
+
+    def refuse(self, rule: str, text: str, **numbers: object) -> SafetyRefusal:
+        """A refusal of a command to this drone by ``rule`` (a `safety_rules.Rule`): as
+        `safety_rules.refuse` words it, with the drone named in its details."""
+        return SafetyRefusal(str(rule), f"{rule}: {text}", vehicle_id=self.vehicle_id, **numbers)
 
     @property
     def distance_origin(self) -> tuple[float, float, float] | None:

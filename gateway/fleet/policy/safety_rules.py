@@ -58,7 +58,8 @@ DENIED_MISSION_COMMANDS = {179: "DO_SET_HOME", 180: "DO_SET_PARAMETER", 185: "DO
 
 
 def refuse(rule: Rule | str, text: str, **numbers: object) -> SafetyRefusal:
-    """A refusal whose message starts with the rule name."""
+    """A refusal whose message starts with the rule name (of a drone's command: `VehicleContext.refuse`,
+    which names the drone)."""
     return SafetyRefusal(str(rule), f"{rule}: {text}", **numbers)
 
 
@@ -90,7 +91,7 @@ def geofence_refusal(ctx: VehicleContext, v: Violation, what: str) -> SafetyRefu
         else "fly around the zone in legs that stay clear of it, or tell the user"
     )
     text = f"{text}; nothing was sent: {nxt}"
-    return refuse(rule, text, vehicle_id=ctx.vehicle_id, zone=v.zone, metres=round(v.metres, 2))
+    return ctx.refuse(rule, text, zone=v.zone, metres=round(v.metres, 2))
 
 
 class prefixed:

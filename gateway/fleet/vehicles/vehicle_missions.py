@@ -17,6 +17,7 @@ from typing import Protocol
 
 from gateway.errors import CommandFailed, InvalidArgument
 from gateway.fleet.dialects import Dialect, DialectReads
+from gateway.fleet.dialects.base import mission_progress
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem, WirePlan
 from gateway.link.mavsdk_system import System
@@ -60,8 +61,8 @@ class MissionControl:
         MISSION_CURRENT's mission_state COMPLETE: MAVSDK's progress never reaches current == total
         against ArduPilot, whose MISSION_CURRENT.total leaves out home."""
         finished = self.state == MISSION_STATE_COMPLETE
-        return self.vehicle.dialect.mission_progress(
-            current, total, self.plan, finished, from_mission_current=False
+        return mission_progress(
+            self.vehicle.dialect, current, total, self.plan, finished, from_mission_current=False
         )
 
     async def follow(self, system: System) -> None:
@@ -71,7 +72,8 @@ class MissionControl:
             state = int(fields.get("mission_state", 0))
             if state != self.state:
                 self.state = state
-                progress = self.vehicle.dialect.mission_progress(
+                progress = mission_progress(
+                    self.vehicle.dialect,
                     int(fields.get("seq", 0)),
                     int(fields.get("total", 0)),
                     self.plan,

@@ -4,6 +4,7 @@ item) are declared with their verbs."""
 
 from __future__ import annotations
 
+from gateway.fleet.commands.arguments import in_caller_words
 from gateway.mcp.access import ToolCall
 from gateway.mcp.results import MissionItemOut, MissionOut, MissionProgressOut, ValueOut
 from gateway.mcp.toolkit import DroneId, Toolset
@@ -16,15 +17,7 @@ async def download_mission(call: ToolCall, drone_id: DroneId) -> MissionOut:
     """The mission stored on the drone (alt_m above home)."""
     mission = await call.commander.download_mission(call.caller, drone_id)
     out = [
-        MissionItemOut(
-            index=n,
-            kind=i.kind,
-            lat_deg=i.lat,
-            lon_deg=i.lon,
-            alt_m=i.alt_rel_m,
-            hold_s=i.hold_s,
-            speed_mps=i.speed_mps,
-        )
+        MissionItemOut.model_validate({"index": n, **in_caller_words(i)})
         for n, i in enumerate(mission.items, 1)
     ]
     return MissionOut(drone_id=drone_id, count=len(out), items=out).say(
