@@ -8,11 +8,13 @@ process group, and is always stopped (SIGTERM, then SIGKILL)."""
 from __future__ import annotations
 
 import contextlib
+import fcntl
 import os
 import random
 import signal
 import socket
 import subprocess
+import tempfile
 import time
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
@@ -97,19 +99,37 @@ def _udp_free(port: int) -> bool:
     return True
 
 
+@contextlib.contextmanager
 def _free_instance(
+    kind: str,
     ports: Callable[[int], tuple[int, ...]],
     check: Callable[[int], bool],
     instances: range,
     taken: set[int] | None,
-) -> int:
+) -> Iterator[int]:
     """An instance number whose ports are free and that is not in ``taken`` (the numbers of autopilots
-    just started, whose ports may not be bound yet); added to ``taken``."""
+    just started, whose ports may not be bound yet; added to it), held for the ``with`` block by an
+    exclusive lock file: a port check alone lets two test processes pick one number, since an autopilot's
+    link ports are bound only once a gateway connects to it."""
     for instance in random.sample(instances, len(instances)):
-        if (taken is None or instance not in taken) and all(check(p) for p in ports(instance)):
-            if taken is not None:
-                taken.add(instance)
-            return instance
+        if taken is not None and instance in taken:
+            continue
+        claim = open(Path(tempfile.gettempdir()) / f"fleet-tests-{kind}-{instance}.lock", "wb")
+        try:
+            fcntl.flock(claim, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:  # another test process runs this instance
+            claim.close()
+            continue
+        if not all(check(p) for p in ports(instance)):
+            claim.close()
+            continue
+        if taken is not None:
+            taken.add(instance)
+        try:
+            yield instance
+        finally:
+            claim.close()
+        return
     raise Unavailable("no autopilot instance number has its ports free on this host")
 
 
@@ -153,7 +173,11 @@ def arducopter(
     if why:
         raise Unavailable(why)
     ports = lambda i: (5760 + 10 * i, 5762 + 10 * i, 5763 + 10 * i)  # noqa: E731
-    instance = _free_instance(ports, _tcp_free, range(1, 40), taken)
+    with _free_instance("arducopter", ports, _tcp_free, range(1, 40), taken) as instance:
+        yield from _arducopter_on(instance, folder, speedup, sysid)
+
+
+def _arducopter_on(instance: int, folder: Path, speedup: float, sysid: int | None) -> Iterator[Autopilot]:
     argv = [
         os.environ["ARDUPILOT_SITL"], "--model", "+", "--speedup", f"{speedup:g}", f"-I{instance}",
         "--sysid", str(instance if sysid is None else sysid), "--defaults", os.environ["ARDUPILOT_DEFAULTS"],
@@ -177,13 +201,14 @@ def px4(folder: Path, taken: set[int] | None = None) -> Iterator[Autopilot]:
     why = px4_missing()
     if why:
         raise Unavailable(why)
+    px4_ports = lambda i: (14540 + i, 14580 + i, 18570 + i, 14280 + i, 13030 + i, 19450 + i)  # noqa: E731
+    # PX4 sends to 14540 + instance only for instances 0-9
+    with _free_instance("px4", px4_ports, _udp_free, range(1, 10), taken) as instance:
+        yield from _px4_on(instance, folder)
+
+
+def _px4_on(instance: int, folder: Path) -> Iterator[Autopilot]:
     build = Path(os.environ["PX4_BUILD"])
-    instance = _free_instance(
-        lambda i: (14540 + i, 14580 + i, 18570 + i, 14280 + i, 13030 + i, 19450 + i),
-        _udp_free,
-        range(1, 10),
-        taken,
-    )  # PX4 sends to 14540 + instance only for instances 0-9
     sih = {"PX4_SIM_MODEL": "sihsim_quadx", "PX4_SIMULATOR": "sihsim", "PX4_SYS_AUTOSTART": "10040"}
     sih |= {f"PX4_PARAM_{name}": f"{value:g}" for name, value in PX4_TEST_PARAMS.items()}
     argv = [str(build / "bin" / "px4"), "-d", "-i", str(instance), str(build / "etc")]
