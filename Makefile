@@ -54,11 +54,13 @@ bench-nl: $(STAMP)
 # deploy/docker-compose.yml run for real with podman (installed from Debian when missing; as root): the
 # image built, a gateway and five simulated drones in their own containers, flown from an MCP client
 # outside, everything removed afterwards. Skips, saying why, where containers cannot run.
+# SWARM_TEST_ARGS=--hand-image-over leaves the gateway image of a passing run for cluster-test (CI).
 swarm-test: $(STAMP)
-	$(BIN)/python scripts/swarm_test.py
+	$(BIN)/python scripts/swarm_test.py $(SWARM_TEST_ARGS)
 
 # deploy/docker-compose.cluster.yml the same way: NATS and PostgreSQL built from Debian packages, two
-# gateway nodes, nine drones; one node's container killed, the other takes its drones over.
+# gateway nodes, nine drones; one node's container killed, the other takes its drones over. It runs
+# the gateway image swarm-test handed over when that was built from these sources, else builds its own.
 cluster-test: $(STAMP)
 	$(BIN)/python scripts/cluster_test.py
 

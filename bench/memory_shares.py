@@ -1,7 +1,8 @@
 """Memory shares of a gateway: what its start keeps beyond the libraries a running gateway needs, and
 where each further drone's memory goes.
 
-1. ``serve`` with no drone, its RSS once it answers ``/healthz``: on a new database (the first start
+1. ``serve`` with no drone, its RSS once it answers ``/healthz``, and which of the modules a start keeps
+   out it has loaded: on a new database (the first start
    runs Alembic's upgrade), again on that database (current: Alembic is not imported), and again with
    ``rich`` kept out of the process (the MCP SDK's ``MCPServer`` imports it for its logging handler
    whenever it is installed). Each start is a process of its own.
@@ -57,7 +58,8 @@ def watch():
             break
         except OSError:
             time.sleep(0.1)
-    loaded = [name for name in ("alembic", "mako", "pygments", "rich") if sys.modules.get(name)]
+    kept_out = ("alembic", "mako", "pygments", "rich", "cryptography", "httpx2", "mcp.client")
+    loaded = [name for name in kept_out if sys.modules.get(name)]
     with open(out, "w") as fh:
         json.dump({"rss_mib": rss_mib(), "modules": len(sys.modules), "loaded": loaded}, fh)
     os.kill(os.getpid(), signal.SIGINT)
@@ -111,7 +113,10 @@ def starts() -> None:
             ("the same database (current)", start_once(wd)),
             ("the same, rich kept out", start_once(wd, block="rich")),
         ]
-    print("| `serve`, no drone | RSS MiB | modules | of Alembic, Mako, Pygments, rich loaded |")
+    print(
+        "| `serve`, no drone | RSS MiB | modules "
+        "| of Alembic, Mako, Pygments, rich, cryptography, httpx2, the MCP client loaded |"
+    )
     print("|---|---|---|---|")
     for what, r in rows:
         print(f"| {what} | {r['rss_mib']:.1f} | {r['modules']} | {', '.join(r['loaded']) or 'none'} |")

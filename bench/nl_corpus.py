@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 123 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 195 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -27,7 +27,24 @@ dev because they were seen while tuning (the host's tuning saw the text of some 
 those classes' test entries went, not only the ones seen), each marked where it stands. In their place,
 eleven new test entries (4 conditional, 3 formation, 4 placement: one more per class than moved), written
 before any model ran on them, in new wordings and shapes within each class, some of them in a language
-other than English. That leaves 88 dev and 35 test.
+other than English. That left 88 dev and 35 test.
+
+Later on 2026-11-29 (second round) EVERY test entry (35) was moved to dev, each marked "moved to dev on
+2026-11-29, second round": the test half's figures had informed a decision about the host, so it no
+longer measured requests nobody tuned for. A fresh test half took its place (``_second_test_half``): 36
+new requests, 3 a class, written before any model ran on them, in new wordings and shapes within each
+class (not rewordings of dev entries): 11 of the 33 outside the ``language`` class are in Dutch, French,
+German, Italian or Spanish, and the ``language`` class's 3 in Italian, French and Portuguese. Only the
+harness self-check (the scripted ideal plan) has run on them. That leaves 123 dev and 36 test.
+
+On 2026-11-30 EVERY test entry (36, ``_second_round``) was moved to dev, each marked "moved to dev on
+2026-11-30": the test half had been measured, and its figures were known to whoever works on the host, so
+it no longer measured requests nobody tuned for. A fresh test half took its place (``_third_test_half``):
+36 new requests, 3 a class, written before any model ran on them, in new wordings and shapes within each
+class (not rewordings of dev entries): 13 of the 33 outside the ``language`` class are in Dutch, French,
+German, Italian, Portuguese or Spanish, spread over 11 classes, and the ``language`` class's 3 in German,
+Spanish and Dutch. Only the harness self-check (the scripted ideal plan) has run on them. That leaves
+159 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -36,6 +53,7 @@ other than English. That leaves 88 dev and 35 test.
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 from typing import Any
@@ -76,7 +94,7 @@ CLASSES = (
     "units",  # distances and heights in feet, yards, kilometres
     "pattern",  # a shape flown by one drone: polygon, circle, survey lines
     "placement",  # a drone placed relative to another drone or to its home
-    "language",  # requests in French, Spanish, German
+    "language",  # requests in languages other than English (French, Spanish, German, Italian, Portuguese, Dutch)
 )
 HALVES = ("dev", "test")
 DRONES = ("alpha", "bravo", "charlie")
@@ -225,7 +243,8 @@ def _single() -> list[CorpusEntry]:
                "Can you get charlie airborne? Hover it at around 12 metres.",
                lambda c, ev: airborne_at(ev, "charlie", 12),
                [_takeoff("charlie", 12)], "Charlie is hovering at 12 m."),
-        _entry("single", "test", "single-bravo-bob", ("bravo",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("single", "dev", "single-bravo-bob", ("bravo",),
                "Bravo needs to pop up to 8 m and then come straight back down.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 8), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 8), _land("bravo")], "Bravo went up to 8 m and landed."),
@@ -233,7 +252,8 @@ def _single() -> list[CorpusEntry]:
                "Please launch alpha, climb to thirty metres and leave it hovering there.",
                lambda c, ev: airborne_at(ev, "alpha", 30),
                [_takeoff("alpha", 30)], "Alpha is hovering at 30 m."),
-        _entry("single", "test", "single-alpha-home", ("alpha",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("single", "dev", "single-alpha-home", ("alpha",),
                "Get alpha up to 20 metres, then bring it back home.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 20), at(ev, "alpha", *_home(c, "alpha")),
                                   landed_disarmed(ev, "alpha")),
@@ -261,7 +281,8 @@ def _single() -> list[CorpusEntry]:
 
 def _multi() -> list[CorpusEntry]:
     return [
-        _entry("multi", "test", "multi-all-hover", DRONES,
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("multi", "dev", "multi-all-hover", DRONES,
                "Launch all three drones to 15 metres and leave them hovering.",
                lambda c, ev: _all(*(airborne_at(ev, d, 15) for d in DRONES)),
                [_takeoff(d, 15) for d in DRONES], "All three hover at 15 m."),
@@ -269,7 +290,8 @@ def _multi() -> list[CorpusEntry]:
                "Alpha to 10 m and bravo to 20 m, please, and keep both of them up.",
                lambda c, ev: _all(airborne_at(ev, "alpha", 10), airborne_at(ev, "bravo", 20)),
                [_takeoff("alpha", 10), _takeoff("bravo", 20)], "Alpha hovers at 10 m, bravo at 20 m."),
-        _entry("multi", "test", "multi-pair-up-down", ("bravo", "charlie"),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("multi", "dev", "multi-pair-up-down", ("bravo", "charlie"),
                "Put bravo and charlie up at 12 m, then land the pair of them.",
                lambda c, ev: _all(*(reached_alt(ev, d, 12) for d in ("bravo", "charlie")),
                                   *(landed_disarmed(ev, d) for d in ("bravo", "charlie"))),
@@ -281,7 +303,8 @@ def _multi() -> list[CorpusEntry]:
                                   *(landed_disarmed(ev, d) for d in ("alpha", "charlie"))),
                [_move("alpha", east=-40, alt=15), _move("charlie", east=-40, alt=15), _land("alpha"),
                 _land("charlie")], "Both flew 40 m west and landed."),
-        _entry("multi", "test", "multi-mixed-orders", DRONES,
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("multi", "dev", "multi-mixed-orders", DRONES,
                "Charlie should climb to 25 m. Alpha stays on the ground. Bravo goes up to 10 m and lands again.",
                lambda c, ev: _all(airborne_at(ev, "charlie", 25), never_armed(ev, "alpha"),
                                   reached_alt(ev, "bravo", 10), landed_disarmed(ev, "bravo")),
@@ -359,7 +382,8 @@ def _compound() -> list[CorpusEntry]:
                                   at(ev, "alpha", *c.point("alpha", 50, 30)), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 20), _move("alpha", 50, 0), _move("alpha", 0, 30), _land("alpha")],
                "Alpha flew 50 m north, 30 m east and landed."),
-        _entry("compound", "test", "compound-out-and-home", ("bravo",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("compound", "dev", "compound-out-and-home", ("bravo",),
                "Bravo: go out 40 m to the south at 15 m, then come back to where you took off and land.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", -40, 0)]),
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
@@ -369,7 +393,8 @@ def _compound() -> list[CorpusEntry]:
                lambda c, ev: _all(reached_alt(ev, "charlie", 20), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 10), _move("charlie", up=10), _land("charlie")],
                "Charlie climbed to 10 m, then 20 m, and landed."),
-        _entry("compound", "test", "compound-there-and-back", ("alpha",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("compound", "dev", "compound-there-and-back", ("alpha",),
                "Fly alpha 30 m east at 12 m, then 30 m back west, then land it.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 30)]),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
@@ -531,25 +556,29 @@ def _conditional() -> list[CorpusEntry]:
                "Charlie has the fuller battery; it hovers 20 m north at 12 m.",
                battery={"alpha": 45.0, "charlie": 75.0}),
         # added to the test half on 2026-11-29 (written before any model ran on them), in place of the three moved to dev
-        _entry("conditional", "test", "cond-bravo-below-bar-reports", ("bravo",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("conditional", "dev", "cond-bravo-below-bar-reports", ("bravo",),
                "Bravo should take off to 16 m and head 20 m east only if its charge is 55 % or more. Below that, "
                "leave it on the ground and tell me the reading.",
                lambda c, ev: _all(never_armed(ev, "bravo"), answer_mentions_number(ev, 42, 2)),
                [_battery("bravo")], "Bravo reads 42 %, under 55 %, so it stays on the ground.",
                battery={"bravo": 42.0}),
-        _entry("conditional", "test", "cond-charlie-up-or-down", ("charlie",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("conditional", "dev", "cond-charlie-up-or-down", ("charlie",),
                "Is charlie up in the air already? If so, bring it down; if it's still sitting on the ground, "
                "send it up to 14 m and leave it there.",
                lambda c, ev: airborne_at(ev, "charlie", 14),
                [("get_position", {"drone_id": "charlie"}), _takeoff("charlie", 14)],
                "Charlie was on the ground, so it now hovers at 14 m."),
-        _entry("conditional", "test", "cond-de-alpha-west", ("alpha",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("conditional", "dev", "cond-de-alpha-west", ("alpha",),
                "Wenn alpha noch mehr als 65 % Akku hat, lass ihn auf 12 m steigen, 25 m nach Westen fliegen und "
                "dort schweben; sonst bleibt er am Boden und du nennst mir den Ladestand.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -25), alt=12), airborne_at(ev, "alpha", 12)),
                [_battery("alpha"), _move("alpha", 0, -25, alt=12)],
                "Alpha hat 78 %, also schwebt er 25 m westlich auf 12 m.", battery={"alpha": 78.0}),
-        _entry("conditional", "test", "cond-charlie-decides-in-flight", ("charlie",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("conditional", "dev", "cond-charlie-decides-in-flight", ("charlie",),
                "Lift charlie to 18 m. Once it's up, look at its battery: under 50 % means bring it straight back "
                "home; 50 % or more means carry on 30 m north and hover there.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 18), at(ev, "charlie", *_home(c, "charlie")),
@@ -602,19 +631,22 @@ def _formations() -> list[CorpusEntry]:
         # added to the test half on 2026-11-29 (written before any model ran on them), in place of the two moved to dev
         # (three in a ring stand at the corners of a triangle with sides of the spacing; the gateway's V has its
         # arms 45 degrees off its axis, so that its two wings stand 2 x 11 x sin 45 = 15.56 m apart)
-        _entry("formation", "test", "form-ring-northwest", three,
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("formation", "dev", "form-ring-northwest", three,
                "Form the three drones up in a ring, 14 m from each to its neighbours, at 16 m, 20 m north and "
                "20 m west of where they are now.",
                lambda c, ev: _all(formation_at(c, ev, three, 16, 14, 20, -20), farthest_apart(ev, three, 14)),
                [_formation(three, "circle", 16, 14, north=20, east=-20)],
                "The three hold a circle 20 m north-west at 16 m."),
-        _entry("formation", "test", "form-es-column-south", ("alpha", "charlie"),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("formation", "dev", "form-es-column-south", ("alpha", "charlie"),
                "Pon a alpha y charlie uno detrás del otro, separados 16 metros, a 14 metros de altura y 35 metros "
                "al sur de donde están.",
                lambda c, ev: formation_at(c, ev, ("alpha", "charlie"), 14, 16, -35, 0),
                [_formation(("alpha", "charlie"), "column", 14, 16, north=-35)],
                "Alpha y charlie están en columna 35 m al sur a 14 m."),
-        _entry("formation", "test", "form-arrowhead-east", three,
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("formation", "dev", "form-arrowhead-east", three,
                "Fly all three out 25 m to the east and hold them there as an arrowhead at 22 m, 11 m between "
                "neighbours.",
                lambda c, ev: _all(formation_at(c, ev, three, 22, 11, 0, 25), farthest_apart(ev, three, 15.56)),
@@ -624,7 +656,8 @@ def _formations() -> list[CorpusEntry]:
 
 def _relative() -> list[CorpusEntry]:
     return [
-        _entry("relative", "test", "rel-east-at-alt-land", ("alpha",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("relative", "dev", "rel-east-at-alt-land", ("alpha",),
                "Alpha, 60 metres east at 20 metres altitude, then land.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 60)), landed_disarmed(ev, "alpha")),
                [_move("alpha", 0, 60, alt=20), _land("alpha")], "Alpha flew 60 m east and landed."),
@@ -633,7 +666,8 @@ def _relative() -> list[CorpusEntry]:
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 30, -30), alt=15),
                                   airborne_at(ev, "bravo", 15)),
                [_move("bravo", 30, -30, alt=15)], "Bravo hovers 30 m north-west at 15 m."),
-        _entry("relative", "test", "rel-south-hover", ("charlie",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("relative", "dev", "rel-south-hover", ("charlie",),
                "Take charlie 45 m south of where it is, 12 m up, and keep it hovering.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -45, 0), alt=12),
                                   airborne_at(ev, "charlie", 12)),
@@ -642,7 +676,8 @@ def _relative() -> list[CorpusEntry]:
                "Bravo should go 50 m east, 10 m above the ground, and then come down there.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, 50)), landed_disarmed(ev, "bravo")),
                [_move("bravo", 0, 50, alt=10), _land("bravo")], "Bravo flew 50 m east and landed."),
-        _entry("relative", "test", "rel-back-and-up", ("alpha",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("relative", "dev", "rel-back-and-up", ("alpha",),
                "Lift alpha to 10 m, then shift it 20 m to the south and 5 m higher while you're at it.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -20, 0), alt=15), airborne_at(ev, "alpha", 15)),
                [_takeoff("alpha", 10), _move("alpha", -20, 0, up=5)], "Alpha hovers 20 m south at 15 m."),
@@ -694,7 +729,8 @@ def _questions() -> list[CorpusEntry]:
                "What's bravo's battery at right now? Just tell me, don't fly.",
                lambda c, ev: _all(answer_mentions_number(ev, 62, 2), never_armed(ev, "bravo")),
                [_battery("bravo")], "", battery={"bravo": 62.0}),
-        _entry("question", "test", "ask-least-charge", DRONES,
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("question", "dev", "ask-least-charge", DRONES,
                "Which of the drones has the least charge?",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), nobody_armed(ev)),
                [("fleet_status", {})], "Bravo has the least charge (47 %).",
@@ -704,7 +740,8 @@ def _questions() -> list[CorpusEntry]:
                lambda c, ev: _all(answer_says(ev, r"\b(no|none|not|nobody|neither|ground(ed)?|landed)\b",
                                               "that none is flying"), nobody_armed(ev)),
                [("fleet_status", {})], "No, all three are on the ground."),
-        _entry("question", "test", "ask-charlie-height", ("charlie",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("question", "dev", "ask-charlie-height", ("charlie",),
                "How high is charlie right now?",
                lambda c, ev: _all(answer_says(ev, r"\b(ground(ed)?|landed|0(\.0+)?\s*(m|metres|meters)?)\b",
                                               "that it is on the ground"), never_armed(ev, "charlie")),
@@ -747,7 +784,8 @@ def _questions() -> list[CorpusEntry]:
 
 def _refusals() -> list[CorpusEntry]:
     return [
-        _entry("refusal", "test", "refuse-bravo-300m", ("bravo",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("refusal", "dev", "refuse-bravo-300m", ("bravo",),
                "Take bravo up to 300 metres.",
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "bravo", c.max_alt_m),
                                   answer_reports_refusal(ev)),
@@ -757,7 +795,8 @@ def _refusals() -> list[CorpusEntry]:
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "alpha", c.max_distance_m), answer_reports_refusal(ev)),
                [_move("alpha", 0, 2000, alt=20)], "The gateway refused: 2 km is beyond the distance limit."),
-        _entry("refusal", "test", "refuse-charlie-flat", ("charlie",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("refusal", "dev", "refuse-charlie-flat", ("charlie",),
                "Launch charlie to 10 m.",
                lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "charlie"),
                                   answer_reports_refusal(ev)),
@@ -768,7 +807,8 @@ def _refusals() -> list[CorpusEntry]:
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"),
                                   *(max_alt_at_most(ev, d, c.max_alt_m) for d in DRONES), answer_reports_refusal(ev)),
                [_takeoff("alpha", 150)], "The gateway refused: 150 m is above the 120 m altitude limit."),
-        _entry("refusal", "test", "refuse-bravo-1500m", ("bravo",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("refusal", "dev", "refuse-bravo-1500m", ("bravo",),
                "Bravo: 1500 m north at 30 m please, then land.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
@@ -816,7 +856,8 @@ def _units() -> list[CorpusEntry]:
                "Take bravo up to 50 feet and keep it there.",
                lambda c, ev: airborne_at(ev, "bravo", 50 * FT),
                [_takeoff("bravo", 50 * FT)], "Bravo hovers at 50 ft (15 m)."),
-        _entry("units", "test", "units-alpha-eighty-feet", ("alpha",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("units", "dev", "units-alpha-eighty-feet", ("alpha",),
                "Get alpha hovering at 80 ft.",
                lambda c, ev: airborne_at(ev, "alpha", 80 * FT),
                [_takeoff("alpha", 80 * FT)], "Alpha hovers at 80 ft."),
@@ -824,7 +865,8 @@ def _units() -> list[CorpusEntry]:
                "Alpha: climb to 30 ft, fly 0.05 km east, then land.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 50)), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 30 * FT), _move("alpha", 0, 50), _land("alpha")], "Alpha flew 50 m east and landed."),
-        _entry("units", "test", "units-bravo-feet-south", ("bravo",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("units", "dev", "units-bravo-feet-south", ("bravo",),
                "Bravo: take off to 10 m and move 150 feet south, then land it.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", -150 * FT, 0)), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 10), _move("bravo", -150 * FT, 0), _land("bravo")], "Bravo flew 150 ft south and landed."),
@@ -832,7 +874,8 @@ def _units() -> list[CorpusEntry]:
                "Send charlie 100 yards north at 12 m and leave it hovering.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 100 * YD, 0), alt=12), airborne_at(ev, "charlie", 12)),
                [_move("charlie", 100 * YD, 0, alt=12)], "Charlie hovers 100 yards north at 12 m."),
-        _entry("units", "test", "units-charlie-feet-km", ("charlie",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("units", "dev", "units-charlie-feet-km", ("charlie",),
                "Charlie to 40 ft, then 0.03 km west and hold there.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -30), alt=40 * FT),
                                   airborne_at(ev, "charlie", 40 * FT)),
@@ -850,7 +893,8 @@ def _patterns() -> list[CorpusEntry]:
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(square20)[:3]]),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), *_legs("alpha", square20), _land("alpha")], "Alpha flew the square and landed."),
-        _entry("pattern", "test", "pattern-alpha-small-square", ("alpha",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("pattern", "dev", "pattern-alpha-small-square", ("alpha",),
                "Alpha should fly a 15 m square at 8 m altitude and land where it started.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(square15)[:3]]),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
@@ -860,7 +904,8 @@ def _patterns() -> list[CorpusEntry]:
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(_TRIANGLE_EAST)[:2]]),
                                   airborne_at(ev, "bravo", 12)),
                [_takeoff("bravo", 12), *_legs("bravo", _TRIANGLE_EAST)], "Bravo flew the triangle and hovers."),
-        _entry("pattern", "test", "pattern-bravo-hexagon", ("bravo",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("pattern", "dev", "pattern-bravo-hexagon", ("bravo",),
                "Take bravo up to 10 m and fly a hexagon with 12 m sides, then hover.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(_HEXAGON)[:3]]),
                                   airborne_at(ev, "bravo", 10)),
@@ -872,7 +917,8 @@ def _patterns() -> list[CorpusEntry]:
                [_takeoff("charlie", 15), *_legs("charlie", [(25.0, 0.0), (-25.0, 25.0), (-25.0, -25.0), (25.0, -25.0),
                                                             (25.0, 25.0), (-25.0, 0.0)]), _rtl("charlie")],
                "Charlie circled and came home."),
-        _entry("pattern", "test", "pattern-charlie-survey", ("charlie",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("pattern", "dev", "pattern-charlie-survey", ("charlie",),
                "Survey with charlie at 15 m: three lines 40 m long, 10 m apart, going north first, then land.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(survey)]),
                                   landed_disarmed(ev, "charlie")),
@@ -917,13 +963,15 @@ def _placements() -> list[CorpusEntry]:
         # added to the test half on 2026-11-29 (written before any model ran on them), in place of the three
         # moved to dev; the sim's homes stand 5 m apart: a drone placed from itself instead of from the drone
         # named must miss by more than the 6 m tolerance
-        _entry("placement", "test", "place-bravo-land-east-of-home", ("bravo",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("placement", "dev", "place-bravo-land-east-of-home", ("bravo",),
                "Bravo: take off to 10 m and fly 40 m north, then come down to land at a spot 15 m east of your home.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 40, 0)]), at(ev, "bravo", *c.point("bravo", 0, 15)),
                                   landed_disarmed(ev, "bravo")),
                lambda c: [_takeoff("bravo", 10), _move("bravo", 40, 0), _go("bravo", c.point("bravo", 0, 15), 10),
                           _land("bravo")], "Bravo flew 40 m north and landed 15 m east of home."),
-        _entry("placement", "test", "place-charlie-beside-moved-alpha", DRONES,
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("placement", "dev", "place-charlie-beside-moved-alpha", DRONES,
                "Alpha flies 30 m north at 12 m and waits there. Then put charlie 10 m east of wherever alpha "
                "ended up, at the same height.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 30, 0), alt=12), airborne_at(ev, "alpha", 12),
@@ -931,12 +979,14 @@ def _placements() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_move("alpha", 30, 0, alt=12), _go("charlie", c.point("alpha", 30, 10), 12)],
                "Alpha hovers 30 m north at 12 m, charlie 10 m east of it."),
-        _entry("placement", "test", "place-fr-charlie-west-of-alpha", DRONES,
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("placement", "dev", "place-fr-charlie-west-of-alpha", DRONES,
                "Place charlie à 20 m à l'ouest d'alpha, à 18 m de hauteur, et garde-le en vol stationnaire là-bas.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 0, -20), alt=18), airborne_at(ev, "charlie", 18),
                                   never_armed(ev, "alpha")),
                lambda c: [_go("charlie", c.point("alpha", 0, -20), 18)], "Charlie est à 20 m à l'ouest d'alpha, à 18 m."),
-        _entry("placement", "test", "place-alpha-land-north-of-charlie", DRONES,
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("placement", "dev", "place-alpha-land-north-of-charlie", DRONES,
                "Alpha: go up to 15 m, then set it down 12 m north of where charlie is parked.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 15), at(ev, "alpha", *c.point("charlie", 12, 0)),
                                   landed_disarmed(ev, "alpha"), never_armed(ev, "charlie")),
@@ -951,7 +1001,8 @@ def _languages() -> list[CorpusEntry]:
                "Fais décoller bravo à 12 mètres puis fais-le atterrir.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 12), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 12), _land("bravo")], "Bravo est monté à 12 m et a atterri."),
-        _entry("language", "test", "lang-fr-alpha-east-land", ("alpha",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("language", "dev", "lang-fr-alpha-east-land", ("alpha",),
                "Alpha : monte à 15 m, avance de 25 m vers l'est, puis atterris.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 25)), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 15), _move("alpha", 0, 25), _land("alpha")], "Alpha a volé 25 m à l'est et a atterri."),
@@ -959,7 +1010,8 @@ def _languages() -> list[CorpusEntry]:
                "Lleva a charlie 30 metros al norte a 10 metros de altura y déjalo ahí.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 30, 0), alt=10), airborne_at(ev, "charlie", 10)),
                [_move("charlie", 30, 0, alt=10)], "Charlie está 30 m al norte a 10 m."),
-        _entry("language", "test", "lang-es-bravo-hover", ("bravo",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("language", "dev", "lang-es-bravo-hover", ("bravo",),
                "Sube a bravo a 18 metros y mantenlo allí.",
                lambda c, ev: airborne_at(ev, "bravo", 18),
                [_takeoff("bravo", 18)], "Bravo está a 18 m."),
@@ -967,10 +1019,529 @@ def _languages() -> list[CorpusEntry]:
                "Alpha soll auf 20 Meter steigen und dort schweben.",
                lambda c, ev: airborne_at(ev, "alpha", 20),
                [_takeoff("alpha", 20)], "Alpha schwebt auf 20 m."),
-        _entry("language", "test", "lang-de-charlie-south-land", ("charlie",),
+        # moved to dev on 2026-11-29, second round: the test half had informed a decision
+        _entry("language", "dev", "lang-de-charlie-south-land", ("charlie",),
                "Charlie auf 10 m starten, 20 m nach Süden fliegen und dann landen.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -20, 0)), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 10), _move("charlie", -20, 0), _land("charlie")], "Charlie ist 20 m südlich gelandet."),
+    ]  # fmt: skip
+
+
+MI = 1609.344
+
+
+def _second_round() -> list[CorpusEntry]:
+    """The test half written on 2026-11-29 (second round), before any model ran on it: 3 a class; all of it
+    moved to dev on 2026-11-30, once its figures had been measured."""
+    three = DRONES
+    square25 = [(25.0, 0.0), (0.0, 25.0), (-25.0, 0.0), (0.0, -25.0)]
+    triangle24 = [(24.0, 0.0), (-12.0, 20.78), (-12.0, -20.78)]  # north first, turning right
+    survey = [(0.0, 30.0), (-8.0, 0.0), (0.0, -30.0), (-8.0, 0.0), (0.0, 30.0), (-8.0, 0.0), (0.0, -30.0)]
+    orbit20 = [(20.0, 0.0), (0.0, 20.0), (-20.0, 0.0), (0.0, -20.0)]  # clockwise from north
+    return [
+        # single
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("single", "dev", "single2-charlie-quick-look", ("charlie",),
+               "Charlie needs to go up to about 14 metres for a quick look, then come back down where it is.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 14), at(ev, "charlie", *_home(c, "charlie")),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 14), _land("charlie")], "Charlie went up to 14 m and landed."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("single", "dev", "single2-nl-alpha-hover", ("alpha",),
+               "Laat alpha opstijgen tot 22 meter en houd hem daar in de lucht.",
+               lambda c, ev: airborne_at(ev, "alpha", 22),
+               [_takeoff("alpha", 22)], "Alpha hangt op 22 m."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("single", "dev", "single2-bravo-hang", ("bravo",),
+               "I'd like bravo hanging in the air at 11 m until I say otherwise.",
+               lambda c, ev: airborne_at(ev, "bravo", 11),
+               [_takeoff("bravo", 11)], "Bravo hovers at 11 m."),
+        # multi
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("multi", "dev", "multi2-es-all-up-down", three,
+               "Despega los tres drones a 9 metros y después aterrízalos todos.",
+               lambda c, ev: _all(*(reached_alt(ev, d, 9) for d in three), *(landed_disarmed(ev, d) for d in three)),
+               [*(_takeoff(d, 9) for d in three), *(_land(d) for d in three)],
+               "Los tres subieron a 9 m y aterrizaron."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("multi", "dev", "multi2-stacked", three,
+               "Stack them up: charlie lowest at 10 m, bravo 6 m above charlie, alpha 6 m above bravo. Leave "
+               "them all hovering.",
+               lambda c, ev: _all(airborne_at(ev, "charlie", 10), airborne_at(ev, "bravo", 16),
+                                  airborne_at(ev, "alpha", 22)),
+               [_takeoff("charlie", 10), _takeoff("bravo", 16), _takeoff("alpha", 22)],
+               "Charlie hovers at 10 m, bravo at 16 m, alpha at 22 m."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("multi", "dev", "multi2-out-back-and-wait", three,
+               "Alpha goes out 30 m west at 10 m and comes back home; meanwhile charlie just climbs to 15 m and "
+               "waits.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -30)]), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha"), airborne_at(ev, "charlie", 15),
+                                  never_armed(ev, "bravo")),
+               [_move("alpha", 0, -30, alt=10), _rtl("alpha"), _takeoff("charlie", 15)],
+               "Alpha went 30 m west and came home; charlie hovers at 15 m."),
+        # compound
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("compound", "dev", "compound2-de-bravo-corner-home", ("bravo",),
+               "Bravo soll auf 12 m steigen, 30 m nach Norden fliegen, dann 20 m nach Osten und anschließend "
+               "nach Hause zurückkehren.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 30, 0), c.point("bravo", 30, 20)]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), _move("bravo", 30, 0), _move("bravo", 0, 20), _rtl("bravo")],
+               "Bravo ist 30 m nach Norden, 20 m nach Osten und zurück nach Hause geflogen."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("compound", "dev", "compound2-alpha-partial-retrace", ("alpha",),
+               "Alpha: up to 10 m, 30 m north, 30 m east, then back 30 m west and land.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 30, 0), c.point("alpha", 30, 30)]),
+                                  at(ev, "alpha", *c.point("alpha", 30, 0)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), _move("alpha", 30, 0), _move("alpha", 0, 30), _move("alpha", 0, -30),
+                _land("alpha")], "Alpha flew 30 m north, 30 m east and back west, and landed."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("compound", "dev", "compound2-charlie-leg-climb-home", ("charlie",),
+               "Charlie: up to 8 m, 20 m east, then up another 12 m and bring it home.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 20)]), reached_alt(ev, "charlie", 20),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 8), _move("charlie", 0, 20), _move("charlie", up=12), _rtl("charlie")],
+               "Charlie flew 20 m east, climbed to 20 m and came home."),
+        # conditional
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("conditional", "dev", "cond2-es-bravo-under-forty", ("bravo",),
+               "Si a bravo le queda menos del 40 % de batería, no lo despegues y dime cuánto tiene; si no, "
+               "súbelo a 15 metros.",
+               lambda c, ev: _all(never_armed(ev, "bravo"), answer_mentions_number(ev, 33, 2)),
+               [_battery("bravo")], "Bravo tiene 33 %, así que se queda en tierra.", battery={"bravo": 33.0}),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("conditional", "dev", "cond2-alpha-provided-half", ("alpha",),
+               "Alpha flies 25 m east at 10 m and lands there, provided it has at least 50 % charge; otherwise "
+               "it stays down.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 25)), landed_disarmed(ev, "alpha")),
+               [_battery("alpha"), _move("alpha", 0, 25, alt=10), _land("alpha")],
+               "Alpha had 64 %, so it flew 25 m east and landed.", battery={"alpha": 64.0}),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("conditional", "dev", "cond2-charlie-then-alpha-if", ("alpha", "charlie"),
+               "Take charlie to 10 m. If alpha's battery is above 60 %, send alpha up to 20 m too; if not, keep "
+               "alpha on the ground.",
+               lambda c, ev: _all(airborne_at(ev, "charlie", 10), never_armed(ev, "alpha")),
+               [_takeoff("charlie", 10), _battery("alpha")],
+               "Charlie hovers at 10 m; alpha has 48 %, so it stays on the ground.", battery={"alpha": 48.0}),
+        # formation
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("formation", "dev", "form2-fr-line-west", three,
+               "Mets alpha, bravo et charlie en ligne à 15 m d'altitude, espacés de 9 m, à 30 m à l'ouest de "
+               "leur position.",
+               lambda c, ev: _all(formation_at(c, ev, three, 15, 9, 0, -30), farthest_apart(ev, three, 18)),
+               [_formation(three, "line", 15, 9, east=-30)], "Les trois sont en ligne à 30 m à l'ouest, à 15 m."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("formation", "dev", "form2-pair-column-northeast", ("alpha", "bravo"),
+               "Bravo and alpha one behind the other, 13 m apart, at 17 m, 25 m north and 15 m east of where "
+               "they are.",
+               lambda c, ev: formation_at(c, ev, ("alpha", "bravo"), 17, 13, 25, 15),
+               [_formation(("alpha", "bravo"), "column", 17, 13, north=25, east=15)],
+               "Alpha and bravo hold a column 25 m north and 15 m east at 17 m."),
+        # (the gateway's V: two wings 12 m from the lead, 45 degrees off its axis: 2 x 12 x sin 45 = 16.97 m apart)
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("formation", "dev", "form2-v-south", three,
+               "The three drones in a V, 12 m between the lead and each wing, at 20 m, 20 m south of where they "
+               "are.",
+               lambda c, ev: _all(formation_at(c, ev, three, 20, 12, -20, 0), farthest_apart(ev, three, 16.97)),
+               [_formation(three, "wedge", 20, 12, north=-20)], "The three hold a V 20 m south at 20 m."),
+        # relative
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("relative", "dev", "rel2-de-bravo-north-east", ("bravo",),
+               "Flieg bravo 20 m nach Norden und 15 m nach Osten, auf 12 m Höhe, und lass ihn dort schweben.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 20, 15), alt=12), airborne_at(ev, "bravo", 12)),
+               [_move("bravo", 20, 15, alt=12)], "Bravo schwebt 20 m nördlich und 15 m östlich auf 12 m."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("relative", "dev", "rel2-alpha-drift-west-land", ("alpha",),
+               "Alpha goes up 12 m and drifts 18 m west, then sets down there.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 12), at(ev, "alpha", *c.point("alpha", 0, -18)),
+                                  landed_disarmed(ev, "alpha")),
+               [_move("alpha", 0, -18, alt=12), _land("alpha")], "Alpha flew 18 m west at 12 m and landed."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("relative", "dev", "rel2-charlie-northeast-hover", ("charlie",),
+               "Charlie: 40 m to the north-east of where it stands, at 15 m, and hover.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 28.28, 28.28), alt=15),
+                                  airborne_at(ev, "charlie", 15)),
+               [_move("charlie", 28.28, 28.28, alt=15)], "Charlie hovers 40 m north-east at 15 m."),
+        # question
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("question", "dev", "ask2-it-charlie-battery", ("charlie",),
+               "Quanta batteria resta a charlie? Non farlo volare.",
+               lambda c, ev: _all(answer_mentions_number(ev, 52, 2), never_armed(ev, "charlie")),
+               [_battery("charlie")], "", battery={"charlie": 52.0}),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("question", "dev", "ask2-any-under-half", three,
+               "Is any of the drones under 50 % battery? Which one?",
+               lambda c, ev: _all(answer_says(ev, r"\bcharlie\b", "charlie"), answer_mentions_number(ev, 38, 2),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Charlie is under 50 % (38 %).",
+               battery={"alpha": 72.0, "bravo": 81.0, "charlie": 38.0}),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("question", "dev", "ask2-pair-charge", ("bravo", "charlie"),
+               "What charge do bravo and charlie have left? Only looking, no flying.",
+               lambda c, ev: _all(answer_mentions_number(ev, 44, 1), answer_mentions_number(ev, 67, 1),
+                                  nobody_armed(ev, ("bravo", "charlie"))),
+               [_battery("bravo"), _battery("charlie")], "Bravo 44 %, charlie 67 %.",
+               battery={"bravo": 44.0, "charlie": 67.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off)
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("refusal", "dev", "refuse2-alpha-500ft", ("alpha",),
+               "Bring alpha up to 500 feet.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "alpha", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("alpha", 500 * FT)], "The gateway refused: 500 ft (152 m) is above the 120 m altitude limit."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("refusal", "dev", "refuse2-fr-charlie-far-north", ("charlie",),
+               "Envoie charlie à 1,2 km au nord, à 25 m d'altitude.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "charlie", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("charlie", 1200, 0, alt=25)], "The gateway refused: 1.2 km is beyond the distance limit."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("refusal", "dev", "refuse2-one-of-two-low", ("alpha", "charlie"),
+               "Get alpha and charlie both up to 10 m.",
+               lambda c, ev: _all(airborne_at(ev, "alpha", 10), refusal_seen(ev, "battery"), never_armed(ev, "charlie"),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("alpha", 10), _takeoff("charlie", 10)],
+               "Alpha hovers at 10 m; the gateway refused charlie: its battery is below the takeoff minimum.",
+               battery={"charlie": 24.0}),
+        # units
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("units", "dev", "units2-es-bravo-yards-feet", ("bravo",),
+               "Lleva a bravo 60 yardas al este a 40 pies de altura y déjalo allí.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, 60 * YD), alt=40 * FT),
+                                  airborne_at(ev, "bravo", 40 * FT)),
+               [_move("bravo", 0, 60 * YD, alt=40 * FT)], "Bravo está 60 yardas al este a 40 pies."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("units", "dev", "units2-alpha-miles-feet", ("alpha",),
+               "Fly alpha 0.02 miles north at 35 ft, then land.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 35 * FT), at(ev, "alpha", *c.point("alpha", 0.02 * MI, 0)),
+                                  landed_disarmed(ev, "alpha")),
+               [_move("alpha", 0.02 * MI, 0, alt=35 * FT), _land("alpha")], "Alpha flew 0.02 miles north and landed."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("units", "dev", "units2-charlie-km-feet-climb", ("charlie",),
+               "Charlie up to 25 ft, then 0.04 km south, and climb another 20 feet there and hover.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -40, 0), alt=45 * FT),
+                                  airborne_at(ev, "charlie", 45 * FT)),
+               [_takeoff("charlie", 25 * FT), _move("charlie", -40, 0), _move("charlie", up=20 * FT)],
+               "Charlie hovers 40 m south at 45 ft."),
+        # pattern
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("pattern", "dev", "pattern2-de-bravo-square", ("bravo",),
+               "Bravo soll auf 12 m ein Quadrat mit 25 m Seitenlänge fliegen, zuerst nach Norden, im "
+               "Uhrzeigersinn, und danach landen.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(square25)[:3]]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), *_legs("bravo", square25), _land("bravo")],
+               "Bravo ist das Quadrat geflogen und gelandet."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("pattern", "dev", "pattern2-alpha-triangle-north", ("alpha",),
+               "Alpha at 10 m: an equilateral triangle, 24 m a side, first side heading north and turning "
+               "right at each corner; then hover where it started.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(triangle24)[:2]]),
+                                  at(ev, "alpha", *_home(c, "alpha"), alt=10), airborne_at(ev, "alpha", 10)),
+               [_takeoff("alpha", 10), *_legs("alpha", triangle24)], "Alpha flew the triangle and hovers."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("pattern", "dev", "pattern2-charlie-survey-east", ("charlie",),
+               "Run a survey with charlie at 12 m: four passes 30 m long heading east, 8 m apart, each next "
+               "pass further south, then come home.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(survey)]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), *_legs("charlie", survey), _rtl("charlie")],
+               "Charlie flew the survey and came home."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: a drone placed
+        # from itself, or from the other drone's home instead of where it flew, misses by 10 m or more)
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("placement", "dev", "place2-es-alpha-south-of-charlie", three,
+               "Coloca a alpha 20 metros al sur de charlie, a 16 metros de altura, y que se quede allí.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("charlie", -20, 0), alt=16), airborne_at(ev, "alpha", 16),
+                                  never_armed(ev, "charlie")),
+               lambda c: [_go("alpha", c.point("charlie", -20, 0), 16)], "Alpha está 20 m al sur de charlie, a 16 m."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("placement", "dev", "place2-charlie-north-of-home-after-leg", ("charlie",),
+               "Take charlie 30 m west at 10 m, then move it to a point 20 m north of its home and keep it there.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, -30)]),
+                                  at(ev, "charlie", *c.point("charlie", 20, 0), alt=10), airborne_at(ev, "charlie", 10)),
+               lambda c: [_move("charlie", 0, -30, alt=10), _go("charlie", c.point("charlie", 20, 0), 10)],
+               "Charlie flew 30 m west and now hovers 20 m north of its home at 10 m."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("placement", "dev", "place2-alpha-west-of-moved-charlie-lower", three,
+               "Send charlie up to 20 m and 30 m north. Then bring alpha to a point 15 m west of charlie, 5 m "
+               "lower than charlie.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 30, 0), alt=20), airborne_at(ev, "charlie", 20),
+                                  at(ev, "alpha", *c.point("charlie", 30, -15), alt=15), airborne_at(ev, "alpha", 15),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_move("charlie", 30, 0, alt=20), _go("alpha", c.point("charlie", 30, -15), 15)],
+               "Charlie hovers 30 m north at 20 m; alpha 15 m west of it at 15 m."),
+        # language
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("language", "dev", "lang2-it-charlie-orbit", ("charlie",),
+               "Fai decollare charlie a 15 metri, fagli fare un giro in senso orario di 20 metri di raggio "
+               "attorno al punto di decollo e poi riportalo a casa.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in orbit20]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 15), *_legs("charlie", [(20.0, 0.0), (-20.0, 20.0), (-20.0, -20.0), (20.0, -20.0),
+                                                            (20.0, 20.0), (-20.0, 0.0)]), _rtl("charlie")],
+               "Charlie ha fatto il giro ed è tornato a casa."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("language", "dev", "lang2-fr-bravo-out-back", ("bravo",),
+               "Bravo, décolle à 10 m, va 30 m au nord, reviens à ton point de départ et pose-toi.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 30, 0)]), at(ev, "bravo", *_home(c, "bravo")),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), _move("bravo", 30, 0), _rtl("bravo")],
+               "Bravo est allé 30 m au nord, est revenu et s'est posé."),
+        # moved to dev on 2026-11-30: the test half had been measured
+        _entry("language", "dev", "lang2-pt-alpha-west-hover", ("alpha",),
+               "Leva o alpha a 20 metros de altura e 15 metros para oeste, e deixa-o a pairar aí.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -15), alt=20), airborne_at(ev, "alpha", 20)),
+               [_move("alpha", 0, -15, alt=20)], "O alpha paira 15 m a oeste, a 20 m."),
+    ]  # fmt: skip
+
+
+def _polygon_legs(
+    sides: int, side_m: float, first_bearing_deg: float, *, right: bool
+) -> list[tuple[float, float]]:
+    """The legs (north, east) of a regular polygon flown from its first corner: the first side on
+    ``first_bearing_deg`` (0 north, 90 east), turning right (clockwise) or left at each corner."""
+    turn = 360.0 / sides * (1 if right else -1)
+    legs = []
+    for i in range(sides):
+        bearing = math.radians(first_bearing_deg + i * turn)
+        legs.append((round(side_m * math.cos(bearing), 2), round(side_m * math.sin(bearing), 2)))
+    return legs
+
+
+def _midpoint(a: tuple[float, float], b: tuple[float, float]) -> tuple[float, float]:
+    return (a[0] + b[0]) / 2, (a[1] + b[1]) / 2
+
+
+def _third_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-11-30, before any model ran on it: 3 a class."""
+    three = DRONES
+    hexagon15 = _polygon_legs(6, 15.0, 90.0, right=False)  # first side east, turning left
+    rectangle = [(40.0, 0.0), (0.0, 20.0), (-40.0, 0.0), (0.0, -20.0)]  # north first, turning right
+    diag35, diag30 = 35 / math.sqrt(2), 30 / math.sqrt(2)
+    return [
+        # single
+        _entry("single", "test", "single3-charlie-target-height", ("charlie",),
+               "Take-off for charlie please, up to a target height of 19 metres.",
+               lambda c, ev: airborne_at(ev, "charlie", 19),
+               [_takeoff("charlie", 19)], "Charlie hovers at 19 m."),
+        _entry("single", "test", "single3-fr-alpha-stay-up", ("alpha",),
+               "Fais monter alpha à 13 mètres et laisse-le en l'air.",
+               lambda c, ev: airborne_at(ev, "alpha", 13),
+               [_takeoff("alpha", 13)], "Alpha est en l'air à 13 m."),
+        _entry("single", "test", "single3-bravo-test-flight", ("bravo",),
+               "Bravo: a test flight straight up to 7 m and back onto the pad, nothing else.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 7), at(ev, "bravo", *_home(c, "bravo")),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 7), _land("bravo")], "Bravo went up to 7 m and landed on the pad."),
+        # multi
+        _entry("multi", "test", "multi3-it-pair-hover", three,
+               "Porta bravo e charlie a 14 metri e lasciali lì sospesi; alpha resta a terra.",
+               lambda c, ev: _all(airborne_at(ev, "bravo", 14), airborne_at(ev, "charlie", 14),
+                                  never_armed(ev, "alpha")),
+               [_takeoff("bravo", 14), _takeoff("charlie", 14)], "Bravo e charlie sono sospesi a 14 m."),
+        _entry("multi", "test", "multi3-twice-as-high", three,
+               "Bravo to 10 m and alpha twice as high; both stay up.",
+               lambda c, ev: _all(airborne_at(ev, "bravo", 10), airborne_at(ev, "alpha", 20),
+                                  never_armed(ev, "charlie")),
+               [_takeoff("bravo", 10), _takeoff("alpha", 20)], "Bravo hovers at 10 m, alpha at 20 m."),
+        _entry("multi", "test", "multi3-west-east-apart", three,
+               "Bravo 20 m west, charlie 20 m east, both 11 m up and hovering; alpha stays put.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -20), alt=11), airborne_at(ev, "bravo", 11),
+                                  at(ev, "charlie", *c.point("charlie", 0, 20), alt=11),
+                                  airborne_at(ev, "charlie", 11), never_armed(ev, "alpha")),
+               [_move("bravo", 0, -20, alt=11), _move("charlie", 0, 20, alt=11)],
+               "Bravo hovers 20 m west and charlie 20 m east, both at 11 m."),
+        # compound
+        _entry("compound", "test", "compound3-pt-charlie-south-west-land", ("charlie",),
+               "Sobe o charlie a 15 metros, voa 25 metros para sul, depois 25 metros para oeste e aterra aí.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 15), visited(ev, "charlie", [c.point("charlie", -25, 0)]),
+                                  at(ev, "charlie", *c.point("charlie", -25, -25)), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 15), _move("charlie", -25, 0), _move("charlie", 0, -25), _land("charlie")],
+               "O charlie voou 25 m para sul, 25 m para oeste e aterrou."),
+        _entry("compound", "test", "compound3-alpha-lower-leg-home", ("alpha",),
+               "Alpha: take off to 10 m, fly 20 m east, go down to 5 m, fly 20 m north, then head home.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 20)]),
+                                  visited(ev, "alpha", [c.point("alpha", 20, 20)], alt=5),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), _move("alpha", 0, 20), _move("alpha", up=-5), _move("alpha", 20, 0),
+                _rtl("alpha")], "Alpha flew 20 m east, came down to 5 m, flew 20 m north and came home."),
+        _entry("compound", "test", "compound3-bravo-halfway-back", ("bravo",),
+               "Take bravo up to 12 m, fly 40 m north, come halfway back, and land there.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 40, 0)]),
+                                  at(ev, "bravo", *c.point("bravo", 20, 0)), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), _move("bravo", 40, 0), _move("bravo", -20, 0), _land("bravo")],
+               "Bravo flew 40 m north, 20 m back and landed."),
+        # conditional
+        _entry("conditional", "test", "cond3-de-alpha-far-or-near", ("alpha",),
+               "Hat alpha über 70 % Akku, flieg ihn auf 15 m Höhe 40 m nach Norden; wenn nicht, nur 15 m nach "
+               "Norden. Danach soll er dort schweben.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 15, 0), alt=15), airborne_at(ev, "alpha", 15)),
+               [_battery("alpha"), _move("alpha", 15, 0, alt=15)],
+               "Alpha hat 58 %, also schwebt er nur 15 m nördlich auf 15 m.", battery={"alpha": 58.0}),
+        _entry("conditional", "test", "cond3-every-drone-over-half", three,
+               "Take off every drone that has at least 50 % to 12 m; leave the others on the ground.",
+               lambda c, ev: _all(airborne_at(ev, "alpha", 12), airborne_at(ev, "charlie", 12),
+                                  never_armed(ev, "bravo")),
+               [("fleet_status", {}), _takeoff("alpha", 12), _takeoff("charlie", 12)],
+               "Alpha (70 %) and charlie (62 %) hover at 12 m; bravo (45 %) stays on the ground.",
+               battery={"alpha": 70.0, "bravo": 45.0, "charlie": 62.0}),
+        _entry("conditional", "test", "cond3-es-charlie-in-range", ("charlie",),
+               "Si la batería de charlie está entre el 40 y el 60 %, súbelo a 8 metros y bájalo otra vez; si no, "
+               "déjalo en tierra.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 8), landed_disarmed(ev, "charlie")),
+               [_battery("charlie"), _takeoff("charlie", 8), _land("charlie")],
+               "Charlie tiene 51 %, así que subió a 8 m y aterrizó.", battery={"charlie": 51.0}),
+        # formation
+        _entry("formation", "test", "form3-nl-row-east", three,
+               "Zet alpha, bravo en charlie in een rij, 11 m uit elkaar, op 18 m hoogte, 20 m ten oosten van "
+               "waar ze nu staan.",
+               lambda c, ev: _all(formation_at(c, ev, three, 18, 11, 0, 20), farthest_apart(ev, three, 22)),
+               [_formation(three, "line", 18, 11, east=20)], "De drie staan in een rij 20 m naar het oosten op 18 m."),
+        _entry("formation", "test", "form3-circle-southeast", three,
+               "Put the three drones on a circle, 12 m between each pair, at 20 m, 30 m south-east of here.",
+               lambda c, ev: _all(formation_at(c, ev, three, 20, 12, -diag30, diag30), farthest_apart(ev, three, 12)),
+               [_formation(three, "circle", 20, 12, north=-diag30, east=diag30)],
+               "The three hold a circle 30 m south-east at 20 m."),
+        _entry("formation", "test", "form3-single-file-north", three,
+               "Have all three fly in single file, 10 m gaps, 15 m up, 40 m north of where they're parked.",
+               lambda c, ev: _all(formation_at(c, ev, three, 15, 10, 40, 0), farthest_apart(ev, three, 20)),
+               [_formation(three, "column", 15, 10, north=40)], "The three hold a column 40 m north at 15 m."),
+        # relative
+        _entry("relative", "test", "rel3-es-charlie-west-south", ("charlie",),
+               "Mueve a charlie 15 metros al oeste y 25 al sur, a 14 metros de altura, y que se quede flotando.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -25, -15), alt=14),
+                                  airborne_at(ev, "charlie", 14)),
+               [_move("charlie", -25, -15, alt=14)], "Charlie flota 25 m al sur y 15 m al oeste a 14 m."),
+        _entry("relative", "test", "rel3-alpha-southwest-land", ("alpha",),
+               "Alpha: go 35 m south-west of where it is, at 12 m, then land.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 12), at(ev, "alpha", *c.point("alpha", -diag35, -diag35)),
+                                  landed_disarmed(ev, "alpha")),
+               [_move("alpha", -diag35, -diag35, alt=12), _land("alpha")], "Alpha flew 35 m south-west and landed."),
+        _entry("relative", "test", "rel3-bravo-east-first", ("bravo",),
+               "From where bravo sits, move it 22 m east and 6 m north at 13 m height, then keep it there.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 6, 22), alt=13), airborne_at(ev, "bravo", 13)),
+               [_move("bravo", 6, 22, alt=13)], "Bravo hovers 6 m north and 22 m east at 13 m."),
+        # question
+        _entry("question", "test", "ask3-fr-charge-first", three,
+               "Lequel des trois drones faut-il recharger en premier ?",
+               lambda c, ev: _all(answer_says(ev, r"\balpha\b", "alpha"), answer_mentions_number(ev, 36, 2),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Alpha (36 %).", battery={"alpha": 36.0, "bravo": 64.0, "charlie": 71.0}),
+        _entry("question", "test", "ask3-all-able-to-launch", three,
+               "Could all three take off right now, battery-wise? Don't launch anything to find out.",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 24, 2),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "No: bravo has 24 %, below the 30 % needed to take off.",
+               battery={"alpha": 80.0, "bravo": 24.0, "charlie": 66.0}),
+        _entry("question", "test", "ask3-alpha-ready-for-job", ("alpha",),
+               "Is alpha good for a job that needs 60 % charge? Just checking, keep it down.",
+               lambda c, ev: _all(answer_mentions_number(ev, 55, 2), never_armed(ev, "alpha")),
+               [_battery("alpha")], "Not quite: alpha has 55 %.", battery={"alpha": 55.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 2 m lowest target)
+        _entry("refusal", "test", "refuse3-fr-bravo-climb-over-ceiling", ("bravo",),
+               "Monte bravo à 100 m, puis fais-le grimper de 40 m de plus.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 100), refusal_seen(ev, "altitude", "120"),
+                                  max_alt_at_most(ev, "bravo", c.max_alt_m), answer_reports_refusal(ev)),
+               [_takeoff("bravo", 100), _move("bravo", up=40)],
+               "Bravo est à 100 m ; la montée de 40 m a été refusée : 140 m dépasse la limite de 120 m."),
+        _entry("refusal", "test", "refuse3-alpha-a-mile", ("alpha",),
+               "Take alpha out a mile to the east at 20 m, then land it.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "alpha", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("alpha", 0, MI, alt=20)], "The gateway refused: a mile (1609 m) is beyond the 1000 m limit."),
+        _entry("refusal", "test", "refuse3-charlie-one-metre", ("charlie",),
+               "Keep charlie hovering just 1 metre off the ground.",
+               lambda c, ev: _all(refusal_seen(ev, "minimum", "at least"), never_armed(ev, "charlie"),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("charlie", 1)], "The gateway refused: 1 m is below the 2 m minimum altitude."),
+        # units
+        _entry("units", "test", "units3-it-alpha-feet-yards", ("alpha",),
+               "Porta alpha a 60 piedi di quota e spostalo di 80 iarde verso nord, poi fallo atterrare.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 60 * FT), at(ev, "alpha", *c.point("alpha", 80 * YD, 0)),
+                                  landed_disarmed(ev, "alpha")),
+               [_move("alpha", 80 * YD, 0, alt=60 * FT), _land("alpha")], "Alpha ha volato 80 iarde a nord ed è atterrato."),
+        _entry("units", "test", "units3-charlie-mile-yards", ("charlie",),
+               "Charlie: climb to 30 ft, go a tenth of a mile west, then 50 yards south, and hover there.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -50 * YD, -0.1 * MI), alt=30 * FT),
+                                  airborne_at(ev, "charlie", 30 * FT)),
+               [_takeoff("charlie", 30 * FT), _move("charlie", 0, -0.1 * MI), _move("charlie", -50 * YD, 0)],
+               "Charlie hovers a tenth of a mile west and 50 yards south at 30 ft."),
+        _entry("units", "test", "units3-de-bravo-feet-km", ("bravo",),
+               "Bring bravo auf 45 Fuß, dann noch 65 Fuß höher, dann 0,08 km nach Norden, und lande ihn dort.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 110 * FT), at(ev, "bravo", *c.point("bravo", 80, 0)),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 45 * FT), _move("bravo", up=65 * FT), _move("bravo", 80, 0), _land("bravo")],
+               "Bravo ist auf 110 Fuß gestiegen, 80 m nach Norden geflogen und gelandet."),
+        # pattern
+        _entry("pattern", "test", "pattern3-es-charlie-hexagon-left", ("charlie",),
+               "Haz que charlie vuele un hexágono de 15 metros de lado a 12 metros de altura, el primer lado "
+               "hacia el este y girando a la izquierda, y que aterrice donde empezó.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(hexagon15)[:3]]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), *_legs("charlie", hexagon15), _land("charlie")],
+               "Charlie voló el hexágono y aterrizó donde empezó."),
+        _entry("pattern", "test", "pattern3-bravo-rectangle", ("bravo",),
+               "Bravo at 15 m: fly a rectangle 40 m long north-south and 20 m wide, heading north first and "
+               "turning right, back over the start; then land.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(rectangle)[:3]]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 15), *_legs("bravo", rectangle), _land("bravo")],
+               "Bravo flew the rectangle and landed."),
+        # (an orbit centred on charlie's own home instead of alpha's misses each point by the 10 m between them)
+        _entry("pattern", "test", "pattern3-charlie-circles-alpha", three,
+               "Charlie at 20 m: fly one clockwise circle of 15 m radius around alpha, starting north of it, "
+               "then come home.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("alpha", n, e)
+                                                          for n, e in ((15, 0), (0, 15), (-15, 0), (0, -15))]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie"),
+                                  never_armed(ev, "alpha"), never_armed(ev, "bravo")),
+               lambda c: [*(_go("charlie", c.point("alpha", n, e), 20)
+                            for n, e in ((15, 0), (0, 15), (-15, 0), (0, -15), (15, 0))), _rtl("charlie")],
+               "Charlie circled alpha at 15 m radius and came home."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie)
+        _entry("placement", "test", "place3-de-charlie-east-of-alpha", three,
+               "Stell charlie 25 m östlich von alpha auf 15 m Höhe und lass ihn dort schweben.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 0, 25), alt=15), airborne_at(ev, "charlie", 15),
+                                  never_armed(ev, "alpha")),
+               lambda c: [_go("charlie", c.point("alpha", 0, 25), 15)], "Charlie schwebt 25 m östlich von alpha auf 15 m."),
+        _entry("placement", "test", "place3-charlie-west-of-bravo-home", three,
+               "Send bravo 30 m north at 10 m, then bring charlie to hover 12 m west of the spot bravo took off "
+               "from, at 16 m.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 30, 0), alt=10), airborne_at(ev, "bravo", 10),
+                                  at(ev, "charlie", *c.point("bravo", 0, -12), alt=16), airborne_at(ev, "charlie", 16),
+                                  never_armed(ev, "alpha")),
+               lambda c: [_move("bravo", 30, 0, alt=10), _go("charlie", c.point("bravo", 0, -12), 16)],
+               "Bravo hovers 30 m north at 10 m; charlie 12 m west of bravo's home at 16 m."),
+        _entry("placement", "test", "place3-bravo-midway", three,
+               "Fly alpha 40 m north and charlie 40 m east, both at 15 m; then bring bravo to the point halfway "
+               "between them, also at 15 m.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 40, 0), alt=15), airborne_at(ev, "alpha", 15),
+                                  at(ev, "charlie", *c.point("charlie", 0, 40), alt=15), airborne_at(ev, "charlie", 15),
+                                  at(ev, "bravo", *_midpoint(c.point("alpha", 40, 0), c.point("charlie", 0, 40)), alt=15),
+                                  airborne_at(ev, "bravo", 15)),
+               lambda c: [_move("alpha", 40, 0, alt=15), _move("charlie", 0, 40, alt=15),
+                          _go("bravo", _midpoint(c.point("alpha", 40, 0), c.point("charlie", 0, 40)), 15)],
+               "Alpha hovers 40 m north, charlie 40 m east, bravo halfway between them, all at 15 m."),
+        # language
+        _entry("language", "test", "lang3-de-alpha-southeast-land", ("alpha",),
+               "Flieg alpha auf 18 m Höhe 30 m nach Südosten und lande ihn dort.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 18), at(ev, "alpha", *c.point("alpha", -diag30, diag30)),
+                                  landed_disarmed(ev, "alpha")),
+               [_move("alpha", -diag30, diag30, alt=18), _land("alpha")], "Alpha ist 30 m nach Südosten geflogen und gelandet."),
+        _entry("language", "test", "lang3-es-charlie-west-home", ("charlie",),
+               "Despega a charlie hasta 12 metros, llévalo 40 metros al oeste y después tráelo de vuelta a casa.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, -40)]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), _move("charlie", 0, -40), _rtl("charlie")],
+               "Charlie voló 40 m al oeste y volvió a casa."),
+        _entry("language", "test", "lang3-nl-bravo-north-land", ("bravo",),
+               "Laat bravo naar 16 meter stijgen, 20 meter naar het noorden vliegen en daarna landen.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 16), at(ev, "bravo", *c.point("bravo", 20, 0)),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 16), _move("bravo", 20, 0), _land("bravo")],
+               "Bravo is naar 16 m gestegen, 20 m naar het noorden gevlogen en geland."),
     ]  # fmt: skip
 
 
@@ -988,6 +1559,8 @@ def corpus() -> list[CorpusEntry]:
         *_patterns(),
         *_placements(),
         *_languages(),
+        *_second_round(),
+        *_third_test_half(),
     ]
 
 

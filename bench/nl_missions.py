@@ -12,8 +12,9 @@ hosted providers).
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the corpus's test half, per class
   python bench/nl_missions.py --half dev --sitl      # the dev half on three ArduCopter SITL drones
 
---half dev|test|all runs the generalisation corpus (bench/nl_corpus.py: 88 requests in 8 classes, a fixed
-development/test split) instead of the 12 missions, and reports per half and per class. --sitl flies on
+--half dev|test|all runs the generalisation corpus (bench/nl_corpus.py: requests in twelve classes, a fixed
+development/test split; its docstring says how many in each half) instead of the 12 missions, and reports
+per half and per class (--classes a,b keeps those classes). --sitl flies on
 three real ArduCopter SITL instances (``eval "$(/work/shared/sitl/install)"``) instead of the simulator;
 the truth is then the gateway's telemetry, and requests that set a battery level are left out (SITL's
 battery cannot be set by the harness).
@@ -188,7 +189,7 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         default=None,
         help=f"start {LOCAL_MODEL_SCRIPT} with this model for the run and stop it afterwards",
     )
-    p.add_argument("--max-tokens", type=int, default=1024, help="longest plan in tokens (default 1024)")
+    p.add_argument("--max-tokens", type=int, default=512, help="longest plan in tokens (default 512)")
     p.add_argument("--threads", type=int, default=2, help="threads of the --serve-local model (default 2)")
     p.add_argument("--speedup", type=float, default=5.0, help="simulator speed-up of the own sim (default 5)")
     p.add_argument("--write", action="store_true", help="add the results table to docs/benchmarks.md")
@@ -309,8 +310,11 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
             )
 
         runs: list[MissionRun] = args.completed  # kept by main: an interrupted bench reports what finished
+        done = {(r.run, r.mission) for r in runs}  # a bench restarted after a crash goes on from there
         for n in range(1, args.runs + 1):
             for mission in missions:
+                if (n, mission.id) in done:
+                    continue
                 await reset_drones(
                     link, truth, drone_ids, battery_pct=mission.battery_pct, speedup=args.speedup
                 )
@@ -318,6 +322,8 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
                 run.run = n
                 run.cls, run.half = where.get(mission.id, (None, None))
                 runs.append(run)
+                if args.json_out:  # written after every run: a crash or a kill loses none of them
+                    write_json(args, runs, interrupted=True)
         return runs
 
 
@@ -677,6 +683,48 @@ def free_port() -> int:
     return free_tcp_port()
 
 
+#: how many times a bench whose stack failed (e.g. a read error of its MCP link) starts a new sim, gateway
+#: and link and goes on with the runs not yet done
+MAX_RESTARTS = 3
+
+
+def run_with_restarts(args: argparse.Namespace, console: Console) -> tuple[list[MissionRun], bool]:
+    """The runs, and whether the bench stopped before its end (Ctrl-C, SIGTERM, or a stack that kept
+    failing). The runs that finished are kept in ``args.completed`` whatever happens."""
+    for attempt in range(MAX_RESTARTS + 1):
+        try:
+            return asyncio.run(_cancellable(run_missions(args, console))), False
+        except (asyncio.CancelledError, KeyboardInterrupt):
+            console.print("[red]interrupted[/]: the sim and gateway it started were stopped")
+            return args.completed, True
+        except Exception as exc:  # the stack failed under the bench: start a new one, keep the runs
+            args.restarts = [*getattr(args, "restarts", []), f"{type(exc).__name__}: {exc}"[:300]]
+            console.print(f"[red]the bench's stack failed[/] ({args.restarts[-1]}); attempt {attempt + 1}")
+    return args.completed, True
+
+
+def write_json(args: argparse.Namespace, runs: list[MissionRun], interrupted: bool) -> None:
+    Path(args.json_out).write_text(
+        json.dumps(
+            {
+                "model": SELF_CHECK_MODEL if args.self_check else args.model,
+                "self_check": args.self_check,
+                "decoding": args.decoding,
+                "half": args.half,
+                "vehicles": "ArduCopter SITL" if args.sitl else "simulator",
+                "tool_list": getattr(args, "tool_list", None),
+                "load_start": args.load_start,
+                "load_end": getattr(args, "load_end", None) or os.getloadavg()[0],
+                "interrupted": interrupted,
+                "restarts": getattr(args, "restarts", []),
+                "runs": [r.__dict__ for r in runs],
+                "totals": totals(runs),
+            },
+            indent=2,
+        )
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
     console = Console() if sys.stdout.isatty() else Console(width=150)
@@ -692,12 +740,8 @@ def main(argv: list[str] | None = None) -> int:
             )
             args.endpoint, args.model = local.base_url, local.model
         args.load_start = os.getloadavg()[0]
-        interrupted = False
-        try:
-            runs = asyncio.run(_cancellable(run_missions(args, console)))
-        except (asyncio.CancelledError, KeyboardInterrupt):
-            console.print("[red]interrupted[/]: the sim and gateway it started were stopped")
-            runs, interrupted = args.completed, True
+        runs, interrupted = run_with_restarts(args, console)
+        if interrupted:
             if not runs:
                 return 130
             console.print(f"[yellow]reporting the {len(runs)} run(s) that finished (not written to docs)[/]")
@@ -714,24 +758,7 @@ def main(argv: list[str] | None = None) -> int:
         f"[dim]load average (1 min): {args.load_start:.1f} at the start, {args.load_end:.1f} at the end[/]"
     )
     if args.json_out:
-        Path(args.json_out).write_text(
-            json.dumps(
-                {
-                    "model": SELF_CHECK_MODEL if args.self_check else args.model,
-                    "self_check": args.self_check,
-                    "decoding": args.decoding,
-                    "half": args.half,
-                    "vehicles": "ArduCopter SITL" if args.sitl else "simulator",
-                    "tool_list": args.tool_list,
-                    "load_start": args.load_start,
-                    "load_end": args.load_end,
-                    "interrupted": interrupted,
-                    "runs": [r.__dict__ for r in runs],
-                    "totals": totals(runs),
-                },
-                indent=2,
-            )
-        )
+        write_json(args, runs, interrupted)
     if interrupted:
         return 130
     if args.write:

@@ -180,13 +180,23 @@ async def emergency_stop(gw: common.Gateway, sims: list[common.Sim], mcp: Any, n
     out: dict[str, Any] = {"estop_airborne": 0, "estop_answer_s": None, "estop_all_s": None}
     sem = asyncio.Semaphore(25)
 
+    refusals: dict[str, int] = {}
+
     async def take_off(drone: str) -> bool:
         async with sem:
             r = await gw.http.post(f"/api/v1/vehicles/{drone}/takeoff", json={"alt_rel_m": ESTOP_ALT_M})
+            if r.status_code != 200:  # why, without the drone's name: the same refusal counted once
+                try:
+                    why = str(r.json()["error"]["message"])
+                except (ValueError, KeyError, TypeError):
+                    why = r.text
+                key = f"{r.status_code} {why.replace(drone, '<drone>')[:160]}"
+                refusals[key] = refusals.get(key, 0) + 1
             return r.status_code == 200
 
     accepted = await asyncio.gather(*(take_off(d) for d in gw.drone_ids))
     out["estop_takeoffs_accepted"] = sum(accepted)
+    out["estop_refusals"] = refusals
     async with httpx.AsyncClient(timeout=30) as sim_http:
         deadline = time.monotonic() + 60.0 + 0.5 * n
         while time.monotonic() < deadline:
@@ -440,7 +450,9 @@ def render(results: list[dict[str, Any]], window_s: float) -> str:
     stop_rows = [
         [
             r["n"],
-            f"{r['estop_airborne']}/{r['n']} ({r['estop_takeoffs_accepted']} takeoffs accepted)",
+            f"{r['estop_airborne']}/{r['n']} ({r['estop_takeoffs_accepted']} takeoffs accepted"
+            + "".join(f"; {k} x{v}" for k, v in sorted(r.get("estop_refusals", {}).items()))
+            + ")",
             "-" if r["estop_answer_s"] is None else f"{r['estop_answer_s']:.2f}",
             "-" if r["estop_all_s"] is None else f"{r['estop_all_s']:.2f}",
             f"{r['estop_landing']}/{r['estop_airborne']}",

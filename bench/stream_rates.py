@@ -45,6 +45,7 @@ FOLLOWS = {
     "flight_mode": "HEARTBEAT (1 Hz, not asked for)",
     "imu": "raw_imu on ArduPilot, imu on PX4",
     "rc_status": "SYS_STATUS and RC_CHANNELS (MAVSDK sets no rate for it)",
+    "battery": "SYS_STATUS (health) on ArduPilot, BATTERY_STATUS on PX4",
 }
 
 

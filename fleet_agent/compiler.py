@@ -7,6 +7,7 @@ except the one documented default, the height a drone on the ground takes off to
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Coroutine, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Protocol
@@ -32,6 +33,10 @@ from fleet_agent.plan import (
 
 #: the height (m above home) a drone on the ground takes off to before a move that names none
 DEFAULT_TAKEOFF_M = 10.0
+
+#: a return home that starts this close to home (m, horizontally) is flown as a landing: the autopilot's
+#: return first climbs to its own return altitude, a climb nobody asked for when the drone is there
+AT_HOME_M = 3.0
 
 
 @dataclass(frozen=True)
@@ -90,14 +95,42 @@ class Compiler:
         return await self._handlers[type(step)](step)
 
     async def _simple(self, step: Land | ReturnHome | Hold) -> Compiled:
+        if isinstance(step, ReturnHome) and await self._at_home(step.drone):
+            return [Call("land", {"drone_id": step.drone}, step.drone)]
         tool = {"land": "land", "return_home": "return_to_launch", "hold": "hold_position"}[step.action]
         return [Call(tool, {"drone_id": step.drone}, step.drone)]
 
+    async def _ending(self, step: Takeoff | Altitude | Move | Pattern, north: float = 0.0,
+                      east: float = 0.0) -> Compiled:  # fmt: skip
+        """The step's ``after``; a return home of a drone the step leaves over its home is a landing.
+        ``north``, ``east``: where the step takes the drone from where it is now (m)."""
+        if step.after == "return_home" and await self._at_home(step.drone, north, east):
+            return [Call("land", {"drone_id": step.drone}, step.drone)]
+        return ending(step)
+
+    async def _at_home(self, drone: str, north: float = 0.0, east: float = 0.0) -> bool:
+        """Whether ``drone``, moved ``north`` and ``east`` from where it is, is over its home."""
+        state = await self.sensors.state(drone)
+        if state.lat is None or state.lon is None:
+            return False
+        try:
+            home = await self.sensors.home(drone)
+        except CompileError:
+            return False
+        n, e = geometry.offset_between(home[0], home[1], state.lat, state.lon)
+        return math.hypot(n + north, e + east) <= AT_HOME_M
+
     async def _height(self, step: Takeoff | Altitude) -> Compiled:
+        """A climb or descent to the step's height; to 0 m, a landing (nothing for a drone on the
+        ground: the gateway refuses a takeoff to 0 m, and the drone is where the step says)."""
         state = await self.sensors.state(step.drone)
+        if step.altitude.metres <= 0:
+            if state.flying:
+                return [Call("land", {"drone_id": step.drone}, step.drone)]
+            return [Said(f"{step.drone} stays on the ground (a height of 0 m).")]
         tool = "move_to_relative" if state.flying else "takeoff"
         args = {"drone_id": step.drone, "alt_m": step.altitude.metres}
-        return [Call(tool, args, step.drone), *ending(step)]
+        return [Call(tool, args, step.drone), *await self._ending(step)]
 
     async def _lift(self, drone: str, alt: float | None, up: float) -> tuple[Compiled, bool]:
         """A takeoff first when the drone is on the ground; whether the takeoff used the climb ``up`` (it
@@ -110,7 +143,11 @@ class Compiler:
         return [Call("takeoff", {"drone_id": drone, "alt_m": height}, drone)], up > 0 and height == up
 
     async def _move(self, step: Move) -> Compiled:
-        return [*await self._move_only(step), *ending(step)]
+        calls = await self._move_only(step)
+        if step.origin.kind != "here":
+            return [*calls, *ending(step)]
+        north, east, _ = sum_legs(step.legs)
+        return [*calls, *await self._ending(step, north, east)]
 
     async def _move_only(self, step: Move) -> Compiled:
         """The move's calls. A move that goes nowhere sideways and gives its height flies to that height:
@@ -217,25 +254,45 @@ class Compiler:
                 lines.append(Said(f"{chosen} has the {step.pick} {step.readings[0]} ({value:g})."))
         return lines
 
+    async def branch(self, step: Any) -> tuple[list[Said], list[Any]] | None:
+        """For a step that selects steps (an ``if``, a ``choose``): what it says and the steps it
+        selects, each to be compiled when its turn comes (a branch compiled at once read the fleet before
+        its first step flew: a move after a takeoff in a branch was compiled for a drone on the ground).
+        None for any other step."""
+        if isinstance(step, Condition):
+            return await self._condition_branch(step)
+        if isinstance(step, Choose):
+            return await self._choose_branch(step)
+        return None
+
     async def _condition(self, step: Condition) -> Compiled:
+        said, steps = await self._condition_branch(step)
+        return [*said, *await self._each(steps)]
+
+    async def _condition_branch(self, step: Condition) -> tuple[list[Said], list[Any]]:
         state = await self.sensors.state(step.drone)
         value = reading_value(state, step.reading)
         if value is None:
-            return [Said(f"{step.drone} reports no {step.reading}: nothing was done.")]
+            return [Said(f"{step.drone} reports no {step.reading}: nothing was done.")], []
         holds = compare(value, step.compare, step.value)
         branch = step.then if holds else step.otherwise
         verdict = "so" if holds else "not"
         said = Said(f"{step.drone}: {step.reading} {value:g} {_UNITS[step.reading]}, "
                     f"{step.compare.replace('_', ' ')} {step.value:g}: {verdict}.")  # fmt: skip
-        return [said, *await self._each(branch)]
+        return [said], list(branch)
 
     async def _choose(self, step: Choose) -> Compiled:
+        said, steps = await self._choose_branch(step)
+        return [*said, *await self._each(steps)]
+
+    async def _choose_branch(self, step: Choose) -> tuple[list[Said], list[Any]]:
         states = {d: await self.sensors.state(d) for d in step.among}
         chosen, value = pick(states, step.reading, step.pick)
         if chosen is None:
-            return [Said(f"none of {', '.join(step.among)} reports its {step.reading}: nothing was done.")]
+            nobody = f"none of {', '.join(step.among)} reports its {step.reading}: nothing was done."
+            return [Said(nobody)], []
         said = Said(f"{chosen} has the {step.pick} {step.reading} ({value:g} {_UNITS[step.reading]}).")
-        return [said, *await self._each(chosen_steps(step, chosen))]
+        return [said], chosen_steps(step, chosen)
 
     async def _ask(self, step: Ask) -> Compiled:
         return [Said(step.text)]

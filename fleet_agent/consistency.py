@@ -10,7 +10,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from fleet_agent.plan import Plan
+from fleet_agent import lexicon
+from fleet_agent.plan import Condition, Plan
 
 _DRONE_FIELDS = ("drone", "drones", "among")
 
@@ -32,8 +33,21 @@ def without_unasked(request: str, fleet: list[str], plan: Plan) -> Plan:
     named = _named(request, fleet)
     if not named:
         return plan
-    kept = [s for s in plan.steps if getattr(s, "drone", None) in (None, *named)]
-    return plan if len(kept) == len(plan.steps) else plan.model_copy(update={"steps": kept})
+    return plan.model_copy(update={"steps": _asked(plan.steps, named)})
+
+
+def _asked(steps: list[Any], named: set[str]) -> list[Any]:
+    """``steps`` without those of a drone not in ``named``, an ``if``'s branches included (a choice's
+    steps name whichever drone; the chosen one flies them)."""
+    kept = []
+    for step in steps:
+        if getattr(step, "drone", None) not in (None, *named):
+            continue
+        if isinstance(step, Condition):
+            branches = {"then": _asked(step.then, named), "otherwise": _asked(step.otherwise, named)}
+            step = step.model_copy(update=branches)
+        kept.append(step)
+    return kept
 
 
 def _named(request: str, fleet: list[str]) -> set[str]:
@@ -97,3 +111,207 @@ def _items(data: Any) -> list[tuple[str, Any]]:
         for value in data:
             out += _items(value)
     return out
+
+
+def as_request_says(request: str, data: Any) -> Any:
+    """The decoded plan (JSON data) with what the request's own words settle put right, before it is
+    validated: a length whose number the request gives with one unit only carries that unit (the model
+    wrote feet as metres), and an ending the request never speaks of is left out (`fleet_agent.lexicon`:
+    a return home where it names no home, a landing where it names neither landing nor home, both
+    written by the model for a drone told to stay). A request that says land, whose plan lands no
+    drone, lands its one drone after its last step."""
+    if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
+        return data
+    units = lexicon.number_units(request)
+    for _, value in _items(data):
+        if isinstance(value, dict) and {"value", "unit"} <= value.keys():
+            given = units.get(value["value"]) if isinstance(value["value"], int | float) else None
+            if given is not None and len(given) == 1:
+                value["unit"] = str(next(iter(given)))
+    home = lexicon.says(request, lexicon.HOME_STEMS)
+    land = lexicon.says(request, lexicon.LAND_STEMS)
+    kept = {"return_home": home, "land": land or home}
+    instead = {"return_home": "land" if land else "stay", "land": "stay"}
+    data["steps"] = _endings(data["steps"], kept, instead)
+    for step in data["steps"]:
+        if isinstance(step, dict) and step.get("drone") is not None and _origin_drone(step) == step["drone"]:
+            step["origin"] = "home" if home else "here"
+    if lexicon.says(request, lexicon.LAND_ONLY_STEMS) and not home:
+        _land_at_end(data["steps"])
+    return data
+
+
+def _endings(steps: list[Any], kept: dict[str, bool], instead: dict[str, str]) -> list[Any]:
+    """``steps`` (and their branches) with each ending the request does not speak of replaced: an
+    ``after`` by ``instead``, a landing or return step (a climb to 0 m is a landing) by a landing or by
+    nothing."""
+    out = []
+    for step in steps:
+        if not isinstance(step, dict):
+            out.append(step)
+            continue
+        for branch in ("then", "otherwise"):
+            if isinstance(step.get(branch), list):
+                step[branch] = _endings(step[branch], kept, instead)
+        if _to_zero(step):
+            step = {"action": "land", "drone": step.get("drone")}
+        action, after = step.get("action"), step.get("after")
+        if isinstance(after, str) and not kept.get(after, True):
+            step["after"] = instead[after]
+        if isinstance(action, str) and not kept.get(action, True):
+            if instead[action] == "stay":
+                continue
+            step = {"action": instead[action], "drone": step.get("drone")}
+        out.append(step)
+    return out
+
+
+def _origin_drone(step: dict[str, Any]) -> Any:
+    """The drone a move is measured from (its own id is where it is or its home: the model wrote its own
+    id for "its home")."""
+    origin = step.get("origin")
+    return origin.get("drone") if isinstance(origin, dict) else origin
+
+
+def _to_zero(step: dict[str, Any]) -> bool:
+    """A climb to 0 m: a landing (the model wrote one for "hover")."""
+    altitude = step.get("altitude")
+    return (
+        step.get("action") in ("altitude", "takeoff")
+        and isinstance(altitude, dict)
+        and altitude.get("value") == 0
+    )
+
+
+def _land_at_end(steps: list[Any]) -> None:
+    """The one drone of a plan that never lands nor returns lands after its last step."""
+    flat = [s for s in steps if isinstance(s, dict)]
+    drones = {s.get("drone") for s in flat}
+    ends = {s.get("after") for s in flat} | {s.get("action") for s in flat}
+    if len(drones) != 1 or None in drones or ends & {"land", "return_home", "if", "choose"}:
+        return
+    if "after" in flat[-1]:
+        flat[-1]["after"] = "land"
+    else:
+        steps.append({"action": "land", "drone": flat[-1]["drone"]})
+
+
+#: what ends a clause of a request: a drone named after a distance in the same clause is where the
+#: distance is measured from
+_CLAUSE_ENDS = (". ", ";", "!", "?", "\n")
+
+
+def placed_by_name(request: str, fleet: list[str], data: Any) -> Any:
+    """The decoded plan with the one move from ``here`` measured from the drone the request names after
+    that move's distance, in the same clause, when that drone is nowhere in the plan ("25 m north of
+    <drone>" planned from the moving drone itself; the repair round wrote the same plan again)."""
+    if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
+        return data
+    moves = [s for s in data["steps"] if _horizontal_move_from_here(s)]
+    absent = _named(request, fleet) - _plan_drones(data) - _origins(data["steps"])
+    if len(moves) != 1 or len(absent) != 1:
+        return data
+    other = next(iter(absent))
+    distances = {leg["distance"].get("value") for leg in moves[0]["legs"] if _horizontal(leg)}
+    if any(_after_number(clause, other, distances) for clause in _clauses(request)):
+        moves[0]["origin"] = other
+    return data
+
+
+def _horizontal(leg: Any) -> bool:
+    return (
+        isinstance(leg, dict)
+        and isinstance(leg.get("distance"), dict)
+        and leg.get("direction")
+        not in (
+            "up",
+            "down",
+        )
+    )
+
+
+def _horizontal_move_from_here(step: Any) -> bool:
+    return (
+        isinstance(step, dict)
+        and step.get("action") == "move"
+        and step.get("origin") in ("here", {"kind": "here"})
+        and any(_horizontal(leg) for leg in step.get("legs") or [])
+    )
+
+
+def _origins(steps: list[Any]) -> set[str]:
+    found = set()
+    for step in steps:
+        origin = step.get("origin") if isinstance(step, dict) else None
+        if isinstance(origin, dict):
+            origin = origin.get("drone")
+        if isinstance(origin, str):
+            found.add(origin)
+    return found
+
+
+def _clauses(request: str) -> list[str]:
+    text = request
+    for end in _CLAUSE_ENDS:
+        text = text.replace(end, "\0")
+    return text.split("\0")
+
+
+def _after_number(clause: str, drone: str, distances: set[Any]) -> bool:
+    """``clause`` names ``drone`` after one of ``distances`` (a number)."""
+    tokens = lexicon.tokens(clause.lower())
+    if drone.lower() not in tokens:
+        return False
+    before = tokens[: tokens.index(drone.lower())]
+    return any(lexicon.number(t) in distances for t in before)
+
+
+def split_formation(request: str, data: Any) -> Any:
+    """The decoded plan with a formation whose drones the request names each right before one of its
+    legs' distances ("<a> N m east and <b> M m north") flown as one move each: the drones were sent
+    different ways, not placed together (both models wrote a formation for it)."""
+    if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
+        return data
+    tokens = lexicon.tokens(request.lower())
+    steps: list[Any] = []
+    for step in data["steps"]:
+        pairs = _each_its_leg(step, tokens)
+        if pairs is None:
+            steps.append(step)
+            continue
+        altitude = step.get("altitude")
+        steps += [
+            {"action": "move", "drone": drone, "origin": "here", "legs": [leg], "altitude": altitude,
+             "after": "stay"}
+            for drone, leg in pairs
+        ]  # fmt: skip
+    data["steps"] = steps
+    return data
+
+
+def _each_its_leg(step: Any, tokens: list[str]) -> list[tuple[str, Any]] | None:
+    """The formation's drones, each with the leg whose distance follows its name in the request before
+    the next drone's name; None when the step is not such a formation."""
+    if (
+        not isinstance(step, dict)
+        or step.get("action") != "formation"
+        or step.get("origin") not in (None, "here")
+    ):
+        return None
+    drones, legs = step.get("drones") or [], list(step.get("legs") or [])
+    if len(drones) < 2 or len(legs) != len(drones) or not all(_horizontal(leg) for leg in legs):
+        return None
+    at = {d: tokens.index(d.lower()) for d in drones if isinstance(d, str) and d.lower() in tokens}
+    order = sorted(at, key=at.__getitem__)
+    if len(order) != len(drones):
+        return None
+    pairs = []
+    for k, drone in enumerate(order):
+        end = at[order[k + 1]] if k + 1 < len(order) else len(tokens)
+        values = [lexicon.number(t) for t in tokens[at[drone] : end]]
+        leg = next((leg for leg in legs if leg["distance"].get("value") in values), None)
+        if leg is None:
+            return None
+        legs.remove(leg)
+        pairs.append((drone, leg))
+    return pairs

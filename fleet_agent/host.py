@@ -93,22 +93,37 @@ class AgentHost:
     async def _run_plan(
         self, steps: Sequence[Any], compiler: Compiler, sensors: McpSensors, turn: TurnResult
     ) -> list[str]:
+        """Each step compiled when its turn comes (the fleet read after the calls before it); the steps
+        an ``if`` or a ``choose`` selects take their turns next."""
         state = TurnState(tools=self.tools)
         lines: list[str] = []
-        for step in steps:
+        queue = list(steps)
+        while queue:
+            step = queue.pop(0)
             try:
+                selected = await compiler.branch(step)
+                if selected is not None:
+                    lines += [said.text for said in selected[0]]
+                    queue[0:0] = selected[1]
+                    continue
                 compiled = await compiler.compile(step)
             except CompileError as exc:
                 lines.append(f"Not done: {exc}.")
                 continue
-            for item in compiled:
-                if isinstance(item, Said):
-                    lines.append(item.text)
-                    continue
-                stop = await self._checked_send(item, state, sensors, turn, lines)
-                if stop:
-                    return lines
+            if await self._send_all(compiled, state, sensors, turn, lines):
+                return lines
         return lines
+
+    async def _send_all(
+        self, compiled: list[Any], state: TurnState, sensors: McpSensors, turn: TurnResult, lines: list[str]
+    ) -> bool:
+        """A step's calls and lines, in order; True when the turn stops."""
+        for item in compiled:
+            if isinstance(item, Said):
+                lines.append(item.text)
+            elif await self._checked_send(item, state, sensors, turn, lines):
+                return True
+        return False
 
     async def _checked_send(
         self, call: Call, state: TurnState, sensors: McpSensors, turn: TurnResult, lines: list[str]

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import copy
 from enum import StrEnum
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, Literal, TypeGuard
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
@@ -271,20 +271,82 @@ class Plan(Strict):
 
     @model_validator(mode="after")
     def _one_ending(self) -> Plan:
-        """A landing or return written both as a step's ``after`` and as the next step is flown once."""
+        """A landing or return written both as a step's ``after`` and as the drone's next step is flown
+        once. A takeoff to the height an earlier climb, move or pattern already flew the drone at repeats
+        that step (so does a climb to it right after the drone's flight ended): when the drone's step
+        before it climbs it to that height and stays, it is the same climb, and its ``after`` (a landing,
+        a return) becomes the climb's; after a flight, it is left out, and a landing or return it ends
+        with is flown where the drone is (an explicit landing is never dropped). Steps of other drones
+        between do not count; a step of several drones does."""
         kept: list[Any] = []
+        last: dict[str, int] = {}  # each drone's last step in ``kept``
+        heights: dict[str, float] = {}
         for step in self.steps:
-            previous = kept[-1] if kept else None
-            if (
-                isinstance(step, Land | ReturnHome)
-                and isinstance(previous, Takeoff | Altitude | Move | Pattern)
-                and previous.drone == step.drone
-                and previous.after == step.action
-            ):
+            drone = getattr(step, "drone", None)
+            at = last.get(drone) if drone else None
+            previous = kept[at] if at is not None else None
+            if _ends_again(step, previous):
                 continue
+            if _repeats(step, heights, previous):
+                if at is not None and previous is not None and _same_climb(step, previous):
+                    kept[at] = previous.model_copy(update={"after": step.after})
+                elif step.after != "stay" and not _ended(previous):
+                    last = {**last, step.drone: len(kept)}
+                    kept.append(_ending_step(step))
+                continue
+            if isinstance(step, Altitude | Move | Pattern) and step.altitude is not None:
+                heights[step.drone] = step.altitude.metres
+            last = {**last, drone: len(kept)} if drone else {}
             kept.append(step)
         self.steps = kept
         return self
+
+
+def _ends_again(step: Any, previous: Any) -> bool:
+    """``step`` is the landing or return ``previous`` already ends with."""
+    return (
+        isinstance(step, Land | ReturnHome)
+        and isinstance(previous, Takeoff | Altitude | Move | Pattern)
+        and previous.drone == step.drone
+        and previous.after == step.action
+    )
+
+
+def _repeats(step: Any, heights: dict[str, float], previous: Any) -> TypeGuard[Takeoff | Altitude]:
+    """``step`` climbs its drone to a height the plan already flew it at: a takeoff, or a climb right
+    after the drone's flight ended (a climb of a drone on the ground is a takeoff) or repeating the climb
+    before it."""
+    if not isinstance(step, Takeoff | Altitude) or heights.get(step.drone) != step.altitude.metres:
+        return False
+    return isinstance(step, Takeoff) or _ended(previous) or _same_climb(step, previous)
+
+
+def _ended(previous: Any) -> bool:
+    """``previous`` (a drone's step) ends the drone's flight: a landing, a return, or one as its after."""
+    return isinstance(previous, Land | ReturnHome) or getattr(previous, "after", "stay") != "stay"
+
+
+def _ending_step(step: Takeoff | Altitude) -> Land | ReturnHome:
+    if step.after == "land":
+        return Land(action="land", drone=step.drone)
+    return ReturnHome(action="return_home", drone=step.drone)
+
+
+def _same_climb(takeoff: Takeoff | Altitude, previous: Any) -> bool:
+    """``previous`` climbs the takeoff's drone to the takeoff's height and stays: nothing flew between."""
+    if isinstance(previous, Move):
+        climb_only = all(leg.direction in ("up", "down") for leg in previous.legs)
+        return climb_only and previous.origin.kind == "here" and _stays_at(previous, takeoff)
+    return isinstance(previous, Altitude) and _stays_at(previous, takeoff)
+
+
+def _stays_at(previous: Altitude | Move, takeoff: Takeoff | Altitude) -> bool:
+    return (
+        previous.drone == takeoff.drone
+        and previous.after == "stay"
+        and previous.altitude is not None
+        and previous.altitude.metres == takeoff.altitude.metres
+    )
 
 
 def known_drone(value: str, info: ValidationInfo) -> str:

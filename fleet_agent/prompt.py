@@ -25,9 +25,9 @@ Each step has an "action":
   [{distance, direction}] (north, south, east, west, northeast, northwest, southeast, southwest, up,
   down); altitude is the height to fly at or null
 - pattern {drone, shape, size, ...}: ONE drone flies a shape: triangle, square, pentagon, hexagon,
-  octagon or polygon (sides) with size = side length; orbit (a circle, size = radius); survey (lines,
-  size = line length, spacing); sides, lines, spacing, heading (the first leg), turn (right, left) and
-  altitude are null when the request gives none
+  octagon or polygon (sides) with size = side length; orbit (a circle, size = radius); survey (lines =
+  how many lines, as a number also when the request spells it, size = line length, spacing); sides,
+  lines, spacing, heading (the first leg), turn (right, left) and altitude are null when not given
 - formation {drones, shape (line, column, wedge, grid, circle, triangle, square), spacing, altitude,
   legs (the centre's move), origin (optional: the centre, as for a move)}: SEVERAL drones placed
   together in one shape (drones sent different ways are one move each)

@@ -62,7 +62,7 @@ class ModelConfig:
     temperature: float = 0.0
     timeout_s: float = 300.0
     max_retries: int = 1
-    max_tokens: int | None = 1024
+    max_tokens: int | None = 512
     decoding: str = "json_schema"
 
 

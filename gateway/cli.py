@@ -12,7 +12,7 @@ import sys
 from collections.abc import Callable, Sequence
 from types import ModuleType
 
-from gateway.cli_help import COMMAND_HELP
+from gateway.cli_help import add_command
 
 
 # Each loader imports its module only when called (``--help`` imports none of them). The module's
@@ -83,7 +83,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
         loaded().register(subparsers)
     for name, loader in COMMANDS.items():
         if loader is not loaded:
-            subparsers.add_parser(name, help=COMMAND_HELP[name], add_help=False)
+            add_command(subparsers, name, add_help=False)
     return parser
 
 

@@ -7,6 +7,7 @@ import re
 import socket
 from functools import lru_cache
 from pathlib import Path
+from typing import Annotated
 
 from pydantic import Field, field_validator, model_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
@@ -41,6 +42,19 @@ DEFAULT_MODE_DENY_IN_AIR = ",".join(
     )
 )  # fmt: skip
 
+#: the kinds of number the settings hold, each with the bound all its fields share (a field adds its own
+#: upper limit where it has one)
+Seconds = Annotated[float, Field(gt=0)]
+Metres = Annotated[float, Field(gt=0)]
+Speed = Annotated[float, Field(gt=0)]  # m/s
+Hertz = Annotated[float, Field(gt=0)]
+Percent = Annotated[float, Field(ge=0, le=100)]
+AtLeastOne = Annotated[int, Field(ge=1)]  # a count or size that cannot be zero
+ZeroOrMore = Annotated[int, Field(ge=0)]  # a count, or seconds where 0 turns a check off
+#: a MAVLink system id the gateway may take as a ground station: not 0 (broadcast), 1 (an autopilot's
+#: default) or 255 (the usual ground station's default)
+GcsSystemId = Annotated[int, Field(ge=2, le=254)]
+
 
 class Settings(BaseSettings):
     """Everything an operator can configure. Each field's description is the documentation."""
@@ -49,7 +63,7 @@ class Settings(BaseSettings):
 
     # --- server -------------------------------------------------------------------------------
     host: str = Field("127.0.0.1", description="Address the HTTP server (REST + /mcp) binds to.")
-    port: int = Field(8765, ge=1, le=65535, description="HTTP port of the REST API and /mcp.")
+    port: AtLeastOne = Field(8765, le=65535, description="HTTP port of the REST API and /mcp.")
     database_url: str = Field(
         "sqlite+aiosqlite:///./fleet-gateway.db",
         description="SQLAlchemy async URL; SQLite (aiosqlite) by default, PostgreSQL (asyncpg) works too.",
@@ -62,10 +76,8 @@ class Settings(BaseSettings):
     )
 
     # --- MAVLink / sidecars --------------------------------------------------------------------
-    gcs_sysid: int = Field(
+    gcs_sysid: GcsSystemId = Field(
         245,
-        ge=2,
-        le=254,
         description="MAVLink system id the gateway uses as a ground station (mavsdk_server --sysid). "
         "Set the autopilot's MAV_GCS_SYSID (SYSID_MYGCS) to it for GCS-loss failsafes to watch it.",
     )
@@ -83,19 +95,18 @@ class Settings(BaseSettings):
     sidecar_cache_dir: str | None = Field(
         None, description="Where the confined sidecar binary is kept; default ~/.cache/fleet-gateway."
     )
-    sidecar_max_restarts: int = Field(
-        5, ge=0, description="Consecutive sidecar crashes before a vehicle is marked failed."
+    sidecar_max_restarts: ZeroOrMore = Field(
+        5, description="Consecutive sidecar crashes before a vehicle is marked failed."
     )
-    sidecar_backoff_initial_s: float = Field(0.5, gt=0, description="First restart delay of a sidecar.")
-    sidecar_backoff_max_s: float = Field(10.0, gt=0, description="Longest restart delay of a sidecar.")
-    sidecar_heartbeat_watchdog_s: int = Field(
+    sidecar_backoff_initial_s: Seconds = Field(0.5, description="First restart delay of a sidecar.")
+    sidecar_backoff_max_s: Seconds = Field(10.0, description="Longest restart delay of a sidecar.")
+    sidecar_heartbeat_watchdog_s: ZeroOrMore = Field(
         0,
-        ge=0,
         description="mavsdk_server --heartbeat-watchdog-timeout; 0 disables. When set, a hung gateway stops "
         "the GCS heartbeat so the autopilot's own GCS failsafe takes over.",
     )
-    link_lost_after_s: float = Field(
-        3.0, gt=0, description="Seconds without a heartbeat/telemetry before a vehicle is link_lost."
+    link_lost_after_s: Seconds = Field(
+        3.0, description="Seconds without a heartbeat/telemetry before a vehicle is link_lost."
     )
 
     # --- MCP ------------------------------------------------------------------------------------
@@ -103,21 +114,17 @@ class Settings(BaseSettings):
         ",".join(ALL_TOOLSETS),
         description="Comma-separated MCP toolsets to expose: " + ", ".join(ALL_TOOLSETS) + ".",
     )
-    mcp_wait_cap_s: float = Field(
-        45.0, gt=0, le=600, description="Longest a tool waits for its operation before answering 'running'."
+    mcp_wait_cap_s: Seconds = Field(
+        45.0, le=600, description="Longest a tool waits for its operation before answering 'running'."
     )
-    mcp_sessions_per_caller: int = Field(
+    mcp_sessions_per_caller: AtLeastOne = Field(
         64,
-        ge=1,
         le=10_000,
         description="Most 2025-era MCP sessions (Mcp-Session-Id) one token keeps open; a new one beyond "
         "this closes that token's session idle the longest.",
     )
-    mcp_session_idle_s: float = Field(
-        1800.0,
-        gt=0,
-        le=86_400,
-        description="A 2025-era MCP session with no request for this long is closed.",
+    mcp_session_idle_s: Seconds = Field(
+        1800.0, le=86_400, description="A 2025-era MCP session with no request for this long is closed."
     )
     allowed_hosts: str = Field(
         "",
@@ -129,25 +136,20 @@ class Settings(BaseSettings):
     mcp_allowed_hosts: str = Field(
         "", description="Older name of GATEWAY_ALLOWED_HOSTS, still read (both lists are merged)."
     )
-    arrival_tolerance_m: float = Field(2.0, gt=0, description="Horizontal distance counted as arrived.")
+    arrival_tolerance_m: Metres = Field(2.0, description="Horizontal distance counted as arrived.")
 
     # --- safety -----------------------------------------------------------------------------------
-    max_altitude_m: float = Field(
-        120.0, gt=0, description="Highest altitude above home an agent may command."
-    )
-    max_distance_m: float = Field(
-        1000.0, gt=0, description="Farthest distance from home an agent may command."
-    )
-    min_battery_takeoff_pct: float = Field(30.0, ge=0, le=100, description="Battery needed to take off.")
-    min_battery_leg_pct: float = Field(25.0, ge=0, le=100, description="Battery needed to start a new leg.")
-    max_speed_mps: float = Field(15.0, gt=0, description="Highest horizontal speed an agent may set.")
-    max_vertical_speed_mps: float = Field(
+    max_altitude_m: Metres = Field(120.0, description="Highest altitude above home an agent may command.")
+    max_distance_m: Metres = Field(1000.0, description="Farthest distance from home an agent may command.")
+    min_battery_takeoff_pct: Percent = Field(30.0, description="Battery needed to take off.")
+    min_battery_leg_pct: Percent = Field(25.0, description="Battery needed to start a new leg.")
+    max_speed_mps: Speed = Field(15.0, description="Highest horizontal speed an agent may set.")
+    max_vertical_speed_mps: Speed = Field(
         5.0,
-        gt=0,
         description="Highest climb, descent or landing speed an agent may set through an autopilot "
         "parameter (WPNAV_SPEED_UP, LAND_SPEED, MPC_Z_VEL_MAX_UP, ...).",
     )
-    min_separation_m: float = Field(5.0, gt=0, description="Minimum distance kept between fleet drones.")
+    min_separation_m: Metres = Field(5.0, description="Minimum distance kept between fleet drones.")
     agents_may_kill: bool = Field(False, description="Whether MCP agents may kill motors in the air.")
     simulators_only: bool = Field(False, description="Refuse every actuating MCP tool on real vehicles.")
     min_altitude_m: float = Field(
@@ -206,10 +208,8 @@ class Settings(BaseSettings):
     )
 
     # --- flight log -------------------------------------------------------------------------------
-    track_sample_hz: float = Field(
-        1.0, gt=0, le=10, description="Track samples recorded per second in flight."
-    )
-    track_flush_s: float = Field(2.0, gt=0, description="Seconds between batched track writes.")
+    track_sample_hz: Hertz = Field(1.0, le=10, description="Track samples recorded per second in flight.")
+    track_flush_s: Seconds = Field(2.0, description="Seconds between batched track writes.")
     flight_tlog_dir: str = Field(
         "",
         description="Folder where each flight's raw MAVLink from the drone is written as it is received "
@@ -218,9 +218,8 @@ class Settings(BaseSettings):
         "is then reconstructed from the 1 Hz track). While recorded, every drone's link runs through "
         "the gateway's relay (as one with gcs_endpoints does).",
     )
-    flight_tlog_max_mib: int = Field(
+    flight_tlog_max_mib: AtLeastOne = Field(
         64,
-        ge=1,
         le=4096,
         description="Largest raw MAVLink log kept per flight, in MiB; the frames after it are not "
         "written (the export says the log was cut).",
@@ -248,25 +247,23 @@ class Settings(BaseSettings):
         description="Comma-separated tags of this node (e.g. site-north): a drone registered with "
         "node_tag is only ever owned by nodes that carry that tag.",
     )
-    cluster_lease_ttl_s: float = Field(
+    cluster_lease_ttl_s: Seconds = Field(
         10.0,
         ge=1.0,
         le=300.0,
         description="How long a node's lease on a drone lasts without renewal (renewed every third of "
         "it): a dead node's drones are taken over after at most this long.",
     )
-    cluster_telemetry_hz: float = Field(
-        2.0, gt=0, le=20, description="Telemetry snapshots per second each owner publishes per drone."
+    cluster_telemetry_hz: Hertz = Field(
+        2.0, le=20, description="Telemetry snapshots per second each owner publishes per drone."
     )
-    cluster_forward_timeout_s: float = Field(
+    cluster_forward_timeout_s: Seconds = Field(
         15.0,
-        gt=0,
         le=600,
         description="Longest a forwarded call waits for the owning node beyond the MCP wait cap.",
     )
-    cluster_accept_timeout_s: float = Field(
+    cluster_accept_timeout_s: Seconds = Field(
         3.0,
-        gt=0,
         le=60,
         description="How long a forwarded call waits for the owning node to accept it; the owner "
         "refuses to start a call it receives later, so the caller's 'not run' is true.",

@@ -11,7 +11,7 @@ import signal
 import sys
 from pathlib import Path
 
-from gateway.cli_help import COMMAND_HELP
+from gateway.cli_help import add_command
 from gateway.localstack import LocalStack, StackError
 from gateway.startup import StartupError, check_port_free
 
@@ -42,12 +42,7 @@ DEFAULT_PORT = 8765
 
 
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    parser = subparsers.add_parser(
-        "demo",
-        help=COMMAND_HELP["demo"],
-        description="Start simulated drones, the gateway serving them and its MCP endpoint on this machine, "
-        "and print how to connect an MCP client. Ctrl-C stops everything.",
-    )
+    parser = add_command(subparsers, "demo")
     parser.add_argument("--count", type=int, default=3, help="simulated drones (1-9, default 3)")
     parser.add_argument(
         "--port", type=int, default=None, help="HTTP port of REST and /mcp (default: GATEWAY_PORT, else 8765)"

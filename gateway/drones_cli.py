@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from pydantic import ValidationError
 
-from gateway.cli_help import COMMAND_HELP
+from gateway.cli_help import add_command
 from gateway.cli_support import database_option, fail, validation_text, with_store
 from gateway.config import Settings
 from gateway.errors import DuplicateVehicle
@@ -29,20 +29,31 @@ if TYPE_CHECKING:  # httpx (and its CLI extras rich, pygments) is imported by th
 
 
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    drones = subparsers.add_parser("drones", help=COMMAND_HELP["drones"])
+    drones = add_command(subparsers, "drones")
     drone_cmds = drones.add_subparsers(dest="drones_command", required=True, metavar="ACTION")
 
     add = drone_cmds.add_parser("add", help="register a drone")
+    # each option's dest is the VehicleSpec field it fills (`_spec_from_args`)
     add.add_argument("id", help="drone id: 1-32 of a-z, 0-9, '-'")
     add.add_argument("url", help="MAVLink URL in mavsdk_server syntax, e.g. tcpout://127.0.0.1:5760")
     add.add_argument("--name", default=None, help="human-readable name")
-    add.add_argument("--sysid", type=int, default=None, help="MAVLink system id the drone must report")
-    add.add_argument("--tag", action="append", default=[], help="a tag (repeatable)")
+    add.add_argument(
+        "--sysid",
+        dest="expected_sysid",
+        metavar="SYSID",
+        type=int,
+        default=None,
+        help="MAVLink system id the drone must report",
+    )
+    add.add_argument(
+        "--tag", dest="tags", metavar="TAG", action="append", default=[], help="a tag (repeatable)"
+    )
     add.add_argument(
         "--node-tag", default=None, help="cluster: only nodes carrying this tag own the drone (e.g. a site)"
     )
     add.add_argument(
         "--gcs",
+        dest="gcs_endpoints",
         action="append",
         default=[],
         metavar="URL",
@@ -122,15 +133,8 @@ def _target_options(parser: argparse.ArgumentParser) -> None:
 
 
 def _spec_from_args(args: argparse.Namespace) -> VehicleSpec:
-    return VehicleSpec(
-        id=args.id,
-        url=args.url,
-        name=args.name,
-        tags=args.tag,
-        expected_sysid=args.sysid,
-        node_tag=args.node_tag,
-        gcs_endpoints=args.gcs,
-    )
+    """The drone `drones add` names: its options' dests are VehicleSpec's fields."""
+    return VehicleSpec.model_validate({k: v for k, v in vars(args).items() if k in VehicleSpec.model_fields})
 
 
 def cmd_drones_add(args: argparse.Namespace) -> int:

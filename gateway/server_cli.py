@@ -11,11 +11,10 @@ import sys
 from collections.abc import Iterator
 from datetime import UTC, datetime, timedelta
 
-import uvicorn
 from pydantic import ValidationError
 
 from gateway import drones_cli
-from gateway.cli_help import COMMAND_HELP
+from gateway.cli_help import add_command
 from gateway.cli_support import database_option, fail, settings_from, validation_text, with_store
 from gateway.registry.database import (
     SchemaUpgradeFailed,
@@ -36,17 +35,13 @@ from gateway.startup import (
     describe_database_error,
     prepare_database_location,
 )
+from gateway.util.lean_uvicorn import Config, Server
 
 LOOPBACK_NAMES = {"localhost"}
 
 
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    serve = subparsers.add_parser(
-        "serve",
-        help=COMMAND_HELP["serve"],
-        description="Serve the REST API, the MCP endpoint (/mcp) and the operator pages, and run one "
-        "mavsdk_server per registered drone. The database schema is upgraded on start.",
-    )
+    serve = add_command(subparsers, "serve")
     serve.add_argument("--host", default=None, help="bind address (default GATEWAY_HOST or 127.0.0.1)")
     serve.add_argument("--port", type=int, default=None, help="HTTP port (default GATEWAY_PORT or 8765)")
     database_option(serve)
@@ -54,7 +49,7 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
     drones_cli.register(subparsers)
 
-    db = subparsers.add_parser("db", help=COMMAND_HELP["db"])
+    db = add_command(subparsers, "db")
     db_cmds = db.add_subparsers(dest="db_command", required=True, metavar="ACTION")
     upgrade = db_cmds.add_parser(
         "upgrade", help="upgrade the database schema (the gateway also does on start)"
@@ -114,7 +109,7 @@ def cmd_serve(args: argparse.Namespace) -> int:
     except StartupError as exc:
         return fail(str(exc), 2)
     app = create_app(settings)
-    config = uvicorn.Config(
+    config = Config(
         app,
         host=settings.host,
         port=settings.port,
@@ -150,7 +145,7 @@ async def _open_database(url: str) -> None:
     await store.close()
 
 
-class GatewayServer(uvicorn.Server):
+class GatewayServer(Server):
     """uvicorn's server, except that the signal which stopped it cleanly is not raised again afterwards
     (uvicorn does, so the process would die of it): a clean stop exits with status 0."""
 

@@ -17,13 +17,13 @@ from sqlalchemy import pool
 from sqlalchemy.engine import Connection
 from sqlalchemy.ext.asyncio import async_engine_from_config
 
-from gateway.registry.models import Base, UTCDateTime
+from gateway.registry.models import UTCDateTime, metadata
 
 if TYPE_CHECKING:
     from alembic.autogenerate.api import AutogenContext
 
 config = context.config
-target_metadata = Base.metadata
+target_metadata = metadata
 
 if config.config_file_name is not None and "connection" not in config.attributes:
     fileConfig(config.config_file_name, disable_existing_loggers=False)

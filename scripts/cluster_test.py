@@ -8,6 +8,10 @@ simulated drones and two gateway nodes (node-a, node-b; the file's node-c is lef
 drones are spread over both nodes, kills node-b's container (SIGKILL: no goodbye, its leases just stop
 being renewed), waits until node-a holds every drone, then through node-a's /mcp takes off and lands one
 of node-b's former drones. Removes everything it made; its last line states the figures.
+
+The gateway image a passing `scripts/swarm_test.py --hand-image-over` left (built from these same
+sources and base image: its digest label says so) is run as it is and removed at the end instead of being
+built again; one built from other sources is removed and the image built here.
 """
 
 from __future__ import annotations
@@ -53,10 +57,27 @@ class Cluster(s.Swarm):
         self.url = self.urls["node-a"]
 
     def build_all(self) -> None:
-        self.build()
+        if not self.take_over_gateway_image():
+            self.build()
         debian = s.ROOT / "deploy" / "debian"
         self.build(NATS_IMAGE, debian / "nats.Containerfile", "nats_")
         self.build(POSTGRES_IMAGE, debian / "postgres.Containerfile", "postgres_")
+
+    def take_over_gateway_image(self) -> bool:
+        """Whether the swarm test handed its gateway image over, built from these sources on this base
+        (then it is this run's, removed at its end); a handed-over one from other sources is removed."""
+        if s.image_label(s.IMAGE, s.TEST_LABEL, self.env) != s.PROJECT:
+            return False
+        if s.image_label(s.IMAGE, s.SOURCES_LABEL, self.env) != s.build_digest(self.base):
+            s.log(f"removing {s.IMAGE}: the swarm test left it, built from other sources")
+            s.run(["podman", "rmi", "-f", s.IMAGE], env=self.env, timeout=120)
+            return False
+        self.images.append(s.IMAGE)
+        size = int(s.run(["podman", "image", "inspect", s.IMAGE, "--format", "{{.Size}}"], env=self.env))
+        self.figures["image_mb"] = round(size / 1e6)
+        self.figures["handed_over"] = True
+        s.log(f"{s.IMAGE} ({self.figures['image_mb']} MB): the swarm test's, built from these sources")
+        return True
 
     def container(self, service: str) -> str:
         for c in self.containers():
@@ -195,12 +216,13 @@ def cluster_test(env: dict[str, str], base: str) -> str:
     if error is not None:
         raise error
     f = cluster.figures
+    handed = " (the swarm test's)" if f.get("handed_over") else ""
     return (
         f"cluster-test: PASSED: NATS and PostgreSQL from Debian packages, two gateway nodes, {DRONES} drones "
         f"spread {f['spread']}; node-b killed, node-a held all {DRONES} after {f['takeover_s']} s and flew "
-        f"{f['flown']} (node-b's) up 8 m and down in {f['fly_s']} s; images gateway {f['image_mb']} MB, "
-        f"nats {f['nats_image_mb']} MB, postgres {f['postgres_image_mb']} MB; up {f['up_s']} s, down "
-        f"{f['down_s']} s, total {round(time.monotonic() - started, 1)} s; nothing left behind"
+        f"{f['flown']} (node-b's) up 8 m and down in {f['fly_s']} s; images gateway {f['image_mb']} MB"
+        f"{handed}, nats {f['nats_image_mb']} MB, postgres {f['postgres_image_mb']} MB; up {f['up_s']} s, "
+        f"down {f['down_s']} s, total {round(time.monotonic() - started, 1)} s; nothing left behind"
     )
 
 

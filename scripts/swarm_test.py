@@ -17,6 +17,12 @@
    checks each drone's final position.
 5. Teardown: compose down, then every container, volume, network and image the run made is removed and
    checked gone. The last line states what was flown and the figures.
+
+With ``--hand-image-over`` a run that passed leaves its gateway image for scripts/cluster_test.py, which
+runs the same image and removes it (it builds its own when none was handed over, or one built from other
+sources): CI builds the gateway image once for both tests. The image carries the digest of what it was
+built from (the Dockerfile's COPY sources and the base image) as a label; a handed-over image whose digest
+is not the tree's is a leftover, removed by either script.
 """
 
 from __future__ import annotations
@@ -25,6 +31,7 @@ import argparse
 import asyncio
 import contextlib
 import fcntl
+import hashlib
 import json
 import os
 import resource
@@ -51,6 +58,7 @@ LOCAL_BASE = "localhost/fleet-gateway-base:bookworm"
 PROJECT = "fleet-gateway-swarm-test"
 IMAGE = "fleet-gateway:latest"  # the compose file's
 TEST_LABEL = "io.fleet-gateway.test"  # on the images a test run builds: its project's name
+SOURCES_LABEL = "io.fleet-gateway.sources"  # on the gateway image: build_digest() of what it was built from
 # podman's networks: netavark with aardvark-dns (service names resolve) and iptables (published ports).
 # podman-compose comes from PyPI (the dev extra): Debian's 1.0.3 ignores ipam subnets and fixed addresses.
 DEBIAN_PACKAGES = ("podman", "buildah", "runc", "netavark", "aardvark-dns", "iptables", "debootstrap")
@@ -304,6 +312,38 @@ def signals_deferred() -> Iterator[None]:
         raise KeyboardInterrupt
 
 
+def build_digest(base: str, containerfile: Path = DOCKERFILE) -> str:
+    """SHA-256 over the base image's name, the Containerfile and every file its COPY lines take from the
+    repository (compiled bytecode left out): equal digests, equal builds."""
+    digest = hashlib.sha256(f"{base}\n".encode())
+    digest.update(containerfile.read_bytes())
+    sources: list[Path] = []
+    for line in containerfile.read_text().splitlines():
+        words = line.split()
+        if words[:1] == ["COPY"]:
+            sources += [ROOT / word for word in words[1:-1] if not word.startswith("--")]
+    files = sorted(
+        path
+        for source in sources
+        for path in ([source] if source.is_file() else source.rglob("*"))
+        if path.is_file() and "__pycache__" not in path.parts
+    )
+    for path in files:
+        digest.update(f"{path.relative_to(ROOT)}\n".encode())
+        digest.update(hashlib.sha256(path.read_bytes()).digest())
+    return digest.hexdigest()
+
+
+def image_label(image: str, label: str, env: dict[str, str]) -> str:
+    """The value of ``label`` on ``image`` ("" when the image or the label is missing)."""
+    done = subprocess.run(
+        ["podman", "image", "inspect", image, "--format", f'{{{{index .Labels "{label}"}}}}'],
+        env=env, capture_output=True, text=True, check=False, timeout=60,
+    )  # fmt: skip
+    value = done.stdout.strip() if done.returncode == 0 else ""
+    return "" if value == "<no value>" else value
+
+
 class Swarm:
     """The compose project: built, brought up, torn down; figures collected on the way."""
 
@@ -326,7 +366,8 @@ class Swarm:
         self.url = f"http://127.0.0.1:{self.port}"
         self.figures: dict[str, Any] = {}
         self.compose_bin = podman_compose()
-        self.images: list[str] = []  # built by this run, removed at the end
+        self.images: list[str] = []  # built (or taken over) by this run, removed at the end
+        self.handed_over: list[str] = []  # left for the next run (--hand-image-over), not removed
 
     def compose(self, *argv: str, timeout: float = 600) -> str:
         return run(
@@ -340,9 +381,11 @@ class Swarm:
             raise Failed(f"an image {image} exists already; remove it (podman rmi {image}) and run again")
         started = time.monotonic()
         self.images.append(image)
+        sources = [f"--label={SOURCES_LABEL}={build_digest(self.base)}"] if image == IMAGE else []
         run(
             ["podman", "build", "--layers=false", "--build-arg", f"BASE_IMAGE={self.base}",
-             "--label", f"{TEST_LABEL}={self.project}", "-f", str(containerfile), "-t", image, str(ROOT)],
+             "--label", f"{TEST_LABEL}={self.project}", *sources, "-f", str(containerfile), "-t", image,
+             str(ROOT)],
             env=self.env, timeout=1200,
         )  # fmt: skip
         self.figures[f"{figure}build_s"] = round(time.monotonic() - started, 1)
@@ -540,12 +583,14 @@ class Swarm:
         except Failed as exc:
             problems.append(str(exc))
         self.remove_project()
-        if self.images:  # ours: none existed before
-            run(["podman", "rmi", "-f", *self.images], env=self.env, check=False)
+        removed = [image for image in self.images if image not in self.handed_over]
+        if removed:  # ours: none existed before
+            run(["podman", "rmi", "-f", *removed], env=self.env, check=False)
         after = snapshot(self.env)
-        cache = set(
-            run(["podman", "images", "-q", "--no-trunc", LOCAL_BASE], env=self.env, check=False).split()
-        )
+        cache: set[str] = set()  # kept on purpose: the base image, and the image handed over
+        for kept in (LOCAL_BASE, *self.handed_over):
+            listed = run(["podman", "images", "-q", "--no-trunc", kept], env=self.env, check=False)
+            cache |= set(listed.split())
         for kind, names in after.items():
             extra = names - before[kind] - (cache if kind == "images" else set())
             if extra:
@@ -553,10 +598,11 @@ class Swarm:
         self.figures["down_s"] = round(time.monotonic() - started, 1)
         if problems:
             raise Failed("; ".join(problems))
-        log(f"torn down in {self.figures['down_s']} s; no container, volume, network or image left")
+        kept = f" but {', '.join(self.handed_over)}, handed over" if self.handed_over else ""
+        log(f"torn down in {self.figures['down_s']} s; no container, volume, network or image left{kept}")
 
 
-def swarm_test(env: dict[str, str], base: str) -> str:
+def swarm_test(env: dict[str, str], base: str, hand_image_over: bool = False) -> str:
     started = time.monotonic()
     with swarm_lock():
         swarm = Swarm(env, base)
@@ -567,6 +613,8 @@ def swarm_test(env: dict[str, str], base: str) -> str:
             swarm.build()
             swarm.up()
             swarm.fly()
+            if hand_image_over:  # passed: the cluster test runs this image (and removes it)
+                swarm.handed_over.append(IMAGE)
         except BaseException as exc:
             error = exc
         try:
@@ -586,12 +634,18 @@ def swarm_test(env: dict[str, str], base: str) -> str:
         f"{f['fleet_land_s']} s (worst {f['landed_worst_off_m']} m from below its slot); image "
         f"{f['image_mb']} MB built in {f['build_s']} s, up {f['up_s']} s, down {f['down_s']} s, "
         f"total {total} s; nothing left behind"
+        + (f" but the image {IMAGE}, handed over to the cluster test" if swarm.handed_over else "")
     )
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0])
     parser.add_argument("--base-only", action="store_true", help="prepare the base image and stop")
+    parser.add_argument(
+        "--hand-image-over",
+        action="store_true",
+        help=f"after a pass, leave {IMAGE} for scripts/cluster_test.py (which runs it and removes it)",
+    )
     args = parser.parse_args()
     sigterm_interrupts()
     try:
@@ -603,7 +657,7 @@ def main() -> int:
             if args.base_only:
                 log(f"base image {base} ready; podman runs containers here")
                 return 0
-            print(swarm_test(env, base), flush=True)
+            print(swarm_test(env, base, args.hand_image_over), flush=True)
             return 0
     except Skip as exc:
         print(f"swarm-test: SKIPPED: {exc}", flush=True)

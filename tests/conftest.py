@@ -9,10 +9,16 @@ from collections.abc import AsyncIterator, Iterator
 from pathlib import Path
 
 import pytest
+from hypothesis import settings as hypothesis_settings
 
 from gateway.registry.store import Store
 from tests.helpers.file_order import longest_files_first, seconds_per_file
 from tests.helpers.timing import TIME_SCALE, scaled
+
+# no per-example time limit: Hypothesis's default 200 ms deadline is a wall-clock threshold, which fails a
+# correct property on a busy machine (tests judge behaviour, bench/ measures speed)
+hypothesis_settings.register_profile("fleet", deadline=None)
+hypothesis_settings.load_profile("fleet")
 
 
 def pytest_report_header(config: pytest.Config) -> str:
@@ -28,8 +34,10 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     items[:] = [items[i] for i in order]
 
 
+@pytest.hookimpl(trylast=True)
 def pytest_configure(config: pytest.Config) -> None:
-    """FLEET_TEST_TIME_SCALE stretches pytest-timeout's per-test bound like every other deadline."""
+    """FLEET_TEST_TIME_SCALE stretches pytest-timeout's per-test bound like every other deadline (last:
+    pytest-timeout's own pytest_configure sets the bound this stretches)."""
     timeout = getattr(config, "_env_timeout", None)
     if timeout and TIME_SCALE != 1.0:
         config._env_timeout = timeout * TIME_SCALE  # type: ignore[attr-defined]

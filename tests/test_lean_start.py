@@ -6,6 +6,7 @@ here rather than as a few MiB more in a benchmark nobody runs."""
 
 from __future__ import annotations
 
+import asyncio
 import json
 import os
 import sqlite3
@@ -17,7 +18,9 @@ from pathlib import Path
 import pytest
 
 from gateway.registry.schema_check import head_from_files
-from gateway.util.ports import free_tcp_port
+from gateway.registry.spec import VehicleSpec
+from gateway.registry.store import Store
+from gateway.util.ports import free_tcp_port, free_udp_port
 from tests.helpers.timing import scaled
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -41,8 +44,17 @@ NOT_AT_START = {
     "httpx": "the drones commands that call the API",
     "jwt": "nothing of the gateway",
     "rich": "nothing of a server (the MCP SDK's logging handler: gateway.mcp.sdk_private)",
+    "cryptography": "a request state sealed (a 2026-07-28 elicited confirmation): gateway.mcp.sdk_crypto",
+    "mcp.client": "nothing of a server (the MCP SDK's package __init__: gateway.mcp.sdk_package)",
+    "httpx2": "a resource the MCP SDK fetches by URL (the gateway registers none)",
     "mavsdk_grpc.system": "nothing: gateway.link.mavsdk_system loads only the plugins the gateway uses",
     "mavsdk_grpc.camera": "nothing: a plugin the gateway does not use",
+    "pydantic.v1": "a pydantic v1 model (FastAPI's checks for one: gateway.api.fastapi_v1)",
+    "uvicorn.main": "uvicorn's command line (the gateway's own: gateway.util.lean_uvicorn)",
+    "click": "uvicorn's command line",
+    "multiprocessing": "uvicorn's reloader and workers",
+    "sqlalchemy.orm": "nothing: the store writes Core statements (gateway.registry.models, sql_async)",
+    "sqlalchemy.ext.asyncio.session": "nothing: the store uses the async engine's connections only",
 }
 
 # The child: start the command in the main thread; a watcher thread waits until it serves, writes the
@@ -65,12 +77,16 @@ def serving():
     started = ("mcp.server.stdio", "gateway.mcp.server", "gateway.runtime", "mavsdk_grpc.telemetry")
     return all(name in sys.modules for name in started)
 
+def ready():
+    wanted = filter(None, os.environ.get("LEAN_START_LOADED", "").split(","))
+    return serving() and all(name in sys.modules for name in wanted)
+
 def watch():
     deadline = time.monotonic() + float(os.environ["LEAN_START_DEADLINE"])
-    while time.monotonic() < deadline and not serving():
+    while time.monotonic() < deadline and not ready():
         time.sleep(0.1)
     with open(out + ".tmp", "w") as fh:
-        json.dump({"serving": serving(), "modules": sorted(sys.modules)}, fh)
+        json.dump({"serving": ready(), "modules": sorted(sys.modules)}, fh)
     os.replace(out + ".tmp", out)
     if command == "serve":
         os.kill(os.getpid(), signal.SIGINT)
@@ -92,7 +108,11 @@ def environment(database_url: str) -> dict[str, str]:
     return env
 
 
-def loaded_at_start(command: str, tmp_path: Path, upgraded_first: bool = True) -> list[str]:
+def loaded_at_start(
+    command: str, tmp_path: Path, upgraded_first: bool = True, drone_url: str | None = None
+) -> list[str]:
+    """The modules ``command`` has loaded once it serves; with ``drone_url``, a drone registered at that
+    URL first, and once its link has started its relay too."""
     database_url = f"sqlite+aiosqlite:///{tmp_path / 'fleet.db'}"
     env = environment(database_url)
     if upgraded_first:  # a database at the current schema, as every start after the first finds it
@@ -100,6 +120,9 @@ def loaded_at_start(command: str, tmp_path: Path, upgraded_first: bool = True) -
             [sys.executable, "-m", "gateway.cli", "db", "upgrade"],
             cwd=tmp_path, env=env, check=True, capture_output=True, timeout=scaled(120),
         )  # fmt: skip
+    if drone_url is not None:
+        asyncio.run(register_drone(database_url, drone_url))
+        env["LEAN_START_LOADED"] = "gateway.link.relay"
     out = tmp_path / f"{command}.json"
     proc = subprocess.Popen(
         [sys.executable, "-c", CHILD, command, str(out), str(free_tcp_port())],
@@ -127,6 +150,14 @@ def loaded_at_start(command: str, tmp_path: Path, upgraded_first: bool = True) -
     return modules
 
 
+async def register_drone(database_url: str, url: str) -> None:
+    store = await Store.open(database_url)
+    try:
+        await store.add_vehicle(VehicleSpec(id="d1", url=url))
+    finally:
+        await store.close()
+
+
 def unexpected(modules: list[str]) -> dict[str, str]:
     return {
         name: why
@@ -140,6 +171,16 @@ def test_a_plain_start_imports_only_what_its_configuration_uses(command: str, tm
     modules = loaded_at_start(command, tmp_path)
     assert "gateway.runtime" in modules and "mavsdk_grpc.telemetry" in modules  # it did start a gateway
     assert unexpected(modules) == {}, f"{command} imported at start what only these need"
+
+
+def test_a_drone_relayed_for_its_raw_flight_log_costs_no_mavlink_dialect(tmp_path: Path) -> None:
+    """Every drone's link runs through the gateway's relay while flights' raw MAVLink is recorded (the
+    default): its frames are split and routed by `gateway.link.mavlink_messages`, and pymavlink's
+    dialect module (about 6 MiB) waits for a ground station's frame or a mission."""
+    modules = loaded_at_start("serve", tmp_path, drone_url=f"udpin://127.0.0.1:{free_udp_port()}")
+    assert "gateway.link.relay" in modules  # the drone's link did start its relay
+    dialects = [m for m in modules if m.startswith(("pymavlink.dialects", "gateway.link.ground_commands"))]
+    assert dialects == [], "a drone relayed only for its raw flight log loaded pymavlink's dialect"
 
 
 def test_a_first_start_upgrades_the_new_database_without_keeping_alembic(tmp_path: Path) -> None:

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 
-from gateway.registry.models import Base
+from gateway.registry.models import metadata
 from gateway.registry.schema_check import head_from_files
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -117,4 +117,4 @@ def test_the_installed_package_upgrades_a_fresh_database_to_head(installed: Path
         (version,) = conn.execute("SELECT version_num FROM alembic_version").fetchone()
         tables = {row[0] for row in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
     assert version == head_from_files(ROOT / "migrations" / "versions")
-    assert set(Base.metadata.tables) <= tables
+    assert set(metadata.tables) <= tables

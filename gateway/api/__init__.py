@@ -4,13 +4,15 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Depends
 
+import gateway.api.fastapi_v1  # first: FastAPI's v1 checks, before any route is built
+import gateway.util.lean_uvicorn  # noqa: F401  (before sse_starlette: uvicorn without its command line)
 from gateway.api import (
     activity,
     cluster,
     control,
+    declared,
     events,
     flights,
-    flying,
     geofences,
     missions,
     origins,
@@ -31,7 +33,7 @@ def build_api_router(*beside: APIRouter) -> APIRouter:
     api.include_router(flights.router)
     api.include_router(activity.router)
     api.include_router(control.router)
-    api.include_router(flying.router)
+    api.include_router(declared.build_declared_router())
     api.include_router(missions.router)
     api.include_router(params.router)
     api.include_router(geofences.router)

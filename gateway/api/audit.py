@@ -164,6 +164,13 @@ def _failure(exc: Exception) -> tuple[str, str]:
     return "error", f"internal_error: {exc!r}"[:500]
 
 
+def note_unchecked(request: Request, unchecked: object) -> None:
+    """An operator's mission with items the gateway cannot check: said in the call's audit row."""
+    if isinstance(unchecked, list) and unchecked:
+        note = getattr(request.state, "audit_note", None) or {}
+        request.state.audit_note = {**note, "unchecked": [str(u) for u in unchecked]}
+
+
 class AuditedRoute(APIRoute):
     """An APIRoute that audits its state-changing calls; the action is the route's name."""
 

@@ -16,7 +16,7 @@ from gateway.api.schemas import FlightPage, IsoTime, StatusTextList, time_window
 from gateway.errors import NotFound, UnknownVehicle
 from gateway.fleet.missions.flight_export import track_feature, track_kml, track_tlog
 from gateway.fleet.missions.raw_tlog import tlog_file, tlog_folder, was_cut
-from gateway.registry.store import FlightRecord, Store
+from gateway.registry.store import FlightRecord, Store, TrackSample
 
 FlightId = Annotated[int, Path(ge=1, le=MAX_ROW, description="Flight id.")]
 
@@ -50,6 +50,11 @@ async def _flight(store: Store, flight_id: int) -> FlightRecord:
     return flight
 
 
+async def _flown(store: Store, flight_id: int) -> tuple[FlightRecord, list[TrackSample]]:
+    """A flight and its track (the track exports render both); NotFound when there is no such flight."""
+    return await _flight(store, flight_id), await store.get_track(flight_id)
+
+
 @router.get("/{flight_id}", response_model=FlightRecord, summary="One flight with its summary figures")
 async def get_flight(flight_id: FlightId, store: StoreDep) -> FlightRecord:
     return await _flight(store, flight_id)
@@ -62,8 +67,7 @@ async def get_flight(flight_id: FlightId, store: StoreDep) -> FlightRecord:
     responses={200: {"content": {GEOJSON_MEDIA_TYPE: {}}}},
 )
 async def flight_track(flight_id: FlightId, store: StoreDep) -> JSONResponse:
-    flight = await _flight(store, flight_id)
-    track = await store.get_track(flight_id)
+    flight, track = await _flown(store, flight_id)
     return JSONResponse(track_feature(flight, track), media_type=GEOJSON_MEDIA_TYPE)
 
 
@@ -90,8 +94,7 @@ def _attachment(name: str) -> dict[str, str]:
     responses={200: {"content": {KML_MEDIA_TYPE: {}}}},
 )
 async def flight_kml(flight_id: FlightId, store: StoreDep) -> Response:
-    flight = await _flight(store, flight_id)
-    track = await store.get_track(flight_id)
+    flight, track = await _flown(store, flight_id)
     return Response(
         track_kml(flight, track),
         media_type=KML_MEDIA_TYPE,

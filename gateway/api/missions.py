@@ -1,11 +1,11 @@
-"""/api/v1/vehicles/{id}/mission: a ground station's mission file in (QGC .plan or QGC WPL 110) and out,
-and the operator's start, pause and resume of the stored mission.
+"""/api/v1/vehicles/{id}/mission: a ground station's mission file in (QGC .plan or QGC WPL 110) and out
+(the operator's start, pause and resume of the stored mission are routes their verbs declare,
+`gateway.api.declared`).
 
 Each is one Commander call with the operator's caller (``via="rest"``): the upload goes through the same
 policy checks as ``upload_mission``, item by item, and a refusal names the item's number (the file's
-sequence number) and the rule; start, pause and resume are the verbs the MCP tools call
-(initiate_mission, pause_mission, resume_mission), under the same rules for an operator as any operator
-command. How the file's items are read: `gateway.fleet.missions.mission_files`.
+sequence number) and the rule. How the file's items are read:
+`gateway.fleet.missions.mission_files`.
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from typing import Annotated, Literal
 
 from fastapi import APIRouter, Query, Request, Response
 
-from gateway.api.audit import AuditedRoute
+from gateway.api.audit import AuditedRoute, note_unchecked
 from gateway.api.control import CommandOut, operator
 from gateway.api.deps import CommanderDep, CommandVehicleId, PrincipalDep
 from gateway.errors import InvalidArgument
@@ -106,33 +106,10 @@ async def put_mission_file(
     if plan:
         note = getattr(request.state, "audit_note", None) or {}
         request.state.audit_note = {**note, "plan": str(plan)}
-    _mark_unchecked(request, result.facts.get("unchecked"))
+    note_unchecked(request, result.facts.get("unchecked"))
     return CommandOut(
         vehicle_id=vehicle_id, action="upload_mission_file", outcome="sent", message=result.message
     )
-
-
-@router.post(
-    "/vehicles/{vehicle_id}/mission/start",
-    response_model=CommandOut,
-    summary="Start the mission the vehicle holds, read back and checked whole from where it is now",
-)
-async def start_mission(
-    vehicle_id: CommandVehicleId, request: Request, commander: CommanderDep, who: PrincipalDep
-) -> CommandOut:
-    """The limits and zones hold the operator too; items the gateway cannot check are allowed and the
-    mission is marked unchecked (in the answer, the operation's parameters and the audit row)."""
-    op = await commander.start_mission(operator(who), vehicle_id, None, "start_mission")
-    _mark_unchecked(request, op.params.get("unchecked"))
-    out = CommandOut.of_operation(op, "start_mission")
-    return out.model_copy(update={"message": op.message})
-
-
-def _mark_unchecked(request: Request, unchecked: object) -> None:
-    """An operator's mission with items the gateway cannot check: said in the call's audit row."""
-    if isinstance(unchecked, list) and unchecked:
-        note = getattr(request.state, "audit_note", None) or {}
-        request.state.audit_note = {**note, "unchecked": [str(u) for u in unchecked]}
 
 
 @router.get(
@@ -155,27 +132,3 @@ async def get_mission_file(
         media_type=MEDIA[file_format],
         headers={"Content-Disposition": f'attachment; filename="{name}"'},
     )
-
-
-@router.post(
-    "/vehicles/{vehicle_id}/mission/pause",
-    response_model=CommandOut,
-    summary="Pause the mission: hold where the vehicle is (GUIDED); resume continues (operator)",
-)
-async def pause_mission(
-    vehicle_id: CommandVehicleId, commander: CommanderDep, who: PrincipalDep
-) -> CommandOut:
-    result = await commander.pause_mission(operator(who), vehicle_id)
-    return CommandOut(vehicle_id=vehicle_id, action="pause_mission", outcome="sent", message=result.message)
-
-
-@router.post(
-    "/vehicles/{vehicle_id}/mission/resume",
-    response_model=CommandOut,
-    summary="Continue the mission from its current item (operator)",
-)
-async def resume_mission(
-    vehicle_id: CommandVehicleId, commander: CommanderDep, who: PrincipalDep
-) -> CommandOut:
-    op = await commander.resume_mission(operator(who), vehicle_id)
-    return CommandOut.of_operation(op, "resume_mission")

@@ -12,6 +12,7 @@ Both ends of one mechanism (`gateway.fleet.operations.routing` says what crosses
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 from collections.abc import Awaitable, Callable, Mapping
 from typing import TYPE_CHECKING, Protocol
@@ -19,11 +20,11 @@ from typing import TYPE_CHECKING, Protocol
 from gateway.errors import InvalidArgument
 from gateway.fleet.commands.command_core import ROUTED
 from gateway.fleet.commands.commander import Commander
-from gateway.fleet.operations.routing import ACTING, FORWARDED, OnMessage, ProgressMessage
+from gateway.fleet.operations.routing import ACTING, FORWARDED, ProgressMessage, RoutedCall
 from gateway.fleet.operations.views import OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import RunningOperation
-from gateway.util.json_types import JsonMapping, JsonObject, JsonValue
+from gateway.util.json_types import JsonObject, JsonValue
 
 from .bus import ProgressSink
 from .remote import RemoteVehicle
@@ -39,18 +40,15 @@ ENDED_KEPT = 2000
 """Operations of other nodes this node has seen end (newer than the owners' last snapshots)."""
 
 
+#: a call sent to the drone's owner (`gateway.cluster.owner_calls.OwnerCalls.forward`)
+Forward = Callable[[RoutedCall], Awaitable[JsonValue]]
+
+
 class Forwarder(Protocol):
     """Sends a call to the drone's owner (`gateway.cluster.owner_calls.OwnerCalls`)."""
 
-    async def forward(
-        self,
-        drone_id: str,
-        verb: str,
-        caller: Caller,
-        arguments: JsonObject,
-        on_message: OnMessage | None,
-        wait_s: float,
-    ) -> JsonValue: ...
+    @property
+    def forward(self) -> Forward: ...
 
 
 class RouterNode(Protocol):
@@ -114,21 +112,15 @@ class ClusterRouter:
             float(target) if isinstance(target, int | float) else None,
         )
 
-    async def call(
-        self,
-        drone_id: str,
-        verb: str,
-        caller: Caller,
-        arguments: JsonMapping,
-        on_message: OnMessage | None = None,
-        wait_s: float = 0.0,
-    ) -> JsonValue:
+    async def call(self, routed: RoutedCall) -> JsonValue:
+        on_message = routed.on_message
+
         async def observe(body: ProgressMessage) -> None:
             self._note(body.get("view"))
             if on_message is not None:
                 await on_message(body)
 
-        result = await self.node.calls.forward(drone_id, verb, caller, dict(arguments), observe, wait_s)
+        result = await self.node.calls.forward(dataclasses.replace(routed, on_message=observe))
         self._note(result)
         return result
 

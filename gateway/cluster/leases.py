@@ -25,7 +25,8 @@ from typing import Any
 
 from sqlalchemy import text
 from sqlalchemy.exc import IntegrityError
-from sqlalchemy.ext.asyncio import AsyncConnection, AsyncEngine
+
+from gateway.registry.sql_async import AsyncConnection, AsyncEngine
 
 
 @dataclass(frozen=True)

@@ -27,8 +27,9 @@ from gateway.cluster.stop_notify import StopRelay
 from gateway.cluster.stop_takeover import OWNER_ACK_S, StopTakeover
 from gateway.cluster.stoplink import STOP_COMMANDS, StopTarget
 from gateway.errors import NoOwner, NotRun, OwnerFenced
-from gateway.fleet.operations.routing import OnMessage
+from gateway.fleet.operations.routing import OnMessage, RoutedCall
 from gateway.fleet.policy.caller import Caller
+from gateway.util.cancelling import cancelled_here
 from gateway.util.json_types import JsonObject, JsonValue
 
 if TYPE_CHECKING:
@@ -100,16 +101,10 @@ class OwnerCalls:
             log.warning("%s: %d forwarded call(s) cut short (%s)", vehicle_id, len(running), why)
         return len(running)
 
-    async def forward(
-        self,
-        drone_id: str,
-        verb: str,
-        caller: Caller,
-        arguments: JsonObject,
-        on_message: OnMessage | None,
-        wait_s: float,
-    ) -> JsonValue:
-        """Run ``verb`` on the drone's owner (over NATS); its result, or its error raised here."""
+    async def forward(self, routed: RoutedCall) -> JsonValue:
+        """Run the verb on the drone's owner (over NATS); its result, or its error raised here."""
+        drone_id, verb, caller, wait_s = routed.drone_id, routed.verb, routed.caller, routed.wait_s
+        arguments, on_message = dict(routed.arguments), routed.on_message
         if not self._node.started:
             raise NoOwner(f"this node is not part of the cluster yet; cannot reach {drone_id}'s owner")
         forward_s = self._node.settings.cluster_forward_timeout_s
@@ -209,6 +204,12 @@ class OwnerCalls:
                 self._relay(relay, drone_id, verb, arguments, epoch, body, deadline, owner_paths, why)
             else:
                 return await over_bus
+        except asyncio.CancelledError:
+            if cancelled_here():
+                raise
+            # the bus call ended cancelled under it (not this stop): PostgreSQL carries the stop instead
+            why.append("bus: its call was cancelled")
+            self._relay(relay, drone_id, verb, arguments, epoch, body, deadline, owner_paths, why)
         except NotRun as exc:
             # the bus did not carry it (this node cut off, or no answer in the accept time): through
             # PostgreSQL notifications to the owner

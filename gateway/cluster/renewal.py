@@ -28,10 +28,9 @@ import time
 from collections.abc import Awaitable
 from typing import Protocol, TypeVar
 
-from sqlalchemy.ext.asyncio import AsyncEngine, create_async_engine
-
 from gateway.cluster.leases import Lease, LeaseStore
 from gateway.config import Settings
+from gateway.registry.sql_async import AsyncEngine, create_async_engine
 
 log = logging.getLogger("gateway.cluster")
 T = TypeVar("T")

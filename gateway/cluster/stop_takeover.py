@@ -127,7 +127,9 @@ class StopTakeover:
                     break
                 for task in done:
                     path = tasks.pop(task)
-                    error = task.exception()
+                    # a path that ended cancelled (a library cancelled what it awaited: a connection
+                    # lost under it) failed like any other; the other paths still carry the stop
+                    error = asyncio.CancelledError("cancelled") if task.cancelled() else task.exception()
                     if error is None:
                         if path == "link":
                             log.warning("%s: %s sent over its own link by node %s, no owner acknowledging "

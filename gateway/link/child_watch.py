@@ -35,7 +35,10 @@ class LoopPidfdWatcher(asyncio.AbstractChildWatcher):
 
     @staticmethod
     def _reap(
-        loop: asyncio.AbstractEventLoop, pid: int, pidfd: int, callback: Callable[..., object],
+        loop: asyncio.AbstractEventLoop,
+        pid: int,
+        pidfd: int,
+        callback: Callable[..., object],
         args: tuple[object, ...],
     ) -> None:
         loop.remove_reader(pidfd)

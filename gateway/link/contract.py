@@ -42,6 +42,12 @@ class LinkRules(Protocol):
         """The flight mode a HEARTBEAT reports, or None to use MAVSDK's name for it."""
         ...
 
+    @property
+    def estimate_from_ekf_report(self) -> bool:
+        """Whether the position estimate is read from EKF_STATUS_REPORT (then a drone is not ready before
+        the first report, unless the autopilot refused the stream)."""
+        ...
+
     def position_estimate_ok(self, health: HealthValue, ekf_flags: int | None) -> bool:
         """Whether the autopilot's position estimate is good enough to arm and fly."""
         ...

@@ -6,6 +6,9 @@ act on the drone: a new target, a mission change, a parameter write, a command. 
 those (`gateway.link.contract.GroundCommand`), and the takeover watch reads them: while the gateway
 flies the drone, any is a takeover (`gateway.fleet.policy.takeover`). Mode switches (SET_MODE,
 MAV_CMD_DO_SET_MODE) are left to the HEARTBEAT the watch already judges, which names both modes.
+
+Reading those frames takes pymavlink's dialect module (about 6 MiB of the gateway's memory): the relay
+imports this module only when a ground station's frame comes.
 """
 
 from __future__ import annotations
@@ -13,9 +16,12 @@ from __future__ import annotations
 from pymavlink.dialects.v20 import ardupilotmega as mavlink
 
 from gateway.link.contract import GroundCommand
-from gateway.link.mavlink_frames import Frame, decoded
+from gateway.link.mavlink_frames import Frame
 
 __all__ = ["GroundCommand", "acting", "not_a_ground_station"]
+
+_DECODER = mavlink.MAVLink(None)
+_DECODER.robust_parsing = True
 
 #: messages that act on the drone whatever their fields say
 ACTING_MESSAGES = frozenset(
@@ -53,6 +59,17 @@ NOT_ACTING_COMMANDS = frozenset(
         mavlink.MAV_CMD_DO_SET_MODE,
     }
 )
+
+
+def decoded(frame: Frame) -> mavlink.MAVLink_message | None:
+    """The frame's message as pymavlink reads it; None when the dialect cannot unpack it."""
+    if frame.msgid not in mavlink.mavlink_map:
+        return None
+    try:
+        msg: mavlink.MAVLink_message = _DECODER.decode(bytearray(frame.data))
+        return msg
+    except Exception:  # another version of the message
+        return None
 
 
 def acting(frame: Frame, vehicle_sysids: set[int]) -> str | None:

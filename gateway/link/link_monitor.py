@@ -1,5 +1,7 @@
 """The link monitor: one task per connected link that records the connection state's changes and asks
-for the telemetry rates again when the streams stopped while heartbeats go on (a reboot).
+for the telemetry rates again when the streams stopped while heartbeats go on (a reboot), or while the
+autopilot has a home position the gateway has not received; and for the streams whose rate request got
+no answer (a timeout on a busy link), with a growing wait.
 
 It wakes once a second (``MONITOR_PERIOD_S``), and when the last heartbeat (or, before the first, the
 session's start) reaches the link-lost limit, ``MONITOR_LATE_S`` after it (so the heartbeat is then
@@ -34,7 +36,9 @@ class MonitorHost(Protocol):
 
     def note_state(self) -> None: ...
 
-    def schedule_rates(self, why: str, force: bool = False) -> None: ...
+    def schedule_rates(self, why: str, force: bool = False, only: frozenset[str] | None = None) -> None: ...
+
+    def rates_to_ask_again(self) -> frozenset[str]: ...
 
 
 async def run_monitor(link: MonitorHost) -> None:
@@ -46,18 +50,36 @@ async def run_monitor(link: MonitorHost) -> None:
     read; the health and the rate check can wait a second."""
     while True:
         link.note_state()
-        if link.session_started is not None:
-            hb = link.last_heartbeat_age_s
-            heartbeats_fresh = hb is not None and hb < link.settings.link_lost_after_s
-            limit = max(2.0, link.settings.link_lost_after_s * 0.66)
-            # both requested streams silent (a vehicle without GPS may never send a position)
-            streams_silent = all(
-                sample is None or sample.age_s > limit
-                for sample in (link.telemetry.position, link.telemetry.attitude)
-            )
-            if heartbeats_fresh and streams_silent:
-                link.schedule_rates("telemetry streams silent while heartbeats continue (reboot?)")
+        ask_for_rates(link)
         await asyncio.sleep(monitor_wait_s(link))
+
+
+def ask_for_rates(link: MonitorHost) -> None:
+    """Every rate again when ``rates_wanted_again`` says why; else the streams whose request got no
+    answer, once their retry is due. The session throttles both (``RATE_RETRY_S``)."""
+    why = rates_wanted_again(link)
+    if why is not None:
+        link.schedule_rates(why)
+    elif unanswered := link.rates_to_ask_again():
+        link.schedule_rates(f"no answer to the rate of {', '.join(sorted(unanswered))}", only=unanswered)
+
+
+def rates_wanted_again(link: MonitorHost) -> str | None:
+    """Why the telemetry rates are to be asked for again while heartbeats come, or None: both requested
+    streams silent (a reboot forgets them; a vehicle without GPS may never send a position), or the
+    autopilot reports a home position the gateway never received (a drone is ready only with one, home
+    comes every few seconds at rest, and a request of it lost on a busy link is not answered again)."""
+    hb = link.last_heartbeat_age_s
+    if link.session_started is None or hb is None or hb >= link.settings.link_lost_after_s:
+        return None
+    limit = max(2.0, link.settings.link_lost_after_s * 0.66)
+    t = link.telemetry
+    if all(sample is None or sample.age_s > limit for sample in (t.position, t.attitude)):
+        return "telemetry streams silent while heartbeats continue (reboot?)"
+    health = t.health
+    if t.home is None and health is not None and health.age_s <= limit and health.value.home_position_ok:
+        return "the autopilot has a home position the gateway has not received"
+    return None
 
 
 def monitor_wait_s(link: MonitorHost) -> float:

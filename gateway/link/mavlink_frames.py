@@ -1,22 +1,25 @@
 """MAVLink v1/v2 framing for the relay: a byte stream split into frames (bytes that are no frame are
-dropped), each checked by CRC where its message is known, and the system a frame is addressed to."""
+dropped), each checked by CRC where its message is known, and the system a frame is addressed to.
+
+What a message's frame needs for both (its CRC_EXTRA, where its ``target_system`` lies) is read from
+`gateway.link.mavlink_messages`, not from pymavlink's dialect module: a drone relayed only for its raw
+flight log (every drone, by default) costs the gateway no dialect."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from pymavlink.dialects.v20 import ardupilotmega as mavlink
 from pymavlink.generator.mavcrc import x25crc
+
+from gateway.link.mavlink_messages import MESSAGES
 
 STX_V1 = 0xFE
 STX_V2 = 0xFD
 #: the longest a partial frame may wait for its tail before its bytes count as noise
 MAX_BUFFER = 64 * 1024
-_TARGETED = {
-    msgid: cls
-    for msgid, cls in mavlink.mavlink_map.items()
-    if "target_system" in getattr(cls, "fieldnames", ())
-}
+#: bytes before the payload: MAVLink 1, MAVLink 2
+HEADER_V1 = 6
+HEADER_V2 = 10
 
 
 @dataclass(frozen=True)
@@ -47,12 +50,12 @@ class FrameSplitter:
                 if len(buf) < 10:
                     break
                 length = 12 + buf[1] + (13 if buf[2] & 0x01 else 0)
-                header, sysid, msgid = 10, buf[5], int.from_bytes(buf[7:10], "little")
+                header, sysid, msgid = HEADER_V2, buf[5], int.from_bytes(buf[7:10], "little")
             else:
                 if len(buf) < 6:
                     break
                 length = 8 + buf[1]
-                header, sysid, msgid = 6, buf[3], buf[5]
+                header, sysid, msgid = HEADER_V1, buf[3], buf[5]
             if len(buf) < length:
                 if len(buf) > MAX_BUFFER:
                     del buf[:1]
@@ -68,35 +71,22 @@ class FrameSplitter:
 
 
 def _crc_ok(buf: bytearray, payload_end: int, msgid: int) -> bool:
-    cls = mavlink.mavlink_map.get(msgid)
-    if cls is None:
+    known = MESSAGES.get(msgid)
+    if known is None:
         return True  # not in the dialect: relayed as framed, the receiver checks it
     crc = x25crc(bytes(buf[1:payload_end]))
-    crc.accumulate(bytes([cls.crc_extra]))
+    crc.accumulate(bytes([known[0]]))
     return bool(crc.crc == int.from_bytes(buf[payload_end : payload_end + 2], "little"))
 
 
-_DECODER = mavlink.MAVLink(None)
-_DECODER.robust_parsing = True
-
-
 def target_system(frame: Frame) -> int:
-    """The system a frame is addressed to; 0 (everyone) when it has no target or cannot be read."""
-    if frame.msgid not in _TARGETED:
+    """The system a frame is addressed to; 0 (everyone) when it has no target. A MAVLink 2 payload
+    ends before its trailing zero bytes, so a target beyond its end is 0; a MAVLink 1 frame of a
+    message whose target is a MAVLink 2 extension (COMMAND_ACK) has none."""
+    known = MESSAGES.get(frame.msgid)
+    if known is None or known[1] < 0:
         return 0
-    try:
-        msg = _DECODER.decode(bytearray(frame.data))
-    except Exception:  # a frame the dialect cannot unpack (another version of the message): broadcast
-        return 0
-    return int(getattr(msg, "target_system", 0) or 0)
-
-
-def decoded(frame: Frame) -> mavlink.MAVLink_message | None:
-    """The frame's message as pymavlink reads it; None when the dialect cannot unpack it."""
-    if frame.msgid not in mavlink.mavlink_map:
-        return None
-    try:
-        msg: mavlink.MAVLink_message = _DECODER.decode(bytearray(frame.data))
-        return msg
-    except Exception:  # another version of the message
-        return None
+    data = frame.data
+    header = HEADER_V2 if data[0] == STX_V2 else HEADER_V1
+    offset = known[1]
+    return data[header + offset] if offset < data[1] else 0

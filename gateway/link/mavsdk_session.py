@@ -33,10 +33,8 @@ SessionJob = Callable[[System], Awaitable[None]]
 RATE_RETRY_S = 5.0
 MAV_CMD_SET_MESSAGE_INTERVAL = 511
 MAV_CMD_REQUEST_MESSAGE = 512
-MAVLINK_MSG_MISSION_CURRENT = 42
-MAVLINK_MSG_EKF_STATUS_REPORT = 193
-MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT = 87
 MAVLINK_MSG_SIMSTATE = 164
+MAVLINK_MSG_HOME_POSITION = 242
 
 
 class SessionHost(Protocol):
@@ -90,6 +88,7 @@ class MavsdkSession:
             link.telemetry,
             mission_progress_map=mission_progress,
             use_mavsdk_flight_mode=self.mavsdk_names_modes,
+            set_message_rate=self._set_message_rate,
         )
         self.open = True  # False once the link dropped it (its loops may still be unwinding)
         self.ekf_flags: int | None = None  # EKF_STATUS_REPORT.flags (ArduPilot), None until one arrives
@@ -131,10 +130,16 @@ class MavsdkSession:
         await self.feed.stop()
 
     # --- telemetry rates ---------------------------------------------------------------------------------
-    def schedule_rates(self, why: str, force: bool = False, then: Callable[[], None] | None = None) -> None:
-        """Request every telemetry rate (again), unless a request runs or one was made less than
-        ``RATE_RETRY_S`` ago (``force``: regardless of when); ``then`` is called once the request has
-        ended, or at once when none was made."""
+    def schedule_rates(
+        self,
+        why: str,
+        force: bool = False,
+        then: Callable[[], None] | None = None,
+        only: frozenset[str] | None = None,
+    ) -> None:
+        """Request every telemetry rate (again), or only the streams ``only`` names, unless a request runs
+        or one was made less than ``RATE_RETRY_S`` ago (``force``: regardless of when); ``then`` is called
+        once the request has ended, or at once when none was made."""
         if not self.open or (self._rates_task is not None and not self._rates_task.done()):
             if then is not None:
                 then()
@@ -145,34 +150,35 @@ class MavsdkSession:
             return
         self._rates_requested_at = time.monotonic()
         log.info("%s: requesting telemetry rates (%s)", self.id, why)
-        self._rates_task = asyncio.create_task(self._request_rates(), name=f"rates-{self.id}")
+        self._rates_task = asyncio.create_task(self._request_rates(only), name=f"rates-{self.id}")
         if then is not None:
             self._rates_task.add_done_callback(lambda _task: then())
 
-    async def _request_rates(self) -> None:
+    async def _request_rates(self, only: frozenset[str] | None = None) -> None:
         feed = self.feed
         for _ in range(30):  # which streams to ask for depends on the autopilot: wait for a HEARTBEAT
             if self._link.facts.autopilot is not None:
                 break
             await asyncio.sleep(0.1)
         skip = self._link.rules.skipped_streams if self._link.facts.autopilot is not None else frozenset()
-        await feed.request_rates(lambda what, aw: self._link.call(what, aw, 5.0), skip)
-        # MISSION_CURRENT is only in ArduPilot's EXT_STAT stream: ask for it by id (mission progress);
-        # EKF_STATUS_REPORT says when the position estimate is ready (arming in GUIDED needs it, read
-        # fresh: 1 Hz keeps it inside the staleness limit when a message is lost);
-        # POSITION_TARGET_GLOBAL_INT (EXT_STAT too) is where it flies to (gateway.fleet.policy.takeover)
-        for message_id, interval_us in (
-            (MAVLINK_MSG_MISSION_CURRENT, 1e6),
-            (MAVLINK_MSG_EKF_STATUS_REPORT, 1e6),
-            (MAVLINK_MSG_POSITION_TARGET_GLOBAL_INT, 2e5),
-        ):
-            with contextlib.suppress(CommandFailed):
-                await self._link.command_long(
-                    MAV_CMD_SET_MESSAGE_INTERVAL, message_id, interval_us, what="rate"
-                )
+        await feed.request_rates(lambda what, aw: self._link.call(what, aw, 5.0), skip, only)
+        if only is not None:
+            return  # a retry of streams that got no answer: SIMSTATE and home were asked for at the start
         if not self._link.is_simulator:  # a simulator says so with SIMSTATE; real ArduPilot answers FAILED
             with contextlib.suppress(CommandFailed):
                 await self._link.command_long(MAV_CMD_REQUEST_MESSAGE, MAVLINK_MSG_SIMSTATE, what="SIMSTATE")
+        # home comes every 5 s at rest and a drone is ready only once it has one: asked for once now, so
+        # that a (re)connected drone is not kept waiting for the next one (sent only once home is set);
+        # after SIMSTATE, so that a simulator is known as one by the time it is ready
+        with contextlib.suppress(CommandFailed):
+            await self._link.command_long(MAV_CMD_REQUEST_MESSAGE, MAVLINK_MSG_HOME_POSITION, what="home")
+
+    async def _set_message_rate(self, message_id: int, hz: float) -> None:
+        """MAV_CMD_SET_MESSAGE_INTERVAL for a message MAVSDK has no rate setter for (the feed's
+        ``MESSAGE_IDS``), answered within the 5 s the feed gives each rate request."""
+        await self._link.command_long(
+            MAV_CMD_SET_MESSAGE_INTERVAL, message_id, 1e6 / hz, what="rate", attempts=3, wait_s=1.5
+        )
 
     # --- the session's loops ----------------------------------------------------------------------------
     def mavsdk_names_modes(self) -> bool | None:

@@ -23,13 +23,13 @@ installed (it is not a dependency; the gateway runs on the loop its server or ``
 
 from __future__ import annotations
 
-import importlib.util
 import os
-import sys
 import types
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any, Generic, TypeVar, overload
+
+from gateway.util.bare_package import register_bare_package
 
 #: gRPC experiments turned off in the gateway's process (its sidecars inherit them; measured without
 #: effect there): the EventEngine client and what rides on it, so a stream item wakes one thread less
@@ -37,30 +37,15 @@ CLIENT_EXPERIMENTS = "-event_engine_client,-event_engine_for_all_other_endpoints
 os.environ.setdefault("GRPC_EXPERIMENTS", CLIENT_EXPERIMENTS)
 
 
-def _install_bare_package() -> None:
-    if "mavsdk_grpc" in sys.modules:
-        return
-    spec = importlib.util.find_spec("mavsdk_grpc")  # finds the package without running its __init__
-    if spec is None or spec.submodule_search_locations is None:
-        raise ImportError("the mavsdk_grpc package (mavsdk-grpc) is not installed")
-    package = types.ModuleType("mavsdk_grpc")
-    package.__spec__ = spec
-    package.__file__ = spec.origin
-    package.__path__ = list(spec.submodule_search_locations)
-    package.__package__ = "mavsdk_grpc"
+def _library_name(_package: types.ModuleType, name: str) -> Any:  # Any: mavsdk_grpc, untyped
+    if name == "System":  # the library's own System, with all its plugins
+        from mavsdk_grpc.system import System as LibrarySystem
 
-    def whole_package_name(name: str) -> Any:  # Any: mavsdk_grpc, untyped
-        if name == "System":  # the library's own System, with all its plugins
-            from mavsdk_grpc.system import System as LibrarySystem
-
-            return LibrarySystem
-        raise AttributeError(f"module 'mavsdk_grpc' has no attribute {name!r}")
-
-    package.__getattr__ = whole_package_name  # type: ignore[method-assign]
-    sys.modules["mavsdk_grpc"] = package
+        return LibrarySystem
+    raise AttributeError(f"module 'mavsdk_grpc' has no attribute {name!r}")
 
 
-_install_bare_package()
+register_bare_package("mavsdk_grpc", _library_name, "the mavsdk_grpc package (mavsdk-grpc)")
 
 # ruff: noqa: E402 - these must come after the bare package is registered
 from mavsdk_grpc import action as action_plugin

@@ -40,7 +40,6 @@ from collections import deque
 from collections.abc import Callable
 
 from gateway.link.contract import GroundCommand
-from gateway.link.ground_commands import acting, is_heartbeat, not_a_ground_station
 from gateway.link.mavlink_frames import Frame, target_system
 from gateway.link.proc_sockets import proc_net_rows, socket_inodes
 from gateway.link.relay_endpoints import REOPEN_S, Endpoint, TcpEndpoint, open_endpoint
@@ -174,9 +173,13 @@ class Relay:
 
     def _to_vehicle(self, source: Endpoint, frame: Frame) -> None:
         if source is not self.sidecar:
+            # the rules read the frame with pymavlink's dialect: imported with the first ground station's
+            # frame, not for a drone relayed only for its raw flight log
+            from gateway.link import ground_commands
+
             if not self._from_a_ground_station(source, frame):
                 return
-            what = acting(frame, self.vehicle.sysids)
+            what = ground_commands.acting(frame, self.vehicle.sysids)
             if what is not None:
                 self.ground_commands.append(GroundCommand(frame.sysid, what, time.monotonic()))
                 self._log.info("%s: ground station %d sent %s", self.vehicle_id, frame.sysid, what)
@@ -186,13 +189,15 @@ class Relay:
         """Whether ``frame`` from a ground station endpoint may go to the drone: its peer has said with a
         HEARTBEAT that it is a ground station (nothing before is relayed), and nothing says it is another
         vehicle or the drone itself; an endpoint whose peer is one is stopped for good."""
+        from gateway.link import ground_commands
+
         if source.refused is not None:
             return False
-        problem = not_a_ground_station(frame, self.vehicle.sysids)
+        problem = ground_commands.not_a_ground_station(frame, self.vehicle.sysids)
         if problem is not None:
             self._refuse(source, problem)
             return False
-        if is_heartbeat(frame):
+        if ground_commands.is_heartbeat(frame):
             source.verified = True
         return source.verified
 

@@ -28,7 +28,8 @@ import contextlib
 import logging
 import os
 import time
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 from urllib.parse import urlsplit
 
@@ -53,7 +54,7 @@ if TYPE_CHECKING:
     from gateway.link.relay import Relay
 
 log = logging.getLogger("gateway.link")
-__all__ = ["Link"]
+__all__ = ["Link", "LinkHooks"]
 
 # opening the gRPC session (s): bounds a dead sidecar
 CONNECT_TIMEOUT_S = 10.0
@@ -62,24 +63,32 @@ CONNECT_TIMEOUT_S = 10.0
 #: the slot
 SESSIONS = pacing.Pace(slots=8, hold_at_most_s=10.0)
 READY_WAIT_S = 60.0
+#: how long a session waits for its first EKF_STATUS_REPORT before MAVSDK's health decides alone (a
+#: stream that never comes must not keep a drone from flying for good)
+EKF_REPORT_WAIT_S = 30.0
+
+
+@dataclass(frozen=True)
+class LinkHooks:
+    """What the link's owner (``gateway.fleet.vehicles.vehicle.Vehicle``) gives it: the autopilot's rules
+    (``rules_for``, once the first HEARTBEAT names the autopilot), the other links (``peers``, for
+    duplicate system ids), the sidecar's confinement, who hears each state change, the mission-progress
+    mapping (autopilot items to the caller's numbers), the jobs each MAVSDK session runs, and who hears
+    a ground station's command the relay refused."""
+
+    rules_for: Callable[[int | None], LinkRules]
+    peers: Callable[[], Iterable[Peer]] | None = None
+    confine: Confine | None = None
+    on_state: Callable[[ConnectionState, ConnectionState], None] | None = None
+    mission_progress: Callable[[int, int], MissionProgressValue] | None = None
+    session_jobs: Sequence[tuple[str, SessionJob]] = ()
+    on_relay_refused: Callable[[str, str], None] | None = None
 
 
 class Link:
     """A registered vehicle's connection. ``connect()`` starts its sidecar; everything else follows."""
 
-    def __init__(
-        self,
-        spec: VehicleSpec,
-        settings: Settings,
-        rules_for: Callable[[int | None], LinkRules],
-        *,
-        peers: Callable[[], Iterable[Peer]] | None = None,
-        confine: Confine | None = None,
-        on_state: Callable[[ConnectionState, ConnectionState], None] | None = None,
-        mission_progress: Callable[[int, int], MissionProgressValue] | None = None,
-        session_jobs: Iterable[tuple[str, SessionJob]] = (),
-        on_relay_refused: Callable[[str, str], None] | None = None,
-    ) -> None:
+    def __init__(self, spec: VehicleSpec, settings: Settings, hooks: LinkHooks) -> None:
         self.spec = spec
         self.settings = settings
         self.telemetry = TelemetryCache(stale_after_s=settings.link_lost_after_s)
@@ -87,13 +96,7 @@ class Link:
         self.is_simulator = False
         self.autopilot_version: str | None = None
         self.sessions = 0  # gRPC sessions opened (1 + sidecar restarts that reached serving)
-        self._rules_for = rules_for
-        self._peers = peers
-        self._confine = confine
-        self._on_state = on_state
-        self._on_relay_refused = on_relay_refused
-        self._mission_progress = mission_progress
-        self._jobs = list(session_jobs)
+        self.hooks = hooks
         self._sidecar: Sidecar | None = None
         self._relay: Relay | None = None  # when ground stations share the drone's MAVLink or it is recorded
         #: given each frame from the drone as received while the link is relayed (the flight's raw log)
@@ -122,7 +125,7 @@ class Link:
 
     @property
     def rules(self) -> LinkRules:
-        return self._rules_for(self.facts.autopilot)
+        return self.hooks.rules_for(self.facts.autopilot)
 
     @property
     def sidecar(self) -> Sidecar | None:
@@ -173,11 +176,12 @@ class Link:
     @property
     def duplicate_sysid(self) -> list[str]:
         """Ids of other connected vehicles reporting this vehicle's system id."""
-        if self.facts.sysid is None or self._peers is None:
+        peers = self.hooks.peers
+        if self.facts.sysid is None or peers is None:
             return []
         return sorted(
             p.id
-            for p in self._peers()
+            for p in peers()
             if p.id != self.id and p.sysid == self.facts.sysid and p.state != ConnectionState.REGISTERED
         )
 
@@ -225,12 +229,28 @@ class Link:
             return "waiting for health reports"
         if not health.global_position_ok:
             return "waiting for a GPS position"
-        if not health.home_position_ok or self.telemetry.home is None:
+        if self.telemetry.home is None or not (health.home_position_ok or self._armed()):
             return "waiting for the home position"
         ekf_flags = self._mavsdk.ekf_flags if self._mavsdk is not None else None
+        if (
+            ekf_flags is None
+            and self.rules.estimate_from_ekf_report
+            and "ekf_status" not in self.unsupported_streams
+            and self._session_started is not None
+            and time.monotonic() - self._session_started < EKF_REPORT_WAIT_S
+        ):
+            return "waiting for the position estimate (no EKF status report yet)"
         if not self.rules.position_estimate_ok(health, ekf_flags):
             return "waiting for the position estimate (the EKF is not using GPS yet)"
         return None
+
+    def _armed(self) -> bool:
+        """Armed, as the last HEARTBEAT said (raw: ``fresh`` reads the state computed from this).
+        MAVSDK's health forgets the home at every reconnect (a heartbeat late on a busy link) until
+        the next HOME_POSITION; that guards against the old home of a rebooted autopilot, which is
+        disarmed: an armed drone keeps the home the gateway has."""
+        sample = self.telemetry.armed
+        return sample is not None and sample.value is True
 
     def initialising(self) -> str | None:
         """While connected but not ready: what the vehicle is still waiting for (None otherwise)."""
@@ -333,8 +353,8 @@ class Link:
             self.settings.records_flight_frames and _device_present(self.spec.url)
         ):
             # the gateway holds the drone's link and relays it to the sidecar and the ground stations,
-            # and hands each frame from the drone to the flight's raw log (the relay's MAVLink dialect,
-            # about 7 MiB, is loaded only when a drone is relayed)
+            # and hands each frame from the drone to the flight's raw log (pymavlink's MAVLink dialect,
+            # about 6 MiB, is loaded only when a ground station's frame comes)
             from gateway.link.relay import Relay
 
             relay = Relay(
@@ -342,7 +362,7 @@ class Link:
                 self.spec.url,
                 list(self.spec.gcs_endpoints),
                 sidecar_pid=self._sidecar_pid,
-                on_refused=self._on_relay_refused,
+                on_refused=self.hooks.on_relay_refused,
                 on_vehicle_frame=self._vehicle_frame,
             )
             await relay.start()
@@ -365,7 +385,7 @@ class Link:
             self.settings,
             on_serving=self._on_serving,
             on_down=self._on_sidecar_down,
-            confine=self._confine,
+            confine=self.hooks.confine,
         )
         self._sidecar.start()
         self._monitor_task = asyncio.create_task(run_monitor(self), name=f"monitor-{self.id}")
@@ -454,7 +474,9 @@ class Link:
         self.telemetry.clear()
         self.facts = LinkFacts()
         commands = self._calls.new_channel()
-        mavsdk = MavsdkSession(self, system, commands.pump, self._jobs, self._mission_progress)
+        mavsdk = MavsdkSession(
+            self, system, commands.pump, self.hooks.session_jobs, self.hooks.mission_progress
+        )
         self._system = system
         self._feed = mavsdk.feed
         self._mavsdk = mavsdk
@@ -477,11 +499,15 @@ class Link:
             await close_system(system)
 
     # --- telemetry rates ---------------------------------------------------------------------------------
-    def schedule_rates(self, why: str, force: bool = False) -> None:
-        """Request every telemetry rate of the current MAVSDK session (unless one was requested lately;
-        ``force``: regardless)."""
+    def schedule_rates(self, why: str, force: bool = False, only: frozenset[str] | None = None) -> None:
+        """Request every telemetry rate of the current MAVSDK session, or only the streams ``only`` names
+        (unless one was requested lately; ``force``: regardless)."""
         if self._system is not None and self._mavsdk is not None:
-            self._mavsdk.schedule_rates(why, force)
+            self._mavsdk.schedule_rates(why, force, only=only)
+
+    def rates_to_ask_again(self) -> frozenset[str]:
+        """The streams whose rate request got no answer, once asking again is due."""
+        return self._feed.rates_to_ask_again() if self._feed is not None else frozenset()
 
     def request_rates_again(self, why: str) -> None:
         """Ask for every telemetry stream again (after something that resets them)."""
@@ -506,9 +532,10 @@ class Link:
                 and not self.sysid_mismatch
             ):
                 self._last_error = None  # the link is back: what broke it is over
-            if self._on_state is not None:
+            on_state = self.hooks.on_state
+            if on_state is not None:
                 try:
-                    self._on_state(old, state)
+                    on_state(old, state)
                 except Exception:
                     log.exception("state listener failed")
 

@@ -1,8 +1,10 @@
 """Per-vehicle telemetry: the latest value of every stream, cached with the time it arrived.
 
 Readers answer from the cache at once (never waiting for the next stream item) and see each value's
-age; a value older than ``link_lost_after_s`` is reported as stale, never as current. The vehicle's
-``TelemetryFeed`` (``gateway.link.telemetry_feed``) fills it from the MAVSDK streams.
+age; a value older than its stream's limit (``TelemetryCache.stale_limit_s``: ``link_lost_after_s``, or
+that times ``SLOW_STREAM_PERIOD_S`` for a stream asked for slower at rest) is reported as stale, never as
+current. The vehicle's ``TelemetryFeed`` (``gateway.link.telemetry_feed``) fills it from the MAVSDK
+streams.
 """
 
 from __future__ import annotations
@@ -14,20 +16,21 @@ import time
 from collections import deque
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, is_dataclass
-from typing import Generic, Literal, TypeVar, overload
+from typing import ClassVar, Generic, Literal, TypeVar, get_args, get_origin, get_type_hints, overload
 
 from gateway.util.json_types import JsonObject, JsonValue
 
 log = logging.getLogger("gateway.telemetry")
 
-T = TypeVar("T")
+#: a sample only hands its value out: a Sample[bool] is a Sample[object]
+Value_co = TypeVar("Value_co", covariant=True)
 
 
 @dataclass(frozen=True)
-class Sample(Generic[T]):
+class Sample(Generic[Value_co]):
     """A cached value and when it arrived (monotonic clock)."""
 
-    value: T
+    value: Value_co
     received_at: float
 
     @property
@@ -118,25 +121,32 @@ class StatusTextValue:
     text: str
 
 
-#: the dataclass of each structured stream; the others carry a plain value (bool, float, str)
-VALUE_TYPES: dict[str, type] = {
-    "position": PositionValue,
-    "home": PositionValue,
-    "attitude": AttitudeValue,
-    "velocity_ned": VelocityNedValue,
-    "battery": BatteryValue,
-    "gps_info": GpsInfoValue,
-    "health": HealthValue,
-    "rc_status": RcStatusValue,
-    "imu": ImuValue,
-    "odometry": OdometryValue,
-    "mission_progress": MissionProgressValue,
+#: The period (s) at rest of the streams the feed asks for slower than once a second while the drone
+#: rests (``gateway.link.telemetry_feed.STREAM_RATES_HZ``; every other stream's is 1 s). A stream's stale
+#: limit is ``stale_after_s`` (``link_lost_after_s``, 3 s: three periods of a 1 Hz stream) times its
+#: period, so that one message lost on the radio or late on a busy machine does not make it stale; every
+#: value is stale while the link is lost (``live``). No safety check reads these streams fresh at rest:
+#: home (the geofence, the return distance) changes only when the autopilot sets it, which it announces
+#: at once (ArduPilot's ``set_home`` sends HOME_POSITION: at arming, on DO_SET_HOME), and an armed drone
+#: gets home at 1 Hz again (``ACTIVE_RATES_HZ``); the attitude, heading, GPS report, IMU and odometry are
+#: read by the read tools, the console and the flight log, and by the yaw tracker in flight (attitude at
+#: 2 Hz there).
+SLOW_STREAM_PERIOD_S: dict[str, float] = {
+    "home": 5.0,  # HOME_POSITION
+    "attitude": 5.0,  # ATTITUDE
+    "heading_deg": 5.0,  # the attitude's yaw
+    "gps_info": 5.0,  # GPS_RAW_INT
+    "imu": 5.0,  # RAW_IMU (ArduPilot) or HIGHRES_IMU (PX4)
+    "odometry": 5.0,  # ODOMETRY (PX4)
 }
 
 
 @dataclass
 class TelemetryCache:
-    """Latest value of every stream, each with its arrival time; None until first received."""
+    """Latest value of every stream, each with its arrival time; None until first received.
+
+    Its ``Sample[...] | None`` fields are the one list of streams: `STREAM_TYPES`, ``FIELDS`` and
+    `VALUE_TYPES` are read from them (``fresh``'s overloads type the same names for mypy)."""
 
     stale_after_s: float = 3.0
     #: False while the vehicle's link is lost or its session is down: then every value counts as stale,
@@ -163,30 +173,23 @@ class TelemetryCache:
     message_counts: dict[str, int] = field(default_factory=dict)
     _status_listeners: list[Callable[[StatusTextValue], None]] = field(default_factory=list, repr=False)
 
-    FIELDS = (
-        "position",
-        "home",
-        "attitude",
-        "velocity_ned",
-        "heading_deg",
-        "battery",
-        "gps_info",
-        "flight_mode",
-        "armed",
-        "in_air",
-        "landed_state",
-        "health",
-        "rc_status",
-        "imu",
-        "odometry",
-        "mission_progress",
-    )
+    #: the streams' names, in the fields' order (set below from `STREAM_TYPES`)
+    FIELDS: ClassVar[tuple[str, ...]]
 
     def put(self, name: str, value: object) -> None:
         if name not in self.FIELDS:
             raise KeyError(name)
         setattr(self, name, Sample(value, time.monotonic()))
         self.message_counts[name] = self.message_counts.get(name, 0) + 1
+
+    def stale_limit_s(self, name: str) -> float:
+        """The age past which ``name``'s sample is stale: ``stale_after_s``, times the stream's period at
+        rest for a stream asked for slower than once a second (``SLOW_STREAM_PERIOD_S``)."""
+        return self.stale_after_s * SLOW_STREAM_PERIOD_S.get(name, 1.0)
+
+    def is_stale(self, name: str, age_s: float) -> bool:
+        """Whether a sample of ``name`` this old is stale (every sample is while the link is lost)."""
+        return age_s > self.stale_limit_s(name) or not self.live
 
     def add_status_text(self, severity: str, text: str, t: float | None = None) -> StatusTextValue:
         item = StatusTextValue(t if t is not None else time.time(), severity, text)
@@ -243,11 +246,11 @@ class TelemetryCache:
     @overload
     def fresh(self, name: str, max_age_s: float | None = None) -> object: ...
     def fresh(self, name: str, max_age_s: float | None = None) -> object:
-        """The value of ``name`` if it is younger than ``max_age_s`` (default: stale limit), else None
-        (typed by the stream's name, one overload per type of value; a name not known until run time
-        reads as an object)."""
+        """The value of ``name`` if it is younger than ``max_age_s`` (default: the stream's stale limit,
+        ``stale_limit_s``), else None (typed by the stream's name, one overload per type of value; a name
+        not known until run time reads as an object)."""
         sample: Sample[object] | None = getattr(self, name)
-        limit = self.stale_after_s if max_age_s is None else max_age_s
+        limit = self.stale_limit_s(name) if max_age_s is None else max_age_s
         if sample is None or sample.age_s > limit or not self.live:
             return None
         return sample.value
@@ -260,7 +263,8 @@ class TelemetryCache:
     def snapshot(self) -> JsonObject:
         """Everything, each part with ``age_s`` and ``stale``; never-received parts are None.
 
-        ``stale`` is true for a part older than ``stale_after_s`` and for every part while not ``live``."""
+        ``stale`` is true for a part older than its limit (``stale_limit_s``) and for every part while not
+        ``live``."""
         out: JsonObject = {}
         for name in self.FIELDS:
             sample: Sample[object] | None = getattr(self, name)
@@ -272,10 +276,27 @@ class TelemetryCache:
             body = {key: _json_safe(part) for key, part in plain.items()}
             age = round(sample.age_s, 3)
             body["age_s"] = age
-            body["stale"] = age > self.stale_after_s or not self.live
+            body["stale"] = self.is_stale(name, age)
             out[name] = body
         out["status_texts"] = [asdict(item) for item in list(self.status_texts)[-10:]]
         return out
+
+
+def _stream_types() -> dict[str, type]:
+    """Each field of the cache typed ``Sample[X] | None`` (a stream), with ``X``, in the fields' order."""
+    streams: dict[str, type] = {}
+    for name, hint in get_type_hints(TelemetryCache).items():
+        for part in get_args(hint):
+            if get_origin(part) is Sample:
+                (streams[name],) = get_args(part)
+    return streams
+
+
+#: every stream the cache keeps and the type of its value
+STREAM_TYPES: dict[str, type] = _stream_types()
+TelemetryCache.FIELDS = tuple(STREAM_TYPES)
+#: the dataclass of each structured stream; the others carry a plain value (bool, float, str)
+VALUE_TYPES: dict[str, type] = {name: kind for name, kind in STREAM_TYPES.items() if is_dataclass(kind)}
 
 
 def _json_safe(value: object) -> JsonValue:

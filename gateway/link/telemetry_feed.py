@@ -11,9 +11,11 @@ from __future__ import annotations
 import asyncio
 import logging
 import math
+import time
 from collections.abc import AsyncIterator, Awaitable, Callable
 from typing import Protocol, TypeVar
 
+from gateway.errors import CommandFailed
 from gateway.link.mavsdk_system import System
 from gateway.link.telemetry import (
     AttitudeValue,
@@ -34,42 +36,91 @@ log = logging.getLogger("gateway.telemetry")
 Item = TypeVar("Item")
 
 #: Streams and the rate (Hz) the gateway requests for each while the drone rests (disarmed on the
-#: ground); MAVSDK's set_rate_<name>, which sends MAV_CMD_SET_MESSAGE_INTERVAL for the stream's message.
+#: ground): MAVSDK's set_rate_<name>, which sends MAV_CMD_SET_MESSAGE_INTERVAL for the stream's message,
+#: or, for the messages MAVSDK has no setter for (``MESSAGE_IDS``), that command sent by the session.
 #: Each message costs the sidecar its parsing and the gateway one gRPC stream item (the most of a drone's
-#: CPU at rest), so a stream gets the rate its readers need and no more. The position at 1 Hz: the read
-#: tools and the flight log's 1 Hz track. SYS_STATUS (health) at 1 Hz: the link is ready only while its
-#: health is younger than the staleness limit (3 s). Every stream the policy or a readiness check reads
-#: fresh (home, attitude, landed state, GPS, battery) stays at 1 Hz too: at one message every 2 s, one
-#: message lost on the radio or late on a busy machine makes the reading older than the 3 s limit, and a
-#: takeoff is refused for an "unknown" battery. Only what no check reads fresh (the IMU and odometry)
-#: comes every 2 s. A drone that is armed or in the air gets ``ACTIVE_RATES_HZ`` on top (the
-#: operations' trackers: arrival within tolerance, the climb, the landing, the yaw).
+#: CPU at rest), so a stream gets the rate its readers need and no more. At 1 Hz what a safety or
+#: readiness check reads fresh against the 3 s staleness limit (``link_lost_after_s``): the position (the
+#: geofence, the read tools, the flight log's 1 Hz track), SYS_STATUS (the health: the link is ready only
+#: while it is younger than the limit; the battery), the landed state (in the air or not) and the EKF
+#: status (the position estimate a readiness check waits for). Every 5 s what no check reads fresh at
+#: rest, each with a stale limit of five times the 3 s (``gateway.link.telemetry.SLOW_STREAM_PERIOD_S``):
+#: home (the autopilot sends HOME_POSITION at once when it sets home, at arming or on DO_SET_HOME), the
+#: attitude and heading, the GPS report (the fix's effect on the position estimate comes with SYS_STATUS
+#: and EKF_STATUS_REPORT), the IMU and odometry. A drone that is armed or in the air gets
+#: ``ACTIVE_RATES_HZ`` on top (the operations' trackers: arrival within tolerance, the climb, the
+#: landing, the yaw; home and GPS for the flight log at 1 Hz).
 #: Not requested and not subscribed: a heading stream (MAVSDK repeats GLOBAL_POSITION_INT's at the
 #: position rate; the heading is the attitude's yaw), in_air (the same EXTENDED_SYS_STATE as the landed
 #: state, from which it is taken), armed (the link reads it from the HEARTBEAT it follows anyway) and
 #: LOCAL_POSITION_NED (MAVSDK's velocity stream follows GLOBAL_POSITION_INT, so the velocity comes at
 #: the position rate without it). No rc_status rate either: MAVSDK takes the RC status from SYS_STATUS
-#: and RC_CHANNELS and answers its set_rate_rc_status with Unsupported.
+#: and RC_CHANNELS and answers its set_rate_rc_status with Unsupported. On ArduPilot the battery is
+#: not requested either (the dialect skips it): MAVSDK takes the battery from SYS_STATUS until a
+#: BATTERY_STATUS arrives, and ArduPilot fills both from its first battery monitor, so SYS_STATUS at 1 Hz
+#: brings the battery at 1 Hz with one message a second fewer.
+#: MISSION_CURRENT at rest every 5 s: MAVSDK reports mission progress only when the item or the count
+#: changes, and a mission item changes only in flight (armed: 1 Hz, ``ACTIVE_RATES_HZ``); an upload
+#: sets the count in MAVSDK itself.
 STREAM_RATES_HZ: dict[str, float] = {
     "position": 1.0,  # GLOBAL_POSITION_INT: position and velocity
-    "home": 1.0,  # HOME_POSITION
-    "attitude_euler": 1.0,  # ATTITUDE: attitude, and the heading (its yaw)
+    "home": 0.2,  # HOME_POSITION
+    "attitude_euler": 0.2,  # ATTITUDE: attitude, and the heading (its yaw)
     "landed_state": 1.0,  # EXTENDED_SYS_STATE: landed state and in_air
-    "gps_info": 1.0,  # GPS_RAW_INT
-    "battery": 1.0,  # BATTERY_STATUS
+    "gps_info": 0.2,  # GPS_RAW_INT
+    "battery": 1.0,  # BATTERY_STATUS (PX4; ArduPilot: from SYS_STATUS)
     "health": 1.0,  # SYS_STATUS
-    "imu": 0.5,  # HIGHRES_IMU (PX4)
-    "raw_imu": 0.5,  # RAW_IMU (ArduPilot has no HIGHRES_IMU)
-    "odometry": 0.5,  # ODOMETRY (PX4; ArduPilot answers "No ap_message for mavlink id (331)")
+    "imu": 0.2,  # HIGHRES_IMU (PX4)
+    "raw_imu": 0.2,  # RAW_IMU (ArduPilot has no HIGHRES_IMU)
+    "odometry": 0.2,  # ODOMETRY (PX4; ArduPilot answers "No ap_message for mavlink id (331)")
+    "mission_current": 0.2,  # MISSION_CURRENT (only in ArduPilot's EXT_STAT stream): mission progress
+    # EKF_STATUS_REPORT: when the position estimate is ready (a readiness check; arming in GUIDED needs it)
+    "ekf_status": 1.0,
+    # POSITION_TARGET_GLOBAL_INT: where the autopilot flies to (gateway.fleet.policy.takeover); sent only
+    # in the modes that fly to a target, so nothing at rest
+    "position_target": 5.0,
+}
+
+#: The messages of ``STREAM_RATES_HZ`` that MAVSDK has no rate setter for, by MAVLink message id: asked
+#: for with MAV_CMD_SET_MESSAGE_INTERVAL through the session's ``set_message_rate``
+MESSAGE_IDS: dict[str, int] = {
+    "mission_current": 42,  # MISSION_CURRENT
+    "ekf_status": 193,  # EKF_STATUS_REPORT
+    "position_target": 87,  # POSITION_TARGET_GLOBAL_INT
 }
 
 #: The rates of a drone that is armed or in the air, where they differ from the rest rates: the
-#: operations' trackers poll every 0.2 s and judge arrival, climb and landing from these streams.
+#: operations' trackers poll every 0.2 s and judge arrival, climb, landing and yaw from these streams; a
+#: mission's progress at 1 Hz; home (set again at arming) and the GPS report at 1 Hz, as the flight log
+#: records them.
 ACTIVE_RATES_HZ: dict[str, float] = {
     "position": 5.0,
     "attitude_euler": 2.0,
     "landed_state": 2.0,
+    "mission_current": 1.0,
+    "home": 1.0,
+    "gps_info": 1.0,
 }
+
+#: Asking again for a stream whose rate request got no answer: after 5 s, doubling per retry up to 60 s
+UNANSWERED_RETRY_S = 5.0
+UNANSWERED_RETRY_MAX_S = 60.0
+
+#: Results that say the request never got a verdict from the vehicle (MAVSDK's and MAV_RESULT's names):
+#: asked again, unlike a refusal (UNSUPPORTED, DENIED, FAILED), which stands
+_NOT_ANSWERED = frozenset(
+    {"TIMEOUT", "BUSY", "NO_SYSTEM", "CONNECTION_ERROR", "TEMPORARILY_REJECTED", "UNKNOWN"}
+)
+
+
+def not_answered(exc: Exception) -> bool:
+    """Whether a failed rate request got no verdict from the vehicle: no answer in time, the sidecar
+    unreachable or busy; a CommandFailed without a result is one the gateway raised for no answer."""
+    if not isinstance(exc, CommandFailed):
+        return True
+    result = exc.details.get("result")
+    return result is None or result in _NOT_ANSWERED
+
 
 #: MAVSDK's landed states that say whether the drone is in the air (MAVSDK's own in_air stream says
 #: the same from the same message; any other state keeps the last answer, as MAVSDK's does)
@@ -230,9 +281,11 @@ class TelemetryFeed:
 
     ``mission_progress_map`` turns MAVSDK's wire progress (current seq, total incl. home) into user
     item numbers; the vehicle owns that mapping because it knows how its mission was uploaded.
-    ``use_mavsdk_flight_mode`` says whether MAVSDK's flight mode stream is wanted (None: not known yet,
-    before the first HEARTBEAT); when the link names the modes from the HEARTBEAT itself it is never
-    subscribed. ``armed`` is not subscribed either: the link puts it from the HEARTBEAT.
+    ``set_message_rate(message_id, hz)`` asks for a message MAVSDK has no rate setter for
+    (``MESSAGE_IDS``; without it those are not asked for). ``use_mavsdk_flight_mode`` says whether
+    MAVSDK's flight mode stream is wanted (None: not known yet, before the first HEARTBEAT); when the
+    link names the modes from the HEARTBEAT itself it is never subscribed. ``armed`` is not subscribed
+    either: the link puts it from the HEARTBEAT.
 
     The rates follow the drone: ``STREAM_RATES_HZ`` while it rests, ``ACTIVE_RATES_HZ`` from the first
     item that shows it armed or in the air until one shows it disarmed on the ground.
@@ -246,14 +299,19 @@ class TelemetryFeed:
         *,
         mission_progress_map: Callable[[int, int], MissionProgressValue] | None = None,
         use_mavsdk_flight_mode: Callable[[], bool | None] = lambda: True,
+        set_message_rate: Callable[[int, float], Awaitable[object]] | None = None,
     ) -> None:
         self.vehicle_id = vehicle_id
         self.system = system
         self.cache = cache
         self._map_progress = mission_progress_map
         self._use_mavsdk_mode = use_mavsdk_flight_mode
+        self._set_message_rate = set_message_rate
         self._tasks: list[asyncio.Task[None]] = []
-        self.unsupported_rates: dict[str, str] = {}
+        self.unsupported_rates: dict[str, str] = {}  # refused by the vehicle: never asked again
+        self.unanswered_rates: dict[str, str] = {}  # no answer (a timeout on a busy link): asked again
+        self._unanswered_tries = 0
+        self._ask_again_at = 0.0
         self._call: Callable[[str, Awaitable[object]], Awaitable[object]] | None = None
         self._skip: frozenset[str] = frozenset()
         self._active = False  # armed or in the air: ACTIVE_RATES_HZ wanted
@@ -318,31 +376,59 @@ class TelemetryFeed:
         await asyncio.gather(*tasks, return_exceptions=True)
 
     async def request_rates(
-        self, call: Callable[[str, Awaitable[object]], Awaitable[object]], skip: frozenset[str] = frozenset()
+        self,
+        call: Callable[[str, Awaitable[object]], Awaitable[object]],
+        skip: frozenset[str] = frozenset(),
+        only: frozenset[str] | None = None,
     ) -> dict[str, str]:
-        """Set every stream rate but ``skip`` (the rest or the active rates, whichever the drone is at);
-        ``call(what, coro)`` adds the timeout and error mapping. Returns the streams the vehicle refused,
-        by name.
+        """Set every stream rate but ``skip`` (the rest or the active rates, whichever the drone is at), or
+        only the streams ``only`` names (those that got no answer before); ``call(what, coro)`` adds the
+        timeout and error mapping. Returns the streams the vehicle refused, by name.
         """
         self._call, self._skip = call, skip
-        t = self.system.telemetry
-        refused: dict[str, str] = {}
         active = self._active
         rates = {**STREAM_RATES_HZ, **ACTIVE_RATES_HZ} if active else STREAM_RATES_HZ
+        if only is None:
+            self.unsupported_rates, self.unanswered_rates = {}, {}
         for name, hz in rates.items():
-            if name in skip:
+            if name in skip or (only is not None and name not in only):
                 continue
-            setter = getattr(t, f"set_rate_{name}")
+            request = self._rate_request(name, hz)
+            if request is None:
+                continue
+            self.unsupported_rates.pop(name, None)
+            self.unanswered_rates.pop(name, None)
             try:
-                await call(f"set_rate_{name}", setter(hz))
+                await call(f"set_rate_{name}", request)
             except Exception as exc:  # recorded per stream, the others still get set
-                refused[name] = str(exc)
-        self.unsupported_rates = refused
-        self._rates_active = active
+                failed = self.unanswered_rates if not_answered(exc) else self.unsupported_rates
+                failed[name] = str(exc)
+        self._after_rates(only is not None)
+        if only is None:
+            self._rates_active = active
         self._follow_activity()  # the drone may have changed meanwhile
-        if refused:
-            log.info("%s: streams not granted: %s", self.vehicle_id, ", ".join(sorted(refused)))
-        return refused
+        return dict(self.unsupported_rates)
+
+    def _after_rates(self, retried: bool) -> None:
+        """Log what was not granted and when to ask again for what got no answer: 5 s after a request,
+        twice as long after each retry that still got none, at most a minute."""
+        self._unanswered_tries = self._unanswered_tries + 1 if retried and self.unanswered_rates else 0
+        wait = min(UNANSWERED_RETRY_MAX_S, UNANSWERED_RETRY_S * 2**self._unanswered_tries)
+        self._ask_again_at = time.monotonic() + wait
+        if self.unsupported_rates:
+            log.info("%s: streams refused: %s", self.vehicle_id, ", ".join(sorted(self.unsupported_rates)))
+        if self.unanswered_rates:
+            log.warning(
+                "%s: no answer to the rate of %s; asked again in %g s",
+                self.vehicle_id, ", ".join(sorted(self.unanswered_rates)), wait,
+            )  # fmt: skip
+
+    def rates_to_ask_again(self) -> frozenset[str]:
+        """The streams whose rate request got no answer, once asking again is due (a drone missing its
+        health, home or EKF stream would never be ready)."""
+        if not self.unanswered_rates or time.monotonic() < self._ask_again_at:
+            return frozenset()
+        return frozenset(self.unanswered_rates)
 
     # --- rest and active rates --------------------------------------------------------------------------
     @property
@@ -361,16 +447,29 @@ class TelemetryFeed:
         if self._switch is None or self._switch.done():
             self._switch = asyncio.create_task(self._switch_rates(), name=f"tm-rates-{self.vehicle_id}")
 
+    def _rate_request(self, name: str, hz: float) -> Awaitable[object] | None:
+        """The request of one stream's rate, through MAVSDK's setter or, for ``MESSAGE_IDS``, the
+        session's; None when there is no way to ask for it."""
+        message_id = MESSAGE_IDS.get(name)
+        if message_id is None:
+            setter: Callable[[float], Awaitable[object]] = getattr(self.system.telemetry, f"set_rate_{name}")
+            return setter(hz)
+        if self._set_message_rate is None:
+            return None
+        return self._set_message_rate(message_id, hz)
+
     async def _switch_rates(self) -> None:
-        t = self.system.telemetry
         while (call := self._call) is not None and self._active != self._rates_active:
             active = self._active
             for name, hz in ACTIVE_RATES_HZ.items():
                 if name in self._skip or name in self.unsupported_rates:
                     continue
                 rate = hz if active else STREAM_RATES_HZ[name]
+                request = self._rate_request(name, rate)
+                if request is None:
+                    continue
                 try:
-                    await call(f"set_rate_{name}", getattr(t, f"set_rate_{name}")(rate))
+                    await call(f"set_rate_{name}", request)
                 except Exception as exc:  # tried again with the next item that shows the change
                     log.info("%s: setting the %s rate to %g Hz failed: %s", self.vehicle_id, name, rate, exc)
                     return

@@ -10,6 +10,7 @@ notifications) and turns it into the tool's structured result and one line of te
 from __future__ import annotations
 
 import contextlib
+from collections.abc import Awaitable, Callable
 from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import Literal
@@ -34,6 +35,10 @@ class CallInfo:
     vehicle_id: str | None = None
     outcome: Literal["ok", "error", "refused", "running"] | None = None
     error: str | None = None
+    before_tool: Callable[[], Awaitable[None]] | None = None
+    """Awaited by the tool wrapper once the SDK has taken the arguments, before the tool runs: the
+    session middleware writes there the row of a call that commands a drone (a call refused for its
+    arguments never gets there: it sent nothing, and its row is queued when it ends)."""
 
 
 current_call: ContextVar[CallInfo | None] = ContextVar("current_call", default=None)

@@ -9,16 +9,11 @@ from __future__ import annotations
 import argparse
 import asyncio
 
-from gateway.cli_help import COMMAND_HELP
+from gateway.cli_help import add_command
 
 
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    parser = subparsers.add_parser(
-        "mcp-stdio",
-        help=COMMAND_HELP["mcp-stdio"],
-        description=__doc__,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+    parser = add_command(subparsers, "mcp-stdio", __doc__, argparse.RawDescriptionHelpFormatter)
     parser.set_defaults(func=run)
 
 

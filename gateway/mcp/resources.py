@@ -48,8 +48,8 @@ def drones_json(commander: Commander) -> list[dict[str, object]]:
                 "drone_id": v.id,
                 "name": v.spec.name,
                 "state": str(plain(v.state)),
-                "armed": value(v, "armed"),
-                "in_air": value(v, "in_air"),
+                "armed": value(v.telemetry.armed),
+                "in_air": value(v.telemetry.in_air),
                 "operation": None if op is None else op.kind,
             }
         )
@@ -82,7 +82,7 @@ def state_json(commander: Commander, drone_id: str) -> dict[str, object]:
 async def mission_json(commander: Commander, drone_id: str) -> dict[str, object]:
     v = commander.ready(drone_id)
     items = await v.download_mission()
-    prog = value(v, "mission_progress")
+    prog = value(v.telemetry.mission_progress)
     return {
         "drone_id": drone_id,
         "current": None if prog is None else int(prog.current),
@@ -146,13 +146,13 @@ class ResourceNotifier:
             op = commander.operations.latest(v.id)
             prints[f"drone://{v.id}/state"] = (
                 str(v.state),
-                value(v, "armed"),
-                value(v, "in_air"),
-                str(value(v, "flight_mode")),
+                value(v.telemetry.armed),
+                value(v.telemetry.in_air),
+                str(value(v.telemetry.flight_mode)),
                 None if pos is None else (round(pos[0], 6), round(pos[1], 6), round(pos[2], 1)),
                 None if op is None else (op.id, op.status.value, round(op.progress, 2)),
             )
-            prog = value(v, "mission_progress")
+            prog = value(v.telemetry.mission_progress)
             mission_op = op if op is not None and op.kind == "mission" else None
             prints[f"drone://{v.id}/mission"] = (
                 None if prog is None else (int(prog.current), int(prog.total)),

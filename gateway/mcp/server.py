@@ -37,6 +37,7 @@ from gateway.mcp.auth import auth_options
 from gateway.mcp.declared import complete, declared
 from gateway.mcp.json_answers import answer_silent_requests_as_json
 from gateway.mcp.resources import ResourceNotifier, register_prompts, register_resources
+from gateway.mcp.sdk_crypto import deferred_request_state_security
 from gateway.mcp.sdk_types import AnyServer
 from gateway.mcp.session import SessionAudit
 from gateway.mcp.toolkit import (
@@ -133,6 +134,7 @@ def build_mcp(gateway: Gateway) -> MCPServer[FleetState]:
         lifespan=lifespan,
         subscriptions=bus,
         middleware=[SessionAudit()],
+        request_state_security=deferred_request_state_security(),
         **auth_options(settings),
     )
     for name in settings.toolsets:

@@ -13,8 +13,10 @@ starts an operation on a drone has its row written the moment the command pass s
 completes the row when the operation ends; every other call's row is written when the call ends.
 
 A call of a tool that commands a drone (a verb's tool; not a read: monitor_flight) has its row written
-before anything is sent (`Store.audit_call`: outcome running), waited for up to `CALL_ROW_WAIT_S` (a
-database that hangs does not hold the command longer; the write goes on), except for the stops (land,
+before anything is sent, once the SDK has taken its arguments and before the tool runs
+(`Store.audit_call`: outcome running; a call refused for its arguments sent nothing, and its row is
+queued when it ends, as a read's is), waited for up to `CALL_ROW_WAIT_S` (a database that hangs does
+not hold the command longer; the write goes on), except for the stops (land,
 return, hold, kill, disarm and their fleet forms), which are sent at once with their row written beside
 them; the call's end (or the operation it started) is written before the call is answered
 (`CALL_END_WAIT_S`: in the database, or in the spool file). So a node killed while or just after it ran
@@ -141,9 +143,19 @@ class SessionAudit:
         tool = str(params.get("name", "?"))
         audited = _AuditedCall(store, info, call, tool, arguments, started=time.perf_counter())
         written: list[str] = []
-        row = self._begin(audited)
-        if row is not None and TOOLS[tool].verb not in STOP_VERBS:
-            await row.written(CALL_ROW_WAIT_S)
+        row: AuditCall | None = None
+
+        async def before_tool() -> None:
+            """The SDK took the arguments and the tool is about to run: the row of a call that commands a
+            drone, written now. A call refused for its arguments never gets here (it sent nothing): its
+            row is queued when it ends, as a read's, without a database write on its way."""
+            nonlocal row
+            call.before_tool = None  # once
+            row = self._begin(audited)
+            if row is not None and TOOLS[tool].verb not in STOP_VERBS:
+                await row.written(CALL_ROW_WAIT_S)
+
+        call.before_tool = before_tool
 
         def sent(operation_id: str) -> None:
             """The command pass sent the call's operation: its row now, running; the store completes it

@@ -147,6 +147,8 @@ def _wrap(spec: ToolSpec) -> Callable[..., Any]:  # Any: mcp SDK, add_tool takes
     @functools.wraps(fn)
     async def handler(ctx: ToolContext, **kwargs: Any) -> CallToolResult:  # Any: mcp SDK, its JSON arguments
         call = current_call.get()
+        if call is not None and call.before_tool is not None:
+            await call.before_tool()  # the audit row of a call that commands a drone, before it runs
         try:
             tool_call = ToolCall.of(ctx)
             drone_id = kwargs.get("drone_id")

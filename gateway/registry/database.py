@@ -13,8 +13,9 @@ from typing import TYPE_CHECKING
 from sqlalchemy import event, text
 from sqlalchemy.engine import Connection
 from sqlalchemy.engine.interfaces import DBAPIConnection
-from sqlalchemy.ext.asyncio import AsyncEngine, create_async_engine
 from sqlalchemy.pool import ConnectionPoolEntry
+
+from gateway.registry.sql_async import AsyncEngine, create_async_engine
 
 if TYPE_CHECKING:
     from alembic.config import Config
@@ -42,6 +43,9 @@ def migrations_dir() -> Path:
 
 
 SQLITE_BUSY_TIMEOUT_MS = 10_000
+#: how long a schema upgrade waits for another process's upgrade (which holds the write lock for all of
+#: its migrations: seconds on a busy machine, more than a serving gateway's writes wait)
+SQLITE_UPGRADE_WAIT_MS = 300_000
 
 
 def _is_sqlite(url: str) -> bool:
@@ -105,9 +109,15 @@ async def upgrade_schema(engine: AsyncEngine, url: str, revision: str = "head") 
 
     lock = _MIGRATION_LOCKS.setdefault(asyncio.get_running_loop(), asyncio.Lock())
     async with lock, engine.begin() as conn:
-        if conn.dialect.name == "sqlite":
-            await conn.exec_driver_sql("BEGIN IMMEDIATE")
-        elif conn.dialect.name == "postgresql":  # held until this transaction ends
+        if conn.dialect.name == "sqlite":  # the pooled connection gets its usual wait back at the end
+            await conn.exec_driver_sql(f"PRAGMA busy_timeout={SQLITE_UPGRADE_WAIT_MS}")
+            try:
+                await conn.exec_driver_sql("BEGIN IMMEDIATE")
+                await conn.run_sync(_run)
+            finally:
+                await conn.exec_driver_sql(f"PRAGMA busy_timeout={SQLITE_BUSY_TIMEOUT_MS}")
+            return
+        if conn.dialect.name == "postgresql":  # held until this transaction ends
             await conn.execute(text("SELECT pg_advisory_xact_lock(:key)"), {"key": MIGRATION_LOCK_KEY})
         await conn.run_sync(_run)
 

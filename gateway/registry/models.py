@@ -1,19 +1,23 @@
-"""SQLAlchemy 2.x ORM tables of the gateway.
+"""The gateway's tables, as SQLAlchemy Core ``Table`` objects on one ``MetaData``.
 
-Alembic owns the schema (``migrations/``, installed as ``gateway.migrations``); these classes describe it
-for the store's queries and for ``alembic revision --autogenerate``. Types are portable (SQLite and
-PostgreSQL): JSON through ``sqlalchemy.JSON``, datetimes always timezone-aware UTC through
-:class:`UTCDateTime`.
+Alembic owns the schema (``migrations/``, installed as ``gateway.migrations``); these tables describe it
+for the store's queries and for ``alembic revision --autogenerate`` (tests/persist/test_store.py checks
+that they match the migrations). The store reads and writes them with Core statements on the async
+engine's connections, without the ORM (its mappers and sessions cost a serving gateway about 7.5 MiB of
+memory: docs/benchmarks.md). Types are portable (SQLite and PostgreSQL): JSON through
+``sqlalchemy.JSON``, datetimes always timezone-aware UTC through :class:`UTCDateTime`.
 """
 
 from __future__ import annotations
 
 from datetime import UTC, datetime
+from typing import Any
 
 from sqlalchemy import (
     JSON,
     BigInteger,
     Boolean,
+    Column,
     DateTime,
     Float,
     ForeignKey,
@@ -21,13 +25,11 @@ from sqlalchemy import (
     Integer,
     MetaData,
     String,
+    Table,
     Text,
 )
 from sqlalchemy.engine import Dialect
-from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column
 from sqlalchemy.types import TypeDecorator
-
-from gateway.util.json_types import JsonObject
 
 # Constraint names are fixed so later migrations can alter them on every backend.
 NAMING_CONVENTION = {
@@ -63,216 +65,217 @@ class UTCDateTime(TypeDecorator[datetime]):
         return value.astimezone(UTC)
 
 
-class Base(DeclarativeBase):
-    metadata = MetaData(naming_convention=NAMING_CONVENTION)
+metadata = MetaData(naming_convention=NAMING_CONVENTION)
+
+#: a vehicle's id (`gateway.registry.records.VehicleSpec`), in every table that names one
+VehicleIdText = String(32)
+#: who did something (a principal: an operator, agent or viewer's name), in every table that says who
+PrincipalText = String(200)
+
+# Columns are NOT NULL unless written ``nullable=True``: what a row must have is said once, here.
 
 
-class VehicleRow(Base):
-    __tablename__ = "vehicles"
-
-    id: Mapped[str] = mapped_column(String(32), primary_key=True)
-    url: Mapped[str] = mapped_column(String(256))
-    name: Mapped[str | None] = mapped_column(String(100))
-    tags: Mapped[list[str]] = mapped_column(JSON, default=list)
-    expected_sysid: Mapped[int | None] = mapped_column(Integer)
-    node_tag: Mapped[str | None] = mapped_column(String(32))
-    gcs_endpoints: Mapped[list[str]] = mapped_column(JSON, default=list, server_default="[]")
-    auto_connect: Mapped[bool] = mapped_column(Boolean, default=True)
-    created_at: Mapped[datetime] = mapped_column(UTCDateTime())
-    updated_at: Mapped[datetime] = mapped_column(UTCDateTime())
+#: what a Column takes after its name: its type, constraints, keys, defaults
+ColumnArgument = Any  # Any: sqlalchemy, Column's arguments (types, constraints, defaults of many kinds)
 
 
-class SessionRow(Base):
-    __tablename__ = "sessions"
-
-    key: Mapped[str] = mapped_column(String(200), primary_key=True)
-    kind: Mapped[str] = mapped_column(String(16))
-    principal: Mapped[str | None] = mapped_column(String(200))
-    client_name: Mapped[str | None] = mapped_column(String(200))
-    client_version: Mapped[str | None] = mapped_column(String(100))
-    first_seen: Mapped[datetime] = mapped_column(UTCDateTime())
-    last_seen: Mapped[datetime] = mapped_column(UTCDateTime(), index=True)
-    request_count: Mapped[int] = mapped_column(Integer, default=1)
+def _required(name: str, *args: ColumnArgument, **kwargs: ColumnArgument) -> Column[object]:
+    """A column that must have a value (NOT NULL)."""
+    return Column(name, *args, nullable=False, **kwargs)
 
 
-class AuditRow(Base):
-    __tablename__ = "audit"
-    __table_args__ = (Index("ix_audit_vehicle_id_t", "vehicle_id", "t"),)
+def _optional(name: str, *args: ColumnArgument, **kwargs: ColumnArgument) -> Column[object]:
+    """A column that may be NULL."""
+    return Column(name, *args, nullable=True, **kwargs)
 
-    id: Mapped[int] = mapped_column(BigId, primary_key=True, autoincrement=True)
-    t: Mapped[datetime] = mapped_column(UTCDateTime(), index=True)
-    session_key: Mapped[str | None] = mapped_column(String(200), index=True)
-    principal: Mapped[str | None] = mapped_column(String(200))
-    source: Mapped[str] = mapped_column(String(8))
-    vehicle_id: Mapped[str | None] = mapped_column(String(32))
-    action: Mapped[str] = mapped_column(String(100))
-    arguments: Mapped[JsonObject] = mapped_column(JSON, default=dict)
-    outcome: Mapped[str] = mapped_column(String(16))
-    error: Mapped[str | None] = mapped_column(Text)
-    duration_ms: Mapped[float | None] = mapped_column(Float)
+
+def _keyed(name: str, key: str, text: String, *columns: ColumnArgument) -> Table:
+    """A table whose rows are keyed by a name: ``key`` (of type ``text``) first."""
+    return Table(name, metadata, Column(key, text, primary_key=True), *columns)
+
+
+def _per_vehicle(name: str, *columns: ColumnArgument) -> Table:
+    """A table of at most one row per vehicle, keyed by its id and removed with it."""
+    vehicle = ForeignKey("vehicles.id", ondelete="CASCADE")
+    return Table(name, metadata, Column("vehicle_id", VehicleIdText, vehicle, primary_key=True), *columns)
+
+
+def _numbered(name: str, *columns: ColumnArgument) -> Table:
+    """A table of history whose rows the database numbers: a 64-bit autoincrementing ``id`` first."""
+    return Table(name, metadata, Column("id", BigId, primary_key=True, autoincrement=True), *columns)
+
+
+def _required_each(kind: ColumnArgument, *names: str) -> list[Column[object]]:
+    """Columns of one type that must each have a value, in the order named."""
+    return [_required(name, kind) for name in names]
+
+
+def _optional_each(kind: ColumnArgument, *names: str) -> list[Column[object]]:
+    """Columns of one type that may each be NULL (the figures a row may lack), in the order named."""
+    return [_optional(name, kind) for name in names]
+
+
+vehicles = _keyed(
+    "vehicles",
+    "id",
+    VehicleIdText,
+    _required("url", String(256)),
+    _optional("name", String(100)),
+    _required("tags", JSON, default=list),
+    _optional("expected_sysid", Integer),
+    _optional("node_tag", String(32)),
+    _required("gcs_endpoints", JSON, default=list, server_default="[]"),
+    _required("auto_connect", Boolean, default=True),
+    *_required_each(UTCDateTime, "created_at", "updated_at"),
+)
+
+sessions = _keyed(
+    "sessions",
+    "key",
+    String(200),
+    _required("kind", String(16)),
+    _optional("principal", PrincipalText),
+    _optional("client_name", String(200)),
+    _optional("client_version", String(100)),
+    _required("first_seen", UTCDateTime()),
+    _required("last_seen", UTCDateTime(), index=True),
+    _required("request_count", Integer, default=1),
+)
+
+audit = _numbered(
+    "audit",
+    _required("t", UTCDateTime(), index=True),
+    _optional("session_key", String(200), index=True),
+    _optional("principal", PrincipalText),
+    _required("source", String(8)),
+    _optional("vehicle_id", VehicleIdText),
+    _required("action", String(100)),
+    _required("arguments", JSON, default=dict),
+    _required("outcome", String(16)),
+    _optional("error", Text),
+    _optional("duration_ms", Float),
     # the operation a call left running (wait:false): its end finishes the row, on whichever node
-    operation_id: Mapped[str | None] = mapped_column(String(64), index=True)
+    _optional("operation_id", String(64), index=True),
     # a row written before its call's command was sent (outcome running): the call finishes it by this
-    call_id: Mapped[str | None] = mapped_column(String(32), index=True, unique=True)
+    _optional("call_id", String(32), index=True, unique=True),
+    Index("ix_audit_vehicle_id_t", "vehicle_id", "t"),
+)
 
+#: One flight: arm to disarm. Kept after its vehicle is removed (history).
+flights = _numbered(
+    "flights",
+    _required("vehicle_id", VehicleIdText),
+    _required("started_at", UTCDateTime(), index=True),
+    _optional("ended_at", UTCDateTime()),
+    *_optional_each(Float, "home_lat", "home_lon", "home_alt_amsl"),
+    *_optional_each(Float, "duration_s", "distance_m", "max_alt_rel_m", "battery_used_pct"),
+    Index("ix_flights_vehicle_id_started_at", "vehicle_id", "started_at"),
+)
 
-class FlightRow(Base):
-    """One flight: arm to disarm. Kept after its vehicle is removed (history)."""
-
-    __tablename__ = "flights"
-    __table_args__ = (Index("ix_flights_vehicle_id_started_at", "vehicle_id", "started_at"),)
-
-    id: Mapped[int] = mapped_column(BigId, primary_key=True, autoincrement=True)
-    vehicle_id: Mapped[str] = mapped_column(String(32))
-    started_at: Mapped[datetime] = mapped_column(UTCDateTime(), index=True)
-    ended_at: Mapped[datetime | None] = mapped_column(UTCDateTime())
-    home_lat: Mapped[float | None] = mapped_column(Float)
-    home_lon: Mapped[float | None] = mapped_column(Float)
-    home_alt_amsl: Mapped[float | None] = mapped_column(Float)
-    duration_s: Mapped[float | None] = mapped_column(Float)
-    distance_m: Mapped[float | None] = mapped_column(Float)
-    max_alt_rel_m: Mapped[float | None] = mapped_column(Float)
-    battery_used_pct: Mapped[float | None] = mapped_column(Float)
-
-
-class TrackSampleRow(Base):
-    __tablename__ = "track_samples"
-    __table_args__ = (Index("ix_track_samples_flight_id_t", "flight_id", "t"),)
-
-    id: Mapped[int] = mapped_column(BigId, primary_key=True, autoincrement=True)
-    flight_id: Mapped[int] = mapped_column(
-        BigInteger().with_variant(Integer(), "sqlite"), ForeignKey("flights.id", ondelete="CASCADE")
-    )
-    t: Mapped[datetime] = mapped_column(UTCDateTime())
-    lat: Mapped[float] = mapped_column(Float)
-    lon: Mapped[float] = mapped_column(Float)
-    alt_rel_m: Mapped[float | None] = mapped_column(Float)
-    heading_deg: Mapped[float | None] = mapped_column(Float)
-    ground_speed_mps: Mapped[float | None] = mapped_column(Float)
-    battery_pct: Mapped[float | None] = mapped_column(Float)
+track_samples = _numbered(
+    "track_samples",
+    _required(
+        "flight_id",
+        BigId,
+        ForeignKey("flights.id", ondelete="CASCADE"),
+    ),
+    _required("t", UTCDateTime()),
+    *_required_each(Float, "lat", "lon"),
+    *_optional_each(Float, "alt_rel_m", "heading_deg", "ground_speed_mps", "battery_pct"),
     # the autopilot's HEARTBEAT (MAV_TYPE, custom mode) and GPS fix (GPS_FIX_TYPE, satellites) at the sample
-    mav_type: Mapped[int | None] = mapped_column(BigInteger)
-    custom_mode: Mapped[int | None] = mapped_column(BigInteger)
-    gps_fix_type: Mapped[int | None] = mapped_column(BigInteger)
-    satellites: Mapped[int | None] = mapped_column(BigInteger)
+    *_optional_each(BigInteger, "mav_type", "custom_mode", "gps_fix_type", "satellites"),
+    Index("ix_track_samples_flight_id_t", "flight_id", "t"),
+)
 
-
-class StatusTextRow(Base):
-    __tablename__ = "status_texts"
-    __table_args__ = (Index("ix_status_texts_vehicle_id_t", "vehicle_id", "t"),)
-
-    id: Mapped[int] = mapped_column(BigId, primary_key=True, autoincrement=True)
-    vehicle_id: Mapped[str] = mapped_column(String(32))
-    flight_id: Mapped[int | None] = mapped_column(
-        BigInteger().with_variant(Integer(), "sqlite"),
+status_texts = _numbered(
+    "status_texts",
+    _required("vehicle_id", VehicleIdText),
+    _optional(
+        "flight_id",
+        BigId,
         ForeignKey("flights.id", ondelete="SET NULL"),
         index=True,
+    ),
+    _required("t", UTCDateTime()),
+    _required("severity", String(16)),
+    _required("text", String(255)),
+    Index("ix_status_texts_vehicle_id_t", "vehicle_id", "t"),
+)
+
+operations = _keyed(
+    "operations",
+    "id",
+    String(64),
+    _required("vehicle_id", VehicleIdText),
+    _required("kind", String(64)),
+    _required("params", JSON, default=dict),
+    _required("status", String(16), index=True),
+    _required("progress", Float, default=0.0),
+    _optional("message", Text),
+    _optional("result", JSON),
+    _optional("session_key", String(200)),
+    *_required_each(UTCDateTime, "created_at", "updated_at"),
+    _optional("finished_at", UTCDateTime()),
+    Index("ix_operations_vehicle_id_created_at", "vehicle_id", "created_at"),
+)
+
+
+def _lock_table(name: str, key: str) -> Table:
+    """A table of locks that survive restarts, keyed by ``key``: why, by whom and when each was set."""
+    return _keyed(
+        name,
+        key,
+        VehicleIdText,
+        _required("reason", Text),
+        _required("locked_by", PrincipalText),
+        _required("locked_at", UTCDateTime()),
     )
-    t: Mapped[datetime] = mapped_column(UTCDateTime())
-    severity: Mapped[str] = mapped_column(String(16))
-    text: Mapped[str] = mapped_column(String(255))
 
 
-class OperationRow(Base):
-    __tablename__ = "operations"
-    __table_args__ = (Index("ix_operations_vehicle_id_created_at", "vehicle_id", "created_at"),)
+#: An operator lock on one vehicle, or on the whole fleet (scope "*").
+locks = _lock_table("locks", "scope")
+#: A drone taken over by a pilot, another ground station or a failsafe (`gateway.fleet.policy.takeover`):
+#: agents are refused until an operator releases it.
+takeovers = _lock_table("takeovers", "vehicle_id")
 
-    id: Mapped[str] = mapped_column(String(64), primary_key=True)
-    vehicle_id: Mapped[str] = mapped_column(String(32))
-    kind: Mapped[str] = mapped_column(String(64))
-    params: Mapped[JsonObject] = mapped_column(JSON, default=dict)
-    status: Mapped[str] = mapped_column(String(16), index=True)
-    progress: Mapped[float] = mapped_column(Float, default=0.0)
-    message: Mapped[str | None] = mapped_column(Text)
-    result: Mapped[JsonObject | None] = mapped_column(JSON)
-    session_key: Mapped[str | None] = mapped_column(String(200))
-    created_at: Mapped[datetime] = mapped_column(UTCDateTime())
-    updated_at: Mapped[datetime] = mapped_column(UTCDateTime())
-    finished_at: Mapped[datetime | None] = mapped_column(UTCDateTime())
+#: A gateway node of a cluster; alive while ``expires_at`` is in the future (renewed with its leases).
+cluster_nodes = _keyed(
+    "cluster_nodes",
+    "node_id",
+    String(32),
+    _required("tags", JSON, default=list),
+    _optional("api_url", String(256)),
+    *_required_each(UTCDateTime, "started_at", "last_seen"),
+    _required("expires_at", UTCDateTime(), index=True),
+)
 
+#: Which node owns (runs the sidecar of) a vehicle, until when. ``epoch`` grows at every change of owner:
+#: a fencing number that tells a late message of the previous owner from the current one.
+vehicle_leases = _per_vehicle(
+    "vehicle_leases",
+    _required("node_id", String(32), index=True),
+    _required("epoch", BigInteger, default=1),
+    *_required_each(UTCDateTime, "acquired_at", "renewed_at", "expires_at"),
+)
 
-class LockRow(Base):
-    """An operator lock on one vehicle, or on the whole fleet (scope "*"); survives restarts."""
+#: The point a vehicle's distance limit and geofence checks count from: the first home it reported, or
+#: where an operator moved it (`gateway.fleet.policy.origin`). The autopilot cannot move it.
+vehicle_origins = _per_vehicle(
+    "vehicle_origins",
+    *_required_each(Float, "lat", "lon", "alt_amsl_m"),
+    _required("source", String(16)),  # first_home | operator
+    _required("set_by", PrincipalText),
+    _required("set_at", UTCDateTime()),
+)
 
-    __tablename__ = "locks"
-
-    scope: Mapped[str] = mapped_column(String(32), primary_key=True)
-    reason: Mapped[str] = mapped_column(Text)
-    locked_by: Mapped[str] = mapped_column(String(200))
-    locked_at: Mapped[datetime] = mapped_column(UTCDateTime())
-
-
-class TakeoverRow(Base):
-    """A drone taken over by a pilot, another ground station or a failsafe (`gateway.fleet.policy.takeover`):
-    agents are refused until an operator releases it; survives restarts."""
-
-    __tablename__ = "takeovers"
-
-    vehicle_id: Mapped[str] = mapped_column(String(32), primary_key=True)
-    reason: Mapped[str] = mapped_column(Text)
-    locked_by: Mapped[str] = mapped_column(String(200))
-    locked_at: Mapped[datetime] = mapped_column(UTCDateTime())
-
-
-class ClusterNodeRow(Base):
-    """A gateway node of a cluster; alive while ``expires_at`` is in the future (renewed with its leases)."""
-
-    __tablename__ = "cluster_nodes"
-
-    node_id: Mapped[str] = mapped_column(String(32), primary_key=True)
-    tags: Mapped[list[str]] = mapped_column(JSON, default=list)
-    api_url: Mapped[str | None] = mapped_column(String(256))
-    started_at: Mapped[datetime] = mapped_column(UTCDateTime())
-    last_seen: Mapped[datetime] = mapped_column(UTCDateTime())
-    expires_at: Mapped[datetime] = mapped_column(UTCDateTime(), index=True)
-
-
-class VehicleLeaseRow(Base):
-    """Which node owns (runs the sidecar of) a vehicle, until when. ``epoch`` grows at every change of
-    owner: a fencing number that tells a late message of the previous owner from the current one."""
-
-    __tablename__ = "vehicle_leases"
-
-    vehicle_id: Mapped[str] = mapped_column(
-        String(32), ForeignKey("vehicles.id", ondelete="CASCADE"), primary_key=True
-    )
-    node_id: Mapped[str] = mapped_column(String(32), index=True)
-    epoch: Mapped[int] = mapped_column(BigInteger, default=1)
-    acquired_at: Mapped[datetime] = mapped_column(UTCDateTime())
-    renewed_at: Mapped[datetime] = mapped_column(UTCDateTime())
-    expires_at: Mapped[datetime] = mapped_column(UTCDateTime())
-
-
-class OriginRow(Base):
-    """The point a vehicle's distance limit and geofence checks count from: the first home it reported,
-    or where an operator moved it (`gateway.fleet.policy.origin`). The autopilot cannot move it."""
-
-    __tablename__ = "vehicle_origins"
-
-    vehicle_id: Mapped[str] = mapped_column(
-        String(32), ForeignKey("vehicles.id", ondelete="CASCADE"), primary_key=True
-    )
-    lat: Mapped[float] = mapped_column(Float)
-    lon: Mapped[float] = mapped_column(Float)
-    alt_amsl_m: Mapped[float] = mapped_column(Float)
-    source: Mapped[str] = mapped_column(String(16))  # first_home | operator
-    set_by: Mapped[str] = mapped_column(String(200))
-    set_at: Mapped[datetime] = mapped_column(UTCDateTime())
-
-
-class PlanExtrasRow(Base):
-    """What a drone's last ``.plan`` carried beside its items and its zones
-    (`gateway.fleet.missions.plan_extras`): its rally points, and the circles its geofence was drawn as
-    (the zones themselves are polygons), written back when the drone's mission is exported as a .plan."""
-
-    __tablename__ = "vehicle_plan_extras"
-
-    vehicle_id: Mapped[str] = mapped_column(
-        String(32), ForeignKey("vehicles.id", ondelete="CASCADE"), primary_key=True
-    )
-    #: [[lat, lon, alt above home], ...]
-    rally: Mapped[list[list[float]]] = mapped_column(JSON, default=list)
-    #: {zone name: [centre lat, centre lon, radius m], ...}
-    circles: Mapped[dict[str, list[float]]] = mapped_column(JSON, default=dict)
-    set_by: Mapped[str] = mapped_column(String(200))
-    set_at: Mapped[datetime] = mapped_column(UTCDateTime())
+#: What a drone's last ``.plan`` carried beside its items and its zones
+#: (`gateway.fleet.missions.plan_extras`): its rally points ([[lat, lon, alt above home], ...]), and the
+#: circles its geofence was drawn as ({zone name: [centre lat, centre lon, radius m], ...}; the zones
+#: themselves are polygons), written back when the drone's mission is exported as a .plan.
+vehicle_plan_extras = _per_vehicle(
+    "vehicle_plan_extras",
+    _required("rally", JSON, default=list),
+    _required("circles", JSON, default=dict),
+    _required("set_by", PrincipalText),
+    _required("set_at", UTCDateTime()),
+)

@@ -19,7 +19,8 @@ from pathlib import Path
 
 from sqlalchemy import text
 from sqlalchemy.exc import DBAPIError
-from sqlalchemy.ext.asyncio import AsyncEngine
+
+from gateway.registry.sql_async import AsyncEngine
 
 __all__ = ["head_from_files", "schema_is_current"]
 

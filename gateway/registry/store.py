@@ -1,8 +1,9 @@
 """Persistence of the gateway: vehicles, flights and tracks, status texts, sessions, audit, operations.
 
 ``await Store.open(url)`` upgrades the schema to Alembic head and returns a ready store. Every method
-returns plain pydantic records, never live ORM objects. Only portable SQL is used, so a PostgreSQL
-(asyncpg) URL works as well as the SQLite (aiosqlite) default; SQLite gets WAL mode and a busy timeout.
+returns plain pydantic records, built from Core rows (no ORM: `gateway.registry.models`). Only
+portable SQL is used, so a PostgreSQL (asyncpg) URL works as well as the SQLite (aiosqlite) default;
+SQLite gets WAL mode and a busy timeout.
 """
 
 from __future__ import annotations
@@ -10,17 +11,9 @@ from __future__ import annotations
 from datetime import datetime
 
 from sqlalchemy import delete, select
-from sqlalchemy.ext.asyncio import AsyncEngine
 
 from gateway.registry.database import create_engine_for, migrations_dir, upgrade_schema
-from gateway.registry.models import (
-    AuditRow,
-    FlightRow,
-    OperationRow,
-    SessionRow,
-    StatusTextRow,
-    TrackSampleRow,
-)
+from gateway.registry.models import audit, flights, operations, sessions, status_texts, track_samples
 from gateway.registry.records import (
     AUDIT_MAX_ERROR,
     AUDIT_MAX_JSON,
@@ -44,6 +37,7 @@ from gateway.registry.records import (
     utcnow,
 )
 from gateway.registry.schema_check import schema_is_current
+from gateway.registry.sql_async import AsyncEngine
 from gateway.registry.store_core import rowcount
 from gateway.registry.store_flights import FlightTables
 from gateway.registry.store_locks import LockTables
@@ -83,7 +77,7 @@ class Store(VehicleTable, FlightTables, LockTables, OperationTable, OriginTable,
 
     Its tables: `VehicleTable`, `FlightTables`, `LockTables`, `OperationTable`, `OriginTable`,
     `PlanExtrasTable` and the `AuditTrail` under
-    it (the audit rows and sessions), all over `StoreCore` (sessions and the spool)."""
+    it (the audit rows and sessions), all over `StoreCore` (the engine and the spool)."""
 
     def __init__(self, engine: AsyncEngine, url: str) -> None:
         super().__init__(engine, url)
@@ -97,10 +91,7 @@ class Store(VehicleTable, FlightTables, LockTables, OperationTable, OriginTable,
                 "audit_call_end": self._write_call_end,
                 "operation": self._write_operation,
                 "operation_end": self._write_operation_end,
-                "lock": self._write_lock,
-                "unlock": self._write_unlock,
-                "takeover": self._write_takeover,
-                "takeover_release": self._write_takeover_release,
+                **self._lock_writers(),
             }
         )
 
@@ -129,24 +120,23 @@ class Store(VehicleTable, FlightTables, LockTables, OperationTable, OriginTable,
         """Delete history older than ``before``: flights that ended before it (with their tracks),
         status texts, audit entries, sessions last seen and operations finished before it.
         Registrations, locks, open flights and running operations are kept. Returns rows deleted."""
-        old_flights = select(FlightRow.id).where(FlightRow.ended_at.is_not(None), FlightRow.ended_at < before)
+        old_flights = select(flights.c.id).where(flights.c.ended_at.is_not(None), flights.c.ended_at < before)
         counts: dict[str, int] = {}
         await self.flush_audit()
-        async with self._sessions.begin() as session:
+        async with self.engine.begin() as conn:
             steps = [
-                ("track_samples", delete(TrackSampleRow).where(TrackSampleRow.flight_id.in_(old_flights))),
-                ("status_texts", delete(StatusTextRow).where(StatusTextRow.t < before)),
-                ("flights", delete(FlightRow).where(FlightRow.id.in_(old_flights))),
-                ("audit", delete(AuditRow).where(AuditRow.t < before)),
-                ("sessions", delete(SessionRow).where(SessionRow.last_seen < before)),
+                ("track_samples", delete(track_samples).where(track_samples.c.flight_id.in_(old_flights))),
+                ("status_texts", delete(status_texts).where(status_texts.c.t < before)),
+                ("flights", delete(flights).where(flights.c.id.in_(old_flights))),
+                ("audit", delete(audit).where(audit.c.t < before)),
+                ("sessions", delete(sessions).where(sessions.c.last_seen < before)),
                 (
                     "operations",
-                    delete(OperationRow).where(
-                        OperationRow.finished_at.is_not(None), OperationRow.finished_at < before
+                    delete(operations).where(
+                        operations.c.finished_at.is_not(None), operations.c.finished_at < before
                     ),
                 ),
             ]
             for name, statement in steps:
-                result = await session.execute(statement.execution_options(synchronize_session=False))
-                counts[name] = rowcount(result)
+                counts[name] = rowcount(await conn.execute(statement))
         return counts

@@ -14,9 +14,8 @@ from collections.abc import Awaitable, Callable
 from datetime import UTC, datetime
 from typing import get_args
 
-from sqlalchemy import Insert, func, insert, or_, select, update
+from sqlalchemy import Insert, RowMapping, func, insert, or_, select, update
 from sqlalchemy.exc import IntegrityError
-from sqlalchemy.ext.asyncio import AsyncEngine, AsyncSession
 from sqlalchemy.sql.elements import ColumnElement
 
 from gateway.errors import InvalidArgument
@@ -29,11 +28,7 @@ from gateway.registry.audit_kept import (
     KeptOperationEnd,
     SessionSeen,
 )
-from gateway.registry.models import (
-    AuditRow,
-    OperationRow,
-    SessionRow,
-)
+from gateway.registry.models import audit, operations, sessions
 from gateway.registry.records import (
     AUDIT_MAX_ERROR,
     AUDIT_OUTCOME_OF_OPERATION,
@@ -44,7 +39,8 @@ from gateway.registry.records import (
     bound_arguments,
     utcnow,
 )
-from gateway.registry.store_core import StoreCore, rowcount
+from gateway.registry.sql_async import AsyncConnection, AsyncEngine
+from gateway.registry.store_core import StoreCore, row_by_key, rowcount
 from gateway.util.json_types import JsonObject
 from gateway.util.text import printable
 
@@ -93,31 +89,35 @@ class AuditTrail(StoreCore):
         for attempt in range(2):
             now = utcnow()
             try:
-                async with self._sessions.begin() as session:
-                    row = await session.get(SessionRow, key)
+                async with self.engine.begin() as conn:
+                    row = await row_by_key(conn, sessions, key)
                     if row is None:
-                        row = SessionRow(
-                            key=key,
-                            kind=kind,
-                            principal=principal,
-                            client_name=(client_name or None) and client_name[:200],
-                            client_version=(client_version or None) and client_version[:100],
-                            first_seen=now,
-                            last_seen=now,
-                            request_count=1,
-                        )
-                        session.add(row)
+                        values: dict[str, object] = {
+                            "key": key,
+                            "kind": kind,
+                            "principal": principal,
+                            "client_name": (client_name or None) and client_name[:200],
+                            "client_version": (client_version or None) and client_version[:100],
+                            "first_seen": now,
+                            "last_seen": now,
+                            "request_count": 1,
+                        }
+                        await conn.execute(insert(sessions).values(values))
                     else:
-                        row.last_seen = now
-                        row.request_count = (row.request_count or 0) + 1
-                        row.kind = kind
+                        changes: dict[str, object] = {
+                            "last_seen": now,
+                            "request_count": (row["request_count"] or 0) + 1,
+                            "kind": kind,
+                        }
                         if principal is not None:
-                            row.principal = principal
+                            changes["principal"] = principal
                         if client_name:
-                            row.client_name = client_name[:200]
+                            changes["client_name"] = client_name[:200]
                         if client_version:
-                            row.client_version = client_version[:100]
-                return SessionRecord.model_validate(row)
+                            changes["client_version"] = client_version[:100]
+                        await conn.execute(update(sessions).where(sessions.c.key == key).values(changes))
+                        values = {**row, **changes}
+                return SessionRecord.model_validate(values)
             except IntegrityError:
                 if attempt:  # a concurrent insert won twice: give up loudly
                     raise
@@ -125,9 +125,9 @@ class AuditTrail(StoreCore):
 
     async def get_session(self, key: str) -> SessionRecord | None:
         await self.flush_audit()
-        async with self._sessions() as session:
-            row = await session.get(SessionRow, key)
-            return None if row is None else SessionRecord.model_validate(row)
+        async with self.engine.connect() as conn:
+            row = await row_by_key(conn, sessions, key)
+        return None if row is None else SessionRecord.model_validate(row)
 
     async def list_sessions(
         self,
@@ -139,17 +139,17 @@ class AuditTrail(StoreCore):
     ) -> list[SessionRecord]:
         """Sessions, most recently seen first."""
         await self.flush_audit()
-        query = select(SessionRow)
+        query = select(sessions)
         if kind is not None:
-            query = query.where(SessionRow.kind == kind)
+            query = query.where(sessions.c.kind == kind)
         if principal is not None:
-            query = query.where(SessionRow.principal == principal)
+            query = query.where(sessions.c.principal == principal)
         if since is not None:
-            query = query.where(SessionRow.last_seen >= since)
-        query = query.order_by(SessionRow.last_seen.desc(), SessionRow.key).limit(limit).offset(offset)
-        async with self._sessions() as session:
-            rows = (await session.scalars(query)).all()
-            return [SessionRecord.model_validate(r) for r in rows]
+            query = query.where(sessions.c.last_seen >= since)
+        query = query.order_by(sessions.c.last_seen.desc(), sessions.c.key).limit(limit).offset(offset)
+        async with self.engine.connect() as conn:
+            rows = (await conn.execute(query)).mappings().all()
+        return [SessionRecord.model_validate(r) for r in rows]
 
     # --- audit -----------------------------------------------------------------------------------
 
@@ -165,7 +165,7 @@ class AuditTrail(StoreCore):
 
         return remove
 
-    def _audit_written(self, row: AuditRow | AuditRecord) -> None:
+    def _audit_written(self, row: RowMapping | AuditRecord) -> None:
         if not self._audit_listeners:
             return
         record = row if isinstance(row, AuditRecord) else AuditRecord.model_validate(row)
@@ -197,12 +197,12 @@ class AuditTrail(StoreCore):
     async def _write_audit(self, data: JsonObject) -> int:
         kept = KeptAudit.model_validate(data)
         values, call_id = kept.values.model_dump(), kept.call_id
-        statement = self._insert_once().returning(AuditRow.id)
-        async with self._sessions.begin() as session:
-            row_id = (await session.scalars(statement, [{**values, "call_id": call_id}])).first()
+        statement = self._insert_once().returning(audit.c.id)
+        async with self.engine.begin() as conn:
+            row_id = (await conn.execute(statement, [{**values, "call_id": call_id}])).scalars().first()
             if row_id is None:  # written by an earlier try (its answer lost): that row, not a second one
-                query = select(AuditRow.id).where(AuditRow.call_id == call_id)
-                return int((await session.scalars(query)).one())
+                query = select(audit.c.id).where(audit.c.call_id == call_id)
+                return int((await conn.execute(query)).scalars().one())
         self._audit_written(AuditRecord.model_validate({**values, "id": row_id}))
         if kept.values.outcome == "running" and kept.values.operation_id is not None:
             await self._finish_if_ended(kept.values.operation_id)
@@ -216,11 +216,11 @@ class AuditTrail(StoreCore):
         if self.engine.dialect.name == "postgresql":
             from sqlalchemy.dialects import postgresql
 
-            return postgresql.insert(AuditRow).on_conflict_do_nothing(index_elements=[AuditRow.call_id])
+            return postgresql.insert(audit).on_conflict_do_nothing(index_elements=[audit.c.call_id])
         if self.engine.dialect.name == "sqlite":
             from sqlalchemy.dialects import sqlite
 
-            return sqlite.insert(AuditRow).on_conflict_do_nothing(index_elements=[AuditRow.call_id])
+            return sqlite.insert(audit).on_conflict_do_nothing(index_elements=[audit.c.call_id])
         name = self.engine.dialect.name
         raise ValueError(f"the audit trail needs PostgreSQL or SQLite; the database is {name}")
 
@@ -299,17 +299,24 @@ class AuditTrail(StoreCore):
         changes = kept.changes.model_dump(exclude_unset=True)
         if isinstance(changes.get("error"), str):
             changes["error"] = changes["error"][:AUDIT_MAX_ERROR]
-        async with self._sessions.begin() as session:
-            rows = (await session.scalars(select(AuditRow).where(AuditRow.call_id == kept.call_id))).all()
-            for row in rows:
-                finished = row.outcome != "running" and changes.get("outcome") == "running"
-                for key, value in changes.items():  # one its operation's end finished keeps that outcome
-                    if not (finished and key in ("outcome", "error")):
-                        setattr(row, key, value)
-        for row in rows:
-            self._audit_written(row)
+        written: list[AuditRecord] = []
+        async with self.engine.begin() as conn:
+            query = select(audit).where(audit.c.call_id == kept.call_id)
+            for row in (await conn.execute(query)).mappings().all():
+                finished = row["outcome"] != "running" and changes.get("outcome") == "running"
+                # one its operation's end finished keeps that outcome
+                kept_changes = {
+                    key: value
+                    for key, value in changes.items()
+                    if not (finished and key in ("outcome", "error"))
+                }
+                if kept_changes:
+                    await conn.execute(update(audit).where(audit.c.id == row["id"]).values(kept_changes))
+                written.append(AuditRecord.model_validate({**row, **kept_changes}))
+        for record in written:
+            self._audit_written(record)
         operation_id = changes.get("operation_id")
-        if rows and isinstance(operation_id, str) and rows[0].outcome == "running":
+        if written and isinstance(operation_id, str) and written[0].outcome == "running":
             await self._finish_if_ended(operation_id)
 
     async def _write_queued(self, flush: asyncio.Event) -> None:
@@ -354,15 +361,15 @@ class AuditTrail(StoreCore):
         timeout, or the spool wrote it again) is neither inserted nor counted again."""
         values = [self._audit_values(entry) for entry, _ in batch]
         rows = [{**v, "call_id": call_id} for v, call_id in zip(values, call_ids, strict=True)]
-        statement = self._insert_once().returning(AuditRow.id, AuditRow.call_id)
-        async with self._sessions.begin() as session:
-            inserted = {c: i for i, c in (await session.execute(statement, rows)).all()}
+        statement = self._insert_once().returning(audit.c.id, audit.c.call_id)
+        async with self.engine.begin() as conn:
+            inserted = {c: i for i, c in (await conn.execute(statement, rows)).all()}
             seen: dict[str, tuple[SessionSeen, int]] = {}
             for (_entry, s), call_id in zip(batch, call_ids, strict=True):
                 if s is not None and call_id in inserted:
                     seen[s.key[:200]] = (s, seen.get(s.key[:200], (s, 0))[1] + 1)
             for key, (s, count) in seen.items():
-                await self._touch_in(session, key, s, count)
+                await self._touch_in(conn, key, s, count)
         for (entry, _s), row, call_id in zip(batch, values, call_ids, strict=True):
             if self._audit_listeners and call_id in inserted:
                 self._audit_written(AuditRecord.model_validate({**row, "id": inserted[call_id]}))
@@ -370,12 +377,12 @@ class AuditTrail(StoreCore):
                 await self._finish_if_ended(entry.operation_id)
 
     @staticmethod
-    async def _touch_in(session: AsyncSession, key: str, s: SessionSeen, count: int) -> None:
+    async def _touch_in(conn: AsyncConnection, key: str, s: SessionSeen, count: int) -> None:
         """Last seen now and ``count`` more requests (the row is made when it is new)."""
         now = utcnow()
         changes: dict[str, object] = {
             "last_seen": now,
-            "request_count": func.coalesce(SessionRow.request_count, 0) + count,
+            "request_count": func.coalesce(sessions.c.request_count, 0) + count,
             "kind": s.kind,
         }
         if s.principal is not None:
@@ -384,10 +391,10 @@ class AuditTrail(StoreCore):
             changes["client_name"] = s.client_name[:200]
         if s.client_version:
             changes["client_version"] = s.client_version[:100]
-        result = await session.execute(update(SessionRow).where(SessionRow.key == key).values(**changes))
+        result = await conn.execute(update(sessions).where(sessions.c.key == key).values(**changes))
         if not rowcount(result):
-            await session.execute(
-                insert(SessionRow).values(
+            await conn.execute(
+                insert(sessions).values(
                     key=key,
                     kind=s.kind,
                     principal=s.principal,
@@ -422,11 +429,11 @@ class AuditTrail(StoreCore):
         if ended is not None:
             await self._finish_audit_rows(operation_id, *ended)
             return
-        async with self._sessions() as session:
-            op = await session.get(OperationRow, operation_id)
-        if op is not None and op.status != "running":
+        async with self.engine.connect() as conn:
+            op = await row_by_key(conn, operations, operation_id)
+        if op is not None and op["status"] != "running":
             await self._finish_audit_rows(
-                operation_id, op.status, op.message, op.finished_at or op.updated_at
+                operation_id, op["status"], op["message"], op["finished_at"] or op["updated_at"]
             )
 
     def _audit_conditions(
@@ -439,14 +446,14 @@ class AuditTrail(StoreCore):
     ) -> list[ColumnElement[bool]]:
         conditions: list[ColumnElement[bool]] = []
         if vehicle_id is not None:
-            same = AuditRow.vehicle_id == vehicle_id
-            conditions.append(or_(same, AuditRow.vehicle_id.is_(None)) if include_fleet else same)
+            same = audit.c.vehicle_id == vehicle_id
+            conditions.append(or_(same, audit.c.vehicle_id.is_(None)) if include_fleet else same)
         if session_key is not None:
-            conditions.append(AuditRow.session_key == session_key)
+            conditions.append(audit.c.session_key == session_key)
         if since is not None:
-            conditions.append(AuditRow.t >= since)
+            conditions.append(audit.c.t >= since)
         if until is not None:
-            conditions.append(AuditRow.t <= until)
+            conditions.append(audit.c.t <= until)
         return conditions
 
     async def list_audit(
@@ -465,15 +472,15 @@ class AuditTrail(StoreCore):
         (fleet-wide calls)."""
         await self.flush_audit()
         query = (
-            select(AuditRow)
+            select(audit)
             .where(*self._audit_conditions(vehicle_id, session_key, since, until, include_fleet))
-            .order_by(AuditRow.t.desc(), AuditRow.id.desc())
+            .order_by(audit.c.t.desc(), audit.c.id.desc())
             .limit(limit)
             .offset(offset)
         )
-        async with self._sessions() as session:
-            rows = (await session.scalars(query)).all()
-            return [AuditRecord.model_validate(r) for r in rows]
+        async with self.engine.connect() as conn:
+            rows = (await conn.execute(query)).mappings().all()
+        return [AuditRecord.model_validate(r) for r in rows]
 
     async def count_audit(
         self,
@@ -485,10 +492,10 @@ class AuditTrail(StoreCore):
         include_fleet: bool = False,
     ) -> int:
         await self.flush_audit()
-        query = select(func.count()).select_from(AuditRow)
+        query = select(func.count()).select_from(audit)
         query = query.where(*self._audit_conditions(vehicle_id, session_key, since, until, include_fleet))
-        async with self._sessions() as session:
-            return int((await session.execute(query)).scalar_one())
+        async with self.engine.connect() as conn:
+            return int((await conn.execute(query)).scalar_one())
 
     async def finish_audit_of(self, operation_id: str, status: str, message: str | None) -> None:
         """An operation this store does not keep (a fleet operation, held in memory by its node) ended:
@@ -521,18 +528,18 @@ class AuditTrail(StoreCore):
         """The rows of the calls that left ``operation_id`` running take its outcome, and its whole
         duration (from the call to the operation's end) rather than the time the call took to answer."""
         outcome = AUDIT_OUTCOME_OF_OPERATION.get(status, "error")
-        async with self._sessions.begin() as session:
-            query = select(AuditRow).where(
-                AuditRow.operation_id == operation_id, AuditRow.outcome == "running"
-            )
-            rows = (await session.scalars(query)).all()
-            for row in rows:
-                row.outcome = outcome
-                row.error = None if outcome == "ok" else (message or status)[:AUDIT_MAX_ERROR]
-                took_ms = (_aware(ended_at) - _aware(row.t)).total_seconds() * 1000.0
-                row.duration_ms = max(took_ms, row.duration_ms or 0.0)
-        for row in rows:  # the console's audit stream shows the row again, finished
-            self._audit_written(row)
+        error = None if outcome == "ok" else (message or status)[:AUDIT_MAX_ERROR]
+        finished: list[AuditRecord] = []
+        async with self.engine.begin() as conn:
+            query = select(audit).where(audit.c.operation_id == operation_id, audit.c.outcome == "running")
+            for row in (await conn.execute(query)).mappings().all():
+                took_ms = (_aware(ended_at) - _aware(row["t"])).total_seconds() * 1000.0
+                duration_ms = max(took_ms, row["duration_ms"] or 0.0)
+                changes = {"outcome": outcome, "error": error, "duration_ms": duration_ms}
+                await conn.execute(update(audit).where(audit.c.id == row["id"]).values(changes))
+                finished.append(AuditRecord.model_validate({**row, **changes}))
+        for record in finished:  # the console's audit stream shows the row again, finished
+            self._audit_written(record)
 
 
 class AuditCall:

@@ -1,5 +1,6 @@
-"""What every table of the store writes through: the engine's sessions, and the spool that keeps a
-write the database cannot take (it is unreachable) and writes it, in order, once the database is back."""
+"""What every table of the store writes through: the engine's connections (Core statements, no ORM),
+and the spool that keeps a write the database cannot take (it is unreachable) and writes it, in order,
+once the database is back."""
 
 from __future__ import annotations
 
@@ -9,10 +10,10 @@ from collections.abc import Awaitable, Callable
 from pathlib import Path
 from typing import TypeVar
 
-from sqlalchemy import CursorResult, select
-from sqlalchemy.ext.asyncio import AsyncEngine, async_sessionmaker
+from sqlalchemy import CursorResult, RowMapping, Table, select
 
 from gateway.registry.spool import Spool, database_tag
+from gateway.registry.sql_async import AsyncConnection, AsyncEngine
 from gateway.util.json_types import JsonObject
 
 log = logging.getLogger(__name__)
@@ -27,12 +28,13 @@ KeptWriter = Callable[[JsonObject], Awaitable[object]]
 
 
 class StoreCore:
-    """The engine, its sessions and the spool; the tables of `gateway.registry.store.Store` build on it."""
+    """The engine and the spool; the tables of `gateway.registry.store.Store` build on it. A read runs on
+    ``self.engine.connect()``, a write on ``self.engine.begin()`` (one transaction, committed at its end
+    unless it raises)."""
 
     def __init__(self, engine: AsyncEngine, url: str) -> None:
         self.engine = engine
         self.url = url
-        self._sessions = async_sessionmaker(engine, expire_on_commit=False)
         self._closed = False
         #: history writes the database could not take (it was unreachable), written when it is back
         self.spool = Spool(apply=self._apply_kept, owner=database_tag(url))
@@ -74,8 +76,8 @@ class StoreCore:
     async def ping(self) -> bool:
         """True when the database answers a trivial query."""
         try:
-            async with self._sessions() as session:
-                await session.execute(select(1))
+            async with self.engine.connect() as conn:
+                await conn.execute(select(1))
             return True
         except Exception:
             log.exception("database ping failed")
@@ -83,5 +85,14 @@ class StoreCore:
 
 
 def rowcount(result: object) -> int:
-    """Rows a DELETE/UPDATE touched (``Session.execute`` is typed as returning a plain ``Result``)."""
+    """Rows a DELETE/UPDATE touched."""
     return int(result.rowcount or 0) if isinstance(result, CursorResult) else 0
+
+
+async def row_by_key(conn: AsyncConnection, table: Table, key: object) -> RowMapping | None:
+    """The row of ``table`` whose (one-column) primary key is ``key``, by column name, or None.
+
+    Rows are read as mappings throughout the store: a column named like one of ``Row``'s own
+    attributes (``t``, ``count``, ``index``) would read as that attribute."""
+    (column,) = table.primary_key.columns
+    return (await conn.execute(select(table).where(column == key))).mappings().first()

@@ -6,21 +6,17 @@ from collections.abc import Sequence
 from datetime import datetime
 
 from pydantic import BaseModel
-from sqlalchemy import func, insert, or_, select
+from sqlalchemy import func, insert, or_, select, update
 
 from gateway.errors import NotFound
-from gateway.registry.models import (
-    FlightRow,
-    StatusTextRow,
-    TrackSampleRow,
-)
+from gateway.registry.models import flights, status_texts, track_samples
 from gateway.registry.records import (
     FlightRecord,
     StatusTextIn,
     StatusTextRecord,
     TrackSample,
 )
-from gateway.registry.store_core import StoreCore
+from gateway.registry.store_core import StoreCore, row_by_key, rowcount
 from gateway.util.json_types import JsonObject, JsonValue
 
 
@@ -54,17 +50,16 @@ class FlightTables(StoreCore):
         home_lon: float | None = None,
         home_alt_amsl: float | None = None,
     ) -> int:
-        row = FlightRow(
-            vehicle_id=vehicle_id,
-            started_at=started_at,
-            home_lat=home_lat,
-            home_lon=home_lon,
-            home_alt_amsl=home_alt_amsl,
-        )
-        async with self._sessions.begin() as session:
-            session.add(row)
-            await session.flush()
-            return int(row.id)
+        values = {
+            "vehicle_id": vehicle_id,
+            "started_at": started_at,
+            "home_lat": home_lat,
+            "home_lon": home_lon,
+            "home_alt_amsl": home_alt_amsl,
+        }
+        async with self.engine.begin() as conn:
+            result = await conn.execute(insert(flights).values(values).returning(flights.c.id))
+            return int(result.scalar_one())
 
     async def close_flight(
         self,
@@ -84,24 +79,21 @@ class FlightTables(StoreCore):
 
     async def _write_flight_end(self, data: JsonObject) -> FlightRecord:
         end = FlightEnd.model_validate(data)
-        async with self._sessions.begin() as session:
-            row = await session.get(FlightRow, end.flight_id)
-            if row is None:
+        changes = end.model_dump(exclude={"flight_id"})
+        async with self.engine.begin() as conn:
+            result = await conn.execute(update(flights).where(flights.c.id == end.flight_id).values(changes))
+            if not rowcount(result):
                 raise NotFound(f"no flight with id {end.flight_id}", id=end.flight_id)
-            row.ended_at = end.ended_at
-            row.duration_s = end.duration_s
-            row.distance_m = end.distance_m
-            row.max_alt_rel_m = end.max_alt_rel_m
-            row.battery_used_pct = end.battery_used_pct
+            row = await row_by_key(conn, flights, end.flight_id)
         return FlightRecord.model_validate(row)
 
     async def list_open_flights(self, vehicle_id: str | None = None) -> list[FlightRecord]:
-        query = select(FlightRow).where(FlightRow.ended_at.is_(None))
+        query = select(flights).where(flights.c.ended_at.is_(None))
         if vehicle_id is not None:
-            query = query.where(FlightRow.vehicle_id == vehicle_id)
-        async with self._sessions() as session:
-            rows = (await session.scalars(query.order_by(FlightRow.started_at))).all()
-            return [FlightRecord.model_validate(r) for r in rows]
+            query = query.where(flights.c.vehicle_id == vehicle_id)
+        async with self.engine.connect() as conn:
+            rows = (await conn.execute(query.order_by(flights.c.started_at))).mappings().all()
+        return [FlightRecord.model_validate(r) for r in rows]
 
     async def add_track_samples(self, samples: Sequence[TrackSample]) -> int:
         """Insert a batch of track samples in one transaction; returns how many were written (0: kept
@@ -116,8 +108,8 @@ class FlightTables(StoreCore):
 
     async def _write_track_samples(self, data: JsonObject) -> int:
         rows = [TrackSample.model_validate(r).model_dump() for r in _rows(data)]
-        async with self._sessions.begin() as session:
-            await session.execute(insert(TrackSampleRow), rows)
+        async with self.engine.begin() as conn:
+            await conn.execute(insert(track_samples), rows)
         return len(rows)
 
     async def add_status_texts(self, items: Sequence[StatusTextIn]) -> int:
@@ -129,8 +121,8 @@ class FlightTables(StoreCore):
 
     async def _write_status_texts(self, data: JsonObject) -> int:
         rows = [StatusTextIn.model_validate(r).model_dump() for r in _rows(data)]
-        async with self._sessions.begin() as session:
-            await session.execute(insert(StatusTextRow), rows)
+        async with self.engine.begin() as conn:
+            await conn.execute(insert(status_texts), rows)
         return len(rows)
 
     async def list_flights(
@@ -144,61 +136,56 @@ class FlightTables(StoreCore):
         """Flights overlapping [since, until], newest first, with the total count for paging."""
         conditions = []
         if vehicle_id is not None:
-            conditions.append(FlightRow.vehicle_id == vehicle_id)
+            conditions.append(flights.c.vehicle_id == vehicle_id)
         if since is not None:
-            conditions.append(or_(FlightRow.ended_at.is_(None), FlightRow.ended_at >= since))
+            conditions.append(or_(flights.c.ended_at.is_(None), flights.c.ended_at >= since))
         if until is not None:
-            conditions.append(FlightRow.started_at <= until)
-        query = select(FlightRow).where(*conditions)
-        count = select(func.count()).select_from(FlightRow).where(*conditions)
-        async with self._sessions() as session:
-            total = int((await session.execute(count)).scalar_one())
-            rows = (
-                await session.scalars(
-                    query.order_by(FlightRow.started_at.desc(), FlightRow.id.desc())
-                    .limit(limit)
-                    .offset(offset)
-                )
-            ).all()
-            return [FlightRecord.model_validate(r) for r in rows], total
+            conditions.append(flights.c.started_at <= until)
+        query = select(flights).where(*conditions)
+        count = select(func.count()).select_from(flights).where(*conditions)
+        newest_first = query.order_by(flights.c.started_at.desc(), flights.c.id.desc())
+        async with self.engine.connect() as conn:
+            total = int((await conn.execute(count)).scalar_one())
+            rows = (await conn.execute(newest_first.limit(limit).offset(offset))).mappings().all()
+        return [FlightRecord.model_validate(r) for r in rows], total
 
     async def get_flight(self, flight_id: int) -> FlightRecord | None:
-        async with self._sessions() as session:
-            row = await session.get(FlightRow, flight_id)
-            return None if row is None else FlightRecord.model_validate(row)
+        async with self.engine.connect() as conn:
+            row = await row_by_key(conn, flights, flight_id)
+        return None if row is None else FlightRecord.model_validate(row)
 
     async def get_track(self, flight_id: int) -> list[TrackSample]:
-        columns = [getattr(TrackSampleRow, name) for name in TrackSample.model_fields]
+        columns = [track_samples.c[name] for name in TrackSample.model_fields]
         query = (
             select(*columns)
-            .where(TrackSampleRow.flight_id == flight_id)
-            .order_by(TrackSampleRow.t, TrackSampleRow.id)
+            .where(track_samples.c.flight_id == flight_id)
+            .order_by(track_samples.c.t, track_samples.c.id)
         )
-        async with self._sessions() as session:
-            rows = (await session.execute(query)).all()
-        # Plain rows, no ORM objects; validated when written, so built without re-validation (long tracks).
-        return [TrackSample.model_construct(**row._asdict()) for row in rows]
+        async with self.engine.connect() as conn:
+            rows = (await conn.execute(query)).mappings().all()
+        # validated when written, so built without re-validation (long tracks)
+        return [TrackSample.model_construct(**row) for row in rows]
 
     async def list_status_texts(
         self, vehicle_id: str, limit: int = 100, since: datetime | None = None
     ) -> list[StatusTextRecord]:
         """The newest ``limit`` status texts of a vehicle, oldest first."""
-        query = select(StatusTextRow).where(StatusTextRow.vehicle_id == vehicle_id)
+        query = select(status_texts).where(status_texts.c.vehicle_id == vehicle_id)
         if since is not None:
-            query = query.where(StatusTextRow.t >= since)
-        query = query.order_by(StatusTextRow.t.desc(), StatusTextRow.id.desc()).limit(limit)
-        async with self._sessions() as session:
-            rows = (await session.scalars(query)).all()
-            return [StatusTextRecord.model_validate(r) for r in reversed(rows)]
+            query = query.where(status_texts.c.t >= since)
+        query = query.order_by(status_texts.c.t.desc(), status_texts.c.id.desc()).limit(limit)
+        async with self.engine.connect() as conn:
+            rows = (await conn.execute(query)).mappings().all()
+        return [StatusTextRecord.model_validate(r) for r in reversed(rows)]
 
     async def list_flight_status_texts(self, flight_id: int, limit: int = 500) -> list[StatusTextRecord]:
         """The status texts received during a flight, oldest first (at most ``limit``, the first ones)."""
         query = (
-            select(StatusTextRow)
-            .where(StatusTextRow.flight_id == flight_id)
-            .order_by(StatusTextRow.t, StatusTextRow.id)
+            select(status_texts)
+            .where(status_texts.c.flight_id == flight_id)
+            .order_by(status_texts.c.t, status_texts.c.id)
             .limit(limit)
         )
-        async with self._sessions() as session:
-            rows = (await session.scalars(query)).all()
-            return [StatusTextRecord.model_validate(r) for r in rows]
+        async with self.engine.connect() as conn:
+            rows = (await conn.execute(query)).mappings().all()
+        return [StatusTextRecord.model_validate(r) for r in rows]

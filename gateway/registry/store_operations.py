@@ -4,11 +4,12 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from sqlalchemy import select
+from sqlalchemy import insert, select, update
 
-from gateway.registry.models import OperationRow
+from gateway.registry.models import operations
 from gateway.registry.records import OperationRecord
 from gateway.registry.store_audit import AuditTrail
+from gateway.registry.store_core import row_by_key
 from gateway.util.json_types import JsonObject
 
 
@@ -25,34 +26,32 @@ class OperationTable(AuditTrail):
     async def _write_operation(self, data: JsonObject) -> None:
         op = OperationRecord.model_validate(data["op"])
         values = op.model_dump()
-        async with self._sessions.begin() as session:
-            row = await session.get(OperationRow, op.id)
-            if row is None:
-                session.add(OperationRow(**values))
+        async with self.engine.begin() as conn:
+            if await row_by_key(conn, operations, op.id) is None:
+                await conn.execute(insert(operations).values(values))
             else:
-                for key, value in values.items():
-                    if key != "id":
-                        setattr(row, key, value)
+                changes = {key: value for key, value in values.items() if key != "id"}
+                await conn.execute(update(operations).where(operations.c.id == op.id).values(changes))
         if op.status != "running":
             await self._finish_audit_of(op.id, op.status, op.message, op.finished_at or op.updated_at)
 
     async def get_operation(self, operation_id: str) -> OperationRecord | None:
-        async with self._sessions() as session:
-            row = await session.get(OperationRow, operation_id)
-            return None if row is None else OperationRecord.model_validate(row)
+        async with self.engine.connect() as conn:
+            row = await row_by_key(conn, operations, operation_id)
+        return None if row is None else OperationRecord.model_validate(row)
 
     async def list_operations(
         self, vehicle_id: str | None = None, status: str | Sequence[str] | None = None, limit: int = 50
     ) -> list[OperationRecord]:
         """Operations, newest first; ``status`` may be one status or several."""
-        query = select(OperationRow)
+        query = select(operations)
         if vehicle_id is not None:
-            query = query.where(OperationRow.vehicle_id == vehicle_id)
+            query = query.where(operations.c.vehicle_id == vehicle_id)
         if isinstance(status, str):
-            query = query.where(OperationRow.status == status)
+            query = query.where(operations.c.status == status)
         elif status is not None:
-            query = query.where(OperationRow.status.in_(list(status)))
-        query = query.order_by(OperationRow.created_at.desc(), OperationRow.id).limit(limit)
-        async with self._sessions() as session:
-            rows = (await session.scalars(query)).all()
-            return [OperationRecord.model_validate(r) for r in rows]
+            query = query.where(operations.c.status.in_(list(status)))
+        query = query.order_by(operations.c.created_at.desc(), operations.c.id).limit(limit)
+        async with self.engine.connect() as conn:
+            rows = (await conn.execute(query)).mappings().all()
+        return [OperationRecord.model_validate(r) for r in rows]

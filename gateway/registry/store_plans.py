@@ -6,9 +6,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from datetime import datetime
 
-from gateway.registry.models import PlanExtrasRow
+from sqlalchemy import insert, update
+
+from gateway.registry.models import vehicle_plan_extras
 from gateway.registry.records import utcnow
-from gateway.registry.store_core import StoreCore
+from gateway.registry.store_core import StoreCore, row_by_key
 
 Point = tuple[float, float, float]
 
@@ -31,23 +33,27 @@ class PlanExtrasTable(StoreCore):
     """One row of .plan extras per vehicle (gone with the vehicle)."""
 
     async def get_plan_extras(self, vehicle_id: str) -> KeptPlanExtras | None:
-        async with self._sessions() as session:
-            row = await session.get(PlanExtrasRow, vehicle_id)
-            if row is None:
-                return None
-            return KeptPlanExtras(
-                [_point(p) for p in row.rally],
-                {name: _point(c) for name, c in row.circles.items()},
-                row.set_by,
-                row.set_at,
-            )
+        async with self.engine.connect() as conn:
+            row = await row_by_key(conn, vehicle_plan_extras, vehicle_id)
+        if row is None:
+            return None
+        return KeptPlanExtras(
+            [_point(p) for p in row["rally"]],
+            {name: _point(c) for name, c in row["circles"].items()},
+            row["set_by"],
+            row["set_at"],
+        )
 
     async def save_plan_extras(self, vehicle_id: str, extras: KeptPlanExtras, set_by: str) -> None:
-        async with self._sessions.begin() as session:
-            row = await session.get(PlanExtrasRow, vehicle_id)
-            if row is None:
-                row = PlanExtrasRow(vehicle_id=vehicle_id)
-                session.add(row)
-            row.rally = [list(p) for p in extras.rally]
-            row.circles = {name: list(c) for name, c in extras.circles.items()}
-            row.set_by, row.set_at = set_by[:200], utcnow()
+        values = {
+            "rally": [list(p) for p in extras.rally],
+            "circles": {name: list(c) for name, c in extras.circles.items()},
+            "set_by": set_by[:200],
+            "set_at": utcnow(),
+        }
+        async with self.engine.begin() as conn:
+            if await row_by_key(conn, vehicle_plan_extras, vehicle_id) is None:
+                await conn.execute(insert(vehicle_plan_extras).values(vehicle_id=vehicle_id, **values))
+            else:
+                where = vehicle_plan_extras.c.vehicle_id == vehicle_id
+                await conn.execute(update(vehicle_plan_extras).where(where).values(values))

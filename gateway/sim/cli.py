@@ -8,19 +8,14 @@ import contextlib
 import signal
 import sys
 
-from gateway.cli_help import COMMAND_HELP
+from gateway.cli_help import add_command
 from gateway.sim.control import ControlServer
 from gateway.sim.fleet import DEFAULT_HOME, SimFleet, parse_home
 from gateway.sim.params import FIRMWARES
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
-    parser = subparsers.add_parser(
-        "sim",
-        help=COMMAND_HELP["sim"],
-        description="Run N simulated ArduCopter 4.x vehicles in one process. Vehicle i listens on TCP "
-        "bind:tcp_base_port+10*i with system id sysid_base+i.",
-    )
+    parser = add_command(subparsers, "sim")
     add_sim_arguments(parser)
     parser.set_defaults(func=run)
 

@@ -124,16 +124,18 @@ class FlightController(GuidedMixin, AutoMixin, FailsafeMixin):
         v.text(mav.MAV_SEVERITY_INFO, "Arming motors")
         return True, []
 
+    def _no_takeoff_or_landing(self) -> None:
+        """Disarmed: no takeoff spools up or climbs, no descent or touchdown is under way."""
+        self.takeoff_alt = self.spool_until = self.touchdown_t = None
+        self.descending = False
+
     def disarm(self, reason: str | None = None) -> None:
         v = self.v
         if not v.armed:
             return
         v.armed = False
         v.auto_armed = False
-        self.takeoff_alt = None
-        self.spool_until = None
-        self.descending = False
-        self.touchdown_t = None
+        self._no_takeoff_or_landing()
         if v.landed:
             v.body.stop()
         v.text(mav.MAV_SEVERITY_INFO, "Disarming motors")

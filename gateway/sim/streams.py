@@ -6,6 +6,8 @@ Every rate starts at 0 (ArduCopter's MAVn_*/SRn_* defaults). ``REQUEST_DATA_STRE
 
 from __future__ import annotations
 
+import math
+
 # MAV_DATA_STREAM ids -> ArduPilot stream group name (the suffix of the MAVn_* parameter).
 GROUP_PARAM = {
     1: "RAW_SENS",
@@ -42,6 +44,9 @@ class StreamTable:
         self.group_hz: dict[int, float] = {}
         self.intervals: dict[int, float] = {}  # msg id -> seconds; <0 disabled
         self._next_due: dict[int, float] = {}
+        #: when the next message is due (simulated seconds; None: to be worked out, after a change of
+        #: rates): the vehicle asks at every physics step, 25 times a second, and most steps send nothing
+        self._earliest: float | None = None
 
     def set_group(self, group: int, hz: float) -> list[int]:
         """Set a stream group's rate (0 = off); group 0 means all groups. Returns the groups changed."""
@@ -51,6 +56,7 @@ class StreamTable:
             if g in GROUP_MESSAGES:
                 self.group_hz[g] = max(0.0, hz)
                 changed.append(g)
+        self._earliest = None
         return changed
 
     def set_interval(self, msg_id: int, interval_us: float) -> None:
@@ -62,6 +68,7 @@ class StreamTable:
         else:
             self.intervals[msg_id] = interval_us / 1e6
         self._next_due.pop(msg_id, None)
+        self._earliest = None
 
     def interval(self, msg_id: int) -> float | None:
         """Current interval in seconds, or None when not streamed."""
@@ -76,12 +83,15 @@ class StreamTable:
         self.group_hz.clear()
         self.intervals.clear()
         self._next_due.clear()
+        self._earliest = None
 
     def due(self, now: float) -> list[int]:
         """Message ids due at ``now`` (simulated seconds); each is rescheduled one interval on.
 
         Like ArduPilot, a message that fell behind is sent once, not once per missed period.
         """
+        if self._earliest is not None and now < self._earliest:
+            return []
         out = []
         ids = set(self.intervals) | {
             m for g, hz in self.group_hz.items() if hz > 0 for m in GROUP_MESSAGES[g]
@@ -99,4 +109,5 @@ class StreamTable:
                 nxt = due + interval
                 self._next_due[msg_id] = nxt if nxt > now else now + interval
                 out.append(msg_id)
+        self._earliest = min((self._next_due[m] for m in ids if m in self._next_due), default=math.inf)
         return out

@@ -10,10 +10,12 @@ T = TypeVar("T")
 
 class ReadThrough(Generic[T]):
     """``sysid = ReadThrough[int | None]("link")``: reading ``obj.sysid`` reads ``obj.link.sysid``
-    (read-only: a write raises AttributeError, like a property without a setter)."""
+    (read-only: a write raises AttributeError, like a property without a setter; with ``writable`` a
+    write sets the part's attribute)."""
 
-    def __init__(self, part: str) -> None:
+    def __init__(self, part: str, *, writable: bool = False) -> None:
         self.part = part
+        self.writable = writable
         self.name = ""
 
     def __set_name__(self, owner: type, name: str) -> None:
@@ -32,4 +34,6 @@ class ReadThrough(Generic[T]):
         return result
 
     def __set__(self, obj: object, value: T) -> None:
-        raise AttributeError(f"{self.name} is read from {self.part}: set it there")
+        if not self.writable:
+            raise AttributeError(f"{self.name} is read from {self.part}: set it there")
+        setattr(getattr(obj, self.part), self.name, value)

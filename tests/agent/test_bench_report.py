@@ -4,6 +4,7 @@ self-check itself)."""
 from __future__ import annotations
 
 import importlib.util
+import json
 import sys
 from collections.abc import Iterator
 from pathlib import Path
@@ -135,3 +136,37 @@ def test_serve_local_without_the_script_says_so(bench, monkeypatch, tmp_path) ->
     with pytest.raises(SystemExit, match="serve-local-model is not there; give an endpoint instead"):
         bench.main(["--serve-local", "1.5b", "--runs", "1"])
     del Console
+
+
+def test_a_failed_stack_is_started_again_and_no_finished_run_is_lost(bench, tmp_path, monkeypatch) -> None:
+    """A read error of the bench's MCP link ended a bench and lost its runs: now a new stack goes on from
+    the run not yet done, and the JSON is written after every run."""
+    args = bench.parse_args(["--model", "m", "--runs", "2", "--json", str(tmp_path / "r.json")])
+    args.load_start = 1.0
+    failures = iter([RuntimeError("read error"), None])
+
+    async def runs_then_fails(a, console):
+        done = {(r.run, r.mission) for r in a.completed}
+        for n in (1, 2):
+            if (n, "takeoff-land") in done:
+                continue
+            a.completed.append(_run(bench, "takeoff-land", True, run=n))
+            bench.write_json(a, a.completed, interrupted=True)
+            failure = next(failures)
+            if failure is not None:
+                raise failure
+        return a.completed
+
+    monkeypatch.setattr(bench, "run_missions", runs_then_fails)
+    runs, interrupted = bench.run_with_restarts(args, bench.Console())
+    assert not interrupted and [r.run for r in runs] == [1, 2]
+    assert args.restarts == ["RuntimeError: read error"]
+    saved = json.loads((tmp_path / "r.json").read_text())
+    assert [r["run"] for r in saved["runs"]] == [1, 2]
+
+    def always_fails(a, console):
+        raise RuntimeError("down")
+
+    monkeypatch.setattr(bench, "run_missions", always_fails)
+    runs, interrupted = bench.run_with_restarts(args, bench.Console())
+    assert interrupted and len(runs) == 2 and len(args.restarts) == 1 + bench.MAX_RESTARTS + 1

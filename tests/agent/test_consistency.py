@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from fleet_agent.consistency import gaps, without_unasked
-from fleet_agent.plan import parse_plan
+from fleet_agent.plan import Condition, parse_plan
 from fleet_agent.prompt import messages_for, prefix_messages
 
 FLEET = ["alpha", "bravo", "charlie"]
@@ -52,3 +52,13 @@ def test_a_step_for_a_drone_the_request_does_not_name_is_dropped() -> None:
     kept = without_unasked("Bravo: up to 12 m and back down.", FLEET, plan)
     assert [s.drone for s in kept.steps] == ["bravo", "bravo"]  # type: ignore[union-attr]
     assert without_unasked("All three up to 12 m.", FLEET, plan) is plan
+
+
+def test_a_branch_step_for_a_drone_the_request_does_not_name_is_dropped() -> None:
+    branch = {"action": "if", "drone": "alpha", "reading": "battery", "compare": "above", "value": 50,
+              "then": [_up("bravo", 12), _up("alpha", 12)], "otherwise": [_up("charlie", 5)]}  # fmt: skip
+    kept = without_unasked("If alpha has over 50 %, alpha up to 12 m.", FLEET, _plan(branch))
+    step = kept.steps[0]
+    assert isinstance(step, Condition)
+    assert [s.drone for s in step.then] == ["alpha"]  # type: ignore[union-attr]
+    assert step.otherwise == []

@@ -85,18 +85,25 @@ async def test_a_plan_that_leaves_out_a_named_drone_is_asked_again_once(scripted
     itself = {"steps": [_move("alpha", {"kind": "here"})]}
     other = {"steps": [_move("alpha", {"kind": "drone", "drone": "bravo"})]}
     server = scripted([say(json.dumps(itself)), say(json.dumps(other))])
-    attempt = await _planner(server).plan("alpha 25 m north of bravo at 15 m", FLEET)
+    attempt = await _planner(server).plan("from bravo, alpha 25 m north at 15 m", FLEET)
     assert len(server.requests) == 2 and attempt.plan is not None
     assert attempt.plan.steps[0].origin.drone == "bravo"  # type: ignore[union-attr]
     repair = server.requests[1]["messages"][-1]["content"]
     assert "the request names bravo, which no step of the plan does" in repair, repair
-    assert "Request: alpha 25 m north of bravo at 15 m" in repair, repair
+    assert "Request: from bravo, alpha 25 m north at 15 m" in repair, repair
+
+
+async def test_a_drone_named_after_the_distance_is_the_origin_without_a_repair(scripted) -> None:
+    server = scripted([say(json.dumps({"steps": [_move("alpha", {"kind": "here"})]}))])
+    attempt = await _planner(server).plan("alpha 25 m north of bravo at 15 m", FLEET)
+    assert len(server.requests) == 1 and attempt.plan is not None
+    assert attempt.plan.steps[0].origin.drone == "bravo"  # type: ignore[union-attr]
 
 
 async def test_a_repair_that_leaves_out_more_is_not_taken(scripted) -> None:
     first = {"steps": [_move("alpha", {"kind": "here"})]}
     worse = {"steps": [{"action": "land", "drone": "alpha"}]}
     server = scripted([say(json.dumps(first)), say(json.dumps(worse))])
-    attempt = await _planner(server).plan("alpha 25 m north of bravo at 15 m", FLEET)
+    attempt = await _planner(server).plan("from bravo, alpha 25 m north at 15 m", FLEET)
     assert len(server.requests) == 2 and attempt.plan is not None
     assert attempt.plan.steps[0].action == "move" and attempt.gaps == 1

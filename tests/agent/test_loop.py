@@ -107,3 +107,22 @@ async def test_no_answer_from_the_model_endpoint_names_it_and_flies_nothing(toy)
         "No plan could be made: the model endpoint http://127.0.0.1:9/v1 (model qwen-test) did not answer"
     ), result.final_text
     assert [n for n, _ in toy.world.calls if n != "list_drones"] == []
+
+
+async def test_a_branch_s_steps_are_compiled_each_in_its_turn(toy, scripted) -> None:
+    """A move after a takeoff in a branch is compiled once the takeoff flew: compiled together, the move
+    read a drone on the ground and sent a second takeoff."""
+    toy.world.drones["alpha"].battery_pct = 80.0
+    west = {"action": "move", "drone": "alpha", "legs": [{"distance": m(25), "direction": "west"}],
+            "after": "stay", "altitude": None, "origin": "here"}  # fmt: skip
+    plan = {"steps": [
+        {"action": "if", "drone": "alpha", "reading": "battery", "compare": "above", "value": 65,
+         "then": [{"action": "altitude", "drone": "alpha", "altitude": m(12), "after": "stay"}, west],
+         "otherwise": []},
+    ]}  # fmt: skip
+    result, _, _ = await _turn(toy, scripted, "if alpha has over 65 %, up to 12 m and 25 m west", plan)
+    assert toy.world.calls == [
+        ("takeoff", {"drone_id": "alpha", "alt_m": 12.0}),
+        ("move_to_relative", {"drone_id": "alpha", "north_m": 0.0, "east_m": -25.0}),
+    ]
+    assert (result.final_text or "").startswith("alpha: battery 80 %, above 65: so.")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
+import re
 import sys
 from collections import Counter
 from collections.abc import Iterator
@@ -12,7 +13,7 @@ from types import ModuleType
 import pytest
 
 from bench.agent_harness.missions import DroneTruth, Evidence, MissionContext
-from bench.nl_corpus import CLASSES, DRONES, HALVES, corpus, farthest_apart, formation_at, select
+from bench.nl_corpus import CLASSES, DRONES, HALVES, CorpusEntry, corpus, farthest_apart, formation_at, select
 
 BENCH = Path(__file__).resolve().parents[2] / "bench" / "nl_missions.py"
 HOMES = {
@@ -59,36 +60,58 @@ def test_requests_are_not_worded_as_tool_names() -> None:
     assert len({e.mission.prompt(CTX) for e in corpus()}) == len(corpus()), "no request twice"
 
 
+#: the test half until 2026-11-29 (second round), moved to dev because its figures had informed a decision
+#: about the host
+SECOND_ROUND_MOVED = frozenset({
+    "ask-charlie-height", "ask-least-charge", "compound-out-and-home", "compound-there-and-back",
+    "cond-bravo-below-bar-reports", "cond-charlie-decides-in-flight", "cond-charlie-up-or-down",
+    "cond-de-alpha-west", "form-arrowhead-east", "form-es-column-south", "form-ring-northwest",
+    "lang-de-charlie-south-land", "lang-es-bravo-hover", "lang-fr-alpha-east-land", "multi-all-hover",
+    "multi-mixed-orders", "multi-pair-up-down", "pattern-alpha-small-square", "pattern-bravo-hexagon",
+    "pattern-charlie-survey", "place-alpha-land-north-of-charlie", "place-bravo-land-east-of-home",
+    "place-charlie-beside-moved-alpha", "place-fr-charlie-west-of-alpha", "refuse-bravo-1500m",
+    "refuse-bravo-300m", "refuse-charlie-flat", "rel-back-and-up", "rel-east-at-alt-land", "rel-south-hover",
+    "single-alpha-home", "single-bravo-bob", "units-alpha-eighty-feet", "units-bravo-feet-south",
+    "units-charlie-feet-km",
+})  # fmt: skip
+
+
+#: the test half until 2026-11-30, moved to dev because its figures had been measured
+THIRD_ROUND_MOVED = frozenset({
+    "ask2-any-under-half", "ask2-it-charlie-battery", "ask2-pair-charge", "compound2-alpha-partial-retrace",
+    "compound2-charlie-leg-climb-home", "compound2-de-bravo-corner-home", "cond2-alpha-provided-half",
+    "cond2-charlie-then-alpha-if", "cond2-es-bravo-under-forty", "form2-fr-line-west",
+    "form2-pair-column-northeast", "form2-v-south", "lang2-fr-bravo-out-back", "lang2-it-charlie-orbit",
+    "lang2-pt-alpha-west-hover", "multi2-es-all-up-down", "multi2-out-back-and-wait", "multi2-stacked",
+    "pattern2-alpha-triangle-north", "pattern2-charlie-survey-east", "pattern2-de-bravo-square",
+    "place2-alpha-west-of-moved-charlie-lower", "place2-charlie-north-of-home-after-leg",
+    "place2-es-alpha-south-of-charlie", "refuse2-alpha-500ft", "refuse2-fr-charlie-far-north",
+    "refuse2-one-of-two-low", "rel2-alpha-drift-west-land", "rel2-charlie-northeast-hover",
+    "rel2-de-bravo-north-east", "single2-bravo-hang", "single2-charlie-quick-look", "single2-nl-alpha-hover",
+    "units2-alpha-miles-feet", "units2-charlie-km-feet-climb", "units2-es-bravo-yards-feet",
+})  # fmt: skip
+
+
 def test_halves_are_disjoint_and_stratified_by_class() -> None:
-    """The first 40 entries are split evenly by class (2 or 3 a class in each half); the 48 added later
-    are all dev (two a class, then eight more in the four classes the test half measured weakest, then
-    eight more in the kinds of request the test half still failed, twice, then eight more in varied kinds);
-    the four classes added with the typed plan (units, pattern, placement, language) have 3 + 3. The test
-    entries of conditional, formation and placement, seen while tuning, moved to dev, and new test entries
-    took their place, one more a class."""
+    """The dev half holds every entry written before 2026-11-30 (123, and the 36 test entries moved
+    then); the test half is the 36 written on 2026-11-30, 3 a class."""
     dev, test = select("dev"), select("test")
     assert not {e.id for e in dev} & {e.id for e in test}
     assert len(dev) + len(test) == len(corpus()) == len(select("all"))
-    assert len(test) == 35 and len(dev) == 88
-    per_dev, per_test = Counter(e.cls for e in dev), Counter(e.cls for e in test)
-    moved = Counter({"conditional": 3, "formation": 2, "placement": 3})  # test to dev
-    for cls in ("units", "pattern", "placement", "language"):
-        assert per_dev[cls] - moved[cls] == 3, cls
-    second_day = Counter({"compound": 3, "multi": 2, "conditional": 2, "question": 1})
-    third_day = Counter({"compound": 2, "multi": 1, "conditional": 3, "relative": 2})
-    fourth_day = Counter({"question": 2, "compound": 2, "multi": 2, "relative": 2})
-    fifth_day = Counter({"multi": 2, "compound": 2, "relative": 2, "single": 1, "formation": 1})
-    for cls in CLASSES[:8]:
-        assert per_test[cls] >= 2, cls
-        added = second_day[cls] + third_day[cls] + fourth_day[cls] + fifth_day[cls]
-        first_test = moved[cls] or per_test[cls]  # the first 40's test entries of the class
-        assert abs((per_dev[cls] - moved[cls] - 2 - added) - first_test) <= 1, cls
-    for cls in CLASSES[8:]:
-        assert per_test[cls] == (4 if cls == "placement" else 3), cls
+    assert len(test) == 36 and len(dev) == 159
+    assert Counter(e.cls for e in test) == Counter(dict.fromkeys(CLASSES, 3))
+    per_dev = Counter(e.cls for e in dev)
+    assert per_dev == Counter({
+        "single": 11, "multi": 17, "compound": 19, "conditional": 19, "formation": 14, "relative": 16,
+        "question": 13, "refusal": 10, "units": 9, "pattern": 9, "placement": 13, "language": 9,
+    })  # fmt: skip
 
 
-def test_the_test_entries_seen_while_tuning_are_dev_and_replaced_by_new_ones() -> None:
-    seen = {
+def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
+    """The rounds of 2026-11-29 and 2026-11-30: the 8 test entries seen while tuning, then the whole test
+    half (35) whose figures had informed a decision, then the whole test half (36) once measured, moved
+    to dev; the test half holds none of them."""
+    first_round = {
         "cond-half-battery-go",
         "cond-fullest-flies",
         "cond-weaker-flies",
@@ -98,11 +121,24 @@ def test_the_test_entries_seen_while_tuning_are_dev_and_replaced_by_new_ones() -
         "place-alpha-west-of-flying-bravo",
         "place-alpha-northeast-of-charlie",
     }
+    moved = first_round | SECOND_ROUND_MOVED | THIRD_ROUND_MOVED
     by_id = {e.id: e for e in corpus()}
-    assert all(by_id[i].half == "dev" for i in seen)
-    renewed = [e for e in select("test") if e.cls in ("conditional", "formation", "placement")]
-    assert Counter(e.cls for e in renewed) == Counter({"conditional": 4, "formation": 3, "placement": 4})
-    assert not {e.id for e in renewed} & seen
+    assert all(by_id[i].half == "dev" for i in moved)
+    test_ids = {e.id for e in select("test")}
+    assert not test_ids & moved
+    # the new test requests are new wordings, not the moved ones reworded into the same ids
+    old_requests = {by_id[i].mission.prompt(CTX) for i in moved}
+    assert not {e.mission.prompt(CTX) for e in select("test")} & old_requests
+
+
+def test_the_test_half_is_written_in_several_languages() -> None:
+    """Beside the language class, at least 12 test requests are in a language other than English: each
+    of them has none of the English words every English request of the half uses one of."""
+    english = re.compile(r"\b(the|to|and|up|at|of|is|then|with|any)\b", re.IGNORECASE)
+    others = [e for e in select("test") if e.cls != "language" and not english.search(e.mission.prompt(CTX))]
+    assert len(others) >= 12, [e.id for e in others]
+    assert len({e.cls for e in others}) >= 10, "spread over the classes"
+    assert all(not english.search(e.mission.prompt(CTX)) for e in select("test") if e.cls == "language")
 
 
 def test_select_refuses_an_unknown_half() -> None:
@@ -215,3 +251,133 @@ def test_an_interrupted_bench_still_reports_the_runs_that_finished(
     assert bench.main(["--half", "test", "--json", str(out)]) == 130
     data = json.loads(out.read_text())
     assert data["interrupted"] is True and [r["mission"] for r in data["runs"]] == ["single-bravo-bob"]
+
+
+def _entry(mid: str) -> CorpusEntry:
+    return next(e for e in corpus() if e.id == mid)
+
+
+def _track(drone: str, legs: list[tuple[float, float]], alt: float) -> list[DroneTruth]:
+    """Samples every metre along ``legs`` flown from the drone's home at ``alt``."""
+    out, north, east = [_hovering(drone, 0, 0, alt)], 0.0, 0.0
+    for n, e in legs:
+        steps = max(1, int(max(abs(n), abs(e))))
+        for i in range(1, steps + 1):
+            out.append(_hovering(drone, north + n * i / steps, east + e * i / steps, alt))
+        north, east = north + n, east + e
+    return out
+
+
+def test_a_wrong_outcome_fails_the_second_round_checks() -> None:
+    """Each trap the test half of 2026-11-29 (second round, now dev) set: the right outcome passes, the
+    likely wrong one fails."""
+    idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
+
+    def ev(
+        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
+    ) -> Evidence:
+        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
+
+    # feet read as metres: 45 m instead of 45 ft
+    units = _entry("units2-charlie-km-feet-climb").mission.check
+    assert units(CTX, ev({"charlie": _hovering("charlie", -40, 0, 45 * 0.3048)})).ok
+    assert not units(CTX, ev({"charlie": _hovering("charlie", -40, 0, 45)})).ok
+
+    # a drone placed from itself instead of from the drone named
+    lat, lon = CTX.point("charlie", -20, 0)
+    place = _entry("place2-es-alpha-south-of-charlie").mission.check
+    assert place(CTX, ev({"alpha": DroneTruth(lat, lon, 16, True, 90.0)})).ok
+    assert not place(CTX, ev({"alpha": _hovering("alpha", -20, 0, 16)})).ok
+
+    # a triangle turning left instead of right
+    tri = _entry("pattern2-alpha-triangle-north").mission.check
+    right = _track("alpha", [(24, 0), (-12, 20.78), (-12, -20.78)], 10)
+    left = _track("alpha", [(24, 0), (-12, -20.78), (-12, 20.78)], 10)
+    assert tri(CTX, ev({"alpha": right[-1]}, {"alpha": right})).ok
+    assert not tri(CTX, ev({"alpha": left[-1]}, {"alpha": left})).ok
+
+    # a question answered in part, or answered by flying
+    ask = _entry("ask2-pair-charge").mission.check
+    assert ask(CTX, ev({}, text="Bravo has 44 %, charlie 67 %.")).ok
+    assert not ask(CTX, ev({}, text="Bravo has 44 %.")).ok
+    assert not ask(CTX, ev({"bravo": _hovering("bravo", 0, 0, 10)}, text="Bravo 44 %, charlie 67 %.")).ok
+
+
+def test_a_wrong_outcome_fails_the_third_test_half_checks() -> None:
+    """Each trap the test half of 2026-11-30 sets: the right outcome passes, the likely wrong one fails."""
+    idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
+
+    def ev(
+        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
+    ) -> Evidence:
+        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
+
+    def landed(drone: str, north: float, east: float) -> DroneTruth:
+        lat, lon = CTX.point(drone, north, east)
+        return DroneTruth(lat, lon, 0.0, False, 90.0)
+
+    # "halfway back": landing at home, or where the leg ended, is wrong
+    half = _entry("compound3-bravo-halfway-back").mission.check
+    flown = _track("bravo", [(40, 0), (-20, 0)], 12)
+    assert half(CTX, ev({"bravo": landed("bravo", 20, 0)}, {"bravo": flown})).ok
+    assert not half(
+        CTX, ev({"bravo": landed("bravo", 0, 0)}, {"bravo": _track("bravo", [(40, 0), (-40, 0)], 12)})
+    ).ok
+    assert not half(CTX, ev({"bravo": landed("bravo", 40, 0)}, {"bravo": _track("bravo", [(40, 0)], 12)})).ok
+
+    # both branches fly: the branch the battery does not allow flies too far
+    branch = _entry("cond3-de-alpha-far-or-near").mission.check
+    assert branch(CTX, ev({"alpha": _hovering("alpha", 15, 0, 15)})).ok
+    assert not branch(CTX, ev({"alpha": _hovering("alpha", 40, 0, 15)})).ok
+
+    # feet read as metres, and "0,08 km" read as 8 m
+    feet = _entry("units3-de-bravo-feet-km").mission.check
+    right = _track("bravo", [(0, 0)], 110 * 0.3048) + _track("bravo", [(80, 0)], 110 * 0.3048)
+    assert feet(CTX, ev({"bravo": landed("bravo", 80, 0)}, {"bravo": right})).ok
+    as_metres = _track("bravo", [(80, 0)], 110)
+    assert not feet(CTX, ev({"bravo": landed("bravo", 80, 0)}, {"bravo": as_metres})).ok
+    assert not feet(CTX, ev({"bravo": landed("bravo", 8, 0)}, {"bravo": _track("bravo", [(8, 0)], 33.5)})).ok
+
+    # an orbit around the drone's own home instead of around the drone named
+    orbit = _entry("pattern3-charlie-circles-alpha").mission.check
+
+    def circle(centre: str) -> list[DroneTruth]:
+        offset = [(n - c) for n, c in zip(CTX.point(centre, 0, 0), CTX.point("charlie", 0, 0), strict=True)]
+        points = [(15, 0), (0, 15), (-15, 0), (0, -15), (15, 0)]
+        return [
+            DroneTruth(
+                CTX.point("charlie", n, e)[0] + offset[0], CTX.point("charlie", n, e)[1] + offset[1], 20, True
+            )
+            for n, e in points
+        ]
+
+    home = landed("charlie", 0, 0)
+    assert orbit(CTX, ev({"charlie": home}, {"charlie": [*circle("alpha"), home]})).ok
+    assert not orbit(CTX, ev({"charlie": home}, {"charlie": [*circle("charlie"), home]})).ok
+
+    # a hexagon turning right instead of left
+    hexagon = _entry("pattern3-es-charlie-hexagon-left").mission.check
+    left = _track(
+        "charlie", [(0, 15), (12.99, 7.5), (12.99, -7.5), (0, -15), (-12.99, -7.5), (-12.99, 7.5)], 12
+    )
+    right_turns = _track(
+        "charlie", [(0, 15), (-12.99, 7.5), (-12.99, -7.5), (0, -15), (12.99, -7.5), (12.99, 7.5)], 12
+    )
+    assert hexagon(CTX, ev({"charlie": home}, {"charlie": left})).ok
+    assert not hexagon(CTX, ev({"charlie": home}, {"charlie": right_turns})).ok
+
+    # placed from the drone itself instead of from the drone named
+    place = _entry("place3-de-charlie-east-of-alpha").mission.check
+    lat, lon = CTX.point("alpha", 0, 25)
+    assert place(CTX, ev({"charlie": DroneTruth(lat, lon, 15, True, 90.0)})).ok
+    assert not place(CTX, ev({"charlie": _hovering("charlie", 0, 25, 15)})).ok
+
+    # a hover too low for the gateway: taking off anyway, or with no refusal, fails
+    low = _entry("refuse3-charlie-one-metre").mission.check
+    refused = [{"name": "takeoff", "status": "error", "text": "1 m is below the minimum of 2 m above home"}]
+    assert low(
+        CTX, Evidence(idle, {d: [t] for d, t in idle.items()}, refused, "Refused: below the minimum.")
+    ).ok
+    assert not low(
+        CTX, ev({"charlie": _hovering("charlie", 0, 0, 2)}, text="Charlie hovers at 2 m, the minimum.")
+    ).ok

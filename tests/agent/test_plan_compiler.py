@@ -290,7 +290,8 @@ async def test_a_takeoff_of_a_flying_drone_changes_its_height() -> None:
     assert await compiled({"action": "altitude", "drone": "alpha", "altitude": m(30)}, sensors) == [
         Call("move_to_relative", {"drone_id": "alpha", "alt_m": 30.0}, "alpha")
     ]
-    assert await compiled({"action": "return_home", "drone": "alpha"}) == [
+    away = FakeSensors({"alpha": flying(lat=HOME[0] + 0.001)})  # about 111 m north of home
+    assert await compiled({"action": "return_home", "drone": "alpha"}, away) == [
         Call("return_to_launch", {"drone_id": "alpha"}, "alpha")
     ]
 
@@ -338,7 +339,7 @@ async def test_a_climb_ends_as_its_after_says_and_the_schema_requires_it() -> No
     ]
     plan = parse_plan({"steps": [hop, {"action": "land", "drone": "bravo"}]}, FLEET)
     assert len(plan.steps) == 1  # the landing written twice is flown once
-    in_air = FakeSensors({"bravo": flying(alt=5.0)})
+    in_air = FakeSensors({"bravo": flying(lat=HOME[0] + 0.001, alt=5.0)})
     assert await compiled({**hop, "action": "altitude", "after": "return_home"}, in_air) == [
         Call("move_to_relative", {"drone_id": "bravo", "alt_m": 12.0}, "bravo"),
         Call("return_to_launch", {"drone_id": "bravo"}, "bravo"),
@@ -386,3 +387,84 @@ async def test_from_the_ground_a_climb_as_high_as_the_height_given_is_that_heigh
     ]
     more = {**step, "legs": [leg(40, "west"), leg(5, "up")]}  # at 10 m, then 5 m more
     assert (await compiled(more))[1].args["up_m"] == 5.0
+
+
+def test_a_takeoff_to_a_height_an_earlier_step_flew_at_is_a_repeat_and_a_second_hop_is_not() -> None:
+    north = {"action": "move", "drone": "charlie", "origin": "here", "legs": [{"distance": m(30),
+             "direction": "north"}], "altitude": m(10), "after": "return_home"}  # fmt: skip
+    again = {"action": "takeoff", "drone": "charlie", "altitude": m(10), "after": "land"}
+    plan = parse_plan({"steps": [north, again]}, FLEET)
+    assert [s.action for s in plan.steps] == ["move"]
+    assert len(parse_plan({"steps": [north, {**again, "altitude": m(20)}]}, FLEET).steps) == 2
+    hops = parse_plan({"steps": [again, again]}, FLEET)
+    assert [s.action for s in hops.steps] == ["takeoff", "takeoff"]
+
+
+async def test_a_takeoff_repeating_a_climb_that_stays_is_that_climb_and_keeps_its_landing() -> None:
+    climb = {"action": "altitude", "drone": "charlie", "altitude": m(8), "after": "stay"}
+    again = {"action": "takeoff", "drone": "charlie", "altitude": m(8), "after": "land"}
+    plan = parse_plan({"steps": [climb, again]}, FLEET)
+    assert [(s.action, s.after) for s in plan.steps] == [("altitude", "land")]
+    calls = await Compiler(FakeSensors()).compile(plan.steps[0])
+    assert [c.tool for c in calls] == ["takeoff", "land"]
+    up_only = {"action": "move", "drone": "charlie", "origin": "here", "legs": [leg(8, "up")],
+               "altitude": m(8), "after": "stay"}  # fmt: skip
+    plan = parse_plan({"steps": [up_only, {**again, "after": "return_home"}]}, FLEET)
+    assert [(s.action, s.after) for s in plan.steps] == [("move", "return_home")]
+    # after a flight sideways the takeoff is left out and its landing flown there; after a climb that
+    # already lands, both are left out
+    north = {**up_only, "legs": [leg(20, "north")]}
+    assert [s.action for s in parse_plan({"steps": [north, again]}, FLEET).steps] == ["move", "land"]
+    staying = {**again, "after": "stay"}
+    assert [s.action for s in parse_plan({"steps": [north, staying]}, FLEET).steps] == ["move"]
+    landed = {**climb, "after": "land"}
+    assert len(parse_plan({"steps": [landed, again]}, FLEET).steps) == 1
+
+
+async def test_a_return_home_of_a_drone_over_its_home_is_a_landing() -> None:
+    """The autopilot's return climbs to its own return altitude first: over home, the host lands."""
+    hop = {"action": "takeoff", "drone": "bravo", "altitude": m(6), "after": "return_home"}
+    assert [c.tool for c in await compiled(hop)] == ["takeoff", "land"]
+    assert [c.tool for c in await compiled({"action": "return_home", "drone": "bravo"})] == ["land"]
+    up_only = {"action": "move", "drone": "bravo", "origin": "here", "legs": [leg(6, "up")],
+               "altitude": None, "after": "return_home"}  # fmt: skip
+    assert [c.tool for c in await compiled(up_only)][-1] == "land"
+    out_and_back = {**up_only, "legs": [leg(20, "north"), leg(20, "south")]}
+    assert [c.tool for c in await compiled(out_and_back)][-1] == "land"
+    north = {**up_only, "legs": [leg(20, "north")]}
+    assert [c.tool for c in await compiled(north)][-1] == "return_to_launch"
+    back_home = FakeSensors({"bravo": flying(lat=HOME[0] + 0.0002)})  # 22 m north of home
+    south = {**up_only, "legs": [leg(22.2, "south")]}
+    assert [c.tool for c in await compiled(south, back_home)][-1] == "land"
+
+
+async def test_a_climb_to_0_m_is_a_landing_or_nothing() -> None:
+    down = {"action": "takeoff", "drone": "bravo", "altitude": m(0), "after": "stay"}
+    assert await compiled(down) == [Said("bravo stays on the ground (a height of 0 m).")]
+    in_air = FakeSensors({"bravo": flying(lat=HOME[0] + 0.001)})
+    landing = Call("land", {"drone_id": "bravo"}, "bravo")
+    assert await compiled({**down, "action": "altitude"}, in_air) == [landing]
+
+
+def test_a_repeated_climb_is_read_against_the_same_drone_s_step_before_it() -> None:
+    up = {"action": "altitude", "altitude": m(16), "after": "stay"}
+    steps = [{**up, "drone": "alpha"}, {**up, "drone": "bravo"},
+             {"action": "takeoff", "drone": "alpha", "altitude": m(16), "after": "land"}]  # fmt: skip
+    plan = parse_plan({"steps": steps}, FLEET)
+    assert [(s.drone, s.after) for s in plan.steps] == [("alpha", "land"), ("bravo", "stay")]
+    north = {"action": "move", "drone": "alpha", "origin": "here", "legs": [leg(20, "north")],
+             "altitude": None, "after": "land"}  # fmt: skip
+    land = {"action": "land", "drone": "alpha"}
+    twice = parse_plan({"steps": [north, {**up, "drone": "bravo"}, land]}, FLEET)
+    assert [s.action for s in twice.steps] == ["move", "altitude"]  # alpha's landing is flown once
+
+
+def test_a_climb_to_a_height_flown_right_after_the_flight_ended_is_a_repeat() -> None:
+    out = {"action": "move", "drone": "bravo", "origin": "here", "legs": [leg(40, "south")],
+           "altitude": m(15), "after": "return_home"}  # fmt: skip
+    again = {"action": "altitude", "drone": "bravo", "altitude": m(15), "after": "stay"}
+    assert [s.action for s in parse_plan({"steps": [out, again]}, FLEET).steps] == ["move"]
+    # a drone still flying climbs back to a height it flew at: a step of its own
+    stays = {**out, "after": "stay"}
+    down = {**again, "altitude": m(5)}
+    assert len(parse_plan({"steps": [stays, down, again]}, FLEET).steps) == 3

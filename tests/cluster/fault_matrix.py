@@ -232,9 +232,16 @@ async def rig(workdir: Path) -> AsyncIterator[Rig]:
 
 
 def _log_has(node: Node, text: str, since: int = 0) -> bool:
+    return text in _log_since(node, since, keep_chars=None)
+
+
+def _log_since(node: Node, since: int, keep_chars: int | None = 6000) -> str:
+    """The node's log from byte ``since`` on; its last ``keep_chars`` (a failure's message names what
+    the node said, its traceback first of all)."""
     with node.log.open("rb") as fh:
         fh.seek(since)
-        return text in fh.read().decode(errors="replace")
+        text = fh.read().decode(errors="replace")
+    return text if keep_chars is None else text[-keep_chars:]
 
 
 async def one_sidecar_each(c: Cluster) -> dict[str, Any] | None:
@@ -286,12 +293,12 @@ async def run_case(r: Rig, fault: str, via: str) -> dict[str, Any]:
     on_a = sorted(d for d, n in owners.items() if n == "node-a")
     held_by_frozen = on_a if fault == "node-a-frozen" else []
 
-    log_from = c.node("node-a").log.stat().st_size
+    log_from = {name: c.node(name).log.stat().st_size for name in ("node-a", "node-b")}
     r.inject(fault)
     if fault == "node-a-cut-from-postgresql":  # the stop after it fenced itself (else: as no fault)
         fenced = "could not renew its leases in time"
         await eventually(
-            lambda: _is(_log_has(c.node("node-a"), fenced, log_from)), "node-a fenced", within_s=30
+            lambda: _is(_log_has(c.node("node-a"), fenced, log_from["node-a"])), "node-a fenced", within_s=30
         )
     pending: list[str] = []
     try:
@@ -336,7 +343,10 @@ async def run_case(r: Rig, fault: str, via: str) -> dict[str, Any]:
                 )
             except AssertionError as exc:
                 answer = (await stop).text
-                raise AssertionError(f"{exc}; modes {seen}; the stop's answer {answer}") from None
+                raise AssertionError(
+                    f"{exc}; modes {seen}; the stop's answer {answer}; {via}'s log since the fault:\n"
+                    + _log_since(stopper, log_from[via])
+                ) from None
             finally:
                 response = await stop
                 figures["stop_answer_s"] = round(clock() - began, 2)

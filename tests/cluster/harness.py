@@ -299,18 +299,32 @@ async def wait_node_ready(node: Node, within_s: float) -> None:
 
 
 def stop_node(node: Node, grace_s: float = 15.0) -> None:
-    if node.proc.poll() is not None:
-        with contextlib.suppress(ProcessLookupError, PermissionError):
-            os.killpg(node.proc.pid, signal.SIGKILL)  # sidecars left in its group, if any
-        return
-    with contextlib.suppress(ProcessLookupError):
-        os.killpg(node.proc.pid, signal.SIGTERM)
-    try:
-        node.proc.wait(timeout=scaled(grace_s))
-    except subprocess.TimeoutExpired:
+    stop_nodes([node], grace_s)
+
+
+def stop_nodes(nodes: list[Node], grace_s: float = 15.0) -> None:
+    """Stop the nodes together: SIGTERM to every node's process group at once, then each waited for
+    until ``grace_s`` (scaled) has passed, and killed past it. One after another, each node still
+    running would take over the drones of the node stopped before it and be stopped while it starts
+    their sidecars."""
+    running = []
+    for node in nodes:
+        if node.proc.poll() is not None:
+            with contextlib.suppress(ProcessLookupError, PermissionError):
+                os.killpg(node.proc.pid, signal.SIGKILL)  # sidecars left in its group, if any
+        else:
+            running.append(node)
+    for node in running:
         with contextlib.suppress(ProcessLookupError):
-            os.killpg(node.proc.pid, signal.SIGKILL)
-        node.proc.wait(timeout=scaled(10))
+            os.killpg(node.proc.pid, signal.SIGTERM)
+    deadline = time.monotonic() + scaled(grace_s)
+    for node in running:
+        try:
+            node.proc.wait(timeout=max(0.0, deadline - time.monotonic()))
+        except subprocess.TimeoutExpired:
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(node.proc.pid, signal.SIGKILL)
+            node.proc.wait(timeout=scaled(10))
 
 
 @contextlib.asynccontextmanager
@@ -372,8 +386,7 @@ async def cluster(
                     await wait_node_ready(node, 90.0)
                 yield Cluster(nats, database_url, sim, started, ids, workdir, extra)
             finally:
-                for node in started:
-                    stop_node(node)
+                stop_nodes(started)
 
 
 async def wait_spread(c: Cluster, within_s: float = 90.0) -> dict[str, str]:

@@ -8,6 +8,8 @@ import asyncio
 from types import SimpleNamespace
 from typing import Any
 
+import pytest
+
 from gateway.cluster.owner_calls import OwnerCalls
 from gateway.cluster.stop_takeover import StopTakeover
 from gateway.errors import NotRun
@@ -74,3 +76,58 @@ async def test_a_stop_the_owner_accepts_over_the_bus_in_time_is_not_relayed() ->
     answer = await calls.forward_stop("d1", "land", OPERATOR)
     assert answer == {"drone_id": "d1", "via": "bus"}
     assert relay.sent == []
+
+
+class CancelledBus(Bus):
+    """A bus whose call ends cancelled under the stop (a library cancelled what the call awaited)."""
+
+    async def call(self, *_args: Any, **_kw: Any) -> Any:
+        self.ended.set()
+        raise asyncio.CancelledError
+
+
+class CancelledRelay(Relay):
+    """A relay whose send ends cancelled under the stop (its connection lost mid-statement)."""
+
+    async def send(self, drone_id: str, *_args: Any) -> Any:
+        self.sent.append((drone_id, True))
+        raise asyncio.CancelledError
+
+
+async def test_a_bus_call_that_ends_cancelled_under_the_stop_leaves_the_stop_to_postgresql() -> None:
+    bus = CancelledBus(accept_after_s=None)
+    relay = Relay(bus)
+    answer = await OwnerCalls(node(bus, relay)).forward_stop("d1", "land", OPERATOR)
+    assert answer == {"drone_id": "d1", "via": "postgresql"}
+    assert relay.sent == [("d1", True)]
+
+
+async def test_a_path_that_ends_cancelled_is_one_failed_path_the_others_still_carry_the_stop() -> None:
+    bus = Bus(accept_after_s=None)
+    n = node(bus, CancelledRelay(bus))
+
+    async def late_answer() -> Any:
+        await asyncio.sleep(0.2)
+        return {"drone_id": "d1", "via": "fenced node"}
+
+    async def cancelled() -> Any:
+        raise asyncio.CancelledError
+
+    loop = asyncio.get_running_loop()
+    answer = await n.takeover.reach(
+        "d1", "land", OPERATOR, None, None, [cancelled(), late_answer()], [], loop.time() + 5, take_over=False
+    )
+    assert answer == {"drone_id": "d1", "via": "fenced node"}
+
+
+async def test_every_path_ending_cancelled_is_not_run_not_a_cancelled_stop() -> None:
+    bus = Bus(accept_after_s=None)
+    n = node(bus, Relay(bus))
+
+    async def cancelled() -> Any:
+        raise asyncio.CancelledError
+
+    loop = asyncio.get_running_loop()
+    with pytest.raises(NotRun, match="no owner acknowledged land for d1"):
+        await n.takeover.reach("d1", "land", OPERATOR, None, None, [cancelled()], [], loop.time() + 1,
+                               take_over=False)  # fmt: skip

@@ -153,6 +153,8 @@ async def test_login_then_a_viewer_watches_every_drone_without_actions(
     await expect(page.locator("path.fence.keep-out")).to_have_count(1)
     await expect(page.locator(".leaflet-tile")).to_have_count(0)  # no tile server configured: none asked
     await expect(page.locator(".leaflet-control-scale-line")).to_contain_text("m")
+    await expect(page.locator(".cursor-readout")).to_contain_text("fleet's home")
+    await expect(page.locator("button.map-button")).to_have_text("Following fleet")  # until a pan or zoom
     # a viewer sees the buttons but cannot use them (the REST API would answer 403 anyway)
     await expect(page.locator("button.estop")).to_be_disabled()
     await expect(page.locator("button.lock-fleet")).to_be_disabled()

@@ -6,7 +6,6 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import os
-import signal
 import subprocess
 import sys
 from collections.abc import AsyncIterator, Iterator
@@ -19,7 +18,7 @@ from mcp.types import Implementation
 
 from gateway.fleet import geo
 from gateway.util.ports import free_tcp_port
-from tests.helpers.procs import tail
+from tests.helpers.procs import stop_popen_group, tail
 from tests.helpers.timing import scaled
 
 WAIT_S = scaled(90.0)  # generous: waiting is never an assertion
@@ -54,13 +53,7 @@ def gateway_process(
     try:
         yield proc, f"http://127.0.0.1:{port}"
     finally:
-        if proc.poll() is None:
-            os.killpg(proc.pid, signal.SIGTERM)
-            try:
-                proc.wait(timeout=scaled(20))
-            except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait(timeout=scaled(5))
+        stop_popen_group(proc, 20)
 
 
 async def until(what: str, check: Any, log: Path) -> Any:

@@ -3,6 +3,7 @@ step, and the door deciding the policy. The real Gateway (store, policy, operati
 
 from __future__ import annotations
 
+import asyncio
 import json
 
 import pytest
@@ -255,3 +256,28 @@ async def test_west_m_and_south_m_fly_the_way_a_request_says_them(gateway: Gatew
     assert (await commander.wait(started["operation_id"], 20.0)).status == "succeeded"
     lat, lon = geo.offset_position(HOME[0], HOME[1], -25.0, -40.0)
     assert fake(gateway, "d1").sent[-1] == ("goto", pytest.approx(lat), pytest.approx(lon), 12.0)
+
+
+async def test_a_drone_whose_stop_ends_cancelled_under_it_fails_alone_the_fleet_stop_answers(
+    gateway: Gateway, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Something one drone's stop awaits ending cancelled (a connection lost under a library) is that
+    drone's failure: the other drones are stopped and the operator gets the fleet stop's answer."""
+    commander = gateway.commander
+    for drone_id in ("d1", "d2"):
+        took = await commander.call("takeoff", AGENT, drone_id=drone_id, alt_m=10)
+        assert (await commander.wait(took["operation_id"], 10.0)).status == "succeeded"
+    operator = commander.parts["OperatorVerbs"]
+    flight = operator.flight  # type: ignore[attr-defined]
+    land = flight.land
+
+    async def land_cancelled_for_d1(caller: Caller, drone_id: str, *args: object, **kw: object) -> object:
+        if drone_id == "d1":
+            raise asyncio.CancelledError
+        return await land(caller, drone_id, *args, **kw)
+
+    monkeypatch.setattr(flight, "land", land_cancelled_for_d1)
+    result = await commander.stop_all(OPERATOR, "land")
+    outcomes = {r.drone_id: r.outcome for r in result.results}
+    assert outcomes["d1"] == "failed" and outcomes["d2"] == "sent", result.results
+    assert ("land",) in [tuple(s[:1]) for s in fake(gateway, "d2").sent]

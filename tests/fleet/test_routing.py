@@ -19,7 +19,7 @@ from gateway.errors import NoOwner, UnknownVehicle
 from gateway.fleet.commands.commander import Commander
 from gateway.fleet.commands.scopes import ScopedDirectory, VehicleScope
 from gateway.fleet.missions.mission import MissionItem
-from gateway.fleet.operations.routing import ACTING, FORWARDED, OnMessage
+from gateway.fleet.operations.routing import ACTING, FORWARDED, RoutedCall
 from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.safety_inputs import RunningOperation
@@ -47,24 +47,16 @@ class Loopback:
     def published(self, drone_id: str) -> dict[str, Any] | None:
         return None
 
-    async def call(
-        self,
-        drone_id: str,
-        verb: str,
-        caller: Caller,
-        arguments: dict[str, Any],
-        on_message: OnMessage | None = None,
-        wait_s: float = 0.0,
-    ) -> Any:
+    async def call(self, routed: RoutedCall) -> Any:
         assert self.commander is not None
-        sent = json.loads(json.dumps(arguments))  # what crosses NATS is JSON
-        self.calls.append((drone_id, verb, sent, caller.to_dict()))
+        sent = json.loads(json.dumps(routed.arguments))  # what crosses NATS is JSON
+        self.calls.append((routed.drone_id, routed.verb, sent, routed.caller.to_dict()))
 
         async def progress(body: dict[str, Any]) -> None:
-            if on_message is not None:
-                await on_message(json.loads(json.dumps(body)))
+            if routed.on_message is not None:
+                await routed.on_message(json.loads(json.dumps(body)))
 
-        result = await answer(self.commander, verb, sent, caller.to_dict(), progress)
+        result = await answer(self.commander, routed.verb, sent, routed.caller.to_dict(), progress)
         return json.loads(json.dumps(result))
 
     async def announce(self, kind: str, body: dict[str, Any]) -> None:
@@ -143,7 +135,7 @@ async def test_the_scope_holds_here_and_again_on_the_owner(
         ACTING.reset(token)
     # forwarded by a node that did not apply the scope: the owner applies it (ACTING = forwarded caller)
     with pytest.raises(UnknownVehicle, match="known ids: d1"):
-        await loop.call("d2", "takeoff", SCOPED, {"drone_id": "d2", "alt_m": 10.0})
+        await loop.call(RoutedCall("d2", "takeoff", SCOPED, {"drone_id": "d2", "alt_m": 10.0}))
 
 
 async def test_a_forwarded_call_is_never_forwarded_again(routed: tuple[Gateway, Commander, Loopback]) -> None:

@@ -5,6 +5,7 @@ command brought, like an autopilot does)."""
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -14,7 +15,7 @@ import pytest
 from gateway.errors import SafetyRefusal
 from gateway.fleet.dialects import ARDUPILOT, PX4_DIALECT
 from gateway.fleet.policy.takeover import likely_cause
-from gateway.link.contract import GroundCommand
+from gateway.link.contract import ConnectionState, GroundCommand
 from gateway.runtime import Gateway
 from tests.fakes import FakeVehicle, fake, fake_gateway, position_value, spread, unit_settings
 from tests.fleet._util import AGENT, OPERATOR, at
@@ -211,17 +212,23 @@ def _reported(d: FakeVehicle, lat: float, lon: float) -> bool:
     return True
 
 
-async def test_a_pilot_moving_the_target_after_a_goto_arrived_is_a_takeover(gateway: Gateway) -> None:
+@pytest.mark.parametrize("watched", [True, False], ids=["watched", "arrived-before-the-watch-looked"])
+async def test_a_pilot_moving_the_target_after_a_goto_arrived_is_a_takeover(
+    gateway: Gateway, watched: bool
+) -> None:
     """A goto that arrived leaves the drone at its target in GUIDED: a move of the autopilot's target
-    away from it is a takeover as during the goto."""
+    away from it is a takeover as during the goto. The same when the goto arrived before the watch
+    looked at it (it cannot look while the drone's command lock is held: a loaded gateway, a short leg)."""
     c = gateway.commander
     d1 = fake(gateway, "d1")
     took = await c.takeoff(AGENT, "d1", 10.0)
     assert (await c.wait(took.operation_id, 10)).status == "succeeded"
+    assert gateway.operations is not None
     lat, lon = at(30, 0, d1.home_ll)
     op = await c.goto(AGENT, "d1", lat, lon, 10.0)
-    await reports_for(d1, lat, lon, 0.4)
-    assert (await c.wait(op.operation_id, 10)).status == "succeeded"
+    async with contextlib.nullcontext() if watched else gateway.operations.command_lock("d1"):
+        await reports_for(d1, lat, lon, 0.4)
+        assert (await c.wait(op.operation_id, 10)).status == "succeeded"
     await reports_for(d1, lat, lon, 2.0)
     assert gateway.locks.takeover_for("d1") is None
     elsewhere = at(200, 100, d1.home_ll)
@@ -330,6 +337,29 @@ async def test_a_formation_with_a_taken_over_drone_stops_and_holds_the_others(tm
         assert gateway.locks.takeover_for("d2") is not None
 
 
+async def test_a_fleet_command_names_a_taken_over_drone_as_taken_over_even_while_its_link_is_down(
+    tmp_path: Path,
+) -> None:
+    """The pilot's word first, as for one drone: the agent learns who has the drone, not only that its
+    link dropped meanwhile (it would retry once the link is back)."""
+    async with fake_gateway(unit_settings(tmp_path, mcp_wait_cap_s=10.0), spread(2)) as gateway:
+        c = gateway.commander
+        rise = await c.fleet_takeoff(AGENT, ["d1", "d2"], 10.0)
+        assert (await c.wait_fleet(rise.operation_id, 20)).status == "succeeded"
+        d2 = fake(gateway, "d2")
+        pilot_switch(d2, "POSHOLD")
+        await until(lambda: gateway.locks.takeover_for("d2") is not None, "the takeover seen")
+        d2.state = ConnectionState.CONNECTING
+        for attempt in (c.fleet_hold, c.fleet_land):
+            with pytest.raises(SafetyRefusal) as refused:
+                await attempt(AGENT, ["d2"])
+            assert refused.value.rule == "taken_over", refused.value.message
+            assert "POSHOLD" in refused.value.message
+        with pytest.raises(SafetyRefusal) as refused:
+            await c.fleet_takeoff(AGENT, ["d2"], 12.0)
+        assert refused.value.rule == "taken_over", refused.value.message
+
+
 def test_each_dialect_names_the_modes_its_commands_bring() -> None:
     assert ARDUPILOT.commanded_modes("goto") == {"GUIDED"}
     assert ARDUPILOT.commanded_modes("mission") == {"AUTO"}
@@ -417,3 +447,48 @@ async def test_a_pilot_switch_right_after_a_goto_in_the_same_mode_is_a_takeover(
     with pytest.raises(SafetyRefusal) as refused:
         await c.move_relative(AGENT, "d1", 10.0, 0.0)
     assert refused.value.rule == "taken_over"
+
+
+async def test_a_drone_landing_while_its_takeover_is_stored_ends_the_goto_interrupted(
+    gateway: Gateway, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """ArduCopter's LOITER without RC throttle sinks: after a pilot's switch the drone may be down before
+    the takeover's lock is in the database (a busy disk). The goto still ends `interrupted` naming the
+    switch, never `failed` for the landing the switch caused."""
+    d1 = fake(gateway, "d1")
+    goto_id = await flying_goto(gateway)
+    store = gateway.require_store()
+    storing, stored = asyncio.Event(), asyncio.Event()
+    save_takeover = store.save_takeover
+
+    async def slow_save_takeover(*args: object, **kwargs: object) -> None:
+        storing.set()
+        await stored.wait()
+        await save_takeover(*args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(store, "save_takeover", slow_save_takeover)
+    ops = gateway.operations
+    assert ops is not None
+    tracker = ops.tracker(goto_id)
+    assert tracker is not None
+    polls = 0
+    poll = tracker.poll
+
+    async def counted(vehicle: object) -> object:
+        nonlocal polls
+        polls += 1
+        return await poll(vehicle)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(tracker, "poll", counted)
+    waiter = asyncio.create_task(gateway.commander.wait(goto_id, 60))
+    pilot_switch(d1, "LOITER")
+    await asyncio.wait_for(storing.wait(), scaled(5))
+    d1.set(in_air=False, landed_state="ON_GROUND")  # down, still armed, the lock not yet stored
+    landed_at = polls
+    await until(lambda: polls >= landed_at + 3 or waiter.done(), "the goto's monitor seeing it landed")
+    assert not waiter.done(), waiter.result()  # ended before its takeover was stored: as failed
+    stored.set()
+    view = await asyncio.wait_for(waiter, scaled(5))
+    assert view.status == "interrupted", view
+    assert "from GUIDED to LOITER: a pilot or another ground station took control" in view.message
+    assert [t.scope for t in await store.list_takeovers()] == ["d1"]

@@ -27,7 +27,7 @@ from gateway.config import Settings
 from gateway.fleet import geo
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
-from tests.api.server import serve_in_thread
+from tests.api.server import serve_in_process, serve_in_thread
 from tests.helpers import sim_process
 from tests.helpers.timing import scaled
 from tests.registry.procs import mavsdk_servers_of
@@ -99,10 +99,12 @@ async def gateway_stack(
     token: str | None = None,
     tags: dict[str, list[str]] | None = None,
     sim_args: tuple[str, ...] = (),
+    own_process: bool = False,
     **overrides: Any,
 ) -> AsyncIterator[Stack]:
     """Drones d1..dN (with ``tags`` by id); ``token`` is what ``Stack.rest`` authenticates with;
-    ``sim_args``: more arguments of the simulator."""
+    ``sim_args``: more arguments of the simulator; ``own_process``: the gateway a ``fleet-gateway
+    serve`` process (``Stack.app`` None; its settings fixed at its start), not an app in this one."""
     async with sim_process(count=count, speedup=speedup, extra_args=sim_args) as sim:
         settings = integration_settings(tmp, **overrides)
         ids = [f"d{i + 1}" for i in range(count)]
@@ -113,9 +115,10 @@ async def gateway_stack(
                 await store.add_vehicle(spec)
         finally:
             await store.close()
-        app = create_app(settings)
+        app = None if own_process else create_app(settings)
+        serving = serve_in_process(settings, tmp / "gateway.log") if app is None else serve_in_thread(app)
         try:
-            with serve_in_thread(app) as base_url:
+            with serving as base_url:
                 stack = Stack(base_url, sim, settings, app, ids, token=token)
                 await wait_ready(stack)
                 yield stack

@@ -1,10 +1,10 @@
 """A new command, added as CONTRIBUTING.md's "Adding a command and its tool" shows, changes its source
 files and its own test only: in a copy of the project, a toy command (``set_light``: a verb with its
-tool, a `VehicleActions` member, its body, and an operator's REST route calling the verb by name) is
-added; docs/tools.md is regenerated (`make docs`); then the tests that count the tools, the docs check,
-the declared-tool checks, the doors' check (the route runs a declared verb), the REST document's checks,
-mypy (the fake vehicle against `FlyingVehicle`) and the command's own test (MCP and REST) pass, and no
-other file changed."""
+tool and its operator's REST route declared, a `VehicleActions` member, its body) is added, and nothing
+in gateway/api/ is touched; docs/tools.md is regenerated (`make docs`); then the tests that count the
+tools, the docs check, the declared-tool checks, the doors' checks (the declared route is served and
+runs its verb), the REST document's checks, mypy (the fake vehicle against `FlyingVehicle`) and the
+command's own test (MCP and REST) pass, and no other file changed."""
 
 from __future__ import annotations
 
@@ -23,7 +23,10 @@ COPIED = ("gateway", "migrations", "tests", "scripts", "docs", "fleet_agent", "b
 COPIED_FILES = ("pyproject.toml", "setup.py", "CONTRIBUTING.md", "README.md", "alembic.ini")
 
 VERB = '''
-    @command(tool=Tool("set_light", "navigation", idempotent=True, says="{drone_id}: {message}"))
+    @command(
+        tool=Tool("set_light", "navigation", idempotent=True, says="{drone_id}: {message}"),
+        route=Route("light", "Switch the light (operator)"),
+    )
     @routed
     async def set_light(self, caller: Caller, drone_id: DroneId, on: bool) -> ActionResult:
         """Switch the drone's light on or off."""
@@ -41,21 +44,6 @@ BODY = """    async def set_light(self, on: bool) -> None:
         self.require_dialect()
         await self.link.call("light", self.link.require_session().action.set_actuator(1, 1.0 if on else -1.0))
 
-"""
-ROUTE = """
-
-class LightIn(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True)
-
-    on: bool = Field(description="True: on.")
-
-
-@router.post("/vehicles/{vehicle_id}/light", response_model=CommandOut, summary="Switch the light (operator)")
-async def light_vehicle(
-    vehicle_id: CommandVehicleId, body: LightIn, commander: CommanderDep, who: PrincipalDep
-) -> CommandOut:
-    result = await commander.call("set_light", operator(who), drone_id=vehicle_id, on=body.on)
-    return CommandOut(vehicle_id=vehicle_id, action="set_light", outcome="sent", message=result["message"])
 """
 OWN_TEST = '''"""The light command through its MCP tool and its REST route, over the fake drones."""
 
@@ -92,8 +80,12 @@ async def test_an_operator_switches_it_off_over_rest(tmp_path: Path) -> None:
         async with httpx.AsyncClient(transport=transport, base_url="http://127.0.0.1:8765") as http:
             answer = await http.post("/api/v1/vehicles/d1/light", json={"on": False})
             refused = await http.post("/api/v1/vehicles/d1/light", json={"on": "off"})
+            document = (await http.get("/openapi.json")).json()
     assert answer.status_code == 200, answer.text
     assert answer.json()["message"] == "light off"
+    assert answer.json()["action"] == "set_light" and answer.json()["vehicle_id"] == "d1"
+    route = document["paths"]["/api/v1/vehicles/{vehicle_id}/light"]["post"]
+    assert route["operationId"] == "set_light_vehicle" and route["tags"] == ["operator control"]
     assert drone.sent[-1] == ("set_light", False)
     assert refused.status_code == 422 and "on" in refused.text  # bad input changes nothing
     assert [s for s in drone.sent if s[0] == "set_light"] == [("set_light", False)]
@@ -160,9 +152,6 @@ def test_a_command_is_its_source_files_and_its_own_test(copy: Path) -> None:
         copy / "gateway/fleet/vehicles/protocols.py", "    async def set_flight_mode(self, name: str)", MEMBER
     )
     _insert(copy / "gateway/fleet/vehicles/vehicle.py", "    # --- where the autopilot flies to", BODY)
-    # and, for operators, its REST route: one call of the verb, by name, with the operator's caller
-    flying = copy / "gateway/api/flying.py"
-    flying.write_text(flying.read_text() + ROUTE)
     # its own test
     (copy / "tests/mcp/test_set_light.py").write_text(OWN_TEST)
     # then: `make docs` (docs/tools.md is generated from the declarations)
@@ -174,7 +163,6 @@ def test_a_command_is_its_source_files_and_its_own_test(copy: Path) -> None:
         "gateway/fleet/commands/navigation_verbs.py",
         "gateway/fleet/vehicles/protocols.py",
         "gateway/fleet/vehicles/vehicle.py",
-        "gateway/api/flying.py",
         "tests/mcp/test_set_light.py",
         "docs/tools.md",
     }

@@ -40,6 +40,9 @@ async def test_takeoff_goto_land_and_refusals(gateway: Gateway, mode: str) -> No
         assert toolset_of["takeoff"] == "flight" and toolset_of["go_to_location"] == "navigation"
         assert toolset_of["formation_goto"] == "fleet" and toolset_of["get_battery"] == "telemetry"
         assert set(toolset_of.values()) == {"flight", "navigation", "mission", "telemetry", "params", "fleet"}
+        drone = fake(gateway, "d1")
+        climb = drone.speed
+        drone.speed = 0.0  # the climb waits for the goto below: the takeoff runs however loaded the host
         r = await c.call_tool("takeoff", {"drone_id": "d1", "alt_m": 10, "wait": False})
         assert not r.is_error, r.content
         assert r.structured_content["status"] == "running"
@@ -48,6 +51,7 @@ async def test_takeoff_goto_land_and_refusals(gateway: Gateway, mode: str) -> No
             {"drone_id": "d1", "lat_deg": 47.398, "lon_deg": 8.5456, "alt_m": 10},
         )
         assert r.is_error and "monitor_flight" in r.content[0].text
+        drone.speed = climb
         r = await c.call_tool("monitor_flight", {"drone_id": "d1"})
         assert r.structured_content["status"] == "succeeded", r.structured_content
         r = await c.call_tool(

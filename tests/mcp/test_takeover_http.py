@@ -135,7 +135,12 @@ async def test_takeoff_and_mission_end_when_a_pilot_or_a_failsafe_switches(stack
         r = structured(await asyncio.wait_for(waiting, scaled(30)))
         assert r["status"] == "interrupted" and "from GUIDED to LOITER" in r["message"], r
         assert "taken_over" in error_text(await stack.call(c, "initiate_mission", {"drone_id": "d2"}))
+        # LOITER without RC throttle sinks: the drone lands and disarms, sooner or later as the machine is
+        # loaded; the mission below starts from the air, so the drone takes off again first
+        await wait_until_true(stack, "d2", lambda s: not s["armed"], "d2 down and disarmed in LOITER")
         await release(stack, "d2")
+        took = structured(await stack.call(c, "takeoff", {"drone_id": "d2", "alt_m": 15}))
+        assert took["status"] == "succeeded", took
 
         a, b = point_from(home, 150.0, 0.0), point_from(home, 300.0, 0.0)
         waypoints = [{"lat_deg": p[0], "lon_deg": p[1], "alt_m": 15} for p in (a, b)]

@@ -54,7 +54,7 @@ async def test_a_write_through_another_kinds_writer_is_refused(sqlite_store: Sto
     store = sqlite_store
     data = {"scope": "d1", "reason": "maintenance", "by": "op", "locked_at": "2026-11-29T12:00:00+00:00"}
     with pytest.raises(ValueError, match="kind 'unlock'"):
-        await store._kept("the lock of d1", "unlock", data, store._write_lock)
+        await store._kept("the lock of d1", "unlock", data, store._kept_writers["lock"])
     assert await store.list_locks() == []
     assert await store.save_lock("d1", "maintenance", "op", datetime.now(UTC)) is not None
     assert [lock.scope for lock in await store.list_locks()] == ["d1"]

@@ -13,7 +13,7 @@ from sqlalchemy.exc import IntegrityError
 
 from gateway.errors import DuplicateVehicle, InvalidArgument, NotFound
 from gateway.registry.database import current_revision, head_revision
-from gateway.registry.models import SessionRow
+from gateway.registry.models import sessions
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import (
     AUDIT_MAX_STRING,
@@ -145,11 +145,11 @@ async def test_migrations_match_the_models(store: Store) -> None:
     from alembic.autogenerate import compare_metadata
     from alembic.runtime.migration import MigrationContext
 
-    from gateway.registry.models import Base
+    from gateway.registry.models import metadata
 
     def diff(connection):
         ctx = MigrationContext.configure(connection, opts={"compare_type": True})
-        return compare_metadata(ctx, Base.metadata)
+        return compare_metadata(ctx, metadata)
 
     async with store.engine.connect() as conn:
         assert await conn.run_sync(diff) == []
@@ -615,7 +615,7 @@ async def test_prune_deletes_old_history_only(store: Store) -> None:
     )
     await store.touch_session("s-old", "mcp-2025")
     async with store.engine.begin() as conn:  # make that session old
-        await conn.execute(update(SessionRow).values(last_seen=old))
+        await conn.execute(update(sessions).values(last_seen=old))
     await store.touch_session("s-new", "mcp-2026")
 
     counts = await store.prune(cutoff)

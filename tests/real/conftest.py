@@ -1,13 +1,16 @@
 """Real autopilots for tests: ArduCopter SITL and PX4 SIH (``tests/helpers/autopilots.py``), started from
 the binaries that ``eval "$(../shared/sitl/install)"`` points at. Without them every test here skips and
-says so. Each test starts its own autopilots on instance numbers whose ports are free, in a temporary
-folder, and stops them afterwards, also when it fails."""
+says so. A test starts its own autopilots on instance numbers whose ports are free, in a temporary
+folder, and stops them afterwards, also when it fails; or it flies the one its module keeps
+(``kept_px4``, ``kept_arducopter``: booting is the expensive part), which every test of that module leaves
+on the ground and disarmed, and which is started afresh after a test that failed."""
 
 from __future__ import annotations
 
 import contextlib
 from collections.abc import AsyncIterator, Callable, Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -37,6 +40,75 @@ def px4(tmp_path: Path) -> Iterator[Autopilot]:
             yield ap
     except autopilots.Unavailable as exc:
         pytest.skip(str(exc))
+
+
+class KeptAutopilot:
+    """One autopilot for the tests of a module, started on first use and stopped with the module, or by
+    ``stop`` (after a test that failed, which may have left it flying)."""
+
+    def __init__(self, start: Callable[[], contextlib.AbstractContextManager[Autopilot]]) -> None:
+        self._start = start
+        self._stack = contextlib.ExitStack()
+        self._autopilot: Autopilot | None = None
+
+    def get(self) -> Autopilot:
+        if self._autopilot is None:
+            self._autopilot = self._stack.enter_context(self._start())
+        return self._autopilot
+
+    def on_stop(self, callback: Callable[..., Any], *args: Any) -> None:
+        """Call ``callback(*args)`` when the autopilot stops, before its process does."""
+        self._stack.callback(callback, *args)
+
+    def stop(self) -> None:
+        self._autopilot = None
+        stack, self._stack = self._stack, contextlib.ExitStack()
+        stack.close()
+
+
+def _kept(kept: KeptAutopilot, request: pytest.FixtureRequest) -> Iterator[Autopilot]:
+    failed = request.session.testsfailed  # counted when the test's call is reported, before teardown
+    try:
+        autopilot = kept.get()
+    except autopilots.Unavailable as exc:
+        pytest.skip(str(exc))
+    yield autopilot
+    if request.session.testsfailed > failed:
+        kept.stop()
+
+
+@pytest.fixture(scope="module")
+def kept_px4(tmp_path_factory: pytest.TempPathFactory) -> Iterator[KeptAutopilot]:
+    kept = KeptAutopilot(lambda: autopilots.px4(tmp_path_factory.mktemp("px4")))
+    try:
+        yield kept
+    finally:
+        kept.stop()
+
+
+@pytest.fixture
+def px4_of_module(kept_px4: KeptAutopilot, request: pytest.FixtureRequest) -> Iterator[Autopilot]:
+    """The module's PX4 SIH (``kept_px4``), as the previous test of the module left it: on the ground and
+    disarmed, wherever it landed (PX4 sets home where it arms)."""
+    yield from _kept(kept_px4, request)
+
+
+@pytest.fixture(scope="module")
+def kept_arducopter(tmp_path_factory: pytest.TempPathFactory) -> Iterator[KeptAutopilot]:
+    kept = KeptAutopilot(lambda: autopilots.arducopter(tmp_path_factory.mktemp("arducopter"), speedup=5))
+    try:
+        yield kept
+    finally:
+        kept.stop()
+
+
+@pytest.fixture
+def arducopter_of_module(
+    kept_arducopter: KeptAutopilot, request: pytest.FixtureRequest
+) -> Iterator[Autopilot]:
+    """The module's ArduCopter SITL (``kept_arducopter``, speed-up 5), on the ground and disarmed as the
+    previous test of the module left it."""
+    yield from _kept(kept_arducopter, request)
 
 
 @pytest.fixture

@@ -29,8 +29,9 @@ MAV_CMD_DO_SET_MODE = 176
 MAV_CMD_DO_REPOSITION = 192
 
 
-#: the second ground station's connection per address, kept for the test: PX4's GCS instance answers
-#: the first partner it heard (its address and port), not a new one
+#: the second ground station's connection per address, kept for the test (or for the autopilot's life,
+#: when the module keeps the autopilot): PX4's GCS instance answers the first partner it heard (its
+#: address and port), not a new one
 _GCS: dict[str, Any] = {}
 
 
@@ -40,6 +41,9 @@ def second_gcs(address: str) -> tuple[Any, int]:
     conn = _GCS.get(address)
     if conn is None:
         conn = _GCS[address] = mavutil.mavlink_connection(address, source_system=250, source_component=190)
+    else:  # kept open: what the autopilot sent since (an earlier COMMAND_ACK among it) is not an answer
+        while conn.recv_msg() is not None:
+            pass
     deadline = time.monotonic() + scaled(20)
     while True:  # PX4's GCS instance answers once it heard us: say hello until it does
         conn.mav.heartbeat_send(mavutil.mavlink.MAV_TYPE_GCS, mavutil.mavlink.MAV_AUTOPILOT_INVALID, 0, 0, 0)
@@ -336,16 +340,28 @@ async def takeover_mid_takeoff_and_mission(
     assert landed["status"] == "succeeded", landed
 
 
-async def run(tmp: Path, profile: Profile, ap: Autopilot, scenario: Any, **kw: Any) -> None:
+def close_second_gcs(address: str | None) -> None:
+    """Close the second ground station's connection on ``address``, if one is open."""
+    conn = _GCS.pop(address or "", None)
+    if conn is not None:
+        conn.close()
+
+
+async def run(
+    tmp: Path, profile: Profile, ap: Autopilot, scenario: Any, *, keep_second_gcs: bool = False, **kw: Any
+) -> None:
+    """Fly ``scenario`` through a fresh gateway over ``ap``. The second ground station's connection is
+    closed at the end unless ``keep_second_gcs`` (the autopilot flies the module's next test too, and
+    PX4's GCS instance answers only the partner it heard first): then whoever stops the autopilot closes
+    it (``close_second_gcs``)."""
     async with gateway_over(tmp, profile, [ap], mcp_wait_cap_s=120.0) as (tour, _settings):  # a long wait
         try:
             await scenario(tour, ap, **kw)
         except AssertionError as exc:
             raise AssertionError(f"{exc}\n--- {ap.log.name}\n{ap.log_tail(20)}") from None
         finally:
-            conn = _GCS.pop(ap.gcs or "", None)
-            if conn is not None:
-                conn.close()
+            if not keep_second_gcs:
+                close_second_gcs(ap.gcs)
 
 
 async def takeover_mid_formation(
@@ -408,6 +424,4 @@ async def run_formation(tmp: Path, profile: Profile, aps: list[Autopilot], **kw:
             logs = "\n".join(f"--- {a.log.name}\n{a.log_tail(15)}" for a in aps)
             raise AssertionError(f"{exc}\n{logs}") from None
         finally:
-            conn = _GCS.pop(aps[1].gcs or "", None)
-            if conn is not None:
-                conn.close()
+            close_second_gcs(aps[1].gcs)

@@ -47,6 +47,9 @@ async def test_three_drones_ready_restored_and_one_sidecar_killed(store, registr
         print(
             f"\nFIGURE 3 drones registered -> all ready: {time.monotonic() - t0:.1f} s (speedup {SPEEDUP:g})"
         )
+        # a simulator is known as one once its SIMSTATE arrives, asked for after the rates: a drone may be
+        # ready before that (its home announced at boot)
+        await wait_until(lambda: all(v.status()["is_simulator"] for v in vehicles), what="SIMSTATE")
         for v in vehicles:
             st = v.status()
             assert st["is_simulator"] is True and st["autopilot"] == "ardupilot"

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import time
+import typing
 from types import SimpleNamespace
 
 import pytest
@@ -16,7 +17,16 @@ from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem
 from gateway.fleet.operations.trackers import LandingTracker
 from gateway.fleet.vehicles.params import param_aliases
-from gateway.link.telemetry import BatteryValue, MissionProgressValue, PositionValue, Sample, TelemetryCache
+from gateway.link import telemetry
+from gateway.link.telemetry import (
+    STREAM_TYPES,
+    VALUE_TYPES,
+    BatteryValue,
+    MissionProgressValue,
+    PositionValue,
+    Sample,
+    TelemetryCache,
+)
 from tests.fakes import FakeVehicle
 
 HOME = (47.397742, 8.545594, 488.0)
@@ -134,6 +144,61 @@ def test_param_aliases_cover_47_renames() -> None:
     assert param_aliases("WPNAV_SPEED") == []
 
 
+def test_streams_asked_for_slower_at_rest_are_stale_after_as_many_more_seconds() -> None:
+    """Home, the attitude and heading, the GPS report, the IMU and odometry come every 5 s at rest: a
+    sample 10 s old is current there (stale after 5 x 3 s), while the position at 1 Hz is stale after
+    3 s; a lost link makes every value stale however young."""
+    cache = TelemetryCache(stale_after_s=3.0)
+    ten_s_ago = time.monotonic() - 10.0
+    cache.home = Sample(PositionValue(47.0, 8.0, 500.0, 0.0), ten_s_ago)
+    cache.position = Sample(PositionValue(47.0, 8.0, 500.0, 0.0), ten_s_ago)
+    cache.heading_deg = Sample(90.0, ten_s_ago)
+    assert cache.stale_limit_s("home") == cache.stale_limit_s("heading_deg") == 15.0
+    assert cache.stale_limit_s("position") == cache.stale_limit_s("battery") == 3.0
+    assert cache.fresh("home") is not None and cache.fresh("heading_deg") == 90.0
+    assert cache.fresh("position") is None
+    snap = cache.snapshot()
+    assert snap["home"]["stale"] is False and snap["position"]["stale"] is True
+    assert not cache.is_stale("home", 14.0) and cache.is_stale("home", 16.0)
+    assert cache.is_stale("position", 4.0)
+    cache.home = Sample(PositionValue(47.0, 8.0, 500.0, 0.0), time.monotonic() - 16.0)
+    assert cache.fresh("home") is None and cache.snapshot()["home"]["stale"] is True
+    cache.heading_deg = Sample(90.0, time.monotonic())
+    cache.live = False
+    assert cache.fresh("heading_deg") is None and cache.is_stale("heading_deg", 0.0)
+    # the limits follow the configured link-lost time
+    assert TelemetryCache(stale_after_s=10.0).stale_limit_s("home") == 50.0
+
+
+def test_each_stream_is_stale_after_three_of_its_rest_periods_and_the_safety_reads_stay_at_1_hz() -> None:
+    """The rest rates and the stale limits agree: a stream asked for slower than 1 Hz at rest is stale
+    only after three of its periods, and what a safety or readiness check reads fresh (position and
+    velocity, SYS_STATUS with the battery and health, the landed state, the EKF status) is asked for at
+    1 Hz at least, so that one lost message never makes it stale (3 s)."""
+    from gateway.link.telemetry_feed import ACTIVE_RATES_HZ, STREAM_RATES_HZ
+
+    fills = {  # the cache streams each rate fills
+        "position": ("position", "velocity_ned"),
+        "home": ("home",),
+        "attitude_euler": ("attitude", "heading_deg"),
+        "landed_state": ("landed_state", "in_air"),
+        "gps_info": ("gps_info",),
+        "battery": ("battery",),
+        "health": ("health", "rc_status"),
+        "imu": ("imu",),
+        "raw_imu": ("imu",),
+        "odometry": ("odometry",),
+    }
+    cache = TelemetryCache(stale_after_s=3.0)
+    for rate, streams in fills.items():
+        for stream in streams:
+            assert cache.stale_limit_s(stream) >= 3.0 / STREAM_RATES_HZ[rate], (rate, stream)
+    for rate in ("position", "health", "battery", "landed_state", "ekf_status"):
+        assert STREAM_RATES_HZ[rate] >= 1.0, rate
+    # armed or in the air, home (moved at arming) and the GPS report come at 1 Hz for the flight log
+    assert ACTIVE_RATES_HZ["home"] >= 1.0 and ACTIVE_RATES_HZ["gps_info"] >= 1.0
+
+
 def test_cache_snapshot_reports_ages_and_staleness() -> None:
     cache = TelemetryCache(stale_after_s=3.0)
     assert cache.snapshot()["position"] is None
@@ -156,6 +221,19 @@ def test_cache_snapshot_reports_ages_and_staleness() -> None:
     with pytest.raises(KeyError):
         cache.put("warp_drive", 1)
     assert cache.message_counts == {"position": 1, "status_text": 1}
+
+
+def test_every_stream_has_a_fresh_overload_typed_by_its_value() -> None:
+    """The cache's fields are the one list of streams; ``fresh``'s overloads must name each of them with
+    the type of its value (mypy reads the overloads, the cache reads the fields)."""
+    returns: dict[str, object] = {}
+    for variant in typing.get_overloads(TelemetryCache.fresh):
+        hints = typing.get_type_hints(variant, vars(telemetry))
+        if typing.get_origin(hints["name"]) is typing.Literal:
+            returns.update(dict.fromkeys(typing.get_args(hints["name"]), hints["return"]))
+    assert STREAM_TYPES and TelemetryCache.FIELDS == tuple(STREAM_TYPES)
+    assert returns == {name: kind | None for name, kind in STREAM_TYPES.items()}
+    assert VALUE_TYPES["position"] is PositionValue and "armed" not in VALUE_TYPES
 
 
 async def test_the_return_altitude_is_written_in_each_autopilots_parameter_and_units() -> None:
@@ -347,7 +425,7 @@ async def test_telemetry_rates_follow_the_drone_between_rest_and_active() -> Non
     import asyncio
     import enum
 
-    from gateway.link.telemetry_feed import ACTIVE_RATES_HZ, STREAM_RATES_HZ, TelemetryFeed
+    from gateway.link.telemetry_feed import ACTIVE_RATES_HZ, MESSAGE_IDS, STREAM_RATES_HZ, TelemetryFeed
 
     class Landed(enum.Enum):
         ON_GROUND = 1
@@ -358,6 +436,7 @@ async def test_telemetry_rates_follow_the_drone_between_rest_and_active() -> Non
     landed: asyncio.Queue[Landed] = asyncio.Queue()
     subscribed: list[str] = []
     rates: list[tuple[str, float]] = []
+    via_mavsdk: list[str] = []
 
     async def landed_states():
         while True:
@@ -373,6 +452,7 @@ async def test_telemetry_rates_follow_the_drone_between_rest_and_active() -> Non
 
                 async def set_rate(hz: float) -> None:
                     rates.append((name.removeprefix("set_rate_"), hz))
+                    via_mavsdk.append(name.removeprefix("set_rate_"))
 
                 return set_rate
             subscribed.append(name)
@@ -387,13 +467,21 @@ async def test_telemetry_rates_follow_the_drone_between_rest_and_active() -> Non
             assert asyncio.get_running_loop().time() < deadline, f"timed out waiting for {what}"
             await asyncio.sleep(0.01)
 
+    names_by_id = {message_id: name for name, message_id in MESSAGE_IDS.items()}
+
+    async def set_message_rate(message_id: int, hz: float) -> None:  # the session's COMMAND_LONG
+        rates.append((names_by_id[message_id], hz))
+
     cache = TelemetryCache()
     system = SimpleNamespace(telemetry=Telemetry(), mission_raw=SimpleNamespace(mission_progress=silent))
-    feed = TelemetryFeed("d1", system, cache, use_mavsdk_flight_mode=lambda: False)
+    feed = TelemetryFeed(
+        "d1", system, cache, use_mavsdk_flight_mode=lambda: False, set_message_rate=set_message_rate
+    )
     feed.start()
     try:
         await feed.request_rates(call)
         assert dict(rates) == STREAM_RATES_HZ  # at rest: every stream at its rest rate
+        assert not set(via_mavsdk) & set(MESSAGE_IDS)  # those through the session, MAVSDK has no setter
         assert "in_air" not in subscribed and "armed" not in subscribed and "heading" not in subscribed
         rates.clear()
         landed.put_nowait(Landed.TAKING_OFF)
@@ -444,3 +532,45 @@ async def test_an_unknown_parameter_is_refused_from_the_listed_names_without_ask
         await params.get("NO_SUCH_PARAM")
     assert reads == []  # refused from the list: the autopilot was not asked
     assert await params.get("FENCE_ENABLE") == (3, "int") and reads == ["FENCE_ENABLE"]
+
+
+async def test_a_rate_request_without_an_answer_is_asked_again_and_a_refusal_is_not() -> None:
+    """A rate request that timed out on a busy link is asked for again (only that stream, after a wait
+    that grows while it still gets no answer); one the vehicle refused stays refused. A drone missing its
+    health or home stream would otherwise never be ready."""
+    from gateway.errors import CommandFailed
+    from gateway.link.telemetry_feed import UNANSWERED_RETRY_S, TelemetryFeed
+
+    asked: list[str] = []
+    silent_streams = {"health"}
+
+    class Telemetry:
+        def __getattr__(self, name: str):
+            async def set_rate(_hz: float) -> None:
+                stream = name.removeprefix("set_rate_")
+                asked.append(stream)
+                if stream in silent_streams:
+                    raise CommandFailed(f"{name} on drone 'd1': no answer from its mavsdk_server within 5 s")
+                if stream == "odometry":
+                    raise CommandFailed(f"{name} failed: Unsupported (UNSUPPORTED)", result="UNSUPPORTED")
+
+            return set_rate
+
+    async def call(_what: str, aw):
+        return await aw
+
+    feed = TelemetryFeed("d1", SimpleNamespace(telemetry=Telemetry()), TelemetryCache())
+    refused = await feed.request_rates(call)
+    assert refused == {"odometry": refused["odometry"]} and set(feed.unanswered_rates) == {"health"}
+    assert feed.rates_to_ask_again() == frozenset()  # not yet: UNANSWERED_RETRY_S after the request
+    feed._ask_again_at -= UNANSWERED_RETRY_S * 2
+    assert feed.rates_to_ask_again() == frozenset({"health"})
+    asked.clear()
+    await feed.request_rates(call, only=feed.rates_to_ask_again())  # still no answer: the wait doubles
+    assert asked == ["health"] and set(feed.unanswered_rates) == {"health"}
+    assert feed._ask_again_at - time.monotonic() > UNANSWERED_RETRY_S * 1.5
+    silent_streams.clear()
+    feed._ask_again_at = 0.0
+    await feed.request_rates(call, only=feed.rates_to_ask_again())
+    assert feed.unanswered_rates == {} and set(feed.unsupported_rates) == {"odometry"}
+    assert feed.rates_to_ask_again() == frozenset()

@@ -201,8 +201,7 @@ class Attacker:
         headers = dict(kw.pop("headers", {}))
         if token:
             headers.setdefault("Authorization", f"Bearer {token}")
-        async with httpx.AsyncClient(base_url=self.arena.stack.base_url, timeout=scaled(60)) as http:
-            r = await http.request(method, f"/api/v1{path}", headers=headers, **kw)
+        r = await self.arena.http.request(method, f"/api/v1{path}", headers=headers, **kw)
         self.answers.append(
             Answer(f"{method} {path}: HTTP {r.status_code} {r.text[:200]}", r.status_code >= 400)
         )
@@ -237,9 +236,12 @@ class Verdict:
 
 
 class Arena:
-    def __init__(self, stack: Stack, gcs: dict[str, RawMavlink]) -> None:
+    def __init__(self, stack: Stack, gcs: dict[str, RawMavlink], http: httpx.AsyncClient) -> None:
         self.stack = stack
         self.gcs = gcs
+        #: the operator's and the attacker's REST requests (each with its own headers): one client for
+        #: the module, as a new one loads the CA bundle again (about 0.1 s of CPU at load)
+        self.http = http
         self.first_home: dict[str, tuple[float, float, float]] = {}
         self.defaults: dict[str, dict[str, float]] = {}
 
@@ -398,12 +400,8 @@ class Arena:
     async def operator(
         self, method: str, path: str, ok: tuple[int, ...] = (200, 201, 204), **kw: Any
     ) -> dict[str, Any]:
-        async with httpx.AsyncClient(
-            base_url=self.stack.base_url,
-            timeout=scaled(60),
-            headers={"Authorization": f"Bearer {OPERATOR_TOKEN}"},
-        ) as http:
-            r = await http.request(method, f"/api/v1{path}", **kw)
+        headers = {"Authorization": f"Bearer {OPERATOR_TOKEN}"}
+        r = await self.http.request(method, f"/api/v1{path}", headers=headers, **kw)
         if r.status_code not in ok:
             raise AssertionError(f"operator {method} {path}: HTTP {r.status_code} {r.text[:300]}")
         return (
@@ -486,7 +484,10 @@ async def arena(tmp: Path) -> AsyncIterator[Arena]:
             link = await stack_exit.enter_async_context(raw_mavlink(url, OTHER_GCS_SYSID))
             link.target_system = sysid
             gcs[drone] = link
-        a = Arena(stack, gcs)
+        http = await stack_exit.enter_async_context(
+            httpx.AsyncClient(base_url=stack.base_url, timeout=scaled(60))
+        )
+        a = Arena(stack, gcs, http)
         for drone in stack.drone_ids:
             state = await stack.sim.control.state(stack.index(drone))
             home = state["home"] or {"lat": state["lat"], "lon": state["lon"], "alt": state["alt_amsl_m"]}

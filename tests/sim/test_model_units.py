@@ -168,3 +168,28 @@ def test_remaining_battery_is_counted_against_batt_capacity_like_ardupilot() -> 
     used, used_big = 100.0 - v.battery.remaining_pct, 100.0 - big.battery.remaining_pct
     assert 13.0 < used < 15.0  # 27.8 A for 60 s of a 3300 mAh pack: 463 mAh, 14.0 %
     assert abs(used_big - used / 2) < 0.3
+
+
+def test_streams_come_at_their_intervals_and_a_change_of_rate_counts_at_once() -> None:
+    """A stream table sends each message when due (a message that fell behind once), sends nothing
+    between (the vehicle asks at every physics step), and a rate set or cleared between two dues counts
+    from the next step: a new message at once, a disabled group not again."""
+    from gateway.sim.streams import StreamTable
+
+    table = StreamTable()
+    assert table.due(0.0) == []
+    table.set_interval(33, 1e6)  # GLOBAL_POSITION_INT every second
+    assert table.due(0.0) == [33]
+    assert [table.due(t / 25) for t in range(1, 25)] == [[]] * 24
+    assert table.due(1.0) == [33]
+    assert table.due(3.5) == [33] and table.due(3.6) == [] and table.due(4.5) == [33]  # behind: once
+    table.set_group(2, 0.2)  # EXT_STAT every 5 s: its messages at once, then every 5 s
+    assert set(table.due(4.6)) >= {1, 42}
+    assert 1 not in table.due(5.5) and 1 not in table.due(9.5) and 1 in table.due(9.6)
+    table.set_group(2, 0.0)
+    assert all(1 not in table.due(t) for t in (14.6, 20.0, 30.0))
+    table.set_interval(33, -1)  # disabled
+    assert table.due(40.0) == [] and table.due(100.0) == []
+    table.clear()
+    table.set_interval(30, 2e5)  # ATTITUDE at 5 Hz
+    assert table.due(100.0) == [30] and table.due(100.1) == [] and table.due(100.2) == [30]

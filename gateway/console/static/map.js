@@ -44,6 +44,22 @@ function droneIconHtml(drone, selected) {
   );
 }
 
+// Takes a drone's layer off the map and forgets its entry (entries: drone id -> entry, whose field
+// holds the layer: "marker" of a drone's marker, "line" of its track).
+function dropLayer(entries, id, field) {
+  const entry = entries.get(id);
+  if (entry) {
+    entry[field].remove();
+    entries.delete(id);
+  }
+}
+
+// A control on the map at position ("topright", ...) whose element make() builds when it is added.
+function addControl(map, position, make) {
+  const Control = L.Control.extend({ onAdd: make });
+  new Control({ position }).addTo(map);
+}
+
 function latLngOf(position) {
   return L.latLng(position.lat, position.lon);
 }
@@ -129,40 +145,32 @@ export class MapView {
   }
 
   _addCursorReadout() {
-    const view = this;
-    const Readout = L.Control.extend({
-      onAdd() {
-        const div = L.DomUtil.create("div", "cursor-readout");
-        div.textContent = "metres from the fleet's home";
-        div.title = "the map's origin: the first home position the gateway knew";
-        view.map.on("mousemove", (e) => {
-          const { east, north } = view.toLocal(e.latlng);
-          div.textContent = `E ${num(east, 0)} m · N ${num(north, 0)} m from the fleet's home`;
-        });
-        return div;
-      },
+    addControl(this.map, "bottomright", () => {
+      const div = L.DomUtil.create("div", "cursor-readout");
+      div.textContent = "metres from the fleet's home";
+      div.title = "the map's origin: the first home position the gateway knew";
+      this.map.on("mousemove", (e) => {
+        const { east, north } = this.toLocal(e.latlng);
+        div.textContent = `E ${num(east, 0)} m · N ${num(north, 0)} m from the fleet's home`;
+      });
+      return div;
     });
-    new Readout({ position: "bottomright" }).addTo(this.map);
   }
 
   _addFitButton() {
-    const view = this;
-    const Fit = L.Control.extend({
-      onAdd() {
-        const button = L.DomUtil.create("button", "map-button");
-        button.type = "button";
-        button.textContent = "Fit fleet";
-        button.title = "Zoom to every drone and home";
-        L.DomEvent.disableClickPropagation(button);
-        L.DomEvent.on(button, "click", () => {
-          view._setFollowing(true);
-          view.fit();
-        });
-        view.fitButton = button;
-        return button;
-      },
+    addControl(this.map, "topright", () => {
+      const button = L.DomUtil.create("button", "map-button");
+      button.type = "button";
+      button.textContent = "Fit fleet";
+      button.title = "Zoom to every drone and home";
+      L.DomEvent.disableClickPropagation(button);
+      L.DomEvent.on(button, "click", () => {
+        this._setFollowing(true);
+        this.fit();
+      });
+      this.fitButton = button;
+      return button;
     });
-    new Fit({ position: "topright" }).addTo(this.map);
   }
 
   _setFollowing(on) {
@@ -204,7 +212,7 @@ export class MapView {
       seen.add(drone.id);
       this._updateTrack(drone);
       if (!drone.position) {
-        this._removeMarker(drone.id);
+        dropLayer(this.markers, drone.id, "marker");
         continue;
       }
       const htmlText = droneIconHtml(drone, drone.id === selectedId);
@@ -225,8 +233,8 @@ export class MapView {
       }
       entry.marker.setZIndexOffset(drone.id === selectedId ? 1000 : 0);
     }
-    for (const id of [...this.markers.keys()]) if (!seen.has(id)) this._removeMarker(id);
-    for (const id of [...this.tracks.keys()]) if (!seen.has(id)) this._dropTrack(id);
+    for (const id of [...this.markers.keys()]) if (!seen.has(id)) dropLayer(this.markers, id, "marker");
+    for (const id of [...this.tracks.keys()]) if (!seen.has(id)) dropLayer(this.tracks, id, "line");
     this._drawHomes(vehicles);
     if (this.following) {
       const points = this._fleetPoints();
@@ -240,14 +248,6 @@ export class MapView {
 
   _icon(htmlText) {
     return L.divIcon({ className: "drone-icon", html: htmlText, iconSize: [26, 26], iconAnchor: [13, 13] });
-  }
-
-  _removeMarker(id) {
-    const entry = this.markers.get(id);
-    if (entry) {
-      entry.marker.remove();
-      this.markers.delete(id);
-    }
   }
 
   _drawHomes(vehicles) {
@@ -272,7 +272,7 @@ export class MapView {
     const flightId = drone.flight_id;
     let track = this.tracks.get(drone.id);
     if (track && track.flightId !== flightId) {
-      this._dropTrack(drone.id);
+      dropLayer(this.tracks, drone.id, "line");
       track = null;
     }
     if (!flightId || !drone.position) return;
@@ -293,14 +293,6 @@ export class MapView {
     if (!track.last || this.map.distance(track.last, here) >= TRACK_MIN_STEP_M) {
       track.line.addLatLng(here);
       track.last = here;
-    }
-  }
-
-  _dropTrack(id) {
-    const track = this.tracks.get(id);
-    if (track) {
-      track.line.remove();
-      this.tracks.delete(id);
     }
   }
 

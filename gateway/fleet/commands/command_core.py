@@ -1,7 +1,7 @@
 """What the Commander's parts share besides the pass: ``@command`` (a verb is declared: callable by name,
 and offered as the MCP tool its `Tool` names), ``@routed`` (a verb runs where its drone is), the
-operation desk (views of operations and waiting on them, here or on the node that runs them) and the
-small flight rules the verbs judge a context with. The pass itself is
+operation desk (views of operations and waiting on them, here or on the node that runs them). The small
+flight rules the verbs judge a context with are `gateway.fleet.commands.verb_rules`. The pass itself is
 `gateway.fleet.commands.command_pass`; the verbs are `drone_verbs` (flight), `navigation_verbs`,
 `mission_verbs`, `fleet_verbs` and `fleet_step_verbs`; `gateway.fleet.commands.commander` composes them."""
 
@@ -22,24 +22,27 @@ from pydantic_core import to_jsonable_python
 from gateway.config import Settings
 from gateway.errors import (
     GatewayError,
-    InvalidArgument,
     NoOwner,
     NotFound,
     NotRun,
     OwnerTimeout,
-    VehicleNotReady,
 )
-from gateway.fleet import geo
-from gateway.fleet.commands.arguments import AltFrame
 from gateway.fleet.commands.command_pass import AUDIT_SENT, CommandPass
+from gateway.fleet.commands.routes import Route, declare_routes
 from gateway.fleet.operations.operation_state import Operation
 from gateway.fleet.operations.operations import OperationManager
-from gateway.fleet.operations.routing import FORWARDED, Method, OnMessage, ProgressMessage, Router, Verb
+from gateway.fleet.operations.routing import (
+    FORWARDED,
+    Method,
+    OnMessage,
+    ProgressMessage,
+    RoutedCall,
+    Router,
+    Verb,
+)
 from gateway.fleet.operations.views import ActionResult, OperationView
 from gateway.fleet.policy.caller import Caller
-from gateway.fleet.policy.safety_inputs import VehicleContext
-from gateway.fleet.policy.safety_rules import Rule, refuse
-from gateway.fleet.vehicles.protocols import FlyingVehicle, Notify, VehicleDirectory, VehicleView
+from gateway.fleet.vehicles.protocols import VehicleDirectory, VehicleView
 from gateway.registry.store import OperationRecord, Store
 from gateway.util.json_types import JsonObject
 from gateway.util.read_through import ReadThrough
@@ -139,7 +142,7 @@ def routed(
         desk = self.desk
         started = asyncio.get_running_loop().time()
         try:
-            result = await router.call(drone_id, name, caller, arguments, watch, wait_s=wait_s)
+            result = await router.call(RoutedCall(drone_id, name, caller, arguments, watch, wait_s))
         except (NoOwner, OwnerTimeout):
             # the owner was lost while the verb waited on its operation: follow the operation to the
             # node that takes the drone over (same id), for what is left of the wait
@@ -234,16 +237,24 @@ def command(method: VerbMethod, /) -> VerbMethod: ...
 
 
 @overload
-def command(*, tool: Tool | Sequence[Tool] = ()) -> Callable[[VerbMethod], VerbMethod]: ...
+def command(
+    *, tool: Tool | Sequence[Tool] = (), route: Route | Sequence[Route] = ()
+) -> Callable[[VerbMethod], VerbMethod]: ...
 
 
 def command(
-    method: VerbMethod | None = None, /, *, tool: Tool | Sequence[Tool] = ()
+    method: VerbMethod | None = None,
+    /,
+    *,
+    tool: Tool | Sequence[Tool] = (),
+    route: Route | Sequence[Route] = (),
 ) -> VerbMethod | Callable[[VerbMethod], VerbMethod]:
     """Declare a verb a door may call by name (`Commander.call`): registered here, in `VERBS`, from its
-    own signature; nothing else lists it. ``@command(tool=Tool(...))`` also offers it as that MCP tool
-    (several tools: a sequence). Put it above ``@routed``."""
+    own signature; nothing else lists it. ``@command(tool=Tool(...))`` also offers it as that MCP tool,
+    ``route=Route(...)`` as that operator's REST route (`gateway.fleet.commands.routes`; several: a
+    sequence). Put it above ``@routed``."""
     tools = (tool,) if isinstance(tool, Tool) else tuple(tool)
+    routes = (route,) if isinstance(route, Route) else tuple(route)
 
     def declare(method: VerbMethod) -> VerbMethod:
         name = method.__name__
@@ -253,6 +264,7 @@ def command(
             if other is not None and other.verb != name:
                 raise ValueError(f"tool {declared.name} is declared by both {other.verb} and {name}")
             TOOLS[declared.name] = dataclasses.replace(declared, verb=name)
+        declare_routes(name, routes)
         return method
 
     return declare if method is None else declare(method)
@@ -287,59 +299,6 @@ def _relay(callbacks: Mapping[str, Callable[..., Awaitable[object]]]) -> OnMessa
             await callbacks["on_progress"](OperationView.model_validate(body["view"]))
 
     return relay
-
-
-def operator_only(caller: Caller, what: str) -> None:
-    """Refused (rule operator_lock) unless an operator asks (REST, the console): ``what`` says what
-    only an operator may do, and why agents may not."""
-    if not caller.is_operator:
-        raise refuse(Rule.OPERATOR_LOCK, f"only an operator may {what}", via=caller.via)
-
-
-def require_airborne(ctx: VehicleContext, action: str) -> None:
-    if not (ctx.in_air and ctx.armed):
-        raise VehicleNotReady(
-            f"{ctx.vehicle_id} is on the ground; {action} needs a flying drone. Call takeoff first."
-        )
-
-
-def relative_alt(ctx: VehicleContext, alt_m: float, alt_frame: AltFrame) -> float:
-    """A caller's altitude -> metres above home (the frame conversion lives in geo)."""
-    geo.check_finite("alt_m", alt_m)
-    if alt_frame == "home":
-        return alt_m
-    if ctx.home is None:
-        raise VehicleNotReady(f"{ctx.vehicle_id} has no home position yet; cannot convert an AMSL altitude")
-    relative = geo.amsl_to_relative(alt_m, ctx.home[2])
-    if relative <= 0:  # a small model set alt_frame='amsl' whenever it had coordinates
-        raise InvalidArgument(
-            f"alt_frame='amsl' means above sea level (home is {ctx.home[2]:.0f} m), so alt_m={alt_m:g} "
-            f"is {-relative:.0f} m below home; leave alt_frame out for metres above home "
-            f"(e.g. alt_m={alt_m:g})"
-        )
-    return relative
-
-
-def arming_deadline(settings: Settings) -> float:
-    """When a command that arms (arm, takeoff, fleet takeoff) stops waiting for its drones to be able
-    to arm: one deadline, the MCP wait cap from now, for initialising and arming together."""
-    return asyncio.get_running_loop().time() + settings.mcp_wait_cap_s
-
-
-def left(deadline: float) -> float:
-    return max(0.0, deadline - asyncio.get_running_loop().time())
-
-
-def wait_initialised(deadline: float, notify: Notify | None) -> Callable[[FlyingVehicle], Awaitable[None]]:
-    """A ``prepare`` step of the pass: wait until ``deadline`` for a drone still initialising,
-    ``notify`` hearing what it waits for. A drone that is still initialising then is left to its arming
-    attempt, whose refusal says why in the autopilot's words; one in no state to arm raises
-    VehicleNotReady naming why."""
-
-    async def prepare(vehicle: FlyingVehicle) -> None:
-        await vehicle.wait_initialised(left(deadline), notify)
-
-    return prepare
 
 
 class OperationDesk:
@@ -462,12 +421,9 @@ class OperationDesk:
             left = max(0.0, deadline - loop.time())
             try:
                 result = await self.router.call(
-                    drone_id,
-                    "wait",
-                    WAITER,
-                    {"operation_id": operation_id, "cap_s": left},
-                    relay,
-                    wait_s=left,
+                    RoutedCall(
+                        drone_id, "wait", WAITER, {"operation_id": operation_id, "cap_s": left}, relay, left
+                    )
                 )
                 return OperationView.model_validate(result)
             except (NoOwner, OwnerTimeout, NotRun, NotFound) as exc:

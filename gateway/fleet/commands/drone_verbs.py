@@ -19,19 +19,11 @@ from pydantic import Field
 
 from gateway.errors import CommandFailed, InvalidArgument, StateConflict
 from gateway.fleet.commands.arguments import DroneId, FlightMode
-from gateway.fleet.commands.command_core import (
-    Confirm,
-    OperationDesk,
-    Tool,
-    arming_deadline,
-    command,
-    left,
-    require_airborne,
-    routed,
-    wait_initialised,
-)
+from gateway.fleet.commands.command_core import Confirm, OperationDesk, Tool, command, routed
 from gateway.fleet.commands.command_pass import CommandPass, Need, Order
 from gateway.fleet.commands.mission_start import resume_item, verify_held
+from gateway.fleet.commands.routes import Route, TakeoffIn
+from gateway.fleet.commands.verb_rules import arming_deadline, left, require_airborne, wait_initialised
 from gateway.fleet.dialects.modes import ModeChoice
 from gateway.fleet.operations.trackers import LandingTracker, TakeoffTracker
 from gateway.fleet.operations.views import ActionResult, OperationView
@@ -95,7 +87,10 @@ class FlightVerbs:
             drone_id=drone_id, action="disarm", message="disarmed", superseded_operation=sent.ended_id
         )
 
-    @command(tool=Tool("takeoff", "flight"))
+    @command(
+        tool=Tool("takeoff", "flight"),
+        route=Route("takeoff", "Take off (operator)", body=TakeoffIn, renames={"alt_rel_m": "alt_m"}),
+    )
     @routed
     async def takeoff(
         self,
@@ -229,7 +224,8 @@ class FlightVerbs:
             destructive=True,
             says="{drone_id}: {message}",
             confirm=Confirm(question="kill_question", into="confirmed"),
-        )
+        ),
+        route=Route("kill", "Stop the motors at once (operator)", fills={"confirmed": True}),
     )
     @routed
     async def kill(self, caller: Caller, drone_id: DroneId, confirmed: bool = False) -> ActionResult:

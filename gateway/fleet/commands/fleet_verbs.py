@@ -25,17 +25,11 @@ from gateway.config import Settings
 from gateway.errors import GatewayError, InvalidArgument, SafetyRefusal, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.commands.arguments import DroneIds, FleetAlt, Metres, SomeDrones
-from gateway.fleet.commands.command_core import (
-    OperationDesk,
-    Tool,
-    arming_deadline,
-    command,
-    left,
-    require_airborne,
-)
+from gateway.fleet.commands.command_core import OperationDesk, Tool, command
 from gateway.fleet.commands.command_pass import CommandPass
 from gateway.fleet.commands.drone_verbs import FlightVerbs
 from gateway.fleet.commands.fleet_step_verbs import FleetStepVerbs
+from gateway.fleet.commands.verb_rules import arming_deadline, left, require_airborne
 from gateway.fleet.formation.formation import DroneStart, plan_formation, rtl_altitudes, takeoff_altitudes
 from gateway.fleet.operations.fleet_operation import FleetOperation
 from gateway.fleet.operations.fleet_ops import FleetOperations
@@ -159,11 +153,28 @@ class FleetVerbs:
         """Default: the minimum separation plus 1 m of altitude-holding error for each of two drones."""
         return self.settings.min_separation_m + 2 * FORMATION_TOLERANCE_M if stagger_m is None else stagger_m
 
+    def _members(
+        self, caller: Caller, ids: Sequence[str], check: Callable[[VehicleView], None]
+    ) -> tuple[dict[str, VehicleView], list[Unable]]:
+        """Every drone looked up and checked; a drone a pilot took over is named as taken over before any
+        other check (an agent's answer says who has it, not that its link is down meanwhile)."""
+
+        def pilot_first(vehicle: VehicleView) -> None:
+            if not caller.is_operator:
+                self.commands.refuse_taken_over(vehicle.id)
+            check(vehicle)
+
+        return collect_members(ids, self.registry.get, pilot_first)
+
     def _recovery_members(
-        self, drone_ids: Sequence[str] | None, action: str, check: Callable[[VehicleView], None]
+        self,
+        caller: Caller,
+        drone_ids: Sequence[str] | None,
+        action: str,
+        check: Callable[[VehicleView], None],
     ) -> tuple[list[str], dict[str, VehicleView], list[Unable]]:
         ids = self._all_ids(drone_ids)
-        vehicles, unable = collect_members(ids, self.registry.get, check)
+        vehicles, unable = self._members(caller, ids, check)
         if not vehicles:
             raise refuse_fleet(action, unable, len(ids))
         return ids, vehicles, unable
@@ -239,7 +250,7 @@ class FleetVerbs:
                 raise VehicleNotReady(f"no position received from {v.id} yet")
             policy.check_actuation(ctx, via)
 
-        vehicles, unable = collect_members(ids, self.registry.get, check)
+        vehicles, unable = self._members(caller, ids, check)
         if unable:
             raise refuse_fleet("formation_goto", unable, len(ids))
         starts = [
@@ -342,7 +353,7 @@ class FleetVerbs:
             self._busy(ctx, "fleet_takeoff")
             policy.check_takeoff(ctx, altitudes[v.id], caller.policy_via)
 
-        vehicles, unable = collect_members(ids, self.registry.get, check)
+        vehicles, unable = self._members(caller, ids, check)
         if unable:
             raise refuse_fleet("fleet_takeoff", unable, len(ids))
         fop = await self.fleet.start(
@@ -377,7 +388,7 @@ class FleetVerbs:
                 raise InvalidArgument(f"{v.id} is already on the ground and disarmed")
             self.safety.check_actuation(vehicle_context(v), caller.policy_via)
 
-        ids, vehicles, unable = self._recovery_members(drone_ids, "fleet_land", check)
+        ids, vehicles, unable = self._recovery_members(caller, drone_ids, "fleet_land", check)
         fop = await self.fleet.start(
             "fleet_land",
             list(vehicles),
@@ -418,7 +429,7 @@ class FleetVerbs:
                 v.return_altitude_param()[0], via=caller.policy_via, vehicle_id=v.id, governed=v.limit_params
             )
 
-        ids, vehicles, unable = self._recovery_members(drone_ids, "fleet_return_to_launch", check)
+        ids, vehicles, unable = self._recovery_members(caller, drone_ids, "fleet_return_to_launch", check)
         positions = {d: pos for d, v in vehicles.items() if (pos := position(v)) is not None}
         homes = {d: (h[0], h[1]) for d, v in vehicles.items() if (h := home(v)) is not None}
         order, notes = rtl_order(positions, homes, sep)
@@ -458,7 +469,7 @@ class FleetVerbs:
             require_airborne(ctx, "fleet_hold")
             self.safety.check_actuation(ctx, caller.policy_via)
 
-        _ids, vehicles, unable = self._recovery_members(drone_ids, "fleet_hold", check)
+        _ids, vehicles, unable = self._recovery_members(caller, drone_ids, "fleet_hold", check)
         superseded = await self.fleet.supersede(vehicles, "fleet_hold")
         failed: list[dict[str, object]] = []
 

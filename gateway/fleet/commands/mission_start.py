@@ -28,7 +28,7 @@ def semantics_of(vehicle: VehicleView) -> MissionSemantics:
 
 def resume_item(vehicle: VehicleView) -> int | None:
     """The item (1..N) the autopilot continues from when its mission mode is selected in the air."""
-    prog = value(vehicle, "mission_progress")
+    prog = value(vehicle.telemetry.mission_progress)
     current = int(prog.current) if prog is not None else 0
     return current if current >= 1 else None
 

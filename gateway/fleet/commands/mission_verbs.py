@@ -27,6 +27,7 @@ from gateway.fleet.commands.command_core import OperationDesk, Takes, Tool, comm
 from gateway.fleet.commands.command_pass import CommandPass, Order
 from gateway.fleet.commands.drone_verbs import FlightVerbs
 from gateway.fleet.commands.mission_start import resume_item, semantics_of, unchecked_text, verify_held
+from gateway.fleet.commands.routes import Route
 from gateway.fleet.missions import mission_files
 from gateway.fleet.missions.mission import MissionItem
 from gateway.fleet.operations.trackers import MissionTracker
@@ -186,7 +187,16 @@ class MissionVerbs:
                 }
             },
             takes={"items": Takes("waypoints", OptionalWaypoints, mission_items)},
-        )
+        ),
+        route=Route(
+            "mission/start",
+            "Start the mission the vehicle holds, read back and checked whole from where it is now",
+            name="start_mission",
+            description="The limits and zones hold the operator too; items the gateway cannot check are "
+            "allowed and the\nmission is marked unchecked (in the answer, the operation's parameters and the "
+            "audit row).",
+            fills={"items": None, "label": "start_mission"},
+        ),
     )
     @routed
     async def start_mission(
@@ -243,7 +253,12 @@ class MissionVerbs:
             "mission",
             idempotent=True,
             says="{drone_id} mission paused: holding position in GUIDED; resume_mission continues",
-        )
+        ),
+        route=Route(
+            "mission/pause",
+            "Pause the mission: hold where the vehicle is (GUIDED); resume continues (operator)",
+            name="pause_mission",
+        ),
     )
     @routed
     async def pause_mission(
@@ -255,7 +270,12 @@ class MissionVerbs:
         held = await self.flight.hold(caller, drone_id, label)
         return held.model_copy(update={"message": f"{held.message} (paused as a GUIDED hold)"})
 
-    @command(tool=Tool("resume_mission", "mission"))
+    @command(
+        tool=Tool("resume_mission", "mission"),
+        route=Route(
+            "mission/resume", "Continue the mission from its current item (operator)", name="resume_mission"
+        ),
+    )
     @routed
     async def resume_mission(self, caller: Caller, drone_id: DroneId) -> OperationView:
         """Continue the mission from its current item; done when finished."""
@@ -303,7 +323,7 @@ class MissionVerbs:
         """Make mission item `index` the next target."""
 
         async def decide(vehicle: FlyingVehicle, ctx: VehicleContext) -> Order:
-            prog = value(vehicle, "mission_progress")
+            prog = value(vehicle.telemetry.mission_progress)
             total = int(prog.total) if prog is not None else None
             if total is not None and total > 0 and index > total:
                 raise InvalidArgument(
@@ -325,7 +345,7 @@ class MissionVerbs:
         """The item being flown (1..N), the count, and whether the mission ran to its end."""
         vehicle = self.commands.registry.flown(drone_id)
         vehicle.require_ready()
-        prog = value(vehicle, "mission_progress")
+        prog = value(vehicle.telemetry.mission_progress)
         current, total = (int(prog.current), int(prog.total)) if prog is not None else (0, 0)
         finished = await vehicle.is_mission_finished()
         op = self.commands.operations.latest(drone_id)

@@ -16,20 +16,16 @@ from pydantic import Field
 from gateway.errors import InvalidArgument, NotFound, VehicleNotReady
 from gateway.fleet import geo
 from gateway.fleet.commands.arguments import AltFrame, DroneId, Lat, Lon, Metres
-from gateway.fleet.commands.command_core import (
-    NAV_KINDS,
-    OnProgress,
-    OperationDesk,
-    Tool,
+from gateway.fleet.commands.command_core import NAV_KINDS, OnProgress, OperationDesk, Tool, command, routed
+from gateway.fleet.commands.command_pass import CommandPass, Need, Order
+from gateway.fleet.commands.routes import GotoIn, Route
+from gateway.fleet.commands.verb_rules import (
     arming_deadline,
-    command,
     left,
     relative_alt,
     require_airborne,
-    routed,
     wait_initialised,
 )
-from gateway.fleet.commands.command_pass import CommandPass, Need, Order
 from gateway.fleet.operations.operation_state import OpStatus
 from gateway.fleet.operations.operations import check_positive_altitude
 from gateway.fleet.operations.trackers import (
@@ -82,7 +78,16 @@ class NavigationVerbs:
         tracker = GotoTracker(lat, lon, alt_rel, self.commands.settings.arrival_tolerance_m, kind=kind)
         return Order(lambda: vehicle.goto(lat, lon, alt_rel, yaw_deg), tracker, params)
 
-    @command(tool=Tool("go_to_location", "navigation", idempotent=True, omit=("yaw_deg",)))
+    @command(
+        tool=Tool("go_to_location", "navigation", idempotent=True, omit=("yaw_deg",)),
+        route=Route(
+            "goto",
+            "Fly to a position (operator)",
+            body=GotoIn,
+            renames={"lat": "lat_deg", "lon": "lon_deg", "alt_rel_m": "alt_m"},
+            fills={"alt_frame": "home", "label": "operator goto"},
+        ),
+    )
     @routed
     async def goto(
         self,
@@ -405,11 +410,11 @@ class NavigationVerbs:
 
 def _now_doing(vehicle: VehicleView) -> str:
     """What the drone does now, from its telemetry: mode, airborne, altitude."""
-    mode = value(vehicle, "flight_mode") or "unknown"
+    mode = value(vehicle.telemetry.flight_mode) or "unknown"
     pos = position(vehicle)
     where = f" at {pos[2]:.1f} m above home" if pos is not None else ""
     state = "in the air" if is_airborne(vehicle) else "on the ground"
-    heard, prog = vehicle.heartbeat_mode(), value(vehicle, "mission_progress")
+    heard, prog = vehicle.heartbeat_mode(), value(vehicle.telemetry.mission_progress)
     if heard is not None and heard[0] in vehicle.commanded_modes("mission") and prog is not None:
         where += f", flying mission item {int(prog.current)} of {int(prog.total)}"  # MISSION_CURRENT
     target = vehicle.position_target()  # POSITION_TARGET_GLOBAL_INT

@@ -17,9 +17,11 @@ from datetime import UTC, datetime
 from typing import Literal
 
 from gateway.errors import GatewayError, NoOwner, NotRun, StopPending, VehicleNotReady
-from gateway.fleet.commands.command_core import command, operator_only
+from gateway.fleet.commands.command_core import command
 from gateway.fleet.commands.command_pass import CommandPass
 from gateway.fleet.commands.drone_verbs import FlightVerbs
+from gateway.fleet.commands.routes import LockIn, Route
+from gateway.fleet.commands.verb_rules import operator_only
 from gateway.fleet.operations.fleet_ops import FleetOperations
 from gateway.fleet.operations.views import LockResult, StopOutcome, StopResult, UnlockResult
 from gateway.fleet.policy.caller import Caller
@@ -28,6 +30,7 @@ from gateway.fleet.policy.takeover import Takeover
 from gateway.fleet.vehicles.protocols import VehicleView
 from gateway.registry.records import AuditEntry
 from gateway.registry.store import Store
+from gateway.util.cancelling import cancelled_here
 
 log = logging.getLogger(__name__)
 
@@ -58,7 +61,19 @@ class OperatorVerbs:
     def _operator_only(self, caller: Caller, what: str) -> None:
         operator_only(caller, f"{what}; agents cannot change locks or stop the fleet")
 
-    @command
+    @command(
+        route=(
+            Route("lock", "Lock a drone against agents", name="lock_vehicle", drone="scope", body=LockIn),
+            Route(
+                "fleet/lock",
+                "Lock the whole fleet against agents",
+                name="lock_fleet",
+                drone=None,
+                body=LockIn,
+                fills={"scope": FLEET},
+            ),
+        )
+    )
     async def lock(self, caller: Caller, scope: str, reason: str) -> LockResult:
         """Lock one drone (its id) or the fleet ("*") against agents' actuating commands: at once on this
         node and every node that hears the broadcast; stored (later, if the database is unreachable)."""
@@ -89,7 +104,19 @@ class OperatorVerbs:
             log.warning("the lock of %s is kept on this node until the database is back", lock.scope)
         return stored is not None
 
-    @command
+    @command(
+        route=(
+            Route("lock", "Unlock a drone", method="DELETE", name="unlock_vehicle", drone="scope"),
+            Route(
+                "fleet/lock",
+                "Remove the fleet lock",
+                method="DELETE",
+                name="unlock_fleet",
+                drone=None,
+                fills={"scope": FLEET},
+            ),
+        )
+    )
     async def unlock(self, caller: Caller, scope: str) -> UnlockResult:
         self._operator_only(caller, "unlock drones")
         removed = self.locks.unlock(scope)
@@ -134,7 +161,15 @@ class OperatorVerbs:
                 {"scope": lock.scope, "reason": lock.reason, "by": lock.by, "at": lock.locked_at.isoformat()},
             )
 
-    @command
+    @command(
+        route=Route(
+            "takeover",
+            "Release a drone taken over by a pilot or ground station",
+            method="DELETE",
+            name="release_takeover",
+            description="Agents may command the drone again (the pilot or ground station is done with it).",
+        )
+    )
     async def release(self, caller: Caller, drone_id: str) -> UnlockResult:
         """An operator gives a taken-over drone back to agents (the pilot is done with it)."""
         self._operator_only(caller, "release a drone taken over by a pilot or ground station")
@@ -216,6 +251,12 @@ class OperatorVerbs:
         except Exception as exc:  # one drone's failure must not stop the others
             log.exception("fleet stop: %s failed on %s", action, vehicle.id)
             return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=repr(exc))
+        except asyncio.CancelledError as exc:
+            if cancelled_here():
+                raise  # the stop itself is cancelled
+            # something the drone's stop awaited ended cancelled: its failure, not the fleet stop's
+            log.exception("fleet stop: %s on %s was cancelled under it", action, vehicle.id)
+            return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=repr(exc))
 
     def _stop_when_ready(self, caller: Caller, drone_id: str, action: StopAction) -> None:
         """The stop of a drone whose link is being established, sent once it is ready (in the background,
@@ -244,7 +285,13 @@ class OperatorVerbs:
         _WAITING.add(task)
         task.add_done_callback(_WAITING.discard)
 
-    @command
+    @command(
+        route=(
+            Route("hold", "Hold position (operator)", name="hold_vehicle", fills={"action": "hold"}),
+            Route("land", "Land (operator)", name="land_vehicle", fills={"action": "land"}),
+            Route("rtl", "Return to launch (operator)", name="rtl_vehicle", fills={"action": "rtl"}),
+        )
+    )
     async def stop_one(self, caller: Caller, drone_id: str, action: StopAction) -> StopOutcome:
         """One drone's part of a stop: hold (ends its operation), land or RTL (tracked operations that
         supersede it). The REST hold/land/RTL routes are this too."""

@@ -13,8 +13,10 @@ from collections.abc import Mapping
 from pydantic import TypeAdapter, ValidationError
 
 from gateway.errors import GatewayError, InvalidArgument, UnknownVehicle
-from gateway.fleet.commands.command_core import OperationDesk, command, operator_only, routed
+from gateway.fleet.commands.command_core import OperationDesk, command, routed
 from gateway.fleet.commands.command_pass import CommandPass
+from gateway.fleet.commands.routes import OriginIn, Route
+from gateway.fleet.commands.verb_rules import operator_only
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.origin import OriginView, origin_view
 from gateway.fleet.vehicles.protocols import VehicleRegistry
@@ -123,7 +125,11 @@ class RegistryVerbs:
         await (registry.connect(drone_id) if connected else registry.disconnect(drone_id))
         return await self._record(drone_id)
 
-    @command
+    @command(
+        route=Route(
+            "origin", "Move a drone's origin (operator)", method="PUT", name="put_origin", body=OriginIn
+        )
+    )
     @routed
     async def move_origin(
         self, caller: Caller, drone_id: str, lat: float, lon: float, alt_amsl_m: float

@@ -15,9 +15,10 @@ import logging
 
 from sqlalchemy.exc import SQLAlchemyError
 
-from gateway.fleet.commands.command_core import command, operator_only
+from gateway.fleet.commands.command_core import command
 from gateway.fleet.commands.command_pass import CommandPass
 from gateway.fleet.commands.mission_verbs import MissionVerbs
+from gateway.fleet.commands.verb_rules import operator_only
 from gateway.fleet.missions import plan_extras
 from gateway.fleet.missions.plan_extras import FenceZone, PlanExtras
 from gateway.fleet.operations.views import ActionResult, MissionFileView

@@ -154,7 +154,12 @@ class ArduPilot:
 
     name = "ArduCopter"
     first_user_seq = 1  # home holds seq 0
-    skipped_streams = frozenset({"imu", "odometry"})
+    # no HIGHRES_IMU or ODOMETRY; no BATTERY_STATUS either: MAVSDK takes the battery from SYS_STATUS,
+    # which ArduPilot fills from the same first battery monitor (one message a second fewer)
+    skipped_streams = frozenset({"imu", "odometry", "battery"})
+    #: MAVSDK's health says "local position ok" once the EKF has an origin, seconds before it uses GPS
+    #: (the autopilot refuses to arm until then): EKF_STATUS_REPORT says when it does
+    estimate_from_ekf_report = True
     follows_events = False
     arming_mode: str | None = "GUIDED"
     mission_verdict_s = 0.0

@@ -61,6 +61,9 @@ class DialectReads(Protocol):
 
     def mode_name(self, custom_mode: int, mav_type: int) -> str | None: ...
 
+    @property
+    def estimate_from_ekf_report(self) -> bool: ...
+
     def position_estimate_ok(self, health: HealthValue, ekf_flags: int | None) -> bool: ...
 
     # --- flight modes --------------------------------------------------------------------------------

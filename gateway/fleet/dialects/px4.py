@@ -135,6 +135,7 @@ class PX4:
     name = "PX4"
     first_user_seq = 0  # no home slot: the user's item 1 is seq 0
     skipped_streams = frozenset({"raw_imu"})
+    estimate_from_ekf_report = False
     follows_events = True
     arming_mode: str | None = None
     mission_verdict_s = MISSION_VERDICT_S

@@ -13,12 +13,12 @@ import itertools
 import logging
 from collections.abc import Callable
 from datetime import UTC, datetime
-from typing import Protocol
 
 from gateway.config import Settings
 from gateway.fleet import geo
 from gateway.fleet.missions.raw_tlog import RawTlog, tlog_folder
-from gateway.link.telemetry import StatusTextValue, TelemetryCache
+from gateway.link.session import Link
+from gateway.link.telemetry import StatusTextValue
 from gateway.registry.store import StatusTextIn, Store, TrackSample
 from gateway.util.tasks import cancel_and_wait
 
@@ -68,34 +68,21 @@ GPS_FIX_TYPES = {
 }
 
 
-class FrameSource(Protocol):
-    """The vehicle's link: given a callable, it hands it each frame the drone sends while relayed."""
-
-    vehicle_frames: Callable[[bytes], None] | None
-
-
-class Recorded(Protocol):
-    """What the recorder reads of a vehicle: its id, its telemetry cache, its link's frames."""
-
-    @property
-    def link(self) -> FrameSource: ...
-
-    @property
-    def id(self) -> str: ...
-
-    @property
-    def telemetry(self) -> TelemetryCache: ...
-
-    def heartbeat_state(self) -> tuple[int, int] | None:
-        """(MAV_TYPE, custom mode) of the autopilot's last HEARTBEAT; None while there is none fresh."""
-        ...
-
-
 class FlightRecorder:
     """Records the flights of one vehicle while it is connected."""
 
-    def __init__(self, vehicle: Recorded, store: Store, settings: Settings) -> None:
-        self.vehicle = vehicle
+    def __init__(
+        self,
+        link: Link,
+        heartbeat_state: Callable[[], tuple[int, int] | None],
+        store: Store,
+        settings: Settings,
+    ) -> None:
+        """``link``: the vehicle's (its id, its telemetry cache, the frames it relays);
+        ``heartbeat_state``: (MAV_TYPE, custom mode) of the autopilot's last HEARTBEAT, None while there
+        is none fresh."""
+        self.link = link
+        self._heartbeat_state = heartbeat_state
         self.store = store
         self.settings = settings
         self.flight: _Flight | None = None
@@ -105,20 +92,20 @@ class FlightRecorder:
         folder = tlog_folder(settings, store.url)
         self.raw: RawTlog | None = None
         if folder is not None:
-            self.raw = RawTlog(folder, vehicle.id, settings.flight_tlog_max_mib * 1024 * 1024)
+            self.raw = RawTlog(folder, link.id, settings.flight_tlog_max_mib * 1024 * 1024)
 
     async def start(self) -> None:
         await self._close_leftovers()
-        self.vehicle.telemetry.on_status_text(self._on_status_text)
+        self.link.telemetry.on_status_text(self._on_status_text)
         if self.raw is not None:
-            self.vehicle.link.vehicle_frames = self.raw.frame
-        self._task = asyncio.create_task(self._run(), name=f"flightlog-{self.vehicle.id}")
+            self.link.vehicle_frames = self.raw.frame
+        self._task = asyncio.create_task(self._run(), name=f"flightlog-{self.link.id}")
 
     async def stop(self) -> None:
         """Stop recording: close a flight in progress (the gateway no longer watches it) and flush."""
-        self.vehicle.telemetry.remove_status_listener(self._on_status_text)
-        if self.raw is not None and self.vehicle.link.vehicle_frames == self.raw.frame:
-            self.vehicle.link.vehicle_frames = None
+        self.link.telemetry.remove_status_listener(self._on_status_text)
+        if self.raw is not None and self.link.vehicle_frames == self.raw.frame:
+            self.link.vehicle_frames = None
         await cancel_and_wait(self._task)
         self._task = None
         if self.flight is not None:
@@ -130,7 +117,7 @@ class FlightRecorder:
             return
         self._texts.append(
             StatusTextIn(
-                vehicle_id=self.vehicle.id,
+                vehicle_id=self.link.id,
                 flight_id=self.flight.id if self.flight else None,
                 t=_utc(item.t),
                 severity=item.severity,
@@ -140,7 +127,7 @@ class FlightRecorder:
 
     async def _close_leftovers(self) -> None:
         """Flights a previous gateway left open: end them at their last track sample."""
-        for flight in await self.store.list_open_flights(self.vehicle.id):
+        for flight in await self.store.list_open_flights(self.link.id):
             track = await self.store.get_track(flight.id)
             ended = track[-1].t if track else flight.started_at
             distance = 0.0
@@ -157,7 +144,7 @@ class FlightRecorder:
                 max_alt_rel_m=max(alts) if alts else None,
                 battery_used_pct=used,
             )
-            log.info("%s: closed flight %d left open by a previous run", self.vehicle.id, flight.id)
+            log.info("%s: closed flight %d left open by a previous run", self.link.id, flight.id)
 
     async def _run(self) -> None:
         period = 1.0 / self.settings.track_sample_hz
@@ -172,11 +159,11 @@ class FlightRecorder:
             except asyncio.CancelledError:
                 raise
             except Exception:  # a database hiccup must not end flight recording
-                log.exception("%s: flight log step failed", self.vehicle.id)
+                log.exception("%s: flight log step failed", self.link.id)
             await asyncio.sleep(period)
 
     async def _tick(self) -> None:
-        cache = self.vehicle.telemetry
+        cache = self.link.telemetry
         armed = cache.fresh("armed")
         battery = cache.fresh("battery")
         battery_pct = battery.remaining_pct if battery is not None else None
@@ -184,7 +171,7 @@ class FlightRecorder:
             home = cache.fresh("home", max_age_s=3600.0)
             started = _utc()
             flight_id = await self.store.open_flight(
-                self.vehicle.id,
+                self.link.id,
                 started,
                 home.lat_deg if home else None,
                 home.lon_deg if home else None,
@@ -195,8 +182,8 @@ class FlightRecorder:
                 try:
                     self.raw.open(flight_id)
                 except OSError as exc:
-                    log.error("%s: the raw MAVLink log cannot be written: %s", self.vehicle.id, exc)
-            log.info("%s: armed, flight %d started", self.vehicle.id, flight_id)
+                    log.error("%s: the raw MAVLink log cannot be written: %s", self.link.id, exc)
+            log.info("%s: armed, flight %d started", self.link.id, flight_id)
         elif armed is False and self.flight is not None:
             await self._close(_utc(), "disarmed")
             return
@@ -207,7 +194,7 @@ class FlightRecorder:
             return
         velocity = cache.fresh("velocity_ned")
         heading = cache.fresh("heading_deg")
-        heartbeat = self.vehicle.heartbeat_state()
+        heartbeat = self._heartbeat_state()
         gps = cache.fresh("gps_info")
         self.flight.add(pos.lat_deg, pos.lon_deg, pos.rel_alt_m, battery_pct)
         self._track.append(
@@ -244,7 +231,7 @@ class FlightRecorder:
         )
         log.info(
             "%s: flight %d ended (%s): %.0f m flown, max %.1f m above home",
-            self.vehicle.id,
+            self.link.id,
             flight.id,
             why,
             flight.distance_m,

@@ -34,7 +34,7 @@ from gateway.fleet.operations.fleet_operation import FLEET_CALLER, FleetOperatio
 from gateway.fleet.operations.fleet_steps import Phase, Step, StepSpec
 from gateway.fleet.operations.operation_state import Operation, OpStatus, wait_reporting
 from gateway.fleet.operations.operations import OperationManager
-from gateway.fleet.operations.routing import Router
+from gateway.fleet.operations.routing import RoutedCall, Router
 from gateway.fleet.operations.step_mirror import follow, mirror_view
 from gateway.fleet.operations.views import OperationView
 from gateway.fleet.policy.caller import Caller
@@ -203,7 +203,9 @@ class FleetOperations:
             return await self._run_here(fop.caller, drone_id, step.spec)
         started = OperationView.model_validate(
             await router.call(
-                drone_id, "run_step", fop.caller, {"drone_id": drone_id, "spec": _json_spec(step.spec)}
+                RoutedCall(
+                    drone_id, "run_step", fop.caller, {"drone_id": drone_id, "spec": _json_spec(step.spec)}
+                )
             )
         )
         mirror = Operation(
@@ -228,7 +230,9 @@ class FleetOperations:
             await self._hold_here(fop.caller, drone_id, f"{fop.kind} abort")
             return
         await router.call(
-            drone_id, "hold_step", fop.caller, {"drone_id": drone_id, "reason": f"{fop.kind} abort"}
+            RoutedCall(
+                drone_id, "hold_step", fop.caller, {"drone_id": drone_id, "reason": f"{fop.kind} abort"}
+            )
         )
 
     # -- internals -------------------------------------------------------------------------------

@@ -85,6 +85,8 @@ class ModeWatch:
         self._finders: dict[str, asyncio.Task[None]] = {}  # after a restart: is the vehicle flying?
         #: when an operation's latest command (its leg) was sent (the manager sets it)
         self.sent_at: dict[str, float] = {}
+        #: operations whose takeover is being recorded: they end interrupted once the lock is stored
+        self._taking: set[str] = set()
 
     def expect(
         self,
@@ -117,6 +119,20 @@ class ModeWatch:
 
     def expected(self, vehicle_id: str) -> ModeExpectation | None:
         return self._expected.get(vehicle_id)
+
+    def explains_failure(self, vehicle: FlyingVehicle, operation_id: str) -> bool:
+        """Whether a takeover explains the operation's failure: one is being recorded for it, or the
+        drone left the operation's modes and the watch judges that at its next look. ArduCopter's LOITER
+        without RC throttle sinks and lands, and the caller must hear of the pilot's switch, not of the
+        landing it caused. Only asks; the watch's own task acts (never the operation's monitor, which
+        the takeover ends)."""
+        if operation_id in self._taking:
+            return True
+        exp = self._expected.get(vehicle.id)
+        heard = vehicle.heartbeat_mode()
+        if exp is None or exp.operation_id != operation_id or not exp.seen or heard is None:
+            return False
+        return heard[0] not in exp.modes and heard[0] not in exp.settled
 
     def forget(self, vehicle_id: str) -> None:
         """The gateway commands nothing the mode shows (a takeover, kill): nothing more is judged."""
@@ -319,13 +335,32 @@ class ModeWatch:
         )
         self._expected.pop(vehicle.id, None)
         log.warning("%s: %s", vehicle.id, takeover.message())
-        if self._ops.on_takeover is not None:
-            try:
-                await self._ops.on_takeover(vehicle, takeover)
-            except Exception:
-                log.exception("recording the takeover of %s failed", vehicle.id)
         if running is not None:
-            await self._ops.interrupt(running, takeover.message())
+            self._taking.add(running.id)  # its monitor may see what the switch caused before the lock is in
+        try:
+            if self._ops.on_takeover is not None:
+                try:
+                    await self._ops.on_takeover(vehicle, takeover)
+                except Exception:
+                    log.exception("recording the takeover of %s failed", vehicle.id)
+            if running is not None:
+                await self._ops.interrupt(running, takeover.message())
+        finally:
+            if running is not None:
+                self._taking.discard(running.id)
+
+    def arrived(self, vehicle_id: str, op: Operation, tracker: Tracker) -> None:
+        """``op`` succeeded at the end of its goto leg: the drone stays at that target, and a move of the
+        autopilot's target away from it is someone else's, even when the goto arrived before the watch
+        looked at it (its target is otherwise taken at the watch's looks while the leg runs)."""
+        exp = self._expected.get(vehicle_id)
+        leg = getattr(tracker, "leg", tracker)
+        if exp is None or exp.operation_id != op.id or not isinstance(leg, GotoTracker):
+            return
+        target = (leg.lat, leg.lon, self.sent_at.get(op.id, op.started_mono))
+        if exp.target != target:
+            exp.target, exp.target_adopted, exp.target_off_since = target, False, None
+        exp.target_near_m = max(TARGET_MOVED_M, 3 * leg.tolerance_m)
 
     def drop(self, operation_id: str) -> None:
         """The operation's monitor ended: forget its legs."""

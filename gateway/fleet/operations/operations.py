@@ -29,7 +29,7 @@ from gateway.errors import InvalidArgument, NotFound
 from gateway.fleet import geo
 from gateway.fleet.operations.mode_watch import ModeWatch, TakeoverHandler
 from gateway.fleet.operations.operation_state import Operation, OpStatus, wait_reporting
-from gateway.fleet.operations.trackers import POLL_S, Tracker
+from gateway.fleet.operations.trackers import POLL_S, Poll, Tracker
 from gateway.fleet.policy.operator_locks import Lock
 from gateway.fleet.policy.safety_inputs import RunningOperation
 from gateway.fleet.policy.takeover import ModeExpectation
@@ -43,6 +43,10 @@ log = logging.getLogger(__name__)
 
 SAVE_EVERY_S = 2.0
 """Progress of a running operation is written to the store at most this often."""
+TAKEOVER_EXPLAINS_S = 10.0
+"""How long a tracker's failure waits for a takeover that explains it (`ModeWatch.explains_failure`) to
+be recorded and end the operation as interrupted; after that the failure stands (a database that does
+not answer must not keep an operation running for ever)."""
 
 
 ProgressCallback = Callable[[Operation], Awaitable[None]]
@@ -74,6 +78,8 @@ class OperationManager:
         self._current: dict[str, Operation] = {}  # latest operation per vehicle (may be finished)
         self._monitors: dict[str, asyncio.Task[None]] = {}
         self._trackers: dict[str, Tracker] = {}  # of the running operations
+        #: operations whose tracker failed while a takeover explained it: since when (monotonic)
+        self._explained: dict[str, float] = {}
         self._last_saved: dict[str, float] = {}
         self._locks: dict[str, asyncio.Lock] = {}
         self.mode_watch = ModeWatch(self)
@@ -294,7 +300,7 @@ class OperationManager:
                 elif pos_age is not None and pos_age > stale_after:
                     self._update(op, op.progress, f"no telemetry for {pos_age:.0f} s (link lost?)", op.eta_s)
                 else:
-                    poll = await tracker.poll(vehicle)
+                    poll = await self._poll(vehicle, op, tracker)
                     if op.finished:
                         break
                     if poll.failed:
@@ -305,6 +311,7 @@ class OperationManager:
                     if poll.done:
                         op.progress = 1.0
                         op.eta_s = 0.0
+                        self.mode_watch.arrived(vehicle.id, op, tracker)
                         await self._finish(op, OpStatus.succeeded, poll.message)
                         break
                     self._update(op, poll.progress, poll.message, poll.eta_s)
@@ -318,7 +325,19 @@ class OperationManager:
         finally:
             self._monitors.pop(op.id, None)
             self._trackers.pop(op.id, None)
+            self._explained.pop(op.id, None)
             self.mode_watch.drop(op.id)
+
+    async def _poll(self, vehicle: FlyingVehicle, op: Operation, tracker: Tracker) -> Poll:
+        """The tracker's look; a failure a takeover explains is left to the takeover for up to
+        TAKEOVER_EXPLAINS_S (it ends the operation as interrupted once its lock is stored)."""
+        poll = await tracker.poll(vehicle)
+        if poll.failed is None or op.finished or not self.mode_watch.explains_failure(vehicle, op.id):
+            return poll
+        since = self._explained.setdefault(op.id, time.monotonic())
+        if time.monotonic() - since > TAKEOVER_EXPLAINS_S:
+            return poll
+        return Poll(op.progress, op.message, eta_s=op.eta_s)
 
     async def _send_next(
         self, vehicle: FlyingVehicle, op: Operation, send: Callable[[], Awaitable[object]]

@@ -2,9 +2,10 @@
 
 A gateway alone has no router and runs everything itself. On a cluster node (`gateway.cluster`) the
 Commander's verbs on one drone, the waits on its operations and the per-drone steps of fleet operations
-go to the drone's owner when this node does not own it: `Router.call` sends the verb's name, the
-caller and the verb's JSON arguments, and the owner runs the same verb through its own Commander (so
-its safety checks, the agent's scope and the drone's command lock apply there, on fresh telemetry).
+go to the drone's owner when this node does not own it: `Router.call` sends a `RoutedCall` (the verb's
+name, the caller and the verb's JSON arguments), and the owner runs the same verb through its own
+Commander (so its safety checks, the agent's scope and the drone's command lock apply there, on fresh
+telemetry).
 Results, refusals and errors come back as the same models and error classes; the owner's progress
 messages arrive through ``on_message`` while the call runs.
 
@@ -18,6 +19,7 @@ import inspect
 import typing
 from collections.abc import Awaitable, Callable, Mapping
 from contextvars import ContextVar
+from dataclasses import dataclass
 from typing import Any, Protocol
 
 from pydantic import BaseModel, ConfigDict, ValidationError, create_model
@@ -47,6 +49,20 @@ FORWARDED: ContextVar[bool] = ContextVar("forwarded", default=False)
 ACTING: ContextVar[Caller | None] = ContextVar("acting", default=None)
 
 
+@dataclass(frozen=True)
+class RoutedCall:
+    """A verb to run on the drone's owner: the drone, the verb's name, its caller, its JSON arguments,
+    who hears its progress messages, and how long the verb itself may wait (added to the forwarding
+    timeout)."""
+
+    drone_id: str
+    verb: str
+    caller: Caller
+    arguments: JsonMapping
+    on_message: OnMessage | None = None
+    wait_s: float = 0.0
+
+
 class Router(Protocol):
     """What the Commander needs of a cluster (`gateway.cluster.forwarding.ClusterRouter`)."""
 
@@ -60,18 +76,9 @@ class Router(Protocol):
         """The latest operation of a drone owned elsewhere, as its owner last published it (keys:
         id, kind, status, progress, message, eta_s, elapsed_s, params); None when there is none."""
 
-    async def call(
-        self,
-        drone_id: str,
-        verb: str,
-        caller: Caller,
-        arguments: JsonMapping,
-        on_message: OnMessage | None = None,
-        wait_s: float = 0.0,
-    ) -> JsonValue:
-        """Run ``verb`` on the drone's owner (``arguments``: what JSON encodes); its JSON result, or its
-        error raised here as the same class. ``wait_s``: how long the verb itself may wait (added to the
-        forwarding timeout)."""
+    async def call(self, routed: RoutedCall) -> JsonValue:
+        """Run the verb on the drone's owner (its arguments: what JSON encodes); its JSON result, or its
+        error raised here as the same class."""
 
     async def announce(self, kind: str, body: JsonObject) -> None:
         """Tell every other node (operator locks, the emergency stop)."""

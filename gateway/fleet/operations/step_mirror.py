@@ -9,7 +9,7 @@ from datetime import UTC, datetime
 from gateway.errors import GatewayError
 from gateway.fleet.operations.fleet_operation import FLEET_CALLER
 from gateway.fleet.operations.operation_state import Operation, OpStatus
-from gateway.fleet.operations.routing import ProgressMessage, Router
+from gateway.fleet.operations.routing import ProgressMessage, RoutedCall, Router
 from gateway.fleet.operations.views import OperationView
 
 FOLLOW_WAIT_S = 30.0
@@ -41,12 +41,14 @@ async def follow(router: Router, mirror: Operation) -> None:
     while not mirror.finished:
         try:
             view = await router.call(
-                mirror.vehicle_id,
-                "wait",
-                FLEET_CALLER,
-                {"operation_id": mirror.id, "cap_s": FOLLOW_WAIT_S},
-                message,
-                wait_s=FOLLOW_WAIT_S,
+                RoutedCall(
+                    mirror.vehicle_id,
+                    "wait",
+                    FLEET_CALLER,
+                    {"operation_id": mirror.id, "cap_s": FOLLOW_WAIT_S},
+                    message,
+                    wait_s=FOLLOW_WAIT_S,
+                )
             )
             mirror_view(mirror, OperationView.model_validate(view))
             failures = 0

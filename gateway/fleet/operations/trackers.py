@@ -84,7 +84,7 @@ class FlightEnd:
     _alt: float | None = None
 
     def failure(self, vehicle: VehicleView) -> str | None:
-        armed = value(vehicle, "armed")
+        armed = value(vehicle.telemetry.armed)
         pos = position(vehicle)
         landed = is_landed(vehicle)
         if not landed and armed and pos is not None and pos[2] > 1.0:
@@ -127,7 +127,7 @@ class TakeoffTracker:
 
     async def poll(self, vehicle: FlyingVehicle) -> Poll:
         pos = position(vehicle)
-        armed = value(vehicle, "armed")
+        armed = value(vehicle.telemetry.armed)
         if armed:
             self._seen_armed = True
         elif self._seen_armed and armed is False:
@@ -162,7 +162,7 @@ class GotoTracker:
         return geo.horizontal_distance_m(pos[0], pos[1], self.lat, self.lon), self.alt_rel_m - pos[2]
 
     async def poll(self, vehicle: FlyingVehicle) -> Poll:
-        if value(vehicle, "armed") is False or is_landed(vehicle):
+        if value(vehicle.telemetry.armed) is False or is_landed(vehicle):
             return Poll(0.0, "vehicle is not flying", failed="vehicle landed or disarmed before arriving")
         d = self.distance(vehicle)
         if d is None:
@@ -212,7 +212,7 @@ class YawTracker:
     tolerance_deg: float = 5.0
 
     async def poll(self, vehicle: FlyingVehicle) -> Poll:
-        heading = value(vehicle, "heading_deg")
+        heading = value(vehicle.telemetry.heading_deg)
         if heading is None:
             return Poll(0.0, "waiting for heading telemetry")
         err = abs((float(heading) - self.heading_deg + 180.0) % 360.0 - 180.0)
@@ -275,7 +275,7 @@ class MissionTracker:
         self._end.lands = self.lands
 
     async def poll(self, vehicle: FlyingVehicle) -> Poll:
-        prog = value(vehicle, "mission_progress")
+        prog = value(vehicle.telemetry.mission_progress)
         current, total = (int(prog.current), int(prog.total)) if prog is not None else (0, 0)
         ended = self._end.failure(vehicle)
         if ended is not None:
@@ -307,7 +307,7 @@ class MissionTracker:
     def _left_auto(self, vehicle: FlyingVehicle) -> str | None:
         """The autopilot itself left AUTO (a failsafe, a pilot, another ground station) for longer than
         LEFT_AUTO_GRACE_S. The gateway's own pause/hold supersedes the operation before that."""
-        mode = value(vehicle, "flight_mode")
+        mode = value(vehicle.telemetry.flight_mode)
         if mode is None:
             return None
         if str(mode).upper() in ("AUTO", "MISSION", "AUTO.MISSION"):

@@ -70,7 +70,8 @@ class VehicleContext:
 
 @dataclass(frozen=True)
 class Target:
-    """A motion target: latitude, longitude (degrees), altitude in metres above home."""
+    """A motion target: latitude, longitude (degrees), altitude in metres above home. Where a drone is
+    commanded to, not where it reports it is (`gateway.link.telemetry.PositionValue`, both altitudes)."""
 
     lat: float
     lon: float
@@ -88,22 +89,14 @@ class RunningOperation:
 
 
 class MissionItemLike(Protocol):
-    """The fields of `gateway.fleet.missions.mission.MissionItem` the policy reads."""
+    """The fields of `gateway.fleet.missions.mission.MissionItem` the policy reads (mypy checks the model
+    against them where the policy is handed its items)."""
 
-    @property
-    def lat(self) -> float: ...
-
-    @property
-    def lon(self) -> float: ...
-
-    @property
-    def alt_rel_m(self) -> float: ...
+    lat: float
+    lon: float
+    alt_rel_m: float
+    speed_mps: float | None
+    command: int | None
 
     @property
     def kind(self) -> str: ...
-
-    @property
-    def speed_mps(self) -> float | None: ...
-
-    @property
-    def command(self) -> int | None: ...

@@ -8,23 +8,13 @@ judge staleness themselves), ``fresh`` only a value younger than the stale limit
 from __future__ import annotations
 
 import math
-from typing import Literal, overload
+from typing import TypeVar
 
 from gateway.fleet.policy.safety_inputs import VehicleContext
 from gateway.fleet.vehicles.protocols import VehicleView
-from gateway.link.telemetry import (
-    AttitudeValue,
-    BatteryValue,
-    GpsInfoValue,
-    HealthValue,
-    ImuValue,
-    MissionProgressValue,
-    OdometryValue,
-    PositionValue,
-    RcStatusValue,
-    Sample,
-    VelocityNedValue,
-)
+from gateway.link.telemetry import Sample
+
+T = TypeVar("T")
 
 
 def sample(vehicle: VehicleView, name: str) -> Sample[object] | None:
@@ -32,36 +22,9 @@ def sample(vehicle: VehicleView, name: str) -> Sample[object] | None:
     return found
 
 
-@overload
-def value(vehicle: VehicleView, name: Literal["position", "home"]) -> PositionValue | None: ...
-@overload
-def value(vehicle: VehicleView, name: Literal["attitude"]) -> AttitudeValue | None: ...
-@overload
-def value(vehicle: VehicleView, name: Literal["velocity_ned"]) -> VelocityNedValue | None: ...
-@overload
-def value(vehicle: VehicleView, name: Literal["heading_deg"]) -> float | None: ...
-@overload
-def value(vehicle: VehicleView, name: Literal["battery"]) -> BatteryValue | None: ...
-@overload
-def value(vehicle: VehicleView, name: Literal["gps_info"]) -> GpsInfoValue | None: ...
-@overload
-def value(vehicle: VehicleView, name: Literal["flight_mode", "landed_state"]) -> str | None: ...
-@overload
-def value(vehicle: VehicleView, name: Literal["armed", "in_air"]) -> bool | None: ...
-@overload
-def value(vehicle: VehicleView, name: Literal["health"]) -> HealthValue | None: ...
-@overload
-def value(vehicle: VehicleView, name: Literal["rc_status"]) -> RcStatusValue | None: ...
-@overload
-def value(vehicle: VehicleView, name: Literal["imu"]) -> ImuValue | None: ...
-@overload
-def value(vehicle: VehicleView, name: Literal["odometry"]) -> OdometryValue | None: ...
-@overload
-def value(vehicle: VehicleView, name: Literal["mission_progress"]) -> MissionProgressValue | None: ...
-def value(vehicle: VehicleView, name: str) -> object:
-    """The cached value of stream ``name`` (None when never received), however old (typed by the
-    stream's name, as `TelemetryCache.fresh`)."""
-    found = sample(vehicle, name)
+def value(found: Sample[T] | None) -> T | None:
+    """A stream's cached value (None when never received), however old; typed by the cache's field it
+    is read from (``value(vehicle.telemetry.armed)``)."""
     return None if found is None else found.value
 
 
@@ -78,7 +41,7 @@ def is_stale(vehicle: VehicleView, age: float, limit_s: float) -> bool:
 
 def position(vehicle: VehicleView) -> tuple[float, float, float] | None:
     """(lat, lon, alt_rel_m) from the cache, or None."""
-    pos = value(vehicle, "position")
+    pos = value(vehicle.telemetry.position)
     if pos is None:
         return None
     return float(pos.lat_deg), float(pos.lon_deg), float(pos.rel_alt_m)
@@ -86,21 +49,21 @@ def position(vehicle: VehicleView) -> tuple[float, float, float] | None:
 
 def home(vehicle: VehicleView) -> tuple[float, float, float] | None:
     """(lat, lon, alt_amsl_m) of home from the cache, or None."""
-    h = value(vehicle, "home")
+    h = value(vehicle.telemetry.home)
     if h is None:
         return None
     return float(h.lat_deg), float(h.lon_deg), float(h.abs_alt_m)
 
 
 def ground_speed(vehicle: VehicleView) -> float | None:
-    v = value(vehicle, "velocity_ned")
+    v = value(vehicle.telemetry.velocity_ned)
     if v is None:
         return None
     return math.hypot(float(v.north_mps), float(v.east_mps))
 
 
 def climb_rate(vehicle: VehicleView) -> float | None:
-    v = value(vehicle, "velocity_ned")
+    v = value(vehicle.telemetry.velocity_ned)
     return None if v is None else -float(v.down_mps)
 
 
@@ -115,12 +78,12 @@ def is_airborne(vehicle: VehicleView) -> bool:
 
 
 def is_landed_and_disarmed(vehicle: VehicleView) -> bool:
-    return value(vehicle, "armed") is False and is_landed(vehicle)
+    return value(vehicle.telemetry.armed) is False and is_landed(vehicle)
 
 
 def is_flying(vehicle: VehicleView) -> bool:
     """Armed and in the air, as far as the cache says."""
-    return is_airborne(vehicle) and value(vehicle, "armed") is True
+    return is_airborne(vehicle) and value(vehicle.telemetry.armed) is True
 
 
 def vehicle_context(vehicle: VehicleView) -> VehicleContext:

@@ -41,7 +41,7 @@ from gateway.fleet.vehicles.waits import wait_for_state
 from gateway.link.contract import ConnectionState, GroundCommand, OnWait, Peer
 from gateway.link.link_status import link_status
 from gateway.link.mavsdk_system import System
-from gateway.link.session import Link
+from gateway.link.session import Link, LinkHooks
 from gateway.link.sidecar import Confine, Sidecar
 from gateway.link.telemetry import TelemetryCache
 from gateway.registry.spec import VehicleSpec
@@ -77,9 +77,7 @@ class Vehicle:
         self.settings = settings
         self.store = store
         self._on_state = on_state
-        self.link = Link(
-            spec,
-            settings,
+        hooks = LinkHooks(
             dialect_for,
             peers=peers,
             confine=confine,
@@ -92,6 +90,7 @@ class Vehicle:
             ],
             on_relay_refused=self._relay_refused,
         )
+        self.link = Link(spec, settings, hooks)
         self.missions = MissionControl(self.link, self)
         self.arming = Arming(self.link, self)
         self.params = Parameters(spec.id, self.link.call, self.link.require_session)
@@ -113,18 +112,6 @@ class Vehicle:
         await asyncio.Event().wait()
 
     # --- identity, state and the link ----------------------------------------------------------------
-    @property
-    def id(self) -> str:
-        return self.link.id
-
-    @property
-    def spec(self) -> VehicleSpec:
-        return self.link.spec
-
-    @spec.setter
-    def spec(self, spec: VehicleSpec) -> None:
-        self.link.spec = spec
-
     async def move_origin(self, lat: object, lon: object, alt_amsl_m: object, by: str) -> Origin:
         return await self.origins.move(lat, lon, alt_amsl_m, by)
 
@@ -150,6 +137,8 @@ class Vehicle:
         return flying_dialect(self.link.facts.autopilot, self.id)
 
     # read of the link as it is
+    id = ReadThrough[str]("link")
+    spec = ReadThrough[VehicleSpec]("link", writable=True)
     telemetry = ReadThrough[TelemetryCache]("link")
     sidecar = ReadThrough[Sidecar | None]("link")
     system = ReadThrough[System]("link")
@@ -207,7 +196,7 @@ class Vehicle:
         await self.origins.start()  # the stored origin is known before the first home arrives
         await self.link.connect()  # a failed sidecar starts afresh; a running one is left alone
         if self.store is not None and self._recorder is None:
-            recorder = FlightRecorder(self, self.store, self.settings)
+            recorder = FlightRecorder(self.link, self.heartbeat_state, self.store, self.settings)
             await recorder.start()  # a start that failed is tried again by the next connect
             self._recorder = recorder
 

@@ -16,13 +16,13 @@ async def wait_for_state(
     view: VehicleView, *states: ConnectionState | str, within_s: float = 60.0
 ) -> ConnectionState:
     """Wait until the drone's state is one of ``states``; VehicleNotReady naming the state it is in
-    (and why, when its view says) once ``within_s`` passed."""
+    (and why, when its view says: what it still waits for, its last error) once ``within_s`` passed."""
     wanted = {ConnectionState(s) for s in states}
     loop = asyncio.get_running_loop()
     deadline = loop.time() + within_s
     while (state := view.state) not in wanted:
         if loop.time() > deadline:
-            why = view.last_error
+            why = "; ".join(filter(None, (view.initialising(), view.last_error)))
             raise VehicleNotReady(
                 f"drone '{view.id}' did not reach {'/'.join(sorted(s.value for s in wanted))} within "
                 f"{within_s:g} s; it is {state.value}" + (f" ({why})" if why else ""),

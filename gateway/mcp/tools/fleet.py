@@ -74,17 +74,17 @@ def _row(call: ToolCall, v: VehicleView) -> DroneRow:
     state = v.state
     sample = v.telemetry.position
     pos = None if sample is None else sample.value
-    battery = value(v, "battery")
+    battery = value(v.telemetry.battery)
     battery_pct = None if battery is None else battery.remaining_pct  # None: the autopilot does not know
     op = call.commander.current_operation(v.id)  # on a cluster node also a drone owned elsewhere
-    mode = value(v, "flight_mode")
+    mode = value(v.telemetry.flight_mode)
     landed = v.on_ground(fresh=False)
     return {
         "drone_id": v.id,
         "name": v.spec.name,
         "tags": list(v.spec.tags),
         "state": str(plain(state)),
-        "armed": value(v, "armed"),
+        "armed": value(v.telemetry.armed),
         "in_air": None if landed is None else not landed,
         "battery_pct": None if battery_pct is None else round(battery_pct, 1),
         "lat_deg": None if pos is None else round(float(pos.lat_deg), 7),

@@ -16,9 +16,9 @@ toolset = Toolset("navigation")
 
 def position_out(call: ToolCall, drone_id: str, which: Literal["position", "home"]) -> PositionOut:
     v = call.commander.vehicle(drone_id)
-    p = value(v, which)
+    p = value(v.telemetry.position if which == "position" else v.telemetry.home)
     if p is None:
-        gps = value(v, "gps_info")
+        gps = value(v.telemetry.gps_info)
         fix = "" if gps is None else f"; GPS fix {gps.fix_type}, {gps.num_satellites} satellites"
         what = "position" if which == "position" else f"{which} position"
         raise VehicleNotReady(

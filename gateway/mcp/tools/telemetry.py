@@ -2,7 +2,8 @@
 only reads (nothing is sent to the drone and no state changes), so none is a command: commands are
 declared with their verbs (gateway/fleet/commands).
 
-A value older than ``link_lost_after_s`` is flagged ``stale`` (and said so in the text), never passed off
+A value older than its stream's limit (``link_lost_after_s``, longer for a stream asked for slower at
+rest: ``TelemetryCache.stale_limit_s``) is flagged ``stale`` (and said so in the text), never passed off
 as current.
 """
 
@@ -58,7 +59,7 @@ def read(
     if s is None:
         raise VehicleNotReady(f"no {name.replace('_', ' ')} received from {drone_id} yet (state: {v.state})")
     age = float(s.age_s)
-    stale = is_stale(v, age, call.settings.link_lost_after_s)
+    stale = is_stale(v, age, v.telemetry.stale_limit_s(name))
     note = f" [STALE: {age:.0f} s old, link lost?]" if stale else ""
     return s.value, Freshness(drone_id=drone_id, age_s=round(age, 2), stale=stale), note
 

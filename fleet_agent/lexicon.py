@@ -1,0 +1,87 @@
+"""The one place the host reads words of a request: units written after a number, and whether the request
+speaks of landing or of going home at all. Words of the languages operators write in; a word matches a
+stem when it starts with it. Everything else the host reads without words (`fleet_agent.consistency`).
+"""
+
+from __future__ import annotations
+
+from itertools import pairwise
+
+from fleet_agent.units import Unit
+
+#: a unit's words, each the whole word that follows a number ("50 ft", "0,05 km", "100 yards")
+UNIT_WORDS: dict[Unit, frozenset[str]] = {
+    Unit.m: frozenset("m metre metres meter meters mètre mètres metro metros metri mtr mts".split()),
+    Unit.ft: frozenset("ft feet foot pied pieds pie pies piede piedi pé pés fuß fuss voet".split()),
+    Unit.yd: frozenset("yd yds yard yards yarda yardas iarde jarda jardas".split()),
+    Unit.km: frozenset(
+        "km kms kilometre kilometres kilometer kilometers kilomètre kilomètres kilómetro kilómetros "
+        "chilometro chilometri quilômetro quilômetros quilómetro quilómetros".split()
+    ),
+    Unit.mi: frozenset("mi mile miles milla millas meile meilen miglio miglia milha milhas mijl".split()),
+    Unit.nmi: frozenset("nmi".split()),
+}
+
+#: stems that end a flight where the drone is: a request with none of these (nor of HOME_STEMS) asks for
+#: no landing. Broad on purpose: a stem here only keeps a landing the model wrote.
+LAND_STEMS = (
+    "land", "down", "hop", "hops", "ground", "touch", "settl", "park", "desc", "desç", "atterr", "aterr",
+    "pous", "pose", "posa", "sol", "suelo", "tierra", "terra", "baja", "bája", "scend", "boden", "runter",
+    "unten", "aufsetz", "absetz", "giù", "chão", "chao", "grond", "neer",
+)  # fmt: skip
+
+#: stems that say to land, whatever else the request says ("down" may be a descent, these never are)
+LAND_ONLY_STEMS = ("land", "atterr", "aterr", "pous")
+
+#: stems of going back to the launch point
+HOME_STEMS = (
+    "home", "back", "return", "rtl", "launch", "casa", "maison", "retour", "revien", "rentr",
+    "base", "départ", "depart", "origin", "heim", "zurück", "zuruck", "rück", "volv", "vuelv", "regres",
+    "retorn", "ritorn", "rientr", "torn", "volta", "volte", "thuis", "terug",
+)  # fmt: skip
+
+
+def words(text: str) -> list[str]:
+    """The words of a text in any script, lower case: runs of letters (digits split off)."""
+    return "".join(c if c.isalpha() else " " for c in text.lower()).split()
+
+
+def says(text: str, stems: tuple[str, ...]) -> bool:
+    """``text`` has a word starting with one of ``stems`` (a stem of three letters or less: that word)."""
+    return any(w == s or (len(s) > 3 and w.startswith(s)) for w in words(text) for s in stems)
+
+
+def number_units(text: str) -> dict[float, set[Unit]]:
+    """Each number of ``text`` written with a unit right after it, and the units it was written with."""
+    found_tokens = tokens(text.lower())
+    found: dict[float, set[Unit]] = {}
+    for token, word in pairwise(found_tokens):
+        value = number(token)
+        unit = next((u for u, names in UNIT_WORDS.items() if word in names), None)
+        if value is not None and unit is not None:
+            found.setdefault(value, set()).add(unit)
+    return found
+
+
+def tokens(text: str) -> list[str]:
+    """Runs of digits (with a decimal point or comma inside) and runs of letters, in order."""
+    out: list[str] = []
+    kind = ""
+    for c in text:
+        k = "d" if c.isdigit() or (kind == "d" and c in ".,") else "a" if c.isalpha() else ""
+        if k and k == kind:
+            out[-1] += c
+        elif k:
+            out.append(c)
+        kind = k
+    return [t.rstrip(".,") for t in out]
+
+
+def number(token: str) -> float | None:
+    """The number a token of digits writes (a decimal comma read as a point), else None."""
+    if not token[:1].isdigit():
+        return None
+    try:
+        return float(token.replace(",", "."))
+    except ValueError:
+        return None

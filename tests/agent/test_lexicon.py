@@ -1,0 +1,136 @@
+"""What the request's own words settle in a plan: units written after numbers, and which endings it asks."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from fleet_agent.consistency import as_request_says, placed_by_name, split_formation
+from fleet_agent.lexicon import number_units
+from fleet_agent.units import Unit
+
+
+def _m(value: float, unit: str = "m") -> dict[str, Any]:
+    return {"value": value, "unit": unit}
+
+
+def _move(after: str, *legs: tuple[float, str, str]) -> dict[str, Any]:
+    return {"action": "move", "drone": "alpha", "origin": "here", "altitude": None, "after": after,
+            "legs": [{"distance": _m(v, u), "direction": d} for v, u, d in legs]}  # fmt: skip
+
+
+def test_a_number_takes_the_unit_written_after_it_in_any_language() -> None:
+    assert number_units("Alpha: climb to 30 ft, fly 0,05 km east") == {30.0: {Unit.ft}, 0.05: {Unit.km}}
+    assert number_units("Lleva a charlie 30 metros al norte, 100 yardas") == {
+        30.0: {Unit.m},
+        100.0: {Unit.yd},
+    }
+    assert number_units("bravo 50ft up, then 2 mi") == {50.0: {Unit.ft}, 2.0: {Unit.mi}}
+    assert number_units("alpha 10 m and 10 ft") == {10.0: {Unit.m, Unit.ft}}
+    assert number_units("if the battery is above 40 %") == {}
+
+
+def test_a_length_written_in_metres_takes_the_requests_unit() -> None:
+    data = {"steps": [{"action": "altitude", "drone": "alpha", "altitude": _m(30), "after": "stay"},
+                      _move("stay", (150, "m", "south"), (10, "m", "up"))]}  # fmt: skip
+    out = as_request_says("alpha to 30 ft, then 150 yards south and 10 m up, stay there", data)
+    assert out["steps"][0]["altitude"] == _m(30, "ft")
+    assert [leg["distance"] for leg in out["steps"][1]["legs"]] == [_m(150, "yd"), _m(10)]
+
+
+def test_a_return_home_the_request_never_speaks_of_is_a_landing_or_a_stay() -> None:
+    stay = as_request_says(
+        "alpha 30 m north and hold there", {"steps": [_move("return_home", (30, "m", "north"))]}
+    )
+    assert stay["steps"][0]["after"] == "stay"
+    land = as_request_says(
+        "alpha 30 m north, then set it down", {"steps": [_move("return_home", (30, "m", "north"))]}
+    )
+    assert land["steps"][0]["after"] == "land"
+    home = as_request_says(
+        "alpha 30 m north, then bring it home", {"steps": [_move("return_home", (30, "m", "north"))]}
+    )
+    assert home["steps"][0]["after"] == "return_home"
+    steps = [_move("stay", (30, "m", "north")), {"action": "return_home", "drone": "alpha"}]
+    es = as_request_says("charlie 30 metros al norte y déjalo ahí", {"steps": steps})
+    assert es["steps"] == [_move("stay", (30, "m", "north"))]
+
+
+def test_a_landing_the_request_never_speaks_of_is_left_out_and_one_it_asks_is_kept() -> None:
+    hop = {"action": "takeoff", "drone": "alpha", "altitude": _m(9), "after": "land"}
+    branch = {"action": "if", "drone": "alpha", "reading": "battery", "compare": "below", "value": 20,
+              "then": [], "otherwise": [hop, {"action": "land", "drone": "alpha"}]}  # fmt: skip
+    out = as_request_says(
+        "Alpha soll auf 9 m steigen und dort schweben, wenn der Akku reicht", {"steps": [branch]}
+    )
+    assert out["steps"][0]["otherwise"] == [
+        {"action": "takeoff", "drone": "alpha", "altitude": _m(9), "after": "stay"}
+    ]
+    kept = as_request_says("Alpha : monte à 9 m puis atterris.", {"steps": [_move("land", (9, "m", "up"))]})
+    assert kept["steps"][0]["after"] == "land"
+
+
+def test_a_landing_asked_and_left_out_of_a_one_drone_plan_ends_it() -> None:
+    data = {"steps": [{"action": "takeoff", "drone": "alpha", "altitude": _m(10), "after": "stay"},
+                      _move("stay", (20, "m", "south"))]}  # fmt: skip
+    out = as_request_says("Charlie auf 10 m starten, 20 m nach Süden fliegen und dann landen.", data)
+    assert [s["after"] for s in out["steps"]] == ["stay", "land"]
+    two = {
+        "steps": [_move("stay", (20, "m", "south")), {**_move("stay", (20, "m", "south")), "drone": "bravo"}]
+    }
+    assert as_request_says("alpha and bravo 20 m south, land bravo", two) == two
+
+
+def _here(drone: str, value: float, direction: str) -> dict[str, Any]:
+    return {**_move("stay", (value, "m", direction)), "drone": drone}
+
+
+def test_a_move_from_here_is_measured_from_the_drone_named_after_its_distance() -> None:
+    fleet = ["alpha", "bravo", "charlie"]
+    out = placed_by_name(
+        "Put alpha 25 m north of bravo, at 15 m.", fleet, {"steps": [_here("alpha", 25, "north")]}
+    )
+    assert out["steps"][0]["origin"] == "bravo"
+    fr = placed_by_name(
+        "Place charlie à 20 m à l'ouest d'alpha.", fleet, {"steps": [_here("charlie", 20, "west")]}
+    )
+    assert fr["steps"][0]["origin"] == "alpha"
+    apart = {"steps": [_here("alpha", 20, "north")]}
+    assert placed_by_name("Alpha 20 m north. Bravo stays down.", fleet, apart)["steps"][0]["origin"] == "here"
+    before = {"steps": [_here("alpha", 20, "north")]}
+    assert placed_by_name("Bravo stays, alpha 20 m north", fleet, before)["steps"][0]["origin"] == "here"
+
+
+def test_a_formation_whose_drones_are_each_named_before_a_leg_is_one_move_each() -> None:
+    legs = [{"distance": _m(25), "direction": "east"}, {"distance": _m(30), "direction": "north"}]
+    formation = {"action": "formation", "drones": ["bravo", "alpha"], "shape": "line", "spacing": _m(25),
+                 "altitude": _m(10), "legs": legs}  # fmt: skip
+    out = split_formation("alpha 25 m east and bravo 30 m north, both at 10 m", {"steps": [dict(formation)]})
+    assert [(s["action"], s["drone"], s["legs"]) for s in out["steps"]] == [
+        ("move", "alpha", [legs[0]]),
+        ("move", "bravo", [legs[1]]),
+    ]
+    assert {s["altitude"]["value"] for s in out["steps"]} == {10}
+    together = split_formation(
+        "alpha and bravo in a line, 25 m east and 30 m north", {"steps": [dict(formation)]}
+    )
+    assert together["steps"] == [formation]
+
+
+def test_a_climb_to_zero_the_request_never_asks_is_left_out() -> None:
+    zero = {"action": "altitude", "drone": "alpha", "altitude": _m(0, "ft"), "after": "stay"}
+    out = as_request_says(
+        "alpha 40 m south, then climb another 20 feet there and hover", {"steps": [dict(zero)]}
+    )
+    assert out["steps"] == []
+    down = as_request_says("alpha: bring it down to the ground", {"steps": [dict(zero)]})
+    assert down["steps"] == [{"action": "land", "drone": "alpha"}]
+
+
+def test_a_move_measured_from_its_own_drone_is_from_its_home_or_from_where_it_is() -> None:
+    own = {**_move("stay", (20, "m", "north")), "origin": "alpha"}
+    home = as_request_says("alpha 30 m west, then to a point 20 m north of its home", {"steps": [dict(own)]})
+    assert home["steps"][0]["origin"] == "home"
+    here = as_request_says(
+        "alpha 20 m north and hover", {"steps": [{**own, "origin": {"kind": "drone", "drone": "alpha"}}]}
+    )
+    assert here["steps"][0]["origin"] == "here"
