@@ -1623,7 +1623,7 @@ def _fourth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 8), _takeoff("bravo", 12), _takeoff("charlie", 16)],
                "Alpha est à 8 m, bravo à 12 m, charlie à 16 m."),
         _entry("multi", "test", "multi4-pl-all-but-bravo", three,
-               "Z alpha, bravo i charlie wznieś na 13 metrów wszystkie oprócz bravo i zostaw je w powietrzu.",
+               "Wszystkie drony oprócz bravo wznieś na 13 metrów i zostaw je w powietrzu.",
                lambda c, ev: _all(airborne_at(ev, "alpha", 13), airborne_at(ev, "charlie", 13),
                                   never_armed(ev, "bravo")),
                [_takeoff("alpha", 13), _takeoff("charlie", 13)], "Alpha i charlie wiszą na 13 m; bravo stoi."),
