@@ -368,7 +368,7 @@ def pattern_legs(step: Pattern) -> list[geometry.Offset]:
     if step.shape == "orbit":
         return geometry.orbit_legs(step.size.metres, clockwise=clockwise)
     spacing = step.spacing.metres if step.spacing is not None else step.size.metres / 4
-    return geometry.survey_legs(step.lines or 2, step.size.metres, spacing, heading)
+    return geometry.survey_legs(step.lines or 2, step.size.metres, spacing, heading, clockwise)
 
 
 def reading_value(state: DroneState, reading: str) -> float | None:

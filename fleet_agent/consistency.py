@@ -315,3 +315,28 @@ def _each_its_leg(step: Any, tokens: list[str]) -> list[tuple[str, Any]] | None:
         legs.remove(leg)
         pairs.append((drone, leg))
     return pairs
+
+
+def questions_of_fleet(request: str, fleet: list[str], data: Any) -> Any:
+    """The decoded plan with an ``if`` that does nothing either way, in a request about more drones than
+    the ``if``'s one, read as the question it is: a report of that reading for the drones the request
+    names (all the fleet when it names none), picking the lowest or highest as the ``if`` compared (a
+    question whether any drone was under a threshold was planned as one drone's ``if``)."""
+    if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
+        return data
+    drones = sorted(_named(request, fleet)) or list(fleet)
+    data["steps"] = [_as_report(step, drones) for step in data["steps"]]
+    return data
+
+
+def _as_report(step: Any, drones: list[str]) -> Any:
+    if (
+        not isinstance(step, dict)
+        or step.get("action") != "if"
+        or step.get("then")
+        or step.get("otherwise")
+        or drones == [step.get("drone")]
+    ):
+        return step
+    pick = "lowest" if step.get("compare") in ("below", "at_most") else "highest"
+    return {"action": "report", "drones": drones, "readings": [step.get("reading")], "pick": pick}

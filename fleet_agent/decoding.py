@@ -14,6 +14,7 @@ from fleet_agent.consistency import (
     as_request_says,
     gaps,
     placed_by_name,
+    questions_of_fleet,
     split_formation,
     without_unasked,
 )
@@ -104,7 +105,7 @@ class Planner:
         the plan already there (a repair that does worse is not taken); what is wrong with it, or None."""
         try:
             data = as_request_says(request, split_formation(request, json.loads(_json_part(reply))))
-            data = placed_by_name(request, fleet, data)
+            data = questions_of_fleet(request, fleet, placed_by_name(request, fleet, data))
             plan = without_unasked(request, fleet, parse_plan(data, fleet))
         except (ValidationError, ValueError) as exc:
             attempt.errors.append(describe_errors(exc))

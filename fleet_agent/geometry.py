@@ -71,11 +71,12 @@ def orbit_legs(radius_m: float, points: int = 12, clockwise: bool = True) -> lis
 
 
 def survey_legs(
-    lines: int, length_m: float, spacing_m: float, first_heading_deg: float = 0.0
+    lines: int, length_m: float, spacing_m: float, first_heading_deg: float = 0.0, right: bool = True
 ) -> list[Offset]:
-    """A lawnmower: ``lines`` parallel lines of ``length_m``, ``spacing_m`` apart, stepping to the right."""
+    """A lawnmower: ``lines`` parallel lines of ``length_m``, ``spacing_m`` apart, stepping to the right
+    (to the left unless ``right``)."""
     along = heading_vector(first_heading_deg)
-    across = heading_vector(first_heading_deg + 90.0)
+    across = heading_vector(first_heading_deg + (90.0 if right else -90.0))
     legs: list[Offset] = []
     for i in range(lines):
         sign = 1.0 if i % 2 == 0 else -1.0

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from fleet_agent.consistency import gaps, without_unasked
+from fleet_agent.consistency import gaps, questions_of_fleet, without_unasked
 from fleet_agent.plan import Condition, parse_plan
 from fleet_agent.prompt import messages_for, prefix_messages
 
@@ -62,3 +62,23 @@ def test_a_branch_step_for_a_drone_the_request_does_not_name_is_dropped() -> Non
     assert isinstance(step, Condition)
     assert [s.drone for s in step.then] == ["alpha"]  # type: ignore[union-attr]
     assert step.otherwise == []
+
+
+def _if(drone: str, compare: str, then: list[dict[str, object]]) -> dict[str, object]:
+    return {"action": "if", "drone": drone, "reading": "battery", "compare": compare, "value": 50,
+            "then": then, "otherwise": []}  # fmt: skip
+
+
+def test_an_if_that_does_nothing_in_a_question_of_several_drones_is_a_report() -> None:
+    question = {"steps": [_if("alpha", "below", [])]}
+    fleet_wide = questions_of_fleet("Is any drone under half charge?", FLEET, question)
+    assert fleet_wide["steps"] == [
+        {"action": "report", "drones": FLEET, "readings": ["battery"], "pick": "lowest"}
+    ]
+    pair = questions_of_fleet("Bravo or charlie over 50 %?", FLEET, {"steps": [_if("bravo", "above", [])]})
+    assert pair["steps"][0]["drones"] == ["bravo", "charlie"] and pair["steps"][0]["pick"] == "highest"
+    one = {"steps": [_if("bravo", "below", [])]}
+    assert questions_of_fleet("Is bravo under 50 %?", FLEET, one)["steps"][0]["action"] == "if"
+    acts = {"steps": [_if("alpha", "below", [_up("alpha", 5)])]}
+    assert questions_of_fleet("If any is under 50 %, alpha up 5 m", FLEET, acts)["steps"][0]["action"] == "if"
+    assert _plan(*fleet_wide["steps"]).steps[0].action == "report"

@@ -60,6 +60,8 @@ def test_an_orbit_goes_out_round_and_back() -> None:
 def test_a_survey_is_a_lawnmower() -> None:
     legs = geometry.survey_legs(3, 40.0, 10.0)
     assert legs == [(40.0, 0.0), (0.0, 10.0), (-40.0, 0.0), (0.0, 10.0), (40.0, 0.0)]
+    west_then_south = geometry.survey_legs(2, 30.0, 8.0, geometry.compass_heading("west"), right=False)
+    assert west_then_south == [(0.0, -30.0), (-8.0, 0.0), (0.0, 30.0)]
 
 
 def test_offsets_round_trip() -> None:
