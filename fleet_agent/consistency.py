@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import Any
 
 from fleet_agent import lexicon
-from fleet_agent.plan import Condition, Plan
+from fleet_agent.plan import Condition, Formation, Plan
 
 _DRONE_FIELDS = ("drone", "drones", "among")
 
@@ -38,11 +38,14 @@ def without_unasked(request: str, fleet: list[str], plan: Plan) -> Plan:
 
 def _asked(steps: list[Any], named: set[str]) -> list[Any]:
     """``steps`` without those of a drone not in ``named``, an ``if``'s branches included (a choice's
-    steps name whichever drone; the chosen one flies them)."""
+    steps name whichever drone; the chosen one flies them), and a formation without such drones while
+    two remain (a formation of the two drones a request named came with the third)."""
     kept = []
     for step in steps:
         if getattr(step, "drone", None) not in (None, *named):
             continue
+        if isinstance(step, Formation) and len(asked := [d for d in step.drones if d in named]) >= 2:
+            step = step.model_copy(update={"drones": asked})
         if isinstance(step, Condition):
             branches = {"then": _asked(step.then, named), "otherwise": _asked(step.otherwise, named)}
             step = step.model_copy(update=branches)

@@ -52,6 +52,10 @@ def test_a_step_for_a_drone_the_request_does_not_name_is_dropped() -> None:
     kept = without_unasked("Bravo: up to 12 m and back down.", FLEET, plan)
     assert [s.drone for s in kept.steps] == ["bravo", "bravo"]  # type: ignore[union-attr]
     assert without_unasked("All three up to 12 m.", FLEET, plan) is plan
+    line = {"action": "formation", "drones": FLEET, "shape": "column", "spacing": {"value": 8, "unit": "m"},
+            "altitude": {"value": 12, "unit": "m"}}  # fmt: skip
+    pair = without_unasked("Charlie and alpha in a column, 8 m apart, at 12 m", FLEET, _plan(line))
+    assert pair.steps[0].drones == ["alpha", "charlie"]  # type: ignore[union-attr]
 
 
 def test_a_branch_step_for_a_drone_the_request_does_not_name_is_dropped() -> None:
