@@ -222,15 +222,8 @@ def placed_by_name(request: str, fleet: list[str], data: Any) -> Any:
 
 
 def _horizontal(leg: Any) -> bool:
-    return (
-        isinstance(leg, dict)
-        and isinstance(leg.get("distance"), dict)
-        and leg.get("direction")
-        not in (
-            "up",
-            "down",
-        )
-    )
+    is_leg = isinstance(leg, dict) and isinstance(leg.get("distance"), dict)
+    return is_leg and leg.get("direction") not in ("up", "down")
 
 
 def _horizontal_move_from_here(step: Any) -> bool:
