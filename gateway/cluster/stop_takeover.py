@@ -56,6 +56,8 @@ TAKEOVER_S = 60.0
 RETRY_S = 0.5
 #: a lease statement of the background attempts, at most (a database that hangs)
 LEASE_STATEMENT_S = 2.0
+#: the states of a drone this node took over in which its own sidecar can carry the stop: heard
+STOP_STATES = frozenset({"connected", "ready"})
 #: the autopilot's answers that mean the stop was not taken
 REFUSED = frozenset({"DENIED", "UNSUPPORTED", "FAILED", "TEMPORARILY_REJECTED", "CANCELLED"})
 
@@ -237,9 +239,13 @@ class StopTakeover:
         view = registry.find(drone_id)
         me = self._node.node_id
         if view is not None and registry.is_local(drone_id):  # taken over by this node: its own sidecar
-            if str(view.state) != "ready":
+            # a stop needs the drone heard, not ready to fly (an ArduPilot drone's first EKF report can
+            # be half a minute away on a new link): land, return and hold are tried when only connected
+            if str(view.state) not in STOP_STATES:
                 return None
-            await answer(self._node.gateway.commander, verb, {}, caller.to_dict(), no_progress)
+            await answer(
+                self._node.gateway.commander, verb, {"drone_id": drone_id}, caller.to_dict(), no_progress
+            )
             return f"through node {me}'s own sidecar, which took the drone over"
         if isinstance(view, RemoteVehicle) and view.owner is not None:  # its owner (or a new one) again
             with contextlib.suppress(NotRun, NoOwner):
