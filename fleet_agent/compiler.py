@@ -365,6 +365,9 @@ def pattern_legs(step: Pattern) -> list[geometry.Offset]:
     if step.shape in POLYGON_SIDES or step.shape == "polygon":
         sides = POLYGON_SIDES.get(step.shape) or step.sides or 4
         return geometry.polygon_legs(sides, step.size.metres, heading, clockwise)
+    if step.shape == "rectangle":
+        width = step.spacing.metres if step.spacing is not None else step.size.metres
+        return geometry.rectangle_legs(step.size.metres, width, heading, clockwise)
     if step.shape == "orbit":
         return geometry.orbit_legs(step.size.metres, clockwise=clockwise)
     spacing = step.spacing.metres if step.spacing is not None else step.size.metres / 4

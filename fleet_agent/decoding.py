@@ -40,15 +40,14 @@ class PlanAttempt:
 
 def decoding_options(decoding: str, schema: dict[str, Any]) -> dict[str, Any]:
     """The request options that make the endpoint decode under ``schema``."""
-    if decoding == "json_schema":
-        return {"response_format": {"type": "json_schema", "json_schema": {"name": "plan", "schema": schema}}}
-    if decoding == "ollama":
-        return {"extra_body": {"format": schema}}
-    if decoding == "guided":
-        return {"extra_body": {"guided_json": schema}}
-    if decoding == "none":
-        return {}
-    raise ValueError(f"decoding must be one of {', '.join(DECODINGS)}; got {decoding!r}")
+    named = {"type": "json_schema", "json_schema": {"name": "plan", "schema": schema}}
+    options: dict[str, dict[str, Any]] = {
+        "json_schema": {"response_format": named}, "ollama": {"extra_body": {"format": schema}},
+        "guided": {"extra_body": {"guided_json": schema}}, "none": {},
+    }  # fmt: skip
+    if decoding not in options:
+        raise ValueError(f"decoding must be one of {', '.join(DECODINGS)}; got {decoding!r}")
+    return options[decoding]
 
 
 def describe_errors(exc: ValidationError | ValueError) -> str:

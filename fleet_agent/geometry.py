@@ -59,6 +59,16 @@ def polygon_legs(
     return [_scaled(heading_vector(first_heading_deg + i * turn), side_m) for i in range(sides)]
 
 
+def rectangle_legs(
+    length_m: float, width_m: float, first_heading_deg: float = 0.0, clockwise: bool = True
+) -> list[Offset]:
+    """A closed rectangle from one corner: ``length_m`` along the first heading, then ``width_m`` across."""
+    along = heading_vector(first_heading_deg)
+    across = heading_vector(first_heading_deg + (90.0 if clockwise else -90.0))
+    return [_scaled(along, length_m), _scaled(across, width_m), _scaled(along, -length_m),
+            _scaled(across, -width_m)]  # fmt: skip
+
+
 def orbit_legs(radius_m: float, points: int = 12, clockwise: bool = True) -> list[Offset]:
     """Out from the centre to the circle (north), around it through ``points`` chords, and back in."""
     out = (radius_m, 0.0)

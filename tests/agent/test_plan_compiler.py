@@ -237,6 +237,10 @@ async def test_a_named_polygon_has_its_sides_and_a_polygon_its_count() -> None:
              **STAY, "action": "pattern", "drone": "alpha", "shape": "orbit", "size": m(25), "turn": "left"}
     legs = await compiled(orbit, FakeSensors({"alpha": flying()}))
     assert len(legs) == 14 and legs[1].args["east_m"] < 0  # round to the left (west) first
+    rectangle = {**NULLS, **STAY, "action": "pattern", "drone": "alpha", "shape": "rectangle", "size": m(40),
+                 "spacing": m(20), "heading": "east"}  # fmt: skip
+    sides = await compiled(rectangle, FakeSensors({"alpha": flying()}))
+    assert [(c.args["north_m"], c.args["east_m"]) for c in sides] == [(0, 40), (-20, 0), (0, -40), (20, 0)]
 
 
 async def test_a_formation_centred_on_a_point() -> None:
