@@ -196,9 +196,9 @@ class Compiler:
         return up or self.default_takeoff_m
 
     async def origin(self, ref: Reference, drone: str) -> tuple[float, float]:
-        """Where a reference is: a drone's position (read now), a home, a named place."""
+        """Where a reference is: a drone's position (read now), a home (its drone's, else the mover's), a place."""
         if ref.kind == "home":
-            return await self.sensors.home(drone)
+            return await self.sensors.home(ref.drone or drone)
         if ref.kind == "point":
             if ref.lat_deg is None or ref.lon_deg is None:
                 raise CompileError("a point needs lat_deg and lon_deg")
