@@ -196,7 +196,7 @@ class Compiler:
         return up or self.default_takeoff_m
 
     async def origin(self, ref: Reference, drone: str) -> tuple[float, float]:
-        """Where a reference is: a drone's position (read now), a home (its drone's, else the mover's), a place."""
+        """Where a reference is: a drone's position (now), a home (its drone's, else the mover's), a place."""
         if ref.kind == "home":
             return await self.sensors.home(ref.drone or drone)
         if ref.kind == "point":
