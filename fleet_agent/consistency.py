@@ -12,6 +12,7 @@ from typing import Any
 
 from fleet_agent import lexicon
 from fleet_agent.plan import Condition, Formation, Plan
+from fleet_agent.units import Unit
 
 _DRONE_FIELDS = ("drone", "drones", "among")
 
@@ -129,6 +130,8 @@ def as_request_says(request: str, data: Any) -> Any:
     for _, value in _items(data):
         if isinstance(value, dict) and {"value", "unit"} <= value.keys():
             given = units.get(value["value"]) if isinstance(value["value"], int | float) else None
+            if given is None and value["unit"] == "m" and _fraction(value["value"], units):
+                given = units[None]  # "a tenth of a mile" written as 0.1 m
             if given is not None and len(given) == 1:
                 value["unit"] = str(next(iter(given)))
     home = lexicon.says(request, lexicon.HOME_STEMS)
@@ -142,6 +145,11 @@ def as_request_says(request: str, data: Any) -> Any:
     if lexicon.says(request, lexicon.LAND_ONLY_STEMS) and not home:
         _land_at_end(data["steps"])
     return data
+
+
+def _fraction(value: Any, units: dict[float | None, set[Unit]]) -> bool:
+    """``value`` is a fraction the request does not write in digits, and it names a unit with no number."""
+    return isinstance(value, int | float) and 0 < value < 1 and value not in units and None in units
 
 
 def _endings(steps: list[Any], kept: dict[str, bool], instead: dict[str, str]) -> list[Any]:
@@ -236,14 +244,9 @@ def _horizontal_move_from_here(step: Any) -> bool:
 
 
 def _origins(steps: list[Any]) -> set[str]:
-    found = set()
-    for step in steps:
-        origin = step.get("origin") if isinstance(step, dict) else None
-        if isinstance(origin, dict):
-            origin = origin.get("drone")
-        if isinstance(origin, str):
-            found.add(origin)
-    return found
+    origins = [step.get("origin") for step in steps if isinstance(step, dict)]
+    found = [origin.get("drone") if isinstance(origin, dict) else origin for origin in origins]
+    return {origin for origin in found if isinstance(origin, str)}
 
 
 def _clauses(request: str) -> list[str]:
