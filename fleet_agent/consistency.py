@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import Any
 
 from fleet_agent import lexicon
-from fleet_agent.plan import Condition, Formation, Plan
+from fleet_agent.plan import Condition, Formation, Plan, Report
 from fleet_agent.units import Unit
 
 _DRONE_FIELDS = ("drone", "drones", "among")
@@ -316,26 +316,18 @@ def _each_its_leg(step: Any, tokens: list[str]) -> list[tuple[str, Any]] | None:
     return pairs
 
 
-def questions_of_fleet(request: str, fleet: list[str], data: Any) -> Any:
-    """The decoded plan with an ``if`` that does nothing either way, in a request about more drones than
-    the ``if``'s one, read as the question it is: a report of that reading for the drones the request
-    names (all the fleet when it names none), picking the lowest or highest as the ``if`` compared (a
-    question whether any drone was under a threshold was planned as one drone's ``if``)."""
-    if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
-        return data
+def questions_of_fleet(request: str, fleet: list[str], plan: Plan) -> Plan:
+    """The plan with an ``if`` that does nothing either way, in a request about more drones than the
+    ``if``'s one, read as the question it is: a report of that reading for the drones the request names
+    (all the fleet when it names none), picking the lowest or highest as the ``if`` compared (a question
+    whether any drone was under a threshold was planned as one drone's ``if``). Done after the plan is
+    checked against the request: the threshold is the request's number, which the report does not carry."""
     drones = sorted(_named(request, fleet)) or list(fleet)
-    data["steps"] = [_as_report(step, drones) for step in data["steps"]]
-    return data
+    return plan.model_copy(update={"steps": [_as_report(step, drones) for step in plan.steps]})
 
 
 def _as_report(step: Any, drones: list[str]) -> Any:
-    if (
-        not isinstance(step, dict)
-        or step.get("action") != "if"
-        or step.get("then")
-        or step.get("otherwise")
-        or drones == [step.get("drone")]
-    ):
+    if not isinstance(step, Condition) or step.then or step.otherwise or drones == [step.drone]:
         return step
-    pick = "lowest" if step.get("compare") in ("below", "at_most") else "highest"
-    return {"action": "report", "drones": drones, "readings": [step.get("reading")], "pick": pick}
+    pick = "lowest" if step.compare in ("below", "at_most") else "highest"
+    return Report(action="report", drones=drones, readings=[step.reading], pick=pick)

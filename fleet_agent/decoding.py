@@ -104,12 +104,13 @@ class Planner:
         the plan already there (a repair that does worse is not taken); what is wrong with it, or None."""
         try:
             data = as_request_says(request, split_formation(request, json.loads(_json_part(reply))))
-            data = questions_of_fleet(request, fleet, placed_by_name(request, fleet, data))
+            data = placed_by_name(request, fleet, data)
             plan = without_unasked(request, fleet, parse_plan(data, fleet))
         except (ValidationError, ValueError) as exc:
             attempt.errors.append(describe_errors(exc))
             return f"That plan is not valid: {attempt.errors[-1]}"
         notes = gaps(request, fleet, plan)
+        plan = questions_of_fleet(request, fleet, plan)
         if attempt.plan is None or len(notes) < attempt.gaps:
             attempt.plan, attempt.gaps = plan, len(notes)
         if not notes:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from fleet_agent.consistency import gaps, questions_of_fleet, without_unasked
-from fleet_agent.plan import Condition, parse_plan
+from fleet_agent.plan import Condition, Report, parse_plan
 from fleet_agent.prompt import messages_for, prefix_messages
 
 FLEET = ["alpha", "bravo", "charlie"]
@@ -74,15 +74,13 @@ def _if(drone: str, compare: str, then: list[dict[str, object]]) -> dict[str, ob
 
 
 def test_an_if_that_does_nothing_in_a_question_of_several_drones_is_a_report() -> None:
-    question = {"steps": [_if("alpha", "below", [])]}
-    fleet_wide = questions_of_fleet("Is any drone under half charge?", FLEET, question)
-    assert fleet_wide["steps"] == [
-        {"action": "report", "drones": FLEET, "readings": ["battery"], "pick": "lowest"}
-    ]
-    pair = questions_of_fleet("Bravo or charlie over 50 %?", FLEET, {"steps": [_if("bravo", "above", [])]})
-    assert pair["steps"][0]["drones"] == ["bravo", "charlie"] and pair["steps"][0]["pick"] == "highest"
-    one = {"steps": [_if("bravo", "below", [])]}
-    assert questions_of_fleet("Is bravo under 50 %?", FLEET, one)["steps"][0]["action"] == "if"
-    acts = {"steps": [_if("alpha", "below", [_up("alpha", 5)])]}
-    assert questions_of_fleet("If any is under 50 %, alpha up 5 m", FLEET, acts)["steps"][0]["action"] == "if"
-    assert _plan(*fleet_wide["steps"]).steps[0].action == "report"
+    question = _plan(_if("alpha", "below", []))
+    assert gaps("Is any drone under 50 % charge?", FLEET, question) == []  # read before it becomes a report
+    fleet_wide = questions_of_fleet("Is any drone under 50 % charge?", FLEET, question)
+    assert fleet_wide.steps == [Report(action="report", drones=FLEET, readings=["battery"], pick="lowest")]
+    pair = questions_of_fleet("Bravo or charlie over 50 %?", FLEET, _plan(_if("bravo", "above", [])))
+    assert pair.steps[0].drones == ["bravo", "charlie"] and pair.steps[0].pick == "highest"  # type: ignore[union-attr]
+    one = _plan(_if("bravo", "below", []))
+    assert questions_of_fleet("Is bravo under 50 %?", FLEET, one) == one
+    acts = _plan(_if("alpha", "below", [_up("alpha", 5)]))
+    assert questions_of_fleet("If any is under 50 %, alpha up 5 m", FLEET, acts) == acts
