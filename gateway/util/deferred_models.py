@@ -29,10 +29,9 @@ import importlib
 import sys
 from collections.abc import Iterator
 from types import ModuleType
-from typing import Any
 
 
-def _pydantic_internals() -> tuple[dict[str, Any], type] | None:
+def _pydantic_internals() -> tuple[dict[str, object], type] | None:
     """pydantic's config defaults and ``TypeAdapter``, where they are as this module expects."""
     try:
         from pydantic import TypeAdapter
