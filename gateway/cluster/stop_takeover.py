@@ -38,6 +38,7 @@ from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stoplink import StopTarget, direct_stop_answer, send_stop
 from gateway.errors import GatewayError, NoOwner, NotRun, StopPending
 from gateway.fleet.policy.caller import Caller
+from gateway.link.contract import HEARD
 from gateway.util.json_types import JsonObject, JsonValue
 
 if TYPE_CHECKING:
@@ -56,8 +57,6 @@ TAKEOVER_S = 60.0
 RETRY_S = 0.5
 #: a lease statement of the background attempts, at most (a database that hangs)
 LEASE_STATEMENT_S = 2.0
-#: the states of a drone this node took over in which its own sidecar can carry the stop: heard
-STOP_STATES = frozenset({"connected", "ready"})
 #: the autopilot's answers that mean the stop was not taken
 REFUSED = frozenset({"DENIED", "UNSUPPORTED", "FAILED", "TEMPORARILY_REJECTED", "CANCELLED"})
 
@@ -241,7 +240,7 @@ class StopTakeover:
         if view is not None and registry.is_local(drone_id):  # taken over by this node: its own sidecar
             # a stop needs the drone heard, not ready to fly (an ArduPilot drone's first EKF report can
             # be half a minute away on a new link): land, return and hold are tried when only connected
-            if str(view.state) not in STOP_STATES:
+            if str(view.state) not in HEARD:
                 return None
             await answer(
                 self._node.gateway.commander, verb, {"drone_id": drone_id}, caller.to_dict(), no_progress

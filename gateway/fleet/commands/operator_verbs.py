@@ -29,6 +29,7 @@ from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.geofence import FLEET
 from gateway.fleet.policy.takeover import Takeover
 from gateway.fleet.vehicles.protocols import VehicleView
+from gateway.link.contract import HEARD
 from gateway.registry.records import AuditEntry
 from gateway.registry.store import Store
 from gateway.util.cancelling import cancelled_here
@@ -42,9 +43,6 @@ STORE_LOCK_WAIT_S = 1.0
 _STORING: set[asyncio.Task[bool]] = set()
 #: a drone whose link is being established when the stop comes gets it once heard, within this
 STOP_WHEN_READY_S = 60.0
-#: the link states in which a stop can be sent: the drone is heard (a stop needs no more; being ready to
-#: fly can be half a minute later, while an ArduPilot drone's first EKF report is awaited)
-HEARD = frozenset({"connected", "ready"})
 #: the link states in which that wait is worth it (not registered, not failed)
 LINK_COMING = frozenset({"connecting", "connected", "link_lost"})
 _WAITING: set[asyncio.Task[None]] = set()
