@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import Any
 
 from fleet_agent import lexicon
-from fleet_agent.plan import Condition, Formation, Plan, Report
+from fleet_agent.plan import Condition, Plan, Report, parse_plan
 from fleet_agent.units import Unit
 
 _DRONE_FIELDS = ("drone", "drones", "among")
@@ -28,30 +28,62 @@ def gaps(request: str, fleet: list[str], plan: Plan) -> list[str]:
     return notes
 
 
+def read_plan(request: str, fleet: list[str], data: Any) -> tuple[Plan, list[str]]:
+    """The decoded reply as the plan the host compiles, and what it leaves out of the request (one note
+    each): every rewrite the host makes before compiling, in its order. Raises the validation error of a
+    plan that does not validate."""
+    data = as_request_says(request, split_formation(request, data))
+    plan = without_unasked(request, fleet, parse_plan(placed_by_name(request, fleet, data), fleet))
+    return questions_of_fleet(request, fleet, plan), gaps(request, fleet, plan)
+
+
 def without_unasked(request: str, fleet: list[str], plan: Plan) -> Plan:
-    """The plan without its steps for a drone the request does not name, when it names any: the model
-    added a step for a drone it had seen in an example (a repair asked for it wrote the same plan)."""
+    """The plan without the steps that cannot be what the request means: a step of a drone the request
+    does not name (when it names drones) that carries a number the request does not give, in a request
+    whose named drones' steps carry only its own numbers (the model added a step it had seen in an
+    example, with the example's numbers, and wrote the same plan again when asked to correct it). A step
+    of an unnamed drone that carries the request's numbers or none (a landing, a hold, a formation) is
+    kept: a request may mean drones without naming each ("the others", "both", "all three", a count)."""
     named = _named(request, fleet)
-    if not named:
+    given = _request_numbers(request, fleet)
+    if not named or not all(_only(_step_numbers(s), given) for s in _steps_of(plan.steps, named)):
         return plan
-    return plan.model_copy(update={"steps": _asked(plan.steps, named)})
+    return plan.model_copy(update={"steps": _asked(plan.steps, named, given)})
 
 
-def _asked(steps: list[Any], named: set[str]) -> list[Any]:
-    """``steps`` without those of a drone not in ``named``, an ``if``'s branches included (a choice's
-    steps name whichever drone; the chosen one flies them), and a formation without such drones while
-    two remain (a formation of the two drones a request named came with the third)."""
+def _asked(steps: list[Any], named: set[str], given: list[float]) -> list[Any]:
+    """``steps`` without a step of a drone not in ``named`` carrying a number not in ``given``, an
+    ``if``'s branches included (a choice's steps name whichever drone; the chosen one flies them)."""
     kept = []
     for step in steps:
-        if getattr(step, "drone", None) not in (None, *named):
+        drone = getattr(step, "drone", None)
+        if drone not in (None, *named) and not _only(_step_numbers(step), given):
             continue
-        if isinstance(step, Formation) and len(asked := [d for d in step.drones if d in named]) >= 2:
-            step = step.model_copy(update={"drones": asked})
         if isinstance(step, Condition):
-            branches = {"then": _asked(step.then, named), "otherwise": _asked(step.otherwise, named)}
-            step = step.model_copy(update=branches)
+            then, otherwise = _asked(step.then, named, given), _asked(step.otherwise, named, given)
+            step = step.model_copy(update={"then": then, "otherwise": otherwise})
         kept.append(step)
     return kept
+
+
+def _steps_of(steps: list[Any], named: set[str]) -> list[Any]:
+    """The steps (branches included) of the drones in ``named``."""
+    found = []
+    for step in steps:
+        if getattr(step, "drone", None) in named:
+            found.append(step)
+        if isinstance(step, Condition):
+            found += _steps_of(step.then + step.otherwise, named)
+    return found
+
+
+def _step_numbers(step: Any) -> list[float]:
+    return _plan_numbers(step.model_dump(mode="json", exclude={"then", "otherwise"}))
+
+
+def _only(numbers: list[float], given: list[float]) -> bool:
+    """Every one of ``numbers`` is one of ``given``."""
+    return all(any(abs(n - g) < 1e-6 for g in given) for n in numbers)
 
 
 def _named(request: str, fleet: list[str]) -> set[str]:
@@ -119,11 +151,12 @@ def _items(data: Any) -> list[tuple[str, Any]]:
 
 def as_request_says(request: str, data: Any) -> Any:
     """The decoded plan (JSON data) with what the request's own words settle put right, before it is
-    validated: a length whose number the request gives with one unit only carries that unit (the model
-    wrote feet as metres), and an ending the request never speaks of is left out (`fleet_agent.lexicon`:
-    a return home where it names no home, a landing where it names neither landing nor home, both
-    written by the model for a drone told to stay). A request that says land, whose plan lands no
-    drone, lands its one drone after its last step."""
+    validated, and nothing else: a length whose number the request gives with one unit only carries that
+    unit (the model wrote feet as metres), and a move measured from its own drone, in a request that
+    speaks of home where no step returns home, is measured from its home (the model wrote its own id for
+    "its home"). Both act only on words the lexicon recognises (`fleet_agent.lexicon`); a request in a
+    language it does not know leaves the plan as the model wrote it. An ending (a landing, a return) is
+    never added nor removed by words: the plan's ``after`` and its steps are the model's."""
     if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
         return data
     units = lexicon.number_units(request)
@@ -134,17 +167,20 @@ def as_request_says(request: str, data: Any) -> Any:
                 given = units[None]  # "a tenth of a mile" written as 0.1 m
             if given is not None and len(given) == 1:
                 value["unit"] = str(next(iter(given)))
-    home = lexicon.says(request, lexicon.HOME_STEMS)
-    land = lexicon.says(request, lexicon.LAND_STEMS)
-    kept = {"return_home": home, "land": land or home}
-    instead = {"return_home": "land" if land else "stay", "land": "stay"}
-    data["steps"] = _endings(data["steps"], kept, instead)
-    for step in data["steps"]:
-        if isinstance(step, dict) and step.get("drone") is not None and _origin_drone(step) == step["drone"]:
-            step["origin"] = "home" if home else "here"
-    if lexicon.says(request, lexicon.LAND_ONLY_STEMS) and not home:
-        _land_at_end(data["steps"])
+    ends = {v for k, v in _items(data) if k in ("action", "after")}
+    if "return_home" not in ends and lexicon.says(request, lexicon.HOME_STEMS):
+        for step in data["steps"]:
+            if _from_itself(step):
+                step["origin"] = "home"
     return data
+
+
+def _from_itself(step: Any) -> bool:
+    """A move measured from its own drone."""
+    if not isinstance(step, dict) or step.get("drone") is None:
+        return False
+    origin = step.get("origin")
+    return (origin.get("drone") if isinstance(origin, dict) else origin) == step["drone"]
 
 
 def _fraction(value: Any, units: dict[float | None, set[Unit]]) -> bool:
@@ -152,64 +188,9 @@ def _fraction(value: Any, units: dict[float | None, set[Unit]]) -> bool:
     return isinstance(value, int | float) and 0 < value < 1 and value not in units and None in units
 
 
-def _endings(steps: list[Any], kept: dict[str, bool], instead: dict[str, str]) -> list[Any]:
-    """``steps`` (and their branches) with each ending the request does not speak of replaced: an
-    ``after`` by ``instead``, a landing or return step (a climb to 0 m is a landing) by a landing or by
-    nothing."""
-    out = []
-    for step in steps:
-        if not isinstance(step, dict):
-            out.append(step)
-            continue
-        for branch in ("then", "otherwise"):
-            if isinstance(step.get(branch), list):
-                step[branch] = _endings(step[branch], kept, instead)
-        if _to_zero(step):
-            step = {"action": "land", "drone": step.get("drone")}
-        action, after = step.get("action"), step.get("after")
-        if isinstance(after, str) and not kept.get(after, True):
-            step["after"] = instead[after]
-        if isinstance(action, str) and not kept.get(action, True):
-            if instead[action] == "stay":
-                continue
-            step = {"action": instead[action], "drone": step.get("drone")}
-        out.append(step)
-    return out
-
-
-def _origin_drone(step: dict[str, Any]) -> Any:
-    """The drone a move is measured from (its own id is where it is or its home: the model wrote its own
-    id for "its home")."""
-    origin = step.get("origin")
-    return origin.get("drone") if isinstance(origin, dict) else origin
-
-
-def _to_zero(step: dict[str, Any]) -> bool:
-    """A climb to 0 m: a landing (the model wrote one for "hover")."""
-    altitude = step.get("altitude")
-    return (
-        step.get("action") in ("altitude", "takeoff")
-        and isinstance(altitude, dict)
-        and altitude.get("value") == 0
-    )
-
-
-def _land_at_end(steps: list[Any]) -> None:
-    """The one drone of a plan that never lands nor returns lands after its last step."""
-    flat = [s for s in steps if isinstance(s, dict)]
-    drones = {s.get("drone") for s in flat}
-    ends = {s.get("after") for s in flat} | {s.get("action") for s in flat}
-    if len(drones) != 1 or None in drones or ends & {"land", "return_home", "if", "choose"}:
-        return
-    if "after" in flat[-1]:
-        flat[-1]["after"] = "land"
-    else:
-        steps.append({"action": "land", "drone": flat[-1]["drone"]})
-
-
 #: what ends a clause of a request: a drone named after a distance in the same clause is where the
 #: distance is measured from
-_CLAUSE_ENDS = (". ", ";", "!", "?", "\n")
+_CLAUSE_ENDS = (". ", ", ", ";", "!", "?", "\n", "。", "、", "，", "；", "！", "？")
 
 
 def placed_by_name(request: str, fleet: list[str], data: Any) -> Any:

@@ -10,15 +10,8 @@ from typing import Any
 import openai
 from pydantic import ValidationError
 
-from fleet_agent.consistency import (
-    as_request_says,
-    gaps,
-    placed_by_name,
-    questions_of_fleet,
-    split_formation,
-    without_unasked,
-)
-from fleet_agent.plan import Plan, parse_plan, plan_schema
+from fleet_agent.consistency import read_plan
+from fleet_agent.plan import Plan, plan_schema
 from fleet_agent.prompt import messages_for
 from fleet_agent.records import ModelConfig, Usage
 
@@ -103,14 +96,10 @@ class Planner:
         """Take the reply's plan into ``attempt`` when it validates and leaves out less of the request than
         the plan already there (a repair that does worse is not taken); what is wrong with it, or None."""
         try:
-            data = as_request_says(request, split_formation(request, json.loads(_json_part(reply))))
-            data = placed_by_name(request, fleet, data)
-            plan = without_unasked(request, fleet, parse_plan(data, fleet))
+            plan, notes = read_plan(request, fleet, json.loads(_json_part(reply)))
         except (ValidationError, ValueError) as exc:
             attempt.errors.append(describe_errors(exc))
             return f"That plan is not valid: {attempt.errors[-1]}"
-        notes = gaps(request, fleet, plan)
-        plan = questions_of_fleet(request, fleet, plan)
         if attempt.plan is None or len(notes) < attempt.gaps:
             attempt.plan, attempt.gaps = plan, len(notes)
         if not notes:

@@ -1,6 +1,8 @@
 """The one place the host reads words of a request: units written after a number, and whether the request
-speaks of landing or of going home at all. Words of the languages operators write in; a word matches a
-stem when it starts with it. Everything else the host reads without words (`fleet_agent.consistency`).
+speaks of a drone's home. Words of the languages operators write in; a word matches a stem when it starts
+with it. A word read here only ever settles what the plan leaves open (a unit, an origin); the absence of
+a word changes nothing, so a request in a language the lexicon does not know is flown as the model
+planned it. Everything else the host reads without words (`fleet_agent.consistency`).
 """
 
 from __future__ import annotations
@@ -22,22 +24,12 @@ UNIT_WORDS: dict[Unit, frozenset[str]] = {
     Unit.nmi: frozenset("nmi".split()),
 }
 
-#: stems that end a flight where the drone is: a request with none of these (nor of HOME_STEMS) asks for
-#: no landing. Broad on purpose: a stem here only keeps a landing the model wrote.
-LAND_STEMS = (
-    "land", "down", "hop", "hops", "ground", "touch", "settl", "park", "desc", "desç", "atterr", "aterr",
-    "pous", "pose", "posa", "sol", "suelo", "tierra", "terra", "baja", "bája", "scend", "boden", "runter",
-    "unten", "aufsetz", "absetz", "giù", "chão", "chao", "grond", "neer",
-)  # fmt: skip
-
-#: stems that say to land, whatever else the request says ("down" may be a descent, these never are)
-LAND_ONLY_STEMS = ("land", "atterr", "aterr", "pous")
-
-#: stems of going back to the launch point
+#: stems of a drone's home (its launch point), read only to measure a move the model wrote from its own
+#: drone from that drone's home; a request with none of them is left as the model planned it
 HOME_STEMS = (
-    "home", "back", "return", "rtl", "launch", "casa", "maison", "retour", "revien", "rentr",
-    "base", "départ", "depart", "origin", "heim", "zurück", "zuruck", "rück", "volv", "vuelv", "regres",
-    "retorn", "ritorn", "rientr", "torn", "volta", "volte", "thuis", "terug",
+    "home", "return", "rtl", "casa", "maison", "retour", "revien", "rentr", "départ", "depart", "origin",
+    "heim", "zurück", "zuruck", "rück", "volv", "vuelv", "regres", "retorn", "ritorn", "rientr", "torn",
+    "volta", "volte", "thuis", "terug",
 )  # fmt: skip
 
 
