@@ -180,7 +180,7 @@ def _from_itself(step: Any) -> bool:
     if not isinstance(step, dict) or step.get("drone") is None:
         return False
     origin = step.get("origin")
-    return (origin.get("drone") if isinstance(origin, dict) else origin) == step["drone"]
+    return bool((origin.get("drone") if isinstance(origin, dict) else origin) == step["drone"])
 
 
 def _fraction(value: Any, units: dict[float | None, set[Unit]]) -> bool:
