@@ -893,7 +893,10 @@ def _units() -> list[CorpusEntry]:
 
 
 def _patterns() -> list[CorpusEntry]:
-    square20, square15 = [(20.0, 0.0), (0.0, 20.0), (-20.0, 0.0), (0.0, -20.0)], [(15.0, 0.0), (0.0, 15.0), (-15.0, 0.0), (0.0, -15.0)]
+    square20, square15 = (
+        [(20.0, 0.0), (0.0, 20.0), (-20.0, 0.0), (0.0, -20.0)],
+        [(15.0, 0.0), (0.0, 15.0), (-15.0, 0.0), (0.0, -15.0)],
+    )
     survey = [(40.0, 0.0), (0.0, 10.0), (-40.0, 0.0), (0.0, 10.0), (40.0, 0.0)]
     orbit = [(25.0, 0.0), (0.0, 25.0), (-25.0, 0.0), (0.0, -25.0)]
     return [
@@ -1597,7 +1600,9 @@ def _fourth_test_half() -> list[CorpusEntry]:
     d25, d30 = 25 / math.sqrt(2), 30 / math.sqrt(2)
     square60ft = _polygon_legs(4, 60 * FT, 0.0, right=True)  # north first, turning right
     pentagon20 = _polygon_legs(5, 20.0, 0.0, right=True)  # north first, turning right
-    survey = [(0.0, 25.0), (6.0, 0.0), (0.0, -25.0), (6.0, 0.0)] * 2 + [(0.0, 25.0)]  # five passes, east first
+    survey = [(0.0, 25.0), (6.0, 0.0), (0.0, -25.0), (6.0, 0.0)] * 2 + [
+        (0.0, 25.0)
+    ]  # five passes, east first
     # counter-clockwise around the spot 30 m north of home, 15 m out, from its south side: S, E, N, W, S
     orbit = [(15.0, 0.0), (30.0, 15.0), (45.0, 0.0), (30.0, -15.0), (15.0, 0.0)]
     return [

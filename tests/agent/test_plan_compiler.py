@@ -222,8 +222,14 @@ async def test_a_move_or_pattern_ends_as_its_after_says_and_a_repeated_ending_is
             "altitude": None, "after": "land"}  # fmt: skip
     sensors = FakeSensors({"alpha": flying()})
     assert (await compiled(step, sensors))[-1] == Call("land", {"drone_id": "alpha"}, "alpha")
-    square = {**NULLS,
-              "action": "pattern", "drone": "alpha", "shape": "square", "size": m(10), "after": "return_home"}
+    square = {
+        **NULLS,
+        "action": "pattern",
+        "drone": "alpha",
+        "shape": "square",
+        "size": m(10),
+        "after": "return_home",
+    }
     assert (await compiled(square, sensors))[-1] == Call("return_to_launch", {"drone_id": "alpha"}, "alpha")
     lands = [{"action": "land", "drone": "alpha"}, {"action": "land", "drone": "bravo"}]
     plan = parse_plan({"steps": [step, *lands]}, FLEET)
@@ -231,15 +237,29 @@ async def test_a_move_or_pattern_ends_as_its_after_says_and_a_repeated_ending_is
 
 
 async def test_a_named_polygon_has_its_sides_and_a_polygon_its_count() -> None:
-    hexagon = await compiled({**NULLS,
-                              "action": "pattern", "drone": "alpha", "shape": "hexagon", "size": m(12),
-                              **STAY})
+    hexagon = await compiled(
+        {**NULLS, "action": "pattern", "drone": "alpha", "shape": "hexagon", "size": m(12), **STAY}
+    )
     assert len(hexagon) == 7 and hexagon[1].args["north_m"] == 12.0  # a takeoff, then six legs
-    five = {**NULLS,
-            **STAY, "action": "pattern", "drone": "alpha", "shape": "polygon", "sides": 5, "size": m(12)}
+    five = {
+        **NULLS,
+        **STAY,
+        "action": "pattern",
+        "drone": "alpha",
+        "shape": "polygon",
+        "sides": 5,
+        "size": m(12),
+    }
     assert len(await compiled(five, FakeSensors({"alpha": flying()}))) == 5
-    orbit = {**NULLS,
-             **STAY, "action": "pattern", "drone": "alpha", "shape": "orbit", "size": m(25), "turn": "left"}
+    orbit = {
+        **NULLS,
+        **STAY,
+        "action": "pattern",
+        "drone": "alpha",
+        "shape": "orbit",
+        "size": m(25),
+        "turn": "left",
+    }
     legs = await compiled(orbit, FakeSensors({"alpha": flying()}))
     assert len(legs) == 14 and legs[1].args["east_m"] < 0  # round to the left (west) first
     rectangle = {**NULLS, **STAY, "action": "pattern", "drone": "alpha", "shape": "rectangle", "size": m(40),
