@@ -47,20 +47,29 @@ def test_the_examples_are_shown_with_the_fleets_own_ids_and_the_prefix_stays_put
     assert first[:-1] == second[:-1] and first[-1]["content"].endswith("Request: a")
 
 
-def test_a_step_for_a_drone_the_request_does_not_name_is_dropped() -> None:
-    plan = _plan(_up("bravo", 12), _up("charlie", 12), {"action": "land", "drone": "bravo"})
+def test_a_step_of_an_unnamed_drone_is_dropped_only_with_a_number_the_request_does_not_give() -> None:
+    plan = _plan(_up("bravo", 12), _up("charlie", 25), {"action": "land", "drone": "bravo"})
     kept = without_unasked("Bravo: up to 12 m and back down.", FLEET, plan)
     assert [s.drone for s in kept.steps] == ["bravo", "bravo"]  # type: ignore[union-attr]
     assert without_unasked("All three up to 12 m.", FLEET, plan) is plan
+    others = _plan(
+        _up("bravo", 12), _up("alpha", 12), _up("charlie", 12), {"action": "land", "drone": "alpha"}
+    )
+    assert without_unasked("Bravo and the others up to 12 m, then land alpha.", FLEET, others) == others
+    worded = _plan(_up("bravo", 30), _up("charlie", 30))
+    assert without_unasked("Bravo and its neighbour up to thirty metres", FLEET, worded) == worded
     line = {"action": "formation", "drones": FLEET, "shape": "column", "spacing": {"value": 8, "unit": "m"},
             "altitude": {"value": 12, "unit": "m"}}  # fmt: skip
-    pair = without_unasked("Charlie and alpha in a column, 8 m apart, at 12 m", FLEET, _plan(line))
-    assert pair.steps[0].drones == ["alpha", "charlie"]  # type: ignore[union-attr]
+    column = _plan(line)
+    assert (
+        without_unasked("Charlie and alpha and the rest in a column, 8 m apart, at 12 m", FLEET, column)
+        == column
+    )
 
 
-def test_a_branch_step_for_a_drone_the_request_does_not_name_is_dropped() -> None:
+def test_a_branch_step_of_an_unnamed_drone_with_a_number_the_request_does_not_give_is_dropped() -> None:
     branch = {"action": "if", "drone": "alpha", "reading": "battery", "compare": "above", "value": 50,
-              "then": [_up("bravo", 12), _up("alpha", 12)], "otherwise": [_up("charlie", 5)]}  # fmt: skip
+              "then": [_up("bravo", 9), _up("alpha", 12)], "otherwise": [_up("charlie", 5)]}  # fmt: skip
     kept = without_unasked("If alpha has over 50 %, alpha up to 12 m.", FLEET, _plan(branch))
     step = kept.steps[0]
     assert isinstance(step, Condition)

@@ -44,47 +44,27 @@ def test_a_fraction_written_in_metres_takes_the_unit_named_without_a_number() ->
     assert [leg["distance"] for leg in out["steps"][0]["legs"]] == [_m(0.1, "mi"), _m(0.5), _m(50, "yd")]
 
 
-def test_a_return_home_the_request_never_speaks_of_is_a_landing_or_a_stay() -> None:
-    stay = as_request_says(
-        "alpha 30 m north and hold there", {"steps": [_move("return_home", (30, "m", "north"))]}
-    )
-    assert stay["steps"][0]["after"] == "stay"
-    land = as_request_says(
-        "alpha 30 m north, then set it down", {"steps": [_move("return_home", (30, "m", "north"))]}
-    )
-    assert land["steps"][0]["after"] == "land"
-    home = as_request_says(
-        "alpha 30 m north, then bring it home", {"steps": [_move("return_home", (30, "m", "north"))]}
-    )
-    assert home["steps"][0]["after"] == "return_home"
+def test_an_ending_the_model_wrote_is_kept_whatever_the_request_says() -> None:
+    for request in ("alpha 30 m north and hold there", "alpha 30 m north, then set it down"):
+        for after in ("stay", "land", "return_home"):
+            data = {"steps": [_move(after, (30, "m", "north"))]}
+            assert as_request_says(request, data)["steps"][0]["after"] == after, (request, after)
     steps = [_move("stay", (30, "m", "north")), {"action": "return_home", "drone": "alpha"}]
-    es = as_request_says("charlie 30 metros al norte y déjalo ahí", {"steps": steps})
-    assert es["steps"] == [_move("stay", (30, "m", "north"))]
+    assert as_request_says(
+        "charlie 30 metros al norte y déjalo ahí", {"steps": [dict(s) for s in steps]}
+    ) == {"steps": steps}
 
 
-def test_a_landing_the_request_never_speaks_of_is_left_out_and_one_it_asks_is_kept() -> None:
-    hop = {"action": "takeoff", "drone": "alpha", "altitude": _m(9), "after": "land"}
-    branch = {"action": "if", "drone": "alpha", "reading": "battery", "compare": "below", "value": 20,
-              "then": [], "otherwise": [hop, {"action": "land", "drone": "alpha"}]}  # fmt: skip
-    out = as_request_says(
-        "Alpha soll auf 9 m steigen und dort schweben, wenn der Akku reicht", {"steps": [branch]}
-    )
-    assert out["steps"][0]["otherwise"] == [
-        {"action": "takeoff", "drone": "alpha", "altitude": _m(9), "after": "stay"}
-    ]
-    kept = as_request_says("Alpha : monte à 9 m puis atterris.", {"steps": [_move("land", (9, "m", "up"))]})
-    assert kept["steps"][0]["after"] == "land"
-
-
-def test_a_landing_asked_and_left_out_of_a_one_drone_plan_ends_it() -> None:
+def test_a_landing_the_plan_leaves_out_is_not_added_by_words() -> None:
     data = {"steps": [{"action": "takeoff", "drone": "alpha", "altitude": _m(10), "after": "stay"},
                       _move("stay", (20, "m", "south"))]}  # fmt: skip
-    out = as_request_says("Charlie auf 10 m starten, 20 m nach Süden fliegen und dann landen.", data)
-    assert [s["after"] for s in out["steps"]] == ["stay", "land"]
-    two = {
-        "steps": [_move("stay", (20, "m", "south")), {**_move("stay", (20, "m", "south")), "drone": "bravo"}]
-    }
-    assert as_request_says("alpha and bravo 20 m south, land bravo", two) == two
+    out = as_request_says("Alpha auf 10 m starten, 20 m nach Süden fliegen und dann landen.", data)
+    assert [s["after"] for s in out["steps"]] == ["stay", "stay"]
+    pushed = {"steps": [_move("stay", (20, "m", "north"))]}
+    assert (
+        as_request_says("Pousse alpha de 20 m vers le nord et laisse-le là.", pushed)["steps"][0]["after"]
+        == "stay"
+    )
 
 
 def _here(drone: str, value: float, direction: str) -> dict[str, Any]:
@@ -123,21 +103,21 @@ def test_a_formation_whose_drones_are_each_named_before_a_leg_is_one_move_each()
     assert together["steps"] == [formation]
 
 
-def test_a_climb_to_zero_the_request_never_asks_is_left_out() -> None:
+def test_a_climb_to_zero_is_left_as_written_for_the_compiler() -> None:
     zero = {"action": "altitude", "drone": "alpha", "altitude": _m(0, "ft"), "after": "stay"}
     out = as_request_says(
         "alpha 40 m south, then climb another 20 feet there and hover", {"steps": [dict(zero)]}
     )
-    assert out["steps"] == []
-    down = as_request_says("alpha: bring it down to the ground", {"steps": [dict(zero)]})
-    assert down["steps"] == [{"action": "land", "drone": "alpha"}]
+    assert out["steps"] == [zero]
 
 
-def test_a_move_measured_from_its_own_drone_is_from_its_home_or_from_where_it_is() -> None:
+def test_a_move_measured_from_its_own_drone_is_from_its_home_only_where_the_request_says_home() -> None:
     own = {**_move("stay", (20, "m", "north")), "origin": "alpha"}
     home = as_request_says("alpha 30 m west, then to a point 20 m north of its home", {"steps": [dict(own)]})
     assert home["steps"][0]["origin"] == "home"
-    here = as_request_says(
-        "alpha 20 m north and hover", {"steps": [{**own, "origin": {"kind": "drone", "drone": "alpha"}}]}
-    )
-    assert here["steps"][0]["origin"] == "here"
+    itself = {**own, "origin": {"kind": "drone", "drone": "alpha"}}
+    here = as_request_says("alpha 20 m north and hover", {"steps": [dict(itself)]})
+    assert here["steps"][0]["origin"] == {"kind": "drone", "drone": "alpha"}
+    back = [dict(own), {"action": "return_home", "drone": "alpha"}]
+    returned = as_request_says("alpha 20 m north of where it is, then home", {"steps": back})
+    assert returned["steps"][0]["origin"] == "alpha"
