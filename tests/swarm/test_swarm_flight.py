@@ -7,7 +7,10 @@ the drones are registered with the compose file's one-shot registrar command. Th
 over Streamable HTTP the test flies: fleet takeoff, a wedge 150 m away, a circle around the same point,
 fleet return to launch (landing). It asserts the final positions against the plans' slots, and that no
 two drones came closer than the minimum separation, from the live telemetry sampled every 0.2 s and from
-the 1 Hz tracks the gateway recorded.
+the 1 Hz tracks the gateway recorded. Before it, the namespace network itself: drones reach nothing but
+the swarm network, the gateway reaches each. Both tests build the compose file's network, whose fixed
+addresses allow one at a time on a machine (topology.py's lock): in one file they run one after the
+other on one worker, where in two files one worker could wait for the other's flight.
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ import contextlib
 import os
 import secrets
 import signal
+import socket
 import subprocess
 import sys
 import time
@@ -39,6 +43,7 @@ from tests.helpers.timing import scaled
 from tests.swarm.separation import Sample, closest_approach
 from tests.swarm.topology import (
     DRONES,
+    GATEWAY_ADDRESS,
     GATEWAY_ENV,
     SwarmNetwork,
     can_create_namespaces,
@@ -228,6 +233,48 @@ async def _finish(c: Client, r: dict[str, Any], figures: dict[str, Any]) -> dict
         r = _ok(await c.call_tool("monitor_fleet", {"operation_id": r["operation_id"]}))
     figures.setdefault("dispatch_s", {})[r["kind"] + f"#{len(figures['dispatch_s'])}"] = r["dispatch_s"]
     return r
+
+
+@pytest.mark.skipif(not _possible, reason=f"network namespaces unavailable: {_why}")
+def test_gateway_reaches_every_drone_namespace_and_cleanup_is_complete(process_reaper: list) -> None:
+    listener = (
+        "import socket,sys;s=socket.socket();s.setsockopt(socket.SOL_SOCKET,socket.SO_REUSEADDR,1);"
+        "s.bind((sys.argv[1],5760));s.listen();print('up',flush=True);c,a=s.accept();"
+        "c.sendall(a[0].encode());c.close()"
+    )
+    net = SwarmNetwork(drones=2)
+    with net:
+        names = set(subprocess.run(["ip", "netns", "list"], capture_output=True, text=True).stdout.split())
+        assert {net.hub, net.drone_namespace(0), net.drone_namespace(1)} <= names
+        for index in range(2):
+            proc = subprocess.Popen(
+                [*net.exec_prefix(index), sys.executable, "-c", listener, drone_address(index)],
+                stdout=subprocess.PIPE,
+                text=True,
+            )
+            process_reaper.append(proc)
+            assert proc.stdout is not None and proc.stdout.readline().strip() == "up"
+            deadline = time.monotonic() + scaled(10)
+            while True:
+                try:
+                    conn = socket.create_connection((drone_address(index), 5760), timeout=scaled(2))
+                    break
+                except OSError:
+                    if time.monotonic() > deadline:
+                        raise
+                    time.sleep(0.1)
+            with conn:
+                # the drone sees the gateway's swarm address, as a drone on a real network would
+                assert conn.recv(64).decode() == GATEWAY_ADDRESS
+        # a drone namespace has no route to anything but its own network
+        route = subprocess.run(
+            [*net.exec_prefix(0), "ip", "route", "get", "192.0.2.1"], capture_output=True, text=True
+        )
+        assert route.returncode != 0
+    names = set(subprocess.run(["ip", "netns", "list"], capture_output=True, text=True).stdout.split())
+    assert not any(name.startswith(f"fgw{net.tag}") for name in names)
+    links = subprocess.run(["ip", "-o", "link"], capture_output=True, text=True).stdout
+    assert f"fgw{net.tag}" not in links
 
 
 @pytest.mark.skipif(not _possible, reason=f"network namespaces unavailable: {_why}")
