@@ -3,9 +3,10 @@ skipped with its reason named (a block this machine cannot run: a tool it lacks,
 in, a build of the autopilots). A block the table below does not name fails the test, so a new block is
 either run or given its reason.
 
-The blocks run as a reader pastes them, in README order, in two rounds each on its own fresh gateway
-and simulator started by the "Run the gateway" block: one without agent tokens (the plain MCP client,
-ground stations, the operator's curl lines), one with `GATEWAY_AGENT_TOKENS` (the bearer-token snippet).
+The blocks run as a reader pastes them, in README order, in two rounds (side by side) each on its own
+fresh gateway and simulator started by the "Run the gateway" block: one without agent tokens (the plain
+MCP client, ground stations, the operator's curl lines), one with `GATEWAY_AGENT_TOKENS` (the
+bearer-token snippet).
 The only change is the ports: the ones picked free here stand for 8765 (the gateway) and 5760, 5770,
 5780 (the simulator's drones), which the "Run the gateway" block itself reads from GATEWAY_PORT and
 SIM_PORT. `make install`, the block's first line, made the environment the test runs in (.venv).
@@ -23,6 +24,7 @@ import subprocess
 import sys
 import time
 from collections.abc import Iterator
+from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -247,6 +249,18 @@ def gateway_round(tmp_path: Path, name: str, extra_env: dict[str, str]) -> Itera
 def test_readme_blocks_run_as_pasted(tmp_path: Path) -> None:
     if not (ROOT / ".venv" / "bin" / "fleet-gateway").exists():
         pytest.skip("needs `make install` (the block's first line): .venv/bin/fleet-gateway is missing")
+    # the two rounds share nothing (each its own ports, database, simulator and gateway): the tokens round
+    # runs in a thread beside the open one, so the test waits for the longer round, not for both in turn
+    with ThreadPoolExecutor(max_workers=1) as beside:
+        tokens = beside.submit(_tokens_round, tmp_path)
+        ran = _open_round(tmp_path)
+        ran += tokens.result()
+    expected = [b.label for b in readme_blocks() if _key(b, RUN)]
+    assert sorted(ran) == sorted(expected)
+
+
+def _open_round(tmp_path: Path) -> list[str]:
+    """The round without agent tokens; the labels of the blocks it ran."""
     ran: list[str] = []
     with gateway_round(tmp_path, "open", {}) as open_round:
         ran.append(_block("fleet-gateway sim --count 3").label)
@@ -266,15 +280,17 @@ def test_readme_blocks_run_as_pasted(tmp_path: Path) -> None:
         out = open_round.run(operator)
         assert '"reason":"battery swap"' in out and '"items"' in out, out
         ran.append(operator.label)
+    return ran
 
+
+def _tokens_round(tmp_path: Path) -> list[str]:
+    """The round with ``GATEWAY_AGENT_TOKENS``; the labels of the blocks it ran."""
     with gateway_round(tmp_path, "tokens", {"GATEWAY_AGENT_TOKENS": TOKEN, "FLEET_AGENT_TOKEN": TOKEN}) as r:
         bearer = _block('os.environ["FLEET_AGENT_TOKEN"]')
         out = r.run(bearer, timeout_s=180)
         # the takeoff answers once the climb is done, not a timeout while the drone flies
         assert "succeeded" in out and "is_error=False" in out.replace(" ", ""), out
-        ran.append(bearer.label)
-    expected = [b.label for b in readme_blocks() if _key(b, RUN)]
-    assert sorted(ran) == sorted(expected)
+        return [bearer.label]
 
 
 def _wait_gone(port: int) -> None:
