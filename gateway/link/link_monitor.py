@@ -1,11 +1,12 @@
-"""The link monitor: one task per connected link that records the connection state's changes and asks
+"""The link monitor: one per connected link, which records the connection state's changes and asks
 for the telemetry rates again when the streams stopped while heartbeats go on (a reboot), or while the
 autopilot has a home position the gateway has not received; and for the streams whose rate request got
 no answer (a timeout on a busy link), with a growing wait.
 
-It wakes once a second (``MONITOR_PERIOD_S``), and when the last heartbeat (or, before the first, the
-session's start) reaches the link-lost limit, ``MONITOR_LATE_S`` after it (so the heartbeat is then
-older than the limit)."""
+It checks once a second (``MONITOR_PERIOD_S``), at the ticks every link of the event loop shares
+(`gateway.util.ticks`: one timer for the fleet, not one per drone), and when the last heartbeat (or,
+before the first, the session's start) reaches the link-lost limit before the next tick,
+``MONITOR_LATE_S`` after it (so the heartbeat is then older than the limit)."""
 
 from __future__ import annotations
 
@@ -16,6 +17,7 @@ from typing import Protocol
 from gateway.config import Settings
 from gateway.link.rawlink import LinkFacts
 from gateway.link.telemetry import TelemetryCache
+from gateway.util import ticks
 
 MONITOR_PERIOD_S = 1.0
 MONITOR_LATE_S = 0.01
@@ -41,17 +43,37 @@ class MonitorHost(Protocol):
     def rates_to_ask_again(self) -> frozenset[str]: ...
 
 
-async def run_monitor(link: MonitorHost) -> None:
-    """Log state changes and re-request rates when streams stopped while heartbeats go on.
+class LinkMonitor:
+    """Logs state changes and asks for the rates again when streams stopped while heartbeats go on.
 
-    Wakes once a second (``MONITOR_PERIOD_S``), and when the last heartbeat (or, before the first, the
-    session's start) reaches the link-lost limit: the one change that comes with nothing arriving.
-    Changes that come with data are noted as it arrives (the HEARTBEAT loop) or when ``state`` is
-    read; the health and the rate check can wait a second."""
-    while True:
+    Checks at once, then every ``MONITOR_PERIOD_S`` at the ticks all links share, and when the last
+    heartbeat (or, before the first, the session's start) reaches the link-lost limit before the next
+    tick: the one change that comes with nothing arriving. Changes that come with data are noted as it
+    arrives (the HEARTBEAT loop) or when ``state`` is read; the health and the rate check can wait a
+    second."""
+
+    def __init__(self, link: MonitorHost) -> None:
+        self._link = link
+        loop = asyncio.get_running_loop()
+        self._late: asyncio.Handle | None = loop.call_soon(self.check)
+        self._tick = ticks.every(MONITOR_PERIOD_S, self.check)
+
+    def check(self) -> None:
+        link = self._link
         link.note_state()
         ask_for_rates(link)
-        await asyncio.sleep(monitor_wait_s(link))
+        if self._late is not None:
+            self._late.cancel()
+            self._late = None
+        wait = monitor_wait_s(link)
+        if wait < MONITOR_PERIOD_S:
+            self._late = asyncio.get_running_loop().call_later(wait, self.check)
+
+    def stop(self) -> None:
+        self._tick.cancel()
+        if self._late is not None:
+            self._late.cancel()
+            self._late = None
 
 
 def ask_for_rates(link: MonitorHost) -> None:
