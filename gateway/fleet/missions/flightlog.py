@@ -79,7 +79,7 @@ class FlightRecorder:
         store: Store,
         settings: Settings,
     ) -> None:
-        """``link``: the vehicle's (its id, its telemetry cache, the frames it relays);
+        """``link``: the vehicle's (its id, its telemetry cache, the bytes it relays);
         ``heartbeat_state``: (MAV_TYPE, custom mode) of the autopilot's last HEARTBEAT, None while there
         is none fresh."""
         self.link = link
