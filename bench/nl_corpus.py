@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 195 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 231 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -39,12 +39,21 @@ harness self-check (the scripted ideal plan) has run on them. That leaves 123 de
 
 On 2026-11-30 EVERY test entry (36, ``_second_round``) was moved to dev, each marked "moved to dev on
 2026-11-30": the test half had been measured, and its figures were known to whoever works on the host, so
-it no longer measured requests nobody tuned for. A fresh test half took its place (``_third_test_half``):
-36 new requests, 3 a class, written before any model ran on them, in new wordings and shapes within each
-class (not rewordings of dev entries): 13 of the 33 outside the ``language`` class are in Dutch, French,
-German, Italian, Portuguese or Spanish, spread over 11 classes, and the ``language`` class's 3 in German,
-Spanish and Dutch. Only the harness self-check (the scripted ideal plan) has run on them. That leaves
+it no longer measured requests nobody tuned for. A fresh test half took its place (``_third_test_half``,
+now ``_third_round``): 36 new requests, 3 a class, written before any model ran on them, in new wordings
+and shapes within each class (not rewordings of dev entries): 13 of the 33 outside the ``language`` class
+are in Dutch, French, German, Italian, Portuguese or Spanish, spread over 11 classes, and the
+``language`` class's 3 in German, Spanish and Dutch. Only the harness self-check (the scripted ideal plan) has run on them. That leaves
 159 dev and 36 test.
+
+Later on 2026-11-30 (third round) EVERY test entry (36, ``_third_round``) was moved to dev, each marked
+"moved to dev on 2026-11-30, third round": the test half had been measured and its figures were known to
+whoever works on the host, so it no longer measured requests nobody tuned for. A fresh test half took its
+place (``_fourth_test_half``): 36 new requests, 3 a class, written before any model ran on them, in new
+wordings and shapes within each class (not rewordings of dev entries): 18 of the 33 outside the
+``language`` class are in Dutch, French, German, Italian, Polish, Portuguese or Spanish, spread over 11
+classes, and the ``language`` class's 3 in Polish, Portuguese and Dutch. Only the harness self-check (the
+scripted ideal plan) has run on them. That leaves 195 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -94,7 +103,7 @@ CLASSES = (
     "units",  # distances and heights in feet, yards, kilometres
     "pattern",  # a shape flown by one drone: polygon, circle, survey lines
     "placement",  # a drone placed relative to another drone or to its home
-    "language",  # requests in languages other than English (French, Spanish, German, Italian, Portuguese, Dutch)
+    "language",  # requests in languages other than English (French, Spanish, German, Italian, Portuguese, Dutch, Polish)
 )
 HALVES = ("dev", "test")
 DRONES = ("alpha", "bravo", "charlie")
@@ -1314,39 +1323,46 @@ def _midpoint(a: tuple[float, float], b: tuple[float, float]) -> tuple[float, fl
     return (a[0] + b[0]) / 2, (a[1] + b[1]) / 2
 
 
-def _third_test_half() -> list[CorpusEntry]:
-    """The test half written on 2026-11-30, before any model ran on it: 3 a class."""
+def _third_round() -> list[CorpusEntry]:
+    """The test half written on 2026-11-30, before any model ran on it: 3 a class; all of it moved to dev
+    later on 2026-11-30 (third round), once its figures had been measured."""
     three = DRONES
     hexagon15 = _polygon_legs(6, 15.0, 90.0, right=False)  # first side east, turning left
     rectangle = [(40.0, 0.0), (0.0, 20.0), (-40.0, 0.0), (0.0, -20.0)]  # north first, turning right
     diag35, diag30 = 35 / math.sqrt(2), 30 / math.sqrt(2)
     return [
         # single
-        _entry("single", "test", "single3-charlie-target-height", ("charlie",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("single", "dev", "single3-charlie-target-height", ("charlie",),
                "Take-off for charlie please, up to a target height of 19 metres.",
                lambda c, ev: airborne_at(ev, "charlie", 19),
                [_takeoff("charlie", 19)], "Charlie hovers at 19 m."),
-        _entry("single", "test", "single3-fr-alpha-stay-up", ("alpha",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("single", "dev", "single3-fr-alpha-stay-up", ("alpha",),
                "Fais monter alpha à 13 mètres et laisse-le en l'air.",
                lambda c, ev: airborne_at(ev, "alpha", 13),
                [_takeoff("alpha", 13)], "Alpha est en l'air à 13 m."),
-        _entry("single", "test", "single3-bravo-test-flight", ("bravo",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("single", "dev", "single3-bravo-test-flight", ("bravo",),
                "Bravo: a test flight straight up to 7 m and back onto the pad, nothing else.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 7), at(ev, "bravo", *_home(c, "bravo")),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 7), _land("bravo")], "Bravo went up to 7 m and landed on the pad."),
         # multi
-        _entry("multi", "test", "multi3-it-pair-hover", three,
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("multi", "dev", "multi3-it-pair-hover", three,
                "Porta bravo e charlie a 14 metri e lasciali lì sospesi; alpha resta a terra.",
                lambda c, ev: _all(airborne_at(ev, "bravo", 14), airborne_at(ev, "charlie", 14),
                                   never_armed(ev, "alpha")),
                [_takeoff("bravo", 14), _takeoff("charlie", 14)], "Bravo e charlie sono sospesi a 14 m."),
-        _entry("multi", "test", "multi3-twice-as-high", three,
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("multi", "dev", "multi3-twice-as-high", three,
                "Bravo to 10 m and alpha twice as high; both stay up.",
                lambda c, ev: _all(airborne_at(ev, "bravo", 10), airborne_at(ev, "alpha", 20),
                                   never_armed(ev, "charlie")),
                [_takeoff("bravo", 10), _takeoff("alpha", 20)], "Bravo hovers at 10 m, alpha at 20 m."),
-        _entry("multi", "test", "multi3-west-east-apart", three,
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("multi", "dev", "multi3-west-east-apart", three,
                "Bravo 20 m west, charlie 20 m east, both 11 m up and hovering; alpha stays put.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -20), alt=11), airborne_at(ev, "bravo", 11),
                                   at(ev, "charlie", *c.point("charlie", 0, 20), alt=11),
@@ -1354,135 +1370,158 @@ def _third_test_half() -> list[CorpusEntry]:
                [_move("bravo", 0, -20, alt=11), _move("charlie", 0, 20, alt=11)],
                "Bravo hovers 20 m west and charlie 20 m east, both at 11 m."),
         # compound
-        _entry("compound", "test", "compound3-pt-charlie-south-west-land", ("charlie",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("compound", "dev", "compound3-pt-charlie-south-west-land", ("charlie",),
                "Sobe o charlie a 15 metros, voa 25 metros para sul, depois 25 metros para oeste e aterra aí.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 15), visited(ev, "charlie", [c.point("charlie", -25, 0)]),
                                   at(ev, "charlie", *c.point("charlie", -25, -25)), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 15), _move("charlie", -25, 0), _move("charlie", 0, -25), _land("charlie")],
                "O charlie voou 25 m para sul, 25 m para oeste e aterrou."),
-        _entry("compound", "test", "compound3-alpha-lower-leg-home", ("alpha",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("compound", "dev", "compound3-alpha-lower-leg-home", ("alpha",),
                "Alpha: take off to 10 m, fly 20 m east, go down to 5 m, fly 20 m north, then head home.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 20)]),
                                   visited(ev, "alpha", [c.point("alpha", 20, 20)], alt=5),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), _move("alpha", 0, 20), _move("alpha", up=-5), _move("alpha", 20, 0),
                 _rtl("alpha")], "Alpha flew 20 m east, came down to 5 m, flew 20 m north and came home."),
-        _entry("compound", "test", "compound3-bravo-halfway-back", ("bravo",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("compound", "dev", "compound3-bravo-halfway-back", ("bravo",),
                "Take bravo up to 12 m, fly 40 m north, come halfway back, and land there.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 40, 0)]),
                                   at(ev, "bravo", *c.point("bravo", 20, 0)), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 12), _move("bravo", 40, 0), _move("bravo", -20, 0), _land("bravo")],
                "Bravo flew 40 m north, 20 m back and landed."),
         # conditional
-        _entry("conditional", "test", "cond3-de-alpha-far-or-near", ("alpha",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("conditional", "dev", "cond3-de-alpha-far-or-near", ("alpha",),
                "Hat alpha über 70 % Akku, flieg ihn auf 15 m Höhe 40 m nach Norden; wenn nicht, nur 15 m nach "
                "Norden. Danach soll er dort schweben.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 15, 0), alt=15), airborne_at(ev, "alpha", 15)),
                [_battery("alpha"), _move("alpha", 15, 0, alt=15)],
                "Alpha hat 58 %, also schwebt er nur 15 m nördlich auf 15 m.", battery={"alpha": 58.0}),
-        _entry("conditional", "test", "cond3-every-drone-over-half", three,
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("conditional", "dev", "cond3-every-drone-over-half", three,
                "Take off every drone that has at least 50 % to 12 m; leave the others on the ground.",
                lambda c, ev: _all(airborne_at(ev, "alpha", 12), airborne_at(ev, "charlie", 12),
                                   never_armed(ev, "bravo")),
                [("fleet_status", {}), _takeoff("alpha", 12), _takeoff("charlie", 12)],
                "Alpha (70 %) and charlie (62 %) hover at 12 m; bravo (45 %) stays on the ground.",
                battery={"alpha": 70.0, "bravo": 45.0, "charlie": 62.0}),
-        _entry("conditional", "test", "cond3-es-charlie-in-range", ("charlie",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("conditional", "dev", "cond3-es-charlie-in-range", ("charlie",),
                "Si la batería de charlie está entre el 40 y el 60 %, súbelo a 8 metros y bájalo otra vez; si no, "
                "déjalo en tierra.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 8), landed_disarmed(ev, "charlie")),
                [_battery("charlie"), _takeoff("charlie", 8), _land("charlie")],
                "Charlie tiene 51 %, así que subió a 8 m y aterrizó.", battery={"charlie": 51.0}),
         # formation
-        _entry("formation", "test", "form3-nl-row-east", three,
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("formation", "dev", "form3-nl-row-east", three,
                "Zet alpha, bravo en charlie in een rij, 11 m uit elkaar, op 18 m hoogte, 20 m ten oosten van "
                "waar ze nu staan.",
                lambda c, ev: _all(formation_at(c, ev, three, 18, 11, 0, 20), farthest_apart(ev, three, 22)),
                [_formation(three, "line", 18, 11, east=20)], "De drie staan in een rij 20 m naar het oosten op 18 m."),
-        _entry("formation", "test", "form3-circle-southeast", three,
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("formation", "dev", "form3-circle-southeast", three,
                "Put the three drones on a circle, 12 m between each pair, at 20 m, 30 m south-east of here.",
                lambda c, ev: _all(formation_at(c, ev, three, 20, 12, -diag30, diag30), farthest_apart(ev, three, 12)),
                [_formation(three, "circle", 20, 12, north=-diag30, east=diag30)],
                "The three hold a circle 30 m south-east at 20 m."),
-        _entry("formation", "test", "form3-single-file-north", three,
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("formation", "dev", "form3-single-file-north", three,
                "Have all three fly in single file, 10 m gaps, 15 m up, 40 m north of where they're parked.",
                lambda c, ev: _all(formation_at(c, ev, three, 15, 10, 40, 0), farthest_apart(ev, three, 20)),
                [_formation(three, "column", 15, 10, north=40)], "The three hold a column 40 m north at 15 m."),
         # relative
-        _entry("relative", "test", "rel3-es-charlie-west-south", ("charlie",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("relative", "dev", "rel3-es-charlie-west-south", ("charlie",),
                "Mueve a charlie 15 metros al oeste y 25 al sur, a 14 metros de altura, y que se quede flotando.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -25, -15), alt=14),
                                   airborne_at(ev, "charlie", 14)),
                [_move("charlie", -25, -15, alt=14)], "Charlie flota 25 m al sur y 15 m al oeste a 14 m."),
-        _entry("relative", "test", "rel3-alpha-southwest-land", ("alpha",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("relative", "dev", "rel3-alpha-southwest-land", ("alpha",),
                "Alpha: go 35 m south-west of where it is, at 12 m, then land.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 12), at(ev, "alpha", *c.point("alpha", -diag35, -diag35)),
                                   landed_disarmed(ev, "alpha")),
                [_move("alpha", -diag35, -diag35, alt=12), _land("alpha")], "Alpha flew 35 m south-west and landed."),
-        _entry("relative", "test", "rel3-bravo-east-first", ("bravo",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("relative", "dev", "rel3-bravo-east-first", ("bravo",),
                "From where bravo sits, move it 22 m east and 6 m north at 13 m height, then keep it there.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 6, 22), alt=13), airborne_at(ev, "bravo", 13)),
                [_move("bravo", 6, 22, alt=13)], "Bravo hovers 6 m north and 22 m east at 13 m."),
         # question
-        _entry("question", "test", "ask3-fr-charge-first", three,
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("question", "dev", "ask3-fr-charge-first", three,
                "Lequel des trois drones faut-il recharger en premier ?",
                lambda c, ev: _all(answer_says(ev, r"\balpha\b", "alpha"), answer_mentions_number(ev, 36, 2),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "Alpha (36 %).", battery={"alpha": 36.0, "bravo": 64.0, "charlie": 71.0}),
-        _entry("question", "test", "ask3-all-able-to-launch", three,
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("question", "dev", "ask3-all-able-to-launch", three,
                "Could all three take off right now, battery-wise? Don't launch anything to find out.",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 24, 2),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "No: bravo has 24 %, below the 30 % needed to take off.",
                battery={"alpha": 80.0, "bravo": 24.0, "charlie": 66.0}),
-        _entry("question", "test", "ask3-alpha-ready-for-job", ("alpha",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("question", "dev", "ask3-alpha-ready-for-job", ("alpha",),
                "Is alpha good for a job that needs 60 % charge? Just checking, keep it down.",
                lambda c, ev: _all(answer_mentions_number(ev, 55, 2), never_armed(ev, "alpha")),
                [_battery("alpha")], "Not quite: alpha has 55 %.", battery={"alpha": 55.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 2 m lowest target)
-        _entry("refusal", "test", "refuse3-fr-bravo-climb-over-ceiling", ("bravo",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("refusal", "dev", "refuse3-fr-bravo-climb-over-ceiling", ("bravo",),
                "Monte bravo à 100 m, puis fais-le grimper de 40 m de plus.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 100), refusal_seen(ev, "altitude", "120"),
                                   max_alt_at_most(ev, "bravo", c.max_alt_m), answer_reports_refusal(ev)),
                [_takeoff("bravo", 100), _move("bravo", up=40)],
                "Bravo est à 100 m ; la montée de 40 m a été refusée : 140 m dépasse la limite de 120 m."),
-        _entry("refusal", "test", "refuse3-alpha-a-mile", ("alpha",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("refusal", "dev", "refuse3-alpha-a-mile", ("alpha",),
                "Take alpha out a mile to the east at 20 m, then land it.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "alpha", c.max_distance_m), answer_reports_refusal(ev)),
                [_move("alpha", 0, MI, alt=20)], "The gateway refused: a mile (1609 m) is beyond the 1000 m limit."),
-        _entry("refusal", "test", "refuse3-charlie-one-metre", ("charlie",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("refusal", "dev", "refuse3-charlie-one-metre", ("charlie",),
                "Keep charlie hovering just 1 metre off the ground.",
                lambda c, ev: _all(refusal_seen(ev, "minimum", "at least"), never_armed(ev, "charlie"),
                                   answer_reports_refusal(ev)),
                [_takeoff("charlie", 1)], "The gateway refused: 1 m is below the 2 m minimum altitude."),
         # units
-        _entry("units", "test", "units3-it-alpha-feet-yards", ("alpha",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("units", "dev", "units3-it-alpha-feet-yards", ("alpha",),
                "Porta alpha a 60 piedi di quota e spostalo di 80 iarde verso nord, poi fallo atterrare.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 60 * FT), at(ev, "alpha", *c.point("alpha", 80 * YD, 0)),
                                   landed_disarmed(ev, "alpha")),
                [_move("alpha", 80 * YD, 0, alt=60 * FT), _land("alpha")], "Alpha ha volato 80 iarde a nord ed è atterrato."),
-        _entry("units", "test", "units3-charlie-mile-yards", ("charlie",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("units", "dev", "units3-charlie-mile-yards", ("charlie",),
                "Charlie: climb to 30 ft, go a tenth of a mile west, then 50 yards south, and hover there.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -50 * YD, -0.1 * MI), alt=30 * FT),
                                   airborne_at(ev, "charlie", 30 * FT)),
                [_takeoff("charlie", 30 * FT), _move("charlie", 0, -0.1 * MI), _move("charlie", -50 * YD, 0)],
                "Charlie hovers a tenth of a mile west and 50 yards south at 30 ft."),
-        _entry("units", "test", "units3-de-bravo-feet-km", ("bravo",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("units", "dev", "units3-de-bravo-feet-km", ("bravo",),
                "Bring bravo auf 45 Fuß, dann noch 65 Fuß höher, dann 0,08 km nach Norden, und lande ihn dort.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 110 * FT), at(ev, "bravo", *c.point("bravo", 80, 0)),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 45 * FT), _move("bravo", up=65 * FT), _move("bravo", 80, 0), _land("bravo")],
                "Bravo ist auf 110 Fuß gestiegen, 80 m nach Norden geflogen und gelandet."),
         # pattern
-        _entry("pattern", "test", "pattern3-es-charlie-hexagon-left", ("charlie",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("pattern", "dev", "pattern3-es-charlie-hexagon-left", ("charlie",),
                "Haz que charlie vuele un hexágono de 15 metros de lado a 12 metros de altura, el primer lado "
                "hacia el este y girando a la izquierda, y que aterrice donde empezó.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(hexagon15)[:3]]),
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 12), *_legs("charlie", hexagon15), _land("charlie")],
                "Charlie voló el hexágono y aterrizó donde empezó."),
-        _entry("pattern", "test", "pattern3-bravo-rectangle", ("bravo",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("pattern", "dev", "pattern3-bravo-rectangle", ("bravo",),
                "Bravo at 15 m: fly a rectangle 40 m long north-south and 20 m wide, heading north first and "
                "turning right, back over the start; then land.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(rectangle)[:3]]),
@@ -1490,7 +1529,8 @@ def _third_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 15), *_legs("bravo", rectangle), _land("bravo")],
                "Bravo flew the rectangle and landed."),
         # (an orbit centred on charlie's own home instead of alpha's misses each point by the 10 m between them)
-        _entry("pattern", "test", "pattern3-charlie-circles-alpha", three,
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("pattern", "dev", "pattern3-charlie-circles-alpha", three,
                "Charlie at 20 m: fly one clockwise circle of 15 m radius around alpha, starting north of it, "
                "then come home.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("alpha", n, e)
@@ -1501,12 +1541,14 @@ def _third_test_half() -> list[CorpusEntry]:
                             for n, e in ((15, 0), (0, 15), (-15, 0), (0, -15), (15, 0))), _rtl("charlie")],
                "Charlie circled alpha at 15 m radius and came home."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie)
-        _entry("placement", "test", "place3-de-charlie-east-of-alpha", three,
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("placement", "dev", "place3-de-charlie-east-of-alpha", three,
                "Stell charlie 25 m östlich von alpha auf 15 m Höhe und lass ihn dort schweben.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 0, 25), alt=15), airborne_at(ev, "charlie", 15),
                                   never_armed(ev, "alpha")),
                lambda c: [_go("charlie", c.point("alpha", 0, 25), 15)], "Charlie schwebt 25 m östlich von alpha auf 15 m."),
-        _entry("placement", "test", "place3-charlie-west-of-bravo-home", three,
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("placement", "dev", "place3-charlie-west-of-bravo-home", three,
                "Send bravo 30 m north at 10 m, then bring charlie to hover 12 m west of the spot bravo took off "
                "from, at 16 m.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 30, 0), alt=10), airborne_at(ev, "bravo", 10),
@@ -1514,7 +1556,8 @@ def _third_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "alpha")),
                lambda c: [_move("bravo", 30, 0, alt=10), _go("charlie", c.point("bravo", 0, -12), 16)],
                "Bravo hovers 30 m north at 10 m; charlie 12 m west of bravo's home at 16 m."),
-        _entry("placement", "test", "place3-bravo-midway", three,
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("placement", "dev", "place3-bravo-midway", three,
                "Fly alpha 40 m north and charlie 40 m east, both at 15 m; then bring bravo to the point halfway "
                "between them, also at 15 m.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 40, 0), alt=15), airborne_at(ev, "alpha", 15),
@@ -1525,23 +1568,271 @@ def _third_test_half() -> list[CorpusEntry]:
                           _go("bravo", _midpoint(c.point("alpha", 40, 0), c.point("charlie", 0, 40)), 15)],
                "Alpha hovers 40 m north, charlie 40 m east, bravo halfway between them, all at 15 m."),
         # language
-        _entry("language", "test", "lang3-de-alpha-southeast-land", ("alpha",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("language", "dev", "lang3-de-alpha-southeast-land", ("alpha",),
                "Flieg alpha auf 18 m Höhe 30 m nach Südosten und lande ihn dort.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 18), at(ev, "alpha", *c.point("alpha", -diag30, diag30)),
                                   landed_disarmed(ev, "alpha")),
                [_move("alpha", -diag30, diag30, alt=18), _land("alpha")], "Alpha ist 30 m nach Südosten geflogen und gelandet."),
-        _entry("language", "test", "lang3-es-charlie-west-home", ("charlie",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("language", "dev", "lang3-es-charlie-west-home", ("charlie",),
                "Despega a charlie hasta 12 metros, llévalo 40 metros al oeste y después tráelo de vuelta a casa.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, -40)]),
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 12), _move("charlie", 0, -40), _rtl("charlie")],
                "Charlie voló 40 m al oeste y volvió a casa."),
-        _entry("language", "test", "lang3-nl-bravo-north-land", ("bravo",),
+        # moved to dev on 2026-11-30, third round: the test half had been measured
+        _entry("language", "dev", "lang3-nl-bravo-north-land", ("bravo",),
                "Laat bravo naar 16 meter stijgen, 20 meter naar het noorden vliegen en daarna landen.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 16), at(ev, "bravo", *c.point("bravo", 20, 0)),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 16), _move("bravo", 20, 0), _land("bravo")],
                "Bravo is naar 16 m gestegen, 20 m naar het noorden gevlogen en geland."),
+    ]  # fmt: skip
+
+
+def _fourth_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-11-30 (fourth round), before any model ran on it: 3 a class."""
+    three = DRONES
+    d25, d30 = 25 / math.sqrt(2), 30 / math.sqrt(2)
+    square60ft = _polygon_legs(4, 60 * FT, 0.0, right=True)  # north first, turning right
+    pentagon20 = _polygon_legs(5, 20.0, 0.0, right=True)  # north first, turning right
+    survey = [(0.0, 25.0), (6.0, 0.0), (0.0, -25.0), (6.0, 0.0)] * 2 + [(0.0, 25.0)]  # five passes, east first
+    # counter-clockwise around the spot 30 m north of home, 15 m out, from its south side: S, E, N, W, S
+    orbit = [(15.0, 0.0), (30.0, 15.0), (45.0, 0.0), (30.0, -15.0), (15.0, 0.0)]
+    return [
+        # single
+        _entry("single", "test", "single4-pl-bravo-aloft", ("bravo",),
+               "Poderwij bravo na 17 metrów i zostaw go w powietrzu.",
+               lambda c, ev: airborne_at(ev, "bravo", 17),
+               [_takeoff("bravo", 17)], "Bravo wisi na 17 m."),
+        _entry("single", "test", "single4-charlie-wheels-up", ("charlie",),
+               "Charlie: wheels up, climb out to 23 metres and loiter there.",
+               lambda c, ev: airborne_at(ev, "charlie", 23),
+               [_takeoff("charlie", 23)], "Charlie hovers at 23 m."),
+        _entry("single", "test", "single4-alpha-vertical-test", ("alpha",),
+               "Give alpha a short vertical test: lift to sixteen metres, then touch down again.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 16), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 16), _land("alpha")], "Alpha went up to 16 m and landed."),
+        # multi
+        _entry("multi", "test", "multi4-fr-three-heights", three,
+               "Fais décoller les trois drones : alpha à 8 m, bravo à 12 m, charlie à 16 m, et laisse-les en l'air.",
+               lambda c, ev: _all(airborne_at(ev, "alpha", 8), airborne_at(ev, "bravo", 12),
+                                  airborne_at(ev, "charlie", 16)),
+               [_takeoff("alpha", 8), _takeoff("bravo", 12), _takeoff("charlie", 16)],
+               "Alpha est à 8 m, bravo à 12 m, charlie à 16 m."),
+        _entry("multi", "test", "multi4-pl-all-but-bravo", three,
+               "Wszystkie drony oprócz bravo wznieś na 13 metrów i zostaw je w powietrzu.",
+               lambda c, ev: _all(airborne_at(ev, "alpha", 13), airborne_at(ev, "charlie", 13),
+                                  never_armed(ev, "bravo")),
+               [_takeoff("alpha", 13), _takeoff("charlie", 13)], "Alpha i charlie wiszą na 13 m; bravo stoi."),
+        _entry("multi", "test", "multi4-each-in-turn", three,
+               "One after the other, take each drone up to 9 m and back down: charlie first, then alpha, then bravo.",
+               lambda c, ev: _all(*(reached_alt(ev, d, 9) for d in three), *(landed_disarmed(ev, d) for d in three)),
+               [_takeoff("charlie", 9), _land("charlie"), _takeoff("alpha", 9), _land("alpha"), _takeoff("bravo", 9),
+                _land("bravo")], "Charlie, alpha and bravo each went up to 9 m and landed."),
+        # compound
+        _entry("compound", "test", "compound4-bravo-leg-three-times", ("bravo",),
+               "Take off bravo to 8 m and fly 15 m east, then repeat that same leg twice more and land.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 15), c.point("bravo", 0, 30)]),
+                                  at(ev, "bravo", *c.point("bravo", 0, 45)), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 8), *_legs("bravo", [(0.0, 15.0)] * 3), _land("bravo")],
+               "Bravo flew three 15 m legs east and landed 45 m east."),
+        _entry("compound", "test", "compound4-it-alpha-first-turn", ("alpha",),
+               "Porta alpha a 12 metri, vai 35 metri verso est, poi 15 metri verso nord; poi torna al primo punto "
+               "di svolta e atterra lì.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 35), c.point("alpha", 15, 35)]),
+                                  at(ev, "alpha", *c.point("alpha", 0, 35)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 12), _move("alpha", 0, 35), _move("alpha", 15, 0), _move("alpha", -15, 0),
+                _land("alpha")], "Alpha è andato 35 m a est e 15 m a nord, è tornato alla svolta ed è atterrato."),
+        _entry("compound", "test", "compound4-charlie-past-home", ("charlie",),
+               "Take charlie out 30 m east at 10 m, turn around, fly 50 m west and land.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 30)]),
+                                  at(ev, "charlie", *c.point("charlie", 0, -20)), landed_disarmed(ev, "charlie")),
+               [_move("charlie", 0, 30, alt=10), _move("charlie", 0, -50), _land("charlie")],
+               "Charlie went 30 m east, then 50 m west, and landed 20 m west of home."),
+        # conditional
+        _entry("conditional", "test", "cond4-pt-bravo-at-least", ("bravo",),
+               "Se o bravo tiver pelo menos 45 % de bateria, leva-o a 12 metros de altura e 20 metros para norte e "
+               "deixa-o lá; caso contrário, não o descoles e diz-me quanto tem.",
+               lambda c, ev: _all(never_armed(ev, "bravo"), answer_mentions_number(ev, 39, 2)),
+               [_battery("bravo")], "O bravo tem 39 %, por isso fica em terra.", battery={"bravo": 39.0}),
+        _entry("conditional", "test", "cond4-bravo-if-fuller-than-alpha", three,
+               "Take alpha up to 10 m. Then, if bravo has more charge than alpha, send bravo up to 10 m as well; "
+               "if not, bravo stays on the ground.",
+               lambda c, ev: _all(airborne_at(ev, "alpha", 10), never_armed(ev, "bravo"), never_armed(ev, "charlie")),
+               [_takeoff("alpha", 10), _battery("alpha"), _battery("bravo")],
+               "Alpha hovers at 10 m; bravo has less charge (55 % against 80 %), so it stays down.",
+               battery={"alpha": 80.0, "bravo": 55.0}),
+        _entry("conditional", "test", "cond4-pl-charlie-unless-low", ("charlie",),
+               "Jeśli charlie ma mniej niż 35 % baterii, zostaw go na ziemi i podaj mi poziom; w przeciwnym razie "
+               "wznieś go na 14 m, przeleć nim 25 m na zachód i zostaw go tam.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -25), alt=14), airborne_at(ev, "charlie", 14)),
+               [_battery("charlie"), _move("charlie", 0, -25, alt=14)],
+               "Charlie ma 48 %, więc wisi 25 m na zachód na 14 m.", battery={"charlie": 48.0}),
+        # formation
+        _entry("formation", "test", "form4-es-column-northwest", three,
+               "Pon a los tres drones en columna, uno detrás de otro, con 9 m entre cada uno, a 12 m de altura y "
+               "30 m al noroeste de donde están.",
+               lambda c, ev: _all(formation_at(c, ev, three, 12, 9, d30, -d30), farthest_apart(ev, three, 18)),
+               [_formation(three, "column", 12, 9, north=d30, east=-d30)],
+               "Los tres están en columna 30 m al noroeste, a 12 m."),
+        _entry("formation", "test", "form4-pair-feet-east", ("alpha", "bravo"),
+               "Form alpha and bravo into a line 40 feet apart at 60 feet, 30 m east of where they are.",
+               lambda c, ev: formation_at(c, ev, ("alpha", "bravo"), 60 * FT, 40 * FT, 0, 30),
+               [_formation(("alpha", "bravo"), "line", 60 * FT, 40 * FT, east=30)],
+               "Alpha and bravo hold a line 40 ft apart at 60 ft, 30 m east."),
+        # (the gateway's V: two wings 10 m from the lead, 45 degrees off its axis: 2 x 10 x sin 45 = 14.14 m apart)
+        _entry("formation", "test", "form4-de-wedge-north", three,
+               "Die drei Drohnen sollen als Keil auf 20 m Höhe fliegen, 10 m Abstand zwischen Spitze und jedem "
+               "Flügel, 35 m nördlich von ihrem jetzigen Standort.",
+               lambda c, ev: _all(formation_at(c, ev, three, 20, 10, 35, 0), farthest_apart(ev, three, 14.14)),
+               [_formation(three, "wedge", 20, 10, north=35)], "Die drei fliegen als Keil 35 m nördlich auf 20 m."),
+        # relative
+        _entry("relative", "test", "rel4-nl-charlie-southeast", ("charlie",),
+               "Vlieg charlie 30 meter naar het zuidoosten op 12 meter hoogte en laat hem daar hangen.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -d30, d30), alt=12),
+                                  airborne_at(ev, "charlie", 12)),
+               [_move("charlie", -d30, d30, alt=12)], "Charlie hangt 30 m naar het zuidoosten op 12 m."),
+        _entry("relative", "test", "rel4-alpha-bearing", ("alpha",),
+               "Alpha: fly 40 m on a bearing of 060 degrees at 15 m and hover there.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 34.64), alt=15), airborne_at(ev, "alpha", 15)),
+               [_move("alpha", 20, 34.64, alt=15)], "Alpha hovers 40 m away on a bearing of 060 at 15 m."),
+        _entry("relative", "test", "rel4-bravo-further-lower", ("bravo",),
+               "Take bravo up to 10 m and 20 m north; from there, go a further 15 m north and 10 m west, coming "
+               "down 4 m on the way.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 20, 0)]),
+                                  at(ev, "bravo", *c.point("bravo", 35, -10), alt=6), airborne_at(ev, "bravo", 6)),
+               [_move("bravo", 20, 0, alt=10), _move("bravo", 15, -10, up=-4)],
+               "Bravo hovers 35 m north and 10 m west at 6 m."),
+        # question
+        _entry("question", "test", "ask4-fr-ground-and-weakest", three,
+               "Est-ce que tous les drones sont au sol ? Et lequel a la batterie la plus faible ?",
+               lambda c, ev: _all(answer_says(ev, r"\bcharlie\b", "charlie"), answer_mentions_number(ev, 41, 2),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Oui, tous sont au sol ; charlie a la batterie la plus faible (41 %).",
+               battery={"alpha": 74.0, "bravo": 68.0, "charlie": 41.0}),
+        _entry("question", "test", "ask4-bravo-and-which-other", three,
+               "Give me bravo's charge, and tell me which of the other two has more.",
+               lambda c, ev: _all(answer_mentions_number(ev, 66, 1), answer_says(ev, r"\bcharlie\b", "charlie"),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Bravo has 66 %; of the other two, charlie has more (83 % against 52 %).",
+               battery={"alpha": 52.0, "bravo": 66.0, "charlie": 83.0}),
+        _entry("question", "test", "ask4-de-bravo-charge-flying", ("bravo",),
+               "Wie viel Akku hat bravo noch, und fliegt er gerade?",
+               lambda c, ev: _all(answer_mentions_number(ev, 63, 2),
+                                  answer_says(ev, r"\b(no|not|nein|nicht|ground|boden|landed|gelandet)\b",
+                                              "that it is not flying"), never_armed(ev, "bravo")),
+               [("get_position", {"drone_id": "bravo"}), _battery("bravo")],
+               "Bravo hat 63 % und steht am Boden.", battery={"bravo": 63.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off)
+        _entry("refusal", "test", "refuse4-bravo-far-west-of-charlie", three,
+               "Put bravo 1.1 km west of charlie, at 20 m.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
+               lambda c: [_go("bravo", c.point("charlie", 0, -1100), 20)],
+               "The gateway refused: that point is about 1095 m from bravo's home, beyond the 1000 m limit."),
+        _entry("refusal", "test", "refuse4-nl-row-450ft", three,
+               "Zet alle drie de drones in een rij op 450 voet hoogte, 10 meter uit elkaar.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"),
+                                  *(max_alt_at_most(ev, d, c.max_alt_m) for d in three), answer_reports_refusal(ev)),
+               [_formation(three, "line", 450 * FT, 10)],
+               "The gateway refused: 450 ft (137 m) is above the 120 m altitude limit."),
+        _entry("refusal", "test", "refuse4-it-charlie-circle-flat", ("charlie",),
+               "Fai volare charlie in cerchio attorno al suo punto di decollo, 20 metri di raggio, a 10 metri di "
+               "quota.",
+               lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "charlie"), answer_reports_refusal(ev)),
+               [_takeoff("charlie", 10)], "The gateway refused: charlie's battery is below the takeoff minimum.",
+               battery={"charlie": 22.0}),
+        # units
+        _entry("units", "test", "units4-charlie-square-feet", ("charlie",),
+               "Charlie at 40 ft: fly a square with 60-foot sides, north first and turning right, then land where "
+               "it started.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 40 * FT),
+                                  visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(square60ft)[:3]]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 40 * FT), *_legs("charlie", square60ft), _land("charlie")],
+               "Charlie flew the 60 ft square at 40 ft and landed."),
+        _entry("units", "test", "units4-alpha-quarter-km", ("alpha",),
+               "Lift alpha to 50 ft, take it a quarter of a kilometre south, and set it down there.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 50 * FT), at(ev, "alpha", *c.point("alpha", -250, 0)),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 50 * FT), _move("alpha", -250, 0), _land("alpha")],
+               "Alpha climbed to 50 ft, flew 250 m south and landed."),
+        _entry("units", "test", "units4-pl-bravo-feet-down", ("bravo",),
+               "Bravo: wznieś się na 35 stóp, przeleć 200 stóp na północ, potem obniż się o 15 stóp i zawiśnij tam.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 35 * FT),
+                                  at(ev, "bravo", *c.point("bravo", 200 * FT, 0), alt=20 * FT),
+                                  airborne_at(ev, "bravo", 20 * FT)),
+               [_takeoff("bravo", 35 * FT), _move("bravo", 200 * FT, 0), _move("bravo", up=-15 * FT)],
+               "Bravo wisi 200 stóp na północ na 20 stopach."),
+        # pattern
+        _entry("pattern", "test", "pattern4-charlie-orbit-spot-north", ("charlie",),
+               "Charlie at 12 m: orbit the spot 30 m north of its home once, 15 m radius, counter-clockwise starting "
+               "from the south side of it; then land back home.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in orbit]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), *_legs("charlie", [(15.0, 0.0), (15.0, 15.0), (15.0, -15.0), (-15.0, -15.0),
+                                                            (-15.0, 15.0)]), _rtl("charlie")],
+               "Charlie orbited the spot 30 m north and came home."),
+        _entry("pattern", "test", "pattern4-de-bravo-five-passes", ("bravo",),
+               "Bravo soll auf 15 m Höhe ein Feld abfliegen: fünf Bahnen zu je 25 m, die erste nach Osten, dann "
+               "abwechselnd hin und zurück, 6 m Abstand zwischen den Bahnen, jede weitere Bahn nördlich der vorigen; "
+               "danach landen.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(survey)]),
+                                  at(ev, "bravo", *c.point("bravo", 24, 25)), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 15), *_legs("bravo", survey), _land("bravo")],
+               "Bravo ist die fünf Bahnen abgeflogen und gelandet."),
+        _entry("pattern", "test", "pattern4-pt-alpha-pentagon", ("alpha",),
+               "O alpha deve voar um pentágono de 20 metros de lado a 10 metros de altura, com o primeiro lado para "
+               "norte e virando sempre à direita, e no fim ficar a pairar no ponto de partida.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(pentagon20)[:4]]),
+                                  at(ev, "alpha", *_home(c, "alpha"), alt=10), airborne_at(ev, "alpha", 10)),
+               [_takeoff("alpha", 10), *_legs("alpha", pentagon20)], "O alpha voou o pentágono e paira no início."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: a drone placed
+        # from itself, or from the other drone's home instead of where it flew, misses by 10 m or more)
+        _entry("placement", "test", "place4-charlie-parked-south-of-alpha", three,
+               "Park charlie on the ground 15 m south of alpha.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", -15, 0)), landed_disarmed(ev, "charlie"),
+                                  never_armed(ev, "alpha")),
+               lambda c: [_go("charlie", c.point("alpha", -15, 0), 10), _land("charlie")],
+               "Charlie landed 15 m south of alpha."),
+        _entry("placement", "test", "place4-es-charlie-west-north-of-alpha", three,
+               "Coloca a charlie 20 metros al oeste y 10 metros al norte de alpha, a 14 metros de altura, y déjalo "
+               "ahí.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 10, -20), alt=14), airborne_at(ev, "charlie", 14),
+                                  never_armed(ev, "alpha")),
+               lambda c: [_go("charlie", c.point("alpha", 10, -20), 14)],
+               "Charlie está 20 m al oeste y 10 m al norte de alpha, a 14 m."),
+        _entry("placement", "test", "place4-it-charlie-southwest-of-moved-alpha", three,
+               "Porta alpha 30 metri a nord a 15 metri di quota. Poi metti charlie 20 metri a sud-ovest di alpha, "
+               "alla stessa quota, e lasciali lì entrambi.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 30, 0), alt=15), airborne_at(ev, "alpha", 15),
+                                  at(ev, "charlie", *c.point("alpha", 30 - 20 / math.sqrt(2), -20 / math.sqrt(2)), alt=15),
+                                  airborne_at(ev, "charlie", 15), never_armed(ev, "bravo")),
+               lambda c: [_move("alpha", 30, 0, alt=15),
+                          _go("charlie", c.point("alpha", 30 - 20 / math.sqrt(2), -20 / math.sqrt(2)), 15)],
+               "Alpha è 30 m a nord a 15 m; charlie 20 m a sud-ovest di alpha, alla stessa quota."),
+        # language
+        _entry("language", "test", "lang4-pl-bravo-northwest-land", ("bravo",),
+               "Wystartuj bravo na 14 metrów, przeleć nim 25 metrów na północny zachód i wyląduj tam.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 14), at(ev, "bravo", *c.point("bravo", d25, -d25)),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 14), _move("bravo", d25, -d25), _land("bravo")],
+               "Bravo przeleciał 25 m na północny zachód i wylądował."),
+        _entry("language", "test", "lang4-pt-charlie-climb-more-land", ("charlie",),
+               "Põe o charlie a 20 metros de altura, sobe mais 10 metros e depois desce para aterrar.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 30), at(ev, "charlie", *_home(c, "charlie")),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 20), _move("charlie", up=10), _land("charlie")],
+               "O charlie subiu a 20 m, depois a 30 m, e aterrou."),
+        _entry("language", "test", "lang4-nl-pair-up-one-lands", three,
+               "Breng alpha en charlie allebei naar 12 meter en laat daarna alleen charlie landen.",
+               lambda c, ev: _all(airborne_at(ev, "alpha", 12), reached_alt(ev, "charlie", 12),
+                                  landed_disarmed(ev, "charlie"), never_armed(ev, "bravo")),
+               [_takeoff("alpha", 12), _takeoff("charlie", 12), _land("charlie")],
+               "Alpha hangt op 12 m; charlie is naar 12 m gegaan en geland."),
     ]  # fmt: skip
 
 
@@ -1560,7 +1851,8 @@ def corpus() -> list[CorpusEntry]:
         *_placements(),
         *_languages(),
         *_second_round(),
-        *_third_test_half(),
+        *_third_round(),
+        *_fourth_test_half(),
     ]
 
 

@@ -196,9 +196,9 @@ class Compiler:
         return up or self.default_takeoff_m
 
     async def origin(self, ref: Reference, drone: str) -> tuple[float, float]:
-        """Where a reference is: a drone's position (read now), a home, a named place."""
+        """Where a reference is: a drone's position (now), a home (its drone's, else the mover's), a place."""
         if ref.kind == "home":
-            return await self.sensors.home(drone)
+            return await self.sensors.home(ref.drone or drone)
         if ref.kind == "point":
             if ref.lat_deg is None or ref.lon_deg is None:
                 raise CompileError("a point needs lat_deg and lon_deg")
@@ -365,10 +365,13 @@ def pattern_legs(step: Pattern) -> list[geometry.Offset]:
     if step.shape in POLYGON_SIDES or step.shape == "polygon":
         sides = POLYGON_SIDES.get(step.shape) or step.sides or 4
         return geometry.polygon_legs(sides, step.size.metres, heading, clockwise)
+    if step.shape == "rectangle":
+        width = step.spacing.metres if step.spacing is not None else step.size.metres
+        return geometry.rectangle_legs(step.size.metres, width, heading, clockwise)
     if step.shape == "orbit":
         return geometry.orbit_legs(step.size.metres, clockwise=clockwise)
     spacing = step.spacing.metres if step.spacing is not None else step.size.metres / 4
-    return geometry.survey_legs(step.lines or 2, step.size.metres, spacing, heading)
+    return geometry.survey_legs(step.lines or 2, step.size.metres, spacing, heading, clockwise)
 
 
 def reading_value(state: DroneState, reading: str) -> float | None:

@@ -11,7 +11,8 @@ from __future__ import annotations
 from typing import Any
 
 from fleet_agent import lexicon
-from fleet_agent.plan import Condition, Plan
+from fleet_agent.plan import Condition, Formation, Plan, Report
+from fleet_agent.units import Unit
 
 _DRONE_FIELDS = ("drone", "drones", "among")
 
@@ -38,11 +39,14 @@ def without_unasked(request: str, fleet: list[str], plan: Plan) -> Plan:
 
 def _asked(steps: list[Any], named: set[str]) -> list[Any]:
     """``steps`` without those of a drone not in ``named``, an ``if``'s branches included (a choice's
-    steps name whichever drone; the chosen one flies them)."""
+    steps name whichever drone; the chosen one flies them), and a formation without such drones while
+    two remain (a formation of the two drones a request named came with the third)."""
     kept = []
     for step in steps:
         if getattr(step, "drone", None) not in (None, *named):
             continue
+        if isinstance(step, Formation) and len(asked := [d for d in step.drones if d in named]) >= 2:
+            step = step.model_copy(update={"drones": asked})
         if isinstance(step, Condition):
             branches = {"then": _asked(step.then, named), "otherwise": _asked(step.otherwise, named)}
             step = step.model_copy(update=branches)
@@ -126,6 +130,8 @@ def as_request_says(request: str, data: Any) -> Any:
     for _, value in _items(data):
         if isinstance(value, dict) and {"value", "unit"} <= value.keys():
             given = units.get(value["value"]) if isinstance(value["value"], int | float) else None
+            if given is None and value["unit"] == "m" and _fraction(value["value"], units):
+                given = units[None]  # "a tenth of a mile" written as 0.1 m
             if given is not None and len(given) == 1:
                 value["unit"] = str(next(iter(given)))
     home = lexicon.says(request, lexicon.HOME_STEMS)
@@ -139,6 +145,11 @@ def as_request_says(request: str, data: Any) -> Any:
     if lexicon.says(request, lexicon.LAND_ONLY_STEMS) and not home:
         _land_at_end(data["steps"])
     return data
+
+
+def _fraction(value: Any, units: dict[float | None, set[Unit]]) -> bool:
+    """``value`` is a fraction the request does not write in digits, and it names a unit with no number."""
+    return isinstance(value, int | float) and 0 < value < 1 and value not in units and None in units
 
 
 def _endings(steps: list[Any], kept: dict[str, bool], instead: dict[str, str]) -> list[Any]:
@@ -219,15 +230,8 @@ def placed_by_name(request: str, fleet: list[str], data: Any) -> Any:
 
 
 def _horizontal(leg: Any) -> bool:
-    return (
-        isinstance(leg, dict)
-        and isinstance(leg.get("distance"), dict)
-        and leg.get("direction")
-        not in (
-            "up",
-            "down",
-        )
-    )
+    is_leg = isinstance(leg, dict) and isinstance(leg.get("distance"), dict)
+    return is_leg and leg.get("direction") not in ("up", "down")
 
 
 def _horizontal_move_from_here(step: Any) -> bool:
@@ -240,14 +244,9 @@ def _horizontal_move_from_here(step: Any) -> bool:
 
 
 def _origins(steps: list[Any]) -> set[str]:
-    found = set()
-    for step in steps:
-        origin = step.get("origin") if isinstance(step, dict) else None
-        if isinstance(origin, dict):
-            origin = origin.get("drone")
-        if isinstance(origin, str):
-            found.add(origin)
-    return found
+    origins = [step.get("origin") for step in steps if isinstance(step, dict)]
+    found = [origin.get("drone") if isinstance(origin, dict) else origin for origin in origins]
+    return {origin for origin in found if isinstance(origin, str)}
 
 
 def _clauses(request: str) -> list[str]:
@@ -315,3 +314,20 @@ def _each_its_leg(step: Any, tokens: list[str]) -> list[tuple[str, Any]] | None:
         legs.remove(leg)
         pairs.append((drone, leg))
     return pairs
+
+
+def questions_of_fleet(request: str, fleet: list[str], plan: Plan) -> Plan:
+    """The plan with an ``if`` that does nothing either way, in a request about more drones than the
+    ``if``'s one, read as the question it is: a report of that reading for the drones the request names
+    (all the fleet when it names none), picking the lowest or highest as the ``if`` compared (a question
+    whether any drone was under a threshold was planned as one drone's ``if``). Done after the plan is
+    checked against the request: the threshold is the request's number, which the report does not carry."""
+    drones = sorted(_named(request, fleet)) or list(fleet)
+    return plan.model_copy(update={"steps": [_as_report(step, drones) for step in plan.steps]})
+
+
+def _as_report(step: Any, drones: list[str]) -> Any:
+    if not isinstance(step, Condition) or step.then or step.otherwise or drones == [step.drone]:
+        return step
+    pick = "lowest" if step.compare in ("below", "at_most") else "highest"
+    return Report(action="report", drones=drones, readings=[step.reading], pick=pick)

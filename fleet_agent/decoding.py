@@ -14,6 +14,7 @@ from fleet_agent.consistency import (
     as_request_says,
     gaps,
     placed_by_name,
+    questions_of_fleet,
     split_formation,
     without_unasked,
 )
@@ -39,15 +40,14 @@ class PlanAttempt:
 
 def decoding_options(decoding: str, schema: dict[str, Any]) -> dict[str, Any]:
     """The request options that make the endpoint decode under ``schema``."""
-    if decoding == "json_schema":
-        return {"response_format": {"type": "json_schema", "json_schema": {"name": "plan", "schema": schema}}}
-    if decoding == "ollama":
-        return {"extra_body": {"format": schema}}
-    if decoding == "guided":
-        return {"extra_body": {"guided_json": schema}}
-    if decoding == "none":
-        return {}
-    raise ValueError(f"decoding must be one of {', '.join(DECODINGS)}; got {decoding!r}")
+    named = {"type": "json_schema", "json_schema": {"name": "plan", "schema": schema}}
+    options: dict[str, dict[str, Any]] = {
+        "json_schema": {"response_format": named}, "ollama": {"extra_body": {"format": schema}},
+        "guided": {"extra_body": {"guided_json": schema}}, "none": {},
+    }  # fmt: skip
+    if decoding not in options:
+        raise ValueError(f"decoding must be one of {', '.join(DECODINGS)}; got {decoding!r}")
+    return options[decoding]
 
 
 def describe_errors(exc: ValidationError | ValueError) -> str:
@@ -110,6 +110,7 @@ class Planner:
             attempt.errors.append(describe_errors(exc))
             return f"That plan is not valid: {attempt.errors[-1]}"
         notes = gaps(request, fleet, plan)
+        plan = questions_of_fleet(request, fleet, plan)
         if attempt.plan is None or len(notes) < attempt.gaps:
             attempt.plan, attempt.gaps = plan, len(notes)
         if not notes:

@@ -59,6 +59,16 @@ def polygon_legs(
     return [_scaled(heading_vector(first_heading_deg + i * turn), side_m) for i in range(sides)]
 
 
+def rectangle_legs(
+    length_m: float, width_m: float, first_heading_deg: float = 0.0, clockwise: bool = True
+) -> list[Offset]:
+    """A closed rectangle from one corner: ``length_m`` along the first heading, then ``width_m`` across."""
+    along = heading_vector(first_heading_deg)
+    across = heading_vector(first_heading_deg + (90.0 if clockwise else -90.0))
+    return [_scaled(along, length_m), _scaled(across, width_m), _scaled(along, -length_m),
+            _scaled(across, -width_m)]  # fmt: skip
+
+
 def orbit_legs(radius_m: float, points: int = 12, clockwise: bool = True) -> list[Offset]:
     """Out from the centre to the circle (north), around it through ``points`` chords, and back in."""
     out = (radius_m, 0.0)
@@ -71,11 +81,12 @@ def orbit_legs(radius_m: float, points: int = 12, clockwise: bool = True) -> lis
 
 
 def survey_legs(
-    lines: int, length_m: float, spacing_m: float, first_heading_deg: float = 0.0
+    lines: int, length_m: float, spacing_m: float, first_heading_deg: float = 0.0, right: bool = True
 ) -> list[Offset]:
-    """A lawnmower: ``lines`` parallel lines of ``length_m``, ``spacing_m`` apart, stepping to the right."""
+    """A lawnmower: ``lines`` parallel lines of ``length_m``, ``spacing_m`` apart, stepping to the right
+    (to the left unless ``right``)."""
     along = heading_vector(first_heading_deg)
-    across = heading_vector(first_heading_deg + 90.0)
+    across = heading_vector(first_heading_deg + (90.0 if right else -90.0))
     legs: list[Offset] = []
     for i in range(lines):
         sign = 1.0 if i % 2 == 0 else -1.0

@@ -51,15 +51,14 @@ def says(text: str, stems: tuple[str, ...]) -> bool:
     return any(w == s or (len(s) > 3 and w.startswith(s)) for w in words(text) for s in stems)
 
 
-def number_units(text: str) -> dict[float, set[Unit]]:
-    """Each number of ``text`` written with a unit right after it, and the units it was written with."""
-    found_tokens = tokens(text.lower())
-    found: dict[float, set[Unit]] = {}
-    for token, word in pairwise(found_tokens):
-        value = number(token)
+def number_units(text: str) -> dict[float | None, set[Unit]]:
+    """Each number of ``text`` written with a unit right after it, and the units it was written with;
+    under None, the units written with no number before them ("a tenth of a mile")."""
+    found: dict[float | None, set[Unit]] = {}
+    for token, word in pairwise(["", *tokens(text.lower())]):
         unit = next((u for u, names in UNIT_WORDS.items() if word in names), None)
-        if value is not None and unit is not None:
-            found.setdefault(value, set()).add(unit)
+        if unit is not None:
+            found.setdefault(number(token) if token else None, set()).add(unit)
     return found
 
 

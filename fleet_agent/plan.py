@@ -32,16 +32,9 @@ class Length(Strict):
 
 
 class Direction(StrEnum):
-    north = "north"
-    south = "south"
-    east = "east"
-    west = "west"
-    northeast = "northeast"
-    northwest = "northwest"
-    southeast = "southeast"
-    southwest = "southwest"
-    up = "up"
-    down = "down"
+    north, south, east, west = "north", "south", "east", "west"
+    northeast, northwest, southeast, southwest = "northeast", "northwest", "southeast", "southwest"
+    up, down = "up", "down"
 
 
 class Leg(Strict):
@@ -141,7 +134,8 @@ POLYGON_SIDES = {"triangle": 3, "square": 4, "pentagon": 5, "hexagon": 6, "octag
 
 
 class Pattern(DroneStep):
-    """A polygon (named, or ``polygon`` with ``sides``) with sides of ``size``; an orbit, a circle of radius
+    """A polygon (named, or ``polygon`` with ``sides``) with sides of ``size``; a rectangle ``size`` long
+    (along the heading) and ``spacing`` wide (as long when null); an orbit, a circle of radius
     ``size``; a survey, ``lines`` lines of ``size``, ``spacing`` apart. Flown by one drone from where it is,
     the first leg towards ``heading`` (null: north), turning ``turn`` (null: right).
 
@@ -151,7 +145,9 @@ class Pattern(DroneStep):
 
     action: Literal["pattern"]
     drone: str
-    shape: Literal["triangle", "square", "pentagon", "hexagon", "octagon", "polygon", "orbit", "survey"]
+    shape: Literal[
+        "triangle", "square", "rectangle", "pentagon", "hexagon", "octagon", "polygon", "orbit", "survey"
+    ]
     size: Length
     sides: int | None = Field(ge=3, le=12)
     lines: int | None = Field(ge=1, le=20)

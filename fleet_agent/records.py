@@ -26,12 +26,8 @@ class ToolOutcome:
         if not self.is_error:
             return None
         data = self.structured or {}
-        return Refusal(
-            code=str(data.get("code") or "error"),
-            rule=data.get("rule"),
-            message=str(data.get("message") or self.text),
-            details=dict(data.get("details") or {}),
-        )
+        message, details = str(data.get("message") or self.text), dict(data.get("details") or {})
+        return Refusal(str(data.get("code") or "error"), data.get("rule"), message, details)
 
 
 @dataclass(frozen=True)

@@ -5,7 +5,13 @@ which the lifespan starts (database migrated and opened, vehicles restored) and 
 ended, database closed).
 """
 
+# ruff: noqa: E402 - FastAPI is imported after its OpenAPI models are (below)
 from __future__ import annotations
+
+from gateway.util.deferred_models import import_with_models_deferred
+
+# before FastAPI imports them (`fastapi.params` does): validators built when /openapi.json first is
+import_with_models_deferred("fastapi.openapi.models")
 
 import logging
 from collections.abc import AsyncIterator, Callable

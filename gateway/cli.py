@@ -136,6 +136,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         result = args.func(args)
     except KeyboardInterrupt:
         return 130
+    finally:
+        if argv is None:  # the process's own command line: the process exits next
+            from gateway.util.heap import leave_heap_to_exit
+
+            leave_heap_to_exit()
     return int(result or 0)
 
 

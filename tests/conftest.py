@@ -13,6 +13,7 @@ from hypothesis import settings as hypothesis_settings
 
 from gateway.registry.store import Store
 from tests.helpers.file_order import longest_files_first, seconds_per_file
+from tests.helpers.sqlite_at_head import at_head
 from tests.helpers.timing import TIME_SCALE, scaled
 
 # no per-example time limit: Hypothesis's default 200 ms deadline is a wall-clock threshold, which fails a
@@ -80,8 +81,9 @@ def db_url(tmp_path: Path) -> str:
 
 @pytest.fixture
 async def store(db_url: str) -> AsyncIterator[Store]:
-    """A Store opened (schema upgraded) on ``db_url``, closed after the test."""
-    opened = await Store.open(db_url)
+    """A Store opened on ``db_url`` (a fresh SQLite file is copied at the schema's head first:
+    tests/helpers/sqlite_at_head.py), closed after the test."""
+    opened = await Store.open(await at_head(db_url))
     try:
         yield opened
     finally:

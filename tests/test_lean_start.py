@@ -173,14 +173,15 @@ def test_a_plain_start_imports_only_what_its_configuration_uses(command: str, tm
     assert unexpected(modules) == {}, f"{command} imported at start what only these need"
 
 
-def test_a_drone_relayed_for_its_raw_flight_log_costs_no_mavlink_dialect(tmp_path: Path) -> None:
+def test_a_drone_relayed_for_its_raw_flight_log_loads_no_pymavlink(tmp_path: Path) -> None:
     """Every drone's link runs through the gateway's relay while flights' raw MAVLink is recorded (the
-    default): its frames are split and routed by `gateway.link.mavlink_messages`, and pymavlink's
-    dialect module (about 6 MiB) waits for a ground station's frame or a mission."""
+    default): its frames are split, checked and routed by `gateway.link.mavlink_frames` with
+    `gateway.link.mavlink_messages`, and pymavlink (its dialect module, about 6 MiB, and its CRC with
+    the fastcrc extension) waits for a ground station's frame or a mission."""
     modules = loaded_at_start("serve", tmp_path, drone_url=f"udpin://127.0.0.1:{free_udp_port()}")
     assert "gateway.link.relay" in modules  # the drone's link did start its relay
-    dialects = [m for m in modules if m.startswith(("pymavlink.dialects", "gateway.link.ground_commands"))]
-    assert dialects == [], "a drone relayed only for its raw flight log loaded pymavlink's dialect"
+    mavlink = [m for m in modules if m.startswith(("pymavlink", "fastcrc", "gateway.link.ground_commands"))]
+    assert mavlink == [], "a drone relayed only for its raw flight log loaded pymavlink"
 
 
 def test_a_first_start_upgrades_the_new_database_without_keeping_alembic(tmp_path: Path) -> None:

@@ -38,6 +38,7 @@ from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stoplink import StopTarget, direct_stop_answer, send_stop
 from gateway.errors import GatewayError, NoOwner, NotRun, StopPending
 from gateway.fleet.policy.caller import Caller
+from gateway.link.contract import HEARD
 from gateway.util.json_types import JsonObject, JsonValue
 
 if TYPE_CHECKING:
@@ -237,9 +238,13 @@ class StopTakeover:
         view = registry.find(drone_id)
         me = self._node.node_id
         if view is not None and registry.is_local(drone_id):  # taken over by this node: its own sidecar
-            if str(view.state) != "ready":
+            # a stop needs the drone heard, not ready to fly (an ArduPilot drone's first EKF report can
+            # be half a minute away on a new link): land, return and hold are tried when only connected
+            if str(view.state) not in HEARD:
                 return None
-            await answer(self._node.gateway.commander, verb, {}, caller.to_dict(), no_progress)
+            await answer(
+                self._node.gateway.commander, verb, {"drone_id": drone_id}, caller.to_dict(), no_progress
+            )
             return f"through node {me}'s own sidecar, which took the drone over"
         if isinstance(view, RemoteVehicle) and view.owner is not None:  # its owner (or a new one) again
             with contextlib.suppress(NotRun, NoOwner):

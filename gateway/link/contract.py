@@ -25,6 +25,11 @@ class ConnectionState(enum.StrEnum):
     FAILED = "failed"
 
 
+#: the states in which a drone is heard: enough for a stop (land, return, hold), which never waits for ready
+#: to fly (an ArduPilot drone is ready only with its first EKF report, up to half a minute later)
+HEARD = frozenset({ConnectionState.CONNECTED, ConnectionState.READY})
+
+
 class LinkRules(Protocol):
     """What the link needs to know about the vehicle's autopilot (``gateway.fleet.dialects`` has them)."""
 

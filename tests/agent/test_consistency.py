@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from fleet_agent.consistency import gaps, without_unasked
-from fleet_agent.plan import Condition, parse_plan
+from fleet_agent.consistency import gaps, questions_of_fleet, without_unasked
+from fleet_agent.plan import Condition, Report, parse_plan
 from fleet_agent.prompt import messages_for, prefix_messages
 
 FLEET = ["alpha", "bravo", "charlie"]
@@ -52,6 +52,10 @@ def test_a_step_for_a_drone_the_request_does_not_name_is_dropped() -> None:
     kept = without_unasked("Bravo: up to 12 m and back down.", FLEET, plan)
     assert [s.drone for s in kept.steps] == ["bravo", "bravo"]  # type: ignore[union-attr]
     assert without_unasked("All three up to 12 m.", FLEET, plan) is plan
+    line = {"action": "formation", "drones": FLEET, "shape": "column", "spacing": {"value": 8, "unit": "m"},
+            "altitude": {"value": 12, "unit": "m"}}  # fmt: skip
+    pair = without_unasked("Charlie and alpha in a column, 8 m apart, at 12 m", FLEET, _plan(line))
+    assert pair.steps[0].drones == ["alpha", "charlie"]  # type: ignore[union-attr]
 
 
 def test_a_branch_step_for_a_drone_the_request_does_not_name_is_dropped() -> None:
@@ -62,3 +66,21 @@ def test_a_branch_step_for_a_drone_the_request_does_not_name_is_dropped() -> Non
     assert isinstance(step, Condition)
     assert [s.drone for s in step.then] == ["alpha"]  # type: ignore[union-attr]
     assert step.otherwise == []
+
+
+def _if(drone: str, compare: str, then: list[dict[str, object]]) -> dict[str, object]:
+    return {"action": "if", "drone": drone, "reading": "battery", "compare": compare, "value": 50,
+            "then": then, "otherwise": []}  # fmt: skip
+
+
+def test_an_if_that_does_nothing_in_a_question_of_several_drones_is_a_report() -> None:
+    question = _plan(_if("alpha", "below", []))
+    assert gaps("Is any drone under 50 % charge?", FLEET, question) == []  # read before it becomes a report
+    fleet_wide = questions_of_fleet("Is any drone under 50 % charge?", FLEET, question)
+    assert fleet_wide.steps == [Report(action="report", drones=FLEET, readings=["battery"], pick="lowest")]
+    pair = questions_of_fleet("Bravo or charlie over 50 %?", FLEET, _plan(_if("bravo", "above", [])))
+    assert pair.steps[0].drones == ["bravo", "charlie"] and pair.steps[0].pick == "highest"  # type: ignore[union-attr]
+    one = _plan(_if("bravo", "below", []))
+    assert questions_of_fleet("Is bravo under 50 %?", FLEET, one) == one
+    acts = _plan(_if("alpha", "below", [_up("alpha", 5)]))
+    assert questions_of_fleet("If any is under 50 %, alpha up 5 m", FLEET, acts) == acts

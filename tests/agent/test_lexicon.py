@@ -27,6 +27,7 @@ def test_a_number_takes_the_unit_written_after_it_in_any_language() -> None:
     assert number_units("bravo 50ft up, then 2 mi") == {50.0: {Unit.ft}, 2.0: {Unit.mi}}
     assert number_units("alpha 10 m and 10 ft") == {10.0: {Unit.m, Unit.ft}}
     assert number_units("if the battery is above 40 %") == {}
+    assert number_units("half a mile north, then 20 m up") == {None: {Unit.mi}, 20.0: {Unit.m}}
 
 
 def test_a_length_written_in_metres_takes_the_requests_unit() -> None:
@@ -35,6 +36,12 @@ def test_a_length_written_in_metres_takes_the_requests_unit() -> None:
     out = as_request_says("alpha to 30 ft, then 150 yards south and 10 m up, stay there", data)
     assert out["steps"][0]["altitude"] == _m(30, "ft")
     assert [leg["distance"] for leg in out["steps"][1]["legs"]] == [_m(150, "yd"), _m(10)]
+
+
+def test_a_fraction_written_in_metres_takes_the_unit_named_without_a_number() -> None:
+    data = {"steps": [_move("stay", (0.1, "m", "west"), (0.5, "m", "north"), (50, "m", "south"))]}
+    out = as_request_says("alpha: a tenth of a mile west, 0.5 m north, then 50 yards south", data)
+    assert [leg["distance"] for leg in out["steps"][0]["legs"]] == [_m(0.1, "mi"), _m(0.5), _m(50, "yd")]
 
 
 def test_a_return_home_the_request_never_speaks_of_is_a_landing_or_a_stay() -> None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
+import math
 import re
 import sys
 from collections import Counter
@@ -14,6 +15,7 @@ import pytest
 
 from bench.agent_harness.missions import DroneTruth, Evidence, MissionContext
 from bench.nl_corpus import CLASSES, DRONES, HALVES, CorpusEntry, corpus, farthest_apart, formation_at, select
+from gateway.fleet.geo import offset_position
 
 BENCH = Path(__file__).resolve().parents[2] / "bench" / "nl_missions.py"
 HOMES = {
@@ -92,25 +94,43 @@ THIRD_ROUND_MOVED = frozenset({
 })  # fmt: skip
 
 
+#: the third test half (now ``_third_round``), moved to dev later on 2026-11-30 (each entry marked "third
+#: round") because its figures had been measured
+THIRD_HALF_MOVED = frozenset({
+    "ask3-all-able-to-launch", "ask3-alpha-ready-for-job", "ask3-fr-charge-first",
+    "compound3-alpha-lower-leg-home", "compound3-bravo-halfway-back", "compound3-pt-charlie-south-west-land",
+    "cond3-de-alpha-far-or-near", "cond3-es-charlie-in-range", "cond3-every-drone-over-half",
+    "form3-circle-southeast", "form3-nl-row-east", "form3-single-file-north", "lang3-de-alpha-southeast-land",
+    "lang3-es-charlie-west-home", "lang3-nl-bravo-north-land", "multi3-it-pair-hover", "multi3-twice-as-high",
+    "multi3-west-east-apart", "pattern3-bravo-rectangle", "pattern3-charlie-circles-alpha",
+    "pattern3-es-charlie-hexagon-left", "place3-bravo-midway", "place3-charlie-west-of-bravo-home",
+    "place3-de-charlie-east-of-alpha", "refuse3-alpha-a-mile", "refuse3-charlie-one-metre",
+    "refuse3-fr-bravo-climb-over-ceiling", "rel3-alpha-southwest-land", "rel3-bravo-east-first",
+    "rel3-es-charlie-west-south", "single3-bravo-test-flight", "single3-charlie-target-height",
+    "single3-fr-alpha-stay-up", "units3-charlie-mile-yards", "units3-de-bravo-feet-km",
+    "units3-it-alpha-feet-yards",
+})  # fmt: skip
+
+
 def test_halves_are_disjoint_and_stratified_by_class() -> None:
-    """The dev half holds every entry written before 2026-11-30 (123, and the 36 test entries moved
-    then); the test half is the 36 written on 2026-11-30, 3 a class."""
+    """The dev half holds every entry written before the fourth test half (159, and the 36 of the third
+    test half, moved later on 2026-11-30); the test half is the fourth (``_fourth_test_half``), 3 a class."""
     dev, test = select("dev"), select("test")
     assert not {e.id for e in dev} & {e.id for e in test}
     assert len(dev) + len(test) == len(corpus()) == len(select("all"))
-    assert len(test) == 36 and len(dev) == 159
+    assert len(test) == 36 and len(dev) == 195
     assert Counter(e.cls for e in test) == Counter(dict.fromkeys(CLASSES, 3))
     per_dev = Counter(e.cls for e in dev)
     assert per_dev == Counter({
-        "single": 11, "multi": 17, "compound": 19, "conditional": 19, "formation": 14, "relative": 16,
-        "question": 13, "refusal": 10, "units": 9, "pattern": 9, "placement": 13, "language": 9,
+        "single": 14, "multi": 20, "compound": 22, "conditional": 22, "formation": 17, "relative": 19,
+        "question": 16, "refusal": 13, "units": 12, "pattern": 12, "placement": 16, "language": 12,
     })  # fmt: skip
 
 
 def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
     """The rounds of 2026-11-29 and 2026-11-30: the 8 test entries seen while tuning, then the whole test
-    half (35) whose figures had informed a decision, then the whole test half (36) once measured, moved
-    to dev; the test half holds none of them."""
+    half (35) whose figures had informed a decision, then twice the whole test half (36) once measured,
+    moved to dev; the test half holds none of them."""
     first_round = {
         "cond-half-battery-go",
         "cond-fullest-flies",
@@ -121,7 +141,7 @@ def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
         "place-alpha-west-of-flying-bravo",
         "place-alpha-northeast-of-charlie",
     }
-    moved = first_round | SECOND_ROUND_MOVED | THIRD_ROUND_MOVED
+    moved = first_round | SECOND_ROUND_MOVED | THIRD_ROUND_MOVED | THIRD_HALF_MOVED
     by_id = {e.id: e for e in corpus()}
     assert all(by_id[i].half == "dev" for i in moved)
     test_ids = {e.id for e in select("test")}
@@ -380,4 +400,95 @@ def test_a_wrong_outcome_fails_the_third_test_half_checks() -> None:
     ).ok
     assert not low(
         CTX, ev({"charlie": _hovering("charlie", 0, 0, 2)}, text="Charlie hovers at 2 m, the minimum.")
+    ).ok
+
+
+def test_a_wrong_outcome_fails_the_fourth_test_half_checks() -> None:
+    """Each trap the fourth test half sets: the right outcome passes, the likely wrong one fails."""
+    ft = 0.3048
+    idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
+
+    def ev(
+        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
+    ) -> Evidence:
+        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
+
+    def landed_at(lat_lon: tuple[float, float]) -> DroneTruth:
+        return DroneTruth(*lat_lon, 0.0, False, 90.0)
+
+    # feet read as metres
+    feet = _entry("units4-pl-bravo-feet-down").mission.check
+    climb = _track("bravo", [(0, 0)], 35 * ft)
+    right = _hovering("bravo", 200 * ft, 0, 20 * ft)
+    assert feet(CTX, ev({"bravo": right}, {"bravo": [*climb, right]})).ok
+    as_metres = _hovering("bravo", 200, 0, 20)
+    assert not feet(CTX, ev({"bravo": as_metres}, {"bravo": [*_track("bravo", [(0, 0)], 35), as_metres]})).ok
+
+    # a formation whose spacing and height in feet are read as metres
+    pair = _entry("form4-pair-feet-east").mission.check
+    mid_lat, mid_lon = (
+        (HOMES["alpha"][0] + HOMES["bravo"][0]) / 2,
+        (HOMES["alpha"][1] + HOMES["bravo"][1]) / 2,
+    )
+
+    def abreast(spacing: float, alt: float) -> dict[str, DroneTruth]:
+        return {
+            d: DroneTruth(*offset_position(mid_lat, mid_lon, 0, 30 + side * spacing / 2), alt, True, 90.0)
+            for d, side in (("alpha", -1), ("bravo", 1))
+        }
+
+    assert pair(CTX, ev(abreast(40 * ft, 60 * ft))).ok
+    assert not pair(CTX, ev(abreast(40, 60))).ok
+
+    # parked from the drone itself instead of from the drone named
+    park = _entry("place4-charlie-parked-south-of-alpha").mission.check
+    assert park(CTX, ev({"charlie": landed_at(CTX.point("alpha", -15, 0))})).ok
+    assert not park(CTX, ev({"charlie": landed_at(CTX.point("charlie", -15, 0))})).ok
+
+    # an orbit flown clockwise instead of counter-clockwise
+    orbit = _entry("pattern4-charlie-orbit-spot-north").mission.check
+    home = landed_at(CTX.point("charlie", 0, 0))
+    ccw = _track("charlie", [(15, 0), (15, 15), (15, -15), (-15, -15), (-15, 15), (-15, 0)], 12)
+    cw = _track("charlie", [(15, 0), (15, -15), (15, 15), (-15, 15), (-15, -15), (-15, 0)], 12)
+    assert orbit(CTX, ev({"charlie": home}, {"charlie": [*ccw, home]})).ok
+    assert not orbit(CTX, ev({"charlie": home}, {"charlie": [*cw, home]})).ok
+
+    # a pentagon turning left instead of right
+    pentagon = _entry("pattern4-pt-alpha-pentagon").mission.check
+    sides = [(20 * math.cos(math.radians(b)), 20 * math.sin(math.radians(b))) for b in range(0, 360, 72)]
+    right_turns = _track("alpha", sides, 10)
+    left_turns = _track("alpha", [(n, -e) for n, e in sides], 10)
+    assert pentagon(CTX, ev({"alpha": right_turns[-1]}, {"alpha": right_turns})).ok
+    assert not pentagon(CTX, ev({"alpha": left_turns[-1]}, {"alpha": left_turns})).ok
+
+    # a leg flown once instead of three times
+    legs = _entry("compound4-bravo-leg-three-times").mission.check
+    thrice = _track("bravo", [(0, 45)], 8)
+    assert legs(CTX, ev({"bravo": landed_at(CTX.point("bravo", 0, 45))}, {"bravo": thrice})).ok
+    once = _track("bravo", [(0, 15)], 8)
+    assert not legs(CTX, ev({"bravo": landed_at(CTX.point("bravo", 0, 15))}, {"bravo": once})).ok
+
+    # a bearing measured from east instead of from north
+    bearing = _entry("rel4-alpha-bearing").mission.check
+    assert bearing(CTX, ev({"alpha": _hovering("alpha", 20, 34.64, 15)})).ok
+    assert not bearing(CTX, ev({"alpha": _hovering("alpha", 34.64, 20, 15)})).ok
+
+    # the condition ignored: bravo flown although it has less charge than alpha
+    fuller = _entry("cond4-bravo-if-fuller-than-alpha").mission.check
+    assert fuller(CTX, ev({"alpha": _hovering("alpha", 0, 0, 10)})).ok
+    assert not fuller(
+        CTX, ev({"alpha": _hovering("alpha", 0, 0, 10), "bravo": _hovering("bravo", 0, 0, 10)})
+    ).ok
+
+    # a formation above the ceiling: refused and nothing climbed, not flown anyway
+    ceiling = _entry("refuse4-nl-row-450ft").mission.check
+    refused = [
+        {"name": "formation_goto", "status": "error", "text": "137.2 m is above the altitude limit of 120 m"}
+    ]
+    assert ceiling(
+        CTX, Evidence(idle, {d: [t] for d, t in idle.items()}, refused, "Refused: above the limit.")
+    ).ok
+    high = {d: _hovering(d, 0, 0, 137) for d in DRONES}
+    assert not ceiling(
+        CTX, Evidence(high, {d: [t] for d, t in high.items()}, refused, "Refused: above the limit.")
     ).ok

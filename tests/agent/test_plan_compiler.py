@@ -20,12 +20,13 @@ HOME = (47.3977, 8.5456)
 class FakeSensors:
     states: dict[str, DroneState] = field(default_factory=dict)
     places: dict[str, tuple[float, float]] = field(default_factory=dict)
+    homes: dict[str, tuple[float, float]] = field(default_factory=dict)
 
     async def state(self, drone: str) -> DroneState:
         return self.states.get(drone, DroneState(HOME[0], HOME[1], 0.0, False, 80.0))
 
     async def home(self, drone: str) -> tuple[float, float]:
-        return HOME
+        return self.homes.get(drone, HOME)
 
     async def place(self, name: str) -> tuple[float, float]:
         if name not in self.places:
@@ -170,6 +171,10 @@ async def test_a_named_place_and_home_are_origins() -> None:
     home = {**step, "legs": [leg(10, "east")], "origin": {"kind": "home"}}
     (goto,) = await compiled(home, sensors)
     assert abs(geometry.offset_between(*HOME, goto.args["lat_deg"], goto.args["lon_deg"])[1] - 10.0) < 0.05
+    sensors.homes["bravo"] = geometry.offset_position(*HOME, 30.0, 0.0)
+    (goto,) = await compiled({**home, "origin": {"kind": "home", "drone": "bravo"}}, sensors)
+    north, east = geometry.offset_between(*HOME, goto.args["lat_deg"], goto.args["lon_deg"])
+    assert abs(north - 30.0) < 0.05 and abs(east - 10.0) < 0.05  # from bravo's home, not alpha's
 
 
 #: a pattern's properties the request may leave out (required, null)
@@ -237,6 +242,10 @@ async def test_a_named_polygon_has_its_sides_and_a_polygon_its_count() -> None:
              **STAY, "action": "pattern", "drone": "alpha", "shape": "orbit", "size": m(25), "turn": "left"}
     legs = await compiled(orbit, FakeSensors({"alpha": flying()}))
     assert len(legs) == 14 and legs[1].args["east_m"] < 0  # round to the left (west) first
+    rectangle = {**NULLS, **STAY, "action": "pattern", "drone": "alpha", "shape": "rectangle", "size": m(40),
+                 "spacing": m(20), "heading": "east"}  # fmt: skip
+    sides = await compiled(rectangle, FakeSensors({"alpha": flying()}))
+    assert [(c.args["north_m"], c.args["east_m"]) for c in sides] == [(0, 40), (-20, 0), (0, -40), (20, 0)]
 
 
 async def test_a_formation_centred_on_a_point() -> None:

@@ -57,9 +57,17 @@ def test_an_orbit_goes_out_round_and_back() -> None:
     assert all(abs(math.hypot(n, e) - chord) < 0.05 for n, e in legs[1:-1])
 
 
+def test_a_rectangle_is_flown_along_its_length_first() -> None:
+    assert geometry.rectangle_legs(40.0, 20.0) == [(40.0, 0.0), (0.0, 20.0), (-40.0, 0.0), (0.0, -20.0)]
+    left = geometry.rectangle_legs(30.0, 10.0, geometry.compass_heading("east"), clockwise=False)
+    assert left == [(0.0, 30.0), (10.0, 0.0), (0.0, -30.0), (-10.0, 0.0)]
+
+
 def test_a_survey_is_a_lawnmower() -> None:
     legs = geometry.survey_legs(3, 40.0, 10.0)
     assert legs == [(40.0, 0.0), (0.0, 10.0), (-40.0, 0.0), (0.0, 10.0), (40.0, 0.0)]
+    west_then_south = geometry.survey_legs(2, 30.0, 8.0, geometry.compass_heading("west"), right=False)
+    assert west_then_south == [(0.0, -30.0), (-8.0, 0.0), (0.0, 30.0)]
 
 
 def test_offsets_round_trip() -> None:

@@ -12,6 +12,7 @@ from fastapi import FastAPI
 from gateway.app import create_app
 from gateway.config import Settings
 from tests.fakes import FakeRegistry
+from tests.helpers.sqlite_at_head import at_head
 
 from .live import lifespan_running
 
@@ -25,6 +26,7 @@ def settings(tmp_path: Path) -> Settings:
 
 @pytest.fixture
 async def app(settings: Settings) -> AsyncIterator[FastAPI]:
+    await at_head(settings.database_url)  # its store opens a copy at head, not Alembic's upgrade of it
     async with lifespan_running(create_app(settings, registry_factory=FakeRegistry)) as app:
         yield app
 

@@ -73,13 +73,21 @@ async def settled(
         before = now
 
 
-async def eventually(check: Callable[[], Awaitable[T]], what: str, *, within_s: float = 60.0) -> T:
+async def eventually(
+    check: Callable[[], Awaitable[T]],
+    what: str,
+    *,
+    within_s: float = 60.0,
+    explain: Callable[[], object] | None = None,
+) -> T:
     """Await ``check()`` until it returns something truthy; that value. AssertionError after the
-    (scaled) deadline, naming ``what`` and the last value seen."""
+    (scaled) deadline, naming ``what``, the last value seen and, given ``explain``, what it returns
+    (the state that a bare False hides)."""
     loop = asyncio.get_running_loop()
     deadline = loop.time() + scaled(within_s)
     while not (result := await check()):
         if loop.time() > deadline:
-            raise AssertionError(f"{what}: not reached within {scaled(within_s):g} s; last {result!r}")
+            seen = f"; {explain()!r}" if explain is not None else ""
+            raise AssertionError(f"{what}: not reached within {scaled(within_s):g} s; last {result!r}{seen}")
         await asyncio.sleep(0.2)
     return result

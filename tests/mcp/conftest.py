@@ -29,6 +29,7 @@ from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from tests.api.server import serve_in_process, serve_in_thread
 from tests.helpers import sim_process
+from tests.helpers.sqlite_at_head import at_head
 from tests.helpers.timing import scaled
 from tests.registry.procs import mavsdk_servers_of
 
@@ -108,7 +109,7 @@ async def gateway_stack(
     async with sim_process(count=count, speedup=speedup, extra_args=sim_args) as sim:
         settings = integration_settings(tmp, **overrides)
         ids = [f"d{i + 1}" for i in range(count)]
-        store = await Store.open(settings.database_url)
+        store = await Store.open(await at_head(settings.database_url))
         try:
             for vid, url, sysid in zip(ids, sim.urls, sim.sysids, strict=True):
                 spec = VehicleSpec(id=vid, url=url, expected_sysid=sysid, tags=(tags or {}).get(vid, []))

@@ -63,7 +63,7 @@ async def test_list_drones_and_rest_say_initialising_until_the_drone_can_arm(tmp
                     await ready()
                     return seen[-1] == ("connected", ESTIMATE, "connected", ESTIMATE)
 
-                await eventually(ready, "d1 ready", within_s=60)
+                await eventually(ready, "d1 ready", within_s=60, explain=lambda: seen[-1:])
                 # the simulator booted while the gateway started: boot it again from zero, watched; the
                 # estimate is held back until the gateway has seen the boot (under load the sidecar's
                 # reconnect can otherwise take longer than the simulator's sped-up boot)
@@ -73,7 +73,7 @@ async def test_list_drones_and_rest_say_initialising_until_the_drone_can_arm(tmp
                 seen.clear()
                 await eventually(ready_or_estimating, "d1 waiting for its estimate", within_s=60)
                 await sim.control.hold_estimate(0, False)
-                await eventually(ready, "d1 ready after the reboot", within_s=60)
+                await eventually(ready, "d1 ready after the reboot", within_s=60, explain=lambda: seen[-1:])
                 assert ("connected", ESTIMATE, "connected", ESTIMATE) in seen, seen
                 assert seen[-1] == ("ready", None, "ready", None), seen
                 assert len(positions) >= 2, positions  # read through the reboot, never at 0, 0

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import fcntl
+import hashlib
 import os
 import shutil
 import signal
@@ -43,6 +45,37 @@ def _as_postgres_user(cmd: list[str]) -> list[str]:
     return cmd
 
 
+def initdb_template(initdb: str) -> Path:
+    """A data directory made by ``initdb`` once on this machine (per PostgreSQL build and user), which
+    every test server copies instead of running initdb again: initdb took 6-7 s at a load of 12 on 2
+    cores, the copy 0.5 s. Made under an exclusive lock file (test processes start servers at once) in a
+    folder renamed into place once complete, so a copy never sees half of one."""
+    built = os.stat(initdb)
+    key = hashlib.sha256(f"{initdb} {built.st_mtime_ns} {built.st_size} {os.geteuid()}".encode()).hexdigest()
+    template = Path(tempfile.gettempdir()) / f"fleet-tests-pgdata-{key[:16]}"
+    with open(f"{template}.lock", "wb") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if (template / "data" / "PG_VERSION").is_file():
+            return template / "data"
+        shutil.rmtree(template, ignore_errors=True)
+        building = Path(tempfile.mkdtemp(prefix=f"{template.name}-", dir=template.parent))
+        try:
+            if os.geteuid() == 0:
+                shutil.chown(building, "postgres", "postgres")
+            options = ["-A", "trust", "-U", "gw", "--no-sync", "-E", "UTF8"]
+            subprocess.run(
+                _as_postgres_user([initdb, "-D", str(building / "data"), *options]),
+                check=True,
+                capture_output=True,
+                timeout=scaled(120),
+            )
+            building.chmod(0o755)  # mkdtemp's 0700: the copy runs as the server's user
+            building.rename(template)
+        finally:
+            shutil.rmtree(building, ignore_errors=True)
+    return template / "data"
+
+
 class PostgresServer:
     """A throwaway PostgreSQL server on 127.0.0.1 that a test may stop and start again (same port, same
     data): the database's outage as its clients see it (connections refused, then back)."""
@@ -60,12 +93,10 @@ class PostgresServer:
         if os.geteuid() == 0:
             shutil.chown(self.root, "postgres", "postgres")
         subprocess.run(
-            _as_postgres_user(
-                [initdb, "-D", str(self.data), "-A", "trust", "-U", "gw", "--no-sync", "-E", "UTF8"]
-            ),
+            _as_postgres_user(["cp", "-a", str(initdb_template(initdb)), str(self.data)]),
             check=True,
             capture_output=True,
-            timeout=scaled(120),
+            timeout=scaled(60),
         )
 
     @property

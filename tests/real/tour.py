@@ -30,6 +30,7 @@ from gateway.registry.spec import VehicleSpec
 from gateway.registry.store import Store
 from tests.api.server import serve_in_thread
 from tests.helpers.autopilots import Autopilot
+from tests.helpers.sqlite_at_head import at_head
 from tests.helpers.timing import scaled
 from tests.mcp.conftest import error_text, integration_settings, structured
 from tests.mcp.test_tools_doc import B2_TOOLS
@@ -131,7 +132,7 @@ async def gateway_over(tmp: Path, profile: Profile, autopilots: list[Autopilot],
     an MCP client on it."""
     settings = integration_settings(tmp, **{"mcp_wait_cap_s": 10.0, "arrival_tolerance_m": 3.0, **overrides})
     ids = [f"{profile.prefix}{k + 1}" for k in range(len(autopilots))]
-    store = await Store.open(settings.database_url)
+    store = await Store.open(await at_head(settings.database_url))
     try:
         for drone, autopilot in zip(ids, autopilots, strict=True):
             await store.add_vehicle(VehicleSpec(id=drone, url=autopilot.url))

@@ -13,7 +13,7 @@ import pytest
 from pymavlink.dialects.v20 import ardupilotmega as mavlink
 from pymavlink.generator.mavcrc import x25crc
 
-from gateway.link.mavlink_frames import FrameSplitter, target_system
+from gateway.link.mavlink_frames import FrameSplitter, target_system, x25
 from gateway.link.mavlink_messages import MESSAGES
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -53,3 +53,17 @@ def test_target_system_is_what_pymavlink_decodes(msgid: int, cls: Any) -> None:
         expected = decoder.decode(bytearray(data)).target_system
         assert target_system(frame) == expected
     assert target_system(FrameSplitter().feed(v2_frame(msgid, cls, payload))[0]) != 0
+
+
+def test_the_relays_checksum_is_pymavlinks() -> None:
+    """`x25` (the standard library's CRC with the bits reversed) sums as pymavlink does, and a frame
+    with one byte changed is not taken."""
+    for n in range(0, 300, 7):
+        data = bytes((i * 31 + n) % 256 for i in range(n))
+        assert x25(data) == x25crc(data).crc, n
+    cls = mavlink.mavlink_map[mavlink.MAVLINK_MSG_ID_COMMAND_LONG]
+    good = v2_frame(mavlink.MAVLINK_MSG_ID_COMMAND_LONG, cls, bytes(range(1, cls.unpacker.size + 1)))
+    assert len(FrameSplitter().feed(good)) == 1
+    bad = bytearray(good)
+    bad[12] ^= 0x01
+    assert FrameSplitter().feed(bytes(bad)) == []

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+from collections.abc import Awaitable, Callable
 from datetime import UTC, datetime
 from typing import Literal
 
@@ -28,6 +29,7 @@ from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.geofence import FLEET
 from gateway.fleet.policy.takeover import Takeover
 from gateway.fleet.vehicles.protocols import VehicleView
+from gateway.link.contract import HEARD
 from gateway.registry.records import AuditEntry
 from gateway.registry.store import Store
 from gateway.util.cancelling import cancelled_here
@@ -39,7 +41,7 @@ STOP_LOCK_REASON = "emergency stop"
 #: the stop's answer says whether its lock is stored if the database answers within this (else: later)
 STORE_LOCK_WAIT_S = 1.0
 _STORING: set[asyncio.Task[bool]] = set()
-#: a drone whose link is being established when the stop comes gets it once ready, within this
+#: a drone whose link is being established when the stop comes gets it once heard, within this
 STOP_WHEN_READY_S = 60.0
 #: the link states in which that wait is worth it (not registered, not failed)
 LINK_COMING = frozenset({"connecting", "connected", "link_lost"})
@@ -240,7 +242,7 @@ class OperatorVerbs:
                 drone_id=vehicle.id,
                 action=action,
                 outcome="taking_over",
-                message=f"{exc.message}: this node sends the {action} as soon as its link is ready "
+                message=f"{exc.message}: this node sends the {action} as soon as it hears the drone "
                 f"(it keeps trying for {STOP_WHEN_READY_S:g} s; the log and the audit say when it is "
                 "sent)",
             )
@@ -259,27 +261,17 @@ class OperatorVerbs:
             return StopOutcome(drone_id=vehicle.id, action=action, outcome="failed", message=repr(exc))
 
     def _stop_when_ready(self, caller: Caller, drone_id: str, action: StopAction) -> None:
-        """The stop of a drone whose link is being established, sent once it is ready (in the background,
-        for at most STOP_WHEN_READY_S)."""
+        """The stop of a drone whose link is being established, sent once the drone is heard (in the
+        background, for at most STOP_WHEN_READY_S)."""
+
+        def state() -> str | None:
+            try:
+                return str(self.registry.get(drone_id).state)
+            except GatewayError:  # no longer registered
+                return None
 
         async def wait_and_stop() -> None:
-            deadline = asyncio.get_running_loop().time() + STOP_WHEN_READY_S
-            while asyncio.get_running_loop().time() < deadline:
-                try:
-                    ready = str(self.registry.get(drone_id).state) == "ready"
-                except GatewayError:  # no longer registered
-                    return
-                if ready:
-                    try:
-                        await self.stop_one(caller, drone_id, action)
-                    except GatewayError as exc:
-                        log.error("%s: %s once its link was ready failed: %s", drone_id, action, exc.message)
-                    else:
-                        log.warning("%s: %s sent once its link was ready", drone_id, action)
-                    return
-                await asyncio.sleep(0.2)
-            log.error("%s: its link was not ready within %.0f s: %s not sent", drone_id,
-                      STOP_WHEN_READY_S, action)  # fmt: skip
+            await send_once_heard(drone_id, action, state, lambda: self.stop_one(caller, drone_id, action))
 
         task = asyncio.create_task(wait_and_stop(), name=f"stop-when-ready-{drone_id}")
         _WAITING.add(task)
@@ -316,3 +308,32 @@ class OperatorVerbs:
             superseded_operation=None if previous is None else previous.operation_id,
             operation_id=op.operation_id,
         )
+
+
+async def send_once_heard(
+    drone_id: str, action: str, state: Callable[[], str | None], stop: Callable[[], Awaitable[object]],
+    within_s: float = STOP_WHEN_READY_S, every_s: float = 0.2,
+) -> bool:  # fmt: skip
+    """Send ``stop`` once ``state()`` says the drone is heard, trying again while its link comes and
+    goes (VehicleNotReady), for at most ``within_s``; whether it was sent. ``state()`` None: the drone
+    is no longer registered."""
+    loop = asyncio.get_running_loop()
+    deadline = loop.time() + within_s
+    while loop.time() < deadline:
+        now = state()
+        if now is None:
+            return False
+        if now in HEARD:
+            try:
+                await stop()
+            except VehicleNotReady:  # the link dropped again between the reading and the send
+                pass
+            except GatewayError as exc:
+                log.error("%s: %s once its link was up failed: %s", drone_id, action, exc.message)
+                return False
+            else:
+                log.warning("%s: %s sent once its link was up (%s)", drone_id, action, now)
+                return True
+        await asyncio.sleep(every_s)
+    log.error("%s: its link was not up within %.0f s: %s not sent", drone_id, within_s, action)
+    return False
