@@ -46,7 +46,7 @@ from gateway.link.contract import GroundCommand
 from gateway.link.mavlink_frames import Frame, target_system
 from gateway.link.proc_sockets import proc_net_rows, socket_inodes
 from gateway.link.relay_endpoints import REOPEN_S, Endpoint, TcpEndpoint, open_endpoint
-from gateway.util.json_types import JsonValue
+from gateway.util.json_types import JsonObject, JsonValue
 
 log = logging.getLogger("gateway.relay")
 
@@ -164,6 +164,18 @@ class Relay:
 
     def status(self) -> list[JsonValue]:
         return [gcs.status() for gcs in self.ground_stations]
+
+    def carried(self) -> JsonObject:
+        """The bytes the drone's side and the sidecar's side read and wrote, and the sidecar's
+        connections now: where a drone that is heard but not streaming lost its bytes."""
+        vehicle, sidecar = self.vehicle.stats, self.sidecar.stats
+        return {
+            "vehicle_bytes_in": vehicle.bytes_in,
+            "vehicle_bytes_out": vehicle.bytes_out,
+            "sidecar_bytes_in": sidecar.bytes_in,
+            "sidecar_bytes_out": sidecar.bytes_out,
+            "sidecar_connections": len(self.sidecar.connections),
+        }
 
     def _vehicle_bytes(self, data: bytes) -> None:
         sink = self.on_vehicle_bytes

@@ -49,6 +49,7 @@ class EndpointStats:
     frames_in: int = 0  # counted only where frames are cut (``deliver``)
     frames_out: int = 0  # sends: a frame each where frames are cut, else what one read brought
     bytes_in: int = 0
+    bytes_out: int = 0
     last_in: float | None = None  # monotonic
 
 
@@ -206,6 +207,7 @@ class UdpEndpoint(Endpoint):
         else:
             self._transport.sendto(data)
         self.stats.frames_out += 1
+        self.stats.bytes_out += len(data)
         if self.complaint is not None and time.monotonic() - self.error_at > UDP_ERROR_QUIET_S:
             self.complaint = None  # sent on without an error coming back: someone listens again
 
@@ -312,6 +314,7 @@ class TcpEndpoint(Endpoint):
                 continue  # a stalled reader: drop rather than buffer without bound (MAVLink is lossy)
             transport.write(data)
             self.stats.frames_out += 1
+            self.stats.bytes_out += len(data)
 
     async def close(self) -> None:
         if self._server is not None:
@@ -404,6 +407,7 @@ class SerialEndpoint(Endpoint):
         try:
             os.write(self._fd, data)
             self.stats.frames_out += 1
+            self.stats.bytes_out += len(data)
         except BlockingIOError:
             pass  # the device's buffer is full: dropped, MAVLink is lossy
         except OSError as exc:
