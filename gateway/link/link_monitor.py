@@ -84,6 +84,29 @@ def ask_for_rates(link: MonitorHost) -> None:
         link.schedule_rates(why)
     elif unanswered := link.rates_to_ask_again():
         link.schedule_rates(f"no answer to the rate of {', '.join(sorted(unanswered))}", only=unanswered)
+    elif silent := silent_streams(link):
+        link.schedule_rates(f"no {', '.join(sorted(silent))} stream while heartbeats continue", only=silent)
+
+
+#: Streams that every autopilot sends once asked and that a drone cannot be ready without: asked for
+#: again alone when silent while heartbeats come (a rate request reported set that never reached the
+#: autopilot, as mavsdk_server once did, or one lost on a lossy link)
+NEEDED_STREAMS = ("health",)
+
+
+def silent_streams(link: MonitorHost) -> frozenset[str]:
+    """The ``NEEDED_STREAMS`` that have sent nothing for the link-lost limit while heartbeats come, once
+    the session is older than that limit (its first request had time to be answered)."""
+    hb = link.last_heartbeat_age_s
+    started = link.session_started
+    lost_after = link.settings.link_lost_after_s
+    if started is None or hb is None or hb >= lost_after or time.monotonic() - started < lost_after:
+        return frozenset()
+    t = link.telemetry
+    samples = {"health": t.health}
+    return frozenset(
+        name for name in NEEDED_STREAMS if (sample := samples[name]) is None or sample.age_s > lost_after
+    )
 
 
 def rates_wanted_again(link: MonitorHost) -> str | None:
