@@ -1,11 +1,12 @@
-"""The link monitor: one task per connected link that records the connection state's changes and asks
+"""The link monitor: one per connected link, which records the connection state's changes and asks
 for the telemetry rates again when the streams stopped while heartbeats go on (a reboot), or while the
 autopilot has a home position the gateway has not received; and for the streams whose rate request got
 no answer (a timeout on a busy link), with a growing wait.
 
-It wakes once a second (``MONITOR_PERIOD_S``), and when the last heartbeat (or, before the first, the
-session's start) reaches the link-lost limit, ``MONITOR_LATE_S`` after it (so the heartbeat is then
-older than the limit)."""
+It checks once a second (``MONITOR_PERIOD_S``), at the ticks every link of the event loop shares
+(`gateway.util.ticks`: one timer for the fleet, not one per drone), and when the last heartbeat (or,
+before the first, the session's start) reaches the link-lost limit before the next tick,
+``MONITOR_LATE_S`` after it (so the heartbeat is then older than the limit)."""
 
 from __future__ import annotations
 
@@ -16,6 +17,7 @@ from typing import Protocol
 from gateway.config import Settings
 from gateway.link.rawlink import LinkFacts
 from gateway.link.telemetry import TelemetryCache
+from gateway.util import ticks
 
 MONITOR_PERIOD_S = 1.0
 MONITOR_LATE_S = 0.01
@@ -41,17 +43,37 @@ class MonitorHost(Protocol):
     def rates_to_ask_again(self) -> frozenset[str]: ...
 
 
-async def run_monitor(link: MonitorHost) -> None:
-    """Log state changes and re-request rates when streams stopped while heartbeats go on.
+class LinkMonitor:
+    """Logs state changes and asks for the rates again when streams stopped while heartbeats go on.
 
-    Wakes once a second (``MONITOR_PERIOD_S``), and when the last heartbeat (or, before the first, the
-    session's start) reaches the link-lost limit: the one change that comes with nothing arriving.
-    Changes that come with data are noted as it arrives (the HEARTBEAT loop) or when ``state`` is
-    read; the health and the rate check can wait a second."""
-    while True:
+    Checks at once, then every ``MONITOR_PERIOD_S`` at the ticks all links share, and when the last
+    heartbeat (or, before the first, the session's start) reaches the link-lost limit before the next
+    tick: the one change that comes with nothing arriving. Changes that come with data are noted as it
+    arrives (the HEARTBEAT loop) or when ``state`` is read; the health and the rate check can wait a
+    second."""
+
+    def __init__(self, link: MonitorHost) -> None:
+        self._link = link
+        loop = asyncio.get_running_loop()
+        self._late: asyncio.Handle | None = loop.call_soon(self.check)
+        self._tick = ticks.every(MONITOR_PERIOD_S, self.check)
+
+    def check(self) -> None:
+        link = self._link
         link.note_state()
         ask_for_rates(link)
-        await asyncio.sleep(monitor_wait_s(link))
+        if self._late is not None:
+            self._late.cancel()
+            self._late = None
+        wait = monitor_wait_s(link)
+        if wait < MONITOR_PERIOD_S:
+            self._late = asyncio.get_running_loop().call_later(wait, self.check)
+
+    def stop(self) -> None:
+        self._tick.cancel()
+        if self._late is not None:
+            self._late.cancel()
+            self._late = None
 
 
 def ask_for_rates(link: MonitorHost) -> None:
@@ -62,6 +84,29 @@ def ask_for_rates(link: MonitorHost) -> None:
         link.schedule_rates(why)
     elif unanswered := link.rates_to_ask_again():
         link.schedule_rates(f"no answer to the rate of {', '.join(sorted(unanswered))}", only=unanswered)
+    elif silent := silent_streams(link):
+        link.schedule_rates(f"no {', '.join(sorted(silent))} stream while heartbeats continue", only=silent)
+
+
+#: Streams that every autopilot sends once asked and that a drone cannot be ready without: asked for
+#: again alone when silent while heartbeats come (a rate request reported set that never reached the
+#: autopilot, as mavsdk_server once did, or one lost on a lossy link)
+NEEDED_STREAMS = ("health",)
+
+
+def silent_streams(link: MonitorHost) -> frozenset[str]:
+    """The ``NEEDED_STREAMS`` that have sent nothing for the link-lost limit while heartbeats come, once
+    the session is older than that limit (its first request had time to be answered)."""
+    hb = link.last_heartbeat_age_s
+    started = link.session_started
+    lost_after = link.settings.link_lost_after_s
+    if started is None or hb is None or hb >= lost_after or time.monotonic() - started < lost_after:
+        return frozenset()
+    t = link.telemetry
+    samples = {"health": t.health}
+    return frozenset(
+        name for name in NEEDED_STREAMS if (sample := samples[name]) is None or sample.age_s > lost_after
+    )
 
 
 def rates_wanted_again(link: MonitorHost) -> str | None:

@@ -44,6 +44,8 @@ def link_status(link: Link) -> JsonObject:
         },
         # each ground station endpoint the drone's MAVLink is relayed to, and what passed
         "ground_stations": link.relay.status() if link.relay is not None else [],
+        # what the relay carried between the drone and its sidecar (None: the sidecar holds the link)
+        "relay": link.relay.carried() if link.relay is not None else None,
     }
 
 

@@ -174,8 +174,8 @@ class MavsdkSession:
             await self._link.command_long(MAV_CMD_REQUEST_MESSAGE, MAVLINK_MSG_HOME_POSITION, what="home")
 
     async def _set_message_rate(self, message_id: int, hz: float) -> None:
-        """MAV_CMD_SET_MESSAGE_INTERVAL for a message MAVSDK has no rate setter for (the feed's
-        ``MESSAGE_IDS``), answered within the 5 s the feed gives each rate request."""
+        """MAV_CMD_SET_MESSAGE_INTERVAL for a stream's message (the feed's ``MESSAGE_IDS``), answered
+        within the 5 s the feed gives each rate request."""
         await self._link.command_long(
             MAV_CMD_SET_MESSAGE_INTERVAL, message_id, 1e6 / hz, what="rate", attempts=3, wait_s=1.5
         )

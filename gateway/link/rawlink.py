@@ -3,8 +3,9 @@
 * ``LinkFacts``: what the vehicle's HEARTBEATs say (system id, autopilot, vehicle type, the real
   ArduPilot ``custom_mode``, armed) and when the last one came;
 * ``CommandChannel``: COMMAND_LONG with its COMMAND_ACK (mode changes by number, CONDITION_YAW,
-  MISSION_START, SET_MESSAGE_INTERVAL / REQUEST_MESSAGE for ids MAVSDK has no setter for).
-  mavsdk_server logs "Received ack for not-existing command" for these ACKs: harmless.
+  MISSION_START, SET_MESSAGE_INTERVAL for every telemetry stream, REQUEST_MESSAGE for ids MAVSDK has no
+  setter for). mavsdk_server logs "Received ack for not-existing command" for these ACKs: harmless
+  while it has no command of the same id queued (it matches an ACK by command id alone).
 """
 
 from __future__ import annotations

@@ -24,8 +24,11 @@ as the vehicle's link is wanted, across sidecar restarts, so ground stations kee
 the gateway's own session comes and goes.
 
 A drone without ground stations is relayed too while the gateway records its flights' raw MAVLink
-(``flight_tlog_dir``): the relay is then the one place the drone's frames pass whole, and each is
-handed as received to ``on_vehicle_frame`` (`gateway.fleet.missions.raw_tlog`).
+(``flight_tlog_dir``, every drone by default): the relay is then the one place the drone's bytes pass
+whole. Every read from the drone is handed as it came to ``on_vehicle_bytes``
+(`gateway.fleet.missions.raw_tlog`, which cuts frames only while a flight is written). With no ground
+station there is nothing to route: the drone's bytes go to the sidecar as read, one write per read and
+no per-frame work; only the sidecar's few frames to the drone are cut (a UDP drone takes whole frames).
 """
 
 from __future__ import annotations
@@ -43,7 +46,7 @@ from gateway.link.contract import GroundCommand
 from gateway.link.mavlink_frames import Frame, target_system
 from gateway.link.proc_sockets import proc_net_rows, socket_inodes
 from gateway.link.relay_endpoints import REOPEN_S, Endpoint, TcpEndpoint, open_endpoint
-from gateway.util.json_types import JsonValue
+from gateway.util.json_types import JsonObject, JsonValue
 
 log = logging.getLogger("gateway.relay")
 
@@ -62,19 +65,22 @@ class Relay:
         gcs_urls: list[str],
         sidecar_pid: Callable[[], int | None] | None = None,
         on_refused: Callable[[str, str], None] | None = None,
-        on_vehicle_frame: Callable[[bytes], None] | None = None,
+        on_vehicle_bytes: Callable[[bytes], None] | None = None,
     ) -> None:
         """``sidecar_pid``: the sidecar's process id now; given, only a socket of that process is
         taken as the sidecar (another local process cannot step in between it and the drone).
         ``on_refused(url, reason)``: told when a ground station endpoint is stopped because its peer is
-        no ground station. ``on_vehicle_frame(data)``: given every frame from the vehicle as received
-        (the bytes the relay forwards, not copied), before it is forwarded."""
+        no ground station. ``on_vehicle_bytes(data)``: given every read from the vehicle as it came (one
+        or more frames, or part of one; not copied), before it is forwarded; settable while relaying."""
         self._on_refused = on_refused
-        self._on_vehicle_frame = on_vehicle_frame
+        self.on_vehicle_bytes = on_vehicle_bytes
         self.vehicle_id = vehicle_id
         self.vehicle_url = vehicle_url
         self.gcs_urls = list(gcs_urls)
-        self.vehicle = open_endpoint(vehicle_url, self._from_vehicle)
+        #: frames are cut and routed one by one only when ground stations share the link
+        self.routes = bool(self.gcs_urls)
+        self.vehicle = open_endpoint(vehicle_url, self._from_vehicle if self.routes else None)
+        self.vehicle.on_bytes = self._vehicle_bytes
         self.sidecar = TcpEndpoint("tcpin://127.0.0.1:0", self._to_vehicle, max_buffer=SIDECAR_BUFFER)
         if sidecar_pid is not None:
             self.sidecar.accept = lambda peer: _tcp_socket_of(sidecar_pid(), peer)
@@ -159,9 +165,26 @@ class Relay:
     def status(self) -> list[JsonValue]:
         return [gcs.status() for gcs in self.ground_stations]
 
+    def carried(self) -> JsonObject:
+        """The bytes the drone's side and the sidecar's side read and wrote, and the sidecar's
+        connections now: where a drone that is heard but not streaming lost its bytes."""
+        vehicle, sidecar = self.vehicle.stats, self.sidecar.stats
+        return {
+            "vehicle_bytes_in": vehicle.bytes_in,
+            "vehicle_bytes_out": vehicle.bytes_out,
+            "sidecar_bytes_in": sidecar.bytes_in,
+            "sidecar_bytes_out": sidecar.bytes_out,
+            "sidecar_connections": len(self.sidecar.connections),
+        }
+
+    def _vehicle_bytes(self, data: bytes) -> None:
+        sink = self.on_vehicle_bytes
+        if sink is not None:
+            sink(data)
+        if not self.routes:
+            self.sidecar.send(data)
+
     def _from_vehicle(self, _source: Endpoint, frame: Frame) -> None:
-        if self._on_vehicle_frame is not None:
-            self._on_vehicle_frame(frame.data)
         outputs: list[Endpoint] = [self.sidecar, *(g for g in self.ground_stations if g.refused is None)]
         target = target_system(frame)
         if target:

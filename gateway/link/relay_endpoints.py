@@ -1,6 +1,12 @@
 """The relay's endpoints, one per URL: UDP (`udpin`/`udpout`), TCP (`tcpin` as a server, `tcpout` as a
 client that reconnects) and serial (`serial`), each opened again while it cannot be, and counting what
-it carried."""
+it carried.
+
+What an endpoint receives is handed on in one call per read (a datagram, or what a socket or device had
+waiting), with no task, future or copy in between (TCP connections are asyncio protocols, not streams):
+to ``on_bytes`` as read, and cut into frames for ``deliver`` when the endpoint has one. An endpoint
+without ``deliver`` does no per-frame work at all: the relay's drone side when no ground station shares
+the link, whose bytes go to the sidecar as they came."""
 
 from __future__ import annotations
 
@@ -40,16 +46,19 @@ Deliver = Callable[["Endpoint", Frame], None]
 
 @dataclass
 class EndpointStats:
-    frames_in: int = 0
-    frames_out: int = 0
+    frames_in: int = 0  # counted only where frames are cut (``deliver``)
+    frames_out: int = 0  # sends: a frame each where frames are cut, else what one read brought
+    bytes_in: int = 0
+    bytes_out: int = 0
     last_in: float | None = None  # monotonic
 
 
 class Endpoint(abc.ABC):
-    """One side of the relay: opened as its URL says; hands every frame it receives to ``deliver``.
-    Each transport (UDP, TCP, serial) opens, sends and closes in its own way."""
+    """One side of the relay: opened as its URL says; hands what it receives to ``on_bytes`` as read
+    and every frame of it to ``deliver`` (None: frames are not cut). Each transport (UDP, TCP, serial)
+    opens, sends and closes in its own way."""
 
-    def __init__(self, url: str, deliver: Deliver) -> None:
+    def __init__(self, url: str, deliver: Deliver | None) -> None:
         self.url = url
         parts = urlsplit(url)
         self.scheme = parts.scheme
@@ -64,6 +73,8 @@ class Endpoint(abc.ABC):
         #: why the relay stopped this endpoint for good (its peer is no ground station), or None
         self.refused: str | None = None
         self._deliver = deliver
+        #: given every read as it came (bytes of one or more frames, or of part of one), before ``deliver``
+        self.on_bytes: Callable[[bytes], None] | None = None
         self._splitters: dict[Hashable, FrameSplitter] = {}
 
     @abc.abstractmethod
@@ -80,12 +91,21 @@ class Endpoint(abc.ABC):
         return None
 
     def received(self, data: bytes, source: Hashable = None) -> None:
-        splitter = self._splitters.setdefault(source, FrameSplitter())
+        stats = self.stats
+        stats.bytes_in += len(data)
+        stats.last_in = time.monotonic()
+        if self.on_bytes is not None:
+            self.on_bytes(data)
+        deliver = self._deliver
+        if deliver is None:
+            return
+        splitter = self._splitters.get(source)
+        if splitter is None:
+            splitter = self._splitters[source] = FrameSplitter()
         for frame in splitter.feed(data):
-            self.stats.frames_in += 1
-            self.stats.last_in = time.monotonic()
+            stats.frames_in += 1
             self.sysids.add(frame.sysid)
-            self._deliver(self, frame)
+            deliver(self, frame)
 
     async def _reopen_forever(
         self,
@@ -140,7 +160,7 @@ class _Datagrams(asyncio.DatagramProtocol):
 class UdpEndpoint(Endpoint):
     """``udpin``: bind host:port, answer the latest sender; ``udpout``: send to host:port."""
 
-    def __init__(self, url: str, deliver: Deliver) -> None:
+    def __init__(self, url: str, deliver: Deliver | None) -> None:
         super().__init__(url, deliver)
         self._transport: asyncio.DatagramTransport | None = None
         self._peer: tuple[str, int] | None = None
@@ -187,6 +207,7 @@ class UdpEndpoint(Endpoint):
         else:
             self._transport.sendto(data)
         self.stats.frames_out += 1
+        self.stats.bytes_out += len(data)
         if self.complaint is not None and time.monotonic() - self.error_at > UDP_ERROR_QUIET_S:
             self.complaint = None  # sent on without an error coming back: someone listens again
 
@@ -196,19 +217,46 @@ class UdpEndpoint(Endpoint):
             self._transport = None
 
 
+class _Connection(asyncio.Protocol):
+    """One TCP connection of a `TcpEndpoint`: what it reads goes to the endpoint at once, from the event
+    loop's read callback (no stream buffer, no task woken per read)."""
+
+    def __init__(self, owner: TcpEndpoint) -> None:
+        self.owner = owner
+        self.transport: asyncio.Transport | None = None
+        self.closed: asyncio.Future[None] = asyncio.get_running_loop().create_future()
+
+    def connection_made(self, transport: asyncio.BaseTransport) -> None:
+        assert isinstance(transport, asyncio.Transport)
+        peer = transport.get_extra_info("peername")
+        accept = self.owner.accept
+        if accept is not None and not (peer and accept((str(peer[0]), int(peer[1])))):
+            transport.close()  # not who this endpoint is for (the sidecar's socket: another local process)
+            return
+        self.transport = transport
+        self.owner.connections.append(self)
+
+    def data_received(self, data: bytes) -> None:
+        self.owner.received(data, self)
+
+    def connection_lost(self, exc: Exception | None) -> None:
+        self.owner.dropped(self)
+        if not self.closed.done():
+            self.closed.set_result(None)
+
+
 class TcpEndpoint(Endpoint):
     """``tcpout``: connect to host:port (again and again while it fails or drops); ``tcpin``: listen on
     host:port, every client connected gets every frame."""
 
-    def __init__(self, url: str, deliver: Deliver, max_buffer: int = MAX_BUFFER) -> None:
+    def __init__(self, url: str, deliver: Deliver | None, max_buffer: int = MAX_BUFFER) -> None:
         """``max_buffer``: the bytes a connection may have waiting to be sent; a frame beyond is dropped
         for that connection (a stalled reader does not hold memory without bound)."""
         super().__init__(url, deliver)
         self.max_buffer = max_buffer
-        self._writers: list[asyncio.StreamWriter] = []
+        self.connections: list[_Connection] = []
         self._server: asyncio.Server | None = None
         self._task: asyncio.Task[None] | None = None
-        self._readers: set[asyncio.Task[None]] = set()
         #: tcpin: whether a client connecting from (host, port) is served (None: every client)
         self.accept: Callable[[tuple[str, int]], bool] | None = None
 
@@ -219,75 +267,62 @@ class TcpEndpoint(Endpoint):
 
     @property
     def peer(self) -> str | None:
-        peers = [w.get_extra_info("peername") for w in self._writers]
+        peers = [c.transport.get_extra_info("peername") for c in self.connections if c.transport is not None]
         return ", ".join(f"{p[0]}:{p[1]}" for p in peers if p) or None
 
     async def start(self) -> None:
+        loop = asyncio.get_running_loop()
         if self.scheme == "tcpin":
-            self._server = await asyncio.start_server(self._client, self.host, self.port)
+            self._server = await loop.create_server(lambda: _Connection(self), self.host, self.port)
         else:
             self._task = asyncio.create_task(self._connect_loop(), name=f"relay-{self.url}")
 
     async def _connect_loop(self) -> None:
-        async def connect() -> tuple[asyncio.StreamReader, asyncio.StreamWriter]:
-            return await asyncio.wait_for(asyncio.open_connection(self.host, self.port), 10.0)
+        loop = asyncio.get_running_loop()
+
+        async def connect() -> _Connection:
+            opening = loop.create_connection(lambda: _Connection(self), self.host, self.port)
+            _, connection = await asyncio.wait_for(opening, 10.0)
+            return connection
 
         def failure(exc: OSError) -> str:
             reason = os.strerror(exc.errno) if exc.errno else "no answer within 10 s"
             return f"cannot connect to {self.host}:{self.port}: {reason}"
 
-        async def serve(streams: tuple[asyncio.StreamReader, asyncio.StreamWriter]) -> None:
-            await self._serve(*streams)
+        async def serve(connection: _Connection) -> None:
+            try:
+                await connection.closed
+            finally:
+                if connection.transport is not None:
+                    connection.transport.close()
             self.complaint = f"{self.host}:{self.port} closed the connection"
 
         await self._reopen_forever(connect, failure, serve)
 
-    async def _client(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
-        peer = writer.get_extra_info("peername")
-        if self.accept is not None and not (peer and self.accept((str(peer[0]), int(peer[1])))):
-            writer.close()  # not who this endpoint is for (the sidecar's socket: another local process)
-            return
-        task = asyncio.current_task()
-        if task is not None:
-            self._readers.add(task)
-        try:
-            await self._serve(reader, writer)
-        except asyncio.CancelledError:
-            pass  # closing: asyncio's server callback would log a cancelled client task as an error
-        finally:
-            if task is not None:
-                self._readers.discard(task)
-
-    async def _serve(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
-        self._writers.append(writer)
-        try:
-            while chunk := await reader.read(4096):
-                self.received(chunk, id(writer))
-        except OSError:
-            pass
-        finally:
-            self._writers.remove(writer)
-            self._splitters.pop(id(writer), None)
-            writer.close()
+    def dropped(self, connection: _Connection) -> None:
+        """A connection ended: its partial frame goes with it."""
+        if connection in self.connections:
+            self.connections.remove(connection)
+        self._splitters.pop(connection, None)
 
     def send(self, data: bytes) -> None:
-        for writer in list(self._writers):
-            if writer.is_closing():
+        for connection in self.connections:
+            transport = connection.transport
+            if transport is None or transport.is_closing():
                 continue
-            if writer.transport.get_write_buffer_size() > self.max_buffer:
+            if transport.get_write_buffer_size() > self.max_buffer:
                 continue  # a stalled reader: drop rather than buffer without bound (MAVLink is lossy)
-            writer.write(data)
+            transport.write(data)
             self.stats.frames_out += 1
+            self.stats.bytes_out += len(data)
 
     async def close(self) -> None:
-        tasks = [t for t in (self._task, *self._readers) if t is not None]
         if self._server is not None:
             self._server.close()
-        for writer in list(self._writers):
-            writer.close()
-        for task in tasks:
-            task.cancel()
-        await asyncio.gather(*tasks, return_exceptions=True)
+        for connection in list(self.connections):
+            if connection.transport is not None:
+                connection.transport.close()
+        await cancel_and_wait(self._task)
         if self._server is not None:
             with contextlib.suppress(Exception):
                 await asyncio.wait_for(self._server.wait_closed(), 2.0)
@@ -298,7 +333,7 @@ class TcpEndpoint(Endpoint):
 class SerialEndpoint(Endpoint):
     """``serial:///dev/ttyX[:baud]``: the device in raw mode (default 57600 baud), reopened while it fails."""
 
-    def __init__(self, url: str, deliver: Deliver) -> None:
+    def __init__(self, url: str, deliver: Deliver | None) -> None:
         super().__init__(url, deliver)
         device, _, baud = urlsplit(url).path.partition(":")
         self.device = device
@@ -372,6 +407,7 @@ class SerialEndpoint(Endpoint):
         try:
             os.write(self._fd, data)
             self.stats.frames_out += 1
+            self.stats.bytes_out += len(data)
         except BlockingIOError:
             pass  # the device's buffer is full: dropped, MAVLink is lossy
         except OSError as exc:
@@ -382,7 +418,7 @@ class SerialEndpoint(Endpoint):
         self._task = None
 
 
-def open_endpoint(url: str, deliver: Deliver) -> Endpoint:
+def open_endpoint(url: str, deliver: Deliver | None) -> Endpoint:
     scheme = urlsplit(url).scheme
     if scheme in ("udpin", "udpout"):
         return UdpEndpoint(url, deliver)

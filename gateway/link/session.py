@@ -39,7 +39,7 @@ from gateway.config import Settings
 from gateway.errors import VehicleNotReady
 from gateway.link import pacing
 from gateway.link.contract import ConnectionState, LinkRules, OnWait, Peer
-from gateway.link.link_monitor import run_monitor
+from gateway.link.link_monitor import LinkMonitor
 from gateway.link.mavsdk_calls import MavsdkCalls
 from gateway.link.mavsdk_session import MavsdkSession, SessionJob, close_system
 from gateway.link.mavsdk_system import System
@@ -99,14 +99,13 @@ class Link:
         self.hooks = hooks
         self._sidecar: Sidecar | None = None
         self._relay: Relay | None = None  # when ground stations share the drone's MAVLink or it is recorded
-        #: given each frame from the drone as received while the link is relayed (the flight's raw log)
-        self.vehicle_frames: Callable[[bytes], None] | None = None
+        self._vehicle_bytes: Callable[[bytes], None] | None = None
         self._system: System | None = None
         self._session_task: asyncio.Task[None] | None = None
         self._session_started: float | None = None
         self._mavsdk: MavsdkSession | None = None  # the current (or last) MAVSDK session
         self._feed: TelemetryFeed | None = None
-        self._monitor_task: asyncio.Task[None] | None = None
+        self._monitor: LinkMonitor | None = None
         self._calls = calls = MavsdkCalls(self, settings.gcs_sysid)
         # calling the vehicle (gateway.link.mavsdk_calls), as the owner and the dialects call it
         self.call = calls.call
@@ -130,6 +129,17 @@ class Link:
     @property
     def sidecar(self) -> Sidecar | None:
         return self._sidecar
+
+    @property
+    def vehicle_bytes(self) -> Callable[[bytes], None] | None:
+        """Given each read from the drone as it came while the link is relayed (the flight's raw log)."""
+        return self._vehicle_bytes
+
+    @vehicle_bytes.setter
+    def vehicle_bytes(self, sink: Callable[[bytes], None] | None) -> None:
+        self._vehicle_bytes = sink
+        if self._relay is not None:
+            self._relay.on_vehicle_bytes = sink
 
     @property
     def relay(self) -> Relay | None:
@@ -353,7 +363,7 @@ class Link:
             self.settings.records_flight_frames and _device_present(self.spec.url)
         ):
             # the gateway holds the drone's link and relays it to the sidecar and the ground stations,
-            # and hands each frame from the drone to the flight's raw log (pymavlink's MAVLink dialect,
+            # and hands what the drone sends to the flight's raw log (pymavlink's MAVLink dialect,
             # about 6 MiB, is loaded only when a ground station's frame comes)
             from gateway.link.relay import Relay
 
@@ -363,7 +373,7 @@ class Link:
                 list(self.spec.gcs_endpoints),
                 sidecar_pid=self._sidecar_pid,
                 on_refused=self.hooks.on_relay_refused,
-                on_vehicle_frame=self._vehicle_frame,
+                on_vehicle_bytes=self._vehicle_bytes,
             )
             await relay.start()
             if relay.complaint is not None and not self.spec.gcs_endpoints:
@@ -388,20 +398,16 @@ class Link:
             confine=self.hooks.confine,
         )
         self._sidecar.start()
-        self._monitor_task = asyncio.create_task(run_monitor(self), name=f"monitor-{self.id}")
-
-    def _vehicle_frame(self, data: bytes) -> None:
-        sink = self.vehicle_frames
-        if sink is not None:
-            sink(data)
+        self._monitor = LinkMonitor(self)
 
     def _sidecar_pid(self) -> int | None:
         return self._sidecar.pid if self._sidecar is not None else None
 
     async def disconnect(self) -> None:
         """Stop everything of this link; no mavsdk_server process remains."""
-        await cancel_and_wait(self._monitor_task)
-        self._monitor_task = None
+        if self._monitor is not None:
+            self._monitor.stop()
+            self._monitor = None
         try:
             await self._end_session()
         finally:  # the sidecar stops whatever ending the session raised

@@ -1,9 +1,9 @@
 """The telemetry feed: one subscription per MAVSDK stream of a vehicle, written into its TelemetryCache.
 
 ArduCopter streams nothing until asked and mavsdk_server never asks: ``TelemetryFeed.request_rates``
-sets every stream rate through ``telemetry.set_rate_*``; the vehicle calls it again after every
-reconnect, sidecar restart or vehicle reboot. The stream items are converted here into the cache's
-value types (``gateway.link.telemetry``).
+sets every stream rate, one MAV_CMD_SET_MESSAGE_INTERVAL at a time through the session
+(``MESSAGE_IDS``); the vehicle calls it again after every reconnect, sidecar restart or vehicle reboot.
+The stream items are converted here into the cache's value types (``gateway.link.telemetry``).
 """
 
 from __future__ import annotations
@@ -36,8 +36,8 @@ log = logging.getLogger("gateway.telemetry")
 Item = TypeVar("Item")
 
 #: Streams and the rate (Hz) the gateway requests for each while the drone rests (disarmed on the
-#: ground): MAVSDK's set_rate_<name>, which sends MAV_CMD_SET_MESSAGE_INTERVAL for the stream's message,
-#: or, for the messages MAVSDK has no setter for (``MESSAGE_IDS``), that command sent by the session.
+#: ground): MAV_CMD_SET_MESSAGE_INTERVAL for the stream's message (``MESSAGE_IDS``), sent by the session
+#: as a COMMAND_LONG of its own, not through MAVSDK's set_rate_<name> (see ``MESSAGE_IDS``).
 #: Each message costs the sidecar its parsing and the gateway one gRPC stream item (the most of a drone's
 #: CPU at rest), so a stream gets the rate its readers need and no more. At 1 Hz what a safety or
 #: readiness check reads fresh against the 3 s staleness limit (``link_lost_after_s``): the position (the
@@ -81,9 +81,24 @@ STREAM_RATES_HZ: dict[str, float] = {
     "position_target": 5.0,
 }
 
-#: The messages of ``STREAM_RATES_HZ`` that MAVSDK has no rate setter for, by MAVLink message id: asked
-#: for with MAV_CMD_SET_MESSAGE_INTERVAL through the session's ``set_message_rate``
+#: The message of each stream of ``STREAM_RATES_HZ``, by MAVLink message id (the ones MAVSDK's
+#: set_rate_<name> asks for, where it has a setter): asked for with MAV_CMD_SET_MESSAGE_INTERVAL through the
+#: session's ``set_message_rate``, one request at a time. Not through MAVSDK's setters: mavsdk_server
+#: (v4) matches a COMMAND_ACK to the first queued command of the same id, sent or still waiting its
+#: turn, so the ACK of an earlier request of the same command (sent again after a late answer) could
+#: complete a request that was never sent: reported set, the stream never came (a simulated drone stayed
+#: "connected" without SYS_STATUS, so without its health and battery, while nothing was logged).
 MESSAGE_IDS: dict[str, int] = {
+    "position": 33,  # GLOBAL_POSITION_INT
+    "home": 242,  # HOME_POSITION
+    "attitude_euler": 30,  # ATTITUDE
+    "landed_state": 245,  # EXTENDED_SYS_STATE
+    "gps_info": 24,  # GPS_RAW_INT
+    "battery": 147,  # BATTERY_STATUS
+    "health": 1,  # SYS_STATUS
+    "imu": 105,  # HIGHRES_IMU
+    "raw_imu": 27,  # RAW_IMU
+    "odometry": 331,  # ODOMETRY
     "mission_current": 42,  # MISSION_CURRENT
     "ekf_status": 193,  # EKF_STATUS_REPORT
     "position_target": 87,  # POSITION_TARGET_GLOBAL_INT
@@ -281,11 +296,10 @@ class TelemetryFeed:
 
     ``mission_progress_map`` turns MAVSDK's wire progress (current seq, total incl. home) into user
     item numbers; the vehicle owns that mapping because it knows how its mission was uploaded.
-    ``set_message_rate(message_id, hz)`` asks for a message MAVSDK has no rate setter for
-    (``MESSAGE_IDS``; without it those are not asked for). ``use_mavsdk_flight_mode`` says whether
-    MAVSDK's flight mode stream is wanted (None: not known yet, before the first HEARTBEAT); when the
-    link names the modes from the HEARTBEAT itself it is never subscribed. ``armed`` is not subscribed
-    either: the link puts it from the HEARTBEAT.
+    ``set_message_rate(message_id, hz)`` asks for a stream's message (``MESSAGE_IDS``; without it no rate
+    is asked for). ``use_mavsdk_flight_mode`` says whether MAVSDK's flight mode stream is wanted (None:
+    not known yet, before the first HEARTBEAT); when the link names the modes from the HEARTBEAT itself it
+    is never subscribed. ``armed`` is not subscribed either: the link puts it from the HEARTBEAT.
 
     The rates follow the drone: ``STREAM_RATES_HZ`` while it rests, ``ACTIVE_RATES_HZ`` from the first
     item that shows it armed or in the air until one shows it disarmed on the ground.
@@ -317,6 +331,7 @@ class TelemetryFeed:
         self._active = False  # armed or in the air: ACTIVE_RATES_HZ wanted
         self._rates_active: bool | None = None  # what the vehicle was last asked for (None: nothing yet)
         self._switch: asyncio.Task[None] | None = None
+        self._requesting = False  # request_rates runs: no switch beside it (it follows the drone after)
         self._in_air: bool | None = None
 
     def _put_fixed(self, name: str, item: _GeoPoint) -> None:
@@ -386,23 +401,30 @@ class TelemetryFeed:
         timeout and error mapping. Returns the streams the vehicle refused, by name.
         """
         self._call, self._skip = call, skip
+        switch = self._switch
+        if switch is not None and not switch.done():
+            await asyncio.wait({switch})  # one rate request at a time (a switch that began first ends)
         active = self._active
         rates = {**STREAM_RATES_HZ, **ACTIVE_RATES_HZ} if active else STREAM_RATES_HZ
         if only is None:
             self.unsupported_rates, self.unanswered_rates = {}, {}
-        for name, hz in rates.items():
-            if name in skip or (only is not None and name not in only):
-                continue
-            request = self._rate_request(name, hz)
-            if request is None:
-                continue
-            self.unsupported_rates.pop(name, None)
-            self.unanswered_rates.pop(name, None)
-            try:
-                await call(f"set_rate_{name}", request)
-            except Exception as exc:  # recorded per stream, the others still get set
-                failed = self.unanswered_rates if not_answered(exc) else self.unsupported_rates
-                failed[name] = str(exc)
+        self._requesting = True
+        try:
+            for name, hz in rates.items():
+                if name in skip or (only is not None and name not in only):
+                    continue
+                request = self._rate_request(name, hz)
+                if request is None:
+                    continue
+                self.unsupported_rates.pop(name, None)
+                self.unanswered_rates.pop(name, None)
+                try:
+                    await call(f"set_rate_{name}", request)
+                except Exception as exc:  # recorded per stream, the others still get set
+                    failed = self.unanswered_rates if not_answered(exc) else self.unsupported_rates
+                    failed[name] = str(exc)
+        finally:
+            self._requesting = False
         self._after_rates(only is not None)
         if only is None:
             self._rates_active = active
@@ -442,21 +464,19 @@ class TelemetryFeed:
         cache = self.cache
         armed = cache.armed.value if cache.armed is not None else False
         self._active = bool(armed) or bool(self._in_air)
-        if self._call is None or self._active == self._rates_active:
-            return  # rates not requested yet (request_rates picks the right ones), or already right
+        if self._call is None or self._requesting or self._active == self._rates_active:
+            # rates not requested yet or being requested (request_rates picks the right ones and looks
+            # again when it ends), or already right
+            return
         if self._switch is None or self._switch.done():
             self._switch = asyncio.create_task(self._switch_rates(), name=f"tm-rates-{self.vehicle_id}")
 
     def _rate_request(self, name: str, hz: float) -> Awaitable[object] | None:
-        """The request of one stream's rate, through MAVSDK's setter or, for ``MESSAGE_IDS``, the
-        session's; None when there is no way to ask for it."""
-        message_id = MESSAGE_IDS.get(name)
-        if message_id is None:
-            setter: Callable[[float], Awaitable[object]] = getattr(self.system.telemetry, f"set_rate_{name}")
-            return setter(hz)
+        """The request of one stream's rate: the session's COMMAND_LONG for its message
+        (``MESSAGE_IDS``); None for a feed given no ``set_message_rate`` (nothing is asked for)."""
         if self._set_message_rate is None:
             return None
-        return self._set_message_rate(message_id, hz)
+        return self._set_message_rate(MESSAGE_IDS[name], hz)
 
     async def _switch_rates(self) -> None:
         while (call := self._call) is not None and self._active != self._rates_active:

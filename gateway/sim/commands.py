@@ -179,6 +179,7 @@ class CommandHandler:
     # -- messages and streams -------------------------------------------------------------------------
     def _cmd_511(self, link, msg, is_int):  # MAV_CMD_SET_MESSAGE_INTERVAL
         msg_id = int(msg.param1)
+        link.rate_requests.append((msg_id, msg.param2))
         if not self.v.can_build(msg_id):
             self.v.text(mav.MAV_SEVERITY_INFO, f"No ap_message for mavlink id ({msg_id})")
             return DENIED

@@ -8,6 +8,7 @@ import contextlib
 import logging
 import socket
 from abc import ABC, abstractmethod
+from collections import deque
 from collections.abc import Callable
 
 from gateway.sim.mavlink import Codec, MAVLinkMessage
@@ -16,6 +17,7 @@ from gateway.sim.streams import StreamTable
 log = logging.getLogger(__name__)
 
 Receiver = Callable[["Link", MAVLinkMessage], None]
+RATE_REQUESTS_KEPT = 32
 
 
 class Link(ABC):
@@ -30,11 +32,26 @@ class Link(ABC):
         self._faults = faults
         self.bytes_out = 0
         self.bytes_in = 0
+        #: the last rate requests (MAV_CMD_SET_MESSAGE_INTERVAL) on this link: (message id, interval in us)
+        self.rate_requests: deque[tuple[int, float]] = deque(maxlen=RATE_REQUESTS_KEPT)
 
     @property
     @abstractmethod
     def connected(self) -> bool:
         """Whether a ground station is attached to this link."""
+
+    def describe(self) -> dict:
+        """What the control API shows of this link: the messages it streams (id: interval in seconds)
+        and the bytes it carried, to tell a vehicle that was never asked from one that was not heard."""
+        streamed = {str(m): self.streams.interval(m) for m in sorted(self.streams.streamed())}
+        return {
+            "name": self.name,
+            "connected": self.connected,
+            "bytes_in": self.bytes_in,
+            "bytes_out": self.bytes_out,
+            "streams": streamed,
+            "rate_requests": [list(r) for r in self.rate_requests],
+        }
 
     @abstractmethod
     def _write(self, data: bytes) -> None:
@@ -92,6 +109,9 @@ class TcpServerLink(Link):
     @property
     def connected(self) -> bool:
         return self._writer is not None and not self._writer.is_closing()
+
+    def describe(self) -> dict:
+        return {**super().describe(), "clients_served": self.clients_served}
 
     def _write(self, data: bytes) -> None:
         assert self._writer is not None

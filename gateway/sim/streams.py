@@ -79,6 +79,16 @@ class StreamTable:
         hz = self.group_hz.get(group, 0.0) if group is not None else 0.0
         return 1.0 / hz if hz > 0 else None
 
+    def _asked(self) -> set[int]:
+        """The message ids given an interval or in a group with a rate (some may be disabled)."""
+        return set(self.intervals) | {
+            m for g, hz in self.group_hz.items() if hz > 0 for m in GROUP_MESSAGES[g]
+        }
+
+    def streamed(self) -> set[int]:
+        """The message ids this link streams now (by interval or by group)."""
+        return {m for m in self._asked() if self.interval(m) is not None}
+
     def clear(self) -> None:
         self.group_hz.clear()
         self.intervals.clear()
@@ -93,9 +103,7 @@ class StreamTable:
         if self._earliest is not None and now < self._earliest:
             return []
         out = []
-        ids = set(self.intervals) | {
-            m for g, hz in self.group_hz.items() if hz > 0 for m in GROUP_MESSAGES[g]
-        }
+        ids = self._asked()
         for msg_id in ids:
             interval = self.interval(msg_id)
             if interval is None:

@@ -505,4 +505,5 @@ class SimVehicle:
             "mission_count": self.mission.count(),
             "mission_capacity": self.mission.max_items,
             "client_connected": self.links[0].connected,
+            "links": [link.describe() for link in self.links],
         }

@@ -4,6 +4,8 @@ reconstruction from the 1 Hz track otherwise; the response says which (X-Tlog-So
 
 from __future__ import annotations
 
+import itertools
+import time
 from collections.abc import AsyncIterator
 from datetime import UTC, datetime
 from pathlib import Path
@@ -16,7 +18,7 @@ from pymavlink.dialects.v20 import ardupilotmega as mavlink
 
 from gateway.app import create_app
 from gateway.config import Settings
-from gateway.fleet.missions.raw_tlog import PREROLL_FRAMES, RawTlog, tlog_folder
+from gateway.fleet.missions.raw_tlog import PREROLL_BYTES, PREROLL_S, RawTlog, tlog_folder
 from gateway.registry.store import Store
 from tests.fakes import FakeRegistry
 
@@ -72,11 +74,14 @@ async def test_the_raw_log_is_served_as_written(
     raw = RawTlog(folder, "alpha", settings.flight_tlog_max_mib * 1024 * 1024)
     before = _frames(3)
     for data in before:  # heard before the flight opened: its pre-roll
-        raw.frame(data)
+        raw.received(data)
     raw.open(flight_id)
     during = _frames(300)
-    for data in during:
-        raw.frame(data)
+    stream = b"".join(during[:150]) + b"\x00noise" + b"".join(during[150:])
+    # as the relay reads them: frames cut across two reads, several in one, noise between
+    cuts = [0, 5, 30, 31, 400, 401, 2000, len(stream)]
+    for a, b in itertools.pairwise(cuts):
+        raw.received(stream[a:b])
     raw.flush()  # a flight in progress: what is written so far
 
     got = await http.get(f"/api/v1/flights/{flight_id}/tlog")
@@ -106,18 +111,25 @@ async def test_the_raw_log_stops_at_its_cap_and_says_so(
     raw.open(flight_id)
     frames = _frames(60_000)  # about 2.2 MiB with their time stamps
     for data in frames:
-        raw.frame(data)
+        raw.received(data)
     raw.close()
     got = await http.get(f"/api/v1/flights/{flight_id}/tlog")
     assert got.headers["x-tlog-source"] == "autopilot" and got.headers["x-tlog-cut"] == "true"
     assert 1024 * 1024 - 300 < len(got.content) <= 1024 * 1024
 
 
-def test_the_pre_roll_is_bounded() -> None:
+def test_the_pre_roll_is_bounded_in_bytes_and_in_time(monkeypatch: pytest.MonkeyPatch) -> None:
     raw = RawTlog(Path("unused"), "alpha", 1 << 20)
-    for data in _frames(PREROLL_FRAMES * 3):
-        raw.frame(data)
-    assert len(raw._preroll) == PREROLL_FRAMES
+    frames = _frames(3 * PREROLL_BYTES // 30)
+    for data in frames:
+        raw.received(data)
+    kept = sum(len(data) for _, data in raw._preroll)
+    assert PREROLL_BYTES - 300 < kept <= PREROLL_BYTES
+    assert raw._preroll[-1][1] == frames[-1]
+    later = time.time() + PREROLL_S + 1
+    monkeypatch.setattr(time, "time", lambda: later)
+    raw.received(frames[0])  # read after the others have grown too old to be written
+    assert [data for _, data in raw._preroll] == [frames[0]]
 
 
 async def test_a_flight_without_a_raw_log_is_reconstructed(client: tuple[httpx.AsyncClient, FastAPI]) -> None:

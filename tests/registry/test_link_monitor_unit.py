@@ -12,6 +12,7 @@ from gateway.link.link_monitor import (
     ask_for_rates,
     monitor_wait_s,
     rates_wanted_again,
+    silent_streams,
 )
 from gateway.link.session import Link, LinkHooks
 from gateway.link.telemetry import HealthValue
@@ -87,6 +88,7 @@ def test_streams_without_an_answer_are_asked_for_alone_once_due() -> None:
     that is due), and asks for every rate when the streams fell silent."""
     lk = _connected(link(link_lost_after_s=3.0))
     lk.telemetry.put("position", object())
+    lk.telemetry.put("health", _health(home_ok=False))
     asked: list[tuple[str, frozenset[str] | None]] = []
     due: frozenset[str] = frozenset()
     lk.schedule_rates = lambda why, force=False, only=None: asked.append((why, only))  # type: ignore[method-assign]
@@ -160,3 +162,27 @@ def test_an_armed_drone_keeps_its_home_while_mavsdk_forgets_it_after_a_reconnect
     assert lk._waiting_for(forgotten) is None
     lk.telemetry.home = None  # never received: armed or not, no home
     assert lk._waiting_for(forgotten) == "waiting for the home position"
+
+
+def test_a_health_stream_that_never_came_is_asked_for_again_alone() -> None:
+    """A drone heard (heartbeats fresh, position and attitude streaming) whose SYS_STATUS never came is
+    never ready: once the session is older than the link-lost limit, its health stream is asked for again,
+    alone (a rate request reported set that never reached the autopilot)."""
+    lk = _connected(link(link_lost_after_s=3.0))
+    lk.telemetry.put("position", object())
+    lk.telemetry.put("attitude", object())
+    asked: list[tuple[str, frozenset[str] | None]] = []
+    lk.schedule_rates = lambda why, force=False, only=None: asked.append((why, only))  # type: ignore[method-assign]
+    lk.rates_to_ask_again = lambda: frozenset()  # type: ignore[method-assign]
+    ask_for_rates(lk)
+    assert asked == [("no health stream while heartbeats continue", frozenset({"health"}))]
+    asked.clear()
+    lk.telemetry.put("health", _health(home_ok=False))
+    ask_for_rates(lk)
+    assert asked == [] and silent_streams(lk) == frozenset()
+    lk.telemetry.health = None
+    lk._session_started = time.monotonic() - 1.0  # the first request may still be answered: not yet
+    assert silent_streams(lk) == frozenset()
+    lk._session_started = time.monotonic() - 10.0
+    lk.facts.last_heartbeat = time.monotonic() - 5.0  # link lost: nothing to ask
+    assert silent_streams(lk) == frozenset()

@@ -415,8 +415,9 @@ async def test_a_burst_from_the_drone_reaches_a_sidecar_that_is_not_reading_with
     try:
         loop = asyncio.get_running_loop()
         deadline = loop.time() + scaled(30)
-        while relay.vehicle.stats.frames_in < count:
-            assert loop.time() < deadline, f"the relay got {relay.vehicle.stats.frames_in} of {count}"
+        while relay.vehicle.stats.bytes_in < len(burst):
+            got_bytes = relay.vehicle.stats.bytes_in
+            assert loop.time() < deadline, f"the relay got {got_bytes} of {len(burst)} bytes"
             await asyncio.sleep(0.05)
         sidecar.settimeout(scaled(2))
         got: list[int] = []
@@ -431,6 +432,48 @@ async def test_a_burst_from_the_drone_reaches_a_sidecar_that_is_not_reading_with
             got += [f.msgid for f in splitter.feed(data)]
         params = [m for m in got if m == mavlink.MAVLINK_MSG_ID_PARAM_VALUE]
         assert len(params) == count, f"the sidecar got {len(params)} of the {count} PARAM_VALUE"
+    finally:
+        sidecar.close()
+        await relay.close()
+        server.close()
+
+
+async def test_without_ground_stations_the_drones_bytes_go_to_the_sidecar_and_the_log_as_read() -> None:
+    """Nothing to route without ground stations: what the drone sends reaches the sidecar byte for byte
+    (bytes between frames too: mavsdk_server skips them as it does on a direct link) and the raw log's
+    sink gets the same reads; the sidecar's frames reach the drone."""
+    sent = b"\x00noise" + frame(heartbeat()) + frame(ack(SIDECAR))
+    drone_got = bytearray()
+
+    async def drone(reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        writer.write(sent)
+        await writer.drain()
+        while chunk := await reader.read(4096):
+            drone_got.extend(chunk)
+
+    server = await asyncio.start_server(drone, "127.0.0.1", 0)
+    logged = bytearray()
+    relay = Relay("r8", f"tcpout://127.0.0.1:{server.sockets[0].getsockname()[1]}", [])
+    relay.on_vehicle_bytes = logged.extend
+    await relay.start()
+    _, _, address = relay.sidecar_url.partition("://")
+    host, _, port = address.rpartition(":")
+    sidecar = socket.create_connection((host, int(port)))
+    try:
+        sidecar.settimeout(scaled(10))
+        got = bytearray()
+        while len(got) < len(sent):
+            data = await asyncio.to_thread(sidecar.recv, 65536)
+            assert data, f"the relay closed the sidecar's connection after {bytes(got)!r}"
+            got += data
+        assert bytes(got) == sent and bytes(logged) == sent
+        own = frame(heartbeat(), SIDECAR)
+        sidecar.sendall(b"\x00" + own)  # a stray byte, then a frame: the drone gets the frame
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + scaled(10)
+        while bytes(drone_got) != own:
+            assert loop.time() < deadline, f"the drone got {bytes(drone_got)!r}"
+            await asyncio.sleep(0.02)
     finally:
         sidecar.close()
         await relay.close()

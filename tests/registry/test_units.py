@@ -481,7 +481,9 @@ async def test_telemetry_rates_follow_the_drone_between_rest_and_active() -> Non
     try:
         await feed.request_rates(call)
         assert dict(rates) == STREAM_RATES_HZ  # at rest: every stream at its rest rate
-        assert not set(via_mavsdk) & set(MESSAGE_IDS)  # those through the session, MAVSDK has no setter
+        # every one through the session's COMMAND_LONG: MAVSDK's setters can report set a request that
+        # mavsdk_server never sent (an ACK of the same command id completes it while it waits its turn)
+        assert via_mavsdk == []
         assert "in_air" not in subscribed and "armed" not in subscribed and "heading" not in subscribed
         rates.clear()
         landed.put_nowait(Landed.TAKING_OFF)
@@ -499,6 +501,68 @@ async def test_telemetry_rates_follow_the_drone_between_rest_and_active() -> Non
         landed.put_nowait(Landed.ON_GROUND)
         await until(lambda: dict(rates) == {k: STREAM_RATES_HZ[k] for k in ACTIVE_RATES_HZ}, "the rest rates")
         assert not feed.active and "flight_mode" not in subscribed
+    finally:
+        await feed.stop()
+
+
+async def test_the_rates_are_asked_for_one_request_at_a_time_while_items_arrive() -> None:
+    """A position item that comes while the session's first rate request runs (the drone at rest) starts
+    no second request beside it: every stream is asked for once, one MAV_CMD_SET_MESSAGE_INTERVAL at a
+    time. Two at once made mavsdk_server match an ACK to a command of the same id that had not been sent
+    yet (a drone then never got SYS_STATUS); the gateway's own COMMAND_ACK matching is by command id too."""
+    import asyncio
+
+    from gateway.link.telemetry_feed import MESSAGE_IDS, STREAM_RATES_HZ, TelemetryFeed
+
+    names_by_id = {message_id: name for name, message_id in MESSAGE_IDS.items()}
+    asked: list[str] = []
+    in_flight = 0
+    most_in_flight = 0
+    positions: asyncio.Queue[object] = asyncio.Queue()
+    at_rest = SimpleNamespace(
+        latitude_deg=-35.36, longitude_deg=149.16, absolute_altitude_m=584.0, relative_altitude_m=0.0
+    )
+
+    async def set_message_rate(message_id: int, _hz: float) -> None:
+        nonlocal in_flight, most_in_flight
+        asked.append(names_by_id[message_id])
+        in_flight += 1
+        most_in_flight = max(most_in_flight, in_flight)
+        if len(asked) == 2:
+            positions.put_nowait(at_rest)
+        await asyncio.sleep(0.02)  # the answer takes a moment: the item is handled meanwhile
+        in_flight -= 1
+
+    async def position_items():
+        while True:
+            yield await positions.get()
+
+    async def silent():
+        await asyncio.Event().wait()
+        yield None
+
+    class Telemetry:
+        def __getattr__(self, name: str):
+            return position_items if name == "position" else silent
+
+    async def call(_what: str, aw):
+        return await aw
+
+    cache = TelemetryCache()
+    system = SimpleNamespace(telemetry=Telemetry(), mission_raw=SimpleNamespace(mission_progress=silent))
+    feed = TelemetryFeed(
+        "d1", system, cache, use_mavsdk_flight_mode=lambda: False, set_message_rate=set_message_rate
+    )
+    feed.start()
+    try:
+        await feed.request_rates(call)
+        deadline = asyncio.get_running_loop().time() + 10
+        while cache.position is None:  # the item came and was handled
+            assert asyncio.get_running_loop().time() < deadline, "the position item was not handled"
+            await asyncio.sleep(0.01)
+        await asyncio.sleep(0.1)  # a switch begun by the item would ask now
+        assert most_in_flight == 1, asked
+        assert sorted(asked) == sorted(STREAM_RATES_HZ), asked
     finally:
         await feed.stop()
 
@@ -539,27 +603,24 @@ async def test_a_rate_request_without_an_answer_is_asked_again_and_a_refusal_is_
     that grows while it still gets no answer); one the vehicle refused stays refused. A drone missing its
     health or home stream would otherwise never be ready."""
     from gateway.errors import CommandFailed
-    from gateway.link.telemetry_feed import UNANSWERED_RETRY_S, TelemetryFeed
+    from gateway.link.telemetry_feed import MESSAGE_IDS, UNANSWERED_RETRY_S, TelemetryFeed
 
     asked: list[str] = []
     silent_streams = {"health"}
+    names_by_id = {message_id: name for name, message_id in MESSAGE_IDS.items()}
 
-    class Telemetry:
-        def __getattr__(self, name: str):
-            async def set_rate(_hz: float) -> None:
-                stream = name.removeprefix("set_rate_")
-                asked.append(stream)
-                if stream in silent_streams:
-                    raise CommandFailed(f"{name} on drone 'd1': no answer from its mavsdk_server within 5 s")
-                if stream == "odometry":
-                    raise CommandFailed(f"{name} failed: Unsupported (UNSUPPORTED)", result="UNSUPPORTED")
-
-            return set_rate
+    async def set_message_rate(message_id: int, _hz: float) -> None:  # the session's COMMAND_LONG
+        stream = names_by_id[message_id]
+        asked.append(stream)
+        if stream in silent_streams:
+            raise CommandFailed("rate on drone 'd1': no COMMAND_ACK after 3 attempts")
+        if stream == "odometry":
+            raise CommandFailed("rate on drone 'd1' refused: UNSUPPORTED", result="UNSUPPORTED")
 
     async def call(_what: str, aw):
         return await aw
 
-    feed = TelemetryFeed("d1", SimpleNamespace(telemetry=Telemetry()), TelemetryCache())
+    feed = TelemetryFeed("d1", SimpleNamespace(), TelemetryCache(), set_message_rate=set_message_rate)
     refused = await feed.request_rates(call)
     assert refused == {"odometry": refused["odometry"]} and set(feed.unanswered_rates) == {"health"}
     assert feed.rates_to_ask_again() == frozenset()  # not yet: UNANSWERED_RETRY_S after the request

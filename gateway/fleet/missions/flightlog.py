@@ -20,6 +20,7 @@ from gateway.fleet.missions.raw_tlog import RawTlog, tlog_folder
 from gateway.link.session import Link
 from gateway.link.telemetry import StatusTextValue
 from gateway.registry.store import StatusTextIn, Store, TrackSample
+from gateway.util import ticks
 from gateway.util.tasks import cancel_and_wait
 
 log = logging.getLogger("gateway.flightlog")
@@ -78,7 +79,7 @@ class FlightRecorder:
         store: Store,
         settings: Settings,
     ) -> None:
-        """``link``: the vehicle's (its id, its telemetry cache, the frames it relays);
+        """``link``: the vehicle's (its id, its telemetry cache, the bytes it relays);
         ``heartbeat_state``: (MAV_TYPE, custom mode) of the autopilot's last HEARTBEAT, None while there
         is none fresh."""
         self.link = link
@@ -88,6 +89,8 @@ class FlightRecorder:
         self.flight: _Flight | None = None
         self._track: list[TrackSample] = []
         self._texts: list[StatusTextIn] = []
+        self._due = asyncio.Event()  # set by the shared ticks when a recorder between flights has work
+        self._next_flush = 0.0  # event loop time
         self._task: asyncio.Task[None] | None = None
         folder = tlog_folder(settings, store.url)
         self.raw: RawTlog | None = None
@@ -98,14 +101,14 @@ class FlightRecorder:
         await self._close_leftovers()
         self.link.telemetry.on_status_text(self._on_status_text)
         if self.raw is not None:
-            self.link.vehicle_frames = self.raw.frame
+            self.link.vehicle_bytes = self.raw.received
         self._task = asyncio.create_task(self._run(), name=f"flightlog-{self.link.id}")
 
     async def stop(self) -> None:
         """Stop recording: close a flight in progress (the gateway no longer watches it) and flush."""
         self.link.telemetry.remove_status_listener(self._on_status_text)
-        if self.raw is not None and self.link.vehicle_frames == self.raw.frame:
-            self.link.vehicle_frames = None
+        if self.raw is not None and self.link.vehicle_bytes == self.raw.received:
+            self.link.vehicle_bytes = None
         await cancel_and_wait(self._task)
         self._task = None
         if self.flight is not None:
@@ -147,20 +150,40 @@ class FlightRecorder:
             log.info("%s: closed flight %d left open by a previous run", self.link.id, flight.id)
 
     async def _run(self) -> None:
+        """A step every ``track_sample_hz`` while a flight is open; between flights the recorder waits,
+        and the ticks every recorder of the event loop shares (`gateway.util.ticks`) wake it when there
+        is something to do (``_due_at_rest``): one timer for the fleet at rest, not one per drone."""
         period = 1.0 / self.settings.track_sample_hz
         loop = asyncio.get_running_loop()
-        next_flush = loop.time() + self.settings.track_flush_s
-        while True:
-            try:
-                await self._tick()
-                if loop.time() >= next_flush:
-                    next_flush = loop.time() + self.settings.track_flush_s
-                    await self.flush()
-            except asyncio.CancelledError:
-                raise
-            except Exception:  # a database hiccup must not end flight recording
-                log.exception("%s: flight log step failed", self.link.id)
-            await asyncio.sleep(period)
+        self._next_flush = loop.time() + self.settings.track_flush_s
+        tick = ticks.every(period, self._due_at_rest)
+        try:
+            while True:
+                try:
+                    await self._tick()
+                    if loop.time() >= self._next_flush:
+                        self._next_flush = loop.time() + self.settings.track_flush_s
+                        await self.flush()
+                except asyncio.CancelledError:
+                    raise
+                except Exception:  # a database hiccup must not end flight recording
+                    log.exception("%s: flight log step failed", self.link.id)
+                if self.flight is None:
+                    self._due.clear()
+                    await self._due.wait()
+                else:
+                    await asyncio.sleep(period)
+        finally:
+            tick.cancel()
+
+    def _due_at_rest(self) -> None:
+        """At each shared tick: wake the recorder waiting between flights when the drone is armed (a
+        flight opens) or status texts wait to be written."""
+        if self.flight is not None:
+            return  # the recorder steps by itself in flight
+        texts_due = bool(self._texts) and asyncio.get_running_loop().time() >= self._next_flush
+        if texts_due or self.link.telemetry.fresh("armed") is True:
+            self._due.set()
 
     async def _tick(self) -> None:
         cache = self.link.telemetry

@@ -2,16 +2,18 @@
 
 Each record is what QGroundControl and MAVProxy write: an 8-byte big-endian Unix time in microseconds
 (when the gateway received the frame) and the frame as received, byte for byte (MAVLink 1 or 2,
-signed or not). The frames come from the vehicle's relay (`gateway.link.relay`), already cut by its
-framing; nothing here parses them. Cost per frame: one ``time.time()``, two writes into a 64 KiB file
-buffer (written to disk when full and at every track flush), no copy of the frame beyond that buffer.
+signed or not). The relay (`gateway.link.relay`) hands over the vehicle's bytes as it read them (one
+or more frames, or part of one), with no per-frame work of its own; they are cut into frames here
+(`gateway.link.mavlink_frames`, checked by CRC) only while a flight's file is open. At rest a read
+costs one ``time.time()`` and a place in the pre-roll; in flight, each frame two writes into a 64 KiB
+file buffer (written to disk when full and at every track flush).
 
 * One file per flight, ``<vehicle id>-flight-<flight id>.tlog`` in the folder ``flight_tlog_dir``
   names (default: ``<database file>-tlogs`` next to a SQLite database, ``fleet-gateway-tlogs`` in the
   working directory otherwise), on the node that flew it.
 * The flight is opened by the recorder's 1 Hz tick after the autopilot reports armed; the frames of the
-  last ``PREROLL_S`` seconds before (at most ``PREROLL_FRAMES``) are written first, so the log starts
-  before the arming. It ends when the recorder closes the flight (disarmed, or recording stopped).
+  last ``PREROLL_S`` seconds before (at most ``PREROLL_BYTES`` of reads) are written first, so the log
+  starts before the arming. It ends when the recorder closes the flight (disarmed, or recording stopped).
 * At most ``flight_tlog_max_mib`` MiB per flight: the frames after that are not written, and the
   export says the log was cut (``X-Tlog-Cut``).
 """
@@ -28,9 +30,9 @@ from gateway.config import Settings
 
 log = logging.getLogger("gateway.flightlog")
 
-#: how far before the flight is opened its log starts, and how many frames that keeps at most
+#: how far before the flight is opened its log starts, and how many bytes of reads that keeps at most
 PREROLL_S = 3.0
-PREROLL_FRAMES = 512
+PREROLL_BYTES = 64 * 1024
 #: the longest MAVLink frame (v2, 255-byte payload, signed) with its time stamp
 LONGEST_RECORD = 8 + 280
 BUFFER_BYTES = 64 * 1024
@@ -63,39 +65,47 @@ class RawTlog:
     """Writes the frames a vehicle sends into the open flight's file; keeps a short pre-roll between."""
 
     def __init__(self, folder: Path, vehicle_id: str, max_bytes: int) -> None:
+        # the framing (pymavlink's CRC) is imported with the first drone's log, not at every start
+        from gateway.link.mavlink_frames import FrameSplitter
+
+        self._new_splitter = FrameSplitter
         self.folder = folder
         self.vehicle_id = vehicle_id
         self.max_bytes = max_bytes
         self.path: Path | None = None
         self._file: BinaryIO | None = None
         self._written = 0
-        self._preroll: deque[tuple[float, bytes]] = deque(maxlen=PREROLL_FRAMES)
+        self._splitter = self._new_splitter()
+        #: the reads of the last PREROLL_S seconds (at most PREROLL_BYTES), oldest first, with their time
+        self._preroll: deque[tuple[float, bytes]] = deque()
+        self._preroll_bytes = 0
 
-    def frame(self, data: bytes) -> None:
-        """One frame from the vehicle, as received (called by the relay for every frame)."""
+    def received(self, data: bytes) -> None:
+        """A read from the vehicle as it came (called by the relay for every read)."""
         now = time.time()
-        file = self._file
-        if file is None:
-            self._preroll.append((now, data))
+        if self._file is None:
+            preroll = self._preroll
+            preroll.append((now, data))
+            self._preroll_bytes += len(data)
+            since = now - PREROLL_S
+            while preroll[0][0] < since or self._preroll_bytes > PREROLL_BYTES:
+                self._preroll_bytes -= len(preroll.popleft()[1])
             return
-        if self._written + LONGEST_RECORD > self.max_bytes:
-            return
-        try:
-            file.write(int(now * 1e6).to_bytes(8, "big"))
-            file.write(data)
-        except OSError as exc:  # the disk is full or gone: the flight's log ends here, the relay goes on
-            self._failed(exc)
-            return
-        self._written += 8 + len(data)
+        self._write(now, data)
 
-    def _failed(self, exc: OSError) -> None:
-        log.error("%s: the raw MAVLink log %s cannot be written: %s", self.vehicle_id, self.path, exc)
-        file, self._file = self._file, None
-        if file is not None:
+    def _write(self, at: float, data: bytes) -> None:
+        stamp = int(at * 1e6).to_bytes(8, "big")
+        for frame in self._splitter.feed(data):
+            file = self._file
+            if file is None or self._written + LONGEST_RECORD > self.max_bytes:
+                return
             try:
-                file.close()
-            except OSError:
-                pass
+                file.write(stamp)
+                file.write(frame.data)
+            except OSError as exc:  # the disk is full or gone: the flight's log ends here, the relay goes on
+                self._failed(exc)
+                return
+            self._written += 8 + len(frame.data)
 
     def open(self, flight_id: int) -> None:
         """Start the flight's file (replacing one of that name) with the pre-roll's recent frames."""
@@ -105,12 +115,11 @@ class RawTlog:
         file = path.open("wb", buffering=BUFFER_BYTES)
         self.path, self._file, self._written = path, file, 0
         since = time.time() - PREROLL_S
-        preroll, self._preroll = self._preroll, deque(maxlen=PREROLL_FRAMES)
+        preroll, self._preroll, self._preroll_bytes = self._preroll, deque(), 0
+        self._splitter = self._new_splitter()
         for at, data in preroll:
             if at >= since:
-                file.write(int(at * 1e6).to_bytes(8, "big"))
-                file.write(data)
-                self._written += 8 + len(data)
+                self._write(at, data)
         log.info("%s: raw MAVLink of flight %d written to %s", self.vehicle_id, flight_id, path)
 
     def flush(self) -> None:
@@ -122,6 +131,7 @@ class RawTlog:
 
     def close(self) -> None:
         file, self._file = self._file, None
+        self._splitter = self._new_splitter()
         if file is not None:
             try:
                 file.close()
@@ -136,3 +146,12 @@ class RawTlog:
                     self.path,
                     self.max_bytes,
                 )
+
+    def _failed(self, exc: OSError) -> None:
+        log.error("%s: the raw MAVLink log %s cannot be written: %s", self.vehicle_id, self.path, exc)
+        file, self._file = self._file, None
+        if file is not None:
+            try:
+                file.close()
+            except OSError:
+                pass
