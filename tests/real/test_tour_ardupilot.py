@@ -55,8 +55,12 @@ ARDUCOPTER = Profile(
     return_alt_param="RTL_ALT_M",  # 4.7: metres (RTL_ALT in centimetres before)
     hold_mode="GUIDED",
     mission_mode="AUTO",
-    # GPS and home come ~20 s (simulated) before the EKF uses GPS: list_drones and REST say so
-    boot_wait="waiting for the position estimate (the EKF is not using GPS yet)",
+    # GPS and home come ~20 s (simulated) before the EKF uses GPS: list_drones and REST say so; before
+    # the first EKF_STATUS_REPORT arrives (the gateway asks for it among the rates) they say that instead
+    boot_waits=(
+        "waiting for the position estimate (no EKF status report yet)",
+        "waiting for the position estimate (the EKF is not using GPS yet)",
+    ),
 )
 
 
