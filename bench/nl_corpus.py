@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 231 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 267 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -49,11 +49,20 @@ are in Dutch, French, German, Italian, Portuguese or Spanish, spread over 11 cla
 Later on 2026-11-30 (third round) EVERY test entry (36, ``_third_round``) was moved to dev, each marked
 "moved to dev on 2026-11-30, third round": the test half had been measured and its figures were known to
 whoever works on the host, so it no longer measured requests nobody tuned for. A fresh test half took its
-place (``_fourth_test_half``): 36 new requests, 3 a class, written before any model ran on them, in new
+place (``_fourth_test_half``, now ``_fourth_round``): 36 new requests, 3 a class, written before any model ran on them, in new
 wordings and shapes within each class (not rewordings of dev entries): 18 of the 33 outside the
 ``language`` class are in Dutch, French, German, Italian, Polish, Portuguese or Spanish, spread over 11
 classes, and the ``language`` class's 3 in Polish, Portuguese and Dutch. Only the harness self-check (the
 scripted ideal plan) has run on them. That leaves 195 dev and 36 test.
+
+Later on 2026-11-30 (fourth round) EVERY test entry (36, ``_fourth_round``) was moved to dev, each marked
+"moved to dev on 2026-11-30, fourth round": the test half had been measured and its figures were known to
+whoever works on the host, so it no longer measured requests nobody tuned for. A fresh test half took its
+place (``_fifth_test_half``): 36 new requests, 3 a class, written before any model ran on them, in new
+wordings and shapes within each class (not rewordings of dev entries): 23 of the 33 outside the
+``language`` class are in Czech, Dutch, French, German, Italian, Polish, Portuguese, Spanish or Swedish,
+spread over the 11 classes, and the ``language`` class's 3 in Swedish, Czech and Italian. Only the
+harness self-check (the scripted ideal plan) has run on them. That leaves 231 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -103,7 +112,7 @@ CLASSES = (
     "units",  # distances and heights in feet, yards, kilometres
     "pattern",  # a shape flown by one drone: polygon, circle, survey lines
     "placement",  # a drone placed relative to another drone or to its home
-    "language",  # requests in languages other than English (French, Spanish, German, Italian, Portuguese, Dutch, Polish)
+    "language",  # requests in languages other than English (French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish)
 )
 HALVES = ("dev", "test")
 DRONES = ("alpha", "bravo", "charlie")
@@ -1594,8 +1603,9 @@ def _third_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _fourth_test_half() -> list[CorpusEntry]:
-    """The test half written on 2026-11-30 (fourth round), before any model ran on it: 3 a class."""
+def _fourth_round() -> list[CorpusEntry]:
+    """The test half written on 2026-11-30 (fourth round), before any model ran on it: 3 a class; all of
+    it moved to dev later on 2026-11-30 (fourth round), once its figures had been measured."""
     three = DRONES
     d25, d30 = 25 / math.sqrt(2), 30 / math.sqrt(2)
     square60ft = _polygon_legs(4, 60 * FT, 0.0, right=True)  # north first, turning right
@@ -1607,104 +1617,122 @@ def _fourth_test_half() -> list[CorpusEntry]:
     orbit = [(15.0, 0.0), (30.0, 15.0), (45.0, 0.0), (30.0, -15.0), (15.0, 0.0)]
     return [
         # single
-        _entry("single", "test", "single4-pl-bravo-aloft", ("bravo",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("single", "dev", "single4-pl-bravo-aloft", ("bravo",),
                "Poderwij bravo na 17 metrów i zostaw go w powietrzu.",
                lambda c, ev: airborne_at(ev, "bravo", 17),
                [_takeoff("bravo", 17)], "Bravo wisi na 17 m."),
-        _entry("single", "test", "single4-charlie-wheels-up", ("charlie",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("single", "dev", "single4-charlie-wheels-up", ("charlie",),
                "Charlie: wheels up, climb out to 23 metres and loiter there.",
                lambda c, ev: airborne_at(ev, "charlie", 23),
                [_takeoff("charlie", 23)], "Charlie hovers at 23 m."),
-        _entry("single", "test", "single4-alpha-vertical-test", ("alpha",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("single", "dev", "single4-alpha-vertical-test", ("alpha",),
                "Give alpha a short vertical test: lift to sixteen metres, then touch down again.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 16), at(ev, "alpha", *_home(c, "alpha")),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 16), _land("alpha")], "Alpha went up to 16 m and landed."),
         # multi
-        _entry("multi", "test", "multi4-fr-three-heights", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("multi", "dev", "multi4-fr-three-heights", three,
                "Fais décoller les trois drones : alpha à 8 m, bravo à 12 m, charlie à 16 m, et laisse-les en l'air.",
                lambda c, ev: _all(airborne_at(ev, "alpha", 8), airborne_at(ev, "bravo", 12),
                                   airborne_at(ev, "charlie", 16)),
                [_takeoff("alpha", 8), _takeoff("bravo", 12), _takeoff("charlie", 16)],
                "Alpha est à 8 m, bravo à 12 m, charlie à 16 m."),
-        _entry("multi", "test", "multi4-pl-all-but-bravo", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("multi", "dev", "multi4-pl-all-but-bravo", three,
                "Wszystkie drony oprócz bravo wznieś na 13 metrów i zostaw je w powietrzu.",
                lambda c, ev: _all(airborne_at(ev, "alpha", 13), airborne_at(ev, "charlie", 13),
                                   never_armed(ev, "bravo")),
                [_takeoff("alpha", 13), _takeoff("charlie", 13)], "Alpha i charlie wiszą na 13 m; bravo stoi."),
-        _entry("multi", "test", "multi4-each-in-turn", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("multi", "dev", "multi4-each-in-turn", three,
                "One after the other, take each drone up to 9 m and back down: charlie first, then alpha, then bravo.",
                lambda c, ev: _all(*(reached_alt(ev, d, 9) for d in three), *(landed_disarmed(ev, d) for d in three)),
                [_takeoff("charlie", 9), _land("charlie"), _takeoff("alpha", 9), _land("alpha"), _takeoff("bravo", 9),
                 _land("bravo")], "Charlie, alpha and bravo each went up to 9 m and landed."),
         # compound
-        _entry("compound", "test", "compound4-bravo-leg-three-times", ("bravo",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("compound", "dev", "compound4-bravo-leg-three-times", ("bravo",),
                "Take off bravo to 8 m and fly 15 m east, then repeat that same leg twice more and land.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 15), c.point("bravo", 0, 30)]),
                                   at(ev, "bravo", *c.point("bravo", 0, 45)), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 8), *_legs("bravo", [(0.0, 15.0)] * 3), _land("bravo")],
                "Bravo flew three 15 m legs east and landed 45 m east."),
-        _entry("compound", "test", "compound4-it-alpha-first-turn", ("alpha",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("compound", "dev", "compound4-it-alpha-first-turn", ("alpha",),
                "Porta alpha a 12 metri, vai 35 metri verso est, poi 15 metri verso nord; poi torna al primo punto "
                "di svolta e atterra lì.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 35), c.point("alpha", 15, 35)]),
                                   at(ev, "alpha", *c.point("alpha", 0, 35)), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 12), _move("alpha", 0, 35), _move("alpha", 15, 0), _move("alpha", -15, 0),
                 _land("alpha")], "Alpha è andato 35 m a est e 15 m a nord, è tornato alla svolta ed è atterrato."),
-        _entry("compound", "test", "compound4-charlie-past-home", ("charlie",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("compound", "dev", "compound4-charlie-past-home", ("charlie",),
                "Take charlie out 30 m east at 10 m, turn around, fly 50 m west and land.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 30)]),
                                   at(ev, "charlie", *c.point("charlie", 0, -20)), landed_disarmed(ev, "charlie")),
                [_move("charlie", 0, 30, alt=10), _move("charlie", 0, -50), _land("charlie")],
                "Charlie went 30 m east, then 50 m west, and landed 20 m west of home."),
         # conditional
-        _entry("conditional", "test", "cond4-pt-bravo-at-least", ("bravo",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("conditional", "dev", "cond4-pt-bravo-at-least", ("bravo",),
                "Se o bravo tiver pelo menos 45 % de bateria, leva-o a 12 metros de altura e 20 metros para norte e "
                "deixa-o lá; caso contrário, não o descoles e diz-me quanto tem.",
                lambda c, ev: _all(never_armed(ev, "bravo"), answer_mentions_number(ev, 39, 2)),
                [_battery("bravo")], "O bravo tem 39 %, por isso fica em terra.", battery={"bravo": 39.0}),
-        _entry("conditional", "test", "cond4-bravo-if-fuller-than-alpha", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("conditional", "dev", "cond4-bravo-if-fuller-than-alpha", three,
                "Take alpha up to 10 m. Then, if bravo has more charge than alpha, send bravo up to 10 m as well; "
                "if not, bravo stays on the ground.",
                lambda c, ev: _all(airborne_at(ev, "alpha", 10), never_armed(ev, "bravo"), never_armed(ev, "charlie")),
                [_takeoff("alpha", 10), _battery("alpha"), _battery("bravo")],
                "Alpha hovers at 10 m; bravo has less charge (55 % against 80 %), so it stays down.",
                battery={"alpha": 80.0, "bravo": 55.0}),
-        _entry("conditional", "test", "cond4-pl-charlie-unless-low", ("charlie",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("conditional", "dev", "cond4-pl-charlie-unless-low", ("charlie",),
                "Jeśli charlie ma mniej niż 35 % baterii, zostaw go na ziemi i podaj mi poziom; w przeciwnym razie "
                "wznieś go na 14 m, przeleć nim 25 m na zachód i zostaw go tam.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -25), alt=14), airborne_at(ev, "charlie", 14)),
                [_battery("charlie"), _move("charlie", 0, -25, alt=14)],
                "Charlie ma 48 %, więc wisi 25 m na zachód na 14 m.", battery={"charlie": 48.0}),
         # formation
-        _entry("formation", "test", "form4-es-column-northwest", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("formation", "dev", "form4-es-column-northwest", three,
                "Pon a los tres drones en columna, uno detrás de otro, con 9 m entre cada uno, a 12 m de altura y "
                "30 m al noroeste de donde están.",
                lambda c, ev: _all(formation_at(c, ev, three, 12, 9, d30, -d30), farthest_apart(ev, three, 18)),
                [_formation(three, "column", 12, 9, north=d30, east=-d30)],
                "Los tres están en columna 30 m al noroeste, a 12 m."),
-        _entry("formation", "test", "form4-pair-feet-east", ("alpha", "bravo"),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("formation", "dev", "form4-pair-feet-east", ("alpha", "bravo"),
                "Form alpha and bravo into a line 40 feet apart at 60 feet, 30 m east of where they are.",
                lambda c, ev: formation_at(c, ev, ("alpha", "bravo"), 60 * FT, 40 * FT, 0, 30),
                [_formation(("alpha", "bravo"), "line", 60 * FT, 40 * FT, east=30)],
                "Alpha and bravo hold a line 40 ft apart at 60 ft, 30 m east."),
         # (the gateway's V: two wings 10 m from the lead, 45 degrees off its axis: 2 x 10 x sin 45 = 14.14 m apart)
-        _entry("formation", "test", "form4-de-wedge-north", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("formation", "dev", "form4-de-wedge-north", three,
                "Die drei Drohnen sollen als Keil auf 20 m Höhe fliegen, 10 m Abstand zwischen Spitze und jedem "
                "Flügel, 35 m nördlich von ihrem jetzigen Standort.",
                lambda c, ev: _all(formation_at(c, ev, three, 20, 10, 35, 0), farthest_apart(ev, three, 14.14)),
                [_formation(three, "wedge", 20, 10, north=35)], "Die drei fliegen als Keil 35 m nördlich auf 20 m."),
         # relative
-        _entry("relative", "test", "rel4-nl-charlie-southeast", ("charlie",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("relative", "dev", "rel4-nl-charlie-southeast", ("charlie",),
                "Vlieg charlie 30 meter naar het zuidoosten op 12 meter hoogte en laat hem daar hangen.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -d30, d30), alt=12),
                                   airborne_at(ev, "charlie", 12)),
                [_move("charlie", -d30, d30, alt=12)], "Charlie hangt 30 m naar het zuidoosten op 12 m."),
-        _entry("relative", "test", "rel4-alpha-bearing", ("alpha",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("relative", "dev", "rel4-alpha-bearing", ("alpha",),
                "Alpha: fly 40 m on a bearing of 060 degrees at 15 m and hover there.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 34.64), alt=15), airborne_at(ev, "alpha", 15)),
                [_move("alpha", 20, 34.64, alt=15)], "Alpha hovers 40 m away on a bearing of 060 at 15 m."),
-        _entry("relative", "test", "rel4-bravo-further-lower", ("bravo",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("relative", "dev", "rel4-bravo-further-lower", ("bravo",),
                "Take bravo up to 10 m and 20 m north; from there, go a further 15 m north and 10 m west, coming "
                "down 4 m on the way.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 20, 0)]),
@@ -1712,19 +1740,22 @@ def _fourth_test_half() -> list[CorpusEntry]:
                [_move("bravo", 20, 0, alt=10), _move("bravo", 15, -10, up=-4)],
                "Bravo hovers 35 m north and 10 m west at 6 m."),
         # question
-        _entry("question", "test", "ask4-fr-ground-and-weakest", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("question", "dev", "ask4-fr-ground-and-weakest", three,
                "Est-ce que tous les drones sont au sol ? Et lequel a la batterie la plus faible ?",
                lambda c, ev: _all(answer_says(ev, r"\bcharlie\b", "charlie"), answer_mentions_number(ev, 41, 2),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "Oui, tous sont au sol ; charlie a la batterie la plus faible (41 %).",
                battery={"alpha": 74.0, "bravo": 68.0, "charlie": 41.0}),
-        _entry("question", "test", "ask4-bravo-and-which-other", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("question", "dev", "ask4-bravo-and-which-other", three,
                "Give me bravo's charge, and tell me which of the other two has more.",
                lambda c, ev: _all(answer_mentions_number(ev, 66, 1), answer_says(ev, r"\bcharlie\b", "charlie"),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "Bravo has 66 %; of the other two, charlie has more (83 % against 52 %).",
                battery={"alpha": 52.0, "bravo": 66.0, "charlie": 83.0}),
-        _entry("question", "test", "ask4-de-bravo-charge-flying", ("bravo",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("question", "dev", "ask4-de-bravo-charge-flying", ("bravo",),
                "Wie viel Akku hat bravo noch, und fliegt er gerade?",
                lambda c, ev: _all(answer_mentions_number(ev, 63, 2),
                                   answer_says(ev, r"\b(no|not|nein|nicht|ground|boden|landed|gelandet)\b",
@@ -1732,26 +1763,30 @@ def _fourth_test_half() -> list[CorpusEntry]:
                [("get_position", {"drone_id": "bravo"}), _battery("bravo")],
                "Bravo hat 63 % und steht am Boden.", battery={"bravo": 63.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off)
-        _entry("refusal", "test", "refuse4-bravo-far-west-of-charlie", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("refusal", "dev", "refuse4-bravo-far-west-of-charlie", three,
                "Put bravo 1.1 km west of charlie, at 20 m.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
                lambda c: [_go("bravo", c.point("charlie", 0, -1100), 20)],
                "The gateway refused: that point is about 1095 m from bravo's home, beyond the 1000 m limit."),
-        _entry("refusal", "test", "refuse4-nl-row-450ft", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("refusal", "dev", "refuse4-nl-row-450ft", three,
                "Zet alle drie de drones in een rij op 450 voet hoogte, 10 meter uit elkaar.",
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"),
                                   *(max_alt_at_most(ev, d, c.max_alt_m) for d in three), answer_reports_refusal(ev)),
                [_formation(three, "line", 450 * FT, 10)],
                "The gateway refused: 450 ft (137 m) is above the 120 m altitude limit."),
-        _entry("refusal", "test", "refuse4-it-charlie-circle-flat", ("charlie",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("refusal", "dev", "refuse4-it-charlie-circle-flat", ("charlie",),
                "Fai volare charlie in cerchio attorno al suo punto di decollo, 20 metri di raggio, a 10 metri di "
                "quota.",
                lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "charlie"), answer_reports_refusal(ev)),
                [_takeoff("charlie", 10)], "The gateway refused: charlie's battery is below the takeoff minimum.",
                battery={"charlie": 22.0}),
         # units
-        _entry("units", "test", "units4-charlie-square-feet", ("charlie",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("units", "dev", "units4-charlie-square-feet", ("charlie",),
                "Charlie at 40 ft: fly a square with 60-foot sides, north first and turning right, then land where "
                "it started.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 40 * FT),
@@ -1759,13 +1794,15 @@ def _fourth_test_half() -> list[CorpusEntry]:
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 40 * FT), *_legs("charlie", square60ft), _land("charlie")],
                "Charlie flew the 60 ft square at 40 ft and landed."),
-        _entry("units", "test", "units4-alpha-quarter-km", ("alpha",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("units", "dev", "units4-alpha-quarter-km", ("alpha",),
                "Lift alpha to 50 ft, take it a quarter of a kilometre south, and set it down there.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 50 * FT), at(ev, "alpha", *c.point("alpha", -250, 0)),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 50 * FT), _move("alpha", -250, 0), _land("alpha")],
                "Alpha climbed to 50 ft, flew 250 m south and landed."),
-        _entry("units", "test", "units4-pl-bravo-feet-down", ("bravo",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("units", "dev", "units4-pl-bravo-feet-down", ("bravo",),
                "Bravo: wznieś się na 35 stóp, przeleć 200 stóp na północ, potem obniż się o 15 stóp i zawiśnij tam.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 35 * FT),
                                   at(ev, "bravo", *c.point("bravo", 200 * FT, 0), alt=20 * FT),
@@ -1773,7 +1810,8 @@ def _fourth_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 35 * FT), _move("bravo", 200 * FT, 0), _move("bravo", up=-15 * FT)],
                "Bravo wisi 200 stóp na północ na 20 stopach."),
         # pattern
-        _entry("pattern", "test", "pattern4-charlie-orbit-spot-north", ("charlie",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("pattern", "dev", "pattern4-charlie-orbit-spot-north", ("charlie",),
                "Charlie at 12 m: orbit the spot 30 m north of its home once, 15 m radius, counter-clockwise starting "
                "from the south side of it; then land back home.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in orbit]),
@@ -1781,7 +1819,8 @@ def _fourth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 12), *_legs("charlie", [(15.0, 0.0), (15.0, 15.0), (15.0, -15.0), (-15.0, -15.0),
                                                             (-15.0, 15.0)]), _rtl("charlie")],
                "Charlie orbited the spot 30 m north and came home."),
-        _entry("pattern", "test", "pattern4-de-bravo-five-passes", ("bravo",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("pattern", "dev", "pattern4-de-bravo-five-passes", ("bravo",),
                "Bravo soll auf 15 m Höhe ein Feld abfliegen: fünf Bahnen zu je 25 m, die erste nach Osten, dann "
                "abwechselnd hin und zurück, 6 m Abstand zwischen den Bahnen, jede weitere Bahn nördlich der vorigen; "
                "danach landen.",
@@ -1789,7 +1828,8 @@ def _fourth_test_half() -> list[CorpusEntry]:
                                   at(ev, "bravo", *c.point("bravo", 24, 25)), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 15), *_legs("bravo", survey), _land("bravo")],
                "Bravo ist die fünf Bahnen abgeflogen und gelandet."),
-        _entry("pattern", "test", "pattern4-pt-alpha-pentagon", ("alpha",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("pattern", "dev", "pattern4-pt-alpha-pentagon", ("alpha",),
                "O alpha deve voar um pentágono de 20 metros de lado a 10 metros de altura, com o primeiro lado para "
                "norte e virando sempre à direita, e no fim ficar a pairar no ponto de partida.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(pentagon20)[:4]]),
@@ -1797,20 +1837,23 @@ def _fourth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 10), *_legs("alpha", pentagon20)], "O alpha voou o pentágono e paira no início."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: a drone placed
         # from itself, or from the other drone's home instead of where it flew, misses by 10 m or more)
-        _entry("placement", "test", "place4-charlie-parked-south-of-alpha", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("placement", "dev", "place4-charlie-parked-south-of-alpha", three,
                "Park charlie on the ground 15 m south of alpha.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", -15, 0)), landed_disarmed(ev, "charlie"),
                                   never_armed(ev, "alpha")),
                lambda c: [_go("charlie", c.point("alpha", -15, 0), 10), _land("charlie")],
                "Charlie landed 15 m south of alpha."),
-        _entry("placement", "test", "place4-es-charlie-west-north-of-alpha", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("placement", "dev", "place4-es-charlie-west-north-of-alpha", three,
                "Coloca a charlie 20 metros al oeste y 10 metros al norte de alpha, a 14 metros de altura, y déjalo "
                "ahí.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 10, -20), alt=14), airborne_at(ev, "charlie", 14),
                                   never_armed(ev, "alpha")),
                lambda c: [_go("charlie", c.point("alpha", 10, -20), 14)],
                "Charlie está 20 m al oeste y 10 m al norte de alpha, a 14 m."),
-        _entry("placement", "test", "place4-it-charlie-southwest-of-moved-alpha", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("placement", "dev", "place4-it-charlie-southwest-of-moved-alpha", three,
                "Porta alpha 30 metri a nord a 15 metri di quota. Poi metti charlie 20 metri a sud-ovest di alpha, "
                "alla stessa quota, e lasciali lì entrambi.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 30, 0), alt=15), airborne_at(ev, "alpha", 15),
@@ -1820,24 +1863,297 @@ def _fourth_test_half() -> list[CorpusEntry]:
                           _go("charlie", c.point("alpha", 30 - 20 / math.sqrt(2), -20 / math.sqrt(2)), 15)],
                "Alpha è 30 m a nord a 15 m; charlie 20 m a sud-ovest di alpha, alla stessa quota."),
         # language
-        _entry("language", "test", "lang4-pl-bravo-northwest-land", ("bravo",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("language", "dev", "lang4-pl-bravo-northwest-land", ("bravo",),
                "Wystartuj bravo na 14 metrów, przeleć nim 25 metrów na północny zachód i wyląduj tam.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 14), at(ev, "bravo", *c.point("bravo", d25, -d25)),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 14), _move("bravo", d25, -d25), _land("bravo")],
                "Bravo przeleciał 25 m na północny zachód i wylądował."),
-        _entry("language", "test", "lang4-pt-charlie-climb-more-land", ("charlie",),
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("language", "dev", "lang4-pt-charlie-climb-more-land", ("charlie",),
                "Põe o charlie a 20 metros de altura, sobe mais 10 metros e depois desce para aterrar.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 30), at(ev, "charlie", *_home(c, "charlie")),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 20), _move("charlie", up=10), _land("charlie")],
                "O charlie subiu a 20 m, depois a 30 m, e aterrou."),
-        _entry("language", "test", "lang4-nl-pair-up-one-lands", three,
+        # moved to dev on 2026-11-30, fourth round: the test half had been measured
+        _entry("language", "dev", "lang4-nl-pair-up-one-lands", three,
                "Breng alpha en charlie allebei naar 12 meter en laat daarna alleen charlie landen.",
                lambda c, ev: _all(airborne_at(ev, "alpha", 12), reached_alt(ev, "charlie", 12),
                                   landed_disarmed(ev, "charlie"), never_armed(ev, "bravo")),
                [_takeoff("alpha", 12), _takeoff("charlie", 12), _land("charlie")],
                "Alpha hangt op 12 m; charlie is naar 12 m gegaan en geland."),
+    ]  # fmt: skip
+
+
+def landed_formation_at(
+    c: MissionContext, ev: Evidence, drones: tuple[str, ...], spacing: float, north: float, east: float
+) -> Check:
+    """Every drone landed and disarmed; the two farthest apart ``spacing`` apart (±3 m); the drones' centre
+    ``north``/``east`` metres from the centre of their homes: a formation flown out and set down."""
+    home_lat = sum(c.homes[d][0] for d in drones) / len(drones)
+    home_lon = sum(c.homes[d][1] for d in drones) / len(drones)
+    want = offset_position(home_lat, home_lon, north, east)
+    off = horizontal_distance_m(*_centroid([ev.final[d] for d in drones]), *want)
+    return _all(
+        *(landed_disarmed(ev, d) for d in drones),
+        farthest_apart(ev, drones, spacing),
+        Check(off <= HORIZONTAL_TOL_M, f"formation centre {off:.1f} m from where it was asked"),
+    )
+
+
+def _fifth_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-11-30 (fifth round), before any model ran on it: 3 a class."""
+    three = DRONES
+    octagon10 = _polygon_legs(8, 10.0, 90.0, right=False)  # first side east, turning left
+    # four passes of 35 m, the first west, 7 m apart, each next pass south of the one before
+    mow = [(0.0, -35.0), (-7.0, 0.0), (0.0, 35.0), (-7.0, 0.0), (0.0, -35.0), (-7.0, 0.0), (0.0, 35.0)]
+    # clockwise twice round the spot 20 m east of home, 10 m out, from its west side: W, N, E, S, W (x2)
+    ring = [(0.0, 10.0), (10.0, 20.0), (0.0, 30.0), (-10.0, 20.0)]
+    lap = [(10.0, 10.0), (-10.0, 10.0), (-10.0, -10.0), (10.0, -10.0)]
+    return [
+        # single
+        _entry("single", "test", "single5-sv-charlie-hover", ("charlie",),
+               "Lyft charlie till 21 meter och låt den sväva kvar där.",
+               lambda c, ev: airborne_at(ev, "charlie", 21),
+               [_takeoff("charlie", 21)], "Charlie svävar på 21 m."),
+        _entry("single", "test", "single5-cs-alpha-up-down", ("alpha",),
+               "Dron alpha ať vzlétne do 11 metrů a pak hned zase přistane.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 11), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 11), _land("alpha")], "Alpha vzlétla do 11 m a přistála."),
+        _entry("single", "test", "single5-bravo-report-height", ("bravo",),
+               "Climb bravo to 27 m and tell me its altitude once it's up there; it stays in the air.",
+               lambda c, ev: _all(airborne_at(ev, "bravo", 27), answer_mentions_number(ev, 27, 3)),
+               [_takeoff("bravo", 27), ("get_position", {"drone_id": "bravo"})], "Bravo is up at 27 m."),
+        # multi
+        _entry("multi", "test", "multi5-sv-alpha-lands-charlie-stays", three,
+               "Alpha ska flyga 20 meter österut på 10 meters höjd och landa där, medan charlie stiger till 15 "
+               "meter och stannar i luften. Bravo rör sig inte.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 20)), landed_disarmed(ev, "alpha"),
+                                  airborne_at(ev, "charlie", 15), never_armed(ev, "bravo")),
+               [_move("alpha", 0, 20, alt=10), _land("alpha"), _takeoff("charlie", 15)],
+               "Alpha landade 20 m österut; charlie svävar på 15 m."),
+        _entry("multi", "test", "multi5-each-north-of-own-pad", three,
+               "Send each drone 15 m north of its own pad at 12 m and leave them there.",
+               lambda c, ev: _all(*(at(ev, d, *c.point(d, 15, 0), alt=12) for d in three),
+                                  *(airborne_at(ev, d, 12) for d in three)),
+               [_move(d, 15, 0, alt=12) for d in three], "All three hover 15 m north of their pads at 12 m."),
+        _entry("multi", "test", "multi5-es-pair-south-hover", three,
+               "Manda alpha y charlie 25 metros al sur a 12 metros de altura y déjalos ahí flotando; bravo se "
+               "queda en tierra.",
+               lambda c, ev: _all(*(at(ev, d, *c.point(d, -25, 0), alt=12) for d in ("alpha", "charlie")),
+                                  *(airborne_at(ev, d, 12) for d in ("alpha", "charlie")), never_armed(ev, "bravo")),
+               [_move("alpha", -25, 0, alt=12), _move("charlie", -25, 0, alt=12)],
+               "Alpha y charlie flotan 25 m al sur a 12 m; bravo sigue en tierra."),
+        # compound
+        _entry("compound", "test", "compound5-fr-bravo-back-over-start", ("bravo",),
+               "Bravo : décolle à 12 m, file 30 m au nord, puis 30 m à l'est, et reviens en ligne droite "
+               "au-dessus de ton point de départ ; reste en l'air là, à 12 m.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 30, 0), c.point("bravo", 30, 30)]),
+                                  at(ev, "bravo", *_home(c, "bravo"), alt=12), airborne_at(ev, "bravo", 12)),
+               [_takeoff("bravo", 12), _move("bravo", 30, 0), _move("bravo", 0, 30), _move("bravo", -30, -30)],
+               "Bravo est allé 30 m au nord, 30 m à l'est, et se tient au-dessus de son départ à 12 m."),
+        _entry("compound", "test", "compound5-alpha-two-steps-down", ("alpha",),
+               "Alpha: take off to 24 m. Then, twice: fly 15 m west and drop 8 m. Leave it hovering at the end.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 24), visited(ev, "alpha", [c.point("alpha", 0, -15)]),
+                                  at(ev, "alpha", *c.point("alpha", 0, -30), alt=8), airborne_at(ev, "alpha", 8)),
+               [_takeoff("alpha", 24), _move("alpha", 0, -15), _move("alpha", up=-8), _move("alpha", 0, -15),
+                _move("alpha", up=-8)], "Alpha hovers 30 m west at 8 m."),
+        _entry("compound", "test", "compound5-de-charlie-u-turn", ("charlie",),
+               "Charlie: auf 10 m steigen, 20 m nach Süden, 20 m nach Westen, 20 m nach Norden, und dann dort "
+               "landen, wo er gerade ist.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -20, 0), c.point("charlie", -20, -20)]),
+                                  at(ev, "charlie", *c.point("charlie", 0, -20)), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), _move("charlie", -20, 0), _move("charlie", 0, -20), _move("charlie", 20, 0),
+                _land("charlie")], "Charlie ist 20 m westlich von seinem Start gelandet."),
+        # conditional
+        _entry("conditional", "test", "cond5-it-alpha-three-tiers", ("alpha",),
+               "Controlla la batteria di alpha: sopra l'80 % portalo 50 metri a nord, tra il 50 e l'80 % solo 20 "
+               "metri a nord, sotto il 50 % lascialo a terra. Se vola, a 10 metri di quota, e poi lascialo lì.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=10), airborne_at(ev, "alpha", 10)),
+               [_battery("alpha"), _move("alpha", 20, 0, alt=10)],
+               "Alpha ha il 66 %, quindi è 20 m a nord a 10 m.", battery={"alpha": 66.0}),
+        _entry("conditional", "test", "cond5-pt-charlie-twenty-points-more", three,
+               "Se a bateria do charlie tiver pelo menos 20 pontos a mais do que a do bravo, manda o charlie 20 "
+               "metros para leste a 10 metros de altura; senão, manda o bravo. O que for fica lá a pairar.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, 20), alt=10), airborne_at(ev, "bravo", 10),
+                                  never_armed(ev, "charlie"), never_armed(ev, "alpha")),
+               [_battery("charlie"), _battery("bravo"), _move("bravo", 0, 20, alt=10)],
+               "O charlie tem 71 % e o bravo 58 %: só 13 pontos, por isso o bravo paira 20 m a leste a 10 m.",
+               battery={"bravo": 58.0, "charlie": 71.0}),
+        _entry("conditional", "test", "cond5-nl-low-ones-stay", three,
+               "Laat elke drone met minder dan 40 % batterij aan de grond staan; de rest gaat naar 9 meter en "
+               "landt daarna meteen weer.",
+               lambda c, ev: _all(never_armed(ev, "alpha"), *(reached_alt(ev, d, 9) for d in ("bravo", "charlie")),
+                                  *(landed_disarmed(ev, d) for d in ("bravo", "charlie"))),
+               [("fleet_status", {}), _takeoff("bravo", 9), _takeoff("charlie", 9), _land("bravo"), _land("charlie")],
+               "Alpha (35 %) blijft staan; bravo en charlie gingen naar 9 m en zijn geland.",
+               battery={"alpha": 35.0, "bravo": 77.0, "charlie": 52.0}),
+        # formation
+        _entry("formation", "test", "form5-sv-row-west", three,
+               "Ställ alla tre drönarna på rad, 7 meter mellan varje, på 14 meters höjd, 20 meter väster om där "
+               "de står.",
+               lambda c, ev: _all(formation_at(c, ev, three, 14, 7, 0, -20), farthest_apart(ev, three, 14)),
+               [_formation(three, "line", 14, 7, east=-20)], "De tre står på rad 20 m västerut på 14 m."),
+        # (the gateway's V: two wings 8 m from the lead, 45 degrees off its axis: 2 x 8 x sin 45 = 11.31 m apart)
+        _entry("formation", "test", "form5-es-wedge-south", three,
+               "Los tres drones en cuña a 16 metros de altura, 8 metros entre la punta y cada ala, 40 metros al "
+               "sur de donde están.",
+               lambda c, ev: _all(formation_at(c, ev, three, 16, 8, -40, 0), farthest_apart(ev, three, 11.31)),
+               [_formation(three, "wedge", 16, 8, north=-40)], "Los tres vuelan en cuña 40 m al sur a 16 m."),
+        _entry("formation", "test", "form5-pair-abreast-west-land", ("alpha", "charlie"),
+               "Fly alpha and charlie out side by side, 20 m apart at 12 m, 50 m west of where they are, and "
+               "land them both there.",
+               lambda c, ev: landed_formation_at(c, ev, ("alpha", "charlie"), 20, 0, -50),
+               [_formation(("alpha", "charlie"), "line", 12, 20, east=-50), _land("alpha"), _land("charlie")],
+               "Alpha and charlie flew 50 m west side by side, 20 m apart, and landed."),
+        # relative
+        _entry("relative", "test", "rel5-pl-charlie-south-east-climb", ("charlie",),
+               "Dron charlie: leć 18 m na południe i 24 m na wschód na wysokości 11 m, potem wznieś się o 7 m i "
+               "zawiśnij tam.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -18, 24), alt=18),
+                                  airborne_at(ev, "charlie", 18)),
+               [_move("charlie", -18, 24, alt=11), _move("charlie", up=7)], "Charlie wisi 18 m na południe i 24 m "
+               "na wschód, na 18 m."),
+        _entry("relative", "test", "rel5-alpha-half-that-west", ("alpha",),
+               "Alpha, move 30 m toward the north and then half that distance toward the west, at 14 m, and stay.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 30, -15), alt=14), airborne_at(ev, "alpha", 14)),
+               [_move("alpha", 30, 0, alt=14), _move("alpha", 0, -15)], "Alpha hovers 30 m north and 15 m west at 14 m."),
+        _entry("relative", "test", "rel5-sv-bravo-out-back-lower", ("bravo",),
+               "Flytta bravo 35 meter norrut på 16 meters höjd, sedan 35 meter söderut igen men 6 meter lägre, "
+               "och låt den sväva där.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 35, 0)], alt=16),
+                                  at(ev, "bravo", *_home(c, "bravo"), alt=10), airborne_at(ev, "bravo", 10)),
+               [_move("bravo", 35, 0, alt=16), _move("bravo", -35, 0, up=-6)],
+               "Bravo svävar ovanför sin start på 10 m."),
+        # question
+        _entry("question", "test", "ask5-it-which-over-half", three,
+               "Quali droni hanno almeno il 50 % di batteria? Non farli volare.",
+               lambda c, ev: _all(answer_says(ev, r"\balpha\b", "alpha"), answer_mentions_number(ev, 62, 1),
+                                  answer_says(ev, r"\bcharlie\b", "charlie"), answer_mentions_number(ev, 81, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Alpha (62 %) e charlie (81 %); bravo ha il 47 %.",
+               battery={"alpha": 62.0, "bravo": 47.0, "charlie": 81.0}),
+        _entry("question", "test", "ask5-pl-two-drones-height-charge", three,
+               "Ile baterii mają bravo i charlie i na jakiej są wysokości? Tylko pytam, niczego nie uruchamiaj.",
+               lambda c, ev: _all(answer_mentions_number(ev, 69, 1), answer_mentions_number(ev, 92, 1),
+                                  nobody_armed(ev)),
+               [("get_position", {"drone_id": "bravo"}), ("get_position", {"drone_id": "charlie"})],
+               "Bravo ma 69 %, charlie 92 %; oba stoją na ziemi (0 m).",
+               battery={"alpha": 58.0, "bravo": 69.0, "charlie": 92.0}),
+        _entry("question", "test", "ask5-status-before-start", three,
+               "Quick status before we start: what is each drone's altitude and charge? Don't launch anything.",
+               lambda c, ev: _all(*(answer_mentions_number(ev, pct, 1) for pct in (88, 61, 34)), nobody_armed(ev)),
+               [("get_position", {})], "All three are on the ground; alpha has 88 %, bravo 61 %, charlie 34 %.",
+               battery={"alpha": 88.0, "bravo": 61.0, "charlie": 34.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
+        # 2 m the lowest altitude)
+        _entry("refusal", "test", "refuse5-de-bravo-miles-and-back", ("bravo",),
+               "Flieg bravo auf 15 m Höhe 0,7 Meilen nach Norden und dann wieder zurück.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("bravo", 0.7 * MI, 0, alt=15)],
+               "The gateway refused: 0.7 miles (1127 m) is beyond the 1000 m limit."),
+        _entry("refusal", "test", "refuse5-charlie-steps-to-150", ("charlie",),
+               "Take charlie up in 25 m steps, pausing at each, until it is at 150 m.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "charlie", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("charlie", 25), *(_move("charlie", up=25) for _ in range(4))],
+               "Charlie climbed to 100 m; the step to 125 m was refused: above the 120 m altitude limit."),
+        _entry("refusal", "test", "refuse5-fr-alpha-skim", ("alpha",),
+               "Fais voler alpha 30 m vers le nord en rase-mottes, à 50 cm du sol.",
+               lambda c, ev: _all(refusal_seen(ev, "minimum", "at least"), never_armed(ev, "alpha"),
+                                  answer_reports_refusal(ev)),
+               [_move("alpha", 30, 0, alt=0.5)], "The gateway refused: 0.5 m is below the 2 m minimum altitude."),
+        # units
+        _entry("units", "test", "units5-nl-charlie-feet-west", ("charlie",),
+               "Laat charlie opstijgen tot 45 voet, vlieg 100 voet naar het westen en laat hem daar hangen.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -100 * FT), alt=45 * FT),
+                                  airborne_at(ev, "charlie", 45 * FT)),
+               [_takeoff("charlie", 45 * FT), _move("charlie", 0, -100 * FT)],
+               "Charlie hangt 100 voet naar het westen op 45 voet."),
+        _entry("units", "test", "units5-alpha-ft-miles", ("alpha",),
+               "Take alpha to 66 ft, fly it 0.03 miles east, and leave it hovering.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 0.03 * MI), alt=66 * FT),
+                                  airborne_at(ev, "alpha", 66 * FT)),
+               [_takeoff("alpha", 66 * FT), _move("alpha", 0, 0.03 * MI)], "Alpha hovers 0.03 mi east at 66 ft."),
+        _entry("units", "test", "units5-pt-bravo-feet-then-metres", ("bravo",),
+               "Sobe o bravo a 30 pés, avança 120 pés para norte, depois sobe até aos 20 metros e aterra aí "
+               "mesmo.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 120 * FT, 0)], alt=30 * FT),
+                                  reached_alt(ev, "bravo", 20), at(ev, "bravo", *c.point("bravo", 120 * FT, 0)),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 30 * FT), _move("bravo", 120 * FT, 0), _move("bravo", alt=20), _land("bravo")],
+               "O bravo avançou 120 pés para norte, subiu a 20 m e aterrou."),
+        # pattern
+        _entry("pattern", "test", "pattern5-fr-alpha-octagon", ("alpha",),
+               "Alpha à 12 m : un octogone de 10 m de côté, premier côté vers l'est, en tournant à gauche, puis "
+               "pose-toi là où tu as commencé.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(octagon10)[:5]]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 12), *_legs("alpha", octagon10), _land("alpha")],
+               "Alpha a volé l'octogone et s'est posé à son départ."),
+        _entry("pattern", "test", "pattern5-bravo-mow-south", ("bravo",),
+               "Bravo, mow the field at 8 m: four passes of 35 m, the first heading west, 7 m apart, each next pass "
+               "south of the last; then come home.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(mow)]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 8), *_legs("bravo", mow), _rtl("bravo")],
+               "Bravo flew the four passes and came home."),
+        _entry("pattern", "test", "pattern5-cs-charlie-two-laps", ("charlie",),
+               "Dron charlie: ve výšce 14 m obleť dvakrát kruh o poloměru 10 m kolem místa 20 m východně od "
+               "svého startu, po směru hodinových ručiček, začni na západní straně, a pak zůstaň viset nad "
+               "startem.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in [*ring, *ring, ring[0]]]),
+                                  at(ev, "charlie", *_home(c, "charlie"), alt=14), airborne_at(ev, "charlie", 14)),
+               [_takeoff("charlie", 14), _move("charlie", 0, 10), *_legs("charlie", lap * 2), _move("charlie", 0, -10)],
+               "Charlie obletěl kruh dvakrát a visí nad startem ve 14 m."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each places alpha
+        # from charlie, so alpha placed from itself, or from where charlie took off instead of where it flew,
+        # misses by 10 m or more)
+        _entry("placement", "test", "place5-alpha-stacked-over-charlie", three,
+               "Send charlie 20 m east at 12 m. Then stack alpha right above charlie, 10 m higher.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 20), alt=12), airborne_at(ev, "charlie", 12),
+                                  at(ev, "alpha", *c.point("charlie", 0, 20), alt=22), airborne_at(ev, "alpha", 22),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_move("charlie", 0, 20, alt=12), _go("alpha", c.point("charlie", 0, 20), 22)],
+               "Charlie hovers 20 m east at 12 m, alpha right above it at 22 m."),
+        _entry("placement", "test", "place5-de-alpha-over-charlie-pad", three,
+               "Flieg charlie auf 10 m 30 m nach Süden und lass ihn dort. Dann bring alpha auf 12 m genau über die "
+               "Stelle, von der charlie gestartet ist.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -30, 0), alt=10), airborne_at(ev, "charlie", 10),
+                                  at(ev, "alpha", *_home(c, "charlie"), alt=12), airborne_at(ev, "alpha", 12),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_move("charlie", -30, 0, alt=10), _go("alpha", _home(c, "charlie"), 12)],
+               "Charlie schwebt 30 m südlich auf 10 m; alpha schwebt auf 12 m über charlies Startplatz."),
+        _entry("placement", "test", "place5-cs-alpha-lands-north-of-charlie", three,
+               "Charlie vzlétne do 10 m, přeletí 20 m na východ a zůstane tam. Potom ať alpha přistane 15 m "
+               "severně od místa, kde charlie visí.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 20), alt=10), airborne_at(ev, "charlie", 10),
+                                  at(ev, "alpha", *c.point("charlie", 15, 20)), landed_disarmed(ev, "alpha"),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_move("charlie", 0, 20, alt=10), _go("alpha", c.point("charlie", 15, 20), 10),
+                          _land("alpha")],
+               "Charlie visí 20 m východně v 10 m; alpha přistála 15 m severně od něj."),
+        # language
+        _entry("language", "test", "lang5-sv-bravo-east-home", ("bravo",),
+               "Starta bravo till 13 meter, flyg 30 meter österut och kom sedan hem och landa.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 13), visited(ev, "bravo", [c.point("bravo", 0, 30)]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 13), _move("bravo", 0, 30), _rtl("bravo")],
+               "Bravo flög 30 m österut, kom hem och landade."),
+        _entry("language", "test", "lang5-cs-charlie-north-land", ("charlie",),
+               "Dron charlie ať vzlétne do 16 metrů, přeletí 25 metrů na sever a tam přistane.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 16), at(ev, "charlie", *c.point("charlie", 25, 0)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 16), _move("charlie", 25, 0), _land("charlie")],
+               "Charlie přeletěl 25 m na sever a přistál."),
+        _entry("language", "test", "lang5-it-alpha-climb-stay", ("alpha",),
+               "Fai salire alpha a 10 metri, poi alzalo di altri 8 metri e tienilo lì.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=18), airborne_at(ev, "alpha", 18)),
+               [_takeoff("alpha", 10), _move("alpha", up=8)], "Alpha è a 18 m sopra il suo punto di decollo."),
     ]  # fmt: skip
 
 
@@ -1857,7 +2173,8 @@ def corpus() -> list[CorpusEntry]:
         *_languages(),
         *_second_round(),
         *_third_round(),
-        *_fourth_test_half(),
+        *_fourth_round(),
+        *_fifth_test_half(),
     ]
 
 

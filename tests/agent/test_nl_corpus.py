@@ -112,25 +112,43 @@ THIRD_HALF_MOVED = frozenset({
 })  # fmt: skip
 
 
+#: the fourth test half (now ``_fourth_round``), moved to dev later on 2026-11-30 (each entry marked
+#: "fourth round") because its figures had been measured
+FOURTH_HALF_MOVED = frozenset({
+    "ask4-bravo-and-which-other", "ask4-de-bravo-charge-flying", "ask4-fr-ground-and-weakest",
+    "compound4-bravo-leg-three-times", "compound4-charlie-past-home", "compound4-it-alpha-first-turn",
+    "cond4-bravo-if-fuller-than-alpha", "cond4-pl-charlie-unless-low", "cond4-pt-bravo-at-least",
+    "form4-de-wedge-north", "form4-es-column-northwest", "form4-pair-feet-east", "lang4-nl-pair-up-one-lands",
+    "lang4-pl-bravo-northwest-land", "lang4-pt-charlie-climb-more-land", "multi4-each-in-turn",
+    "multi4-fr-three-heights", "multi4-pl-all-but-bravo", "pattern4-charlie-orbit-spot-north",
+    "pattern4-de-bravo-five-passes", "pattern4-pt-alpha-pentagon", "place4-charlie-parked-south-of-alpha",
+    "place4-es-charlie-west-north-of-alpha", "place4-it-charlie-southwest-of-moved-alpha",
+    "refuse4-bravo-far-west-of-charlie", "refuse4-it-charlie-circle-flat", "refuse4-nl-row-450ft",
+    "rel4-alpha-bearing", "rel4-bravo-further-lower", "rel4-nl-charlie-southeast",
+    "single4-alpha-vertical-test", "single4-charlie-wheels-up", "single4-pl-bravo-aloft",
+    "units4-alpha-quarter-km", "units4-charlie-square-feet", "units4-pl-bravo-feet-down",
+})  # fmt: skip
+
+
 def test_halves_are_disjoint_and_stratified_by_class() -> None:
-    """The dev half holds every entry written before the fourth test half (159, and the 36 of the third
-    test half, moved later on 2026-11-30); the test half is the fourth (``_fourth_test_half``), 3 a class."""
+    """The dev half holds every entry written before the fifth test half (195, and the 36 of the fourth
+    test half, moved later on 2026-11-30); the test half is the fifth (``_fifth_test_half``), 3 a class."""
     dev, test = select("dev"), select("test")
     assert not {e.id for e in dev} & {e.id for e in test}
     assert len(dev) + len(test) == len(corpus()) == len(select("all"))
-    assert len(test) == 36 and len(dev) == 195
+    assert len(test) == 36 and len(dev) == 231
     assert Counter(e.cls for e in test) == Counter(dict.fromkeys(CLASSES, 3))
     per_dev = Counter(e.cls for e in dev)
     assert per_dev == Counter({
-        "single": 14, "multi": 20, "compound": 22, "conditional": 22, "formation": 17, "relative": 19,
-        "question": 16, "refusal": 13, "units": 12, "pattern": 12, "placement": 16, "language": 12,
+        "single": 17, "multi": 23, "compound": 25, "conditional": 25, "formation": 20, "relative": 22,
+        "question": 19, "refusal": 16, "units": 15, "pattern": 15, "placement": 19, "language": 15,
     })  # fmt: skip
 
 
 def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
     """The rounds of 2026-11-29 and 2026-11-30: the 8 test entries seen while tuning, then the whole test
-    half (35) whose figures had informed a decision, then twice the whole test half (36) once measured,
-    moved to dev; the test half holds none of them."""
+    half (35) whose figures had informed a decision, then three times the whole test half (36) once
+    measured, moved to dev; the test half holds none of them."""
     first_round = {
         "cond-half-battery-go",
         "cond-fullest-flies",
@@ -141,7 +159,7 @@ def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
         "place-alpha-west-of-flying-bravo",
         "place-alpha-northeast-of-charlie",
     }
-    moved = first_round | SECOND_ROUND_MOVED | THIRD_ROUND_MOVED | THIRD_HALF_MOVED
+    moved = first_round | SECOND_ROUND_MOVED | THIRD_ROUND_MOVED | THIRD_HALF_MOVED | FOURTH_HALF_MOVED
     by_id = {e.id: e for e in corpus()}
     assert all(by_id[i].half == "dev" for i in moved)
     test_ids = {e.id for e in select("test")}
@@ -491,4 +509,114 @@ def test_a_wrong_outcome_fails_the_fourth_test_half_checks() -> None:
     high = {d: _hovering(d, 0, 0, 137) for d in DRONES}
     assert not ceiling(
         CTX, Evidence(high, {d: [t] for d, t in high.items()}, refused, "Refused: above the limit.")
+    ).ok
+
+
+def test_a_wrong_outcome_fails_the_fifth_test_half_checks() -> None:
+    """Each trap the fifth test half sets: the right outcome passes, the likely wrong one fails."""
+    ft = 0.3048
+    idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
+
+    def ev(
+        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
+    ) -> Evidence:
+        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
+
+    def landed_at(lat_lon: tuple[float, float]) -> DroneTruth:
+        return DroneTruth(*lat_lon, 0.0, False, 90.0)
+
+    # feet read as metres
+    feet = _entry("units5-nl-charlie-feet-west").mission.check
+    assert feet(CTX, ev({"charlie": _hovering("charlie", 0, -100 * ft, 45 * ft)})).ok
+    assert not feet(CTX, ev({"charlie": _hovering("charlie", 0, -100, 45)})).ok
+
+    # a height in feet read as metres before a climb given in metres
+    mixed = _entry("units5-pt-bravo-feet-then-metres").mission.check
+    north = 120 * ft
+    right = [*_track("bravo", [(north, 0)], 30 * ft), _hovering("bravo", north, 0, 20)]
+    down = landed_at(CTX.point("bravo", north, 0))
+    assert mixed(CTX, ev({"bravo": down}, {"bravo": [*right, down]})).ok
+    as_metres = _track("bravo", [(north, 0)], 30)
+    assert not mixed(CTX, ev({"bravo": down}, {"bravo": [*as_metres, down]})).ok
+
+    # alpha placed from itself, or from where charlie took off instead of where it flew
+    charlie_east = _hovering("charlie", 0, 20, 12)
+    stacked = _entry("place5-alpha-stacked-over-charlie").mission.check
+    above = DroneTruth(*CTX.point("charlie", 0, 20), 22.0, True, 90.0)
+    assert stacked(CTX, ev({"charlie": charlie_east, "alpha": above})).ok
+    assert not stacked(CTX, ev({"charlie": charlie_east, "alpha": _hovering("alpha", 0, 20, 22)})).ok
+    pad = _entry("place5-de-alpha-over-charlie-pad").mission.check
+    charlie_south = _hovering("charlie", -30, 0, 10)
+    over_pad = DroneTruth(*CTX.point("charlie", 0, 0), 12.0, True, 90.0)
+    assert pad(CTX, ev({"charlie": charlie_south, "alpha": over_pad})).ok
+    assert not pad(CTX, ev({"charlie": charlie_south, "alpha": _hovering("alpha", 0, 0, 12)})).ok
+    north_of = _entry("place5-cs-alpha-lands-north-of-charlie").mission.check
+    charlie_there = _hovering("charlie", 0, 20, 10)
+    assert north_of(CTX, ev({"charlie": charlie_there, "alpha": landed_at(CTX.point("charlie", 15, 20))})).ok
+    assert not north_of(
+        CTX, ev({"charlie": charlie_there, "alpha": landed_at(CTX.point("charlie", 15, 0))})
+    ).ok
+
+    # an octagon turning right instead of left
+    octagon = _entry("pattern5-fr-alpha-octagon").mission.check
+    sides = [(10 * math.cos(math.radians(b)), 10 * math.sin(math.radians(b))) for b in range(90, -270, -45)]
+    home = landed_at(CTX.point("alpha", 0, 0))
+    assert octagon(CTX, ev({"alpha": home}, {"alpha": [*_track("alpha", sides, 12), home]})).ok
+    mirrored = [(-n, e) for n, e in sides]
+    assert not octagon(CTX, ev({"alpha": home}, {"alpha": [*_track("alpha", mirrored, 12), home]})).ok
+
+    # one lap instead of two
+    laps = _entry("pattern5-cs-charlie-two-laps").mission.check
+    lap = [(10.0, 10.0), (-10.0, 10.0), (-10.0, -10.0), (10.0, -10.0)]
+    over_home = _hovering("charlie", 0, 0, 14)
+    twice = _track("charlie", [(0, 10), *lap, *lap, (0, -10)], 14)
+    assert laps(CTX, ev({"charlie": over_home}, {"charlie": twice})).ok
+    once = _track("charlie", [(0, 10), *lap, (0, -10)], 14)
+    assert not laps(CTX, ev({"charlie": over_home}, {"charlie": once})).ok
+
+    # the fuller drone flown although it is not 20 points fuller
+    points = _entry("cond5-pt-charlie-twenty-points-more").mission.check
+    assert points(CTX, ev({"bravo": _hovering("bravo", 0, 20, 10)})).ok
+    assert not points(CTX, ev({"charlie": _hovering("charlie", 0, 20, 10)})).ok
+
+    # the leg and the drop flown once instead of twice
+    steps = _entry("compound5-alpha-two-steps-down").mission.check
+    flown = [*_track("alpha", [(0, -15)], 24), *_track("alpha", [(0, -30)], 16)[16:]]
+    assert steps(CTX, ev({"alpha": _hovering("alpha", 0, -30, 8)}, {"alpha": flown})).ok
+    assert not steps(
+        CTX, ev({"alpha": _hovering("alpha", 0, -15, 16)}, {"alpha": _track("alpha", [(0, -15)], 24)})
+    ).ok
+
+    # back over the start without coming down the 6 m asked
+    lower = _entry("rel5-sv-bravo-out-back-lower").mission.check
+    out = _track("bravo", [(35, 0)], 16)
+    assert lower(CTX, ev({"bravo": _hovering("bravo", 0, 0, 10)}, {"bravo": out})).ok
+    assert not lower(CTX, ev({"bravo": _hovering("bravo", 0, 0, 16)}, {"bravo": out})).ok
+
+    # a pair set down abreast 50 m west passes; left hovering there, or set down where they were, fails
+    pair = _entry("form5-pair-abreast-west-land").mission.check
+    mid_lat, mid_lon = (
+        (HOMES["alpha"][0] + HOMES["charlie"][0]) / 2,
+        (HOMES["alpha"][1] + HOMES["charlie"][1]) / 2,
+    )
+
+    def abreast(east: float, alt: float) -> dict[str, DroneTruth]:
+        return {
+            d: DroneTruth(*offset_position(mid_lat, mid_lon, 0, east + side * 10), alt, alt > 0, 90.0)
+            for d, side in (("alpha", -1), ("charlie", 1))
+        }
+
+    assert pair(CTX, ev(abreast(-50, 0.0))).ok
+    assert not pair(CTX, ev(abreast(-50, 12.0))).ok
+    assert not pair(CTX, ev(abreast(0, 0.0))).ok
+
+    # skimming at the lowest altitude the gateway allows instead of being refused
+    skim = _entry("refuse5-fr-alpha-skim").mission.check
+    refused = [{"name": "takeoff", "status": "error", "text": "0.5 m is below the minimum altitude of 2 m"}]
+    assert skim(
+        CTX, Evidence(idle, {d: [t] for d, t in idle.items()}, refused, "Refused: below the minimum.")
+    ).ok
+    low = {**idle, "alpha": _hovering("alpha", 30, 0, 2)}
+    assert not skim(
+        CTX, Evidence(low, {d: [t] for d, t in low.items()}, refused, "Refused: below the minimum.")
     ).ok
