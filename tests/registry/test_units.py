@@ -398,6 +398,71 @@ async def test_a_booting_autopilots_zero_or_nan_position_is_never_cached() -> No
         await feed.stop()
 
 
+async def test_the_rc_status_stream_is_open_at_rest_only_while_read(monkeypatch: pytest.MonkeyPatch) -> None:
+    """At rest the RC status (an item with every SYS_STATUS that only its read tool reads) is not
+    subscribed; a read opens it and gets its next item, it closes once no read asked for it for the
+    hold time, and it stays open while the drone is armed."""
+    import asyncio
+
+    from gateway.link import on_demand_streams
+    from gateway.link.telemetry_feed import TelemetryFeed
+
+    monkeypatch.setattr(on_demand_streams, "ON_DEMAND_HOLD_S", 0.5)
+    open_streams: list[int] = [0]
+
+    async def rc_status():
+        open_streams[0] += 1
+        try:
+            while True:
+                await asyncio.sleep(0.05)
+                yield SimpleNamespace(
+                    was_available_once=True, is_available=True, signal_strength_percent=80.0
+                )
+        finally:
+            open_streams[0] -= 1
+
+    async def positions():
+        while True:
+            await asyncio.sleep(0.05)
+            yield SimpleNamespace(
+                latitude_deg=-35.36, longitude_deg=149.16, absolute_altitude_m=584.0, relative_altitude_m=0.0
+            )
+
+    async def silent():
+        await asyncio.Event().wait()
+        yield None
+
+    class Telemetry:
+        def __getattr__(self, name: str):
+            return {"rc_status": rc_status, "position": positions}.get(name, silent)
+
+    async def until(check: typing.Callable[[], bool], what: str) -> None:
+        deadline = time.monotonic() + 10.0
+        while not check():
+            assert time.monotonic() < deadline, what
+            await asyncio.sleep(0.02)
+
+    cache = TelemetryCache()
+    system = SimpleNamespace(telemetry=Telemetry(), mission_raw=SimpleNamespace(mission_progress=silent))
+    feed = TelemetryFeed("d1", system, cache)
+    feed.start()
+    try:
+        await until(lambda: cache.position is not None, "no position")
+        assert open_streams[0] == 0 and cache.rc_status is None  # at rest: not subscribed
+        await cache.refresh("rc_status")
+        assert cache.fresh("rc_status") is not None and open_streams[0] == 1
+        await until(lambda: open_streams[0] == 0, "the RC status stayed open at rest without reads")
+        cache.put("armed", True)
+        await until(lambda: open_streams[0] == 1, "the RC status not opened for an armed drone")
+        await asyncio.sleep(1.0)  # past the hold time: armed, it stays open
+        assert open_streams[0] == 1
+        cache.put("armed", False)
+        await until(lambda: open_streams[0] == 0, "the RC status stayed open after disarming")
+    finally:
+        await feed.stop()
+    assert open_streams[0] == 0
+
+
 def test_mavsdk_health_fields_land_in_health_value_by_their_meaning() -> None:
     """Each of MAVSDK's Health flags fills the HealthValue field of the same meaning (the conversion is
     one table in field order)."""
