@@ -14,7 +14,7 @@ import logging
 import math
 import time
 from collections import deque
-from collections.abc import Awaitable, Callable
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, is_dataclass
 from typing import ClassVar, Generic, Literal, TypeVar, get_args, get_origin, get_type_hints, overload
 
@@ -172,9 +172,6 @@ class TelemetryCache:
     #: updates received per stream since the vehicle was created (monotonic counters, for /metrics)
     message_counts: dict[str, int] = field(default_factory=dict)
     _status_listeners: list[Callable[[StatusTextValue], None]] = field(default_factory=list, repr=False)
-    #: set by the telemetry feed: opens a stream held closed at rest and waits for its next item
-    #: (``TelemetryFeed.refresh``); None for a cache nothing feeds that way
-    refresher: Callable[[str], Awaitable[None]] | None = field(default=None, repr=False, compare=False)
 
     #: the streams' names, in the fields' order (set below from `STREAM_TYPES`)
     FIELDS: ClassVar[tuple[str, ...]]
@@ -184,12 +181,6 @@ class TelemetryCache:
             raise KeyError(name)
         setattr(self, name, Sample(value, time.monotonic()))
         self.message_counts[name] = self.message_counts.get(name, 0) + 1
-
-    async def refresh(self, name: str) -> None:
-        """Before a read of ``name`` that must be current: a stream the feed holds closed at rest (the
-        RC status) is opened and its next item awaited; nothing for the others."""
-        if self.refresher is not None:
-            await self.refresher(name)
 
     def stale_limit_s(self, name: str) -> float:
         """The age past which ``name``'s sample is stale: ``stale_after_s``, times the stream's period at

@@ -17,7 +17,6 @@ from typing import Protocol, TypeVar
 
 from gateway.errors import CommandFailed
 from gateway.link.mavsdk_system import System
-from gateway.link.on_demand_streams import ON_DEMAND_AT_REST, OnDemandStreams
 from gateway.link.telemetry import (
     AttitudeValue,
     BatteryValue,
@@ -60,8 +59,6 @@ Item = TypeVar("Item")
 #: not requested either (the dialect skips it): MAVSDK takes the battery from SYS_STATUS until a
 #: BATTERY_STATUS arrives, and ArduPilot fills both from its first battery monitor, so SYS_STATUS at 1 Hz
 #: brings the battery at 1 Hz with one message a second fewer.
-#: Subscribed at rest only while read: the RC status (MAVSDK makes one of each SYS_STATUS, which only
-#: ``get_rc_status`` reads; ``gateway.link.on_demand_streams``).
 #: MISSION_CURRENT at rest every 5 s: MAVSDK reports mission progress only when the item or the count
 #: changes, and a mission item changes only in flight (armed: 1 Hz, ``ACTIVE_RATES_HZ``); an upload
 #: sets the count in MAVSDK itself.
@@ -336,8 +333,6 @@ class TelemetryFeed:
         self._switch: asyncio.Task[None] | None = None
         self._requesting = False  # request_rates runs: no switch beside it (it follows the drone after)
         self._in_air: bool | None = None
-        # the RC status: open at rest only while read (``gateway.link.on_demand_streams``)
-        self._on_demand = OnDemandStreams(vehicle_id, self._pump)
 
     def _put_fixed(self, name: str, item: _GeoPoint) -> None:
         if has_global_position(item):
@@ -382,17 +377,12 @@ class TelemetryFeed:
     def _subscribe(
         self, name: str, subscribe: Callable[[], AsyncIterator[Item]], handle: Callable[[Item], None]
     ) -> None:
-        if name in ON_DEMAND_AT_REST:
-            self._on_demand.add(name, subscribe, handle, active=self._active)
-            self.cache.refresher = self._on_demand.refresh
-            return
         self._tasks.append(
             asyncio.create_task(self._pump(name, subscribe, handle), name=f"tm-{self.vehicle_id}-{name}")
         )
 
     async def stop(self) -> None:
         tasks, self._tasks = self._tasks, []
-        tasks += self._on_demand.close()
         if self._switch is not None:
             tasks.append(self._switch)
             self._switch = None
@@ -474,8 +464,6 @@ class TelemetryFeed:
         cache = self.cache
         armed = cache.armed.value if cache.armed is not None else False
         self._active = bool(armed) or bool(self._in_air)
-        if self._on_demand:
-            self._on_demand.hold(self._active)
         if self._call is None or self._requesting or self._active == self._rates_active:
             # rates not requested yet or being requested (request_rates picks the right ones and looks
             # again when it ends), or already right

@@ -104,8 +104,6 @@ def _data_reader(name: str, part: str, doc: str) -> None:
     """Declare the read tool ``name``: the fields of the cached telemetry part ``part``."""
 
     async def read_data(call: ToolCall, drone_id: DroneId) -> DataOut:
-        # a stream held closed at rest (the RC status) is opened and its next item awaited
-        await call.commander.vehicle(drone_id).telemetry.refresh(part)
         return _data_tool(call, drone_id, part)
 
     read_data.__name__ = read_data.__qualname__ = name
