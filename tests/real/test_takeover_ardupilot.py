@@ -73,6 +73,9 @@ async def test_a_second_ground_station_takes_arducopter_mid_takeoff_and_mid_miss
     )
 
 
-async def test_a_second_ground_station_takes_an_arducopter_mid_formation(launch, tmp_path: Path) -> None:
+async def test_a_second_ground_station_takes_an_arducopter_mid_formation(
+    launch, kept_arducopter: KeptAutopilot, tmp_path: Path
+) -> None:
+    kept_arducopter.stop()  # the single-drone scenarios are done: its CPU goes to these two
     kw = {"switch": {"custom_mode": 5}, "from_mode": "GUIDED", "to_mode": "LOITER", "reported": "LOITER"}
     await run_formation(tmp_path, ARDUCOPTER, launch("ardupilot", 2), **kw)

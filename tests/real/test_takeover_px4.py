@@ -66,7 +66,10 @@ async def test_a_second_ground_station_takes_px4_mid_takeoff_and_mid_mission(px4
     )
 
 
-async def test_a_second_ground_station_takes_a_px4_mid_formation(launch, tmp_path: Path) -> None:
+async def test_a_second_ground_station_takes_a_px4_mid_formation(
+    launch, kept_px4: KeptAutopilot, tmp_path: Path
+) -> None:
+    kept_px4.stop()  # the single-drone scenarios are done: its CPU goes to these two
     rtl = {"custom_mode": 0, "px4_modes": (4, 5)}
     kw = {"switch": rtl, "from_mode": "AUTO.LOITER", "to_mode": "AUTO.RTL", "reported": "RETURN_TO_LAUNCH"}
     await run_formation(tmp_path, PX4, launch("px4", 2), **kw)
