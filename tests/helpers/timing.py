@@ -1,10 +1,12 @@
 """Test deadlines, stretched on slow or busy machines by one knob.
 
 ``FLEET_TEST_TIME_SCALE=3 make test`` multiplies every deadline the tests wait on (and pytest's per-test
-timeout) by 3. Without it the scale follows the machine's load when the run starts: a 2-core machine
-with a load average of 6 waits up to 3 times longer (at most ``MAX_AUTO_SCALE``), so a run on a busy
-machine gets the time an idle one would not need. Deadlines bound a wait; they never assert how long
-something took.
+timeout) by 3. Without it the scale follows the machine's load: a 2-core machine with a load average of
+6 waits up to 3 times longer (at most ``MAX_AUTO_SCALE``), so a run on a busy machine gets the time an
+idle one would not need. The load when the run starts sets the per-test timeout and the least scale;
+each deadline is stretched further when the machine got busier since (read when the deadline is set:
+work that starts beside a run half an hour in is the run's busy machine too). Deadlines bound a wait;
+they never assert how long something took.
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ MAX_AUTO_SCALE = 4.0
 
 
 def _load_scale() -> float:
-    """Load average per core at start, between 1 and MAX_AUTO_SCALE (1 where the OS has no load average)."""
+    """Load average per core now, between 1 and MAX_AUTO_SCALE (1 where the OS has no load average)."""
     try:
         load = os.getloadavg()[0]
     except OSError:
@@ -29,10 +31,11 @@ def _load_scale() -> float:
     return min(MAX_AUTO_SCALE, max(1.0, round(load / (os.cpu_count() or 1), 1)))
 
 
-def _scale() -> float:
+def _fixed_scale() -> float | None:
+    """FLEET_TEST_TIME_SCALE as a number, None when unset."""
     raw = os.environ.get("FLEET_TEST_TIME_SCALE", "").strip()
     if not raw:
-        return _load_scale()
+        return None
     try:
         value = float(raw)
     except ValueError:
@@ -42,12 +45,17 @@ def _scale() -> float:
     return value
 
 
-TIME_SCALE = _scale()
+FIXED_SCALE = _fixed_scale()
+#: the scale when the run starts: pytest's per-test timeout, and the least any deadline is stretched by
+TIME_SCALE = FIXED_SCALE if FIXED_SCALE is not None else _load_scale()
 
 
 def scaled(seconds: float) -> float:
-    """A deadline of ``seconds`` on an idle machine, stretched by FLEET_TEST_TIME_SCALE."""
-    return seconds * TIME_SCALE
+    """A deadline of ``seconds`` on an idle machine, stretched by FLEET_TEST_TIME_SCALE, else by the
+    machine's load now or at the start, whichever is higher."""
+    if FIXED_SCALE is not None:
+        return seconds * FIXED_SCALE
+    return seconds * max(TIME_SCALE, _load_scale())
 
 
 async def settled(
