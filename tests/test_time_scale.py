@@ -26,18 +26,18 @@ def test_a_deadline_stretches_with_the_load_now_when_the_machine_got_busier(
 ) -> None:
     monkeypatch.setattr(timing, "FIXED_SCALE", None)
     monkeypatch.setattr(timing, "TIME_SCALE", 1.0)
-    monkeypatch.setattr(timing.os, "cpu_count", lambda: 2)
-    monkeypatch.setattr(timing.os, "getloadavg", lambda: (6.0, 1.0, 1.0))
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    monkeypatch.setattr(os, "getloadavg", lambda: (6.0, 1.0, 1.0))
     assert timing.scaled(10) == pytest.approx(30)
-    monkeypatch.setattr(timing.os, "getloadavg", lambda: (40.0, 1.0, 1.0))
+    monkeypatch.setattr(os, "getloadavg", lambda: (40.0, 1.0, 1.0))
     assert timing.scaled(10) == pytest.approx(10 * timing.MAX_AUTO_SCALE)
     # quieter than at the start: never below the start's scale
     monkeypatch.setattr(timing, "TIME_SCALE", 2.0)
-    monkeypatch.setattr(timing.os, "getloadavg", lambda: (0.5, 1.0, 1.0))
+    monkeypatch.setattr(os, "getloadavg", lambda: (0.5, 1.0, 1.0))
     assert timing.scaled(10) == pytest.approx(20)
 
 
 def test_a_fixed_scale_is_not_moved_by_the_load(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(timing, "FIXED_SCALE", 1.5)
-    monkeypatch.setattr(timing.os, "getloadavg", lambda: (40.0, 1.0, 1.0))
+    monkeypatch.setattr(os, "getloadavg", lambda: (40.0, 1.0, 1.0))
     assert timing.scaled(10) == pytest.approx(15)
