@@ -43,10 +43,8 @@ Each step has an "action":
 Every distance and altitude is {"value": number, "unit": "m" | "ft" | "km" | "mi" | "yd" | "nmi"}, in the
 unit the request used. Never compute: the host converts units and works out the geometry. A drone on the
 ground takes off by itself before a move or a pattern. Plan only what is asked: no step for a drone the
-request leaves alone. "after" is what the drone does once the step is flown, as the request says:
-"stay" (the default: it stays in the air, also before a next step, and when the request does not ask it
-to land), "land" (it lands where it is, also to land back where it started) or "return_home" (only when
-the request asks it back to its home or launch point).
+request leaves alone. "after" is what the drone does once the step is flown: "stay" (in the air, also
+before a next step), "land" (there) or "return_home", as the request says.
 """
 
 
