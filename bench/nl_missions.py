@@ -29,6 +29,10 @@ outside the project) and stops it afterwards.
 Without --model (and no GATEWAY_AGENT_MODEL) it runs the HARNESS SELF-CHECK: a scripted endpoint replays
 the ideal call sequence of each mission. That verifies the sim, gateway, MCP, host loop and checks end to
 end; its figures are not a model's and are never written to docs/benchmarks.md.
+
+--replay FILE serves back the model replies a --json results file recorded (each run keeps them in
+``replies``), run by run, through the current host: a change of the host's checks or compiler judged on
+what the model wrote, without the model (not a change of the prompt or schema it never saw).
 """
 
 from __future__ import annotations
@@ -62,6 +66,7 @@ from bench.agent_harness.missions import (
     never_armed,
 )
 from bench.agent_harness.pilot import SELF_CHECK_MODEL, ScriptedPilot
+from bench.agent_harness.replay import DIVERGED, ReplayPilot
 from bench.agent_harness.scripted import ScriptedModelServer
 from bench.agent_harness.stack import GatewayTruth, LocalStack, Sampler, SimTruth, reset_drones
 from bench.agent_harness.tokens import cl100k_tokens, model_tokens
@@ -129,6 +134,7 @@ class MissionRun:
     cls: str | None = None  # the corpus class (None for the 12 missions)
     half: str | None = None  # the corpus half: dev or test
     signals: list[str] = field(default_factory=list)  # every failure class the transcript shows
+    replies: list[str] = field(default_factory=list)  # the model's replies, in order (for --replay)
 
 
 def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
@@ -137,6 +143,13 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     p.add_argument("--endpoint", default=env.endpoint, help="OpenAI-compatible base URL")
     p.add_argument("--model", default=env.model, help="model name; omit for the harness self-check")
     p.add_argument("--self-check", action="store_true", help="scripted ideal pilot instead of a model")
+    p.add_argument(
+        "--replay",
+        default=None,
+        metavar="JSON",
+        help="serve the model replies a --json results file recorded, run by run, through the current "
+        "host (no model; judges host changes, not prompt or schema changes)",
+    )
     p.add_argument("--gateway-url", default=None, help="use this gateway's /mcp instead of starting one")
     p.add_argument("--token", default=env.token, help="bearer token for --gateway-url")
     p.add_argument(
@@ -204,6 +217,15 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         help="append every host event of every run (model replies, calls, results) as JSON lines here",
     )
     args = p.parse_args(argv)
+    args.replayed = None
+    if args.replay:
+        if args.model or args.serve_local or args.self_check:
+            p.error("--replay serves recorded replies: leave out --model, --serve-local and --self-check")
+        if args.write:
+            p.error("--write is refused for a replay: the host changed since the model wrote the replies")
+        args.replayed = ReplayPilot.from_json(args.replay)
+        args.model = f"{args.replayed.model} (replayed from {args.replay})"
+        args.runs = max(run for run, _ in args.replayed.runs())
     if not args.model and not args.serve_local:
         args.self_check = True
     if args.self_check and args.write:
@@ -284,7 +306,8 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
         else:
             truth = GatewayTruth(link)
         args.system_prompt = system_prompt()
-        own = None if args.self_check else await model_tokens(args.endpoint, args.system_prompt)
+        asks_a_model = not (args.self_check or args.replayed)
+        own = await model_tokens(args.endpoint, args.system_prompt) if asks_a_model else None
         cl100k = cl100k_tokens(args.system_prompt)
         args.tool_list = (
             f"plan decoding {args.decoding}; system prompt (template included) "
@@ -294,10 +317,14 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
         console.print(f"[dim]tool list: {args.tool_list}; truth from {truth.source}[/]")
 
         pilot: ScriptedPilot | None = None
+        replayed: ReplayPilot | None = args.replayed
         if args.self_check:
             pilot = ScriptedPilot()
             scripted = stack.enter_context(ScriptedModelServer([pilot], repeat_last=True))
             model = ModelConfig(scripted.base_url, SELF_CHECK_MODEL, max_retries=0, decoding="none")
+        elif replayed is not None:
+            scripted = stack.enter_context(ScriptedModelServer([replayed], repeat_last=True))
+            model = ModelConfig(scripted.base_url, args.model, max_retries=0, decoding="none")
         else:
             model = ModelConfig(
                 args.endpoint,
@@ -315,11 +342,17 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
             for mission in missions:
                 if (n, mission.id) in done:
                     continue
+                if replayed is not None:
+                    if (mission.id, n) not in replayed.recorded:
+                        continue
+                    replayed.load(mission.id, n)
                 await reset_drones(
                     link, truth, drone_ids, battery_pct=mission.battery_pct, speedup=args.speedup
                 )
                 run = await run_one(mission, link, tools, truth, model, pilot, args, console, drone_ids)
                 run.run = n
+                if replayed is not None and replayed.diverged:
+                    run.ok, run.detail = False, f"{DIVERGED}; {run.detail}"
                 run.cls, run.half = where.get(mission.id, (None, None))
                 runs.append(run)
                 if args.json_out:  # written after every run: a crash or a kill loses none of them
@@ -348,10 +381,13 @@ async def run_one(
     if pilot is not None:
         pilot.load(mission.plan(ctx), mission.answer)
     results: list[dict[str, Any]] = []
+    replies: list[str] = []
 
     def on_event(e: AgentEvent) -> None:
         if e.kind == "tool_result":
             results.append(e.data)
+        if e.kind == "model_reply":
+            replies.append(str(e.data.get("content") or ""))
         if args.events_out:
             with open(args.events_out, "a", encoding="utf-8") as out:
                 out.write(json.dumps({"mission": mission.id, **e.to_json()}, default=str) + "\n")
@@ -385,6 +421,7 @@ async def run_one(
         wall_s=wall,
         calls=[_call_text(c) for c in turn.tool_calls],
         signals=signals,
+        replies=replies,
     )
     if not run.ok:
         run.failure = signals[0] if signals else "wrong_outcome"
@@ -749,6 +786,8 @@ def main(argv: list[str] | None = None) -> int:
     title = (
         "HARNESS SELF-CHECK (scripted pilot, not a model; tokens = request size / 4)"
         if args.self_check
+        else f"NL missions: {args.model}, typed plan"
+        if args.replayed
         else f"NL missions: {args.model} at {args.endpoint}, typed plan"
     )
     console.print(results_table(runs, title))
