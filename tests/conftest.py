@@ -23,7 +23,8 @@ hypothesis_settings.load_profile("fleet")
 
 
 def pytest_report_header(config: pytest.Config) -> str:
-    source = "FLEET_TEST_TIME_SCALE" if os.environ.get("FLEET_TEST_TIME_SCALE") else "load average at start; more where it grows"
+    fixed = os.environ.get("FLEET_TEST_TIME_SCALE")
+    source = "FLEET_TEST_TIME_SCALE" if fixed else "load average at start; more where it grows"
     return f"test deadlines x{TIME_SCALE:g} ({source})"
 
 
