@@ -24,12 +24,31 @@ from tests.helpers.timing import scaled
 
 HOME = (-35.363261, 149.165230, 584.0, 353.0)  # lat, lon, alt AMSL, heading: ArduPilot's CMAC
 
-#: PX4 SIH runs in real time only, so the test equipment climbs, descends and lands faster than PX4's
-#: defaults (set at boot through PX4_PARAM_<name>, which etc/init.d-posix/rcS applies after the airframe;
-#: never by the gateway). Each stays within PX4's range (parameters.json of the build) and the gateway's
-#: max_vertical_speed_mps (5 m/s). What each does, from PX4's mc_pos_control and navigator sources. Return
-#: descends to RTL_DESCEND_ALT (30 m) before it lands: kept, so a pilot's Return keeps the drone in the air
-#: for the takeover tests' 10 s of the agent trying (at 10 m the drone was down within them).
+#: PX4 SIH's simulation speed (PX4_SIM_SPEED_FACTOR), for test modules that set none of their own. SIH
+#: in SITL runs lockstep: its simulated clock drives PX4's, so at factor F the autopilot lives F seconds
+#: per wall second when it gets the CPU, and slower when it does not. Measured on the 2-core CI machine
+#: (load average 5-10 from other work), one PX4, 25-30 s windows, CPU from /proc/<pid>/stat, simulated
+#: time from time_boot_ms:
+#:
+#:   factor   on the ground        hovering at 2.5 m
+#:   1        20 % CPU, 0.99 x     20 % CPU, 0.99 x
+#:   2        35 % CPU, 1.94 x     30 % CPU, 1.95 x
+#:   3        51 % CPU, 2.86 x     48 % CPU, 2.88 x
+#:   4        54 % CPU, 3.75 x     59 % CPU, 3.77 x
+#:   4 on one core beside two busy loops: 27 % CPU, 3.84 x, hovering within 3 cm
+#:
+#: 3 keeps one PX4 near half a core, so that with the gateway and its sidecar a test worker stays within
+#: its own core; a module flying several PX4 at once sets a lower factor (test_tour_px4.py: three at 2).
+PX4_SPEED_FACTOR = 3.0
+
+#: The test equipment climbs, descends and lands faster than PX4's defaults, kept beside the speed
+#: factor: every takeoff, Return and landing of the tests flies at these rates, which halve those legs
+#: again, and no check depends on PX4's default rates. Set at boot through PX4_PARAM_<name>, which
+#: etc/init.d-posix/rcS applies after the airframe; never by the gateway. Each stays within PX4's range
+#: (parameters.json of the build) and the gateway's max_vertical_speed_mps (5 m/s). What each does, from
+#: PX4's mc_pos_control and navigator sources. Return descends to RTL_DESCEND_ALT (30 m) before it lands:
+#: kept, so a pilot's Return keeps the drone in the air for the takeover tests' 10 s of the agent trying
+#: (at 10 m the drone was down within them).
 PX4_TEST_PARAMS: dict[str, float] = {
     "MPC_TKO_SPEED": 3.0,  # takeoff climb rate (1.5 m/s; range 1-5)
     "MPC_Z_V_AUTO_DN": 3.0,  # descent in autonomous modes: RTL, Land above MPC_LAND_ALT1 (1.5; 0.5-4)
@@ -194,22 +213,31 @@ def _arducopter_on(instance: int, folder: Path, speedup: float, sysid: int | Non
 
 
 @contextlib.contextmanager
-def px4(folder: Path, taken: set[int] | None = None) -> Iterator[Autopilot]:
-    """PX4 SIH (physics inside the autopilot; real time only), MAVLink UDP 14540 + instance, system id
-    instance + 1, with PX4_TEST_PARAMS. Each instance runs in its own subfolder (PX4 keeps its parameters
-    and logs there)."""
+def px4(
+    folder: Path, taken: set[int] | None = None, speed_factor: float = PX4_SPEED_FACTOR
+) -> Iterator[Autopilot]:
+    """PX4 SIH (physics inside the autopilot) at ``speed_factor`` times real time (lockstep), MAVLink UDP
+    14540 + instance, system id instance + 1, with PX4_TEST_PARAMS. Each instance runs in its own
+    subfolder (PX4 keeps its parameters and logs there). PX4's rcS multiplies its link-loss timeouts
+    (COM_DL_LOSS_T, COM_RC_LOSS_T, COM_OF_LOSS_T, COM_DISARM_PRFLT) by the factor, so that they stay the
+    same in wall time."""
+    if not 0 < speed_factor <= 10:
+        raise ValueError(
+            f"speed_factor: {speed_factor!r} is not a PX4 SIH speed factor (accepted: above 0, at most 10)"
+        )
     why = px4_missing()
     if why:
         raise Unavailable(why)
     px4_ports = lambda i: (14540 + i, 14580 + i, 18570 + i, 14280 + i, 13030 + i, 19450 + i)  # noqa: E731
     # PX4 sends to 14540 + instance only for instances 0-9
     with _free_instance("px4", px4_ports, _udp_free, range(1, 10), taken) as instance:
-        yield from _px4_on(instance, folder)
+        yield from _px4_on(instance, folder, speed_factor)
 
 
-def _px4_on(instance: int, folder: Path) -> Iterator[Autopilot]:
+def _px4_on(instance: int, folder: Path, speed_factor: float) -> Iterator[Autopilot]:
     build = Path(os.environ["PX4_BUILD"])
-    sih = {"PX4_SIM_MODEL": "sihsim_quadx", "PX4_SIMULATOR": "sihsim", "PX4_SYS_AUTOSTART": "10040"}
+    sih = {"PX4_SIM_MODEL": "sihsim_quadx", "PX4_SIMULATOR": "sihsim", "PX4_SYS_AUTOSTART": "10040",
+           "PX4_SIM_SPEED_FACTOR": f"{speed_factor:g}"}  # fmt: skip
     sih |= {f"PX4_PARAM_{name}": f"{value:g}" for name, value in PX4_TEST_PARAMS.items()}
     argv = [str(build / "bin" / "px4"), "-d", "-i", str(instance), str(build / "etc")]
     home = folder / f"px4-{instance}"

@@ -32,11 +32,19 @@ def arducopter(tmp_path: Path) -> Iterator[Autopilot]:
         pytest.skip(str(exc))
 
 
+def px4_speed_factor(request: pytest.FixtureRequest) -> float:
+    """The PX4 SIH speed factor of the requesting test module: its ``PX4_SPEED_FACTOR`` when it sets one
+    (a module whose checks cannot hold faster than real time says why there), else the test equipment's
+    ``autopilots.PX4_SPEED_FACTOR``."""
+    return float(getattr(request.module, "PX4_SPEED_FACTOR", autopilots.PX4_SPEED_FACTOR))
+
+
 @pytest.fixture
-def px4(tmp_path: Path) -> Iterator[Autopilot]:
-    """PX4 SIH (physics inside the autopilot; real time only), MAVLink UDP 14540 + instance."""
+def px4(tmp_path: Path, request: pytest.FixtureRequest) -> Iterator[Autopilot]:
+    """PX4 SIH (physics inside the autopilot, lockstep at the module's speed factor), MAVLink UDP 14540 +
+    instance."""
     try:
-        with autopilots.px4(tmp_path) as ap:
+        with autopilots.px4(tmp_path, speed_factor=px4_speed_factor(request)) as ap:
             yield ap
     except autopilots.Unavailable as exc:
         pytest.skip(str(exc))
@@ -78,8 +86,11 @@ def _kept(kept: KeptAutopilot, request: pytest.FixtureRequest) -> Iterator[Autop
 
 
 @pytest.fixture(scope="module")
-def kept_px4(tmp_path_factory: pytest.TempPathFactory) -> Iterator[KeptAutopilot]:
-    kept = KeptAutopilot(lambda: autopilots.px4(tmp_path_factory.mktemp("px4")))
+def kept_px4(
+    tmp_path_factory: pytest.TempPathFactory, request: pytest.FixtureRequest
+) -> Iterator[KeptAutopilot]:
+    factor = px4_speed_factor(request)
+    kept = KeptAutopilot(lambda: autopilots.px4(tmp_path_factory.mktemp("px4"), speed_factor=factor))
     try:
         yield kept
     finally:
@@ -112,17 +123,18 @@ def arducopter_of_module(
 
 
 @pytest.fixture
-def launch(tmp_path: Path) -> Iterator[Callable[[str, int], list[Autopilot]]]:
+def launch(tmp_path: Path, request: pytest.FixtureRequest) -> Iterator[Callable[[str, int], list[Autopilot]]]:
     """``launch(kind, n)``: n autopilots of one kind ("ardupilot" at speed-up 5, each with its instance
     number as system id, or "px4") started together, each on its own instance number; all stopped at
-    the end of the test, also when it fails."""
+    the end of the test, also when it fails. PX4 runs at the module's speed factor."""
     taken: set[int] = set()
+    factor = px4_speed_factor(request)
     with contextlib.ExitStack() as stack:
 
         def start(kind: str, n: int) -> list[Autopilot]:
             def one() -> contextlib.AbstractContextManager[Autopilot]:
                 if kind == "px4":
-                    return autopilots.px4(tmp_path, taken=taken)
+                    return autopilots.px4(tmp_path, taken=taken, speed_factor=factor)
                 return autopilots.arducopter(tmp_path, speedup=5, sysid=None, taken=taken)
 
             try:

@@ -30,6 +30,12 @@ from tests.real.tour import gateway_over
 
 pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(600))]
 
+#: Real time (the fixtures' ``px4`` reads this): the checks time PX4's own timeouts (COM_DL_LOSS_T,
+#: COM_FAIL_ACT_T, which PX4 counts on its simulated clock) with the wall clock, and the README's
+#: values are written over the ones rcS stretches by the speed factor; at factor F the failsafe would
+#: come F times sooner in wall time and "never before COM_DL_LOSS_T" could not hold.
+PX4_SPEED_FACTOR = 1.0
+
 #: the settings the README gives (section "On the autopilot", PX4), each with its type on PX4
 DOCUMENTED: dict[str, tuple[float, int]] = {
     "NAV_DLL_ACT": (2, mavutil.mavlink.MAV_PARAM_TYPE_INT32),  # 2: Return mode

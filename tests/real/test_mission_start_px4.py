@@ -22,6 +22,11 @@ from tests.real.tour import Tour, gateway_over
 
 pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(600))]
 
+#: Real time (the fixtures' ``px4`` reads this): at speed factor 3 the takeoff after the second ground
+#: station's mission upload got no answer from mavsdk_server to its MIS_TAKEOFF_ALT write within 10 s,
+#: every run but the first of six; at 1 it passes. Not yet explained.
+PX4_SPEED_FACTOR = 1.0
+
 mav = mavutil.mavlink
 ALTITUDE = "max_altitude: mission item 3: waypoint altitude 200 m exceeds the limit of 120 m"
 

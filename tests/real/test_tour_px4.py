@@ -1,5 +1,5 @@
 """Every drone tool, a mission (and one PX4 rejects), the modes, the refusals and a short formation on
-real PX4 SIH (real time), through MCP over HTTP: see tests/real/tour.py."""
+real PX4 SIH (lockstep, faster than real time), through MCP over HTTP: see tests/real/tour.py."""
 
 from __future__ import annotations
 
@@ -11,6 +11,10 @@ from tests.helpers.timing import scaled
 from tests.real.tour import Profile, run_tour
 
 pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(900))]
+
+#: Three PX4 fly together here: at 2 they take about one core between them (a third of one each, see
+#: autopilots.PX4_SPEED_FACTOR), which leaves the other test worker its core (the fixtures read this).
+PX4_SPEED_FACTOR = 2.0
 
 PX4 = Profile(
     prefix="px",
