@@ -38,7 +38,8 @@ HOME = (-35.363261, 149.165230, 584.0, 353.0)  # lat, lon, alt AMSL, heading: Ar
 #:   4 on one core beside two busy loops: 27 % CPU, 3.84 x, hovering within 3 cm
 #:
 #: 3 keeps one PX4 near half a core, so that with the gateway and its sidecar a test worker stays within
-#: its own core; a module flying several PX4 at once sets a lower factor (test_tour_px4.py: three at 2).
+#: its own core; a module flying several PX4 at once sets a lower factor
+#: (test_tour_px4.py: three in real time).
 PX4_SPEED_FACTOR = 3.0
 
 #: The test equipment climbs, descends and lands faster than PX4's defaults, kept beside the speed

@@ -421,7 +421,7 @@ async def navigation(t: Tour, d: str, home: dict[str, Any]) -> None:
     await t.until("get_speed", lambda r: r["ground_speed_mps"] < 0.3, 20, "stopped", drone_id=d)
     stopped = await t.position(d)
     # braking from 5 m/s after the hold, plus one read's latency (five times longer in vehicle time at
-    # ArduCopter's speed-up 5, twice at the PX4 tour's speed factor 2); measured from where the drone
+    # ArduCopter's speed-up 5); measured from where the drone
     # was once the hold was acknowledged, not from before the call, whose latency grows with the
     # machine's load (a loaded CI run flew 29 m during it)
     assert distance(stopped, held_at["lat_deg"], held_at["lon_deg"]) < 25, (held_at, stopped)
