@@ -26,7 +26,7 @@ HOME = (-35.363261, 149.165230, 584.0, 353.0)  # lat, lon, alt AMSL, heading: Ar
 
 #: PX4 SIH's simulation speed (PX4_SIM_SPEED_FACTOR), for test modules that set none of their own. SIH
 #: in SITL runs lockstep: its simulated clock drives PX4's, so at factor F the autopilot lives F seconds
-#: per wall second when it gets the CPU, and slower when it does not. Measured on the 2-core CI machine
+#: per wall second when it gets the CPU, and slower when it does not. Measured on a 2-core machine as CI has
 #: (load average 5-10 from other work), one PX4, 25-30 s windows, CPU from /proc/<pid>/stat, simulated
 #: time from time_boot_ms:
 #:
