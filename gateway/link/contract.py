@@ -57,6 +57,12 @@ class LinkRules(Protocol):
         """Whether the autopilot's position estimate is good enough to arm and fly."""
         ...
 
+    @property
+    def ready_after_prearm_pass(self) -> bool:
+        """Whether a disarmed drone is still initialising until the autopilot's own pre-arm bit
+        (SYS_STATUS, MAV_SYS_STATUS_PREARM_CHECK) has said "armable" once in the session."""
+        ...
+
     def on_ground(self, telemetry: TelemetryCache) -> bool | None:
         """Whether the vehicle is on the ground (None: no fresh telemetry says)."""
         ...

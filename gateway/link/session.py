@@ -66,6 +66,8 @@ READY_WAIT_S = 60.0
 #: how long a session waits for its first EKF_STATUS_REPORT before MAVSDK's health decides alone (a
 #: stream that never comes must not keep a drone from flying for good)
 EKF_REPORT_WAIT_S = 30.0
+#: how far back the autopilot's words are quoted beside "waiting for the autopilot's pre-arm checks"
+PREARM_WORDS_S = 30.0
 
 
 @dataclass(frozen=True)
@@ -103,6 +105,7 @@ class Link:
         self._system: System | None = None
         self._session_task: asyncio.Task[None] | None = None
         self._session_started: float | None = None
+        self._prearm_passed = False  # the autopilot's pre-arm bit said "armable" in this session
         self._mavsdk: MavsdkSession | None = None  # the current (or last) MAVSDK session
         self._feed: TelemetryFeed | None = None
         self._monitor: LinkMonitor | None = None
@@ -252,7 +255,17 @@ class Link:
             return "waiting for the position estimate (no EKF status report yet)"
         if not self.rules.position_estimate_ok(health, ekf_flags):
             return "waiting for the position estimate (the EKF is not using GPS yet)"
-        return None
+        return self._waiting_for_prearm(health)
+
+    def _waiting_for_prearm(self, health: HealthValue) -> str | None:
+        """Where the dialect says so: a disarmed drone initialises until the autopilot's pre-arm bit
+        has said "armable" once in this session (a drone seen armed has passed it)."""
+        if not self.rules.ready_after_prearm_pass or self._prearm_passed:
+            return None
+        if health.is_armable or self._armed():
+            self._prearm_passed = True
+            return None
+        return "waiting for the autopilot's pre-arm checks" + self.recent_complaint(within_s=PREARM_WORDS_S)
 
     def _armed(self) -> bool:
         """Armed, as the last HEARTBEAT said (raw: ``fresh`` reads the state computed from this).
@@ -487,6 +500,7 @@ class Link:
         self._feed = mavsdk.feed
         self._mavsdk = mavsdk
         self._session_started = time.monotonic()
+        self._prearm_passed = False
         self.sessions += 1
         mavsdk.start()
         log.info("%s: MAVSDK session open on %s:%d", self.id, address, port)

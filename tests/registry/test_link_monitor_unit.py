@@ -186,3 +186,27 @@ def test_a_health_stream_that_never_came_is_asked_for_again_alone() -> None:
     lk._session_started = time.monotonic() - 10.0
     lk.facts.last_heartbeat = time.monotonic() - 5.0  # link lost: nothing to ask
     assert silent_streams(lk) == frozenset()
+
+
+def test_a_px4_drone_initialises_until_its_pre_arm_bit_has_passed_once() -> None:
+    """PX4 has its home and local position a moment before its heading ("Preflight Fail: no heading
+    reference"), and then refuses to arm with "Resolve system health failures first": a disarmed PX4 is
+    ready once its pre-arm bit said armable in the session; later, the bit follows the mode (LAND is not
+    armable), which is not initialising."""
+    from gateway.fleet.dialects import PX4_DIALECT
+
+    lk = Link(
+        VehicleSpec(id="px1", url="udpin://127.0.0.1:14541"),
+        Settings(_env_file=None),
+        LinkHooks(rules_for=lambda _autopilot: PX4_DIALECT),  # type: ignore[arg-type]
+    )
+    lk.telemetry.put("home", object())
+    lk.telemetry.put("armed", False)
+    heading_missing = HealthValue(True, True, True, True, True, True, False)
+    assert lk._waiting_for(heading_missing) == "waiting for the autopilot's pre-arm checks"
+    assert lk._waiting_for(_health(home_ok=True)) is None
+    assert lk._waiting_for(heading_missing) is None  # passed once: LAND's "not armable" is not boot
+    lk._prearm_passed = False  # a new session
+    lk.telemetry.put("armed", True)  # found flying: it passed its checks before this session
+    assert lk._waiting_for(heading_missing) is None
+    assert lk._prearm_passed

@@ -160,6 +160,9 @@ class ArduPilot:
     #: MAVSDK's health says "local position ok" once the EKF has an origin, seconds before it uses GPS
     #: (the autopilot refuses to arm until then): EKF_STATUS_REPORT says when it does
     estimate_from_ekf_report = True
+    #: ArduPilot's pre-arm bit is evaluated for the current mode and lags a mode change (STABILIZE arms
+    #: before GUIDED): the EKF report decides instead
+    ready_after_prearm_pass = False
     follows_events = False
     arming_mode: str | None = "GUIDED"
     mission_verdict_s = 0.0

@@ -66,6 +66,9 @@ class DialectReads(Protocol):
 
     def position_estimate_ok(self, health: HealthValue, ekf_flags: int | None) -> bool: ...
 
+    @property
+    def ready_after_prearm_pass(self) -> bool: ...
+
     # --- flight modes --------------------------------------------------------------------------------
     def mode_names(self) -> list[str]:
         """Every name set_flight_mode accepts on this autopilot: the common ones, then its own."""

@@ -136,6 +136,11 @@ class PX4:
     first_user_seq = 0  # no home slot: the user's item 1 is seq 0
     skipped_streams = frozenset({"raw_imu"})
     estimate_from_ekf_report = False
+    #: PX4 has its home and local position a moment before its heading: "Preflight Fail: no heading
+    #: reference" (1-2 s on SIH, longer on a loaded machine) while arming says only "Resolve system health
+    #: failures first". Its pre-arm bit is its arming checks for the current mode (commander's
+    #: pre_flight_checks_pass); once it has passed, a later "not armable" is the mode's (LAND), not boot.
+    ready_after_prearm_pass = True
     follows_events = True
     arming_mode: str | None = None
     mission_verdict_s = MISSION_VERDICT_S

@@ -35,6 +35,7 @@ class Unsupported:
     first_user_seq = 0
     skipped_streams: frozenset[str] = frozenset()
     estimate_from_ekf_report = False
+    ready_after_prearm_pass = False
     follows_events = False
     return_altitude_params: tuple[tuple[str, float], ...] = ()
     protected_params: tuple[str, ...] = ()
