@@ -237,6 +237,39 @@ async def test_a_takeoff_behind_a_stale_armed_cache_arms_for_real(store, registr
         assert (await sim.control.state(0))["armed"] is True
 
 
+async def test_a_takeoff_whose_ack_was_lost_counts_if_the_drone_flies(store, registries, monkeypatch) -> None:
+    """MAVSDK gives up on a COMMAND_ACK after its retries ("Timeout"); a starved PX4 SIH ran the takeoff
+    and its ACKs came too late. A drone on the ground before the call and in the air after it took off:
+    the takeoff is accepted. One still on the ground after the same timeout did not: it is refused."""
+    async with sim_process(1, speedup=SPEEDUP) as sim:
+        reg = Registry(fast_settings(), store)
+        registries.append(reg)
+        await reg.start()
+        v = await reg.add(VehicleSpec(id="unacked", url=sim.urls[0]))
+        await v.wait_for_state(READY, within_s=WAIT_S)
+        real_call = v.link.call
+        lose_ack_after_running = True
+
+        async def ack_lost(what: str, aw, timeout_s: float = 10.0):  # type: ignore[no-untyped-def]
+            if what != "takeoff":
+                return await real_call(what, aw, timeout_s)
+            if lose_ack_after_running:
+                await real_call(what, aw, timeout_s)
+                await wait_until(lambda: v.on_ground() is False, WAIT_S, "in the air")
+            else:
+                aw.close()  # never sent
+            raise CommandFailed("takeoff on drone 'unacked' failed: Timeout (TIMEOUT)", result="TIMEOUT")
+
+        monkeypatch.setattr(v.link, "call", ack_lost)
+        await v.takeoff(5)
+        await _wait_alt(v, 4.5)
+        await v.land()
+        await wait_until(lambda: v.telemetry.fresh("armed") is False, WAIT_S, "landed and disarmed")
+        lose_ack_after_running = False
+        with pytest.raises(CommandFailed, match=r"Timeout \(TIMEOUT\)"):
+            await v.takeoff(5)
+
+
 async def test_mission_round_trip_run_and_parameters(store, registries) -> None:
     async with sim_process(1, speedup=SPEEDUP) as sim:
         reg = Registry(fast_settings(), store)
