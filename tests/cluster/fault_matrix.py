@@ -13,7 +13,9 @@ of their own (`tests.cluster.proxies`). Each case:
    its own): every drone in LAND as the simulator has it within
    3 s (a deadline on the wait, from the moment the stop is sent), and every drone's outcome ``sent``;
    a drone whose node is frozen while it holds the drone's link cannot be reached by anyone: it answers
-   ``sent`` or ``taking_over`` (saying what is being done) and lands once that node runs again;
+   ``sent`` or ``taking_over`` (saying what is being done) and lands once that node runs again; the
+   stop of a node cut from NATS reaches the other node's drones through PostgreSQL (both logs say so,
+   and the other node stores a land operation for each);
 4. recovery, then within 90 s every drone ready under exactly one sidecar, and the audit holding the stop
    and the move.
 
@@ -271,6 +273,28 @@ async def take_off(node: Node, drone_ids: list[str], alt_m: float = 10.0) -> Non
         assert r.structured_content["status"] == "succeeded", r
 
 
+async def _relayed_through_postgresql(
+    c: Cluster, foreign: list[str], outcomes: dict[str, Any], log_from: dict[str, int]
+) -> None:
+    """The stop of node-a cut from NATS reached node-b's drones through PostgreSQL notifications: both
+    logs say so, and node-b ran and stored a land operation for each (the ids in the stop's outcomes)."""
+    assert _log_has(c.node("node-a"), "relayed through PostgreSQL to node node-b", log_from["node-a"])
+    for d in foreign:
+        said = f"{d}: land relayed through PostgreSQL from node node-a"
+        assert _log_has(c.node("node-b"), said, log_from["node-b"]), d
+    ops = {d: outcomes[d]["operation_id"] for d in foreign}
+    assert all(ops.values()), outcomes
+
+    async def stored() -> list[Any] | None:
+        rows = await c.rows(
+            "SELECT vehicle_id FROM operations WHERE kind = 'land' AND id = ANY(:ids)", ids=list(ops.values())
+        )
+        return rows if len(rows) == len(ops) else None
+
+    rows = await eventually(stored, "node-b's land operations of the relayed stop", within_s=30)
+    assert sorted(r[0] for r in rows) == foreign, rows
+
+
 async def _is(value: bool) -> bool:
     return value
 
@@ -359,6 +383,8 @@ async def run_case(r: Rig, fault: str, via: str) -> dict[str, Any]:
             assert outcomes[d]["outcome"] in ("sent", "taking_over"), outcomes
             if outcomes[d]["outcome"] == "taking_over":
                 assert "keeps trying" in (outcomes[d]["message"] or ""), outcomes
+        if fault == "node-a-cut-from-nats" and via == "node-a":
+            await _relayed_through_postgresql(c, foreign, outcomes, log_from)
         pending += held_by_frozen  # checked in LAND once node-a runs again
     finally:
         r.recover(fault)
