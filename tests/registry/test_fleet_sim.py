@@ -6,6 +6,7 @@ Figures (time to ready, restart time, sidecar RSS) are printed for the report, n
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 import os
 import signal
@@ -140,6 +141,18 @@ async def test_link_loss_staleness_and_wrong_sysid(store, registries) -> None:
         )
 
 
+@contextlib.asynccontextmanager
+async def one_ready_drone(store, registries: list[Registry], vehicle_id: str):  # type: ignore[no-untyped-def]
+    """One simulated drone (its own simulator process) in a started registry, ready: (simulator, vehicle)."""
+    async with sim_process(1, speedup=SPEEDUP) as sim:
+        reg = Registry(fast_settings(), store)
+        registries.append(reg)
+        await reg.start()
+        v = await reg.add(VehicleSpec(id=vehicle_id, url=sim.urls[0]))
+        await v.wait_for_state(READY, within_s=WAIT_S)
+        yield sim, v
+
+
 async def _wait_alt(v: Vehicle, alt: float) -> None:
     await wait_until(
         lambda: (p := v.telemetry.fresh("position")) is not None and p.rel_alt_m >= alt,
@@ -148,12 +161,7 @@ async def _wait_alt(v: Vehicle, alt: float) -> None:
 
 
 async def test_flight_through_vehicle_api_is_logged(store, registries) -> None:
-    async with sim_process(1, speedup=SPEEDUP) as sim:
-        reg = Registry(fast_settings(), store)
-        registries.append(reg)
-        await reg.start()
-        v = await reg.add(VehicleSpec(id="flyer", url=sim.urls[0]))
-        await v.wait_for_state(READY, within_s=WAIT_S)
+    async with one_ready_drone(store, registries, "flyer") as (sim, v):
         with pytest.raises(InvalidArgument, match="latitude"):
             await v.goto(123.0, 0.0, 10)
         await v.takeoff(10)  # arms in GUIDED first
@@ -214,12 +222,7 @@ async def test_a_takeoff_behind_a_stale_armed_cache_arms_for_real(store, registr
     """ "armed" comes with the 1 Hz heartbeat, so the cache can say armed a beat after the autopilot
     disarmed on the ground (a landing, DISARM_DELAY). The takeoff that trusted it is refused by the
     autopilot; the gateway then arms for real and takes off, instead of failing the call."""
-    async with sim_process(1, speedup=SPEEDUP) as sim:
-        reg = Registry(fast_settings(), store)
-        registries.append(reg)
-        await reg.start()
-        v = await reg.add(VehicleSpec(id="stale", url=sim.urls[0]))
-        await v.wait_for_state(READY, within_s=WAIT_S)
+    async with one_ready_drone(store, registries, "stale") as (sim, v):
         assert (await sim.control.state(0))["armed"] is False
         real_fresh = v.telemetry.fresh
         asked: list[str] = []
@@ -241,12 +244,7 @@ async def test_a_takeoff_whose_ack_was_lost_counts_if_the_drone_flies(store, reg
     """MAVSDK gives up on a COMMAND_ACK after its retries ("Timeout"); a starved PX4 SIH ran the takeoff
     and its ACKs came too late. A drone on the ground before the call and in the air after it took off:
     the takeoff is accepted. One still on the ground after the same timeout did not: it is refused."""
-    async with sim_process(1, speedup=SPEEDUP) as sim:
-        reg = Registry(fast_settings(), store)
-        registries.append(reg)
-        await reg.start()
-        v = await reg.add(VehicleSpec(id="unacked", url=sim.urls[0]))
-        await v.wait_for_state(READY, within_s=WAIT_S)
+    async with one_ready_drone(store, registries, "unacked") as (_sim, v):
         real_call = v.link.call
         lose_ack_after_running = True
 
@@ -271,12 +269,7 @@ async def test_a_takeoff_whose_ack_was_lost_counts_if_the_drone_flies(store, reg
 
 
 async def test_mission_round_trip_run_and_parameters(store, registries) -> None:
-    async with sim_process(1, speedup=SPEEDUP) as sim:
-        reg = Registry(fast_settings(), store)
-        registries.append(reg)
-        await reg.start()
-        v = await reg.add(VehicleSpec(id="surveyor", url=sim.urls[0]))
-        await v.wait_for_state(READY, within_s=WAIT_S)
+    async with one_ready_drone(store, registries, "surveyor") as (sim, v):
         home = v.telemetry.home.value
         p1 = geo.offset_position(home.lat_deg, home.lon_deg, 40.0, 0.0)
         p2 = geo.offset_position(home.lat_deg, home.lon_deg, 40.0, 40.0)
