@@ -66,6 +66,10 @@ READY_WAIT_S = 60.0
 #: how long a session waits for its first EKF_STATUS_REPORT before MAVSDK's health decides alone (a
 #: stream that never comes must not keep a drone from flying for good)
 EKF_REPORT_WAIT_S = 30.0
+#: how long a session waits for its first battery reading before a drone is ready without one (the safety
+#: policy refuses a takeoff of unknown battery: PX4 at 3x on a loaded machine was ready, and refused to
+#: arm, before its first BATTERY_STATUS)
+BATTERY_REPORT_WAIT_S = 30.0
 #: how far back the autopilot's words are quoted beside "waiting for the autopilot's pre-arm checks"
 PREARM_WORDS_S = 30.0
 
@@ -255,7 +259,18 @@ class Link:
             return "waiting for the position estimate (no EKF status report yet)"
         if not self.rules.position_estimate_ok(health, ekf_flags):
             return "waiting for the position estimate (the EKF is not using GPS yet)"
+        if self._awaits_first("battery", BATTERY_REPORT_WAIT_S):
+            return "waiting for a battery reading"
         return self._waiting_for_prearm(health)
+
+    def _awaits_first(self, stream: str, wait_s: float) -> bool:
+        """Whether the session has had no sample of ``stream`` yet and is younger than ``wait_s`` (a
+        stream that never comes must not keep a drone from flying for good)."""
+        return (
+            getattr(self.telemetry, stream) is None
+            and self._session_started is not None
+            and time.monotonic() - self._session_started < wait_s
+        )
 
     def _waiting_for_prearm(self, health: HealthValue) -> str | None:
         """Where the dialect says so: a disarmed drone initialises until the autopilot's pre-arm bit

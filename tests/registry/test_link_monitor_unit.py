@@ -124,6 +124,7 @@ def test_an_ardupilot_drone_is_not_ready_before_its_first_ekf_report() -> None:
     lk._session_started = time.monotonic()
     lk._feed = SimpleNamespace(unsupported_rates={})  # type: ignore[assignment]
     lk.telemetry.put("home", object())
+    lk.telemetry.put("battery", object())
     health = _health(home_ok=True)
     assert lk._waiting_for(health) == "waiting for the position estimate (no EKF status report yet)"
     session.ekf_flags = mav.EKF_ATTITUDE | mav.EKF_POS_VERT_ABS  # the EKF not using GPS yet
@@ -210,3 +211,25 @@ def test_a_px4_drone_initialises_until_its_pre_arm_bit_has_passed_once() -> None
     lk.telemetry.put("armed", True)  # found flying: it passed its checks before this session
     assert lk._waiting_for(heading_missing) is None
     assert lk._prearm_passed
+
+
+def test_a_drone_is_not_ready_before_its_first_battery_reading_for_a_while() -> None:
+    """The safety policy refuses a takeoff whose battery is unknown: a drone is still initialising until
+    its first battery reading, unless none came in BATTERY_REPORT_WAIT_S (then it is ready without)."""
+    from gateway.fleet.dialects import PX4_DIALECT
+    from gateway.link.session import BATTERY_REPORT_WAIT_S
+
+    lk = Link(
+        VehicleSpec(id="px1", url="udpin://127.0.0.1:14541"),
+        Settings(_env_file=None),
+        LinkHooks(rules_for=lambda _autopilot: PX4_DIALECT),  # type: ignore[arg-type]
+    )
+    lk._session_started = time.monotonic()
+    lk.telemetry.put("home", object())
+    health = _health(home_ok=True)
+    assert lk._waiting_for(health) == "waiting for a battery reading"
+    lk.telemetry.put("battery", object())
+    assert lk._waiting_for(health) is None
+    lk.telemetry.battery = None
+    lk._session_started = time.monotonic() - BATTERY_REPORT_WAIT_S - 1  # none came: ready without it
+    assert lk._waiting_for(health) is None
