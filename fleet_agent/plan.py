@@ -213,6 +213,7 @@ SimpleStep = Annotated[
 #: step ends soon (a small model at temperature 0 repeated a report step until its token limit)
 MAX_BRANCH_STEPS = 4
 MAX_PLAN_STEPS = 12
+MAX_RESTATEMENT_CHARS = 300
 
 
 class Condition(DroneStep):
@@ -263,6 +264,9 @@ Step = Annotated[
 
 
 class Plan(Strict):
+    #: the request restated in plain English, written before the steps (required in the schema, so a
+    #: guided decoder writes it first): the model reads its own restatement while it writes the steps
+    in_english: str = Field(default="", max_length=MAX_RESTATEMENT_CHARS)
     steps: list[Step] = Field(max_length=MAX_PLAN_STEPS)
 
     @model_validator(mode="after")
@@ -399,6 +403,8 @@ def _base_schema() -> dict[str, Any]:
     schema["$defs"]["Move"]["properties"]["origin"] = {
         "anyOf": [{"type": "string"}, {"$ref": "#/$defs/Reference"}]
     }
+    schema["required"] = ["in_english", "steps"]
+    schema["properties"]["in_english"].pop("default", None)
     for name in ("Takeoff", "Altitude"):
         schema["$defs"][name]["required"].append("after")
         schema["$defs"][name]["properties"]["after"].pop("default", None)

@@ -12,8 +12,10 @@ import json
 from typing import Any
 
 _STEPS = """\
-You turn a drone operator's request, in any language, into a JSON plan: {"steps": [...]}, one step for
-each thing the request asks, in the order it gives them. Write only the JSON, on one line.
+You turn a drone operator's request, in any language, into a JSON plan: {"in_english": ..., "steps":
+[...]}. "in_english" says the request in plain English first: every drone, number and unit as given, and
+what each drone does at the end (stays in the air, lands, returns home). Then one step for each thing
+the request asks, in the order it gives them. Write only the JSON, on one line.
 Each step has an "action":
 - takeoff {drone, altitude, after}; land {drone}; return_home {drone}; hold {drone}
 - altitude {drone, altitude, after}: climb or descend TO that height above home (a drone sent "to 20 m"
@@ -61,47 +63,62 @@ _NO_COUNTS = {"sides": None, "lines": None, "spacing": None}
 
 EXAMPLES: list[tuple[str, dict[str, Any]]] = [
     ("delta: go up 40 feet, then come back down",
-     {"steps": [{"action": "takeoff", "drone": "delta", "altitude": _m(40, "ft"), "after": "land"}]}),
+     {"in_english": "Take delta up to 40 feet, then land it.",
+      "steps": [{"action": "takeoff", "drone": "delta", "altitude": _m(40, "ft"), "after": "land"}]}),
     ("Fly echo in a triangle with 30 m sides at 15 m, first side west, and set it down after.",
-     {"steps": [{"action": "pattern", "drone": "echo", "shape": "triangle", "size": _m(30), **_NO_COUNTS,
+     {"in_english": "Echo flies a triangle with 30 m sides at 15 m, the first side west, then lands.",
+      "steps": [{"action": "pattern", "drone": "echo", "shape": "triangle", "size": _m(30), **_NO_COUNTS,
                  "heading": "west", "turn": None, "altitude": _m(15), "after": "land"}]}),
     ("Send delta to a spot 20 m east of echo, at 12 m, and leave it there.",
-     {"steps": [{"action": "move", "drone": "delta", "origin": "echo",
+     {"in_english": "Fly delta to 20 m east of echo at 12 m and keep it in the air there.",
+      "steps": [{"action": "move", "drone": "delta", "origin": "echo",
                  "legs": [_leg(20, "east")], "altitude": _m(12), "after": "stay"}]}),
     ("echo : décolle à 8 m, avance de 25 m vers l'ouest puis atterris.",
-     {"steps": [{"action": "takeoff", "drone": "echo", "altitude": _m(8), "after": "stay"},
+     {"in_english": "Echo takes off to 8 m, flies 25 m west, then lands.",
+      "steps": [{"action": "takeoff", "drone": "echo", "altitude": _m(8), "after": "stay"},
                 {"action": "move", "drone": "echo", "origin": _HERE, "legs": [_leg(25, "west")],
                  "altitude": None, "after": "land"}]}),
     ("echo 20 m south at 15 m, and delta just up to 10 m and back down",
-     {"steps": [{"action": "move", "drone": "echo", "origin": _HERE, "legs": [_leg(20, "south")],
+     {"in_english": "Echo flies 20 m south at 15 m and stays there; delta goes up to 10 m, then lands.",
+      "steps": [{"action": "move", "drone": "echo", "origin": _HERE, "legs": [_leg(20, "south")],
                  "altitude": _m(15), "after": "stay"},
                 {"action": "takeoff", "drone": "delta", "altitude": _m(10), "after": "land"}]}),
     ("Get delta hovering at 12 m and echo up to 30 m.",
-     {"steps": [{"action": "altitude", "drone": "delta", "altitude": _m(12), "after": "stay"},
+     {"in_english": "Delta climbs to 12 m and echo to 30 m; both stay in the air.",
+      "steps": [{"action": "altitude", "drone": "delta", "altitude": _m(12), "after": "stay"},
                 {"action": "altitude", "drone": "echo", "altitude": _m(30), "after": "stay"}]}),
     ("Delta soll auf 14 m steigen und dort bleiben.",
-     {"steps": [{"action": "altitude", "drone": "delta", "altitude": _m(14), "after": "stay"}]}),
+     {"in_english": "Delta climbs to 14 m and stays there.",
+      "steps": [{"action": "altitude", "drone": "delta", "altitude": _m(14), "after": "stay"}]}),
     ("echo, 0.1 km al sur y 5 m más alto, luego vuelve a casa",
-     {"steps": [{"action": "move", "drone": "echo", "origin": _HERE,
+     {"in_english": "Echo flies 0.1 km south and 5 m higher, then returns home.",
+      "steps": [{"action": "move", "drone": "echo", "origin": _HERE,
                  "legs": [_leg(0.1, "south", "km"), _leg(5, "up")], "altitude": None,
                  "after": "return_home"}]}),
     ("If delta has under 25 % battery keep it down, otherwise lift it to 9 m and land it again.",
-     {"steps": [{"action": "if", "drone": "delta", "reading": "battery", "compare": "below", "value": 25,
+     {"in_english": "If delta has under 25 % battery it stays on the ground; otherwise it goes up to 9 m, "
+                    "then lands.",
+      "steps": [{"action": "if", "drone": "delta", "reading": "battery", "compare": "below", "value": 25,
                  "then": [],
                  "otherwise": [{"action": "takeoff", "drone": "delta", "altitude": _m(9),
                                 "after": "land"}]}]}),
     ("Of delta and echo, the one with more charge goes up to 12 m and stays there; the other one stays on "
      "the ground.",
-     {"steps": [{"action": "choose", "among": ["delta", "echo"], "reading": "battery", "pick": "highest",
+     {"in_english": "The one of delta and echo with more battery climbs to 12 m and stays in the air; "
+                    "the other one stays on the ground.",
+      "steps": [{"action": "choose", "among": ["delta", "echo"], "reading": "battery", "pick": "highest",
                  "then": [{"action": "altitude", "drone": "delta", "altitude": _m(12), "after": "stay"}]}]}),
     ("Have echo circle its current spot at 20 m, 15 m out, and keep it up there afterwards.",
-     {"steps": [{"action": "pattern", "drone": "echo", "shape": "orbit", "size": _m(15), **_NO_COUNTS,
+     {"in_english": "Echo circles its current spot at 20 m with a 15 m radius, then stays in the air.",
+      "steps": [{"action": "pattern", "drone": "echo", "shape": "orbit", "size": _m(15), **_NO_COUNTS,
                  "heading": None, "turn": None, "altitude": _m(20), "after": "stay"}]}),
     ("delta and echo side by side, 6 m apart, at 10 m, 15 m north of here",
-     {"steps": [{"action": "formation", "drones": ["delta", "echo"], "shape": "line", "spacing": _m(6),
+     {"in_english": "Delta and echo fly in a line 6 m apart at 10 m, 15 m north of where they are.",
+      "steps": [{"action": "formation", "drones": ["delta", "echo"], "shape": "line", "spacing": _m(6),
                  "altitude": _m(10), "legs": [_leg(15, "north")]}]}),
     ("Which drone is highest up, and how full are their batteries?",
-     {"steps": [{"action": "report", "drones": ["delta", "echo"], "readings": ["altitude", "battery"],
+     {"in_english": "Which drone is the highest, and what are their battery levels? Nothing flies.",
+      "steps": [{"action": "report", "drones": ["delta", "echo"], "readings": ["altitude", "battery"],
                  "pick": "highest"}]}),
 ]  # fmt: skip
 
