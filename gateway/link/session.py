@@ -253,8 +253,7 @@ class Link:
             ekf_flags is None
             and self.rules.estimate_from_ekf_report
             and "ekf_status" not in self.unsupported_streams
-            and self._session_started is not None
-            and time.monotonic() - self._session_started < EKF_REPORT_WAIT_S
+            and self._session_younger_than(EKF_REPORT_WAIT_S)
         ):
             return "waiting for the position estimate (no EKF status report yet)"
         if not self.rules.position_estimate_ok(health, ekf_flags):
@@ -266,11 +265,10 @@ class Link:
     def _awaits_first(self, stream: str, wait_s: float) -> bool:
         """Whether the session has had no sample of ``stream`` yet and is younger than ``wait_s`` (a
         stream that never comes must not keep a drone from flying for good)."""
-        return (
-            getattr(self.telemetry, stream) is None
-            and self._session_started is not None
-            and time.monotonic() - self._session_started < wait_s
-        )
+        return getattr(self.telemetry, stream) is None and self._session_younger_than(wait_s)
+
+    def _session_younger_than(self, wait_s: float) -> bool:
+        return self._session_started is not None and time.monotonic() - self._session_started < wait_s
 
     def _waiting_for_prearm(self, health: HealthValue) -> str | None:
         """Where the dialect says so: a disarmed drone initialises until the autopilot's pre-arm bit

@@ -19,11 +19,12 @@ from gateway.link.telemetry import HealthValue
 from gateway.registry.spec import VehicleSpec
 
 
-def link(**settings: Any) -> Link:
+def link(rules: Any = None, **settings: Any) -> Link:
+    """A link with no session, its autopilot's rules ``rules`` (a dialect)."""
     return Link(
         VehicleSpec(id="alpha", url="tcpout://127.0.0.1:5760"),
         Settings(_env_file=None, **settings),
-        LinkHooks(rules_for=lambda _autopilot: None),  # type: ignore[arg-type,return-value]
+        LinkHooks(rules_for=lambda _autopilot: rules),
     )
 
 
@@ -114,11 +115,7 @@ def test_an_ardupilot_drone_is_not_ready_before_its_first_ekf_report() -> None:
 
     from gateway.fleet.dialects import ARDUPILOT
 
-    lk = Link(
-        VehicleSpec(id="alpha", url="tcpout://127.0.0.1:5760"),
-        Settings(_env_file=None),
-        LinkHooks(rules_for=lambda _autopilot: ARDUPILOT),  # type: ignore[arg-type]
-    )
+    lk = link(ARDUPILOT)
     session = SimpleNamespace(ekf_flags=None)
     lk._mavsdk = session  # type: ignore[assignment]
     lk._session_started = time.monotonic()
@@ -149,11 +146,7 @@ def test_an_armed_drone_keeps_its_home_while_mavsdk_forgets_it_after_a_reconnect
 
     from gateway.fleet.dialects import ARDUPILOT
 
-    lk = Link(
-        VehicleSpec(id="alpha", url="tcpout://127.0.0.1:5760"),
-        Settings(_env_file=None),
-        LinkHooks(rules_for=lambda _autopilot: ARDUPILOT),  # type: ignore[arg-type]
-    )
+    lk = link(ARDUPILOT)
     lk._mavsdk = SimpleNamespace(ekf_flags=mav.EKF_POS_HORIZ_ABS)  # type: ignore[assignment]
     lk.telemetry.put("home", object())
     lk.telemetry.put("armed", False)
@@ -196,11 +189,7 @@ def test_a_px4_drone_initialises_until_its_pre_arm_bit_has_passed_once() -> None
     armable), which is not initialising."""
     from gateway.fleet.dialects import PX4_DIALECT
 
-    lk = Link(
-        VehicleSpec(id="px1", url="udpin://127.0.0.1:14541"),
-        Settings(_env_file=None),
-        LinkHooks(rules_for=lambda _autopilot: PX4_DIALECT),  # type: ignore[arg-type]
-    )
+    lk = link(PX4_DIALECT)
     lk.telemetry.put("home", object())
     lk.telemetry.put("armed", False)
     heading_missing = HealthValue(True, True, True, True, True, True, False)
@@ -219,11 +208,7 @@ def test_a_drone_is_not_ready_before_its_first_battery_reading_for_a_while() -> 
     from gateway.fleet.dialects import PX4_DIALECT
     from gateway.link.session import BATTERY_REPORT_WAIT_S
 
-    lk = Link(
-        VehicleSpec(id="px1", url="udpin://127.0.0.1:14541"),
-        Settings(_env_file=None),
-        LinkHooks(rules_for=lambda _autopilot: PX4_DIALECT),  # type: ignore[arg-type]
-    )
+    lk = link(PX4_DIALECT)
     lk._session_started = time.monotonic()
     lk.telemetry.put("home", object())
     health = _health(home_ok=True)
