@@ -122,6 +122,17 @@ def nats_server(workdir: Path) -> Iterator[NatsServer]:
         _end(server.proc if server is not None else proc)
 
 
+async def server_has_all_sent(nc: Any, timeout_s: float = 10.0) -> None:
+    """Return once the NATS server has processed everything ``nc`` sent before (a subscription above all).
+
+    One ``flush()`` is not enough with nats.py: it writes its PING to the socket at once, while a SUBSCRIBE
+    may still wait in the client's pending buffer for the flusher task, so its PONG can come back before the
+    server knows the subscription (a request then gets "no responders": seen twice in CI under load). By
+    the first PONG the flusher has written the buffer, so the second PING follows the SUBSCRIBE."""
+    await nc.flush(timeout_s)
+    await nc.flush(timeout_s)
+
+
 def kill_nats(server: NatsServer) -> None:
     """NATS lost: SIGKILL, no goodbye to its clients."""
     with contextlib.suppress(ProcessLookupError):

@@ -19,7 +19,7 @@ from nats.aio.msg import Msg
 
 from gateway.cluster.lock_versions import LockVersions
 from gateway.registry.store import Store
-from tests.cluster.harness import Cluster, cluster, missing_engines
+from tests.cluster.harness import Cluster, cluster, missing_engines, server_has_all_sent
 from tests.helpers.timing import eventually
 from tests.persist.pg import create_database, find_pg_bin, restartable_postgres
 
@@ -39,7 +39,7 @@ async def test_a_late_lock_broadcast_does_not_lock_the_fleet_again(tmp_path: Pat
 
         try:
             await bus.subscribe("fleet.event.lock", cb=keep)
-            await bus.flush()
+            await server_has_all_sent(bus)
             response = await c.node("node-b").post("/fleet/lock", {"reason": "weather"})
             assert response.status_code == 200, response.text
 
@@ -65,7 +65,7 @@ async def test_a_late_lock_broadcast_does_not_lock_the_fleet_again(tmp_path: Pat
             # node-b's lock broadcast, delivered again after the unlock; then a lock of the drone through
             # node-b, which every node hears after it (one server, in the order it received them)
             await bus.publish(late.subject, late.data)
-            await bus.flush()
+            await server_has_all_sent(bus)
             response = await c.node("node-b").post(f"/vehicles/{c.drone_ids[0]}/lock", {"reason": "check"})
             assert response.status_code == 200, response.text
 
