@@ -1,9 +1,9 @@
 """Every drone tool on a real autopilot, through a real MCP client over Streamable HTTP, against the
 gateway served by uvicorn with its SQLite store and one mavsdk_server per drone.
 
-One tour per autopilot shares one boot of three vehicles (booting is the expensive part): drone 1 flies
-the single-drone tour (every table-B2 tool and get_telemetry, each with a checked outcome, the mission,
-the modes, the refusals), then the three fly a short formation. ``Profile`` holds what differs per
+One tour per autopilot shares one boot of its vehicles (three ArduCopters, two PX4s; booting is the
+expensive part): drone 1 flies the single-drone tour (every table-B2 tool and get_telemetry, each with a
+checked outcome, the mission, the modes, the refusals), then all of them fly a short formation. ``Profile`` holds what differs per
 autopilot; the tour itself is the same, as the gateway's tools are.
 """
 
@@ -546,7 +546,8 @@ async def take_off_and_land(t: Tour, d: str) -> None:
 
 
 async def formation(t: Tour, home: dict[str, Any]) -> None:
-    """Three drones: take off together, line up 40 m north (12 m apart), hold, return home in layers."""
+    """Every drone of the tour (two or three): take off together, line up 40 m north (12 m apart), hold,
+    return home in layers."""
     ids = t.ids
     op = await t.ok("fleet_takeoff", drone_ids=ids, alt_m=10)
     op = await fleet_finish(t, op, 120)
@@ -559,13 +560,13 @@ async def formation(t: Tour, home: dict[str, Any]) -> None:
     op = await fleet_finish(t, op, 180)
     assert op["status"] == "succeeded", op
     spots = [await t.position(d) for d in ids]
-    for a in range(3):
+    for a in range(len(ids)):
         assert distance(spots[a], *center) < 12 + 4, spots[a]
-        for b in range(a + 1, 3):
+        for b in range(a + 1, len(ids)):
             assert distance(spots[a], spots[b]["lat_deg"], spots[b]["lon_deg"]) > 12 - 4, (spots[a], spots[b])
     await t.ok("fleet_hold", drone_ids=ids)
     status = await t.ok("fleet_status")
-    assert status["flying"] == 3, status
+    assert status["flying"] == len(ids), status
     op = await t.ok("fleet_return_to_launch", drone_ids=ids)
     op = await fleet_finish(t, op, 240)
     assert op["status"] == "succeeded", op
