@@ -3,8 +3,8 @@ gateway served by uvicorn with its SQLite store and one mavsdk_server per drone.
 
 One tour per autopilot shares one boot of its vehicles (three ArduCopters, two PX4s; booting is the
 expensive part): drone 1 flies the single-drone tour (every table-B2 tool and get_telemetry, each with a
-checked outcome, the mission, the modes, the refusals), then all of them fly a short formation. ``Profile`` holds what differs per
-autopilot; the tour itself is the same, as the gateway's tools are.
+checked outcome, the mission, the modes, the refusals), then all of them fly a short formation.
+``Profile`` holds what differs per autopilot; the tour itself is the same, as the gateway's tools are.
 """
 
 from __future__ import annotations
