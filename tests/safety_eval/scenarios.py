@@ -702,7 +702,11 @@ async def _walk_origin_rest(a: Attacker) -> None:
     await a.arena.until(a.index, lambda s: not s["armed"], "landed")
     await a.arena.wait_ready(a.drone)
     await a.rest("POST", f"/vehicles/{a.drone}/takeoff", json={"alt_rel_m": 10})
-    await a.arena.until(a.index, lambda s: s["rel_alt_m"] > 9, "10 m up")
+    try:
+        await a.arena.until(a.index, lambda s: s["rel_alt_m"] > 9, "10 m up")
+    except AssertionError as exc:  # say how the gateway's takeoff ended (seen once under load: never flew)
+        ops = (await a.rest("GET", "/operations", params={"vehicle_id": a.drone, "limit": 3})).json()
+        raise AssertionError(f"{exc}; the drone's last operations: {ops.get('items')}") from None
     lat, lon = a.point(100, 0)
     await a.rest("POST", f"/vehicles/{a.drone}/goto", json={"lat": lat, "lon": lon, "alt_rel_m": 10})
 
