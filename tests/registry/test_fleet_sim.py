@@ -268,6 +268,46 @@ async def test_a_takeoff_whose_ack_was_lost_counts_if_the_drone_flies(store, reg
             await v.takeoff(5)
 
 
+async def test_a_land_or_return_whose_ack_was_lost_counts_once_the_mode_shows_it(
+    store, registries, monkeypatch
+) -> None:
+    """As the takeoff above: a land or a return MAVSDK gave up on counts as run once the autopilot's own
+    mode is one the dialect says that command flies in (a stop must not report failed while the drone
+    lands); one the autopilot never ran is still the timeout it was."""
+    async with one_ready_drone(store, registries, "unacked") as (_sim, v):
+        real_call = v.link.call
+        run_it = True
+
+        async def ack_lost(what: str, aw, timeout_s: float = 10.0):  # type: ignore[no-untyped-def]
+            if what not in ("land", "return to launch"):
+                return await real_call(what, aw, timeout_s)
+            if run_it:
+                await real_call(what, aw, timeout_s)
+            else:
+                aw.close()  # never sent
+            raise CommandFailed(f"{what} on drone 'unacked' failed: Timeout (TIMEOUT)", result="TIMEOUT")
+
+        monkeypatch.setattr(v.link, "call", ack_lost)
+        dialect = v.require_dialect()
+        await v.takeoff(8)
+        await _wait_alt(v, 7.5)
+        await v.return_to_launch()
+        assert v.telemetry.fresh("flight_mode") in dialect.commanded_modes("return_to_launch")
+        await v.land()
+        assert v.telemetry.fresh("flight_mode") in dialect.commanded_modes("land")
+        await wait_until(lambda: v.telemetry.fresh("armed") is False, WAIT_S, "landed and disarmed")
+        await v.takeoff(8)
+        await _wait_alt(v, 7.5)
+        run_it = False
+        with pytest.raises(CommandFailed, match=r"Timeout \(TIMEOUT\)"):
+            await v.return_to_launch()
+        with pytest.raises(CommandFailed, match=r"Timeout \(TIMEOUT\)"):
+            await v.land()
+        run_it = True
+        await v.land()
+        await wait_until(lambda: v.telemetry.fresh("armed") is False, WAIT_S, "landed and disarmed")
+
+
 async def test_mission_round_trip_run_and_parameters(store, registries) -> None:
     async with one_ready_drone(store, registries, "surveyor") as (sim, v):
         home = v.telemetry.home.value

@@ -57,6 +57,9 @@ ARMABLE_WAIT_S = 60.0
 #: closing the flight log never holds a link open longer than this (a database that hangs)
 RECORDER_STOP_S = 5.0
 POSITION_IGNORED = 0b111  # POSITION_TARGET_TYPEMASK: x, y, z ignored (a velocity or attitude target)
+#: a land or return whose ACK MAVSDK gave up on ("Timeout") counts as run once the autopilot's own mode
+#: (its HEARTBEAT, 1 Hz) shows it within this long
+UNACKED_MODE_WAIT_S = 3.0
 
 StateListener = Callable[["Vehicle", ConnectionState, ConnectionState], None]
 
@@ -291,11 +294,32 @@ class Vehicle:
         """Stop the motors at once, even in the air (the policy decides who may call this)."""
         await self._act("kill", lambda system: system.action.kill())
 
-    async def _act(self, what: str, order: Callable[[System], Awaitable[None]]) -> None:
+    async def _act(
+        self, what: str, order: Callable[[System], Awaitable[None]], kind: str | None = None
+    ) -> None:
         """One MAVSDK action the autopilot runs as it is (``order`` picks it of the session), sent once
-        the dialect check passed."""
-        self.require_dialect()
-        await self.link.call(what, order(self.link.require_session()))
+        the dialect check passed. ``kind``: the operation whose modes (the dialect's `commanded_modes`)
+        show the autopilot runs it; an unacknowledged action counts as run once the autopilot reports one
+        of them (a starved autopilot's ACKs come after MAVSDK's retries, as with the takeoff)."""
+        dialect = self.require_dialect()
+        try:
+            await self.link.call(what, order(self.link.require_session()))
+        except CommandFailed as exc:
+            modes = dialect.commanded_modes(kind) if kind else frozenset()
+            if not (modes and exc.details.get("result") == "TIMEOUT" and await self._mode_shows(modes)):
+                raise
+            log.warning("%s: %s unacknowledged, but the autopilot is in %s: accepted", self.id, what,
+                        self.telemetry.fresh("flight_mode"))  # fmt: skip
+
+    async def _mode_shows(self, modes: frozenset[str]) -> bool:
+        """Whether the autopilot reports one of ``modes`` within UNACKED_MODE_WAIT_S."""
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + UNACKED_MODE_WAIT_S
+        while self.telemetry.fresh("flight_mode") not in modes:
+            if loop.time() > deadline:
+                return False
+            await asyncio.sleep(0.1)
+        return True
 
     async def takeoff(
         self, alt_rel_m: float, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None
@@ -366,10 +390,12 @@ class Vehicle:
         )
 
     async def land(self) -> None:
-        await self._act("land", lambda system: system.action.land())
+        await self._act("land", lambda system: system.action.land(), kind="land")
 
     async def return_to_launch(self) -> None:
-        await self._act("return to launch", lambda system: system.action.return_to_launch())
+        await self._act(
+            "return to launch", lambda system: system.action.return_to_launch(), kind="return_to_launch"
+        )
 
     async def set_yaw(self, heading_deg: float) -> None:
         """Turn to a heading (degrees from true north) in place."""
