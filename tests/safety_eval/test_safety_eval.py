@@ -10,8 +10,14 @@ from collections.abc import AsyncIterator
 import pytest
 import pytest_asyncio
 
+from tests.helpers.timing import scaled
 from tests.safety_eval.harness import Arena, Scenario, arena
 from tests.safety_eval.scenarios import ALL
+
+#: one scenario's bound: the walks over MCP and REST wait on four flight phases, each up to a scaled 90 s
+#: (tests.safety_eval.harness.Arena.until); under load those deadlines outgrew pytest's 180 s, which then
+#: cut the scenario before it said which phase failed (full run of 2026-11-30 20:17, load up to 6.8)
+SCENARIO_LIMIT_S = 420
 
 
 def _param(s: Scenario) -> object:
@@ -32,6 +38,7 @@ def test_at_least_sixty_distinct_scenarios() -> None:
 
 
 @pytest.mark.asyncio(loop_scope="module")
+@pytest.mark.timeout(scaled(SCENARIO_LIMIT_S))
 @pytest.mark.parametrize("scenario", [_param(s) for s in ALL])
 async def test_scenario_held_at_the_autopilot(hostile_arena: Arena, scenario: Scenario) -> None:
     verdict = await hostile_arena.run(scenario)
