@@ -37,7 +37,7 @@ from gateway.fleet.vehicles.params import Parameters
 from gateway.fleet.vehicles.protocols import FlyingVehicle
 from gateway.fleet.vehicles.vehicle_arming import Arming
 from gateway.fleet.vehicles.vehicle_missions import MissionControl
-from gateway.fleet.vehicles.waits import wait_for_state
+from gateway.fleet.vehicles.waits import holds_within, wait_for_state
 from gateway.link.contract import ConnectionState, GroundCommand, OnWait, Peer
 from gateway.link.link_status import link_status
 from gateway.link.mavsdk_system import System
@@ -62,6 +62,11 @@ POSITION_IGNORED = 0b111  # POSITION_TARGET_TYPEMASK: x, y, z ignored (a velocit
 UNACKED_MODE_WAIT_S = 3.0
 
 StateListener = Callable[["Vehicle", ConnectionState, ConnectionState], None]
+
+
+def _ack_lost(exc: CommandFailed) -> bool:
+    """MAVSDK gave up waiting for the COMMAND_ACK (its retries spent): the autopilot may have run it."""
+    return exc.details.get("result") == "TIMEOUT"
 
 
 class Vehicle:
@@ -306,20 +311,11 @@ class Vehicle:
             await self.link.call(what, order(self.link.require_session()))
         except CommandFailed as exc:
             modes = dialect.commanded_modes(kind) if kind else frozenset()
-            if not (modes and exc.details.get("result") == "TIMEOUT" and await self._mode_shows(modes)):
+            mode_shows = lambda: self.telemetry.fresh("flight_mode") in modes  # noqa: E731
+            if not (modes and _ack_lost(exc) and await holds_within(mode_shows, UNACKED_MODE_WAIT_S)):
                 raise
             log.warning("%s: %s unacknowledged, but the autopilot is in %s: accepted", self.id, what,
                         self.telemetry.fresh("flight_mode"))  # fmt: skip
-
-    async def _mode_shows(self, modes: frozenset[str]) -> bool:
-        """Whether the autopilot reports one of ``modes`` within UNACKED_MODE_WAIT_S."""
-        loop = asyncio.get_running_loop()
-        deadline = loop.time() + UNACKED_MODE_WAIT_S
-        while self.telemetry.fresh("flight_mode") not in modes:
-            if loop.time() > deadline:
-                return False
-            await asyncio.sleep(0.1)
-        return True
 
     async def takeoff(
         self, alt_rel_m: float, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None
@@ -341,7 +337,7 @@ class Vehicle:
         try:
             await self.link.call("takeoff", system.action.takeoff())
         except CommandFailed as exc:
-            if exc.details.get("result") == "TIMEOUT" and self.on_ground() is False:
+            if _ack_lost(exc) and self.on_ground() is False:
                 # on the ground before the call, in the air now: the autopilot took off and its ACK was
                 # lost or late past MAVSDK's retries (PX4 SIH starved of CPU logged the takeoff 4 times)
                 log.warning("%s: takeoff unacknowledged, but the drone is in the air: accepted", self.id)

@@ -13,6 +13,7 @@ from typing import Protocol
 from gateway.errors import CommandFailed, VehicleNotReady
 from gateway.fleet.dialects import Dialect
 from gateway.fleet.dialects.modes import ModeChoice
+from gateway.fleet.vehicles.waits import holds_within
 from gateway.link import refusals
 from gateway.link.contract import OnWait
 from gateway.link.session import Link
@@ -46,17 +47,14 @@ class Arming:
         if facts.custom_mode == choice.custom_mode:
             return
         await self.link.command_long(MAV_CMD_DO_SET_MODE, *choice.params, what=f"set mode {choice.native}")
-        loop = asyncio.get_running_loop()
-        deadline = loop.time() + MODE_CONFIRM_S
-        while self.link.facts.custom_mode != choice.custom_mode:
-            if loop.time() > deadline:
-                now = self.link.telemetry.fresh("flight_mode") or f"custom mode {self.link.facts.custom_mode}"
-                raise CommandFailed(
-                    f"set mode {choice.native} on drone '{self.link.id}' was accepted "
-                    f"but the vehicle still reports {now}" + self.link.recent_complaint(),
-                    vehicle_id=self.link.id,
-                )
-            await asyncio.sleep(0.05)
+        in_it = lambda: self.link.facts.custom_mode == choice.custom_mode  # noqa: E731
+        if not await holds_within(in_it, MODE_CONFIRM_S, poll_s=0.05):
+            now = self.link.telemetry.fresh("flight_mode") or f"custom mode {self.link.facts.custom_mode}"
+            raise CommandFailed(
+                f"set mode {choice.native} on drone '{self.link.id}' was accepted "
+                f"but the vehicle still reports {now}" + self.link.recent_complaint(),
+                vehicle_id=self.link.id,
+            )
 
     async def arm_by(
         self, deadline: float, ready: bool, notify: OnWait | None, trust_cache: bool = True

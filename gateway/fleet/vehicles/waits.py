@@ -1,9 +1,11 @@
-"""Waiting on a vehicle's connection state: one wait for every view of a drone (a `Vehicle` this node
-flies, a `RemoteVehicle` another node flies), read from `VehicleView.state`."""
+"""Waiting on a vehicle: its connection state, one wait for every view of a drone (a `Vehicle` this node
+flies, a `RemoteVehicle` another node flies), read from `VehicleView.state`; and a condition on what it
+reports, polled until a deadline."""
 
 from __future__ import annotations
 
 import asyncio
+from collections.abc import Callable
 
 from gateway.errors import VehicleNotReady
 from gateway.fleet.vehicles.protocols import VehicleView
@@ -18,15 +20,23 @@ async def wait_for_state(
     """Wait until the drone's state is one of ``states``; VehicleNotReady naming the state it is in
     (and why, when its view says: what it still waits for, its last error) once ``within_s`` passed."""
     wanted = {ConnectionState(s) for s in states}
+    if not await holds_within(lambda: view.state in wanted, within_s):
+        state = view.state
+        why = "; ".join(filter(None, (view.initialising(), view.last_error)))
+        raise VehicleNotReady(
+            f"drone '{view.id}' did not reach {'/'.join(sorted(s.value for s in wanted))} within "
+            f"{within_s:g} s; it is {state.value}" + (f" ({why})" if why else ""),
+            state=state.value,
+        )
+    return view.state
+
+
+async def holds_within(check: Callable[[], bool], within_s: float, poll_s: float = POLL_S) -> bool:
+    """Whether ``check()`` holds within ``within_s`` (asked every ``poll_s``; False once the time passed)."""
     loop = asyncio.get_running_loop()
     deadline = loop.time() + within_s
-    while (state := view.state) not in wanted:
+    while not check():
         if loop.time() > deadline:
-            why = "; ".join(filter(None, (view.initialising(), view.last_error)))
-            raise VehicleNotReady(
-                f"drone '{view.id}' did not reach {'/'.join(sorted(s.value for s in wanted))} within "
-                f"{within_s:g} s; it is {state.value}" + (f" ({why})" if why else ""),
-                state=state.value,
-            )
-        await asyncio.sleep(POLL_S)
-    return state
+            return False
+        await asyncio.sleep(poll_s)
+    return True
