@@ -65,7 +65,7 @@ swarm-test: $(STAMP)
 # gateway nodes, nine drones; one node's container killed, the other takes its drones over. It runs
 # the gateway image swarm-test handed over when that was built from these sources, else builds its own.
 cluster-test: $(STAMP)
-	$(BIN)/python scripts/cluster_test.py
+	$(BIN)/python scripts/cluster_test.py $(CLUSTER_TEST_ARGS)
 
 clean:
 	rm -rf $(VENV) .pytest_cache *.db *.db-wal *.db-shm

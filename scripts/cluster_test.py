@@ -16,6 +16,7 @@ built again; one built from other sources is removed and the image built here.
 
 from __future__ import annotations
 
+import argparse
 import asyncio
 import contextlib
 import sys
@@ -29,7 +30,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import swarm_test as s
 
 COMPOSE_FILE = s.ROOT / "deploy" / "docker-compose.cluster.yml"
-PROJECT = "fleet-gateway-cluster-test"
+PROJECT = s.CLUSTER_PROJECT
 NATS_IMAGE = "localhost/fleet-gateway-nats:cluster-test"
 POSTGRES_IMAGE = "localhost/fleet-gateway-postgres:cluster-test"
 DRONES = 9  # the file's simulator service serves nine
@@ -40,10 +41,10 @@ class Cluster(s.Swarm):
     compose_file = COMPOSE_FILE
     project = PROJECT
 
-    def __init__(self, env: dict[str, str], base: str) -> None:
+    def __init__(self, env: dict[str, str], base: str, prepared: bool = False) -> None:
         from gateway.util.ports import free_tcp_port
 
-        super().__init__(env, base)
+        super().__init__(env, base, prepared)
         self.ports = {node: free_tcp_port() for node in NODES}
         self.env.update(
             POSTGRES_PASSWORD=s.secrets.token_hex(12),
@@ -194,11 +195,11 @@ class Cluster(s.Swarm):
             )
 
 
-def cluster_test(env: dict[str, str], base: str) -> str:
+def cluster_test(env: dict[str, str], base: str, prepared: bool = False) -> str:
     started = time.monotonic()
-    cluster = Cluster(env, base)
+    cluster = Cluster(env, base, prepared)
     cluster.clear_leftovers()
-    before = s.snapshot(env)
+    before = s.snapshot(env, PROJECT)
     error: BaseException | None = None
     try:
         cluster.build_all()
@@ -216,7 +217,7 @@ def cluster_test(env: dict[str, str], base: str) -> str:
     if error is not None:
         raise error
     f = cluster.figures
-    handed = " (the swarm test's)" if f.get("handed_over") else ""
+    handed = " (the swarm test's)" if f.get("handed_over") else " (built ahead)" if cluster.prepared else ""
     return (
         f"cluster-test: PASSED: NATS and PostgreSQL from Debian packages, two gateway nodes, {DRONES} drones "
         f"spread {f['spread']}; node-b killed, node-a held all {DRONES} after {f['takeover_s']} s and flew "
@@ -227,6 +228,9 @@ def cluster_test(env: dict[str, str], base: str) -> str:
 
 
 def main() -> int:
+    parser = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0])
+    parser.add_argument("--prepared", action="store_true", help=s.PREPARED_HELP)
+    args = parser.parse_args()
     s.LOG_PREFIX[0] = "cluster-test"
     s.sigterm_interrupts()
     try:
@@ -235,7 +239,7 @@ def main() -> int:
             env = s.containers_conf(Path(tmp))
             base = s.base_image(env)
             s.probe(base, env)
-            print(cluster_test(env, base), flush=True)
+            print(cluster_test(env, base, args.prepared), flush=True)
             return 0
     except s.Skip as exc:
         print(f"cluster-test: SKIPPED: {exc}", flush=True)

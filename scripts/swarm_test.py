@@ -58,7 +58,17 @@ LOCAL_BASE = "localhost/fleet-gateway-base:bookworm"
 PROJECT = "fleet-gateway-swarm-test"
 IMAGE = "fleet-gateway:latest"  # the compose file's
 TEST_LABEL = "io.fleet-gateway.test"  # on the images a test run builds: its project's name
-SOURCES_LABEL = "io.fleet-gateway.sources"  # on the gateway image: build_digest() of what it was built from
+SOURCES_LABEL = "io.fleet-gateway.sources"  # on every image a run builds: build_digest() of its sources
+PREPARED = "fleet-gateway-prepared"  # TEST_LABEL of the images scripts/compose_images.py builds ahead
+COMPOSE_PROJECT_LABEL = "io.podman.compose.project"
+# the compose test projects on this machine: each run's leftover check leaves the other's objects alone,
+# so that the two can run at once (scripts/compose_images.py, CI)
+CLUSTER_PROJECT = "fleet-gateway-cluster-test"  # scripts/cluster_test.py's
+TEST_PROJECTS = (PROJECT, CLUSTER_PROJECT)
+PREPARED_HELP = (
+    "run the images `scripts/compose_images.py prepare` built ahead from these sources and leave them to "
+    "`scripts/compose_images.py remove` (CI builds them while the test suite runs)"
+)
 # podman's networks: netavark with aardvark-dns (service names resolve) and iptables (published ports).
 # podman-compose comes from PyPI (the dev extra): Debian's 1.0.3 ignores ipam subnets and fixed addresses.
 DEBIAN_PACKAGES = ("podman", "buildah", "runc", "netavark", "aardvark-dns", "iptables", "debootstrap")
@@ -252,17 +262,24 @@ def probe(base: str, env: dict[str, str]) -> None:
 # --- 4. build, bring up, fly --------------------------------------------------------------------------------
 
 
-def snapshot(env: dict[str, str]) -> dict[str, set[str]]:
-    """What podman holds now: container ids, volume names, network names, image ids."""
+def snapshot(env: dict[str, str], project: str = PROJECT) -> dict[str, set[str]]:
+    """What podman holds now: container ids, volume names, network names, image ids; without what the
+    other compose test project (``TEST_PROJECTS``) holds, which may be running beside this one."""
+    others = [p for p in TEST_PROJECTS if p != project]
 
-    def listed(*argv: str) -> set[str]:
-        return set(run(["podman", *argv], env=env, timeout=120).split())
+    def listed(*argv: str, label: str = COMPOSE_PROJECT_LABEL) -> set[str]:
+        found = set(run(["podman", *argv], env=env, timeout=120).split())
+        for other in others:
+            found -= set(
+                run(["podman", *argv, "--filter", f"label={label}={other}"], env=env, timeout=120).split()
+            )
+        return found
 
     return {
         "containers": listed("ps", "-a", "-q", "--no-trunc"),
         "volumes": listed("volume", "ls", "-q"),
         "networks": listed("network", "ls", "-q"),
-        "images": listed("images", "-a", "-q", "--no-trunc"),
+        "images": listed("images", "-a", "-q", "--no-trunc", label=TEST_LABEL),
     }
 
 
@@ -344,13 +361,31 @@ def image_label(image: str, label: str, env: dict[str, str]) -> str:
     return "" if value == "<no value>" else value
 
 
+def build_image(image: str, containerfile: Path, base: str, owner: str, env: dict[str, str]) -> None:
+    """``podman build`` of ``containerfile`` on ``base`` as ``image``, labelled with its owner (a test
+    project, or ``PREPARED``) and the digest of its sources."""
+    sources = build_digest(base, containerfile)
+    run(
+        ["podman", "build", "--layers=false", "--build-arg", f"BASE_IMAGE={base}",
+         "--label", f"{TEST_LABEL}={owner}", "--label", f"{SOURCES_LABEL}={sources}",
+         "-f", str(containerfile), "-t", image, str(ROOT)],
+        env=env, timeout=1200,
+    )  # fmt: skip
+
+
+def image_mb(image: str, env: dict[str, str]) -> int:
+    return round(
+        int(run(["podman", "image", "inspect", image, "--format", "{{.Size}}"], env=env).strip()) / 1e6
+    )
+
+
 class Swarm:
     """The compose project: built, brought up, torn down; figures collected on the way."""
 
     compose_file = COMPOSE_FILE
     project = PROJECT
 
-    def __init__(self, env: dict[str, str], base: str) -> None:
+    def __init__(self, env: dict[str, str], base: str, prepared: bool = False) -> None:
         from gateway.util.ports import free_tcp_port
 
         self.operator = secrets.token_hex(16)
@@ -368,6 +403,7 @@ class Swarm:
         self.compose_bin = podman_compose()
         self.images: list[str] = []  # built (or taken over) by this run, removed at the end
         self.handed_over: list[str] = []  # left for the next run (--hand-image-over), not removed
+        self.prepared = prepared  # run the images scripts/compose_images.py built ahead (and leave them)
 
     def compose(self, *argv: str, timeout: float = 600) -> str:
         return run(
@@ -376,22 +412,25 @@ class Swarm:
         )  # fmt: skip
 
     def build(self, image: str = IMAGE, containerfile: Path = DOCKERFILE, figure: str = "") -> None:
-        """Build ``image`` on the base image (its size and build time are figures ``figure``image_mb...)."""
+        """Build ``image`` on the base image (its size and build time are figures ``figure``image_mb...);
+        with ``prepared``, run the one built ahead from these sources instead, and leave it."""
+        if self.prepared and image_label(image, TEST_LABEL, self.env) == PREPARED:
+            if image_label(image, SOURCES_LABEL, self.env) != build_digest(self.base, containerfile):
+                raise Failed(
+                    f"{image} was built ahead from other sources; run scripts/compose_images.py again"
+                )
+            self.figures[f"{figure}image_mb"] = image_mb(image, self.env)
+            self.figures[f"{figure}build_s"] = 0.0
+            log(f"{image} ({self.figures[f'{figure}image_mb']} MB): built ahead from these sources")
+            return
         if image_exists(image, self.env):
             raise Failed(f"an image {image} exists already; remove it (podman rmi {image}) and run again")
         started = time.monotonic()
         self.images.append(image)
-        sources = [f"--label={SOURCES_LABEL}={build_digest(self.base)}"] if image == IMAGE else []
-        run(
-            ["podman", "build", "--layers=false", "--build-arg", f"BASE_IMAGE={self.base}",
-             "--label", f"{TEST_LABEL}={self.project}", *sources, "-f", str(containerfile), "-t", image,
-             str(ROOT)],
-            env=self.env, timeout=1200,
-        )  # fmt: skip
+        build_image(image, containerfile, self.base, self.project, self.env)
         self.figures[f"{figure}build_s"] = round(time.monotonic() - started, 1)
-        size = int(run(["podman", "image", "inspect", image, "--format", "{{.Size}}"], env=self.env).strip())
-        self.figures[f"{figure}image_mb"] = round(size / 1e6)
-        log(f"built {image} ({round(size / 1e6)} MB) in {self.figures[f'{figure}build_s']} s")
+        self.figures[f"{figure}image_mb"] = image_mb(image, self.env)
+        log(f"built {image} ({self.figures[f'{figure}image_mb']} MB) in {self.figures[f'{figure}build_s']} s")
 
     def up(self) -> None:
         started = time.monotonic()
@@ -586,7 +625,7 @@ class Swarm:
         removed = [image for image in self.images if image not in self.handed_over]
         if removed:  # ours: none existed before
             run(["podman", "rmi", "-f", *removed], env=self.env, check=False)
-        after = snapshot(self.env)
+        after = snapshot(self.env, self.project)
         cache: set[str] = set()  # kept on purpose: the base image, and the image handed over
         for kept in (LOCAL_BASE, *self.handed_over):
             listed = run(["podman", "images", "-q", "--no-trunc", kept], env=self.env, check=False)
@@ -602,10 +641,10 @@ class Swarm:
         log(f"torn down in {self.figures['down_s']} s; no container, volume, network or image left{kept}")
 
 
-def swarm_test(env: dict[str, str], base: str, hand_image_over: bool = False) -> str:
+def swarm_test(env: dict[str, str], base: str, hand_image_over: bool = False, prepared: bool = False) -> str:
     started = time.monotonic()
     with swarm_lock():
-        swarm = Swarm(env, base)
+        swarm = Swarm(env, base, prepared)
         swarm.clear_leftovers()
         before = snapshot(env)
         error: BaseException | None = None
@@ -613,7 +652,7 @@ def swarm_test(env: dict[str, str], base: str, hand_image_over: bool = False) ->
             swarm.build()
             swarm.up()
             swarm.fly()
-            if hand_image_over:  # passed: the cluster test runs this image (and removes it)
+            if hand_image_over and IMAGE in swarm.images:  # passed: the cluster test runs it (and removes it)
                 swarm.handed_over.append(IMAGE)
         except BaseException as exc:
             error = exc
@@ -646,6 +685,7 @@ def main() -> int:
         action="store_true",
         help=f"after a pass, leave {IMAGE} for scripts/cluster_test.py (which runs it and removes it)",
     )
+    parser.add_argument("--prepared", action="store_true", help=PREPARED_HELP)
     args = parser.parse_args()
     sigterm_interrupts()
     try:
@@ -657,7 +697,7 @@ def main() -> int:
             if args.base_only:
                 log(f"base image {base} ready; podman runs containers here")
                 return 0
-            print(swarm_test(env, base, args.hand_image_over), flush=True)
+            print(swarm_test(env, base, args.hand_image_over, args.prepared), flush=True)
             return 0
     except Skip as exc:
         print(f"swarm-test: SKIPPED: {exc}", flush=True)
