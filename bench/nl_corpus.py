@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 267 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 303 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -58,11 +58,21 @@ scripted ideal plan) has run on them. That leaves 195 dev and 36 test.
 Later on 2026-11-30 (fourth round) EVERY test entry (36, ``_fourth_round``) was moved to dev, each marked
 "moved to dev on 2026-11-30, fourth round": the test half had been measured and its figures were known to
 whoever works on the host, so it no longer measured requests nobody tuned for. A fresh test half took its
-place (``_fifth_test_half``): 36 new requests, 3 a class, written before any model ran on them, in new
+place (``_fifth_test_half``, now ``_fifth_round``): 36 new requests, 3 a class, written before any model ran on them, in new
 wordings and shapes within each class (not rewordings of dev entries): 23 of the 33 outside the
 ``language`` class are in Czech, Dutch, French, German, Italian, Polish, Portuguese, Spanish or Swedish,
 spread over the 11 classes, and the ``language`` class's 3 in Swedish, Czech and Italian. Only the
 harness self-check (the scripted ideal plan) has run on them. That leaves 231 dev and 36 test.
+
+Later on 2026-11-30 (fifth round) EVERY test entry (36, ``_fifth_round``) was moved to dev, each marked
+"moved to dev on 2026-11-30, fifth round": the test half had been measured and its figures were known to
+whoever works on the host, so it no longer measured requests nobody tuned for. A fresh test half took its
+place (``_sixth_test_half``): 36 new requests, 3 a class, written before any model ran on them, in new
+wordings and shapes within each class (not rewordings of dev entries): 28 of the 33 outside the
+``language`` class are in Czech, Danish, Dutch, Finnish, French, German, Italian, Norwegian, Polish,
+Portuguese, Romanian, Spanish, Swedish or Turkish, spread over the 11 classes, and the ``language`` class's
+3 in Finnish, Turkish and Danish. Only the harness self-check (the scripted ideal plan) has run on them.
+That leaves 267 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -112,7 +122,7 @@ CLASSES = (
     "units",  # distances and heights in feet, yards, kilometres
     "pattern",  # a shape flown by one drone: polygon, circle, survey lines
     "placement",  # a drone placed relative to another drone or to its home
-    "language",  # requests in languages other than English (French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish)
+    "language",  # requests in languages other than English (French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish)
 )
 HALVES = ("dev", "test")
 DRONES = ("alpha", "bravo", "charlie")
@@ -136,6 +146,11 @@ def answer_says(ev: Evidence, pattern: str, what: str) -> Check:
     """The final answer matches ``pattern`` (a case-insensitive regular expression)."""
     ok = bool(re.search(pattern, ev.final_text or "", re.IGNORECASE))
     return Check(ok, f"answer {'says' if ok else 'does not say'} {what}")
+
+
+def _any(*checks: Check) -> Check:
+    """One of ``checks`` passes (a question answered either way a reader would accept)."""
+    return Check(any(c.ok for c in checks), " or ".join(c.detail for c in checks))
 
 
 def nobody_armed(ev: Evidence, drones: tuple[str, ...] = DRONES) -> Check:
@@ -1903,8 +1918,9 @@ def landed_formation_at(
     )
 
 
-def _fifth_test_half() -> list[CorpusEntry]:
-    """The test half written on 2026-11-30 (fifth round), before any model ran on it: 3 a class."""
+def _fifth_round() -> list[CorpusEntry]:
+    """The test half written on 2026-11-30 (fifth round), before any model ran on it: 3 a class; all of
+    it moved to dev later on 2026-11-30 (fifth round), once its figures had been measured."""
     three = DRONES
     octagon10 = _polygon_legs(8, 10.0, 90.0, right=False)  # first side east, turning left
     # four passes of 35 m, the first west, 7 m apart, each next pass south of the one before
@@ -1914,33 +1930,39 @@ def _fifth_test_half() -> list[CorpusEntry]:
     lap = [(10.0, 10.0), (-10.0, 10.0), (-10.0, -10.0), (10.0, -10.0)]
     return [
         # single
-        _entry("single", "test", "single5-sv-charlie-hover", ("charlie",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("single", "dev", "single5-sv-charlie-hover", ("charlie",),
                "Lyft charlie till 21 meter och låt den sväva kvar där.",
                lambda c, ev: airborne_at(ev, "charlie", 21),
                [_takeoff("charlie", 21)], "Charlie svävar på 21 m."),
-        _entry("single", "test", "single5-cs-alpha-up-down", ("alpha",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("single", "dev", "single5-cs-alpha-up-down", ("alpha",),
                "Dron alpha ať vzlétne do 11 metrů a pak hned zase přistane.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 11), at(ev, "alpha", *_home(c, "alpha")),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 11), _land("alpha")], "Alpha vzlétla do 11 m a přistála."),
-        _entry("single", "test", "single5-bravo-report-height", ("bravo",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("single", "dev", "single5-bravo-report-height", ("bravo",),
                "Climb bravo to 27 m and tell me its altitude once it's up there; it stays in the air.",
                lambda c, ev: _all(airborne_at(ev, "bravo", 27), answer_mentions_number(ev, 27, 3)),
                [_takeoff("bravo", 27), ("get_position", {"drone_id": "bravo"})], "Bravo is up at 27 m."),
         # multi
-        _entry("multi", "test", "multi5-sv-alpha-lands-charlie-stays", three,
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("multi", "dev", "multi5-sv-alpha-lands-charlie-stays", three,
                "Alpha ska flyga 20 meter österut på 10 meters höjd och landa där, medan charlie stiger till 15 "
                "meter och stannar i luften. Bravo rör sig inte.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 20)), landed_disarmed(ev, "alpha"),
                                   airborne_at(ev, "charlie", 15), never_armed(ev, "bravo")),
                [_move("alpha", 0, 20, alt=10), _land("alpha"), _takeoff("charlie", 15)],
                "Alpha landade 20 m österut; charlie svävar på 15 m."),
-        _entry("multi", "test", "multi5-each-north-of-own-pad", three,
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("multi", "dev", "multi5-each-north-of-own-pad", three,
                "Send each drone 15 m north of its own pad at 12 m and leave them there.",
                lambda c, ev: _all(*(at(ev, d, *c.point(d, 15, 0), alt=12) for d in three),
                                   *(airborne_at(ev, d, 12) for d in three)),
                [_move(d, 15, 0, alt=12) for d in three], "All three hover 15 m north of their pads at 12 m."),
-        _entry("multi", "test", "multi5-es-pair-south-hover", three,
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("multi", "dev", "multi5-es-pair-south-hover", three,
                "Manda alpha y charlie 25 metros al sur a 12 metros de altura y déjalos ahí flotando; bravo se "
                "queda en tierra.",
                lambda c, ev: _all(*(at(ev, d, *c.point(d, -25, 0), alt=12) for d in ("alpha", "charlie")),
@@ -1948,20 +1970,23 @@ def _fifth_test_half() -> list[CorpusEntry]:
                [_move("alpha", -25, 0, alt=12), _move("charlie", -25, 0, alt=12)],
                "Alpha y charlie flotan 25 m al sur a 12 m; bravo sigue en tierra."),
         # compound
-        _entry("compound", "test", "compound5-fr-bravo-back-over-start", ("bravo",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("compound", "dev", "compound5-fr-bravo-back-over-start", ("bravo",),
                "Bravo : décolle à 12 m, file 30 m au nord, puis 30 m à l'est, et reviens en ligne droite "
                "au-dessus de ton point de départ ; reste en l'air là, à 12 m.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 30, 0), c.point("bravo", 30, 30)]),
                                   at(ev, "bravo", *_home(c, "bravo"), alt=12), airborne_at(ev, "bravo", 12)),
                [_takeoff("bravo", 12), _move("bravo", 30, 0), _move("bravo", 0, 30), _move("bravo", -30, -30)],
                "Bravo est allé 30 m au nord, 30 m à l'est, et se tient au-dessus de son départ à 12 m."),
-        _entry("compound", "test", "compound5-alpha-two-steps-down", ("alpha",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("compound", "dev", "compound5-alpha-two-steps-down", ("alpha",),
                "Alpha: take off to 24 m. Then, twice: fly 15 m west and drop 8 m. Leave it hovering at the end.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 24), visited(ev, "alpha", [c.point("alpha", 0, -15)]),
                                   at(ev, "alpha", *c.point("alpha", 0, -30), alt=8), airborne_at(ev, "alpha", 8)),
                [_takeoff("alpha", 24), _move("alpha", 0, -15), _move("alpha", up=-8), _move("alpha", 0, -15),
                 _move("alpha", up=-8)], "Alpha hovers 30 m west at 8 m."),
-        _entry("compound", "test", "compound5-de-charlie-u-turn", ("charlie",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("compound", "dev", "compound5-de-charlie-u-turn", ("charlie",),
                "Charlie: auf 10 m steigen, 20 m nach Süden, 20 m nach Westen, 20 m nach Norden, und dann dort "
                "landen, wo er gerade ist.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -20, 0), c.point("charlie", -20, -20)]),
@@ -1969,13 +1994,15 @@ def _fifth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 10), _move("charlie", -20, 0), _move("charlie", 0, -20), _move("charlie", 20, 0),
                 _land("charlie")], "Charlie ist 20 m westlich von seinem Start gelandet."),
         # conditional
-        _entry("conditional", "test", "cond5-it-alpha-three-tiers", ("alpha",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("conditional", "dev", "cond5-it-alpha-three-tiers", ("alpha",),
                "Controlla la batteria di alpha: sopra l'80 % portalo 50 metri a nord, tra il 50 e l'80 % solo 20 "
                "metri a nord, sotto il 50 % lascialo a terra. Se vola, a 10 metri di quota, e poi lascialo lì.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=10), airborne_at(ev, "alpha", 10)),
                [_battery("alpha"), _move("alpha", 20, 0, alt=10)],
                "Alpha ha il 66 %, quindi è 20 m a nord a 10 m.", battery={"alpha": 66.0}),
-        _entry("conditional", "test", "cond5-pt-charlie-twenty-points-more", three,
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("conditional", "dev", "cond5-pt-charlie-twenty-points-more", three,
                "Se a bateria do charlie tiver pelo menos 20 pontos a mais do que a do bravo, manda o charlie 20 "
                "metros para leste a 10 metros de altura; senão, manda o bravo. O que for fica lá a pairar.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, 20), alt=10), airborne_at(ev, "bravo", 10),
@@ -1983,7 +2010,8 @@ def _fifth_test_half() -> list[CorpusEntry]:
                [_battery("charlie"), _battery("bravo"), _move("bravo", 0, 20, alt=10)],
                "O charlie tem 71 % e o bravo 58 %: só 13 pontos, por isso o bravo paira 20 m a leste a 10 m.",
                battery={"bravo": 58.0, "charlie": 71.0}),
-        _entry("conditional", "test", "cond5-nl-low-ones-stay", three,
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("conditional", "dev", "cond5-nl-low-ones-stay", three,
                "Laat elke drone met minder dan 40 % batterij aan de grond staan; de rest gaat naar 9 meter en "
                "landt daarna meteen weer.",
                lambda c, ev: _all(never_armed(ev, "alpha"), *(reached_alt(ev, d, 9) for d in ("bravo", "charlie")),
@@ -1992,36 +2020,42 @@ def _fifth_test_half() -> list[CorpusEntry]:
                "Alpha (35 %) blijft staan; bravo en charlie gingen naar 9 m en zijn geland.",
                battery={"alpha": 35.0, "bravo": 77.0, "charlie": 52.0}),
         # formation
-        _entry("formation", "test", "form5-sv-row-west", three,
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("formation", "dev", "form5-sv-row-west", three,
                "Ställ alla tre drönarna på rad, 7 meter mellan varje, på 14 meters höjd, 20 meter väster om där "
                "de står.",
                lambda c, ev: _all(formation_at(c, ev, three, 14, 7, 0, -20), farthest_apart(ev, three, 14)),
                [_formation(three, "line", 14, 7, east=-20)], "De tre står på rad 20 m västerut på 14 m."),
         # (the gateway's V: two wings 8 m from the lead, 45 degrees off its axis: 2 x 8 x sin 45 = 11.31 m apart)
-        _entry("formation", "test", "form5-es-wedge-south", three,
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("formation", "dev", "form5-es-wedge-south", three,
                "Los tres drones en cuña a 16 metros de altura, 8 metros entre la punta y cada ala, 40 metros al "
                "sur de donde están.",
                lambda c, ev: _all(formation_at(c, ev, three, 16, 8, -40, 0), farthest_apart(ev, three, 11.31)),
                [_formation(three, "wedge", 16, 8, north=-40)], "Los tres vuelan en cuña 40 m al sur a 16 m."),
-        _entry("formation", "test", "form5-pair-abreast-west-land", ("alpha", "charlie"),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("formation", "dev", "form5-pair-abreast-west-land", ("alpha", "charlie"),
                "Fly alpha and charlie out side by side, 20 m apart at 12 m, 50 m west of where they are, and "
                "land them both there.",
                lambda c, ev: landed_formation_at(c, ev, ("alpha", "charlie"), 20, 0, -50),
                [_formation(("alpha", "charlie"), "line", 12, 20, east=-50), _land("alpha"), _land("charlie")],
                "Alpha and charlie flew 50 m west side by side, 20 m apart, and landed."),
         # relative
-        _entry("relative", "test", "rel5-pl-charlie-south-east-climb", ("charlie",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("relative", "dev", "rel5-pl-charlie-south-east-climb", ("charlie",),
                "Dron charlie: leć 18 m na południe i 24 m na wschód na wysokości 11 m, potem wznieś się o 7 m i "
                "zawiśnij tam.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -18, 24), alt=18),
                                   airborne_at(ev, "charlie", 18)),
                [_move("charlie", -18, 24, alt=11), _move("charlie", up=7)], "Charlie wisi 18 m na południe i 24 m "
                "na wschód, na 18 m."),
-        _entry("relative", "test", "rel5-alpha-half-that-west", ("alpha",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("relative", "dev", "rel5-alpha-half-that-west", ("alpha",),
                "Alpha, move 30 m toward the north and then half that distance toward the west, at 14 m, and stay.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 30, -15), alt=14), airborne_at(ev, "alpha", 14)),
                [_move("alpha", 30, 0, alt=14), _move("alpha", 0, -15)], "Alpha hovers 30 m north and 15 m west at 14 m."),
-        _entry("relative", "test", "rel5-sv-bravo-out-back-lower", ("bravo",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("relative", "dev", "rel5-sv-bravo-out-back-lower", ("bravo",),
                "Flytta bravo 35 meter norrut på 16 meters höjd, sedan 35 meter söderut igen men 6 meter lägre, "
                "och låt den sväva där.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 35, 0)], alt=16),
@@ -2029,57 +2063,66 @@ def _fifth_test_half() -> list[CorpusEntry]:
                [_move("bravo", 35, 0, alt=16), _move("bravo", -35, 0, up=-6)],
                "Bravo svävar ovanför sin start på 10 m."),
         # question
-        _entry("question", "test", "ask5-it-which-over-half", three,
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("question", "dev", "ask5-it-which-over-half", three,
                "Quali droni hanno almeno il 50 % di batteria? Non farli volare.",
                lambda c, ev: _all(answer_says(ev, r"\balpha\b", "alpha"), answer_mentions_number(ev, 62, 1),
                                   answer_says(ev, r"\bcharlie\b", "charlie"), answer_mentions_number(ev, 81, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "Alpha (62 %) e charlie (81 %); bravo ha il 47 %.",
                battery={"alpha": 62.0, "bravo": 47.0, "charlie": 81.0}),
-        _entry("question", "test", "ask5-pl-two-drones-height-charge", three,
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("question", "dev", "ask5-pl-two-drones-height-charge", three,
                "Ile baterii mają bravo i charlie i na jakiej są wysokości? Tylko pytam, niczego nie uruchamiaj.",
                lambda c, ev: _all(answer_mentions_number(ev, 69, 1), answer_mentions_number(ev, 92, 1),
                                   nobody_armed(ev)),
                [("get_position", {"drone_id": "bravo"}), ("get_position", {"drone_id": "charlie"})],
                "Bravo ma 69 %, charlie 92 %; oba stoją na ziemi (0 m).",
                battery={"alpha": 58.0, "bravo": 69.0, "charlie": 92.0}),
-        _entry("question", "test", "ask5-status-before-start", three,
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("question", "dev", "ask5-status-before-start", three,
                "Quick status before we start: what is each drone's altitude and charge? Don't launch anything.",
                lambda c, ev: _all(*(answer_mentions_number(ev, pct, 1) for pct in (88, 61, 34)), nobody_armed(ev)),
                [("get_position", {})], "All three are on the ground; alpha has 88 %, bravo 61 %, charlie 34 %.",
                battery={"alpha": 88.0, "bravo": 61.0, "charlie": 34.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude)
-        _entry("refusal", "test", "refuse5-de-bravo-miles-and-back", ("bravo",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("refusal", "dev", "refuse5-de-bravo-miles-and-back", ("bravo",),
                "Flieg bravo auf 15 m Höhe 0,7 Meilen nach Norden und dann wieder zurück.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
                [_move("bravo", 0.7 * MI, 0, alt=15)],
                "The gateway refused: 0.7 miles (1127 m) is beyond the 1000 m limit."),
-        _entry("refusal", "test", "refuse5-charlie-steps-to-150", ("charlie",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("refusal", "dev", "refuse5-charlie-steps-to-150", ("charlie",),
                "Take charlie up in 25 m steps, pausing at each, until it is at 150 m.",
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "charlie", c.max_alt_m),
                                   answer_reports_refusal(ev)),
                [_takeoff("charlie", 25), *(_move("charlie", up=25) for _ in range(4))],
                "Charlie climbed to 100 m; the step to 125 m was refused: above the 120 m altitude limit."),
-        _entry("refusal", "test", "refuse5-fr-alpha-skim", ("alpha",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("refusal", "dev", "refuse5-fr-alpha-skim", ("alpha",),
                "Fais voler alpha 30 m vers le nord en rase-mottes, à 50 cm du sol.",
                lambda c, ev: _all(refusal_seen(ev, "minimum", "at least"), never_armed(ev, "alpha"),
                                   answer_reports_refusal(ev)),
                [_move("alpha", 30, 0, alt=0.5)], "The gateway refused: 0.5 m is below the 2 m minimum altitude."),
         # units
-        _entry("units", "test", "units5-nl-charlie-feet-west", ("charlie",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("units", "dev", "units5-nl-charlie-feet-west", ("charlie",),
                "Laat charlie opstijgen tot 45 voet, vlieg 100 voet naar het westen en laat hem daar hangen.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -100 * FT), alt=45 * FT),
                                   airborne_at(ev, "charlie", 45 * FT)),
                [_takeoff("charlie", 45 * FT), _move("charlie", 0, -100 * FT)],
                "Charlie hangt 100 voet naar het westen op 45 voet."),
-        _entry("units", "test", "units5-alpha-ft-miles", ("alpha",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("units", "dev", "units5-alpha-ft-miles", ("alpha",),
                "Take alpha to 66 ft, fly it 0.03 miles east, and leave it hovering.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 0.03 * MI), alt=66 * FT),
                                   airborne_at(ev, "alpha", 66 * FT)),
                [_takeoff("alpha", 66 * FT), _move("alpha", 0, 0.03 * MI)], "Alpha hovers 0.03 mi east at 66 ft."),
-        _entry("units", "test", "units5-pt-bravo-feet-then-metres", ("bravo",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("units", "dev", "units5-pt-bravo-feet-then-metres", ("bravo",),
                "Sobe o bravo a 30 pés, avança 120 pés para norte, depois sobe até aos 20 metros e aterra aí "
                "mesmo.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 120 * FT, 0)], alt=30 * FT),
@@ -2088,21 +2131,24 @@ def _fifth_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 30 * FT), _move("bravo", 120 * FT, 0), _move("bravo", alt=20), _land("bravo")],
                "O bravo avançou 120 pés para norte, subiu a 20 m e aterrou."),
         # pattern
-        _entry("pattern", "test", "pattern5-fr-alpha-octagon", ("alpha",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("pattern", "dev", "pattern5-fr-alpha-octagon", ("alpha",),
                "Alpha à 12 m : un octogone de 10 m de côté, premier côté vers l'est, en tournant à gauche, puis "
                "pose-toi là où tu as commencé.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(octagon10)[:5]]),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 12), *_legs("alpha", octagon10), _land("alpha")],
                "Alpha a volé l'octogone et s'est posé à son départ."),
-        _entry("pattern", "test", "pattern5-bravo-mow-south", ("bravo",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("pattern", "dev", "pattern5-bravo-mow-south", ("bravo",),
                "Bravo, mow the field at 8 m: four passes of 35 m, the first heading west, 7 m apart, each next pass "
                "south of the last; then come home.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(mow)]),
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 8), *_legs("bravo", mow), _rtl("bravo")],
                "Bravo flew the four passes and came home."),
-        _entry("pattern", "test", "pattern5-cs-charlie-two-laps", ("charlie",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("pattern", "dev", "pattern5-cs-charlie-two-laps", ("charlie",),
                "Dron charlie: ve výšce 14 m obleť dvakrát kruh o poloměru 10 m kolem místa 20 m východně od "
                "svého startu, po směru hodinových ručiček, začni na západní straně, a pak zůstaň viset nad "
                "startem.",
@@ -2113,14 +2159,16 @@ def _fifth_test_half() -> list[CorpusEntry]:
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each places alpha
         # from charlie, so alpha placed from itself, or from where charlie took off instead of where it flew,
         # misses by 10 m or more)
-        _entry("placement", "test", "place5-alpha-stacked-over-charlie", three,
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("placement", "dev", "place5-alpha-stacked-over-charlie", three,
                "Send charlie 20 m east at 12 m. Then stack alpha right above charlie, 10 m higher.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 20), alt=12), airborne_at(ev, "charlie", 12),
                                   at(ev, "alpha", *c.point("charlie", 0, 20), alt=22), airborne_at(ev, "alpha", 22),
                                   never_armed(ev, "bravo")),
                lambda c: [_move("charlie", 0, 20, alt=12), _go("alpha", c.point("charlie", 0, 20), 22)],
                "Charlie hovers 20 m east at 12 m, alpha right above it at 22 m."),
-        _entry("placement", "test", "place5-de-alpha-over-charlie-pad", three,
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("placement", "dev", "place5-de-alpha-over-charlie-pad", three,
                "Flieg charlie auf 10 m 30 m nach Süden und lass ihn dort. Dann bring alpha auf 12 m genau über die "
                "Stelle, von der charlie gestartet ist.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -30, 0), alt=10), airborne_at(ev, "charlie", 10),
@@ -2128,7 +2176,8 @@ def _fifth_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_move("charlie", -30, 0, alt=10), _go("alpha", _home(c, "charlie"), 12)],
                "Charlie schwebt 30 m südlich auf 10 m; alpha schwebt auf 12 m über charlies Startplatz."),
-        _entry("placement", "test", "place5-cs-alpha-lands-north-of-charlie", three,
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("placement", "dev", "place5-cs-alpha-lands-north-of-charlie", three,
                "Charlie vzlétne do 10 m, přeletí 20 m na východ a zůstane tam. Potom ať alpha přistane 15 m "
                "severně od místa, kde charlie visí.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 20), alt=10), airborne_at(ev, "charlie", 10),
@@ -2138,22 +2187,296 @@ def _fifth_test_half() -> list[CorpusEntry]:
                           _land("alpha")],
                "Charlie visí 20 m východně v 10 m; alpha přistála 15 m severně od něj."),
         # language
-        _entry("language", "test", "lang5-sv-bravo-east-home", ("bravo",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("language", "dev", "lang5-sv-bravo-east-home", ("bravo",),
                "Starta bravo till 13 meter, flyg 30 meter österut och kom sedan hem och landa.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 13), visited(ev, "bravo", [c.point("bravo", 0, 30)]),
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 13), _move("bravo", 0, 30), _rtl("bravo")],
                "Bravo flög 30 m österut, kom hem och landade."),
-        _entry("language", "test", "lang5-cs-charlie-north-land", ("charlie",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("language", "dev", "lang5-cs-charlie-north-land", ("charlie",),
                "Dron charlie ať vzlétne do 16 metrů, přeletí 25 metrů na sever a tam přistane.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 16), at(ev, "charlie", *c.point("charlie", 25, 0)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 16), _move("charlie", 25, 0), _land("charlie")],
                "Charlie přeletěl 25 m na sever a přistál."),
-        _entry("language", "test", "lang5-it-alpha-climb-stay", ("alpha",),
+        # moved to dev on 2026-11-30, fifth round: the test half had been measured
+        _entry("language", "dev", "lang5-it-alpha-climb-stay", ("alpha",),
                "Fai salire alpha a 10 metri, poi alzalo di altri 8 metri e tienilo lì.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=18), airborne_at(ev, "alpha", 18)),
                [_takeoff("alpha", 10), _move("alpha", up=8)], "Alpha è a 18 m sopra il suo punto di decollo."),
+    ]  # fmt: skip
+
+
+NM = 1852.0
+
+
+def _sixth_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-11-30 (sixth round), before any model ran on it: 3 a class."""
+    three = DRONES
+    d15, d20, d35 = 15 / math.sqrt(2), 20 / math.sqrt(2), 35 / math.sqrt(2)
+    nne30 = (30 * math.cos(math.radians(22.5)), 30 * math.sin(math.radians(22.5)))
+    # 25 m from alpha on a bearing of 120 degrees (clockwise from north)
+    b120 = (25 * math.cos(math.radians(120)), 25 * math.sin(math.radians(120)))
+    zigzag = [(d15, d15), (-d15, d15)] * 2  # four 15 m legs east, north-east first
+    # an expanding square: 10, 10, 20, 20, 30 m, north first, turning right
+    expanding = [(10.0, 0.0), (0.0, 10.0), (-20.0, 0.0), (0.0, -20.0), (30.0, 0.0)]
+    spokes = [(20.0, 0.0), (-20.0, 0.0), (0.0, 20.0), (0.0, -20.0), (-20.0, 0.0), (20.0, 0.0)]
+    return [
+        # single
+        _entry("single", "test", "single6-da-alpha-hover", ("alpha",),
+               "Send alpha op i 24 meters højde og lad den blive hængende der.",
+               lambda c, ev: airborne_at(ev, "alpha", 24),
+               [_takeoff("alpha", 24)], "Alpha hænger i 24 m."),
+        _entry("single", "test", "single6-ro-bravo-up-down", ("bravo",),
+               "Ridică drona bravo la 15 metri și apoi aterizeaz-o imediat în același loc.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 15), at(ev, "bravo", *_home(c, "bravo")),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 15), _land("bravo")], "Bravo a urcat la 15 m și a aterizat."),
+        _entry("single", "test", "single6-charlie-await-orders", ("charlie",),
+               "Launch charlie, stop the climb at 31 m and keep it waiting up there for further orders.",
+               lambda c, ev: airborne_at(ev, "charlie", 31),
+               [_takeoff("charlie", 31)], "Charlie is waiting at 31 m."),
+        # multi
+        _entry("multi", "test", "multi6-no-alpha-hop-bravo-stays", three,
+               "Alpha skal lette til 10 meter og lande igjen, mens bravo stiger til 20 meter og blir der. "
+               "Charlie blir stående på bakken.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 10), landed_disarmed(ev, "alpha"),
+                                  airborne_at(ev, "bravo", 20), never_armed(ev, "charlie")),
+               [_takeoff("alpha", 10), _land("alpha"), _takeoff("bravo", 20)],
+               "Alpha var oppe i 10 m og landet; bravo svever i 20 m."),
+        _entry("multi", "test", "multi6-south-two-land-one-home", three,
+               "Send all three 25 m south at 10 m; land alpha and bravo down there, but bring charlie back home.",
+               lambda c, ev: _all(*(at(ev, d, *c.point(d, -25, 0)) for d in ("alpha", "bravo")),
+                                  *(landed_disarmed(ev, d) for d in three),
+                                  visited(ev, "charlie", [c.point("charlie", -25, 0)]),
+                                  at(ev, "charlie", *_home(c, "charlie"))),
+               [*(_move(d, -25, 0, alt=10) for d in three), _land("alpha"), _land("bravo"), _rtl("charlie")],
+               "Alpha and bravo landed 25 m south; charlie flew there and came home."),
+        _entry("multi", "test", "multi6-tr-alpha-on-bravo-waits", three,
+               "Alpha ile bravo'yu 12 metreye kaldır; sonra alpha'yı 30 metre kuzeye gönder, bravo olduğu yerde "
+               "beklesin. Charlie yerde kalsın.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 30, 0), alt=12), airborne_at(ev, "alpha", 12),
+                                  at(ev, "bravo", *_home(c, "bravo"), alt=12), airborne_at(ev, "bravo", 12),
+                                  never_armed(ev, "charlie")),
+               [_takeoff("alpha", 12), _takeoff("bravo", 12), _move("alpha", 30, 0)],
+               "Alpha 30 m kuzeyde, bravo yerinde, ikisi de 12 m'de; charlie yerde."),
+        # compound
+        _entry("compound", "test", "compound6-nl-alpha-battery-midway", ("alpha",),
+               "Alpha: stijg op tot 12 meter, vlieg 30 meter naar het westen, meld me daar het batterijniveau en "
+               "keer dan terug naar huis.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -30)]), answer_mentions_number(ev, 72, 3),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 12), _move("alpha", 0, -30), _battery("alpha"), _rtl("alpha")],
+               "Alpha had 72 % op 30 m ten westen en is thuis geland.", battery={"alpha": 72.0}),
+        _entry("compound", "test", "compound6-cs-charlie-middle-of-first-leg", ("charlie",),
+               "Charlie: vzlétni do 15 m, leť 40 m na východ, potom 20 m na sever, pak se vrať nad střed prvního "
+               "úseku a tam přistaň.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 40), c.point("charlie", 20, 40)]),
+                                  at(ev, "charlie", *c.point("charlie", 0, 20)), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 15), _move("charlie", 0, 40), _move("charlie", 20, 0), _move("charlie", -20, -20),
+                _land("charlie")], "Charlie přistál uprostřed prvního úseku, 20 m východně od startu."),
+        _entry("compound", "test", "compound6-es-alpha-retrace", ("alpha",),
+               "Lleva a alpha a 14 metros, vuela 20 metros al norte y luego 30 al este; después deshaz el camino "
+               "tramo por tramo y aterriza en casa.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 20, 0), c.point("alpha", 20, 30),
+                                                        c.point("alpha", 20, 0), _home(c, "alpha")]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 14), _move("alpha", 20, 0), _move("alpha", 0, 30), _move("alpha", 0, -30),
+                _move("alpha", -20, 0), _land("alpha")], "Alpha deshizo el camino y aterrizó en casa."),
+        # conditional
+        _entry("conditional", "test", "cond6-fleet-average", three,
+               "If the fleet's average battery is above 60 %, launch all three to 10 m and keep them there; if "
+               "not, keep everyone down and tell me the average.",
+               lambda c, ev: _all(*(airborne_at(ev, d, 10) for d in three)),
+               [("fleet_status", {}), *(_takeoff(d, 10) for d in three)],
+               "The average is 63 %, so all three hover at 10 m.",
+               battery={"alpha": 70.0, "bravo": 55.0, "charlie": 64.0}),
+        _entry("conditional", "test", "cond6-pl-bravo-metres-per-percent", ("bravo",),
+               "Przeleć bravo na wysokości 10 m na północ o tyle metrów, ile procent baterii mu zostało, i zostaw "
+               "go tam w powietrzu.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 42, 0), alt=10), airborne_at(ev, "bravo", 10)),
+               [_battery("bravo"), _move("bravo", 42, 0, alt=10)],
+               "Bravo ma 42 %, więc wisi 42 m na północ na 10 m.", battery={"bravo": 42.0}),
+        _entry("conditional", "test", "cond6-ro-charlie-instead", three,
+               "Ridic-o pe alpha la 20 de metri și las-o acolo; dacă alpha are sub 40 % baterie, ridic-o pe charlie "
+               "în locul ei.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=20), airborne_at(ev, "charlie", 20),
+                                  never_armed(ev, "alpha"), never_armed(ev, "bravo")),
+               [_battery("alpha"), _takeoff("charlie", 20)],
+               "Alpha are 33 %, așa că charlie stă la 20 m în locul ei.", battery={"alpha": 33.0, "charlie": 78.0}),
+        # formation
+        _entry("formation", "test", "form6-da-pair-southwest", ("alpha", "bravo"),
+               "Stil alpha og bravo side om side med 18 meters mellemrum, i 22 meters højde, 35 meter sydvest for "
+               "deres nuværende position, og lad dem blive der.",
+               lambda c, ev: formation_at(c, ev, ("alpha", "bravo"), 22, 18, -d35, -d35),
+               [_formation(("alpha", "bravo"), "line", 22, 18, north=-d35, east=-d35)],
+               "Alpha og bravo står side om side 35 m mod sydvest i 22 m."),
+        _entry("formation", "test", "form6-tr-column-feet-north", three,
+               "Üç dronu arka arkaya, aralarında 50 fit olacak şekilde, 40 metre yükseklikte ve bulundukları "
+               "yerin 20 metre kuzeyinde sırala.",
+               lambda c, ev: _all(formation_at(c, ev, three, 40, 50 * FT, 20, 0), farthest_apart(ev, three, 100 * FT)),
+               [_formation(three, "column", 40, 50 * FT, north=20)],
+               "Üç drone 20 m kuzeyde, 40 m'de, 50 fit arayla arka arkaya."),
+        _entry("formation", "test", "form6-fr-line-slid-north", three,
+               "Aligne les trois drones à 12 m d'altitude, espacés de 10 m, là où ils sont ; ensuite décale toute "
+               "la ligne de 30 m vers le nord et laisse-la là.",
+               lambda c, ev: _all(formation_at(c, ev, three, 12, 10, 30, 0), farthest_apart(ev, three, 20)),
+               [_formation(three, "line", 12, 10), _formation(three, "line", 12, 10, north=30)],
+               "Les trois sont en ligne 30 m au nord, à 12 m."),
+        # relative
+        _entry("relative", "test", "rel6-sv-alpha-nne", ("alpha",),
+               "Flytta alpha 30 meter mot nordnordost på 12 meters höjd och låt den sväva där.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", *nne30), alt=12), airborne_at(ev, "alpha", 12)),
+               [_move("alpha", *nne30, alt=12)], "Alpha svävar 30 m mot nordnordost på 12 m."),
+        _entry("relative", "test", "rel6-it-charlie-half-higher-sw", ("charlie",),
+               "Porta charlie a 12 metri, poi alzalo della metà della sua quota e spostalo di 20 metri verso "
+               "sud-ovest; lascialo lì sospeso.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -d20, -d20), alt=18),
+                                  airborne_at(ev, "charlie", 18)),
+               [_takeoff("charlie", 12), _move("charlie", -d20, -d20, up=6)],
+               "Charlie è 20 m a sud-ovest, a 18 m."),
+        _entry("relative", "test", "rel6-no-bravo-back-toward-start", ("bravo",),
+               "Fly bravo 40 meter østover i 10 meters høyde, og trekk den deretter 15 meter tilbake mot "
+               "startpunktet; la den sveve der.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 40)]),
+                                  at(ev, "bravo", *c.point("bravo", 0, 25), alt=10), airborne_at(ev, "bravo", 10)),
+               [_move("bravo", 0, 40, alt=10), _move("bravo", 0, -15)], "Bravo svever 25 m øst for start i 10 m."),
+        # question
+        _entry("question", "test", "ask6-de-spread-of-charges", three,
+               "Wie viele Prozentpunkte liegen zwischen dem vollsten und dem leersten Akku der drei Drohnen? "
+               "Nichts starten, nur nachsehen.",
+               # the typed plan reads, it does not compute: the spread, or the two readings it comes from
+               lambda c, ev: _all(_any(answer_mentions_number(ev, 34, 1),
+                                       _all(answer_mentions_number(ev, 81, 1), answer_mentions_number(ev, 47, 1))),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "34 Prozentpunkte: alpha hat 81 %, bravo 47 %.",
+               battery={"alpha": 81.0, "bravo": 47.0, "charlie": 66.0}),
+        _entry("question", "test", "ask6-fi-lower-of-pair-airborne", three,
+               "Kummalla on vähemmän akkua jäljellä, bravolla vai charliella, ja onko kumpikaan niistä ilmassa? "
+               "Älä lennätä mitään.",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 52, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Bravolla (52 %); kumpikaan ei ole ilmassa.",
+               battery={"alpha": 38.0, "bravo": 52.0, "charlie": 90.0}),
+        _entry("question", "test", "ask6-ro-closest-to-half", three,
+               "Care dronă are nivelul bateriei cel mai apropiat de 50 %? Nu porni nimic.",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 57, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Bravo, cu 57 %.", battery={"alpha": 35.0, "bravo": 57.0, "charlie": 80.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
+        # 2 m the lowest altitude)
+        _entry("refusal", "test", "refuse6-da-charlie-sea-miles", ("charlie",),
+               "Flyv charlie 0,6 sømil mod nord i 20 meters højde.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "charlie", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("charlie", 0.6 * NM, 0, alt=20)],
+               "The gateway refused: 0.6 nautical miles (1111 m) is beyond the 1000 m limit."),
+        _entry("refusal", "test", "refuse6-cs-bravo-feet-over-ceiling", ("bravo",),
+               "Vzlétni s bravem do 80 m a potom ho zvedni o dalších 150 stop.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "bravo", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("bravo", 80), _move("bravo", up=150 * FT)],
+               "Bravo is at 80 m; the climb of 150 ft (to 126 m) was refused: above the 120 m altitude limit."),
+        _entry("refusal", "test", "refuse6-es-bravo-wide-orbit", ("bravo",),
+               "Haz que bravo dé una vuelta alrededor de su punto de despegue con un radio de 1,2 km, a 40 metros "
+               "de altura.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("bravo", 1200, 0, alt=40)],
+               "The gateway refused: a 1.2 km radius is beyond the 1000 m limit."),
+        # units
+        _entry("units", "test", "units6-no-charlie-feet-sea-miles", ("charlie",),
+               "Løft charlie til 50 fot, fly den 0,02 sjømil østover og la den henge der.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 0.02 * NM), alt=50 * FT),
+                                  airborne_at(ev, "charlie", 50 * FT)),
+               [_takeoff("charlie", 50 * FT), _move("charlie", 0, 0.02 * NM)],
+               "Charlie henger 0,02 sjømil øst i 50 fot."),
+        _entry("units", "test", "units6-tr-bravo-feet-west", ("bravo",),
+               "Bravo'yu 40 fit yüksekliğe çıkar, 150 fit batıya uçur ve orada indir.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 40 * FT), at(ev, "bravo", *c.point("bravo", 0, -150 * FT)),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 40 * FT), _move("bravo", 0, -150 * FT), _land("bravo")],
+               "Bravo 40 fite çıktı, 150 fit batıya uçtu ve indi."),
+        _entry("units", "test", "units6-alpha-yards-height", ("alpha",),
+               "Alpha: climb to 50 yards, go 100 yards south, then come down 40 feet and hover there.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 50 * YD),
+                                  at(ev, "alpha", *c.point("alpha", -100 * YD, 0), alt=50 * YD - 40 * FT),
+                                  airborne_at(ev, "alpha", 50 * YD - 40 * FT)),
+               [_takeoff("alpha", 50 * YD), _move("alpha", -100 * YD, 0), _move("alpha", up=-40 * FT)],
+               "Alpha hovers 100 yd south at 110 ft (about 33.5 m)."),
+        # pattern
+        _entry("pattern", "test", "pattern6-pt-bravo-zigzag", ("bravo",),
+               "Leva o bravo a 12 metros e faz um ziguezague para leste: quatro troços de 15 metros, alternando "
+               "entre nordeste e sudeste, a começar por nordeste; no fim aterra aí.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(zigzag)]),
+                                  at(ev, "bravo", *c.point("bravo", *_corners(zigzag)[-1])),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), *_legs("bravo", zigzag), _land("bravo")],
+               "O bravo fez o ziguezague e aterrou 42 m a leste."),
+        _entry("pattern", "test", "pattern6-de-charlie-expanding-square", ("charlie",),
+               "Charlie soll auf 10 m Höhe ein nach außen wachsendes Quadrat als Suchmuster fliegen: Strecken von "
+               "10, 10, 20, 20 und 30 m, zuerst nach Norden, nach jeder Strecke rechts abbiegen; danach dort in "
+               "der Luft bleiben.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(expanding)]),
+                                  at(ev, "charlie", *c.point("charlie", 20, -10), alt=10),
+                                  airborne_at(ev, "charlie", 10)),
+               [_takeoff("charlie", 10), *_legs("charlie", expanding)],
+               "Charlie ist das Suchmuster geflogen und schwebt 20 m nördlich, 10 m westlich auf 10 m."),
+        _entry("pattern", "test", "pattern6-alpha-spokes", ("alpha",),
+               "Alpha at 10 m: fly three 20 m spokes out from its home, north, then east, then south, coming back "
+               "over home after each one; land at home at the end.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(spokes)]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), *_legs("alpha", spokes), _land("alpha")],
+               "Alpha flew the three spokes and landed at home."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: a drone placed
+        # from itself, or from the other drone's home instead of where it flew, misses by 10 m or more)
+        _entry("placement", "test", "place6-nl-flanking-bravo", three,
+               "Vlieg bravo 30 meter naar het noorden op 15 meter hoogte. Zet daarna alpha 10 meter ten westen en "
+               "charlie 10 meter ten oosten van bravo, op dezelfde hoogte.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 30, 0), alt=15),
+                                  at(ev, "alpha", *c.point("bravo", 30, -10), alt=15),
+                                  at(ev, "charlie", *c.point("bravo", 30, 10), alt=15),
+                                  *(airborne_at(ev, d, 15) for d in three)),
+               lambda c: [_move("bravo", 30, 0, alt=15), _go("alpha", c.point("bravo", 30, -10), 15),
+                          _go("charlie", c.point("bravo", 30, 10), 15)],
+               "Bravo hangt 30 m noordelijk op 15 m, alpha 10 m ten westen en charlie 10 m ten oosten ervan."),
+        _entry("placement", "test", "place6-fi-charlie-bearing-from-alpha", three,
+               "Lennätä alpha 12 metrin korkeudessa 20 metriä pohjoiseen. Vie sitten charlie 25 metrin päähän "
+               "alphasta suuntaan 120 astetta pohjoisesta myötäpäivään, samaan korkeuteen.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=12), airborne_at(ev, "alpha", 12),
+                                  at(ev, "charlie", *c.point("alpha", 20 + b120[0], b120[1]), alt=12),
+                                  airborne_at(ev, "charlie", 12), never_armed(ev, "bravo")),
+               lambda c: [_move("alpha", 20, 0, alt=12), _go("charlie", c.point("alpha", 20 + b120[0], b120[1]), 12)],
+               "Alpha on 20 m pohjoisessa 12 m:ssä; charlie 25 m alphasta suuntaan 120 astetta."),
+        _entry("placement", "test", "place6-ro-charlie-lands-north-of-bravo", three,
+               "Bravo zboară 25 de metri spre vest la 10 metri înălțime și aterizează acolo. Apoi charlie "
+               "aterizează la 15 metri la nord de locul unde a aterizat bravo.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -25)), landed_disarmed(ev, "bravo"),
+                                  at(ev, "charlie", *c.point("bravo", 15, -25)), landed_disarmed(ev, "charlie"),
+                                  never_armed(ev, "alpha")),
+               lambda c: [_move("bravo", 0, -25, alt=10), _land("bravo"), _go("charlie", c.point("bravo", 15, -25), 10),
+                          _land("charlie")],
+               "Bravo a aterizat la 25 m vest; charlie la 15 m nord de el."),
+        # language
+        _entry("language", "test", "lang6-fi-alpha-north-land", ("alpha",),
+               "Nosta alpha 14 metrin korkeuteen, lennätä se 30 metriä pohjoiseen ja laske se sinne maahan.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 14), at(ev, "alpha", *c.point("alpha", 30, 0)),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 14), _move("alpha", 30, 0), _land("alpha")],
+               "Alpha lensi 30 m pohjoiseen ja laskeutui."),
+        _entry("language", "test", "lang6-tr-bravo-climb-stay", ("bravo",),
+               "Bravo'yu 12 metreye kaldır, sonra 8 metre daha yükselt ve orada beklet.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=20), airborne_at(ev, "bravo", 20)),
+               [_takeoff("bravo", 12), _move("bravo", up=8)], "Bravo kalkış noktasının üstünde 20 m'de bekliyor."),
+        _entry("language", "test", "lang6-da-charlie-west-home", ("charlie",),
+               "Lad charlie lette til 16 meter, flyve 25 meter mod vest og derefter flyve hjem og lande.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 16), visited(ev, "charlie", [c.point("charlie", 0, -25)]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 16), _move("charlie", 0, -25), _rtl("charlie")],
+               "Charlie fløj 25 m mod vest, kom hjem og landede."),
     ]  # fmt: skip
 
 
@@ -2174,7 +2497,8 @@ def corpus() -> list[CorpusEntry]:
         *_second_round(),
         *_third_round(),
         *_fourth_round(),
-        *_fifth_test_half(),
+        *_fifth_round(),
+        *_sixth_test_half(),
     ]
 
 

@@ -130,24 +130,43 @@ FOURTH_HALF_MOVED = frozenset({
 })  # fmt: skip
 
 
+#: the fifth test half (now ``_fifth_round``), moved to dev later on 2026-11-30 (each entry marked "fifth
+#: round") because its figures had been measured
+FIFTH_HALF_MOVED = frozenset({
+    "ask5-it-which-over-half", "ask5-pl-two-drones-height-charge", "ask5-status-before-start",
+    "compound5-alpha-two-steps-down", "compound5-de-charlie-u-turn", "compound5-fr-bravo-back-over-start",
+    "cond5-it-alpha-three-tiers", "cond5-nl-low-ones-stay", "cond5-pt-charlie-twenty-points-more",
+    "form5-es-wedge-south", "form5-pair-abreast-west-land", "form5-sv-row-west",
+    "lang5-cs-charlie-north-land", "lang5-it-alpha-climb-stay", "lang5-sv-bravo-east-home",
+    "multi5-each-north-of-own-pad", "multi5-es-pair-south-hover", "multi5-sv-alpha-lands-charlie-stays",
+    "pattern5-bravo-mow-south", "pattern5-cs-charlie-two-laps", "pattern5-fr-alpha-octagon",
+    "place5-alpha-stacked-over-charlie", "place5-cs-alpha-lands-north-of-charlie",
+    "place5-de-alpha-over-charlie-pad", "refuse5-charlie-steps-to-150", "refuse5-de-bravo-miles-and-back",
+    "refuse5-fr-alpha-skim", "rel5-alpha-half-that-west", "rel5-pl-charlie-south-east-climb",
+    "rel5-sv-bravo-out-back-lower", "single5-bravo-report-height", "single5-cs-alpha-up-down",
+    "single5-sv-charlie-hover", "units5-alpha-ft-miles", "units5-nl-charlie-feet-west",
+    "units5-pt-bravo-feet-then-metres",
+})  # fmt: skip
+
+
 def test_halves_are_disjoint_and_stratified_by_class() -> None:
-    """The dev half holds every entry written before the fifth test half (195, and the 36 of the fourth
-    test half, moved later on 2026-11-30); the test half is the fifth (``_fifth_test_half``), 3 a class."""
+    """The dev half holds every entry written before the sixth test half (231, and the 36 of the fifth
+    test half, moved later on 2026-11-30); the test half is the sixth (``_sixth_test_half``), 3 a class."""
     dev, test = select("dev"), select("test")
     assert not {e.id for e in dev} & {e.id for e in test}
     assert len(dev) + len(test) == len(corpus()) == len(select("all"))
-    assert len(test) == 36 and len(dev) == 231
+    assert len(test) == 36 and len(dev) == 267
     assert Counter(e.cls for e in test) == Counter(dict.fromkeys(CLASSES, 3))
     per_dev = Counter(e.cls for e in dev)
     assert per_dev == Counter({
-        "single": 17, "multi": 23, "compound": 25, "conditional": 25, "formation": 20, "relative": 22,
-        "question": 19, "refusal": 16, "units": 15, "pattern": 15, "placement": 19, "language": 15,
+        "single": 20, "multi": 26, "compound": 28, "conditional": 28, "formation": 23, "relative": 25,
+        "question": 22, "refusal": 19, "units": 18, "pattern": 18, "placement": 22, "language": 18,
     })  # fmt: skip
 
 
 def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
     """The rounds of 2026-11-29 and 2026-11-30: the 8 test entries seen while tuning, then the whole test
-    half (35) whose figures had informed a decision, then three times the whole test half (36) once
+    half (35) whose figures had informed a decision, then four times the whole test half (36) once
     measured, moved to dev; the test half holds none of them."""
     first_round = {
         "cond-half-battery-go",
@@ -159,7 +178,14 @@ def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
         "place-alpha-west-of-flying-bravo",
         "place-alpha-northeast-of-charlie",
     }
-    moved = first_round | SECOND_ROUND_MOVED | THIRD_ROUND_MOVED | THIRD_HALF_MOVED | FOURTH_HALF_MOVED
+    moved = (
+        first_round
+        | SECOND_ROUND_MOVED
+        | THIRD_ROUND_MOVED
+        | THIRD_HALF_MOVED
+        | FOURTH_HALF_MOVED
+        | FIFTH_HALF_MOVED
+    )
     by_id = {e.id: e for e in corpus()}
     assert all(by_id[i].half == "dev" for i in moved)
     test_ids = {e.id for e in select("test")}
@@ -513,7 +539,8 @@ def test_a_wrong_outcome_fails_the_fourth_test_half_checks() -> None:
 
 
 def test_a_wrong_outcome_fails_the_fifth_test_half_checks() -> None:
-    """Each trap the fifth test half sets: the right outcome passes, the likely wrong one fails."""
+    """Each trap the fifth test half (now dev, moved in the fifth round) set: the right outcome passes, the
+    likely wrong one fails."""
     ft = 0.3048
     idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
 
@@ -619,4 +646,211 @@ def test_a_wrong_outcome_fails_the_fifth_test_half_checks() -> None:
     low = {**idle, "alpha": _hovering("alpha", 30, 0, 2)}
     assert not skim(
         CTX, Evidence(low, {d: [t] for d, t in low.items()}, refused, "Refused: below the minimum.")
+    ).ok
+
+
+def test_a_wrong_outcome_fails_the_sixth_test_half_checks() -> None:
+    """Each trap the sixth test half sets: the right outcome passes, the likely wrong one fails."""
+    ft, yd, nm = 0.3048, 0.9144, 1852.0
+    idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
+
+    def ev(
+        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
+    ) -> Evidence:
+        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
+
+    def landed_at(lat_lon: tuple[float, float]) -> DroneTruth:
+        return DroneTruth(*lat_lon, 0.0, False, 90.0)
+
+    def over(lat_lon: tuple[float, float], alt: float) -> DroneTruth:
+        return DroneTruth(*lat_lon, alt, True, 90.0)
+
+    # feet read as metres, for the height and the leg
+    feet = _entry("units6-tr-bravo-feet-west").mission.check
+    down = landed_at(CTX.point("bravo", 0, -150 * ft))
+    assert feet(CTX, ev({"bravo": down}, {"bravo": [*_track("bravo", [(0, -150 * ft)], 40 * ft), down]})).ok
+    as_metres = landed_at(CTX.point("bravo", 0, -150))
+    assert not feet(
+        CTX, ev({"bravo": as_metres}, {"bravo": [*_track("bravo", [(0, -150)], 40), as_metres]})
+    ).ok
+
+    # a height in yards, and a descent in feet, read as metres
+    yards = _entry("units6-alpha-yards-height").mission.check
+    right = _hovering("alpha", -100 * yd, 0, 50 * yd - 40 * ft)
+    assert yards(
+        CTX, ev({"alpha": right}, {"alpha": [*_track("alpha", [(-100 * yd, 0)], 50 * yd), right]})
+    ).ok
+    wrong = _hovering("alpha", -100, 0, 50 - 40 * ft)
+    assert not yards(CTX, ev({"alpha": wrong}, {"alpha": [*_track("alpha", [(-100, 0)], 50), wrong]})).ok
+
+    # nautical miles read as kilometres
+    sea = _entry("units6-no-charlie-feet-sea-miles").mission.check
+    assert sea(CTX, ev({"charlie": _hovering("charlie", 0, 0.02 * nm, 50 * ft)})).ok
+    assert not sea(CTX, ev({"charlie": _hovering("charlie", 0, 20, 50 * ft)})).ok
+
+    # drones placed from themselves instead of from bravo
+    flank = _entry("place6-nl-flanking-bravo").mission.check
+    bravo_north = _hovering("bravo", 30, 0, 15)
+    right_flanks = {
+        "alpha": over(CTX.point("bravo", 30, -10), 15),
+        "charlie": over(CTX.point("bravo", 30, 10), 15),
+    }
+    assert flank(CTX, ev({"bravo": bravo_north, **right_flanks})).ok
+    own_flanks = {"alpha": _hovering("alpha", 30, -10, 15), "charlie": _hovering("charlie", 30, 10, 15)}
+    assert not flank(CTX, ev({"bravo": bravo_north, **own_flanks})).ok
+
+    # a bearing from alpha measured from charlie instead, or from east instead of north
+    bearing = _entry("place6-fi-charlie-bearing-from-alpha").mission.check
+    alpha_north = _hovering("alpha", 20, 0, 12)
+    n, e = 25 * math.cos(math.radians(120)), 25 * math.sin(math.radians(120))
+    assert bearing(CTX, ev({"alpha": alpha_north, "charlie": over(CTX.point("alpha", 20 + n, e), 12)})).ok
+    assert not bearing(CTX, ev({"alpha": alpha_north, "charlie": _hovering("charlie", n, e, 12)})).ok
+    assert not bearing(CTX, ev({"alpha": alpha_north, "charlie": over(CTX.point("alpha", 20 + e, n), 12)})).ok
+
+    # charlie set down north of bravo's pad instead of where bravo landed
+    beside = _entry("place6-ro-charlie-lands-north-of-bravo").mission.check
+    bravo_west = landed_at(CTX.point("bravo", 0, -25))
+    assert beside(CTX, ev({"bravo": bravo_west, "charlie": landed_at(CTX.point("bravo", 15, -25))})).ok
+    assert not beside(CTX, ev({"bravo": bravo_west, "charlie": landed_at(CTX.point("bravo", 15, 0))})).ok
+
+    # a zigzag flown as one straight line east
+    zigzag = _entry("pattern6-pt-bravo-zigzag").mission.check
+    d15 = 15 / math.sqrt(2)
+    end = landed_at(CTX.point("bravo", 0, 4 * d15))
+    zig = _track("bravo", [(d15, d15), (-d15, d15)] * 2, 12)
+    assert zigzag(CTX, ev({"bravo": end}, {"bravo": [*zig, end]})).ok
+    straight = _track("bravo", [(0, 4 * d15)], 12)
+    assert not zigzag(CTX, ev({"bravo": end}, {"bravo": [*straight, end]})).ok
+
+    # an expanding square turning left instead of right
+    search = _entry("pattern6-de-charlie-expanding-square").mission.check
+    legs = [(10.0, 0.0), (0.0, 10.0), (-20.0, 0.0), (0.0, -20.0), (30.0, 0.0)]
+    rightward = _track("charlie", legs, 10)
+    assert search(CTX, ev({"charlie": rightward[-1]}, {"charlie": rightward})).ok
+    leftward = _track("charlie", [(n, -e) for n, e in legs], 10)
+    assert not search(CTX, ev({"charlie": leftward[-1]}, {"charlie": leftward})).ok
+
+    # spokes flown as a round trip that never comes back over home in between
+    spokes = _entry("pattern6-alpha-spokes").mission.check
+    home = landed_at(CTX.point("alpha", 0, 0))
+    out_and_in = _track("alpha", [(20, 0), (-20, 0), (0, 20), (0, -20), (-20, 0), (20, 0)], 10)
+    assert spokes(CTX, ev({"alpha": home}, {"alpha": [*out_and_in, home]})).ok
+    ring = _track("alpha", [(20, 0), (-20, 20), (-20, -20), (20, 0)], 10)
+    assert not spokes(CTX, ev({"alpha": home}, {"alpha": [*ring, home]})).ok
+
+    # straight home instead of back along the route, leg by leg
+    retrace = _entry("compound6-es-alpha-retrace").mission.check
+    home = landed_at(CTX.point("alpha", 0, 0))
+    back = _track("alpha", [(20, 0), (0, 30), (0, -30), (-20, 0)], 14)
+    assert retrace(CTX, ev({"alpha": home}, {"alpha": [*back, home]})).ok
+    direct = _track("alpha", [(20, 0), (0, 30), (-20, -30)], 14)
+    assert not retrace(CTX, ev({"alpha": home}, {"alpha": [*direct, home]})).ok
+
+    # landed at the end of the route instead of over the middle of the first leg
+    middle = _entry("compound6-cs-charlie-middle-of-first-leg").mission.check
+    route = _track("charlie", [(0, 40), (20, 0)], 15)
+    mid = landed_at(CTX.point("charlie", 0, 20))
+    assert middle(CTX, ev({"charlie": mid}, {"charlie": [*route, mid]})).ok
+    end = landed_at(CTX.point("charlie", 20, 40))
+    assert not middle(CTX, ev({"charlie": end}, {"charlie": [*route, end]})).ok
+
+    # the battery reading left out of the answer
+    midway = _entry("compound6-nl-alpha-battery-midway").mission.check
+    home = landed_at(CTX.point("alpha", 0, 0))
+    west = {"alpha": [*_track("alpha", [(0, -30), (0, 30)], 12), home]}
+    assert midway(CTX, ev({"alpha": home}, west, text="Alpha had 72 % and is home.")).ok
+    assert not midway(CTX, ev({"alpha": home}, west, text="Alpha is home.")).ok
+
+    # as many metres as per cent: a fixed leg fails
+    per_cent = _entry("cond6-pl-bravo-metres-per-percent").mission.check
+    assert per_cent(CTX, ev({"bravo": _hovering("bravo", 42, 0, 10)})).ok
+    assert not per_cent(CTX, ev({"bravo": _hovering("bravo", 10, 0, 10)})).ok
+
+    # alpha flown although it is under 40 %, instead of charlie
+    instead = _entry("cond6-ro-charlie-instead").mission.check
+    assert instead(CTX, ev({"charlie": _hovering("charlie", 0, 0, 20)})).ok
+    assert not instead(CTX, ev({"alpha": _hovering("alpha", 0, 0, 20)})).ok
+
+    # the average read as a threshold each drone must pass (bravo, at 55 %, left down)
+    average = _entry("cond6-fleet-average").mission.check
+    up = {d: _hovering(d, 0, 0, 10) for d in DRONES}
+    assert average(CTX, ev(up)).ok
+    assert not average(CTX, ev({d: up[d] for d in ("alpha", "charlie")})).ok
+
+    # a line formed where the drones are and never slid north
+    slide = _entry("form6-fr-line-slid-north").mission.check
+
+    def row(north: float) -> dict[str, DroneTruth]:
+        return {d: _hovering("bravo", north, east, 12) for d, east in zip(DRONES, (-10, 0, 10), strict=True)}
+
+    assert slide(CTX, ev(row(30))).ok
+    assert not slide(CTX, ev(row(0))).ok
+
+    # a column spaced 50 m instead of 50 ft
+    column = _entry("form6-tr-column-feet-north").mission.check
+
+    def file_of(spacing: float) -> dict[str, DroneTruth]:
+        return {
+            d: _hovering("bravo", 20 + k * spacing, 0, 40) for d, k in zip(DRONES, (-1, 0, 1), strict=True)
+        }
+
+    assert column(CTX, ev(file_of(50 * ft))).ok
+    assert not column(CTX, ev(file_of(50))).ok
+
+    # north-north-east flown as north-east
+    nne = _entry("rel6-sv-alpha-nne").mission.check
+    a = math.radians(22.5)
+    assert nne(CTX, ev({"alpha": _hovering("alpha", 30 * math.cos(a), 30 * math.sin(a), 12)})).ok
+    assert not nne(CTX, ev({"alpha": _hovering("alpha", 30 / math.sqrt(2), 30 / math.sqrt(2), 12)})).ok
+
+    # 15 m back toward the start read as 15 m from the start
+    back_toward = _entry("rel6-no-bravo-back-toward-start").mission.check
+    out = _track("bravo", [(0, 40)], 10)
+    assert back_toward(CTX, ev({"bravo": _hovering("bravo", 0, 25, 10)}, {"bravo": out})).ok
+    assert not back_toward(CTX, ev({"bravo": _hovering("bravo", 0, 15, 10)}, {"bravo": out})).ok
+
+    # charlie landed with the others instead of coming home
+    split = _entry("multi6-south-two-land-one-home").mission.check
+    south = {d: landed_at(CTX.point(d, -25, 0)) for d in ("alpha", "bravo")}
+    went = {d: [*_track(d, [(-25, 0)], 10), south.get(d, landed_at(CTX.point(d, 0, 0)))] for d in DRONES}
+    assert split(CTX, ev({**south, "charlie": landed_at(CTX.point("charlie", 0, 0))}, went)).ok
+    assert not split(CTX, ev({**south, "charlie": landed_at(CTX.point("charlie", -25, 0))}, went)).ok
+
+    # the climb to stay at flown as a leg north
+    stay = _entry("lang6-tr-bravo-climb-stay").mission.check
+    assert stay(CTX, ev({"bravo": _hovering("bravo", 0, 0, 20)})).ok
+    assert not stay(CTX, ev({"bravo": _hovering("bravo", 8, 0, 12)})).ok
+
+    # the landing at the end dropped
+    north_land = _entry("lang6-fi-alpha-north-land").mission.check
+    flown = _track("alpha", [(30, 0)], 14)
+    landed = landed_at(CTX.point("alpha", 30, 0))
+    assert north_land(CTX, ev({"alpha": landed}, {"alpha": [*flown, landed]})).ok
+    assert not north_land(CTX, ev({"alpha": flown[-1]}, {"alpha": flown})).ok
+
+    # the fuller of the pair named instead of the emptier one, or the spread's readings left out
+    pair = _entry("ask6-fi-lower-of-pair-airborne").mission.check
+    assert pair(CTX, ev({}, text="bravo: 52 %, on the ground; charlie: 90 %, on the ground")).ok
+    assert not pair(CTX, ev({}, text="charlie: 90 %, on the ground")).ok
+    spread = _entry("ask6-de-spread-of-charges").mission.check
+    assert spread(CTX, ev({}, text="34 Prozentpunkte.")).ok
+    assert spread(CTX, ev({}, text="alpha: 81 %; bravo: 47 %; charlie: 66 %")).ok
+    assert not spread(CTX, ev({}, text="Alpha hat 81 %.")).ok
+
+    # a climb past the ceiling given in feet: refused and not flown through
+    ceiling = _entry("refuse6-cs-bravo-feet-over-ceiling").mission.check
+    refused = [
+        {
+            "name": "move_to_relative",
+            "status": "error",
+            "text": "125.7 m is above the altitude limit of 120 m",
+        }
+    ]
+    at_80 = {**idle, "bravo": _hovering("bravo", 0, 0, 80)}
+    assert ceiling(
+        CTX, Evidence(at_80, {d: [t] for d, t in at_80.items()}, refused, "Refused: above the limit.")
+    ).ok
+    high = {**idle, "bravo": _hovering("bravo", 0, 0, 125.7)}
+    assert not ceiling(
+        CTX, Evidence(high, {d: [t] for d, t in high.items()}, refused, "Refused: above the limit.")
     ).ok
