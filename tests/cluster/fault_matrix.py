@@ -180,7 +180,7 @@ class Rig:
             thaw(c.nats.proc)
         elif fault == "postgresql-killed":
             pg.proc = None
-            _wait_gone(pg)
+            wait_gone(pg)
             pg.start()
         elif fault == "postgresql-frozen":
             assert pg.proc is not None
@@ -196,7 +196,7 @@ class Rig:
             self.db_proxies["node-a"].heal()
 
 
-def _wait_gone(pg: PostgresServer) -> None:
+def wait_gone(pg: PostgresServer) -> None:
     """Until the killed postmaster named in its pid file is gone (a start before that is refused)."""
     pid_file = pg.data / "postmaster.pid"
     deadline = time.monotonic() + scaled(20)
