@@ -392,8 +392,10 @@ class ClusterNode:
         registry = self._require_registry()
         vehicles = {}
         for vid, lease in self.held.items():
-            vehicle = registry.find(vid)
-            if vid not in self._adopting and isinstance(vehicle, Vehicle):
+            if vid in self._adopting or not registry.is_local(vid):
+                continue
+            vehicle = registry.get(vid)
+            if isinstance(vehicle, Vehicle):
                 vehicles[vid] = (vehicle, lease.epoch)
         try:
             await pick_up_late_operations(self.gateway, self.node_id, vehicles)
