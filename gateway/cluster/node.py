@@ -37,12 +37,13 @@ from gateway.cluster.runtime_view import NodeRuntime
 from gateway.cluster.stop_notify import StopRelay
 from gateway.cluster.stop_takeover import StopTakeover
 from gateway.cluster.stoplink import StopTarget
-from gateway.cluster.takeover import pick_up_operations
+from gateway.cluster.takeover import pick_up_late_operations, pick_up_operations
 from gateway.cluster.telemetry_fanout import TelemetryFanout
 from gateway.config import Settings
 from gateway.errors import GatewayError, NoOwner
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.geofence import FLEET
+from gateway.fleet.vehicles.vehicle import Vehicle
 from gateway.registry.spec import VehicleSpec
 from gateway.util.json_types import JsonObject
 
@@ -121,6 +122,7 @@ class ClusterNode:
         self.lock_versions = LockVersions()  # a lock broadcast older than what this node knows is dropped
         self._adopting_from: dict[str, str] = {}  # vehicle -> the node it was taken from, while adopting
         self._adoptions: set[asyncio.Task[None]] = set()
+        self._adopting: set[str] = set()  # the vehicles whose adoption has not picked up their operations
         self.stops = FencedStops(self)  # the stop-only path of this node once it fenced itself
         self.fanout = TelemetryFanout(self)
         # calls routed to a drone's owner, and answered for this node's; annotated, so that mypy checks
@@ -380,7 +382,25 @@ class ClusterNode:
                     await self.take_over(vid, lease, was, asked)
             if result.release:
                 await self.bus.broadcast("leases", {"node": self.node_id, "released": result.release})
+            await self._pick_up_late()
             return result
+
+    async def _pick_up_late(self) -> None:
+        """The running operations of the drones this node holds that it does not follow (written late,
+        from another node's spool, after this node took the drone over) are resumed or closed
+        (`pick_up_late_operations`)."""
+        registry = self._require_registry()
+        vehicles = {}
+        for vid, lease in self.held.items():
+            if vid in self._adopting or not registry.is_local(vid):
+                continue
+            vehicle = registry.get(vid)
+            if isinstance(vehicle, Vehicle):
+                vehicles[vid] = (vehicle, lease.epoch)
+        try:
+            await pick_up_late_operations(self.gateway, self.node_id, vehicles)
+        except Exception as exc:  # tried again at the next tick
+            log.warning("looking for operations nobody follows failed: %r", exc)
 
     async def take_over(self, vehicle_id: str, lease: Lease, previous: str | None, asked: float) -> None:
         """Adopt a vehicle whose lease this node has just taken (the statement sent at ``asked``,
@@ -429,6 +449,13 @@ class ClusterNode:
         return landed and armed is False
 
     async def _adopt(self, vehicle_id: str, lease: Lease, previous: str | None) -> None:
+        self._adopting.add(vehicle_id)
+        try:
+            await self._adopt_and_pick_up(vehicle_id, lease, previous)
+        finally:
+            self._adopting.discard(vehicle_id)
+
+    async def _adopt_and_pick_up(self, vehicle_id: str, lease: Lease, previous: str | None) -> None:
         registry = self._require_registry()
         self.held[vehicle_id] = lease  # renewed from now on: a sidecar never runs without its lease
         try:
@@ -456,6 +483,11 @@ class ClusterNode:
         over next, which follows them under the same ids, as after a node loss)."""
         if fenced:
             self.calls.cut_short(vehicle_id, why)
+        ops = self.gateway.operations
+        let_go = [] if ops is None else ops.let_go(vehicle_id)
+        if let_go:  # the node that holds the drone next follows them, or closes them
+            log.warning("%s: node %s no longer follows its operation(s) %s (%s)", vehicle_id, self.node_id,
+                        ", ".join(let_go), why)  # fmt: skip
         self.held.pop(vehicle_id, None)
         self._renewed_at.pop(vehicle_id, None)
         sub = self._served.pop(vehicle_id, None)

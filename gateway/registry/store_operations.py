@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Sequence
 
 from sqlalchemy import insert, select, update
@@ -9,8 +10,13 @@ from sqlalchemy import insert, select, update
 from gateway.registry.models import operations
 from gateway.registry.records import OperationRecord
 from gateway.registry.store_audit import AuditTrail
-from gateway.registry.store_core import row_by_key
+from gateway.registry.store_core import row_by_key, rowcount
 from gateway.util.json_types import JsonObject
+
+log = logging.getLogger(__name__)
+
+#: the one status an operation row may leave; every other is its end
+RUNNING = "running"
 
 
 class OperationTable(AuditTrail):
@@ -24,15 +30,29 @@ class OperationTable(AuditTrail):
         return op
 
     async def _write_operation(self, data: JsonObject) -> None:
+        """The row as ``data`` has it, unless the stored one has ended: an ended operation is final. A
+        write kept while the database was down (a node's spool) reaches it late, possibly after the node
+        that took the drone over ended the operation; it never brings it back to running, nor changes
+        how it ended."""
         op = OperationRecord.model_validate(data["op"])
         values = op.model_dump()
         async with self.engine.begin() as conn:
             if await row_by_key(conn, operations, op.id) is None:
                 await conn.execute(insert(operations).values(values))
+                written = True
             else:
                 changes = {key: value for key, value in values.items() if key != "id"}
-                await conn.execute(update(operations).where(operations.c.id == op.id).values(changes))
-        if op.status != "running":
+                result = await conn.execute(
+                    update(operations)
+                    .where(operations.c.id == op.id, operations.c.status == RUNNING)
+                    .values(changes)
+                )
+                written = rowcount(result) > 0
+        if not written:
+            log.info("operation %s (%s) is not written: it has ended in the database already", op.id,
+                     op.status)  # fmt: skip
+            return
+        if op.status != RUNNING:
             await self._finish_audit_of(op.id, op.status, op.message, op.finished_at or op.updated_at)
 
     async def get_operation(self, operation_id: str) -> OperationRecord | None:

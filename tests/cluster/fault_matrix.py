@@ -170,7 +170,15 @@ class Rig:
             each = len(c.drone_ids) // len(c.nodes)
             return owners if held == sorted(n.name for n in c.nodes for _ in range(each)) else None
 
-        return await eventually(even, "two drones owned by each node", within_s=90)
+        owners = await eventually(even, "two drones owned by each node", within_s=90)
+
+        async def settled() -> bool:
+            # a case's stop can still be travelling (a land a thawed node's drones get once their new owner
+            # picks the stop's operations up): it would supersede the next case's takeoff
+            return not await c.rows("SELECT id FROM operations WHERE status = 'running'")
+
+        await eventually(settled, "no operation of an earlier case still running", within_s=60)
+        return owners
 
     def recover(self, fault: str) -> None:
         c, pg = self.c, self.pg
@@ -180,7 +188,7 @@ class Rig:
             thaw(c.nats.proc)
         elif fault == "postgresql-killed":
             pg.proc = None
-            _wait_gone(pg)
+            wait_gone(pg)
             pg.start()
         elif fault == "postgresql-frozen":
             assert pg.proc is not None
@@ -196,7 +204,7 @@ class Rig:
             self.db_proxies["node-a"].heal()
 
 
-def _wait_gone(pg: PostgresServer) -> None:
+def wait_gone(pg: PostgresServer) -> None:
     """Until the killed postmaster named in its pid file is gone (a start before that is refused)."""
     pid_file = pg.data / "postmaster.pid"
     deadline = time.monotonic() + scaled(20)

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from gateway.cluster.takeover import pick_up_operations
+from gateway.cluster.takeover import pick_up_late_operations, pick_up_operations
 from gateway.fleet import geo
 from gateway.fleet.policy.caller import Caller
 from gateway.registry.records import OperationRecord, utcnow
@@ -95,3 +95,40 @@ async def test_an_operation_that_cannot_be_followed_again_is_interrupted_saying_
         "the drone keeps flying its last command on its own: check get_telemetry before the next command"
     )
     assert gateway.commander.operations.latest("d1") is None  # nothing is tracked on this node
+
+
+async def test_a_drone_given_up_leaves_its_operation_to_the_next_owner_which_picks_up_a_late_row(
+    gateway: Gateway,
+) -> None:
+    """A node that gives a drone up (it fenced itself) stops following its operation and writes nothing
+    about it; a running row that reaches the database after the drone's next owner took it over (kept in
+    the previous owner's spool) is picked up at that owner's next tick; one older than the operation the
+    owner runs is closed, not resumed over it."""
+    store = gateway.require_store()
+    ops = gateway.commander.operations
+    vehicle = gateway.require_registry().get("d1")
+    lat, lon = geo.offset_position(HOME[0], HOME[1], 300.0, 0.0)
+    await left_running(gateway, "followed", "goto", 5.0, lat_deg=lat, lon_deg=lon, alt_m=10.0)
+    assert await pick_up_operations(gateway, "node-a", vehicle, 2, "node-c") == 1
+    assert ops.running("d1") is not None and ops.knows("followed")
+
+    assert ops.let_go("d1") == ["followed"]
+    assert ops.running("d1") is None and ops.latest("d1") is None and not ops.knows("followed")
+    record = await store.get_operation("followed")
+    assert record is not None and record.status == "running"  # left to the node that holds it next
+
+    # this node holds the drone again: the row nobody follows is followed again
+    assert await pick_up_late_operations(gateway, "node-a", {"d1": (vehicle, 4)}) == 1
+    assert ops.running("d1") is not None and ops.running("d1").id == "followed"  # type: ignore[union-attr]
+    assert await pick_up_late_operations(gateway, "node-a", {"d1": (vehicle, 4)}) == 0  # followed now
+
+    # a row older than the operation it runs, written late: closed, the running one kept
+    await left_running(gateway, "late-older", "goto", 30.0, lat_deg=lat, lon_deg=lon, alt_m=10.0)
+    assert await pick_up_late_operations(gateway, "node-a", {"d1": (vehicle, 4)}) == 1
+    late = await store.get_operation("late-older")
+    assert late is not None and late.status == "interrupted", late
+    assert late.message is not None and "(a newer operation was running)" in late.message, late.message
+    assert ops.running("d1").id == "followed"  # type: ignore[union-attr]
+    # drones this node does not hold are not looked at
+    await left_running(gateway, "elsewhere", "goto", 1.0, lat_deg=lat, lon_deg=lon, alt_m=10.0)
+    assert await pick_up_late_operations(gateway, "node-a", {}) == 0

@@ -17,6 +17,7 @@ from gateway.registry.records import AuditEntry, OperationRecord, TrackSample
 from gateway.registry.spec import VehicleSpec
 from gateway.registry.spool import Spool
 from gateway.registry.store import Store
+from tests.helpers.tcpproxy import tcp_proxy
 from tests.persist.pg import PostgresServer, create_database, find_pg_bin, restartable_postgres
 
 pytestmark = pytest.mark.skipif(
@@ -115,3 +116,50 @@ async def test_the_spool_file_gives_a_restarted_node_what_it_kept_and_no_more(tm
     assert not path.exists()  # nothing waits: no file
     third = Spool(apply=apply)
     assert await third.attach(path) == 0 and len(written) == 3  # nothing is written twice
+
+
+async def test_a_running_row_kept_while_the_database_was_cut_never_reopens_an_operation_ended_since(
+    server_and_store: tuple[PostgresServer, Store],
+) -> None:
+    """Node A (its connection to the database through a proxy, cut) keeps its operation's running rows;
+    node B, which took the drone over, ends the operation meanwhile. When A's link heals, its kept rows
+    are written and the operation stays as B ended it, its audit row too."""
+    _server, store_b = server_and_store
+    port = int(store_b.url.rsplit(":", 1)[1].split("/", 1)[0])
+    with tcp_proxy("127.0.0.1", port) as proxy:
+        store_a = await Store.open(store_b.url.replace(f":{port}/", f":{proxy.port}/"), upgrade=False)
+        try:
+            made = datetime.now(UTC) - timedelta(seconds=5)
+            op = OperationRecord(id="op-k", vehicle_id="d1", kind="goto", status="running", progress=0.1,
+                                 created_at=made, updated_at=made)  # fmt: skip
+            await store_a.save_operation(op)
+            await store_a.add_audit(
+                AuditEntry(source="mcp", action="goto", outcome="running", operation_id="op-k")
+            )
+            proxy.cut()
+            store_a.spool.unreachable_now()  # as when its node fences itself
+            later = datetime.now(UTC)
+            assert await store_a.save_operation(
+                op.model_copy(update={"progress": 0.4, "message": "300 m to go", "updated_at": later})
+            )
+            assert len(store_a.spool) == 1
+            ended = datetime.now(UTC)
+            await store_b.save_operation(
+                op.model_copy(
+                    update={
+                        "status": "failed",
+                        "message": "landed before arriving",
+                        "updated_at": ended,
+                        "finished_at": ended,
+                    }
+                )
+            )
+            proxy.heal()
+            assert await store_a.spool.flush(60.0), f"{len(store_a.spool)} writes still kept"
+            assert store_a.spool.written_late == 1 and store_a.spool.dropped == 0
+        finally:
+            await store_a.close()
+    stored = await store_b.get_operation("op-k")
+    assert stored is not None and (stored.status, stored.message) == ("failed", "landed before arriving")
+    [row] = await store_b.list_audit()
+    assert row.outcome == "error", row

@@ -510,6 +510,35 @@ def test_audit_entry_rejects_unknown_outcome() -> None:
 # --- operations --------------------------------------------------------------------------------
 
 
+async def test_an_ended_operation_is_final(store: Store) -> None:
+    """A running row written after the operation ended (kept by a node while the database was down)
+    does not bring it back, nor does a second end change how it ended."""
+    op = OperationRecord(id="op-e", vehicle_id="alpha", kind="goto", status="running", created_at=T0)
+    await store.save_operation(op)
+    ended = T0 + timedelta(seconds=30)
+    await store.save_operation(
+        op.model_copy(
+            update={"status": "succeeded", "message": "arrived", "updated_at": ended, "finished_at": ended}
+        )
+    )
+    await store.save_operation(op.model_copy(update={"progress": 0.5, "message": "20 m to go"}))
+    later = ended + timedelta(seconds=5)
+    await store.save_operation(
+        op.model_copy(
+            update={
+                "status": "interrupted",
+                "message": "gateway stopped",
+                "updated_at": later,
+                "finished_at": later,
+            }
+        )
+    )
+    got = await store.get_operation("op-e")
+    assert got is not None and (got.status, got.message) == ("succeeded", "arrived")
+    assert got.finished_at is not None and got.finished_at.replace(tzinfo=UTC) == ended
+    assert [r.id for r in await store.list_operations(status="running")] == []
+
+
 async def test_operations_upsert_and_list(store: Store) -> None:
     op = OperationRecord(id="op-1", vehicle_id="alpha", kind="takeoff", params={"alt": 10}, status="running")
     await store.save_operation(op)

@@ -138,6 +138,16 @@ class ModeWatch:
         """The gateway commands nothing the mode shows (a takeover, kill): nothing more is judged."""
         self._expected.pop(vehicle_id, None)
 
+    def let_go(self, vehicle_id: str) -> None:
+        """This process no longer commands the vehicle (its cluster node gave it up): nothing more is
+        judged, and its watch ends (it reads the vehicle object of the link that was stopped; a drone
+        adopted again gets a new one, watched anew)."""
+        self._expected.pop(vehicle_id, None)
+        for tasks in (self._watches, self._finders):
+            task = tasks.pop(vehicle_id, None)
+            if task is not None and task is not asyncio.current_task():
+                task.cancel()
+
     def watch_found_flying(self, vehicles: Iterable[FlyingVehicle]) -> None:
         """After a restart: every vehicle found armed in the air gets its mode watch again, so a pilot's
         later switch is a takeover as before. It is judged by what the gateway last commanded it (its

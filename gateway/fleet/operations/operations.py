@@ -177,6 +177,35 @@ class OperationManager:
         """The tracker of a running operation."""
         return self._trackers.get(operation_id)
 
+    def knows(self, operation_id: str) -> bool:
+        """Whether this process follows (or followed to its end) the operation ``operation_id``."""
+        return operation_id in self._ops
+
+    def let_go(self, vehicle_id: str) -> list[str]:
+        """This process no longer commands the vehicle (a cluster node gave it up: it fenced itself, or
+        lost its lease): its operations on it are no longer followed here, and nothing more is written
+        about them. The node that takes the drone over (this one again, or another) follows the running
+        ones under the same ids from the database, or closes them there. A monitor left running would
+        follow the stopped link for ever ("connection interrupted"), keep the operation running in this
+        process (a takeoff refusing every later one), and end it later over what the next owner
+        recorded. The ids of the running ones."""
+        running = []
+        for op_id, op in list(self._ops.items()):
+            if op.vehicle_id != vehicle_id:
+                continue
+            del self._ops[op_id]
+            for kept in (self._trackers, self._explained, self._last_saved):
+                kept.pop(op_id, None)
+            task = self._monitors.pop(op_id, None)
+            if task is not None:
+                task.cancel()
+            self.mode_watch.drop(op_id)
+            if not op.finished:
+                running.append(op_id)
+        self._current.pop(vehicle_id, None)
+        self.mode_watch.let_go(vehicle_id)
+        return running
+
     async def interrupt(self, op: Operation, message: str) -> None:
         """End ``op`` as interrupted (a takeover)."""
         await self._finish(op, OpStatus.interrupted, message)
