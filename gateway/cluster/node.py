@@ -37,13 +37,12 @@ from gateway.cluster.runtime_view import NodeRuntime
 from gateway.cluster.stop_notify import StopRelay
 from gateway.cluster.stop_takeover import StopTakeover
 from gateway.cluster.stoplink import StopTarget
-from gateway.cluster.takeover import pick_up_late_operations, pick_up_operations
+from gateway.cluster.takeover import pick_up_late, pick_up_operations
 from gateway.cluster.telemetry_fanout import TelemetryFanout
 from gateway.config import Settings
 from gateway.errors import GatewayError, NoOwner
 from gateway.fleet.policy.caller import Caller
 from gateway.fleet.policy.geofence import FLEET
-from gateway.fleet.vehicles.vehicle import Vehicle
 from gateway.registry.spec import VehicleSpec
 from gateway.util.json_types import JsonObject
 
@@ -386,21 +385,8 @@ class ClusterNode:
             return result
 
     async def _pick_up_late(self) -> None:
-        """The running operations of the drones this node holds that it does not follow (written late,
-        from another node's spool, after this node took the drone over) are resumed or closed
-        (`pick_up_late_operations`)."""
-        registry = self._require_registry()
-        vehicles = {}
-        for vid, lease in self.held.items():
-            if vid in self._adopting or not registry.is_local(vid):
-                continue
-            vehicle = registry.get(vid)
-            if isinstance(vehicle, Vehicle):
-                vehicles[vid] = (vehicle, lease.epoch)
-        try:
-            await pick_up_late_operations(self.gateway, self.node_id, vehicles)
-        except Exception as exc:  # tried again at the next tick
-            log.warning("looking for operations nobody follows failed: %r", exc)
+        epochs = {vid: lease.epoch for vid, lease in self.held.items() if vid not in self._adopting}
+        await pick_up_late(self.gateway, self.node_id, self._require_registry(), epochs)
 
     async def take_over(self, vehicle_id: str, lease: Lease, previous: str | None, asked: float) -> None:
         """Adopt a vehicle whose lease this node has just taken (the statement sent at ``asked``,

@@ -29,6 +29,8 @@ from gateway.fleet.operations.trackers import (
     YawTracker,
 )
 from gateway.fleet.vehicles.protocols import FlyingVehicle
+from gateway.fleet.vehicles.registry import Registry
+from gateway.fleet.vehicles.vehicle import Vehicle
 from gateway.registry.records import OperationRecord, utcnow
 from gateway.util.json_types import JsonObject, json_float
 
@@ -76,6 +78,19 @@ async def pick_up_operations(
         return 0
     records = await store.list_operations(vehicle_id=vehicle.id, status="running", limit=20)
     return await _pick_up(gateway, node_id, vehicle, epoch, previous, records)
+
+
+async def pick_up_late(
+    gateway: NodeRuntime, node_id: str, registry: Registry, epochs: Mapping[str, int]
+) -> None:
+    """At a lease tick: `pick_up_late_operations` for the drones of ``epochs`` (id -> lease epoch) whose
+    link runs in this process; a failure is logged, and tried again at the next tick."""
+    held = [(vid, epoch) for vid, epoch in epochs.items() if registry.is_local(vid)]
+    vehicles = {vid: (found, epoch) for vid, epoch in held if isinstance(found := registry.get(vid), Vehicle)}
+    try:
+        await pick_up_late_operations(gateway, node_id, vehicles)
+    except Exception as exc:
+        log.warning("looking for operations nobody follows failed: %r", exc)
 
 
 async def pick_up_late_operations(
