@@ -156,8 +156,6 @@ class Compiler:
         alt = step.altitude.metres if step.altitude is not None else None
         if step.origin.kind != "here":
             return await self._move_from(step, north, east, up, alt)
-        if alt is None and not any(leg.distance.value for leg in step.legs):  # "<drone> does not move"
-            return [Said(f"{step.drone} stays where it is (a move of 0 m).")]
         if step.altitude is not None and all(leg.direction in ("up", "down") for leg in step.legs):
             return await self._height(Altitude(action="altitude", drone=step.drone, altitude=step.altitude))
         calls, climbed = await self._lift(step.drone, alt, up)

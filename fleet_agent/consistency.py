@@ -43,12 +43,22 @@ def without_unasked(request: str, fleet: list[str], plan: Plan) -> Plan:
     whose named drones' steps carry only its own numbers (the model added a step it had seen in an
     example, with the example's numbers, and wrote the same plan again when asked to correct it). A step
     of an unnamed drone that carries the request's numbers or none (a landing, a hold, a formation) is
-    kept: a request may mean drones without naming each ("the others", "both", "all three", a count)."""
+    kept: a request may mean drones without naming each ("the others", "both", "all three", a count).
+    A step whose numbers are all 0, in a request that gives no 0, is left out whatever its drone."""
     named = _named(request, fleet)
     given = _request_numbers(request, fleet)
+    if 0 not in given and any(map(_all_zero, plan.steps)):
+        plan = plan.model_copy(update={"steps": [s for s in plan.steps if not _all_zero(s)]})
     if not named or not all(_only(_step_numbers(s), given) for s in _steps_of(plan.steps, named)):
         return plan
     return plan.model_copy(update={"steps": _asked(plan.steps, named, given)})
+
+
+def _all_zero(step: Any) -> bool:
+    """A step whose numbers are all 0 goes nowhere: a move of 0 m written for a drone the request keeps
+    still, a climb to 0 m added after a drone the request leaves in the air (both by the 1.5B model)."""
+    numbers = _step_numbers(step)
+    return bool(numbers) and not any(numbers)
 
 
 def _asked(steps: list[Any], named: set[str], given: list[float]) -> list[Any]:

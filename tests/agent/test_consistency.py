@@ -67,6 +67,17 @@ def test_a_step_of_an_unnamed_drone_is_dropped_only_with_a_number_the_request_do
     )
 
 
+def test_a_step_whose_numbers_are_all_0_is_left_out_unless_the_request_gives_0() -> None:
+    """The 1.5B model wrote a move of 0 m for a drone asked to stay put, and a climb to 0 m after a drone
+    asked to hover."""
+    still = {"action": "move", "drone": "charlie", "origin": "here", "altitude": None, "after": "stay",
+             "legs": [{"distance": {"value": 0, "unit": "m"}, "direction": "east"}]}  # fmt: skip
+    plan = _plan(_up("alpha", 14), still, _up("alpha", 0, "ft") | {"action": "altitude"})
+    kept = without_unasked("Alpha sobe a 14 m e fica lá; charlie não se mexe.", FLEET, plan)
+    assert [(s.action, s.drone) for s in kept.steps] == [("takeoff", "alpha")]  # type: ignore[union-attr]
+    assert without_unasked("Alpha: 14 m, puis 0 m", FLEET, plan) == plan
+
+
 def test_a_branch_step_of_an_unnamed_drone_with_a_number_the_request_does_not_give_is_dropped() -> None:
     branch = {"action": "if", "drone": "alpha", "reading": "battery", "compare": "above", "value": 50,
               "then": [_up("bravo", 9), _up("alpha", 12)], "otherwise": [_up("charlie", 5)]}  # fmt: skip

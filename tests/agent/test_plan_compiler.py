@@ -221,15 +221,6 @@ async def test_a_formation_ends_as_its_after_says_for_each_drone_and_a_landing_i
     assert [getattr(s, "drone", None) for s in plan.steps] == [None, "bravo"]
 
 
-async def test_a_move_of_0_m_from_where_the_drone_is_flies_nothing_not_even_a_takeoff() -> None:
-    """The 1.5B model wrote a move of 0 m for a drone the request says stays put ("bravo se queda")."""
-    still = {"action": "move", "drone": "bravo", "origin": "here", "legs": [leg(0, "north")],
-             "altitude": None, "after": "stay"}  # fmt: skip
-    assert await compiled(still) == [Said("bravo stays where it is (a move of 0 m).")]
-    to_other = {**still, "origin": "alpha"}
-    assert [c.tool for c in await compiled(to_other)] == ["takeoff", "go_to_location"]
-
-
 async def test_a_triangle_or_square_of_drones_is_the_gateways_circle_when_the_corners_match() -> None:
     step = {"action": "formation", "drones": FLEET, "shape": "triangle", "spacing": m(10), "altitude": m(20)}
     assert (await compiled(step))[0].args["formation"] == "circle"
