@@ -108,27 +108,8 @@ class LinkLost:
         return Stop("the link to the gateway failed; nothing more was sent") if turn.link_failed else Allow()
 
 
-class TakeoffOfFleetAsOne:
-    """A formation of one drone is a move of that drone: sent as ``move_to_relative`` to the formation's
-    centre offset and height (``formation_goto`` refuses a single drone)."""
-
-    name = "formation_of_one"
-
-    def __call__(self, call: Call, turn: TurnState) -> Verdict:
-        ids = call.args.get("drone_ids") or []
-        if call.tool != "formation_goto" or len(ids) != 1:
-            return Allow()
-        args = {
-            "drone_id": ids[0],
-            "north_m": call.args.get("north_m", 0.0),
-            "east_m": call.args.get("east_m", 0.0),
-            "alt_m": call.args["alt_m"],
-        }
-        return Replace(Call("move_to_relative", args, ids[0]), "a formation of one drone flown as a move")
-
-
 def default_checks() -> list[Check]:
-    return [LinkLost(), AfterRefusal(), TakeoffOfFleetAsOne(), OfferedTool(), NothingToFly()]
+    return [LinkLost(), AfterRefusal(), OfferedTool(), NothingToFly()]
 
 
 def run_checks(checks: list[Check], call: Call, turn: TurnState) -> tuple[Call | None, list[str], bool]:

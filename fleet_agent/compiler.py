@@ -238,12 +238,9 @@ class Compiler:
             lat, lon = await self.origin(step.origin, step.drones[0])
             centre = geometry.offset_position(lat, lon, north, east)
             args["center_lat_deg"], args["center_lon_deg"] = round(centre[0], 7), round(centre[1], 7)
-            return [Call("formation_goto", args)]
-        if north:
-            args["north_m"] = north
-        if east:
-            args["east_m"] = east
-        return [Call("formation_goto", args)]
+        else:
+            args.update({k: v for k, v in (("north_m", north), ("east_m", east)) if v})
+        return [Call("formation_goto", args), *(c for d in step.drones for c in ends_with(step.after, d))]
 
     async def _report(self, step: Report) -> Compiled:
         states = {d: await self.sensors.state(d) for d in step.drones}
@@ -322,8 +319,12 @@ def gateway_formation(shape: str, count: int) -> str:
 
 def ending(step: Takeoff | Altitude | Move | Pattern) -> Compiled:
     """The landing or return a step ends with (none when the drone stays)."""
-    tool = {"land": "land", "return_home": "return_to_launch"}.get(step.after)
-    return [] if tool is None else [Call(tool, {"drone_id": step.drone}, step.drone)]
+    return ends_with(step.after, step.drone)
+
+
+def ends_with(after: str, drone: str) -> Compiled:
+    tool = {"land": "land", "return_home": "return_to_launch"}.get(after)
+    return [] if tool is None else [Call(tool, {"drone_id": drone}, drone)]
 
 
 def flown_segments(legs: list[Leg]) -> list[tuple[float, float, float]]:

@@ -32,7 +32,7 @@ def read_plan(request: str, fleet: list[str], data: Any) -> tuple[Plan, list[str
     """The decoded reply as the plan the host compiles, and what it leaves out of the request (one note
     each): every rewrite the host makes before compiling, in its order. Raises the validation error of a
     plan that does not validate."""
-    data = as_request_says(request, split_formation(request, data))
+    data = climb_as_leg(as_request_says(request, split_formation(request, data)))
     plan = without_unasked(request, fleet, parse_plan(placed_by_name(request, fleet, data), fleet))
     return questions_of_fleet(request, fleet, plan), gaps(request, fleet, plan)
 
@@ -43,12 +43,22 @@ def without_unasked(request: str, fleet: list[str], plan: Plan) -> Plan:
     whose named drones' steps carry only its own numbers (the model added a step it had seen in an
     example, with the example's numbers, and wrote the same plan again when asked to correct it). A step
     of an unnamed drone that carries the request's numbers or none (a landing, a hold, a formation) is
-    kept: a request may mean drones without naming each ("the others", "both", "all three", a count)."""
+    kept: a request may mean drones without naming each ("the others", "both", "all three", a count).
+    A step whose numbers are all 0, in a request that gives no 0, is left out whatever its drone."""
     named = _named(request, fleet)
     given = _request_numbers(request, fleet)
+    if 0 not in given and any(map(_all_zero, plan.steps)):
+        plan = plan.model_copy(update={"steps": [s for s in plan.steps if not _all_zero(s)]})
     if not named or not all(_only(_step_numbers(s), given) for s in _steps_of(plan.steps, named)):
         return plan
     return plan.model_copy(update={"steps": _asked(plan.steps, named, given)})
+
+
+def _all_zero(step: Any) -> bool:
+    """A step whose numbers are all 0 goes nowhere: a move of 0 m written for a drone the request keeps
+    still, a climb to 0 m added after a drone the request leaves in the air (both by the 1.5B model)."""
+    numbers = _step_numbers(step)
+    return bool(numbers) and not any(numbers)
 
 
 def _asked(steps: list[Any], named: set[str], given: list[float]) -> list[Any]:
@@ -208,6 +218,27 @@ def placed_by_name(request: str, fleet: list[str], data: Any) -> Any:
     if any(_after_number(clause, other, distances) for clause in _clauses(request)):
         moves[0]["origin"] = other
     return data
+
+
+def climb_as_leg(data: Any) -> Any:
+    """The decoded plan with a drone's first step, a move from where it is at no altitude whose first two
+    legs go the same way, taking off to the first leg's length: the height it was to climb to (the 1.5B
+    model wrote "take off to 13 m, fly 30 m east", in three languages, as 13 m east and 30 m east)."""
+    if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
+        return data
+    seen: set[Any] = set()
+    for step in data["steps"]:
+        if _first_leg_a_climb(step) and step.get("drone") not in seen:
+            step["altitude"] = step["legs"].pop(0)["distance"]
+        seen.add(step.get("drone") if isinstance(step, dict) else None)
+    return data
+
+
+def _first_leg_a_climb(step: Any) -> bool:
+    legs = step.get("legs") if _horizontal_move_from_here(step) and step.get("altitude") is None else None
+    if not isinstance(legs, list) or len(legs) < 2 or not _horizontal(legs[0]) or not _horizontal(legs[1]):
+        return False
+    return bool(legs[0].get("direction") == legs[1].get("direction"))
 
 
 def _horizontal(leg: Any) -> bool:

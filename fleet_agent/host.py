@@ -169,15 +169,8 @@ class AgentHost:
             outcome = await caller.call_tool(WAIT_TOOL, {"drone_id": call.drone})
         return outcome
 
-    def _record(
-        self,
-        turn: TurnResult,
-        call: Call,
-        outcome: ToolOutcome,
-        *,
-        status: str | None = None,
-        call_id: str | None = None,
-    ) -> None:
+    def _record(self, turn: TurnResult, call: Call, outcome: ToolOutcome, *, status: str | None = None,
+                call_id: str | None = None) -> None:  # fmt: skip
         call_id = call_id or f"call_{next(self._ids)}"
         status = status or ("error" if outcome.is_error else "ok")
         turn.tool_calls.append(

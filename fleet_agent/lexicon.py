@@ -22,6 +22,10 @@ UNIT_WORDS: dict[Unit, frozenset[str]] = {
     ),
     Unit.mi: frozenset("mi mile miles milla millas meile meilen miglio miglia milha milhas mijl".split()),
     Unit.nmi: frozenset("nmi".split()),
+    Unit.cm: frozenset(
+        "cm centimetre centimetres centimeter centimeters centimètre centimètres centímetro centímetros "
+        "centimetro centimetri zentimeter".split()
+    ),
 }
 
 #: stems of a drone's home (its launch point), read only to measure a move the model wrote from its own

@@ -161,6 +161,8 @@ class Pattern(DroneStep):
 class Formation(Strict):
     """The drones in a shape ``spacing`` apart, centred where they are (or on ``origin``), then ``legs``.
     A triangle or a square is a polygon of the drones (the host picks the gateway's formation for it).
+    ``after`` is every drone's, required in the schema as a move's is (a landing of the drones asked for
+    after the formation was left out as separate steps)
     At least two drones: under the schema a model cannot write one drone's circle as a formation (it is an
     orbit, a pattern)."""
 
@@ -170,6 +172,7 @@ class Formation(Strict):
     spacing: Length
     altitude: Length
     legs: list[Leg] = Field(default_factory=list)
+    after: Ending = "stay"
     origin: Reference | None = None
 
     @field_validator("drones")
@@ -296,7 +299,8 @@ class Plan(Strict):
                 continue
             if isinstance(step, Altitude | Move | Pattern) and step.altitude is not None:
                 heights[step.drone] = step.altitude.metres
-            last = {**last, drone: len(kept)} if drone else {}
+            drones = [drone] if drone else getattr(step, "drones", [])  # a formation's, a report's
+            last = {**last, **dict.fromkeys(drones, len(kept))} if drones else {}
             kept.append(step)
         self.steps = kept
         return self
@@ -306,8 +310,8 @@ def _ends_again(step: Any, previous: Any) -> bool:
     """``step`` is the landing or return ``previous`` already ends with."""
     return (
         isinstance(step, Land | ReturnHome)
-        and isinstance(previous, Takeoff | Altitude | Move | Pattern)
-        and previous.drone == step.drone
+        and isinstance(previous, Takeoff | Altitude | Move | Pattern | Formation)
+        and step.drone in getattr(previous, "drones", [getattr(previous, "drone", None)])
         and previous.after == step.action
     )
 
@@ -405,9 +409,10 @@ def _base_schema() -> dict[str, Any]:
     }
     schema["required"] = ["in_english", "steps"]
     schema["properties"]["in_english"].pop("default", None)
-    for name in ("Takeoff", "Altitude"):
-        schema["$defs"][name]["required"].append("after")
-        schema["$defs"][name]["properties"]["after"].pop("default", None)
+    for name, also in (("Takeoff", []), ("Altitude", []), ("Formation", ["legs"])):
+        schema["$defs"][name]["required"] += [*also, "after"]
+        for prop in (*also, "after"):
+            schema["$defs"][name]["properties"][prop].pop("default", None)
     return schema
 
 

@@ -31,7 +31,7 @@ Each step has an "action":
   how many lines, as a number also when the request spells it, size = line length, spacing); sides,
   lines, spacing, heading (the first leg), turn (right, left) and altitude are null when not given
 - formation {drones, shape (line, column, wedge, grid, circle, triangle, square), spacing, altitude,
-  legs (the centre's move), origin (optional: the centre, as for a move)}: SEVERAL drones placed
+  legs (the centre's move), after, origin (optional: the centre, as for a move)}: SEVERAL drones placed
   together in one shape (drones sent different ways are one move each)
 - report {drones, readings (battery, altitude, position, flying, mode), pick (none, highest, lowest)}:
   a question; nothing flies
@@ -42,8 +42,8 @@ Each step has an "action":
   (the one with more or less battery, the higher or lower one); the chosen drone does the steps, the
   others get no step
 - ask {text}: only when the request cannot be planned
-Every distance and altitude is {"value": number, "unit": "m" | "ft" | "km" | "mi" | "yd" | "nmi"}, in the
-unit the request used. Never compute: the host converts units and works out the geometry. A drone on the
+Every distance and altitude is {"value": number, "unit": "m" | "ft" | "km" | "mi" | "yd" | "nmi" | "cm"}, in
+the unit the request used. Never compute: the host converts units and works out the geometry. A drone on the
 ground takes off by itself before a move or a pattern. Plan only what is asked: no step for a drone the
 request leaves alone. "after" is what the drone does once the step is flown: "stay" (in the air, also
 before a next step), "land" (there) or "return_home", as the request says.
@@ -115,7 +115,7 @@ EXAMPLES: list[tuple[str, dict[str, Any]]] = [
     ("delta and echo side by side, 6 m apart, at 10 m, 15 m north of here",
      {"in_english": "Delta and echo fly in a line 6 m apart at 10 m, 15 m north of where they are.",
       "steps": [{"action": "formation", "drones": ["delta", "echo"], "shape": "line", "spacing": _m(6),
-                 "altitude": _m(10), "legs": [_leg(15, "north")]}]}),
+                 "altitude": _m(10), "legs": [_leg(15, "north")], "after": "stay"}]}),
     ("Which drone is highest up, and how full are their batteries?",
      {"in_english": "Which drone is the highest, and what are their battery levels? Nothing flies.",
       "steps": [{"action": "report", "drones": ["delta", "echo"], "readings": ["altitude", "battery"],

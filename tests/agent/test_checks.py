@@ -11,7 +11,6 @@ from fleet_agent.checks import (
     Reject,
     Replace,
     Stop,
-    TakeoffOfFleetAsOne,
     TurnState,
     default_checks,
     run_checks,
@@ -58,17 +57,22 @@ def test_each_check_gives_its_outcome() -> None:
     assert isinstance(LinkLost()(takeoff, turn), Stop)
 
 
-def test_a_formation_of_one_is_replaced_by_a_move() -> None:
-    one = Call("formation_goto", {"drone_ids": ["bravo"], "formation": "line", "alt_m": 12.0, "north_m": 5.0})
-    verdict = TakeoffOfFleetAsOne()(one, _turn())
-    assert verdict == Replace(
-        Call(
-            "move_to_relative", {"drone_id": "bravo", "north_m": 5.0, "east_m": 0.0, "alt_m": 12.0}, "bravo"
-        ),
-        "a formation of one drone flown as a move",
-    )
-    sent, notes, stop = run_checks(default_checks(), one, _turn())
-    assert sent is not None and sent.tool == "move_to_relative" and notes and not stop
+def test_a_replace_sends_the_other_call_and_leaves_its_note() -> None:
+    """No default check replaces a call (a formation of one drone cannot be planned: the schema asks
+    two); a caller's own check may."""
+
+    class Lower:
+        name = "lower"
+
+        def __call__(self, call: Call, turn: TurnState) -> Replace | Allow:
+            if call.tool != "takeoff" or call.args["alt_m"] <= 30:
+                return Allow()
+            return Replace(Call("takeoff", {**call.args, "alt_m": 30.0}, call.drone), "capped at 30 m")
+
+    high = Call("takeoff", {"drone_id": "bravo", "alt_m": 45.0}, "bravo")
+    sent, notes, stop = run_checks([Lower(), *default_checks()], high, _turn())
+    assert sent == Call("takeoff", {"drone_id": "bravo", "alt_m": 30.0}, "bravo")
+    assert notes == ["capped at 30 m"] and not stop
 
 
 def test_checks_run_in_order_and_the_first_reject_or_stop_wins() -> None:

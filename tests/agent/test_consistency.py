@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from fleet_agent.consistency import gaps, questions_of_fleet, without_unasked
+import copy
+
+from fleet_agent.consistency import climb_as_leg, gaps, questions_of_fleet, without_unasked
 from fleet_agent.plan import Condition, Report, parse_plan
 from fleet_agent.prompt import messages_for, prefix_messages
 
@@ -65,6 +67,38 @@ def test_a_step_of_an_unnamed_drone_is_dropped_only_with_a_number_the_request_do
         without_unasked("Charlie and alpha and the rest in a column, 8 m apart, at 12 m", FLEET, column)
         == column
     )
+
+
+def test_a_step_whose_numbers_are_all_0_is_left_out_unless_the_request_gives_0() -> None:
+    """The 1.5B model wrote a move of 0 m for a drone asked to stay put, and a climb to 0 m after a drone
+    asked to hover."""
+    still = {"action": "move", "drone": "charlie", "origin": "here", "altitude": None, "after": "stay",
+             "legs": [{"distance": {"value": 0, "unit": "m"}, "direction": "east"}]}  # fmt: skip
+    plan = _plan(_up("alpha", 14), still, _up("alpha", 0, "ft") | {"action": "altitude"})
+    kept = without_unasked("Alpha sobe a 14 m e fica lá; charlie não se mexe.", FLEET, plan)
+    assert [(s.action, s.drone) for s in kept.steps] == [("takeoff", "alpha")]  # type: ignore[union-attr]
+    assert without_unasked("Alpha: 14 m, puis 0 m", FLEET, plan) == plan
+
+
+def _legs(*legs: tuple[float, str]) -> list[dict[str, object]]:
+    return [{"distance": {"value": v, "unit": "m"}, "direction": d} for v, d in legs]
+
+
+def test_a_drones_first_move_whose_first_two_legs_go_the_same_way_takes_off_to_the_first() -> None:
+    """A climb to 14 m then 40 m south, in Dutch, came back as 14 m south and 40 m south (1.5B model)."""
+    move = {"action": "move", "drone": "bravo", "origin": "here", "altitude": None, "after": "land",
+            "legs": _legs((14, "south"), (40, "south"))}  # fmt: skip
+    out = climb_as_leg({"steps": [move]})
+    assert out["steps"][0]["altitude"] == {"value": 14, "unit": "m"}
+    assert out["steps"][0]["legs"] == _legs((40, "south"))
+    kept = [
+        {**move, "legs": _legs((14, "south"), (40, "west"))},  # a dogleg
+        {**move, "legs": _legs((14, "south"), (40, "south")), "altitude": {"value": 9, "unit": "m"}},
+        {**move, "drone": "alpha", "origin": "charlie", "legs": _legs((14, "south"), (40, "south"))},
+    ]
+    after_takeoff = [_up("bravo", 9), {**move, "legs": _legs((14, "south"), (40, "south"))}]
+    for steps in ([kept[0]], [kept[1]], [kept[2]], after_takeoff):
+        assert climb_as_leg({"steps": copy.deepcopy(steps)}) == {"steps": steps}
 
 
 def test_a_branch_step_of_an_unnamed_drone_with_a_number_the_request_does_not_give_is_dropped() -> None:

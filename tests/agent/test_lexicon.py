@@ -30,6 +30,13 @@ def test_a_number_takes_the_unit_written_after_it_in_any_language() -> None:
     assert number_units("half a mile north, then 20 m up") == {None: {Unit.mi}, 20.0: {Unit.m}}
 
 
+def test_centimetres_are_a_unit_and_a_height_in_centimetres_is_not_flown_in_metres() -> None:
+    assert number_units("Bravo, survole le pré à 70 cm du sol") == {70.0: {Unit.cm}}
+    data = {"steps": [_move("stay", (40, "m", "east")) | {"altitude": _m(70)}]}
+    out = as_request_says("Bravo, 40 m ost, in 70 Zentimeter Höhe", data)
+    assert out["steps"][0]["altitude"] == _m(70, "cm") and out["steps"][0]["legs"][0]["distance"] == _m(40)
+
+
 def test_a_length_written_in_metres_takes_the_requests_unit() -> None:
     data = {"steps": [{"action": "altitude", "drone": "alpha", "altitude": _m(30), "after": "stay"},
                       _move("stay", (150, "m", "south"), (10, "m", "up"))]}  # fmt: skip

@@ -205,6 +205,22 @@ async def test_a_formation_carries_its_spacing_and_centre_move() -> None:
     assert await compiled(step) == [Call("formation_goto", args)]
 
 
+async def test_a_formation_ends_as_its_after_says_for_each_drone_and_a_landing_is_flown_once() -> None:
+    """The schema requires a formation's ``after`` (a landing asked for after it was left out)."""
+    assert plan_schema(FLEET)["$defs"]["Formation"]["required"][-2:] == ["legs", "after"]
+    step = {"action": "formation", "drones": ["charlie", "alpha"], "shape": "line", "spacing": m(9),
+            "altitude": m(11), "legs": [leg(30, "south")], "after": "land"}  # fmt: skip
+    calls = await compiled(step)
+    assert [(c.tool, c.drone) for c in calls] == [
+        ("formation_goto", None), ("land", "charlie"), ("land", "alpha")
+    ]  # fmt: skip
+    home = await compiled({**step, "after": "return_home"})
+    assert [c.tool for c in home[1:]] == ["return_to_launch", "return_to_launch"]
+    again = [{"action": "land", "drone": "alpha"}, {"action": "land", "drone": "bravo"}]
+    plan = parse_plan({"steps": [step, *again]}, FLEET)
+    assert [getattr(s, "drone", None) for s in plan.steps] == [None, "bravo"]
+
+
 async def test_a_triangle_or_square_of_drones_is_the_gateways_circle_when_the_corners_match() -> None:
     step = {"action": "formation", "drones": FLEET, "shape": "triangle", "spacing": m(10), "altitude": m(20)}
     assert (await compiled(step))[0].args["formation"] == "circle"

@@ -19,6 +19,7 @@ from fleet_agent.units import Unit, to_metres
         (10, "yd", 9.14),
         (1, "nmi", 1852.0),
         (7, "m", 7.0),
+        (40, "cm", 0.4),
     ],
 )
 def test_lengths_convert_to_metres(value: float, unit: str, metres: float) -> None:
