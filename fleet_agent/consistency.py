@@ -223,7 +223,7 @@ def placed_by_name(request: str, fleet: list[str], data: Any) -> Any:
 def climb_as_leg(data: Any) -> Any:
     """The decoded plan with a drone's first step, a move from where it is at no altitude whose first two
     legs go the same way, taking off to the first leg's length: the height it was to climb to (the 1.5B
-    model wrote "take off to 13 m, fly 30 m east", in three languages, as 13 m east and 30 m east)."""
+    model wrote a takeoff to a height followed by a leg, in three languages, as two legs the same way)."""
     if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
         return data
     seen: set[Any] = set()
