@@ -20,7 +20,6 @@ import argparse
 import asyncio
 import contextlib
 import sys
-import tempfile
 import time
 from pathlib import Path
 from typing import Any
@@ -231,25 +230,7 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0])
     parser.add_argument("--prepared", action="store_true", help=s.PREPARED_HELP)
     args = parser.parse_args()
-    s.LOG_PREFIX[0] = "cluster-test"
-    s.sigterm_interrupts()
-    try:
-        s.install_missing()
-        with tempfile.TemporaryDirectory(prefix="fgw-cluster-") as tmp:
-            env = s.containers_conf(Path(tmp))
-            base = s.base_image(env)
-            s.probe(base, env)
-            print(cluster_test(env, base, args.prepared), flush=True)
-            return 0
-    except s.Skip as exc:
-        print(f"cluster-test: SKIPPED: {exc}", flush=True)
-        return s.SKIPPED
-    except s.Failed as exc:
-        print(f"cluster-test: FAILED: {exc}", flush=True)
-        return 1
-    except KeyboardInterrupt:
-        print("cluster-test: INTERRUPTED (SIGINT/SIGTERM) after tearing down what it made", flush=True)
-        return 130
+    return s.run_on_podman("cluster-test", lambda env, base: cluster_test(env, base, args.prepared))
 
 
 if __name__ == "__main__":

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-import tempfile
 import time
 from pathlib import Path
 
@@ -34,7 +33,7 @@ CLUSTER = (
 )
 
 
-def prepare(env: dict[str, str], base: str, images: list[tuple[str, Path]]) -> None:
+def prepare(env: dict[str, str], base: str, images: list[tuple[str, Path]]) -> str:
     for image, containerfile in images:
         owner = s.image_label(image, s.TEST_LABEL, env)
         if s.image_exists(image, env) and owner != s.PREPARED:
@@ -49,9 +48,10 @@ def prepare(env: dict[str, str], base: str, images: list[tuple[str, Path]]) -> N
         started = time.monotonic()
         s.build_image(image, containerfile, base, s.PREPARED, env)
         s.log(f"built {image} ({s.image_mb(image, env)} MB) ahead in {time.monotonic() - started:.1f} s")
+    return f"compose-images: {', '.join(image for image, _ in images)} built ahead from these sources"
 
 
-def remove(env: dict[str, str]) -> None:
+def remove(env: dict[str, str]) -> str:
     ours = f"label={s.TEST_LABEL}={s.PREPARED}"
     images = s.run(["podman", "images", "-q", "--filter", ours], env=env, timeout=120).split()
     if images:
@@ -59,7 +59,7 @@ def remove(env: dict[str, str]) -> None:
     left = s.run(["podman", "images", "-q", "--filter", ours], env=env, timeout=120).split()
     if left:
         raise s.Failed(f"images built ahead still there after podman rmi: {left}")
-    s.log(f"removed {len(set(images))} images built ahead")
+    return f"compose-images: removed {len(set(images))} images built ahead"
 
 
 def main() -> int:
@@ -67,30 +67,11 @@ def main() -> int:
     parser.add_argument("action", choices=("prepare", "remove"))
     parser.add_argument("--cluster", action="store_true", help="also the cluster test's NATS and PostgreSQL")
     args = parser.parse_args()
-    s.LOG_PREFIX[0] = "compose-images"
-    s.sigterm_interrupts()
-    try:
-        if args.action == "remove":
-            with tempfile.TemporaryDirectory(prefix="fgw-images-") as tmp:
-                remove(s.containers_conf(Path(tmp)))
-            return 0
-        s.install_missing()
-        s.podman_compose()
-        with tempfile.TemporaryDirectory(prefix="fgw-images-") as tmp:
-            env = s.containers_conf(Path(tmp))
-            base = s.base_image(env)
-            s.probe(base, env)
-            prepare(env, base, [GATEWAY, *(CLUSTER if args.cluster else ())])
-        return 0
-    except s.Skip as exc:
-        print(f"compose-images: SKIPPED: {exc}", flush=True)
-        return s.SKIPPED
-    except s.Failed as exc:
-        print(f"compose-images: FAILED: {exc}", flush=True)
-        return 1
-    except KeyboardInterrupt:
-        print("compose-images: INTERRUPTED (SIGINT/SIGTERM)", flush=True)
-        return 130
+    if args.action == "remove":
+        return s.run_on_podman("compose-images", lambda env, _base: remove(env), needs_base=False)
+    images = [GATEWAY, *(CLUSTER if args.cluster else ())]
+    kept = "; the images built so far stay until `compose_images.py remove`"
+    return s.run_on_podman("compose-images", lambda env, base: prepare(env, base, images), interrupted=kept)
 
 
 if __name__ == "__main__":

@@ -42,7 +42,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import AsyncIterator, Iterator
+from collections.abc import AsyncIterator, Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -677,6 +677,40 @@ def swarm_test(env: dict[str, str], base: str, hand_image_over: bool = False, pr
     )
 
 
+def run_on_podman(
+    name: str,
+    work: Callable[[dict[str, str], str], str],
+    *,
+    needs_base: bool = True,
+    interrupted: str = "after tearing down what it made",
+) -> int:
+    """A compose script's frame: podman set up (Debian packages, this run's containers.conf, and with
+    ``needs_base`` the base image and a probe container), then ``work(env, base)``, whose line is printed.
+    Exit status 0; SKIPPED where containers cannot run here, 1 on Failed, 130 on SIGINT or SIGTERM (after
+    the work's own teardown), each said in a last line."""
+    LOG_PREFIX[0] = name
+    sigterm_interrupts()
+    try:
+        if needs_base:
+            install_missing()
+        with tempfile.TemporaryDirectory(prefix=f"fgw-{name}-") as tmp:
+            env = containers_conf(Path(tmp))
+            base = base_image(env) if needs_base else ""
+            if needs_base:
+                probe(base, env)
+            print(work(env, base), flush=True)
+            return 0
+    except Skip as exc:
+        print(f"{name}: SKIPPED: {exc}", flush=True)
+        return SKIPPED
+    except Failed as exc:
+        print(f"{name}: FAILED: {exc}", flush=True)
+        return 1
+    except KeyboardInterrupt:
+        print(f"{name}: INTERRUPTED (SIGINT/SIGTERM) {interrupted}", flush=True)
+        return 130
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0])
     parser.add_argument("--base-only", action="store_true", help="prepare the base image and stop")
@@ -687,27 +721,13 @@ def main() -> int:
     )
     parser.add_argument("--prepared", action="store_true", help=PREPARED_HELP)
     args = parser.parse_args()
-    sigterm_interrupts()
-    try:
-        install_missing()
-        with tempfile.TemporaryDirectory(prefix="fgw-swarm-") as tmp:
-            env = containers_conf(Path(tmp))
-            base = base_image(env)
-            probe(base, env)
-            if args.base_only:
-                log(f"base image {base} ready; podman runs containers here")
-                return 0
-            print(swarm_test(env, base, args.hand_image_over, args.prepared), flush=True)
-            return 0
-    except Skip as exc:
-        print(f"swarm-test: SKIPPED: {exc}", flush=True)
-        return SKIPPED
-    except Failed as exc:
-        print(f"swarm-test: FAILED: {exc}", flush=True)
-        return 1
-    except KeyboardInterrupt:
-        print("swarm-test: INTERRUPTED (SIGINT/SIGTERM) after tearing down what it made", flush=True)
-        return 130
+
+    def work(env: dict[str, str], base: str) -> str:
+        if args.base_only:
+            return f"swarm-test: base image {base} ready; podman runs containers here"
+        return swarm_test(env, base, args.hand_image_over, args.prepared)
+
+    return run_on_podman("swarm-test", work)
 
 
 if __name__ == "__main__":
