@@ -194,12 +194,10 @@ class OperationManager:
             if op.vehicle_id != vehicle_id:
                 continue
             del self._ops[op_id]
-            for kept in (self._trackers, self._explained, self._last_saved):
-                kept.pop(op_id, None)
-            task = self._monitors.pop(op_id, None)
+            self._last_saved.pop(op_id, None)
+            task = self._untrack(op_id)
             if task is not None:
                 task.cancel()
-            self.mode_watch.drop(op_id)
             if not op.finished:
                 running.append(op_id)
         self._current.pop(vehicle_id, None)
@@ -352,10 +350,14 @@ class OperationManager:
             log.exception("monitor of operation %s failed", op.id)
             await self._finish(op, OpStatus.failed, f"monitoring failed: {exc}")
         finally:
-            self._monitors.pop(op.id, None)
-            self._trackers.pop(op.id, None)
-            self._explained.pop(op.id, None)
-            self.mode_watch.drop(op.id)
+            self._untrack(op.id)
+
+    def _untrack(self, op_id: str) -> asyncio.Task[None] | None:
+        """Forget what follows the operation: its tracker, its mode watch, its monitor (returned)."""
+        self._trackers.pop(op_id, None)
+        self._explained.pop(op_id, None)
+        self.mode_watch.drop(op_id)
+        return self._monitors.pop(op_id, None)
 
     async def _poll(self, vehicle: FlyingVehicle, op: Operation, tracker: Tracker) -> Poll:
         """The tracker's look; a failure a takeover explains is left to the takeover for up to
