@@ -69,7 +69,12 @@ async def test_a_stored_mission_is_checked_at_every_start_on_px4(launch, tmp_pat
         took = await t.ok("takeoff", drone_id=d, alt_m=10)
         took = await t.finish(took, 120)
         assert took["status"] == "succeeded", took
-        flying = (await where(t, d))[0]
+        # PX4 ends its TAKEOFF mode in HOLD once at its own acceptance radius, which can come a few seconds
+        # after the gateway's takeoff has succeeded: the mode the refusals must leave is that HOLD
+        held = await t.until(
+            "get_flight_mode", lambda a: a["value"] == "HOLD", 30, "PX4's HOLD after its takeoff", drone_id=d
+        )
+        flying = str(held["value"])
         await t.refused("resume_mission", ALTITUDE, drone_id=d)
         await t.refused("set_flight_mode", ALTITUDE, drone_id=d, mode="MISSION")
         await t.refused("set_current_waypoint", ALTITUDE, drone_id=d, index=2)
