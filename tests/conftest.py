@@ -14,6 +14,7 @@ from hypothesis import settings as hypothesis_settings
 from gateway.registry.store import Store
 from tests.helpers.file_order import longest_files_first, seconds_per_file
 from tests.helpers.sqlite_at_head import at_head
+from tests.helpers.suite_tail import SuiteTail, from_environment
 from tests.helpers.timing import TIME_SCALE, scaled
 
 # no per-example time limit: Hypothesis's default 200 ms deadline is a wall-clock threshold, which fails a
@@ -34,6 +35,39 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     together; the order is all it changes."""
     order = longest_files_first(items, seconds_per_file())
     items[:] = [items[i] for i in order]
+
+
+_tail: SuiteTail | None = None
+
+
+def _controlling(config: pytest.Config) -> bool:
+    """The process that sees every test's report: pytest itself, or xdist's controller (not a worker)."""
+    return not hasattr(config, "workerinput")
+
+
+def pytest_sessionstart(session: pytest.Session) -> None:
+    """CI's signal that the suite is near its end (tests/helpers/suite_tail.py), when asked for."""
+    global _tail
+    workers = session.config.getoption("numprocesses", None)
+    count = workers if isinstance(workers, int) and workers > 0 else 1
+    tail = from_environment(count, seconds_per_file())  # read everywhere: it leaves the environment
+    _tail = tail if _controlling(session.config) else None
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_node_collection_finished(node: object, ids: list[str]) -> None:
+    if _tail is not None:
+        _tail.collected(ids)
+
+
+def pytest_collection_finish(session: pytest.Session) -> None:
+    if _tail is not None and _controlling(session.config):
+        _tail.collected(item.nodeid for item in session.items)
+
+
+def pytest_runtest_logreport(report: pytest.TestReport) -> None:
+    if _tail is not None and report.when == "teardown":
+        _tail.finished(report.nodeid)
 
 
 @pytest.hookimpl(trylast=True)
