@@ -18,7 +18,7 @@ from gateway.fleet import geo
 from tests.helpers.gcs_mission import GcsItem, upload
 from tests.helpers.timing import scaled
 from tests.real.test_tour_px4 import PX4
-from tests.real.tour import Tour, gateway_over
+from tests.real.tour import Tour, boot, gateway_over
 
 pytestmark = [pytest.mark.real, pytest.mark.timeout(scaled(600))]
 
@@ -54,6 +54,9 @@ async def test_a_stored_mission_is_checked_at_every_start_on_px4(launch, tmp_pat
             GcsItem(mav.MAV_CMD_NAV_WAYPOINT, *far, 200),
         ]
         await asyncio.to_thread(upload, gcs, items, home_slot=False)
+        # on a loaded machine PX4's home position can go stale for a moment ("not ready: waiting for the
+        # home position", a refusal of its own): the refusals below are the mission's, so ready first
+        await boot(t)
 
         began = time.monotonic()
         await t.refused("initiate_mission", ALTITUDE, drone_id=d, wait=False)
