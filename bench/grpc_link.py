@@ -16,7 +16,12 @@ the other, against the same sidecar:
 
 Each opens the streams ``gateway/link/telemetry_feed.py`` subscribes on ArduPilot (``STREAMS``) and
 makes one unary call (``UNARY``), waits for the first position and settles, then counts what arrives
-over the window at rest. Printed for each: RSS after the subscriptions and RSS / PSS at the window's end
+over the window at rest; ``--session`` adds the streams the gateway's MAVSDK session opens besides
+(``SESSION_STREAMS``: HEARTBEAT, COMMAND_ACK and EKF_STATUS_REPORT through mavlink_direct, the
+connection state), ``--channels K`` opens K channels with all their streams per client (K drones'
+links in one process; mavsdk_server answers each).
+
+Printed for each client: RSS after the subscriptions and RSS / PSS at the window's end
 (``/proc/<pid>/statm``, ``smaps_rollup``), stream items a second, CPU seconds per 1,000 items (the sum of
 its threads' run time, ``/proc/<pid>/task/*/schedstat``; in brackets the same from ``/proc/<pid>/stat``'s
 clock ticks) and the sidecar's CPU over the same window. An item is counted and dropped: the gateway's
@@ -34,6 +39,7 @@ from __future__ import annotations
 import argparse
 import asyncio
 import contextlib
+import functools
 import importlib
 import importlib.util
 import json
@@ -43,27 +49,37 @@ import tempfile
 import time
 import types
 from collections.abc import AsyncIterator, Awaitable, Callable
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-#: The streams ``gateway.link.telemetry_feed.TelemetryFeed.start`` subscribes on ArduPilot, as
-#: (plugin, MAVSDK's name of the stream): all but ``flight_mode``, which the feed never subscribes
-#: where the link names the mode from the HEARTBEAT itself (ArduPilot's dialect does)
-STREAMS: tuple[tuple[str, str], ...] = (
-    ("telemetry", "position"),
-    ("telemetry", "home"),
-    ("telemetry", "attitude_euler"),
-    ("telemetry", "velocity_ned"),
-    ("telemetry", "battery"),
-    ("telemetry", "gps_info"),
-    ("telemetry", "landed_state"),
-    ("telemetry", "health"),
-    ("telemetry", "rc_status"),
-    ("telemetry", "imu"),
-    ("telemetry", "raw_imu"),
-    ("telemetry", "odometry"),
-    ("telemetry", "status_text"),
-    ("mission_raw", "mission_progress"),
+#: The streams ``gateway.link.telemetry_feed.TelemetryFeed.start`` subscribes on ArduPilot, as (plugin,
+#: the wrapper's method, its argument): all but ``flight_mode``, which the feed never subscribes where
+#: the link names the mode from the HEARTBEAT itself (ArduPilot's dialect does)
+Stream = tuple[str, str, str | None]
+STREAMS: tuple[Stream, ...] = (
+    ("telemetry", "position", None),
+    ("telemetry", "home", None),
+    ("telemetry", "attitude_euler", None),
+    ("telemetry", "velocity_ned", None),
+    ("telemetry", "battery", None),
+    ("telemetry", "gps_info", None),
+    ("telemetry", "landed_state", None),
+    ("telemetry", "health", None),
+    ("telemetry", "rc_status", None),
+    ("telemetry", "imu", None),
+    ("telemetry", "raw_imu", None),
+    ("telemetry", "odometry", None),
+    ("telemetry", "status_text", None),
+    ("mission_raw", "mission_progress", None),
+)
+#: With ``--session``, the streams ``gateway.link.mavsdk_session.MavsdkSession.start`` adds on ArduPilot
+#: (its events loop waits for an autopilot that speaks the events protocol, and SIMSTATE ends at the first)
+SESSION_STREAMS: tuple[Stream, ...] = (
+    ("mavlink_direct", "message", "HEARTBEAT"),
+    ("mavlink_direct", "message", "COMMAND_ACK"),
+    ("mavlink_direct", "message", "EKF_STATUS_REPORT"),
+    ("core", "connection_state", None),
 )
 #: the one unary call each client makes (mavsdk_server answers it)
 UNARY = ("action", "get_takeoff_altitude")
@@ -99,6 +115,11 @@ def camel(name: str) -> str:
     return "".join(part[:1].upper() + part[1:] for part in name.split("_"))
 
 
+def label(stream: Stream) -> str:
+    """A stream's name in the figures: its argument (a MAVLink message's name) or its method's."""
+    return stream[2] or stream[1]
+
+
 def stream_rpc(name: str) -> str:
     """The RPC behind a wrapper's stream: ``position`` -> ``SubscribePosition``."""
     return "Subscribe" + camel(name)
@@ -117,6 +138,8 @@ def resolve(module: types.ModuleType, plugin: str, rpc: str) -> tuple[str, Any, 
 # --- the child: one client --------------------------------------------------------------------------
 
 Counter = Callable[[str], None]
+Streams = tuple[Stream, ...]
+Tasks = set[asyncio.Task[None]]
 Opened = tuple[Callable[[], Awaitable[None]], object]  # how to close it, and the unary call's answer
 
 
@@ -132,13 +155,22 @@ def _load_pb2() -> dict[str, types.ModuleType]:
     return {plugin: importlib.import_module(f"mavsdk_grpc.{plugin}_pb2") for plugin in PLUGINS}
 
 
+def request_of(request: Any, argument: str | None) -> Any:
+    """A stream's request message: empty, or its one field set to ``argument`` (mavlink_direct's
+    message name). Any: protobuf's generated classes, untyped."""
+    if argument is None:
+        return request()
+    (field,) = request.DESCRIPTOR.fields
+    return request(**{field.name: argument})
+
+
 async def _pump(items: Callable[[], AsyncIterator[object]], name: str, count: Counter) -> None:
     async for _item in items():
         count(name)
 
 
 async def open_baseline(
-    _port: int, _channels: int, _count: Counter, _tasks: set[asyncio.Task[None]]
+    _port: int, _channels: int, _streams: Streams, _count: Counter, _tasks: Tasks
 ) -> Opened:
     import gateway.util.bare_package  # noqa: F401 - every other client loads it
 
@@ -148,7 +180,7 @@ async def open_baseline(
     return close, None
 
 
-async def open_wrappers(port: int, channels: int, count: Counter, tasks: set[asyncio.Task[None]]) -> Opened:
+async def open_wrappers(port: int, channels: int, streams: Streams, count: Counter, tasks: Tasks) -> Opened:
     from gateway.link.mavsdk_system import System
 
     systems = []
@@ -158,8 +190,11 @@ async def open_wrappers(port: int, channels: int, count: Counter, tasks: set[asy
         await system.connect()
         systems.append(system)
         answer = await asyncio.wait_for(getattr(getattr(system, UNARY[0]), UNARY[1])(), 10.0)
-        for plugin, name in STREAMS:
-            tasks.add(asyncio.create_task(_pump(getattr(getattr(system, plugin), name), name, count)))
+        for stream in streams:
+            plugin, method, argument = stream
+            subscribe = getattr(getattr(system, plugin), method)
+            items = functools.partial(subscribe, argument) if argument is not None else subscribe
+            tasks.add(asyncio.create_task(_pump(items, label(stream), count)))
 
     async def close() -> None:
         for system in systems:
@@ -168,7 +203,7 @@ async def open_wrappers(port: int, channels: int, count: Counter, tasks: set[asy
     return close, answer
 
 
-async def open_grpcio_pb2(port: int, channels: int, count: Counter, tasks: set[asyncio.Task[None]]) -> Opened:
+async def open_grpcio_pb2(port: int, channels: int, streams: Streams, count: Counter, tasks: Tasks) -> Opened:
     os.environ.setdefault("GRPC_EXPERIMENTS", CLIENT_EXPERIMENTS)
     modules = _load_pb2()
     from grpc import aio
@@ -183,12 +218,13 @@ async def open_grpcio_pb2(port: int, channels: int, count: Counter, tasks: set[a
         unary = channel.unary_unary(path, request_serializer=request.SerializeToString,
                                     response_deserializer=reply.FromString)  # fmt: skip
         answer = (await unary(request(), timeout=10.0)).altitude
-        for plugin, name in STREAMS:
-            path, request, reply, _ = resolve(modules[plugin], plugin, stream_rpc(name))
-            method = channel.unary_stream(path, request_serializer=request.SerializeToString,
-                                          response_deserializer=reply.FromString)  # fmt: skip
-            items = lambda method=method, request=request: method(request())  # noqa: E731
-            tasks.add(asyncio.create_task(_pump(items, name, count)))
+        for stream in streams:
+            plugin, method, argument = stream
+            path, request, reply, _ = resolve(modules[plugin], plugin, stream_rpc(method))
+            call = channel.unary_stream(path, request_serializer=request.SerializeToString,
+                                        response_deserializer=reply.FromString)  # fmt: skip
+            items = functools.partial(call, request_of(request, argument))
+            tasks.add(asyncio.create_task(_pump(items, label(stream), count)))
 
     async def close() -> None:
         for channel in opened:
@@ -198,20 +234,17 @@ async def open_grpcio_pb2(port: int, channels: int, count: Counter, tasks: set[a
 
 
 async def open_grpclib_pb2(
-    port: int, channels: int, count: Counter, tasks: set[asyncio.Task[None]]
+    port: int, channels: int, streams: Streams, count: Counter, tasks: Tasks
 ) -> Opened:
     modules = _load_pb2()
     from grpclib.client import Channel
     from grpclib.const import Cardinality
 
-    def items(channel: Channel, path: str, request: Any, reply: Any) -> AsyncIterator[object]:
-        async def stream() -> AsyncIterator[object]:
-            async with channel.request(path, Cardinality.UNARY_STREAM, request, reply) as call:
-                await call.send_message(request(), end=True)
-                while (item := await call.recv_message()) is not None:
-                    yield item
-
-        return stream()
+    async def items(channel: Channel, path: str, message: Any, reply: Any) -> AsyncIterator[object]:
+        async with channel.request(path, Cardinality.UNARY_STREAM, type(message), reply) as call:
+            await call.send_message(message, end=True)
+            while (item := await call.recv_message()) is not None:
+                yield item
 
     opened = []
     answer: object = None
@@ -222,10 +255,11 @@ async def open_grpclib_pb2(
         async with channel.request(path, Cardinality.UNARY_UNARY, request, reply, timeout=10.0) as call:
             await call.send_message(request(), end=True)
             answer = (await call.recv_message()).altitude
-        for plugin, name in STREAMS:
-            path, request, reply, _ = resolve(modules[plugin], plugin, stream_rpc(name))
-            subscribe = lambda c=channel, p=path, q=request, r=reply: items(c, p, q, r)  # noqa: E731
-            tasks.add(asyncio.create_task(_pump(subscribe, name, count)))
+        for stream in streams:
+            plugin, method, argument = stream
+            path, request, reply, _ = resolve(modules[plugin], plugin, stream_rpc(method))
+            subscribe = functools.partial(items, channel, path, request_of(request, argument), reply)
+            tasks.add(asyncio.create_task(_pump(subscribe, label(stream), count)))
 
     async def close() -> None:
         for channel in opened:
@@ -255,16 +289,16 @@ async def _first_position(counts: dict[str, int], kind: str) -> None:
     await asyncio.sleep(SETTLE_S)
 
 
-async def child(kind: str, port: int, channels: int) -> None:
+async def child(kind: str, port: int, channels: int, streams: Streams) -> None:
     """One client: open it, say ``subscribed``; then ``start`` zeroes the counts, ``stop`` reports them,
     the end of standard input closes the client."""
-    counts = {name: 0 for _plugin, name in STREAMS}
+    counts = {label(stream): 0 for stream in streams}
 
     def count(name: str) -> None:
         counts[name] += 1
 
     tasks: set[asyncio.Task[None]] = set()
-    close, answer = await OPENERS[kind](port, channels, count, tasks)
+    close, answer = await OPENERS[kind](port, channels, streams, count, tasks)
     await _first_position(counts, kind)
     _say("subscribed", unary=answer, modules=len(sys.modules))
     reader = asyncio.StreamReader()
@@ -313,20 +347,28 @@ async def set_rates(port: int) -> None:
 
 
 def child_main(argv: list[str]) -> int:
+    """``--child KIND PORT CHANNELS [session]``, as the parent runs it."""
     kind, port, channels = argv[0], int(argv[1]), int(argv[2])
     if kind == "rates":
         asyncio.run(set_rates(port))
     else:
-        asyncio.run(child(kind, port, channels))
+        streams = STREAMS + SESSION_STREAMS if argv[3:4] == ["session"] else STREAMS
+        asyncio.run(child(kind, port, channels, streams))
     return 0
 
 
 # --- the parent: the SITL, the sidecar, the clients one after the other ---------------------------------
 
 
-def missing_pieces(ardupilot_missing: Callable[[], str | None]) -> str | None:
+def _installed(name: str) -> bool:
+    return importlib.util.find_spec(name) is not None
+
+
+def missing_pieces(
+    ardupilot_missing: Callable[[], str | None], installed: Callable[[str], bool] = _installed
+) -> str | None:
     """Why the benchmark cannot run here (None when it can)."""
-    if importlib.util.find_spec("grpclib") is None:
+    if not installed("grpclib"):
         return (
             "grpclib is not installed (a benchmark's need, not the gateway's): "
             ".venv/bin/python -m uv pip install grpclib"
@@ -399,11 +441,26 @@ async def _event(proc: asyncio.subprocess.Process, name: str, timeout_s: float) 
                 return message
 
 
-async def _spawn(kind: str, port: int, channels: int, log: Path) -> asyncio.subprocess.Process:
+@dataclass(frozen=True)
+class Plan:
+    """What one run measures: the clients in order, the window, channels per client, the streams."""
+
+    kinds: tuple[str, ...]
+    seconds: float
+    channels: int = 1
+    session: bool = False
+
+    @property
+    def streams(self) -> Streams:
+        return STREAMS + SESSION_STREAMS if self.session else STREAMS
+
+
+async def _spawn(kind: str, port: int, plan: Plan, log: Path) -> asyncio.subprocess.Process:
     err = os.open(log, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+    argv = ["--child", kind, str(port), str(plan.channels), *(["session"] if plan.session else [])]
     try:
         return await asyncio.create_subprocess_exec(
-            sys.executable, __file__, "--child", kind, str(port), str(channels),
+            sys.executable, __file__, *argv,
             stdin=asyncio.subprocess.PIPE, stdout=asyncio.subprocess.PIPE, stderr=err,
         )  # fmt: skip
     finally:
@@ -422,15 +479,20 @@ def stat_cpu_seconds(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / common.CLK_TCK
 
 
-async def measure(
-    kind: str, port: int, server_pid: int, channels: int, seconds: float, folder: Path
-) -> dict[str, Any]:
+def _cpu(pid: int, server_pid: int) -> tuple[float, float, float]:
+    """The client's CPU seconds (threads' run time, and /proc/<pid>/stat's ticks), the sidecar's."""
+    import common
+
+    return common.cpu_seconds(pid), stat_cpu_seconds(pid), common.cpu_seconds(server_pid)
+
+
+async def measure(kind: str, port: int, server_pid: int, plan: Plan, folder: Path) -> dict[str, Any]:
     """One client in its own process: memory after its subscriptions and after the window, what it
     received and its CPU over the window."""
     import common
 
     log = folder / f"{kind}.log"
-    proc = await _spawn(kind, port, channels, log)
+    proc = await _spawn(kind, port, plan, log)
     assert proc.stdin is not None
     try:
         try:
@@ -442,19 +504,9 @@ async def measure(
         rss_subscribed = common.rss_kb(proc.pid)
         proc.stdin.write(b"start\n")
         await _event(proc, "started", 30.0)
-        cpu0, stat0, side0 = (
-            common.cpu_seconds(proc.pid),
-            stat_cpu_seconds(proc.pid),
-            common.cpu_seconds(server_pid),
-        )
-        t0 = time.monotonic()
-        await asyncio.sleep(seconds)
-        cpu1, stat1, side1 = (
-            common.cpu_seconds(proc.pid),
-            stat_cpu_seconds(proc.pid),
-            common.cpu_seconds(server_pid),
-        )
-        elapsed = time.monotonic() - t0
+        before, t0 = _cpu(proc.pid, server_pid), time.monotonic()
+        await asyncio.sleep(plan.seconds)
+        after, elapsed = _cpu(proc.pid, server_pid), time.monotonic() - t0
         proc.stdin.write(b"stop\n")
         counts = (await _event(proc, "counts", 30.0))["counts"]
         rss_end, smaps = common.rss_kb(proc.pid), common.smaps_kb(proc.pid)
@@ -464,6 +516,7 @@ async def measure(
         if proc.returncode is None:
             proc.kill()
             await proc.wait()
+    cpu, stat_cpu, sidecar_cpu = (b - a for a, b in zip(before, after, strict=True))
     return {
         "kind": kind,
         "unary": subscribed.get("unary"),
@@ -474,114 +527,108 @@ async def measure(
         "elapsed": elapsed,
         "items": sum(counts.values()),
         "rates": {name: n / elapsed for name, n in counts.items()},
-        "cpu": cpu1 - cpu0,
-        "stat_cpu": stat1 - stat0,
-        "sidecar_cpu": side1 - side0,
+        "cpu": cpu,
+        "stat_cpu": stat_cpu,
+        "sidecar_cpu": sidecar_cpu,
     }
 
 
 async def set_rest_rates(port: int, folder: Path) -> dict[str, str]:
-    proc = await _spawn("rates", port, 1, folder / "rates.log")
+    proc = await _spawn("rates", port, Plan((), 0.0), folder / "rates.log")
     try:
         return (await _event(proc, "rates", 120.0))["results"]
     except (RuntimeError, TimeoutError):
-        raise SystemExit(
-            "the rates were not set:\n" + (folder / "rates.log").read_text(errors="replace")[-3000:]
-        ) from None
+        text = (folder / "rates.log").read_text(errors="replace")[-3000:]
+        raise SystemExit(f"the rates were not set:\n{text}") from None
     finally:
         if proc.returncode is None:
             await asyncio.wait_for(proc.wait(), 30.0)
 
 
-async def run(kinds: list[str], seconds: float, channels: int) -> tuple[dict[str, str], list[dict[str, Any]]]:
+async def run(plan: Plan) -> tuple[dict[str, str], list[dict[str, Any]]]:
     autopilots = _autopilots()
     with tempfile.TemporaryDirectory(prefix="grpc-link-") as tmp:
         folder = Path(tmp)
         with autopilots.arducopter(folder, speedup=1.0, sysid=1, taken=set()) as pilot:
             async with mavsdk_server(pilot.url, folder) as (server, port):
                 rates = await set_rest_rates(port, folder)
-                results = [await measure(k, port, server.pid, channels, seconds, folder) for k in kinds]
+                results = [await measure(kind, port, server.pid, plan, folder) for kind in plan.kinds]
     return rates, results
 
 
-def render(
-    rates: dict[str, str],
-    results: list[dict[str, Any]],
-    seconds: float,
-    channels: int,
-    loads: tuple[str, str],
-) -> str:
+def _row(r: dict[str, Any]) -> list[object]:
+    items, elapsed = r["items"], r["elapsed"]
+    per_k = f"{1000 * r['cpu'] / items:.3f} ({1000 * r['stat_cpu'] / items:.2f})" if items else "-"
+    return [
+        r["kind"], f"{r['rss_subscribed']:.1f}", f"{r['rss']:.1f} / {r['pss']:.1f}", f"{items / elapsed:.2f}",
+        per_k, f"{100 * r['cpu'] / elapsed:.2f}", f"{100 * r['sidecar_cpu'] / elapsed:.2f}", r["modules"],
+        "-" if r["unary"] is None else f"{r['unary']:g} m",
+    ]  # fmt: skip
+
+
+HEADERS = [
+    "client", "RSS subscribed, MiB", "RSS / PSS at the end, MiB", "items/s", "CPU s per 1,000 items (stat)",
+    "CPU % of a core", "sidecar CPU %", "modules", "unary answer",
+]  # fmt: skip
+
+
+def render(rates: dict[str, str], results: list[dict[str, Any]], plan: Plan, loads: tuple[str, str]) -> str:
     import common
 
-    rows = []
-    for r in results:
-        per_k = (
-            f"{1000 * r['cpu'] / r['items']:.3f} ({1000 * r['stat_cpu'] / r['items']:.2f})"
-            if r["items"]
-            else "-"
-        )
-        rows.append([
-            r["kind"], f"{r['rss_subscribed']:.1f}", f"{r['rss']:.1f} / {r['pss']:.1f}",
-            f"{r['items'] / r['elapsed']:.2f}",
-            per_k, f"{100 * r['cpu'] / r['elapsed']:.2f}", f"{100 * r['sidecar_cpu'] / r['elapsed']:.2f}",
-            r["modules"], "-" if r["unary"] is None else f"{r['unary']:g} m",
-        ])  # fmt: skip
-    streams = [name for _plugin, name in STREAMS]
     flowing = [r for r in results if r["items"]]
-    stream_rows = [[name, *(f"{r['rates'][name]:.2f}" for r in flowing)] for name in streams]
+    stream_rows = [
+        [label(stream), *(f"{r['rates'][label(stream)]:.2f}" for r in flowing)] for stream in plan.streams
+    ]
     lines = [
-        f"One ArduCopter SITL (real time) at rest, one mavsdk_server; {channels} channel(s) per client, "
-        f"{len(STREAMS)} streams each; a {seconds:g} s window; load average (1 min) {loads[0]} at the start, "
-        f"{loads[1]} at the end.",
+        f"One ArduCopter SITL (real time) at rest, one mavsdk_server; {plan.channels} channel(s) per "
+        f"client, {len(plan.streams)} streams each; a {plan.seconds:g} s window; load average (1 min) "
+        f"{loads[0]} at the start, {loads[1]} at the end.",
         "Rates asked for: " + ", ".join(f"{k} {v}" for k, v in rates.items()) + ".",
         "",
-        common.table(
-            [
-                "client",
-                "RSS subscribed, MiB",
-                "RSS / PSS at the end, MiB",
-                "items/s",
-                "CPU s per 1,000 items (stat)",
-                "CPU % of a core",
-                "sidecar CPU %",
-                "modules",
-                "unary answer",
-            ],
-            rows,
-        ),
+        common.table(HEADERS, [_row(r) for r in results]),
         "",
         common.table(["stream, items/s", *(r["kind"] for r in flowing)], stream_rows),
     ]
     by_kind = {r["kind"]: r for r in results}
     old, new = by_kind.get("grpcio-wrappers"), by_kind.get("grpclib-pb2")
-    if old and new:
+    if old and new and old["items"] and new["items"]:
         lines += [
             "",
             f"grpclib-pb2 against grpcio-wrappers: RSS {new['rss'] - old['rss']:+.1f} MiB, PSS "
             f"{new['pss'] - old['pss']:+.1f} MiB; CPU per 1,000 items "
-            f"{(new['cpu'] / max(new['items'], 1)) / (old['cpu'] / max(old['items'], 1)):.2f}x.",
+            f"{(new['cpu'] / new['items']) / (old['cpu'] / old['items']):.2f}x.",
         ]
     return "\n".join(lines)
 
 
-def main(argv: list[str]) -> int:
-    import common
-
+def parse(argv: list[str]) -> Plan:
+    """The command line as a Plan; a bad value exits with one line naming it."""
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--full", action="store_true", help="a 180 s window instead of 60 s")
     p.add_argument("--seconds", type=float, help="the window at rest, s (default 60; 180 with --full)")
     p.add_argument("--channels", type=int, default=1, help="channels per client, each with every stream")
     p.add_argument("--clients", default=",".join(KINDS), help=f"which, in order (of {', '.join(KINDS)})")
+    p.add_argument("--session", action="store_true", help="the session's streams too (SESSION_STREAMS)")
     args = p.parse_args(argv)
     seconds = args.seconds if args.seconds is not None else 180.0 if args.full else 60.0
-    if not seconds > 0:
-        p.error(f"--seconds: {seconds:g} is not a window (accepted: above 0)")
+    if not 0 < seconds < float("inf"):
+        p.error(f"--seconds: {seconds:g} is not a window (accepted: a number of seconds above 0)")
     if args.channels < 1:
         p.error(f"--channels: {args.channels} is not a number of channels (accepted: 1 or more)")
-    kinds = args.clients.split(",")
+    kinds = tuple(args.clients.split(","))
     unknown = [k for k in kinds if k not in KINDS]
     if unknown:
-        p.error(f"--clients: {', '.join(unknown)} unknown (accepted: {', '.join(KINDS)})")
+        p.error(
+            f"--clients: {', '.join(unknown)} unknown (accepted: a comma-separated list of "
+            f"{', '.join(KINDS)})"
+        )
+    return Plan(kinds, seconds, args.channels, args.session)
+
+
+def main(argv: list[str]) -> int:
+    import common
+
+    plan = parse(argv)
     sys.path.insert(0, str(common.ROOT))
     why = missing_pieces(lambda: _autopilots().ardupilot_missing())
     if why:
@@ -589,12 +636,12 @@ def main(argv: list[str]) -> int:
         return 0
     info = common.machine()
     print(common.machine_line(info), flush=True)
-    rates, results = asyncio.run(run(kinds, seconds, args.channels))
+    rates, results = asyncio.run(run(plan))
     loads = (
         info["load average (1/5/15 min) at start"].split()[0],
         Path("/proc/loadavg").read_text().split()[0],
     )
-    print(render(rates, results, seconds, args.channels, loads))
+    print(render(rates, results, plan, loads))
     return 0
 
 
