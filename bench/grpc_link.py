@@ -22,9 +22,10 @@ connection state), ``--channels K`` opens K channels with all their streams per 
 links in one process; mavsdk_server answers each).
 
 Printed for each client: RSS after the subscriptions and RSS / PSS at the window's end
-(``/proc/<pid>/statm``, ``smaps_rollup``), stream items a second, CPU seconds per 1,000 items (the sum of
-its threads' run time, ``/proc/<pid>/task/*/schedstat``; in brackets the same from ``/proc/<pid>/stat``'s
-clock ticks) and the sidecar's CPU over the same window. An item is counted and dropped: the gateway's
+(``/proc/<pid>/statm``, ``smaps_rollup``; that RSS split into anonymous and file pages, ``status``),
+stream items a second, CPU seconds per 1,000 items (the sum of its threads' run time,
+``/proc/<pid>/task/*/schedstat``; in brackets the same from ``/proc/<pid>/stat``'s clock ticks) and the
+sidecar's CPU over the same window. An item is counted and dropped: the gateway's
 own conversion into its cache would come on top in either link.
 
 grpclib is a benchmark's need only (the gateway does not depend on it): ``.venv/bin/python -m uv pip
@@ -479,6 +480,18 @@ def stat_cpu_seconds(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / common.CLK_TCK
 
 
+def rss_split_kb(pid: int) -> tuple[int, int]:
+    """RssAnon and RssFile from ``/proc/<pid>/status``, KiB: the heap, and the pages of files mapped
+    (shared objects: how much of them is resident follows the page cache, docs/benchmarks.md)."""
+    fields = {"RssAnon:": 0, "RssFile:": 0}
+    with contextlib.suppress(OSError), open(f"/proc/{pid}/status") as fh:
+        for line in fh:
+            key, *rest = line.split()
+            if key in fields and rest:
+                fields[key] = int(rest[0])
+    return fields["RssAnon:"], fields["RssFile:"]
+
+
 def _cpu(pid: int, server_pid: int) -> tuple[float, float, float]:
     """The client's CPU seconds (threads' run time, and /proc/<pid>/stat's ticks), the sidecar's."""
     import common
@@ -509,7 +522,11 @@ async def measure(kind: str, port: int, server_pid: int, plan: Plan, folder: Pat
         after, elapsed = _cpu(proc.pid, server_pid), time.monotonic() - t0
         proc.stdin.write(b"stop\n")
         counts = (await _event(proc, "counts", 30.0))["counts"]
-        rss_end, smaps = common.rss_kb(proc.pid), common.smaps_kb(proc.pid)
+        rss_end, smaps, (anon, files) = (
+            common.rss_kb(proc.pid),
+            common.smaps_kb(proc.pid),
+            rss_split_kb(proc.pid),
+        )
         proc.stdin.close()
         await asyncio.wait_for(proc.wait(), 30.0)
     finally:
@@ -524,6 +541,8 @@ async def measure(kind: str, port: int, server_pid: int, plan: Plan, folder: Pat
         "rss_subscribed": rss_subscribed / 1024,
         "rss": rss_end / 1024,
         "pss": smaps["pss"] / 1024,
+        "anon": anon / 1024,
+        "file": files / 1024,
         "elapsed": elapsed,
         "items": sum(counts.values()),
         "rates": {name: n / elapsed for name, n in counts.items()},
@@ -560,15 +579,16 @@ def _row(r: dict[str, Any]) -> list[object]:
     items, elapsed = r["items"], r["elapsed"]
     per_k = f"{1000 * r['cpu'] / items:.3f} ({1000 * r['stat_cpu'] / items:.2f})" if items else "-"
     return [
-        r["kind"], f"{r['rss_subscribed']:.1f}", f"{r['rss']:.1f} / {r['pss']:.1f}", f"{items / elapsed:.2f}",
+        r["kind"], f"{r['rss_subscribed']:.1f}", f"{r['rss']:.1f} / {r['pss']:.1f}",
+        f"{r['anon']:.1f} / {r['file']:.1f}", f"{items / elapsed:.2f}",
         per_k, f"{100 * r['cpu'] / elapsed:.2f}", f"{100 * r['sidecar_cpu'] / elapsed:.2f}", r["modules"],
         "-" if r["unary"] is None else f"{r['unary']:g} m",
     ]  # fmt: skip
 
 
 HEADERS = [
-    "client", "RSS subscribed, MiB", "RSS / PSS at the end, MiB", "items/s", "CPU s per 1,000 items (stat)",
-    "CPU % of a core", "sidecar CPU %", "modules", "unary answer",
+    "client", "RSS subscribed, MiB", "RSS / PSS at the end, MiB", "RSS anon / file", "items/s",
+    "CPU s per 1,000 items (stat)", "CPU % of a core", "sidecar CPU %", "modules", "unary answer",
 ]  # fmt: skip
 
 
