@@ -19,7 +19,7 @@ makes one unary call (``UNARY``), waits for the first position and settles, then
 over the window at rest; ``--session`` adds the streams the gateway's MAVSDK session opens besides
 (``SESSION_STREAMS``: HEARTBEAT, COMMAND_ACK and EKF_STATUS_REPORT through mavlink_direct, the
 connection state), ``--channels K`` opens K channels with all their streams per client (K drones'
-links in one process; mavsdk_server answers each).
+links in one process, each to a loopback address of its own: ``channel_host``).
 
 Printed for each client: RSS after the subscriptions and RSS / PSS at the window's end
 (``/proc/<pid>/statm``, ``smaps_rollup``; that RSS split into anonymous and file pages, ``status``),
@@ -156,6 +156,13 @@ def _load_pb2() -> dict[str, types.ModuleType]:
     return {plugin: importlib.import_module(f"mavsdk_grpc.{plugin}_pb2") for plugin in PLUGINS}
 
 
+def channel_host(index: int) -> str:
+    """The address of a client's channel ``index``: one loopback address each (mavsdk_server listens on
+    all of them), so that grpcio, which shares one connection between channels to the same address,
+    opens one per channel, as it does for drones, each with a sidecar of its own."""
+    return f"127.0.0.{index + 1}"
+
+
 def request_of(request: Any, argument: str | None) -> Any:
     """A stream's request message: empty, or its one field set to ``argument`` (mavlink_direct's
     message name). Any: protobuf's generated classes, untyped."""
@@ -186,8 +193,8 @@ async def open_wrappers(port: int, channels: int, streams: Streams, count: Count
 
     systems = []
     answer: object = None
-    for _ in range(channels):
-        system = System("127.0.0.1", port)
+    for index in range(channels):
+        system = System(channel_host(index), port)
         await system.connect()
         systems.append(system)
         answer = await asyncio.wait_for(getattr(getattr(system, UNARY[0]), UNARY[1])(), 10.0)
@@ -211,8 +218,8 @@ async def open_grpcio_pb2(port: int, channels: int, streams: Streams, count: Cou
 
     opened = []
     answer: object = None
-    for _ in range(channels):
-        channel = aio.insecure_channel(f"127.0.0.1:{port}")
+    for index in range(channels):
+        channel = aio.insecure_channel(f"{channel_host(index)}:{port}")
         await channel.channel_ready()
         opened.append(channel)
         path, request, reply, _ = resolve(modules[UNARY[0]], UNARY[0], camel(UNARY[1]))
@@ -249,8 +256,8 @@ async def open_grpclib_pb2(
 
     opened = []
     answer: object = None
-    for _ in range(channels):
-        channel = Channel("127.0.0.1", port)
+    for index in range(channels):
+        channel = Channel(channel_host(index), port)
         opened.append(channel)
         path, request, reply, _ = resolve(modules[UNARY[0]], UNARY[0], camel(UNARY[1]))
         async with channel.request(path, Cardinality.UNARY_UNARY, request, reply, timeout=10.0) as call:
@@ -633,8 +640,8 @@ def parse(argv: list[str]) -> Plan:
     seconds = args.seconds if args.seconds is not None else 180.0 if args.full else 60.0
     if not 0 < seconds < float("inf"):
         p.error(f"--seconds: {seconds:g} is not a window (accepted: a number of seconds above 0)")
-    if args.channels < 1:
-        p.error(f"--channels: {args.channels} is not a number of channels (accepted: 1 or more)")
+    if not 1 <= args.channels <= 254:
+        p.error(f"--channels: {args.channels} is not a number of channels (accepted: 1 to 254)")
     kinds = tuple(args.clients.split(","))
     unknown = [k for k in kinds if k not in KINDS]
     if unknown:

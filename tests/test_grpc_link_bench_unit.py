@@ -105,7 +105,8 @@ def test_the_options_make_a_plan_and_bad_ones_get_one_line(capsys: pytest.Captur
     for argv, line in [
         (["--seconds", "0"], "--seconds: 0 is not a window"),
         (["--seconds", "nan"], "--seconds: nan is not a window"),
-        (["--channels", "0"], "--channels: 0 is not a number of channels"),
+        (["--channels", "0"], "--channels: 0 is not a number of channels (accepted: 1 to 254)"),
+        (["--channels", "255"], "--channels: 255 is not a number of channels"),
         (["--clients", "grpclib-pb2,grpcio"], "--clients: grpcio unknown (accepted: a comma-separated list"),
     ]:
         with pytest.raises(SystemExit):
