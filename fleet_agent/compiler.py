@@ -370,7 +370,7 @@ def pattern_legs(step: Pattern) -> list[geometry.Offset]:
         width = step.spacing.metres if step.spacing is not None else step.size.metres
         return geometry.rectangle_legs(step.size.metres, width, heading, clockwise)
     if step.shape == "orbit":
-        return geometry.orbit_legs(step.size.metres, clockwise=clockwise)
+        return geometry.orbit_legs(step.size.metres, clockwise=clockwise, start_deg=heading)
     spacing = step.spacing.metres if step.spacing is not None else step.size.metres / 4
     return geometry.survey_legs(step.lines or 2, step.size.metres, spacing, heading, clockwise)
 

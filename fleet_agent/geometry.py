@@ -69,15 +69,17 @@ def rectangle_legs(
             _scaled(across, -width_m)]  # fmt: skip
 
 
-def orbit_legs(radius_m: float, points: int = 12, clockwise: bool = True) -> list[Offset]:
-    """Out from the centre to the circle (north), around it through ``points`` chords, and back in."""
-    out = (radius_m, 0.0)
-    corners = []
-    for i in range(points + 1):
-        angle = math.radians(i * 360.0 / points * (1 if clockwise else -1))
-        corners.append((radius_m * math.cos(angle), radius_m * math.sin(angle)))
-    chords = [(b[0] - a[0], b[1] - a[1]) for a, b in itertools.pairwise(corners)]
-    return [out, *chords, (-radius_m, 0.0)]
+def orbit_legs(
+    radius_m: float, points: int = 12, clockwise: bool = True, start_deg: float = 0.0
+) -> list[Offset]:
+    """Out from the centre to the circle (towards ``start_deg``), around it through ``points`` chords, and
+    back in."""
+    turn = 360.0 / points * (1 if clockwise else -1)
+    corners = [_scaled(heading_vector(start_deg + i * turn), radius_m) for i in range(points + 1)]
+    chords = [
+        (round(b[0] - a[0], 2) + 0.0, round(b[1] - a[1], 2) + 0.0) for a, b in itertools.pairwise(corners)
+    ]
+    return [corners[0], *chords, (-corners[0][0] + 0.0, -corners[0][1] + 0.0)]
 
 
 def survey_legs(

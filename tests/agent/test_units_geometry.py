@@ -58,6 +58,14 @@ def test_an_orbit_goes_out_round_and_back() -> None:
     assert all(abs(math.hypot(n, e) - chord) < 0.05 for n, e in legs[1:-1])
 
 
+def test_an_orbit_starts_on_the_side_its_heading_names_and_turns_its_way() -> None:
+    """Round a spot from its west side, clockwise: out west, then north of west first; left, south first."""
+    west = geometry.compass_heading("west")
+    right, left = geometry.orbit_legs(20.0, start_deg=west), geometry.orbit_legs(20.0, 12, False, west)
+    assert right[0] == left[0] == (0.0, -20.0) and right[-1] == (0.0, 20.0) and _closes(right)
+    assert right[1][0] > 0 and left[1][0] < 0
+
+
 def test_a_rectangle_is_flown_along_its_length_first() -> None:
     assert geometry.rectangle_legs(40.0, 20.0) == [(40.0, 0.0), (0.0, 20.0), (-40.0, 0.0), (0.0, -20.0)]
     left = geometry.rectangle_legs(30.0, 10.0, geometry.compass_heading("east"), clockwise=False)
