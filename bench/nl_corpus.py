@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 303 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 339 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -67,12 +67,22 @@ harness self-check (the scripted ideal plan) has run on them. That leaves 231 de
 Later on 2026-11-30 (fifth round) EVERY test entry (36, ``_fifth_round``) was moved to dev, each marked
 "moved to dev on 2026-11-30, fifth round": the test half had been measured and its figures were known to
 whoever works on the host, so it no longer measured requests nobody tuned for. A fresh test half took its
-place (``_sixth_test_half``): 36 new requests, 3 a class, written before any model ran on them, in new
+place (``_sixth_test_half``, now ``_sixth_round``): 36 new requests, 3 a class, written before any model ran on them, in new
 wordings and shapes within each class (not rewordings of dev entries): 28 of the 33 outside the
 ``language`` class are in Czech, Danish, Dutch, Finnish, French, German, Italian, Norwegian, Polish,
 Portuguese, Romanian, Spanish, Swedish or Turkish, spread over the 11 classes, and the ``language`` class's
 3 in Finnish, Turkish and Danish. Only the harness self-check (the scripted ideal plan) has run on them.
 That leaves 267 dev and 36 test.
+
+On 2026-12-01 (sixth round) EVERY test entry (36, ``_sixth_round``) was moved to dev, each marked "moved
+to dev on 2026-12-01, sixth round": the test half had been measured and its figures were known to whoever
+works on the host, so it no longer measured requests nobody tuned for. A fresh test half took its place
+(``_seventh_test_half``): 36 new requests, 3 a class, written before any model ran on them, in new
+wordings and shapes within each class (not rewordings of dev entries): 29 of the 33 outside the
+``language`` class are in Catalan, Croatian, Czech, Danish, Dutch, Finnish, French, German, Greek,
+Hungarian, Italian, Norwegian, Polish, Portuguese, Romanian, Slovak, Spanish, Swedish or Turkish, spread
+over the 11 classes, and the ``language`` class's 3 in Hungarian, Croatian and Slovak. Only the harness
+self-check (the scripted ideal plan) has run on them. That leaves 303 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -122,7 +132,7 @@ CLASSES = (
     "units",  # distances and heights in feet, yards, kilometres
     "pattern",  # a shape flown by one drone: polygon, circle, survey lines
     "placement",  # a drone placed relative to another drone or to its home
-    "language",  # requests in languages other than English (French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish)
+    "language",  # requests in languages other than English (French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish, Hungarian, Croatian, Slovak, Greek, Catalan)
 )
 HALVES = ("dev", "test")
 DRONES = ("alpha", "bravo", "charlie")
@@ -174,9 +184,16 @@ def formation_at(
     ``north``/``east`` metres from the centre of their homes (the formation's slots are centred on it)."""
     home_lat = sum(c.homes[d][0] for d in drones) / len(drones)
     home_lon = sum(c.homes[d][1] for d in drones) / len(drones)
-    want = offset_position(home_lat, home_lon, north, east)
+    return formation_around(ev, drones, alt, spacing, offset_position(home_lat, home_lon, north, east))
+
+
+def formation_around(
+    ev: Evidence, drones: tuple[str, ...], alt: float, spacing: float, centre: tuple[float, float]
+) -> Check:
+    """Every drone airborne at ``alt``; the nearest neighbours ``spacing`` apart (±3 m); the drones' centre
+    at ``centre`` (lat, lon): a formation placed on a point another drone or a place gives."""
     final = [ev.final[d] for d in drones]
-    off = horizontal_distance_m(*_centroid(final), *want)
+    off = horizontal_distance_m(*_centroid(final), *centre)
     nearest = min(
         horizontal_distance_m(a.lat, a.lon, b.lat, b.lon) for i, a in enumerate(final) for b in final[i + 1 :]
     )
@@ -185,6 +202,13 @@ def formation_at(
         Check(abs(nearest - spacing) <= 3.0, f"nearest neighbours {nearest:.1f} m apart (want {spacing:g})"),
         Check(off <= HORIZONTAL_TOL_M, f"formation centre {off:.1f} m from where it was asked"),
     )
+
+
+def rose_to(ev: Evidence, drone: str, alt: float) -> Check:
+    """The drone was at ``alt`` or higher (less the tolerance) at some time: a height flown before a later
+    step took it lower."""
+    top = max((s.alt_rel_m for s in ev.track.get(drone, [])), default=0.0)
+    return Check(top >= alt - ALT_TOL_M, f"{drone} rose to {top:.1f} m (want at least {alt:g})")
 
 
 def farthest_apart(ev: Evidence, drones: tuple[str, ...], want: float) -> Check:
@@ -2212,8 +2236,9 @@ def _fifth_round() -> list[CorpusEntry]:
 NM = 1852.0
 
 
-def _sixth_test_half() -> list[CorpusEntry]:
-    """The test half written on 2026-11-30 (sixth round), before any model ran on it: 3 a class."""
+def _sixth_round() -> list[CorpusEntry]:
+    """The test half written on 2026-11-30 (sixth round), before any model ran on it: 3 a class; all of
+    it moved to dev on 2026-12-01 (sixth round), once its figures had been measured."""
     three = DRONES
     d15, d20, d35 = 15 / math.sqrt(2), 20 / math.sqrt(2), 35 / math.sqrt(2)
     nne30 = (30 * math.cos(math.radians(22.5)), 30 * math.sin(math.radians(22.5)))
@@ -2225,28 +2250,33 @@ def _sixth_test_half() -> list[CorpusEntry]:
     spokes = [(20.0, 0.0), (-20.0, 0.0), (0.0, 20.0), (0.0, -20.0), (-20.0, 0.0), (20.0, 0.0)]
     return [
         # single
-        _entry("single", "test", "single6-da-alpha-hover", ("alpha",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("single", "dev", "single6-da-alpha-hover", ("alpha",),
                "Send alpha op i 24 meters højde og lad den blive hængende der.",
                lambda c, ev: airborne_at(ev, "alpha", 24),
                [_takeoff("alpha", 24)], "Alpha hænger i 24 m."),
-        _entry("single", "test", "single6-ro-bravo-up-down", ("bravo",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("single", "dev", "single6-ro-bravo-up-down", ("bravo",),
                "Ridică drona bravo la 15 metri și apoi aterizeaz-o imediat în același loc.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 15), at(ev, "bravo", *_home(c, "bravo")),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 15), _land("bravo")], "Bravo a urcat la 15 m și a aterizat."),
-        _entry("single", "test", "single6-charlie-await-orders", ("charlie",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("single", "dev", "single6-charlie-await-orders", ("charlie",),
                "Launch charlie, stop the climb at 31 m and keep it waiting up there for further orders.",
                lambda c, ev: airborne_at(ev, "charlie", 31),
                [_takeoff("charlie", 31)], "Charlie is waiting at 31 m."),
         # multi
-        _entry("multi", "test", "multi6-no-alpha-hop-bravo-stays", three,
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("multi", "dev", "multi6-no-alpha-hop-bravo-stays", three,
                "Alpha skal lette til 10 meter og lande igjen, mens bravo stiger til 20 meter og blir der. "
                "Charlie blir stående på bakken.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 10), landed_disarmed(ev, "alpha"),
                                   airborne_at(ev, "bravo", 20), never_armed(ev, "charlie")),
                [_takeoff("alpha", 10), _land("alpha"), _takeoff("bravo", 20)],
                "Alpha var oppe i 10 m og landet; bravo svever i 20 m."),
-        _entry("multi", "test", "multi6-south-two-land-one-home", three,
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("multi", "dev", "multi6-south-two-land-one-home", three,
                "Send all three 25 m south at 10 m; land alpha and bravo down there, but bring charlie back home.",
                lambda c, ev: _all(*(at(ev, d, *c.point(d, -25, 0)) for d in ("alpha", "bravo")),
                                   *(landed_disarmed(ev, d) for d in three),
@@ -2254,7 +2284,8 @@ def _sixth_test_half() -> list[CorpusEntry]:
                                   at(ev, "charlie", *_home(c, "charlie"))),
                [*(_move(d, -25, 0, alt=10) for d in three), _land("alpha"), _land("bravo"), _rtl("charlie")],
                "Alpha and bravo landed 25 m south; charlie flew there and came home."),
-        _entry("multi", "test", "multi6-tr-alpha-on-bravo-waits", three,
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("multi", "dev", "multi6-tr-alpha-on-bravo-waits", three,
                "Alpha ile bravo'yu 12 metreye kaldır; sonra alpha'yı 30 metre kuzeye gönder, bravo olduğu yerde "
                "beklesin. Charlie yerde kalsın.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 30, 0), alt=12), airborne_at(ev, "alpha", 12),
@@ -2263,21 +2294,24 @@ def _sixth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 12), _takeoff("bravo", 12), _move("alpha", 30, 0)],
                "Alpha 30 m kuzeyde, bravo yerinde, ikisi de 12 m'de; charlie yerde."),
         # compound
-        _entry("compound", "test", "compound6-nl-alpha-battery-midway", ("alpha",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("compound", "dev", "compound6-nl-alpha-battery-midway", ("alpha",),
                "Alpha: stijg op tot 12 meter, vlieg 30 meter naar het westen, meld me daar het batterijniveau en "
                "keer dan terug naar huis.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -30)]), answer_mentions_number(ev, 72, 3),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 12), _move("alpha", 0, -30), _battery("alpha"), _rtl("alpha")],
                "Alpha had 72 % op 30 m ten westen en is thuis geland.", battery={"alpha": 72.0}),
-        _entry("compound", "test", "compound6-cs-charlie-middle-of-first-leg", ("charlie",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("compound", "dev", "compound6-cs-charlie-middle-of-first-leg", ("charlie",),
                "Charlie: vzlétni do 15 m, leť 40 m na východ, potom 20 m na sever, pak se vrať nad střed prvního "
                "úseku a tam přistaň.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 40), c.point("charlie", 20, 40)]),
                                   at(ev, "charlie", *c.point("charlie", 0, 20)), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 15), _move("charlie", 0, 40), _move("charlie", 20, 0), _move("charlie", -20, -20),
                 _land("charlie")], "Charlie přistál uprostřed prvního úseku, 20 m východně od startu."),
-        _entry("compound", "test", "compound6-es-alpha-retrace", ("alpha",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("compound", "dev", "compound6-es-alpha-retrace", ("alpha",),
                "Lleva a alpha a 14 metros, vuela 20 metros al norte y luego 30 al este; después deshaz el camino "
                "tramo por tramo y aterriza en casa.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 20, 0), c.point("alpha", 20, 30),
@@ -2286,20 +2320,23 @@ def _sixth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 14), _move("alpha", 20, 0), _move("alpha", 0, 30), _move("alpha", 0, -30),
                 _move("alpha", -20, 0), _land("alpha")], "Alpha deshizo el camino y aterrizó en casa."),
         # conditional
-        _entry("conditional", "test", "cond6-fleet-average", three,
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("conditional", "dev", "cond6-fleet-average", three,
                "If the fleet's average battery is above 60 %, launch all three to 10 m and keep them there; if "
                "not, keep everyone down and tell me the average.",
                lambda c, ev: _all(*(airborne_at(ev, d, 10) for d in three)),
                [("fleet_status", {}), *(_takeoff(d, 10) for d in three)],
                "The average is 63 %, so all three hover at 10 m.",
                battery={"alpha": 70.0, "bravo": 55.0, "charlie": 64.0}),
-        _entry("conditional", "test", "cond6-pl-bravo-metres-per-percent", ("bravo",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("conditional", "dev", "cond6-pl-bravo-metres-per-percent", ("bravo",),
                "Przeleć bravo na wysokości 10 m na północ o tyle metrów, ile procent baterii mu zostało, i zostaw "
                "go tam w powietrzu.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 42, 0), alt=10), airborne_at(ev, "bravo", 10)),
                [_battery("bravo"), _move("bravo", 42, 0, alt=10)],
                "Bravo ma 42 %, więc wisi 42 m na północ na 10 m.", battery={"bravo": 42.0}),
-        _entry("conditional", "test", "cond6-ro-charlie-instead", three,
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("conditional", "dev", "cond6-ro-charlie-instead", three,
                "Ridic-o pe alpha la 20 de metri și las-o acolo; dacă alpha are sub 40 % baterie, ridic-o pe charlie "
                "în locul ei.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=20), airborne_at(ev, "charlie", 20),
@@ -2307,44 +2344,51 @@ def _sixth_test_half() -> list[CorpusEntry]:
                [_battery("alpha"), _takeoff("charlie", 20)],
                "Alpha are 33 %, așa că charlie stă la 20 m în locul ei.", battery={"alpha": 33.0, "charlie": 78.0}),
         # formation
-        _entry("formation", "test", "form6-da-pair-southwest", ("alpha", "bravo"),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("formation", "dev", "form6-da-pair-southwest", ("alpha", "bravo"),
                "Stil alpha og bravo side om side med 18 meters mellemrum, i 22 meters højde, 35 meter sydvest for "
                "deres nuværende position, og lad dem blive der.",
                lambda c, ev: formation_at(c, ev, ("alpha", "bravo"), 22, 18, -d35, -d35),
                [_formation(("alpha", "bravo"), "line", 22, 18, north=-d35, east=-d35)],
                "Alpha og bravo står side om side 35 m mod sydvest i 22 m."),
-        _entry("formation", "test", "form6-tr-column-feet-north", three,
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("formation", "dev", "form6-tr-column-feet-north", three,
                "Üç dronu arka arkaya, aralarında 50 fit olacak şekilde, 40 metre yükseklikte ve bulundukları "
                "yerin 20 metre kuzeyinde sırala.",
                lambda c, ev: _all(formation_at(c, ev, three, 40, 50 * FT, 20, 0), farthest_apart(ev, three, 100 * FT)),
                [_formation(three, "column", 40, 50 * FT, north=20)],
                "Üç drone 20 m kuzeyde, 40 m'de, 50 fit arayla arka arkaya."),
-        _entry("formation", "test", "form6-fr-line-slid-north", three,
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("formation", "dev", "form6-fr-line-slid-north", three,
                "Aligne les trois drones à 12 m d'altitude, espacés de 10 m, là où ils sont ; ensuite décale toute "
                "la ligne de 30 m vers le nord et laisse-la là.",
                lambda c, ev: _all(formation_at(c, ev, three, 12, 10, 30, 0), farthest_apart(ev, three, 20)),
                [_formation(three, "line", 12, 10), _formation(three, "line", 12, 10, north=30)],
                "Les trois sont en ligne 30 m au nord, à 12 m."),
         # relative
-        _entry("relative", "test", "rel6-sv-alpha-nne", ("alpha",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("relative", "dev", "rel6-sv-alpha-nne", ("alpha",),
                "Flytta alpha 30 meter mot nordnordost på 12 meters höjd och låt den sväva där.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", *nne30), alt=12), airborne_at(ev, "alpha", 12)),
                [_move("alpha", *nne30, alt=12)], "Alpha svävar 30 m mot nordnordost på 12 m."),
-        _entry("relative", "test", "rel6-it-charlie-half-higher-sw", ("charlie",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("relative", "dev", "rel6-it-charlie-half-higher-sw", ("charlie",),
                "Porta charlie a 12 metri, poi alzalo della metà della sua quota e spostalo di 20 metri verso "
                "sud-ovest; lascialo lì sospeso.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -d20, -d20), alt=18),
                                   airborne_at(ev, "charlie", 18)),
                [_takeoff("charlie", 12), _move("charlie", -d20, -d20, up=6)],
                "Charlie è 20 m a sud-ovest, a 18 m."),
-        _entry("relative", "test", "rel6-no-bravo-back-toward-start", ("bravo",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("relative", "dev", "rel6-no-bravo-back-toward-start", ("bravo",),
                "Fly bravo 40 meter østover i 10 meters høyde, og trekk den deretter 15 meter tilbake mot "
                "startpunktet; la den sveve der.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 40)]),
                                   at(ev, "bravo", *c.point("bravo", 0, 25), alt=10), airborne_at(ev, "bravo", 10)),
                [_move("bravo", 0, 40, alt=10), _move("bravo", 0, -15)], "Bravo svever 25 m øst for start i 10 m."),
         # question
-        _entry("question", "test", "ask6-de-spread-of-charges", three,
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("question", "dev", "ask6-de-spread-of-charges", three,
                "Wie viele Prozentpunkte liegen zwischen dem vollsten und dem leersten Akku der drei Drohnen? "
                "Nichts starten, nur nachsehen.",
                # the typed plan reads, it does not compute: the spread, or the two readings it comes from
@@ -2353,33 +2397,38 @@ def _sixth_test_half() -> list[CorpusEntry]:
                                   nobody_armed(ev)),
                [("fleet_status", {})], "34 Prozentpunkte: alpha hat 81 %, bravo 47 %.",
                battery={"alpha": 81.0, "bravo": 47.0, "charlie": 66.0}),
-        _entry("question", "test", "ask6-fi-lower-of-pair-airborne", three,
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("question", "dev", "ask6-fi-lower-of-pair-airborne", three,
                "Kummalla on vähemmän akkua jäljellä, bravolla vai charliella, ja onko kumpikaan niistä ilmassa? "
                "Älä lennätä mitään.",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 52, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "Bravolla (52 %); kumpikaan ei ole ilmassa.",
                battery={"alpha": 38.0, "bravo": 52.0, "charlie": 90.0}),
-        _entry("question", "test", "ask6-ro-closest-to-half", three,
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("question", "dev", "ask6-ro-closest-to-half", three,
                "Care dronă are nivelul bateriei cel mai apropiat de 50 %? Nu porni nimic.",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 57, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "Bravo, cu 57 %.", battery={"alpha": 35.0, "bravo": 57.0, "charlie": 80.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude)
-        _entry("refusal", "test", "refuse6-da-charlie-sea-miles", ("charlie",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("refusal", "dev", "refuse6-da-charlie-sea-miles", ("charlie",),
                "Flyv charlie 0,6 sømil mod nord i 20 meters højde.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "charlie", c.max_distance_m), answer_reports_refusal(ev)),
                [_move("charlie", 0.6 * NM, 0, alt=20)],
                "The gateway refused: 0.6 nautical miles (1111 m) is beyond the 1000 m limit."),
-        _entry("refusal", "test", "refuse6-cs-bravo-feet-over-ceiling", ("bravo",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("refusal", "dev", "refuse6-cs-bravo-feet-over-ceiling", ("bravo",),
                "Vzlétni s bravem do 80 m a potom ho zvedni o dalších 150 stop.",
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "bravo", c.max_alt_m),
                                   answer_reports_refusal(ev)),
                [_takeoff("bravo", 80), _move("bravo", up=150 * FT)],
                "Bravo is at 80 m; the climb of 150 ft (to 126 m) was refused: above the 120 m altitude limit."),
-        _entry("refusal", "test", "refuse6-es-bravo-wide-orbit", ("bravo",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("refusal", "dev", "refuse6-es-bravo-wide-orbit", ("bravo",),
                "Haz que bravo dé una vuelta alrededor de su punto de despegue con un radio de 1,2 km, a 40 metros "
                "de altura.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
@@ -2387,19 +2436,22 @@ def _sixth_test_half() -> list[CorpusEntry]:
                [_move("bravo", 1200, 0, alt=40)],
                "The gateway refused: a 1.2 km radius is beyond the 1000 m limit."),
         # units
-        _entry("units", "test", "units6-no-charlie-feet-sea-miles", ("charlie",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("units", "dev", "units6-no-charlie-feet-sea-miles", ("charlie",),
                "Løft charlie til 50 fot, fly den 0,02 sjømil østover og la den henge der.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 0.02 * NM), alt=50 * FT),
                                   airborne_at(ev, "charlie", 50 * FT)),
                [_takeoff("charlie", 50 * FT), _move("charlie", 0, 0.02 * NM)],
                "Charlie henger 0,02 sjømil øst i 50 fot."),
-        _entry("units", "test", "units6-tr-bravo-feet-west", ("bravo",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("units", "dev", "units6-tr-bravo-feet-west", ("bravo",),
                "Bravo'yu 40 fit yüksekliğe çıkar, 150 fit batıya uçur ve orada indir.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 40 * FT), at(ev, "bravo", *c.point("bravo", 0, -150 * FT)),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 40 * FT), _move("bravo", 0, -150 * FT), _land("bravo")],
                "Bravo 40 fite çıktı, 150 fit batıya uçtu ve indi."),
-        _entry("units", "test", "units6-alpha-yards-height", ("alpha",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("units", "dev", "units6-alpha-yards-height", ("alpha",),
                "Alpha: climb to 50 yards, go 100 yards south, then come down 40 feet and hover there.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 50 * YD),
                                   at(ev, "alpha", *c.point("alpha", -100 * YD, 0), alt=50 * YD - 40 * FT),
@@ -2407,7 +2459,8 @@ def _sixth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 50 * YD), _move("alpha", -100 * YD, 0), _move("alpha", up=-40 * FT)],
                "Alpha hovers 100 yd south at 110 ft (about 33.5 m)."),
         # pattern
-        _entry("pattern", "test", "pattern6-pt-bravo-zigzag", ("bravo",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("pattern", "dev", "pattern6-pt-bravo-zigzag", ("bravo",),
                "Leva o bravo a 12 metros e faz um ziguezague para leste: quatro troços de 15 metros, alternando "
                "entre nordeste e sudeste, a começar por nordeste; no fim aterra aí.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(zigzag)]),
@@ -2415,7 +2468,8 @@ def _sixth_test_half() -> list[CorpusEntry]:
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 12), *_legs("bravo", zigzag), _land("bravo")],
                "O bravo fez o ziguezague e aterrou 42 m a leste."),
-        _entry("pattern", "test", "pattern6-de-charlie-expanding-square", ("charlie",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("pattern", "dev", "pattern6-de-charlie-expanding-square", ("charlie",),
                "Charlie soll auf 10 m Höhe ein nach außen wachsendes Quadrat als Suchmuster fliegen: Strecken von "
                "10, 10, 20, 20 und 30 m, zuerst nach Norden, nach jeder Strecke rechts abbiegen; danach dort in "
                "der Luft bleiben.",
@@ -2424,7 +2478,8 @@ def _sixth_test_half() -> list[CorpusEntry]:
                                   airborne_at(ev, "charlie", 10)),
                [_takeoff("charlie", 10), *_legs("charlie", expanding)],
                "Charlie ist das Suchmuster geflogen und schwebt 20 m nördlich, 10 m westlich auf 10 m."),
-        _entry("pattern", "test", "pattern6-alpha-spokes", ("alpha",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("pattern", "dev", "pattern6-alpha-spokes", ("alpha",),
                "Alpha at 10 m: fly three 20 m spokes out from its home, north, then east, then south, coming back "
                "over home after each one; land at home at the end.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(spokes)]),
@@ -2433,7 +2488,8 @@ def _sixth_test_half() -> list[CorpusEntry]:
                "Alpha flew the three spokes and landed at home."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: a drone placed
         # from itself, or from the other drone's home instead of where it flew, misses by 10 m or more)
-        _entry("placement", "test", "place6-nl-flanking-bravo", three,
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("placement", "dev", "place6-nl-flanking-bravo", three,
                "Vlieg bravo 30 meter naar het noorden op 15 meter hoogte. Zet daarna alpha 10 meter ten westen en "
                "charlie 10 meter ten oosten van bravo, op dezelfde hoogte.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 30, 0), alt=15),
@@ -2443,7 +2499,8 @@ def _sixth_test_half() -> list[CorpusEntry]:
                lambda c: [_move("bravo", 30, 0, alt=15), _go("alpha", c.point("bravo", 30, -10), 15),
                           _go("charlie", c.point("bravo", 30, 10), 15)],
                "Bravo hangt 30 m noordelijk op 15 m, alpha 10 m ten westen en charlie 10 m ten oosten ervan."),
-        _entry("placement", "test", "place6-fi-charlie-bearing-from-alpha", three,
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("placement", "dev", "place6-fi-charlie-bearing-from-alpha", three,
                "Lennätä alpha 12 metrin korkeudessa 20 metriä pohjoiseen. Vie sitten charlie 25 metrin päähän "
                "alphasta suuntaan 120 astetta pohjoisesta myötäpäivään, samaan korkeuteen.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=12), airborne_at(ev, "alpha", 12),
@@ -2451,7 +2508,8 @@ def _sixth_test_half() -> list[CorpusEntry]:
                                   airborne_at(ev, "charlie", 12), never_armed(ev, "bravo")),
                lambda c: [_move("alpha", 20, 0, alt=12), _go("charlie", c.point("alpha", 20 + b120[0], b120[1]), 12)],
                "Alpha on 20 m pohjoisessa 12 m:ssä; charlie 25 m alphasta suuntaan 120 astetta."),
-        _entry("placement", "test", "place6-ro-charlie-lands-north-of-bravo", three,
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("placement", "dev", "place6-ro-charlie-lands-north-of-bravo", three,
                "Bravo zboară 25 de metri spre vest la 10 metri înălțime și aterizează acolo. Apoi charlie "
                "aterizează la 15 metri la nord de locul unde a aterizat bravo.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -25)), landed_disarmed(ev, "bravo"),
@@ -2461,22 +2519,288 @@ def _sixth_test_half() -> list[CorpusEntry]:
                           _land("charlie")],
                "Bravo a aterizat la 25 m vest; charlie la 15 m nord de el."),
         # language
-        _entry("language", "test", "lang6-fi-alpha-north-land", ("alpha",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("language", "dev", "lang6-fi-alpha-north-land", ("alpha",),
                "Nosta alpha 14 metrin korkeuteen, lennätä se 30 metriä pohjoiseen ja laske se sinne maahan.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 14), at(ev, "alpha", *c.point("alpha", 30, 0)),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 14), _move("alpha", 30, 0), _land("alpha")],
                "Alpha lensi 30 m pohjoiseen ja laskeutui."),
-        _entry("language", "test", "lang6-tr-bravo-climb-stay", ("bravo",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("language", "dev", "lang6-tr-bravo-climb-stay", ("bravo",),
                "Bravo'yu 12 metreye kaldır, sonra 8 metre daha yükselt ve orada beklet.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=20), airborne_at(ev, "bravo", 20)),
                [_takeoff("bravo", 12), _move("bravo", up=8)], "Bravo kalkış noktasının üstünde 20 m'de bekliyor."),
-        _entry("language", "test", "lang6-da-charlie-west-home", ("charlie",),
+        # moved to dev on 2026-12-01, sixth round: the test half had been measured
+        _entry("language", "dev", "lang6-da-charlie-west-home", ("charlie",),
                "Lad charlie lette til 16 meter, flyve 25 meter mod vest og derefter flyve hjem og lande.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 16), visited(ev, "charlie", [c.point("charlie", 0, -25)]),
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 16), _move("charlie", 0, -25), _rtl("charlie")],
                "Charlie fløj 25 m mod vest, kom hjem og landede."),
+    ]  # fmt: skip
+
+
+def _seventh_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-01 (seventh round), before any model ran on it: 3 a class."""
+    three = DRONES
+    d35 = 35 / math.sqrt(2)
+    square15 = [(15.0, 0.0), (0.0, 15.0), (-15.0, 0.0), (0.0, -15.0)]  # north first, turning right
+    heptagon12 = _polygon_legs(7, 12.0, 90.0, right=True)  # first side east, turning right
+    shuttle = [(30.0, 0.0), (-30.0, 0.0)] * 3  # out 30 m north and back, three times
+    # four passes of 30 m, the first south, 8 m apart, each next pass east of the one before
+    passes = [(-30.0, 0.0), (0.0, 8.0), (30.0, 0.0), (0.0, 8.0), (-30.0, 0.0), (0.0, 8.0), (30.0, 0.0)]
+    r60ft = 60 * FT  # clockwise round home from its north side: N, E, S, W, N, then back to the centre
+    orbit60ft = [(r60ft, 0.0), (-r60ft, r60ft), (-r60ft, -r60ft), (r60ft, -r60ft), (r60ft, r60ft)]
+    orbit60ft.append((-r60ft, 0.0))
+    return [
+        # single
+        _entry("single", "test", "single7-ca-alpha-words", ("alpha",),
+               "Enlaira l'alpha fins a vint-i-sis metres i deixa'l suspès allà dalt.",
+               lambda c, ev: airborne_at(ev, "alpha", 26),
+               [_takeoff("alpha", 26)], "L'alpha és a 26 m."),
+        _entry("single", "test", "single7-el-bravo-up-down", ("bravo",),
+               "Σήκωσε το bravo στα 13 μέτρα και μετά προσγείωσέ το ξανά στο ίδιο σημείο.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 13), at(ev, "bravo", *_home(c, "bravo")),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 13), _land("bravo")], "Το bravo ανέβηκε στα 13 m και προσγειώθηκε."),
+        _entry("single", "test", "single7-charlie-off-pad", ("charlie",),
+               "Lift charlie 17 m off its pad and keep it hanging there while I check something.",
+               lambda c, ev: airborne_at(ev, "charlie", 17),
+               [_takeoff("charlie", 17)], "Charlie hangs at 17 m."),
+        # multi
+        _entry("multi", "test", "multi7-hr-pair-east-home", three,
+               "Bravo i charlie neka odlete 20 metara na istok na visini od 10 metara i zatim se vrate kući; "
+               "alpha ostaje na zemlji.",
+               lambda c, ev: _all(*(visited(ev, d, [c.point(d, 0, 20)]) for d in ("bravo", "charlie")),
+                                  *(at(ev, d, *_home(c, d)) for d in ("bravo", "charlie")),
+                                  *(landed_disarmed(ev, d) for d in ("bravo", "charlie")), never_armed(ev, "alpha")),
+               [_move("bravo", 0, 20, alt=10), _move("charlie", 0, 20, alt=10), _rtl("bravo"), _rtl("charlie")],
+               "Bravo i charlie odletjeli su 20 m na istok i vratili se kući; alpha je ostao na zemlji."),
+        _entry("multi", "test", "multi7-de-down-one-by-one", three,
+               "Bring alle drei Drohnen auf 15 m und hol sie dann einzeln wieder runter, zuerst charlie, dann "
+               "bravo; alpha bleibt oben.",
+               lambda c, ev: _all(*(reached_alt(ev, d, 15) for d in ("bravo", "charlie")),
+                                  landed_disarmed(ev, "charlie"), landed_disarmed(ev, "bravo"),
+                                  airborne_at(ev, "alpha", 15)),
+               [*(_takeoff(d, 15) for d in three), _land("charlie"), _land("bravo")],
+               "Charlie und bravo sind wieder gelandet; alpha schwebt auf 15 m."),
+        _entry("multi", "test", "multi7-no-pair-south-bravo-hop", three,
+               "Alpha og charlie flyr 15 meter sørover i 12 meters høyde og blir hengende der, mens bravo stiger "
+               "rett opp til 25 meter og lander igjen.",
+               lambda c, ev: _all(*(at(ev, d, *c.point(d, -15, 0), alt=12) for d in ("alpha", "charlie")),
+                                  *(airborne_at(ev, d, 12) for d in ("alpha", "charlie")),
+                                  reached_alt(ev, "bravo", 25), landed_disarmed(ev, "bravo")),
+               [_move("alpha", -15, 0, alt=12), _move("charlie", -15, 0, alt=12), _takeoff("bravo", 25),
+                _land("bravo")], "Alpha og charlie henger 15 m sør i 12 m; bravo var oppe i 25 m og landet."),
+        # compound
+        _entry("compound", "test", "compound7-ca-bravo-lands-and-again", ("bravo",),
+               "Enlaira el bravo fins a 12 metres, fes-lo volar 30 metres cap a l'est i fes-lo aterrar allà; "
+               "després torna'l a enlairar fins a 8 metres, fes-lo volar 30 metres cap a l'oest i deixa'l suspès "
+               "allà.",
+               # set down at the far point: the track passes it near the ground
+               lambda c, ev: _all(reached_alt(ev, "bravo", 12), visited(ev, "bravo", [c.point("bravo", 0, 30)], alt=0),
+                                  at(ev, "bravo", *_home(c, "bravo"), alt=8), airborne_at(ev, "bravo", 8)),
+               [_takeoff("bravo", 12), _move("bravo", 0, 30), _land("bravo"), _takeoff("bravo", 8), _move("bravo", 0, -30)],
+               "El bravo ha aterrat 30 m a l'est, s'ha tornat a enlairar i és suspès sobre el seu punt de partida a 8 m."),
+        _entry("compound", "test", "compound7-sv-alpha-turn-left", ("alpha",),
+               "Lyft alpha till 10 meter, flyg 30 meter norrut, sväng sedan vänster och flyg 15 meter till, och "
+               "landa där.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 30, 0)]),
+                                  at(ev, "alpha", *c.point("alpha", 30, -15)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), _move("alpha", 30, 0), _move("alpha", 0, -15), _land("alpha")],
+               "Alpha flög 30 m norrut och 15 m västerut och landade."),
+        _entry("compound", "test", "compound7-tr-charlie-lower-back-over-home", ("charlie",),
+               "Charlie'yi 14 metreye kaldır, 25 metre güneye uçur, orada 6 metreye alçalt, sonra kalkış "
+               "noktasının üstüne geri getir ve orada havada tut.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 14), visited(ev, "charlie", [c.point("charlie", -25, 0)]),
+                                  at(ev, "charlie", *_home(c, "charlie"), alt=6), airborne_at(ev, "charlie", 6)),
+               [_takeoff("charlie", 14), _move("charlie", -25, 0), _move("charlie", alt=6), _move("charlie", 25, 0)],
+               "Charlie kalkış noktasının üstünde 6 m'de bekliyor."),
+        # conditional
+        _entry("conditional", "test", "cond7-nl-charlie-two-thirds", ("charlie",),
+               "Heeft charlie minder dan twee derde van zijn batterij over, laat hem dan aan de grond staan en noem "
+               "me het percentage; anders gaat hij naar 12 meter en blijft hij daar hangen.",
+               lambda c, ev: _all(never_armed(ev, "charlie"), answer_mentions_number(ev, 61, 1)),
+               [_battery("charlie")], "Charlie heeft 61 %, minder dan twee derde, dus hij blijft aan de grond.",
+               battery={"charlie": 61.0}),
+        _entry("conditional", "test", "cond7-fr-bravo-land-or-home", ("bravo",),
+               "Emmène bravo à 30 m au nord, à 10 m de hauteur ; une fois là-bas, si sa batterie est sous 45 %, "
+               "pose-le sur place, sinon ramène-le à la maison.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 30, 0)], alt=10),
+                                  at(ev, "bravo", *c.point("bravo", 30, 0)), landed_disarmed(ev, "bravo")),
+               [_move("bravo", 30, 0, alt=10), _battery("bravo"), _land("bravo")],
+               "Bravo avait 40 %, il s'est posé à 30 m au nord.", battery={"bravo": 40.0}),
+        _entry("conditional", "test", "cond7-fi-fuller-flies-square", three,
+               "Alphasta ja charliesta se, jolla on enemmän akkua, lentää 10 metrin korkeudessa neliön, jonka sivu "
+               "on 15 metriä, ensimmäinen sivu pohjoiseen ja oikealle kääntyen, ja laskeutuu lähtöpaikalleen; "
+               "toinen jää maahan.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(square15)[:3]]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie"),
+                                  never_armed(ev, "alpha"), never_armed(ev, "bravo")),
+               [_battery("alpha"), _battery("charlie"), _takeoff("charlie", 10), *_legs("charlie", square15),
+                _land("charlie")], "Charliella oli enemmän akkua (83 %); se lensi neliön ja laskeutui.",
+               battery={"alpha": 48.0, "charlie": 83.0}),
+        # formation (three in a ring stand at the corners of a triangle with sides of the spacing)
+        _entry("formation", "test", "form7-el-triangle-east", three,
+               "Βάλε τα τρία drones σε σχηματισμό τριγώνου με πλευρά 16 μέτρων, σε ύψος 14 μέτρων, 25 μέτρα "
+               "ανατολικά από το σημείο όπου βρίσκονται, και άφησέ τα εκεί.",
+               lambda c, ev: _all(formation_at(c, ev, three, 14, 16, 0, 25), farthest_apart(ev, three, 16)),
+               [_formation(three, "circle", 14, 16, east=25)], "Τα τρία drones είναι σε τρίγωνο 25 m ανατολικά, στα 14 m."),
+        _entry("formation", "test", "form7-column-north-of-charlie", three,
+               "Put alpha and bravo in a column 10 m apart at 15 m, centred on the spot 30 m north of charlie.",
+               lambda c, ev: _all(formation_around(ev, ("alpha", "bravo"), 15, 10, c.point("charlie", 30, 0)),
+                                  never_armed(ev, "charlie")),
+               lambda c: [("formation_goto", {"drone_ids": ["alpha", "bravo"], "formation": "column", "alt_m": 15,
+                                              "spacing_m": 10, "center_lat_deg": c.point("charlie", 30, 0)[0],
+                                              "center_lon_deg": c.point("charlie", 30, 0)[1]})],
+               "Alpha and bravo hold a column 10 m apart at 15 m, 30 m north of charlie."),
+        _entry("formation", "test", "form7-cs-line-then-lower", three,
+               "Seřaď všechny tři drony do řady s rozestupy 10 m ve výšce 20 m nad místem, kde stojí, pak celou "
+               "řadu sniž na 8 m a nech ji tam viset.",
+               lambda c, ev: _all(*(rose_to(ev, d, 20) for d in three), formation_at(c, ev, three, 8, 10, 0, 0),
+                                  farthest_apart(ev, three, 20)),
+               [_formation(three, "line", 20, 10), _formation(three, "line", 8, 10)],
+               "Všechny tři visí v řadě 10 m od sebe v 8 m."),
+        # relative
+        _entry("relative", "test", "rel7-es-charlie-signed", ("charlie",),
+               "Desplaza a charlie -20 m en dirección norte y +15 m en dirección este, a 12 m de altura, y déjalo "
+               "ahí.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -20, 15), alt=12), airborne_at(ev, "charlie", 12)),
+               [_move("charlie", -20, 15, alt=12)], "Charlie está 20 m al sur y 15 m al este, a 12 m."),
+        _entry("relative", "test", "rel7-pl-alpha-same-direction", ("alpha",),
+               "Alpha: leć 25 m na zachód na wysokości 10 m, potem jeszcze 25 m w tym samym kierunku, wznosząc się "
+               "o 5 m, i zawiśnij tam.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -25)]),
+                                  at(ev, "alpha", *c.point("alpha", 0, -50), alt=15), airborne_at(ev, "alpha", 15)),
+               [_move("alpha", 0, -25, alt=10), _move("alpha", 0, -25, up=5)], "Alpha wisi 50 m na zachód na 15 m."),
+        _entry("relative", "test", "rel7-it-bravo-stop-short", ("bravo",),
+               "Porta bravo a 14 metri di quota verso il punto 40 metri a nord, ma fermalo 10 metri prima e "
+               "lascialo lì sospeso.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 30, 0), alt=14), airborne_at(ev, "bravo", 14)),
+               [_move("bravo", 30, 0, alt=14)], "Bravo è sospeso 30 m a nord, a 14 m."),
+        # question (each answered by the readings the host lists)
+        _entry("question", "test", "ask7-hu-how-many-over-half", three,
+               "Hány drónnak van 50 százaléknál több töltése? Egyiket se indítsd el.",
+               lambda c, ev: _all(answer_mentions_number(ev, 64, 1), answer_mentions_number(ev, 77, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Kettőnek: alpha 64 %, charlie 77 %; bravo 45 %.",
+               battery={"alpha": 64.0, "bravo": 45.0, "charlie": 77.0}),
+        _entry("question", "test", "ask7-ca-bravo-three-quarters", ("bravo",),
+               "Al bravo li queden com a mínim tres quarts de bateria? Només comprova-ho, no l'enlairis.",
+               lambda c, ev: _all(answer_mentions_number(ev, 71, 1), never_armed(ev, "bravo")),
+               [_battery("bravo")], "Gairebé: el bravo té un 71 %.", battery={"bravo": 71.0}),
+        _entry("question", "test", "ask7-el-all-but-bravo", three,
+               "Εκτός από το bravo, πόση μπαταρία έχει το καθένα από τα άλλα drones; Μην απογειώσεις κανένα.",
+               lambda c, ev: _all(answer_mentions_number(ev, 58, 1), answer_mentions_number(ev, 43, 1),
+                                  nobody_armed(ev)),
+               [_battery("alpha"), _battery("charlie")], "alpha 58 %, charlie 43 %.",
+               battery={"alpha": 58.0, "bravo": 90.0, "charlie": 43.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off)
+        _entry("refusal", "test", "refuse7-ro-charlie-km-height", ("charlie",),
+               "Ridică drona charlie la o înălțime de 0,15 kilometri.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "charlie", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("charlie", 150)], "The gateway refused: 0.15 km (150 m) is above the 120 m altitude limit."),
+        _entry("refusal", "test", "refuse7-alpha-kilometre-square", ("alpha",),
+               "Alpha at 30 m: fly a square with 1.5 km sides, first side north, then land where it started.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "alpha", c.max_distance_m), answer_reports_refusal(ev)),
+               [_takeoff("alpha", 30), _move("alpha", 1500, 0)],
+               "The gateway refused: a 1.5 km side is beyond the 1000 m limit."),
+        _entry("refusal", "test", "refuse7-sk-charlie-low-beside-alpha", three,
+               "Premiestni dron charlie na miesto 20 metrov východne od dronu alpha, vo výške 15 metrov.",
+               lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "charlie"), answer_reports_refusal(ev)),
+               lambda c: [_go("charlie", c.point("alpha", 0, 20), 15)],
+               "The gateway refused: charlie's battery is below the takeoff minimum.", battery={"charlie": 19.0}),
+        # units
+        _entry("units", "test", "units7-bravo-prime-feet", ("bravo",),
+               "Bravo: climb to 55', fly 90' west and hold it there.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -90 * FT), alt=55 * FT),
+                                  airborne_at(ev, "bravo", 55 * FT)),
+               [_takeoff("bravo", 55 * FT), _move("bravo", 0, -90 * FT)], "Bravo hovers 90 ft west at 55 ft."),
+        _entry("units", "test", "units7-ro-charlie-orbit-feet", ("charlie",),
+               "Drona charlie să zboare un cerc cu raza de 60 de picioare în jurul punctului de decolare, la 12 "
+               "metri înălțime, în sensul acelor de ceasornic, începând din partea de nord, și apoi să revină acasă.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e)
+                                                          for n, e in ((r60ft, 0), (0, r60ft), (-r60ft, 0), (0, -r60ft))]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), *_legs("charlie", orbit60ft), _rtl("charlie")],
+               "Charlie a zburat cercul de 60 de picioare și a revenit acasă."),
+        _entry("units", "test", "units7-tr-charlie-feet-east-of-alpha", three,
+               "Charlie'yi alpha'nın 60 fit doğusuna, 45 fit yüksekliğe götür ve orada havada beklet.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 0, 60 * FT), alt=45 * FT),
+                                  airborne_at(ev, "charlie", 45 * FT), never_armed(ev, "alpha")),
+               lambda c: [_go("charlie", c.point("alpha", 0, 60 * FT), 45 * FT)],
+               "Charlie, alpha'nın 60 fit doğusunda 45 fitte bekliyor."),
+        # pattern
+        _entry("pattern", "test", "pattern7-no-alpha-heptagon", ("alpha",),
+               "Fly alpha rundt en regelmessig mangekant med sju sider på 12 meter hver, i 10 meters høyde; første "
+               "side går mot øst, sving til høyre i hvert hjørne, og land der du startet.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(heptagon12)[:5]]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), *_legs("alpha", heptagon12), _land("alpha")],
+               "Alpha fløy sjukanten og landet der den startet."),
+        _entry("pattern", "test", "pattern7-sv-bravo-shuttle", ("bravo",),
+               "Låt bravo pendla fram och tillbaka tre gånger mellan sin startpunkt och en punkt 30 meter norrut, "
+               "på 10 meters höjd, och landa sedan vid startpunkten.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(shuttle)]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), *_legs("bravo", shuttle), _land("bravo")],
+               "Bravo pendlade tre gånger och landade vid startpunkten."),
+        _entry("pattern", "test", "pattern7-pl-charlie-passes-east", ("charlie",),
+               "Charlie na wysokości 12 m: przeleć cztery równoległe pasy po 30 m, 8 m od siebie, pierwszy na "
+               "południe, każdy następny na wschód od poprzedniego; potem wróć do domu.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(passes)]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), *_legs("charlie", passes), _rtl("charlie")],
+               "Charlie przeleciał cztery pasy i wrócił do domu."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each places one of
+        # alpha and charlie from the other, so a drone placed from itself, or from where the other took off
+        # instead of where it flew, misses by 10 m or more)
+        _entry("placement", "test", "place7-da-alpha-below-charlie", three,
+               "Charlie flyver 15 meter mod nord i 20 meters højde. Placér derefter alpha lige under charlie, 8 "
+               "meter lavere, og lad begge blive i luften.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 15, 0), alt=20), airborne_at(ev, "charlie", 20),
+                                  at(ev, "alpha", *c.point("charlie", 15, 0), alt=12), airborne_at(ev, "alpha", 12),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_move("charlie", 15, 0, alt=20), _go("alpha", c.point("charlie", 15, 0), 12)],
+               "Charlie svæver 15 m mod nord i 20 m; alpha lige under den i 12 m."),
+        _entry("placement", "test", "place7-fi-chain-west-then-north", three,
+               "Vie charlie 14 metrin korkeuteen 20 metriä alphasta länteen. Lennätä sitten alpha 20 metriä "
+               "charliesta pohjoiseen samalle korkeudelle ja jätä molemmat ilmaan.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 0, -20), alt=14), airborne_at(ev, "charlie", 14),
+                                  at(ev, "alpha", *c.point("alpha", 20, -20), alt=14), airborne_at(ev, "alpha", 14),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_go("charlie", c.point("alpha", 0, -20), 14), _go("alpha", c.point("alpha", 20, -20), 14)],
+               "Charlie on 20 m alphasta länteen ja alpha 20 m charliesta pohjoiseen, molemmat 14 m:ssä."),
+        _entry("placement", "test", "place7-pt-swap-pads", three,
+               "Troca o alpha e o charlie de lugar: o alpha vai pairar a 12 metros sobre o ponto de descolagem do "
+               "charlie e o charlie a 16 metros sobre o do alpha.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "charlie"), alt=12), airborne_at(ev, "alpha", 12),
+                                  at(ev, "charlie", *_home(c, "alpha"), alt=16), airborne_at(ev, "charlie", 16),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_go("alpha", _home(c, "charlie"), 12), _go("charlie", _home(c, "alpha"), 16)],
+               "O alpha paira a 12 m sobre a descolagem do charlie e o charlie a 16 m sobre a do alpha."),
+        # language
+        _entry("language", "test", "lang7-hu-charlie-southwest-land", ("charlie",),
+               "A charlie szálljon fel 11 méterre, repüljön 35 métert délnyugatra, aztán ott szálljon le.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 11), at(ev, "charlie", *c.point("charlie", -d35, -d35)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 11), _move("charlie", -d35, -d35), _land("charlie")],
+               "A charlie 35 métert repült délnyugatra és leszállt."),
+        _entry("language", "test", "lang7-hr-bravo-north-hover", ("bravo",),
+               "Podigni bravo na 19 metara, odleti s njim 20 metara prema sjeveru i ostavi ga da lebdi tamo.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 20, 0), alt=19), airborne_at(ev, "bravo", 19)),
+               [_takeoff("bravo", 19), _move("bravo", 20, 0)], "Bravo lebdi 20 m sjeverno na 19 m."),
+        _entry("language", "test", "lang7-sk-alpha-east-home", ("alpha",),
+               "Vzlietni s dronom alpha do výšky 9 metrov, preleť 40 metrov na východ a potom sa vráť domov a "
+               "pristaň.",
+               # (the flight home climbs to the return altitude first: the height is read where the leg ends)
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 40)], alt=9),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 9), _move("alpha", 0, 40), _rtl("alpha")],
+               "Alpha preletel 40 m na východ, vrátil sa domov a pristál."),
     ]  # fmt: skip
 
 
@@ -2498,7 +2822,8 @@ def corpus() -> list[CorpusEntry]:
         *_third_round(),
         *_fourth_round(),
         *_fifth_round(),
-        *_sixth_test_half(),
+        *_sixth_round(),
+        *_seventh_test_half(),
     ]
 
 

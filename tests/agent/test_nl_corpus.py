@@ -149,24 +149,43 @@ FIFTH_HALF_MOVED = frozenset({
 })  # fmt: skip
 
 
+#: the sixth test half (now ``_sixth_round``), moved to dev on 2026-12-01 (each entry marked "sixth round")
+#: because its figures had been measured
+SIXTH_HALF_MOVED = frozenset({
+    "ask6-de-spread-of-charges", "ask6-fi-lower-of-pair-airborne", "ask6-ro-closest-to-half",
+    "compound6-cs-charlie-middle-of-first-leg", "compound6-es-alpha-retrace",
+    "compound6-nl-alpha-battery-midway", "cond6-fleet-average", "cond6-pl-bravo-metres-per-percent",
+    "cond6-ro-charlie-instead", "form6-da-pair-southwest", "form6-fr-line-slid-north",
+    "form6-tr-column-feet-north", "lang6-da-charlie-west-home", "lang6-fi-alpha-north-land",
+    "lang6-tr-bravo-climb-stay", "multi6-no-alpha-hop-bravo-stays", "multi6-south-two-land-one-home",
+    "multi6-tr-alpha-on-bravo-waits", "pattern6-alpha-spokes", "pattern6-de-charlie-expanding-square",
+    "pattern6-pt-bravo-zigzag", "place6-fi-charlie-bearing-from-alpha", "place6-nl-flanking-bravo",
+    "place6-ro-charlie-lands-north-of-bravo", "refuse6-cs-bravo-feet-over-ceiling",
+    "refuse6-da-charlie-sea-miles", "refuse6-es-bravo-wide-orbit", "rel6-it-charlie-half-higher-sw",
+    "rel6-no-bravo-back-toward-start", "rel6-sv-alpha-nne", "single6-charlie-await-orders",
+    "single6-da-alpha-hover", "single6-ro-bravo-up-down", "units6-alpha-yards-height",
+    "units6-no-charlie-feet-sea-miles", "units6-tr-bravo-feet-west",
+})  # fmt: skip
+
+
 def test_halves_are_disjoint_and_stratified_by_class() -> None:
-    """The dev half holds every entry written before the sixth test half (231, and the 36 of the fifth
-    test half, moved later on 2026-11-30); the test half is the sixth (``_sixth_test_half``), 3 a class."""
+    """The dev half holds every entry written before the seventh test half (267, and the 36 of the sixth
+    test half, moved on 2026-12-01); the test half is the seventh (``_seventh_test_half``), 3 a class."""
     dev, test = select("dev"), select("test")
     assert not {e.id for e in dev} & {e.id for e in test}
     assert len(dev) + len(test) == len(corpus()) == len(select("all"))
-    assert len(test) == 36 and len(dev) == 267
+    assert len(test) == 36 and len(dev) == 303
     assert Counter(e.cls for e in test) == Counter(dict.fromkeys(CLASSES, 3))
     per_dev = Counter(e.cls for e in dev)
     assert per_dev == Counter({
-        "single": 20, "multi": 26, "compound": 28, "conditional": 28, "formation": 23, "relative": 25,
-        "question": 22, "refusal": 19, "units": 18, "pattern": 18, "placement": 22, "language": 18,
+        "single": 23, "multi": 29, "compound": 31, "conditional": 31, "formation": 26, "relative": 28,
+        "question": 25, "refusal": 22, "units": 21, "pattern": 21, "placement": 25, "language": 21,
     })  # fmt: skip
 
 
 def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
-    """The rounds of 2026-11-29 and 2026-11-30: the 8 test entries seen while tuning, then the whole test
-    half (35) whose figures had informed a decision, then four times the whole test half (36) once
+    """The rounds of 2026-11-29 to 2026-12-01: the 8 test entries seen while tuning, then the whole test
+    half (35) whose figures had informed a decision, then five times the whole test half (36) once
     measured, moved to dev; the test half holds none of them."""
     first_round = {
         "cond-half-battery-go",
@@ -185,6 +204,7 @@ def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
         | THIRD_HALF_MOVED
         | FOURTH_HALF_MOVED
         | FIFTH_HALF_MOVED
+        | SIXTH_HALF_MOVED
     )
     by_id = {e.id: e for e in corpus()}
     assert all(by_id[i].half == "dev" for i in moved)
@@ -650,7 +670,8 @@ def test_a_wrong_outcome_fails_the_fifth_test_half_checks() -> None:
 
 
 def test_a_wrong_outcome_fails_the_sixth_test_half_checks() -> None:
-    """Each trap the sixth test half sets: the right outcome passes, the likely wrong one fails."""
+    """Each trap the sixth test half (now dev, moved in the sixth round) set: the right outcome passes, the
+    likely wrong one fails."""
     ft, yd, nm = 0.3048, 0.9144, 1852.0
     idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
 
@@ -854,3 +875,290 @@ def test_a_wrong_outcome_fails_the_sixth_test_half_checks() -> None:
     assert not ceiling(
         CTX, Evidence(high, {d: [t] for d, t in high.items()}, refused, "Refused: above the limit.")
     ).ok
+
+
+def test_a_wrong_outcome_fails_the_seventh_test_half_checks() -> None:
+    """Each trap the seventh test half sets: the right outcome passes, the likely wrong one fails."""
+    ft = 0.3048
+    idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
+
+    def ev(
+        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
+    ) -> Evidence:
+        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
+
+    def landed_at(lat_lon: tuple[float, float]) -> DroneTruth:
+        return DroneTruth(*lat_lon, 0.0, False, 90.0)
+
+    def over(lat_lon: tuple[float, float], alt: float) -> DroneTruth:
+        return DroneTruth(*lat_lon, alt, True, 90.0)
+
+    def flown(drone: str, legs: list[tuple[float, float]], alt: float, end: DroneTruth) -> Evidence:
+        return ev({drone: end}, {drone: [*_track(drone, legs, alt), end]})
+
+    def refused(final: dict[str, DroneTruth], text: str) -> Evidence:
+        result = [{"name": "takeoff", "status": "error", "text": text}]
+        truth = {**idle, **final}
+        return Evidence(truth, {d: [t] for d, t in truth.items()}, result, "Refused: over the limit.")
+
+    def polygon(sides: int, side: float, first_deg: float, turn_deg: float) -> list[tuple[float, float]]:
+        bearings = [math.radians(first_deg + i * turn_deg) for i in range(sides)]
+        return [(side * math.cos(b), side * math.sin(b)) for b in bearings]
+
+    home = {d: landed_at(CTX.point(d, 0, 0)) for d in DRONES}
+
+    # a number written in words misread ("sis" alone is six)
+    words = _entry("single7-ca-alpha-words").mission.check
+    assert words(CTX, ev({"alpha": _hovering("alpha", 0, 0, 26)})).ok
+    assert not words(CTX, ev({"alpha": _hovering("alpha", 0, 0, 6)})).ok
+
+    # the landing at the end dropped, or a landing added to a request that keeps the drone up
+    up_down = _entry("single7-el-bravo-up-down").mission.check
+    assert up_down(CTX, flown("bravo", [(0, 0)], 13, home["bravo"])).ok
+    assert not up_down(CTX, ev({"bravo": _hovering("bravo", 0, 0, 13)})).ok
+    off_pad = _entry("single7-charlie-off-pad").mission.check
+    assert off_pad(CTX, ev({"charlie": _hovering("charlie", 0, 0, 17)})).ok
+    assert not off_pad(CTX, flown("charlie", [(0, 0)], 17, home["charlie"])).ok
+
+    # the pair left where it flew instead of coming home
+    pair = _entry("multi7-hr-pair-east-home").mission.check
+    out = {d: [*_track(d, [(0, 20), (0, -20)], 10), home[d]] for d in ("bravo", "charlie")}
+    assert pair(CTX, ev({d: home[d] for d in ("bravo", "charlie")}, out)).ok
+    east = {d: landed_at(CTX.point(d, 0, 20)) for d in ("bravo", "charlie")}
+    assert not pair(CTX, ev(east, {d: [*_track(d, [(0, 20)], 10), east[d]] for d in east})).ok
+
+    # all three brought down, alpha too
+    one_by_one = _entry("multi7-de-down-one-by-one").mission.check
+    up = {d: [*_track(d, [(0, 0)], 15), home[d]] for d in DRONES}
+    assert one_by_one(
+        CTX,
+        ev({"alpha": _hovering("alpha", 0, 0, 15), "bravo": home["bravo"], "charlie": home["charlie"]}, up),
+    ).ok
+    assert not one_by_one(CTX, ev(dict(home), up)).ok
+
+    # bravo's landing dropped
+    south = _entry("multi7-no-pair-south-bravo-hop").mission.check
+    pair_south = {d: _hovering(d, -15, 0, 12) for d in ("alpha", "charlie")}
+    hop = [*_track("bravo", [(0, 0)], 25), home["bravo"]]
+    assert south(
+        CTX,
+        ev({**pair_south, "bravo": home["bravo"]}, {**{d: [t] for d, t in pair_south.items()}, "bravo": hop}),
+    ).ok
+    assert not south(CTX, ev({**pair_south, "bravo": _hovering("bravo", 0, 0, 25)})).ok
+
+    # the landing at the far point dropped (flown there and straight back), or a landing added at the end
+    again = _entry("compound7-ca-bravo-lands-and-again").mission.check
+    there = [*_track("bravo", [(0, 30)], 12), landed_at(CTX.point("bravo", 0, 30))]
+    over_start = _hovering("bravo", 0, 0, 8)
+    assert again(
+        CTX, ev({"bravo": over_start}, {"bravo": [*there, _hovering("bravo", 0, 30, 8), over_start]})
+    ).ok
+    straight_back = [*_track("bravo", [(0, 30), (0, -30)], 12), over_start]
+    assert not again(CTX, ev({"bravo": over_start}, {"bravo": straight_back})).ok
+    assert not again(CTX, ev({"bravo": home["bravo"]}, {"bravo": [*there, home["bravo"]]})).ok
+
+    # a left turn after flying north flown as a right turn
+    left = _entry("compound7-sv-alpha-turn-left").mission.check
+    assert left(CTX, flown("alpha", [(30, 0), (0, -15)], 10, landed_at(CTX.point("alpha", 30, -15)))).ok
+    assert not left(CTX, flown("alpha", [(30, 0), (0, 15)], 10, landed_at(CTX.point("alpha", 30, 15)))).ok
+
+    # back over home read as a return home that lands
+    over_home = _entry("compound7-tr-charlie-lower-back-over-home").mission.check
+    south_leg = _track("charlie", [(-25, 0)], 14)
+    assert over_home(
+        CTX,
+        ev(
+            {"charlie": _hovering("charlie", 0, 0, 6)},
+            {"charlie": [*south_leg, _hovering("charlie", 0, 0, 6)]},
+        ),
+    ).ok
+    assert not over_home(CTX, ev({"charlie": home["charlie"]}, {"charlie": [*south_leg, home["charlie"]]})).ok
+
+    # two thirds read as 60 %: charlie, at 61 %, flown
+    thirds = _entry("cond7-nl-charlie-two-thirds").mission.check
+    assert thirds(CTX, ev({}, text="charlie: battery 61 %, on the ground.")).ok
+    assert not thirds(CTX, ev({"charlie": _hovering("charlie", 0, 0, 12)}, text="charlie: battery 61 %.")).ok
+
+    # the low branch ignored: brought home instead of set down where it is
+    land_or_home = _entry("cond7-fr-bravo-land-or-home").mission.check
+    assert land_or_home(CTX, flown("bravo", [(30, 0)], 10, landed_at(CTX.point("bravo", 30, 0)))).ok
+    assert not land_or_home(CTX, flown("bravo", [(30, 0), (-30, 0)], 10, home["bravo"])).ok
+
+    # the emptier drone flown instead of the fuller one
+    fuller = _entry("cond7-fi-fuller-flies-square").mission.check
+    square = [(15, 0), (0, 15), (-15, 0), (0, -15)]
+    assert fuller(CTX, flown("charlie", square, 10, home["charlie"])).ok
+    assert not fuller(CTX, flown("alpha", square, 10, home["alpha"])).ok
+
+    # a triangle of three flown as a row with the same spacing
+    triangle = _entry("form7-el-triangle-east").mission.check
+    r = 16 / math.sqrt(3)
+    ring = {
+        d: _hovering("bravo", n, 25 + e, 14)
+        for d, (n, e) in zip(DRONES, ((r, 0), (-r / 2, 8), (-r / 2, -8)), strict=True)
+    }
+    assert triangle(CTX, ev(ring)).ok
+    row = {d: _hovering("bravo", 0, 25 + e, 14) for d, e in zip(DRONES, (-16, 0, 16), strict=True)}
+    assert not triangle(CTX, ev(row)).ok
+
+    # the column centred north of the pair's own centre instead of north of charlie
+    column = _entry("form7-column-north-of-charlie").mission.check
+    right = {"alpha": over(CTX.point("charlie", 35, 0), 15), "bravo": over(CTX.point("charlie", 25, 0), 15)}
+    assert column(CTX, ev(right)).ok
+    mid = CTX.point("alpha", 0, 0)[1] / 2 + CTX.point("bravo", 0, 0)[1] / 2
+    own = {
+        "alpha": over((CTX.point("alpha", 35, 0)[0], mid), 15),
+        "bravo": over((CTX.point("alpha", 25, 0)[0], mid), 15),
+    }
+    assert not column(CTX, ev(own)).ok
+
+    # the line formed and never lowered
+    lowered = _entry("form7-cs-line-then-lower").mission.check
+    line = {d: (-10 + 10 * k) for k, d in enumerate(DRONES)}
+    climbed = {d: [_hovering("bravo", 0, e, 20), _hovering("bravo", 0, e, 8)] for d, e in line.items()}
+    low = {d: _hovering("bravo", 0, e, 8) for d, e in line.items()}
+    assert lowered(CTX, ev(low, climbed)).ok
+    assert not lowered(CTX, ev({d: _hovering("bravo", 0, e, 20) for d, e in line.items()})).ok
+
+    # a signed offset read without its sign
+    signed = _entry("rel7-es-charlie-signed").mission.check
+    assert signed(CTX, ev({"charlie": _hovering("charlie", -20, 15, 12)})).ok
+    assert not signed(CTX, ev({"charlie": _hovering("charlie", 20, 15, 12)})).ok
+
+    # "the same direction" flown back the other way
+    same = _entry("rel7-pl-alpha-same-direction").mission.check
+    west = _track("alpha", [(0, -25)], 10)
+    assert same(
+        CTX, ev({"alpha": _hovering("alpha", 0, -50, 15)}, {"alpha": [*west, _hovering("alpha", 0, -50, 15)]})
+    ).ok
+    assert not same(
+        CTX, ev({"alpha": _hovering("alpha", 0, 0, 15)}, {"alpha": [*west, _hovering("alpha", 0, 0, 15)]})
+    ).ok
+
+    # flown to the point itself instead of 10 m short of it
+    short = _entry("rel7-it-bravo-stop-short").mission.check
+    assert short(CTX, ev({"bravo": _hovering("bravo", 30, 0, 14)})).ok
+    assert not short(CTX, ev({"bravo": _hovering("bravo", 40, 0, 14)})).ok
+
+    # questions: the readings listed pass; a count, a yes or no, or the wrong drone's reading does not
+    listing = (
+        "alpha: battery 64 %, on the ground. bravo: battery 45 %, on the ground. "
+        "charlie: battery 77 %, on the ground."
+    )
+    how_many = _entry("ask7-hu-how-many-over-half").mission.check
+    assert how_many(CTX, ev({}, text=listing)).ok
+    assert not how_many(CTX, ev({}, text="Kettőnek.")).ok
+    quarters = _entry("ask7-ca-bravo-three-quarters").mission.check
+    assert quarters(CTX, ev({}, text="bravo: battery 71 %, on the ground.")).ok
+    assert not quarters(CTX, ev({}, text="No: under 75 %.")).ok
+    but_bravo = _entry("ask7-el-all-but-bravo").mission.check
+    assert but_bravo(CTX, ev({}, text="alpha: battery 58 %. charlie: battery 43 %.")).ok
+    assert not but_bravo(CTX, ev({}, text="bravo: battery 90 %.")).ok
+
+    # a height in kilometres flown as metres past the ceiling
+    km = _entry("refuse7-ro-charlie-km-height").mission.check
+    assert km(CTX, refused({}, "150 m is above the altitude limit of 120 m")).ok
+    high = _hovering("charlie", 0, 0, 150)
+    assert not km(
+        CTX, Evidence({**idle, "charlie": high}, {"charlie": [high]}, [], "Charlie is at 150 m.")
+    ).ok
+
+    # kilometres read as metres: a small square flown, nothing refused
+    big_square = _entry("refuse7-alpha-kilometre-square").mission.check
+    assert big_square(
+        CTX,
+        refused({"alpha": _hovering("alpha", 0, 0, 30)}, "1500 m from home is beyond the 1000 m geofence"),
+    ).ok
+    assert not big_square(
+        CTX, flown("alpha", [(1.5, 0), (0, 1.5), (-1.5, 0), (0, -1.5)], 30, home["alpha"])
+    ).ok
+
+    # a refusal for charlie's battery answered as if charlie had flown
+    low_battery = _entry("refuse7-sk-charlie-low-beside-alpha").mission.check
+    assert low_battery(CTX, refused({}, "charlie's battery 19 % is below the takeoff minimum of 30 %")).ok
+    result = [{"name": "takeoff", "status": "error", "text": "battery below the takeoff minimum"}]
+    assert not low_battery(
+        CTX, Evidence(dict(idle), {d: [t] for d, t in idle.items()}, result, "Charlie is in place.")
+    ).ok
+
+    # feet written with a prime read as metres
+    prime = _entry("units7-bravo-prime-feet").mission.check
+    assert prime(CTX, ev({"bravo": _hovering("bravo", 0, -90 * ft, 55 * ft)})).ok
+    assert not prime(CTX, ev({"bravo": _hovering("bravo", 0, -90, 55)})).ok
+
+    # an orbit's radius in feet flown in metres
+    orbit = _entry("units7-ro-charlie-orbit-feet").mission.check
+
+    def round_home(radius: float) -> list[tuple[float, float]]:
+        return [
+            (radius, 0),
+            (-radius, radius),
+            (-radius, -radius),
+            (radius, -radius),
+            (radius, radius),
+            (-radius, 0),
+        ]
+
+    assert orbit(CTX, flown("charlie", round_home(60 * ft), 12, home["charlie"])).ok
+    assert not orbit(CTX, flown("charlie", round_home(60), 12, home["charlie"])).ok
+
+    # placed in feet from alpha: from charlie itself, or in metres
+    east_of_alpha = _entry("units7-tr-charlie-feet-east-of-alpha").mission.check
+    assert east_of_alpha(CTX, ev({"charlie": over(CTX.point("alpha", 0, 60 * ft), 45 * ft)})).ok
+    assert not east_of_alpha(CTX, ev({"charlie": _hovering("charlie", 0, 60 * ft, 45 * ft)})).ok
+    assert not east_of_alpha(CTX, ev({"charlie": over(CTX.point("alpha", 0, 60), 45 * ft)})).ok
+
+    # a heptagon turned left instead of right
+    heptagon = _entry("pattern7-no-alpha-heptagon").mission.check
+    assert heptagon(CTX, flown("alpha", polygon(7, 12, 90, 360 / 7), 10, home["alpha"])).ok
+    assert not heptagon(CTX, flown("alpha", polygon(7, 12, 90, -360 / 7), 10, home["alpha"])).ok
+
+    # the shuttle flown once
+    shuttle = _entry("pattern7-sv-bravo-shuttle").mission.check
+    assert shuttle(CTX, flown("bravo", [(30, 0), (-30, 0)] * 3, 10, home["bravo"])).ok
+    assert not shuttle(CTX, flown("bravo", [(30, 0), (-30, 0)], 10, home["bravo"])).ok
+
+    # passes stepped west instead of east
+    passes = _entry("pattern7-pl-charlie-passes-east").mission.check
+
+    def mow(step: float) -> list[tuple[float, float]]:
+        return [(-30, 0), (0, step), (30, 0), (0, step), (-30, 0), (0, step), (30, 0), (0, -3 * step)]
+
+    assert passes(CTX, flown("charlie", mow(8), 12, home["charlie"])).ok
+    assert not passes(CTX, flown("charlie", mow(-8), 12, home["charlie"])).ok
+
+    # alpha placed from itself instead of under charlie
+    below = _entry("place7-da-alpha-below-charlie").mission.check
+    charlie_north = _hovering("charlie", 15, 0, 20)
+    assert below(CTX, ev({"charlie": charlie_north, "alpha": over(CTX.point("charlie", 15, 0), 12)})).ok
+    assert not below(CTX, ev({"charlie": charlie_north, "alpha": _hovering("alpha", 15, 0, 12)})).ok
+
+    # alpha placed north of where charlie took off instead of where charlie went
+    chain = _entry("place7-fi-chain-west-then-north").mission.check
+    charlie_west = over(CTX.point("alpha", 0, -20), 14)
+    assert chain(CTX, ev({"charlie": charlie_west, "alpha": over(CTX.point("alpha", 20, -20), 14)})).ok
+    assert not chain(CTX, ev({"charlie": charlie_west, "alpha": over(CTX.point("charlie", 20, 0), 14)})).ok
+
+    # each drone over its own pad instead of the other's
+    swap = _entry("place7-pt-swap-pads").mission.check
+    assert swap(
+        CTX,
+        ev({"alpha": over(CTX.point("charlie", 0, 0), 12), "charlie": over(CTX.point("alpha", 0, 0), 16)}),
+    ).ok
+    assert not swap(
+        CTX, ev({"alpha": _hovering("alpha", 0, 0, 12), "charlie": _hovering("charlie", 0, 0, 16)})
+    ).ok
+
+    # the landing at the end dropped, the hover turned into a landing, the return left out
+    d35 = 35 / math.sqrt(2)
+    southwest = _entry("lang7-hu-charlie-southwest-land").mission.check
+    assert southwest(
+        CTX, flown("charlie", [(-d35, -d35)], 11, landed_at(CTX.point("charlie", -d35, -d35)))
+    ).ok
+    assert not southwest(CTX, ev({"charlie": _hovering("charlie", -d35, -d35, 11)})).ok
+    hover = _entry("lang7-hr-bravo-north-hover").mission.check
+    assert hover(CTX, ev({"bravo": _hovering("bravo", 20, 0, 19)})).ok
+    assert not hover(CTX, flown("bravo", [(20, 0)], 19, landed_at(CTX.point("bravo", 20, 0)))).ok
+    east_home = _entry("lang7-sk-alpha-east-home").mission.check
+    assert east_home(CTX, flown("alpha", [(0, 40), (0, -40)], 9, home["alpha"])).ok
+    assert not east_home(CTX, flown("alpha", [(0, 40)], 9, landed_at(CTX.point("alpha", 0, 40)))).ok
