@@ -95,6 +95,8 @@ class FakeVehicle:
         self.target: tuple[float, float, float] | None = None
         # earlier reports a late watch may not have seen as the latest (`position_targets`)
         self.target_history: list[tuple[float, float, float]] = []
+        #: when its last HEARTBEAT was heard (monotonic), set by a test; None: one heard just now, always
+        self.heartbeat_at: float | None = None
         #: the last position target the gateway sent (goto, hold): lat, lon, monotonic
         self.commanded: tuple[float, float, float] | None = None
         #: what a ground station on the relay sent that acts on the drone (set by a test)
@@ -175,6 +177,9 @@ class FakeVehicle:
         if mode is None or armed is None:
             return None
         return str(mode.value), bool(armed.value)
+
+    def heartbeat_heard_at(self) -> float | None:
+        return time.monotonic() if self.heartbeat_at is None else self.heartbeat_at
 
     def position_target(self) -> tuple[float, float, float] | None:
         return self.target

@@ -226,6 +226,9 @@ class RemoteVehicle:
     def heartbeat_mode(self) -> tuple[str, bool] | None:
         return None  # its owner watches the mode (and tells the cluster of a takeover)
 
+    def heartbeat_heard_at(self) -> float | None:
+        return None  # its owner watches the mode
+
     def position_target(self) -> tuple[float, float, float] | None:
         return None  # its owner compares it (and tells the cluster of a takeover)
 

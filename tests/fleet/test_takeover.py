@@ -131,6 +131,45 @@ async def test_another_ground_station_moving_the_target_in_the_same_mode_ends_th
     assert taken is not None and "the autopilot left the gateway's target" in taken.reason
 
 
+async def test_a_switch_whose_target_shows_before_its_heartbeat_is_named_as_the_mode_change(
+    gateway: Gateway,
+) -> None:
+    """A second ground station's RETURN moves the autopilot's target at once (reported at 5 Hz) while the
+    HEARTBEAT that shows the new mode comes up to a second later: the watch waits for a HEARTBEAT heard
+    after the move, and the takeover names both modes, not a reposition."""
+    d1 = fake(gateway, "d1")
+    goto_id = await flying_goto(gateway)
+    ops = gateway.operations
+    assert ops is not None
+    goto = ops.get(goto_id)
+    lat, lon = goto.params["lat_deg"], goto.params["lon_deg"]
+
+    def flies_the_goto() -> bool:
+        d1.target = (lat, lon, time.monotonic())
+        return (e := ops.expected("d1")) is not None and e.target_adopted
+
+    await until(flies_the_goto, "the autopilot reporting the goto's target")
+    waiter = asyncio.create_task(gateway.commander.wait(goto_id, 60))
+    d1.heartbeat_at = time.monotonic()  # the last HEARTBEAT, from before the switch
+    home = d1.home_ll
+    loop = asyncio.get_running_loop()
+    until_s = loop.time() + 1.0
+    while loop.time() < until_s:  # the return's target, reported while no newer HEARTBEAT came
+        d1.target = (home[0], home[1], time.monotonic())
+        await asyncio.sleep(0.05)
+    pilot_switch(d1, "RTL")
+    d1.heartbeat_at = None  # the HEARTBEAT showing RTL is heard
+
+    def returned() -> bool:
+        d1.target = (home[0], home[1], time.monotonic())
+        return waiter.done()
+
+    await until(returned, "the goto interrupted")
+    view = waiter.result()
+    assert view.status == "interrupted", view
+    assert "the autopilot switched from GUIDED to RTL" in view.message, view.message
+
+
 async def test_a_target_from_before_the_goto_handed_over_late_is_not_a_takeover(gateway: Gateway) -> None:
     """A loaded link or gateway can hand over the autopilot's reports long after they were said: a target
     far from the goto's, heard well after the send but before the autopilot was ever seen flying the

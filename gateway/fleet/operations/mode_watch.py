@@ -240,7 +240,7 @@ class ModeWatch:
         if mode in exp.modes or (done and mode in exp.settled):
             exp.seen, exp.outside_since, exp.last_mode = True, None, mode
             moved = self._retargeted(vehicle, exp, running)
-            if moved is not None:
+            if moved is not None and _mode_heard_since(vehicle, exp.target_off_since):
                 await self._taken(vehicle, exp, mode, running, moved)
             return
         if not exp.seen:
@@ -387,6 +387,14 @@ class ModeWatch:
                 await task
         self._watches.clear()
         self._finders.clear()
+
+
+def _mode_heard_since(vehicle: FlyingVehicle, moved_at: float | None) -> bool:
+    """Whether a HEARTBEAT heard after the autopilot's target moved still shows the gateway's mode. A
+    switch to another mode (RETURN, LAND) moves the target too, and its 5 Hz report may come before the
+    1 Hz HEARTBEAT that shows the new mode: the takeover is then the mode change, named as such."""
+    heard_at = vehicle.heartbeat_heard_at()
+    return heard_at is not None and moved_at is not None and heard_at >= moved_at
 
 
 async def _heard_after_restart(vehicle: FlyingVehicle) -> tuple[str, bool] | None:

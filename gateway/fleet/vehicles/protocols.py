@@ -96,6 +96,9 @@ class VehicleView(Protocol):
         """The autopilot's name of the mode its HEARTBEAT shows and whether it is armed (None: no
         fresh HEARTBEAT)."""
 
+    def heartbeat_heard_at(self) -> float | None:
+        """When (monotonic) the last HEARTBEAT was heard; None before the first one of the session."""
+
     def position_target(self) -> tuple[float, float, float] | None:
         """Where the autopilot says it flies to (POSITION_TARGET_GLOBAL_INT): lat, lon and when it said
         so (monotonic); None when it has not said."""

@@ -245,6 +245,9 @@ class Vehicle:
             return None
         return self.dialect.native_mode(facts.custom_mode), bool(facts.armed)
 
+    def heartbeat_heard_at(self) -> float | None:
+        return self.link.facts.last_heartbeat
+
     def heartbeat_state(self) -> tuple[int, int] | None:
         """(MAV_TYPE, custom mode) of the autopilot's last HEARTBEAT (the flight recorder keeps them for
         the .tlog); None before the first HEARTBEAT of the session or while it is stale."""
