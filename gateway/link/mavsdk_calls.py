@@ -71,6 +71,16 @@ class MavsdkCalls:
                 f"{what} on drone '{self._link.id}': no answer from its mavsdk_server within {timeout_s:g} s",
                 vehicle_id=self._link.id,
             ) from None
+        except asyncio.CancelledError:
+            task = asyncio.current_task()
+            if task is None or task.cancelling():
+                raise  # the caller itself is being cancelled
+            # grpc.aio cancels a call whose channel closed under it: the sidecar went down mid-call
+            raise CommandFailed(
+                f"{what} on drone '{self._link.id}': its mavsdk_server session ended during the call (the "
+                f"gateway restarts it); the drone is {self._link.state.value}; check it and call again",
+                vehicle_id=self._link.id,
+            ) from None
         except grpc.aio.AioRpcError as exc:
             raise CommandFailed(
                 f"{what} on drone '{self._link.id}': mavsdk_server unreachable ({exc.code().name}); "

@@ -37,7 +37,7 @@ from gateway.fleet.vehicles.params import Parameters
 from gateway.fleet.vehicles.protocols import FlyingVehicle
 from gateway.fleet.vehicles.vehicle_arming import Arming
 from gateway.fleet.vehicles.vehicle_missions import MissionControl
-from gateway.fleet.vehicles.waits import holds_within, wait_for_state
+from gateway.fleet.vehicles.waits import ack_lost, shown_though_unacknowledged, wait_for_state
 from gateway.link.contract import ConnectionState, GroundCommand, OnWait, Peer
 from gateway.link.link_status import link_status
 from gateway.link.mavsdk_system import System
@@ -57,16 +57,10 @@ ARMABLE_WAIT_S = 60.0
 #: closing the flight log never holds a link open longer than this (a database that hangs)
 RECORDER_STOP_S = 5.0
 POSITION_IGNORED = 0b111  # POSITION_TARGET_TYPEMASK: x, y, z ignored (a velocity or attitude target)
-#: a land or return whose ACK MAVSDK gave up on ("Timeout") counts as run once the autopilot's own mode
-#: (its HEARTBEAT, 1 Hz) shows it within this long
-UNACKED_MODE_WAIT_S = 3.0
+#: an unacknowledged goto or hold counts as run once the autopilot reports a target this near the sent one
+TARGET_REPORTED_M = 2.0
 
 StateListener = Callable[["Vehicle", ConnectionState, ConnectionState], None]
-
-
-def _ack_lost(exc: CommandFailed) -> bool:
-    """MAVSDK gave up waiting for the COMMAND_ACK (its retries spent): the autopilot may have run it."""
-    return exc.details.get("result") == "TIMEOUT"
 
 
 class Vehicle:
@@ -296,29 +290,54 @@ class Vehicle:
         await self.arming.arm_by(deadline, ready, notify)
 
     async def disarm(self) -> None:
-        await self._act("disarm", lambda system: system.action.disarm())
+        await self._act("disarm", lambda system: system.action.disarm(), shown=self._disarmed_since)
 
     async def kill(self) -> None:
         """Stop the motors at once, even in the air (the policy decides who may call this)."""
-        await self._act("kill", lambda system: system.action.kill())
+        await self._act("kill", lambda system: system.action.kill(), shown=self._disarmed_since)
 
     async def _act(
-        self, what: str, order: Callable[[System], Awaitable[None]], kind: str | None = None
+        self,
+        what: str,
+        order: Callable[[System], Awaitable[None]],
+        kind: str | None = None,
+        shown: Callable[[float], bool] | None = None,
     ) -> None:
         """One MAVSDK action the autopilot runs as it is (``order`` picks it of the session), sent once
-        the dialect check passed. ``kind``: the operation whose modes (the dialect's `commanded_modes`)
-        show the autopilot runs it; an unacknowledged action counts as run once the autopilot reports one
-        of them (a starved autopilot's ACKs come after MAVSDK's retries, as with the takeoff)."""
+        the dialect check passed. An unacknowledged action counts as run once the autopilot shows its
+        effect within `waits.UNACKED_WAIT_S` (a starved autopilot's ACKs come after MAVSDK's retries, as
+        with the takeoff): ``shown(sent)`` says whether it does in what it reported since ``sent``
+        (monotonic); ``kind``: the operation whose modes (the dialect's `commanded_modes`) show it."""
         dialect = self.require_dialect()
+        modes = dialect.commanded_modes(kind) if kind else frozenset()
+        if shown is None and modes:
+            shown = lambda _sent: self.telemetry.fresh("flight_mode") in modes  # noqa: E731
+        sent = time.monotonic()
         try:
             await self.link.call(what, order(self.link.require_session()))
         except CommandFailed as exc:
-            modes = dialect.commanded_modes(kind) if kind else frozenset()
-            mode_shows = lambda: self.telemetry.fresh("flight_mode") in modes  # noqa: E731
-            if not (modes and _ack_lost(exc) and await holds_within(mode_shows, UNACKED_MODE_WAIT_S)):
+            if shown is None or not await shown_though_unacknowledged(exc, lambda: shown(sent)):
                 raise
-            log.warning("%s: %s unacknowledged, but the autopilot is in %s: accepted", self.id, what,
-                        self.telemetry.fresh("flight_mode"))  # fmt: skip
+            log.warning("%s: %s unacknowledged, but the autopilot shows it (mode %s, %s): accepted",
+                        self.id, what, self.telemetry.fresh("flight_mode"),
+                        "armed" if self.telemetry.fresh("armed") else "disarmed")  # fmt: skip
+
+    def _disarmed_since(self, sent: float) -> bool:
+        """Whether a report heard after ``sent`` says the motors are disarmed."""
+        armed = self.telemetry.armed
+        return armed is not None and armed.received_at >= sent and armed.value is False
+
+    def _target_reported(self, lat: float, lon: float) -> Callable[[float], bool]:
+        """Whether the autopilot reported flying to ``lat``/``lon`` (POSITION_TARGET_GLOBAL_INT) since a
+        time: what a goto or hold it ran shows."""
+
+        def shown(sent: float) -> bool:
+            return any(
+                geo.horizontal_distance_m(t_lat, t_lon, lat, lon) <= TARGET_REPORTED_M
+                for t_lat, t_lon, _ in self.position_targets(sent)
+            )
+
+        return shown
 
     async def takeoff(
         self, alt_rel_m: float, within_s: float = ARMABLE_WAIT_S, notify: OnWait | None = None
@@ -340,7 +359,7 @@ class Vehicle:
         try:
             await self.link.call("takeoff", system.action.takeoff())
         except CommandFailed as exc:
-            if _ack_lost(exc) and self.on_ground() is False:
+            if ack_lost(exc) and self.on_ground() is False:
                 # on the ground before the call, in the air now: the autopilot took off and its ACK was
                 # lost or late past MAVSDK's retries (PX4 SIH starved of CPU logged the takeoff 4 times)
                 log.warning("%s: takeoff unacknowledged, but the drone is in the air: accepted", self.id)
@@ -370,13 +389,17 @@ class Vehicle:
         amsl = geo.relative_to_amsl(float(alt_rel_m), self.home_amsl_m())
         yaw = float("nan") if yaw_deg is None else float(yaw_deg) % 360.0
         self._commanded = (float(lat), float(lon), time.monotonic())
-        await self.link.call("goto", self.system.action.goto_location(float(lat), float(lon), amsl, yaw))
+        await self._act(
+            "goto",
+            lambda system: system.action.goto_location(float(lat), float(lon), amsl, yaw),
+            shown=self._target_reported(float(lat), float(lon)),
+        )
 
     async def hold(self) -> None:
         """Hold position: a reposition to where the vehicle is now (never LOITER/ALT_HOLD, in which a
         copter without RC throttle descends). On the ground there is nothing to hold."""
         self.require_dialect()
-        system = self.link.require_session()
+        self.link.require_session()
         if self.on_ground() is not False:
             self._commanded = None  # nothing sent: no target of the gateway's to hold to
             return
@@ -384,8 +407,10 @@ class Vehicle:
         if pos is None:
             raise CommandFailed(f"cannot hold drone '{self.id}': no current position", vehicle_id=self.id)
         self._commanded = (pos.lat_deg, pos.lon_deg, time.monotonic())
-        await self.link.call(
-            "hold", system.action.goto_location(pos.lat_deg, pos.lon_deg, pos.abs_alt_m, float("nan"))
+        await self._act(
+            "hold",
+            lambda system: system.action.goto_location(pos.lat_deg, pos.lon_deg, pos.abs_alt_m, float("nan")),
+            shown=self._target_reported(pos.lat_deg, pos.lon_deg),
         )
 
     async def land(self) -> None:

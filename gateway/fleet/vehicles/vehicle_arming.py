@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import functools
 import logging
 import time
 from typing import Protocol
@@ -13,7 +14,7 @@ from typing import Protocol
 from gateway.errors import CommandFailed, VehicleNotReady
 from gateway.fleet.dialects import Dialect
 from gateway.fleet.dialects.modes import ModeChoice
-from gateway.fleet.vehicles.waits import holds_within
+from gateway.fleet.vehicles.waits import holds_within, shown_though_unacknowledged
 from gateway.link import refusals
 from gateway.link.contract import OnWait
 from gateway.link.session import Link
@@ -75,11 +76,16 @@ class Arming:
                 said = self.link.said_since(started)
                 raise self.refusal(exc, said, waited=True, ready=False) from None
         while True:
-            attempt_at = time.time()
+            attempt_at, sent = time.time(), time.monotonic()
             try:
                 await self.link.call("arm", system.action.arm())
                 return True
             except CommandFailed as exc:
+                if await shown_though_unacknowledged(exc, functools.partial(self._armed_since, sent)):
+                    log.warning(
+                        "%s: arm unacknowledged, but the autopilot says armed: accepted", self.link.id
+                    )
+                    return True
                 said = self.link.said_since(attempt_at)
                 passing = bool(said) and all(dialect.arming_will_pass(text) for text in said)
                 if not ready or not passing or loop.time() + ARM_RETRY_S > deadline:
@@ -89,6 +95,11 @@ class Arming:
                 with contextlib.suppress(Exception):  # a courtesy; the retry happens regardless
                     await notify(f"{self.link.id}: autopilot says {refusals.quoted(said)}; trying again")
             await asyncio.sleep(ARM_RETRY_S)
+
+    def _armed_since(self, sent: float) -> bool:
+        """Whether a report heard after ``sent`` (monotonic) says the motors are armed."""
+        armed = self.link.telemetry.armed
+        return armed is not None and armed.received_at >= sent and armed.value is True
 
     def refusal(
         self, exc: CommandFailed, said: list[str], waited: bool, ready: bool = True

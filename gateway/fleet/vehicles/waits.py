@@ -7,11 +7,14 @@ from __future__ import annotations
 import asyncio
 from collections.abc import Callable
 
-from gateway.errors import VehicleNotReady
+from gateway.errors import CommandFailed, VehicleNotReady
 from gateway.fleet.vehicles.protocols import VehicleView
 from gateway.link.contract import ConnectionState
 
 POLL_S = 0.1
+#: an action whose ACK MAVSDK gave up on ("Timeout") counts as run once the autopilot shows its effect
+#: (its mode or armed state in its 1 Hz HEARTBEAT, the target it reports) within this long
+UNACKED_WAIT_S = 3.0
 
 
 async def wait_for_state(
@@ -40,3 +43,14 @@ async def holds_within(check: Callable[[], bool], within_s: float, poll_s: float
             return False
         await asyncio.sleep(poll_s)
     return True
+
+
+def ack_lost(exc: CommandFailed) -> bool:
+    """MAVSDK gave up waiting for the COMMAND_ACK (its retries spent): the autopilot may have run it."""
+    return exc.details.get("result") == "TIMEOUT"
+
+
+async def shown_though_unacknowledged(exc: CommandFailed, shown: Callable[[], bool]) -> bool:
+    """Whether an action that failed with ``exc`` ran all the same: its ACK was lost (a starved
+    autopilot's ACKs come after MAVSDK's retries) and ``shown()`` holds within UNACKED_WAIT_S."""
+    return ack_lost(exc) and await holds_within(shown, UNACKED_WAIT_S)
