@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import asyncio
 import time
 import typing
 from types import SimpleNamespace
@@ -635,3 +636,33 @@ async def test_a_rate_request_without_an_answer_is_asked_again_and_a_refusal_is_
     await feed.request_rates(call, only=feed.rates_to_ask_again())
     assert feed.unanswered_rates == {} and set(feed.unsupported_rates) == {"odometry"}
     assert feed.rates_to_ask_again() == frozenset()
+
+
+async def test_a_parameter_set_inside_mavsdk_waits_for_the_list_being_fetched() -> None:
+    """MAVSDK's param client answers one request at a time: the takeoff altitude (a parameter MAVSDK sets
+    itself) is sent only once the session's list fetch is done, so its own timeout never runs out
+    behind the whole list."""
+    from gateway.fleet.vehicles.params import Parameters
+
+    listed = asyncio.Event()
+
+    async def get_all_params() -> SimpleNamespace:
+        await listed.wait()
+        return SimpleNamespace(int_params=[], float_params=[])
+
+    system = SimpleNamespace(param=SimpleNamespace(get_all_params=get_all_params))
+
+    async def call(what: str, awaitable: object, timeout_s: float) -> object:
+        return await awaitable  # type: ignore[misc]
+
+    params = Parameters("d1", call, lambda: system)  # type: ignore[arg-type,return-value]
+    fetch = asyncio.create_task(params.prefetch())
+    await asyncio.sleep(0)
+    waiting = asyncio.create_task(params.not_fetching())
+    for _ in range(5):
+        await asyncio.sleep(0)
+    assert not waiting.done()  # the list is still being fetched
+    listed.set()
+    await asyncio.wait_for(waiting, 5)
+    await fetch
+    await asyncio.wait_for(params.not_fetching(), 5)  # nothing fetched: at once

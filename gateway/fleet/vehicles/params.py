@@ -196,6 +196,13 @@ class Parameters:
         except CommandFailed as exc:
             log.info("%s: the parameter list was not fetched at connect: %s", self.vehicle_id, exc.message)
 
+    async def not_fetching(self) -> None:
+        """Return once no list is being fetched. MAVSDK's param client answers one request at a time: a
+        call that sets a parameter inside MAVSDK (the takeoff altitude) would wait behind a whole list
+        (~1000 names, long on a loaded autopilot) and past its own timeout."""
+        async with self._fetching:
+            return
+
     async def all(self, max_age_s: float | None = None) -> dict[str, Value]:
         """Every parameter, fetched once and cached; ``max_age_s`` refetches an older copy."""
         async with self._fetching:

@@ -353,7 +353,9 @@ class Vehicle:
         system = self.system
         if self.on_ground() is False:
             raise CommandFailed(f"drone '{self.id}' is already flying; use goto to change altitude")
-        # the altitude first: between arming and the takeoff command, ArduPilot's DISARM_DELAY runs
+        # the altitude first: between arming and the takeoff command, ArduPilot's DISARM_DELAY runs;
+        # MAVSDK sets it as a parameter (after the list the session fetches, if that still runs)
+        await self.params.not_fetching()
         await self.link.call("set takeoff altitude", system.action.set_takeoff_altitude(float(alt_rel_m)))
         sent_arm = await self.arming.arm_by(deadline, ready, notify)
         try:
