@@ -45,6 +45,14 @@ async def flying_goto(gateway: Gateway, drone: str = "d1") -> str:
     return op.operation_id
 
 
+def goto_target(gateway: Gateway, goto_id: str) -> tuple[float, float]:
+    """Where the running goto ``goto_id`` flies to."""
+    ops = gateway.operations
+    assert ops is not None
+    params = ops.get(goto_id).params
+    return params["lat_deg"], params["lon_deg"]
+
+
 def pilot_switch(d: FakeVehicle, mode: str, said: str | None = None) -> None:
     if said:
         d.telemetry.add_status_text("critical", said)
@@ -107,7 +115,7 @@ async def test_another_ground_station_moving_the_target_in_the_same_mode_ends_th
     ops = gateway.operations
     assert ops is not None
     goto = ops.get(goto_id)
-    lat, lon = goto.params["lat_deg"], goto.params["lon_deg"]
+    lat, lon = goto_target(gateway, goto_id)
     loop = asyncio.get_running_loop()
     until_s = loop.time() + 3.0
     while loop.time() < until_s:  # its own target, reported well after the command: not a takeover
@@ -139,10 +147,9 @@ async def test_a_switch_whose_target_shows_before_its_heartbeat_is_named_as_the_
     after the move, and the takeover names both modes, not a reposition."""
     d1 = fake(gateway, "d1")
     goto_id = await flying_goto(gateway)
+    lat, lon = goto_target(gateway, goto_id)
     ops = gateway.operations
     assert ops is not None
-    goto = ops.get(goto_id)
-    lat, lon = goto.params["lat_deg"], goto.params["lon_deg"]
 
     def flies_the_goto() -> bool:
         d1.target = (lat, lon, time.monotonic())
