@@ -91,7 +91,7 @@ def _holds_enum(message: Message) -> bool:
 
 
 def _is_repeated(field: Message) -> bool:
-    return bool(field.label == field.LABEL_REPEATED)
+    return bool(field.is_repeated)
 
 
 def convert(field: Message, value: Any) -> Any:
