@@ -19,15 +19,15 @@ from __future__ import annotations
 
 import re
 import types
-from collections.abc import AsyncIterator, Callable, Sequence
+from collections.abc import AsyncIterator, Awaitable, Callable, Sequence
 from functools import cache
 from typing import Any, NamedTuple
 
 from grpclib.client import Channel, UnaryStreamMethod, UnaryUnaryMethod
 from grpclib.exceptions import StreamTerminatedError
 
-#: Any in this module: protobuf's generated classes and descriptors, untyped
-Message = Any
+#: a protobuf message, message class, descriptor or field value
+Message = Any  # Any: protobuf, its generated classes and descriptors are untyped
 
 
 class MavsdkError(Exception):
@@ -94,7 +94,7 @@ def _is_repeated(field: Message) -> bool:
     return bool(field.is_repeated)
 
 
-def convert(field: Message, value: Any) -> Any:
+def convert(field: Message, value: Message) -> Message:
     """A field's value as the gateway reads it: enums `Named`, messages holding enums as `Reply`,
     repeated fields as lists; everything else as protobuf gives it."""
     if field.enum_type is not None:
@@ -113,7 +113,7 @@ class Reply:
     def __init__(self, message: Message) -> None:
         self.message = message
 
-    def __getattr__(self, name: str) -> Any:
+    def __getattr__(self, name: str) -> Message:
         field = self.message.DESCRIPTOR.fields_by_name.get(name)
         if field is None:
             raise AttributeError(f"{type(self.message).__name__} has no field {name!r}")
@@ -128,7 +128,7 @@ def positional(cls: Message) -> Callable[..., Message]:
     does (``MavlinkMessage("COMMAND_LONG", 245, 190, 1, 1, "{...}")``)."""
     names = [f.name for f in cls.DESCRIPTOR.fields]
 
-    def make(*args: Any) -> Message:
+    def make(*args: object) -> Message:
         if len(args) > len(names):
             raise TypeError(
                 f"{cls.__name__} takes {len(names)} fields ({', '.join(names)}), given {len(args)}"
@@ -178,7 +178,7 @@ def _rpcs(module: types.ModuleType, plugin: str) -> dict[str, _Rpc]:
     return out
 
 
-def _request(rpc: _Rpc, name: str, args: Sequence[Any]) -> Message:
+def _request(rpc: _Rpc, name: str, args: Sequence[object]) -> Message:
     if len(args) > len(rpc.fields):
         raise TypeError(
             f"{name}() takes {len(rpc.fields)} arguments ({', '.join(rpc.fields)}), given {len(args)}"
@@ -186,7 +186,7 @@ def _request(rpc: _Rpc, name: str, args: Sequence[Any]) -> Message:
     return rpc.request(**dict(zip(rpc.fields, args, strict=False)))
 
 
-def _value(rpc: _Rpc, reply: Message) -> Any:
+def _value(rpc: _Rpc, reply: Message) -> Message:
     if not rpc.values:
         return None
     if len(rpc.values) == 1:
@@ -207,7 +207,7 @@ class Plugin:
         self._rpcs = _rpcs(module, plugin)
         self._closed = closed
 
-    def __getattr__(self, name: str) -> Callable[..., Any]:
+    def __getattr__(self, name: str) -> Callable[..., Message]:
         rpc = self._rpcs.get(name)
         if rpc is None:
             raise AttributeError(f"the MAVSDK {self._plugin} plugin has no call {name!r}")
@@ -219,11 +219,11 @@ class Plugin:
         if self._closed():
             raise ChannelClosed(f"the MAVSDK session's channel is closed ({self._plugin})")
 
-    def _unary(self, rpc: _Rpc, name: str) -> Callable[..., Any]:
+    def _unary(self, rpc: _Rpc, name: str) -> Callable[..., Awaitable[Message]]:
         method = UnaryUnaryMethod(self._channel, rpc.path, rpc.request, rpc.reply)
         origin = f"{name}()"
 
-        async def call(*args: Any) -> Any:
+        async def call(*args: object) -> Message:
             request = _request(rpc, name, args)
             self._check_open()
             reply = await method(request)
@@ -237,10 +237,10 @@ class Plugin:
         call.__name__ = name
         return call
 
-    def _stream(self, rpc: _Rpc, name: str) -> Callable[..., AsyncIterator[Any]]:
+    def _stream(self, rpc: _Rpc, name: str) -> Callable[..., AsyncIterator[Message]]:
         method = UnaryStreamMethod(self._channel, rpc.path, rpc.request, rpc.reply)
 
-        async def items(*args: Any) -> AsyncIterator[Any]:
+        async def items(*args: object) -> AsyncIterator[Message]:
             request = _request(rpc, name, args)
             self._check_open()
             try:

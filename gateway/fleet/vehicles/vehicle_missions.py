@@ -13,7 +13,7 @@ import asyncio
 import contextlib
 import json
 from collections.abc import Sequence
-from typing import Any, Protocol
+from typing import Protocol
 
 from gateway.errors import CommandFailed, InvalidArgument
 from gateway.fleet.dialects import Dialect, DialectReads
@@ -130,7 +130,7 @@ class MissionControl:
             )
         return len(parsed)
 
-    async def _upload_checked(self, system: System, raw: list[Any], dialect: Dialect) -> str | None:
+    async def _upload_checked(self, system: System, raw: list[object], dialect: Dialect) -> str | None:
         """Upload; return the autopilot's rejection text if its feasibility check refused the mission
         after accepting the transfer (PX4). A MISSION_ACK error raises CommandFailed."""
         heard: list[str] = []
