@@ -106,21 +106,24 @@ def convert(field: Message, value: Message) -> Message:
 
 
 class Reply:
-    """A ``*_pb2`` message whose enum fields read as `Named` (its other fields as they are)."""
+    """A ``*_pb2`` message whose enum fields read as `Named` (its other fields as they are). Its one
+    attribute of its own, ``_pb_message``, has a name no MAVSDK field has (events' Event has a field
+    named ``message``)."""
 
-    __slots__ = ("message",)
+    __slots__ = ("_pb_message",)
 
     def __init__(self, message: Message) -> None:
-        self.message = message
+        self._pb_message = message
 
     def __getattr__(self, name: str) -> Message:
-        field = self.message.DESCRIPTOR.fields_by_name.get(name)
+        message = self._pb_message
+        field = message.DESCRIPTOR.fields_by_name.get(name)
         if field is None:
-            raise AttributeError(f"{type(self.message).__name__} has no field {name!r}")
-        return convert(field, getattr(self.message, name))
+            raise AttributeError(f"{type(message).__name__} has no field {name!r}")
+        return convert(field, getattr(message, name))
 
     def __repr__(self) -> str:
-        return f"Reply({self.message!r})"
+        return f"Reply({self._pb_message!r})"
 
 
 def positional(cls: Message) -> Callable[..., Message]:

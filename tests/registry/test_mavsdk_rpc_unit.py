@@ -105,6 +105,15 @@ def test_enums_inside_messages_read_as_named_and_other_messages_as_they_are() ->
     assert same is position.position  # no enum in it: the message itself
     with pytest.raises(AttributeError, match="no field 'nope'"):
         _ = item.nope
+    events = mavsdk_system.events_pb2
+    event = events.Event(
+        message="Mission rejected: takeoff is not the first waypoint item", log_level=events.LOG_LEVEL_ERROR
+    )
+    read = convert(events.EventsResponse.DESCRIPTOR.fields_by_name["event"], event)
+    assert (
+        read.message == "Mission rejected: takeoff is not the first waypoint item"
+    )  # the field, not the wrapped
+    assert read.log_level.name == "ERROR"
 
 
 def test_messages_are_made_from_positional_fields_as_the_wrappers_classes() -> None:
