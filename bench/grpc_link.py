@@ -8,11 +8,12 @@ ends before anything is measured. Then each client runs in a fresh child process
 the other, against the same sidecar:
 
 * ``baseline``: asyncio and ``gateway.util.bare_package``, no link: what every other figure stands on;
-* ``grpcio-wrappers``: the gateway's path, ``gateway.link.mavsdk_system.System`` (grpcio's asyncio
-  channel and mavsdk_grpc's 9 plugin wrappers, their ``*_pb2`` and ``*_pb2_grpc`` modules);
+* ``grpcio-wrappers``: the gateway's former path (grpcio's asyncio channel and mavsdk_grpc's 9 plugin
+  wrappers, their ``*_pb2`` and ``*_pb2_grpc`` modules);
 * ``grpcio-pb2``: grpcio's asyncio channel with the 9 plugins' ``*_pb2`` messages, no wrappers;
 * ``grpclib-pb2``: grpclib (pure-Python asyncio gRPC over h2) with the same ``*_pb2`` messages, no
-  wrappers and no grpcio: ``Channel.request`` with the method's path and its message classes.
+  wrappers and no grpcio: ``Channel.request`` with the method's path and its message classes (the
+  gateway's path now is this, through ``gateway.link.mavsdk_system.System``).
 
 Each opens the streams ``gateway/link/telemetry_feed.py`` subscribes on ArduPilot (``STREAMS``) and
 makes one unary call (``UNARY``), waits for the first position and settles, then counts what arrives
@@ -28,8 +29,7 @@ stream items a second, CPU seconds per 1,000 items (the sum of its threads' run 
 sidecar's CPU over the same window. An item is counted and dropped: the gateway's
 own conversion into its cache would come on top in either link.
 
-grpclib is a benchmark's need only (the gateway does not depend on it): ``.venv/bin/python -m uv pip
-install grpclib``. Without it, or without the SITL, the benchmark says so and skips.
+Without the SITL the benchmark says so and skips.
 """
 
 from __future__ import annotations
@@ -97,11 +97,11 @@ PLUGINS = (
     "param",
     "telemetry",
 )
-#: ``gateway.link.mavsdk_system.CLIENT_EXPERIMENTS``: the grpcio client as the gateway runs it
+#: the grpcio client as the gateway ran it (without gRPC's EventEngine client)
 CLIENT_EXPERIMENTS = "-event_engine_client,-event_engine_for_all_other_endpoints,-event_engine_callback_cq"
 KINDS = {
     "baseline": "asyncio only, no link",
-    "grpcio-wrappers": "grpcio + mavsdk_grpc's wrappers (the gateway's path)",
+    "grpcio-wrappers": "grpcio + mavsdk_grpc's wrappers (the gateway's former path)",
     "grpcio-pb2": "grpcio + the *_pb2 messages, no wrappers",
     "grpclib-pb2": "grpclib + the *_pb2 messages, no grpcio",
 }
@@ -189,24 +189,29 @@ async def open_baseline(
 
 
 async def open_wrappers(port: int, channels: int, streams: Streams, count: Counter, tasks: Tasks) -> Opened:
-    from gateway.link.mavsdk_system import System
+    """mavsdk_grpc's wrappers of the 9 plugins on grpcio's channel, as the gateway's link was before it
+    moved to grpclib (``gateway.link.mavsdk_system`` then)."""
+    os.environ.setdefault("GRPC_EXPERIMENTS", CLIENT_EXPERIMENTS)
+    _load_pb2()  # the bare package: the wrappers asked for, not the package's 40
+    from mavsdk_grpc.async_plugin_manager import AsyncPluginManager
 
-    systems = []
+    wrappers = {p: getattr(importlib.import_module(f"mavsdk_grpc.{p}"), camel(p)) for p in PLUGINS}
+    managers = []
     answer: object = None
     for index in range(channels):
-        system = System(channel_host(index), port)
-        await system.connect()
-        systems.append(system)
-        answer = await asyncio.wait_for(getattr(getattr(system, UNARY[0]), UNARY[1])(), 10.0)
+        manager = await AsyncPluginManager.create(host=channel_host(index), port=port)
+        managers.append(manager)
+        plugins = {name: make(manager) for name, make in wrappers.items()}
+        answer = await asyncio.wait_for(getattr(plugins[UNARY[0]], UNARY[1])(), 10.0)
         for stream in streams:
             plugin, method, argument = stream
-            subscribe = getattr(getattr(system, plugin), method)
+            subscribe = getattr(plugins[plugin], method)
             items = functools.partial(subscribe, argument) if argument is not None else subscribe
             tasks.add(asyncio.create_task(_pump(items, label(stream), count)))
 
     async def close() -> None:
-        for system in systems:
-            await system.close()
+        for manager in managers:
+            await manager.channel.close(grace=None)
 
     return close, answer
 
@@ -377,10 +382,7 @@ def missing_pieces(
 ) -> str | None:
     """Why the benchmark cannot run here (None when it can)."""
     if not installed("grpclib"):
-        return (
-            "grpclib is not installed (a benchmark's need, not the gateway's): "
-            ".venv/bin/python -m uv pip install grpclib"
-        )
+        return "grpclib is not installed (a dependency of the gateway since its link speaks it): make install"
     return ardupilot_missing()
 
 

@@ -36,7 +36,7 @@ from typing import Any
 import common
 from wakeups import ThreadSample, delta, threads
 
-from gateway.link.mavsdk_system import System
+from gateway.link.mavsdk_system import MavlinkMessage, System
 from gateway.link.sidecar import mavsdk_server_binary
 from gateway.link.telemetry import TelemetryCache
 from gateway.link.telemetry_feed import MESSAGE_IDS, STREAM_RATES_HZ, TelemetryFeed
@@ -132,8 +132,6 @@ async def direct_loop(system: System, name: str, counter: Counter) -> None:
 
 async def ask_rate(system: System, sysid: int, message_id: int, hz: float) -> None:
     """MAV_CMD_SET_MESSAGE_INTERVAL as a COMMAND_LONG through mavlink_direct (no answer awaited)."""
-    from mavsdk_grpc.mavlink_direct import MavlinkMessage
-
     fields = {
         "target_system": sysid, "target_component": 1, "command": MAV_CMD_SET_MESSAGE_INTERVAL,
         "confirmation": 0, "param1": message_id, "param2": 1e6 / hz,

@@ -49,6 +49,8 @@ NOT_AT_START = {
     "httpx2": "a resource the MCP SDK fetches by URL (the gateway registers none)",
     "mavsdk_grpc.system": "nothing: gateway.link.mavsdk_system loads only the plugins the gateway uses",
     "mavsdk_grpc.camera": "nothing: a plugin the gateway does not use",
+    "mavsdk_grpc.telemetry": "nothing: the link uses the *_pb2 messages, never the wrappers (grpcio)",
+    "grpc": "nothing: the link to mavsdk_server speaks grpclib (gateway.link.mavsdk_rpc)",
     "pydantic.v1": "a pydantic v1 model (FastAPI's checks for one: gateway.api.fastapi_v1)",
     "uvicorn.main": "uvicorn's command line (the gateway's own: gateway.util.lean_uvicorn)",
     "click": "uvicorn's command line",
@@ -74,7 +76,7 @@ def serving():
             return False
         return True
     # the stdio server has started its gateway (the runtime and a MAVSDK plugin are loaded by then)
-    started = ("mcp.server.stdio", "gateway.mcp.server", "gateway.runtime", "mavsdk_grpc.telemetry")
+    started = ("mcp.server.stdio", "gateway.mcp.server", "gateway.runtime", "mavsdk_grpc.telemetry_pb2")
     return all(name in sys.modules for name in started)
 
 def ready():
@@ -169,7 +171,7 @@ def unexpected(modules: list[str]) -> dict[str, str]:
 @pytest.mark.parametrize("command", ["serve", "mcp-stdio"])
 def test_a_plain_start_imports_only_what_its_configuration_uses(command: str, tmp_path: Path) -> None:
     modules = loaded_at_start(command, tmp_path)
-    assert "gateway.runtime" in modules and "mavsdk_grpc.telemetry" in modules  # it did start a gateway
+    assert "gateway.runtime" in modules and "mavsdk_grpc.telemetry_pb2" in modules  # it did start a gateway
     assert unexpected(modules) == {}, f"{command} imported at start what only these need"
 
 

@@ -12,8 +12,9 @@ from pathlib import Path
 GATEWAY = Path(__file__).resolve().parents[1] / "gateway"
 
 #: the most ``Any`` gateway/ may hold (lower it when you type one away); 37 since the cluster's forwarded
-#: calls carry JSON (arguments and results) and a pymavlink link's options are a TypedDict
-MAX_ANY = 37
+#: calls carry JSON (arguments and results) and a pymavlink link's options are a TypedDict; 36 since the
+#: link to mavsdk_server holds one for protobuf's untyped messages instead of mavsdk_grpc's wrappers
+MAX_ANY = 36
 
 _ANY = re.compile(r"\bAny\b")
 _WHY = "# Any:"

@@ -10,11 +10,12 @@ import time
 from collections.abc import Awaitable
 from typing import Protocol, TypeVar
 
-import grpc
+from grpclib.exceptions import GRPCError, StreamTerminatedError
 
-from gateway.errors import CommandFailed, InvalidArgument, VehicleNotReady
+from gateway.errors import CommandFailed
 from gateway.link import refusals
 from gateway.link.contract import ConnectionState, LinkRules
+from gateway.link.mavsdk_rpc import MavsdkError
 from gateway.link.mavsdk_system import System
 from gateway.link.rawlink import MAV_RESULT, MAV_RESULT_ACCEPTED, CommandChannel, LinkFacts, NoAck
 from gateway.link.telemetry import TelemetryCache
@@ -75,31 +76,31 @@ class MavsdkCalls:
             task = asyncio.current_task()
             if task is None or task.cancelling():
                 raise  # the caller itself is being cancelled
-            # grpc.aio cancels a call whose channel closed under it: the sidecar went down mid-call
+            # a call whose session was closed under it (the sidecar went down mid-call) is cancelled
+            raise self._session_ended(what) from None
+        except (StreamTerminatedError, OSError):
+            # the connection to mavsdk_server was lost or refused (its channel is never reconnected)
+            raise self._session_ended(what) from None
+        except GRPCError as exc:
             raise CommandFailed(
-                f"{what} on drone '{self._link.id}': its mavsdk_server session ended during the call (the "
-                f"gateway restarts it); the drone is {self._link.state.value}; check it and call again",
-                vehicle_id=self._link.id,
-            ) from None
-        except grpc.aio.AioRpcError as exc:
-            raise CommandFailed(
-                f"{what} on drone '{self._link.id}': mavsdk_server unreachable ({exc.code().name}); "
+                f"{what} on drone '{self._link.id}': mavsdk_server unreachable ({exc.status.name}); "
                 f"the drone is {self._link.state.value}",
                 vehicle_id=self._link.id,
             ) from None
-        except (CommandFailed, VehicleNotReady, InvalidArgument):
-            raise
-        except Exception as exc:
-            result = getattr(exc, "_result", None)
-            if result is None:
-                raise
-            name = getattr(result.result, "name", str(result.result))
+        except MavsdkError as exc:
             said = await self._complaint_since(started)
             raise CommandFailed(
-                f"{what} on drone '{self._link.id}' failed: {result.result_str} ({name})" + said,
+                f"{what} on drone '{self._link.id}' failed: {exc.result_str} ({exc.result})" + said,
                 vehicle_id=self._link.id,
-                result=name,
+                result=exc.result,
             ) from None
+
+    def _session_ended(self, what: str) -> CommandFailed:
+        return CommandFailed(
+            f"{what} on drone '{self._link.id}': its mavsdk_server session ended during the call (the "
+            f"gateway restarts it); the drone is {self._link.state.value}; check it and call again",
+            vehicle_id=self._link.id,
+        )
 
     async def command_long(
         self, command: int, *params: float, what: str, attempts: int = 3, wait_s: float = 1.5

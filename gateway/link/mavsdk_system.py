@@ -1,40 +1,36 @@
-"""A MAVSDK System with only the plugins the gateway uses; the one place the gateway imports mavsdk_grpc.
+"""A MAVSDK System with only the plugins the gateway uses, over grpclib; the one place the gateway imports
+mavsdk_grpc.
 
-``mavsdk_grpc``'s package ``__init__`` imports its ``System``, whose module imports all 40 plugin modules
-with their protobuf modules (about 12 MiB of the gateway's memory), and ``System.connect`` makes a
-gRPC stub for each of the 40 on every session. The gateway uses 9 (``PLUGINS``). Here the package is
-registered as a bare package (its directory, without running its ``__init__``) before anything of it
-is imported, so only the plugin modules asked for are loaded, and ``System`` makes only their stubs.
+The gateway talks to its mavsdk_server sidecar with grpclib (pure-Python gRPC over asyncio and h2) and
+mavsdk_grpc's ``*_pb2`` messages (`gateway.link.mavsdk_rpc`), never with grpcio: mavsdk_grpc's plugin
+wrappers import their ``*_pb2_grpc`` modules, which import grpcio, whose core library was the larger part
+of a link's memory (``bench/grpc_link.py``). So no wrapper module is imported here, only ``*_pb2`` ones.
+
+``mavsdk_grpc``'s package ``__init__`` imports its ``System``, whose module imports all 40 plugin
+wrappers (and grpcio). Here the package is registered as a bare package (its directory, without running
+its ``__init__``) before anything of it is imported, so only the ``*_pb2`` modules asked for are loaded.
 A program that imports ``mavsdk_grpc`` itself before this module (the tests' helpers, the benchmarks)
 gets the whole package as usual, and this module works on that too; ``mavsdk_grpc.System`` stays
 reachable on the bare package (imported when first asked for).
 
-The gateway's gRPC client runs without gRPC's EventEngine client (``CLIENT_EXPERIMENTS``, put in the
-environment when this module is imported, before the first channel initialises gRPC, unless
-``GRPC_EXPERIMENTS`` is set already): with it, each stream item crosses an EventEngine thread, then the
-asyncio poller thread, then the event loop; without it the poller thread reads the socket itself.
-Measured with ``bench/wakeups.py`` (8 drones at rest, each setting beside the other under the same load):
-the gateway's thread wake-ups per drone 57 -> 21 a second, its CPU per drone 0.243 -> 0.214 % of a core.
-
-What the bare package leaves out of the ``__init__``: a Python version check, a warning for the
-package's old name, and ``asyncio.set_event_loop_policy(uvloop.EventLoopPolicy())`` when uvloop is
-installed (it is not a dependency; the gateway runs on the loop its server or ``asyncio.run`` makes).
+One `System` is one channel with one connection, never reconnected: a sidecar that restarts serves a
+new session on a new channel (``gateway.link.session.Link``), and the sealed private socket of a
+confined sidecar could not be reached again anyway. grpclib sends no HTTP/2 keepalive pings unless
+configured to (it is not).
 """
 
 from __future__ import annotations
 
-import os
+import asyncio
 import types
-from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Generic, TypeVar, overload
+from typing import Any, overload
 
+from grpclib.client import Channel
+from grpclib.protocol import H2Protocol
+
+from gateway.link.mavsdk_rpc import ChannelClosed, Plugin, positional
 from gateway.util.bare_package import register_bare_package
-
-#: gRPC experiments turned off in the gateway's process (its sidecars inherit them; measured without
-#: effect there): the EventEngine client and what rides on it, so a stream item wakes one thread less
-CLIENT_EXPERIMENTS = "-event_engine_client,-event_engine_for_all_other_endpoints,-event_engine_callback_cq"
-os.environ.setdefault("GRPC_EXPERIMENTS", CLIENT_EXPERIMENTS)
 
 
 def _library_name(_package: types.ModuleType, name: str) -> Any:  # Any: mavsdk_grpc, untyped
@@ -48,16 +44,17 @@ def _library_name(_package: types.ModuleType, name: str) -> Any:  # Any: mavsdk_
 register_bare_package("mavsdk_grpc", _library_name, "the mavsdk_grpc package (mavsdk-grpc)")
 
 # ruff: noqa: E402 - these must come after the bare package is registered
-from mavsdk_grpc import action as action_plugin
-from mavsdk_grpc import core as core_plugin
-from mavsdk_grpc import events as events_plugin
-from mavsdk_grpc import info as info_plugin
-from mavsdk_grpc import mavlink_direct as mavlink_direct_plugin
-from mavsdk_grpc import mission as mission_plugin
-from mavsdk_grpc import mission_raw as mission_raw_plugin
-from mavsdk_grpc import param as param_plugin
-from mavsdk_grpc import telemetry as telemetry_plugin
-from mavsdk_grpc.async_plugin_manager import AsyncPluginManager
+from mavsdk_grpc import (
+    action_pb2,
+    core_pb2,
+    events_pb2,
+    info_pb2,
+    mavlink_direct_pb2,
+    mission_pb2,
+    mission_raw_pb2,
+    param_pb2,
+    telemetry_pb2,
+)
 
 
 def bundled_binary() -> Path:
@@ -67,71 +64,120 @@ def bundled_binary() -> Path:
     return Path(bin_pkg.__file__).parent / "mavsdk_server"
 
 
-__all__ = ["PLUGINS", "System", "mavlink_direct_plugin", "mission_raw_plugin"]
+__all__ = ["PLUGINS", "MavlinkMessage", "MissionRawItem", "System"]
 
-P = TypeVar("P")
+#: the plugins the gateway uses, by the name MAVSDK gives them, with their ``*_pb2`` modules
+_MODULES: dict[str, types.ModuleType] = {
+    "action": action_pb2,
+    "core": core_pb2,
+    "events": events_pb2,
+    "info": info_pb2,
+    "mavlink_direct": mavlink_direct_pb2,
+    "mission": mission_pb2,
+    "mission_raw": mission_raw_pb2,
+    "param": param_pb2,
+    "telemetry": telemetry_pb2,
+}
+PLUGINS = tuple(_MODULES)
+
+#: mavlink_direct's message and mission_raw's item, made from their fields in order as the wrappers'
+#: classes are (``MavlinkMessage(name, system_id, component_id, target_system, target_component, json)``)
+MavlinkMessage = positional(mavlink_direct_pb2.MavlinkMessage)
+MissionRawItem = positional(mission_raw_pb2.MissionItem)
+
+#: seconds between connection attempts while mavsdk_server does not accept yet (the caller bounds it)
+CONNECT_RETRY_S = 0.2
 
 
-class _Plugin(Generic[P]):
-    """A plugin of the `System`, by the name MAVSDK gives it: its stub, made by ``make`` in
-    ``System.connect()``; read before that, it raises."""
+class _OneConnection(Channel):
+    """A grpclib channel that connects once: a lost connection is not made again (a call then fails
+    with `ChannelClosed`, as a grpcio channel's call fails when its server is gone)."""
 
-    def __init__(self, make: Callable[[Any], P]) -> None:  # Any: mavsdk_grpc, its untyped plugin manager
-        self.make = make
-        self.name = ""
+    _made = False
+
+    async def _create_connection(self) -> H2Protocol:
+        if self._made:
+            raise ChannelClosed("the connection to mavsdk_server was lost (the session ends with it)")
+        protocol = await super()._create_connection()
+        self._made = True
+        return protocol
+
+
+def channel_for(address: str, port: int) -> Channel:
+    """The channel to a sidecar: ``unix:<dir>/sk`` (`gateway.link.sidecar.Sidecar.grpc_address`) is the
+    private socket ``<dir>/sk:<port>``; anything else a host for TCP."""
+    if address.startswith("unix:"):
+        return _OneConnection(path=f"{address.removeprefix('unix:')}:{port}")
+    return _OneConnection(address, port)
+
+
+class _Plugin:
+    """A plugin of the `System`, by the name MAVSDK gives it (made by ``System.connect()``; read before
+    that, it raises)."""
 
     def __set_name__(self, owner: type, name: str) -> None:
         self.name = name
 
     @overload
-    def __get__(self, system: None, owner: type) -> _Plugin[P]: ...
+    def __get__(self, system: None, owner: type) -> _Plugin: ...
     @overload
-    def __get__(self, system: System, owner: type) -> P: ...
-    def __get__(self, system: System | None, owner: type) -> _Plugin[P] | P:
+    def __get__(self, system: System, owner: type) -> Plugin: ...
+    def __get__(self, system: System | None, owner: type) -> _Plugin | Plugin:
         if system is None:
             return self
-        stub: P | None = getattr(system, f"_{self.name}_stub", None)
-        if stub is None:
+        plugin: Plugin | None = system._plugins.get(self.name)
+        if plugin is None:
             raise RuntimeError(f"the MAVSDK {self.name} plugin is not ready: System.connect() has not run")
-        return stub
+        return plugin
 
 
 class System:
     """One gRPC session to a running mavsdk_server, with the gateway's plugins (``PLUGINS``).
 
     The same calls as ``mavsdk_grpc.System`` for those plugins (``await System(address, port).connect()``,
-    then ``system.telemetry`` and so on); it never starts a mavsdk_server of its own (the gateway's
-    sidecar does), and ``close()`` closes its gRPC channel."""
+    then ``system.telemetry`` and so on), through `gateway.link.mavsdk_rpc`; it never starts a
+    mavsdk_server of its own (the gateway's sidecar does), and ``close()`` closes its channel (its
+    streams end, its calls fail with `ChannelClosed`)."""
 
-    action = _Plugin(action_plugin.Action)
-    core = _Plugin(core_plugin.Core)
-    events = _Plugin(events_plugin.Events)
-    info = _Plugin(info_plugin.Info)
-    mavlink_direct = _Plugin(mavlink_direct_plugin.MavlinkDirect)
-    mission = _Plugin(mission_plugin.Mission)
-    mission_raw = _Plugin(mission_raw_plugin.MissionRaw)
-    param = _Plugin(param_plugin.Param)
-    telemetry = _Plugin(telemetry_plugin.Telemetry)
+    action = _Plugin()
+    core = _Plugin()
+    events = _Plugin()
+    info = _Plugin()
+    mavlink_direct = _Plugin()
+    mission = _Plugin()
+    mission_raw = _Plugin()
+    param = _Plugin()
+    telemetry = _Plugin()
 
     def __init__(self, mavsdk_server_address: str, port: int) -> None:
         self._address = mavsdk_server_address
         self._port = port
-        self._manager: Any = None  # Any: mavsdk_grpc, its untyped channel manager
+        self._channel: Channel | None = None
+        self._plugins: dict[str, Plugin] = {}
+        self.closed = False
 
     async def connect(self) -> None:
-        """Open the gRPC channel (waits until mavsdk_server answers) and make the plugins' stubs."""
-        manager = await AsyncPluginManager.create(host=self._address, port=self._port)
-        self._manager = manager
-        for name, plugin in _PLUGINS.items():
-            setattr(self, f"_{name}_stub", plugin.make(manager))
+        """Connect to mavsdk_server (waits, trying again, until it accepts: the caller bounds the wait)
+        and make the plugins."""
+        channel = channel_for(self._address, self._port)
+        self._channel = channel
+        while True:
+            try:
+                await channel.__connect__()
+                break
+            except ChannelClosed:
+                raise
+            except OSError:
+                if self.closed:
+                    raise
+                await asyncio.sleep(CONNECT_RETRY_S)
+        self._plugins = {
+            name: Plugin(channel, module, name, lambda: self.closed) for name, module in _MODULES.items()
+        }
 
     async def close(self) -> None:
-        """Close the gRPC channel (its streams end); nothing to do before ``connect``."""
-        manager, self._manager = self._manager, None
-        if manager is not None:
-            await manager.channel.close(grace=None)
-
-
-_PLUGINS = {name: plugin for name, plugin in vars(System).items() if isinstance(plugin, _Plugin)}
-#: the plugins the gateway uses, by the name MAVSDK gives them
-PLUGINS = tuple(_PLUGINS)
+        """Close the channel (its streams end); nothing to do before ``connect``."""
+        self.closed = True
+        channel, self._channel = self._channel, None
+        if channel is not None:
+            channel.close()

@@ -15,7 +15,7 @@ import json
 import time
 from collections.abc import Awaitable, Callable
 
-from gateway.link.mavsdk_system import System, mavlink_direct_plugin
+from gateway.link.mavsdk_system import MavlinkMessage, System
 from gateway.util.json_types import JsonObject
 
 MAV_TYPE_GCS = 6
@@ -141,9 +141,7 @@ class CommandChannel:
             fields["confirmation"] = attempt
             fut: asyncio.Future[int] = loop.create_future()
             self._waiting.setdefault(command, []).append(fut)
-            msg = mavlink_direct_plugin.MavlinkMessage(
-                "COMMAND_LONG", self.gcs_sysid, GCS_COMPID, target, 1, json.dumps(fields)
-            )
+            msg = MavlinkMessage("COMMAND_LONG", self.gcs_sysid, GCS_COMPID, target, 1, json.dumps(fields))
             try:
                 await call(system.mavlink_direct.send_message(msg))
                 deadline = loop.time() + wait_s

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 from urllib.parse import urlsplit
 
-import grpc
+from grpclib.exceptions import GRPCError, StreamTerminatedError
 
 from gateway.config import Settings
 from gateway.errors import VehicleNotReady
@@ -470,7 +470,7 @@ class Link:
         """Connect the gRPC session and seal the sidecar's socket; False (the sidecar restarted) if not."""
         try:
             await asyncio.wait_for(system.connect(), CONNECT_TIMEOUT_S)
-        except (TimeoutError, grpc.aio.AioRpcError) as exc:
+        except (TimeoutError, OSError, GRPCError, StreamTerminatedError) as exc:
             self._last_error = f"gRPC session to mavsdk_server on {address}:{port} failed: {exc!r}"
             log.warning("%s: %s; restarting the sidecar", self.id, self._last_error)
             await close_system(system)

@@ -20,8 +20,7 @@ from gateway.fleet.dialects import Dialect, DialectReads
 from gateway.fleet.dialects.base import mission_progress
 from gateway.fleet.missions import mission
 from gateway.fleet.missions.mission import MissionItem, WirePlan
-from gateway.link.mavsdk_system import System
-from gateway.link.mavsdk_system import mission_raw_plugin as mavsdk_mission_raw
+from gateway.link.mavsdk_system import MissionRawItem, System
 from gateway.link.session import Link
 from gateway.link.telemetry import MissionProgressValue, StatusTextValue
 
@@ -107,7 +106,7 @@ class MissionControl:
             parsed, (home.value.lat_deg, home.value.lon_deg, home.value.abs_alt_m) if home else None
         )
         raw = [
-            mavsdk_mission_raw.MissionItem(
+            MissionRawItem(
                 w.seq, w.frame, w.command, 1 if w.seq == 0 else 0, 1,
                 w.param1, w.param2, w.param3, w.param4, w.x, w.y, w.z, 0,
             )
@@ -131,9 +130,7 @@ class MissionControl:
             )
         return len(parsed)
 
-    async def _upload_checked(
-        self, system: System, raw: list[mavsdk_mission_raw.MissionItem], dialect: Dialect
-    ) -> str | None:
+    async def _upload_checked(self, system: System, raw: list[object], dialect: Dialect) -> str | None:
         """Upload; return the autopilot's rejection text if its feasibility check refused the mission
         after accepting the transfer (PX4). A MISSION_ACK error raises CommandFailed."""
         heard: list[str] = []
