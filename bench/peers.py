@@ -414,7 +414,7 @@ def render(servers: list[Server], notes: list[str], n: int) -> str:
     cpu_rows = []
     for s in servers:
         cpu_rows.append(
-            [s.name, *[f"{cpu_ms(s, k):.2f}" for k in kinds], f"{s.idle_rate * 100:.2f}", f"{s.rss_mib:.0f}",
+            [s.name, *[f"{cpu_ms(s, k):.2f}" for k in kinds], f"{s.idle_rate * 100:.2f}", f"{s.rss_mib:.1f}",
              f"{s.tokens[0]}", f"{s.tokens[1]}", f"{s.tokens[2]}"]
         )  # fmt: skip
     ratio_rows = []
