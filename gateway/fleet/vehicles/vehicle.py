@@ -37,7 +37,12 @@ from gateway.fleet.vehicles.params import Parameters
 from gateway.fleet.vehicles.protocols import FlyingVehicle
 from gateway.fleet.vehicles.vehicle_arming import Arming
 from gateway.fleet.vehicles.vehicle_missions import MissionControl
-from gateway.fleet.vehicles.waits import ack_lost, shown_though_unacknowledged, wait_for_state
+from gateway.fleet.vehicles.waits import (
+    ack_lost,
+    armed_heard_since,
+    shown_though_unacknowledged,
+    wait_for_state,
+)
 from gateway.link.contract import ConnectionState, GroundCommand, OnWait, Peer
 from gateway.link.link_status import link_status
 from gateway.link.mavsdk_system import System
@@ -323,9 +328,7 @@ class Vehicle:
                         "armed" if self.telemetry.fresh("armed") else "disarmed")  # fmt: skip
 
     def _disarmed_since(self, sent: float) -> bool:
-        """Whether a report heard after ``sent`` says the motors are disarmed."""
-        armed = self.telemetry.armed
-        return armed is not None and armed.received_at >= sent and armed.value is False
+        return armed_heard_since(self.telemetry, sent, armed=False)
 
     def _target_reported(self, lat: float, lon: float) -> Callable[[float], bool]:
         """Whether the autopilot reported flying to ``lat``/``lon`` (POSITION_TARGET_GLOBAL_INT) since a

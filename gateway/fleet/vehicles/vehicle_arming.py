@@ -14,7 +14,7 @@ from typing import Protocol
 from gateway.errors import CommandFailed, VehicleNotReady
 from gateway.fleet.dialects import Dialect
 from gateway.fleet.dialects.modes import ModeChoice
-from gateway.fleet.vehicles.waits import holds_within, shown_though_unacknowledged
+from gateway.fleet.vehicles.waits import armed_heard_since, holds_within, shown_though_unacknowledged
 from gateway.link import refusals
 from gateway.link.contract import OnWait
 from gateway.link.session import Link
@@ -81,7 +81,8 @@ class Arming:
                 await self.link.call("arm", system.action.arm())
                 return True
             except CommandFailed as exc:
-                if await shown_though_unacknowledged(exc, functools.partial(self._armed_since, sent)):
+                armed = functools.partial(armed_heard_since, self.link.telemetry, sent, True)
+                if await shown_though_unacknowledged(exc, armed):
                     log.warning(
                         "%s: arm unacknowledged, but the autopilot says armed: accepted", self.link.id
                     )
@@ -95,11 +96,6 @@ class Arming:
                 with contextlib.suppress(Exception):  # a courtesy; the retry happens regardless
                     await notify(f"{self.link.id}: autopilot says {refusals.quoted(said)}; trying again")
             await asyncio.sleep(ARM_RETRY_S)
-
-    def _armed_since(self, sent: float) -> bool:
-        """Whether a report heard after ``sent`` (monotonic) says the motors are armed."""
-        armed = self.link.telemetry.armed
-        return armed is not None and armed.received_at >= sent and armed.value is True
 
     def refusal(
         self, exc: CommandFailed, said: list[str], waited: bool, ready: bool = True

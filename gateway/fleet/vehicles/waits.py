@@ -10,6 +10,7 @@ from collections.abc import Callable
 from gateway.errors import CommandFailed, VehicleNotReady
 from gateway.fleet.vehicles.protocols import VehicleView
 from gateway.link.contract import ConnectionState
+from gateway.link.telemetry import TelemetryCache
 
 POLL_S = 0.1
 #: an action whose ACK MAVSDK gave up on ("Timeout") counts as run once the autopilot shows its effect
@@ -54,3 +55,10 @@ async def shown_though_unacknowledged(exc: CommandFailed, shown: Callable[[], bo
     """Whether an action that failed with ``exc`` ran all the same: its ACK was lost (a starved
     autopilot's ACKs come after MAVSDK's retries) and ``shown()`` holds within UNACKED_WAIT_S."""
     return ack_lost(exc) and await holds_within(shown, UNACKED_WAIT_S)
+
+
+def armed_heard_since(telemetry: TelemetryCache, sent: float, armed: bool) -> bool:
+    """Whether a report heard at or after ``sent`` (monotonic) says the motors are ``armed`` (True) or
+    disarmed (False): the effect of an arm, disarm or kill, never a report from before it."""
+    sample = telemetry.armed
+    return sample is not None and sample.received_at >= sent and sample.value is armed
