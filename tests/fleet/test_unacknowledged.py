@@ -104,3 +104,59 @@ async def test_an_arm_whose_ack_is_lost_counts_once_a_later_report_says_armed(
     reported = asyncio.create_task(later(0.3, lambda: v.telemetry.put("armed", True)))
     assert await v.arming.arm_by(deadline, ready=True, notify=None) is True
     await reported
+
+
+def takeoff_ready(v: Vehicle, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Initialised, parameters fetched, armed already: only the takeoff command's ACK is lost."""
+
+    async def ready(*_args: object) -> bool:
+        return True
+
+    async def no_arm_sent(*_args: object, **_kwargs: object) -> bool:
+        return False
+
+    async def fetched() -> None:
+        return None
+
+    lose_acks = v.link.call
+
+    async def only_the_takeoffs_ack_lost(what: str, aw: Awaitable[Any], timeout_s: float = 10.0) -> Any:
+        return await (lose_acks(what, aw, timeout_s) if what == "takeoff" else aw)
+
+    monkeypatch.setattr(v.link, "call", only_the_takeoffs_ack_lost)
+    monkeypatch.setattr(v, "wait_initialised", ready)
+    monkeypatch.setattr(v.params, "not_fetching", fetched)
+    monkeypatch.setattr(v.arming, "arm_by", no_arm_sent)
+    session = v.link.require_session()
+    session.action.set_takeoff_altitude = session.action.takeoff = session.action.arm
+    v.telemetry.put("landed_state", "ON_GROUND")
+    v.telemetry.put("armed", True)
+
+
+async def test_a_takeoff_whose_ack_is_lost_counts_once_px4_shows_its_takeoff_mode(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A starved PX4 showed AUTO.TAKEOFF while still on the ground when MAVSDK gave up on the ACK: the
+    takeoff ran. Staying in the mode it was in (AUTO.LOITER, also one a takeoff ends in) shows nothing."""
+    v = timed_out_vehicle(monkeypatch)
+    takeoff_ready(v, monkeypatch)
+    v.telemetry.put("flight_mode", "AUTO.LOITER")
+    heard_again = asyncio.create_task(later(0.2, lambda: v.telemetry.put("flight_mode", "AUTO.LOITER")))
+    with pytest.raises(CommandFailed, match="TIMEOUT"):
+        await v.takeoff(10.0)
+    await heard_again
+    switched = asyncio.create_task(later(0.3, lambda: v.telemetry.put("flight_mode", "AUTO.TAKEOFF")))
+    await v.takeoff(10.0)  # no CommandFailed: the autopilot switched to its takeoff mode after the call
+    await switched
+    assert v.on_ground() is True
+
+
+async def test_a_takeoff_whose_ack_is_lost_counts_once_the_drone_is_in_the_air(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    v = timed_out_vehicle(monkeypatch)
+    takeoff_ready(v, monkeypatch)
+    v.telemetry.put("flight_mode", "AUTO.TAKEOFF")  # in it before the call: not its effect
+    lifted = asyncio.create_task(later(0.3, lambda: v.telemetry.put("landed_state", "TAKING_OFF")))
+    await v.takeoff(10.0)
+    await lifted

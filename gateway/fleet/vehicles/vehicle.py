@@ -38,8 +38,8 @@ from gateway.fleet.vehicles.protocols import FlyingVehicle
 from gateway.fleet.vehicles.vehicle_arming import Arming
 from gateway.fleet.vehicles.vehicle_missions import MissionControl
 from gateway.fleet.vehicles.waits import (
-    ack_lost,
     armed_heard_since,
+    mode_heard_since,
     shown_though_unacknowledged,
     wait_for_state,
 )
@@ -327,6 +327,12 @@ class Vehicle:
                         self.id, what, self.telemetry.fresh("flight_mode"),
                         "armed" if self.telemetry.fresh("armed") else "disarmed")  # fmt: skip
 
+    def _taking_off_since(self, sent: float, mode_before: str | None) -> bool:
+        """What a takeoff the autopilot runs shows: in the air, or (still on the ground, PX4) switched
+        since ``sent`` to a takeoff mode it was not in (ArduPilot takes off in GUIDED, its mode already)."""
+        modes = self.require_dialect().commanded_modes("takeoff")
+        return self.on_ground() is False or mode_heard_since(self.telemetry, sent, modes, mode_before)
+
     def _disarmed_since(self, sent: float) -> bool:
         return armed_heard_since(self.telemetry, sent, armed=False)
 
@@ -361,13 +367,16 @@ class Vehicle:
         await self.params.not_fetching()
         await self.link.call("set takeoff altitude", system.action.set_takeoff_altitude(float(alt_rel_m)))
         sent_arm = await self.arming.arm_by(deadline, ready, notify)
+        mode_before, sent = self.telemetry.fresh("flight_mode"), time.monotonic()
         try:
             await self.link.call("takeoff", system.action.takeoff())
         except CommandFailed as exc:
-            if ack_lost(exc) and self.on_ground() is False:
-                # on the ground before the call, in the air now: the autopilot took off and its ACK was
-                # lost or late past MAVSDK's retries (PX4 SIH starved of CPU logged the takeoff 4 times)
-                log.warning("%s: takeoff unacknowledged, but the drone is in the air: accepted", self.id)
+            if await shown_though_unacknowledged(exc, lambda: self._taking_off_since(sent, mode_before)):
+                # the autopilot took off and its ACK was lost or late past MAVSDK's retries (PX4 SIH
+                # starved of CPU logged the takeoff 4 times, or showed AUTO.TAKEOFF still on the ground)
+                log.warning("%s: takeoff unacknowledged, but the autopilot shows it (mode %s, %s): accepted",
+                            self.id, self.telemetry.fresh("flight_mode"),
+                            "on the ground" if self.on_ground() else "in the air")  # fmt: skip
                 return
             if sent_arm or self.on_ground() is False:
                 raise

@@ -62,3 +62,17 @@ def armed_heard_since(telemetry: TelemetryCache, sent: float, armed: bool) -> bo
     disarmed (False): the effect of an arm, disarm or kill, never a report from before it."""
     sample = telemetry.armed
     return sample is not None and sample.received_at >= sent and sample.value is armed
+
+
+def mode_heard_since(
+    telemetry: TelemetryCache, sent: float, modes: frozenset[str], other_than: str | None
+) -> bool:
+    """Whether a report heard at or after ``sent`` (monotonic) shows one of ``modes`` other than
+    ``other_than`` (the mode before the call): a mode the call switched to, never one it was already in."""
+    sample = telemetry.flight_mode
+    return (
+        sample is not None
+        and sample.received_at >= sent
+        and sample.value in modes
+        and sample.value != other_than
+    )
