@@ -27,6 +27,8 @@ GCS_SYSID = 250
 #: DO_SET_MODE param2/param3 for LAND: ArduCopter's custom mode 9; PX4's main mode AUTO (4), sub LAND (6)
 ARDUCOPTER_LAND = (9.0, 0.0)
 PX4_LAND = (4.0, 6.0)
+#: how long the ground station waits for an answer before it sends its request again
+RESEND_S = 3.0
 
 
 class GroundStation:
@@ -54,11 +56,17 @@ class GroundStation:
                 return msg
         raise AssertionError(f"the ground station got no {kind} within {scaled(within_s):g} s")
 
-    def seen(self, kinds: set[str], within_s: float) -> dict[str, Any]:
-        """The first message of each kind (in any order) within ``within_s``."""
+    def seen(self, kinds: set[str], within_s: float, send: Any) -> dict[str, Any]:
+        """The first message of each kind (in any order) within ``within_s``, calling ``send()`` again
+        every ``RESEND_S`` until all came, as a ground station retries a command (QGroundControl sends
+        one up to four times): a starved PX4 answered one request neither way within 45 s."""
         found: dict[str, Any] = {}
         deadline = time.monotonic() + scaled(within_s)
+        resend_at = 0.0
         while time.monotonic() < deadline and set(found) != kinds:
+            if time.monotonic() >= resend_at:
+                send()
+                resend_at = time.monotonic() + RESEND_S
             msg = self.conn.recv_match(type=list(kinds - set(found)), blocking=True, timeout=0.5)
             if msg is not None:
                 found[msg.get_type()] = msg
@@ -123,16 +131,21 @@ async def sees_and_commands(
             )
             assert abs(pos.lat / 1e7 - home["lat_deg"]) < 1e-3 and abs(pos.lon / 1e7 - home["lon_deg"]) < 1e-3
             await asyncio.to_thread(gcs.drain)
-            # a ground station says what it is first: the relay holds back what comes before
-            gcs.conn.mav.heartbeat_send(
-                mavutil.mavlink.MAV_TYPE_GCS, mavutil.mavlink.MAV_AUTOPILOT_INVALID, 0, 0, 0
-            )
-            gcs.conn.mav.command_long_send(
-                sysid, 1, mavutil.mavlink.MAV_CMD_REQUEST_MESSAGE, 0,
-                mavutil.mavlink.MAVLINK_MSG_ID_AUTOPILOT_VERSION, 0, 0, 0, 0, 0, 0,
-            )  # fmt: skip
+
+            def request_version() -> None:
+                # a ground station says what it is first: the relay holds back what comes before
+                gcs.conn.mav.heartbeat_send(
+                    mavutil.mavlink.MAV_TYPE_GCS, mavutil.mavlink.MAV_AUTOPILOT_INVALID, 0, 0, 0
+                )
+                gcs.conn.mav.command_long_send(
+                    sysid, 1, mavutil.mavlink.MAV_CMD_REQUEST_MESSAGE, 0,
+                    mavutil.mavlink.MAVLINK_MSG_ID_AUTOPILOT_VERSION, 0, 0, 0, 0, 0, 0,
+                )  # fmt: skip
+
             # the autopilot answers with the message and the ACK, in either order (PX4: message first)
-            answer = await asyncio.to_thread(gcs.seen, {"COMMAND_ACK", "AUTOPILOT_VERSION"}, 15)
+            answer = await asyncio.to_thread(
+                gcs.seen, {"COMMAND_ACK", "AUTOPILOT_VERSION"}, 15, request_version
+            )
             ack = answer["COMMAND_ACK"]
             assert ack.target_system == GCS_SYSID and ack.result == mavutil.mavlink.MAV_RESULT_ACCEPTED, ack
 
