@@ -11,6 +11,8 @@ hosted providers).
   python bench/nl_missions.py --self-check          # no model: checks the harness itself
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the corpus's test half, per class
   python bench/nl_missions.py --half dev --sitl      # the dev half on three ArduCopter SITL drones
+  python bench/nl_missions.py --half test --endpoint URL --model M --resume out.json --json out.json
+                                                     # go on from an interrupted bench's runs
 
 --half dev|test|all runs the generalisation corpus (bench/nl_corpus.py: requests in twelve classes, a fixed
 development/test split; its docstring says how many in each half) instead of the 12 missions, and reports
@@ -150,6 +152,13 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         help="serve the model replies a --json results file recorded, run by run, through the current "
         "host (no model; judges host changes, not prompt or schema changes)",
     )
+    p.add_argument(
+        "--resume",
+        default=None,
+        metavar="JSON",
+        help="go on from the runs a --json file of an interrupted bench recorded (the same model, half and "
+        "vehicles): they count as they are, only the runs it lacks are flown",
+    )
     p.add_argument("--gateway-url", default=None, help="use this gateway's /mcp instead of starting one")
     p.add_argument("--token", default=env.token, help="bearer token for --gateway-url")
     p.add_argument(
@@ -238,6 +247,18 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     if args.sitl and args.gateway_url:
         p.error("--sitl starts its own gateway; leave out --gateway-url")
     return args
+
+
+def resumed_runs(path: Path, args: argparse.Namespace) -> list[MissionRun]:
+    """The runs a --json file recorded, when it is of this bench's model, half and vehicles (ValueError
+    naming what differs otherwise: runs of another setup would not add up to one measurement)."""
+    data = json.loads(path.read_text())
+    vehicles = "ArduCopter SITL" if args.sitl else "simulator"
+    wanted = {"model": args.model, "half": args.half, "vehicles": vehicles, "self_check": args.self_check}
+    for key, value in wanted.items():
+        if data.get(key) != value:
+            raise ValueError(f"--resume {path}: its {key} is {data.get(key)!r}, this bench's is {value!r}")
+    return [MissionRun(**run) for run in data["runs"]]
 
 
 def local_model_script(args: argparse.Namespace) -> Path:
@@ -776,6 +797,13 @@ def main(argv: list[str] | None = None) -> int:
                 LocalModel(args.serve_local, args.threads, console, local_model_script(args))
             )
             args.endpoint, args.model = local.base_url, local.model
+        if args.resume:  # once the model's name is known (--serve-local gives it here)
+            try:
+                args.completed = resumed_runs(Path(args.resume), args)
+            except ValueError as exc:
+                console.print(f"[red]{exc}[/]")
+                return 2
+            args.restarts = [f"resumed from {args.resume}: {len(args.completed)} runs recorded there"]
         args.load_start = os.getloadavg()[0]
         runs, interrupted = run_with_restarts(args, console)
         if interrupted:

@@ -170,3 +170,26 @@ def test_a_failed_stack_is_started_again_and_no_finished_run_is_lost(bench, tmp_
     monkeypatch.setattr(bench, "run_missions", always_fails)
     runs, interrupted = bench.run_with_restarts(args, bench.Console())
     assert interrupted and len(runs) == 2 and len(args.restarts) == 1 + bench.MAX_RESTARTS + 1
+
+
+def test_a_resumed_bench_keeps_the_recorded_runs_and_refuses_another_setup(bench, tmp_path) -> None:
+    """--resume: the runs an interrupted bench wrote count, once, when the file is of the same model, half
+    and vehicles; a file of another model says so and nothing runs."""
+    first = bench.parse_args(["--model", "m", "--half", "test", "--json", str(tmp_path / "r.json")])
+    first.load_start = 1.0
+    recorded = [_run(bench, "takeoff-land", True, run=1), _run(bench, "refuse-500m", False, run=1)]
+    bench.write_json(first, recorded, interrupted=True)
+
+    again = bench.parse_args(["--model", "m", "--half", "test", "--resume", str(tmp_path / "r.json")])
+    resumed = bench.resumed_runs(Path(again.resume), again)
+    assert [(r.mission, r.run, r.ok) for r in resumed] == [
+        ("takeoff-land", 1, True),
+        ("refuse-500m", 1, False),
+    ]
+    other = bench.parse_args(["--model", "n", "--half", "test", "--resume", str(tmp_path / "r.json")])
+    with pytest.raises(ValueError, match="its model is 'm', this bench's is 'n'"):
+        bench.resumed_runs(Path(other.resume), other)
+    other_half = bench.parse_args(["--model", "m", "--half", "dev", "--resume", str(tmp_path / "r.json")])
+    with pytest.raises(ValueError, match="its half is 'test', this bench's is 'dev'"):
+        bench.resumed_runs(Path(other_half.resume), other_half)
+    assert bench.main(["--model", "n", "--half", "test", "--resume", str(tmp_path / "r.json")]) == 2
