@@ -11,7 +11,15 @@ import copy
 from enum import StrEnum
 from typing import Annotated, Any, Literal, TypeGuard
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    ConfigDict,
+    Field,
+    ValidationInfo,
+    field_validator,
+    model_validator,
+)
 
 from fleet_agent.units import Unit, to_metres
 
@@ -37,9 +45,26 @@ class Direction(StrEnum):
     up, down = "up", "down"
 
 
+#: the most legs a move or a formation holds (a small model repeated a shuttle's leg to its token limit)
+MAX_LEGS = 8
+_PAIRS = "north-south east-west up-down northeast-southwest northwest-southeast".split()
+OPPOSITE = {a: b for pair in _PAIRS for a, b in (pair.split("-"), pair.split("-")[::-1])}
+
+
 class Leg(Strict):
+    """A negative distance is the other way ("-20 m north" is 20 m south: a model copied a signed offset)."""
+
     distance: Length
     direction: Direction
+
+    @model_validator(mode="before")
+    @classmethod
+    def _signed(cls, leg: Any) -> Any:
+        length = leg.get("distance") if isinstance(leg, dict) else None
+        if isinstance(length, dict) and isinstance(length.get("value"), int | float) and length["value"] < 0:
+            flipped = OPPOSITE.get(leg.get("direction"), leg.get("direction"))
+            return {**leg, "distance": {**length, "value": -length["value"]}, "direction": flipped}
+        return leg
 
 
 class Reference(Strict):
@@ -61,6 +86,14 @@ class DroneStep(Strict):
     @classmethod
     def _known_drone(cls, value: str, info: ValidationInfo) -> str:
         return known_drone(value, info)
+
+
+def _known_drones(value: list[str], info: ValidationInfo) -> list[str]:
+    return [known_drone(v, info) for v in value]
+
+
+#: drone ids of the fleet (given as validation context), as the fleet spells them
+DroneIds = Annotated[list[str], AfterValidator(_known_drones)]
 
 
 #: what a drone does once a climb, a move or a pattern is flown: a choice the schema requires, so that a
@@ -115,7 +148,7 @@ class Move(DroneStep):
     action: Literal["move"]
     drone: str
     origin: Reference
-    legs: list[Leg]
+    legs: list[Leg] = Field(max_length=MAX_LEGS)
     altitude: Length | None
     after: Ending
 
@@ -167,18 +200,13 @@ class Formation(Strict):
     orbit, a pattern)."""
 
     action: Literal["formation"]
-    drones: list[str] = Field(min_length=2)
+    drones: DroneIds = Field(min_length=2)
     shape: Literal["line", "column", "wedge", "grid", "circle", "triangle", "square"]
     spacing: Length
     altitude: Length
-    legs: list[Leg] = Field(default_factory=list)
+    legs: list[Leg] = Field(default_factory=list, max_length=MAX_LEGS)
     after: Ending = "stay"
     origin: Reference | None = None
-
-    @field_validator("drones")
-    @classmethod
-    def _known_drones(cls, value: list[str], info: ValidationInfo) -> list[str]:
-        return [known_drone(v, info) for v in value]
 
 
 Reading = Literal["battery", "altitude", "position", "flying", "mode"]
@@ -189,14 +217,9 @@ class Report(Strict):
     drone with the highest or lowest first reading."""
 
     action: Literal["report"]
-    drones: list[str] = Field(min_length=1)
+    drones: DroneIds = Field(min_length=1)
     readings: list[Reading] = Field(min_length=1)
     pick: Literal["none", "highest", "lowest"] = "none"
-
-    @field_validator("drones")
-    @classmethod
-    def _known_drones(cls, value: list[str], info: ValidationInfo) -> list[str]:
-        return [known_drone(v, info) for v in value]
 
 
 class Ask(Strict):
@@ -206,10 +229,8 @@ class Ask(Strict):
     text: str = Field(min_length=1, max_length=300)
 
 
-SimpleStep = Annotated[
-    Takeoff | Land | ReturnHome | Hold | Altitude | Move | Pattern | Formation | Report,
-    Field(discriminator="action"),
-]
+_SIMPLE_STEPS = Takeoff | Land | ReturnHome | Hold | Altitude | Move | Pattern | Formation | Report
+SimpleStep = Annotated[_SIMPLE_STEPS, Field(discriminator="action")]
 
 
 #: the most steps a branch, and a plan, hold: bounds the decoder keeps, so that a reply that repeats a
@@ -238,32 +259,13 @@ class Choose(Strict):
     steps is replaced by the one chosen); the others do nothing."""
 
     action: Literal["choose"]
-    among: list[str] = Field(min_length=2)
+    among: DroneIds = Field(min_length=2)
     reading: Literal["battery", "altitude"]
     pick: Literal["highest", "lowest"]
     then: list[SimpleStep] = Field(min_length=1, max_length=MAX_BRANCH_STEPS)
 
-    @field_validator("among")
-    @classmethod
-    def _known_drones(cls, value: list[str], info: ValidationInfo) -> list[str]:
-        return [known_drone(v, info) for v in value]
 
-
-Step = Annotated[
-    Takeoff
-    | Land
-    | ReturnHome
-    | Hold
-    | Altitude
-    | Move
-    | Pattern
-    | Formation
-    | Report
-    | Condition
-    | Choose
-    | Ask,
-    Field(discriminator="action"),
-]
+Step = Annotated[_SIMPLE_STEPS | Condition | Choose | Ask, Field(discriminator="action")]
 
 
 class Plan(Strict):

@@ -409,6 +409,33 @@ def test_a_plan_and_a_branch_are_bounded_in_the_schema() -> None:
     defs = plan_schema(FLEET)
     assert defs["properties"]["steps"]["maxItems"] == 12
     assert defs["$defs"]["Condition"]["properties"]["otherwise"]["maxItems"] == 4
+    assert defs["$defs"]["Move"]["properties"]["legs"]["maxItems"] == 8
+    assert defs["$defs"]["Formation"]["properties"]["legs"]["maxItems"] == 8
+    shuttle = {"action": "move", "drone": "bravo", "origin": "here", "legs": [leg(30, "north")] * 9,
+               "altitude": None, "after": "stay"}  # fmt: skip
+    with pytest.raises(ValidationError, match="at most 8 items"):
+        parse_plan({"steps": [shuttle]}, FLEET)
+
+
+async def test_a_leg_with_a_negative_distance_is_flown_the_opposite_way() -> None:
+    """ "-20 m north, +15 m east" as the request wrote it: 20 m south, 15 m east (a small model copied the
+    signed offset twice, and no plan came); an altitude stays at zero or above."""
+    step = {"action": "move", "drone": "charlie", "origin": "here", "altitude": m(12), "after": "stay",
+            "legs": [leg(-20, "north"), leg(15, "east"), leg(-3, "down")]}  # fmt: skip
+    plan = parse_plan({"steps": [step]}, FLEET)
+    assert [(g.distance.value, g.direction) for g in plan.steps[0].legs] == [
+        (20, "south"),
+        (15, "east"),
+        (3, "up"),
+    ]
+    calls = await compiled(step, FakeSensors({"charlie": flying(alt=12.0)}))
+    assert [(c.args["north_m"], c.args["east_m"], c.args.get("up_m")) for c in calls] == [
+        (-20.0, 0.0, None),
+        (0.0, 15.0, 3.0),
+    ]
+    below = {"action": "takeoff", "drone": "alpha", "altitude": m(-5), "after": "stay"}
+    with pytest.raises(ValidationError, match="greater than or equal to 0"):
+        parse_plan({"steps": [below]}, FLEET)
 
 
 async def test_a_choice_written_once_for_each_candidate_is_flown_once_by_the_chosen_drone() -> None:
