@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 339 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 375 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -77,12 +77,22 @@ That leaves 267 dev and 36 test.
 On 2026-12-01 (sixth round) EVERY test entry (36, ``_sixth_round``) was moved to dev, each marked "moved
 to dev on 2026-12-01, sixth round": the test half had been measured and its figures were known to whoever
 works on the host, so it no longer measured requests nobody tuned for. A fresh test half took its place
-(``_seventh_test_half``): 36 new requests, 3 a class, written before any model ran on them, in new
+(``_seventh_test_half``, now ``_seventh_round``): 36 new requests, 3 a class, written before any model ran on them, in new
 wordings and shapes within each class (not rewordings of dev entries): 29 of the 33 outside the
 ``language`` class are in Catalan, Croatian, Czech, Danish, Dutch, Finnish, French, German, Greek,
 Hungarian, Italian, Norwegian, Polish, Portuguese, Romanian, Slovak, Spanish, Swedish or Turkish, spread
 over the 11 classes, and the ``language`` class's 3 in Hungarian, Croatian and Slovak. Only the harness
 self-check (the scripted ideal plan) has run on them. That leaves 303 dev and 36 test.
+
+Later on 2026-12-01 (seventh round) EVERY test entry (36, ``_seventh_round``) was moved to dev, each marked
+"moved to dev on 2026-12-01, seventh round": the test half had been measured (3 runs of the 1.5B model)
+and its figures were known to whoever works on the host, so it no longer measured requests nobody tuned
+for. A fresh test half took its place (``_eighth_test_half``): 36 new requests, 3 a class, written before
+any model ran on them, in new wordings and shapes within each class (not rewordings of dev entries): 22 of
+the 33 outside the ``language`` class are in Bulgarian, Estonian, Indonesian, Latvian, Lithuanian, Russian,
+Slovenian, Spanish, Ukrainian or Vietnamese (Cyrillic and Vietnamese script among them), spread over the
+11 classes, and the ``language`` class's 3 in Russian, Vietnamese and Estonian. Only the harness
+self-check (the scripted ideal plan) has run on them: 36 of 36 passed. That leaves 339 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -132,7 +142,7 @@ CLASSES = (
     "units",  # distances and heights in feet, yards, kilometres
     "pattern",  # a shape flown by one drone: polygon, circle, survey lines
     "placement",  # a drone placed relative to another drone or to its home
-    "language",  # requests in languages other than English (French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish, Hungarian, Croatian, Slovak, Greek, Catalan)
+    "language",  # requests in languages other than English (French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish, Hungarian, Croatian, Slovak, Greek, Catalan, Russian, Ukrainian, Bulgarian, Slovenian, Latvian, Lithuanian, Estonian, Indonesian, Vietnamese)
 )
 HALVES = ("dev", "test")
 DRONES = ("alpha", "bravo", "charlie")
@@ -2541,8 +2551,9 @@ def _sixth_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _seventh_test_half() -> list[CorpusEntry]:
-    """The test half written on 2026-12-01 (seventh round), before any model ran on it: 3 a class."""
+def _seventh_round() -> list[CorpusEntry]:
+    """The test half written on 2026-12-01 (seventh round), before any model ran on it: 3 a class; all of
+    it moved to dev on 2026-12-01 (seventh round), once its figures had been measured."""
     three = DRONES
     d35 = 35 / math.sqrt(2)
     square15 = [(15.0, 0.0), (0.0, 15.0), (-15.0, 0.0), (0.0, -15.0)]  # north first, turning right
@@ -2555,21 +2566,25 @@ def _seventh_test_half() -> list[CorpusEntry]:
     orbit60ft.append((-r60ft, 0.0))
     return [
         # single
-        _entry("single", "test", "single7-ca-alpha-words", ("alpha",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("single", "dev", "single7-ca-alpha-words", ("alpha",),
                "Enlaira l'alpha fins a vint-i-sis metres i deixa'l suspès allà dalt.",
                lambda c, ev: airborne_at(ev, "alpha", 26),
                [_takeoff("alpha", 26)], "L'alpha és a 26 m."),
-        _entry("single", "test", "single7-el-bravo-up-down", ("bravo",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("single", "dev", "single7-el-bravo-up-down", ("bravo",),
                "Σήκωσε το bravo στα 13 μέτρα και μετά προσγείωσέ το ξανά στο ίδιο σημείο.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 13), at(ev, "bravo", *_home(c, "bravo")),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 13), _land("bravo")], "Το bravo ανέβηκε στα 13 m και προσγειώθηκε."),
-        _entry("single", "test", "single7-charlie-off-pad", ("charlie",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("single", "dev", "single7-charlie-off-pad", ("charlie",),
                "Lift charlie 17 m off its pad and keep it hanging there while I check something.",
                lambda c, ev: airborne_at(ev, "charlie", 17),
                [_takeoff("charlie", 17)], "Charlie hangs at 17 m."),
         # multi
-        _entry("multi", "test", "multi7-hr-pair-east-home", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("multi", "dev", "multi7-hr-pair-east-home", three,
                "Bravo i charlie neka odlete 20 metara na istok na visini od 10 metara i zatim se vrate kući; "
                "alpha ostaje na zemlji.",
                lambda c, ev: _all(*(visited(ev, d, [c.point(d, 0, 20)]) for d in ("bravo", "charlie")),
@@ -2577,7 +2592,8 @@ def _seventh_test_half() -> list[CorpusEntry]:
                                   *(landed_disarmed(ev, d) for d in ("bravo", "charlie")), never_armed(ev, "alpha")),
                [_move("bravo", 0, 20, alt=10), _move("charlie", 0, 20, alt=10), _rtl("bravo"), _rtl("charlie")],
                "Bravo i charlie odletjeli su 20 m na istok i vratili se kući; alpha je ostao na zemlji."),
-        _entry("multi", "test", "multi7-de-down-one-by-one", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("multi", "dev", "multi7-de-down-one-by-one", three,
                "Bring alle drei Drohnen auf 15 m und hol sie dann einzeln wieder runter, zuerst charlie, dann "
                "bravo; alpha bleibt oben.",
                lambda c, ev: _all(*(reached_alt(ev, d, 15) for d in ("bravo", "charlie")),
@@ -2585,7 +2601,8 @@ def _seventh_test_half() -> list[CorpusEntry]:
                                   airborne_at(ev, "alpha", 15)),
                [*(_takeoff(d, 15) for d in three), _land("charlie"), _land("bravo")],
                "Charlie und bravo sind wieder gelandet; alpha schwebt auf 15 m."),
-        _entry("multi", "test", "multi7-no-pair-south-bravo-hop", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("multi", "dev", "multi7-no-pair-south-bravo-hop", three,
                "Alpha og charlie flyr 15 meter sørover i 12 meters høyde og blir hengende der, mens bravo stiger "
                "rett opp til 25 meter og lander igjen.",
                lambda c, ev: _all(*(at(ev, d, *c.point(d, -15, 0), alt=12) for d in ("alpha", "charlie")),
@@ -2594,7 +2611,8 @@ def _seventh_test_half() -> list[CorpusEntry]:
                [_move("alpha", -15, 0, alt=12), _move("charlie", -15, 0, alt=12), _takeoff("bravo", 25),
                 _land("bravo")], "Alpha og charlie henger 15 m sør i 12 m; bravo var oppe i 25 m og landet."),
         # compound
-        _entry("compound", "test", "compound7-ca-bravo-lands-and-again", ("bravo",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("compound", "dev", "compound7-ca-bravo-lands-and-again", ("bravo",),
                "Enlaira el bravo fins a 12 metres, fes-lo volar 30 metres cap a l'est i fes-lo aterrar allà; "
                "després torna'l a enlairar fins a 8 metres, fes-lo volar 30 metres cap a l'oest i deixa'l suspès "
                "allà.",
@@ -2603,14 +2621,16 @@ def _seventh_test_half() -> list[CorpusEntry]:
                                   at(ev, "bravo", *_home(c, "bravo"), alt=8), airborne_at(ev, "bravo", 8)),
                [_takeoff("bravo", 12), _move("bravo", 0, 30), _land("bravo"), _takeoff("bravo", 8), _move("bravo", 0, -30)],
                "El bravo ha aterrat 30 m a l'est, s'ha tornat a enlairar i és suspès sobre el seu punt de partida a 8 m."),
-        _entry("compound", "test", "compound7-sv-alpha-turn-left", ("alpha",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("compound", "dev", "compound7-sv-alpha-turn-left", ("alpha",),
                "Lyft alpha till 10 meter, flyg 30 meter norrut, sväng sedan vänster och flyg 15 meter till, och "
                "landa där.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 30, 0)]),
                                   at(ev, "alpha", *c.point("alpha", 30, -15)), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), _move("alpha", 30, 0), _move("alpha", 0, -15), _land("alpha")],
                "Alpha flög 30 m norrut och 15 m västerut och landade."),
-        _entry("compound", "test", "compound7-tr-charlie-lower-back-over-home", ("charlie",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("compound", "dev", "compound7-tr-charlie-lower-back-over-home", ("charlie",),
                "Charlie'yi 14 metreye kaldır, 25 metre güneye uçur, orada 6 metreye alçalt, sonra kalkış "
                "noktasının üstüne geri getir ve orada havada tut.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 14), visited(ev, "charlie", [c.point("charlie", -25, 0)]),
@@ -2618,20 +2638,23 @@ def _seventh_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 14), _move("charlie", -25, 0), _move("charlie", alt=6), _move("charlie", 25, 0)],
                "Charlie kalkış noktasının üstünde 6 m'de bekliyor."),
         # conditional
-        _entry("conditional", "test", "cond7-nl-charlie-two-thirds", ("charlie",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("conditional", "dev", "cond7-nl-charlie-two-thirds", ("charlie",),
                "Heeft charlie minder dan twee derde van zijn batterij over, laat hem dan aan de grond staan en noem "
                "me het percentage; anders gaat hij naar 12 meter en blijft hij daar hangen.",
                lambda c, ev: _all(never_armed(ev, "charlie"), answer_mentions_number(ev, 61, 1)),
                [_battery("charlie")], "Charlie heeft 61 %, minder dan twee derde, dus hij blijft aan de grond.",
                battery={"charlie": 61.0}),
-        _entry("conditional", "test", "cond7-fr-bravo-land-or-home", ("bravo",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("conditional", "dev", "cond7-fr-bravo-land-or-home", ("bravo",),
                "Emmène bravo à 30 m au nord, à 10 m de hauteur ; une fois là-bas, si sa batterie est sous 45 %, "
                "pose-le sur place, sinon ramène-le à la maison.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 30, 0)], alt=10),
                                   at(ev, "bravo", *c.point("bravo", 30, 0)), landed_disarmed(ev, "bravo")),
                [_move("bravo", 30, 0, alt=10), _battery("bravo"), _land("bravo")],
                "Bravo avait 40 %, il s'est posé à 30 m au nord.", battery={"bravo": 40.0}),
-        _entry("conditional", "test", "cond7-fi-fuller-flies-square", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("conditional", "dev", "cond7-fi-fuller-flies-square", three,
                "Alphasta ja charliesta se, jolla on enemmän akkua, lentää 10 metrin korkeudessa neliön, jonka sivu "
                "on 15 metriä, ensimmäinen sivu pohjoiseen ja oikealle kääntyen, ja laskeutuu lähtöpaikalleen; "
                "toinen jää maahan.",
@@ -2642,12 +2665,14 @@ def _seventh_test_half() -> list[CorpusEntry]:
                 _land("charlie")], "Charliella oli enemmän akkua (83 %); se lensi neliön ja laskeutui.",
                battery={"alpha": 48.0, "charlie": 83.0}),
         # formation (three in a ring stand at the corners of a triangle with sides of the spacing)
-        _entry("formation", "test", "form7-el-triangle-east", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("formation", "dev", "form7-el-triangle-east", three,
                "Βάλε τα τρία drones σε σχηματισμό τριγώνου με πλευρά 16 μέτρων, σε ύψος 14 μέτρων, 25 μέτρα "
                "ανατολικά από το σημείο όπου βρίσκονται, και άφησέ τα εκεί.",
                lambda c, ev: _all(formation_at(c, ev, three, 14, 16, 0, 25), farthest_apart(ev, three, 16)),
                [_formation(three, "circle", 14, 16, east=25)], "Τα τρία drones είναι σε τρίγωνο 25 m ανατολικά, στα 14 m."),
-        _entry("formation", "test", "form7-column-north-of-charlie", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("formation", "dev", "form7-column-north-of-charlie", three,
                "Put alpha and bravo in a column 10 m apart at 15 m, centred on the spot 30 m north of charlie.",
                lambda c, ev: _all(formation_around(ev, ("alpha", "bravo"), 15, 10, c.point("charlie", 30, 0)),
                                   never_armed(ev, "charlie")),
@@ -2655,7 +2680,8 @@ def _seventh_test_half() -> list[CorpusEntry]:
                                               "spacing_m": 10, "center_lat_deg": c.point("charlie", 30, 0)[0],
                                               "center_lon_deg": c.point("charlie", 30, 0)[1]})],
                "Alpha and bravo hold a column 10 m apart at 15 m, 30 m north of charlie."),
-        _entry("formation", "test", "form7-cs-line-then-lower", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("formation", "dev", "form7-cs-line-then-lower", three,
                "Seřaď všechny tři drony do řady s rozestupy 10 m ve výšce 20 m nad místem, kde stojí, pak celou "
                "řadu sniž na 8 m a nech ji tam viset.",
                lambda c, ev: _all(*(rose_to(ev, d, 20) for d in three), formation_at(c, ev, three, 8, 10, 0, 0),
@@ -2663,63 +2689,74 @@ def _seventh_test_half() -> list[CorpusEntry]:
                [_formation(three, "line", 20, 10), _formation(three, "line", 8, 10)],
                "Všechny tři visí v řadě 10 m od sebe v 8 m."),
         # relative
-        _entry("relative", "test", "rel7-es-charlie-signed", ("charlie",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("relative", "dev", "rel7-es-charlie-signed", ("charlie",),
                "Desplaza a charlie -20 m en dirección norte y +15 m en dirección este, a 12 m de altura, y déjalo "
                "ahí.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -20, 15), alt=12), airborne_at(ev, "charlie", 12)),
                [_move("charlie", -20, 15, alt=12)], "Charlie está 20 m al sur y 15 m al este, a 12 m."),
-        _entry("relative", "test", "rel7-pl-alpha-same-direction", ("alpha",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("relative", "dev", "rel7-pl-alpha-same-direction", ("alpha",),
                "Alpha: leć 25 m na zachód na wysokości 10 m, potem jeszcze 25 m w tym samym kierunku, wznosząc się "
                "o 5 m, i zawiśnij tam.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -25)]),
                                   at(ev, "alpha", *c.point("alpha", 0, -50), alt=15), airborne_at(ev, "alpha", 15)),
                [_move("alpha", 0, -25, alt=10), _move("alpha", 0, -25, up=5)], "Alpha wisi 50 m na zachód na 15 m."),
-        _entry("relative", "test", "rel7-it-bravo-stop-short", ("bravo",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("relative", "dev", "rel7-it-bravo-stop-short", ("bravo",),
                "Porta bravo a 14 metri di quota verso il punto 40 metri a nord, ma fermalo 10 metri prima e "
                "lascialo lì sospeso.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 30, 0), alt=14), airborne_at(ev, "bravo", 14)),
                [_move("bravo", 30, 0, alt=14)], "Bravo è sospeso 30 m a nord, a 14 m."),
         # question (each answered by the readings the host lists)
-        _entry("question", "test", "ask7-hu-how-many-over-half", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("question", "dev", "ask7-hu-how-many-over-half", three,
                "Hány drónnak van 50 százaléknál több töltése? Egyiket se indítsd el.",
                lambda c, ev: _all(answer_mentions_number(ev, 64, 1), answer_mentions_number(ev, 77, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "Kettőnek: alpha 64 %, charlie 77 %; bravo 45 %.",
                battery={"alpha": 64.0, "bravo": 45.0, "charlie": 77.0}),
-        _entry("question", "test", "ask7-ca-bravo-three-quarters", ("bravo",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("question", "dev", "ask7-ca-bravo-three-quarters", ("bravo",),
                "Al bravo li queden com a mínim tres quarts de bateria? Només comprova-ho, no l'enlairis.",
                lambda c, ev: _all(answer_mentions_number(ev, 71, 1), never_armed(ev, "bravo")),
                [_battery("bravo")], "Gairebé: el bravo té un 71 %.", battery={"bravo": 71.0}),
-        _entry("question", "test", "ask7-el-all-but-bravo", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("question", "dev", "ask7-el-all-but-bravo", three,
                "Εκτός από το bravo, πόση μπαταρία έχει το καθένα από τα άλλα drones; Μην απογειώσεις κανένα.",
                lambda c, ev: _all(answer_mentions_number(ev, 58, 1), answer_mentions_number(ev, 43, 1),
                                   nobody_armed(ev)),
                [_battery("alpha"), _battery("charlie")], "alpha 58 %, charlie 43 %.",
                battery={"alpha": 58.0, "bravo": 90.0, "charlie": 43.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off)
-        _entry("refusal", "test", "refuse7-ro-charlie-km-height", ("charlie",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("refusal", "dev", "refuse7-ro-charlie-km-height", ("charlie",),
                "Ridică drona charlie la o înălțime de 0,15 kilometri.",
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "charlie", c.max_alt_m),
                                   answer_reports_refusal(ev)),
                [_takeoff("charlie", 150)], "The gateway refused: 0.15 km (150 m) is above the 120 m altitude limit."),
-        _entry("refusal", "test", "refuse7-alpha-kilometre-square", ("alpha",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("refusal", "dev", "refuse7-alpha-kilometre-square", ("alpha",),
                "Alpha at 30 m: fly a square with 1.5 km sides, first side north, then land where it started.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "alpha", c.max_distance_m), answer_reports_refusal(ev)),
                [_takeoff("alpha", 30), _move("alpha", 1500, 0)],
                "The gateway refused: a 1.5 km side is beyond the 1000 m limit."),
-        _entry("refusal", "test", "refuse7-sk-charlie-low-beside-alpha", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("refusal", "dev", "refuse7-sk-charlie-low-beside-alpha", three,
                "Premiestni dron charlie na miesto 20 metrov východne od dronu alpha, vo výške 15 metrov.",
                lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "charlie"), answer_reports_refusal(ev)),
                lambda c: [_go("charlie", c.point("alpha", 0, 20), 15)],
                "The gateway refused: charlie's battery is below the takeoff minimum.", battery={"charlie": 19.0}),
         # units
-        _entry("units", "test", "units7-bravo-prime-feet", ("bravo",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("units", "dev", "units7-bravo-prime-feet", ("bravo",),
                "Bravo: climb to 55', fly 90' west and hold it there.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -90 * FT), alt=55 * FT),
                                   airborne_at(ev, "bravo", 55 * FT)),
                [_takeoff("bravo", 55 * FT), _move("bravo", 0, -90 * FT)], "Bravo hovers 90 ft west at 55 ft."),
-        _entry("units", "test", "units7-ro-charlie-orbit-feet", ("charlie",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("units", "dev", "units7-ro-charlie-orbit-feet", ("charlie",),
                "Drona charlie să zboare un cerc cu raza de 60 de picioare în jurul punctului de decolare, la 12 "
                "metri înălțime, în sensul acelor de ceasornic, începând din partea de nord, și apoi să revină acasă.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e)
@@ -2727,28 +2764,32 @@ def _seventh_test_half() -> list[CorpusEntry]:
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 12), *_legs("charlie", orbit60ft), _rtl("charlie")],
                "Charlie a zburat cercul de 60 de picioare și a revenit acasă."),
-        _entry("units", "test", "units7-tr-charlie-feet-east-of-alpha", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("units", "dev", "units7-tr-charlie-feet-east-of-alpha", three,
                "Charlie'yi alpha'nın 60 fit doğusuna, 45 fit yüksekliğe götür ve orada havada beklet.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 0, 60 * FT), alt=45 * FT),
                                   airborne_at(ev, "charlie", 45 * FT), never_armed(ev, "alpha")),
                lambda c: [_go("charlie", c.point("alpha", 0, 60 * FT), 45 * FT)],
                "Charlie, alpha'nın 60 fit doğusunda 45 fitte bekliyor."),
         # pattern
-        _entry("pattern", "test", "pattern7-no-alpha-heptagon", ("alpha",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("pattern", "dev", "pattern7-no-alpha-heptagon", ("alpha",),
                "Fly alpha rundt en regelmessig mangekant med sju sider på 12 meter hver, i 10 meters høyde; første "
                "side går mot øst, sving til høyre i hvert hjørne, og land der du startet.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(heptagon12)[:5]]),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), *_legs("alpha", heptagon12), _land("alpha")],
                "Alpha fløy sjukanten og landet der den startet."),
-        _entry("pattern", "test", "pattern7-sv-bravo-shuttle", ("bravo",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("pattern", "dev", "pattern7-sv-bravo-shuttle", ("bravo",),
                "Låt bravo pendla fram och tillbaka tre gånger mellan sin startpunkt och en punkt 30 meter norrut, "
                "på 10 meters höjd, och landa sedan vid startpunkten.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(shuttle)]),
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 10), *_legs("bravo", shuttle), _land("bravo")],
                "Bravo pendlade tre gånger och landade vid startpunkten."),
-        _entry("pattern", "test", "pattern7-pl-charlie-passes-east", ("charlie",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("pattern", "dev", "pattern7-pl-charlie-passes-east", ("charlie",),
                "Charlie na wysokości 12 m: przeleć cztery równoległe pasy po 30 m, 8 m od siebie, pierwszy na "
                "południe, każdy następny na wschód od poprzedniego; potem wróć do domu.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(passes)]),
@@ -2758,7 +2799,8 @@ def _seventh_test_half() -> list[CorpusEntry]:
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each places one of
         # alpha and charlie from the other, so a drone placed from itself, or from where the other took off
         # instead of where it flew, misses by 10 m or more)
-        _entry("placement", "test", "place7-da-alpha-below-charlie", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("placement", "dev", "place7-da-alpha-below-charlie", three,
                "Charlie flyver 15 meter mod nord i 20 meters højde. Placér derefter alpha lige under charlie, 8 "
                "meter lavere, og lad begge blive i luften.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 15, 0), alt=20), airborne_at(ev, "charlie", 20),
@@ -2766,7 +2808,8 @@ def _seventh_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_move("charlie", 15, 0, alt=20), _go("alpha", c.point("charlie", 15, 0), 12)],
                "Charlie svæver 15 m mod nord i 20 m; alpha lige under den i 12 m."),
-        _entry("placement", "test", "place7-fi-chain-west-then-north", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("placement", "dev", "place7-fi-chain-west-then-north", three,
                "Vie charlie 14 metrin korkeuteen 20 metriä alphasta länteen. Lennätä sitten alpha 20 metriä "
                "charliesta pohjoiseen samalle korkeudelle ja jätä molemmat ilmaan.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 0, -20), alt=14), airborne_at(ev, "charlie", 14),
@@ -2774,7 +2817,8 @@ def _seventh_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_go("charlie", c.point("alpha", 0, -20), 14), _go("alpha", c.point("alpha", 20, -20), 14)],
                "Charlie on 20 m alphasta länteen ja alpha 20 m charliesta pohjoiseen, molemmat 14 m:ssä."),
-        _entry("placement", "test", "place7-pt-swap-pads", three,
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("placement", "dev", "place7-pt-swap-pads", three,
                "Troca o alpha e o charlie de lugar: o alpha vai pairar a 12 metros sobre o ponto de descolagem do "
                "charlie e o charlie a 16 metros sobre o do alpha.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "charlie"), alt=12), airborne_at(ev, "alpha", 12),
@@ -2783,17 +2827,20 @@ def _seventh_test_half() -> list[CorpusEntry]:
                lambda c: [_go("alpha", _home(c, "charlie"), 12), _go("charlie", _home(c, "alpha"), 16)],
                "O alpha paira a 12 m sobre a descolagem do charlie e o charlie a 16 m sobre a do alpha."),
         # language
-        _entry("language", "test", "lang7-hu-charlie-southwest-land", ("charlie",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("language", "dev", "lang7-hu-charlie-southwest-land", ("charlie",),
                "A charlie szálljon fel 11 méterre, repüljön 35 métert délnyugatra, aztán ott szálljon le.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 11), at(ev, "charlie", *c.point("charlie", -d35, -d35)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 11), _move("charlie", -d35, -d35), _land("charlie")],
                "A charlie 35 métert repült délnyugatra és leszállt."),
-        _entry("language", "test", "lang7-hr-bravo-north-hover", ("bravo",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("language", "dev", "lang7-hr-bravo-north-hover", ("bravo",),
                "Podigni bravo na 19 metara, odleti s njim 20 metara prema sjeveru i ostavi ga da lebdi tamo.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 20, 0), alt=19), airborne_at(ev, "bravo", 19)),
                [_takeoff("bravo", 19), _move("bravo", 20, 0)], "Bravo lebdi 20 m sjeverno na 19 m."),
-        _entry("language", "test", "lang7-sk-alpha-east-home", ("alpha",),
+        # moved to dev on 2026-12-01, seventh round: the test half had been measured
+        _entry("language", "dev", "lang7-sk-alpha-east-home", ("alpha",),
                "Vzlietni s dronom alpha do výšky 9 metrov, preleť 40 metrov na východ a potom sa vráť domov a "
                "pristaň.",
                # (the flight home climbs to the return altitude first: the height is read where the leg ends)
@@ -2801,6 +2848,257 @@ def _seventh_test_half() -> list[CorpusEntry]:
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 9), _move("alpha", 0, 40), _rtl("alpha")],
                "Alpha preletel 40 m na východ, vrátil sa domov a pristál."),
+    ]  # fmt: skip
+
+
+def _eighth_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-01 (eighth round), before any model ran on it: 3 a class; 22 of
+    the 33 outside ``language`` in other languages than English (Bulgarian, Estonian, Indonesian, Latvian,
+    Lithuanian, Russian, Slovenian, Spanish, Ukrainian, Vietnamese), the ``language`` class's 3 in Russian,
+    Vietnamese and Estonian."""
+    three = DRONES
+    d20, d25, d30 = 20 / math.sqrt(2), 25 / math.sqrt(2), 30 / math.sqrt(2)
+    pentagon = _polygon_legs(5, 20.0, 90.0, right=False)  # first side east, turning left
+    rectangle = [(0.0, 40.0), (15.0, 0.0), (0.0, -40.0), (-15.0, 0.0)]  # 40 m east first, turning left
+    # an orbit of 12 m radius, counter-clockwise, round a spot 30 m east of home: its four compass points,
+    # each to be passed whichever side the orbit starts on
+    ring = [(12.0, 30.0), (0.0, 18.0), (-12.0, 30.0), (0.0, 42.0)]
+    ring_legs = [(0.0, 30.0), (12.0, 0.0), (-12.0, -12.0), (-12.0, 12.0), (12.0, 12.0), (12.0, -12.0),
+                 (-12.0, 0.0)]  # fmt: skip
+    return [
+        # single
+        _entry("single", "test", "single8-ru-bravo-hover", ("bravo",),
+               "Подними bravo на 18 метров и пусть висит там, пока я не скажу.",
+               lambda c, ev: airborne_at(ev, "bravo", 18),
+               [_takeoff("bravo", 18)], "Bravo висит на 18 м."),
+        _entry("single", "test", "single8-id-charlie-up-down", ("charlie",),
+               "Terbangkan charlie setinggi 11 meter, lalu langsung daratkan lagi di tempat yang sama.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 11), at(ev, "charlie", *_home(c, "charlie")),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 11), _land("charlie")], "Charlie naik ke 11 m lalu mendarat lagi."),
+        _entry("single", "test", "single8-alpha-up-then-lower", ("alpha",),
+               "Climb alpha to 35 m, then bring it down to 12 m and keep it there.",
+               lambda c, ev: _all(rose_to(ev, "alpha", 35), at(ev, "alpha", *_home(c, "alpha"), alt=12),
+                                  airborne_at(ev, "alpha", 12)),
+               [_takeoff("alpha", 35), _move("alpha", alt=12)], "Alpha went up to 35 m and now holds 12 m."),
+        # multi
+        _entry("multi", "test", "multi8-uk-three-heights", three,
+               "Підніми alpha на 10 метрів, bravo на 20 метрів, а charlie на 30 метрів, і нехай усі три зависнуть там.",
+               lambda c, ev: _all(airborne_at(ev, "alpha", 10), airborne_at(ev, "bravo", 20),
+                                  airborne_at(ev, "charlie", 30)),
+               [_takeoff("alpha", 10), _takeoff("bravo", 20), _takeoff("charlie", 30)],
+               "Alpha висить на 10 м, bravo на 20 м, charlie на 30 м."),
+        _entry("multi", "test", "multi8-sl-pair-east-charlie-ground", three,
+               "Alpha in bravo naj poletita 20 metrov proti vzhodu na višini 12 metrov in tam ostaneta v zraku; "
+               "charlie naj ostane na tleh.",
+               lambda c, ev: _all(*(at(ev, d, *c.point(d, 0, 20), alt=12) for d in ("alpha", "bravo")),
+                                  *(airborne_at(ev, d, 12) for d in ("alpha", "bravo")), never_armed(ev, "charlie")),
+               [_move("alpha", 0, 20, alt=12), _move("bravo", 0, 20, alt=12)],
+               "Alpha in bravo lebdita 20 m vzhodno na 12 m; charlie je na tleh."),
+        _entry("multi", "test", "multi8-opposite-ways-land", three,
+               "Bravo goes 25 m north and charlie 25 m south, both at 14 m, and then both land right there. "
+               "Leave alpha alone.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 25, 0)), landed_disarmed(ev, "bravo"),
+                                  at(ev, "charlie", *c.point("charlie", -25, 0)), landed_disarmed(ev, "charlie"),
+                                  never_armed(ev, "alpha")),
+               [_move("bravo", 25, 0, alt=14), _move("charlie", -25, 0, alt=14), _land("bravo"), _land("charlie")],
+               "Bravo landed 25 m north and charlie 25 m south; alpha stayed down."),
+        # compound
+        _entry("compound", "test", "compound8-lt-alpha-two-legs-home", ("alpha",),
+               "Pakelk alpha į 10 metrų aukštį, nuskraidink ją 30 metrų į šiaurę, tada 30 metrų į rytus, o tada "
+               "grąžink namo ir nutupdyk.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 30, 0), c.point("alpha", 30, 30)]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), _move("alpha", 30, 0), _move("alpha", 0, 30), _rtl("alpha")],
+               "Alpha nuskrido abi atkarpas, grįžo namo ir nusileido."),
+        _entry("compound", "test", "compound8-bravo-drop-midway", ("bravo",),
+               "Bravo: up to 20 m, 15 m west, then drop to 8 m right there, another 15 m west, and hover at the end.",
+               lambda c, ev: _all(rose_to(ev, "bravo", 20), visited(ev, "bravo", [c.point("bravo", 0, -15)]),
+                                  at(ev, "bravo", *c.point("bravo", 0, -30), alt=8), airborne_at(ev, "bravo", 8)),
+               [_takeoff("bravo", 20), _move("bravo", 0, -15), _move("bravo", alt=8), _move("bravo", 0, -15)],
+               "Bravo hovers 30 m west at 8 m."),
+        _entry("compound", "test", "compound8-bg-charlie-half-back-land", ("charlie",),
+               "Издигни charlie на 14 метра, прелети с него 40 метра на юг, после го върни половината път обратно "
+               "и го приземи там.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -40, 0)]),
+                                  at(ev, "charlie", *c.point("charlie", -20, 0)), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 14), _move("charlie", -40, 0), _move("charlie", 20, 0), _land("charlie")],
+               "Charlie прелетя 40 м на юг, върна се 20 м и кацна."),
+        # conditional
+        _entry("conditional", "test", "cond8-lv-bravo-short-hop-if-low", ("bravo",),
+               "Ja bravo akumulatora līmenis ir vismaz 50 %, aizlido ar to 30 metrus uz ziemeļiem 12 metru "
+               "augstumā; citādi tikai pacel to 5 metrus augstu un nosēdini atpakaļ.",
+               lambda c, ev: _all(rose_to(ev, "bravo", 5), max_alt_at_most(ev, "bravo", 8),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_battery("bravo"), _takeoff("bravo", 5), _land("bravo")],
+               "Bravo ir 44 %, tāpēc tas tikai pacēlās līdz 5 m un nosēdās.", battery={"bravo": 44.0}),
+        _entry("conditional", "test", "cond8-et-alpha-low-goes-home", ("alpha",),
+               "Tõsta alpha 12 meetri kõrgusele ja lennuta see 20 meetrit põhja. Kui selle aku on siis alla 45 %, "
+               "saada see koju; muidu jäta see sinna õhku.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 20, 0)]), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 12), _move("alpha", 20, 0), _battery("alpha"), _rtl("alpha")],
+               "Alpha aku oli 38 %, nii et see lendas koju ja maandus.", battery={"alpha": 38.0}),
+        _entry("conditional", "test", "cond8-fuller-of-bravo-charlie-east", three,
+               "Whichever of bravo and charlie has more battery left flies 30 m east at 12 m and hovers there; the "
+               "other one stays on the ground, and so does alpha.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 30), alt=12), airborne_at(ev, "charlie", 12),
+                                  never_armed(ev, "bravo"), never_armed(ev, "alpha")),
+               [("fleet_status", {}), _move("charlie", 0, 30, alt=12)],
+               "Charlie (81 %) hovers 30 m east at 12 m; bravo (55 %) and alpha stay down.",
+               battery={"alpha": 90.0, "bravo": 55.0, "charlie": 81.0}),
+        # formation
+        _entry("formation", "test", "form8-ru-column-east-land", three,
+               "Выстрой все три дрона в колонну с интервалом 12 метров на высоте 15 метров, в 30 метрах к востоку "
+               "от того места, где они сейчас, а потом посади их там.",
+               lambda c, ev: landed_formation_at(c, ev, three, 24, 0, 30),
+               [_formation(three, "column", 15, 12, east=30), *(_land(d) for d in three)],
+               "Три дрона встали колонной в 30 м к востоку и сели."),
+        _entry("formation", "test", "form8-id-pair-northwest", ("alpha", "charlie"),
+               "Terbangkan alpha dan charlie berdampingan dengan jarak 16 meter, pada ketinggian 18 meter, 25 meter "
+               "ke arah barat laut dari posisi mereka sekarang, lalu biarkan keduanya melayang di sana.",
+               lambda c, ev: formation_at(c, ev, ("alpha", "charlie"), 18, 16, d25, -d25),
+               [_formation(("alpha", "charlie"), "line", 18, 16, north=d25, east=-d25)],
+               "Alpha dan charlie melayang berdampingan 25 m ke barat laut pada 18 m."),
+        _entry("formation", "test", "form8-wedge-feet-overhead", three,
+               "Put the three drones in a V, 40 ft between neighbours, 60 ft up, right above where they are now, "
+               "and hold them there.",
+               lambda c, ev: formation_at(c, ev, three, 60 * FT, 40 * FT, 0, 0),
+               [_formation(three, "wedge", 60 * FT, 40 * FT)],
+               "The three hold a V at 60 ft (18.3 m), 40 ft (12.2 m) apart."),
+        # relative
+        _entry("relative", "test", "rel8-sl-bravo-se-and-up", ("bravo",),
+               "Premakni bravo 20 metrov proti jugovzhodu in ga hkrati dvigni za 6 metrov; pred tem naj vzleti na "
+               "10 metrov. Nato naj tam lebdi.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", -d20, d20), alt=16), airborne_at(ev, "bravo", 16)),
+               [_takeoff("bravo", 10), _move("bravo", -d20, d20, up=6)], "Bravo lebdi 20 m jugovzhodno na 16 m."),
+        _entry("relative", "test", "rel8-vi-charlie-ne-then-lower", ("charlie",),
+               "Cho charlie bay 30 mét về phía đông bắc ở độ cao 12 mét, sau đó hạ độ cao xuống còn 6 mét và giữ "
+               "nguyên ở đó.",
+               lambda c, ev: _all(rose_to(ev, "charlie", 12), at(ev, "charlie", *c.point("charlie", d30, d30), alt=6),
+                                  airborne_at(ev, "charlie", 6)),
+               [_move("charlie", d30, d30, alt=12), _move("charlie", alt=6)],
+               "Charlie đang lơ lửng 30 m về phía đông bắc, ở độ cao 6 m."),
+        _entry("relative", "test", "rel8-alpha-third-back", ("alpha",),
+               "Take alpha to 15 m, fly it 60 m north, then bring it a third of that distance back towards home and "
+               "let it hover.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 60, 0)]),
+                                  at(ev, "alpha", *c.point("alpha", 40, 0), alt=15), airborne_at(ev, "alpha", 15)),
+               [_takeoff("alpha", 15), _move("alpha", 60, 0), _move("alpha", -20, 0)], "Alpha hovers 40 m north at 15 m."),
+        # question
+        _entry("question", "test", "ask8-uk-lowest-charge", three,
+               "У якого дрона найменше заряду і скільки саме відсотків у нього лишилося? Нічого не запускай.",
+               lambda c, ev: _all(answer_says(ev, r"\bcharlie\b", "charlie"), answer_mentions_number(ev, 41, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Найменше в charlie: 41 %.",
+               battery={"alpha": 77.0, "bravo": 58.0, "charlie": 41.0}),
+        _entry("question", "test", "ask8-et-alpha-charge-anyone-flying", three,
+               "Kas mõni droon on praegu õhus? Ütle mulle ka, kui palju akut alphal alles on. Ära midagi õhku saada.",
+               lambda c, ev: _all(answer_mentions_number(ev, 69, 1), nobody_armed(ev)),
+               [("fleet_status", {})], "Ükski droon ei ole õhus; alphal on 69 %.",
+               battery={"alpha": 69.0, "bravo": 83.0, "charlie": 74.0}),
+        _entry("question", "test", "ask8-which-below-half", three,
+               "Are all three drones above 50 % battery? Tell me which ones are not. Don't launch anything.",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 46, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Not all: bravo has 46 %.",
+               battery={"alpha": 72.0, "bravo": 46.0, "charlie": 63.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
+        # 2 m the lowest altitude)
+        _entry("refusal", "test", "refuse8-ru-alpha-450-feet", ("alpha",),
+               "Подними alpha на высоту 450 футов.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "alpha", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("alpha", 450 * FT)], "The gateway refused: 450 ft (137 m) is above the 120 m altitude limit."),
+        _entry("refusal", "test", "refuse8-lt-charlie-far-east", ("charlie",),
+               "Nuskraidink charlie 1,3 kilometro į rytus 25 metrų aukštyje.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "charlie", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("charlie", 0, 1300, alt=25)], "The gateway refused: 1.3 km is beyond the 1000 m limit."),
+        _entry("refusal", "test", "refuse8-all-three-one-low", three,
+               "Launch all three to 12 m and keep them up there.",
+               lambda c, ev: _all(airborne_at(ev, "alpha", 12), airborne_at(ev, "bravo", 12), refusal_seen(ev, "battery"),
+                                  never_armed(ev, "charlie"), answer_reports_refusal(ev)),
+               [_takeoff("alpha", 12), _takeoff("bravo", 12), _takeoff("charlie", 12)],
+               "Alpha and bravo hover at 12 m; charlie was refused: its battery (22 %) is below the 30 % to take off.",
+               battery={"alpha": 80.0, "bravo": 75.0, "charlie": 22.0}),
+        # units
+        _entry("units", "test", "units8-bg-alpha-feet-yards", ("alpha",),
+               "Издигни alpha на 45 фута, после я придвижи 100 ярда на север и я остави да виси там.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 100 * YD, 0), alt=45 * FT),
+                                  airborne_at(ev, "alpha", 45 * FT)),
+               [_takeoff("alpha", 45 * FT), _move("alpha", 100 * YD, 0)], "Alpha виси на 100 ярда северно, на 45 фута."),
+        _entry("units", "test", "units8-es-bravo-km-feet-down", ("bravo",),
+               "Sube a bravo a 12 metros, llévalo 0,05 km al sur y después bájalo 15 pies; déjalo ahí en el aire.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", -50, 0), alt=12 - 15 * FT),
+                                  airborne_at(ev, "bravo", 12 - 15 * FT)),
+               [_takeoff("bravo", 12), _move("bravo", -50, 0), _move("bravo", up=-15 * FT)],
+               "Bravo flota 50 m al sur, a 7,4 m."),
+        _entry("units", "test", "units8-charlie-cm-miles", ("charlie",),
+               "Charlie: climb to 1500 cm, then fly 0.02 miles west and land there.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 15), at(ev, "charlie", *c.point("charlie", 0, -0.02 * MI)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 15), _move("charlie", 0, -0.02 * MI), _land("charlie")],
+               "Charlie climbed to 15 m, flew 0.02 mi (32 m) west and landed."),
+        # pattern
+        _entry("pattern", "test", "pattern8-ru-alpha-pentagon-left", ("alpha",),
+               "Пусть alpha на высоте 12 метров облетит пятиугольник со стороной 20 метров: первая сторона на "
+               "восток, поворачивая налево, а потом приземлится там, где закончит.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(pentagon)[:4]]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 12), *_legs("alpha", pentagon), _land("alpha")], "Alpha облетел пятиугольник и сел."),
+        _entry("pattern", "test", "pattern8-lv-bravo-rectangle-left", ("bravo",),
+               "Bravo 10 metru augstumā lai izlido taisnstūri: 40 metrus uz austrumiem, 15 metrus platu, griežoties "
+               "pa kreisi; beigās lai atgriežas mājās.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(rectangle)[:3]]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), *_legs("bravo", rectangle), _rtl("bravo")],
+               "Bravo izlidoja taisnstūri un atgriezās mājās."),
+        _entry("pattern", "test", "pattern8-charlie-ring-east-ccw", ("charlie",),
+               "Fly charlie 30 m east at 12 m, circle that spot once counter-clockwise at a 12 m radius, then "
+               "bring it home.",
+               lambda c, ev: _all(*(visited(ev, "charlie", [c.point("charlie", n, e)]) for n, e in ring),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), *_legs("charlie", ring_legs), _rtl("charlie")],
+               "Charlie circled the spot 30 m east and came home."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
+        # alpha from charlie or charlie from alpha, 10 m apart, so that a drone placed from itself misses)
+        _entry("placement", "test", "place8-uk-alpha-above-charlie", ("alpha", "charlie"),
+               "Підніми charlie на 10 метрів і відведи його на 20 метрів на схід. Потім постав alpha точно над "
+               "charlie, на 10 метрів вище за нього.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 20), alt=10), airborne_at(ev, "charlie", 10),
+                                  at(ev, "alpha", *c.point("charlie", 0, 20), alt=20), airborne_at(ev, "alpha", 20)),
+               lambda c: [_takeoff("charlie", 10), _move("charlie", 0, 20), _go("alpha", c.point("charlie", 0, 20), 20)],
+               "Charlie висить 20 м на схід на 10 м, alpha над ним на 20 м."),
+        _entry("placement", "test", "place8-sl-alpha-sw-of-charlie", three,
+               "Charlie naj vzleti na 14 metrov in tam lebdi. Nato postavi alpha 20 metrov jugozahodno od charlie, "
+               "na isto višino, in naj tudi ona lebdi.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=14), airborne_at(ev, "charlie", 14),
+                                  at(ev, "alpha", *c.point("charlie", -d20, -d20), alt=14), airborne_at(ev, "alpha", 14),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_takeoff("charlie", 14), _go("alpha", c.point("charlie", -d20, -d20), 14)],
+               "Charlie lebdi na 14 m; alpha 20 m jugozahodno od njega na isti višini."),
+        _entry("placement", "test", "place8-charlie-north-of-parked-alpha", three,
+               "Leave alpha parked where it is and send charlie to hover 20 m north of it at 15 m.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 20, 0), alt=15), airborne_at(ev, "charlie", 15),
+                                  never_armed(ev, "alpha"), never_armed(ev, "bravo")),
+               lambda c: [_go("charlie", c.point("alpha", 20, 0), 15)], "Charlie hovers 20 m north of alpha at 15 m."),
+        # language
+        _entry("language", "test", "lang8-ru-charlie-east-land", ("charlie",),
+               "Подними charlie на 13 метров, пролети 35 метров на восток и посади его там.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 13), at(ev, "charlie", *c.point("charlie", 0, 35)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 13), _move("charlie", 0, 35), _land("charlie")], "Charlie пролетел 35 м на восток и сел."),
+        _entry("language", "test", "lang8-vi-alpha-climb-more", ("alpha",),
+               "Đưa alpha lên độ cao 9 mét, sau đó cho nó lên cao thêm 7 mét nữa và giữ nó ở đó.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=16), airborne_at(ev, "alpha", 16)),
+               [_takeoff("alpha", 9), _move("alpha", up=7)], "Alpha đang ở độ cao 16 m."),
+        _entry("language", "test", "lang8-et-bravo-south-home", ("bravo",),
+               "Tõsta bravo 16 meetri kõrgusele, lennuta see 20 meetrit lõunasse ja too see siis koju tagasi ning "
+               "maanda.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 16), visited(ev, "bravo", [c.point("bravo", -20, 0)]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 16), _move("bravo", -20, 0), _rtl("bravo")], "Bravo lendas 20 m lõunasse, tuli koju ja maandus."),
     ]  # fmt: skip
 
 
@@ -2823,7 +3121,8 @@ def corpus() -> list[CorpusEntry]:
         *_fourth_round(),
         *_fifth_round(),
         *_sixth_round(),
-        *_seventh_test_half(),
+        *_seventh_round(),
+        *_eighth_test_half(),
     ]
 
 
