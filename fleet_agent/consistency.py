@@ -117,7 +117,7 @@ def _drone_gaps(request: str, fleet: list[str], data: Any) -> list[str]:
 
 def _words(text: str) -> list[str]:
     """The words of a text, in any script: runs of letters and digits (an id is matched against these)."""
-    return "".join(c if c.isalnum() or c in "_-" else " " for c in text).split()
+    return "".join(c if c.isalnum() or c in "_-" else " " for c in lexicon.by_script(text)).split()
 
 
 def _request_numbers(request: str, fleet: list[str]) -> list[float]:

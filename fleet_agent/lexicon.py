@@ -7,6 +7,7 @@ planned it. Everything else the host reads without words (`fleet_agent.consisten
 
 from __future__ import annotations
 
+import unicodedata
 from itertools import pairwise
 
 from fleet_agent.units import Unit
@@ -37,14 +38,20 @@ HOME_STEMS = (
 )  # fmt: skip
 
 
-def words(text: str) -> list[str]:
-    """The words of a text in any script, lower case: runs of letters (digits split off)."""
-    return "".join(c if c.isalpha() else " " for c in text.lower()).split()
+def by_script(text: str) -> str:
+    """``text`` with a space where the script of its letters changes (LATIN, HANGUL, CJK, HIRAGANA...): a
+    Latin id ends before a Korean or Japanese particle written onto it ("alpha를", "bravoを")."""
+    out, last = [], ""
+    for c in text:
+        script = "" if not c.isalpha() else "LATIN" if c.isascii() else unicodedata.name(c, "?").split()[0]
+        out.append(" " + c if script and last and script.split("-")[0] != last.split("-")[0] else c)
+        last = script
+    return "".join(out)
 
 
 def says(text: str, stems: tuple[str, ...]) -> bool:
     """``text`` has a word starting with one of ``stems`` (a stem of three letters or less: that word)."""
-    return any(w == s or (len(s) > 3 and w.startswith(s)) for w in words(text) for s in stems)
+    return any(w == s or (len(s) > 3 and w.startswith(s)) for w in tokens(text.lower()) for s in stems)
 
 
 def number_units(text: str) -> dict[float | None, set[Unit]]:
@@ -59,10 +66,10 @@ def number_units(text: str) -> dict[float | None, set[Unit]]:
 
 
 def tokens(text: str) -> list[str]:
-    """Runs of digits (with a decimal point or comma inside) and runs of letters, in order."""
+    """Runs of digits (with a decimal point or comma inside) and runs of letters of one script, in order."""
     out: list[str] = []
     kind = ""
-    for c in text:
+    for c in by_script(text):
         k = "d" if c.isdigit() or (kind == "d" and c in ".,") else "a" if c.isalpha() else ""
         if k and k == kind:
             out[-1] += c

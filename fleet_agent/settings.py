@@ -27,9 +27,7 @@ class AgentSettings(BaseSettings):
         description="How the plan is decoded under its JSON schema: json_schema (response_format: llama.cpp, "
         "LM Studio, OpenAI), ollama (format), guided (vLLM guided_json) or none (validated only).",
     )
-    places_url: str | None = Field(
-        None, description="An MCP server (Streamable HTTP) that knows named places."
-    )
+    places_url: str | None = Field(None, description="An MCP server (Streamable HTTP) of named places.")
     places_tool: str = Field("find_place", description="Its tool that gives a place's lat_deg, lon_deg.")
 
     def resolved_api_key(self) -> str:

@@ -127,3 +127,19 @@ def test_an_if_that_does_nothing_in_a_question_of_several_drones_is_a_report() -
     assert questions_of_fleet("Is bravo under 50 %?", FLEET, one) == one
     acts = _plan(_if("alpha", "below", [_up("alpha", 5)]))
     assert questions_of_fleet("If any is under 50 %, alpha up 5 m", FLEET, acts) == acts
+
+
+def test_an_id_written_onto_a_word_of_another_script_is_read_as_named() -> None:
+    """Korean and Japanese write a particle onto the word before it ("alpha를", "bravoを"): the id ends
+    where the script changes, so the drone is named, no gap is told and its step is kept (the scripted
+    ideal plan of a Korean request, a move to a point computed from another drone, was dropped)."""
+    request = "charlie 북쪽 25미터 지점으로 alpha를 보내서 10미터 높이에서 떠 있게 해. charlie는 그대로 둬."
+    ten_m = {"value": 10, "unit": "m"}
+    north = {"distance": {"value": 25, "unit": "m"}, "direction": "north"}
+    placed = {"action": "move", "drone": "alpha", "origin": "charlie", "legs": [north], "altitude": ten_m,
+              "after": "stay"}  # fmt: skip
+    assert gaps(request, FLEET, _plan(placed)) == []
+    point = {"kind": "point", "lat_deg": -35.3630317, "lon_deg": 149.1652651}
+    to_point = placed | {"origin": point, "legs": []}
+    assert without_unasked(request, FLEET, _plan(to_point)).steps == _plan(to_point).steps
+    assert gaps("bravoを15メートルまで上昇させて", FLEET, _plan(_up("bravo", 15))) == []

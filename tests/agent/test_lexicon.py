@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from fleet_agent.consistency import as_request_says, placed_by_name, split_formation
-from fleet_agent.lexicon import number_units
+from fleet_agent.lexicon import number_units, tokens
 from fleet_agent.units import Unit
 
 
@@ -128,3 +128,10 @@ def test_a_move_measured_from_its_own_drone_is_from_its_home_only_where_the_requ
     back = [dict(own), {"action": "return_home", "drone": "alpha"}]
     returned = as_request_says("alpha 20 m north of where it is, then home", {"steps": back})
     assert returned["steps"][0]["origin"] == "alpha"
+
+
+def test_a_word_ends_where_its_script_changes_and_a_latin_word_stays_whole() -> None:
+    assert tokens("alpha를 10미터") == ["alpha", "를", "10", "미터"]
+    assert tokens("bravoを15メートルまで") == ["bravo", "を", "15", "メートル", "まで"]
+    assert tokens("Größe côté, bravoу 0,05 km") == ["Größe", "côté", "bravo", "у", "0,05", "km"]
+    assert number_units("alphaを30フィート、bravo 12 pies") == {12.0: {Unit.ft}}
