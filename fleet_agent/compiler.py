@@ -38,6 +38,9 @@ DEFAULT_TAKEOFF_M = 10.0
 #: return first climbs to its own return altitude, a climb nobody asked for when the drone is there
 AT_HOME_M = 3.0
 
+#: a drone flying this close to a height (m) is at it: the gateway refuses a move there that goes nowhere
+AT_HEIGHT_M = 1.0
+
 
 @dataclass(frozen=True)
 class Call:
@@ -88,7 +91,7 @@ class Compiler:
         self._handlers = {
             Takeoff: self._height, Altitude: self._height, Land: self._simple, ReturnHome: self._simple,
             Hold: self._simple, Move: self._move, Pattern: self._pattern, Formation: self._formation,
-            Report: self._report, Condition: self._condition, Choose: self._choose, Ask: self._ask,
+            Report: self._report, Condition: self._selected, Choose: self._selected, Ask: self._ask,
         }  # fmt: skip
 
     async def compile(self, step: Any) -> Compiled:
@@ -122,12 +125,15 @@ class Compiler:
 
     async def _height(self, step: Takeoff | Altitude) -> Compiled:
         """A climb or descent to the step's height; to 0 m, a landing (nothing for a drone on the
-        ground: the gateway refuses a takeoff to 0 m, and the drone is where the step says)."""
+        ground: the gateway refuses a takeoff to 0 m, and the drone is where the step says). None for a
+        drone flying at it: the gateway refuses that move, and then no later move of the drone is sent."""
         state = await self.sensors.state(step.drone)
         if step.altitude.metres <= 0:
             if state.flying:
                 return [Call("land", {"drone_id": step.drone}, step.drone)]
             return [Said(f"{step.drone} stays on the ground (a height of 0 m).")]
+        if state.flying and abs((state.alt_m or 0.0) - step.altitude.metres) < AT_HEIGHT_M:
+            return [Said(f"{step.drone} flies at {state.alt_m:.1f} m already."), *await self._ending(step)]
         tool = "move_to_relative" if state.flying else "takeoff"
         args = {"drone_id": step.drone, "alt_m": step.altitude.metres}
         return [Call(tool, args, step.drone), *await self._ending(step)]
@@ -219,8 +225,8 @@ class Compiler:
         legs = pattern_legs(step)
         alt = step.altitude.metres if step.altitude is not None else None
         calls, _ = await self._lift(step.drone, alt, 0.0)
-        if alt is not None and not calls:
-            calls.append(Call("move_to_relative", {"drone_id": step.drone, "alt_m": alt}, step.drone))
+        if step.altitude is not None and not calls:
+            calls = await self._height(Altitude(action="altitude", drone=step.drone, altitude=step.altitude))
         moves = [
             Call("move_to_relative", {"drone_id": step.drone, "north_m": n, "east_m": e}, step.drone)
             for n, e in legs
@@ -262,10 +268,6 @@ class Compiler:
             return await self._choose_branch(step)
         return None
 
-    async def _condition(self, step: Condition) -> Compiled:
-        said, steps = await self._condition_branch(step)
-        return [*said, *await self._each(steps)]
-
     async def _condition_branch(self, step: Condition) -> tuple[list[Said], list[Any]]:
         state = await self.sensors.state(step.drone)
         value = reading_value(state, step.reading)
@@ -278,8 +280,8 @@ class Compiler:
                     f"{step.compare.replace('_', ' ')} {step.value:g}: {verdict}.")  # fmt: skip
         return [said], list(branch)
 
-    async def _choose(self, step: Choose) -> Compiled:
-        said, steps = await self._choose_branch(step)
+    async def _selected(self, step: Condition | Choose) -> Compiled:
+        said, steps = await self.branch(step) or ([], [])
         return [*said, *await self._each(steps)]
 
     async def _choose_branch(self, step: Choose) -> tuple[list[Said], list[Any]]:
@@ -376,11 +378,7 @@ def pattern_legs(step: Pattern) -> list[geometry.Offset]:
 
 
 def reading_value(state: DroneState, reading: str) -> float | None:
-    if reading == "battery":
-        return state.battery_pct
-    if reading == "altitude":
-        return state.alt_m
-    return None
+    return {"battery": state.battery_pct, "altitude": state.alt_m}.get(reading)
 
 
 def compare(value: float, how: str, threshold: float) -> bool:

@@ -197,6 +197,22 @@ async def test_a_square_for_one_drone_is_four_legs_not_a_formation() -> None:
     assert legs == [(20.12, 0.0), (0.0, 20.12), (-20.12, 0.0), (0.0, -20.12)]
 
 
+async def test_a_drone_flying_at_the_height_asked_is_sent_no_move_there() -> None:
+    """The gateway refuses a move that goes nowhere, and the host then sends none of the drone's later
+    moves: "take off to 12 m, a pentagon at 12 m" flew none of the pentagon's legs."""
+    at_12 = FakeSensors({"alpha": flying(alt=11.6)})
+    step = {**NULLS, "action": "pattern", "after": "land", "drone": "alpha", "shape": "square", "size": m(20),
+            "altitude": m(12)}  # fmt: skip
+    calls = await compiled(step, at_12)
+    assert calls[0] == Said("alpha flies at 11.6 m already.")
+    assert [c.tool for c in calls[1:]] == ["move_to_relative"] * 4 + ["land"]
+    assert all("alt_m" not in c.args for c in calls[1:])
+    climb = await compiled(step | {"altitude": m(20)}, at_12)
+    assert climb[0] == Call("move_to_relative", {"drone_id": "alpha", "alt_m": 20.0}, "alpha")
+    hop = await compiled({"action": "takeoff", "drone": "alpha", "altitude": m(12), "after": "land"}, at_12)
+    assert hop == [Said("alpha flies at 11.6 m already."), Call("land", {"drone_id": "alpha"}, "alpha")]
+
+
 async def test_a_formation_carries_its_spacing_and_centre_move() -> None:
     step = {"action": "formation", "drones": ["alpha", "bravo"], "shape": "column", "spacing": m(12),
             "altitude": m(15), "legs": [leg(40, "north")]}  # fmt: skip
