@@ -329,17 +329,18 @@ def _each_its_leg(step: Any, tokens: list[str]) -> list[tuple[str, Any]] | None:
 
 
 def questions_of_fleet(request: str, fleet: list[str], plan: Plan) -> Plan:
-    """The plan with an ``if`` that does nothing either way, in a request about more drones than the
-    ``if``'s one, read as the question it is: a report of that reading for the drones the request names
-    (all the fleet when it names none), picking the lowest or highest as the ``if`` compared (a question
-    whether any drone was under a threshold was planned as one drone's ``if``). Done after the plan is
-    checked against the request: the threshold is the request's number, which the report does not carry."""
+    """The plan with an ``if`` that only tells either way (nothing, or a report), in a request about more
+    drones than the ``if``'s one, read as the question it is: a report of that reading for the drones the
+    request names (all the fleet when it names none), picking the lowest or highest as the ``if`` compared
+    (a question whether any drone was under a threshold was planned as one drone's ``if``). Done after the
+    plan is checked against the request: the threshold is the request's number, the report has none."""
     drones = sorted(_named(request, fleet)) or list(fleet)
     return plan.model_copy(update={"steps": [_as_report(step, drones) for step in plan.steps]})
 
 
 def _as_report(step: Any, drones: list[str]) -> Any:
-    if not isinstance(step, Condition) or step.then or step.otherwise or drones == [step.drone]:
+    told = isinstance(step, Condition) and all(isinstance(s, Report) for s in step.then + step.otherwise)
+    if not told or drones == [step.drone]:
         return step
     pick = "lowest" if step.compare in ("below", "at_most") else "highest"
     return Report(action="report", drones=drones, readings=[step.reading], pick=pick)

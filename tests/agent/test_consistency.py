@@ -129,6 +129,17 @@ def test_an_if_that_does_nothing_in_a_question_of_several_drones_is_a_report() -
     assert questions_of_fleet("If any is under 50 %, alpha up 5 m", FLEET, acts) == acts
 
 
+def test_an_if_whose_branches_only_report_in_a_question_of_several_drones_is_a_report() -> None:
+    """A question whether every drone is above a threshold was planned as one drone's ``if`` with a report
+    of the fleet in its other branch: that drone was above, and the answer told no drone's battery."""
+    report = {"action": "report", "drones": FLEET, "readings": ["battery"], "pick": "lowest"}
+    told = _plan(_if("alpha", "above", []) | {"otherwise": [report]})
+    question = questions_of_fleet("All of them over 50 %? Which ones not?", FLEET, told)
+    assert question.steps == [Report(action="report", drones=FLEET, readings=["battery"], pick="highest")]
+    mixed = _plan(_if("alpha", "above", [_up("alpha", 5)]) | {"otherwise": [report]})
+    assert questions_of_fleet("If all are above 50 %, alpha up 5 m", FLEET, mixed) == mixed
+
+
 def test_an_id_written_onto_a_word_of_another_script_is_read_as_named() -> None:
     """Korean and Japanese write a particle onto the word before it ("alpha를", "bravoを"): the id ends
     where the script changes, so the drone is named, no gap is told and its step is kept (the scripted
