@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 375 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 411 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -87,12 +87,22 @@ self-check (the scripted ideal plan) has run on them. That leaves 303 dev and 36
 Later on 2026-12-01 (seventh round) EVERY test entry (36, ``_seventh_round``) was moved to dev, each marked
 "moved to dev on 2026-12-01, seventh round": the test half had been measured (3 runs of the 1.5B model)
 and its figures were known to whoever works on the host, so it no longer measured requests nobody tuned
-for. A fresh test half took its place (``_eighth_test_half``): 36 new requests, 3 a class, written before
+for. A fresh test half took its place (``_eighth_test_half``, now ``_eighth_round``): 36 new requests, 3 a class, written before
 any model ran on them, in new wordings and shapes within each class (not rewordings of dev entries): 22 of
 the 33 outside the ``language`` class are in Bulgarian, Estonian, Indonesian, Latvian, Lithuanian, Russian,
 Slovenian, Spanish, Ukrainian or Vietnamese (Cyrillic and Vietnamese script among them), spread over the
 11 classes, and the ``language`` class's 3 in Russian, Vietnamese and Estonian. Only the harness
 self-check (the scripted ideal plan) has run on them: 36 of 36 passed. That leaves 339 dev and 36 test.
+Later on 2026-12-01 (eighth round) EVERY test entry (36, ``_eighth_round``) was moved to dev, each marked
+"moved to dev on 2026-12-01, eighth round": the test half had been measured (3 runs of the 1.5B model)
+and its figures were known to whoever works on the host, so it no longer measured requests nobody tuned
+for. A fresh test half took its place (``_ninth_test_half``): 36 new requests, 3 a class, written before
+any model ran on them, in new wordings and shapes within each class (not rewordings of dev entries): 22 of
+the 33 outside the ``language`` class are in Chinese, Czech, Dutch, French, German, Italian, Japanese,
+Korean, Polish, Portuguese, Romanian or Turkish (Chinese, Japanese and Korean script are new), spread over
+the 11 classes, and the ``language`` class's 3 in Japanese, Chinese and Korean. Only the harness
+self-check (the scripted ideal plan) has run on them: 36 of 36 passed (once a Latin id written onto a
+Korean particle was read as named). That leaves 375 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -142,7 +152,7 @@ CLASSES = (
     "units",  # distances and heights in feet, yards, kilometres
     "pattern",  # a shape flown by one drone: polygon, circle, survey lines
     "placement",  # a drone placed relative to another drone or to its home
-    "language",  # requests in languages other than English (French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish, Hungarian, Croatian, Slovak, Greek, Catalan, Russian, Ukrainian, Bulgarian, Slovenian, Latvian, Lithuanian, Estonian, Indonesian, Vietnamese)
+    "language",  # requests in languages other than English (Japanese, Chinese, Korean, French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish, Hungarian, Croatian, Slovak, Greek, Catalan, Russian, Ukrainian, Bulgarian, Slovenian, Latvian, Lithuanian, Estonian, Indonesian, Vietnamese)
 )
 HALVES = ("dev", "test")
 DRONES = ("alpha", "bravo", "charlie")
@@ -2851,11 +2861,12 @@ def _seventh_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _eighth_test_half() -> list[CorpusEntry]:
+def _eighth_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-01 (eighth round), before any model ran on it: 3 a class; 22 of
     the 33 outside ``language`` in other languages than English (Bulgarian, Estonian, Indonesian, Latvian,
     Lithuanian, Russian, Slovenian, Spanish, Ukrainian, Vietnamese), the ``language`` class's 3 in Russian,
-    Vietnamese and Estonian."""
+    Vietnamese and Estonian; all of it moved to dev on 2026-12-01 (eighth round), once its figures had been
+    measured."""
     three = DRONES
     d20, d25, d30 = 20 / math.sqrt(2), 25 / math.sqrt(2), 30 / math.sqrt(2)
     pentagon = _polygon_legs(5, 20.0, 90.0, right=False)  # first side east, turning left
@@ -2867,35 +2878,41 @@ def _eighth_test_half() -> list[CorpusEntry]:
                  (-12.0, 0.0)]  # fmt: skip
     return [
         # single
-        _entry("single", "test", "single8-ru-bravo-hover", ("bravo",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("single", "dev", "single8-ru-bravo-hover", ("bravo",),
                "Подними bravo на 18 метров и пусть висит там, пока я не скажу.",
                lambda c, ev: airborne_at(ev, "bravo", 18),
                [_takeoff("bravo", 18)], "Bravo висит на 18 м."),
-        _entry("single", "test", "single8-id-charlie-up-down", ("charlie",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("single", "dev", "single8-id-charlie-up-down", ("charlie",),
                "Terbangkan charlie setinggi 11 meter, lalu langsung daratkan lagi di tempat yang sama.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 11), at(ev, "charlie", *_home(c, "charlie")),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 11), _land("charlie")], "Charlie naik ke 11 m lalu mendarat lagi."),
-        _entry("single", "test", "single8-alpha-up-then-lower", ("alpha",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("single", "dev", "single8-alpha-up-then-lower", ("alpha",),
                "Climb alpha to 35 m, then bring it down to 12 m and keep it there.",
                lambda c, ev: _all(rose_to(ev, "alpha", 35), at(ev, "alpha", *_home(c, "alpha"), alt=12),
                                   airborne_at(ev, "alpha", 12)),
                [_takeoff("alpha", 35), _move("alpha", alt=12)], "Alpha went up to 35 m and now holds 12 m."),
         # multi
-        _entry("multi", "test", "multi8-uk-three-heights", three,
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("multi", "dev", "multi8-uk-three-heights", three,
                "Підніми alpha на 10 метрів, bravo на 20 метрів, а charlie на 30 метрів, і нехай усі три зависнуть там.",
                lambda c, ev: _all(airborne_at(ev, "alpha", 10), airborne_at(ev, "bravo", 20),
                                   airborne_at(ev, "charlie", 30)),
                [_takeoff("alpha", 10), _takeoff("bravo", 20), _takeoff("charlie", 30)],
                "Alpha висить на 10 м, bravo на 20 м, charlie на 30 м."),
-        _entry("multi", "test", "multi8-sl-pair-east-charlie-ground", three,
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("multi", "dev", "multi8-sl-pair-east-charlie-ground", three,
                "Alpha in bravo naj poletita 20 metrov proti vzhodu na višini 12 metrov in tam ostaneta v zraku; "
                "charlie naj ostane na tleh.",
                lambda c, ev: _all(*(at(ev, d, *c.point(d, 0, 20), alt=12) for d in ("alpha", "bravo")),
                                   *(airborne_at(ev, d, 12) for d in ("alpha", "bravo")), never_armed(ev, "charlie")),
                [_move("alpha", 0, 20, alt=12), _move("bravo", 0, 20, alt=12)],
                "Alpha in bravo lebdita 20 m vzhodno na 12 m; charlie je na tleh."),
-        _entry("multi", "test", "multi8-opposite-ways-land", three,
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("multi", "dev", "multi8-opposite-ways-land", three,
                "Bravo goes 25 m north and charlie 25 m south, both at 14 m, and then both land right there. "
                "Leave alpha alone.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 25, 0)), landed_disarmed(ev, "bravo"),
@@ -2904,20 +2921,23 @@ def _eighth_test_half() -> list[CorpusEntry]:
                [_move("bravo", 25, 0, alt=14), _move("charlie", -25, 0, alt=14), _land("bravo"), _land("charlie")],
                "Bravo landed 25 m north and charlie 25 m south; alpha stayed down."),
         # compound
-        _entry("compound", "test", "compound8-lt-alpha-two-legs-home", ("alpha",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("compound", "dev", "compound8-lt-alpha-two-legs-home", ("alpha",),
                "Pakelk alpha į 10 metrų aukštį, nuskraidink ją 30 metrų į šiaurę, tada 30 metrų į rytus, o tada "
                "grąžink namo ir nutupdyk.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 30, 0), c.point("alpha", 30, 30)]),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), _move("alpha", 30, 0), _move("alpha", 0, 30), _rtl("alpha")],
                "Alpha nuskrido abi atkarpas, grįžo namo ir nusileido."),
-        _entry("compound", "test", "compound8-bravo-drop-midway", ("bravo",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("compound", "dev", "compound8-bravo-drop-midway", ("bravo",),
                "Bravo: up to 20 m, 15 m west, then drop to 8 m right there, another 15 m west, and hover at the end.",
                lambda c, ev: _all(rose_to(ev, "bravo", 20), visited(ev, "bravo", [c.point("bravo", 0, -15)]),
                                   at(ev, "bravo", *c.point("bravo", 0, -30), alt=8), airborne_at(ev, "bravo", 8)),
                [_takeoff("bravo", 20), _move("bravo", 0, -15), _move("bravo", alt=8), _move("bravo", 0, -15)],
                "Bravo hovers 30 m west at 8 m."),
-        _entry("compound", "test", "compound8-bg-charlie-half-back-land", ("charlie",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("compound", "dev", "compound8-bg-charlie-half-back-land", ("charlie",),
                "Издигни charlie на 14 метра, прелети с него 40 метра на юг, после го върни половината път обратно "
                "и го приземи там.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -40, 0)]),
@@ -2925,21 +2945,24 @@ def _eighth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 14), _move("charlie", -40, 0), _move("charlie", 20, 0), _land("charlie")],
                "Charlie прелетя 40 м на юг, върна се 20 м и кацна."),
         # conditional
-        _entry("conditional", "test", "cond8-lv-bravo-short-hop-if-low", ("bravo",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("conditional", "dev", "cond8-lv-bravo-short-hop-if-low", ("bravo",),
                "Ja bravo akumulatora līmenis ir vismaz 50 %, aizlido ar to 30 metrus uz ziemeļiem 12 metru "
                "augstumā; citādi tikai pacel to 5 metrus augstu un nosēdini atpakaļ.",
                lambda c, ev: _all(rose_to(ev, "bravo", 5), max_alt_at_most(ev, "bravo", 8),
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_battery("bravo"), _takeoff("bravo", 5), _land("bravo")],
                "Bravo ir 44 %, tāpēc tas tikai pacēlās līdz 5 m un nosēdās.", battery={"bravo": 44.0}),
-        _entry("conditional", "test", "cond8-et-alpha-low-goes-home", ("alpha",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("conditional", "dev", "cond8-et-alpha-low-goes-home", ("alpha",),
                "Tõsta alpha 12 meetri kõrgusele ja lennuta see 20 meetrit põhja. Kui selle aku on siis alla 45 %, "
                "saada see koju; muidu jäta see sinna õhku.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 20, 0)]), at(ev, "alpha", *_home(c, "alpha")),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 12), _move("alpha", 20, 0), _battery("alpha"), _rtl("alpha")],
                "Alpha aku oli 38 %, nii et see lendas koju ja maandus.", battery={"alpha": 38.0}),
-        _entry("conditional", "test", "cond8-fuller-of-bravo-charlie-east", three,
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("conditional", "dev", "cond8-fuller-of-bravo-charlie-east", three,
                "Whichever of bravo and charlie has more battery left flies 30 m east at 12 m and hovers there; the "
                "other one stays on the ground, and so does alpha.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 30), alt=12), airborne_at(ev, "charlie", 12),
@@ -2948,56 +2971,65 @@ def _eighth_test_half() -> list[CorpusEntry]:
                "Charlie (81 %) hovers 30 m east at 12 m; bravo (55 %) and alpha stay down.",
                battery={"alpha": 90.0, "bravo": 55.0, "charlie": 81.0}),
         # formation
-        _entry("formation", "test", "form8-ru-column-east-land", three,
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("formation", "dev", "form8-ru-column-east-land", three,
                "Выстрой все три дрона в колонну с интервалом 12 метров на высоте 15 метров, в 30 метрах к востоку "
                "от того места, где они сейчас, а потом посади их там.",
                lambda c, ev: landed_formation_at(c, ev, three, 24, 0, 30),
                [_formation(three, "column", 15, 12, east=30), *(_land(d) for d in three)],
                "Три дрона встали колонной в 30 м к востоку и сели."),
-        _entry("formation", "test", "form8-id-pair-northwest", ("alpha", "charlie"),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("formation", "dev", "form8-id-pair-northwest", ("alpha", "charlie"),
                "Terbangkan alpha dan charlie berdampingan dengan jarak 16 meter, pada ketinggian 18 meter, 25 meter "
                "ke arah barat laut dari posisi mereka sekarang, lalu biarkan keduanya melayang di sana.",
                lambda c, ev: formation_at(c, ev, ("alpha", "charlie"), 18, 16, d25, -d25),
                [_formation(("alpha", "charlie"), "line", 18, 16, north=d25, east=-d25)],
                "Alpha dan charlie melayang berdampingan 25 m ke barat laut pada 18 m."),
-        _entry("formation", "test", "form8-wedge-feet-overhead", three,
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("formation", "dev", "form8-wedge-feet-overhead", three,
                "Put the three drones in a V, 40 ft between neighbours, 60 ft up, right above where they are now, "
                "and hold them there.",
                lambda c, ev: formation_at(c, ev, three, 60 * FT, 40 * FT, 0, 0),
                [_formation(three, "wedge", 60 * FT, 40 * FT)],
                "The three hold a V at 60 ft (18.3 m), 40 ft (12.2 m) apart."),
         # relative
-        _entry("relative", "test", "rel8-sl-bravo-se-and-up", ("bravo",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("relative", "dev", "rel8-sl-bravo-se-and-up", ("bravo",),
                "Premakni bravo 20 metrov proti jugovzhodu in ga hkrati dvigni za 6 metrov; pred tem naj vzleti na "
                "10 metrov. Nato naj tam lebdi.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", -d20, d20), alt=16), airborne_at(ev, "bravo", 16)),
                [_takeoff("bravo", 10), _move("bravo", -d20, d20, up=6)], "Bravo lebdi 20 m jugovzhodno na 16 m."),
-        _entry("relative", "test", "rel8-vi-charlie-ne-then-lower", ("charlie",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("relative", "dev", "rel8-vi-charlie-ne-then-lower", ("charlie",),
                "Cho charlie bay 30 mét về phía đông bắc ở độ cao 12 mét, sau đó hạ độ cao xuống còn 6 mét và giữ "
                "nguyên ở đó.",
                lambda c, ev: _all(rose_to(ev, "charlie", 12), at(ev, "charlie", *c.point("charlie", d30, d30), alt=6),
                                   airborne_at(ev, "charlie", 6)),
                [_move("charlie", d30, d30, alt=12), _move("charlie", alt=6)],
                "Charlie đang lơ lửng 30 m về phía đông bắc, ở độ cao 6 m."),
-        _entry("relative", "test", "rel8-alpha-third-back", ("alpha",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("relative", "dev", "rel8-alpha-third-back", ("alpha",),
                "Take alpha to 15 m, fly it 60 m north, then bring it a third of that distance back towards home and "
                "let it hover.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 60, 0)]),
                                   at(ev, "alpha", *c.point("alpha", 40, 0), alt=15), airborne_at(ev, "alpha", 15)),
                [_takeoff("alpha", 15), _move("alpha", 60, 0), _move("alpha", -20, 0)], "Alpha hovers 40 m north at 15 m."),
         # question
-        _entry("question", "test", "ask8-uk-lowest-charge", three,
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("question", "dev", "ask8-uk-lowest-charge", three,
                "У якого дрона найменше заряду і скільки саме відсотків у нього лишилося? Нічого не запускай.",
                lambda c, ev: _all(answer_says(ev, r"\bcharlie\b", "charlie"), answer_mentions_number(ev, 41, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "Найменше в charlie: 41 %.",
                battery={"alpha": 77.0, "bravo": 58.0, "charlie": 41.0}),
-        _entry("question", "test", "ask8-et-alpha-charge-anyone-flying", three,
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("question", "dev", "ask8-et-alpha-charge-anyone-flying", three,
                "Kas mõni droon on praegu õhus? Ütle mulle ka, kui palju akut alphal alles on. Ära midagi õhku saada.",
                lambda c, ev: _all(answer_mentions_number(ev, 69, 1), nobody_armed(ev)),
                [("fleet_status", {})], "Ükski droon ei ole õhus; alphal on 69 %.",
                battery={"alpha": 69.0, "bravo": 83.0, "charlie": 74.0}),
-        _entry("question", "test", "ask8-which-below-half", three,
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("question", "dev", "ask8-which-below-half", three,
                "Are all three drones above 50 % battery? Tell me which ones are not. Don't launch anything.",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 46, 1),
                                   nobody_armed(ev)),
@@ -3005,17 +3037,20 @@ def _eighth_test_half() -> list[CorpusEntry]:
                battery={"alpha": 72.0, "bravo": 46.0, "charlie": 63.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude)
-        _entry("refusal", "test", "refuse8-ru-alpha-450-feet", ("alpha",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("refusal", "dev", "refuse8-ru-alpha-450-feet", ("alpha",),
                "Подними alpha на высоту 450 футов.",
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "alpha", c.max_alt_m),
                                   answer_reports_refusal(ev)),
                [_takeoff("alpha", 450 * FT)], "The gateway refused: 450 ft (137 m) is above the 120 m altitude limit."),
-        _entry("refusal", "test", "refuse8-lt-charlie-far-east", ("charlie",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("refusal", "dev", "refuse8-lt-charlie-far-east", ("charlie",),
                "Nuskraidink charlie 1,3 kilometro į rytus 25 metrų aukštyje.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "charlie", c.max_distance_m), answer_reports_refusal(ev)),
                [_move("charlie", 0, 1300, alt=25)], "The gateway refused: 1.3 km is beyond the 1000 m limit."),
-        _entry("refusal", "test", "refuse8-all-three-one-low", three,
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("refusal", "dev", "refuse8-all-three-one-low", three,
                "Launch all three to 12 m and keep them up there.",
                lambda c, ev: _all(airborne_at(ev, "alpha", 12), airborne_at(ev, "bravo", 12), refusal_seen(ev, "battery"),
                                   never_armed(ev, "charlie"), answer_reports_refusal(ev)),
@@ -3023,38 +3058,44 @@ def _eighth_test_half() -> list[CorpusEntry]:
                "Alpha and bravo hover at 12 m; charlie was refused: its battery (22 %) is below the 30 % to take off.",
                battery={"alpha": 80.0, "bravo": 75.0, "charlie": 22.0}),
         # units
-        _entry("units", "test", "units8-bg-alpha-feet-yards", ("alpha",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("units", "dev", "units8-bg-alpha-feet-yards", ("alpha",),
                "Издигни alpha на 45 фута, после я придвижи 100 ярда на север и я остави да виси там.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 100 * YD, 0), alt=45 * FT),
                                   airborne_at(ev, "alpha", 45 * FT)),
                [_takeoff("alpha", 45 * FT), _move("alpha", 100 * YD, 0)], "Alpha виси на 100 ярда северно, на 45 фута."),
-        _entry("units", "test", "units8-es-bravo-km-feet-down", ("bravo",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("units", "dev", "units8-es-bravo-km-feet-down", ("bravo",),
                "Sube a bravo a 12 metros, llévalo 0,05 km al sur y después bájalo 15 pies; déjalo ahí en el aire.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", -50, 0), alt=12 - 15 * FT),
                                   airborne_at(ev, "bravo", 12 - 15 * FT)),
                [_takeoff("bravo", 12), _move("bravo", -50, 0), _move("bravo", up=-15 * FT)],
                "Bravo flota 50 m al sur, a 7,4 m."),
-        _entry("units", "test", "units8-charlie-cm-miles", ("charlie",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("units", "dev", "units8-charlie-cm-miles", ("charlie",),
                "Charlie: climb to 1500 cm, then fly 0.02 miles west and land there.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 15), at(ev, "charlie", *c.point("charlie", 0, -0.02 * MI)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 15), _move("charlie", 0, -0.02 * MI), _land("charlie")],
                "Charlie climbed to 15 m, flew 0.02 mi (32 m) west and landed."),
         # pattern
-        _entry("pattern", "test", "pattern8-ru-alpha-pentagon-left", ("alpha",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("pattern", "dev", "pattern8-ru-alpha-pentagon-left", ("alpha",),
                "Пусть alpha на высоте 12 метров облетит пятиугольник со стороной 20 метров: первая сторона на "
                "восток, поворачивая налево, а потом приземлится там, где закончит.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(pentagon)[:4]]),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 12), *_legs("alpha", pentagon), _land("alpha")], "Alpha облетел пятиугольник и сел."),
-        _entry("pattern", "test", "pattern8-lv-bravo-rectangle-left", ("bravo",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("pattern", "dev", "pattern8-lv-bravo-rectangle-left", ("bravo",),
                "Bravo 10 metru augstumā lai izlido taisnstūri: 40 metrus uz austrumiem, 15 metrus platu, griežoties "
                "pa kreisi; beigās lai atgriežas mājās.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(rectangle)[:3]]),
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 10), *_legs("bravo", rectangle), _rtl("bravo")],
                "Bravo izlidoja taisnstūri un atgriezās mājās."),
-        _entry("pattern", "test", "pattern8-charlie-ring-east-ccw", ("charlie",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("pattern", "dev", "pattern8-charlie-ring-east-ccw", ("charlie",),
                "Fly charlie 30 m east at 12 m, circle that spot once counter-clockwise at a 12 m radius, then "
                "bring it home.",
                lambda c, ev: _all(*(visited(ev, "charlie", [c.point("charlie", n, e)]) for n, e in ring),
@@ -3063,14 +3104,16 @@ def _eighth_test_half() -> list[CorpusEntry]:
                "Charlie circled the spot 30 m east and came home."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
         # alpha from charlie or charlie from alpha, 10 m apart, so that a drone placed from itself misses)
-        _entry("placement", "test", "place8-uk-alpha-above-charlie", ("alpha", "charlie"),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("placement", "dev", "place8-uk-alpha-above-charlie", ("alpha", "charlie"),
                "Підніми charlie на 10 метрів і відведи його на 20 метрів на схід. Потім постав alpha точно над "
                "charlie, на 10 метрів вище за нього.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 20), alt=10), airborne_at(ev, "charlie", 10),
                                   at(ev, "alpha", *c.point("charlie", 0, 20), alt=20), airborne_at(ev, "alpha", 20)),
                lambda c: [_takeoff("charlie", 10), _move("charlie", 0, 20), _go("alpha", c.point("charlie", 0, 20), 20)],
                "Charlie висить 20 м на схід на 10 м, alpha над ним на 20 м."),
-        _entry("placement", "test", "place8-sl-alpha-sw-of-charlie", three,
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("placement", "dev", "place8-sl-alpha-sw-of-charlie", three,
                "Charlie naj vzleti na 14 metrov in tam lebdi. Nato postavi alpha 20 metrov jugozahodno od charlie, "
                "na isto višino, in naj tudi ona lebdi.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=14), airborne_at(ev, "charlie", 14),
@@ -3078,27 +3121,266 @@ def _eighth_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_takeoff("charlie", 14), _go("alpha", c.point("charlie", -d20, -d20), 14)],
                "Charlie lebdi na 14 m; alpha 20 m jugozahodno od njega na isti višini."),
-        _entry("placement", "test", "place8-charlie-north-of-parked-alpha", three,
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("placement", "dev", "place8-charlie-north-of-parked-alpha", three,
                "Leave alpha parked where it is and send charlie to hover 20 m north of it at 15 m.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 20, 0), alt=15), airborne_at(ev, "charlie", 15),
                                   never_armed(ev, "alpha"), never_armed(ev, "bravo")),
                lambda c: [_go("charlie", c.point("alpha", 20, 0), 15)], "Charlie hovers 20 m north of alpha at 15 m."),
         # language
-        _entry("language", "test", "lang8-ru-charlie-east-land", ("charlie",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("language", "dev", "lang8-ru-charlie-east-land", ("charlie",),
                "Подними charlie на 13 метров, пролети 35 метров на восток и посади его там.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 13), at(ev, "charlie", *c.point("charlie", 0, 35)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 13), _move("charlie", 0, 35), _land("charlie")], "Charlie пролетел 35 м на восток и сел."),
-        _entry("language", "test", "lang8-vi-alpha-climb-more", ("alpha",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("language", "dev", "lang8-vi-alpha-climb-more", ("alpha",),
                "Đưa alpha lên độ cao 9 mét, sau đó cho nó lên cao thêm 7 mét nữa và giữ nó ở đó.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=16), airborne_at(ev, "alpha", 16)),
                [_takeoff("alpha", 9), _move("alpha", up=7)], "Alpha đang ở độ cao 16 m."),
-        _entry("language", "test", "lang8-et-bravo-south-home", ("bravo",),
+        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        _entry("language", "dev", "lang8-et-bravo-south-home", ("bravo",),
                "Tõsta bravo 16 meetri kõrgusele, lennuta see 20 meetrit lõunasse ja too see siis koju tagasi ning "
                "maanda.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 16), visited(ev, "bravo", [c.point("bravo", -20, 0)]),
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 16), _move("bravo", -20, 0), _rtl("bravo")], "Bravo lendas 20 m lõunasse, tuli koju ja maandus."),
+    ]  # fmt: skip
+
+
+def _ninth_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-01 (ninth round), before any model ran on it: 3 a class; 22 of the
+    33 outside ``language`` in other languages than English (Chinese, Czech, Dutch, French, German, Italian,
+    Japanese, Korean, Polish, Portuguese, Romanian, Turkish), the ``language`` class's 3 in Japanese,
+    Chinese and Korean."""
+    three = DRONES
+    d10, d20, d25, d30 = (x / math.sqrt(2) for x in (10, 20, 25, 30))
+    square25 = _polygon_legs(4, 25.0, 0.0, right=True)  # north first, turning right
+    hexagon12 = _polygon_legs(6, 12.0, 90.0, right=True)  # first side east, turning right
+    # four lines of 40 m, the first north, 10 m apart, each next line east of the one before
+    lines = [(40.0, 0.0), (0.0, 10.0), (-40.0, 0.0), (0.0, 10.0), (40.0, 0.0), (0.0, 10.0), (-40.0, 0.0)]
+    return [
+        # single
+        _entry("single", "test", "single9-ja-bravo-hover", ("bravo",),
+               "bravoを15メートルまで上昇させて、そのままホバリングさせて。",
+               lambda c, ev: airborne_at(ev, "bravo", 15),
+               [_takeoff("bravo", 15)], "bravoは15 mでホバリング中。"),
+        _entry("single", "test", "single9-pt-alpha-hop", ("alpha",),
+               "Levanta o alpha a 9 metros e pousa-o logo a seguir no mesmo sítio.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 9), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 9), _land("alpha")], "O alpha subiu a 9 m e pousou."),
+        _entry("single", "test", "single9-charlie-park-in-air", ("charlie",),
+               "Send charlie straight up to 28 m and park it in the air.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=28), airborne_at(ev, "charlie", 28)),
+               [_takeoff("charlie", 28)], "Charlie hovers at 28 m over its pad."),
+        # multi
+        _entry("multi", "test", "multi9-de-pair-hop-bravo-stays", three,
+               "Lass alpha und charlie auf 12 Meter steigen und gleich wieder landen; bravo bleibt am Boden.",
+               lambda c, ev: _all(*(reached_alt(ev, d, 12) for d in ("alpha", "charlie")),
+                                  *(at(ev, d, *_home(c, d)) for d in ("alpha", "charlie")),
+                                  *(landed_disarmed(ev, d) for d in ("alpha", "charlie")), never_armed(ev, "bravo")),
+               [_takeoff("alpha", 12), _takeoff("charlie", 12), _land("alpha"), _land("charlie")],
+               "Alpha und charlie waren auf 12 m und sind gelandet; bravo blieb am Boden."),
+        _entry("multi", "test", "multi9-zh-west-and-north", three,
+               "让 alpha 向西飞 20 米，bravo 向北飞 20 米，高度都是 10 米，然后都悬停在那里。",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -20), alt=10), airborne_at(ev, "alpha", 10),
+                                  at(ev, "bravo", *c.point("bravo", 20, 0), alt=10), airborne_at(ev, "bravo", 10),
+                                  never_armed(ev, "charlie")),
+               [_move("alpha", 0, -20, alt=10), _move("bravo", 20, 0, alt=10)],
+               "alpha 在西边 20 米、bravo 在北边 20 米悬停，高度 10 米。"),
+        _entry("multi", "test", "multi9-bravo-down-charlie-stays", three,
+               "Put bravo at 10 m and charlie at 25 m over their own spots, then bring bravo back down; charlie "
+               "keeps hovering.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 10), at(ev, "bravo", *_home(c, "bravo")),
+                                  landed_disarmed(ev, "bravo"), airborne_at(ev, "charlie", 25),
+                                  at(ev, "charlie", *_home(c, "charlie"), alt=25), never_armed(ev, "alpha")),
+               [_takeoff("bravo", 10), _takeoff("charlie", 25), _land("bravo")],
+               "Bravo went up to 10 m and landed; charlie hovers at 25 m."),
+        # compound
+        _entry("compound", "test", "compound9-pl-bravo-east-south-land", ("bravo",),
+               "Wznieś bravo na 15 metrów, przeleć nim 40 metrów na wschód, potem 10 metrów na południe i tam "
+               "wyląduj.",
+               lambda c, ev: _all(rose_to(ev, "bravo", 15), visited(ev, "bravo", [c.point("bravo", 0, 40)]),
+                                  at(ev, "bravo", *c.point("bravo", -10, 40)), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 15), _move("bravo", 0, 40), _move("bravo", -10, 0), _land("bravo")],
+               "Bravo przeleciał 40 m na wschód i 10 m na południe, i wylądował."),
+        _entry("compound", "test", "compound9-tr-alpha-out-back-hover", ("alpha",),
+               "alpha'yı 10 metreye kaldır, 30 metre kuzeye uçur, sonra 30 metre güneye geri getir ve orada "
+               "havada beklet.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 30, 0)]),
+                                  at(ev, "alpha", *_home(c, "alpha"), alt=10), airborne_at(ev, "alpha", 10)),
+               [_takeoff("alpha", 10), _move("alpha", 30, 0), _move("alpha", -30, 0)],
+               "alpha 30 m kuzeye gidip döndü, 10 m'de bekliyor."),
+        _entry("compound", "test", "compound9-charlie-climb-between-home", ("charlie",),
+               "Charlie: take off to 8 m, go 20 m northeast, climb another 12 m, then come home.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", d20, d20)]), rose_to(ev, "charlie", 20),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 8), _move("charlie", d20, d20), _move("charlie", up=12), _rtl("charlie")],
+               "Charlie flew 20 m northeast, climbed to 20 m and came home."),
+        # conditional
+        _entry("conditional", "test", "cond9-fr-charlie-up-if-charged", ("charlie",),
+               "Si la batterie de charlie dépasse 60 %, fais-le monter à 20 m et qu'il reste là ; sinon ne fais rien.",
+               lambda c, ev: _all(airborne_at(ev, "charlie", 20), at(ev, "charlie", *_home(c, "charlie"), alt=20)),
+               [_battery("charlie"), _takeoff("charlie", 20)], "Charlie a 72 % : il est monté à 20 m.",
+               battery={"charlie": 72.0}),
+        _entry("conditional", "test", "cond9-ro-bravo-low-lands-at-once", ("bravo",),
+               "Ridică bravo la 18 metri. Dacă bateria lui e sub 40 %, aterizează-l imediat; altfel trimite-l 25 "
+               "de metri spre vest și lasă-l acolo.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 18), at(ev, "bravo", *_home(c, "bravo")),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 18), _battery("bravo"), _land("bravo")],
+               "Bravo are 35 %, așa că a aterizat imediat.", battery={"bravo": 35.0}),
+        _entry("conditional", "test", "cond9-alpha-far-or-near", ("alpha",),
+               "If alpha has at least 80 % battery, fly it 50 m south at 15 m and land there; with less, only "
+               "20 m south, and land there too.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -20, 0)), landed_disarmed(ev, "alpha"),
+                                  stayed_within(ev, c, "alpha", 30)),
+               [_battery("alpha"), _move("alpha", -20, 0, alt=15), _land("alpha")],
+               "Alpha has 65 %, so it flew 20 m south and landed.", battery={"alpha": 65.0}),
+        # formation
+        _entry("formation", "test", "form9-pt-line-north-hover", three,
+               "Coloca os três drones em linha, a 10 metros uns dos outros, a 20 metros de altura, 40 metros a "
+               "norte de onde estão, e deixa-os pairar.",
+               lambda c, ev: formation_at(c, ev, three, 20, 10, 40, 0),
+               [_formation(three, "line", 20, 10, north=40)], "Os três pairam em linha 40 m a norte, a 20 m."),
+        _entry("formation", "test", "form9-ko-pair-column-overhead", ("alpha", "bravo"),
+               "alpha와 bravo를 8미터 간격으로 세로로 줄지어 12미터 높이에 세우고, 지금 위치 그대로 떠 있게 해.",
+               lambda c, ev: formation_at(c, ev, ("alpha", "bravo"), 12, 8, 0, 0),
+               [_formation(("alpha", "bravo"), "column", 12, 8)], "alpha와 bravo가 12 m에서 8 m 간격으로 떠 있음."),
+        _entry("formation", "test", "form9-triangle-west-land", three,
+               "Fly all three in a triangle, 15 m on each side, at 12 m, 30 m west of here, then land them there.",
+               lambda c, ev: landed_formation_at(c, ev, three, 15, 0, -30),
+               [_formation(three, "circle", 12, 15, east=-30), *(_land(d) for d in three)],
+               "The three flew a 15 m triangle 30 m west and landed."),
+        # relative
+        _entry("relative", "test", "rel9-it-bravo-south-lower", ("bravo",),
+               "Porta bravo a 20 metri, poi spostalo 25 metri a sud e abbassalo di 8 metri, e lascialo lì.",
+               lambda c, ev: _all(rose_to(ev, "bravo", 20), at(ev, "bravo", *c.point("bravo", -25, 0), alt=12),
+                                  airborne_at(ev, "bravo", 12)),
+               [_takeoff("bravo", 20), _move("bravo", -25, 0, up=-8)], "Bravo è 25 m a sud, a 12 m."),
+        _entry("relative", "test", "rel9-nl-charlie-west-twice", ("charlie",),
+               "Laat charlie opstijgen tot 10 meter, vlieg 15 meter naar het westen en daarna nog eens 15 meter, "
+               "en laat hem daar hangen.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -30), alt=10), airborne_at(ev, "charlie", 10)),
+               [_takeoff("charlie", 10), _move("charlie", 0, -15), _move("charlie", 0, -15)],
+               "Charlie hangt 30 m naar het westen op 10 m."),
+        _entry("relative", "test", "rel9-alpha-sw-then-back-ne", ("alpha",),
+               "Alpha to 12 m, then 30 m south-west, then 10 m back north-east, and hover.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -d30, -d30)]),
+                                  at(ev, "alpha", *c.point("alpha", -d20, -d20), alt=12), airborne_at(ev, "alpha", 12)),
+               [_takeoff("alpha", 12), _move("alpha", -d30, -d30), _move("alpha", d10, d10)],
+               "Alpha hovers 20 m south-west of its pad at 12 m."),
+        # question
+        _entry("question", "test", "ask9-ja-fullest", three,
+               "一番バッテリーが残っているドローンはどれ？何パーセント？飛ばさないで。",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 91, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "一番多いのは bravo: 91 %。",
+               battery={"alpha": 62.0, "bravo": 91.0, "charlie": 70.0}),
+        _entry("question", "test", "ask9-pl-charlie-enough", three,
+               "Ile baterii ma charlie? Czy to wystarczy, żeby wystartował? Nic nie uruchamiaj.",
+               lambda c, ev: _all(answer_mentions_number(ev, 27, 1), nobody_armed(ev)),
+               [("fleet_status", {})], "Charlie ma 27 %: za mało do startu (30 %).",
+               battery={"alpha": 80.0, "bravo": 75.0, "charlie": 27.0}),
+        _entry("question", "test", "ask9-alpha-and-charlie-figures", three,
+               "What battery do alpha and charlie have? Give me each figure; nothing flies.",
+               lambda c, ev: _all(answer_mentions_number(ev, 58, 1), answer_mentions_number(ev, 84, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Alpha 58 %, charlie 84 %.",
+               battery={"alpha": 58.0, "bravo": 66.0, "charlie": 84.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
+        # 2 m the lowest altitude)
+        _entry("refusal", "test", "refuse9-tr-bravo-2km-west", ("bravo",),
+               "bravo'yu 15 metre yükseklikte 2 kilometre batıya uçur.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("bravo", 0, -2000, alt=15)], "The gateway refused: 2 km is beyond the 1000 m limit."),
+        _entry("refusal", "test", "refuse9-de-charlie-130m", ("charlie",),
+               "Schick charlie auf 130 Meter Höhe.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "charlie", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("charlie", 130)], "The gateway refused: 130 m is above the 120 m altitude limit."),
+        _entry("refusal", "test", "refuse9-alpha-drained", ("alpha",),
+               "Take alpha up to 15 m and fly it 20 m east.",
+               lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "alpha"), answer_reports_refusal(ev)),
+               [_takeoff("alpha", 15), _move("alpha", 0, 20)],
+               "The gateway refused: alpha's battery (18 %) is below the 30 % to take off.", battery={"alpha": 18.0}),
+        # units
+        _entry("units", "test", "units9-ro-bravo-feet-km", ("bravo",),
+               "Ridică bravo la 50 de picioare, apoi du-l 0,04 km spre est și lasă-l acolo.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, 40), alt=50 * FT),
+                                  airborne_at(ev, "bravo", 50 * FT)),
+               [_takeoff("bravo", 50 * FT), _move("bravo", 0, 40)], "Bravo plutește 40 m spre est, la 15,2 m."),
+        _entry("units", "test", "units9-cs-charlie-yards-land", ("charlie",),
+               "Vzlétni s charlie do 12 metrů, přeleť 30 yardů na sever a přistaň.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 12), at(ev, "charlie", *c.point("charlie", 30 * YD, 0)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), _move("charlie", 30 * YD, 0), _land("charlie")],
+               "Charlie přeletěl 30 yardů (27 m) na sever a přistál."),
+        _entry("units", "test", "units9-alpha-feet-yards-se", ("alpha",),
+               "Alpha: 60 ft up, then 25 yards south-east, and hover there.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -25 * YD / math.sqrt(2), 25 * YD / math.sqrt(2)),
+                                     alt=60 * FT), airborne_at(ev, "alpha", 60 * FT)),
+               [_takeoff("alpha", 60 * FT), _move("alpha", -25 * YD / math.sqrt(2), 25 * YD / math.sqrt(2))],
+               "Alpha hovers 25 yd (23 m) south-east at 60 ft (18.3 m)."),
+        # pattern
+        _entry("pattern", "test", "pattern9-de-alpha-square-right", ("alpha",),
+               "alpha soll in 10 Metern Höhe ein Quadrat mit 25 Meter Seitenlänge fliegen, erste Seite nach "
+               "Norden, rechts herum, und danach landen.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(square25)[:3]]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), *_legs("alpha", square25), _land("alpha")], "Alpha flog das Quadrat und landete."),
+        _entry("pattern", "test", "pattern9-zh-bravo-hexagon-home", ("bravo",),
+               "让 bravo 在 15 米高度飞一个边长 12 米的六边形，第一条边朝东，向右转，飞完后返航。",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(hexagon12)[:5]]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 15), *_legs("bravo", hexagon12), _rtl("bravo")], "bravo 飞完六边形并返航。"),
+        _entry("pattern", "test", "pattern9-charlie-four-lines-east", ("charlie",),
+               "Survey with charlie at 15 m: 4 lines of 40 m, 10 m apart, the first line north, each next line "
+               "east of the last, then bring it home.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(lines)]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 15), *_legs("charlie", lines), _rtl("charlie")],
+               "Charlie flew the four lines and came home."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
+        # alpha from charlie or charlie from alpha, 10 m apart, so that a drone placed from itself misses)
+        _entry("placement", "test", "place9-fr-charlie-east-of-alpha", three,
+               "Fais décoller alpha à 12 m et laisse-le en l'air. Ensuite envoie charlie 15 m à l'est d'alpha, à "
+               "la même hauteur.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=12), airborne_at(ev, "alpha", 12),
+                                  at(ev, "charlie", *c.point("alpha", 0, 15), alt=12), airborne_at(ev, "charlie", 12),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_takeoff("alpha", 12), _go("charlie", c.point("alpha", 0, 15), 12)],
+               "Alpha est à 12 m ; charlie est 15 m à l'est d'alpha, à 12 m."),
+        _entry("placement", "test", "place9-ko-alpha-north-of-charlie", three,
+               "charlie 북쪽 25미터 지점으로 alpha를 보내서 10미터 높이에서 떠 있게 해. charlie는 그대로 둬.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("charlie", 25, 0), alt=10), airborne_at(ev, "alpha", 10),
+                                  never_armed(ev, "charlie"), never_armed(ev, "bravo")),
+               lambda c: [_go("alpha", c.point("charlie", 25, 0), 10)], "alpha는 charlie 북쪽 25 m, 10 m 높이에 있음."),
+        _entry("placement", "test", "place9-alpha-north-of-moved-charlie", three,
+               "Fly charlie 30 m east at 12 m. Then put alpha 10 m north of where charlie is, at the same height.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 30), alt=12), airborne_at(ev, "charlie", 12),
+                                  at(ev, "alpha", *c.point("charlie", 10, 30), alt=12), airborne_at(ev, "alpha", 12),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_move("charlie", 0, 30, alt=12), _go("alpha", c.point("charlie", 10, 30), 12)],
+               "Charlie hovers 30 m east at 12 m; alpha 10 m north of it."),
+        # language
+        _entry("language", "test", "lang9-ja-charlie-north-land", ("charlie",),
+               "charlieを12メートルまで上げて、北へ30メートル飛ばしてから、そこに着陸させて。",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 12), at(ev, "charlie", *c.point("charlie", 30, 0)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), _move("charlie", 30, 0), _land("charlie")], "charlieは北へ30 m飛んで着陸した。"),
+        _entry("language", "test", "lang9-zh-alpha-southwest-land", ("alpha",),
+               "把 alpha 升到 14 米，向西南飞 25 米，然后在那里降落。",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 14), at(ev, "alpha", *c.point("alpha", -d25, -d25)),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 14), _move("alpha", -d25, -d25), _land("alpha")], "alpha 向西南飞了 25 米并降落。"),
+        _entry("language", "test", "lang9-ko-bravo-east-hover", ("bravo",),
+               "bravo를 16미터로 올리고 동쪽으로 20미터 이동한 다음 거기서 계속 떠 있게 해.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, 20), alt=16), airborne_at(ev, "bravo", 16)),
+               [_takeoff("bravo", 16), _move("bravo", 0, 20)], "bravo는 동쪽 20 m, 16 m 높이에 떠 있음."),
     ]  # fmt: skip
 
 
@@ -3122,7 +3404,8 @@ def corpus() -> list[CorpusEntry]:
         *_fifth_round(),
         *_sixth_round(),
         *_seventh_round(),
-        *_eighth_test_half(),
+        *_eighth_round(),
+        *_ninth_test_half(),
     ]
 
 
