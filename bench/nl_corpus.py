@@ -93,8 +93,8 @@ the 33 outside the ``language`` class are in Bulgarian, Estonian, Indonesian, La
 Slovenian, Spanish, Ukrainian or Vietnamese (Cyrillic and Vietnamese script among them), spread over the
 11 classes, and the ``language`` class's 3 in Russian, Vietnamese and Estonian. Only the harness
 self-check (the scripted ideal plan) has run on them: 36 of 36 passed. That leaves 339 dev and 36 test.
-Later on 2026-12-01 (eighth round) EVERY test entry (36, ``_eighth_round``) was moved to dev, each marked
-"moved to dev on 2026-12-01, eighth round": the test half had been measured (3 runs of the 1.5B model)
+On 2026-12-02 (eighth round) EVERY test entry (36, ``_eighth_round``) was moved to dev, each marked
+"moved to dev on 2026-12-02, eighth round": the test half had been measured (3 runs of the 1.5B model)
 and its figures were known to whoever works on the host, so it no longer measured requests nobody tuned
 for. A fresh test half took its place (``_ninth_test_half``): 36 new requests, 3 a class, written before
 any model ran on them, in new wordings and shapes within each class (not rewordings of dev entries): 22 of
@@ -2865,7 +2865,7 @@ def _eighth_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-01 (eighth round), before any model ran on it: 3 a class; 22 of
     the 33 outside ``language`` in other languages than English (Bulgarian, Estonian, Indonesian, Latvian,
     Lithuanian, Russian, Slovenian, Spanish, Ukrainian, Vietnamese), the ``language`` class's 3 in Russian,
-    Vietnamese and Estonian; all of it moved to dev on 2026-12-01 (eighth round), once its figures had been
+    Vietnamese and Estonian; all of it moved to dev on 2026-12-02 (eighth round), once its figures had been
     measured."""
     three = DRONES
     d20, d25, d30 = 20 / math.sqrt(2), 25 / math.sqrt(2), 30 / math.sqrt(2)
@@ -2878,32 +2878,32 @@ def _eighth_round() -> list[CorpusEntry]:
                  (-12.0, 0.0)]  # fmt: skip
     return [
         # single
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("single", "dev", "single8-ru-bravo-hover", ("bravo",),
                "Подними bravo на 18 метров и пусть висит там, пока я не скажу.",
                lambda c, ev: airborne_at(ev, "bravo", 18),
                [_takeoff("bravo", 18)], "Bravo висит на 18 м."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("single", "dev", "single8-id-charlie-up-down", ("charlie",),
                "Terbangkan charlie setinggi 11 meter, lalu langsung daratkan lagi di tempat yang sama.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 11), at(ev, "charlie", *_home(c, "charlie")),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 11), _land("charlie")], "Charlie naik ke 11 m lalu mendarat lagi."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("single", "dev", "single8-alpha-up-then-lower", ("alpha",),
                "Climb alpha to 35 m, then bring it down to 12 m and keep it there.",
                lambda c, ev: _all(rose_to(ev, "alpha", 35), at(ev, "alpha", *_home(c, "alpha"), alt=12),
                                   airborne_at(ev, "alpha", 12)),
                [_takeoff("alpha", 35), _move("alpha", alt=12)], "Alpha went up to 35 m and now holds 12 m."),
         # multi
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("multi", "dev", "multi8-uk-three-heights", three,
                "Підніми alpha на 10 метрів, bravo на 20 метрів, а charlie на 30 метрів, і нехай усі три зависнуть там.",
                lambda c, ev: _all(airborne_at(ev, "alpha", 10), airborne_at(ev, "bravo", 20),
                                   airborne_at(ev, "charlie", 30)),
                [_takeoff("alpha", 10), _takeoff("bravo", 20), _takeoff("charlie", 30)],
                "Alpha висить на 10 м, bravo на 20 м, charlie на 30 м."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("multi", "dev", "multi8-sl-pair-east-charlie-ground", three,
                "Alpha in bravo naj poletita 20 metrov proti vzhodu na višini 12 metrov in tam ostaneta v zraku; "
                "charlie naj ostane na tleh.",
@@ -2911,7 +2911,7 @@ def _eighth_round() -> list[CorpusEntry]:
                                   *(airborne_at(ev, d, 12) for d in ("alpha", "bravo")), never_armed(ev, "charlie")),
                [_move("alpha", 0, 20, alt=12), _move("bravo", 0, 20, alt=12)],
                "Alpha in bravo lebdita 20 m vzhodno na 12 m; charlie je na tleh."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("multi", "dev", "multi8-opposite-ways-land", three,
                "Bravo goes 25 m north and charlie 25 m south, both at 14 m, and then both land right there. "
                "Leave alpha alone.",
@@ -2921,7 +2921,7 @@ def _eighth_round() -> list[CorpusEntry]:
                [_move("bravo", 25, 0, alt=14), _move("charlie", -25, 0, alt=14), _land("bravo"), _land("charlie")],
                "Bravo landed 25 m north and charlie 25 m south; alpha stayed down."),
         # compound
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("compound", "dev", "compound8-lt-alpha-two-legs-home", ("alpha",),
                "Pakelk alpha į 10 metrų aukštį, nuskraidink ją 30 metrų į šiaurę, tada 30 metrų į rytus, o tada "
                "grąžink namo ir nutupdyk.",
@@ -2929,14 +2929,14 @@ def _eighth_round() -> list[CorpusEntry]:
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), _move("alpha", 30, 0), _move("alpha", 0, 30), _rtl("alpha")],
                "Alpha nuskrido abi atkarpas, grįžo namo ir nusileido."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("compound", "dev", "compound8-bravo-drop-midway", ("bravo",),
                "Bravo: up to 20 m, 15 m west, then drop to 8 m right there, another 15 m west, and hover at the end.",
                lambda c, ev: _all(rose_to(ev, "bravo", 20), visited(ev, "bravo", [c.point("bravo", 0, -15)]),
                                   at(ev, "bravo", *c.point("bravo", 0, -30), alt=8), airborne_at(ev, "bravo", 8)),
                [_takeoff("bravo", 20), _move("bravo", 0, -15), _move("bravo", alt=8), _move("bravo", 0, -15)],
                "Bravo hovers 30 m west at 8 m."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("compound", "dev", "compound8-bg-charlie-half-back-land", ("charlie",),
                "Издигни charlie на 14 метра, прелети с него 40 метра на юг, после го върни половината път обратно "
                "и го приземи там.",
@@ -2945,7 +2945,7 @@ def _eighth_round() -> list[CorpusEntry]:
                [_takeoff("charlie", 14), _move("charlie", -40, 0), _move("charlie", 20, 0), _land("charlie")],
                "Charlie прелетя 40 м на юг, върна се 20 м и кацна."),
         # conditional
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("conditional", "dev", "cond8-lv-bravo-short-hop-if-low", ("bravo",),
                "Ja bravo akumulatora līmenis ir vismaz 50 %, aizlido ar to 30 metrus uz ziemeļiem 12 metru "
                "augstumā; citādi tikai pacel to 5 metrus augstu un nosēdini atpakaļ.",
@@ -2953,7 +2953,7 @@ def _eighth_round() -> list[CorpusEntry]:
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_battery("bravo"), _takeoff("bravo", 5), _land("bravo")],
                "Bravo ir 44 %, tāpēc tas tikai pacēlās līdz 5 m un nosēdās.", battery={"bravo": 44.0}),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("conditional", "dev", "cond8-et-alpha-low-goes-home", ("alpha",),
                "Tõsta alpha 12 meetri kõrgusele ja lennuta see 20 meetrit põhja. Kui selle aku on siis alla 45 %, "
                "saada see koju; muidu jäta see sinna õhku.",
@@ -2961,7 +2961,7 @@ def _eighth_round() -> list[CorpusEntry]:
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 12), _move("alpha", 20, 0), _battery("alpha"), _rtl("alpha")],
                "Alpha aku oli 38 %, nii et see lendas koju ja maandus.", battery={"alpha": 38.0}),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("conditional", "dev", "cond8-fuller-of-bravo-charlie-east", three,
                "Whichever of bravo and charlie has more battery left flies 30 m east at 12 m and hovers there; the "
                "other one stays on the ground, and so does alpha.",
@@ -2971,21 +2971,21 @@ def _eighth_round() -> list[CorpusEntry]:
                "Charlie (81 %) hovers 30 m east at 12 m; bravo (55 %) and alpha stay down.",
                battery={"alpha": 90.0, "bravo": 55.0, "charlie": 81.0}),
         # formation
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("formation", "dev", "form8-ru-column-east-land", three,
                "Выстрой все три дрона в колонну с интервалом 12 метров на высоте 15 метров, в 30 метрах к востоку "
                "от того места, где они сейчас, а потом посади их там.",
                lambda c, ev: landed_formation_at(c, ev, three, 24, 0, 30),
                [_formation(three, "column", 15, 12, east=30), *(_land(d) for d in three)],
                "Три дрона встали колонной в 30 м к востоку и сели."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("formation", "dev", "form8-id-pair-northwest", ("alpha", "charlie"),
                "Terbangkan alpha dan charlie berdampingan dengan jarak 16 meter, pada ketinggian 18 meter, 25 meter "
                "ke arah barat laut dari posisi mereka sekarang, lalu biarkan keduanya melayang di sana.",
                lambda c, ev: formation_at(c, ev, ("alpha", "charlie"), 18, 16, d25, -d25),
                [_formation(("alpha", "charlie"), "line", 18, 16, north=d25, east=-d25)],
                "Alpha dan charlie melayang berdampingan 25 m ke barat laut pada 18 m."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("formation", "dev", "form8-wedge-feet-overhead", three,
                "Put the three drones in a V, 40 ft between neighbours, 60 ft up, right above where they are now, "
                "and hold them there.",
@@ -2993,13 +2993,13 @@ def _eighth_round() -> list[CorpusEntry]:
                [_formation(three, "wedge", 60 * FT, 40 * FT)],
                "The three hold a V at 60 ft (18.3 m), 40 ft (12.2 m) apart."),
         # relative
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("relative", "dev", "rel8-sl-bravo-se-and-up", ("bravo",),
                "Premakni bravo 20 metrov proti jugovzhodu in ga hkrati dvigni za 6 metrov; pred tem naj vzleti na "
                "10 metrov. Nato naj tam lebdi.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", -d20, d20), alt=16), airborne_at(ev, "bravo", 16)),
                [_takeoff("bravo", 10), _move("bravo", -d20, d20, up=6)], "Bravo lebdi 20 m jugovzhodno na 16 m."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("relative", "dev", "rel8-vi-charlie-ne-then-lower", ("charlie",),
                "Cho charlie bay 30 mét về phía đông bắc ở độ cao 12 mét, sau đó hạ độ cao xuống còn 6 mét và giữ "
                "nguyên ở đó.",
@@ -3007,7 +3007,7 @@ def _eighth_round() -> list[CorpusEntry]:
                                   airborne_at(ev, "charlie", 6)),
                [_move("charlie", d30, d30, alt=12), _move("charlie", alt=6)],
                "Charlie đang lơ lửng 30 m về phía đông bắc, ở độ cao 6 m."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("relative", "dev", "rel8-alpha-third-back", ("alpha",),
                "Take alpha to 15 m, fly it 60 m north, then bring it a third of that distance back towards home and "
                "let it hover.",
@@ -3015,20 +3015,20 @@ def _eighth_round() -> list[CorpusEntry]:
                                   at(ev, "alpha", *c.point("alpha", 40, 0), alt=15), airborne_at(ev, "alpha", 15)),
                [_takeoff("alpha", 15), _move("alpha", 60, 0), _move("alpha", -20, 0)], "Alpha hovers 40 m north at 15 m."),
         # question
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("question", "dev", "ask8-uk-lowest-charge", three,
                "У якого дрона найменше заряду і скільки саме відсотків у нього лишилося? Нічого не запускай.",
                lambda c, ev: _all(answer_says(ev, r"\bcharlie\b", "charlie"), answer_mentions_number(ev, 41, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "Найменше в charlie: 41 %.",
                battery={"alpha": 77.0, "bravo": 58.0, "charlie": 41.0}),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("question", "dev", "ask8-et-alpha-charge-anyone-flying", three,
                "Kas mõni droon on praegu õhus? Ütle mulle ka, kui palju akut alphal alles on. Ära midagi õhku saada.",
                lambda c, ev: _all(answer_mentions_number(ev, 69, 1), nobody_armed(ev)),
                [("fleet_status", {})], "Ükski droon ei ole õhus; alphal on 69 %.",
                battery={"alpha": 69.0, "bravo": 83.0, "charlie": 74.0}),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("question", "dev", "ask8-which-below-half", three,
                "Are all three drones above 50 % battery? Tell me which ones are not. Don't launch anything.",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 46, 1),
@@ -3037,19 +3037,19 @@ def _eighth_round() -> list[CorpusEntry]:
                battery={"alpha": 72.0, "bravo": 46.0, "charlie": 63.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude)
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("refusal", "dev", "refuse8-ru-alpha-450-feet", ("alpha",),
                "Подними alpha на высоту 450 футов.",
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "alpha", c.max_alt_m),
                                   answer_reports_refusal(ev)),
                [_takeoff("alpha", 450 * FT)], "The gateway refused: 450 ft (137 m) is above the 120 m altitude limit."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("refusal", "dev", "refuse8-lt-charlie-far-east", ("charlie",),
                "Nuskraidink charlie 1,3 kilometro į rytus 25 metrų aukštyje.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "charlie", c.max_distance_m), answer_reports_refusal(ev)),
                [_move("charlie", 0, 1300, alt=25)], "The gateway refused: 1.3 km is beyond the 1000 m limit."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("refusal", "dev", "refuse8-all-three-one-low", three,
                "Launch all three to 12 m and keep them up there.",
                lambda c, ev: _all(airborne_at(ev, "alpha", 12), airborne_at(ev, "bravo", 12), refusal_seen(ev, "battery"),
@@ -3058,20 +3058,20 @@ def _eighth_round() -> list[CorpusEntry]:
                "Alpha and bravo hover at 12 m; charlie was refused: its battery (22 %) is below the 30 % to take off.",
                battery={"alpha": 80.0, "bravo": 75.0, "charlie": 22.0}),
         # units
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("units", "dev", "units8-bg-alpha-feet-yards", ("alpha",),
                "Издигни alpha на 45 фута, после я придвижи 100 ярда на север и я остави да виси там.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 100 * YD, 0), alt=45 * FT),
                                   airborne_at(ev, "alpha", 45 * FT)),
                [_takeoff("alpha", 45 * FT), _move("alpha", 100 * YD, 0)], "Alpha виси на 100 ярда северно, на 45 фута."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("units", "dev", "units8-es-bravo-km-feet-down", ("bravo",),
                "Sube a bravo a 12 metros, llévalo 0,05 km al sur y después bájalo 15 pies; déjalo ahí en el aire.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", -50, 0), alt=12 - 15 * FT),
                                   airborne_at(ev, "bravo", 12 - 15 * FT)),
                [_takeoff("bravo", 12), _move("bravo", -50, 0), _move("bravo", up=-15 * FT)],
                "Bravo flota 50 m al sur, a 7,4 m."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("units", "dev", "units8-charlie-cm-miles", ("charlie",),
                "Charlie: climb to 1500 cm, then fly 0.02 miles west and land there.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 15), at(ev, "charlie", *c.point("charlie", 0, -0.02 * MI)),
@@ -3079,14 +3079,14 @@ def _eighth_round() -> list[CorpusEntry]:
                [_takeoff("charlie", 15), _move("charlie", 0, -0.02 * MI), _land("charlie")],
                "Charlie climbed to 15 m, flew 0.02 mi (32 m) west and landed."),
         # pattern
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("pattern", "dev", "pattern8-ru-alpha-pentagon-left", ("alpha",),
                "Пусть alpha на высоте 12 метров облетит пятиугольник со стороной 20 метров: первая сторона на "
                "восток, поворачивая налево, а потом приземлится там, где закончит.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(pentagon)[:4]]),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 12), *_legs("alpha", pentagon), _land("alpha")], "Alpha облетел пятиугольник и сел."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("pattern", "dev", "pattern8-lv-bravo-rectangle-left", ("bravo",),
                "Bravo 10 metru augstumā lai izlido taisnstūri: 40 metrus uz austrumiem, 15 metrus platu, griežoties "
                "pa kreisi; beigās lai atgriežas mājās.",
@@ -3094,7 +3094,7 @@ def _eighth_round() -> list[CorpusEntry]:
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 10), *_legs("bravo", rectangle), _rtl("bravo")],
                "Bravo izlidoja taisnstūri un atgriezās mājās."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("pattern", "dev", "pattern8-charlie-ring-east-ccw", ("charlie",),
                "Fly charlie 30 m east at 12 m, circle that spot once counter-clockwise at a 12 m radius, then "
                "bring it home.",
@@ -3104,7 +3104,7 @@ def _eighth_round() -> list[CorpusEntry]:
                "Charlie circled the spot 30 m east and came home."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
         # alpha from charlie or charlie from alpha, 10 m apart, so that a drone placed from itself misses)
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("placement", "dev", "place8-uk-alpha-above-charlie", ("alpha", "charlie"),
                "Підніми charlie на 10 метрів і відведи його на 20 метрів на схід. Потім постав alpha точно над "
                "charlie, на 10 метрів вище за нього.",
@@ -3112,7 +3112,7 @@ def _eighth_round() -> list[CorpusEntry]:
                                   at(ev, "alpha", *c.point("charlie", 0, 20), alt=20), airborne_at(ev, "alpha", 20)),
                lambda c: [_takeoff("charlie", 10), _move("charlie", 0, 20), _go("alpha", c.point("charlie", 0, 20), 20)],
                "Charlie висить 20 м на схід на 10 м, alpha над ним на 20 м."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("placement", "dev", "place8-sl-alpha-sw-of-charlie", three,
                "Charlie naj vzleti na 14 metrov in tam lebdi. Nato postavi alpha 20 metrov jugozahodno od charlie, "
                "na isto višino, in naj tudi ona lebdi.",
@@ -3121,25 +3121,25 @@ def _eighth_round() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_takeoff("charlie", 14), _go("alpha", c.point("charlie", -d20, -d20), 14)],
                "Charlie lebdi na 14 m; alpha 20 m jugozahodno od njega na isti višini."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("placement", "dev", "place8-charlie-north-of-parked-alpha", three,
                "Leave alpha parked where it is and send charlie to hover 20 m north of it at 15 m.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 20, 0), alt=15), airborne_at(ev, "charlie", 15),
                                   never_armed(ev, "alpha"), never_armed(ev, "bravo")),
                lambda c: [_go("charlie", c.point("alpha", 20, 0), 15)], "Charlie hovers 20 m north of alpha at 15 m."),
         # language
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("language", "dev", "lang8-ru-charlie-east-land", ("charlie",),
                "Подними charlie на 13 метров, пролети 35 метров на восток и посади его там.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 13), at(ev, "charlie", *c.point("charlie", 0, 35)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 13), _move("charlie", 0, 35), _land("charlie")], "Charlie пролетел 35 м на восток и сел."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("language", "dev", "lang8-vi-alpha-climb-more", ("alpha",),
                "Đưa alpha lên độ cao 9 mét, sau đó cho nó lên cao thêm 7 mét nữa và giữ nó ở đó.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=16), airborne_at(ev, "alpha", 16)),
                [_takeoff("alpha", 9), _move("alpha", up=7)], "Alpha đang ở độ cao 16 m."),
-        # moved to dev on 2026-12-01, eighth round: the test half had been measured
+        # moved to dev on 2026-12-02, eighth round: the test half had been measured
         _entry("language", "dev", "lang8-et-bravo-south-home", ("bravo",),
                "Tõsta bravo 16 meetri kõrgusele, lennuta see 20 meetrit lõunasse ja too see siis koju tagasi ning "
                "maanda.",

@@ -209,7 +209,7 @@ EIGHTH_HALF_MOVED = frozenset({
 
 def test_halves_are_disjoint_and_stratified_by_class() -> None:
     """The dev half holds every entry written before the ninth test half (339, and the 36 of the eighth
-    test half, moved on 2026-12-01); the test half is the ninth (``_ninth_test_half``), 3 a class."""
+    test half, moved on 2026-12-02); the test half is the ninth (``_ninth_test_half``), 3 a class."""
     dev, test = select("dev"), select("test")
     assert not {e.id for e in dev} & {e.id for e in test}
     assert len(dev) + len(test) == len(corpus()) == len(select("all"))
@@ -223,7 +223,7 @@ def test_halves_are_disjoint_and_stratified_by_class() -> None:
 
 
 def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
-    """The rounds of 2026-11-29 to 2026-12-01: the 8 test entries seen while tuning, then the whole test
+    """The rounds of 2026-11-29 to 2026-12-02: the 8 test entries seen while tuning, then the whole test
     half (35) whose figures had informed a decision, then seven times the whole test half (36) once
     measured, moved to dev; the test half holds none of them."""
     first_round = {
