@@ -43,8 +43,9 @@ def by_script(text: str) -> str:
     Latin id ends before a Korean or Japanese particle written onto it ("alpha를", "bravoを")."""
     out, last = [], ""
     for c in text:
-        script = "" if not c.isalpha() else "LATIN" if c.isascii() else unicodedata.name(c, "?").split()[0]
-        out.append(" " + c if script and last and script.split("-")[0] != last.split("-")[0] else c)
+        name = "" if not c.isalpha() else "LATIN" if c.isascii() else unicodedata.name(c, "?").split()[0]
+        script = name.split("-")[0]  # KATAKANA-HIRAGANA (the long vowel mark) goes with either kana
+        out.append(" " + c if script and last and script != last else c)
         last = script
     return "".join(out)
 
