@@ -86,7 +86,7 @@ class AfterRefusal:
 
     name = "after_refusal"
     still_sent = frozenset(
-        {"land", "return_to_launch", "hold_position", "fleet_land", "fleet_return_to_launch", "fleet_hold"}
+        "land return_to_launch hold_position fleet_land fleet_return_to_launch fleet_hold".split()
     )
 
     def __call__(self, call: Call, turn: TurnState) -> Verdict:

@@ -31,13 +31,8 @@ GATEWAY_AGENT_PLACES_TOOL. exit status (one-shot): 0 planned and flown (refusals
 
 
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    parser = subparsers.add_parser(
-        "agent",
-        help=HELP,
-        description=HELP,
-        epilog=_EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+    parser = subparsers.add_parser("agent", help=HELP, description=HELP, epilog=_EPILOG,
+                                   formatter_class=argparse.RawDescriptionHelpFormatter)  # fmt: skip
     add_agent_arguments(parser)
     parser.set_defaults(func=run)
 
@@ -48,9 +43,7 @@ def add_agent_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--token", default=None, help="bearer token for /mcp")
     parser.add_argument("--endpoint", default=None, help="OpenAI-compatible base URL of the model")
     parser.add_argument("--model", default=None, help="model name at the endpoint")
-    parser.add_argument(
-        "--decoding", default=None, choices=DECODINGS, help="how the plan's schema is enforced"
-    )
+    parser.add_argument("--decoding", default=None, choices=DECODINGS, help="how the plan's schema is kept")
     parser.add_argument("--places-url", default=None, help="an MCP server that knows named places")
     parser.add_argument("--model-timeout", type=float, default=300.0, help="seconds per model request")
     parser.add_argument("--json", action="store_true", help="print events as JSON lines")

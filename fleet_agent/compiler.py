@@ -174,20 +174,15 @@ class Compiler:
             calls.append(Call("move_to_relative", args, step.drone))
         return calls
 
-    async def _move_from(
-        self, step: Move, north: float, east: float, up: float, alt: float | None
-    ) -> Compiled:
+    async def _move_from(self, step: Move, north: float, east: float, up: float,
+                         alt: float | None) -> Compiled:  # fmt: skip
         lat, lon = await self.origin(step.origin, step.drone)
         target = geometry.offset_position(lat, lon, north, east)
         if alt is None:
             alt = await self._height_from(step, up)
         calls, _ = await self._lift(step.drone, alt, 0.0)
-        args = {
-            "drone_id": step.drone,
-            "lat_deg": round(target[0], 7),
-            "lon_deg": round(target[1], 7),
-            "alt_m": alt,
-        }
+        args = {"drone_id": step.drone, "lat_deg": round(target[0], 7), "lon_deg": round(target[1], 7),
+                "alt_m": alt}  # fmt: skip
         return [*calls, Call("go_to_location", args, step.drone)]
 
     async def _height_from(self, step: Move, up: float) -> float:
@@ -237,8 +232,7 @@ class Compiler:
         north, east, _ = sum_legs(step.legs)
         args: dict[str, Any] = {
             "drone_ids": list(step.drones), "formation": gateway_formation(step.shape, len(step.drones)),
-            "alt_m": step.altitude.metres,
-            "spacing_m": step.spacing.metres,
+            "alt_m": step.altitude.metres, "spacing_m": step.spacing.metres,
         }  # fmt: skip
         if step.origin is not None and step.origin.kind != "here":
             lat, lon = await self.origin(step.origin, step.drones[0])
@@ -408,9 +402,7 @@ def chosen_steps(step: Choose, chosen: str) -> list[Any]:
 
 def with_drone(step: Any, drone: str) -> Any:
     """The step flown by ``drone`` (a formation's or a report's drones are left as written)."""
-    if hasattr(step, "drone"):
-        return step.model_copy(update={"drone": drone})
-    return step
+    return step.model_copy(update={"drone": drone}) if hasattr(step, "drone") else step
 
 
 def describe_state(drone: str, state: DroneState, readings: Sequence[str]) -> str:
@@ -418,9 +410,8 @@ def describe_state(drone: str, state: DroneState, readings: Sequence[str]) -> st
     parts = []
     for reading in readings:
         if reading == "battery":
-            parts.append(
-                "battery unknown" if state.battery_pct is None else f"battery {state.battery_pct:g} %"
-            )
+            battery = "unknown" if state.battery_pct is None else f"{state.battery_pct:g} %"
+            parts.append(f"battery {battery}")
         elif reading == "altitude" or (reading == "flying" and state.alt_m is not None):
             parts.append(f"altitude {state.alt_m or 0.0:.1f} m")
         elif reading == "position" and state.lat is not None and state.lon is not None:

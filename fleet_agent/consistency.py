@@ -11,10 +11,8 @@ from __future__ import annotations
 from typing import Any
 
 from fleet_agent import lexicon
-from fleet_agent.plan import Condition, Plan, Report, parse_plan
+from fleet_agent.plan import DRONE_FIELDS, Condition, Plan, Report, parse_plan
 from fleet_agent.units import Unit
-
-_DRONE_FIELDS = ("drone", "drones", "among")
 
 
 def gaps(request: str, fleet: list[str], plan: Plan) -> list[str]:
@@ -32,7 +30,7 @@ def read_plan(request: str, fleet: list[str], data: Any) -> tuple[Plan, list[str
     """The decoded reply as the plan the host compiles, and what it leaves out of the request (one note
     each): every rewrite the host makes before compiling, in its order. Raises the validation error of a
     plan that does not validate."""
-    data = climb_as_leg(as_request_says(request, split_formation(request, data)))
+    data = climb_as_leg(as_request_says(request, as_restated(split_formation(request, data))))
     plan = without_unasked(request, fleet, parse_plan(placed_by_name(request, fleet, data), fleet))
     return questions_of_fleet(request, fleet, plan), gaps(request, fleet, plan)
 
@@ -136,7 +134,7 @@ def _request_numbers(request: str, fleet: list[str]) -> list[float]:
 def _plan_drones(data: Any) -> set[str]:
     found: set[str] = set()
     for key, value in _items(data):
-        if key in _DRONE_FIELDS:
+        if key in DRONE_FIELDS:
             items = [value] if isinstance(value, str) else value or []
             found.update(v for v in items if isinstance(v, str))
     return found
@@ -198,11 +196,6 @@ def _fraction(value: Any, units: dict[float | None, set[Unit]]) -> bool:
     return isinstance(value, int | float) and 0 < value < 1 and value not in units and None in units
 
 
-#: what ends a clause of a request: a drone named after a distance in the same clause is where the
-#: distance is measured from
-_CLAUSE_ENDS = (". ", ", ", ";", "!", "?", "\n", "。", "、", "，", "；", "！", "？")
-
-
 def placed_by_name(request: str, fleet: list[str], data: Any) -> Any:
     """The decoded plan with the one move from ``here`` measured from the drone the request names after
     that move's distance, in the same clause, when that drone is nowhere in the plan ("25 m north of
@@ -215,7 +208,7 @@ def placed_by_name(request: str, fleet: list[str], data: Any) -> Any:
         return data
     other = next(iter(absent))
     distances = {leg["distance"].get("value") for leg in moves[0]["legs"] if _horizontal(leg)}
-    if any(_after_number(clause, other, distances) for clause in _clauses(request)):
+    if any(_after_number(clause, other, distances) for clause in lexicon.clauses(request)):
         moves[0]["origin"] = other
     return data
 
@@ -232,6 +225,42 @@ def climb_as_leg(data: Any) -> Any:
             step["altitude"] = step["legs"].pop(0)["distance"]
         seen.add(step.get("drone") if isinstance(step, dict) else None)
     return data
+
+
+def as_restated(data: Any) -> Any:
+    """The decoded plan with each leg of a move from where its drone is going the way the model's own
+    restatement (``in_english``) names for that leg's number, and a drone's first step, such a move at no
+    altitude (or 0 m) whose first leg's number the restatement gives with no direction, climbing to that
+    number instead ("Bravo flies to 20 meters, then 25 meters south" planned as 20 m north, then 25 m
+    south; "30 yards to the north" as 30 yards east: the 1.5B model, in five languages). A number the
+    restatement gives twice with different directions, or not at all, leaves its leg as written."""
+    if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
+        return data
+    stated = lexicon.stated_directions(str(data.get("in_english") or ""))
+    seen: set[Any] = set()
+    for k, step in enumerate(data["steps"]):
+        if _horizontal_move_from_here(step):
+            for leg in filter(_horizontal, step["legs"]):
+                ways = _ways(leg, stated)
+                leg["direction"] = ways.pop() if len(ways) == 1 and None not in ways else leg["direction"]
+            first = step.get("drone") not in seen and not (step.get("altitude") or {}).get("value")
+            if first and _horizontal(step["legs"][0]) and _ways(step["legs"][0], stated) == {None}:
+                data["steps"][k] = _climbing(step)
+        seen.add(step.get("drone") if isinstance(step, dict) else None)
+    return data
+
+
+def _ways(leg: Any, stated: list[tuple[float, str | None]]) -> set[str | None]:
+    """The directions the restatement gives after the leg's number (None: none)."""
+    return {way for value, way in stated if value == leg["distance"].get("value")}
+
+
+def _climbing(move: dict[str, Any]) -> dict[str, Any]:
+    """The move with its first leg's length as the altitude it flies at; with no leg left, a climb."""
+    move["altitude"] = move["legs"].pop(0)["distance"]
+    if move["legs"]:
+        return move
+    return {"action": "altitude", **{k: move.get(k) for k in ("drone", "altitude", "after")}}
 
 
 def _first_leg_a_climb(step: Any) -> bool:
@@ -259,13 +288,6 @@ def _origins(steps: list[Any]) -> set[str]:
     origins = [step.get("origin") for step in steps if isinstance(step, dict)]
     found = [origin.get("drone") if isinstance(origin, dict) else origin for origin in origins]
     return {origin for origin in found if isinstance(origin, str)}
-
-
-def _clauses(request: str) -> list[str]:
-    text = request
-    for end in _CLAUSE_ENDS:
-        text = text.replace(end, "\0")
-    return text.split("\0")
 
 
 def _after_number(clause: str, drone: str, distances: set[Any]) -> bool:
@@ -303,11 +325,8 @@ def split_formation(request: str, data: Any) -> Any:
 def _each_its_leg(step: Any, tokens: list[str]) -> list[tuple[str, Any]] | None:
     """The formation's drones, each with the leg whose distance follows its name in the request before
     the next drone's name; None when the step is not such a formation."""
-    if (
-        not isinstance(step, dict)
-        or step.get("action") != "formation"
-        or step.get("origin") not in (None, "here")
-    ):
+    formation = isinstance(step, dict) and step.get("action") == "formation"
+    if not formation or step.get("origin") not in (None, "here"):
         return None
     drones, legs = step.get("drones") or [], list(step.get("legs") or [])
     if len(drones) < 2 or len(legs) != len(drones) or not all(_horizontal(leg) for leg in legs):

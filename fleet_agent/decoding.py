@@ -60,11 +60,9 @@ class Planner:
     def __init__(self, model: ModelConfig, client: openai.AsyncOpenAI | None = None) -> None:
         self.model = model
         self.client = client or openai.AsyncOpenAI(
-            base_url=model.base_url,
-            api_key=model.api_key,
-            timeout=model.timeout_s,
+            base_url=model.base_url, api_key=model.api_key, timeout=model.timeout_s,
             max_retries=model.max_retries,
-        )
+        )  # fmt: skip
 
     async def plan(self, request: str, fleet: list[str], places: list[str] | None = None) -> PlanAttempt:
         """A plan for ``request``: one request to the model, and one repair round when the plan does not
@@ -109,12 +107,9 @@ class Planner:
 
     async def _complete(self, messages: list[dict[str, Any]], options: dict[str, Any], usage: Usage) -> str:
         response = await self.client.chat.completions.create(
-            model=self.model.model,
-            messages=messages,  # type: ignore[arg-type]
-            temperature=self.model.temperature,
-            max_tokens=self.model.max_tokens,
-            **options,
-        )
+            model=self.model.model, messages=messages,  # type: ignore[arg-type]
+            temperature=self.model.temperature, max_tokens=self.model.max_tokens, **options,
+        )  # fmt: skip
         if response.usage is not None:
             usage.add(response.usage.prompt_tokens, response.usage.completion_tokens)
         if not response.choices:

@@ -10,16 +10,10 @@ import math
 EARTH_RADIUS_M = 6_371_008.8
 
 #: unit vectors (north, east) of the compass directions a plan may name
-COMPASS = {
-    "north": (1.0, 0.0),
-    "south": (-1.0, 0.0),
-    "east": (0.0, 1.0),
-    "west": (0.0, -1.0),
-    "northeast": (math.sqrt(0.5), math.sqrt(0.5)),
-    "northwest": (math.sqrt(0.5), -math.sqrt(0.5)),
-    "southeast": (-math.sqrt(0.5), math.sqrt(0.5)),
-    "southwest": (-math.sqrt(0.5), -math.sqrt(0.5)),
-}
+_D = math.sqrt(0.5)
+COMPASS = {"north": (1.0, 0.0), "south": (-1.0, 0.0), "east": (0.0, 1.0), "west": (0.0, -1.0),
+           "northeast": (_D, _D), "northwest": (_D, -_D), "southeast": (-_D, _D),
+           "southwest": (-_D, -_D)}  # fmt: skip
 
 Offset = tuple[float, float]  # (north_m, east_m)
 

@@ -34,17 +34,10 @@ WAIT_TOOL = "monitor_flight"
 class AgentHost:
     """One chat model, one gateway (and optionally a server of named places)."""
 
-    def __init__(
-        self,
-        model: ModelConfig,
-        caller: ToolCaller,
-        tools: Sequence[ToolInfo],
-        *,
-        on_event: EventSink | None = None,
-        checks: list[Check] | None = None,
-        planner: Planner | None = None,
-        places: tuple[ToolCaller, str] | None = None,
-    ) -> None:
+    def __init__(self, model: ModelConfig, caller: ToolCaller, tools: Sequence[ToolInfo], *,
+                 on_event: EventSink | None = None, checks: list[Check] | None = None,
+                 planner: Planner | None = None,
+                 places: tuple[ToolCaller, str] | None = None) -> None:  # fmt: skip
         self.caller = caller
         self.tools = {t.name: t for t in tools}
         self.on_event = on_event
@@ -160,11 +153,8 @@ class AgentHost:
     async def _follow(self, caller: ToolCaller, call: Call, outcome: ToolOutcome) -> ToolOutcome:
         """An action still running after the gateway's capped wait, waited for to its end."""
         for _ in range(MAX_FOLLOW_WAITS):
-            if (
-                outcome.is_error
-                or (outcome.structured or {}).get("status") != "running"
-                or call.drone is None
-            ):
+            running = (outcome.structured or {}).get("status") == "running"
+            if outcome.is_error or not running or call.drone is None:
                 return outcome
             outcome = await caller.call_tool(WAIT_TOOL, {"drone_id": call.drone})
         return outcome
@@ -173,9 +163,8 @@ class AgentHost:
                 call_id: str | None = None) -> None:  # fmt: skip
         call_id = call_id or f"call_{next(self._ids)}"
         status = status or ("error" if outcome.is_error else "ok")
-        turn.tool_calls.append(
-            ToolCallRecord(call_id, call.tool, call.args, status, outcome.text, outcome.refusal)
-        )
+        record = ToolCallRecord(call_id, call.tool, call.args, status, outcome.text, outcome.refusal)
+        turn.tool_calls.append(record)
         self.emit("tool_result", id=call_id, name=call.tool, status=status, text=outcome.text,
                   refusal=None if outcome.refusal is None else vars(outcome.refusal))  # fmt: skip
 

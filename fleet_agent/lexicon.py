@@ -1,14 +1,15 @@
-"""The one place the host reads words of a request: units written after a number, and whether the request
-speaks of a drone's home. Words of the languages operators write in; a word matches a stem when it starts
-with it. A word read here only ever settles what the plan leaves open (a unit, an origin); the absence of
-a word changes nothing, so a request in a language the lexicon does not know is flown as the model
-planned it. Everything else the host reads without words (`fleet_agent.consistency`).
+"""The one place the host reads words: units written after a number, whether the request speaks of a
+drone's home, and the compass points of the model's own English restatement. Words of the languages
+operators write in; a word matches a stem when it starts with it. A word of the request read here only
+ever settles what the plan leaves open (a unit, an origin); the absence of a word changes nothing, so a
+request in a language the lexicon does not know is flown as the model planned it. Everything else the
+host reads without words (`fleet_agent.consistency`).
 """
 
 from __future__ import annotations
 
 import unicodedata
-from itertools import pairwise
+from itertools import pairwise, takewhile
 
 from fleet_agent.units import Unit
 
@@ -36,6 +37,42 @@ HOME_STEMS = (
     "heim", "zurück", "zuruck", "rück", "volv", "vuelv", "regres", "retorn", "ritorn", "rientr", "torn",
     "volta", "volte", "thuis", "terug",
 )  # fmt: skip
+
+
+#: what ends a clause of a text
+CLAUSE_ENDS = (". ", ", ", ";", "!", "?", "\n", "。", "、", "，", "；", "！", "？")
+
+
+def clauses(text: str) -> list[str]:
+    for end in CLAUSE_ENDS:
+        text = text.replace(end, "\0")
+    return text.split("\0")
+
+
+def stated_directions(text: str) -> list[tuple[float, str | None]]:
+    """Each number of an English text (the model's restatement of a request, ``in_english``) with the
+    compass direction named after it and before the next number of its clause ("30 yards to the
+    north-east": northeast), or None ("flies to 20 m")."""
+    found = []
+    for clause in clauses(text):
+        words = tokens(clause.lower())
+        for k, word in enumerate(words):
+            if (value := number(word)) is None:
+                continue
+            points = [p for p in map(_point, takewhile(lambda t: number(t) is None, words[k + 1 :])) if p]
+            joined = len(points) > 1 and points[0] in ("north", "south") and points[1] in ("east", "west")
+            found.append((value, points[0] + points[1] if joined else next(iter(points), None)))
+    return found
+
+
+def _point(word: str) -> str | None:
+    """The compass point a word starts with ("northeast", "westwards"), else None."""
+    for first in ("north", "south", "east", "west"):
+        if word.startswith(first):
+            rest = word[len(first) :] if first in ("north", "south") else ""
+            return first + next((p for p in ("east", "west") if rest.startswith(p)), "")
+    return None
+
 
 
 def by_script(text: str) -> str:

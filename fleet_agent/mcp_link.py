@@ -32,31 +32,23 @@ class ToolInfo:
 
 def tool_info_from_mcp(tool: Any) -> ToolInfo:
     annotations = getattr(tool, "annotations", None)
-    return ToolInfo(
-        name=tool.name,
-        description=tool.description or tool.name,
-        input_schema=dict(tool.input_schema or {}),
-        read_only=getattr(annotations, "read_only_hint", None) if annotations is not None else None,
-    )
+    read_only = getattr(annotations, "read_only_hint", None) if annotations is not None else None
+    return ToolInfo(tool.name, tool.description or tool.name, dict(tool.input_schema or {}), read_only)
 
 
 def outcome_from_result(result: Any) -> ToolOutcome:
     """An ``mcp.types.CallToolResult`` as a ToolOutcome (its text parts joined, its structured content)."""
     texts = [getattr(c, "text", "") for c in result.content or [] if getattr(c, "type", "") == "text"]
     structured = getattr(result, "structured_content", None)
-    return ToolOutcome(
-        text="\n".join(t for t in texts if t),
-        is_error=bool(getattr(result, "is_error", False)),
-        structured=dict(structured) if isinstance(structured, dict) else None,
-    )
+    structured = dict(structured) if isinstance(structured, dict) else None
+    return ToolOutcome("\n".join(t for t in texts if t), bool(getattr(result, "is_error", False)), structured)
 
 
 class McpLink:
     """An open MCP client session: list tools, call them with progress. Use as an async context manager."""
 
-    def __init__(
-        self, url: str, token: str | None = None, *, call_timeout_s: float = 300.0, mode: str = "auto"
-    ) -> None:
+    def __init__(self, url: str, token: str | None = None, *, call_timeout_s: float = 300.0,
+                 mode: str = "auto") -> None:  # fmt: skip
         self.url = url
         self.token = token
         self.call_timeout_s = call_timeout_s

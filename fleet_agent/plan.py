@@ -310,12 +310,8 @@ class Plan(Strict):
 
 def _ends_again(step: Any, previous: Any) -> bool:
     """``step`` is the landing or return ``previous`` already ends with."""
-    return (
-        isinstance(step, Land | ReturnHome)
-        and isinstance(previous, Takeoff | Altitude | Move | Pattern | Formation)
-        and step.drone in getattr(previous, "drones", [getattr(previous, "drone", None)])
-        and previous.after == step.action
-    )
+    ending = isinstance(step, Land | ReturnHome) and getattr(previous, "after", None) == step.action
+    return ending and step.drone in getattr(previous, "drones", [getattr(previous, "drone", None)])
 
 
 def _repeats(step: Any, heights: dict[str, float], previous: Any) -> TypeGuard[Takeoff | Altitude]:
@@ -347,12 +343,8 @@ def _same_climb(takeoff: Takeoff | Altitude, previous: Any) -> bool:
 
 
 def _stays_at(previous: Altitude | Move, takeoff: Takeoff | Altitude) -> bool:
-    return (
-        previous.drone == takeoff.drone
-        and previous.after == "stay"
-        and previous.altitude is not None
-        and previous.altitude.metres == takeoff.altitude.metres
-    )
+    height = previous.altitude.metres if previous.altitude is not None else None
+    return previous.drone == takeoff.drone and previous.after == "stay" and height == takeoff.altitude.metres
 
 
 def known_drone(value: str, info: ValidationInfo) -> str:
@@ -373,7 +365,7 @@ def parse_plan(data: Any, fleet: list[str]) -> Plan:
     return Plan.model_validate(data, context={"fleet": fleet})
 
 
-_DRONE_FIELDS = ("drone", "drones", "among")
+DRONE_FIELDS = ("drone", "drones", "among")
 
 
 #: the one-word origins of a move besides the fleet's ids
@@ -385,7 +377,7 @@ def plan_schema(fleet: list[str]) -> dict[str, Any]:
     schema = copy.deepcopy(_BASE_SCHEMA)
     for definition in schema.get("$defs", {}).values():
         for name, prop in definition.get("properties", {}).items():
-            if name in _DRONE_FIELDS:
+            if name in DRONE_FIELDS:
                 _enum_of_strings(prop, fleet)
     schema["$defs"]["Move"]["properties"]["origin"]["anyOf"][0]["enum"] = [*ORIGIN_WORDS, *fleet]
     return schema

@@ -52,14 +52,8 @@ class McpSensors:
 
 
 def _state(row: dict[str, Any]) -> DroneState:
-    return DroneState(
-        lat=row.get("lat_deg"),
-        lon=row.get("lon_deg"),
-        alt_m=row.get("alt_m"),
-        flying=bool(row.get("in_air")),
-        battery_pct=row.get("battery_pct"),
-        mode=row.get("flight_mode"),
-    )
+    return DroneState(row.get("lat_deg"), row.get("lon_deg"), row.get("alt_m"), bool(row.get("in_air")),
+                      row.get("battery_pct"), row.get("flight_mode"))  # fmt: skip
 
 
 def _lat_lon(out: ToolOutcome, what: str) -> tuple[float, float]:

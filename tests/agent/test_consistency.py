@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import copy
 
-from fleet_agent.consistency import climb_as_leg, gaps, questions_of_fleet, without_unasked
+from fleet_agent.consistency import as_restated, climb_as_leg, gaps, questions_of_fleet, without_unasked
 from fleet_agent.plan import Condition, Report, parse_plan
 from fleet_agent.prompt import messages_for, prefix_messages
 
@@ -99,6 +99,40 @@ def test_a_drones_first_move_whose_first_two_legs_go_the_same_way_takes_off_to_t
     after_takeoff = [_up("bravo", 9), {**move, "legs": _legs((14, "south"), (40, "south"))}]
     for steps in ([kept[0]], [kept[1]], [kept[2]], after_takeoff):
         assert climb_as_leg({"steps": copy.deepcopy(steps)}) == {"steps": steps}
+
+
+
+def test_legs_go_the_way_the_models_restatement_says_and_a_number_it_gives_with_no_way_is_the_climb() -> None:
+    """The 1.5B model restated "Bravo flies to 20 meters, then 25 meters south" and wrote 20 m north, then
+    25 m south; "30 yards to the north" as 30 yards east."""
+    said = "Bravo flies to 20 meters, then flies 25 meters south, then 30 yards to the north-east."
+    move = {"action": "move", "drone": "bravo", "origin": "here", "altitude": None, "after": "stay",
+            "legs": _legs((20, "north"), (25, "south"), (30, "east"))}  # fmt: skip
+    out = as_restated({"in_english": said, "steps": [copy.deepcopy(move)]})
+    assert out["steps"] == [{**move, "altitude": {"value": 20, "unit": "m"},
+                             "legs": _legs((25, "south"), (30, "northeast"))}]  # fmt: skip
+    at_0_m = {**move, "altitude": {"value": 0, "unit": "m"}}
+    out = as_restated({"in_english": said, "steps": [copy.deepcopy(at_0_m)]})
+    assert out["steps"][0]["altitude"] == {"value": 20, "unit": "m"}
+    climb_only = {**move, "legs": _legs((20, "north"))}
+    said = "Bravo flies to 20 meters and stays."
+    out = as_restated({"in_english": said, "steps": [copy.deepcopy(climb_only)]})
+    assert out["steps"] == [{"action": "altitude", "drone": "bravo", "altitude": {"value": 20, "unit": "m"},
+                             "after": "stay"}]  # fmt: skip
+
+
+def test_a_leg_the_restatement_does_not_settle_is_left_as_written() -> None:
+    move = {"action": "move", "drone": "bravo", "origin": "here", "altitude": None, "after": "stay",
+            "legs": _legs((30, "north"), (30, "south"))}  # fmt: skip
+    cases = [
+        ("Bravo flies 30 m north, then 30 m back south.", [move]),  # one number, two ways
+        ("Bravo flies thirty metres out and back.", [move]),  # no number
+        ("Bravo goes up to 30 m, then 30 m further.", [_up("bravo", 9), move]),  # not its first step
+        ("Bravo flies 30 m and 30 m south.", [{**move, "origin": "alpha"}]),  # from another drone
+    ]
+    for said, steps in cases:
+        data = {"in_english": said, "steps": copy.deepcopy(steps)}
+        assert as_restated(data)["steps"] == steps, said
 
 
 def test_a_branch_step_of_an_unnamed_drone_with_a_number_the_request_does_not_give_is_dropped() -> None:

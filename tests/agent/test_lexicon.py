@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from fleet_agent.consistency import as_request_says, placed_by_name, split_formation
-from fleet_agent.lexicon import number_units, tokens
+from fleet_agent.lexicon import number_units, stated_directions, tokens
 from fleet_agent.units import Unit
 
 
@@ -135,3 +135,11 @@ def test_a_word_ends_where_its_script_changes_and_a_latin_word_stays_whole() -> 
     assert tokens("bravoを15メートルまで") == ["bravo", "を", "15", "メートル", "まで"]
     assert tokens("Größe côté, bravoу 0,05 km") == ["Größe", "côté", "bravo", "у", "0,05", "km"]
     assert number_units("alphaを30フィート、bravo 12 pies") == {12.0: {Unit.ft}}
+
+
+def test_the_restatement_gives_each_number_the_compass_point_after_it_in_its_clause() -> None:
+    said = "Alpha flies to 12 m, then 30 m south-west and 10 m back north east; 0,5 km northwards, 5 m up."
+    want = [(12, None), (30, "southwest"), (10, "northeast"), (0.5, "north"), (5, None)]
+    assert stated_directions(said) == want
+    assert stated_directions("Echo flies 20 m east of delta at 15 m.") == [(20, "east"), (15, None)]
+    assert stated_directions("Nothing flies.") == []
