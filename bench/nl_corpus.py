@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 411 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 447 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -103,6 +103,16 @@ Korean, Polish, Portuguese, Romanian or Turkish (Chinese, Japanese and Korean sc
 the 11 classes, and the ``language`` class's 3 in Japanese, Chinese and Korean. Only the harness
 self-check (the scripted ideal plan) has run on them: 36 of 36 passed (once a Latin id written onto a
 Korean particle was read as named). That leaves 375 dev and 36 test.
+Later on 2026-12-02 (ninth round) EVERY test entry (36, ``_ninth_round``) was moved to dev, each marked
+"moved to dev on 2026-12-02, ninth round": the test half had been measured (3 runs of the 1.5B model)
+and its figures were known to whoever works on the host, so it no longer measured requests nobody tuned
+for. A fresh test half took its place (``_tenth_test_half``): 36 new requests, 3 a class, written before
+any model ran on them (while the ninth half was measured, before its failures were read), in new wordings and shapes within each class (not rewordings
+of dev entries): 22 of the 33 outside the ``language`` class are in Arabic, Catalan, Danish, Finnish,
+Greek, Hindi, Hungarian, Indonesian, Norwegian, Russian, Spanish, Swedish, Ukrainian or Vietnamese
+(Arabic, Devanagari and Thai script are new), spread over the 11 classes, and the ``language`` class's 3
+in Arabic, Hindi and Thai. Only the harness self-check (the scripted ideal plan) has run on them. That
+leaves 411 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -152,7 +162,7 @@ CLASSES = (
     "units",  # distances and heights in feet, yards, kilometres
     "pattern",  # a shape flown by one drone: polygon, circle, survey lines
     "placement",  # a drone placed relative to another drone or to its home
-    "language",  # requests in languages other than English (Japanese, Chinese, Korean, French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish, Hungarian, Croatian, Slovak, Greek, Catalan, Russian, Ukrainian, Bulgarian, Slovenian, Latvian, Lithuanian, Estonian, Indonesian, Vietnamese)
+    "language",  # requests in languages other than English (Japanese, Chinese, Korean, French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish, Hungarian, Croatian, Slovak, Greek, Catalan, Russian, Ukrainian, Bulgarian, Slovenian, Latvian, Lithuanian, Estonian, Indonesian, Vietnamese, Arabic, Hindi, Thai)
 )
 HALVES = ("dev", "test")
 DRONES = ("alpha", "bravo", "charlie")
@@ -3149,11 +3159,12 @@ def _eighth_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _ninth_test_half() -> list[CorpusEntry]:
+def _ninth_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-01 (ninth round), before any model ran on it: 3 a class; 22 of the
     33 outside ``language`` in other languages than English (Chinese, Czech, Dutch, French, German, Italian,
     Japanese, Korean, Polish, Portuguese, Romanian, Turkish), the ``language`` class's 3 in Japanese,
-    Chinese and Korean."""
+    Chinese and Korean; all of it moved to dev on 2026-12-02 (ninth round), once its figures had been
+    measured."""
     three = DRONES
     d10, d20, d25, d30 = (x / math.sqrt(2) for x in (10, 20, 25, 30))
     square25 = _polygon_legs(4, 25.0, 0.0, right=True)  # north first, turning right
@@ -3162,35 +3173,41 @@ def _ninth_test_half() -> list[CorpusEntry]:
     lines = [(40.0, 0.0), (0.0, 10.0), (-40.0, 0.0), (0.0, 10.0), (40.0, 0.0), (0.0, 10.0), (-40.0, 0.0)]
     return [
         # single
-        _entry("single", "test", "single9-ja-bravo-hover", ("bravo",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("single", "dev", "single9-ja-bravo-hover", ("bravo",),
                "bravoを15メートルまで上昇させて、そのままホバリングさせて。",
                lambda c, ev: airborne_at(ev, "bravo", 15),
                [_takeoff("bravo", 15)], "bravoは15 mでホバリング中。"),
-        _entry("single", "test", "single9-pt-alpha-hop", ("alpha",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("single", "dev", "single9-pt-alpha-hop", ("alpha",),
                "Levanta o alpha a 9 metros e pousa-o logo a seguir no mesmo sítio.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 9), at(ev, "alpha", *_home(c, "alpha")),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 9), _land("alpha")], "O alpha subiu a 9 m e pousou."),
-        _entry("single", "test", "single9-charlie-park-in-air", ("charlie",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("single", "dev", "single9-charlie-park-in-air", ("charlie",),
                "Send charlie straight up to 28 m and park it in the air.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=28), airborne_at(ev, "charlie", 28)),
                [_takeoff("charlie", 28)], "Charlie hovers at 28 m over its pad."),
         # multi
-        _entry("multi", "test", "multi9-de-pair-hop-bravo-stays", three,
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("multi", "dev", "multi9-de-pair-hop-bravo-stays", three,
                "Lass alpha und charlie auf 12 Meter steigen und gleich wieder landen; bravo bleibt am Boden.",
                lambda c, ev: _all(*(reached_alt(ev, d, 12) for d in ("alpha", "charlie")),
                                   *(at(ev, d, *_home(c, d)) for d in ("alpha", "charlie")),
                                   *(landed_disarmed(ev, d) for d in ("alpha", "charlie")), never_armed(ev, "bravo")),
                [_takeoff("alpha", 12), _takeoff("charlie", 12), _land("alpha"), _land("charlie")],
                "Alpha und charlie waren auf 12 m und sind gelandet; bravo blieb am Boden."),
-        _entry("multi", "test", "multi9-zh-west-and-north", three,
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("multi", "dev", "multi9-zh-west-and-north", three,
                "让 alpha 向西飞 20 米，bravo 向北飞 20 米，高度都是 10 米，然后都悬停在那里。",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -20), alt=10), airborne_at(ev, "alpha", 10),
                                   at(ev, "bravo", *c.point("bravo", 20, 0), alt=10), airborne_at(ev, "bravo", 10),
                                   never_armed(ev, "charlie")),
                [_move("alpha", 0, -20, alt=10), _move("bravo", 20, 0, alt=10)],
                "alpha 在西边 20 米、bravo 在北边 20 米悬停，高度 10 米。"),
-        _entry("multi", "test", "multi9-bravo-down-charlie-stays", three,
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("multi", "dev", "multi9-bravo-down-charlie-stays", three,
                "Put bravo at 10 m and charlie at 25 m over their own spots, then bring bravo back down; charlie "
                "keeps hovering.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 10), at(ev, "bravo", *_home(c, "bravo")),
@@ -3199,40 +3216,46 @@ def _ninth_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 10), _takeoff("charlie", 25), _land("bravo")],
                "Bravo went up to 10 m and landed; charlie hovers at 25 m."),
         # compound
-        _entry("compound", "test", "compound9-pl-bravo-east-south-land", ("bravo",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("compound", "dev", "compound9-pl-bravo-east-south-land", ("bravo",),
                "Wznieś bravo na 15 metrów, przeleć nim 40 metrów na wschód, potem 10 metrów na południe i tam "
                "wyląduj.",
                lambda c, ev: _all(rose_to(ev, "bravo", 15), visited(ev, "bravo", [c.point("bravo", 0, 40)]),
                                   at(ev, "bravo", *c.point("bravo", -10, 40)), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 15), _move("bravo", 0, 40), _move("bravo", -10, 0), _land("bravo")],
                "Bravo przeleciał 40 m na wschód i 10 m na południe, i wylądował."),
-        _entry("compound", "test", "compound9-tr-alpha-out-back-hover", ("alpha",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("compound", "dev", "compound9-tr-alpha-out-back-hover", ("alpha",),
                "alpha'yı 10 metreye kaldır, 30 metre kuzeye uçur, sonra 30 metre güneye geri getir ve orada "
                "havada beklet.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 30, 0)]),
                                   at(ev, "alpha", *_home(c, "alpha"), alt=10), airborne_at(ev, "alpha", 10)),
                [_takeoff("alpha", 10), _move("alpha", 30, 0), _move("alpha", -30, 0)],
                "alpha 30 m kuzeye gidip döndü, 10 m'de bekliyor."),
-        _entry("compound", "test", "compound9-charlie-climb-between-home", ("charlie",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("compound", "dev", "compound9-charlie-climb-between-home", ("charlie",),
                "Charlie: take off to 8 m, go 20 m northeast, climb another 12 m, then come home.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", d20, d20)]), rose_to(ev, "charlie", 20),
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 8), _move("charlie", d20, d20), _move("charlie", up=12), _rtl("charlie")],
                "Charlie flew 20 m northeast, climbed to 20 m and came home."),
         # conditional
-        _entry("conditional", "test", "cond9-fr-charlie-up-if-charged", ("charlie",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("conditional", "dev", "cond9-fr-charlie-up-if-charged", ("charlie",),
                "Si la batterie de charlie dépasse 60 %, fais-le monter à 20 m et qu'il reste là ; sinon ne fais rien.",
                lambda c, ev: _all(airborne_at(ev, "charlie", 20), at(ev, "charlie", *_home(c, "charlie"), alt=20)),
                [_battery("charlie"), _takeoff("charlie", 20)], "Charlie a 72 % : il est monté à 20 m.",
                battery={"charlie": 72.0}),
-        _entry("conditional", "test", "cond9-ro-bravo-low-lands-at-once", ("bravo",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("conditional", "dev", "cond9-ro-bravo-low-lands-at-once", ("bravo",),
                "Ridică bravo la 18 metri. Dacă bateria lui e sub 40 %, aterizează-l imediat; altfel trimite-l 25 "
                "de metri spre vest și lasă-l acolo.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 18), at(ev, "bravo", *_home(c, "bravo")),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 18), _battery("bravo"), _land("bravo")],
                "Bravo are 35 %, așa că a aterizat imediat.", battery={"bravo": 35.0}),
-        _entry("conditional", "test", "cond9-alpha-far-or-near", ("alpha",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("conditional", "dev", "cond9-alpha-far-or-near", ("alpha",),
                "If alpha has at least 80 % battery, fly it 50 m south at 15 m and land there; with less, only "
                "20 m south, and land there too.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -20, 0)), landed_disarmed(ev, "alpha"),
@@ -3240,51 +3263,60 @@ def _ninth_test_half() -> list[CorpusEntry]:
                [_battery("alpha"), _move("alpha", -20, 0, alt=15), _land("alpha")],
                "Alpha has 65 %, so it flew 20 m south and landed.", battery={"alpha": 65.0}),
         # formation
-        _entry("formation", "test", "form9-pt-line-north-hover", three,
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("formation", "dev", "form9-pt-line-north-hover", three,
                "Coloca os três drones em linha, a 10 metros uns dos outros, a 20 metros de altura, 40 metros a "
                "norte de onde estão, e deixa-os pairar.",
                lambda c, ev: formation_at(c, ev, three, 20, 10, 40, 0),
                [_formation(three, "line", 20, 10, north=40)], "Os três pairam em linha 40 m a norte, a 20 m."),
-        _entry("formation", "test", "form9-ko-pair-column-overhead", ("alpha", "bravo"),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("formation", "dev", "form9-ko-pair-column-overhead", ("alpha", "bravo"),
                "alpha와 bravo를 8미터 간격으로 세로로 줄지어 12미터 높이에 세우고, 지금 위치 그대로 떠 있게 해.",
                lambda c, ev: formation_at(c, ev, ("alpha", "bravo"), 12, 8, 0, 0),
                [_formation(("alpha", "bravo"), "column", 12, 8)], "alpha와 bravo가 12 m에서 8 m 간격으로 떠 있음."),
-        _entry("formation", "test", "form9-triangle-west-land", three,
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("formation", "dev", "form9-triangle-west-land", three,
                "Fly all three in a triangle, 15 m on each side, at 12 m, 30 m west of here, then land them there.",
                lambda c, ev: landed_formation_at(c, ev, three, 15, 0, -30),
                [_formation(three, "circle", 12, 15, east=-30), *(_land(d) for d in three)],
                "The three flew a 15 m triangle 30 m west and landed."),
         # relative
-        _entry("relative", "test", "rel9-it-bravo-south-lower", ("bravo",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("relative", "dev", "rel9-it-bravo-south-lower", ("bravo",),
                "Porta bravo a 20 metri, poi spostalo 25 metri a sud e abbassalo di 8 metri, e lascialo lì.",
                lambda c, ev: _all(rose_to(ev, "bravo", 20), at(ev, "bravo", *c.point("bravo", -25, 0), alt=12),
                                   airborne_at(ev, "bravo", 12)),
                [_takeoff("bravo", 20), _move("bravo", -25, 0, up=-8)], "Bravo è 25 m a sud, a 12 m."),
-        _entry("relative", "test", "rel9-nl-charlie-west-twice", ("charlie",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("relative", "dev", "rel9-nl-charlie-west-twice", ("charlie",),
                "Laat charlie opstijgen tot 10 meter, vlieg 15 meter naar het westen en daarna nog eens 15 meter, "
                "en laat hem daar hangen.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -30), alt=10), airborne_at(ev, "charlie", 10)),
                [_takeoff("charlie", 10), _move("charlie", 0, -15), _move("charlie", 0, -15)],
                "Charlie hangt 30 m naar het westen op 10 m."),
-        _entry("relative", "test", "rel9-alpha-sw-then-back-ne", ("alpha",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("relative", "dev", "rel9-alpha-sw-then-back-ne", ("alpha",),
                "Alpha to 12 m, then 30 m south-west, then 10 m back north-east, and hover.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -d30, -d30)]),
                                   at(ev, "alpha", *c.point("alpha", -d20, -d20), alt=12), airborne_at(ev, "alpha", 12)),
                [_takeoff("alpha", 12), _move("alpha", -d30, -d30), _move("alpha", d10, d10)],
                "Alpha hovers 20 m south-west of its pad at 12 m."),
         # question
-        _entry("question", "test", "ask9-ja-fullest", three,
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("question", "dev", "ask9-ja-fullest", three,
                "一番バッテリーが残っているドローンはどれ？何パーセント？飛ばさないで。",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 91, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "一番多いのは bravo: 91 %。",
                battery={"alpha": 62.0, "bravo": 91.0, "charlie": 70.0}),
-        _entry("question", "test", "ask9-pl-charlie-enough", three,
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("question", "dev", "ask9-pl-charlie-enough", three,
                "Ile baterii ma charlie? Czy to wystarczy, żeby wystartował? Nic nie uruchamiaj.",
                lambda c, ev: _all(answer_mentions_number(ev, 27, 1), nobody_armed(ev)),
                [("fleet_status", {})], "Charlie ma 27 %: za mało do startu (30 %).",
                battery={"alpha": 80.0, "bravo": 75.0, "charlie": 27.0}),
-        _entry("question", "test", "ask9-alpha-and-charlie-figures", three,
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("question", "dev", "ask9-alpha-and-charlie-figures", three,
                "What battery do alpha and charlie have? Give me each figure; nothing flies.",
                lambda c, ev: _all(answer_mentions_number(ev, 58, 1), answer_mentions_number(ev, 84, 1),
                                   nobody_armed(ev)),
@@ -3292,52 +3324,61 @@ def _ninth_test_half() -> list[CorpusEntry]:
                battery={"alpha": 58.0, "bravo": 66.0, "charlie": 84.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude)
-        _entry("refusal", "test", "refuse9-tr-bravo-2km-west", ("bravo",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("refusal", "dev", "refuse9-tr-bravo-2km-west", ("bravo",),
                "bravo'yu 15 metre yükseklikte 2 kilometre batıya uçur.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
                [_move("bravo", 0, -2000, alt=15)], "The gateway refused: 2 km is beyond the 1000 m limit."),
-        _entry("refusal", "test", "refuse9-de-charlie-130m", ("charlie",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("refusal", "dev", "refuse9-de-charlie-130m", ("charlie",),
                "Schick charlie auf 130 Meter Höhe.",
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "charlie", c.max_alt_m),
                                   answer_reports_refusal(ev)),
                [_takeoff("charlie", 130)], "The gateway refused: 130 m is above the 120 m altitude limit."),
-        _entry("refusal", "test", "refuse9-alpha-drained", ("alpha",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("refusal", "dev", "refuse9-alpha-drained", ("alpha",),
                "Take alpha up to 15 m and fly it 20 m east.",
                lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "alpha"), answer_reports_refusal(ev)),
                [_takeoff("alpha", 15), _move("alpha", 0, 20)],
                "The gateway refused: alpha's battery (18 %) is below the 30 % to take off.", battery={"alpha": 18.0}),
         # units
-        _entry("units", "test", "units9-ro-bravo-feet-km", ("bravo",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("units", "dev", "units9-ro-bravo-feet-km", ("bravo",),
                "Ridică bravo la 50 de picioare, apoi du-l 0,04 km spre est și lasă-l acolo.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, 40), alt=50 * FT),
                                   airborne_at(ev, "bravo", 50 * FT)),
                [_takeoff("bravo", 50 * FT), _move("bravo", 0, 40)], "Bravo plutește 40 m spre est, la 15,2 m."),
-        _entry("units", "test", "units9-cs-charlie-yards-land", ("charlie",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("units", "dev", "units9-cs-charlie-yards-land", ("charlie",),
                "Vzlétni s charlie do 12 metrů, přeleť 30 yardů na sever a přistaň.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 12), at(ev, "charlie", *c.point("charlie", 30 * YD, 0)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 12), _move("charlie", 30 * YD, 0), _land("charlie")],
                "Charlie přeletěl 30 yardů (27 m) na sever a přistál."),
-        _entry("units", "test", "units9-alpha-feet-yards-se", ("alpha",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("units", "dev", "units9-alpha-feet-yards-se", ("alpha",),
                "Alpha: 60 ft up, then 25 yards south-east, and hover there.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -25 * YD / math.sqrt(2), 25 * YD / math.sqrt(2)),
                                      alt=60 * FT), airborne_at(ev, "alpha", 60 * FT)),
                [_takeoff("alpha", 60 * FT), _move("alpha", -25 * YD / math.sqrt(2), 25 * YD / math.sqrt(2))],
                "Alpha hovers 25 yd (23 m) south-east at 60 ft (18.3 m)."),
         # pattern
-        _entry("pattern", "test", "pattern9-de-alpha-square-right", ("alpha",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("pattern", "dev", "pattern9-de-alpha-square-right", ("alpha",),
                "alpha soll in 10 Metern Höhe ein Quadrat mit 25 Meter Seitenlänge fliegen, erste Seite nach "
                "Norden, rechts herum, und danach landen.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(square25)[:3]]),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), *_legs("alpha", square25), _land("alpha")], "Alpha flog das Quadrat und landete."),
-        _entry("pattern", "test", "pattern9-zh-bravo-hexagon-home", ("bravo",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("pattern", "dev", "pattern9-zh-bravo-hexagon-home", ("bravo",),
                "让 bravo 在 15 米高度飞一个边长 12 米的六边形，第一条边朝东，向右转，飞完后返航。",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(hexagon12)[:5]]),
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 15), *_legs("bravo", hexagon12), _rtl("bravo")], "bravo 飞完六边形并返航。"),
-        _entry("pattern", "test", "pattern9-charlie-four-lines-east", ("charlie",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("pattern", "dev", "pattern9-charlie-four-lines-east", ("charlie",),
                "Survey with charlie at 15 m: 4 lines of 40 m, 10 m apart, the first line north, each next line "
                "east of the last, then bring it home.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(lines)]),
@@ -3346,7 +3387,8 @@ def _ninth_test_half() -> list[CorpusEntry]:
                "Charlie flew the four lines and came home."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
         # alpha from charlie or charlie from alpha, 10 m apart, so that a drone placed from itself misses)
-        _entry("placement", "test", "place9-fr-charlie-east-of-alpha", three,
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("placement", "dev", "place9-fr-charlie-east-of-alpha", three,
                "Fais décoller alpha à 12 m et laisse-le en l'air. Ensuite envoie charlie 15 m à l'est d'alpha, à "
                "la même hauteur.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=12), airborne_at(ev, "alpha", 12),
@@ -3354,12 +3396,14 @@ def _ninth_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_takeoff("alpha", 12), _go("charlie", c.point("alpha", 0, 15), 12)],
                "Alpha est à 12 m ; charlie est 15 m à l'est d'alpha, à 12 m."),
-        _entry("placement", "test", "place9-ko-alpha-north-of-charlie", three,
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("placement", "dev", "place9-ko-alpha-north-of-charlie", three,
                "charlie 북쪽 25미터 지점으로 alpha를 보내서 10미터 높이에서 떠 있게 해. charlie는 그대로 둬.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("charlie", 25, 0), alt=10), airborne_at(ev, "alpha", 10),
                                   never_armed(ev, "charlie"), never_armed(ev, "bravo")),
                lambda c: [_go("alpha", c.point("charlie", 25, 0), 10)], "alpha는 charlie 북쪽 25 m, 10 m 높이에 있음."),
-        _entry("placement", "test", "place9-alpha-north-of-moved-charlie", three,
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("placement", "dev", "place9-alpha-north-of-moved-charlie", three,
                "Fly charlie 30 m east at 12 m. Then put alpha 10 m north of where charlie is, at the same height.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 30), alt=12), airborne_at(ev, "charlie", 12),
                                   at(ev, "alpha", *c.point("charlie", 10, 30), alt=12), airborne_at(ev, "alpha", 12),
@@ -3367,20 +3411,247 @@ def _ninth_test_half() -> list[CorpusEntry]:
                lambda c: [_move("charlie", 0, 30, alt=12), _go("alpha", c.point("charlie", 10, 30), 12)],
                "Charlie hovers 30 m east at 12 m; alpha 10 m north of it."),
         # language
-        _entry("language", "test", "lang9-ja-charlie-north-land", ("charlie",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("language", "dev", "lang9-ja-charlie-north-land", ("charlie",),
                "charlieを12メートルまで上げて、北へ30メートル飛ばしてから、そこに着陸させて。",
                lambda c, ev: _all(reached_alt(ev, "charlie", 12), at(ev, "charlie", *c.point("charlie", 30, 0)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 12), _move("charlie", 30, 0), _land("charlie")], "charlieは北へ30 m飛んで着陸した。"),
-        _entry("language", "test", "lang9-zh-alpha-southwest-land", ("alpha",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("language", "dev", "lang9-zh-alpha-southwest-land", ("alpha",),
                "把 alpha 升到 14 米，向西南飞 25 米，然后在那里降落。",
                lambda c, ev: _all(reached_alt(ev, "alpha", 14), at(ev, "alpha", *c.point("alpha", -d25, -d25)),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 14), _move("alpha", -d25, -d25), _land("alpha")], "alpha 向西南飞了 25 米并降落。"),
-        _entry("language", "test", "lang9-ko-bravo-east-hover", ("bravo",),
+        # moved to dev on 2026-12-02, ninth round: the test half had been measured
+        _entry("language", "dev", "lang9-ko-bravo-east-hover", ("bravo",),
                "bravo를 16미터로 올리고 동쪽으로 20미터 이동한 다음 거기서 계속 떠 있게 해.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, 20), alt=16), airborne_at(ev, "bravo", 16)),
                [_takeoff("bravo", 16), _move("bravo", 0, 20)], "bravo는 동쪽 20 m, 16 m 높이에 떠 있음."),
+    ]  # fmt: skip
+
+
+def _tenth_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-02 (tenth round), before any model ran on it: 3 a class; 22 of the
+    33 outside ``language`` in other languages than English (Arabic, Catalan, Danish, Finnish, Greek, Hindi,
+    Hungarian, Indonesian, Norwegian, Russian, Spanish, Swedish, Ukrainian, Vietnamese), the ``language``
+    class's 3 in Arabic, Hindi and Thai (Arabic, Devanagari and Thai script are new)."""
+    three = DRONES
+    d20yd = 20 * YD / math.sqrt(2)
+    triangle20 = _polygon_legs(3, 20.0, 180.0, right=False)  # first side south, turning left
+    square20 = _polygon_legs(4, 20.0, 270.0, right=False)  # first side west, turning left
+    pentagon15 = _polygon_legs(5, 15.0, 90.0, right=True)  # first side east, turning right
+    return [
+        # single
+        _entry("single", "test", "single10-es-charlie-hover", ("charlie",),
+               "Sube a charlie hasta 22 metros y déjalo quieto en el aire.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=22), airborne_at(ev, "charlie", 22)),
+               [_takeoff("charlie", 22)], "Charlie está quieto a 22 m."),
+        _entry("single", "test", "single10-ar-alpha-hop", ("alpha",),
+               "ارفع alpha إلى 10 أمتار ثم أنزله في مكانه.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 10), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), _land("alpha")], "ارتفع alpha إلى 10 m ثم هبط."),
+        _entry("single", "test", "single10-bravo-sit-at-35", ("bravo",),
+               "Launch bravo and let it sit at 35 m.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=35), airborne_at(ev, "bravo", 35)),
+               [_takeoff("bravo", 35)], "Bravo sits at 35 m over its pad."),
+        # multi
+        _entry("multi", "test", "multi10-sv-all-three-hover", three,
+               "Lyft alla tre drönarna till 15 meter och låt dem sväva där.",
+               lambda c, ev: _all(*(at(ev, d, *_home(c, d), alt=15) for d in three),
+                                  *(airborne_at(ev, d, 15) for d in three)),
+               [_takeoff(d, 15) for d in three], "Alla tre svävar på 15 m."),
+        _entry("multi", "test", "multi10-hi-alpha-north-charlie-hop", three,
+               "alpha को 10 मीटर की ऊँचाई पर 20 मीटर उत्तर ले जाओ, और charlie को 8 मीटर तक उठाकर वापस उतार दो।",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=10), airborne_at(ev, "alpha", 10),
+                                  reached_alt(ev, "charlie", 8), at(ev, "charlie", *_home(c, "charlie")),
+                                  landed_disarmed(ev, "charlie"), never_armed(ev, "bravo")),
+               [_move("alpha", 20, 0, alt=10), _takeoff("charlie", 8), _land("charlie")],
+               "alpha 20 m उत्तर में 10 m पर है; charlie 8 m तक जाकर उतर गया।"),
+        _entry("multi", "test", "multi10-two-heights-both-land", three,
+               "Take bravo to 10 m and charlie to 20 m, then land both of them; alpha stays put.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 10), reached_alt(ev, "charlie", 20),
+                                  *(at(ev, d, *_home(c, d)) for d in ("bravo", "charlie")),
+                                  *(landed_disarmed(ev, d) for d in ("bravo", "charlie")), never_armed(ev, "alpha")),
+               [_takeoff("bravo", 10), _takeoff("charlie", 20), _land("bravo"), _land("charlie")],
+               "Bravo went to 10 m and charlie to 20 m; both landed. Alpha stayed down."),
+        # compound
+        _entry("compound", "test", "compound10-hu-alpha-west-north-home", ("alpha",),
+               "Emeld alpha-t 12 méterre, repülj vele 20 métert nyugatra, aztán 20 métert északra, végül hozd haza.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -20), c.point("alpha", 20, -20)]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 12), _move("alpha", 0, -20), _move("alpha", 20, 0), _rtl("alpha")],
+               "Alpha repült nyugatra, majd északra, és hazajött."),
+        _entry("compound", "test", "compound10-el-charlie-east-climb-land", ("charlie",),
+               "Σήκωσε το charlie στα 10 μέτρα, πέτα το 25 μέτρα ανατολικά, ανέβασέ το άλλα 10 μέτρα και μετά "
+               "προσγείωσέ το εκεί.",
+               lambda c, ev: _all(rose_to(ev, "charlie", 20), at(ev, "charlie", *c.point("charlie", 0, 25)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), _move("charlie", 0, 25), _move("charlie", up=10), _land("charlie")],
+               "Το charlie πέταξε 25 m ανατολικά, ανέβηκε στα 20 m και προσγειώθηκε."),
+        _entry("compound", "test", "compound10-bravo-south-east-hold", ("bravo",),
+               "Bravo: up to 14 m, 15 m south, 15 m east, then hold there in the air.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", -15, 0)]),
+                                  at(ev, "bravo", *c.point("bravo", -15, 15), alt=14), airborne_at(ev, "bravo", 14)),
+               [_takeoff("bravo", 14), _move("bravo", -15, 0), _move("bravo", 0, 15)],
+               "Bravo holds 15 m south and 15 m east of its pad at 14 m."),
+        # conditional
+        _entry("conditional", "test", "cond10-es-alpha-north-if-charged", ("alpha",),
+               "Si alpha tiene más del 50 % de batería, llévalo 30 m al norte a 12 m de altura y déjalo allí; si "
+               "no, déjalo en tierra.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 30, 0), alt=12), airborne_at(ev, "alpha", 12)),
+               [_battery("alpha"), _move("alpha", 30, 0, alt=12)], "Alpha tiene 78 %: está 30 m al norte a 12 m.",
+               battery={"alpha": 78.0}),
+        _entry("conditional", "test", "cond10-sv-charlie-low-stays", ("charlie",),
+               "Om charlies batteri är under 45 %, låt den stå kvar på marken; annars lyft den till 16 meter och "
+               "landa igen.",
+               lambda c, ev: _all(never_armed(ev, "charlie"), answer_mentions_number(ev, 40, 2)),
+               [_battery("charlie")], "Charlie har 40 %: den står kvar på marken.", battery={"charlie": 40.0}),
+        _entry("conditional", "test", "cond10-bravo-at-least-70-goes-high", ("bravo",),
+               "If bravo's battery is at least 70 %, send it up to 25 m and bring it home; otherwise only up to "
+               "10 m and land.",
+               lambda c, ev: _all(rose_to(ev, "bravo", 25), at(ev, "bravo", *_home(c, "bravo")),
+                                  landed_disarmed(ev, "bravo")),
+               [_battery("bravo"), _takeoff("bravo", 25), _rtl("bravo")],
+               "Bravo has 70 %, so it went up to 25 m and came home.", battery={"bravo": 70.0}),
+        # formation
+        _entry("formation", "test", "form10-es-column-south", three,
+               "Pon a alpha, bravo y charlie en columna, separados 8 m, a 15 m de altura y 30 m al sur de donde "
+               "están; que se queden ahí.",
+               lambda c, ev: _all(formation_at(c, ev, three, 15, 8, -30, 0), farthest_apart(ev, three, 16)),
+               [_formation(three, "column", 15, 8, north=-30)], "Los tres están en columna 30 m al sur, a 15 m."),
+        _entry("formation", "test", "form10-da-pair-east-land", ("alpha", "charlie"),
+               "Flyv alpha og charlie side om side med 12 meters afstand i 10 meters højde, 20 meter mod øst, og "
+               "land dem der.",
+               lambda c, ev: landed_formation_at(c, ev, ("alpha", "charlie"), 12, 0, 20),
+               [_formation(("alpha", "charlie"), "line", 10, 12, east=20), _land("alpha"), _land("charlie")],
+               "Alpha og charlie fløj 20 m mod øst og landede 12 m fra hinanden."),
+        _entry("formation", "test", "form10-ring-overhead", three,
+               "Put the three drones in a circle with 10 m between neighbours at 18 m, right above where they "
+               "stand, and keep them there.",
+               lambda c, ev: _all(formation_at(c, ev, three, 18, 10, 0, 0), farthest_apart(ev, three, 10)),
+               [_formation(three, "circle", 18, 10)], "The three hold a 10 m ring at 18 m overhead."),
+        # relative
+        _entry("relative", "test", "rel10-fi-alpha-higher-north", ("alpha",),
+               "Nosta alpha 10 metriin, sitten 5 metriä ylemmäs ja 20 metriä pohjoiseen, ja jätä se sinne.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=15), airborne_at(ev, "alpha", 15)),
+               [_takeoff("alpha", 10), _move("alpha", 20, 0, up=5)], "Alpha on 20 m pohjoiseen, 15 m korkeudessa."),
+        _entry("relative", "test", "rel10-no-bravo-east-half-back", ("bravo",),
+               "Løft bravo til 12 meter, fly 40 meter østover og deretter 20 meter tilbake vestover, og la den "
+               "sveve der.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 40)]),
+                                  at(ev, "bravo", *c.point("bravo", 0, 20), alt=12), airborne_at(ev, "bravo", 12)),
+               [_takeoff("bravo", 12), _move("bravo", 0, 40), _move("bravo", 0, -20)],
+               "Bravo svever 20 m øst for hjemmet, på 12 m."),
+        _entry("relative", "test", "rel10-charlie-drop-and-west", ("charlie",),
+               "Charlie up to 25 m, then drop it by 15 m and move it 10 m west; keep it flying.",
+               lambda c, ev: _all(rose_to(ev, "charlie", 25), at(ev, "charlie", *c.point("charlie", 0, -10), alt=10),
+                                  airborne_at(ev, "charlie", 10)),
+               [_takeoff("charlie", 25), _move("charlie", 0, -10, up=-15)], "Charlie flies 10 m west at 10 m."),
+        # question
+        _entry("question", "test", "ask10-ru-lowest-charge", three,
+               "Какой дрон разряжен больше всех и сколько у него осталось? Ничего не запускай.",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 45, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Меньше всего у bravo: 45 %.",
+               battery={"alpha": 77.0, "bravo": 45.0, "charlie": 63.0}),
+        _entry("question", "test", "ask10-ar-every-battery", three,
+               "كم نسبة البطارية في كل طائرة؟ لا تُقلع أيًّا منها.",
+               lambda c, ev: _all(answer_mentions_number(ev, 81, 1), answer_mentions_number(ev, 67, 1),
+                                  answer_mentions_number(ev, 54, 1), nobody_armed(ev)),
+               [("fleet_status", {})], "alpha 81 %، bravo 67 %، charlie 54 %.",
+               battery={"alpha": 81.0, "bravo": 67.0, "charlie": 54.0}),
+        _entry("question", "test", "ask10-bravo-charge-no-move", three,
+               "How much charge is left in bravo? Just tell me, don't move anything.",
+               lambda c, ev: _all(answer_mentions_number(ev, 73, 1), nobody_armed(ev)),
+               [("fleet_status", {})], "Bravo has 73 %.", battery={"alpha": 60.0, "bravo": 73.0, "charlie": 88.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off)
+        _entry("refusal", "test", "refuse10-vi-alpha-150m", ("alpha",),
+               "Đưa alpha lên độ cao 150 mét.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "alpha", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("alpha", 150)], "The gateway refused: 150 m is above the 120 m altitude limit."),
+        _entry("refusal", "test", "refuse10-sv-bravo-drained", ("bravo",),
+               "Lyft bravo till 12 meter och flyg den 30 meter norrut.",
+               lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "bravo"), answer_reports_refusal(ev)),
+               [_takeoff("bravo", 12), _move("bravo", 30, 0)],
+               "The gateway refused: bravo's battery (22 %) is below the 30 % to take off.", battery={"bravo": 22.0}),
+        _entry("refusal", "test", "refuse10-charlie-one-and-a-half-km", ("charlie",),
+               "Fly charlie 1.5 km north at 20 m.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "charlie", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("charlie", 1500, 0, alt=20)], "The gateway refused: 1.5 km is beyond the 1000 m limit."),
+        # units
+        _entry("units", "test", "units10-ca-alpha-feet-hover", ("alpha",),
+               "Puja alpha a 45 peus i deixa'l suspès a l'aire.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=45 * FT), airborne_at(ev, "alpha", 45 * FT)),
+               [_takeoff("alpha", 45 * FT)], "Alpha és suspès a 45 peus (13,7 m)."),
+        _entry("units", "test", "units10-hu-bravo-km-west-land", ("bravo",),
+               "Emeld bravo-t 10 méterre, vidd 0,03 kilométerre nyugatra, és ott tedd le.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 10), at(ev, "bravo", *c.point("bravo", 0, -30)),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), _move("bravo", 0, -30), _land("bravo")], "Bravo 30 m-rel nyugatra leszállt."),
+        _entry("units", "test", "units10-charlie-feet-yards-nw", ("charlie",),
+               "Charlie: climb to 30 feet, fly 20 yards north-west, and land.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 30 * FT), at(ev, "charlie", *c.point("charlie", d20yd, -d20yd)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 30 * FT), _move("charlie", d20yd, -d20yd), _land("charlie")],
+               "Charlie flew 20 yd (18 m) north-west and landed."),
+        # pattern
+        _entry("pattern", "test", "pattern10-es-charlie-triangle-left", ("charlie",),
+               "Que charlie vuele un triángulo de 20 m de lado a 12 m de altura, primer lado hacia el sur, girando "
+               "a la izquierda, y que aterrice al final.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(triangle20)[:2]]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), *_legs("charlie", triangle20), _land("charlie")],
+               "Charlie voló el triángulo y aterrizó."),
+        _entry("pattern", "test", "pattern10-el-alpha-square-left", ("alpha",),
+               "Πέτα το alpha σε τετράγωνο πλευράς 20 μέτρων στα 15 μέτρα, πρώτη πλευρά προς τα δυτικά, στρίβοντας "
+               "αριστερά, και μετά άφησέ το να αιωρείται.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(square20)[:3]]),
+                                  at(ev, "alpha", *_home(c, "alpha"), alt=15), airborne_at(ev, "alpha", 15)),
+               [_takeoff("alpha", 15), *_legs("alpha", square20)], "Το alpha πέταξε το τετράγωνο και αιωρείται."),
+        _entry("pattern", "test", "pattern10-bravo-pentagon-home", ("bravo",),
+               "Bravo flies a pentagon at 10 m, sides of 15 m, first side east, turning right, then returns home.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(pentagon15)[:4]]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), *_legs("bravo", pentagon15), _rtl("bravo")], "Bravo flew the pentagon and came home."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
+        # alpha from charlie or charlie from alpha, 10 m apart, so that a drone placed from itself misses)
+        _entry("placement", "test", "place10-uk-charlie-north-of-alpha", three,
+               "Відправ charlie на 20 метрів на північ від alpha, на висоту 15 метрів, і залиш його там.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 20, 0), alt=15), airborne_at(ev, "charlie", 15),
+                                  never_armed(ev, "alpha"), never_armed(ev, "bravo")),
+               lambda c: [_go("charlie", c.point("alpha", 20, 0), 15)], "charlie на 20 м на північ від alpha, на 15 м."),
+        _entry("placement", "test", "place10-id-alpha-west-of-charlie", three,
+               "Terbangkan alpha ke titik 15 meter di sebelah barat charlie, pada ketinggian 10 meter, dan biarkan "
+               "di sana.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("charlie", 0, -15), alt=10), airborne_at(ev, "alpha", 10),
+                                  never_armed(ev, "charlie"), never_armed(ev, "bravo")),
+               lambda c: [_go("alpha", c.point("charlie", 0, -15), 10)], "alpha 15 m di barat charlie, pada 10 m."),
+        _entry("placement", "test", "place10-charlie-south-of-hovering-alpha", three,
+               "Take alpha up to 15 m and leave it. Put charlie 10 m south of alpha at the same height.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=15), airborne_at(ev, "alpha", 15),
+                                  at(ev, "charlie", *c.point("alpha", -10, 0), alt=15), airborne_at(ev, "charlie", 15),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_takeoff("alpha", 15), _go("charlie", c.point("alpha", -10, 0), 15)],
+               "Alpha hovers at 15 m; charlie 10 m south of it at 15 m."),
+        # language
+        _entry("language", "test", "lang10-ar-bravo-north-land", ("bravo",),
+               "ارفع bravo إلى 15 مترًا، ثم طر به 30 مترًا نحو الشمال، ثم أنزله هناك.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 15), at(ev, "bravo", *c.point("bravo", 30, 0)),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 15), _move("bravo", 30, 0), _land("bravo")], "طار bravo 30 m شمالًا وهبط."),
+        _entry("language", "test", "lang10-hi-charlie-east-hover", ("charlie",),
+               "charlie को 12 मीटर तक उठाओ, फिर 25 मीटर पूर्व की ओर ले जाओ और वहीं हवा में रहने दो।",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 25), alt=12), airborne_at(ev, "charlie", 12)),
+               [_takeoff("charlie", 12), _move("charlie", 0, 25)], "charlie 25 m पूर्व में 12 m पर है।"),
+        _entry("language", "test", "lang10-th-alpha-south-home", ("alpha",),
+               "ยก alpha ขึ้นไปที่ 10 เมตร บินไปทางใต้ 20 เมตร แล้วพากลับบ้าน",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -20, 0)]), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), _move("alpha", -20, 0), _rtl("alpha")], "alpha บินไปทางใต้ 20 m แล้วกลับบ้าน"),
     ]  # fmt: skip
 
 
@@ -3405,7 +3676,8 @@ def corpus() -> list[CorpusEntry]:
         *_sixth_round(),
         *_seventh_round(),
         *_eighth_round(),
-        *_ninth_test_half(),
+        *_ninth_round(),
+        *_tenth_test_half(),
     ]
 
 
