@@ -268,11 +268,9 @@ class Compiler:
         if value is None:
             return [Said(f"{step.drone} reports no {step.reading}: nothing was done.")], []
         holds = compare(value, step.compare, step.value)
-        branch = step.then if holds else step.otherwise
-        verdict = "so" if holds else "not"
-        said = Said(f"{step.drone}: {step.reading} {value:g} {_UNITS[step.reading]}, "
-                    f"{step.compare.replace('_', ' ')} {step.value:g}: {verdict}.")  # fmt: skip
-        return [said], list(branch)
+        how = f"{step.compare.replace('_', ' ')} {step.value:g}: {'so' if holds else 'not'}"
+        said = Said(f"{step.drone}: {step.reading} {value:g} {_UNITS[step.reading]}, {how}.")
+        return [said], list(step.then if holds else step.otherwise)
 
     async def _selected(self, step: Condition | Choose) -> Compiled:
         said, steps = await self.branch(step) or ([], [])

@@ -152,6 +152,12 @@ class Move(DroneStep):
     altitude: Length | None
     after: Ending
 
+    @field_validator("altitude", mode="before")
+    @classmethod
+    def _zero_is_none(cls, value: Any) -> Any:
+        """A move at 0 m flies at no given height: both models wrote 0 where the request gave none."""
+        return None if isinstance(value, dict) and value.get("value") == 0 else value
+
     @field_validator("origin", mode="before")
     @classmethod
     def _origin_word(cls, value: Any, info: ValidationInfo) -> Any:

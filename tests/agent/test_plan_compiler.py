@@ -556,3 +556,12 @@ def test_a_climb_to_a_height_flown_right_after_the_flight_ended_is_a_repeat() ->
     stays = {**out, "after": "stay"}
     down = {**again, "altitude": m(5)}
     assert len(parse_plan({"steps": [stays, down, again]}, FLEET).steps) == 3
+
+
+async def test_a_move_at_0_m_flies_at_no_given_height() -> None:
+    """The 0.5B model wrote "straight up to 28 m" as a 28 m leg up at an altitude of 0 m."""
+    step = {"action": "move", "drone": "charlie", "legs": [leg(28, "up")], "altitude": m(0), "after": "stay",
+            "origin": "here"}  # fmt: skip
+    out = await compiled(step)
+    assert out[0] == Call("takeoff", {"drone_id": "charlie", "alt_m": 28.0}, "charlie")
+    assert not [c for c in out[1:] if c.args.get("up_m") or c.args.get("alt_m") is not None]  # no other climb
