@@ -30,7 +30,7 @@ def read_plan(request: str, fleet: list[str], data: Any) -> tuple[Plan, list[str
     """The decoded reply as the plan the host compiles, and what it leaves out of the request (one note
     each): every rewrite the host makes before compiling, in its order. Raises the validation error of a
     plan that does not validate."""
-    data = climb_as_leg(as_request_says(request, as_restated(split_formation(request, data))))
+    data = climb_as_leg(as_request_says(request, as_restated(request, split_formation(request, data))))
     plan = without_unasked(request, fleet, parse_plan(placed_by_name(request, fleet, data), fleet))
     return questions_of_fleet(request, fleet, plan), gaps(request, fleet, plan)
 
@@ -227,16 +227,18 @@ def climb_as_leg(data: Any) -> Any:
     return data
 
 
-def as_restated(data: Any) -> Any:
+def as_restated(request: str, data: Any) -> Any:
     """The decoded plan with each leg of a move from where its drone is going the way the model's own
     restatement (``in_english``) names for that leg's number, and a drone's first step, such a move at no
     altitude (or 0 m) whose first leg's number the restatement gives with no direction, climbing to that
     number instead ("Bravo flies to 20 meters, then 25 meters south" planned as 20 m north, then 25 m
     south; "30 yards to the north" as 30 yards east: the 1.5B model, in five languages). A number the
-    restatement gives twice with different directions, or not at all, leaves its leg as written."""
-    if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
+    restatement gives twice with different directions, or not at all, leaves its leg as written; a
+    restatement that copies the request is none (the 0.5B model copied requests in their own language)."""
+    said = str(data.get("in_english") or "") if isinstance(data, dict) else ""
+    if not said or said.strip() == request.strip() or not isinstance(data.get("steps"), list):
         return data
-    stated = lexicon.stated_directions(str(data.get("in_english") or ""))
+    stated = lexicon.stated_directions(said)
     seen: set[Any] = set()
     for k, step in enumerate(data["steps"]):
         if _horizontal_move_from_here(step):

@@ -47,11 +47,8 @@ def describe_errors(exc: ValidationError | ValueError) -> str:
     """A validation error as short lines: where in the plan, and what is wrong."""
     if not isinstance(exc, ValidationError):
         return str(exc)
-    lines = []
-    for err in exc.errors()[:MAX_ERRORS_SHOWN]:
-        where = ".".join(str(p) for p in err["loc"]) or "plan"
-        lines.append(f"{where}: {err['msg']}")
-    return "; ".join(lines)
+    errors = exc.errors()[:MAX_ERRORS_SHOWN]
+    return "; ".join(f"{'.'.join(str(p) for p in e['loc']) or 'plan'}: {e['msg']}" for e in errors)
 
 
 class Planner:

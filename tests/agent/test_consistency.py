@@ -108,15 +108,16 @@ def test_legs_go_the_way_the_models_restatement_says_and_a_number_it_gives_with_
     said = "Bravo flies to 20 meters, then flies 25 meters south, then 30 yards to the north-east."
     move = {"action": "move", "drone": "bravo", "origin": "here", "altitude": None, "after": "stay",
             "legs": _legs((20, "north"), (25, "south"), (30, "east"))}  # fmt: skip
-    out = as_restated({"in_english": said, "steps": [copy.deepcopy(move)]})
+    request = "Bravo na 20 m, 25 m na jih, 30 yardů na severovýchod."
+    out = as_restated(request, {"in_english": said, "steps": [copy.deepcopy(move)]})
     assert out["steps"] == [{**move, "altitude": {"value": 20, "unit": "m"},
                              "legs": _legs((25, "south"), (30, "northeast"))}]  # fmt: skip
     at_0_m = {**move, "altitude": {"value": 0, "unit": "m"}}
-    out = as_restated({"in_english": said, "steps": [copy.deepcopy(at_0_m)]})
+    out = as_restated("", {"in_english": said, "steps": [copy.deepcopy(at_0_m)]})
     assert out["steps"][0]["altitude"] == {"value": 20, "unit": "m"}
     climb_only = {**move, "legs": _legs((20, "north"))}
     said = "Bravo flies to 20 meters and stays."
-    out = as_restated({"in_english": said, "steps": [copy.deepcopy(climb_only)]})
+    out = as_restated("", {"in_english": said, "steps": [copy.deepcopy(climb_only)]})
     assert out["steps"] == [{"action": "altitude", "drone": "bravo", "altitude": {"value": 20, "unit": "m"},
                              "after": "stay"}]  # fmt: skip
 
@@ -132,7 +133,10 @@ def test_a_leg_the_restatement_does_not_settle_is_left_as_written() -> None:
     ]
     for said, steps in cases:
         data = {"in_english": said, "steps": copy.deepcopy(steps)}
-        assert as_restated(data)["steps"] == steps, said
+        assert as_restated("", data)["steps"] == steps, said
+    copied = "Lleva a bravo 30 m al norte y luego 30 m al sur."  # a copy of the request restates nothing
+    one_leg = [{**move, "legs": _legs((30, "north"))}]
+    assert as_restated(copied, {"in_english": copied, "steps": copy.deepcopy(one_leg)})["steps"] == one_leg
 
 
 def test_a_branch_step_of_an_unnamed_drone_with_a_number_the_request_does_not_give_is_dropped() -> None:
