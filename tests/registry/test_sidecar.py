@@ -71,6 +71,9 @@ async def test_serves_after_discovery_and_stop_leaves_nothing(stopper: list[Side
         assert car.state == SidecarState.SERVING
         port = car.grpc_port
         assert port is not None
+        # a start whose port another process took is respawned on another port: the process serving now
+        pid = car.pid
+        assert pid is not None
         # the gRPC port really is open, and by our process
         assert proc_sockets.listening_inodes(port) <= proc_sockets.socket_inodes(pid)
         assert car.status()["vehicle_discovered"] is True
