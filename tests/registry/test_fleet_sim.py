@@ -263,6 +263,7 @@ async def test_a_takeoff_whose_ack_was_lost_counts_if_the_drone_flies(store, reg
         await _wait_alt(v, 4.5)
         await v.land()
         await wait_until(lambda: v.telemetry.fresh("armed") is False, WAIT_S, "landed and disarmed")
+        await wait_until(lambda: v.on_ground() is True, WAIT_S, "on the ground")  # its in-air state may lag
         lose_ack_after_running = False
         with pytest.raises(CommandFailed, match=r"Timeout \(TIMEOUT\)"):
             await v.takeoff(5)
