@@ -222,7 +222,7 @@ def climb_as_leg(data: Any) -> Any:
     seen: set[Any] = set()
     for step in data["steps"]:
         if _first_leg_a_climb(step) and step.get("drone") not in seen:
-            step["altitude"] = step["legs"].pop(0)["distance"]
+            _climbing(step)  # two legs or more: the same move, its first leg its altitude
         seen.add(step.get("drone") if isinstance(step, dict) else None)
     return data
 
