@@ -30,7 +30,7 @@ def read_plan(request: str, fleet: list[str], data: Any) -> tuple[Plan, list[str
     """The decoded reply as the plan the host compiles, and what it leaves out of the request (one note
     each): every rewrite the host makes before compiling, in its order. Raises the validation error of a
     plan that does not validate."""
-    data = climb_as_leg(as_request_says(request, as_restated(request, split_formation(request, data))))
+    data = as_request_says(request, as_stated(request, split_formation(request, flown_on(data))))
     plan = without_unasked(request, fleet, parse_plan(placed_by_name(request, fleet, data), fleet))
     return questions_of_fleet(request, fleet, plan), gaps(request, fleet, plan)
 
@@ -121,14 +121,8 @@ def _words(text: str) -> list[str]:
 def _request_numbers(request: str, fleet: list[str]) -> list[float]:
     """The numbers of the request (digits, with a decimal point or comma), a drone id's digits left out."""
     ids = {d.lower() for d in fleet}
-    text = " ".join(w for w in _words(request.replace(".", "_").replace(",", "_")) if w.lower() not in ids)
-    runs = "".join(c if c.isdigit() or c == "_" else " " for c in text).split()
-    numbers = []
-    for run in runs:
-        digits = run.strip("_").split("_")
-        if digits[0]:
-            numbers.append(float(".".join(digits[:2])))
-    return numbers
+    text = " ".join(w for w in lexicon.by_script(request).split() if w.lower().strip(".,;:!?") not in ids)
+    return [abs(value) for value, _ in lexicon.stated_ways(text)]
 
 
 def _plan_drones(data: Any) -> set[str]:
@@ -213,48 +207,80 @@ def placed_by_name(request: str, fleet: list[str], data: Any) -> Any:
     return data
 
 
-def climb_as_leg(data: Any) -> Any:
-    """The decoded plan with a drone's first step, a move from where it is at no altitude whose first two
-    legs go the same way, taking off to the first leg's length: the height it was to climb to (the 1.5B
-    model wrote a takeoff to a height followed by a leg, in three languages, as two legs the same way)."""
-    if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
-        return data
-    seen: set[Any] = set()
-    for step in data["steps"]:
-        if _first_leg_a_climb(step) and step.get("drone") not in seen:
-            _climbing(step)  # two legs or more: the same move, its first leg its altitude
-        seen.add(step.get("drone") if isinstance(step, dict) else None)
+def flown_on(data: Any) -> Any:
+    """The decoded plan without the landing or return a drone's step ends with when the drone's next step
+    flies it on from there (a move or a pattern; a takeoff after a landing keeps it): the 1.5B model ended
+    "Charlie up to 25 m, then drop it by 15 m" with a landing after the climb, restated as no landing."""
+    steps = data.get("steps") if isinstance(data, dict) else None
+    steps = [s for s in steps if isinstance(s, dict)] if isinstance(steps, list) else []
+    for k, step in enumerate(steps):
+        mine = [s for s in steps[k + 1 :] if s.get("drone") == step.get("drone")]
+        if mine and mine[0].get("action") in ("move", "pattern") and step.get("after") != "stay":
+            step["after"] = "stay"
     return data
 
 
-def as_restated(request: str, data: Any) -> Any:
-    """The decoded plan with each leg of a move from where its drone is going the way the model's own
-    restatement (``in_english``) names for that leg's number, and a drone's first step, such a move at no
-    altitude (or 0 m) whose first leg's number the restatement gives with no direction, climbing to that
-    number instead ("Bravo flies to 20 meters, then 25 meters south" planned as 20 m north, then 25 m
-    south; "30 yards to the north" as 30 yards east: the 1.5B model, in five languages). A number the
-    restatement gives twice with different directions, or not at all, leaves its leg as written; a
-    restatement that copies the request is none (the 0.5B model copied requests in their own language)."""
+def as_stated(request: str, data: Any) -> Any:
+    """The decoded plan with its legs going the ways the model's restatement (``in_english``), then the
+    request (its words win), name for their numbers (`_as_said`): the 1.5B model planned "Bravo flies to 20
+    meters, then 25 meters south" as 20 m north, then 25 m south, and "raise alpha to 10 m, then 20 m
+    north" (Hungarian, Finnish, Hindi) as 10 m north, then 20 m west, restated wrong too. A restatement
+    copying the request, or a request with no compass word the lexicon knows, is not read."""
     said = str(data.get("in_english") or "") if isinstance(data, dict) else ""
-    if not said or said.strip() == request.strip() or not isinstance(data.get("steps"), list):
+    if said and said.strip() != request.strip():
+        data = _as_said(said, data)
+    return _as_said(request, data) if lexicon.compass_points(request) else data
+
+
+def _as_said(text: str, data: Any) -> Any:
+    """The plan with the k-th leg of a length going the way ``text`` names after its k-th such number (a
+    length named with no way, or other times than the plan flies it, is left), or its one leg or first side
+    the way of the text's one compass word; a drone's first move from where it is at no altitude, while the
+    plan has more legs than the text names ways, whose first leg's number the text names once with no
+    way, climbs to that number."""
+    steps = data.get("steps") if isinstance(data, dict) else None
+    if not isinstance(steps, list):
         return data
-    stated = lexicon.stated_directions(said)
-    seen: set[Any] = set()
-    for k, step in enumerate(data["steps"]):
-        if _horizontal_move_from_here(step):
-            for leg in filter(_horizontal, step["legs"]):
-                ways = _ways(leg, stated)
-                leg["direction"] = ways.pop() if len(ways) == 1 and None not in ways else leg["direction"]
-            first = step.get("drone") not in seen and not (step.get("altitude") or {}).get("value")
-            if first and _horizontal(step["legs"][0]) and _ways(step["legs"][0], stated) == {None}:
-                data["steps"][k] = _climbing(step)
-        seen.add(step.get("drone") if isinstance(step, dict) else None)
+    points, ways = lexicon.compass_points(text), lexicon.stated_ways(text)
+    for k, step in enumerate(steps):
+        if len(_compass_slots(steps)) > len(points) and _climbs_first(ways, steps[:k], step):
+            steps[k] = _climbing(step)
+    slots = _compass_slots(steps)
+    if len(slots) == len(points) == 1:
+        slots[0][0][slots[0][1]] = points[0]
+        return data
+    legs = [holder for holder, key in slots if key == "direction"]
+    for value in {leg["distance"].get("value") for leg in legs}:
+        named = [way for number, way in ways if number == value]
+        same = [leg for leg in legs if leg["distance"].get("value") == value]
+        if len(named) == len(same) and None not in named:
+            for leg, way in zip(same, named, strict=True):
+                leg["direction"] = way
     return data
 
 
-def _ways(leg: Any, stated: list[tuple[float, str | None]]) -> set[str | None]:
-    """The directions the restatement gives after the leg's number (None: none)."""
-    return {way for value, way in stated if value == leg["distance"].get("value")}
+def _compass_slots(steps: list[Any]) -> list[tuple[dict[str, Any], str]]:
+    """Where the plan names a compass point, in order: each horizontal leg of a move or a formation, each
+    pattern's first side, an ``if``'s and a choice's steps included."""
+    slots: list[tuple[dict[str, Any], str]] = []
+    for step in filter(lambda s: isinstance(s, dict), steps):
+        slots += [(leg, "direction") for leg in step.get("legs") or [] if _horizontal(leg)]
+        slots += [(step, "heading")] if step.get("action") == "pattern" and step.get("heading") else []
+        for branch in ("then", "otherwise"):
+            slots += _compass_slots(step.get(branch) or []) if isinstance(step.get(branch), list) else []
+    return slots
+
+
+def _climbs_first(ways: list[tuple[float, str | None]], earlier: list[Any], step: Any) -> bool:
+    """``step`` is its drone's first, a move from where it is at no altitude (or 0 m) whose first leg is
+    horizontal, and the text names that leg's number once, with no way."""
+    if not _horizontal_move_from_here(step) or (step.get("altitude") or {}).get("value"):
+        return False
+    if not _horizontal(leg := step["legs"][0]):
+        return False
+    if step.get("drone") in {s.get("drone") for s in earlier if isinstance(s, dict)}:
+        return False
+    return [way for number, way in ways if number == leg["distance"].get("value")] == [None]
 
 
 def _climbing(move: dict[str, Any]) -> dict[str, Any]:
@@ -263,13 +289,6 @@ def _climbing(move: dict[str, Any]) -> dict[str, Any]:
     if move["legs"]:
         return move
     return {"action": "altitude", **{k: move.get(k) for k in ("drone", "altitude", "after")}}
-
-
-def _first_leg_a_climb(step: Any) -> bool:
-    legs = step.get("legs") if _horizontal_move_from_here(step) and step.get("altitude") is None else None
-    if not isinstance(legs, list) or len(legs) < 2 or not _horizontal(legs[0]) or not _horizontal(legs[1]):
-        return False
-    return bool(legs[0].get("direction") == legs[1].get("direction"))
 
 
 def _horizontal(leg: Any) -> bool:

@@ -1,42 +1,39 @@
-"""The one place the host reads words: units written after a number, whether the request speaks of a
-drone's home, and the compass points of the model's own English restatement. Words of the languages
-operators write in; a word matches a stem when it starts with it. A word of the request read here only
-ever settles what the plan leaves open (a unit, an origin); the absence of a word changes nothing, so a
-request in a language the lexicon does not know is flown as the model planned it. Everything else the
-host reads without words (`fleet_agent.consistency`).
+"""The one place the host reads words (``words.toml``, in the languages operators write in): units written
+after a number, whether the request speaks of a drone's home, and compass points, the request's and its
+English restatement's. A word read here only settles what the plan says otherwise (a unit, an origin, a
+leg's way); with no word the lexicon knows, a request is flown as the model planned it. Everything else
+the host reads without words (`fleet_agent.consistency`).
 """
 
 from __future__ import annotations
 
+import tomllib
 import unicodedata
 from itertools import pairwise, takewhile
+from pathlib import Path
+from typing import Any
 
+from fleet_agent.plan import OPPOSITE
 from fleet_agent.units import Unit
 
-#: a unit's words, each the whole word that follows a number ("50 ft", "0,05 km", "100 yards")
-UNIT_WORDS: dict[Unit, frozenset[str]] = {
-    Unit.m: frozenset("m metre metres meter meters mètre mètres metro metros metri mtr mts".split()),
-    Unit.ft: frozenset("ft feet foot pied pieds pie pies piede piedi pé pés fuß fuss voet".split()),
-    Unit.yd: frozenset("yd yds yard yards yarda yardas iarde jarda jardas".split()),
-    Unit.km: frozenset(
-        "km kms kilometre kilometres kilometer kilometers kilomètre kilomètres kilómetro kilómetros "
-        "chilometro chilometri quilômetro quilômetros quilómetro quilómetros".split()
-    ),
-    Unit.mi: frozenset("mi mile miles milla millas meile meilen miglio miglia milha milhas mijl".split()),
-    Unit.nmi: frozenset("nmi".split()),
-    Unit.cm: frozenset(
-        "cm centimetre centimetres centimeter centimeters centimètre centimètres centímetro centímetros "
-        "centimetro centimetri zentimeter".split()
-    ),
-}
 
-#: stems of a drone's home (its launch point), read only to measure a move the model wrote from its own
-#: drone from that drone's home; a request with none of them is left as the model planned it
-HOME_STEMS = (
-    "home", "return", "rtl", "casa", "maison", "retour", "revien", "rentr", "départ", "depart", "origin",
-    "heim", "zurück", "zuruck", "rück", "volv", "vuelv", "regres", "retorn", "ritorn", "rientr", "torn",
-    "volta", "volte", "thuis", "terug",
-)  # fmt: skip
+def _words() -> dict[str, Any]:
+    with (Path(__file__).parent / "words.toml").open("rb") as file:
+        return tomllib.load(file)
+
+
+_WORDS = _words()
+#: a unit's words, each the whole word that follows a number ("50 ft", "0,05 km", "100 yards")
+UNIT_WORDS = {Unit(unit): frozenset(words.split()) for unit, words in _WORDS["units"].items()}
+#: stems of a drone's home, read only to measure a move the model wrote from its own drone from its home
+HOME_STEMS = tuple(_WORDS["home"]["stems"].split())
+#: each compass word's stem and its point, longest first ("northeast" before "north", "юго" before "юг")
+_STEMS = [(s.replace("_", " "), p) for p, stems in _WORDS["points"].items() for s in stems.split()]
+_STEMS.sort(key=lambda stem_point: -len(stem_point[0]))
+#: compass words that are common words too: each counts only after one of its words ("à l'est", "al sur")
+SHARED_POINTS = {
+    word: (shared["point"], shared["after"].split()) for word, shared in _WORDS["shared_points"].items()
+}
 
 
 #: what ends a clause of a text
@@ -49,30 +46,91 @@ def clauses(text: str) -> list[str]:
     return text.split("\0")
 
 
-def stated_directions(text: str) -> list[tuple[float, str | None]]:
-    """Each number of an English text (the model's restatement of a request, ``in_english``) with the
-    compass direction named after it and before the next number of its clause ("30 yards to the
-    north-east": northeast), or None ("flies to 20 m")."""
-    found = []
-    for clause in clauses(text):
-        words = tokens(clause.lower())
-        for k, word in enumerate(words):
-            if (value := number(word)) is None:
-                continue
-            points = [p for p in map(_point, takewhile(lambda t: number(t) is None, words[k + 1 :])) if p]
-            joined = len(points) > 1 and points[0] in ("north", "south") and points[1] in ("east", "west")
-            found.append((value, points[0] + points[1] if joined else next(iter(points), None)))
+def stated_ways(text: str) -> list[tuple[float, str | None]]:
+    """Each number of a text with the compass point named after it and before the next number of its
+    clause ("30 yards to the north-east": northeast; "25 मीटर पूर्व": east), or, in a clause of one number and
+    one point, before it ("北へ20メートル"); None when the clause names none ("flies to 20 m")."""
+    found: list[tuple[float, str | None]] = []
+    for clause in clauses(text.lower()):
+        numbers, points = _numbers_at(clause), _points_at(clause)
+        for k, (start, end, value) in enumerate(numbers):
+            stop = numbers[k + 1][0] if k + 1 < len(numbers) else len(clause)
+            after = [p for at, _, p in points if end <= at < stop]
+            before = [p for at, _, p in points if at < start] if len(numbers) == len(points) == 1 else []
+            way = next(iter(after + before), None)
+            found.append((-value, OPPOSITE[way]) if value < 0 and way else (value, way))
     return found
 
 
-def _point(word: str) -> str | None:
-    """The compass point a word starts with ("northeast", "westwards"), else None."""
-    for first in ("north", "south", "east", "west"):
-        if word.startswith(first):
-            rest = word[len(first) :] if first in ("north", "south") else ""
-            return first + next((p for p in ("east", "west") if rest.startswith(p)), "")
-    return None
+def compass_points(text: str) -> list[str]:
+    """The compass points a text names, in order."""
+    return [point for _, _, point in _points_at(text.lower())]
 
+
+def _points_at(text: str) -> list[tuple[int, int, str]]:
+    """Where each compass point's word starts and ends in a lower-case text, and its point; two named
+    together are one diagonal ("nord-ouest", "西北", "tây bắc", "Nordwesten": northwest)."""
+    found: list[tuple[int, int, str]] = []
+    at = 0
+    while at < len(text):
+        end, point = _point_word(text, at, found[-1][1] if found else -1)
+        if point and found and end > at and _joins(found[-1][2], point, text[found[-1][1] : at]):
+            found[-1] = (found[-1][0], end, _diagonal(found[-1][2], point))
+        elif point:
+            found.append((at, end, point))
+        at = max(end, at + 1)
+    return found
+
+
+def _numbers_at(text: str) -> list[tuple[int, int, float]]:
+    """Where each number written in digits starts and ends in a text (not one ending a Latin word, "alpha2"),
+    and its value (a decimal comma read as a point)."""
+    found: list[tuple[int, int, float]] = []
+    at = 0
+    while at < len(text):
+        end = at
+        while end < len(text) and (text[end].isdigit() or (end > at and _inside_number(text, end))):
+            end += 1
+        value = number(text[at:end]) if end > at and not _latin_letter(text[at - 1 : at]) else None
+        if value is not None:
+            signed = at > 0 and text[at - 1] in "-−" and not text[at - 2 : at - 1].isalnum()
+            found.append((at, end, -value if signed else value))
+        at = max(end, at + 1)
+    return found
+
+
+def _latin_letter(char: str) -> bool:
+    return char.isascii() and char.isalpha()
+
+
+def _inside_number(text: str, at: int) -> bool:
+    return text[at] in ".," and text[at + 1 : at + 2].isdigit()
+
+
+def _point_word(text: str, at: int, last_end: int) -> tuple[int, str | None]:
+    """Where the compass word starting at ``at`` ends, and its point (None: there is none)."""
+    starts = at == 0 or not text[at - 1].isalpha() or at == last_end
+    for stem, point in _STEMS:
+        if text.startswith(stem, at) and (starts or ord(stem[0]) > 0x590):
+            return at + len(stem), point
+    word = "".join(takewhile(str.isalpha, text[at:]))
+    if starts and word in SHARED_POINTS:
+        point, before = SHARED_POINTS[word]
+        previous = "".join(takewhile(str.isalpha, text[:at].rstrip(" '’-")[::-1]))[::-1]
+        if previous in before or at == last_end:
+            return at + len(word), point
+    return at, None
+
+
+def _joins(first: str, second: str, between: str) -> bool:
+    """Two points named together (nothing but a hyphen, a space or an Arabic article between them), one
+    of north and south, the other of east and west."""
+    axes = [p in ("north", "south") for p in (first, second) if p in ("north", "south", "east", "west")]
+    return sorted(axes) == [False, True] and not between.strip(" -ال")
+
+
+def _diagonal(first: str, second: str) -> str:
+    return first + second if first in ("north", "south") else second + first
 
 
 def by_script(text: str) -> str:

@@ -4,7 +4,13 @@ from __future__ import annotations
 
 import copy
 
-from fleet_agent.consistency import as_restated, climb_as_leg, gaps, questions_of_fleet, without_unasked
+from fleet_agent.consistency import (
+    as_stated,
+    flown_on,
+    gaps,
+    questions_of_fleet,
+    without_unasked,
+)
 from fleet_agent.plan import Condition, Report, parse_plan
 from fleet_agent.prompt import messages_for, prefix_messages
 
@@ -84,22 +90,21 @@ def _legs(*legs: tuple[float, str]) -> list[dict[str, object]]:
     return [{"distance": {"value": v, "unit": "m"}, "direction": d} for v, d in legs]
 
 
-def test_a_drones_first_move_whose_first_two_legs_go_the_same_way_takes_off_to_the_first() -> None:
+def test_a_drones_first_move_whose_first_leg_the_request_gives_no_way_takes_off_to_it() -> None:
     """A climb to 14 m then 40 m south, in Dutch, came back as 14 m south and 40 m south (1.5B model)."""
+    request = "Breng bravo naar 14 m en vlieg dan 40 m naar het zuiden; daar landen."
     move = {"action": "move", "drone": "bravo", "origin": "here", "altitude": None, "after": "land",
             "legs": _legs((14, "south"), (40, "south"))}  # fmt: skip
-    out = climb_as_leg({"steps": [move]})
+    out = as_stated(request, {"steps": [copy.deepcopy(move)]})
     assert out["steps"][0]["altitude"] == {"value": 14, "unit": "m"}
     assert out["steps"][0]["legs"] == _legs((40, "south"))
     kept = [
-        {**move, "legs": _legs((14, "south"), (40, "west"))},  # a dogleg
         {**move, "legs": _legs((14, "south"), (40, "south")), "altitude": {"value": 9, "unit": "m"}},
         {**move, "drone": "alpha", "origin": "charlie", "legs": _legs((14, "south"), (40, "south"))},
     ]
     after_takeoff = [_up("bravo", 9), {**move, "legs": _legs((14, "south"), (40, "south"))}]
-    for steps in ([kept[0]], [kept[1]], [kept[2]], after_takeoff):
-        assert climb_as_leg({"steps": copy.deepcopy(steps)}) == {"steps": steps}
-
+    for steps in ([kept[0]], [kept[1]], after_takeoff):
+        assert as_stated(request, {"steps": copy.deepcopy(steps)}) == {"steps": steps}
 
 
 def test_legs_go_the_way_the_models_restatement_says_and_a_number_it_gives_with_no_way_is_the_climb() -> None:
@@ -109,15 +114,15 @@ def test_legs_go_the_way_the_models_restatement_says_and_a_number_it_gives_with_
     move = {"action": "move", "drone": "bravo", "origin": "here", "altitude": None, "after": "stay",
             "legs": _legs((20, "north"), (25, "south"), (30, "east"))}  # fmt: skip
     request = "Bravo na 20 m, 25 m na jih, 30 yardů na severovýchod."
-    out = as_restated(request, {"in_english": said, "steps": [copy.deepcopy(move)]})
+    out = as_stated(request, {"in_english": said, "steps": [copy.deepcopy(move)]})
     assert out["steps"] == [{**move, "altitude": {"value": 20, "unit": "m"},
                              "legs": _legs((25, "south"), (30, "northeast"))}]  # fmt: skip
     at_0_m = {**move, "altitude": {"value": 0, "unit": "m"}}
-    out = as_restated("", {"in_english": said, "steps": [copy.deepcopy(at_0_m)]})
+    out = as_stated("", {"in_english": said, "steps": [copy.deepcopy(at_0_m)]})
     assert out["steps"][0]["altitude"] == {"value": 20, "unit": "m"}
     climb_only = {**move, "legs": _legs((20, "north"))}
     said = "Bravo flies to 20 meters and stays."
-    out = as_restated("", {"in_english": said, "steps": [copy.deepcopy(climb_only)]})
+    out = as_stated("", {"in_english": said, "steps": [copy.deepcopy(climb_only)]})
     assert out["steps"] == [{"action": "altitude", "drone": "bravo", "altitude": {"value": 20, "unit": "m"},
                              "after": "stay"}]  # fmt: skip
 
@@ -133,10 +138,10 @@ def test_a_leg_the_restatement_does_not_settle_is_left_as_written() -> None:
     ]
     for said, steps in cases:
         data = {"in_english": said, "steps": copy.deepcopy(steps)}
-        assert as_restated("", data)["steps"] == steps, said
+        assert as_stated("", data)["steps"] == steps, said
     copied = "Lleva a bravo 30 m al norte y luego 30 m al sur."  # a copy of the request restates nothing
     one_leg = [{**move, "legs": _legs((30, "north"))}]
-    assert as_restated(copied, {"in_english": copied, "steps": copy.deepcopy(one_leg)})["steps"] == one_leg
+    assert as_stated(copied, {"in_english": copied, "steps": copy.deepcopy(one_leg)})["steps"] == one_leg
 
 
 def test_a_branch_step_of_an_unnamed_drone_with_a_number_the_request_does_not_give_is_dropped() -> None:
@@ -192,3 +197,61 @@ def test_an_id_written_onto_a_word_of_another_script_is_read_as_named() -> None:
     to_point = placed | {"origin": point, "legs": []}
     assert without_unasked(request, FLEET, _plan(to_point)).steps == _plan(to_point).steps
     assert gaps("bravoを15メートルまで上昇させて", FLEET, _plan(_up("bravo", 15))) == []
+
+
+def _move(drone: str, *legs: tuple[float, str], altitude: float | None = None) -> dict[str, object]:
+    height = None if altitude is None else {"value": altitude, "unit": "m"}
+    return {"action": "move", "drone": drone, "origin": "here", "altitude": height, "after": "stay",
+            "legs": _legs(*legs)}  # fmt: skip
+
+
+def test_legs_go_the_ways_the_requests_own_compass_words_name_for_their_numbers() -> None:
+    """The 1.5B model restated "nyugatra" (west) as north and "északra" (north) as east, "पूर्व" (east) as
+    north; the legs' order in a plan need not be the request's."""
+    request = "Emeld alpha-t 12 méterre, repülj vele 20 métert nyugatra, aztán 20 métert északra."
+    data = {"steps": [_up("alpha", 12), _move("alpha", (20, "north"), (20, "east"))]}
+    assert as_stated(request, data)["steps"][1] == _move("alpha", (20, "west"), (20, "north"))
+    reordered = "Mueve a charlie 15 metros al oeste y 25 al sur, a 14 metros de altura."
+    data = {"steps": [_move("charlie", (25, "south"), (15, "east"), altitude=14)]}
+    want = [_move("charlie", (25, "south"), (15, "west"), altitude=14)]
+    assert as_stated(reordered, data)["steps"] == want
+    pattern = {"action": "pattern", "drone": "bravo", "shape": "square", "heading": "north"}
+    data = {"steps": [copy.deepcopy(pattern)]}
+    square = "bravo : un carré de 20 m, premier côté vers l'est"
+    assert as_stated(square, data)["steps"][0]["heading"] == "east"
+
+
+def test_a_first_leg_whose_number_the_request_gives_no_way_is_the_climb() -> None:
+    """ "Raise bravo to 10 m, take it 0.03 km west" was planned as 10 m north, then 0.03 km north-east."""
+    request = "Emeld bravo-t 10 méterre, vidd 0,03 kilométerre nyugatra, és ott tedd le."
+    data = {"steps": [_move("bravo", (10, "north"), (0.03, "northeast"))]}
+    assert as_stated(request, data)["steps"] == [_move("bravo", (0.03, "west"), altitude=10)]
+    finnish = "Nosta alpha 10 metriin, sitten 5 metriä ylemmäs ja 20 metriä pohjoiseen, ja jätä se sinne."
+    data = {"steps": [_move("alpha", (10, "north"), (5, "up"), (20, "west"))]}
+    want = [_move("alpha", (5, "up"), (20, "north"), altitude=10)]
+    assert as_stated(finnish, data)["steps"] == want
+
+
+def test_a_plan_the_requests_compass_words_do_not_settle_is_left_as_written() -> None:
+    cases = [
+        ("alpha 20 m and then 10 m", [_move("alpha", (20, "north"), (10, "east"))]),  # no compass word
+        ("flytta alpha 30 meter mot nordnordost", [_move("alpha", (25, "north"), (11, "east"))]),  # no number
+        ("alpha 20 m north, then 20 m", [_move("alpha", (20, "west"), (20, "east"))]),  # one 20 m has no way
+        ("alpha up 10 m, 20 m", [_up("alpha", 5), _move("alpha", (10, "west"), (20, "south"))]),  # no way
+    ]
+    for request, steps in cases:
+        assert as_stated(request, {"steps": copy.deepcopy(steps)})["steps"] == steps, request
+    one_way = [_up("alpha", 5), _move("alpha", (10, "west"), (20, "south"))]  # not alpha's first step
+    out = as_stated("alpha up 10 m, 20 m north", {"steps": copy.deepcopy(one_way)})
+    assert out["steps"] == [_up("alpha", 5), _move("alpha", (10, "west"), (20, "north"))]
+
+
+def test_a_landing_before_the_drones_next_move_is_no_landing_and_one_before_a_takeoff_stays() -> None:
+    """ "Charlie up to 25 m, then drop it by 15 m and move it 10 m west" came back with a landing after the
+    climb (1.5B model): the drone flew the rest from the ground."""
+    climb = {"action": "altitude", "drone": "charlie", "altitude": {"value": 25, "unit": "m"},
+             "after": "land"}  # fmt: skip
+    on = [copy.deepcopy(climb), _move("charlie", (10, "west")), {**_up("bravo", 5), "after": "land"}]
+    assert [s.get("after") for s in flown_on({"steps": on})["steps"]] == ["stay", "stay", "land"]
+    again = [copy.deepcopy(climb), _up("charlie", 10), _move("alpha", (10, "west"))]
+    assert flown_on({"steps": copy.deepcopy(again)})["steps"] == again

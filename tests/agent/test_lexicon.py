@@ -4,8 +4,10 @@ from __future__ import annotations
 
 from typing import Any
 
+import pytest
+
 from fleet_agent.consistency import as_request_says, placed_by_name, split_formation
-from fleet_agent.lexicon import number_units, stated_directions, tokens
+from fleet_agent.lexicon import compass_points, number_units, stated_ways, tokens
 from fleet_agent.units import Unit
 
 
@@ -140,6 +142,34 @@ def test_a_word_ends_where_its_script_changes_and_a_latin_word_stays_whole() -> 
 def test_the_restatement_gives_each_number_the_compass_point_after_it_in_its_clause() -> None:
     said = "Alpha flies to 12 m, then 30 m south-west and 10 m back north east; 0,5 km northwards, 5 m up."
     want = [(12, None), (30, "southwest"), (10, "northeast"), (0.5, "north"), (5, None)]
-    assert stated_directions(said) == want
-    assert stated_directions("Echo flies 20 m east of delta at 15 m.") == [(20, "east"), (15, None)]
-    assert stated_directions("Nothing flies.") == []
+    assert stated_ways(said) == want
+    assert stated_ways("Echo flies 20 m east of delta at 15 m.") == [(20, "east"), (15, None)]
+    assert stated_ways("Nothing flies, alpha2 neither.") == []
+
+
+@pytest.mark.parametrize(
+    ("text", "points"),
+    [
+        ("Emeld 12 méterre, 20 métert nyugatra, aztán 20 métert északra", ["west", "north"]),
+        ("charlie को 25 मीटर पूर्व की ओर ले जाओ", ["east"]),
+        ("Il est parti à l'est, puis vers le nord-ouest", ["east", "northwest"]),
+        ("este dron vuela al este y al sur, luego al suroeste", ["east", "south", "southwest"]),
+        ("alphaを北西へ20メートル、向东飞", ["northwest", "east"]),
+        ("bay về phía tây bắc 20 m rồi hướng nam", ["northwest", "south"]),
+        ("Nordwesten, sudoeste; на юго-запад", ["northwest", "southwest", "southwest"]),
+        ("північно-східний; βορειοανατολικά", ["northeast", "northeast"]),
+        ("الشمال الشرقي ثم غربا", ["northeast", "west"]),
+        ("북동쪽으로 20미터, 그리고 서쪽", ["northeast", "west"]),
+        ("ตะวันออกเฉียงเหนือ; ke barat laut", ["northeast", "northwest"]),
+        ("name the place, ida y vuelta, zachowaj wysokość, laut Plan, sur le toit, sul tetto", []),
+    ],
+)  # fmt: skip
+def test_compass_words_of_the_languages_operators_write_in(text: str, points: list[str]) -> None:
+    assert compass_points(text) == points
+
+
+def test_a_request_gives_a_number_the_way_named_after_it_or_in_a_clause_of_its_own_before_it() -> None:
+    assert stated_ways("Vidd 0,03 kilométerre nyugatra, és ott tedd le.") == [(0.03, "west")]
+    assert stated_ways("alphaを北へ20メートル、東へ10メートル") == [(20, "north"), (10, "east")]
+    assert stated_ways("Nosta alpha 10 metriin, sitten 5 metriä ylemmäs ja 20 metriä pohjoiseen") == [
+        (10, None), (5, None), (20, "north")]  # fmt: skip
