@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 447 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 483 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -113,6 +113,16 @@ Greek, Hindi, Hungarian, Indonesian, Norwegian, Russian, Spanish, Swedish, Ukrai
 (Arabic, Devanagari and Thai script are new), spread over the 11 classes, and the ``language`` class's 3
 in Arabic, Hindi and Thai. Only the harness self-check (the scripted ideal plan) has run on them. That
 leaves 411 dev and 36 test.
+Later on 2026-12-02 (tenth round) EVERY test entry (36, ``_tenth_round``) was moved to dev, each marked
+"moved to dev on 2026-12-02, tenth round": the test half had been measured and its figures were known to
+whoever works on the host, so it no longer measured requests nobody tuned for. A fresh test half took its
+place (``_eleventh_test_half``): 36 new requests, 3 a class, written before any model ran on it, in new
+wordings and shapes within each class (not rewordings of dev entries): 22 of the 33 outside the
+``language`` class are in Bulgarian, Chinese, Croatian, Czech, Dutch, Estonian, French, Italian, Japanese,
+Korean, Latvian, Lithuanian, Malay, Polish, Romanian, Slovak, Slovenian, Swahili, Tagalog or Turkish
+(Malay, Swahili and Tagalog are new), spread over the 11 classes, and the ``language`` class's 3 in Hebrew,
+Persian and Bengali (Hebrew and Bengali script are new). Only the harness self-check (the scripted ideal
+plan) has run on them: 36 of 36 passed. That leaves 447 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -162,7 +172,7 @@ CLASSES = (
     "units",  # distances and heights in feet, yards, kilometres
     "pattern",  # a shape flown by one drone: polygon, circle, survey lines
     "placement",  # a drone placed relative to another drone or to its home
-    "language",  # requests in languages other than English (Japanese, Chinese, Korean, French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish, Hungarian, Croatian, Slovak, Greek, Catalan, Russian, Ukrainian, Bulgarian, Slovenian, Latvian, Lithuanian, Estonian, Indonesian, Vietnamese, Arabic, Hindi, Thai)
+    "language",  # requests in languages other than English (Japanese, Chinese, Korean, French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish, Hungarian, Croatian, Slovak, Greek, Catalan, Russian, Ukrainian, Bulgarian, Slovenian, Latvian, Lithuanian, Estonian, Indonesian, Vietnamese, Arabic, Hindi, Thai, Hebrew, Persian, Bengali)
 )
 HALVES = ("dev", "test")
 DRONES = ("alpha", "bravo", "charlie")
@@ -3431,11 +3441,12 @@ def _ninth_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _tenth_test_half() -> list[CorpusEntry]:
+def _tenth_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-02 (tenth round), before any model ran on it: 3 a class; 22 of the
     33 outside ``language`` in other languages than English (Arabic, Catalan, Danish, Finnish, Greek, Hindi,
     Hungarian, Indonesian, Norwegian, Russian, Spanish, Swedish, Ukrainian, Vietnamese), the ``language``
-    class's 3 in Arabic, Hindi and Thai (Arabic, Devanagari and Thai script are new)."""
+    class's 3 in Arabic, Hindi and Thai (Arabic, Devanagari and Thai script are new); all of it moved to dev
+    later on 2026-12-02 (tenth round), once its figures had been measured."""
     three = DRONES
     d20yd = 20 * YD / math.sqrt(2)
     triangle20 = _polygon_legs(3, 20.0, 180.0, right=False)  # first side south, turning left
@@ -3443,33 +3454,39 @@ def _tenth_test_half() -> list[CorpusEntry]:
     pentagon15 = _polygon_legs(5, 15.0, 90.0, right=True)  # first side east, turning right
     return [
         # single
-        _entry("single", "test", "single10-es-charlie-hover", ("charlie",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("single", "dev", "single10-es-charlie-hover", ("charlie",),
                "Sube a charlie hasta 22 metros y déjalo quieto en el aire.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=22), airborne_at(ev, "charlie", 22)),
                [_takeoff("charlie", 22)], "Charlie está quieto a 22 m."),
-        _entry("single", "test", "single10-ar-alpha-hop", ("alpha",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("single", "dev", "single10-ar-alpha-hop", ("alpha",),
                "ارفع alpha إلى 10 أمتار ثم أنزله في مكانه.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 10), at(ev, "alpha", *_home(c, "alpha")),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), _land("alpha")], "ارتفع alpha إلى 10 m ثم هبط."),
-        _entry("single", "test", "single10-bravo-sit-at-35", ("bravo",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("single", "dev", "single10-bravo-sit-at-35", ("bravo",),
                "Launch bravo and let it sit at 35 m.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=35), airborne_at(ev, "bravo", 35)),
                [_takeoff("bravo", 35)], "Bravo sits at 35 m over its pad."),
         # multi
-        _entry("multi", "test", "multi10-sv-all-three-hover", three,
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("multi", "dev", "multi10-sv-all-three-hover", three,
                "Lyft alla tre drönarna till 15 meter och låt dem sväva där.",
                lambda c, ev: _all(*(at(ev, d, *_home(c, d), alt=15) for d in three),
                                   *(airborne_at(ev, d, 15) for d in three)),
                [_takeoff(d, 15) for d in three], "Alla tre svävar på 15 m."),
-        _entry("multi", "test", "multi10-hi-alpha-north-charlie-hop", three,
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("multi", "dev", "multi10-hi-alpha-north-charlie-hop", three,
                "alpha को 10 मीटर की ऊँचाई पर 20 मीटर उत्तर ले जाओ, और charlie को 8 मीटर तक उठाकर वापस उतार दो।",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=10), airborne_at(ev, "alpha", 10),
                                   reached_alt(ev, "charlie", 8), at(ev, "charlie", *_home(c, "charlie")),
                                   landed_disarmed(ev, "charlie"), never_armed(ev, "bravo")),
                [_move("alpha", 20, 0, alt=10), _takeoff("charlie", 8), _land("charlie")],
                "alpha 20 m उत्तर में 10 m पर है; charlie 8 m तक जाकर उतर गया।"),
-        _entry("multi", "test", "multi10-two-heights-both-land", three,
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("multi", "dev", "multi10-two-heights-both-land", three,
                "Take bravo to 10 m and charlie to 20 m, then land both of them; alpha stays put.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 10), reached_alt(ev, "charlie", 20),
                                   *(at(ev, d, *_home(c, d)) for d in ("bravo", "charlie")),
@@ -3477,38 +3494,44 @@ def _tenth_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 10), _takeoff("charlie", 20), _land("bravo"), _land("charlie")],
                "Bravo went to 10 m and charlie to 20 m; both landed. Alpha stayed down."),
         # compound
-        _entry("compound", "test", "compound10-hu-alpha-west-north-home", ("alpha",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("compound", "dev", "compound10-hu-alpha-west-north-home", ("alpha",),
                "Emeld alpha-t 12 méterre, repülj vele 20 métert nyugatra, aztán 20 métert északra, végül hozd haza.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -20), c.point("alpha", 20, -20)]),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 12), _move("alpha", 0, -20), _move("alpha", 20, 0), _rtl("alpha")],
                "Alpha repült nyugatra, majd északra, és hazajött."),
-        _entry("compound", "test", "compound10-el-charlie-east-climb-land", ("charlie",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("compound", "dev", "compound10-el-charlie-east-climb-land", ("charlie",),
                "Σήκωσε το charlie στα 10 μέτρα, πέτα το 25 μέτρα ανατολικά, ανέβασέ το άλλα 10 μέτρα και μετά "
                "προσγείωσέ το εκεί.",
                lambda c, ev: _all(rose_to(ev, "charlie", 20), at(ev, "charlie", *c.point("charlie", 0, 25)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 10), _move("charlie", 0, 25), _move("charlie", up=10), _land("charlie")],
                "Το charlie πέταξε 25 m ανατολικά, ανέβηκε στα 20 m και προσγειώθηκε."),
-        _entry("compound", "test", "compound10-bravo-south-east-hold", ("bravo",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("compound", "dev", "compound10-bravo-south-east-hold", ("bravo",),
                "Bravo: up to 14 m, 15 m south, 15 m east, then hold there in the air.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", -15, 0)]),
                                   at(ev, "bravo", *c.point("bravo", -15, 15), alt=14), airborne_at(ev, "bravo", 14)),
                [_takeoff("bravo", 14), _move("bravo", -15, 0), _move("bravo", 0, 15)],
                "Bravo holds 15 m south and 15 m east of its pad at 14 m."),
         # conditional
-        _entry("conditional", "test", "cond10-es-alpha-north-if-charged", ("alpha",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("conditional", "dev", "cond10-es-alpha-north-if-charged", ("alpha",),
                "Si alpha tiene más del 50 % de batería, llévalo 30 m al norte a 12 m de altura y déjalo allí; si "
                "no, déjalo en tierra.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 30, 0), alt=12), airborne_at(ev, "alpha", 12)),
                [_battery("alpha"), _move("alpha", 30, 0, alt=12)], "Alpha tiene 78 %: está 30 m al norte a 12 m.",
                battery={"alpha": 78.0}),
-        _entry("conditional", "test", "cond10-sv-charlie-low-stays", ("charlie",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("conditional", "dev", "cond10-sv-charlie-low-stays", ("charlie",),
                "Om charlies batteri är under 45 %, låt den stå kvar på marken; annars lyft den till 16 meter och "
                "landa igen.",
                lambda c, ev: _all(never_armed(ev, "charlie"), answer_mentions_number(ev, 40, 2)),
                [_battery("charlie")], "Charlie har 40 %: den står kvar på marken.", battery={"charlie": 40.0}),
-        _entry("conditional", "test", "cond10-bravo-at-least-70-goes-high", ("bravo",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("conditional", "dev", "cond10-bravo-at-least-70-goes-high", ("bravo",),
                "If bravo's battery is at least 70 %, send it up to 25 m and bring it home; otherwise only up to "
                "10 m and land.",
                lambda c, ev: _all(rose_to(ev, "bravo", 25), at(ev, "bravo", *_home(c, "bravo")),
@@ -3516,121 +3539,142 @@ def _tenth_test_half() -> list[CorpusEntry]:
                [_battery("bravo"), _takeoff("bravo", 25), _rtl("bravo")],
                "Bravo has 70 %, so it went up to 25 m and came home.", battery={"bravo": 70.0}),
         # formation
-        _entry("formation", "test", "form10-es-column-south", three,
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("formation", "dev", "form10-es-column-south", three,
                "Pon a alpha, bravo y charlie en columna, separados 8 m, a 15 m de altura y 30 m al sur de donde "
                "están; que se queden ahí.",
                lambda c, ev: _all(formation_at(c, ev, three, 15, 8, -30, 0), farthest_apart(ev, three, 16)),
                [_formation(three, "column", 15, 8, north=-30)], "Los tres están en columna 30 m al sur, a 15 m."),
-        _entry("formation", "test", "form10-da-pair-east-land", ("alpha", "charlie"),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("formation", "dev", "form10-da-pair-east-land", ("alpha", "charlie"),
                "Flyv alpha og charlie side om side med 12 meters afstand i 10 meters højde, 20 meter mod øst, og "
                "land dem der.",
                lambda c, ev: landed_formation_at(c, ev, ("alpha", "charlie"), 12, 0, 20),
                [_formation(("alpha", "charlie"), "line", 10, 12, east=20), _land("alpha"), _land("charlie")],
                "Alpha og charlie fløj 20 m mod øst og landede 12 m fra hinanden."),
-        _entry("formation", "test", "form10-ring-overhead", three,
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("formation", "dev", "form10-ring-overhead", three,
                "Put the three drones in a circle with 10 m between neighbours at 18 m, right above where they "
                "stand, and keep them there.",
                lambda c, ev: _all(formation_at(c, ev, three, 18, 10, 0, 0), farthest_apart(ev, three, 10)),
                [_formation(three, "circle", 18, 10)], "The three hold a 10 m ring at 18 m overhead."),
         # relative
-        _entry("relative", "test", "rel10-fi-alpha-higher-north", ("alpha",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("relative", "dev", "rel10-fi-alpha-higher-north", ("alpha",),
                "Nosta alpha 10 metriin, sitten 5 metriä ylemmäs ja 20 metriä pohjoiseen, ja jätä se sinne.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=15), airborne_at(ev, "alpha", 15)),
                [_takeoff("alpha", 10), _move("alpha", 20, 0, up=5)], "Alpha on 20 m pohjoiseen, 15 m korkeudessa."),
-        _entry("relative", "test", "rel10-no-bravo-east-half-back", ("bravo",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("relative", "dev", "rel10-no-bravo-east-half-back", ("bravo",),
                "Løft bravo til 12 meter, fly 40 meter østover og deretter 20 meter tilbake vestover, og la den "
                "sveve der.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 40)]),
                                   at(ev, "bravo", *c.point("bravo", 0, 20), alt=12), airborne_at(ev, "bravo", 12)),
                [_takeoff("bravo", 12), _move("bravo", 0, 40), _move("bravo", 0, -20)],
                "Bravo svever 20 m øst for hjemmet, på 12 m."),
-        _entry("relative", "test", "rel10-charlie-drop-and-west", ("charlie",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("relative", "dev", "rel10-charlie-drop-and-west", ("charlie",),
                "Charlie up to 25 m, then drop it by 15 m and move it 10 m west; keep it flying.",
                lambda c, ev: _all(rose_to(ev, "charlie", 25), at(ev, "charlie", *c.point("charlie", 0, -10), alt=10),
                                   airborne_at(ev, "charlie", 10)),
                [_takeoff("charlie", 25), _move("charlie", 0, -10, up=-15)], "Charlie flies 10 m west at 10 m."),
         # question
-        _entry("question", "test", "ask10-ru-lowest-charge", three,
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("question", "dev", "ask10-ru-lowest-charge", three,
                "Какой дрон разряжен больше всех и сколько у него осталось? Ничего не запускай.",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 45, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "Меньше всего у bravo: 45 %.",
                battery={"alpha": 77.0, "bravo": 45.0, "charlie": 63.0}),
-        _entry("question", "test", "ask10-ar-every-battery", three,
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("question", "dev", "ask10-ar-every-battery", three,
                "كم نسبة البطارية في كل طائرة؟ لا تُقلع أيًّا منها.",
                lambda c, ev: _all(answer_mentions_number(ev, 81, 1), answer_mentions_number(ev, 67, 1),
                                   answer_mentions_number(ev, 54, 1), nobody_armed(ev)),
                [("fleet_status", {})], "alpha 81 %، bravo 67 %، charlie 54 %.",
                battery={"alpha": 81.0, "bravo": 67.0, "charlie": 54.0}),
-        _entry("question", "test", "ask10-bravo-charge-no-move", three,
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("question", "dev", "ask10-bravo-charge-no-move", three,
                "How much charge is left in bravo? Just tell me, don't move anything.",
                lambda c, ev: _all(answer_mentions_number(ev, 73, 1), nobody_armed(ev)),
                [("fleet_status", {})], "Bravo has 73 %.", battery={"alpha": 60.0, "bravo": 73.0, "charlie": 88.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off)
-        _entry("refusal", "test", "refuse10-vi-alpha-150m", ("alpha",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse10-vi-alpha-150m", ("alpha",),
                "Đưa alpha lên độ cao 150 mét.",
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "alpha", c.max_alt_m),
                                   answer_reports_refusal(ev)),
                [_takeoff("alpha", 150)], "The gateway refused: 150 m is above the 120 m altitude limit."),
-        _entry("refusal", "test", "refuse10-sv-bravo-drained", ("bravo",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse10-sv-bravo-drained", ("bravo",),
                "Lyft bravo till 12 meter och flyg den 30 meter norrut.",
                lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "bravo"), answer_reports_refusal(ev)),
                [_takeoff("bravo", 12), _move("bravo", 30, 0)],
                "The gateway refused: bravo's battery (22 %) is below the 30 % to take off.", battery={"bravo": 22.0}),
-        _entry("refusal", "test", "refuse10-charlie-one-and-a-half-km", ("charlie",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse10-charlie-one-and-a-half-km", ("charlie",),
                "Fly charlie 1.5 km north at 20 m.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "charlie", c.max_distance_m), answer_reports_refusal(ev)),
                [_move("charlie", 1500, 0, alt=20)], "The gateway refused: 1.5 km is beyond the 1000 m limit."),
         # units
-        _entry("units", "test", "units10-ca-alpha-feet-hover", ("alpha",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("units", "dev", "units10-ca-alpha-feet-hover", ("alpha",),
                "Puja alpha a 45 peus i deixa'l suspès a l'aire.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=45 * FT), airborne_at(ev, "alpha", 45 * FT)),
                [_takeoff("alpha", 45 * FT)], "Alpha és suspès a 45 peus (13,7 m)."),
-        _entry("units", "test", "units10-hu-bravo-km-west-land", ("bravo",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("units", "dev", "units10-hu-bravo-km-west-land", ("bravo",),
                "Emeld bravo-t 10 méterre, vidd 0,03 kilométerre nyugatra, és ott tedd le.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 10), at(ev, "bravo", *c.point("bravo", 0, -30)),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 10), _move("bravo", 0, -30), _land("bravo")], "Bravo 30 m-rel nyugatra leszállt."),
-        _entry("units", "test", "units10-charlie-feet-yards-nw", ("charlie",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("units", "dev", "units10-charlie-feet-yards-nw", ("charlie",),
                "Charlie: climb to 30 feet, fly 20 yards north-west, and land.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 30 * FT), at(ev, "charlie", *c.point("charlie", d20yd, -d20yd)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 30 * FT), _move("charlie", d20yd, -d20yd), _land("charlie")],
                "Charlie flew 20 yd (18 m) north-west and landed."),
         # pattern
-        _entry("pattern", "test", "pattern10-es-charlie-triangle-left", ("charlie",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern10-es-charlie-triangle-left", ("charlie",),
                "Que charlie vuele un triángulo de 20 m de lado a 12 m de altura, primer lado hacia el sur, girando "
                "a la izquierda, y que aterrice al final.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(triangle20)[:2]]),
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 12), *_legs("charlie", triangle20), _land("charlie")],
                "Charlie voló el triángulo y aterrizó."),
-        _entry("pattern", "test", "pattern10-el-alpha-square-left", ("alpha",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern10-el-alpha-square-left", ("alpha",),
                "Πέτα το alpha σε τετράγωνο πλευράς 20 μέτρων στα 15 μέτρα, πρώτη πλευρά προς τα δυτικά, στρίβοντας "
                "αριστερά, και μετά άφησέ το να αιωρείται.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(square20)[:3]]),
                                   at(ev, "alpha", *_home(c, "alpha"), alt=15), airborne_at(ev, "alpha", 15)),
                [_takeoff("alpha", 15), *_legs("alpha", square20)], "Το alpha πέταξε το τετράγωνο και αιωρείται."),
-        _entry("pattern", "test", "pattern10-bravo-pentagon-home", ("bravo",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern10-bravo-pentagon-home", ("bravo",),
                "Bravo flies a pentagon at 10 m, sides of 15 m, first side east, turning right, then returns home.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(pentagon15)[:4]]),
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 10), *_legs("bravo", pentagon15), _rtl("bravo")], "Bravo flew the pentagon and came home."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
         # alpha from charlie or charlie from alpha, 10 m apart, so that a drone placed from itself misses)
-        _entry("placement", "test", "place10-uk-charlie-north-of-alpha", three,
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("placement", "dev", "place10-uk-charlie-north-of-alpha", three,
                "Відправ charlie на 20 метрів на північ від alpha, на висоту 15 метрів, і залиш його там.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("alpha", 20, 0), alt=15), airborne_at(ev, "charlie", 15),
                                   never_armed(ev, "alpha"), never_armed(ev, "bravo")),
                lambda c: [_go("charlie", c.point("alpha", 20, 0), 15)], "charlie на 20 м на північ від alpha, на 15 м."),
-        _entry("placement", "test", "place10-id-alpha-west-of-charlie", three,
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("placement", "dev", "place10-id-alpha-west-of-charlie", three,
                "Terbangkan alpha ke titik 15 meter di sebelah barat charlie, pada ketinggian 10 meter, dan biarkan "
                "di sana.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("charlie", 0, -15), alt=10), airborne_at(ev, "alpha", 10),
                                   never_armed(ev, "charlie"), never_armed(ev, "bravo")),
                lambda c: [_go("alpha", c.point("charlie", 0, -15), 10)], "alpha 15 m di barat charlie, pada 10 m."),
-        _entry("placement", "test", "place10-charlie-south-of-hovering-alpha", three,
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("placement", "dev", "place10-charlie-south-of-hovering-alpha", three,
                "Take alpha up to 15 m and leave it. Put charlie 10 m south of alpha at the same height.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=15), airborne_at(ev, "alpha", 15),
                                   at(ev, "charlie", *c.point("alpha", -10, 0), alt=15), airborne_at(ev, "charlie", 15),
@@ -3638,20 +3682,277 @@ def _tenth_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("alpha", 15), _go("charlie", c.point("alpha", -10, 0), 15)],
                "Alpha hovers at 15 m; charlie 10 m south of it at 15 m."),
         # language
-        _entry("language", "test", "lang10-ar-bravo-north-land", ("bravo",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("language", "dev", "lang10-ar-bravo-north-land", ("bravo",),
                "ارفع bravo إلى 15 مترًا، ثم طر به 30 مترًا نحو الشمال، ثم أنزله هناك.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 15), at(ev, "bravo", *c.point("bravo", 30, 0)),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 15), _move("bravo", 30, 0), _land("bravo")], "طار bravo 30 m شمالًا وهبط."),
-        _entry("language", "test", "lang10-hi-charlie-east-hover", ("charlie",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("language", "dev", "lang10-hi-charlie-east-hover", ("charlie",),
                "charlie को 12 मीटर तक उठाओ, फिर 25 मीटर पूर्व की ओर ले जाओ और वहीं हवा में रहने दो।",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 25), alt=12), airborne_at(ev, "charlie", 12)),
                [_takeoff("charlie", 12), _move("charlie", 0, 25)], "charlie 25 m पूर्व में 12 m पर है।"),
-        _entry("language", "test", "lang10-th-alpha-south-home", ("alpha",),
+        # moved to dev on 2026-12-02, tenth round: the test half had been measured
+        _entry("language", "dev", "lang10-th-alpha-south-home", ("alpha",),
                "ยก alpha ขึ้นไปที่ 10 เมตร บินไปทางใต้ 20 เมตร แล้วพากลับบ้าน",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -20, 0)]), at(ev, "alpha", *_home(c, "alpha")),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), _move("alpha", -20, 0), _rtl("alpha")], "alpha บินไปทางใต้ 20 m แล้วกลับบ้าน"),
+    ]  # fmt: skip
+
+
+def _eleventh_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-02 (eleventh round), before any model ran on it: 3 a class; 22 of
+    the 33 outside ``language`` in other languages than English (Bulgarian, Chinese, Croatian, Czech, Dutch,
+    Estonian, French, Italian, Japanese, Korean, Latvian, Lithuanian, Malay, Polish, Romanian, Slovak,
+    Slovenian, Swahili, Tagalog, Turkish), the ``language`` class's 3 in Hebrew, Persian and Bengali (Hebrew
+    and Bengali script are new)."""
+    three = DRONES
+    d20, d25, d30 = (x / math.sqrt(2) for x in (20, 25, 30))
+    d1200 = 1200 / math.sqrt(2)
+    d80yd = 80 * YD / math.sqrt(2)
+    d002mi = 0.02 * MI / math.sqrt(2)
+    triangle25 = _polygon_legs(3, 25.0, 45.0, right=True)  # first side north-east, turning right
+    # three passes of 30 m, the first west, 8 m apart, each next one south of the one before
+    passes = [(0.0, -30.0), (-8.0, 0.0), (0.0, 30.0), (-8.0, 0.0), (0.0, -30.0)]
+    rectangle = [(30.0, 0.0), (0.0, -10.0), (-30.0, 0.0), (0.0, 10.0)]  # 30 m north first, turning left
+    return [
+        # single
+        _entry("single", "test", "single11-hr-alpha-hover", ("alpha",),
+               "Podigni alpha na 24 metra iznad mjesta gdje stoji i neka tamo lebdi.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=24), airborne_at(ev, "alpha", 24)),
+               [_takeoff("alpha", 24)], "Alpha lebdi na 24 m iznad svog mjesta."),
+        _entry("single", "test", "single11-ms-charlie-hop", ("charlie",),
+               "Naikkan charlie ke 7 meter, kemudian turunkan semula di tempat ia berlepas.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 7), at(ev, "charlie", *_home(c, "charlie")),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 7), _land("charlie")], "Charlie naik ke 7 m dan mendarat semula."),
+        _entry("single", "test", "single11-bravo-low-hold", ("bravo",),
+               "Bravo, lift off and hold at 6 metres over the pad until further notice.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=6), airborne_at(ev, "bravo", 6)),
+               [_takeoff("bravo", 6)], "Bravo holds at 6 m over its pad."),
+        # multi
+        _entry("multi", "test", "multi11-sk-pair-south-north", three,
+               "Pošli alpha 15 metrov na juh a charlie 15 metrov na sever, oba vo výške 11 metrov, a nechaj ich "
+               "tam visieť; bravo ostane na zemi.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -15, 0), alt=11), airborne_at(ev, "alpha", 11),
+                                  at(ev, "charlie", *c.point("charlie", 15, 0), alt=11), airborne_at(ev, "charlie", 11),
+                                  never_armed(ev, "bravo")),
+               [_move("alpha", -15, 0, alt=11), _move("charlie", 15, 0, alt=11)],
+               "Alpha visí 15 m na juh a charlie 15 m na sever, oba na 11 m; bravo je na zemi."),
+        _entry("multi", "test", "multi11-sw-all-three-hop", three,
+               "Paisha alpha, bravo na charlie hadi mita 9, kisha zishushe zote tatu pale zilipoanzia.",
+               lambda c, ev: _all(*(reached_alt(ev, d, 9) for d in three), *(at(ev, d, *_home(c, d)) for d in three),
+                                  *(landed_disarmed(ev, d) for d in three)),
+               [*(_takeoff(d, 9) for d in three), *(_land(d) for d in three)],
+               "Zote tatu zilipanda hadi 9 m na zikatua tena."),
+        _entry("multi", "test", "multi11-charlie-west-alpha-same-height", three,
+               "Lift charlie to 12 m and fly it 25 m west; once it's there, bring alpha up to the same height "
+               "over its own pad. Bravo doesn't fly.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -25), alt=12), airborne_at(ev, "charlie", 12),
+                                  at(ev, "alpha", *_home(c, "alpha"), alt=12), airborne_at(ev, "alpha", 12),
+                                  never_armed(ev, "bravo")),
+               [_takeoff("charlie", 12), _move("charlie", 0, -25), _takeoff("alpha", 12)],
+               "Charlie hovers 25 m west at 12 m; alpha hovers over its pad at 12 m. Bravo stayed down."),
+        # compound
+        _entry("compound", "test", "compound11-lv-bravo-sw-north-land", ("bravo",),
+               "Pacel bravo 12 metru augstumā, aizlido 20 metrus uz dienvidrietumiem, tad 20 metrus uz ziemeļiem "
+               "un tur nosēdini.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 12), visited(ev, "bravo", [c.point("bravo", -d20, -d20)]),
+                                  at(ev, "bravo", *c.point("bravo", 20 - d20, -d20)), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), _move("bravo", -d20, -d20), _move("bravo", 20, 0), _land("bravo")],
+               "Bravo aizlidoja uz dienvidrietumiem, tad uz ziemeļiem un nosēdās."),
+        _entry("compound", "test", "compound11-tl-alpha-north-lower-home", ("alpha",),
+               "Paliparin si alpha hanggang 15 metro, ilipad ito nang 30 metro pahilaga, ibaba ito sa 6 na metro "
+               "doon, saka ibalik sa pinagmulan nito para lumapag.",
+               lambda c, ev: _all(rose_to(ev, "alpha", 15), visited(ev, "alpha", [c.point("alpha", 30, 0)], alt=6),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 15), _move("alpha", 30, 0), _move("alpha", alt=6), _rtl("alpha")],
+               "Lumipad si alpha nang 30 m pahilaga, bumaba sa 6 m, at bumalik para lumapag."),
+        _entry("compound", "test", "compound11-charlie-three-sides-land", ("charlie",),
+               "Charlie: take off to 10 m, fly 20 m east, 20 m north, then 20 m west, and land there.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 20), c.point("charlie", 20, 20)]),
+                                  at(ev, "charlie", *c.point("charlie", 20, 0)), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), _move("charlie", 0, 20), _move("charlie", 20, 0), _move("charlie", 0, -20),
+                _land("charlie")],
+               "Charlie flew east, north and west and landed 20 m north of its pad."),
+        # conditional
+        _entry("conditional", "test", "cond11-bg-charlie-east-unless-low", ("charlie",),
+               "Ако батерията на charlie е под 50 %, остави го на земята; иначе го издигни на 10 метра, прелети "
+               "20 метра на изток и го приземи там.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 10), at(ev, "charlie", *c.point("charlie", 0, 20)),
+                                  landed_disarmed(ev, "charlie")),
+               [_battery("charlie"), _takeoff("charlie", 10), _move("charlie", 0, 20), _land("charlie")],
+               "Charlie има 63 %: прелетя 20 м на изток и кацна.", battery={"charlie": 63.0}),
+        _entry("conditional", "test", "cond11-ko-fuller-of-alpha-bravo", three,
+               "alpha와 bravo 중 배터리가 더 많은 쪽을 15미터로 띄워서 그대로 떠 있게 하고, 나머지는 땅에 둬.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=15), airborne_at(ev, "bravo", 15),
+                                  never_armed(ev, "alpha"), never_armed(ev, "charlie")),
+               [("fleet_status", {}), _takeoff("bravo", 15)], "bravo(71 %)가 15 m에 떠 있음; alpha(48 %)는 땅에 있음.",
+               battery={"alpha": 48.0, "bravo": 71.0, "charlie": 90.0}),
+        _entry("conditional", "test", "cond11-charlie-three-bands", ("charlie",),
+               "If charlie has between 40 and 70 % battery, take it to 10 m and hover; above 70 %, to 25 m; "
+               "below 40 %, leave it down.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=25), airborne_at(ev, "charlie", 25)),
+               [_battery("charlie"), _takeoff("charlie", 25)], "Charlie has 76 %, so it hovers at 25 m.",
+               battery={"charlie": 76.0}),
+        # formation
+        _entry("formation", "test", "form11-it-line-southwest", three,
+               "Metti alpha, bravo e charlie uno accanto all'altro, a 9 metri di distanza, a 14 metri di quota, "
+               "20 metri a sud-ovest di dove sono adesso, e lasciali sospesi lì.",
+               lambda c, ev: _all(formation_at(c, ev, three, 14, 9, -d20, -d20), farthest_apart(ev, three, 18)),
+               [_formation(three, "line", 14, 9, north=-d20, east=-d20)],
+               "I tre sono affiancati 20 m a sud-ovest, a 14 m, 9 m l'uno dall'altro."),
+        _entry("formation", "test", "form11-fr-triangle-east", three,
+               "Placez les trois drones en triangle de 12 m de côté, à 20 m d'altitude, 30 m à l'est de leur "
+               "position actuelle, et laissez-les en vol stationnaire.",
+               lambda c, ev: _all(formation_at(c, ev, three, 20, 12, 0, 30), farthest_apart(ev, three, 12)),
+               [_formation(three, "circle", 20, 12, east=30)], "Les trois tiennent un triangle de 12 m, 30 m à l'est, à 20 m."),
+        _entry("formation", "test", "form11-pair-column-southeast-land", ("alpha", "bravo"),
+               "Line alpha and bravo up one behind the other, 15 m apart at 10 m, 20 m south-east of where they "
+               "are now, then set both down there.",
+               lambda c, ev: landed_formation_at(c, ev, ("alpha", "bravo"), 15, -d20, d20),
+               [_formation(("alpha", "bravo"), "column", 10, 15, north=-d20, east=d20), _land("alpha"), _land("bravo")],
+               "Alpha and bravo flew in a column 20 m south-east and landed 15 m apart."),
+        # relative
+        _entry("relative", "test", "rel11-et-charlie-west-and-up", ("charlie",),
+               "Tõsta charlie 8 meetri kõrgusele, seejärel vii see 15 meetrit läände ja ühtlasi 10 meetrit "
+               "kõrgemale ning jäta sinna hõljuma.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -15), alt=18), airborne_at(ev, "charlie", 18)),
+               [_takeoff("charlie", 8), _move("charlie", 0, -15, up=10)], "Charlie hõljub 15 m läänes, 18 m kõrgusel."),
+        _entry("relative", "test", "rel11-ja-bravo-southeast-lower", ("bravo",),
+               "bravoを20メートルまで上げて、南東へ25メートル動かしてから、5メートル下げてそのまま浮かせておいて。",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", -d25, d25)], alt=20),
+                                  at(ev, "bravo", *c.point("bravo", -d25, d25), alt=15), airborne_at(ev, "bravo", 15)),
+               [_takeoff("bravo", 20), _move("bravo", -d25, d25), _move("bravo", up=-5)],
+               "bravoは南東25 m、高度15 mで浮いている。"),
+        _entry("relative", "test", "rel11-alpha-north-west-offset", ("alpha",),
+               "Move alpha 18 m north and 24 m west of where it sits, 10 m up, and keep it hovering there.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 18, -24), alt=10), airborne_at(ev, "alpha", 10)),
+               [_move("alpha", 18, -24, alt=10)], "Alpha hovers 18 m north and 24 m west of its pad at 10 m."),
+        # question
+        _entry("question", "test", "ask11-sl-charlie-charge", three,
+               "Koliko baterije ima še charlie? Samo povej, nobenega drona ne dvigni.",
+               lambda c, ev: _all(answer_mentions_number(ev, 52, 1), nobody_armed(ev)),
+               [("fleet_status", {})], "Charlie ima 52 %.", battery={"alpha": 88.0, "bravo": 70.0, "charlie": 52.0}),
+        _entry("question", "test", "ask11-zh-under-forty", three,
+               "三架无人机里，哪一架的电量低于 40%？告诉我是多少，别让它们起飞。",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 36, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "bravo 的电量低于 40%：36 %。",
+               battery={"alpha": 71.0, "bravo": 36.0, "charlie": 58.0}),
+        _entry("question", "test", "ask11-fullest-and-lead", three,
+               "Which drone has the most charge, and by how many points does it lead the next best? Don't fly "
+               "anything.",
+               # the typed plan reads, it does not compute: the lead, or the two readings it comes from
+               lambda c, ev: _all(answer_says(ev, r"\bcharlie\b", "charlie"),
+                                  _any(answer_mentions_number(ev, 18, 1),
+                                       _all(answer_mentions_number(ev, 82, 1), answer_mentions_number(ev, 64, 1))),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Charlie has the most, 82 %: 18 points ahead of alpha (64 %).",
+               battery={"alpha": 64.0, "bravo": 59.0, "charlie": 82.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off)
+        _entry("refusal", "test", "refuse11-pl-alpha-far-southwest", ("alpha",),
+               "Wyślij alpha 1,2 km na południowy zachód na wysokości 20 metrów.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "alpha", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("alpha", -d1200, -d1200, alt=20)], "The gateway refused: 1.2 km is beyond the 1000 m limit."),
+        _entry("refusal", "test", "refuse11-tr-bravo-400-feet", ("bravo",),
+               "bravo'yu 400 fit yüksekliğe çıkar ve orada tut.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "bravo", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("bravo", 400 * FT)], "The gateway refused: 400 ft (121.9 m) is above the 120 m altitude limit."),
+        _entry("refusal", "test", "refuse11-pair-charlie-drained", three,
+               "Alpha and charlie: take off to 15 m and both fly 20 m south.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -20, 0), alt=15), airborne_at(ev, "alpha", 15),
+                                  refusal_seen(ev, "battery"), never_armed(ev, "charlie"), never_armed(ev, "bravo"),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("alpha", 15), _move("alpha", -20, 0), _takeoff("charlie", 15)],
+               "Alpha hovers 20 m south at 15 m; charlie was refused: its battery (24 %) is below the 30 % to take off.",
+               battery={"alpha": 80.0, "charlie": 24.0}),
+        # units
+        _entry("units", "test", "units11-nl-charlie-feet-yards-west", ("charlie",),
+               "Laat charlie opstijgen tot 25 voet, vlieg 100 yard naar het westen en land daar.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 25 * FT), at(ev, "charlie", *c.point("charlie", 0, -100 * YD)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 25 * FT), _move("charlie", 0, -100 * YD), _land("charlie")],
+               "Charlie vloog 100 yard (91 m) naar het westen en landde."),
+        _entry("units", "test", "units11-sw-bravo-feet-miles-ne", ("bravo",),
+               "Paisha bravo hadi futi 70, kisha ipeleke maili 0.02 kuelekea kaskazini mashariki, na iache ielee "
+               "hapo.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", d002mi, d002mi), alt=70 * FT),
+                                  airborne_at(ev, "bravo", 70 * FT)),
+               [_takeoff("bravo", 70 * FT), _move("bravo", d002mi, d002mi)],
+               "Bravo inaelea maili 0.02 (32 m) kaskazini mashariki, futi 70 (21 m) juu."),
+        _entry("units", "test", "units11-alpha-yards-up-ne-land", ("alpha",),
+               "Send alpha up 40 yards, move it 80 yards to the north-east, and set it down there.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 40 * YD), at(ev, "alpha", *c.point("alpha", d80yd, d80yd)),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 40 * YD), _move("alpha", d80yd, d80yd), _land("alpha")],
+               "Alpha climbed to 40 yd (36.6 m), flew 80 yd (73.2 m) north-east and landed."),
+        # pattern
+        _entry("pattern", "test", "pattern11-ro-charlie-triangle-right", ("charlie",),
+               "Fă-l pe charlie să zboare un triunghi cu latura de 25 de metri, la 12 metri înălțime: prima latură "
+               "spre nord-est, apoi virează la dreapta; la final să aterizeze.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(triangle25)[:2]]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), *_legs("charlie", triangle25), _land("charlie")],
+               "Charlie a zburat triunghiul și a aterizat."),
+        _entry("pattern", "test", "pattern11-cs-alpha-passes-west-south", ("alpha",),
+               "Alpha ať ve výšce 10 metrů proletí 3 pruhy dlouhé 30 metrů, první směrem na západ, 8 metrů od "
+               "sebe, každý další jižněji, a pak ať se vrátí domů.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(passes)]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), *_legs("alpha", passes), _rtl("alpha")], "Alpha proletěl 3 pruhy a vrátil se domů."),
+        _entry("pattern", "test", "pattern11-bravo-rectangle-left", ("bravo",),
+               "Bravo: fly a 30 by 10 m rectangle at 8 m, the long sides running north-south, first leg north, "
+               "turning left, then land where it started.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(rectangle)[:3]]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 8), *_legs("bravo", rectangle), _land("bravo")], "Bravo flew the rectangle and landed."),
+        # placement (the sim's homes stand apart west to east, alpha, bravo, charlie: each entry places alpha
+        # from charlie or charlie from alpha, so that a drone placed from itself misses)
+        _entry("placement", "test", "place11-lt-charlie-lands-east-of-alpha", three,
+               "Nuskraidink charlie į tašką 30 metrų į rytus nuo alpha, 12 metrų aukštyje, ir ten jį nutupdyk.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 12), at(ev, "charlie", *c.point("alpha", 0, 30)),
+                                  landed_disarmed(ev, "charlie"), never_armed(ev, "alpha"), never_armed(ev, "bravo")),
+               lambda c: [_go("charlie", c.point("alpha", 0, 30), 12), _land("charlie")],
+               "Charlie nusileido 30 m į rytus nuo alpha."),
+        _entry("placement", "test", "place11-sk-alpha-west-below-moved-charlie", three,
+               "Vznes charlie do 18 metrov a posuň ho 20 metrov na juh. Potom daj alpha 10 metrov západne od "
+               "charlie, o 8 metrov nižšie, a nechaj oba visieť.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -20, 0), alt=18), airborne_at(ev, "charlie", 18),
+                                  at(ev, "alpha", *c.point("charlie", -20, -10), alt=10), airborne_at(ev, "alpha", 10),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_takeoff("charlie", 18), _move("charlie", -20, 0), _go("alpha", c.point("charlie", -20, -10), 10)],
+               "Charlie visí 20 m na juh na 18 m; alpha 10 m západne od neho na 10 m."),
+        _entry("placement", "test", "place11-alpha-lands-north-of-hovering-charlie", three,
+               "Bring charlie up to 10 m and keep it there, then set alpha down on the ground 12 m due north of "
+               "charlie.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=10), airborne_at(ev, "charlie", 10),
+                                  at(ev, "alpha", *c.point("charlie", 12, 0)), landed_disarmed(ev, "alpha"),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_takeoff("charlie", 10), _go("alpha", c.point("charlie", 12, 0), 8), _land("alpha")],
+               "Charlie hovers at 10 m; alpha landed 12 m north of it."),
+        # language
+        _entry("language", "test", "lang11-he-charlie-northwest-land", ("charlie",),
+               "הרם את charlie לגובה 14 מטר, הטס אותו 30 מטר לכיוון צפון-מערב, ואז הנחת אותו שם.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 14), at(ev, "charlie", *c.point("charlie", d30, -d30)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 14), _move("charlie", d30, -d30), _land("charlie")],
+               "charlie טס 30 m צפון-מערבה ונחת."),
+        _entry("language", "test", "lang11-fa-alpha-west-hover", ("alpha",),
+               "alpha را تا ارتفاع 18 متری بالا ببر، بعد 25 متر به سمت غرب ببرش و همان‌جا در هوا نگهش دار.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -25), alt=18), airborne_at(ev, "alpha", 18)),
+               [_takeoff("alpha", 18), _move("alpha", 0, -25)], "alpha در 25 m غرب، در ارتفاع 18 m در هواست."),
+        _entry("language", "test", "lang11-bn-bravo-south-home", ("bravo",),
+               "bravo-কে 12 মিটার উঁচুতে তোলো, তারপর দক্ষিণ দিকে 35 মিটার উড়িয়ে নিয়ে যাও, শেষে বাড়িতে ফিরিয়ে "
+               "এনে নামাও।",
+               # the return home climbs to its own height: the leg south is checked at 12 m instead
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", -35, 0)], alt=12),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), _move("bravo", -35, 0), _rtl("bravo")], "bravo দক্ষিণে 35 m উড়ে বাড়ি ফিরে নেমেছে।"),
     ]  # fmt: skip
 
 
@@ -3677,7 +3978,8 @@ def corpus() -> list[CorpusEntry]:
         *_seventh_round(),
         *_eighth_round(),
         *_ninth_round(),
-        *_tenth_test_half(),
+        *_tenth_round(),
+        *_eleventh_test_half(),
     ]
 
 
