@@ -261,11 +261,11 @@ def _as_said(text: str, data: Any) -> Any:
 
 def _compass_slots(steps: list[Any]) -> list[tuple[dict[str, Any], str]]:
     """Where the plan names a compass point, in order: each horizontal leg of a move or a formation, each
-    pattern's first side, an ``if``'s and a choice's steps included."""
+    pattern's first side (named or not), an ``if``'s and a choice's steps included."""
     slots: list[tuple[dict[str, Any], str]] = []
     for step in filter(lambda s: isinstance(s, dict), steps):
         slots += [(leg, "direction") for leg in step.get("legs") or [] if _horizontal(leg)]
-        slots += [(step, "heading")] if step.get("action") == "pattern" and step.get("heading") else []
+        slots += [(step, "heading")] if step.get("action") == "pattern" else []
         for branch in ("then", "otherwise"):
             slots += _compass_slots(step.get(branch) or []) if isinstance(step.get(branch), list) else []
     return slots

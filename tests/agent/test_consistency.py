@@ -219,6 +219,9 @@ def test_legs_go_the_ways_the_requests_own_compass_words_name_for_their_numbers(
     data = {"steps": [copy.deepcopy(pattern)]}
     square = "bravo : un carré de 20 m, premier côté vers l'est"
     assert as_stated(square, data)["steps"][0]["heading"] == "east"
+    unnamed = {"steps": [{**pattern, "heading": None}]}  # the 0.5B model left "primer lado hacia el sur" out
+    triangle = "charlie: un triángulo, primer lado hacia el sur"
+    assert as_stated(triangle, unnamed)["steps"][0]["heading"] == "south"
 
 
 def test_a_first_leg_whose_number_the_request_gives_no_way_is_the_climb() -> None:
