@@ -122,7 +122,7 @@ def _request_numbers(request: str, fleet: list[str]) -> list[float]:
     """The numbers of the request (digits, with a decimal point or comma), a drone id's digits left out."""
     ids = {d.lower() for d in fleet}
     text = " ".join(w for w in lexicon.by_script(request).split() if w.lower().strip(".,;:!?") not in ids)
-    return [abs(value) for value, _ in lexicon.stated_ways(text)]
+    return [abs(value) for value in lexicon.numbers(text)]
 
 
 def _plan_drones(data: Any) -> set[str]:
@@ -242,9 +242,10 @@ def _as_said(text: str, data: Any) -> Any:
     if not isinstance(steps, list):
         return data
     points, ways = lexicon.compass_points(text), lexicon.stated_ways(text)
+    unnamed = len(_compass_slots(steps)) - len(points)  # each climb takes one horizontal leg away
     for k, step in enumerate(steps):
-        if len(_compass_slots(steps)) > len(points) and _climbs_first(ways, steps[:k], step):
-            steps[k] = _climbing(step)
+        if unnamed > 0 and _climbs_first(ways, steps[:k], step):
+            steps[k], unnamed = _climbing(step), unnamed - 1
     slots = _compass_slots(steps)
     if len(slots) == len(points) == 1:
         slots[0][0][slots[0][1]] = points[0]

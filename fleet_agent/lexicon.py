@@ -36,6 +36,9 @@ SHARED_POINTS = {
 }
 
 
+#: from here on (Hebrew, Arabic, Devanagari, Thai, CJK, Hangul...), a stem is found inside a word too: these
+#: scripts join letters or write no spaces
+_JOINED_SCRIPTS = 0x590
 #: what ends a clause of a text
 CLAUSE_ENDS = (". ", ", ", ";", "!", "?", "\n", "。", "、", "，", "；", "！", "？")
 
@@ -60,6 +63,11 @@ def stated_ways(text: str) -> list[tuple[float, str | None]]:
             way = next(iter(after + before), None)
             found.append((-value, OPPOSITE[way]) if value < 0 and way else (value, way))
     return found
+
+
+def numbers(text: str) -> list[float]:
+    """The numbers a text writes in digits, signed ("-20 m": -20), in order."""
+    return [value for _, _, value in _numbers_at(text)]
 
 
 def compass_points(text: str) -> list[str]:
@@ -111,7 +119,7 @@ def _point_word(text: str, at: int, last_end: int) -> tuple[int, str | None]:
     """Where the compass word starting at ``at`` ends, and its point (None: there is none)."""
     starts = at == 0 or not text[at - 1].isalpha() or at == last_end
     for stem, point in _STEMS:
-        if text.startswith(stem, at) and (starts or ord(stem[0]) > 0x590):
+        if text.startswith(stem, at) and (starts or ord(stem[0]) >= _JOINED_SCRIPTS):
             return at + len(stem), point
     word = "".join(takewhile(str.isalpha, text[at:]))
     if starts and word in SHARED_POINTS:
