@@ -2,9 +2,8 @@
 
 Each check looks at one call and the turn so far and returns ``Allow``, ``Reject`` (the call is not sent;
 the note goes into the answer), ``Replace`` (another call is sent instead) or ``Stop`` (nothing more is
-sent this turn). The host runs the registered checks in order and holds no such knowledge itself. The
-safety rules and the arguments' limits are the gateway's: no check here loosens or duplicates them (the
-gateway's refusal comes back as data, `fleet_agent.records.Refusal`).
+sent this turn), run in order. The safety rules and the arguments' limits are the gateway's: no check
+here loosens or duplicates them (its refusal comes back as data, `fleet_agent.records.Refusal`).
 """
 
 from __future__ import annotations

@@ -23,6 +23,8 @@ def gaps(request: str, fleet: list[str], plan: Plan) -> list[str]:
     for given in _request_numbers(request, fleet):
         if not any(abs(given - n) < 1e-6 for n in numbers):
             notes.append(f"the request gives {given:g}, which no step of the plan has")
+    if notes and plan.in_english.strip() == request.strip():  # the 1.5B model copied a Swahili request
+        notes.append("in_english copies the request: say in plain English words what each drone does")
     return notes
 
 
@@ -30,19 +32,18 @@ def read_plan(request: str, fleet: list[str], data: Any) -> tuple[Plan, list[str
     """The decoded reply as the plan the host compiles, and what it leaves out of the request (one note
     each): every rewrite the host makes before compiling, in its order. Raises the validation error of a
     plan that does not validate."""
-    data = as_request_says(request, as_stated(request, split_formation(request, flown_on(data))))
+    data = as_stated(request, split_formation(request, flown_on(as_ended(request, data))))
+    data = as_request_says(request, data)
     plan = without_unasked(request, fleet, parse_plan(placed_by_name(request, fleet, data), fleet))
     return questions_of_fleet(request, fleet, plan), gaps(request, fleet, plan)
 
 
 def without_unasked(request: str, fleet: list[str], plan: Plan) -> Plan:
     """The plan without the steps that cannot be what the request means: a step of a drone the request
-    does not name (when it names drones) that carries a number the request does not give, in a request
-    whose named drones' steps carry only its own numbers (the model added a step it had seen in an
-    example, with the example's numbers, and wrote the same plan again when asked to correct it). A step
-    of an unnamed drone that carries the request's numbers or none (a landing, a hold, a formation) is
-    kept: a request may mean drones without naming each ("the others", "both", "all three", a count).
-    A step whose numbers are all 0, in a request that gives no 0, is left out whatever its drone."""
+    does not name carrying a number it does not give, when its named drones' steps carry only its numbers
+    (the model copied an example's step, and again when asked to correct it; an unnamed drone's step with
+    the request's numbers or none is kept: "the others", "all three"); a step whose numbers are all 0, in
+    a request that gives no 0."""
     named = _named(request, fleet)
     given = _request_numbers(request, fleet)
     if 0 not in given and any(map(_all_zero, plan.steps)):
@@ -157,8 +158,7 @@ def as_request_says(request: str, data: Any) -> Any:
     unit (the model wrote feet as metres), and a move measured from its own drone, in a request that
     speaks of home where no step returns home, is measured from its home (the model wrote its own id for
     "its home"). Both act only on words the lexicon recognises (`fleet_agent.lexicon`); a request in a
-    language it does not know leaves the plan as the model wrote it. An ending (a landing, a return) is
-    never added nor removed by words: the plan's ``after`` and its steps are the model's."""
+    language it does not know leaves the plan as the model wrote it. No ending is added by words."""
     if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
         return data
     units = lexicon.number_units(request)
@@ -207,6 +207,30 @@ def placed_by_name(request: str, fleet: list[str], data: Any) -> Any:
     return data
 
 
+def as_ended(request: str, data: Any) -> Any:
+    """The decoded plan with no landing or return, as a step or an ``after``, when the request says a drone
+    stays in the air and nothing of coming down, the ground or a home, in words the lexicon knows: both
+    models restated "let them hover", "leave it there", "neka tamo lebdi" as a landing."""
+    down = lexicon.DOWN_STEMS + lexicon.HOME_STEMS
+    if (
+        isinstance(data, dict)
+        and lexicon.says(request, lexicon.STAY_STEMS)
+        and not lexicon.says(request, down)
+    ):
+        data["steps"] = _stayed(data.get("steps"))
+    return data
+
+
+def _stayed(steps: Any) -> Any:
+    if not isinstance(steps, list):
+        return steps
+    kept = [s for s in steps if not (isinstance(s, dict) and s.get("action") in ("land", "return_home"))]
+    for step in filter(lambda s: isinstance(s, dict), kept):
+        step.update({"after": "stay"} if step.get("after") in ("land", "return_home") else {})
+        step.update({b: _stayed(step[b]) for b in ("then", "otherwise") if b in step})
+    return kept
+
+
 def flown_on(data: Any) -> Any:
     """The decoded plan without the landing or return a drone's step ends with when the drone's next step
     flies it on from there (a move or a pattern; a takeoff after a landing keeps it): the 1.5B model ended
@@ -221,11 +245,9 @@ def flown_on(data: Any) -> Any:
 
 
 def as_stated(request: str, data: Any) -> Any:
-    """The decoded plan with its legs going the ways the model's restatement (``in_english``), then the
-    request (its words win), name for their numbers (`_as_said`): the 1.5B model planned "Bravo flies to 20
-    meters, then 25 meters south" as 20 m north, then 25 m south, and "raise alpha to 10 m, then 20 m
-    north" (Hungarian, Finnish, Hindi) as 10 m north, then 20 m west, restated wrong too. A restatement
-    copying the request, or a request with no compass word the lexicon knows, is not read."""
+    """The decoded plan with its legs going the ways the restatement (``in_english``), then the request
+    (its words win), name for their numbers (`_as_said`): the 1.5B model planned "to 20 meters, then 25
+    meters south" as 20 m north, then 25 m south. A restatement copying the request is not read."""
     said = str(data.get("in_english") or "") if isinstance(data, dict) else ""
     if said and said.strip() != request.strip():
         data = _as_said(said, data)

@@ -1,9 +1,7 @@
-"""The one place the host reads words (``words.toml``, in the languages operators write in): units written
-after a number, whether the request speaks of a drone's home, and compass points, the request's and its
-English restatement's. A word read here only settles what the plan says otherwise (a unit, an origin, a
-leg's way); with no word the lexicon knows, a request is flown as the model planned it. Everything else
-the host reads without words (`fleet_agent.consistency`).
-"""
+"""The one place the host reads words (``words.toml``, in the languages operators write in): units after a
+number, a drone's home, staying up or coming down, compass points (the request's and its restatement's).
+A word read here only settles what the plan says otherwise (a unit, an origin, an ending, a leg's way);
+with no word the lexicon knows, a request is flown as the model planned it."""
 
 from __future__ import annotations
 
@@ -31,6 +29,8 @@ HOME_STEMS = tuple(_WORDS["home"]["stems"].split())
 _STEMS = [(s.replace("_", " "), p) for p, stems in _WORDS["points"].items() for s in stems.split()]
 _STEMS.sort(key=lambda stem_point: -len(stem_point[0]))
 #: compass words that are common words too: each counts only after one of its words ("à l'est", "al sur")
+#: stems of staying in the air, and of coming down (a landing, the ground, coming back)
+STAY_STEMS, DOWN_STEMS = (tuple(_WORDS["endings"][kind].split()) for kind in ("stay", "down"))
 SHARED_POINTS = {
     word: (shared["point"], shared["after"].split()) for word, shared in _WORDS["shared_points"].items()
 }
@@ -154,8 +154,12 @@ def by_script(text: str) -> str:
 
 
 def says(text: str, stems: tuple[str, ...]) -> bool:
-    """``text`` has a word starting with one of ``stems`` (a stem of three letters or less: that word)."""
-    return any(w == s or (len(s) > 3 and w.startswith(s)) for w in tokens(text.lower()) for s in stems)
+    """``text`` has a word starting with one of ``stems`` (a stem of three letters or less: that word; a stem
+    of a script that joins its letters or writes no spaces: anywhere)."""
+    text = text.lower()
+    if any(s in text for s in stems if ord(s[0]) >= _JOINED_SCRIPTS):
+        return True
+    return any(w == s or (len(s) > 3 and w.startswith(s)) for w in tokens(text) for s in stems)
 
 
 def number_units(text: str) -> dict[float | None, set[Unit]]:

@@ -1,9 +1,7 @@
 """The plan a model writes: request-shaped steps, typed. Its JSON schema is what the model decodes under.
 
-The drone fields are plain strings here; ``plan_schema(ids)`` turns them into an ``enum`` of the fleet's
-ids at run time and ``parse_plan(data, ids)`` refuses an id outside the fleet. Every length carries its
-unit; the host converts (`fleet_agent.units`) and computes geometry (`fleet_agent.compiler`).
-"""
+Drone fields are strings here; ``plan_schema(ids)`` makes them an ``enum`` of the fleet's ids and
+``parse_plan(data, ids)`` refuses an id outside the fleet. Every length carries its unit."""
 
 from __future__ import annotations
 
@@ -137,13 +135,10 @@ class Altitude(DroneStep):
 
 
 class Move(DroneStep):
-    """Legs from ``origin`` (horizontal legs add up; up/down legs change the height), at ``altitude``
-    above home when given. The origin comes before the legs: a decoder writes properties in the schema's
-    order, and a model that has written the legs and the altitude first falls back on ``here``.
-
-    The origin may be written as one word: ``here``, ``home`` or a drone's id (the schema offers these as
-    an enum beside the object form): a small model chose ``here`` over ``{"kind": "drone", ...}`` for a
-    spot north of another drone, where the other drone's id is the word it has just read."""
+    """Legs from ``origin`` (up/down legs change the height), at ``altitude`` above home when given. The
+    origin comes before the legs (a decoder writes the schema's order; one that wrote the legs first fell
+    back on ``here``), and may be one word: ``here``, ``home`` or a drone's id (a small model chose
+    ``here`` over ``{"kind": "drone", ...}`` for a spot north of the drone it had just read)."""
 
     action: Literal["move"]
     drone: str
@@ -174,13 +169,10 @@ POLYGON_SIDES = {"triangle": 3, "square": 4, "pentagon": 5, "hexagon": 6, "octag
 
 class Pattern(DroneStep):
     """A polygon (named, or ``polygon`` with ``sides``) with sides of ``size``; a rectangle ``size`` long
-    (along the heading) and ``spacing`` wide (as long when null); an orbit, a circle of radius
-    ``size``; a survey, ``lines`` lines of ``size``, ``spacing`` apart. Flown by one drone from where it is,
-    the first leg towards ``heading`` (null: north), turning ``turn`` (null: right).
-
-    Every property is required (null where the request gives none): a schema-guided decoder writes the
-    required properties first and may stop before the optional ones, so an optional altitude or heading
-    placed before the required ``after`` was left out."""
+    and ``spacing`` wide (as long when null); an orbit of radius ``size``; a survey, ``lines`` lines of
+    ``size``, ``spacing`` apart. Flown from where the drone is, first towards ``heading`` (null: north),
+    turning ``turn`` (null: right). Every property is required (null when not given): a guided decoder
+    left out an optional altitude or heading placed before the required ``after``."""
 
     action: Literal["pattern"]
     drone: str
@@ -283,12 +275,10 @@ class Plan(Strict):
     @model_validator(mode="after")
     def _one_ending(self) -> Plan:
         """A landing or return written both as a step's ``after`` and as the drone's next step is flown
-        once. A takeoff to the height an earlier climb, move or pattern already flew the drone at repeats
-        that step (so does a climb to it right after the drone's flight ended): when the drone's step
-        before it climbs it to that height and stays, it is the same climb, and its ``after`` (a landing,
-        a return) becomes the climb's; after a flight, it is left out, and a landing or return it ends
-        with is flown where the drone is (an explicit landing is never dropped). Steps of other drones
-        between do not count; a step of several drones does."""
+        once. A takeoff (or a climb after the flight ended) to a height an earlier step already flew the
+        drone at repeats it: right after that climb its ``after`` becomes the climb's; after a flight it is
+        left out, its landing or return flown where the drone is. Other drones' steps between do not
+        count; a step of several drones does."""
         kept: list[Any] = []
         last: dict[str, int] = {}  # each drone's last step in ``kept``
         heights: dict[str, float] = {}

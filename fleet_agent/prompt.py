@@ -1,11 +1,8 @@
 """What the model reads before a request: the plan's steps in short, and worked examples.
 
-The examples are earlier turns of the conversation (a request, then the plan as the assistant's reply, on
-one line): a small model copies the shape of a reply it has seen more faithfully than a described one, and
-a one-line plan costs about half the tokens of an indented one. Everything before the request stays the
-same from request to request (a local server then reuses its cached prefix); the fleet's ids come with the
-request. The steps are told in ``system_prompt.txt``; the examples, written for it in several languages,
-are in ``examples.jsonl``."""
+The examples (``examples.jsonl``) are earlier turns, each plan on one line: a small model copies a reply it
+has seen more faithfully than a described one, at half the tokens of an indented one. All before the
+request stays the same (a local server reuses its cached prefix); the steps are in ``system_prompt.txt``."""
 
 from __future__ import annotations
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import copy
 
 from fleet_agent.consistency import (
+    as_ended,
     as_stated,
     flown_on,
     gaps,
@@ -258,3 +259,49 @@ def test_a_landing_before_the_drones_next_move_is_no_landing_and_one_before_a_ta
     assert [s.get("after") for s in flown_on({"steps": on})["steps"]] == ["stay", "stay", "land"]
     again = [copy.deepcopy(climb), _up("charlie", 10), _move("alpha", (10, "west"))]
     assert flown_on({"steps": copy.deepcopy(again)})["steps"] == again
+
+
+def _ending(after: str, *more: dict[str, object]) -> dict[str, object]:
+    return {"in_english": "", "steps": [{**_up("bravo", 15), "after": after}, *more]}
+
+
+def test_a_request_that_only_says_stay_up_has_no_landing_nor_return() -> None:
+    """Written for this test: the model restated "hover" / "leave it floating" as a landing."""
+    land = {"action": "land", "drone": "bravo"}
+    for request in (
+        "Lift bravo to 15 m and let it hover there.",
+        "Sube a bravo a 15 m y déjalo flotando allí.",
+    ):
+        for data in (_ending("land"), _ending("return_home"), _ending("stay", land)):
+            assert as_ended(request, data)["steps"] == [{**_up("bravo", 15), "after": "stay"}], request
+
+
+def test_a_landing_is_kept_when_the_request_also_says_coming_down() -> None:
+    for request in (
+        "Hover bravo at 15 m for a moment, then land it.",
+        "Bravo hovers at 15 m, then comes back down.",
+        "Bravo schwebt auf 15 m und kehrt dann zurück.",
+        "Bravo: up to 15 m and keep charlie on the ground.",
+        "Bravo up to 15 m, then fly home.",
+    ):
+        data = _ending("return_home")
+        assert as_ended(request, copy.deepcopy(data)) == data, request
+
+
+def test_a_condition_that_says_stay_up_keeps_its_drones_up_in_both_branches() -> None:
+    branch = [{**_up("bravo", 10), "after": "land"}]
+    step = {"action": "if", "drone": "bravo", "reading": "battery", "compare": "above", "value": 50,
+            "then": branch, "otherwise": []}  # fmt: skip
+    data = as_ended("If bravo has over 50 % battery, keep it hovering at 10 m.", {"steps": [step]})
+    assert data["steps"][0]["then"] == [{**_up("bravo", 10), "after": "stay"}]
+
+
+def test_a_restatement_that_copies_the_request_is_told_when_the_plan_has_gaps() -> None:
+    request = "Paa bravo hadi mita 15 kisha ielee."  # written for this test
+    copied = parse_plan({"in_english": request, "steps": []}, FLEET)
+    note = "in_english copies the request: say in plain English words what each drone does"
+    assert gaps(request, FLEET, copied)[-1] == note
+    said = parse_plan({"in_english": "Bravo goes up.", "steps": []}, FLEET)
+    assert note not in gaps(request, FLEET, said)
+    whole = parse_plan({"in_english": request, "steps": [_up("bravo", 15)]}, FLEET)
+    assert gaps(request, FLEET, whole) == []

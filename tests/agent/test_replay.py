@@ -24,6 +24,20 @@ def _plan(after: str, drone: str = "charlie") -> str:
     return json.dumps({"steps": [step]})
 
 
+def _twice_up() -> str:
+    """A wrong plan the host flies as written: up to 12 m, then 12 m higher."""
+    leg = {"distance": {"value": 12, "unit": "m"}, "direction": "up"}
+    move = {
+        "action": "move",
+        "drone": "charlie",
+        "origin": "here",
+        "legs": [leg],
+        "altitude": None,
+        "after": "stay",
+    }
+    return json.dumps({"steps": [json.loads(_plan("stay"))["steps"][0], move]})
+
+
 def _recorded(path: Path, runs: list[tuple[int, list[str]]], **extra: object) -> Path:
     data = {"model": "recorded", "self_check": False, **extra}
     data["runs"] = [{"mission": MISSION, "run": n, "replies": replies} for n, replies in runs]
@@ -51,7 +65,7 @@ def test_a_file_without_replies_or_of_a_self_check_is_refused_in_one_line(tmp_pa
 def test_recorded_plans_are_flown_and_judged_by_the_current_host(tmp_path: Path) -> None:
     recorded = _recorded(
         tmp_path / "recorded.json",
-        [(1, [_plan("stay")]), (2, [_plan("land")]), (3, [_plan("stay", drone="zulu")])],
+        [(1, [_plan("stay")]), (2, [_twice_up()]), (3, [_plan("stay", drone="zulu")])],
     )
     out = tmp_path / "replayed.json"
     argv = [sys.executable, "bench/nl_missions.py", "--half", "dev", "--missions", MISSION]
@@ -68,7 +82,7 @@ def test_recorded_plans_are_flown_and_judged_by_the_current_host(tmp_path: Path)
     assert proc.returncode == 0, log.decode(errors="replace")[-2000:]
     runs = {r["run"]: r for r in json.loads(out.read_text())["runs"]}
     assert runs[1]["ok"], runs[1]
-    assert not runs[2]["ok"] and "land(drone_id=charlie)=ok" in runs[2]["calls"], runs[2]
+    assert not runs[2]["ok"] and "up_m=12" in str(runs[2]["calls"]), runs[2]
     # zulu is no drone of the fleet: the host asks once more, which the recording never answered
     assert not runs[3]["ok"] and runs[3]["detail"].startswith(DIVERGED), runs[3]
     assert runs[3]["replies"][0] == _plan("stay", drone="zulu")
