@@ -123,6 +123,15 @@ Korean, Latvian, Lithuanian, Malay, Polish, Romanian, Slovak, Slovenian, Swahili
 (Malay, Swahili and Tagalog are new), spread over the 11 classes, and the ``language`` class's 3 in Hebrew,
 Persian and Bengali (Hebrew and Bengali script are new). Only the harness self-check (the scripted ideal
 plan) has run on them: 36 of 36 passed. That leaves 447 dev and 36 test.
+Later on 2026-12-02 (eleventh round) EVERY test entry (36, ``_eleventh_round``) was moved to dev, each
+marked "moved to dev on 2026-12-02, eleventh round", once both models had been measured on it. A fresh
+test half took its place (``_twelfth_test_half``): 36 new requests, 3 a class, written before any model
+ran on it: 22 of the 33 outside the ``language`` class in 22 languages, one each (Arabic, Chinese, Dutch,
+Finnish, French, German, Greek, Hindi, Hungarian, Indonesian, Italian, Japanese, Korean, Polish,
+Portuguese, Russian, Spanish, Swedish, Thai, Turkish, Ukrainian, Vietnamese), and the ``language``
+class's 3 in Urdu, Tamil and Serbian written in Cyrillic (all three new, and Tamil script). Only the
+harness self-check (the scripted ideal plan) has run on them: 36 of 36 passed. That leaves 483 dev and
+36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -3702,12 +3711,13 @@ def _tenth_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _eleventh_test_half() -> list[CorpusEntry]:
+def _eleventh_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-02 (eleventh round), before any model ran on it: 3 a class; 22 of
     the 33 outside ``language`` in other languages than English (Bulgarian, Chinese, Croatian, Czech, Dutch,
     Estonian, French, Italian, Japanese, Korean, Latvian, Lithuanian, Malay, Polish, Romanian, Slovak,
     Slovenian, Swahili, Tagalog, Turkish), the ``language`` class's 3 in Hebrew, Persian and Bengali (Hebrew
-    and Bengali script are new)."""
+    and Bengali script are new); all of it moved to dev later on 2026-12-02 (eleventh round), once its
+    figures had been measured."""
     three = DRONES
     d20, d25, d30 = (x / math.sqrt(2) for x in (20, 25, 30))
     d1200 = 1200 / math.sqrt(2)
@@ -3719,21 +3729,25 @@ def _eleventh_test_half() -> list[CorpusEntry]:
     rectangle = [(30.0, 0.0), (0.0, -10.0), (-30.0, 0.0), (0.0, 10.0)]  # 30 m north first, turning left
     return [
         # single
-        _entry("single", "test", "single11-hr-alpha-hover", ("alpha",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("single", "dev", "single11-hr-alpha-hover", ("alpha",),
                "Podigni alpha na 24 metra iznad mjesta gdje stoji i neka tamo lebdi.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=24), airborne_at(ev, "alpha", 24)),
                [_takeoff("alpha", 24)], "Alpha lebdi na 24 m iznad svog mjesta."),
-        _entry("single", "test", "single11-ms-charlie-hop", ("charlie",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("single", "dev", "single11-ms-charlie-hop", ("charlie",),
                "Naikkan charlie ke 7 meter, kemudian turunkan semula di tempat ia berlepas.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 7), at(ev, "charlie", *_home(c, "charlie")),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 7), _land("charlie")], "Charlie naik ke 7 m dan mendarat semula."),
-        _entry("single", "test", "single11-bravo-low-hold", ("bravo",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("single", "dev", "single11-bravo-low-hold", ("bravo",),
                "Bravo, lift off and hold at 6 metres over the pad until further notice.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=6), airborne_at(ev, "bravo", 6)),
                [_takeoff("bravo", 6)], "Bravo holds at 6 m over its pad."),
         # multi
-        _entry("multi", "test", "multi11-sk-pair-south-north", three,
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("multi", "dev", "multi11-sk-pair-south-north", three,
                "Pošli alpha 15 metrov na juh a charlie 15 metrov na sever, oba vo výške 11 metrov, a nechaj ich "
                "tam visieť; bravo ostane na zemi.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -15, 0), alt=11), airborne_at(ev, "alpha", 11),
@@ -3741,13 +3755,15 @@ def _eleventh_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                [_move("alpha", -15, 0, alt=11), _move("charlie", 15, 0, alt=11)],
                "Alpha visí 15 m na juh a charlie 15 m na sever, oba na 11 m; bravo je na zemi."),
-        _entry("multi", "test", "multi11-sw-all-three-hop", three,
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("multi", "dev", "multi11-sw-all-three-hop", three,
                "Paisha alpha, bravo na charlie hadi mita 9, kisha zishushe zote tatu pale zilipoanzia.",
                lambda c, ev: _all(*(reached_alt(ev, d, 9) for d in three), *(at(ev, d, *_home(c, d)) for d in three),
                                   *(landed_disarmed(ev, d) for d in three)),
                [*(_takeoff(d, 9) for d in three), *(_land(d) for d in three)],
                "Zote tatu zilipanda hadi 9 m na zikatua tena."),
-        _entry("multi", "test", "multi11-charlie-west-alpha-same-height", three,
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("multi", "dev", "multi11-charlie-west-alpha-same-height", three,
                "Lift charlie to 12 m and fly it 25 m west; once it's there, bring alpha up to the same height "
                "over its own pad. Bravo doesn't fly.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -25), alt=12), airborne_at(ev, "charlie", 12),
@@ -3756,21 +3772,24 @@ def _eleventh_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 12), _move("charlie", 0, -25), _takeoff("alpha", 12)],
                "Charlie hovers 25 m west at 12 m; alpha hovers over its pad at 12 m. Bravo stayed down."),
         # compound
-        _entry("compound", "test", "compound11-lv-bravo-sw-north-land", ("bravo",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("compound", "dev", "compound11-lv-bravo-sw-north-land", ("bravo",),
                "Pacel bravo 12 metru augstumā, aizlido 20 metrus uz dienvidrietumiem, tad 20 metrus uz ziemeļiem "
                "un tur nosēdini.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 12), visited(ev, "bravo", [c.point("bravo", -d20, -d20)]),
                                   at(ev, "bravo", *c.point("bravo", 20 - d20, -d20)), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 12), _move("bravo", -d20, -d20), _move("bravo", 20, 0), _land("bravo")],
                "Bravo aizlidoja uz dienvidrietumiem, tad uz ziemeļiem un nosēdās."),
-        _entry("compound", "test", "compound11-tl-alpha-north-lower-home", ("alpha",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("compound", "dev", "compound11-tl-alpha-north-lower-home", ("alpha",),
                "Paliparin si alpha hanggang 15 metro, ilipad ito nang 30 metro pahilaga, ibaba ito sa 6 na metro "
                "doon, saka ibalik sa pinagmulan nito para lumapag.",
                lambda c, ev: _all(rose_to(ev, "alpha", 15), visited(ev, "alpha", [c.point("alpha", 30, 0)], alt=6),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 15), _move("alpha", 30, 0), _move("alpha", alt=6), _rtl("alpha")],
                "Lumipad si alpha nang 30 m pahilaga, bumaba sa 6 m, at bumalik para lumapag."),
-        _entry("compound", "test", "compound11-charlie-three-sides-land", ("charlie",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("compound", "dev", "compound11-charlie-three-sides-land", ("charlie",),
                "Charlie: take off to 10 m, fly 20 m east, 20 m north, then 20 m west, and land there.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 20), c.point("charlie", 20, 20)]),
                                   at(ev, "charlie", *c.point("charlie", 20, 0)), landed_disarmed(ev, "charlie")),
@@ -3778,71 +3797,83 @@ def _eleventh_test_half() -> list[CorpusEntry]:
                 _land("charlie")],
                "Charlie flew east, north and west and landed 20 m north of its pad."),
         # conditional
-        _entry("conditional", "test", "cond11-bg-charlie-east-unless-low", ("charlie",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("conditional", "dev", "cond11-bg-charlie-east-unless-low", ("charlie",),
                "Ако батерията на charlie е под 50 %, остави го на земята; иначе го издигни на 10 метра, прелети "
                "20 метра на изток и го приземи там.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 10), at(ev, "charlie", *c.point("charlie", 0, 20)),
                                   landed_disarmed(ev, "charlie")),
                [_battery("charlie"), _takeoff("charlie", 10), _move("charlie", 0, 20), _land("charlie")],
                "Charlie има 63 %: прелетя 20 м на изток и кацна.", battery={"charlie": 63.0}),
-        _entry("conditional", "test", "cond11-ko-fuller-of-alpha-bravo", three,
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("conditional", "dev", "cond11-ko-fuller-of-alpha-bravo", three,
                "alpha와 bravo 중 배터리가 더 많은 쪽을 15미터로 띄워서 그대로 떠 있게 하고, 나머지는 땅에 둬.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=15), airborne_at(ev, "bravo", 15),
                                   never_armed(ev, "alpha"), never_armed(ev, "charlie")),
                [("fleet_status", {}), _takeoff("bravo", 15)], "bravo(71 %)가 15 m에 떠 있음; alpha(48 %)는 땅에 있음.",
                battery={"alpha": 48.0, "bravo": 71.0, "charlie": 90.0}),
-        _entry("conditional", "test", "cond11-charlie-three-bands", ("charlie",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("conditional", "dev", "cond11-charlie-three-bands", ("charlie",),
                "If charlie has between 40 and 70 % battery, take it to 10 m and hover; above 70 %, to 25 m; "
                "below 40 %, leave it down.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=25), airborne_at(ev, "charlie", 25)),
                [_battery("charlie"), _takeoff("charlie", 25)], "Charlie has 76 %, so it hovers at 25 m.",
                battery={"charlie": 76.0}),
         # formation
-        _entry("formation", "test", "form11-it-line-southwest", three,
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("formation", "dev", "form11-it-line-southwest", three,
                "Metti alpha, bravo e charlie uno accanto all'altro, a 9 metri di distanza, a 14 metri di quota, "
                "20 metri a sud-ovest di dove sono adesso, e lasciali sospesi lì.",
                lambda c, ev: _all(formation_at(c, ev, three, 14, 9, -d20, -d20), farthest_apart(ev, three, 18)),
                [_formation(three, "line", 14, 9, north=-d20, east=-d20)],
                "I tre sono affiancati 20 m a sud-ovest, a 14 m, 9 m l'uno dall'altro."),
-        _entry("formation", "test", "form11-fr-triangle-east", three,
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("formation", "dev", "form11-fr-triangle-east", three,
                "Placez les trois drones en triangle de 12 m de côté, à 20 m d'altitude, 30 m à l'est de leur "
                "position actuelle, et laissez-les en vol stationnaire.",
                lambda c, ev: _all(formation_at(c, ev, three, 20, 12, 0, 30), farthest_apart(ev, three, 12)),
                [_formation(three, "circle", 20, 12, east=30)], "Les trois tiennent un triangle de 12 m, 30 m à l'est, à 20 m."),
-        _entry("formation", "test", "form11-pair-column-southeast-land", ("alpha", "bravo"),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("formation", "dev", "form11-pair-column-southeast-land", ("alpha", "bravo"),
                "Line alpha and bravo up one behind the other, 15 m apart at 10 m, 20 m south-east of where they "
                "are now, then set both down there.",
                lambda c, ev: landed_formation_at(c, ev, ("alpha", "bravo"), 15, -d20, d20),
                [_formation(("alpha", "bravo"), "column", 10, 15, north=-d20, east=d20), _land("alpha"), _land("bravo")],
                "Alpha and bravo flew in a column 20 m south-east and landed 15 m apart."),
         # relative
-        _entry("relative", "test", "rel11-et-charlie-west-and-up", ("charlie",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("relative", "dev", "rel11-et-charlie-west-and-up", ("charlie",),
                "Tõsta charlie 8 meetri kõrgusele, seejärel vii see 15 meetrit läände ja ühtlasi 10 meetrit "
                "kõrgemale ning jäta sinna hõljuma.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -15), alt=18), airborne_at(ev, "charlie", 18)),
                [_takeoff("charlie", 8), _move("charlie", 0, -15, up=10)], "Charlie hõljub 15 m läänes, 18 m kõrgusel."),
-        _entry("relative", "test", "rel11-ja-bravo-southeast-lower", ("bravo",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("relative", "dev", "rel11-ja-bravo-southeast-lower", ("bravo",),
                "bravoを20メートルまで上げて、南東へ25メートル動かしてから、5メートル下げてそのまま浮かせておいて。",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", -d25, d25)], alt=20),
                                   at(ev, "bravo", *c.point("bravo", -d25, d25), alt=15), airborne_at(ev, "bravo", 15)),
                [_takeoff("bravo", 20), _move("bravo", -d25, d25), _move("bravo", up=-5)],
                "bravoは南東25 m、高度15 mで浮いている。"),
-        _entry("relative", "test", "rel11-alpha-north-west-offset", ("alpha",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("relative", "dev", "rel11-alpha-north-west-offset", ("alpha",),
                "Move alpha 18 m north and 24 m west of where it sits, 10 m up, and keep it hovering there.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 18, -24), alt=10), airborne_at(ev, "alpha", 10)),
                [_move("alpha", 18, -24, alt=10)], "Alpha hovers 18 m north and 24 m west of its pad at 10 m."),
         # question
-        _entry("question", "test", "ask11-sl-charlie-charge", three,
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("question", "dev", "ask11-sl-charlie-charge", three,
                "Koliko baterije ima še charlie? Samo povej, nobenega drona ne dvigni.",
                lambda c, ev: _all(answer_mentions_number(ev, 52, 1), nobody_armed(ev)),
                [("fleet_status", {})], "Charlie ima 52 %.", battery={"alpha": 88.0, "bravo": 70.0, "charlie": 52.0}),
-        _entry("question", "test", "ask11-zh-under-forty", three,
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("question", "dev", "ask11-zh-under-forty", three,
                "三架无人机里，哪一架的电量低于 40%？告诉我是多少，别让它们起飞。",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 36, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "bravo 的电量低于 40%：36 %。",
                battery={"alpha": 71.0, "bravo": 36.0, "charlie": 58.0}),
-        _entry("question", "test", "ask11-fullest-and-lead", three,
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("question", "dev", "ask11-fullest-and-lead", three,
                "Which drone has the most charge, and by how many points does it lead the next best? Don't fly "
                "anything.",
                # the typed plan reads, it does not compute: the lead, or the two readings it comes from
@@ -3853,17 +3884,20 @@ def _eleventh_test_half() -> list[CorpusEntry]:
                [("fleet_status", {})], "Charlie has the most, 82 %: 18 points ahead of alpha (64 %).",
                battery={"alpha": 64.0, "bravo": 59.0, "charlie": 82.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off)
-        _entry("refusal", "test", "refuse11-pl-alpha-far-southwest", ("alpha",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("refusal", "dev", "refuse11-pl-alpha-far-southwest", ("alpha",),
                "Wyślij alpha 1,2 km na południowy zachód na wysokości 20 metrów.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "alpha", c.max_distance_m), answer_reports_refusal(ev)),
                [_move("alpha", -d1200, -d1200, alt=20)], "The gateway refused: 1.2 km is beyond the 1000 m limit."),
-        _entry("refusal", "test", "refuse11-tr-bravo-400-feet", ("bravo",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("refusal", "dev", "refuse11-tr-bravo-400-feet", ("bravo",),
                "bravo'yu 400 fit yüksekliğe çıkar ve orada tut.",
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "bravo", c.max_alt_m),
                                   answer_reports_refusal(ev)),
                [_takeoff("bravo", 400 * FT)], "The gateway refused: 400 ft (121.9 m) is above the 120 m altitude limit."),
-        _entry("refusal", "test", "refuse11-pair-charlie-drained", three,
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("refusal", "dev", "refuse11-pair-charlie-drained", three,
                "Alpha and charlie: take off to 15 m and both fly 20 m south.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -20, 0), alt=15), airborne_at(ev, "alpha", 15),
                                   refusal_seen(ev, "battery"), never_armed(ev, "charlie"), never_armed(ev, "bravo"),
@@ -3872,40 +3906,46 @@ def _eleventh_test_half() -> list[CorpusEntry]:
                "Alpha hovers 20 m south at 15 m; charlie was refused: its battery (24 %) is below the 30 % to take off.",
                battery={"alpha": 80.0, "charlie": 24.0}),
         # units
-        _entry("units", "test", "units11-nl-charlie-feet-yards-west", ("charlie",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("units", "dev", "units11-nl-charlie-feet-yards-west", ("charlie",),
                "Laat charlie opstijgen tot 25 voet, vlieg 100 yard naar het westen en land daar.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 25 * FT), at(ev, "charlie", *c.point("charlie", 0, -100 * YD)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 25 * FT), _move("charlie", 0, -100 * YD), _land("charlie")],
                "Charlie vloog 100 yard (91 m) naar het westen en landde."),
-        _entry("units", "test", "units11-sw-bravo-feet-miles-ne", ("bravo",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("units", "dev", "units11-sw-bravo-feet-miles-ne", ("bravo",),
                "Paisha bravo hadi futi 70, kisha ipeleke maili 0.02 kuelekea kaskazini mashariki, na iache ielee "
                "hapo.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", d002mi, d002mi), alt=70 * FT),
                                   airborne_at(ev, "bravo", 70 * FT)),
                [_takeoff("bravo", 70 * FT), _move("bravo", d002mi, d002mi)],
                "Bravo inaelea maili 0.02 (32 m) kaskazini mashariki, futi 70 (21 m) juu."),
-        _entry("units", "test", "units11-alpha-yards-up-ne-land", ("alpha",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("units", "dev", "units11-alpha-yards-up-ne-land", ("alpha",),
                "Send alpha up 40 yards, move it 80 yards to the north-east, and set it down there.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 40 * YD), at(ev, "alpha", *c.point("alpha", d80yd, d80yd)),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 40 * YD), _move("alpha", d80yd, d80yd), _land("alpha")],
                "Alpha climbed to 40 yd (36.6 m), flew 80 yd (73.2 m) north-east and landed."),
         # pattern
-        _entry("pattern", "test", "pattern11-ro-charlie-triangle-right", ("charlie",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("pattern", "dev", "pattern11-ro-charlie-triangle-right", ("charlie",),
                "Fă-l pe charlie să zboare un triunghi cu latura de 25 de metri, la 12 metri înălțime: prima latură "
                "spre nord-est, apoi virează la dreapta; la final să aterizeze.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(triangle25)[:2]]),
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 12), *_legs("charlie", triangle25), _land("charlie")],
                "Charlie a zburat triunghiul și a aterizat."),
-        _entry("pattern", "test", "pattern11-cs-alpha-passes-west-south", ("alpha",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("pattern", "dev", "pattern11-cs-alpha-passes-west-south", ("alpha",),
                "Alpha ať ve výšce 10 metrů proletí 3 pruhy dlouhé 30 metrů, první směrem na západ, 8 metrů od "
                "sebe, každý další jižněji, a pak ať se vrátí domů.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(passes)]),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), *_legs("alpha", passes), _rtl("alpha")], "Alpha proletěl 3 pruhy a vrátil se domů."),
-        _entry("pattern", "test", "pattern11-bravo-rectangle-left", ("bravo",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("pattern", "dev", "pattern11-bravo-rectangle-left", ("bravo",),
                "Bravo: fly a 30 by 10 m rectangle at 8 m, the long sides running north-south, first leg north, "
                "turning left, then land where it started.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(rectangle)[:3]]),
@@ -3913,13 +3953,15 @@ def _eleventh_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 8), *_legs("bravo", rectangle), _land("bravo")], "Bravo flew the rectangle and landed."),
         # placement (the sim's homes stand apart west to east, alpha, bravo, charlie: each entry places alpha
         # from charlie or charlie from alpha, so that a drone placed from itself misses)
-        _entry("placement", "test", "place11-lt-charlie-lands-east-of-alpha", three,
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("placement", "dev", "place11-lt-charlie-lands-east-of-alpha", three,
                "Nuskraidink charlie į tašką 30 metrų į rytus nuo alpha, 12 metrų aukštyje, ir ten jį nutupdyk.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 12), at(ev, "charlie", *c.point("alpha", 0, 30)),
                                   landed_disarmed(ev, "charlie"), never_armed(ev, "alpha"), never_armed(ev, "bravo")),
                lambda c: [_go("charlie", c.point("alpha", 0, 30), 12), _land("charlie")],
                "Charlie nusileido 30 m į rytus nuo alpha."),
-        _entry("placement", "test", "place11-sk-alpha-west-below-moved-charlie", three,
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("placement", "dev", "place11-sk-alpha-west-below-moved-charlie", three,
                "Vznes charlie do 18 metrov a posuň ho 20 metrov na juh. Potom daj alpha 10 metrov západne od "
                "charlie, o 8 metrov nižšie, a nechaj oba visieť.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -20, 0), alt=18), airborne_at(ev, "charlie", 18),
@@ -3927,7 +3969,8 @@ def _eleventh_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_takeoff("charlie", 18), _move("charlie", -20, 0), _go("alpha", c.point("charlie", -20, -10), 10)],
                "Charlie visí 20 m na juh na 18 m; alpha 10 m západne od neho na 10 m."),
-        _entry("placement", "test", "place11-alpha-lands-north-of-hovering-charlie", three,
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("placement", "dev", "place11-alpha-lands-north-of-hovering-charlie", three,
                "Bring charlie up to 10 m and keep it there, then set alpha down on the ground 12 m due north of "
                "charlie.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=10), airborne_at(ev, "charlie", 10),
@@ -3936,23 +3979,302 @@ def _eleventh_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("charlie", 10), _go("alpha", c.point("charlie", 12, 0), 8), _land("alpha")],
                "Charlie hovers at 10 m; alpha landed 12 m north of it."),
         # language
-        _entry("language", "test", "lang11-he-charlie-northwest-land", ("charlie",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("language", "dev", "lang11-he-charlie-northwest-land", ("charlie",),
                "הרם את charlie לגובה 14 מטר, הטס אותו 30 מטר לכיוון צפון-מערב, ואז הנחת אותו שם.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 14), at(ev, "charlie", *c.point("charlie", d30, -d30)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 14), _move("charlie", d30, -d30), _land("charlie")],
                "charlie טס 30 m צפון-מערבה ונחת."),
-        _entry("language", "test", "lang11-fa-alpha-west-hover", ("alpha",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("language", "dev", "lang11-fa-alpha-west-hover", ("alpha",),
                "alpha را تا ارتفاع 18 متری بالا ببر، بعد 25 متر به سمت غرب ببرش و همان‌جا در هوا نگهش دار.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -25), alt=18), airborne_at(ev, "alpha", 18)),
                [_takeoff("alpha", 18), _move("alpha", 0, -25)], "alpha در 25 m غرب، در ارتفاع 18 m در هواست."),
-        _entry("language", "test", "lang11-bn-bravo-south-home", ("bravo",),
+        # moved to dev on 2026-12-02, eleventh round: the test half had been measured
+        _entry("language", "dev", "lang11-bn-bravo-south-home", ("bravo",),
                "bravo-কে 12 মিটার উঁচুতে তোলো, তারপর দক্ষিণ দিকে 35 মিটার উড়িয়ে নিয়ে যাও, শেষে বাড়িতে ফিরিয়ে "
                "এনে নামাও।",
                # the return home climbs to its own height: the leg south is checked at 12 m instead
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", -35, 0)], alt=12),
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 12), _move("bravo", -35, 0), _rtl("bravo")], "bravo দক্ষিণে 35 m উড়ে বাড়ি ফিরে নেমেছে।"),
+    ]  # fmt: skip
+
+
+def _twelfth_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-02 (twelfth round), before any model ran on it: 3 a class; 22 of
+    the 33 outside ``language`` in other languages than English (Arabic, Chinese, Dutch, Finnish, French,
+    German, Greek, Hindi, Hungarian, Indonesian, Italian, Japanese, Korean, Polish, Portuguese, Russian,
+    Spanish, Swedish, Thai, Turkish, Ukrainian, Vietnamese), the ``language`` class's 3 in Urdu, Tamil and
+    Serbian written in Cyrillic (the three languages are new, and Tamil script with them)."""
+    three = DRONES
+    d20, d25 = (x / math.sqrt(2) for x in (20, 25))
+    d50yd = 50 * YD / math.sqrt(2)
+    d08mi = 0.8 * MI / math.sqrt(2)
+    square18 = _polygon_legs(4, 18.0, 180.0, right=False)  # first side south, turning left
+    # four passes of 30 m, the first east, 8 m apart, each next one north of the one before
+    passes = [(0.0, 30.0), (8.0, 0.0), (0.0, -30.0), (8.0, 0.0), (0.0, 30.0), (8.0, 0.0), (0.0, -30.0)]
+    # clockwise round the pad at a 20 m radius from its east side: E, S, W, N, E, then back to the centre
+    orbit20 = [(0.0, 20.0), (-20.0, -20.0), (20.0, -20.0), (20.0, 20.0), (-20.0, 20.0), (0.0, -20.0)]
+    return [
+        # single
+        _entry("single", "test", "single12-pt-bravo-above-pad", ("bravo",),
+               "Suba o bravo até 17 metros acima da base dele e deixe-o parado no ar.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=17), airborne_at(ev, "bravo", 17)),
+               [_takeoff("bravo", 17)], "O bravo está parado a 17 m acima da base."),
+        _entry("single", "test", "single12-th-alpha-hop", ("alpha",),
+               "ยก alpha ขึ้นไปที่ความสูง 11 เมตร แล้วให้ลงจอดตรงจุดเดิม",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 11), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 11), _land("alpha")], "alpha ขึ้นไปที่ 11 m แล้วลงจอดที่เดิม"),
+        _entry("single", "test", "single12-charlie-camera-check", ("charlie",),
+               "Charlie's going up for a camera check: 32 m straight above its pad, and it waits there for me.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=32), airborne_at(ev, "charlie", 32)),
+               [_takeoff("charlie", 32)], "Charlie waits at 32 m over its pad."),
+        # multi
+        _entry("multi", "test", "multi12-sv-three-ways-home", three,
+               "Skicka ut alla tre 20 meter åt olika håll på 12 meters höjd: alpha västerut, bravo norrut och "
+               "charlie österut. Ta sedan hem dem allihop.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -20)]),
+                                  visited(ev, "bravo", [c.point("bravo", 20, 0)]),
+                                  visited(ev, "charlie", [c.point("charlie", 0, 20)]),
+                                  *(at(ev, d, *_home(c, d)) for d in three), *(landed_disarmed(ev, d) for d in three)),
+               [_move("alpha", 0, -20, alt=12), _move("bravo", 20, 0, alt=12), _move("charlie", 0, 20, alt=12),
+                *(_rtl(d) for d in three)],
+               "Alla tre flög 20 m ut, alpha västerut, bravo norrut, charlie österut, och landade hemma."),
+        _entry("multi", "test", "multi12-zh-pair-south-bravo-high", three,
+               "让 alpha 和 charlie 都升到 10 米，再各自向南飞 25 米，在那里悬停；bravo 只在原地升到 20 米待命。",
+               lambda c, ev: _all(*(at(ev, d, *c.point(d, -25, 0), alt=10) for d in ("alpha", "charlie")),
+                                  *(airborne_at(ev, d, 10) for d in ("alpha", "charlie")),
+                                  at(ev, "bravo", *_home(c, "bravo"), alt=20), airborne_at(ev, "bravo", 20)),
+               [_takeoff("alpha", 10), _move("alpha", -25, 0), _takeoff("charlie", 10), _move("charlie", -25, 0),
+                _takeoff("bravo", 20)],
+               "alpha 和 charlie 在南边 25 米、10 米高悬停；bravo 在原地 20 米待命。"),
+        _entry("multi", "test", "multi12-alpha-nw-land-bravo-up", three,
+               "Alpha goes 20 m north-west at 14 m and sets down there; bravo climbs to 9 m over its pad and "
+               "stays up; charlie is not to move.",
+               lambda c, ev: _all(rose_to(ev, "alpha", 14), at(ev, "alpha", *c.point("alpha", d20, -d20)),
+                                  landed_disarmed(ev, "alpha"), at(ev, "bravo", *_home(c, "bravo"), alt=9),
+                                  airborne_at(ev, "bravo", 9), never_armed(ev, "charlie")),
+               [_move("alpha", d20, -d20, alt=14), _land("alpha"), _takeoff("bravo", 9)],
+               "Alpha landed 20 m north-west; bravo hovers at 9 m over its pad; charlie stayed down."),
+        # compound
+        _entry("compound", "test", "compound12-de-charlie-corner-climb-home", ("charlie",),
+               "Bring charlie auf 10 Meter, flieg 25 Meter nach Norden, dann 15 Meter nach Osten, steig dort "
+               "um 10 Meter und komm anschließend nach Hause.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 25, 0), c.point("charlie", 25, 15)]),
+                                  visited(ev, "charlie", [c.point("charlie", 25, 15)], alt=20),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), _move("charlie", 25, 0), _move("charlie", 0, 15), _move("charlie", up=10),
+                _rtl("charlie")],
+               "Charlie flog 25 m nach Norden, 15 m nach Osten, stieg auf 20 m und kam nach Hause."),
+        _entry("compound", "test", "compound12-vi-alpha-south-west-back", ("alpha",),
+               "Cho alpha cất cánh lên 12 mét, bay 30 mét về phía nam, rồi 20 mét về phía tây, sau đó quay lại "
+               "20 mét về phía đông và giữ nó lơ lửng ở đó.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -30, 0), c.point("alpha", -30, -20)]),
+                                  at(ev, "alpha", *c.point("alpha", -30, 0), alt=12), airborne_at(ev, "alpha", 12)),
+               [_takeoff("alpha", 12), _move("alpha", -30, 0), _move("alpha", 0, -20), _move("alpha", 0, 20)],
+               "alpha đang lơ lửng 30 m về phía nam, ở độ cao 12 m."),
+        _entry("compound", "test", "compound12-bravo-east-then-past-pad", ("bravo",),
+               "Bravo: up to 12 m, 20 m east, then 40 m west, back past its pad, and land it there.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 12),
+                                  visited(ev, "bravo", [c.point("bravo", 0, 20), c.point("bravo", 0, -20)]),
+                                  at(ev, "bravo", *c.point("bravo", 0, -20)), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), _move("bravo", 0, 20), _move("bravo", 0, -40), _land("bravo")],
+               "Bravo flew 20 m east, then 40 m west, and landed 20 m west of its pad."),
+        # conditional
+        _entry("conditional", "test", "cond12-es-both-or-one", three,
+               "Mira la batería de alpha y de charlie. Si los dos tienen más del 50 %, súbelos a 12 metros; si "
+               "solo uno pasa del 50 %, sube únicamente ese y deja el otro en tierra.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=12), airborne_at(ev, "alpha", 12),
+                                  never_armed(ev, "charlie"), never_armed(ev, "bravo")),
+               [_battery("alpha"), _battery("charlie"), _takeoff("alpha", 12)],
+               "Alpha tiene 67 % y charlie 44 %: solo alpha está a 12 m.", battery={"alpha": 67.0, "charlie": 44.0}),
+        _entry("conditional", "test", "cond12-ko-charlie-check-aloft", ("charlie",),
+               "charlie를 15미터로 띄운 뒤 배터리를 확인해. 60% 이상이면 북쪽으로 30미터 가서 떠 있게 하고, 그보다 "
+               "적으면 바로 제자리에 착륙시켜.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 30, 0), alt=15),
+                                  airborne_at(ev, "charlie", 15)),
+               [_takeoff("charlie", 15), _battery("charlie"), _move("charlie", 30, 0)],
+               "charlie 배터리 71 %: 북쪽 30 m, 15 m 높이에 떠 있음.", battery={"charlie": 71.0}),
+        _entry("conditional", "test", "cond12-bravo-stands-in", three,
+               "Charlie should go up to 16 m and fly 20 m north, unless its battery is under 35 %; in that case "
+               "send bravo instead and leave charlie on the ground.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 20, 0), alt=16), airborne_at(ev, "bravo", 16),
+                                  never_armed(ev, "charlie"), never_armed(ev, "alpha")),
+               [_battery("charlie"), _takeoff("bravo", 16), _move("bravo", 20, 0)],
+               "Charlie has 31 %, so bravo went instead: it hovers 20 m north at 16 m.",
+               battery={"bravo": 82.0, "charlie": 31.0}),
+        # formation
+        _entry("formation", "test", "form12-fr-file-northeast-land", three,
+               "Mettez alpha, bravo et charlie en file indienne, 10 m entre chacun, à 16 m d'altitude, 25 m au "
+               "nord-est de leur position, puis posez-les tous les trois là-bas.",
+               lambda c, ev: landed_formation_at(c, ev, three, 20, d25, d25),
+               [_formation(three, "column", 16, 10, north=d25, east=d25), *(_land(d) for d in three)],
+               "Les trois ont volé en file 25 m au nord-est et se sont posés, 10 m entre chacun."),
+        _entry("formation", "test", "form12-hu-pair-abreast-west", three,
+               "Állítsd egymás mellé alpha-t és charlie-t, egymástól 14 méterre, 18 méter magasan, a mostani "
+               "helyüktől 30 méterrel nyugatra, és hagyd őket ott lebegni.",
+               lambda c, ev: _all(formation_at(c, ev, ("alpha", "charlie"), 18, 14, 0, -30), never_armed(ev, "bravo")),
+               [_formation(("alpha", "charlie"), "line", 18, 14, east=-30)],
+               "Alpha és charlie egymás mellett lebeg 30 m-rel nyugatra, 18 m-en, 14 m-re egymástól."),
+        # (the gateway's V has its arms 45 degrees off its axis: its two wings stand 2 x 12 x sin 45 = 16.97 m
+        # apart, where three in a row 12 m apart have their ends 24 m apart)
+        _entry("formation", "test", "form12-v-north", three,
+               "Arrange the three in a V, 12 m between neighbours, at 15 m, centred 25 m north of where they sit "
+               "now, and keep them there.",
+               lambda c, ev: _all(formation_at(c, ev, three, 15, 12, 25, 0), farthest_apart(ev, three, 16.97)),
+               [_formation(three, "wedge", 15, 12, north=25)], "The three hold a V 25 m north at 15 m."),
+        # relative
+        _entry("relative", "test", "rel12-it-bravo-northeast-climbing", ("bravo",),
+               "Alza bravo a 10 metri, poi spostalo di 20 metri verso nord-est salendo di altri 6 metri, e "
+               "tienilo lì.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", d20, d20), alt=16), airborne_at(ev, "bravo", 16)),
+               [_takeoff("bravo", 10), _move("bravo", d20, d20, up=6)], "Bravo è 20 m a nord-est, a 16 m."),
+        _entry("relative", "test", "rel12-fi-charlie-lower-south", ("charlie",),
+               "Nosta charlie 24 metrin korkeuteen, laske sitä sitten 10 metriä alemmas ja siirrä se 15 metriä "
+               "etelään; jätä se sinne leijumaan.",
+               lambda c, ev: _all(rose_to(ev, "charlie", 24), at(ev, "charlie", *c.point("charlie", -15, 0), alt=14),
+                                  airborne_at(ev, "charlie", 14)),
+               [_takeoff("charlie", 24), _move("charlie", up=-10), _move("charlie", -15, 0)],
+               "Charlie leijuu 15 m etelään, 14 m korkeudessa."),
+        _entry("relative", "test", "rel12-alpha-offset-then-nudge-up", ("alpha",),
+               "Alpha: go to a spot 16 m south and 12 m east of its pad at 10 m, then nudge it up another 5 m "
+               "and hold.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -16, 12)], alt=10),
+                                  at(ev, "alpha", *c.point("alpha", -16, 12), alt=15), airborne_at(ev, "alpha", 15)),
+               [_move("alpha", -16, 12, alt=10), _move("alpha", up=5)],
+               "Alpha holds 16 m south and 12 m east of its pad at 15 m."),
+        # question
+        _entry("question", "test", "ask12-ja-lower-of-pair", three,
+               "alphaとcharlieのうち、バッテリーが少ないのはどっち？残量も教えて。どれも飛ばさないで。",
+               lambda c, ev: _all(answer_says(ev, r"\balpha\b", "alpha"), answer_mentions_number(ev, 46, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "少ないのは alpha: 46 %。",
+               battery={"alpha": 46.0, "bravo": 60.0, "charlie": 73.0}),
+        _entry("question", "test", "ask12-ar-too-low-to-launch", three,
+               "هل توجد طائرة لا تكفي بطاريتها للإقلاع الآن؟ اذكر اسمها ونسبتها، ولا تُقلع أي طائرة.",
+               lambda c, ev: _all(answer_says(ev, r"\bcharlie\b", "charlie"), answer_mentions_number(ev, 26, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "نعم، charlie: 26 %، أقل من 30 % اللازمة للإقلاع.",
+               battery={"alpha": 77.0, "bravo": 65.0, "charlie": 26.0}),
+        _entry("question", "test", "ask12-needs-charge-for-job", three,
+               "Which drone would I have to charge before it could fly a job that needs 70 %? Tell me its figure; "
+               "keep everything on the ground.",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 66, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Bravo: it has 66 %, under the 70 % the job needs.",
+               battery={"alpha": 84.0, "bravo": 66.0, "charlie": 91.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
+        # 2 m the lowest altitude)
+        _entry("refusal", "test", "refuse12-ru-bravo-half-metre", ("bravo",),
+               "Подними bravo на 10 метров, а потом опусти его так, чтобы он висел в полуметре над землёй.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 10), refusal_seen(ev, "minimum", "at least"),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("bravo", 10), _move("bravo", alt=0.5)],
+               "Bravo is at 10 m; the descent was refused: 0.5 m is below the 2 m minimum altitude."),
+        _entry("refusal", "test", "refuse12-id-alpha-miles-northwest", ("alpha",),
+               "Terbangkan alpha sejauh 0,8 mil ke arah barat laut pada ketinggian 25 meter, lalu daratkan di sana.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "alpha", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("alpha", d08mi, -d08mi, alt=25)],
+               "The gateway refused: 0.8 miles (1287 m) is beyond the 1000 m limit."),
+        _entry("refusal", "test", "refuse12-stack-over-ceiling", three,
+               "Stack them up over their own pads: alpha at 45 m, bravo 45 m higher than alpha, and charlie another "
+               "45 m above bravo.",
+               lambda c, ev: _all(airborne_at(ev, "alpha", 45), airborne_at(ev, "bravo", 90),
+                                  refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "charlie", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("alpha", 45), _takeoff("bravo", 90), _takeoff("charlie", 135)],
+               "Alpha hovers at 45 m and bravo at 90 m; charlie was refused: 135 m is above the 120 m altitude limit."),
+        # units
+        _entry("units", "test", "units12-pl-bravo-feet-yards-lower", ("bravo",),
+               "Podnieś bravo na 60 stóp, przeleć nim 50 jardów na południowy wschód i obniż go o 20 stóp; niech "
+               "tam wisi.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", -d50yd, d50yd), alt=40 * FT),
+                                  airborne_at(ev, "bravo", 40 * FT)),
+               [_takeoff("bravo", 60 * FT), _move("bravo", -d50yd, d50yd), _move("bravo", up=-20 * FT)],
+               "Bravo wisi 50 jardów (46 m) na południowy wschód, na 40 stopach (12,2 m)."),
+        _entry("units", "test", "units12-el-charlie-feet-km-land", ("charlie",),
+               "Σήκωσε το charlie στα 35 πόδια, πέτα το 0,06 χιλιόμετρα βόρεια και προσγείωσέ το εκεί.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 35 * FT), at(ev, "charlie", *c.point("charlie", 60, 0)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 35 * FT), _move("charlie", 60, 0), _land("charlie")],
+               "Το charlie πέταξε 60 m βόρεια στα 35 πόδια (10,7 m) και προσγειώθηκε."),
+        _entry("units", "test", "units12-alpha-feet-miles-home", ("alpha",),
+               "Alpha: up to 45 ft, then 0.03 miles east, then come home.",
+               # the return home climbs to its own height: the leg east is checked at 45 ft instead
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 0.03 * MI)], alt=45 * FT),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 45 * FT), _move("alpha", 0, 0.03 * MI), _rtl("alpha")],
+               "Alpha flew 0.03 miles (48 m) east at 45 ft (13.7 m) and came home."),
+        # pattern
+        _entry("pattern", "test", "pattern12-nl-alpha-square-south-left", ("alpha",),
+               "Laat alpha op 14 meter hoogte een vierkant vliegen met zijden van 18 meter, eerste zijde naar "
+               "het zuiden, linksom, en daarna boven het startpunt blijven hangen.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(square18)[:3]]),
+                                  at(ev, "alpha", *_home(c, "alpha"), alt=14), airborne_at(ev, "alpha", 14)),
+               [_takeoff("alpha", 14), *_legs("alpha", square18)], "Alpha vloog het vierkant en hangt boven de start."),
+        _entry("pattern", "test", "pattern12-hi-bravo-passes-north", ("bravo",),
+               "bravo से 12 मीटर की ऊँचाई पर खेत का सर्वे करवाओ: 30 मीटर लंबी चार पट्टियाँ, पहली पूर्व की ओर, "
+               "पट्टियों के बीच 8 मीटर का अंतर, हर अगली पट्टी पिछली के उत्तर में; फिर उसे घर वापस ले आओ।",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(passes)]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), *_legs("bravo", passes), _rtl("bravo")],
+               "bravo ने चारों पट्टियाँ उड़ीं और घर लौट आया।"),
+        _entry("pattern", "test", "pattern12-charlie-orbit-pad-from-east", ("charlie",),
+               "Charlie at 16 m: go once round its own pad clockwise at a 20 m radius, starting from the east "
+               "side, then land back on the pad.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e)
+                                                          for n, e in ((0, 20), (-20, 0), (0, -20), (20, 0))]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 16), *_legs("charlie", orbit20), _land("charlie")],
+               "Charlie circled its pad clockwise and landed on it."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
+        # alpha from charlie or charlie from alpha, 10 m apart, so that a drone placed from itself misses)
+        _entry("placement", "test", "place12-uk-charlie-lands-sw-of-alpha", three,
+               "Залиш alpha на місці, а charlie відправ у точку за 20 метрів на південний захід від alpha, на "
+               "висоті 11 метрів, і посади його там.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 11), at(ev, "charlie", *c.point("alpha", -d20, -d20)),
+                                  landed_disarmed(ev, "charlie"), never_armed(ev, "alpha"), never_armed(ev, "bravo")),
+               lambda c: [_go("charlie", c.point("alpha", -d20, -d20), 11), _land("charlie")],
+               "charlie сів за 20 м на південний захід від alpha."),
+        _entry("placement", "test", "place12-tr-alpha-south-of-moved-charlie", three,
+               "charlie'yi 16 metreye kaldır ve 25 metre kuzeye götür. Sonra alpha'yı charlie'nin 10 metre "
+               "güneyine, aynı yüksekliğe getir ve ikisini de orada beklet.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 25, 0), alt=16), airborne_at(ev, "charlie", 16),
+                                  at(ev, "alpha", *c.point("charlie", 15, 0), alt=16), airborne_at(ev, "alpha", 16),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_takeoff("charlie", 16), _move("charlie", 25, 0),
+                          _go("alpha", c.point("charlie", 15, 0), 16)],
+               "charlie 25 m kuzeyde 16 m'de; alpha onun 10 m güneyinde, aynı yükseklikte bekliyor."),
+        _entry("placement", "test", "place12-charlie-alongside-alpha-west", three,
+               "Put alpha at 14 m over its pad, then bring charlie alongside it: same height, 12 m to its west.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=14), airborne_at(ev, "alpha", 14),
+                                  at(ev, "charlie", *c.point("alpha", 0, -12), alt=14), airborne_at(ev, "charlie", 14),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_takeoff("alpha", 14), _go("charlie", c.point("alpha", 0, -12), 14)],
+               "Alpha hovers at 14 m over its pad; charlie 12 m west of it at 14 m."),
+        # language
+        _entry("language", "test", "lang12-ur-bravo-northeast-land", ("bravo",),
+               "bravo کو 13 میٹر کی بلندی تک لے جاؤ، پھر اسے 25 میٹر شمال مشرق کی طرف اڑاؤ اور وہیں اتار دو۔",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 13), at(ev, "bravo", *c.point("bravo", d25, d25)),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 13), _move("bravo", d25, d25), _land("bravo")],
+               "bravo شمال مشرق میں 25 m اڑ کر اتر گیا۔"),
+        _entry("language", "test", "lang12-ta-alpha-west-hover", ("alpha",),
+               "alpha-வை 15 மீட்டர் உயரத்துக்கு ஏற்றி, மேற்கு நோக்கி 20 மீட்டர் பறக்கவிட்டு, அங்கேயே வானில் "
+               "நிறுத்தி வை.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -20), alt=15), airborne_at(ev, "alpha", 15)),
+               [_takeoff("alpha", 15), _move("alpha", 0, -20)], "alpha மேற்கே 20 m, 15 m உயரத்தில் நிற்கிறது."),
+        _entry("language", "test", "lang12-sr-charlie-south-home", ("charlie",),
+               "Подигни charlie на 11 метара, одлети њиме 30 метара ка југу, па га врати кући да слети.",
+               # the return home climbs to its own height: the leg south is checked at 11 m instead
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -30, 0)], alt=11),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 11), _move("charlie", -30, 0), _rtl("charlie")],
+               "charlie је одлетео 30 m ка југу и вратио се кући."),
     ]  # fmt: skip
 
 
@@ -3979,7 +4301,8 @@ def corpus() -> list[CorpusEntry]:
         *_eighth_round(),
         *_ninth_round(),
         *_tenth_round(),
-        *_eleventh_test_half(),
+        *_eleventh_round(),
+        *_twelfth_test_half(),
     ]
 
 
