@@ -71,8 +71,8 @@ def numbers(text: str) -> list[float]:
 
 
 def compass_points(text: str) -> list[str]:
-    """The compass points a text names, in order."""
-    return [point for _, _, point in _points_at(text.lower())]
+    """The compass points a text names, in order (not up or down)."""
+    return [point for _, _, point in _points_at(text.lower()) if point not in ("up", "down")]
 
 
 def _points_at(text: str) -> list[tuple[int, int, str]]:

@@ -12,6 +12,7 @@ from fleet_agent.consistency import (
     questions_of_fleet,
     without_unasked,
 )
+from fleet_agent.lexicon import compass_points
 from fleet_agent.plan import Condition, Report, parse_plan
 from fleet_agent.prompt import messages_for, prefix_messages
 
@@ -246,7 +247,7 @@ def test_a_plan_the_requests_compass_words_do_not_settle_is_left_as_written() ->
     for request, steps in cases:
         assert as_stated(request, {"steps": copy.deepcopy(steps)})["steps"] == steps, request
     one_way = [_up("alpha", 5), _move("alpha", (10, "west"), (20, "south"))]  # not alpha's first step
-    out = as_stated("alpha up 10 m, 20 m north", {"steps": copy.deepcopy(one_way)})
+    out = as_stated("alpha to 10 m, 20 m north", {"steps": copy.deepcopy(one_way)})
     assert out["steps"] == [_up("alpha", 5), _move("alpha", (10, "west"), (20, "north"))]
 
 
@@ -305,3 +306,14 @@ def test_a_restatement_that_copies_the_request_is_told_when_the_plan_has_gaps() 
     assert note not in gaps(request, FLEET, said)
     whole = parse_plan({"in_english": request, "steps": [_up("bravo", 15)]}, FLEET)
     assert gaps(request, FLEET, whole) == []
+
+
+def test_a_leg_the_request_says_is_higher_or_lower_goes_up_or_down() -> None:
+    """Written for this test: "N m higher" planned as a leg north, "N m lower" as a leg east."""
+    steps = [_up("charlie", 8), _move("charlie", (15, "south"), (10, "north"), (4, "east"))]
+    request = (
+        "Tõsta charlie 8 meetrini, vii see 15 meetrit läände, 10 meetrit kõrgemale ja 4 meetrit madalamale."
+    )
+    want = [_up("charlie", 8), _move("charlie", (15, "west"), (10, "up"), (4, "down"))]
+    assert as_stated(request, {"steps": steps})["steps"] == want
+    assert compass_points(request) == ["west"]

@@ -141,7 +141,7 @@ def test_a_word_ends_where_its_script_changes_and_a_latin_word_stays_whole() -> 
 
 def test_the_restatement_gives_each_number_the_compass_point_after_it_in_its_clause() -> None:
     said = "Alpha flies to 12 m, then 30 m south-west and 10 m back north east; 0,5 km northwards, 5 m up."
-    want = [(12, None), (30, "southwest"), (10, "northeast"), (0.5, "north"), (5, None)]
+    want = [(12, None), (30, "southwest"), (10, "northeast"), (0.5, "north"), (5, "up")]
     assert stated_ways(said) == want
     assert stated_ways("Echo flies 20 m east of delta at 15 m.") == [(20, "east"), (15, None)]
     assert stated_ways("Nothing flies, alpha2 neither.") == []
@@ -172,4 +172,4 @@ def test_a_request_gives_a_number_the_way_named_after_it_or_in_a_clause_of_its_o
     assert stated_ways("Vidd 0,03 kilométerre nyugatra, és ott tedd le.") == [(0.03, "west")]
     assert stated_ways("alphaを北へ20メートル、東へ10メートル") == [(20, "north"), (10, "east")]
     assert stated_ways("Nosta alpha 10 metriin, sitten 5 metriä ylemmäs ja 20 metriä pohjoiseen") == [
-        (10, None), (5, None), (20, "north")]  # fmt: skip
+        (10, None), (5, "up"), (20, "north")]  # fmt: skip
