@@ -23,8 +23,6 @@ def gaps(request: str, fleet: list[str], plan: Plan) -> list[str]:
     for given in _request_numbers(request, fleet):
         if not any(abs(given - n) < 1e-6 for n in numbers):
             notes.append(f"the request gives {given:g}, which no step of the plan has")
-    if notes and plan.in_english.strip() == request.strip():  # the 1.5B model copied a Swahili request
-        notes.append("in_english copies the request: say in plain English words what each drone does")
     return notes
 
 

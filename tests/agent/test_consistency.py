@@ -297,17 +297,6 @@ def test_a_condition_that_says_stay_up_keeps_its_drones_up_in_both_branches() ->
     assert data["steps"][0]["then"] == [{**_up("bravo", 10), "after": "stay"}]
 
 
-def test_a_restatement_that_copies_the_request_is_told_when_the_plan_has_gaps() -> None:
-    request = "Paa bravo hadi mita 15 kisha ielee."  # written for this test
-    copied = parse_plan({"in_english": request, "steps": []}, FLEET)
-    note = "in_english copies the request: say in plain English words what each drone does"
-    assert gaps(request, FLEET, copied)[-1] == note
-    said = parse_plan({"in_english": "Bravo goes up.", "steps": []}, FLEET)
-    assert note not in gaps(request, FLEET, said)
-    whole = parse_plan({"in_english": request, "steps": [_up("bravo", 15)]}, FLEET)
-    assert gaps(request, FLEET, whole) == []
-
-
 def test_a_leg_the_request_says_is_higher_or_lower_goes_up_or_down() -> None:
     """Written for this test: "N m higher" planned as a leg north, "N m lower" as a leg east."""
     steps = [_up("charlie", 8), _move("charlie", (15, "south"), (10, "north"), (4, "east"))]
