@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 483 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 519 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
