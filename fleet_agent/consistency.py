@@ -219,12 +219,15 @@ def as_ended(request: str, data: Any) -> Any:
     return data
 
 
+_ENDINGS = ("land", "return_home")
+
+
 def _stayed(steps: Any) -> Any:
     if not isinstance(steps, list):
         return steps
-    kept = [s for s in steps if not (isinstance(s, dict) and s.get("action") in ("land", "return_home"))]
+    kept = [s for s in steps if not (isinstance(s, dict) and s.get("action") in _ENDINGS)]
     for step in filter(lambda s: isinstance(s, dict), kept):
-        step.update({"after": "stay"} if step.get("after") in ("land", "return_home") else {})
+        step.update({"after": "stay"} if step.get("after") in _ENDINGS else {})
         step.update({b: _stayed(step[b]) for b in ("then", "otherwise") if b in step})
     return kept
 
