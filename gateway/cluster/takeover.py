@@ -106,7 +106,11 @@ async def pick_up_late_operations(
     ops = gateway.operations
     found: dict[str, list[OperationRecord]] = {}
     for record in await store.list_operations(status="running", limit=LATE_LIMIT):
-        if record.vehicle_id in vehicles and (ops is None or not ops.knows(record.id)):
+        if record.vehicle_id not in vehicles:
+            continue
+        if ops is not None and ops.knows(record.id):
+            await ops.restate_end(record.id)
+        else:
             found.setdefault(record.vehicle_id, []).append(record)
     count = 0
     for vehicle_id, records in found.items():

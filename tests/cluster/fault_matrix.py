@@ -172,12 +172,22 @@ class Rig:
 
         owners = await eventually(even, "two drones owned by each node", within_s=90)
 
+        still_running: list[Any] = []
+
         async def settled() -> bool:
             # a case's stop can still be travelling (a land a thawed node's drones get once their new owner
             # picks the stop's operations up): it would supersede the next case's takeoff
-            return not await c.rows("SELECT id FROM operations WHERE status = 'running'")
+            still_running[:] = await c.rows(
+                "SELECT id, vehicle_id, kind, message, updated_at FROM operations WHERE status = 'running'"
+            )
+            return not still_running
 
-        await eventually(settled, "no operation of an earlier case still running", within_s=60)
+        await eventually(
+            settled,
+            "no operation of an earlier case still running",
+            within_s=60,
+            explain=lambda: [tuple(map(str, row)) for row in still_running],
+        )
         return owners
 
     def recover(self, fault: str) -> None:

@@ -13,6 +13,8 @@ import pytest
 
 from gateway.cluster.takeover import pick_up_late_operations, pick_up_operations
 from gateway.fleet import geo
+from gateway.fleet.operations import operations as operations_module
+from gateway.fleet.operations.operation_state import Operation
 from gateway.fleet.policy.caller import Caller
 from gateway.registry.records import OperationRecord, utcnow
 from gateway.runtime import Gateway
@@ -132,3 +134,48 @@ async def test_a_drone_given_up_leaves_its_operation_to_the_next_owner_which_pic
     # drones this node does not hold are not looked at
     await left_running(gateway, "elsewhere", "goto", 1.0, lat_deg=lat, lon_deg=lon, alt_m=10.0)
     assert await pick_up_late_operations(gateway, "node-a", {}) == 0
+
+
+async def test_a_followed_operation_the_database_still_holds_as_running_is_ended_there_at_the_next_tick(
+    gateway: Gateway, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The node follows the operation, but the database holds it as running: its end here never reached
+    the database (written again), or nothing follows it any more (its monitor is gone: ended as failed).
+    Either way the row does not stay running for ever."""
+    monkeypatch.setattr(operations_module, "RESTATE_AFTER_S", 0.0)
+    store = gateway.require_store()
+    ops = gateway.commander.operations
+    vehicle = gateway.require_registry().get("d1")
+    lat, lon = geo.offset_position(HOME[0], HOME[1], 300.0, 0.0)
+    await left_running(gateway, "lost-end", "goto", 5.0, lat_deg=lat, lon_deg=lon, alt_m=10.0)
+    assert await pick_up_operations(gateway, "node-a", vehicle, 2, "node-c") == 1
+    saved = store.save_operation
+
+    async def lost(record: OperationRecord) -> OperationRecord:  # the end's write never arrives
+        return record
+
+    monkeypatch.setattr(store, "save_operation", lost)
+    fake(gateway, "d1").set(position=position_value(lat, lon, 10.0))
+    await eventually(lambda: _ended(ops.get("lost-end")), "the goto ended here", within_s=10)
+    monkeypatch.setattr(store, "save_operation", saved)
+    before = await store.get_operation("lost-end")
+    assert before is not None and before.status == "running"
+
+    assert await pick_up_late_operations(gateway, "node-a", {"d1": (vehicle, 4)}) == 0
+    after = await store.get_operation("lost-end")
+    assert after is not None and after.status == "succeeded", after
+
+    # a running operation whose monitor is gone: nothing would ever end it
+    lat2, lon2 = geo.offset_position(HOME[0], HOME[1], 0.0, 300.0)
+    await left_running(gateway, "unfollowed", "goto", 1.0, lat_deg=lat2, lon_deg=lon2, alt_m=10.0)
+    assert await pick_up_late_operations(gateway, "node-a", {"d1": (vehicle, 4)}) == 1
+    task = ops._monitors.pop("unfollowed")
+    task.cancel()
+    assert await pick_up_late_operations(gateway, "node-a", {"d1": (vehicle, 4)}) == 0
+    record = await store.get_operation("unfollowed")
+    assert record is not None and record.status == "failed", record
+    assert record.message is not None and "monitoring stopped" in record.message, record.message
+
+
+async def _ended(op: Operation) -> bool:
+    return op.finished

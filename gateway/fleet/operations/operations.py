@@ -48,6 +48,10 @@ TAKEOVER_EXPLAINS_S = 10.0
 be recorded and end the operation as interrupted; after that the failure stands (a database that does
 not answer must not keep an operation running for ever)."""
 
+RESTATE_AFTER_S = 10.0
+"""An operation this process follows that the database holds as running is looked at only when its last
+change here is this old (its own writes, kept or in flight, come first)."""
+
 
 ProgressCallback = Callable[[Operation], Awaitable[None]]
 
@@ -180,6 +184,21 @@ class OperationManager:
     def knows(self, operation_id: str) -> bool:
         """Whether this process follows (or followed to its end) the operation ``operation_id``."""
         return operation_id in self._ops
+
+    async def restate_end(self, operation_id: str) -> None:
+        """The database holds ``operation_id`` as running while this process follows it: written again
+        when it has ended here (its end was kept while the database was down and not written since), and
+        ended as failed when nothing follows it any more (its monitor is gone). Either way a row nobody
+        updates never stays running."""
+        op = self._ops.get(operation_id)
+        if op is None or (_now() - (op.updated_at or op.created_at)).total_seconds() < RESTATE_AFTER_S:
+            return
+        if op.finished:
+            log.warning("operation %s ended here (%s) but is running in the database: written again",
+                        op.id, op.status.value)  # fmt: skip
+            await self._save(op, force=True)
+        elif operation_id not in self._monitors:
+            await self._finish(op, OpStatus.failed, "monitoring stopped: nothing follows this operation")
 
     def let_go(self, vehicle_id: str) -> list[str]:
         """This process no longer commands the vehicle (a cluster node gave it up: it fenced itself, or
