@@ -108,9 +108,11 @@ async def pick_up_late_operations(
     for record in await store.list_operations(status="running", limit=LATE_LIMIT):
         if record.vehicle_id not in vehicles:
             continue
-        if ops is not None and ops.knows(record.id):
-            await ops.restate_end(record.id)
-        else:
+        if (
+            ops is None
+            or not ops.knows(record.id)
+            or await ops.settle_running_row(record.id, vehicles[record.vehicle_id][0])
+        ):
             found.setdefault(record.vehicle_id, []).append(record)
     count = 0
     for vehicle_id, records in found.items():

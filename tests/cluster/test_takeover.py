@@ -5,6 +5,7 @@ interrupted, saying so."""
 
 from __future__ import annotations
 
+import copy
 from collections.abc import AsyncIterator
 from datetime import timedelta
 from pathlib import Path
@@ -175,6 +176,16 @@ async def test_a_followed_operation_the_database_still_holds_as_running_is_ended
     record = await store.get_operation("unfollowed")
     assert record is not None and record.status == "failed", record
     assert record.message is not None and "monitoring stopped" in record.message, record.message
+
+
+    # followed over a link the node no longer holds (it holds the drone over a new one): let go there and
+    # followed again over the new one, under the same id
+    await left_running(gateway, "old-link", "goto", 1.0, lat_deg=lat2, lon_deg=lon2, alt_m=10.0)
+    assert await pick_up_late_operations(gateway, "node-a", {"d1": (vehicle, 4)}) == 1
+    new_link = copy.copy(vehicle)
+    assert await pick_up_late_operations(gateway, "node-a", {"d1": (new_link, 5)}) == 1
+    assert ops._followed_on["old-link"] is new_link and ops.running("d1") is ops.get("old-link")
+    assert await pick_up_late_operations(gateway, "node-a", {"d1": (new_link, 5)}) == 0
 
 
 async def _ended(op: Operation) -> bool:

@@ -82,6 +82,7 @@ class OperationManager:
         self._current: dict[str, Operation] = {}  # latest operation per vehicle (may be finished)
         self._monitors: dict[str, asyncio.Task[None]] = {}
         self._trackers: dict[str, Tracker] = {}  # of the running operations
+        self._followed_on: dict[str, FlyingVehicle] = {}  # the link each running operation is followed over
         #: operations whose tracker failed while a takeover explained it: since when (monotonic)
         self._explained: dict[str, float] = {}
         self._last_saved: dict[str, float] = {}
@@ -185,20 +186,42 @@ class OperationManager:
         """Whether this process follows (or followed to its end) the operation ``operation_id``."""
         return operation_id in self._ops
 
-    async def restate_end(self, operation_id: str) -> None:
-        """The database holds ``operation_id`` as running while this process follows it: written again
-        when it has ended here (its end was kept while the database was down and not written since), and
-        ended as failed when nothing follows it any more (its monitor is gone). Either way a row nobody
-        updates never stays running."""
+    async def settle_running_row(self, operation_id: str, holder: FlyingVehicle) -> bool:
+        """The database holds ``operation_id``, which this process follows, as running; ``holder`` is the
+        drone as this node holds it now. Ended here: its end is written again (that write never reached
+        the database). Followed over another link than ``holder`` (one the node stopped): let go, and
+        True, to be picked up again over ``holder``. Nothing follows it any more (its monitor is gone):
+        ended as failed. So a row nobody updates never stays running."""
         op = self._ops.get(operation_id)
         if op is None or (_now() - (op.updated_at or op.created_at)).total_seconds() < RESTATE_AFTER_S:
-            return
+            return False
+        followed_on = self._followed_on.get(operation_id)
         if op.finished:
             log.warning("operation %s ended here (%s) but is running in the database: written again",
                         op.id, op.status.value)  # fmt: skip
             await self._save(op, force=True)
+        elif followed_on is not None and followed_on is not holder:
+            log.warning("operation %s is followed over a link %s no longer has: picked up again", op.id,
+                        op.vehicle_id)  # fmt: skip
+            stopped = self._forget(op)
+            if stopped is not None:  # its end (untracking) before the operation is followed again
+                with contextlib.suppress(asyncio.CancelledError, Exception):
+                    await stopped
+            return True
         elif operation_id not in self._monitors:
             await self._finish(op, OpStatus.failed, "monitoring stopped: nothing follows this operation")
+        return False
+
+    def _forget(self, op: Operation) -> asyncio.Task[None] | None:
+        """Stop following ``op`` without writing anything; its monitor, cancelled, if it had one."""
+        self._ops.pop(op.id, None)
+        self._last_saved.pop(op.id, None)
+        task = self._untrack(op.id)
+        if task is not None:
+            task.cancel()
+        if self._current.get(op.vehicle_id) is op:
+            self._current.pop(op.vehicle_id)
+        return task
 
     def let_go(self, vehicle_id: str) -> list[str]:
         """This process no longer commands the vehicle (a cluster node gave it up: it fenced itself, or
@@ -209,16 +232,10 @@ class OperationManager:
         process (a takeoff refusing every later one), and end it later over what the next owner
         recorded. The ids of the running ones."""
         running = []
-        for op_id, op in list(self._ops.items()):
-            if op.vehicle_id != vehicle_id:
-                continue
-            del self._ops[op_id]
-            self._last_saved.pop(op_id, None)
-            task = self._untrack(op_id)
-            if task is not None:
-                task.cancel()
+        for op in [op for op in self._ops.values() if op.vehicle_id == vehicle_id]:
+            self._forget(op)
             if not op.finished:
-                running.append(op_id)
+                running.append(op.id)
         self._current.pop(vehicle_id, None)
         self.mode_watch.let_go(vehicle_id)
         return running
@@ -323,6 +340,7 @@ class OperationManager:
         self._ops[op.id] = op
         self._current[vehicle.id] = op
         self._trackers[op.id] = tracker
+        self._followed_on[op.id] = vehicle
         self.mode_watch.expect(vehicle, op.kind, op.id, _climb_modes(vehicle, op.kind, tracker))
         await self._save(op, force=True)
         self._monitors[op.id] = asyncio.create_task(
@@ -368,12 +386,14 @@ class OperationManager:
         except Exception as exc:  # a monitor must never die silently
             log.exception("monitor of operation %s failed", op.id)
             await self._finish(op, OpStatus.failed, f"monitoring failed: {exc}")
-        finally:
-            self._untrack(op.id)
+        finally:  # unless the operation is followed again meanwhile, by a monitor of its own
+            if self._monitors.get(op.id) in (None, asyncio.current_task()):
+                self._untrack(op.id)
 
     def _untrack(self, op_id: str) -> asyncio.Task[None] | None:
         """Forget what follows the operation: its tracker, its mode watch, its monitor (returned)."""
         self._trackers.pop(op_id, None)
+        self._followed_on.pop(op_id, None)
         self._explained.pop(op_id, None)
         self.mode_watch.drop(op_id)
         return self._monitors.pop(op_id, None)
