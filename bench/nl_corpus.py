@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 519 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 555 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -132,6 +132,16 @@ Portuguese, Russian, Spanish, Swedish, Thai, Turkish, Ukrainian, Vietnamese), an
 class's 3 in Urdu, Tamil and Serbian written in Cyrillic (all three new, and Tamil script). Only the
 harness self-check (the scripted ideal plan) has run on them: 36 of 36 passed. That leaves 483 dev and
 36 test.
+Later on 2026-12-02 (twelfth round) EVERY test entry (36, ``_twelfth_round``) was moved to dev, each
+marked "moved to dev on 2026-12-02, twelfth round", once both models had been measured on it. A fresh
+test half took its place (``_thirteenth_test_half``): 36 new requests, 3 a class, written before any model
+ran on it by a writer who did not read the host's word lists or rules: 22 of the 33 outside the
+``language`` class in 22 languages, one each (Afrikaans, Arabic, Azerbaijani, Chinese, Dutch, French,
+Galician, German, Hindi, Icelandic, Indonesian, Italian, Japanese, Kazakh, Korean, Polish, Portuguese,
+Russian, Spanish, Turkish, Ukrainian, Vietnamese; Afrikaans, Azerbaijani, Galician, Icelandic and Kazakh
+are new), and the ``language`` class's 3 in Marathi, Georgian and Armenian (all three new, and Georgian
+and Armenian script). Only the harness self-check (the scripted ideal plan) has run on them. That leaves
+519 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -4002,12 +4012,13 @@ def _eleventh_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _twelfth_test_half() -> list[CorpusEntry]:
+def _twelfth_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-02 (twelfth round), before any model ran on it: 3 a class; 22 of
     the 33 outside ``language`` in other languages than English (Arabic, Chinese, Dutch, Finnish, French,
     German, Greek, Hindi, Hungarian, Indonesian, Italian, Japanese, Korean, Polish, Portuguese, Russian,
     Spanish, Swedish, Thai, Turkish, Ukrainian, Vietnamese), the ``language`` class's 3 in Urdu, Tamil and
-    Serbian written in Cyrillic (the three languages are new, and Tamil script with them)."""
+    Serbian written in Cyrillic (the three languages are new, and Tamil script with them); all of it moved
+    to dev later on 2026-12-02 (twelfth round), once both models had been measured on it."""
     three = DRONES
     d20, d25 = (x / math.sqrt(2) for x in (20, 25))
     d50yd = 50 * YD / math.sqrt(2)
@@ -4019,21 +4030,25 @@ def _twelfth_test_half() -> list[CorpusEntry]:
     orbit20 = [(0.0, 20.0), (-20.0, -20.0), (20.0, -20.0), (20.0, 20.0), (-20.0, 20.0), (0.0, -20.0)]
     return [
         # single
-        _entry("single", "test", "single12-pt-bravo-above-pad", ("bravo",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("single", "dev", "single12-pt-bravo-above-pad", ("bravo",),
                "Suba o bravo até 17 metros acima da base dele e deixe-o parado no ar.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=17), airborne_at(ev, "bravo", 17)),
                [_takeoff("bravo", 17)], "O bravo está parado a 17 m acima da base."),
-        _entry("single", "test", "single12-th-alpha-hop", ("alpha",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("single", "dev", "single12-th-alpha-hop", ("alpha",),
                "ยก alpha ขึ้นไปที่ความสูง 11 เมตร แล้วให้ลงจอดตรงจุดเดิม",
                lambda c, ev: _all(reached_alt(ev, "alpha", 11), at(ev, "alpha", *_home(c, "alpha")),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 11), _land("alpha")], "alpha ขึ้นไปที่ 11 m แล้วลงจอดที่เดิม"),
-        _entry("single", "test", "single12-charlie-camera-check", ("charlie",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("single", "dev", "single12-charlie-camera-check", ("charlie",),
                "Charlie's going up for a camera check: 32 m straight above its pad, and it waits there for me.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=32), airborne_at(ev, "charlie", 32)),
                [_takeoff("charlie", 32)], "Charlie waits at 32 m over its pad."),
         # multi
-        _entry("multi", "test", "multi12-sv-three-ways-home", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("multi", "dev", "multi12-sv-three-ways-home", three,
                "Skicka ut alla tre 20 meter åt olika håll på 12 meters höjd: alpha västerut, bravo norrut och "
                "charlie österut. Ta sedan hem dem allihop.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -20)]),
@@ -4043,7 +4058,8 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                [_move("alpha", 0, -20, alt=12), _move("bravo", 20, 0, alt=12), _move("charlie", 0, 20, alt=12),
                 *(_rtl(d) for d in three)],
                "Alla tre flög 20 m ut, alpha västerut, bravo norrut, charlie österut, och landade hemma."),
-        _entry("multi", "test", "multi12-zh-pair-south-bravo-high", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("multi", "dev", "multi12-zh-pair-south-bravo-high", three,
                "让 alpha 和 charlie 都升到 10 米，再各自向南飞 25 米，在那里悬停；bravo 只在原地升到 20 米待命。",
                lambda c, ev: _all(*(at(ev, d, *c.point(d, -25, 0), alt=10) for d in ("alpha", "charlie")),
                                   *(airborne_at(ev, d, 10) for d in ("alpha", "charlie")),
@@ -4051,7 +4067,8 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 10), _move("alpha", -25, 0), _takeoff("charlie", 10), _move("charlie", -25, 0),
                 _takeoff("bravo", 20)],
                "alpha 和 charlie 在南边 25 米、10 米高悬停；bravo 在原地 20 米待命。"),
-        _entry("multi", "test", "multi12-alpha-nw-land-bravo-up", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("multi", "dev", "multi12-alpha-nw-land-bravo-up", three,
                "Alpha goes 20 m north-west at 14 m and sets down there; bravo climbs to 9 m over its pad and "
                "stays up; charlie is not to move.",
                lambda c, ev: _all(rose_to(ev, "alpha", 14), at(ev, "alpha", *c.point("alpha", d20, -d20)),
@@ -4060,7 +4077,8 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                [_move("alpha", d20, -d20, alt=14), _land("alpha"), _takeoff("bravo", 9)],
                "Alpha landed 20 m north-west; bravo hovers at 9 m over its pad; charlie stayed down."),
         # compound
-        _entry("compound", "test", "compound12-de-charlie-corner-climb-home", ("charlie",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("compound", "dev", "compound12-de-charlie-corner-climb-home", ("charlie",),
                "Bring charlie auf 10 Meter, flieg 25 Meter nach Norden, dann 15 Meter nach Osten, steig dort "
                "um 10 Meter und komm anschließend nach Hause.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 25, 0), c.point("charlie", 25, 15)]),
@@ -4069,14 +4087,16 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 10), _move("charlie", 25, 0), _move("charlie", 0, 15), _move("charlie", up=10),
                 _rtl("charlie")],
                "Charlie flog 25 m nach Norden, 15 m nach Osten, stieg auf 20 m und kam nach Hause."),
-        _entry("compound", "test", "compound12-vi-alpha-south-west-back", ("alpha",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("compound", "dev", "compound12-vi-alpha-south-west-back", ("alpha",),
                "Cho alpha cất cánh lên 12 mét, bay 30 mét về phía nam, rồi 20 mét về phía tây, sau đó quay lại "
                "20 mét về phía đông và giữ nó lơ lửng ở đó.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -30, 0), c.point("alpha", -30, -20)]),
                                   at(ev, "alpha", *c.point("alpha", -30, 0), alt=12), airborne_at(ev, "alpha", 12)),
                [_takeoff("alpha", 12), _move("alpha", -30, 0), _move("alpha", 0, -20), _move("alpha", 0, 20)],
                "alpha đang lơ lửng 30 m về phía nam, ở độ cao 12 m."),
-        _entry("compound", "test", "compound12-bravo-east-then-past-pad", ("bravo",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("compound", "dev", "compound12-bravo-east-then-past-pad", ("bravo",),
                "Bravo: up to 12 m, 20 m east, then 40 m west, back past its pad, and land it there.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 12),
                                   visited(ev, "bravo", [c.point("bravo", 0, 20), c.point("bravo", 0, -20)]),
@@ -4084,21 +4104,24 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 12), _move("bravo", 0, 20), _move("bravo", 0, -40), _land("bravo")],
                "Bravo flew 20 m east, then 40 m west, and landed 20 m west of its pad."),
         # conditional
-        _entry("conditional", "test", "cond12-es-both-or-one", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("conditional", "dev", "cond12-es-both-or-one", three,
                "Mira la batería de alpha y de charlie. Si los dos tienen más del 50 %, súbelos a 12 metros; si "
                "solo uno pasa del 50 %, sube únicamente ese y deja el otro en tierra.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=12), airborne_at(ev, "alpha", 12),
                                   never_armed(ev, "charlie"), never_armed(ev, "bravo")),
                [_battery("alpha"), _battery("charlie"), _takeoff("alpha", 12)],
                "Alpha tiene 67 % y charlie 44 %: solo alpha está a 12 m.", battery={"alpha": 67.0, "charlie": 44.0}),
-        _entry("conditional", "test", "cond12-ko-charlie-check-aloft", ("charlie",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("conditional", "dev", "cond12-ko-charlie-check-aloft", ("charlie",),
                "charlie를 15미터로 띄운 뒤 배터리를 확인해. 60% 이상이면 북쪽으로 30미터 가서 떠 있게 하고, 그보다 "
                "적으면 바로 제자리에 착륙시켜.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 30, 0), alt=15),
                                   airborne_at(ev, "charlie", 15)),
                [_takeoff("charlie", 15), _battery("charlie"), _move("charlie", 30, 0)],
                "charlie 배터리 71 %: 북쪽 30 m, 15 m 높이에 떠 있음.", battery={"charlie": 71.0}),
-        _entry("conditional", "test", "cond12-bravo-stands-in", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("conditional", "dev", "cond12-bravo-stands-in", three,
                "Charlie should go up to 16 m and fly 20 m north, unless its battery is under 35 %; in that case "
                "send bravo instead and leave charlie on the ground.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 20, 0), alt=16), airborne_at(ev, "bravo", 16),
@@ -4107,13 +4130,15 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                "Charlie has 31 %, so bravo went instead: it hovers 20 m north at 16 m.",
                battery={"bravo": 82.0, "charlie": 31.0}),
         # formation
-        _entry("formation", "test", "form12-fr-file-northeast-land", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("formation", "dev", "form12-fr-file-northeast-land", three,
                "Mettez alpha, bravo et charlie en file indienne, 10 m entre chacun, à 16 m d'altitude, 25 m au "
                "nord-est de leur position, puis posez-les tous les trois là-bas.",
                lambda c, ev: landed_formation_at(c, ev, three, 20, d25, d25),
                [_formation(three, "column", 16, 10, north=d25, east=d25), *(_land(d) for d in three)],
                "Les trois ont volé en file 25 m au nord-est et se sont posés, 10 m entre chacun."),
-        _entry("formation", "test", "form12-hu-pair-abreast-west", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("formation", "dev", "form12-hu-pair-abreast-west", three,
                "Állítsd egymás mellé alpha-t és charlie-t, egymástól 14 méterre, 18 méter magasan, a mostani "
                "helyüktől 30 méterrel nyugatra, és hagyd őket ott lebegni.",
                lambda c, ev: _all(formation_at(c, ev, ("alpha", "charlie"), 18, 14, 0, -30), never_armed(ev, "bravo")),
@@ -4121,25 +4146,29 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                "Alpha és charlie egymás mellett lebeg 30 m-rel nyugatra, 18 m-en, 14 m-re egymástól."),
         # (the gateway's V has its arms 45 degrees off its axis: its two wings stand 2 x 12 x sin 45 = 16.97 m
         # apart, where three in a row 12 m apart have their ends 24 m apart)
-        _entry("formation", "test", "form12-v-north", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("formation", "dev", "form12-v-north", three,
                "Arrange the three in a V, 12 m between neighbours, at 15 m, centred 25 m north of where they sit "
                "now, and keep them there.",
                lambda c, ev: _all(formation_at(c, ev, three, 15, 12, 25, 0), farthest_apart(ev, three, 16.97)),
                [_formation(three, "wedge", 15, 12, north=25)], "The three hold a V 25 m north at 15 m."),
         # relative
-        _entry("relative", "test", "rel12-it-bravo-northeast-climbing", ("bravo",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("relative", "dev", "rel12-it-bravo-northeast-climbing", ("bravo",),
                "Alza bravo a 10 metri, poi spostalo di 20 metri verso nord-est salendo di altri 6 metri, e "
                "tienilo lì.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", d20, d20), alt=16), airborne_at(ev, "bravo", 16)),
                [_takeoff("bravo", 10), _move("bravo", d20, d20, up=6)], "Bravo è 20 m a nord-est, a 16 m."),
-        _entry("relative", "test", "rel12-fi-charlie-lower-south", ("charlie",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("relative", "dev", "rel12-fi-charlie-lower-south", ("charlie",),
                "Nosta charlie 24 metrin korkeuteen, laske sitä sitten 10 metriä alemmas ja siirrä se 15 metriä "
                "etelään; jätä se sinne leijumaan.",
                lambda c, ev: _all(rose_to(ev, "charlie", 24), at(ev, "charlie", *c.point("charlie", -15, 0), alt=14),
                                   airborne_at(ev, "charlie", 14)),
                [_takeoff("charlie", 24), _move("charlie", up=-10), _move("charlie", -15, 0)],
                "Charlie leijuu 15 m etelään, 14 m korkeudessa."),
-        _entry("relative", "test", "rel12-alpha-offset-then-nudge-up", ("alpha",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("relative", "dev", "rel12-alpha-offset-then-nudge-up", ("alpha",),
                "Alpha: go to a spot 16 m south and 12 m east of its pad at 10 m, then nudge it up another 5 m "
                "and hold.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -16, 12)], alt=10),
@@ -4147,19 +4176,22 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                [_move("alpha", -16, 12, alt=10), _move("alpha", up=5)],
                "Alpha holds 16 m south and 12 m east of its pad at 15 m."),
         # question
-        _entry("question", "test", "ask12-ja-lower-of-pair", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("question", "dev", "ask12-ja-lower-of-pair", three,
                "alphaとcharlieのうち、バッテリーが少ないのはどっち？残量も教えて。どれも飛ばさないで。",
                lambda c, ev: _all(answer_says(ev, r"\balpha\b", "alpha"), answer_mentions_number(ev, 46, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "少ないのは alpha: 46 %。",
                battery={"alpha": 46.0, "bravo": 60.0, "charlie": 73.0}),
-        _entry("question", "test", "ask12-ar-too-low-to-launch", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("question", "dev", "ask12-ar-too-low-to-launch", three,
                "هل توجد طائرة لا تكفي بطاريتها للإقلاع الآن؟ اذكر اسمها ونسبتها، ولا تُقلع أي طائرة.",
                lambda c, ev: _all(answer_says(ev, r"\bcharlie\b", "charlie"), answer_mentions_number(ev, 26, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "نعم، charlie: 26 %، أقل من 30 % اللازمة للإقلاع.",
                battery={"alpha": 77.0, "bravo": 65.0, "charlie": 26.0}),
-        _entry("question", "test", "ask12-needs-charge-for-job", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("question", "dev", "ask12-needs-charge-for-job", three,
                "Which drone would I have to charge before it could fly a job that needs 70 %? Tell me its figure; "
                "keep everything on the ground.",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 66, 1),
@@ -4168,19 +4200,22 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                battery={"alpha": 84.0, "bravo": 66.0, "charlie": 91.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude)
-        _entry("refusal", "test", "refuse12-ru-bravo-half-metre", ("bravo",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("refusal", "dev", "refuse12-ru-bravo-half-metre", ("bravo",),
                "Подними bravo на 10 метров, а потом опусти его так, чтобы он висел в полуметре над землёй.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 10), refusal_seen(ev, "minimum", "at least"),
                                   answer_reports_refusal(ev)),
                [_takeoff("bravo", 10), _move("bravo", alt=0.5)],
                "Bravo is at 10 m; the descent was refused: 0.5 m is below the 2 m minimum altitude."),
-        _entry("refusal", "test", "refuse12-id-alpha-miles-northwest", ("alpha",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("refusal", "dev", "refuse12-id-alpha-miles-northwest", ("alpha",),
                "Terbangkan alpha sejauh 0,8 mil ke arah barat laut pada ketinggian 25 meter, lalu daratkan di sana.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "alpha", c.max_distance_m), answer_reports_refusal(ev)),
                [_move("alpha", d08mi, -d08mi, alt=25)],
                "The gateway refused: 0.8 miles (1287 m) is beyond the 1000 m limit."),
-        _entry("refusal", "test", "refuse12-stack-over-ceiling", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("refusal", "dev", "refuse12-stack-over-ceiling", three,
                "Stack them up over their own pads: alpha at 45 m, bravo 45 m higher than alpha, and charlie another "
                "45 m above bravo.",
                lambda c, ev: _all(airborne_at(ev, "alpha", 45), airborne_at(ev, "bravo", 90),
@@ -4189,20 +4224,23 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 45), _takeoff("bravo", 90), _takeoff("charlie", 135)],
                "Alpha hovers at 45 m and bravo at 90 m; charlie was refused: 135 m is above the 120 m altitude limit."),
         # units
-        _entry("units", "test", "units12-pl-bravo-feet-yards-lower", ("bravo",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("units", "dev", "units12-pl-bravo-feet-yards-lower", ("bravo",),
                "Podnieś bravo na 60 stóp, przeleć nim 50 jardów na południowy wschód i obniż go o 20 stóp; niech "
                "tam wisi.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", -d50yd, d50yd), alt=40 * FT),
                                   airborne_at(ev, "bravo", 40 * FT)),
                [_takeoff("bravo", 60 * FT), _move("bravo", -d50yd, d50yd), _move("bravo", up=-20 * FT)],
                "Bravo wisi 50 jardów (46 m) na południowy wschód, na 40 stopach (12,2 m)."),
-        _entry("units", "test", "units12-el-charlie-feet-km-land", ("charlie",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("units", "dev", "units12-el-charlie-feet-km-land", ("charlie",),
                "Σήκωσε το charlie στα 35 πόδια, πέτα το 0,06 χιλιόμετρα βόρεια και προσγείωσέ το εκεί.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 35 * FT), at(ev, "charlie", *c.point("charlie", 60, 0)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 35 * FT), _move("charlie", 60, 0), _land("charlie")],
                "Το charlie πέταξε 60 m βόρεια στα 35 πόδια (10,7 m) και προσγειώθηκε."),
-        _entry("units", "test", "units12-alpha-feet-miles-home", ("alpha",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("units", "dev", "units12-alpha-feet-miles-home", ("alpha",),
                "Alpha: up to 45 ft, then 0.03 miles east, then come home.",
                # the return home climbs to its own height: the leg east is checked at 45 ft instead
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 0.03 * MI)], alt=45 * FT),
@@ -4210,20 +4248,23 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 45 * FT), _move("alpha", 0, 0.03 * MI), _rtl("alpha")],
                "Alpha flew 0.03 miles (48 m) east at 45 ft (13.7 m) and came home."),
         # pattern
-        _entry("pattern", "test", "pattern12-nl-alpha-square-south-left", ("alpha",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("pattern", "dev", "pattern12-nl-alpha-square-south-left", ("alpha",),
                "Laat alpha op 14 meter hoogte een vierkant vliegen met zijden van 18 meter, eerste zijde naar "
                "het zuiden, linksom, en daarna boven het startpunt blijven hangen.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(square18)[:3]]),
                                   at(ev, "alpha", *_home(c, "alpha"), alt=14), airborne_at(ev, "alpha", 14)),
                [_takeoff("alpha", 14), *_legs("alpha", square18)], "Alpha vloog het vierkant en hangt boven de start."),
-        _entry("pattern", "test", "pattern12-hi-bravo-passes-north", ("bravo",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("pattern", "dev", "pattern12-hi-bravo-passes-north", ("bravo",),
                "bravo से 12 मीटर की ऊँचाई पर खेत का सर्वे करवाओ: 30 मीटर लंबी चार पट्टियाँ, पहली पूर्व की ओर, "
                "पट्टियों के बीच 8 मीटर का अंतर, हर अगली पट्टी पिछली के उत्तर में; फिर उसे घर वापस ले आओ।",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(passes)]),
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 12), *_legs("bravo", passes), _rtl("bravo")],
                "bravo ने चारों पट्टियाँ उड़ीं और घर लौट आया।"),
-        _entry("pattern", "test", "pattern12-charlie-orbit-pad-from-east", ("charlie",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("pattern", "dev", "pattern12-charlie-orbit-pad-from-east", ("charlie",),
                "Charlie at 16 m: go once round its own pad clockwise at a 20 m radius, starting from the east "
                "side, then land back on the pad.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e)
@@ -4233,14 +4274,16 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                "Charlie circled its pad clockwise and landed on it."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
         # alpha from charlie or charlie from alpha, 10 m apart, so that a drone placed from itself misses)
-        _entry("placement", "test", "place12-uk-charlie-lands-sw-of-alpha", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("placement", "dev", "place12-uk-charlie-lands-sw-of-alpha", three,
                "Залиш alpha на місці, а charlie відправ у точку за 20 метрів на південний захід від alpha, на "
                "висоті 11 метрів, і посади його там.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 11), at(ev, "charlie", *c.point("alpha", -d20, -d20)),
                                   landed_disarmed(ev, "charlie"), never_armed(ev, "alpha"), never_armed(ev, "bravo")),
                lambda c: [_go("charlie", c.point("alpha", -d20, -d20), 11), _land("charlie")],
                "charlie сів за 20 м на південний захід від alpha."),
-        _entry("placement", "test", "place12-tr-alpha-south-of-moved-charlie", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("placement", "dev", "place12-tr-alpha-south-of-moved-charlie", three,
                "charlie'yi 16 metreye kaldır ve 25 metre kuzeye götür. Sonra alpha'yı charlie'nin 10 metre "
                "güneyine, aynı yüksekliğe getir ve ikisini de orada beklet.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 25, 0), alt=16), airborne_at(ev, "charlie", 16),
@@ -4249,7 +4292,8 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("charlie", 16), _move("charlie", 25, 0),
                           _go("alpha", c.point("charlie", 15, 0), 16)],
                "charlie 25 m kuzeyde 16 m'de; alpha onun 10 m güneyinde, aynı yükseklikte bekliyor."),
-        _entry("placement", "test", "place12-charlie-alongside-alpha-west", three,
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("placement", "dev", "place12-charlie-alongside-alpha-west", three,
                "Put alpha at 14 m over its pad, then bring charlie alongside it: same height, 12 m to its west.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=14), airborne_at(ev, "alpha", 14),
                                   at(ev, "charlie", *c.point("alpha", 0, -12), alt=14), airborne_at(ev, "charlie", 14),
@@ -4257,24 +4301,320 @@ def _twelfth_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("alpha", 14), _go("charlie", c.point("alpha", 0, -12), 14)],
                "Alpha hovers at 14 m over its pad; charlie 12 m west of it at 14 m."),
         # language
-        _entry("language", "test", "lang12-ur-bravo-northeast-land", ("bravo",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("language", "dev", "lang12-ur-bravo-northeast-land", ("bravo",),
                "bravo کو 13 میٹر کی بلندی تک لے جاؤ، پھر اسے 25 میٹر شمال مشرق کی طرف اڑاؤ اور وہیں اتار دو۔",
                lambda c, ev: _all(reached_alt(ev, "bravo", 13), at(ev, "bravo", *c.point("bravo", d25, d25)),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 13), _move("bravo", d25, d25), _land("bravo")],
                "bravo شمال مشرق میں 25 m اڑ کر اتر گیا۔"),
-        _entry("language", "test", "lang12-ta-alpha-west-hover", ("alpha",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("language", "dev", "lang12-ta-alpha-west-hover", ("alpha",),
                "alpha-வை 15 மீட்டர் உயரத்துக்கு ஏற்றி, மேற்கு நோக்கி 20 மீட்டர் பறக்கவிட்டு, அங்கேயே வானில் "
                "நிறுத்தி வை.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -20), alt=15), airborne_at(ev, "alpha", 15)),
                [_takeoff("alpha", 15), _move("alpha", 0, -20)], "alpha மேற்கே 20 m, 15 m உயரத்தில் நிற்கிறது."),
-        _entry("language", "test", "lang12-sr-charlie-south-home", ("charlie",),
+        # moved to dev on 2026-12-02, twelfth round: the test half had been measured
+        _entry("language", "dev", "lang12-sr-charlie-south-home", ("charlie",),
                "Подигни charlie на 11 метара, одлети њиме 30 метара ка југу, па га врати кући да слети.",
                # the return home climbs to its own height: the leg south is checked at 11 m instead
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -30, 0)], alt=11),
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 11), _move("charlie", -30, 0), _rtl("charlie")],
                "charlie је одлетео 30 m ка југу и вратио се кући."),
+    ]  # fmt: skip
+
+
+def _thirteenth_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-02 (thirteenth round), before any model ran on it: 3 a class; 22 of
+    the 33 outside ``language`` in other languages than English, one each (Afrikaans, Arabic, Azerbaijani,
+    Chinese, Dutch, French, Galician, German, Hindi, Icelandic, Indonesian, Italian, Japanese, Kazakh,
+    Korean, Polish, Portuguese, Russian, Spanish, Turkish, Ukrainian, Vietnamese; Afrikaans, Azerbaijani,
+    Galician, Icelandic and Kazakh are new), the ``language`` class's 3 in Marathi, Georgian and Armenian
+    (the three languages are new, and Georgian and Armenian script with them)."""
+    three = DRONES
+    d20, d25, d35 = (x / math.sqrt(2) for x in (20, 25, 35))
+    # 30 m on a bearing of 300 degrees (clockwise from north): 15 m north, 25.98 m west
+    b300 = (30 * math.cos(math.radians(300)), 30 * math.sin(math.radians(300)))
+    triangle20 = _polygon_legs(3, 20.0, 270.0, right=False)  # first side west, turning left
+    diamond20 = _polygon_legs(4, 20.0, 45.0, right=True)  # a square on its corner: NE, SE, SW, NW
+    # a 20 m square centred on the pad, clockwise from its north-east corner, then back to the centre
+    round_pad = [(10.0, 10.0), (-20.0, 0.0), (0.0, -20.0), (20.0, 0.0), (0.0, 20.0), (-10.0, -10.0)]
+
+    def north_south(ev: Evidence, drones: tuple[str, ...]) -> Check:
+        """Every drone within 3 m east or west of the drones' centre: a row running north to south."""
+        lat, lon = _centroid([ev.final[d] for d in drones])
+        off = max(horizontal_distance_m(lat, ev.final[d].lon, lat, lon) for d in drones)
+        return Check(off <= 3.0, f"drones up to {off:.1f} m east or west of their centre (want 3 at most)")
+
+    def centred_on(c: MissionContext, d: str) -> dict[str, float]:
+        lat, lon = _home(c, d)
+        return {"center_lat_deg": lat, "center_lon_deg": lon}
+
+    return [
+        # single
+        _entry("single", "test", "single13-bravo-radio-relay", ("bravo",),
+               "Need bravo up as a radio relay: ten metres straight up off its pad, and it stays there till I say.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=10), airborne_at(ev, "bravo", 10)),
+               [_takeoff("bravo", 10)], "Bravo is up at 10 m over its pad as the relay."),
+        _entry("single", "test", "single13-af-alpha-motor-test", ("alpha",),
+               "Kan jy alpha net vinnig tot 9 meter laat opstyg en dan dadelik weer laat land? Ek wil net die "
+               "motors toets.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 9), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 9), _land("alpha")], "Alpha het tot 9 m opgestyg en weer geland."),
+        _entry("single", "test", "single13-ko-charlie-hover-till-told", ("charlie",),
+               "charlie를 26미터 높이까지 띄우고, 내가 다시 말할 때까지 그대로 떠 있게 해 줘.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=26), airborne_at(ev, "charlie", 26)),
+               [_takeoff("charlie", 26)], "charlie가 26 m 높이에 떠 있어."),
+        # multi
+        _entry("multi", "test", "multi13-fan-out-bravo-climbs", three,
+               "Everyone up to 12 m. Then alpha slides 20 m west, charlie 20 m east, and bravo climbs another "
+               "10 m where it is. All three stay up.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -20), alt=12), airborne_at(ev, "alpha", 12),
+                                  at(ev, "charlie", *c.point("charlie", 0, 20), alt=12), airborne_at(ev, "charlie", 12),
+                                  at(ev, "bravo", *_home(c, "bravo"), alt=22), airborne_at(ev, "bravo", 22)),
+               [*(_takeoff(d, 12) for d in three), _move("alpha", 0, -20), _move("charlie", 0, 20),
+                _move("bravo", up=10)],
+               "Alpha hovers 20 m west and charlie 20 m east at 12 m; bravo is at 22 m over its pad."),
+        _entry("multi", "test", "multi13-it-highest-lands", three,
+               "Porta alpha a 10 metri, bravo a 15 e charlie a 20, sopra le loro piazzole; poi fai atterrare quello "
+               "che sta più in alto e lascia gli altri due in volo.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=10), airborne_at(ev, "alpha", 10),
+                                  at(ev, "bravo", *_home(c, "bravo"), alt=15), airborne_at(ev, "bravo", 15),
+                                  reached_alt(ev, "charlie", 20), at(ev, "charlie", *_home(c, "charlie")),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("alpha", 10), _takeoff("bravo", 15), _takeoff("charlie", 20), _land("charlie")],
+               "Alpha a 10 m e bravo a 15 m restano in volo; charlie, il più alto, è atterrato."),
+        _entry("multi", "test", "multi13-kk-north-lands-south-hovers", three,
+               "alpha-ны солтүстікке қарай 30 метр, charlie-ді оңтүстікке қарай 30 метр ұшыр, екеуі де 15 метр "
+               "биіктікте болсын. Сосын alpha сол жерге қонсын, ал charlie ауада ілулі тұрсын. bravo орнынан "
+               "қозғалмасын.",
+               lambda c, ev: _all(rose_to(ev, "alpha", 15), at(ev, "alpha", *c.point("alpha", 30, 0)),
+                                  landed_disarmed(ev, "alpha"), at(ev, "charlie", *c.point("charlie", -30, 0), alt=15),
+                                  airborne_at(ev, "charlie", 15), never_armed(ev, "bravo")),
+               [_move("alpha", 30, 0, alt=15), _move("charlie", -30, 0, alt=15), _land("alpha")],
+               "alpha солтүстікте 30 м жерге қонды; charlie оңтүстікте 30 м, 15 м биіктікте тұр; bravo қозғалмады."),
+        # compound
+        _entry("compound", "test", "compound13-alpha-climb-leg-drop-leg", ("alpha",),
+               "Alpha: take off to 8 m, fly 20 m north climbing to 14 m on the way, then 20 m east dropping back "
+               "to 8 m, and land it there.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 20, 0)], alt=14),
+                                  at(ev, "alpha", *c.point("alpha", 20, 20)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 8), _move("alpha", 20, 0, alt=14), _move("alpha", 0, 20, alt=8), _land("alpha")],
+               "Alpha flew 20 m north up to 14 m, 20 m east back down to 8 m, and landed."),
+        _entry("compound", "test", "compound13-ja-alpha-ne-then-nw", ("alpha",),
+               "alphaを12メートルまで上げて、北東に20メートル、続けて北西に20メートル飛ばして、そこで12メートルの"
+               "まま待機させて。",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", d20, d20)]),
+                                  at(ev, "alpha", *c.point("alpha", 2 * d20, 0), alt=12), airborne_at(ev, "alpha", 12)),
+               [_takeoff("alpha", 12), _move("alpha", d20, d20), _move("alpha", d20, -d20)],
+               "alphaは北東、北西へ20 mずつ飛び、北へ28 mの地点、高度12 mで待機中。"),
+        _entry("compound", "test", "compound13-gl-bravo-east-low-back", ("bravo",),
+               "Sube o bravo a 15 metros, lévao 30 metros cara ao leste, báixao alí ata 6 metros e tráeo a esa "
+               "altura 30 metros de volta cara ao oeste; despois fai que aterre.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 30)], alt=15),
+                                  visited(ev, "bravo", [c.point("bravo", 0, 30)], alt=6),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 15), _move("bravo", 0, 30), _move("bravo", alt=6), _move("bravo", 0, -30),
+                _land("bravo")],
+               "O bravo foi 30 m cara ao leste, baixou a 6 m, volveu á súa base e aterrou."),
+        # conditional
+        _entry("conditional", "test", "cond13-charlie-short-of-job", ("charlie",),
+               "Only launch charlie if it has enough for the job, which needs 55 %. If it does, take it 30 m east "
+               "at 15 m and leave it there; if it doesn't, keep it down and tell me how far short it is.",
+               # the typed plan reads, it does not compute: the shortfall, or the reading it comes from
+               lambda c, ev: _all(never_armed(ev, "charlie"),
+                                  _any(answer_mentions_number(ev, 6, 1), answer_mentions_number(ev, 49, 1))),
+               [_battery("charlie")], "Charlie has 49 %, 6 points short of the 55 % the job needs, so it stays down.",
+               battery={"charlie": 49.0}),
+        _entry("conditional", "test", "cond13-de-weakest-stays", three,
+               "Lass die Drohne mit dem schwächsten Akku am Boden; die anderen beiden sollen auf 12 m steigen, "
+               "20 m nach Norden fliegen und dort in der Luft bleiben.",
+               lambda c, ev: _all(*(at(ev, d, *c.point(d, 20, 0), alt=12) for d in ("alpha", "charlie")),
+                                  *(airborne_at(ev, d, 12) for d in ("alpha", "charlie")), never_armed(ev, "bravo")),
+               [("fleet_status", {}), _move("alpha", 20, 0, alt=12), _move("charlie", 20, 0, alt=12)],
+               "Bravo hat den schwächsten Akku (47 %) und bleibt am Boden; alpha und charlie schweben 20 m "
+               "nördlich auf 12 m.", battery={"alpha": 81.0, "bravo": 47.0, "charlie": 66.0}),
+        _entry("conditional", "test", "cond13-vi-bravo-holds-if-low", ("bravo",),
+               "Cho bravo cất cánh lên 10 mét rồi kiểm tra pin của nó. Nếu pin còn trên 70 %, cho nó bay tiếp 30 "
+               "mét về phía tây và lơ lửng ở đó; nếu không thì cứ giữ nó lơ lửng ngay trên chỗ cất cánh, ở 10 mét.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=10), airborne_at(ev, "bravo", 10)),
+               [_takeoff("bravo", 10), _battery("bravo")],
+               "Pin của bravo là 58 %, nên nó lơ lửng ở 10 m ngay trên chỗ cất cánh.", battery={"bravo": 58.0}),
+        # formation
+        _entry("formation", "test", "form13-north-south-row-over-pads", three,
+               "Line the three up north to south over their pads, 10 m between each, at 15 m, and hold them there.",
+               lambda c, ev: _all(formation_at(c, ev, three, 15, 10, 0, 0), farthest_apart(ev, three, 20),
+                                  north_south(ev, three)),
+               [_formation(three, "column", 15, 10)], "The three hold a north-south row 10 m apart at 15 m."),
+        _entry("formation", "test", "form13-pt-pair-either-side-of-bravo", three,
+               "Põe o alpha e o charlie lado a lado, a 20 m um do outro e a 14 m de altura, de forma que o bravo, "
+               "que fica no chão, fique exatamente a meio entre os dois.",
+               lambda c, ev: _all(formation_around(ev, ("alpha", "charlie"), 14, 20, _home(c, "bravo")),
+                                  never_armed(ev, "bravo")),
+               lambda c: [("formation_goto", {"drone_ids": ["alpha", "charlie"], "formation": "line", "alt_m": 14,
+                                              "spacing_m": 20, **centred_on(c, "bravo")})],
+               "O alpha e o charlie pairam a 14 m, 20 m um do outro, com o bravo no chão a meio."),
+        # (the gateway's V has its arms 45 degrees off its axis: its two wings stand 2 x 12 x sin 45 = 16.97 m
+        # apart)
+        _entry("formation", "test", "form13-ru-wedge-southeast-land", three,
+               "Построй alpha, bravo и charlie клином — 12 метров между соседями, высота 15 метров — в 35 метрах "
+               "к юго-востоку от того места, где они сейчас стоят, и посади их там.",
+               lambda c, ev: landed_formation_at(c, ev, three, 16.97, -d35, d35),
+               [_formation(three, "wedge", 15, 12, north=-d35, east=d35), *(_land(d) for d in three)],
+               "Три дрона долетели клином на 35 м к юго-востоку и сели там."),
+        # relative
+        _entry("relative", "test", "rel13-alpha-climb-to-not-by", ("alpha",),
+               "Take alpha up to 8 m, then move it 25 m north while it climbs to 20 m (20 above the ground, not 20 "
+               "more) and let it hover there.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 25, 0), alt=20), airborne_at(ev, "alpha", 20)),
+               [_takeoff("alpha", 8), _move("alpha", 25, 0, alt=20)], "Alpha hovers 25 m north at 20 m."),
+        _entry("relative", "test", "rel13-is-charlie-west-lower-further", ("charlie",),
+               "Færðu charlie 20 metra í vestur í 12 metra hæð. Lækkaðu hann síðan um 6 metra og færðu hann 10 "
+               "metrum lengra í vestur, og láttu hann svo sveima þar.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, -20)], alt=12),
+                                  at(ev, "charlie", *c.point("charlie", 0, -30), alt=6), airborne_at(ev, "charlie", 6)),
+               [_move("charlie", 0, -20, alt=12), _move("charlie", 0, -10, up=-6)],
+               "Charlie sveimar 30 m vestan við upphafsstaðinn, í 6 m hæð."),
+        _entry("relative", "test", "rel13-ar-charlie-bearing-300", ("charlie",),
+               "حرّك charlie مسافة 30 مترًا باتجاه 300 درجة (مقيسة من الشمال مع عقارب الساعة) على ارتفاع 15 مترًا، "
+               "واتركه يحوم هناك.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", *b300), alt=15), airborne_at(ev, "charlie", 15)),
+               [_move("charlie", *b300, alt=15)], "charlie يحوم على بعد 30 m باتجاه 300°، على ارتفاع 15 m."),
+        # question
+        _entry("question", "test", "ask13-longer-leg-of-pair", three,
+               "Alpha and bravo are both going out on the next sortie. Which of the two should take the longer "
+               "leg, going by battery? Give me both charges; nothing flies yet.",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 88, 1),
+                                  answer_mentions_number(ev, 63, 1), nobody_armed(ev)),
+               [("fleet_status", {})], "Bravo, with 88 %; alpha has 63 %.",
+               battery={"alpha": 63.0, "bravo": 88.0, "charlie": 41.0}),
+        _entry("question", "test", "ask13-zh-closest-pair", three,
+               "三架无人机里，有没有两架的电量相差不到 5%？是哪两架，各剩多少？都别起飞。",
+               lambda c, ev: _all(answer_says(ev, r"\balpha\b", "alpha"), answer_says(ev, r"\bcharlie\b", "charlie"),
+                                  answer_mentions_number(ev, 72, 1), answer_mentions_number(ev, 70, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "有：alpha 72%，charlie 70%，只差 2%。",
+               battery={"alpha": 72.0, "bravo": 45.0, "charlie": 70.0}),
+        _entry("question", "test", "ask13-tr-charlie-vs-bravo", three,
+               "charlie'nin şarjı bravo'nunkinden fazla mı? İkisinin yüzdesini de söyle, hiçbirini havalandırma.",
+               lambda c, ev: _all(answer_mentions_number(ev, 49, 1), answer_mentions_number(ev, 58, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Hayır: charlie %49, bravo %58.",
+               battery={"alpha": 90.0, "bravo": 58.0, "charlie": 49.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
+        # 2 m the lowest altitude)
+        _entry("refusal", "test", "refuse13-row-lifted-over-ceiling", three,
+               "Put all three in a row at 40 m over where they are, 10 m apart, then lift the whole row another "
+               "90 m.",
+               lambda c, ev: _all(*(airborne_at(ev, d, 40) for d in three), refusal_seen(ev, "altitude", "120"),
+                                  *(max_alt_at_most(ev, d, c.max_alt_m) for d in three), answer_reports_refusal(ev)),
+               [_formation(three, "line", 40, 10), _formation(three, "line", 130, 10)],
+               "The three hold a row at 40 m; lifting it to 130 m was refused: above the 120 m altitude limit."),
+        _entry("refusal", "test", "refuse13-fr-bravo-north-east-too-far", ("bravo",),
+               "Envoie bravo au point situé 800 m au nord et 800 m à l'est de son point de départ, à 30 m "
+               "d'altitude.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("bravo", 800, 800, alt=30)],
+               "La passerelle a refusé : ce point est à 1131 m du départ, au-delà de la limite de 1000 m."),
+        _entry("refusal", "test", "refuse13-az-bravo-low-anyway", ("bravo",),
+               "Bilirəm ki, bravo-nun batareyası azdır, amma onu sadəcə bir dəqiqəlik 8 metrə qaldır, sonra "
+               "endirərik.",
+               lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "bravo"), answer_reports_refusal(ev)),
+               [_takeoff("bravo", 8)],
+               "Şlüz imtina etdi: bravo-nun batareyası (21 %) qalxış üçün lazım olan minimum 30 %-dən aşağıdır.",
+               battery={"bravo": 21.0}),
+        # units
+        _entry("units", "test", "units13-bravo-feet-drop-yards-south", ("bravo",),
+               "Bravo: up to 75 ft, then down 50 ft, then 40 yards south at that height, and hold it there.",
+               lambda c, ev: _all(rose_to(ev, "bravo", 75 * FT), at(ev, "bravo", *c.point("bravo", -40 * YD, 0), alt=25 * FT),
+                                  airborne_at(ev, "bravo", 25 * FT)),
+               [_takeoff("bravo", 75 * FT), _move("bravo", up=-50 * FT), _move("bravo", -40 * YD, 0)],
+               "Bravo holds 40 yd (36.6 m) south at 25 ft (7.6 m)."),
+        _entry("units", "test", "units13-es-charlie-yards-feet-land", ("charlie",),
+               "Mueve a charlie 30 yardas al norte y 45 pies al este, a 40 pies de altura, y que aterrice allí.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 40 * FT),
+                                  at(ev, "charlie", *c.point("charlie", 30 * YD, 45 * FT)), landed_disarmed(ev, "charlie")),
+               [_move("charlie", 30 * YD, 45 * FT, alt=40 * FT), _land("charlie")],
+               "Charlie voló 30 yardas (27 m) al norte y 45 pies (14 m) al este a 40 pies (12 m) y aterrizó."),
+        _entry("units", "test", "units13-uk-alpha-yards-back", ("alpha",),
+               "Підніми alpha на 40 футів, відведи його на 50 ярдів на захід, потім поверни на 20 ярдів назад на "
+               "схід і посади там.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 40 * FT), visited(ev, "alpha", [c.point("alpha", 0, -50 * YD)]),
+                                  at(ev, "alpha", *c.point("alpha", 0, -30 * YD)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 40 * FT), _move("alpha", 0, -50 * YD), _move("alpha", 0, 20 * YD), _land("alpha")],
+               "alpha пролетів 50 ярдів на захід, повернувся на 20 ярдів і сів за 30 ярдів (27 м) на захід від старту."),
+        # pattern
+        _entry("pattern", "test", "pattern13-charlie-triangle-two-laps", ("charlie",),
+               "Charlie at 14 m: two laps of a triangle with 20 m sides, first side heading west, turning left at "
+               "each corner; then hover over where it started.",
+               # the two far corners of each lap, in order (the home corner between laps is left out)
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e)
+                                                          for n, e in 2 * _corners(triangle20)[:2]]),
+                                  at(ev, "charlie", *_home(c, "charlie"), alt=14), airborne_at(ev, "charlie", 14)),
+               [_takeoff("charlie", 14), *_legs("charlie", triangle20 + triangle20)],
+               "Charlie flew the triangle twice and hovers over its start at 14 m."),
+        _entry("pattern", "test", "pattern13-pl-alpha-diamond", ("alpha",),
+               "Niech alpha na wysokości 12 m przeleci kwadrat postawiony na rogu, o boku 20 m: pierwszy bok na "
+               "północny wschód, potem za każdym razem skręt w prawo; na koniec ma wylądować tam, skąd wystartował.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(diamond20)[:3]]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 12), *_legs("alpha", diamond20), _land("alpha")],
+               "Alpha przeleciał kwadrat postawiony na rogu i wylądował w miejscu startu."),
+        _entry("pattern", "test", "pattern13-hi-bravo-square-round-pad", ("bravo",),
+               "bravo को 12 मीटर की ऊँचाई पर एक ऐसा वर्ग उड़वाओ जिसकी हर भुजा 20 मीटर हो और जिसका केंद्र उसका अपना "
+               "पैड हो: उत्तर-पूर्वी कोने से शुरू करो, घड़ी की दिशा में पूरा चक्कर लगाओ, फिर केंद्र पर लौटकर वहीं उतार दो।",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(round_pad)[:5]]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), *_legs("bravo", round_pad), _land("bravo")],
+               "bravo ने पैड के चारों ओर वर्ग उड़ाया और केंद्र पर उतर गया।"),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places a
+        # drone from alpha or charlie, 10 m apart, so that a drone placed from itself misses)
+        _entry("placement", "test", "place13-charlie-east-above-alpha", three,
+               "Alpha flies 20 m north at 12 m. Then put charlie 15 m east of alpha and 5 m above it, and once "
+               "charlie's there, land alpha where it is.",
+               lambda c, ev: _all(rose_to(ev, "alpha", 12), at(ev, "alpha", *c.point("alpha", 20, 0)),
+                                  landed_disarmed(ev, "alpha"), at(ev, "charlie", *c.point("alpha", 20, 15), alt=17),
+                                  airborne_at(ev, "charlie", 17), never_armed(ev, "bravo")),
+               lambda c: [_move("alpha", 20, 0, alt=12), _go("charlie", c.point("alpha", 20, 15), 17), _land("alpha")],
+               "Charlie hovers 15 m east of alpha at 17 m; alpha landed 20 m north of its pad."),
+        _entry("placement", "test", "place13-nl-charlie-over-landed-alpha", three,
+               "Vlieg alpha op 12 meter hoogte 20 meter naar het noorden en laat hem daar landen. Zet daarna charlie "
+               "recht boven de plek waar alpha staat, op 12 meter hoogte, en laat hem daar hangen.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0)), landed_disarmed(ev, "alpha"),
+                                  at(ev, "charlie", *c.point("alpha", 20, 0), alt=12), airborne_at(ev, "charlie", 12),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_move("alpha", 20, 0, alt=12), _land("alpha"), _go("charlie", c.point("alpha", 20, 0), 12)],
+               "Alpha is 20 m noordelijk geland; charlie hangt er recht boven op 12 m."),
+        _entry("placement", "test", "place13-id-flanking-charlie", three,
+               "Terbangkan alpha ke titik 20 meter di selatan charlie dan bravo ke titik 20 meter di utara charlie, "
+               "keduanya pada ketinggian 10 meter, lalu biarkan keduanya melayang di sana; charlie tetap di darat.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("charlie", -20, 0), alt=10), airborne_at(ev, "alpha", 10),
+                                  at(ev, "bravo", *c.point("charlie", 20, 0), alt=10), airborne_at(ev, "bravo", 10),
+                                  never_armed(ev, "charlie")),
+               lambda c: [_go("alpha", c.point("charlie", -20, 0), 10), _go("bravo", c.point("charlie", 20, 0), 10)],
+               "alpha melayang 20 m di selatan charlie dan bravo 20 m di utaranya, keduanya pada 10 m."),
+        # language
+        _entry("language", "test", "lang13-mr-charlie-west-land", ("charlie",),
+               "charlie ला 14 मीटर उंचीवर ने, मग त्याला 30 मीटर पश्चिमेकडे उडव आणि तिथेच खाली उतरव.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 14), at(ev, "charlie", *c.point("charlie", 0, -30)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 14), _move("charlie", 0, -30), _land("charlie")],
+               "charlie पश्चिमेकडे 30 m उडून तिथे उतरला."),
+        _entry("language", "test", "lang13-ka-alpha-southeast-hover", ("alpha",),
+               "აიყვანე alpha 16 მეტრის სიმაღლეზე, გადაიყვანე 25 მეტრით სამხრეთ-აღმოსავლეთით და იქ ჰაერში გააჩერე.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -d25, d25), alt=16), airborne_at(ev, "alpha", 16)),
+               [_takeoff("alpha", 16), _move("alpha", -d25, d25)],
+               "alpha ჰაერშია 25 m-ით სამხრეთ-აღმოსავლეთით, 16 m სიმაღლეზე."),
+        _entry("language", "test", "lang13-hy-bravo-north-home", ("bravo",),
+               "Բարձրացրու bravo-ն 12 մետր, թռցրու այն 20 մետր դեպի հյուսիս, ապա հետ բեր տուն և իջեցրու։",
+               # the return home climbs to its own height: the leg north is checked at 12 m instead
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 20, 0)], alt=12),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), _move("bravo", 20, 0), _rtl("bravo")],
+               "bravo-ն թռավ 20 m դեպի հյուսիս, վերադարձավ տուն և իջավ։"),
     ]  # fmt: skip
 
 
@@ -4302,7 +4642,8 @@ def corpus() -> list[CorpusEntry]:
         *_ninth_round(),
         *_tenth_round(),
         *_eleventh_round(),
-        *_twelfth_test_half(),
+        *_twelfth_round(),
+        *_thirteenth_test_half(),
     ]
 
 
