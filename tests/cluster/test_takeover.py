@@ -9,6 +9,7 @@ import copy
 from collections.abc import AsyncIterator
 from datetime import timedelta
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -42,6 +43,15 @@ async def left_running(gateway: Gateway, op_id: str, kind: str, age_s: float, **
                              progress=0.3, message="command sent", session_key="s1", created_at=at,
                              updated_at=at)  # fmt: skip
     await gateway.require_store().save_operation(record)
+
+
+async def followed_far_north(gateway: Gateway, op_id: str) -> tuple[Any, tuple[float, float]]:
+    """A goto 300 m north the lost node left running, followed here; the drone and the goto's target."""
+    vehicle = gateway.require_registry().get("d1")
+    lat, lon = geo.offset_position(HOME[0], HOME[1], 300.0, 0.0)
+    await left_running(gateway, op_id, "goto", 5.0, lat_deg=lat, lon_deg=lon, alt_m=10.0)
+    assert await pick_up_operations(gateway, "node-a", vehicle, 2, "node-c") == 1
+    return vehicle, (lat, lon)
 
 
 async def test_a_taken_over_goto_says_its_node_was_lost_until_it_ends_and_an_older_one_is_interrupted(
@@ -107,12 +117,8 @@ async def test_a_drone_given_up_leaves_its_operation_to_the_next_owner_which_pic
     about it; a running row that reaches the database after the drone's next owner took it over (kept in
     the previous owner's spool) is picked up at that owner's next tick; one older than the operation the
     owner runs is closed, not resumed over it."""
-    store = gateway.require_store()
-    ops = gateway.commander.operations
-    vehicle = gateway.require_registry().get("d1")
-    lat, lon = geo.offset_position(HOME[0], HOME[1], 300.0, 0.0)
-    await left_running(gateway, "followed", "goto", 5.0, lat_deg=lat, lon_deg=lon, alt_m=10.0)
-    assert await pick_up_operations(gateway, "node-a", vehicle, 2, "node-c") == 1
+    store, ops = gateway.require_store(), gateway.commander.operations
+    vehicle, (lat, lon) = await followed_far_north(gateway, "followed")
     assert ops.running("d1") is not None and ops.knows("followed")
 
     assert ops.let_go("d1") == ["followed"]
@@ -144,12 +150,8 @@ async def test_a_followed_operation_the_database_still_holds_as_running_is_ended
     the database (written again), or nothing follows it any more (its monitor is gone: ended as failed).
     Either way the row does not stay running for ever."""
     monkeypatch.setattr(operations_module, "RESTATE_AFTER_S", 0.0)
-    store = gateway.require_store()
-    ops = gateway.commander.operations
-    vehicle = gateway.require_registry().get("d1")
-    lat, lon = geo.offset_position(HOME[0], HOME[1], 300.0, 0.0)
-    await left_running(gateway, "lost-end", "goto", 5.0, lat_deg=lat, lon_deg=lon, alt_m=10.0)
-    assert await pick_up_operations(gateway, "node-a", vehicle, 2, "node-c") == 1
+    store, ops = gateway.require_store(), gateway.commander.operations
+    vehicle, (lat, lon) = await followed_far_north(gateway, "lost-end")
     saved = store.save_operation
 
     async def lost(record: OperationRecord) -> OperationRecord:  # the end's write never arrives
@@ -176,7 +178,6 @@ async def test_a_followed_operation_the_database_still_holds_as_running_is_ended
     record = await store.get_operation("unfollowed")
     assert record is not None and record.status == "failed", record
     assert record.message is not None and "monitoring stopped" in record.message, record.message
-
 
     # followed over a link the node no longer holds (it holds the drone over a new one): let go there and
     # followed again over the new one, under the same id
