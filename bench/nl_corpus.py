@@ -140,8 +140,8 @@ ran on it by a writer who did not read the host's word lists or rules: 22 of the
 Galician, German, Hindi, Icelandic, Indonesian, Italian, Japanese, Kazakh, Korean, Polish, Portuguese,
 Russian, Spanish, Turkish, Ukrainian, Vietnamese; Afrikaans, Azerbaijani, Galician, Icelandic and Kazakh
 are new), and the ``language`` class's 3 in Marathi, Georgian and Armenian (all three new, and Georgian
-and Armenian script). Only the harness self-check (the scripted ideal plan) has run on them. That leaves
-519 dev and 36 test.
+and Armenian script). Only the harness self-check (the scripted ideal plan) has run on them: 36 of 36
+passed. That leaves 519 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
