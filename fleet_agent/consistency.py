@@ -233,14 +233,14 @@ def _stayed(steps: Any) -> Any:
 
 
 def flown_on(data: Any) -> Any:
-    """The decoded plan without the landing or return a drone's step ends with when the drone's next step
-    flies it on from there (a move or a pattern; a takeoff after a landing keeps it): the 1.5B model ended
-    "Charlie up to 25 m, then drop it by 15 m" with a landing after the climb, restated as no landing."""
+    """The decoded plan without the landing or return a drone's step ends with when its next step flies it
+    on (a move, a pattern, its return home; a takeoff after a landing keeps it): the 1.5B model landed
+    "Charlie up to 25 m, then drop it by 15 m" after the climb, and each drone before "take them home"."""
     steps = data.get("steps") if isinstance(data, dict) else None
     steps = [s for s in steps if isinstance(s, dict)] if isinstance(steps, list) else []
     for k, step in enumerate(steps):
-        mine = [s for s in steps[k + 1 :] if s.get("drone") == step.get("drone")]
-        if mine and mine[0].get("action") in ("move", "pattern") and step.get("after") != "stay":
+        mine = [s.get("action") for s in steps[k + 1 :] if s.get("drone") == step.get("drone")]
+        if mine[:1] in (["move"], ["pattern"], ["return_home"]) and step.get("after") != "stay":
             step["after"] = "stay"
     return data
 

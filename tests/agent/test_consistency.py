@@ -260,6 +260,10 @@ def test_a_landing_before_the_drones_next_move_is_no_landing_and_one_before_a_ta
     assert [s.get("after") for s in flown_on({"steps": on})["steps"]] == ["stay", "stay", "land"]
     again = [copy.deepcopy(climb), _up("charlie", 10), _move("alpha", (10, "west"))]
     assert flown_on({"steps": copy.deepcopy(again)})["steps"] == again
+    # "... then take them all home" came back with each drone landed before its return (1.5B model): a
+    # landed drone's return is refused, so the landing goes and the drone flies home from where it is
+    home = [{**_move("alpha", (20, "west")), "after": "land"}, {"action": "return_home", "drone": "alpha"}]
+    assert [s.get("after") for s in flown_on({"steps": home})["steps"]] == ["stay", None]
 
 
 def _ending(after: str, *more: dict[str, object]) -> dict[str, object]:
