@@ -52,10 +52,10 @@ def without_unasked(request: str, fleet: list[str], plan: Plan) -> Plan:
 
 
 def _all_zero(step: Any) -> bool:
-    """A step whose numbers are all 0 goes nowhere: a move of 0 m written for a drone the request keeps
-    still, a climb to 0 m added after a drone the request leaves in the air (both by the 1.5B model)."""
+    """A step whose numbers are all 0 goes nowhere (a move of 0 m for a drone kept still, a climb to 0 m
+    after a hover); an ``if`` against 0 compares (a question of two drones, read by questions_of_fleet)."""
     numbers = _step_numbers(step)
-    return bool(numbers) and not any(numbers)
+    return bool(numbers) and not any(numbers) and not isinstance(step, Condition)
 
 
 def _asked(steps: list[Any], named: set[str], given: list[float]) -> list[Any]:

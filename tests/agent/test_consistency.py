@@ -174,6 +174,19 @@ def test_an_if_that_does_nothing_in_a_question_of_several_drones_is_a_report() -
     assert questions_of_fleet("If any is under 50 %, alpha up 5 m", FLEET, acts) == acts
 
 
+def test_an_if_against_0_in_a_question_of_two_drones_is_kept_and_read_as_the_question() -> None:
+    """Whether charlie has more charge than bravo was planned as charlie's ``if`` above 0 with a report
+    either way: dropped as a step of zeros, it left the answer with no reading."""
+    report = {"action": "report", "drones": ["alpha", "bravo"], "readings": ["battery"], "pick": "highest"}
+    asked = _plan(_if("charlie", "above", [report]) | {"value": 0, "otherwise": [report]})
+    request = "Does charlie have more charge than bravo? Tell me both."
+    kept = without_unasked(request, FLEET, asked)
+    assert kept == asked
+    question = questions_of_fleet(request, FLEET, kept)
+    assert question.steps == [Report(action="report", drones=["bravo", "charlie"], readings=["battery"],
+                                     pick="highest")]  # fmt: skip
+
+
 def test_an_if_whose_branches_only_report_in_a_question_of_several_drones_is_a_report() -> None:
     """A question whether every drone is above a threshold was planned as one drone's ``if`` with a report
     of the fleet in its other branch: that drone was above, and the answer told no drone's battery."""
