@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import tomllib
 import unicodedata
-from itertools import pairwise, takewhile
+from itertools import dropwhile, pairwise, takewhile
 from pathlib import Path
 from typing import Any
 
@@ -131,10 +131,10 @@ def _point_word(text: str, at: int, last_end: int) -> tuple[int, str | None]:
 
 
 def _joins(first: str, second: str, between: str) -> bool:
-    """Two points named together (nothing but a hyphen, a space or an Arabic article between them), one
-    of north and south, the other of east and west."""
+    """Two points named together (nothing but the first word's ending, a hyphen, a space or an Arabic
+    article between them: "północny wschód"), one of north and south, the other of east and west."""
     axes = [p in ("north", "south") for p in (first, second) if p in ("north", "south", "east", "west")]
-    return sorted(axes) == [False, True] and not between.strip(" -ال")
+    return sorted(axes) == [False, True] and not "".join(dropwhile(str.isalpha, between)).strip(" -ال")
 
 
 def _diagonal(first: str, second: str) -> str:
