@@ -209,12 +209,8 @@ def as_ended(request: str, data: Any) -> Any:
     """The decoded plan with no landing or return, as a step or an ``after``, when the request says a drone
     stays in the air and nothing of coming down, the ground or a home, in words the lexicon knows: both
     models restated "let them hover", "leave it there", "neka tamo lebdi" as a landing."""
-    down = lexicon.DOWN_STEMS + lexicon.HOME_STEMS
-    if (
-        isinstance(data, dict)
-        and lexicon.says(request, lexicon.STAY_STEMS)
-        and not lexicon.says(request, down)
-    ):
+    stays = isinstance(data, dict) and lexicon.says(request, lexicon.STAY_STEMS)
+    if stays and not lexicon.says(request, lexicon.DOWN_STEMS + lexicon.HOME_STEMS):
         data["steps"] = _stayed(data.get("steps"))
     return data
 
@@ -393,18 +389,21 @@ def _each_its_leg(step: Any, tokens: list[str]) -> list[tuple[str, Any]] | None:
 
 
 def questions_of_fleet(request: str, fleet: list[str], plan: Plan) -> Plan:
-    """The plan with an ``if`` that only tells either way (nothing, or a report), in a request about more
-    drones than the ``if``'s one, read as the question it is: a report of that reading for the drones the
-    request names (all the fleet when it names none), picking the lowest or highest as the ``if`` compared
-    (a question whether any drone was under a threshold was planned as one drone's ``if``). Done after the
-    plan is checked against the request: the threshold is the request's number, the report has none."""
-    drones = sorted(_named(request, fleet)) or list(fleet)
-    return plan.model_copy(update={"steps": [_as_report(step, drones) for step in plan.steps]})
+    """An ``if`` read as the question it is, a report of its reading for the drones the request names (the
+    fleet when none), picking as it compared: one that only tells (nothing, or a report) in a request of
+    more drones than its one, and one that flies but carries none of the request's numbers (the 0.5B
+    model's copy of the example's ``if``). Done after the gaps are read: the report has no threshold."""
+    drones, given = sorted(_named(request, fleet)) or list(fleet), _request_numbers(request, fleet)
+    return plan.model_copy(update={"steps": [_as_report(step, drones, given) for step in plan.steps]})
 
 
-def _as_report(step: Any, drones: list[str]) -> Any:
-    told = isinstance(step, Condition) and all(isinstance(s, Report) for s in step.then + step.otherwise)
-    if not told or drones == [step.drone]:
+def _as_report(step: Any, drones: list[str], given: list[float]) -> Any:
+    if not isinstance(step, Condition):
+        return step
+    told = all(isinstance(s, Report) for s in step.then + step.otherwise)
+    numbers = [n for s in step.then + step.otherwise for n in _step_numbers(s)]
+    copied = bool(numbers) and not any(_only([n], given) for n in [step.value, *numbers])
+    if not copied and (not told or drones == [step.drone]):
         return step
     pick = "lowest" if step.compare in ("below", "at_most") else "highest"
     return Report(action="report", drones=drones, readings=[step.reading], pick=pick)

@@ -187,6 +187,19 @@ def test_an_if_against_0_in_a_question_of_two_drones_is_kept_and_read_as_the_que
                                      pick="highest")]  # fmt: skip
 
 
+def test_an_if_that_flies_with_none_of_the_requests_numbers_is_the_question_it_copied() -> None:
+    """The 0.5B model planned a question of two drones' charge as the example's ``if`` (under 25 %, else
+    up to 10 m and down); an ``if`` with the request's threshold, or one that only returns, stays."""
+    copied = _plan(_if("alpha", "below", []) | {"value": 25, "otherwise": [_up("alpha", 10)]})
+    question = questions_of_fleet("Which of alpha and bravo has more charge? Nothing flies.", FLEET, copied)
+    assert question.steps == [Report(action="report", drones=["alpha", "bravo"], readings=["battery"],
+                                     pick="lowest")]  # fmt: skip
+    asked = _plan(_if("alpha", "below", []) | {"otherwise": [_up("alpha", 10)]})
+    assert questions_of_fleet("Unless alpha is under 50 %, take it up and land it", FLEET, asked) == asked
+    home = _plan(_if("bravo", "below", [{"action": "return_home", "drone": "bravo"}]))
+    assert questions_of_fleet("If bravo is under half charge, bring it home", FLEET, home) == home
+
+
 def test_an_if_whose_branches_only_report_in_a_question_of_several_drones_is_a_report() -> None:
     """A question whether every drone is above a threshold was planned as one drone's ``if`` with a report
     of the fleet in its other branch: that drone was above, and the answer told no drone's battery."""
