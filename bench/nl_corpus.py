@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 555 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 591 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -142,6 +142,15 @@ Russian, Spanish, Turkish, Ukrainian, Vietnamese; Afrikaans, Azerbaijani, Galici
 are new), and the ``language`` class's 3 in Marathi, Georgian and Armenian (all three new, and Georgian
 and Armenian script). Only the harness self-check (the scripted ideal plan) has run on them: 36 of 36
 passed. That leaves 519 dev and 36 test.
+On 2026-12-03 (thirteenth round) EVERY test entry (36, ``_thirteenth_round``) was moved to dev, each marked
+"moved to dev on 2026-12-03, thirteenth round", once both models had been measured on it. A fresh test
+half took its place (``_fourteenth_test_half``): 36 new requests, 3 a class, written before any model ran
+on it by a writer who did not read the host's word lists or rules: 22 of the 33 outside the ``language``
+class in 22 languages, one each (Albanian, Basque, Catalan, Chinese, Croatian, Czech, Esperanto, Finnish,
+French, German, Greek, Hebrew, Japanese, Korean, Malay, Persian, Romanian, Spanish, Swedish, Turkish,
+Uzbek, Welsh; Albanian, Basque, Esperanto, Uzbek and Welsh are new), and the ``language`` class's 3 in
+Nepali, Macedonian and Gujarati (all three new, and Gujarati script). Only the harness self-check (the
+scripted ideal plan) has run on them: 36 of 36 passed. That leaves 555 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -4325,13 +4334,14 @@ def _twelfth_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _thirteenth_test_half() -> list[CorpusEntry]:
+def _thirteenth_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-02 (thirteenth round), before any model ran on it: 3 a class; 22 of
     the 33 outside ``language`` in other languages than English, one each (Afrikaans, Arabic, Azerbaijani,
     Chinese, Dutch, French, Galician, German, Hindi, Icelandic, Indonesian, Italian, Japanese, Kazakh,
     Korean, Polish, Portuguese, Russian, Spanish, Turkish, Ukrainian, Vietnamese; Afrikaans, Azerbaijani,
     Galician, Icelandic and Kazakh are new), the ``language`` class's 3 in Marathi, Georgian and Armenian
-    (the three languages are new, and Georgian and Armenian script with them)."""
+    (the three languages are new, and Georgian and Armenian script with them); all of it moved to dev on
+    2026-12-03 (thirteenth round), once both models had been measured on it."""
     three = DRONES
     d20, d25, d35 = (x / math.sqrt(2) for x in (20, 25, 35))
     # 30 m on a bearing of 300 degrees (clockwise from north): 15 m north, 25.98 m west
@@ -4353,22 +4363,26 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
 
     return [
         # single
-        _entry("single", "test", "single13-bravo-radio-relay", ("bravo",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("single", "dev", "single13-bravo-radio-relay", ("bravo",),
                "Need bravo up as a radio relay: ten metres straight up off its pad, and it stays there till I say.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=10), airborne_at(ev, "bravo", 10)),
                [_takeoff("bravo", 10)], "Bravo is up at 10 m over its pad as the relay."),
-        _entry("single", "test", "single13-af-alpha-motor-test", ("alpha",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("single", "dev", "single13-af-alpha-motor-test", ("alpha",),
                "Kan jy alpha net vinnig tot 9 meter laat opstyg en dan dadelik weer laat land? Ek wil net die "
                "motors toets.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 9), at(ev, "alpha", *_home(c, "alpha")),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 9), _land("alpha")], "Alpha het tot 9 m opgestyg en weer geland."),
-        _entry("single", "test", "single13-ko-charlie-hover-till-told", ("charlie",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("single", "dev", "single13-ko-charlie-hover-till-told", ("charlie",),
                "charlie를 26미터 높이까지 띄우고, 내가 다시 말할 때까지 그대로 떠 있게 해 줘.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=26), airborne_at(ev, "charlie", 26)),
                [_takeoff("charlie", 26)], "charlie가 26 m 높이에 떠 있어."),
         # multi
-        _entry("multi", "test", "multi13-fan-out-bravo-climbs", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("multi", "dev", "multi13-fan-out-bravo-climbs", three,
                "Everyone up to 12 m. Then alpha slides 20 m west, charlie 20 m east, and bravo climbs another "
                "10 m where it is. All three stay up.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -20), alt=12), airborne_at(ev, "alpha", 12),
@@ -4377,7 +4391,8 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                [*(_takeoff(d, 12) for d in three), _move("alpha", 0, -20), _move("charlie", 0, 20),
                 _move("bravo", up=10)],
                "Alpha hovers 20 m west and charlie 20 m east at 12 m; bravo is at 22 m over its pad."),
-        _entry("multi", "test", "multi13-it-highest-lands", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("multi", "dev", "multi13-it-highest-lands", three,
                "Porta alpha a 10 metri, bravo a 15 e charlie a 20, sopra le loro piazzole; poi fai atterrare quello "
                "che sta più in alto e lascia gli altri due in volo.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=10), airborne_at(ev, "alpha", 10),
@@ -4386,7 +4401,8 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("alpha", 10), _takeoff("bravo", 15), _takeoff("charlie", 20), _land("charlie")],
                "Alpha a 10 m e bravo a 15 m restano in volo; charlie, il più alto, è atterrato."),
-        _entry("multi", "test", "multi13-kk-north-lands-south-hovers", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("multi", "dev", "multi13-kk-north-lands-south-hovers", three,
                "alpha-ны солтүстікке қарай 30 метр, charlie-ді оңтүстікке қарай 30 метр ұшыр, екеуі де 15 метр "
                "биіктікте болсын. Сосын alpha сол жерге қонсын, ал charlie ауада ілулі тұрсын. bravo орнынан "
                "қозғалмасын.",
@@ -4396,21 +4412,24 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                [_move("alpha", 30, 0, alt=15), _move("charlie", -30, 0, alt=15), _land("alpha")],
                "alpha солтүстікте 30 м жерге қонды; charlie оңтүстікте 30 м, 15 м биіктікте тұр; bravo қозғалмады."),
         # compound
-        _entry("compound", "test", "compound13-alpha-climb-leg-drop-leg", ("alpha",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("compound", "dev", "compound13-alpha-climb-leg-drop-leg", ("alpha",),
                "Alpha: take off to 8 m, fly 20 m north climbing to 14 m on the way, then 20 m east dropping back "
                "to 8 m, and land it there.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 20, 0)], alt=14),
                                   at(ev, "alpha", *c.point("alpha", 20, 20)), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 8), _move("alpha", 20, 0, alt=14), _move("alpha", 0, 20, alt=8), _land("alpha")],
                "Alpha flew 20 m north up to 14 m, 20 m east back down to 8 m, and landed."),
-        _entry("compound", "test", "compound13-ja-alpha-ne-then-nw", ("alpha",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("compound", "dev", "compound13-ja-alpha-ne-then-nw", ("alpha",),
                "alphaを12メートルまで上げて、北東に20メートル、続けて北西に20メートル飛ばして、そこで12メートルの"
                "まま待機させて。",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", d20, d20)]),
                                   at(ev, "alpha", *c.point("alpha", 2 * d20, 0), alt=12), airborne_at(ev, "alpha", 12)),
                [_takeoff("alpha", 12), _move("alpha", d20, d20), _move("alpha", d20, -d20)],
                "alphaは北東、北西へ20 mずつ飛び、北へ28 mの地点、高度12 mで待機中。"),
-        _entry("compound", "test", "compound13-gl-bravo-east-low-back", ("bravo",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("compound", "dev", "compound13-gl-bravo-east-low-back", ("bravo",),
                "Sube o bravo a 15 metros, lévao 30 metros cara ao leste, báixao alí ata 6 metros e tráeo a esa "
                "altura 30 metros de volta cara ao oeste; despois fai que aterre.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 30)], alt=15),
@@ -4420,7 +4439,8 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                 _land("bravo")],
                "O bravo foi 30 m cara ao leste, baixou a 6 m, volveu á súa base e aterrou."),
         # conditional
-        _entry("conditional", "test", "cond13-charlie-short-of-job", ("charlie",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("conditional", "dev", "cond13-charlie-short-of-job", ("charlie",),
                "Only launch charlie if it has enough for the job, which needs 55 %. If it does, take it 30 m east "
                "at 15 m and leave it there; if it doesn't, keep it down and tell me how far short it is.",
                # the typed plan reads, it does not compute: the shortfall, or the reading it comes from
@@ -4428,7 +4448,8 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                                   _any(answer_mentions_number(ev, 6, 1), answer_mentions_number(ev, 49, 1))),
                [_battery("charlie")], "Charlie has 49 %, 6 points short of the 55 % the job needs, so it stays down.",
                battery={"charlie": 49.0}),
-        _entry("conditional", "test", "cond13-de-weakest-stays", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("conditional", "dev", "cond13-de-weakest-stays", three,
                "Lass die Drohne mit dem schwächsten Akku am Boden; die anderen beiden sollen auf 12 m steigen, "
                "20 m nach Norden fliegen und dort in der Luft bleiben.",
                lambda c, ev: _all(*(at(ev, d, *c.point(d, 20, 0), alt=12) for d in ("alpha", "charlie")),
@@ -4436,19 +4457,22 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                [("fleet_status", {}), _move("alpha", 20, 0, alt=12), _move("charlie", 20, 0, alt=12)],
                "Bravo hat den schwächsten Akku (47 %) und bleibt am Boden; alpha und charlie schweben 20 m "
                "nördlich auf 12 m.", battery={"alpha": 81.0, "bravo": 47.0, "charlie": 66.0}),
-        _entry("conditional", "test", "cond13-vi-bravo-holds-if-low", ("bravo",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("conditional", "dev", "cond13-vi-bravo-holds-if-low", ("bravo",),
                "Cho bravo cất cánh lên 10 mét rồi kiểm tra pin của nó. Nếu pin còn trên 70 %, cho nó bay tiếp 30 "
                "mét về phía tây và lơ lửng ở đó; nếu không thì cứ giữ nó lơ lửng ngay trên chỗ cất cánh, ở 10 mét.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=10), airborne_at(ev, "bravo", 10)),
                [_takeoff("bravo", 10), _battery("bravo")],
                "Pin của bravo là 58 %, nên nó lơ lửng ở 10 m ngay trên chỗ cất cánh.", battery={"bravo": 58.0}),
         # formation
-        _entry("formation", "test", "form13-north-south-row-over-pads", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("formation", "dev", "form13-north-south-row-over-pads", three,
                "Line the three up north to south over their pads, 10 m between each, at 15 m, and hold them there.",
                lambda c, ev: _all(formation_at(c, ev, three, 15, 10, 0, 0), farthest_apart(ev, three, 20),
                                   north_south(ev, three)),
                [_formation(three, "column", 15, 10)], "The three hold a north-south row 10 m apart at 15 m."),
-        _entry("formation", "test", "form13-pt-pair-either-side-of-bravo", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("formation", "dev", "form13-pt-pair-either-side-of-bravo", three,
                "Põe o alpha e o charlie lado a lado, a 20 m um do outro e a 14 m de altura, de forma que o bravo, "
                "que fica no chão, fique exatamente a meio entre os dois.",
                lambda c, ev: _all(formation_around(ev, ("alpha", "charlie"), 14, 20, _home(c, "bravo")),
@@ -4458,46 +4482,53 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                "O alpha e o charlie pairam a 14 m, 20 m um do outro, com o bravo no chão a meio."),
         # (the gateway's V has its arms 45 degrees off its axis: its two wings stand 2 x 12 x sin 45 = 16.97 m
         # apart)
-        _entry("formation", "test", "form13-ru-wedge-southeast-land", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("formation", "dev", "form13-ru-wedge-southeast-land", three,
                "Построй alpha, bravo и charlie клином — 12 метров между соседями, высота 15 метров — в 35 метрах "
                "к юго-востоку от того места, где они сейчас стоят, и посади их там.",
                lambda c, ev: landed_formation_at(c, ev, three, 16.97, -d35, d35),
                [_formation(three, "wedge", 15, 12, north=-d35, east=d35), *(_land(d) for d in three)],
                "Три дрона долетели клином на 35 м к юго-востоку и сели там."),
         # relative
-        _entry("relative", "test", "rel13-alpha-climb-to-not-by", ("alpha",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("relative", "dev", "rel13-alpha-climb-to-not-by", ("alpha",),
                "Take alpha up to 8 m, then move it 25 m north while it climbs to 20 m (20 above the ground, not 20 "
                "more) and let it hover there.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 25, 0), alt=20), airborne_at(ev, "alpha", 20)),
                [_takeoff("alpha", 8), _move("alpha", 25, 0, alt=20)], "Alpha hovers 25 m north at 20 m."),
-        _entry("relative", "test", "rel13-is-charlie-west-lower-further", ("charlie",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("relative", "dev", "rel13-is-charlie-west-lower-further", ("charlie",),
                "Færðu charlie 20 metra í vestur í 12 metra hæð. Lækkaðu hann síðan um 6 metra og færðu hann 10 "
                "metrum lengra í vestur, og láttu hann svo sveima þar.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, -20)], alt=12),
                                   at(ev, "charlie", *c.point("charlie", 0, -30), alt=6), airborne_at(ev, "charlie", 6)),
                [_move("charlie", 0, -20, alt=12), _move("charlie", 0, -10, up=-6)],
                "Charlie sveimar 30 m vestan við upphafsstaðinn, í 6 m hæð."),
-        _entry("relative", "test", "rel13-ar-charlie-bearing-300", ("charlie",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("relative", "dev", "rel13-ar-charlie-bearing-300", ("charlie",),
                "حرّك charlie مسافة 30 مترًا باتجاه 300 درجة (مقيسة من الشمال مع عقارب الساعة) على ارتفاع 15 مترًا، "
                "واتركه يحوم هناك.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", *b300), alt=15), airborne_at(ev, "charlie", 15)),
                [_move("charlie", *b300, alt=15)], "charlie يحوم على بعد 30 m باتجاه 300°، على ارتفاع 15 m."),
         # question
-        _entry("question", "test", "ask13-longer-leg-of-pair", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("question", "dev", "ask13-longer-leg-of-pair", three,
                "Alpha and bravo are both going out on the next sortie. Which of the two should take the longer "
                "leg, going by battery? Give me both charges; nothing flies yet.",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 88, 1),
                                   answer_mentions_number(ev, 63, 1), nobody_armed(ev)),
                [("fleet_status", {})], "Bravo, with 88 %; alpha has 63 %.",
                battery={"alpha": 63.0, "bravo": 88.0, "charlie": 41.0}),
-        _entry("question", "test", "ask13-zh-closest-pair", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("question", "dev", "ask13-zh-closest-pair", three,
                "三架无人机里，有没有两架的电量相差不到 5%？是哪两架，各剩多少？都别起飞。",
                lambda c, ev: _all(answer_says(ev, r"\balpha\b", "alpha"), answer_says(ev, r"\bcharlie\b", "charlie"),
                                   answer_mentions_number(ev, 72, 1), answer_mentions_number(ev, 70, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "有：alpha 72%，charlie 70%，只差 2%。",
                battery={"alpha": 72.0, "bravo": 45.0, "charlie": 70.0}),
-        _entry("question", "test", "ask13-tr-charlie-vs-bravo", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("question", "dev", "ask13-tr-charlie-vs-bravo", three,
                "charlie'nin şarjı bravo'nunkinden fazla mı? İkisinin yüzdesini de söyle, hiçbirini havalandırma.",
                lambda c, ev: _all(answer_mentions_number(ev, 49, 1), answer_mentions_number(ev, 58, 1),
                                   nobody_armed(ev)),
@@ -4505,21 +4536,24 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                battery={"alpha": 90.0, "bravo": 58.0, "charlie": 49.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude)
-        _entry("refusal", "test", "refuse13-row-lifted-over-ceiling", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse13-row-lifted-over-ceiling", three,
                "Put all three in a row at 40 m over where they are, 10 m apart, then lift the whole row another "
                "90 m.",
                lambda c, ev: _all(*(airborne_at(ev, d, 40) for d in three), refusal_seen(ev, "altitude", "120"),
                                   *(max_alt_at_most(ev, d, c.max_alt_m) for d in three), answer_reports_refusal(ev)),
                [_formation(three, "line", 40, 10), _formation(three, "line", 130, 10)],
                "The three hold a row at 40 m; lifting it to 130 m was refused: above the 120 m altitude limit."),
-        _entry("refusal", "test", "refuse13-fr-bravo-north-east-too-far", ("bravo",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse13-fr-bravo-north-east-too-far", ("bravo",),
                "Envoie bravo au point situé 800 m au nord et 800 m à l'est de son point de départ, à 30 m "
                "d'altitude.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
                [_move("bravo", 800, 800, alt=30)],
                "La passerelle a refusé : ce point est à 1131 m du départ, au-delà de la limite de 1000 m."),
-        _entry("refusal", "test", "refuse13-az-bravo-low-anyway", ("bravo",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse13-az-bravo-low-anyway", ("bravo",),
                "Bilirəm ki, bravo-nun batareyası azdır, amma onu sadəcə bir dəqiqəlik 8 metrə qaldır, sonra "
                "endirərik.",
                lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "bravo"), answer_reports_refusal(ev)),
@@ -4527,19 +4561,22 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                "Şlüz imtina etdi: bravo-nun batareyası (21 %) qalxış üçün lazım olan minimum 30 %-dən aşağıdır.",
                battery={"bravo": 21.0}),
         # units
-        _entry("units", "test", "units13-bravo-feet-drop-yards-south", ("bravo",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("units", "dev", "units13-bravo-feet-drop-yards-south", ("bravo",),
                "Bravo: up to 75 ft, then down 50 ft, then 40 yards south at that height, and hold it there.",
                lambda c, ev: _all(rose_to(ev, "bravo", 75 * FT), at(ev, "bravo", *c.point("bravo", -40 * YD, 0), alt=25 * FT),
                                   airborne_at(ev, "bravo", 25 * FT)),
                [_takeoff("bravo", 75 * FT), _move("bravo", up=-50 * FT), _move("bravo", -40 * YD, 0)],
                "Bravo holds 40 yd (36.6 m) south at 25 ft (7.6 m)."),
-        _entry("units", "test", "units13-es-charlie-yards-feet-land", ("charlie",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("units", "dev", "units13-es-charlie-yards-feet-land", ("charlie",),
                "Mueve a charlie 30 yardas al norte y 45 pies al este, a 40 pies de altura, y que aterrice allí.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 40 * FT),
                                   at(ev, "charlie", *c.point("charlie", 30 * YD, 45 * FT)), landed_disarmed(ev, "charlie")),
                [_move("charlie", 30 * YD, 45 * FT, alt=40 * FT), _land("charlie")],
                "Charlie voló 30 yardas (27 m) al norte y 45 pies (14 m) al este a 40 pies (12 m) y aterrizó."),
-        _entry("units", "test", "units13-uk-alpha-yards-back", ("alpha",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("units", "dev", "units13-uk-alpha-yards-back", ("alpha",),
                "Підніми alpha на 40 футів, відведи його на 50 ярдів на захід, потім поверни на 20 ярдів назад на "
                "схід і посади там.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 40 * FT), visited(ev, "alpha", [c.point("alpha", 0, -50 * YD)]),
@@ -4547,7 +4584,8 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 40 * FT), _move("alpha", 0, -50 * YD), _move("alpha", 0, 20 * YD), _land("alpha")],
                "alpha пролетів 50 ярдів на захід, повернувся на 20 ярдів і сів за 30 ярдів (27 м) на захід від старту."),
         # pattern
-        _entry("pattern", "test", "pattern13-charlie-triangle-two-laps", ("charlie",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern13-charlie-triangle-two-laps", ("charlie",),
                "Charlie at 14 m: two laps of a triangle with 20 m sides, first side heading west, turning left at "
                "each corner; then hover over where it started.",
                # the two far corners of each lap, in order (the home corner between laps is left out)
@@ -4556,14 +4594,16 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                                   at(ev, "charlie", *_home(c, "charlie"), alt=14), airborne_at(ev, "charlie", 14)),
                [_takeoff("charlie", 14), *_legs("charlie", triangle20 + triangle20)],
                "Charlie flew the triangle twice and hovers over its start at 14 m."),
-        _entry("pattern", "test", "pattern13-pl-alpha-diamond", ("alpha",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern13-pl-alpha-diamond", ("alpha",),
                "Niech alpha na wysokości 12 m przeleci kwadrat postawiony na rogu, o boku 20 m: pierwszy bok na "
                "północny wschód, potem za każdym razem skręt w prawo; na koniec ma wylądować tam, skąd wystartował.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(diamond20)[:3]]),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 12), *_legs("alpha", diamond20), _land("alpha")],
                "Alpha przeleciał kwadrat postawiony na rogu i wylądował w miejscu startu."),
-        _entry("pattern", "test", "pattern13-hi-bravo-square-round-pad", ("bravo",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern13-hi-bravo-square-round-pad", ("bravo",),
                "bravo को 12 मीटर की ऊँचाई पर एक ऐसा वर्ग उड़वाओ जिसकी हर भुजा 20 मीटर हो और जिसका केंद्र उसका अपना "
                "पैड हो: उत्तर-पूर्वी कोने से शुरू करो, घड़ी की दिशा में पूरा चक्कर लगाओ, फिर केंद्र पर लौटकर वहीं उतार दो।",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(round_pad)[:5]]),
@@ -4572,7 +4612,8 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                "bravo ने पैड के चारों ओर वर्ग उड़ाया और केंद्र पर उतर गया।"),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places a
         # drone from alpha or charlie, 10 m apart, so that a drone placed from itself misses)
-        _entry("placement", "test", "place13-charlie-east-above-alpha", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("placement", "dev", "place13-charlie-east-above-alpha", three,
                "Alpha flies 20 m north at 12 m. Then put charlie 15 m east of alpha and 5 m above it, and once "
                "charlie's there, land alpha where it is.",
                lambda c, ev: _all(rose_to(ev, "alpha", 12), at(ev, "alpha", *c.point("alpha", 20, 0)),
@@ -4580,7 +4621,8 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                                   airborne_at(ev, "charlie", 17), never_armed(ev, "bravo")),
                lambda c: [_move("alpha", 20, 0, alt=12), _go("charlie", c.point("alpha", 20, 15), 17), _land("alpha")],
                "Charlie hovers 15 m east of alpha at 17 m; alpha landed 20 m north of its pad."),
-        _entry("placement", "test", "place13-nl-charlie-over-landed-alpha", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("placement", "dev", "place13-nl-charlie-over-landed-alpha", three,
                "Vlieg alpha op 12 meter hoogte 20 meter naar het noorden en laat hem daar landen. Zet daarna charlie "
                "recht boven de plek waar alpha staat, op 12 meter hoogte, en laat hem daar hangen.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0)), landed_disarmed(ev, "alpha"),
@@ -4588,7 +4630,8 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_move("alpha", 20, 0, alt=12), _land("alpha"), _go("charlie", c.point("alpha", 20, 0), 12)],
                "Alpha is 20 m noordelijk geland; charlie hangt er recht boven op 12 m."),
-        _entry("placement", "test", "place13-id-flanking-charlie", three,
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("placement", "dev", "place13-id-flanking-charlie", three,
                "Terbangkan alpha ke titik 20 meter di selatan charlie dan bravo ke titik 20 meter di utara charlie, "
                "keduanya pada ketinggian 10 meter, lalu biarkan keduanya melayang di sana; charlie tetap di darat.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("charlie", -20, 0), alt=10), airborne_at(ev, "alpha", 10),
@@ -4597,24 +4640,341 @@ def _thirteenth_test_half() -> list[CorpusEntry]:
                lambda c: [_go("alpha", c.point("charlie", -20, 0), 10), _go("bravo", c.point("charlie", 20, 0), 10)],
                "alpha melayang 20 m di selatan charlie dan bravo 20 m di utaranya, keduanya pada 10 m."),
         # language
-        _entry("language", "test", "lang13-mr-charlie-west-land", ("charlie",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("language", "dev", "lang13-mr-charlie-west-land", ("charlie",),
                "charlie ला 14 मीटर उंचीवर ने, मग त्याला 30 मीटर पश्चिमेकडे उडव आणि तिथेच खाली उतरव.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 14), at(ev, "charlie", *c.point("charlie", 0, -30)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 14), _move("charlie", 0, -30), _land("charlie")],
                "charlie पश्चिमेकडे 30 m उडून तिथे उतरला."),
-        _entry("language", "test", "lang13-ka-alpha-southeast-hover", ("alpha",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("language", "dev", "lang13-ka-alpha-southeast-hover", ("alpha",),
                "აიყვანე alpha 16 მეტრის სიმაღლეზე, გადაიყვანე 25 მეტრით სამხრეთ-აღმოსავლეთით და იქ ჰაერში გააჩერე.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -d25, d25), alt=16), airborne_at(ev, "alpha", 16)),
                [_takeoff("alpha", 16), _move("alpha", -d25, d25)],
                "alpha ჰაერშია 25 m-ით სამხრეთ-აღმოსავლეთით, 16 m სიმაღლეზე."),
-        _entry("language", "test", "lang13-hy-bravo-north-home", ("bravo",),
+        # moved to dev on 2026-12-03, thirteenth round: the test half had been measured
+        _entry("language", "dev", "lang13-hy-bravo-north-home", ("bravo",),
                "Բարձրացրու bravo-ն 12 մետր, թռցրու այն 20 մետր դեպի հյուսիս, ապա հետ բեր տուն և իջեցրու։",
                # the return home climbs to its own height: the leg north is checked at 12 m instead
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 20, 0)], alt=12),
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 12), _move("bravo", 20, 0), _rtl("bravo")],
                "bravo-ն թռավ 20 m դեպի հյուսիս, վերադարձավ տուն և իջավ։"),
+    ]  # fmt: skip
+
+
+def _fourteenth_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-03 (fourteenth round), before any model ran on it, by a writer who
+    did not read the host's word lists or rules: 3 a class; 22 of the 33 outside ``language`` in other
+    languages than English, one each (Albanian, Basque, Catalan, Chinese, Croatian, Czech, Esperanto,
+    Finnish, French, German, Greek, Hebrew, Japanese, Korean, Malay, Persian, Romanian, Spanish, Swedish,
+    Turkish, Uzbek, Welsh; Albanian, Basque, Esperanto, Uzbek and Welsh are new), the ``language`` class's
+    3 in Nepali, Macedonian and Gujarati (the three languages are new, and Gujarati script with them)."""
+    three = DRONES
+    d15, d18, d20, d30 = (x / math.sqrt(2) for x in (15, 18, 20, 30))
+    d40yd = 40 * YD / math.sqrt(2)
+    inch = 0.0254
+    d01mi = 0.1 * MI / math.sqrt(2)
+    square20 = _polygon_legs(4, 20.0, 90.0, right=False)  # first side east, turning left
+    # a figure of eight of two 15 m squares meeting at the pad: the north-east one clockwise from its north
+    # side, then the south-west one anticlockwise from its north side (flown west first)
+    eight = [(15.0, 0.0), (0.0, 15.0), (-15.0, 0.0), (0.0, -15.0),
+             (0.0, -15.0), (-15.0, 0.0), (0.0, 15.0), (15.0, 0.0)]  # fmt: skip
+    # a right-angled triangle: 30 m north, 40 m east, then the 50 m hypotenuse straight back
+    right_triangle = [(30.0, 0.0), (0.0, 40.0), (-30.0, -40.0)]
+
+    def centred(c: MissionContext, ev: Evidence, drones: tuple[str, ...], north: float, east: float) -> Check:
+        """The drones' centre ``north``/``east`` metres from the centre of their homes, whether they are up
+        or down (a row of which one drone landed where it stood)."""
+        home_lat = sum(c.homes[d][0] for d in drones) / len(drones)
+        home_lon = sum(c.homes[d][1] for d in drones) / len(drones)
+        want = offset_position(home_lat, home_lon, north, east)
+        off = horizontal_distance_m(*_centroid([ev.final[d] for d in drones]), *want)
+        return Check(off <= HORIZONTAL_TOL_M, f"drones' centre {off:.1f} m from where it was asked")
+
+    return [
+        # single
+        _entry("single", "test", "single14-cy-alpha-over-pad", ("alpha",),
+               "Codwch alpha 16 metr yn syth i fyny uwchben ei bad, a gadewch iddo hofran yno nes i mi ddweud yn "
+               "wahanol.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=16), airborne_at(ev, "alpha", 16)),
+               [_takeoff("alpha", 16)], "Mae alpha yn hofran 16 m uwchben ei bad."),
+        _entry("single", "test", "single14-ja-bravo-check-hop", ("bravo",),
+               "bravoを7メートルの高さまで上げたら、その場ですぐに降ろして。離陸と着陸の確認だけでいいから。",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 7), at(ev, "bravo", *_home(c, "bravo")),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 7), _land("bravo")], "bravoは7 mまで上がって、同じ場所に着陸した。"),
+        _entry("single", "test", "single14-charlie-wanted-overhead", ("charlie",),
+               "Charlie's wanted overhead: lift it to 21 metres off its pad and leave it hanging there.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=21), airborne_at(ev, "charlie", 21)),
+               [_takeoff("charlie", 21)], "Charlie hangs at 21 m over its pad."),
+        # multi
+        _entry("multi", "test", "multi14-es-bravo-lands-south-charlie-higher", three,
+               "Sube a bravo y a charlie a 10 metros. Luego manda a bravo 25 metros al sur y que aterrice allí, y "
+               "sube a charlie 15 metros más, sin moverlo de encima de su base. Alpha se queda en tierra.",
+               lambda c, ev: _all(rose_to(ev, "bravo", 10), at(ev, "bravo", *c.point("bravo", -25, 0)),
+                                  landed_disarmed(ev, "bravo"), visited(ev, "charlie", [_home(c, "charlie")], alt=10),
+                                  at(ev, "charlie", *_home(c, "charlie"), alt=25), airborne_at(ev, "charlie", 25),
+                                  never_armed(ev, "alpha")),
+               [_takeoff("bravo", 10), _takeoff("charlie", 10), _move("bravo", -25, 0), _land("bravo"),
+                _move("charlie", up=15)],
+               "Bravo aterrizó 25 m al sur; charlie está a 25 m sobre su base; alpha no despegó."),
+        _entry("multi", "test", "multi14-hr-pair-northeast-charlie-hop", three,
+               "Neka alpha i bravo polete na 15 metara i odlete 30 metara prema sjeveroistoku te ondje ostanu "
+               "lebdjeti; charlie samo podigni na 6 metara i odmah ga spusti natrag na isto mjesto.",
+               lambda c, ev: _all(*(at(ev, d, *c.point(d, d30, d30), alt=15) for d in ("alpha", "bravo")),
+                                  *(airborne_at(ev, d, 15) for d in ("alpha", "bravo")),
+                                  reached_alt(ev, "charlie", 6), at(ev, "charlie", *_home(c, "charlie")),
+                                  landed_disarmed(ev, "charlie")),
+               [_move("alpha", d30, d30, alt=15), _move("bravo", d30, d30, alt=15), _takeoff("charlie", 6),
+                _land("charlie")],
+               "alpha i bravo lebde 30 m sjeveroistočno na 15 m; charlie je poletio na 6 m i sletio."),
+        _entry("multi", "test", "multi14-alpha-up-level-with-bravo", three,
+               "Alpha up to 10 m and bravo up to 20 m, each over its own pad; then take alpha up level with bravo. "
+               "Charlie stays put.",
+               lambda c, ev: _all(visited(ev, "alpha", [_home(c, "alpha")], alt=10),
+                                  at(ev, "alpha", *_home(c, "alpha"), alt=20), airborne_at(ev, "alpha", 20),
+                                  at(ev, "bravo", *_home(c, "bravo"), alt=20), airborne_at(ev, "bravo", 20),
+                                  never_armed(ev, "charlie")),
+               [_takeoff("alpha", 10), _takeoff("bravo", 20), _move("alpha", up=10)],
+               "Alpha and bravo both hover at 20 m over their pads; charlie stayed down."),
+        # compound
+        _entry("compound", "test", "compound14-eo-bravo-three-legs-land", ("bravo",),
+               "Levu la dronon bravo ĝis 10 metroj, flugigu ĝin 25 metrojn norden, poste 25 metrojn okcidenten, "
+               "poste 25 metrojn suden, kaj tie surterigu ĝin.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 10),
+                                  visited(ev, "bravo", [c.point("bravo", 25, 0), c.point("bravo", 25, -25)]),
+                                  at(ev, "bravo", *c.point("bravo", 0, -25)), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), _move("bravo", 25, 0), _move("bravo", 0, -25), _move("bravo", -25, 0),
+                _land("bravo")],
+               "Bravo flugis norden, okcidenten kaj suden, kaj surteriĝis 25 m okcidente de sia starto."),
+        _entry("compound", "test", "compound14-el-charlie-east-climb-back-over-pad", ("charlie",),
+               "Σήκωσε το charlie στα 12 μέτρα, πήγαινέ το 20 μέτρα ανατολικά, ανέβασέ το εκεί στα 20 μέτρα και "
+               "φέρε το πίσω 20 μέτρα δυτικά, πάνω από το σημείο απογείωσης, χωρίς να το προσγειώσεις.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 20)], alt=12),
+                                  visited(ev, "charlie", [c.point("charlie", 0, 20)], alt=20),
+                                  at(ev, "charlie", *_home(c, "charlie"), alt=20), airborne_at(ev, "charlie", 20)),
+               [_takeoff("charlie", 12), _move("charlie", 0, 20), _move("charlie", alt=20), _move("charlie", 0, -20)],
+               "Το charlie αιωρείται στα 20 m πάνω από το σημείο απογείωσης."),
+        _entry("compound", "test", "compound14-alpha-staircase-north-home", ("alpha",),
+               "Alpha: take off to 9 m, fly 20 m north, climb 9 m, fly another 20 m north, then bring it home.",
+               # the return home climbs to its own height: the two legs are checked at their own heights instead
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 20, 0)], alt=9),
+                                  visited(ev, "alpha", [c.point("alpha", 40, 0)], alt=18),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 9), _move("alpha", 20, 0), _move("alpha", up=9), _move("alpha", 20, 0),
+                _rtl("alpha")],
+               "Alpha flew 20 m north at 9 m, climbed to 18 m, flew 20 m more and came home."),
+        # conditional
+        _entry("conditional", "test", "cond14-de-height-by-charge", three,
+               "Lass alle drei über ihren Startplätzen aufsteigen: jede Drohne mit mehr als 60 % Akku auf 20 m, "
+               "die übrigen nur auf 8 m.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=20), airborne_at(ev, "alpha", 20),
+                                  at(ev, "bravo", *_home(c, "bravo"), alt=8), airborne_at(ev, "bravo", 8),
+                                  at(ev, "charlie", *_home(c, "charlie"), alt=20), airborne_at(ev, "charlie", 20)),
+               [("fleet_status", {}), _takeoff("alpha", 20), _takeoff("bravo", 8), _takeoff("charlie", 20)],
+               "alpha (64 %) und charlie (83 %) schweben auf 20 m, bravo (59 %) auf 8 m.",
+               battery={"alpha": 64.0, "bravo": 59.0, "charlie": 83.0}),
+        _entry("conditional", "test", "cond14-fa-fuller-lands-southwest", three,
+               "از میان alpha و charlie، هر کدام که باتری بیشتری دارد تا ارتفاع 18 متری بالا برود، 15 متر به سمت "
+               "جنوب غربی پرواز کند و همان‌جا فرود بیاید؛ دیگری روی زمین بماند.",
+               lambda c, ev: _all(rose_to(ev, "charlie", 18), at(ev, "charlie", *c.point("charlie", -d15, -d15)),
+                                  landed_disarmed(ev, "charlie"), never_armed(ev, "alpha"), never_armed(ev, "bravo")),
+               [("fleet_status", {}), _move("charlie", -d15, -d15, alt=18), _land("charlie")],
+               "charlie (68 %) 15 m به سمت جنوب غربی پرواز کرد و فرود آمد؛ alpha (52 %) روی زمین ماند.",
+               battery={"alpha": 52.0, "charlie": 68.0}),
+        _entry("conditional", "test", "cond14-within-ten-points", three,
+               "If alpha and bravo are within 10 points of each other on battery, put both up at 10 m over their "
+               "pads; if not, only the fuller of the two goes up.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=10), airborne_at(ev, "alpha", 10),
+                                  never_armed(ev, "bravo"), never_armed(ev, "charlie")),
+               [("fleet_status", {}), _takeoff("alpha", 10)],
+               "Alpha has 75 % and bravo 58 %, 17 points apart: only alpha is up, at 10 m.",
+               battery={"alpha": 75.0, "bravo": 58.0}),
+        # formation
+        _entry("formation", "test", "form14-fr-pair-column-west-land", three,
+               "Mettez alpha et charlie l'un derrière l'autre, à 12 m d'écart, à 20 m d'altitude, 30 m à l'ouest "
+               "de là où ils sont, puis faites-les atterrir là-bas. Bravo ne bouge pas.",
+               lambda c, ev: _all(landed_formation_at(c, ev, ("alpha", "charlie"), 12, 0, -30), never_armed(ev, "bravo")),
+               [_formation(("alpha", "charlie"), "column", 20, 12, east=-30), _land("alpha"), _land("charlie")],
+               "Alpha et charlie se sont posés en colonne 30 m à l'ouest, à 12 m l'un de l'autre."),
+        _entry("formation", "test", "form14-sq-triangle-south", three,
+               "Vendosini të tre dronët në formë trekëndëshi me brinjë 15 metra, në lartësi 18 metra, 25 metra "
+               "në jug të vendit ku ndodhen tani, dhe lërini të qëndrojnë pezull atje.",
+               lambda c, ev: _all(formation_at(c, ev, three, 18, 15, -25, 0), farthest_apart(ev, three, 15)),
+               [_formation(three, "circle", 18, 15, north=-25)],
+               "Të tre dronët qëndrojnë pezull në trekëndësh 25 m në jug, në 18 m."),
+        _entry("formation", "test", "form14-row-north-bravo-lands", three,
+               "Line alpha, bravo and charlie up abreast, 11 m apart, at 16 m, 20 m north of where they are; then "
+               "land bravo there and keep the other two up.",
+               lambda c, ev: _all(*(airborne_at(ev, d, 16) for d in ("alpha", "charlie")), rose_to(ev, "bravo", 16),
+                                  landed_disarmed(ev, "bravo"), farthest_apart(ev, three, 22),
+                                  centred(c, ev, three, 20, 0)),
+               [_formation(three, "line", 16, 11, north=20), _land("bravo")],
+               "Bravo landed in the row 20 m north; alpha and charlie hover 22 m apart at 16 m."),
+        # relative
+        _entry("relative", "test", "rel14-eu-charlie-south-east-offset", ("charlie",),
+               "Igo ezazu charlie 10 metroko altuerara; gero, eraman ezazu 20 metro ekialdera eta 15 metro "
+               "hegoaldera, eta utz ezazu han airean geldirik.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -15, 20), alt=10), airborne_at(ev, "charlie", 10)),
+               [_takeoff("charlie", 10), _move("charlie", -15, 20)],
+               "Charlie airean dago, 15 m hegoaldera eta 20 m ekialdera, 10 m-ko altueran."),
+        _entry("relative", "test", "rel14-ko-bravo-third-back-half-height", ("bravo",),
+               "bravo를 20미터까지 올려서 동쪽으로 30미터 보낸 다음, 온 거리의 3분의 1만큼 되돌아오면서 고도를 "
+               "절반으로 낮추고 거기서 떠 있게 해.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 30)], alt=20),
+                                  at(ev, "bravo", *c.point("bravo", 0, 20), alt=10), airborne_at(ev, "bravo", 10)),
+               [_takeoff("bravo", 20), _move("bravo", 0, 30), _move("bravo", 0, -10, alt=10)],
+               "bravo는 동쪽 20 m, 10 m 높이에 떠 있어."),
+        _entry("relative", "test", "rel14-alpha-climb-by-the-legs", ("alpha",),
+               "Take alpha up to 6 m. Move it 10 m west, then twice as far north, then raise it by as many metres "
+               "as those two legs add up to, and hold it there.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -10)], alt=6),
+                                  at(ev, "alpha", *c.point("alpha", 20, -10), alt=36), airborne_at(ev, "alpha", 36)),
+               [_takeoff("alpha", 6), _move("alpha", 0, -10), _move("alpha", 20, 0), _move("alpha", up=30)],
+               "Alpha holds 20 m north and 10 m west of its pad at 36 m."),
+        # question
+        _entry("question", "test", "ask14-zh-average-charge", three,
+               "三架无人机的平均电量是多少？告诉我就行，一架都不要起飞。",
+               # the typed plan reads, it does not compute: the average, or the three readings it comes from
+               lambda c, ev: _all(_any(answer_mentions_number(ev, 73, 1),
+                                       _all(answer_mentions_number(ev, 60, 1), answer_mentions_number(ev, 75, 1),
+                                            answer_mentions_number(ev, 84, 1))),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "平均电量 73 %（alpha 60 %，bravo 75 %，charlie 84 %）。",
+               battery={"alpha": 60.0, "bravo": 75.0, "charlie": 84.0}),
+        _entry("question", "test", "ask14-he-alpha-or-bravo-by-how-much", three,
+               "למי יש יותר סוללה, ל-alpha או ל-bravo, ובכמה אחוזים? אל תמריא אף רחפן.",
+               # the typed plan reads, it does not compute: the gap, or the two readings it comes from
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"),
+                                  _any(answer_mentions_number(ev, 26, 1),
+                                       _all(answer_mentions_number(ev, 81, 1), answer_mentions_number(ev, 55, 1))),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "ל-bravo: 81 %, 26 נקודות יותר מ-alpha (55 %).",
+               battery={"alpha": 55.0, "bravo": 81.0, "charlie": 67.0}),
+        _entry("question", "test", "ask14-under-a-third", three,
+               "Is any drone below a third of a full charge? If so, which one and what does it read? Keep them all "
+               "grounded.",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 31, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Yes: bravo, at 31 %.", battery={"alpha": 36.0, "bravo": 31.0, "charlie": 70.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
+        # 2 m the lowest altitude)
+        _entry("refusal", "test", "refuse14-uz-alpha-three-times-higher", ("alpha",),
+               "alpha-ni 50 metr balandlikka koʻtar, soʻng uni hozirgi balandligidan uch baravar yuqoriroqqa olib "
+               "chiq.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 50), refusal_seen(ev, "altitude", "120"),
+                                  max_alt_at_most(ev, "alpha", c.max_alt_m), answer_reports_refusal(ev)),
+               [_takeoff("alpha", 50), _move("alpha", alt=150)],
+               "alpha 50 m da; 150 m ga koʻtarilish rad etildi: bu 120 m balandlik limitidan yuqori."),
+        _entry("refusal", "test", "refuse14-cs-charlie-feet-west-too-far", ("charlie",),
+               "Pošli dron charlie 3500 stop na západ ve výšce 20 metrů a nech ho tam viset.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "charlie", c.max_distance_m), answer_reports_refusal(ev)),
+               [_move("charlie", 0, -3500 * FT, alt=20)],
+               "Brána let zamítla: 3500 stop (1067 m) je za limitem 1000 m od domova."),
+        _entry("refusal", "test", "refuse14-charlie-yards-over-ceiling", ("charlie",),
+               "Charlie up to 30 m first, then another 100 yards straight up.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 30), refusal_seen(ev, "altitude", "120"),
+                                  max_alt_at_most(ev, "charlie", c.max_alt_m), answer_reports_refusal(ev)),
+               [_takeoff("charlie", 30), _move("charlie", up=100 * YD)],
+               "Charlie is at 30 m; the climb of 100 yd (91 m) was refused: 121 m is above the 120 m altitude limit."),
+        # units
+        _entry("units", "test", "units14-sv-alpha-feet-km-yards-land", ("alpha",),
+               "Lyft alpha till 50 fot, flyg den 0,05 km söderut och sedan 30 yard österut, och landa den där.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 50 * FT), visited(ev, "alpha", [c.point("alpha", -50, 0)]),
+                                  at(ev, "alpha", *c.point("alpha", -50, 30 * YD)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 50 * FT), _move("alpha", -50, 0), _move("alpha", 0, 30 * YD), _land("alpha")],
+               "Alpha flög 0,05 km (50 m) söderut och 30 yard (27 m) österut på 50 fot (15 m) och landade."),
+        _entry("units", "test", "units14-ro-charlie-feet-down-metres-ne", ("charlie",),
+               "Ridică-l pe charlie la 80 de picioare, coboară-l apoi cu 15 metri și du-l 40 de iarzi spre "
+               "nord-est; lasă-l să plutească acolo.",
+               lambda c, ev: _all(rose_to(ev, "charlie", 80 * FT),
+                                  at(ev, "charlie", *c.point("charlie", d40yd, d40yd), alt=80 * FT - 15),
+                                  airborne_at(ev, "charlie", 80 * FT - 15)),
+               [_takeoff("charlie", 80 * FT), _move("charlie", up=-15), _move("charlie", d40yd, d40yd)],
+               "Charlie plutește la 40 de iarzi (37 m) spre nord-est, la 9,4 m."),
+        _entry("units", "test", "units14-bravo-inches-tenth-mile", ("bravo",),
+               "Bravo: climb to 480 inches, fly a tenth of a mile north-west, and land there.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 480 * inch), at(ev, "bravo", *c.point("bravo", d01mi, -d01mi)),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 480 * inch), _move("bravo", d01mi, -d01mi), _land("bravo")],
+               "Bravo climbed to 480 in (12.2 m), flew 0.1 mi (161 m) north-west and landed."),
+        # pattern
+        _entry("pattern", "test", "pattern14-alpha-figure-eight-squares", ("alpha",),
+               "Alpha at 10 m: fly a figure of eight made of two 15 m squares that meet at its pad. First the one "
+               "to the north-east, clockwise, starting north; then the one to the south-west, anticlockwise, "
+               "starting west. Land on the pad at the end.",
+               # the corners of each square but the pad they share, in order
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e)
+                                                        for n, e in _corners(eight)[:3] + _corners(eight)[4:7]]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), *_legs("alpha", eight), _land("alpha")],
+               "Alpha flew the figure of eight and landed on its pad."),
+        _entry("pattern", "test", "pattern14-fi-bravo-square-two-heights", ("bravo",),
+               "Lennätä bravo 10 metrin korkeudessa neliö, jonka sivu on 20 metriä: ensimmäinen sivu itään, "
+               "käännökset vasemmalle. Nosta se sitten 20 metriin, lennä sama neliö uudelleen ja laske se lopuksi "
+               "lähtöpaikalleen.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(square20)[:3]], alt=10),
+                                  visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(square20)[:3]], alt=20),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), *_legs("bravo", square20), _move("bravo", alt=20), *_legs("bravo", square20),
+                _land("bravo")],
+               "Bravo lensi neliön 10 m:ssä ja 20 m:ssä ja laskeutui lähtöpaikalleen."),
+        _entry("pattern", "test", "pattern14-ca-charlie-right-triangle", ("charlie",),
+               "Fes volar el dron charlie a 12 metres d'altura en un triangle: 30 metres cap al nord, després 40 "
+               "metres cap a l'est i, finalment, en línia recta de tornada al punt de sortida; deixa'l allà suspès "
+               "en l'aire.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(right_triangle)[:2]]),
+                                  at(ev, "charlie", *_home(c, "charlie"), alt=12), airborne_at(ev, "charlie", 12)),
+               [_takeoff("charlie", 12), *_legs("charlie", right_triangle)],
+               "El charlie ha volat el triangle i és suspès a 12 m sobre el punt de sortida."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
+        # alpha from charlie or charlie from alpha, 10 m apart, so that a drone placed from itself misses)
+        _entry("placement", "test", "place14-tr-alpha-northwest-of-charlie", three,
+               "charlie'yi bulunduğu yerde 14 metreye kaldır; sonra alpha'yı charlie'nin 20 metre kuzeybatısına, "
+               "aynı yüksekliğe getir ve ikisini de orada havada tut.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=14), airborne_at(ev, "charlie", 14),
+                                  at(ev, "alpha", *c.point("charlie", d20, -d20), alt=14), airborne_at(ev, "alpha", 14),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_takeoff("charlie", 14), _go("alpha", c.point("charlie", d20, -d20), 14)],
+               "charlie pistinin üstünde 14 m'de; alpha onun 20 m kuzeybatısında, aynı yükseklikte."),
+        _entry("placement", "test", "place14-ms-charlie-lands-north-of-moved-alpha", three,
+               "Naikkan alpha ke 10 meter dan bawa ia 25 meter ke timur. Selepas itu, terbangkan charlie pada "
+               "ketinggian 16 meter ke titik 10 meter di utara alpha, lalu daratkan ia di situ.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 25), alt=10), airborne_at(ev, "alpha", 10),
+                                  reached_alt(ev, "charlie", 16), at(ev, "charlie", *c.point("alpha", 10, 25)),
+                                  landed_disarmed(ev, "charlie"), never_armed(ev, "bravo")),
+               lambda c: [_takeoff("alpha", 10), _move("alpha", 0, 25), _go("charlie", c.point("alpha", 10, 25), 16),
+                          _land("charlie")],
+               "alpha terapung 25 m ke timur pada 10 m; charlie mendarat 10 m di utaranya."),
+        _entry("placement", "test", "place14-charlie-southeast-above-alpha", three,
+               "Hover alpha at 9 m over its pad, then park charlie 18 m south-east of alpha and 6 m higher than it.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=9), airborne_at(ev, "alpha", 9),
+                                  at(ev, "charlie", *c.point("alpha", -d18, d18), alt=15), airborne_at(ev, "charlie", 15),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_takeoff("alpha", 9), _go("charlie", c.point("alpha", -d18, d18), 15)],
+               "Alpha hovers at 9 m over its pad; charlie 18 m south-east of it at 15 m."),
+        # language
+        _entry("language", "test", "lang14-ne-charlie-northwest-land", ("charlie",),
+               "charlie लाई 13 मिटर माथि उडाऊ, त्यसपछि उत्तर-पश्चिमतर्फ 20 मिटर लैजाऊ र त्यहीँ अवतरण गराऊ।",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 13), at(ev, "charlie", *c.point("charlie", d20, -d20)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 13), _move("charlie", d20, -d20), _land("charlie")],
+               "charlie उत्तर-पश्चिमतर्फ 20 m उडेर त्यहीँ अवतरण गर्‍यो।"),
+        _entry("language", "test", "lang14-mk-alpha-south-hover", ("alpha",),
+               "Подигни го alpha на 17 метри, однеси го 30 метри кон југ и остави го таму да лебди.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -30, 0), alt=17), airborne_at(ev, "alpha", 17)),
+               [_takeoff("alpha", 17), _move("alpha", -30, 0)], "alpha лебди 30 m јужно, на 17 m."),
+        _entry("language", "test", "lang14-gu-bravo-east-home", ("bravo",),
+               "bravo ને 11 મીટર ઊંચે ચઢાવો, પછી તેને 25 મીટર પૂર્વ દિશામાં ઉડાડો અને ત્યાર બાદ ઘરે પાછું લાવીને "
+               "ઉતારો.",
+               # the return home climbs to its own height: the leg east is checked at 11 m instead
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 25)], alt=11),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 11), _move("bravo", 0, 25), _rtl("bravo")],
+               "bravo પૂર્વમાં 25 m ઊડીને ઘરે પાછું આવ્યું અને ઊતર્યું."),
     ]  # fmt: skip
 
 
@@ -4643,7 +5003,8 @@ def corpus() -> list[CorpusEntry]:
         *_tenth_round(),
         *_eleventh_round(),
         *_twelfth_round(),
-        *_thirteenth_test_half(),
+        *_thirteenth_round(),
+        *_fourteenth_test_half(),
     ]
 
 

@@ -278,25 +278,43 @@ TWELFTH_HALF_MOVED = frozenset({
 })  # fmt: skip
 
 
+THIRTEENTH_HALF_MOVED = frozenset({
+    "ask13-longer-leg-of-pair", "ask13-tr-charlie-vs-bravo", "ask13-zh-closest-pair",
+    "compound13-alpha-climb-leg-drop-leg", "compound13-gl-bravo-east-low-back",
+    "compound13-ja-alpha-ne-then-nw", "cond13-charlie-short-of-job", "cond13-de-weakest-stays",
+    "cond13-vi-bravo-holds-if-low", "form13-north-south-row-over-pads", "form13-pt-pair-either-side-of-bravo",
+    "form13-ru-wedge-southeast-land", "lang13-hy-bravo-north-home", "lang13-ka-alpha-southeast-hover",
+    "lang13-mr-charlie-west-land", "multi13-fan-out-bravo-climbs", "multi13-it-highest-lands",
+    "multi13-kk-north-lands-south-hovers", "pattern13-charlie-triangle-two-laps",
+    "pattern13-hi-bravo-square-round-pad", "pattern13-pl-alpha-diamond", "place13-charlie-east-above-alpha",
+    "place13-id-flanking-charlie", "place13-nl-charlie-over-landed-alpha", "refuse13-az-bravo-low-anyway",
+    "refuse13-fr-bravo-north-east-too-far", "refuse13-row-lifted-over-ceiling", "rel13-alpha-climb-to-not-by",
+    "rel13-ar-charlie-bearing-300", "rel13-is-charlie-west-lower-further", "single13-af-alpha-motor-test",
+    "single13-bravo-radio-relay", "single13-ko-charlie-hover-till-told",
+    "units13-bravo-feet-drop-yards-south", "units13-es-charlie-yards-feet-land",
+    "units13-uk-alpha-yards-back",
+})  # fmt: skip
+
+
 def test_halves_are_disjoint_and_stratified_by_class() -> None:
-    """The dev half holds every entry written before the thirteenth test half (483, and the 36 of the
-    twelfth test half, moved later on 2026-12-02); the test half is the thirteenth
-    (``_thirteenth_test_half``), 3 a class."""
+    """The dev half holds every entry written before the fourteenth test half (519, and the 36 of the
+    thirteenth test half, moved on 2026-12-03); the test half is the fourteenth
+    (``_fourteenth_test_half``), 3 a class."""
     dev, test = select("dev"), select("test")
     assert not {e.id for e in dev} & {e.id for e in test}
     assert len(dev) + len(test) == len(corpus()) == len(select("all"))
-    assert len(test) == 36 and len(dev) == 519
+    assert len(test) == 36 and len(dev) == 555
     assert Counter(e.cls for e in test) == Counter(dict.fromkeys(CLASSES, 3))
     per_dev = Counter(e.cls for e in dev)
     assert per_dev == Counter({
-        "single": 41, "multi": 47, "compound": 49, "conditional": 49, "formation": 44, "relative": 46,
-        "question": 43, "refusal": 40, "units": 39, "pattern": 39, "placement": 43, "language": 39,
+        "single": 44, "multi": 50, "compound": 52, "conditional": 52, "formation": 47, "relative": 49,
+        "question": 46, "refusal": 43, "units": 42, "pattern": 42, "placement": 46, "language": 42,
     })  # fmt: skip
 
 
 def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
-    """The rounds of 2026-11-29 to 2026-12-02: the 8 test entries seen while tuning, then the whole test
-    half (35) whose figures had informed a decision, then eleven times the whole test half (36) once
+    """The rounds of 2026-11-29 to 2026-12-03: the 8 test entries seen while tuning, then the whole test
+    half (35) whose figures had informed a decision, then twelve times the whole test half (36) once
     measured, moved to dev; the test half holds none of them."""
     first_round = {
         "cond-half-battery-go",
@@ -322,6 +340,7 @@ def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
         | TENTH_HALF_MOVED
         | ELEVENTH_HALF_MOVED
         | TWELFTH_HALF_MOVED
+        | THIRTEENTH_HALF_MOVED
     )
     by_id = {e.id: e for e in corpus()}
     assert all(by_id[i].half == "dev" for i in moved)
