@@ -8,6 +8,7 @@ except the one documented default, the height a drone on the ground takes off to
 from __future__ import annotations
 
 import math
+import operator
 from collections.abc import Callable, Coroutine, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Protocol
@@ -84,7 +85,6 @@ class CompileError(ValueError):
 @dataclass
 class Compiler:
     sensors: Sensors
-    default_takeoff_m: float = DEFAULT_TAKEOFF_M
     _handlers: dict[type, Callable[[Any], Coroutine[Any, Any, Compiled]]] = field(init=False)
 
     def __post_init__(self) -> None:
@@ -109,7 +109,7 @@ class Compiler:
         ``north``, ``east``: where the step takes the drone from where it is now (m)."""
         if step.after == "return_home" and await self._at_home(step.drone, north, east):
             return [Call("land", {"drone_id": step.drone}, step.drone)]
-        return ending(step)
+        return ends_with(step.after, step.drone)
 
     async def _at_home(self, drone: str, north: float = 0.0, east: float = 0.0) -> bool:
         """Whether ``drone``, moved ``north`` and ``east`` from where it is, is over its home."""
@@ -145,13 +145,13 @@ class Compiler:
         state = await self.sensors.state(drone)
         if state.flying:
             return [], False
-        height = alt if alt is not None else (up if up > 0 else self.default_takeoff_m)
+        height = alt if alt is not None else (up if up > 0 else DEFAULT_TAKEOFF_M)
         return [Call("takeoff", {"drone_id": drone, "alt_m": height}, drone)], up > 0 and height == up
 
     async def _move(self, step: Move) -> Compiled:
         calls = await self._move_only(step)
         if step.origin.kind != "here":
-            return [*calls, *ending(step)]
+            return [*calls, *ends_with(step.after, step.drone)]
         north, east, _ = sum_legs(step.legs)
         return [*calls, *await self._ending(step, north, east)]
 
@@ -194,7 +194,7 @@ class Compiler:
             state = await self.sensors.state(drone) if drone else None
             if state is not None and state.flying:
                 return (state.alt_m or 0.0) + up
-        return up or self.default_takeoff_m
+        return up or DEFAULT_TAKEOFF_M
 
     async def origin(self, ref: Reference, drone: str) -> tuple[float, float]:
         """Where a reference is: a drone's position (now), a home (its drone's, else the mover's), a place."""
@@ -226,7 +226,7 @@ class Compiler:
             Call("move_to_relative", {"drone_id": step.drone, "north_m": n, "east_m": e}, step.drone)
             for n, e in legs
         ]
-        return [*calls, *moves, *ending(step)]
+        return [*calls, *moves, *ends_with(step.after, step.drone)]
 
     async def _formation(self, step: Formation) -> Compiled:
         north, east, _ = sum_legs(step.legs)
@@ -267,7 +267,7 @@ class Compiler:
         value = reading_value(state, step.reading)
         if value is None:
             return [Said(f"{step.drone} reports no {step.reading}: nothing was done.")], []
-        holds = compare(value, step.compare, step.value)
+        holds = _COMPARISONS[step.compare](value, step.value)
         how = f"{step.compare.replace('_', ' ')} {step.value:g}: {'so' if holds else 'not'}"
         said = Said(f"{step.drone}: {step.reading} {value:g} {_UNITS[step.reading]}, {how}.")
         return [said], list(step.then if holds else step.otherwise)
@@ -296,6 +296,7 @@ class Compiler:
 
 
 _UNITS = {"battery": "%", "altitude": "m"}
+_COMPARISONS = {"above": operator.gt, "below": operator.lt, "at_least": operator.ge, "at_most": operator.le}
 
 
 #: a polygon of drones: the gateway's circle when the polygon has as many corners as there are drones
@@ -304,19 +305,14 @@ _POLYGON_FORMATIONS = {"triangle": (3, "wedge"), "square": (4, "grid")}
 
 
 def gateway_formation(shape: str, count: int) -> str:
-    """The gateway's formation for a plan's shape flown by ``count`` drones."""
     if shape not in _POLYGON_FORMATIONS:
         return shape
     corners, otherwise = _POLYGON_FORMATIONS[shape]
     return "circle" if count == corners else otherwise
 
 
-def ending(step: Takeoff | Altitude | Move | Pattern) -> Compiled:
-    """The landing or return a step ends with (none when the drone stays)."""
-    return ends_with(step.after, step.drone)
-
-
 def ends_with(after: str, drone: str) -> Compiled:
+    """The landing or return a step's ``after`` asks of ``drone`` (none when the drone stays)."""
     tool = {"land": "land", "return_home": "return_to_launch"}.get(after)
     return [] if tool is None else [Call(tool, {"drone_id": drone}, drone)]
 
@@ -354,7 +350,6 @@ def sum_legs(legs: list[Leg]) -> tuple[float, float, float]:
 
 
 def pattern_legs(step: Pattern) -> list[geometry.Offset]:
-    """A pattern's legs from where the drone is."""
     heading = 0.0 if step.heading in (None, "up", "down") else geometry.compass_heading(step.heading)
     clockwise = step.turn != "left"
     if step.shape in POLYGON_SIDES or step.shape == "polygon":
@@ -371,13 +366,6 @@ def pattern_legs(step: Pattern) -> list[geometry.Offset]:
 
 def reading_value(state: DroneState, reading: str) -> float | None:
     return {"battery": state.battery_pct, "altitude": state.alt_m}.get(reading)
-
-
-def compare(value: float, how: str, threshold: float) -> bool:
-    return {
-        "above": value > threshold, "below": value < threshold,
-        "at_least": value >= threshold, "at_most": value <= threshold,
-    }[how]  # fmt: skip
 
 
 def pick(states: dict[str, DroneState], reading: str, how: str) -> tuple[str | None, float]:
@@ -404,7 +392,6 @@ def with_drone(step: Any, drone: str) -> Any:
 
 
 def describe_state(drone: str, state: DroneState, readings: Sequence[str]) -> str:
-    """One line of readings: battery %, altitude, position, whether it flies."""
     parts = []
     for reading in readings:
         if reading == "battery":

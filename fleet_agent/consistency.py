@@ -89,7 +89,6 @@ def _step_numbers(step: Any) -> list[float]:
 
 
 def _only(numbers: list[float], given: list[float]) -> bool:
-    """Every one of ``numbers`` is one of ``given``."""
     return all(any(abs(n - g) < 1e-6 for g in given) for n in numbers)
 
 
@@ -176,7 +175,6 @@ def as_request_says(request: str, data: Any) -> Any:
 
 
 def _from_itself(step: Any) -> bool:
-    """A move measured from its own drone."""
     if not isinstance(step, dict) or step.get("drone") is None:
         return False
     origin = step.get("origin")
@@ -317,12 +315,9 @@ def _horizontal(leg: Any) -> bool:
 
 
 def _horizontal_move_from_here(step: Any) -> bool:
-    return (
-        isinstance(step, dict)
-        and step.get("action") == "move"
-        and step.get("origin") in ("here", {"kind": "here"})
-        and any(_horizontal(leg) for leg in step.get("legs") or [])
-    )
+    move = isinstance(step, dict) and step.get("action") == "move"
+    from_here = move and step.get("origin") in ("here", {"kind": "here"})
+    return from_here and any(_horizontal(leg) for leg in step.get("legs") or [])
 
 
 def _origins(steps: list[Any]) -> set[str]:

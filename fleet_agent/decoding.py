@@ -71,10 +71,8 @@ class Planner:
             try:
                 reply = await self._complete(messages, options, attempt.usage)
             except openai.OpenAIError as exc:
-                attempt.model_error = (
-                    f"the model endpoint {self.model.base_url} (model {self.model.model}) did not answer: "
-                    f"{type(exc).__name__}: {exc}"
-                )
+                endpoint = f"the model endpoint {self.model.base_url} (model {self.model.model})"
+                attempt.model_error = f"{endpoint} did not answer: {type(exc).__name__}: {exc}"
                 return attempt
             attempt.replies.append(reply)
             problem = self._read(reply, request, fleet, attempt)

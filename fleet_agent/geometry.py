@@ -70,10 +70,8 @@ def orbit_legs(
     back in."""
     turn = 360.0 / points * (1 if clockwise else -1)
     corners = [_scaled(heading_vector(start_deg + i * turn), radius_m) for i in range(points + 1)]
-    chords = [
-        (round(b[0] - a[0], 2) + 0.0, round(b[1] - a[1], 2) + 0.0) for a, b in itertools.pairwise(corners)
-    ]
-    return [corners[0], *chords, (-corners[0][0] + 0.0, -corners[0][1] + 0.0)]
+    chords = [_scaled((b[0] - a[0], b[1] - a[1]), 1.0) for a, b in itertools.pairwise(corners)]
+    return [corners[0], *chords, _scaled(corners[0], -1.0)]
 
 
 def survey_legs(

@@ -24,7 +24,7 @@ from fleet_agent.records import (
     ToolOutcome,
     TurnResult,
 )
-from fleet_agent.sensors import McpSensors
+from fleet_agent.sensors import McpSensors, ReadFn
 
 #: capped waits the host adds to an action the gateway reports still running (each up to its cap)
 MAX_FOLLOW_WAITS = 20
@@ -71,23 +71,21 @@ class AgentHost:
         return turn
 
     def _sensors(self, turn: TurnResult) -> McpSensors:
-        async def read(name: str, args: Arguments) -> ToolOutcome:
-            return await self._send(turn, self.caller, Call(name, args))
-
-        place_read = None
-        if self.places is not None:
-            caller = self.places[0]
-
-            async def place_read(name: str, args: Arguments) -> ToolOutcome:
+        def reader(caller: ToolCaller) -> ReadFn:
+            async def read(name: str, args: Arguments) -> ToolOutcome:
                 return await self._send(turn, caller, Call(name, args))
 
-        return McpSensors(read, self.places[1] if self.places else None, place_read)
+            return read
+
+        if self.places is None:
+            return McpSensors(reader(self.caller))
+        return McpSensors(reader(self.caller), self.places[1], reader(self.places[0]))
 
     async def _run_plan(
         self, steps: Sequence[Any], compiler: Compiler, sensors: McpSensors, turn: TurnResult
     ) -> list[str]:
-        """Each step compiled when its turn comes (the fleet read after the calls before it); the steps
-        an ``if`` or a ``choose`` selects take their turns next."""
+        """Each step compiled when its turn comes (the fleet read after the calls before it), its calls and
+        lines in order; the steps an ``if`` or a ``choose`` selects take their turns next."""
         state = TurnState(tools=self.tools)
         lines: list[str] = []
         queue = list(steps)
@@ -103,20 +101,12 @@ class AgentHost:
             except CompileError as exc:
                 lines.append(f"Not done: {exc}.")
                 continue
-            if await self._send_all(compiled, state, sensors, turn, lines):
-                return lines
+            for item in compiled:
+                if isinstance(item, Said):
+                    lines.append(item.text)
+                elif await self._checked_send(item, state, sensors, turn, lines):
+                    return lines
         return lines
-
-    async def _send_all(
-        self, compiled: list[Any], state: TurnState, sensors: McpSensors, turn: TurnResult, lines: list[str]
-    ) -> bool:
-        """A step's calls and lines, in order; True when the turn stops."""
-        for item in compiled:
-            if isinstance(item, Said):
-                lines.append(item.text)
-            elif await self._checked_send(item, state, sensors, turn, lines):
-                return True
-        return False
 
     async def _checked_send(
         self, call: Call, state: TurnState, sensors: McpSensors, turn: TurnResult, lines: list[str]

@@ -9,18 +9,11 @@ import tomllib
 import unicodedata
 from itertools import dropwhile, pairwise, takewhile
 from pathlib import Path
-from typing import Any
 
 from fleet_agent.plan import OPPOSITE
 from fleet_agent.units import Unit
 
-
-def _words() -> dict[str, Any]:
-    with (Path(__file__).parent / "words.toml").open("rb") as file:
-        return tomllib.load(file)
-
-
-_WORDS = _words()
+_WORDS = tomllib.loads((Path(__file__).parent / "words.toml").read_text(encoding="utf-8"))
 #: a unit's words, each the whole word that follows a number ("50 ft", "0,05 km", "100 yards")
 UNIT_WORDS = {Unit(unit): frozenset(words.split()) for unit, words in _WORDS["units"].items()}
 #: stems of a drone's home, read only to measure a move the model wrote from its own drone from its home
@@ -29,12 +22,9 @@ HOME_STEMS = tuple(_WORDS["home"]["stems"].split())
 _STEMS = [(s.replace("_", " "), p) for p, stems in _WORDS["points"].items() for s in stems.split()]
 _STEMS.sort(key=lambda stem_point: -len(stem_point[0]))
 #: compass words that are common words too: each counts only after one of its words ("à l'est", "al sur")
+SHARED_POINTS = {word: (s["point"], s["after"].split()) for word, s in _WORDS["shared_points"].items()}
 #: stems of staying in the air, and of coming down (a landing, the ground, coming back)
 STAY_STEMS, DOWN_STEMS = (tuple(_WORDS["endings"][kind].split()) for kind in ("stay", "down"))
-SHARED_POINTS = {
-    word: (shared["point"], shared["after"].split()) for word, shared in _WORDS["shared_points"].items()
-}
-
 
 #: from here on (Hebrew, Arabic, Devanagari, Thai, CJK, Hangul...), a stem is found inside a word too: these
 #: scripts join letters or write no spaces

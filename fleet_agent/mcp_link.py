@@ -14,6 +14,7 @@ from mcp.types import Implementation
 from fleet_agent.records import Arguments, ProgressFn, ToolOutcome
 
 _MAX_PAGES = 50
+_CALL_TIMEOUT_S = 300.0
 
 
 class McpLinkError(RuntimeError):
@@ -27,13 +28,10 @@ class ToolInfo:
     name: str
     description: str
     input_schema: dict[str, Any]
-    read_only: bool | None = None
 
 
 def tool_info_from_mcp(tool: Any) -> ToolInfo:
-    annotations = getattr(tool, "annotations", None)
-    read_only = getattr(annotations, "read_only_hint", None) if annotations is not None else None
-    return ToolInfo(tool.name, tool.description or tool.name, dict(tool.input_schema or {}), read_only)
+    return ToolInfo(tool.name, tool.description or tool.name, dict(tool.input_schema or {}))
 
 
 def outcome_from_result(result: Any) -> ToolOutcome:
@@ -47,12 +45,9 @@ def outcome_from_result(result: Any) -> ToolOutcome:
 class McpLink:
     """An open MCP client session: list tools, call them with progress. Use as an async context manager."""
 
-    def __init__(self, url: str, token: str | None = None, *, call_timeout_s: float = 300.0,
-                 mode: str = "auto") -> None:  # fmt: skip
+    def __init__(self, url: str, token: str | None = None) -> None:
         self.url = url
         self.token = token
-        self.call_timeout_s = call_timeout_s
-        self.mode = mode
         self._stack: AsyncExitStack | None = None
         self._client: Client | None = None
 
@@ -61,13 +56,12 @@ class McpLink:
         stack = AsyncExitStack()
         try:
             http = await stack.enter_async_context(
-                httpx2.AsyncClient(headers=headers, timeout=httpx2.Timeout(30.0, read=self.call_timeout_s))
+                httpx2.AsyncClient(headers=headers, timeout=httpx2.Timeout(30.0, read=_CALL_TIMEOUT_S))
             )
             client = Client(
                 streamable_http_client(self.url, http_client=http),
-                mode=self.mode,
                 client_info=Implementation(name="fleet-agent", version="0.2.0"),
-                read_timeout_seconds=self.call_timeout_s,
+                read_timeout_seconds=_CALL_TIMEOUT_S,
             )
             self._client = await stack.enter_async_context(client)
         except BaseException as exc:

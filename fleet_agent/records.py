@@ -14,8 +14,6 @@ Outcome = Literal["answered", "invalid_plan", "model_error", "step_limit", "empt
 
 @dataclass(frozen=True)
 class ToolOutcome:
-    """An MCP tool result: its text, whether it is an error, and its structured content."""
-
     text: str
     is_error: bool = False
     structured: dict[str, Any] | None = None
@@ -46,11 +44,8 @@ class ToolCaller(Protocol):
 
 @dataclass
 class ModelConfig:
-    """An OpenAI-compatible endpoint and how plans are decoded there.
-
-    ``decoding``: ``json_schema`` (``response_format``: llama.cpp, LM Studio, OpenAI structured outputs),
-    ``ollama`` (Ollama's ``format``), ``guided`` (vLLM's ``guided_json``) or ``none`` (the schema only in
-    the prompt; the reply is validated and repaired once)."""
+    """An OpenAI-compatible endpoint and how plans are decoded there (``decoding``: one of
+    `fleet_agent.decoding.DECODINGS`, described in `fleet_agent.settings.AgentSettings`)."""
 
     base_url: str
     model: str
