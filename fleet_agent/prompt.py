@@ -7,6 +7,9 @@ request stays the same (a local server reuses its cached prefix); the steps are 
 from __future__ import annotations
 
 import json
+import math
+from collections import Counter
+from functools import cache
 from pathlib import Path
 from typing import Any
 
@@ -14,16 +17,17 @@ from typing import Any
 _STEPS = (Path(__file__).parent / "system_prompt.txt").read_text(encoding="utf-8")
 
 
-def _examples() -> list[tuple[str, dict[str, Any]]]:
-    """The worked examples (``examples.jsonl``, one a line: a request and its plan), in their order."""
-    lines = (Path(__file__).parent / "examples.jsonl").read_text(encoding="utf-8").splitlines()
+def _examples(name: str) -> list[tuple[str, dict[str, Any]]]:
+    """Worked examples (one a line: a request and its plan), in their order."""
+    lines = (Path(__file__).parent / name).read_text(encoding="utf-8").splitlines()
     return [(example["request"], example["plan"]) for example in map(json.loads, filter(None, lines))]
 
 
-EXAMPLES = _examples()
-
-
-EXAMPLE_FLEET = ["delta", "echo"]
+#: shown before every request, written for a fleet of delta and echo
+EXAMPLES, EXAMPLE_FLEET = _examples("examples.jsonl"), ["delta", "echo"]
+#: requests of the development corpus with their plans, for alpha, bravo and charlie: the few nearest a
+#: request are shown after the fixed examples, so the model sees its request's shape and language solved
+POOL, POOL_FLEET, NEAREST = _examples("pool.jsonl"), ["alpha", "bravo", "charlie"], 3
 
 
 def prefix_messages(fleet: list[str] | None = None) -> list[dict[str, str]]:
@@ -31,17 +35,20 @@ def prefix_messages(fleet: list[str] | None = None) -> list[dict[str, str]]:
     written for a fleet of delta and echo; they are shown with the fleet's own first two ids instead (a
     decoder held to the fleet's ids cannot write an example's id, and a small model that wanted to then
     writes whichever id the grammar lets through). The prefix stays the same while the fleet does."""
-    names = _renaming(fleet or EXAMPLE_FLEET)
-    messages = [{"role": "system", "content": _STEPS}]
-    for text, plan in EXAMPLES:
-        messages.append({"role": "user", "content": _renamed(user_message(text, EXAMPLE_FLEET), names)})
-        messages.append({"role": "assistant", "content": _renamed(_compact(plan), names)})
-    return messages
+    turns = [_turn(text, plan, EXAMPLE_FLEET, fleet) for text, plan in EXAMPLES]
+    return [{"role": "system", "content": _STEPS}, *(m for turn in turns for m in turn)]
 
 
-def _renaming(fleet: list[str]) -> dict[str, str]:
-    ids = (list(fleet) * 2)[:2] if fleet else EXAMPLE_FLEET
-    return dict(zip(EXAMPLE_FLEET, ids, strict=True))
+def _turn(
+    text: str, plan: dict[str, Any], written_for: list[str], fleet: list[str] | None
+) -> list[dict[str, str]]:
+    """An example as a user turn and the assistant's plan, its drones renamed the fleet's in their order."""
+    ids = (list(fleet) * len(written_for))[: len(written_for)] if fleet else written_for
+    names = dict(zip(written_for, ids, strict=True))
+    return [
+        {"role": "user", "content": _renamed(user_message(text, written_for), names)},
+        {"role": "assistant", "content": _renamed(_compact(plan), names)},
+    ]
 
 
 def _renamed(text: str, names: dict[str, str]) -> str:
@@ -51,8 +58,43 @@ def _renamed(text: str, names: dict[str, str]) -> str:
 
 
 def messages_for(request: str, fleet: list[str], places: list[str] | None = None) -> list[dict[str, str]]:
-    """What the model is sent for a request: the fixed prefix, then the request."""
-    return [*prefix_messages(fleet), {"role": "user", "content": user_message(request, fleet, places)}]
+    """What the model is sent for a request: the fixed prefix, the pool's examples nearest the request
+    (the nearest last), then the request."""
+    near = [m for text, plan in nearest(request, fleet) for m in _turn(text, plan, POOL_FLEET, fleet)]
+    return [*prefix_messages(fleet), *near, {"role": "user", "content": user_message(request, fleet, places)}]
+
+
+def _trigrams(text: str, ids: list[str]) -> Counter[str]:
+    """The text's character trigrams, every digit as 0 and every drone id as @: nearness is in what is
+    asked and in which language, not which drone or how far. Trigrams read every script with no words."""
+    text = " ".join(text.lower().split())
+    for name in sorted(ids, key=len, reverse=True):
+        text = text.replace(name.lower(), "@")
+    text = "".join("0" if c.isdigit() else c for c in f" {text} ")
+    return Counter(text[i : i + 3] for i in range(len(text) - 2))
+
+
+@cache
+def _pool_vectors() -> tuple[list[dict[str, float]], dict[str, float]]:
+    grams = [_trigrams(text, POOL_FLEET) for text, _ in POOL]
+    seen = Counter(g for each in grams for g in each)
+    weights = {g: math.log((1 + len(grams)) / (1 + n)) for g, n in seen.items()}
+    return [_unit(each, weights) for each in grams], weights
+
+
+def _unit(grams: Counter[str], weights: dict[str, float]) -> dict[str, float]:
+    """Trigram counts weighted by rarity in the pool (those every example has weigh little), length 1."""
+    vector = {g: n * weights.get(g, 0.0) for g, n in grams.items()}
+    norm = math.sqrt(sum(x * x for x in vector.values())) or 1.0
+    return {g: x / norm for g, x in vector.items()}
+
+
+def nearest(request: str, fleet: list[str], count: int = NEAREST) -> list[tuple[str, dict[str, Any]]]:
+    """The ``count`` pool examples nearest ``request`` (cosine of weighted trigrams), the nearest last."""
+    vectors, weights = _pool_vectors()
+    asked = _unit(_trigrams(request, fleet), weights)
+    score = [sum(w * vector.get(g, 0.0) for g, w in asked.items()) for vector in vectors]
+    return [POOL[i] for i in sorted(range(len(POOL)), key=score.__getitem__)[-count:]]
 
 
 def system_prompt(fleet: list[str] | None = None) -> str:

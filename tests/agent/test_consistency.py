@@ -53,8 +53,10 @@ def test_the_examples_are_shown_with_the_fleets_own_ids_and_the_prefix_stays_put
     shown = " ".join(m["content"] for m in prefix_messages(["hawk", "kite", "owl"]))
     assert "delta" not in shown.lower() and "echo" not in shown.lower()
     assert "Hawk" in shown and '"drone":"kite"' in shown
+    prefix = prefix_messages(FLEET)
     first, second = messages_for("a", FLEET), messages_for("b", FLEET)
-    assert first[:-1] == second[:-1] and first[-1]["content"].endswith("Request: a")
+    assert first[: len(prefix)] == second[: len(prefix)] == prefix
+    assert first[-1]["content"].endswith("Request: a")
 
 
 def test_a_step_of_an_unnamed_drone_is_dropped_only_with_a_number_the_request_does_not_give() -> None:

@@ -12,6 +12,7 @@ import pytest
 PACKAGE = Path(__file__).resolve().parents[2] / "fleet_agent"
 MAX_LINES = 2500
 MAX_DATA_LINES = 200
+MAX_POOL_EXAMPLES = 300
 
 
 def _modules() -> list[Path]:
@@ -29,11 +30,12 @@ def test_it_imports_nothing_of_the_gateway() -> None:
 
 def test_it_stays_within_its_size_and_reads_no_words_with_rules() -> None:
     """At most 2,500 lines of Python, beside at most 200 of data (the words the lexicon reads, the system
-    prompt and the worked examples, one a line)."""
+    prompt and the worked examples, one a line) and a pool of at most 300 examples shown by nearness."""
     lines = sum(len(p.read_text().splitlines()) for p in _modules())
     assert lines <= MAX_LINES, lines
     data = [PACKAGE / name for name in ("words.toml", "system_prompt.txt", "examples.jsonl")]
     assert sum(len(p.read_text().splitlines()) for p in data) <= MAX_DATA_LINES
+    assert len((PACKAGE / "pool.jsonl").read_text().splitlines()) <= MAX_POOL_EXAMPLES
     regex_calls = 0
     for path in _modules():
         for node in ast.walk(ast.parse(path.read_text())):
