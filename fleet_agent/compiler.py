@@ -98,6 +98,9 @@ class Compiler:
         return await self._handlers[type(step)](step)
 
     async def _simple(self, step: Land | ReturnHome | Hold) -> Compiled:
+        """A hold of a drone on the ground keeps it there: the request names a drone it leaves alone."""
+        if isinstance(step, Hold) and not (await self.sensors.state(step.drone)).flying:
+            return [Said(f"{step.drone} stays on the ground.")]
         if isinstance(step, ReturnHome) and await self._at_home(step.drone):
             return [Call("land", {"drone_id": step.drone}, step.drone)]
         tool = {"land": "land", "return_home": "return_to_launch", "hold": "hold_position"}[step.action]

@@ -565,3 +565,13 @@ async def test_a_move_at_0_m_flies_at_no_given_height() -> None:
     out = await compiled(step)
     assert out[0] == Call("takeoff", {"drone_id": "charlie", "alt_m": 28.0}, "charlie")
     assert not [c for c in out[1:] if c.args.get("up_m") or c.args.get("alt_m") is not None]  # no other climb
+
+
+async def test_a_hold_keeps_a_drone_on_the_ground_there_and_a_flying_one_in_place() -> None:
+    """A drone the request names but leaves alone ("alpha stays on the ground") is a hold step: nothing is
+    sent for it on the ground; in the air it holds its position."""
+    step = {"action": "hold", "drone": "alpha"}
+    assert await compiled(step) == [Said("alpha stays on the ground.")]
+    assert await compiled(step, FakeSensors({"alpha": flying()})) == [
+        Call("hold_position", {"drone_id": "alpha"}, "alpha")
+    ]
