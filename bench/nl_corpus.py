@@ -159,8 +159,9 @@ ran on it by a writer who did not read the host's word lists or rules: 22 of the
 Hungarian, Icelandic, Indonesian, Irish, Italian, Latvian, Lithuanian, Norwegian, Polish, Portuguese,
 Serbian, Slovenian, Tagalog, Thai, Vietnamese; Irish is new, and Serbian in Latin script), and the
 ``language`` class's 3 in Ukrainian, Swahili and Punjabi (all three new to the class, and Gurmukhi
-script). Only the harness self-check (the scripted ideal plan) has run on them. That leaves 591 dev and
-36 test.
+script). Only the harness self-check (the scripted ideal plan) has run on them: 36 of 36 passed (once
+the Serbian row's check no longer wanted its peak height: the climb from 12 to 22 m overshot to 26 m).
+That leaves 591 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -5155,8 +5156,8 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
         _entry("formation", "test", "form15-sr-row-then-raise", three,
                "Poređaj sva tri drona u vrstu, jedan pored drugog, na razmaku od 8 metara i na visini od 12 "
                "metara, tačno iznad mesta gde sada stoje; zatim celu vrstu podigni na 22 metra i drži ih tamo.",
-               lambda c, ev: _all(*(reached_alt(ev, d, 22) for d in three), formation_at(c, ev, three, 22, 8, 0, 0),
-                                  farthest_apart(ev, three, 16)),
+               # (the row's climb may overshoot 22 m on the way: only where it holds is checked)
+               lambda c, ev: _all(formation_at(c, ev, three, 22, 8, 0, 0), farthest_apart(ev, three, 16)),
                [_formation(three, "line", 12, 8), _formation(three, "line", 22, 8)],
                "Sva tri drona drže vrstu na 22 m, na razmaku od 8 m, iznad svojih mesta."),
         # relative
