@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 591 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 627 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -151,6 +151,17 @@ French, German, Greek, Hebrew, Japanese, Korean, Malay, Persian, Romanian, Spani
 Uzbek, Welsh; Albanian, Basque, Esperanto, Uzbek and Welsh are new), and the ``language`` class's 3 in
 Nepali, Macedonian and Gujarati (all three new, and Gujarati script). Only the harness self-check (the
 scripted ideal plan) has run on them: 36 of 36 passed. That leaves 555 dev and 36 test.
+Later on 2026-12-03 (fourteenth round) EVERY test entry (36, ``_fourteenth_round``) was moved to dev, each
+marked "moved to dev on 2026-12-03, fourteenth round", once both models had been measured on it. A fresh
+test half took its place (``_fifteenth_test_half``): 36 new requests, 3 a class, written before any model
+ran on it by a writer who did not read the host's word lists or rules: 22 of the 33 outside the
+``language`` class in 22 languages, one each (Arabic, Bengali, Bulgarian, Danish, Dutch, Estonian, Hindi,
+Hungarian, Icelandic, Indonesian, Irish, Italian, Latvian, Lithuanian, Norwegian, Polish, Portuguese,
+Serbian, Slovenian, Tagalog, Thai, Vietnamese; Irish is new, and Serbian in Latin script), and the
+``language`` class's 3 in Ukrainian, Swahili and Punjabi (all three new to the class, and Gurmukhi
+script). Only the harness self-check (the scripted ideal plan) has run on them: 36 of 36 passed (once
+the Serbian row's check no longer wanted its peak height: the climb from 12 to 22 m overshot to 26 m).
+That leaves 591 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -4664,13 +4675,14 @@ def _thirteenth_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _fourteenth_test_half() -> list[CorpusEntry]:
+def _fourteenth_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-03 (fourteenth round), before any model ran on it, by a writer who
     did not read the host's word lists or rules: 3 a class; 22 of the 33 outside ``language`` in other
     languages than English, one each (Albanian, Basque, Catalan, Chinese, Croatian, Czech, Esperanto,
     Finnish, French, German, Greek, Hebrew, Japanese, Korean, Malay, Persian, Romanian, Spanish, Swedish,
     Turkish, Uzbek, Welsh; Albanian, Basque, Esperanto, Uzbek and Welsh are new), the ``language`` class's
-    3 in Nepali, Macedonian and Gujarati (the three languages are new, and Gujarati script with them)."""
+    3 in Nepali, Macedonian and Gujarati (the three languages are new, and Gujarati script with them); all of
+    it moved to dev on 2026-12-03 (fourteenth round), once both models had been measured on it."""
     three = DRONES
     d15, d18, d20, d30 = (x / math.sqrt(2) for x in (15, 18, 20, 30))
     d40yd = 40 * YD / math.sqrt(2)
@@ -4695,22 +4707,26 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
 
     return [
         # single
-        _entry("single", "test", "single14-cy-alpha-over-pad", ("alpha",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("single", "dev", "single14-cy-alpha-over-pad", ("alpha",),
                "Codwch alpha 16 metr yn syth i fyny uwchben ei bad, a gadewch iddo hofran yno nes i mi ddweud yn "
                "wahanol.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=16), airborne_at(ev, "alpha", 16)),
                [_takeoff("alpha", 16)], "Mae alpha yn hofran 16 m uwchben ei bad."),
-        _entry("single", "test", "single14-ja-bravo-check-hop", ("bravo",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("single", "dev", "single14-ja-bravo-check-hop", ("bravo",),
                "bravoを7メートルの高さまで上げたら、その場ですぐに降ろして。離陸と着陸の確認だけでいいから。",
                lambda c, ev: _all(reached_alt(ev, "bravo", 7), at(ev, "bravo", *_home(c, "bravo")),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 7), _land("bravo")], "bravoは7 mまで上がって、同じ場所に着陸した。"),
-        _entry("single", "test", "single14-charlie-wanted-overhead", ("charlie",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("single", "dev", "single14-charlie-wanted-overhead", ("charlie",),
                "Charlie's wanted overhead: lift it to 21 metres off its pad and leave it hanging there.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=21), airborne_at(ev, "charlie", 21)),
                [_takeoff("charlie", 21)], "Charlie hangs at 21 m over its pad."),
         # multi
-        _entry("multi", "test", "multi14-es-bravo-lands-south-charlie-higher", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("multi", "dev", "multi14-es-bravo-lands-south-charlie-higher", three,
                "Sube a bravo y a charlie a 10 metros. Luego manda a bravo 25 metros al sur y que aterrice allí, y "
                "sube a charlie 15 metros más, sin moverlo de encima de su base. Alpha se queda en tierra.",
                lambda c, ev: _all(rose_to(ev, "bravo", 10), at(ev, "bravo", *c.point("bravo", -25, 0)),
@@ -4720,7 +4736,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 10), _takeoff("charlie", 10), _move("bravo", -25, 0), _land("bravo"),
                 _move("charlie", up=15)],
                "Bravo aterrizó 25 m al sur; charlie está a 25 m sobre su base; alpha no despegó."),
-        _entry("multi", "test", "multi14-hr-pair-northeast-charlie-hop", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("multi", "dev", "multi14-hr-pair-northeast-charlie-hop", three,
                "Neka alpha i bravo polete na 15 metara i odlete 30 metara prema sjeveroistoku te ondje ostanu "
                "lebdjeti; charlie samo podigni na 6 metara i odmah ga spusti natrag na isto mjesto.",
                lambda c, ev: _all(*(at(ev, d, *c.point(d, d30, d30), alt=15) for d in ("alpha", "bravo")),
@@ -4730,7 +4747,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                [_move("alpha", d30, d30, alt=15), _move("bravo", d30, d30, alt=15), _takeoff("charlie", 6),
                 _land("charlie")],
                "alpha i bravo lebde 30 m sjeveroistočno na 15 m; charlie je poletio na 6 m i sletio."),
-        _entry("multi", "test", "multi14-alpha-up-level-with-bravo", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("multi", "dev", "multi14-alpha-up-level-with-bravo", three,
                "Alpha up to 10 m and bravo up to 20 m, each over its own pad; then take alpha up level with bravo. "
                "Charlie stays put.",
                lambda c, ev: _all(visited(ev, "alpha", [_home(c, "alpha")], alt=10),
@@ -4740,7 +4758,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 10), _takeoff("bravo", 20), _move("alpha", up=10)],
                "Alpha and bravo both hover at 20 m over their pads; charlie stayed down."),
         # compound
-        _entry("compound", "test", "compound14-eo-bravo-three-legs-land", ("bravo",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("compound", "dev", "compound14-eo-bravo-three-legs-land", ("bravo",),
                "Levu la dronon bravo ĝis 10 metroj, flugigu ĝin 25 metrojn norden, poste 25 metrojn okcidenten, "
                "poste 25 metrojn suden, kaj tie surterigu ĝin.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 10),
@@ -4749,7 +4768,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 10), _move("bravo", 25, 0), _move("bravo", 0, -25), _move("bravo", -25, 0),
                 _land("bravo")],
                "Bravo flugis norden, okcidenten kaj suden, kaj surteriĝis 25 m okcidente de sia starto."),
-        _entry("compound", "test", "compound14-el-charlie-east-climb-back-over-pad", ("charlie",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("compound", "dev", "compound14-el-charlie-east-climb-back-over-pad", ("charlie",),
                "Σήκωσε το charlie στα 12 μέτρα, πήγαινέ το 20 μέτρα ανατολικά, ανέβασέ το εκεί στα 20 μέτρα και "
                "φέρε το πίσω 20 μέτρα δυτικά, πάνω από το σημείο απογείωσης, χωρίς να το προσγειώσεις.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 20)], alt=12),
@@ -4757,7 +4777,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                                   at(ev, "charlie", *_home(c, "charlie"), alt=20), airborne_at(ev, "charlie", 20)),
                [_takeoff("charlie", 12), _move("charlie", 0, 20), _move("charlie", alt=20), _move("charlie", 0, -20)],
                "Το charlie αιωρείται στα 20 m πάνω από το σημείο απογείωσης."),
-        _entry("compound", "test", "compound14-alpha-staircase-north-home", ("alpha",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("compound", "dev", "compound14-alpha-staircase-north-home", ("alpha",),
                "Alpha: take off to 9 m, fly 20 m north, climb 9 m, fly another 20 m north, then bring it home.",
                # the return home climbs to its own height: the two legs are checked at their own heights instead
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 20, 0)], alt=9),
@@ -4767,7 +4788,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                 _rtl("alpha")],
                "Alpha flew 20 m north at 9 m, climbed to 18 m, flew 20 m more and came home."),
         # conditional
-        _entry("conditional", "test", "cond14-de-height-by-charge", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("conditional", "dev", "cond14-de-height-by-charge", three,
                "Lass alle drei über ihren Startplätzen aufsteigen: jede Drohne mit mehr als 60 % Akku auf 20 m, "
                "die übrigen nur auf 8 m.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=20), airborne_at(ev, "alpha", 20),
@@ -4776,7 +4798,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                [("fleet_status", {}), _takeoff("alpha", 20), _takeoff("bravo", 8), _takeoff("charlie", 20)],
                "alpha (64 %) und charlie (83 %) schweben auf 20 m, bravo (59 %) auf 8 m.",
                battery={"alpha": 64.0, "bravo": 59.0, "charlie": 83.0}),
-        _entry("conditional", "test", "cond14-fa-fuller-lands-southwest", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("conditional", "dev", "cond14-fa-fuller-lands-southwest", three,
                "از میان alpha و charlie، هر کدام که باتری بیشتری دارد تا ارتفاع 18 متری بالا برود، 15 متر به سمت "
                "جنوب غربی پرواز کند و همان‌جا فرود بیاید؛ دیگری روی زمین بماند.",
                lambda c, ev: _all(rose_to(ev, "charlie", 18), at(ev, "charlie", *c.point("charlie", -d15, -d15)),
@@ -4784,7 +4807,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                [("fleet_status", {}), _move("charlie", -d15, -d15, alt=18), _land("charlie")],
                "charlie (68 %) 15 m به سمت جنوب غربی پرواز کرد و فرود آمد؛ alpha (52 %) روی زمین ماند.",
                battery={"alpha": 52.0, "charlie": 68.0}),
-        _entry("conditional", "test", "cond14-within-ten-points", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("conditional", "dev", "cond14-within-ten-points", three,
                "If alpha and bravo are within 10 points of each other on battery, put both up at 10 m over their "
                "pads; if not, only the fuller of the two goes up.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=10), airborne_at(ev, "alpha", 10),
@@ -4793,19 +4817,22 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                "Alpha has 75 % and bravo 58 %, 17 points apart: only alpha is up, at 10 m.",
                battery={"alpha": 75.0, "bravo": 58.0}),
         # formation
-        _entry("formation", "test", "form14-fr-pair-column-west-land", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("formation", "dev", "form14-fr-pair-column-west-land", three,
                "Mettez alpha et charlie l'un derrière l'autre, à 12 m d'écart, à 20 m d'altitude, 30 m à l'ouest "
                "de là où ils sont, puis faites-les atterrir là-bas. Bravo ne bouge pas.",
                lambda c, ev: _all(landed_formation_at(c, ev, ("alpha", "charlie"), 12, 0, -30), never_armed(ev, "bravo")),
                [_formation(("alpha", "charlie"), "column", 20, 12, east=-30), _land("alpha"), _land("charlie")],
                "Alpha et charlie se sont posés en colonne 30 m à l'ouest, à 12 m l'un de l'autre."),
-        _entry("formation", "test", "form14-sq-triangle-south", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("formation", "dev", "form14-sq-triangle-south", three,
                "Vendosini të tre dronët në formë trekëndëshi me brinjë 15 metra, në lartësi 18 metra, 25 metra "
                "në jug të vendit ku ndodhen tani, dhe lërini të qëndrojnë pezull atje.",
                lambda c, ev: _all(formation_at(c, ev, three, 18, 15, -25, 0), farthest_apart(ev, three, 15)),
                [_formation(three, "circle", 18, 15, north=-25)],
                "Të tre dronët qëndrojnë pezull në trekëndësh 25 m në jug, në 18 m."),
-        _entry("formation", "test", "form14-row-north-bravo-lands", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("formation", "dev", "form14-row-north-bravo-lands", three,
                "Line alpha, bravo and charlie up abreast, 11 m apart, at 16 m, 20 m north of where they are; then "
                "land bravo there and keep the other two up.",
                lambda c, ev: _all(*(airborne_at(ev, d, 16) for d in ("alpha", "charlie")), rose_to(ev, "bravo", 16),
@@ -4814,20 +4841,23 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                [_formation(three, "line", 16, 11, north=20), _land("bravo")],
                "Bravo landed in the row 20 m north; alpha and charlie hover 22 m apart at 16 m."),
         # relative
-        _entry("relative", "test", "rel14-eu-charlie-south-east-offset", ("charlie",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("relative", "dev", "rel14-eu-charlie-south-east-offset", ("charlie",),
                "Igo ezazu charlie 10 metroko altuerara; gero, eraman ezazu 20 metro ekialdera eta 15 metro "
                "hegoaldera, eta utz ezazu han airean geldirik.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", -15, 20), alt=10), airborne_at(ev, "charlie", 10)),
                [_takeoff("charlie", 10), _move("charlie", -15, 20)],
                "Charlie airean dago, 15 m hegoaldera eta 20 m ekialdera, 10 m-ko altueran."),
-        _entry("relative", "test", "rel14-ko-bravo-third-back-half-height", ("bravo",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("relative", "dev", "rel14-ko-bravo-third-back-half-height", ("bravo",),
                "bravo를 20미터까지 올려서 동쪽으로 30미터 보낸 다음, 온 거리의 3분의 1만큼 되돌아오면서 고도를 "
                "절반으로 낮추고 거기서 떠 있게 해.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 30)], alt=20),
                                   at(ev, "bravo", *c.point("bravo", 0, 20), alt=10), airborne_at(ev, "bravo", 10)),
                [_takeoff("bravo", 20), _move("bravo", 0, 30), _move("bravo", 0, -10, alt=10)],
                "bravo는 동쪽 20 m, 10 m 높이에 떠 있어."),
-        _entry("relative", "test", "rel14-alpha-climb-by-the-legs", ("alpha",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("relative", "dev", "rel14-alpha-climb-by-the-legs", ("alpha",),
                "Take alpha up to 6 m. Move it 10 m west, then twice as far north, then raise it by as many metres "
                "as those two legs add up to, and hold it there.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -10)], alt=6),
@@ -4835,7 +4865,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 6), _move("alpha", 0, -10), _move("alpha", 20, 0), _move("alpha", up=30)],
                "Alpha holds 20 m north and 10 m west of its pad at 36 m."),
         # question
-        _entry("question", "test", "ask14-zh-average-charge", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("question", "dev", "ask14-zh-average-charge", three,
                "三架无人机的平均电量是多少？告诉我就行，一架都不要起飞。",
                # the typed plan reads, it does not compute: the average, or the three readings it comes from
                lambda c, ev: _all(_any(answer_mentions_number(ev, 73, 1),
@@ -4844,7 +4875,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                                   nobody_armed(ev)),
                [("fleet_status", {})], "平均电量 73 %（alpha 60 %，bravo 75 %，charlie 84 %）。",
                battery={"alpha": 60.0, "bravo": 75.0, "charlie": 84.0}),
-        _entry("question", "test", "ask14-he-alpha-or-bravo-by-how-much", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("question", "dev", "ask14-he-alpha-or-bravo-by-how-much", three,
                "למי יש יותר סוללה, ל-alpha או ל-bravo, ובכמה אחוזים? אל תמריא אף רחפן.",
                # the typed plan reads, it does not compute: the gap, or the two readings it comes from
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"),
@@ -4853,7 +4885,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                                   nobody_armed(ev)),
                [("fleet_status", {})], "ל-bravo: 81 %, 26 נקודות יותר מ-alpha (55 %).",
                battery={"alpha": 55.0, "bravo": 81.0, "charlie": 67.0}),
-        _entry("question", "test", "ask14-under-a-third", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("question", "dev", "ask14-under-a-third", three,
                "Is any drone below a third of a full charge? If so, which one and what does it read? Keep them all "
                "grounded.",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 31, 1),
@@ -4861,33 +4894,38 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                [("fleet_status", {})], "Yes: bravo, at 31 %.", battery={"alpha": 36.0, "bravo": 31.0, "charlie": 70.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude)
-        _entry("refusal", "test", "refuse14-uz-alpha-three-times-higher", ("alpha",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse14-uz-alpha-three-times-higher", ("alpha",),
                "alpha-ni 50 metr balandlikka koʻtar, soʻng uni hozirgi balandligidan uch baravar yuqoriroqqa olib "
                "chiq.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 50), refusal_seen(ev, "altitude", "120"),
                                   max_alt_at_most(ev, "alpha", c.max_alt_m), answer_reports_refusal(ev)),
                [_takeoff("alpha", 50), _move("alpha", alt=150)],
                "alpha 50 m da; 150 m ga koʻtarilish rad etildi: bu 120 m balandlik limitidan yuqori."),
-        _entry("refusal", "test", "refuse14-cs-charlie-feet-west-too-far", ("charlie",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse14-cs-charlie-feet-west-too-far", ("charlie",),
                "Pošli dron charlie 3500 stop na západ ve výšce 20 metrů a nech ho tam viset.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "charlie", c.max_distance_m), answer_reports_refusal(ev)),
                [_move("charlie", 0, -3500 * FT, alt=20)],
                "Brána let zamítla: 3500 stop (1067 m) je za limitem 1000 m od domova."),
-        _entry("refusal", "test", "refuse14-charlie-yards-over-ceiling", ("charlie",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse14-charlie-yards-over-ceiling", ("charlie",),
                "Charlie up to 30 m first, then another 100 yards straight up.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 30), refusal_seen(ev, "altitude", "120"),
                                   max_alt_at_most(ev, "charlie", c.max_alt_m), answer_reports_refusal(ev)),
                [_takeoff("charlie", 30), _move("charlie", up=100 * YD)],
                "Charlie is at 30 m; the climb of 100 yd (91 m) was refused: 121 m is above the 120 m altitude limit."),
         # units
-        _entry("units", "test", "units14-sv-alpha-feet-km-yards-land", ("alpha",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("units", "dev", "units14-sv-alpha-feet-km-yards-land", ("alpha",),
                "Lyft alpha till 50 fot, flyg den 0,05 km söderut och sedan 30 yard österut, och landa den där.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 50 * FT), visited(ev, "alpha", [c.point("alpha", -50, 0)]),
                                   at(ev, "alpha", *c.point("alpha", -50, 30 * YD)), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 50 * FT), _move("alpha", -50, 0), _move("alpha", 0, 30 * YD), _land("alpha")],
                "Alpha flög 0,05 km (50 m) söderut och 30 yard (27 m) österut på 50 fot (15 m) och landade."),
-        _entry("units", "test", "units14-ro-charlie-feet-down-metres-ne", ("charlie",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("units", "dev", "units14-ro-charlie-feet-down-metres-ne", ("charlie",),
                "Ridică-l pe charlie la 80 de picioare, coboară-l apoi cu 15 metri și du-l 40 de iarzi spre "
                "nord-est; lasă-l să plutească acolo.",
                lambda c, ev: _all(rose_to(ev, "charlie", 80 * FT),
@@ -4895,14 +4933,16 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                                   airborne_at(ev, "charlie", 80 * FT - 15)),
                [_takeoff("charlie", 80 * FT), _move("charlie", up=-15), _move("charlie", d40yd, d40yd)],
                "Charlie plutește la 40 de iarzi (37 m) spre nord-est, la 9,4 m."),
-        _entry("units", "test", "units14-bravo-inches-tenth-mile", ("bravo",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("units", "dev", "units14-bravo-inches-tenth-mile", ("bravo",),
                "Bravo: climb to 480 inches, fly a tenth of a mile north-west, and land there.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 480 * inch), at(ev, "bravo", *c.point("bravo", d01mi, -d01mi)),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 480 * inch), _move("bravo", d01mi, -d01mi), _land("bravo")],
                "Bravo climbed to 480 in (12.2 m), flew 0.1 mi (161 m) north-west and landed."),
         # pattern
-        _entry("pattern", "test", "pattern14-alpha-figure-eight-squares", ("alpha",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern14-alpha-figure-eight-squares", ("alpha",),
                "Alpha at 10 m: fly a figure of eight made of two 15 m squares that meet at its pad. First the one "
                "to the north-east, clockwise, starting north; then the one to the south-west, anticlockwise, "
                "starting west. Land on the pad at the end.",
@@ -4912,7 +4952,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), *_legs("alpha", eight), _land("alpha")],
                "Alpha flew the figure of eight and landed on its pad."),
-        _entry("pattern", "test", "pattern14-fi-bravo-square-two-heights", ("bravo",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern14-fi-bravo-square-two-heights", ("bravo",),
                "Lennätä bravo 10 metrin korkeudessa neliö, jonka sivu on 20 metriä: ensimmäinen sivu itään, "
                "käännökset vasemmalle. Nosta se sitten 20 metriin, lennä sama neliö uudelleen ja laske se lopuksi "
                "lähtöpaikalleen.",
@@ -4922,7 +4963,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 10), *_legs("bravo", square20), _move("bravo", alt=20), *_legs("bravo", square20),
                 _land("bravo")],
                "Bravo lensi neliön 10 m:ssä ja 20 m:ssä ja laskeutui lähtöpaikalleen."),
-        _entry("pattern", "test", "pattern14-ca-charlie-right-triangle", ("charlie",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern14-ca-charlie-right-triangle", ("charlie",),
                "Fes volar el dron charlie a 12 metres d'altura en un triangle: 30 metres cap al nord, després 40 "
                "metres cap a l'est i, finalment, en línia recta de tornada al punt de sortida; deixa'l allà suspès "
                "en l'aire.",
@@ -4932,7 +4974,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                "El charlie ha volat el triangle i és suspès a 12 m sobre el punt de sortida."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
         # alpha from charlie or charlie from alpha, 10 m apart, so that a drone placed from itself misses)
-        _entry("placement", "test", "place14-tr-alpha-northwest-of-charlie", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("placement", "dev", "place14-tr-alpha-northwest-of-charlie", three,
                "charlie'yi bulunduğu yerde 14 metreye kaldır; sonra alpha'yı charlie'nin 20 metre kuzeybatısına, "
                "aynı yüksekliğe getir ve ikisini de orada havada tut.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=14), airborne_at(ev, "charlie", 14),
@@ -4940,7 +4983,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_takeoff("charlie", 14), _go("alpha", c.point("charlie", d20, -d20), 14)],
                "charlie pistinin üstünde 14 m'de; alpha onun 20 m kuzeybatısında, aynı yükseklikte."),
-        _entry("placement", "test", "place14-ms-charlie-lands-north-of-moved-alpha", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("placement", "dev", "place14-ms-charlie-lands-north-of-moved-alpha", three,
                "Naikkan alpha ke 10 meter dan bawa ia 25 meter ke timur. Selepas itu, terbangkan charlie pada "
                "ketinggian 16 meter ke titik 10 meter di utara alpha, lalu daratkan ia di situ.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 25), alt=10), airborne_at(ev, "alpha", 10),
@@ -4949,7 +4993,8 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("alpha", 10), _move("alpha", 0, 25), _go("charlie", c.point("alpha", 10, 25), 16),
                           _land("charlie")],
                "alpha terapung 25 m ke timur pada 10 m; charlie mendarat 10 m di utaranya."),
-        _entry("placement", "test", "place14-charlie-southeast-above-alpha", three,
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("placement", "dev", "place14-charlie-southeast-above-alpha", three,
                "Hover alpha at 9 m over its pad, then park charlie 18 m south-east of alpha and 6 m higher than it.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=9), airborne_at(ev, "alpha", 9),
                                   at(ev, "charlie", *c.point("alpha", -d18, d18), alt=15), airborne_at(ev, "charlie", 15),
@@ -4957,17 +5002,20 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("alpha", 9), _go("charlie", c.point("alpha", -d18, d18), 15)],
                "Alpha hovers at 9 m over its pad; charlie 18 m south-east of it at 15 m."),
         # language
-        _entry("language", "test", "lang14-ne-charlie-northwest-land", ("charlie",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("language", "dev", "lang14-ne-charlie-northwest-land", ("charlie",),
                "charlie लाई 13 मिटर माथि उडाऊ, त्यसपछि उत्तर-पश्चिमतर्फ 20 मिटर लैजाऊ र त्यहीँ अवतरण गराऊ।",
                lambda c, ev: _all(reached_alt(ev, "charlie", 13), at(ev, "charlie", *c.point("charlie", d20, -d20)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 13), _move("charlie", d20, -d20), _land("charlie")],
                "charlie उत्तर-पश्चिमतर्फ 20 m उडेर त्यहीँ अवतरण गर्‍यो।"),
-        _entry("language", "test", "lang14-mk-alpha-south-hover", ("alpha",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("language", "dev", "lang14-mk-alpha-south-hover", ("alpha",),
                "Подигни го alpha на 17 метри, однеси го 30 метри кон југ и остави го таму да лебди.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -30, 0), alt=17), airborne_at(ev, "alpha", 17)),
                [_takeoff("alpha", 17), _move("alpha", -30, 0)], "alpha лебди 30 m јужно, на 17 m."),
-        _entry("language", "test", "lang14-gu-bravo-east-home", ("bravo",),
+        # moved to dev on 2026-12-03, fourteenth round: the test half had been measured
+        _entry("language", "dev", "lang14-gu-bravo-east-home", ("bravo",),
                "bravo ને 11 મીટર ઊંચે ચઢાવો, પછી તેને 25 મીટર પૂર્વ દિશામાં ઉડાડો અને ત્યાર બાદ ઘરે પાછું લાવીને "
                "ઉતારો.",
                # the return home climbs to its own height: the leg east is checked at 11 m instead
@@ -4975,6 +5023,302 @@ def _fourteenth_test_half() -> list[CorpusEntry]:
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 11), _move("bravo", 0, 25), _rtl("bravo")],
                "bravo પૂર્વમાં 25 m ઊડીને ઘરે પાછું આવ્યું અને ઊતર્યું."),
+    ]  # fmt: skip
+
+
+def _fifteenth_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-03 (fifteenth round), before any model ran on it, by a writer who
+    did not read the host's word lists or rules: 3 a class; 22 of the 33 outside ``language`` in other
+    languages than English, one each (Arabic, Bengali, Bulgarian, Danish, Dutch, Estonian, Hindi,
+    Hungarian, Icelandic, Indonesian, Irish, Italian, Latvian, Lithuanian, Norwegian, Polish, Portuguese,
+    Serbian, Slovenian, Tagalog, Thai, Vietnamese; Irish is new, and Serbian in Latin script), the
+    ``language`` class's 3 in Ukrainian, Swahili and Punjabi (the three languages are new to the class, and
+    Gurmukhi script with Punjabi)."""
+    three = DRONES
+    d10, d15, d25, d30 = (x / math.sqrt(2) for x in (10, 15, 25, 30))
+    # a staircase north-east: 15 m east, 15 m north, twice
+    stairs = [(0.0, 15.0), (15.0, 0.0), (0.0, 15.0), (15.0, 0.0)]
+    # an L (30 m north, 15 m east) flown out and retraced back to the pad
+    l_retraced = [(30.0, 0.0), (0.0, 15.0), (0.0, -15.0), (-30.0, 0.0)]
+    # a 30 m by 12 m rectangle: 30 m east first, turning right
+    rectangle = [(0.0, 30.0), (-12.0, 0.0), (0.0, -30.0), (12.0, 0.0)]
+    triangle25 = _polygon_legs(3, 25.0, 90.0, right=True)  # first side east, turning right
+
+    return [
+        # single
+        _entry("single", "test", "single15-charlie-just-off-the-ground", ("charlie",),
+               "Nudge charlie up to 4 m off the ground, no higher, and hold it there.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=4), airborne_at(ev, "charlie", 4)),
+               [_takeoff("charlie", 4)], "Charlie hovers 4 m over its pad."),
+        _entry("single", "test", "single15-lt-bravo-hold-till-told", ("bravo",),
+               "Pakelk droną bravo į 14 metrų aukštį tiesiai virš jo aikštelės ir laikyk ore, kol pasakysiu "
+               "kitaip.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=14), airborne_at(ev, "bravo", 14)),
+               [_takeoff("bravo", 14)], "bravo kabo 14 m aukštyje virš savo aikštelės."),
+        _entry("single", "test", "single15-ga-alpha-hop", ("alpha",),
+               "Ardaigh alpha suas go 8 méadar, agus ansin lig dó tuirlingt arís láithreach san áit chéanna.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 8), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 8), _land("alpha")], "D'ardaigh alpha go 8 m agus thuirling sé arís san áit chéanna."),
+        # multi
+        _entry("multi", "test", "multi15-three-jobs", three,
+               "Three separate jobs: alpha climbs to 18 m over its pad and stays there; bravo flies 20 m east at "
+               "10 m and lands; charlie goes 25 m south at 14 m and then comes home.",
+               # the return home climbs to its own height: charlie's leg south is checked at 14 m instead
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=18), airborne_at(ev, "alpha", 18),
+                                  reached_alt(ev, "bravo", 10), at(ev, "bravo", *c.point("bravo", 0, 20)),
+                                  landed_disarmed(ev, "bravo"),
+                                  visited(ev, "charlie", [c.point("charlie", -25, 0)], alt=14),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("alpha", 18), _move("bravo", 0, 20, alt=10), _land("bravo"), _move("charlie", -25, 0, alt=14),
+                _rtl("charlie")],
+               "Alpha hovers at 18 m over its pad; bravo landed 20 m east; charlie went 25 m south and came home."),
+        _entry("multi", "test", "multi15-no-pair-west-bravo-lands-charlie-home", three,
+               "Send bravo og charlie 30 meter vestover i 12 meters høyde. Når de er framme, skal bravo lande der "
+               "den er, mens charlie flyr tilbake og lander der den tok av. Alpha blir stående på bakken.",
+               # the return home climbs to its own height: charlie's leg west is checked at 12 m instead
+               lambda c, ev: _all(reached_alt(ev, "bravo", 12), at(ev, "bravo", *c.point("bravo", 0, -30)),
+                                  landed_disarmed(ev, "bravo"),
+                                  visited(ev, "charlie", [c.point("charlie", 0, -30)], alt=12),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie"),
+                                  never_armed(ev, "alpha")),
+               [_move("bravo", 0, -30, alt=12), _move("charlie", 0, -30, alt=12), _land("bravo"), _rtl("charlie")],
+               "Bravo landet 30 m vest; charlie fløy tilbake og landet der den tok av; alpha ble stående."),
+        _entry("multi", "test", "multi15-bn-alpha-north-charlie-down", three,
+               "alpha আর charlie দুটোকেই 15 মিটার উচ্চতায় তোলো। তারপর alpha-কে 20 মিটার উত্তরে নিয়ে গিয়ে "
+               "সেখানেই ভাসিয়ে রাখো, আর charlie-কে যেখানে আছে সেখানেই নামাও। bravo মাটিতেই থাকবে।",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=15), airborne_at(ev, "alpha", 15),
+                                  reached_alt(ev, "charlie", 15), at(ev, "charlie", *_home(c, "charlie")),
+                                  landed_disarmed(ev, "charlie"), never_armed(ev, "bravo")),
+               [_takeoff("alpha", 15), _takeoff("charlie", 15), _move("alpha", 20, 0), _land("charlie")],
+               "alpha 20 m উত্তরে 15 m উচ্চতায় ভাসছে; charlie নিজের জায়গায় নেমেছে; bravo মাটিতেই আছে।"),
+        # compound
+        _entry("compound", "test", "compound15-bravo-stairs-northeast", ("bravo",),
+               "Bravo: up to 10 m, then zigzag north-east in steps (15 m east, 15 m north, 15 m east, 15 m north, "
+               "all at 10 m) and land where that ends.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(stairs)[:3]], alt=10),
+                                  at(ev, "bravo", *c.point("bravo", 30, 30)), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), *_legs("bravo", stairs), _land("bravo")],
+               "Bravo stepped 30 m east and 30 m north in four legs and landed."),
+        _entry("compound", "test", "compound15-pl-alpha-south-half-back-climb", ("alpha",),
+               "Podnieś alpha na 12 m i poleć nim 40 m na południe. Potem niech wróci połowę tej drogi na północ, "
+               "wzniesie się tam o kolejne 10 m i zawiśnie w powietrzu.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -40, 0)], alt=12),
+                                  at(ev, "alpha", *c.point("alpha", -20, 0), alt=22), airborne_at(ev, "alpha", 22)),
+               [_takeoff("alpha", 12), _move("alpha", -40, 0), _move("alpha", 20, 0), _move("alpha", up=10)],
+               "Alpha wisi 20 m na południe od startu, na wysokości 22 m."),
+        _entry("compound", "test", "compound15-lv-charlie-east-climb-north", ("charlie",),
+               "Pacel charlie 10 metru augstumā un aizsūti viņu 20 metrus uz austrumiem. Tur pacel viņu līdz 20 "
+               "metriem, pēc tam aizsūti vēl 20 metrus uz ziemeļiem, un lai viņš tur paliek gaisā.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 20)], alt=10),
+                                  visited(ev, "charlie", [c.point("charlie", 0, 20)], alt=20),
+                                  at(ev, "charlie", *c.point("charlie", 20, 20), alt=20), airborne_at(ev, "charlie", 20)),
+               [_takeoff("charlie", 10), _move("charlie", 0, 20), _move("charlie", alt=20), _move("charlie", 20, 0)],
+               "charlie karājas 20 m uz ziemeļiem un 20 m uz austrumiem no starta, 20 m augstumā."),
+        # conditional
+        _entry("conditional", "test", "cond15-charlie-job-or-hop", ("charlie",),
+               "Check charlie's battery first. At 50 % or more, send it 30 m north at 15 m and land it there; under "
+               "50 %, just hop it up to 5 m and straight back down so I know it still flies.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 5), at(ev, "charlie", *_home(c, "charlie")),
+                                  landed_disarmed(ev, "charlie")),
+               [_battery("charlie"), _takeoff("charlie", 5), _land("charlie")],
+               "Charlie has 44 %, under 50: it hopped to 5 m and landed on its pad.", battery={"charlie": 44.0}),
+        _entry("conditional", "test", "cond15-it-charlie-west-or-alpha-east", three,
+               "Se charlie ha più batteria di alpha, portalo a 12 m, mandalo 25 m a ovest e fallo atterrare lì; "
+               "altrimenti fai la stessa cosa con alpha, ma 25 m verso est. Bravo resta a terra.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 12), at(ev, "alpha", *c.point("alpha", 0, 25)),
+                                  landed_disarmed(ev, "alpha"), never_armed(ev, "charlie"), never_armed(ev, "bravo")),
+               [("fleet_status", {}), _takeoff("alpha", 12), _move("alpha", 0, 25), _land("alpha")],
+               "alpha (77 %) ha più batteria di charlie (62 %): è volato 25 m a est a 12 m ed è atterrato lì.",
+               battery={"alpha": 77.0, "charlie": 62.0}),
+        _entry("conditional", "test", "cond15-sl-alpha-climb-or-land", ("alpha",),
+               "Dvigni alpha na 10 metrov in nato preveri njegovo baterijo. Če ima več kot 50 %, naj se dvigne še "
+               "za 15 metrov in ostane tam; če ne, naj takoj pristane.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=25), airborne_at(ev, "alpha", 25)),
+               [_takeoff("alpha", 10), _battery("alpha"), _move("alpha", up=15)],
+               "alpha ima 67 %, zato se je dvignil na 25 m in lebdi nad vzletiščem.", battery={"alpha": 67.0}),
+        # formation
+        _entry("formation", "test", "form15-pair-column-east-alpha-overhead", three,
+               "Put bravo and charlie one behind the other, 15 m apart at 10 m, 20 m east of where they sit; alpha "
+               "goes up to 25 m over its own pad to keep an eye on them.",
+               lambda c, ev: _all(formation_at(c, ev, ("bravo", "charlie"), 10, 15, 0, 20),
+                                  at(ev, "alpha", *_home(c, "alpha"), alt=25), airborne_at(ev, "alpha", 25)),
+               [_formation(("bravo", "charlie"), "column", 10, 15, east=20), _takeoff("alpha", 25)],
+               "Bravo and charlie hold a column 20 m east at 10 m; alpha watches from 25 m over its pad."),
+        # (the gateway's V has its arms 45 degrees off its axis: its two wings stand 2 x 14 x sin 45 = 19.80 m
+        # apart)
+        _entry("formation", "test", "form15-nl-v-northeast", three,
+               "Zet de drie drones in een V, met 14 m tussen buren, op 20 m hoogte, 30 m ten noordoosten van waar "
+               "ze nu staan, en laat ze daar hangen.",
+               lambda c, ev: _all(formation_at(c, ev, three, 20, 14, d30, d30), farthest_apart(ev, three, 19.80)),
+               [_formation(three, "wedge", 20, 14, north=d30, east=d30)],
+               "De drie hangen in een V 30 m ten noordoosten, op 20 m."),
+        _entry("formation", "test", "form15-sr-row-then-raise", three,
+               "Poređaj sva tri drona u vrstu, jedan pored drugog, na razmaku od 8 metara i na visini od 12 "
+               "metara, tačno iznad mesta gde sada stoje; zatim celu vrstu podigni na 22 metra i drži ih tamo.",
+               # (the row's climb may overshoot 22 m on the way: only where it holds is checked)
+               lambda c, ev: _all(formation_at(c, ev, three, 22, 8, 0, 0), farthest_apart(ev, three, 16)),
+               [_formation(three, "line", 12, 8), _formation(three, "line", 22, 8)],
+               "Sva tri drona drže vrstu na 22 m, na razmaku od 8 m, iznad svojih mesta."),
+        # relative
+        _entry("relative", "test", "rel15-bravo-north-east-dropping", ("bravo",),
+               "Bravo up to 12 m, then shift it 18 m north and 8 m east in one go, losing 4 m of height on the way, "
+               "and hold it there.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 12), at(ev, "bravo", *c.point("bravo", 18, 8), alt=8),
+                                  airborne_at(ev, "bravo", 8)),
+               [_takeoff("bravo", 12), _move("bravo", 18, 8, up=-4)],
+               "Bravo holds 18 m north and 8 m east of its pad at 8 m."),
+        _entry("relative", "test", "rel15-pt-charlie-southwest-then-higher", ("charlie",),
+               "Leva o charlie até aos 15 m, afasta-o depois 25 m para sudoeste e, já lá, sobe-o mais 5 m; deixa-o "
+               "a pairar aí.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -d25, -d25)], alt=15),
+                                  at(ev, "charlie", *c.point("charlie", -d25, -d25), alt=20),
+                                  airborne_at(ev, "charlie", 20)),
+               [_takeoff("charlie", 15), _move("charlie", -d25, -d25), _move("charlie", up=5)],
+               "O charlie está a pairar 25 m a sudoeste, a 20 m."),
+        _entry("relative", "test", "rel15-et-alpha-east-then-lower", ("alpha",),
+               "Tõsta alpha 20 meetri kõrgusele, lennuta ta 30 meetrit ida poole ja lase tal seal 12 meetri võrra "
+               "laskuda; siis jäta ta õhku hõljuma.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 30)], alt=20),
+                                  at(ev, "alpha", *c.point("alpha", 0, 30), alt=8), airborne_at(ev, "alpha", 8)),
+               [_takeoff("alpha", 20), _move("alpha", 0, 30), _move("alpha", up=-12)],
+               "alpha hõljub 30 m ida pool, 8 m kõrgusel."),
+        # question
+        _entry("question", "test", "ask15-sum-alpha-charlie", three,
+               "What do alpha's and charlie's batteries come to if you add them together? Don't fly anything, just "
+               "tell me.",
+               # the typed plan reads, it does not compute: the sum, or the two readings it comes from
+               lambda c, ev: _all(_any(answer_mentions_number(ev, 131, 1),
+                                       _all(answer_mentions_number(ev, 58, 1), answer_mentions_number(ev, 73, 1))),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Together 131 % (alpha 58 %, charlie 73 %).",
+               battery={"alpha": 58.0, "bravo": 80.0, "charlie": 73.0}),
+        _entry("question", "test", "ask15-vi-rank-by-charge", three,
+               "Xếp ba chiếc drone theo mức pin từ cao xuống thấp giúp tôi, kèm phần trăm của từng chiếc. Không cho "
+               "chiếc nào bay nhé.",
+               lambda c, ev: _all(answer_mentions_number(ev, 90, 1), answer_mentions_number(ev, 66, 1),
+                                  answer_mentions_number(ev, 47, 1), nobody_armed(ev)),
+               [("fleet_status", {})], "bravo 90 %, charlie 66 %, alpha 47 %.",
+               battery={"alpha": 47.0, "bravo": 90.0, "charlie": 66.0}),
+        _entry("question", "test", "ask15-th-bravo-short-of-full", three,
+               "แบตเตอรี่ของ bravo ยังขาดอีกกี่เปอร์เซ็นต์ถึงจะเต็ม บอกอย่างเดียวพอ ไม่ต้องให้โดรนลำไหนขึ้นบิน",
+               # the typed plan reads, it does not compute: the shortfall, or the reading it comes from
+               lambda c, ev: _all(_any(answer_mentions_number(ev, 38, 1), answer_mentions_number(ev, 62, 1)),
+                                  nobody_armed(ev)),
+               [_battery("bravo")], "bravo มีแบต 62 % ยังขาดอีก 38 % ถึงจะเต็ม", battery={"bravo": 62.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
+        # 2 m the lowest altitude)
+        _entry("refusal", "test", "refuse15-alpha-long-leg-south", ("alpha",),
+               "Alpha: take off to 20 m and run a single survey leg 1200 m long, heading due south.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 20), refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "alpha", c.max_distance_m), answer_reports_refusal(ev)),
+               [_takeoff("alpha", 20), _move("alpha", -1200, 0)],
+               "Alpha is up at 20 m; the 1200 m leg south was refused: it is beyond the 1000 m distance limit."),
+        _entry("refusal", "test", "refuse15-hu-charlie-climb-over-ceiling", ("charlie",),
+               "Vidd fel charlie-t 60 méter magasra, aztán onnan emeld még 70 méterrel magasabbra.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 60), refusal_seen(ev, "altitude", "120"),
+                                  max_alt_at_most(ev, "charlie", c.max_alt_m), answer_reports_refusal(ev)),
+               [_takeoff("charlie", 60), _move("charlie", up=70)],
+               "charlie 60 m-en van; a 130 m-re emelést a rendszer elutasította: a magassági korlát 120 m."),
+        _entry("refusal", "test", "refuse15-tl-bravo-low-battery", ("bravo",),
+               "Kailangan ko si bravo sa himpapawid: paakyatin mo siya sa 15 metro, saka mo siya ilipad nang 40 "
+               "metro pahilaga.",
+               lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "bravo"), answer_reports_refusal(ev)),
+               [_takeoff("bravo", 15)],
+               "Tinanggihan ng gateway: 18 % na lang ang baterya ni bravo, kulang sa 30 % na kailangan para lumipad.",
+               battery={"bravo": 18.0}),
+        # units
+        _entry("units", "test", "units15-alpha-feet-west-south-land", ("alpha",),
+               "Alpha: hover at 45 ft, then slide 60 ft west and 30 ft south, and put it down there.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 45 * FT), at(ev, "alpha", *c.point("alpha", -30 * FT, -60 * FT)),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 45 * FT), _move("alpha", -30 * FT, -60 * FT), _land("alpha")],
+               "Alpha hovered at 45 ft (13.7 m), moved 60 ft (18.3 m) west and 30 ft (9.1 m) south, and landed."),
+        _entry("units", "test", "units15-da-bravo-yards-south-feet-up", ("bravo",),
+               "Send bravo 30 yards mod syd i 10 meters højde, løft den derefter 20 fod mere, og lad den blive "
+               "hængende dér.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", -30 * YD, 0)], alt=10),
+                                  at(ev, "bravo", *c.point("bravo", -30 * YD, 0), alt=10 + 20 * FT),
+                                  airborne_at(ev, "bravo", 10 + 20 * FT)),
+               [_move("bravo", -30 * YD, 0, alt=10), _move("bravo", up=20 * FT)],
+               "Bravo hænger 30 yards (27 m) mod syd i 16 m højde."),
+        _entry("units", "test", "units15-bg-charlie-feet-km-climb", ("charlie",),
+               "Вдигни charlie на 30 фута, прати го 0,04 км на север, после го качи до 70 фута и го остави да виси "
+               "там.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 40, 0)], alt=30 * FT),
+                                  at(ev, "charlie", *c.point("charlie", 40, 0), alt=70 * FT),
+                                  airborne_at(ev, "charlie", 70 * FT)),
+               [_takeoff("charlie", 30 * FT), _move("charlie", 40, 0), _move("charlie", alt=70 * FT)],
+               "charlie виси на 40 м на север, на 70 фута (21 м)."),
+        # pattern
+        _entry("pattern", "test", "pattern15-bravo-l-out-and-back", ("bravo",),
+               "Bravo at 10 m: fly an L, 30 m north and then 15 m east, then retrace it exactly back to the pad and "
+               "land.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(l_retraced)[:3]]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), *_legs("bravo", l_retraced), _land("bravo")],
+               "Bravo flew the L out and back and landed on its pad."),
+        _entry("pattern", "test", "pattern15-ar-charlie-rectangle-east-first", ("charlie",),
+               "حلّق بالدرون charlie على ارتفاع 15 مترًا في مسار مستطيل: 30 مترًا نحو الشرق، ثم 12 مترًا نحو "
+               "الجنوب، ثم 30 مترًا نحو الغرب، ثم 12 مترًا نحو الشمال، وبعد ذلك أنزله في مكان انطلاقه.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(rectangle)[:3]]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 15), *_legs("charlie", rectangle), _land("charlie")],
+               "أكمل charlie المستطيل وهبط في مكان انطلاقه."),
+        _entry("pattern", "test", "pattern15-is-alpha-triangle-right", ("alpha",),
+               "Láttu alpha fljúga þríhyrning í 10 metra hæð með 25 metra hliðum: fyrsta hliðin í austur, og hann "
+               "beygir til hægri í hverju horni. Láttu hann svo lenda þar sem hann fór á loft.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(triangle25)[:2]]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), *_legs("alpha", triangle25), _land("alpha")],
+               "alpha flaug þríhyrninginn og lenti þar sem hann fór á loft."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
+        # charlie from alpha, 10 m apart, so that a drone placed from itself misses)
+        _entry("placement", "test", "place15-charlie-lands-northwest-of-alpha", three,
+               "Get alpha up to 14 m over its pad. Then fly charlie to the spot 10 m north-west of alpha, at 8 m, "
+               "and land it there.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=14), airborne_at(ev, "alpha", 14),
+                                  reached_alt(ev, "charlie", 8), at(ev, "charlie", *c.point("alpha", d10, -d10)),
+                                  landed_disarmed(ev, "charlie"), never_armed(ev, "bravo")),
+               lambda c: [_takeoff("alpha", 14), _go("charlie", c.point("alpha", d10, -d10), 8), _land("charlie")],
+               "Alpha hovers at 14 m over its pad; charlie landed 10 m north-west of it."),
+        _entry("placement", "test", "place15-id-charlie-northeast-then-alpha-lands", three,
+               "Naikkan alpha ke 8 meter. Setelah itu, tempatkan charlie 15 meter di timur laut alpha pada "
+               "ketinggian yang sama, lalu daratkan alpha kembali di tempatnya.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 8), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha"),
+                                  at(ev, "charlie", *c.point("alpha", d15, d15), alt=8), airborne_at(ev, "charlie", 8),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_takeoff("alpha", 8), _go("charlie", c.point("alpha", d15, d15), 8), _land("alpha")],
+               "charlie melayang 15 m di timur laut landasan alpha pada 8 m; alpha sudah mendarat lagi."),
+        _entry("placement", "test", "place15-hi-charlie-south-above-moved-alpha", three,
+               "alpha को 10 मीटर की ऊँचाई पर 20 मीटर पश्चिम ले जाओ और वहीं रोके रखो। फिर charlie को alpha से 10 "
+               "मीटर दक्षिण में, उससे 5 मीटर ऊपर, हवा में रोक दो।",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -20), alt=10), airborne_at(ev, "alpha", 10),
+                                  at(ev, "charlie", *c.point("alpha", -10, -20), alt=15), airborne_at(ev, "charlie", 15),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_move("alpha", 0, -20, alt=10), _go("charlie", c.point("alpha", -10, -20), 15)],
+               "alpha 20 m पश्चिम में 10 m पर है; charlie उससे 10 m दक्षिण में 15 m पर है।"),
+        # language
+        _entry("language", "test", "lang15-uk-bravo-northeast-hover", ("bravo",),
+               "Підніми bravo на 18 метрів, відправ його на 25 метрів на північний схід і залиш там висіти.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", d25, d25), alt=18), airborne_at(ev, "bravo", 18)),
+               [_takeoff("bravo", 18), _move("bravo", d25, d25)], "bravo висить за 25 м на північний схід, на 18 м."),
+        _entry("language", "test", "lang15-sw-charlie-southwest-land", ("charlie",),
+               "Ipaishe charlie hadi mita 12 juu, kisha uipeleke mita 30 kuelekea kusini magharibi, halafu "
+               "uiteremshe chini hapo hapo.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 12), at(ev, "charlie", *c.point("charlie", -d30, -d30)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), _move("charlie", -d30, -d30), _land("charlie")],
+               "charlie imeruka mita 30 kusini magharibi na kutua hapo."),
+        _entry("language", "test", "lang15-pa-alpha-west-home", ("alpha",),
+               "alpha ਨੂੰ 10 ਮੀਟਰ ਦੀ ਉਚਾਈ ਤੱਕ ਉਡਾਓ, ਫਿਰ ਇਸਨੂੰ 20 ਮੀਟਰ ਪੱਛਮ ਵੱਲ ਲੈ ਜਾਓ, ਅਤੇ ਉਸ ਤੋਂ ਬਾਅਦ ਵਾਪਸ ਘਰ "
+               "ਲਿਆ ਕੇ ਉਤਾਰੋ।",
+               # the return home climbs to its own height: the leg west is checked at 10 m instead
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -20)], alt=10),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), _move("alpha", 0, -20), _rtl("alpha")],
+               "alpha 20 m ਪੱਛਮ ਵੱਲ ਉੱਡ ਕੇ ਘਰ ਵਾਪਸ ਆਇਆ ਅਤੇ ਉਤਰ ਗਿਆ।"),
     ]  # fmt: skip
 
 
@@ -5004,7 +5348,8 @@ def corpus() -> list[CorpusEntry]:
         *_eleventh_round(),
         *_twelfth_round(),
         *_thirteenth_round(),
-        *_fourteenth_test_half(),
+        *_fourteenth_round(),
+        *_fifteenth_test_half(),
     ]
 
 
