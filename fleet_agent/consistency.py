@@ -103,8 +103,8 @@ def _drone_gaps(request: str, fleet: list[str], data: Any) -> list[str]:
         return []
     planned = _plan_drones(data)
     notes = [
-        f"the request names {d}, which no step of the plan does (as the drone that acts, or as a move's "
-        f'origin "{d}")'
+        f"the request names {d}, which no step of the plan does (as the drone that acts, as a move's "
+        f'origin "{d}", or in a hold step when the request leaves {d} alone)'
         for d in sorted(named - planned)
     ]
     notes += [f"the plan has {d}, which the request does not name" for d in sorted(planned - named)]

@@ -35,10 +35,10 @@ def test_a_plan_that_carries_the_request_has_no_gaps() -> None:
 def test_a_drone_left_out_or_added_and_a_number_dropped_are_told() -> None:
     plan = _plan(_up("alpha", 25))
     assert gaps("Put bravo 25 m north of charlie at 15 m", FLEET, plan) == [
-        "the request names bravo, which no step of the plan does (as the drone that acts, or as a move's "
-        'origin "bravo")',
-        "the request names charlie, which no step of the plan does (as the drone that acts, or as a move's "
-        'origin "charlie")',
+        "the request names bravo, which no step of the plan does (as the drone that acts, as a move's "
+        'origin "bravo", or in a hold step when the request leaves bravo alone)',
+        "the request names charlie, which no step of the plan does (as the drone that acts, as a move's "
+        'origin "charlie", or in a hold step when the request leaves charlie alone)',
         "the plan has alpha, which the request does not name",
         "the request gives 15, which no step of the plan has",
     ]
