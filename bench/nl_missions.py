@@ -173,6 +173,14 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         choices=DECODINGS,
         help="how the endpoint decodes the plan under its schema (default json_schema: llama.cpp, OpenAI)",
     )
+    p.add_argument(
+        "--nearest",
+        type=int,
+        choices=range(9),
+        default=env.nearest,
+        metavar="0-8",
+        help="pool examples nearest each request shown to the model (fleet_agent.prompt.nearest)",
+    )
     p.add_argument("--missions", default=None, help="comma-separated mission ids (default: all)")
     p.add_argument(
         "--half",
@@ -355,6 +363,7 @@ async def run_missions(args: argparse.Namespace, console: Console) -> list[Missi
                 max_retries=0,
                 max_tokens=args.max_tokens,
                 decoding=args.decoding,
+                nearest=args.nearest,
             )
 
         runs: list[MissionRun] = args.completed  # kept by main: an interrupted bench reports what finished
@@ -768,6 +777,7 @@ def write_json(args: argparse.Namespace, runs: list[MissionRun], interrupted: bo
                 "model": SELF_CHECK_MODEL if args.self_check else args.model,
                 "self_check": args.self_check,
                 "decoding": args.decoding,
+                "nearest": args.nearest,
                 "half": args.half,
                 "vehicles": "ArduCopter SITL" if args.sitl else "simulator",
                 "tool_list": getattr(args, "tool_list", None),

@@ -44,6 +44,8 @@ def add_agent_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--endpoint", default=None, help="OpenAI-compatible base URL of the model")
     parser.add_argument("--model", default=None, help="model name at the endpoint")
     parser.add_argument("--decoding", default=None, choices=DECODINGS, help="how the plan's schema is kept")
+    parser.add_argument("--nearest", type=int, choices=range(9), default=None, metavar="0-8",
+                        help="pool examples nearest the request shown to the model (default 0)")  # fmt: skip
     parser.add_argument("--places-url", default=None, help="an MCP server that knows named places")
     parser.add_argument("--model-timeout", type=float, default=300.0, help="seconds per model request")
     parser.add_argument("--json", action="store_true", help="print events as JSON lines")
@@ -66,6 +68,7 @@ async def run_async(
     model = ModelConfig(
         base_url=args.endpoint or env.endpoint, model=model_name, api_key=env.resolved_api_key(),
         timeout_s=args.model_timeout, decoding=args.decoding or env.decoding,
+        nearest=env.nearest if args.nearest is None else args.nearest,
     )  # fmt: skip
     try:
         async with contextlib.AsyncExitStack() as stack:

@@ -64,7 +64,7 @@ class Planner:
     async def plan(self, request: str, fleet: list[str], places: list[str] | None = None) -> PlanAttempt:
         """A plan for ``request``: one request to the model, and one repair round when the plan does not
         validate or leaves out a drone or a number of the request (`fleet_agent.consistency`)."""
-        messages: list[dict[str, Any]] = list(messages_for(request, fleet, places))
+        messages: list[dict[str, Any]] = list(messages_for(request, fleet, places, self.model.nearest))
         attempt = PlanAttempt(plan=None)
         options = decoding_options(self.model.decoding, plan_schema(fleet))
         for round_ in range(2):

@@ -57,10 +57,13 @@ def _renamed(text: str, names: dict[str, str]) -> str:
     return text.replace("\0", "")
 
 
-def messages_for(request: str, fleet: list[str], places: list[str] | None = None) -> list[dict[str, str]]:
-    """What the model is sent for a request: the fixed prefix, the pool's examples nearest the request
-    (the nearest last), then the request."""
-    near = [m for text, plan in nearest(request, fleet) for m in _turn(text, plan, POOL_FLEET, fleet)]
+def messages_for(
+    request: str, fleet: list[str], places: list[str] | None = None, count: int = 0
+) -> list[dict[str, str]]:
+    """What the model is sent for a request: the fixed prefix, the ``count`` pool examples nearest the
+    request (the nearest last), then the request."""
+    chosen = nearest(request, fleet, count) if count else []
+    near = [m for text, plan in chosen for m in _turn(text, plan, POOL_FLEET, fleet)]
     return [*prefix_messages(fleet), *near, {"role": "user", "content": user_message(request, fleet, places)}]
 
 

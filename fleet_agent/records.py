@@ -55,6 +55,7 @@ class ModelConfig:
     max_retries: int = 1
     max_tokens: int | None = 512
     decoding: str = "json_schema"
+    nearest: int = 0  # pool examples shown nearest the request (`fleet_agent.prompt.nearest`)
 
 
 @dataclass

@@ -27,6 +27,7 @@ class AgentSettings(BaseSettings):
         description="How the plan is decoded under its JSON schema: json_schema (response_format: llama.cpp, "
         "LM Studio, OpenAI), ollama (format), guided (vLLM guided_json) or none (validated only).",
     )
+    nearest: int = Field(0, ge=0, le=8, description="Pool examples nearest a request, after the fixed ones.")
     places_url: str | None = Field(None, description="An MCP server (Streamable HTTP) of named places.")
     places_tool: str = Field("find_place", description="Its tool that gives a place's lat_deg, lon_deg.")
 

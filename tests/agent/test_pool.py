@@ -43,12 +43,16 @@ def test_the_nearest_example_of_a_pool_request_is_itself_whatever_its_drone_and_
         renumbered = "".join(str((int(c) + 3) % 10) if c.isdigit() else c for c in request)
         renamed = renumbered.replace("alpha", "hawk").replace("Alpha", "Hawk")
         assert nearest(renamed, ["hawk", "bravo", "charlie"])[-1] == (request, plan), request
+    assert messages_for(POOL[0][0], FLEET) == [
+        *prefix_messages(FLEET),
+        {"role": "user", "content": f"Fleet: alpha, bravo, charlie\nRequest: {POOL[0][0]}"},
+    ]  # none unless asked for
 
 
 def test_the_nearest_examples_come_after_the_fixed_prefix_renamed_for_the_fleet() -> None:
     fleet = ["hawk", "kite", "owl"]
     request, _ = POOL[0]
-    messages = messages_for(request.replace("alpha", "hawk"), fleet)
+    messages = messages_for(request.replace("alpha", "hawk"), fleet, count=3)
     prefix = prefix_messages(fleet)
     near = messages[len(prefix) : -1]
     assert messages[: len(prefix)] == prefix and len(near) == 6

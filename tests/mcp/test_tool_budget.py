@@ -75,5 +75,5 @@ def test_the_agent_plan_prompt_fits_its_budget() -> None:
     prompt = len(encoding.encode(system_prompt()))
     assert prompt < PLAN_PROMPT_BUDGET_CL100K, prompt
     fleet = ["alpha", "bravo", "charlie"]
-    sent = [" ".join(m["content"] for m in messages_for(text, fleet)) for text, _ in POOL]
+    sent = [" ".join(m["content"] for m in messages_for(text, fleet, count=3)) for text, _ in POOL]
     assert max(len(encoding.encode(text)) for text in sent) < REQUEST_PROMPT_BUDGET_CL100K
