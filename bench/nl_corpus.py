@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 627 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 663 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -162,6 +162,16 @@ Serbian, Slovenian, Tagalog, Thai, Vietnamese; Irish is new, and Serbian in Lati
 script). Only the harness self-check (the scripted ideal plan) has run on them: 36 of 36 passed (once
 the Serbian row's check no longer wanted its peak height: the climb from 12 to 22 m overshot to 26 m).
 That leaves 591 dev and 36 test.
+Later on 2026-12-03 (fifteenth round) EVERY test entry (36, ``_fifteenth_round``) was moved to dev, each
+marked "moved to dev on 2026-12-03, fifteenth round", once both models had been measured on it. A fresh
+test half took its place (``_sixteenth_test_half``): 36 new requests, 3 a class, written before any model
+ran on it by a writer who did not read the host's word lists or rules: 22 of the 33 outside the
+``language`` class in 22 languages, one each (Afrikaans, Arabic, Bosnian, Catalan, Chinese, French,
+German, Haitian Creole, Hebrew, Hindi, Japanese, Korean, Luxembourgish, Malay, Persian, Portuguese,
+Romanian, Russian, Spanish, Swedish, Turkish, Urdu; Bosnian, Haitian Creole and Luxembourgish are new, and
+Urdu is new outside the ``language`` class), and the ``language`` class's 3 in Greek, Belarusian and
+Malayalam (all three new to the class, Belarusian and Malayalam new to the corpus, and Malayalam script).
+Only the harness self-check (the scripted ideal plan) has run on them. That leaves 627 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -197,7 +207,7 @@ from bench.agent_harness.missions import (
     stayed_within,
     visited,
 )
-from gateway.fleet.geo import horizontal_distance_m, offset_position
+from gateway.fleet.geo import bearing_deg, horizontal_distance_m, offset_position
 
 CLASSES = (
     "single",  # one drone, one simple thing
@@ -5026,14 +5036,15 @@ def _fourteenth_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _fifteenth_test_half() -> list[CorpusEntry]:
+def _fifteenth_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-03 (fifteenth round), before any model ran on it, by a writer who
     did not read the host's word lists or rules: 3 a class; 22 of the 33 outside ``language`` in other
     languages than English, one each (Arabic, Bengali, Bulgarian, Danish, Dutch, Estonian, Hindi,
     Hungarian, Icelandic, Indonesian, Irish, Italian, Latvian, Lithuanian, Norwegian, Polish, Portuguese,
     Serbian, Slovenian, Tagalog, Thai, Vietnamese; Irish is new, and Serbian in Latin script), the
     ``language`` class's 3 in Ukrainian, Swahili and Punjabi (the three languages are new to the class, and
-    Gurmukhi script with Punjabi)."""
+    Gurmukhi script with Punjabi); all of it moved to dev on 2026-12-03 (fifteenth round), once both models
+    had been measured on it."""
     three = DRONES
     d10, d15, d25, d30 = (x / math.sqrt(2) for x in (10, 15, 25, 30))
     # a staircase north-east: 15 m east, 15 m north, twice
@@ -5046,22 +5057,26 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
 
     return [
         # single
-        _entry("single", "test", "single15-charlie-just-off-the-ground", ("charlie",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("single", "dev", "single15-charlie-just-off-the-ground", ("charlie",),
                "Nudge charlie up to 4 m off the ground, no higher, and hold it there.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=4), airborne_at(ev, "charlie", 4)),
                [_takeoff("charlie", 4)], "Charlie hovers 4 m over its pad."),
-        _entry("single", "test", "single15-lt-bravo-hold-till-told", ("bravo",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("single", "dev", "single15-lt-bravo-hold-till-told", ("bravo",),
                "Pakelk droną bravo į 14 metrų aukštį tiesiai virš jo aikštelės ir laikyk ore, kol pasakysiu "
                "kitaip.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=14), airborne_at(ev, "bravo", 14)),
                [_takeoff("bravo", 14)], "bravo kabo 14 m aukštyje virš savo aikštelės."),
-        _entry("single", "test", "single15-ga-alpha-hop", ("alpha",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("single", "dev", "single15-ga-alpha-hop", ("alpha",),
                "Ardaigh alpha suas go 8 méadar, agus ansin lig dó tuirlingt arís láithreach san áit chéanna.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 8), at(ev, "alpha", *_home(c, "alpha")),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 8), _land("alpha")], "D'ardaigh alpha go 8 m agus thuirling sé arís san áit chéanna."),
         # multi
-        _entry("multi", "test", "multi15-three-jobs", three,
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("multi", "dev", "multi15-three-jobs", three,
                "Three separate jobs: alpha climbs to 18 m over its pad and stays there; bravo flies 20 m east at "
                "10 m and lands; charlie goes 25 m south at 14 m and then comes home.",
                # the return home climbs to its own height: charlie's leg south is checked at 14 m instead
@@ -5073,7 +5088,8 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 18), _move("bravo", 0, 20, alt=10), _land("bravo"), _move("charlie", -25, 0, alt=14),
                 _rtl("charlie")],
                "Alpha hovers at 18 m over its pad; bravo landed 20 m east; charlie went 25 m south and came home."),
-        _entry("multi", "test", "multi15-no-pair-west-bravo-lands-charlie-home", three,
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("multi", "dev", "multi15-no-pair-west-bravo-lands-charlie-home", three,
                "Send bravo og charlie 30 meter vestover i 12 meters høyde. Når de er framme, skal bravo lande der "
                "den er, mens charlie flyr tilbake og lander der den tok av. Alpha blir stående på bakken.",
                # the return home climbs to its own height: charlie's leg west is checked at 12 m instead
@@ -5084,7 +5100,8 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "alpha")),
                [_move("bravo", 0, -30, alt=12), _move("charlie", 0, -30, alt=12), _land("bravo"), _rtl("charlie")],
                "Bravo landet 30 m vest; charlie fløy tilbake og landet der den tok av; alpha ble stående."),
-        _entry("multi", "test", "multi15-bn-alpha-north-charlie-down", three,
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("multi", "dev", "multi15-bn-alpha-north-charlie-down", three,
                "alpha আর charlie দুটোকেই 15 মিটার উচ্চতায় তোলো। তারপর alpha-কে 20 মিটার উত্তরে নিয়ে গিয়ে "
                "সেখানেই ভাসিয়ে রাখো, আর charlie-কে যেখানে আছে সেখানেই নামাও। bravo মাটিতেই থাকবে।",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=15), airborne_at(ev, "alpha", 15),
@@ -5093,21 +5110,24 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 15), _takeoff("charlie", 15), _move("alpha", 20, 0), _land("charlie")],
                "alpha 20 m উত্তরে 15 m উচ্চতায় ভাসছে; charlie নিজের জায়গায় নেমেছে; bravo মাটিতেই আছে।"),
         # compound
-        _entry("compound", "test", "compound15-bravo-stairs-northeast", ("bravo",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("compound", "dev", "compound15-bravo-stairs-northeast", ("bravo",),
                "Bravo: up to 10 m, then zigzag north-east in steps (15 m east, 15 m north, 15 m east, 15 m north, "
                "all at 10 m) and land where that ends.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(stairs)[:3]], alt=10),
                                   at(ev, "bravo", *c.point("bravo", 30, 30)), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 10), *_legs("bravo", stairs), _land("bravo")],
                "Bravo stepped 30 m east and 30 m north in four legs and landed."),
-        _entry("compound", "test", "compound15-pl-alpha-south-half-back-climb", ("alpha",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("compound", "dev", "compound15-pl-alpha-south-half-back-climb", ("alpha",),
                "Podnieś alpha na 12 m i poleć nim 40 m na południe. Potem niech wróci połowę tej drogi na północ, "
                "wzniesie się tam o kolejne 10 m i zawiśnie w powietrzu.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -40, 0)], alt=12),
                                   at(ev, "alpha", *c.point("alpha", -20, 0), alt=22), airborne_at(ev, "alpha", 22)),
                [_takeoff("alpha", 12), _move("alpha", -40, 0), _move("alpha", 20, 0), _move("alpha", up=10)],
                "Alpha wisi 20 m na południe od startu, na wysokości 22 m."),
-        _entry("compound", "test", "compound15-lv-charlie-east-climb-north", ("charlie",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("compound", "dev", "compound15-lv-charlie-east-climb-north", ("charlie",),
                "Pacel charlie 10 metru augstumā un aizsūti viņu 20 metrus uz austrumiem. Tur pacel viņu līdz 20 "
                "metriem, pēc tam aizsūti vēl 20 metrus uz ziemeļiem, un lai viņš tur paliek gaisā.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 20)], alt=10),
@@ -5116,14 +5136,16 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 10), _move("charlie", 0, 20), _move("charlie", alt=20), _move("charlie", 20, 0)],
                "charlie karājas 20 m uz ziemeļiem un 20 m uz austrumiem no starta, 20 m augstumā."),
         # conditional
-        _entry("conditional", "test", "cond15-charlie-job-or-hop", ("charlie",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("conditional", "dev", "cond15-charlie-job-or-hop", ("charlie",),
                "Check charlie's battery first. At 50 % or more, send it 30 m north at 15 m and land it there; under "
                "50 %, just hop it up to 5 m and straight back down so I know it still flies.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 5), at(ev, "charlie", *_home(c, "charlie")),
                                   landed_disarmed(ev, "charlie")),
                [_battery("charlie"), _takeoff("charlie", 5), _land("charlie")],
                "Charlie has 44 %, under 50: it hopped to 5 m and landed on its pad.", battery={"charlie": 44.0}),
-        _entry("conditional", "test", "cond15-it-charlie-west-or-alpha-east", three,
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("conditional", "dev", "cond15-it-charlie-west-or-alpha-east", three,
                "Se charlie ha più batteria di alpha, portalo a 12 m, mandalo 25 m a ovest e fallo atterrare lì; "
                "altrimenti fai la stessa cosa con alpha, ma 25 m verso est. Bravo resta a terra.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 12), at(ev, "alpha", *c.point("alpha", 0, 25)),
@@ -5131,14 +5153,16 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                [("fleet_status", {}), _takeoff("alpha", 12), _move("alpha", 0, 25), _land("alpha")],
                "alpha (77 %) ha più batteria di charlie (62 %): è volato 25 m a est a 12 m ed è atterrato lì.",
                battery={"alpha": 77.0, "charlie": 62.0}),
-        _entry("conditional", "test", "cond15-sl-alpha-climb-or-land", ("alpha",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("conditional", "dev", "cond15-sl-alpha-climb-or-land", ("alpha",),
                "Dvigni alpha na 10 metrov in nato preveri njegovo baterijo. Če ima več kot 50 %, naj se dvigne še "
                "za 15 metrov in ostane tam; če ne, naj takoj pristane.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=25), airborne_at(ev, "alpha", 25)),
                [_takeoff("alpha", 10), _battery("alpha"), _move("alpha", up=15)],
                "alpha ima 67 %, zato se je dvignil na 25 m in lebdi nad vzletiščem.", battery={"alpha": 67.0}),
         # formation
-        _entry("formation", "test", "form15-pair-column-east-alpha-overhead", three,
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("formation", "dev", "form15-pair-column-east-alpha-overhead", three,
                "Put bravo and charlie one behind the other, 15 m apart at 10 m, 20 m east of where they sit; alpha "
                "goes up to 25 m over its own pad to keep an eye on them.",
                lambda c, ev: _all(formation_at(c, ev, ("bravo", "charlie"), 10, 15, 0, 20),
@@ -5147,13 +5171,15 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                "Bravo and charlie hold a column 20 m east at 10 m; alpha watches from 25 m over its pad."),
         # (the gateway's V has its arms 45 degrees off its axis: its two wings stand 2 x 14 x sin 45 = 19.80 m
         # apart)
-        _entry("formation", "test", "form15-nl-v-northeast", three,
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("formation", "dev", "form15-nl-v-northeast", three,
                "Zet de drie drones in een V, met 14 m tussen buren, op 20 m hoogte, 30 m ten noordoosten van waar "
                "ze nu staan, en laat ze daar hangen.",
                lambda c, ev: _all(formation_at(c, ev, three, 20, 14, d30, d30), farthest_apart(ev, three, 19.80)),
                [_formation(three, "wedge", 20, 14, north=d30, east=d30)],
                "De drie hangen in een V 30 m ten noordoosten, op 20 m."),
-        _entry("formation", "test", "form15-sr-row-then-raise", three,
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("formation", "dev", "form15-sr-row-then-raise", three,
                "Poređaj sva tri drona u vrstu, jedan pored drugog, na razmaku od 8 metara i na visini od 12 "
                "metara, tačno iznad mesta gde sada stoje; zatim celu vrstu podigni na 22 metra i drži ih tamo.",
                # (the row's climb may overshoot 22 m on the way: only where it holds is checked)
@@ -5161,14 +5187,16 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                [_formation(three, "line", 12, 8), _formation(three, "line", 22, 8)],
                "Sva tri drona drže vrstu na 22 m, na razmaku od 8 m, iznad svojih mesta."),
         # relative
-        _entry("relative", "test", "rel15-bravo-north-east-dropping", ("bravo",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("relative", "dev", "rel15-bravo-north-east-dropping", ("bravo",),
                "Bravo up to 12 m, then shift it 18 m north and 8 m east in one go, losing 4 m of height on the way, "
                "and hold it there.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 12), at(ev, "bravo", *c.point("bravo", 18, 8), alt=8),
                                   airborne_at(ev, "bravo", 8)),
                [_takeoff("bravo", 12), _move("bravo", 18, 8, up=-4)],
                "Bravo holds 18 m north and 8 m east of its pad at 8 m."),
-        _entry("relative", "test", "rel15-pt-charlie-southwest-then-higher", ("charlie",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("relative", "dev", "rel15-pt-charlie-southwest-then-higher", ("charlie",),
                "Leva o charlie até aos 15 m, afasta-o depois 25 m para sudoeste e, já lá, sobe-o mais 5 m; deixa-o "
                "a pairar aí.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -d25, -d25)], alt=15),
@@ -5176,7 +5204,8 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                                   airborne_at(ev, "charlie", 20)),
                [_takeoff("charlie", 15), _move("charlie", -d25, -d25), _move("charlie", up=5)],
                "O charlie está a pairar 25 m a sudoeste, a 20 m."),
-        _entry("relative", "test", "rel15-et-alpha-east-then-lower", ("alpha",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("relative", "dev", "rel15-et-alpha-east-then-lower", ("alpha",),
                "Tõsta alpha 20 meetri kõrgusele, lennuta ta 30 meetrit ida poole ja lase tal seal 12 meetri võrra "
                "laskuda; siis jäta ta õhku hõljuma.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 30)], alt=20),
@@ -5184,7 +5213,8 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 20), _move("alpha", 0, 30), _move("alpha", up=-12)],
                "alpha hõljub 30 m ida pool, 8 m kõrgusel."),
         # question
-        _entry("question", "test", "ask15-sum-alpha-charlie", three,
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("question", "dev", "ask15-sum-alpha-charlie", three,
                "What do alpha's and charlie's batteries come to if you add them together? Don't fly anything, just "
                "tell me.",
                # the typed plan reads, it does not compute: the sum, or the two readings it comes from
@@ -5193,14 +5223,16 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                                   nobody_armed(ev)),
                [("fleet_status", {})], "Together 131 % (alpha 58 %, charlie 73 %).",
                battery={"alpha": 58.0, "bravo": 80.0, "charlie": 73.0}),
-        _entry("question", "test", "ask15-vi-rank-by-charge", three,
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("question", "dev", "ask15-vi-rank-by-charge", three,
                "Xếp ba chiếc drone theo mức pin từ cao xuống thấp giúp tôi, kèm phần trăm của từng chiếc. Không cho "
                "chiếc nào bay nhé.",
                lambda c, ev: _all(answer_mentions_number(ev, 90, 1), answer_mentions_number(ev, 66, 1),
                                   answer_mentions_number(ev, 47, 1), nobody_armed(ev)),
                [("fleet_status", {})], "bravo 90 %, charlie 66 %, alpha 47 %.",
                battery={"alpha": 47.0, "bravo": 90.0, "charlie": 66.0}),
-        _entry("question", "test", "ask15-th-bravo-short-of-full", three,
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("question", "dev", "ask15-th-bravo-short-of-full", three,
                "แบตเตอรี่ของ bravo ยังขาดอีกกี่เปอร์เซ็นต์ถึงจะเต็ม บอกอย่างเดียวพอ ไม่ต้องให้โดรนลำไหนขึ้นบิน",
                # the typed plan reads, it does not compute: the shortfall, or the reading it comes from
                lambda c, ev: _all(_any(answer_mentions_number(ev, 38, 1), answer_mentions_number(ev, 62, 1)),
@@ -5208,19 +5240,22 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                [_battery("bravo")], "bravo มีแบต 62 % ยังขาดอีก 38 % ถึงจะเต็ม", battery={"bravo": 62.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude)
-        _entry("refusal", "test", "refuse15-alpha-long-leg-south", ("alpha",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse15-alpha-long-leg-south", ("alpha",),
                "Alpha: take off to 20 m and run a single survey leg 1200 m long, heading due south.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 20), refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "alpha", c.max_distance_m), answer_reports_refusal(ev)),
                [_takeoff("alpha", 20), _move("alpha", -1200, 0)],
                "Alpha is up at 20 m; the 1200 m leg south was refused: it is beyond the 1000 m distance limit."),
-        _entry("refusal", "test", "refuse15-hu-charlie-climb-over-ceiling", ("charlie",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse15-hu-charlie-climb-over-ceiling", ("charlie",),
                "Vidd fel charlie-t 60 méter magasra, aztán onnan emeld még 70 méterrel magasabbra.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 60), refusal_seen(ev, "altitude", "120"),
                                   max_alt_at_most(ev, "charlie", c.max_alt_m), answer_reports_refusal(ev)),
                [_takeoff("charlie", 60), _move("charlie", up=70)],
                "charlie 60 m-en van; a 130 m-re emelést a rendszer elutasította: a magassági korlát 120 m."),
-        _entry("refusal", "test", "refuse15-tl-bravo-low-battery", ("bravo",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse15-tl-bravo-low-battery", ("bravo",),
                "Kailangan ko si bravo sa himpapawid: paakyatin mo siya sa 15 metro, saka mo siya ilipad nang 40 "
                "metro pahilaga.",
                lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "bravo"), answer_reports_refusal(ev)),
@@ -5228,13 +5263,15 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                "Tinanggihan ng gateway: 18 % na lang ang baterya ni bravo, kulang sa 30 % na kailangan para lumipad.",
                battery={"bravo": 18.0}),
         # units
-        _entry("units", "test", "units15-alpha-feet-west-south-land", ("alpha",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("units", "dev", "units15-alpha-feet-west-south-land", ("alpha",),
                "Alpha: hover at 45 ft, then slide 60 ft west and 30 ft south, and put it down there.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 45 * FT), at(ev, "alpha", *c.point("alpha", -30 * FT, -60 * FT)),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 45 * FT), _move("alpha", -30 * FT, -60 * FT), _land("alpha")],
                "Alpha hovered at 45 ft (13.7 m), moved 60 ft (18.3 m) west and 30 ft (9.1 m) south, and landed."),
-        _entry("units", "test", "units15-da-bravo-yards-south-feet-up", ("bravo",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("units", "dev", "units15-da-bravo-yards-south-feet-up", ("bravo",),
                "Send bravo 30 yards mod syd i 10 meters højde, løft den derefter 20 fod mere, og lad den blive "
                "hængende dér.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", -30 * YD, 0)], alt=10),
@@ -5242,7 +5279,8 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                                   airborne_at(ev, "bravo", 10 + 20 * FT)),
                [_move("bravo", -30 * YD, 0, alt=10), _move("bravo", up=20 * FT)],
                "Bravo hænger 30 yards (27 m) mod syd i 16 m højde."),
-        _entry("units", "test", "units15-bg-charlie-feet-km-climb", ("charlie",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("units", "dev", "units15-bg-charlie-feet-km-climb", ("charlie",),
                "Вдигни charlie на 30 фута, прати го 0,04 км на север, после го качи до 70 фута и го остави да виси "
                "там.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 40, 0)], alt=30 * FT),
@@ -5251,21 +5289,24 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 30 * FT), _move("charlie", 40, 0), _move("charlie", alt=70 * FT)],
                "charlie виси на 40 м на север, на 70 фута (21 м)."),
         # pattern
-        _entry("pattern", "test", "pattern15-bravo-l-out-and-back", ("bravo",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern15-bravo-l-out-and-back", ("bravo",),
                "Bravo at 10 m: fly an L, 30 m north and then 15 m east, then retrace it exactly back to the pad and "
                "land.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(l_retraced)[:3]]),
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 10), *_legs("bravo", l_retraced), _land("bravo")],
                "Bravo flew the L out and back and landed on its pad."),
-        _entry("pattern", "test", "pattern15-ar-charlie-rectangle-east-first", ("charlie",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern15-ar-charlie-rectangle-east-first", ("charlie",),
                "حلّق بالدرون charlie على ارتفاع 15 مترًا في مسار مستطيل: 30 مترًا نحو الشرق، ثم 12 مترًا نحو "
                "الجنوب، ثم 30 مترًا نحو الغرب، ثم 12 مترًا نحو الشمال، وبعد ذلك أنزله في مكان انطلاقه.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(rectangle)[:3]]),
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 15), *_legs("charlie", rectangle), _land("charlie")],
                "أكمل charlie المستطيل وهبط في مكان انطلاقه."),
-        _entry("pattern", "test", "pattern15-is-alpha-triangle-right", ("alpha",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern15-is-alpha-triangle-right", ("alpha",),
                "Láttu alpha fljúga þríhyrning í 10 metra hæð með 25 metra hliðum: fyrsta hliðin í austur, og hann "
                "beygir til hægri í hverju horni. Láttu hann svo lenda þar sem hann fór á loft.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(triangle25)[:2]]),
@@ -5274,7 +5315,8 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                "alpha flaug þríhyrninginn og lenti þar sem hann fór á loft."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
         # charlie from alpha, 10 m apart, so that a drone placed from itself misses)
-        _entry("placement", "test", "place15-charlie-lands-northwest-of-alpha", three,
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("placement", "dev", "place15-charlie-lands-northwest-of-alpha", three,
                "Get alpha up to 14 m over its pad. Then fly charlie to the spot 10 m north-west of alpha, at 8 m, "
                "and land it there.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=14), airborne_at(ev, "alpha", 14),
@@ -5282,7 +5324,8 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                                   landed_disarmed(ev, "charlie"), never_armed(ev, "bravo")),
                lambda c: [_takeoff("alpha", 14), _go("charlie", c.point("alpha", d10, -d10), 8), _land("charlie")],
                "Alpha hovers at 14 m over its pad; charlie landed 10 m north-west of it."),
-        _entry("placement", "test", "place15-id-charlie-northeast-then-alpha-lands", three,
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("placement", "dev", "place15-id-charlie-northeast-then-alpha-lands", three,
                "Naikkan alpha ke 8 meter. Setelah itu, tempatkan charlie 15 meter di timur laut alpha pada "
                "ketinggian yang sama, lalu daratkan alpha kembali di tempatnya.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 8), at(ev, "alpha", *_home(c, "alpha")),
@@ -5291,7 +5334,8 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_takeoff("alpha", 8), _go("charlie", c.point("alpha", d15, d15), 8), _land("alpha")],
                "charlie melayang 15 m di timur laut landasan alpha pada 8 m; alpha sudah mendarat lagi."),
-        _entry("placement", "test", "place15-hi-charlie-south-above-moved-alpha", three,
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("placement", "dev", "place15-hi-charlie-south-above-moved-alpha", three,
                "alpha को 10 मीटर की ऊँचाई पर 20 मीटर पश्चिम ले जाओ और वहीं रोके रखो। फिर charlie को alpha से 10 "
                "मीटर दक्षिण में, उससे 5 मीटर ऊपर, हवा में रोक दो।",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -20), alt=10), airborne_at(ev, "alpha", 10),
@@ -5300,18 +5344,21 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                lambda c: [_move("alpha", 0, -20, alt=10), _go("charlie", c.point("alpha", -10, -20), 15)],
                "alpha 20 m पश्चिम में 10 m पर है; charlie उससे 10 m दक्षिण में 15 m पर है।"),
         # language
-        _entry("language", "test", "lang15-uk-bravo-northeast-hover", ("bravo",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("language", "dev", "lang15-uk-bravo-northeast-hover", ("bravo",),
                "Підніми bravo на 18 метрів, відправ його на 25 метрів на північний схід і залиш там висіти.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", d25, d25), alt=18), airborne_at(ev, "bravo", 18)),
                [_takeoff("bravo", 18), _move("bravo", d25, d25)], "bravo висить за 25 м на північний схід, на 18 м."),
-        _entry("language", "test", "lang15-sw-charlie-southwest-land", ("charlie",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("language", "dev", "lang15-sw-charlie-southwest-land", ("charlie",),
                "Ipaishe charlie hadi mita 12 juu, kisha uipeleke mita 30 kuelekea kusini magharibi, halafu "
                "uiteremshe chini hapo hapo.",
                lambda c, ev: _all(reached_alt(ev, "charlie", 12), at(ev, "charlie", *c.point("charlie", -d30, -d30)),
                                   landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 12), _move("charlie", -d30, -d30), _land("charlie")],
                "charlie imeruka mita 30 kusini magharibi na kutua hapo."),
-        _entry("language", "test", "lang15-pa-alpha-west-home", ("alpha",),
+        # moved to dev on 2026-12-03, fifteenth round: the test half had been measured
+        _entry("language", "dev", "lang15-pa-alpha-west-home", ("alpha",),
                "alpha ਨੂੰ 10 ਮੀਟਰ ਦੀ ਉਚਾਈ ਤੱਕ ਉਡਾਓ, ਫਿਰ ਇਸਨੂੰ 20 ਮੀਟਰ ਪੱਛਮ ਵੱਲ ਲੈ ਜਾਓ, ਅਤੇ ਉਸ ਤੋਂ ਬਾਅਦ ਵਾਪਸ ਘਰ "
                "ਲਿਆ ਕੇ ਉਤਾਰੋ।",
                # the return home climbs to its own height: the leg west is checked at 10 m instead
@@ -5319,6 +5366,351 @@ def _fifteenth_test_half() -> list[CorpusEntry]:
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), _move("alpha", 0, -20), _rtl("alpha")],
                "alpha 20 m ਪੱਛਮ ਵੱਲ ਉੱਡ ਕੇ ਘਰ ਵਾਪਸ ਆਇਆ ਅਤੇ ਉਤਰ ਗਿਆ।"),
+    ]  # fmt: skip
+
+
+def _sixteenth_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-03 (sixteenth round), before any model ran on it, by a writer who
+    did not read the host's word lists or rules: 3 a class; 22 of the 33 outside ``language`` in other
+    languages than English, one each (Afrikaans, Arabic, Bosnian, Catalan, Chinese, French, German, Haitian
+    Creole, Hebrew, Hindi, Japanese, Korean, Luxembourgish, Malay, Persian, Portuguese, Romanian, Russian,
+    Spanish, Swedish, Turkish, Urdu; Bosnian, Haitian Creole and Luxembourgish are new, Urdu is new outside
+    ``language``), the ``language`` class's 3 in Greek, Belarusian and Malayalam (Greek is new to the class,
+    Belarusian and Malayalam to the corpus, and Malayalam script with it)."""
+    three = DRONES
+    d20, d25, d40 = (x / math.sqrt(2) for x in (20, 25, 40))
+    inch = 0.0254
+    # a five-pointed star of 30 m strokes: the first due north, a 144 degree turn to the right at each point
+    star = [(round(30 * math.cos(math.radians(k * 144)), 2), round(30 * math.sin(math.radians(k * 144)), 2))
+            for k in range(5)]  # fmt: skip
+    # a half circle of 20 m radius round the pad, from its west point through north to its east point
+    arc = [(0.0, -20.0), (20 / math.sqrt(2), -20 / math.sqrt(2)), (20.0, 0.0), (20 / math.sqrt(2), 20 / math.sqrt(2)),
+           (0.0, 20.0)]  # fmt: skip
+    # a Z of 20 m strokes: east along the top, diagonally to the point 20 m south of the start, east again
+    zed = [(0.0, 20.0), (-20.0, -20.0), (0.0, 20.0)]
+
+    def takeoffs(ev: Evidence, d: str, alt: float, want: int) -> Check:
+        """How many times the drone rose from the ground to ``alt`` (less the tolerance)."""
+        count, down = 0, True
+        for s in ev.track.get(d, []):
+            if down and s.alt_rel_m >= alt - ALT_TOL_M:
+                count, down = count + 1, False
+            elif s.landed:
+                down = True
+        return Check(count == want, f"{d} rose from the ground to {alt:g} m {count} time(s) (want {want})")
+
+    def row_along(ev: Evidence, drones: tuple[str, ...], bearing: float) -> Check:
+        """The two drones farthest apart lie on a line running along ``bearing`` (either way round, ±15°)."""
+        final = [ev.final[d] for d in drones]
+        a, b = max(((p, q) for i, p in enumerate(final) for q in final[i + 1 :]),
+                   key=lambda pq: horizontal_distance_m(pq[0].lat, pq[0].lon, pq[1].lat, pq[1].lon))  # fmt: skip
+        off = (bearing_deg(a.lat, a.lon, b.lat, b.lon) - bearing) % 180.0
+        off = min(off, 180.0 - off)
+        return Check(off <= 15.0, f"the row runs {off:.0f} degrees off a {bearing:g} degree line")
+
+    def formation_seen(
+        c: MissionContext, ev: Evidence, drones: tuple[str, ...], alt: float, spacing: float, north: float
+    ) -> Check:
+        """At some moment of the flight, every drone at ``alt``, the nearest neighbours ``spacing`` apart (±3 m)
+        and the drones' centre ``north`` metres from the centre of their homes: a formation held before the
+        drones left it."""
+        home_lat = sum(c.homes[d][0] for d in drones) / len(drones)
+        home_lon = sum(c.homes[d][1] for d in drones) / len(drones)
+        want = offset_position(home_lat, home_lon, north, 0.0)
+        samples = min(len(ev.track.get(d, [])) for d in drones)
+        for i in range(samples):
+            now = [ev.track[d][i] for d in drones]
+            if any(abs(s.alt_rel_m - alt) > ALT_TOL_M for s in now):
+                continue
+            nearest = min(horizontal_distance_m(p.lat, p.lon, q.lat, q.lon)
+                          for j, p in enumerate(now) for q in now[j + 1 :])  # fmt: skip
+            off = horizontal_distance_m(*_centroid(now), *want)
+            if abs(nearest - spacing) <= 3.0 and off <= HORIZONTAL_TOL_M:
+                return Check(True, f"the formation was held ({nearest:.1f} m apart at sample {i})")
+        return Check(False, "the formation was never held")
+
+    return [
+        # single
+        _entry("single", "test", "single16-charlie-over-the-mast", ("charlie",),
+               "There's a 12 m radio mast right beside charlie's pad. Take charlie straight up until it's 3 m clear "
+               "of the top of the mast, and keep it there.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=15), airborne_at(ev, "charlie", 15)),
+               [_takeoff("charlie", 15)], "Charlie hovers at 15 m over its pad, 3 m above the mast."),
+        _entry("single", "test", "single16-ht-bravo-two-hops", ("bravo",),
+               "Fè bravo monte 6 mèt epi ateri sou menm plas la, de fwa youn apre lòt. Apre dezyèm fwa a, kite l "
+               "atè.",
+               lambda c, ev: _all(takeoffs(ev, "bravo", 6, 2), at(ev, "bravo", *_home(c, "bravo")),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 6), _land("bravo"), _takeoff("bravo", 6), _land("bravo")],
+               "bravo monte 6 m epi ateri de fwa; kounye a li atè sou plas li."),
+        _entry("single", "test", "single16-ko-alpha-three-steps", ("alpha",),
+               "alpha를 한 번에 5미터씩, 세 번에 나눠서 올려 줘. 다 올라가면 그 높이에서 그대로 떠 있게 해 줘.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=15), airborne_at(ev, "alpha", 15)),
+               [_takeoff("alpha", 5), _move("alpha", up=5), _move("alpha", up=5)],
+               "alpha는 5 m씩 세 번 올라가서 15 m에 떠 있어."),
+        # multi
+        _entry("multi", "test", "multi16-alpha-charlie-swap-heights", three,
+               "Alpha up to 10 m and charlie up to 20 m, each over its own pad; then swap their heights. Bravo "
+               "stays on the ground.",
+               lambda c, ev: _all(rose_to(ev, "charlie", 20),
+                                  at(ev, "alpha", *_home(c, "alpha"), alt=20), airborne_at(ev, "alpha", 20),
+                                  at(ev, "charlie", *_home(c, "charlie"), alt=10), airborne_at(ev, "charlie", 10),
+                                  never_armed(ev, "bravo")),
+               [_takeoff("alpha", 10), _takeoff("charlie", 20), _move("alpha", alt=20), _move("charlie", alt=10)],
+               "Alpha now hovers at 20 m and charlie at 10 m over their pads; bravo stayed down."),
+        _entry("multi", "test", "multi16-de-pair-north-alpha-lands-charlie-on", three,
+               "Schick alpha und charlie zusammen auf 15 m Höhe 30 m nach Norden. Dort landet alpha, und charlie "
+               "fliegt noch 20 m weiter nach Norden und bleibt in der Luft. Bravo bleibt am Boden.",
+               lambda c, ev: _all(rose_to(ev, "alpha", 15), at(ev, "alpha", *c.point("alpha", 30, 0)),
+                                  landed_disarmed(ev, "alpha"),
+                                  visited(ev, "charlie", [c.point("charlie", 30, 0)], alt=15),
+                                  at(ev, "charlie", *c.point("charlie", 50, 0), alt=15), airborne_at(ev, "charlie", 15),
+                                  never_armed(ev, "bravo")),
+               [_move("alpha", 30, 0, alt=15), _move("charlie", 30, 0, alt=15), _land("alpha"), _move("charlie", 20, 0)],
+               "alpha ist 30 m nördlich gelandet; charlie schwebt 50 m nördlich auf 15 m; bravo blieb am Boden."),
+        _entry("multi", "test", "multi16-ur-all-up-bravo-higher-two-land", three,
+               "alpha، bravo اور charlie تینوں کو 8 میٹر کی اونچائی تک اڑاؤ۔ پھر bravo کو وہیں سے مزید 20 میٹر "
+               "اوپر لے جاؤ، اور alpha اور charlie کو ان کی اپنی جگہ پر واپس اتار دو۔",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 8), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha"),
+                                  reached_alt(ev, "charlie", 8), at(ev, "charlie", *_home(c, "charlie")),
+                                  landed_disarmed(ev, "charlie"),
+                                  at(ev, "bravo", *_home(c, "bravo"), alt=28), airborne_at(ev, "bravo", 28)),
+               [_takeoff("alpha", 8), _takeoff("bravo", 8), _takeoff("charlie", 8), _move("bravo", up=20),
+                _land("alpha"), _land("charlie")],
+               "bravo اپنے پیڈ کے اوپر 28 میٹر پر ہے؛ alpha اور charlie 8 میٹر تک جا کر اپنی جگہ اتر گئے۔"),
+        # compound
+        _entry("compound", "test", "compound16-alpha-north-then-fifty-from-pad", ("alpha",),
+               "Alpha: up to 12 m and 40 m north; then turn east and keep going until it's 50 m from its pad in a "
+               "straight line, and land it there.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 12), visited(ev, "alpha", [c.point("alpha", 40, 0)], alt=12),
+                                  at(ev, "alpha", *c.point("alpha", 40, 30)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 12), _move("alpha", 40, 0), _move("alpha", 0, 30), _land("alpha")],
+               "Alpha flew 40 m north and 30 m east, 50 m from its pad, and landed there."),
+        _entry("compound", "test", "compound16-ja-charlie-legs-from-height", ("charlie",),
+               "charlieを15メートルまで上げて、その高度と同じ距離だけ西へ、続けてその2倍の距離を南へ飛ばしたら、そこで"
+               "着陸させて。",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 15),
+                                  visited(ev, "charlie", [c.point("charlie", 0, -15)], alt=15),
+                                  at(ev, "charlie", *c.point("charlie", -30, -15)), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 15), _move("charlie", 0, -15), _move("charlie", -30, 0), _land("charlie")],
+               "charlieは西へ15 m、南へ30 m飛んで、そこに着陸した。"),
+        _entry("compound", "test", "compound16-lb-bravo-low-leg-north", ("bravo",),
+               "Looss bravo op 12 Meter klammen an dann 25 Meter no Osten fléien. Do soll en bis op 3 Meter iwwer "
+               "dem Buedem erofgoen an op där Héicht nach 10 Meter no Norden fléien; duerno bleift en do an der Loft.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 25)], alt=12),
+                                  visited(ev, "bravo", [c.point("bravo", 0, 25)], alt=3),
+                                  at(ev, "bravo", *c.point("bravo", 10, 25), alt=3), airborne_at(ev, "bravo", 3)),
+               [_takeoff("bravo", 12), _move("bravo", 0, 25), _move("bravo", alt=3), _move("bravo", 10, 0)],
+               "bravo hänkt 10 m nërdlech an 25 m ëstlech vu senger Startplaz, 3 m iwwer dem Buedem."),
+        # conditional
+        _entry("conditional", "test", "cond16-heights-by-rank", three,
+               "Put all three up over their pads by charge: the fullest at 20 m, the next at 15 m, the emptiest at "
+               "10 m.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=20), airborne_at(ev, "bravo", 20),
+                                  at(ev, "charlie", *_home(c, "charlie"), alt=15), airborne_at(ev, "charlie", 15),
+                                  at(ev, "alpha", *_home(c, "alpha"), alt=10), airborne_at(ev, "alpha", 10)),
+               [("fleet_status", {}), _takeoff("bravo", 20), _takeoff("charlie", 15), _takeoff("alpha", 10)],
+               "Bravo (90 %) is at 20 m, charlie (72 %) at 15 m and alpha (55 %) at 10 m.",
+               battery={"alpha": 55.0, "bravo": 90.0, "charlie": 72.0}),
+        _entry("conditional", "test", "cond16-fr-pair-abreast-or-fuller", three,
+               "Si bravo et charlie ont tous les deux au moins 60 % de batterie, mets-les côte à côte à 15 m "
+               "d'altitude, à 10 m l'un de l'autre, juste au-dessus de l'endroit où ils sont ; sinon, fais décoller "
+               "uniquement celui des deux qui en a le plus, à 15 m. Alpha ne bouge pas.",
+               lambda c, ev: _all(formation_at(c, ev, ("bravo", "charlie"), 15, 10, 0, 0), never_armed(ev, "alpha")),
+               [("fleet_status", {}), _formation(("bravo", "charlie"), "line", 15, 10)],
+               "bravo (72 %) et charlie (65 %) ont tous les deux au moins 60 % : ils sont côte à côte à 15 m, à 10 m "
+               "l'un de l'autre.",
+               battery={"bravo": 72.0, "charlie": 65.0}),
+        _entry("conditional", "test", "cond16-he-all-or-none", three,
+               "אם לכל שלושת הרחפנים יש לפחות 40% סוללה, הרם את כולם ל-10 מטר מעל המנחתים שלהם. אם אפילו לאחד מהם "
+               "יש פחות מזה, אל תמריא אף אחד, ותגיד לי מי זה וכמה סוללה יש לו.",
+               lambda c, ev: _all(answer_says(ev, r"charlie", "charlie"), answer_mentions_number(ev, 37, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "ל-charlie יש רק 37%, לכן אף רחפן לא המריא.",
+               battery={"alpha": 66.0, "bravo": 81.0, "charlie": 37.0}),
+        # formation
+        _entry("formation", "test", "form16-diagonal-row-nw-se", three,
+               "Line the three up in a diagonal row running from north-west to south-east, 10 m apart, at 14 m, "
+               "right above where they stand, and hold them there.",
+               lambda c, ev: _all(formation_at(c, ev, three, 14, 10, 0, 0), farthest_apart(ev, three, 20),
+                                  row_along(ev, three, 135)),
+               [("formation_goto", {"drone_ids": list(three), "formation": "line", "alt_m": 14, "spacing_m": 10,
+                                    "heading_deg": 45.0})],
+               "The three hold a north-west to south-east row 10 m apart at 14 m over where they stood."),
+        _entry("formation", "test", "form16-ru-row-spread-wider", three,
+               "Выстрой все три дрона в ряд прямо над их площадками на высоте 15 метров, с интервалом 8 метров, а "
+               "потом раздвинь их, чтобы между соседями было 16 метров. Пусть так и висят.",
+               lambda c, ev: _all(formation_at(c, ev, three, 15, 16, 0, 0), farthest_apart(ev, three, 32)),
+               [_formation(three, "line", 15, 8), _formation(three, "line", 15, 16)],
+               "Все три дрона висят в ряд на 15 м, по 16 м между соседями, над своими площадками."),
+        _entry("formation", "test", "form16-ca-column-north-then-home", three,
+               "Posa els tres drons en columna, l'un darrere l'altre, separats 10 metres, a 12 metres d'altura i 30 "
+               "metres al nord d'on són ara. Quan hi hagin arribat, fes-los tornar tots tres a casa.",
+               lambda c, ev: _all(formation_seen(c, ev, three, 12, 10, 30),
+                                  *(at(ev, d, *_home(c, d)) for d in three), *(landed_disarmed(ev, d) for d in three)),
+               [_formation(three, "column", 12, 10, north=30), _rtl("alpha"), _rtl("bravo"), _rtl("charlie")],
+               "Els tres drons han fet la columna 30 m al nord i han tornat a casa."),
+        # relative
+        _entry("relative", "test", "rel16-alpha-east-corrected-to-west", ("alpha",),
+               "Alpha up to 10 m, then 20 m north and 15 m east (sorry, west, not east) and hold it there.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, -15), alt=10), airborne_at(ev, "alpha", 10)),
+               [_takeoff("alpha", 10), _move("alpha", 20, -15)],
+               "Alpha holds 20 m north and 15 m west of its pad at 10 m."),
+        _entry("relative", "test", "rel16-af-charlie-east-climbing-gradient", ("charlie",),
+               "Lig charlie op tot 8 meter en skuif hom dan 30 meter oos. Op pad moet hy 1 meter klim vir elke 3 "
+               "meter wat hy vorentoe vlieg; laat hom daar hang.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 30), alt=18), airborne_at(ev, "charlie", 18)),
+               [_takeoff("charlie", 8), _move("charlie", 0, 30, up=10)],
+               "charlie hang 30 m oos van sy beginpunt, op 18 m."),
+        _entry("relative", "test", "rel16-zh-bravo-mirror-across-pad", ("bravo",),
+               "让 bravo 升到 12 米，往西北方向飞 20 米；然后把它挪到起飞点另一侧、与现在的位置正好对称的地方，高度不变，"
+               "在那里悬停。",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", d20, -d20)], alt=12),
+                                  at(ev, "bravo", *c.point("bravo", -d20, d20), alt=12), airborne_at(ev, "bravo", 12)),
+               [_takeoff("bravo", 12), _move("bravo", d20, -d20), _move("bravo", -2 * d20, 2 * d20)],
+               "bravo 在起飞点东南方向 20 米、12 米高处悬停。"),
+        # question
+        _entry("question", "test", "ask16-charlie-runs-left", three,
+               "Each survey run uses about 15 % of a battery, and charlie must still have 30 % left when it lands "
+               "from the last one. Going by its charge right now, how many full runs can it do? Just work it out; "
+               "nothing flies.",
+               # the typed plan reads, it does not compute: the number of runs, or the reading it comes from
+               lambda c, ev: _all(_any(answer_mentions_number(ev, 3, 0.5), answer_mentions_number(ev, 78, 1)),
+                                  nobody_armed(ev)),
+               [_battery("charlie")], "Charlie has 78 %: three runs (45 %) leave it 33 %, a fourth would not.",
+               battery={"alpha": 60.0, "bravo": 90.0, "charlie": 78.0}),
+        _entry("question", "test", "ask16-sv-second-most-charge", three,
+               "Vilken drönare har näst mest batteri kvar, och hur många procent har den? Starta ingenting.",
+               lambda c, ev: _all(answer_says(ev, r"\balpha\b", "alpha"), answer_mentions_number(ev, 71, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "alpha, med 71 % (charlie har mest, 86 %).",
+               battery={"alpha": 71.0, "bravo": 58.0, "charlie": 86.0}),
+        _entry("question", "test", "ask16-ar-charlie-east-or-west-of-alpha", three,
+               "في أي اتجاه تقف charlie بالنسبة إلى alpha: إلى الشرق منها أم إلى الغرب؟ لا تُقلع أي طائرة، أريد "
+               "الجواب فقط.",
+               lambda c, ev: _all(answer_says(ev, r"شرق|\beast\b", "east"), nobody_armed(ev)),
+               [("get_position", {"drone_id": "alpha"}), ("get_position", {"drone_id": "charlie"})],
+               "charlie تقف إلى الشرق من alpha."),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
+        # 2 m the lowest altitude)
+        _entry("refusal", "test", "refuse16-alpha-second-leg-too-far", ("alpha",),
+               "Alpha at 20 m: 300 m north first, then a 1 km leg due east from there.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 300, 0)]),
+                                  refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "alpha", c.max_distance_m), answer_reports_refusal(ev)),
+               [_takeoff("alpha", 20), _move("alpha", 300, 0), _move("alpha", 0, 1000)],
+               "Alpha is 300 m north at 20 m; the 1 km leg east was refused: it would end 1044 m from home, beyond "
+               "the 1000 m limit."),
+        _entry("refusal", "test", "refuse16-es-bravo-triple-height", ("alpha", "bravo"),
+               "Sube a alpha a 45 metros y a bravo al triple de esa altura, cada uno sobre su base.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=45), airborne_at(ev, "alpha", 45),
+                                  refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "bravo", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("alpha", 45), _takeoff("bravo", 135)],
+               "alpha está a 45 m; subir bravo a 135 m fue rechazado: supera el límite de altitud de 120 m."),
+        _entry("refusal", "test", "refuse16-bs-row-charlie-low", three,
+               "Poredaj sva tri drona u red iznad mjesta gdje sada stoje, na visini od 15 metara i s razmakom od 10 "
+               "metara.",
+               lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "charlie"), answer_reports_refusal(ev)),
+               [_formation(three, "line", 15, 10)],
+               "Formacija je odbijena: charlie ima samo 22 % baterije, a za polijetanje treba najmanje 30 %.",
+               battery={"charlie": 22.0}),
+        # units
+        _entry("units", "test", "units16-bravo-feet-and-inches", ("bravo",),
+               "Bravo: climb to 26 ft 3 in, fly 100 ft east, then climb another 16 ft 5 in and hold it there.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 100 * FT)], alt=26 * FT + 3 * inch),
+                                  at(ev, "bravo", *c.point("bravo", 0, 100 * FT), alt=42 * FT + 8 * inch),
+                                  airborne_at(ev, "bravo", 42 * FT + 8 * inch)),
+               [_takeoff("bravo", 26 * FT + 3 * inch), _move("bravo", 0, 100 * FT), _move("bravo", up=16 * FT + 5 * inch)],
+               "Bravo holds 100 ft (30.5 m) east of its pad at 42 ft 8 in (13.0 m)."),
+        _entry("units", "test", "units16-pt-alpha-feet-miles-yards-land", ("alpha",),
+               "Suba o alpha a 35 pés, leve-o 0,03 milha para o oeste e depois 20 jardas para o sul, e pouse-o ali.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 35 * FT), visited(ev, "alpha", [c.point("alpha", 0, -0.03 * MI)]),
+                                  at(ev, "alpha", *c.point("alpha", -20 * YD, -0.03 * MI)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 35 * FT), _move("alpha", 0, -0.03 * MI), _move("alpha", -20 * YD, 0), _land("alpha")],
+               "O alpha subiu a 35 pés (10,7 m), voou 0,03 milha (48 m) para o oeste e 20 jardas (18 m) para o sul "
+               "e pousou."),
+        _entry("units", "test", "units16-fa-charlie-feet-km-nw-down", ("charlie",),
+               "charlie را تا ارتفاع 50 پا بالا ببر، بعد 0.04 کیلومتر به سمت شمال غربی ببرش، آنجا 15 پا پایین "
+               "بیاورش و همان‌جا نگهش دار.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", d40, -d40)], alt=50 * FT),
+                                  at(ev, "charlie", *c.point("charlie", d40, -d40), alt=35 * FT),
+                                  airborne_at(ev, "charlie", 35 * FT)),
+               [_takeoff("charlie", 50 * FT), _move("charlie", d40, -d40), _move("charlie", up=-15 * FT)],
+               "charlie در 40 متری شمال غربی، در ارتفاع 35 پا (10.7 متر) معلق است."),
+        # pattern
+        _entry("pattern", "test", "pattern16-charlie-five-pointed-star", ("charlie",),
+               "Charlie at 12 m: fly a five-pointed star with 30 m strokes, the first stroke due north, then a 144° "
+               "turn to the right at each point until it's back where it started, and land it there.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(star)[:4]]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), *_legs("charlie", star), _land("charlie")],
+               "Charlie flew the star and landed where it started."),
+        _entry("pattern", "test", "pattern16-ro-alpha-semicircle-north", ("alpha",),
+               "Fă-l pe alpha să zboare la 10 metri înălțime un semicerc cu raza de 20 de metri în jurul punctului "
+               "de decolare: să pornească din punctul aflat la 20 de metri la vest de acesta, să treacă prin nord și "
+               "să termine în punctul aflat la 20 de metri la est, iar acolo să aterizeze.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in arc[::2]]),
+                                  at(ev, "alpha", *c.point("alpha", 0, 20)), landed_disarmed(ev, "alpha")),
+               lambda c: [_takeoff("alpha", 10), *(_go("alpha", c.point("alpha", n, e), 10) for n, e in arc),
+                          _land("alpha")],
+               "alpha a zburat semicercul prin nord și a aterizat la 20 m est de punctul de decolare."),
+        _entry("pattern", "test", "pattern16-hi-bravo-letter-z", ("bravo",),
+               "bravo को 12 मीटर की ऊँचाई पर अंग्रेज़ी के Z अक्षर जैसे रास्ते पर उड़ाओ: पहले 20 मीटर पूर्व, फिर तिरछे "
+               "दक्षिण-पश्चिम की ओर उस जगह तक जो शुरुआत से ठीक 20 मीटर दक्षिण में है, और फिर दोबारा 20 मीटर पूर्व। "
+               "आख़िर में उसे वहीं उतार दो।",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(zed)[:2]]),
+                                  at(ev, "bravo", *c.point("bravo", -20, 20)), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), *_legs("bravo", zed), _land("bravo")],
+               "bravo ने Z उड़ाया और शुरुआत से 20 m दक्षिण और 20 m पूर्व में उतर गया।"),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
+        # charlie from alpha, 10 m apart, so that a drone placed from itself misses)
+        _entry("placement", "test", "place16-charlie-behind-alpha", three,
+               "Alpha flies 30 m north at 12 m and stops there. Then charlie tucks in 10 m behind alpha, on the side "
+               "it came from, 3 m higher than it.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 30, 0), alt=12), airborne_at(ev, "alpha", 12),
+                                  at(ev, "charlie", *c.point("alpha", 20, 0), alt=15), airborne_at(ev, "charlie", 15),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_move("alpha", 30, 0, alt=12), _go("charlie", c.point("alpha", 20, 0), 15)],
+               "Alpha hovers 30 m north at 12 m; charlie is 10 m behind it, to the south, at 15 m."),
+        _entry("placement", "test", "place16-tr-charlie-follows-alpha", three,
+               "alpha'yı 12 metreye kaldır ve charlie'yi alpha'nın 15 metre güneyine, aynı yüksekliğe getir. Sonra "
+               "alpha'yı 20 metre doğuya kaydır; charlie de aradaki mesafeyi bozmadan onunla birlikte kaysın.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("alpha", -15, 0)], alt=12),
+                                  at(ev, "alpha", *c.point("alpha", 0, 20), alt=12), airborne_at(ev, "alpha", 12),
+                                  at(ev, "charlie", *c.point("alpha", -15, 20), alt=12), airborne_at(ev, "charlie", 12),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_takeoff("alpha", 12), _go("charlie", c.point("alpha", -15, 0), 12), _move("alpha", 0, 20),
+                          _move("charlie", 0, 20)],
+               "alpha 20 m doğuda 12 m'de; charlie onun 15 m güneyinde, aynı yükseklikte."),
+        _entry("placement", "test", "place16-ms-charlie-north-of-alpha-pad-half-bravo", three,
+               "Naikkan bravo ke 16 meter betul-betul di atas padnya. Kemudian bawa charlie ke titik 20 meter di "
+               "utara pad alpha, pada separuh ketinggian bravo, dan biarkan kedua-duanya berlegar di situ.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=16), airborne_at(ev, "bravo", 16),
+                                  at(ev, "charlie", *c.point("alpha", 20, 0), alt=8), airborne_at(ev, "charlie", 8),
+                                  never_armed(ev, "alpha")),
+               lambda c: [_takeoff("bravo", 16), _go("charlie", c.point("alpha", 20, 0), 8)],
+               "bravo berlegar 16 m di atas padnya; charlie berlegar 20 m di utara pad alpha pada 8 m."),
+        # language
+        _entry("language", "test", "lang16-el-alpha-southeast-land", ("alpha",),
+               "Σήκωσε το alpha στα 14 μέτρα, πήγαινέ το 25 μέτρα νοτιοανατολικά και προσγείωσέ το εκεί.",
+               lambda c, ev: _all(reached_alt(ev, "alpha", 14), at(ev, "alpha", *c.point("alpha", -d25, d25)),
+                                  landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 14), _move("alpha", -d25, d25), _land("alpha")],
+               "Το alpha πέταξε 25 m νοτιοανατολικά και προσγειώθηκε εκεί."),
+        _entry("language", "test", "lang16-be-bravo-west-hover", ("bravo",),
+               "Падымі bravo на 16 метраў, адвядзі яго на 30 метраў на захад і пакінь там вісець.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -30), alt=16), airborne_at(ev, "bravo", 16)),
+               [_takeoff("bravo", 16), _move("bravo", 0, -30)], "bravo вісіць за 30 м на захад, на 16 м."),
+        _entry("language", "test", "lang16-ml-charlie-northeast-home", ("charlie",),
+               "charlie-യെ 12 മീറ്റർ ഉയരത്തിലേക്ക് പറത്തുക, പിന്നെ വടക്കുകിഴക്ക് ദിശയിൽ 20 മീറ്റർ കൊണ്ടുപോകുക, "
+               "അതിനുശേഷം പറന്നുയർന്ന സ്ഥലത്തേക്ക് തിരികെ കൊണ്ടുവന്ന് ഇറക്കുക.",
+               # the return home climbs to its own height: the leg north-east is checked at 12 m instead
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", d20, d20)], alt=12),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), _move("charlie", d20, d20), _rtl("charlie")],
+               "charlie വടക്കുകിഴക്ക് 20 m പറന്ന് തിരികെ വന്ന് ഇറങ്ങി."),
     ]  # fmt: skip
 
 
@@ -5349,7 +5741,8 @@ def corpus() -> list[CorpusEntry]:
         *_twelfth_round(),
         *_thirteenth_round(),
         *_fourteenth_round(),
-        *_fifteenth_test_half(),
+        *_fifteenth_round(),
+        *_sixteenth_test_half(),
     ]
 
 
