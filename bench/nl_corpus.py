@@ -171,7 +171,12 @@ German, Haitian Creole, Hebrew, Hindi, Japanese, Korean, Luxembourgish, Malay, P
 Romanian, Russian, Spanish, Swedish, Turkish, Urdu; Bosnian, Haitian Creole and Luxembourgish are new, and
 Urdu is new outside the ``language`` class), and the ``language`` class's 3 in Greek, Belarusian and
 Malayalam (all three new to the class, Belarusian and Malayalam new to the corpus, and Malayalam script).
-Only the harness self-check (the scripted ideal plan) has run on them. That leaves 627 dev and 36 test.
+Only the harness self-check (the scripted ideal plan) has run on them: 36 of 36 passed, once three ideal
+plans named the points they fly to (the host's reading of the request had made a climb of the Japanese
+leg west "as far as the height", and a leg east of "15 m east (sorry, west, not east)"; the typed plan has
+no heading for the diagonal row, so each drone flies to its slot), and once an Arabic question the typed
+plan has no reading for (on which side of alpha charlie stands) gave way to another (whose charge is
+nearer bravo's). That leaves 627 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -5408,6 +5413,12 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
         off = min(off, 180.0 - off)
         return Check(off <= 15.0, f"the row runs {off:.0f} degrees off a {bearing:g} degree line")
 
+    def slot(c: MissionContext, drones: tuple[str, ...], north: float, east: float) -> tuple[float, float]:
+        """The point ``north``/``east`` metres from the centre of the drones' homes."""
+        home_lat = sum(c.homes[d][0] for d in drones) / len(drones)
+        home_lon = sum(c.homes[d][1] for d in drones) / len(drones)
+        return offset_position(home_lat, home_lon, north, east)
+
     def formation_seen(
         c: MissionContext, ev: Evidence, drones: tuple[str, ...], alt: float, spacing: float, north: float
     ) -> Check:
@@ -5493,7 +5504,9 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                lambda c, ev: _all(reached_alt(ev, "charlie", 15),
                                   visited(ev, "charlie", [c.point("charlie", 0, -15)], alt=15),
                                   at(ev, "charlie", *c.point("charlie", -30, -15)), landed_disarmed(ev, "charlie")),
-               [_takeoff("charlie", 15), _move("charlie", 0, -15), _move("charlie", -30, 0), _land("charlie")],
+               # (the plan names the points: the host's reading of the request made the leg west a climb)
+               lambda c: [_takeoff("charlie", 15), _go("charlie", c.point("charlie", 0, -15), 15),
+                          _go("charlie", c.point("charlie", -30, -15), 15), _land("charlie")],
                "charlieは西へ15 m、南へ30 m飛んで、そこに着陸した。"),
         _entry("compound", "test", "compound16-lb-bravo-low-leg-north", ("bravo",),
                "Looss bravo op 12 Meter klammen an dann 25 Meter no Osten fléien. Do soll en bis op 3 Meter iwwer "
@@ -5535,8 +5548,10 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                "right above where they stand, and hold them there.",
                lambda c, ev: _all(formation_at(c, ev, three, 14, 10, 0, 0), farthest_apart(ev, three, 20),
                                   row_along(ev, three, 135)),
-               [("formation_goto", {"drone_ids": list(three), "formation": "line", "alt_m": 14, "spacing_m": 10,
-                                    "heading_deg": 45.0})],
+               # (the typed plan has no heading for a formation: each drone flies to its slot of the row)
+               lambda c: [_go(d, slot(c, three, n, e), 14)
+                          for d, n, e in (("alpha", 10 / math.sqrt(2), -10 / math.sqrt(2)), ("bravo", 0.0, 0.0),
+                                          ("charlie", -10 / math.sqrt(2), 10 / math.sqrt(2)))],
                "The three hold a north-west to south-east row 10 m apart at 14 m over where they stood."),
         _entry("formation", "test", "form16-ru-row-spread-wider", three,
                "Выстрой все три дрона в ряд прямо над их площадками на высоте 15 метров, с интервалом 8 метров, а "
@@ -5555,7 +5570,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
         _entry("relative", "test", "rel16-alpha-east-corrected-to-west", ("alpha",),
                "Alpha up to 10 m, then 20 m north and 15 m east (sorry, west, not east) and hold it there.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, -15), alt=10), airborne_at(ev, "alpha", 10)),
-               [_takeoff("alpha", 10), _move("alpha", 20, -15)],
+               # (the plan names the point: the host's reading of the request flew the leg east)
+               lambda c: [_takeoff("alpha", 10), _go("alpha", c.point("alpha", 20, -15), 10)],
                "Alpha holds 20 m north and 15 m west of its pad at 10 m."),
         _entry("relative", "test", "rel16-af-charlie-east-climbing-gradient", ("charlie",),
                "Lig charlie op tot 8 meter en skuif hom dan 30 meter oos. Op pad moet hy 1 meter klim vir elke 3 "
@@ -5586,12 +5602,13 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                                   nobody_armed(ev)),
                [("fleet_status", {})], "alpha, med 71 % (charlie har mest, 86 %).",
                battery={"alpha": 71.0, "bravo": 58.0, "charlie": 86.0}),
-        _entry("question", "test", "ask16-ar-charlie-east-or-west-of-alpha", three,
-               "في أي اتجاه تقف charlie بالنسبة إلى alpha: إلى الشرق منها أم إلى الغرب؟ لا تُقلع أي طائرة، أريد "
-               "الجواب فقط.",
-               lambda c, ev: _all(answer_says(ev, r"شرق|\beast\b", "east"), nobody_armed(ev)),
-               [("get_position", {"drone_id": "alpha"}), ("get_position", {"drone_id": "charlie"})],
-               "charlie تقف إلى الشرق من alpha."),
+        _entry("question", "test", "ask16-ar-closest-to-bravo", three,
+               "أيّ الطائرتين، alpha أم charlie، نسبة بطاريتها أقرب إلى نسبة بطارية bravo؟ اذكر لي النسب، ولا تُقلع أي "
+               "طائرة.",
+               lambda c, ev: _all(answer_says(ev, r"\balpha\b", "alpha"), answer_mentions_number(ev, 64, 1),
+                                  answer_mentions_number(ev, 70, 1), nobody_armed(ev)),
+               [("fleet_status", {})], "alpha: بطاريتها 64 %، أي 6 نقاط عن bravo (70 %)، أما charlie (81 %) فيبعد 11 نقطة.",
+               battery={"alpha": 64.0, "bravo": 70.0, "charlie": 81.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude)
         _entry("refusal", "test", "refuse16-alpha-second-leg-too-far", ("alpha",),
