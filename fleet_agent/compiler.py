@@ -72,9 +72,7 @@ class DroneState:
 
 class Sensors(Protocol):
     async def state(self, drone: str) -> DroneState: ...
-
     async def home(self, drone: str) -> tuple[float, float]: ...
-
     async def place(self, name: str) -> tuple[float, float]: ...
 
 
@@ -142,9 +140,8 @@ class Compiler:
         return [Call(tool, args, step.drone), *await self._ending(step)]
 
     async def _lift(self, drone: str, alt: float | None, up: float) -> tuple[Compiled, bool]:
-        """A takeoff first when the drone is on the ground; whether the takeoff used the climb ``up`` (it
-        did when it took off to it, or to a height as high as the climb: from the ground, "10 m up" and
-        "at 10 m" are one climb)."""
+        """A takeoff first when the drone is on the ground; whether it took off to the climb ``up`` (from
+        the ground, "10 m up" and "at 10 m" are one climb)."""
         state = await self.sensors.state(drone)
         if state.flying:
             return [], False
@@ -167,12 +164,15 @@ class Compiler:
             return await self._move_from(step, north, east, up, alt)
         if step.altitude is not None and all(leg.direction in ("up", "down") for leg in step.legs):
             return await self._height(Altitude(action="altitude", drone=step.drone, altitude=step.altitude))
-        calls, climbed = await self._lift(step.drone, alt, up)
-        for i, (n, e, u) in enumerate(flown_segments(step.legs)):
+        first = step.legs[0]  # a drone on the ground takes off to its first climb; the rest is flown after it
+        lead = first.distance.metres if first.direction == "up" and len(step.legs) > 1 else up
+        calls, climbed = await self._lift(step.drone, alt, lead)
+        partial = climbed and lead != up
+        for i, (n, e, u) in enumerate(flown_segments(step.legs[1:] if partial else step.legs)):
             args: dict[str, Any] = {"drone_id": step.drone, "north_m": n, "east_m": e}
             if i == 0 and alt is not None and not calls:
                 args["alt_m"] = alt
-            elif u and not climbed:
+            elif u and (partial or not climbed):
                 args["up_m"] = u
             calls.append(Call("move_to_relative", args, step.drone))
         return calls

@@ -146,6 +146,31 @@ async def test_a_move_in_the_air_climbs_by_its_up_legs() -> None:
     assert call.args == {"drone_id": "alpha", "north_m": 7.07, "east_m": 7.07, "alt_m": 12.0}
 
 
+async def test_a_drone_on_the_ground_takes_off_to_its_first_climb_and_flies_the_next_after_it() -> None:
+    """ "60 m up, then 70 m more" is two climbs: a ceiling at 120 m refuses the second, not both (one
+    takeoff to 130 m was refused whole and the drone never left the ground)."""
+    step = {"action": "move", "drone": "charlie", "legs": [leg(60, "up"), leg(70, "up")], "altitude": None,
+            "after": "stay", "origin": {"kind": "here"}}  # fmt: skip
+    assert await compiled(step) == [
+        Call("takeoff", {"drone_id": "charlie", "alt_m": 60.0}, "charlie"),
+        Call(
+            "move_to_relative",
+            {"drone_id": "charlie", "north_m": 0.0, "east_m": 0.0, "up_m": 70.0},
+            "charlie",
+        ),
+    ]
+    then_north = {**step, "legs": [leg(10, "up"), leg(20, "north"), leg(5, "up")]}
+    assert [c.args for c in await compiled(then_north)] == [
+        {"drone_id": "charlie", "alt_m": 10.0},
+        {"drone_id": "charlie", "north_m": 20.0, "east_m": 0.0, "up_m": 5.0},
+    ]
+    one_climb = {**step, "legs": [leg(10, "up"), leg(20, "north")]}
+    assert [c.args for c in await compiled(one_climb)] == [
+        {"drone_id": "charlie", "alt_m": 10.0},
+        {"drone_id": "charlie", "north_m": 20.0, "east_m": 0.0},
+    ]
+
+
 async def test_a_point_north_of_another_drone_is_read_from_its_position() -> None:
     bravo_at = geometry.offset_position(*HOME, 100.0, 50.0)
     sensors = FakeSensors({"bravo": flying(*bravo_at, alt=20.0)})
