@@ -217,9 +217,10 @@ class OwnerCalls:
                 raise
             why.append(f"bus: {exc.details.get('bus')}")
             self._relay(relay, drone_id, verb, arguments, epoch, body, deadline, owner_paths, why)
-        except NoOwner as exc:
-            # nobody holds the drone's link on the bus: the node that last did may have fenced itself,
-            # and keep a stop-only path to it (a land sent twice is still a land)
+        except (NoOwner, OwnerFenced) as exc:
+            # nobody holds the drone's link on the bus, or its owner fenced itself while it ran the stop
+            # (whether the stop reached the drone then is not known): the node that last held it keeps a
+            # stop-only path to it (a land sent twice is still a land), and this node takes the link over
             why.append(f"bus: {exc.message}")
             left = max(0.2, deadline - time.monotonic())
             fenced_path = bus.call(

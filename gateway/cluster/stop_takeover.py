@@ -36,7 +36,7 @@ from gateway.cluster.leases import Lease, LeaseStore
 from gateway.cluster.node_parts import NodeWithRuntime
 from gateway.cluster.remote import RemoteVehicle
 from gateway.cluster.stoplink import StopTarget, direct_stop_answer, send_stop
-from gateway.errors import GatewayError, NoOwner, NotRun, StopPending
+from gateway.errors import GatewayError, NoOwner, NotRun, OwnerFenced, StopPending
 from gateway.fleet.policy.caller import Caller
 from gateway.link.contract import HEARD
 from gateway.util.json_types import JsonObject, JsonValue
@@ -139,7 +139,7 @@ class StopTakeover:
                         return task.result()
                     if path == "link":
                         direct = f"{type(error).__name__}: {error}"
-                    elif isinstance(error, NotRun | NoOwner):
+                    elif isinstance(error, NotRun | NoOwner | OwnerFenced):  # the owner let go of it
                         why.append(error.message)
                     elif isinstance(error, GatewayError):
                         raise error  # the owner answered: it refused the stop

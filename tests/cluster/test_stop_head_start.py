@@ -12,7 +12,7 @@ import pytest
 
 from gateway.cluster.owner_calls import OwnerCalls
 from gateway.cluster.stop_takeover import StopTakeover
-from gateway.errors import NotRun
+from gateway.errors import NotRun, OwnerFenced
 from gateway.fleet.policy.caller import Caller
 
 OPERATOR = Caller(via="rest", principal="operator")
@@ -131,3 +131,34 @@ async def test_every_path_ending_cancelled_is_not_run_not_a_cancelled_stop() -> 
     with pytest.raises(NotRun, match="no owner acknowledged land for d1"):
         await n.takeover.reach("d1", "land", OPERATOR, None, None, [cancelled()], [], loop.time() + 1,
                                take_over=False)  # fmt: skip
+
+
+class FencingBus(Bus):
+    """A bus whose owner accepts the stop and then fences itself while it runs it (it could not renew
+    its leases): the call ends OwnerFenced; the fenced node's stop-only path answers."""
+
+    def __init__(self) -> None:
+        super().__init__(accept_after_s=0.0)
+        self.subjects: list[str | None] = []
+
+    async def call(self, *_args: Any, subject: str | None = None, **_kw: Any) -> Any:
+        self.subjects.append(subject)
+        if subject is None:
+            raise OwnerFenced(
+                "not finished: node node-a gave drone 'd1' up while it ran land", vehicle_id="d1"
+            )
+        return {"drone_id": "d1", "via": "fenced node"}
+
+
+@pytest.mark.parametrize("relay_listening", [False, True], ids=["postgresql-down", "postgresql-up"])
+async def test_an_owner_that_fences_itself_while_it_runs_the_stop_leaves_it_to_its_stop_only_path(
+    relay_listening: bool,
+) -> None:
+    """The owner's OwnerFenced is no refusal of the stop: it let go of the drone, the stop may not have
+    reached it; the stop goes on through the fenced node's stop-only path (and this node's link)."""
+    bus = FencingBus()
+    relay = Relay(bus)
+    relay.listening = relay_listening
+    answer = await OwnerCalls(node(bus, relay)).forward_stop("d1", "land", OPERATOR)
+    assert answer == {"drone_id": "d1", "via": "fenced node"}
+    assert bus.subjects[0] is None and bus.subjects[-1] is not None, bus.subjects
