@@ -316,6 +316,7 @@ def test_a_landing_is_kept_when_the_request_also_says_coming_down() -> None:
         "Bravo schwebt auf 15 m und kehrt dann zurück.",
         "Bravo: up to 15 m and keep charlie on the ground.",
         "Bravo up to 15 m, then fly home.",
+        "bravo-কে 15 মিটারে তুলে ভাসিয়ে রাখো, তারপর সেখানেই নামিয়ে দাও।",  # "bring it down" as নামিয়ে দাও
     ):
         data = _ending("return_home")
         assert as_ended(request, copy.deepcopy(data)) == data, request
