@@ -115,6 +115,8 @@ class Compiler:
     async def _at_home(self, drone: str, north: float = 0.0, east: float = 0.0) -> bool:
         """Whether ``drone``, moved ``north`` and ``east`` from where it is, is over its home."""
         state = await self.sensors.state(drone)
+        if not state.flying:  # the autopilot sets its home where it arms (the home read now may be older)
+            return math.hypot(north, east) <= AT_HOME_M
         if state.lat is None or state.lon is None:
             return False
         try:
@@ -125,9 +127,8 @@ class Compiler:
         return math.hypot(n + north, e + east) <= AT_HOME_M
 
     async def _height(self, step: Takeoff | Altitude) -> Compiled:
-        """A climb or descent to the step's height; to 0 m, a landing (nothing for a drone on the
-        ground: the gateway refuses a takeoff to 0 m, and the drone is where the step says). None for a
-        drone flying at it: the gateway refuses that move, and then no later move of the drone is sent."""
+        """A climb or descent to the step's height; to 0 m, a landing (nothing for a drone on the ground).
+        None for a drone flying at it: the gateway refuses that move, and then no later move is sent."""
         state = await self.sensors.state(step.drone)
         if step.altitude.metres <= 0:
             if state.flying:

@@ -546,6 +546,10 @@ async def test_a_return_home_of_a_drone_over_its_home_is_a_landing() -> None:
     assert [c.tool for c in await compiled(out_and_back)][-1] == "land"
     north = {**up_only, "legs": [leg(20, "north")]}
     assert [c.tool for c in await compiled(north)][-1] == "return_to_launch"
+    # on the ground away from the home of an earlier flight: it takes off from here, its home once armed
+    earlier_home = FakeSensors(homes={"bravo": (HOME[0] + 0.0005, HOME[1])})  # 55 m north
+    assert [c.tool for c in await compiled(up_only, earlier_home)][-1] == "land"
+    assert [c.tool for c in await compiled(north, earlier_home)][-1] == "return_to_launch"
     back_home = FakeSensors({"bravo": flying(lat=HOME[0] + 0.0002)})  # 22 m north of home
     south = {**up_only, "legs": [leg(22.2, "south")]}
     assert [c.tool for c in await compiled(south, back_home)][-1] == "land"
