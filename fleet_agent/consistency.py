@@ -93,8 +93,9 @@ def _only(numbers: list[float], given: list[float]) -> bool:
 
 
 def _named(request: str, fleet: list[str]) -> set[str]:
-    by_lower = {d.lower(): d for d in fleet}
-    return {by_lower[w] for w in _words(request.lower()) if w in by_lower}
+    """The ids that are a word of the request or joined to one by a hyphen ("charlie-ஐ", "ל-alpha")."""
+    words = [f"-{w}-" for w in _words(request.lower())]
+    return {d for d in fleet if any(f"-{d.lower()}-" in w for w in words)}
 
 
 def _drone_gaps(request: str, fleet: list[str], data: Any) -> list[str]:

@@ -229,6 +229,23 @@ def test_an_id_written_onto_a_word_of_another_script_is_read_as_named() -> None:
     assert gaps("bravoを15メートルまで上昇させて", FLEET, _plan(_up("bravo", 15))) == []
 
 
+def test_an_id_joined_by_a_hyphen_to_a_particle_or_a_case_ending_is_read_as_named() -> None:
+    """Hungarian, Azerbaijani, Bengali, Tamil, Malayalam and Hebrew join a case ending or a particle to a
+    Latin id with a hyphen ("bravo-t", "charlie-কে", "ל-alpha"): the drone is named, so its step carrying a
+    number the request does not give (a point) is kept, and no gap is told."""
+    point = {"kind": "point", "lat_deg": -35.3630317, "lon_deg": 149.1652651}
+    to_point = {"action": "move", "drone": "charlie", "origin": point, "legs": [],
+                "altitude": {"value": 9, "unit": "m"}, "after": "land"}  # fmt: skip
+    for request in ("Vidd charlie-t alpha fölé 9 méterre", "alpha-র উপরে charlie-কে 9 মিটারে নামাও",
+                    "שלח את alpha ו-charlie ל-9 מטר"):  # fmt: skip
+        plan = _plan(to_point, {"action": "hold", "drone": "alpha"})
+        assert without_unasked(request, FLEET, plan).steps == plan.steps, request
+        assert gaps(request, FLEET, plan) == [], request
+    hyphenated = ["drone-1", "drone-2"]  # an id with a hyphen of its own is still read whole
+    up = parse_plan({"steps": [_up("drone-2", 9)]}, hyphenated)
+    assert not [note for note in gaps("drone-2-কে 9 মিটারে তোলো", hyphenated, up) if "drone-" in note]
+
+
 def _move(drone: str, *legs: tuple[float, str], altitude: float | None = None) -> dict[str, object]:
     height = None if altitude is None else {"value": altitude, "unit": "m"}
     return {"action": "move", "drone": drone, "origin": "here", "altitude": height, "after": "stay",
