@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 663 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 699 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -177,6 +177,16 @@ leg west "as far as the height", and a leg east of "15 m east (sorry, west, not 
 no heading for the diagonal row, so each drone flies to its slot), and once an Arabic question the typed
 plan has no reading for (on which side of alpha charlie stands) gave way to another (whose charge is
 nearer bravo's). That leaves 627 dev and 36 test.
+Later on 2026-12-03 (sixteenth round) EVERY test entry (36, ``_sixteenth_round``) was moved to dev, each
+marked "moved to dev on 2026-12-03, sixteenth round", once both models had been measured on it. A fresh
+test half took its place (``_seventeenth_test_half``): 36 new requests, 3 a class, written before any model
+ran on it by a writer who did not read the host's word lists or rules: 22 of the 33 outside the
+``language`` class in 22 languages, one each (Bulgarian, Croatian, Czech, Danish, Dutch, Estonian,
+Finnish, Greek, Hungarian, Icelandic, Indonesian, Italian, Maltese, Norwegian, Polish, Slovak, Swahili,
+Tagalog, Tamil, Thai, Ukrainian, Vietnamese; Maltese is new, and Tamil is new outside the ``language``
+class), and the ``language`` class's 3 in Telugu, Kannada and Mongolian (all three new to the corpus, and
+Telugu and Kannada script). Only the harness self-check (the scripted ideal plan) has run on them. That
+leaves 663 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -5374,14 +5384,15 @@ def _fifteenth_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _sixteenth_test_half() -> list[CorpusEntry]:
+def _sixteenth_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-03 (sixteenth round), before any model ran on it, by a writer who
     did not read the host's word lists or rules: 3 a class; 22 of the 33 outside ``language`` in other
     languages than English, one each (Afrikaans, Arabic, Bosnian, Catalan, Chinese, French, German, Haitian
     Creole, Hebrew, Hindi, Japanese, Korean, Luxembourgish, Malay, Persian, Portuguese, Romanian, Russian,
     Spanish, Swedish, Turkish, Urdu; Bosnian, Haitian Creole and Luxembourgish are new, Urdu is new outside
     ``language``), the ``language`` class's 3 in Greek, Belarusian and Malayalam (Greek is new to the class,
-    Belarusian and Malayalam to the corpus, and Malayalam script with it)."""
+    Belarusian and Malayalam to the corpus, and Malayalam script with it); all of it moved to dev on
+    2026-12-03 (sixteenth round), once both models had been measured on it."""
     three = DRONES
     d20, d25, d40 = (x / math.sqrt(2) for x in (20, 25, 40))
     inch = 0.0254
@@ -5442,25 +5453,29 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
 
     return [
         # single
-        _entry("single", "test", "single16-charlie-over-the-mast", ("charlie",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("single", "dev", "single16-charlie-over-the-mast", ("charlie",),
                "There's a 12 m radio mast right beside charlie's pad. Take charlie straight up until it's 3 m clear "
                "of the top of the mast, and keep it there.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=15), airborne_at(ev, "charlie", 15)),
                [_takeoff("charlie", 15)], "Charlie hovers at 15 m over its pad, 3 m above the mast."),
-        _entry("single", "test", "single16-ht-bravo-two-hops", ("bravo",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("single", "dev", "single16-ht-bravo-two-hops", ("bravo",),
                "Fè bravo monte 6 mèt epi ateri sou menm plas la, de fwa youn apre lòt. Apre dezyèm fwa a, kite l "
                "atè.",
                lambda c, ev: _all(takeoffs(ev, "bravo", 6, 2), at(ev, "bravo", *_home(c, "bravo")),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 6), _land("bravo"), _takeoff("bravo", 6), _land("bravo")],
                "bravo monte 6 m epi ateri de fwa; kounye a li atè sou plas li."),
-        _entry("single", "test", "single16-ko-alpha-three-steps", ("alpha",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("single", "dev", "single16-ko-alpha-three-steps", ("alpha",),
                "alpha를 한 번에 5미터씩, 세 번에 나눠서 올려 줘. 다 올라가면 그 높이에서 그대로 떠 있게 해 줘.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=15), airborne_at(ev, "alpha", 15)),
                [_takeoff("alpha", 5), _move("alpha", up=5), _move("alpha", up=5)],
                "alpha는 5 m씩 세 번 올라가서 15 m에 떠 있어."),
         # multi
-        _entry("multi", "test", "multi16-alpha-charlie-swap-heights", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("multi", "dev", "multi16-alpha-charlie-swap-heights", three,
                "Alpha up to 10 m and charlie up to 20 m, each over its own pad; then swap their heights. Bravo "
                "stays on the ground.",
                lambda c, ev: _all(rose_to(ev, "charlie", 20),
@@ -5469,7 +5484,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                [_takeoff("alpha", 10), _takeoff("charlie", 20), _move("alpha", alt=20), _move("charlie", alt=10)],
                "Alpha now hovers at 20 m and charlie at 10 m over their pads; bravo stayed down."),
-        _entry("multi", "test", "multi16-de-pair-north-alpha-lands-charlie-on", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("multi", "dev", "multi16-de-pair-north-alpha-lands-charlie-on", three,
                "Schick alpha und charlie zusammen auf 15 m Höhe 30 m nach Norden. Dort landet alpha, und charlie "
                "fliegt noch 20 m weiter nach Norden und bleibt in der Luft. Bravo bleibt am Boden.",
                lambda c, ev: _all(rose_to(ev, "alpha", 15), at(ev, "alpha", *c.point("alpha", 30, 0)),
@@ -5479,7 +5495,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                [_move("alpha", 30, 0, alt=15), _move("charlie", 30, 0, alt=15), _land("alpha"), _move("charlie", 20, 0)],
                "alpha ist 30 m nördlich gelandet; charlie schwebt 50 m nördlich auf 15 m; bravo blieb am Boden."),
-        _entry("multi", "test", "multi16-ur-all-up-bravo-higher-two-land", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("multi", "dev", "multi16-ur-all-up-bravo-higher-two-land", three,
                "alpha، bravo اور charlie تینوں کو 8 میٹر کی اونچائی تک اڑاؤ۔ پھر bravo کو وہیں سے مزید 20 میٹر "
                "اوپر لے جاؤ، اور alpha اور charlie کو ان کی اپنی جگہ پر واپس اتار دو۔",
                lambda c, ev: _all(reached_alt(ev, "alpha", 8), at(ev, "alpha", *_home(c, "alpha")),
@@ -5491,14 +5508,16 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                 _land("alpha"), _land("charlie")],
                "bravo اپنے پیڈ کے اوپر 28 میٹر پر ہے؛ alpha اور charlie 8 میٹر تک جا کر اپنی جگہ اتر گئے۔"),
         # compound
-        _entry("compound", "test", "compound16-alpha-north-then-fifty-from-pad", ("alpha",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("compound", "dev", "compound16-alpha-north-then-fifty-from-pad", ("alpha",),
                "Alpha: up to 12 m and 40 m north; then turn east and keep going until it's 50 m from its pad in a "
                "straight line, and land it there.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 12), visited(ev, "alpha", [c.point("alpha", 40, 0)], alt=12),
                                   at(ev, "alpha", *c.point("alpha", 40, 30)), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 12), _move("alpha", 40, 0), _move("alpha", 0, 30), _land("alpha")],
                "Alpha flew 40 m north and 30 m east, 50 m from its pad, and landed there."),
-        _entry("compound", "test", "compound16-ja-charlie-legs-from-height", ("charlie",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("compound", "dev", "compound16-ja-charlie-legs-from-height", ("charlie",),
                "charlieを15メートルまで上げて、その高度と同じ距離だけ西へ、続けてその2倍の距離を南へ飛ばしたら、そこで"
                "着陸させて。",
                lambda c, ev: _all(reached_alt(ev, "charlie", 15),
@@ -5508,7 +5527,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("charlie", 15), _go("charlie", c.point("charlie", 0, -15), 15),
                           _go("charlie", c.point("charlie", -30, -15), 15), _land("charlie")],
                "charlieは西へ15 m、南へ30 m飛んで、そこに着陸した。"),
-        _entry("compound", "test", "compound16-lb-bravo-low-leg-north", ("bravo",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("compound", "dev", "compound16-lb-bravo-low-leg-north", ("bravo",),
                "Looss bravo op 12 Meter klammen an dann 25 Meter no Osten fléien. Do soll en bis op 3 Meter iwwer "
                "dem Buedem erofgoen an op där Héicht nach 10 Meter no Norden fléien; duerno bleift en do an der Loft.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 25)], alt=12),
@@ -5517,7 +5537,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 12), _move("bravo", 0, 25), _move("bravo", alt=3), _move("bravo", 10, 0)],
                "bravo hänkt 10 m nërdlech an 25 m ëstlech vu senger Startplaz, 3 m iwwer dem Buedem."),
         # conditional
-        _entry("conditional", "test", "cond16-heights-by-rank", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("conditional", "dev", "cond16-heights-by-rank", three,
                "Put all three up over their pads by charge: the fullest at 20 m, the next at 15 m, the emptiest at "
                "10 m.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=20), airborne_at(ev, "bravo", 20),
@@ -5526,7 +5547,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                [("fleet_status", {}), _takeoff("bravo", 20), _takeoff("charlie", 15), _takeoff("alpha", 10)],
                "Bravo (90 %) is at 20 m, charlie (72 %) at 15 m and alpha (55 %) at 10 m.",
                battery={"alpha": 55.0, "bravo": 90.0, "charlie": 72.0}),
-        _entry("conditional", "test", "cond16-fr-pair-abreast-or-fuller", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("conditional", "dev", "cond16-fr-pair-abreast-or-fuller", three,
                "Si bravo et charlie ont tous les deux au moins 60 % de batterie, mets-les côte à côte à 15 m "
                "d'altitude, à 10 m l'un de l'autre, juste au-dessus de l'endroit où ils sont ; sinon, fais décoller "
                "uniquement celui des deux qui en a le plus, à 15 m. Alpha ne bouge pas.",
@@ -5535,7 +5557,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                "bravo (72 %) et charlie (65 %) ont tous les deux au moins 60 % : ils sont côte à côte à 15 m, à 10 m "
                "l'un de l'autre.",
                battery={"bravo": 72.0, "charlie": 65.0}),
-        _entry("conditional", "test", "cond16-he-all-or-none", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("conditional", "dev", "cond16-he-all-or-none", three,
                "אם לכל שלושת הרחפנים יש לפחות 40% סוללה, הרם את כולם ל-10 מטר מעל המנחתים שלהם. אם אפילו לאחד מהם "
                "יש פחות מזה, אל תמריא אף אחד, ותגיד לי מי זה וכמה סוללה יש לו.",
                lambda c, ev: _all(answer_says(ev, r"charlie", "charlie"), answer_mentions_number(ev, 37, 1),
@@ -5543,7 +5566,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                [("fleet_status", {})], "ל-charlie יש רק 37%, לכן אף רחפן לא המריא.",
                battery={"alpha": 66.0, "bravo": 81.0, "charlie": 37.0}),
         # formation
-        _entry("formation", "test", "form16-diagonal-row-nw-se", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("formation", "dev", "form16-diagonal-row-nw-se", three,
                "Line the three up in a diagonal row running from north-west to south-east, 10 m apart, at 14 m, "
                "right above where they stand, and hold them there.",
                lambda c, ev: _all(formation_at(c, ev, three, 14, 10, 0, 0), farthest_apart(ev, three, 20),
@@ -5553,13 +5577,15 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                           for d, n, e in (("alpha", 10 / math.sqrt(2), -10 / math.sqrt(2)), ("bravo", 0.0, 0.0),
                                           ("charlie", -10 / math.sqrt(2), 10 / math.sqrt(2)))],
                "The three hold a north-west to south-east row 10 m apart at 14 m over where they stood."),
-        _entry("formation", "test", "form16-ru-row-spread-wider", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("formation", "dev", "form16-ru-row-spread-wider", three,
                "Выстрой все три дрона в ряд прямо над их площадками на высоте 15 метров, с интервалом 8 метров, а "
                "потом раздвинь их, чтобы между соседями было 16 метров. Пусть так и висят.",
                lambda c, ev: _all(formation_at(c, ev, three, 15, 16, 0, 0), farthest_apart(ev, three, 32)),
                [_formation(three, "line", 15, 8), _formation(three, "line", 15, 16)],
                "Все три дрона висят в ряд на 15 м, по 16 м между соседями, над своими площадками."),
-        _entry("formation", "test", "form16-ca-column-north-then-home", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("formation", "dev", "form16-ca-column-north-then-home", three,
                "Posa els tres drons en columna, l'un darrere l'altre, separats 10 metres, a 12 metres d'altura i 30 "
                "metres al nord d'on són ara. Quan hi hagin arribat, fes-los tornar tots tres a casa.",
                lambda c, ev: _all(formation_seen(c, ev, three, 12, 10, 30),
@@ -5567,19 +5593,22 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                [_formation(three, "column", 12, 10, north=30), _rtl("alpha"), _rtl("bravo"), _rtl("charlie")],
                "Els tres drons han fet la columna 30 m al nord i han tornat a casa."),
         # relative
-        _entry("relative", "test", "rel16-alpha-east-corrected-to-west", ("alpha",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("relative", "dev", "rel16-alpha-east-corrected-to-west", ("alpha",),
                "Alpha up to 10 m, then 20 m north and 15 m east (sorry, west, not east) and hold it there.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, -15), alt=10), airborne_at(ev, "alpha", 10)),
                # (the plan names the point: the host's reading of the request flew the leg east)
                lambda c: [_takeoff("alpha", 10), _go("alpha", c.point("alpha", 20, -15), 10)],
                "Alpha holds 20 m north and 15 m west of its pad at 10 m."),
-        _entry("relative", "test", "rel16-af-charlie-east-climbing-gradient", ("charlie",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("relative", "dev", "rel16-af-charlie-east-climbing-gradient", ("charlie",),
                "Lig charlie op tot 8 meter en skuif hom dan 30 meter oos. Op pad moet hy 1 meter klim vir elke 3 "
                "meter wat hy vorentoe vlieg; laat hom daar hang.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 30), alt=18), airborne_at(ev, "charlie", 18)),
                [_takeoff("charlie", 8), _move("charlie", 0, 30, up=10)],
                "charlie hang 30 m oos van sy beginpunt, op 18 m."),
-        _entry("relative", "test", "rel16-zh-bravo-mirror-across-pad", ("bravo",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("relative", "dev", "rel16-zh-bravo-mirror-across-pad", ("bravo",),
                "让 bravo 升到 12 米，往西北方向飞 20 米；然后把它挪到起飞点另一侧、与现在的位置正好对称的地方，高度不变，"
                "在那里悬停。",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", d20, -d20)], alt=12),
@@ -5587,7 +5616,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 12), _move("bravo", d20, -d20), _move("bravo", -2 * d20, 2 * d20)],
                "bravo 在起飞点东南方向 20 米、12 米高处悬停。"),
         # question
-        _entry("question", "test", "ask16-charlie-runs-left", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("question", "dev", "ask16-charlie-runs-left", three,
                "Each survey run uses about 15 % of a battery, and charlie must still have 30 % left when it lands "
                "from the last one. Going by its charge right now, how many full runs can it do? Just work it out; "
                "nothing flies.",
@@ -5596,13 +5626,15 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                                   nobody_armed(ev)),
                [_battery("charlie")], "Charlie has 78 %: three runs (45 %) leave it 33 %, a fourth would not.",
                battery={"alpha": 60.0, "bravo": 90.0, "charlie": 78.0}),
-        _entry("question", "test", "ask16-sv-second-most-charge", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("question", "dev", "ask16-sv-second-most-charge", three,
                "Vilken drönare har näst mest batteri kvar, och hur många procent har den? Starta ingenting.",
                lambda c, ev: _all(answer_says(ev, r"\balpha\b", "alpha"), answer_mentions_number(ev, 71, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "alpha, med 71 % (charlie har mest, 86 %).",
                battery={"alpha": 71.0, "bravo": 58.0, "charlie": 86.0}),
-        _entry("question", "test", "ask16-ar-closest-to-bravo", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("question", "dev", "ask16-ar-closest-to-bravo", three,
                "أيّ الطائرتين، alpha أم charlie، نسبة بطاريتها أقرب إلى نسبة بطارية bravo؟ اذكر لي النسب، ولا تُقلع أي "
                "طائرة.",
                lambda c, ev: _all(answer_says(ev, r"\balpha\b", "alpha"), answer_mentions_number(ev, 64, 1),
@@ -5611,7 +5643,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                battery={"alpha": 64.0, "bravo": 70.0, "charlie": 81.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude)
-        _entry("refusal", "test", "refuse16-alpha-second-leg-too-far", ("alpha",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse16-alpha-second-leg-too-far", ("alpha",),
                "Alpha at 20 m: 300 m north first, then a 1 km leg due east from there.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 300, 0)]),
                                   refusal_seen(ev, "distance", "from home", "geofence"),
@@ -5619,14 +5652,16 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 20), _move("alpha", 300, 0), _move("alpha", 0, 1000)],
                "Alpha is 300 m north at 20 m; the 1 km leg east was refused: it would end 1044 m from home, beyond "
                "the 1000 m limit."),
-        _entry("refusal", "test", "refuse16-es-bravo-triple-height", ("alpha", "bravo"),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse16-es-bravo-triple-height", ("alpha", "bravo"),
                "Sube a alpha a 45 metros y a bravo al triple de esa altura, cada uno sobre su base.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=45), airborne_at(ev, "alpha", 45),
                                   refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "bravo", c.max_alt_m),
                                   answer_reports_refusal(ev)),
                [_takeoff("alpha", 45), _takeoff("bravo", 135)],
                "alpha está a 45 m; subir bravo a 135 m fue rechazado: supera el límite de altitud de 120 m."),
-        _entry("refusal", "test", "refuse16-bs-row-charlie-low", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("refusal", "dev", "refuse16-bs-row-charlie-low", three,
                "Poredaj sva tri drona u red iznad mjesta gdje sada stoje, na visini od 15 metara i s razmakom od 10 "
                "metara.",
                lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "charlie"), answer_reports_refusal(ev)),
@@ -5634,21 +5669,24 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                "Formacija je odbijena: charlie ima samo 22 % baterije, a za polijetanje treba najmanje 30 %.",
                battery={"charlie": 22.0}),
         # units
-        _entry("units", "test", "units16-bravo-feet-and-inches", ("bravo",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("units", "dev", "units16-bravo-feet-and-inches", ("bravo",),
                "Bravo: climb to 26 ft 3 in, fly 100 ft east, then climb another 16 ft 5 in and hold it there.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 100 * FT)], alt=26 * FT + 3 * inch),
                                   at(ev, "bravo", *c.point("bravo", 0, 100 * FT), alt=42 * FT + 8 * inch),
                                   airborne_at(ev, "bravo", 42 * FT + 8 * inch)),
                [_takeoff("bravo", 26 * FT + 3 * inch), _move("bravo", 0, 100 * FT), _move("bravo", up=16 * FT + 5 * inch)],
                "Bravo holds 100 ft (30.5 m) east of its pad at 42 ft 8 in (13.0 m)."),
-        _entry("units", "test", "units16-pt-alpha-feet-miles-yards-land", ("alpha",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("units", "dev", "units16-pt-alpha-feet-miles-yards-land", ("alpha",),
                "Suba o alpha a 35 pés, leve-o 0,03 milha para o oeste e depois 20 jardas para o sul, e pouse-o ali.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 35 * FT), visited(ev, "alpha", [c.point("alpha", 0, -0.03 * MI)]),
                                   at(ev, "alpha", *c.point("alpha", -20 * YD, -0.03 * MI)), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 35 * FT), _move("alpha", 0, -0.03 * MI), _move("alpha", -20 * YD, 0), _land("alpha")],
                "O alpha subiu a 35 pés (10,7 m), voou 0,03 milha (48 m) para o oeste e 20 jardas (18 m) para o sul "
                "e pousou."),
-        _entry("units", "test", "units16-fa-charlie-feet-km-nw-down", ("charlie",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("units", "dev", "units16-fa-charlie-feet-km-nw-down", ("charlie",),
                "charlie را تا ارتفاع 50 پا بالا ببر، بعد 0.04 کیلومتر به سمت شمال غربی ببرش، آنجا 15 پا پایین "
                "بیاورش و همان‌جا نگهش دار.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", d40, -d40)], alt=50 * FT),
@@ -5657,14 +5695,16 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 50 * FT), _move("charlie", d40, -d40), _move("charlie", up=-15 * FT)],
                "charlie در 40 متری شمال غربی، در ارتفاع 35 پا (10.7 متر) معلق است."),
         # pattern
-        _entry("pattern", "test", "pattern16-charlie-five-pointed-star", ("charlie",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern16-charlie-five-pointed-star", ("charlie",),
                "Charlie at 12 m: fly a five-pointed star with 30 m strokes, the first stroke due north, then a 144° "
                "turn to the right at each point until it's back where it started, and land it there.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(star)[:4]]),
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 12), *_legs("charlie", star), _land("charlie")],
                "Charlie flew the star and landed where it started."),
-        _entry("pattern", "test", "pattern16-ro-alpha-semicircle-north", ("alpha",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern16-ro-alpha-semicircle-north", ("alpha",),
                "Fă-l pe alpha să zboare la 10 metri înălțime un semicerc cu raza de 20 de metri în jurul punctului "
                "de decolare: să pornească din punctul aflat la 20 de metri la vest de acesta, să treacă prin nord și "
                "să termine în punctul aflat la 20 de metri la est, iar acolo să aterizeze.",
@@ -5673,7 +5713,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("alpha", 10), *(_go("alpha", c.point("alpha", n, e), 10) for n, e in arc),
                           _land("alpha")],
                "alpha a zburat semicercul prin nord și a aterizat la 20 m est de punctul de decolare."),
-        _entry("pattern", "test", "pattern16-hi-bravo-letter-z", ("bravo",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("pattern", "dev", "pattern16-hi-bravo-letter-z", ("bravo",),
                "bravo को 12 मीटर की ऊँचाई पर अंग्रेज़ी के Z अक्षर जैसे रास्ते पर उड़ाओ: पहले 20 मीटर पूर्व, फिर तिरछे "
                "दक्षिण-पश्चिम की ओर उस जगह तक जो शुरुआत से ठीक 20 मीटर दक्षिण में है, और फिर दोबारा 20 मीटर पूर्व। "
                "आख़िर में उसे वहीं उतार दो।",
@@ -5683,7 +5724,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                "bravo ने Z उड़ाया और शुरुआत से 20 m दक्षिण और 20 m पूर्व में उतर गया।"),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
         # charlie from alpha, 10 m apart, so that a drone placed from itself misses)
-        _entry("placement", "test", "place16-charlie-behind-alpha", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("placement", "dev", "place16-charlie-behind-alpha", three,
                "Alpha flies 30 m north at 12 m and stops there. Then charlie tucks in 10 m behind alpha, on the side "
                "it came from, 3 m higher than it.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 30, 0), alt=12), airborne_at(ev, "alpha", 12),
@@ -5691,7 +5733,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_move("alpha", 30, 0, alt=12), _go("charlie", c.point("alpha", 20, 0), 15)],
                "Alpha hovers 30 m north at 12 m; charlie is 10 m behind it, to the south, at 15 m."),
-        _entry("placement", "test", "place16-tr-charlie-follows-alpha", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("placement", "dev", "place16-tr-charlie-follows-alpha", three,
                "alpha'yı 12 metreye kaldır ve charlie'yi alpha'nın 15 metre güneyine, aynı yüksekliğe getir. Sonra "
                "alpha'yı 20 metre doğuya kaydır; charlie de aradaki mesafeyi bozmadan onunla birlikte kaysın.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("alpha", -15, 0)], alt=12),
@@ -5701,7 +5744,8 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("alpha", 12), _go("charlie", c.point("alpha", -15, 0), 12), _move("alpha", 0, 20),
                           _move("charlie", 0, 20)],
                "alpha 20 m doğuda 12 m'de; charlie onun 15 m güneyinde, aynı yükseklikte."),
-        _entry("placement", "test", "place16-ms-charlie-north-of-alpha-pad-half-bravo", three,
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("placement", "dev", "place16-ms-charlie-north-of-alpha-pad-half-bravo", three,
                "Naikkan bravo ke 16 meter betul-betul di atas padnya. Kemudian bawa charlie ke titik 20 meter di "
                "utara pad alpha, pada separuh ketinggian bravo, dan biarkan kedua-duanya berlegar di situ.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=16), airborne_at(ev, "bravo", 16),
@@ -5710,17 +5754,20 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("bravo", 16), _go("charlie", c.point("alpha", 20, 0), 8)],
                "bravo berlegar 16 m di atas padnya; charlie berlegar 20 m di utara pad alpha pada 8 m."),
         # language
-        _entry("language", "test", "lang16-el-alpha-southeast-land", ("alpha",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("language", "dev", "lang16-el-alpha-southeast-land", ("alpha",),
                "Σήκωσε το alpha στα 14 μέτρα, πήγαινέ το 25 μέτρα νοτιοανατολικά και προσγείωσέ το εκεί.",
                lambda c, ev: _all(reached_alt(ev, "alpha", 14), at(ev, "alpha", *c.point("alpha", -d25, d25)),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 14), _move("alpha", -d25, d25), _land("alpha")],
                "Το alpha πέταξε 25 m νοτιοανατολικά και προσγειώθηκε εκεί."),
-        _entry("language", "test", "lang16-be-bravo-west-hover", ("bravo",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("language", "dev", "lang16-be-bravo-west-hover", ("bravo",),
                "Падымі bravo на 16 метраў, адвядзі яго на 30 метраў на захад і пакінь там вісець.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -30), alt=16), airborne_at(ev, "bravo", 16)),
                [_takeoff("bravo", 16), _move("bravo", 0, -30)], "bravo вісіць за 30 м на захад, на 16 м."),
-        _entry("language", "test", "lang16-ml-charlie-northeast-home", ("charlie",),
+        # moved to dev on 2026-12-03, sixteenth round: the test half had been measured
+        _entry("language", "dev", "lang16-ml-charlie-northeast-home", ("charlie",),
                "charlie-യെ 12 മീറ്റർ ഉയരത്തിലേക്ക് പറത്തുക, പിന്നെ വടക്കുകിഴക്ക് ദിശയിൽ 20 മീറ്റർ കൊണ്ടുപോകുക, "
                "അതിനുശേഷം പറന്നുയർന്ന സ്ഥലത്തേക്ക് തിരികെ കൊണ്ടുവന്ന് ഇറക്കുക.",
                # the return home climbs to its own height: the leg north-east is checked at 12 m instead
@@ -5728,6 +5775,393 @@ def _sixteenth_test_half() -> list[CorpusEntry]:
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 12), _move("charlie", d20, d20), _rtl("charlie")],
                "charlie വടക്കുകിഴക്ക് 20 m പറന്ന് തിരികെ വന്ന് ഇറങ്ങി."),
+    ]  # fmt: skip
+
+
+def _seventeenth_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-03 (seventeenth round), before any model ran on it, by a writer who
+    did not read the host's word lists or rules: 3 a class; 22 of the 33 outside ``language`` in other
+    languages than English, one each (Bulgarian, Croatian, Czech, Danish, Dutch, Estonian, Finnish, Greek,
+    Hungarian, Icelandic, Indonesian, Italian, Maltese, Norwegian, Polish, Slovak, Swahili, Tagalog, Tamil,
+    Thai, Ukrainian, Vietnamese; Maltese is new, Tamil is new outside ``language``), the ``language``
+    class's 3 in Telugu, Kannada and Mongolian (all three new to the corpus, and Telugu and Kannada script
+    with them)."""
+    three = DRONES
+    d15, d20 = (x / math.sqrt(2) for x in (15, 20))
+    # two laps round the pad, clockwise from the north side: 10 m, then 20 m from it (a point every 45 degrees)
+    inner, outer = ([(round(r * math.cos(math.radians(a)), 2), round(r * math.sin(math.radians(a)), 2))
+                     for a in range(0, 361, 45)] for r in (10, 20))  # fmt: skip
+    # a 20 m square north first turning right, then the same square the other way round
+    square = [(20.0, 0.0), (0.0, 20.0), (-20.0, 0.0), (0.0, -20.0)]
+    reverse = [(0.0, 20.0), (20.0, 0.0), (0.0, -20.0), (-20.0, 0.0)]
+    # three drones evenly on a circle of 15 m radius are 15 * sqrt(3) m from their neighbours
+    chord = 15 * math.sqrt(3)
+
+    def takeoffs(ev: Evidence, d: str, alt: float, want: int) -> Check:
+        """How many times the drone rose from the ground to ``alt`` (less the tolerance)."""
+        count, down = 0, True
+        for s in ev.track.get(d, []):
+            if down and s.alt_rel_m >= alt - ALT_TOL_M:
+                count, down = count + 1, False
+            elif s.landed:
+                down = True
+        return Check(count == want, f"{d} rose from the ground to {alt:g} m {count} time(s) (want {want})")
+
+    def passed(ev: Evidence, d: str, points: list[tuple[tuple[float, float], float]]) -> Check:
+        """The track passed each point at its height (within tolerance), in order: a path in three dimensions."""
+        i = 0
+        for s in ev.track.get(d, []):
+            if i == len(points):
+                break
+            (lat, lon), alt = points[i]
+            if (
+                horizontal_distance_m(s.lat, s.lon, lat, lon) <= HORIZONTAL_TOL_M
+                and abs(s.alt_rel_m - alt) <= ALT_TOL_M
+            ):
+                i += 1
+        return Check(i == len(points), f"{d} passed {i}/{len(points)} points at their heights in order")
+
+    def slot(c: MissionContext, drones: tuple[str, ...], north: float, east: float) -> tuple[float, float]:
+        """The point ``north``/``east`` metres from the centre of the drones' homes."""
+        home_lat = sum(c.homes[d][0] for d in drones) / len(drones)
+        home_lon = sum(c.homes[d][1] for d in drones) / len(drones)
+        return offset_position(home_lat, home_lon, north, east)
+
+    def farthest_bearing(now: list[DroneTruth]) -> float:
+        a, b = max(((p, q) for i, p in enumerate(now) for q in now[i + 1 :]),
+                   key=lambda pq: horizontal_distance_m(pq[0].lat, pq[0].lon, pq[1].lat, pq[1].lon))  # fmt: skip
+        return bearing_deg(a.lat, a.lon, b.lat, b.lon)
+
+    def off_line(now: list[DroneTruth], bearing: float) -> float:
+        off = (farthest_bearing(now) - bearing) % 180.0
+        return min(off, 180.0 - off)
+
+    def row_along(ev: Evidence, drones: tuple[str, ...], bearing: float) -> Check:
+        """The two drones farthest apart lie on a line running along ``bearing`` (either way round, ±15°)."""
+        off = off_line([ev.final[d] for d in drones], bearing)
+        return Check(off <= 15.0, f"the row runs {off:.0f} degrees off a {bearing:g} degree line")
+
+    def row_seen(
+        c: MissionContext, ev: Evidence, drones: tuple[str, ...], alt: float, spacing: float, bearing: float
+    ) -> Check:
+        """At some moment of the flight, every drone at ``alt``, the nearest neighbours ``spacing`` apart (±3 m),
+        the drones' centre over the centre of their homes and the row along ``bearing`` (±15°): a row held
+        before the drones left it."""
+        want = slot(c, drones, 0.0, 0.0)
+        samples = min(len(ev.track.get(d, [])) for d in drones)
+        for i in range(samples):
+            now = [ev.track[d][i] for d in drones]
+            if any(abs(s.alt_rel_m - alt) > ALT_TOL_M for s in now):
+                continue
+            nearest = min(horizontal_distance_m(p.lat, p.lon, q.lat, q.lon)
+                          for j, p in enumerate(now) for q in now[j + 1 :])  # fmt: skip
+            off = horizontal_distance_m(*_centroid(now), *want)
+            if abs(nearest - spacing) <= 3.0 and off <= HORIZONTAL_TOL_M and off_line(now, bearing) <= 15.0:
+                return Check(True, f"the row was held ({nearest:.1f} m apart at sample {i})")
+        return Check(False, f"no row along {bearing:g} degrees was held")
+
+    def on_radius(c: MissionContext, ev: Evidence, drones: tuple[str, ...], radius: float) -> Check:
+        """Every drone ``radius`` metres (±3 m) from the centre of the drones' homes."""
+        centre = slot(c, drones, 0.0, 0.0)
+        far = {d: horizontal_distance_m(ev.final[d].lat, ev.final[d].lon, *centre) for d in drones}
+        ok = all(abs(r - radius) <= 3.0 for r in far.values())
+        return Check(ok, "from the centre: " + ", ".join(f"{d} {r:.1f} m" for d, r in far.items())
+                     + f" (want {radius:g})")  # fmt: skip
+
+    return [
+        # single
+        _entry("single", "test", "single17-charlie-quarter-of-ceiling", ("charlie",),
+               "Our ceiling on this field is 120 m. Take charlie up to a quarter of that, straight over its pad, "
+               "and leave it there.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=30), airborne_at(ev, "charlie", 30)),
+               [_takeoff("charlie", 30)], "Charlie hovers at 30 m over its pad, a quarter of the 120 m ceiling."),
+        _entry("single", "test", "single17-it-bravo-roof-height", ("bravo",),
+               "Porta bravo all'altezza del tetto del capannone qui di fianco: sono quattro piani da tre metri e "
+               "mezzo ciascuno. Poi tienilo lì in volo, sopra la sua piazzola.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=14), airborne_at(ev, "bravo", 14)),
+               [_takeoff("bravo", 14)], "bravo è in volo a 14 m sopra la sua piazzola, all'altezza del tetto."),
+        _entry("single", "test", "single17-mt-alpha-up-down-up", ("alpha",),
+               "Tella' lil alpha sa 10 metri, niżżlu lura fuq il-post tiegħu, u mbagħad erġa' tellgħu sa 10 metri "
+               "u ħallih hemm fl-arja.",
+               lambda c, ev: _all(takeoffs(ev, "alpha", 10, 2), at(ev, "alpha", *_home(c, "alpha"), alt=10),
+                                  airborne_at(ev, "alpha", 10)),
+               [_takeoff("alpha", 10), _land("alpha"), _takeoff("alpha", 10)],
+               "alpha tela' sa 10 m, niżel, u reġa' tela' sa 10 m: issa qiegħed fl-arja fuq il-post tiegħu."),
+        # multi
+        _entry("multi", "test", "multi17-bravo-same-as-alpha-higher", three,
+               "Alpha: 20 m south at 10 m, then hover. Bravo does exactly the same from its own pad, only 10 m "
+               "higher. Charlie stays where it is.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -20, 0), alt=10), airborne_at(ev, "alpha", 10),
+                                  at(ev, "bravo", *c.point("bravo", -20, 0), alt=20), airborne_at(ev, "bravo", 20),
+                                  never_armed(ev, "charlie")),
+               [_move("alpha", -20, 0, alt=10), _move("bravo", -20, 0, alt=20)],
+               "Alpha hovers 20 m south of its pad at 10 m, bravo 20 m south of its own at 20 m; charlie stayed down."),
+        _entry("multi", "test", "multi17-pl-north-by-multiples", three,
+               "Wyślij wszystkie trzy drony na północ, na wysokości 10 m: alpha ma przelecieć 15 m, bravo dwa razy "
+               "tyle, a charlie trzy razy tyle co alpha. Na końcu niech wszystkie wylądują tam, gdzie doleciały.",
+               lambda c, ev: _all(*(_all(visited(ev, d, [c.point(d, n, 0)], alt=10), at(ev, d, *c.point(d, n, 0)),
+                                         landed_disarmed(ev, d))
+                                    for d, n in (("alpha", 15), ("bravo", 30), ("charlie", 45)))),
+               [_move("alpha", 15, 0, alt=10), _move("bravo", 30, 0, alt=10), _move("charlie", 45, 0, alt=10),
+                _land("alpha"), _land("bravo"), _land("charlie")],
+               "alpha wylądował 15 m na północ, bravo 30 m, a charlie 45 m."),
+        _entry("multi", "test", "multi17-cs-cross-at-two-heights", three,
+               "Alpha a charlie si prohodí strany: alpha poletí 20 metrů na východ a charlie 20 metrů na západ, "
+               "takže se cestou minou. Aby se nesrazily, alpha poletí ve výšce 10 metrů a charlie v 16 metrech. Pak "
+               "ať oba zůstanou viset ve vzduchu; bravo zůstává na zemi.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 20), alt=10), airborne_at(ev, "alpha", 10),
+                                  at(ev, "charlie", *c.point("charlie", 0, -20), alt=16),
+                                  airborne_at(ev, "charlie", 16), never_armed(ev, "bravo")),
+               [_move("alpha", 0, 20, alt=10), _move("charlie", 0, -20, alt=16)],
+               "alpha visí 20 m východně od svého startu v 10 m, charlie 20 m západně od svého v 16 m; bravo "
+               "zůstal na zemi."),
+        # compound
+        _entry("compound", "test", "compound17-charlie-three-hops-east", ("charlie",),
+               "Move charlie east in hops: up to 5 m, 15 m east, back down onto the ground. Three hops like that, "
+               "and leave it on the ground where the third one ends.",
+               lambda c, ev: _all(takeoffs(ev, "charlie", 5, 3),
+                                  visited(ev, "charlie", [c.point("charlie", 0, 15), c.point("charlie", 0, 30)]),
+                                  at(ev, "charlie", *c.point("charlie", 0, 45)), landed_disarmed(ev, "charlie")),
+               [*(call for _ in range(3) for call in (_takeoff("charlie", 5), _move("charlie", 0, 15), _land("charlie")))],
+               "Charlie hopped 15 m east three times and sits on the ground 45 m east of its pad."),
+        _entry("compound", "test", "compound17-hu-bravo-halving-legs", ("bravo",),
+               "Emeld fel bravo-t 10 méterre, repülj vele 40 métert északra, aztán feleannyit keletre, majd annak "
+               "is a felét délre, és ott tedd le.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 40, 0), c.point("bravo", 40, 20)], alt=10),
+                                  at(ev, "bravo", *c.point("bravo", 30, 20)), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), _move("bravo", 40, 0), _move("bravo", 0, 20), _move("bravo", -10, 0),
+                _land("bravo")],
+               "bravo 40 m-t repült északra, 20 m-t keletre, 10 m-t délre, és ott leszállt."),
+        _entry("compound", "test", "compound17-sk-charlie-dip-then-home", ("charlie",),
+               "Vznes charlie do 15 metrov a preleť s ním 20 metrov na západ. Tam ho spusti na 5 metrov, potom ho "
+               "znova vytiahni na 15 metrov a nakoniec ho pošli domov.",
+               lambda c, ev: _all(passed(ev, "charlie", [(c.point("charlie", 0, -20), 15), (c.point("charlie", 0, -20), 5)]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 15), _move("charlie", 0, -20), _move("charlie", alt=5), _move("charlie", alt=15),
+                _rtl("charlie")],
+               "charlie klesol 20 m západne na 5 m, znova vystúpil na 15 m a vrátil sa domov."),
+        # conditional
+        _entry("conditional", "test", "cond17-charlie-three-laps-or-stay", three,
+               "A lap of the field costs charlie about 10 % of its battery, and it has to land with at least 30 % "
+               "left. If it has enough for three laps, send it 30 m east at 12 m and hold it there; if not, keep "
+               "it on the ground and tell me what it has.",
+               lambda c, ev: _all(answer_mentions_number(ev, 54, 1), nobody_armed(ev)),
+               [_battery("charlie")], "Charlie has 54 %; three laps and the reserve need 60 %, so it stays down.",
+               battery={"charlie": 54.0}),
+        _entry("conditional", "test", "cond17-fi-fuller-north-other-south", three,
+               "Katso alphan ja bravon akut. Se, jonka akku on täydempi, lentää 12 metrin korkeudessa 30 metriä "
+               "pohjoiseen, ja toinen samalla korkeudella 10 metriä etelään; molemmat jäävät sinne leijumaan. "
+               "Charlie pysyy maassa.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 30, 0), alt=12), airborne_at(ev, "bravo", 12),
+                                  at(ev, "alpha", *c.point("alpha", -10, 0), alt=12), airborne_at(ev, "alpha", 12),
+                                  never_armed(ev, "charlie")),
+               [("fleet_status", {}), _move("bravo", 30, 0, alt=12), _move("alpha", -10, 0, alt=12)],
+               "bravolla (83 %) on täydempi akku: se leijuu 30 m pohjoisessa, alpha (48 %) 10 m etelässä, "
+               "molemmat 12 metrissä.",
+               battery={"alpha": 48.0, "bravo": 83.0}),
+        _entry("conditional", "test", "cond17-id-sum-over-120", three,
+               "Jumlahkan persentase baterai alpha dan charlie. Kalau totalnya lebih dari 120 %, naikkan keduanya "
+               "ke 10 meter tepat di atas landasannya masing-masing; kalau tidak, naikkan hanya yang baterainya "
+               "lebih banyak. Bravo tetap di darat.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=10), airborne_at(ev, "charlie", 10),
+                                  never_armed(ev, "alpha"), never_armed(ev, "bravo")),
+               [("fleet_status", {}), _takeoff("charlie", 10)],
+               "alpha 52 % dan charlie 63 %, totalnya 115 %: hanya charlie yang naik ke 10 m.",
+               battery={"alpha": 52.0, "charlie": 63.0}),
+        # formation
+        _entry("formation", "test", "form17-row-turned-into-column", three,
+               "Line the three up abreast at 12 m over where they stand, 10 m apart. Once they're in line, turn "
+               "the row into a column, one behind the other, with the same spacing and on the same spot, and hold "
+               "them there.",
+               lambda c, ev: _all(row_seen(c, ev, three, 12, 10, 90), formation_at(c, ev, three, 12, 10, 0, 0),
+                                  farthest_apart(ev, three, 20), row_along(ev, three, 0)),
+               [_formation(three, "line", 12, 10), _formation(three, "column", 12, 10)],
+               "The three stood abreast at 12 m, then re-formed into a north-south column, 10 m apart, on the "
+               "same spot."),
+        _entry("formation", "test", "form17-nl-circle-by-radius", three,
+               "Zet de drie drones gelijkmatig verdeeld op een cirkel met een straal van 15 meter rond het midden "
+               "tussen hun startplekken, op 18 meter hoogte, en laat ze daar hangen.",
+               lambda c, ev: _all(formation_at(c, ev, three, 18, chord, 0, 0), farthest_apart(ev, three, chord),
+                                  on_radius(c, ev, three, 15)),
+               [_formation(three, "circle", 18, chord)],
+               "De drie drones hangen op 18 m op een cirkel van 15 m straal, 26 m van elkaar."),
+        _entry("formation", "test", "form17-el-stepped-row", three,
+               "Στοίχισε τα τρία drones σε μια σειρά από τα δυτικά προς τα ανατολικά (alpha, bravo, charlie) με 10 "
+               "μέτρα απόσταση μεταξύ τους, ακριβώς πάνω από εκεί που βρίσκονται, αλλά κλιμακωτά στο ύψος: το "
+               "alpha στα 10 μέτρα, το bravo στα 14 και το charlie στα 18. Άφησέ τα να αιωρούνται εκεί.",
+               lambda c, ev: _all(*(_all(at(ev, d, *slot(c, three, 0, e), alt=h), airborne_at(ev, d, h))
+                                    for d, e, h in (("alpha", -10, 10), ("bravo", 0, 14), ("charlie", 10, 18)))),
+               lambda c: [_go(d, slot(c, three, 0, e), h)
+                          for d, e, h in (("alpha", -10, 10), ("bravo", 0, 14), ("charlie", 10, 18))],
+               "Τα τρία drones αιωρούνται σε σειρά ανά 10 m: το alpha στα 10 m, το bravo στα 14 m, το charlie στα 18 m."),
+        # relative
+        _entry("relative", "test", "rel17-charlie-nose-east-forward-left", ("charlie",),
+               "Charlie's nose points east. Take it up to 10 m, then move it 20 m forward and 10 m to its left, "
+               "and hold it there.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 10, 20), alt=10), airborne_at(ev, "charlie", 10)),
+               [_takeoff("charlie", 10), _move("charlie", 10, 20)],
+               "Charlie holds 20 m east and 10 m north of its pad at 10 m."),
+        _entry("relative", "test", "rel17-hr-alpha-undo-last-two", ("alpha",),
+               "Podigni alpha na 10 metara, odleti s njim 20 metara na sjever, zatim 15 metara na istok pa još 10 "
+               "metara na sjever. Onda ga vrati tamo gdje je bio prije zadnja dva pomaka i neka ondje lebdi.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in ((20, 0), (20, 15), (30, 15))],
+                                          alt=10),
+                                  at(ev, "alpha", *c.point("alpha", 20, 0), alt=10), airborne_at(ev, "alpha", 10)),
+               [_takeoff("alpha", 10), _move("alpha", 20, 0), _move("alpha", 0, 15), _move("alpha", 10, 0),
+                _move("alpha", -10, -15)],
+               "alpha lebdi 20 m sjeverno od mjesta polijetanja, na 10 m."),
+        _entry("relative", "test", "rel17-uk-bravo-four-north-three-east", ("bravo",),
+               "Підніми bravo на 12 метрів і відведи його на 50 метрів у такому напрямку, щоб на кожні 4 метри на "
+               "північ припадало 3 метри на схід. Там нехай і висить.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 40, 30), alt=12), airborne_at(ev, "bravo", 12)),
+               [_takeoff("bravo", 12), _move("bravo", 40, 30)],
+               "bravo висить за 40 м на північ і 30 м на схід від старту, на 12 м."),
+        # question
+        _entry("question", "test", "ask17-bravo-hover-minutes", three,
+               "Bravo uses about 2 % of its battery a minute in a hover. How many minutes could it hover before "
+               "it's down to 30 %? Work it out from what it has now; don't launch it.",
+               # the typed plan reads, it does not compute: the minutes, or the reading they come from
+               lambda c, ev: _all(_any(answer_mentions_number(ev, 22, 0.5), answer_mentions_number(ev, 74, 1)),
+                                  nobody_armed(ev)),
+               [_battery("bravo")], "Bravo has 74 %: 44 points above 30 % at 2 % a minute is about 22 minutes.",
+               battery={"alpha": 61.0, "bravo": 74.0, "charlie": 88.0}),
+        _entry("question", "test", "ask17-vi-below-average", three,
+               "Chiếc drone nào có mức pin thấp hơn mức trung bình của cả ba chiếc? Cho tôi biết nó còn bao nhiêu "
+               "phần trăm. Đừng cho chiếc nào cất cánh.",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 48, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "bravo, còn 48 % (trung bình của cả ba là khoảng 60 %).",
+               battery={"alpha": 62.0, "bravo": 48.0, "charlie": 71.0}),
+        _entry("question", "test", "ask17-th-charlie-twice-alpha", three,
+               "แบตของ charlie เหลือมากกว่าสองเท่าของ alpha หรือเปล่า ขอตัวเลขเปอร์เซ็นต์ของทั้งสองลำด้วย "
+               "แต่ไม่ต้องให้ลำไหนขึ้นบินนะ",
+               lambda c, ev: _all(answer_mentions_number(ev, 84, 1), answer_mentions_number(ev, 40, 1),
+                                  nobody_armed(ev)),
+               [_battery("alpha"), _battery("charlie")], "ใช่ charlie มี 84% ส่วน alpha มี 40% มากกว่าสองเท่า",
+               battery={"alpha": 40.0, "bravo": 66.0, "charlie": 84.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
+        # 2 m the lowest altitude)
+        _entry("refusal", "test", "refuse17-bravo-above-sea-level", ("bravo",),
+               "The field sits at 490 m above sea level. Take bravo up to 620 m above sea level, over its pad, and "
+               "hold it there.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "bravo", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("bravo", 130)],
+               "Refused: 620 m above sea level is 130 m over the field, above the 120 m altitude limit."),
+        _entry("refusal", "test", "refuse17-no-v-far-north", three,
+               "Fly alle tre dronene i V-formasjon med 10 meter mellom naboene, i 20 meters høyde, og plasser "
+               "formasjonen 1,2 km nord for der de står nå.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  *(stayed_within(ev, c, d, c.max_distance_m) for d in three),
+                                  answer_reports_refusal(ev)),
+               [_formation(three, "wedge", 20, 10, north=1200)],
+               "Avvist: 1,2 km nord er utenfor grensen på 1000 m fra hjemmepunktet."),
+        _entry("refusal", "test", "refuse17-da-row-lowered-too-low", three,
+               "Stil de tre droner op på en række lige over der, hvor de står, i 8 meters højde og med 10 meter "
+               "mellem hver. Sænk derefter hele rækken 7 meter.",
+               lambda c, ev: _all(formation_at(c, ev, three, 8, 10, 0, 0), refusal_seen(ev, "minimum", "at least"),
+                                  answer_reports_refusal(ev)),
+               [_formation(three, "line", 8, 10), _formation(three, "line", 1, 10)],
+               "Rækken står i 8 m; at sænke den til 1 m blev afvist: under minimumshøjden på 2 m."),
+        # units
+        _entry("units", "test", "units17-alpha-kmh-for-seconds", ("alpha",),
+               "Alpha: up to 10 m, then head north at 18 km/h for 8 seconds and land wherever that leaves it.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 40, 0)], alt=10),
+                                  at(ev, "alpha", *c.point("alpha", 40, 0)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), _move("alpha", 40, 0), _land("alpha")],
+               "Alpha flew 40 m north (18 km/h is 5 m/s, for 8 s) and landed there."),
+        _entry("units", "test", "units17-bg-charlie-yards-and-feet", ("charlie",),
+               "Издигни charlie на височина 12 ярда и 1 фут, после го премести с 33 ярда и 1 фут на запад и го "
+               "остави да виси там.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -100 * FT), alt=37 * FT),
+                                  airborne_at(ev, "charlie", 37 * FT)),
+               [_takeoff("charlie", 37 * FT), _move("charlie", 0, -100 * FT)],
+               "charlie виси на 37 фута (11,3 м) височина, 100 фута (30,5 м) западно от старта си."),
+        _entry("units", "test", "units17-et-bravo-feet-north-metres-east", ("bravo",),
+               "Tõsta bravo 40 jala kõrgusele ja vii see ühe liigutusega 60 jalga põhja ja 15 meetrit itta; jäta "
+               "see sinna õhku hõljuma.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 60 * FT, 15), alt=40 * FT),
+                                  airborne_at(ev, "bravo", 40 * FT)),
+               [_takeoff("bravo", 40 * FT), _move("bravo", 60 * FT, 15)],
+               "bravo hõljub 60 jalga (18,3 m) põhja ja 15 m ida pool, 40 jala (12,2 m) kõrgusel."),
+        # pattern
+        _entry("pattern", "test", "pattern17-alpha-two-rings", ("alpha",),
+               "Alpha at 10 m: one lap round its pad at a 10 m radius, then one at a 20 m radius, both clockwise "
+               "starting from the north side; then bring it back over the pad and land it.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in (*inner[:-1:2], *outer[:-1:2])]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               lambda c: [_takeoff("alpha", 10), *(_go("alpha", c.point("alpha", n, e), 10) for n, e in (*inner, *outer)),
+                          _go("alpha", _home(c, "alpha"), 10), _land("alpha")],
+               "Alpha flew a lap at 10 m from its pad, then one at 20 m, and landed on the pad."),
+        _entry("pattern", "test", "pattern17-sw-charlie-upright-square", ("charlie",),
+               "Ipaishe charlie hadi mita 10, kisha iruke mraba uliosimama wima wenye pande za mita 10: ipande hadi "
+               "mita 20, isogee mita 10 kuelekea mashariki, ishuke tena hadi mita 10, kisha irudi mita 10 kuelekea "
+               "magharibi. Mwishoni iache ielee hapo.",
+               lambda c, ev: _all(passed(ev, "charlie", [(_home(c, "charlie"), 20), (c.point("charlie", 0, 10), 20),
+                                                         (c.point("charlie", 0, 10), 10)]),
+                                  at(ev, "charlie", *_home(c, "charlie"), alt=10), airborne_at(ev, "charlie", 10)),
+               [_takeoff("charlie", 10), _move("charlie", up=10), _move("charlie", 0, 10), _move("charlie", up=-10),
+                _move("charlie", 0, -10)],
+               "charlie iliruka mraba wima na sasa inaelea mita 10 juu ya mahali ilipoanzia."),
+        _entry("pattern", "test", "pattern17-is-bravo-square-and-back", ("bravo",),
+               "Láttu bravo fljúga ferning í 12 metra hæð með 20 metra hliðum: fyrstu hliðina í norður og beygja "
+               "til hægri. Þegar hann er kominn aftur að upphafsstaðnum á hann að fljúga sama ferninginn í hina "
+               "áttina og lenda svo þar sem hann byrjaði.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e)
+                                                        for n, e in ((20, 0), (20, 20), (0, 20), (20, 20), (20, 0))]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), *_legs("bravo", square), *_legs("bravo", reverse), _land("bravo")],
+               "bravo flaug ferninginn réttsælis og svo rangsælis og lenti þar sem hann byrjaði."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
+        # charlie from alpha, 10 m apart, so that a drone placed from itself misses)
+        _entry("placement", "test", "place17-charlie-on-alpha-line-twice-out", three,
+               "Alpha goes 15 m north-east at 12 m and stops there. Put charlie on the same line out from alpha's "
+               "pad, twice as far out, at the same height.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", d15, d15), alt=12), airborne_at(ev, "alpha", 12),
+                                  at(ev, "charlie", *c.point("alpha", 2 * d15, 2 * d15), alt=12),
+                                  airborne_at(ev, "charlie", 12), never_armed(ev, "bravo")),
+               lambda c: [_move("alpha", d15, d15, alt=12), _go("charlie", c.point("alpha", 2 * d15, 2 * d15), 12)],
+               "Alpha hovers 15 m north-east of its pad at 12 m; charlie 30 m north-east of alpha's pad, at 12 m."),
+        _entry("placement", "test", "place17-ta-charlie-lands-on-alpha-pad", three,
+               "alpha-வை 10 மீட்டர் உயரத்தில் வடக்கே 20 மீட்டர் பறக்க வைத்து, அங்கேயே நிறுத்தி வை. பிறகு, alpha "
+               "புறப்பட்ட அதே இடத்தில் charlie-ஐ கொண்டு போய் தரையிறக்கு.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=10), airborne_at(ev, "alpha", 10),
+                                  at(ev, "charlie", *_home(c, "alpha")), landed_disarmed(ev, "charlie"),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_move("alpha", 20, 0, alt=10), _go("charlie", _home(c, "alpha"), 10), _land("charlie")],
+               "alpha வடக்கே 20 m தூரத்தில் 10 m உயரத்தில் நிற்கிறது; charlie, alpha புறப்பட்ட இடத்தில் இறங்கியது."),
+        _entry("placement", "test", "place17-tl-charlie-relieves-alpha", three,
+               "Paliparin mo si alpha nang 25 metro patimog sa taas na 10 metro, at doon mo muna siya palutangin. "
+               "Pagkatapos, ipalit mo si charlie sa puwesto niya (parehong lugar, parehong taas) at pauwiin mo si "
+               "alpha para lumapag sa pinanggalingan nito.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -25, 0)], alt=10),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha"),
+                                  at(ev, "charlie", *c.point("alpha", -25, 0), alt=10), airborne_at(ev, "charlie", 10),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_move("alpha", -25, 0, alt=10), _go("charlie", c.point("alpha", -25, 0), 10), _rtl("alpha")],
+               "Nasa puwesto na ni alpha si charlie, 25 m patimog sa taas na 10 m; nakauwi at nakalapag na si alpha."),
+        # language
+        _entry("language", "test", "lang17-te-bravo-northwest-land", ("bravo",),
+               "bravo ని 15 మీటర్ల ఎత్తుకు ఎగరేసి, వాయువ్య దిశగా 20 మీటర్లు తీసుకెళ్ళి, అక్కడే దింపు.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 15), at(ev, "bravo", *c.point("bravo", d20, -d20)),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 15), _move("bravo", d20, -d20), _land("bravo")],
+               "bravo వాయువ్యంగా 20 m వెళ్ళి అక్కడ దిగింది."),
+        _entry("language", "test", "lang17-kn-alpha-south-climb-hover", ("alpha",),
+               "alpha ಅನ್ನು 12 ಮೀಟರ್ ಎತ್ತರಕ್ಕೆ ಏರಿಸಿ, ದಕ್ಷಿಣಕ್ಕೆ 30 ಮೀಟರ್ ಹಾರಿಸಿ, ಅಲ್ಲಿ ಇನ್ನೂ 6 ಮೀಟರ್ ಮೇಲಕ್ಕೆ ಏರಿಸಿ "
+               "ಗಾಳಿಯಲ್ಲೇ ನಿಲ್ಲಿಸಿ.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -30, 0)], alt=12),
+                                  at(ev, "alpha", *c.point("alpha", -30, 0), alt=18), airborne_at(ev, "alpha", 18)),
+               [_takeoff("alpha", 12), _move("alpha", -30, 0), _move("alpha", up=6)],
+               "alpha ದಕ್ಷಿಣಕ್ಕೆ 30 m ದೂರದಲ್ಲಿ 18 m ಎತ್ತರದಲ್ಲಿ ಗಾಳಿಯಲ್ಲಿ ನಿಂತಿದೆ."),
+        _entry("language", "test", "lang17-mn-charlie-east-home", ("charlie",),
+               "charlie-г 10 метрийн өндөрт хөөргөөд, зүүн зүг рүү 25 метр нисгэ. Дараа нь хөөрсөн газар руу нь "
+               "буцааж авчраад буулга.",
+               # the return home climbs to its own height: the leg east is checked at 10 m instead
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 25)], alt=10),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), _move("charlie", 0, 25), _rtl("charlie")],
+               "charlie зүүн зүг рүү 25 м нисээд, хөөрсөн газартаа буцаж ирж буулаа."),
     ]  # fmt: skip
 
 
@@ -5759,7 +6193,8 @@ def corpus() -> list[CorpusEntry]:
         *_thirteenth_round(),
         *_fourteenth_round(),
         *_fifteenth_round(),
-        *_sixteenth_test_half(),
+        *_sixteenth_round(),
+        *_seventeenth_test_half(),
     ]
 
 

@@ -335,25 +335,44 @@ FIFTEENTH_HALF_MOVED = frozenset({
 })  # fmt: skip
 
 
+SIXTEENTH_HALF_MOVED = frozenset({
+    "ask16-ar-closest-to-bravo", "ask16-charlie-runs-left", "ask16-sv-second-most-charge",
+    "compound16-alpha-north-then-fifty-from-pad", "compound16-ja-charlie-legs-from-height",
+    "compound16-lb-bravo-low-leg-north", "cond16-fr-pair-abreast-or-fuller", "cond16-he-all-or-none",
+    "cond16-heights-by-rank", "form16-ca-column-north-then-home", "form16-diagonal-row-nw-se",
+    "form16-ru-row-spread-wider", "lang16-be-bravo-west-hover", "lang16-el-alpha-southeast-land",
+    "lang16-ml-charlie-northeast-home", "multi16-alpha-charlie-swap-heights",
+    "multi16-de-pair-north-alpha-lands-charlie-on", "multi16-ur-all-up-bravo-higher-two-land",
+    "pattern16-charlie-five-pointed-star", "pattern16-hi-bravo-letter-z",
+    "pattern16-ro-alpha-semicircle-north", "place16-charlie-behind-alpha",
+    "place16-ms-charlie-north-of-alpha-pad-half-bravo", "place16-tr-charlie-follows-alpha",
+    "refuse16-alpha-second-leg-too-far", "refuse16-bs-row-charlie-low", "refuse16-es-bravo-triple-height",
+    "rel16-af-charlie-east-climbing-gradient", "rel16-alpha-east-corrected-to-west",
+    "rel16-zh-bravo-mirror-across-pad", "single16-charlie-over-the-mast", "single16-ht-bravo-two-hops",
+    "single16-ko-alpha-three-steps", "units16-bravo-feet-and-inches", "units16-fa-charlie-feet-km-nw-down",
+    "units16-pt-alpha-feet-miles-yards-land",
+})  # fmt: skip
+
+
 def test_halves_are_disjoint_and_stratified_by_class() -> None:
-    """The dev half holds every entry written before the sixteenth test half (591, and the 36 of the
-    fifteenth test half, moved later on 2026-12-03); the test half is the sixteenth
-    (``_sixteenth_test_half``), 3 a class."""
+    """The dev half holds every entry written before the seventeenth test half (627, and the 36 of the
+    sixteenth test half, moved later on 2026-12-03); the test half is the seventeenth
+    (``_seventeenth_test_half``), 3 a class."""
     dev, test = select("dev"), select("test")
     assert not {e.id for e in dev} & {e.id for e in test}
     assert len(dev) + len(test) == len(corpus()) == len(select("all"))
-    assert len(test) == 36 and len(dev) == 627
+    assert len(test) == 36 and len(dev) == 663
     assert Counter(e.cls for e in test) == Counter(dict.fromkeys(CLASSES, 3))
     per_dev = Counter(e.cls for e in dev)
     assert per_dev == Counter({
-        "single": 50, "multi": 56, "compound": 58, "conditional": 58, "formation": 53, "relative": 55,
-        "question": 52, "refusal": 49, "units": 48, "pattern": 48, "placement": 52, "language": 48,
+        "single": 53, "multi": 59, "compound": 61, "conditional": 61, "formation": 56, "relative": 58,
+        "question": 55, "refusal": 52, "units": 51, "pattern": 51, "placement": 55, "language": 51,
     })  # fmt: skip
 
 
 def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
     """The rounds of 2026-11-29 to 2026-12-03: the 8 test entries seen while tuning, then the whole test
-    half (35) whose figures had informed a decision, then fourteen times the whole test half (36) once
+    half (35) whose figures had informed a decision, then fifteen times the whole test half (36) once
     measured, moved to dev; the test half holds none of them."""
     first_round = {
         "cond-half-battery-go",
@@ -382,6 +401,7 @@ def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
         | THIRTEENTH_HALF_MOVED
         | FOURTEENTH_HALF_MOVED
         | FIFTEENTH_HALF_MOVED
+        | SIXTEENTH_HALF_MOVED
     )
     by_id = {e.id: e for e in corpus()}
     assert all(by_id[i].half == "dev" for i in moved)
