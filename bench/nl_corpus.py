@@ -185,8 +185,13 @@ ran on it by a writer who did not read the host's word lists or rules: 22 of the
 Finnish, Greek, Hungarian, Icelandic, Indonesian, Italian, Maltese, Norwegian, Polish, Slovak, Swahili,
 Tagalog, Tamil, Thai, Ukrainian, Vietnamese; Maltese is new, and Tamil is new outside the ``language``
 class), and the ``language`` class's 3 in Telugu, Kannada and Mongolian (all three new to the corpus, and
-Telugu and Kannada script). Only the harness self-check (the scripted ideal plan) has run on them. That
-leaves 663 dev and 36 test.
+Telugu and Kannada script). Only the harness self-check (the scripted ideal plan) has run on them: 36 of
+36 passed, once the plan of the two laps round alpha's pad flew four legs a lap (naming a point every 45
+degrees made it too long to pass as a plan), and once a Tamil request the host would not let the typed
+plan fly (charlie landing on the pad alpha left: the host dropped charlie's leg there, whether to a named
+point or of a length the request does not give) gave way to another (charlie staying put while alpha
+moves on); an Italian wording was corrected for the language's own sake (a shed of four floors became a
+building). That leaves 663 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -5788,9 +5793,11 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
     with them)."""
     three = DRONES
     d15, d20 = (x / math.sqrt(2) for x in (15, 20))
-    # two laps round the pad, clockwise from the north side: 10 m, then 20 m from it (a point every 45 degrees)
-    inner, outer = ([(round(r * math.cos(math.radians(a)), 2), round(r * math.sin(math.radians(a)), 2))
-                     for a in range(0, 361, 45)] for r in (10, 20))  # fmt: skip
+    # two laps round the pad, clockwise from the north side: 10 m, then 20 m from it; its north, east, south
+    # and west points, and the legs that fly them (out to the north point, four legs round, out to the next)
+    inner, outer = ([(r, 0.0), (0.0, r), (-r, 0.0), (0.0, -r)] for r in (10.0, 20.0))
+    rings = [(10.0, 0.0), (-10.0, 10.0), (-10.0, -10.0), (10.0, -10.0), (10.0, 10.0),
+             (10.0, 0.0), (-20.0, 20.0), (-20.0, -20.0), (20.0, -20.0), (20.0, 20.0)]  # fmt: skip
     # a 20 m square north first turning right, then the same square the other way round
     square = [(20.0, 0.0), (0.0, 20.0), (-20.0, 0.0), (0.0, -20.0)]
     reverse = [(0.0, 20.0), (20.0, 0.0), (0.0, -20.0), (-20.0, 0.0)]
@@ -5876,7 +5883,7 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=30), airborne_at(ev, "charlie", 30)),
                [_takeoff("charlie", 30)], "Charlie hovers at 30 m over its pad, a quarter of the 120 m ceiling."),
         _entry("single", "test", "single17-it-bravo-roof-height", ("bravo",),
-               "Porta bravo all'altezza del tetto del capannone qui di fianco: sono quattro piani da tre metri e "
+               "Porta bravo all'altezza del tetto del palazzo qui di fianco: sono quattro piani da tre metri e "
                "mezzo ciascuno. Poi tienilo lì in volo, sopra la sua piazzola.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=14), airborne_at(ev, "bravo", 14)),
                [_takeoff("bravo", 14)], "bravo è in volo a 14 m sopra la sua piazzola, all'altezza del tetto."),
@@ -6088,10 +6095,11 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
         _entry("pattern", "test", "pattern17-alpha-two-rings", ("alpha",),
                "Alpha at 10 m: one lap round its pad at a 10 m radius, then one at a 20 m radius, both clockwise "
                "starting from the north side; then bring it back over the pad and land it.",
-               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in (*inner[:-1:2], *outer[:-1:2])]),
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in (*inner, *outer)]),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
-               lambda c: [_takeoff("alpha", 10), *(_go("alpha", c.point("alpha", n, e), 10) for n, e in (*inner, *outer)),
-                          _go("alpha", _home(c, "alpha"), 10), _land("alpha")],
+               # (the plan flies each lap as four legs between those points: a plan naming a point every 45
+               # degrees was too long to pass as a plan)
+               [_takeoff("alpha", 10), *_legs("alpha", rings), _rtl("alpha")],
                "Alpha flew a lap at 10 m from its pad, then one at 20 m, and landed on the pad."),
         _entry("pattern", "test", "pattern17-sw-charlie-upright-square", ("charlie",),
                "Ipaishe charlie hadi mita 10, kisha iruke mraba uliosimama wima wenye pande za mita 10: ipande hadi "
@@ -6122,14 +6130,16 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                                   airborne_at(ev, "charlie", 12), never_armed(ev, "bravo")),
                lambda c: [_move("alpha", d15, d15, alt=12), _go("charlie", c.point("alpha", 2 * d15, 2 * d15), 12)],
                "Alpha hovers 15 m north-east of its pad at 12 m; charlie 30 m north-east of alpha's pad, at 12 m."),
-        _entry("placement", "test", "place17-ta-charlie-lands-on-alpha-pad", three,
-               "alpha-வை 10 மீட்டர் உயரத்தில் வடக்கே 20 மீட்டர் பறக்க வைத்து, அங்கேயே நிறுத்தி வை. பிறகு, alpha "
-               "புறப்பட்ட அதே இடத்தில் charlie-ஐ கொண்டு போய் தரையிறக்கு.",
-               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=10), airborne_at(ev, "alpha", 10),
-                                  at(ev, "charlie", *_home(c, "alpha")), landed_disarmed(ev, "charlie"),
+        _entry("placement", "test", "place17-ta-charlie-stays-as-alpha-moves", three,
+               "alpha-வை 12 மீட்டர் உயரத்துக்கு ஏற்றி, charlie-ஐ alpha-வுக்கு மேற்கே 15 மீட்டர் தொலைவில், அதே "
+               "உயரத்தில் நிறுத்து. பிறகு alpha-வை மட்டும் வடக்கே 20 மீட்டர் நகர்த்து; charlie இருக்கும் இடத்திலேயே "
+               "இருக்கட்டும்.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=12), airborne_at(ev, "alpha", 12),
+                                  at(ev, "charlie", *c.point("alpha", 0, -15), alt=12), airborne_at(ev, "charlie", 12),
                                   never_armed(ev, "bravo")),
-               lambda c: [_move("alpha", 20, 0, alt=10), _go("charlie", _home(c, "alpha"), 10), _land("charlie")],
-               "alpha வடக்கே 20 m தூரத்தில் 10 m உயரத்தில் நிற்கிறது; charlie, alpha புறப்பட்ட இடத்தில் இறங்கியது."),
+               lambda c: [_takeoff("alpha", 12), _go("charlie", c.point("alpha", 0, -15), 12), _move("alpha", 20, 0)],
+               "alpha வடக்கே 20 m தூரத்தில் 12 m உயரத்தில் உள்ளது; charlie, alpha-வின் தளத்துக்கு மேற்கே 15 m "
+               "தொலைவில் அதே உயரத்தில் நிற்கிறது."),
         _entry("placement", "test", "place17-tl-charlie-relieves-alpha", three,
                "Paliparin mo si alpha nang 25 metro patimog sa taas na 10 metro, at doon mo muna siya palutangin. "
                "Pagkatapos, ipalit mo si charlie sa puwesto niya (parehong lugar, parehong taas) at pauwiin mo si "
