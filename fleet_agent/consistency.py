@@ -235,7 +235,7 @@ def flown_on(data: Any) -> Any:
     steps = [s for s in steps if isinstance(s, dict)] if isinstance(steps, list) else []
     for k, step in enumerate(steps):
         mine = [s.get("action") for s in steps[k + 1 :] if s.get("drone") == step.get("drone")]
-        if mine[:1] in (["move"], ["pattern"], ["return_home"]) and step.get("after") != "stay":
+        if mine[:1] in (["move"], ["pattern"], ["return_home"]) and step.get("after") in _ENDINGS:
             step["after"] = "stay"
     return data
 

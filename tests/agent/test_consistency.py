@@ -311,6 +311,17 @@ def test_a_landing_before_the_drones_next_move_is_no_landing_and_one_before_a_ta
     assert [s.get("after") for s in flown_on({"steps": home})["steps"]] == ["stay", None]
 
 
+def test_a_landing_step_before_a_move_is_left_a_landing_step_and_the_plan_stays_valid() -> None:
+    """A land or return step has no ``after``: one the model wrote before the same drone's move was given
+    ``after: stay``, and the plan the model wrote, valid as written, failed validation (the 1.5B model's
+    "land bravo, then fly it 30 m east" of a Belarusian request, sixteenth half, now dev)."""
+    steps = [{"action": "land", "drone": "bravo"}, _move("bravo", (30, "east")),
+             {"action": "return_home", "drone": "alpha"}, _move("alpha", (5, "north"))]  # fmt: skip
+    read = flown_on({"steps": copy.deepcopy(steps)})
+    assert read["steps"] == steps
+    assert parse_plan(read, FLEET).steps[0].action == "land"
+
+
 def _ending(after: str, *more: dict[str, object]) -> dict[str, object]:
     return {"in_english": "", "steps": [{**_up("bravo", 15), "after": after}, *more]}
 
