@@ -87,13 +87,14 @@ class Planner:
     @staticmethod
     def _read(reply: str, request: str, fleet: list[str], attempt: PlanAttempt) -> str | None:
         """Take the reply's plan into ``attempt`` when it validates and leaves out less of the request than
-        the plan already there (a repair that does worse is not taken); what is wrong with it, or None."""
+        the plan there (not a repair that does worse or writes the host's note back); else what is wrong."""
+        echo = bool(attempt.errors) and attempt.errors[-1][:50] in reply
         try:
             plan, notes = read_plan(request, fleet, json.loads(_json_part(reply)))
         except (ValidationError, ValueError) as exc:
             attempt.errors.append(describe_errors(exc))
             return f"That plan is not valid: {attempt.errors[-1]}"
-        if attempt.plan is None or len(notes) < attempt.gaps:
+        if not echo and (attempt.plan is None or len(notes) < attempt.gaps):
             attempt.plan, attempt.gaps = plan, len(notes)
         if not notes:
             return None

@@ -66,8 +66,7 @@ def rectangle_legs(
 def orbit_legs(
     radius_m: float, points: int = 12, clockwise: bool = True, start_deg: float = 0.0
 ) -> list[Offset]:
-    """Out from the centre to the circle (towards ``start_deg``), around it through ``points`` chords, and
-    back in."""
+    """Out from the centre to the circle (towards ``start_deg``), round it in ``points`` chords, back in."""
     turn = 360.0 / points * (1 if clockwise else -1)
     corners = [_scaled(heading_vector(start_deg + i * turn), radius_m) for i in range(points + 1)]
     chords = [_scaled((b[0] - a[0], b[1] - a[1]), 1.0) for a, b in itertools.pairwise(corners)]

@@ -107,3 +107,24 @@ async def test_a_repair_that_leaves_out_more_is_not_taken(scripted) -> None:
     attempt = await _planner(server).plan("from bravo, alpha 25 m north at 15 m", FLEET)
     assert len(server.requests) == 2 and attempt.plan is not None
     assert attempt.plan.steps[0].action == "move" and attempt.gaps == 1
+
+
+async def test_a_repair_that_writes_the_hosts_note_back_is_not_taken(scripted) -> None:
+    """The 0.5B model answered a repair round by writing the host's note as its restatement and an example's
+    `if` as its steps (60 runs of four test halves, 6 of them passed): that plan has the drone the note
+    asked for, so it left out less, but it is no repair; the first plan is kept."""
+    first = {"in_english": "Alpha flies 25 m north at 15 m.", "steps": [_move("alpha", {"kind": "here"})]}
+    note = "the request names bravo, which no step of the plan does (as the drone that acts"
+    up = {"action": "takeoff", "drone": "bravo", "altitude": {"value": 15, "unit": "m"}}
+    copied = {"action": "if", "drone": "bravo", "reading": "battery", "compare": "below", "value": 25,
+              "then": [], "otherwise": [up]}  # fmt: skip
+    steps = [copied, _move("alpha", {"kind": "here"})]
+    echoed = {"in_english": f"Check the plan against the request: {note}", "steps": steps}
+    server = scripted([say(json.dumps(first)), say(json.dumps(echoed))])
+    attempt = await _planner(server).plan("from bravo, alpha 25 m north at 15 m", FLEET)
+    assert len(server.requests) == 2 and attempt.plan is not None
+    assert attempt.plan.steps[0].action == "move" and attempt.gaps == 1
+    fixed = {"in_english": "From bravo: alpha 25 m north at 15 m.", "steps": [_move("alpha", "bravo")]}
+    server = scripted([say(json.dumps(first)), say(json.dumps(fixed))])
+    attempt = await _planner(server).plan("from bravo, alpha 25 m north at 15 m", FLEET)
+    assert attempt.plan is not None and attempt.gaps == 0
