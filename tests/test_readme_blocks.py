@@ -22,6 +22,7 @@ import signal
 import socket
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Iterator
 from concurrent.futures import ThreadPoolExecutor
@@ -142,13 +143,28 @@ def _bindable(port: int) -> bool:
     return True
 
 
+#: ports this module has handed out: the two gateway rounds run side by side in one process, and the OS can
+#: hand both the same free port (a CI run saw the tokens round register its drone with the open round's
+#: gateway, then the open round's own registration refused as a duplicate)
+_HANDED_OUT: set[int] = set()
+_HANDING = threading.Lock()
+
+
+def _unique_port(span: tuple[int, ...] = (0,)) -> int:
+    """A free port P with every P+k of ``span`` free and none handed out to another round before."""
+    with _HANDING:
+        for _ in range(200):
+            base = free_tcp_port()
+            ports = {base + k for k in span}
+            if base < 60000 and not ports & _HANDED_OUT and all(_bindable(p) for p in ports):
+                _HANDED_OUT.update(ports)
+                return base
+    raise AssertionError(f"no free ports at offsets {span} not handed out already")
+
+
 def free_sim_base() -> int:
     """A port P with P, P+10 and P+20 free (the simulator's three drones)."""
-    for _ in range(200):
-        base = free_tcp_port()
-        if base < 60000 and all(_bindable(base + k) for k in (10, 20)):
-            return base
-    raise AssertionError("no three free ports 10 apart")
+    return _unique_port((0, 10, 20))
 
 
 @dataclass
@@ -212,7 +228,7 @@ def gateway_round(tmp_path: Path, name: str, extra_env: dict[str, str]) -> Itera
     block = _block("fleet-gateway sim --count 3")
     assert block.text.splitlines()[0] == "make install"
     script = Block(block.language, "\n".join(block.text.splitlines()[1:]), block.line)
-    port, sim = free_tcp_port(), free_sim_base()
+    port, sim = _unique_port(), free_sim_base()
     env = {k: v for k, v in os.environ.items() if not k.startswith("GATEWAY_")}
     env.update(
         GATEWAY_PORT=str(port),
