@@ -29,8 +29,8 @@ STAY_STEMS, DOWN_STEMS = (tuple(_WORDS["endings"][kind].split()) for kind in ("s
 #: from here on (Hebrew, Arabic, Devanagari, Thai, CJK, Hangul...), a stem is found inside a word too: these
 #: scripts join letters or write no spaces
 _JOINED_SCRIPTS = 0x590
-#: what ends a clause of a text
-CLAUSE_ENDS = (". ", ", ", ";", "!", "?", "\n", "。", "、", "，", "；", "！", "？")
+#: what ends a clause of a text (an aside in brackets is a clause of its own: "y = -15 m (x points east)")
+CLAUSE_ENDS = (". ", ", ", ";", "!", "?", "\n", "。", "、", "，", "；", "！", "？", "(", ")", "（", "）")
 
 
 def clauses(text: str) -> list[str]:

@@ -145,6 +145,8 @@ def test_the_restatement_gives_each_number_the_compass_point_after_it_in_its_cla
     assert stated_ways(said) == want
     assert stated_ways("Echo flies 20 m east of delta at 15 m.") == [(20, "east"), (15, None)]
     assert stated_ways("Nothing flies, alpha2 neither.") == []
+    aside = "Take bravo to x = 30 m, y = -10 m (x runs east and y north) at 12 m"
+    assert stated_ways(aside) == [(30, None), (-10, None), (12, None)]
 
 
 @pytest.mark.parametrize(
