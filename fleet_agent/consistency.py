@@ -142,11 +142,9 @@ def _items(data: Any) -> list[tuple[str, Any]]:
     out: list[tuple[str, Any]] = []
     if isinstance(data, dict):
         for key, value in data.items():
-            out.append((key, value))
-            out += _items(value)
+            out += [(key, value), *_items(value)]
     elif isinstance(data, list):
-        for value in data:
-            out += _items(value)
+        out = [item for value in data for item in _items(value)]
     return out
 
 
@@ -242,33 +240,35 @@ def flown_on(data: Any) -> Any:
 
 def as_stated(request: str, data: Any) -> Any:
     """The decoded plan with its legs going the ways the restatement (``in_english``), then the request
-    (its words win), name for their numbers (`_as_said`): the 1.5B model planned "to 20 meters, then 25
-    meters south" as 20 m north, then 25 m south. A restatement copying the request is not read."""
+    (its words win), name for their numbers (`_as_said`): "to 20 m, then 25 m south" was planned as 20 m
+    north, then 25 m south. A restatement copying the request is not read; a request naming no compass
+    point the lexicon knows (its words may be unknown) only climbs a move with legs left."""
     said = str(data.get("in_english") or "") if isinstance(data, dict) else ""
     if said and said.strip() != request.strip():
         data = _as_said(said, data)
-    return _as_said(request, data) if lexicon.compass_points(request) else data
+    return _as_said(request, data, known=bool(lexicon.compass_points(request)))
 
 
-def _as_said(text: str, data: Any) -> Any:
+def _as_said(text: str, data: Any, known: bool = True) -> Any:
     """The plan with the k-th leg of a length going the way ``text`` names after its k-th such number (a
     length named with no way, or other times than the plan flies it, is left), or its one leg or first side
     the way of the text's one compass word; a drone's first move from where it is at no altitude, while the
     plan has more legs than the text names ways, whose first leg's number the text names once with no
-    way, climbs to that number."""
+    way, climbs to that number (unless ``known`` is false: the text's compass words may be unknown, so
+    none of its legs is given a way, and only a move with more than one leg climbs)."""
     steps = data.get("steps") if isinstance(data, dict) else None
     if not isinstance(steps, list):
         return data
     points, ways = lexicon.compass_points(text), lexicon.stated_ways(text)
     unnamed = len(_compass_slots(steps)) - len(points)  # each climb takes one horizontal leg away
     for k, step in enumerate(steps):
-        if unnamed > 0 and _climbs_first(ways, steps[:k], step):
+        if unnamed > 0 and _climbs_first(ways, steps[:k], step, 1 if known else 2):
             steps[k], unnamed = _climbing(step), unnamed - 1
     slots = _compass_slots(steps)
     if len(slots) == len(points) == 1:
         slots[0][0][slots[0][1]] = points[0]
         return data
-    legs = [holder for holder, key in slots if key == "direction"]
+    legs = [holder for holder, key in slots if key == "direction" and known]
     for value in {leg["distance"].get("value") for leg in legs}:
         named = [way for number, way in ways if number == value]
         same = [leg for leg in legs if leg["distance"].get("value") == value]
@@ -290,12 +290,11 @@ def _compass_slots(steps: list[Any]) -> list[tuple[dict[str, Any], str]]:
     return slots
 
 
-def _climbs_first(ways: list[tuple[float, str | None]], earlier: list[Any], step: Any) -> bool:
-    """``step`` is its drone's first, a move from where it is at no altitude (or 0 m) whose first leg is
-    horizontal, and the text names that leg's number once, with no way."""
-    if not _horizontal_move_from_here(step) or (step.get("altitude") or {}).get("value"):
-        return False
-    if not _horizontal(leg := step["legs"][0]):
+def _climbs_first(ways: list[tuple[float, str | None]], earlier: list[Any], step: Any, legs: int) -> bool:
+    """``step`` is its drone's first, a move from where it is at no altitude (or 0 m) with at least ``legs``
+    horizontal legs, the first of them first, and the text names that leg's number once, with no way."""
+    flat = _horizontal_move_from_here(step) and sum(map(_horizontal, step["legs"])) >= legs
+    if not flat or (step.get("altitude") or {}).get("value") or not _horizontal(leg := step["legs"][0]):
         return False
     if step.get("drone") in {s.get("drone") for s in earlier if isinstance(s, dict)}:
         return False

@@ -282,9 +282,19 @@ def test_a_first_leg_whose_number_the_request_gives_no_way_is_the_climb() -> Non
     assert as_stated(finnish, data)["steps"] == want
 
 
+def test_a_first_leg_is_the_climb_in_a_request_whose_compass_words_the_lexicon_lacks() -> None:
+    """Swahili "raise charlie to 10 m, then fly it 25 m east": the lexicon knows no Swahili compass word,
+    so a move keeps a leg when its first becomes the climb."""
+    request = "Paisha charlie hadi mita 10, kisha iruke mita 25 kuelekea mashariki."
+    data = {"steps": [_move("charlie", (10, "north"), (25, "east"))]}
+    assert as_stated(request, data)["steps"] == [_move("charlie", (25, "east"), altitude=10)]
+    alone = [_move("charlie", (10, "north"))]
+    assert as_stated("Paisha charlie mita 10 kuelekea kaskazini.", {"steps": alone})["steps"] == alone
+
+
 def test_a_plan_the_requests_compass_words_do_not_settle_is_left_as_written() -> None:
     cases = [
-        ("alpha 20 m and then 10 m", [_move("alpha", (20, "north"), (10, "east"))]),  # no compass word
+        ("alpha 20 m", [_move("alpha", (20, "north"))]),  # no compass word, and one leg
         ("flytta alpha 30 meter mot nordnordost", [_move("alpha", (25, "north"), (11, "east"))]),  # no number
         ("alpha 20 m north, then 20 m", [_move("alpha", (20, "west"), (20, "east"))]),  # one 20 m has no way
         ("alpha up 10 m, 20 m", [_up("alpha", 5), _move("alpha", (10, "west"), (20, "south"))]),  # no way
