@@ -17,6 +17,7 @@ from fleet_agent.records import ModelConfig, Usage
 
 DECODINGS = ("json_schema", "ollama", "guided", "none")
 MAX_ERRORS_SHOWN = 6
+CUT = "Your plan repeated its steps until the length limit cut it off: write each step once"
 
 
 @dataclass
@@ -69,7 +70,7 @@ class Planner:
         options = decoding_options(self.model.decoding, plan_schema(fleet))
         for round_ in range(2):
             try:
-                reply = await self._complete(messages, options, attempt.usage)
+                reply, cut = await self._complete(messages, options, attempt.usage)
             except openai.OpenAIError as exc:
                 endpoint = f"the model endpoint {self.model.base_url} (model {self.model.model})"
                 attempt.model_error = f"{endpoint} did not answer: {type(exc).__name__}: {exc}"
@@ -78,10 +79,9 @@ class Planner:
             problem = self._read(reply, request, fleet, attempt)
             if problem is None or round_ == 1:
                 return attempt
-            messages += [
-                {"role": "assistant", "content": reply},
-                {"role": "user", "content": repair_message(problem, request)},
-            ]
+            # a reply cut at the token limit repeated itself: shown again, it is repeated again
+            messages += [] if cut else [{"role": "assistant", "content": reply}]
+            messages += [{"role": "user", "content": repair_message(CUT if cut else problem, request)}]
         return attempt
 
     @staticmethod
@@ -101,16 +101,16 @@ class Planner:
         attempt.errors.append("; ".join(notes))
         return f"Check the plan against the request: {attempt.errors[-1]}"
 
-    async def _complete(self, messages: list[dict[str, Any]], options: dict[str, Any], usage: Usage) -> str:
+    async def _complete(self, messages: list[Any], options: dict[str, Any], usage: Usage) -> tuple[str, bool]:
+        """The reply, and whether the token limit cut it."""
         response = await self.client.chat.completions.create(
-            model=self.model.model, messages=messages,  # type: ignore[arg-type]
+            model=self.model.model, messages=messages,
             temperature=self.model.temperature, max_tokens=self.model.max_tokens, **options,
         )  # fmt: skip
         if response.usage is not None:
             usage.add(response.usage.prompt_tokens, response.usage.completion_tokens)
-        if not response.choices:
-            return ""
-        return response.choices[0].message.content or ""
+        choice = response.choices[0] if response.choices else None
+        return (choice.message.content or "", choice.finish_reason == "length") if choice else ("", False)
 
 
 def repair_message(problem: str, request: str) -> str:

@@ -128,3 +128,14 @@ async def test_a_repair_that_writes_the_hosts_note_back_is_not_taken(scripted) -
     server = scripted([say(json.dumps(first)), say(json.dumps(fixed))])
     attempt = await _planner(server).plan("from bravo, alpha 25 m north at 15 m", FLEET)
     assert attempt.plan is not None and attempt.gaps == 0
+
+
+async def test_a_reply_cut_at_the_token_limit_is_not_shown_again(scripted) -> None:
+    step = json.dumps(GOOD["steps"][0])
+    cut = ScriptedReply(content='{"steps": [' + ", ".join([step] * 9)[:300], finish_reason="length")
+    server = scripted([cut, say(json.dumps(GOOD))])
+    attempt = await _planner(server).plan("alpha up 30 feet", FLEET)
+    assert attempt.plan is not None and len(server.requests) == 2
+    first, repair = (request["messages"] for request in server.requests)
+    assert repair[:-1] == first and repair[-1]["role"] == "user"
+    assert repair[-1]["content"].startswith("Your plan repeated its steps until the length limit cut it off")
