@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 699 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 735 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -179,7 +179,7 @@ plan has no reading for (on which side of alpha charlie stands) gave way to anot
 nearer bravo's). That leaves 627 dev and 36 test.
 Later on 2026-12-03 (sixteenth round) EVERY test entry (36, ``_sixteenth_round``) was moved to dev, each
 marked "moved to dev on 2026-12-03, sixteenth round", once both models had been measured on it. A fresh
-test half took its place (``_seventeenth_test_half``): 36 new requests, 3 a class, written before any model
+test half took its place (``_seventeenth_test_half``, now ``_seventeenth_round``): 36 new requests, 3 a class, written before any model
 ran on it by a writer who did not read the host's word lists or rules: 22 of the 33 outside the
 ``language`` class in 22 languages, one each (Bulgarian, Croatian, Czech, Danish, Dutch, Estonian,
 Finnish, Greek, Hungarian, Icelandic, Indonesian, Italian, Maltese, Norwegian, Polish, Slovak, Swahili,
@@ -192,6 +192,16 @@ plan fly (charlie landing on the pad alpha left: the host dropped charlie's leg 
 point or of a length the request does not give) gave way to another (charlie staying put while alpha
 moves on); an Italian wording was corrected for the language's own sake (a shed of four floors became a
 building). That leaves 663 dev and 36 test.
+Later on 2026-12-04 (seventeenth round) EVERY test entry (36, ``_seventeenth_round``) was moved to dev, each
+marked "moved to dev on 2026-12-04, seventeenth round": the 1.5B model had run 89 of its 108 runs on it
+(figures lost with the session that ran them) and its failures had informed changes to the host, so it no
+longer measured requests nobody tuned for. A fresh test half took its place (``_eighteenth_test_half``): 36
+new requests, 3 a class, written before any model ran on it by a writer who did not read the host's word
+lists or rules: 22 of the 33 outside the ``language`` class in 22 languages, one each (Arabic, Chinese,
+Czech, Dutch, French, German, Hebrew, Hindi, Indonesian, Italian, Japanese, Korean, Persian, Polish,
+Portuguese, Romanian, Russian, Spanish, Swedish, Turkish, Ukrainian, Vietnamese), and the ``language``
+class's 3 in Amharic, Sinhala and Tajik (all three new to the corpus, and Ethiopic and Sinhala script).
+Only the harness self-check (the scripted ideal plan) has run on them. That leaves 699 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -5783,14 +5793,16 @@ def _sixteenth_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _seventeenth_test_half() -> list[CorpusEntry]:
+def _seventeenth_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-03 (seventeenth round), before any model ran on it, by a writer who
     did not read the host's word lists or rules: 3 a class; 22 of the 33 outside ``language`` in other
     languages than English, one each (Bulgarian, Croatian, Czech, Danish, Dutch, Estonian, Finnish, Greek,
     Hungarian, Icelandic, Indonesian, Italian, Maltese, Norwegian, Polish, Slovak, Swahili, Tagalog, Tamil,
     Thai, Ukrainian, Vietnamese; Maltese is new, Tamil is new outside ``language``), the ``language``
     class's 3 in Telugu, Kannada and Mongolian (all three new to the corpus, and Telugu and Kannada script
-    with them)."""
+    with them); all of it moved to dev on 2026-12-04 (seventeenth round): the 1.5B model had run 89 of its
+    108 runs on it (figures lost with the session that ran them) and its failures had informed changes to
+    the host."""
     three = DRONES
     d15, d20 = (x / math.sqrt(2) for x in (15, 20))
     # two laps round the pad, clockwise from the north side: 10 m, then 20 m from it; its north, east, south
@@ -5877,17 +5889,20 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
 
     return [
         # single
-        _entry("single", "test", "single17-charlie-quarter-of-ceiling", ("charlie",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("single", "dev", "single17-charlie-quarter-of-ceiling", ("charlie",),
                "Our ceiling on this field is 120 m. Take charlie up to a quarter of that, straight over its pad, "
                "and leave it there.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=30), airborne_at(ev, "charlie", 30)),
                [_takeoff("charlie", 30)], "Charlie hovers at 30 m over its pad, a quarter of the 120 m ceiling."),
-        _entry("single", "test", "single17-it-bravo-roof-height", ("bravo",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("single", "dev", "single17-it-bravo-roof-height", ("bravo",),
                "Porta bravo all'altezza del tetto del palazzo qui di fianco: sono quattro piani da tre metri e "
                "mezzo ciascuno. Poi tienilo lì in volo, sopra la sua piazzola.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=14), airborne_at(ev, "bravo", 14)),
                [_takeoff("bravo", 14)], "bravo è in volo a 14 m sopra la sua piazzola, all'altezza del tetto."),
-        _entry("single", "test", "single17-mt-alpha-up-down-up", ("alpha",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("single", "dev", "single17-mt-alpha-up-down-up", ("alpha",),
                "Tella' lil alpha sa 10 metri, niżżlu lura fuq il-post tiegħu, u mbagħad erġa' tellgħu sa 10 metri "
                "u ħallih hemm fl-arja.",
                lambda c, ev: _all(takeoffs(ev, "alpha", 10, 2), at(ev, "alpha", *_home(c, "alpha"), alt=10),
@@ -5895,7 +5910,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 10), _land("alpha"), _takeoff("alpha", 10)],
                "alpha tela' sa 10 m, niżel, u reġa' tela' sa 10 m: issa qiegħed fl-arja fuq il-post tiegħu."),
         # multi
-        _entry("multi", "test", "multi17-bravo-same-as-alpha-higher", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("multi", "dev", "multi17-bravo-same-as-alpha-higher", three,
                "Alpha: 20 m south at 10 m, then hover. Bravo does exactly the same from its own pad, only 10 m "
                "higher. Charlie stays where it is.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -20, 0), alt=10), airborne_at(ev, "alpha", 10),
@@ -5903,7 +5919,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "charlie")),
                [_move("alpha", -20, 0, alt=10), _move("bravo", -20, 0, alt=20)],
                "Alpha hovers 20 m south of its pad at 10 m, bravo 20 m south of its own at 20 m; charlie stayed down."),
-        _entry("multi", "test", "multi17-pl-north-by-multiples", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("multi", "dev", "multi17-pl-north-by-multiples", three,
                "Wyślij wszystkie trzy drony na północ, na wysokości 10 m: alpha ma przelecieć 15 m, bravo dwa razy "
                "tyle, a charlie trzy razy tyle co alpha. Na końcu niech wszystkie wylądują tam, gdzie doleciały.",
                lambda c, ev: _all(*(_all(visited(ev, d, [c.point(d, n, 0)], alt=10), at(ev, d, *c.point(d, n, 0)),
@@ -5912,7 +5929,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                [_move("alpha", 15, 0, alt=10), _move("bravo", 30, 0, alt=10), _move("charlie", 45, 0, alt=10),
                 _land("alpha"), _land("bravo"), _land("charlie")],
                "alpha wylądował 15 m na północ, bravo 30 m, a charlie 45 m."),
-        _entry("multi", "test", "multi17-cs-cross-at-two-heights", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("multi", "dev", "multi17-cs-cross-at-two-heights", three,
                "Alpha a charlie si prohodí strany: alpha poletí 20 metrů na východ a charlie 20 metrů na západ, "
                "takže se cestou minou. Aby se nesrazily, alpha poletí ve výšce 10 metrů a charlie v 16 metrech. Pak "
                "ať oba zůstanou viset ve vzduchu; bravo zůstává na zemi.",
@@ -5923,7 +5941,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                "alpha visí 20 m východně od svého startu v 10 m, charlie 20 m západně od svého v 16 m; bravo "
                "zůstal na zemi."),
         # compound
-        _entry("compound", "test", "compound17-charlie-three-hops-east", ("charlie",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("compound", "dev", "compound17-charlie-three-hops-east", ("charlie",),
                "Move charlie east in hops: up to 5 m, 15 m east, back down onto the ground. Three hops like that, "
                "and leave it on the ground where the third one ends.",
                lambda c, ev: _all(takeoffs(ev, "charlie", 5, 3),
@@ -5931,7 +5950,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                                   at(ev, "charlie", *c.point("charlie", 0, 45)), landed_disarmed(ev, "charlie")),
                [*(call for _ in range(3) for call in (_takeoff("charlie", 5), _move("charlie", 0, 15), _land("charlie")))],
                "Charlie hopped 15 m east three times and sits on the ground 45 m east of its pad."),
-        _entry("compound", "test", "compound17-hu-bravo-halving-legs", ("bravo",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("compound", "dev", "compound17-hu-bravo-halving-legs", ("bravo",),
                "Emeld fel bravo-t 10 méterre, repülj vele 40 métert északra, aztán feleannyit keletre, majd annak "
                "is a felét délre, és ott tedd le.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 40, 0), c.point("bravo", 40, 20)], alt=10),
@@ -5939,7 +5959,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 10), _move("bravo", 40, 0), _move("bravo", 0, 20), _move("bravo", -10, 0),
                 _land("bravo")],
                "bravo 40 m-t repült északra, 20 m-t keletre, 10 m-t délre, és ott leszállt."),
-        _entry("compound", "test", "compound17-sk-charlie-dip-then-home", ("charlie",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("compound", "dev", "compound17-sk-charlie-dip-then-home", ("charlie",),
                "Vznes charlie do 15 metrov a preleť s ním 20 metrov na západ. Tam ho spusti na 5 metrov, potom ho "
                "znova vytiahni na 15 metrov a nakoniec ho pošli domov.",
                lambda c, ev: _all(passed(ev, "charlie", [(c.point("charlie", 0, -20), 15), (c.point("charlie", 0, -20), 5)]),
@@ -5948,14 +5969,16 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                 _rtl("charlie")],
                "charlie klesol 20 m západne na 5 m, znova vystúpil na 15 m a vrátil sa domov."),
         # conditional
-        _entry("conditional", "test", "cond17-charlie-three-laps-or-stay", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("conditional", "dev", "cond17-charlie-three-laps-or-stay", three,
                "A lap of the field costs charlie about 10 % of its battery, and it has to land with at least 30 % "
                "left. If it has enough for three laps, send it 30 m east at 12 m and hold it there; if not, keep "
                "it on the ground and tell me what it has.",
                lambda c, ev: _all(answer_mentions_number(ev, 54, 1), nobody_armed(ev)),
                [_battery("charlie")], "Charlie has 54 %; three laps and the reserve need 60 %, so it stays down.",
                battery={"charlie": 54.0}),
-        _entry("conditional", "test", "cond17-fi-fuller-north-other-south", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("conditional", "dev", "cond17-fi-fuller-north-other-south", three,
                "Katso alphan ja bravon akut. Se, jonka akku on täydempi, lentää 12 metrin korkeudessa 30 metriä "
                "pohjoiseen, ja toinen samalla korkeudella 10 metriä etelään; molemmat jäävät sinne leijumaan. "
                "Charlie pysyy maassa.",
@@ -5966,7 +5989,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                "bravolla (83 %) on täydempi akku: se leijuu 30 m pohjoisessa, alpha (48 %) 10 m etelässä, "
                "molemmat 12 metrissä.",
                battery={"alpha": 48.0, "bravo": 83.0}),
-        _entry("conditional", "test", "cond17-id-sum-over-120", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("conditional", "dev", "cond17-id-sum-over-120", three,
                "Jumlahkan persentase baterai alpha dan charlie. Kalau totalnya lebih dari 120 %, naikkan keduanya "
                "ke 10 meter tepat di atas landasannya masing-masing; kalau tidak, naikkan hanya yang baterainya "
                "lebih banyak. Bravo tetap di darat.",
@@ -5976,7 +6000,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                "alpha 52 % dan charlie 63 %, totalnya 115 %: hanya charlie yang naik ke 10 m.",
                battery={"alpha": 52.0, "charlie": 63.0}),
         # formation
-        _entry("formation", "test", "form17-row-turned-into-column", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("formation", "dev", "form17-row-turned-into-column", three,
                "Line the three up abreast at 12 m over where they stand, 10 m apart. Once they're in line, turn "
                "the row into a column, one behind the other, with the same spacing and on the same spot, and hold "
                "them there.",
@@ -5985,14 +6010,16 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                [_formation(three, "line", 12, 10), _formation(three, "column", 12, 10)],
                "The three stood abreast at 12 m, then re-formed into a north-south column, 10 m apart, on the "
                "same spot."),
-        _entry("formation", "test", "form17-nl-circle-by-radius", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("formation", "dev", "form17-nl-circle-by-radius", three,
                "Zet de drie drones gelijkmatig verdeeld op een cirkel met een straal van 15 meter rond het midden "
                "tussen hun startplekken, op 18 meter hoogte, en laat ze daar hangen.",
                lambda c, ev: _all(formation_at(c, ev, three, 18, chord, 0, 0), farthest_apart(ev, three, chord),
                                   on_radius(c, ev, three, 15)),
                [_formation(three, "circle", 18, chord)],
                "De drie drones hangen op 18 m op een cirkel van 15 m straal, 26 m van elkaar."),
-        _entry("formation", "test", "form17-el-stepped-row", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("formation", "dev", "form17-el-stepped-row", three,
                "Στοίχισε τα τρία drones σε μια σειρά από τα δυτικά προς τα ανατολικά (alpha, bravo, charlie) με 10 "
                "μέτρα απόσταση μεταξύ τους, ακριβώς πάνω από εκεί που βρίσκονται, αλλά κλιμακωτά στο ύψος: το "
                "alpha στα 10 μέτρα, το bravo στα 14 και το charlie στα 18. Άφησέ τα να αιωρούνται εκεί.",
@@ -6002,13 +6029,15 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                           for d, e, h in (("alpha", -10, 10), ("bravo", 0, 14), ("charlie", 10, 18))],
                "Τα τρία drones αιωρούνται σε σειρά ανά 10 m: το alpha στα 10 m, το bravo στα 14 m, το charlie στα 18 m."),
         # relative
-        _entry("relative", "test", "rel17-charlie-nose-east-forward-left", ("charlie",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("relative", "dev", "rel17-charlie-nose-east-forward-left", ("charlie",),
                "Charlie's nose points east. Take it up to 10 m, then move it 20 m forward and 10 m to its left, "
                "and hold it there.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 10, 20), alt=10), airborne_at(ev, "charlie", 10)),
                [_takeoff("charlie", 10), _move("charlie", 10, 20)],
                "Charlie holds 20 m east and 10 m north of its pad at 10 m."),
-        _entry("relative", "test", "rel17-hr-alpha-undo-last-two", ("alpha",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("relative", "dev", "rel17-hr-alpha-undo-last-two", ("alpha",),
                "Podigni alpha na 10 metara, odleti s njim 20 metara na sjever, zatim 15 metara na istok pa još 10 "
                "metara na sjever. Onda ga vrati tamo gdje je bio prije zadnja dva pomaka i neka ondje lebdi.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in ((20, 0), (20, 15), (30, 15))],
@@ -6017,14 +6046,16 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 10), _move("alpha", 20, 0), _move("alpha", 0, 15), _move("alpha", 10, 0),
                 _move("alpha", -10, -15)],
                "alpha lebdi 20 m sjeverno od mjesta polijetanja, na 10 m."),
-        _entry("relative", "test", "rel17-uk-bravo-four-north-three-east", ("bravo",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("relative", "dev", "rel17-uk-bravo-four-north-three-east", ("bravo",),
                "Підніми bravo на 12 метрів і відведи його на 50 метрів у такому напрямку, щоб на кожні 4 метри на "
                "північ припадало 3 метри на схід. Там нехай і висить.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 40, 30), alt=12), airborne_at(ev, "bravo", 12)),
                [_takeoff("bravo", 12), _move("bravo", 40, 30)],
                "bravo висить за 40 м на північ і 30 м на схід від старту, на 12 м."),
         # question
-        _entry("question", "test", "ask17-bravo-hover-minutes", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("question", "dev", "ask17-bravo-hover-minutes", three,
                "Bravo uses about 2 % of its battery a minute in a hover. How many minutes could it hover before "
                "it's down to 30 %? Work it out from what it has now; don't launch it.",
                # the typed plan reads, it does not compute: the minutes, or the reading they come from
@@ -6032,14 +6063,16 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                                   nobody_armed(ev)),
                [_battery("bravo")], "Bravo has 74 %: 44 points above 30 % at 2 % a minute is about 22 minutes.",
                battery={"alpha": 61.0, "bravo": 74.0, "charlie": 88.0}),
-        _entry("question", "test", "ask17-vi-below-average", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("question", "dev", "ask17-vi-below-average", three,
                "Chiếc drone nào có mức pin thấp hơn mức trung bình của cả ba chiếc? Cho tôi biết nó còn bao nhiêu "
                "phần trăm. Đừng cho chiếc nào cất cánh.",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 48, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "bravo, còn 48 % (trung bình của cả ba là khoảng 60 %).",
                battery={"alpha": 62.0, "bravo": 48.0, "charlie": 71.0}),
-        _entry("question", "test", "ask17-th-charlie-twice-alpha", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("question", "dev", "ask17-th-charlie-twice-alpha", three,
                "แบตของ charlie เหลือมากกว่าสองเท่าของ alpha หรือเปล่า ขอตัวเลขเปอร์เซ็นต์ของทั้งสองลำด้วย "
                "แต่ไม่ต้องให้ลำไหนขึ้นบินนะ",
                lambda c, ev: _all(answer_mentions_number(ev, 84, 1), answer_mentions_number(ev, 40, 1),
@@ -6048,14 +6081,16 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                battery={"alpha": 40.0, "bravo": 66.0, "charlie": 84.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude)
-        _entry("refusal", "test", "refuse17-bravo-above-sea-level", ("bravo",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("refusal", "dev", "refuse17-bravo-above-sea-level", ("bravo",),
                "The field sits at 490 m above sea level. Take bravo up to 620 m above sea level, over its pad, and "
                "hold it there.",
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "bravo", c.max_alt_m),
                                   answer_reports_refusal(ev)),
                [_takeoff("bravo", 130)],
                "Refused: 620 m above sea level is 130 m over the field, above the 120 m altitude limit."),
-        _entry("refusal", "test", "refuse17-no-v-far-north", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("refusal", "dev", "refuse17-no-v-far-north", three,
                "Fly alle tre dronene i V-formasjon med 10 meter mellom naboene, i 20 meters høyde, og plasser "
                "formasjonen 1,2 km nord for der de står nå.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
@@ -6063,7 +6098,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                                   answer_reports_refusal(ev)),
                [_formation(three, "wedge", 20, 10, north=1200)],
                "Avvist: 1,2 km nord er utenfor grensen på 1000 m fra hjemmepunktet."),
-        _entry("refusal", "test", "refuse17-da-row-lowered-too-low", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("refusal", "dev", "refuse17-da-row-lowered-too-low", three,
                "Stil de tre droner op på en række lige over der, hvor de står, i 8 meters højde og med 10 meter "
                "mellem hver. Sænk derefter hele rækken 7 meter.",
                lambda c, ev: _all(formation_at(c, ev, three, 8, 10, 0, 0), refusal_seen(ev, "minimum", "at least"),
@@ -6071,20 +6107,23 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                [_formation(three, "line", 8, 10), _formation(three, "line", 1, 10)],
                "Rækken står i 8 m; at sænke den til 1 m blev afvist: under minimumshøjden på 2 m."),
         # units
-        _entry("units", "test", "units17-alpha-kmh-for-seconds", ("alpha",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("units", "dev", "units17-alpha-kmh-for-seconds", ("alpha",),
                "Alpha: up to 10 m, then head north at 18 km/h for 8 seconds and land wherever that leaves it.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 40, 0)], alt=10),
                                   at(ev, "alpha", *c.point("alpha", 40, 0)), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), _move("alpha", 40, 0), _land("alpha")],
                "Alpha flew 40 m north (18 km/h is 5 m/s, for 8 s) and landed there."),
-        _entry("units", "test", "units17-bg-charlie-yards-and-feet", ("charlie",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("units", "dev", "units17-bg-charlie-yards-and-feet", ("charlie",),
                "Издигни charlie на височина 12 ярда и 1 фут, после го премести с 33 ярда и 1 фут на запад и го "
                "остави да виси там.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -100 * FT), alt=37 * FT),
                                   airborne_at(ev, "charlie", 37 * FT)),
                [_takeoff("charlie", 37 * FT), _move("charlie", 0, -100 * FT)],
                "charlie виси на 37 фута (11,3 м) височина, 100 фута (30,5 м) западно от старта си."),
-        _entry("units", "test", "units17-et-bravo-feet-north-metres-east", ("bravo",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("units", "dev", "units17-et-bravo-feet-north-metres-east", ("bravo",),
                "Tõsta bravo 40 jala kõrgusele ja vii see ühe liigutusega 60 jalga põhja ja 15 meetrit itta; jäta "
                "see sinna õhku hõljuma.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 60 * FT, 15), alt=40 * FT),
@@ -6092,7 +6131,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 40 * FT), _move("bravo", 60 * FT, 15)],
                "bravo hõljub 60 jalga (18,3 m) põhja ja 15 m ida pool, 40 jala (12,2 m) kõrgusel."),
         # pattern
-        _entry("pattern", "test", "pattern17-alpha-two-rings", ("alpha",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("pattern", "dev", "pattern17-alpha-two-rings", ("alpha",),
                "Alpha at 10 m: one lap round its pad at a 10 m radius, then one at a 20 m radius, both clockwise "
                "starting from the north side; then bring it back over the pad and land it.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in (*inner, *outer)]),
@@ -6101,7 +6141,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                # degrees was too long to pass as a plan)
                [_takeoff("alpha", 10), *_legs("alpha", rings), _rtl("alpha")],
                "Alpha flew a lap at 10 m from its pad, then one at 20 m, and landed on the pad."),
-        _entry("pattern", "test", "pattern17-sw-charlie-upright-square", ("charlie",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("pattern", "dev", "pattern17-sw-charlie-upright-square", ("charlie",),
                "Ipaishe charlie hadi mita 10, kisha iruke mraba uliosimama wima wenye pande za mita 10: ipande hadi "
                "mita 20, isogee mita 10 kuelekea mashariki, ishuke tena hadi mita 10, kisha irudi mita 10 kuelekea "
                "magharibi. Mwishoni iache ielee hapo.",
@@ -6111,7 +6152,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 10), _move("charlie", up=10), _move("charlie", 0, 10), _move("charlie", up=-10),
                 _move("charlie", 0, -10)],
                "charlie iliruka mraba wima na sasa inaelea mita 10 juu ya mahali ilipoanzia."),
-        _entry("pattern", "test", "pattern17-is-bravo-square-and-back", ("bravo",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("pattern", "dev", "pattern17-is-bravo-square-and-back", ("bravo",),
                "Láttu bravo fljúga ferning í 12 metra hæð með 20 metra hliðum: fyrstu hliðina í norður og beygja "
                "til hægri. Þegar hann er kominn aftur að upphafsstaðnum á hann að fljúga sama ferninginn í hina "
                "áttina og lenda svo þar sem hann byrjaði.",
@@ -6122,7 +6164,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                "bravo flaug ferninginn réttsælis og svo rangsælis og lenti þar sem hann byrjaði."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
         # charlie from alpha, 10 m apart, so that a drone placed from itself misses)
-        _entry("placement", "test", "place17-charlie-on-alpha-line-twice-out", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("placement", "dev", "place17-charlie-on-alpha-line-twice-out", three,
                "Alpha goes 15 m north-east at 12 m and stops there. Put charlie on the same line out from alpha's "
                "pad, twice as far out, at the same height.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", d15, d15), alt=12), airborne_at(ev, "alpha", 12),
@@ -6130,7 +6173,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                                   airborne_at(ev, "charlie", 12), never_armed(ev, "bravo")),
                lambda c: [_move("alpha", d15, d15, alt=12), _go("charlie", c.point("alpha", 2 * d15, 2 * d15), 12)],
                "Alpha hovers 15 m north-east of its pad at 12 m; charlie 30 m north-east of alpha's pad, at 12 m."),
-        _entry("placement", "test", "place17-ta-charlie-stays-as-alpha-moves", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("placement", "dev", "place17-ta-charlie-stays-as-alpha-moves", three,
                "alpha-வை 12 மீட்டர் உயரத்துக்கு ஏற்றி, charlie-ஐ alpha-வுக்கு மேற்கே 15 மீட்டர் தொலைவில், அதே "
                "உயரத்தில் நிறுத்து. பிறகு alpha-வை மட்டும் வடக்கே 20 மீட்டர் நகர்த்து; charlie இருக்கும் இடத்திலேயே "
                "இருக்கட்டும்.",
@@ -6140,7 +6184,8 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("alpha", 12), _go("charlie", c.point("alpha", 0, -15), 12), _move("alpha", 20, 0)],
                "alpha வடக்கே 20 m தூரத்தில் 12 m உயரத்தில் உள்ளது; charlie, alpha-வின் தளத்துக்கு மேற்கே 15 m "
                "தொலைவில் அதே உயரத்தில் நிற்கிறது."),
-        _entry("placement", "test", "place17-tl-charlie-relieves-alpha", three,
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("placement", "dev", "place17-tl-charlie-relieves-alpha", three,
                "Paliparin mo si alpha nang 25 metro patimog sa taas na 10 metro, at doon mo muna siya palutangin. "
                "Pagkatapos, ipalit mo si charlie sa puwesto niya (parehong lugar, parehong taas) at pauwiin mo si "
                "alpha para lumapag sa pinanggalingan nito.",
@@ -6151,20 +6196,23 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                lambda c: [_move("alpha", -25, 0, alt=10), _go("charlie", c.point("alpha", -25, 0), 10), _rtl("alpha")],
                "Nasa puwesto na ni alpha si charlie, 25 m patimog sa taas na 10 m; nakauwi at nakalapag na si alpha."),
         # language
-        _entry("language", "test", "lang17-te-bravo-northwest-land", ("bravo",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("language", "dev", "lang17-te-bravo-northwest-land", ("bravo",),
                "bravo ని 15 మీటర్ల ఎత్తుకు ఎగరేసి, వాయువ్య దిశగా 20 మీటర్లు తీసుకెళ్ళి, అక్కడే దింపు.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 15), at(ev, "bravo", *c.point("bravo", d20, -d20)),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 15), _move("bravo", d20, -d20), _land("bravo")],
                "bravo వాయువ్యంగా 20 m వెళ్ళి అక్కడ దిగింది."),
-        _entry("language", "test", "lang17-kn-alpha-south-climb-hover", ("alpha",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("language", "dev", "lang17-kn-alpha-south-climb-hover", ("alpha",),
                "alpha ಅನ್ನು 12 ಮೀಟರ್ ಎತ್ತರಕ್ಕೆ ಏರಿಸಿ, ದಕ್ಷಿಣಕ್ಕೆ 30 ಮೀಟರ್ ಹಾರಿಸಿ, ಅಲ್ಲಿ ಇನ್ನೂ 6 ಮೀಟರ್ ಮೇಲಕ್ಕೆ ಏರಿಸಿ "
                "ಗಾಳಿಯಲ್ಲೇ ನಿಲ್ಲಿಸಿ.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -30, 0)], alt=12),
                                   at(ev, "alpha", *c.point("alpha", -30, 0), alt=18), airborne_at(ev, "alpha", 18)),
                [_takeoff("alpha", 12), _move("alpha", -30, 0), _move("alpha", up=6)],
                "alpha ದಕ್ಷಿಣಕ್ಕೆ 30 m ದೂರದಲ್ಲಿ 18 m ಎತ್ತರದಲ್ಲಿ ಗಾಳಿಯಲ್ಲಿ ನಿಂತಿದೆ."),
-        _entry("language", "test", "lang17-mn-charlie-east-home", ("charlie",),
+        # moved to dev on 2026-12-04, seventeenth round: its failures had informed changes to the host
+        _entry("language", "dev", "lang17-mn-charlie-east-home", ("charlie",),
                "charlie-г 10 метрийн өндөрт хөөргөөд, зүүн зүг рүү 25 метр нисгэ. Дараа нь хөөрсөн газар руу нь "
                "буцааж авчраад буулга.",
                # the return home climbs to its own height: the leg east is checked at 10 m instead
@@ -6172,6 +6220,398 @@ def _seventeenth_test_half() -> list[CorpusEntry]:
                                   at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 10), _move("charlie", 0, 25), _rtl("charlie")],
                "charlie зүүн зүг рүү 25 м нисээд, хөөрсөн газартаа буцаж ирж буулаа."),
+    ]  # fmt: skip
+
+
+def _eighteenth_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-04 (eighteenth round), before any model ran on it, by a writer who
+    did not read the host's word lists or rules: 3 a class; 22 of the 33 outside ``language`` in other
+    languages than English, one each (Arabic, Chinese, Czech, Dutch, French, German, Hebrew, Hindi,
+    Indonesian, Italian, Japanese, Korean, Persian, Polish, Portuguese, Romanian, Russian, Spanish, Swedish,
+    Turkish, Ukrainian, Vietnamese), the ``language`` class's 3 in Amharic, Sinhala and Tajik (all three new
+    to the corpus, and Ethiopic and Sinhala script with them)."""
+    three = DRONES
+    d10, d20 = (x / math.sqrt(2) for x in (10, 20))
+    knot = 1852 / 3600  # m/s
+    # a bow tie centred on the pad: the east triangle, then the west one, each back through the pad
+    bow_tie = [(10.0, 20.0), (-20.0, 0.0), (10.0, -20.0), (-10.0, -20.0), (20.0, 0.0), (-10.0, 20.0)]
+    # nine 10 m sides, the first due east, a 40 degree turn to the right at the end of each
+    nonagon = _polygon_legs(9, 10.0, 90.0, right=True)
+    # a rectangle of 600 m2 whose north and south sides are 30 m: 20 m north, 30 m east, back round
+    rectangle = [(20.0, 0.0), (0.0, 30.0), (-20.0, 0.0), (0.0, -30.0)]
+    # 30 m toward the two o'clock of a drone facing north: 60 degrees east of north
+    two_oclock = (30 * math.cos(math.radians(60)), 30 * math.sin(math.radians(60)))
+
+    def row_along(ev: Evidence, drones: tuple[str, ...], bearing: float) -> Check:
+        """The two drones farthest apart lie on a line running along ``bearing`` (either way round, ±15°)."""
+        final = [ev.final[d] for d in drones]
+        a, b = max(((p, q) for i, p in enumerate(final) for q in final[i + 1 :]),
+                   key=lambda pq: horizontal_distance_m(pq[0].lat, pq[0].lon, pq[1].lat, pq[1].lon))  # fmt: skip
+        off = (bearing_deg(a.lat, a.lon, b.lat, b.lon) - bearing) % 180.0
+        off = min(off, 180.0 - off)
+        return Check(off <= 15.0, f"the row runs {off:.0f} degrees off a {bearing:g} degree line")
+
+    def passed(ev: Evidence, d: str, points: list[tuple[tuple[float, float], float]]) -> Check:
+        """The track passed each point at its height (within tolerance), in order: a path in three dimensions."""
+        i = 0
+        for s in ev.track.get(d, []):
+            if i == len(points):
+                break
+            (lat, lon), alt = points[i]
+            if (
+                horizontal_distance_m(s.lat, s.lon, lat, lon) <= HORIZONTAL_TOL_M
+                and abs(s.alt_rel_m - alt) <= ALT_TOL_M
+            ):
+                i += 1
+        return Check(i == len(points), f"{d} passed {i}/{len(points)} points at their heights in order")
+
+    def touched_down(ev: Evidence, d: str, point: tuple[float, float]) -> Check:
+        """The drone was on the ground at ``point`` at some time (a landing out there, not only at the end)."""
+        ok = any(s.landed and horizontal_distance_m(s.lat, s.lon, *point) <= HORIZONTAL_TOL_M
+                 for s in ev.track.get(d, []))  # fmt: skip
+        return Check(ok, f"{d} {'touched down' if ok else 'never touched down'} there")
+
+    def aloft_while(ev: Evidence, d: str, other: str, point: tuple[float, float], alt: float) -> Check:
+        """Whenever ``other`` was over ``point``, ``d`` was up at ``alt`` (the tracks are sampled together)."""
+        at_point = [i for i, s in enumerate(ev.track.get(other, []))
+                    if horizontal_distance_m(s.lat, s.lon, *point) <= HORIZONTAL_TOL_M]  # fmt: skip
+        mine = ev.track.get(d, [])
+        ok = bool(at_point) and all(
+            i < len(mine) and abs(mine[i].alt_rel_m - alt) <= ALT_TOL_M for i in at_point
+        )
+        return Check(ok, f"{d} {'was' if ok else 'was not'} at {alt:g} m while {other} was out there")
+
+    def ring_held(
+        c: MissionContext, ev: Evidence, drones: tuple[str, ...], alt: float, spacing: float
+    ) -> Check:
+        """At some moment of the flight, every drone at ``alt``, every two of them ``spacing`` apart (±3 m: a
+        ring of three) and their centre over the centre of their homes: a ring held before it changed."""
+        home_lat = sum(c.homes[d][0] for d in drones) / len(drones)
+        home_lon = sum(c.homes[d][1] for d in drones) / len(drones)
+        samples = min(len(ev.track.get(d, [])) for d in drones)
+        for i in range(samples):
+            now = [ev.track[d][i] for d in drones]
+            if any(abs(s.alt_rel_m - alt) > ALT_TOL_M for s in now):
+                continue
+            gaps = [
+                horizontal_distance_m(p.lat, p.lon, q.lat, q.lon)
+                for j, p in enumerate(now)
+                for q in now[j + 1 :]
+            ]
+            off = horizontal_distance_m(*_centroid(now), home_lat, home_lon)
+            if all(abs(g - spacing) <= 3.0 for g in gaps) and off <= HORIZONTAL_TOL_M:
+                return Check(True, f"the ring {spacing:g} m apart was held (sample {i})")
+        return Check(False, f"no ring {spacing:g} m apart was held")
+
+    def beyond(c: MissionContext, middle: tuple[float, float], d: str) -> tuple[float, float]:
+        """The point with ``middle`` halfway between it and ``d``'s home."""
+        lat, lon = _home(c, d)
+        return 2 * middle[0] - lat, 2 * middle[1] - lon
+
+    return [
+        # single
+        _entry("single", "test", "single18-alpha-between-trees-and-line", ("alpha",),
+               "The trees along the fence top out at 8 m and the power line overhead runs at 20 m. Put alpha up "
+               "halfway between the two, right above its pad, and leave it hovering there.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=14), airborne_at(ev, "alpha", 14)),
+               [_takeoff("alpha", 14)], "Alpha hovers at 14 m over its pad, halfway between the treetops and the line."),
+        _entry("single", "test", "single18-tr-bravo-height-corrected", ("bravo",),
+               "bravo'yu 25 metreye çıkar... Dur, yanlış söyledim, 15 metre yeterli. Kalktığı yerin tam üstünde "
+               "havada beklesin.",
+               # the corrected height, and never the first one
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=15), airborne_at(ev, "bravo", 15),
+                                  max_alt_at_most(ev, "bravo", 20)),
+               [_takeoff("bravo", 15)], "bravo kalktığı yerin üstünde 15 m'de bekliyor; 25 m'ye hiç çıkmadı."),
+        _entry("single", "test", "single18-he-charlie-halfway-down", ("charlie",),
+               "תעלה את charlie לגובה 24 מטר, ואז תוריד אותו לחצי מהגובה הזה ותשאיר אותו לרחף שם, מעל נקודת "
+               "ההמראה שלו.",
+               lambda c, ev: _all(rose_to(ev, "charlie", 24), at(ev, "charlie", *_home(c, "charlie"), alt=12),
+                                  airborne_at(ev, "charlie", 12)),
+               [_takeoff("charlie", 24), _move("charlie", alt=12)],
+               "charlie עלה ל-24 מ' וירד לחצי הגובה: הוא מרחף עכשיו ב-12 מ' מעל נקודת ההמראה."),
+        # multi
+        _entry("multi", "test", "multi18-alpha-bravo-leapfrog-north", three,
+               "Leapfrog alpha and bravo northward at 10 m. Alpha goes 15 m north first; then bravo flies on to "
+               "15 m past alpha; then alpha flies on to 15 m past bravo. Leave both hovering there; charlie stays "
+               "on the ground.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 15, 0), c.point("alpha", 45, 0)], alt=10),
+                                  at(ev, "alpha", *c.point("alpha", 45, 0), alt=10), airborne_at(ev, "alpha", 10),
+                                  at(ev, "bravo", *c.point("bravo", 30, 0), alt=10), airborne_at(ev, "bravo", 10),
+                                  never_armed(ev, "charlie")),
+               [_move("alpha", 15, 0, alt=10), _move("bravo", 30, 0, alt=10), _move("alpha", 30, 0)],
+               "Alpha hovers 45 m north of its pad and bravo 30 m north of its own, both at 10 m; charlie stayed "
+               "down."),
+        _entry("multi", "test", "multi18-it-south-by-own-height", three,
+               "Porta alpha a 10 metri, bravo a 15 e charlie a 20, ciascuno sopra la propria piazzola; poi spostali "
+               "tutti verso sud di tanti metri quanti ne indica la loro quota, e lasciali lì in volo.",
+               lambda c, ev: _all(*(_all(at(ev, d, *c.point(d, -h, 0), alt=h), airborne_at(ev, d, h))
+                                    for d, h in (("alpha", 10), ("bravo", 15), ("charlie", 20)))),
+               [_takeoff("alpha", 10), _takeoff("bravo", 15), _takeoff("charlie", 20), _move("alpha", -10, 0),
+                _move("bravo", -15, 0), _move("charlie", -20, 0)],
+               "alpha è 10 m a sud della sua piazzola a 10 m di quota, bravo 15 m a sud a 15 m, charlie 20 m a sud "
+               "a 20 m."),
+        _entry("multi", "test", "multi18-ja-charlie-watches-alpha-run", three,
+               "charlieを20メートルまで上げて見張りをさせて。その間にalphaを高さ10メートルで東へ30メートル飛ばして、"
+               "離陸した場所まで戻して着陸させて。alphaが降りたらcharlieも着陸させて。bravoは地上のままで。",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 30)], alt=10),
+                                  aloft_while(ev, "charlie", "alpha", c.point("alpha", 0, 30), 20),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha"),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie"),
+                                  never_armed(ev, "bravo")),
+               [_takeoff("charlie", 20), _move("alpha", 0, 30, alt=10), _move("alpha", 0, -30), _land("alpha"),
+                _land("charlie")],
+               "alphaは東へ30 m飛んで戻って着陸し、その間charlieは20 mで見張ってから着陸した。bravoは地上のまま。"),
+        # compound
+        _entry("compound", "test", "compound18-charlie-detour-round-hangar", ("charlie",),
+               "Charlie has to end up 50 m north of its pad, but there's a hangar in the way. At 10 m: 15 m north, "
+               "10 m east to get round it, 20 m north past it, 10 m west back onto the line, then the last 15 m "
+               "north, and land it there.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in ((15, 0), (15, 10), (35, 10), (35, 0))],
+                                          alt=10),
+                                  at(ev, "charlie", *c.point("charlie", 50, 0)), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), *_legs("charlie", [(15, 0), (0, 10), (20, 0), (0, -10), (15, 0)]),
+                _land("charlie")],
+               "Charlie went round the hangar and landed 50 m north of its pad."),
+        _entry("compound", "test", "compound18-de-bravo-out-low-back-high", ("bravo",),
+               "Flieg bravo in 10 m Höhe 30 m nach Westen. Für den Rückweg soll er dort auf 20 m steigen, dann in "
+               "dieser Höhe zurück über seinen Startplatz fliegen und da landen.",
+               lambda c, ev: _all(passed(ev, "bravo", [(c.point("bravo", 0, -30), 10), (c.point("bravo", 0, -30), 20),
+                                                       (_home(c, "bravo"), 20)]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), _move("bravo", 0, -30), _move("bravo", alt=20), _move("bravo", 0, 30),
+                _land("bravo")],
+               "bravo flog in 10 m 30 m nach Westen, stieg dort auf 20 m, kam in 20 m zurück und landete auf dem "
+               "Startplatz."),
+        _entry("compound", "test", "compound18-ko-alpha-lands-out-back-higher", ("alpha",),
+               "alpha를 8미터 높이로 동쪽 25미터 지점까지 보내서 거기에 착륙시켜 줘. 그다음 다시 이륙시켜서 이번엔 "
+               "15미터 높이로 원래 자리 위까지 돌아오게 하고, 착륙하지 말고 그 위에 떠 있게 해 줘.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 25)], alt=8),
+                                  touched_down(ev, "alpha", c.point("alpha", 0, 25)),
+                                  at(ev, "alpha", *_home(c, "alpha"), alt=15), airborne_at(ev, "alpha", 15)),
+               [_takeoff("alpha", 8), _move("alpha", 0, 25), _land("alpha"), _takeoff("alpha", 15),
+                _move("alpha", 0, -25)],
+               "alpha는 동쪽 25 m 지점에 착륙했다가 다시 떠서, 지금은 원래 자리 위 15 m에 떠 있어."),
+        # conditional
+        _entry("conditional", "test", "cond18-first-in-order-with-enough", three,
+               "The job takes 25 % of a battery, and whoever does it has to keep 30 % in reserve. Go through alpha, "
+               "bravo and charlie in that order and send the first one that has enough 20 m north at 12 m, to hover "
+               "there. The others stay down.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 20, 0), alt=12), airborne_at(ev, "bravo", 12),
+                                  never_armed(ev, "alpha"), never_armed(ev, "charlie")),
+               [("fleet_status", {}), _move("bravo", 20, 0, alt=12)],
+               "Alpha has 48 %, short of the 55 % the job needs; bravo (61 %) flew 20 m north and hovers at 12 m; "
+               "charlie stayed down.",
+               battery={"alpha": 48.0, "bravo": 61.0, "charlie": 90.0}),
+        _entry("conditional", "test", "cond18-fr-fullest-kept-in-reserve", three,
+               "Garde en réserve au sol le drone qui a le plus de batterie ; les deux autres montent à 10 m et "
+               "partent 15 m vers l'est, où ils restent en vol stationnaire.",
+               lambda c, ev: _all(*(_all(at(ev, d, *c.point(d, 0, 15), alt=10), airborne_at(ev, d, 10))
+                                    for d in ("bravo", "charlie")),
+                                  never_armed(ev, "alpha")),
+               [("fleet_status", {}), _move("bravo", 0, 15, alt=10), _move("charlie", 0, 15, alt=10)],
+               "alpha (88 %) reste en réserve au sol ; bravo (64 %) et charlie (71 %) sont en vol stationnaire à "
+               "10 m, 15 m à l'est.",
+               battery={"alpha": 88.0, "bravo": 64.0, "charlie": 71.0}),
+        _entry("conditional", "test", "cond18-ar-fuller-then-distance-by-level", three,
+               "انظر أيّ الطائرتين، alpha أم charlie، بطاريتها أعلى. إذا كانت نسبتها فوق 80 %، فأرسلها 40 مترًا "
+               "غربًا على ارتفاع 12 مترًا، وإلا فأرسلها 20 مترًا فقط في الاتجاه نفسه وعلى الارتفاع نفسه، ودعها تحوم "
+               "هناك. أمّا bravo فتبقى على الأرض.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, -20), alt=12), airborne_at(ev, "charlie", 12),
+                                  never_armed(ev, "alpha"), never_armed(ev, "bravo")),
+               [("fleet_status", {}), _move("charlie", 0, -20, alt=12)],
+               "بطارية charlie أعلى (74 %) لكنها دون 80 %، فطارت 20 مترًا غربًا وتحوم على ارتفاع 12 مترًا؛ أمّا "
+               "alpha (66 %) وbravo فبقيتا على الأرض.",
+               battery={"alpha": 66.0, "charlie": 74.0}),
+        # formation
+        _entry("formation", "test", "form18-ring-drawn-in", three,
+               "Put the three on a ring over the middle of their pads at 15 m, 20 m from each other. Then draw the "
+               "ring in until they're 10 m apart, same spot, same height, and hold them there.",
+               lambda c, ev: _all(ring_held(c, ev, three, 15, 20), formation_at(c, ev, three, 15, 10, 0, 0),
+                                  farthest_apart(ev, three, 10)),
+               [_formation(three, "circle", 15, 20), _formation(three, "circle", 15, 10)],
+               "The three held a ring 20 m apart at 15 m, then closed it to 10 m apart over the same spot."),
+        _entry("formation", "test", "form18-zh-pair-over-charlie-pad", three,
+               "让alpha和bravo在charlie起飞点的正上方东西并排悬停，两机相距8米，高度20米。charlie留在地面不动。",
+               lambda c, ev: _all(formation_around(ev, ("alpha", "bravo"), 20, 8, _home(c, "charlie")),
+                                  row_along(ev, ("alpha", "bravo"), 90), never_armed(ev, "charlie")),
+               lambda c: [_go("alpha", c.point("charlie", 0, -4), 20), _go("bravo", c.point("charlie", 0, 4), 20)],
+               "alpha和bravo在charlie起飞点正上方20米高处东西并排悬停，相距8米；charlie留在地面。"),
+        _entry("formation", "test", "form18-pt-row-by-total-length", three,
+               "Ponha os três drones numa fila de leste a oeste com 30 metros de ponta a ponta, igualmente "
+               "espaçados, a 12 metros de altura e centrada sobre o lugar onde eles estão agora. Deixe-os pairando.",
+               lambda c, ev: _all(formation_at(c, ev, three, 12, 15, 0, 0), farthest_apart(ev, three, 30),
+                                  row_along(ev, three, 90)),
+               [_formation(three, "line", 12, 15)],
+               "Os três pairam a 12 m numa fila leste–oeste de 30 m de ponta a ponta, com 15 m entre vizinhos."),
+        # relative
+        _entry("relative", "test", "rel18-bravo-two-oclock", ("bravo",),
+               "Bravo's nose is pointing north. Take it up to 10 m and move it 30 m toward its two o'clock, then "
+               "hold it there.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", *two_oclock), alt=10), airborne_at(ev, "bravo", 10)),
+               [_takeoff("bravo", 10), _move("bravo", *two_oclock)],
+               "Bravo holds 15 m north and 26 m east of its pad (its two o'clock), at 10 m."),
+        _entry("relative", "test", "rel18-hi-alpha-right-turn-from-northeast", ("alpha",),
+               "alpha को 12 मीटर ऊपर ले जाओ और उत्तर-पूर्व की ओर 20 मीटर उड़ाओ। फिर वहाँ से अपनी उड़ान की दिशा से "
+               "दाईं ओर मुड़कर 10 मीटर और ले जाओ, और उसे वहीं हवा में रोक दो।",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", d20, d20)], alt=12),
+                                  at(ev, "alpha", *c.point("alpha", d20 - d10, d20 + d10), alt=12),
+                                  airborne_at(ev, "alpha", 12)),
+               [_takeoff("alpha", 12), _move("alpha", d20, d20), _move("alpha", -d10, d10)],
+               "alpha उत्तर-पूर्व में 20 m गया, फिर दाएँ मुड़कर दक्षिण-पूर्व की ओर 10 m, और अब 12 m की ऊँचाई पर "
+               "रुका है।"),
+        _entry("relative", "test", "rel18-fa-charlie-on-by-the-descent", ("charlie",),
+               "charlie را تا ارتفاع 20 متر بالا ببر و 20 متر به سمت شمال ببرش. آنجا پایینش بیاور تا به ارتفاع 8 "
+               "متر برسد، و بعد به همان اندازه‌ای که پایین آمد باز هم به سمت شمال جلو ببرش و همان‌جا نگهش دار.",
+               lambda c, ev: _all(passed(ev, "charlie", [(c.point("charlie", 20, 0), 20), (c.point("charlie", 20, 0), 8)]),
+                                  at(ev, "charlie", *c.point("charlie", 32, 0), alt=8), airborne_at(ev, "charlie", 8)),
+               [_takeoff("charlie", 20), _move("charlie", 20, 0), _move("charlie", alt=8), _move("charlie", 12, 0)],
+               "charlie در 32 متری شمال نقطهٔ پروازش، در ارتفاع 8 متر معلق است."),
+        # question
+        _entry("question", "test", "ask18-more-left-after-jobs", three,
+               "If alpha flew a job that uses 25 % of its battery and bravo one that uses 40 %, which of the two "
+               "would have more left afterwards, and how much? Don't fly anything.",
+               # the typed plan reads, it does not compute: what is left, or the reading it comes from
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"),
+                                  _any(answer_mentions_number(ev, 40, 0.5), answer_mentions_number(ev, 80, 1)),
+                                  nobody_armed(ev)),
+               [_battery("alpha"), _battery("bravo")],
+               "Bravo: it has 80 % and would keep 40 %; alpha has 55 % and would keep 30 %.",
+               battery={"alpha": 55.0, "bravo": 80.0, "charlie": 70.0}),
+        _entry("question", "test", "ask18-sv-charge-in-band", three,
+               "Vilka drönare har minst 50 % men under 80 % batteri? Ge mig siffrorna, men låt allt stå kvar på "
+               "marken.",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 72, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Bara bravo, med 72 % (alpha har 45 % och charlie 85 %).",
+               battery={"alpha": 45.0, "bravo": 72.0, "charlie": 85.0}),
+        _entry("question", "test", "ask18-id-alpha-against-other-two", three,
+               "Apakah baterai alpha lebih banyak daripada baterai bravo dan charlie kalau dijumlahkan? Sebutkan "
+               "angka-angkanya, tapi jangan terbangkan apa pun.",
+               lambda c, ev: _all(answer_mentions_number(ev, 85, 1),
+                                  _any(answer_mentions_number(ev, 71, 1),
+                                       _all(answer_mentions_number(ev, 30, 1), answer_mentions_number(ev, 41, 1))),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Ya: alpha 85 %, sedangkan bravo 30 % dan charlie 41 %, jumlahnya 71 %.",
+               battery={"alpha": 85.0, "bravo": 30.0, "charlie": 41.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
+        # 2 m the lowest altitude)
+        _entry("refusal", "test", "refuse18-alpha-ten-percent-over-ceiling", ("alpha",),
+               "Our ceiling is 120 m, but the survey wants alpha 10 % above it. Put it there, straight over its pad.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "alpha", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("alpha", 132)],
+               "Refused: 10 % above the 120 m ceiling is 132 m, over the altitude limit."),
+        _entry("refusal", "test", "refuse18-pl-charlie-into-the-pit", ("charlie",),
+               "Charlie stoi na skraju wyrobiska, którego dno jest 8 m niżej niż jego lądowisko. Przeleć nim na "
+               "wysokości 10 m 15 m na wschód, nad wyrobisko, a potem opuść go na 3 m nad dnem.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 15), alt=10), airborne_at(ev, "charlie", 10),
+                                  refusal_seen(ev, "minimum", "at least"), answer_reports_refusal(ev)),
+               [_move("charlie", 0, 15, alt=10), _move("charlie", alt=-5)],
+               "charlie wisi 15 m na wschód na 10 m; zejścia na 3 m nad dnem (5 m poniżej lądowiska) odmówiono: to "
+               "poniżej minimum 2 m wysokości."),
+        _entry("refusal", "test", "refuse18-ro-bravo-speed-for-time-too-far", ("bravo",),
+               "Ridică bravo la 20 de metri și trimite-l spre nord cu 12 m/s timp de un minut și jumătate.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
+               [_takeoff("bravo", 20), _move("bravo", 1080, 0)],
+               "bravo e la 20 m; zborul de 1080 m spre nord (12 m/s timp de 90 s) a fost refuzat: depășește limita "
+               "de 1000 m de la punctul de decolare."),
+        # units
+        _entry("units", "test", "units18-alpha-knots-for-seconds", ("alpha",),
+               "Alpha: climb to 40 ft, then fly north at 20 knots for 4 seconds and hold it wherever that leaves it.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 80 * knot, 0), alt=40 * FT),
+                                  airborne_at(ev, "alpha", 40 * FT)),
+               [_takeoff("alpha", 40 * FT), _move("alpha", 80 * knot, 0)],
+               "Alpha holds 41 m north of its pad (20 kn for 4 s) at 40 ft (12.2 m)."),
+        _entry("units", "test", "units18-nl-charlie-feet-over-mast", ("charlie",),
+               "De zendmast naast het platform van charlie is 9 meter hoog. Laat charlie recht omhoog gaan tot 20 "
+               "voet boven de top van die mast en laat hem daar hangen.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=9 + 20 * FT),
+                                  airborne_at(ev, "charlie", 9 + 20 * FT)),
+               [_takeoff("charlie", 9 + 20 * FT)],
+               "charlie hangt op 15,1 m boven zijn platform: 20 voet (6,1 m) boven de top van de mast."),
+        _entry("units", "test", "units18-es-bravo-feet-above-sea-level", ("bravo",),
+               "La pista está a 1.600 pies sobre el nivel del mar. Sube a bravo hasta los 1.650 pies sobre el nivel "
+               "del mar, justo encima de su base, y mantenlo ahí.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=50 * FT), airborne_at(ev, "bravo", 50 * FT)),
+               [_takeoff("bravo", 50 * FT)],
+               "bravo se mantiene a 50 pies (15,2 m) sobre su base, a 1.650 pies sobre el nivel del mar."),
+        # pattern
+        _entry("pattern", "test", "pattern18-bravo-bow-tie", ("bravo",),
+               "Bravo at 10 m: fly a bow tie centred on its pad. From the pad out to the point 10 m north and 20 m "
+               "east, then 20 m due south, then straight back to the pad; then out to 10 m south and 20 m west, "
+               "20 m due north, and back to the pad again. Land it there.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(bow_tie)[:5]]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 10), *_legs("bravo", bow_tie), _land("bravo")],
+               "Bravo flew the bow tie, both triangles through its pad, and landed on the pad."),
+        _entry("pattern", "test", "pattern18-ru-alpha-turns-of-forty", ("alpha",),
+               "Подними alpha на 12 м и проведи его по фигуре со сторонами по 10 м: первая сторона на восток, в "
+               "конце каждой стороны поворот направо на 40°, и так пока он не вернётся в точку, откуда начал. Там "
+               "его и посади.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(nonagon)[:8]]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 12), *_legs("alpha", nonagon), _land("alpha")],
+               "alpha облетел девятиугольник со сторонами по 10 м и сел там, откуда начал."),
+        _entry("pattern", "test", "pattern18-cs-charlie-rectangle-by-area", ("charlie",),
+               "Ať charlie ve výšce 10 metrů obletí obdélník o ploše 600 m², jehož severní a jižní strana měří 30 "
+               "metrů. Jeho stanoviště je jihozápadní roh: ať letí nejdřív na sever a nakonec přistane tam, kde "
+               "začal.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(rectangle)[:3]]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), *_legs("charlie", rectangle), _land("charlie")],
+               "charlie obletěl obdélník 20 × 30 m (600 m²) a přistál tam, kde začal."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
+        # charlie from alpha, 10 m apart, so that a drone placed from itself misses)
+        _entry("placement", "test", "place18-charlie-alpha-in-the-middle", three,
+               "Bravo goes up to 12 m over its pad and alpha flies 15 m north at 12 m. Then put charlie at 12 m on "
+               "the far side of alpha from bravo, so that alpha sits exactly halfway between bravo and charlie.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=12), airborne_at(ev, "bravo", 12),
+                                  at(ev, "alpha", *c.point("alpha", 15, 0), alt=12), airborne_at(ev, "alpha", 12),
+                                  at(ev, "charlie", *beyond(c, c.point("alpha", 15, 0), "bravo"), alt=12),
+                                  airborne_at(ev, "charlie", 12)),
+               lambda c: [_takeoff("bravo", 12), _move("alpha", 15, 0, alt=12),
+                          _go("charlie", beyond(c, c.point("alpha", 15, 0), "bravo"), 12)],
+               "Bravo hovers over its pad and alpha 15 m north of its own, both at 12 m; charlie is on the far side "
+               "of alpha, as far from it as bravo, at 12 m."),
+        _entry("placement", "test", "place18-uk-charlie-right-of-alpha-heading", three,
+               "Підніми alpha на 12 метрів і відправ його на 20 метрів на схід. Коли він зупиниться, постав charlie "
+               "за 10 метрів праворуч від нього, якщо дивитися туди, куди летів alpha, на тій самій висоті.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 20), alt=12), airborne_at(ev, "alpha", 12),
+                                  at(ev, "charlie", *c.point("alpha", -10, 20), alt=12), airborne_at(ev, "charlie", 12),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_takeoff("alpha", 12), _move("alpha", 0, 20), _go("charlie", c.point("alpha", -10, 20), 12)],
+               "alpha висить за 20 м на схід на 12 м; charlie за 10 м праворуч від нього (на південь), на тій самій "
+               "висоті."),
+        _entry("placement", "test", "place18-vi-charlie-over-alpha-mid-height", three,
+               "Cho bravo bay lên 18 mét ngay trên bệ của nó, và cho alpha bay 20 mét về phía nam ở độ cao 8 mét. "
+               "Sau đó đưa charlie đến ngay phía trên alpha, ở độ cao nằm giữa độ cao của alpha và bravo.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=18), airborne_at(ev, "bravo", 18),
+                                  at(ev, "alpha", *c.point("alpha", -20, 0), alt=8), airborne_at(ev, "alpha", 8),
+                                  at(ev, "charlie", *c.point("alpha", -20, 0), alt=13), airborne_at(ev, "charlie", 13)),
+               lambda c: [_takeoff("bravo", 18), _move("alpha", -20, 0, alt=8), _go("charlie", c.point("alpha", -20, 0), 13)],
+               "bravo bay ở 18 m trên bệ; alpha ở 20 m về phía nam, cao 8 m; charlie ngay phía trên alpha, ở 13 m."),
+        # language
+        _entry("language", "test", "lang18-am-alpha-north-lower-hover", ("alpha",),
+               "alpha ን 15 ሜትር ከፍ አድርገህ ወደ ሰሜን 30 ሜትር አብርረው። እዚያ ስትደርስ 5 ሜትር ዝቅ አድርገህ በአየር ላይ አቆየው።",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 30, 0)], alt=15),
+                                  at(ev, "alpha", *c.point("alpha", 30, 0), alt=10), airborne_at(ev, "alpha", 10)),
+               [_takeoff("alpha", 15), _move("alpha", 30, 0), _move("alpha", up=-5)],
+               "alpha ወደ ሰሜን 30 ሜትር በርሮ አሁን በ10 ሜትር ከፍታ ላይ በአየር ላይ ነው።"),
+        _entry("language", "test", "lang18-si-bravo-west-land", ("bravo",),
+               "bravo මීටර් 12ක් උසට ඔසවා, බටහිර දෙසට මීටර් 25ක් පියාසර කරවා, එතැනම බිමට බස්සන්න.",
+               lambda c, ev: _all(reached_alt(ev, "bravo", 12), at(ev, "bravo", *c.point("bravo", 0, -25)),
+                                  landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), _move("bravo", 0, -25), _land("bravo")],
+               "bravo බටහිරට මීටර් 25ක් ගොස් එතැන බිමට බැස්සා."),
+        _entry("language", "test", "lang18-tg-charlie-southeast-home", ("charlie",),
+               "charlie-ро то баландии 10 метр бардоред, онро 20 метр ба самти ҷанубу шарқ баред, баъд ба ҷое, ки аз "
+               "он парвоз карда буд, баргардонед ва фуроваред.",
+               # the return home climbs to its own height: the leg south-east is checked at 10 m instead
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -d20, d20)], alt=10),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), _move("charlie", -d20, d20), _rtl("charlie")],
+               "charlie 20 м ба ҷанубу шарқ парид, баргашт ва дар ҷои худ фуруд омад."),
     ]  # fmt: skip
 
 
@@ -6204,7 +6644,8 @@ def corpus() -> list[CorpusEntry]:
         *_fourteenth_round(),
         *_fifteenth_round(),
         *_sixteenth_round(),
-        *_seventeenth_test_half(),
+        *_seventeenth_round(),
+        *_eighteenth_test_half(),
     ]
 
 
