@@ -201,7 +201,11 @@ lists or rules: 22 of the 33 outside the ``language`` class in 22 languages, one
 Czech, Dutch, French, German, Hebrew, Hindi, Indonesian, Italian, Japanese, Korean, Persian, Polish,
 Portuguese, Romanian, Russian, Spanish, Swedish, Turkish, Ukrainian, Vietnamese), and the ``language``
 class's 3 in Amharic, Sinhala and Tajik (all three new to the corpus, and Ethiopic and Sinhala script).
-Only the harness self-check (the scripted ideal plan) has run on them. That leaves 699 dev and 36 test.
+Only the harness self-check (the scripted ideal plan) has run on them: 36 of 36 passed, once the leapfrog's
+check no longer wanted alpha's end point in its track (the track can stop before the drone gets there; the
+end point is judged on the final state), and once the Polish descent into a pit below the pad was planned
+as 15 m down (as an altitude of -5 m the host sent +5 m and flew it without a refusal) and its check took
+the gateway's "below home" refusal as well as one by the 2 m minimum. That leaves 699 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -6334,7 +6338,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                "Leapfrog alpha and bravo northward at 10 m. Alpha goes 15 m north first; then bravo flies on to "
                "15 m past alpha; then alpha flies on to 15 m past bravo. Leave both hovering there; charlie stays "
                "on the ground.",
-               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 15, 0), c.point("alpha", 45, 0)], alt=10),
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 15, 0)], alt=10),
+                                  # (where alpha ends is judged on its final state: the track may stop before it gets there)
                                   at(ev, "alpha", *c.point("alpha", 45, 0), alt=10), airborne_at(ev, "alpha", 10),
                                   at(ev, "bravo", *c.point("bravo", 30, 0), alt=10), airborne_at(ev, "bravo", 10),
                                   never_armed(ev, "charlie")),
@@ -6505,8 +6510,10 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                "Charlie stoi na skraju wyrobiska, którego dno jest 8 m niżej niż jego lądowisko. Przeleć nim na "
                "wysokości 10 m 15 m na wschód, nad wyrobisko, a potem opuść go na 3 m nad dnem.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 15), alt=10), airborne_at(ev, "charlie", 10),
-                                  refusal_seen(ev, "minimum", "at least"), answer_reports_refusal(ev)),
-               [_move("charlie", 0, 15, alt=10), _move("charlie", alt=-5)],
+                                  refusal_seen(ev, "minimum", "at least", "below home"), answer_reports_refusal(ev)),
+               # (a height below the pad is refused as "below home", not by the 2 m minimum; the plan goes down
+               # 15 m from 10 m: as an altitude of -5 m the host sent 5 m, flown without a refusal)
+               [_move("charlie", 0, 15, alt=10), _move("charlie", up=-15)],
                "charlie wisi 15 m na wschód na 10 m; zejścia na 3 m nad dnem (5 m poniżej lądowiska) odmówiono: to "
                "poniżej minimum 2 m wysokości."),
         _entry("refusal", "test", "refuse18-ro-bravo-speed-for-time-too-far", ("bravo",),
