@@ -204,7 +204,8 @@ class's 3 in Amharic, Sinhala and Tajik (all three new to the corpus, and Ethiop
 Only the harness self-check (the scripted ideal plan) has run on them: 36 of 36 passed, once the leapfrog's
 check no longer wanted alpha's end point in its track (the track can stop before the drone gets there; the
 end point is judged on the final state), and once the Polish descent into a pit below the pad was planned
-as 15 m down (as an altitude of -5 m the host sent +5 m and flew it without a refusal) and its check took
+as 15 m down (as an altitude of -5 m, the harness's scripted pilot dropped the sign, a plan no model could
+write past the schema's non-negative lengths; the pilot now keeps it) and its check took
 the gateway's "below home" refusal as well as one by the 2 m minimum. That leaves 699 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class

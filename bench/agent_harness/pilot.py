@@ -20,7 +20,8 @@ SELF_CHECK_MODEL = "harness-self-check (scripted, not a model)"
 
 
 def _m(value: float) -> dict[str, Any]:
-    return {"value": abs(float(value)), "unit": "m"}
+    """A length in metres with its sign kept: a negative altitude is left for the plan's schema to refuse."""
+    return {"value": float(value), "unit": "m"}
 
 
 def _move(args: dict[str, Any]) -> dict[str, Any]:
@@ -32,7 +33,7 @@ def _move(args: dict[str, Any]) -> dict[str, Any]:
     ):
         value = float(args.get(key) or 0.0)
         if value:
-            legs.append({"distance": _m(value), "direction": positive if value > 0 else negative})
+            legs.append({"distance": _m(abs(value)), "direction": positive if value > 0 else negative})
     alt = args.get("alt_m")
     altitude = None if alt is None else _m(alt)
     return {
@@ -47,7 +48,7 @@ def _move(args: dict[str, Any]) -> dict[str, Any]:
 
 def _formation(args: dict[str, Any]) -> dict[str, Any]:
     legs = [
-        {"distance": _m(args[k]), "direction": (p if args[k] > 0 else n)}
+        {"distance": _m(abs(args[k])), "direction": (p if args[k] > 0 else n)}
         for k, p, n in (("north_m", "north", "south"), ("east_m", "east", "west"))
         if args.get(k)
     ]

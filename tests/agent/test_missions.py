@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import json
 
+import pytest
+from pydantic import ValidationError
+
 from bench.agent_harness.missions import DroneTruth, Evidence, MissionContext, all_missions
 from bench.agent_harness.pilot import ScriptedPilot
 from fleet_agent.plan import parse_plan
@@ -168,3 +171,15 @@ def test_pilot_writes_the_plan_the_ideal_calls_spell() -> None:
     ]
     assert steps[3]["origin"] == {"kind": "point", "lat_deg": 47.4, "lon_deg": 8.5}
     assert steps[4]["origin"]["kind"] == "point" and steps[5]["drones"] == ["a"]
+
+
+def test_pilot_keeps_a_negative_altitude_for_the_schema_to_refuse() -> None:
+    """An ideal call below home must not become a plan above it: the pilot keeps the sign."""
+    pilot = ScriptedPilot()
+    pilot.load([("move_to_relative", {"drone_id": "a", "north_m": 15, "alt_m": -5})], "done")
+    request = {"messages": [{"role": "user", "content": "Fleet: a\nRequest: go"}]}
+    steps = json.loads(pilot(request).content or "")["steps"]
+    assert steps[0]["altitude"] == {"value": -5.0, "unit": "m"}
+    assert steps[0]["legs"] == [{"distance": {"value": 15.0, "unit": "m"}, "direction": "north"}]
+    with pytest.raises(ValidationError, match="greater than or equal to 0"):
+        parse_plan({"steps": steps}, ["a"])
