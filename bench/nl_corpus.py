@@ -195,18 +195,22 @@ building). That leaves 663 dev and 36 test.
 Later on 2026-12-04 (seventeenth round) EVERY test entry (36, ``_seventeenth_round``) was moved to dev, each
 marked "moved to dev on 2026-12-04, seventeenth round": the 1.5B model had run 89 of its 108 runs on it
 (figures lost with the session that ran them) and its failures had informed changes to the host, so it no
-longer measured requests nobody tuned for. A fresh test half took its place (``_eighteenth_test_half``): 36
-new requests, 3 a class, written before any model ran on it by a writer who did not read the host's word
-lists or rules: 22 of the 33 outside the ``language`` class in 22 languages, one each (Arabic, Chinese,
-Czech, Dutch, French, German, Hebrew, Hindi, Indonesian, Italian, Japanese, Korean, Persian, Polish,
-Portuguese, Romanian, Russian, Spanish, Swedish, Turkish, Ukrainian, Vietnamese), and the ``language``
-class's 3 in Amharic, Sinhala and Tajik (all three new to the corpus, and Ethiopic and Sinhala script).
-Only the harness self-check (the scripted ideal plan) has run on them: 36 of 36 passed, once the leapfrog's
-check no longer wanted alpha's end point in its track (the track can stop before the drone gets there; the
-end point is judged on the final state), and once the Polish descent into a pit below the pad was planned
-as 15 m down (as an altitude of -5 m, the harness's scripted pilot dropped the sign, a plan no model could
-write past the schema's non-negative lengths; the pilot now keeps it) and its check took
-the gateway's "below home" refusal as well as one by the 2 m minimum. That leaves 699 dev and 36 test.
+longer measured requests nobody tuned for. A fresh test half took its place (``_eighteenth_test_half``,
+now ``_eighteenth_round``): 36 new requests, 3 a class, written before any model ran on it by a writer who
+did not read the host's word lists or rules: 22 of the 33 outside the ``language`` class in 22 languages,
+one each (Arabic, Chinese, Czech, Dutch, French, German, Hebrew, Hindi, Indonesian, Italian, Japanese,
+Korean, Persian, Polish, Portuguese, Romanian, Russian, Spanish, Swedish, Turkish, Ukrainian, Vietnamese),
+and the ``language`` class's 3 in Amharic, Sinhala and Tajik (all three new to the corpus, and Ethiopic
+and Sinhala script). Only the harness self-check (the scripted ideal plan) has run on them: 36 of 36
+passed, once the leapfrog's check no longer wanted alpha's end point in its track (the track can stop
+before the drone gets there; the end point is judged on the final state), and once the Polish descent into
+a pit below the pad was planned as 15 m down (as an altitude of -5 m, the harness's scripted pilot dropped
+the sign, a plan no model could write past the schema's non-negative lengths; the pilot now keeps it) and
+its check took the gateway's "below home" refusal as well as one by the 2 m minimum. That leaves 699 dev
+and 36 test.
+Later on 2026-12-04 (eighteenth round) EVERY test entry (36, ``_eighteenth_round``) was moved to dev, each
+marked "moved to dev on 2026-12-04, eighteenth round", once both models had been measured on it (figures
+in docs/benchmarks.md).
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -6228,13 +6232,14 @@ def _seventeenth_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _eighteenth_test_half() -> list[CorpusEntry]:
+def _eighteenth_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-04 (eighteenth round), before any model ran on it, by a writer who
     did not read the host's word lists or rules: 3 a class; 22 of the 33 outside ``language`` in other
     languages than English, one each (Arabic, Chinese, Czech, Dutch, French, German, Hebrew, Hindi,
     Indonesian, Italian, Japanese, Korean, Persian, Polish, Portuguese, Romanian, Russian, Spanish, Swedish,
     Turkish, Ukrainian, Vietnamese), the ``language`` class's 3 in Amharic, Sinhala and Tajik (all three new
-    to the corpus, and Ethiopic and Sinhala script with them)."""
+    to the corpus, and Ethiopic and Sinhala script with them); all of it moved to dev on 2026-12-04
+    (eighteenth round), once both models had been measured on it (docs/benchmarks.md)."""
     three = DRONES
     d10, d20 = (x / math.sqrt(2) for x in (10, 20))
     knot = 1852 / 3600  # m/s
@@ -6315,19 +6320,22 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
 
     return [
         # single
-        _entry("single", "test", "single18-alpha-between-trees-and-line", ("alpha",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("single", "dev", "single18-alpha-between-trees-and-line", ("alpha",),
                "The trees along the fence top out at 8 m and the power line overhead runs at 20 m. Put alpha up "
                "halfway between the two, right above its pad, and leave it hovering there.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=14), airborne_at(ev, "alpha", 14)),
                [_takeoff("alpha", 14)], "Alpha hovers at 14 m over its pad, halfway between the treetops and the line."),
-        _entry("single", "test", "single18-tr-bravo-height-corrected", ("bravo",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("single", "dev", "single18-tr-bravo-height-corrected", ("bravo",),
                "bravo'yu 25 metreye çıkar... Dur, yanlış söyledim, 15 metre yeterli. Kalktığı yerin tam üstünde "
                "havada beklesin.",
                # the corrected height, and never the first one
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=15), airborne_at(ev, "bravo", 15),
                                   max_alt_at_most(ev, "bravo", 20)),
                [_takeoff("bravo", 15)], "bravo kalktığı yerin üstünde 15 m'de bekliyor; 25 m'ye hiç çıkmadı."),
-        _entry("single", "test", "single18-he-charlie-halfway-down", ("charlie",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("single", "dev", "single18-he-charlie-halfway-down", ("charlie",),
                "תעלה את charlie לגובה 24 מטר, ואז תוריד אותו לחצי מהגובה הזה ותשאיר אותו לרחף שם, מעל נקודת "
                "ההמראה שלו.",
                lambda c, ev: _all(rose_to(ev, "charlie", 24), at(ev, "charlie", *_home(c, "charlie"), alt=12),
@@ -6335,7 +6343,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 24), _move("charlie", alt=12)],
                "charlie עלה ל-24 מ' וירד לחצי הגובה: הוא מרחף עכשיו ב-12 מ' מעל נקודת ההמראה."),
         # multi
-        _entry("multi", "test", "multi18-alpha-bravo-leapfrog-north", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("multi", "dev", "multi18-alpha-bravo-leapfrog-north", three,
                "Leapfrog alpha and bravo northward at 10 m. Alpha goes 15 m north first; then bravo flies on to "
                "15 m past alpha; then alpha flies on to 15 m past bravo. Leave both hovering there; charlie stays "
                "on the ground.",
@@ -6347,7 +6356,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                [_move("alpha", 15, 0, alt=10), _move("bravo", 30, 0, alt=10), _move("alpha", 30, 0)],
                "Alpha hovers 45 m north of its pad and bravo 30 m north of its own, both at 10 m; charlie stayed "
                "down."),
-        _entry("multi", "test", "multi18-it-south-by-own-height", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("multi", "dev", "multi18-it-south-by-own-height", three,
                "Porta alpha a 10 metri, bravo a 15 e charlie a 20, ciascuno sopra la propria piazzola; poi spostali "
                "tutti verso sud di tanti metri quanti ne indica la loro quota, e lasciali lì in volo.",
                lambda c, ev: _all(*(_all(at(ev, d, *c.point(d, -h, 0), alt=h), airborne_at(ev, d, h))
@@ -6356,7 +6366,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                 _move("bravo", -15, 0), _move("charlie", -20, 0)],
                "alpha è 10 m a sud della sua piazzola a 10 m di quota, bravo 15 m a sud a 15 m, charlie 20 m a sud "
                "a 20 m."),
-        _entry("multi", "test", "multi18-ja-charlie-watches-alpha-run", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("multi", "dev", "multi18-ja-charlie-watches-alpha-run", three,
                "charlieを20メートルまで上げて見張りをさせて。その間にalphaを高さ10メートルで東へ30メートル飛ばして、"
                "離陸した場所まで戻して着陸させて。alphaが降りたらcharlieも着陸させて。bravoは地上のままで。",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 30)], alt=10),
@@ -6368,7 +6379,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                 _land("charlie")],
                "alphaは東へ30 m飛んで戻って着陸し、その間charlieは20 mで見張ってから着陸した。bravoは地上のまま。"),
         # compound
-        _entry("compound", "test", "compound18-charlie-detour-round-hangar", ("charlie",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("compound", "dev", "compound18-charlie-detour-round-hangar", ("charlie",),
                "Charlie has to end up 50 m north of its pad, but there's a hangar in the way. At 10 m: 15 m north, "
                "10 m east to get round it, 20 m north past it, 10 m west back onto the line, then the last 15 m "
                "north, and land it there.",
@@ -6378,7 +6390,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 10), *_legs("charlie", [(15, 0), (0, 10), (20, 0), (0, -10), (15, 0)]),
                 _land("charlie")],
                "Charlie went round the hangar and landed 50 m north of its pad."),
-        _entry("compound", "test", "compound18-de-bravo-out-low-back-high", ("bravo",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("compound", "dev", "compound18-de-bravo-out-low-back-high", ("bravo",),
                "Flieg bravo in 10 m Höhe 30 m nach Westen. Für den Rückweg soll er dort auf 20 m steigen, dann in "
                "dieser Höhe zurück über seinen Startplatz fliegen und da landen.",
                lambda c, ev: _all(passed(ev, "bravo", [(c.point("bravo", 0, -30), 10), (c.point("bravo", 0, -30), 20),
@@ -6388,7 +6401,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                 _land("bravo")],
                "bravo flog in 10 m 30 m nach Westen, stieg dort auf 20 m, kam in 20 m zurück und landete auf dem "
                "Startplatz."),
-        _entry("compound", "test", "compound18-ko-alpha-lands-out-back-higher", ("alpha",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("compound", "dev", "compound18-ko-alpha-lands-out-back-higher", ("alpha",),
                "alpha를 8미터 높이로 동쪽 25미터 지점까지 보내서 거기에 착륙시켜 줘. 그다음 다시 이륙시켜서 이번엔 "
                "15미터 높이로 원래 자리 위까지 돌아오게 하고, 착륙하지 말고 그 위에 떠 있게 해 줘.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 25)], alt=8),
@@ -6398,7 +6412,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                 _move("alpha", 0, -25)],
                "alpha는 동쪽 25 m 지점에 착륙했다가 다시 떠서, 지금은 원래 자리 위 15 m에 떠 있어."),
         # conditional
-        _entry("conditional", "test", "cond18-first-in-order-with-enough", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("conditional", "dev", "cond18-first-in-order-with-enough", three,
                "The job takes 25 % of a battery, and whoever does it has to keep 30 % in reserve. Go through alpha, "
                "bravo and charlie in that order and send the first one that has enough 20 m north at 12 m, to hover "
                "there. The others stay down.",
@@ -6408,7 +6423,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                "Alpha has 48 %, short of the 55 % the job needs; bravo (61 %) flew 20 m north and hovers at 12 m; "
                "charlie stayed down.",
                battery={"alpha": 48.0, "bravo": 61.0, "charlie": 90.0}),
-        _entry("conditional", "test", "cond18-fr-fullest-kept-in-reserve", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("conditional", "dev", "cond18-fr-fullest-kept-in-reserve", three,
                "Garde en réserve au sol le drone qui a le plus de batterie ; les deux autres montent à 10 m et "
                "partent 15 m vers l'est, où ils restent en vol stationnaire.",
                lambda c, ev: _all(*(_all(at(ev, d, *c.point(d, 0, 15), alt=10), airborne_at(ev, d, 10))
@@ -6418,7 +6434,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                "alpha (88 %) reste en réserve au sol ; bravo (64 %) et charlie (71 %) sont en vol stationnaire à "
                "10 m, 15 m à l'est.",
                battery={"alpha": 88.0, "bravo": 64.0, "charlie": 71.0}),
-        _entry("conditional", "test", "cond18-ar-fuller-then-distance-by-level", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("conditional", "dev", "cond18-ar-fuller-then-distance-by-level", three,
                "انظر أيّ الطائرتين، alpha أم charlie، بطاريتها أعلى. إذا كانت نسبتها فوق 80 %، فأرسلها 40 مترًا "
                "غربًا على ارتفاع 12 مترًا، وإلا فأرسلها 20 مترًا فقط في الاتجاه نفسه وعلى الارتفاع نفسه، ودعها تحوم "
                "هناك. أمّا bravo فتبقى على الأرض.",
@@ -6429,20 +6446,23 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                "alpha (66 %) وbravo فبقيتا على الأرض.",
                battery={"alpha": 66.0, "charlie": 74.0}),
         # formation
-        _entry("formation", "test", "form18-ring-drawn-in", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("formation", "dev", "form18-ring-drawn-in", three,
                "Put the three on a ring over the middle of their pads at 15 m, 20 m from each other. Then draw the "
                "ring in until they're 10 m apart, same spot, same height, and hold them there.",
                lambda c, ev: _all(ring_held(c, ev, three, 15, 20), formation_at(c, ev, three, 15, 10, 0, 0),
                                   farthest_apart(ev, three, 10)),
                [_formation(three, "circle", 15, 20), _formation(three, "circle", 15, 10)],
                "The three held a ring 20 m apart at 15 m, then closed it to 10 m apart over the same spot."),
-        _entry("formation", "test", "form18-zh-pair-over-charlie-pad", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("formation", "dev", "form18-zh-pair-over-charlie-pad", three,
                "让alpha和bravo在charlie起飞点的正上方东西并排悬停，两机相距8米，高度20米。charlie留在地面不动。",
                lambda c, ev: _all(formation_around(ev, ("alpha", "bravo"), 20, 8, _home(c, "charlie")),
                                   row_along(ev, ("alpha", "bravo"), 90), never_armed(ev, "charlie")),
                lambda c: [_go("alpha", c.point("charlie", 0, -4), 20), _go("bravo", c.point("charlie", 0, 4), 20)],
                "alpha和bravo在charlie起飞点正上方20米高处东西并排悬停，相距8米；charlie留在地面。"),
-        _entry("formation", "test", "form18-pt-row-by-total-length", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("formation", "dev", "form18-pt-row-by-total-length", three,
                "Ponha os três drones numa fila de leste a oeste com 30 metros de ponta a ponta, igualmente "
                "espaçados, a 12 metros de altura e centrada sobre o lugar onde eles estão agora. Deixe-os pairando.",
                lambda c, ev: _all(formation_at(c, ev, three, 12, 15, 0, 0), farthest_apart(ev, three, 30),
@@ -6450,13 +6470,15 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                [_formation(three, "line", 12, 15)],
                "Os três pairam a 12 m numa fila leste–oeste de 30 m de ponta a ponta, com 15 m entre vizinhos."),
         # relative
-        _entry("relative", "test", "rel18-bravo-two-oclock", ("bravo",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("relative", "dev", "rel18-bravo-two-oclock", ("bravo",),
                "Bravo's nose is pointing north. Take it up to 10 m and move it 30 m toward its two o'clock, then "
                "hold it there.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", *two_oclock), alt=10), airborne_at(ev, "bravo", 10)),
                [_takeoff("bravo", 10), _move("bravo", *two_oclock)],
                "Bravo holds 15 m north and 26 m east of its pad (its two o'clock), at 10 m."),
-        _entry("relative", "test", "rel18-hi-alpha-right-turn-from-northeast", ("alpha",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("relative", "dev", "rel18-hi-alpha-right-turn-from-northeast", ("alpha",),
                "alpha को 12 मीटर ऊपर ले जाओ और उत्तर-पूर्व की ओर 20 मीटर उड़ाओ। फिर वहाँ से अपनी उड़ान की दिशा से "
                "दाईं ओर मुड़कर 10 मीटर और ले जाओ, और उसे वहीं हवा में रोक दो।",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", d20, d20)], alt=12),
@@ -6465,7 +6487,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 12), _move("alpha", d20, d20), _move("alpha", -d10, d10)],
                "alpha उत्तर-पूर्व में 20 m गया, फिर दाएँ मुड़कर दक्षिण-पूर्व की ओर 10 m, और अब 12 m की ऊँचाई पर "
                "रुका है।"),
-        _entry("relative", "test", "rel18-fa-charlie-on-by-the-descent", ("charlie",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("relative", "dev", "rel18-fa-charlie-on-by-the-descent", ("charlie",),
                "charlie را تا ارتفاع 20 متر بالا ببر و 20 متر به سمت شمال ببرش. آنجا پایینش بیاور تا به ارتفاع 8 "
                "متر برسد، و بعد به همان اندازه‌ای که پایین آمد باز هم به سمت شمال جلو ببرش و همان‌جا نگهش دار.",
                lambda c, ev: _all(passed(ev, "charlie", [(c.point("charlie", 20, 0), 20), (c.point("charlie", 20, 0), 8)]),
@@ -6473,7 +6496,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 20), _move("charlie", 20, 0), _move("charlie", alt=8), _move("charlie", 12, 0)],
                "charlie در 32 متری شمال نقطهٔ پروازش، در ارتفاع 8 متر معلق است."),
         # question
-        _entry("question", "test", "ask18-more-left-after-jobs", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("question", "dev", "ask18-more-left-after-jobs", three,
                "If alpha flew a job that uses 25 % of its battery and bravo one that uses 40 %, which of the two "
                "would have more left afterwards, and how much? Don't fly anything.",
                # the typed plan reads, it does not compute: what is left, or the reading it comes from
@@ -6483,14 +6507,16 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                [_battery("alpha"), _battery("bravo")],
                "Bravo: it has 80 % and would keep 40 %; alpha has 55 % and would keep 30 %.",
                battery={"alpha": 55.0, "bravo": 80.0, "charlie": 70.0}),
-        _entry("question", "test", "ask18-sv-charge-in-band", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("question", "dev", "ask18-sv-charge-in-band", three,
                "Vilka drönare har minst 50 % men under 80 % batteri? Ge mig siffrorna, men låt allt stå kvar på "
                "marken.",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 72, 1),
                                   nobody_armed(ev)),
                [("fleet_status", {})], "Bara bravo, med 72 % (alpha har 45 % och charlie 85 %).",
                battery={"alpha": 45.0, "bravo": 72.0, "charlie": 85.0}),
-        _entry("question", "test", "ask18-id-alpha-against-other-two", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("question", "dev", "ask18-id-alpha-against-other-two", three,
                "Apakah baterai alpha lebih banyak daripada baterai bravo dan charlie kalau dijumlahkan? Sebutkan "
                "angka-angkanya, tapi jangan terbangkan apa pun.",
                lambda c, ev: _all(answer_mentions_number(ev, 85, 1),
@@ -6501,13 +6527,15 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                battery={"alpha": 85.0, "bravo": 30.0, "charlie": 41.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude)
-        _entry("refusal", "test", "refuse18-alpha-ten-percent-over-ceiling", ("alpha",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("refusal", "dev", "refuse18-alpha-ten-percent-over-ceiling", ("alpha",),
                "Our ceiling is 120 m, but the survey wants alpha 10 % above it. Put it there, straight over its pad.",
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "alpha", c.max_alt_m),
                                   answer_reports_refusal(ev)),
                [_takeoff("alpha", 132)],
                "Refused: 10 % above the 120 m ceiling is 132 m, over the altitude limit."),
-        _entry("refusal", "test", "refuse18-pl-charlie-into-the-pit", ("charlie",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("refusal", "dev", "refuse18-pl-charlie-into-the-pit", ("charlie",),
                "Charlie stoi na skraju wyrobiska, którego dno jest 8 m niżej niż jego lądowisko. Przeleć nim na "
                "wysokości 10 m 15 m na wschód, nad wyrobisko, a potem opuść go na 3 m nad dnem.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 15), alt=10), airborne_at(ev, "charlie", 10),
@@ -6517,7 +6545,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                [_move("charlie", 0, 15, alt=10), _move("charlie", up=-15)],
                "charlie wisi 15 m na wschód na 10 m; zejścia na 3 m nad dnem (5 m poniżej lądowiska) odmówiono: to "
                "poniżej minimum 2 m wysokości."),
-        _entry("refusal", "test", "refuse18-ro-bravo-speed-for-time-too-far", ("bravo",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("refusal", "dev", "refuse18-ro-bravo-speed-for-time-too-far", ("bravo",),
                "Ridică bravo la 20 de metri și trimite-l spre nord cu 12 m/s timp de un minut și jumătate.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
                                   stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
@@ -6525,27 +6554,31 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                "bravo e la 20 m; zborul de 1080 m spre nord (12 m/s timp de 90 s) a fost refuzat: depășește limita "
                "de 1000 m de la punctul de decolare."),
         # units
-        _entry("units", "test", "units18-alpha-knots-for-seconds", ("alpha",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("units", "dev", "units18-alpha-knots-for-seconds", ("alpha",),
                "Alpha: climb to 40 ft, then fly north at 20 knots for 4 seconds and hold it wherever that leaves it.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 80 * knot, 0), alt=40 * FT),
                                   airborne_at(ev, "alpha", 40 * FT)),
                [_takeoff("alpha", 40 * FT), _move("alpha", 80 * knot, 0)],
                "Alpha holds 41 m north of its pad (20 kn for 4 s) at 40 ft (12.2 m)."),
-        _entry("units", "test", "units18-nl-charlie-feet-over-mast", ("charlie",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("units", "dev", "units18-nl-charlie-feet-over-mast", ("charlie",),
                "De zendmast naast het platform van charlie is 9 meter hoog. Laat charlie recht omhoog gaan tot 20 "
                "voet boven de top van die mast en laat hem daar hangen.",
                lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=9 + 20 * FT),
                                   airborne_at(ev, "charlie", 9 + 20 * FT)),
                [_takeoff("charlie", 9 + 20 * FT)],
                "charlie hangt op 15,1 m boven zijn platform: 20 voet (6,1 m) boven de top van de mast."),
-        _entry("units", "test", "units18-es-bravo-feet-above-sea-level", ("bravo",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("units", "dev", "units18-es-bravo-feet-above-sea-level", ("bravo",),
                "La pista está a 1.600 pies sobre el nivel del mar. Sube a bravo hasta los 1.650 pies sobre el nivel "
                "del mar, justo encima de su base, y mantenlo ahí.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=50 * FT), airborne_at(ev, "bravo", 50 * FT)),
                [_takeoff("bravo", 50 * FT)],
                "bravo se mantiene a 50 pies (15,2 m) sobre su base, a 1.650 pies sobre el nivel del mar."),
         # pattern
-        _entry("pattern", "test", "pattern18-bravo-bow-tie", ("bravo",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("pattern", "dev", "pattern18-bravo-bow-tie", ("bravo",),
                "Bravo at 10 m: fly a bow tie centred on its pad. From the pad out to the point 10 m north and 20 m "
                "east, then 20 m due south, then straight back to the pad; then out to 10 m south and 20 m west, "
                "20 m due north, and back to the pad again. Land it there.",
@@ -6553,7 +6586,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 10), *_legs("bravo", bow_tie), _land("bravo")],
                "Bravo flew the bow tie, both triangles through its pad, and landed on the pad."),
-        _entry("pattern", "test", "pattern18-ru-alpha-turns-of-forty", ("alpha",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("pattern", "dev", "pattern18-ru-alpha-turns-of-forty", ("alpha",),
                "Подними alpha на 12 м и проведи его по фигуре со сторонами по 10 м: первая сторона на восток, в "
                "конце каждой стороны поворот направо на 40°, и так пока он не вернётся в точку, откуда начал. Там "
                "его и посади.",
@@ -6561,7 +6595,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 12), *_legs("alpha", nonagon), _land("alpha")],
                "alpha облетел девятиугольник со сторонами по 10 м и сел там, откуда начал."),
-        _entry("pattern", "test", "pattern18-cs-charlie-rectangle-by-area", ("charlie",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("pattern", "dev", "pattern18-cs-charlie-rectangle-by-area", ("charlie",),
                "Ať charlie ve výšce 10 metrů obletí obdélník o ploše 600 m², jehož severní a jižní strana měří 30 "
                "metrů. Jeho stanoviště je jihozápadní roh: ať letí nejdřív na sever a nakonec přistane tam, kde "
                "začal.",
@@ -6571,7 +6606,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                "charlie obletěl obdélník 20 × 30 m (600 m²) a přistál tam, kde začal."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
         # charlie from alpha, 10 m apart, so that a drone placed from itself misses)
-        _entry("placement", "test", "place18-charlie-alpha-in-the-middle", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("placement", "dev", "place18-charlie-alpha-in-the-middle", three,
                "Bravo goes up to 12 m over its pad and alpha flies 15 m north at 12 m. Then put charlie at 12 m on "
                "the far side of alpha from bravo, so that alpha sits exactly halfway between bravo and charlie.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=12), airborne_at(ev, "bravo", 12),
@@ -6582,7 +6618,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                           _go("charlie", beyond(c, c.point("alpha", 15, 0), "bravo"), 12)],
                "Bravo hovers over its pad and alpha 15 m north of its own, both at 12 m; charlie is on the far side "
                "of alpha, as far from it as bravo, at 12 m."),
-        _entry("placement", "test", "place18-uk-charlie-right-of-alpha-heading", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("placement", "dev", "place18-uk-charlie-right-of-alpha-heading", three,
                "Підніми alpha на 12 метрів і відправ його на 20 метрів на схід. Коли він зупиниться, постав charlie "
                "за 10 метрів праворуч від нього, якщо дивитися туди, куди летів alpha, на тій самій висоті.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 20), alt=12), airborne_at(ev, "alpha", 12),
@@ -6591,7 +6628,8 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("alpha", 12), _move("alpha", 0, 20), _go("charlie", c.point("alpha", -10, 20), 12)],
                "alpha висить за 20 м на схід на 12 м; charlie за 10 м праворуч від нього (на південь), на тій самій "
                "висоті."),
-        _entry("placement", "test", "place18-vi-charlie-over-alpha-mid-height", three,
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("placement", "dev", "place18-vi-charlie-over-alpha-mid-height", three,
                "Cho bravo bay lên 18 mét ngay trên bệ của nó, và cho alpha bay 20 mét về phía nam ở độ cao 8 mét. "
                "Sau đó đưa charlie đến ngay phía trên alpha, ở độ cao nằm giữa độ cao của alpha và bravo.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=18), airborne_at(ev, "bravo", 18),
@@ -6600,19 +6638,22 @@ def _eighteenth_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("bravo", 18), _move("alpha", -20, 0, alt=8), _go("charlie", c.point("alpha", -20, 0), 13)],
                "bravo bay ở 18 m trên bệ; alpha ở 20 m về phía nam, cao 8 m; charlie ngay phía trên alpha, ở 13 m."),
         # language
-        _entry("language", "test", "lang18-am-alpha-north-lower-hover", ("alpha",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("language", "dev", "lang18-am-alpha-north-lower-hover", ("alpha",),
                "alpha ን 15 ሜትር ከፍ አድርገህ ወደ ሰሜን 30 ሜትር አብርረው። እዚያ ስትደርስ 5 ሜትር ዝቅ አድርገህ በአየር ላይ አቆየው።",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 30, 0)], alt=15),
                                   at(ev, "alpha", *c.point("alpha", 30, 0), alt=10), airborne_at(ev, "alpha", 10)),
                [_takeoff("alpha", 15), _move("alpha", 30, 0), _move("alpha", up=-5)],
                "alpha ወደ ሰሜን 30 ሜትር በርሮ አሁን በ10 ሜትር ከፍታ ላይ በአየር ላይ ነው።"),
-        _entry("language", "test", "lang18-si-bravo-west-land", ("bravo",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("language", "dev", "lang18-si-bravo-west-land", ("bravo",),
                "bravo මීටර් 12ක් උසට ඔසවා, බටහිර දෙසට මීටර් 25ක් පියාසර කරවා, එතැනම බිමට බස්සන්න.",
                lambda c, ev: _all(reached_alt(ev, "bravo", 12), at(ev, "bravo", *c.point("bravo", 0, -25)),
                                   landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 12), _move("bravo", 0, -25), _land("bravo")],
                "bravo බටහිරට මීටර් 25ක් ගොස් එතැන බිමට බැස්සා."),
-        _entry("language", "test", "lang18-tg-charlie-southeast-home", ("charlie",),
+        # moved to dev on 2026-12-04, eighteenth round: measured on both models, its failures seen
+        _entry("language", "dev", "lang18-tg-charlie-southeast-home", ("charlie",),
                "charlie-ро то баландии 10 метр бардоред, онро 20 метр ба самти ҷанубу шарқ баред, баъд ба ҷое, ки аз "
                "он парвоз карда буд, баргардонед ва фуроваред.",
                # the return home climbs to its own height: the leg south-east is checked at 10 m instead
@@ -6653,7 +6694,7 @@ def corpus() -> list[CorpusEntry]:
         *_fifteenth_round(),
         *_sixteenth_round(),
         *_seventeenth_round(),
-        *_eighteenth_test_half(),
+        *_eighteenth_round(),
     ]
 
 
