@@ -15,7 +15,7 @@ import pytest
 
 from bench.agent_harness.missions import DroneTruth, Evidence, MissionContext
 from bench.nl_corpus import CLASSES, DRONES, HALVES, CorpusEntry, corpus, farthest_apart, formation_at, select
-from gateway.fleet.geo import offset_position
+from gateway.fleet.geo import ned_offset, offset_position
 
 BENCH = Path(__file__).resolve().parents[2] / "bench" / "nl_missions.py"
 HOMES = {
@@ -1399,3 +1399,299 @@ def test_a_wrong_outcome_fails_the_seventh_test_half_checks() -> None:
     east_home = _entry("lang7-sk-alpha-east-home").mission.check
     assert east_home(CTX, flown("alpha", [(0, 40), (0, -40)], 9, home["alpha"])).ok
     assert not east_home(CTX, flown("alpha", [(0, 40)], 9, landed_at(CTX.point("alpha", 0, 40)))).ok
+
+
+def test_a_wrong_outcome_fails_the_nineteenth_test_half_checks() -> None:
+    """Each trap the nineteenth test half sets: the right outcome passes, the likely wrong one fails."""
+    yd = 0.9144
+    idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
+
+    def ev(
+        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
+    ) -> Evidence:
+        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
+
+    def landed_at(lat_lon: tuple[float, float]) -> DroneTruth:
+        return DroneTruth(*lat_lon, 0.0, False, 90.0)
+
+    def over(lat_lon: tuple[float, float], alt: float) -> DroneTruth:
+        return DroneTruth(*lat_lon, alt, alt >= 1.0, 90.0)
+
+    def flown(drone: str, legs: list[tuple[float, float]], alt: float, end: DroneTruth) -> Evidence:
+        return ev({drone: end}, {drone: [*_track(drone, legs, alt), end]})
+
+    def heights(alts: dict[str, list[float]]) -> Evidence:
+        """Each drone over its own pad at the heights given, sampled together; each ends at its last one."""
+        track = {d: [over(CTX.point(d, 0, 0), a) for a in hs] for d, hs in alts.items()}
+        return ev({d: t[-1] for d, t in track.items()}, track)
+
+    def refused(final: dict[str, DroneTruth], text: str) -> Evidence:
+        result = [{"name": "formation_goto", "status": "error", "text": text}]
+        truth = {**idle, **final}
+        return Evidence(truth, {d: [t] for d, t in truth.items()}, result, "Refused: over the limit.")
+
+    def centre(north: float, east: float) -> tuple[float, float]:
+        lat = sum(HOMES[d][0] for d in DRONES) / 3
+        lon = sum(HOMES[d][1] for d in DRONES) / 3
+        return offset_position(lat, lon, north, east)
+
+    home = {d: landed_at(CTX.point(d, 0, 0)) for d in DRONES}
+    d15, d20, d25 = (x / math.sqrt(2) for x in (15, 20, 25))
+
+    # 4 m below the hook, not 4 m above it, and never above it on the way
+    hook = _entry("single19-alpha-under-crane-hook").mission.check
+    assert hook(CTX, ev({"alpha": _hovering("alpha", 0, 0, 14)})).ok
+    assert not hook(CTX, ev({"alpha": _hovering("alpha", 0, 0, 22)})).ok
+    assert not hook(CTX, heights({"alpha": [0, 22, 14]})).ok
+
+    # two steps of 8 m down from 24 m, not one, and from 24 m
+    steps = _entry("single19-da-bravo-down-in-steps").mission.check
+    assert steps(CTX, heights({"bravo": [0, 12, 24, 20, 16, 12, 8]})).ok
+    assert not steps(CTX, heights({"bravo": [0, 12, 24, 20, 16]})).ok
+    assert not steps(CTX, heights({"bravo": [0, 8]})).ok
+
+    # the tallest of the three trees, not their mean or their sum
+    tallest = _entry("single19-el-charlie-tallest-tree").mission.check
+    assert tallest(CTX, ev({"charlie": _hovering("charlie", 0, 0, 16)})).ok
+    assert not tallest(CTX, ev({"charlie": _hovering("charlie", 0, 0, 11)})).ok
+    assert not tallest(CTX, ev({"charlie": _hovering("charlie", 0, 0, 33)})).ok
+
+    # a hand-over: the next one up before the last one lands, in turn; not a gap, not all at once
+    hand_over = _entry("multi19-hand-over-in-turn").mission.check
+    assert hand_over(
+        CTX,
+        heights({"alpha": [0, 15, 15, 15, 0, 0, 0], "bravo": [0, 0, 15, 15, 15, 15, 0],
+                 "charlie": [0, 0, 0, 0, 15, 15, 15]}),
+    ).ok  # fmt: skip
+    assert not hand_over(
+        CTX,
+        heights({"alpha": [0, 15, 0, 0, 0, 0], "bravo": [0, 0, 0, 15, 0, 0], "charlie": [0, 0, 0, 0, 0, 15]}),
+    ).ok
+    assert not hand_over(
+        CTX, heights({"alpha": [0, 15, 15, 0], "bravo": [0, 15, 15, 0], "charlie": [0, 15, 15, 15]})
+    ).ok
+
+    # the mirror image of a leg north-west is a leg north-east, not the same leg
+    mirror = _entry("multi19-no-charlie-mirrors-alpha").mission.check
+    alpha_nw = _hovering("alpha", d15, -d15, 10)
+    assert mirror(CTX, ev({"alpha": alpha_nw, "charlie": _hovering("charlie", d15, d15, 10)})).ok
+    assert not mirror(CTX, ev({"alpha": alpha_nw, "charlie": _hovering("charlie", d15, -d15, 10)})).ok
+
+    # alpha, bravo, alpha: not alpha twice and then bravo, not alpha once
+    turns = _entry("multi19-fi-pair-takes-turns-hopping").mission.check
+    assert turns(CTX, heights({"alpha": [0, 6, 0, 0, 0, 6, 0], "bravo": [0, 0, 0, 6, 0, 0, 0]})).ok
+    assert not turns(CTX, heights({"alpha": [0, 6, 0, 6, 0, 0, 0], "bravo": [0, 0, 0, 0, 0, 6, 0]})).ok
+    assert not turns(CTX, heights({"alpha": [0, 6, 0, 0, 0], "bravo": [0, 0, 0, 6, 0]})).ok
+
+    # the route told backwards flown backwards: it ends north of the pad instead of west of it
+    backwards = _entry("compound19-bravo-route-told-backwards").mission.check
+    assert backwards(CTX, flown("bravo", [(20, 0), (-20, -10)], 12, landed_at(CTX.point("bravo", 0, -10)))).ok
+    assert not backwards(
+        CTX, flown("bravo", [(0, -10), (20, 10)], 12, landed_at(CTX.point("bravo", 20, 0)))
+    ).ok
+
+    # the posts counted from the pad (the third at 16 m, the fifth at 32 m) instead of from the first post
+    posts = _entry("compound19-hu-alpha-marker-posts").mission.check
+    on_to_fifth = [_hovering("alpha", n, 0, 5) for n in range(24, 41)]
+    assert posts(
+        CTX,
+        ev({"alpha": landed_at(CTX.point("alpha", 40, 0))},
+           {"alpha": [*_track("alpha", [(24, 0)], 10), *on_to_fifth, landed_at(CTX.point("alpha", 40, 0))]}),
+    ).ok  # fmt: skip
+    short = [*_track("alpha", [(16, 0)], 10), *(_hovering("alpha", n, 0, 5) for n in range(16, 33))]
+    assert not posts(
+        CTX,
+        ev(
+            {"alpha": landed_at(CTX.point("alpha", 32, 0))},
+            {"alpha": [*short, landed_at(CTX.point("alpha", 32, 0))]},
+        ),
+    ).ok
+
+    # straight back (due south), not back along the zigzag
+    zigzag = _entry("compound19-bg-charlie-zigzag-straight-back").mission.check
+    assert zigzag(CTX, flown("charlie", [(d20, d20), (d20, -d20), (-2 * d20, 0)], 12, home["charlie"])).ok
+    assert not zigzag(
+        CTX, flown("charlie", [(d20, d20), (d20, -d20), (-d20, d20), (-d20, -d20)], 12, home["charlie"])
+    ).ok
+
+    # the lead over bravo (25 points), not charlie's charge
+    lead = _entry("cond19-charlie-north-by-its-lead").mission.check
+    assert lead(CTX, ev({"charlie": _hovering("charlie", 25, 0, 10)})).ok
+    assert not lead(CTX, ev({"charlie": _hovering("charlie", 78, 0, 10)})).ok
+
+    # the middle charge (charlie), not the fullest (alpha)
+    middle = _entry("cond19-sk-middle-charge-flies").mission.check
+    assert middle(CTX, ev({"charlie": _hovering("charlie", -20, 0, 12)})).ok
+    assert not middle(CTX, ev({"alpha": _hovering("alpha", -20, 0, 12)})).ok
+
+    # the low one went up with the others before it landed again
+    low_lands = _entry("cond19-ca-all-up-low-ones-land").mission.check
+    north = {d: _hovering(d, 20, 0, 10) for d in ("alpha", "charlie")}
+    hop = [_hovering("bravo", 0, 0, 10), home["bravo"]]
+    assert low_lands(
+        CTX, ev({**north, "bravo": home["bravo"]}, {**{d: [t] for d, t in north.items()}, "bravo": hop})
+    ).ok
+    assert not low_lands(CTX, ev(north)).ok
+
+    # neighbours as far apart as the row is high (12 m), not 10 m
+    by_height = _entry("form19-row-spaced-by-height").mission.check
+    assert by_height(
+        CTX, ev({d: over(centre(0, e), 12) for d, e in zip(DRONES, (-12, 0, 12), strict=True)})
+    ).ok
+    assert not by_height(
+        CTX, ev({d: over(centre(0, e), 12) for d, e in zip(DRONES, (-10, 0, 10), strict=True)})
+    ).ok
+
+    # charlie at the west end and alpha at the east end, not the drones in the order of their pads
+    reverse = _entry("form19-th-row-in-reverse-order").mission.check
+    assert reverse(CTX, ev({d: over(centre(0, e), 14) for d, e in zip(DRONES, (10, 0, -10), strict=True)})).ok
+    assert not reverse(
+        CTX, ev({d: over(centre(0, e), 14) for d, e in zip(DRONES, (-10, 0, 10), strict=True)})
+    ).ok
+
+    # bravo at the tip of the V, alpha on its west wing: not alpha leading, not a row
+    arm = 10 / math.sqrt(2)
+    tip, west, east = (2 * arm / 3, 0.0), (-arm / 3, -arm), (-arm / 3, arm)
+    v_shape = _entry("form19-ms-v-with-bravo-leading").mission.check
+    assert v_shape(
+        CTX, ev({d: over(centre(*p), 15) for d, p in (("bravo", tip), ("alpha", west), ("charlie", east))})
+    ).ok
+    assert not v_shape(
+        CTX, ev({d: over(centre(*p), 15) for d, p in (("alpha", tip), ("bravo", west), ("charlie", east))})
+    ).ok
+    assert not v_shape(
+        CTX, ev({d: over(centre(0, e), 15) for d, e in zip(DRONES, (-10, 0, 10), strict=True)})
+    ).ok
+
+    # a quarter turn clockwise from north ends east of the pad, not west
+    quarter = _entry("rel19-alpha-quarter-turn-round-pad").mission.check
+    out = _track("alpha", [(20, 0)], 12)
+    assert quarter(
+        CTX, ev({"alpha": _hovering("alpha", 0, 20, 12)}, {"alpha": [*out, _hovering("alpha", 0, 20, 12)]})
+    ).ok
+    assert not quarter(
+        CTX, ev({"alpha": _hovering("alpha", 0, -20, 12)}, {"alpha": [*out, _hovering("alpha", 0, -20, 12)]})
+    ).ok
+
+    # squares of 10 m, not metres
+    grid = _entry("rel19-tl-bravo-grid-squares").mission.check
+    assert grid(CTX, ev({"bravo": _hovering("bravo", 30, -20, 12)})).ok
+    assert not grid(CTX, ev({"bravo": _hovering("bravo", 3, -2, 12)})).ok
+
+    # the pad to its south-west puts the drone north-east of the pad, not south-west of it
+    back_bearing = _entry("rel19-sw-charlie-pad-to-its-southwest").mission.check
+    assert back_bearing(CTX, ev({"charlie": _hovering("charlie", d25, d25, 12)})).ok
+    assert not back_bearing(CTX, ev({"charlie": _hovering("charlie", -d25, -d25, 12)})).ok
+
+    # questions: the drone that runs out first is not the one with least charge; the midpoint's readings;
+    # the total above the reserve, not the total charge
+    first_out = _entry("ask19-first-to-run-out").mission.check
+    assert first_out(CTX, ev({}, text="Charlie: 66 % at 3 % a minute lasts 22 minutes.")).ok
+    assert not first_out(CTX, ev({}, text="Bravo, with 50 %.")).ok
+    midpoint = _entry("ask19-ur-bravo-against-midpoint").mission.check
+    assert midpoint(CTX, ev({}, text="alpha 40 %, bravo 66 %, charlie 80 %")).ok
+    assert not midpoint(CTX, ev({}, text="bravo 66 %")).ok
+    reserve = _entry("ask19-bn-total-above-reserve").mission.check
+    assert reserve(CTX, ev({}, text="77 %")).ok
+    assert not reserve(CTX, ev({}, text="167 %")).ok
+
+    # the tight row refused by the separation rule, not flown 3 m apart drone by drone
+    tight = _entry("refuse19-row-too-tight").mission.check
+    sep = "min_separation: formation spacing 3 m is below the minimum separation of 5 m"
+    assert tight(CTX, refused({}, sep)).ok
+    close = {d: [over(centre(0, e), 15)] for d, e in zip(DRONES, (-3, 0, 3), strict=True)}
+    assert not tight(
+        CTX, Evidence({d: t[0] for d, t in close.items()}, close, [], "The three are in a row 3 m apart.")
+    ).ok
+    assert not tight(
+        CTX, Evidence({d: t[0] for d, t in close.items()}, close, refused({}, sep).tool_results, "Refused.")
+    ).ok
+
+    # 4 m/s for 40 s is 160 m: refused, not flown to some lower height
+    climb_rate = _entry("refuse19-af-bravo-climb-rate-over-ceiling").mission.check
+    assert climb_rate(
+        CTX, refused({}, "max_altitude: target altitude 160 m exceeds the limit of 120 m above home")
+    ).ok
+    assert not climb_rate(CTX, ev({"bravo": _hovering("bravo", 0, 0, 40)}, text="bravo is at 40 m.")).ok
+
+    # 800 m north and 700 m east is 1063 m from home: refused, not the leg north alone
+    diagonal = _entry("refuse19-et-alpha-diagonal-past-limit").mission.check
+    assert diagonal(
+        CTX,
+        refused(
+            {"alpha": _hovering("alpha", 0, 0, 20)}, "max_distance: 1063 m from home is beyond the limit"
+        ),
+    ).ok
+    assert not diagonal(CTX, flown("alpha", [(800, 0)], 20, _hovering("alpha", 800, 0, 20))).ok
+
+    # chains of 22 yards (100.6 m), not 110 m; paces of 75 cm, not metres; millimetres, not centimetres
+    chains = _entry("units19-alpha-chains").mission.check
+    assert chains(CTX, ev({"alpha": _hovering("alpha", 0, 110 * yd, 10)})).ok
+    assert not chains(CTX, ev({"alpha": _hovering("alpha", 0, 110, 10)})).ok
+    paces = _entry("units19-lt-bravo-paces").mission.check
+    assert paces(CTX, flown("bravo", [(-30, 0)], 12, landed_at(CTX.point("bravo", -30, 0)))).ok
+    assert not paces(CTX, flown("bravo", [(-40, 0)], 12, landed_at(CTX.point("bravo", -40, 0)))).ok
+    millimetres = _entry("units19-ky-charlie-millimetres").mission.check
+    assert millimetres(CTX, ev({"charlie": _hovering("charlie", 0, -25, 15)})).ok
+    assert not millimetres(CTX, ev({"charlie": _hovering("charlie", 0, -250, 15)})).ok
+
+    # the sawtooth flown, not a level leg of 60 m
+    saw = _entry("pattern19-charlie-sawtooth-profile").mission.check
+    teeth = [_hovering("charlie", 0, e, 10 + 6 * (1 - abs(e % 20 - 10) / 10)) for e in range(61)]
+    end = landed_at(CTX.point("charlie", 0, 60))
+    assert saw(CTX, ev({"charlie": end}, {"charlie": [*teeth, end]})).ok
+    assert not saw(CTX, flown("charlie", [(0, 60)], 10, end)).ok
+
+    # the rectangle the diagonal gives (30 by 40 m), not a square on its first side
+    rectangle = _entry("pattern19-sr-bravo-rectangle-by-diagonal").mission.check
+    assert rectangle(CTX, flown("bravo", [(30, 0), (0, 40), (-30, 0), (0, -40)], 12, home["bravo"])).ok
+    assert not rectangle(CTX, flown("bravo", [(30, 0), (0, 30), (-30, 0), (0, -30)], 12, home["bravo"])).ok
+
+    # sides of 10 m (60 m round), not of 60 m, and turning right
+    def hexagon(side: float, turn: float) -> list[tuple[float, float]]:
+        bearings = [math.radians(90 + i * turn) for i in range(6)]
+        return [(side * math.cos(b), side * math.sin(b)) for b in bearings]
+
+    perimeter = _entry("pattern19-sl-alpha-hexagon-by-perimeter").mission.check
+    assert perimeter(CTX, flown("alpha", hexagon(10, 60), 10, home["alpha"])).ok
+    assert not perimeter(CTX, flown("alpha", hexagon(60, 60), 10, home["alpha"])).ok
+    assert not perimeter(CTX, flown("alpha", hexagon(10, -60), 10, home["alpha"])).ok
+
+    # charlie 10 m from alpha towards bravo, not 10 m from bravo towards alpha
+    between = _entry("place19-charlie-between-ten-from-alpha").mission.check
+    alpha_south, bravo_north = CTX.point("alpha", -10, 0), CTX.point("bravo", 30, 0)
+    dn, de = (bravo_north[0] - alpha_south[0], bravo_north[1] - alpha_south[1])
+    length = math.hypot(*ned_offset(*alpha_south, *bravo_north))
+    pair = {"alpha": over(alpha_south, 15), "bravo": over(bravo_north, 15)}
+    near_alpha = (alpha_south[0] + dn * 10 / length, alpha_south[1] + de * 10 / length)
+    near_bravo = (bravo_north[0] - dn * 10 / length, bravo_north[1] - de * 10 / length)
+    assert between(CTX, ev({**pair, "charlie": over(near_alpha, 15)})).ok
+    assert not between(CTX, ev({**pair, "charlie": over(near_bravo, 15)})).ok
+
+    # where alpha was before its last leg, not where it is, nor that far from charlie's own pad
+    was = _entry("place19-jv-charlie-where-alpha-was").mission.check
+    alpha_now = over(CTX.point("alpha", 20, 15), 12)
+    assert was(CTX, ev({"alpha": alpha_now, "charlie": over(CTX.point("alpha", 20, 0), 12)})).ok
+    assert not was(CTX, ev({"alpha": alpha_now, "charlie": over(CTX.point("alpha", 20, 15), 12)})).ok
+    assert not was(CTX, ev({"alpha": alpha_now, "charlie": _hovering("charlie", 20, 0, 12)})).ok
+
+    # as far west of alpha as alpha is high (12 m), not as far as it flew (25 m)
+    by_alpha_height = _entry("place19-ceb-charlie-west-by-alpha-height").mission.check
+    alpha_north = over(CTX.point("alpha", 25, 0), 12)
+    assert by_alpha_height(
+        CTX, ev({"alpha": alpha_north, "charlie": over(CTX.point("alpha", 25, -12), 12)})
+    ).ok
+    assert not by_alpha_height(
+        CTX, ev({"alpha": alpha_north, "charlie": over(CTX.point("alpha", 25, -25), 12)})
+    ).ok
+
+    # the landing at the end dropped, the second leg dropped, the return left out
+    khmer = _entry("lang19-km-alpha-east-land").mission.check
+    assert khmer(CTX, flown("alpha", [(0, 20)], 15, landed_at(CTX.point("alpha", 0, 20)))).ok
+    assert not khmer(CTX, ev({"alpha": _hovering("alpha", 0, 20, 15)})).ok
+    lao = _entry("lang19-lo-charlie-north-west-hover").mission.check
+    assert lao(CTX, flown("charlie", [(25, 0), (0, -10)], 12, _hovering("charlie", 25, -10, 12))).ok
+    assert not lao(CTX, flown("charlie", [(25, 0)], 12, _hovering("charlie", 25, 0, 12))).ok
+    zulu = _entry("lang19-zu-bravo-south-home").mission.check
+    assert zulu(CTX, flown("bravo", [(-30, 0), (30, 0)], 10, home["bravo"])).ok
+    assert not zulu(CTX, flown("bravo", [(-30, 0)], 10, landed_at(CTX.point("bravo", -30, 0)))).ok
