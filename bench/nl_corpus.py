@@ -430,6 +430,49 @@ def _home(c: MissionContext, d: str) -> tuple[float, float]:
 # --- the corpus ----------------------------------------------------------------------------------
 
 
+def row_along(ev: Evidence, drones: tuple[str, ...], bearing: float) -> Check:
+    """The two drones farthest apart lie on a line running along ``bearing`` (either way round, ±15°)."""
+    final = [ev.final[d] for d in drones]
+    a, b = max(((p, q) for i, p in enumerate(final) for q in final[i + 1 :]),
+               key=lambda pq: horizontal_distance_m(pq[0].lat, pq[0].lon, pq[1].lat, pq[1].lon))  # fmt: skip
+    off = (bearing_deg(a.lat, a.lon, b.lat, b.lon) - bearing) % 180.0
+    off = min(off, 180.0 - off)
+    return Check(off <= 15.0, f"the row runs {off:.0f} degrees off a {bearing:g} degree line")
+
+
+def slot(c: MissionContext, drones: tuple[str, ...], north: float, east: float) -> tuple[float, float]:
+    """The point ``north``/``east`` metres from the centre of the drones' homes."""
+    home_lat = sum(c.homes[d][0] for d in drones) / len(drones)
+    home_lon = sum(c.homes[d][1] for d in drones) / len(drones)
+    return offset_position(home_lat, home_lon, north, east)
+
+
+def passed(ev: Evidence, d: str, points: list[tuple[tuple[float, float], float]]) -> Check:
+    """The track passed each point at its height (within tolerance), in order: a path in three dimensions."""
+    i = 0
+    for s in ev.track.get(d, []):
+        if i == len(points):
+            break
+        (lat, lon), alt = points[i]
+        if (
+            horizontal_distance_m(s.lat, s.lon, lat, lon) <= HORIZONTAL_TOL_M
+            and abs(s.alt_rel_m - alt) <= ALT_TOL_M
+        ):
+            i += 1
+    return Check(i == len(points), f"{d} passed {i}/{len(points)} points at their heights in order")
+
+
+def takeoffs(ev: Evidence, d: str, alt: float, want: int) -> Check:
+    """How many times the drone rose from the ground to ``alt`` (less the tolerance)."""
+    count, down = 0, True
+    for s in ev.track.get(d, []):
+        if down and s.alt_rel_m >= alt - ALT_TOL_M:
+            count, down = count + 1, False
+        elif s.landed:
+            down = True
+    return Check(count == want, f"{d} rose from the ground to {alt:g} m {count} time(s) (want {want})")
+
+
 def _single() -> list[CorpusEntry]:
     return [
         _entry("single", "dev", "single-charlie-hover", ("charlie",),
@@ -5437,31 +5480,6 @@ def _sixteenth_round() -> list[CorpusEntry]:
     # a Z of 20 m strokes: east along the top, diagonally to the point 20 m south of the start, east again
     zed = [(0.0, 20.0), (-20.0, -20.0), (0.0, 20.0)]
 
-    def takeoffs(ev: Evidence, d: str, alt: float, want: int) -> Check:
-        """How many times the drone rose from the ground to ``alt`` (less the tolerance)."""
-        count, down = 0, True
-        for s in ev.track.get(d, []):
-            if down and s.alt_rel_m >= alt - ALT_TOL_M:
-                count, down = count + 1, False
-            elif s.landed:
-                down = True
-        return Check(count == want, f"{d} rose from the ground to {alt:g} m {count} time(s) (want {want})")
-
-    def row_along(ev: Evidence, drones: tuple[str, ...], bearing: float) -> Check:
-        """The two drones farthest apart lie on a line running along ``bearing`` (either way round, ±15°)."""
-        final = [ev.final[d] for d in drones]
-        a, b = max(((p, q) for i, p in enumerate(final) for q in final[i + 1 :]),
-                   key=lambda pq: horizontal_distance_m(pq[0].lat, pq[0].lon, pq[1].lat, pq[1].lon))  # fmt: skip
-        off = (bearing_deg(a.lat, a.lon, b.lat, b.lon) - bearing) % 180.0
-        off = min(off, 180.0 - off)
-        return Check(off <= 15.0, f"the row runs {off:.0f} degrees off a {bearing:g} degree line")
-
-    def slot(c: MissionContext, drones: tuple[str, ...], north: float, east: float) -> tuple[float, float]:
-        """The point ``north``/``east`` metres from the centre of the drones' homes."""
-        home_lat = sum(c.homes[d][0] for d in drones) / len(drones)
-        home_lon = sum(c.homes[d][1] for d in drones) / len(drones)
-        return offset_position(home_lat, home_lon, north, east)
-
     def formation_seen(
         c: MissionContext, ev: Evidence, drones: tuple[str, ...], alt: float, spacing: float, north: float
     ) -> Check:
@@ -5832,36 +5850,6 @@ def _seventeenth_round() -> list[CorpusEntry]:
     reverse = [(0.0, 20.0), (20.0, 0.0), (0.0, -20.0), (-20.0, 0.0)]
     # three drones evenly on a circle of 15 m radius are 15 * sqrt(3) m from their neighbours
     chord = 15 * math.sqrt(3)
-
-    def takeoffs(ev: Evidence, d: str, alt: float, want: int) -> Check:
-        """How many times the drone rose from the ground to ``alt`` (less the tolerance)."""
-        count, down = 0, True
-        for s in ev.track.get(d, []):
-            if down and s.alt_rel_m >= alt - ALT_TOL_M:
-                count, down = count + 1, False
-            elif s.landed:
-                down = True
-        return Check(count == want, f"{d} rose from the ground to {alt:g} m {count} time(s) (want {want})")
-
-    def passed(ev: Evidence, d: str, points: list[tuple[tuple[float, float], float]]) -> Check:
-        """The track passed each point at its height (within tolerance), in order: a path in three dimensions."""
-        i = 0
-        for s in ev.track.get(d, []):
-            if i == len(points):
-                break
-            (lat, lon), alt = points[i]
-            if (
-                horizontal_distance_m(s.lat, s.lon, lat, lon) <= HORIZONTAL_TOL_M
-                and abs(s.alt_rel_m - alt) <= ALT_TOL_M
-            ):
-                i += 1
-        return Check(i == len(points), f"{d} passed {i}/{len(points)} points at their heights in order")
-
-    def slot(c: MissionContext, drones: tuple[str, ...], north: float, east: float) -> tuple[float, float]:
-        """The point ``north``/``east`` metres from the centre of the drones' homes."""
-        home_lat = sum(c.homes[d][0] for d in drones) / len(drones)
-        home_lon = sum(c.homes[d][1] for d in drones) / len(drones)
-        return offset_position(home_lat, home_lon, north, east)
 
     def farthest_bearing(now: list[DroneTruth]) -> float:
         a, b = max(((p, q) for i, p in enumerate(now) for q in now[i + 1 :]),
@@ -6259,29 +6247,6 @@ def _eighteenth_round() -> list[CorpusEntry]:
     rectangle = [(20.0, 0.0), (0.0, 30.0), (-20.0, 0.0), (0.0, -30.0)]
     # 30 m toward the two o'clock of a drone facing north: 60 degrees east of north
     two_oclock = (30 * math.cos(math.radians(60)), 30 * math.sin(math.radians(60)))
-
-    def row_along(ev: Evidence, drones: tuple[str, ...], bearing: float) -> Check:
-        """The two drones farthest apart lie on a line running along ``bearing`` (either way round, ±15°)."""
-        final = [ev.final[d] for d in drones]
-        a, b = max(((p, q) for i, p in enumerate(final) for q in final[i + 1 :]),
-                   key=lambda pq: horizontal_distance_m(pq[0].lat, pq[0].lon, pq[1].lat, pq[1].lon))  # fmt: skip
-        off = (bearing_deg(a.lat, a.lon, b.lat, b.lon) - bearing) % 180.0
-        off = min(off, 180.0 - off)
-        return Check(off <= 15.0, f"the row runs {off:.0f} degrees off a {bearing:g} degree line")
-
-    def passed(ev: Evidence, d: str, points: list[tuple[tuple[float, float], float]]) -> Check:
-        """The track passed each point at its height (within tolerance), in order: a path in three dimensions."""
-        i = 0
-        for s in ev.track.get(d, []):
-            if i == len(points):
-                break
-            (lat, lon), alt = points[i]
-            if (
-                horizontal_distance_m(s.lat, s.lon, lat, lon) <= HORIZONTAL_TOL_M
-                and abs(s.alt_rel_m - alt) <= ALT_TOL_M
-            ):
-                i += 1
-        return Check(i == len(points), f"{d} passed {i}/{len(points)} points at their heights in order")
 
     def touched_down(ev: Evidence, d: str, point: tuple[float, float]) -> Check:
         """The drone was on the ground at ``point`` at some time (a landing out there, not only at the end)."""
@@ -6693,20 +6658,6 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
     arm = 10 / math.sqrt(2)
     tip, left_wing, right_wing = (2 * arm / 3, 0.0), (-arm / 3, -arm), (-arm / 3, arm)
 
-    def passed(ev: Evidence, d: str, points: list[tuple[tuple[float, float], float]]) -> Check:
-        """The track passed each point at its height (within tolerance), in order: a path in three dimensions."""
-        i = 0
-        for s in ev.track.get(d, []):
-            if i == len(points):
-                break
-            (lat, lon), alt = points[i]
-            if (
-                horizontal_distance_m(s.lat, s.lon, lat, lon) <= HORIZONTAL_TOL_M
-                and abs(s.alt_rel_m - alt) <= ALT_TOL_M
-            ):
-                i += 1
-        return Check(i == len(points), f"{d} passed {i}/{len(points)} points at their heights in order")
-
     def rises(ev: Evidence, d: str, alt: float) -> list[int]:
         """The samples at which the drone, coming from the ground, reached ``alt`` (less the tolerance)."""
         out, down = [], True
@@ -6748,21 +6699,6 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                     for j, p in enumerate(samples) for q in samples[j + 1 :]
                     if not p.landed and not q.landed), default=math.inf)  # fmt: skip
         return Check(near >= least, f"the drones in the air came {near:.1f} m close (at least {least:g})")
-
-    def row_along(ev: Evidence, drones: tuple[str, ...], bearing: float) -> Check:
-        """The two drones farthest apart lie on a line running along ``bearing`` (either way round, ±15°)."""
-        final = [ev.final[d] for d in drones]
-        a, b = max(((p, q) for i, p in enumerate(final) for q in final[i + 1 :]),
-                   key=lambda pq: horizontal_distance_m(pq[0].lat, pq[0].lon, pq[1].lat, pq[1].lon))  # fmt: skip
-        off = (bearing_deg(a.lat, a.lon, b.lat, b.lon) - bearing) % 180.0
-        off = min(off, 180.0 - off)
-        return Check(off <= 15.0, f"the row runs {off:.0f} degrees off a {bearing:g} degree line")
-
-    def slot(c: MissionContext, drones: tuple[str, ...], north: float, east: float) -> tuple[float, float]:
-        """The point ``north``/``east`` metres from the centre of the drones' homes."""
-        home_lat = sum(c.homes[d][0] for d in drones) / len(drones)
-        home_lon = sum(c.homes[d][1] for d in drones) / len(drones)
-        return offset_position(home_lat, home_lon, north, east)
 
     def v_led_by(
         c: MissionContext, ev: Evidence, lead: str, left: str, right: str, alt: float, arm_m: float
