@@ -26,6 +26,24 @@ HOMES = {
 CTX = MissionContext(homes=HOMES)
 
 
+IDLE = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
+
+
+def ev(
+    final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
+) -> Evidence:
+    """The drones in ``final``, the others idle on their pads; their ends as the track unless given."""
+    return Evidence({**IDLE, **final}, track or {d: [t] for d, t in final.items()}, [], text)
+
+
+def landed_at(lat_lon: tuple[float, float]) -> DroneTruth:
+    return DroneTruth(*lat_lon, 0.0, False, 90.0)
+
+
+def over(lat_lon: tuple[float, float], alt: float) -> DroneTruth:
+    return DroneTruth(*lat_lon, alt, alt >= 1.0, 90.0)
+
+
 @pytest.fixture(scope="module")
 def bench() -> Iterator[ModuleType]:
     spec = importlib.util.spec_from_file_location("nl_missions_corpus", BENCH)
@@ -592,12 +610,6 @@ def _track(drone: str, legs: list[tuple[float, float]], alt: float) -> list[Dron
 def test_a_wrong_outcome_fails_the_second_round_checks() -> None:
     """Each trap the test half of 2026-11-29 (second round, now dev) set: the right outcome passes, the
     likely wrong one fails."""
-    idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
-
-    def ev(
-        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
-    ) -> Evidence:
-        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
 
     # feet read as metres: 45 m instead of 45 ft
     units = _entry("units2-charlie-km-feet-climb").mission.check
@@ -627,11 +639,6 @@ def test_a_wrong_outcome_fails_the_second_round_checks() -> None:
 def test_a_wrong_outcome_fails_the_third_test_half_checks() -> None:
     """Each trap the test half of 2026-11-30 sets: the right outcome passes, the likely wrong one fails."""
     idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
-
-    def ev(
-        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
-    ) -> Evidence:
-        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
 
     def landed(drone: str, north: float, east: float) -> DroneTruth:
         lat, lon = CTX.point(drone, north, east)
@@ -708,14 +715,6 @@ def test_a_wrong_outcome_fails_the_fourth_test_half_checks() -> None:
     """Each trap the fourth test half sets: the right outcome passes, the likely wrong one fails."""
     ft = 0.3048
     idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
-
-    def ev(
-        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
-    ) -> Evidence:
-        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
-
-    def landed_at(lat_lon: tuple[float, float]) -> DroneTruth:
-        return DroneTruth(*lat_lon, 0.0, False, 90.0)
 
     # feet read as metres
     feet = _entry("units4-pl-bravo-feet-down").mission.check
@@ -800,14 +799,6 @@ def test_a_wrong_outcome_fails_the_fifth_test_half_checks() -> None:
     likely wrong one fails."""
     ft = 0.3048
     idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
-
-    def ev(
-        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
-    ) -> Evidence:
-        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
-
-    def landed_at(lat_lon: tuple[float, float]) -> DroneTruth:
-        return DroneTruth(*lat_lon, 0.0, False, 90.0)
 
     # feet read as metres
     feet = _entry("units5-nl-charlie-feet-west").mission.check
@@ -911,14 +902,6 @@ def test_a_wrong_outcome_fails_the_sixth_test_half_checks() -> None:
     likely wrong one fails."""
     ft, yd, nm = 0.3048, 0.9144, 1852.0
     idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
-
-    def ev(
-        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
-    ) -> Evidence:
-        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
-
-    def landed_at(lat_lon: tuple[float, float]) -> DroneTruth:
-        return DroneTruth(*lat_lon, 0.0, False, 90.0)
 
     def over(lat_lon: tuple[float, float], alt: float) -> DroneTruth:
         return DroneTruth(*lat_lon, alt, True, 90.0)
@@ -1118,14 +1101,6 @@ def test_a_wrong_outcome_fails_the_seventh_test_half_checks() -> None:
     """Each trap the seventh test half sets: the right outcome passes, the likely wrong one fails."""
     ft = 0.3048
     idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
-
-    def ev(
-        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
-    ) -> Evidence:
-        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
-
-    def landed_at(lat_lon: tuple[float, float]) -> DroneTruth:
-        return DroneTruth(*lat_lon, 0.0, False, 90.0)
 
     def over(lat_lon: tuple[float, float], alt: float) -> DroneTruth:
         return DroneTruth(*lat_lon, alt, True, 90.0)
@@ -1405,17 +1380,6 @@ def test_a_wrong_outcome_fails_the_nineteenth_test_half_checks() -> None:
     """Each trap the nineteenth test half sets: the right outcome passes, the likely wrong one fails."""
     yd = 0.9144
     idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
-
-    def ev(
-        final: dict[str, DroneTruth], track: dict[str, list[DroneTruth]] | None = None, text: str = "Done."
-    ) -> Evidence:
-        return Evidence({**idle, **final}, track or {d: [t] for d, t in final.items()}, [], text)
-
-    def landed_at(lat_lon: tuple[float, float]) -> DroneTruth:
-        return DroneTruth(*lat_lon, 0.0, False, 90.0)
-
-    def over(lat_lon: tuple[float, float], alt: float) -> DroneTruth:
-        return DroneTruth(*lat_lon, alt, alt >= 1.0, 90.0)
 
     def flown(drone: str, legs: list[tuple[float, float]], alt: float, end: DroneTruth) -> Evidence:
         return ev({drone: end}, {drone: [*_track(drone, legs, alt), end]})
