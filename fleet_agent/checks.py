@@ -1,10 +1,6 @@
-"""Checks of a compiled call before it is sent: registered objects with typed outcomes.
-
-Each check looks at one call and the turn so far and returns ``Allow``, ``Reject`` (the call is not sent;
-the note goes into the answer), ``Replace`` (another call is sent instead) or ``Stop`` (nothing more is
-sent this turn), run in order. The safety rules and the arguments' limits are the gateway's: no check
-here loosens or duplicates them (its refusal comes back as data, `fleet_agent.records.Refusal`).
-"""
+"""Checks of a compiled call before it is sent, run in order: ``Allow``, ``Reject`` (not sent, the note goes
+into the answer), ``Replace`` (another call instead) or ``Stop`` (nothing more this turn). The safety rules
+are the gateway's: no check loosens or duplicates them (a refusal comes back as data)."""
 
 from __future__ import annotations
 

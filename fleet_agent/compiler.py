@@ -1,9 +1,6 @@
-"""Plan steps to gateway tool calls, deterministically: units converted, geometry computed, order kept.
-
-The compiler reads the fleet through ``Sensors`` (the host answers from the gateway's telemetry over MCP)
-when a step depends on where a drone is or what it reads; it never guesses a number the plan lacks
-except the one documented default, the height a drone on the ground takes off to before a move.
-"""
+"""Plan steps to gateway tool calls, deterministically: units converted, geometry computed, order kept. The
+fleet is read through ``Sensors`` (telemetry over MCP); no number the plan lacks is guessed but one, the
+height a drone on the ground takes off to before a move (``DEFAULT_TAKEOFF_M``)."""
 
 from __future__ import annotations
 
@@ -190,9 +187,8 @@ class Compiler:
         return [*calls, Call("go_to_location", args, step.drone)]
 
     async def _height_from(self, step: Move, up: float) -> float:
-        """The height of a move from an origin that gives none: the other drone's height when the origin
-        is a flying drone (a spot "above" or "beside" it), else the moving drone's own; plus the up/down
-        legs. A drone on the ground with neither takes off to the climb, or to the default height."""
+        """The height of a move from an origin that gives none: a flying origin drone's, else the mover's,
+        plus the up/down legs; with neither flying, the climb, or the default height."""
         other = step.origin.drone if step.origin.kind == "drone" else None
         for drone in (other, step.drone):
             state = await self.sensors.state(drone) if drone else None
@@ -256,10 +252,8 @@ class Compiler:
         return lines
 
     async def branch(self, step: Any) -> tuple[list[Said], list[Any]] | None:
-        """For a step that selects steps (an ``if``, a ``choose``): what it says and the steps it
-        selects, each to be compiled when its turn comes (a branch compiled at once read the fleet before
-        its first step flew: a move after a takeoff in a branch was compiled for a drone on the ground).
-        None for any other step."""
+        """For an ``if`` or a ``choose``: what it says and the steps it selects, each compiled when its turn
+        comes (after the calls before it have flown); None for any other step."""
         if isinstance(step, Condition):
             return await self._condition_branch(step)
         if isinstance(step, Choose):
@@ -322,9 +316,8 @@ def ends_with(after: str, drone: str) -> Compiled:
 
 
 def flown_segments(legs: list[Leg]) -> list[tuple[float, float, float]]:
-    """(north_m, east_m, up_m) of each move a drone flies from where it is, in the legs' order: each
-    horizontal leg is one move (a dogleg passes its corner, an out-and-back goes out); a climb or descent
-    goes with the horizontal leg before it (with the first, when it comes first)."""
+    """(north_m, east_m, up_m) of each move, in the legs' order: each horizontal leg is one move (a dogleg
+    passes its corner); a climb or descent goes with the leg before it (the first, when it comes first)."""
     segments: list[tuple[float, float, float]] = []
     climb_first = 0.0
     for leg in legs:

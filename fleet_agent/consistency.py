@@ -1,16 +1,12 @@
-"""Does a valid plan carry what its request gives? Read without words: the fleet's ids and the numbers.
-
-A plan can validate and still leave out a drone the request names (a drone placed relative to another
-drone, planned relative to itself), fly a drone the request does not name, or drop a number the request
-gives (a height or a distance). Each such gap becomes a note that the planner sends back once for a
-corrected plan. A request that names no drone (``all three``, ``the fullest one``) is not read for ids.
-"""
+"""Does a valid plan carry what its request gives, read by the fleet's ids and the numbers? A plan can leave
+out a drone or a number the request gives, or fly a drone it does not name: each gap is a note the planner
+sends back once. A request that names no drone (``all three``) is not read for ids."""
 
 from __future__ import annotations
 
 from typing import Any
 
-from fleet_agent import lexicon
+from fleet_agent import arithmetic, lexicon
 from fleet_agent.plan import DRONE_FIELDS, Condition, Plan, Report, parse_plan
 from fleet_agent.units import Unit
 
@@ -27,9 +23,8 @@ def gaps(request: str, fleet: list[str], plan: Plan) -> list[str]:
 
 
 def read_plan(request: str, fleet: list[str], data: Any) -> tuple[Plan, list[str]]:
-    """The decoded reply as the plan the host compiles, and what it leaves out of the request (one note
-    each): every rewrite the host makes before compiling, in its order. Raises the validation error of a
-    plan that does not validate."""
+    """The decoded reply as the plan the host compiles (every rewrite before compiling, in order), and a note
+    for each thing it leaves out of the request; raises the validation error of an invalid plan."""
     data = as_stated(request, split_formation(request, flown_on(as_ended(request, data))))
     data = as_request_says(request, data)
     plan = without_unasked(request, fleet, parse_plan(placed_by_name(request, fleet, data), fleet))
@@ -37,11 +32,9 @@ def read_plan(request: str, fleet: list[str], data: Any) -> tuple[Plan, list[str
 
 
 def without_unasked(request: str, fleet: list[str], plan: Plan) -> Plan:
-    """The plan without the steps that cannot be what the request means: a step of a drone the request
-    does not name carrying a number it does not give, when its named drones' steps carry only its numbers
-    (the model copied an example's step, and again when asked to correct it; an unnamed drone's step with
-    the request's numbers or none is kept: "the others", "all three"); a step whose numbers are all 0, in
-    a request that gives no 0."""
+    """The plan without steps that cannot be meant: a step of a drone the request does not name with a
+    number it does not give, when the named drones' steps carry only its numbers (a copied example's step;
+    "the others" keep theirs); a step whose numbers are all 0, in a request that gives no 0."""
     named = _named(request, fleet)
     given = _request_numbers(request, fleet)
     if 0 not in given and any(map(_all_zero, plan.steps)):
@@ -134,7 +127,10 @@ def _plan_drones(data: Any) -> set[str]:
 
 
 def _plan_numbers(data: Any) -> list[float]:
-    return [float(v) for _, v in _items(data) if isinstance(v, int | float) and not isinstance(v, bool)]
+    """The plan's numbers, those its arithmetic values are worked out from included."""
+    found = [float(v) for _, v in _items(data) if isinstance(v, int | float) and not isinstance(v, bool)]
+    worked = [v for k, v in _items(data) if k == "value" and isinstance(v, str)]
+    return found + [n for v in worked for n in arithmetic.numbers(v)]
 
 
 def _items(data: Any) -> list[tuple[str, Any]]:
@@ -149,12 +145,10 @@ def _items(data: Any) -> list[tuple[str, Any]]:
 
 
 def as_request_says(request: str, data: Any) -> Any:
-    """The decoded plan (JSON data) with what the request's own words settle put right, before it is
-    validated, and nothing else: a length whose number the request gives with one unit only carries that
-    unit (the model wrote feet as metres), and a move measured from its own drone, in a request that
-    speaks of home where no step returns home, is measured from its home (the model wrote its own id for
-    "its home"). Both act only on words the lexicon recognises (`fleet_agent.lexicon`); a request in a
-    language it does not know leaves the plan as the model wrote it. No ending is added by words."""
+    """The decoded plan with what the request's words settle put right, before validation: a length whose
+    number the request gives with one unit carries that unit (feet written as metres), and a move from its
+    own drone, in a request that speaks of home, is from its home. Words the lexicon does not know leave
+    the plan as written."""
     if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
         return data
     units = lexicon.number_units(request)
@@ -186,9 +180,8 @@ def _fraction(value: Any, units: dict[float | None, set[Unit]]) -> bool:
 
 
 def placed_by_name(request: str, fleet: list[str], data: Any) -> Any:
-    """The decoded plan with the one move from ``here`` measured from the drone the request names after
-    that move's distance, in the same clause, when that drone is nowhere in the plan ("25 m north of
-    <drone>" planned from the moving drone itself; the repair round wrote the same plan again)."""
+    """The decoded plan with its one move from ``here`` measured from the drone the request names after its
+    distance in the same clause, when that drone is nowhere in the plan ("25 m north of <drone>")."""
     if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
         return data
     moves = [s for s in data["steps"] if _horizontal_move_from_here(s)]
@@ -203,9 +196,8 @@ def placed_by_name(request: str, fleet: list[str], data: Any) -> Any:
 
 
 def as_ended(request: str, data: Any) -> Any:
-    """The decoded plan with no landing or return, as a step or an ``after``, when the request says a drone
-    stays in the air and nothing of coming down, the ground or a home, in words the lexicon knows: both
-    models restated "let them hover", "leave it there", "neka tamo lebdi" as a landing."""
+    """The decoded plan with no landing or return when the request says a drone stays in the air and nothing
+    of coming down or a home, in words the lexicon knows ("let them hover" was planned as a landing)."""
     stays = isinstance(data, dict) and lexicon.says(request, lexicon.STAY_STEMS)
     if stays and not lexicon.says(request, lexicon.DOWN_STEMS + lexicon.HOME_STEMS):
         data["steps"] = _stayed(data.get("steps"))
@@ -227,8 +219,7 @@ def _stayed(steps: Any) -> Any:
 
 def flown_on(data: Any) -> Any:
     """The decoded plan without the landing or return a drone's step ends with when its next step flies it
-    on (a move, a pattern, its return home; a takeoff after a landing keeps it): the 1.5B model landed
-    "Charlie up to 25 m, then drop it by 15 m" after the climb, and each drone before "take them home"."""
+    on (a move, a pattern, its return home; a takeoff after a landing keeps it)."""
     steps = data.get("steps") if isinstance(data, dict) else None
     steps = [s for s in steps if isinstance(s, dict)] if isinstance(steps, list) else []
     for k, step in enumerate(steps):
@@ -239,10 +230,8 @@ def flown_on(data: Any) -> Any:
 
 
 def as_stated(request: str, data: Any) -> Any:
-    """The decoded plan with its legs going the ways the restatement (``in_english``), then the request
-    (its words win), name for their numbers (`_as_said`): "to 20 m, then 25 m south" was planned as 20 m
-    north, then 25 m south. A restatement copying the request is not read; a request naming no compass
-    point the lexicon knows (its words may be unknown) only climbs a move with legs left."""
+    """The decoded plan with its legs going the ways the restatement, then the request (its words win), name
+    for their numbers (`_as_said`); a restatement copying the request is not read."""
     said = str(data.get("in_english") or "") if isinstance(data, dict) else ""
     if said and said.strip() != request.strip():
         data = _as_said(said, data)
@@ -250,12 +239,10 @@ def as_stated(request: str, data: Any) -> Any:
 
 
 def _as_said(text: str, data: Any, known: bool = True) -> Any:
-    """The plan with the k-th leg of a length going the way ``text`` names after its k-th such number (a
-    length named with no way, or other times than the plan flies it, is left), or its one leg or first side
-    the way of the text's one compass word; a drone's first move from where it is at no altitude, while the
-    plan has more legs than the text names ways, whose first leg's number the text names once with no
-    way, climbs to that number (unless ``known`` is false: the text's compass words may be unknown, so
-    none of its legs is given a way, and only a move with more than one leg climbs)."""
+    """The plan with the k-th leg of a length going the way ``text`` names after its k-th such number, or
+    its one leg or first side the way of the text's one compass word; a drone's first move at no altitude,
+    with more legs than the text names ways, climbs to its first leg's number when the text names it with
+    no way (with ``known`` false, no leg is given a way and only a move of two legs or more climbs)."""
     steps = data.get("steps") if isinstance(data, dict) else None
     if not isinstance(steps, list):
         return data
@@ -336,9 +323,8 @@ def _after_number(clause: str, drone: str, distances: set[Any]) -> bool:
 
 
 def split_formation(request: str, data: Any) -> Any:
-    """The decoded plan with a formation whose drones the request names each right before one of its
-    legs' distances ("<a> N m east and <b> M m north") flown as one move each: the drones were sent
-    different ways, not placed together (both models wrote a formation for it)."""
+    """The decoded plan with a formation whose drones the request names each right before one of its legs'
+    distances ("<a> N m east and <b> M m north") flown as one move each: sent different ways."""
     if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
         return data
     tokens = lexicon.tokens(request.lower())
@@ -384,10 +370,8 @@ def _each_its_leg(step: Any, tokens: list[str]) -> list[tuple[str, Any]] | None:
 
 
 def questions_of_fleet(request: str, fleet: list[str], plan: Plan) -> Plan:
-    """An ``if`` read as the question it is, a report of its reading for the drones the request names (the
-    fleet when none), picking as it compared: one that only tells (nothing, or a report) in a request of
-    more drones than its one, and one that flies but carries none of the request's numbers (the 0.5B
-    model's copy of the example's ``if``). Done after the gaps are read: the report has no threshold."""
+    """An ``if`` that only tells, in a request of more drones than its one, or that flies with none of the
+    request's numbers (a copied example), read as a report of the named drones (done after the gaps)."""
     drones, given = sorted(_named(request, fleet)) or list(fleet), _request_numbers(request, fleet)
     return plan.model_copy(update={"steps": [_as_report(step, drones, given) for step in plan.steps]})
 

@@ -1,8 +1,5 @@
-"""A turn: the model writes a plan, the host compiles each step and sends its calls through the checks.
-
-The loop knows no drone, tool or word: the plan's meaning is in `fleet_agent.compiler`, what may be sent
-in `fleet_agent.checks`, how the fleet is read in `fleet_agent.sensors`.
-"""
+"""A turn: the model writes a plan, the host compiles each step and sends its calls through the checks. The
+loop knows no drone, tool or word (`fleet_agent.compiler`, `fleet_agent.checks`, `fleet_agent.sensors` do)."""
 
 from __future__ import annotations
 

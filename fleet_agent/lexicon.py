@@ -1,7 +1,6 @@
-"""The one place the host reads words (``words.toml``, in the languages operators write in): units after a
-number, a drone's home, staying up or coming down, compass points (the request's and its restatement's).
-A word read here only settles what the plan says otherwise (a unit, an origin, an ending, a leg's way);
-with no word the lexicon knows, a request is flown as the model planned it."""
+"""The one place the host reads words (``words.toml``): units after a number, a drone's home, staying up or
+coming down, compass points. A word read here only settles what the plan says otherwise (a unit, an
+origin, an ending, a leg's way); with no word it knows, a request is flown as the model planned it."""
 
 from __future__ import annotations
 

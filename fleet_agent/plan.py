@@ -1,7 +1,5 @@
-"""The plan a model writes: request-shaped steps, typed. Its JSON schema is what the model decodes under.
-
-Drone fields are strings here; ``plan_schema(ids)`` makes them an ``enum`` of the fleet's ids and
-``parse_plan(data, ids)`` refuses an id outside the fleet. Every length carries its unit."""
+"""The plan a model writes: request-shaped steps, typed. ``plan_schema(ids)``, what the model decodes under,
+makes drone fields an ``enum`` of the fleet's ids; ``parse_plan`` refuses others. Lengths carry units."""
 
 from __future__ import annotations
 
@@ -19,6 +17,7 @@ from pydantic import (
     model_validator,
 )
 
+from fleet_agent import arithmetic
 from fleet_agent.units import Unit, to_metres
 
 
@@ -27,14 +26,23 @@ class Strict(BaseModel):
 
 
 class Length(Strict):
-    """A distance or an altitude as the request gave it."""
+    """A distance or an altitude as the request gave it: a number, or arithmetic of the request's numbers
+    that the host works out (`fleet_agent.arithmetic`: "halfway between 8 m and 20 m" is "(8+20)/2")."""
 
-    value: float = Field(ge=0)
+    value: Annotated[float, Field(ge=0)] | Annotated[str, Field(max_length=arithmetic.MAX_CHARS)]
     unit: Unit
+
+    @field_validator("value")
+    @classmethod
+    def _worked_out(cls, value: float | str) -> float | str:
+        if isinstance(value, str) and arithmetic.evaluate(value) < 0:
+            raise ValueError(f"value {value!r} works out below 0; a length is 0 or more")
+        return value
 
     @property
     def metres(self) -> float:
-        return to_metres(self.value, self.unit)
+        value = arithmetic.evaluate(self.value) if isinstance(self.value, str) else self.value
+        return to_metres(value, self.unit)
 
 
 class Direction(StrEnum):
@@ -135,10 +143,8 @@ class Altitude(DroneStep):
 
 
 class Move(DroneStep):
-    """Legs from ``origin`` (up/down legs change the height), at ``altitude`` above home when given. The
-    origin comes before the legs (a decoder writes the schema's order; one that wrote the legs first fell
-    back on ``here``), and may be one word: ``here``, ``home`` or a drone's id (a small model chose
-    ``here`` over ``{"kind": "drone", ...}`` for a spot north of the drone it had just read)."""
+    """Legs from ``origin`` (before the legs: a decoder writes the schema's order), at ``altitude`` above
+    home when given. The origin may be one word, ``here``, ``home`` or a drone's id, as small models write."""
 
     action: Literal["move"]
     drone: str
@@ -168,11 +174,9 @@ POLYGON_SIDES = {"triangle": 3, "square": 4, "pentagon": 5, "hexagon": 6, "octag
 
 
 class Pattern(DroneStep):
-    """A polygon (named, or ``polygon`` with ``sides``) with sides of ``size``; a rectangle ``size`` long
-    and ``spacing`` wide (as long when null); an orbit of radius ``size``; a survey, ``lines`` lines of
-    ``size``, ``spacing`` apart. Flown from where the drone is, first towards ``heading`` (null: north),
-    turning ``turn`` (null: right). Every property is required (null when not given): a guided decoder
-    left out an optional altitude or heading placed before the required ``after``."""
+    """A polygon with sides of ``size``; a rectangle ``size`` by ``spacing``; an orbit of radius ``size``; a
+    survey of ``lines`` lines of ``size``, ``spacing`` apart. From where the drone is, first towards
+    ``heading`` (null: north), turning ``turn`` (null: right). All required, null when not given."""
 
     action: Literal["pattern"]
     drone: str
@@ -190,12 +194,8 @@ class Pattern(DroneStep):
 
 
 class Formation(Strict):
-    """The drones in a shape ``spacing`` apart, centred where they are (or on ``origin``), then ``legs``.
-    A triangle or a square is a polygon of the drones (the host picks the gateway's formation for it).
-    ``after`` is every drone's, required in the schema as a move's is (a landing of the drones asked for
-    after the formation was left out as separate steps)
-    At least two drones: under the schema a model cannot write one drone's circle as a formation (it is an
-    orbit, a pattern)."""
+    """The drones (two or more: one drone's circle is an orbit) in a shape ``spacing`` apart, centred where
+    they are (or on ``origin``), then ``legs``; ``after`` is every drone's, required as a move's is."""
 
     action: Literal["formation"]
     drones: DroneIds = Field(min_length=2)
@@ -239,9 +239,8 @@ MAX_RESTATEMENT_CHARS = 300
 
 
 class Condition(DroneStep):
-    """``then`` when the drone's reading compares true to ``value`` (% or m), else ``otherwise``. Both
-    branches are required (``[]`` when the request gives none): a schema-guided decoder that may stop
-    before an optional property left out the branch the request gave second, or wrote it into ``then``."""
+    """``then`` when the drone's reading compares true to ``value`` (% or m), else ``otherwise``; both are
+    required (``[]`` when not given): a guided decoder left out an optional second branch."""
 
     action: Literal["if"]
     drone: str
@@ -274,11 +273,9 @@ class Plan(Strict):
 
     @model_validator(mode="after")
     def _one_ending(self) -> Plan:
-        """A landing or return written both as a step's ``after`` and as the drone's next step is flown
-        once. A takeoff (or a climb after the flight ended) to a height an earlier step already flew the
-        drone at repeats it: right after that climb its ``after`` becomes the climb's; after a flight it is
-        left out, its landing or return flown where the drone is. Other drones' steps between do not
-        count; a step of several drones does."""
+        """A landing or return written both as an ``after`` and as the drone's next step is flown once. A
+        climb to a height the drone already flew at repeats it: right after that climb, its ``after`` becomes
+        the climb's; after a flight, only its landing or return is kept."""
         kept: list[Any] = []
         last: dict[str, int] = {}  # each drone's last step in ``kept``
         heights: dict[str, float] = {}
@@ -311,9 +308,8 @@ def _ends_again(step: Any, previous: Any) -> bool:
 
 
 def _repeats(step: Any, heights: dict[str, float], previous: Any) -> TypeGuard[Takeoff | Altitude]:
-    """``step`` climbs its drone to a height the plan already flew it at: a takeoff, or a climb right
-    after the drone's flight ended (a climb of a drone on the ground is a takeoff) or repeating the climb
-    before it."""
+    """``step`` climbs its drone to a height the plan already flew it at: a takeoff, or a climb after the
+    drone's flight ended or repeating the climb before it."""
     if not isinstance(step, Takeoff | Altitude) or heights.get(step.drone) != step.altitude.metres:
         return False
     return isinstance(step, Takeoff) or _ended(previous) or _same_climb(step, previous)

@@ -1,8 +1,6 @@
-"""What the model reads before a request: the plan's steps in short, and worked examples.
-
-The examples (``examples.jsonl``) are earlier turns, each plan on one line: a small model copies a reply it
-has seen more faithfully than a described one, at half the tokens of an indented one. All before the
-request stays the same (a local server reuses its cached prefix); the steps are in ``system_prompt.txt``."""
+"""What the model reads before a request: the steps in short (``system_prompt.txt``), then worked examples
+as earlier turns, one line a plan (copied more faithfully than a description). The prefix stays the same
+from request to request, so a local server reuses its cache."""
 
 from __future__ import annotations
 
@@ -31,10 +29,8 @@ POOL, POOL_FLEET, NEAREST = _examples("pool.jsonl"), ["alpha", "bravo", "charlie
 
 
 def prefix_messages(fleet: list[str] | None = None) -> list[dict[str, str]]:
-    """The system prompt, then each example as a user turn and the assistant's plan. The examples are
-    written for a fleet of delta and echo; they are shown with the fleet's own first two ids instead (a
-    decoder held to the fleet's ids cannot write an example's id, and a small model that wanted to then
-    writes whichever id the grammar lets through). The prefix stays the same while the fleet does."""
+    """The system prompt, then each example as a user turn and the assistant's plan, its drones (delta and
+    echo) shown as the fleet's first two ids: a decoder held to the fleet's ids cannot write others."""
     turns = [_turn(text, plan, EXAMPLE_FLEET, fleet) for text, plan in EXAMPLES]
     return [{"role": "system", "content": _STEPS}, *(m for turn in turns for m in turn)]
 
