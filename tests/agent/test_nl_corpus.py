@@ -7,7 +7,7 @@ import math
 import re
 import sys
 from collections import Counter
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from types import ModuleType
 
@@ -1659,3 +1659,275 @@ def test_a_wrong_outcome_fails_the_nineteenth_test_half_checks() -> None:
     zulu = _entry("lang19-zu-bravo-south-home").mission.check
     assert zulu(CTX, flown("bravo", [(-30, 0), (30, 0)], 10, home["bravo"])).ok
     assert not zulu(CTX, flown("bravo", [(-30, 0)], 10, landed_at(CTX.point("bravo", -30, 0)))).ok
+
+
+def test_a_wrong_outcome_fails_the_twentieth_test_half_checks() -> None:
+    """Each trap the twentieth test half sets: the right outcome passes, the likely wrong one fails (the half
+    is read from ``_twentieth_test_half`` itself: it is not in ``corpus()`` yet)."""
+    from bench.nl_corpus import _twentieth_test_half
+
+    entries = {e.id: e for e in _twentieth_test_half()}
+    assert len(entries) == 36 and Counter(e.cls for e in entries.values()) == Counter(
+        dict.fromkeys(CLASSES, 3)
+    )
+    assert all(e.half == "test" for e in entries.values())
+    ft, yd = 0.3048, 0.9144
+    idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
+
+    def check(mid: str) -> Callable[[Evidence], bool]:
+        """The entry's check, bound to the test homes."""
+        return lambda evidence: entries[mid].mission.check(CTX, evidence).ok
+
+    def flown(drone: str, legs: list[tuple[float, float]], alt: float, end: DroneTruth) -> Evidence:
+        return ev({drone: end}, {drone: [*_track(drone, legs, alt), end]})
+
+    def heights(alts: dict[str, list[float]]) -> Evidence:
+        """Each drone over its own pad at the heights given, sampled together; each ends at its last one."""
+        track = {d: [over(CTX.point(d, 0, 0), a) for a in hs] for d, hs in alts.items()}
+        return ev({d: t[-1] for d, t in track.items()}, track)
+
+    def refused(
+        final: dict[str, DroneTruth], text: str, answer: str = "Refused: over the limit."
+    ) -> Evidence:
+        result = [{"name": "move_to_relative", "status": "error", "text": text}]
+        truth = {**idle, **final}
+        return Evidence(truth, {d: [t] for d, t in truth.items()}, result, answer)
+
+    def centre(north: float, east: float) -> tuple[float, float]:
+        lat = sum(HOMES[d][0] for d in DRONES) / 3
+        lon = sum(HOMES[d][1] for d in DRONES) / 3
+        return offset_position(lat, lon, north, east)
+
+    home = {d: landed_at(CTX.point(d, 0, 0)) for d in DRONES}
+    d30 = 30 / math.sqrt(2)
+
+    # a quarter of the way down a 40 m mast is 30 m, not 10 m, not the top
+    mast = check("single20-bravo-level-with-mast-light")
+    assert mast(ev({"bravo": _hovering("bravo", 0, 0, 30)}))
+    assert not mast(ev({"bravo": _hovering("bravo", 0, 0, 10)}))
+    assert not mast(ev({"bravo": _hovering("bravo", 0, 0, 40)}))
+
+    # twice 7 m is 14 m, not 2 m more
+    twice = check("single20-fi-alpha-twice-as-high")
+    assert twice(heights({"alpha": [0, 7, 10, 14]}))
+    assert not twice(heights({"alpha": [0, 7, 9]}))
+    assert not twice(heights({"alpha": [0, 7]}))
+
+    # two hops, back on the pad each time: not one, and not left up after the second
+    hops = check("single20-ur-charlie-two-hops")
+    assert hops(heights({"charlie": [0, 10, 0, 10, 0]}))
+    assert not hops(heights({"charlie": [0, 10, 0]}))
+    assert not hops(heights({"charlie": [0, 10, 0, 10]}))
+
+    # each over the other's pad at its own height; not back over its own, not with the heights swapped
+    swap = check("multi20-alpha-charlie-swap-pads")
+    pads = {d: CTX.point(d, 0, 0) for d in DRONES}
+    assert swap(ev({"alpha": over(pads["charlie"], 10), "charlie": over(pads["alpha"], 15)}))
+    assert not swap(ev({"alpha": over(pads["alpha"], 10), "charlie": over(pads["charlie"], 15)}))
+    assert not swap(ev({"alpha": over(pads["charlie"], 15), "charlie": over(pads["alpha"], 10)}))
+
+    # bravo went up with the others and landed again; not left hovering, not never up
+    spread = check("multi20-hu-spread-bravo-back-down")
+    sides = {"alpha": _hovering("alpha", 0, -15, 12), "charlie": _hovering("charlie", 0, 15, 12)}
+    bravo_hop = [over(pads["bravo"], 12), home["bravo"]]
+    assert spread(
+        ev({**sides, "bravo": home["bravo"]}, {**{d: [t] for d, t in sides.items()}, "bravo": bravo_hop})
+    )
+    assert not spread(ev({**sides, "bravo": over(pads["bravo"], 12)}))
+    assert not spread(ev(sides))
+
+    # alpha lands out there, bravo back on its pad; not both out there
+    pair = check("multi20-th-pair-north-one-returns")
+    alpha_out = landed_at(CTX.point("alpha", 20, 0))
+    alpha_track = [*_track("alpha", [(20, 0)], 10), alpha_out]
+    bravo_back = [*_track("bravo", [(20, 0), (-20, 0)], 10), home["bravo"]]
+    assert pair(ev({"alpha": alpha_out, "bravo": home["bravo"]}, {"alpha": alpha_track, "bravo": bravo_back}))
+    bravo_out = landed_at(CTX.point("bravo", 20, 0))
+    assert not pair(
+        ev({"alpha": alpha_out, "bravo": bravo_out},
+           {"alpha": alpha_track, "bravo": [*_track("bravo", [(20, 0)], 10), bravo_out]}),
+    )  # fmt: skip
+
+    # a landing at the first sensor on the way out; not straight to the second, not on the way back
+    sensors = check("compound20-bravo-lands-at-first-sensor")
+    first = landed_at(CTX.point("bravo", 20, 0))
+    on = [_hovering("bravo", n, 0, 10) for n in range(20, 41)]
+    assert sensors(ev({"bravo": on[-1]}, {"bravo": [*_track("bravo", [(20, 0)], 10), first, *on]}))
+    assert not sensors(flown("bravo", [(40, 0)], 10, on[-1]))
+    back = [*_track("bravo", [(40, 0), (-20, 0)], 10), first, *on]
+    assert not sensors(ev({"bravo": on[-1]}, {"bravo": back}))
+
+    # the climb to 25 m out west before the leg south; not the leg south at 10 m
+    climb = check("compound20-sk-alpha-west-climb-south-land")
+    end = landed_at(CTX.point("alpha", -20, -20))
+    up = [_hovering("alpha", 0, -20, a) for a in (15, 20, 25)]
+    south = [_hovering("alpha", -n, -20, 25) for n in range(21)]
+    assert climb(ev({"alpha": end}, {"alpha": [*_track("alpha", [(0, -20)], 10), *up, *south, end]}))
+    assert not climb(flown("alpha", [(0, -20), (-20, 0)], 10, end))
+
+    # half the way back (15 m south of the pad), not all the way, not where it turned
+    half_back = check("compound20-sw-charlie-half-way-back")
+    assert half_back(flown("charlie", [(-30, 0), (15, 0)], 12, landed_at(CTX.point("charlie", -15, 0))))
+    assert not half_back(flown("charlie", [(-30, 0), (30, 0)], 12, home["charlie"]))
+    assert not half_back(flown("charlie", [(-30, 0)], 12, landed_at(CTX.point("charlie", -30, 0))))
+
+    # alpha is ahead, but by 14 points, not 20: charlie flies
+    lead = check("cond20-alpha-lead-of-twenty-or-charlie")
+    assert lead(ev({"charlie": _hovering("charlie", 0, 25, 10)}))
+    assert not lead(ev({"alpha": _hovering("alpha", 0, 25, 10)}))
+
+    # those with 60 % or more (alpha, charlie); not all three, not bravo
+    sixty = check("cond20-da-sixty-percent-fly-north")
+    north = {d: _hovering(d, 20, 0, 15) for d in DRONES}
+    assert sixty(ev({d: north[d] for d in ("alpha", "charlie")}))
+    assert not sixty(ev(north))
+    assert not sixty(ev({d: north[d] for d in ("alpha", "bravo")}))
+
+    # bravo is under 50 %: alpha does the job; not bravo
+    either = check("cond20-ky-bravo-or-alpha-south-land")
+    assert either(flown("alpha", [(-20, 0)], 10, landed_at(CTX.point("alpha", -20, 0))))
+    assert not either(flown("bravo", [(-20, 0)], 10, landed_at(CTX.point("bravo", -20, 0))))
+
+    # a north-south column 30 m west; not a row east-west there (the way it travelled), not over the pads
+    column = check("form20-column-west")
+    assert column(ev({d: over(centre(n, -30), 20) for d, n in zip(DRONES, (8, 0, -8), strict=True)}))
+    assert not column(ev({d: over(centre(0, e - 30), 20) for d, e in zip(DRONES, (-8, 0, 8), strict=True)}))
+    assert not column(ev({d: over(centre(n, 0), 20) for d, n in zip(DRONES, (8, 0, -8), strict=True)}))
+
+    # an equilateral triangle of 12 m sides 20 m south; not a row 12 m apart, not over the pads
+    r = 12 / math.sqrt(3)
+    ring = [(r, 0.0), (-r / 2, 6.0), (-r / 2, -6.0)]
+    triangle = check("form20-ca-triangle-south")
+    assert triangle(ev({d: over(centre(n - 20, e), 15) for d, (n, e) in zip(DRONES, ring, strict=True)}))
+    assert not triangle(ev({d: over(centre(-20, e), 15) for d, e in zip(DRONES, (-12, 0, 12), strict=True)}))
+    assert not triangle(ev({d: over(centre(n, e), 15) for d, (n, e) in zip(DRONES, ring, strict=True)}))
+
+    # the row centred over charlie's pad, east-west; not over the pads' centre, not north-south
+    row = check("form20-sr-row-over-charlie-pad")
+    assert row(
+        ev(
+            {
+                d: over(offset_position(*pads["charlie"], 0, e), 10)
+                for d, e in zip(DRONES, (-6, 0, 6), strict=True)
+            }
+        )
+    )
+    assert not row(ev({d: over(centre(0, e), 10) for d, e in zip(DRONES, (-6, 0, 6), strict=True)}))
+    assert not row(
+        ev(
+            {
+                d: over(offset_position(*pads["charlie"], n, 0), 10)
+                for d, n in zip(DRONES, (-6, 0, 6), strict=True)
+            }
+        )
+    )
+
+    # two steps up as well as north (18 m at the top); not level, not one step
+    stairs = check("rel20-bravo-staircase-north")
+    slope = [_hovering("bravo", n, 0, 8 + 5 * n / 12) for n in range(25)]
+    assert stairs(ev({"bravo": slope[-1]}, {"bravo": slope}))
+    assert not stairs(flown("bravo", [(24, 0)], 8, _hovering("bravo", 24, 0, 8)))
+    assert not stairs(flown("bravo", [(24, 0)], 8, _hovering("bravo", 24, 0, 13)))
+
+    # back a quarter of 40 m (10 m), not back to a quarter of the way out, not left at the far end
+    quarter = check("rel20-el-alpha-quarter-back")
+    assert quarter(flown("alpha", [(-40, 0), (10, 0)], 12, _hovering("alpha", -30, 0, 12)))
+    assert not quarter(flown("alpha", [(-40, 0), (30, 0)], 12, _hovering("alpha", -10, 0, 12)))
+    assert not quarter(flown("alpha", [(-40, 0)], 12, _hovering("alpha", -40, 0, 12)))
+
+    # south-east and then 10 m higher; not north-east, not left at 10 m
+    southeast = check("rel20-lt-charlie-southeast-climb")
+    assert southeast(flown("charlie", [(-d30, d30)], 10, _hovering("charlie", -d30, d30, 20)))
+    assert not southeast(flown("charlie", [(d30, d30)], 10, _hovering("charlie", d30, d30, 20)))
+    assert not southeast(flown("charlie", [(-d30, d30)], 10, _hovering("charlie", -d30, d30, 10)))
+
+    # questions: the fullest against the emptiest (not the next one); the lead over the second, not the
+    # last; missions while 30 % stays, not the charge over 15 %
+    spread_q = check("ask20-spread-fullest-emptiest")
+    assert spread_q(ev({}, text="36 points: alpha has 83 %, bravo 47 %."))
+    assert spread_q(ev({}, text="alpha 83 %, bravo 47 %, charlie 65 %"))
+    assert not spread_q(ev({}, text="18 points, between alpha and charlie."))
+    second = check("ask20-bg-lead-over-second")
+    assert second(ev({}, text="bravo: 91 %, с 14 пункта пред charlie (77 %)"))
+    assert not second(ev({}, text="bravo: 91 %, с 33 пункта пред alpha (58 %)"))
+    missions = check("ask20-jv-charlie-missions-left")
+    assert missions(ev({}, text="Ping 3: charlie saiki 78 %."))
+    assert not missions(ev({}, text="Ping 5."))
+    assert not missions(heights({"charlie": [0, 5]}))
+
+    # the low battery refused and reported; not flown, not refused and called done
+    low = check("refuse20-charlie-low-battery")
+    no_battery = "battery: charlie has 24 %, below the 30 % needed to take off"
+    assert low(refused({}, no_battery))
+    assert not low(ev({"charlie": _hovering("charlie", 50, 0, 10)}, text="Charlie is over the gate."))
+    assert not low(refused({}, no_battery, answer="Done."))
+
+    # the first 600 m flown, the second leg refused; not the whole flight refused, not flown on
+    fence = check("refuse20-ms-bravo-second-leg-too-far")
+    too_far = "max_distance: 1200 m from home is beyond the limit of 1000 m"
+    assert fence(refused({"bravo": _hovering("bravo", 0, -600, 30)}, too_far))
+    assert not fence(refused({"bravo": _hovering("bravo", 0, 0, 30)}, too_far))
+    assert not fence(flown("bravo", [(0, -1200)], 30, _hovering("bravo", 0, -1200, 30)))
+
+    # 9 m down from 10 m is 1 m: refused; not flown down, not clamped to 2 m without a word
+    truck = check("refuse20-ceb-alpha-down-to-one-metre")
+    assert truck(
+        refused({"alpha": _hovering("alpha", 0, 0, 10)}, "min_altitude: 1 m is below the minimum of 2 m")
+    )
+    assert not truck(ev({"alpha": _hovering("alpha", 0, 0, 1)}, text="alpha is at 1 m."))
+    assert not truck(ev({"alpha": _hovering("alpha", 0, 0, 2)}, text="alpha is at 2 m."))
+
+    # yards and feet, not metres; cm and km, not m
+    yards = check("units20-alpha-feet-yards")
+    assert yards(flown("alpha", [(0, -250 * yd)], 35 * ft, _hovering("alpha", 0, -250 * yd, 20 * ft)))
+    assert not yards(flown("alpha", [(0, -250)], 35 * ft, _hovering("alpha", 0, -250, 20 * ft)))
+    assert not yards(flown("alpha", [(0, -250 * yd)], 35 * ft, _hovering("alpha", 0, -250 * yd, 20)))
+    feet_km = check("units20-no-charlie-feet-km")
+    assert feet_km(flown("charlie", [(200, 0)], 40 * ft, landed_at(CTX.point("charlie", 200, 0))))
+    assert not feet_km(flown("charlie", [(200, 0)], 40, landed_at(CTX.point("charlie", 200, 0))))
+    assert not feet_km(flown("charlie", [(20, 0)], 40 * ft, landed_at(CTX.point("charlie", 20, 0))))
+    cm_km = check("units20-et-bravo-cm-km")
+    assert cm_km(ev({"bravo": _hovering("bravo", 0, -40, 15)}))
+    assert not cm_km(ev({"bravo": _hovering("bravo", 0, -4, 15)}))
+
+    # the passes stepping east, not west; the square turning left, not right; the triangle turning right
+    mow = check("pattern20-alpha-mow-north")
+    east_steps = [(40, 0), (0, 10), (-40, 0), (0, 10), (40, 0)]
+    assert mow(flown("alpha", east_steps, 15, landed_at(CTX.point("alpha", 40, 20))))
+    west_steps = [(n, -e) for n, e in east_steps]
+    assert not mow(flown("alpha", west_steps, 15, landed_at(CTX.point("alpha", 40, -20))))
+    square = check("pattern20-bn-charlie-square-left")
+    assert square(flown("charlie", [(0, -20), (-20, 0), (0, 20), (20, 0)], 10, home["charlie"]))
+    assert not square(flown("charlie", [(0, -20), (20, 0), (0, 20), (-20, 0)], 10, home["charlie"]))
+    side = 20 * math.sqrt(3) / 2
+    tri = check("pattern20-tl-bravo-triangle-right")
+    assert tri(flown("bravo", [(20, 0), (-10, side), (-10, -side)], 12, home["bravo"]))
+    assert not tri(flown("bravo", [(20, 0), (-10, -side), (-10, side)], 12, home["bravo"]))
+
+    # placements from alpha, not from charlie's own pad
+    lower = check("place20-charlie-north-lower-than-alpha")
+    alpha_up = over(pads["alpha"], 20)
+    assert lower(ev({"alpha": alpha_up, "charlie": over(CTX.point("alpha", 15, 0), 12)}))
+    assert not lower(ev({"alpha": alpha_up, "charlie": _hovering("charlie", 15, 0, 12)}))
+    assert not lower(ev({"alpha": alpha_up, "charlie": over(CTX.point("alpha", 15, 0), 8)}))
+    east_of = check("place20-af-charlie-east-of-alpha")
+    alpha_south = _hovering("alpha", -20, 0, 12)
+    assert east_of(ev({"alpha": alpha_south, "charlie": over(CTX.point("alpha", -20, 10), 12)}))
+    assert not east_of(ev({"alpha": alpha_south, "charlie": _hovering("charlie", -20, 10, 12)}))
+    assert not east_of(ev({"alpha": alpha_south, "charlie": over(CTX.point("alpha", 0, 10), 12)}))
+    above = check("place20-sl-charlie-over-alpha-pad-above-bravo")
+    bravo_west = _hovering("bravo", 0, -20, 15)
+    assert above(ev({"bravo": bravo_west, "charlie": over(pads["alpha"], 20)}))
+    assert not above(ev({"bravo": bravo_west, "charlie": over(pads["charlie"], 20)}))
+    assert not above(ev({"bravo": bravo_west, "charlie": over(pads["alpha"], 15)}))
+
+    # the language class: west, not east; the second leg east, not west; the landing at the end
+    burmese = check("lang20-my-alpha-west-land")
+    assert burmese(flown("alpha", [(0, -25)], 10, landed_at(CTX.point("alpha", 0, -25))))
+    assert not burmese(flown("alpha", [(0, 25)], 10, landed_at(CTX.point("alpha", 0, 25))))
+    yoruba = check("lang20-yo-bravo-north-east-hover")
+    assert yoruba(flown("bravo", [(20, 0), (0, 10)], 15, _hovering("bravo", 20, 10, 15)))
+    assert not yoruba(flown("bravo", [(20, 0), (0, -10)], 15, _hovering("bravo", 20, -10, 15)))
+    somali = check("lang20-so-charlie-east-north-land")
+    assert somali(flown("charlie", [(0, 20), (20, 0)], 12, landed_at(CTX.point("charlie", 20, 20))))
+    assert not somali(flown("charlie", [(0, 20), (20, 0)], 12, _hovering("charlie", 20, 20, 12)))
