@@ -10,6 +10,7 @@ from typing import Annotated, Any, Literal, TypeGuard
 from pydantic import (
     AfterValidator,
     BaseModel,
+    BeforeValidator,
     ConfigDict,
     Field,
     ValidationInfo,
@@ -45,6 +46,14 @@ class Length(Strict):
         return to_metres(value, self.unit)
 
 
+def _zero_is_none(value: Any) -> Any:
+    """A move's or a pattern's 0 m is no height given: both models wrote 0 where the request gave none."""
+    return None if isinstance(value, dict) and value.get("value") == 0 else value
+
+
+FlownHeight = Annotated[Length | None, BeforeValidator(_zero_is_none)]
+
+
 class Direction(StrEnum):
     north, south, east, west = "north", "south", "east", "west"
     northeast, northwest, southeast, southwest = "northeast", "northwest", "southeast", "southwest"
@@ -74,8 +83,7 @@ class Leg(Strict):
 
 
 class Reference(Strict):
-    """Where a move is measured from: the drone itself (here), its home, another drone, a named place, a
-    point given by its coordinates."""
+    """Where a move is measured from: the drone itself (here), its home, another drone, a place, a point."""
 
     kind: Literal["here", "home", "drone", "place", "point"]
     drone: str | None = None
@@ -102,15 +110,13 @@ def _known_drones(value: list[str], info: ValidationInfo) -> list[str]:
 DroneIds = Annotated[list[str], AfterValidator(_known_drones)]
 
 
-#: what a drone does once a climb, a move or a pattern is flown: a choice the schema requires, so that a
-#: model decides it where it writes the step (a landing the request asks for at the end was dropped as a
-#: separate step, and one it did not ask for was added after a takeoff)
+#: what a drone does once a climb, a move or a pattern is flown, required where the step is written (a
+#: landing asked for at the end was dropped as a separate step; one not asked for was added after a takeoff)
 Ending = Literal["stay", "land", "return_home"]
 
 
 class Takeoff(DroneStep):
-    """Up to ``altitude``, then ``after``. ``after`` defaults to ``stay`` when read, and is required in
-    the schema the model decodes under (`plan_schema`)."""
+    """Up to ``altitude``, then ``after`` (``stay`` when read; required in the schema, `plan_schema`)."""
 
     action: Literal["takeoff"]
     drone: str
@@ -150,14 +156,8 @@ class Move(DroneStep):
     drone: str
     origin: Reference
     legs: list[Leg] = Field(max_length=MAX_LEGS)
-    altitude: Length | None
+    altitude: FlownHeight
     after: Ending
-
-    @field_validator("altitude", mode="before")
-    @classmethod
-    def _zero_is_none(cls, value: Any) -> Any:
-        """A move at 0 m flies at no given height: both models wrote 0 where the request gave none."""
-        return None if isinstance(value, dict) and value.get("value") == 0 else value
 
     @field_validator("origin", mode="before")
     @classmethod
@@ -189,7 +189,7 @@ class Pattern(DroneStep):
     spacing: Length | None
     heading: Direction | None
     turn: Literal["right", "left"] | None
-    altitude: Length | None
+    altitude: FlownHeight
     after: Ending
 
 

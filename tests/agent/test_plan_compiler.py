@@ -8,7 +8,7 @@ import pytest
 from pydantic import ValidationError
 
 from fleet_agent import geometry
-from fleet_agent.compiler import Call, CompileError, Compiler, DroneState, Said
+from fleet_agent.compiler import DEFAULT_TAKEOFF_M, Call, CompileError, Compiler, DroneState, Said
 from fleet_agent.plan import parse_plan, plan_schema
 from fleet_agent.prompt import EXAMPLES, system_prompt, user_message
 
@@ -291,6 +291,18 @@ async def test_a_move_or_pattern_ends_as_its_after_says_and_a_repeated_ending_is
     lands = [{"action": "land", "drone": "alpha"}, {"action": "land", "drone": "bravo"}]
     plan = parse_plan({"steps": [step, *lands]}, FLEET)
     assert [s.action for s in plan.steps] == ["move", "land"] and plan.steps[1].drone == "bravo"
+
+
+async def test_a_pattern_at_0_m_flies_at_no_given_height_as_a_move_does() -> None:
+    """A 1.5B plan gave its square an altitude of 0 m where the request gave none: read as a height, that
+    was a takeoff to 0 m from the ground and a landing before the legs in the air."""
+    square = {**NULLS, **STAY, "action": "pattern", "drone": "alpha", "shape": "square", "size": m(10),
+              "altitude": m(0)}  # fmt: skip
+    in_the_air = await compiled(square, FakeSensors({"alpha": flying()}))
+    assert [c.tool for c in in_the_air] == ["move_to_relative"] * 4
+    from_the_ground = await compiled(square)
+    assert from_the_ground[0] == Call("takeoff", {"drone_id": "alpha", "alt_m": DEFAULT_TAKEOFF_M}, "alpha")
+    assert [c.tool for c in from_the_ground[1:]] == ["move_to_relative"] * 4
 
 
 async def test_a_named_polygon_has_its_sides_and_a_polygon_its_count() -> None:
