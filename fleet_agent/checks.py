@@ -1,6 +1,5 @@
-"""Checks of a compiled call before it is sent, run in order: ``Allow``, ``Reject`` (not sent, the note goes
-into the answer), ``Replace`` (another call instead) or ``Stop`` (nothing more this turn). The safety rules
-are the gateway's: no check loosens or duplicates them (a refusal comes back as data)."""
+"""Checks of a call before it is sent, in order: ``Allow``, ``Reject`` (not sent, its note in the answer),
+``Replace`` (another call) or ``Stop`` (no more this turn); none loosens or repeats the gateway's rules."""
 
 from __future__ import annotations
 

@@ -1,6 +1,5 @@
-"""Plan steps to gateway tool calls, deterministically: units converted, geometry computed, order kept. The
-fleet is read through ``Sensors`` (telemetry over MCP); no number the plan lacks is guessed but one, the
-height a drone on the ground takes off to before a move (``DEFAULT_TAKEOFF_M``)."""
+"""Plan steps to gateway tool calls, deterministically (units, geometry, order), the fleet read through
+``Sensors``; nothing the plan lacks is guessed but a grounded drone's takeoff height: ``DEFAULT_TAKEOFF_M``"""
 
 from __future__ import annotations
 

@@ -1,6 +1,5 @@
-"""Flat-earth geometry over short distances: offsets in metres, a pattern's legs, a polygon's corners.
-
-Good to a few centimetres over the few kilometres a gateway's policy lets a drone fly from home."""
+"""Flat-earth geometry over short distances (offsets in metres, a pattern's legs, a polygon's corners): good
+to a few centimetres over the few kilometres a gateway's policy lets a drone fly from home."""
 
 from __future__ import annotations
 

@@ -1,6 +1,5 @@
-"""What the model reads before a request: the steps in short (``system_prompt.txt``), then worked examples
-as earlier turns, one line a plan (copied more faithfully than a description). The prefix stays the same
-from request to request, so a local server reuses its cache."""
+"""What the model reads before a request: the steps in short (``system_prompt.txt``), then worked examples as
+earlier turns, one line a plan (copied more faithfully than a description); one prefix, a server's cache."""
 
 from __future__ import annotations
 
