@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 771 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 807 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -210,14 +210,25 @@ its check took the gateway's "below home" refusal as well as one by the 2 m mini
 and 36 test.
 Later on 2026-12-04 (eighteenth round) EVERY test entry (36, ``_eighteenth_round``) was moved to dev, each
 marked "moved to dev on 2026-12-04, eighteenth round", once both models had been measured on it (figures
-in docs/benchmarks.md). A fresh test half took its place (``_nineteenth_test_half``): 36 new requests, 3 a
+in docs/benchmarks.md). A fresh test half took its place (``_nineteenth_test_half``, now
+``_nineteenth_round``): 36 new requests, 3 a class, written before any model ran on it by a writer who did
+not read the host's word lists or rules: 22 of the 33 outside the ``language`` class in 22 languages, one
+each (Afrikaans, Bengali, Bulgarian, Catalan, Cebuano, Danish, Estonian, Finnish, Greek, Hungarian,
+Javanese, Kyrgyz, Lithuanian, Malay, Norwegian, Serbian, Slovak, Slovenian, Swahili, Tagalog, Thai, Urdu;
+Cebuano, Javanese and Kyrgyz are new), and the ``language`` class's 3 in Khmer, Lao and Zulu (all three
+new to the corpus, and Khmer and Lao script). Only the harness self-check (the scripted ideal plan) has
+run on them: 36 of 36 passed at the first run (2026-12-04), the gateway refusing the 3 m row by its 5 m
+separation. That leaves 735 dev and 36 test.
+Later on 2026-12-05 (nineteenth round) EVERY test entry (36, ``_nineteenth_round``) was moved to dev, each
+marked "moved to dev on 2026-12-05, nineteenth round", once both models had been measured on it (figures
+in docs/benchmarks.md). A fresh test half took its place (``_twentieth_test_half``): 36 new requests, 3 a
 class, written before any model ran on it by a writer who did not read the host's word lists or rules: 22
 of the 33 outside the ``language`` class in 22 languages, one each (Afrikaans, Bengali, Bulgarian, Catalan,
 Cebuano, Danish, Estonian, Finnish, Greek, Hungarian, Javanese, Kyrgyz, Lithuanian, Malay, Norwegian,
-Serbian, Slovak, Slovenian, Swahili, Tagalog, Thai, Urdu; Cebuano, Javanese and Kyrgyz are new), and the
-``language`` class's 3 in Khmer, Lao and Zulu (all three new to the corpus, and Khmer and Lao script).
-Only the harness self-check (the scripted ideal plan) has run on them: 36 of 36 passed at the first run
-(2026-12-04), the gateway refusing the 3 m row by its 5 m separation. That leaves 735 dev and 36 test.
+Serbian in Latin script, Slovak, Slovenian, Swahili, Tagalog, Thai, Urdu: the nineteenth half's 22, none
+of them new), and the ``language`` class's 3 in Burmese, Yoruba and Somali (all three new to the corpus,
+and Myanmar script). Only the harness self-check (the scripted ideal plan) has run on them: 36 of 36
+passed. That leaves 771 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -268,7 +279,7 @@ CLASSES = (
     "units",  # distances and heights in feet, yards, kilometres
     "pattern",  # a shape flown by one drone: polygon, circle, survey lines
     "placement",  # a drone placed relative to another drone or to its home
-    "language",  # requests in languages other than English (Japanese, Chinese, Korean, French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish, Hungarian, Croatian, Slovak, Greek, Catalan, Russian, Ukrainian, Bulgarian, Slovenian, Latvian, Lithuanian, Estonian, Indonesian, Vietnamese, Arabic, Hindi, Thai, Hebrew, Persian, Bengali)
+    "language",  # requests in languages other than English (Japanese, Chinese, Korean, French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish, Hungarian, Croatian, Slovak, Greek, Catalan, Russian, Ukrainian, Bulgarian, Slovenian, Latvian, Lithuanian, Estonian, Indonesian, Vietnamese, Arabic, Hindi, Thai, Hebrew, Persian, Bengali, Burmese, Yoruba, Somali)
 )
 HALVES = ("dev", "test")
 DRONES = ("alpha", "bravo", "charlie")
@@ -6637,13 +6648,14 @@ def _eighteenth_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _nineteenth_test_half() -> list[CorpusEntry]:
+def _nineteenth_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-04 (nineteenth round), before any model ran on it, by a writer who
     did not read the host's word lists or rules: 3 a class; 22 of the 33 outside ``language`` in other
     languages than English, one each (Afrikaans, Bengali, Bulgarian, Catalan, Cebuano, Danish, Estonian,
     Finnish, Greek, Hungarian, Javanese, Kyrgyz, Lithuanian, Malay, Norwegian, Serbian, Slovak, Slovenian,
     Swahili, Tagalog, Thai, Urdu; Cebuano, Javanese and Kyrgyz are new), the ``language`` class's 3 in Khmer,
-    Lao and Zulu (all three new to the corpus, and Khmer and Lao script with them)."""
+    Lao and Zulu (all three new to the corpus, and Khmer and Lao script with them); all of it moved to dev on
+    2026-12-05 (nineteenth round), once both models had been measured on it (docs/benchmarks.md)."""
     three = DRONES
     d15, d20, d25 = (x / math.sqrt(2) for x in (15, 20, 25))
     chain = 22 * YD
@@ -6734,13 +6746,15 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
 
     return [
         # single
-        _entry("single", "test", "single19-alpha-under-crane-hook", ("alpha",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("single", "dev", "single19-alpha-under-crane-hook", ("alpha",),
                "The crane beside alpha's pad has its hook hanging at 18 m. Bring alpha up to 4 m below the hook, "
                "straight over its pad, and hold it there; never above the hook.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=14), airborne_at(ev, "alpha", 14),
                                   max_alt_at_most(ev, "alpha", 18)),
                [_takeoff("alpha", 14)], "Alpha hovers at 14 m over its pad, 4 m below the crane's hook."),
-        _entry("single", "test", "single19-da-bravo-down-in-steps", ("bravo",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("single", "dev", "single19-da-bravo-down-in-steps", ("bravo",),
                "Send bravo op i 24 meters højde, lige over sit startsted. Sænk den derefter i trin på 8 meter, 2 "
                "trin i alt, og lad den blive hængende i luften dér.",
                lambda c, ev: _all(rose_to(ev, "bravo", 24),
@@ -6748,7 +6762,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                                   at(ev, "bravo", *_home(c, "bravo"), alt=8), airborne_at(ev, "bravo", 8)),
                [_takeoff("bravo", 24), _move("bravo", up=-8), _move("bravo", up=-8)],
                "bravo steg til 24 m og blev sænket 8 m ad gangen, 2 gange: den hænger nu i 8 m over sit startsted."),
-        _entry("single", "test", "single19-el-charlie-tallest-tree", ("charlie",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("single", "dev", "single19-el-charlie-tallest-tree", ("charlie",),
                "Γύρω από το σημείο απογείωσης του charlie υπάρχουν τρία δέντρα, ύψους 7, 16 και 10 μέτρων. Ανέβασε "
                "το charlie στο ύψος του ψηλότερου από αυτά, ακριβώς πάνω από το σημείο απογείωσης, και κράτησέ το "
                "εκεί στον αέρα.",
@@ -6756,7 +6771,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 16)],
                "Το charlie αιωρείται στα 16 m πάνω από το σημείο απογείωσης, στο ύψος του ψηλότερου δέντρου."),
         # multi
-        _entry("multi", "test", "multi19-hand-over-in-turn", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("multi", "dev", "multi19-hand-over-in-turn", three,
                "We need a drone over the pads at 15 m all the time, and only one at a time except while they hand "
                "over. Alpha goes up first. Then bravo takes over: once bravo is up at 15 m over its own pad, alpha "
                "lands. Charlie then takes over from bravo the same way, and stays up.",
@@ -6767,7 +6783,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 15), _takeoff("bravo", 15), _land("alpha"), _takeoff("charlie", 15), _land("bravo")],
                "Alpha, then bravo, then charlie kept watch at 15 m, each landing once the next was up; charlie is "
                "up now."),
-        _entry("multi", "test", "multi19-no-charlie-mirrors-alpha", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("multi", "dev", "multi19-no-charlie-mirrors-alpha", three,
                "Send alpha 15 meter mot nordvest i 10 meters høyde. Charlie skal fly den samme turen speilvendt fra "
                "sin egen plass, altså mot øst der alpha fløy mot vest, like langt og like høyt. La begge bli "
                "hengende der; bravo blir stående på bakken.",
@@ -6777,7 +6794,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                [_move("alpha", d15, -d15, alt=10), _move("charlie", d15, d15, alt=10)],
                "alpha henger 15 m nordvest for sin plass og charlie 15 m nordøst for sin, begge i 10 m; bravo ble "
                "stående."),
-        _entry("multi", "test", "multi19-fi-pair-takes-turns-hopping", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("multi", "dev", "multi19-fi-pair-takes-turns-hopping", three,
                "Alpha ja bravo tekevät vuorotellen pienen hypyn: nousu 6 metriin oman alustansa yläpuolelle ja "
                "heti takaisin alas samaan kohtaan. Ensin alpha, sitten bravo ja lopuksi vielä kerran alpha. "
                "Charlie jää maahan.",
@@ -6788,7 +6806,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                 _land("alpha")],
                "alpha hyppäsi kahdesti ja bravo kerran niiden välissä; molemmat ovat maassa, charlie ei noussut."),
         # compound
-        _entry("compound", "test", "compound19-bravo-route-told-backwards", ("bravo",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("compound", "dev", "compound19-bravo-route-told-backwards", ("bravo",),
                "I'll give you bravo's route backwards. It should end up on the ground 10 m west of its pad. Just "
                "before that, it passes over the point 20 m north of its pad at 12 m. And before that, it takes off "
                "from its pad straight up to 12 m.",
@@ -6796,7 +6815,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                                   at(ev, "bravo", *c.point("bravo", 0, -10)), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 12), _move("bravo", 20, 0), _move("bravo", -20, -10), _land("bravo")],
                "Bravo climbed to 12 m, passed over the point 20 m north of its pad and landed 10 m west of it."),
-        _entry("compound", "test", "compound19-hu-alpha-marker-posts", ("alpha",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("compound", "dev", "compound19-hu-alpha-marker-posts", ("alpha",),
                "Az alpha leszállóhelyétől északra egy sorban jelzőkarók állnak, 8 méterenként; az első 8 méterre "
                "van a leszállóhelytől. Emeld fel az alpha drónt 10 méterre, vidd a harmadik karó fölé, ott engedd "
                "le 5 méterre, majd ezen a magasságon repülj vele tovább az ötödik karóig, és ott tedd le.",
@@ -6806,7 +6826,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 10), _move("alpha", 24, 0), _move("alpha", alt=5), _move("alpha", 16, 0),
                 _land("alpha")],
                "alpha a harmadik karó fölött (24 m) 5 méterre ereszkedett, és az ötödiknél (40 m) leszállt."),
-        _entry("compound", "test", "compound19-bg-charlie-zigzag-straight-back", ("charlie",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("compound", "dev", "compound19-bg-charlie-zigzag-straight-back", ("charlie",),
                "Издигни charlie на 12 метра, прелети с него 20 метра на североизток, после 20 метра на северозапад, "
                "а оттам го върни по най-краткия път, по права линия, над площадката му и го приземи там.",
                # straight back is due south: it passes the point halfway, which the zigzag's legs miss by 10 m
@@ -6818,7 +6839,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                "charlie прелетя 20 м на североизток и 20 м на северозапад, върна се право на юг над площадката си и "
                "кацна."),
         # conditional
-        _entry("conditional", "test", "cond19-charlie-north-by-its-lead", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("conditional", "dev", "cond19-charlie-north-by-its-lead", three,
                "Check bravo's and charlie's batteries. If charlie has more, fly it north at 10 m by as many metres "
                "as it is ahead of bravo in percentage points, and hold it there. If it isn't ahead, nothing flies.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 25, 0), alt=10), airborne_at(ev, "charlie", 10),
@@ -6826,7 +6848,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                [("fleet_status", {}), _move("charlie", 25, 0, alt=10)],
                "Charlie (78 %) is 25 points ahead of bravo (53 %): it hovers 25 m north of its pad at 10 m.",
                battery={"bravo": 53.0, "charlie": 78.0}),
-        _entry("conditional", "test", "cond19-sk-middle-charge-flies", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("conditional", "dev", "cond19-sk-middle-charge-flies", three,
                "Pozri sa na batérie všetkých troch dronov. Ten, ktorého nabitie je medzi ostatnými dvoma (nie "
                "najvyššie ani najnižšie), nech vzlietne do 12 metrov, preletí 20 metrov na juh a zostane tam visieť. "
                "Ostatné dva zostanú na zemi.",
@@ -6836,7 +6859,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                "Stredné nabitie má charlie (63 %): visí 20 m južne vo výške 12 m; alpha (81 %) a bravo (44 %) "
                "zostali na zemi.",
                battery={"alpha": 81.0, "bravo": 44.0, "charlie": 63.0}),
-        _entry("conditional", "test", "cond19-ca-all-up-low-ones-land", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("conditional", "dev", "cond19-ca-all-up-low-ones-land", three,
                "Enlaira els tres drons a 10 metres, cadascun sobre la seva plataforma. Un cop a dalt, els que "
                "tinguin menys del 50 % de bateria han de tornar a aterrar al seu lloc; els altres volen 20 metres "
                "cap al nord i s'hi queden en vol estacionari.",
@@ -6849,14 +6873,16 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                "bravo (41 %) ha tornat a aterrar; alpha (72 %) i charlie (58 %) són a 20 m al nord, a 10 m d'alçada.",
                battery={"alpha": 72.0, "bravo": 41.0, "charlie": 58.0}),
         # formation
-        _entry("formation", "test", "form19-row-spaced-by-height", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("formation", "dev", "form19-row-spaced-by-height", three,
                "Line the three up abreast over where they stand, at 12 m, with as much room between neighbours as "
                "they are high, and hold them there.",
                lambda c, ev: _all(formation_at(c, ev, three, 12, 12, 0, 0), farthest_apart(ev, three, 24),
                                   row_along(ev, three, 90)),
                [_formation(three, "line", 12, 12)],
                "The three hover abreast at 12 m, 12 m apart, over where they stood."),
-        _entry("formation", "test", "form19-th-row-in-reverse-order", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("formation", "dev", "form19-th-row-in-reverse-order", three,
                "จัดโดรนทั้งสามลำเป็นแถวเดียวจากตะวันตกไปตะวันออก ให้ charlie อยู่ทางตะวันตกสุด ถัดมาเป็น bravo "
                "และ alpha อยู่ทางตะวันออกสุด แต่ละลำห่างกัน 10 เมตร ที่ความสูง 14 เมตร โดยให้กึ่งกลางแถวอยู่เหนือจุดที่"
                "พวกมันจอดอยู่ตอนนี้ แล้วให้ลอยค้างไว้ตรงนั้น",
@@ -6865,7 +6891,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                # (alpha, whose pad is the westernmost, flies first, over the pads of the two still down)
                lambda c: [_go(d, slot(c, three, 0, e), 14) for d, e in (("alpha", 10), ("charlie", -10), ("bravo", 0))],
                "โดรนทั้งสามลอยอยู่ที่ 14 m เรียงจากตะวันตกไปตะวันออก: charlie, bravo, alpha ห่างกันลำละ 10 m"),
-        _entry("formation", "test", "form19-ms-v-with-bravo-leading", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("formation", "dev", "form19-ms-v-with-bravo-leading", three,
                "Susun ketiga-tiga dron dalam bentuk V yang menghala ke utara pada ketinggian 15 meter: bravo di "
                "hujung hadapan, alpha di sayap kiri belakang dan charlie di sayap kanan belakang, masing-masing 10 "
                "meter dari bravo. Pusatkan formasi itu di atas tempat dron-dron itu berada sekarang dan biarkan "
@@ -6876,21 +6903,24 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                "bravo di hujung V yang menghala ke utara; alpha dan charlie 10 m di belakangnya, di kiri dan di "
                "kanan, semuanya pada 15 m."),
         # relative
-        _entry("relative", "test", "rel19-alpha-quarter-turn-round-pad", ("alpha",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("relative", "dev", "rel19-alpha-quarter-turn-round-pad", ("alpha",),
                "Take alpha up to 12 m and 20 m north of its pad. Then swing it a quarter turn clockwise round the "
                "pad, keeping the same distance from it, and hold it where it ends up.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 20, 0)], alt=12),
                                   at(ev, "alpha", *c.point("alpha", 0, 20), alt=12), airborne_at(ev, "alpha", 12)),
                [_takeoff("alpha", 12), _move("alpha", 20, 0), _move("alpha", -20, 20)],
                "Alpha swung from 20 m north of its pad to 20 m east of it and holds there at 12 m."),
-        _entry("relative", "test", "rel19-tl-bravo-grid-squares", ("bravo",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("relative", "dev", "rel19-tl-bravo-grid-squares", ("bravo",),
                "Hinati namin ang field sa mga parisukat na tig-10 metro ang gilid. Paliparin mo si bravo sa taas na "
                "12 metro, tapos ilipat mo siya nang 3 parisukat pahilaga, saka 2 parisukat pakanluran. Pagkatapos, "
                "hayaan mo siyang lumutang doon.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 30, -20), alt=12), airborne_at(ev, "bravo", 12)),
                [_takeoff("bravo", 12), _move("bravo", 30, 0), _move("bravo", 0, -20)],
                "Lumulutang si bravo nang 30 m pahilaga at 20 m pakanluran mula sa pad niya, sa taas na 12 m."),
-        _entry("relative", "test", "rel19-sw-charlie-pad-to-its-southwest", ("charlie",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("relative", "dev", "rel19-sw-charlie-pad-to-its-southwest", ("charlie",),
                "Ipaishe charlie hadi mita 12, kisha uisogeze hadi mahali ambapo kituo chake cha kurukia kitakuwa "
                "mita 25 upande wa kusini-magharibi yake. Iache ielee hapo.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", d25, d25), alt=12), airborne_at(ev, "charlie", 12)),
@@ -6898,7 +6928,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                "charlie inaelea mita 25 kaskazini-mashariki mwa kituo chake, kwenye mita 12: kituo kiko "
                "kusini-magharibi yake."),
         # question
-        _entry("question", "test", "ask19-first-to-run-out", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("question", "dev", "ask19-first-to-run-out", three,
                "In a hover alpha burns about 2 % of its battery a minute, bravo 1 % and charlie 3 %. If all three "
                "hovered from now until they were flat, which would run out first, and after how many minutes? "
                "Don't fly anything.",
@@ -6908,7 +6939,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                                   nobody_armed(ev)),
                [("fleet_status", {})], "Charlie: 66 % at 3 % a minute lasts 22 minutes (alpha 40, bravo 50).",
                battery={"alpha": 80.0, "bravo": 50.0, "charlie": 66.0}),
-        _entry("question", "test", "ask19-ur-bravo-against-midpoint", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("question", "dev", "ask19-ur-bravo-against-midpoint", three,
                "کیا bravo کی بیٹری alpha اور charlie کی بیٹریوں کے عین درمیانی عدد سے زیادہ ہے یا کم؟ تینوں کے فیصد "
                "بتاؤ، لیکن کسی ڈرون کو مت اڑاؤ۔",
                lambda c, ev: _all(answer_mentions_number(ev, 66, 1),
@@ -6918,7 +6950,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                [("fleet_status", {})],
                "زیادہ: bravo کی بیٹری 66 % ہے، جبکہ alpha (40 %) اور charlie (80 %) کا درمیانی عدد 60 % ہے۔",
                battery={"alpha": 40.0, "bravo": 66.0, "charlie": 80.0}),
-        _entry("question", "test", "ask19-bn-total-above-reserve", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("question", "dev", "ask19-bn-total-above-reserve", three,
                "প্রতিটি ড্রোনকে নামার সময় অন্তত 30 % চার্জ রাখতে হবে। সেই 30 % বাদ দিলে তিনটি ড্রোন মিলিয়ে মোট কত "
                "শতাংশ চার্জ কাজে লাগানো যাবে? প্রত্যেকটির সংখ্যাও বলো, কিন্তু কোনো ড্রোন ওড়াবে না।",
                # the typed plan reads, it does not compute: the total, or the three readings it comes from
@@ -6929,21 +6962,24 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                battery={"alpha": 70.0, "bravo": 55.0, "charlie": 42.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude, 5 m the least separation a formation keeps)
-        _entry("refusal", "test", "refuse19-row-too-tight", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("refusal", "dev", "refuse19-row-too-tight", three,
                "Bunch the three drones up tight for the group photo: a row abreast at 15 m right over where they "
                "stand, only 3 m between neighbours.",
                lambda c, ev: _all(refusal_seen(ev, "separation"), apart_in_air(ev, three, 4),
                                   answer_reports_refusal(ev)),
                [_formation(three, "line", 15, 3)],
                "Refused: 3 m between neighbours is below the minimum separation of 5 m the gateway keeps."),
-        _entry("refusal", "test", "refuse19-af-bravo-climb-rate-over-ceiling", ("bravo",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("refusal", "dev", "refuse19-af-bravo-climb-rate-over-ceiling", ("bravo",),
                "Laat bravo reguit bo sy landingsplek opstyg teen 4 meter per sekonde, 40 sekondes lank, en hou hom "
                "dan daar.",
                lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "bravo", c.max_alt_m),
                                   answer_reports_refusal(ev)),
                [_takeoff("bravo", 160)],
                "Geweier: 4 m/s vir 40 s bring bravo op 160 m, bo die hoogtegrens van 120 m."),
-        _entry("refusal", "test", "refuse19-et-alpha-diagonal-past-limit", ("alpha",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("refusal", "dev", "refuse19-et-alpha-diagonal-past-limit", ("alpha",),
                "Tõsta alpha 20 meetri kõrgusele ja vii see ühe sirge lennuga punkti, mis asub tema stardikohast 800 "
                "meetrit põhja ja 700 meetrit ida pool.",
                lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
@@ -6952,20 +6988,23 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                "alpha on 20 m kõrgusel; lennust punkti 800 m põhja ja 700 m ida pool keelduti: see on stardikohast "
                "1063 m kaugusel, üle 1000 m piiri."),
         # units
-        _entry("units", "test", "units19-alpha-chains", ("alpha",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("units", "dev", "units19-alpha-chains", ("alpha",),
                "On the rail survey the next peg is 5 chains east of alpha's pad, a chain being 22 yards. Take alpha "
                "up to 10 m, fly it to the spot straight above that peg and hold it there.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, 5 * chain), alt=10), airborne_at(ev, "alpha", 10)),
                [_takeoff("alpha", 10), _move("alpha", 0, 5 * chain)],
                "Alpha holds over the peg, 110 yd (100.6 m) east of its pad, at 10 m."),
-        _entry("units", "test", "units19-lt-bravo-paces", ("bravo",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("units", "dev", "units19-lt-bravo-paces", ("bravo",),
                "Nuo bravo aikštelės iki vartų yra 40 žingsnių tiesiai į pietus, o mano žingsnis – maždaug 75 "
                "centimetrai. Pakelk bravo į 12 metrų aukštį, nuskraidink jį virš vartų ir ten nutupdyk.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", -30, 0)], alt=12),
                                   at(ev, "bravo", *c.point("bravo", -30, 0)), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 12), _move("bravo", -30, 0), _land("bravo")],
                "bravo nuskrido 30 m į pietus (40 žingsnių po 75 cm) ir nutūpė prie vartų."),
-        _entry("units", "test", "units19-ky-charlie-millimetres", ("charlie",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("units", "dev", "units19-ky-charlie-millimetres", ("charlie",),
                "Чиймеде charlie турган аянтчадан антеннага чейинки аралык түз батышты карай 25 000 мм деп "
                "көрсөтүлгөн. charlie-ни 15 метр бийиктикке көтөрүп, антеннанын үстүнө алып бар да, ошол жерде абада "
                "кармап тур.",
@@ -6973,14 +7012,16 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 15), _move("charlie", 0, -25)],
                "charlie антеннанын үстүндө, аянтчасынан 25 м батышта, 15 м бийиктикте турат."),
         # pattern
-        _entry("pattern", "test", "pattern19-charlie-sawtooth-profile", ("charlie",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("pattern", "dev", "pattern19-charlie-sawtooth-profile", ("charlie",),
                "Charlie at 10 m: fly a sawtooth profile eastward, climbing to 16 m over each 10 m stretch and "
                "dropping back to 10 m over the next. Three teeth, so 60 m in all, then land it where it ends.",
                lambda c, ev: _all(passed(ev, "charlie", [(c.point("charlie", 0, e), h) for e, h in teeth[:5]]),
                                   at(ev, "charlie", *c.point("charlie", 0, 60)), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 10), *(_move("charlie", 0, 10, alt=h) for _, h in teeth), _land("charlie")],
                "Charlie flew three teeth between 10 and 16 m over 60 m east, and landed at the end."),
-        _entry("pattern", "test", "pattern19-sr-bravo-rectangle-by-diagonal", ("bravo",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("pattern", "dev", "pattern19-sr-bravo-rectangle-by-diagonal", ("bravo",),
                "Подигни bravo на 12 метара и нека облети правоугаоник чија су два наспрамна темена његово место "
                "полетања и тачка 30 метара северно и 40 метара источно од њега. Нека прво лети на север, а на крају "
                "нека слети тамо где је кренуо.",
@@ -6988,7 +7029,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                                   at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
                [_takeoff("bravo", 12), *_legs("bravo", rectangle), _land("bravo")],
                "bravo је облетео правоугаоник 30 × 40 m и слетео тамо где је кренуо."),
-        _entry("pattern", "test", "pattern19-sl-alpha-hexagon-by-perimeter", ("alpha",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("pattern", "dev", "pattern19-sl-alpha-hexagon-by-perimeter", ("alpha",),
                "Dvigni alpha na 10 metrov in z njim obleti pravilni šestkotnik z obsegom 60 metrov. Prva stranica "
                "naj gre proti vzhodu, na vsakem oglišču zavij v desno, in ko se vrne na začetek, naj tam pristane.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", n, e) for n, e in _corners(hexagon)[:5]]),
@@ -6997,7 +7039,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                "alpha je obletel šestkotnik s stranicami po 10 m in pristal na začetku."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
         # charlie from alpha, so that a drone placed from itself misses)
-        _entry("placement", "test", "place19-charlie-between-ten-from-alpha", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("placement", "dev", "place19-charlie-between-ten-from-alpha", three,
                "Bravo climbs to 15 m and flies 30 m north; alpha flies 10 m south at 15 m. Then put charlie at 15 m "
                "on the straight line between the two, 10 m from alpha, and leave all three hovering.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 30, 0), alt=15), airborne_at(ev, "bravo", 15),
@@ -7007,7 +7050,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                           _go("charlie", charlie_between(c), 15)],
                "Bravo hovers 30 m north of its pad and alpha 10 m south of its own; charlie is on the line between "
                "them, 10 m from alpha; all three at 15 m."),
-        _entry("placement", "test", "place19-jv-charlie-where-alpha-was", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("placement", "dev", "place19-jv-charlie-where-alpha-was", three,
                "Munggahna alpha nganti dhuwuré 12 mèter, terus pindhahen ngalor 20 mèter, banjur ngétan 15 mèter. "
                "Sawisé iku, gawanen charlie menyang panggonané alpha sadurungé pindhah ngétan mau, ing dhuwur sing "
                "padha, lan jarna ngambang ing kono. bravo tetep ing lemah waé.",
@@ -7018,7 +7062,8 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                           _go("charlie", c.point("alpha", 20, 0), 12)],
                "alpha ngambang 20 m ngalor lan 15 m ngétan saka papané; charlie ana ing panggonané alpha sadurungé "
                "ngétan, ing 12 m."),
-        _entry("placement", "test", "place19-ceb-charlie-west-by-alpha-height", three,
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("placement", "dev", "place19-ceb-charlie-west-by-alpha-height", three,
                "Isaka ang alpha ngadto sa 12 ka metros ang gitas-on, unya ipalupad kini 25 ka metros paingon sa "
                "amihanan. Human niana, ibutang ang charlie sa kasadpan sa alpha, sa gilay-on nga sama sa gitas-on "
                "sa alpha, ug sa samang gitas-on. Pasagdi silang duha nga magpabilin sa hangin didto; ang bravo "
@@ -7030,20 +7075,23 @@ def _nineteenth_test_half() -> list[CorpusEntry]:
                "Ang alpha naa sa 25 m sa amihanan, 12 m ang gitas-on; ang charlie 12 m sa kasadpan niini, sa samang "
                "gitas-on."),
         # language
-        _entry("language", "test", "lang19-km-alpha-east-land", ("alpha",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("language", "dev", "lang19-km-alpha-east-land", ("alpha",),
                "ឲ្យ alpha ហោះឡើងដល់កម្ពស់ 15 ម៉ែត្រ បន្ទាប់មកហោះទៅទិសខាងកើត 20 ម៉ែត្រ ហើយចុះចតនៅទីនោះ។",
                lambda c, ev: _all(reached_alt(ev, "alpha", 15), at(ev, "alpha", *c.point("alpha", 0, 20)),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 15), _move("alpha", 0, 20), _land("alpha")],
                "alpha បានហោះទៅទិសខាងកើត 20 m ហើយចុះចតនៅទីនោះ។"),
-        _entry("language", "test", "lang19-lo-charlie-north-west-hover", ("charlie",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("language", "dev", "lang19-lo-charlie-north-west-hover", ("charlie",),
                "ໃຫ້ charlie ບິນຂຶ້ນສູງ 12 ແມັດ, ບິນໄປທາງທິດເໜືອ 25 ແມັດ, ແລ້ວໄປທາງທິດຕາເວັນຕົກອີກ 10 ແມັດ, "
                "ແລ້ວໃຫ້ມັນລອຍຢູ່ກາງອາກາດບ່ອນນັ້ນ.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 25, 0)], alt=12),
                                   at(ev, "charlie", *c.point("charlie", 25, -10), alt=12), airborne_at(ev, "charlie", 12)),
                [_takeoff("charlie", 12), _move("charlie", 25, 0), _move("charlie", 0, -10)],
                "charlie ລອຍຢູ່ 25 m ທາງທິດເໜືອ ແລະ 10 m ທາງທິດຕາເວັນຕົກ, ສູງ 12 m."),
-        _entry("language", "test", "lang19-zu-bravo-south-home", ("bravo",),
+        # moved to dev on 2026-12-05, nineteenth round: measured on both models, its failures seen
+        _entry("language", "dev", "lang19-zu-bravo-south-home", ("bravo",),
                "Khuphula i-bravo ifike emamitheni ayi-10, uyindizise amamitha angama-30 ubheke eningizimu, bese "
                "uyibuyisela lapho isuke khona uyehlise phansi.",
                # the return home climbs to its own height: the leg south is checked at 10 m instead
@@ -7431,7 +7479,8 @@ def corpus() -> list[CorpusEntry]:
         *_sixteenth_round(),
         *_seventeenth_round(),
         *_eighteenth_round(),
-        *_nineteenth_test_half(),
+        *_nineteenth_round(),
+        *_twentieth_test_half(),
     ]
 
 

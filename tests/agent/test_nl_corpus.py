@@ -409,26 +409,44 @@ EIGHTEENTH_HALF_MOVED = frozenset({
 })  # fmt: skip
 
 
+NINETEENTH_HALF_MOVED = frozenset({
+    "ask19-bn-total-above-reserve", "ask19-first-to-run-out", "ask19-ur-bravo-against-midpoint",
+    "compound19-bg-charlie-zigzag-straight-back", "compound19-bravo-route-told-backwards",
+    "compound19-hu-alpha-marker-posts", "cond19-ca-all-up-low-ones-land", "cond19-charlie-north-by-its-lead",
+    "cond19-sk-middle-charge-flies", "form19-ms-v-with-bravo-leading", "form19-row-spaced-by-height",
+    "form19-th-row-in-reverse-order", "lang19-km-alpha-east-land", "lang19-lo-charlie-north-west-hover",
+    "lang19-zu-bravo-south-home", "multi19-fi-pair-takes-turns-hopping", "multi19-hand-over-in-turn",
+    "multi19-no-charlie-mirrors-alpha", "pattern19-charlie-sawtooth-profile",
+    "pattern19-sl-alpha-hexagon-by-perimeter", "pattern19-sr-bravo-rectangle-by-diagonal",
+    "place19-ceb-charlie-west-by-alpha-height", "place19-charlie-between-ten-from-alpha",
+    "place19-jv-charlie-where-alpha-was", "refuse19-af-bravo-climb-rate-over-ceiling",
+    "refuse19-et-alpha-diagonal-past-limit", "refuse19-row-too-tight", "rel19-alpha-quarter-turn-round-pad",
+    "rel19-sw-charlie-pad-to-its-southwest", "rel19-tl-bravo-grid-squares", "single19-alpha-under-crane-hook",
+    "single19-da-bravo-down-in-steps", "single19-el-charlie-tallest-tree", "units19-alpha-chains",
+    "units19-ky-charlie-millimetres", "units19-lt-bravo-paces",
+})  # fmt: skip
+
+
 def test_halves_are_disjoint_and_stratified_by_class() -> None:
-    """The dev half holds every entry written before the nineteenth test half (699, and the 36 of the
-    eighteenth test half, moved later on 2026-12-04); the test half is the nineteenth
-    (``_nineteenth_test_half``), 3 a class."""
+    """The dev half holds every entry written before the twentieth test half (735, and the 36 of the
+    nineteenth test half, moved on 2026-12-05); the test half is the twentieth (``_twentieth_test_half``),
+    3 a class."""
     dev, test = select("dev"), select("test")
     assert not {e.id for e in dev} & {e.id for e in test}
     assert len(dev) + len(test) == len(corpus()) == len(select("all"))
-    assert len(test) == 36 and len(dev) == 735
+    assert len(test) == 36 and len(dev) == 771
     assert Counter(e.cls for e in test) == Counter(dict.fromkeys(CLASSES, 3))
     per_dev = Counter(e.cls for e in dev)
     assert per_dev == Counter({
-        "single": 59, "multi": 65, "compound": 67, "conditional": 67, "formation": 62, "relative": 64,
-        "question": 61, "refusal": 58, "units": 57, "pattern": 57, "placement": 61, "language": 57,
+        "single": 62, "multi": 68, "compound": 70, "conditional": 70, "formation": 65, "relative": 67,
+        "question": 64, "refusal": 61, "units": 60, "pattern": 60, "placement": 64, "language": 60,
     })  # fmt: skip
 
 
 def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
-    """The rounds of 2026-11-29 to 2026-12-04: the 8 test entries seen while tuning, then the whole test
+    """The rounds of 2026-11-29 to 2026-12-05: the 8 test entries seen while tuning, then the whole test
     half (35) whose figures had informed a decision, then fifteen times the whole test half (36) once
-    measured, once the whole test half (36) whose failures had informed changes to the host, and once more
+    measured, once the whole test half (36) whose failures had informed changes to the host, and twice more
     the whole test half (36) once measured on both models, moved to dev; the test half holds none of them."""
     first_round = {
         "cond-half-battery-go",
@@ -460,6 +478,7 @@ def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
         | SIXTEENTH_HALF_MOVED
         | SEVENTEENTH_HALF_MOVED
         | EIGHTEENTH_HALF_MOVED
+        | NINETEENTH_HALF_MOVED
     )
     by_id = {e.id: e for e in corpus()}
     assert all(by_id[i].half == "dev" for i in moved)
@@ -1377,7 +1396,8 @@ def test_a_wrong_outcome_fails_the_seventh_test_half_checks() -> None:
 
 
 def test_a_wrong_outcome_fails_the_nineteenth_test_half_checks() -> None:
-    """Each trap the nineteenth test half sets: the right outcome passes, the likely wrong one fails."""
+    """Each trap the nineteenth test half (now dev, moved in the nineteenth round) set: the right outcome
+    passes, the likely wrong one fails."""
     yd = 0.9144
     idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
 
@@ -1662,11 +1682,9 @@ def test_a_wrong_outcome_fails_the_nineteenth_test_half_checks() -> None:
 
 
 def test_a_wrong_outcome_fails_the_twentieth_test_half_checks() -> None:
-    """Each trap the twentieth test half sets: the right outcome passes, the likely wrong one fails (the half
-    is read from ``_twentieth_test_half`` itself: it is not in ``corpus()`` yet)."""
-    from bench.nl_corpus import _twentieth_test_half
-
-    entries = {e.id: e for e in _twentieth_test_half()}
+    """Each trap the twentieth test half sets: the right outcome passes, the likely wrong one fails (its
+    entries read from ``corpus()`` by their ids' "20-")."""
+    entries = {e.id: e for e in corpus() if re.match(r"[a-z]+20-", e.id)}
     assert len(entries) == 36 and Counter(e.cls for e in entries.values()) == Counter(
         dict.fromkeys(CLASSES, 3)
     )
