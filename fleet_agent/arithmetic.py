@@ -9,8 +9,8 @@ import math
 
 ACCEPTED = 'a number, or arithmetic of numbers with + - * /, parentheses, min() and max(), e.g. "(8+20)/2"'
 MAX_CHARS = 60
-_OPERATORS = (ast.Add, ast.Sub, ast.Mult, ast.Div, ast.USub, ast.UAdd, ast.Load)
-_NODES = (ast.Expression, ast.BinOp, ast.UnaryOp, *_OPERATORS)
+_OPERATORS = (ast.Add, ast.Sub, ast.Mult, ast.Div, ast.USub, ast.UAdd)
+_NODES = (ast.Expression, ast.BinOp, ast.UnaryOp, ast.Load, *_OPERATORS)  # Load: the context of min, max
 _FUNCTIONS = {"min": min, "max": max}  # a 1.5B plan wrote "the tallest of 7, 16 and 10 m" as max(7,16,10)
 
 

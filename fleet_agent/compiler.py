@@ -1,5 +1,5 @@
 """Plan steps to gateway tool calls, deterministically (units, geometry, order), the fleet read through
-``Sensors``; nothing the plan lacks is guessed but a grounded drone's takeoff height: ``DEFAULT_TAKEOFF_M``"""
+``Sensors``; nothing the plan lacks is guessed but a grounded drone's takeoff height, DEFAULT_TAKEOFF_M."""
 
 from __future__ import annotations
 
