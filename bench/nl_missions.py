@@ -181,7 +181,9 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         metavar="0-8",
         help="pool examples nearest each request shown to the model (fleet_agent.prompt.nearest)",
     )
-    p.add_argument("--missions", default=None, help="comma-separated mission ids (default: all)")
+    p.add_argument(
+        "--missions", default=None, help="comma-separated mission ids, also of a corpus half (default: all)"
+    )
     p.add_argument(
         "--half",
         choices=["dev", "test", "all"],
@@ -288,6 +290,11 @@ def chosen_missions(args: argparse.Namespace) -> tuple[list[Mission], dict[str, 
         entries = [e for e in entries if e.cls in wanted]
         if not entries:
             raise SystemExit(f"--classes {args.classes!r} selects no request of the {args.half} half")
+    if args.missions:  # a subset of the half, by corpus id
+        ids = {m.strip() for m in args.missions.split(",") if m.strip()}
+        entries = [e for e in entries if e.id in ids]
+        if not entries:
+            raise SystemExit(f"--missions {args.missions!r} names no request of the {args.half} half")
     if args.sitl:  # SITL's battery cannot be set by the harness: requests that need a level are left out
         entries = [e for e in entries if not e.mission.battery_pct]
     return [e.mission for e in entries], {e.id: (e.cls, e.half) for e in entries}

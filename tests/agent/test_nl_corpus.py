@@ -512,6 +512,18 @@ def test_the_bench_half_option_selects_that_half(bench: ModuleType, half: str) -
     assert all(where[m.id][1] in ((half,) if half != "all" else HALVES) for m in missions)
 
 
+def test_missions_with_a_half_run_those_requests_of_it(bench: ModuleType) -> None:
+    wanted = [e.id for e in select("dev")][:2]
+    missions, _ = bench.chosen_missions(bench.parse_args(["--half", "dev", "--missions", ",".join(wanted)]))
+    assert [m.id for m in missions] == wanted
+
+
+def test_missions_naming_no_request_of_the_half_are_refused(bench: ModuleType) -> None:
+    test_id = select("test")[0].id
+    with pytest.raises(SystemExit, match=f"--missions '{test_id}' names no request of the dev half"):
+        bench.chosen_missions(bench.parse_args(["--half", "dev", "--missions", test_id]))
+
+
 def test_without_half_the_bench_runs_its_own_missions(bench: ModuleType) -> None:
     missions, where = bench.chosen_missions(bench.parse_args([]))
     assert where == {} and "takeoff-land" in {m.id for m in missions}
