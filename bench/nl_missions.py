@@ -50,9 +50,10 @@ import subprocess
 import sys
 import time
 from collections import Counter
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from rich.console import Console
 from rich.table import Table
@@ -278,10 +279,24 @@ def local_model_script(args: argparse.Namespace) -> Path:
     return LOCAL_MODEL_SCRIPT
 
 
+T = TypeVar("T")
+
+
+def _named(items: list[T], names: str | None, id_of: Callable[[T], str]) -> tuple[list[T], list[str]]:
+    """The items a comma-separated ``names`` lists (all of them without it), and the names matching none."""
+    if not names:
+        return items, []
+    wanted = {n.strip() for n in names.split(",") if n.strip()}
+    return [i for i in items if id_of(i) in wanted], sorted(wanted - {id_of(i) for i in items})
+
+
 def chosen_missions(args: argparse.Namespace) -> tuple[list[Mission], dict[str, tuple[str, str]]]:
     """The missions to run, and for corpus entries their (class, half) by mission id."""
     if args.half is None:
-        return all_missions(), {}
+        missions, unknown = _named(all_missions(), args.missions, lambda m: m.id)
+        if unknown:
+            raise SystemExit(f"unknown mission(s) {unknown}; known: {[m.id for m in all_missions()]}")
+        return missions, {}
     from bench.nl_corpus import select
 
     entries = select(args.half)
@@ -290,11 +305,9 @@ def chosen_missions(args: argparse.Namespace) -> tuple[list[Mission], dict[str, 
         entries = [e for e in entries if e.cls in wanted]
         if not entries:
             raise SystemExit(f"--classes {args.classes!r} selects no request of the {args.half} half")
-    if args.missions:  # a subset of the half, by corpus id
-        ids = {m.strip() for m in args.missions.split(",") if m.strip()}
-        entries = [e for e in entries if e.id in ids]
-        if not entries:
-            raise SystemExit(f"--missions {args.missions!r} names no request of the {args.half} half")
+    entries, unknown = _named(entries, args.missions, lambda e: e.id)
+    if unknown:
+        raise SystemExit(f"--missions {','.join(unknown)!r} names no request of the {args.half} half")
     if args.sitl:  # SITL's battery cannot be set by the harness: requests that need a level are left out
         entries = [e for e in entries if not e.mission.battery_pct]
     return [e.mission for e in entries], {e.id: (e.cls, e.half) for e in entries}
@@ -302,12 +315,6 @@ def chosen_missions(args: argparse.Namespace) -> tuple[list[Mission], dict[str, 
 
 async def run_missions(args: argparse.Namespace, console: Console) -> list[MissionRun]:
     missions, where = chosen_missions(args)
-    if args.missions:
-        wanted = [m.strip() for m in args.missions.split(",") if m.strip()]
-        unknown = sorted(set(wanted) - {m.id for m in missions})
-        if unknown:
-            raise SystemExit(f"unknown mission(s) {unknown}; known: {[m.id for m in missions]}")
-        missions = [m for m in missions if m.id in wanted]
     drone_ids = sorted({d for m in missions for d in m.drones} | {"alpha", "bravo"})
 
     async with contextlib.AsyncExitStack() as stack:
