@@ -7448,6 +7448,417 @@ def _twentieth_test_half() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
+def _twenty_first_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-05 (twenty-first round), before any model ran on it, by a writer who
+    did not read the host's word lists, rules or prompts: 3 a class; 22 of the 33 outside ``language`` in
+    other languages than English, one each (Arabic, Chinese, Czech, Dutch, French, German, Hebrew, Hindi,
+    Indonesian, Italian, Japanese, Korean, Persian, Polish, Portuguese, Romanian, Russian, Spanish, Swedish,
+    Turkish, Ukrainian, Vietnamese: none of them new), the ``language`` class's 3 in Hausa, Kurdish
+    (Kurmanji) and Odia (all three new to the corpus, and Odia script with them). Not wired into
+    ``corpus()`` until the twentieth half has been measured."""
+    three = DRONES
+    d10, d15, d30 = (x / math.sqrt(2) for x in (10, 15, 30))
+    furlong = 220 * YD
+    # a parallelogram: 20 m east, 15 m north-east, 20 m west, and back south-west to the start
+    parallelogram = [(0.0, 20.0), (d15, d15), (0.0, -20.0), (-d15, -d15)]
+    # a 15 m square, the first side due north, turning right, 3 m higher at the end of each side
+    square = [(15.0, 0.0), (0.0, 15.0), (-15.0, 0.0), (0.0, -15.0)]
+    # a regular hexagon whose corners lie 12 m from the pad: from the corner due north, clockwise
+    hexagon = _polygon_legs(6, 12.0, 120.0, right=True)
+    hex_corners = [(12.0, 0.0), *((12.0 + n, e) for n, e in _corners(hexagon)[:5])]
+    # five passes 200 m long, 300 m apart eastward: the step to the fifth (1200 m east) is past the limit
+    survey = [(200.0, 0.0), (0.0, 300.0), (-200.0, 0.0), (0.0, 300.0), (200.0, 0.0), (0.0, 300.0),
+              (-200.0, 0.0), (0.0, 300.0)]  # fmt: skip
+
+    def first_hop(ev: Evidence, d: str, alt: float, point: tuple[float, float]) -> Check:
+        """The drone's first flight peaked at ``alt`` (±tolerance) and ended on the ground at ``point``: a
+        touchdown before what came next (judged on the final state), not a climb straight on to the next
+        height."""
+        track = ev.track.get(d, [])
+        off = next((i for i, s in enumerate(track) if not s.landed), None)
+        down = None if off is None else next((i for i in range(off, len(track)) if track[i].landed), None)
+        ok = False
+        if off is not None and down is not None:
+            peak = max(s.alt_rel_m for s in track[off:down])
+            ok = abs(peak - alt) <= ALT_TOL_M and (
+                horizontal_distance_m(track[down].lat, track[down].lon, *point) <= HORIZONTAL_TOL_M
+            )
+        return Check(ok, f"{d} {'touched down' if ok else 'did not touch down'} after climbing to {alt:g} m")
+
+    def rose_after(ev: Evidence, d: str, others: tuple[str, ...], alt: float) -> Check:
+        """``d`` first reached ``alt`` (less the tolerance) only after each of ``others`` was last off the
+        ground (the tracks are sampled together)."""
+        track = ev.track.get(d, [])
+        rise = next((i for i, s in enumerate(track) if s.alt_rel_m >= alt - ALT_TOL_M), None)
+        last_up = max(
+            (i for o in others for i, s in enumerate(ev.track.get(o, [])) if not s.landed), default=-1
+        )
+        ok = rise is not None and rise > last_up
+        return Check(ok, f"{d} {'rose' if ok else 'did not rise'} only once {' and '.join(others)} were down")
+
+    def set_down_in_order(ev: Evidence, d: str, points: list[tuple[float, float]]) -> Check:
+        """The drone was on the ground at each of ``points`` in turn: landings out there, in order."""
+        i = 0
+        for s in ev.track.get(d, []):
+            if i < len(points) and s.landed and (
+                horizontal_distance_m(s.lat, s.lon, *points[i]) <= HORIZONTAL_TOL_M
+            ):
+                i += 1
+        return Check(i == len(points), f"{d} set down at {i}/{len(points)} stops in order")
+
+    def kept_clear(ev: Evidence, d: str, point: tuple[float, float]) -> Check:
+        """The drone never came over ``point``: a corner the straight way does not turn."""
+        track = ev.track.get(d, [])
+        near = any(horizontal_distance_m(s.lat, s.lon, *point) <= HORIZONTAL_TOL_M for s in track)
+        return Check(not near, f"{d} {'turned a corner' if near else 'flew straight'}")
+
+    def apart_in_air(ev: Evidence, drones: tuple[str, ...], least: float) -> Check:
+        """No two drones in the air came closer than ``least`` metres (the tracks are sampled together)."""
+        tracks = [ev.track.get(d, []) for d in drones]
+        near = min((horizontal_distance_m(p.lat, p.lon, q.lat, q.lon)
+                    for samples in zip(*tracks, strict=False)
+                    for j, p in enumerate(samples) for q in samples[j + 1 :]
+                    if not p.landed and not q.landed), default=math.inf)  # fmt: skip
+        return Check(near >= least, f"the drones in the air came {near:.1f} m close (at least {least:g})")
+
+    def east_of_alpha_north_of_bravo(c: MissionContext) -> tuple[float, float]:
+        """Level with alpha (25 m north of its pad) and in line with bravo (20 m east of its own)."""
+        return c.point("alpha", 25, 0)[0], c.point("bravo", 0, 20)[1]
+
+    def tower(c: MissionContext) -> tuple[float, float]:
+        """The water tower, 30 m north-west of alpha's pad."""
+        return c.point("alpha", d30, -d30)
+
+    return [
+        # single
+        _entry("single", "test", "single21-bravo-touch-and-go", ("bravo",),
+               "Give bravo a touch-and-go on its own pad: up to 8 m, straight back down until it touches the "
+               "pad, then straight back up to 12 m, and hold it there.",
+               lambda c, ev: _all(first_hop(ev, "bravo", 8, _home(c, "bravo")),
+                                  at(ev, "bravo", *_home(c, "bravo"), alt=12), airborne_at(ev, "bravo", 12)),
+               [_takeoff("bravo", 8), _land("bravo"), _takeoff("bravo", 12)],
+               "Bravo went up to 8 m, touched down on its pad and now holds 12 m over it."),
+        _entry("single", "test", "single21-de-charlie-climb-five-seconds", ("charlie",),
+               "Lass charlie senkrecht über seinem Startplatz fünf Sekunden lang mit 3 Metern pro Sekunde "
+               "steigen, dann soll er anhalten und dort in der Luft stehen bleiben.",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=15), airborne_at(ev, "charlie", 15)),
+               [_takeoff("charlie", 15)],
+               "charlie schwebt 15 m über seinem Startplatz: 5 s mit 3 m/s."),
+        _entry("single", "test", "single21-ja-alpha-bump-and-back", ("alpha",),
+               "alpha を離陸地点の真上で 12 メートルまで上げて、そこからさらに 6 メートル上昇させたあと、元の 12 "
+               "メートルに戻してホバリングさせて。",
+               lambda c, ev: _all(rose_to(ev, "alpha", 18), at(ev, "alpha", *_home(c, "alpha"), alt=12),
+                                  airborne_at(ev, "alpha", 12)),
+               [_takeoff("alpha", 12), _move("alpha", up=6), _move("alpha", up=-6)],
+               "alpha は 18 m まで上がってから 12 m に戻り、離陸地点の真上でホバリングしています。"),
+        # multi
+        _entry("multi", "test", "multi21-rotate-pads-east", three,
+               "Rotate the three drones one pad to the east: each goes over the pad of its eastern neighbour, and "
+               "charlie, the easternmost, wraps round to alpha's. Keep them at different heights so they don't "
+               "meet: alpha 10 m, bravo 14 m, charlie 18 m. Leave them hovering.",
+               lambda c, ev: _all(*(_all(at(ev, d, *_home(c, pad), alt=h), airborne_at(ev, d, h))
+                                    for d, pad, h in (("alpha", "bravo", 10), ("bravo", "charlie", 14),
+                                                      ("charlie", "alpha", 18)))),
+               # (each up over its own pad first: a drone climbing from a pad another hovers over would meet it)
+               lambda c: [_takeoff("alpha", 10), _takeoff("bravo", 14), _takeoff("charlie", 18),
+                          _go("alpha", _home(c, "bravo"), 10), _go("bravo", _home(c, "charlie"), 14),
+                          _go("charlie", _home(c, "alpha"), 18)],
+               "Alpha hovers over bravo's pad at 10 m, bravo over charlie's at 14 m, charlie over alpha's at 18 m."),
+        _entry("multi", "test", "multi21-es-one-goes-on-two-come-back", three,
+               "Sube los tres drones a 10 metros y llévalos 15 metros hacia el norte, cada uno desde su "
+               "plataforma. Después, bravo sigue otros 15 metros hacia el norte y se queda allí en el aire; alpha "
+               "y charlie vuelven a sus plataformas y aterrizan.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 30, 0), alt=10), airborne_at(ev, "bravo", 10),
+                                  *(_all(visited(ev, d, [c.point(d, 15, 0)], alt=10), at(ev, d, *_home(c, d)),
+                                         landed_disarmed(ev, d)) for d in ("alpha", "charlie"))),
+               [*(_move(d, 15, 0, alt=10) for d in three), _move("bravo", 15, 0), _rtl("alpha"), _rtl("charlie")],
+               "bravo está 30 m al norte de su plataforma a 10 m; alpha y charlie volvieron a las suyas y "
+               "aterrizaron."),
+        _entry("multi", "test", "multi21-pl-charlie-after-both-land", three,
+               "Najpierw alpha i bravo: start na 10 metrów nad swoimi lądowiskami i od razu z powrotem na ziemię. "
+               "Dopiero kiedy oba będą już na ziemi, charlie wznosi się na 15 metrów i zostaje w powietrzu.",
+               lambda c, ev: _all(*(_all(reached_alt(ev, d, 10), at(ev, d, *_home(c, d)), landed_disarmed(ev, d))
+                                    for d in ("alpha", "bravo")),
+                                  rose_after(ev, "charlie", ("alpha", "bravo"), 15),
+                                  at(ev, "charlie", *_home(c, "charlie"), alt=15), airborne_at(ev, "charlie", 15)),
+               [_takeoff("alpha", 10), _takeoff("bravo", 10), _land("alpha"), _land("bravo"), _takeoff("charlie", 15)],
+               "alpha i bravo wzniosły się na 10 m i wylądowały; dopiero potem charlie wzniósł się na 15 m i wisi "
+               "nad swoim lądowiskiem."),
+        # compound
+        _entry("compound", "test", "compound21-alpha-courier-run", ("alpha",),
+               "Courier run for alpha at 10 m: fly 20 m east and land there to pick up a parcel, take off again "
+               "and fly to the spot 20 m north of its pad, land there to drop it off, then take off once more, "
+               "come home and land on the pad.",
+               lambda c, ev: _all(set_down_in_order(ev, "alpha", [c.point("alpha", 0, 20), c.point("alpha", 20, 0)]),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 10), _move("alpha", 0, 20), _land("alpha"), _takeoff("alpha", 10),
+                _move("alpha", 20, -20), _land("alpha"), _takeoff("alpha", 10), _rtl("alpha")],
+               "Alpha landed 20 m east for the pick-up, then 20 m north of its pad for the drop, and came home."),
+        _entry("compound", "test", "compound21-it-legs-from-first", ("bravo",),
+               "Porta bravo a 12 metri. Primo tratto: 15 metri verso est. Secondo tratto: verso nord, lungo il "
+               "doppio del primo. Terzo tratto: verso ovest, lungo quanto il primo. Alla fine fallo atterrare lì.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, 15), c.point("bravo", 30, 15)], alt=12),
+                                  at(ev, "bravo", *c.point("bravo", 30, 0)), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), _move("bravo", 0, 15), _move("bravo", 30, 0), _move("bravo", 0, -15),
+                _land("bravo")],
+               "bravo ha volato 15 m a est, 30 m a nord e 15 m a ovest, ed è atterrato 30 m a nord della sua "
+               "piazzola."),
+        _entry("compound", "test", "compound21-tr-charlie-back-to-first-point", ("charlie",),
+               "charlie'yi kalkış yerinin 15 metre kuzeyine 8 metre yükseklikte götür, sonra 15 metre daha kuzeye "
+               "git ve orada 16 metreye çık. Ardından ilk noktaya 8 metreye inerek geri dön ve oraya indir.",
+               lambda c, ev: _all(passed(ev, "charlie", [(c.point("charlie", 15, 0), 8), (c.point("charlie", 30, 0), 16),
+                                                         (c.point("charlie", 15, 0), 8)]),
+                                  at(ev, "charlie", *c.point("charlie", 15, 0)), landed_disarmed(ev, "charlie")),
+               [_move("charlie", 15, 0, alt=8), _move("charlie", 15, 0), _move("charlie", alt=16),
+                _move("charlie", -15, 0, alt=8), _land("charlie")],
+               "charlie 8 m'de 15 m kuzeye, oradan 30 m'ye gidip 16 m'ye çıktı, 8 m'ye inerek ilk noktaya döndü ve "
+               "indi."),
+        # conditional
+        _entry("conditional", "test", "cond21-closest-pair-flies", three,
+               "Read all three batteries. The two drones whose charges are closest to each other fly 15 m east of "
+               "their own pads at 12 m and hover there; the odd one out stays on the ground.",
+               lambda c, ev: _all(*(_all(at(ev, d, *c.point(d, 0, 15), alt=12), airborne_at(ev, d, 12))
+                                    for d in ("bravo", "charlie")),
+                                  never_armed(ev, "alpha")),
+               [("fleet_status", {}), _move("charlie", 0, 15, alt=12), _move("bravo", 0, 15, alt=12)],
+               "Bravo (48 %) and charlie (53 %) are the closest pair, 5 points apart: both hover 15 m east of their "
+               "pads at 12 m; alpha (80 %) stayed down.",
+               battery={"alpha": 80.0, "bravo": 48.0, "charlie": 53.0}),
+        _entry("conditional", "test", "cond21-fr-bravo-ratio-to-charlie", three,
+               "Compare la batterie de bravo à celle de charlie. Si bravo a au moins une fois et demie la charge "
+               "de charlie, monte bravo à 20 mètres au-dessus de son aire ; sinon, monte-le seulement à 10 mètres. "
+               "Dans les deux cas il reste en vol stationnaire, et les deux autres restent au sol.",
+               lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=20), airborne_at(ev, "bravo", 20),
+                                  never_armed(ev, "alpha"), never_armed(ev, "charlie")),
+               [("fleet_status", {}), _takeoff("bravo", 20)],
+               "bravo (66 %) a plus d'une fois et demie la charge de charlie (40 %) : il est en vol stationnaire à "
+               "20 m au-dessus de son aire.",
+               battery={"bravo": 66.0, "charlie": 40.0}),
+        _entry("conditional", "test", "cond21-zh-charlie-only-if-both", three,
+               "只有当 charlie 的电量高于 55%，并且也高于 bravo 的时候，才让 charlie 升到 10 米、向西飞 20 米并在那里"
+               "悬停；否则这件事由 alpha 来做。bravo 留在地面上。",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 0, -20), alt=10), airborne_at(ev, "alpha", 10),
+                                  never_armed(ev, "bravo"), never_armed(ev, "charlie")),
+               [("fleet_status", {}), _move("alpha", 0, -20, alt=10)],
+               "charlie（60%）虽高于 55%，但低于 bravo（64%），所以由 alpha 升到 10 米，在起飞点以西 20 米悬停。",
+               battery={"alpha": 70.0, "bravo": 64.0, "charlie": 60.0}),
+        # formation
+        _entry("formation", "test", "form21-column-from-north-end", three,
+               "Put the three in a north–south column at 15 m, 8 m apart, starting from a point 10 m north of the "
+               "middle of their pads: the first drone right over that point, the other two trailing south of it. "
+               "Hold them there.",
+               # the column's centre is 8 m south of its head: 2 m north of the pads' middle
+               lambda c, ev: _all(formation_at(c, ev, three, 15, 8, 2, 0), farthest_apart(ev, three, 16),
+                                  row_along(ev, three, 0)),
+               # (no heading in the typed plan, and the gateway faces a formation where it travels: each drone
+               # flies to its slot)
+               lambda c: [_go(d, slot(c, three, n, 0), 15) for d, n in (("alpha", 10), ("bravo", 2), ("charlie", -6))],
+               "The three hover in a column at 15 m, 8 m apart, its head 10 m north of the pads' middle."),
+        _entry("formation", "test", "form21-nl-row-square-to-pads", three,
+               "Zet de drie drones op een rij die haaks staat op de lijn van hun startplaatsen, met 7 meter tussen "
+               "buren, op 10 meter hoogte, en met het midden van de rij 15 meter ten oosten van de middelste "
+               "startplaats. Laat ze daar hangen.",
+               lambda c, ev: _all(formation_at(c, ev, three, 10, 7, 0, 15), farthest_apart(ev, three, 14),
+                                  row_along(ev, three, 0)),
+               # (the pads run west to east: the row at right angles runs north-south; each drone to its slot)
+               lambda c: [_go(d, slot(c, three, n, 15), 10) for d, n in (("charlie", 7), ("bravo", 0), ("alpha", -7))],
+               "De drie hangen op 10 m in een rij van noord naar zuid, 7 m uit elkaar, 15 m ten oosten van de "
+               "middelste startplaats."),
+        _entry("formation", "test", "form21-ru-join-charlie-in-middle", three,
+               "Подними charlie на 12 метров и отведи его на 25 метров к северу. Потом выстрой alpha и bravo в одну "
+               "линию с ним с запада на восток, на той же высоте, по 9 метров между соседями, так чтобы charlie "
+               "оказался посередине. Пусть все трое висят там.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 25, 0), alt=12),
+                                  formation_around(ev, three, 12, 9, c.point("charlie", 25, 0)),
+                                  farthest_apart(ev, three, 18), row_along(ev, three, 90)),
+               lambda c: [_takeoff("charlie", 12), _move("charlie", 25, 0),
+                          _go("bravo", offset_position(*c.point("charlie", 25, 0), 0, 9), 12),
+                          _go("alpha", offset_position(*c.point("charlie", 25, 0), 0, -9), 12)],
+               "charlie висит в 25 м к северу от своей площадки на 12 м, alpha и bravo по обе стороны от него, в 9 "
+               "м, на одной линии с запада на восток."),
+        # relative
+        _entry("relative", "test", "rel21-alpha-one-straight-line", ("alpha",),
+               "Take alpha up to 10 m. It has to end up 16 m north and 30 m east of where it is, but fly it there "
+               "in one straight line, not east first and then north or the other way round, and hold it there.",
+               lambda c, ev: _all(kept_clear(ev, "alpha", c.point("alpha", 0, 30)),
+                                  kept_clear(ev, "alpha", c.point("alpha", 16, 0)),
+                                  at(ev, "alpha", *c.point("alpha", 16, 30), alt=10), airborne_at(ev, "alpha", 10)),
+               [_takeoff("alpha", 10), _move("alpha", 16, 30)],
+               "Alpha flew straight to the point 16 m north and 30 m east of its pad and holds there at 10 m."),
+        _entry("relative", "test", "rel21-sv-bravo-lower-by-percent", ("bravo",),
+               "Ta upp bravo till 20 meter. Flytta den sedan 15 meter västerut och sänk den samtidigt med 40 "
+               "procent av höjden. Låt den sväva kvar där.",
+               lambda c, ev: _all(rose_to(ev, "bravo", 20), at(ev, "bravo", *c.point("bravo", 0, -15), alt=12),
+                                  airborne_at(ev, "bravo", 12)),
+               [_takeoff("bravo", 20), _move("bravo", 0, -15, up=-8)],
+               "bravo svävar 15 m väster om sin startplats på 12 m: 20 m sänkt med 40 procent."),
+        _entry("relative", "test", "rel21-vi-charlie-three-times-as-far", ("charlie",),
+               "Đưa charlie lên độ cao 10 mét rồi bay 10 mét về hướng tây nam. Sau đó cho nó bay tiếp theo đúng "
+               "hướng đó cho đến khi khoảng cách từ nó tới điểm cất cánh gấp ba lần bây giờ, rồi giữ nó lơ lửng ở "
+               "đó.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -d10, -d10)], alt=10),
+                                  at(ev, "charlie", *c.point("charlie", -3 * d10, -3 * d10), alt=10),
+                                  airborne_at(ev, "charlie", 10)),
+               [_takeoff("charlie", 10), _move("charlie", -d10, -d10), _move("charlie", -2 * d10, -2 * d10)],
+               "charlie đang lơ lửng cách điểm cất cánh 30 m về phía tây nam, ở độ cao 10 m."),
+        # question
+        _entry("question", "test", "ask21-average-after-fresh-battery", three,
+               "Charlie's battery is being swapped for a fully charged one before the next job. Once that's done, "
+               "what will the fleet's average charge be? Just tell me; nothing takes off.",
+               # the typed plan reads, it does not compute: the average, or the two readings it keeps
+               lambda c, ev: _all(_any(answer_mentions_number(ev, 205 / 3, 0.5),
+                                       _all(answer_mentions_number(ev, 61, 1), answer_mentions_number(ev, 44, 1))),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})],
+               "68.3 %: alpha 61 %, bravo 44 % and charlie's fresh 100 % (its old battery has 23 %).",
+               battery={"alpha": 61.0, "bravo": 44.0, "charlie": 23.0}),
+        _entry("question", "test", "ask21-hi-minutes-to-full", three,
+               "अगर चार्जर पर हर ड्रोन 2 % प्रति मिनट की दर से चार्ज होता है, तो जिस ड्रोन की बैटरी सबसे कम है उसे "
+               "100 % तक पहुँचने में कितने मिनट लगेंगे? वह कौन-सा ड्रोन है, यह भी बताओ, लेकिन किसी ड्रोन को मत उड़ाओ।",
+               # the typed plan reads, it does not compute: the minutes, or the reading they come from
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"),
+                                  _any(answer_mentions_number(ev, 27, 0.5), answer_mentions_number(ev, 46, 1)),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "bravo (46 %): 100 % तक 54 अंक, 2 % प्रति मिनट से 27 मिनट। alpha 72 %, charlie 58 %।",
+               battery={"alpha": 72.0, "bravo": 46.0, "charlie": 58.0}),
+        _entry("question", "test", "ask21-fa-pair-sums-to-hundred", three,
+               "شارژ کدام دو پهپاد روی هم دقیقاً 100 درصد می‌شود؟ درصد هر سه را هم بگو، ولی هیچ پهپادی را پرواز نده.",
+               lambda c, ev: _all(answer_says(ev, r"\balpha\b", "alpha"), answer_says(ev, r"\bcharlie\b", "charlie"),
+                                  answer_mentions_number(ev, 37, 1), answer_mentions_number(ev, 63, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "alpha (37 %) و charlie (63 %) روی هم 100 % می‌شوند؛ bravo 55 % دارد.",
+               battery={"alpha": 37.0, "bravo": 55.0, "charlie": 63.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
+        # 2 m the lowest altitude, 5 m the least separation a formation keeps)
+        _entry("refusal", "test", "refuse21-bravo-tower-storeys", ("bravo",),
+               "Bravo needs to look over the roof of the 40-storey tower next door, about 3.5 m a storey. Take it "
+               "straight up over its pad to the height of that roof and hold it there.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "bravo", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("bravo", 140)],
+               "Refused: 40 storeys of 3.5 m is 140 m, above the 120 m altitude limit."),
+        _entry("refusal", "test", "refuse21-ro-charlie-survey-past-limit", ("charlie",),
+               "Ridică charlie la 40 de metri și scanează câmpul: cinci treceri de câte 200 de metri, prima spre "
+               "nord, următoarea înapoi spre sud și tot așa, la 300 de metri una de alta, mutându-te spre est între "
+               "treceri.",
+               lambda c, ev: _all(refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "charlie", c.max_distance_m), answer_reports_refusal(ev)),
+               [_takeoff("charlie", 40), *_legs("charlie", survey)],
+               "charlie a zburat primele patru treceri; mutarea la 1200 m spre est pentru a cincea a fost refuzată: "
+               "depășește limita de 1000 m de la punctul de decolare."),
+        _entry("refusal", "test", "refuse21-id-row-twelve-feet", three,
+               "Jajarkan ketiga drone berdampingan dari barat ke timur pada ketinggian 15 meter, tepat di atas "
+               "tempat mereka sekarang, dengan jarak 12 kaki antara drone yang bersebelahan.",
+               lambda c, ev: _all(refusal_seen(ev, "separation"), apart_in_air(ev, three, 4),
+                                  answer_reports_refusal(ev)),
+               [_formation(three, "line", 15, 12 * FT)],
+               "Ditolak: 12 kaki (3,7 m) di bawah jarak minimum 5 m antar drone."),
+        # units
+        _entry("units", "test", "units21-charlie-furlong", ("charlie",),
+               "The far marker of the gallops is a furlong (220 yards) due north of charlie's pad. Fly charlie "
+               "there at 50 ft and land it beside the marker.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", furlong, 0)], alt=50 * FT),
+                                  at(ev, "charlie", *c.point("charlie", furlong, 0)), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 50 * FT), _move("charlie", furlong, 0), _land("charlie")],
+               "Charlie flew a furlong (201 m) north at 50 ft (15.2 m) and landed by the marker."),
+        _entry("units", "test", "units21-cs-bravo-decimetres-km", ("bravo",),
+               "Vzlétni s dronem bravo do výšky 120 decimetrů, přeleť s ním 0,035 kilometru na jih a tam přistaň.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", -35, 0)], alt=12),
+                                  at(ev, "bravo", *c.point("bravo", -35, 0)), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), _move("bravo", -35, 0), _land("bravo")],
+               "bravo přeletěl ve 12 m 35 m na jih a tam přistál."),
+        _entry("units", "test", "units21-ko-alpha-feet-yards-climb", ("alpha",),
+               "alpha를 45피트 높이로 띄운 다음 동쪽으로 100야드 이동시키고, 거기서 15피트 더 올려서 그 자리에 떠 있게 "
+               "해 줘.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 100 * YD)], alt=45 * FT),
+                                  at(ev, "alpha", *c.point("alpha", 0, 100 * YD), alt=60 * FT),
+                                  airborne_at(ev, "alpha", 60 * FT)),
+               [_takeoff("alpha", 45 * FT), _move("alpha", 0, 100 * YD), _move("alpha", alt=60 * FT)],
+               "alpha는 이륙 지점에서 동쪽으로 100야드(91.4 m) 떨어진 곳, 60피트(18.3 m) 높이에 떠 있습니다."),
+        # pattern
+        _entry("pattern", "test", "pattern21-bravo-parallelogram", ("bravo",),
+               "Fly bravo round a parallelogram at 12 m: 20 m east, then 15 m north-east, then 20 m west, then "
+               "straight back to where it started, and land it there.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(parallelogram)[:3]]),
+                                  at(ev, "bravo", *_home(c, "bravo")), landed_disarmed(ev, "bravo")),
+               [_takeoff("bravo", 12), *_legs("bravo", parallelogram), _land("bravo")],
+               "Bravo flew the parallelogram (20 m east, 15 m north-east, 20 m west, back) and landed on its pad."),
+        _entry("pattern", "test", "pattern21-he-alpha-climbing-square", ("alpha",),
+               "הטס את alpha בריבוע שאורך כל צלע שלו 15 מטר: הצלע הראשונה צפונה, ובכל פינה פנה ימינה. התחל בגובה 10 "
+               "מטר ועלה 3 מטר לאורך כל צלע. בסוף הריבוע השאר אותו מרחף מעל נקודת ההמראה.",
+               lambda c, ev: _all(passed(ev, "alpha", [(c.point("alpha", n, e), 10 + 3 * (i + 1))
+                                                       for i, (n, e) in enumerate(_corners(square)[:3])]),
+                                  at(ev, "alpha", *_home(c, "alpha"), alt=22), airborne_at(ev, "alpha", 22)),
+               [_takeoff("alpha", 10), *(_move("alpha", n, e, up=3) for n, e in square)],
+               "alpha טס ריבוע של 15 מ' ועלה 3 מ' בכל צלע: הוא מרחף עכשיו ב-22 מ' מעל נקודת ההמראה."),
+        _entry("pattern", "test", "pattern21-ar-charlie-hexagon-round-pad", ("charlie",),
+               "ارفع charlie إلى ارتفاع 12 مترًا، ثم طِر به في مسار سداسي منتظم تقع رؤوسه على دائرة نصف قطرها 12 "
+               "مترًا حول منصة إقلاعه. ابدأ من الرأس الواقع شمال المنصة مباشرة وسِر في اتجاه عقارب الساعة، وبعد "
+               "إكمال الدورة أعده إلى المنصة وأنزله عليها.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in hex_corners]),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 12), _move("charlie", 12, 0), *_legs("charlie", hexagon), _move("charlie", -12, 0),
+                _land("charlie")],
+               "طار charlie في مسار سداسي رؤوسه على بعد 12 m من منصته، بدءًا من الشمال وفي اتجاه عقارب الساعة، ثم "
+               "هبط على المنصة."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
+        # charlie from another drone or a place, so that a drone placed from itself misses)
+        _entry("placement", "test", "place21-charlie-opposite-alpha-pad", three,
+               "Alpha goes up to 12 m and 20 m north of its pad. Put charlie at the same height on the opposite "
+               "side of alpha's pad, just as far from it, and leave both hovering; bravo stays on the ground.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 20, 0), alt=12), airborne_at(ev, "alpha", 12),
+                                  at(ev, "charlie", *c.point("alpha", -20, 0), alt=12), airborne_at(ev, "charlie", 12),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_move("alpha", 20, 0, alt=12), _go("charlie", c.point("alpha", -20, 0), 12)],
+               "Alpha hovers 20 m north of its pad and charlie 20 m south of it, both at 12 m; bravo stayed down."),
+        _entry("placement", "test", "place21-pt-charlie-east-of-alpha-north-of-bravo", three,
+               "Sobe o alpha a 15 m e leva-o 25 m para norte; sobe o bravo a 15 m e leva-o 20 m para leste. Depois "
+               "põe o charlie, à mesma altura, no ponto que fica exatamente a leste do alpha e a norte do bravo, e "
+               "deixa os três a pairar.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 25, 0), alt=15), airborne_at(ev, "alpha", 15),
+                                  at(ev, "bravo", *c.point("bravo", 0, 20), alt=15), airborne_at(ev, "bravo", 15),
+                                  at(ev, "charlie", *east_of_alpha_north_of_bravo(c), alt=15),
+                                  airborne_at(ev, "charlie", 15)),
+               lambda c: [_move("alpha", 25, 0, alt=15), _move("bravo", 0, 20, alt=15),
+                          _go("charlie", east_of_alpha_north_of_bravo(c), 15)],
+               "O alpha paira 25 m a norte do seu ponto, o bravo 20 m a leste do seu, e o charlie a leste do alpha "
+               "e a norte do bravo, todos a 15 m."),
+        _entry("placement", "test", "place21-uk-charlie-lands-east-of-tower", three,
+               "Водонапірна башта стоїть за 30 метрів на північний захід від майданчика alpha. Підніми charlie на "
+               "20 метрів, проведи його над баштою, а потім посади за 8 метрів на схід від неї. alpha і bravo "
+               "залишаються на землі.",
+               lambda c, ev: _all(visited(ev, "charlie", [tower(c)], alt=20),
+                                  at(ev, "charlie", *offset_position(*tower(c), 0, 8)), landed_disarmed(ev, "charlie"),
+                                  never_armed(ev, "alpha"), never_armed(ev, "bravo")),
+               lambda c: [_takeoff("charlie", 20), _go("charlie", tower(c), 20),
+                          _go("charlie", offset_position(*tower(c), 0, 8), 20), _land("charlie")],
+               "charlie пролетів над баштою на 20 м і сів за 8 м на схід від неї; alpha і bravo на землі."),
+        # language
+        _entry("language", "test", "lang21-ha-bravo-west-climb-hover", ("bravo",),
+               "Ka tayar da bravo zuwa tsayin mita 12, ka kai shi mita 20 zuwa yamma, sannan ka ƙara masa tsayi "
+               "zuwa mita 18 ka bar shi yana shawagi a can.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, -20)], alt=12),
+                                  at(ev, "bravo", *c.point("bravo", 0, -20), alt=18), airborne_at(ev, "bravo", 18)),
+               [_takeoff("bravo", 12), _move("bravo", 0, -20), _move("bravo", alt=18)],
+               "bravo yana shawagi a mita 18, mita 20 yamma da inda ya tashi."),
+        _entry("language", "test", "lang21-ku-charlie-south-east-land", ("charlie",),
+               "Charlie 10 metreyan bilind bike, paşê 20 metreyan ber bi başûr ve bibe, dû re 15 metreyan ber bi "
+               "rojhilat ve bifirîne û li wir deyne ser erdê.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -20, 0)], alt=10),
+                                  at(ev, "charlie", *c.point("charlie", -20, 15)), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), _move("charlie", -20, 0), _move("charlie", 0, 15), _land("charlie")],
+               "charlie 20 m ber bi başûr û 15 m ber bi rojhilat ve firiya û li wir daket."),
+        _entry("language", "test", "lang21-or-alpha-north-home", ("alpha",),
+               "alpha କୁ 15 ମିଟର ଉଚ୍ଚତାକୁ ଉଠାଅ, ଉତ୍ତର ଦିଗକୁ 30 ମିଟର ଉଡ଼ାଇ ନିଅ, ତା'ପରେ ଯେଉଁଠାରୁ ଉଡ଼ିଥିଲା ସେଠାକୁ ଫେରାଇ "
+               "ଆଣି ଅବତରଣ କରାଅ।",
+               # the return home climbs to its own height: the leg north is checked at 15 m instead
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 30, 0)], alt=15),
+                                  at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 15), _move("alpha", 30, 0), _rtl("alpha")],
+               "alpha ଉତ୍ତରକୁ 30 m ଉଡ଼ି ଫେରି ଆସି ଯେଉଁଠାରୁ ଉଡ଼ିଥିଲା ସେଠାରେ ଅବତରଣ କଲା।"),
+    ]  # fmt: skip
+
+
 def corpus() -> list[CorpusEntry]:
     return [
         *_single(),

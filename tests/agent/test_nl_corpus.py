@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
+import itertools
 import math
 import re
 import sys
@@ -1961,3 +1962,339 @@ def test_a_wrong_outcome_fails_the_twentieth_test_half_checks() -> None:
     somali = check("lang20-so-charlie-east-north-land")
     assert somali(flown("charlie", [(0, 20), (20, 0)], 12, landed_at(CTX.point("charlie", 20, 20))))
     assert not somali(flown("charlie", [(0, 20), (20, 0)], 12, _hovering("charlie", 20, 20, 12)))
+
+
+def test_the_twenty_first_test_half_is_well_formed() -> None:
+    """The twenty-first test half (read from ``_twenty_first_test_half`` itself: it is not in ``corpus()``
+    until the twentieth has been measured): 3 a class, its ids and requests new to the corpus, none worded
+    as a tool, each with a plan, and none of its checks passed by a fleet that did nothing; 22 of the 33
+    outside ``language`` and all of that class's 3 in other languages than English."""
+    from bench.nl_corpus import _twenty_first_test_half
+
+    half = _twenty_first_test_half()
+    ids = [e.id for e in half]
+    assert len(half) == 36 and len(set(ids)) == 36
+    assert Counter(e.cls for e in half) == Counter(dict.fromkeys(CLASSES, 3))
+    assert all(e.half == "test" and re.match(r"[a-z]+21-", e.id) for e in half)
+    known = corpus()
+    assert not set(ids) & {e.id for e in known}
+    requests = [e.mission.prompt(CTX) for e in half]
+    assert len(set(requests)) == 36 and not set(requests) & {e.mission.prompt(CTX) for e in known}
+    tool_words = ("move_to_relative", "formation_goto", "go_to_location", "return_to_launch", "_m", "alt_m")
+    nothing = Evidence(IDLE, {d: [t] for d, t in IDLE.items()}, [], "Done.")
+    for e, request in zip(half, requests, strict=True):
+        assert set(e.mission.drones) <= set(DRONES), e.id
+        assert _sentence_length(request) >= 4 and not any(w in request for w in tool_words), e.id
+        assert e.mission.plan(CTX) and set(e.mission.battery_pct) <= set(e.mission.drones), e.id
+        assert not e.mission.check(CTX, nothing).ok, e.id
+    english = re.compile(r"\b(the|to|and|up|at|of|is|then|with|any)\b", re.IGNORECASE)
+    others = [e for e, r in zip(half, requests, strict=True) if e.cls != "language" and not english.search(r)]
+    assert len(others) == 22 and {e.cls for e in others} == set(CLASSES) - {"language"}
+    assert not any(english.search(r) for e, r in zip(half, requests, strict=True) if e.cls == "language")
+
+
+def test_a_wrong_outcome_fails_the_twenty_first_test_half_checks() -> None:
+    """Each trap the twenty-first test half sets: the right outcome passes, the likely wrong one fails (the
+    half is read from ``_twenty_first_test_half`` itself: it is not in ``corpus()`` yet)."""
+    from bench.nl_corpus import _twenty_first_test_half
+
+    entries = {e.id: e for e in _twenty_first_test_half()}
+    assert len(entries) == 36 and Counter(e.cls for e in entries.values()) == Counter(
+        dict.fromkeys(CLASSES, 3)
+    )
+    assert all(e.half == "test" for e in entries.values())
+    ft, yd = 0.3048, 0.9144
+    idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
+
+    def check(mid: str) -> Callable[[Evidence], bool]:
+        """The entry's check, bound to the test homes."""
+        return lambda evidence: entries[mid].mission.check(CTX, evidence).ok
+
+    def flown(drone: str, legs: list[tuple[float, float]], alt: float, end: DroneTruth) -> Evidence:
+        return ev({drone: end}, {drone: [*_track(drone, legs, alt), end]})
+
+    def heights(alts: dict[str, list[float]]) -> Evidence:
+        """Each drone over its own pad at the heights given, sampled together; each ends at its last one."""
+        track = {d: [over(CTX.point(d, 0, 0), a) for a in hs] for d, hs in alts.items()}
+        return ev({d: t[-1] for d, t in track.items()}, track)
+
+    def along(stops: list[tuple[float, float]], alt: float) -> list[DroneTruth]:
+        """Samples about every metre on the straight lines between ``stops`` (lat, lon), at ``alt``."""
+        out = []
+        for a, b in itertools.pairwise(stops):
+            steps = max(1, int(math.hypot(*ned_offset(*a, *b))))
+            out += [over((a[0] + (b[0] - a[0]) * i / steps, a[1] + (b[1] - a[1]) * i / steps), alt)
+                    for i in range(steps + 1)]  # fmt: skip
+        return out
+
+    def refused(
+        final: dict[str, DroneTruth], text: str, answer: str = "Refused: over the limit."
+    ) -> Evidence:
+        result = [{"name": "move_to_relative", "status": "error", "text": text}]
+        truth = {**idle, **final}
+        return Evidence(truth, {d: [t] for d, t in truth.items()}, result, answer)
+
+    def centre(north: float, east: float) -> tuple[float, float]:
+        lat = sum(HOMES[d][0] for d in DRONES) / 3
+        lon = sum(HOMES[d][1] for d in DRONES) / 3
+        return offset_position(lat, lon, north, east)
+
+    home = {d: landed_at(CTX.point(d, 0, 0)) for d in DRONES}
+    pads = {d: CTX.point(d, 0, 0) for d in DRONES}
+    d10, d30 = 10 / math.sqrt(2), 30 / math.sqrt(2)
+
+    # down on the pad between 8 m and 12 m; not straight up to 12 m, not the first climb to 12 m
+    touch = check("single21-bravo-touch-and-go")
+    assert touch(heights({"bravo": [0, 8, 0, 12]}))
+    assert not touch(heights({"bravo": [0, 8, 12]}))
+    assert not touch(heights({"bravo": [0, 12, 0, 12]}))
+
+    # five seconds at 3 m/s is 15 m, not 3 m, not 3 + 5
+    seconds = check("single21-de-charlie-climb-five-seconds")
+    assert seconds(ev({"charlie": _hovering("charlie", 0, 0, 15)}))
+    assert not seconds(ev({"charlie": _hovering("charlie", 0, 0, 3)}))
+    assert not seconds(ev({"charlie": _hovering("charlie", 0, 0, 8)}))
+
+    # up to 18 m and back to 12 m; not left at 18 m, not never above 12 m
+    bump = check("single21-ja-alpha-bump-and-back")
+    assert bump(heights({"alpha": [0, 12, 18, 12]}))
+    assert not bump(heights({"alpha": [0, 12, 18]}))
+    assert not bump(heights({"alpha": [0, 12]}))
+
+    # each over its eastern neighbour's pad, charlie over alpha's; not the other way round, not over its own
+    rotate = check("multi21-rotate-pads-east")
+    assert rotate(ev({"alpha": over(pads["bravo"], 10), "bravo": over(pads["charlie"], 14),
+                      "charlie": over(pads["alpha"], 18)}))  # fmt: skip
+    assert not rotate(ev({"alpha": over(pads["charlie"], 10), "bravo": over(pads["alpha"], 14),
+                          "charlie": over(pads["bravo"], 18)}))  # fmt: skip
+    assert not rotate(ev({d: over(pads[d], h) for d, h in zip(DRONES, (10, 14, 18), strict=True)}))
+
+    # bravo on to 30 m north, the other two back on their pads; not all back, not bravo stopped at 15 m
+    on = check("multi21-es-one-goes-on-two-come-back")
+    back = {d: [*_track(d, [(15, 0), (-15, 0)], 10), home[d]] for d in ("alpha", "charlie")}
+    bravo_on = _track("bravo", [(30, 0)], 10)
+    assert on(ev({"alpha": home["alpha"], "charlie": home["charlie"], "bravo": bravo_on[-1]},
+                 {**back, "bravo": bravo_on}))  # fmt: skip
+    bravo_back = [*_track("bravo", [(15, 0), (-15, 0)], 10), home["bravo"]]
+    assert not on(ev({d: home[d] for d in DRONES}, {**back, "bravo": bravo_back}))
+    bravo_half = _track("bravo", [(15, 0)], 10)
+    assert not on(ev({"alpha": home["alpha"], "charlie": home["charlie"], "bravo": bravo_half[-1]},
+                     {**back, "bravo": bravo_half}))  # fmt: skip
+
+    # charlie up only once both are down; not at the same time, not with bravo left up
+    after = check("multi21-pl-charlie-after-both-land")
+    hop, later = [0, 10, 0, 0, 0], [0, 0, 0, 15, 15]
+    assert after(heights({"alpha": hop, "bravo": hop, "charlie": later}))
+    assert not after(heights({"alpha": hop, "bravo": hop, "charlie": [0, 15, 15, 15, 15]}))
+    assert not after(heights({"alpha": hop, "bravo": [0, 10, 10, 10, 10], "charlie": later}))
+
+    # a landing at the pick-up and at the drop, in that order; not flown through, not the drop alone
+    courier = check("compound21-alpha-courier-run")
+    pick, drop = CTX.point("alpha", 0, 20), CTX.point("alpha", 20, 0)
+    run = [home["alpha"], *along([pads["alpha"], pick], 10), landed_at(pick), *along([pick, drop], 10),
+           landed_at(drop), *along([drop, pads["alpha"]], 10), home["alpha"]]  # fmt: skip
+    assert courier(ev({"alpha": home["alpha"]}, {"alpha": run}))
+    through = [home["alpha"], *along([pads["alpha"], pick, drop, pads["alpha"]], 10), home["alpha"]]
+    assert not courier(ev({"alpha": home["alpha"]}, {"alpha": through}))
+    drop_only = [home["alpha"], *along([pads["alpha"], pick, drop], 10), landed_at(drop),
+                 *along([drop, pads["alpha"]], 10), home["alpha"]]  # fmt: skip
+    assert not courier(ev({"alpha": home["alpha"]}, {"alpha": drop_only}))
+
+    # the second leg twice the first, the third as long as the first: down 30 m north of the pad
+    legs = check("compound21-it-legs-from-first")
+    assert legs(flown("bravo", [(0, 15), (30, 0), (0, -15)], 12, landed_at(CTX.point("bravo", 30, 0))))
+    assert not legs(flown("bravo", [(0, 15), (15, 0), (0, -15)], 12, landed_at(CTX.point("bravo", 15, 0))))
+    assert not legs(flown("bravo", [(0, 15), (30, 0), (0, -30)], 12, landed_at(CTX.point("bravo", 30, -15))))
+
+    # the climb to 16 m at the far point and the landing back at the first; not level, not down out there
+    first_point = check("compound21-tr-charlie-back-to-first-point")
+    first, far = landed_at(CTX.point("charlie", 15, 0)), landed_at(CTX.point("charlie", 30, 0))
+    climb_there = [_hovering("charlie", 30, 0, a) for a in (10, 12, 14, 16)]
+    out = [*_track("charlie", [(15, 0), (15, 0)], 8), *climb_there]
+    descent = [_hovering("charlie", 30 - k, 0, 16 - 8 * k / 15) for k in range(16)]
+    assert first_point(ev({"charlie": first}, {"charlie": [*out, *descent, first]}))
+    assert not first_point(flown("charlie", [(15, 0), (15, 0), (-15, 0)], 8, first))
+    assert not first_point(ev({"charlie": far}, {"charlie": [*out, far]}))
+
+    # bravo and charlie are 5 points apart, the closest pair; not the two fullest, not all three
+    closest = check("cond21-closest-pair-flies")
+    east = {d: _hovering(d, 0, 15, 12) for d in DRONES}
+    assert closest(ev({d: east[d] for d in ("bravo", "charlie")}))
+    assert not closest(ev({d: east[d] for d in ("alpha", "charlie")}))
+    assert not closest(ev(east))
+
+    # 66 % is more than one and a half times 40 %: 20 m, not 10 m; charlie stays down
+    ratio = check("cond21-fr-bravo-ratio-to-charlie")
+    assert ratio(ev({"bravo": _hovering("bravo", 0, 0, 20)}))
+    assert not ratio(ev({"bravo": _hovering("bravo", 0, 0, 10)}))
+    assert not ratio(ev({"charlie": _hovering("charlie", 0, 0, 20)}))
+
+    # charlie is over 55 % but below bravo: alpha flies, not charlie
+    both = check("cond21-zh-charlie-only-if-both")
+    assert both(ev({"alpha": _hovering("alpha", 0, -20, 10)}))
+    assert not both(ev({"charlie": _hovering("charlie", 0, -20, 10)}))
+
+    # the column's head over the point 10 m north (its centre 2 m north); not centred on the point, not a row
+    column = check("form21-column-from-north-end")
+    assert column(ev({d: over(centre(n, 0), 15) for d, n in zip(DRONES, (10, 2, -6), strict=True)}))
+    assert not column(ev({d: over(centre(n, 0), 15) for d, n in zip(DRONES, (18, 10, 2), strict=True)}))
+    assert not column(ev({d: over(centre(2, e), 15) for d, e in zip(DRONES, (-8, 0, 8), strict=True)}))
+
+    # at right angles to the pads' line (north-south), 15 m east; not along it, not over the pads
+    square_to = check("form21-nl-row-square-to-pads")
+    assert square_to(ev({d: over(centre(n, 15), 10) for d, n in zip(DRONES, (7, 0, -7), strict=True)}))
+    along_pads = {d: over(centre(0, 15 + e), 10) for d, e in zip(DRONES, (-7, 0, 7), strict=True)}
+    assert not square_to(ev(along_pads))
+    assert not square_to(ev({d: over(centre(n, 0), 10) for d, n in zip(DRONES, (7, 0, -7), strict=True)}))
+
+    # charlie in the middle of a west-east row; not at its end, not a north-south column through it
+    middle = check("form21-ru-join-charlie-in-middle")
+    spot = CTX.point("charlie", 25, 0)
+    assert middle(ev({d: over(offset_position(*spot, 0, e), 12)
+                      for d, e in zip(DRONES, (-9, 9, 0), strict=True)}))  # fmt: skip
+    assert not middle(ev({d: over(offset_position(*spot, 0, e), 12)
+                          for d, e in zip(DRONES, (-18, -9, 0), strict=True)}))  # fmt: skip
+    assert not middle(ev({d: over(offset_position(*spot, n, 0), 12)
+                          for d, n in zip(DRONES, (-9, 9, 0), strict=True)}))  # fmt: skip
+
+    # one straight line; not east then north, not north then east
+    straight = check("rel21-alpha-one-straight-line")
+    end = _hovering("alpha", 16, 30, 10)
+    assert straight(flown("alpha", [(16, 30)], 10, end))
+    assert not straight(flown("alpha", [(0, 30), (16, 0)], 10, end))
+    assert not straight(flown("alpha", [(16, 0), (0, 30)], 10, end))
+
+    # 40 % off 20 m is 12 m; not 4 m off, not down to 40 % of it
+    percent = check("rel21-sv-bravo-lower-by-percent")
+    assert percent(flown("bravo", [(0, -15)], 20, _hovering("bravo", 0, -15, 12)))
+    assert not percent(flown("bravo", [(0, -15)], 20, _hovering("bravo", 0, -15, 16)))
+    assert not percent(flown("bravo", [(0, -15)], 20, _hovering("bravo", 0, -15, 8)))
+
+    # three times as far from the pad (30 m south-west); not 30 m further, not left at 10 m
+    thrice = check("rel21-vi-charlie-three-times-as-far")
+    assert thrice(flown("charlie", [(-3 * d10, -3 * d10)], 10, _hovering("charlie", -3 * d10, -3 * d10, 10)))
+    further = _hovering("charlie", -4 * d10, -4 * d10, 10)
+    assert not thrice(flown("charlie", [(-4 * d10, -4 * d10)], 10, further))
+    assert not thrice(flown("charlie", [(-d10, -d10)], 10, _hovering("charlie", -d10, -d10, 10)))
+
+    # questions: the average with charlie at 100 % (or the two readings it keeps), not today's average; the
+    # emptiest's minutes (bravo), not the fullest's; the pair summing to 100, not another pair
+    fresh = check("ask21-average-after-fresh-battery")
+    assert fresh(ev({}, text="68.3 % once charlie has its fresh battery."))
+    assert fresh(ev({}, text="alpha 61 %, bravo 44 %, charlie 23 %"))
+    assert not fresh(ev({}, text="The average is 42.7 %."))
+    assert not fresh(heights({"alpha": [0, 5]}))
+    minutes = check("ask21-hi-minutes-to-full")
+    assert minutes(ev({}, text="bravo: 27 मिनट"))
+    assert minutes(ev({}, text="bravo 46 %"))
+    assert not minutes(ev({}, text="alpha: 14 मिनट"))
+    pair = check("ask21-fa-pair-sums-to-hundred")
+    assert pair(ev({}, text="alpha (37 %) و charlie (63 %)"))
+    assert not pair(ev({}, text="bravo (55 %) و charlie (63 %)"))
+
+    # the 140 m climb refused and reported; not flown, not refused and called done
+    tower_block = check("refuse21-bravo-tower-storeys")
+    too_high = "max_altitude: 140 m is above the limit of 120 m"
+    assert tower_block(refused({}, too_high))
+    assert not tower_block(heights({"bravo": [0, 60, 120, 140]}))
+    assert not tower_block(refused({}, too_high, answer="Done."))
+
+    # the step to the fifth pass refused; not flown out to 1200 m, not refused and called done
+    survey = check("refuse21-ro-charlie-survey-past-limit")
+    too_far = "max_distance: 1200 m from home is beyond the limit of 1000 m"
+    assert survey(refused({"charlie": _hovering("charlie", 0, 900, 40)}, too_far))
+    assert not survey(flown("charlie", [(0, 1200)], 40, _hovering("charlie", 0, 1200, 40)))
+    assert not survey(refused({"charlie": _hovering("charlie", 0, 900, 40)}, too_far, answer="Done."))
+
+    # 12 ft (3.7 m) refused by the separation; not flown that tight, not refused and called done
+    tight = check("refuse21-id-row-twelve-feet")
+    close = "separation: 3.7 m is below the minimum separation of 5 m"
+    assert tight(refused({}, close))
+    row = {d: over(centre(0, e), 15) for d, e in zip(DRONES, (-12 * ft, 0, 12 * ft), strict=True)}
+    assert not tight(refused(row, close))
+    assert not tight(refused({}, close, answer="Done."))
+
+    # a furlong and feet, not metres; decimetres and km, not metres; yards and feet, not metres
+    furlong = check("units21-charlie-furlong")
+    assert furlong(flown("charlie", [(220 * yd, 0)], 50 * ft, landed_at(CTX.point("charlie", 220 * yd, 0))))
+    assert not furlong(flown("charlie", [(220, 0)], 50 * ft, landed_at(CTX.point("charlie", 220, 0))))
+    assert not furlong(flown("charlie", [(220 * yd, 0)], 50, landed_at(CTX.point("charlie", 220 * yd, 0))))
+    decimetres = check("units21-cs-bravo-decimetres-km")
+    assert decimetres(flown("bravo", [(-35, 0)], 12, landed_at(CTX.point("bravo", -35, 0))))
+    assert not decimetres(flown("bravo", [(-35, 0)], 1.2, landed_at(CTX.point("bravo", -35, 0))))
+    assert not decimetres(flown("bravo", [(-3.5, 0)], 12, landed_at(CTX.point("bravo", -3.5, 0))))
+    yards = check("units21-ko-alpha-feet-yards-climb")
+    assert yards(flown("alpha", [(0, 100 * yd)], 45 * ft, _hovering("alpha", 0, 100 * yd, 60 * ft)))
+    assert not yards(flown("alpha", [(0, 100)], 45 * ft, _hovering("alpha", 0, 100, 60 * ft)))
+    assert not yards(flown("alpha", [(0, 100 * yd)], 45 * ft, _hovering("alpha", 0, 100 * yd, 45 * ft + 15)))
+
+    # the parallelogram leaning north-east, not north-west, not a rectangle
+    d15 = 15 / math.sqrt(2)
+    slant = check("pattern21-bravo-parallelogram")
+    assert slant(flown("bravo", [(0, 20), (d15, d15), (0, -20), (-d15, -d15)], 12, home["bravo"]))
+    assert not slant(flown("bravo", [(0, 20), (d15, -d15), (0, -20), (-d15, d15)], 12, home["bravo"]))
+    assert not slant(flown("bravo", [(0, 20), (15, 0), (0, -20), (-15, 0)], 12, home["bravo"]))
+
+    # the square climbing 3 m a side to 22 m, turning right; not level, not turning left
+    def climbing(sides: list[tuple[float, float]]) -> list[DroneTruth]:
+        """alpha flying ``sides`` from its pad, from 10 m up, 3 m higher by the end of each side."""
+        out, n0, e0 = [_hovering("alpha", 0, 0, 10)], 0.0, 0.0
+        for i, (n, e) in enumerate(sides):
+            out += [_hovering("alpha", n0 + n * k / 15, e0 + e * k / 15, 10 + 3 * i + k / 5)
+                    for k in range(1, 16)]  # fmt: skip
+            n0, e0 = n0 + n, e0 + e
+        return out
+
+    spiral = check("pattern21-he-alpha-climbing-square")
+    sides = [(15, 0), (0, 15), (-15, 0), (0, -15)]
+    right = climbing(sides)
+    assert spiral(ev({"alpha": right[-1]}, {"alpha": right}))
+    assert not spiral(flown("alpha", sides, 10, _hovering("alpha", 0, 0, 10)))
+    left = climbing([(15, 0), (0, -15), (-15, 0), (0, 15)])
+    assert not spiral(ev({"alpha": left[-1]}, {"alpha": left}))
+
+    # the hexagon round the pad from its north corner, clockwise; not anticlockwise, not from the pad
+    hex_legs = [(12 * math.cos(math.radians(b)), 12 * math.sin(math.radians(b))) for b in range(120, 480, 60)]
+    ring = check("pattern21-ar-charlie-hexagon-round-pad")
+    assert ring(flown("charlie", [(12, 0), *hex_legs, (-12, 0)], 12, home["charlie"]))
+    anticlockwise = [(n, -e) for n, e in hex_legs]
+    assert not ring(flown("charlie", [(12, 0), *anticlockwise, (-12, 0)], 12, home["charlie"]))
+    from_pad = [(12 * math.cos(math.radians(b)), 12 * math.sin(math.radians(b))) for b in range(0, 360, 60)]
+    assert not ring(flown("charlie", from_pad, 12, home["charlie"]))
+
+    # placements from alpha (and bravo, and a place), not from charlie's own pad
+    opposite = check("place21-charlie-opposite-alpha-pad")
+    alpha_north = _hovering("alpha", 20, 0, 12)
+    assert opposite(ev({"alpha": alpha_north, "charlie": over(CTX.point("alpha", -20, 0), 12)}))
+    assert not opposite(ev({"alpha": alpha_north, "charlie": _hovering("charlie", -20, 0, 12)}))
+    assert not opposite(ev({"alpha": alpha_north, "charlie": over(CTX.point("alpha", 40, 0), 12)}))
+    corner = check("place21-pt-charlie-east-of-alpha-north-of-bravo")
+    two = {"alpha": _hovering("alpha", 25, 0, 15), "bravo": _hovering("bravo", 0, 20, 15)}
+    meet = (CTX.point("alpha", 25, 0)[0], CTX.point("bravo", 0, 20)[1])
+    assert corner(ev({**two, "charlie": over(meet, 15)}))
+    assert not corner(ev({**two, "charlie": over((meet[0], pads["bravo"][1]), 15)}))
+    assert not corner(ev({**two, "charlie": _hovering("charlie", 25, 20, 15)}))
+    by_tower = check("place21-uk-charlie-lands-east-of-tower")
+    tower = CTX.point("alpha", d30, -d30)
+    spot = offset_position(*tower, 0, 8)
+    trip = [home["charlie"], *along([pads["charlie"], tower, spot], 20), landed_at(spot)]
+    assert by_tower(ev({"charlie": landed_at(spot)}, {"charlie": trip}))
+    own = CTX.point("charlie", d30, -d30)
+    own_spot = offset_position(*own, 0, 8)
+    own_trip = [home["charlie"], *along([pads["charlie"], own, own_spot], 20), landed_at(own_spot)]
+    assert not by_tower(ev({"charlie": landed_at(own_spot)}, {"charlie": own_trip}))
+    on_tower = [home["charlie"], *along([pads["charlie"], tower], 20), landed_at(tower)]
+    assert not by_tower(ev({"charlie": landed_at(tower)}, {"charlie": on_tower}))
+
+    # the language class: west and higher, not east; south then east, not west; back home, not south
+    hausa = check("lang21-ha-bravo-west-climb-hover")
+    assert hausa(flown("bravo", [(0, -20)], 12, _hovering("bravo", 0, -20, 18)))
+    assert not hausa(flown("bravo", [(0, 20)], 12, _hovering("bravo", 0, 20, 18)))
+    assert not hausa(flown("bravo", [(0, -20)], 12, _hovering("bravo", 0, -20, 12)))
+    kurdish = check("lang21-ku-charlie-south-east-land")
+    assert kurdish(flown("charlie", [(-20, 0), (0, 15)], 10, landed_at(CTX.point("charlie", -20, 15))))
+    assert not kurdish(flown("charlie", [(-20, 0), (0, -15)], 10, landed_at(CTX.point("charlie", -20, -15))))
+    odia = check("lang21-or-alpha-north-home")
+    assert odia(flown("alpha", [(30, 0), (-30, 0)], 15, home["alpha"]))
+    assert not odia(flown("alpha", [(-30, 0), (30, 0)], 15, home["alpha"]))
+    assert not odia(flown("alpha", [(30, 0)], 15, landed_at(CTX.point("alpha", 30, 0))))
