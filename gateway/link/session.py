@@ -121,6 +121,7 @@ class Link:
         self.said_since = calls.said_since
         self.describe_facts = calls.describe_facts
         self._last_error: str | None = None
+        self._wanted = False  # connect() has been asked for and disconnect() has not
         self._state = ConnectionState.REGISTERED
         self._state_since = time.monotonic()
 
@@ -222,7 +223,7 @@ class Link:
     def _compute_state(self) -> ConnectionState:
         car = self._sidecar
         if car is None:
-            return ConnectionState.REGISTERED
+            return ConnectionState.CONNECTING if self._wanted else ConnectionState.REGISTERED
         if car.state == SidecarState.FAILED:
             return ConnectionState.FAILED
         if self._system is None or self._session_started is None:
@@ -377,12 +378,32 @@ class Link:
         return self.system
 
     # --- lifecycle --------------------------------------------------------------------------------------
+    def want(self) -> None:
+        """The link is wanted from now on: it reads connecting, not registered, while what precedes its
+        sidecar is awaited (a fleet stop meanwhile waits for the drone instead of skipping it)."""
+        self._wanted = True
+        self.note_state()
+
+    def unwant(self) -> None:
+        """A connect that failed before its sidecar started: the link is registered again."""
+        if self._sidecar is None:
+            self._wanted = False
+            self.note_state()
+
     async def connect(self) -> None:
         """Start the sidecar and everything that follows (idempotent, returns at once)."""
         if self._sidecar is not None:
             if self._sidecar.state != SidecarState.FAILED:
                 return
             await self.disconnect()  # connecting a failed vehicle again starts afresh
+        self.want()
+        try:
+            await self._start_sidecar()
+        except BaseException:
+            self.unwant()
+            raise
+
+    async def _start_sidecar(self) -> None:
         self._last_error = None
         url = self.spec.url
         if self.spec.gcs_endpoints or (
@@ -431,6 +452,7 @@ class Link:
 
     async def disconnect(self) -> None:
         """Stop everything of this link; no mavsdk_server process remains."""
+        self._wanted = False
         if self._monitor is not None:
             self._monitor.stop()
             self._monitor = None

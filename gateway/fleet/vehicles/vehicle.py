@@ -200,7 +200,12 @@ class Vehicle:
     # --- lifecycle --------------------------------------------------------------------------------------
     async def connect(self) -> None:
         """Start the link (sidecar, session) and the flight recorder (idempotent, returns at once)."""
-        await self.origins.start()  # the stored origin is known before the first home arrives
+        self.link.want()  # connecting from this call on, not once the stored origin has been read
+        try:
+            await self.origins.start()  # the stored origin is known before the first home arrives
+        except BaseException:
+            self.link.unwant()
+            raise
         await self.link.connect()  # a failed sidecar starts afresh; a running one is left alone
         if self.store is not None and self._recorder is None:
             recorder = FlightRecorder(self.link, self.heartbeat_state, self.store, self.settings)
