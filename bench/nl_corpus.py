@@ -1,4 +1,4 @@
-"""The generalisation corpus of the agent benchmark: 807 requests as people phrase them, with a fixed split.
+"""The generalisation corpus of the agent benchmark: 843 requests as people phrase them, with a fixed split.
 
 Each entry is a request in everyday words (not in the words of the tool names), the class it belongs to,
 the half it is in, and a check of the outcome against the simulator's truth: where the drones ended (and
@@ -221,14 +221,26 @@ run on them: 36 of 36 passed at the first run (2026-12-04), the gateway refusing
 separation. That leaves 735 dev and 36 test.
 Later on 2026-12-05 (nineteenth round) EVERY test entry (36, ``_nineteenth_round``) was moved to dev, each
 marked "moved to dev on 2026-12-05, nineteenth round", once both models had been measured on it (figures
-in docs/benchmarks.md). A fresh test half took its place (``_twentieth_test_half``): 36 new requests, 3 a
-class, written before any model ran on it by a writer who did not read the host's word lists or rules: 22
-of the 33 outside the ``language`` class in 22 languages, one each (Afrikaans, Bengali, Bulgarian, Catalan,
-Cebuano, Danish, Estonian, Finnish, Greek, Hungarian, Javanese, Kyrgyz, Lithuanian, Malay, Norwegian,
-Serbian in Latin script, Slovak, Slovenian, Swahili, Tagalog, Thai, Urdu: the nineteenth half's 22, none
-of them new), and the ``language`` class's 3 in Burmese, Yoruba and Somali (all three new to the corpus,
-and Myanmar script). Only the harness self-check (the scripted ideal plan) has run on them: 36 of 36
-passed. That leaves 771 dev and 36 test.
+in docs/benchmarks.md). A fresh test half took its place (``_twentieth_test_half``, now
+``_twentieth_round``): 36 new requests, 3 a class, written before any model ran on it by a writer who did
+not read the host's word lists or rules: 22 of the 33 outside the ``language`` class in 22 languages, one
+each (Afrikaans, Bengali, Bulgarian, Catalan, Cebuano, Danish, Estonian, Finnish, Greek, Hungarian,
+Javanese, Kyrgyz, Lithuanian, Malay, Norwegian, Serbian in Latin script, Slovak, Slovenian, Swahili,
+Tagalog, Thai, Urdu: the nineteenth half's 22, none of them new), and the ``language`` class's 3 in
+Burmese, Yoruba and Somali (all three new to the corpus, and Myanmar script). Only the harness self-check
+(the scripted ideal plan) has run on them: 36 of 36 passed. That leaves 771 dev and 36 test.
+Later on 2026-12-05 (twentieth round) EVERY test entry (36, ``_twentieth_round``) was moved to dev, each
+marked "moved to dev on 2026-12-05, twentieth round", once both models had been measured on it (figures in
+docs/benchmarks.md). A fresh test half took its place (``_twenty_first_test_half``): 36 new requests, 3 a
+class, written before any model ran on it by a writer who did not read the host's word lists, rules or
+prompts: 22 of the 33 outside the ``language`` class in 22 languages, one each (Arabic, Chinese, Czech,
+Dutch, French, German, Hebrew, Hindi, Indonesian, Italian, Japanese, Korean, Persian, Polish, Portuguese,
+Romanian, Russian, Spanish, Swedish, Turkish, Ukrainian, Vietnamese: none of them new), and the
+``language`` class's 3 in Hausa, Kurdish (Kurmanji) and Odia (all three new to the corpus, and Odia script).
+Only the harness self-check (the scripted ideal plan) has run on them: 34 of 36 passed at the first run
+(2026-12-06), two ideal plans being wrong, not the requests or their checks (a return to launch after a
+landing away from the pad lands where the drone last armed; two legs fly a corner where the request asks
+for one straight line); with those plans flying to the point, 36 of 36. That leaves 807 dev and 36 test.
 
   python bench/nl_missions.py --half test --serve-local 1.5b --runs 3   # the test half, per class
 """
@@ -279,7 +291,7 @@ CLASSES = (
     "units",  # distances and heights in feet, yards, kilometres
     "pattern",  # a shape flown by one drone: polygon, circle, survey lines
     "placement",  # a drone placed relative to another drone or to its home
-    "language",  # requests in languages other than English (Japanese, Chinese, Korean, French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish, Hungarian, Croatian, Slovak, Greek, Catalan, Russian, Ukrainian, Bulgarian, Slovenian, Latvian, Lithuanian, Estonian, Indonesian, Vietnamese, Arabic, Hindi, Thai, Hebrew, Persian, Bengali, Burmese, Yoruba, Somali)
+    "language",  # requests in languages other than English (Japanese, Chinese, Korean, French, Spanish, German, Italian, Portuguese, Dutch, Polish, Czech, Swedish, Danish, Norwegian, Finnish, Romanian, Turkish, Hungarian, Croatian, Slovak, Greek, Catalan, Russian, Ukrainian, Bulgarian, Slovenian, Latvian, Lithuanian, Estonian, Indonesian, Vietnamese, Arabic, Hindi, Thai, Hebrew, Persian, Bengali, Burmese, Yoruba, Somali, Hausa, Kurdish, Odia)
 )
 HALVES = ("dev", "test")
 DRONES = ("alpha", "bravo", "charlie")
@@ -7102,13 +7114,14 @@ def _nineteenth_round() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
-def _twentieth_test_half() -> list[CorpusEntry]:
+def _twentieth_round() -> list[CorpusEntry]:
     """The test half written on 2026-12-04 (twentieth round), before any model ran on it, by a writer who
     did not read the host's word lists or rules: 3 a class; 22 of the 33 outside ``language`` in other
     languages than English, one each (Afrikaans, Bengali, Bulgarian, Catalan, Cebuano, Danish, Estonian,
     Finnish, Greek, Hungarian, Javanese, Kyrgyz, Lithuanian, Malay, Norwegian, Serbian in Latin script,
     Slovak, Slovenian, Swahili, Tagalog, Thai, Urdu), the ``language`` class's 3 in Burmese, Yoruba and
-    Somali (all three new to the corpus, and Myanmar script with them)."""
+    Somali (all three new to the corpus, and Myanmar script with them); all of it moved to dev on 2026-12-05
+    (twentieth round), once both models had been measured on it (docs/benchmarks.md)."""
     three = DRONES
     d30 = 30 / math.sqrt(2)
     # three passes 40 m long northward, 10 m apart, stepping east between them
@@ -7135,19 +7148,22 @@ def _twentieth_test_half() -> list[CorpusEntry]:
 
     return [
         # single
-        _entry("single", "test", "single20-bravo-level-with-mast-light", ("bravo",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("single", "dev", "single20-bravo-level-with-mast-light", ("bravo",),
                "The mast next to bravo's pad is 40 m tall and its warning light sits a quarter of the way down "
                "from the top. Put bravo level with that light, straight over its pad, and hold it there.",
                lambda c, ev: _all(at(ev, "bravo", *_home(c, "bravo"), alt=30), airborne_at(ev, "bravo", 30)),
                [_takeoff("bravo", 30)], "Bravo hovers at 30 m over its pad, level with the mast's warning light."),
-        _entry("single", "test", "single20-fi-alpha-twice-as-high", ("alpha",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("single", "dev", "single20-fi-alpha-twice-as-high", ("alpha",),
                "Nosta alpha suoraan lähtöpaikkansa yläpuolelle 7 metrin korkeuteen. Kun kamera on tarkistettu, "
                "nosta se kaksi kertaa niin korkealle ja jätä se leijumaan siihen.",
                lambda c, ev: _all(passed(ev, "alpha", [(_home(c, "alpha"), 7), (_home(c, "alpha"), 14)]),
                                   at(ev, "alpha", *_home(c, "alpha"), alt=14), airborne_at(ev, "alpha", 14)),
                [_takeoff("alpha", 7), _move("alpha", alt=14)],
                "alpha leijuu 14 metrissä lähtöpaikkansa yläpuolella, kaksi kertaa 7 metrin korkeudella."),
-        _entry("single", "test", "single20-ur-charlie-two-hops", ("charlie",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("single", "dev", "single20-ur-charlie-two-hops", ("charlie",),
                "موٹروں کی جانچ کے لیے charlie کو دو بار اڑاؤ: ہر بار اسے اس کے پیڈ سے سیدھا 10 میٹر اوپر لے جاؤ "
                "اور پھر واپس اسی جگہ اتار دو۔",
                lambda c, ev: _all(takeoffs(ev, "charlie", 10, 2), at(ev, "charlie", *_home(c, "charlie")),
@@ -7155,7 +7171,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 10), _land("charlie"), _takeoff("charlie", 10), _land("charlie")],
                "charlie دو بار 10 میٹر تک اٹھا اور ہر بار اپنے پیڈ پر واپس اترا۔"),
         # multi
-        _entry("multi", "test", "multi20-alpha-charlie-swap-pads", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("multi", "dev", "multi20-alpha-charlie-swap-pads", three,
                "Get alpha up to 10 m and charlie up to 15 m, each over its own pad, then have them swap places: "
                "alpha over charlie's pad and charlie over alpha's, each keeping its height so they pass without "
                "meeting. Bravo stays on the ground.",
@@ -7165,7 +7182,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                lambda c: [_takeoff("alpha", 10), _takeoff("charlie", 15), _go("alpha", _home(c, "charlie"), 10),
                           _go("charlie", _home(c, "alpha"), 15)],
                "Alpha hovers over charlie's pad at 10 m and charlie over alpha's at 15 m; bravo stayed down."),
-        _entry("multi", "test", "multi20-hu-spread-bravo-back-down", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("multi", "dev", "multi20-hu-spread-bravo-back-down", three,
                "Emeld fel mindhárom drónt 12 méterre, mindegyiket a saját leszállóhelye fölé. Ezután alpha "
                "repüljön 15 métert nyugatra, charlie ugyanennyit keletre, bravo pedig szálljon le oda, ahonnan "
                "felszállt.",
@@ -7176,7 +7194,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 12), _takeoff("bravo", 12), _takeoff("charlie", 12), _move("alpha", 0, -15),
                 _move("charlie", 0, 15), _land("bravo")],
                "alpha 15 m-re nyugatra, charlie 15 m-re keletre lebeg 12 m magasan; bravo visszaszállt a helyére."),
-        _entry("multi", "test", "multi20-th-pair-north-one-returns", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("multi", "dev", "multi20-th-pair-north-one-returns", three,
                "ให้ alpha กับ bravo บินขึ้นไปที่ความสูง 10 เมตร แล้วบินไปทางทิศเหนือ 20 เมตรทั้งคู่ จากนั้นให้ alpha "
                "ลงจอดตรงนั้นเลย ส่วน bravo ให้บินกลับมาลงจอดที่จุดที่มันขึ้นบิน charlie ไม่ต้องบิน",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 20, 0)], alt=10),
@@ -7187,7 +7206,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                [_move("alpha", 20, 0, alt=10), _move("bravo", 20, 0, alt=10), _land("alpha"), _rtl("bravo")],
                "alpha ลงจอดห่างไปทางเหนือ 20 m ส่วน bravo บินกลับมาลงจอดที่จุดขึ้นบิน charlie ไม่ได้บิน"),
         # compound
-        _entry("compound", "test", "compound20-bravo-lands-at-first-sensor", ("bravo",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("compound", "dev", "compound20-bravo-lands-at-first-sensor", ("bravo",),
                "Bravo has two fence sensors to service, 20 m and 40 m north of its pad. At 10 m, fly it to the "
                "first one and land there so the crew can swap the sensor's battery; then take it back up to 10 m, "
                "fly on to the second one and hold it over that.",
@@ -7197,7 +7217,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                 _move("bravo", 20, 0)],
                "Bravo landed at the first sensor, 20 m north, took off again and hovers over the second, 40 m "
                "north of its pad, at 10 m."),
-        _entry("compound", "test", "compound20-sk-alpha-west-climb-south-land", ("alpha",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("compound", "dev", "compound20-sk-alpha-west-climb-south-land", ("alpha",),
                "Vzlietni s dronom alpha do výšky 10 metrov a preleť 20 metrov na západ. Tam vystúp na 25 metrov, "
                "potom preleť 20 metrov na juh a pristaň.",
                lambda c, ev: _all(passed(ev, "alpha", [(c.point("alpha", 0, -20), 10), (c.point("alpha", 0, -20), 25),
@@ -7206,7 +7227,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 10), _move("alpha", 0, -20), _move("alpha", alt=25), _move("alpha", -20, 0),
                 _land("alpha")],
                "alpha preletel 20 m na západ, vystúpil na 25 m, preletel 20 m na juh a pristál."),
-        _entry("compound", "test", "compound20-sw-charlie-half-way-back", ("charlie",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("compound", "dev", "compound20-sw-charlie-half-way-back", ("charlie",),
                "Paisha charlie hadi mita 12, uipeleke mita 30 upande wa kusini, kisha uirudishe nusu ya njia "
                "kuelekea kituo chake cha kurukia, na uitue hapo.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -30, 0)], alt=12),
@@ -7214,7 +7236,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 12), _move("charlie", -30, 0), _move("charlie", 15, 0), _land("charlie")],
                "charlie ilienda mita 30 kusini, ikarudi mita 15 na kutua mita 15 kusini mwa kituo chake."),
         # conditional
-        _entry("conditional", "test", "cond20-alpha-lead-of-twenty-or-charlie", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("conditional", "dev", "cond20-alpha-lead-of-twenty-or-charlie", three,
                "Compare alpha's and charlie's batteries. If alpha is ahead of charlie by at least 20 points, alpha "
                "flies 25 m east at 10 m and hovers there; otherwise charlie does that instead. Bravo stays down.",
                lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 0, 25), alt=10), airborne_at(ev, "charlie", 10),
@@ -7223,7 +7246,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                "Alpha (62 %) is only 14 points ahead of charlie (48 %), so charlie hovers 25 m east of its pad at "
                "10 m.",
                battery={"alpha": 62.0, "charlie": 48.0}),
-        _entry("conditional", "test", "cond20-da-sixty-percent-fly-north", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("conditional", "dev", "cond20-da-sixty-percent-fly-north", three,
                "Tjek batterierne på alle tre droner først. De droner, der har mindst 60 %, skal lette til 15 meter "
                "og flyve 20 meter mod nord og blive hængende der; resten bliver på jorden.",
                lambda c, ev: _all(*(_all(at(ev, d, *c.point(d, 20, 0), alt=15), airborne_at(ev, d, 15))
@@ -7233,7 +7257,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                "alpha (72 %) og charlie (66 %) hænger 20 m nord for deres pladser i 15 m; bravo (55 %) blev på "
                "jorden.",
                battery={"alpha": 72.0, "bravo": 55.0, "charlie": 66.0}),
-        _entry("conditional", "test", "cond20-ky-bravo-or-alpha-south-land", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("conditional", "dev", "cond20-ky-bravo-or-alpha-south-land", three,
                "Эгерде bravo дронунун батареясы 50 пайыздан көп болсо, аны 10 метр бийиктикке көтөрүп, 20 метр "
                "түштүккө учуруп, ошол жерге кондур. Андай болбосо, ошол эле тапшырманы alpha аткарсын. charlie "
                "жерде кала берсин.",
@@ -7244,7 +7269,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                "bravo'нун батареясы 46 %, 50 %дан аз: ошондуктан alpha 20 м түштүккө учуп, ошол жерге конду.",
                battery={"alpha": 77.0, "bravo": 46.0}),
         # formation
-        _entry("formation", "test", "form20-column-west", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("formation", "dev", "form20-column-west", three,
                "Put the three in single file, one behind the other on a north–south line, 8 m apart at 20 m, "
                "centred 30 m west of the middle of their pads, and hold them there.",
                lambda c, ev: _all(formation_at(c, ev, three, 20, 8, 0, -30), farthest_apart(ev, three, 16),
@@ -7253,7 +7279,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                # column moved west would run east-west, so each drone flies to its slot)
                lambda c: [_go(d, slot(c, three, n, -30), 20) for d, n in (("alpha", 8), ("bravo", 0), ("charlie", -8))],
                "The three hover in single file north to south, 8 m apart at 20 m, 30 m west of their pads."),
-        _entry("formation", "test", "form20-ca-triangle-south", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("formation", "dev", "form20-ca-triangle-south", three,
                "Posa els tres drons en un triangle equilàter de 12 metres de costat, a 15 metres d'alçada, "
                "centrat 20 metres al sud del punt mitjà de les seves plataformes, i deixa'ls allà en vol "
                "estacionari.",
@@ -7261,7 +7288,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                [_formation(three, "circle", 15, 12, north=-20)],
                "Els tres drons són en un triangle de 12 m de costat a 15 m d'alçada, 20 m al sud de les "
                "plataformes."),
-        _entry("formation", "test", "form20-sr-row-over-charlie-pad", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("formation", "dev", "form20-sr-row-over-charlie-pad", three,
                "Poređaj sva tri drona u red od zapada prema istoku, na visini od 10 metara, sa razmakom od 6 "
                "metara između susednih, tako da sredina reda bude tačno iznad mesta poletanja drona charlie. Neka "
                "lebde tamo.",
@@ -7274,14 +7302,16 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                "Sva tri drona lebde na 10 m u redu zapad–istok, 6 m razmaka, sa sredinom iznad mesta poletanja "
                "drona charlie."),
         # relative
-        _entry("relative", "test", "rel20-bravo-staircase-north", ("bravo",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("relative", "dev", "rel20-bravo-staircase-north", ("bravo",),
                "Walk bravo up a staircase: start it at 8 m over its pad, then two steps, each one 12 m north and "
                "5 m up, and hold it at the top.",
                lambda c, ev: _all(passed(ev, "bravo", [(c.point("bravo", 12, 0), 13)]),
                                   at(ev, "bravo", *c.point("bravo", 24, 0), alt=18), airborne_at(ev, "bravo", 18)),
                [_takeoff("bravo", 8), _move("bravo", 12, 0, up=5), _move("bravo", 12, 0, up=5)],
                "Bravo climbed two steps of 12 m north and 5 m up: it holds 24 m north of its pad at 18 m."),
-        _entry("relative", "test", "rel20-el-alpha-quarter-back", ("alpha",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("relative", "dev", "rel20-el-alpha-quarter-back", ("alpha",),
                "Σήκωσε το alpha στα 12 μέτρα και πήγαινέ το 40 μέτρα νότια. Μετά γύρισέ το πίσω προς τα βόρεια "
                "κατά το ένα τέταρτο αυτής της απόστασης και κράτησέ το εκεί στον αέρα.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", -40, 0)], alt=12),
@@ -7289,7 +7319,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 12), _move("alpha", -40, 0), _move("alpha", 10, 0)],
                "Το alpha πήγε 40 m νότια, γύρισε 10 m πίσω και αιωρείται 30 m νότια του σημείου απογείωσης, στα "
                "12 m."),
-        _entry("relative", "test", "rel20-lt-charlie-southeast-climb", ("charlie",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("relative", "dev", "rel20-lt-charlie-southeast-climb", ("charlie",),
                "Pakelk charlie į 10 metrų aukštį, nuskraidink jį 30 metrų į pietryčius ir ten pakelk dar 10 metrų "
                "aukščiau. Palik jį kaboti ore.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -d30, d30)], alt=10),
@@ -7298,7 +7329,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 10), _move("charlie", -d30, d30), _move("charlie", up=10)],
                "charlie kabo 30 m į pietryčius nuo savo aikštelės, 20 m aukštyje."),
         # question
-        _entry("question", "test", "ask20-spread-fullest-emptiest", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("question", "dev", "ask20-spread-fullest-emptiest", three,
                "How many percentage points apart are the fullest and the emptiest battery in the fleet right now, "
                "and which drones are they? Keep everything on the ground.",
                # the typed plan reads, it does not compute: the gap, or the two readings it comes from
@@ -7307,7 +7339,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                                   nobody_armed(ev)),
                [("fleet_status", {})], "36 points: alpha is fullest at 83 %, bravo emptiest at 47 % (charlie 65 %).",
                battery={"alpha": 83.0, "bravo": 47.0, "charlie": 65.0}),
-        _entry("question", "test", "ask20-bg-lead-over-second", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("question", "dev", "ask20-bg-lead-over-second", three,
                "Кой дрон е с най-много заряд в момента и с колко процентни пункта изпреварва следващия по заряд? "
                "Нищо не излита.",
                lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"),
@@ -7316,7 +7349,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                                   nobody_armed(ev)),
                [("fleet_status", {})], "bravo: 91 %, с 14 пункта пред charlie (77 %); alpha има 58 %.",
                battery={"alpha": 58.0, "bravo": 91.0, "charlie": 77.0}),
-        _entry("question", "test", "ask20-jv-charlie-missions-left", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("question", "dev", "ask20-jv-charlie-missions-left", three,
                "Saben misi butuh 15 % baterai, lan saben drone kudu isih nduwé paling ora 30 % sawisé misi "
                "pungkasan. Kaping pira charlie isih bisa nindakaké misi kaya ngono? Sebutna uga baterainé saiki, "
                "nanging aja ana sing mabur.",
@@ -7327,14 +7361,16 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                battery={"alpha": 60.0, "bravo": 45.0, "charlie": 78.0}),
         # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
         # 2 m the lowest altitude, 5 m the least separation a formation keeps)
-        _entry("refusal", "test", "refuse20-charlie-low-battery", ("charlie",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("refusal", "dev", "refuse20-charlie-low-battery", ("charlie",),
                "Charlie's just back from the last job, but it's the only one with the thermal camera. Send it up "
                "to 10 m and 50 m north to check the gate.",
                lambda c, ev: _all(refusal_seen(ev, "battery"), never_armed(ev, "charlie"), answer_reports_refusal(ev)),
                [_move("charlie", 50, 0, alt=10)],
                "Refused: charlie has 24 % battery, below the 30 % minimum to take off.",
                battery={"charlie": 24.0}),
-        _entry("refusal", "test", "refuse20-ms-bravo-second-leg-too-far", ("bravo",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("refusal", "dev", "refuse20-ms-bravo-second-leg-too-far", ("bravo",),
                "Naikkan bravo ke 30 meter dan terbangkan 600 meter ke barat untuk memeriksa pagar. Selepas itu, "
                "teruskan 600 meter lagi ke barat sampai ke tebing sungai.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -600), alt=30), airborne_at(ev, "bravo", 30),
@@ -7343,7 +7379,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                [_takeoff("bravo", 30), _move("bravo", 0, -600), _move("bravo", 0, -600)],
                "bravo berada 600 m ke barat pada 30 m; penerbangan 600 m lagi ditolak: 1200 m dari titik berlepas "
                "melebihi had 1000 m."),
-        _entry("refusal", "test", "refuse20-ceb-alpha-down-to-one-metre", ("alpha",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("refusal", "dev", "refuse20-ceb-alpha-down-to-one-metre", ("alpha",),
                "Ipalupad ang alpha sa 10 ka metros ibabaw sa iyang pad, unya ipaubos kini og 9 ka metros aron "
                "makita ang ilalom sa trak.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=10), airborne_at(ev, "alpha", 10),
@@ -7351,27 +7388,31 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                [_takeoff("alpha", 10), _move("alpha", up=-9)],
                "Ang alpha anaa sa 10 m; gibalibaran ang pagpaubos og 9 m: 1 m ra kana, ubos sa minimum nga 2 m."),
         # units
-        _entry("units", "test", "units20-alpha-feet-yards", ("alpha",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("units", "dev", "units20-alpha-feet-yards", ("alpha",),
                "Alpha: climb to 35 ft, fly 250 yards west, then drop to 20 ft there and hold it.",
                lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -250 * YD)], alt=35 * FT),
                                   at(ev, "alpha", *c.point("alpha", 0, -250 * YD), alt=20 * FT),
                                   airborne_at(ev, "alpha", 20 * FT)),
                [_takeoff("alpha", 35 * FT), _move("alpha", 0, -250 * YD), _move("alpha", alt=20 * FT)],
                "Alpha holds 250 yd (229 m) west of its pad at 20 ft (6.1 m)."),
-        _entry("units", "test", "units20-no-charlie-feet-km", ("charlie",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("units", "dev", "units20-no-charlie-feet-km", ("charlie",),
                "Charlie skal opp i 40 fot og fly 0,2 km rett nordover, og så lande der.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 200, 0)], alt=40 * FT),
                                   at(ev, "charlie", *c.point("charlie", 200, 0)), landed_disarmed(ev, "charlie")),
                [_takeoff("charlie", 40 * FT), _move("charlie", 200, 0), _land("charlie")],
                "charlie fløy 200 m nordover i 40 fot (12,2 m) og landet der."),
-        _entry("units", "test", "units20-et-bravo-cm-km", ("bravo",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("units", "dev", "units20-et-bravo-cm-km", ("bravo",),
                "Tõsta bravo 1500 sentimeetri kõrgusele, lenda sellega 0,04 kilomeetrit läände ja jäta see sinna "
                "õhku hõljuma.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -40), alt=15), airborne_at(ev, "bravo", 15)),
                [_takeoff("bravo", 15), _move("bravo", 0, -40)],
                "bravo hõljub 40 m stardikohast läänes, 15 m kõrgusel."),
         # pattern
-        _entry("pattern", "test", "pattern20-alpha-mow-north", ("alpha",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("pattern", "dev", "pattern20-alpha-mow-north", ("alpha",),
                "Have alpha mow the field north of its pad at 15 m: three passes 40 m long running north, 10 m "
                "apart, the first straight out from the pad, stepping east between passes. Land it where the last "
                "pass ends.",
@@ -7379,7 +7420,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                                   at(ev, "alpha", *c.point("alpha", 40, 20)), landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 15), *_legs("alpha", mow), _land("alpha")],
                "Alpha flew three 40 m passes north, 10 m apart, and landed 40 m north and 20 m east of its pad."),
-        _entry("pattern", "test", "pattern20-bn-charlie-square-left", ("charlie",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("pattern", "dev", "pattern20-bn-charlie-square-left", ("charlie",),
                "charlie-কে 10 মিটার উচ্চতায় তোলো, তারপর 20 মিটার বাহুর একটি বর্গক্ষেত্র ধরে ওড়াও: প্রথম বাহু পশ্চিম "
                "দিকে, আর প্রতিটি কোণে বাঁ দিকে ঘুরবে। যেখান থেকে শুরু করেছিল, শেষে সেখানেই নামিয়ে দাও।",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(square_left)[:3]]),
@@ -7387,7 +7429,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                [_takeoff("charlie", 10), *_legs("charlie", square_left), _land("charlie")],
                "charlie পশ্চিম দিক থেকে শুরু করে বাঁ দিকে ঘুরে 20 m বাহুর বর্গক্ষেত্র উড়ে যেখান থেকে শুরু করেছিল "
                "সেখানে নেমেছে।"),
-        _entry("pattern", "test", "pattern20-tl-bravo-triangle-right", ("bravo",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("pattern", "dev", "pattern20-tl-bravo-triangle-right", ("bravo",),
                "Paliparin mo si bravo sa taas na 12 metro, tapos paikutin mo siya sa isang tatsulok na pare-pareho "
                "ang haba ng mga gilid, 20 metro bawat isa. Pahilaga ang unang gilid, tapos kumanan siya sa bawat "
                "sulok. Pagbalik niya sa pinagsimulan, doon mo siya ilapag.",
@@ -7398,7 +7441,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                "saka lumapag sa pinagsimulan."),
         # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
         # charlie from alpha, so that a drone placed from itself misses)
-        _entry("placement", "test", "place20-charlie-north-lower-than-alpha", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("placement", "dev", "place20-charlie-north-lower-than-alpha", three,
                "Take alpha up to 20 m over its pad. Then put charlie 15 m north of alpha and 8 m lower than it, and "
                "leave both hovering; bravo stays on the ground.",
                lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=20), airborne_at(ev, "alpha", 20),
@@ -7406,7 +7450,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_takeoff("alpha", 20), _go("charlie", c.point("alpha", 15, 0), 12)],
                "Alpha hovers over its pad at 20 m; charlie is 15 m north of it at 12 m; bravo stayed down."),
-        _entry("placement", "test", "place20-af-charlie-east-of-alpha", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("placement", "dev", "place20-af-charlie-east-of-alpha", three,
                "Laat alpha opstyg tot 12 meter en vlieg hom 20 meter suid. Stuur daarna charlie na 'n punt 10 "
                "meter oos van alpha, op dieselfde hoogte, en laat albei daar hang. bravo bly op die grond.",
                lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", -20, 0), alt=12), airborne_at(ev, "alpha", 12),
@@ -7414,7 +7459,8 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                                   never_armed(ev, "bravo")),
                lambda c: [_takeoff("alpha", 12), _move("alpha", -20, 0), _go("charlie", c.point("alpha", -20, 10), 12)],
                "alpha hang 20 m suid van sy plek op 12 m; charlie hang 10 m oos van alpha op dieselfde hoogte."),
-        _entry("placement", "test", "place20-sl-charlie-over-alpha-pad-above-bravo", three,
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("placement", "dev", "place20-sl-charlie-over-alpha-pad-above-bravo", three,
                "Dvigni bravo na 15 metrov in ga premakni 20 metrov proti zahodu. Potem postavi charlie natanko nad "
                "vzletno mesto drona alpha, 5 metrov višje od bravo. alpha naj ostane na tleh.",
                lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 0, -20), alt=15), airborne_at(ev, "bravo", 15),
@@ -7424,21 +7470,24 @@ def _twentieth_test_half() -> list[CorpusEntry]:
                "bravo lebdi 20 m zahodno na 15 m; charlie lebdi nad vzletnim mestom drona alpha na 20 m; alpha je "
                "ostal na tleh."),
         # language
-        _entry("language", "test", "lang20-my-alpha-west-land", ("alpha",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("language", "dev", "lang20-my-alpha-west-land", ("alpha",),
                "alpha ကို မီတာ 10 အမြင့်အထိ ပျံတက်စေပြီး အနောက်ဘက်သို့ မီတာ 25 ပျံသွားစေပါ။ ထို့နောက် "
                "အဲဒီနေရာမှာပဲ ဆင်းသက်စေပါ။",
                lambda c, ev: _all(reached_alt(ev, "alpha", 10), at(ev, "alpha", *c.point("alpha", 0, -25)),
                                   landed_disarmed(ev, "alpha")),
                [_takeoff("alpha", 10), _move("alpha", 0, -25), _land("alpha")],
                "alpha သည် အနောက်ဘက်သို့ မီတာ 25 ပျံသွားပြီး အဲဒီနေရာမှာ ဆင်းသက်ခဲ့သည်။"),
-        _entry("language", "test", "lang20-yo-bravo-north-east-hover", ("bravo",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("language", "dev", "lang20-yo-bravo-north-east-hover", ("bravo",),
                "Gbé bravo sókè dé mítà 15, kí o fò ó lọ sí àríwá ní mítà 20, lẹ́yìn náà kí o tún fò ó lọ sí "
                "ìlà-oòrùn ní mítà 10, kí o sì jẹ́ kí ó dúró lójú òfuurufú níbẹ̀.",
                lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 20, 0)], alt=15),
                                   at(ev, "bravo", *c.point("bravo", 20, 10), alt=15), airborne_at(ev, "bravo", 15)),
                [_takeoff("bravo", 15), _move("bravo", 20, 0), _move("bravo", 0, 10)],
                "bravo wà lójú òfuurufú ní mítà 20 sí àríwá àti mítà 10 sí ìlà-oòrùn, ní gíga mítà 15."),
-        _entry("language", "test", "lang20-so-charlie-east-north-land", ("charlie",),
+        # moved to dev on 2026-12-05, twentieth round: measured on both models, its failures seen
+        _entry("language", "dev", "lang20-so-charlie-east-north-land", ("charlie",),
                "Kor u qaad charlie ilaa 12 mitir, u dir 20 mitir dhanka bari, kadibna 20 mitir dhanka waqooyi, "
                "halkaasna ku soo deji.",
                lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, 20)], alt=12),
@@ -7454,8 +7503,7 @@ def _twenty_first_test_half() -> list[CorpusEntry]:
     other languages than English, one each (Arabic, Chinese, Czech, Dutch, French, German, Hebrew, Hindi,
     Indonesian, Italian, Japanese, Korean, Persian, Polish, Portuguese, Romanian, Russian, Spanish, Swedish,
     Turkish, Ukrainian, Vietnamese: none of them new), the ``language`` class's 3 in Hausa, Kurdish
-    (Kurmanji) and Odia (all three new to the corpus, and Odia script with them). Not wired into
-    ``corpus()`` until the twentieth half has been measured."""
+    (Kurmanji) and Odia (all three new to the corpus, and Odia script with them)."""
     three = DRONES
     d10, d15, d30 = (x / math.sqrt(2) for x in (10, 15, 30))
     furlong = 220 * YD
@@ -7500,8 +7548,10 @@ def _twenty_first_test_half() -> list[CorpusEntry]:
         """The drone was on the ground at each of ``points`` in turn: landings out there, in order."""
         i = 0
         for s in ev.track.get(d, []):
-            if i < len(points) and s.landed and (
-                horizontal_distance_m(s.lat, s.lon, *points[i]) <= HORIZONTAL_TOL_M
+            if (
+                i < len(points)
+                and s.landed
+                and (horizontal_distance_m(s.lat, s.lon, *points[i]) <= HORIZONTAL_TOL_M)
             ):
                 i += 1
         return Check(i == len(points), f"{d} set down at {i}/{len(points)} stops in order")
@@ -7591,8 +7641,11 @@ def _twenty_first_test_half() -> list[CorpusEntry]:
                "come home and land on the pad.",
                lambda c, ev: _all(set_down_in_order(ev, "alpha", [c.point("alpha", 0, 20), c.point("alpha", 20, 0)]),
                                   at(ev, "alpha", *_home(c, "alpha")), landed_disarmed(ev, "alpha")),
-               [_takeoff("alpha", 10), _move("alpha", 0, 20), _land("alpha"), _takeoff("alpha", 10),
-                _move("alpha", 20, -20), _land("alpha"), _takeoff("alpha", 10), _rtl("alpha")],
+               # the pad by its position: the autopilot's home walks to where it last armed, so a return
+               # to launch after the second takeoff would land at the drop
+               lambda c: [_takeoff("alpha", 10), _move("alpha", 0, 20), _land("alpha"), _takeoff("alpha", 10),
+                          _move("alpha", 20, -20), _land("alpha"), _takeoff("alpha", 10),
+                          _go("alpha", _home(c, "alpha"), 10), _land("alpha")],
                "Alpha landed 20 m east for the pick-up, then 20 m north of its pad for the drop, and came home."),
         _entry("compound", "test", "compound21-it-legs-from-first", ("bravo",),
                "Porta bravo a 12 metri. Primo tratto: 15 metri verso est. Secondo tratto: verso nord, lungo il "
@@ -7683,7 +7736,8 @@ def _twenty_first_test_half() -> list[CorpusEntry]:
                lambda c, ev: _all(kept_clear(ev, "alpha", c.point("alpha", 0, 30)),
                                   kept_clear(ev, "alpha", c.point("alpha", 16, 0)),
                                   at(ev, "alpha", *c.point("alpha", 16, 30), alt=10), airborne_at(ev, "alpha", 10)),
-               [_takeoff("alpha", 10), _move("alpha", 16, 30)],
+               # one straight line to the point (a plan's two legs are two moves: a corner)
+               lambda c: [_takeoff("alpha", 10), _go("alpha", c.point("alpha", 16, 30), 10)],
                "Alpha flew straight to the point 16 m north and 30 m east of its pad and holds there at 10 m."),
         _entry("relative", "test", "rel21-sv-bravo-lower-by-percent", ("bravo",),
                "Ta upp bravo till 20 meter. Flytta den sedan 15 meter västerut och sänk den samtidigt med 40 "
@@ -7891,7 +7945,8 @@ def corpus() -> list[CorpusEntry]:
         *_seventeenth_round(),
         *_eighteenth_round(),
         *_nineteenth_round(),
-        *_twentieth_test_half(),
+        *_twentieth_round(),
+        *_twenty_first_test_half(),
     ]
 
 

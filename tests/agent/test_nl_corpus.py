@@ -428,27 +428,47 @@ NINETEENTH_HALF_MOVED = frozenset({
 })  # fmt: skip
 
 
+TWENTIETH_HALF_MOVED = frozenset({
+    "ask20-bg-lead-over-second", "ask20-jv-charlie-missions-left", "ask20-spread-fullest-emptiest",
+    "compound20-bravo-lands-at-first-sensor", "compound20-sk-alpha-west-climb-south-land",
+    "compound20-sw-charlie-half-way-back", "cond20-alpha-lead-of-twenty-or-charlie",
+    "cond20-da-sixty-percent-fly-north", "cond20-ky-bravo-or-alpha-south-land", "form20-ca-triangle-south",
+    "form20-column-west", "form20-sr-row-over-charlie-pad", "lang20-my-alpha-west-land",
+    "lang20-so-charlie-east-north-land", "lang20-yo-bravo-north-east-hover",
+    "multi20-alpha-charlie-swap-pads", "multi20-hu-spread-bravo-back-down",
+    "multi20-th-pair-north-one-returns", "pattern20-alpha-mow-north", "pattern20-bn-charlie-square-left",
+    "pattern20-tl-bravo-triangle-right", "place20-af-charlie-east-of-alpha",
+    "place20-charlie-north-lower-than-alpha", "place20-sl-charlie-over-alpha-pad-above-bravo",
+    "refuse20-ceb-alpha-down-to-one-metre", "refuse20-charlie-low-battery",
+    "refuse20-ms-bravo-second-leg-too-far", "rel20-bravo-staircase-north", "rel20-el-alpha-quarter-back",
+    "rel20-lt-charlie-southeast-climb", "single20-bravo-level-with-mast-light",
+    "single20-fi-alpha-twice-as-high", "single20-ur-charlie-two-hops", "units20-alpha-feet-yards",
+    "units20-et-bravo-cm-km", "units20-no-charlie-feet-km",
+})  # fmt: skip
+
+
 def test_halves_are_disjoint_and_stratified_by_class() -> None:
-    """The dev half holds every entry written before the twentieth test half (735, and the 36 of the
-    nineteenth test half, moved on 2026-12-05); the test half is the twentieth (``_twentieth_test_half``),
-    3 a class."""
+    """The dev half holds every entry written before the twenty-first test half (771, and the 36 of the
+    twentieth test half, moved later on 2026-12-05); the test half is the twenty-first
+    (``_twenty_first_test_half``), 3 a class."""
     dev, test = select("dev"), select("test")
     assert not {e.id for e in dev} & {e.id for e in test}
     assert len(dev) + len(test) == len(corpus()) == len(select("all"))
-    assert len(test) == 36 and len(dev) == 771
+    assert len(test) == 36 and len(dev) == 807
     assert Counter(e.cls for e in test) == Counter(dict.fromkeys(CLASSES, 3))
     per_dev = Counter(e.cls for e in dev)
     assert per_dev == Counter({
-        "single": 62, "multi": 68, "compound": 70, "conditional": 70, "formation": 65, "relative": 67,
-        "question": 64, "refusal": 61, "units": 60, "pattern": 60, "placement": 64, "language": 60,
+        "single": 65, "multi": 71, "compound": 73, "conditional": 73, "formation": 68, "relative": 70,
+        "question": 67, "refusal": 64, "units": 63, "pattern": 63, "placement": 67, "language": 63,
     })  # fmt: skip
 
 
 def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
     """The rounds of 2026-11-29 to 2026-12-05: the 8 test entries seen while tuning, then the whole test
     half (35) whose figures had informed a decision, then fifteen times the whole test half (36) once
-    measured, once the whole test half (36) whose failures had informed changes to the host, and twice more
-    the whole test half (36) once measured on both models, moved to dev; the test half holds none of them."""
+    measured, once the whole test half (36) whose failures had informed changes to the host, and three times
+    more the whole test half (36) once measured on both models, moved to dev; the test half holds none of
+    them."""
     first_round = {
         "cond-half-battery-go",
         "cond-fullest-flies",
@@ -480,6 +500,7 @@ def test_the_test_entries_seen_are_dev_and_replaced_by_new_ones() -> None:
         | SEVENTEENTH_HALF_MOVED
         | EIGHTEENTH_HALF_MOVED
         | NINETEENTH_HALF_MOVED
+        | TWENTIETH_HALF_MOVED
     )
     by_id = {e.id: e for e in corpus()}
     assert all(by_id[i].half == "dev" for i in moved)
@@ -1695,13 +1716,13 @@ def test_a_wrong_outcome_fails_the_nineteenth_test_half_checks() -> None:
 
 
 def test_a_wrong_outcome_fails_the_twentieth_test_half_checks() -> None:
-    """Each trap the twentieth test half sets: the right outcome passes, the likely wrong one fails (its
-    entries read from ``corpus()`` by their ids' "20-")."""
+    """Each trap the twentieth test half (now dev, moved in the twentieth round) set: the right outcome
+    passes, the likely wrong one fails (its entries read from ``corpus()`` by their ids' "20-")."""
     entries = {e.id: e for e in corpus() if re.match(r"[a-z]+20-", e.id)}
     assert len(entries) == 36 and Counter(e.cls for e in entries.values()) == Counter(
         dict.fromkeys(CLASSES, 3)
     )
-    assert all(e.half == "test" for e in entries.values())
+    assert all(e.half == "dev" for e in entries.values())
     ft, yd = 0.3048, 0.9144
     idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
 
@@ -1965,18 +1986,18 @@ def test_a_wrong_outcome_fails_the_twentieth_test_half_checks() -> None:
 
 
 def test_the_twenty_first_test_half_is_well_formed() -> None:
-    """The twenty-first test half (read from ``_twenty_first_test_half`` itself: it is not in ``corpus()``
-    until the twentieth has been measured): 3 a class, its ids and requests new to the corpus, none worded
-    as a tool, each with a plan, and none of its checks passed by a fleet that did nothing; 22 of the 33
-    outside ``language`` and all of that class's 3 in other languages than English."""
-    from bench.nl_corpus import _twenty_first_test_half
-
-    half = _twenty_first_test_half()
+    """The twenty-first test half (read from ``corpus()`` by its ids' "21-": the whole test half, nothing
+    else): 3 a class, its ids and requests new to the rest of the corpus, none worded as a tool, each with a
+    plan, and none of its checks passed by a fleet that did nothing; 22 of the 33 outside ``language`` and
+    all of that class's 3 in other languages than English."""
+    everything = corpus()
+    half = [e for e in everything if re.match(r"[a-z]+21-", e.id)]
+    known = [e for e in everything if not re.match(r"[a-z]+21-", e.id)]  # the corpus without the half
     ids = [e.id for e in half]
     assert len(half) == 36 and len(set(ids)) == 36
+    assert ids == [e.id for e in select("test")]
     assert Counter(e.cls for e in half) == Counter(dict.fromkeys(CLASSES, 3))
-    assert all(e.half == "test" and re.match(r"[a-z]+21-", e.id) for e in half)
-    known = corpus()
+    assert all(e.half == "test" for e in half)
     assert not set(ids) & {e.id for e in known}
     requests = [e.mission.prompt(CTX) for e in half]
     assert len(set(requests)) == 36 and not set(requests) & {e.mission.prompt(CTX) for e in known}
@@ -1994,15 +2015,14 @@ def test_the_twenty_first_test_half_is_well_formed() -> None:
 
 
 def test_a_wrong_outcome_fails_the_twenty_first_test_half_checks() -> None:
-    """Each trap the twenty-first test half sets: the right outcome passes, the likely wrong one fails (the
-    half is read from ``_twenty_first_test_half`` itself: it is not in ``corpus()`` yet)."""
-    from bench.nl_corpus import _twenty_first_test_half
-
-    entries = {e.id: e for e in _twenty_first_test_half()}
+    """Each trap the twenty-first test half sets: the right outcome passes, the likely wrong one fails (its
+    entries read from ``corpus()`` by their ids' "21-": the whole test half)."""
+    entries = {e.id: e for e in corpus() if re.match(r"[a-z]+21-", e.id)}
     assert len(entries) == 36 and Counter(e.cls for e in entries.values()) == Counter(
         dict.fromkeys(CLASSES, 3)
     )
     assert all(e.half == "test" for e in entries.values())
+    assert set(entries) == {e.id for e in select("test")}
     ft, yd = 0.3048, 0.9144
     idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
 
