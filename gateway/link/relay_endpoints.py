@@ -427,3 +427,14 @@ def open_endpoint(url: str, deliver: Deliver | None) -> Endpoint:
     if scheme == "serial":
         return SerialEndpoint(url, deliver)
     raise ValueError(f"no MAVLink endpoint for '{url}'")
+
+
+def device_present(url: str) -> bool:
+    """Whether the gateway may hold the drone's link only to record it: False for a serial URL whose
+    device does not exist now (the sidecar opens it and fails, as it does without the raw flight log),
+    and for a udpout:// drone, which speaks only once its ground station has (through the relay it was
+    never discovered: its flights keep the .tlog rebuilt from their track); True for every other URL."""
+    parts = urlsplit(url)
+    if parts.scheme == "udpout":
+        return False
+    return parts.scheme != "serial" or os.path.exists(parts.path.partition(":")[0])

@@ -26,12 +26,10 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import logging
-import os
 import time
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
-from urllib.parse import urlsplit
 
 from grpclib.exceptions import GRPCError, StreamTerminatedError
 
@@ -44,6 +42,7 @@ from gateway.link.mavsdk_calls import MavsdkCalls
 from gateway.link.mavsdk_session import MavsdkSession, SessionJob, close_system
 from gateway.link.mavsdk_system import System
 from gateway.link.rawlink import LinkFacts, autopilot_name
+from gateway.link.relay_endpoints import device_present
 from gateway.link.sidecar import Confine, Sidecar, SidecarState
 from gateway.link.telemetry import HealthValue, MissionProgressValue, TelemetryCache
 from gateway.link.telemetry_feed import TelemetryFeed
@@ -406,9 +405,7 @@ class Link:
     async def _start_sidecar(self) -> None:
         self._last_error = None
         url = self.spec.url
-        if self.spec.gcs_endpoints or (
-            self.settings.records_flight_frames and _device_present(self.spec.url)
-        ):
+        if self.spec.gcs_endpoints or (self.settings.records_flight_frames and device_present(self.spec.url)):
             # the gateway holds the drone's link and relays it to the sidecar and the ground stations,
             # and hands what the drone sends to the flight's raw log (pymavlink's MAVLink dialect,
             # about 6 MiB, is loaded only when a ground station's frame comes)
@@ -597,14 +594,3 @@ class Link:
     def note_error(self, message: str) -> None:
         """The link's last error, as ``last_error`` and the status say it."""
         self._last_error = message
-
-
-def _device_present(url: str) -> bool:
-    """Whether the gateway may hold the drone's link only to record it: False for a serial URL whose
-    device does not exist now (the sidecar opens it and fails, as it does without the raw flight log),
-    and for a udpout:// drone, which speaks only once its ground station has (through the relay it was
-    never discovered: its flights keep the .tlog rebuilt from their track); True for every other URL."""
-    parts = urlsplit(url)
-    if parts.scheme == "udpout":
-        return False
-    return parts.scheme != "serial" or os.path.exists(parts.path.partition(":")[0])
