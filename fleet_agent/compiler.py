@@ -260,18 +260,22 @@ class Compiler:
         return None
 
     async def _condition_branch(self, step: Condition) -> tuple[list[Said], list[Any]]:
-        state = await self.sensors.state(step.drone)
-        value = reading_value(state, step.reading)
-        if value is None:
-            return [Said(f"{step.drone} reports no {step.reading}: nothing was done.")], []
+        drones = [step.drone, *([step.than] if step.than else [])]
+        read = [reading_value(await self.sensors.state(d), step.reading) for d in drones]
+        values = [v for v in read if v is not None]
+        if len(values) < len(drones):
+            return [Said(f"{' or '.join(drones)} reports no {step.reading}: nothing was done.")], []
+        value = values[0] - (values[1] if step.than else 0.0)
         holds = _COMPARISONS[step.compare](value, step.value)
         how = f"{step.compare.replace('_', ' ')} {step.value:g}: {'so' if holds else 'not'}"
-        said = Said(f"{step.drone}: {step.reading} {value:g} {_UNITS[step.reading]}, {how}.")
+        unit = _UNITS[step.reading]
+        lead = f", {step.than} {values[1]:g} {unit}, a lead of {value:g}" if step.than else ""
+        said = Said(f"{step.drone}: {step.reading} {values[0]:g} {unit}{lead}, {how}.")
         return [said], list(step.then if holds else step.otherwise)
 
     async def _selected(self, step: Condition | Choose) -> Compiled:
         said, steps = await self.branch(step) or ([], [])
-        return [*said, *await self._each(steps)]
+        return [*said, *[item for s in steps for item in await self.compile(s)]]
 
     async def _choose_branch(self, step: Choose) -> tuple[list[Said], list[Any]]:
         states = {d: await self.sensors.state(d) for d in step.among}
@@ -284,12 +288,6 @@ class Compiler:
 
     async def _ask(self, step: Ask) -> Compiled:
         return [Said(step.text)]
-
-    async def _each(self, steps: list[Any]) -> Compiled:
-        out: Compiled = []
-        for s in steps:
-            out += await self.compile(s)
-        return out
 
 
 _UNITS = {"battery": "%", "altitude": "m"}

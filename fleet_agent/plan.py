@@ -96,10 +96,10 @@ class DroneStep(Strict):
     """A step of one drone. Each step declares its ``action`` first and then its ``drone``: a schema-guided
     decoder writes the properties in the schema's order, and the examples start a step with its action."""
 
-    @field_validator("drone", check_fields=False)
+    @field_validator("drone", "than", check_fields=False)
     @classmethod
-    def _known_drone(cls, value: str, info: ValidationInfo) -> str:
-        return known_drone(value, info)
+    def _known_drone(cls, value: str | None, info: ValidationInfo) -> str | None:
+        return None if value is None else known_drone(value, info)
 
 
 def _known_drones(value: list[str], info: ValidationInfo) -> list[str]:
@@ -239,12 +239,13 @@ MAX_RESTATEMENT_CHARS = 300
 
 
 class Condition(DroneStep):
-    """``then`` when the drone's reading compares true to ``value`` (% or m), else ``otherwise``; both are
-    required (``[]`` when not given): a guided decoder left out an optional second branch."""
+    """``then`` when the drone's reading (less drone ``than``'s: a lead) compares true to ``value`` (% or m),
+    else ``otherwise``; both required (``[]`` when not given): a decoder left out an optional one."""
 
     action: Literal["if"]
     drone: str
     reading: Literal["battery", "altitude"]
+    than: str | None = None
     compare: Literal["above", "below", "at_least", "at_most"]
     value: float
     then: list[SimpleStep] = Field(max_length=MAX_BRANCH_STEPS)
@@ -357,7 +358,7 @@ def parse_plan(data: Any, fleet: list[str]) -> Plan:
     return Plan.model_validate(data, context={"fleet": fleet})
 
 
-DRONE_FIELDS = ("drone", "drones", "among")
+DRONE_FIELDS = ("drone", "drones", "among", "than")
 
 
 #: the one-word origins of a move besides the fleet's ids
@@ -395,9 +396,10 @@ def _base_schema() -> dict[str, Any]:
     }
     schema["required"] = ["in_english", "steps"]
     schema["properties"]["in_english"].pop("default", None)
-    for name, also in (("Takeoff", []), ("Altitude", []), ("Formation", ["legs"])):
-        schema["$defs"][name]["required"] += [*also, "after"]
-        for prop in (*also, "after"):
+    for name, given in (("Takeoff", ["after"]), ("Altitude", ["after"]), ("Formation", ["legs", "after"]),
+                        ("Condition", ["than"])):  # fmt: skip
+        schema["$defs"][name]["required"] += given
+        for prop in given:
             schema["$defs"][name]["properties"][prop].pop("default", None)
     return schema
 

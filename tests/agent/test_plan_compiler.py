@@ -359,6 +359,24 @@ async def test_a_condition_takes_its_branch_from_the_reading() -> None:
     assert (await compiled(step, high))[1] == Call("takeoff", {"drone_id": "bravo", "alt_m": 15.0}, "bravo")
 
 
+async def test_a_condition_on_a_lead_compares_the_difference_of_two_drones_readings() -> None:
+    fly = [{"action": "move", "drone": "alpha", "origin": "here", "legs": [leg(25, "east")],
+            "altitude": m(10), "after": "stay"}]  # fmt: skip
+    step = {"action": "if", "drone": "alpha", "reading": "battery", "than": "charlie", "compare": "at_least",
+            "value": 20, "then": fly, "otherwise": [{**fly[0], "drone": "charlie"}]}  # fmt: skip
+    batteries = {"alpha": 62.0, "charlie": 48.0}
+    sensors = FakeSensors({d: DroneState(*HOME, 0.0, False, b) for d, b in batteries.items()})
+    said, takeoff, _ = await compiled(step, sensors)
+    assert said == Said("alpha: battery 62 %, charlie 48 %, a lead of 14, at least 20: not.")
+    assert takeoff.drone == "charlie"
+    sensors.states["alpha"] = DroneState(*HOME, 0.0, False, 70.0)
+    assert (await compiled(step, sensors))[1].drone == "alpha"
+    sensors.states["charlie"] = DroneState(*HOME, 0.0, False, None)
+    assert await compiled(step, sensors) == [Said("alpha or charlie reports no battery: nothing was done.")]
+    with pytest.raises(ValidationError, match="'delta' is not in the fleet"):
+        parse_plan({"steps": [{**step, "than": "delta"}]}, FLEET)
+
+
 async def test_choose_flies_the_chosen_drone_whatever_the_steps_name() -> None:
     states = {
         d: DroneState(*HOME, 0.0, False, b) for d, b in (("alpha", 90.0), ("bravo", 40.0), ("charlie", 60.0))
