@@ -86,8 +86,7 @@ class AfterRefusal:
     def __call__(self, call: Call, turn: TurnState) -> Verdict:
         if call.tool in self.still_sent:
             return Allow()
-        drones = [call.drone] if call.drone else list(call.args.get("drone_ids") or [])
-        refused = [d for d in drones if d in turn.refused]
+        refused = [d for d in call.drones if d in turn.refused]
         if refused:
             return Reject(f"{', '.join(refused)}: the rest was not sent after the refusal")
         return Allow()

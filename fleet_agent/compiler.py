@@ -45,6 +45,10 @@ class Call:
     args: dict[str, Any]
     drone: str | None = None
 
+    @property
+    def drones(self) -> list[str]:
+        return [self.drone] if self.drone else [str(d) for d in self.args.get("drone_ids") or []]
+
 
 @dataclass(frozen=True)
 class Said:

@@ -120,7 +120,7 @@ class AgentHost:
         if refusal is None:
             lines.append(done_line(sent))
         else:
-            state.refused.update({d: refusal for d in _drones(sent)})
+            state.refused.update({d: refusal for d in sent.drones})
             state.link_failed = state.link_failed or refusal.code == "mcp_error"
             lines.append(f"Refused: {refusal.message}")
         return False
@@ -156,14 +156,10 @@ class AgentHost:
                   refusal=None if outcome.refusal is None else vars(outcome.refusal))  # fmt: skip
 
 
-def _drones(call: Call) -> list[str]:
-    return [call.drone] if call.drone else [str(d) for d in call.args.get("drone_ids") or []]
-
-
 def done_line(call: Call) -> str:
     """What a sent call did, in the answer: the tool and its numbers."""
     args = ", ".join(
         f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in call.args.items() if k != "drone_id"
     )
-    who = call.drone or ", ".join(call.args.get("drone_ids") or [])
+    who = ", ".join(call.drones)
     return f"{who}: {call.tool}({args}) done." if args else f"{who}: {call.tool} done."

@@ -366,25 +366,16 @@ ORIGIN_WORDS = ["here", "home"]
 
 
 def plan_schema(fleet: list[str]) -> dict[str, Any]:
-    """The plan's JSON schema with every drone field an ``enum`` of the fleet's ids."""
+    """The plan's JSON schema with every drone field (its string part: itself, its items, or its non-null
+    alternative) an ``enum`` of the fleet's ids."""
     schema = copy.deepcopy(_BASE_SCHEMA)
     for definition in schema.get("$defs", {}).values():
-        for name, prop in definition.get("properties", {}).items():
-            if name in DRONE_FIELDS:
-                _enum_of_strings(prop, fleet)
+        fields = [prop for name, prop in definition.get("properties", {}).items() if name in DRONE_FIELDS]
+        for option in (o for prop in fields for o in (prop, prop.get("items", {}), *prop.get("anyOf", []))):
+            if option.get("type") == "string":
+                option["enum"] = list(fleet)
     schema["$defs"]["Move"]["properties"]["origin"]["anyOf"][0]["enum"] = [*ORIGIN_WORDS, *fleet]
     return schema
-
-
-def _enum_of_strings(prop: dict[str, Any], fleet: list[str]) -> None:
-    """Make the string part of ``prop`` (itself, its items, or its non-null alternative) an enum."""
-    if prop.get("type") == "array":
-        prop["items"]["enum"] = list(fleet)
-    elif prop.get("type") == "string":
-        prop["enum"] = list(fleet)
-    for option in prop.get("anyOf", []):
-        if option.get("type") == "string":
-            option["enum"] = list(fleet)
 
 
 def _base_schema() -> dict[str, Any]:

@@ -19,6 +19,7 @@ class McpSensors:
         self._place_tool = place_tool
         self._place_read = place_read or read
         self._fleet: dict[str, DroneState] | None = None
+        self._at_start: dict[str, DroneState] = {}  # the fleet as the turn found it
 
     def invalidate(self) -> None:
         """Called after every action: the next reading is fresh."""
@@ -34,6 +35,11 @@ class McpSensors:
         return fleet[drone]
 
     async def home(self, drone: str) -> tuple[float, float]:
+        """Where it stood on the ground when the turn began (its pad: it arms there, and the home its
+        autopilot reports may be an earlier flight's), else the autopilot's home."""
+        start = (self._at_start or await self._all()).get(drone)
+        if start is not None and not start.flying and start.lat is not None and start.lon is not None:
+            return start.lat, start.lon
         out = await self._read("get_home_position", {"drone_id": drone})
         return _lat_lon(out, f"{drone}'s home")
 
@@ -48,6 +54,7 @@ class McpSensors:
             out = await self._read("list_drones", {})
             rows = (out.structured or {}).get("drones") or []
             self._fleet = {str(r["drone_id"]): _state(r) for r in rows}
+            self._at_start = self._at_start or self._fleet
         return self._fleet
 
 
