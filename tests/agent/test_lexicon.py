@@ -164,6 +164,7 @@ def test_the_restatement_gives_each_number_the_compass_point_after_it_in_its_cla
         ("북동쪽으로 20미터, 그리고 서쪽", ["northeast", "west"]),
         ("ตะวันออกเฉียงเหนือ; ke barat laut", ["northeast", "northwest"]),
         ("pierwszy bok na północny wschód, potem na południowy zachód", ["northeast", "southwest"]),
+        ("30 m į pietryčius, tada į šiaurės rytus ir pietvakarius", ["southeast", "northeast", "southwest"]),
         ("north of east, then 20 m south, 10 m west", ["north", "east", "south", "west"]),
         ("name the place, ida y vuelta, zachowaj wysokość, laut Plan, sur le toit, sul tetto", []),
     ],
