@@ -7913,6 +7913,411 @@ def _twenty_first_test_half() -> list[CorpusEntry]:
     ]  # fmt: skip
 
 
+def _twenty_second_test_half() -> list[CorpusEntry]:
+    """The test half written on 2026-12-06 (twenty-second round), before any model ran on it, by a session
+    that did not read the host (its word lists, rules, prompts, examples or pool, nor docs/agent.md): 3 a
+    class; 22 of the 33 outside ``language`` in other languages than English, one each (Armenian, Assamese,
+    Asturian, Cantonese, Faroese, Georgian, Greek, Japanese, Kazakh, Korean, Low German, Malayalam, Maori,
+    Occitan, Scottish Gaelic, Sundanese, Tatar, Turkmen, Uyghur, West Frisian, Xhosa, Yiddish; fifteen of
+    them new to the corpus), the ``language`` class's 3 in Tibetan, Pashto and Malagasy (all three new to
+    the corpus, and Tibetan script with them). Not wired into ``corpus()`` until the twenty-first half has
+    been measured."""
+    three = DRONES
+    mile, inch = 1609.344, 0.0254
+    d20, d40 = 20 / math.sqrt(2), 40 / math.sqrt(2)
+    ring = 10 * math.sqrt(3)  # three drones evenly on a circle of radius 10 m stand this far apart
+    # an expanding square: legs of 10, 10, 20, 20 and 30 m, the first north, turning right after each
+    expanding = [(10.0, 0.0), (0.0, 10.0), (-20.0, 0.0), (0.0, -20.0), (30.0, 0.0)]
+    # four passes 40 m long running east and west, 10 m apart, the first east from the pad, stepping north
+    passes = [(0.0, 40.0), (10.0, 0.0), (0.0, -40.0), (10.0, 0.0), (0.0, 40.0), (10.0, 0.0), (0.0, -40.0)]
+
+    def post(c: MissionContext) -> tuple[float, float]:
+        """The lamp post 20 m north of alpha's pad."""
+        return c.point("alpha", 20, 0)
+
+    def round_post(c: MissionContext) -> list[tuple[float, float]]:
+        """The points 10 m south, east, north and west of the post: anticlockwise from the south."""
+        return [offset_position(*post(c), n, e) for n, e in ((-10, 0), (0, 10), (10, 0), (0, -10))]
+
+    def v_slots(c: MissionContext) -> list[tuple[float, float]]:
+        """The V's point 20 m north of bravo's pad, its wings 10 m behind it (south) and 10 m to each side."""
+        apex = c.point("bravo", 20, 0)
+        return [apex, offset_position(*apex, -10, -10), offset_position(*apex, -10, 10)]
+
+    def l_slots(c: MissionContext) -> list[tuple[float, float]]:
+        """The L's corner 15 m south of the middle of the pads, one arm 10 m north of it, one 10 m west."""
+        corner = slot(c, three, -15, 0)
+        return [corner, offset_position(*corner, 10, 0), offset_position(*corner, 0, -10)]
+
+    def between(c: MissionContext) -> tuple[float, float]:
+        """Halfway between alpha (30 m north of its pad) and bravo (30 m east of its own)."""
+        a, b = c.point("alpha", 30, 0), c.point("bravo", 0, 30)
+        return (a[0] + b[0]) / 2, (a[1] + b[1]) / 2
+
+    def slots_filled(
+        ev: Evidence, drones: tuple[str, ...], points: list[tuple[float, float]], alt: float
+    ) -> Check:
+        """Each drone airborne at ``alt`` over one of ``points`` (lat, lon), one a point, whichever drone
+        takes whichever point."""
+        final = [ev.final[d] for d in drones]
+        ok = any(all(horizontal_distance_m(t.lat, t.lon, *p) <= HORIZONTAL_TOL_M for t, p in zip(final, perm, strict=True))
+                 for perm in itertools.permutations(points))  # fmt: skip
+        return _all(Check(ok, f"the drones {'fill' if ok else 'do not fill'} the shape's points"),
+                    *(airborne_at(ev, d, alt) for d in drones))  # fmt: skip
+
+    def reversed_landings(ev: Evidence, order: tuple[str, ...], alt: float) -> Check:
+        """The drones first reached ``alt`` (less the tolerance) in ``order`` and last touched down in the
+        reverse order (the tracks are sampled together)."""
+        ups, downs = [], []
+        for d in order:
+            track = ev.track.get(d, [])
+            ups.append(next((i for i, s in enumerate(track) if s.alt_rel_m >= alt - ALT_TOL_M), None))
+            downs.append(1 + max((i for i, s in enumerate(track) if not s.landed), default=-2))
+        ok = None not in ups and min(downs) > 0
+        ok = (
+            ok
+            and all(a < b for a, b in itertools.pairwise(ups))
+            and all(a > b for a, b in itertools.pairwise(downs))
+        )
+        return Check(bool(ok), f"took off in order and landed in reverse: {'yes' if ok else 'no'}")
+
+    def down_before(ev: Evidence, d: str, stop: tuple[float, float], later: tuple[float, float]) -> Check:
+        """The drone was on the ground at ``stop`` before it first came over ``later`` (where it ends
+        counts as coming over ``later`` when the track stops short)."""
+        track = ev.track.get(d, [])
+        near = [
+            i for i, s in enumerate(track) if horizontal_distance_m(s.lat, s.lon, *later) <= HORIZONTAL_TOL_M
+        ]
+        if not near and horizontal_distance_m(ev.final[d].lat, ev.final[d].lon, *later) <= HORIZONTAL_TOL_M:
+            near = [len(track)]
+        down = [i for i, s in enumerate(track)
+                if s.landed and horizontal_distance_m(s.lat, s.lon, *stop) <= HORIZONTAL_TOL_M]  # fmt: skip
+        ok = bool(down) and bool(near) and down[0] < near[0]
+        return Check(ok, f"{d} {'landed' if ok else 'did not land'} at the stop before going on")
+
+    return [
+        # single
+        _entry("single", "test", "single22-bravo-halfway-down", ("bravo",),
+               "Bravo only: send it straight up to 25 m over its pad, then bring it halfway back down to the "
+               "ground and keep it hovering there.",
+               lambda c, ev: _all(rose_to(ev, "bravo", 25), at(ev, "bravo", *_home(c, "bravo"), alt=12.5),
+                                  airborne_at(ev, "bravo", 12.5)),
+               [_takeoff("bravo", 25), _move("bravo", alt=12.5)],
+               "Bravo climbed to 25 m and came halfway down: it hovers at 12.5 m over its pad."),
+        _entry("single", "test", "single22-yue-charlie-midway-ten-thirty", ("charlie",),
+               "charlie 喺佢個起飛點原地升起，升到 10 米同 30 米正中間嘅高度，之後就喺起飛點正上面停喺半空。",
+               lambda c, ev: _all(at(ev, "charlie", *_home(c, "charlie"), alt=20), airborne_at(ev, "charlie", 20)),
+               [_takeoff("charlie", 20)],
+               "charlie 喺起飛點正上面 20 米懸停，啱啱係 10 米同 30 米嘅正中間。"),
+        _entry("single", "test", "single22-fy-alpha-sixteen-then-four", ("alpha",),
+               "Lit alpha rjocht boppe syn startplak opstige nei 16 meter, lit him dan sakje oant 4 meter boppe "
+               "de grûn en hâld him dêr yn 'e loft.",
+               lambda c, ev: _all(rose_to(ev, "alpha", 16), at(ev, "alpha", *_home(c, "alpha"), alt=4),
+                                  airborne_at(ev, "alpha", 4)),
+               [_takeoff("alpha", 16), _move("alpha", alt=4)],
+               "alpha gie omheech nei 16 meter en sakke dêrnei oant 4 meter; er hinget boppe syn startplak."),
+        # multi
+        _entry("multi", "test", "multi22-reverse-landing-order", three,
+               "Take off alpha, then bravo, then charlie, one after the other, each to 10 m over its own pad. Then "
+               "land them in the reverse order of their takeoffs, each back on its own pad.",
+               lambda c, ev: _all(*(_all(reached_alt(ev, d, 10), at(ev, d, *_home(c, d)), landed_disarmed(ev, d))
+                                    for d in three),
+                                  reversed_landings(ev, three, 10)),
+               [_takeoff("alpha", 10), _takeoff("bravo", 10), _takeoff("charlie", 10), _land("charlie"),
+                _land("bravo"), _land("alpha")],
+               "Alpha, bravo and charlie rose to 10 m in that order and landed in reverse: charlie, bravo, alpha."),
+        _entry("multi", "test", "multi22-tk-staggered-north-two-land", three,
+               "Üç dronuň hemmesini 12 metre galdyr. Soňra alpha 10 metr, bravo 20 metr, charlie bolsa 30 metr "
+               "demirgazyga uçsun. Ondan soň alpha bilen charlie şol ýerde gonsun, bravo bolsa howada asylyp "
+               "dursun.",
+               lambda c, ev: _all(*(_all(visited(ev, d, [c.point(d, n, 0)], alt=12), at(ev, d, *c.point(d, n, 0)),
+                                         landed_disarmed(ev, d)) for d, n in (("alpha", 10), ("charlie", 30))),
+                                  at(ev, "bravo", *c.point("bravo", 20, 0), alt=12), airborne_at(ev, "bravo", 12)),
+               [_move("alpha", 10, 0, alt=12), _move("bravo", 20, 0, alt=12), _move("charlie", 30, 0, alt=12),
+                _land("alpha"), _land("charlie")],
+               "alpha 10 m, charlie 30 m demirgazykda gondy; bravo 20 m demirgazykda, 12 m beýiklikde asylyp dur."),
+        _entry("multi", "test", "multi22-oc-onto-each-others-pads", three,
+               "Fai montar alpha a 10 mètres e bravo a 20 mètres. Alpha se'n va 30 mètres cap a l'oèst e bravo 30 "
+               "mètres cap a l'èst. Puèi cadun torna, sens cambiar de nautor, e se pausa sus la plataforma de "
+               "l'autre: alpha sus la de bravo, bravo sus la d'alpha. Charlie demòra al sòl.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, -30)], alt=10),
+                                  at(ev, "alpha", *_home(c, "bravo")), landed_disarmed(ev, "alpha"),
+                                  visited(ev, "bravo", [c.point("bravo", 0, 30)], alt=20),
+                                  at(ev, "bravo", *_home(c, "alpha")), landed_disarmed(ev, "bravo"),
+                                  never_armed(ev, "charlie")),
+               lambda c: [_move("alpha", 0, -30, alt=10), _move("bravo", 0, 30, alt=20),
+                          _go("alpha", _home(c, "bravo"), 10), _land("alpha"), _go("bravo", _home(c, "alpha"), 20),
+                          _land("bravo")],
+               "alpha s'es pausat sus la plataforma de bravo e bravo sus la d'alpha; charlie es demorat al sòl."),
+        # compound
+        _entry("compound", "test", "compound22-charlie-fence-runs-twice", ("charlie",),
+               "Charlie walks the fence south of its pad: at 10 m, out 20 m south and straight back over the pad, "
+               "then the same run once more. After the second run, set it down on its pad.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", -20, 0), _home(c, "charlie"),
+                                                          c.point("charlie", -20, 0)], alt=10),
+                                  at(ev, "charlie", *_home(c, "charlie")), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), _move("charlie", -20, 0), _move("charlie", 20, 0), _move("charlie", -20, 0),
+                _move("charlie", 20, 0), _land("charlie")],
+               "Charlie flew the 20 m run south and back twice at 10 m and landed on its pad."),
+        _entry("compound", "test", "compound22-ug-alpha-west-dip-north", ("alpha",),
+               "alpha نى 12 مېتىر ئېگىزلىككە كۆتۈرۈپ، غەربكە 20 مېتىر ئۇچۇر. ئۇ يەردە يېقىندىن كۆزىتىش ئۈچۈن 6 "
+               "مېتىرغا چۈشۈر، ئاندىن 18 مېتىرغا كۆتۈرۈپ، شىمالغا 20 مېتىر ئۇچۇر ۋە شۇ يەردە لەيلەپ تۇرسۇن.",
+               lambda c, ev: _all(passed(ev, "alpha", [(c.point("alpha", 0, -20), 12), (c.point("alpha", 0, -20), 6)]),
+                                  at(ev, "alpha", *c.point("alpha", 20, -20), alt=18), airborne_at(ev, "alpha", 18)),
+               [_takeoff("alpha", 12), _move("alpha", 0, -20), _move("alpha", alt=6), _move("alpha", alt=18),
+                _move("alpha", 20, 0)],
+               "alpha غەربكە 20 m ئۇچۇپ 6 m گە چۈشتى، ئاندىن 18 m گە كۆتۈرۈلۈپ شىمالغا 20 m ئۇچتى ۋە لەيلەپ "
+               "تۇرۇۋاتىدۇ."),
+        _entry("compound", "test", "compound22-fo-bravo-land-east-then-west", ("bravo",),
+               "Lyft bravo upp í 10 metrar og lat hann flúgva 15 metrar eystur. Lend hann har. Síðan skal hann upp "
+               "aftur, hesaferð í 8 metrar, og flúgva 30 metrar vestur, framum startstaðin, og síðan sveima har.",
+               lambda c, ev: _all(down_before(ev, "bravo", c.point("bravo", 0, 15), c.point("bravo", 0, -15)),
+                                  at(ev, "bravo", *c.point("bravo", 0, -15), alt=8), airborne_at(ev, "bravo", 8)),
+               [_takeoff("bravo", 10), _move("bravo", 0, 15), _land("bravo"), _takeoff("bravo", 8),
+                _move("bravo", 0, -30)],
+               "bravo lendi 15 m eystan fyri startstaðin, fór upp aftur í 8 m og sveimar nú 15 m vestan fyri hann."),
+        # conditional
+        _entry("conditional", "test", "cond22-middle-charge-flies", three,
+               "Look at the three batteries. The drone whose charge sits in the middle, neither the fullest nor "
+               "the emptiest, flies 20 m north of its pad at 10 m and hovers there; the other two stay on the "
+               "ground.",
+               lambda c, ev: _all(at(ev, "charlie", *c.point("charlie", 20, 0), alt=10), airborne_at(ev, "charlie", 10),
+                                  never_armed(ev, "alpha"), never_armed(ev, "bravo")),
+               [("fleet_status", {}), _move("charlie", 20, 0, alt=10)],
+               "Charlie (63 %) sits between bravo (81 %) and alpha (45 %): it hovers 20 m north of its pad at "
+               "10 m; the other two stayed down.",
+               battery={"alpha": 45.0, "bravo": 81.0, "charlie": 63.0}),
+        _entry("conditional", "test", "cond22-ast-sum-over-hundred-twenty", three,
+               "Si la carga d'alpha y la de bravo, sumaes, pasen del 120 %, xubi los dos a 15 metros enriba de les "
+               "sos plataformes y déxalos ellí. Si non, xubi namás el que tenga más carga. Charlie queda nel "
+               "suelu.",
+               lambda c, ev: _all(at(ev, "alpha", *_home(c, "alpha"), alt=15), airborne_at(ev, "alpha", 15),
+                                  never_armed(ev, "bravo"), never_armed(ev, "charlie")),
+               [("fleet_status", {}), _takeoff("alpha", 15)],
+               "alpha (58 %) y bravo (55 %) sumen 113 %, menos de 120 %: namás xubió alpha, a 15 m enriba de la so "
+               "plataforma.",
+               battery={"alpha": 58.0, "bravo": 55.0, "charlie": 90.0}),
+        _entry("conditional", "test", "cond22-tt-charlie-unless-below-bravo", three,
+               "charlie-ны 12 метрга күтәреп, көнбатышка 30 метр очыр да шунда утырт. Ләкин charlie-ның батареясы "
+               "bravo-ныкыннан азрак булса, бу эшне charlie урынына bravo башкарсын: үз мәйданчыгыннан көнбатышка "
+               "30 метр очып, шунда утырсын. alpha җирдә кала.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", 0, -30)], alt=12),
+                                  at(ev, "bravo", *c.point("bravo", 0, -30)), landed_disarmed(ev, "bravo"),
+                                  never_armed(ev, "charlie"), never_armed(ev, "alpha")),
+               [("fleet_status", {}), _move("bravo", 0, -30, alt=12), _land("bravo")],
+               "charlie-да 52 %, bravo-да 67 %: шуңа күрә bravo көнбатышка 30 м очып, шунда утырды.",
+               battery={"alpha": 80.0, "bravo": 67.0, "charlie": 52.0}),
+        # formation
+        _entry("formation", "test", "form22-v-pointing-north", three,
+               "Form the three into a V pointing north at 15 m: the lead drone 20 m north of bravo's pad, the "
+               "other two 10 m behind it (to the south) and 10 m out to either side. Hold them there.",
+               lambda c, ev: slots_filled(ev, three, v_slots(c), 15),
+               # (a wedge with 14.1 m arms would fit, but the typed plan has no heading for a formation and the
+               # gateway faces one where it travels: each drone flies to its slot)
+               lambda c: [_go(d, p, 15) for d, p in zip(("bravo", "alpha", "charlie"), v_slots(c), strict=True)],
+               "The three hover at 15 m in a V pointing north, its point 20 m north of bravo's pad."),
+        _entry("formation", "test", "form22-su-ring-east-of-charlie", three,
+               "Susun tilu drone dina hiji bunderan anu jari-jarina 10 méter, jarak antarna sarua, dina jangkungna "
+               "20 méter. Puseur bunderanana 25 méter ka beulah wétaneun tempat hiber charlie. Antepkeun ngambang "
+               "di dinya.",
+               lambda c, ev: _all(formation_around(ev, three, 20, ring, c.point("charlie", 0, 25)),
+                                  farthest_apart(ev, three, ring)),
+               lambda c: [("formation_goto", {"drone_ids": list(three), "formation": "circle", "alt_m": 20,
+                                              "spacing_m": ring, "center_lat_deg": c.point("charlie", 0, 25)[0],
+                                              "center_lon_deg": c.point("charlie", 0, 25)[1]})],
+               "Tilu drone ngambang dina bunderan 10 m jari-jarina, 20 m luhurna, 25 m wétaneun tempat hiber "
+               "charlie."),
+        _entry("formation", "test", "form22-ja-l-shape-south", three,
+               "3機を高度12メートルでL字形に並べて。角に来る1機は3機の離陸地点の真ん中から南へ15メートルの地点、もう1機"
+               "はその角から北へ10メートル、残りの1機は角から西へ10メートル。そこでホバリングさせておいて。",
+               lambda c, ev: slots_filled(ev, three, l_slots(c), 12),
+               lambda c: [_go(d, p, 12) for d, p in zip(("charlie", "bravo", "alpha"), l_slots(c), strict=True)],
+               "3機は高度12 mでL字形にホバリングしています。角は離陸地点の真ん中から南へ15 mです。"),
+        # relative
+        _entry("relative", "test", "rel22-bravo-bearing-120", ("bravo",),
+               "Take bravo up to 12 m, then fly it 30 m along a compass bearing of 120 degrees and hold it there.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", -15, 15 * math.sqrt(3)), alt=12),
+                                  airborne_at(ev, "bravo", 12)),
+               lambda c: [_takeoff("bravo", 12), _go("bravo", c.point("bravo", -15, 15 * math.sqrt(3)), 12)],
+               "Bravo holds 30 m from its pad on a bearing of 120 degrees (15 m south, 26 m east), at 12 m."),
+        _entry("relative", "test", "rel22-kk-alpha-east-as-far-as-high", ("alpha",),
+               "alpha-ны 18 метр биіктікке көтер. Содан кейін оны шығысқа қарай өз биіктігіне тең қашықтыққа ұшыр, "
+               "сосын биіктігінің үштен біріне тең қашықтыққа төмен түсір. Сол жерде ілініп тұрсын.",
+               # (the descent may come during the leg east: the request orders it, the end is the same)
+               lambda c, ev: _all(rose_to(ev, "alpha", 18), at(ev, "alpha", *c.point("alpha", 0, 18), alt=12),
+                                  airborne_at(ev, "alpha", 12)),
+               [_takeoff("alpha", 18), _move("alpha", 0, 18), _move("alpha", up=-6)],
+               "alpha шығысқа 18 м ұшып, 6 м төмен түсті: қазір 12 м биіктікте ілініп тұр."),
+        _entry("relative", "test", "rel22-el-charlie-back-along-track", ("charlie",),
+               "Σήκωσε το charlie στα 10 μέτρα και πέτα το 40 μέτρα βορειοανατολικά. Μετά γύρνα το 10 μέτρα πίσω, "
+               "από τον ίδιο δρόμο που ήρθε, και ανέβασέ το 5 μέτρα ψηλότερα. Άφησέ το να αιωρείται εκεί.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", d40, d40)], alt=10),
+                                  at(ev, "charlie", *c.point("charlie", 3 * d40 / 4, 3 * d40 / 4), alt=15),
+                                  airborne_at(ev, "charlie", 15)),
+               lambda c: [_takeoff("charlie", 10), _go("charlie", c.point("charlie", d40, d40), 10),
+                          _go("charlie", c.point("charlie", 3 * d40 / 4, 3 * d40 / 4), 15)],
+               "Το charlie αιωρείται 30 m βορειοανατολικά της βάσης του, στα 15 m."),
+        # question
+        _entry("question", "test", "ask22-closest-to-half", three,
+               "Which drone's battery is closest to 50 % right now, and what does it read? Don't take anything off "
+               "the ground.",
+               lambda c, ev: _all(answer_says(ev, r"\bbravo\b", "bravo"), answer_mentions_number(ev, 57, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "Bravo, at 57 % (7 points above 50); alpha has 38 %, charlie 71 %.",
+               battery={"alpha": 38.0, "bravo": 57.0, "charlie": 71.0}),
+        _entry("question", "test", "ask22-as-bravo-times-charlie", three,
+               "bravo-ৰ বেটাৰীত charlie-তকৈ কিমান গুণ বেছি চাৰ্জ আছে? দুয়োটাৰে শতাংশও কোৱা, কিন্তু কোনো ড্ৰ'ন "
+               "নুৰুৱাবা।",
+               # the typed plan reads, it does not compute: the two readings asked for (the ratio is optional)
+               lambda c, ev: _all(answer_mentions_number(ev, 90, 1), answer_mentions_number(ev, 30, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "bravo-ৰ 90 %, charlie-ৰ 30 %: bravo-ৰ চাৰ্জ 3 গুণ।",
+               battery={"alpha": 64.0, "bravo": 90.0, "charlie": 30.0}),
+        _entry("question", "test", "ask22-ml-charlie-points-to-alpha", three,
+               "alpha-യുടെ ചാർജിനൊപ്പം എത്താൻ charlie-ക്ക് ഇനി എത്ര ശതമാന പോയിന്റ് കൂടി വേണം? രണ്ടിന്റെയും ഇപ്പോഴത്തെ "
+               "ചാർജും പറയൂ. ഒരു ഡ്രോണും പറത്തരുത്.",
+               # the typed plan reads, it does not compute: the two readings asked for (the gap is optional)
+               lambda c, ev: _all(answer_mentions_number(ev, 71, 1), answer_mentions_number(ev, 34, 1),
+                                  nobody_armed(ev)),
+               [("fleet_status", {})], "37 പോയിന്റ്: alpha 71 %, charlie 34 %.",
+               battery={"alpha": 71.0, "bravo": 66.0, "charlie": 34.0}),
+        # refusal (limits of the default configuration: 120 m altitude, 1000 m from home, 30 % to take off,
+        # 2 m the lowest altitude, 5 m the least separation a formation keeps)
+        _entry("refusal", "test", "refuse22-charlie-450-feet", ("charlie",),
+               "Get charlie up to 450 ft straight over its pad for a wide shot of the whole site.",
+               lambda c, ev: _all(refusal_seen(ev, "altitude", "120"), max_alt_at_most(ev, "charlie", c.max_alt_m),
+                                  answer_reports_refusal(ev)),
+               [_takeoff("charlie", 450 * FT)],
+               "Refused: 450 ft is 137 m, above the 120 m altitude limit."),
+        _entry("refusal", "test", "refuse22-yi-bravo-north-then-east-too-far", ("bravo",),
+               "הייב אויף bravo ביז 30 מעטער און פֿלי אים 800 מעטער צו צפֿון. דערנאָך זאָל ער פֿליִען נאָך 700 "
+               "מעטער צו מיזרח, ביז צום ראַדיאָ־טורעם.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 800, 0), alt=30), airborne_at(ev, "bravo", 30),
+                                  refusal_seen(ev, "distance", "from home", "geofence"),
+                                  stayed_within(ev, c, "bravo", c.max_distance_m), answer_reports_refusal(ev)),
+               [_takeoff("bravo", 30), _move("bravo", 800, 0), _move("bravo", 0, 700)],
+               "bravo הענגט 800 m צפֿון פֿון זײַן פּלאַץ אויף 30 m; די ווײַטערע 700 m צו מיזרח זענען אָפּגעזאָגט "
+               "געוואָרן: 1063 m פֿון דער היים, מער ווי די 1000 m וואָס מע מעג."),
+        _entry("refusal", "test", "refuse22-hy-all-three-charlie-flat", three,
+               "Բարձրացրու երեք դրոններն էլ 10 մետրի վրա, յուրաքանչյուրը իր հարթակի վերևում, և թող օդում կախված "
+               "մնան։",
+               lambda c, ev: _all(*(_all(at(ev, d, *_home(c, d), alt=10), airborne_at(ev, d, 10))
+                                    for d in ("alpha", "bravo")),
+                                  never_armed(ev, "charlie"), refusal_seen(ev, "battery"), answer_reports_refusal(ev)),
+               [_takeoff("alpha", 10), _takeoff("bravo", 10), _takeoff("charlie", 10)],
+               "alpha-ն և bravo-ն կախված են 10 մ բարձրության վրա; charlie-ի թռիչքը մերժվեց. նրա մարտկոցը 22 % է, "
+               "իսկ թռիչքի համար պետք է առնվազն 30 %։",
+               battery={"charlie": 22.0}),
+        # units
+        _entry("units", "test", "units22-charlie-miles-west", ("charlie",),
+               "Charlie: climb to 30 ft, fly 0.15 miles due west and land there.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 0, -0.15 * mile)], alt=30 * FT),
+                                  at(ev, "charlie", *c.point("charlie", 0, -0.15 * mile)),
+                                  landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 30 * FT), _move("charlie", 0, -0.15 * mile), _land("charlie")],
+               "Charlie flew 0.15 mi (241 m) west at 30 ft (9.1 m) and landed there."),
+        _entry("units", "test", "units22-gd-bravo-inches-feet", ("bravo",),
+               "Tog bravo gu 600 òirleach os cionn a làraich, an uair sin cuir e 150 troighean gu tuath agus fàg e "
+               "an sin san adhar.",
+               lambda c, ev: _all(at(ev, "bravo", *c.point("bravo", 150 * FT, 0), alt=600 * inch),
+                                  airborne_at(ev, "bravo", 600 * inch)),
+               [_takeoff("bravo", 600 * inch), _move("bravo", 150 * FT, 0)],
+               "Tha bravo 150 troighean (45.7 m) tuath air a làrach, aig 600 òirleach (15.2 m)."),
+        _entry("units", "test", "units22-mi-alpha-feet-km-east", ("alpha",),
+               "Whakarewahia a alpha kia 40 putu te teitei, kātahi ka rere ki te rāwhiti, 0.12 kiromita te "
+               "tawhiti, ā, tukuna kia tau ki reira.",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 120)], alt=40 * FT),
+                                  at(ev, "alpha", *c.point("alpha", 0, 120)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 40 * FT), _move("alpha", 0, 120), _land("alpha")],
+               "I rere a alpha ki te rāwhiti 120 m (0.12 km) i te 40 putu (12.2 m), ā, kua tau ki reira."),
+        # pattern
+        _entry("pattern", "test", "pattern22-alpha-orbit-post-anticlockwise", ("alpha",),
+               "Orbit alpha once round the lamp post 20 m north of its pad, keeping 10 m from the post, at 15 m, "
+               "anticlockwise as seen from above, starting at the point due south of the post. Then bring it back "
+               "to its pad and land.",
+               lambda c, ev: _all(visited(ev, "alpha", round_post(c)), at(ev, "alpha", *_home(c, "alpha")),
+                                  landed_disarmed(ev, "alpha")),
+               # (a circle through the four points, flown as the square they make)
+               lambda c: [_takeoff("alpha", 15), *(_go("alpha", p, 15) for p in round_post(c)),
+                          _go("alpha", round_post(c)[0], 15), _rtl("alpha")],
+               "Alpha circled the post once anticlockwise at 10 m from it, from its south side, and landed on its "
+               "pad."),
+        _entry("pattern", "test", "pattern22-xh-bravo-expanding-square", ("bravo",),
+               "Nyusa i-bravo iye kwiimitha ezili-12, emva koko iphaphe ngendlela yesikwere esandayo: imilenze "
+               "emihlanu yeemitha eziyi-10, 10, 20, 20 nama-30, owokuqala usiya emntla, ijike ngasekunene "
+               "ekupheleni komlenze ngamnye. Ekugqibeleni mayijinge apho igqibele khona.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", n, e) for n, e in _corners(expanding)[:4]]),
+                                  at(ev, "bravo", *c.point("bravo", 20, -10), alt=12), airborne_at(ev, "bravo", 12)),
+               [_takeoff("bravo", 12), *_legs("bravo", expanding)],
+               "I-bravo iphaphe isikwere esandayo (10, 10, 20, 20, 30 m, ijika ngasekunene) kwaye ijinga apho "
+               "igqibele khona, kwiimitha ezili-12."),
+        _entry("pattern", "test", "pattern22-ka-charlie-east-west-passes", ("charlie",),
+               "აიყვანე charlie 10 მეტრზე და ოთხი 40-მეტრიანი გავლით დაათვალიერე მინდორი "
+               "აღმოსავლეთ-დასავლეთის მიმართულებით: პირველი გავლა პირდაპირ ბაქნიდან აღმოსავლეთისკენ, გავლებს შორის "
+               "10 მეტრით ჩრდილოეთისკენ გადაინაცვლე. ბოლო გავლის ბოლოს დასვი იქვე.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", n, e) for n, e in _corners(passes)[:6]]),
+                                  at(ev, "charlie", *c.point("charlie", 30, 0)), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), *_legs("charlie", passes), _land("charlie")],
+               "charlie-მ ოთხი 40 მ-იანი გავლა შეასრულა და დაეშვა ბაქნიდან 30 მ-ით ჩრდილოეთით."),
+        # placement (the sim's homes stand 5 m apart west to east, alpha, bravo, charlie: each entry places
+        # charlie or bravo from alpha or from two drones, so that a drone placed from itself misses)
+        _entry("placement", "test", "place22-charlie-midway-in-height-too", three,
+               "Take alpha up to 10 m and 30 m north of its pad, and bravo up to 20 m and 30 m east of its pad. "
+               "Then send charlie to the point exactly halfway between the two drones, halfway between their "
+               "heights too, and leave all three hovering.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", 30, 0), alt=10), airborne_at(ev, "alpha", 10),
+                                  at(ev, "bravo", *c.point("bravo", 0, 30), alt=20), airborne_at(ev, "bravo", 20),
+                                  at(ev, "charlie", *between(c), alt=15), airborne_at(ev, "charlie", 15)),
+               lambda c: [_move("alpha", 30, 0, alt=10), _move("bravo", 0, 30, alt=20), _go("charlie", between(c), 15)],
+               "Alpha hovers 30 m north of its pad at 10 m, bravo 30 m east of its own at 20 m, and charlie halfway "
+               "between them at 15 m."),
+        _entry("placement", "test", "place22-ko-charlie-under-alpha", three,
+               "alpha를 12미터로 띄워서 북동쪽으로 20미터 보내고, 거기서 10미터 더 올려. 그다음 charlie를 alpha 바로 "
+               "아래, 지면에서 5미터 높이에 띄워 두고 둘 다 그대로 떠 있게 해 줘. bravo는 움직이지 마.",
+               lambda c, ev: _all(at(ev, "alpha", *c.point("alpha", d20, d20), alt=22), airborne_at(ev, "alpha", 22),
+                                  at(ev, "charlie", *c.point("alpha", d20, d20), alt=5), airborne_at(ev, "charlie", 5),
+                                  never_armed(ev, "bravo")),
+               lambda c: [_takeoff("alpha", 12), _go("alpha", c.point("alpha", d20, d20), 12), _move("alpha", up=10),
+                          _go("charlie", c.point("alpha", d20, d20), 5)],
+               "alpha는 이륙 지점에서 북동쪽으로 20 m, 22 m 높이에 떠 있고, charlie는 그 바로 아래 5 m에 떠 있습니다. "
+               "bravo는 움직이지 않았습니다."),
+        _entry("placement", "test", "place22-nds-charlie-south-of-alpha-pad-bravo-above", three,
+               "Laat charlie op 10 Meter stiegen un 12 Meter süüdlich vun alpha sien Startplatz landen. Denn schall "
+               "bravo 8 Meter över charlie in de Luft hangen blieven. alpha blifft op de Eer.",
+               lambda c, ev: _all(reached_alt(ev, "charlie", 10), at(ev, "charlie", *c.point("alpha", -12, 0)),
+                                  landed_disarmed(ev, "charlie"),
+                                  at(ev, "bravo", *c.point("alpha", -12, 0), alt=8), airborne_at(ev, "bravo", 8),
+                                  never_armed(ev, "alpha")),
+               lambda c: [_takeoff("charlie", 10), _go("charlie", c.point("alpha", -12, 0), 10), _land("charlie"),
+                          _go("bravo", c.point("alpha", -12, 0), 8)],
+               "charlie is 12 m süüdlich vun alpha sien Startplatz landt; bravo hangt 8 m doröver. alpha is nich "
+               "flagen."),
+        # language
+        _entry("language", "test", "lang22-bo-alpha-east-land", ("alpha",),
+               "alpha མཐོ་ཚད་ མི་ཊར་ 12 བར་དུ་ ཡར་འཕུར་དུ་ཆུག། དེ་ནས་ ཤར་ཕྱོགས་སུ་ མི་ཊར་ 20 འཕུར་དུ་ཆུག་སྟེ། ས་ཆ་དེ་ཉིད་དུ་ "
+               "ས་ལ་བབས་སུ་ཆུག།",
+               lambda c, ev: _all(visited(ev, "alpha", [c.point("alpha", 0, 20)], alt=12),
+                                  at(ev, "alpha", *c.point("alpha", 0, 20)), landed_disarmed(ev, "alpha")),
+               [_takeoff("alpha", 12), _move("alpha", 0, 20), _land("alpha")],
+               "alpha ཤར་ཕྱོགས་སུ་ མི་ཊར་ 20 འཕུར་ནས་ ས་ཆ་དེར་ བབས་སོང་།"),
+        _entry("language", "test", "lang22-ps-bravo-south-west-hover", ("bravo",),
+               "bravo تر 15 مترو لوړوالي پورې پورته کړه، بیا یې 20 متره سویل ته او وروسته 10 متره لوېدیځ ته "
+               "والوزوه، او هلته یې په هوا کې ودروه.",
+               lambda c, ev: _all(visited(ev, "bravo", [c.point("bravo", -20, 0)], alt=15),
+                                  at(ev, "bravo", *c.point("bravo", -20, -10), alt=15), airborne_at(ev, "bravo", 15)),
+               [_takeoff("bravo", 15), _move("bravo", -20, 0), _move("bravo", 0, -10)],
+               "bravo د خپل ځای څخه 20 m سویل او 10 m لوېدیځ ته، په 15 m لوړوالي کې په هوا کې ولاړ دی."),
+        _entry("language", "test", "lang22-mg-charlie-north-back-land", ("charlie",),
+               "Ampiakaro hatramin'ny 10 metatra ny charlie, ampanidino 30 metatra mianavaratra, avy eo averino 10 "
+               "metatra mianatsimo, ary apetraho eo amin'io toerana io.",
+               lambda c, ev: _all(visited(ev, "charlie", [c.point("charlie", 30, 0)], alt=10),
+                                  at(ev, "charlie", *c.point("charlie", 20, 0)), landed_disarmed(ev, "charlie")),
+               [_takeoff("charlie", 10), _move("charlie", 30, 0), _move("charlie", -10, 0), _land("charlie")],
+               "Nanidina 30 metatra mianavaratra ny charlie, niverina 10 metatra mianatsimo ary nipetraka teo, 20 "
+               "metatra avaratry ny toerany."),
+    ]  # fmt: skip
+
+
 def corpus() -> list[CorpusEntry]:
     return [
         *_single(),

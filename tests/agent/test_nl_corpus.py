@@ -2318,3 +2318,385 @@ def test_a_wrong_outcome_fails_the_twenty_first_test_half_checks() -> None:
     assert odia(flown("alpha", [(30, 0), (-30, 0)], 15, home["alpha"]))
     assert not odia(flown("alpha", [(-30, 0), (30, 0)], 15, home["alpha"]))
     assert not odia(flown("alpha", [(30, 0)], 15, landed_at(CTX.point("alpha", 30, 0))))
+
+
+def test_the_twenty_second_test_half_is_well_formed() -> None:
+    """The twenty-second test half (read from ``_twenty_second_test_half`` itself: it is not in ``corpus()``
+    until the twenty-first has been measured): 3 a class, its ids and requests new to the corpus, none
+    worded as a tool, each with a plan, and none of its checks passed by a fleet that did nothing; 22 of the
+    33 outside ``language`` and all of that class's 3 in other languages than English."""
+    from bench.nl_corpus import _twenty_second_test_half
+
+    half = _twenty_second_test_half()
+    ids = [e.id for e in half]
+    assert len(half) == 36 and len(set(ids)) == 36
+    assert Counter(e.cls for e in half) == Counter(dict.fromkeys(CLASSES, 3))
+    assert all(e.half == "test" and re.match(r"[a-z]+22-", e.id) for e in half)
+    known = corpus()
+    assert not set(ids) & {e.id for e in known}
+    requests = [e.mission.prompt(CTX) for e in half]
+    assert len(set(requests)) == 36 and not set(requests) & {e.mission.prompt(CTX) for e in known}
+    tool_words = ("move_to_relative", "formation_goto", "go_to_location", "return_to_launch", "_m", "alt_m")
+    nothing = Evidence(IDLE, {d: [t] for d, t in IDLE.items()}, [], "Done.")
+    for e, request in zip(half, requests, strict=True):
+        assert set(e.mission.drones) <= set(DRONES), e.id
+        assert _sentence_length(request) >= 4 and not any(w in request for w in tool_words), e.id
+        assert e.mission.plan(CTX) and set(e.mission.battery_pct) <= set(e.mission.drones), e.id
+        assert not e.mission.check(CTX, nothing).ok, e.id
+    english = re.compile(r"\b(the|to|and|up|at|of|is|then|with|any)\b", re.IGNORECASE)
+    others = [e for e, r in zip(half, requests, strict=True) if e.cls != "language" and not english.search(r)]
+    assert len(others) == 22 and {e.cls for e in others} == set(CLASSES) - {"language"}
+    assert not any(english.search(r) for e, r in zip(half, requests, strict=True) if e.cls == "language")
+
+
+def test_a_wrong_outcome_fails_the_twenty_second_test_half_checks() -> None:
+    """Each trap the twenty-second test half sets: the right outcome passes, the likely wrong one fails (the
+    half is read from ``_twenty_second_test_half`` itself: it is not in ``corpus()`` yet)."""
+    from bench.nl_corpus import _twenty_second_test_half
+
+    entries = {e.id: e for e in _twenty_second_test_half()}
+    assert len(entries) == 36 and Counter(e.cls for e in entries.values()) == Counter(
+        dict.fromkeys(CLASSES, 3)
+    )
+    assert all(e.half == "test" for e in entries.values())
+    ft, inch, mile = 0.3048, 0.0254, 1609.344
+    idle = {d: DroneTruth(*HOMES[d][:2], 0.0, False, 90.0) for d in DRONES}
+
+    def check(mid: str) -> Callable[[Evidence], bool]:
+        """The entry's check, bound to the test homes."""
+        return lambda evidence: entries[mid].mission.check(CTX, evidence).ok
+
+    def flown(drone: str, legs: list[tuple[float, float]], alt: float, end: DroneTruth) -> Evidence:
+        return ev({drone: end}, {drone: [*_track(drone, legs, alt), end]})
+
+    def heights(alts: dict[str, list[float]]) -> Evidence:
+        """Each drone over its own pad at the heights given, sampled together; each ends at its last one."""
+        track = {d: [over(CTX.point(d, 0, 0), a) for a in hs] for d, hs in alts.items()}
+        return ev({d: t[-1] for d, t in track.items()}, track)
+
+    def along(stops: list[tuple[float, float]], alt: float) -> list[DroneTruth]:
+        """Samples about every metre on the straight lines between ``stops`` (lat, lon), at ``alt``."""
+        out = []
+        for a, b in itertools.pairwise(stops):
+            steps = max(1, int(math.hypot(*ned_offset(*a, *b))))
+            out += [over((a[0] + (b[0] - a[0]) * i / steps, a[1] + (b[1] - a[1]) * i / steps), alt)
+                    for i in range(steps + 1)]  # fmt: skip
+        return out
+
+    def trips(tracks: dict[str, list[DroneTruth]]) -> Evidence:
+        """Each drone's track as given, ending where it ends."""
+        return ev({d: t[-1] for d, t in tracks.items()}, tracks)
+
+    def refused(
+        final: dict[str, DroneTruth], text: str, answer: str = "Refused: over the limit."
+    ) -> Evidence:
+        result = [{"name": "move_to_relative", "status": "error", "text": text}]
+        truth = {**idle, **final}
+        return Evidence(truth, {d: [t] for d, t in truth.items()}, result, answer)
+
+    def centre(north: float, east: float) -> tuple[float, float]:
+        lat = sum(HOMES[d][0] for d in DRONES) / 3
+        lon = sum(HOMES[d][1] for d in DRONES) / 3
+        return offset_position(lat, lon, north, east)
+
+    home = {d: landed_at(CTX.point(d, 0, 0)) for d in DRONES}
+    pads = {d: CTX.point(d, 0, 0) for d in DRONES}
+    d20, d40 = 20 / math.sqrt(2), 40 / math.sqrt(2)
+
+    # up to 25 m and halfway down (12.5 m); not left at 25 m, not down to the pad, not never at 25 m
+    halfway = check("single22-bravo-halfway-down")
+    assert halfway(heights({"bravo": [0, 25, 12.5]}))
+    assert not halfway(heights({"bravo": [0, 25]}))
+    assert not halfway(heights({"bravo": [0, 25, 0]}))
+    assert not halfway(heights({"bravo": [0, 12.5]}))
+
+    # halfway between 10 m and 30 m is 20 m; not either end, not their sum
+    midway = check("single22-yue-charlie-midway-ten-thirty")
+    assert midway(ev({"charlie": _hovering("charlie", 0, 0, 20)}))
+    for wrong in (10, 30, 40):
+        assert not midway(ev({"charlie": _hovering("charlie", 0, 0, wrong)}))
+
+    # down to 4 m above the ground; not down by 4 m (12 m), not never up to 16 m
+    sink = check("single22-fy-alpha-sixteen-then-four")
+    assert sink(heights({"alpha": [0, 16, 4]}))
+    assert not sink(heights({"alpha": [0, 16, 12]}))
+    assert not sink(heights({"alpha": [0, 4]}))
+
+    # up alpha, bravo, charlie in turn and down charlie, bravo, alpha; not down in the takeoffs' order, not
+    # all up at once
+    reverse = check("multi22-reverse-landing-order")
+    assert reverse(heights({"alpha": [0, 10, 10, 10, 10, 10, 0, 0], "bravo": [0, 0, 10, 10, 10, 0, 0, 0],
+                            "charlie": [0, 0, 0, 10, 0, 0, 0, 0]}))  # fmt: skip
+    assert not reverse(heights({"alpha": [0, 10, 10, 10, 0, 0, 0, 0], "bravo": [0, 0, 10, 10, 10, 0, 0, 0],
+                                "charlie": [0, 0, 0, 10, 10, 10, 0, 0]}))  # fmt: skip
+    assert not reverse(heights({"alpha": [0, 10, 10, 10, 10, 10, 0, 0], "bravo": [0, 10, 10, 10, 10, 0, 0, 0],
+                                "charlie": [0, 10, 10, 10, 0, 0, 0, 0]}))  # fmt: skip
+
+    # 10, 20 and 30 m north; alpha and charlie down out there, bravo up; not all 20 m, not bravo down too
+    def staggered(north: dict[str, float], bravo_down: bool) -> Evidence:
+        tracks = {d: _track(d, [(n, 0)], 12) for d, n in north.items()}
+        for d in ("alpha", "charlie") if not bravo_down else DRONES:
+            tracks[d] = [*tracks[d], landed_at(CTX.point(d, north[d], 0))]
+        return trips(tracks)
+
+    stagger = check("multi22-tk-staggered-north-two-land")
+    assert stagger(staggered({"alpha": 10, "bravo": 20, "charlie": 30}, bravo_down=False))
+    assert not stagger(staggered({"alpha": 20, "bravo": 20, "charlie": 20}, bravo_down=False))
+    assert not stagger(staggered({"alpha": 10, "bravo": 20, "charlie": 30}, bravo_down=True))
+
+    # each out its own way, then down on the other's pad; not back on its own, not out the wrong ways
+    swap = check("multi22-oc-onto-each-others-pads")
+    west, east = CTX.point("alpha", 0, -30), CTX.point("bravo", 0, 30)
+
+    def out_and_down(
+        alpha_out: tuple[float, float], bravo_out: tuple[float, float], swapped: bool
+    ) -> Evidence:
+        """alpha out at 10 m and bravo out at 20 m, each then down on the other's pad or on its own."""
+        a_end, b_end = (pads["bravo"], pads["alpha"]) if swapped else (pads["alpha"], pads["bravo"])
+        alpha = [*along([pads["alpha"], alpha_out, a_end], 10), landed_at(a_end)]
+        return trips(
+            {"alpha": alpha, "bravo": [*along([pads["bravo"], bravo_out, b_end], 20), landed_at(b_end)]}
+        )
+
+    assert swap(out_and_down(west, east, swapped=True))
+    assert not swap(out_and_down(west, east, swapped=False))
+    assert not swap(out_and_down(CTX.point("alpha", 0, 30), CTX.point("bravo", 0, -30), swapped=True))
+
+    # two runs out and back, then down on the pad; not one run, not down at the far end
+    runs = check("compound22-charlie-fence-runs-twice")
+    assert runs(flown("charlie", [(-20, 0), (20, 0), (-20, 0), (20, 0)], 10, home["charlie"]))
+    assert not runs(flown("charlie", [(-20, 0), (20, 0)], 10, home["charlie"]))
+    assert not runs(
+        flown("charlie", [(-20, 0), (20, 0), (-20, 0)], 10, landed_at(CTX.point("charlie", -20, 0)))
+    )
+
+    # the dip to 6 m 20 m west, then up to 18 m and 20 m north; not without the dip, not east
+    def dip(east: float, lowest: float) -> Evidence:
+        out = [*_track("alpha", [(0, east)], 12)]
+        down = [a for a in (10, 8, 6) if a >= lowest]
+        out += [_hovering("alpha", 0, east, a) for a in (*down, *reversed(down[:-1]), 12, 14, 16, 18)]
+        out += [_hovering("alpha", k, east, 18) for k in range(1, 21)]
+        return ev({"alpha": out[-1]}, {"alpha": out})
+
+    photo = check("compound22-ug-alpha-west-dip-north")
+    assert photo(dip(-20, 6))
+    assert not photo(dip(-20, 12))
+    assert not photo(dip(20, 6))
+
+    # down 15 m east before the leg west, ending 15 m west of the pad at 8 m; not flown through, not short
+    stop, past = CTX.point("bravo", 0, 15), CTX.point("bravo", 0, -15)
+    hop = check("compound22-fo-bravo-land-east-then-west")
+    end = _hovering("bravo", 0, -15, 8)
+    assert hop(
+        trips({"bravo": [*along([pads["bravo"], stop], 10), landed_at(stop), *along([stop, past], 8), end]})
+    )
+    assert not hop(trips({"bravo": [*along([pads["bravo"], stop], 10), *along([stop, past], 8), end]}))
+    short = [*along([pads["bravo"], stop], 10), landed_at(stop), *along([stop, pads["bravo"]], 8)]
+    assert not hop(trips({"bravo": [*short, _hovering("bravo", 0, 0, 8)]}))
+
+    # the middle charge (charlie, 63 %) flies; not the fullest, not the emptiest
+    middle = check("cond22-middle-charge-flies")
+    assert middle(ev({"charlie": _hovering("charlie", 20, 0, 10)}))
+    assert not middle(ev({"bravo": _hovering("bravo", 20, 0, 10)}))
+    assert not middle(ev({"alpha": _hovering("alpha", 20, 0, 10)}))
+
+    # 58 + 55 is under 120: only alpha (the fuller) rises; not both, not bravo
+    total = check("cond22-ast-sum-over-hundred-twenty")
+    assert total(ev({"alpha": _hovering("alpha", 0, 0, 15)}))
+    assert not total(ev({"alpha": _hovering("alpha", 0, 0, 15), "bravo": _hovering("bravo", 0, 0, 15)}))
+    assert not total(ev({"bravo": _hovering("bravo", 0, 0, 15)}))
+
+    # charlie (52 %) is below bravo (67 %): bravo flies 30 m west of its pad and lands; not charlie
+    unless = check("cond22-tt-charlie-unless-below-bravo")
+    assert unless(flown("bravo", [(0, -30)], 12, landed_at(CTX.point("bravo", 0, -30))))
+    assert not unless(flown("charlie", [(0, -30)], 12, landed_at(CTX.point("charlie", 0, -30))))
+
+    # the V's point 20 m north of bravo's pad, wings behind it, any drone in any slot; not pointing south,
+    # not round bravo's pad
+    vee = check("form22-v-pointing-north")
+    slots = [CTX.point("bravo", 20, 0), CTX.point("bravo", 10, -10), CTX.point("bravo", 10, 10)]
+    assert vee(ev({d: over(p, 15) for d, p in zip(DRONES, slots, strict=True)}))
+    assert vee(ev({d: over(p, 15) for d, p in zip(("charlie", "alpha", "bravo"), slots, strict=True)}))
+    south = [CTX.point("bravo", 20, 0), CTX.point("bravo", 30, -10), CTX.point("bravo", 30, 10)]
+    assert not vee(ev({d: over(p, 15) for d, p in zip(DRONES, south, strict=True)}))
+    at_pad = [CTX.point("bravo", 0, 0), CTX.point("bravo", -10, -10), CTX.point("bravo", -10, 10)]
+    assert not vee(ev({d: over(p, 15) for d, p in zip(DRONES, at_pad, strict=True)}))
+
+    # three on a 10 m circle round the point 25 m east of charlie's pad; not round the pad, not a row
+    def on_circle(north: float, east: float, radius: float) -> dict[str, DroneTruth]:
+        spot = CTX.point("charlie", north, east)
+        rays = [
+            (radius * math.cos(math.radians(a)), radius * math.sin(math.radians(a))) for a in (0, 120, 240)
+        ]
+        return {d: over(offset_position(*spot, n, e), 20) for d, (n, e) in zip(DRONES, rays, strict=True)}
+
+    circle = check("form22-su-ring-east-of-charlie")
+    assert circle(ev(on_circle(0, 25, 10)))
+    assert not circle(ev(on_circle(0, 0, 10)))
+    assert not circle(ev(on_circle(0, 25, 5)))
+    spot = CTX.point("charlie", 0, 25)
+    row = {d: over(offset_position(*spot, 0, e), 20) for d, e in zip(DRONES, (-17.3, 0, 17.3), strict=True)}
+    assert not circle(ev(row))
+
+    # the L's corner 15 m south of the pads' middle, arms north and west; not the arm east, not at the pads
+    ell = check("form22-ja-l-shape-south")
+    assert ell(
+        ev(
+            {
+                d: over(centre(n, e), 12)
+                for d, (n, e) in zip(DRONES, ((-15, -10), (-5, 0), (-15, 0)), strict=True)
+            }
+        )
+    )
+    assert not ell(
+        ev(
+            {
+                d: over(centre(n, e), 12)
+                for d, (n, e) in zip(DRONES, ((-15, 10), (-5, 0), (-15, 0)), strict=True)
+            }
+        )
+    )
+    assert not ell(
+        ev({d: over(centre(n, e), 12) for d, (n, e) in zip(DRONES, ((0, -10), (10, 0), (0, 0)), strict=True)})
+    )
+
+    # a compass bearing of 120 degrees (south-east of east); not 120 degrees from east anticlockwise, not 150
+    bearing = check("rel22-bravo-bearing-120")
+    s3 = 15 * math.sqrt(3)
+    assert bearing(ev({"bravo": _hovering("bravo", -15, s3, 12)}))
+    assert not bearing(ev({"bravo": _hovering("bravo", s3, -15, 12)}))
+    assert not bearing(ev({"bravo": _hovering("bravo", -s3, 15, 12)}))
+
+    # east as far as it is high (18 m), then down by a third of its height (to 12 m); not down to a third
+    # of it (6 m), not north
+    as_high = check("rel22-kk-alpha-east-as-far-as-high")
+    assert as_high(flown("alpha", [(0, 18)], 18, _hovering("alpha", 0, 18, 12)))
+    assert not as_high(flown("alpha", [(0, 18)], 18, _hovering("alpha", 0, 18, 6)))
+    assert not as_high(flown("alpha", [(18, 0)], 18, _hovering("alpha", 18, 0, 12)))
+
+    # 10 m back along the north-east track and 5 m up; not 10 m south, not level
+    back = check("rel22-el-charlie-back-along-track")
+    track = [(d40, d40), (-d40 / 4, -d40 / 4)]
+    assert back(flown("charlie", track, 10, _hovering("charlie", 3 * d40 / 4, 3 * d40 / 4, 15)))
+    assert not back(flown("charlie", [(d40, d40), (-10, 0)], 10, _hovering("charlie", d40 - 10, d40, 15)))
+    assert not back(flown("charlie", track, 10, _hovering("charlie", 3 * d40 / 4, 3 * d40 / 4, 10)))
+
+    # questions: bravo's 57 % is nearest 50, not alpha's 38 %; both readings asked for, not the ratio or the
+    # gap alone; nothing flies
+    half_full = check("ask22-closest-to-half")
+    assert half_full(ev({}, text="Bravo, with 57 %."))
+    assert not half_full(ev({}, text="Alpha, with 38 %."))
+    assert not half_full(heights({"bravo": [0, 5]}))
+    times = check("ask22-as-bravo-times-charlie")
+    assert times(ev({}, text="bravo 90 %, charlie 30 %: 3 গুণ"))
+    assert not times(ev({}, text="3 গুণ"))
+    gap = check("ask22-ml-charlie-points-to-alpha")
+    assert gap(ev({}, text="37: alpha 71 %, charlie 34 %"))
+    assert not gap(ev({}, text="37"))
+
+    # 450 ft (137 m) refused and reported; not flown, not refused and called done
+    photo_high = check("refuse22-charlie-450-feet")
+    too_high = "max_altitude: target altitude 137.2 m exceeds the limit of 120 m above home"
+    assert photo_high(refused({}, too_high))
+    assert not photo_high(heights({"charlie": [0, 60, 120, 137]}))
+    assert not photo_high(refused({}, too_high, answer="Done."))
+
+    # 800 m north flown, the 700 m east (1063 m from home) refused; not flown, not refused from the start
+    mast = check("refuse22-yi-bravo-north-then-east-too-far")
+    too_far = "max_distance: target 1063 m from home exceeds the limit of 1000 m"
+    north = _hovering("bravo", 800, 0, 30)
+    assert mast(refused({"bravo": north}, too_far))
+    assert not mast(flown("bravo", [(800, 0), (0, 700)], 30, _hovering("bravo", 800, 700, 30)))
+    assert not mast(refused({}, too_far))
+    assert not mast(refused({"bravo": north}, too_far, answer="Done."))
+
+    # alpha and bravo up, charlie (22 %) refused; not charlie flown, not all kept down
+    flat = check("refuse22-hy-all-three-charlie-flat")
+    low = "min_battery_takeoff: battery 22 % is below the 30 % needed to take off"
+    pair = {d: _hovering(d, 0, 0, 10) for d in ("alpha", "bravo")}
+    assert flat(refused(pair, low))
+    assert not flat(refused({**pair, "charlie": _hovering("charlie", 0, 0, 10)}, low))
+    assert not flat(refused({}, low))
+
+    # miles and feet, not km and metres; inches and feet, not cm and metres; feet and km, not metres
+    miles = check("units22-charlie-miles-west")
+    there = landed_at(CTX.point("charlie", 0, -0.15 * mile))
+    assert miles(flown("charlie", [(0, -0.15 * mile)], 30 * ft, there))
+    assert not miles(flown("charlie", [(0, -150)], 30 * ft, landed_at(CTX.point("charlie", 0, -150))))
+    assert not miles(flown("charlie", [(0, -0.15 * mile)], 30, there))
+    inches = check("units22-gd-bravo-inches-feet")
+    assert inches(ev({"bravo": _hovering("bravo", 150 * ft, 0, 600 * inch)}))
+    assert not inches(ev({"bravo": _hovering("bravo", 150, 0, 600 * inch)}))
+    assert not inches(ev({"bravo": _hovering("bravo", 150 * ft, 0, 6)}))
+    km = check("units22-mi-alpha-feet-km-east")
+    assert km(flown("alpha", [(0, 120)], 40 * ft, landed_at(CTX.point("alpha", 0, 120))))
+    assert not km(flown("alpha", [(0, 120)], 40, landed_at(CTX.point("alpha", 0, 120))))
+    assert not km(flown("alpha", [(0, 12)], 40 * ft, landed_at(CTX.point("alpha", 0, 12))))
+
+    # round the post anticlockwise from its south side, then home; not clockwise, not round the pad
+    def orbit(centre_north: float, order: tuple[tuple[float, float], ...]) -> Evidence:
+        points = [CTX.point("alpha", centre_north + n, e) for n, e in order]
+        return trips(
+            {"alpha": [*along([pads["alpha"], *points, points[0], pads["alpha"]], 15), home["alpha"]]}
+        )
+
+    lamp = check("pattern22-alpha-orbit-post-anticlockwise")
+    assert lamp(orbit(20, ((-10, 0), (0, 10), (10, 0), (0, -10))))
+    assert not lamp(orbit(20, ((-10, 0), (0, -10), (10, 0), (0, 10))))
+    assert not lamp(orbit(0, ((-10, 0), (0, 10), (10, 0), (0, -10))))
+
+    # the expanding square turning right; not turning left
+    square = check("pattern22-xh-bravo-expanding-square")
+    right = [(10, 0), (0, 10), (-20, 0), (0, -20), (30, 0)]
+    assert square(flown("bravo", right, 12, _hovering("bravo", 20, -10, 12)))
+    left = [(10, 0), (0, -10), (-20, 0), (0, 20), (30, 0)]
+    assert not square(flown("bravo", left, 12, _hovering("bravo", 20, 10, 12)))
+
+    # four passes east and west stepping north, down 30 m north of the pad; not stepping south
+    mow = check("pattern22-ka-charlie-east-west-passes")
+    passes = [(0, 40), (10, 0), (0, -40), (10, 0), (0, 40), (10, 0), (0, -40)]
+    assert mow(flown("charlie", passes, 10, landed_at(CTX.point("charlie", 30, 0))))
+    south_passes = [(-n, e) for n, e in passes]
+    assert not mow(flown("charlie", south_passes, 10, landed_at(CTX.point("charlie", -30, 0))))
+
+    # charlie halfway between alpha and bravo, and halfway between their heights; not at either height,
+    # not halfway between their pads
+    a, b = CTX.point("alpha", 30, 0), CTX.point("bravo", 0, 30)
+    mid = ((a[0] + b[0]) / 2, (a[1] + b[1]) / 2)
+    pair_up = {"alpha": _hovering("alpha", 30, 0, 10), "bravo": _hovering("bravo", 0, 30, 20)}
+    midpoint = check("place22-charlie-midway-in-height-too")
+    assert midpoint(ev({**pair_up, "charlie": over(mid, 15)}))
+    assert not midpoint(ev({**pair_up, "charlie": over(mid, 10)}))
+    assert not midpoint(ev({**pair_up, "charlie": over(CTX.point("alpha", 0, 3.8), 15)}))
+
+    # charlie at 5 m right under alpha (22 m, 20 m north-east of alpha's pad); not from its own pad, not
+    # 5 m below alpha
+    under = check("place22-ko-charlie-under-alpha")
+    alpha_up = _hovering("alpha", d20, d20, 22)
+    assert under(ev({"alpha": alpha_up, "charlie": over(CTX.point("alpha", d20, d20), 5)}))
+    assert not under(ev({"alpha": alpha_up, "charlie": _hovering("charlie", d20, d20, 5)}))
+    assert not under(ev({"alpha": alpha_up, "charlie": over(CTX.point("alpha", d20, d20), 17)}))
+
+    # charlie down 12 m south of alpha's pad, bravo 8 m over it; not from charlie's own pad, not bravo down
+    spot = CTX.point("alpha", -12, 0)
+    own = CTX.point("charlie", -12, 0)
+    above = check("place22-nds-charlie-south-of-alpha-pad-bravo-above")
+    assert above(
+        trips({"charlie": [*along([pads["charlie"], spot], 10), landed_at(spot)], "bravo": [over(spot, 8)]})
+    )
+    assert not above(
+        trips({"charlie": [*along([pads["charlie"], own], 10), landed_at(own)], "bravo": [over(own, 8)]})
+    )
+    assert not above(trips({"charlie": [*along([pads["charlie"], spot], 10), landed_at(spot)],
+                            "bravo": [over(spot, 8), landed_at(spot)]}))  # fmt: skip
+
+    # the language class: east, not west; south then west, not east; back 10 m and down, not down out there
+    tibetan = check("lang22-bo-alpha-east-land")
+    assert tibetan(flown("alpha", [(0, 20)], 12, landed_at(CTX.point("alpha", 0, 20))))
+    assert not tibetan(flown("alpha", [(0, -20)], 12, landed_at(CTX.point("alpha", 0, -20))))
+    pashto = check("lang22-ps-bravo-south-west-hover")
+    assert pashto(flown("bravo", [(-20, 0), (0, -10)], 15, _hovering("bravo", -20, -10, 15)))
+    assert not pashto(flown("bravo", [(-20, 0), (0, 10)], 15, _hovering("bravo", -20, 10, 15)))
+    malagasy = check("lang22-mg-charlie-north-back-land")
+    assert malagasy(flown("charlie", [(30, 0), (-10, 0)], 10, landed_at(CTX.point("charlie", 20, 0))))
+    assert not malagasy(flown("charlie", [(30, 0)], 10, landed_at(CTX.point("charlie", 30, 0))))
